@@ -1,0 +1,62 @@
+/* Helpers shared by the subcommands: exit codes, diagnostics, files. */
+#ifndef VB_CLI_COMMON_H
+#define VB_CLI_COMMON_H
+
+#include <stdio.h>
+
+#include "vb.h"
+
+/* Exit codes of the `vorball` command (documented in README and --help):
+ *   0 success, 1 a check found a difference (verify/crosscheck), 2 usage,
+ *   3 i/o, 4 out of memory, 5 device, 6 internal, 7 degenerate, 8 precision,
+ *   10 + detail for input errors: 11 malformed, 12 NaN/Inf, 13 radius <= 0,
+ *   14 duplicate, 15 empty, 16 too few spheres, 17 magnitude, 18 unknown
+ *   element, 19 format, 20 too large, 21 model absent. */
+enum {
+    VB_EXIT_OK = 0,
+    VB_EXIT_MISMATCH = 1,
+    VB_EXIT_USAGE = 2,
+    VB_EXIT_IO = 3,
+    VB_EXIT_NOMEM = 4,
+    VB_EXIT_DEVICE = 5,
+    VB_EXIT_INTERNAL = 6,
+    VB_EXIT_DEGENERATE = 7,
+    VB_EXIT_PREC = 8,
+    VB_EXIT_INPUT = 10
+};
+
+/* Maps a status code (primary or extended) to the exit code above. */
+int vb_cli_exit_code(int status);
+
+/* Prints "vorball: E<num>: <message>" for the context's last error (or the
+ * status name when the context has no message) and returns the exit code. */
+int vb_cli_fail(vb_ctx *ctx, int status);
+
+/* Prints "vorball <cmd>: <message>" (usage problems) to stderr and returns
+ * VB_EXIT_USAGE. */
+int vb_cli_usage_error(const char *cmd, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+/* Opens the output: NULL or "-" is stdout. Returns NULL and sets the context
+ * error (VB_EIO) on failure. Close with vb_cli_close_output. */
+FILE *vb_cli_open_output(vb_ctx *ctx, const char *path);
+
+/* Closes an output opened by vb_cli_open_output (stdout is flushed, not
+ * closed). Returns VB_OK or VB_EIO (with message) if a write failed. */
+int vb_cli_close_output(vb_ctx *ctx, FILE *f, const char *path);
+
+/* Parses a whole string as a double / a non-negative integer. Returns 0 on
+ * success, -1 if the text is not a complete number. */
+int vb_cli_parse_double(const char *s, double *out);
+int vb_cli_parse_size(const char *s, size_t *out);
+
+/* True when `arg` equals -h or --help. */
+int vb_cli_is_help(const char *arg);
+
+/* Monotonic wall clock in seconds. */
+double vb_cli_now(void);
+
+#endif

@@ -1,0 +1,150 @@
+/* The context: error state, diagnostics and counters. */
+#include "vb.h"
+
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+struct vb_ctx {
+    vb_config cfg;
+    int errcode;
+    char errmsg[1024];
+    vb_stats stats;
+};
+
+int vb_open(vb_ctx **out, const vb_config *cfg)
+{
+    *out = NULL;
+    vb_ctx *c = calloc(1, sizeof *c);
+    if (!c)
+        return VB_ENOMEM;
+    if (cfg)
+        c->cfg = *cfg;
+    else
+        c->cfg.verbosity = 1;
+    *out = c;
+    return VB_OK;
+}
+
+void vb_close(vb_ctx *ctx)
+{
+    free(ctx);
+}
+
+const char *vb_errmsg(const vb_ctx *ctx)
+{
+    return ctx ? ctx->errmsg : "no context";
+}
+
+int vb_errcode(const vb_ctx *ctx)
+{
+    return ctx ? ctx->errcode : VB_EMISUSE;
+}
+
+void vb_clear_error(vb_ctx *ctx)
+{
+    ctx->errcode = VB_OK;
+    ctx->errmsg[0] = '\0';
+}
+
+vb_stats *vb_ctx_stats(vb_ctx *ctx)
+{
+    return &ctx->stats;
+}
+
+int vb_diag_number(int code)
+{
+    if (VB_CATEGORY(code) == VB_EINPUT && VB_DETAIL(code) > 0)
+        return 100 + VB_DETAIL(code);
+    return VB_CATEGORY(code);
+}
+
+const char *vb_errstr(int code)
+{
+    switch (code) {
+    case VB_OK: return "ok";
+    case VB_EINPUT_MALFORMED: return "malformed input line";
+    case VB_EINPUT_NONFINITE: return "NaN or infinite value";
+    case VB_EINPUT_RADIUS: return "radius not positive";
+    case VB_EINPUT_DUPLICATE: return "duplicate sphere";
+    case VB_EINPUT_EMPTY: return "empty input";
+    case VB_EINPUT_TOOFEW: return "too few spheres";
+    case VB_EINPUT_MAGNITUDE: return "value of absurd magnitude or precision";
+    case VB_EINPUT_ELEMENT: return "unknown element";
+    case VB_EINPUT_FORMAT: return "input format not recognised";
+    case VB_EINPUT_TOOLARGE: return "input too large";
+    case VB_EINPUT_MODEL: return "model not present";
+    default: break;
+    }
+    switch (VB_CATEGORY(code)) {
+    case VB_EINPUT: return "bad input";
+    case VB_EDEGENERATE: return "degenerate input";
+    case VB_EPREC: return "precision limit";
+    case VB_ENOMEM: return "out of memory";
+    case VB_EDEVICE: return "device failure";
+    case VB_EINTERNAL: return "internal error";
+    case VB_EMISUSE: return "misuse";
+    case VB_EIO: return "i/o error";
+    case VB_EMISMATCH: return "mismatch";
+    default: return "unknown status";
+    }
+}
+
+int vb_error(vb_ctx *ctx, int code, const char *file, long line, const char *fmt, ...)
+{
+    if (!ctx)
+        return code;
+    ctx->errcode = code;
+    size_t off = 0;
+    int k;
+    if (file && line > 0)
+        k = snprintf(ctx->errmsg, sizeof ctx->errmsg, "%s:%ld: ", file, line);
+    else if (file)
+        k = snprintf(ctx->errmsg, sizeof ctx->errmsg, "%s: ", file);
+    else
+        k = 0;
+    if (k > 0)
+        off = (size_t)k < sizeof ctx->errmsg ? (size_t)k : sizeof ctx->errmsg - 1;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(ctx->errmsg + off, sizeof ctx->errmsg - off, fmt, ap);
+    va_end(ap);
+    return code;
+}
+
+static FILE *diag_stream(const vb_ctx *ctx)
+{
+    return ctx->cfg.diag ? ctx->cfg.diag : stderr;
+}
+
+void vb_warn(vb_ctx *ctx, int num, const char *file, long line, const char *fmt, ...)
+{
+    ctx->stats.warnings++;
+    if (ctx->cfg.verbosity < 1)
+        return;
+    FILE *f = diag_stream(ctx);
+    if (file && line > 0)
+        fprintf(f, "vorball: W%d: %s:%ld: ", num, file, line);
+    else if (file)
+        fprintf(f, "vorball: W%d: %s: ", num, file);
+    else
+        fprintf(f, "vorball: W%d: ", num);
+    va_list ap;
+    va_start(ap, fmt);
+    vfprintf(f, fmt, ap);
+    va_end(ap);
+    fputc('\n', f);
+}
+
+void vb_info(vb_ctx *ctx, const char *fmt, ...)
+{
+    if (ctx->cfg.verbosity < 2)
+        return;
+    FILE *f = diag_stream(ctx);
+    fputs("vorball: ", f);
+    va_list ap;
+    va_start(ap, fmt);
+    vfprintf(f, fmt, ap);
+    va_end(ap);
+    fputc('\n', f);
+}

@@ -1,0 +1,125 @@
+/* vorball public API: context, status codes, diagnostics, statistics.
+ *
+ * Every public call takes the context first, returns an int status (VB_OK or a
+ * VB_E* code) and writes results through OUT parameters. On failure the context
+ * keeps a message (vb_errmsg) and, for input errors, the file:line it refers to.
+ * Library code never exits, aborts or asserts on user input: only cli/ stops. */
+#ifndef VB_H
+#define VB_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Primary status codes (categories). The low byte is the category; extended
+ * codes carry a detail in the upper bits, as SQLite's extended result codes do:
+ * VB_CATEGORY(code) recovers the category. */
+enum vb_status {
+    VB_OK = 0,
+    VB_EINPUT = 1,      /* user input is malformed or outside what we accept */
+    VB_EDEGENERATE = 2, /* input is legal but geometry is degenerate for the operation */
+    VB_EPREC = 3,       /* a precision limit was reached (exact fallback impossible) */
+    VB_ENOMEM = 4,      /* allocation failed */
+    VB_EDEVICE = 5,     /* OpenCL device or runtime failure */
+    VB_EINTERNAL = 6,   /* a bug: an invariant of vorball did not hold */
+    VB_EMISUSE = 7,     /* API or CLI misuse (bad argument, bad option) */
+    VB_EIO = 8,         /* file cannot be opened, read or written */
+    VB_EMISMATCH = 9    /* a check ran and found a difference (verify, crosscheck) */
+};
+
+/* Extended input codes: VB_EINPUT | (detail << 8). Each has its own stable
+ * diagnostic number (E1xx) and its own CLI exit code (see cli/cli_common.h). */
+enum vb_input_error {
+    VB_EINPUT_MALFORMED  = VB_EINPUT | (1 << 8), /* E101 line cannot be parsed */
+    VB_EINPUT_NONFINITE  = VB_EINPUT | (2 << 8), /* E102 NaN or Inf */
+    VB_EINPUT_RADIUS     = VB_EINPUT | (3 << 8), /* E103 radius <= 0 */
+    VB_EINPUT_DUPLICATE  = VB_EINPUT | (4 << 8), /* E104 two spheres identical */
+    VB_EINPUT_EMPTY      = VB_EINPUT | (5 << 8), /* E105 no spheres at all */
+    VB_EINPUT_TOOFEW     = VB_EINPUT | (6 << 8), /* E106 fewer than 4 spheres */
+    VB_EINPUT_MAGNITUDE  = VB_EINPUT | (7 << 8), /* E107 absurd magnitude or precision */
+    VB_EINPUT_ELEMENT    = VB_EINPUT | (8 << 8), /* E108 unknown element (strict mode) */
+    VB_EINPUT_FORMAT     = VB_EINPUT | (9 << 8), /* E109 format not recognised / wrong --format */
+    VB_EINPUT_TOOLARGE   = VB_EINPUT | (10 << 8),/* E110 file or sphere count over limit */
+    VB_EINPUT_MODEL      = VB_EINPUT | (11 << 8) /* E111 requested model/frame absent */
+};
+
+#define VB_CATEGORY(code) ((code) & 0xff)
+#define VB_DETAIL(code) ((code) >> 8)
+
+/* Returns a static English name for a status code, extended or primary. */
+const char *vb_errstr(int code);
+
+/* Configuration handed to vb_open. Zero-initialise, then set what you need. */
+typedef struct vb_config {
+    int verbosity;            /* 0 quiet, 1 warnings (default when 0-init: warnings on), 2 info */
+    FILE *diag;               /* where warnings go; NULL means stderr */
+} vb_config;
+
+/* Counters of the filtered predicates and the pipeline (--stats). */
+typedef struct vb_stats {
+    uint64_t filter_calls;     /* sign evaluations attempted in double */
+    uint64_t filter_failures;  /* of those, undecided by the error bound */
+    uint64_t exact_evals;      /* evaluations done with GMP */
+    uint64_t candidates;       /* candidate vertices handed to the certifier */
+    uint64_t certified;        /* canonical vertices certified */
+    uint64_t rejected;         /* candidates the certifier refused */
+    uint64_t warnings;         /* warnings emitted */
+} vb_stats;
+
+typedef struct vb_ctx vb_ctx;
+
+/* Creates a context. cfg may be NULL (defaults). On VB_ENOMEM *out is NULL.
+ * Free with vb_close. */
+int vb_open(vb_ctx **out, const vb_config *cfg);
+
+/* Frees the context; NULL is allowed. */
+void vb_close(vb_ctx *ctx);
+
+/* Last error message (never NULL; "" when none). Valid until the next call
+ * that sets an error. */
+const char *vb_errmsg(const vb_ctx *ctx);
+
+/* Last error code recorded by vb_error (VB_OK when none). */
+int vb_errcode(const vb_ctx *ctx);
+
+/* Records an error: code, optional file and line (line 0 = none) and a
+ * printf-style message. Returns code, so callers can `return vb_error(...)`. */
+int vb_error(vb_ctx *ctx, int code, const char *file, long line, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 5, 6)))
+#endif
+    ;
+
+/* Emits warning number `num` (W7xx) to the diagnostic stream when verbosity
+ * allows, and counts it. file may be NULL, line 0 for none. */
+void vb_warn(vb_ctx *ctx, int num, const char *file, long line, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 5, 6)))
+#endif
+    ;
+
+/* Emits an informational line (verbosity >= 2). */
+void vb_info(vb_ctx *ctx, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+/* Mutable access to the context's counters; never NULL for a valid ctx. */
+vb_stats *vb_ctx_stats(vb_ctx *ctx);
+
+/* Resets the error state to VB_OK. */
+void vb_clear_error(vb_ctx *ctx);
+
+/* The diagnostic number belonging to an error code (e.g. 101 for
+ * VB_EINPUT_MALFORMED, 1 for a plain VB_EINPUT) used in "E101" prefixes. */
+int vb_diag_number(int code);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,127 @@
+/* Sphere sets and their readers (XYZR / Voronota balls, PDB, PQR, mmCIF).
+ *
+ * A sphere set is a struct of arrays. Every coordinate and radius is kept twice:
+ * as the double nearest to the decimal written in the file (strtod, correctly
+ * rounded) and as that exact decimal (vb_decimal), which verify/ turns into a
+ * GMP rational. The exact value is never derived from the double. */
+#ifndef VB_SPHERES_H
+#define VB_SPHERES_H
+
+#include "vb.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* An exact decimal: value = mant * 10^exp10. At most 18 significant digits
+ * (more is VB_EINPUT_MAGNITUDE); trailing zeros are stripped so equal values
+ * have equal representations. */
+typedef struct vb_decimal {
+    int64_t mant;
+    int32_t exp10;
+} vb_decimal;
+
+/* Per-atom annotation for PDB/PQR/mmCIF input (empty strings for XYZR; the
+ * Voronota annotation after '#' is kept in `name`..`resname` when present). */
+typedef struct vb_atom_info {
+    int32_t serial;
+    int32_t resseq;
+    char name[8];     /* atom name, e.g. "CA" */
+    char resname[8];  /* residue name, e.g. "ALA" */
+    char chain[8];    /* chain id (mmCIF auth_asym_id may be long: truncated, warned) */
+    char element[4];  /* element symbol, upper case, e.g. "C", "FE" */
+    char icode;       /* insertion code or ' ' */
+    char altloc;      /* alternate location or ' ' */
+    uint8_t hetatm;   /* 1 for HETATM */
+} vb_atom_info;
+
+typedef struct vb_sphere_set {
+    size_t n;
+    double *x, *y, *z, *r;           /* nearest doubles */
+    vb_decimal *ex, *ey, *ez, *er;   /* exact decimals as written (radius from the table for PDB/mmCIF) */
+    vb_atom_info *info;              /* NULL when the format has no atom records (XYZR) */
+    long *line;                      /* 1-based source line of each sphere */
+    uint8_t *contained;              /* 1 if the sphere lies inside another (empty cell); set by vb_spheres_validate */
+    char *source;                    /* file name as given ("-" = stdin), owned */
+} vb_sphere_set;
+
+typedef enum vb_format {
+    VB_FMT_AUTO = 0,
+    VB_FMT_XYZR,
+    VB_FMT_PDB,
+    VB_FMT_PQR,
+    VB_FMT_MMCIF
+} vb_format;
+
+/* Radii table (element symbol -> radius as an exact decimal). */
+typedef struct vb_radii_table vb_radii_table;
+
+typedef struct vb_read_options {
+    vb_format format;            /* VB_FMT_AUTO detects by content */
+    int model;                   /* PDB/mmCIF model number to read; 0 = first model */
+    int keep_water;              /* 1 keeps HOH/WAT/DOD/TIP3 residues (default 0: dropped, with a count on stderr) */
+    int drop_hydrogens;          /* 1 drops H/D atoms (default 0: kept) */
+    int strict_elements;         /* 1: unknown element is VB_EINPUT_ELEMENT; 0: default radius + warning */
+    const vb_radii_table *radii; /* NULL = built-in table (C 1.70, N 1.55, O 1.52, S 1.80, P 1.80, H 1.20, ...) */
+    size_t max_spheres;          /* 0 = default limit (50,000,000) */
+} vb_read_options;
+
+/* Parses a format name ("xyzr", "pdb", "pqr", "cif"/"mmcif", "auto").
+ * Returns VB_OK or VB_EMISUSE. */
+int vb_format_parse(vb_ctx *ctx, const char *name, vb_format *out);
+
+/* Reads spheres from a file ("-" = stdin). On success *out owns a new set
+ * (free with vb_spheres_free). Errors are VB_EINPUT_* with file:line in the
+ * context message, or VB_EIO / VB_ENOMEM. Does not validate geometry: call
+ * vb_spheres_validate. */
+int vb_spheres_read_file(vb_ctx *ctx, const char *path, const vb_read_options *opt,
+                         vb_sphere_set **out);
+
+/* As vb_spheres_read_file from a memory buffer; `name` is used in messages.
+ * This is the entry point of the fuzzing targets. */
+int vb_spheres_read_buffer(vb_ctx *ctx, const char *name, const char *buf, size_t len,
+                           const vb_read_options *opt, vb_sphere_set **out);
+
+/* Checks a set for use as Voronoi input: empty (VB_EINPUT_EMPTY), fewer than
+ * `min_count` spheres (VB_EINPUT_TOOFEW; pass 4 for vertices), duplicate
+ * spheres (VB_EINPUT_DUPLICATE, both lines named), absurd magnitudes.
+ * Contained spheres are legal: they get contained[i] = 1 and warning W701;
+ * indices stay stable. Decided exactly on the decimals. */
+int vb_spheres_validate(vb_ctx *ctx, vb_sphere_set *set, size_t min_count);
+
+/* Frees a set; NULL is allowed. */
+void vb_spheres_free(vb_sphere_set *set);
+
+/* Multi-model input (PDB MODEL/ENDMDL, mmCIF pdbx_PDB_model_num) read frame by
+ * frame: one frame in memory at a time. */
+typedef struct vb_frame_reader vb_frame_reader;
+
+/* Opens a frame reader. Free with vb_frame_reader_close. */
+int vb_frame_reader_open(vb_ctx *ctx, const char *path, const vb_read_options *opt,
+                         vb_frame_reader **out);
+
+/* Reads the next frame into *out (caller frees). At the end returns VB_OK with
+ * *out == NULL. *model_number gets the MODEL serial (or 1 for single-model). */
+int vb_frame_reader_next(vb_ctx *ctx, vb_frame_reader *rd, vb_sphere_set **out,
+                         int *model_number);
+
+void vb_frame_reader_close(vb_frame_reader *rd);
+
+/* Loads a radii table file: lines "ELEMENT RADIUS" ('#' comments).
+ * Free with vb_radii_free. */
+int vb_radii_load(vb_ctx *ctx, const char *path, vb_radii_table **out);
+void vb_radii_free(vb_radii_table *t);
+
+/* Exact decimal helpers. vb_decimal_parse parses a full token (no spaces);
+ * returns VB_OK, VB_EINPUT_MALFORMED, VB_EINPUT_NONFINITE (nan/inf) or
+ * VB_EINPUT_MAGNITUDE (> 18 digits or |exp| out of range). *d gets the nearest
+ * double (strtod of the same token). */
+int vb_decimal_parse(const char *tok, size_t len, vb_decimal *out, double *d);
+
+/* Compares two decimals exactly: -1, 0, +1. */
+int vb_decimal_cmp(vb_decimal a, vb_decimal b);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

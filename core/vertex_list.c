@@ -1,0 +1,151 @@
+/* Growable CSR list of vertices and its canonical order. */
+#include "vb_vertex.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+void vb_vertex_list_init(vb_vertex_list *v)
+{
+    memset(v, 0, sizeof *v);
+}
+
+void vb_vertex_list_free(vb_vertex_list *v)
+{
+    free(v->start);
+    free(v->ids);
+    free(v->x);
+    free(v->y);
+    free(v->z);
+    free(v->t);
+    free(v->dist);
+    free(v->status);
+    vb_vertex_list_init(v);
+}
+
+static int grow(void **p, size_t elem, size_t cap)
+{
+    void *q = realloc(*p, elem * cap);
+    if (!q)
+        return VB_ENOMEM;
+    *p = q;
+    return VB_OK;
+}
+
+static int reserve_vertices(vb_vertex_list *v, size_t need)
+{
+    if (need <= v->cap && v->start)
+        return VB_OK;
+    size_t cap = v->cap ? v->cap : 64;
+    while (cap < need)
+        cap *= 2;
+    if (grow((void **)&v->start, sizeof *v->start, cap + 1) ||
+        grow((void **)&v->x, sizeof *v->x, cap) || grow((void **)&v->y, sizeof *v->y, cap) ||
+        grow((void **)&v->z, sizeof *v->z, cap) || grow((void **)&v->t, sizeof *v->t, cap) ||
+        grow((void **)&v->dist, sizeof *v->dist, cap) ||
+        grow((void **)&v->status, sizeof *v->status, cap))
+        return VB_ENOMEM;
+    if (v->cap == 0)
+        v->start[0] = 0;
+    v->cap = cap;
+    return VB_OK;
+}
+
+static int reserve_ids(vb_vertex_list *v, size_t need)
+{
+    if (need <= v->ids_cap)
+        return VB_OK;
+    size_t cap = v->ids_cap ? v->ids_cap : 256;
+    while (cap < need)
+        cap *= 2;
+    if (grow((void **)&v->ids, sizeof *v->ids, cap))
+        return VB_ENOMEM;
+    v->ids_cap = cap;
+    return VB_OK;
+}
+
+static int cmp_u32(const void *a, const void *b)
+{
+    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+    return (x > y) - (x < y);
+}
+
+int vb_vertex_list_push(vb_vertex_list *v, const uint32_t *ids, size_t nids, double x,
+                        double y, double z, double t, double dist, int status)
+{
+    if (reserve_vertices(v, v->n + 1) || reserve_ids(v, v->nids + nids))
+        return VB_ENOMEM;
+    uint32_t *dst = v->ids + v->nids;
+    memcpy(dst, ids, nids * sizeof *ids);
+    qsort(dst, nids, sizeof *dst, cmp_u32);
+    size_t k = v->n;
+    v->x[k] = x;
+    v->y[k] = y;
+    v->z[k] = z;
+    v->t[k] = t;
+    v->dist[k] = dist;
+    v->status[k] = (uint8_t)status;
+    v->nids += nids;
+    v->n++;
+    v->start[v->n] = v->nids;
+    return VB_OK;
+}
+
+static int cmp_double(double a, double b)
+{
+    return (a > b) - (a < b);
+}
+
+/* C11 qsort has no user pointer; each key carries the list so the comparator
+ * needs no global state. */
+typedef struct {
+    const vb_vertex_list *v;
+    size_t k;
+} sort_key;
+
+static int cmp_key(const void *pa, const void *pb)
+{
+    const sort_key *a = pa, *b = pb;
+    const vb_vertex_list *v = a->v;
+    size_t na = v->start[a->k + 1] - v->start[a->k];
+    size_t nb = v->start[b->k + 1] - v->start[b->k];
+    const uint32_t *ia = v->ids + v->start[a->k], *ib = v->ids + v->start[b->k];
+    size_t m = na < nb ? na : nb;
+    for (size_t i = 0; i < m; i++)
+        if (ia[i] != ib[i])
+            return ia[i] < ib[i] ? -1 : 1;
+    if (na != nb)
+        return na < nb ? -1 : 1;
+    int c;
+    if ((c = cmp_double(v->x[a->k], v->x[b->k])) || (c = cmp_double(v->y[a->k], v->y[b->k])) ||
+        (c = cmp_double(v->z[a->k], v->z[b->k])) || (c = cmp_double(v->t[a->k], v->t[b->k])))
+        return c;
+    return (a->k > b->k) - (a->k < b->k);
+}
+
+int vb_vertex_list_sort(vb_vertex_list *v)
+{
+    if (v->n < 2)
+        return VB_OK;
+    sort_key *keys = malloc(v->n * sizeof *keys);
+    vb_vertex_list out;
+    vb_vertex_list_init(&out);
+    if (!keys)
+        return VB_ENOMEM;
+    for (size_t k = 0; k < v->n; k++)
+        keys[k] = (sort_key){v, k};
+    qsort(keys, v->n, sizeof *keys, cmp_key);
+    int rc = VB_OK;
+    for (size_t i = 0; i < v->n && rc == VB_OK; i++) {
+        size_t k = keys[i].k;
+        rc = vb_vertex_list_push(&out, v->ids + v->start[k], v->start[k + 1] - v->start[k],
+                                 v->x[k], v->y[k], v->z[k], v->t[k], v->dist[k], v->status[k]);
+    }
+    free(keys);
+    if (rc != VB_OK) {
+        vb_vertex_list_free(&out);
+        return rc;
+    }
+    vb_vertex_list_free(v);
+    *v = out;
+    return VB_OK;
+}

@@ -1,0 +1,57 @@
+/* The OpenCL runtime shared by every GPU stage: device choice, program build
+ * (kernels embedded at build time, or loaded from VORBALL_KERNEL_DIR for
+ * development), error mapping. A failed build always reports the build log. */
+#ifndef VBG_RUNTIME_H
+#define VBG_RUNTIME_H
+
+#define CL_TARGET_OPENCL_VERSION 120
+#include <CL/cl.h>
+#include <stdio.h>
+
+#include "vb.h"
+
+typedef enum vbg_device_kind {
+    VBG_DEVICE_AUTO = 0, /* a GPU if one is present, else a CPU device (PoCL) */
+    VBG_DEVICE_GPU,
+    VBG_DEVICE_CPU,
+    VBG_DEVICE_REF       /* no OpenCL: the plain-C reference backend */
+} vbg_device_kind;
+
+typedef struct vbg_runtime vbg_runtime;
+
+/* Parses "auto|gpu|cpu|ref". Returns VB_OK or VB_EMISUSE. */
+int vbg_device_kind_parse(vb_ctx *ctx, const char *s, vbg_device_kind *out);
+
+/* Opens an OpenCL context and in-order queue (profiling enabled) on a device of
+ * the requested kind with double-precision support. VB_EDEVICE when none is
+ * available (the caller decides about falling back to the reference backend
+ * and warns). kind must not be VBG_DEVICE_REF. */
+int vbg_runtime_open(vb_ctx *ctx, vbg_device_kind kind, vbg_runtime **out);
+
+void vbg_runtime_close(vbg_runtime *rt);
+
+cl_context vbg_runtime_context(const vbg_runtime *rt);
+cl_command_queue vbg_runtime_queue(const vbg_runtime *rt);
+cl_device_id vbg_runtime_device(const vbg_runtime *rt);
+/* "NVIDIA H100 80GB HBM3 (NVIDIA CUDA)" style name, owned by the runtime. */
+const char *vbg_runtime_device_name(const vbg_runtime *rt);
+int vbg_runtime_is_gpu(const vbg_runtime *rt);
+
+/* Builds (once per runtime; cached) the program from kernel file `name`
+ * (e.g. "jfa.cl"). Its `#include "x.h"` lines were resolved at build time.
+ * Options are appended to the standard ones ("-cl-std=CL1.2", never any fast
+ * math flag). On failure returns VB_EDEVICE with the build log in the message. */
+int vbg_program_get(vb_ctx *ctx, vbg_runtime *rt, const char *name, const char *options,
+                    cl_program *out);
+
+/* Maps an OpenCL error to VB_EDEVICE with "what: CL_ERROR_NAME" in the
+ * context; returns VB_OK when err == CL_SUCCESS. */
+int vbg_check(vb_ctx *ctx, cl_int err, const char *what);
+
+/* Writes a table of platforms and devices (name, type, version, fp64, memory). */
+int vbg_list_devices(vb_ctx *ctx, FILE *out);
+
+/* Returns the embedded source of kernel file `name`, or NULL if unknown. */
+const char *vbg_kernel_source(const char *name);
+
+#endif

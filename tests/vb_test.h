@@ -1,0 +1,62 @@
+/* Minimal test harness: CHECK macros count passes and failures; VB_TEST_END
+ * prints the closing "N passed, N failed" line and returns the exit code. */
+#ifndef VB_TEST_H
+#define VB_TEST_H
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+static int vb_test_passed, vb_test_failed;
+
+#define CHECK(cond)                                                                  \
+    do {                                                                             \
+        if (cond) {                                                                  \
+            vb_test_passed++;                                                        \
+        } else {                                                                     \
+            vb_test_failed++;                                                        \
+            fprintf(stderr, "%s:%d: CHECK failed: %s\n", __FILE__, __LINE__, #cond); \
+        }                                                                            \
+    } while (0)
+
+#define CHECK_INT(a, b)                                                                    \
+    do {                                                                                   \
+        long long va_ = (long long)(a), vb_ = (long long)(b);                              \
+        if (va_ == vb_) {                                                                  \
+            vb_test_passed++;                                                              \
+        } else {                                                                           \
+            vb_test_failed++;                                                              \
+            fprintf(stderr, "%s:%d: %s == %lld, expected %s == %lld\n", __FILE__, __LINE__, \
+                    #a, va_, #b, vb_);                                                     \
+        }                                                                                  \
+    } while (0)
+
+#define CHECK_NEAR(a, b, tol)                                                                  \
+    do {                                                                                       \
+        double va_ = (a), vb_ = (b);                                                           \
+        if (fabs(va_ - vb_) <= (tol)) {                                                        \
+            vb_test_passed++;                                                                  \
+        } else {                                                                               \
+            vb_test_failed++;                                                                  \
+            fprintf(stderr, "%s:%d: %s = %.17g, expected %.17g (tol %g)\n", __FILE__, __LINE__, \
+                    #a, va_, vb_, (double)(tol));                                              \
+        }                                                                                      \
+    } while (0)
+
+#define CHECK_STR(a, b)                                                                        \
+    do {                                                                                       \
+        const char *va_ = (a), *vb_ = (b);                                                     \
+        if (va_ && vb_ && strcmp(va_, vb_) == 0) {                                             \
+            vb_test_passed++;                                                                  \
+        } else {                                                                               \
+            vb_test_failed++;                                                                  \
+            fprintf(stderr, "%s:%d: %s = \"%s\", expected \"%s\"\n", __FILE__, __LINE__, #a,   \
+                    va_ ? va_ : "(null)", vb_ ? vb_ : "(null)");                               \
+        }                                                                                      \
+    } while (0)
+
+#define VB_TEST_END()                                                        \
+    do {                                                                     \
+        printf("%d passed, %d failed\n", vb_test_passed, vb_test_failed);    \
+        return vb_test_failed ? 1 : (vb_test_passed ? 0 : 1);               \
+    } while (0)
+#endif

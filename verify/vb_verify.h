@@ -1,0 +1,72 @@
+/* Exact certification of Voronoi vertices of spheres, and the brute-force
+ * exact reference.
+ *
+ * A vertex of the additively weighted (Apollonius) diagram is a point p and a
+ * tangent radius t with |p - c_a| - R_a = t for at least four spheres a and
+ * >= t for every other sphere (t < 0 is legal for overlapping spheres). The
+ * certifier re-derives everything from the exact decimals of the input: it
+ * never trusts the candidate beyond choosing which of the (at most two) exact
+ * solutions is meant. Signs are decided by a double filter with a proven error
+ * bound, falling back to GMP; counts go to vb_ctx_stats(ctx). */
+#ifndef VB_VERIFY_H
+#define VB_VERIFY_H
+
+#include "vb.h"
+#include "vb_spheres.h"
+#include "vb_vertex.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct vb_certifier vb_certifier;
+
+/* Builds the certifier for a validated sphere set: exact rationals from the
+ * decimals and a provably conservative spatial index for the emptiness test.
+ * The set must outlive the certifier. Free with vb_certifier_close. */
+int vb_certifier_open(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier **out);
+
+void vb_certifier_close(vb_certifier *c);
+
+enum vb_cert_verdict {
+    VB_CERT_OK = 0,          /* certified vertex */
+    VB_CERT_NO_SOLUTION = 1, /* the defining spheres have no common (outer) tangent sphere */
+    VB_CERT_INTRUDER = 2,    /* the tangent sphere is not empty: `intruder` cuts it */
+    VB_CERT_FAR = 3,         /* exact vertex exists but is farther than tol from the candidate */
+    VB_CERT_UNDETERMINED = 4,/* the defining spheres do not determine a finite set of points */
+    VB_CERT_BAD_IDS = 5      /* fewer than 4 distinct ids, or an id out of range */
+};
+
+typedef struct vb_cert_result {
+    int verdict;             /* enum vb_cert_verdict */
+    uint32_t intruder;       /* VB_CERT_INTRUDER: a sphere strictly inside the tangent sphere */
+    double x, y, z, t;       /* exact solution nearest the candidate, rounded to nearest (MPFR) */
+    double dist;             /* distance candidate -> exact point */
+    const uint32_t *members; /* VB_CERT_OK: sorted ids of ALL spheres the vertex touches */
+    size_t nmembers;         /*   (owned by the certifier; valid until the next call) */
+    size_t key;              /* VB_CERT_OK: identity of the exact point; equal keys <=> same exact vertex */
+} vb_cert_result;
+
+/* Certifies one candidate. ids: >= 4 sphere ids (any order) whose tangent
+ * sphere defines the vertex; p: the candidate point, used only to choose the
+ * nearest of the exact solutions and to measure dist. tol <= 0 disables the
+ * distance check. Returns VB_OK with the verdict in *res, or VB_ENOMEM. */
+int vb_certify_candidate(vb_ctx *ctx, vb_certifier *c, const uint32_t *ids, size_t nids,
+                         const double p[3], double tol, vb_cert_result *res);
+
+/* Certifies every candidate of `cand` and writes the canonical certified set
+ * to `out` (sorted, one entry per exact vertex with all its members; dist is
+ * the largest candidate distance merged into it; status CERTIFIED). Refused
+ * candidates go to `rejected` (may be NULL) with status REJECTED. Counts
+ * candidates/certified/rejected in the context's stats. */
+int vb_certify_list(vb_ctx *ctx, vb_certifier *c, const vb_vertex_list *cand, double tol,
+                    vb_vertex_list *out, vb_vertex_list *rejected);
+
+/* Exact reference: every vertex of the diagram from all quadruples (with
+ * filters and conservative culling), canonical and sorted, dist = 0. */
+int vb_reference(vb_ctx *ctx, const vb_sphere_set *set, vb_vertex_list *out);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
