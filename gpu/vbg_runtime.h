@@ -4,7 +4,9 @@
 #ifndef VBG_RUNTIME_H
 #define VBG_RUNTIME_H
 
+#ifndef CL_TARGET_OPENCL_VERSION
 #define CL_TARGET_OPENCL_VERSION 120
+#endif
 #include <CL/cl.h>
 #include <stdio.h>
 

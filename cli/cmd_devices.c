@@ -1,0 +1,53 @@
+/* `vorball devices`: list OpenCL platforms and devices, and which one
+ * `--device auto` would take. */
+#include <stdio.h>
+#include <string.h>
+
+#include "cli_common.h"
+#include "commands.h"
+#include "vbg_runtime.h"
+
+static void help(FILE *f)
+{
+    fprintf(f,
+            "usage: vorball devices [-o FILE]\n\n"
+            "Lists OpenCL platforms and devices (tab-separated, '#' header) and the device\n"
+            "that --device auto selects: a GPU with double precision if present, else a\n"
+            "CPU device (PoCL). Without OpenCL, the reference backend (--device ref) is used.\n\n"
+            "  -o FILE   write the table to FILE instead of stdout\n");
+}
+
+int vb_cmd_devices(int argc, char **argv)
+{
+    const char *outpath = NULL;
+    for (int i = 1; i < argc; i++) {
+        if (vb_cli_is_help(argv[i])) {
+            help(stdout);
+            return VB_EXIT_OK;
+        } else if (strcmp(argv[i], "-o") == 0 && i + 1 < argc) {
+            outpath = argv[++i];
+        } else {
+            return vb_cli_usage_error("devices", "unexpected argument '%s'", argv[i]);
+        }
+    }
+    vb_ctx *ctx;
+    if (vb_open(&ctx, NULL))
+        return VB_EXIT_NOMEM;
+    FILE *out = vb_cli_open_output(ctx, outpath);
+    int rc = out ? vbg_list_devices(ctx, out) : VB_EIO;
+    if (out && rc == VB_OK) {
+        vbg_runtime *rt;
+        if (vbg_runtime_open(ctx, VBG_DEVICE_AUTO, &rt) == VB_OK) {
+            fprintf(out, "#auto\t%s\n", vbg_runtime_device_name(rt));
+            vbg_runtime_close(rt);
+        } else {
+            fprintf(out, "#auto\treference backend (%s)\n", vb_errmsg(ctx));
+            vb_clear_error(ctx);
+        }
+    }
+    if (out)
+        rc = rc ? rc : vb_cli_close_output(ctx, out, outpath);
+    int code = rc ? vb_cli_fail(ctx, rc) : VB_EXIT_OK;
+    vb_close(ctx);
+    return code;
+}

@@ -1,0 +1,297 @@
+/* OpenCL runtime: device choice, program build and cache, error mapping. */
+#include "vbg_runtime.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#define VBG_MAX_PROGRAMS 16
+
+struct vbg_runtime {
+    cl_platform_id platform;
+    cl_device_id device;
+    cl_context context;
+    cl_command_queue queue;
+    int is_gpu;
+    char name[256];
+    struct {
+        char key[256]; /* kernel file name + options */
+        cl_program program;
+    } programs[VBG_MAX_PROGRAMS];
+    int nprograms;
+};
+
+static const char *cl_error_name(cl_int e)
+{
+    switch (e) {
+#define N(x) case x: return #x
+    N(CL_DEVICE_NOT_FOUND); N(CL_DEVICE_NOT_AVAILABLE); N(CL_COMPILER_NOT_AVAILABLE);
+    N(CL_MEM_OBJECT_ALLOCATION_FAILURE); N(CL_OUT_OF_RESOURCES); N(CL_OUT_OF_HOST_MEMORY);
+    N(CL_PROFILING_INFO_NOT_AVAILABLE); N(CL_BUILD_PROGRAM_FAILURE); N(CL_INVALID_VALUE);
+    N(CL_INVALID_DEVICE_TYPE); N(CL_INVALID_PLATFORM); N(CL_INVALID_DEVICE);
+    N(CL_INVALID_CONTEXT); N(CL_INVALID_QUEUE_PROPERTIES); N(CL_INVALID_COMMAND_QUEUE);
+    N(CL_INVALID_MEM_OBJECT); N(CL_INVALID_BINARY); N(CL_INVALID_BUILD_OPTIONS);
+    N(CL_INVALID_PROGRAM); N(CL_INVALID_PROGRAM_EXECUTABLE); N(CL_INVALID_KERNEL_NAME);
+    N(CL_INVALID_KERNEL); N(CL_INVALID_ARG_INDEX); N(CL_INVALID_ARG_VALUE);
+    N(CL_INVALID_ARG_SIZE); N(CL_INVALID_KERNEL_ARGS); N(CL_INVALID_WORK_DIMENSION);
+    N(CL_INVALID_WORK_GROUP_SIZE); N(CL_INVALID_WORK_ITEM_SIZE); N(CL_INVALID_GLOBAL_OFFSET);
+    N(CL_INVALID_EVENT_WAIT_LIST); N(CL_INVALID_EVENT); N(CL_INVALID_OPERATION);
+    N(CL_INVALID_BUFFER_SIZE); N(CL_INVALID_GLOBAL_WORK_SIZE);
+#undef N
+    case -1001: return "CL_PLATFORM_NOT_FOUND_KHR (no OpenCL platform installed)";
+    default: return "unknown OpenCL error";
+    }
+}
+
+int vbg_check(vb_ctx *ctx, cl_int err, const char *what)
+{
+    if (err == CL_SUCCESS)
+        return VB_OK;
+    return vb_error(ctx, VB_EDEVICE, NULL, 0, "%s: %s (%d)", what, cl_error_name(err), (int)err);
+}
+
+int vbg_device_kind_parse(vb_ctx *ctx, const char *s, vbg_device_kind *out)
+{
+    static const struct {
+        const char *name;
+        vbg_device_kind kind;
+    } kinds[] = {{"auto", VBG_DEVICE_AUTO}, {"gpu", VBG_DEVICE_GPU},
+                 {"cpu", VBG_DEVICE_CPU}, {"ref", VBG_DEVICE_REF}};
+    for (size_t i = 0; i < sizeof kinds / sizeof kinds[0]; i++)
+        if (strcmp(s, kinds[i].name) == 0) {
+            *out = kinds[i].kind;
+            return VB_OK;
+        }
+    return vb_error(ctx, VB_EMISUSE, NULL, 0, "unknown device '%s' (auto, gpu, cpu or ref)", s);
+}
+
+static int device_has_fp64(cl_device_id d)
+{
+    cl_device_fp_config cfg = 0;
+    if (clGetDeviceInfo(d, CL_DEVICE_DOUBLE_FP_CONFIG, sizeof cfg, &cfg, NULL) != CL_SUCCESS)
+        return 0;
+    return cfg != 0;
+}
+
+/* Finds the first device of `type` with fp64 over all platforms. */
+static int find_device(cl_device_type type, cl_platform_id *plat, cl_device_id *dev)
+{
+    cl_uint np = 0;
+    if (clGetPlatformIDs(0, NULL, &np) != CL_SUCCESS || np == 0)
+        return 0;
+    cl_platform_id ps[16];
+    if (np > 16)
+        np = 16;
+    if (clGetPlatformIDs(np, ps, NULL) != CL_SUCCESS)
+        return 0;
+    for (cl_uint p = 0; p < np; p++) {
+        cl_device_id ds[16];
+        cl_uint nd = 0;
+        if (clGetDeviceIDs(ps[p], type, 16, ds, &nd) != CL_SUCCESS)
+            continue;
+        for (cl_uint i = 0; i < nd && i < 16; i++)
+            if (device_has_fp64(ds[i])) {
+                *plat = ps[p];
+                *dev = ds[i];
+                return 1;
+            }
+    }
+    return 0;
+}
+
+int vbg_runtime_open(vb_ctx *ctx, vbg_device_kind kind, vbg_runtime **out)
+{
+    *out = NULL;
+    if (kind == VBG_DEVICE_REF)
+        return vb_error(ctx, VB_EMISUSE, NULL, 0, "the reference backend has no OpenCL runtime");
+    cl_platform_id plat = NULL;
+    cl_device_id dev = NULL;
+    int found = 0;
+    if (kind == VBG_DEVICE_AUTO || kind == VBG_DEVICE_GPU)
+        found = find_device(CL_DEVICE_TYPE_GPU, &plat, &dev);
+    if (!found && (kind == VBG_DEVICE_AUTO || kind == VBG_DEVICE_CPU))
+        found = find_device(CL_DEVICE_TYPE_CPU, &plat, &dev);
+    if (!found)
+        return vb_error(ctx, VB_EDEVICE, NULL, 0, "no OpenCL %s device with double precision found",
+                        kind == VBG_DEVICE_GPU ? "GPU" : kind == VBG_DEVICE_CPU ? "CPU" : "");
+    vbg_runtime *rt = calloc(1, sizeof *rt);
+    if (!rt)
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory");
+    rt->platform = plat;
+    rt->device = dev;
+    cl_device_type type = 0;
+    clGetDeviceInfo(dev, CL_DEVICE_TYPE, sizeof type, &type, NULL);
+    rt->is_gpu = (type & CL_DEVICE_TYPE_GPU) != 0;
+    char dname[160] = "", pname[90] = "";
+    clGetDeviceInfo(dev, CL_DEVICE_NAME, sizeof dname - 1, dname, NULL);
+    clGetPlatformInfo(plat, CL_PLATFORM_NAME, sizeof pname - 1, pname, NULL);
+    snprintf(rt->name, sizeof rt->name, "%s (%s)", dname, pname);
+    cl_int err;
+    cl_context_properties props[] = {CL_CONTEXT_PLATFORM, (cl_context_properties)plat, 0};
+    rt->context = clCreateContext(props, 1, &dev, NULL, NULL, &err);
+    int rc = vbg_check(ctx, err, "clCreateContext");
+    if (rc == VB_OK) {
+        rt->queue = clCreateCommandQueue(rt->context, dev, CL_QUEUE_PROFILING_ENABLE, &err);
+        rc = vbg_check(ctx, err, "clCreateCommandQueue");
+    }
+    if (rc != VB_OK) {
+        vbg_runtime_close(rt);
+        return rc;
+    }
+    vb_info(ctx, "OpenCL device: %s", rt->name);
+    *out = rt;
+    return VB_OK;
+}
+
+void vbg_runtime_close(vbg_runtime *rt)
+{
+    if (!rt)
+        return;
+    for (int i = 0; i < rt->nprograms; i++)
+        clReleaseProgram(rt->programs[i].program);
+    if (rt->queue)
+        clReleaseCommandQueue(rt->queue);
+    if (rt->context)
+        clReleaseContext(rt->context);
+    free(rt);
+}
+
+cl_context vbg_runtime_context(const vbg_runtime *rt) { return rt->context; }
+cl_command_queue vbg_runtime_queue(const vbg_runtime *rt) { return rt->queue; }
+cl_device_id vbg_runtime_device(const vbg_runtime *rt) { return rt->device; }
+const char *vbg_runtime_device_name(const vbg_runtime *rt) { return rt->name; }
+int vbg_runtime_is_gpu(const vbg_runtime *rt) { return rt->is_gpu; }
+
+/* Reads a kernel file from VORBALL_KERNEL_DIR (development: edit kernels
+ * without rebuilding). Returns malloc'd text or NULL. */
+static char *read_kernel_file(const char *dir, const char *name)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    char *buf = NULL;
+    if (fseek(f, 0, SEEK_END) == 0) {
+        long n = ftell(f);
+        if (n >= 0 && fseek(f, 0, SEEK_SET) == 0 && (buf = malloc((size_t)n + 1))) {
+            if (fread(buf, 1, (size_t)n, f) != (size_t)n) {
+                free(buf);
+                buf = NULL;
+            } else {
+                buf[n] = '\0';
+            }
+        }
+    }
+    fclose(f);
+    return buf;
+}
+
+static int build_failed(vb_ctx *ctx, vbg_runtime *rt, cl_program prog, const char *name, cl_int err)
+{
+    size_t len = 0;
+    clGetProgramBuildInfo(prog, rt->device, CL_PROGRAM_BUILD_LOG, 0, NULL, &len);
+    char *log = malloc(len + 1);
+    if (log) {
+        clGetProgramBuildInfo(prog, rt->device, CL_PROGRAM_BUILD_LOG, len, log, NULL);
+        log[len] = '\0';
+        /* The context message is bounded; the full log goes to stderr. */
+        fprintf(stderr, "vorball: OpenCL build log of %s:\n%s\n", name, log);
+    }
+    vb_error(ctx, VB_EDEVICE, name, 0, "OpenCL program build failed: %s (%d): %.600s",
+             cl_error_name(err), (int)err, log ? log : "");
+    free(log);
+    clReleaseProgram(prog);
+    return VB_EDEVICE;
+}
+
+int vbg_program_get(vb_ctx *ctx, vbg_runtime *rt, const char *name, const char *options,
+                    cl_program *out)
+{
+    char key[256];
+    snprintf(key, sizeof key, "%s|%s", name, options ? options : "");
+    for (int i = 0; i < rt->nprograms; i++)
+        if (strcmp(rt->programs[i].key, key) == 0) {
+            *out = rt->programs[i].program;
+            return VB_OK;
+        }
+    if (rt->nprograms == VBG_MAX_PROGRAMS)
+        return vb_error(ctx, VB_EINTERNAL, NULL, 0, "program cache full");
+
+    const char *dir = getenv("VORBALL_KERNEL_DIR");
+    char *disk = dir && *dir ? read_kernel_file(dir, name) : NULL;
+    const char *src = disk ? disk : vbg_kernel_source(name);
+    if (!src)
+        return vb_error(ctx, VB_EINTERNAL, NULL, 0, "no kernel source named %s", name);
+    cl_int err;
+    cl_program prog = clCreateProgramWithSource(rt->context, 1, &src, NULL, &err);
+    free(disk);
+    if (vbg_check(ctx, err, "clCreateProgramWithSource"))
+        return VB_EDEVICE;
+    /* No fast-math or mad flags: kernels compute candidates whose quality the
+     * exact certifier judges, and PoCL and the GPU must round alike. Headers
+     * of kernels loaded from disk are found beside them and in ../core. */
+    char opts[2048];
+    if (disk)
+        snprintf(opts, sizeof opts, "-cl-std=CL1.2 -I %s -I %s/../core %s", dir, dir,
+                 options ? options : "");
+    else
+        snprintf(opts, sizeof opts, "-cl-std=CL1.2 %s", options ? options : "");
+    err = clBuildProgram(prog, 1, &rt->device, opts, NULL, NULL);
+    if (err != CL_SUCCESS)
+        return build_failed(ctx, rt, prog, name, err);
+    snprintf(rt->programs[rt->nprograms].key, sizeof rt->programs[0].key, "%s", key);
+    rt->programs[rt->nprograms].program = prog;
+    rt->nprograms++;
+    *out = prog;
+    return VB_OK;
+}
+
+static const char *type_name(cl_device_type t)
+{
+    if (t & CL_DEVICE_TYPE_GPU)
+        return "GPU";
+    if (t & CL_DEVICE_TYPE_CPU)
+        return "CPU";
+    if (t & CL_DEVICE_TYPE_ACCELERATOR)
+        return "accelerator";
+    return "other";
+}
+
+int vbg_list_devices(vb_ctx *ctx, FILE *out)
+{
+    cl_uint np = 0;
+    cl_int err = clGetPlatformIDs(0, NULL, &np);
+    if (err != CL_SUCCESS || np == 0) {
+        fprintf(out, "no OpenCL platform found (the reference backend, --device ref, still works)\n");
+        return err == CL_SUCCESS || err == -1001 ? VB_OK : vbg_check(ctx, err, "clGetPlatformIDs");
+    }
+    cl_platform_id ps[16];
+    if (np > 16)
+        np = 16;
+    if (vbg_check(ctx, clGetPlatformIDs(np, ps, NULL), "clGetPlatformIDs"))
+        return VB_EDEVICE;
+    fprintf(out, "#platform\tdevice\ttype\tversion\tfp64\tcompute_units\tglobal_mem_MiB\n");
+    for (cl_uint p = 0; p < np; p++) {
+        char pname[128] = "";
+        clGetPlatformInfo(ps[p], CL_PLATFORM_NAME, sizeof pname - 1, pname, NULL);
+        cl_device_id ds[16];
+        cl_uint nd = 0;
+        if (clGetDeviceIDs(ps[p], CL_DEVICE_TYPE_ALL, 16, ds, &nd) != CL_SUCCESS)
+            continue;
+        for (cl_uint i = 0; i < nd && i < 16; i++) {
+            char dname[128] = "", ver[128] = "";
+            cl_device_type t = 0;
+            cl_uint cu = 0;
+            cl_ulong mem = 0;
+            clGetDeviceInfo(ds[i], CL_DEVICE_NAME, sizeof dname - 1, dname, NULL);
+            clGetDeviceInfo(ds[i], CL_DEVICE_VERSION, sizeof ver - 1, ver, NULL);
+            clGetDeviceInfo(ds[i], CL_DEVICE_TYPE, sizeof t, &t, NULL);
+            clGetDeviceInfo(ds[i], CL_DEVICE_MAX_COMPUTE_UNITS, sizeof cu, &cu, NULL);
+            clGetDeviceInfo(ds[i], CL_DEVICE_GLOBAL_MEM_SIZE, sizeof mem, &mem, NULL);
+            fprintf(out, "%s\t%s\t%s\t%s\t%s\t%u\t%llu\n", pname, dname, type_name(t), ver,
+                    device_has_fp64(ds[i]) ? "yes" : "no", cu,
+                    (unsigned long long)(mem >> 20));
+        }
+    }
+    return VB_OK;
+}

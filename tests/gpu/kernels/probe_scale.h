@@ -1,0 +1,1 @@
+#define PROBE_SCALE 2.5
