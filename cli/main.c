@@ -45,6 +45,9 @@ static void usage(FILE *f)
     fprintf(f, "usage: vorball <command> [options] [INPUT|-]\n\ncommands:\n");
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
         fprintf(f, "  %-11s %s\n", commands[i].name, commands[i].summary);
+#ifdef VB_NO_CROSSCHECK
+    fprintf(f, "  (crosscheck is not built: it needs CGAL headers and -DVORBALL_WITH_CGAL=ON)\n");
+#endif
     fprintf(f,
             "\n'vorball <command> --help' describes each command.\n"
             "Exit codes: 0 ok, 1 check failed, 2 usage, 3 i/o, 4 memory, 5 device,\n"

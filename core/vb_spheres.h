@@ -101,7 +101,10 @@ int vb_frame_reader_open(vb_ctx *ctx, const char *path, const vb_read_options *o
                          vb_frame_reader **out);
 
 /* Reads the next frame into *out (caller frees). At the end returns VB_OK with
- * *out == NULL. *model_number gets the MODEL serial (or 1 for single-model). */
+ * *out == NULL. *model_number gets the MODEL serial (or 1 for single-model).
+ * When the options name a model, only that frame is returned (VB_EINPUT_MODEL
+ * at the end if it never came). Counts of dropped atoms are reported once, at
+ * the end. */
 int vb_frame_reader_next(vb_ctx *ctx, vb_frame_reader *rd, vb_sphere_set **out,
                          int *model_number);
 

@@ -1,11 +1,23 @@
 /* Reading and writing vertex files.
  *
- * tsv (default): '#' header lines, then one line per vertex:
+ * tsv (default): '#' header lines ("# vorball vertices", the caller's comment
+ *   one '#' line per line of it, "# ids x y z t status"), then one line per vertex:
  *   ids<TAB>x<TAB>y<TAB>z<TAB>t<TAB>status   (ids sorted, comma-separated, 0-based;
- *   numbers printed with %.17g so the doubles round-trip bit-exactly)
- * json: {"vertices":[{"ids":[...],"x":..,"y":..,"z":..,"t":..,"status":".."}, ...]}
+ *   numbers printed with %.17g so the doubles round-trip bit-exactly; status
+ *   candidate|certified|rejected, optional on reading)
+ * json: {"comment":"..","vertices":[{"ids":[...],"x":..,"y":..,"z":..,"t":..,
+ *   "status":".."}, ...]}, one vertex per line; the reader skips unknown keys.
  * voronota: "q1 q2 q3 q4 x y z r" per line (Voronota's vertices/tangent spheres;
- *   a vertex of degree > 4 appears as several quadruple lines). */
+ *   a vertex of degree > 4 appears as several quadruple lines). Our writer
+ *   gives a vertex with sorted members m0 < m1 < ... < m(k-1) the k - 3 lines
+ *   {m0 m1 m2 mj}, j = 3..k-1: every member is named, and at least one line
+ *   determines the point by itself (at a vertex the members' linear system has
+ *   rank 3, and m0, m1, m2 are independent because three spheres tangent to
+ *   one sphere cannot be in a pencil unless nested at one point), though other
+ *   lines may not (e.g. four coplanar corners of a cube). The reader keeps one
+ *   entry per line; grouping lines into vertices needs exact arithmetic and is
+ *   done by `vorball verify`.
+ * Non-finite numbers are refused by the reader (VB_EINPUT_NONFINITE). */
 #ifndef VB_VERTEX_IO_H
 #define VB_VERTEX_IO_H
 
@@ -27,6 +39,9 @@ typedef enum vb_vertex_format {
 /* Parses "tsv|json|voronota". VB_OK or VB_EMISUSE. */
 int vb_vertex_format_parse(vb_ctx *ctx, const char *name, vb_vertex_format *out);
 
+/* Static name of a vertex status: "candidate", "certified", "rejected". */
+const char *vb_vertex_status_name(int status);
+
 /* Writes the list. `comment` (may be NULL) goes into the header of formats
  * that have one. Returns VB_OK or VB_EIO. */
 int vb_vertex_write(vb_ctx *ctx, FILE *f, const vb_vertex_list *v, vb_vertex_format fmt,
@@ -34,10 +49,18 @@ int vb_vertex_write(vb_ctx *ctx, FILE *f, const vb_vertex_list *v, vb_vertex_for
 
 /* Reads a vertex file (path or "-"), detecting tsv / json / voronota by
  * content. Appends to *out (status CANDIDATE unless the file says otherwise);
- * *lines (may be NULL) gets a malloc'd array of the source line of each vertex.
- * Errors: VB_EINPUT_MALFORMED with file:line, VB_EIO. */
+ * *lines (may be NULL) gets a malloc'd array (caller frees) of the 1-based
+ * source line of each appended vertex, indexed from the first one appended.
+ * An empty file, or one with only '#' lines, is a tsv file of no vertices.
+ * Errors: VB_EINPUT_MALFORMED / VB_EINPUT_NONFINITE with file:line, VB_EIO,
+ * VB_ENOMEM; on error *out keeps what it had before the call. */
 int vb_vertex_read_file(vb_ctx *ctx, const char *path, vb_vertex_list *out,
                         vb_vertex_format *detected, long **lines);
+
+/* As vb_vertex_read_file from a memory buffer (need not be NUL-terminated);
+ * `name` is used in messages. Entry point of tests and fuzzing. */
+int vb_vertex_read_buffer(vb_ctx *ctx, const char *name, const char *buf, size_t len,
+                          vb_vertex_list *out, vb_vertex_format *detected, long **lines);
 
 #ifdef __cplusplus
 }

@@ -1,0 +1,515 @@
+/* `vorball channels`: channels and cavities of a molecule or of every frame
+ * of a trajectory (multi-model PDB/PQR/mmCIF, or DCD with a PDB topology),
+ * by the discrete-Voronoi pipeline of the Facet-JFA paper (Sec. 4) on
+ * OpenCL, with components, centrelines, bottlenecks and lining residues. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "channels_png.h"
+#include "cli_common.h"
+#include "commands.h"
+#include "input_options.h"
+#include "vb_dcd.h"
+#include "vbc_channel_gpu.h"
+#include "vbi_input.h"
+
+static const char *cmd = "channels";
+
+typedef struct {
+    const char *input, *out, *dcd, *centrelines, *pymol, *volume, *stats, *png;
+    int json, cavities, png_axis;
+    double probe;
+    int grid;
+    long f0, f1, fstep;   /* --frames a:b:step (f1 < 0: to the end) */
+    int repeat;
+    unsigned volume_bit;
+    vbj_variant variant;
+    vbg_device_kind device;
+    vbc_options opt;
+    vb_cli_input_opts in;
+} ch_args;
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+            "usage: vorball channels [options] INPUT|-\n"
+            "\n"
+            "Channels (Voronoi edges inside the molecule that reach its surface) and cavities\n"
+            "(those that do not) of every frame of INPUT: PDB, PQR, mmCIF or XYZR; several\n"
+            "MODELs are a trajectory. With --dcd, INPUT is the PDB topology of a DCD file.\n"
+            "Per frame, on OpenCL: Facet-JFA labels of the atom centres on an n^3 grid, Voronoi\n"
+            "edge voxels, atomic mask (balls r + probe), molecular mask (rays along x, y, z),\n"
+            "interior = atomic xor molecular, channels = edges and interior; then components,\n"
+            "centrelines (widest path between the openings) with the clearance radius (distance\n"
+            "to the nearest atom surface) at each point, bottleneck and lining residues.\n"
+            "\n"
+            "options:\n"
+            "  -o FILE             channel table (CSV; default stdout)\n"
+            "  --json              the table as JSON, with centrelines\n"
+            "  --stats FILE        per-frame statistics (CSV): counts and timings\n"
+            "  --probe R           solvent radius in A (default 1.4)\n"
+            "  --grid N            grid side, a power of two 16..1024 (default 128)\n"
+            "  --frames A:B:S      frames A, A+S, ... before B (from 0, B excluded; parts optional)\n"
+            "  --dcd FILE          read coordinates from a DCD trajectory (INPUT = topology)\n"
+            "  --min-length L      prune centrelines shorter than L A (default 5)\n"
+            "  --min-radius R      prune channels whose bottleneck is below R A (default 0)\n"
+            "  --lining-tol T      an atom lines a point when its surface is within radius + T A\n"
+            "                      (default 1)\n"
+            "  --cavities          report cavities too (components that do not reach the surface)\n"
+            "  --centerlines FILE  centrelines as PDB pseudo-atoms, radius in the B-factor\n"
+            "  --pymol FILE        PyMOL script drawing them (needs --centerlines)\n"
+            "  --volume FILE       mask volume, .mrc/.map (MRC) or .vtk; '%%d' in the name writes\n"
+            "                      one per frame, else the first frame only\n"
+            "  --volume-mask M     channel (default), interior, molecular, atomic, edge\n"
+            "  --png FILE          the 2D pipeline stages (paper Fig. 5) on the slice through the\n"
+            "                      centroid of the first frame\n"
+            "  --png-normal x|y|z  normal of that slice (default x: the slice holds the z axis)\n"
+            "  --jfa VARIANT       facet (default), jfa, jfa+1, jfa+2, 1+jfa\n"
+            "  --device D          auto (default), gpu, cpu\n"
+            "  --repeat N          run every frame N times (timings; outputs written once)\n");
+    vb_cli_input_help(f);
+}
+
+/* Parses "A:B:S" with each part optional ("10", ":50", "::5", "2:40:2"). */
+static int parse_frames(const char *s, long *a, long *b, long *step)
+{
+    char buf[96];
+    if (strlen(s) >= sizeof buf)
+        return -1;
+    strcpy(buf, s);
+    char *parts[3] = {buf, NULL, NULL};
+    char *c1 = strchr(buf, ':');
+    if (c1) {
+        *c1 = '\0';
+        parts[1] = c1 + 1;
+        char *c2 = strchr(parts[1], ':');
+        if (c2) {
+            *c2 = '\0';
+            parts[2] = c2 + 1;
+        }
+    }
+    long v[3] = {0, -1, 1};
+    for (int i = 0; i < 3; i++) {
+        if (!parts[i] || !*parts[i])
+            continue;
+        size_t x;
+        if (vb_cli_parse_size(parts[i], &x) != 0 || x > 1000000000)
+            return -1;
+        v[i] = (long)x;
+    }
+    if (!c1)
+        v[1] = v[0] + 1; /* a single number is one frame */
+    if (v[2] < 1 || (v[1] >= 0 && v[1] <= v[0]))
+        return -1;
+    *a = v[0];
+    *b = v[1];
+    *step = v[2];
+    return 0;
+}
+
+static int parse_args(int argc, char **argv, ch_args *A)
+{
+    memset(A, 0, sizeof *A);
+    vb_cli_input_defaults(&A->in);
+    A->probe = 1.4;
+    A->grid = 128;
+    A->f1 = -1;
+    A->fstep = 1;
+    A->repeat = 1;
+    A->volume_bit = VBC_F_CHANNEL;
+    A->variant = VBJ_FACET;
+    A->png_axis = 0;
+    A->opt.min_length = 5.0;
+    A->opt.min_radius = 0.0;
+    A->opt.lining_tol = 1.0;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        int r = vb_cli_input_option(&A->in, argc, argv, &i);
+        if (r < 0)
+            return -1;
+        if (r > 0)
+            continue;
+        if (vb_cli_is_help(a)) {
+            usage(stdout);
+            return 1;
+        }
+        if (a[0] != '-' || strcmp(a, "-") == 0) {
+            if (A->input)
+                return vb_cli_usage_error(cmd, "one input only ('%s' and '%s')", A->input, a), -1;
+            A->input = a;
+            continue;
+        }
+        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+        int takes = strcmp(a, "--json") && strcmp(a, "--cavities");
+        if (takes && !v)
+            return vb_cli_usage_error(cmd, "%s needs a value", a), -1;
+        if (takes)
+            i++;
+        size_t z;
+        if (strcmp(a, "-o") == 0) A->out = v;
+        else if (strcmp(a, "--json") == 0) A->json = 1;
+        else if (strcmp(a, "--cavities") == 0) A->opt.keep_cavities = 1;
+        else if (strcmp(a, "--stats") == 0) A->stats = v;
+        else if (strcmp(a, "--dcd") == 0) A->dcd = v;
+        else if (strcmp(a, "--centerlines") == 0 || strcmp(a, "--centrelines") == 0) A->centrelines = v;
+        else if (strcmp(a, "--pymol") == 0) A->pymol = v;
+        else if (strcmp(a, "--volume") == 0) A->volume = v;
+        else if (strcmp(a, "--png") == 0) A->png = v;
+        else if (strcmp(a, "--probe") == 0) {
+            if (vb_cli_parse_double(v, &A->probe) != 0 || !(A->probe >= 0.0 && A->probe <= 20.0))
+                return vb_cli_usage_error(cmd, "--probe needs a radius in 0..20 A, not '%s'", v), -1;
+        } else if (strcmp(a, "--grid") == 0) {
+            if (vb_cli_parse_size(v, &z) != 0 || z < 16 || z > 1024 || (z & (z - 1)))
+                return vb_cli_usage_error(cmd, "--grid needs a power of two in 16..1024, not '%s'", v), -1;
+            A->grid = (int)z;
+        } else if (strcmp(a, "--frames") == 0) {
+            if (parse_frames(v, &A->f0, &A->f1, &A->fstep) != 0)
+                return vb_cli_usage_error(cmd, "--frames needs A:B:S (from 0, B > A, S >= 1), not '%s'", v), -1;
+        } else if (strcmp(a, "--repeat") == 0) {
+            if (vb_cli_parse_size(v, &z) != 0 || z < 1 || z > 100000)
+                return vb_cli_usage_error(cmd, "--repeat needs 1..100000, not '%s'", v), -1;
+            A->repeat = (int)z;
+        } else if (strcmp(a, "--min-length") == 0 || strcmp(a, "--min-radius") == 0 ||
+                   strcmp(a, "--lining-tol") == 0) {
+            double d;
+            if (vb_cli_parse_double(v, &d) != 0 || !(d >= 0.0 && d <= 1e4))
+                return vb_cli_usage_error(cmd, "%s needs a length >= 0 in A, not '%s'", a, v), -1;
+            if (a[2] == 'l' && a[3] == 'i')
+                A->opt.lining_tol = d;
+            else if (a[6] == 'l')
+                A->opt.min_length = d;
+            else
+                A->opt.min_radius = d;
+        } else if (strcmp(a, "--volume-mask") == 0) {
+            static const struct { const char *name; unsigned bit; } m[] = {
+                {"channel", VBC_F_CHANNEL}, {"interior", VBC_F_INTERIOR}, {"molecular", VBC_F_MOLECULAR},
+                {"atomic", VBC_F_ATOMIC}, {"edge", VBC_F_EDGE}};
+            A->volume_bit = 0;
+            for (size_t k = 0; k < sizeof m / sizeof m[0]; k++)
+                if (strcmp(v, m[k].name) == 0)
+                    A->volume_bit = m[k].bit;
+            if (!A->volume_bit)
+                return vb_cli_usage_error(cmd, "--volume-mask: channel, interior, molecular, atomic or edge, not '%s'", v), -1;
+        } else if (strcmp(a, "--png-normal") == 0) {
+            if (strlen(v) != 1 || !strchr("xyz", v[0]))
+                return vb_cli_usage_error(cmd, "--png-normal needs x, y or z, not '%s'", v), -1;
+            A->png_axis = v[0] - 'x';
+        } else if (strcmp(a, "--jfa") == 0) {
+            if (vbj_variant_parse(NULL, v, &A->variant) != VB_OK || A->variant == VBJ_FACET_FULL)
+                return vb_cli_usage_error(cmd, "--jfa: facet, jfa, jfa+1, jfa+2 or 1+jfa, not '%s'", v), -1;
+        } else if (strcmp(a, "--device") == 0) {
+            if (vbg_device_kind_parse(NULL, v, &A->device) != VB_OK || A->device == VBG_DEVICE_REF)
+                return vb_cli_usage_error(cmd, "--device: auto, gpu or cpu, not '%s'", v), -1;
+        } else {
+            return vb_cli_usage_error(cmd, "unknown option '%s' (see --help)", a), -1;
+        }
+    }
+    if (!A->input)
+        return vb_cli_usage_error(cmd, "no input (see --help)"), -1;
+    if (A->pymol && !A->centrelines)
+        return vb_cli_usage_error(cmd, "--pymol draws the --centerlines file: give both"), -1;
+    if (A->dcd && strcmp(A->input, "-") == 0)
+        return vb_cli_usage_error(cmd, "the DCD topology must be a file"), -1;
+    return 0;
+}
+
+/* Where frames come from: a multi-model reader, or a DCD plus topology. */
+typedef struct {
+    vb_frame_reader *rd;
+    vb_dcd *dcd;
+    vb_sphere_set *topo;  /* DCD: every atom of the topology */
+    size_t *keep;         /* DCD: topology atoms that enter the analysis */
+    size_t nkeep;
+    double *xyz;          /* DCD: one frame, 3 * natoms */
+    int want_model;       /* --model: only this MODEL serial (0 = all) */
+} frames;
+
+static void frames_close(frames *F)
+{
+    vb_frame_reader_close(F->rd);
+    vb_dcd_close(F->dcd);
+    vb_spheres_free(F->topo);
+    free(F->keep);
+    free(F->xyz);
+}
+
+/* A sphere set holding the kept atoms (coordinates filled per frame). */
+static int subset_alloc(vb_ctx *ctx, const vb_sphere_set *t, const size_t *keep, size_t n,
+                        vb_sphere_set **out)
+{
+    vb_sphere_set *s = calloc(1, sizeof *s);
+    if (s) {
+        s->n = n;
+        s->x = malloc(n * sizeof(double));
+        s->y = malloc(n * sizeof(double));
+        s->z = malloc(n * sizeof(double));
+        s->r = malloc(n * sizeof(double));
+        s->info = t->info ? malloc(n * sizeof *s->info) : NULL;
+    }
+    if (!s || !s->x || !s->y || !s->z || !s->r || (t->info && !s->info)) {
+        vb_spheres_free(s);
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "frame of %zu atoms", n);
+    }
+    for (size_t i = 0; i < n; i++) {
+        s->r[i] = t->r[keep[i]];
+        if (t->info)
+            s->info[i] = t->info[keep[i]];
+    }
+    *out = s;
+    return VB_OK;
+}
+
+static int frames_open(vb_ctx *ctx, const ch_args *A, const vb_radii_table *radii, frames *F)
+{
+    memset(F, 0, sizeof *F);
+    vb_read_options ro;
+    vb_cli_input_read_options(&A->in, radii, &ro);
+    F->want_model = A->in.model;
+    if (!A->dcd) {
+        ro.model = 0;
+        return vb_frame_reader_open(ctx, A->input, &ro, &F->rd);
+    }
+    /* The topology must list every atom of the DCD: read all, select after. */
+    vb_read_options all = ro;
+    all.keep_water = 1;
+    all.drop_hydrogens = 0;
+    int rc = vb_spheres_read_file(ctx, A->input, &all, &F->topo);
+    if (rc == VB_OK)
+        rc = vb_dcd_open(ctx, A->dcd, &F->dcd);
+    if (rc != VB_OK)
+        return rc;
+    size_t na = vb_dcd_atoms(F->dcd);
+    if (na != F->topo->n)
+        return vb_error(ctx, VB_EINPUT_MODEL, A->dcd, 0,
+                        "DCD has %zu atoms per frame, topology %s has %zu", na, A->input, F->topo->n);
+    F->keep = malloc(na * sizeof *F->keep);
+    F->xyz = malloc(3 * na * sizeof *F->xyz);
+    if (!F->keep || !F->xyz)
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "DCD frame of %zu atoms", na);
+    for (size_t i = 0; i < na; i++) {
+        const vb_atom_info *a = F->topo->info ? &F->topo->info[i] : NULL;
+        if (a && !A->in.keep_water && vbi_is_water(a->resname))
+            continue;
+        if (a && A->in.drop_hydrogens && vbi_is_hydrogen(a->element))
+            continue;
+        F->keep[F->nkeep++] = i;
+    }
+    if (F->nkeep == 0)
+        return vb_error(ctx, VB_EINPUT_EMPTY, A->input, 0, "no atoms left after dropping water");
+    return VB_OK;
+}
+
+/* Next frame (*out NULL at the end); *model gets its MODEL serial. */
+static int frames_next(vb_ctx *ctx, frames *F, long index, vb_sphere_set **out, int *model)
+{
+    *out = NULL;
+    if (F->rd) {
+        for (;;) {
+            int rc = vb_frame_reader_next(ctx, F->rd, out, model);
+            if (rc != VB_OK || !*out || !F->want_model || *model == F->want_model)
+                return rc;
+            vb_spheres_free(*out);
+            *out = NULL;
+        }
+    }
+    size_t na = F->topo->n;
+    int got;
+    int rc = vb_dcd_next(ctx, F->dcd, F->xyz, F->xyz + na, F->xyz + 2 * na, NULL, &got);
+    if (rc != VB_OK || !got)
+        return rc;
+    if ((rc = subset_alloc(ctx, F->topo, F->keep, F->nkeep, out)) != VB_OK)
+        return rc;
+    for (size_t i = 0; i < F->nkeep; i++) {
+        (*out)->x[i] = F->xyz[F->keep[i]];
+        (*out)->y[i] = F->xyz[na + F->keep[i]];
+        (*out)->z[i] = F->xyz[2 * na + F->keep[i]];
+    }
+    *model = (int)(index + 1);
+    return VB_OK;
+}
+
+/* The per-frame volume name: '%d' replaced by the frame index. */
+static int volume_name(const char *pattern, long frame, char *buf, size_t len)
+{
+    const char *p = strstr(pattern, "%d");
+    if (!p)
+        return snprintf(buf, len, "%s", pattern) < (int)len ? 0 : -1;
+    int n = snprintf(buf, len, "%.*s%ld%s", (int)(p - pattern), pattern, frame, p + 2);
+    return n >= 0 && n < (int)len ? 0 : -1;
+}
+
+typedef struct {
+    FILE *table, *stats, *cl;
+    long frames_done;
+    double sum_total, sum_masks;
+    int json_first;
+} sinks;
+
+/* Runs one frame through the pipeline `repeat` times and writes its outputs. */
+static int do_frame(vb_ctx *ctx, const ch_args *A, vbc_gpu *gp, long index, int model,
+                    const vb_sphere_set *s, sinks *S)
+{
+    vbc_grid g;
+    int rc = vbc_grid_fit(ctx, s, A->probe, A->grid, 3, &g);
+    if (rc != VB_OK)
+        return rc;
+    float *atoms = malloc(4 * s->n * sizeof *atoms);
+    if (!atoms)
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "frame of %zu atoms", s->n);
+    int want_volume = A->volume && (strstr(A->volume, "%d") || S->frames_done == 0);
+    vbc_frame_out fo;
+    vbc_result res;
+    memset(&fo, 0, sizeof fo);
+    memset(&res, 0, sizeof res);
+    vbc_frame_info fi = {index, model, s->n, 0, 0, 0, 0, 0, 0};
+    for (int r = 0; r < A->repeat && rc == VB_OK; r++) {
+        vbc_frame_out_free(&fo);
+        vbc_result_free(&res);
+        double t0 = vb_cli_now();
+        vbc_atoms_pack(&g, s, A->probe, atoms);
+        rc = vbc_gpu_frame(ctx, gp, &g, atoms, s->n, want_volume ? VBC_WANT_FLAGS : 0, &fo);
+        double t1 = vb_cli_now();
+        if (rc == VB_OK)
+            rc = vbc_analyse(ctx, &g, s, fo.voxels, fo.nvoxels, &A->opt, &res);
+        double t2 = vb_cli_now();
+        fi.ms_upload += fo.ms_upload;
+        fi.ms_jfa += fo.ms_jfa;
+        fi.ms_masks += fo.ms_masks;
+        fi.ms_analysis += 1e3 * (t2 - t1);
+        fi.ms_total += 1e3 * (t2 - t0);
+        S->sum_masks += 1e3 * (t1 - t0);
+        S->sum_total += 1e3 * (t2 - t0);
+    }
+    free(atoms);
+    if (rc != VB_OK) {
+        vbc_frame_out_free(&fo);
+        vbc_result_free(&res);
+        return rc;
+    }
+    double inv = 1.0 / A->repeat;
+    fi.ms_upload *= inv;
+    fi.ms_jfa *= inv;
+    fi.ms_masks *= inv;
+    fi.ms_analysis *= inv;
+    fi.ms_total *= inv;
+    fi.channel_voxels = fo.nvoxels;
+    if (A->json)
+        vbc_write_json_frame(S->table, S->json_first, &fi, &g, s, &res);
+    else
+        vbc_write_csv_rows(S->table, &fi, &g, s, &res);
+    S->json_first = 0;
+    if (S->stats)
+        vbc_write_stats_row(S->stats, &fi, &g, &res);
+    if (S->cl)
+        vbc_write_centrelines_pdb(S->cl, model, &res);
+    if (want_volume) {
+        char name[4096];
+        if (volume_name(A->volume, index, name, sizeof name) != 0)
+            rc = vb_error(ctx, VB_EMISUSE, NULL, 0, "volume file name too long");
+        else
+            rc = vbc_write_volume(ctx, name, &g, fo.flags, A->volume_bit);
+    }
+    if (rc == VB_OK && A->png && S->frames_done == 0)
+        rc = vbc_png_stages(ctx, gp, s, A->probe, A->grid, A->png_axis, &A->opt, A->png);
+    vbc_frame_out_free(&fo);
+    vbc_result_free(&res);
+    S->frames_done++;
+    return rc;
+}
+
+int vb_cmd_channels(int argc, char **argv)
+{
+    ch_args A;
+    int pr = parse_args(argc, argv, &A);
+    if (pr != 0)
+        return pr > 0 ? VB_EXIT_OK : VB_EXIT_USAGE;
+    vb_ctx *ctx;
+    if (vb_open(&ctx, NULL) != VB_OK) {
+        fprintf(stderr, "vorball: out of memory\n");
+        return VB_EXIT_NOMEM;
+    }
+    int rc = VB_OK;
+    vb_radii_table *radii = NULL;
+    vbg_runtime *rt = NULL;
+    vbc_gpu *gp = NULL;
+    frames F;
+    memset(&F, 0, sizeof F);
+    sinks S = {NULL, NULL, NULL, 0, 0.0, 0.0, 1};
+    FILE *pml = NULL;
+    if (A.in.radii_path)
+        rc = vb_radii_load(ctx, A.in.radii_path, &radii);
+    if (rc == VB_OK)
+        rc = vbg_runtime_open(ctx, A.device, &rt);
+    if (rc == VB_OK)
+        rc = vbc_gpu_open(ctx, rt, A.variant, &gp);
+    if (rc == VB_OK)
+        rc = frames_open(ctx, &A, radii, &F);
+    if (rc == VB_OK && !(S.table = vb_cli_open_output(ctx, A.out)))
+        rc = vb_errcode(ctx);
+    if (rc == VB_OK && A.stats && !(S.stats = vb_cli_open_output(ctx, A.stats)))
+        rc = vb_errcode(ctx);
+    if (rc == VB_OK && A.centrelines && !(S.cl = vb_cli_open_output(ctx, A.centrelines)))
+        rc = vb_errcode(ctx);
+    if (rc != VB_OK)
+        goto done;
+    const char *device = vbg_runtime_device_name(rt);
+    if (A.json)
+        vbc_write_json_begin(S.table, A.dcd ? A.dcd : A.input, A.probe, A.grid, device);
+    else
+        vbc_write_csv_header(S.table);
+    if (S.stats)
+        vbc_write_stats_header(S.stats);
+    double t0 = vb_cli_now();
+    for (long index = 0; A.f1 < 0 || index < A.f1; index++) {
+        vb_sphere_set *s = NULL;
+        int model;
+        if ((rc = frames_next(ctx, &F, index, &s, &model)) != VB_OK || !s)
+            break;
+        if (index >= A.f0 && (index - A.f0) % A.fstep == 0)
+            rc = do_frame(ctx, &A, gp, index, model, s, &S);
+        vb_spheres_free(s);
+        if (rc != VB_OK)
+            break;
+    }
+    double wall = vb_cli_now() - t0;
+    if (rc == VB_OK && S.frames_done == 0)
+        rc = vb_error(ctx, VB_EINPUT_MODEL, A.input, 0, "no frame selected (--frames / --model)");
+    if (rc == VB_OK && A.json)
+        vbc_write_json_end(S.table);
+    if (rc == VB_OK && A.pymol) {
+        if (!(pml = vb_cli_open_output(ctx, A.pymol)))
+            rc = vb_errcode(ctx);
+        else {
+            vbc_write_pymol(pml, A.dcd || strcmp(A.input, "-") == 0 ? NULL : A.input, A.centrelines);
+            rc = vb_cli_close_output(ctx, pml, A.pymol);
+        }
+    }
+    if (rc == VB_OK) {
+        long runs = S.frames_done * A.repeat;
+        vb_info(ctx, "channels: %ld frames on %s in %.3f s", S.frames_done, device, wall);
+        fprintf(stderr, "vorball channels: %ld frame(s), %ld run(s) on %s: %.3f ms/run "
+                        "(%.1f FPS), of which GPU stages %.3f ms (%.1f FPS)\n",
+                S.frames_done, runs, device, S.sum_total / runs, 1e3 * runs / S.sum_total,
+                S.sum_masks / runs, 1e3 * runs / S.sum_masks);
+    }
+done:
+    if (S.table) {
+        int c = vb_cli_close_output(ctx, S.table, A.out);
+        rc = rc == VB_OK ? c : rc;
+    }
+    if (S.stats) {
+        int c = vb_cli_close_output(ctx, S.stats, A.stats);
+        rc = rc == VB_OK ? c : rc;
+    }
+    if (S.cl) {
+        int c = vb_cli_close_output(ctx, S.cl, A.centrelines);
+        rc = rc == VB_OK ? c : rc;
+    }
+    frames_close(&F);
+    vbc_gpu_close(gp);
+    vbg_runtime_close(rt);
+    vb_radii_free(radii);
+    int exit_code = rc == VB_OK ? VB_EXIT_OK : vb_cli_fail(ctx, rc);
+    vb_close(ctx);
+    return exit_code;
+}

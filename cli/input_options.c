@@ -1,0 +1,120 @@
+/* Shared input options of the subcommands. */
+#include "input_options.h"
+
+#include <string.h>
+
+#include "cli_common.h"
+
+void vb_cli_input_defaults(vb_cli_input_opts *o)
+{
+    memset(o, 0, sizeof *o);
+    o->format = VB_FMT_AUTO;
+}
+
+/* The value of an option taking one, or NULL (message printed). */
+static const char *option_value(int argc, char **argv, int *i)
+{
+    if (*i + 1 >= argc) {
+        vb_cli_usage_error(argv[0], "%s needs a value", argv[*i]);
+        return NULL;
+    }
+    return argv[++*i];
+}
+
+int vb_cli_input_option(vb_cli_input_opts *o, int argc, char **argv, int *i)
+{
+    const char *a = argv[*i];
+    if (strcmp(a, "--water") == 0) {
+        o->keep_water = 1;
+        return 1;
+    }
+    if (strcmp(a, "--no-hydrogens") == 0) {
+        o->drop_hydrogens = 1;
+        return 1;
+    }
+    if (strcmp(a, "--strict-elements") == 0) {
+        o->strict_elements = 1;
+        return 1;
+    }
+    if (strcmp(a, "--format") == 0) {
+        const char *v = option_value(argc, argv, i);
+        if (!v)
+            return -1;
+        if (vb_format_parse(NULL, v, &o->format) != VB_OK) {
+            vb_cli_usage_error(argv[0], "unknown format '%s' (auto, xyzr, pdb, pqr, cif)", v);
+            return -1;
+        }
+        return 1;
+    }
+    if (strcmp(a, "--model") == 0) {
+        const char *v = option_value(argc, argv, i);
+        size_t n;
+        if (!v)
+            return -1;
+        if (vb_cli_parse_size(v, &n) != 0 || n < 1 || n > 999999999) {
+            vb_cli_usage_error(argv[0], "--model needs a model number >= 1, not '%s'", v);
+            return -1;
+        }
+        o->model = (int)n;
+        return 1;
+    }
+    if (strcmp(a, "--radii") == 0) {
+        const char *v = option_value(argc, argv, i);
+        if (!v)
+            return -1;
+        o->radii_path = v;
+        return 1;
+    }
+    return 0;
+}
+
+void vb_cli_input_help(FILE *f)
+{
+    fputs("input options:\n"
+          "  --format F          input format: auto (default, by content), xyzr (also\n"
+          "                      Voronota balls), pdb, pqr, cif|mmcif\n"
+          "  --model N           read model N of a multi-model PDB/mmCIF (default: first)\n"
+          "  --radii FILE        element radii, lines 'ELEMENT RADIUS' ('#' comments),\n"
+          "                      for PDB/mmCIF; unlisted elements keep the built-in radii\n"
+          "  --water             keep water (HOH, WAT, ...; dropped by default, counted)\n"
+          "  --no-hydrogens      drop H/D atoms (kept by default)\n"
+          "  --strict-elements   an element without a radius is an error (E108), not\n"
+          "                      radius 1.70 with a warning\n",
+          f);
+}
+
+void vb_cli_input_read_options(const vb_cli_input_opts *o, const vb_radii_table *radii,
+                               vb_read_options *ro)
+{
+    memset(ro, 0, sizeof *ro);
+    ro->format = o->format;
+    ro->model = o->model;
+    ro->keep_water = o->keep_water;
+    ro->drop_hydrogens = o->drop_hydrogens;
+    ro->strict_elements = o->strict_elements;
+    ro->radii = radii;
+}
+
+int vb_cli_load_spheres(vb_ctx *ctx, const char *path, const vb_cli_input_opts *o,
+                        size_t min_count, vb_sphere_set **out)
+{
+    *out = NULL;
+    vb_radii_table *radii = NULL;
+    int rc = VB_OK;
+    if (o->radii_path)
+        rc = vb_radii_load(ctx, o->radii_path, &radii);
+    vb_read_options ro;
+    vb_cli_input_read_options(o, radii, &ro);
+    vb_sphere_set *set = NULL;
+    if (rc == VB_OK)
+        rc = vb_spheres_read_file(ctx, path, &ro, &set);
+    if (rc == VB_OK)
+        rc = vb_spheres_validate(ctx, set, min_count);
+    vb_radii_free(radii);
+    if (rc != VB_OK) {
+        vb_spheres_free(set);
+        return rc;
+    }
+    *out = set;
+    return VB_OK;
+}

@@ -1,0 +1,44 @@
+/* The input options every subcommand shares (--format, --model, --radii,
+ * --water, --no-hydrogens, --strict-elements) and the one call that reads
+ * and validates a sphere file with them. */
+#ifndef VB_CLI_INPUT_OPTIONS_H
+#define VB_CLI_INPUT_OPTIONS_H
+
+#include <stdio.h>
+
+#include "vb_spheres.h"
+
+typedef struct vb_cli_input_opts {
+    vb_format format;        /* --format F (default auto) */
+    int model;               /* --model N (default 0: the first model) */
+    const char *radii_path;  /* --radii FILE (NULL: built-in table) */
+    int keep_water;          /* --water */
+    int drop_hydrogens;      /* --no-hydrogens */
+    int strict_elements;     /* --strict-elements */
+} vb_cli_input_opts;
+
+/* Zero-initialising a vb_cli_input_opts gives the defaults; this does it. */
+void vb_cli_input_defaults(vb_cli_input_opts *o);
+
+/* Consumes argv[*i] (and its value, advancing *i past it) when it is an
+ * input option. Returns 1 if consumed, 0 if argv[*i] is not an input option,
+ * -1 on a bad or missing value (a message is printed to stderr, naming
+ * argv[0] as the subcommand). */
+int vb_cli_input_option(vb_cli_input_opts *o, int argc, char **argv, int *i);
+
+/* Prints the help lines of the input options. */
+void vb_cli_input_help(FILE *f);
+
+/* Fills read options from the CLI options. radii is the loaded --radii
+ * table or NULL. */
+void vb_cli_input_read_options(const vb_cli_input_opts *o, const vb_radii_table *radii,
+                               vb_read_options *ro);
+
+/* Reads `path` ("-" = stdin) with the options and validates it with
+ * vb_spheres_validate(min_count). On success *out owns the set (free with
+ * vb_spheres_free). Returns VB_OK or the status (message in the context);
+ * on failure *out is NULL. */
+int vb_cli_load_spheres(vb_ctx *ctx, const char *path, const vb_cli_input_opts *o,
+                        size_t min_count, vb_sphere_set **out);
+
+#endif

@@ -1,0 +1,41 @@
+/* The vertex pipeline as `vorball vertices` and `vorball bench` run it:
+ * backend choice (with fallback to the reference backend), sampling,
+ * matching, exact certification. Orchestration only; the geometry lives in
+ * core/ and verify/. */
+#ifndef VB_CLI_VERTICES_PIPELINE_H
+#define VB_CLI_VERTICES_PIPELINE_H
+
+#include "vb_sampler.h"
+#include "vb_verify.h"
+#include "vbg_runtime.h"
+
+typedef struct vb_pipeline_result {
+    vb_sampler_result sampler;
+    vb_vertex_list certified;   /* canonical, sorted */
+    vb_vertex_list rejected;    /* candidates the certifier refused */
+    double t_certify, t_total;
+    double max_dist;
+    size_t repaired_candidates; /* intruder-swap candidates certified (see repair) */            /* largest candidate-to-exact distance certified */
+    char backend[16];
+    char device[160];
+} vb_pipeline_result;
+
+void vb_pipeline_result_init(vb_pipeline_result *r);
+void vb_pipeline_result_free(vb_pipeline_result *r);
+
+/* Runs the pipeline on a validated set with the requested device kind. When
+ * OpenCL is unavailable or fails, warns (W760/W762) and runs the reference
+ * backend, whose output is the same. progress (may be false) draws a bar on
+ * stderr when it is a terminal and the run takes more than a second.
+ * Returns VB_OK or an error status (message in ctx). */
+int vb_pipeline_run(vb_ctx *ctx, const vb_sphere_set *set, vbg_device_kind kind,
+                    const vb_sampler_options *opt, int progress, vb_pipeline_result *res);
+
+/* Parses the options shared by vertices and bench (--device, --samples,
+ * --tol, --all-pairs) at argv[*i], advancing *i past a value. Returns 1 if
+ * consumed, 0 if not one of them, -1 on a bad value (usage message printed
+ * naming cmd). */
+int vb_pipeline_option(const char *cmd, int argc, char **argv, int *i, vb_sampler_options *so,
+                       vbg_device_kind *kind, vb_ctx *ctx);
+
+#endif

@@ -1,0 +1,198 @@
+/* A uniform cell list over one frame's spheres: the clearance (distance to the
+ * nearest atom surface) of centreline points and the atoms lining them. */
+#include <math.h>
+#include <stdlib.h>
+
+#include "vbc_channel.h"
+
+struct vbc_cells {
+    const vb_sphere_set *s;
+    double lo[3], cell, rmax;
+    int dim[3];
+    size_t *start; /* CSR: atoms of cell c are idx[start[c] .. start[c+1]) */
+    int32_t *idx;
+};
+
+static int cell_coord(const vbc_cells *c, int a, double x)
+{
+    int q = (int)floor((x - c->lo[a]) / c->cell);
+    return q < 0 ? 0 : q >= c->dim[a] ? c->dim[a] - 1 : q;
+}
+
+int vbc_cells_build(vb_ctx *ctx, const vb_sphere_set *s, double cell, vbc_cells **out)
+{
+    *out = NULL;
+    if (!s || s->n == 0)
+        return vb_error(ctx, VB_EINPUT_EMPTY, NULL, 0, "no atoms for the cell list");
+    vbc_cells *c = calloc(1, sizeof *c);
+    if (!c)
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "cell list");
+    c->s = s;
+    c->cell = cell < 1.0 ? 1.0 : cell;
+    double hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    c->lo[0] = c->lo[1] = c->lo[2] = INFINITY;
+    for (size_t i = 0; i < s->n; i++) {
+        double p[3] = {s->x[i], s->y[i], s->z[i]};
+        for (int a = 0; a < 3; a++) {
+            c->lo[a] = fmin(c->lo[a], p[a]);
+            hi[a] = fmax(hi[a], p[a]);
+        }
+        c->rmax = fmax(c->rmax, s->r[i]);
+    }
+    size_t ncell = 1;
+    for (int a = 0; a < 3; a++) {
+        double span = (hi[a] - c->lo[a]) / c->cell;
+        /* Cap the cell count per axis so a sparse, huge frame cannot exhaust memory. */
+        c->dim[a] = span > 1023.0 ? 1024 : (int)span + 1;
+        ncell *= (size_t)c->dim[a];
+    }
+    if (ncell > 64u * 1024 * 1024) {
+        c->cell *= cbrt((double)ncell / (64.0 * 1024 * 1024)) + 1.0;
+        ncell = 1;
+        for (int a = 0; a < 3; a++) {
+            c->dim[a] = (int)((hi[a] - c->lo[a]) / c->cell) + 1;
+            ncell *= (size_t)c->dim[a];
+        }
+    }
+    c->start = calloc(ncell + 1, sizeof *c->start);
+    c->idx = malloc(s->n * sizeof *c->idx);
+    if (!c->start || !c->idx) {
+        vbc_cells_free(c);
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "cell list (%zu cells)", ncell);
+    }
+    for (size_t i = 0; i < s->n; i++) {
+        size_t q = (size_t)cell_coord(c, 0, s->x[i]) +
+                   (size_t)c->dim[0] * ((size_t)cell_coord(c, 1, s->y[i]) +
+                                        (size_t)c->dim[1] * (size_t)cell_coord(c, 2, s->z[i]));
+        c->start[q + 1]++;
+    }
+    for (size_t q = 0; q < ncell; q++)
+        c->start[q + 1] += c->start[q];
+    size_t *fill = malloc(ncell * sizeof *fill);
+    if (!fill) {
+        vbc_cells_free(c);
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "cell list");
+    }
+    for (size_t q = 0; q < ncell; q++)
+        fill[q] = c->start[q];
+    for (size_t i = 0; i < s->n; i++) {
+        size_t q = (size_t)cell_coord(c, 0, s->x[i]) +
+                   (size_t)c->dim[0] * ((size_t)cell_coord(c, 1, s->y[i]) +
+                                        (size_t)c->dim[1] * (size_t)cell_coord(c, 2, s->z[i]));
+        c->idx[fill[q]++] = (int32_t)i;
+    }
+    free(fill);
+    *out = c;
+    return VB_OK;
+}
+
+void vbc_cells_free(vbc_cells *c)
+{
+    if (!c)
+        return;
+    free(c->start);
+    free(c->idx);
+    free(c);
+}
+
+/* Visits the cells at Chebyshev distance exactly `ring` from cell q0. */
+static void visit_ring(const vbc_cells *c, const int q0[3], int ring,
+                       void (*fn)(const vbc_cells *, int32_t, void *), void *user)
+{
+    for (int dz = -ring; dz <= ring; dz++) {
+        int z = q0[2] + dz;
+        if (z < 0 || z >= c->dim[2])
+            continue;
+        for (int dy = -ring; dy <= ring; dy++) {
+            int y = q0[1] + dy;
+            if (y < 0 || y >= c->dim[1])
+                continue;
+            int onshell = abs(dz) == ring || abs(dy) == ring;
+            for (int dx = -ring; dx <= ring; dx += (onshell || ring == 0) ? 1 : 2 * ring) {
+                int x = q0[0] + dx;
+                if (x < 0 || x >= c->dim[0])
+                    continue;
+                size_t q = (size_t)x + (size_t)c->dim[0] * ((size_t)y + (size_t)c->dim[1] * (size_t)z);
+                for (size_t t = c->start[q]; t < c->start[q + 1]; t++)
+                    fn(c, c->idx[t], user);
+            }
+        }
+    }
+}
+
+typedef struct {
+    double p[3], best;
+    int32_t atom;
+} nearest_state;
+
+static void nearest_visit(const vbc_cells *c, int32_t a, void *user)
+{
+    nearest_state *st = user;
+    double dx = st->p[0] - c->s->x[a], dy = st->p[1] - c->s->y[a], dz = st->p[2] - c->s->z[a];
+    double d = sqrt(dx * dx + dy * dy + dz * dz) - c->s->r[a];
+    if (st->atom < 0 || d < st->best || (d == st->best && a < st->atom)) {
+        st->best = d;
+        st->atom = a;
+    }
+}
+
+/* Distance from p to the box of cells within `ring` of q0: atoms farther out
+ * have centres at least this far away. */
+static double ring_reach(const vbc_cells *c, const double p[3], const int q0[3], int ring)
+{
+    double m = INFINITY;
+    for (int a = 0; a < 3; a++) {
+        double lo = c->lo[a] + (q0[a] - ring) * c->cell, hi = c->lo[a] + (q0[a] + ring + 1) * c->cell;
+        m = fmin(m, fmin(p[a] - lo, hi - p[a]));
+    }
+    return m;
+}
+
+/* True when the cells within `ring` of q0 are all cells. */
+static int ring_covers_all(const vbc_cells *c, const int q0[3], int ring)
+{
+    for (int a = 0; a < 3; a++)
+        if (q0[a] - ring > 0 || q0[a] + ring < c->dim[a] - 1)
+            return 0;
+    return 1;
+}
+
+double vbc_cells_clearance(const vbc_cells *c, const double p[3], int32_t *atom)
+{
+    nearest_state st = {{p[0], p[1], p[2]}, 0.0, -1};
+    int q0[3] = {cell_coord(c, 0, p[0]), cell_coord(c, 1, p[1]), cell_coord(c, 2, p[2])};
+    for (int ring = 0;; ring++) {
+        visit_ring(c, q0, ring, nearest_visit, &st);
+        if ((st.atom >= 0 && st.best <= ring_reach(c, p, q0, ring) - c->rmax) ||
+            ring_covers_all(c, q0, ring))
+            break;
+    }
+    *atom = st.atom;
+    return st.best;
+}
+
+typedef struct {
+    double p[3], reach;
+    void (*fn)(int32_t, void *);
+    void *user;
+} within_state;
+
+static void within_visit(const vbc_cells *c, int32_t a, void *user)
+{
+    within_state *st = user;
+    double dx = st->p[0] - c->s->x[a], dy = st->p[1] - c->s->y[a], dz = st->p[2] - c->s->z[a];
+    if (sqrt(dx * dx + dy * dy + dz * dz) - c->s->r[a] <= st->reach)
+        st->fn(a, st->user);
+}
+
+void vbc_cells_within(const vbc_cells *c, const double p[3], double reach,
+                      void (*fn)(int32_t atom, void *user), void *user)
+{
+    within_state st = {{p[0], p[1], p[2]}, reach, fn, user};
+    int q0[3] = {cell_coord(c, 0, p[0]), cell_coord(c, 1, p[1]), cell_coord(c, 2, p[2])};
+    for (int ring = 0;; ring++) {
+        visit_ring(c, q0, ring, within_visit, &st);
+        if (ring_reach(c, p, q0, ring) - c->rmax > reach || ring_covers_all(c, q0, ring))
+            break;
+    }
+}

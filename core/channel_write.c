@@ -1,0 +1,290 @@
+/* Writers of the channel analysis: CSV and JSON tables, centreline PDB, the
+ * PyMOL script, and the mask volume (MRC or VTK). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "vbc_channel.h"
+
+static const char *kind_name(int kind)
+{
+    return kind == VBC_CHANNEL ? "channel" : "cavity";
+}
+
+/* "A:GLY12" (chain, residue name, number, insertion code), or "#<index>"
+ * when the input has no atom records. */
+static void residue_label(const vb_sphere_set *s, int32_t atom, char *buf, size_t len)
+{
+    if (!s->info) {
+        snprintf(buf, len, "#%d", (int)atom);
+        return;
+    }
+    const vb_atom_info *a = &s->info[atom];
+    if (a->icode != ' ' && a->icode != '\0')
+        snprintf(buf, len, "%s:%s%d%c", a->chain, a->resname, (int)a->resseq, a->icode);
+    else
+        snprintf(buf, len, "%s:%s%d", a->chain, a->resname, (int)a->resseq);
+}
+
+/* Calls emit(label) once per residue lining channel c, in atom order. */
+static void each_residue(const vb_sphere_set *s, const vbc_result *res, const vbc_channel *c,
+                         void (*emit)(FILE *, const char *, int), FILE *f)
+{
+    char prev[64] = "", cur[64], seen[64];
+    int count = 0;
+    for (size_t t = 0; t < c->nlining; t++) {
+        residue_label(s, res->lining[c->first_lining + t], cur, sizeof cur);
+        if (strcmp(cur, prev) == 0)
+            continue;
+        /* Residues are nearly always contiguous; the rare repeat is checked in full. */
+        int dup = 0;
+        for (size_t u = 0; u < t && !dup; u++) {
+            residue_label(s, res->lining[c->first_lining + u], seen, sizeof seen);
+            dup = strcmp(seen, cur) == 0;
+        }
+        strcpy(prev, cur);
+        if (!dup)
+            emit(f, cur, count++);
+    }
+}
+
+static void emit_csv(FILE *f, const char *label, int index)
+{
+    fprintf(f, "%s%s", index ? ";" : "", label);
+}
+
+static void emit_json(FILE *f, const char *label, int index)
+{
+    fprintf(f, "%s\"%s\"", index ? "," : "", label);
+}
+
+void vbc_write_csv_header(FILE *f)
+{
+    fprintf(f, "frame,model,channel,kind,through,length_A,bottleneck_A,bottleneck_x,bottleneck_y,"
+               "bottleneck_z,start_x,start_y,start_z,end_x,end_y,end_z,voxels,volume_A3,mouths,"
+               "points,lining_atoms,lining_residues\n");
+}
+
+void vbc_write_csv_rows(FILE *f, const vbc_frame_info *fi, const vbc_grid *g,
+                        const vb_sphere_set *s, const vbc_result *res)
+{
+    double v1 = g->h * g->h * (g->dim == 3 ? g->h : 1.0);
+    for (size_t t = 0; t < res->nchannels; t++) {
+        const vbc_channel *c = &res->channels[t];
+        const vbc_point *p = res->points + c->first_point, *b = p + c->bottleneck_at;
+        const vbc_point *e = p + c->npoints - 1;
+        fprintf(f, "%ld,%d,%zu,%s,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%zu,%.3f,%zu,%zu,%zu,",
+                fi->frame, fi->model, t + 1, kind_name(c->kind), c->through, c->length, c->bottleneck, b->x, b->y,
+                b->z, p->x, p->y, p->z, e->x, e->y, e->z, c->voxels, (double)c->voxels * v1, c->mouths,
+                c->npoints, c->nlining);
+        each_residue(s, res, c, emit_csv, f);
+        fputc('\n', f);
+    }
+}
+
+void vbc_write_stats_header(FILE *f)
+{
+    fprintf(f, "frame,model,atoms,grid,voxel_A,channel_voxels,components,pruned,channels,cavities,"
+               "longest_A,widest_bottleneck_A,ms_upload,ms_jfa,ms_masks,ms_analysis,ms_total\n");
+}
+
+void vbc_write_stats_row(FILE *f, const vbc_frame_info *fi, const vbc_grid *g,
+                         const vbc_result *res)
+{
+    size_t nch = 0, ncav = 0;
+    double longest = 0.0, widest = 0.0;
+    for (size_t t = 0; t < res->nchannels; t++) {
+        const vbc_channel *c = &res->channels[t];
+        if (c->kind == VBC_CHANNEL) {
+            nch++;
+            widest = fmax(widest, c->bottleneck);
+        } else {
+            ncav++;
+        }
+        longest = fmax(longest, c->length);
+    }
+    fprintf(f, "%ld,%d,%zu,%d,%.4f,%zu,%zu,%zu,%zu,%zu,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f\n", fi->frame,
+            fi->model, fi->atoms, g->nx, g->h, fi->channel_voxels, res->components, res->pruned, nch,
+            ncav, longest, widest, fi->ms_upload, fi->ms_jfa, fi->ms_masks, fi->ms_analysis,
+            fi->ms_total);
+}
+
+/* Writes s as a JSON string (quotes, backslashes and control bytes escaped). */
+static void json_string(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (; *s; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '"' || c == '\\')
+            fprintf(f, "\\%c", c);
+        else if (c < 0x20)
+            fprintf(f, "\\u%04x", c);
+        else
+            fputc(c, f);
+    }
+    fputc('"', f);
+}
+
+void vbc_write_json_begin(FILE *f, const char *input, double probe, int n, const char *device)
+{
+    fprintf(f, "{\n  \"input\": ");
+    json_string(f, input);
+    fprintf(f, ",\n  \"probe_A\": %.3f,\n  \"grid\": %d,\n  \"device\": ", probe, n);
+    json_string(f, device);
+    fprintf(f, ",\n  \"frames\": [");
+}
+
+void vbc_write_json_frame(FILE *f, int first, const vbc_frame_info *fi, const vbc_grid *g,
+                          const vb_sphere_set *s, const vbc_result *res)
+{
+    double v1 = g->h * g->h * (g->dim == 3 ? g->h : 1.0);
+    fprintf(f, "%s\n    {\"frame\": %ld, \"model\": %d, \"atoms\": %zu, \"voxel_A\": %.5f,"
+               " \"origin\": [%.4f, %.4f, %.4f], \"channel_voxels\": %zu, \"components\": %zu,"
+               " \"pruned\": %zu,\n     \"ms\": {\"upload\": %.3f, \"jfa\": %.3f, \"masks\": %.3f,"
+               " \"analysis\": %.3f, \"total\": %.3f},\n     \"channels\": [",
+            first ? "" : ",", fi->frame, fi->model, fi->atoms, g->h, g->origin[0], g->origin[1],
+            g->origin[2], fi->channel_voxels, res->components, res->pruned, fi->ms_upload,
+            fi->ms_jfa, fi->ms_masks, fi->ms_analysis, fi->ms_total);
+    for (size_t t = 0; t < res->nchannels; t++) {
+        const vbc_channel *c = &res->channels[t];
+        const vbc_point *p = res->points + c->first_point, *b = p + c->bottleneck_at;
+        fprintf(f, "%s\n       {\"id\": %zu, \"kind\": \"%s\", \"through\": %s, \"length_A\": %.3f, \"bottleneck_A\": %.3f,"
+                   " \"bottleneck_at\": [%.3f, %.3f, %.3f], \"voxels\": %zu, \"volume_A3\": %.3f,"
+                   " \"mouths\": %zu,\n        \"lining_residues\": [",
+                t ? "," : "", t + 1, kind_name(c->kind), c->through ? "true" : "false", c->length, c->bottleneck, b->x, b->y, b->z,
+                c->voxels, (double)c->voxels * v1, c->mouths);
+        each_residue(s, res, c, emit_json, f);
+        fprintf(f, "],\n        \"centreline\": [");
+        for (size_t u = 0; u < c->npoints; u++)
+            fprintf(f, "%s[%.3f, %.3f, %.3f, %.3f]", u ? ", " : "", p[u].x, p[u].y, p[u].z, p[u].r);
+        fprintf(f, "]}");
+    }
+    fprintf(f, "]}");
+}
+
+void vbc_write_json_end(FILE *f)
+{
+    fprintf(f, "\n  ]\n}\n");
+}
+
+void vbc_write_centrelines_pdb(FILE *f, int model, const vbc_result *res)
+{
+    fprintf(f, "MODEL     %4d\n", model);
+    long serial = 1;
+    for (size_t t = 0; t < res->nchannels; t++) {
+        const vbc_channel *c = &res->channels[t];
+        const vbc_point *p = res->points + c->first_point;
+        long first = serial;
+        for (size_t u = 0; u < c->npoints; u++, serial++)
+            fprintf(f, "HETATM%5ld  CL  %3s %c%4d    %8.3f%8.3f%8.3f  1.00%6.2f           X\n",
+                    serial % 100000, c->kind == VBC_CHANNEL ? "CHN" : "CAV",
+                    (char)('A' + (int)(t % 26)), (int)((t + 1) % 10000), p[u].x, p[u].y, p[u].z,
+                    fmin(p[u].r, 999.99));
+        /* Serial numbers wrap at 100000: bonds are only written while they are unique. */
+        for (long q = first; q + 1 < serial && serial < 100000; q++)
+            fprintf(f, "CONECT%5ld%5ld\n", q, q + 1);
+    }
+    fprintf(f, "ENDMDL\n");
+}
+
+void vbc_write_pymol(FILE *f, const char *molecule, const char *centrelines)
+{
+    fprintf(f, "# vorball channels: centrelines with the clearance radius in the B-factor\n");
+    if (molecule)
+        fprintf(f, "load %s, molecule\nhide everything, molecule\nshow cartoon, molecule\n"
+                   "show lines, molecule\n", molecule);
+    fprintf(f, "load %s, channels\n", centrelines);
+    fprintf(f, "hide everything, channels\n"
+               "alter channels, vdw=b\n"
+               "rebuild\n"
+               "show spheres, channels\n"
+               "show sticks, channels\n"
+               "set sphere_transparency, 0.4, channels\n"
+               "spectrum b, red_yellow_blue, channels, minimum=0.5, maximum=4.0\n"
+               "set all_states, off\n"
+               "zoom channels\n");
+}
+
+static int ends_with(const char *s, const char *suffix)
+{
+    size_t a = strlen(s), b = strlen(suffix);
+    return a >= b && strcmp(s + a - b, suffix) == 0;
+}
+
+/* MRC 2014 header: 256 little-endian words; mode 0 (signed bytes). */
+static int write_mrc(FILE *f, const vbc_grid *g, const uint8_t *flags, unsigned bit)
+{
+    int32_t w[256];
+    memset(w, 0, sizeof w);
+    float fl;
+    w[0] = g->nx;
+    w[1] = g->ny;
+    w[2] = g->nz;
+    w[3] = 0; /* mode: int8 */
+    w[7] = g->nx;
+    w[8] = g->ny;
+    w[9] = g->nz;
+    float cell[6] = {(float)(g->nx * g->h), (float)(g->ny * g->h), (float)(g->nz * g->h), 90, 90, 90};
+    memcpy(&w[10], cell, sizeof cell);
+    w[16] = 1;
+    w[17] = 2;
+    w[18] = 3;
+    fl = 0.0f;
+    memcpy(&w[19], &fl, 4);
+    fl = 1.0f;
+    memcpy(&w[20], &fl, 4);
+    size_t nv = vbc_grid_voxels(g), on = 0;
+    for (size_t v = 0; v < nv; v++)
+        on += (flags[v] & bit) != 0;
+    fl = (float)((double)on / (double)nv);
+    memcpy(&w[21], &fl, 4);
+    w[22] = 1; /* space group P1 */
+    /* Origin of the map in Å: the centre of voxel (0,0,0). */
+    for (int a = 0; a < 3; a++) {
+        fl = (float)(g->origin[a] + 0.5 * g->h);
+        memcpy(&w[49 + a], &fl, 4);
+    }
+    memcpy(&w[52], "MAP ", 4);
+    unsigned char stamp[4] = {0x44, 0x44, 0, 0};
+    memcpy(&w[53], stamp, 4);
+    w[55] = 1;
+    char label[80];
+    memset(label, ' ', sizeof label);
+    memcpy(label, "vorball channels mask", 21);
+    memcpy(&w[56], label, sizeof label);
+    if (fwrite(w, 4, 256, f) != 256)
+        return -1;
+    for (size_t v = 0; v < nv; v++)
+        if (fputc((flags[v] & bit) ? 1 : 0, f) == EOF)
+            return -1;
+    return 0;
+}
+
+static int write_vtk(FILE *f, const vbc_grid *g, const uint8_t *flags, unsigned bit)
+{
+    size_t nv = vbc_grid_voxels(g);
+    fprintf(f, "# vtk DataFile Version 3.0\nvorball channels mask\nBINARY\n"
+               "DATASET STRUCTURED_POINTS\nDIMENSIONS %d %d %d\nORIGIN %.6f %.6f %.6f\n"
+               "SPACING %.6f %.6f %.6f\nPOINT_DATA %zu\nSCALARS mask unsigned_char 1\n"
+               "LOOKUP_TABLE default\n",
+            g->nx, g->ny, g->nz, g->origin[0] + 0.5 * g->h, g->origin[1] + 0.5 * g->h,
+            g->origin[2] + 0.5 * g->h, g->h, g->h, g->h, nv);
+    for (size_t v = 0; v < nv; v++)
+        if (fputc((flags[v] & bit) ? 1 : 0, f) == EOF)
+            return -1;
+    return 0;
+}
+
+int vbc_write_volume(vb_ctx *ctx, const char *path, const vbc_grid *g, const uint8_t *flags,
+                     unsigned bit)
+{
+    int vtk = ends_with(path, ".vtk");
+    if (!vtk && !ends_with(path, ".mrc") && !ends_with(path, ".map"))
+        return vb_error(ctx, VB_EMISUSE, NULL, 0, "volume %s: use a .mrc, .map or .vtk name", path);
+    FILE *f = fopen(path, "wb");
+    if (!f)
+        return vb_error(ctx, VB_EIO, path, 0, "cannot create volume file");
+    int bad = vtk ? write_vtk(f, g, flags, bit) : write_mrc(f, g, flags, bit);
+    bad |= fclose(f) != 0;
+    return bad ? vb_error(ctx, VB_EIO, path, 0, "cannot write volume file") : VB_OK;
+}

@@ -1,0 +1,159 @@
+/* Exact decimals: the text of a number kept as mant * 10^exp10, beside the
+ * double strtod makes of the same text. Parsing our own grammar first means
+ * strtod never sees hex floats, "nan(...)" or locale surprises. */
+#include "vb_spheres.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+/* Exponents beyond this are absurd for coordinates and would make the exact
+ * rationals of verify/ needlessly large; they are reported as magnitude errors. */
+#define VBI_MAX_EXP10 340
+/* A decimal token longer than this is not a coordinate anyone wrote by hand
+ * or by a structure writer; bounding it keeps strtod's copy on the stack. */
+#define VBI_MAX_TOKEN 127
+
+static int is_nonfinite_word(const char *t, size_t n)
+{
+    if (n > 0 && (t[0] == '+' || t[0] == '-')) {
+        t++;
+        n--;
+    }
+    static const char *const words[] = {"nan", "inf", "infinity"};
+    for (size_t w = 0; w < 3; w++) {
+        size_t k = strlen(words[w]);
+        if (n < k)
+            continue;
+        size_t i = 0;
+        while (i < k && (t[i] | 0x20) == words[w][i])
+            i++;
+        /* "nan(...)" is a NaN too; any other tail is just malformed text. */
+        if (i == k && (n == k || (w == 0 && t[k] == '(')))
+            return 1;
+    }
+    return 0;
+}
+
+int vb_decimal_parse(const char *tok, size_t len, vb_decimal *out, double *d)
+{
+    if (len == 0)
+        return VB_EINPUT_MALFORMED;
+    if (is_nonfinite_word(tok, len))
+        return VB_EINPUT_NONFINITE;
+    if (len > VBI_MAX_TOKEN)
+        return VB_EINPUT_MAGNITUDE;
+
+    size_t i = 0;
+    int neg = 0;
+    if (tok[i] == '+' || tok[i] == '-')
+        neg = tok[i++] == '-';
+    /* Significant digits, without leading zeros, and the decimal exponent of
+     * the last digit kept. */
+    char digits[VBI_MAX_TOKEN + 1];
+    size_t nd = 0, nseen = 0;
+    long exp = 0;
+    int seen_point = 0;
+    for (; i < len; i++) {
+        char c = tok[i];
+        if (c == '.' && !seen_point) {
+            seen_point = 1;
+        } else if (c >= '0' && c <= '9') {
+            nseen++;
+            if (nd > 0 || c != '0')
+                digits[nd++] = c;
+            if (seen_point)
+                exp--;
+        } else {
+            break;
+        }
+    }
+    if (nseen == 0)
+        return VB_EINPUT_MALFORMED;
+    if (i < len && (tok[i] == 'e' || tok[i] == 'E')) {
+        i++;
+        int eneg = 0;
+        if (i < len && (tok[i] == '+' || tok[i] == '-'))
+            eneg = tok[i++] == '-';
+        size_t start = i;
+        long e = 0;
+        for (; i < len && tok[i] >= '0' && tok[i] <= '9'; i++)
+            if (e < 100000)
+                e = e * 10 + (tok[i] - '0');
+        if (i == start)
+            return VB_EINPUT_MALFORMED;
+        exp += eneg ? -e : e;
+    }
+    if (i != len)
+        return VB_EINPUT_MALFORMED;
+
+    /* Trailing zeros move into the exponent, so equal values compare equal
+     * field by field. */
+    while (nd > 0 && digits[nd - 1] == '0') {
+        nd--;
+        exp++;
+    }
+    if (nd > 18)
+        return VB_EINPUT_MAGNITUDE;
+    int64_t m = 0;
+    for (size_t k = 0; k < nd; k++)
+        m = m * 10 + (digits[k] - '0');
+    if (m == 0) {
+        exp = 0;
+    } else if (exp > VBI_MAX_EXP10 || exp < -VBI_MAX_EXP10 ||
+               exp + (long)nd - 1 > VBI_MAX_EXP10 || exp + (long)nd - 1 < -VBI_MAX_EXP10) {
+        return VB_EINPUT_MAGNITUDE;
+    }
+    out->mant = neg ? -m : m;
+    out->exp10 = (int32_t)exp;
+    if (d) {
+        char buf[VBI_MAX_TOKEN + 1];
+        memcpy(buf, tok, len);
+        buf[len] = '\0';
+        *d = strtod(buf, NULL);
+    }
+    return VB_OK;
+}
+
+static int digit_count(int64_t m)
+{
+    int n = 1;
+    while (m >= 10) {
+        m /= 10;
+        n++;
+    }
+    return n;
+}
+
+/* Compares |a| and |b| for nonzero mantissas of the same sign. */
+static int cmp_magnitude(int64_t am, int32_t ae, int64_t bm, int32_t be)
+{
+    int an = digit_count(am), bn = digit_count(bm);
+    /* Position of the leading digit decides unless equal. */
+    long al = (long)ae + an, bl = (long)be + bn;
+    if (al != bl)
+        return al < bl ? -1 : 1;
+    /* Same leading position: pad the shorter mantissa to the longer one's
+     * digit count; both stay <= 18 digits, inside int64. */
+    while (an < bn) {
+        am *= 10;
+        an++;
+    }
+    while (bn < an) {
+        bm *= 10;
+        bn++;
+    }
+    return am < bm ? -1 : am > bm;
+}
+
+int vb_decimal_cmp(vb_decimal a, vb_decimal b)
+{
+    int sa = (a.mant > 0) - (a.mant < 0), sb = (b.mant > 0) - (b.mant < 0);
+    if (sa != sb)
+        return sa < sb ? -1 : 1;
+    if (sa == 0)
+        return 0;
+    /* -INT64_MAX..INT64_MAX: 18 digits never reach INT64_MIN. */
+    int c = cmp_magnitude(a.mant < 0 ? -a.mant : a.mant, a.exp10,
+                          b.mant < 0 ? -b.mant : b.mant, b.exp10);
+    return sa > 0 ? c : -c;
+}

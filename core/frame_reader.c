@@ -1,0 +1,325 @@
+/* Multi-model input read one frame at a time. PDB and PQR are streamed: the
+ * lines of one MODEL..ENDMDL block are gathered and handed to the format's
+ * parser, so a long trajectory never sits in memory whole. mmCIF (rarely a
+ * trajectory) is held as text and read model by model; XYZR is one frame. */
+#include "vbi_input.h"
+
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Bytes looked at to detect the format of a stream. */
+#define VBI_DETECT_BYTES ((size_t)1 << 16)
+
+struct vb_frame_reader {
+    vb_format fmt;
+    char *name;
+    vb_read_options opt;
+    FILE *f;
+    int own_file;
+    char *head;            /* text read ahead for detection, served first */
+    size_t head_len, head_pos;
+    char *line;            /* getline buffer */
+    size_t line_cap;
+    long lineno;           /* lines consumed so far */
+    int unread;            /* serve the last line again */
+    const char *last;      /* the last line served */
+    size_t last_len;
+    char *chunk;           /* the block being gathered */
+    size_t chunk_len, chunk_cap;
+    int seen_model;        /* a MODEL record was met in the stream */
+    int frames;            /* frames returned */
+    int done;
+    vbi_dropped dr;
+    char *text;            /* whole input (mmCIF, XYZR) */
+    size_t text_len;
+};
+
+/* Next line of the stream (with its '\n' if any) into *s, *n; 0 at the end,
+ * -1 on a read error. */
+static int next_line_raw(vb_frame_reader *rd, const char **s, size_t *n);
+
+static int next_line(vb_frame_reader *rd, const char **s, size_t *n)
+{
+    if (rd->unread) {
+        rd->unread = 0;
+        *s = rd->last;
+        *n = rd->last_len;
+        rd->lineno++;
+        return 1;
+    }
+    int got = next_line_raw(rd, s, n);
+    if (got > 0) {
+        rd->last = *s;
+        rd->last_len = *n;
+    }
+    return got;
+}
+
+static int next_line_raw(vb_frame_reader *rd, const char **s, size_t *n)
+{
+    if (rd->head_pos < rd->head_len) {
+        const char *p = rd->head + rd->head_pos;
+        size_t left = rd->head_len - rd->head_pos;
+        const char *nl = memchr(p, '\n', left);
+        /* The head's last line may continue in the file: finish it there. */
+        if (nl) {
+            *s = p;
+            *n = nl ? (size_t)(nl - p) + 1 : left;
+            rd->head_pos += *n;
+            rd->lineno++;
+            return 1;
+        }
+        ssize_t got = getline(&rd->line, &rd->line_cap, rd->f);
+        size_t tail = got > 0 ? (size_t)got : 0;
+        char *joined = malloc(left + tail + 1);
+        if (!joined)
+            return -1;
+        memcpy(joined, p, left);
+        if (tail)
+            memcpy(joined + left, rd->line, tail);
+        free(rd->line);
+        rd->line = joined;
+        rd->line_cap = left + tail + 1;
+        rd->head_pos = rd->head_len;
+        *s = rd->line;
+        *n = left + tail;
+        rd->lineno++;
+        return 1;
+    }
+    ssize_t got = getline(&rd->line, &rd->line_cap, rd->f);
+    if (got < 0)
+        return ferror(rd->f) ? -1 : 0;
+    *s = rd->line;
+    *n = (size_t)got;
+    rd->lineno++;
+    return 1;
+}
+
+static int chunk_add(vb_frame_reader *rd, const char *s, size_t n)
+{
+    if (rd->chunk_len + n > rd->chunk_cap) {
+        size_t cap = rd->chunk_cap ? rd->chunk_cap : 1 << 16;
+        while (cap < rd->chunk_len + n)
+            cap *= 2;
+        char *c = realloc(rd->chunk, cap);
+        if (!c)
+            return -1;
+        rd->chunk = c;
+        rd->chunk_cap = cap;
+    }
+    memcpy(rd->chunk + rd->chunk_len, s, n);
+    rd->chunk_len += n;
+    return 0;
+}
+
+void vb_frame_reader_close(vb_frame_reader *rd)
+{
+    if (!rd)
+        return;
+    if (rd->f && rd->own_file)
+        fclose(rd->f);
+    free(rd->name);
+    free(rd->head);
+    free(rd->line);
+    free(rd->chunk);
+    free(rd->text);
+    free(rd);
+}
+
+int vb_frame_reader_open(vb_ctx *ctx, const char *path, const vb_read_options *opt,
+                         vb_frame_reader **out)
+{
+    *out = NULL;
+    vb_frame_reader *rd = calloc(1, sizeof *rd);
+    if (!rd || !(rd->name = strdup(path))) {
+        free(rd);
+        return vb_error(ctx, VB_ENOMEM, path, 0, "out of memory");
+    }
+    if (opt)
+        rd->opt = *opt;
+    int is_stdin = strcmp(path, "-") == 0;
+    rd->f = is_stdin ? stdin : fopen(path, "rb");
+    rd->own_file = !is_stdin;
+    if (!rd->f) {
+        int rc = vb_error(ctx, VB_EIO, path, 0, "cannot open: %s", strerror(errno));
+        vb_frame_reader_close(rd);
+        return rc;
+    }
+    rd->head = malloc(VBI_DETECT_BYTES + 1);
+    if (!rd->head) {
+        vb_frame_reader_close(rd);
+        return vb_error(ctx, VB_ENOMEM, path, 0, "out of memory");
+    }
+    rd->head_len = fread(rd->head, 1, VBI_DETECT_BYTES, rd->f);
+    rd->head[rd->head_len] = '\0';
+    if (ferror(rd->f)) {
+        vb_frame_reader_close(rd);
+        return vb_error(ctx, VB_EIO, path, 0, "read error");
+    }
+    rd->fmt = rd->opt.format;
+    if (rd->fmt == VB_FMT_AUTO) {
+        int rc = vbi_detect_format(rd->head, rd->head_len, &rd->fmt);
+        if (rc != VB_OK) {
+            vb_frame_reader_close(rd);
+            return vbi_detect_error(ctx, path, rc);
+        }
+    }
+    if (rd->fmt == VB_FMT_MMCIF || rd->fmt == VB_FMT_XYZR) {
+        /* Not streamed: the rest of the text joins the head. */
+        const char *s;
+        size_t n;
+        int got;
+        while ((got = next_line(rd, &s, &n)) > 0)
+            if (chunk_add(rd, s, n) != 0 || rd->chunk_len > VBI_MAX_FILE_BYTES)
+                break;
+        int rc = VB_OK;
+        if (got < 0)
+            rc = vb_error(ctx, VB_EIO, path, 0, "read error");
+        else if (got > 0 && rd->chunk_len > VBI_MAX_FILE_BYTES)
+            rc = vb_error(ctx, VB_EINPUT_TOOLARGE, path, 0, "input is larger than 2 GiB");
+        else if (got > 0)
+            rc = vb_error(ctx, VB_ENOMEM, path, 0, "out of memory");
+        if (rc != VB_OK) {
+            vb_frame_reader_close(rd);
+            return rc;
+        }
+        rd->text = rd->chunk;
+        rd->text_len = rd->chunk_len;
+        rd->chunk = NULL;
+        rd->chunk_len = rd->chunk_cap = 0;
+    }
+    *out = rd;
+    return VB_OK;
+}
+
+static int is_atom_line(const char *s, size_t n)
+{
+    return vbi_pdb_record(s, n, "ATOM") || vbi_pdb_record(s, n, "HETATM");
+}
+
+/* Gathers the next MODEL..ENDMDL block (or, without MODEL records, the whole
+ * stream) into rd->chunk. Returns 1 with a block, 0 at the end, or a negative
+ * status. *first gets the block's first line number, *serial its MODEL
+ * number. */
+static int gather_block(vb_ctx *ctx, vb_frame_reader *rd, long *first, int *serial)
+{
+    rd->chunk_len = 0;
+    const char *s;
+    size_t n;
+    int got, in_block = 0;
+    size_t loose_atoms = 0; /* atoms gathered before the first MODEL */
+    *first = 0;
+    while ((got = next_line(rd, &s, &n)) > 0) {
+        if (vbi_pdb_record(s, n, "MODEL")) {
+            if (in_block) {
+                /* MODEL without ENDMDL: this line opens the next block. */
+                rd->unread = 1;
+                rd->lineno--;
+                return 1;
+            }
+            /* What came before the first MODEL was header, or atoms outside
+             * any model. */
+            rd->dr.other_models += loose_atoms;
+            rd->chunk_len = 0;
+            rd->seen_model = in_block = 1;
+            *first = rd->lineno;
+            int32_t v = 0;
+            vbi_parse_int(s + 5, n - 5, &v);
+            *serial = v;
+        } else if (rd->seen_model && !in_block) {
+            if (is_atom_line(s, n))
+                rd->dr.other_models++;
+            continue;
+        } else if (!rd->seen_model) {
+            loose_atoms += is_atom_line(s, n);
+        }
+        if (*first == 0) {
+            *first = rd->lineno;
+            *serial = 1;
+        }
+        if (chunk_add(rd, s, n) != 0)
+            return -vb_error(ctx, VB_ENOMEM, rd->name, 0, "out of memory");
+        if (rd->chunk_len > VBI_MAX_FILE_BYTES)
+            return -vb_error(ctx, VB_EINPUT_TOOLARGE, rd->name, *first,
+                             "one frame is larger than 2 GiB");
+        if (in_block && vbi_pdb_record(s, n, "ENDMDL"))
+            return 1;
+    }
+    if (got < 0)
+        return -vb_error(ctx, VB_EIO, rd->name, 0, "read error");
+    return *first != 0 && (in_block || !rd->seen_model);
+}
+
+int vb_frame_reader_next(vb_ctx *ctx, vb_frame_reader *rd, vb_sphere_set **out,
+                         int *model_number)
+{
+    *out = NULL;
+    if (rd->done)
+        return VB_OK;
+    vb_read_options one = rd->opt;
+    int serial = 1, rc = VB_OK;
+    for (;;) {
+        if (rd->fmt == VB_FMT_MMCIF || rd->fmt == VB_FMT_XYZR) {
+            int ordinal = rd->frames + 1;
+            if (rd->fmt == VB_FMT_XYZR) {
+                if (ordinal > 1)
+                    break;
+                rc = vbi_read_xyzr(ctx, rd->name, rd->text, rd->text_len, &one, out);
+            } else {
+                /* Each pass skips the other models, which are frames here,
+                 * not dropped atoms: keep them out of the counts. */
+                vbi_dropped keep = rd->dr;
+                rc = vbi_mmcif_parse(ctx, rd->name, rd->text, rd->text_len, &one, ordinal,
+                                     &rd->dr, &serial, out);
+                rd->dr.other_models = keep.other_models;
+                rd->dr.other_model_count = keep.other_model_count;
+                /* Past the last model: the end, not an error. */
+                if (rc == VB_EINPUT_MODEL && ordinal > 1) {
+                    vb_clear_error(ctx);
+                    rc = VB_OK;
+                    break;
+                }
+            }
+            if (rc != VB_OK)
+                return rc;
+            rd->frames++;
+        } else {
+            long first;
+            int got = gather_block(ctx, rd, &first, &serial);
+            if (got < 0)
+                return -got;
+            if (got == 0)
+                break;
+            /* The block holds one model: take it, whatever its number. */
+            one.model = 0;
+            rc = rd->fmt == VB_FMT_PQR
+                     ? vbi_pqr_parse(ctx, rd->name, rd->chunk, rd->chunk_len, first, &one,
+                                     &rd->dr, out)
+                     : vbi_pdb_parse(ctx, rd->name, rd->chunk, rd->chunk_len, first, &one,
+                                     &rd->dr, out);
+            if (rc != VB_OK)
+                return rc;
+            rd->frames++;
+        }
+        /* --model N picks one frame out of the stream. */
+        if (rd->opt.model == 0 || rd->opt.model == serial)
+            break;
+        rd->dr.other_models += (*out)->n;
+        rd->dr.other_model_count++;
+        vb_spheres_free(*out);
+        *out = NULL;
+    }
+    if (*out) {
+        *model_number = serial;
+        if (rd->opt.model != 0)
+            rd->done = 1;
+        return VB_OK;
+    }
+    rd->done = 1;
+    vbi_report_dropped(ctx, rd->name, &rd->dr);
+    if (rd->opt.model != 0)
+        return vb_error(ctx, VB_EINPUT_MODEL, rd->name, 0, "model %d is not in the input",
+                        rd->opt.model);
+    return VB_OK;
+}

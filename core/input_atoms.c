@@ -1,0 +1,150 @@
+/* Atom-level rules shared by the PDB, PQR and mmCIF readers: which residues
+ * are water, which atoms are hydrogens, element guesses from atom names, and
+ * the one-line reports of what was left out. */
+#include "vbi_input.h"
+
+#include <ctype.h>
+#include <string.h>
+
+int vbi_is_water(const char *resname)
+{
+    static const char *const water[] = {"HOH", "WAT", "DOD", "H2O", "TIP", "TIP3",
+                                        "TIP4", "SOL", "T3P", "T4P", "SPC"};
+    for (size_t k = 0; k < sizeof water / sizeof water[0]; k++)
+        if (strcmp(resname, water[k]) == 0)
+            return 1;
+    return 0;
+}
+
+int vbi_is_hydrogen(const char *element)
+{
+    return strcmp(element, "H") == 0 || strcmp(element, "D") == 0;
+}
+
+/* Two-letter elements that may start in column 13 of a PDB atom name; H-led
+ * names are hydrogens (HG, HD, HE are far more often H gamma/delta/epsilon). */
+static int two_letter_element(char a, char b)
+{
+    static const char *const two[] = {"CL", "BR", "SE", "NA", "MG", "CA", "FE", "ZN", "CU",
+                                      "MN", "CO", "NI", "AL", "SI", "AS", "LI", "CD"};
+    for (size_t k = 0; k < sizeof two / sizeof two[0]; k++)
+        if (two[k][0] == a && two[k][1] == b)
+            return 1;
+    return 0;
+}
+
+void vbi_element_from_name(const char *name4, char element[4])
+{
+    element[0] = '\0';
+    size_t i = 0;
+    while (i < 4 && name4[i] != '\0' && !isalpha((unsigned char)name4[i]))
+        i++;
+    if (i >= 4 || name4[i] == '\0')
+        return;
+    char a = (char)toupper((unsigned char)name4[i]);
+    char b = i + 1 < 4 ? (char)toupper((unsigned char)name4[i + 1]) : '\0';
+    /* Only a name that starts in column 13 can carry a two-letter element. */
+    if (i == 0 && a != 'H' && two_letter_element(a, b)) {
+        element[0] = a;
+        element[1] = b;
+        element[2] = '\0';
+        return;
+    }
+    element[0] = a;
+    element[1] = '\0';
+}
+
+void vbi_element_from_bare_name(const char *name, char element[4])
+{
+    /* Without column positions a name cannot say "two-letter element", so
+     * it is read as if it started in column 14. */
+    char name4[5] = "    ";
+    size_t k = strlen(name);
+    memcpy(name4 + 1, name, k < 3 ? k : 3);
+    vbi_element_from_name(name4, element);
+}
+
+void vbi_report_dropped(vb_ctx *ctx, const char *name, const vbi_dropped *dr)
+{
+    if (dr->water)
+        vb_warn(ctx, 703, name, 0, "%zu water atom%s dropped (--water keeps them)", dr->water,
+                dr->water == 1 ? "" : "s");
+    if (dr->altloc)
+        vb_warn(ctx, 704, name, 0,
+                "%zu atom%s of other alternate locations dropped (first location kept)",
+                dr->altloc, dr->altloc == 1 ? "" : "s");
+    if (dr->other_models)
+        vb_warn(ctx, 705, name, 0, "%zu atom%s of %zu other model%s ignored (--model N)",
+                dr->other_models, dr->other_models == 1 ? "" : "s", dr->other_model_count,
+                dr->other_model_count == 1 ? "" : "s");
+    if (dr->hydrogens)
+        vb_warn(ctx, 706, name, 0, "%zu hydrogen atom%s dropped (--no-hydrogens)", dr->hydrogens,
+                dr->hydrogens == 1 ? "" : "s");
+    if (dr->unknown_elements > 1)
+        vb_warn(ctx, 708, name, 0, "%zu atoms in all had an unknown element and radius 1.70",
+                dr->unknown_elements);
+}
+
+void vbi_models_init(vbi_models *m, int want)
+{
+    memset(m, 0, sizeof *m);
+    m->want = want;
+    m->taken_serial = 1;
+}
+
+void vbi_models_begin(vbi_models *m, int serial, vbi_dropped *dr)
+{
+    m->seen_model = m->in_model = 1;
+    m->blocks++;
+    m->taking = !m->found && (m->by_ordinal ? m->blocks == m->want
+                                            : m->want == 0 || serial == m->want);
+    if (m->taking) {
+        m->found = 1;
+        m->taken_serial = serial;
+    } else {
+        dr->other_model_count++;
+    }
+}
+
+void vbi_models_end(vbi_models *m)
+{
+    m->in_model = 0;
+}
+
+int vbi_models_takes(const vbi_models *m)
+{
+    if (m->in_model)
+        return m->taking;
+    /* Atoms outside MODEL blocks form the implicit model 1. */
+    return !m->seen_model && (m->want == 0 || m->want == 1);
+}
+
+int vbi_models_check(vb_ctx *ctx, const char *name, const vbi_models *m)
+{
+    if (m->want == 0 || m->found || (m->want == 1 && !m->seen_model))
+        return VB_OK;
+    return vb_error(ctx, VB_EINPUT_MODEL, name, 0, "model %d is not in the input%s", m->want,
+                    m->seen_model ? "" : " (it has a single model, number 1)");
+}
+
+void vbi_altloc_init(vbi_altloc *a)
+{
+    memset(a, 0, sizeof *a);
+}
+
+int vbi_altloc_keeps(vbi_altloc *a, const vb_atom_info *info)
+{
+    if (strcmp(a->chain, info->chain) != 0 || a->resseq != info->resseq ||
+        a->icode != info->icode || !a->started) {
+        memcpy(a->chain, info->chain, sizeof a->chain);
+        a->resseq = info->resseq;
+        a->icode = info->icode;
+        a->kept = ' ';
+        a->started = 1;
+    }
+    if (info->altloc == ' ')
+        return 1;
+    if (a->kept == ' ')
+        a->kept = info->altloc;
+    return info->altloc == a->kept;
+}

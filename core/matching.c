@@ -1,0 +1,659 @@
+/* Matching across cells (Sec. 5.4), the targeted search for incompletely
+ * matched vertices (5.5) and the empty-tangent-sphere test.
+ *
+ * Candidates that lie within tol of each other (point and tangent radius)
+ * are one vertex; its members are the union of their ids (so a degenerate
+ * vertex seen as different quadruples from different cells is one vertex),
+ * and it is complete when every member produced a candidate from its own
+ * cell. For each missing member m the search shoots the ray from c_m to the
+ * vertex, centres a grid cell on it of half the original size, and runs the
+ * vertex stage there (Newton, subdivision) with every bisector of m; the
+ * cell shrinks by half until the vertex is found or the depth is spent.
+ * Every quadruple is then tested for an empty tangent sphere in double with
+ * margin tol (the exact certifier decides afterwards). */
+#include <stdlib.h>
+#include <string.h>
+
+#include "vbs_internal.h"
+
+/* Intruder swaps tried from a sampled quadruple whose tangent sphere is not
+ * empty (collinear and coplanar corpus cases need two). */
+#define VBS_SWAP_DEPTH 2
+
+typedef struct match_ctx {
+    const vb_sphere_set *set;
+    double tol;
+    uint32_t *parent;
+    uint32_t *order;      /* candidates sorted by x */
+    uint32_t *cl_of;      /* cluster of each candidate */
+    uint32_t *cl_start;   /* CSR of candidates per cluster */
+    uint32_t *cl_items;
+    size_t ncl;
+} match_ctx;
+
+static uint32_t find(uint32_t *p, uint32_t a)
+{
+    while (p[a] != a) {
+        p[a] = p[p[a]];
+        a = p[a];
+    }
+    return a;
+}
+
+typedef struct xkey {
+    double x;
+    uint32_t k;
+} xkey;
+
+static int cmp_x(const void *pa, const void *pb)
+{
+    const xkey *a = pa, *b = pb;
+    if (a->x != b->x)
+        return a->x < b->x ? -1 : 1;
+    return (a->k > b->k) - (a->k < b->k);
+}
+
+static void match_free(match_ctx *m)
+{
+    free(m->parent);
+    free(m->order);
+    free(m->cl_of);
+    free(m->cl_start);
+    free(m->cl_items);
+    m->parent = m->order = m->cl_of = m->cl_start = m->cl_items = NULL;
+    m->ncl = 0;
+}
+
+/* Clusters of candidates closer than tol; clusters are numbered in the order
+ * of their first candidate, candidates inside a cluster keep their order. */
+static int cluster(match_ctx *m, const vb_cand_vec *cv)
+{
+    size_t n = cv->n;
+    match_free(m);
+    m->parent = malloc((n + 1) * sizeof *m->parent);
+    m->order = malloc((n + 1) * sizeof *m->order);
+    m->cl_of = malloc((n + 1) * sizeof *m->cl_of);
+    m->cl_start = calloc(n + 2, sizeof *m->cl_start);
+    m->cl_items = malloc((n + 1) * sizeof *m->cl_items);
+    if (!m->parent || !m->order || !m->cl_of || !m->cl_start || !m->cl_items)
+        return VB_ENOMEM;
+    xkey *keys = malloc((n + 1) * sizeof *keys);
+    if (!keys)
+        return VB_ENOMEM;
+    for (size_t k = 0; k < n; k++) {
+        m->parent[k] = (uint32_t)k;
+        keys[k] = (xkey){cv->v[k].x, (uint32_t)k};
+    }
+    qsort(keys, n, sizeof *keys, cmp_x);
+    for (size_t k = 0; k < n; k++)
+        m->order[k] = keys[k].k;
+    free(keys);
+    double tol = m->tol;
+    for (size_t a = 0; a < n; a++) {
+        const vbs_cand *ca = cv->v + m->order[a];
+        for (size_t b = a + 1; b < n; b++) {
+            const vbs_cand *cb = cv->v + m->order[b];
+            if (cb->x - ca->x > tol)
+                break;
+            double dy = cb->y - ca->y, dz = cb->z - ca->z, dt = cb->t - ca->t;
+            if (fabs(dy) > tol || fabs(dz) > tol || fabs(dt) > tol)
+                continue;
+            uint32_t ra = find(m->parent, m->order[a]), rb = find(m->parent, m->order[b]);
+            if (ra != rb) {
+                if (ra < rb)
+                    m->parent[rb] = ra;
+                else
+                    m->parent[ra] = rb;
+            }
+        }
+    }
+    /* Number clusters by first candidate (roots are the smallest index). */
+    size_t ncl = 0;
+    for (size_t k = 0; k < n; k++) {
+        uint32_t r = find(m->parent, (uint32_t)k);
+        m->cl_of[k] = r == k ? (uint32_t)ncl++ : m->cl_of[r];
+    }
+    for (size_t k = 0; k < n; k++)
+        m->cl_start[m->cl_of[k] + 1]++;
+    for (size_t c = 0; c < ncl; c++)
+        m->cl_start[c + 1] += m->cl_start[c];
+    uint32_t *fill = m->order; /* reuse */
+    memcpy(fill, m->cl_start, ncl * sizeof *fill);
+    for (size_t k = 0; k < n; k++)
+        m->cl_items[fill[m->cl_of[k]]++] = (uint32_t)k;
+    m->ncl = ncl;
+    return VB_OK;
+}
+
+static int cmp_u32(const void *a, const void *b)
+{
+    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+    return (x > y) - (x < y);
+}
+
+static size_t uniq(uint32_t *v, size_t n)
+{
+    qsort(v, n, sizeof *v, cmp_u32);
+    size_t m = 0;
+    for (size_t k = 0; k < n; k++)
+        if (m == 0 || v[m - 1] != v[k])
+            v[m++] = v[k];
+    return m;
+}
+
+/* Members (union of ids) and finders (bases) of cluster c. */
+static size_t cluster_sets(const match_ctx *m, const vb_cand_vec *cv, size_t c, uint32_t *mem,
+                           size_t *nmem, uint32_t *found)
+{
+    size_t nm = 0, nf = 0;
+    for (uint32_t q = m->cl_start[c]; q < m->cl_start[c + 1]; q++) {
+        const vbs_cand *k = cv->v + m->cl_items[q];
+        for (int a = 0; a < 4; a++)
+            mem[nm++] = k->ids[a];
+        found[nf++] = k->ids[0];
+    }
+    *nmem = uniq(mem, nm);
+    return uniq(found, nf);
+}
+
+typedef struct work {
+    uint32_t base, cluster;
+} work;
+
+static int cmp_work(const void *pa, const void *pb)
+{
+    const work *a = pa, *b = pb;
+    if (a->base != b->base)
+        return a->base < b->base ? -1 : 1;
+    return (a->cluster > b->cluster) - (a->cluster < b->cluster);
+}
+
+/* Base m with all its bisectors behind every tile: the lists the targeted
+ * search uses for rays anywhere on the sphere of directions. */
+typedef struct full_base {
+    vbs_base base;
+    uint32_t *idx, off[7];
+    size_t cap;
+} full_base;
+
+static int full_base_set(full_base *fb, const vb_sphere_set *s, uint32_t m, double clip,
+                         const vbs_base_data *bd)
+{
+    size_t need = 6 * bd->nbis + 1;
+    if (need > fb->cap) {
+        uint32_t *p = realloc(fb->idx, need * sizeof *p);
+        if (!p)
+            return VB_ENOMEM;
+        fb->idx = p;
+        fb->cap = need;
+    }
+    for (size_t f = 0; f < 6; f++) {
+        fb->off[f] = (uint32_t)(f * bd->nbis);
+        for (size_t q = 0; q < bd->nbis; q++)
+            fb->idx[f * bd->nbis + q] = (uint32_t)q;
+    }
+    fb->off[6] = (uint32_t)(6 * bd->nbis);
+    vbs_base *b = &fb->base;
+    b->cx = s->x[m];
+    b->cy = s->y[m];
+    b->cz = s->z[m];
+    b->r = s->r[m];
+    b->clip = clip / s->r[m];
+    b->id = m;
+    b->bis_start = 0;
+    b->bis_count = (uint32_t)bd->nbis;
+    b->tile_start = 0;
+    return VB_OK;
+}
+
+/* Sec. 5.5 for one (vertex, sphere): returns 1 when found; new candidates
+ * (the vertex itself or neighbours revealed by the small cells) go to extra. */
+static int targeted(const full_base *fb, const vbs_base_data *bd, const vbs_params *p,
+                    const vbs_cand *v, unsigned depth, vb_cand_vec *extra, int *err)
+{
+    double d[3] = {v->x - fb->base.cx, v->y - fb->base.cy, v->z - fb->base.cz};
+    double n = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    if (!(n > 0.0))
+        return 0;
+    double u, w;
+    vbs_u32 f = vbs_dir_face(d, &u, &w);
+    vbs_params q = *p;
+    q.tiles = 1;
+    double h = 0.5 * (2.0 / (double)(p->samples - 1u));
+    for (unsigned lev = 0; lev < depth; lev++, h *= 0.5) {
+        vbs_quad quad;
+        quad.u0 = u - 0.5 * h;
+        quad.v0 = w - 0.5 * h;
+        quad.h = h;
+        quad.depth = 0;
+        for (int k = 0; k < 4; k++) {
+            double dd[3], s;
+            quad.col[k] = vbs_envelope_at(&fb->base, bd->bis, fb->off, fb->idx, 1, f,
+                                          quad.u0 + ((k & 1) ? h : 0.0),
+                                          quad.v0 + ((k & 2) ? h : 0.0), dd, &s);
+        }
+        vbs_cand buf[VBS_MAX_CAND];
+        vbs_emit em = {buf, VBS_MAX_CAND, 0u, 0u, 0xffffffffu};
+        vbs_process_cell(&fb->base, bd->bis, fb->off, fb->idx, &q, f, &quad, VBS_CF_TARGETED,
+                         &em);
+        int found = 0;
+        for (vbs_u32 k = 0; k < em.n; k++) {
+            buf[k].seq = (vbs_u32)extra->n;
+            if (vb_cand_vec_push(extra, buf + k)) {
+                *err = VB_ENOMEM;
+                return 0;
+            }
+            double dx = buf[k].x - v->x, dy = buf[k].y - v->y, dz = buf[k].z - v->z;
+            if (sqrt(dx * dx + dy * dy + dz * dz) <= p->tol)
+                found = 1;
+        }
+        if (found)
+            return 1;
+    }
+    return 0;
+}
+
+/* Empty tangent sphere in double: returns the sphere (outside the four ids)
+ * that reaches deepest, by more than tol, into the tangent sphere of
+ * candidate k (lowest id on ties), or VBS_INF_COLOUR when there is none. */
+static uint32_t tangent_intruder(const vbs_hash *h, const vbs_cand *k, const uint32_t q[4],
+                                 double tol, uint32_t **buf, size_t *cap, int *err)
+{
+    const vb_sphere_set *s = h->set;
+    const double p[3] = {k->x, k->y, k->z};
+    size_t n = 0;
+    double radius = k->t + h->rmax + tol;
+    if (radius < 0.0)
+        return VBS_INF_COLOUR;
+    if (vbs_hash_query(h, p, radius, buf, &n, cap)) {
+        *err = VB_ENOMEM;
+        return VBS_INF_COLOUR;
+    }
+    uint32_t worst = VBS_INF_COLOUR;
+    double deepest = -tol;
+    for (size_t i = 0; i < n; i++) {
+        uint32_t j = (*buf)[i];
+        if (j == q[0] || j == q[1] || j == q[2] || j == q[3])
+            continue;
+        if (s->contained && s->contained[j])
+            continue;
+        double dx = s->x[j] - p[0], dy = s->y[j] - p[1], dz = s->z[j] - p[2];
+        double gap = sqrt(dx * dx + dy * dy + dz * dz) - s->r[j] - k->t;
+        if (gap < deepest) {
+            deepest = gap;
+            worst = j;
+        }
+    }
+    return worst;
+}
+
+/* Set of sorted quadruples already handled (open addressing). */
+typedef struct qset {
+    uint32_t (*keys)[4];
+    size_t cap, n;
+} qset;
+
+static size_t qhash(const uint32_t q[4], size_t mask)
+{
+    uint64_t h = 1469598103934665603ull;
+    for (int k = 0; k < 4; k++)
+        h = (h ^ q[k]) * 1099511628211ull;
+    return (size_t)(h ^ (h >> 29)) & mask;
+}
+
+/* Inserts q; returns 1 if new, 0 if present, -1 on allocation failure. */
+static int qset_add(qset *s, const uint32_t q[4])
+{
+    if (2 * (s->n + 1) > s->cap) {
+        size_t nc = s->cap ? 2 * s->cap : 1024;
+        uint32_t (*k)[4] = malloc(nc * sizeof *k);
+        if (!k)
+            return -1;
+        memset(k, 0xff, nc * sizeof *k);
+        for (size_t i = 0; i < s->cap; i++)
+            if (s->keys[i][0] != 0xffffffffu) {
+                size_t h = qhash(s->keys[i], nc - 1);
+                while (k[h][0] != 0xffffffffu)
+                    h = (h + 1) & (nc - 1);
+                memcpy(k[h], s->keys[i], sizeof k[h]);
+            }
+        free(s->keys);
+        s->keys = k;
+        s->cap = nc;
+    }
+    size_t h = qhash(q, s->cap - 1);
+    while (s->keys[h][0] != 0xffffffffu) {
+        if (memcmp(s->keys[h], q, 4 * sizeof *q) == 0)
+            return 0;
+        h = (h + 1) & (s->cap - 1);
+    }
+    memcpy(s->keys[h], q, 4 * sizeof *q);
+    s->n++;
+    return 1;
+}
+
+/* A candidate with its sorted quadruple; sorted by quadruple, then by the
+ * candidate's deterministic order. */
+typedef struct qrec {
+    uint32_t q[4];
+    vbs_cand c;
+} qrec;
+
+static int cmp_qrec(const void *pa, const void *pb)
+{
+    const qrec *a = pa, *b = pb;
+    for (int k = 0; k < 4; k++)
+        if (a->q[k] != b->q[k])
+            return a->q[k] < b->q[k] ? -1 : 1;
+    if (a->c.ids[0] != b->c.ids[0])
+        return a->c.ids[0] < b->c.ids[0] ? -1 : 1;
+    if (a->c.cell != b->c.cell)
+        return a->c.cell < b->c.cell ? -1 : 1;
+    return (a->c.seq > b->c.seq) - (a->c.seq < b->c.seq);
+}
+
+/* Both tangent spheres of a quadruple (Fig. 8: one quadruple, two vertices),
+ * each kept if its tangent sphere is empty; the point p stands in when the
+ * double solver cannot separate the roots (the certifier decides). When the
+ * root nearest p is not empty, the spheres near a (near-)degenerate vertex
+ * are not the ones sampled: each quadruple with one sphere swapped for the
+ * intruder is tried too, `depth` swaps deep. */
+typedef struct emit_ctx {
+    const vb_sphere_set *set;
+    const vbs_hash *hash;
+    double tol;
+    uint32_t *qbuf;
+    size_t qcap;
+    qset seen;
+    vb_sampler_result *res;
+} emit_ctx;
+
+static int emit_roots(emit_ctx *e, const uint32_t q[4], const vbs_cand *proto, int depth)
+{
+    const vb_sphere_set *s = e->set;
+    double sp[4][4], roots[2][4];
+    for (int k = 0; k < 4; k++) {
+        uint32_t j = q[k];
+        sp[k][0] = s->x[j];
+        sp[k][1] = s->y[j];
+        sp[k][2] = s->z[j];
+        sp[k][3] = s->r[j];
+    }
+    int n = vbs_tangent_roots(sp, roots);
+    if (n == 0) {
+        roots[0][0] = proto->x;
+        roots[0][1] = proto->y;
+        roots[0][2] = proto->z;
+        roots[0][3] = proto->t;
+        n = 1;
+    }
+    int nearest = 0;
+    if (n == 2) {
+        double d[2];
+        for (int k = 0; k < 2; k++) {
+            double dx = roots[k][0] - proto->x, dy = roots[k][1] - proto->y,
+                   dz = roots[k][2] - proto->z;
+            d[k] = dx * dx + dy * dy + dz * dz;
+        }
+        nearest = d[1] < d[0];
+    }
+    int rc = VB_OK;
+    for (int k = 0; k < n && rc == VB_OK; k++) {
+        vbs_cand c = *proto;
+        c.x = roots[k][0];
+        c.y = roots[k][1];
+        c.z = roots[k][2];
+        c.t = roots[k][3];
+        uint32_t j = tangent_intruder(e->hash, &c, q, e->tol, &e->qbuf, &e->qcap, &rc);
+        if (rc != VB_OK)
+            break;
+        if (j == VBS_INF_COLOUR) {
+            if (vb_vertex_list_push(&e->res->candidates, q, 4, c.x, c.y, c.z, c.t, 0.0,
+                                    VB_VERTEX_CANDIDATE))
+                rc = VB_ENOMEM;
+            continue;
+        }
+        e->res->dropped++;
+        if (k != nearest || depth == 0)
+            continue;
+        for (int a = 0; a < 4 && rc == VB_OK; a++) {
+            uint32_t q2[4];
+            for (int b = 0; b < 4; b++)
+                q2[b] = b == a ? j : q[b];
+            qsort(q2, 4, sizeof *q2, cmp_u32);
+            int fresh = qset_add(&e->seen, q2);
+            if (fresh < 0)
+                rc = VB_ENOMEM;
+            else if (fresh) {
+                e->res->swaps++;
+                rc = emit_roots(e, q2, &c, depth - 1);
+            }
+        }
+    }
+    return rc;
+}
+
+/* Neighbourhood completion: every vertex found so far (the list grows while
+ * it is walked) tries, for each triple of its spheres, the VBS_RING spheres
+ * that come closest to its tangent sphere as the fourth. A vertex whose
+ * faces are too thin for any ray (symmetric inputs: a face that exists only
+ * on a plane of symmetry between samples) is reached this way from a found
+ * neighbour across their common edge. */
+#define VBS_RING 4
+
+static int complete_ring(emit_ctx *e)
+{
+    const vb_sphere_set *s = e->set;
+    vb_vertex_list *v = &e->res->candidates;
+    int rc = VB_OK;
+    for (size_t k = 0; k < v->n && rc == VB_OK; k++) {
+        uint32_t q[4];
+        memcpy(q, v->ids + v->start[k], sizeof q);
+        vbs_cand c;
+        memset(&c, 0, sizeof c);
+        c.x = v->x[k];
+        c.y = v->y[k];
+        c.z = v->z[k];
+        c.t = v->t[k];
+        /* The VBS_RING smallest gaps |p - c_j| - r_j - t among non-members. */
+        size_t n = 0;
+        const double p[3] = {c.x, c.y, c.z};
+        double radius = c.t + e->hash->rmax + 4.0 * e->hash->h;
+        if (radius < 0.0 || vbs_hash_query(e->hash, p, radius, &e->qbuf, &n, &e->qcap)) {
+            if (radius >= 0.0)
+                rc = VB_ENOMEM;
+            continue;
+        }
+        uint32_t best[VBS_RING];
+        double gap[VBS_RING];
+        int nb = 0;
+        for (size_t i = 0; i < n; i++) {
+            uint32_t j = e->qbuf[i];
+            if (j == q[0] || j == q[1] || j == q[2] || j == q[3] ||
+                (s->contained && s->contained[j]))
+                continue;
+            double dx = s->x[j] - p[0], dy = s->y[j] - p[1], dz = s->z[j] - p[2];
+            double g = sqrt(dx * dx + dy * dy + dz * dz) - s->r[j] - c.t;
+            int at = nb < VBS_RING ? nb++ : VBS_RING;
+            while (at > 0 && (gap[at - 1] > g || (gap[at - 1] == g && best[at - 1] > j))) {
+                if (at < VBS_RING) {
+                    gap[at] = gap[at - 1];
+                    best[at] = best[at - 1];
+                }
+                at--;
+            }
+            if (at < VBS_RING) {
+                gap[at] = g;
+                best[at] = j;
+            }
+        }
+        for (int drop = 0; drop < 4 && rc == VB_OK; drop++)
+            for (int b = 0; b < nb && rc == VB_OK; b++) {
+                uint32_t q2[4];
+                for (int a = 0; a < 4; a++)
+                    q2[a] = a == drop ? best[b] : q[a];
+                qsort(q2, 4, sizeof *q2, cmp_u32);
+                int fresh = qset_add(&e->seen, q2);
+                if (fresh < 0)
+                    rc = VB_ENOMEM;
+                else if (fresh) {
+                    e->res->ring_tries++;
+                    rc = emit_roots(e, q2, &c, 0);
+                }
+            }
+    }
+    return rc;
+}
+
+int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
+              const vbs_params *params, vb_cand_vec *raw, vb_sampler_result *res)
+{
+    match_ctx m = {set, params->tol, NULL, NULL, NULL, NULL, NULL, 0};
+    uint32_t *mem = malloc(4 * (raw->n + 1) * sizeof *mem);
+    uint32_t *found = malloc((raw->n + 1) * sizeof *found);
+    work *wk = NULL;
+    size_t nwk = 0, wcap = 0;
+    vb_cand_vec extra = {0};
+    vbs_base_data bd;
+    memset(&bd, 0, sizeof bd);
+    full_base fb;
+    memset(&fb, 0, sizeof fb);
+    uint32_t *tbuf = NULL;
+    size_t tcap = 0;
+    int rc = (!mem || !found) ? VB_ENOMEM : cluster(&m, raw);
+    /* Pass 1: completeness, the first cell (Fig. 13), work for 5.5. */
+    for (size_t c = 0; rc == VB_OK && c < m.ncl; c++) {
+        size_t nm, nf = cluster_sets(&m, raw, c, mem, &nm, found);
+        if (nf > 0 && found[0] == 0)
+            res->first_cell++;
+        size_t fi = 0;
+        int complete = 1;
+        /* A vertex whose tangent sphere is not empty is spurious whichever
+         * cells see it: test first, search only for the plausible ones. */
+        const vbs_cand *rep = raw->v + m.cl_items[m.cl_start[c]];
+        int plausible = 1;
+        if (nf < nm) {
+            uint32_t q4[4];
+            memcpy(q4, rep->ids, sizeof q4);
+            plausible = tangent_intruder(cu->hash, rep, q4, params->tol, &tbuf, &tcap, &rc) ==
+                        VBS_INF_COLOUR;
+        }
+        for (size_t q = 0; q < nm && plausible; q++) {
+            while (fi < nf && found[fi] < mem[q])
+                fi++;
+            if (fi < nf && found[fi] == mem[q])
+                continue;
+            complete = 0;
+            if (nwk == wcap) {
+                wcap = wcap ? 2 * wcap : 256;
+                work *p = realloc(wk, wcap * sizeof *p);
+                if (!p) {
+                    rc = VB_ENOMEM;
+                    break;
+                }
+                wk = p;
+            }
+            wk[nwk++] = (work){mem[q], (uint32_t)c};
+        }
+        res->complete_first += (uint64_t)(complete && nf == nm);
+    }
+    /* Sec. 5.5, one base at a time. */
+    if (rc == VB_OK)
+        qsort(wk, nwk, sizeof *wk, cmp_work);
+    for (size_t w = 0; rc == VB_OK && w < nwk; w++) {
+        if (w == 0 || wk[w].base != wk[w - 1].base) {
+            rc = vbs_cull_base(ctx, cu, wk[w].base, &bd);
+            if (rc == VB_OK && full_base_set(&fb, set, wk[w].base, cu->clip, &bd))
+                rc = VB_ENOMEM;
+            if (rc != VB_OK)
+                break;
+        }
+        const vbs_cand *v = raw->v + m.cl_items[m.cl_start[wk[w].cluster]];
+        res->targeted_searches++;
+        if (bd.nbis > 0 && targeted(&fb, &bd, params, v, VB_SAMPLER_DEFAULT_TARGET_DEPTH,
+                                    &extra, &rc))
+            res->targeted_found++;
+    }
+    /* Pass 2 on everything found; extra candidates follow the raw ones. */
+    for (size_t k = 0; rc == VB_OK && k < extra.n; k++)
+        if (vb_cand_vec_push(raw, extra.v + k))
+            rc = VB_ENOMEM;
+    if (rc == VB_OK && extra.n > 0) {
+        free(mem);
+        free(found);
+        mem = malloc(4 * (raw->n + 1) * sizeof *mem);
+        found = malloc((raw->n + 1) * sizeof *found);
+        rc = (!mem || !found) ? VB_ENOMEM : cluster(&m, raw);
+    }
+    /* Completeness after 5.5, then every distinct quadruple once. */
+    qrec *qs = malloc((raw->n + 1) * sizeof *qs);
+    size_t nq = 0;
+    if (rc == VB_OK && !qs)
+        rc = VB_ENOMEM;
+    for (size_t c = 0; rc == VB_OK && c < m.ncl; c++) {
+        size_t nm, nf = cluster_sets(&m, raw, c, mem, &nm, found);
+        res->clusters++;
+        if (!(nf == nm && memcmp(mem, found, nm * sizeof *mem) == 0))
+            res->incomplete++;
+    }
+    for (size_t k = 0; rc == VB_OK && k < raw->n; k++) {
+        qs[nq].c = raw->v[k];
+        memcpy(qs[nq].q, raw->v[k].ids, sizeof qs[nq].q);
+        qsort(qs[nq].q, 4, sizeof *qs[nq].q, cmp_u32);
+        nq++;
+    }
+    if (rc == VB_OK)
+        qsort(qs, nq, sizeof *qs, cmp_qrec);
+    /* Sampled quadruples first (all marked seen), then their swaps. */
+    emit_ctx ec = {set, cu->hash, params->tol, NULL, 0, {NULL, 0, 0}, res};
+    for (size_t k = 0; rc == VB_OK && k < nq; k++)
+        if (qset_add(&ec.seen, qs[k].q) < 0)
+            rc = VB_ENOMEM;
+    for (size_t k = 0; rc == VB_OK && k < nq; k++) {
+        if (k > 0 && memcmp(qs[k].q, qs[k - 1].q, sizeof qs[k].q) == 0)
+            continue;
+        rc = emit_roots(&ec, qs[k].q, &qs[k].c, VBS_SWAP_DEPTH);
+    }
+    if (rc == VB_OK)
+        rc = complete_ring(&ec);
+    free(ec.qbuf);
+    free(ec.seen.keys);
+    free(qs);
+    free(tbuf);
+    free(fb.idx);
+    vbs_base_data_free(&bd);
+    vb_cand_vec_free(&extra);
+    free(wk);
+    free(mem);
+    free(found);
+    match_free(&m);
+    if (rc != VB_OK)
+        return vb_error(ctx, rc, NULL, 0, "out of memory (matching)");
+    return VB_OK;
+}
+
+int vb_sampler_swap_candidates(const vb_sphere_set *set, const uint32_t ids[4],
+                               uint32_t intruder, const double p[4], vb_vertex_list *out)
+{
+    for (int a = 0; a < 4; a++) {
+        uint32_t q[4];
+        double sp[4][4], roots[2][4];
+        for (int b = 0; b < 4; b++) {
+            q[b] = b == a ? intruder : ids[b];
+            sp[b][0] = set->x[q[b]];
+            sp[b][1] = set->y[q[b]];
+            sp[b][2] = set->z[q[b]];
+            sp[b][3] = set->r[q[b]];
+        }
+        int n = vbs_tangent_roots(sp, roots);
+        if (n == 0) {
+            memcpy(roots[0], p, sizeof roots[0]);
+            n = 1;
+        }
+        for (int k = 0; k < n; k++)
+            if (vb_vertex_list_push(out, q, 4, roots[k][0], roots[k][1], roots[k][2],
+                                    roots[k][3], 0.0, VB_VERTEX_CANDIDATE))
+                return VB_ENOMEM;
+    }
+    return VB_OK;
+}

@@ -1,0 +1,151 @@
+/* PDB reader: fixed columns of ATOM/HETATM records, MODEL/ENDMDL, alternate
+ * locations, water and hydrogens per the read options; radii by element. */
+#include "vbi_input.h"
+
+#include <ctype.h>
+#include <string.h>
+
+/* Columns [from, to], 1-based inclusive, clipped to the line. */
+static size_t column(const char *line, size_t n, size_t from, size_t to, const char **s)
+{
+    *s = line + (from - 1 < n ? from - 1 : n);
+    if (n < from)
+        return 0;
+    return (n < to ? n : to) - from + 1;
+}
+
+static char column_char(const char *line, size_t n, size_t col)
+{
+    return col <= n ? line[col - 1] : ' ';
+}
+
+static const char *const axis_names[3] = {"x coordinate", "y coordinate", "z coordinate"};
+
+/* Fills info, e and d from one ATOM/HETATM line (radius aside). */
+static int parse_atom_line(vb_ctx *ctx, const char *name, long lineno, const char *line,
+                           size_t n, vb_atom_info *info, vb_decimal e[4], double d[4])
+{
+    if (n < 54)
+        return vb_error(ctx, VB_EINPUT_MALFORMED, name, lineno,
+                        "ATOM/HETATM record shorter than 54 columns (coordinates in 31-54)");
+    const char *s;
+    size_t k;
+    for (int a = 0; a < 3; a++) {
+        k = column(line, n, 31 + 8 * (size_t)a, 38 + 8 * (size_t)a, &s);
+        char field[9];
+        vbi_copy_field(field, sizeof field, s, k);
+        int rc = vbi_parse_number(ctx, name, lineno, axis_names[a], field, strlen(field), &e[a],
+                                  &d[a]);
+        if (rc != VB_OK)
+            return rc;
+    }
+    memset(info, 0, sizeof *info);
+    info->hetatm = line[0] == 'H';
+    k = column(line, n, 7, 11, &s);
+    vbi_parse_int(s, k, &info->serial);
+    k = column(line, n, 13, 16, &s);
+    char name4[5] = "    ";
+    memcpy(name4, s, k);
+    vbi_copy_field(info->name, sizeof info->name, s, k);
+    info->altloc = column_char(line, n, 17);
+    k = column(line, n, 18, 21, &s);
+    vbi_copy_field(info->resname, sizeof info->resname, s, k);
+    k = column(line, n, 22, 22, &s);
+    vbi_copy_field(info->chain, sizeof info->chain, s, k);
+    k = column(line, n, 23, 26, &s);
+    vbi_parse_int(s, k, &info->resseq);
+    info->icode = column_char(line, n, 27);
+    k = column(line, n, 77, 78, &s);
+    char el[4];
+    vbi_copy_field(el, sizeof el, s, k);
+    int alpha = el[0] != '\0';
+    for (size_t c = 0; el[c]; c++)
+        alpha &= isalpha((unsigned char)el[c]) != 0;
+    if (alpha) {
+        for (size_t c = 0; el[c]; c++)
+            info->element[c] = (char)toupper((unsigned char)el[c]);
+    } else {
+        vbi_element_from_name(name4, info->element);
+    }
+    return VB_OK;
+}
+
+int vbi_pdb_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, long first_line,
+                  const vb_read_options *opt, vbi_dropped *dr, vb_sphere_set **out)
+{
+    *out = NULL;
+    vbi_builder b;
+    int rc = vbi_builder_init(&b, ctx, name, opt->max_spheres, 1);
+    if (rc != VB_OK)
+        return rc;
+    vbi_models m;
+    vbi_models_init(&m, opt->model);
+    vbi_altloc alt;
+    vbi_altloc_init(&alt);
+    vbi_lines it;
+    vbi_lines_init(&it, buf, len, first_line);
+    const char *line;
+    size_t n;
+    while (rc == VB_OK && vbi_lines_next(&it, &line, &n)) {
+        if (vbi_pdb_record(line, n, "MODEL")) {
+            const char *s;
+            int32_t serial = 0;
+            vbi_parse_int(s, column(line, n, 7, n, &s), &serial);
+            vbi_models_begin(&m, serial, dr);
+            continue;
+        }
+        if (vbi_pdb_record(line, n, "ENDMDL")) {
+            vbi_models_end(&m);
+            continue;
+        }
+        if (vbi_pdb_record(line, n, "END"))
+            break;
+        if (!vbi_pdb_record(line, n, "ATOM") && !vbi_pdb_record(line, n, "HETATM"))
+            continue;
+        if (!vbi_models_takes(&m)) {
+            dr->other_models++;
+            continue;
+        }
+        vb_atom_info info;
+        vb_decimal e[4];
+        double d[4];
+        rc = parse_atom_line(ctx, name, it.lineno, line, n, &info, e, d);
+        if (rc != VB_OK)
+            break;
+        if (!opt->keep_water && vbi_is_water(info.resname)) {
+            dr->water++;
+            continue;
+        }
+        if (!vbi_altloc_keeps(&alt, &info)) {
+            dr->altloc++;
+            continue;
+        }
+        if (opt->drop_hydrogens && vbi_is_hydrogen(info.element)) {
+            dr->hydrogens++;
+            continue;
+        }
+        rc = vbi_radius_for(ctx, opt, name, it.lineno, info.element, &e[3], &d[3],
+                            &dr->unknown_elements);
+        if (rc == VB_OK)
+            rc = vbi_builder_push(&b, e, d, &info, it.lineno);
+    }
+    if (rc == VB_OK)
+        rc = vbi_models_check(ctx, name, &m);
+    if (rc != VB_OK) {
+        vbi_builder_discard(&b);
+        return rc;
+    }
+    vbi_builder_finish(&b, 1, out);
+    return VB_OK;
+}
+
+int vbi_read_pdb(vb_ctx *ctx, const char *name, const char *buf, size_t len,
+                 const vb_read_options *opt, vb_sphere_set **out)
+{
+    vbi_dropped dr;
+    memset(&dr, 0, sizeof dr);
+    int rc = vbi_pdb_parse(ctx, name, buf, len, 1, opt, &dr, out);
+    if (rc == VB_OK)
+        vbi_report_dropped(ctx, name, &dr);
+    return rc;
+}

@@ -1,0 +1,233 @@
+/* The sampling pipeline driver: options, batches of bases for the backend,
+ * deterministic order of the candidates, then matching (matching.c). */
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "vbs_internal.h"
+
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+void vb_sampler_result_init(vb_sampler_result *r)
+{
+    memset(r, 0, sizeof *r);
+    vb_vertex_list_init(&r->candidates);
+}
+
+void vb_sampler_result_free(vb_sampler_result *r)
+{
+    vb_vertex_list_free(&r->candidates);
+    free(r->topo.faces);
+    free(r->topo.triples);
+    vb_sampler_result_init(r);
+}
+
+double vb_sampler_default_tol(const vb_sphere_set *set)
+{
+    double lo[3] = {set->x[0], set->y[0], set->z[0]}, hi[3] = {lo[0], lo[1], lo[2]};
+    for (size_t i = 0; i < set->n; i++) {
+        const double p[3] = {set->x[i] - set->r[i], set->y[i] - set->r[i], set->z[i] - set->r[i]};
+        const double q[3] = {set->x[i] + set->r[i], set->y[i] + set->r[i], set->z[i] + set->r[i]};
+        for (int a = 0; a < 3; a++) {
+            if (p[a] < lo[a])
+                lo[a] = p[a];
+            if (q[a] > hi[a])
+                hi[a] = q[a];
+        }
+    }
+    double d2 = 0.0;
+    for (int a = 0; a < 3; a++)
+        d2 += (hi[a] - lo[a]) * (hi[a] - lo[a]);
+    return 1e-5 * sqrt(d2);
+}
+
+/* Candidates in the order (base, grid cell, rank in cell): independent of the
+ * order in which a device appended them. */
+static int cmp_cand(const void *pa, const void *pb)
+{
+    const vbs_cand *a = pa, *b = pb;
+    if (a->ids[0] != b->ids[0])
+        return a->ids[0] < b->ids[0] ? -1 : 1;
+    if (a->cell != b->cell)
+        return a->cell < b->cell ? -1 : 1;
+    return (a->seq > b->seq) - (a->seq < b->seq);
+}
+
+/* Growable batch arrays. */
+typedef struct batch_buf {
+    vbs_base *bases;
+    vbs_bisector *bis;
+    uint32_t *tile_off, *tile_idx;
+    size_t nbases, nbis, noff, nidx;
+    size_t cap_bis, cap_idx;
+} batch_buf;
+
+static int grow(void **p, size_t *cap, size_t need, size_t elem)
+{
+    if (need <= *cap)
+        return VB_OK;
+    size_t nc = *cap ? *cap : 1024;
+    while (nc < need)
+        nc *= 2;
+    void *q = realloc(*p, nc * elem);
+    if (!q)
+        return VB_ENOMEM;
+    *p = q;
+    *cap = nc;
+    return VB_OK;
+}
+
+static int batch_add(batch_buf *bb, const vb_sphere_set *s, uint32_t i, double clip,
+                     const vbs_base_data *bd, size_t ntiles)
+{
+    if (grow((void **)&bb->bis, &bb->cap_bis, bb->nbis + bd->nbis, sizeof *bb->bis) ||
+        grow((void **)&bb->tile_idx, &bb->cap_idx, bb->nidx + bd->tile_off[ntiles],
+             sizeof *bb->tile_idx))
+        return VB_ENOMEM;
+    vbs_base *b = bb->bases + bb->nbases;
+    b->cx = s->x[i];
+    b->cy = s->y[i];
+    b->cz = s->z[i];
+    b->r = s->r[i];
+    b->clip = clip / s->r[i];
+    b->id = i;
+    b->bis_start = (uint32_t)bb->nbis;
+    b->bis_count = (uint32_t)bd->nbis;
+    b->tile_start = (uint32_t)(bb->nbases * ntiles);
+    memcpy(bb->bis + bb->nbis, bd->bis, bd->nbis * sizeof *bd->bis);
+    for (size_t k = 0; k < ntiles; k++)
+        bb->tile_off[bb->nbases * ntiles + k] = (uint32_t)(bb->nidx + bd->tile_off[k]);
+    for (size_t k = 0; k < bd->tile_off[ntiles]; k++)
+        bb->tile_idx[bb->nidx + k] = (uint32_t)bb->nbis + bd->tile_idx[k];
+    bb->nbis += bd->nbis;
+    bb->nidx += bd->tile_off[ntiles];
+    bb->nbases++;
+    bb->tile_off[bb->nbases * ntiles] = (uint32_t)bb->nidx;
+    return VB_OK;
+}
+
+static unsigned auto_tiles(unsigned S)
+{
+    unsigned T = S / 12u;
+    return T < 2u ? 2u : T > 6u ? 6u : T;
+}
+
+int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_options *opt,
+                   vb_sampler_backend *be, vb_sampler_result *res)
+{
+    vb_sampler_options o = *opt;
+    if (o.samples == 0)
+        o.samples = VB_SAMPLER_DEFAULT_SAMPLES;
+    if (o.samples < 2 || o.samples > 4096)
+        return vb_error(ctx, VB_EMISUSE, NULL, 0, "--samples must be in 2..4096 (got %u)",
+                        o.samples);
+    if (o.max_depth == 0)
+        o.max_depth = VB_SAMPLER_DEFAULT_DEPTH;
+    if (o.max_depth > VBS_MAX_DEPTH_LIMIT)
+        o.max_depth = VBS_MAX_DEPTH_LIMIT;
+    if (o.max_iter == 0)
+        o.max_iter = VB_SAMPLER_DEFAULT_ITER;
+    if (o.target_depth == 0)
+        o.target_depth = VB_SAMPLER_DEFAULT_TARGET_DEPTH;
+    if (o.tiles == 0)
+        o.tiles = auto_tiles(o.samples);
+    if (!(o.tol > 0.0))
+        o.tol = vb_sampler_default_tol(set);
+    if (set->n > 0xfffffff0u)
+        return vb_error(ctx, VB_EMISUSE, NULL, 0, "too many spheres for 32-bit ids");
+    res->tol = o.tol;
+    res->samples = o.samples;
+    res->tiles = o.tiles;
+    res->clip = vbs_clip_distance(set);
+
+    vbs_params params = {o.tol, 1e-12, o.samples, o.tiles, o.max_depth, o.max_iter};
+    size_t S = o.samples, rays_per_base = 6 * S * S;
+    size_t ntiles = 6u * (size_t)o.tiles * o.tiles;
+    size_t want = o.batch_rays ? o.batch_rays : be->batch_rays;
+    size_t per_batch = want / rays_per_base;
+    if (per_batch < 1)
+        per_batch = 1;
+    if (per_batch > set->n)
+        per_batch = set->n;
+
+    vbs_hash hash;
+    vbs_tiles tiles = {0};
+    vbs_base_data bd;
+    memset(&bd, 0, sizeof bd);
+    batch_buf bb;
+    memset(&bb, 0, sizeof bb);
+    vb_cand_vec raw = {0};
+    vbs_topo_acc topo;
+    memset(&topo, 0, sizeof topo);
+    uint32_t *colours = NULL;
+    int rc = vbs_hash_build(ctx, set, &hash);
+    if (rc != VB_OK)
+        return rc;
+    rc = vbs_tiles_build(ctx, o.tiles, &tiles);
+    vbs_culler cu = {set, &hash, &tiles, res->clip, o.all_pairs};
+    bb.bases = malloc(per_batch * sizeof *bb.bases);
+    bb.tile_off = malloc((per_batch * ntiles + 1) * sizeof *bb.tile_off);
+    colours = malloc(per_batch * rays_per_base * sizeof *colours);
+    if (rc == VB_OK && (!bb.bases || !bb.tile_off || !colours))
+        rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (batch buffers)");
+    for (size_t b0 = 0; rc == VB_OK && b0 < set->n; b0 += per_batch) {
+        size_t b1 = b0 + per_batch < set->n ? b0 + per_batch : set->n;
+        double t0 = now();
+        bb.nbases = bb.nbis = bb.nidx = 0;
+        bb.tile_off[0] = 0;
+        for (size_t i = b0; i < b1 && rc == VB_OK; i++) {
+            rc = vbs_cull_base(ctx, &cu, (uint32_t)i, &bd);
+            if (rc == VB_OK && batch_add(&bb, set, (uint32_t)i, res->clip, &bd, ntiles))
+                rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (batch)");
+        }
+        res->times.cull += now() - t0;
+        if (rc != VB_OK)
+            break;
+        res->bisectors += bb.nbis;
+        vb_sampler_batch batch = {bb.nbases, bb.bases, bb.nbis, bb.bis, bb.nbases * ntiles + 1,
+                                  bb.tile_off, bb.nidx, bb.tile_idx, params};
+        vb_sampler_batch_out out = {colours, o.topology, &raw, 0, &res->times};
+        rc = be->run_batch(ctx, be, &batch, &out);
+        if (rc != VB_OK)
+            break;
+        res->overflow += out.overflow;
+        res->rays += bb.nbases * rays_per_base;
+        if (o.topology)
+            for (size_t k = 0; k < bb.nbases && rc == VB_OK; k++)
+                if (vbs_topo_collect(&topo, (uint32_t)(b0 + k), colours + k * rays_per_base,
+                                     o.samples))
+                    rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (topology)");
+        if (o.progress)
+            o.progress(o.progress_user, (double)b1 / (double)set->n);
+    }
+    free(colours);
+    free(bb.bases);
+    free(bb.bis);
+    free(bb.tile_off);
+    free(bb.tile_idx);
+    vbs_base_data_free(&bd);
+    if (rc == VB_OK && o.topology && vbs_topo_finish(&topo, &res->topo))
+        rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (topology)");
+    free(topo.faces);
+    free(topo.triples);
+    if (rc == VB_OK) {
+        if (res->overflow)
+            vb_warn(ctx, 761, NULL, 0,
+                    "%llu candidate(s) did not fit the %d per grid cell; raise --samples",
+                    (unsigned long long)res->overflow, VBS_MAX_CAND);
+        double t0 = now();
+        res->raw_candidates = raw.n;
+        qsort(raw.v, raw.n, sizeof *raw.v, cmp_cand);
+        rc = vbs_match(ctx, set, &cu, &params, &raw, res);
+        res->times.matching += now() - t0;
+    }
+    vb_cand_vec_free(&raw);
+    vbs_tiles_free(&tiles);
+    vbs_hash_free(&hash);
+    return rc;
+}

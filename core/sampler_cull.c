@@ -1,0 +1,284 @@
+/* Conservative neighbour culling: which bisectors a ray of base i must test.
+ *
+ * Directions are split into 6*T*T tiles (T x T per cube face); tile P is
+ * contained in a cone of half-angle theta around its centre direction d0
+ * (the farthest point of the spherical quadrilateral from d0 is a corner, as
+ * the distance to d0 is monotone along great-circle arcs shorter than pi).
+ * In the normalised frame a neighbour's ray hit is s(d) = num / (2 g(d)) with
+ * g(d) = d.e + delta (vb_geom_shared.h). With alpha the angle between d0 and
+ * e, over the cone
+ *     g_min = |e| cos(min(pi, alpha + theta)) + delta,
+ *     g_max = |e| cos(max(0, alpha - theta)) + delta.
+ * Upper bound of the lower envelope on P: T_P = min over j with g_min > 0 of
+ * num / (2 g_min), and the clip distance when no such j exists. A neighbour
+ * can win or tie anywhere on P only if g_max > 0 and num / (2 g_max) <= T_P;
+ * all others are culled, so the envelope on P, including the lowest-id rule
+ * on ties, is the same as over all n - 1 bisectors. Which spheres to look at
+ * at all: a hit point p = s d satisfies |p - e| = s + delta and |p - e| >=
+ * |e| - s, so s >= (|e| - delta) / 2 and no sphere farther than
+ * 2 T_max R_i + R_j - R_i from c_i can matter (the bound of issue 3).
+ * theta carries a margin of 1e-7 rad and the bounds a relative margin of
+ * 1e-9, far above the rounding errors of these few operations. */
+#include <float.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "vbs_internal.h"
+
+#define THETA_MARGIN 1e-7
+#define REL_MARGIN 1e-9
+
+int vbs_tiles_build(vb_ctx *ctx, unsigned T, vbs_tiles *t)
+{
+    size_t nt = 6u * (size_t)T * T;
+    t->T = T;
+    t->dir = malloc(3 * nt * sizeof *t->dir);
+    t->cth = malloc(nt * sizeof *t->cth);
+    t->sth = malloc(nt * sizeof *t->sth);
+    if (!t->dir || !t->cth || !t->sth) {
+        vbs_tiles_free(t);
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (tiles)");
+    }
+    for (unsigned f = 0; f < 6; f++)
+        for (unsigned tv = 0; tv < T; tv++)
+            for (unsigned tu = 0; tu < T; tu++) {
+                size_t k = ((size_t)f * T + tv) * T + tu;
+                double u0 = -1.0 + 2.0 * tu / T, u1 = -1.0 + 2.0 * (tu + 1) / T;
+                double v0 = -1.0 + 2.0 * tv / T, v1 = -1.0 + 2.0 * (tv + 1) / T;
+                double *d0 = t->dir + 3 * k;
+                vbs_face_dir(f, 0.5 * (u0 + u1), 0.5 * (v0 + v1), d0);
+                double theta = 0.0;
+                for (int c = 0; c < 4; c++) {
+                    double dc[3];
+                    vbs_face_dir(f, (c & 1) ? u1 : u0, (c & 2) ? v1 : v0, dc);
+                    double cs = d0[0] * dc[0] + d0[1] * dc[1] + d0[2] * dc[2];
+                    double a = acos(cs > 1.0 ? 1.0 : cs);
+                    if (a > theta)
+                        theta = a;
+                }
+                theta += THETA_MARGIN;
+                t->cth[k] = cos(theta);
+                t->sth[k] = sin(theta);
+            }
+    return VB_OK;
+}
+
+void vbs_tiles_free(vbs_tiles *t)
+{
+    free(t->dir);
+    free(t->cth);
+    free(t->sth);
+    t->dir = t->cth = t->sth = NULL;
+}
+
+void vbs_base_data_free(vbs_base_data *bd)
+{
+    free(bd->bis);
+    free(bd->tile_off);
+    free(bd->tile_idx);
+    free(bd->near);
+    free(bd->tp);
+    free(bd->keep);
+    memset(bd, 0, sizeof *bd);
+}
+
+/* D * 128 (D/q)^3 (capped): D is the bounding-box diagonal plus twice the
+ * largest radius, q the finest decimal unit of the input. For equal radii
+ * the circumcentre of four non-coplanar centres on the grid q Z^3 is
+ * adj(A) b / det(A) with integer det(A) >= 1, |adj| <= 8 M^2, |b| <= 3 M^2,
+ * M = D/q, which stays inside this distance; rays are clipped there, and a
+ * ray that meets no bisector closer is "infinite". */
+double vbs_clip_distance(const vb_sphere_set *set)
+{
+    double lo[3] = {set->x[0], set->y[0], set->z[0]}, hi[3] = {lo[0], lo[1], lo[2]};
+    double rmax = 0.0;
+    int emin = 400;
+    for (size_t i = 0; i < set->n; i++) {
+        const double p[3] = {set->x[i], set->y[i], set->z[i]};
+        for (int a = 0; a < 3; a++) {
+            if (p[a] < lo[a])
+                lo[a] = p[a];
+            if (p[a] > hi[a])
+                hi[a] = p[a];
+        }
+        if (set->r[i] > rmax)
+            rmax = set->r[i];
+        if (set->ex) {
+            const vb_decimal *ds[4] = {set->ex + i, set->ey + i, set->ez + i, set->er + i};
+            for (int a = 0; a < 4; a++)
+                if (ds[a]->mant != 0 && ds[a]->exp10 < emin)
+                    emin = ds[a]->exp10;
+        }
+    }
+    double D = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                    (hi[2] - lo[2]) * (hi[2] - lo[2])) + 2.0 * rmax;
+    double q = emin == 400 ? D * 1e-9 : pow(10.0, emin);
+    double M = D / q;
+    double L = D * 128.0 * M * M * M;
+    if (!(L < 1e200))
+        L = 1e200;
+    return L;
+}
+
+/* Bisectors of base i with the spheres in bd->near (sorted ids). */
+static int make_bisectors(const vb_sphere_set *s, uint32_t i, vbs_base_data *bd)
+{
+    bd->nbis = 0;
+    if (bd->bis_cap < bd->nnear) {
+        vbs_bisector *b = realloc(bd->bis, bd->nnear * sizeof *b);
+        if (!b)
+            return VB_ENOMEM;
+        bd->bis = b;
+        bd->bis_cap = bd->nnear;
+    }
+    for (size_t k = 0; k < bd->nnear; k++) {
+        uint32_t j = bd->near[k];
+        if (j == i)
+            continue;
+        if (vbs_bisector_make(s->x[i], s->y[i], s->z[i], s->r[i], s->x[j], s->y[j], s->z[j],
+                              s->r[j], j, &bd->bis[bd->nbis]))
+            bd->nbis++;
+    }
+    return VB_OK;
+}
+
+static void cone_bounds(const vbs_tiles *t, size_t k, const vbs_bisector *b, double *gmin,
+                        double *gmax)
+{
+    const double *d0 = t->dir + 3 * k;
+    double ne = sqrt(b->ex * b->ex + b->ey * b->ey + b->ez * b->ez);
+    double c = (d0[0] * b->ex + d0[1] * b->ey + d0[2] * b->ez) / ne;
+    if (c > 1.0)
+        c = 1.0;
+    if (c < -1.0)
+        c = -1.0;
+    double sn = sqrt(1.0 - c * c), ct = t->cth[k], st = t->sth[k];
+    double lo = c < -ct ? -1.0 : c * ct - sn * st;
+    double hi = c >= ct ? 1.0 : c * ct + sn * st;
+    double m = REL_MARGIN * (ne + fabs(b->delta));
+    *gmin = ne * lo + b->delta - m;
+    *gmax = ne * hi + b->delta + m;
+}
+
+/* Per-tile upper bounds of the envelope; returns their maximum. */
+static double tile_bounds(const vbs_tiles *t, vbs_base_data *bd, double clip)
+{
+    size_t nt = 6u * (size_t)t->T * t->T;
+    double tmax = 0.0;
+    for (size_t k = 0; k < nt; k++) {
+        double tp = clip;
+        for (size_t q = 0; q < bd->nbis; q++) {
+            double gmin, gmax;
+            cone_bounds(t, k, bd->bis + q, &gmin, &gmax);
+            if (gmin > 0.0) {
+                double s = bd->bis[q].num / (2.0 * gmin);
+                if (s < tp)
+                    tp = s;
+            }
+        }
+        tp *= 1.0 + REL_MARGIN;
+        bd->tp[k] = tp;
+        if (tp > tmax)
+            tmax = tp;
+    }
+    return tmax;
+}
+
+static int push_idx(vbs_base_data *bd, uint32_t v)
+{
+    if (bd->nidx == bd->idx_cap) {
+        size_t nc = bd->idx_cap ? 2 * bd->idx_cap : 1024;
+        uint32_t *p = realloc(bd->tile_idx, nc * sizeof *p);
+        if (!p)
+            return VB_ENOMEM;
+        bd->tile_idx = p;
+        bd->idx_cap = nc;
+    }
+    bd->tile_idx[bd->nidx++] = v;
+    return VB_OK;
+}
+
+int vbs_cull_base(vb_ctx *ctx, const vbs_culler *cu, uint32_t i, vbs_base_data *bd)
+{
+    const vb_sphere_set *s = cu->set;
+    const vbs_tiles *t = cu->tiles;
+    size_t nt = 6u * (size_t)t->T * t->T;
+    if (!bd->tile_off) {
+        bd->tile_off = malloc((nt + 1) * sizeof *bd->tile_off);
+        bd->tp = malloc(nt * sizeof *bd->tp);
+        if (!bd->tile_off || !bd->tp)
+            return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (culling)");
+    }
+    bd->nbis = bd->nidx = bd->nnear = 0;
+    memset(bd->tile_off, 0, (nt + 1) * sizeof *bd->tile_off);
+    if (s->contained && s->contained[i])
+        return VB_OK; /* empty cell: no rays hit anything that matters */
+    const double c[3] = {s->x[i], s->y[i], s->z[i]};
+    double ri = s->r[i], clip = cu->clip / ri, rmax = cu->hash->rmax;
+    int rc;
+    if (cu->all_pairs) {
+        rc = vbs_hash_query(cu->hash, c, DBL_MAX / 4, &bd->near, &bd->nnear, &bd->near_cap);
+        if (rc == VB_OK)
+            rc = make_bisectors(s, i, bd);
+        if (rc != VB_OK)
+            return vb_error(ctx, rc, NULL, 0, "out of memory (culling)");
+        for (size_t k = 0; k < nt; k++) {
+            bd->tile_off[k] = (uint32_t)bd->nidx;
+            for (size_t q = 0; q < bd->nbis; q++)
+                if (push_idx(bd, (uint32_t)q))
+                    return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (culling)");
+        }
+        bd->tile_off[nt] = (uint32_t)bd->nidx;
+        return VB_OK;
+    }
+    /* First look: a shell of typical contact distance. */
+    double r0 = 2.0 * (ri + rmax);
+    rc = vbs_hash_query(cu->hash, c, r0, &bd->near, &bd->nnear, &bd->near_cap);
+    if (rc == VB_OK)
+        rc = make_bisectors(s, i, bd);
+    if (rc != VB_OK)
+        return vb_error(ctx, rc, NULL, 0, "out of memory (culling)");
+    double tmax = tile_bounds(t, bd, clip);
+    double r1 = ri * 2.0 * tmax + rmax - ri;
+    r1 *= 1.0 + REL_MARGIN;
+    if (r1 > r0) {
+        bd->nnear = 0;
+        rc = vbs_hash_query(cu->hash, c, r1, &bd->near, &bd->nnear, &bd->near_cap);
+        if (rc == VB_OK)
+            rc = make_bisectors(s, i, bd);
+        if (rc != VB_OK)
+            return vb_error(ctx, rc, NULL, 0, "out of memory (culling)");
+        tile_bounds(t, bd, clip);
+    }
+    /* Per tile, the neighbours that can reach below the tile's bound. */
+    uint8_t *keep = realloc(bd->keep, bd->nbis ? bd->nbis : 1);
+    if (!keep)
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (culling)");
+    bd->keep = keep;
+    memset(keep, 0, bd->nbis);
+    for (size_t k = 0; k < nt; k++) {
+        bd->tile_off[k] = (uint32_t)bd->nidx;
+        for (size_t q = 0; q < bd->nbis; q++) {
+            double gmin, gmax;
+            cone_bounds(t, k, bd->bis + q, &gmin, &gmax);
+            if (!(gmax > 0.0) || bd->bis[q].num / (2.0 * gmax) > bd->tp[k])
+                continue;
+            if (push_idx(bd, (uint32_t)q))
+                return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (culling)");
+            keep[q] = 1;
+        }
+    }
+    bd->tile_off[nt] = (uint32_t)bd->nidx;
+    /* Compact to the kept bisectors (still sorted by id) and renumber. */
+    uint32_t *remap = (uint32_t *)bd->near; /* near is no longer needed */
+    size_t m = 0;
+    for (size_t q = 0; q < bd->nbis; q++) {
+        remap[q] = (uint32_t)m;
+        if (keep[q])
+            bd->bis[m++] = bd->bis[q];
+    }
+    for (size_t k = 0; k < bd->nidx; k++)
+        bd->tile_idx[k] = remap[bd->tile_idx[k]];
+    bd->nbis = m;
+    return VB_OK;
+}

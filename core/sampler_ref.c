@@ -1,0 +1,98 @@
+/* The plain-C reference backend: the kernels' per-ray and per-cell functions
+ * of vb_geom_shared.h called in loops, in the same order of operations. */
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "vb_sampler.h"
+
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+int vb_cand_vec_push(vb_cand_vec *cv, const vbs_cand *c)
+{
+    if (cv->n == cv->cap) {
+        size_t nc = cv->cap ? 2 * cv->cap : 1024;
+        vbs_cand *p = realloc(cv->v, nc * sizeof *p);
+        if (!p)
+            return VB_ENOMEM;
+        cv->v = p;
+        cv->cap = nc;
+    }
+    cv->v[cv->n++] = *c;
+    return VB_OK;
+}
+
+void vb_cand_vec_free(vb_cand_vec *cv)
+{
+    free(cv->v);
+    cv->v = NULL;
+    cv->n = cv->cap = 0;
+}
+
+static int ref_run_batch(vb_ctx *ctx, vb_sampler_backend *be, const vb_sampler_batch *b,
+                         vb_sampler_batch_out *out)
+{
+    (void)be;
+    const vbs_params *p = &b->params;
+    vbs_u32 S = p->samples, T = p->tiles;
+    size_t rays = 6u * (size_t)S * S;
+    double t0 = now();
+    for (size_t k = 0; k < b->nbases; k++) {
+        uint32_t *col = out->colours + k * rays;
+        for (vbs_u32 f = 0; f < 6u; f++)
+            for (vbs_u32 iv = 0; iv < S; iv++)
+                for (vbs_u32 iu = 0; iu < S; iu++)
+                    col[((size_t)f * S + iv) * S + iu] = vbs_ray_colour(
+                        b->bases + k, b->bis, b->tile_off, b->tile_idx, T, S, f, iu, iv);
+    }
+    double t1 = now();
+    vbs_u32 cells = 6u * (S - 1u) * (S - 1u);
+    vbs_cand buf[VBS_MAX_CAND];
+    for (size_t k = 0; k < b->nbases; k++) {
+        const uint32_t *col = out->colours + k * rays;
+        for (vbs_u32 cell = 0; cell < cells; cell++) {
+            vbs_emit em = {buf, VBS_MAX_CAND, 0u, 0u, cell};
+            vbs_cell_vertices(b->bases + k, b->bis, b->tile_off, b->tile_idx, p, col, cell,
+                              &em);
+            out->overflow += em.overflow;
+            for (vbs_u32 q = 0; q < em.n; q++)
+                if (vb_cand_vec_push(out->cand, buf + q))
+                    return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (candidates)");
+        }
+    }
+    double t2 = now();
+    out->times->envelope += t1 - t0;
+    out->times->vertices += t2 - t1;
+    return VB_OK;
+}
+
+static void ref_close(vb_sampler_backend *be)
+{
+    free(be);
+}
+
+int vb_sampler_ref_open(vb_ctx *ctx, vb_sampler_backend **out)
+{
+    vb_sampler_backend *be = calloc(1, sizeof *be);
+    *out = NULL;
+    if (!be)
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory");
+    be->name = "ref";
+    snprintf(be->device, sizeof be->device, "plain C reference (host CPU, 1 thread)");
+    be->batch_rays = 1u << 22;
+    be->run_batch = ref_run_batch;
+    be->close = ref_close;
+    *out = be;
+    return VB_OK;
+}
+
+void vb_sampler_backend_close(vb_sampler_backend *be)
+{
+    if (be)
+        be->close(be);
+}

@@ -1,0 +1,331 @@
+/* Validation of a sphere set as Voronoi input: per-sphere sanity, exact
+ * duplicates (sort, O(n log n)) and contained spheres (uniform grid, then a
+ * filtered exact predicate). */
+#include "vb_spheres.h"
+
+#include <float.h>
+#include <gmp.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Beyond these the input is a unit mistake or garbage, and the exact
+ * arithmetic downstream would pay for digits nobody meant. */
+static const vb_decimal coord_limit = {1, 9};  /* |coordinate| <= 1e9 */
+static const vb_decimal radius_limit = {1, 6}; /* radius <= 1e6 */
+/* How many contained spheres are named one by one before a summary line. */
+#define VBI_CONTAINED_SHOWN 10
+
+static vb_decimal dec_abs(vb_decimal d)
+{
+    if (d.mant < 0)
+        d.mant = -d.mant;
+    return d;
+}
+
+static int check_values(vb_ctx *ctx, const vb_sphere_set *s)
+{
+    const char *src = s->source ? s->source : "<spheres>";
+    for (size_t i = 0; i < s->n; i++) {
+        const vb_decimal c[3] = {s->ex[i], s->ey[i], s->ez[i]};
+        if (s->er[i].mant <= 0)
+            return vb_error(ctx, VB_EINPUT_RADIUS, src, s->line[i],
+                            "radius %.17g is not positive", s->r[i]);
+        for (int k = 0; k < 3; k++)
+            if (vb_decimal_cmp(dec_abs(c[k]), coord_limit) > 0)
+                return vb_error(ctx, VB_EINPUT_MAGNITUDE, src, s->line[i],
+                                "coordinate %.17g exceeds 1e9 in magnitude",
+                                k == 0 ? s->x[i] : k == 1 ? s->y[i] : s->z[i]);
+        if (vb_decimal_cmp(s->er[i], radius_limit) > 0)
+            return vb_error(ctx, VB_EINPUT_MAGNITUDE, src, s->line[i],
+                            "radius %.17g exceeds 1e6", s->r[i]);
+    }
+    return VB_OK;
+}
+
+typedef struct {
+    vb_decimal v[4];
+    size_t idx;
+} dup_key;
+
+static int dup_key_cmp(const void *pa, const void *pb)
+{
+    const dup_key *a = pa, *b = pb;
+    for (int k = 0; k < 4; k++) {
+        int c = vb_decimal_cmp(a->v[k], b->v[k]);
+        if (c)
+            return c;
+    }
+    return (a->idx > b->idx) - (a->idx < b->idx);
+}
+
+static int check_duplicates(vb_ctx *ctx, const vb_sphere_set *s)
+{
+    dup_key *k = malloc(s->n * sizeof *k);
+    if (!k)
+        return vb_error(ctx, VB_ENOMEM, s->source, 0, "out of memory");
+    for (size_t i = 0; i < s->n; i++) {
+        k[i].v[0] = s->ex[i];
+        k[i].v[1] = s->ey[i];
+        k[i].v[2] = s->ez[i];
+        k[i].v[3] = s->er[i];
+        k[i].idx = i;
+    }
+    qsort(k, s->n, sizeof *k, dup_key_cmp);
+    /* Of all identical pairs, name the one met first when reading the file
+     * top down: the later sphere with the smallest index. */
+    size_t first = SIZE_MAX, second = SIZE_MAX;
+    for (size_t i = 1; i < s->n; i++)
+        if (memcmp(k[i - 1].v, k[i].v, sizeof k[i].v) == 0 && k[i].idx < second) {
+            first = k[i - 1].idx;
+            second = k[i].idx;
+        }
+    free(k);
+    if (second == SIZE_MAX)
+        return VB_OK;
+    /* Several copies: the earliest copy of the same sphere is the partner. */
+    for (size_t i = 0; i < first; i++)
+        if (s->ex[i].mant == s->ex[second].mant && s->ex[i].exp10 == s->ex[second].exp10 &&
+            s->ey[i].mant == s->ey[second].mant && s->ey[i].exp10 == s->ey[second].exp10 &&
+            s->ez[i].mant == s->ez[second].mant && s->ez[i].exp10 == s->ez[second].exp10 &&
+            s->er[i].mant == s->er[second].mant && s->er[i].exp10 == s->er[second].exp10) {
+            first = i;
+            break;
+        }
+    return vb_error(ctx, VB_EINPUT_DUPLICATE, s->source, s->line[second],
+                    "sphere %zu is identical to sphere %zu at line %ld", second, first,
+                    s->line[first]);
+}
+
+/* Sets z = mant * 10^(exp - emin). */
+static void dec_to_mpz(mpz_t z, vb_decimal d, int32_t emin, mpz_t tmp)
+{
+    mpz_set_si(z, (long)d.mant);
+    if (d.exp10 > emin) {
+        mpz_ui_pow_ui(tmp, 10, (unsigned long)(d.exp10 - emin));
+        mpz_mul(z, z, tmp);
+    }
+}
+
+/* Exact sign of (Rj - Ri)^2 - |ci - cj|^2 on the decimals. */
+static int contained_exact(const vb_sphere_set *s, size_t i, size_t j)
+{
+    const vb_decimal v[8] = {s->ex[i], s->ey[i], s->ez[i], s->er[i],
+                             s->ex[j], s->ey[j], s->ez[j], s->er[j]};
+    int32_t emin = v[0].exp10;
+    for (int k = 1; k < 8; k++)
+        if (v[k].exp10 < emin)
+            emin = v[k].exp10;
+    mpz_t a, b, t, acc;
+    mpz_inits(a, b, t, acc, NULL);
+    for (int k = 0; k < 4; k++) {
+        dec_to_mpz(a, v[k], emin, t);
+        dec_to_mpz(b, v[k + 4], emin, t);
+        mpz_sub(a, a, b);
+        mpz_mul(a, a, a);
+        if (k == 3)
+            mpz_sub(acc, a, acc);
+        else
+            mpz_add(acc, acc, a);
+    }
+    int sign = mpz_sgn(acc);
+    mpz_clears(a, b, t, acc, NULL);
+    return sign;
+}
+
+/* Is sphere i (radius strictly below j's) inside sphere j: |ci-cj| + Ri <= Rj?
+ *
+ * Filter: e = (rj-ri)^2 - (dx^2+dy^2+dz^2) in double. Each input double is
+ * within u = 2^-53 relative of its decimal; a difference t = p - q then has
+ * |t^ - t| <= (2u + u^2)(|p|+|q|) =: delta, its square is off by at most
+ * delta(2T + delta) + u(T + delta)^2 <= 5.1 u T^2 with T = |p|+|q|, and the
+ * three sums add at most 3u * S where S = sum of the four T^2. So
+ * |e^ - e| <= 8.2 u S (+ underflow, a few 2^-1074); we take 16 u S + 1e-290. */
+static int contained_filtered(vb_ctx *ctx, const vb_sphere_set *s, size_t i, size_t j)
+{
+    vb_stats *st = vb_ctx_stats(ctx);
+    st->filter_calls++;
+    double dx = s->x[i] - s->x[j], dy = s->y[i] - s->y[j], dz = s->z[i] - s->z[j];
+    double dr = s->r[j] - s->r[i];
+    double e = dr * dr - (dx * dx + dy * dy + dz * dz);
+    double tx = fabs(s->x[i]) + fabs(s->x[j]), ty = fabs(s->y[i]) + fabs(s->y[j]);
+    double tz = fabs(s->z[i]) + fabs(s->z[j]), tr = s->r[i] + s->r[j];
+    double bound = 16.0 * (DBL_EPSILON / 2) * (tx * tx + ty * ty + tz * tz + tr * tr) + 1e-290;
+    if (e > bound)
+        return 1;
+    if (e < -bound)
+        return 0;
+    st->filter_failures++;
+    st->exact_evals++;
+    return contained_exact(s, i, j) >= 0;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Uniform grid over the centres, cells in CSR form. */
+typedef struct {
+    double min[3], h;
+    size_t dim[3];
+    size_t *start; /* dim0*dim1*dim2 + 1 */
+    size_t *items;
+} center_grid;
+
+static size_t cell_coord(double v, double min, double h, size_t dim)
+{
+    double c = floor((v - min) / h);
+    if (!(c > 0))
+        return 0;
+    if (c >= (double)dim)
+        return dim - 1;
+    return (size_t)c;
+}
+
+static int grid_build(center_grid *g, const vb_sphere_set *s)
+{
+    const double *c[3] = {s->x, s->y, s->z};
+    double max[3];
+    for (int k = 0; k < 3; k++) {
+        g->min[k] = max[k] = c[k][0];
+        for (size_t i = 1; i < s->n; i++) {
+            if (c[k][i] < g->min[k])
+                g->min[k] = c[k][i];
+            if (c[k][i] > max[k])
+                max[k] = c[k][i];
+        }
+    }
+    /* Cell edge: an atom diameter, so a typical sphere scans 27 cells; grown
+     * until the grid has at most ~4 cells per sphere. */
+    double *rs = malloc(s->n * sizeof *rs);
+    if (!rs)
+        return -1;
+    memcpy(rs, s->r, s->n * sizeof *rs);
+    qsort(rs, s->n, sizeof *rs, cmp_double);
+    g->h = 2.0 * rs[s->n / 2];
+    free(rs);
+    size_t limit = 4 * s->n + 64;
+    for (;;) {
+        double cells = 1;
+        for (int k = 0; k < 3; k++)
+            cells *= floor((max[k] - g->min[k]) / g->h) + 1;
+        if (cells <= (double)limit)
+            break;
+        g->h *= 2;
+    }
+    size_t total = 1;
+    for (int k = 0; k < 3; k++) {
+        g->dim[k] = (size_t)floor((max[k] - g->min[k]) / g->h) + 1;
+        total *= g->dim[k];
+    }
+    g->start = calloc(total + 1, sizeof *g->start);
+    g->items = malloc(s->n * sizeof *g->items);
+    size_t *cell = malloc(s->n * sizeof *cell);
+    if (!g->start || !g->items || !cell) {
+        free(cell);
+        return -1;
+    }
+    for (size_t i = 0; i < s->n; i++) {
+        size_t cx = cell_coord(s->x[i], g->min[0], g->h, g->dim[0]);
+        size_t cy = cell_coord(s->y[i], g->min[1], g->h, g->dim[1]);
+        size_t cz = cell_coord(s->z[i], g->min[2], g->h, g->dim[2]);
+        cell[i] = (cz * g->dim[1] + cy) * g->dim[0] + cx;
+        g->start[cell[i] + 1]++;
+    }
+    for (size_t k = 0; k < total; k++)
+        g->start[k + 1] += g->start[k];
+    /* Filling backwards moves start[c + 1] down to the first item of cell c;
+     * one shift makes start[c] the first item of cell c again. */
+    for (size_t i = s->n; i-- > 0;)
+        g->items[--g->start[cell[i] + 1]] = i;
+    memmove(g->start, g->start + 1, total * sizeof *g->start);
+    g->start[total] = s->n;
+    free(cell);
+    return 0;
+}
+
+static void grid_free(center_grid *g)
+{
+    free(g->start);
+    free(g->items);
+}
+
+/* Marks contained spheres and warns W701 (each, up to a limit) and W702
+ * (the total). */
+static int find_contained(vb_ctx *ctx, vb_sphere_set *s)
+{
+    center_grid g;
+    memset(&g, 0, sizeof g);
+    size_t *by = malloc(s->n * sizeof *by);
+    if (!by || grid_build(&g, s) != 0) {
+        free(by);
+        grid_free(&g);
+        return vb_error(ctx, VB_ENOMEM, s->source, 0, "out of memory");
+    }
+    for (size_t i = 0; i < s->n; i++)
+        by[i] = SIZE_MAX;
+    for (size_t j = 0; j < s->n; j++) {
+        const double c[3] = {s->x[j], s->y[j], s->z[j]};
+        size_t lo[3], hi[3];
+        for (int k = 0; k < 3; k++) {
+            /* Padding covers the rounding of the doubles against their
+             * decimals, so no centre within Rj is missed; the predicate
+             * itself decides exactly. */
+            double pad = s->r[j] + 1e-9 * (2 * fabs(c[k]) + 2 * s->r[j]) + 1e-300;
+            lo[k] = cell_coord(c[k] - pad, g.min[k], g.h, g.dim[k]);
+            hi[k] = cell_coord(c[k] + pad, g.min[k], g.h, g.dim[k]);
+        }
+        for (size_t cz = lo[2]; cz <= hi[2]; cz++)
+            for (size_t cy = lo[1]; cy <= hi[1]; cy++)
+                for (size_t cx = lo[0]; cx <= hi[0]; cx++) {
+                    size_t cell = (cz * g.dim[1] + cy) * g.dim[0] + cx;
+                    for (size_t t = g.start[cell]; t < g.start[cell + 1]; t++) {
+                        size_t i = g.items[t];
+                        /* Equal radii would need equal centres: a duplicate,
+                         * refused before we get here. */
+                        if (by[i] != SIZE_MAX || vb_decimal_cmp(s->er[i], s->er[j]) >= 0)
+                            continue;
+                        if (contained_filtered(ctx, s, i, j))
+                            by[i] = j;
+                    }
+                }
+    }
+    grid_free(&g);
+    size_t count = 0;
+    for (size_t i = 0; i < s->n; i++) {
+        if (by[i] == SIZE_MAX)
+            continue;
+        s->contained[i] = 1;
+        if (count++ < VBI_CONTAINED_SHOWN)
+            vb_warn(ctx, 701, s->source, s->line[i],
+                    "sphere %zu lies inside sphere %zu (line %ld): its cell is empty", i, by[i],
+                    s->line[by[i]]);
+    }
+    if (count > VBI_CONTAINED_SHOWN)
+        vb_warn(ctx, 702, s->source, 0, "%zu spheres in all lie inside another sphere", count);
+    free(by);
+    return VB_OK;
+}
+
+int vb_spheres_validate(vb_ctx *ctx, vb_sphere_set *s, size_t min_count)
+{
+    if (s->n == 0)
+        return vb_error(ctx, VB_EINPUT_EMPTY, s->source, 0, "no spheres in the input");
+    int rc = check_values(ctx, s);
+    if (rc != VB_OK)
+        return rc;
+    if (s->n < min_count)
+        return vb_error(ctx, VB_EINPUT_TOOFEW, s->source, 0,
+                        "%zu sphere%s, at least %zu needed", s->n, s->n == 1 ? "" : "s",
+                        min_count);
+    rc = check_duplicates(ctx, s);
+    if (rc != VB_OK)
+        return rc;
+    free(s->contained);
+    s->contained = calloc(s->n, sizeof *s->contained);
+    if (!s->contained)
+        return vb_error(ctx, VB_ENOMEM, s->source, 0, "out of memory");
+    return find_contained(ctx, s);
+}

@@ -1,0 +1,270 @@
+/* Topology of the cells (Sec. 4): faces from the colours a cell's rays see,
+ * Voronoi edges from two-colour neighbourhoods, joined to certified vertices.
+ *
+ * A face (i, j) exists where a ray of i meets the bisector of j first. An
+ * edge of cell i lies where two faces a, b meet: grid cells whose corners
+ * carry exactly the two colours a, b show that the trisector of {i, a, b}
+ * carries a Voronoi edge. The edge's ends are the certified vertices whose
+ * members contain {i, a, b}. A vertex with exactly four members is in
+ * general position and all four of its triples are edges, seen or not. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "vb_topology.h"
+#include "vbs_internal.h"
+
+static int cmp_u32(const void *a, const void *b)
+{
+    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+    return (x > y) - (x < y);
+}
+
+static int push(uint32_t **v, size_t *n, size_t *cap, const uint32_t *x, size_t k)
+{
+    if (*n + k > *cap) {
+        size_t nc = *cap ? *cap : 1024;
+        while (nc < *n + k)
+            nc *= 2;
+        uint32_t *p = realloc(*v, nc * sizeof *p);
+        if (!p)
+            return VB_ENOMEM;
+        *v = p;
+        *cap = nc;
+    }
+    memcpy(*v + *n, x, k * sizeof *x);
+    *n += k;
+    return VB_OK;
+}
+
+static void sort3(uint32_t t[3])
+{
+    qsort(t, 3, sizeof *t, cmp_u32);
+}
+
+int vbs_topo_collect(vbs_topo_acc *acc, uint32_t base, const uint32_t *colours, unsigned S)
+{
+    size_t rays = 6u * (size_t)S * S;
+    /* Faces: distinct colours of this base. */
+    uint32_t *tmp = malloc(rays * sizeof *tmp);
+    if (!tmp)
+        return VB_ENOMEM;
+    size_t n = 0;
+    for (size_t k = 0; k < rays; k++)
+        if (colours[k] != VBS_INF_COLOUR)
+            tmp[n++] = colours[k];
+    qsort(tmp, n, sizeof *tmp, cmp_u32);
+    int rc = VB_OK;
+    for (size_t k = 0; k < n && rc == VB_OK; k++) {
+        if (k > 0 && tmp[k] == tmp[k - 1])
+            continue;
+        uint32_t f[2] = {base < tmp[k] ? base : tmp[k], base < tmp[k] ? tmp[k] : base};
+        rc = push(&acc->faces, &acc->nfaces, &acc->faces_cap, f, 2);
+    }
+    /* Edges: grid cells with exactly two finite colours. */
+    size_t nt = 0;
+    for (unsigned f = 0; f < 6 && rc == VB_OK; f++)
+        for (unsigned iv = 0; iv + 1 < S; iv++)
+            for (unsigned iu = 0; iu + 1 < S; iu++) {
+                const uint32_t *c = colours + (size_t)f * S * S;
+                uint32_t q[4] = {c[iv * S + iu], c[iv * S + iu + 1], c[(iv + 1) * S + iu],
+                                 c[(iv + 1) * S + iu + 1]};
+                uint32_t a = VBS_INF_COLOUR, b = VBS_INF_COLOUR;
+                int other = 0;
+                for (int k = 0; k < 4; k++) {
+                    if (q[k] == VBS_INF_COLOUR || q[k] == a || q[k] == b)
+                        continue;
+                    if (a == VBS_INF_COLOUR)
+                        a = q[k];
+                    else if (b == VBS_INF_COLOUR)
+                        b = q[k];
+                    else
+                        other = 1;
+                }
+                if (other || b == VBS_INF_COLOUR)
+                    continue;
+                tmp[3 * nt] = base;
+                tmp[3 * nt + 1] = a;
+                tmp[3 * nt + 2] = b;
+                sort3(tmp + 3 * nt);
+                /* Neighbouring cells repeat the same triple: skip runs. */
+                if (nt > 0 && memcmp(tmp + 3 * nt, tmp + 3 * (nt - 1), 3 * sizeof *tmp) == 0)
+                    continue;
+                nt++;
+                if (3 * (nt + 1) > rays) {
+                    rc = push(&acc->triples, &acc->ntriples, &acc->triples_cap, tmp, 3 * nt);
+                    nt = 0;
+                }
+            }
+    if (rc == VB_OK)
+        rc = push(&acc->triples, &acc->ntriples, &acc->triples_cap, tmp, 3 * nt);
+    free(tmp);
+    return rc;
+}
+
+static int cmp_pair(const void *pa, const void *pb)
+{
+    const uint32_t *a = pa, *b = pb;
+    if (a[0] != b[0])
+        return a[0] < b[0] ? -1 : 1;
+    return (a[1] > b[1]) - (a[1] < b[1]);
+}
+
+static int cmp_triple(const void *pa, const void *pb)
+{
+    const uint32_t *a = pa, *b = pb;
+    for (int k = 0; k < 3; k++)
+        if (a[k] != b[k])
+            return a[k] < b[k] ? -1 : 1;
+    return 0;
+}
+
+static size_t dedupe(uint32_t *v, size_t n, size_t w, int (*cmp)(const void *, const void *))
+{
+    qsort(v, n, w * sizeof *v, cmp);
+    size_t m = 0;
+    for (size_t k = 0; k < n; k++)
+        if (m == 0 || memcmp(v + w * (m - 1), v + w * k, w * sizeof *v) != 0)
+            memmove(v + w * m++, v + w * k, w * sizeof *v);
+    return m;
+}
+
+int vbs_topo_finish(vbs_topo_acc *acc, vb_topology_evidence *ev)
+{
+    acc->nfaces = 2 * dedupe(acc->faces, acc->nfaces / 2, 2, cmp_pair);
+    acc->ntriples = 3 * dedupe(acc->triples, acc->ntriples / 3, 3, cmp_triple);
+    ev->faces = acc->faces;
+    ev->nfaces = acc->nfaces / 2;
+    ev->triples = acc->triples;
+    ev->ntriples = acc->ntriples / 3;
+    acc->faces = acc->triples = NULL;
+    acc->nfaces = acc->ntriples = 0;
+    return VB_OK;
+}
+
+void vb_topology_init(vb_topology *t)
+{
+    memset(t, 0, sizeof *t);
+}
+
+void vb_topology_free(vb_topology *t)
+{
+    free(t->faces);
+    free(t->edges);
+    vb_topology_init(t);
+}
+
+/* (triple, vertex) record for the join. */
+typedef struct tv {
+    uint32_t t[3];
+    uint32_t v;
+} tv;
+
+static int cmp_tv(const void *pa, const void *pb)
+{
+    const tv *a = pa, *b = pb;
+    int c = cmp_triple(a->t, b->t);
+    return c ? c : (a->v > b->v) - (a->v < b->v);
+}
+
+int vb_topology_build(vb_ctx *ctx, const vb_topology_evidence *ev, const vb_vertex_list *vx,
+                      vb_topology *out)
+{
+    vb_topology_init(out);
+    size_t ntv = 0, cap = 0;
+    tv *recs = NULL;
+    uint32_t *faces = NULL, *trip = NULL;
+    size_t nf = 0, fcap = 0, ntr = 0, tcap = 0;
+    int rc = push(&faces, &nf, &fcap, ev->faces, 2 * ev->nfaces);
+    if (rc == VB_OK)
+        rc = push(&trip, &ntr, &tcap, ev->triples, 3 * ev->ntriples);
+    for (size_t k = 0; k < vx->n && rc == VB_OK; k++) {
+        const uint32_t *m = vx->ids + vx->start[k];
+        size_t nm = vx->start[k + 1] - vx->start[k];
+        for (size_t a = 0; a < nm && rc == VB_OK; a++)
+            for (size_t b = a + 1; b < nm && rc == VB_OK; b++) {
+                if (nm == 4) {
+                    uint32_t f[2] = {m[a], m[b]};
+                    rc = push(&faces, &nf, &fcap, f, 2);
+                }
+                for (size_t c = b + 1; c < nm && rc == VB_OK; c++) {
+                    if (ntv == cap) {
+                        cap = cap ? 2 * cap : 1024;
+                        tv *p = realloc(recs, cap * sizeof *p);
+                        if (!p) {
+                            rc = VB_ENOMEM;
+                            break;
+                        }
+                        recs = p;
+                    }
+                    recs[ntv++] = (tv){{m[a], m[b], m[c]}, (uint32_t)k};
+                    if (nm == 4) {
+                        uint32_t t[3] = {m[a], m[b], m[c]};
+                        rc = push(&trip, &ntr, &tcap, t, 3);
+                    }
+                }
+            }
+    }
+    if (rc == VB_OK) {
+        qsort(recs, ntv, sizeof *recs, cmp_tv);
+        nf = 2 * dedupe(faces, nf / 2, 2, cmp_pair);
+        ntr = 3 * dedupe(trip, ntr / 3, 3, cmp_triple);
+        out->faces = faces;
+        out->nfaces = nf / 2;
+        faces = NULL;
+        /* Join each edge triple with the vertices that contain it. */
+        size_t r = 0;
+        for (size_t k = 0; k < ntr / 3 && rc == VB_OK; k++) {
+            const uint32_t *t = trip + 3 * k;
+            while (r < ntv && cmp_triple(recs[r].t, t) < 0)
+                r++;
+            size_t e = r;
+            while (e < ntv && cmp_triple(recs[e].t, t) == 0)
+                e++;
+            size_t nv = e - r;
+            if (nv == 0 || nv > 2) {
+                out->unresolved += nv > 2;
+                continue;
+            }
+            if (out->nedges == out->edges_cap) {
+                size_t nc = out->edges_cap ? 2 * out->edges_cap : 256;
+                vb_topology_edge *p = realloc(out->edges, nc * sizeof *p);
+                if (!p) {
+                    rc = VB_ENOMEM;
+                    break;
+                }
+                out->edges = p;
+                out->edges_cap = nc;
+            }
+            vb_topology_edge *ed = out->edges + out->nedges++;
+            ed->v[0] = (int64_t)recs[r].v;
+            ed->v[1] = nv == 2 ? (int64_t)recs[r + 1].v : -1;
+            memcpy(ed->spheres, t, sizeof ed->spheres);
+        }
+    }
+    free(recs);
+    free(faces);
+    free(trip);
+    if (rc != VB_OK) {
+        vb_topology_free(out);
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (topology)");
+    }
+    return VB_OK;
+}
+
+int vb_topology_write(vb_ctx *ctx, FILE *f, const vb_topology *t)
+{
+    fputs("# vorball topology\n# face\ti\tj\t(spheres sharing a Voronoi face)\n"
+          "# edge\tv1\tv2\ti,j,k\t(0-based vertex rows of the vertex output; -1: the edge "
+          "runs to infinity)\n",
+          f);
+    for (size_t k = 0; k < t->nfaces; k++)
+        fprintf(f, "face\t%u\t%u\n", (unsigned)t->faces[2 * k], (unsigned)t->faces[2 * k + 1]);
+    for (size_t k = 0; k < t->nedges; k++) {
+        const vb_topology_edge *e = t->edges + k;
+        fprintf(f, "edge\t%lld\t%lld\t%u,%u,%u\n", (long long)e->v[0], (long long)e->v[1],
+                (unsigned)e->spheres[0], (unsigned)e->spheres[1], (unsigned)e->spheres[2]);
+    }
+    if (ferror(f))
+        return vb_error(ctx, VB_EIO, NULL, 0, "write failed (topology)");
+    return VB_OK;
+}

@@ -1,0 +1,158 @@
+/* The sampling pipeline of the seed paper: culling, backends, matching.
+ *
+ * vb_sampler_run takes a validated sphere set and a backend (the plain-C
+ * reference below, or the OpenCL one in gpu/vbg_sampler.h), runs the ray
+ * envelope and vertex stages batch by batch, matches the candidates across
+ * the cells of all their spheres (Sec. 5.4), runs the targeted search for
+ * incompletely matched vertices (5.5) and the tangent-sphere test, and hands
+ * back candidates for the exact certifier. Both backends evaluate the same
+ * functions of vb_geom_shared.h. */
+#ifndef VB_SAMPLER_H
+#define VB_SAMPLER_H
+
+#include "vb.h"
+#include "vb_geom_shared.h"
+#include "vb_spheres.h"
+#include "vb_vertex.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Defaults: S = 30 rays per face side reached 100 % recall on the corpus and
+ * the proteins of shared/data (see papers/gpu-voronoi-cells-of-spheres). */
+#define VB_SAMPLER_DEFAULT_SAMPLES 30u
+#define VB_SAMPLER_DEFAULT_DEPTH 4u
+#define VB_SAMPLER_DEFAULT_ITER 40u
+#define VB_SAMPLER_DEFAULT_TARGET_DEPTH 16u
+
+typedef struct vb_sampler_options {
+    unsigned samples;        /* S >= 2 (0: default) */
+    unsigned tiles;          /* culling tiles per face side (0: automatic) */
+    unsigned max_depth;      /* subdivision depth (0: default) */
+    unsigned max_iter;       /* Newton iterations (0: default) */
+    unsigned target_depth;   /* levels of the targeted search (0: default) */
+    double tol;              /* world units; <= 0: 1e-5 of the bounding-box diagonal */
+    int all_pairs;           /* 1: no culling, every cell tests all n - 1 bisectors */
+    int topology;            /* 1: collect face adjacency and edge evidence */
+    unsigned batch_rays;     /* rays per backend batch (0: backend's choice) */
+    void (*progress)(void *user, double fraction); /* may be NULL */
+    void *progress_user;
+} vb_sampler_options;
+
+/* One batch for a backend: the bases, their bisectors and culling tiles. */
+typedef struct vb_sampler_batch {
+    size_t nbases;
+    const vbs_base *bases;
+    size_t nbis;
+    const vbs_bisector *bis;
+    size_t ntile_off;        /* nbases * 6 * T * T + 1 */
+    const uint32_t *tile_off;
+    size_t ntile_idx;
+    const uint32_t *tile_idx;
+    vbs_params params;
+} vb_sampler_batch;
+
+/* Growable array of candidates. */
+typedef struct vb_cand_vec {
+    vbs_cand *v;
+    size_t n, cap;
+} vb_cand_vec;
+
+int vb_cand_vec_push(vb_cand_vec *cv, const vbs_cand *c);
+void vb_cand_vec_free(vb_cand_vec *cv);
+
+/* Seconds spent per stage (wall clock; device stages as the backend measures). */
+typedef struct vb_stage_times {
+    double cull, upload, envelope, vertices, matching;
+} vb_stage_times;
+
+/* What a backend returns for one batch. colours has nbases * 6 * S * S
+ * entries, written by the backend; candidates are appended to cand in any
+ * order (the driver sorts them). overflow counts candidates that did not fit
+ * VBS_MAX_CAND of their grid cell. */
+typedef struct vb_sampler_batch_out {
+    uint32_t *colours;
+    int want_colours;        /* 0: a device backend may leave colours unwritten */
+    vb_cand_vec *cand;
+    uint64_t overflow;
+    vb_stage_times *times;
+} vb_sampler_batch_out;
+
+/* The backends table: one interface, two implementations (ref, OpenCL). */
+typedef struct vb_sampler_backend vb_sampler_backend;
+struct vb_sampler_backend {
+    const char *name;        /* "ref", "opencl" */
+    char device[160];        /* human-readable device */
+    unsigned batch_rays;     /* preferred rays per batch */
+    void *state;
+    /* Runs envelope (Sec. 3.3) and vertices (Sec. 4-5) for one batch.
+     * Returns VB_OK, VB_ENOMEM or VB_EDEVICE (message in ctx). */
+    int (*run_batch)(vb_ctx *ctx, vb_sampler_backend *be, const vb_sampler_batch *b,
+                     vb_sampler_batch_out *out);
+    void (*close)(vb_sampler_backend *be);
+};
+
+/* Opens the plain-C reference backend. Free with vb_sampler_backend_close. */
+int vb_sampler_ref_open(vb_ctx *ctx, vb_sampler_backend **out);
+
+/* Closes any backend; NULL is allowed. */
+void vb_sampler_backend_close(vb_sampler_backend *be);
+
+/* Topology evidence from the samples (Sec. 4): faces seen (i, j), i < j, and
+ * triples (i < j < k) seen as two-colour grid cells of one of their spheres,
+ * each sorted and unique. */
+typedef struct vb_topology_evidence {
+    uint32_t *faces;          /* 2 per face */
+    size_t nfaces;
+    uint32_t *triples;        /* 3 per triple */
+    size_t ntriples;
+} vb_topology_evidence;
+
+typedef struct vb_sampler_result {
+    vb_vertex_list candidates;    /* one per (vertex, quadruple), status CANDIDATE */
+    vb_stage_times times;
+    double tol;                   /* tolerance used (world units) */
+    double clip;                  /* clip distance used (world units) */
+    unsigned samples, tiles;
+    uint64_t rays;                /* rays shot in the batches */
+    uint64_t raw_candidates;      /* from the vertex stage */
+    uint64_t overflow;            /* candidates lost to VBS_MAX_CAND (warned) */
+    uint64_t clusters;            /* distinct vertices after matching */
+    uint64_t complete_first;      /* found from all their spheres before 5.5 */
+    uint64_t targeted_searches;   /* (vertex, sphere) searches run */
+    uint64_t targeted_found;      /* of those, successful */
+    uint64_t incomplete;          /* still not found from all their spheres after 5.5 */
+    uint64_t dropped;             /* tangent spheres (quadruple roots) that were not empty */
+    uint64_t swaps;               /* quadruples tried by swapping in an intruder */
+    uint64_t ring_tries;          /* quadruples tried by the neighbourhood completion */
+    uint64_t first_cell;          /* vertices found in the cell of sphere 0 (Fig. 13) */
+    uint64_t bisectors;           /* bisectors kept by the culling */
+    vb_topology_evidence topo;    /* filled when options.topology */
+} vb_sampler_result;
+
+void vb_sampler_result_init(vb_sampler_result *r);
+void vb_sampler_result_free(vb_sampler_result *r);
+
+/* Runs the pipeline up to (not including) certification. set must be
+ * validated (contained spheres flagged). Returns VB_OK, VB_EMISUSE (bad
+ * options), VB_ENOMEM or the backend's VB_EDEVICE. */
+int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_options *opt,
+                   vb_sampler_backend *be, vb_sampler_result *res);
+
+/* Candidates for the four quadruples that swap one of ids[0..3] for
+ * `intruder` (a sphere that cuts the tangent sphere of ids, as the exact
+ * certifier reports it): near a (nearly) degenerate vertex the sampled
+ * quadruple is often the wrong one of several that meet there. Each gets
+ * both of its tangent spheres (double), or p when the double solver cannot
+ * separate them. Appended to out with status CANDIDATE. VB_OK or VB_ENOMEM. */
+int vb_sampler_swap_candidates(const vb_sphere_set *set, const uint32_t ids[4],
+                               uint32_t intruder, const double p[4], vb_vertex_list *out);
+
+/* Default tolerance: 1e-5 of the diagonal of the spheres' bounding box. */
+double vb_sampler_default_tol(const vb_sphere_set *set);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

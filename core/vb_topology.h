@@ -1,0 +1,43 @@
+/* Cell topology from the sampling pipeline: face adjacency and Voronoi edges
+ * between certified vertices (`vorball vertices --topology FILE`). */
+#ifndef VB_TOPOLOGY_H
+#define VB_TOPOLOGY_H
+
+#include <stdio.h>
+
+#include "vb_sampler.h"
+#include "vb_vertex.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct vb_topology_edge {
+    int64_t v[2];          /* rows of the certified vertex list; v[1] = -1: to infinity */
+    uint32_t spheres[3];   /* the three spheres whose faces meet along the edge (sorted) */
+} vb_topology_edge;
+
+typedef struct vb_topology {
+    uint32_t *faces;       /* pairs i < j sharing a face */
+    size_t nfaces;
+    vb_topology_edge *edges;
+    size_t nedges, edges_cap;
+    size_t unresolved;     /* trisectors with more than two vertices (edges not paired) */
+} vb_topology;
+
+void vb_topology_init(vb_topology *t);
+void vb_topology_free(vb_topology *t);
+
+/* Joins the sampler's evidence with the canonical certified vertices (as
+ * written, same row order). Allocates into *out (free with
+ * vb_topology_free). Returns VB_OK or VB_ENOMEM. */
+int vb_topology_build(vb_ctx *ctx, const vb_topology_evidence *ev, const vb_vertex_list *vx,
+                      vb_topology *out);
+
+/* Writes the faces and edges as tab-separated lines. VB_OK or VB_EIO. */
+int vb_topology_write(vb_ctx *ctx, FILE *f, const vb_topology *t);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

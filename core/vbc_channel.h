@@ -1,0 +1,165 @@
+/* Channels and cavities from a discrete Voronoi diagram (Sec. 4 of the
+ * Facet-JFA paper, Algorithm 2, and what it left out: components, pruning,
+ * centrelines with radii, bottlenecks and lining atoms).
+ *
+ * Flow per frame: vbc_grid_fit -> vbc_atoms_pack -> labels (JFA, gpu/) ->
+ * masks (gpu/channels.cl, or vbc_masks_ref here) -> compacted channel voxels
+ * -> vbc_analyse (components, centrelines) -> writers. */
+#ifndef VBC_CHANNEL_H
+#define VBC_CHANNEL_H
+
+#include <stdint.h>
+#include <stdio.h>
+
+#include "channel_math.h"
+#include "vb.h"
+#include "vb_spheres.h"
+
+/* A cubic-voxel grid fitted around a molecule. dim 2 means nz == 1 and the
+ * z coordinates of the atoms are ignored (the paper's 2D pictures). */
+typedef struct vbc_grid {
+    int nx, ny, nz;
+    int dim;
+    double origin[3]; /* Å, the corner of voxel (0,0,0) */
+    double h;         /* voxel edge, Å */
+} vbc_grid;
+
+/* Fits an n^dim grid of cubic voxels around the spheres grown by `probe`,
+ * with two voxels of empty margin on every side so every axis ray starts and
+ * ends outside the atomic mask. VB_EMISUSE for n < 8 or n > 1024, dim not 2/3
+ * or a negative probe; VB_EINPUT_EMPTY for an empty set. */
+int vbc_grid_fit(vb_ctx *ctx, const vb_sphere_set *s, double probe, int n, int dim,
+                 vbc_grid *out);
+
+static inline size_t vbc_grid_voxels(const vbc_grid *g)
+{
+    return (size_t)g->nx * (size_t)g->ny * (size_t)g->nz;
+}
+
+/* Writes 4 floats per sphere to out4: the centre in grid units (voxel i has
+ * its centre at i + 0.5) and (r + probe) / h. In 2D z is 0.5 (the slice). */
+void vbc_atoms_pack(const vbc_grid *g, const vb_sphere_set *s, double probe, float *out4);
+
+/* The plain-C reference of the mask stage: from the packed atoms and a label
+ * grid (nx*ny*nz ints, x fastest) writes the flag byte (VBC_F_*) of every
+ * voxel into flags. min_labels: 3 in 3D, 2 in 2D. rb is scratch of
+ * vbc_rb_size ints. Matches gpu/channels.cl bit for bit. */
+void vbc_masks_ref(const vbc_grid *g, const float *atoms4, size_t natoms, const int32_t *labels,
+                   int min_labels, int *rb, uint8_t *flags);
+
+/* Lists the channel voxels of a flag volume in increasing index order, the
+ * mouth flag in VBC_MOUTH_BIT. *out is malloc'ed (NULL when none). */
+int vbc_flags_compact(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, uint32_t **out,
+                      size_t *count);
+
+/* What the analysis keeps and how it decides. */
+typedef struct vbc_options {
+    double min_length;  /* Å; shorter centrelines are pruned */
+    double min_radius;  /* Å; channels whose bottleneck is narrower are pruned */
+    double lining_tol;  /* Å; an atom lines a point when its surface is within R + tol */
+    int keep_cavities;  /* 0 drops components that do not reach the surface */
+} vbc_options;
+
+enum vbc_kind { VBC_CHANNEL = 0, VBC_CAVITY = 1 };
+
+/* One point of a centreline: position (Å) and the radius of the largest
+ * sphere centred there that overlaps no atom (distance to the nearest atom
+ * surface), with the atom that bounds it. */
+typedef struct vbc_point {
+    double x, y, z, r;
+    int32_t atom;
+} vbc_point;
+
+typedef struct vbc_channel {
+    int kind;               /* enum vbc_kind */
+    int through;            /* the centreline joins openings on opposite faces (a pore) */
+    size_t voxels;          /* channel voxels in the component */
+    size_t mouths;          /* of those, voxels on the molecular surface */
+    double length;          /* centreline length, Å */
+    double bottleneck;      /* smallest radius on the centreline, Å */
+    size_t bottleneck_at;   /* its index into the points */
+    size_t first_point, npoints; /* slice of vbc_result.points */
+    size_t first_lining, nlining; /* slice of vbc_result.lining (atom indices, ascending) */
+} vbc_channel;
+
+typedef struct vbc_result {
+    size_t nchannels;       /* kept channels and cavities, longest first */
+    vbc_channel *channels;
+    vbc_point *points;
+    int32_t *lining;
+    size_t components;      /* connected components before pruning */
+    size_t pruned;          /* components removed by the thresholds */
+} vbc_result;
+
+/* Connected components (26-connectivity) of the channel voxels `vox` (sorted
+ * or not; VBC_MOUTH_BIT marks surface voxels), classified as channel (touches
+ * the molecular surface) or cavity; per component the centreline (the longest
+ * shortest path of the voxel graph, between two mouths for a channel), its
+ * radii against the spheres `s` of the frame, bottleneck and lining atoms;
+ * pruning by opt. Fills *res (free with vbc_result_free). VB_ENOMEM. */
+int vbc_analyse(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, const uint32_t *vox,
+                size_t nvox, const vbc_options *opt, vbc_result *res);
+
+void vbc_result_free(vbc_result *res);
+
+/* Nearest atom surface and lining atoms by a cell list over a frame's spheres. */
+typedef struct vbc_cells vbc_cells;
+
+/* Builds the cell list (cell edge = cell Å, at least 1). VB_ENOMEM / VB_EINPUT_EMPTY. */
+int vbc_cells_build(vb_ctx *ctx, const vb_sphere_set *s, double cell, vbc_cells **out);
+void vbc_cells_free(vbc_cells *c);
+
+/* Distance from p to the nearest sphere surface (negative inside a sphere)
+ * and that sphere's index in *atom. */
+double vbc_cells_clearance(const vbc_cells *c, const double p[3], int32_t *atom);
+
+/* Calls fn(atom, user) for every sphere whose surface is within `reach` of p
+ * (|p - c| - r <= reach). */
+void vbc_cells_within(const vbc_cells *c, const double p[3], double reach,
+                      void (*fn)(int32_t atom, void *user), void *user);
+
+/* Writers (core/channel_write.c). */
+
+/* What a frame's table rows carry besides the channels. */
+typedef struct vbc_frame_info {
+    long frame;            /* index in the input, from 0 */
+    int model;             /* MODEL serial (PDB) or frame + 1 */
+    size_t atoms;
+    size_t channel_voxels; /* before components */
+    double ms_upload, ms_jfa, ms_masks, ms_analysis, ms_total;
+} vbc_frame_info;
+
+/* CSV: one header line, then one row per kept channel of each frame. */
+void vbc_write_csv_header(FILE *f);
+void vbc_write_csv_rows(FILE *f, const vbc_frame_info *fi, const vbc_grid *g,
+                        const vb_sphere_set *s, const vbc_result *res);
+
+/* Per-frame statistics as CSV (header, then one row per frame). */
+void vbc_write_stats_header(FILE *f);
+void vbc_write_stats_row(FILE *f, const vbc_frame_info *fi, const vbc_grid *g,
+                         const vbc_result *res);
+
+/* JSON: vbc_write_json_begin, one vbc_write_json_frame per frame (first = 1
+ * for the first), vbc_write_json_end. Each frame object holds its statistics
+ * and its channels with centreline points and lining residues. */
+void vbc_write_json_begin(FILE *f, const char *input, double probe, int n, const char *device);
+void vbc_write_json_frame(FILE *f, int first, const vbc_frame_info *fi, const vbc_grid *g,
+                          const vb_sphere_set *s, const vbc_result *res);
+void vbc_write_json_end(FILE *f);
+
+/* Centrelines as PDB pseudo-atoms (one MODEL per frame): residue CHN for a
+ * channel, CAV for a cavity, one residue number per channel, the clearance
+ * radius in the B-factor column, CONECT records joining consecutive points. */
+void vbc_write_centrelines_pdb(FILE *f, int model, const vbc_result *res);
+
+/* A PyMOL script that loads the molecule (when not NULL) and the centreline
+ * PDB and shows the points as spheres of their radius, coloured by it. */
+void vbc_write_pymol(FILE *f, const char *molecule, const char *centrelines);
+
+/* Writes the voxels of flags that have `bit` set as a 0/1 byte volume:
+ * MRC (".mrc", ".map") or legacy VTK structured points (".vtk"), positioned in
+ * Å. VB_EMISUSE for another extension, VB_EIO when writing fails. */
+int vbc_write_volume(vb_ctx *ctx, const char *path, const vbc_grid *g, const uint8_t *flags,
+                     unsigned bit);
+
+#endif

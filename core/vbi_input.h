@@ -1,0 +1,179 @@
+/* Internal to the input layer (core/read_*.c, detect_format.c, frame_reader.c):
+ * the growing sphere set the readers fill, line and token helpers, and the
+ * per-format entry points behind vb_spheres_read_buffer.
+ *
+ * Warnings of the input layer (stable numbers, W701-W719):
+ *   W701 a sphere lies inside another (named with both lines)
+ *   W702 total of contained spheres when more than ten
+ *   W703 water atoms dropped (count)        W704 other alternate locations dropped
+ *   W705 atoms of other models ignored      W706 hydrogens dropped (--no-hydrogens)
+ *   W707 unknown element, default radius    W708 total of atoms with unknown elements
+ *   W709 mmCIF names truncated to 7 characters */
+#ifndef VBI_INPUT_H
+#define VBI_INPUT_H
+
+#include "vb_spheres.h"
+
+/* Default sphere limit (vb_read_options.max_spheres == 0). */
+#define VBI_DEFAULT_MAX_SPHERES ((size_t)50000000)
+/* Files above this are refused before reading (VB_EINPUT_TOOLARGE). */
+#define VBI_MAX_FILE_BYTES ((size_t)2 << 30)
+
+/* A sphere set under construction. */
+typedef struct vbi_builder {
+    vb_ctx *ctx;
+    const char *name;   /* source name for messages */
+    vb_sphere_set *set;
+    size_t cap;
+    size_t max;         /* sphere limit */
+} vbi_builder;
+
+/* Starts an empty set named `name`; with_info allocates atom records.
+ * Returns VB_OK or VB_ENOMEM. */
+int vbi_builder_init(vbi_builder *b, vb_ctx *ctx, const char *name, size_t max, int with_info);
+
+/* Appends one sphere: exact decimals e[0..3] = x y z r, their doubles d[0..3],
+ * the atom record (may be NULL) and the 1-based source line. Returns VB_OK,
+ * VB_ENOMEM or VB_EINPUT_TOOLARGE (message set). */
+int vbi_builder_push(vbi_builder *b, const vb_decimal e[4], const double d[4],
+                     const vb_atom_info *info, long line);
+
+/* Hands the set to *out (drops the atom records when keep_info is 0). */
+void vbi_builder_finish(vbi_builder *b, int keep_info, vb_sphere_set **out);
+
+/* Frees a set that will not be finished. */
+void vbi_builder_discard(vbi_builder *b);
+
+/* Iterates over the lines of a buffer: *line and *len get each line without its
+ * "\n" or "\r\n"; returns 0 at the end. */
+typedef struct vbi_lines {
+    const char *p, *end;
+    long lineno;        /* number of the line last returned */
+} vbi_lines;
+
+void vbi_lines_init(vbi_lines *it, const char *buf, size_t len, long first_line);
+int vbi_lines_next(vbi_lines *it, const char **line, size_t *len);
+
+/* Next whitespace-separated token of [*p, end): returns its length (0 at the
+ * end) and its start in *tok; advances *p. */
+size_t vbi_token(const char **p, const char *end, const char **tok);
+
+/* Parses one number token with file:line context; on failure sets the context
+ * error naming `what` (e.g. "x coordinate") and returns its code. */
+int vbi_parse_number(vb_ctx *ctx, const char *name, long line, const char *what,
+                     const char *tok, size_t len, vb_decimal *e, double *d);
+
+/* Parses a whole (blank-trimmed) field as an int32 into *out; returns 0, or
+ * -1 leaving *out alone when the field is not a plain integer. */
+int vbi_parse_int(const char *s, size_t len, int32_t *out);
+
+/* True when a PDB-style line holds record `rec` ("ATOM", "MODEL", "END",
+ * ...): the name, then blanks up to column 6. */
+int vbi_pdb_record(const char *line, size_t n, const char *rec);
+
+/* Copies at most cap-1 non-blank-trimmed characters into dst (NUL-ended);
+ * returns 1 if the text had to be truncated. */
+int vbi_copy_field(char *dst, size_t cap, const char *src, size_t len);
+
+/* The radius of an element for PDB/mmCIF: from opt->radii or the built-in
+ * table, else the default 1.70 with a warning counted in *unknown (or
+ * VB_EINPUT_ELEMENT in strict mode). */
+int vbi_radius_for(vb_ctx *ctx, const vb_read_options *opt, const char *name, long line,
+                   const char *element, vb_decimal *e, double *d, size_t *unknown);
+
+/* Water residue names dropped unless keep_water. */
+int vbi_is_water(const char *resname);
+/* Hydrogen or deuterium element symbol. */
+int vbi_is_hydrogen(const char *element);
+
+/* Guesses the element from a PDB atom name (columns 13-16) when columns 77-78
+ * are blank: the first letter after leading digits, or two letters when the
+ * name starts in column 13 (e.g. "FE  ", "CL  "). */
+void vbi_element_from_name(const char *name4, char element[4]);
+
+/* The same guess for a name without column positions (PQR, mmCIF without
+ * type_symbol): always the first letter after leading digits. */
+void vbi_element_from_bare_name(const char *name, char element[4]);
+
+/* Counts of atoms a reader left out on purpose, reported as one line each. */
+typedef struct vbi_dropped {
+    size_t water, altloc, hydrogens;
+    size_t other_models;      /* atoms */
+    size_t other_model_count; /* models */
+    size_t unknown_elements;
+} vbi_dropped;
+
+/* Emits the one-line warnings W703..W706 (and W708, the unknown-element
+ * total) for nonzero counts. */
+void vbi_report_dropped(vb_ctx *ctx, const char *name, const vbi_dropped *dr);
+
+/* Model selection over MODEL/ENDMDL blocks (PDB, PQR) or runs of one
+ * pdbx_PDB_model_num (mmCIF): `want` is the requested serial, 0 the first. */
+typedef struct vbi_models {
+    int want;
+    int seen_model; /* a model block was met */
+    int in_model;   /* inside a block */
+    int taking;     /* atoms of the current block are read */
+    int found;      /* the wanted model was met */
+    int by_ordinal; /* want counts blocks (1 = first) instead of naming a serial */
+    int blocks;     /* blocks met so far */
+    int taken_serial; /* serial of the block read (1 for the implicit model) */
+} vbi_models;
+
+void vbi_models_init(vbi_models *m, int want);
+/* A block with this serial starts; a skipped block is counted in dr. */
+void vbi_models_begin(vbi_models *m, int serial, vbi_dropped *dr);
+void vbi_models_end(vbi_models *m);
+/* True when atoms met now belong to the wanted model. */
+int vbi_models_takes(const vbi_models *m);
+/* VB_EINPUT_MODEL (message set) when the wanted model never came. */
+int vbi_models_check(vb_ctx *ctx, const char *name, const vbi_models *m);
+
+/* Alternate locations, per residue (chain, resseq, icode): blank is always
+ * kept, and of the lettered ones the first met in the residue (usually 'A'). */
+typedef struct vbi_altloc {
+    char chain[8];
+    int32_t resseq;
+    char icode;
+    char kept;
+    int started;
+} vbi_altloc;
+
+void vbi_altloc_init(vbi_altloc *a);
+/* True when the atom's alternate location is the one kept. */
+int vbi_altloc_keeps(vbi_altloc *a, const vb_atom_info *info);
+
+/* Content detection into *out. Returns VB_OK, VB_EINPUT_EMPTY (only blank
+ * and '#' lines) or VB_EINPUT_FORMAT (nothing fits); sets no message. */
+int vbi_detect_format(const char *buf, size_t len, vb_format *out);
+/* Sets the context message for a failed detection and returns rc. */
+int vbi_detect_error(vb_ctx *ctx, const char *name, int rc);
+
+/* Per-format readers over a whole buffer. */
+int vbi_read_xyzr(vb_ctx *ctx, const char *name, const char *buf, size_t len,
+                  const vb_read_options *opt, vb_sphere_set **out);
+int vbi_read_pdb(vb_ctx *ctx, const char *name, const char *buf, size_t len,
+                 const vb_read_options *opt, vb_sphere_set **out);
+/* The PDB reader on part of a file: lines are numbered from first_line, and
+ * what it leaves out is added to *dr instead of being reported. */
+int vbi_pdb_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, long first_line,
+                  const vb_read_options *opt, vbi_dropped *dr, vb_sphere_set **out);
+int vbi_read_pqr(vb_ctx *ctx, const char *name, const char *buf, size_t len,
+                 const vb_read_options *opt, vb_sphere_set **out);
+int vbi_read_mmcif(vb_ctx *ctx, const char *name, const char *buf, size_t len,
+                   const vb_read_options *opt, vb_sphere_set **out);
+/* The PQR reader on part of a file, as vbi_pdb_parse. */
+int vbi_pqr_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, long first_line,
+                  const vb_read_options *opt, vbi_dropped *dr, vb_sphere_set **out);
+/* The mmCIF reader adding to *dr. ordinal > 0 reads the ordinal-th model
+ * (frame readers; VB_EINPUT_MODEL past the last) instead of opt->model;
+ * *serial (may be NULL) gets the model number read. */
+int vbi_mmcif_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len,
+                    const vb_read_options *opt, int ordinal, vbi_dropped *dr, int *serial,
+                    vb_sphere_set **out);
+
+/* Reads a whole file ("-" = stdin) into a NUL-terminated buffer, refusing
+ * more than VBI_MAX_FILE_BYTES. Caller frees *buf. */
+int vbi_slurp(vb_ctx *ctx, const char *path, char **buf, size_t *len);
+
+#endif

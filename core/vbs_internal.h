@@ -1,0 +1,87 @@
+/* Internal to the sampling pipeline (core/sampler*.c, matching.c,
+ * topology.c): the spatial hash of centres, the conservative culling of
+ * bisectors into direction tiles, matching and topology evidence. */
+#ifndef VBS_INTERNAL_H
+#define VBS_INTERNAL_H
+
+#include "vb_sampler.h"
+
+/* Uniform grid of sphere centres (CSR: cell k holds idx[start[k]..start[k+1])). */
+typedef struct vbs_hash {
+    double lo[3], h;
+    int dim[3];
+    uint32_t *start, *idx;
+    const vb_sphere_set *set;
+    double rmax;
+} vbs_hash;
+
+int vbs_hash_build(vb_ctx *ctx, const vb_sphere_set *set, vbs_hash *g);
+void vbs_hash_free(vbs_hash *g);
+
+/* Appends to *out (growable, *cap) the ids of spheres whose centre lies within
+ * `radius` of p, in increasing id order. Returns VB_OK or VB_ENOMEM. */
+int vbs_hash_query(const vbs_hash *g, const double p[3], double radius, uint32_t **out,
+                   size_t *n, size_t *cap);
+
+/* Direction tiles: 6*T*T cones (centre direction, cos/sin of the half-angle
+ * with a safety margin), the same for every base. */
+typedef struct vbs_tiles {
+    unsigned T;
+    double *dir;   /* 3 per tile */
+    double *cth, *sth;
+} vbs_tiles;
+
+int vbs_tiles_build(vb_ctx *ctx, unsigned T, vbs_tiles *t);
+void vbs_tiles_free(vbs_tiles *t);
+
+/* Bisectors and tile lists of one base, in the layout of vb_sampler_batch
+ * (bisectors sorted by id; tile_idx entries index `bis` of this base). */
+typedef struct vbs_base_data {
+    vbs_bisector *bis;
+    size_t nbis, bis_cap;
+    uint32_t *tile_off;      /* 6*T*T + 1 */
+    uint32_t *tile_idx;
+    size_t nidx, idx_cap;
+    /* scratch */
+    uint32_t *near;
+    size_t nnear, near_cap;
+    double *tp;              /* per tile envelope bound */
+    uint8_t *keep;
+} vbs_base_data;
+
+typedef struct vbs_culler {
+    const vb_sphere_set *set;
+    const vbs_hash *hash;
+    const vbs_tiles *tiles;
+    double clip;             /* world units */
+    int all_pairs;
+} vbs_culler;
+
+void vbs_base_data_free(vbs_base_data *bd);
+
+/* Builds base i's bisectors and, per tile, the provably sufficient subset
+ * (see sampler_cull.c for the bound). Contained bases get no bisectors.
+ * Returns VB_OK or VB_ENOMEM. */
+int vbs_cull_base(vb_ctx *ctx, const vbs_culler *cu, uint32_t i, vbs_base_data *bd);
+
+/* The clip distance derived from the input (world units). */
+double vbs_clip_distance(const vb_sphere_set *set);
+
+/* Matching (Sec. 5.4), targeted search (5.5) and the tangent-sphere test on
+ * the sorted raw candidates; fills res->candidates and the counters. */
+int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
+              const vbs_params *params, vb_cand_vec *raw, vb_sampler_result *res);
+
+/* Topology evidence of one base from its colour grid (6*S*S colours). */
+typedef struct vbs_topo_acc {
+    uint32_t *faces;   /* pairs */
+    size_t nfaces, faces_cap;
+    uint32_t *triples; /* triples */
+    size_t ntriples, triples_cap;
+} vbs_topo_acc;
+
+int vbs_topo_collect(vbs_topo_acc *acc, uint32_t base, const uint32_t *colours, unsigned S);
+/* Sorts and deduplicates into the result; frees acc. */
+int vbs_topo_finish(vbs_topo_acc *acc, vb_topology_evidence *ev);
+
+#endif

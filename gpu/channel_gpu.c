@@ -1,0 +1,244 @@
+/* Host side of gpu/channels.cl: buffers, launches and the JFA hand-off. */
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "vbc_channel_gpu.h"
+
+struct vbc_gpu {
+    vbg_runtime *rt;
+    vbj_engine *jfa;
+    vbj_variant variant;
+    cl_kernel k_atomic, k_rays, k_classify;
+    cl_mem atoms, flags, rb, list, count;
+    size_t atoms_cap, voxels_cap, rb_cap, list_cap; /* in elements */
+};
+
+static double now_ms(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return 1e3 * (double)t.tv_sec + 1e-6 * (double)t.tv_nsec;
+}
+
+int vbc_gpu_open(vb_ctx *ctx, vbg_runtime *rt, vbj_variant variant, vbc_gpu **out)
+{
+    *out = NULL;
+    vbc_gpu *p = calloc(1, sizeof *p);
+    if (!p)
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "channel pipeline");
+    p->rt = rt;
+    p->variant = variant;
+    cl_program prog;
+    int rc = vbg_program_get(ctx, rt, "channels.cl", NULL, &prog);
+    if (rc == VB_OK)
+        rc = vbj_engine_open_runtime(ctx, rt, &p->jfa);
+    if (rc != VB_OK) {
+        vbc_gpu_close(p);
+        return rc;
+    }
+    cl_int err;
+    p->k_atomic = clCreateKernel(prog, "vbc_atomic_mask", &err);
+    if (err == CL_SUCCESS)
+        p->k_rays = clCreateKernel(prog, "vbc_ray_bounds", &err);
+    if (err == CL_SUCCESS)
+        p->k_classify = clCreateKernel(prog, "vbc_classify_voxels", &err);
+    if (err == CL_SUCCESS)
+        p->count = clCreateBuffer(vbg_runtime_context(rt), CL_MEM_READ_WRITE, sizeof(cl_uint), NULL,
+                                  &err);
+    if ((rc = vbg_check(ctx, err, "channel kernels")) != VB_OK) {
+        vbc_gpu_close(p);
+        return rc;
+    }
+    *out = p;
+    return VB_OK;
+}
+
+void vbc_gpu_close(vbc_gpu *p)
+{
+    if (!p)
+        return;
+    if (p->k_atomic) clReleaseKernel(p->k_atomic);
+    if (p->k_rays) clReleaseKernel(p->k_rays);
+    if (p->k_classify) clReleaseKernel(p->k_classify);
+    cl_mem bufs[] = {p->atoms, p->flags, p->rb, p->list, p->count};
+    for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; i++)
+        if (bufs[i])
+            clReleaseMemObject(bufs[i]);
+    vbj_engine_close(p->jfa);
+    free(p);
+}
+
+void vbc_frame_out_free(vbc_frame_out *o)
+{
+    free(o->voxels);
+    free(o->flags);
+    free(o->labels);
+    memset(o, 0, sizeof *o);
+}
+
+/* Makes *buf hold at least `need` elements of `size` bytes, growing by half
+ * again to amortise trajectories whose sizes creep up. */
+static cl_int ensure(vbc_gpu *p, cl_mem *buf, size_t *cap, size_t need, size_t size)
+{
+    if (*buf && *cap >= need)
+        return CL_SUCCESS;
+    if (*buf)
+        clReleaseMemObject(*buf);
+    size_t c = need + need / 2 + 16;
+    cl_int err;
+    *buf = clCreateBuffer(vbg_runtime_context(p->rt), CL_MEM_READ_WRITE, c * size, NULL, &err);
+    *cap = err == CL_SUCCESS ? c : 0;
+    if (err != CL_SUCCESS)
+        *buf = NULL;
+    return err;
+}
+
+/* The classification pass: resets the counter, launches, reads the count. */
+static cl_int classify(vbc_gpu *p, cl_mem labels, const vbc_grid *g, int min_labels, cl_uint *count)
+{
+    cl_command_queue q = vbg_runtime_queue(p->rt);
+    cl_uint zero = 0, cap = (cl_uint)p->list_cap;
+    cl_int err = clEnqueueWriteBuffer(q, p->count, CL_FALSE, 0, sizeof zero, &zero, 0, NULL, NULL);
+    cl_int a = 0;
+    err |= clSetKernelArg(p->k_classify, a++, sizeof labels, &labels);
+    err |= clSetKernelArg(p->k_classify, a++, sizeof p->flags, &p->flags);
+    err |= clSetKernelArg(p->k_classify, a++, sizeof p->rb, &p->rb);
+    err |= clSetKernelArg(p->k_classify, a++, sizeof g->nx, &g->nx);
+    err |= clSetKernelArg(p->k_classify, a++, sizeof g->ny, &g->ny);
+    err |= clSetKernelArg(p->k_classify, a++, sizeof g->nz, &g->nz);
+    err |= clSetKernelArg(p->k_classify, a++, sizeof min_labels, &min_labels);
+    err |= clSetKernelArg(p->k_classify, a++, sizeof p->list, &p->list);
+    err |= clSetKernelArg(p->k_classify, a++, sizeof p->count, &p->count);
+    err |= clSetKernelArg(p->k_classify, a++, sizeof cap, &cap);
+    if (err != CL_SUCCESS)
+        return err;
+    size_t gs[3] = {(size_t)g->nx, (size_t)g->ny, (size_t)g->nz};
+    err = clEnqueueNDRangeKernel(q, p->k_classify, 3, NULL, gs, NULL, 0, NULL, NULL);
+    if (err == CL_SUCCESS)
+        err = clEnqueueReadBuffer(q, p->count, CL_TRUE, 0, sizeof *count, count, 0, NULL, NULL);
+    return err;
+}
+
+int vbc_gpu_frame(vb_ctx *ctx, vbc_gpu *p, const vbc_grid *g, const float *atoms4, size_t natoms,
+                  unsigned want, vbc_frame_out *out)
+{
+    memset(out, 0, sizeof *out);
+    uint32_t n = (uint32_t)g->nx;
+    if (n < 2 || (n & (n - 1)) != 0 || g->ny != g->nx || (g->dim == 3 && g->nz != g->nx))
+        return vb_error(ctx, VB_EMISUSE, NULL, 0, "channel grid %dx%dx%d: sides must be one power of two",
+                        g->nx, g->ny, g->nz);
+    if (natoms == 0)
+        return vb_error(ctx, VB_EINPUT_EMPTY, NULL, 0, "no atoms in the frame");
+    cl_command_queue q = vbg_runtime_queue(p->rt);
+    size_t nv = vbc_grid_voxels(g);
+    size_t nrb = (size_t)vbc_rb_size(g->nx, g->ny, g->nz);
+    int rc = VB_OK;
+    vbj_seeds seeds = {0};
+    vbj_result jr;
+    memset(&jr, 0, sizeof jr);
+
+    double t0 = now_ms();
+    cl_int err = ensure(p, &p->atoms, &p->atoms_cap, natoms, 4 * sizeof(float));
+    if (err == CL_SUCCESS)
+        err = ensure(p, &p->flags, &p->voxels_cap, nv, 1);
+    if (err == CL_SUCCESS)
+        err = ensure(p, &p->rb, &p->rb_cap, nrb, sizeof(cl_int));
+    if (err == CL_SUCCESS)
+        err = ensure(p, &p->list, &p->list_cap, 1024, sizeof(cl_uint));
+    if (err == CL_SUCCESS)
+        err = clEnqueueWriteBuffer(q, p->atoms, CL_FALSE, 0, natoms * 4 * sizeof(float), atoms4, 0,
+                                   NULL, NULL);
+    if ((rc = vbg_check(ctx, err, "channel upload")) != VB_OK)
+        goto done;
+
+    /* Seeds: JFA puts pixel p's centre at p, we put voxel i's at i + 0.5. */
+    if ((rc = vbj_seeds_alloc(ctx, g->dim, n, natoms, &seeds)) != VB_OK)
+        goto done;
+    for (size_t a = 0; a < natoms && rc == VB_OK; a++)
+        rc = vbj_seed_set(ctx, &seeds, a, atoms4[4 * a] - 0.5, atoms4[4 * a + 1] - 0.5,
+                          g->dim == 3 ? atoms4[4 * a + 2] - 0.5 : 0.0);
+    if (rc != VB_OK)
+        goto done;
+    if ((rc = vbg_check(ctx, clFinish(q), "channel upload")) != VB_OK)
+        goto done;
+    double t1 = now_ms();
+    out->ms_upload = t1 - t0;
+    vbj_options jo = {p->variant, 0, VBJ_WANT_DEVICE | ((want & VBC_WANT_LABELS) ? VBJ_WANT_LABELS : 0)};
+    if ((rc = vbj_run(ctx, p->jfa, &seeds, &jo, &jr)) != VB_OK)
+        goto done;
+    cl_mem labels = vbj_engine_labels_device(p->jfa);
+    if (!labels) {
+        rc = vb_error(ctx, VB_EINTERNAL, NULL, 0, "JFA engine kept no device labels");
+        goto done;
+    }
+    double t2 = now_ms();
+    out->ms_jfa = t2 - t1;
+    out->jfa = jr.counts;
+
+    cl_uchar zero = 0;
+    err = clEnqueueFillBuffer(q, p->flags, &zero, 1, 0, nv, 0, NULL, NULL);
+    err |= clSetKernelArg(p->k_atomic, 0, sizeof p->atoms, &p->atoms);
+    err |= clSetKernelArg(p->k_atomic, 1, sizeof p->flags, &p->flags);
+    err |= clSetKernelArg(p->k_atomic, 2, sizeof g->nx, &g->nx);
+    err |= clSetKernelArg(p->k_atomic, 3, sizeof g->ny, &g->ny);
+    err |= clSetKernelArg(p->k_atomic, 4, sizeof g->nz, &g->nz);
+    if (err == CL_SUCCESS) {
+        size_t lsz = 64, gsz = natoms * lsz;
+        err = clEnqueueNDRangeKernel(q, p->k_atomic, 1, NULL, &gsz, &lsz, 0, NULL, NULL);
+    }
+    for (int axis = 0; axis < 3 && err == CL_SUCCESS; axis++) {
+        size_t gs[2] = {(size_t)(axis == 0 ? g->ny : g->nx), (size_t)(axis == 2 ? g->ny : g->nz)};
+        err |= clSetKernelArg(p->k_rays, 0, sizeof p->flags, &p->flags);
+        err |= clSetKernelArg(p->k_rays, 1, sizeof p->rb, &p->rb);
+        err |= clSetKernelArg(p->k_rays, 2, sizeof g->nx, &g->nx);
+        err |= clSetKernelArg(p->k_rays, 3, sizeof g->ny, &g->ny);
+        err |= clSetKernelArg(p->k_rays, 4, sizeof g->nz, &g->nz);
+        err |= clSetKernelArg(p->k_rays, 5, sizeof axis, &axis);
+        if (err == CL_SUCCESS)
+            err = clEnqueueNDRangeKernel(q, p->k_rays, 2, NULL, gs, NULL, 0, NULL, NULL);
+    }
+    int min_labels = g->dim == 3 ? 3 : 2;
+    cl_uint count = 0;
+    if (err == CL_SUCCESS)
+        err = classify(p, labels, g, min_labels, &count);
+    if (err == CL_SUCCESS && count > p->list_cap) {
+        /* The list overflowed: grow it and classify again (the pass is idempotent). */
+        err = ensure(p, &p->list, &p->list_cap, count, sizeof(cl_uint));
+        if (err == CL_SUCCESS)
+            err = classify(p, labels, g, min_labels, &count);
+    }
+    if ((rc = vbg_check(ctx, err, "channel masks")) != VB_OK)
+        goto done;
+    if (count > 0) {
+        out->voxels = malloc((size_t)count * sizeof *out->voxels);
+        if (!out->voxels) {
+            rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "channel voxel list (%u)", count);
+            goto done;
+        }
+        err = clEnqueueReadBuffer(q, p->list, CL_TRUE, 0, (size_t)count * sizeof(cl_uint),
+                                  out->voxels, 0, NULL, NULL);
+        out->nvoxels = count;
+    }
+    if (err == CL_SUCCESS && (want & VBC_WANT_FLAGS)) {
+        out->flags = malloc(nv);
+        if (!out->flags) {
+            rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "flag volume");
+            goto done;
+        }
+        err = clEnqueueReadBuffer(q, p->flags, CL_TRUE, 0, nv, out->flags, 0, NULL, NULL);
+    }
+    if ((rc = vbg_check(ctx, err, "channel download")) != VB_OK)
+        goto done;
+    out->ms_masks = now_ms() - t2;
+    if (want & VBC_WANT_LABELS) {
+        out->labels = jr.labels;
+        jr.labels = NULL;
+    }
+done:
+    vbj_result_free(&jr);
+    vbj_seeds_free(&seeds);
+    if (rc != VB_OK)
+        vbc_frame_out_free(out);
+    return rc;
+}

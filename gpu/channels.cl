@@ -1,0 +1,57 @@
+/* Channel masks (Algorithm 2, steps 2-7, of the Facet-JFA paper) on a label
+ * grid computed by gpu/jfa: the atomic mask by scattering atoms, the ray
+ * bounds along the three axes, then one pass that classifies every voxel and
+ * appends channel voxels to a compact list. The per-voxel arithmetic is
+ * core/channel_math.h, shared with the C reference. */
+#pragma OPENCL FP_CONTRACT OFF
+
+#include "channel_math.h"
+
+/* One work-group per atom: its items sweep the atom's bounding box and mark
+ * the voxels whose centres lie in the grown ball. Many atoms write the same
+ * byte, always the same value, so no atomics are needed. */
+__kernel void vbc_atomic_mask(__global const float4 *atoms, __global uchar *flags, int nx, int ny,
+                              int nz)
+{
+    float4 a = atoms[get_group_id(0)];
+    int i0 = vbc_box_lo(a.x, a.w), i1 = vbc_box_hi(a.x, a.w, nx);
+    int j0 = vbc_box_lo(a.y, a.w), j1 = vbc_box_hi(a.y, a.w, ny);
+    int k0 = vbc_box_lo(a.z, a.w), k1 = vbc_box_hi(a.z, a.w, nz);
+    int bx = i1 - i0, by = j1 - j0, bz = k1 - k0;
+    if (bx <= 0 || by <= 0 || bz <= 0)
+        return;
+    int total = bx * by * bz;
+    for (int t = (int)get_local_id(0); t < total; t += (int)get_local_size(0)) {
+        int i = i0 + t % bx, j = j0 + (t / bx) % by, k = k0 + t / (bx * by);
+        if (vbc_ball_contains(a.x, a.y, a.z, a.w, i, j, k))
+            flags[i + nx * (j + ny * k)] = (uchar)VBC_F_ATOMIC;
+    }
+}
+
+/* One work-item per ray of `axis` (see vbc_ray_scan for the (a,b) meaning). */
+__kernel void vbc_ray_bounds(__global const uchar *flags, __global int *rb, int nx, int ny, int nz,
+                             int axis)
+{
+    vbc_ray_scan(flags, nx, ny, nz, axis, (int)get_global_id(0), (int)get_global_id(1), rb);
+}
+
+/* One work-item per voxel: the flag byte in place (only the voxel's own
+ * atomic bit is read from flags), and channel voxels appended to `list`
+ * (index | mouth bit) through `count`; entries beyond `cap` are counted but
+ * not stored, so the host can grow the list and rerun this pass. */
+__kernel void vbc_classify_voxels(__global const int *labels, __global uchar *flags,
+                                  __global const int *rb, int nx, int ny, int nz, int min_labels,
+                                  __global uint *list, __global volatile uint *count, uint cap)
+{
+    int i = (int)get_global_id(0), j = (int)get_global_id(1), k = (int)get_global_id(2);
+    if (i >= nx || j >= ny || k >= nz)
+        return;
+    unsigned f = vbc_classify(labels, flags, rb, nx, ny, nz, min_labels, i, j, k);
+    int v = i + nx * (j + ny * k);
+    flags[v] = (uchar)f;
+    if (f & VBC_F_CHANNEL) {
+        uint slot = atomic_inc(count);
+        if (slot < cap)
+            list[slot] = (uint)v | ((f & VBC_F_MOUTH) ? VBC_MOUTH_BIT : 0u);
+    }
+}

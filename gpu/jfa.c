@@ -1,0 +1,455 @@
+/* Host side of the JFA module: the engine (reference or OpenCL), vbj_run's
+ * dispatch, and the dense JFA variants on OpenCL (kernels in gpu/jfa.cl). */
+#include <stdlib.h>
+#include <string.h>
+
+#include "jfa_internal.h"
+
+int vbj_engine_open_runtime(vb_ctx *ctx, vbg_runtime *rt, vbj_engine **out)
+{
+    *out = NULL;
+    vbj_engine *e = calloc(1, sizeof *e);
+    if (!e)
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "jfa engine: out of memory");
+    e->rt = rt;
+    int rc;
+    if (rt && ((rc = vbg_program_get(ctx, rt, "jfa.cl", "", &e->jfa)) ||
+               (rc = vbg_program_get(ctx, rt, "jfa.cl", "-DVBJ_LABEL16", &e->jfa16)) ||
+               (rc = vbg_program_get(ctx, rt, "facet_jfa.cl", "", &e->facet)) ||
+               (rc = vbg_program_get(ctx, rt, "jfa_exact.cl", "", &e->exact)))) {
+        free(e);
+        return rc;
+    }
+    *out = e;
+    return VB_OK;
+}
+
+int vbj_engine_open(vb_ctx *ctx, vbg_device_kind kind, vbj_engine **out)
+{
+    *out = NULL;
+    if (kind == VBG_DEVICE_REF)
+        return vbj_engine_open_runtime(ctx, NULL, out);
+    vbg_runtime *rt = NULL;
+    int rc = vbg_runtime_open(ctx, kind, &rt);
+    if (rc)
+        return rc;
+    rc = vbj_engine_open_runtime(ctx, rt, out);
+    if (rc) {
+        vbg_runtime_close(rt);
+        return rc;
+    }
+    (*out)->own_rt = 1;
+    return VB_OK;
+}
+
+static void release(vbj_clbuf *b)
+{
+    if (b->mem)
+        clReleaseMemObject(b->mem);
+    b->mem = NULL;
+    b->bytes = 0;
+}
+
+void vbj_engine_close(vbj_engine *e)
+{
+    if (!e)
+        return;
+    vbj_clbuf *all[] = {&e->seeds, &e->pairs, &e->grid[0], &e->grid[1], &e->store[0], &e->store[1],
+                        &e->tmp, &e->list[0], &e->list[1], &e->counter, &e->labels,
+                        &e->cells_start, &e->cells_items};
+    for (size_t i = 0; i < sizeof all / sizeof all[0]; i++)
+        release(all[i]);
+    for (int i = 0; i < VBJ_NKERNELS; i++)
+        if (e->kernels[i])
+            clReleaseKernel(e->kernels[i]);
+    free(e->events);
+    /* Programs belong to the runtime's cache. */
+    if (e->own_rt)
+        vbg_runtime_close(e->rt);
+    free(e);
+}
+
+const char *vbj_engine_device_name(const vbj_engine *e)
+{
+    return e->rt ? vbg_runtime_device_name(e->rt) : "reference (C)";
+}
+
+int vbj_engine_is_opencl(const vbj_engine *e) { return e->rt != NULL; }
+
+cl_mem vbj_engine_labels_device(const vbj_engine *e) { return e->device_labels; }
+
+cl_event *vbj_cl_event(vbj_engine *e)
+{
+    if (!e->recording)
+        return NULL;
+    if (e->nevents == e->cap_events) {
+        int cap = e->cap_events ? 2 * e->cap_events : 64;
+        cl_event *ev = realloc(e->events, (size_t)cap * sizeof *ev);
+        if (!ev)
+            return NULL; /* the command still runs; its time goes unrecorded */
+        e->events = ev;
+        e->cap_events = cap;
+    }
+    return &e->events[e->nevents++];
+}
+
+void vbj_cl_record(vbj_engine *e)
+{
+    e->nevents = 0;
+    e->recording = 1;
+}
+
+double vbj_cl_recorded_ms(vbj_engine *e)
+{
+    double ns = 0;
+    for (int i = 0; i < e->nevents; i++) {
+        cl_ulong a = 0, b = 0;
+        if (clGetEventProfilingInfo(e->events[i], CL_PROFILING_COMMAND_START, sizeof a, &a,
+                                    NULL) == CL_SUCCESS &&
+            clGetEventProfilingInfo(e->events[i], CL_PROFILING_COMMAND_END, sizeof b, &b,
+                                    NULL) == CL_SUCCESS &&
+            b > a)
+            ns += (double)(b - a);
+        clReleaseEvent(e->events[i]);
+    }
+    e->nevents = 0;
+    e->recording = 0;
+    return ns * 1e-6;
+}
+
+int vbj_clbuf_reserve(vb_ctx *ctx, vbj_engine *e, vbj_clbuf *b, size_t bytes)
+{
+    if (bytes == 0)
+        bytes = 4;
+    if (b->mem && b->bytes >= bytes)
+        return VB_OK;
+    release(b);
+    cl_int err;
+    b->mem = clCreateBuffer(vbg_runtime_context(e->rt), CL_MEM_READ_WRITE, bytes, NULL, &err);
+    if (err == CL_MEM_OBJECT_ALLOCATION_FAILURE || err == CL_OUT_OF_HOST_MEMORY ||
+        err == CL_INVALID_BUFFER_SIZE)
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "device buffer of %zu bytes: out of memory",
+                        bytes);
+    if (vbg_check(ctx, err, "clCreateBuffer"))
+        return VB_EDEVICE;
+    b->bytes = bytes;
+    return VB_OK;
+}
+
+int vbj_cl_kernel(vb_ctx *ctx, vbj_engine *e, int which, cl_kernel *out)
+{
+    static const char *names[VBJ_NKERNELS] = {
+        "jfa_place",   "jfa_step_2d",  "jfa_step_3d",       "jfa_count_labels",
+        "jfa_place",   "jfa_step_2d",  "jfa_step_3d",       "jfa_widen",
+        "facet_expand", "facet_step",  "facet_mark_refine", "facet_fill",
+        "jfa_exact"};
+    if (!e->kernels[which]) {
+        cl_program p = which < VBJ_K_PLACE16 ? e->jfa
+                       : which < VBJ_K_EXPAND ? e->jfa16
+                       : which < VBJ_K_EXACT  ? e->facet
+                                              : e->exact;
+        cl_int err;
+        e->kernels[which] = clCreateKernel(p, names[which], &err);
+        if (vbg_check(ctx, err, names[which]))
+            return VB_EDEVICE;
+    }
+    *out = e->kernels[which];
+    return VB_OK;
+}
+
+int vbj_cl_launch(vb_ctx *ctx, vbj_engine *e, cl_kernel k, int dims, const size_t *global,
+                  const char *what)
+{
+    size_t g[3], l[3];
+    for (int i = 0; i < dims; i++)
+        if (global[i] == 0)
+            return VB_OK; /* nothing left to process (e.g. every cell marked) */
+    int gpu = vbg_runtime_is_gpu(e->rt);
+    /* Wide along the contiguous axis so that a warp reads whole lines. */
+    static const size_t want[3][3] = {{256, 1, 1}, {64, 4, 1}, {64, 4, 1}};
+    for (int i = 0; i < dims; i++) {
+        l[i] = want[dims - 1][i];
+        while (l[i] > 1 && l[i] / 2 >= global[i])
+            l[i] /= 2;
+        g[i] = (global[i] + l[i] - 1) / l[i] * l[i];
+    }
+    cl_int err = clEnqueueNDRangeKernel(vbg_runtime_queue(e->rt), k, (cl_uint)dims, NULL, g,
+                                        gpu ? l : NULL, 0, NULL, vbj_cl_event(e));
+    return vbg_check(ctx, err, what) ? VB_EDEVICE : VB_OK;
+}
+
+int vbj_cl_set_args(vb_ctx *ctx, cl_kernel k, const char *what, int nargs,
+                    const vbj_arg *args)
+{
+    for (int i = 0; i < nargs; i++) {
+        cl_int err = clSetKernelArg(k, (cl_uint)i, args[i].size, args[i].ptr);
+        if (err != CL_SUCCESS) {
+            char w[96];
+            snprintf(w, sizeof w, "%s argument %d", what, i);
+            return vbg_check(ctx, err, w) ? VB_EDEVICE : VB_EINTERNAL;
+        }
+    }
+    return VB_OK;
+}
+
+int vbj_cl_upload_seeds(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s)
+{
+    size_t stride = s->dim == 3 ? 4 : 2;
+    int32_t *packed = calloc(s->k * stride, sizeof *packed);
+    if (!packed)
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "seed upload: out of memory");
+    for (size_t i = 0; i < s->k; i++) {
+        packed[stride * i] = s->x[i];
+        packed[stride * i + 1] = s->y[i];
+        if (stride == 4)
+            packed[stride * i + 2] = s->z[i];
+    }
+    size_t bytes = s->k * stride * sizeof *packed;
+    int rc = vbj_clbuf_reserve(ctx, e, &e->seeds, bytes);
+    if (!rc)
+        rc = vbg_check(ctx,
+                       clEnqueueWriteBuffer(vbg_runtime_queue(e->rt), e->seeds.mem, CL_TRUE, 0,
+                                            bytes, packed, 0, NULL, NULL),
+                       "seed upload")
+                 ? VB_EDEVICE
+                 : VB_OK;
+    free(packed);
+    return rc;
+}
+
+int vbj_cl_upload_pairs(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, uint32_t f,
+                        size_t *count, uint32_t *collisions)
+{
+    uint32_t *pairs = NULL;
+    int rc = vbj_place(ctx, s, f, &pairs, count, collisions);
+    if (rc)
+        return rc;
+    size_t bytes = 2 * *count * sizeof *pairs;
+    rc = vbj_clbuf_reserve(ctx, e, &e->pairs, bytes);
+    if (!rc && vbg_check(ctx,
+                         clEnqueueWriteBuffer(vbg_runtime_queue(e->rt), e->pairs.mem, CL_TRUE, 0,
+                                              bytes, pairs, 0, NULL, NULL),
+                         "seed placement upload"))
+        rc = VB_EDEVICE;
+    free(pairs);
+    return rc;
+}
+
+int vbj_cl_dense(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, uint32_t f, size_t npairs,
+                 int narrow, const uint32_t *steps, int nsteps, vbj_counts *counts, int *which)
+{
+    cl_uint q = s->n / f, fc = f, d = (cl_uint)s->dim;
+    size_t cells = (size_t)q * q * (d == 3 ? q : 1), esize = narrow ? 2 : 4;
+    cl_command_queue queue = vbg_runtime_queue(e->rt);
+    int rc;
+    if ((rc = vbj_clbuf_reserve(ctx, e, &e->grid[0], cells * esize)) ||
+        (rc = vbj_clbuf_reserve(ctx, e, &e->grid[1], cells * esize)))
+        return rc;
+    cl_uint none = VBJ_NONE;
+    if (vbg_check(ctx,
+                  clEnqueueFillBuffer(queue, e->grid[0].mem, &none, esize, 0, cells * esize, 0,
+                                      NULL, vbj_cl_event(e)),
+                  "jfa clear"))
+        return VB_EDEVICE;
+    cl_kernel k;
+    cl_uint np = (cl_uint)npairs;
+    if ((rc = vbj_cl_kernel(ctx, e, narrow ? VBJ_K_PLACE16 : VBJ_K_PLACE, &k)))
+        return rc;
+    vbj_arg pa[] = {VBJ_ARG(e->grid[0].mem), VBJ_ARG(e->pairs.mem), VBJ_ARG(np)};
+    size_t gp = npairs;
+    if ((rc = vbj_cl_set_args(ctx, k, "jfa_place", 3, pa)) ||
+        (rc = vbj_cl_launch(ctx, e, k, 1, &gp, "jfa_place")))
+        return rc;
+    counts->threads += npairs;
+    int ks = d == 3 ? (narrow ? VBJ_K_STEP3_16 : VBJ_K_STEP3) : (narrow ? VBJ_K_STEP2_16 : VBJ_K_STEP2);
+    if ((rc = vbj_cl_kernel(ctx, e, ks, &k)))
+        return rc;
+    int cur = 0;
+    for (int t = 0; t < nsteps; t++) {
+        cl_uint l = steps[t], c = q / l < 4 ? q / l : 4;
+        vbj_arg a[] = {VBJ_ARG(e->grid[cur].mem), VBJ_ARG(e->grid[1 - cur].mem),
+                       VBJ_ARG(e->seeds.mem),     VBJ_ARG(q),
+                       VBJ_ARG(fc),               VBJ_ARG(l),
+                       VBJ_ARG(c)};
+        size_t g[3] = {q, d == 3 ? q : q / c, q / c};
+        if ((rc = vbj_cl_set_args(ctx, k, "jfa_step", 7, a)) ||
+            (rc = vbj_cl_launch(ctx, e, k, (int)d, g, "jfa_step")))
+            return rc;
+        cur = 1 - cur;
+        counts->steps++;
+        counts->step_pixels += cells;
+        counts->threads += cells / c;
+    }
+    *which = cur;
+    return VB_OK;
+}
+
+int vbj_cl_count_labels(vb_ctx *ctx, vbj_engine *e, int dim, uint32_t n, cl_mem labels,
+                        uint8_t *out)
+{
+    size_t pixels = (size_t)n * n * (dim == 3 ? n : 1);
+    vbj_clbuf *nb = &e->tmp; /* free at this point of a run */
+    cl_kernel k;
+    cl_uint nn = n, dd = (cl_uint)dim;
+    int rc;
+    if ((rc = vbj_clbuf_reserve(ctx, e, nb, pixels)) ||
+        (rc = vbj_cl_kernel(ctx, e, VBJ_K_COUNT, &k)))
+        return rc;
+    vbj_arg a[] = {VBJ_ARG(labels), VBJ_ARG(nb->mem), VBJ_ARG(nn), VBJ_ARG(dd)};
+    size_t g[3] = {n, n, dim == 3 ? n : 1};
+    if ((rc = vbj_cl_set_args(ctx, k, "jfa_count_labels", 4, a)) ||
+        (rc = vbj_cl_launch(ctx, e, k, 3, g, "jfa_count_labels")))
+        return rc;
+    if (vbg_check(ctx,
+                  clEnqueueReadBuffer(vbg_runtime_queue(e->rt), nb->mem, CL_TRUE, 0, pixels,
+                                      out, 0, NULL, NULL),
+                  "label counts download"))
+        return VB_EDEVICE;
+    return VB_OK;
+}
+
+void vbj_result_free(vbj_result *r)
+{
+    if (!r)
+        return;
+    free(r->labels);
+    free(r->nlabels);
+    memset(r, 0, sizeof *r);
+}
+
+static int check_options(vb_ctx *ctx, const vbj_seeds *s, const vbj_options *o)
+{
+    if ((unsigned)o->variant > VBJ_FACET_FULL)
+        return vb_error(ctx, VB_EMISUSE, NULL, 0, "unknown JFA variant %d", (int)o->variant);
+    if (o->m && (o->m > s->n || (o->m & (o->m - 1))))
+        return vb_error(ctx, VB_EMISUSE, NULL, 0,
+                        "start resolution m = %u must be a power of two <= n = %u", o->m, s->n);
+    if (s->dim != 2 && s->dim != 3)
+        return vb_error(ctx, VB_EMISUSE, NULL, 0, "grid dimension must be 2 or 3");
+    return VB_OK;
+}
+
+/* Dense variants on OpenCL: prepare (untimed), run (timed), widen 16-bit
+ * labels to the 32-bit grid (timed apart, as ms_fill). */
+static int cl_dense_run(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, const vbj_options *o,
+                        vbj_result *out, cl_mem *result)
+{
+    cl_command_queue queue = vbg_runtime_queue(e->rt);
+    double t0 = vbj_now_ms();
+    size_t npairs;
+    int rc, narrow = s->k < 0xffff;
+    if ((rc = vbj_cl_upload_seeds(ctx, e, s)) ||
+        (rc = vbj_cl_upload_pairs(ctx, e, s, 1, &npairs, &out->counts.collisions)))
+        return rc;
+    double t1 = vbj_now_ms();
+    uint32_t steps[40];
+    int ns = vbj_schedule(o->variant, s->n, steps), which = 0;
+    vbj_cl_record(e);
+    rc = vbj_cl_dense(ctx, e, s, 1, npairs, narrow, steps, ns, &out->counts, &which);
+    if (!rc && vbg_check(ctx, clFinish(queue), "jfa"))
+        rc = VB_EDEVICE;
+    double t2 = vbj_now_ms();
+    out->ms_gpu = vbj_cl_recorded_ms(e);
+    if (rc)
+        return rc;
+    out->ms_kernel = t2 - t1;
+    out->ms_transfer = t1 - t0;
+    *result = e->grid[which].mem;
+    if (!narrow)
+        return VB_OK;
+    cl_kernel k;
+    cl_uint count = (cl_uint)out->pixels;
+    if ((rc = vbj_clbuf_reserve(ctx, e, &e->labels, out->pixels * 4)) ||
+        (rc = vbj_cl_kernel(ctx, e, VBJ_K_WIDEN16, &k)))
+        return rc;
+    vbj_arg a[] = {VBJ_ARG(e->grid[which].mem), VBJ_ARG(e->labels.mem), VBJ_ARG(count)};
+    size_t g = out->pixels;
+    if ((rc = vbj_cl_set_args(ctx, k, "jfa_widen", 3, a)) ||
+        (rc = vbj_cl_launch(ctx, e, k, 1, &g, "jfa_widen")))
+        return rc;
+    if (vbg_check(ctx, clFinish(queue), "jfa widen"))
+        return VB_EDEVICE;
+    out->ms_fill = vbj_now_ms() - t2;
+    *result = e->labels.mem;
+    return VB_OK;
+}
+
+int vbj_run(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, const vbj_options *opt,
+            vbj_result *out)
+{
+    vbj_options def = {VBJ_JFA1, 0, 0};
+    const vbj_options *o = opt ? opt : &def;
+    memset(out, 0, sizeof *out);
+    out->dim = s->dim;
+    out->n = s->n;
+    out->pixels = (size_t)s->n * s->n * (s->dim == 3 ? s->n : 1);
+    int rc = check_options(ctx, s, o);
+    if (rc)
+        return rc;
+    unsigned want = o->want ? o->want : VBJ_WANT_LABELS;
+    int facet = o->variant == VBJ_FACET || o->variant == VBJ_FACET_FULL;
+    if (!e->rt) {
+        if ((rc = vbj_ref_run(ctx, s, o, out)))
+            goto fail;
+    } else {
+        cl_mem result = NULL;
+        e->device_labels = NULL;
+        rc = facet ? vbj_cl_facet(ctx, e, s, o, out, &result)
+                   : cl_dense_run(ctx, e, s, o, out, &result);
+        if (rc)
+            goto fail;
+        if (want & VBJ_WANT_DEVICE)
+            e->device_labels = result;
+        if (want & (VBJ_WANT_LABELS | VBJ_WANT_NLABELS)) {
+            double t0 = vbj_now_ms();
+            out->labels = malloc(out->pixels * sizeof *out->labels);
+            if (!out->labels) {
+                rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "labels: out of memory");
+                goto fail;
+            }
+            if (vbg_check(ctx,
+                          clEnqueueReadBuffer(vbg_runtime_queue(e->rt), result, CL_TRUE, 0,
+                                              out->pixels * 4, out->labels, 0, NULL, NULL),
+                          "labels download")) {
+                rc = VB_EDEVICE;
+                goto fail;
+            }
+            out->ms_transfer += vbj_now_ms() - t0;
+        }
+        if (want & VBJ_WANT_NLABELS) {
+            out->nlabels = malloc(out->pixels);
+            if (!out->nlabels) {
+                rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "label counts: out of memory");
+                goto fail;
+            }
+            if ((rc = vbj_cl_count_labels(ctx, e, s->dim, s->n, result, out->nlabels)))
+                goto fail;
+        }
+        if (!(want & VBJ_WANT_LABELS)) {
+            free(out->labels);
+            out->labels = NULL;
+        }
+        return VB_OK;
+    }
+    if (want & VBJ_WANT_NLABELS) {
+        out->nlabels = malloc(out->pixels);
+        if (!out->nlabels) {
+            rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "label counts: out of memory");
+            goto fail;
+        }
+        vbj_count_labels(s->dim, s->n, out->labels, out->nlabels);
+    }
+    if (!(want & VBJ_WANT_LABELS)) {
+        free(out->labels);
+        out->labels = NULL;
+    }
+    return VB_OK;
+fail:
+    vbj_result_free(out);
+    return rc;
+}
+
+int vbj_exact(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, uint32_t *labels)
+{
+    return e->rt ? vbj_cl_exact(ctx, e, s, labels) : vbj_ref_exact(ctx, s, labels);
+}

@@ -1,0 +1,197 @@
+/* Host side of Facet-JFA on OpenCL (kernels in gpu/facet_jfa.cl): JFA on the
+ * coarse grid, then per doubling refine / step / write back / mark over the
+ * active list only. List lengths stay on the device (the kernels loop over
+ * them), so the host waits once, at the end, not once per level. */
+#include "jfa_internal.h"
+
+static uint32_t log2u(uint32_t v)
+{
+    uint32_t r = 0;
+    while (v > 1) {
+        v >>= 1;
+        r++;
+    }
+    return r;
+}
+
+/* Work-items per list kernel: enough to fill a large GPU; each loops over
+ * the list with this stride, so the count can stay on the device. */
+#define VBJ_LIST_ITEMS ((size_t)1 << 18)
+
+static size_t list_items(uint64_t bound)
+{
+    return bound < VBJ_LIST_ITEMS ? (size_t)bound : VBJ_LIST_ITEMS;
+}
+
+static int launch_list(vb_ctx *ctx, vbj_engine *e, int which, const char *name, int nargs,
+                       const vbj_arg *a, uint64_t bound)
+{
+    cl_kernel k;
+    size_t g = list_items(bound);
+    int rc;
+    if ((rc = vbj_cl_kernel(ctx, e, which, &k)) || (rc = vbj_cl_set_args(ctx, k, name, nargs, a)))
+        return rc;
+    return vbj_cl_launch(ctx, e, k, 1, &g, name);
+}
+
+/* Steps 2-9 of Algorithm 1 on the device, then the counts. */
+static int timed(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, int compact, uint32_t m,
+                 size_t npairs, vbj_result *out, int *cur_out)
+{
+    cl_command_queue queue = vbg_runtime_queue(e->rt);
+    cl_uint n = s->n, dim = (cl_uint)s->dim, ln = log2u(n), lm = log2u(m), lfmax = ln - lm;
+    cl_uint levels = ln - lm;
+    size_t pixels = out->pixels;
+    uint64_t cells_m = (uint64_t)1 << (dim * lm);
+    int rc;
+    /* Steps 2-4: JFA on the coarse m^d grid, copied into the fine arrays. */
+    uint32_t steps[40];
+    int which = 0;
+    if ((rc = vbj_cl_dense(ctx, e, s, n / m, npairs, 0, steps, vbj_schedule(VBJ_JFA, m, steps),
+                           &out->counts, &which)))
+        return rc;
+    cl_uint none = VBJ_NONE, zero = 0, first = (cl_uint)cells_m;
+    if (vbg_check(ctx,
+                  clEnqueueFillBuffer(queue, e->store[0].mem, &none, sizeof none, 0, pixels * 4,
+                                      0, NULL, vbj_cl_event(e)),
+                  "facet clear") ||
+        vbg_check(ctx,
+                  clEnqueueFillBuffer(queue, e->store[1].mem, &none, sizeof none, 0, pixels * 4,
+                                      0, NULL, vbj_cl_event(e)),
+                  "facet clear") ||
+        vbg_check(ctx,
+                  clEnqueueFillBuffer(queue, e->counter.mem, &zero, sizeof zero, 0,
+                                      (levels + 2) * 4, 0, NULL, NULL),
+                  "facet counters") ||
+        vbg_check(ctx,
+                  clEnqueueWriteBuffer(queue, e->counter.mem, CL_FALSE, 0, 4, &first, 0, NULL,
+                                       NULL),
+                  "facet counters"))
+        return VB_EDEVICE;
+    {
+        vbj_arg a[] = {VBJ_ARG(e->grid[which].mem), VBJ_ARG(e->store[0].mem),
+                       VBJ_ARG(e->store[1].mem),    VBJ_ARG(lm),
+                       VBJ_ARG(lfmax),              VBJ_ARG(n),
+                       VBJ_ARG(dim)};
+        if ((rc = launch_list(ctx, e, VBJ_K_EXPAND, "facet_expand", 7, a, cells_m)))
+            return rc;
+    }
+
+    /* Step 7 for the coarse grid: nothing is marked before the first
+     * doubling, so every coarse cell is refined (children into list 0). */
+    int L = 0, cur = 0; /* list of the current cells; array holding their labels */
+    {
+        cl_uint dense = 1, j = 0, sh = 0, mk = 0, rf = levels > 0;
+        if (!rf)
+            mk = 1; /* m = n: only the marking, for the boundary */
+        vbj_arg a[] = {VBJ_ARG(e->list[1].mem),     VBJ_ARG(dense), VBJ_ARG(e->counter.mem),
+                       VBJ_ARG(j),                  VBJ_ARG(sh),    VBJ_ARG(mk),
+                       VBJ_ARG(rf),                 VBJ_ARG(e->store[0].mem),
+                       VBJ_ARG(e->store[1].mem),    VBJ_ARG(e->list[0].mem),
+                       VBJ_ARG(lm),                 VBJ_ARG(lfmax),
+                       VBJ_ARG(lfmax),              VBJ_ARG(n),
+                       VBJ_ARG(dim)};
+        if ((rc = launch_list(ctx, e, VBJ_K_MARKREFINE, "facet_mark_refine", 15, a, cells_m)))
+            return rc;
+    }
+
+    /* Steps 8-9 per doubling: one l = 1 step on the children of the refined
+     * cells, then marking and (but at the last level) refinement. */
+    for (cl_uint j = 1; j <= levels; j++) {
+        cl_uint lq = lm + j, lf = ln - lq, last = j == levels;
+        cl_uint mk = compact || last, rf = !last, sh = dim, nd = 0;
+        uint64_t cells_max = (uint64_t)1 << (dim * lq);
+        vbj_arg sa[] = {VBJ_ARG(e->list[L].mem),       VBJ_ARG(e->counter.mem),
+                        VBJ_ARG(j),                    VBJ_ARG(e->store[cur].mem),
+                        VBJ_ARG(e->store[1 - cur].mem), VBJ_ARG(e->seeds.mem),
+                        VBJ_ARG(lq),                   VBJ_ARG(lf),
+                        VBJ_ARG(lfmax),                VBJ_ARG(n),
+                        VBJ_ARG(dim)};
+        if ((rc = launch_list(ctx, e, VBJ_K_FSTEP, "facet_step", 11, sa, cells_max)))
+            return rc;
+        cur = 1 - cur;
+        vbj_arg ma[] = {VBJ_ARG(e->list[L].mem),       VBJ_ARG(nd), VBJ_ARG(e->counter.mem),
+                        VBJ_ARG(j),                    VBJ_ARG(sh), VBJ_ARG(mk),
+                        VBJ_ARG(rf),                   VBJ_ARG(e->store[cur].mem),
+                        VBJ_ARG(e->store[1 - cur].mem), VBJ_ARG(e->list[1 - L].mem),
+                        VBJ_ARG(lq),                   VBJ_ARG(lf),
+                        VBJ_ARG(lfmax),                VBJ_ARG(n),
+                        VBJ_ARG(dim)};
+        if ((rc = launch_list(ctx, e, VBJ_K_MARKREFINE, "facet_mark_refine", 15, ma,
+                              cells_max)))
+            return rc;
+        L = 1 - L;
+    }
+    cl_uint cnt[40];
+    if (vbg_check(ctx,
+                  clEnqueueReadBuffer(queue, e->counter.mem, CL_TRUE, 0, (levels + 2) * 4, cnt, 0,
+                                      NULL, NULL),
+                  "facet counters read"))
+        return VB_EDEVICE;
+    /* The reference's counts: cnt[j] cells refined before doubling j, each
+     * into 2^d children that take one step and (when marking) one mark. */
+    for (cl_uint j = 1; j <= levels; j++) {
+        uint64_t children = (uint64_t)cnt[j] << dim;
+        int marked = compact || j == levels;
+        out->counts.threads += cnt[j] + children + (marked ? children : 0);
+        out->counts.step_pixels += children;
+        out->counts.steps++;
+    }
+    if (levels == 0)
+        out->counts.threads += cells_m;
+    out->counts.boundary = cnt[levels + 1];
+
+    *cur_out = cur;
+    return VB_OK;
+}
+
+int vbj_cl_facet(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, const vbj_options *opt,
+                 vbj_result *out, cl_mem *result)
+{
+    cl_command_queue queue = vbg_runtime_queue(e->rt);
+    double t0 = vbj_now_ms();
+    uint32_t m = opt->m ? opt->m : vbj_start_resolution(s);
+    cl_uint n = s->n, dim = (cl_uint)s->dim, lfmax = log2u(n) - log2u(m);
+    cl_uint levels = lfmax;
+    size_t pixels = out->pixels, npairs;
+    int compact = opt->variant == VBJ_FACET;
+    int rc;
+    out->counts.m = m;
+    if ((rc = vbj_cl_upload_seeds(ctx, e, s)) ||
+        (rc = vbj_cl_upload_pairs(ctx, e, s, n / m, &npairs, &out->counts.collisions)) ||
+        (rc = vbj_clbuf_reserve(ctx, e, &e->store[0], pixels * 4)) ||
+        (rc = vbj_clbuf_reserve(ctx, e, &e->store[1], pixels * 4)) ||
+        (rc = vbj_clbuf_reserve(ctx, e, &e->counter, (levels + 2) * 4)) ||
+        (rc = vbj_clbuf_reserve(ctx, e, &e->list[0], pixels * 4)) ||
+        (rc = vbj_clbuf_reserve(ctx, e, &e->list[1], pixels * 4)))
+        return rc;
+    double t1 = vbj_now_ms();
+    vbj_cl_record(e);
+    int cur = 0;
+    rc = timed(ctx, e, s, compact, m, npairs, out, &cur);
+    if (!rc && vbg_check(ctx, clFinish(queue), "facet-jfa"))
+        rc = VB_EDEVICE;
+    double t2 = vbj_now_ms();
+    out->ms_gpu = vbj_cl_recorded_ms(e);
+    if (rc)
+        return rc;
+
+    /* The interior pixels inherit their marked ancestor's label. */
+    cl_kernel k;
+    if ((rc = vbj_clbuf_reserve(ctx, e, &e->labels, pixels * 4)) ||
+        (rc = vbj_cl_kernel(ctx, e, VBJ_K_FILL, &k)))
+        return rc;
+    vbj_arg fa[] = {VBJ_ARG(e->store[cur].mem), VBJ_ARG(e->labels.mem), VBJ_ARG(n),
+                    VBJ_ARG(lfmax), VBJ_ARG(dim)};
+    size_t gf[3] = {n, n, dim == 3 ? n : 1};
+    if ((rc = vbj_cl_set_args(ctx, k, "facet_fill", 5, fa)) ||
+        (rc = vbj_cl_launch(ctx, e, k, 3, gf, "facet_fill")))
+        return rc;
+    if (vbg_check(ctx, clFinish(queue), "facet fill"))
+        return VB_EDEVICE;
+    out->ms_fill = vbj_now_ms() - t2;
+    out->ms_kernel = t2 - t1;
+    out->ms_transfer = t1 - t0;
+    *result = e->labels.mem;
+    return VB_OK;
+}

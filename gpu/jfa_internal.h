@@ -1,0 +1,131 @@
+/* Internal to the JFA module (gpu/jfa*.c): the engine, the host-side
+ * preprocessing shared by both backends, and the backend entry points. */
+#ifndef VBJ_INTERNAL_H
+#define VBJ_INTERNAL_H
+
+#include "vbj_jfa.h"
+
+/* Step lengths of a dense variant on a q^d grid (JFA family only): writes at
+ * most 2 + log2(q) lengths to steps and returns their number. */
+int vbj_schedule(vbj_variant v, uint32_t q, uint32_t *steps);
+
+/* Seeds placed on a grid of cells of f fine pixels (side n/f): pairs[2i] is a
+ * cell's linear index, pairs[2i+1] the seed it starts with (the seed nearest
+ * to the cell centre, ties to the lower index). *collisions counts seeds that
+ * lost their cell. Allocates *pairs (free()). */
+int vbj_place(vb_ctx *ctx, const vbj_seeds *s, uint32_t f, uint32_t **pairs, size_t *count,
+              uint32_t *collisions);
+
+/* A uniform bucket grid over the seeds for the exact search: bucket b holds
+ * the seeds items[start[b] .. start[b+1]) (ascending index) whose nearest
+ * pixel p has p >> shift == b's coordinates; g buckets per axis. */
+typedef struct vbj_cells {
+    uint32_t shift, g;
+    uint32_t *start; /* g^d + 1 */
+    uint32_t *items; /* k */
+} vbj_cells;
+
+int vbj_cells_build(vb_ctx *ctx, const vbj_seeds *s, vbj_cells *out);
+void vbj_cells_free(vbj_cells *c);
+
+/* The plain-C backend (gpu/jfa_ref.c). */
+int vbj_ref_run(vb_ctx *ctx, const vbj_seeds *s, const vbj_options *opt, vbj_result *out);
+int vbj_ref_exact(vb_ctx *ctx, const vbj_seeds *s, uint32_t *labels);
+
+/* Buffers the OpenCL engine keeps between runs (grown, never shrunk). */
+typedef struct vbj_clbuf {
+    cl_mem mem;
+    size_t bytes;
+} vbj_clbuf;
+
+/* Kernels, created on first use and kept by the engine. */
+enum {
+    VBJ_K_PLACE = 0, /* jfa.cl, 32-bit labels */
+    VBJ_K_STEP2,
+    VBJ_K_STEP3,
+    VBJ_K_COUNT,
+    VBJ_K_PLACE16, /* jfa.cl built with VBJ_LABEL16 */
+    VBJ_K_STEP2_16,
+    VBJ_K_STEP3_16,
+    VBJ_K_WIDEN16,
+    VBJ_K_EXPAND, /* first kernel of facet_jfa.cl */
+    VBJ_K_FSTEP,
+    VBJ_K_MARKREFINE,
+    VBJ_K_FILL,
+    VBJ_K_EXACT, /* jfa_exact.cl */
+    VBJ_NKERNELS
+};
+
+struct vbj_engine {
+    vbg_runtime *rt; /* NULL for the reference backend */
+    int own_rt;
+    cl_program jfa, jfa16, facet, exact; /* owned by the runtime's program cache */
+    cl_kernel kernels[VBJ_NKERNELS];
+    vbj_clbuf seeds, pairs, grid[2], store[2], tmp, list[2], counter, labels, cells_start,
+        cells_items;
+    cl_mem device_labels; /* one of the buffers above, or NULL */
+    /* Profiling events of the timed commands of a run (vbj_cl_event). */
+    cl_event *events;
+    int nevents, cap_events, recording;
+};
+
+/* Where the next enqueued command should leave its event: a slot of the
+ * engine's list while recording (grows it), else NULL. */
+cl_event *vbj_cl_event(vbj_engine *e);
+
+/* Starts recording events / stops and returns the summed device time (ms)
+ * of the recorded commands, releasing them. Call after the queue drained. */
+void vbj_cl_record(vbj_engine *e);
+double vbj_cl_recorded_ms(vbj_engine *e);
+
+/* A kernel argument: its size and address. */
+typedef struct vbj_arg {
+    size_t size;
+    const void *ptr;
+} vbj_arg;
+#define VBJ_ARG(v) {sizeof(v), &(v)}
+
+/* Makes sure b holds at least `bytes` (contents are lost when it grows). */
+int vbj_clbuf_reserve(vb_ctx *ctx, vbj_engine *e, vbj_clbuf *b, size_t bytes);
+
+/* The engine's kernel number `which` (VBJ_K_*). */
+int vbj_cl_kernel(vb_ctx *ctx, vbj_engine *e, int which, cl_kernel *out);
+
+/* Sets nargs arguments of k; `what` names the kernel in errors. */
+int vbj_cl_set_args(vb_ctx *ctx, cl_kernel k, const char *what, int nargs, const vbj_arg *args);
+
+/* Enqueues k over `global` (dims 1..3): local size up to 64 along the
+ * contiguous axis on GPUs (global rounded up; kernels bound-check), the
+ * runtime's choice on CPU devices. */
+int vbj_cl_launch(vb_ctx *ctx, vbj_engine *e, cl_kernel k, int dims, const size_t *global,
+                  const char *what);
+
+/* Uploads the seeds as int2 (2D) or int4 (3D) into e->seeds. */
+int vbj_cl_upload_seeds(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s);
+
+/* Places the seeds on the grid of cells of f pixels (vbj_place) and uploads
+ * the (cell, seed) pairs into e->pairs. */
+int vbj_cl_upload_pairs(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, uint32_t f,
+                        size_t *count, uint32_t *collisions);
+
+/* Dense JFA on the (n/f)^d grid of cells of f pixels from the uploaded pairs;
+ * the result ends in e->grid[*which], with 16-bit labels when narrow (fewer
+ * than 65535 seeds), else 32-bit. Adds to counts. Asynchronous. */
+int vbj_cl_dense(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, uint32_t f, size_t npairs,
+                 int narrow, const uint32_t *steps, int nsteps, vbj_counts *counts, int *which);
+
+/* OpenCL Facet-JFA (gpu/jfa_facet.c): fills out's counts and times; the
+ * filled label grid is *result (e->labels). */
+int vbj_cl_facet(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, const vbj_options *opt,
+                 vbj_result *out, cl_mem *result);
+
+/* OpenCL exact reference (gpu/jfa_exact.c) into host labels. */
+int vbj_cl_exact(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, uint32_t *labels);
+
+/* Per-pixel distinct-label counts on the device, into host out. */
+int vbj_cl_count_labels(vb_ctx *ctx, vbj_engine *e, int dim, uint32_t n, cl_mem labels,
+                        uint8_t *out);
+
+double vbj_now_ms(void);
+
+#endif

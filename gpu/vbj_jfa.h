@@ -1,0 +1,208 @@
+/* Discrete Voronoi diagrams on [n]^d grids (d = 2, 3): the Jump Flooding
+ * Algorithm and its variants, Facet-JFA (paper "facet-jfa-and-channels",
+ * Sec. 2), the exact nearest-seed reference and the error figures.
+ *
+ * Backends: OpenCL (gpu/jfa*.cl, gpu/facet_jfa*.cl) or the plain-C reference
+ * (VBG_DEVICE_REF). Both run the same algorithms with the same exact integer
+ * distance math (core/vb_grid.h), so they return identical labels.
+ *
+ * Typical use (channels):
+ *   vbj_grid_fit fit;  vbj_seeds s;  vbj_result r;
+ *   vbj_fit_grid(ctx, x, y, z, k, 256, 3.0, &fit);
+ *   vbj_seeds_from_world(ctx, &fit, x, y, z, k, &s);
+ *   vbj_engine_open(ctx, VBG_DEVICE_AUTO, &e);
+ *   vbj_options o = {0};  o.variant = VBJ_FACET;  o.want = VBJ_WANT_LABELS | VBJ_WANT_NLABELS;
+ *   vbj_run(ctx, e, &s, &o, &r);      // r.labels[(z*n + y)*n + x], r.nlabels[...]
+ *   ... vbj_result_free(&r); vbj_seeds_free(&s); vbj_engine_close(e); */
+#ifndef VBJ_JFA_H
+#define VBJ_JFA_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "vb.h"
+#include "vb_grid.h"
+#include "vbg_runtime.h"
+
+/* Algorithms. Steps l run n/2, n/4, ..., 1 (gather form: each pixel reads its
+ * 3^d - 1 neighbours at distance l). */
+typedef enum vbj_variant {
+    VBJ_JFA = 0,   /* plain JFA */
+    VBJ_JFA1,      /* JFA+1: one more step with l = 1 */
+    VBJ_JFA2,      /* JFA+2: two more steps, l = 2 then 1 */
+    VBJ_1JFA,      /* 1+JFA: one step with l = 1 first */
+    VBJ_FACET,     /* Facet-JFA (Algorithm 1) with compaction of unmarked pixels */
+    VBJ_FACET_FULL /* Facet-JFA without skipping marked pixels (the run Facet-JFA
+                      refines; for tests and counts) */
+} vbj_variant;
+
+/* Parses "jfa|jfa+1|jfa+2|1+jfa|facet|facet-full". VB_OK or VB_EMISUSE. */
+int vbj_variant_parse(vb_ctx *ctx, const char *s, vbj_variant *out);
+/* Static name of a variant ("jfa+1", ...). */
+const char *vbj_variant_name(vbj_variant v);
+
+/* Seeds in fixed-point grid coordinates (see vb_grid.h): pixel p has its
+ * centre at p * VBJ_FIX_ONE; every coordinate lies in [-0.5, n - 0.5) pixels.
+ * z is all zeros when dim == 2. Struct of arrays, owned (vbj_seeds_free). */
+typedef struct vbj_seeds {
+    int dim;        /* 2 or 3 */
+    uint32_t n;     /* grid side: a power of two, 2 .. VBJ_MAX_N */
+    size_t k;       /* number of seeds, 1 .. VBJ_MAX_SEEDS */
+    int32_t *x, *y, *z;
+} vbj_seeds;
+
+/* Allocates k zeroed seeds for an [n]^dim grid. VB_EMISUSE for a bad dim, n
+ * (not a power of two in 2..VBJ_MAX_N) or k; VB_ENOMEM. */
+int vbj_seeds_alloc(vb_ctx *ctx, int dim, uint32_t n, size_t k, vbj_seeds *out);
+void vbj_seeds_free(vbj_seeds *s);
+
+/* Sets seed i from grid coordinates in pixels (rounded to 1/65536 px).
+ * VB_EINPUT when a coordinate is not finite or outside [-0.5, n - 0.5). */
+int vbj_seed_set(vb_ctx *ctx, vbj_seeds *s, size_t i, double gx, double gy, double gz);
+
+/* Seed generators (deterministic for a given `seed`): */
+typedef enum vbj_distribution {
+    VBJ_DIST_UNIFORM = 0, /* uniform in the grid box */
+    VBJ_DIST_CLUSTERED,   /* Gaussian clusters (about sqrt(k) of them) */
+    VBJ_DIST_SHELL        /* on a sphere (circle in 2D) of radius 0.4 n: JFA's worst case */
+} vbj_distribution;
+int vbj_distribution_parse(vb_ctx *ctx, const char *s, vbj_distribution *out);
+const char *vbj_distribution_name(vbj_distribution d);
+/* Fills a new seed set with k seeds drawn from `dist`. Allocates *out. */
+int vbj_seeds_generate(vb_ctx *ctx, int dim, uint32_t n, size_t k, vbj_distribution dist,
+                       uint64_t seed, vbj_seeds *out);
+
+/* Reads seeds from text: one seed per line, "x y" (2D) or "x y z" (3D) in grid
+ * pixels, '#' comments. Allocates *out. VB_EINPUT_* with file:line. */
+int vbj_seeds_read(vb_ctx *ctx, const char *path, int dim, uint32_t n, vbj_seeds *out);
+
+/* Mapping between world coordinates (Angstrom) and a 3D grid:
+ * grid = (world - origin) / pitch. */
+typedef struct vbj_grid_fit {
+    uint32_t n;
+    double origin[3]; /* world position of pixel (0,0,0)'s centre */
+    double pitch;     /* world length of one pixel */
+} vbj_grid_fit;
+
+/* Fits an [n]^3 grid around points (bounding box grown by `margin` world
+ * units on every side, centred, cubic pixels) so every point lies inside the
+ * pixel-centre box [0, n-1]^3. VB_EINPUT_EMPTY when k == 0. */
+int vbj_fit_grid(vb_ctx *ctx, const double *x, const double *y, const double *z, size_t k,
+                 uint32_t n, double margin, vbj_grid_fit *out);
+
+/* Seeds (dim 3) at the world points mapped by `fit`. Allocates *out.
+ * VB_EINPUT when a point falls outside the grid. */
+int vbj_seeds_from_world(vb_ctx *ctx, const vbj_grid_fit *fit, const double *x, const double *y,
+                         const double *z, size_t k, vbj_seeds *out);
+
+/* What vbj_run returns besides timings and counts. */
+enum {
+    VBJ_WANT_LABELS = 1,  /* full label grid (Facet-JFA: interior pixels filled) */
+    VBJ_WANT_NLABELS = 2, /* per pixel, number of distinct labels among the pixel and
+                             its 3^d - 1 neighbours: 1 interior, 2 on a Voronoi facet
+                             (a boundary pixel, Definition 6), >= 3 near a Voronoi
+                             edge (3D; a vertex in 2D), >= 4 near a vertex (3D) */
+    VBJ_WANT_DEVICE = 4   /* keep the label grid on the device (vbj_engine_labels_device) */
+};
+
+typedef struct vbj_options {
+    vbj_variant variant;
+    uint32_t m;    /* Facet-JFA start resolution; 0 = smallest without seed collisions */
+    unsigned want; /* VBJ_WANT_* bits; 0 = labels only */
+} vbj_options;
+
+/* Work done, as in the paper's supplement: a "pixel processed" is one
+ * work-item running a JFA step on one pixel or cell. */
+typedef struct vbj_counts {
+    uint64_t step_pixels;    /* work-items of JFA steps (dense and l = 1 refinement steps) */
+    uint64_t threads;        /* all work-items launched (steps, refine, mark, seeding) */
+    uint32_t steps;          /* number of JFA step launches */
+    uint32_t m;              /* Facet-JFA: start resolution used (0 otherwise) */
+    uint64_t boundary;       /* Facet-JFA: unmarked pixels at the end (= boundary pixels) */
+    uint32_t collisions;     /* seeds that shared their start pixel with a nearer seed */
+} vbj_counts;
+
+typedef struct vbj_result {
+    int dim;
+    uint32_t n;
+    size_t pixels;       /* n^dim */
+    uint32_t *labels;    /* pixels entries, seed index (VBJ_NONE never remains); NULL unless wanted */
+    uint8_t *nlabels;    /* pixels entries (see VBJ_WANT_NLABELS); NULL unless wanted */
+    vbj_counts counts;
+    double ms_kernel;    /* device time of the algorithm: seeding, steps, refinement,
+                            marking (wall clock between queue drains); excludes uploads,
+                            downloads and, for Facet-JFA, the fill of interior pixels */
+    double ms_fill;      /* after the algorithm, making the full 32-bit label grid:
+                            Facet-JFA's fill of interior pixels; for dense runs with
+                            fewer than 65535 seeds (16-bit labels on the device) the
+                            widening; 0 otherwise */
+    double ms_gpu;       /* OpenCL backend: sum of the device execution times (profiling
+                            events) of the commands behind ms_kernel; ms_kernel - ms_gpu
+                            is launch and synchronisation overhead */
+    double ms_transfer;  /* host preparation (seed placement, start resolution), seed
+                            upload and label download */
+} vbj_result;
+
+void vbj_result_free(vbj_result *r);
+
+typedef struct vbj_engine vbj_engine;
+
+/* Opens an engine on a device kind: VBG_DEVICE_REF is the plain-C backend;
+ * the other kinds open an OpenCL runtime (VB_EDEVICE when none). */
+int vbj_engine_open(vb_ctx *ctx, vbg_device_kind kind, vbj_engine **out);
+/* Opens an engine on an existing runtime (borrowed: close it after the engine). */
+int vbj_engine_open_runtime(vb_ctx *ctx, vbg_runtime *rt, vbj_engine **out);
+void vbj_engine_close(vbj_engine *e);
+/* "reference (C)" or the OpenCL device name. */
+const char *vbj_engine_device_name(const vbj_engine *e);
+/* Nonzero for an OpenCL engine. */
+int vbj_engine_is_opencl(const vbj_engine *e);
+
+/* Computes the discrete Voronoi diagram of `s` on [n]^dim with options `opt`
+ * (NULL = JFA+1, labels). Fills *out (zeroed first; free with vbj_result_free).
+ * VB_EMISUSE on bad options, VB_ENOMEM, VB_EDEVICE. */
+int vbj_run(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, const vbj_options *opt,
+            vbj_result *out);
+
+/* The label grid of the last run with VBJ_WANT_DEVICE (n^dim cl_uint, seed
+ * indices), owned by the engine, valid until the next vbj_run or close.
+ * NULL for the reference backend or when not wanted. */
+cl_mem vbj_engine_labels_device(const vbj_engine *e);
+
+/* The exact discrete Voronoi diagram: labels[p] = nearest seed to pixel p,
+ * ties to the lowest index (cell-list search; on the engine's device, or in C
+ * for the reference engine). labels has n^dim entries (caller-owned). */
+int vbj_exact(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, uint32_t *labels);
+
+/* Error figures of a label grid against the exact one. Tie-tolerant: a pixel
+ * is wrong only if its seed is strictly farther than the nearest one. */
+typedef struct vbj_metrics {
+    size_t pixels;
+    size_t wrong;            /* pixels whose seed is strictly farther than the nearest */
+    double wrong_rate;       /* wrong / pixels */
+    double max_err;          /* max over pixels of |p - s(p)| - |p - nearest|, in pixels */
+    double mean_err;         /* the same, averaged over all pixels */
+    size_t boundary_exact;   /* boundary pixels (Definition 6) of the exact diagram */
+    size_t boundary_found;   /* boundary pixels of the given diagram */
+    size_t boundary_missed;  /* exact boundary pixels that are not boundary in the given one */
+    size_t boundary_extra;   /* given boundary pixels that are not exact boundary pixels */
+} vbj_metrics;
+
+/* Computes the figures (host, single pass). labels/exact have n^dim entries.
+ * VB_EMISUSE if a label is out of range. */
+int vbj_compare(vb_ctx *ctx, const vbj_seeds *s, const uint32_t *labels, const uint32_t *exact,
+                vbj_metrics *out);
+
+/* Boundary pixels (Definition 6) of a label grid: out[p] = 1 when a neighbour
+ * has another label. out has n^dim entries. */
+void vbj_boundary_mask(int dim, uint32_t n, const uint32_t *labels, uint8_t *out);
+
+/* Per-pixel distinct-label counts (see VBJ_WANT_NLABELS) of a label grid. */
+void vbj_count_labels(int dim, uint32_t n, const uint32_t *labels, uint8_t *out);
+
+/* Facet-JFA's default start resolution: the smallest power of two m such that
+ * no two seeds fall into the same cell of the m^dim grid (n when two seeds
+ * share a fine pixel). */
+uint32_t vbj_start_resolution(const vbj_seeds *s);
+
+#endif

@@ -1,0 +1,105 @@
+/* The OpenCL pipeline (gpu/channels.cl after Facet-JFA or JFA+1) against the C
+ * reference of the masks fed with the same labels: identical flag bytes and
+ * the same channel voxel list, on the synthetic pore and the closed shell, in
+ * 3D and in 2D. Runs on whatever device "auto" picks (PoCL in CI). */
+#include "synth.h"
+#include "vb_test.h"
+#include "vbc_channel_gpu.h"
+
+static int cmp_u32(const void *a, const void *b)
+{
+    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+    return (x > y) - (x < y);
+}
+
+static void compare(vb_ctx *ctx, vbc_gpu *gp, const vb_sphere_set *s, double probe, int n, int dim)
+{
+    vbc_grid g;
+    CHECK_INT(vbc_grid_fit(ctx, s, probe, n, dim, &g), VB_OK);
+    size_t nv = vbc_grid_voxels(&g);
+    float *atoms = malloc(4 * s->n * sizeof(float));
+    vbc_atoms_pack(&g, s, probe, atoms);
+    vbc_frame_out fo;
+    int rc = vbc_gpu_frame(ctx, gp, &g, atoms, s->n, VBC_WANT_FLAGS | VBC_WANT_LABELS, &fo);
+    CHECK_INT(rc, VB_OK);
+    if (rc != VB_OK) {
+        fprintf(stderr, "%s\n", vb_errmsg(ctx));
+        free(atoms);
+        return;
+    }
+    uint8_t *flags = malloc(nv);
+    int *rb = malloc((size_t)vbc_rb_size(g.nx, g.ny, g.nz) * sizeof(int));
+    vbc_masks_ref(&g, atoms, s->n, (const int32_t *)fo.labels, dim == 3 ? 3 : 2, rb, flags);
+    size_t diff = 0;
+    for (size_t v = 0; v < nv; v++)
+        diff += flags[v] != fo.flags[v];
+    CHECK_INT(diff, 0);
+    uint32_t *list;
+    size_t nl;
+    CHECK_INT(vbc_flags_compact(ctx, &g, flags, &list, &nl), VB_OK);
+    CHECK(nl > 0);
+    CHECK_INT(fo.nvoxels, nl);
+    if (fo.nvoxels == nl && nl > 0) {
+        qsort(fo.voxels, nl, sizeof *fo.voxels, cmp_u32);
+        qsort(list, nl, sizeof *list, cmp_u32);
+        CHECK(memcmp(list, fo.voxels, nl * sizeof *list) == 0);
+    }
+    /* The labels are a Voronoi diagram of the atoms: a voxel holding an atom
+     * centre is labelled with an atom at most a voxel farther away. */
+    size_t far = 0;
+    for (size_t a = 0; a < s->n; a++) {
+        int i = (int)atoms[4 * a], j = (int)atoms[4 * a + 1], k = dim == 3 ? (int)atoms[4 * a + 2] : 0;
+        uint32_t l = fo.labels[i + (size_t)g.nx * (j + (size_t)g.ny * k)];
+        double d = sqrt(pow(atoms[4 * l] - atoms[4 * a], 2) + pow(atoms[4 * l + 1] - atoms[4 * a + 1], 2) +
+                        (dim == 3 ? pow(atoms[4 * l + 2] - atoms[4 * a + 2], 2) : 0.0));
+        far += l >= s->n || d > 1.8;
+    }
+    CHECK_INT(far, 0);
+    free(list);
+    free(rb);
+    free(flags);
+    free(atoms);
+    vbc_frame_out_free(&fo);
+}
+
+int main(void)
+{
+    vb_ctx *ctx;
+    if (vb_open(&ctx, NULL) != VB_OK)
+        return 1;
+    vbg_runtime *rt = NULL;
+    int rc = vbg_runtime_open(ctx, VBG_DEVICE_AUTO, &rt);
+    CHECK_INT(rc, VB_OK);
+    if (rc != VB_OK) {
+        fprintf(stderr, "no OpenCL device: %s\n", vb_errmsg(ctx));
+        vb_close(ctx);
+        VB_TEST_END();
+    }
+    vb_sphere_set *cyl = synth_cylinder(8, 12, 6.0, 1.6, 2.6);
+    vb_sphere_set *shell = synth_shell(240, 9.0, 1.6);
+    vbj_variant variants[2] = {VBJ_FACET, VBJ_JFA1};
+    for (int t = 0; t < 2; t++) {
+        vbc_gpu *gp = NULL;
+        rc = vbc_gpu_open(ctx, rt, variants[t], &gp);
+        CHECK_INT(rc, VB_OK);
+        if (rc != VB_OK) {
+            fprintf(stderr, "%s\n", vb_errmsg(ctx));
+            break;
+        }
+        compare(ctx, gp, cyl, 1.0, 64, 3);
+        compare(ctx, gp, shell, 1.0, 32, 3);
+        compare(ctx, gp, cyl, 1.0, 128, 2);
+        /* A grid side that is no power of two is refused. */
+        vbc_grid g;
+        CHECK_INT(vbc_grid_fit(ctx, cyl, 1.0, 48, 3, &g), VB_OK);
+        float a4[4] = {1, 1, 1, 1};
+        vbc_frame_out fo;
+        CHECK_INT(vbc_gpu_frame(ctx, gp, &g, a4, 1, 0, &fo), VB_EMISUSE);
+        vbc_gpu_close(gp);
+    }
+    synth_free(cyl);
+    synth_free(shell);
+    vbg_runtime_close(rt);
+    vb_close(ctx);
+    VB_TEST_END();
+}

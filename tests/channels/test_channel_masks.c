@@ -1,0 +1,280 @@
+/* Each stage of the reference mask pipeline (core/channel_masks_ref.c) on
+ * synthetic molecules whose masks are known: one ball, two balls, a cylinder
+ * with a pore along z, a closed shell. */
+#include "synth.h"
+#include "vb_test.h"
+
+static size_t count_bits(const uint8_t *f, size_t n, unsigned bit)
+{
+    size_t c = 0;
+    for (size_t v = 0; v < n; v++)
+        c += (f[v] & bit) != 0;
+    return c;
+}
+
+static size_t vox(const vbc_grid *g, int i, int j, int k)
+{
+    return (size_t)i + (size_t)g->nx * ((size_t)j + (size_t)g->ny * (size_t)k);
+}
+
+/* Voxel containing a point in Å. */
+static size_t vox_at(const vbc_grid *g, double x, double y, double z)
+{
+    return vox(g, (int)((x - g->origin[0]) / g->h), (int)((y - g->origin[1]) / g->h),
+               (int)((z - g->origin[2]) / g->h));
+}
+
+typedef struct {
+    vbc_grid g;
+    float *atoms;
+    int32_t *labels;
+    int *rb;
+    uint8_t *flags;
+} run;
+
+static void run_ref(vb_ctx *ctx, const vb_sphere_set *s, double probe, int n, int dim, run *r)
+{
+    CHECK_INT(vbc_grid_fit(ctx, s, probe, n, dim, &r->g), VB_OK);
+    size_t nv = vbc_grid_voxels(&r->g);
+    r->atoms = malloc(4 * s->n * sizeof(float));
+    r->labels = malloc(nv * sizeof(int32_t));
+    r->rb = malloc((size_t)vbc_rb_size(r->g.nx, r->g.ny, r->g.nz) * sizeof(int));
+    r->flags = malloc(nv);
+    vbc_atoms_pack(&r->g, s, probe, r->atoms);
+    synth_labels(&r->g, r->atoms, s->n, r->labels);
+    vbc_masks_ref(&r->g, r->atoms, s->n, r->labels, dim == 3 ? 3 : 2, r->rb, r->flags);
+}
+
+static void run_free(run *r)
+{
+    free(r->atoms);
+    free(r->labels);
+    free(r->rb);
+    free(r->flags);
+}
+
+/* One ball of radius 6 voxels centred on a voxel corner covers exactly the
+ * voxel centres within 6 voxels (no centre lies on the sphere: a sum of three
+ * odd squares is never 144); a ball is its own ray hull, so the molecular mask
+ * equals the atomic one and nothing is interior. */
+static void test_single_ball(vb_ctx *ctx)
+{
+    vb_sphere_set *s = synth_alloc(1);
+    s->r[0] = 1.0;
+    run r;
+    run_ref(ctx, s, 0.0, 16, 3, &r);
+    /* Extent 2 Å over 16 - 4 margin voxels: h = 1/6 Å, R = 6 voxels. */
+    CHECK_NEAR(r.g.h, 2.0 / 12.0, 1e-12);
+    size_t nv = vbc_grid_voxels(&r.g);
+    size_t expect = 0;
+    for (int k = 0; k < 16; k++)
+        for (int j = 0; j < 16; j++)
+            for (int i = 0; i < 16; i++) {
+                double dx = i + 0.5 - 8.0, dy = j + 0.5 - 8.0, dz = k + 0.5 - 8.0;
+                expect += dx * dx + dy * dy + dz * dz <= 36.0;
+            }
+    CHECK(expect > 700 && expect < 930);
+    CHECK_INT(count_bits(r.flags, nv, VBC_F_ATOMIC), expect);
+    CHECK_INT(count_bits(r.flags, nv, VBC_F_MOLECULAR), expect);
+    CHECK_INT(count_bits(r.flags, nv, VBC_F_INTERIOR), 0);
+    CHECK_INT(count_bits(r.flags, nv, VBC_F_CHANNEL), 0);
+    /* One seed: one label everywhere, no Voronoi edge. */
+    CHECK_INT(count_bits(r.flags, nv, VBC_F_EDGE), 0);
+    run_free(&r);
+    synth_free(s);
+}
+
+/* Two balls side by side along x: x rays that hit both fill the gap, so the
+ * gap between them is molecular but not atomic (interior). */
+static void test_two_balls(vb_ctx *ctx)
+{
+    vb_sphere_set *s = synth_alloc(2);
+    s->x[0] = -4.0;
+    s->x[1] = 4.0;
+    s->r[0] = s->r[1] = 2.0;
+    run r;
+    run_ref(ctx, s, 0.5, 32, 3, &r);
+    size_t mid = vox_at(&r.g, 0.01, 0.01, 0.01);
+    CHECK_INT(r.flags[mid] & (VBC_F_ATOMIC | VBC_F_MOLECULAR | VBC_F_INTERIOR),
+              VBC_F_MOLECULAR | VBC_F_INTERIOR);
+    /* Off the shadow of the balls (|y| > 2.5) nothing is molecular. */
+    CHECK_INT(r.flags[vox_at(&r.g, 0.01, 3.0, 0.01)] & VBC_F_MOLECULAR, 0);
+    CHECK_INT(r.flags[vox_at(&r.g, -4.01, 0.01, 0.01)] & VBC_F_ATOMIC, VBC_F_ATOMIC);
+    /* Two regions only: a bisector plane, but no voxel sees three labels. */
+    CHECK_INT(count_bits(r.flags, vbc_grid_voxels(&r.g), VBC_F_EDGE), 0);
+    run_free(&r);
+    synth_free(s);
+}
+
+/* Three atoms in the plane z = 0: their Voronoi edge is the line through the
+ * circumcentre along z; in 2D the same input has boundary lines everywhere
+ * two regions meet. */
+static void test_edges(vb_ctx *ctx)
+{
+    vb_sphere_set *s = synth_alloc(3);
+    const double pi = 3.14159265358979323846;
+    for (int a = 0; a < 3; a++) {
+        s->x[a] = 5.0 * cos(2 * pi * a / 3 + 0.3);
+        s->y[a] = 5.0 * sin(2 * pi * a / 3 + 0.3);
+        s->r[a] = 1.5;
+    }
+    run r;
+    run_ref(ctx, s, 0.0, 32, 3, &r);
+    size_t nv = vbc_grid_voxels(&r.g);
+    /* Every edge voxel is within one voxel of the z axis, and every z layer has one. */
+    size_t far = 0;
+    int layers = 0;
+    for (int k = 0; k < r.g.nz; k++) {
+        int has = 0;
+        for (int j = 0; j < r.g.ny; j++)
+            for (int i = 0; i < r.g.nx; i++)
+                if (r.flags[vox(&r.g, i, j, k)] & VBC_F_EDGE) {
+                    double x = r.g.origin[0] + (i + 0.5) * r.g.h, y = r.g.origin[1] + (j + 0.5) * r.g.h;
+                    far += hypot(x, y) > 1.5 * r.g.h;
+                    has = 1;
+                }
+        layers += has;
+    }
+    CHECK_INT(far, 0);
+    CHECK_INT(layers, r.g.nz);
+    CHECK(count_bits(r.flags, nv, VBC_F_EDGE) >= (size_t)r.g.nz);
+    run_free(&r);
+
+    run_ref(ctx, s, 0.0, 64, 2, &r);
+    CHECK_INT(r.g.nz, 1);
+    nv = vbc_grid_voxels(&r.g);
+    /* 2D: three half-lines from the circumcentre; each crosses ~ (n/2) pixels. */
+    size_t e2 = count_bits(r.flags, nv, VBC_F_EDGE);
+    CHECK(e2 > 3 * 20 && e2 < 3 * 64 * 3);
+    run_free(&r);
+    synth_free(s);
+}
+
+/* A cylinder of 8 rings x 12 atoms (rc 6, r 1.6): with probe 1 a pore of
+ * clearance 4.4 Å runs along z and opens at both ends. */
+static void test_cylinder(vb_ctx *ctx)
+{
+    vb_sphere_set *s = synth_cylinder(8, 12, 6.0, 1.6, 2.6);
+    run r;
+    run_ref(ctx, s, 1.0, 64, 3, &r);
+    size_t nv = vbc_grid_voxels(&r.g);
+    size_t axis = vox_at(&r.g, 0.01, 0.01, 0.01);
+    CHECK_INT(r.flags[axis] & 31u, VBC_F_MOLECULAR | VBC_F_EDGE | VBC_F_INTERIOR | VBC_F_CHANNEL);
+    CHECK_INT(r.flags[vox_at(&r.g, s->x[0], s->y[0], s->z[0])] & VBC_F_ATOMIC, VBC_F_ATOMIC);
+    /* Outside the wall: neither molecular nor a channel. */
+    CHECK_INT(r.flags[vox_at(&r.g, 9.5, 0.01, 0.01)] & (VBC_F_MOLECULAR | VBC_F_CHANNEL), 0);
+    CHECK_INT(r.flags[0], 0);
+    /* The pore is interior along its whole length: every axis voxel between
+     * the outermost rings is a channel voxel. */
+    int axis_channel = 1;
+    for (double z = -9.0; z <= 9.0; z += r.g.h)
+        axis_channel &= (r.flags[vox_at(&r.g, 0.01, 0.01, z)] & VBC_F_CHANNEL) != 0;
+    CHECK(axis_channel);
+    /* The pore opens beyond the last rings (|z| > 9.1): mouths on the pore
+     * (within 2 Å of the axis) lie there. The union of axis-ray hulls also
+     * makes the grooves between atoms on the outer wall interior, and their
+     * Voronoi edges are short "channels" with mouths of their own (pruned by
+     * length later), so mouths away from the axis are allowed. */
+    size_t mouths = 0, pore_mouths = 0, misplaced = 0;
+    for (size_t v = 0; v < nv; v++)
+        if (r.flags[v] & VBC_F_MOUTH) {
+            int i = (int)(v % (size_t)r.g.nx), j = (int)((v / (size_t)r.g.nx) % (size_t)r.g.ny);
+            int k = (int)(v / ((size_t)r.g.nx * r.g.ny));
+            double x = r.g.origin[0] + (i + 0.5) * r.g.h, y = r.g.origin[1] + (j + 0.5) * r.g.h;
+            double z = r.g.origin[2] + (k + 0.5) * r.g.h;
+            mouths++;
+            if (hypot(x, y) < 2.0) {
+                pore_mouths++;
+                misplaced += fabs(z) < 9.1;
+            }
+        }
+    CHECK(pore_mouths > 0);
+    CHECK_INT(misplaced, 0);
+    /* Interior = molecular and not atomic, exactly. */
+    size_t bad = 0;
+    for (size_t v = 0; v < nv; v++) {
+        unsigned f = r.flags[v];
+        int want = (f & VBC_F_MOLECULAR) && !(f & VBC_F_ATOMIC);
+        bad += want != ((f & VBC_F_INTERIOR) != 0);
+        bad += ((f & VBC_F_CHANNEL) != 0) != ((f & VBC_F_EDGE) && (f & VBC_F_INTERIOR));
+        bad += (f & VBC_F_ATOMIC) && !(f & VBC_F_MOLECULAR);
+    }
+    CHECK_INT(bad, 0);
+
+    /* Compaction lists exactly the channel voxels, mouths flagged. */
+    uint32_t *list;
+    size_t nl;
+    CHECK_INT(vbc_flags_compact(ctx, &r.g, r.flags, &list, &nl), VB_OK);
+    CHECK_INT(nl, count_bits(r.flags, nv, VBC_F_CHANNEL));
+    size_t lm = 0;
+    for (size_t t = 0; t < nl; t++)
+        lm += (list[t] & VBC_MOUTH_BIT) != 0;
+    CHECK_INT(lm, mouths);
+    free(list);
+    run_free(&r);
+
+    /* A probe wider than the pore (clearance 4.4 < 4.6) closes it: no channel. */
+    run_ref(ctx, s, 4.6, 64, 3, &r);
+    CHECK_INT(r.flags[vox_at(&r.g, 0.01, 0.01, 0.01)] & VBC_F_CHANNEL, 0);
+    run_free(&r);
+    synth_free(s);
+}
+
+/* A closed shell: the hollow is interior, its Voronoi edges are channel
+ * voxels, and none of those inside the wall touches the outside (no mouth). */
+static void test_shell(vb_ctx *ctx)
+{
+    vb_sphere_set *s = synth_shell(240, 9.0, 1.6);
+    run r;
+    run_ref(ctx, s, 1.0, 48, 3, &r);
+    size_t nv = vbc_grid_voxels(&r.g);
+    CHECK_INT(r.flags[vox_at(&r.g, 0.01, 0.01, 0.01)] & (VBC_F_ATOMIC | VBC_F_MOLECULAR | VBC_F_INTERIOR),
+              VBC_F_MOLECULAR | VBC_F_INTERIOR);
+    CHECK(count_bits(r.flags, nv, VBC_F_CHANNEL) > 10);
+    /* Inside the wall (|p| < 9), interior voxels lie in the hollow that a
+     * probe can reach (|p| < 9 - 1.6 - 1.0, plus a voxel) and are no mouths. */
+    size_t outside = 0, inner_mouths = 0;
+    for (size_t v = 0; v < nv; v++)
+        if (r.flags[v] & VBC_F_INTERIOR) {
+            int i = (int)(v % (size_t)r.g.nx), j = (int)((v / (size_t)r.g.nx) % (size_t)r.g.ny);
+            int k = (int)(v / ((size_t)r.g.nx * r.g.ny));
+            double p = sqrt(pow(r.g.origin[0] + (i + 0.5) * r.g.h, 2) +
+                            pow(r.g.origin[1] + (j + 0.5) * r.g.h, 2) +
+                            pow(r.g.origin[2] + (k + 0.5) * r.g.h, 2));
+            outside += p < 9.0 && p > 6.4 + r.g.h;
+            inner_mouths += p < 9.0 && (r.flags[v] & VBC_F_MOUTH);
+        }
+    CHECK_INT(outside, 0);
+    CHECK_INT(inner_mouths, 0);
+    run_free(&r);
+    synth_free(s);
+}
+
+static void test_grid_fit_errors(vb_ctx *ctx)
+{
+    vb_sphere_set *s = synth_alloc(1);
+    s->r[0] = 1.0;
+    vbc_grid g;
+    CHECK_INT(vbc_grid_fit(ctx, s, 1.4, 4, 3, &g), VB_EMISUSE);
+    CHECK_INT(vbc_grid_fit(ctx, s, -1.0, 64, 3, &g), VB_EMISUSE);
+    CHECK_INT(vbc_grid_fit(ctx, s, 1.4, 64, 4, &g), VB_EMISUSE);
+    s->n = 0;
+    CHECK_INT(vbc_grid_fit(ctx, s, 1.4, 64, 3, &g), VB_EINPUT_EMPTY);
+    s->n = 1;
+    synth_free(s);
+}
+
+int main(void)
+{
+    vb_ctx *ctx;
+    if (vb_open(&ctx, NULL) != VB_OK)
+        return 1;
+    test_single_ball(ctx);
+    test_two_balls(ctx);
+    test_edges(ctx);
+    test_cylinder(ctx);
+    test_shell(ctx);
+    test_grid_fit_errors(ctx);
+    vb_close(ctx);
+    VB_TEST_END();
+}

@@ -1,0 +1,188 @@
+/* `vorball channels` end to end on corpus files: gramicidin A gives one
+ * through channel along its pore (the y axis of this file) with a bottleneck
+ * near HOLE's; every output file is written; the MD trajectory is processed
+ * frame by frame; a DCD written from that trajectory gives the same frames. */
+#include <stdlib.h>
+#include <unistd.h>
+
+#include "vb_dcd.h"
+#include "vb_spheres.h"
+#include "vb_test.h"
+
+static char bin[1024], src[1024], dir[256];
+
+static int run(const char *args)
+{
+    char cmd[16384];
+    snprintf(cmd, sizeof cmd, "%s channels %s 2>>%s/stderr.txt", bin, args, dir);
+    int st = system(cmd);
+    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+static long file_size(const char *name)
+{
+    char p[512];
+    snprintf(p, sizeof p, "%s/%s", dir, name);
+    FILE *f = fopen(p, "rb");
+    if (!f)
+        return -1;
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fclose(f);
+    return n;
+}
+
+/* Reads line `row` (0 = header) of a CSV in dir into buf. */
+static int csv_line(const char *name, int row, char *buf, size_t len)
+{
+    char p[512];
+    snprintf(p, sizeof p, "%s/%s", dir, name);
+    FILE *f = fopen(p, "r");
+    if (!f)
+        return -1;
+    int r = -1;
+    for (int i = 0; i <= row; i++)
+        if (!fgets(buf, (int)len, f)) {
+            fclose(f);
+            return -1;
+        }
+    r = 0;
+    fclose(f);
+    return r;
+}
+
+static void test_gramicidin(void)
+{
+    char a[8192];
+    snprintf(a, sizeof a,
+             "%s/corpus/data/1grm_single_hole2.pdb --probe 1.0 --grid 64 -o %s/t.csv "
+             "--centerlines %s/c.pdb --pymol %s/c.pml --volume %s/m.mrc --png %s/s.png "
+             "--stats %s/st.csv",
+             src, dir, dir, dir, dir, dir, dir);
+    CHECK_INT(run(a), 0);
+    char line[4096];
+    CHECK_INT(csv_line("t.csv", 1, line, sizeof line), 0);
+    long frame, model, id;
+    char kind[16];
+    int through;
+    double len, bott, bx, by, bz, sx, sy, sz, ex, ey, ez;
+    int n = sscanf(line, "%ld,%ld,%ld,%15[a-z],%d,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf", &frame,
+                   &model, &id, kind, &through, &len, &bott, &bx, &by, &bz, &sx, &sy, &sz, &ex, &ey, &ez);
+    CHECK_INT(n, 16);
+    CHECK_STR(kind, "channel");
+    CHECK_INT(through, 1);
+    /* The pore runs along y from one face (y < -12) to the other (y > 12). */
+    CHECK(sy * ey < 0.0 && fabs(sy) > 12.0 && fabs(ey) > 12.0);
+    CHECK(len > 28.0 && len < 50.0);
+    /* HOLE (simple radii) finds 1.15 A; with Bondi radii and a 0.5 A grid we
+     * expect 1.0 .. 1.5 (bounded below by the probe). */
+    CHECK(bott >= 1.0 && bott < 1.5);
+    CHECK(fabs(by) < 12.0);
+    /* Outputs: MRC = 1024-byte header + 64^3 bytes; PDB and script non-empty. */
+    CHECK_INT(file_size("m.mrc"), 1024 + 64 * 64 * 64);
+    CHECK(file_size("c.pdb") > 100);
+    CHECK(file_size("c.pml") > 50);
+    CHECK(file_size("s.png") > 1000);
+    CHECK_INT(csv_line("st.csv", 2, line, sizeof line), -1); /* one frame */
+}
+
+static void test_trajectory_and_dcd(vb_ctx *ctx)
+{
+    char a[8192], line[4096];
+    snprintf(a, sizeof a, "%s/corpus/data/ngl_md_ascii_trj.pdb --grid 32 --frames 0:51:25 -o %s/md.csv --stats %s/mds.csv",
+             src, dir, dir);
+    CHECK_INT(run(a), 0);
+    int frames = 0;
+    long atoms[3] = {0, 0, 0};
+    double vox[3] = {0, 0, 0};
+    for (int r = 1; csv_line("mds.csv", r, line, sizeof line) == 0; r++, frames++) {
+        long f, m, at, grid;
+        double h, cv;
+        if (sscanf(line, "%ld,%ld,%ld,%ld,%lf,%lf", &f, &m, &at, &grid, &h, &cv) == 6 && frames < 3) {
+            CHECK_INT(f, 25 * frames);
+            atoms[frames] = at;
+            vox[frames] = cv;
+        }
+    }
+    CHECK_INT(frames, 3);
+    CHECK_INT(atoms[0], 183);
+
+    /* The same frames through a DCD we write from the trajectory. */
+    char pdb[1200], dcd[512];
+    snprintf(pdb, sizeof pdb, "%s/corpus/data/ngl_md_ascii_trj.pdb", src);
+    snprintf(dcd, sizeof dcd, "%s/md.dcd", dir);
+    vb_read_options ro;
+    memset(&ro, 0, sizeof ro);
+    ro.keep_water = 1;
+    vb_frame_reader *rd;
+    CHECK_INT(vb_frame_reader_open(ctx, pdb, &ro, &rd), VB_OK);
+    vb_dcd_writer *w = NULL;
+    vb_sphere_set *s;
+    int model, written = 0;
+    while (vb_frame_reader_next(ctx, rd, &s, &model) == VB_OK && s) {
+        if (!w)
+            CHECK_INT(vb_dcd_writer_open(ctx, dcd, s->n, 1.0, "ngl md", &w), VB_OK);
+        CHECK_INT(vb_dcd_writer_frame(ctx, w, s->x, s->y, s->z), VB_OK);
+        written++;
+        vb_spheres_free(s);
+    }
+    vb_frame_reader_close(rd);
+    CHECK_INT(vb_dcd_writer_close(ctx, w), VB_OK);
+    CHECK_INT(written, 51);
+    snprintf(a, sizeof a, "%s --dcd %s --grid 32 --frames 0:51:25 -o %s/dcd.csv --stats %s/dcds.csv",
+             pdb, dcd, dir, dir);
+    CHECK_INT(run(a), 0);
+    frames = 0;
+    for (int r = 1; csv_line("dcds.csv", r, line, sizeof line) == 0; r++, frames++) {
+        long f, m, at, grid;
+        double h, cv;
+        if (sscanf(line, "%ld,%ld,%ld,%ld,%lf,%lf", &f, &m, &at, &grid, &h, &cv) == 6 && frames < 3) {
+            CHECK_INT(at, atoms[frames]);
+            /* float32 coordinates move the grid by ~1e-5 A: voxel counts agree closely. */
+            CHECK(fabs(cv - vox[frames]) <= 0.02 * vox[frames] + 2);
+        }
+    }
+    CHECK_INT(frames, 3);
+    remove(dcd);
+}
+
+static void test_usage(void)
+{
+    char a[4096];
+    snprintf(a, sizeof a, "%s/corpus/data/1grm_single_hole2.pdb --grid 100", src);
+    CHECK_INT(run(a), 2);
+    snprintf(a, sizeof a, "%s/corpus/data/1grm_single_hole2.pdb --frames 5:2", src);
+    CHECK_INT(run(a), 2);
+    snprintf(a, sizeof a, "%s/corpus/data/1grm_single_hole2.pdb --pymol x.pml", src);
+    CHECK_INT(run(a), 2);
+    snprintf(a, sizeof a, "%s/corpus/data/1grm_single_hole2.pdb --grid 32 --frames 3: -o /dev/null", src);
+    CHECK_INT(run(a), 21); /* no such frame */
+}
+
+int main(void)
+{
+    const char *b = getenv("VORBALL_BINARY_DIR"), *s = getenv("VORBALL_SOURCE_DIR");
+    if (!b || !s) {
+        fprintf(stderr, "VORBALL_BINARY_DIR and VORBALL_SOURCE_DIR must be set\n");
+        return 1;
+    }
+    snprintf(bin, sizeof bin, "%s/cli/vorball", b);
+    snprintf(src, sizeof src, "%s", s);
+    const char *t = getenv("TMPDIR");
+    snprintf(dir, sizeof dir, "%s/vbc_cli_XXXXXX", t && *t ? t : "/tmp");
+    if (!mkdtemp(dir))
+        return 1;
+    vb_ctx *ctx;
+    vb_config cfg = {0, NULL};
+    if (vb_open(&ctx, &cfg) != VB_OK)
+        return 1;
+    test_gramicidin();
+    test_trajectory_and_dcd(ctx);
+    test_usage();
+    vb_close(ctx);
+    char cmd[512];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    if (vb_test_failed == 0 && system(cmd) != 0)
+        fprintf(stderr, "could not remove %s\n", dir);
+    VB_TEST_END();
+}

@@ -1,0 +1,235 @@
+/* JFA module: the exact search against brute force, every variant against the
+ * exact diagram (zero error where they must agree, bounded otherwise),
+ * Facet-JFA against the uncompacted run it refines, and the OpenCL kernels
+ * (PoCL when no GPU) against the C reference, bit for bit. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "vb_test.h"
+#include "vbj_jfa.h"
+
+static const vbj_variant all_variants[] = {VBJ_JFA,   VBJ_JFA1,  VBJ_JFA2,
+                                           VBJ_1JFA,  VBJ_FACET, VBJ_FACET_FULL};
+#define NVAR 6
+
+static size_t npix(const vbj_seeds *s) { return (size_t)s->n * s->n * (s->dim == 3 ? s->n : 1); }
+
+/* Nearest seed by scanning every seed: the definition itself. */
+static void brute(const vbj_seeds *s, uint32_t *out)
+{
+    for (size_t i = 0; i < npix(s); i++) {
+        int32_t px = (int32_t)(i % s->n) * VBJ_FIX_ONE;
+        int32_t py = (int32_t)((i / s->n) % s->n) * VBJ_FIX_ONE;
+        int32_t pz = s->dim == 3 ? (int32_t)(i / ((size_t)s->n * s->n)) * VBJ_FIX_ONE : 0;
+        uint32_t best = 0;
+        uint64_t bd = UINT64_MAX;
+        for (uint32_t v = 0; v < s->k; v++) {
+            uint64_t d = vbj_dist2(px, py, pz, s->x[v], s->y[v], s->z[v]);
+            if (vbj_better(d, v, bd, best)) {
+                bd = d;
+                best = v;
+            }
+        }
+        out[i] = best;
+    }
+}
+
+static int run(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, vbj_variant v, vbj_result *r)
+{
+    vbj_options o = {v, 0, VBJ_WANT_LABELS};
+    int rc = vbj_run(ctx, e, s, &o, r);
+    if (rc)
+        fprintf(stderr, "vbj_run %s on %s: %s\n", vbj_variant_name(v),
+                vbj_engine_device_name(e), vb_errmsg(ctx));
+    return rc;
+}
+
+static void two_seeds(vb_ctx *ctx, vbj_engine *e, int dim, uint32_t n)
+{
+    vbj_seeds s;
+    CHECK_INT(vbj_seeds_alloc(ctx, dim, n, 2, &s), VB_OK);
+    CHECK_INT(vbj_seed_set(ctx, &s, 0, 0.3 * n, 0.37 * n, 0.41 * n), VB_OK);
+    CHECK_INT(vbj_seed_set(ctx, &s, 1, 0.71 * n, 0.66 * n, 0.52 * n), VB_OK);
+    uint32_t *ex = malloc(npix(&s) * 4);
+    CHECK_INT(vbj_exact(ctx, e, &s, ex), VB_OK);
+    for (int i = 0; i < NVAR; i++) {
+        vbj_result r;
+        if (run(ctx, e, &s, all_variants[i], &r)) {
+            CHECK(0);
+            continue;
+        }
+        vbj_metrics m;
+        CHECK_INT(vbj_compare(ctx, &s, r.labels, ex, &m), VB_OK);
+        CHECK_INT(m.wrong, 0);
+        CHECK_INT(m.boundary_missed, 0);
+        CHECK_INT(m.boundary_extra, 0);
+        CHECK(m.boundary_exact > 0);
+        vbj_result_free(&r);
+    }
+    free(ex);
+    vbj_seeds_free(&s);
+}
+
+/* Random seeds (chosen so that no two share a pixel, which no JFA variant
+ * can repair): exact == brute force; each variant's error bounded;
+ * Facet-JFA from a given coarse m equals its uncompacted run and its unmarked
+ * pixels are exactly the boundary pixels of its diagram. */
+static void random_seeds(vb_ctx *ctx, vbj_engine *e, int dim, uint32_t n, size_t k,
+                         vbj_distribution dist, uint64_t rng)
+{
+    vbj_seeds s;
+    CHECK_INT(vbj_seeds_generate(ctx, dim, n, k, dist, rng, &s), VB_OK);
+    size_t P = npix(&s);
+    uint32_t *ex = malloc(P * 4), *bf = malloc(P * 4);
+    uint8_t *bm = malloc(P);
+    CHECK_INT(vbj_exact(ctx, e, &s, ex), VB_OK);
+    brute(&s, bf);
+    CHECK(memcmp(ex, bf, P * 4) == 0);
+    for (int i = 0; i < NVAR - 1; i++) {
+        vbj_result r;
+        if (run(ctx, e, &s, all_variants[i], &r)) {
+            CHECK(0);
+            continue;
+        }
+        CHECK_INT(r.counts.collisions, 0);
+        vbj_metrics m;
+        CHECK_INT(vbj_compare(ctx, &s, r.labels, ex, &m), VB_OK);
+        /* Rong & Tan report JFA errors well below 1% of the pixels, each a
+         * fraction of the distance to the seed. */
+        CHECK(m.wrong_rate < 0.01);
+        CHECK(m.max_err < 0.1 * n);
+        CHECK(m.wrong == 0 || m.max_err > 0);
+        vbj_result_free(&r);
+    }
+    vbj_result f, full;
+    vbj_options o = {VBJ_FACET, n / 8, VBJ_WANT_LABELS};
+    CHECK_INT(vbj_run(ctx, e, &s, &o, &f), VB_OK);
+    o.variant = VBJ_FACET_FULL;
+    CHECK_INT(vbj_run(ctx, e, &s, &o, &full), VB_OK);
+    if (f.labels && full.labels) {
+        CHECK(memcmp(f.labels, full.labels, P * 4) == 0);
+        CHECK_INT(f.counts.boundary, full.counts.boundary);
+        CHECK_INT(f.counts.m, n / 8);
+        CHECK(f.counts.step_pixels < full.counts.step_pixels);
+        vbj_boundary_mask(dim, n, f.labels, bm);
+        size_t nb = 0;
+        for (size_t i = 0; i < P; i++)
+            nb += bm[i];
+        CHECK_INT(f.counts.boundary, nb);
+    }
+    vbj_result_free(&f);
+    vbj_result_free(&full);
+    free(ex);
+    free(bf);
+    free(bm);
+    vbj_seeds_free(&s);
+}
+
+/* The OpenCL kernels against the C reference: same labels, same counts. */
+static void backends_agree(vb_ctx *ctx, vbj_engine *ref, vbj_engine *cl, int dim, uint32_t n,
+                           size_t k, vbj_distribution dist)
+{
+    vbj_seeds s;
+    CHECK_INT(vbj_seeds_generate(ctx, dim, n, k, dist, 777u, &s), VB_OK);
+    size_t P = npix(&s);
+    uint32_t *a = malloc(P * 4), *b = malloc(P * 4);
+    CHECK_INT(vbj_exact(ctx, ref, &s, a), VB_OK);
+    CHECK_INT(vbj_exact(ctx, cl, &s, b), VB_OK);
+    CHECK(memcmp(a, b, P * 4) == 0);
+    for (int i = 0; i < NVAR; i++) {
+        vbj_result x, y;
+        vbj_options o = {all_variants[i], 0, VBJ_WANT_LABELS | VBJ_WANT_NLABELS};
+        int rx = vbj_run(ctx, ref, &s, &o, &x), ry = vbj_run(ctx, cl, &s, &o, &y);
+        CHECK_INT(rx, VB_OK);
+        CHECK_INT(ry, VB_OK);
+        if (rx || ry) {
+            fprintf(stderr, "%s: %s\n", vbj_variant_name(all_variants[i]), vb_errmsg(ctx));
+            continue;
+        }
+        CHECK(memcmp(x.labels, y.labels, P * 4) == 0);
+        CHECK(memcmp(x.nlabels, y.nlabels, P) == 0);
+        CHECK_INT(x.counts.step_pixels, y.counts.step_pixels);
+        CHECK_INT(x.counts.boundary, y.counts.boundary);
+        CHECK_INT(x.counts.steps, y.counts.steps);
+        CHECK_INT(x.counts.m, y.counts.m);
+        vbj_result_free(&x);
+        vbj_result_free(&y);
+    }
+    free(a);
+    free(b);
+    vbj_seeds_free(&s);
+}
+
+/* 65535 seeds or more take the 32-bit label kernels on the device. */
+static void wide_labels(vb_ctx *ctx, vbj_engine *ref, vbj_engine *cl)
+{
+    vbj_seeds s;
+    CHECK_INT(vbj_seeds_generate(ctx, 2, 512, 70000, VBJ_DIST_UNIFORM, 5, &s), VB_OK);
+    vbj_result x, y;
+    vbj_options o = {VBJ_JFA1, 0, VBJ_WANT_LABELS};
+    CHECK_INT(vbj_run(ctx, ref, &s, &o, &x), VB_OK);
+    CHECK_INT(vbj_run(ctx, cl, &s, &o, &y), VB_OK);
+    if (x.labels && y.labels)
+        CHECK(memcmp(x.labels, y.labels, npix(&s) * 4) == 0);
+    CHECK_INT(y.ms_fill, 0);
+    vbj_result_free(&x);
+    vbj_result_free(&y);
+    vbj_seeds_free(&s);
+}
+
+static void start_resolution(vb_ctx *ctx)
+{
+    vbj_seeds s;
+    CHECK_INT(vbj_seeds_alloc(ctx, 2, 64, 2, &s), VB_OK);
+    vbj_seed_set(ctx, &s, 0, 0, 0, 0);
+    vbj_seed_set(ctx, &s, 1, 63, 63, 0);
+    CHECK_INT(vbj_start_resolution(&s), 2);
+    vbj_seed_set(ctx, &s, 1, 1, 0, 0); /* neighbouring pixels: only the fine grid separates */
+    CHECK_INT(vbj_start_resolution(&s), 64);
+    vbj_seed_set(ctx, &s, 1, 0.4, 0.2, 0); /* same pixel: no level separates them */
+    CHECK_INT(vbj_start_resolution(&s), 64);
+    vbj_seed_set(ctx, &s, 1, 8, 0, 0);
+    CHECK_INT(vbj_start_resolution(&s), 8);
+    vbj_seeds_free(&s);
+    /* Out-of-grid coordinates are input errors. */
+    CHECK_INT(vbj_seeds_alloc(ctx, 3, 32, 1, &s), VB_OK);
+    CHECK_INT(vbj_seed_set(ctx, &s, 0, -0.6, 0, 0), VB_EINPUT);
+    CHECK_INT(vbj_seed_set(ctx, &s, 0, 31.5, 0, 0), VB_EINPUT);
+    CHECK_INT(vbj_seed_set(ctx, &s, 0, -0.5, 31.49, 0), VB_OK);
+    vbj_seeds_free(&s);
+    CHECK_INT(vbj_seeds_alloc(ctx, 2, 48, 1, &s), VB_EMISUSE);
+}
+
+int main(void)
+{
+    vb_ctx *ctx;
+    vb_config cfg = {0, NULL};
+    if (vb_open(&ctx, &cfg))
+        return 1;
+    vbj_engine *ref = NULL, *cl = NULL;
+    CHECK_INT(vbj_engine_open(ctx, VBG_DEVICE_REF, &ref), VB_OK);
+    start_resolution(ctx);
+    two_seeds(ctx, ref, 2, 64);
+    two_seeds(ctx, ref, 3, 16);
+    random_seeds(ctx, ref, 2, 128, 60, VBJ_DIST_UNIFORM, 1);
+    random_seeds(ctx, ref, 2, 128, 30, VBJ_DIST_SHELL, 2);
+    random_seeds(ctx, ref, 2, 128, 40, VBJ_DIST_CLUSTERED, 3);
+    random_seeds(ctx, ref, 3, 32, 30, VBJ_DIST_UNIFORM, 1);
+    random_seeds(ctx, ref, 3, 32, 20, VBJ_DIST_SHELL, 2);
+    if (vbj_engine_open(ctx, VBG_DEVICE_AUTO, &cl) == VB_OK) {
+        printf("OpenCL device: %s\n", vbj_engine_device_name(cl));
+        two_seeds(ctx, cl, 2, 64);
+        two_seeds(ctx, cl, 3, 16);
+        backends_agree(ctx, ref, cl, 2, 64, 50, VBJ_DIST_UNIFORM);
+        backends_agree(ctx, ref, cl, 2, 32, 300, VBJ_DIST_CLUSTERED);
+        backends_agree(ctx, ref, cl, 3, 32, 40, VBJ_DIST_SHELL);
+        backends_agree(ctx, ref, cl, 3, 16, 1, VBJ_DIST_UNIFORM);
+        wide_labels(ctx, ref, cl);
+        vbj_engine_close(cl);
+    } else {
+        printf("no OpenCL device: %s (reference backend only)\n", vb_errmsg(ctx));
+    }
+    vbj_engine_close(ref);
+    vb_close(ctx);
+    VB_TEST_END();
+}

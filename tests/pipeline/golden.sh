@@ -1,0 +1,25 @@
+#!/bin/sh
+# One corpus case: `vorball reference` reproduces the golden byte for byte,
+# `vorball verify --complete` accepts the golden, and the golden shows the
+# property the case was built for (properties.sh).
+# usage: golden.sh VORBALL CORPUS_DIR CASE WORK_DIR
+vorball=$1 corpus=$2 case=$3 work=$4/golden_$3
+here=$(cd "$(dirname "$0")" && pwd)
+. "$here/lib.sh"
+mkdir -p "$work" || fail "cannot create $work"
+# Inputs are named relative to corpus/inputs, as corpus/regenerate.sh does,
+# so that the file name inside the golden's header is the same.
+cd "$corpus/inputs" || fail "no $corpus/inputs"
+golden=../golden/$case.tsv
+[ -f "$golden" ] || fail "no golden $golden"
+"$vorball" reference "$case.xyzr" > "$work/reference.tsv" 2> "$work/reference.err"
+rc=$?
+[ $rc -eq 0 ] || { cat "$work/reference.err" >&2; fail "reference exited $rc"; }
+cmp "$work/reference.tsv" "$golden" || {
+    diff "$work/reference.tsv" "$golden" | head -20 >&2
+    fail "reference output differs from $golden"
+}
+run 0 "$work/verify.txt" "$vorball" verify "$case.xyzr" "$golden" --complete
+expect_line "$work/verify.txt" "^verify: .* 0 not a vertex, 0 wrong coordinates, 0 missing members, 0 duplicate, 0 missed$"
+sh "$here/properties.sh" "$case" "$golden" "$work" || fail "$case: property does not hold"
+echo "ok: $case ($(vertex_lines "$golden" | wc -l) vertices)"

@@ -1,0 +1,29 @@
+# Helpers sourced by the pipeline tests (POSIX sh).
+
+fail() {
+    echo "FAIL: $*" >&2
+    exit 1
+}
+
+# run EXPECTED_EXIT OUTFILE CMD...: runs CMD with stdout+stderr to OUTFILE and
+# fails unless it exits with EXPECTED_EXIT.
+run() {
+    expected=$1 out=$2
+    shift 2
+    "$@" > "$out" 2>&1
+    got=$?
+    if [ "$got" -ne "$expected" ]; then
+        cat "$out" >&2
+        fail "'$*' exited $got, expected $expected"
+    fi
+}
+
+# expect_line FILE PATTERN: FILE must hold a line matching the grep -E PATTERN.
+expect_line() {
+    grep -Eq "$2" "$1" || { cat "$1" >&2; fail "no line matching '$2' in $1"; }
+}
+
+# vertex_lines FILE: the vertex lines of a tsv file (comments dropped).
+vertex_lines() {
+    grep -v '^#' "$1"
+}

@@ -1,0 +1,85 @@
+#!/bin/sh
+# The property each corpus case was built to exhibit, checked on its golden
+# (columns: ids x y z t status). Exits 1 with a message when it does not hold.
+# usage: properties.sh CASE GOLDEN WORK_DIR   (run from corpus/inputs)
+case=$1 golden=$2 work=$3
+here=$(cd "$(dirname "$0")" && pwd)
+. "$here/lib.sh"
+v=$work/vertices.txt
+vertex_lines "$golden" > "$v"
+[ -s "$v" ] || fail "$case: golden has no vertices"
+
+# awk_check PROGRAM: runs PROGRAM over the vertex lines (tab-separated, with
+# n = number of ids and id[1..n]); PROGRAM's END block exits 1 on failure.
+awk_check() {
+    awk -F '\t' "{ n = split(\$1, id, \",\") } $1" "$v" || fail "$case: $2"
+}
+
+case $case in
+cubic_lattice)
+    # every vertex is a cube centre touching all 8 corners
+    awk_check '{ c++; if (n != 8 || $2 - int($2) != 0.5) bad++ }
+               END { exit !(c == 8 && bad == 0) }' "8 vertices of degree 8 expected" ;;
+bcc_lattice)
+    # interior vertices are simple (degree 4); the flat boundary adds degree 5
+    awk_check '{ d[n]++ } END { exit !(d[4] == 48 && d[5] == 24 && NR == 72) }' \
+        "48 vertices of degree 4 and 24 of degree 5 expected" ;;
+hexagonal_ring)
+    # the six ring bisectors share the axis: two degree-7 vertices on it
+    awk_check '{ c++; if (n == 7 && $2 == 0 && $3 == 0 && ($4 == 3.75 || $4 == -3.75) && $5 == 4.75) ok++ }
+               END { exit !(c == 2 && ok == 2) }' "two degree-7 vertices at z = +-3.75 expected" ;;
+degree5_vertex)
+    awk_check '$1 == "0,1,2,3,4" && $2 == 0 && $3 == 0 && $4 == 0 && $5 == 2 { ok++ } n > 5 { bad++ }
+               END { exit !(ok == 1 && bad == 0) }' "the degree-5 vertex 0,1,2,3,4 at the origin expected" ;;
+large_offset)
+    # the same diagram as degree5_vertex, moved by 1e5 along each axis
+    vertex_lines ../golden/degree5_vertex.tsv > "$work/base.txt"
+    paste "$work/base.txt" "$v" | awk -F '\t' '
+        { c++; if ($1 != $7 || $5 != $11) bad++
+          for (k = 2; k <= 4; k++) { d = $(k + 6) - $k - 100000; if (d < -1e-9 || d > 1e-9) bad++ } }
+        END { exit !(c == 14 && bad == 0) }' || fail "$case: degree5_vertex moved by 1e5 expected"
+    [ "$(wc -l < "$work/base.txt")" -eq "$(wc -l < "$v")" ] || fail "$case: vertex counts differ" ;;
+two_vertices_one_quadruple)
+    awk_check '$1 == "0,1,2,3" { c++; z[c] = $4 } END { exit !(c == 2 && z[1] == -z[2] && z[1] != 0) }' \
+        "two mirror vertices of the quadruple 0,1,2,3 expected" ;;
+bisectors_no_meet)
+    # spheres 0..3 have no common tangent sphere (checked by the fault test
+    # verify_no_solution); here: no vertex uses all four
+    awk_check '{ m = 0; for (k = 1; k <= n; k++) if (id[k] <= 3) m++; if (m == 4) bad++ }
+               END { exit !(bad == 0 && NR == 16) }' "16 vertices, none with all of 0..3, expected" ;;
+nearly_equal_radii)
+    # radii 1.5, 1.5000001, 1.4999999 by id mod 3: vertices mix all three
+    awk_check '{ delete cls; for (k = 1; k <= n; k++) cls[id[k] % 3] = 1; if (length(cls) == 3) mixed++ }
+               END { exit !(NR == 34 && mixed > 0) }' "34 vertices, some touching all three radii, expected" ;;
+intersecting_spheres)
+    awk_check '$5 < 0 { neg++ } END { exit !(neg == 21 && NR == 46) }' \
+        "46 vertices of which 21 with t < 0 expected" ;;
+contained_sphere)
+    # sphere 7 lies inside sphere 0: its cell is empty
+    awk_check '{ for (k = 1; k <= n; k++) if (id[k] == 7) bad++ } END { exit !(bad == 0 && NR == 14) }' \
+        "14 vertices, none touching the contained sphere 7, expected" ;;
+coplanar_centres)
+    # all centres in z = 0: vertices come in mirror pairs off the plane
+    awk_check '{ k = $1 " " $2 " " $3 " " $5; if ($4 == 0) bad++; else if ($4 > 0) up[k]++; else down[k]++ }
+               END { for (k in up) if (down[k] != up[k]) bad++; for (k in down) if (down[k] != up[k]) bad++
+                     exit !(bad == 0 && NR == 26) }' "26 vertices in mirror pairs expected" ;;
+collinear_centres)
+    # spheres 0..5 on the x axis: tangent spheres of three of them form a
+    # circle, which an off-axis sphere cuts in two points
+    awk_check '{ m = 0; for (k = 1; k <= n; k++) if (id[k] <= 5) m++; if (m == 3) three[$1]++ }
+               END { c = 0; for (k in three) { c++; if (three[k] != 2) bad++ } exit !(c == 4 && bad == 0) }' \
+        "4 quadruples with 3 collinear members, two vertices each, expected" ;;
+jittered_lattice)
+    # the 1e-9 jitter splits each degree-8 vertex into nearby simple ones
+    awk_check '{ d[n]++ } $5 < 0.7 { near++ } END { exit !(d[4] == 88 && d[5] == 2 && near > 8) }' \
+        "88 vertices of degree 4, 2 of degree 5, more than 8 near the cube centres expected" ;;
+lattice_subset)
+    # 30 of the 64 points of a 4x4x4 lattice, equal radii: cospherical
+    # subsets everywhere, vertices of degree 4 to 7 side by side
+    awk_check '{ d[n]++ } END { exit !(d[4] == 29 && d[5] == 18 && d[6] == 2 && d[7] == 1 && NR == 50) }' \
+        "29, 18, 2, 1 vertices of degree 4, 5, 6, 7 expected" ;;
+crambin_fragment)
+    awk_check '{ if (n < 4) bad++ } END { exit !(bad == 0 && NR > 100) }' "a real diagram expected" ;;
+*)
+    fail "no property known for case $case" ;;
+esac

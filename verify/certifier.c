@@ -1,0 +1,436 @@
+/* The exact certifier: candidate -> exact tangent sphere -> empty? -> canonical vertex. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "vbx_cert.h"
+
+int vb_certifier_open(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier **out)
+{
+    *out = NULL;
+    if (!set)
+        return vb_error(ctx, VB_EMISUSE, NULL, 0, "vb_certifier_open: no sphere set");
+    if (set->n > (size_t)UINT32_MAX)
+        return vb_error(ctx, VB_EINPUT_TOOLARGE, set->source, 0,
+                        "%zu spheres: the certifier indexes at most 2^32 - 1", set->n);
+    vb_certifier *c = calloc(1, sizeof *c);
+    if (!c)
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (certifier)");
+    c->set = set;
+    int rc = vbx_data_init(ctx, &c->d, set);
+    if (rc != VB_OK) {
+        free(c);
+        return rc;
+    }
+    vbx_solver_init(&c->sol, &c->d);
+    vbx_solver_init(&c->canon, &c->d);
+    size_t n1 = set->n ? set->n : 1;
+    c->cap = n1;
+    c->ids = malloc(n1 * sizeof *c->ids);
+    c->members = malloc(n1 * sizeof *c->members);
+    c->is_def = calloc(n1, 1);
+    c->nslots = 64;
+    c->slots = calloc(c->nslots, sizeof *c->slots);
+    if (vbx_grid_build(&c->g, c->d.near, set->n) != 0 || !c->ids || !c->members ||
+        !c->is_def || !c->slots) {
+        vb_certifier_close(c);
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (certifier)");
+    }
+    *out = c;
+    return VB_OK;
+}
+
+void vb_certifier_close(vb_certifier *c)
+{
+    if (!c)
+        return;
+    vbx_solver_free(&c->sol);
+    vbx_solver_free(&c->canon);
+    vbx_data_free(&c->d);
+    vbx_grid_free(&c->g);
+    free(c->ids);
+    free(c->members);
+    free(c->is_def);
+    free(c->slots);
+    free(c->pool);
+    free(c);
+}
+
+int vbx_cert_tangent_sign(vb_ctx *ctx, vb_certifier *c, const vbx_root *r, uint32_t j,
+                          const vbx_ia box[4])
+{
+    vb_stats *st = vb_ctx_stats(ctx);
+    st->filter_calls++;
+    int sg = vbx_ia_sign(vbx_ia_add(box[3], c->d.box[4 * (size_t)j + 3]));
+    if (sg)
+        return sg;
+    st->filter_failures++;
+    st->exact_evals++;
+    return vbx_sign_tangent(&c->sol, r, j);
+}
+
+/* |p - c_j| - R_j - t over the enclosures: its sign if the filter proves it. */
+static vbx_ia distance_excess(const vb_certifier *c, uint32_t j, const vbx_ia box[4])
+{
+    const vbx_ia *cj = &c->d.box[4 * (size_t)j];
+    vbx_ia d2 = vbx_ia_sqr(vbx_ia_sub(box[0], cj[0]));
+    d2 = vbx_ia_add(d2, vbx_ia_sqr(vbx_ia_sub(box[1], cj[1])));
+    d2 = vbx_ia_add(d2, vbx_ia_sqr(vbx_ia_sub(box[2], cj[2])));
+    return vbx_ia_sub(vbx_ia_sub(vbx_ia_sqrt(d2), cj[3]), box[3]);
+}
+
+static int is_solved_row(const vbx_solver *s, uint32_t j)
+{
+    return j == s->base || j == s->rows[0] || j == s->rows[1] || j == s->rows[2];
+}
+
+int vbx_cert_defining(vb_ctx *ctx, vb_certifier *c, const vbx_root *r, const uint32_t *def,
+                      size_t ndef, const vbx_ia box[4])
+{
+    vb_stats *st = vb_ctx_stats(ctx);
+    for (size_t i = 0; i < ndef; i++) {
+        uint32_t j = def[i];
+        if (vbx_cert_tangent_sign(ctx, c, r, j, box) < 0)
+            return 0;
+        if (is_solved_row(&c->sol, j))
+            continue;
+        /* A defining sphere beyond the four solved must touch exactly. */
+        st->filter_calls++;
+        if (vbx_ia_sign(distance_excess(c, j, box)) != 0)
+            return 0;
+        st->filter_failures++;
+        st->exact_evals++;
+        if (vbx_sign_power(&c->sol, r, j) != 0)
+            return 0;
+    }
+    return 1;
+}
+
+static int cmp_u32(const void *a, const void *b)
+{
+    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+    return (x > y) - (x < y);
+}
+
+void vbx_cert_scan(vb_ctx *ctx, vb_certifier *c, const vbx_root *r, const uint32_t *def,
+                   size_t ndef, const vbx_ia box[4], int *verdict, uint32_t *intruder)
+{
+    vb_stats *st = vb_ctx_stats(ctx);
+    for (size_t i = 0; i < ndef; i++)
+        c->is_def[def[i]] = 1;
+    /* Sphere j can reach into the open tangent ball only if
+     * |p - c_j| < t + R_j <= t + Rmax: scan centres within t + Rmax of the
+     * enclosure of p (bounds pushed outward, see vbx_ia.h and vbx_grid.h). */
+    double rad = vbx_succ(box[3].hi + c->d.rmax);
+    double blo[3], bhi[3];
+    for (int k = 0; k < 3; k++) {
+        blo[k] = vbx_pred(box[k].lo - rad);
+        bhi[k] = vbx_succ(box[k].hi + rad);
+    }
+    int lo[3], hi[3];
+    vbx_grid_range(&c->g, blo, bhi, lo, hi);
+    size_t nm = 0;
+    int found = 0;
+    double depth = 0.0;
+    for (int kz = lo[2]; kz <= hi[2]; kz++)
+        for (int ky = lo[1]; ky <= hi[1]; ky++)
+            for (int kx = lo[0]; kx <= hi[0]; kx++) {
+                size_t cell = vbx_grid_cell(&c->g, kx, ky, kz);
+                for (size_t q = c->g.start[cell]; q < c->g.start[cell + 1]; q++) {
+                    uint32_t j = c->g.ids[q];
+                    if (c->is_def[j])
+                        continue;
+                    st->filter_calls++;
+                    vbx_ia g = distance_excess(c, j, box);
+                    int sg = vbx_ia_sign(g), exact = sg == 0;
+                    if (exact) {
+                        st->filter_failures++;
+                        st->exact_evals++;
+                        sg = vbx_sign_distance(&c->sol, r, j);
+                    }
+                    if (sg > 0)
+                        continue;
+                    if (sg == 0) {
+                        c->members[ndef + nm++] = j;
+                        continue;
+                    }
+                    /* Report the deepest intruder (exactly decided ones sit at ~0). */
+                    double dj = exact ? 0.0 : vbx_ia_mid(g);
+                    if (!found || dj < depth || (dj == depth && j < *intruder)) {
+                        depth = dj;
+                        *intruder = j;
+                    }
+                    found = 1;
+                }
+            }
+    for (size_t i = 0; i < ndef; i++)
+        c->is_def[def[i]] = 0;
+    if (found) {
+        *verdict = VB_CERT_INTRUDER;
+        c->nmembers = 0;
+        return;
+    }
+    memcpy(c->members, def, ndef * sizeof *def);
+    c->nmembers = ndef + nm;
+    qsort(c->members, c->nmembers, sizeof *c->members, cmp_u32);
+    *verdict = VB_CERT_OK;
+}
+
+/* Solves c->canon for the sorted quadruple q; 1 when it is SOLVED with a root. */
+static int canon_solves(vb_certifier *c, const uint32_t q[4])
+{
+    return vbx_solve(&c->canon, q[0], q + 1) == VBX_SOLVED && c->canon.nroots > 0;
+}
+
+static int same_quad(const vbx_solver *s, const uint32_t q[4])
+{
+    return s->base == q[0] && s->rows[0] == q[1] && s->rows[1] == q[2] && s->rows[2] == q[3];
+}
+
+int vbx_cert_canonical(vb_certifier *c, int *ours)
+{
+    const uint32_t *m = c->members;
+    size_t n = c->nmembers;
+    *ours = 0;
+    if (n < 4)
+        return 0;
+    /* Common case: the four members are the solved quadruple itself. */
+    if (n == 4 && same_quad(&c->sol, m) && c->sol.status == VBX_SOLVED) {
+        *ours = 1;
+        return 1;
+    }
+    /* The lexicographically first independent quadruple is the greedy one
+     * (bases of a matroid); no SOLVED quadruple comes before it. */
+    uint32_t q[4] = {m[0], 0, 0, 0};
+    if (vbx_pick_rows(&c->canon, m[0], m + 1, n - 1, 4, q + 1) == 3 && canon_solves(c, q)) {
+        *ours = same_quad(&c->sol, q);
+        return 1;
+    }
+    /* Otherwise (its line lies on the cone: nested tangent spheres) the
+     * first SOLVED quadruple in lexicographic order. */
+    for (size_t a = 0; a < n; a++)
+        for (size_t b = a + 1; b < n; b++)
+            for (size_t d3 = b + 1; d3 < n; d3++)
+                for (size_t e = d3 + 1; e < n; e++) {
+                    uint32_t t[4] = {m[a], m[b], m[d3], m[e]};
+                    if (canon_solves(c, t)) {
+                        *ours = same_quad(&c->sol, t);
+                        return 1;
+                    }
+                }
+    return 0;
+}
+
+static uint64_t hash_members(const uint32_t *m, size_t n, int sigma)
+{
+    uint64_t h = 1469598103934665603ull ^ (uint64_t)(sigma + 1);
+    for (size_t i = 0; i < n; i++) {
+        h ^= m[i];
+        h *= 1099511628211ull;
+        h ^= h >> 29;
+    }
+    return h;
+}
+
+static int grow_table(vb_certifier *c)
+{
+    size_t ns = c->nslots * 2;
+    vbx_key_entry *s = calloc(ns, sizeof *s);
+    if (!s)
+        return VB_ENOMEM;
+    for (size_t i = 0; i < c->nslots; i++) {
+        if (!c->slots[i].n)
+            continue;
+        size_t h = (size_t)(c->slots[i].hash & (ns - 1));
+        while (s[h].n)
+            h = (h + 1) & (ns - 1);
+        s[h] = c->slots[i];
+    }
+    free(c->slots);
+    c->slots = s;
+    c->nslots = ns;
+    return VB_OK;
+}
+
+int vbx_cert_key(vb_ctx *ctx, vb_certifier *c, const vbx_root *r, size_t *key)
+{
+    int sigma, ours;
+    if (!vbx_cert_canonical(c, &ours))
+        return vb_error(ctx, VB_EINTERNAL, NULL, 0,
+                        "a certified vertex has no quadruple of members with a root");
+    if (ours) {
+        sigma = r->sigma;
+    } else {
+        /* The canonical quadruple's line passes through our exact point; its
+         * root there is decided exactly (vbx_sigma_in). */
+        vb_ctx_stats(ctx)->exact_evals++;
+        sigma = vbx_sigma_in(&c->canon, &c->sol, r);
+    }
+    uint64_t h = hash_members(c->members, c->nmembers, sigma);
+    size_t i = (size_t)(h & (c->nslots - 1));
+    for (; c->slots[i].n; i = (i + 1) & (c->nslots - 1)) {
+        const vbx_key_entry *e = &c->slots[i];
+        if (e->hash == h && e->n == c->nmembers && e->sigma == sigma &&
+            memcmp(c->pool + e->off, c->members, e->n * sizeof *c->members) == 0) {
+            *key = e->key;
+            return VB_OK;
+        }
+    }
+    if (c->npool + c->nmembers > c->pool_cap) {
+        size_t cap = c->pool_cap ? c->pool_cap : 1024;
+        while (cap < c->npool + c->nmembers)
+            cap *= 2;
+        uint32_t *p = realloc(c->pool, cap * sizeof *p);
+        if (!p)
+            return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (vertex keys)");
+        c->pool = p;
+        c->pool_cap = cap;
+    }
+    memcpy(c->pool + c->npool, c->members, c->nmembers * sizeof *c->members);
+    vbx_key_entry e = {h, c->npool, c->nmembers, sigma, c->nkeys};
+    c->npool += c->nmembers;
+    c->slots[i] = e;
+    *key = c->nkeys++;
+    if (2 * c->nkeys > c->nslots && grow_table(c) != VB_OK)
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (vertex keys)");
+    return VB_OK;
+}
+
+/* Sorted distinct copy of ids into c->ids; returns the count, 0 if an id is
+ * out of range. */
+static size_t distinct_ids(vb_certifier *c, const uint32_t *ids, size_t nids)
+{
+    size_t n = c->set->n, m = 0;
+    for (size_t i = 0; i < nids; i++)
+        if (ids[i] >= n)
+            return 0;
+    for (size_t i = 0; i < nids; i++)
+        c->is_def[ids[i]] = 1;
+    for (size_t i = 0; i < nids; i++)
+        if (c->is_def[ids[i]]) {
+            c->is_def[ids[i]] = 0;
+            c->ids[m++] = ids[i];
+        }
+    qsort(c->ids, m, sizeof *c->ids, cmp_u32);
+    return m;
+}
+
+int vb_certify_candidate(vb_ctx *ctx, vb_certifier *c, const uint32_t *ids, size_t nids,
+                         const double p[3], double tol, vb_cert_result *res)
+{
+    vb_stats *st = vb_ctx_stats(ctx);
+    memset(res, 0, sizeof *res);
+    st->candidates++;
+    st->rejected++; /* undone below when the candidate is certified */
+    res->verdict = VB_CERT_BAD_IDS;
+    size_t m = nids >= 4 ? distinct_ids(c, ids, nids) : 0;
+    if (m < 4)
+        return VB_OK;
+    uint32_t base = c->ids[0], rows[3];
+    int rank = vbx_pick_rows(&c->sol, base, c->ids + 1, m - 1, 4, rows);
+    if (rank < 3) {
+        /* Rank-deficient: inconsistent rows have no solution; consistent ones
+         * leave at least a plane of (q, s), whose points on the cone are not
+         * a finite set we can name from these ids. */
+        int arank = vbx_pick_rows(&c->sol, base, c->ids + 1, m - 1, 5, rows);
+        st->exact_evals++;
+        res->verdict = arank > rank ? VB_CERT_NO_SOLUTION : VB_CERT_UNDETERMINED;
+        return VB_OK;
+    }
+    st->exact_evals++;
+    int status = vbx_solve(&c->sol, base, rows);
+    if (status == VBX_UNDETERMINED) {
+        res->verdict = VB_CERT_UNDETERMINED;
+        return VB_OK;
+    }
+    /* Among the roots that solve the unsquared system, the nearest. */
+    int best = -1;
+    double best_d = 0.0, xyzt[2][4];
+    vbx_ia box[2][4];
+    for (int r = 0; r < c->sol.nroots; r++) {
+        int rc = vbx_root_coords(&c->sol, &c->sol.root[r], xyzt[r], box[r]);
+        if (rc != VB_OK)
+            return vb_error(ctx, rc, NULL, 0, "cannot round an exact vertex to double");
+        if (!vbx_cert_defining(ctx, c, &c->sol.root[r], c->ids, m, box[r]))
+            continue;
+        double dx = xyzt[r][0] - p[0], dy = xyzt[r][1] - p[1], dz = xyzt[r][2] - p[2];
+        double dd = sqrt(dx * dx + dy * dy + dz * dz);
+        if (best < 0 || dd < best_d) {
+            best = r;
+            best_d = dd;
+        }
+    }
+    res->verdict = VB_CERT_NO_SOLUTION;
+    if (best < 0)
+        return VB_OK;
+    res->x = xyzt[best][0];
+    res->y = xyzt[best][1];
+    res->z = xyzt[best][2];
+    res->t = xyzt[best][3];
+    res->dist = best_d;
+    int verdict;
+    vbx_cert_scan(ctx, c, &c->sol.root[best], c->ids, m, box[best], &verdict, &res->intruder);
+    res->verdict = verdict;
+    if (verdict != VB_CERT_OK)
+        return VB_OK;
+    if (tol > 0.0 && !(best_d <= tol)) {
+        res->verdict = VB_CERT_FAR;
+        return VB_OK;
+    }
+    int rc = vbx_cert_key(ctx, c, &c->sol.root[best], &res->key);
+    if (rc != VB_OK)
+        return rc;
+    res->members = c->members;
+    res->nmembers = c->nmembers;
+    st->rejected--;
+    st->certified++;
+    return VB_OK;
+}
+
+int vb_certify_list(vb_ctx *ctx, vb_certifier *c, const vb_vertex_list *cand, double tol,
+                    vb_vertex_list *out, vb_vertex_list *rejected)
+{
+    size_t *where = NULL, nwhere = 0; /* key -> index in out, SIZE_MAX = none yet */
+    int rc = VB_OK;
+    for (size_t k = 0; k < cand->n && rc == VB_OK; k++) {
+        const uint32_t *ids = cand->ids + cand->start[k];
+        size_t nids = cand->start[k + 1] - cand->start[k];
+        double p[3] = {cand->x[k], cand->y[k], cand->z[k]};
+        vb_cert_result res;
+        rc = vb_certify_candidate(ctx, c, ids, nids, p, tol, &res);
+        if (rc != VB_OK)
+            break;
+        if (res.verdict != VB_CERT_OK) {
+            if (rejected)
+                rc = vb_vertex_list_push(rejected, ids, nids, cand->x[k], cand->y[k],
+                                         cand->z[k], cand->t[k], res.dist, VB_VERTEX_REJECTED);
+            continue;
+        }
+        if (res.key >= nwhere) {
+            size_t nw = nwhere ? nwhere : 64;
+            while (nw <= res.key)
+                nw *= 2;
+            size_t *w = realloc(where, nw * sizeof *w);
+            if (!w) {
+                rc = VB_ENOMEM;
+                break;
+            }
+            for (size_t i = nwhere; i < nw; i++)
+                w[i] = SIZE_MAX;
+            where = w;
+            nwhere = nw;
+        }
+        if (where[res.key] == SIZE_MAX) {
+            where[res.key] = out->n;
+            rc = vb_vertex_list_push(out, res.members, res.nmembers, res.x, res.y, res.z, res.t,
+                                     res.dist, VB_VERTEX_CERTIFIED);
+        } else if (res.dist > out->dist[where[res.key]]) {
+            out->dist[where[res.key]] = res.dist;
+        }
+    }
+    free(where);
+    if (rc == VB_OK)
+        rc = vb_vertex_list_sort(out);
+    if (rc == VB_ENOMEM)
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (certified vertices)");
+    return rc;
+}

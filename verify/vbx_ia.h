@@ -1,0 +1,169 @@
+/* Interval arithmetic in double: the filter of every exact predicate.
+ *
+ * Error bound (the only one the filters rely on). IEEE 754 binary64 in
+ * round-to-nearest returns, for an exact result x of +, -, *, / or sqrt on
+ * doubles, the double r nearest to x. The gap between r and its neighbours
+ * is at least twice |x - r| on the side where x lies (at a power of two the
+ * gap below is half the gap above, and x rounds to r only from within half
+ * of the gap on its own side), so  pred(r) <= x <= succ(r).  This holds for
+ * subnormal results too, and at overflow: r = +inf means x > DBL_MAX, and
+ * pred(+inf) = DBL_MAX. Every bound below is therefore computed in plain
+ * round-to-nearest and moved one step outward: no rounding-mode switches, no
+ * reliance on -frounding-math, and the enclosure is proven op by op.
+ *
+ * Bounds may become infinite (an interval never collapses to [inf, inf]:
+ * pred(+inf) = DBL_MAX); see vbx_min for NaN corners. The filters decide only on "lo > 0" or "hi < 0", so an unbounded or NaN bound
+ * answers "cannot tell" and the exact path runs. Requires FLT_EVAL_METHOD == 0 (no x87 excess precision) and no
+ * contraction into FMA (-ffp-contract=off is global; an FMA would round once
+ * and stay enclosed anyway). */
+#ifndef VBX_IA_H
+#define VBX_IA_H
+
+#include <float.h>
+#include <math.h>
+#include <stdint.h>
+#include <string.h>
+
+#if !defined(FLT_EVAL_METHOD) || FLT_EVAL_METHOD != 0
+#error "vbx_ia.h needs FLT_EVAL_METHOD == 0 (SSE2 doubles)"
+#endif
+
+typedef struct vbx_ia {
+    double lo, hi;
+} vbx_ia;
+
+/* Next double towards +inf (x itself for +inf and NaN). For finite non-zero
+ * x the bit pattern moves by one unit towards +inf: +1 when positive, -1
+ * when negative; the sign is applied arithmetically because a branch on it
+ * is unpredictable in the filters. */
+static inline double vbx_succ(double x)
+{
+    if (__builtin_expect(!(fabs(x) < INFINITY) || x == 0.0, 0)) {
+        if (x == 0.0)
+            return 4.9406564584124654e-324; /* smallest subnormal */
+        return x > 0.0 || x != x ? x : -DBL_MAX;
+    }
+    uint64_t b;
+    memcpy(&b, &x, sizeof b);
+    b += 1u - ((b >> 63) << 1);
+    memcpy(&x, &b, sizeof b);
+    return x;
+}
+
+/* Next double towards -inf (x itself for -inf and NaN). */
+static inline double vbx_pred(double x)
+{
+    return -vbx_succ(-x);
+}
+
+/* Minimum and maximum without libm calls. A NaN operand is either dropped or
+ * propagated; both are safe here: a NaN corner comes only from 0 * inf, where
+ * another corner carries the infinite bound, and a propagated NaN makes the
+ * filter answer "cannot tell". */
+static inline double vbx_min(double a, double b)
+{
+    return a < b ? a : b;
+}
+
+static inline double vbx_max(double a, double b)
+{
+    return a > b ? a : b;
+}
+
+static inline vbx_ia vbx_ia_point(double x)
+{
+    vbx_ia r = {x, x};
+    return r;
+}
+
+static inline vbx_ia vbx_ia_add(vbx_ia a, vbx_ia b)
+{
+    vbx_ia r = {vbx_pred(a.lo + b.lo), vbx_succ(a.hi + b.hi)};
+    return r;
+}
+
+static inline vbx_ia vbx_ia_sub(vbx_ia a, vbx_ia b)
+{
+    vbx_ia r = {vbx_pred(a.lo - b.hi), vbx_succ(a.hi - b.lo)};
+    return r;
+}
+
+static inline vbx_ia vbx_ia_neg(vbx_ia a)
+{
+    vbx_ia r = {-a.hi, -a.lo};
+    return r;
+}
+
+static inline vbx_ia vbx_ia_mul(vbx_ia a, vbx_ia b)
+{
+    /* The exact product range is spanned by the four corner products; each
+     * rounded corner is enclosed by [pred, succ]. */
+    double p1 = a.lo * b.lo, p2 = a.lo * b.hi, p3 = a.hi * b.lo, p4 = a.hi * b.hi;
+    double lo = vbx_min(vbx_min(p1, p2), vbx_min(p3, p4));
+    double hi = vbx_max(vbx_max(p1, p2), vbx_max(p3, p4));
+    vbx_ia r = {vbx_pred(lo), vbx_succ(hi)};
+    return r;
+}
+
+static inline vbx_ia vbx_ia_sqr(vbx_ia a)
+{
+    double l = fabs(a.lo), h = fabs(a.hi);
+    double mx = vbx_max(l, h);
+    vbx_ia r;
+    if (a.lo <= 0.0 && a.hi >= 0.0)
+        r.lo = 0.0;
+    else {
+        double mn = vbx_min(l, h);
+        r.lo = vbx_pred(mn * mn);
+        if (r.lo < 0.0)
+            r.lo = 0.0;
+    }
+    r.hi = vbx_succ(mx * mx);
+    return r;
+}
+
+/* Division; a denominator interval containing 0 gives [-inf, +inf]. */
+static inline vbx_ia vbx_ia_div(vbx_ia a, vbx_ia b)
+{
+    if (!(b.lo > 0.0 || b.hi < 0.0)) {
+        vbx_ia r = {-INFINITY, INFINITY};
+        return r;
+    }
+    double q1 = a.lo / b.lo, q2 = a.lo / b.hi, q3 = a.hi / b.lo, q4 = a.hi / b.hi;
+    double lo = vbx_min(vbx_min(q1, q2), vbx_min(q3, q4));
+    double hi = vbx_max(vbx_max(q1, q2), vbx_max(q3, q4));
+    vbx_ia r = {vbx_pred(lo), vbx_succ(hi)};
+    return r;
+}
+
+/* Square root of the non-negative part of a (negative values clamp to 0:
+ * callers only use it where the exact argument is known to be >= 0). */
+static inline vbx_ia vbx_ia_sqrt(vbx_ia a)
+{
+    vbx_ia r;
+    r.lo = a.lo > 0.0 ? vbx_pred(sqrt(a.lo)) : 0.0;
+    if (r.lo < 0.0)
+        r.lo = 0.0;
+    r.hi = a.hi > 0.0 ? vbx_succ(sqrt(a.hi)) : 0.0;
+    if (a.hi != a.hi) /* NaN propagates */
+        r.hi = a.hi;
+    return r;
+}
+
+/* Sign of the exact value if the interval proves it: +1, -1, or 0 when the
+ * interval straddles (or touches) zero or is NaN. */
+static inline int vbx_ia_sign(vbx_ia a)
+{
+    if (a.lo > 0.0)
+        return 1;
+    if (a.hi < 0.0)
+        return -1;
+    return 0;
+}
+
+static inline double vbx_ia_mid(vbx_ia a)
+{
+    return 0.5 * a.lo + 0.5 * a.hi;
+}
+
+#endif
