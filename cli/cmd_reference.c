@@ -21,6 +21,7 @@ static const char *const usage_text =
     "  -o FILE          write the vertices to FILE (default stdout)\n"
     "  --format F       output format: tsv (default), json, voronota; the input\n"
     "                   format names below (auto, xyzr, pdb, ...) select how IN is read\n"
+    "  --output-format F  the same, as `vorball vertices` spells it\n"
     "  --stats          print filter and exact-evaluation counts and the time to stderr\n";
 
 /* --format names either the output (tsv, json, voronota) or, as for every
@@ -50,6 +51,10 @@ int vb_cmd_reference(int argc, char **argv)
         } else if (strcmp(argv[i], "--format") == 0 && i + 1 < argc &&
                    is_output_format(argv[i + 1])) {
             fmt_name = argv[++i];
+        } else if (strcmp(argv[i], "--output-format") == 0) {
+            if (++i >= argc)
+                return vb_cli_usage_error(argv[0], "--output-format needs tsv, json or voronota");
+            fmt_name = argv[i];
         } else if (strcmp(argv[i], "--stats") == 0) {
             stats = 1;
         } else {

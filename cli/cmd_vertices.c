@@ -1,6 +1,7 @@
 /* `vorball vertices`: certified Voronoi vertices of spheres by the seed
  * paper's sampling pipeline, optionally with the cell topology. */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "cli_common.h"
@@ -26,7 +27,8 @@ static void help(FILE *f)
             "  --tol T              Newton / matching tolerance in input units\n"
             "                       (default 1e-5 of the bounding-box diagonal)\n"
             "  --topology FILE      write faces (sphere pairs) and edges (vertex pairs)\n"
-            "  --tiles T            culling tiles per cube face side (default: from S)\n"
+            "  --tiles T            culling tiles per cube face side, a power of two\n"
+            "                       (default: from S)\n"
             "  --all-pairs          no neighbour culling (every cell tests all bisectors)\n"
             "  --stats              pipeline and certifier counters on stderr\n",
             VB_SAMPLER_DEFAULT_SAMPLES);
@@ -142,6 +144,11 @@ int vb_cmd_vertices(int argc, char **argv)
         rc = out ? vb_vertex_write(ctx, out, &res.certified, vfmt, NULL) : VB_EIO;
         if (out)
             rc = rc ? rc : vb_cli_close_output(ctx, out, outpath);
+    }
+    if (rc == VB_OK && getenv("VB_DUMP_CAND")) {
+        FILE *d = fopen(getenv("VB_DUMP_CAND"), "w");
+        vb_vertex_write(ctx, d, &res.sampler.candidates, VB_VFMT_TSV, NULL);
+        fclose(d);
     }
     if (rc == VB_OK && topo_path)
         rc = write_topology(ctx, topo_path, &res);

@@ -44,8 +44,8 @@ int vb_pipeline_option(const char *cmd, int argc, char **argv, int *i,
     }
     if (strcmp(a, "--tiles") == 0) {
         size_t t;
-        if (!has || vb_cli_parse_size(argv[*i + 1], &t) || t < 1 || t > 64) {
-            vb_cli_usage_error(cmd, "--tiles needs an integer in 1..64");
+        if (!has || vb_cli_parse_size(argv[*i + 1], &t) || t < 1 || t > 64 || (t & (t - 1))) {
+            vb_cli_usage_error(cmd, "--tiles needs a power of two in 1..64");
             return -1;
         }
         so->tiles = (unsigned)t;

@@ -129,7 +129,11 @@ static void nearest_visit(const vbc_cells *c, int32_t a, void *user)
 {
     nearest_state *st = user;
     double dx = st->p[0] - c->s->x[a], dy = st->p[1] - c->s->y[a], dz = st->p[2] - c->s->z[a];
-    double d = sqrt(dx * dx + dy * dy + dz * dz) - c->s->r[a];
+    double d2 = dx * dx + dy * dy + dz * dz, reach = st->best + c->s->r[a];
+    /* Skip the square root when the surface is certainly farther than the best. */
+    if (st->atom >= 0 && reach >= 0.0 && d2 > reach * reach * (1.0 + 1e-12))
+        return;
+    double d = sqrt(d2) - c->s->r[a];
     if (st->atom < 0 || d < st->best || (d == st->best && a < st->atom)) {
         st->best = d;
         st->atom = a;

@@ -7,49 +7,6 @@
 
 #include "vbc_channel.h"
 
-/* Open-addressing map from voxel index to position in the sorted list. */
-typedef struct {
-    uint32_t *key;
-    uint32_t *val;
-    size_t mask;
-} vox_map;
-
-#define EMPTY_KEY 0xffffffffu
-
-static size_t hash32(uint32_t v, size_t mask)
-{
-    return (size_t)((v * 2654435761u) ^ (v >> 15)) & mask;
-}
-
-static int map_init(vox_map *m, const uint32_t *v, size_t n)
-{
-    size_t cap = 16;
-    while (cap < 2 * n)
-        cap *= 2;
-    m->mask = cap - 1;
-    m->key = malloc(cap * sizeof *m->key);
-    m->val = malloc(cap * sizeof *m->val);
-    if (!m->key || !m->val)
-        return -1;
-    memset(m->key, 0xff, cap * sizeof *m->key);
-    for (size_t i = 0; i < n; i++) {
-        size_t h = hash32(v[i], m->mask);
-        while (m->key[h] != EMPTY_KEY)
-            h = (h + 1) & m->mask;
-        m->key[h] = v[i];
-        m->val[h] = (uint32_t)i;
-    }
-    return 0;
-}
-
-static long map_get(const vox_map *m, uint32_t v)
-{
-    for (size_t h = hash32(v, m->mask); m->key[h] != EMPTY_KEY; h = (h + 1) & m->mask)
-        if (m->key[h] == v)
-            return (long)m->val[h];
-    return -1;
-}
-
 static int cmp_u32(const void *a, const void *b)
 {
     uint32_t x = *(const uint32_t *)a & ~VBC_MOUTH_BIT, y = *(const uint32_t *)b & ~VBC_MOUTH_BIT;
@@ -81,7 +38,6 @@ typedef struct {
     const vbc_grid *g;
     const uint32_t *v;  /* sorted voxel indices, mouth bit cleared */
     const uint8_t *mouth;
-    vox_map map;
     double *dist;       /* Dijkstra distances (voxel units), per position */
     uint32_t *pred;
     uint32_t *heap;     /* binary heap of positions keyed by dist */
@@ -89,6 +45,9 @@ typedef struct {
     uint32_t *hpos;     /* position of each list entry in the heap, or UINT32_MAX */
     const double *clear; /* clearance (Å) per position, for the weighted sweep */
     uint32_t *rep;      /* per opening root: its widest mouth voxel */
+    size_t *adj_start;  /* CSR adjacency: neighbours of position u are */
+    uint32_t *adj;      /* adj[adj_start[u] .. adj_start[u+1]), 26-connected */
+    uint8_t *adj_len;   /* per entry: 1 face, 2 edge, 3 corner neighbour */
     const vb_sphere_set *s;
     int32_t *support;   /* atoms that bound the molecule's width in every direction */
     size_t nsupport;
@@ -143,7 +102,6 @@ static void heap_down(ana *A, size_t i)
  * (the cost CAVER-style tools minimise). */
 static void sweep(ana *A, const uint32_t *members, size_t m, uint32_t src, int weighted)
 {
-    const vbc_grid *g = A->g;
     static const double w[4] = {0.0, 1.0, 1.4142135623730951, 1.7320508075688772};
     for (size_t t = 0; t < m; t++) {
         A->dist[members[t]] = INFINITY;
@@ -154,43 +112,32 @@ static void sweep(ana *A, const uint32_t *members, size_t m, uint32_t src, int w
     A->heapn = 0;
     A->heap[A->heapn] = src;
     A->hpos[src] = (uint32_t)A->heapn++;
-    size_t nxy = (size_t)g->nx * (size_t)g->ny;
     while (A->heapn > 0) {
         uint32_t u = A->heap[0];
         heap_swap(A, 0, A->heapn - 1);
         A->heapn--;
         A->hpos[u] = UINT32_MAX - 1; /* settled */
         heap_down(A, 0);
-        uint32_t vu = A->v[u];
-        int i = (int)(vu % (uint32_t)g->nx), j = (int)((vu / (uint32_t)g->nx) % (uint32_t)g->ny);
-        int k = (int)(vu / nxy);
-        for (int dz = -1; dz <= 1; dz++)
-            for (int dy = -1; dy <= 1; dy++)
-                for (int dx = -1; dx <= 1; dx++) {
-                    int ii = i + dx, jj = j + dy, kk = k + dz;
-                    if ((dx | dy | dz) == 0 || ii < 0 || jj < 0 || kk < 0 || ii >= g->nx ||
-                        jj >= g->ny || kk >= g->nz)
-                        continue;
-                    long q = map_get(&A->map, (uint32_t)((size_t)ii + (size_t)g->nx * (size_t)jj +
-                                                         nxy * (size_t)kk));
-                    if (q < 0 || A->hpos[q] == UINT32_MAX - 1)
-                        continue;
-                    double step = w[abs(dx) + abs(dy) + abs(dz)];
-                    if (weighted) {
-                        double r = fmax(fmin(A->clear[u], A->clear[q]), MIN_CLEAR);
-                        step /= r * r;
-                    }
-                    double nd = A->dist[u] + step;
-                    if (nd < A->dist[q]) {
-                        A->dist[q] = nd;
-                        A->pred[q] = u;
-                        if (A->hpos[q] == UINT32_MAX) {
-                            A->heap[A->heapn] = (uint32_t)q;
-                            A->hpos[q] = (uint32_t)A->heapn++;
-                        }
-                        heap_up(A, A->hpos[q]);
-                    }
+        for (size_t e = A->adj_start[u]; e < A->adj_start[u + 1]; e++) {
+            uint32_t q = A->adj[e];
+            if (A->hpos[q] == UINT32_MAX - 1)
+                continue;
+            double step = w[A->adj_len[e]];
+            if (weighted) {
+                double r = fmax(fmin(A->clear[u], A->clear[q]), MIN_CLEAR);
+                step /= r * r;
+            }
+            double nd = A->dist[u] + step;
+            if (nd < A->dist[q]) {
+                A->dist[q] = nd;
+                A->pred[q] = u;
+                if (A->hpos[q] == UINT32_MAX) {
+                    A->heap[A->heapn] = q;
+                    A->hpos[q] = (uint32_t)A->heapn++;
                 }
+                heap_up(A, A->hpos[q]);
+            }
+        }
     }
 }
 
@@ -258,29 +205,6 @@ static int cmp_by_clear(const void *x, const void *y)
     return (a->pos > b->pos) - (a->pos < b->pos);
 }
 
-/* The list positions of the channel voxels 26-adjacent to position u. */
-static int neighbours(const ana *A, uint32_t u, uint32_t out[26])
-{
-    const vbc_grid *g = A->g;
-    size_t nxy = (size_t)g->nx * (size_t)g->ny;
-    uint32_t v = A->v[u];
-    int i = (int)(v % (uint32_t)g->nx), j = (int)((v / (uint32_t)g->nx) % (uint32_t)g->ny);
-    int k = (int)(v / nxy), n = 0;
-    for (int dz = -1; dz <= 1; dz++)
-        for (int dy = -1; dy <= 1; dy++)
-            for (int dx = -1; dx <= 1; dx++) {
-                int ii = i + dx, jj = j + dy, kk = k + dz;
-                if ((dx | dy | dz) == 0 || ii < 0 || jj < 0 || kk < 0 || ii >= g->nx ||
-                    jj >= g->ny || kk >= g->nz)
-                    continue;
-                long q = map_get(&A->map, (uint32_t)((size_t)ii + (size_t)g->nx * (size_t)jj +
-                                                     nxy * (size_t)kk));
-                if (q >= 0)
-                    out[n++] = (uint32_t)q;
-            }
-    return n;
-}
-
 /* The widest pair of openings that lies through the molecule: voxels enter by
  * decreasing clearance (a maximum spanning forest, as in Kruskal); the first
  * union that joins two openings forming a through pair decides, and the
@@ -315,10 +239,8 @@ static int widest_through(ana *A, uint32_t *parent, const uint32_t *members, siz
         uint32_t u = S[t].pos;
         A->hpos[u] = 1;
         parent[u] = u;
-        uint32_t nb[26];
-        int nn = neighbours(A, u, nb);
-        for (int e = 0; e < nn && !found; e++) {
-            uint32_t q = nb[e];
+        for (size_t e = A->adj_start[u]; e < A->adj_start[u + 1] && !found; e++) {
+            uint32_t q = A->adj[e];
             if (!A->hpos[q])
                 continue;
             uint32_t ru = uf_find(parent, u), rq = uf_find(parent, (uint32_t)q);
@@ -357,7 +279,7 @@ out:
 /* Atoms extreme along any of SUPPORT_DIRS directions (Fibonacci sphere):
  * the width of the molecule along a direction is then measured over these
  * few atoms instead of all. *out is malloc'ed. */
-#define SUPPORT_DIRS 200
+#define SUPPORT_DIRS 64
 
 static int support_atoms(const vb_sphere_set *s, int32_t **out, size_t *count)
 {
@@ -407,11 +329,9 @@ static int channel_ends(ana *A, uint32_t *parent, const uint32_t *members, size_
         uint32_t u = members[t];
         if (!A->mouth[u])
             continue;
-        uint32_t nb[26];
-        int nn = neighbours(A, u, nb);
-        for (int e = 0; e < nn; e++)
-            if (A->mouth[nb[e]])
-                uf_union(parent, u, nb[e]);
+        for (size_t e = A->adj_start[u]; e < A->adj_start[u + 1]; e++)
+            if (A->mouth[A->adj[e]])
+                uf_union(parent, u, A->adj[e]);
     }
     /* The widest voxel of each opening, kept at the opening's root. */
     size_t k = 0;
@@ -541,6 +461,8 @@ int vbc_analyse(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, const ui
     memset(res, 0, sizeof *res);
     if (nvox == 0)
         return VB_OK;
+    if (nvox >= ((size_t)1 << 30))
+        return vb_error(ctx, VB_EINPUT_TOOLARGE, NULL, 0, "%zu channel voxels: too many", nvox);
     int rc = VB_ENOMEM;
     ana A;
     memset(&A, 0, sizeof A);
@@ -575,28 +497,55 @@ int vbc_analyse(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, const ui
     }
     A.v = sorted;
     A.mouth = mouth;
-    if (map_init(&A.map, sorted, nvox) != 0)
-        goto done;
 
-    /* Union with the 13 neighbours that come later in index order. */
-    size_t nxy = (size_t)g->nx * (size_t)g->ny;
+    /* The voxel graph once (26-connectivity), then its components. The list is
+     * sorted, so the neighbours of voxel v in the row at offset o = dy*nx +
+     * dz*nx*ny lie at v + o - 1 .. v + o + 1, and a cursor per row offset only
+     * ever moves forward: the whole graph costs a linear merge, no lookups. */
+    size_t nxy = (size_t)g->nx * (size_t)g->ny, adjcap = 0, ne = 0;
+    size_t cursor[9] = {0};
+    A.adj_start = malloc((nvox + 1) * sizeof *A.adj_start);
+    if (!A.adj_start)
+        goto done;
     for (size_t t = 0; t < nvox; t++) {
+        A.adj_start[t] = ne;
         uint32_t v = sorted[t];
         int i = (int)(v % (uint32_t)g->nx), j = (int)((v / (uint32_t)g->nx) % (uint32_t)g->ny);
         int k = (int)(v / nxy);
-        for (int dz = 0; dz <= 1; dz++)
-            for (int dy = -1; dy <= 1; dy++)
+        if (grow((void **)&A.adj, &adjcap, ne + 26, sizeof *A.adj))
+            goto done;
+        for (int dz = -1; dz <= 1; dz++)
+            for (int dy = -1; dy <= 1; dy++) {
+                size_t *cur = &cursor[(dz + 1) * 3 + dy + 1];
+                int jj = j + dy, kk = k + dz;
+                int64_t base = (int64_t)v + (int64_t)dy * g->nx + (int64_t)dz * (int64_t)nxy;
+                while (*cur < nvox && (int64_t)sorted[*cur] < base - 1)
+                    (*cur)++;
+                if (jj < 0 || kk < 0 || jj >= g->ny || kk >= g->nz)
+                    continue;
+                size_t q = *cur;
                 for (int dx = -1; dx <= 1; dx++) {
-                    if (dz == 0 && (dy < 0 || (dy == 0 && dx <= 0)))
+                    int ii = i + dx;
+                    int64_t target = base + dx;
+                    while (q < nvox && (int64_t)sorted[q] < target)
+                        q++;
+                    if ((dx | dy | dz) == 0 || ii < 0 || ii >= g->nx || q >= nvox ||
+                        (int64_t)sorted[q] != target)
                         continue;
-                    int ii = i + dx, jj = j + dy, kk = k + dz;
-                    if (ii < 0 || jj < 0 || ii >= g->nx || jj >= g->ny || kk >= g->nz)
-                        continue;
-                    long q = map_get(&A.map, (uint32_t)((size_t)ii + (size_t)g->nx * (size_t)jj +
-                                                        nxy * (size_t)kk));
-                    if (q >= 0)
+                    /* The step length code rides in the top two bits until the split below. */
+                    A.adj[ne++] = (uint32_t)q | ((uint32_t)(abs(dx) + abs(dy) + abs(dz)) << 30);
+                    if (q > t)
                         uf_union(parent, (uint32_t)t, (uint32_t)q);
                 }
+            }
+    }
+    A.adj_start[nvox] = ne;
+    A.adj_len = malloc(ne ? ne : 1);
+    if (!A.adj_len)
+        goto done;
+    for (size_t e = 0; e < ne; e++) {
+        A.adj_len[e] = (uint8_t)(A.adj[e] >> 30);
+        A.adj[e] &= 0x3fffffffu;
     }
     /* Components as CSR over `order`, numbered by their lowest voxel. */
     size_t ncomp = 0;
@@ -619,7 +568,7 @@ int vbc_analyse(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, const ui
     cstart[0] = 0;
     res->components = ncomp;
 
-    if ((rc = vbc_cells_build(ctx, s, 4.0, &cells)) != VB_OK)
+    if ((rc = vbc_cells_build(ctx, s, 3.0, &cells)) != VB_OK)
         goto done;
     rc = VB_ENOMEM;
     A.s = s;
@@ -727,10 +676,11 @@ done:
     free(A.hpos);
     free(A.rep);
     free(A.support);
+    free(A.adj_start);
+    free(A.adj);
+    free(A.adj_len);
     free(clear);
     free(near);
-    free(A.map.key);
-    free(A.map.val);
     free(L.mark);
     free(L.list);
     free(path);

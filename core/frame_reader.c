@@ -35,10 +35,10 @@ struct vb_frame_reader {
     size_t text_len;
 };
 
-/* Next line of the stream (with its '\n' if any) into *s, *n; 0 at the end,
- * -1 on a read error. */
 static int next_line_raw(vb_frame_reader *rd, const char **s, size_t *n);
 
+/* Next line of the stream (with its '\n' if any) into *s, *n; 0 at the end,
+ * -1 on a read or allocation error. */
 static int next_line(vb_frame_reader *rd, const char **s, size_t *n)
 {
     if (rd->unread) {
@@ -65,7 +65,7 @@ static int next_line_raw(vb_frame_reader *rd, const char **s, size_t *n)
         /* The head's last line may continue in the file: finish it there. */
         if (nl) {
             *s = p;
-            *n = nl ? (size_t)(nl - p) + 1 : left;
+            *n = (size_t)(nl - p) + 1;
             rd->head_pos += *n;
             rd->lineno++;
             return 1;

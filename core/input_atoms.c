@@ -80,6 +80,9 @@ void vbi_report_dropped(vb_ctx *ctx, const char *name, const vbi_dropped *dr)
     if (dr->hydrogens)
         vb_warn(ctx, 706, name, 0, "%zu hydrogen atom%s dropped (--no-hydrogens)", dr->hydrogens,
                 dr->hydrogens == 1 ? "" : "s");
+    if (dr->after_end)
+        vb_warn(ctx, 710, name, 0, "%zu atom record%s after the END record ignored", dr->after_end,
+                dr->after_end == 1 ? "" : "s");
     if (dr->unknown_elements > 1)
         vb_warn(ctx, 708, name, 0, "%zu atoms in all had an unknown element and radius 1.70",
                 dr->unknown_elements);

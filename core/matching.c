@@ -177,9 +177,9 @@ typedef struct full_base {
 } full_base;
 
 static int full_base_set(full_base *fb, const vb_sphere_set *s, uint32_t m, double clip,
-                         const vbs_base_data *bd)
+                         size_t nbis)
 {
-    size_t need = 6 * bd->nbis + 1;
+    size_t need = 6 * nbis + 1;
     if (need > fb->cap) {
         uint32_t *p = realloc(fb->idx, need * sizeof *p);
         if (!p)
@@ -188,11 +188,11 @@ static int full_base_set(full_base *fb, const vb_sphere_set *s, uint32_t m, doub
         fb->cap = need;
     }
     for (size_t f = 0; f < 6; f++) {
-        fb->off[f] = (uint32_t)(f * bd->nbis);
-        for (size_t q = 0; q < bd->nbis; q++)
-            fb->idx[f * bd->nbis + q] = (uint32_t)q;
+        fb->off[f] = (uint32_t)(f * nbis);
+        for (size_t q = 0; q < nbis; q++)
+            fb->idx[f * nbis + q] = (uint32_t)q;
     }
-    fb->off[6] = (uint32_t)(6 * bd->nbis);
+    fb->off[6] = (uint32_t)(6 * nbis);
     vbs_base *b = &fb->base;
     b->cx = s->x[m];
     b->cy = s->y[m];
@@ -201,14 +201,14 @@ static int full_base_set(full_base *fb, const vb_sphere_set *s, uint32_t m, doub
     b->clip = clip / s->r[m];
     b->id = m;
     b->bis_start = 0;
-    b->bis_count = (uint32_t)bd->nbis;
+    b->bis_count = (uint32_t)nbis;
     b->tile_start = 0;
     return VB_OK;
 }
 
 /* Sec. 5.5 for one (vertex, sphere): returns 1 when found; new candidates
  * (the vertex itself or neighbours revealed by the small cells) go to extra. */
-static int targeted(const full_base *fb, const vbs_base_data *bd, const vbs_params *p,
+static int targeted(const full_base *fb, const vbs_bisector *bis, const vbs_params *p,
                     const vbs_cand *v, unsigned depth, vb_cand_vec *extra, int *err)
 {
     double d[3] = {v->x - fb->base.cx, v->y - fb->base.cy, v->z - fb->base.cz};
@@ -228,13 +228,13 @@ static int targeted(const full_base *fb, const vbs_base_data *bd, const vbs_para
         quad.depth = 0;
         for (int k = 0; k < 4; k++) {
             double dd[3], s;
-            quad.col[k] = vbs_envelope_at(&fb->base, bd->bis, fb->off, fb->idx, 1, f,
+            quad.col[k] = vbs_envelope_at(&fb->base, bis, fb->off, fb->idx, 1, f,
                                           quad.u0 + ((k & 1) ? h : 0.0),
                                           quad.v0 + ((k & 2) ? h : 0.0), dd, &s);
         }
         vbs_cand buf[VBS_MAX_CAND];
         vbs_emit em = {buf, VBS_MAX_CAND, 0u, 0u, 0xffffffffu};
-        vbs_process_cell(&fb->base, bd->bis, fb->off, fb->idx, &q, f, &quad, VBS_CF_TARGETED,
+        vbs_process_cell(&fb->base, bis, fb->off, fb->idx, &q, f, &quad, VBS_CF_TARGETED,
                          &em);
         int found = 0;
         for (vbs_u32 k = 0; k < em.n; k++) {
@@ -361,14 +361,15 @@ static int cmp_qrec(const void *pa, const void *pb)
 typedef struct emit_ctx {
     const vb_sphere_set *set;
     const vbs_hash *hash;
-    double tol;
+    double guard;            /* rounding guard of the tangent test, relative */
     uint32_t *qbuf;
     size_t qcap;
     qset seen;
     vb_sampler_result *res;
 } emit_ctx;
 
-static int emit_roots(emit_ctx *e, const uint32_t q[4], const vbs_cand *proto, int depth)
+static int emit_roots(emit_ctx *e, const uint32_t q[4], const vbs_cand *proto, int own,
+                      int depth)
 {
     const vb_sphere_set *s = e->set;
     double sp[4][4], roots[2][4];
@@ -380,7 +381,8 @@ static int emit_roots(emit_ctx *e, const uint32_t q[4], const vbs_cand *proto, i
         sp[k][3] = s->r[j];
     }
     int n = vbs_tangent_roots(sp, roots);
-    if (n == 0) {
+    if (n == 0 && own) {
+        /* Only a Newton point of this very quadruple may stand in. */
         roots[0][0] = proto->x;
         roots[0][1] = proto->y;
         roots[0][2] = proto->z;
@@ -404,7 +406,10 @@ static int emit_roots(emit_ctx *e, const uint32_t q[4], const vbs_cand *proto, i
         c.y = roots[k][1];
         c.z = roots[k][2];
         c.t = roots[k][3];
-        uint32_t j = tangent_intruder(e->hash, &c, q, e->tol, &e->qbuf, &e->qcap, &rc);
+        /* The roots come from a closed form in double: a guard of 1e-9 of
+         * the scale covers their rounding; the certifier decides the rest. */
+        double guard = e->guard * (1.0 + fabs(c.t));
+        uint32_t j = tangent_intruder(e->hash, &c, q, guard, &e->qbuf, &e->qcap, &rc);
         if (rc != VB_OK)
             break;
         if (j == VBS_INF_COLOUR) {
@@ -426,7 +431,7 @@ static int emit_roots(emit_ctx *e, const uint32_t q[4], const vbs_cand *proto, i
                 rc = VB_ENOMEM;
             else if (fresh) {
                 e->res->swaps++;
-                rc = emit_roots(e, q2, &c, depth - 1);
+                rc = emit_roots(e, q2, &c, 0, depth - 1);
             }
         }
     }
@@ -498,7 +503,7 @@ static int complete_ring(emit_ctx *e)
                     rc = VB_ENOMEM;
                 else if (fresh) {
                     e->res->ring_tries++;
-                    rc = emit_roots(e, q2, &c, 0);
+                    rc = emit_roots(e, q2, &c, 0, 0);
                 }
             }
     }
@@ -514,8 +519,6 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
     work *wk = NULL;
     size_t nwk = 0, wcap = 0;
     vb_cand_vec extra = {0};
-    vbs_base_data bd;
-    memset(&bd, 0, sizeof bd);
     full_base fb;
     memset(&fb, 0, sizeof fb);
     uint32_t *tbuf = NULL;
@@ -557,20 +560,24 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
         }
         res->complete_first += (uint64_t)(complete && nf == nm);
     }
-    /* Sec. 5.5, one base at a time. */
+    /* Sec. 5.5, one base at a time, with all bisectors the culling kept. */
+    const vbs_bisector *bis = NULL;
+    size_t nbis = 0;
     if (rc == VB_OK)
         qsort(wk, nwk, sizeof *wk, cmp_work);
     for (size_t w = 0; rc == VB_OK && w < nwk; w++) {
         if (w == 0 || wk[w].base != wk[w - 1].base) {
-            rc = vbs_cull_base(ctx, cu, wk[w].base, &bd);
-            if (rc == VB_OK && full_base_set(&fb, set, wk[w].base, cu->clip, &bd))
+            uint32_t mb = wk[w].base;
+            bis = cu->store->bis + cu->store->off[mb];
+            nbis = cu->store->off[mb + 1] - cu->store->off[mb];
+            if (full_base_set(&fb, set, mb, cu->clip, nbis)) {
                 rc = VB_ENOMEM;
-            if (rc != VB_OK)
                 break;
+            }
         }
         const vbs_cand *v = raw->v + m.cl_items[m.cl_start[wk[w].cluster]];
         res->targeted_searches++;
-        if (bd.nbis > 0 && targeted(&fb, &bd, params, v, VB_SAMPLER_DEFAULT_TARGET_DEPTH,
+        if (nbis > 0 && targeted(&fb, bis, params, v, VB_SAMPLER_DEFAULT_TARGET_DEPTH,
                                     &extra, &rc))
             res->targeted_found++;
     }
@@ -605,14 +612,16 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
     if (rc == VB_OK)
         qsort(qs, nq, sizeof *qs, cmp_qrec);
     /* Sampled quadruples first (all marked seen), then their swaps. */
-    emit_ctx ec = {set, cu->hash, params->tol, NULL, 0, {NULL, 0, 0}, res};
+    /* 1e-9 of the bounding-box diagonal (the default tol is 1e-5 of it). */
+    double diag = 1e5 * vb_sampler_default_tol(set);
+    emit_ctx ec = {set, cu->hash, 1e-9 * diag, NULL, 0, {NULL, 0, 0}, res};
     for (size_t k = 0; rc == VB_OK && k < nq; k++)
         if (qset_add(&ec.seen, qs[k].q) < 0)
             rc = VB_ENOMEM;
     for (size_t k = 0; rc == VB_OK && k < nq; k++) {
         if (k > 0 && memcmp(qs[k].q, qs[k - 1].q, sizeof qs[k].q) == 0)
             continue;
-        rc = emit_roots(&ec, qs[k].q, &qs[k].c, VBS_SWAP_DEPTH);
+        rc = emit_roots(&ec, qs[k].q, &qs[k].c, 1, VBS_SWAP_DEPTH);
     }
     if (rc == VB_OK)
         rc = complete_ring(&ec);
@@ -621,7 +630,6 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
     free(qs);
     free(tbuf);
     free(fb.idx);
-    vbs_base_data_free(&bd);
     vb_cand_vec_free(&extra);
     free(wk);
     free(mem);

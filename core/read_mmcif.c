@@ -241,16 +241,21 @@ int vbi_mmcif_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len,
     vbi_cif_token t;
     int found = 0;
     vbi_cif_next(&c, &t);
-    while (!found && t.kind != VBI_CIF_END && t.kind != VBI_CIF_ERROR) {
+    while (rc == VB_OK && t.kind != VBI_CIF_END && t.kind != VBI_CIF_ERROR) {
         if (t.kind != VBI_CIF_LOOP) {
             vbi_cif_next(&c, &t);
             continue;
         }
         vbi_cif_next(&c, &t);
-        if (t.kind == VBI_CIF_TAG && prefix_ci(t.text, t.len, atom_site)) {
-            found = 1;
-            rc = read_loop(&r, &c, &t);
+        if (t.kind != VBI_CIF_TAG || !prefix_ci(t.text, t.len, atom_site))
+            continue;
+        if (found) {
+            /* A second block's atoms are another structure, not more of this one. */
+            vb_warn(ctx, 711, name, t.line, "a further _atom_site loop (another data block) ignored");
+            break;
         }
+        found = 1;
+        rc = read_loop(&r, &c, &t);
     }
     if (rc == VB_OK && t.kind == VBI_CIF_ERROR)
         rc = vb_error(ctx, VB_EINPUT_MALFORMED, name, t.line,

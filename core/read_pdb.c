@@ -82,6 +82,7 @@ int vbi_pdb_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
     vbi_models_init(&m, opt->model);
     vbi_altloc alt;
     vbi_altloc_init(&alt);
+    int ended = 0; /* an END record was met: what follows is not this entry */
     vbi_lines it;
     vbi_lines_init(&it, buf, len, first_line);
     const char *line;
@@ -98,10 +99,16 @@ int vbi_pdb_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
             vbi_models_end(&m);
             continue;
         }
-        if (vbi_pdb_record(line, n, "END"))
-            break;
+        if (vbi_pdb_record(line, n, "END")) {
+            ended = 1;
+            continue;
+        }
         if (!vbi_pdb_record(line, n, "ATOM") && !vbi_pdb_record(line, n, "HETATM"))
             continue;
+        if (ended) {
+            dr->after_end++;
+            continue;
+        }
         if (!vbi_models_takes(&m)) {
             dr->other_models++;
             continue;

@@ -36,6 +36,7 @@ int vbi_pqr_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
         return rc;
     vbi_models m;
     vbi_models_init(&m, opt->model);
+    int ended = 0; /* an END record was met: what follows is not this entry */
     vbi_lines it;
     vbi_lines_init(&it, buf, len, first_line);
     const char *line;
@@ -59,10 +60,16 @@ int vbi_pqr_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
             vbi_models_end(&m);
             continue;
         }
-        if (record_is(tok[0], tl[0], "END"))
-            break;
+        if (record_is(tok[0], tl[0], "END")) {
+            ended = 1;
+            continue;
+        }
         if (!record_is(tok[0], tl[0], "ATOM") && !record_is(tok[0], tl[0], "HETATM"))
             continue;
+        if (ended) {
+            dr->after_end++;
+            continue;
+        }
         if (!vbi_models_takes(&m)) {
             dr->other_models++;
             continue;

@@ -35,8 +35,14 @@ static int parse_annotation(const char *p, const char *end, vb_atom_info *info)
 int vbi_read_xyzr(vb_ctx *ctx, const char *name, const char *buf, size_t len,
                   const vb_read_options *opt, vb_sphere_set **out)
 {
+    /* XYZR is a single model, number 1: another one is absent. */
+    vbi_models m;
+    vbi_models_init(&m, opt->model);
+    int rc = vbi_models_check(ctx, name, &m);
+    if (rc != VB_OK)
+        return rc;
     vbi_builder b;
-    int rc = vbi_builder_init(&b, ctx, name, opt->max_spheres, 1);
+    rc = vbi_builder_init(&b, ctx, name, opt->max_spheres, 1);
     if (rc != VB_OK)
         return rc;
     vbi_lines it;

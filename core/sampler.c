@@ -4,7 +4,78 @@
 #include <string.h>
 #include <time.h>
 
+#include <pthread.h>
+#include <unistd.h>
+
 #include "vbs_internal.h"
+
+/* Culling of one batch on several threads: base k of the batch goes to
+ * thread k mod nthreads, into its own slot; the batch is then assembled in
+ * base order, so the result does not depend on the thread count. */
+typedef struct cull_job {
+    vb_ctx *ctx;
+    const vbs_culler *cu;
+    vbs_base_data *slots;
+    size_t b0, b1, first, step;
+    int rc;
+} cull_job;
+
+static void *cull_worker(void *arg)
+{
+    cull_job *j = arg;
+    for (size_t i = j->b0 + j->first; i < j->b1 && j->rc == VB_OK; i += j->step)
+        j->rc = vbs_cull_base(j->ctx, j->cu, (uint32_t)i, &j->slots[i - j->b0]);
+    return NULL;
+}
+
+static int cull_batch(vb_ctx *ctx, const vbs_culler *cu, vbs_base_data *slots, size_t b0,
+                      size_t b1, int nthreads)
+{
+    cull_job jobs[64];
+    pthread_t th[64];
+    int started[64] = {0};
+    for (int t = 0; t < nthreads; t++)
+        jobs[t] = (cull_job){ctx, cu, slots, b0, b1, (size_t)t, (size_t)nthreads, VB_OK};
+    for (int t = 1; t < nthreads; t++)
+        started[t] = pthread_create(&th[t], NULL, cull_worker, &jobs[t]) == 0;
+    cull_worker(&jobs[0]);
+    /* A thread that could not start has its share done here. */
+    for (int t = 1; t < nthreads; t++) {
+        if (started[t])
+            pthread_join(th[t], NULL);
+        else
+            cull_worker(&jobs[t]);
+    }
+    for (int t = 0; t < nthreads; t++)
+        if (jobs[t].rc != VB_OK)
+            return jobs[t].rc;
+    return VB_OK;
+}
+
+static int host_threads(void)
+{
+    long n = sysconf(_SC_NPROCESSORS_ONLN);
+    return n < 1 ? 1 : n > 64 ? 64 : (int)n;
+}
+
+static int store_add(vbs_bis_store *st, uint32_t i, const vbs_base_data *bd)
+{
+    if (st->nbis + bd->nbis > st->cap) {
+        size_t nc = st->cap ? st->cap : 4096;
+        while (nc < st->nbis + bd->nbis)
+            nc *= 2;
+        vbs_bisector *p = realloc(st->bis, nc * sizeof *p);
+        if (!p)
+            return VB_ENOMEM;
+        st->bis = p;
+        st->cap = nc;
+    }
+    memcpy(st->bis + st->nbis, bd->bis, bd->nbis * sizeof *bd->bis);
+    st->off[i] = st->nbis;
+    st->nbis += bd->nbis;
+    st->off[i + 1] = st->nbis;
+    return VB_OK;
+}
 
 static double now(void)
 {
@@ -111,10 +182,10 @@ static int batch_add(batch_buf *bb, const vb_sphere_set *s, uint32_t i, double c
     return VB_OK;
 }
 
+/* Finer tiles shorten the rays' lists but cost culling time per base. */
 static unsigned auto_tiles(unsigned S)
 {
-    unsigned T = S / 12u;
-    return T < 2u ? 2u : T > 6u ? 6u : T;
+    return S <= 20u ? 2u : S <= 48u ? 4u : 8u;
 }
 
 int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_options *opt,
@@ -136,6 +207,9 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
         o.target_depth = VB_SAMPLER_DEFAULT_TARGET_DEPTH;
     if (o.tiles == 0)
         o.tiles = auto_tiles(o.samples);
+    if (o.tiles > 64u || (o.tiles & (o.tiles - 1u)) != 0)
+        return vb_error(ctx, VB_EMISUSE, NULL, 0,
+                        "culling tiles must be a power of two up to 64 (got %u)", o.tiles);
     if (!(o.tol > 0.0))
         o.tol = vb_sampler_default_tol(set);
     if (set->n > 0xfffffff0u)
@@ -144,6 +218,7 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
     res->samples = o.samples;
     res->tiles = o.tiles;
     res->clip = vbs_clip_distance(set);
+
 
     vbs_params params = {o.tol, 1e-12, o.samples, o.tiles, o.max_depth, o.max_iter};
     size_t S = o.samples, rays_per_base = 6 * S * S;
@@ -156,9 +231,12 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
         per_batch = set->n;
 
     vbs_hash hash;
-    vbs_tiles tiles = {0};
-    vbs_base_data bd;
-    memset(&bd, 0, sizeof bd);
+    vbs_tiles levels[8];
+    int nlevels = 0;
+    memset(levels, 0, sizeof levels);
+    vbs_base_data *slots = calloc(per_batch, sizeof *slots);
+    vbs_bis_store store = {calloc(set->n + 1, sizeof(size_t)), NULL, 0, 0};
+    int nthreads = host_threads();
     batch_buf bb;
     memset(&bb, 0, sizeof bb);
     vb_cand_vec raw = {0};
@@ -168,23 +246,24 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
     int rc = vbs_hash_build(ctx, set, &hash);
     if (rc != VB_OK)
         return rc;
-    rc = vbs_tiles_build(ctx, o.tiles, &tiles);
-    vbs_culler cu = {set, &hash, &tiles, res->clip, o.all_pairs};
+    for (unsigned T = 1; rc == VB_OK && T <= o.tiles; T *= 2)
+        rc = vbs_tiles_build(ctx, T, &levels[nlevels++]);
+    vbs_culler cu = {set, &hash, levels, nlevels, res->clip, o.all_pairs, &store};
     bb.bases = malloc(per_batch * sizeof *bb.bases);
     bb.tile_off = malloc((per_batch * ntiles + 1) * sizeof *bb.tile_off);
     colours = malloc(per_batch * rays_per_base * sizeof *colours);
-    if (rc == VB_OK && (!bb.bases || !bb.tile_off || !colours))
+    if (rc == VB_OK && (!bb.bases || !bb.tile_off || !colours || !slots || !store.off))
         rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (batch buffers)");
     for (size_t b0 = 0; rc == VB_OK && b0 < set->n; b0 += per_batch) {
         size_t b1 = b0 + per_batch < set->n ? b0 + per_batch : set->n;
         double t0 = now();
         bb.nbases = bb.nbis = bb.nidx = 0;
         bb.tile_off[0] = 0;
-        for (size_t i = b0; i < b1 && rc == VB_OK; i++) {
-            rc = vbs_cull_base(ctx, &cu, (uint32_t)i, &bd);
-            if (rc == VB_OK && batch_add(&bb, set, (uint32_t)i, res->clip, &bd, ntiles))
+        rc = cull_batch(ctx, &cu, slots, b0, b1, nthreads);
+        for (size_t i = b0; i < b1 && rc == VB_OK; i++)
+            if (batch_add(&bb, set, (uint32_t)i, res->clip, &slots[i - b0], ntiles) ||
+                store_add(&store, (uint32_t)i, &slots[i - b0]))
                 rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (batch)");
-        }
         res->times.cull += now() - t0;
         if (rc != VB_OK)
             break;
@@ -210,7 +289,9 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
     free(bb.bis);
     free(bb.tile_off);
     free(bb.tile_idx);
-    vbs_base_data_free(&bd);
+    for (size_t k = 0; slots && k < per_batch; k++)
+        vbs_base_data_free(&slots[k]);
+    free(slots);
     if (rc == VB_OK && o.topology && vbs_topo_finish(&topo, &res->topo))
         rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (topology)");
     free(topo.faces);
@@ -227,7 +308,10 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
         res->times.matching += now() - t0;
     }
     vb_cand_vec_free(&raw);
-    vbs_tiles_free(&tiles);
+    free(store.off);
+    free(store.bis);
+    for (int l = 0; l < nlevels; l++)
+        vbs_tiles_free(&levels[l]);
     vbs_hash_free(&hash);
     return rc;
 }

@@ -13,7 +13,10 @@
  * num / (2 g_min), and the clip distance when no such j exists. A neighbour
  * can win or tie anywhere on P only if g_max > 0 and num / (2 g_max) <= T_P;
  * all others are culled, so the envelope on P, including the lowest-id rule
- * on ties, is the same as over all n - 1 bisectors. Which spheres to look at
+ * on ties, is the same as over all n - 1 bisectors. Tiles are refined as a
+ * hierarchy (T = 1, 2, 4, ...): a child tile's cone lies in its parent's, so
+ * whatever the parent culled cannot matter in the child, and the child only
+ * filters its parent's list (outward tiles of hull spheres start huge). Which spheres to look at
  * at all: a hit point p = s d satisfies |p - e| = s + delta and |p - e| >=
  * |e| - s, so s >= (|e| - delta) / 2 and no sphere farther than
  * 2 T_max R_i + R_j - R_i from c_i can matter (the bound of issue 3).
@@ -74,11 +77,16 @@ void vbs_tiles_free(vbs_tiles *t)
 void vbs_base_data_free(vbs_base_data *bd)
 {
     free(bd->bis);
+    free(bd->norm);
+    free(bd->gb);
     free(bd->tile_off);
     free(bd->tile_idx);
     free(bd->near);
-    free(bd->tp);
     free(bd->keep);
+    for (int k = 0; k < 2; k++) {
+        free(bd->lvl_off[k]);
+        free(bd->lvl_idx[k]);
+    }
     memset(bd, 0, sizeof *bd);
 }
 
@@ -120,33 +128,44 @@ double vbs_clip_distance(const vb_sphere_set *set)
     return L;
 }
 
-/* Bisectors of base i with the spheres in bd->near (sorted ids). */
+/* Bisectors of base i with the spheres in bd->near, with |e|
+ * of each kept beside it for the cone bounds. */
 static int make_bisectors(const vb_sphere_set *s, uint32_t i, vbs_base_data *bd)
 {
     bd->nbis = 0;
     if (bd->bis_cap < bd->nnear) {
         vbs_bisector *b = realloc(bd->bis, bd->nnear * sizeof *b);
-        if (!b)
+        double *ne = realloc(bd->norm, bd->nnear * sizeof *ne);
+        if (b)
+            bd->bis = b;
+        if (ne)
+            bd->norm = ne;
+        if (!b || !ne)
             return VB_ENOMEM;
-        bd->bis = b;
         bd->bis_cap = bd->nnear;
+        double *gb = realloc(bd->gb, 2 * bd->nnear * sizeof *gb);
+        if (!gb)
+            return VB_ENOMEM;
+        bd->gb = gb;
     }
     for (size_t k = 0; k < bd->nnear; k++) {
         uint32_t j = bd->near[k];
         if (j == i)
             continue;
+        vbs_bisector *b = &bd->bis[bd->nbis];
         if (vbs_bisector_make(s->x[i], s->y[i], s->z[i], s->r[i], s->x[j], s->y[j], s->z[j],
-                              s->r[j], j, &bd->bis[bd->nbis]))
+                              s->r[j], j, b)) {
+            bd->norm[bd->nbis] = sqrt(b->ex * b->ex + b->ey * b->ey + b->ez * b->ez);
             bd->nbis++;
+        }
     }
     return VB_OK;
 }
 
-static void cone_bounds(const vbs_tiles *t, size_t k, const vbs_bisector *b, double *gmin,
-                        double *gmax)
+static void cone_bounds(const vbs_tiles *t, size_t k, const vbs_bisector *b, double ne,
+                        double *gmin, double *gmax)
 {
     const double *d0 = t->dir + 3 * k;
-    double ne = sqrt(b->ex * b->ex + b->ey * b->ey + b->ez * b->ez);
     double c = (d0[0] * b->ex + d0[1] * b->ey + d0[2] * b->ez) / ne;
     if (c > 1.0)
         c = 1.0;
@@ -160,53 +179,109 @@ static void cone_bounds(const vbs_tiles *t, size_t k, const vbs_bisector *b, dou
     *gmax = ne * hi + b->delta + m;
 }
 
-/* Per-tile upper bounds of the envelope; returns their maximum. */
-static double tile_bounds(const vbs_tiles *t, vbs_base_data *bd, double clip)
+static int push_u32(uint32_t **v, size_t *n, size_t *cap, uint32_t x)
 {
-    size_t nt = 6u * (size_t)t->T * t->T;
-    double tmax = 0.0;
+    if (*n == *cap) {
+        size_t nc = *cap ? 2 * *cap : 1024;
+        uint32_t *p = realloc(*v, nc * sizeof *p);
+        if (!p)
+            return VB_ENOMEM;
+        *v = p;
+        *cap = nc;
+    }
+    (*v)[(*n)++] = x;
+    return VB_OK;
+}
+
+static int cmp_bis_id(const void *pa, const void *pb)
+{
+    const vbs_bisector *a = pa, *b = pb;
+    return (a->id > b->id) - (a->id < b->id);
+}
+
+/* One level of the tile hierarchy: for each tile, the envelope bound T_P
+ * over its parent's list and the parent's entries that can reach below it.
+ * Level 0 (one tile per face) starts from every bisector. The lists of
+ * level l go to (off, idx); the parent lists are (poff, pidx). Returns the
+ * largest T_P of the level in *tmax. */
+static int cull_level(const vbs_tiles *t, const vbs_base_data *bd, double *gb, const uint32_t *poff,
+                      const uint32_t *pidx, unsigned pT, uint32_t *off, uint32_t **idx,
+                      size_t *nidx, size_t *cap, double clip, double *tmax)
+{
+    unsigned T = t->T;
+    size_t nt = 6u * (size_t)T * T;
+    *nidx = 0;
+    *tmax = 0.0;
     for (size_t k = 0; k < nt; k++) {
+        size_t f = k / ((size_t)T * T), r = k % ((size_t)T * T);
+        size_t tv = r / T, tu = r % T;
+        size_t lo = 0, hi = bd->nbis;
+        if (pidx) {
+            size_t pk = (f * pT + tv * pT / T) * pT + tu * pT / T;
+            lo = poff[pk];
+            hi = poff[pk + 1];
+        }
         double tp = clip;
-        for (size_t q = 0; q < bd->nbis; q++) {
-            double gmin, gmax;
-            cone_bounds(t, k, bd->bis + q, &gmin, &gmax);
+        for (size_t q = lo; q < hi; q++) {
+            uint32_t b = pidx ? pidx[q] : (uint32_t)q;
+            cone_bounds(t, k, bd->bis + b, bd->norm[b], &gb[2 * (q - lo)], &gb[2 * (q - lo) + 1]);
+            double gmin = gb[2 * (q - lo)];
             if (gmin > 0.0) {
-                double s = bd->bis[q].num / (2.0 * gmin);
-                if (s < tp)
-                    tp = s;
+                double sb = bd->bis[b].num / (2.0 * gmin);
+                if (sb < tp)
+                    tp = sb;
             }
         }
         tp *= 1.0 + REL_MARGIN;
-        bd->tp[k] = tp;
-        if (tp > tmax)
-            tmax = tp;
+        if (tp > *tmax)
+            *tmax = tp;
+        off[k] = (uint32_t)*nidx;
+        for (size_t q = lo; q < hi; q++) {
+            uint32_t b = pidx ? pidx[q] : (uint32_t)q;
+            double gmax = gb[2 * (q - lo) + 1];
+            if (!(gmax > 0.0) || bd->bis[b].num / (2.0 * gmax) > tp)
+                continue;
+            if (push_u32(idx, nidx, cap, b))
+                return VB_ENOMEM;
+        }
     }
-    return tmax;
+    off[nt] = (uint32_t)*nidx;
+    return VB_OK;
 }
 
-static int push_idx(vbs_base_data *bd, uint32_t v)
+/* Runs the hierarchy (T = 1, 2, 4, ..., finest) over the base's current
+ * bisectors; the finest lists end in bd->tile_off / bd->tile_idx. Returns
+ * the finest level's largest T_P in *tmax. */
+static int cull_hierarchy(const vbs_culler *cu, vbs_base_data *bd, double clip, double *tmax)
 {
-    if (bd->nidx == bd->idx_cap) {
-        size_t nc = bd->idx_cap ? 2 * bd->idx_cap : 1024;
-        uint32_t *p = realloc(bd->tile_idx, nc * sizeof *p);
-        if (!p)
+    uint32_t *poff = NULL, *pidx = NULL;
+    unsigned pT = 0;
+    for (int l = 0; l < cu->nlevels; l++) {
+        const vbs_tiles *t = cu->levels + l;
+        int last = l + 1 == cu->nlevels;
+        uint32_t *off = last ? bd->tile_off : bd->lvl_off[l & 1];
+        uint32_t **idx = last ? &bd->tile_idx : &bd->lvl_idx[l & 1];
+        size_t *nidx = last ? &bd->nidx : &bd->lvl_n[l & 1];
+        size_t *cap = last ? &bd->idx_cap : &bd->lvl_cap[l & 1];
+        if (cull_level(t, bd, bd->gb, poff, pidx, pT, off, idx, nidx, cap, clip, tmax))
             return VB_ENOMEM;
-        bd->tile_idx = p;
-        bd->idx_cap = nc;
+        poff = off;
+        pidx = *idx;
+        pT = t->T;
     }
-    bd->tile_idx[bd->nidx++] = v;
     return VB_OK;
 }
 
 int vbs_cull_base(vb_ctx *ctx, const vbs_culler *cu, uint32_t i, vbs_base_data *bd)
 {
     const vb_sphere_set *s = cu->set;
-    const vbs_tiles *t = cu->tiles;
-    size_t nt = 6u * (size_t)t->T * t->T;
+    const vbs_tiles *fine = cu->levels + cu->nlevels - 1;
+    size_t nt = 6u * (size_t)fine->T * fine->T;
     if (!bd->tile_off) {
         bd->tile_off = malloc((nt + 1) * sizeof *bd->tile_off);
-        bd->tp = malloc(nt * sizeof *bd->tp);
-        if (!bd->tile_off || !bd->tp)
+        bd->lvl_off[0] = malloc((nt + 1) * sizeof *bd->lvl_off[0]);
+        bd->lvl_off[1] = malloc((nt + 1) * sizeof *bd->lvl_off[1]);
+        if (!bd->tile_off || !bd->lvl_off[0] || !bd->lvl_off[1])
             return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (culling)");
     }
     bd->nbis = bd->nidx = bd->nnear = 0;
@@ -222,63 +297,66 @@ int vbs_cull_base(vb_ctx *ctx, const vbs_culler *cu, uint32_t i, vbs_base_data *
             rc = make_bisectors(s, i, bd);
         if (rc != VB_OK)
             return vb_error(ctx, rc, NULL, 0, "out of memory (culling)");
+        qsort(bd->bis, bd->nbis, sizeof *bd->bis, cmp_bis_id);
         for (size_t k = 0; k < nt; k++) {
             bd->tile_off[k] = (uint32_t)bd->nidx;
             for (size_t q = 0; q < bd->nbis; q++)
-                if (push_idx(bd, (uint32_t)q))
+                if (push_u32(&bd->tile_idx, &bd->nidx, &bd->idx_cap, (uint32_t)q))
                     return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (culling)");
         }
         bd->tile_off[nt] = (uint32_t)bd->nidx;
         return VB_OK;
     }
-    /* First look: a shell of typical contact distance. */
-    double r0 = 2.0 * (ri + rmax);
+    /* First look: a shell of typical contact distance bounds the envelope. */
+    double r0 = 2.0 * (ri + rmax), tmax;
     rc = vbs_hash_query(cu->hash, c, r0, &bd->near, &bd->nnear, &bd->near_cap);
     if (rc == VB_OK)
         rc = make_bisectors(s, i, bd);
+    if (rc == VB_OK)
+        rc = cull_hierarchy(cu, bd, clip, &tmax);
     if (rc != VB_OK)
         return vb_error(ctx, rc, NULL, 0, "out of memory (culling)");
-    double tmax = tile_bounds(t, bd, clip);
-    double r1 = ri * 2.0 * tmax + rmax - ri;
-    r1 *= 1.0 + REL_MARGIN;
+    double r1 = (ri * 2.0 * tmax + rmax - ri) * (1.0 + REL_MARGIN);
     if (r1 > r0) {
         bd->nnear = 0;
         rc = vbs_hash_query(cu->hash, c, r1, &bd->near, &bd->nnear, &bd->near_cap);
         if (rc == VB_OK)
             rc = make_bisectors(s, i, bd);
+        if (rc == VB_OK)
+            rc = cull_hierarchy(cu, bd, clip, &tmax);
         if (rc != VB_OK)
             return vb_error(ctx, rc, NULL, 0, "out of memory (culling)");
-        tile_bounds(t, bd, clip);
     }
-    /* Per tile, the neighbours that can reach below the tile's bound. */
+    /* Compact to the bisectors some finest tile uses, sorted by id (the
+     * vertex stage finds a colour's bisector by binary search). */
     uint8_t *keep = realloc(bd->keep, bd->nbis ? bd->nbis : 1);
     if (!keep)
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (culling)");
     bd->keep = keep;
     memset(keep, 0, bd->nbis);
-    for (size_t k = 0; k < nt; k++) {
-        bd->tile_off[k] = (uint32_t)bd->nidx;
-        for (size_t q = 0; q < bd->nbis; q++) {
-            double gmin, gmax;
-            cone_bounds(t, k, bd->bis + q, &gmin, &gmax);
-            if (!(gmax > 0.0) || bd->bis[q].num / (2.0 * gmax) > bd->tp[k])
-                continue;
-            if (push_idx(bd, (uint32_t)q))
-                return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (culling)");
-            keep[q] = 1;
-        }
-    }
-    bd->tile_off[nt] = (uint32_t)bd->nidx;
-    /* Compact to the kept bisectors (still sorted by id) and renumber. */
-    uint32_t *remap = (uint32_t *)bd->near; /* near is no longer needed */
+    for (size_t k = 0; k < bd->nidx; k++)
+        keep[bd->tile_idx[k]] = 1;
+    /* near[] is no longer needed: it becomes old position -> sphere id. */
+    uint32_t *oldid = bd->near;
     size_t m = 0;
     for (size_t q = 0; q < bd->nbis; q++) {
-        remap[q] = (uint32_t)m;
+        oldid[q] = bd->bis[q].id;
         if (keep[q])
             bd->bis[m++] = bd->bis[q];
     }
-    for (size_t k = 0; k < bd->nidx; k++)
-        bd->tile_idx[k] = remap[bd->tile_idx[k]];
+    qsort(bd->bis, m, sizeof *bd->bis, cmp_bis_id);
+    for (size_t k = 0; k < bd->nidx; k++) {
+        uint32_t id = oldid[bd->tile_idx[k]];
+        size_t lo = 0, hi = m;
+        while (lo < hi) {
+            size_t mid = lo + (hi - lo) / 2;
+            if (bd->bis[mid].id < id)
+                lo = mid + 1;
+            else
+                hi = mid;
+        }
+        bd->tile_idx[k] = (uint32_t)lo;
+    }
     bd->nbis = m;
     return VB_OK;
 }

@@ -89,12 +89,6 @@ void vbs_hash_free(vbs_hash *g)
     g->start = g->idx = NULL;
 }
 
-static int cmp_u32(const void *a, const void *b)
-{
-    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
-    return (x > y) - (x < y);
-}
-
 int vbs_hash_query(const vbs_hash *g, const double p[3], double radius, uint32_t **out,
                    size_t *n, size_t *cap)
 {
@@ -104,7 +98,6 @@ int vbs_hash_query(const vbs_hash *g, const double p[3], double radius, uint32_t
         lo[a] = l < 0.0 ? 0 : l >= (double)g->dim[a] ? g->dim[a] : (int)l;
         hi[a] = h < 0.0 ? -1 : h >= (double)g->dim[a] ? g->dim[a] - 1 : (int)h;
     }
-    size_t first = *n;
     const vb_sphere_set *s = g->set;
     double r2 = radius * radius;
     for (int z = lo[2]; z <= hi[2]; z++)
@@ -128,6 +121,5 @@ int vbs_hash_query(const vbs_hash *g, const double p[3], double radius, uint32_t
                     (*out)[(*n)++] = j;
                 }
             }
-    qsort(*out + first, *n - first, sizeof **out, cmp_u32);
     return VB_OK;
 }

@@ -8,7 +8,8 @@
  *   W703 water atoms dropped (count)        W704 other alternate locations dropped
  *   W705 atoms of other models ignored      W706 hydrogens dropped (--no-hydrogens)
  *   W707 unknown element, default radius    W708 total of atoms with unknown elements
- *   W709 mmCIF names truncated to 7 characters */
+ *   W709 mmCIF names truncated to 7 characters
+ *   W710 atom records after END ignored     W711 a further mmCIF _atom_site loop ignored */
 #ifndef VBI_INPUT_H
 #define VBI_INPUT_H
 
@@ -101,10 +102,11 @@ typedef struct vbi_dropped {
     size_t other_models;      /* atoms */
     size_t other_model_count; /* models */
     size_t unknown_elements;
+    size_t after_end;         /* atom records after END */
 } vbi_dropped;
 
-/* Emits the one-line warnings W703..W706 (and W708, the unknown-element
- * total) for nonzero counts. */
+/* Emits the one-line warnings W703..W706, W708 (the unknown-element total)
+ * and W710 for nonzero counts. */
 void vbi_report_dropped(vb_ctx *ctx, const char *name, const vbi_dropped *dr);
 
 /* Model selection over MODEL/ENDMDL blocks (PDB, PQR) or runs of one

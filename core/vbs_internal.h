@@ -19,7 +19,8 @@ int vbs_hash_build(vb_ctx *ctx, const vb_sphere_set *set, vbs_hash *g);
 void vbs_hash_free(vbs_hash *g);
 
 /* Appends to *out (growable, *cap) the ids of spheres whose centre lies within
- * `radius` of p, in increasing id order. Returns VB_OK or VB_ENOMEM. */
+ * `radius` of p, in grid order (callers that need ids sorted sort what they
+ * keep). Returns VB_OK or VB_ENOMEM. */
 int vbs_hash_query(const vbs_hash *g, const double p[3], double radius, uint32_t **out,
                    size_t *n, size_t *cap);
 
@@ -38,6 +39,8 @@ void vbs_tiles_free(vbs_tiles *t);
  * (bisectors sorted by id; tile_idx entries index `bis` of this base). */
 typedef struct vbs_base_data {
     vbs_bisector *bis;
+    double *norm;            /* |e| of each bisector */
+    double *gb;              /* scratch: cone bounds of a tile's candidates */
     size_t nbis, bis_cap;
     uint32_t *tile_off;      /* 6*T*T + 1 */
     uint32_t *tile_idx;
@@ -45,16 +48,27 @@ typedef struct vbs_base_data {
     /* scratch */
     uint32_t *near;
     size_t nnear, near_cap;
-    double *tp;              /* per tile envelope bound */
     uint8_t *keep;
+    uint32_t *lvl_off[2], *lvl_idx[2]; /* coarser levels of the tile hierarchy */
+    size_t lvl_n[2], lvl_cap[2];
 } vbs_base_data;
+
+/* Every base's kept bisectors, in base order (the targeted search reuses
+ * them instead of culling again). */
+typedef struct vbs_bis_store {
+    size_t *off;             /* n + 1 */
+    vbs_bisector *bis;
+    size_t nbis, cap;
+} vbs_bis_store;
 
 typedef struct vbs_culler {
     const vb_sphere_set *set;
     const vbs_hash *hash;
-    const vbs_tiles *tiles;
+    const vbs_tiles *levels; /* T = 1, 2, 4, ..., the finest last */
+    int nlevels;
     double clip;             /* world units */
     int all_pairs;
+    vbs_bis_store *store;
 } vbs_culler;
 
 void vbs_base_data_free(vbs_base_data *bd);

@@ -423,8 +423,12 @@ int vb_certify_list(vb_ctx *ctx, vb_certifier *c, const vb_vertex_list *cand, do
             where[res.key] = out->n;
             rc = vb_vertex_list_push(out, res.members, res.nmembers, res.x, res.y, res.z, res.t,
                                      res.dist, VB_VERTEX_CERTIFIED);
-        } else if (res.dist > out->dist[where[res.key]]) {
-            out->dist[where[res.key]] = res.dist;
+        } else {
+            /* Another candidate of a vertex already in out: the stats count
+             * canonical vertices, not candidates. */
+            vb_ctx_stats(ctx)->certified--;
+            if (res.dist > out->dist[where[res.key]])
+                out->dist[where[res.key]] = res.dist;
         }
     }
     free(where);

@@ -2,17 +2,18 @@
  *
  * Correctness argument. A vertex with member set S (rank 3, see below) is a
  * root of the squared system of its canonical quadruple Q(S), the
- * lexicographically first 4-subset of S whose line meets the cone in at most
- * two points (vbx_cert_canonical): the line passes through the vertex. We enumerate every sorted quadruple a<b<c<d with
- * base a and rows (b, c, d), which includes Q(S). A quadruple is skipped only
- * when the interval filter PROVES, for each root of its squared system, that
- * the root is not an outer tangent sphere (s < 0 or s + r_i < 0) or that a
- * sphere j outside the quadruple intrudes (|p - c_j| < t + R_j); neither
- * holds at a vertex, so the canonical quadruple of every vertex survives.
- * Quadruples containing a pair that provably shares no vertex (burial.c)
- * are not even set up. Survivors go to the exact path (vbx_solve, vbx_cert_defining,
- * vbx_cert_scan), and a certified root is emitted only by its canonical
- * quadruple, so each exact vertex appears once with all its members.
+ * lexicographically first 4-subset of S whose line meets the cone in at
+ * most two points (vbx_cert_canonical): that line passes through the
+ * vertex. We enumerate every sorted quadruple a<b<c<d with base a and rows
+ * (b, c, d), which includes Q(S), except those containing a pair that
+ * provably shares no vertex (burial.c). A quadruple is skipped only when the
+ * interval filter PROVES, for each root of its squared system, that the root
+ * is not an outer tangent sphere (s < 0 or s + r_i < 0) or that a sphere j
+ * outside the quadruple intrudes (|p - c_j| < t + R_j); neither holds at a
+ * vertex, so the canonical quadruple of every vertex survives. Survivors go
+ * to the exact path (vbx_solve, vbx_cert_defining, vbx_cert_scan), and a
+ * certified root is emitted only by its canonical quadruple, so each exact
+ * vertex appears once with all its members.
  *
  * Not covered: a vertex whose members' rows have rank < 3 (centres and radii
  * in a degenerate family: such a set has a positive-dimensional family of
@@ -60,11 +61,14 @@ static void base_rows(ref_state *rs, uint32_t a)
     }
 }
 
-/* The line of quadruple (a, b, c, d) as q = (P + s V) / D3, s = t + R_a,
- * and the roots' enclosures. */
+/* The line of quadruple (a, b, c, d) as u = (U + mu v) / D in u = (q, s),
+ * s = t + R_a (as in tangent_solver.c, with the right-hand side W/2): v is
+ * the kernel of the rows, D = +-v_k its non-zero entry, U solves the rows
+ * with u_k = 0. Roots mu of A mu^2 + 2 B mu + C = 0, A = Q(v), B = Q(U, v),
+ * C = Q(U), and the enclosure of s at each root. */
 typedef struct quad_line {
-    vbx_ia D3, P[3], V[3];
-    vbx_ia s[2];
+    vbx_ia D, U[4], v[4];
+    vbx_ia mu[2], s[2];
     int nroots; /* 0: proven no root; 2: two enclosures (may coincide) */
 } quad_line;
 
@@ -77,29 +81,46 @@ static inline vbx_ia minor3(const vbx_ia *md, const vbx_ia pbc[5][5], int i, int
     return vbx_ia_add(r, vbx_ia_mul(md[k], pbc[i][j]));
 }
 
-/* Returns 0 when the filter cannot set the line up (D3 or A may be zero):
- * the quadruple then goes to the exact path. */
+static inline vbx_ia lorentz(const vbx_ia x[4], const vbx_ia y[4])
+{
+    vbx_ia r = vbx_ia_add(vbx_ia_mul(x[0], y[0]), vbx_ia_mul(x[1], y[1]));
+    r = vbx_ia_add(r, vbx_ia_mul(x[2], y[2]));
+    return vbx_ia_sub(r, vbx_ia_mul(x[3], y[3]));
+}
+
+/* Returns 0 when the filter cannot set the line up (no minor or A provably
+ * non-zero): the quadruple then goes to the exact path. */
 static int quad_setup(const vbx_ia *md, const vbx_ia pbc[5][5], quad_line *L)
 {
-    L->D3 = minor3(md, pbc, 0, 1, 2);
-    if (vbx_ia_sign(L->D3) == 0)
+    static const int cols[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+    /* Kernel v_k = (-1)^k D_k; the free unknown is s (k = 3) when its minor
+     * is provably non-zero, else the first coordinate whose minor is. */
+    int k = -1;
+    for (int i = 3; i >= 0; i--) {
+        vbx_ia Dk = minor3(md, pbc, cols[i][0], cols[i][1], cols[i][2]);
+        L->v[i] = (i & 1) ? vbx_ia_neg(Dk) : Dk;
+        if (k < 0 && vbx_ia_sign(Dk) != 0) {
+            k = i;
+            L->D = Dk;
+        }
+    }
+    if (k < 0)
         return 0;
-    L->P[0] = minor3(md, pbc, 1, 2, 4);
-    L->P[1] = vbx_ia_neg(minor3(md, pbc, 0, 2, 4));
-    L->P[2] = minor3(md, pbc, 0, 1, 4);
-    L->V[0] = vbx_ia_neg(minor3(md, pbc, 1, 2, 3));
-    L->V[1] = minor3(md, pbc, 0, 2, 3);
-    L->V[2] = vbx_ia_neg(minor3(md, pbc, 0, 1, 3));
-    /* |P + s V|^2 = s^2 D3^2:  A s^2 + 2 B s + C = 0. */
-    vbx_ia A = vbx_ia_add(vbx_ia_add(vbx_ia_sqr(L->V[0]), vbx_ia_sqr(L->V[1])),
-                          vbx_ia_sqr(L->V[2]));
-    A = vbx_ia_sub(A, vbx_ia_sqr(L->D3));
+    /* Cramer with u_k = 0: column c_p of the minor replaced by W/2 (column 4)
+     * and moved last, (2 - p) transpositions. */
+    L->U[k] = vbx_ia_point(0.0);
+    for (int p = 0; p < 3; p++) {
+        int rest[2], r = 0;
+        for (int q = 0; q < 3; q++)
+            if (q != p)
+                rest[r++] = cols[k][q];
+        vbx_ia m = minor3(md, pbc, rest[0], rest[1], 4);
+        L->U[cols[k][p]] = (p & 1) ? vbx_ia_neg(m) : m;
+    }
+    vbx_ia A = lorentz(L->v, L->v);
     if (vbx_ia_sign(A) == 0)
         return 0;
-    vbx_ia B = vbx_ia_add(vbx_ia_add(vbx_ia_mul(L->P[0], L->V[0]), vbx_ia_mul(L->P[1], L->V[1])),
-                          vbx_ia_mul(L->P[2], L->V[2]));
-    vbx_ia C = vbx_ia_add(vbx_ia_add(vbx_ia_sqr(L->P[0]), vbx_ia_sqr(L->P[1])),
-                          vbx_ia_sqr(L->P[2]));
+    vbx_ia B = lorentz(L->U, L->v), C = lorentz(L->U, L->U);
     vbx_ia delta = vbx_ia_sub(vbx_ia_sqr(B), vbx_ia_mul(A, C));
     if (delta.hi < 0.0) {
         L->nroots = 0;
@@ -108,29 +129,29 @@ static int quad_setup(const vbx_ia *md, const vbx_ia pbc[5][5], quad_line *L)
     /* sqrt of [max(lo, 0), hi] encloses sqrt(delta) whenever delta >= 0. */
     vbx_ia sq = vbx_ia_sqrt(delta);
     vbx_ia nb = vbx_ia_neg(B);
-    L->s[0] = vbx_ia_div(vbx_ia_add(nb, sq), A);
-    L->s[1] = vbx_ia_div(vbx_ia_sub(nb, sq), A);
+    L->mu[0] = vbx_ia_div(vbx_ia_add(nb, sq), A);
+    L->mu[1] = vbx_ia_div(vbx_ia_sub(nb, sq), A);
+    for (int r = 0; r < 2; r++)
+        L->s[r] = vbx_ia_div(vbx_ia_add(L->U[3], vbx_ia_mul(L->mu[r], L->v[3])), L->D);
     L->nroots = 2;
     return 1;
 }
 
-/* Does sphere j provably intrude the tangent sphere at root enclosure S?
- * F_j / 2 = w_j - d_j . q - r_j s, times D3:
- *   G_j = w_j D3 - d_j . P - s (d_j . V + r_j D3);
+/* Does sphere j provably intrude the tangent sphere at root r of L?
+ * On the cone F_j = |p - c_j|^2 - (t + R_j)^2 = 2 (W_j/2 - m_j . u), and
+ * D (W_j/2 - m_j . u) = G_j = (W_j/2) D - m_j . U - mu (m_j . v);
  * intrusion needs F_j < 0 and t + R_j = s + r_j > 0. */
-static int proves_intrusion(const ref_state *rs, const quad_line *L, vbx_ia S, uint32_t j)
+static int proves_intrusion(const ref_state *rs, const quad_line *L, int r, uint32_t j)
 {
     const vbx_ia *mj = &rs->m[5 * (size_t)j];
-    if (!(vbx_ia_add(S, mj[3]).lo > 0.0))
+    if (!(vbx_ia_add(L->s[r], mj[3]).lo > 0.0))
         return 0;
-    vbx_ia dp = vbx_ia_add(vbx_ia_add(vbx_ia_mul(mj[0], L->P[0]), vbx_ia_mul(mj[1], L->P[1])),
-                           vbx_ia_mul(mj[2], L->P[2]));
-    vbx_ia dv = vbx_ia_add(vbx_ia_add(vbx_ia_mul(mj[0], L->V[0]), vbx_ia_mul(mj[1], L->V[1])),
-                           vbx_ia_mul(mj[2], L->V[2]));
-    dv = vbx_ia_add(dv, vbx_ia_mul(mj[3], L->D3));
-    vbx_ia G = vbx_ia_sub(vbx_ia_sub(vbx_ia_mul(mj[4], L->D3), dp), vbx_ia_mul(S, dv));
-    int sg = vbx_ia_sign(G) * vbx_ia_sign(L->D3);
-    return sg < 0;
+    vbx_ia mu = vbx_ia_add(vbx_ia_mul(mj[0], L->U[0]), vbx_ia_mul(mj[1], L->U[1]));
+    mu = vbx_ia_add(mu, vbx_ia_add(vbx_ia_mul(mj[2], L->U[2]), vbx_ia_mul(mj[3], L->U[3])));
+    vbx_ia mv = vbx_ia_add(vbx_ia_mul(mj[0], L->v[0]), vbx_ia_mul(mj[1], L->v[1]));
+    mv = vbx_ia_add(mv, vbx_ia_add(vbx_ia_mul(mj[2], L->v[2]), vbx_ia_mul(mj[3], L->v[3])));
+    vbx_ia G = vbx_ia_sub(vbx_ia_sub(vbx_ia_mul(mj[4], L->D), mu), vbx_ia_mul(L->mu[r], mv));
+    return vbx_ia_sign(G) * vbx_ia_sign(L->D) < 0;
 }
 
 /* Cheap guess in double: is j likely inside the tangent sphere at (q, s)? */
@@ -156,12 +177,12 @@ static int root_refuted(ref_state *rs, const quad_line *L, int k, const uint32_t
     for (int i = 1; i < 4; i++)
         if (vbx_ia_add(S, rs->m[5 * (size_t)quad[i] + 3]).hi < 0.0)
             return 1;
-    double s = vbx_ia_mid(S), d3 = vbx_ia_mid(L->D3), q[3];
+    double s = vbx_ia_mid(S), D = vbx_ia_mid(L->D), mu = vbx_ia_mid(L->mu[k]), q[3];
     for (int i = 0; i < 3; i++)
-        q[i] = (vbx_ia_mid(L->P[i]) + s * vbx_ia_mid(L->V[i])) / d3;
+        q[i] = (vbx_ia_mid(L->U[i]) + mu * vbx_ia_mid(L->v[i])) / D;
     uint32_t j = rs->cache[k];
     if (j != quad[0] && j != quad[1] && j != quad[2] && j != quad[3] && j < rs->n &&
-        proves_intrusion(rs, L, S, j))
+        proves_intrusion(rs, L, k, j))
         return 1;
     for (int w = 0; w < 4; w += 3) {
         const uint32_t *nb = &rs->near[VBX_NEAR_K * (size_t)quad[w]];
@@ -171,7 +192,7 @@ static int root_refuted(ref_state *rs, const quad_line *L, int k, const uint32_t
                 break;
             if (j == quad[0] || j == quad[1] || j == quad[2] || j == quad[3])
                 continue;
-            if (looks_inside(rs, q, s, j) && proves_intrusion(rs, L, S, j)) {
+            if (looks_inside(rs, q, s, j) && proves_intrusion(rs, L, k, j)) {
                 rs->cache[k] = j;
                 return 1;
             }
@@ -181,7 +202,7 @@ static int root_refuted(ref_state *rs, const quad_line *L, int k, const uint32_t
     for (j = 0; j < rs->n; j++) {
         if (j == quad[0] || j == quad[1] || j == quad[2] || j == quad[3])
             continue;
-        if (looks_inside(rs, q, s, j) && proves_intrusion(rs, L, S, j)) {
+        if (looks_inside(rs, q, s, j) && proves_intrusion(rs, L, k, j)) {
             rs->cache[k] = j;
             return 1;
         }

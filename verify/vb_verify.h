@@ -23,7 +23,10 @@ typedef struct vb_certifier vb_certifier;
 
 /* Builds the certifier for a validated sphere set: exact rationals from the
  * decimals and a provably conservative spatial index for the emptiness test.
- * The set must outlive the certifier. Free with vb_certifier_close. */
+ * The set must outlive the certifier. Free with vb_certifier_close. Returns
+ * VB_OK, VB_ENOMEM, VB_EINPUT_TOOLARGE (more than 2^32 - 1 spheres) or
+ * VB_EINPUT_MAGNITUDE (decimal exponents spanning more than 800 orders).
+ * One certifier serves one thread at a time (it keeps scratch state). */
 int vb_certifier_open(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier **out);
 
 void vb_certifier_close(vb_certifier *c);
@@ -47,23 +50,36 @@ typedef struct vb_cert_result {
     size_t key;              /* VB_CERT_OK: identity of the exact point; equal keys <=> same exact vertex */
 } vb_cert_result;
 
-/* Certifies one candidate. ids: >= 4 sphere ids (any order) whose tangent
- * sphere defines the vertex; p: the candidate point, used only to choose the
- * nearest of the exact solutions and to measure dist. tol <= 0 disables the
- * distance check. Returns VB_OK with the verdict in *res, or VB_ENOMEM. */
+/* Certifies one candidate. ids: >= 4 sphere ids (any order, duplicates
+ * ignored) whose tangent sphere defines the vertex; p: the candidate point,
+ * used only to choose the nearest of the exact solutions (by the distance of
+ * the rounded points) and to measure dist. tol <= 0 disables the distance
+ * check. Verdicts are decided in this order: BAD_IDS; UNDETERMINED or
+ * NO_SOLUTION (rank-deficient ids: NO_SOLUTION when inconsistent); among the
+ * roots that solve the unsquared system for ALL ids, the nearest is judged:
+ * INTRUDER (the deepest intruder is named), then FAR. x, y, z, t, dist are
+ * set from INTRUDER on. Counts candidates, certified, rejected and the filter
+ * statistics in the context. Returns VB_OK with the verdict in *res, or
+ * VB_ENOMEM / VB_EPREC / VB_EINTERNAL (message in ctx). */
 int vb_certify_candidate(vb_ctx *ctx, vb_certifier *c, const uint32_t *ids, size_t nids,
                          const double p[3], double tol, vb_cert_result *res);
 
 /* Certifies every candidate of `cand` and writes the canonical certified set
  * to `out` (sorted, one entry per exact vertex with all its members; dist is
  * the largest candidate distance merged into it; status CERTIFIED). Refused
- * candidates go to `rejected` (may be NULL) with status REJECTED. Counts
- * candidates/certified/rejected in the context's stats. */
+ * candidates go to `rejected` (may be NULL) with status REJECTED. Counts in
+ * the context's stats: candidates (all), rejected (refused candidates) and
+ * certified (distinct canonical vertices added to out). */
 int vb_certify_list(vb_ctx *ctx, vb_certifier *c, const vb_vertex_list *cand, double tol,
                     vb_vertex_list *out, vb_vertex_list *rejected);
 
 /* Exact reference: every vertex of the diagram from all quadruples (with
- * filters and conservative culling), canonical and sorted, dist = 0. */
+ * filters and conservative culling), canonical and sorted, dist = 0; appended
+ * to out (which it sorts). Stats: candidates = quadruples examined, rejected
+ * = those the filter refuted, certified = vertices found. Cost grows as n^4
+ * (W720 above 2000 spheres). Not enumerated: vertices whose members' tangency
+ * system has rank < 3 yet an isolated solution (needs nested spheres that
+ * touch; see verify/reference.c). Returns VB_OK, VB_ENOMEM, VB_EPREC. */
 int vb_reference(vb_ctx *ctx, const vb_sphere_set *set, vb_vertex_list *out);
 
 #ifdef __cplusplus

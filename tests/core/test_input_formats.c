@@ -95,6 +95,14 @@ static void test_pdb(void)
     o.model = 2;
     CHECK_ERROR(ctx, read_text(ctx, "one", one, &o, &s), VB_EINPUT_MODEL, "one:");
 
+    /* Records after END belong to no entry: counted, not read. */
+    char two[256];
+    snprintf(two, sizeof two, "%sEND\n%s", one, one);
+    CHECK_INT(read_text(ctx, "two", two, NULL, &s), VB_OK);
+    CHECK_INT(s->n, 1);
+    CHECK(strstr(diag_text(diag), "W710: two: 1 atom record after the END record ignored") != NULL);
+    vb_spheres_free(s);
+
     /* Broken records, each named by line. */
     CHECK_ERROR(ctx, read_text(ctx, "b", "REMARK x\nATOM      1  N   ALA A   1       1.000   2.000\n",
                                NULL, &s),
@@ -238,6 +246,14 @@ static void test_mmcif(void)
     vb_spheres_free(s);
     o.model = 5;
     CHECK_ERROR(ctx, read_text(ctx, "s.cif", cif_sample, &o, &s), VB_EINPUT_MODEL, "s.cif:");
+    /* A second data block with atoms is another structure: warned, not read. */
+    char twice[2 * sizeof cif_sample + 16];
+    snprintf(twice, sizeof twice, "%sdata_again\n%s", cif_sample, cif_sample + 10);
+    o.model = 0;
+    CHECK_INT(read_text(ctx, "t.cif", twice, &o, &s), VB_OK);
+    CHECK_INT(s->n, 4);
+    CHECK(strstr(diag_text(diag), "W711: t.cif:35: a further _atom_site loop") != NULL);
+    vb_spheres_free(s);
 
     const char *head = "data_x\nloop_\n_atom_site.id\n_atom_site.Cartn_x\n_atom_site.Cartn_y\n"
                        "_atom_site.Cartn_z\n_atom_site.type_symbol\n";

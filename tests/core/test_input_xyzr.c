@@ -145,6 +145,12 @@ static void test_errors(void)
     o.max_spheres = 2;
     rc = read_validate(ctx, "l", four, &o, 1);
     CHECK_ERROR(ctx, rc, VB_EINPUT_TOOLARGE, "l:3:");
+    o.max_spheres = 0;
+    o.model = 2;
+    rc = read_validate(ctx, "x", four, &o, 1);
+    CHECK_ERROR(ctx, rc, VB_EINPUT_MODEL, "x:");
+    o.model = 1;
+    CHECK_INT(read_validate(ctx, "x", four, &o, 1), VB_OK);
     vb_close(ctx);
 }
 

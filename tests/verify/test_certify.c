@@ -268,6 +268,32 @@ static void test_double_root(void)
     vb_close(ctx);
 }
 
+/* Rank-deficient ids: no point is equidistant from three collinear centres
+ * (inconsistent rows), nor from four coplanar centres off one circle; four
+ * cocircular ones leave a whole axis (the cube face in test_cube). */
+static void test_rank_deficient(void)
+{
+    vb_ctx *ctx;
+    vb_open(&ctx, NULL);
+    const char *v[] = {"0", "0", "0", "1", "3", "0", "0", "1", "7", "0", "0", "1",
+                       "12", "0", "0", "1", "0", "5", "0", "1", "5", "5", "0", "1"};
+    vb_sphere_set *s = vt_set(6, v);
+    vb_certifier *c;
+    CHECK_INT(vb_certifier_open(ctx, s, &c), VB_OK);
+    double p[3] = {1, 1, 1};
+    vb_cert_result r;
+    uint32_t line[4] = {0, 1, 2, 3}, plane[4] = {0, 1, 4, 5};
+    CHECK_INT(vb_certify_candidate(ctx, c, line, 4, p, 0.0, &r), VB_OK);
+    CHECK_INT(r.verdict, VB_CERT_NO_SOLUTION);
+    /* (0,0), (3,0), (0,5), (5,5): the circle through the first three has
+     * centre (1.5, 2.5), and (5,5) is off it. */
+    CHECK_INT(vb_certify_candidate(ctx, c, plane, 4, p, 0.0, &r), VB_OK);
+    CHECK_INT(r.verdict, VB_CERT_NO_SOLUTION);
+    vb_certifier_close(c);
+    vt_free(s);
+    vb_close(ctx);
+}
+
 static void test_list(void)
 {
     vb_ctx *ctx;
@@ -290,6 +316,10 @@ static void test_list(void)
     CHECK_INT(out.status[0], VB_VERTEX_CERTIFIED);
     CHECK_INT(rej.n, 1);
     CHECK_INT(rej.status[0], VB_VERTEX_REJECTED);
+    vb_stats *st = vb_ctx_stats(ctx);
+    CHECK_INT(st->candidates, 3);
+    CHECK_INT(st->certified, 1); /* two candidates, one canonical vertex */
+    CHECK_INT(st->rejected, 1);
     vb_vertex_list_free(&cand);
     vb_vertex_list_free(&out);
     vb_vertex_list_free(&rej);
@@ -306,6 +336,7 @@ int main(void)
     test_two_vertices();
     test_linear_case();
     test_double_root();
+    test_rank_deficient();
     test_list();
     VB_TEST_END();
 }

@@ -81,6 +81,11 @@ int main(int argc, char **argv)
     CHECK(strstr(out, "quadruples: 70") != NULL);
     CHECK(strstr(out, "exact evaluations") != NULL);
 
+    /* stdin, and the spelling of `vorball vertices`. */
+    snprintf(args, sizeof args, "reference --output-format voronota - < %s/cube.xyzr", dir);
+    CHECK_INT(run(args, out, sizeof out), 0);
+    CHECK(strstr(out, " 0 0 0 1.2320508075688772") != NULL);
+
     CHECK_INT(run("reference --help", out, sizeof out), 0);
     CHECK(strstr(out, "usage: vorball reference") != NULL);
     CHECK_INT(run("reference --bogus x 2>/dev/null", out, sizeof out), 2);

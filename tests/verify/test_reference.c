@@ -189,6 +189,65 @@ static void compare_with_brute_force(size_t n, unsigned rmin, unsigned rspan, ui
     vt_free(s);
 }
 
+/* The certifier and the reference agree: every reference vertex certifies
+ * from its ids; random quadruples certify only onto reference vertices. */
+static void certifier_agrees(size_t n, unsigned rmin, unsigned rspan, uint64_t seed)
+{
+    char buf[4 * 32 * 16];
+    const char *v[4 * 32];
+    vb_sphere_set *s = random_set(n, rmin, rspan, seed, buf, v);
+    vb_ctx *ctx;
+    vb_open(&ctx, NULL);
+    vb_vertex_list ref;
+    vb_vertex_list_init(&ref);
+    CHECK_INT(vb_reference(ctx, s, &ref), VB_OK);
+    vb_certifier *c;
+    CHECK_INT(vb_certifier_open(ctx, s, &c), VB_OK);
+    size_t ok = 0, keys_distinct = 1, errors = 0;
+    size_t *keys = calloc(ref.n ? ref.n : 1, sizeof *keys);
+    for (size_t k = 0; k < ref.n; k++) {
+        vb_cert_result r;
+        double p[3] = {ref.x[k] + 1e-8, ref.y[k], ref.z[k]};
+        errors += vb_certify_candidate(ctx, c, ref.ids + ref.start[k], 4, p, 1e-6, &r) != VB_OK;
+        if (r.verdict == VB_CERT_OK && r.x == ref.x[k] && r.y == ref.y[k] && r.z == ref.z[k] &&
+            r.t == ref.t[k])
+            ok++;
+        keys[k] = r.key;
+        for (size_t i = 0; i < k; i++)
+            if (keys[i] == r.key)
+                keys_distinct = 0;
+    }
+    CHECK_INT(ok, ref.n);
+    CHECK_INT(keys_distinct, 1);
+    free(keys);
+    /* Random quadruples near random points. */
+    size_t certified = 0, onto_reference = 0;
+    lcg_state = seed * 977 + 1;
+    for (int trial = 0; trial < 400; trial++) {
+        uint32_t ids[4];
+        for (int i = 0; i < 4; i++)
+            ids[i] = lcg((unsigned)n);
+        double p[3] = {lcg(10000) / 1000.0, lcg(10000) / 1000.0, lcg(10000) / 1000.0};
+        vb_cert_result r;
+        errors += vb_certify_candidate(ctx, c, ids, 4, p, 0.0, &r) != VB_OK;
+        if (r.verdict != VB_CERT_OK)
+            continue;
+        certified++;
+        for (size_t k = 0; k < ref.n; k++)
+            if (ref.x[k] == r.x && ref.y[k] == r.y && ref.z[k] == r.z && ref.t[k] == r.t &&
+                ref.start[k + 1] - ref.start[k] == r.nmembers &&
+                memcmp(ref.ids + ref.start[k], r.members, r.nmembers * sizeof *r.members) == 0)
+                onto_reference++;
+    }
+    CHECK_INT(onto_reference, certified);
+    CHECK(certified > 0);
+    CHECK_INT(errors, 0);
+    vb_certifier_close(c);
+    vb_vertex_list_free(&ref);
+    vb_close(ctx);
+    vt_free(s);
+}
+
 static void test_cube_reference(void)
 {
     const char *v[32];
@@ -263,5 +322,7 @@ int main(void)
     compare_with_brute_force(24, 30, 60, 11);
     compare_with_brute_force(16, 150, 200, 3);
     compare_with_brute_force(20, 180, 150, 5);
+    certifier_agrees(10, 50, 100, 21);
+    certifier_agrees(12, 150, 200, 23);
     VB_TEST_END();
 }

@@ -1,0 +1,18 @@
+# The Facet-JFA speed-up figure (paper Fig. 4): time of JFA+1 over time of
+# Facet-JFA against the number of seeds, one line per grid size.
+#   gnuplot -e "dir='results/jfa'; device='NVIDIA H200'" jfa_speedup.gp
+if (!exists("dir")) dir = 'results/jfa'
+if (!exists("device")) device = ''
+set terminal pngcairo size 900,600 noenhanced
+set output dir.'/jfa_speedup.png'
+set logscale x
+set xlabel 'seeds'
+set ylabel 'speed-up of Facet-JFA over JFA+1'
+set title 'Facet-JFA speed-up, 2D, uniform seeds ('.device.')'
+set key top right
+set grid
+set yrange [0:*]
+f(x) = 1
+plot for [i=0:4] dir.'/jfa_speedup.dat' index i using 2:5 with linespoints \
+       title sprintf('%d^2', 256 * 2**i), \
+     f(x) with lines dashtype 2 lc rgb 'black' title 'no speed-up'

@@ -1,0 +1,81 @@
+#!/usr/bin/env python3
+"""Turns the JSON files of jfa_run.sh into the tables of results/jfa/README
+parts and the data file of the speed-up plot (jfa_speedup.gp).
+
+    python3 jfa_tables.py RESULTS_DIR > tables.md   (writes RESULTS_DIR/jfa_speedup.dat)
+"""
+import json
+import os
+import sys
+
+
+def load(d, name):
+    p = os.path.join(d, name + ".json")
+    if not os.path.exists(p):
+        return None
+    with open(p) as f:
+        return json.load(f)
+
+
+def runs(doc):
+    return {r["variant"]: r for r in doc["runs"]}
+
+
+def main():
+    d = sys.argv[1]
+    out = []
+    sizes = [256, 512, 1024, 2048, 4096]
+    seeds = [10, 100, 1000, 10000, 100000]
+    device = None
+    dat = ["# n seeds jfa+1_ms facet_ms speedup facet_m facet_pixels jfa+1_pixels"]
+    out.append("### 2D: Facet-JFA against JFA+1 (uniform seeds, mean of 10 runs)\n")
+    out.append("| n | seeds | JFA ms | JFA+1 ms | Facet ms | speed-up vs JFA+1 | m | "
+               "pixels JFA+1 / Facet | wrong JFA+1 | wrong Facet | max err Facet (px) |")
+    out.append("|---|---|---|---|---|---|---|---|---|---|---|")
+    for n in sizes:
+        for k in seeds:
+            doc = load(d, "fig2d_n%d_k%d" % (n, k))
+            if not doc:
+                continue
+            device = doc["device"]
+            r = runs(doc)
+            j, j1, fa = r["jfa"], r["jfa+1"], r["facet"]
+            sp = j1["time_ms"] / fa["time_ms"]
+            ratio = j1["pixels_processed"] / max(fa["pixels_processed"], 1)
+            out.append("| %d | %d | %.3f | %.3f | %.3f | %.2f | %d | %.1f | %.2e | %.2e | %.2f |" % (
+                n, k, j["time_ms"], j1["time_ms"], fa["time_ms"], sp, fa["m"], ratio,
+                j1["wrong_rate"], fa["wrong_rate"], fa["max_err"]))
+            dat.append("%d %d %.4f %.4f %.4f %d %d %d" % (
+                n, k, j1["time_ms"], fa["time_ms"], sp, fa["m"], fa["pixels_processed"],
+                j1["pixels_processed"]))
+        dat.append("")
+        dat.append("")
+    with open(os.path.join(d, "jfa_speedup.dat"), "w") as f:
+        f.write("\n".join(dat) + "\n")
+
+    out.append("\n### 3D\n")
+    out.append("| case | variant | ms (wall) | ms (GPU) | m | pixels processed | wrong rate | "
+               "max err (px) | mean err (px) | boundary missed / extra (of exact) |")
+    out.append("|---|---|---|---|---|---|---|---|---|---|")
+    cases = ["target3d", "fig3d_n512_k1000", "fig3d_n128_k1000", "dist3d_uniform",
+             "dist3d_clustered", "dist3d_shell", "protein_3pqr", "protein_4yvs",
+             "dist2d_uniform", "dist2d_clustered", "dist2d_shell"]
+    for c in cases:
+        doc = load(d, c)
+        if not doc:
+            continue
+        src = doc["source"].replace(os.path.dirname(os.path.dirname(os.path.abspath(d))), "")
+        src = src.split("corpus/data/")[-1] if "corpus/data/" in src else src
+        label = "%s: %u^%d, %d seeds (%s)" % (c, doc["n"], doc["dim"], doc["seeds"], src)
+        for r in doc["runs"]:
+            out.append("| %s | %s | %.3f | %.3f | %d | %d | %.2e | %.2f | %.2e | %d / %d (%d) |" % (
+                label, r["variant"], r["time_ms"], r["gpu_ms"], r["m"], r["pixels_processed"],
+                r["wrong_rate"], r["max_err"], r["mean_err"], r["boundary_missed"],
+                r["boundary_extra"], r["boundary_exact"]))
+            label = ""
+    print("Device: %s\n" % device)
+    print("\n".join(out))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,29 @@
+#!/bin/sh
+# Every backend against the reference: `vorball vertices --device DEVICE`
+# must write exactly the golden's vertex lines (ids, doubles to the last bit,
+# order) for every corpus case; the headers differ only in their comment.
+# usage: backends.sh VORBALL CORPUS_DIR WORK_DIR DEVICE
+vorball=$1 corpus=$2 device=$4 work=$3/backend_$4
+here=$(cd "$(dirname "$0")" && pwd)
+. "$here/lib.sh"
+mkdir -p "$work" || fail "cannot create $work"
+cd "$corpus/inputs" || fail "no $corpus/inputs"
+bad=0
+for input in *.xyzr; do
+    case=${input%.xyzr}
+    if ! "$vorball" vertices --device "$device" "$input" -o "$work/$case.tsv" 2> "$work/$case.err"; then
+        cat "$work/$case.err" >&2
+        echo "FAIL: $case: vorball vertices --device $device failed" >&2
+        bad=1
+        continue
+    fi
+    vertex_lines "../golden/$case.tsv" > "$work/$case.golden"
+    vertex_lines "$work/$case.tsv" > "$work/$case.got"
+    if ! cmp -s "$work/$case.golden" "$work/$case.got"; then
+        echo "FAIL: $case: vertices differ from the golden (< golden, > $device):" >&2
+        diff "$work/$case.golden" "$work/$case.got" | head -10 >&2
+        bad=1
+    fi
+done
+[ $bad -eq 0 ] || exit 1
+echo "ok: backend $device matches every golden"
