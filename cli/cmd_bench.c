@@ -55,12 +55,13 @@ static void row(FILE *f, int json, int first, const char *input, size_t atoms,
     if (json) {
         fprintf(f,
                 "%s\n  {\"input\": \"%s\", \"atoms\": %zu, \"samples\": %u, \"backend\": \"%s\", "
-                "\"device\": \"%s\", \"vertices\": %zu, \"first_cell\": %llu, "
+                "\"device\": \"%s\", \"vertices\": %zu, \"first_cell\": %llu, \"from_sampling\": %llu, "
                 "\"rejected\": %zu, \"incomplete\": %llu, \"targeted_found\": %llu, "
                 "\"cull\": %.6f, \"upload\": %.6f, \"envelope\": %.6f, \"vertices_s\": %.6f, "
                 "\"matching\": %.6f, \"certification\": %.6f, \"total\": %.6f}",
                 first ? "" : ",", input, atoms, r->sampler.samples, r->backend, r->device,
-                r->certified.n, (unsigned long long)r->sampler.first_cell, r->rejected.n,
+                r->certified.n, (unsigned long long)r->sampler.first_cell,
+                (unsigned long long)r->sampler.from_sampling, r->rejected.n,
                 (unsigned long long)r->sampler.incomplete,
                 (unsigned long long)r->sampler.targeted_found, t->cull, t->upload, t->envelope,
                 t->vertices, t->matching, r->t_certify, r->t_total);

@@ -1,7 +1,6 @@
 /* `vorball vertices`: certified Voronoi vertices of spheres by the seed
  * paper's sampling pipeline, optionally with the cell topology. */
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
 #include "cli_common.h"
@@ -48,16 +47,20 @@ static void print_stats(vb_ctx *ctx, const vb_pipeline_result *r)
             "backend\t%s\ndevice\t%s\nsamples\t%u\ntiles\t%u\ntol\t%.6g\nclip\t%.6g\n"
             "rays\t%llu\nbisectors\t%llu\nraw_candidates\t%llu\nvertices_matched\t%llu\n"
             "complete_first_pass\t%llu\ntargeted_searches\t%llu\ntargeted_found\t%llu\n"
-            "incomplete_after_search\t%llu\ndropped_tangent_test\t%llu\ncandidates_certified\t%llu\n"
-            "certifier_rejected\t%zu\ncertified_vertices\t%zu\nmax_candidate_distance\t%.3g\n"
+            "incomplete_after_search\t%llu\ndropped_tangent_test\t%llu\nfrom_sampling\t%llu\n"
+            "swaps\t%llu\nring_tries\t%llu\nfirst_cell\t%llu\ncandidates_certified\t%llu\n"
+            "certifier_rejected\t%zu\nrepair_candidates\t%zu\ncertified_vertices\t%zu\n"
+            "max_candidate_distance\t%.3g\n"
             "filter_calls\t%llu\nfilter_failures\t%llu\nexact_evals\t%llu\n",
             r->backend, r->device, s->samples, s->tiles, s->tol, s->clip,
             (unsigned long long)s->rays, (unsigned long long)s->bisectors,
             (unsigned long long)s->raw_candidates, (unsigned long long)s->clusters,
             (unsigned long long)s->complete_first, (unsigned long long)s->targeted_searches,
             (unsigned long long)s->targeted_found, (unsigned long long)s->incomplete,
-            (unsigned long long)s->dropped, (unsigned long long)s->candidates.n,
-            r->rejected.n, r->certified.n, r->max_dist,
+            (unsigned long long)s->dropped, (unsigned long long)s->from_sampling,
+            (unsigned long long)s->swaps, (unsigned long long)s->ring_tries,
+            (unsigned long long)s->first_cell, (unsigned long long)s->candidates.n,
+            r->rejected.n, r->repaired_candidates, r->certified.n, r->max_dist,
             (unsigned long long)st->filter_calls, (unsigned long long)st->filter_failures,
             (unsigned long long)st->exact_evals);
 }
@@ -144,11 +147,6 @@ int vb_cmd_vertices(int argc, char **argv)
         rc = out ? vb_vertex_write(ctx, out, &res.certified, vfmt, NULL) : VB_EIO;
         if (out)
             rc = rc ? rc : vb_cli_close_output(ctx, out, outpath);
-    }
-    if (rc == VB_OK && getenv("VB_DUMP_CAND")) {
-        FILE *d = fopen(getenv("VB_DUMP_CAND"), "w");
-        vb_vertex_write(ctx, d, &res.sampler.candidates, VB_VFMT_TSV, NULL);
-        fclose(d);
     }
     if (rc == VB_OK && topo_path)
         rc = write_topology(ctx, topo_path, &res);

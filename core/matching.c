@@ -527,15 +527,13 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
     /* Pass 1: completeness, the first cell (Fig. 13), work for 5.5. */
     for (size_t c = 0; rc == VB_OK && c < m.ncl; c++) {
         size_t nm, nf = cluster_sets(&m, raw, c, mem, &nm, found);
-        if (nf > 0 && found[0] == 0)
-            res->first_cell++;
         size_t fi = 0;
         int complete = 1;
         /* A vertex whose tangent sphere is not empty is spurious whichever
          * cells see it: test first, search only for the plausible ones. */
         const vbs_cand *rep = raw->v + m.cl_items[m.cl_start[c]];
         int plausible = 1;
-        if (nf < nm) {
+        if (nf < nm || found[0] == 0) {
             uint32_t q4[4];
             memcpy(q4, rep->ids, sizeof q4);
             plausible = tangent_intruder(cu->hash, rep, q4, params->tol, &tbuf, &tcap, &rc) ==
@@ -559,6 +557,7 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
             wk[nwk++] = (work){mem[q], (uint32_t)c};
         }
         res->complete_first += (uint64_t)(complete && nf == nm);
+        res->first_cell += (uint64_t)(plausible && found[0] == 0);
     }
     /* Sec. 5.5, one base at a time, with all bisectors the culling kept. */
     const vbs_bisector *bis = NULL;
@@ -623,6 +622,7 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
             continue;
         rc = emit_roots(&ec, qs[k].q, &qs[k].c, 1, VBS_SWAP_DEPTH);
     }
+    res->from_sampling = res->candidates.n;
     if (rc == VB_OK)
         rc = complete_ring(&ec);
     free(ec.qbuf);

@@ -126,7 +126,10 @@ typedef struct vb_sampler_result {
     uint64_t dropped;             /* tangent spheres (quadruple roots) that were not empty */
     uint64_t swaps;               /* quadruples tried by swapping in an intruder */
     uint64_t ring_tries;          /* quadruples tried by the neighbourhood completion */
-    uint64_t first_cell;          /* vertices found in the cell of sphere 0 (Fig. 13) */
+    uint64_t first_cell;          /* vertices found from the cell of sphere 0 (Fig. 13): sampled,
+                                     with an empty tangent sphere */
+    uint64_t from_sampling;       /* candidates from the sampled cells (after 5.5 and the
+                                     tangent test), before the neighbourhood completion */
     uint64_t bisectors;           /* bisectors kept by the culling */
     vb_topology_evidence topo;    /* filled when options.topology */
 } vb_sampler_result;
