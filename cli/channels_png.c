@@ -71,11 +71,11 @@ int vbc_png_stages(vb_ctx *ctx, vbc_gpu *gp, const vb_sphere_set *s, double prob
         goto done;
     }
     vbc_atoms_pack(&g, &cut, probe, atoms);
-    if ((rc = vbc_gpu_frame(ctx, gp, &g, atoms, cut.n, VBC_WANT_FLAGS | VBC_WANT_LABELS, &fo)) != VB_OK)
+    if ((rc = vbc_gpu_frame(ctx, gp, &g, atoms, cut.n, probe, VBC_WANT_FLAGS | VBC_WANT_LABELS, &fo)) != VB_OK)
         goto done;
     vbc_options o2 = *opt;
     o2.keep_cavities = 1; /* in a cut, a pore is often closed: show it */
-    if ((rc = vbc_analyse(ctx, &g, &cut, fo.voxels, fo.nvoxels, &o2, &res)) != VB_OK)
+    if ((rc = vbc_analyse_clear(ctx, &g, &cut, fo.voxels, fo.clearance, fo.nvoxels, &o2, &res)) != VB_OK)
         goto done;
 
     uint32_t W = 4 * (uint32_t)n + 5 * GAP, H = 2 * (uint32_t)n + 3 * GAP;

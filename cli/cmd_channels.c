@@ -367,10 +367,10 @@ static int do_frame(vb_ctx *ctx, const ch_args *A, vbc_gpu *gp, long index, int 
         vbc_result_free(&res);
         double t0 = vb_cli_now();
         vbc_atoms_pack(&g, s, A->probe, atoms);
-        rc = vbc_gpu_frame(ctx, gp, &g, atoms, s->n, want_volume ? VBC_WANT_FLAGS : 0, &fo);
+        rc = vbc_gpu_frame(ctx, gp, &g, atoms, s->n, A->probe, want_volume ? VBC_WANT_FLAGS : 0, &fo);
         double t1 = vb_cli_now();
         if (rc == VB_OK)
-            rc = vbc_analyse(ctx, &g, s, fo.voxels, fo.nvoxels, &A->opt, &res);
+            rc = vbc_analyse_clear(ctx, &g, s, fo.voxels, fo.clearance, fo.nvoxels, &A->opt, &res);
         double t2 = vb_cli_now();
         fi.ms_upload += fo.ms_upload;
         fi.ms_jfa += fo.ms_jfa;

@@ -455,8 +455,20 @@ static int grow(void **p, size_t *cap, size_t need, size_t size)
     return 0;
 }
 
+static int cmp_u64(const void *a, const void *b)
+{
+    uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+    return (x > y) - (x < y);
+}
+
 int vbc_analyse(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, const uint32_t *vox,
                 size_t nvox, const vbc_options *opt, vbc_result *res)
+{
+    return vbc_analyse_clear(ctx, g, s, vox, NULL, nvox, opt, res);
+}
+
+int vbc_analyse_clear(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, const uint32_t *vox,
+                      const float *vclear, size_t nvox, const vbc_options *opt, vbc_result *res)
 {
     memset(res, 0, sizeof *res);
     if (nvox == 0)
@@ -488,8 +500,25 @@ int vbc_analyse(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, const ui
         !A.heap || !A.hpos || !A.rep || !clear || !near || !L.mark)
         goto done;
     A.clear = clear;
-    memcpy(sorted, vox, nvox * sizeof *sorted);
-    qsort(sorted, nvox, sizeof *sorted, cmp_u32);
+    if (vclear) {
+        /* Sort (index, original slot) pairs so the clearances follow. */
+        uint64_t *key = malloc(nvox * sizeof *key);
+        if (!key)
+            goto done;
+        for (size_t t = 0; t < nvox; t++)
+            key[t] = ((uint64_t)(vox[t] & ~VBC_MOUTH_BIT) << 32) | (uint64_t)t;
+        qsort(key, nvox, sizeof *key, cmp_u64);
+        for (size_t t = 0; t < nvox; t++) {
+            size_t from = (size_t)(key[t] & 0xffffffffu);
+            sorted[t] = vox[from];
+            clear[t] = vclear[from];
+            near[t] = -1;
+        }
+        free(key);
+    } else {
+        memcpy(sorted, vox, nvox * sizeof *sorted);
+        qsort(sorted, nvox, sizeof *sorted, cmp_u32);
+    }
     for (size_t t = 0; t < nvox; t++) {
         mouth[t] = (sorted[t] & VBC_MOUTH_BIT) != 0;
         sorted[t] &= ~VBC_MOUTH_BIT;
@@ -587,7 +616,7 @@ int vbc_analyse(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, const ui
             res->pruned++;
             continue;
         }
-        for (size_t t = 0; t < m; t++) {
+        for (size_t t = 0; t < m && !vclear; t++) {
             double p[3];
             voxel_centre(g, sorted[mem[t]], p);
             clear[mem[t]] = vbc_cells_clearance(cells, p, &near[mem[t]]);
@@ -628,8 +657,13 @@ int vbc_analyse(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, const ui
             pt->x = p[0];
             pt->y = p[1];
             pt->z = p[2];
-            pt->r = clear[q];
-            pt->atom = near[q];
+            /* Reported radii are always the exact (double) cell-list answer. */
+            if (vclear)
+                pt->r = vbc_cells_clearance(cells, p, &pt->atom);
+            else {
+                pt->r = clear[q];
+                pt->atom = near[q];
+            }
             if (t > 0) {
                 const vbc_point *q = pt - 1;
                 ch.length += sqrt((p[0] - q->x) * (p[0] - q->x) + (p[1] - q->y) * (p[1] - q->y) +

@@ -100,6 +100,12 @@ typedef struct vbc_result {
 int vbc_analyse(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, const uint32_t *vox,
                 size_t nvox, const vbc_options *opt, vbc_result *res);
 
+/* As vbc_analyse with the clearance of every voxel given (Å, parallel to
+ * vox, e.g. from the device): it then steers the paths, while the radii
+ * reported at centreline points are still computed here in double. */
+int vbc_analyse_clear(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, const uint32_t *vox,
+                      const float *clear, size_t nvox, const vbc_options *opt, vbc_result *res);
+
 void vbc_result_free(vbc_result *res);
 
 /* Nearest atom surface and lining atoms by a cell list over a frame's spheres. */

@@ -9,9 +9,10 @@ struct vbc_gpu {
     vbg_runtime *rt;
     vbj_engine *jfa;
     vbj_variant variant;
-    cl_kernel k_atomic, k_rays, k_classify;
-    cl_mem atoms, flags, rb, list, count;
-    size_t atoms_cap, voxels_cap, rb_cap, list_cap; /* in elements */
+    cl_kernel k_atomic, k_rays, k_classify, k_clear;
+    cl_mem atoms, flags, rb, list, count, clear;
+    size_t atoms_cap, voxels_cap, rb_cap, list_cap, clear_cap; /* in elements */
+    int device_clearance; /* see vbc_gpu_set_device_clearance */
 };
 
 static double now_ms(void)
@@ -44,6 +45,8 @@ int vbc_gpu_open(vb_ctx *ctx, vbg_runtime *rt, vbj_variant variant, vbc_gpu **ou
     if (err == CL_SUCCESS)
         p->k_classify = clCreateKernel(prog, "vbc_classify_voxels", &err);
     if (err == CL_SUCCESS)
+        p->k_clear = clCreateKernel(prog, "vbc_clearance", &err);
+    if (err == CL_SUCCESS)
         p->count = clCreateBuffer(vbg_runtime_context(rt), CL_MEM_READ_WRITE, sizeof(cl_uint), NULL,
                                   &err);
     if ((rc = vbg_check(ctx, err, "channel kernels")) != VB_OK) {
@@ -61,7 +64,8 @@ void vbc_gpu_close(vbc_gpu *p)
     if (p->k_atomic) clReleaseKernel(p->k_atomic);
     if (p->k_rays) clReleaseKernel(p->k_rays);
     if (p->k_classify) clReleaseKernel(p->k_classify);
-    cl_mem bufs[] = {p->atoms, p->flags, p->rb, p->list, p->count};
+    if (p->k_clear) clReleaseKernel(p->k_clear);
+    cl_mem bufs[] = {p->atoms, p->flags, p->rb, p->list, p->count, p->clear};
     for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; i++)
         if (bufs[i])
             clReleaseMemObject(bufs[i]);
@@ -69,11 +73,17 @@ void vbc_gpu_close(vbc_gpu *p)
     free(p);
 }
 
+void vbc_gpu_set_device_clearance(vbc_gpu *p, int mode)
+{
+    p->device_clearance = mode;
+}
+
 void vbc_frame_out_free(vbc_frame_out *o)
 {
     free(o->voxels);
     free(o->flags);
     free(o->labels);
+    free(o->clearance);
     memset(o, 0, sizeof *o);
 }
 
@@ -120,8 +130,40 @@ static cl_int classify(vbc_gpu *p, cl_mem labels, const vbc_grid *g, int min_lab
     return err;
 }
 
+/* Clearance of the listed voxels on the device, read back into out. */
+static cl_int clearance(vbc_gpu *p, const vbc_grid *g, size_t natoms, double probe, cl_uint count,
+                        vbc_frame_out *out)
+{
+    cl_command_queue q = vbg_runtime_queue(p->rt);
+    cl_int err = ensure(p, &p->clear, &p->clear_cap, count, sizeof(cl_float));
+    cl_uint na = (cl_uint)natoms;
+    cl_float pg = (cl_float)(probe / g->h), h = (cl_float)g->h;
+    size_t lsz = 64, gsz = ((size_t)count + lsz - 1) / lsz * lsz;
+    cl_int a = 0;
+    err |= clSetKernelArg(p->k_clear, a++, sizeof p->list, &p->list);
+    err |= clSetKernelArg(p->k_clear, a++, sizeof count, &count);
+    err |= clSetKernelArg(p->k_clear, a++, sizeof p->atoms, &p->atoms);
+    err |= clSetKernelArg(p->k_clear, a++, sizeof na, &na);
+    err |= clSetKernelArg(p->k_clear, a++, sizeof g->nx, &g->nx);
+    err |= clSetKernelArg(p->k_clear, a++, sizeof g->ny, &g->ny);
+    err |= clSetKernelArg(p->k_clear, a++, sizeof pg, &pg);
+    err |= clSetKernelArg(p->k_clear, a++, sizeof h, &h);
+    err |= clSetKernelArg(p->k_clear, a++, sizeof p->clear, &p->clear);
+    err |= clSetKernelArg(p->k_clear, a++, lsz * 4 * sizeof(cl_float), NULL);
+    if (err != CL_SUCCESS)
+        return err;
+    err = clEnqueueNDRangeKernel(q, p->k_clear, 1, NULL, &gsz, &lsz, 0, NULL, NULL);
+    if (err != CL_SUCCESS)
+        return err;
+    out->clearance = malloc((size_t)count * sizeof *out->clearance);
+    if (!out->clearance)
+        return CL_OUT_OF_HOST_MEMORY;
+    return clEnqueueReadBuffer(q, p->clear, CL_TRUE, 0, (size_t)count * sizeof(cl_float),
+                               out->clearance, 0, NULL, NULL);
+}
+
 int vbc_gpu_frame(vb_ctx *ctx, vbc_gpu *p, const vbc_grid *g, const float *atoms4, size_t natoms,
-                  unsigned want, vbc_frame_out *out)
+                  double probe, unsigned want, vbc_frame_out *out)
 {
     memset(out, 0, sizeof *out);
     uint32_t n = (uint32_t)g->nx;
@@ -219,6 +261,11 @@ int vbc_gpu_frame(vb_ctx *ctx, vbc_gpu *p, const vbc_grid *g, const float *atoms
         err = clEnqueueReadBuffer(q, p->list, CL_TRUE, 0, (size_t)count * sizeof(cl_uint),
                                   out->voxels, 0, NULL, NULL);
         out->nvoxels = count;
+        /* A GPU does the clearances in a blink; a CPU device is better
+         * served by the host's cell list, so it leaves them to the analysis. */
+        if (err == CL_SUCCESS && (p->device_clearance > 0 ||
+                                  (p->device_clearance == 0 && vbg_runtime_is_gpu(p->rt))))
+            err = clearance(p, g, natoms, probe, count, out);
     }
     if (err == CL_SUCCESS && (want & VBC_WANT_FLAGS)) {
         out->flags = malloc(nv);

@@ -55,3 +55,36 @@ __kernel void vbc_classify_voxels(__global const int *labels, __global uchar *fl
             list[slot] = (uint)v | ((f & VBC_F_MOUTH) ? VBC_MOUTH_BIT : 0u);
     }
 }
+
+/* One work-item per listed channel voxel: the distance in Å from its centre
+ * to the nearest atom surface (the clearance that steers the centrelines),
+ * by brute force over the atoms staged through local memory. An atom's own
+ * radius in voxels is its grown radius a.w minus the probe in voxels. */
+__kernel void vbc_clearance(__global const uint *list, uint count, __global const float4 *atoms,
+                            uint natoms, int nx, int ny, float probe_g, float h,
+                            __global float *out, __local float4 *tile)
+{
+    uint gid = get_global_id(0), lid = get_local_id(0), ls = get_local_size(0);
+    float px = 0.0f, py = 0.0f, pz = 0.0f;
+    if (gid < count) {
+        uint v = list[gid] & ~VBC_MOUTH_BIT;
+        px = (float)(v % (uint)nx) + 0.5f;
+        py = (float)((v / (uint)nx) % (uint)ny) + 0.5f;
+        pz = (float)(v / ((uint)nx * (uint)ny)) + 0.5f;
+    }
+    float best = INFINITY;
+    for (uint base = 0; base < natoms; base += ls) {
+        if (base + lid < natoms)
+            tile[lid] = atoms[base + lid];
+        barrier(CLK_LOCAL_MEM_FENCE);
+        uint m = min(ls, natoms - base);
+        for (uint t = 0; t < m; t++) {
+            float4 a = tile[t];
+            float dx = px - a.x, dy = py - a.y, dz = pz - a.z;
+            best = fmin(best, sqrt(dx * dx + dy * dy + dz * dz) - (a.w - probe_g));
+        }
+        barrier(CLK_LOCAL_MEM_FENCE);
+    }
+    if (gid < count)
+        out[gid] = best * h;
+}

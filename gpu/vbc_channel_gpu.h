@@ -21,6 +21,8 @@ typedef struct vbc_frame_out {
     size_t nvoxels;
     uint8_t *flags;     /* nx*ny*nz, when VBC_WANT_FLAGS (else NULL) */
     uint32_t *labels;   /* nx*ny*nz, when VBC_WANT_LABELS (else NULL) */
+    float *clearance;   /* per listed voxel, Å (GPU devices only; NULL on CPU
+                           devices, where the host's cell list is faster) */
     double ms_upload;   /* atoms to the device */
     double ms_jfa;      /* vbj_run wall time (seed upload, algorithm, fill) */
     double ms_masks;    /* atomic mask, rays, classification, list download */
@@ -33,11 +35,15 @@ int vbc_gpu_open(vb_ctx *ctx, vbg_runtime *rt, vbj_variant variant, vbc_gpu **ou
 void vbc_gpu_close(vbc_gpu *p);
 
 /* Runs one frame: g must be a vbc_grid_fit grid (nx a power of two), atoms4
- * the vbc_atoms_pack output. Fills *out (free with vbc_frame_out_free).
+ * the vbc_atoms_pack output for `probe`. Fills *out (free with vbc_frame_out_free).
  * VB_EDEVICE / VB_ENOMEM / VB_EMISUSE (grid side not a power of two). */
 int vbc_gpu_frame(vb_ctx *ctx, vbc_gpu *p, const vbc_grid *g, const float *atoms4, size_t natoms,
-                  unsigned want, vbc_frame_out *out);
+                  double probe, unsigned want, vbc_frame_out *out);
 
 void vbc_frame_out_free(vbc_frame_out *o);
+
+/* Where clearances are computed: 0 (default) on the device when it is a GPU,
+ * 1 always on the device (tests of the kernel on PoCL), -1 never. */
+void vbc_gpu_set_device_clearance(vbc_gpu *p, int mode);
 
 #endif

@@ -20,7 +20,7 @@ static void compare(vb_ctx *ctx, vbc_gpu *gp, const vb_sphere_set *s, double pro
     float *atoms = malloc(4 * s->n * sizeof(float));
     vbc_atoms_pack(&g, s, probe, atoms);
     vbc_frame_out fo;
-    int rc = vbc_gpu_frame(ctx, gp, &g, atoms, s->n, VBC_WANT_FLAGS | VBC_WANT_LABELS, &fo);
+    int rc = vbc_gpu_frame(ctx, gp, &g, atoms, s->n, probe, VBC_WANT_FLAGS | VBC_WANT_LABELS, &fo);
     CHECK_INT(rc, VB_OK);
     if (rc != VB_OK) {
         fprintf(stderr, "%s\n", vb_errmsg(ctx));
@@ -55,6 +55,36 @@ static void compare(vb_ctx *ctx, vbc_gpu *gp, const vb_sphere_set *s, double pro
         far += l >= s->n || d > 1.8;
     }
     CHECK_INT(far, 0);
+    /* Device clearances (forced on, see main) match the host's cell list to
+     * float precision, and the analysis steered by them finds the same
+     * channels as the one computing its own. */
+    CHECK(fo.clearance != NULL);
+    if (fo.clearance) {
+        vbc_cells *cells;
+        CHECK_INT(vbc_cells_build(ctx, s, 3.0, &cells), VB_OK);
+        double worst = 0.0;
+        for (size_t t = 0; t < fo.nvoxels; t++) {
+            uint32_t v = fo.voxels[t] & ~VBC_MOUTH_BIT;
+            double p[3] = {g.origin[0] + (v % (uint32_t)g.nx + 0.5) * g.h,
+                           g.origin[1] + ((v / (uint32_t)g.nx) % (uint32_t)g.ny + 0.5) * g.h,
+                           g.origin[2] + (v / ((uint32_t)g.nx * (uint32_t)g.ny) + 0.5) * g.h};
+            int32_t atom;
+            worst = fmax(worst, fabs(vbc_cells_clearance(cells, p, &atom) - fo.clearance[t]));
+        }
+        CHECK(worst < 1e-3);
+        vbc_cells_free(cells);
+        vbc_options opt = {2.0, 0.0, 1.0, 1};
+        vbc_result r1, r2;
+        CHECK_INT(vbc_analyse(ctx, &g, s, fo.voxels, fo.nvoxels, &opt, &r1), VB_OK);
+        CHECK_INT(vbc_analyse_clear(ctx, &g, s, fo.voxels, fo.clearance, fo.nvoxels, &opt, &r2), VB_OK);
+        CHECK_INT(r1.nchannels, r2.nchannels);
+        if (r1.nchannels > 0 && r1.nchannels == r2.nchannels) {
+            CHECK_NEAR(r1.channels[0].length, r2.channels[0].length, 2.0 * g.h);
+            CHECK_NEAR(r1.channels[0].bottleneck, r2.channels[0].bottleneck, 1e-3 + g.h);
+        }
+        vbc_result_free(&r1);
+        vbc_result_free(&r2);
+    }
     free(list);
     free(rb);
     free(flags);
@@ -86,6 +116,7 @@ int main(void)
             fprintf(stderr, "%s\n", vb_errmsg(ctx));
             break;
         }
+        vbc_gpu_set_device_clearance(gp, 1);
         compare(ctx, gp, cyl, 1.0, 64, 3);
         compare(ctx, gp, shell, 1.0, 32, 3);
         compare(ctx, gp, cyl, 1.0, 128, 2);
@@ -94,7 +125,7 @@ int main(void)
         CHECK_INT(vbc_grid_fit(ctx, cyl, 1.0, 48, 3, &g), VB_OK);
         float a4[4] = {1, 1, 1, 1};
         vbc_frame_out fo;
-        CHECK_INT(vbc_gpu_frame(ctx, gp, &g, a4, 1, 0, &fo), VB_EMISUSE);
+        CHECK_INT(vbc_gpu_frame(ctx, gp, &g, a4, 1, 1.0, 0, &fo), VB_EMISUSE);
         vbc_gpu_close(gp);
     }
     synth_free(cyl);
