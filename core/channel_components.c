@@ -682,14 +682,16 @@ int vbc_analyse_clear(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, co
             L.n = l0;
             continue;
         }
-        qsort(L.list + l0, L.n - l0, sizeof *L.list, cmp_i32);
+        if (L.n - l0 > 1)
+            qsort(L.list + l0, L.n - l0, sizeof *L.list, cmp_i32);
         ch.first_lining = l0;
         ch.nlining = L.n - l0;
         if (grow((void **)&res->channels, &chcap, res->nchannels + 1, sizeof *res->channels))
             goto done;
         res->channels[res->nchannels++] = ch;
     }
-    qsort(res->channels, res->nchannels, sizeof *res->channels, cmp_channel);
+    if (res->nchannels > 1)
+        qsort(res->channels, res->nchannels, sizeof *res->channels, cmp_channel);
     res->lining = L.list;
     L.list = NULL;
     rc = VB_OK;

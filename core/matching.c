@@ -168,31 +168,24 @@ static int cmp_work(const void *pa, const void *pb)
     return (a->cluster > b->cluster) - (a->cluster < b->cluster);
 }
 
-/* Base m with all its bisectors behind every tile: the lists the targeted
- * search uses for rays anywhere on the sphere of directions. */
+/* Base m with its coarse culling lists (vbs_bis_store): sufficient for rays
+ * anywhere on the sphere of directions, so the targeted search may place its
+ * small cells anywhere. */
 typedef struct full_base {
     vbs_base base;
-    uint32_t *idx, off[7];
-    size_t cap;
+    uint32_t off[6 * VBS_COARSE_T * VBS_COARSE_T + 1];
+    const uint32_t *idx;
+    unsigned T;
 } full_base;
 
-static int full_base_set(full_base *fb, const vb_sphere_set *s, uint32_t m, double clip,
-                         size_t nbis)
+static void full_base_set(full_base *fb, const vb_sphere_set *s, const vbs_bis_store *st,
+                          uint32_t m, double clip)
 {
-    size_t need = 6 * nbis + 1;
-    if (need > fb->cap) {
-        uint32_t *p = realloc(fb->idx, need * sizeof *p);
-        if (!p)
-            return VB_ENOMEM;
-        fb->idx = p;
-        fb->cap = need;
-    }
-    for (size_t f = 0; f < 6; f++) {
-        fb->off[f] = (uint32_t)(f * nbis);
-        for (size_t q = 0; q < nbis; q++)
-            fb->idx[f * nbis + q] = (uint32_t)q;
-    }
-    fb->off[6] = (uint32_t)(6 * nbis);
+    size_t nt = 6u * (size_t)st->T * st->T, first = st->co_off[(size_t)m * nt];
+    for (size_t k = 0; k <= nt; k++)
+        fb->off[k] = (uint32_t)(st->co_off[(size_t)m * nt + k] - first);
+    fb->idx = st->co_idx + first;
+    fb->T = st->T;
     vbs_base *b = &fb->base;
     b->cx = s->x[m];
     b->cy = s->y[m];
@@ -201,9 +194,8 @@ static int full_base_set(full_base *fb, const vb_sphere_set *s, uint32_t m, doub
     b->clip = clip / s->r[m];
     b->id = m;
     b->bis_start = 0;
-    b->bis_count = (uint32_t)nbis;
+    b->bis_count = (uint32_t)(st->off[m + 1] - st->off[m]);
     b->tile_start = 0;
-    return VB_OK;
 }
 
 /* Sec. 5.5 for one (vertex, sphere): returns 1 when found; new candidates
@@ -218,7 +210,7 @@ static int targeted(const full_base *fb, const vbs_bisector *bis, const vbs_para
     double u, w;
     vbs_u32 f = vbs_dir_face(d, &u, &w);
     vbs_params q = *p;
-    q.tiles = 1;
+    q.tiles = fb->T;
     double h = 0.5 * (2.0 / (double)(p->samples - 1u));
     for (unsigned lev = 0; lev < depth; lev++, h *= 0.5) {
         vbs_quad quad;
@@ -228,7 +220,7 @@ static int targeted(const full_base *fb, const vbs_bisector *bis, const vbs_para
         quad.depth = 0;
         for (int k = 0; k < 4; k++) {
             double dd[3], s;
-            quad.col[k] = vbs_envelope_at(&fb->base, bis, fb->off, fb->idx, 1, f,
+            quad.col[k] = vbs_envelope_at(&fb->base, bis, fb->off, fb->idx, fb->T, f,
                                           quad.u0 + ((k & 1) ? h : 0.0),
                                           quad.v0 + ((k & 2) ? h : 0.0), dd, &s);
         }
@@ -511,7 +503,8 @@ static int complete_ring(emit_ctx *e)
 }
 
 int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
-              const vbs_params *params, vb_cand_vec *raw, vb_sampler_result *res)
+              const vbs_params *params, unsigned target_depth, vb_cand_vec *raw,
+              vb_sampler_result *res)
 {
     match_ctx m = {set, params->tol, NULL, NULL, NULL, NULL, NULL, 0};
     uint32_t *mem = malloc(4 * (raw->n + 1) * sizeof *mem);
@@ -520,7 +513,6 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
     size_t nwk = 0, wcap = 0;
     vb_cand_vec extra = {0};
     full_base fb;
-    memset(&fb, 0, sizeof fb);
     uint32_t *tbuf = NULL;
     size_t tcap = 0;
     int rc = (!mem || !found) ? VB_ENOMEM : cluster(&m, raw);
@@ -569,14 +561,11 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
             uint32_t mb = wk[w].base;
             bis = cu->store->bis + cu->store->off[mb];
             nbis = cu->store->off[mb + 1] - cu->store->off[mb];
-            if (full_base_set(&fb, set, mb, cu->clip, nbis)) {
-                rc = VB_ENOMEM;
-                break;
-            }
+            full_base_set(&fb, set, cu->store, mb, cu->clip);
         }
         const vbs_cand *v = raw->v + m.cl_items[m.cl_start[wk[w].cluster]];
         res->targeted_searches++;
-        if (nbis > 0 && targeted(&fb, bis, params, v, VB_SAMPLER_DEFAULT_TARGET_DEPTH,
+        if (nbis > 0 && targeted(&fb, bis, params, v, target_depth,
                                     &extra, &rc))
             res->targeted_found++;
     }
@@ -629,7 +618,6 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
     free(ec.seen.keys);
     free(qs);
     free(tbuf);
-    free(fb.idx);
     vb_cand_vec_free(&extra);
     free(wk);
     free(mem);

@@ -90,8 +90,9 @@ int vbi_pdb_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
     while (rc == VB_OK && vbi_lines_next(&it, &line, &n)) {
         if (vbi_pdb_record(line, n, "MODEL")) {
             const char *s;
+            size_t k = column(line, n, 7, n, &s);
             int32_t serial = 0;
-            vbi_parse_int(s, column(line, n, 7, n, &s), &serial);
+            vbi_parse_int(s, k, &serial);
             vbi_models_begin(&m, serial, dr);
             continue;
         }

@@ -74,6 +74,24 @@ static int store_add(vbs_bis_store *st, uint32_t i, const vbs_base_data *bd)
     st->off[i] = st->nbis;
     st->nbis += bd->nbis;
     st->off[i + 1] = st->nbis;
+    /* Coarse lists: the culler's coarse T may be finer than the store's
+     * nominal VBS_COARSE_T only when the finest level is coarser. */
+    size_t nt = 6u * (size_t)st->T * st->T;
+    if (st->nco + bd->nco > st->co_cap) {
+        size_t nc = st->co_cap ? st->co_cap : 4096;
+        while (nc < st->nco + bd->nco)
+            nc *= 2;
+        uint32_t *p = realloc(st->co_idx, nc * sizeof *p);
+        if (!p)
+            return VB_ENOMEM;
+        st->co_idx = p;
+        st->co_cap = nc;
+    }
+    for (size_t k = 0; k < nt; k++)
+        st->co_off[(size_t)i * nt + k] = (uint32_t)(st->nco + bd->co_off[k]);
+    memcpy(st->co_idx + st->nco, bd->co_idx, bd->nco * sizeof *bd->co_idx);
+    st->nco += bd->nco;
+    st->co_off[((size_t)i + 1) * nt] = (uint32_t)st->nco;
     return VB_OK;
 }
 
@@ -235,7 +253,10 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
     int nlevels = 0;
     memset(levels, 0, sizeof levels);
     vbs_base_data *slots = calloc(per_batch, sizeof *slots);
-    vbs_bis_store store = {calloc(set->n + 1, sizeof(size_t)), NULL, 0, 0};
+    unsigned coarse_t = o.tiles < VBS_COARSE_T ? o.tiles : VBS_COARSE_T;
+    vbs_bis_store store = {calloc(set->n + 1, sizeof(size_t)), NULL, 0, 0, coarse_t,
+                           malloc((set->n * 6u * coarse_t * coarse_t + 1) * sizeof(uint32_t)),
+                           NULL, 0, 0};
     int nthreads = host_threads();
     batch_buf bb;
     memset(&bb, 0, sizeof bb);
@@ -252,7 +273,7 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
     bb.bases = malloc(per_batch * sizeof *bb.bases);
     bb.tile_off = malloc((per_batch * ntiles + 1) * sizeof *bb.tile_off);
     colours = malloc(per_batch * rays_per_base * sizeof *colours);
-    if (rc == VB_OK && (!bb.bases || !bb.tile_off || !colours || !slots || !store.off))
+    if (rc == VB_OK && (!bb.bases || !bb.tile_off || !colours || !slots || !store.off || !store.co_off))
         rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (batch buffers)");
     for (size_t b0 = 0; rc == VB_OK && b0 < set->n; b0 += per_batch) {
         size_t b1 = b0 + per_batch < set->n ? b0 + per_batch : set->n;
@@ -304,12 +325,14 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
         double t0 = now();
         res->raw_candidates = raw.n;
         qsort(raw.v, raw.n, sizeof *raw.v, cmp_cand);
-        rc = vbs_match(ctx, set, &cu, &params, &raw, res);
+        rc = vbs_match(ctx, set, &cu, &params, o.target_depth, &raw, res);
         res->times.matching += now() - t0;
     }
     vb_cand_vec_free(&raw);
     free(store.off);
     free(store.bis);
+    free(store.co_off);
+    free(store.co_idx);
     for (int l = 0; l < nlevels; l++)
         vbs_tiles_free(&levels[l]);
     vbs_hash_free(&hash);

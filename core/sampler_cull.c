@@ -83,6 +83,8 @@ void vbs_base_data_free(vbs_base_data *bd)
     free(bd->tile_idx);
     free(bd->near);
     free(bd->keep);
+    free(bd->co_off);
+    free(bd->co_idx);
     for (int k = 0; k < 2; k++) {
         free(bd->lvl_off[k]);
         free(bd->lvl_idx[k]);
@@ -272,6 +274,67 @@ static int cull_hierarchy(const vbs_culler *cu, vbs_base_data *bd, double clip, 
     return VB_OK;
 }
 
+/* Position of sphere `id` among the base's (sorted) bisectors, or nbis. */
+static size_t find_id(const vbs_base_data *bd, uint32_t id)
+{
+    size_t lo = 0, hi = bd->nbis;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (bd->bis[mid].id < id)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo < bd->nbis && bd->bis[lo].id == id ? lo : bd->nbis;
+}
+
+/* The T = 2 level (or the finest, if coarser), renumbered to the kept
+ * bisectors; entries culled everywhere at the finest level are dropped,
+ * which keeps the lists sufficient (the finest tiles cover every ray). */
+static int coarse_lists(vbs_base_data *bd, const vbs_culler *cu, const uint32_t *oldid)
+{
+    const vbs_tiles *fine = cu->levels + cu->nlevels - 1;
+    int from_fine = fine->T <= VBS_COARSE_T;
+    unsigned T = from_fine ? fine->T : VBS_COARSE_T;
+    size_t nt = 6u * (size_t)T * T;
+    const uint32_t *off = from_fine ? bd->tile_off : bd->lvl_off[1];
+    const uint32_t *idx = from_fine ? bd->tile_idx : bd->lvl_idx[1];
+    if (!bd->co_off && !(bd->co_off = malloc((6u * VBS_COARSE_T * VBS_COARSE_T + 1) * sizeof *bd->co_off)))
+        return VB_ENOMEM;
+    bd->nco = 0;
+    for (size_t k = 0; k < nt; k++) {
+        bd->co_off[k] = (uint32_t)bd->nco;
+        for (uint32_t q = off[k]; q < off[k + 1]; q++) {
+            size_t pos = from_fine ? idx[q] : find_id(bd, oldid[idx[q]]);
+            if (pos < bd->nbis && push_u32(&bd->co_idx, &bd->nco, &bd->co_cap, (uint32_t)pos))
+                return VB_ENOMEM;
+        }
+    }
+    bd->co_off[nt] = (uint32_t)bd->nco;
+    return VB_OK;
+}
+
+/* Coarse lists that name every bisector (all-pairs runs) or none (empty
+ * cells). */
+static int coarse_uniform(vbs_base_data *bd, const vbs_culler *cu, int all)
+{
+    unsigned T = cu->levels[cu->nlevels - 1].T;
+    if (T > VBS_COARSE_T)
+        T = VBS_COARSE_T;
+    size_t nt = 6u * (size_t)T * T;
+    if (!bd->co_off && !(bd->co_off = malloc((nt + 1) * sizeof *bd->co_off)))
+        return VB_ENOMEM;
+    bd->nco = 0;
+    for (size_t k = 0; k < nt; k++) {
+        bd->co_off[k] = (uint32_t)bd->nco;
+        for (size_t q = 0; all && q < bd->nbis; q++)
+            if (push_u32(&bd->co_idx, &bd->nco, &bd->co_cap, (uint32_t)q))
+                return VB_ENOMEM;
+    }
+    bd->co_off[nt] = (uint32_t)bd->nco;
+    return VB_OK;
+}
+
 int vbs_cull_base(vb_ctx *ctx, const vbs_culler *cu, uint32_t i, vbs_base_data *bd)
 {
     const vb_sphere_set *s = cu->set;
@@ -286,8 +349,8 @@ int vbs_cull_base(vb_ctx *ctx, const vbs_culler *cu, uint32_t i, vbs_base_data *
     }
     bd->nbis = bd->nidx = bd->nnear = 0;
     memset(bd->tile_off, 0, (nt + 1) * sizeof *bd->tile_off);
-    if (s->contained && s->contained[i])
-        return VB_OK; /* empty cell: no rays hit anything that matters */
+    if (s->contained && s->contained[i]) /* empty cell: nothing matters */
+        return coarse_uniform(bd, cu, 0) ? vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory") : VB_OK;
     const double c[3] = {s->x[i], s->y[i], s->z[i]};
     double ri = s->r[i], clip = cu->clip / ri, rmax = cu->hash->rmax;
     int rc;
@@ -305,7 +368,7 @@ int vbs_cull_base(vb_ctx *ctx, const vbs_culler *cu, uint32_t i, vbs_base_data *
                     return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (culling)");
         }
         bd->tile_off[nt] = (uint32_t)bd->nidx;
-        return VB_OK;
+        return coarse_uniform(bd, cu, 1) ? vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory") : VB_OK;
     }
     /* First look: a shell of typical contact distance bounds the envelope. */
     double r0 = 2.0 * (ri + rmax), tmax;
@@ -358,5 +421,7 @@ int vbs_cull_base(vb_ctx *ctx, const vbs_culler *cu, uint32_t i, vbs_base_data *
         bd->tile_idx[k] = (uint32_t)lo;
     }
     bd->nbis = m;
-    return VB_OK;
+    return coarse_lists(bd, cu, oldid) ? vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (culling)")
+                                       : VB_OK;
 }
+

@@ -45,7 +45,7 @@ typedef uint32_t vbs_u32;
  * the "bisector with infinity"). */
 #define VBS_INF_COLOUR 0xffffffffu
 /* Candidates one grid cell may emit (four triples, a few subdivided children). */
-#define VBS_MAX_CAND 8
+#define VBS_MAX_CAND 12
 /* Sub-cells pending in the depth-first subdivision (3 per level + 1). */
 #define VBS_STACK 40
 /* Deepest subdivision the parameters may ask for (VBS_STACK covers it). */
@@ -213,6 +213,10 @@ VBS_FN vbs_u32 vbs_envelope_at(const VBS_GLOBAL vbs_base *base,
                                double u, double v, double d[3], double *s)
 {
     vbs_face_dir(f, u, v, d);
+    /* A sub-cell may reach past its face (targeted search near a cube edge):
+     * the culling tile is the one of the face the ray really crosses. */
+    if (VBS_FABS(u) > 1.0 || VBS_FABS(v) > 1.0)
+        f = vbs_dir_face(d, &u, &v);
     vbs_u32 tile = base->tile_start + f * T * T + vbs_tile_of(v, T) * T + vbs_tile_of(u, T);
     vbs_u32 lo = tile_off[tile], hi = tile_off[tile + 1u];
     return vbs_envelope(bis, tile_idx + lo, hi - lo, base->clip, d, s);

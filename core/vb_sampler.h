@@ -24,7 +24,7 @@ extern "C" {
 #define VB_SAMPLER_DEFAULT_SAMPLES 30u
 #define VB_SAMPLER_DEFAULT_DEPTH 4u
 #define VB_SAMPLER_DEFAULT_ITER 40u
-#define VB_SAMPLER_DEFAULT_TARGET_DEPTH 16u
+#define VB_SAMPLER_DEFAULT_TARGET_DEPTH 10u
 
 typedef struct vb_sampler_options {
     unsigned samples;        /* S >= 2 (0: default) */

@@ -51,14 +51,23 @@ typedef struct vbs_base_data {
     uint8_t *keep;
     uint32_t *lvl_off[2], *lvl_idx[2]; /* coarser levels of the tile hierarchy */
     size_t lvl_n[2], lvl_cap[2];
+    /* Lists of the coarse tiles (T = VBS_COARSE_T or the finest if coarser),
+     * kept for the targeted search: 6 T^2 + 1 offsets, indices into bis. */
+    uint32_t *co_off, *co_idx;
+    size_t nco, co_cap;
 } vbs_base_data;
 
-/* Every base's kept bisectors, in base order (the targeted search reuses
- * them instead of culling again). */
+/* Every base's kept bisectors and coarse tile lists, in base order (the
+ * targeted search reuses them instead of culling again). */
+#define VBS_COARSE_T 2u
 typedef struct vbs_bis_store {
-    size_t *off;             /* n + 1 */
+    size_t *off;             /* n + 1: bisectors of base i are bis[off[i] .. off[i+1]) */
     vbs_bisector *bis;
     size_t nbis, cap;
+    unsigned T;              /* tiles per face side of the coarse lists */
+    uint32_t *co_off;        /* n * 6 T^2 + 1 offsets into co_idx */
+    uint32_t *co_idx;        /* indices relative to the base's first bisector */
+    size_t nco, co_cap;
 } vbs_bis_store;
 
 typedef struct vbs_culler {
@@ -84,7 +93,8 @@ double vbs_clip_distance(const vb_sphere_set *set);
 /* Matching (Sec. 5.4), targeted search (5.5) and the tangent-sphere test on
  * the sorted raw candidates; fills res->candidates and the counters. */
 int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
-              const vbs_params *params, vb_cand_vec *raw, vb_sampler_result *res);
+              const vbs_params *params, unsigned target_depth, vb_cand_vec *raw,
+              vb_sampler_result *res);
 
 /* Topology evidence of one base from its colour grid (6*S*S colours). */
 typedef struct vbs_topo_acc {

@@ -15,8 +15,8 @@ squared and subtracted from the one of sphere a, are three linear equations in
 u + mu v, and the squared condition of sphere a is a quadratic in mu. Roots
 with r_i + t < 0 for a defining sphere solve only the squared system and are
 dropped; a root is a vertex when no sphere is strictly closer than t. Residuals
-below 1e-150 count as zero: inputs carry at most 18 digits, so a genuine
-non-zero residual is far larger.
+and coordinates below 1e-150 count as zero: inputs carry at most 18 digits,
+so a genuine non-zero value is far larger.
 """
 import itertools
 import sys
@@ -93,7 +93,8 @@ def vertices(S):
             if any(g < -ZERO for g in gaps):
                 continue
             members = frozenset(i for i, g in enumerate(gaps) if abs(g) <= ZERO)
-            point = tuple(float(c) for c in p)
+            # An exact zero comes out as a residue of about 1e-300.
+            point = tuple(0.0 if abs(c) <= ZERO else float(c) for c in p)
             found[(members, point)] = None
     return sorted((tuple(sorted(m)), p) for m, p in found)
 

@@ -13,9 +13,8 @@ int vbj_engine_open_runtime(vb_ctx *ctx, vbg_runtime *rt, vbj_engine **out)
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "jfa engine: out of memory");
     e->rt = rt;
     int rc;
-    if (rt && ((rc = vbg_program_get(ctx, rt, "jfa.cl", "", &e->jfa)) ||
-               (rc = vbg_program_get(ctx, rt, "jfa.cl", "-DVBJ_LABEL16", &e->jfa16)) ||
-               (rc = vbg_program_get(ctx, rt, "facet_jfa.cl", "", &e->facet)) ||
+    /* jfa.cl's four builds wait for their first use (vbj_cl_kernel). */
+    if (rt && ((rc = vbg_program_get(ctx, rt, "facet_jfa.cl", "", &e->facet)) ||
                (rc = vbg_program_get(ctx, rt, "jfa_exact.cl", "", &e->exact)))) {
         free(e);
         return rc;
@@ -54,7 +53,7 @@ void vbj_engine_close(vbj_engine *e)
 {
     if (!e)
         return;
-    vbj_clbuf *all[] = {&e->seeds, &e->pairs, &e->grid[0], &e->grid[1], &e->store[0], &e->store[1],
+    vbj_clbuf *all[] = {&e->seeds, &e->seeds_d, &e->pairs, &e->grid[0], &e->grid[1], &e->store[0], &e->store[1],
                         &e->tmp, &e->list[0], &e->list[1], &e->counter, &e->labels,
                         &e->cells_start, &e->cells_items};
     for (size_t i = 0; i < sizeof all / sizeof all[0]; i++)
@@ -136,21 +135,39 @@ int vbj_clbuf_reserve(vb_ctx *ctx, vbj_engine *e, vbj_clbuf *b, size_t bytes)
     return VB_OK;
 }
 
+int vbj_double_exact(int dim, uint32_t n)
+{
+    /* Seeds lie in [-0.5, n - 0.5) and centres in [0, n - 1] pixels, so every
+     * difference is below n 2^16 in 16.16 and a squared distance below
+     * dim n^2 2^32: an exact integer in a double while that is <= 2^53. */
+    return (uint64_t)dim * n * n <= ((uint64_t)1 << 21);
+}
+
 int vbj_cl_kernel(vb_ctx *ctx, vbj_engine *e, int which, cl_kernel *out)
 {
-    static const char *names[VBJ_NKERNELS] = {
-        "jfa_place",   "jfa_step_2d",  "jfa_step_3d",       "jfa_count_labels",
-        "jfa_place",   "jfa_step_2d",  "jfa_step_3d",       "jfa_widen",
-        "facet_expand", "facet_step",  "facet_mark_refine", "facet_fill",
-        "jfa_exact"};
+    static const char *jfa_names[VBJ_KJFA] = {"jfa_place", "jfa_step_2d", "jfa_step_3d",
+                                              "jfa_count_labels", "jfa_widen"};
+    static const char *names[] = {"facet_expand", "facet_step", "facet_mark_refine",
+                                  "facet_fill", "jfa_exact"};
+    static const char *options[VBJ_JFA_BUILDS] = {"", "-DVBJ_LABEL16", "-DVBJ_DIST64",
+                                                  "-DVBJ_LABEL16 -DVBJ_DIST64"};
     if (!e->kernels[which]) {
-        cl_program p = which < VBJ_K_PLACE16 ? e->jfa
-                       : which < VBJ_K_EXPAND ? e->jfa16
-                       : which < VBJ_K_EXACT  ? e->facet
-                                              : e->exact;
+        const char *name;
+        cl_program p;
+        if (which < VBJ_K_EXPAND) {
+            int b = which / VBJ_KJFA, rc;
+            if (!e->jfa[b] &&
+                (rc = vbg_program_get(ctx, e->rt, "jfa.cl", options[b], &e->jfa[b])))
+                return rc;
+            p = e->jfa[b];
+            name = jfa_names[which % VBJ_KJFA];
+        } else {
+            p = which < VBJ_K_EXACT ? e->facet : e->exact;
+            name = names[which - VBJ_K_EXPAND];
+        }
         cl_int err;
-        e->kernels[which] = clCreateKernel(p, names[which], &err);
-        if (vbg_check(ctx, err, names[which]))
+        e->kernels[which] = clCreateKernel(p, name, &err);
+        if (vbg_check(ctx, err, name))
             return VB_EDEVICE;
     }
     *out = e->kernels[which];
@@ -213,6 +230,22 @@ int vbj_cl_upload_seeds(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s)
                        "seed upload")
                  ? VB_EDEVICE
                  : VB_OK;
+    if (!rc && vbj_double_exact(s->dim, s->n)) {
+        /* The same 16.16 integers as doubles (exact: below 2^31). */
+        double *wide = malloc(s->k * stride * sizeof *wide);
+        if (!wide)
+            rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "seed upload: out of memory");
+        for (size_t i = 0; !rc && i < s->k * stride; i++)
+            wide[i] = packed[i];
+        if (!rc)
+            rc = vbj_clbuf_reserve(ctx, e, &e->seeds_d, 2 * bytes);
+        if (!rc && vbg_check(ctx,
+                             clEnqueueWriteBuffer(vbg_runtime_queue(e->rt), e->seeds_d.mem,
+                                                  CL_TRUE, 0, 2 * bytes, wide, 0, NULL, NULL),
+                             "seed upload"))
+            rc = VB_EDEVICE;
+        free(wide);
+    }
     free(packed);
     return rc;
 }
@@ -253,7 +286,9 @@ int vbj_cl_dense(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, uint32_t f, siz
         return VB_EDEVICE;
     cl_kernel k;
     cl_uint np = (cl_uint)npairs;
-    if ((rc = vbj_cl_kernel(ctx, e, narrow ? VBJ_K_PLACE16 : VBJ_K_PLACE, &k)))
+    int dbl = vbj_double_exact(s->dim, s->n);
+    int build = (narrow ? VBJ_JFA_LABEL16 : 0) | (dbl ? 0 : VBJ_JFA_DIST64);
+    if ((rc = vbj_cl_kernel(ctx, e, build * VBJ_KJFA + VBJ_K_PLACE, &k)))
         return rc;
     vbj_arg pa[] = {VBJ_ARG(e->grid[0].mem), VBJ_ARG(e->pairs.mem), VBJ_ARG(np)};
     size_t gp = npairs;
@@ -261,24 +296,27 @@ int vbj_cl_dense(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, uint32_t f, siz
         (rc = vbj_cl_launch(ctx, e, k, 1, &gp, "jfa_place")))
         return rc;
     counts->threads += npairs;
-    int ks = d == 3 ? (narrow ? VBJ_K_STEP3_16 : VBJ_K_STEP3) : (narrow ? VBJ_K_STEP2_16 : VBJ_K_STEP2);
-    if ((rc = vbj_cl_kernel(ctx, e, ks, &k)))
+    if ((rc = vbj_cl_kernel(ctx, e, build * VBJ_KJFA + (d == 3 ? VBJ_K_STEP3 : VBJ_K_STEP2),
+                            &k)))
         return rc;
+    cl_mem seeds = dbl ? e->seeds_d.mem : e->seeds.mem;
     int cur = 0;
     for (int t = 0; t < nsteps; t++) {
-        cl_uint l = steps[t], c = q / l < 4 ? q / l : 4;
+        /* A work-item owns up to 4 pixels along the slowest axis (2 along y
+         * too in 3D); with q / l = 2 the last two lie past the grid. */
+        cl_uint l = steps[t];
+        size_t slow = q / l >= 4 ? q / 4 : l;
         vbj_arg a[] = {VBJ_ARG(e->grid[cur].mem), VBJ_ARG(e->grid[1 - cur].mem),
-                       VBJ_ARG(e->seeds.mem),     VBJ_ARG(q),
-                       VBJ_ARG(fc),               VBJ_ARG(l),
-                       VBJ_ARG(c)};
-        size_t g[3] = {q, d == 3 ? q : q / c, q / c};
-        if ((rc = vbj_cl_set_args(ctx, k, "jfa_step", 7, a)) ||
+                       VBJ_ARG(seeds),            VBJ_ARG(q),
+                       VBJ_ARG(fc),               VBJ_ARG(l)};
+        size_t g[3] = {q, d == 3 ? q / 2 : slow, slow};
+        if ((rc = vbj_cl_set_args(ctx, k, "jfa_step", 6, a)) ||
             (rc = vbj_cl_launch(ctx, e, k, (int)d, g, "jfa_step")))
             return rc;
         cur = 1 - cur;
         counts->steps++;
         counts->step_pixels += cells;
-        counts->threads += cells / c;
+        counts->threads += (uint64_t)g[0] * g[1] * (d == 3 ? g[2] : 1);
     }
     *which = cur;
     return VB_OK;
@@ -293,7 +331,7 @@ int vbj_cl_count_labels(vb_ctx *ctx, vbj_engine *e, int dim, uint32_t n, cl_mem 
     cl_uint nn = n, dd = (cl_uint)dim;
     int rc;
     if ((rc = vbj_clbuf_reserve(ctx, e, nb, pixels)) ||
-        (rc = vbj_cl_kernel(ctx, e, VBJ_K_COUNT, &k)))
+        (rc = vbj_cl_kernel(ctx, e, VBJ_K_COUNT, &k))) /* build 0 */
         return rc;
     vbj_arg a[] = {VBJ_ARG(labels), VBJ_ARG(nb->mem), VBJ_ARG(nn), VBJ_ARG(dd)};
     size_t g[3] = {n, n, dim == 3 ? n : 1};
@@ -360,7 +398,11 @@ static int cl_dense_run(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, const vb
     cl_kernel k;
     cl_uint count = (cl_uint)out->pixels;
     if ((rc = vbj_clbuf_reserve(ctx, e, &e->labels, out->pixels * 4)) ||
-        (rc = vbj_cl_kernel(ctx, e, VBJ_K_WIDEN16, &k)))
+        (rc = vbj_cl_kernel(ctx, e,
+                            (VBJ_JFA_LABEL16 | (vbj_double_exact(s->dim, s->n) ? 0 : VBJ_JFA_DIST64)) *
+                                    VBJ_KJFA +
+                                VBJ_K_WIDEN,
+                            &k)))
         return rc;
     vbj_arg a[] = {VBJ_ARG(e->grid[which].mem), VBJ_ARG(e->labels.mem), VBJ_ARG(count)};
     size_t g = out->pixels;

@@ -2,19 +2,35 @@
  * length l every pixel reads the labels of its 3^d - 1 neighbours at distance
  * l and keeps the seed nearest to its centre (ties to the lower index).
  *
- * Each work-item handles VBJ_C = 4 pixels spaced l apart along the slowest axis
- * (y in 2D, z in 3D): pixel t reads planes t-1, t, t+1 (in units of l), so
- * VBJ_C pixels share VBJ_C + 2 planes of loads instead of 3 * VBJ_C. The
- * result does not depend on this grouping: the minimum over (distance, index)
- * is the same in any order, so the kernels agree with the C reference bit for
- * bit. Labels are seed indices; seeds are 16.16 fixed point (vb_grid.h).
+ * The step is bound by instructions, not memory: 27 candidate seeds per pixel
+ * in 3D, each a squared distance and a compare with the tie rule. So:
  *
- * Built twice: with -DVBJ_LABEL16 the grids hold 16-bit labels (fewer than
- * 65535 seeds), which halves the memory traffic that bounds every step. */
+ * - A work-item owns a block of pixels spaced l apart (3D: 2 along y x 4
+ *   along z; 2D: 4 along y). Neighbours of the block's pixels coincide, so
+ *   the block reads (2+2)(4+2)3 = 72 labels for 8 pixels instead of 216.
+ * - Per label read, the seed's coordinate terms (x^2, y^2 per row, z^2 per
+ *   plane of the block) are computed once, and only when the label differs
+ *   from the previous read's (neighbours mostly repeat a label); each pixel
+ *   the read concerns then costs one add and the compare.
+ * - Distances are doubles where doubles are exact: seeds and centres are
+ *   16.16 fixed-point integers held in doubles, so differences are exact, and
+ *   for |difference| < n 2^16 the sum of squares stays below dim n^2 2^32
+ *   <= 2^53 (3D n <= 512, 2D n <= 1024): every value is an exact integer and
+ *   the result equals the 64-bit integer reference bit for bit. The host picks
+ *   the double program then (fp64 is on every device the runtime opens: the
+ *   double pipes are twice as fast as emulated 64-bit integer compares), and
+ *   the build with -DVBJ_DIST64 (exact 64-bit integers) on larger grids.
+ * - No branches around the reads: a neighbour outside the grid or without a
+ *   label reads as VBJ_LNONE, whose distance is VBJ_DFAR, beyond every real
+ *   one; pixels of a block that lie past the grid (when q / l < 4) get a
+ *   valid centre and are never written.
+ * The minimum over (distance, index) does not depend on the order of the
+ * candidates, so the kernels agree with the C reference bit for bit.
+ *
+ * Built four times: -DVBJ_LABEL16 for 16-bit label grids (fewer than 65535
+ * seeds; half the memory traffic), crossed with -DVBJ_DIST64. */
 #pragma OPENCL FP_CONTRACT OFF
 #include "vb_grid.h"
-
-#define VBJ_C 4
 
 #ifdef VBJ_LABEL16
 typedef ushort vbj_label;
@@ -22,6 +38,29 @@ typedef ushort vbj_label;
 #else
 typedef uint vbj_label;
 #define VBJ_LNONE VBJ_NONE
+#endif
+
+#ifdef VBJ_DIST64
+typedef int vbj_coord;
+typedef ulong vbj_d;
+typedef int2 vbj_seed2;
+typedef int4 vbj_seed3;
+#define VBJ_SQ(e) ((ulong)((long)(e) * (e)))
+/* |difference| < 2^30 + 2^15, so three squares stay below 2^62 and
+ * VBJ_DFAR plus two of them below 2^64. */
+#define VBJ_DFAR ((ulong)1 << 63)
+#define VBJ_DINIT ULONG_MAX
+#define VBJ_CENTRE(p, f) vbj_cell_centre(p, f)
+#else
+#pragma OPENCL EXTENSION cl_khr_fp64 : enable
+typedef double vbj_coord;
+typedef double vbj_d;
+typedef double2 vbj_seed2;
+typedef double4 vbj_seed3;
+#define VBJ_SQ(e) ((e) * (e))
+#define VBJ_DFAR 0x1p200
+#define VBJ_DINIT INFINITY
+#define VBJ_CENTRE(p, f) ((double)vbj_cell_centre(p, f))
 #endif
 
 /* Writes each placed seed into its start cell (pairs: cell, seed). */
@@ -42,141 +81,149 @@ kernel void jfa_widen(global const vbj_label *src, global uint *dst, uint count)
     }
 }
 
-/* Offers seed v (coordinate along the coarsened axis sa, partial squared
- * distance `base` over the other axes) to pixel t of the work-item, whose
- * state is the scalars bd##t / bl##t / ca##t: scalars rather than arrays, so
- * that no compiler keeps them in (slow) private memory. r##t says whether
- * plane j is one of pixel t's three planes and v is not its label already. */
-#define VBJ_OFFER(t)                                                              \
-    if (r##t) {                                                                   \
-        int e_ = ca##t - sa;                                                      \
-        ulong d_ = base + (ulong)((long)e_ * e_);                                 \
-        if (vbj_better(d_, v, bd##t, bl##t)) {                                    \
+/* "Not a label": forces the first read of a work-item to fetch its seed. */
+#define VBJ_NOCACHE 0xfffffffeu
+
+/* Offers the seed just read (label v) to pixel t of the block: nearer, or as
+ * near with a lower index (Definition 2). dist is its squared distance. */
+#define VBJ_OFFER(t, dist)                                                        \
+    {                                                                             \
+        vbj_d d_ = (dist);                                                        \
+        if (d_ < bd##t || (d_ == bd##t && v < bl##t)) {                           \
             bd##t = d_;                                                           \
             bl##t = v;                                                            \
         }                                                                         \
     }
-#define VBJ_RELEVANT(t) ((t) < (int)c && (t) >= j - 2 && (t) <= j && v != bl##t)
 
-/* One step of length l on a q x q grid of cells of f fine pixels; c (1, 2 or
- * 4, dividing q / l) pixels per work-item along y. */
+/* 2D: pixels y0 + t l (t < 4) of column x read rows y0 + (j - 1) l, j < 6;
+ * row j concerns the pixels t with j - 2 <= t <= j (constants: the compiler
+ * drops the others). */
+#define VBJ_IF2(t, J)                                                             \
+    if ((t) + 2 >= (J) && (t) <= (J))                                             \
+        VBJ_OFFER(t, ds##t)
+
+#define VBJ_READ2(J, xx, okx)                                                     \
+    {                                                                             \
+        uint v = okr_ && (okx) ? (uint)src[row_ + (xx)] : VBJ_LNONE;              \
+        if (v != cv) {                                                            \
+            cv = v;                                                               \
+            vbj_seed2 s_ = seeds[v == VBJ_LNONE ? 0u : v];                        \
+            vbj_d x_ = v == VBJ_LNONE ? VBJ_DFAR : VBJ_SQ(cx - s_.x);             \
+            ds0 = x_ + VBJ_SQ(cy0 - s_.y);                                        \
+            ds1 = x_ + VBJ_SQ(cy1 - s_.y);                                        \
+            ds2 = x_ + VBJ_SQ(cy2 - s_.y);                                        \
+            ds3 = x_ + VBJ_SQ(cy3 - s_.y);                                        \
+        }                                                                         \
+        VBJ_IF2(0, J) VBJ_IF2(1, J) VBJ_IF2(2, J) VBJ_IF2(3, J)                   \
+    }
+
+#define VBJ_ROW2(J)                                                               \
+    {                                                                             \
+        uint yy_ = y0 + (uint)((J) - 1) * l;                                      \
+        int okr_ = yy_ < q;                                                       \
+        uint row_ = yy_ * q;                                                      \
+        VBJ_READ2(J, xm, xm < q)                                                  \
+        VBJ_READ2(J, x, 1)                                                        \
+        VBJ_READ2(J, xp, xp < q)                                                  \
+    }
+
+/* One step of length l on a q x q grid of cells of f fine pixels. Work-item
+ * (x, w) owns pixels y0 + t l, t < 4 (those past the grid when q / l = 2 are
+ * skipped): global size q x (q / l >= 4 ? q / 4 : l). */
 kernel void jfa_step_2d(global const vbj_label *src, global vbj_label *dst,
-                        global const int2 *seeds, uint q, uint f, uint l, uint c)
+                        global const vbj_seed2 *seeds, uint q, uint f, uint l)
 {
     uint x = get_global_id(0), w = get_global_id(1);
-    if (x >= q || w >= q / c)
+    if (x >= q || w >= (q / l >= 4u ? q / 4u : l))
         return;
-    uint y0 = w % l + l * c * (w / l);
-    int cx = vbj_cell_centre(x, f);
-    ulong bd0 = ULONG_MAX, bd1 = ULONG_MAX, bd2 = ULONG_MAX, bd3 = ULONG_MAX;
-    uint bl0 = VBJ_NONE, bl1 = VBJ_NONE, bl2 = VBJ_NONE, bl3 = VBJ_NONE;
-    /* Pixels past c do not exist (their centres could overflow). */
-    int ca0 = vbj_cell_centre(y0, f), ca1 = c > 1 ? vbj_cell_centre(y0 + l, f) : 0,
-        ca2 = c > 2 ? vbj_cell_centre(y0 + 2u * l, f) : 0,
-        ca3 = c > 2 ? vbj_cell_centre(y0 + 3u * l, f) : 0;
-    /* The last seed fetched: neighbours mostly repeat a label. */
-    uint cv = VBJ_NONE;
-    int2 cs = (int2)(0, 0);
-    /* Unrolled, the plane index j is a constant in VBJ_RELEVANT. */
-#pragma unroll
-    for (int j = 0; j < VBJ_C + 2; j++) {
-        int yy = (int)y0 + (j - 1) * (int)l;
-        if (j > (int)c + 1 || yy < 0 || yy >= (int)q)
-            continue;
-        for (int dx = -1; dx <= 1; dx++) {
-            int xx = (int)x + dx * (int)l;
-            if (xx < 0 || xx >= (int)q)
-                continue;
-            uint v = src[(uint)yy * q + (uint)xx];
-            if (v == VBJ_LNONE)
-                continue;
-            int r0 = VBJ_RELEVANT(0), r1 = VBJ_RELEVANT(1), r2 = VBJ_RELEVANT(2),
-                r3 = VBJ_RELEVANT(3);
-            if (!(r0 | r1 | r2 | r3))
-                continue;
-            if (v != cv) {
-                cs = seeds[v];
-                cv = v;
-            }
-            int ex = cx - cs.x, sa = cs.y;
-            ulong base = (ulong)((long)ex * ex);
-            VBJ_OFFER(0)
-            VBJ_OFFER(1)
-            VBJ_OFFER(2)
-            VBJ_OFFER(3)
-        }
-    }
+    uint y0 = w % l + 4u * l * (w / l), xm = x - l, xp = x + l;
+    vbj_coord cx = VBJ_CENTRE(x, f), cy0 = VBJ_CENTRE(y0, f), cy1 = VBJ_CENTRE(y0 + l, f);
+    vbj_coord cy2 = y0 + 2u * l < q ? VBJ_CENTRE(y0 + 2u * l, f) : cy0;
+    vbj_coord cy3 = y0 + 3u * l < q ? VBJ_CENTRE(y0 + 3u * l, f) : cy0;
+    vbj_d bd0 = VBJ_DINIT, bd1 = VBJ_DINIT, bd2 = VBJ_DINIT, bd3 = VBJ_DINIT;
+    uint bl0 = VBJ_LNONE, bl1 = VBJ_LNONE, bl2 = VBJ_LNONE, bl3 = VBJ_LNONE;
+    vbj_d ds0 = 0, ds1 = 0, ds2 = 0, ds3 = 0;
+    uint cv = VBJ_NOCACHE;
+    VBJ_ROW2(0) VBJ_ROW2(1) VBJ_ROW2(2) VBJ_ROW2(3) VBJ_ROW2(4) VBJ_ROW2(5)
     uint r = y0 * q + x, stride = l * q;
     dst[r] = (vbj_label)bl0;
-    if (c > 1)
-        dst[r + stride] = (vbj_label)bl1;
-    if (c > 2) {
+    dst[r + stride] = (vbj_label)bl1;
+    if (y0 + 2u * l < q) {
         dst[r + 2u * stride] = (vbj_label)bl2;
         dst[r + 3u * stride] = (vbj_label)bl3;
     }
 }
 
-/* The same on a q^3 grid, c pixels per work-item along z. */
+/* 3D: pixels (y0 + a l, z0 + b l), a < 2, b < 4, named t = ab, read rows
+ * y0 + (JY - 1) l, JY < 4, of planes z0 + (JZ - 1) l, JZ < 6; the read
+ * concerns a in JY-2..JY and b in JZ-2..JZ. */
+#define VBJ_IF3(a, b, JY, JZ)                                                     \
+    if ((a) + 2 >= (JY) && (a) <= (JY) && (b) + 2 >= (JZ) && (b) <= (JZ))         \
+        VBJ_OFFER(a##b, xy##a + zs##b)
+
+#define VBJ_READ3(JY, JZ, xx, okx)                                                \
+    {                                                                             \
+        uint v = okr_ && (okx) ? (uint)src[row_ + (xx)] : VBJ_LNONE;              \
+        if (v != cv) {                                                            \
+            cv = v;                                                               \
+            vbj_seed3 s_ = seeds[v == VBJ_LNONE ? 0u : v];                        \
+            vbj_d x_ = v == VBJ_LNONE ? VBJ_DFAR : VBJ_SQ(cx - s_.x);             \
+            xy0 = x_ + VBJ_SQ(cy0 - s_.y);                                        \
+            xy1 = x_ + VBJ_SQ(cy1 - s_.y);                                        \
+            zs0 = VBJ_SQ(cz0 - s_.z);                                             \
+            zs1 = VBJ_SQ(cz1 - s_.z);                                             \
+            zs2 = VBJ_SQ(cz2 - s_.z);                                             \
+            zs3 = VBJ_SQ(cz3 - s_.z);                                             \
+        }                                                                         \
+        VBJ_IF3(0, 0, JY, JZ) VBJ_IF3(0, 1, JY, JZ) VBJ_IF3(0, 2, JY, JZ)         \
+        VBJ_IF3(0, 3, JY, JZ) VBJ_IF3(1, 0, JY, JZ) VBJ_IF3(1, 1, JY, JZ)         \
+        VBJ_IF3(1, 2, JY, JZ) VBJ_IF3(1, 3, JY, JZ)                               \
+    }
+
+#define VBJ_ROW3(JY, JZ)                                                          \
+    {                                                                             \
+        uint yy_ = y0 + (uint)((JY) - 1) * l, zz_ = z0 + (uint)((JZ) - 1) * l;    \
+        int okr_ = yy_ < q && zz_ < q;                                            \
+        uint row_ = (zz_ * q + yy_) * q;                                          \
+        VBJ_READ3(JY, JZ, xm, xm < q)                                             \
+        VBJ_READ3(JY, JZ, x, 1)                                                   \
+        VBJ_READ3(JY, JZ, xp, xp < q)                                             \
+    }
+#define VBJ_PLANE3(JZ) VBJ_ROW3(0, JZ) VBJ_ROW3(1, JZ) VBJ_ROW3(2, JZ) VBJ_ROW3(3, JZ)
+
+/* The same on a q^3 grid: work-item (x, wy, wz) owns the 2 x 4 block above;
+ * global size q x q / 2 x (q / l >= 4 ? q / 4 : l). */
 kernel void jfa_step_3d(global const vbj_label *src, global vbj_label *dst,
-                        global const int4 *seeds, uint q, uint f, uint l, uint c)
+                        global const vbj_seed3 *seeds, uint q, uint f, uint l)
 {
-    uint x = get_global_id(0), y = get_global_id(1), w = get_global_id(2);
-    if (x >= q || y >= q || w >= q / c)
+    uint x = get_global_id(0), wy = get_global_id(1), wz = get_global_id(2);
+    if (x >= q || wy >= q / 2u || wz >= (q / l >= 4u ? q / 4u : l))
         return;
-    uint z0 = w % l + l * c * (w / l);
-    int cx = vbj_cell_centre(x, f), cy = vbj_cell_centre(y, f);
-    ulong bd0 = ULONG_MAX, bd1 = ULONG_MAX, bd2 = ULONG_MAX, bd3 = ULONG_MAX;
-    uint bl0 = VBJ_NONE, bl1 = VBJ_NONE, bl2 = VBJ_NONE, bl3 = VBJ_NONE;
-    /* Pixels past c do not exist (their centres could overflow). */
-    int ca0 = vbj_cell_centre(z0, f), ca1 = c > 1 ? vbj_cell_centre(z0 + l, f) : 0,
-        ca2 = c > 2 ? vbj_cell_centre(z0 + 2u * l, f) : 0,
-        ca3 = c > 2 ? vbj_cell_centre(z0 + 3u * l, f) : 0;
-    uint cv = VBJ_NONE;
-    int4 cs = (int4)(0, 0, 0, 0);
-    /* Unrolled, the plane index j is a constant in VBJ_RELEVANT. */
-#pragma unroll
-    for (int j = 0; j < VBJ_C + 2; j++) {
-        int zz = (int)z0 + (j - 1) * (int)l;
-        if (j > (int)c + 1 || zz < 0 || zz >= (int)q)
-            continue;
-        for (int dy = -1; dy <= 1; dy++) {
-            int yy = (int)y + dy * (int)l;
-            if (yy < 0 || yy >= (int)q)
-                continue;
-            for (int dx = -1; dx <= 1; dx++) {
-                int xx = (int)x + dx * (int)l;
-                if (xx < 0 || xx >= (int)q)
-                    continue;
-                uint v = src[((uint)zz * q + (uint)yy) * q + (uint)xx];
-                if (v == VBJ_LNONE)
-                    continue;
-                int r0 = VBJ_RELEVANT(0), r1 = VBJ_RELEVANT(1), r2 = VBJ_RELEVANT(2),
-                    r3 = VBJ_RELEVANT(3);
-                if (!(r0 | r1 | r2 | r3))
-                    continue;
-                if (v != cv) {
-                    cs = seeds[v];
-                    cv = v;
-                }
-                int ex = cx - cs.x, ey = cy - cs.y, sa = cs.z;
-                ulong base = (ulong)((long)ex * ex) + (ulong)((long)ey * ey);
-                VBJ_OFFER(0)
-                VBJ_OFFER(1)
-                VBJ_OFFER(2)
-                VBJ_OFFER(3)
-            }
-        }
-    }
-    uint r = (z0 * q + y) * q + x, stride = l * q * q;
-    dst[r] = (vbj_label)bl0;
-    if (c > 1)
-        dst[r + stride] = (vbj_label)bl1;
-    if (c > 2) {
-        dst[r + 2u * stride] = (vbj_label)bl2;
-        dst[r + 3u * stride] = (vbj_label)bl3;
+    uint y0 = wy % l + 2u * l * (wy / l), z0 = wz % l + 4u * l * (wz / l);
+    uint xm = x - l, xp = x + l;
+    vbj_coord cx = VBJ_CENTRE(x, f), cy0 = VBJ_CENTRE(y0, f), cy1 = VBJ_CENTRE(y0 + l, f);
+    vbj_coord cz0 = VBJ_CENTRE(z0, f), cz1 = VBJ_CENTRE(z0 + l, f);
+    vbj_coord cz2 = z0 + 2u * l < q ? VBJ_CENTRE(z0 + 2u * l, f) : cz0;
+    vbj_coord cz3 = z0 + 3u * l < q ? VBJ_CENTRE(z0 + 3u * l, f) : cz0;
+    vbj_d bd00 = VBJ_DINIT, bd01 = VBJ_DINIT, bd02 = VBJ_DINIT, bd03 = VBJ_DINIT;
+    vbj_d bd10 = VBJ_DINIT, bd11 = VBJ_DINIT, bd12 = VBJ_DINIT, bd13 = VBJ_DINIT;
+    uint bl00 = VBJ_LNONE, bl01 = VBJ_LNONE, bl02 = VBJ_LNONE, bl03 = VBJ_LNONE;
+    uint bl10 = VBJ_LNONE, bl11 = VBJ_LNONE, bl12 = VBJ_LNONE, bl13 = VBJ_LNONE;
+    vbj_d xy0 = 0, xy1 = 0, zs0 = 0, zs1 = 0, zs2 = 0, zs3 = 0;
+    uint cv = VBJ_NOCACHE;
+    VBJ_PLANE3(0) VBJ_PLANE3(1) VBJ_PLANE3(2) VBJ_PLANE3(3) VBJ_PLANE3(4) VBJ_PLANE3(5)
+    uint r = (z0 * q + y0) * q + x, sy = l * q, sz = l * q * q;
+    dst[r] = (vbj_label)bl00;
+    dst[r + sy] = (vbj_label)bl10;
+    dst[r + sz] = (vbj_label)bl01;
+    dst[r + sz + sy] = (vbj_label)bl11;
+    if (z0 + 2u * l < q) {
+        dst[r + 2u * sz] = (vbj_label)bl02;
+        dst[r + 2u * sz + sy] = (vbj_label)bl12;
+        dst[r + 3u * sz] = (vbj_label)bl03;
+        dst[r + 3u * sz + sy] = (vbj_label)bl13;
     }
 }
-
 /* Number of distinct labels among each pixel and its 3^d - 1 neighbours
  * (dim 2 or 3): 1 interior, 2 facet, >= 3 edge, >= 4 vertex. */
 kernel void jfa_count_labels(global const uint *lab, global uchar *out, uint n, uint dim)

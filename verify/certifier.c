@@ -4,6 +4,21 @@
 
 #include "vbx_cert.h"
 
+/* Solvers and per-candidate scratch (sized by the sphere count); 0 or -1. */
+static int open_scratch(vb_certifier *c)
+{
+    vbx_solver_init(&c->sol, &c->d);
+    vbx_solver_init(&c->canon, &c->d);
+    size_t n1 = c->set->n ? c->set->n : 1;
+    c->cap = n1;
+    c->ids = malloc(n1 * sizeof *c->ids);
+    c->members = malloc(n1 * sizeof *c->members);
+    c->is_def = calloc(n1, 1);
+    c->nslots = 64;
+    c->slots = calloc(c->nslots, sizeof *c->slots);
+    return c->ids && c->members && c->is_def && c->slots ? 0 : -1;
+}
+
 int vb_certifier_open(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier **out)
 {
     *out = NULL;
@@ -21,22 +36,34 @@ int vb_certifier_open(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier **out)
         free(c);
         return rc;
     }
-    vbx_solver_init(&c->sol, &c->d);
-    vbx_solver_init(&c->canon, &c->d);
-    size_t n1 = set->n ? set->n : 1;
-    c->cap = n1;
-    c->ids = malloc(n1 * sizeof *c->ids);
-    c->members = malloc(n1 * sizeof *c->members);
-    c->is_def = calloc(n1, 1);
-    c->nslots = 64;
-    c->slots = calloc(c->nslots, sizeof *c->slots);
-    if (vbx_grid_build(&c->g, c->d.near, set->n) != 0 || !c->ids || !c->members ||
-        !c->is_def || !c->slots) {
+    if (open_scratch(c) != 0 || vbx_grid_build(&c->g, c->d.near, set->n) != 0 ||
+        !(c->gbox = malloc(4 * (set->n ? set->n : 1) * sizeof *c->gbox))) {
         vb_certifier_close(c);
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (certifier)");
     }
+    for (size_t q = 0; q < set->n; q++)
+        memcpy(&c->gbox[4 * q], &c->d.box[4 * (size_t)c->g.ids[q]], 4 * sizeof *c->gbox);
     *out = c;
     return VB_OK;
+}
+
+vb_certifier *vbx_certifier_worker(const vb_certifier *c)
+{
+    vb_certifier *w = calloc(1, sizeof *w);
+    if (!w)
+        return NULL;
+    /* Shallow copies: the parent's GMP integers and grid arrays are only
+     * read while workers run, which GMP allows from several threads. */
+    w->set = c->set;
+    w->d = c->d;
+    w->g = c->g;
+    w->gbox = c->gbox;
+    w->borrowed = 1;
+    if (open_scratch(w) != 0) {
+        vb_certifier_close(w);
+        return NULL;
+    }
+    return w;
 }
 
 void vb_certifier_close(vb_certifier *c)
@@ -45,8 +72,11 @@ void vb_certifier_close(vb_certifier *c)
         return;
     vbx_solver_free(&c->sol);
     vbx_solver_free(&c->canon);
-    vbx_data_free(&c->d);
-    vbx_grid_free(&c->g);
+    if (!c->borrowed) {
+        vbx_data_free(&c->d);
+        vbx_grid_free(&c->g);
+        free(c->gbox);
+    }
     free(c->ids);
     free(c->members);
     free(c->is_def);
@@ -69,13 +99,31 @@ int vbx_cert_tangent_sign(vb_ctx *ctx, vb_certifier *c, const vbx_root *r, uint3
 }
 
 /* |p - c_j| - R_j - t over the enclosures: its sign if the filter proves it. */
-static vbx_ia distance_excess(const vb_certifier *c, uint32_t j, const vbx_ia box[4])
+static vbx_ia distance_excess(const vbx_ia cj[4], const vbx_ia box[4])
 {
-    const vbx_ia *cj = &c->d.box[4 * (size_t)j];
     vbx_ia d2 = vbx_ia_sqr(vbx_ia_sub(box[0], cj[0]));
     d2 = vbx_ia_add(d2, vbx_ia_sqr(vbx_ia_sub(box[1], cj[1])));
     d2 = vbx_ia_add(d2, vbx_ia_sqr(vbx_ia_sub(box[2], cj[2])));
     return vbx_ia_sub(vbx_ia_sub(vbx_ia_sqrt(d2), cj[3]), box[3]);
+}
+
+/* A cheaper filter of the same predicate for the many spheres of a scan that
+ * are far outside: 1 when |p - c_j| - R_j - t > 0 is proven from lower
+ * bounds alone (no square root), 0 when it cannot tell. Every bound is
+ * moved outward as in vbx_ia.h: g_k <= |p_k - c_jk| per axis, the sum of
+ * their squares <= |p - c_j|^2, and reach >= t + R_j. */
+static int surely_outside(const vbx_ia cj[4], const vbx_ia box[4])
+{
+    double reach = vbx_succ(box[3].hi + cj[3].hi);
+    if (reach < 0.0)
+        return 1; /* t + R_j < 0 <= |p - c_j| */
+    double d2 = 0.0;
+    for (int k = 0; k < 3; k++) {
+        double g = vbx_max(vbx_pred(box[k].lo - cj[k].hi), vbx_pred(cj[k].lo - box[k].hi));
+        if (g > 0.0)
+            d2 = vbx_pred(d2 + vbx_pred(g * g));
+    }
+    return d2 > vbx_succ(reach * reach);
 }
 
 static int is_solved_row(const vbx_solver *s, uint32_t j)
@@ -95,7 +143,7 @@ int vbx_cert_defining(vb_ctx *ctx, vb_certifier *c, const vbx_root *r, const uin
             continue;
         /* A defining sphere beyond the four solved must touch exactly. */
         st->filter_calls++;
-        if (vbx_ia_sign(distance_excess(c, j, box)) != 0)
+        if (vbx_ia_sign(distance_excess(&c->d.box[4 * (size_t)j], box)) != 0)
             return 0;
         st->filter_failures++;
         st->exact_evals++;
@@ -140,7 +188,12 @@ void vbx_cert_scan(vb_ctx *ctx, vb_certifier *c, const vbx_root *r, const uint32
                     if (c->is_def[j])
                         continue;
                     st->filter_calls++;
-                    vbx_ia g = distance_excess(c, j, box);
+                    /* gbox: the same enclosures in grid order, read
+                     * contiguously cell by cell. */
+                    const vbx_ia *cj = &c->gbox[4 * q];
+                    if (surely_outside(cj, box))
+                        continue;
+                    vbx_ia g = distance_excess(cj, box);
                     int sg = vbx_ia_sign(g), exact = sg == 0;
                     if (exact) {
                         st->filter_failures++;
@@ -251,33 +304,39 @@ static int grow_table(vb_certifier *c)
     return VB_OK;
 }
 
-int vbx_cert_key(vb_ctx *ctx, vb_certifier *c, const vbx_root *r, size_t *key)
+int vbx_cert_identity(vb_ctx *ctx, vb_certifier *c, const vbx_root *r, int *sigma)
 {
-    int sigma, ours;
+    int ours;
     if (!vbx_cert_canonical(c, &ours))
         return vb_error(ctx, VB_EINTERNAL, NULL, 0,
                         "a certified vertex has no quadruple of members with a root");
     if (ours) {
-        sigma = r->sigma;
+        *sigma = r->sigma;
     } else {
         /* The canonical quadruple's line passes through our exact point; its
          * root there is decided exactly (vbx_sigma_in). */
         vb_ctx_stats(ctx)->exact_evals++;
-        sigma = vbx_sigma_in(&c->canon, &c->sol, r);
+        *sigma = vbx_sigma_in(&c->canon, &c->sol, r);
     }
-    uint64_t h = hash_members(c->members, c->nmembers, sigma);
+    return VB_OK;
+}
+
+int vbx_cert_key_of(vb_ctx *ctx, vb_certifier *c, const uint32_t *m, size_t n, int sigma,
+                    size_t *key)
+{
+    uint64_t h = hash_members(m, n, sigma);
     size_t i = (size_t)(h & (c->nslots - 1));
     for (; c->slots[i].n; i = (i + 1) & (c->nslots - 1)) {
         const vbx_key_entry *e = &c->slots[i];
-        if (e->hash == h && e->n == c->nmembers && e->sigma == sigma &&
-            memcmp(c->pool + e->off, c->members, e->n * sizeof *c->members) == 0) {
+        if (e->hash == h && e->n == n && e->sigma == sigma &&
+            memcmp(c->pool + e->off, m, n * sizeof *m) == 0) {
             *key = e->key;
             return VB_OK;
         }
     }
-    if (c->npool + c->nmembers > c->pool_cap) {
+    if (c->npool + n > c->pool_cap) {
         size_t cap = c->pool_cap ? c->pool_cap : 1024;
-        while (cap < c->npool + c->nmembers)
+        while (cap < c->npool + n)
             cap *= 2;
         uint32_t *p = realloc(c->pool, cap * sizeof *p);
         if (!p)
@@ -285,9 +344,9 @@ int vbx_cert_key(vb_ctx *ctx, vb_certifier *c, const vbx_root *r, size_t *key)
         c->pool = p;
         c->pool_cap = cap;
     }
-    memcpy(c->pool + c->npool, c->members, c->nmembers * sizeof *c->members);
-    vbx_key_entry e = {h, c->npool, c->nmembers, sigma, c->nkeys};
-    c->npool += c->nmembers;
+    memcpy(c->pool + c->npool, m, n * sizeof *m);
+    vbx_key_entry e = {h, c->npool, n, sigma, c->nkeys};
+    c->npool += n;
     c->slots[i] = e;
     *key = c->nkeys++;
     if (2 * c->nkeys > c->nslots && grow_table(c) != VB_OK)
@@ -314,8 +373,8 @@ static size_t distinct_ids(vb_certifier *c, const uint32_t *ids, size_t nids)
     return m;
 }
 
-int vb_certify_candidate(vb_ctx *ctx, vb_certifier *c, const uint32_t *ids, size_t nids,
-                         const double p[3], double tol, vb_cert_result *res)
+int vbx_certify_one(vb_ctx *ctx, vb_certifier *c, const uint32_t *ids, size_t nids,
+                    const double p[3], double tol, vb_cert_result *res, int *sigma)
 {
     vb_stats *st = vb_ctx_stats(ctx);
     memset(res, 0, sizeof *res);
@@ -376,7 +435,7 @@ int vb_certify_candidate(vb_ctx *ctx, vb_certifier *c, const uint32_t *ids, size
         res->verdict = VB_CERT_FAR;
         return VB_OK;
     }
-    int rc = vbx_cert_key(ctx, c, &c->sol.root[best], &res->key);
+    int rc = vbx_cert_identity(ctx, c, &c->sol.root[best], sigma);
     if (rc != VB_OK)
         return rc;
     res->members = c->members;
@@ -386,55 +445,12 @@ int vb_certify_candidate(vb_ctx *ctx, vb_certifier *c, const uint32_t *ids, size
     return VB_OK;
 }
 
-int vb_certify_list(vb_ctx *ctx, vb_certifier *c, const vb_vertex_list *cand, double tol,
-                    vb_vertex_list *out, vb_vertex_list *rejected)
+int vb_certify_candidate(vb_ctx *ctx, vb_certifier *c, const uint32_t *ids, size_t nids,
+                         const double p[3], double tol, vb_cert_result *res)
 {
-    size_t *where = NULL, nwhere = 0; /* key -> index in out, SIZE_MAX = none yet */
-    int rc = VB_OK;
-    for (size_t k = 0; k < cand->n && rc == VB_OK; k++) {
-        const uint32_t *ids = cand->ids + cand->start[k];
-        size_t nids = cand->start[k + 1] - cand->start[k];
-        double p[3] = {cand->x[k], cand->y[k], cand->z[k]};
-        vb_cert_result res;
-        rc = vb_certify_candidate(ctx, c, ids, nids, p, tol, &res);
-        if (rc != VB_OK)
-            break;
-        if (res.verdict != VB_CERT_OK) {
-            if (rejected)
-                rc = vb_vertex_list_push(rejected, ids, nids, cand->x[k], cand->y[k],
-                                         cand->z[k], cand->t[k], res.dist, VB_VERTEX_REJECTED);
-            continue;
-        }
-        if (res.key >= nwhere) {
-            size_t nw = nwhere ? nwhere : 64;
-            while (nw <= res.key)
-                nw *= 2;
-            size_t *w = realloc(where, nw * sizeof *w);
-            if (!w) {
-                rc = VB_ENOMEM;
-                break;
-            }
-            for (size_t i = nwhere; i < nw; i++)
-                w[i] = SIZE_MAX;
-            where = w;
-            nwhere = nw;
-        }
-        if (where[res.key] == SIZE_MAX) {
-            where[res.key] = out->n;
-            rc = vb_vertex_list_push(out, res.members, res.nmembers, res.x, res.y, res.z, res.t,
-                                     res.dist, VB_VERTEX_CERTIFIED);
-        } else {
-            /* Another candidate of a vertex already in out: the stats count
-             * canonical vertices, not candidates. */
-            vb_ctx_stats(ctx)->certified--;
-            if (res.dist > out->dist[where[res.key]])
-                out->dist[where[res.key]] = res.dist;
-        }
-    }
-    free(where);
-    if (rc == VB_OK)
-        rc = vb_vertex_list_sort(out);
-    if (rc == VB_ENOMEM)
-        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (certified vertices)");
-    return rc;
+    int sigma = 0;
+    int rc = vbx_certify_one(ctx, c, ids, nids, p, tol, res, &sigma);
+    if (rc != VB_OK || res->verdict != VB_CERT_OK)
+        return rc;
+    return vbx_cert_key_of(ctx, c, c->members, c->nmembers, sigma, &res->key);
 }

@@ -1,5 +1,7 @@
 /* Exact numbers: the scaled-integer sphere set, signs in Q(sqrt(D)) and
  * correctly rounded doubles of its elements. */
+#include <float.h>
+#include <math.h>
 #include <stdlib.h>
 
 #include "vbx_exact.h"
@@ -163,8 +165,8 @@ static void enclose_qsqrt(const mpz_t num, const mpz_t b, const mpz_t D, const m
     }
 }
 
-int vbx_round(const mpz_t num, const mpz_t b, const mpz_t D, const mpz_t den, double *out,
-              double *lo, double *hi)
+int vbx_round_mpfr(const mpz_t num, const mpz_t b, const mpz_t D, const mpz_t den, double *out,
+                   double *lo, double *hi)
 {
     int rc = VB_EPREC;
     mpfr_prec_t prec = 80;
@@ -196,4 +198,173 @@ int vbx_round(const mpz_t num, const mpz_t b, const mpz_t D, const mpz_t den, do
     }
     mpfr_clears(l, h, sl, sh, (mpfr_ptr)0);
     return rc;
+}
+
+/* The fast path needs integers read 64 bits at a time into a long double
+ * that holds 64 bits exactly (x87 extended; binary128 also qualifies). */
+#if LDBL_MANT_DIG >= 64 && GMP_NUMB_BITS == 64 && GMP_NAIL_BITS == 0
+#define VBX_FAST_ROUND 1
+#else
+#define VBX_FAST_ROUND 0
+#endif
+
+#if VBX_FAST_ROUND
+/* Error bound: the argument of vbx_ia.h, in long double. Each +, *, /, sqrt
+ * of long doubles returns the nearest long double r of the exact result x
+ * (IEEE round-to-nearest; on x87 the default 64-bit precision control), so
+ * nextafterl(r, -inf) <= x <= nextafterl(r, +inf). Moving every computed
+ * end one step outward keeps each interval an enclosure, op by op. */
+static long double ld_down(long double x)
+{
+    return nextafterl(x, -INFINITY);
+}
+
+static long double ld_up(long double x)
+{
+    return nextafterl(x, INFINITY);
+}
+
+/* 2^(64 k): the scales of the integers the certifier meets (a few hundred
+ * bits); longer ones take ldexpl. */
+#define VBX_POW2_N 16
+static const long double pow2_64k[VBX_POW2_N] = {
+    0x1p0L,   0x1p64L,  0x1p128L, 0x1p192L, 0x1p256L, 0x1p320L, 0x1p384L, 0x1p448L,
+    0x1p512L, 0x1p576L, 0x1p640L, 0x1p704L, 0x1p768L, 0x1p832L, 0x1p896L, 0x1p960L};
+
+/* Encloses the integer z: its top 64 bits t give t 2^s <= |z| <= (t + 1) 2^s,
+ * both exact in a 64-bit mantissa (t + 1 <= 2^64). 0 when z is too long for
+ * the exponent range (never for inputs the readers accept). */
+static int ld_enclose_z(const mpz_t z, long double *lo, long double *hi)
+{
+    int sg = mpz_sgn(z);
+    if (sg == 0) {
+        *lo = *hi = 0.0L;
+        return 1;
+    }
+    size_t n = mpz_sizeinbase(z, 2);
+    if (n > (size_t)LDBL_MAX_EXP - 64)
+        return 0;
+    long double a, b;
+    if (n <= 64) {
+        a = b = (long double)mpz_getlimbn(z, 0);
+    } else {
+        size_t sh = n - 64, i = sh / 64;
+        unsigned o = (unsigned)(sh % 64);
+        uint64_t t = (uint64_t)mpz_getlimbn(z, (mp_size_t)i) >> o;
+        if (o)
+            t |= (uint64_t)mpz_getlimbn(z, (mp_size_t)i + 1) << (64 - o);
+        /* Scaling by a power of two is exact (no overflow: n is bounded). */
+        long double p2 = sh < 64 * VBX_POW2_N ? (long double)((uint64_t)1 << (sh % 64)) *
+                                                    pow2_64k[sh / 64]
+                                              : ldexpl(1.0L, (int)sh);
+        a = (long double)t * p2;
+        b = ((long double)t + 1.0L) * p2;
+    }
+    *lo = sg > 0 ? a : -b;
+    *hi = sg > 0 ? b : -a;
+    return 1;
+}
+
+/* Product (or quotient when div) of [al, ah] and [bl, bh], outward. */
+static void ld_mul(long double al, long double ah, long double bl, long double bh, int div,
+                   long double *lo, long double *hi)
+{
+    long double p[4];
+    if (div) {
+        p[0] = al / bl;
+        p[1] = al / bh;
+        p[2] = ah / bl;
+        p[3] = ah / bh;
+    } else {
+        p[0] = al * bl;
+        p[1] = al * bh;
+        p[2] = ah * bl;
+        p[3] = ah * bh;
+    }
+    long double mn = p[0], mx = p[0];
+    for (int i = 1; i < 4; i++) {
+        mn = p[i] < mn ? p[i] : mn;
+        mx = p[i] > mx ? p[i] : mx;
+    }
+    *lo = ld_down(mn);
+    *hi = ld_up(mx);
+}
+#endif
+
+void vbx_round_prepare(vbx_round_common *rc, const mpz_t D, const mpz_t den)
+{
+    rc->ok = 0;
+    rc->root = 0;
+#if VBX_FAST_ROUND
+    if (!ld_enclose_z(den, &rc->dl, &rc->dh) || rc->dl == 0.0L)
+        return;
+    if (mpz_sgn(D) != 0) {
+        long double Dl, Dh;
+        if (!ld_enclose_z(D, &Dl, &Dh))
+            return;
+        /* D > 0, so Dl >= 1 and its square root is positive. */
+        rc->sl = ld_down(sqrtl(Dl));
+        rc->sh = ld_up(sqrtl(Dh));
+        rc->root = 1;
+    }
+    rc->ok = 1;
+#else
+    (void)D;
+    (void)den;
+#endif
+}
+
+int vbx_round_with(const vbx_round_common *rc, const mpz_t num, const mpz_t b, double *out,
+                   double *lo, double *hi)
+{
+#if VBX_FAST_ROUND
+    long double vl, vh;
+    if (!rc->ok || !ld_enclose_z(num, &vl, &vh))
+        return 0;
+    if (rc->root && mpz_sgn(b) != 0) {
+        long double nl = vl, nh = vh, bl, bh, pl, ph;
+        if (!ld_enclose_z(b, &bl, &bh))
+            return 0;
+        ld_mul(bl, bh, rc->sl, rc->sh, 0, &pl, &ph);
+        vl = ld_down(nl + pl);
+        vh = ld_up(nh + ph);
+    }
+    /* den is a non-zero integer: its enclosure excludes 0. */
+    ld_mul(vl, vh, rc->dl, rc->dh, 1, &vl, &vh);
+    /* Rounding to nearest double is monotone, so when both ends round to
+     * one double every value between them, the exact one included, does. */
+    double rl = (double)vl, rh = (double)vh;
+    if (rl != rh || !isfinite(rl) || !(fabsl(vl) <= LDBL_MAX) || !(fabsl(vh) <= LDBL_MAX))
+        return 0;
+    *out = rl;
+    *lo = (long double)rl > vl ? nextafter(rl, -INFINITY) : rl;
+    *hi = (long double)rh < vh ? nextafter(rh, INFINITY) : rh;
+    return 1;
+#else
+    (void)rc;
+    (void)num;
+    (void)b;
+    (void)out;
+    (void)lo;
+    (void)hi;
+    return 0;
+#endif
+}
+
+int vbx_round_fast(const mpz_t num, const mpz_t b, const mpz_t D, const mpz_t den, double *out,
+                   double *lo, double *hi)
+{
+    vbx_round_common rc;
+    vbx_round_prepare(&rc, D, den);
+    return vbx_round_with(&rc, num, b, out, lo, hi);
+}
+
+int vbx_round(const mpz_t num, const mpz_t b, const mpz_t D, const mpz_t den, double *out,
+              double *lo, double *hi, uint64_t *slow)
+{
+    if (vbx_round_fast(num, b, D, den, out, lo, hi))
+        return VB_OK;
+    if (slow)
+        ++*slow;
+    return vbx_round_mpfr(num, b, D, den, out, lo, hi);
 }

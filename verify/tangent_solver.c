@@ -15,6 +15,7 @@
 void vbx_solver_init(vbx_solver *s, const vbx_data *d)
 {
     s->d = d;
+    s->slow_rounds = 0;
     s->status = VBX_SINGULAR;
     s->nroots = 0;
     s->k = -1;
@@ -314,19 +315,23 @@ int vbx_sigma_in(vbx_solver *canon, vbx_solver *ours, const vbx_root *r)
 int vbx_root_coords(vbx_solver *s, const vbx_root *r, double out[4], vbx_ia box[4])
 {
     const vbx_data *d = s->d;
-    mpz_t num, den;
-    mpz_inits(num, den, (mpz_ptr)0);
-    mpz_mul(den, r->den, d->scale);
+    /* t[0], t[1] are free scratch between the solver's calls. */
+    mpz_t *num = &s->t[0], *den = &s->t[1];
+    mpz_mul(*den, r->den, d->scale);
+    vbx_round_common common;
+    vbx_round_prepare(&common, s->delta, *den);
     int rc = VB_OK;
     for (int k = 0; k < 4 && rc == VB_OK; k++) {
         /* x = X_base + q_x; t = s - R_base. */
-        mpz_mul(num, d->c[4 * (size_t)s->base + k], r->den);
+        mpz_mul(*num, d->c[4 * (size_t)s->base + k], r->den);
         if (k < 3)
-            mpz_add(num, num, r->a[k]);
+            mpz_add(*num, *num, r->a[k]);
         else
-            mpz_sub(num, r->a[k], num);
-        rc = vbx_round(num, r->b[k], s->delta, den, &out[k], &box[k].lo, &box[k].hi);
+            mpz_sub(*num, r->a[k], *num);
+        if (vbx_round_with(&common, *num, r->b[k], &out[k], &box[k].lo, &box[k].hi))
+            continue;
+        s->slow_rounds++;
+        rc = vbx_round_mpfr(*num, r->b[k], s->delta, *den, &out[k], &box[k].lo, &box[k].hi);
     }
-    mpz_clears(num, den, (mpz_ptr)0);
     return rc;
 }

@@ -26,7 +26,8 @@ typedef struct vb_certifier vb_certifier;
  * The set must outlive the certifier. Free with vb_certifier_close. Returns
  * VB_OK, VB_ENOMEM, VB_EINPUT_TOOLARGE (more than 2^32 - 1 spheres) or
  * VB_EINPUT_MAGNITUDE (decimal exponents spanning more than 800 orders).
- * One certifier serves one thread at a time (it keeps scratch state). */
+ * One certifier serves one thread at a time (it keeps scratch state);
+ * vb_certify_list spreads its own work over worker threads. */
 int vb_certifier_open(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier **out);
 
 void vb_certifier_close(vb_certifier *c);
@@ -69,9 +70,22 @@ int vb_certify_candidate(vb_ctx *ctx, vb_certifier *c, const uint32_t *ids, size
  * the largest candidate distance merged into it; status CERTIFIED). Refused
  * candidates go to `rejected` (may be NULL) with status REJECTED. Counts in
  * the context's stats: candidates (all), rejected (refused candidates) and
- * certified (distinct canonical vertices added to out). */
+ * certified (distinct canonical vertices added to out). Runs on the threads
+ * of vb_certifier_set_threads; the result does not depend on their number. */
 int vb_certify_list(vb_ctx *ctx, vb_certifier *c, const vb_vertex_list *cand, double tol,
                     vb_vertex_list *out, vb_vertex_list *rejected);
+
+/* Threads for vb_certify_list: 0 (the default) takes the environment
+ * variable VORBALL_THREADS when it is a positive integer, else the online
+ * CPUs. The output does not depend on it: results are placed by candidate
+ * index and merged in candidate order, so every thread count writes the same
+ * lists, keys and stats as one thread. */
+void vb_certifier_set_threads(vb_certifier *c, unsigned threads);
+
+/* Counters of the certifier beyond vb_stats, for benchmarks: roundings of
+ * exact coordinates that the fast enclosure could not decide and MPFR did
+ * (all calls since open, every thread). */
+uint64_t vb_certifier_slow_rounds(const vb_certifier *c);
 
 /* Exact reference: every vertex of the diagram from all quadruples (with
  * filters and conservative culling), canonical and sorted, dist = 0; appended

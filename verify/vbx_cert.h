@@ -7,7 +7,7 @@
 #include "vbx_grid.h"
 
 /* One canonical vertex identity: its sorted member set and the root of its
- * canonical quadruple (see vbx_cert_key). */
+ * canonical quadruple (see vbx_cert_key_of). */
 typedef struct vbx_key_entry {
     uint64_t hash;
     size_t off, n; /* members in pool[off .. off + n) */
@@ -19,6 +19,10 @@ struct vb_certifier {
     const vb_sphere_set *set;
     vbx_data d;
     vbx_grid g;
+    vbx_ia *gbox;          /* 4 per grid slot: d.box of g.ids[q], in grid order */
+    int borrowed;          /* worker of vb_certify_list: d and g belong to the parent */
+    unsigned threads;      /* vb_certify_list threads; 0 = VORBALL_THREADS or online CPUs */
+    uint64_t slow_rounds;  /* MPFR roundings of finished worker runs (vb_certifier_counts) */
     vbx_solver sol, canon;
     uint32_t *ids;         /* sorted distinct ids of the current candidate */
     uint32_t *members;     /* result of the last judged root */
@@ -49,10 +53,26 @@ void vbx_cert_scan(vb_ctx *ctx, vb_certifier *c, const vbx_root *r, const uint32
 int vbx_cert_tangent_sign(vb_ctx *ctx, vb_certifier *c, const vbx_root *r, uint32_t j,
                           const vbx_ia box[4]);
 
-/* Key of the exact vertex at root r of c->sol whose members are c->members:
- * equal exact points get equal keys. Returns VB_OK, VB_ENOMEM or
- * VB_EINTERNAL. */
-int vbx_cert_key(vb_ctx *ctx, vb_certifier *c, const vbx_root *r, size_t *key);
+/* Identity of the exact vertex at root r of c->sol whose members are
+ * c->members, beyond the members: the root (*sigma) of the canonical
+ * quadruple it is. Returns VB_OK or VB_EINTERNAL. */
+int vbx_cert_identity(vb_ctx *ctx, vb_certifier *c, const vbx_root *r, int *sigma);
+
+/* Key of the exact vertex with sorted members m[0..n) and canonical root
+ * sigma in c's table: equal exact points get equal keys, new ones the next
+ * number. Returns VB_OK or VB_ENOMEM. */
+int vbx_cert_key_of(vb_ctx *ctx, vb_certifier *c, const uint32_t *m, size_t n, int sigma,
+                    size_t *key);
+
+/* vb_certify_candidate without the key: everything else of *res, and the
+ * canonical root in *sigma when the verdict is VB_CERT_OK. Same returns. */
+int vbx_certify_one(vb_ctx *ctx, vb_certifier *c, const uint32_t *ids, size_t nids,
+                    const double p[3], double tol, vb_cert_result *res, int *sigma);
+
+/* A worker for another thread: own scratch and solvers, c's exact data and
+ * grid (read-only while the worker lives). Close with vb_certifier_close.
+ * NULL when out of memory. */
+vb_certifier *vbx_certifier_worker(const vb_certifier *c);
 
 /* The canonical quadruple of the member set c->members: the
  * lexicographically first sorted 4-subset (base = its smallest id) whose

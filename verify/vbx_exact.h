@@ -35,12 +35,39 @@ void vbx_data_free(vbx_data *d);
 int vbx_sign_qsqrt(const mpz_t a, const mpz_t b, const mpz_t D, mpz_t t1, mpz_t t2);
 
 /* (num + b*sqrt(D)) / den (den != 0, D >= 0) rounded to the nearest double
- * (ties to even), with a 53-bit enclosure [*lo, *hi] of the exact value. The
- * precision grows until the rounding is decided; this terminates because an
- * irrational value is never a rounding midpoint and a rational one becomes
- * exactly representable. Returns VB_OK or VB_EPREC (precision cap hit). */
+ * (ties to even), with a 53-bit enclosure [*lo, *hi] of the exact value:
+ * vbx_round_fast when it decides, else vbx_round_mpfr. *slow (may be NULL)
+ * is incremented when MPFR had to decide. Returns VB_OK or VB_EPREC. */
 int vbx_round(const mpz_t num, const mpz_t b, const mpz_t D, const mpz_t den, double *out,
-              double *lo, double *hi);
+              double *lo, double *hi, uint64_t *slow);
+
+/* The MPFR path of vbx_round: the precision grows until the rounding is
+ * decided; this terminates because an irrational value is never a rounding
+ * midpoint and a rational one becomes exactly representable. Returns VB_OK
+ * or VB_EPREC (precision cap hit). */
+int vbx_round_mpfr(const mpz_t num, const mpz_t b, const mpz_t D, const mpz_t den, double *out,
+                   double *lo, double *hi);
+
+/* The fast path of vbx_round, without MPFR: a 64-bit (x87 extended) interval
+ * evaluation of the exact value. Returns 1 with the same *out as
+ * vbx_round_mpfr when the whole enclosure rounds to one double (and a
+ * 53-bit enclosure in *lo, *hi), 0 when it cannot tell (a near tie, heavy
+ * cancellation, overflow, or a platform without a 64-bit long double). */
+int vbx_round_fast(const mpz_t num, const mpz_t b, const mpz_t D, const mpz_t den, double *out,
+                   double *lo, double *hi);
+
+/* The part of vbx_round_fast shared by every coordinate of one root:
+ * enclosures of den and sqrt(D). */
+typedef struct vbx_round_common {
+    int ok, root;              /* ok: usable; root: D != 0 */
+    long double dl, dh, sl, sh;
+} vbx_round_common;
+
+void vbx_round_prepare(vbx_round_common *rc, const mpz_t D, const mpz_t den);
+
+/* vbx_round_fast for (num + b*sqrt(D)) / den with D and den prepared in rc. */
+int vbx_round_with(const vbx_round_common *rc, const mpz_t num, const mpz_t b, double *out,
+                   double *lo, double *hi);
 
 /* One exact solution of the tangent system: u = (a + b*sqrt(delta)) / den
  * with u = (q, s), q = p - c_base, s = t + R_base, in scaled units; den > 0. */
@@ -65,6 +92,7 @@ typedef struct vbx_solver {
     vbx_root root[2];
     mpz_t row[5]; /* scratch row of a tested sphere */
     mpz_t t[6];   /* scratch */
+    uint64_t slow_rounds; /* vbx_root_coords coordinates that needed MPFR */
 } vbx_solver;
 
 void vbx_solver_init(vbx_solver *s, const vbx_data *d);

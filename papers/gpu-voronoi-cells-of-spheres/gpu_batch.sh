@@ -26,7 +26,8 @@ for f in corpus/inputs/*.xyzr "$OUT/in/1crn.pdb" "$OUT/in/1crn_apbs.xyzr" "$OUT/
     if cmp -s "$OUT/v_gpu_$n.tsv" "$OUT/v_cpu_$n.tsv"; then echo "$n gpu==cpu" >> "$id"; else echo "$n gpu!=cpu" >> "$id"; fi
     [ -f "$OUT/v_ref_$n.tsv" ] && { cmp -s "$OUT/v_gpu_$n.tsv" "$OUT/v_ref_$n.tsv" && echo "$n gpu==ref" >> "$id" || echo "$n gpu!=ref" >> "$id"; }
 done
-timeout 420 sh "$here/run_bench.sh" "$vorball" gpu "$OUT/in" "$OUT/results" table1 2> "$OUT/table1.err"
-timeout 240 sh "$here/run_bench.sh" "$vorball" gpu "$OUT/in" "$OUT/results" fig13 2> "$OUT/fig13.err"
-rm -f "$OUT"/v_*_3pqr.xyzr.tsv "$OUT"/v_*_1crn_apbs.xyzr.tsv
+timeout 200 sh "$here/run_bench.sh" "$vorball" gpu "$OUT/in" "$OUT/results" table1 2> "$OUT/table1.err"
+timeout 150 sh "$here/run_bench.sh" "$vorball" gpu "$OUT/in" "$OUT/results" fig13 2> "$OUT/fig13.err"
+# Few files come back from the device tool: pack everything into one.
 rm -rf "$OUT/in"
+tar -C "$OUT" -czf /tmp/gpu_batch.tgz . && rm -rf "$OUT"/* && mv /tmp/gpu_batch.tgz "$OUT/"

@@ -48,7 +48,7 @@ static double qround(const char *num, const char *b, const char *D, const char *
     mpz_set_str(zD, D, 10);
     mpz_set_str(zd, den, 10);
     double out = 0.0;
-    *rc = vbx_round(zn, zb, zD, zd, &out, lo, hi);
+    *rc = vbx_round(zn, zb, zD, zd, &out, lo, hi, NULL);
     mpz_clears(zn, zb, zD, zd, (mpz_ptr)0);
     return out;
 }
