@@ -2,6 +2,7 @@
  * of a trajectory (multi-model PDB/PQR/mmCIF, or DCD with a PDB topology),
  * by the discrete-Voronoi pipeline of the Facet-JFA paper (Sec. 4) on
  * OpenCL, with components, centrelines, bottlenecks and lining residues. */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -221,7 +222,6 @@ typedef struct {
     size_t *keep;         /* DCD: topology atoms that enter the analysis */
     size_t nkeep;
     double *xyz;          /* DCD: one frame, 3 * natoms */
-    int want_model;       /* --model: only this MODEL serial (0 = all) */
 } frames;
 
 static void frames_close(frames *F)
@@ -264,11 +264,8 @@ static int frames_open(vb_ctx *ctx, const ch_args *A, const vb_radii_table *radi
     memset(F, 0, sizeof *F);
     vb_read_options ro;
     vb_cli_input_read_options(&A->in, radii, &ro);
-    F->want_model = A->in.model;
-    if (!A->dcd) {
-        ro.model = 0;
-        return vb_frame_reader_open(ctx, A->input, &ro, &F->rd);
-    }
+    if (!A->dcd)
+        return vb_frame_reader_open(ctx, A->input, &ro, &F->rd); /* --model picks one frame */
     /* The topology must list every atom of the DCD: read all, select after. */
     vb_read_options all = ro;
     all.keep_water = 1;
@@ -303,15 +300,8 @@ static int frames_open(vb_ctx *ctx, const ch_args *A, const vb_radii_table *radi
 static int frames_next(vb_ctx *ctx, frames *F, long index, vb_sphere_set **out, int *model)
 {
     *out = NULL;
-    if (F->rd) {
-        for (;;) {
-            int rc = vb_frame_reader_next(ctx, F->rd, out, model);
-            if (rc != VB_OK || !*out || !F->want_model || *model == F->want_model)
-                return rc;
-            vb_spheres_free(*out);
-            *out = NULL;
-        }
-    }
+    if (F->rd)
+        return vb_frame_reader_next(ctx, F->rd, out, model);
     size_t na = F->topo->n;
     int got;
     int rc = vb_dcd_next(ctx, F->dcd, F->xyz, F->xyz + na, F->xyz + 2 * na, NULL, &got);
@@ -353,6 +343,11 @@ static int do_frame(vb_ctx *ctx, const ch_args *A, vbc_gpu *gp, long index, int 
     int rc = vbc_grid_fit(ctx, s, A->probe, A->grid, 3, &g);
     if (rc != VB_OK)
         return rc;
+    /* A voxel wider than the probe cannot resolve the necks that matter. */
+    if (S->frames_done == 0 && g.h > fmax(A->probe, 0.5))
+        vb_warn(ctx, 803, A->input, 0,
+                "voxel edge %.2f A is coarser than the probe radius %.2f A: narrow channels may be "
+                "missed (raise --grid)", g.h, A->probe);
     float *atoms = malloc(4 * s->n * sizeof *atoms);
     if (!atoms)
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "frame of %zu atoms", s->n);
@@ -474,13 +469,16 @@ int vb_cmd_channels(int argc, char **argv)
     double wall = vb_cli_now() - t0;
     if (rc == VB_OK && S.frames_done == 0)
         rc = vb_error(ctx, VB_EINPUT_MODEL, A.input, 0, "no frame selected (--frames / --model)");
+    if (rc == VB_OK && A.volume && !strstr(A.volume, "%d") && S.frames_done > 1)
+        vb_warn(ctx, 802, A.volume, 0, "volume holds the first of %ld frames ('%%d' in the name "
+                "writes one per frame)", S.frames_done);
     if (rc == VB_OK && A.json)
         vbc_write_json_end(S.table);
     if (rc == VB_OK && A.pymol) {
         if (!(pml = vb_cli_open_output(ctx, A.pymol)))
             rc = vb_errcode(ctx);
         else {
-            vbc_write_pymol(pml, A.dcd || strcmp(A.input, "-") == 0 ? NULL : A.input, A.centrelines);
+            vbc_write_pymol(pml, strcmp(A.input, "-") == 0 ? NULL : A.input, A.centrelines);
             rc = vb_cli_close_output(ctx, pml, A.pymol);
         }
     }

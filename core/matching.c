@@ -11,6 +11,7 @@
  * cell shrinks by half until the vertex is found or the depth is spent.
  * Every quadruple is then tested for an empty tangent sphere in double with
  * margin tol (the exact certifier decides afterwards). */
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -430,75 +431,245 @@ static int emit_roots(emit_ctx *e, const uint32_t q[4], const vbs_cand *proto, i
     return rc;
 }
 
-/* Neighbourhood completion: every vertex found so far (the list grows while
- * it is walked) tries, for each triple of its spheres, the VBS_RING spheres
- * that come closest to its tangent sphere as the fourth. A vertex whose
- * faces are too thin for any ray (symmetric inputs: a face that exists only
- * on a plane of symmetry between samples) is reached this way from a found
- * neighbour across their common edge. */
+/* Spheres tried as the fourth of each triple by the neighbourhood completion. */
 #define VBS_RING 4
 
-static int complete_ring(emit_ctx *e)
+/* A tiny parallel-for: item i goes to thread i mod nt; a thread that cannot
+ * start has its share run by the caller. Items must be independent. */
+typedef void (*pfor_fn)(void *ctx, size_t i, int tid);
+
+typedef struct pfor_job {
+    pfor_fn fn;
+    void *ctx;
+    size_t n;
+    int tid, nt;
+} pfor_job;
+
+static void *pfor_worker(void *arg)
 {
-    const vb_sphere_set *s = e->set;
-    vb_vertex_list *v = &e->res->candidates;
-    int rc = VB_OK;
-    for (size_t k = 0; k < v->n && rc == VB_OK; k++) {
-        uint32_t q[4];
-        memcpy(q, v->ids + v->start[k], sizeof q);
-        vbs_cand c;
-        memset(&c, 0, sizeof c);
-        c.x = v->x[k];
-        c.y = v->y[k];
-        c.z = v->z[k];
-        c.t = v->t[k];
-        /* The VBS_RING smallest gaps |p - c_j| - r_j - t among non-members. */
-        size_t n = 0;
-        const double p[3] = {c.x, c.y, c.z};
-        double radius = c.t + e->hash->rmax + 4.0 * e->hash->h;
-        if (radius < 0.0 || vbs_hash_query(e->hash, p, radius, &e->qbuf, &n, &e->qcap)) {
-            if (radius >= 0.0)
-                rc = VB_ENOMEM;
-            continue;
-        }
-        uint32_t best[VBS_RING];
-        double gap[VBS_RING];
-        int nb = 0;
-        for (size_t i = 0; i < n; i++) {
-            uint32_t j = e->qbuf[i];
-            if (j == q[0] || j == q[1] || j == q[2] || j == q[3] ||
-                (s->contained && s->contained[j]))
-                continue;
-            double dx = s->x[j] - p[0], dy = s->y[j] - p[1], dz = s->z[j] - p[2];
-            double g = sqrt(dx * dx + dy * dy + dz * dz) - s->r[j] - c.t;
-            int at = nb < VBS_RING ? nb++ : VBS_RING;
-            while (at > 0 && (gap[at - 1] > g || (gap[at - 1] == g && best[at - 1] > j))) {
-                if (at < VBS_RING) {
-                    gap[at] = gap[at - 1];
-                    best[at] = best[at - 1];
-                }
-                at--;
-            }
-            if (at < VBS_RING) {
-                gap[at] = g;
-                best[at] = j;
-            }
-        }
-        for (int drop = 0; drop < 4 && rc == VB_OK; drop++)
-            for (int b = 0; b < nb && rc == VB_OK; b++) {
-                uint32_t q2[4];
-                for (int a = 0; a < 4; a++)
-                    q2[a] = a == drop ? best[b] : q[a];
-                qsort(q2, 4, sizeof *q2, cmp_u32);
-                int fresh = qset_add(&e->seen, q2);
-                if (fresh < 0)
-                    rc = VB_ENOMEM;
-                else if (fresh) {
-                    e->res->ring_tries++;
-                    rc = emit_roots(e, q2, &c, 0, 0);
-                }
-            }
+    pfor_job *j = arg;
+    for (size_t i = (size_t)j->tid; i < j->n; i += (size_t)j->nt)
+        j->fn(j->ctx, i, j->tid);
+    return NULL;
+}
+
+static void pfor(pfor_fn fn, void *ctx, size_t n, int nt)
+{
+    if (nt < 1)
+        nt = 1;
+    if (nt > VBS_MAX_THREADS)
+        nt = VBS_MAX_THREADS;
+    pfor_job jobs[VBS_MAX_THREADS];
+    pthread_t th[VBS_MAX_THREADS];
+    int started[VBS_MAX_THREADS] = {0};
+    for (int t = 0; t < nt; t++)
+        jobs[t] = (pfor_job){fn, ctx, n, t, nt};
+    for (int t = 1; t < nt; t++)
+        started[t] = pthread_create(&th[t], NULL, pfor_worker, &jobs[t]) == 0;
+    pfor_worker(&jobs[0]);
+    for (int t = 1; t < nt; t++) {
+        if (started[t])
+            pthread_join(th[t], NULL);
+        else
+            pfor_worker(&jobs[t]);
     }
+}
+
+/* Work of the neighbourhood completion. */
+typedef struct ring_item {
+    uint32_t q[4];
+    vbs_cand c;              /* the vertex it came from (point, t) */
+    int n;                   /* roots */
+    double roots[2][4];
+    uint32_t intruder[2];
+} ring_item;
+
+typedef struct ring_ctx {
+    emit_ctx *e;
+    const vb_vertex_list *v;
+    size_t lo;               /* first vertex of the round */
+    uint32_t (*best)[VBS_RING];
+    int *nb;
+    ring_item *items;
+    uint32_t *tbuf[VBS_MAX_THREADS];
+    size_t tcap[VBS_MAX_THREADS];
+    int err;
+} ring_ctx;
+
+/* Phase A: the VBS_RING spheres with the smallest gaps |p - c_j| - r_j - t
+ * among the non-members of vertex lo + i. */
+static void ring_nearest(void *arg, size_t i, int tid)
+{
+    ring_ctx *r = arg;
+    const vb_sphere_set *s = r->e->set;
+    const vb_vertex_list *v = r->v;
+    size_t k = r->lo + i;
+    const uint32_t *q = v->ids + v->start[k];
+    const double p[3] = {v->x[k], v->y[k], v->z[k]};
+    double t = v->t[k];
+    size_t n = 0;
+    double radius = t + r->e->hash->rmax + 4.0 * r->e->hash->h;
+    r->nb[i] = 0;
+    if (radius < 0.0)
+        return;
+    if (vbs_hash_query(r->e->hash, p, radius, &r->tbuf[tid], &n, &r->tcap[tid])) {
+        r->err = VB_ENOMEM;
+        return;
+    }
+    uint32_t *best = r->best[i];
+    double gap[VBS_RING];
+    int nb = 0;
+    for (size_t m = 0; m < n; m++) {
+        uint32_t j = r->tbuf[tid][m];
+        if (j == q[0] || j == q[1] || j == q[2] || j == q[3] || (s->contained && s->contained[j]))
+            continue;
+        double dx = s->x[j] - p[0], dy = s->y[j] - p[1], dz = s->z[j] - p[2];
+        double g = sqrt(dx * dx + dy * dy + dz * dz) - s->r[j] - t;
+        int at = nb < VBS_RING ? nb++ : VBS_RING;
+        while (at > 0 && (gap[at - 1] > g || (gap[at - 1] == g && best[at - 1] > j))) {
+            if (at < VBS_RING) {
+                gap[at] = gap[at - 1];
+                best[at] = best[at - 1];
+            }
+            at--;
+        }
+        if (at < VBS_RING) {
+            gap[at] = g;
+            best[at] = j;
+        }
+    }
+    r->nb[i] = nb;
+}
+
+/* Phase C: both tangent spheres of item i and their intruders. */
+static void ring_eval(void *arg, size_t i, int tid)
+{
+    ring_ctx *r = arg;
+    ring_item *it = r->items + i;
+    const vb_sphere_set *s = r->e->set;
+    double sp[4][4];
+    for (int k = 0; k < 4; k++) {
+        uint32_t j = it->q[k];
+        sp[k][0] = s->x[j];
+        sp[k][1] = s->y[j];
+        sp[k][2] = s->z[j];
+        sp[k][3] = s->r[j];
+    }
+    it->n = vbs_tangent_roots(sp, it->roots);
+    for (int k = 0; k < it->n; k++) {
+        vbs_cand c = it->c;
+        c.x = it->roots[k][0];
+        c.y = it->roots[k][1];
+        c.z = it->roots[k][2];
+        c.t = it->roots[k][3];
+        int rc = VB_OK;
+        it->intruder[k] = tangent_intruder(r->e->hash, &c, it->q, r->e->guard * (1.0 + fabs(c.t)),
+                                           &r->tbuf[tid], &r->tcap[tid], &rc);
+        if (rc != VB_OK)
+            r->err = rc;
+    }
+}
+
+/* Neighbourhood completion: every vertex found so far tries, for each triple
+ * of its spheres, the VBS_RING spheres that come closest to its tangent
+ * sphere as the fourth; new vertices take part in the next round. A vertex
+ * whose faces are too thin for any ray (symmetric inputs: a face that exists
+ * only on a plane of symmetry between samples) is reached this way from a
+ * found neighbour across their common edge. Rounds run in parallel phases
+ * with sequential bookkeeping between them, so the result does not depend
+ * on the number of threads. */
+static int complete_ring(emit_ctx *e, int nthreads)
+{
+    vb_vertex_list *v = &e->res->candidates;
+    ring_ctx r;
+    memset(&r, 0, sizeof r);
+    r.e = e;
+    r.v = v;
+    size_t cap = 0;
+    int rc = VB_OK;
+    for (size_t lo = 0; lo < v->n && rc == VB_OK;) {
+        size_t hi = v->n, nv = hi - lo;
+        r.lo = lo;
+        uint32_t(*best)[VBS_RING] = realloc(r.best, nv * sizeof *best);
+        int *nb = best ? realloc(r.nb, nv * sizeof *nb) : NULL;
+        if (best)
+            r.best = best;
+        if (nb)
+            r.nb = nb;
+        if (!best || !nb) {
+            rc = VB_ENOMEM;
+            break;
+        }
+        pfor(ring_nearest, &r, nv, nthreads);
+        if (r.err) {
+            rc = r.err;
+            break;
+        }
+        /* Phase B: the fresh quadruples, in vertex order. */
+        size_t ni = 0;
+        for (size_t i = 0; i < nv && rc == VB_OK; i++) {
+            const uint32_t *q = v->ids + v->start[lo + i];
+            for (int drop = 0; drop < 4 && rc == VB_OK; drop++)
+                for (int b = 0; b < r.nb[i] && rc == VB_OK; b++) {
+                    uint32_t q2[4];
+                    for (int a = 0; a < 4; a++)
+                        q2[a] = a == drop ? r.best[i][b] : q[a];
+                    qsort(q2, 4, sizeof *q2, cmp_u32);
+                    int fresh = qset_add(&e->seen, q2);
+                    if (fresh < 0) {
+                        rc = VB_ENOMEM;
+                        break;
+                    }
+                    if (!fresh)
+                        continue;
+                    if (ni == cap) {
+                        size_t nc = cap ? 2 * cap : 1024;
+                        ring_item *p = realloc(r.items, nc * sizeof *p);
+                        if (!p) {
+                            rc = VB_ENOMEM;
+                            break;
+                        }
+                        r.items = p;
+                        cap = nc;
+                    }
+                    ring_item *it = r.items + ni++;
+                    memcpy(it->q, q2, sizeof it->q);
+                    memset(&it->c, 0, sizeof it->c);
+                    it->c.x = v->x[lo + i];
+                    it->c.y = v->y[lo + i];
+                    it->c.z = v->z[lo + i];
+                    it->c.t = v->t[lo + i];
+                }
+        }
+        if (rc != VB_OK)
+            break;
+        pfor(ring_eval, &r, ni, nthreads);
+        if (r.err) {
+            rc = r.err;
+            break;
+        }
+        /* Phase D: keep the empty tangent spheres, in item order. */
+        for (size_t i = 0; i < ni && rc == VB_OK; i++) {
+            const ring_item *it = r.items + i;
+            e->res->ring_tries++;
+            for (int k = 0; k < it->n && rc == VB_OK; k++) {
+                if (it->intruder[k] != VBS_INF_COLOUR) {
+                    e->res->dropped++;
+                    continue;
+                }
+                if (vb_vertex_list_push(v, it->q, 4, it->roots[k][0], it->roots[k][1],
+                                        it->roots[k][2], it->roots[k][3], 0.0,
+                                        VB_VERTEX_CANDIDATE))
+                    rc = VB_ENOMEM;
+            }
+        }
+        lo = hi;
+    }
+    for (int t = 0; t < VBS_MAX_THREADS; t++)
+        free(r.tbuf[t]);
+    free(r.best);
+    free(r.nb);
+    free(r.items);
     return rc;
 }
 
@@ -613,7 +784,7 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
     }
     res->from_sampling = res->candidates.n;
     if (rc == VB_OK)
-        rc = complete_ring(&ec);
+        rc = complete_ring(&ec, vbs_threads());
     free(ec.qbuf);
     free(ec.seen.keys);
     free(qs);

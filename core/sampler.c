@@ -31,9 +31,9 @@ static void *cull_worker(void *arg)
 static int cull_batch(vb_ctx *ctx, const vbs_culler *cu, vbs_base_data *slots, size_t b0,
                       size_t b1, int nthreads)
 {
-    cull_job jobs[64];
-    pthread_t th[64];
-    int started[64] = {0};
+    cull_job jobs[VBS_MAX_THREADS];
+    pthread_t th[VBS_MAX_THREADS];
+    int started[VBS_MAX_THREADS] = {0};
     for (int t = 0; t < nthreads; t++)
         jobs[t] = (cull_job){ctx, cu, slots, b0, b1, (size_t)t, (size_t)nthreads, VB_OK};
     for (int t = 1; t < nthreads; t++)
@@ -52,10 +52,10 @@ static int cull_batch(vb_ctx *ctx, const vbs_culler *cu, vbs_base_data *slots, s
     return VB_OK;
 }
 
-static int host_threads(void)
+int vbs_threads(void)
 {
     long n = sysconf(_SC_NPROCESSORS_ONLN);
-    return n < 1 ? 1 : n > 64 ? 64 : (int)n;
+    return n < 1 ? 1 : n > VBS_MAX_THREADS ? VBS_MAX_THREADS : (int)n;
 }
 
 static int store_add(vbs_bis_store *st, uint32_t i, const vbs_base_data *bd)
@@ -257,13 +257,12 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
     vbs_bis_store store = {calloc(set->n + 1, sizeof(size_t)), NULL, 0, 0, coarse_t,
                            malloc((set->n * 6u * coarse_t * coarse_t + 1) * sizeof(uint32_t)),
                            NULL, 0, 0};
-    int nthreads = host_threads();
+    int nthreads = vbs_threads();
     batch_buf bb;
     memset(&bb, 0, sizeof bb);
     vb_cand_vec raw = {0};
     vbs_topo_acc topo;
     memset(&topo, 0, sizeof topo);
-    uint32_t *colours = NULL;
     int rc = vbs_hash_build(ctx, set, &hash);
     if (rc != VB_OK)
         return rc;
@@ -272,8 +271,7 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
     vbs_culler cu = {set, &hash, levels, nlevels, res->clip, o.all_pairs, &store};
     bb.bases = malloc(per_batch * sizeof *bb.bases);
     bb.tile_off = malloc((per_batch * ntiles + 1) * sizeof *bb.tile_off);
-    colours = malloc(per_batch * rays_per_base * sizeof *colours);
-    if (rc == VB_OK && (!bb.bases || !bb.tile_off || !colours || !slots || !store.off || !store.co_off))
+    if (rc == VB_OK && (!bb.bases || !bb.tile_off || !slots || !store.off || !store.co_off))
         rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (batch buffers)");
     for (size_t b0 = 0; rc == VB_OK && b0 < set->n; b0 += per_batch) {
         size_t b1 = b0 + per_batch < set->n ? b0 + per_batch : set->n;
@@ -291,7 +289,7 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
         res->bisectors += bb.nbis;
         vb_sampler_batch batch = {bb.nbases, bb.bases, bb.nbis, bb.bis, bb.nbases * ntiles + 1,
                                   bb.tile_off, bb.nidx, bb.tile_idx, params};
-        vb_sampler_batch_out out = {colours, o.topology, &raw, 0, &res->times};
+        vb_sampler_batch_out out = {&raw, 0, &res->times};
         rc = be->run_batch(ctx, be, &batch, &out);
         if (rc != VB_OK)
             break;
@@ -299,13 +297,11 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
         res->rays += bb.nbases * rays_per_base;
         if (o.topology)
             for (size_t k = 0; k < bb.nbases && rc == VB_OK; k++)
-                if (vbs_topo_collect(&topo, (uint32_t)(b0 + k), colours + k * rays_per_base,
-                                     o.samples))
+                if (vbs_topo_collect(&topo, &batch, k))
                     rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (topology)");
         if (o.progress)
             o.progress(o.progress_user, (double)b1 / (double)set->n);
     }
-    free(colours);
     free(bb.bases);
     free(bb.bis);
     free(bb.tile_off);

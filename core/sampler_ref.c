@@ -34,16 +34,29 @@ void vb_cand_vec_free(vb_cand_vec *cv)
     cv->n = cv->cap = 0;
 }
 
+/* The reference backend's state: the colour grid of the current batch. */
+typedef struct ref_state {
+    uint32_t *colours;
+    size_t cap;
+} ref_state;
+
 static int ref_run_batch(vb_ctx *ctx, vb_sampler_backend *be, const vb_sampler_batch *b,
                          vb_sampler_batch_out *out)
 {
-    (void)be;
+    ref_state *st = be->state;
     const vbs_params *p = &b->params;
     vbs_u32 S = p->samples, T = p->tiles;
     size_t rays = 6u * (size_t)S * S;
+    if (rays * b->nbases > st->cap) {
+        uint32_t *c = realloc(st->colours, rays * b->nbases * sizeof *c);
+        if (!c)
+            return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (colours)");
+        st->colours = c;
+        st->cap = rays * b->nbases;
+    }
     double t0 = now();
     for (size_t k = 0; k < b->nbases; k++) {
-        uint32_t *col = out->colours + k * rays;
+        uint32_t *col = st->colours + k * rays;
         for (vbs_u32 f = 0; f < 6u; f++)
             for (vbs_u32 iv = 0; iv < S; iv++)
                 for (vbs_u32 iu = 0; iu < S; iu++)
@@ -54,7 +67,7 @@ static int ref_run_batch(vb_ctx *ctx, vb_sampler_backend *be, const vb_sampler_b
     vbs_u32 cells = 6u * (S - 1u) * (S - 1u);
     vbs_cand buf[VBS_MAX_CAND];
     for (size_t k = 0; k < b->nbases; k++) {
-        const uint32_t *col = out->colours + k * rays;
+        const uint32_t *col = st->colours + k * rays;
         for (vbs_u32 cell = 0; cell < cells; cell++) {
             vbs_emit em = {buf, VBS_MAX_CAND, 0u, 0u, cell};
             vbs_cell_vertices(b->bases + k, b->bis, b->tile_off, b->tile_idx, p, col, cell,
@@ -73,15 +86,24 @@ static int ref_run_batch(vb_ctx *ctx, vb_sampler_backend *be, const vb_sampler_b
 
 static void ref_close(vb_sampler_backend *be)
 {
+    ref_state *st = be->state;
+    if (st)
+        free(st->colours);
+    free(st);
     free(be);
 }
 
 int vb_sampler_ref_open(vb_ctx *ctx, vb_sampler_backend **out)
 {
     vb_sampler_backend *be = calloc(1, sizeof *be);
+    ref_state *st = calloc(1, sizeof *st);
     *out = NULL;
-    if (!be)
+    if (!be || !st) {
+        free(be);
+        free(st);
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory");
+    }
+    be->state = st;
     be->name = "ref";
     snprintf(be->device, sizeof be->device, "plain C reference (host CPU, 1 thread)");
     be->batch_rays = 1u << 22;

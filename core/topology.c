@@ -41,23 +41,63 @@ static void sort3(uint32_t t[3])
     qsort(t, 3, sizeof *t, cmp_u32);
 }
 
-int vbs_topo_collect(vbs_topo_acc *acc, uint32_t base, const uint32_t *colours, unsigned S)
+/* Colour of a ray only where it is unambiguous: the runner-up bisector is
+ * hit more than 1e-9 (relative) farther. On symmetric inputs many rays pass
+ * exactly through edges, where a rounding decides the colour; such rays
+ * say nothing about which faces exist. Returns VBS_INF_COLOUR - 1 for them. */
+#define AMBIGUOUS (VBS_INF_COLOUR - 1u)
+
+static uint32_t robust_colour(const vbs_base *b, const vbs_bisector *bis, const uint32_t *off,
+                              const uint32_t *idx, unsigned T, unsigned f, double u, double v)
 {
+    double d[3];
+    vbs_face_dir(f, u, v, d);
+    unsigned tile = b->tile_start + f * T * T + vbs_tile_of(v, T) * T + vbs_tile_of(u, T);
+    double best = b->clip, second = b->clip;
+    uint32_t colour = VBS_INF_COLOUR;
+    for (uint32_t q = off[tile]; q < off[tile + 1]; q++) {
+        const vbs_bisector *e = bis + idx[q];
+        double h = vbs_ray_hit(e->ex, e->ey, e->ez, e->delta, e->num, d);
+        if (h < 0.0)
+            continue;
+        if (h < best) {
+            second = best;
+            best = h;
+            colour = e->id;
+        } else if (h < second) {
+            second = h;
+        }
+    }
+    return second - best > 1e-9 * best ? colour : AMBIGUOUS;
+}
+
+int vbs_topo_collect(vbs_topo_acc *acc, const vb_sampler_batch *bt, size_t k)
+{
+    unsigned S = bt->params.samples, T = bt->params.tiles;
+    const vbs_base *b = bt->bases + k;
+    uint32_t base = b->id;
     size_t rays = 6u * (size_t)S * S;
-    /* Faces: distinct colours of this base. */
-    uint32_t *tmp = malloc(rays * sizeof *tmp);
-    if (!tmp)
+    uint32_t *colours = malloc(2 * rays * sizeof *colours);
+    if (!colours)
         return VB_ENOMEM;
+    uint32_t *tmp = colours + rays;
+    for (unsigned f = 0; f < 6; f++)
+        for (unsigned iv = 0; iv < S; iv++)
+            for (unsigned iu = 0; iu < S; iu++)
+                colours[((size_t)f * S + iv) * S + iu] =
+                    robust_colour(b, bt->bis, bt->tile_off, bt->tile_idx, T, f,
+                                  vbs_sample_coord(iu, S), vbs_sample_coord(iv, S));
+    /* Faces: distinct unambiguous colours of this base. */
     size_t n = 0;
-    for (size_t k = 0; k < rays; k++)
-        if (colours[k] != VBS_INF_COLOUR)
-            tmp[n++] = colours[k];
+    for (size_t q = 0; q < rays; q++)
+        if (colours[q] < AMBIGUOUS)
+            tmp[n++] = colours[q];
     qsort(tmp, n, sizeof *tmp, cmp_u32);
     int rc = VB_OK;
-    for (size_t k = 0; k < n && rc == VB_OK; k++) {
-        if (k > 0 && tmp[k] == tmp[k - 1])
+    for (size_t q = 0; q < n && rc == VB_OK; q++) {
+        if (q > 0 && tmp[q] == tmp[q - 1])
             continue;
-        uint32_t f[2] = {base < tmp[k] ? base : tmp[k], base < tmp[k] ? tmp[k] : base};
+        uint32_t f[2] = {base < tmp[q] ? base : tmp[q], base < tmp[q] ? tmp[q] : base};
         rc = push(&acc->faces, &acc->nfaces, &acc->faces_cap, f, 2);
     }
     /* Edges: grid cells with exactly two finite colours. */
@@ -68,23 +108,24 @@ int vbs_topo_collect(vbs_topo_acc *acc, uint32_t base, const uint32_t *colours, 
                 const uint32_t *c = colours + (size_t)f * S * S;
                 uint32_t q[4] = {c[iv * S + iu], c[iv * S + iu + 1], c[(iv + 1) * S + iu],
                                  c[(iv + 1) * S + iu + 1]};
-                uint32_t a = VBS_INF_COLOUR, b = VBS_INF_COLOUR;
+                uint32_t a = VBS_INF_COLOUR, c2 = VBS_INF_COLOUR;
                 int other = 0;
-                for (int k = 0; k < 4; k++) {
-                    if (q[k] == VBS_INF_COLOUR || q[k] == a || q[k] == b)
+                /* Ambiguous corners say nothing either way: skip them. */
+                for (int m = 0; m < 4; m++) {
+                    if (q[m] >= AMBIGUOUS || q[m] == a || q[m] == c2)
                         continue;
                     if (a == VBS_INF_COLOUR)
-                        a = q[k];
-                    else if (b == VBS_INF_COLOUR)
-                        b = q[k];
+                        a = q[m];
+                    else if (c2 == VBS_INF_COLOUR)
+                        c2 = q[m];
                     else
                         other = 1;
                 }
-                if (other || b == VBS_INF_COLOUR)
+                if (other || c2 == VBS_INF_COLOUR)
                     continue;
                 tmp[3 * nt] = base;
                 tmp[3 * nt + 1] = a;
-                tmp[3 * nt + 2] = b;
+                tmp[3 * nt + 2] = c2;
                 sort3(tmp + 3 * nt);
                 /* Neighbouring cells repeat the same triple: skip runs. */
                 if (nt > 0 && memcmp(tmp + 3 * nt, tmp + 3 * (nt - 1), 3 * sizeof *tmp) == 0)
@@ -97,7 +138,7 @@ int vbs_topo_collect(vbs_topo_acc *acc, uint32_t base, const uint32_t *colours, 
             }
     if (rc == VB_OK)
         rc = push(&acc->triples, &acc->ntriples, &acc->triples_cap, tmp, 3 * nt);
-    free(tmp);
+    free(colours);
     return rc;
 }
 

@@ -67,13 +67,10 @@ typedef struct vb_stage_times {
     double cull, upload, envelope, vertices, matching;
 } vb_stage_times;
 
-/* What a backend returns for one batch. colours has nbases * 6 * S * S
- * entries, written by the backend; candidates are appended to cand in any
- * order (the driver sorts them). overflow counts candidates that did not fit
- * VBS_MAX_CAND of their grid cell. */
+/* What a backend returns for one batch: candidates appended to cand in any
+ * order (the driver sorts them), overflow counts candidates that did not
+ * fit VBS_MAX_CAND of their grid cell, stage times are added to *times. */
 typedef struct vb_sampler_batch_out {
-    uint32_t *colours;
-    int want_colours;        /* 0: a device backend may leave colours unwritten */
     vb_cand_vec *cand;
     uint64_t overflow;
     vb_stage_times *times;

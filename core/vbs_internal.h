@@ -6,6 +6,10 @@
 
 #include "vb_sampler.h"
 
+/* Host threads for the parallel stages (online CPUs, at most VBS_MAX_THREADS). */
+#define VBS_MAX_THREADS 64
+int vbs_threads(void);
+
 /* Uniform grid of sphere centres (CSR: cell k holds idx[start[k]..start[k+1])). */
 typedef struct vbs_hash {
     double lo[3], h;
@@ -96,7 +100,7 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
               const vbs_params *params, unsigned target_depth, vb_cand_vec *raw,
               vb_sampler_result *res);
 
-/* Topology evidence of one base from its colour grid (6*S*S colours). */
+/* Topology evidence of the bases of a batch. */
 typedef struct vbs_topo_acc {
     uint32_t *faces;   /* pairs */
     size_t nfaces, faces_cap;
@@ -104,7 +108,9 @@ typedef struct vbs_topo_acc {
     size_t ntriples, triples_cap;
 } vbs_topo_acc;
 
-int vbs_topo_collect(vbs_topo_acc *acc, uint32_t base, const uint32_t *colours, unsigned S);
+/* Recomputes the batch base k's rays on the host, keeping only colours that
+ * no rounding could change, and records its faces and two-colour triples. */
+int vbs_topo_collect(vbs_topo_acc *acc, const vb_sampler_batch *bt, size_t k);
 /* Sorts and deduplicates into the result; frees acc. */
 int vbs_topo_finish(vbs_topo_acc *acc, vb_topology_evidence *ev);
 

@@ -151,12 +151,6 @@ static int ocl_run_batch(vb_ctx *ctx, vb_sampler_backend *be, const vb_sampler_b
                                            st->host_cand, 0, NULL, NULL),
                        "read candidates"))
         return VB_EDEVICE;
-    if (out->want_colours &&
-        vbg_check(ctx,
-                  clEnqueueReadBuffer(q, st->colours.mem, CL_TRUE, 0, rays * sizeof(cl_uint),
-                                      out->colours, 0, NULL, NULL),
-                  "read colours"))
-        return VB_EDEVICE;
     for (size_t k = 0; k < n; k++)
         if (vb_cand_vec_push(out->cand, st->host_cand + k))
             return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (candidates)");

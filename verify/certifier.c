@@ -108,22 +108,33 @@ static vbx_ia distance_excess(const vbx_ia cj[4], const vbx_ia box[4])
 }
 
 /* A cheaper filter of the same predicate for the many spheres of a scan that
- * are far outside: 1 when |p - c_j| - R_j - t > 0 is proven from lower
- * bounds alone (no square root), 0 when it cannot tell. Every bound is
- * moved outward as in vbx_ia.h: g_k <= |p_k - c_jk| per axis, the sum of
- * their squares <= |p - c_j|^2, and reach >= t + R_j. */
+ * are far outside: 1 when |p - c_j| - R_j - t > 0 is proven, 0 when it
+ * cannot tell. Plain round-to-nearest with one relative margin instead of a
+ * step outward per operation (u = 2^-53; normal range, checked below):
+ *  - g~ = fl(p_lo - c_hi) (or fl(c_lo - p_hi)) has the sign of the exact
+ *    difference, which is a lower bound of |p_k - c_jk| for every point of
+ *    the boxes; when g~ > 0 the exact one is >= g~ / (1 + u). Axes with
+ *    g~ <= 0 are left out, which only lowers the bound.
+ *  - d~ = fl(fl(g0~^2) + fl(g1~^2) + fl(g2~^2)): at most 3 more roundings per
+ *    term (square, two sums), so |p - c_j|^2 >= d~ / (1 + u)^5. Terms that
+ *    underflow lose at most 2^-1074 each, negligible when d~ >= 2^-900.
+ *  - r~ = fl(t_hi + R_hi) >= (t + R_j) / (1 + u) when positive, so
+ *    (t + R_j)^2 <= fl(r~^2) (1 + u)^3.
+ * Hence d~ > fl(r~^2) (1 + u)^8 proves the claim, and fl(fl(r~^2) (1 + 2^-40))
+ * exceeds that by far ((1 + u)^8 < 1 + 2^-49). Infinite or NaN bounds make
+ * the comparisons fail: "cannot tell". */
 static int surely_outside(const vbx_ia cj[4], const vbx_ia box[4])
 {
-    double reach = vbx_succ(box[3].hi + cj[3].hi);
-    if (reach < 0.0)
-        return 1; /* t + R_j < 0 <= |p - c_j| */
+    double r = box[3].hi + cj[3].hi;
+    if (r < 0.0)
+        return 1; /* t + R_j < 0 <= |p - c_j| (fl keeps the sign of a sum) */
     double d2 = 0.0;
     for (int k = 0; k < 3; k++) {
-        double g = vbx_max(vbx_pred(box[k].lo - cj[k].hi), vbx_pred(cj[k].lo - box[k].hi));
+        double g = vbx_max(box[k].lo - cj[k].hi, cj[k].lo - box[k].hi);
         if (g > 0.0)
-            d2 = vbx_pred(d2 + vbx_pred(g * g));
+            d2 += g * g;
     }
-    return d2 > vbx_succ(reach * reach);
+    return d2 >= 0x1p-900 && d2 <= DBL_MAX && d2 > (r * r) * (1.0 + 0x1p-40);
 }
 
 static int is_solved_row(const vbx_solver *s, uint32_t j)

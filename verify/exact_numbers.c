@@ -295,6 +295,7 @@ void vbx_round_prepare(vbx_round_common *rc, const mpz_t D, const mpz_t den)
 {
     rc->ok = 0;
     rc->root = 0;
+    rc->dl = rc->dh = rc->sl = rc->sh = 0.0L;
 #if VBX_FAST_ROUND
     if (!ld_enclose_z(den, &rc->dl, &rc->dh) || rc->dl == 0.0L)
         return;
@@ -321,6 +322,12 @@ int vbx_round_with(const vbx_round_common *rc, const mpz_t num, const mpz_t b, d
     long double vl, vh;
     if (!rc->ok || !ld_enclose_z(num, &vl, &vh))
         return 0;
+    if (vl == 0.0L && (!rc->root || mpz_sgn(b) == 0)) {
+        /* Exactly 0, which MPFR gives as +0; the enclosure below would
+         * straddle 0 and cannot tell +0 from -0. */
+        *out = *lo = *hi = 0.0;
+        return 1;
+    }
     if (rc->root && mpz_sgn(b) != 0) {
         long double nl = vl, nh = vh, bl, bh, pl, ph;
         if (!ld_enclose_z(b, &bl, &bh))
@@ -334,7 +341,10 @@ int vbx_round_with(const vbx_round_common *rc, const mpz_t num, const mpz_t b, d
     /* Rounding to nearest double is monotone, so when both ends round to
      * one double every value between them, the exact one included, does. */
     double rl = (double)vl, rh = (double)vh;
-    if (rl != rh || !isfinite(rl) || !(fabsl(vl) <= LDBL_MAX) || !(fabsl(vh) <= LDBL_MAX))
+    /* -0.0 == +0.0, so the signs are compared too: an enclosure of a value
+     * next to 0 rounds to -0 below it and to +0 above. */
+    if (rl != rh || signbit(rl) != signbit(rh) || !isfinite(rl) || !(fabsl(vl) <= LDBL_MAX) ||
+        !(fabsl(vh) <= LDBL_MAX))
         return 0;
     *out = rl;
     *lo = (long double)rl > vl ? nextafter(rl, -INFINITY) : rl;

@@ -77,7 +77,7 @@ void vbx_row(const vbx_data *d, uint32_t base, uint32_t j, mpz_t out[5], mpz_t t
 }
 
 /* 3x3 determinant of columns c0, c1, c2 of the rows m (out must not alias). */
-static void det3(mpz_t out, mpz_t m[3][5], int c0, int c1, int c2, mpz_t t)
+static void det3(mpz_t out, mpz_t (*m)[5], int c0, int c1, int c2, mpz_t t)
 {
     /* Expansion along the first row. */
     mpz_mul(t, m[1][c1], m[2][c2]);
@@ -92,7 +92,7 @@ static void det3(mpz_t out, mpz_t m[3][5], int c0, int c1, int c2, mpz_t t)
 }
 
 /* Lorentz form Q(x, y) = x0 y0 + x1 y1 + x2 y2 - x3 y3. */
-static void lorentz(mpz_t out, mpz_t x[4], mpz_t y[4])
+static void lorentz(mpz_t out, mpz_t *x, mpz_t *y)
 {
     mpz_mul(out, x[0], y[0]);
     mpz_addmul(out, x[1], y[1]);
@@ -129,14 +129,69 @@ static int extends_rank(vbx_solver *s, int rank, int ncols)
     return 0;
 }
 
+/* The row of j relative to base over the enclosures of the input decimals.
+ * In input units, not scaled: the scaled row is the exact row with columns
+ * 0..3 times 10^E and column 4 times 10^2E, positive factors that change no
+ * minor's sign, so a minor proven non-zero here is non-zero exactly. */
+static void row_ia(const vbx_data *d, uint32_t base, uint32_t j, vbx_ia out[5])
+{
+    const vbx_ia *cb = &d->box[4 * (size_t)base], *cj = &d->box[4 * (size_t)j];
+    for (int k = 0; k < 4; k++)
+        out[k] = vbx_ia_sub(cj[k], cb[k]);
+    vbx_ia w = vbx_ia_add(vbx_ia_sqr(out[0]), vbx_ia_sqr(out[1]));
+    w = vbx_ia_add(w, vbx_ia_sqr(out[2]));
+    out[4] = vbx_ia_sub(w, vbx_ia_sqr(out[3]));
+}
+
+static vbx_ia det2_ia(const vbx_ia m[3][5], int r0, int r1, int a, int b)
+{
+    return vbx_ia_sub(vbx_ia_mul(m[r0][a], m[r1][b]), vbx_ia_mul(m[r0][b], m[r1][a]));
+}
+
+/* extends_rank, filtered: 1 when some minor is proven non-zero, 0 when the
+ * enclosures cannot tell (the exact test decides then). */
+static int extends_rank_ia(const vbx_ia m[3][5], int rank, int ncols)
+{
+    for (int a = 0; a < ncols; a++) {
+        if (rank == 0) {
+            if (vbx_ia_sign(m[0][a]))
+                return 1;
+            continue;
+        }
+        for (int b = a + 1; b < ncols; b++) {
+            if (rank == 1) {
+                if (vbx_ia_sign(det2_ia(m, 0, 1, a, b)))
+                    return 1;
+                continue;
+            }
+            for (int c = b + 1; c < ncols; c++) {
+                vbx_ia d = vbx_ia_mul(m[0][a], det2_ia(m, 1, 2, b, c));
+                d = vbx_ia_sub(d, vbx_ia_mul(m[0][b], det2_ia(m, 1, 2, a, c)));
+                d = vbx_ia_add(d, vbx_ia_mul(m[0][c], det2_ia(m, 1, 2, a, b)));
+                if (vbx_ia_sign(d))
+                    return 1;
+            }
+        }
+    }
+    return 0;
+}
+
 int vbx_pick_rows(vbx_solver *s, uint32_t base, const uint32_t *cand, size_t n, int ncols,
                   uint32_t rows[3])
 {
     int rank = 0;
+    vbx_ia m[3][5];
     for (size_t i = 0; i < n && rank < 3; i++) {
-        vbx_row(s->d, base, cand[i], s->m[rank], s->t[0]);
-        if (extends_rank(s, rank, ncols))
-            rows[rank++] = cand[i];
+        row_ia(s->d, base, cand[i], m[rank]);
+        if (!extends_rank_ia((const vbx_ia(*)[5])m, rank, ncols)) {
+            /* Exact rows for the rows kept so far and this one. */
+            for (int r = 0; r < rank; r++)
+                vbx_row(s->d, base, rows[r], s->m[r], s->t[0]);
+            vbx_row(s->d, base, cand[i], s->m[rank], s->t[0]);
+            if (!extends_rank(s, rank, ncols))
+                continue;
+        }
+        rows[rank++] = cand[i];
     }
     return rank;
 }

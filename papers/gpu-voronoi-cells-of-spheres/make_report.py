@@ -80,7 +80,7 @@ def fig13(res):
             series.append(stem)
     plot = os.path.join(res, "fig13.gp")
     with open(plot, "w") as g:
-        g.write('set terminal pngcairo size 1200,500\nset output "%s"\n' %
+        g.write('set terminal pngcairo size 1200,500 noenhanced\nset output "%s"\n' %
                 os.path.join(res, "fig13.png"))
         g.write("set multiplot layout 1,2\nset key bottom right\nset xlabel 'samples S (S x S per face)'\n")
         g.write("set title 'first cell (sphere 0): vertices found by sampling'\nset ylabel 'vertices'\n")

@@ -4,7 +4,7 @@
 #   vertices   `vorball crosscheck IN` (the sampling pipeline, default device)
 #   file       `vorball vertices IN --output-format voronota -o F`, then
 #              `vorball crosscheck IN --vertices F` (quadruple lines regrouped)
-#   power      as reference, through CGAL's Regular_triangulation_3
+#   power      as vertices, through CGAL's Regular_triangulation_3
 #   tamper     CGAL's own set with its first vertex line removed and one id
 #              dropped from another: exactly one missing and one membership
 #   unequal    unequal radii: refused with exit 10 and a message naming them
@@ -38,7 +38,7 @@ elseif(MODE STREQUAL "vertices")
   expect_identical()
   message(STATUS "${err}")
 elseif(MODE STREQUAL "power")
-  run(0 crosscheck --with reference ${INPUT} --power)
+  run(0 crosscheck ${INPUT} --power)
   expect_identical()
 elseif(MODE STREQUAL "file")
   set(v ${WORK}/${stem}.voronota.txt)

@@ -160,6 +160,40 @@ static void backends_agree(vb_ctx *ctx, vbj_engine *ref, vbj_engine *cl, int dim
     vbj_seeds_free(&s);
 }
 
+/* Seeds on a lattice of pitch 4 pixels at integer positions: every pixel
+ * between two lattice points is equally far from both, so the labels test
+ * the tie rule (lowest index) in every kernel. Returns the number of seeds. */
+static size_t lattice(vb_ctx *ctx, int dim, uint32_t n, vbj_seeds *s)
+{
+    uint32_t m = n / 4, k = m * m * (dim == 3 ? m : 1);
+    if (vbj_seeds_alloc(ctx, dim, n, k, s))
+        return 0;
+    for (uint32_t i = 0; i < k; i++)
+        vbj_seed_set(ctx, s, i, 4.0 * (i % m) + 1, 4.0 * ((i / m) % m) + 1,
+                     dim == 3 ? 4.0 * (i / (m * m)) + 1 : 0);
+    return k;
+}
+
+static void ties(vb_ctx *ctx, vbj_engine *ref, vbj_engine *cl, int dim, uint32_t n)
+{
+    vbj_seeds s;
+    if (!lattice(ctx, dim, n, &s)) {
+        CHECK(0);
+        return;
+    }
+    for (int i = 0; i < NVAR; i++) {
+        vbj_result x, y;
+        vbj_options o = {all_variants[i], 0, VBJ_WANT_LABELS};
+        CHECK_INT(vbj_run(ctx, ref, &s, &o, &x), VB_OK);
+        CHECK_INT(vbj_run(ctx, cl, &s, &o, &y), VB_OK);
+        if (x.labels && y.labels)
+            CHECK(memcmp(x.labels, y.labels, npix(&s) * 4) == 0);
+        vbj_result_free(&x);
+        vbj_result_free(&y);
+    }
+    vbj_seeds_free(&s);
+}
+
 /* 65535 seeds or more take the 32-bit label kernels on the device. */
 static void wide_labels(vb_ctx *ctx, vbj_engine *ref, vbj_engine *cl)
 {
@@ -174,6 +208,26 @@ static void wide_labels(vb_ctx *ctx, vbj_engine *ref, vbj_engine *cl)
     CHECK_INT(y.ms_fill, 0);
     vbj_result_free(&x);
     vbj_result_free(&y);
+    vbj_seeds_free(&s);
+}
+
+/* Grids past the exact range of doubles (2D n > 1024) take the kernels with
+ * 64-bit integer distances: the same labels as the reference there too. */
+static void integer_distances(vb_ctx *ctx, vbj_engine *ref, vbj_engine *cl)
+{
+    vbj_seeds s;
+    CHECK_INT(vbj_seeds_generate(ctx, 2, 2048, 40, VBJ_DIST_CLUSTERED, 9, &s), VB_OK);
+    static const vbj_variant vs[] = {VBJ_JFA1, VBJ_FACET};
+    for (int i = 0; i < 2; i++) {
+        vbj_result x, y;
+        vbj_options o = {vs[i], 0, VBJ_WANT_LABELS};
+        CHECK_INT(vbj_run(ctx, ref, &s, &o, &x), VB_OK);
+        CHECK_INT(vbj_run(ctx, cl, &s, &o, &y), VB_OK);
+        if (x.labels && y.labels)
+            CHECK(memcmp(x.labels, y.labels, npix(&s) * 4) == 0);
+        vbj_result_free(&x);
+        vbj_result_free(&y);
+    }
     vbj_seeds_free(&s);
 }
 
@@ -225,6 +279,10 @@ int main(void)
         backends_agree(ctx, ref, cl, 3, 32, 40, VBJ_DIST_SHELL);
         backends_agree(ctx, ref, cl, 3, 16, 1, VBJ_DIST_UNIFORM);
         wide_labels(ctx, ref, cl);
+        integer_distances(ctx, ref, cl);
+        ties(ctx, ref, cl, 2, 64);
+        ties(ctx, ref, cl, 3, 32);
+        ties(ctx, ref, cl, 2, 2048);
         vbj_engine_close(cl);
     } else {
         printf("no OpenCL device: %s (reference backend only)\n", vb_errmsg(ctx));

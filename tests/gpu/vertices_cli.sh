@@ -1,0 +1,41 @@
+#!/bin/sh
+# `vorball vertices` and `vorball bench` as users run them: a missing device
+# falls back to the reference backend with warning W760 and the same bytes;
+# bench prints its table and JSON; --topology on a general-position set
+# satisfies the edge count of a simple diagram (every vertex has four edges:
+# 2 finite + infinite = 4 V); bad options are usage errors (exit 2).
+# usage: vertices_cli.sh VORBALL WORK_DIR
+vorball=$1 work=$2/vertices_cli
+fail() { echo "FAIL: $*" >&2; exit 1; }
+mkdir -p "$work" || fail "cannot create $work"
+# 60 spheres, 3-decimal coordinates, mixed radii (deterministic).
+awk 'BEGIN { s = 7; for (i = 0; i < 60; i++) {
+        for (k = 0; k < 3; k++) { s = (s * 1103515245 + 12345) % 2147483648; c[k] = (s % 12000) / 1000 }
+        s = (s * 1103515245 + 12345) % 2147483648
+        printf "%.3f %.3f %.3f %.2f\n", c[0], c[1], c[2], 1.2 + (s % 7) / 10 } }' > "$work/set.xyzr"
+"$vorball" vertices --device ref "$work/set.xyzr" > "$work/ref.tsv" 2> "$work/ref.err" ||
+    fail "ref run failed: $(cat "$work/ref.err")"
+n=$(grep -vc '^#' "$work/ref.tsv")
+[ "$n" -gt 100 ] || fail "only $n vertices"
+if ! "$vorball" devices 2>/dev/null | grep -q 'GPU'; then
+    "$vorball" vertices --device gpu "$work/set.xyzr" > "$work/gpu.tsv" 2> "$work/gpu.err" ||
+        fail "--device gpu without a GPU must fall back, not fail"
+    grep -q 'W760' "$work/gpu.err" || fail "no W760 warning on fallback"
+    cmp -s "$work/ref.tsv" "$work/gpu.tsv" || fail "fallback output differs from ref"
+fi
+"$vorball" vertices --device ref --topology "$work/topo.tsv" "$work/set.xyzr" > /dev/null 2>&1 ||
+    fail "--topology failed"
+fin=$(awk '$1 == "edge" && $3 != -1' "$work/topo.tsv" | wc -l)
+inf=$(awk '$1 == "edge" && $3 == -1' "$work/topo.tsv" | wc -l)
+[ $((2 * fin + inf)) -eq $((4 * n)) ] || fail "edges: 2*$fin + $inf != 4*$n"
+[ "$(grep -c '^face' "$work/topo.tsv")" -gt "$n" ] || fail "too few faces"
+"$vorball" bench --device ref --samples 8,12 --json "$work/set.xyzr" > "$work/bench.json" ||
+    fail "bench --json failed"
+[ "$(grep -c '"vertices": '"$n"',' "$work/bench.json")" -eq 2 ] || fail "bench vertex counts"
+grep -q '"certification":' "$work/bench.json" || fail "bench json lacks stage times"
+"$vorball" bench --device ref "$work/set.xyzr" | grep -q '^set.xyzr .* 60 ' || fail "bench table row"
+"$vorball" vertices --samples 1 "$work/set.xyzr" > /dev/null 2>&1
+[ $? -eq 2 ] || fail "--samples 1 must be a usage error"
+"$vorball" vertices --device tpu "$work/set.xyzr" > /dev/null 2>&1
+[ $? -eq 2 ] || fail "--device tpu must be a usage error"
+echo "ok: $n vertices, $fin finite + $inf infinite edges"
