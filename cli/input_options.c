@@ -46,6 +46,21 @@ int vb_cli_input_option(vb_cli_input_opts *o, int argc, char **argv, int *i)
         }
         return 1;
     }
+    if (strcmp(a, "--zero-radius") == 0) {
+        static const char *const names[] = {"error", "point", "drop"};
+        static const int values[] = {VB_ZERO_RADIUS_ERROR, VB_ZERO_RADIUS_POINT,
+                                     VB_ZERO_RADIUS_DROP};
+        const char *v = option_value(argc, argv, i);
+        if (!v)
+            return -1;
+        for (int k = 0; k < 3; k++)
+            if (strcmp(v, names[k]) == 0) {
+                o->zero_radius = values[k];
+                return 1;
+            }
+        vb_cli_usage_error(argv[0], "--zero-radius takes error, point or drop, not '%s'", v);
+        return -1;
+    }
     if (strcmp(a, "--model") == 0) {
         const char *v = option_value(argc, argv, i);
         size_t n;
@@ -79,7 +94,9 @@ void vb_cli_input_help(FILE *f)
           "  --water             keep water (HOH, WAT, ...; dropped by default, counted)\n"
           "  --no-hydrogens      drop H/D atoms (kept by default)\n"
           "  --strict-elements   an element without a radius is an error (E108), not\n"
-          "                      radius 1.70 with a warning\n",
+          "                      radius 1.70 with a warning\n"
+          "  --zero-radius M     radius-0 spheres: error, point (a point site) or drop;\n"
+          "                      default point for PQR (PARSE polar hydrogens), else error\n",
           f);
 }
 
@@ -92,6 +109,7 @@ void vb_cli_input_read_options(const vb_cli_input_opts *o, const vb_radii_table 
     ro->keep_water = o->keep_water;
     ro->drop_hydrogens = o->drop_hydrogens;
     ro->strict_elements = o->strict_elements;
+    ro->zero_radius = o->zero_radius;
     ro->radii = radii;
 }
 

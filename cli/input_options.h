@@ -15,6 +15,7 @@ typedef struct vb_cli_input_opts {
     int keep_water;          /* --water */
     int drop_hydrogens;      /* --no-hydrogens */
     int strict_elements;     /* --strict-elements */
+    int zero_radius;         /* --zero-radius error|point|drop (enum vb_zero_radius; default auto) */
 } vb_cli_input_opts;
 
 /* Zero-initialising a vb_cli_input_opts gives the defaults; this does it. */

@@ -140,7 +140,8 @@ static int quads_add(quads *s, const vb_vertex_list *v)
         }
         memcpy(s->q + 4 * s->n++, v->ids + v->start[k], 4 * sizeof *s->q);
     }
-    qsort(s->q, s->n, 4 * sizeof *s->q, cmp_quad_sorted);
+    if (s->n)
+        qsort(s->q, s->n, 4 * sizeof *s->q, cmp_quad_sorted);
     return VB_OK;
 }
 
@@ -210,7 +211,7 @@ static int repair(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier *cert,
         /* Keep the swaps not certified before. */
         for (size_t k = 0; rc == VB_OK && k < swaps.n; k++) {
             const uint32_t *q = swaps.ids + swaps.start[k];
-            if (bsearch(q, seen.q, seen.n, 4 * sizeof *seen.q, cmp_quad_sorted))
+            if (seen.n && bsearch(q, seen.q, seen.n, 4 * sizeof *seen.q, cmp_quad_sorted))
                 continue;
             rc = vb_vertex_list_push(&next, q, 4, swaps.x[k], swaps.y[k], swaps.z[k], swaps.t[k],
                                      0.0, VB_VERTEX_CANDIDATE);

@@ -64,6 +64,26 @@ void vbi_element_from_bare_name(const char *name, char element[4])
     vbi_element_from_name(name4, element);
 }
 
+int vbi_zero_radius_policy(const vb_read_options *opt, vb_format fmt)
+{
+    if (opt->zero_radius != VB_ZERO_RADIUS_AUTO)
+        return opt->zero_radius;
+    return fmt == VB_FMT_PQR ? VB_ZERO_RADIUS_POINT : VB_ZERO_RADIUS_ERROR;
+}
+
+int vbi_zero_radius_skip(int policy, vb_decimal r, vbi_dropped *dr)
+{
+    if (r.mant != 0)
+        return 0;
+    if (policy == VB_ZERO_RADIUS_DROP) {
+        dr->zero_dropped++;
+        return 1;
+    }
+    if (policy == VB_ZERO_RADIUS_POINT)
+        dr->zero_points++;
+    return 0;
+}
+
 void vbi_report_dropped(vb_ctx *ctx, const char *name, const vbi_dropped *dr)
 {
     if (dr->water)
@@ -83,6 +103,13 @@ void vbi_report_dropped(vb_ctx *ctx, const char *name, const vbi_dropped *dr)
     if (dr->after_end)
         vb_warn(ctx, 710, name, 0, "%zu atom record%s after the END record ignored", dr->after_end,
                 dr->after_end == 1 ? "" : "s");
+    if (dr->zero_dropped)
+        vb_warn(ctx, 712, name, 0, "%zu sphere%s of radius 0 dropped (--zero-radius drop)",
+                dr->zero_dropped, dr->zero_dropped == 1 ? "" : "s");
+    if (dr->zero_points)
+        vb_warn(ctx, 713, name, 0,
+                "%zu sphere%s of radius 0 kept as point sites (--zero-radius error|drop to change)",
+                dr->zero_points, dr->zero_points == 1 ? "" : "s");
     if (dr->unknown_elements > 1)
         vb_warn(ctx, 708, name, 0, "%zu atoms in all had an unknown element and radius 1.70",
                 dr->unknown_elements);

@@ -1,16 +1,23 @@
 /* Matching across cells (Sec. 5.4), the targeted search for incompletely
- * matched vertices (5.5) and the empty-tangent-sphere test.
+ * matched vertices (5.5), the empty-tangent-sphere test, and our additions
+ * that only ever add candidates for the exact certifier to judge.
  *
  * Candidates that lie within tol of each other (point and tangent radius)
  * are one vertex; its members are the union of their ids (so a degenerate
  * vertex seen as different quadruples from different cells is one vertex),
  * and it is complete when every member produced a candidate from its own
- * cell. For each missing member m the search shoots the ray from c_m to the
- * vertex, centres a grid cell on it of half the original size, and runs the
- * vertex stage there (Newton, subdivision) with every bisector of m; the
- * cell shrinks by half until the vertex is found or the depth is spent.
- * Every quadruple is then tested for an empty tangent sphere in double with
- * margin tol (the exact certifier decides afterwards). */
+ * cell. An incomplete vertex whose tangent sphere is cut by another sphere
+ * (beyond tol) is spurious and searched no further; for the others, each
+ * missing member m shoots the ray from c_m to the vertex, centres a grid
+ * cell on it of half the original size, and runs the vertex stage there
+ * (Newton, subdivision) with m's coarse culling lists; the cell shrinks by
+ * half until the vertex is found or the depth is spent.
+ *
+ * Then every distinct quadruple gets both of its tangent spheres (Fig. 8)
+ * from the double solver, each kept when no sphere cuts it by more than a
+ * rounding guard; a sampled quadruple whose own sphere is cut tries the
+ * quadruples with the intruder swapped in; and the neighbourhood completion
+ * (complete_ring) walks from every kept vertex to its neighbours. */
 #include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
@@ -725,7 +732,7 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
     /* Sec. 5.5, one base at a time, with all bisectors the culling kept. */
     const vbs_bisector *bis = NULL;
     size_t nbis = 0;
-    if (rc == VB_OK)
+    if (rc == VB_OK && nwk)
         qsort(wk, nwk, sizeof *wk, cmp_work);
     for (size_t w = 0; rc == VB_OK && w < nwk; w++) {
         if (w == 0 || wk[w].base != wk[w - 1].base) {
@@ -768,7 +775,7 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
         qsort(qs[nq].q, 4, sizeof *qs[nq].q, cmp_u32);
         nq++;
     }
-    if (rc == VB_OK)
+    if (rc == VB_OK && nq)
         qsort(qs, nq, sizeof *qs, cmp_qrec);
     /* Sampled quadruples first (all marked seen), then their swaps. */
     /* 1e-9 of the bounding-box diagonal (the default tol is 1e-5 of it). */

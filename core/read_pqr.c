@@ -36,6 +36,7 @@ int vbi_pqr_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
         return rc;
     vbi_models m;
     vbi_models_init(&m, opt->model);
+    const int zero_policy = vbi_zero_radius_policy(opt, VB_FMT_PQR);
     int ended = 0; /* an END record was met: what follows is not this entry */
     vbi_lines it;
     vbi_lines_init(&it, buf, len, first_line);
@@ -120,6 +121,8 @@ int vbi_pqr_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
             dr->hydrogens++;
             continue;
         }
+        if (vbi_zero_radius_skip(zero_policy, e[3], dr))
+            continue;
         rc = vbi_builder_push(&b, e, d, &info, it.lineno);
     }
     if (rc == VB_OK)
@@ -129,6 +132,7 @@ int vbi_pqr_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
         return rc;
     }
     vbi_builder_finish(&b, 1, out);
+    (*out)->allows_zero_radius = zero_policy == VB_ZERO_RADIUS_POINT;
     return VB_OK;
 }
 

@@ -45,6 +45,9 @@ int vbi_read_xyzr(vb_ctx *ctx, const char *name, const char *buf, size_t len,
     rc = vbi_builder_init(&b, ctx, name, opt->max_spheres, 1);
     if (rc != VB_OK)
         return rc;
+    const int zero_policy = vbi_zero_radius_policy(opt, VB_FMT_XYZR);
+    vbi_dropped dr;
+    memset(&dr, 0, sizeof dr);
     vbi_lines it;
     vbi_lines_init(&it, buf, len, 1);
     const char *line;
@@ -83,6 +86,8 @@ int vbi_read_xyzr(vb_ctx *ctx, const char *name, const char *buf, size_t len,
         info.altloc = info.icode = ' ';
         if (hash && parse_annotation(hash + 1, line + n, &info))
             annotated = 1;
+        if (vbi_zero_radius_skip(zero_policy, e[3], &dr))
+            continue;
         rc = vbi_builder_push(&b, e, d, &info, it.lineno);
         if (rc != VB_OK) {
             vbi_builder_discard(&b);
@@ -90,5 +95,7 @@ int vbi_read_xyzr(vb_ctx *ctx, const char *name, const char *buf, size_t len,
         }
     }
     vbi_builder_finish(&b, annotated, out);
+    (*out)->allows_zero_radius = zero_policy == VB_ZERO_RADIUS_POINT;
+    vbi_report_dropped(ctx, name, &dr);
     return VB_OK;
 }

@@ -70,7 +70,8 @@ static int store_add(vbs_bis_store *st, uint32_t i, const vbs_base_data *bd)
         st->bis = p;
         st->cap = nc;
     }
-    memcpy(st->bis + st->nbis, bd->bis, bd->nbis * sizeof *bd->bis);
+    if (bd->nbis)
+        memcpy(st->bis + st->nbis, bd->bis, bd->nbis * sizeof *bd->bis);
     st->off[i] = st->nbis;
     st->nbis += bd->nbis;
     st->off[i + 1] = st->nbis;
@@ -89,7 +90,8 @@ static int store_add(vbs_bis_store *st, uint32_t i, const vbs_base_data *bd)
     }
     for (size_t k = 0; k < nt; k++)
         st->co_off[(size_t)i * nt + k] = (uint32_t)(st->nco + bd->co_off[k]);
-    memcpy(st->co_idx + st->nco, bd->co_idx, bd->nco * sizeof *bd->co_idx);
+    if (bd->nco)
+        memcpy(st->co_idx + st->nco, bd->co_idx, bd->nco * sizeof *bd->co_idx);
     st->nco += bd->nco;
     st->co_off[((size_t)i + 1) * nt] = (uint32_t)st->nco;
     return VB_OK;
@@ -188,7 +190,8 @@ static int batch_add(batch_buf *bb, const vb_sphere_set *s, uint32_t i, double c
     b->bis_start = (uint32_t)bb->nbis;
     b->bis_count = (uint32_t)bd->nbis;
     b->tile_start = (uint32_t)(bb->nbases * ntiles);
-    memcpy(bb->bis + bb->nbis, bd->bis, bd->nbis * sizeof *bd->bis);
+    if (bd->nbis)
+        memcpy(bb->bis + bb->nbis, bd->bis, bd->nbis * sizeof *bd->bis);
     for (size_t k = 0; k < ntiles; k++)
         bb->tile_off[bb->nbases * ntiles + k] = (uint32_t)(bb->nidx + bd->tile_off[k]);
     for (size_t k = 0; k < bd->tile_off[ntiles]; k++)
@@ -320,7 +323,8 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
                     (unsigned long long)res->overflow, VBS_MAX_CAND);
         double t0 = now();
         res->raw_candidates = raw.n;
-        qsort(raw.v, raw.n, sizeof *raw.v, cmp_cand);
+        if (raw.n)
+            qsort(raw.v, raw.n, sizeof *raw.v, cmp_cand);
         rc = vbs_match(ctx, set, &cu, &params, o.target_depth, &raw, res);
         res->times.matching += now() - t0;
     }

@@ -360,7 +360,8 @@ int vbs_cull_base(vb_ctx *ctx, const vbs_culler *cu, uint32_t i, vbs_base_data *
             rc = make_bisectors(s, i, bd);
         if (rc != VB_OK)
             return vb_error(ctx, rc, NULL, 0, "out of memory (culling)");
-        qsort(bd->bis, bd->nbis, sizeof *bd->bis, cmp_bis_id);
+        if (bd->nbis)
+            qsort(bd->bis, bd->nbis, sizeof *bd->bis, cmp_bis_id);
         for (size_t k = 0; k < nt; k++) {
             bd->tile_off[k] = (uint32_t)bd->nidx;
             for (size_t q = 0; q < bd->nbis; q++)
@@ -407,7 +408,8 @@ int vbs_cull_base(vb_ctx *ctx, const vbs_culler *cu, uint32_t i, vbs_base_data *
         if (keep[q])
             bd->bis[m++] = bd->bis[q];
     }
-    qsort(bd->bis, m, sizeof *bd->bis, cmp_bis_id);
+    if (m)
+        qsort(bd->bis, m, sizeof *bd->bis, cmp_bis_id);
     for (size_t k = 0; k < bd->nidx; k++) {
         uint32_t id = oldid[bd->tile_idx[k]];
         size_t lo = 0, hi = m;

@@ -28,9 +28,10 @@ static int check_values(vb_ctx *ctx, const vb_sphere_set *s)
     const char *src = s->source ? s->source : "<spheres>";
     for (size_t i = 0; i < s->n; i++) {
         const vb_decimal c[3] = {s->ex[i], s->ey[i], s->ez[i]};
-        if (s->er[i].mant <= 0)
+        if (s->er[i].mant < 0 || (s->er[i].mant == 0 && !s->allows_zero_radius))
             return vb_error(ctx, VB_EINPUT_RADIUS, src, s->line[i],
-                            "radius %.17g is not positive", s->r[i]);
+                            "radius %.17g is not positive%s", s->r[i],
+                            s->er[i].mant == 0 ? " (--zero-radius point|drop accepts it)" : "");
         for (int k = 0; k < 3; k++)
             if (vb_decimal_cmp(dec_abs(c[k]), coord_limit) > 0)
                 return vb_error(ctx, VB_EINPUT_MAGNITUDE, src, s->line[i],

@@ -31,7 +31,8 @@ static int push(uint32_t **v, size_t *n, size_t *cap, const uint32_t *x, size_t 
         *v = p;
         *cap = nc;
     }
-    memcpy(*v + *n, x, k * sizeof *x);
+    if (k)
+        memcpy(*v + *n, x, k * sizeof *x);
     *n += k;
     return VB_OK;
 }
@@ -92,7 +93,8 @@ int vbs_topo_collect(vbs_topo_acc *acc, const vb_sampler_batch *bt, size_t k)
     for (size_t q = 0; q < rays; q++)
         if (colours[q] < AMBIGUOUS)
             tmp[n++] = colours[q];
-    qsort(tmp, n, sizeof *tmp, cmp_u32);
+    if (n)
+        qsort(tmp, n, sizeof *tmp, cmp_u32);
     int rc = VB_OK;
     for (size_t q = 0; q < n && rc == VB_OK; q++) {
         if (q > 0 && tmp[q] == tmp[q - 1])
@@ -161,7 +163,8 @@ static int cmp_triple(const void *pa, const void *pb)
 
 static size_t dedupe(uint32_t *v, size_t n, size_t w, int (*cmp)(const void *, const void *))
 {
-    qsort(v, n, w * sizeof *v, cmp);
+    if (n)
+        qsort(v, n, w * sizeof *v, cmp);
     size_t m = 0;
     for (size_t k = 0; k < n; k++)
         if (m == 0 || memcmp(v + w * (m - 1), v + w * k, w * sizeof *v) != 0)
@@ -246,7 +249,8 @@ int vb_topology_build(vb_ctx *ctx, const vb_topology_evidence *ev, const vb_vert
             }
     }
     if (rc == VB_OK) {
-        qsort(recs, ntv, sizeof *recs, cmp_tv);
+        if (ntv)
+            qsort(recs, ntv, sizeof *recs, cmp_tv);
         nf = 2 * dedupe(faces, nf / 2, 2, cmp_pair);
         ntr = 3 * dedupe(trip, ntr / 3, 3, cmp_triple);
         out->faces = faces;

@@ -42,6 +42,7 @@ typedef struct vb_sphere_set {
     vb_atom_info *info;              /* NULL when the format has no atom records (XYZR) */
     long *line;                      /* 1-based source line of each sphere */
     uint8_t *contained;              /* 1 if the sphere lies inside another (empty cell); set by vb_spheres_validate */
+    uint8_t allows_zero_radius;      /* the reader accepted radius-0 spheres as points (--zero-radius point) */
     char *source;                    /* file name as given ("-" = stdin), owned */
 } vb_sphere_set;
 
@@ -56,6 +57,17 @@ typedef enum vb_format {
 /* Radii table (element symbol -> radius as an exact decimal). */
 typedef struct vb_radii_table vb_radii_table;
 
+/* What a reader does with a sphere of radius exactly 0 (negative radii are
+ * always VB_EINPUT_RADIUS). AUTO keeps them as points in PQR files, whose
+ * PARSE radii give polar hydrogens radius 0 on purpose, and refuses them
+ * elsewhere. A point is a legal site of the additively weighted diagram. */
+typedef enum vb_zero_radius {
+    VB_ZERO_RADIUS_AUTO = 0,
+    VB_ZERO_RADIUS_ERROR,  /* VB_EINPUT_RADIUS naming the line */
+    VB_ZERO_RADIUS_POINT,  /* keep as a point site, counted in warning W713 */
+    VB_ZERO_RADIUS_DROP    /* leave out, counted in warning W712 */
+} vb_zero_radius;
+
 typedef struct vb_read_options {
     vb_format format;            /* VB_FMT_AUTO detects by content */
     int model;                   /* PDB/mmCIF model number to read; 0 = first model */
@@ -64,6 +76,7 @@ typedef struct vb_read_options {
     int strict_elements;         /* 1: unknown element is VB_EINPUT_ELEMENT; 0: default radius + warning */
     const vb_radii_table *radii; /* NULL = built-in table (C 1.70, N 1.55, O 1.52, S 1.80, P 1.80, H 1.20, ...) */
     size_t max_spheres;          /* 0 = default limit (50,000,000) */
+    int zero_radius;             /* enum vb_zero_radius */
 } vb_read_options;
 
 /* Parses a format name ("xyzr", "pdb", "pqr", "cif"/"mmcif", "auto").

@@ -9,7 +9,8 @@
  *   W705 atoms of other models ignored      W706 hydrogens dropped (--no-hydrogens)
  *   W707 unknown element, default radius    W708 total of atoms with unknown elements
  *   W709 mmCIF names truncated to 7 characters
- *   W710 atom records after END ignored     W711 a further mmCIF _atom_site loop ignored */
+ *   W710 atom records after END ignored     W711 a further mmCIF _atom_site loop ignored
+ *   W712 spheres of radius 0 dropped        W713 spheres of radius 0 kept as points */
 #ifndef VBI_INPUT_H
 #define VBI_INPUT_H
 
@@ -103,7 +104,18 @@ typedef struct vbi_dropped {
     size_t other_model_count; /* models */
     size_t unknown_elements;
     size_t after_end;         /* atom records after END */
+    size_t zero_dropped;      /* radius-0 spheres left out (--zero-radius drop) */
+    size_t zero_points;       /* radius-0 spheres kept as points */
 } vbi_dropped;
+
+/* The zero-radius policy of opt for a format, AUTO resolved: points for PQR,
+ * an error elsewhere. Returns VB_ZERO_RADIUS_ERROR, _POINT or _DROP. */
+int vbi_zero_radius_policy(const vb_read_options *opt, vb_format fmt);
+
+/* Applies the policy to one sphere of radius `r`: returns 1 when the reader
+ * should leave it out (counted in dr), 0 when it is pushed (a radius-0 point
+ * is counted; a refused one is left for vb_spheres_validate to name). */
+int vbi_zero_radius_skip(int policy, vb_decimal r, vbi_dropped *dr);
 
 /* Emits the one-line warnings W703..W706, W708 (the unknown-element total)
  * and W710 for nonzero counts. */

@@ -89,7 +89,7 @@ kernel void jfa_widen(global const vbj_label *src, global uint *dst, uint count)
 #define VBJ_OFFER(t, dist)                                                        \
     {                                                                             \
         vbj_d d_ = (dist);                                                        \
-        if (d_ < bd##t || (d_ == bd##t && v > bl##t)) {                           \
+        if (d_ < bd##t || (d_ == bd##t && v < bl##t)) {                           \
             bd##t = d_;                                                           \
             bl##t = v;                                                            \
         }                                                                         \

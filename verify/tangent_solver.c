@@ -37,6 +37,8 @@ void vbx_solver_init(vbx_solver *s, const vbx_data *d)
     }
     for (int j = 0; j < 6; j++)
         mpz_init(s->t[j]);
+    for (int j = 0; j < 10; j++)
+        mpz_init(s->minor[j]);
     for (int j = 0; j < 5; j++)
         mpz_init(s->row[j]);
 }
@@ -60,6 +62,8 @@ void vbx_solver_free(vbx_solver *s)
     }
     for (int j = 0; j < 6; j++)
         mpz_clear(s->t[j]);
+    for (int j = 0; j < 10; j++)
+        mpz_clear(s->minor[j]);
     for (int j = 0; j < 5; j++)
         mpz_clear(s->row[j]);
 }
@@ -196,6 +200,37 @@ int vbx_pick_rows(vbx_solver *s, uint32_t base, const uint32_t *cand, size_t n, 
     return rank;
 }
 
+/* Index of the minor of rows 1, 2 on columns a < b in s->minor. */
+static int minor_index(int a, int b)
+{
+    static const int first[5] = {0, 4, 7, 9, 10}; /* minors starting at column a */
+    return first[a] + (b - a - 1);
+}
+
+/* out += sign * m0[c] * (minor of rows 1, 2 on columns a, b in that order). */
+static void det3_term(vbx_solver *s, mpz_t out, int sign, int c, int a, int b)
+{
+    if (a > b) {
+        int t = a;
+        a = b;
+        b = t;
+        sign = -sign;
+    }
+    if (sign > 0)
+        mpz_addmul(out, s->m[0][c], s->minor[minor_index(a, b)]);
+    else
+        mpz_submul(out, s->m[0][c], s->minor[minor_index(a, b)]);
+}
+
+/* det3 of columns c0, c1, c2 (any order, distinct) from s->minor. */
+static void det3_minors(vbx_solver *s, mpz_t out, int c0, int c1, int c2)
+{
+    mpz_set_ui(out, 0);
+    det3_term(s, out, 1, c0, c1, c2);
+    det3_term(s, out, -1, c1, c0, c2);
+    det3_term(s, out, 1, c2, c0, c1);
+}
+
 /* Fills root r from numerators and denominator, making den > 0. */
 static void set_root(vbx_root *r, int sigma, mpz_t den)
 {
@@ -220,9 +255,16 @@ int vbx_solve(vbx_solver *s, uint32_t base, const uint32_t rows[3])
         vbx_row(s->d, base, rows[i], s->m[i], *t0);
     }
     static const int cols[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+    /* Every determinant below expands along row 0 over the 2x2 minors of
+     * rows 1 and 2: ten minors computed once instead of three per det. */
+    for (int a = 0, i = 0; a < 5; a++)
+        for (int b = a + 1; b < 5; b++, i++) {
+            mpz_mul(s->minor[i], s->m[1][a], s->m[2][b]);
+            mpz_submul(s->minor[i], s->m[1][b], s->m[2][a]);
+        }
     /* Kernel vector v_k = (-1)^k D_k. */
     for (int k = 0; k < 4; k++) {
-        det3(s->v[k], s->m, cols[k][0], cols[k][1], cols[k][2], *t0);
+        det3_minors(s, s->v[k], cols[k][0], cols[k][1], cols[k][2]);
         if (k & 1)
             mpz_neg(s->v[k], s->v[k]);
     }
@@ -238,14 +280,18 @@ int vbx_solve(vbx_solver *s, uint32_t base, const uint32_t rows[3])
     if (s->k < 0)
         return s->status = VBX_SINGULAR;
     const int k = s->k;
-    det3(s->Dk, s->m, cols[k][0], cols[k][1], cols[k][2], *t0);
+    /* D_k is the minor v_k came from: v_k = (-1)^k D_k. */
+    if (k & 1)
+        mpz_neg(s->Dk, s->v[k]);
+    else
+        mpz_set(s->Dk, s->v[k]);
     /* Cramer with u_k = 0: U_j = det of the minor with column j <- W. */
     mpz_set_ui(s->U[k], 0);
     for (int c = 0; c < 3; c++) {
         int cc[3] = {cols[k][0], cols[k][1], cols[k][2]};
         int j = cc[c];
         cc[c] = 4;
-        det3(s->U[j], s->m, cc[0], cc[1], cc[2], *t0);
+        det3_minors(s, s->U[j], cc[0], cc[1], cc[2]);
     }
     lorentz(s->A, s->v, s->v);
     lorentz(s->B, s->U, s->v);

@@ -92,6 +92,7 @@ typedef struct vbx_solver {
     vbx_root root[2];
     mpz_t row[5]; /* scratch row of a tested sphere */
     mpz_t t[6];   /* scratch */
+    mpz_t minor[10]; /* 2x2 minors of rows 1, 2 of m (columns a < b) */
     uint64_t slow_rounds; /* vbx_root_coords coordinates that needed MPFR */
 } vbx_solver;
 

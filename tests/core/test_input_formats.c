@@ -450,12 +450,15 @@ static void test_real_files(void)
         CHECK_INT(s->n, 642);
         CHECK_DEC(s->er[0], 2, 0);
         CHECK_DEC(s->er[2], 17, -1);
-        /* PARSE radii give polar hydrogens radius 0: refused by validation,
-         * at the first such atom (HG22 of THR 1, line 15). */
+        /* PARSE radii give polar hydrogens radius 0 (the first is HG22 of
+         * THR 1, line 15): kept as point sites, each inside its heavy atom. */
         CHECK_DEC(s->er[7], 0, 0);
-        CHECK_ERROR(ctx, vb_spheres_validate(ctx, s, 4), VB_EINPUT_RADIUS,
-                    corpus_path("data/1crn_apbs.pqr"));
-        CHECK(strstr(vb_errmsg(ctx), "pqr:15:") != NULL);
+        CHECK_INT(s->line[7], 15);
+        CHECK_INT(vb_spheres_validate(ctx, s, 4), VB_OK);
+        size_t contained = 0;
+        for (size_t i = 0; i < s->n; i++)
+            contained += s->contained[i];
+        CHECK_INT(contained, 236);
     }
     vb_spheres_free(s);
     s = read_corpus(ctx, "data/3pqr.pqr", NULL);
@@ -497,6 +500,52 @@ static void test_real_files(void)
     vb_close(ctx);
 }
 
+/* Radius 0: points by default in PQR (PARSE polar hydrogens), an error by
+ * default in XYZR, and --zero-radius error|point|drop overrides both. */
+static void test_zero_radius(void)
+{
+    FILE *diag;
+    vb_ctx *ctx = open_ctx(&diag);
+    const char *pqr = "ATOM      1  N   GLY A   1       0.000   0.000   0.000 -0.4000 1.5000\n"
+                      "ATOM      2  H   GLY A   1       1.000   0.000   0.000  0.4000 0.0000\n"
+                      "ATOM      3  CA  GLY A   1       4.000   0.000   0.000  0.0000 1.7000\n"
+                      "ATOM      4  C   GLY A   1       0.000   4.000   0.000  0.5500 1.7000\n"
+                      "ATOM      5  O   GLY A   1       0.000   0.000   4.000 -0.5500 1.4000\n";
+    vb_read_options o = {0};
+    vb_sphere_set *s = NULL;
+    CHECK_INT(read_text(ctx, "z.pqr", pqr, &o, &s), VB_OK);
+    CHECK_INT(s->n, 5);
+    CHECK(s->allows_zero_radius);
+    CHECK_INT(s->er[1].mant, 0);
+    CHECK_INT(vb_spheres_validate(ctx, s, 4), VB_OK);
+    CHECK_INT(s->contained[1], 1); /* the point lies inside the nitrogen */
+    CHECK(strstr(diag_text(diag), "W713") != NULL);
+    vb_spheres_free(s);
+
+    o.zero_radius = VB_ZERO_RADIUS_DROP;
+    CHECK_INT(read_text(ctx, "z.pqr", pqr, &o, &s), VB_OK);
+    CHECK_INT(s->n, 4);
+    CHECK_INT(s->line[1], 3); /* the dropped atom's line is skipped, not renumbered */
+    CHECK(strstr(diag_text(diag), "W712") != NULL);
+    vb_spheres_free(s);
+
+    o.zero_radius = VB_ZERO_RADIUS_ERROR;
+    int rc = read_validate(ctx, "z.pqr", pqr, &o, 4);
+    CHECK_ERROR(ctx, rc, VB_EINPUT_RADIUS, "z.pqr:2:");
+
+    const char *xyzr = "0 0 0 1\n3 0 0 0\n0 3 0 1\n0 0 3 1\n";
+    o.zero_radius = VB_ZERO_RADIUS_AUTO;
+    rc = read_validate(ctx, "z.xyzr", xyzr, &o, 4);
+    CHECK_ERROR(ctx, rc, VB_EINPUT_RADIUS, "z.xyzr:2:");
+    o.zero_radius = VB_ZERO_RADIUS_POINT;
+    CHECK_INT(read_validate(ctx, "z.xyzr", xyzr, &o, 4), VB_OK);
+    const char *negative = "0 0 0 1\n3 0 0 -0.5\n0 3 0 1\n0 0 3 1\n";
+    rc = read_validate(ctx, "n.xyzr", negative, &o, 4);
+    CHECK_ERROR(ctx, rc, VB_EINPUT_RADIUS, "n.xyzr:2:");
+    fclose(diag);
+    vb_close(ctx);
+}
+
 int main(void)
 {
     test_pdb();
@@ -506,5 +555,6 @@ int main(void)
     test_radii_file();
     test_frames_inline();
     test_real_files();
+    test_zero_radius();
     VB_TEST_END();
 }

@@ -1,0 +1,252 @@
+/* Where a channel's centreline starts and ends: its openings, the widest
+ * pair of them through the molecule, or the fallbacks. */
+#include <math.h>
+#include <stdlib.h>
+
+#include "vbc_graph.h"
+
+/* A pair of openings counts as "through" the molecule when they are at
+ * least this fraction of the molecule's width apart along the line joining
+ * them: two mouths of a pore on opposite faces, not two openings of one
+ * vestibule or of one groove. */
+#define THROUGH_RATIO 0.6
+
+/* Width of the molecule along unit vector u, from its support atoms. */
+static double width_along(const vbc_graph *A, const double u[3])
+{
+    double lo = INFINITY, hi = -INFINITY;
+    for (size_t t = 0; t < A->nsupport; t++) {
+        int32_t i = A->support[t];
+        double c = A->s->x[i] * u[0] + A->s->y[i] * u[1] + A->s->z[i] * u[2];
+        lo = fmin(lo, c - A->s->r[i]);
+        hi = fmax(hi, c + A->s->r[i]);
+    }
+    return hi - lo;
+}
+
+static int through_pair(const vbc_graph *A, uint32_t ra, uint32_t rb)
+{
+    double pa[3], pb[3], u[3];
+    vbc_voxel_centre(A->g, A->v[ra], pa);
+    vbc_voxel_centre(A->g, A->v[rb], pb);
+    double d = sqrt((pa[0] - pb[0]) * (pa[0] - pb[0]) + (pa[1] - pb[1]) * (pa[1] - pb[1]) +
+                    (pa[2] - pb[2]) * (pa[2] - pb[2]));
+    if (d == 0.0)
+        return 0;
+    for (int k = 0; k < 3; k++)
+        u[k] = (pb[k] - pa[k]) / d;
+    return d >= THROUGH_RATIO * width_along(A, u);
+}
+
+typedef struct {
+    double c;
+    uint32_t pos;
+} by_clear;
+
+static int cmp_by_clear(const void *x, const void *y)
+{
+    const by_clear *a = x, *b = y;
+    if (a->c != b->c)
+        return a->c < b->c ? 1 : -1;
+    return (a->pos > b->pos) - (a->pos < b->pos);
+}
+
+/* The widest pair of openings that lies through the molecule: voxels enter by
+ * decreasing clearance (a maximum spanning forest, as in Kruskal); the first
+ * union that joins two openings forming a through pair decides, and the
+ * clearance at that moment is the best bottleneck any path between them can
+ * have. Returns 1 with *a, *b set, 0 when no pair is through, -1 on ENOMEM. */
+static int widest_through(vbc_graph *A, uint32_t *parent, const uint32_t *members, size_t m,
+                          const uint32_t *reps, size_t k, uint32_t *a, uint32_t *b)
+{
+    by_clear *S = malloc(m * sizeof *S);
+    uint32_t *head = malloc(m * sizeof *head), *tail = malloc(m * sizeof *tail);
+    uint32_t *next = malloc(k * sizeof *next);
+    int found = 0;
+    if (!S || !head || !tail || !next) {
+        found = -1;
+        goto out;
+    }
+    /* Positions are global; index the scratch by order in `members` via pred. */
+    for (size_t t = 0; t < m; t++) {
+        S[t].c = A->clear[members[t]];
+        S[t].pos = members[t];
+        A->pred[members[t]] = (uint32_t)t;   /* local index */
+        A->hpos[members[t]] = 0;             /* not yet added */
+        head[t] = tail[t] = UINT32_MAX;
+    }
+    for (size_t r = 0; r < k; r++) {
+        uint32_t l = A->pred[reps[r]];
+        head[l] = tail[l] = (uint32_t)r;
+        next[r] = UINT32_MAX;
+    }
+    qsort(S, m, sizeof *S, cmp_by_clear);
+    for (size_t t = 0; t < m && !found; t++) {
+        uint32_t u = S[t].pos;
+        A->hpos[u] = 1;
+        parent[u] = u;
+        for (size_t e = A->adj_start[u]; e < A->adj_start[u + 1] && !found; e++) {
+            uint32_t q = A->adj[e];
+            if (!A->hpos[q])
+                continue;
+            uint32_t ru = vbc_uf_find(parent, u), rq = vbc_uf_find(parent, (uint32_t)q);
+            if (ru == rq)
+                continue;
+            uint32_t lu = A->pred[ru], lq = A->pred[rq];
+            for (uint32_t x = head[lu]; x != UINT32_MAX && !found; x = next[x])
+                for (uint32_t y = head[lq]; y != UINT32_MAX && !found; y = next[y])
+                    if (through_pair(A, reps[x], reps[y])) {
+                        *a = reps[x < y ? x : y];
+                        *b = reps[x < y ? y : x];
+                        found = 1;
+                    }
+            vbc_uf_union(parent, ru, rq);
+            uint32_t root = vbc_uf_find(parent, ru), lr = A->pred[root], lo = root == ru ? lq : lu;
+            /* Concatenate the opening lists into the surviving root's. */
+            if (head[lo] != UINT32_MAX) {
+                if (head[lr] == UINT32_MAX) {
+                    head[lr] = head[lo];
+                } else {
+                    next[tail[lr]] = head[lo];
+                }
+                tail[lr] = tail[lo];
+                head[lo] = tail[lo] = UINT32_MAX;
+            }
+        }
+    }
+out:
+    free(S);
+    free(head);
+    free(tail);
+    free(next);
+    return found;
+}
+
+/* Atoms extreme along any of SUPPORT_DIRS directions (Fibonacci sphere):
+ * the width of the molecule along a direction is then measured over these
+ * few atoms instead of all. *out is malloc'ed. */
+#define SUPPORT_DIRS 64
+
+static int support_atoms(const vb_sphere_set *s, int32_t **out, size_t *count)
+{
+    int32_t *list = malloc(2 * SUPPORT_DIRS * sizeof *list);
+    if (!list)
+        return -1;
+    size_t n = 0;
+    for (int d = 0; d < SUPPORT_DIRS; d++) {
+        double z = 1.0 - (2.0 * d + 1.0) / SUPPORT_DIRS, r = sqrt(1.0 - z * z);
+        double u[3] = {r * cos(2.39996322972865332 * d), r * sin(2.39996322972865332 * d), z};
+        int32_t lo = 0, hi = 0;
+        double vlo = INFINITY, vhi = -INFINITY;
+        for (size_t i = 0; i < s->n; i++) {
+            double c = s->x[i] * u[0] + s->y[i] * u[1] + s->z[i] * u[2];
+            if (c - s->r[i] < vlo) {
+                vlo = c - s->r[i];
+                lo = (int32_t)i;
+            }
+            if (c + s->r[i] > vhi) {
+                vhi = c + s->r[i];
+                hi = (int32_t)i;
+            }
+        }
+        list[n++] = lo;
+        list[n++] = hi;
+    }
+    *out = list;
+    *count = n;
+    return 0;
+}
+
+/* Ends of the centreline of a component with mouths. Mouth voxels that touch
+ * each other form one opening, represented by its widest voxel. The line
+ * joins the widest pair of openings through the molecule (a pore: its two
+ * mouths; *through = 1); failing that the two openings farthest apart, or,
+ * with a single opening, the opening and the member farthest along the
+ * voxels (a dead-end tunnel). Returns 0, or -1 when out of memory. */
+int vbc_channel_ends(vbc_graph *A, uint32_t *parent, const uint32_t *members, size_t m, uint32_t *a,
+                        uint32_t *b, int *through)
+{
+    *through = 0;
+    for (size_t t = 0; t < m; t++) {
+        parent[members[t]] = members[t];
+        A->rep[members[t]] = UINT32_MAX;
+    }
+    for (size_t t = 0; t < m; t++) {
+        uint32_t u = members[t];
+        if (!A->mouth[u])
+            continue;
+        for (size_t e = A->adj_start[u]; e < A->adj_start[u + 1]; e++)
+            if (A->mouth[A->adj[e]])
+                vbc_uf_union(parent, u, A->adj[e]);
+    }
+    /* The widest voxel of each opening, kept at the opening's root. */
+    size_t k = 0;
+    for (size_t t = 0; t < m; t++) {
+        uint32_t u = members[t];
+        if (!A->mouth[u])
+            continue;
+        uint32_t r = vbc_uf_find(parent, u);
+        if (A->rep[r] == UINT32_MAX) {
+            k++;
+            A->rep[r] = u;
+        } else if (A->clear[u] > A->clear[A->rep[r]]) {
+            A->rep[r] = u;
+        }
+    }
+    if (k == 0) {
+        /* No mouth: callers send cavities elsewhere; span the component anyway. */
+        vbc_sweep(A, members, m, members[0], 0);
+        *a = members[0];
+        *b = vbc_farthest(A, members, m);
+        return 0;
+    }
+    uint32_t *reps = malloc(k * sizeof *reps);
+    if (!reps)
+        return -1;
+    k = 0;
+    for (size_t t = 0; t < m; t++) {
+        uint32_t u = members[t];
+        if (A->mouth[u] && parent[u] == u)
+            reps[k++] = A->rep[u];
+    }
+    if (k >= 2 && !A->support && support_atoms(A->s, &A->support, &A->nsupport) != 0) {
+        free(reps);
+        return -1;
+    }
+    int w = k >= 2 ? widest_through(A, parent, members, m, reps, k, a, b) : 0;
+    if (w < 0) {
+        free(reps);
+        return -1;
+    }
+    if (w == 1) {
+        *through = 1;
+        free(reps);
+        return 0;
+    }
+    /* No through pair: the farthest pair of openings (ties to the lowest). */
+    uint32_t ba = reps[0], bb = UINT32_MAX;
+    double best = -1.0;
+    for (size_t x = 0; x < k; x++) {
+        double px[3];
+        vbc_voxel_centre(A->g, A->v[reps[x]], px);
+        for (size_t y = x + 1; y < k; y++) {
+            double py[3];
+            vbc_voxel_centre(A->g, A->v[reps[y]], py);
+            double d = (px[0] - py[0]) * (px[0] - py[0]) + (px[1] - py[1]) * (px[1] - py[1]) +
+                       (px[2] - py[2]) * (px[2] - py[2]);
+            if (d > best) {
+                best = d;
+                ba = reps[x];
+                bb = reps[y];
+            }
+        }
+    }
+    free(reps);
+    if (bb == UINT32_MAX) {
+        vbc_sweep(A, members, m, ba, 0);
+        bb = vbc_farthest(A, members, m);
+    }
+    *a = ba;
+    *b = bb;
+    return 0;
+}

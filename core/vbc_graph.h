@@ -1,0 +1,52 @@
+/* Internal to the channel analysis (core/channel_*.c): the voxel graph of
+ * the channel voxels of one frame and the operations the component analysis
+ * runs on it. Positions are indices into the sorted voxel list. */
+#ifndef VBC_GRAPH_H
+#define VBC_GRAPH_H
+
+#include "vbc_channel.h"
+
+/* Everything the per-component work shares (one frame). */
+typedef struct vbc_graph {
+    const vbc_grid *g;
+    const uint32_t *v;  /* sorted voxel indices, mouth bit cleared */
+    const uint8_t *mouth;
+    double *dist;       /* Dijkstra distances (voxel units), per position */
+    uint32_t *pred;
+    uint32_t *heap;     /* binary heap of positions keyed by dist */
+    size_t heapn;
+    uint32_t *hpos;     /* position of each list entry in the heap, or UINT32_MAX */
+    const double *clear; /* clearance (Å) per position, for the weighted sweep */
+    uint32_t *rep;      /* per opening root: its widest mouth voxel */
+    size_t *adj_start;  /* CSR adjacency: neighbours of position u are */
+    uint32_t *adj;      /* adj[adj_start[u] .. adj_start[u+1]), 26-connected */
+    uint8_t *adj_len;   /* per entry: 1 face, 2 edge, 3 corner neighbour */
+    const vb_sphere_set *s;
+    int32_t *support;   /* atoms that bound the molecule's width in every direction */
+    size_t nsupport;
+} vbc_graph;
+
+/* Union-find over positions; the smaller root wins, so component ids do not
+ * depend on visiting order. */
+uint32_t vbc_uf_find(uint32_t *parent, uint32_t a);
+void vbc_uf_union(uint32_t *parent, uint32_t a, uint32_t b);
+
+/* Dijkstra over the 26-connected graph of one component (members[0..m)) from
+ * position src; fills dist/pred for the members. Unweighted steps cost their
+ * length (voxels), weighted ones length / r^2 with r the smaller clearance of
+ * the two voxels, so the cheapest path keeps to the widest way through. */
+void vbc_sweep(vbc_graph *A, const uint32_t *members, size_t m, uint32_t src, int weighted);
+
+/* The member farthest from the last sweep's source (ties to the lowest position). */
+uint32_t vbc_farthest(const vbc_graph *A, const uint32_t *members, size_t m);
+
+/* Centre of voxel index v in Å. */
+void vbc_voxel_centre(const vbc_grid *g, uint32_t v, double p[3]);
+
+/* Ends *a, *b of the centreline of a component with mouths (core/channel_ends.c);
+ * *through = 1 when they lie on opposite faces of the molecule. parent is
+ * scratch of one entry per position. Returns 0, or -1 when out of memory. */
+int vbc_channel_ends(vbc_graph *A, uint32_t *parent, const uint32_t *members, size_t m,
+                     uint32_t *a, uint32_t *b, int *through);
+
+#endif
