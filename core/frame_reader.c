@@ -224,9 +224,7 @@ static int gather_block(vb_ctx *ctx, vb_frame_reader *rd, long *first, int *seri
             rd->chunk_len = 0;
             rd->seen_model = in_block = 1;
             *first = rd->lineno;
-            int32_t v = 0;
-            vbi_parse_int(s + 5, n - 5, &v);
-            *serial = v;
+            *serial = vbi_pdb_model_serial(s, n);
         } else if (rd->seen_model && !in_block) {
             if (is_atom_line(s, n))
                 rd->dr.other_models++;

@@ -64,6 +64,16 @@ void vbi_element_from_bare_name(const char *name, char element[4])
     vbi_element_from_name(name4, element);
 }
 
+int32_t vbi_pdb_model_serial(const char *line, size_t n)
+{
+    const char *p = line + (n < 5 ? n : 5), *tok;
+    size_t k = vbi_token(&p, line + n, &tok);
+    int32_t serial = 0;
+    if (k > 0)
+        vbi_parse_int(tok, k, &serial);
+    return serial;
+}
+
 int vbi_zero_radius_policy(const vb_read_options *opt, vb_format fmt)
 {
     if (opt->zero_radius != VB_ZERO_RADIUS_AUTO)

@@ -89,11 +89,7 @@ int vbi_pdb_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
     size_t n;
     while (rc == VB_OK && vbi_lines_next(&it, &line, &n)) {
         if (vbi_pdb_record(line, n, "MODEL")) {
-            const char *s;
-            size_t k = column(line, n, 7, n, &s);
-            int32_t serial = 0;
-            vbi_parse_int(s, k, &serial);
-            vbi_models_begin(&m, serial, dr);
+            vbi_models_begin(&m, vbi_pdb_model_serial(line, n), dr);
             continue;
         }
         if (vbi_pdb_record(line, n, "ENDMDL")) {

@@ -73,6 +73,11 @@ int vbi_parse_int(const char *s, size_t len, int32_t *out);
  * ...): the name, then blanks up to column 6. */
 int vbi_pdb_record(const char *line, size_t n, const char *rec);
 
+/* The serial of a MODEL record: the first token after "MODEL" (the standard
+ * puts it in columns 11-14, but writers vary, and columns 73-80 may hold an
+ * identifier such as "1GRM 124"). 0 when there is none. */
+int32_t vbi_pdb_model_serial(const char *line, size_t n);
+
 /* Copies at most cap-1 non-blank-trimmed characters into dst (NUL-ended);
  * returns 1 if the text had to be truncated. */
 int vbi_copy_field(char *dst, size_t cap, const char *src, size_t len);

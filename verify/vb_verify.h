@@ -44,7 +44,7 @@ enum vb_cert_verdict {
 typedef struct vb_cert_result {
     int verdict;             /* enum vb_cert_verdict */
     uint32_t intruder;       /* VB_CERT_INTRUDER: a sphere strictly inside the tangent sphere */
-    double x, y, z, t;       /* exact solution nearest the candidate, rounded to nearest (MPFR) */
+    double x, y, z, t;       /* exact solution nearest the candidate, rounded correctly */
     double dist;             /* distance candidate -> exact point */
     const uint32_t *members; /* VB_CERT_OK: sorted ids of ALL spheres the vertex touches */
     size_t nmembers;         /*   (owned by the certifier; valid until the next call) */

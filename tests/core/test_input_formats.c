@@ -349,11 +349,12 @@ static void test_frames_inline(void)
 {
     vb_ctx *ctx = open_ctx(NULL);
     char path[64];
-    /* MODEL 4 lacks its ENDMDL: the next MODEL closes it. */
+    /* MODEL 4 lacks its ENDMDL: the next MODEL closes it. MODEL 9 carries an
+     * identifier in columns 73-80, as 1grm does. */
     strcpy(path, temp_file("REMARK x\n"
                            "MODEL        4\n"
                            "ATOM      1  N   ALA A   1       1.000   2.000   3.000  1.00 10.00           N\n"
-                           "MODEL        9\n"
+                           "MODEL        9                                                          1GRM 124\n"
                            "ATOM      1  N   ALA A   1       1.500   2.000   3.000  1.00 10.00           N\n"
                            "ATOM      2  C   ALA A   1       2.500   2.000   3.000  1.00 10.00           C\n"
                            "ENDMDL\n"));
