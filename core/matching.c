@@ -199,7 +199,8 @@ static void full_base_set(full_base *fb, const vb_sphere_set *s, const vbs_bis_s
     b->cy = s->y[m];
     b->cz = s->z[m];
     b->r = s->r[m];
-    b->clip = clip / s->r[m];
+    b->scale = vbs_frame_scale(s->r[m]);
+    b->clip = clip / b->scale;
     b->id = m;
     b->bis_start = 0;
     b->bis_count = (uint32_t)(st->off[m + 1] - st->off[m]);
@@ -287,6 +288,39 @@ static uint32_t tangent_intruder(const vbs_hash *h, const vbs_cand *k, const uin
     return worst;
 }
 
+/* As tangent_intruder when only emptiness matters: walks the grid cells
+ * around the tangent sphere and stops at the first sphere that cuts it by
+ * more than tol. Returns 1 when empty. */
+static int tangent_empty(const vbs_hash *h, const vbs_cand *k, const uint32_t q[4], double tol)
+{
+    const vb_sphere_set *s = h->set;
+    const double p[3] = {k->x, k->y, k->z};
+    double radius = k->t + h->rmax + tol;
+    if (radius < 0.0)
+        return 1;
+    int lo[3], hi[3];
+    for (int a = 0; a < 3; a++) {
+        double l = (p[a] - radius - h->lo[a]) / h->h, u = (p[a] + radius - h->lo[a]) / h->h;
+        lo[a] = l < 0.0 ? 0 : l >= (double)h->dim[a] ? h->dim[a] : (int)l;
+        hi[a] = u < 0.0 ? -1 : u >= (double)h->dim[a] ? h->dim[a] - 1 : (int)u;
+    }
+    for (int z = lo[2]; z <= hi[2]; z++)
+        for (int y = lo[1]; y <= hi[1]; y++)
+            for (int x = lo[0]; x <= hi[0]; x++) {
+                size_t c = ((size_t)z * (size_t)h->dim[1] + (size_t)y) * (size_t)h->dim[0] + (size_t)x;
+                for (uint32_t m = h->start[c]; m < h->start[c + 1]; m++) {
+                    uint32_t j = h->idx[m];
+                    if (j == q[0] || j == q[1] || j == q[2] || j == q[3] ||
+                        (s->contained && s->contained[j]))
+                        continue;
+                    double dx = s->x[j] - p[0], dy = s->y[j] - p[1], dz = s->z[j] - p[2];
+                    if (sqrt(dx * dx + dy * dy + dz * dz) - s->r[j] - k->t < -tol)
+                        return 0;
+                }
+            }
+    return 1;
+}
+
 /* Set of sorted quadruples already handled (open addressing). */
 typedef struct qset {
     uint32_t (*keys)[4];
@@ -352,95 +386,6 @@ static int cmp_qrec(const void *pa, const void *pb)
     return (a->c.seq > b->c.seq) - (a->c.seq < b->c.seq);
 }
 
-/* Both tangent spheres of a quadruple (Fig. 8: one quadruple, two vertices),
- * each kept if its tangent sphere is empty; the point p stands in when the
- * double solver cannot separate the roots (the certifier decides). When the
- * root nearest p is not empty, the spheres near a (near-)degenerate vertex
- * are not the ones sampled: each quadruple with one sphere swapped for the
- * intruder is tried too, `depth` swaps deep. */
-typedef struct emit_ctx {
-    const vb_sphere_set *set;
-    const vbs_hash *hash;
-    double guard;            /* rounding guard of the tangent test, relative */
-    uint32_t *qbuf;
-    size_t qcap;
-    qset seen;
-    vb_sampler_result *res;
-} emit_ctx;
-
-static int emit_roots(emit_ctx *e, const uint32_t q[4], const vbs_cand *proto, int own,
-                      int depth)
-{
-    const vb_sphere_set *s = e->set;
-    double sp[4][4], roots[2][4];
-    for (int k = 0; k < 4; k++) {
-        uint32_t j = q[k];
-        sp[k][0] = s->x[j];
-        sp[k][1] = s->y[j];
-        sp[k][2] = s->z[j];
-        sp[k][3] = s->r[j];
-    }
-    int n = vbs_tangent_roots(sp, roots);
-    if (n == 0 && own) {
-        /* Only a Newton point of this very quadruple may stand in. */
-        roots[0][0] = proto->x;
-        roots[0][1] = proto->y;
-        roots[0][2] = proto->z;
-        roots[0][3] = proto->t;
-        n = 1;
-    }
-    int nearest = 0;
-    if (n == 2) {
-        double d[2];
-        for (int k = 0; k < 2; k++) {
-            double dx = roots[k][0] - proto->x, dy = roots[k][1] - proto->y,
-                   dz = roots[k][2] - proto->z;
-            d[k] = dx * dx + dy * dy + dz * dz;
-        }
-        nearest = d[1] < d[0];
-    }
-    int rc = VB_OK;
-    for (int k = 0; k < n && rc == VB_OK; k++) {
-        vbs_cand c = *proto;
-        c.x = roots[k][0];
-        c.y = roots[k][1];
-        c.z = roots[k][2];
-        c.t = roots[k][3];
-        /* The roots come from a closed form in double: a guard of 1e-9 of
-         * the scale covers their rounding; the certifier decides the rest. */
-        double guard = e->guard * (1.0 + fabs(c.t));
-        uint32_t j = tangent_intruder(e->hash, &c, q, guard, &e->qbuf, &e->qcap, &rc);
-        if (rc != VB_OK)
-            break;
-        if (j == VBS_INF_COLOUR) {
-            if (vb_vertex_list_push(&e->res->candidates, q, 4, c.x, c.y, c.z, c.t, 0.0,
-                                    VB_VERTEX_CANDIDATE))
-                rc = VB_ENOMEM;
-            continue;
-        }
-        e->res->dropped++;
-        if (k != nearest || depth == 0)
-            continue;
-        for (int a = 0; a < 4 && rc == VB_OK; a++) {
-            uint32_t q2[4];
-            for (int b = 0; b < 4; b++)
-                q2[b] = b == a ? j : q[b];
-            qsort(q2, 4, sizeof *q2, cmp_u32);
-            int fresh = qset_add(&e->seen, q2);
-            if (fresh < 0)
-                rc = VB_ENOMEM;
-            else if (fresh) {
-                e->res->swaps++;
-                rc = emit_roots(e, q2, &c, 0, depth - 1);
-            }
-        }
-    }
-    return rc;
-}
-
-/* Spheres tried as the fourth of each triple by the neighbourhood completion. */
-#define VBS_RING 4
-
 /* A tiny parallel-for: item i goes to thread i mod nt; a thread that cannot
  * start has its share run by the caller. Items must be independent. */
 typedef void (*pfor_fn)(void *ctx, size_t i, int tid);
@@ -482,13 +427,163 @@ static void pfor(pfor_fn fn, void *ctx, size_t n, int nt)
     }
 }
 
+/* Both tangent spheres of a quadruple (Fig. 8: one quadruple, two vertices),
+ * each kept if its tangent sphere is empty; the point p stands in when the
+ * double solver cannot separate the roots (the certifier decides). When the
+ * root nearest p is not empty, the spheres near a (near-)degenerate vertex
+ * are not the ones sampled: each quadruple with one sphere swapped for the
+ * intruder is tried too, `depth` swaps deep. */
+typedef struct emit_ctx {
+    const vb_sphere_set *set;
+    const vbs_hash *hash;
+    double guard;            /* rounding guard of the tangent test, relative */
+    uint32_t *qbuf;
+    size_t qcap;
+    qset seen;
+    vb_sampler_result *res;
+} emit_ctx;
+
+/* The tangent spheres of quadruple q and what cuts them: intruder[k] is
+ * VBS_INF_COLOUR for an empty sphere, else the deepest intruder for the root
+ * nearest proto when want_intruder, else 0. Thread-safe with per-thread buf. */
+typedef struct root_eval {
+    int n, nearest;
+    double roots[2][4];
+    uint32_t intruder[2];
+} root_eval;
+
+static int eval_roots(const emit_ctx *e, const uint32_t q[4], const vbs_cand *proto, int own,
+                      int want_intruder, uint32_t **buf, size_t *cap, root_eval *ev)
+{
+    const vb_sphere_set *s = e->set;
+    double sp[4][4];
+    for (int k = 0; k < 4; k++) {
+        uint32_t j = q[k];
+        sp[k][0] = s->x[j];
+        sp[k][1] = s->y[j];
+        sp[k][2] = s->z[j];
+        sp[k][3] = s->r[j];
+    }
+    ev->n = vbs_tangent_roots(sp, ev->roots);
+    if (ev->n == 0 && own) {
+        /* Only a Newton point of this very quadruple may stand in. */
+        ev->roots[0][0] = proto->x;
+        ev->roots[0][1] = proto->y;
+        ev->roots[0][2] = proto->z;
+        ev->roots[0][3] = proto->t;
+        ev->n = 1;
+    }
+    ev->nearest = 0;
+    if (ev->n == 2) {
+        double d[2];
+        for (int k = 0; k < 2; k++) {
+            double dx = ev->roots[k][0] - proto->x, dy = ev->roots[k][1] - proto->y,
+                   dz = ev->roots[k][2] - proto->z;
+            d[k] = dx * dx + dy * dy + dz * dz;
+        }
+        ev->nearest = d[1] < d[0];
+    }
+    for (int k = 0; k < ev->n; k++) {
+        vbs_cand c = *proto;
+        c.x = ev->roots[k][0];
+        c.y = ev->roots[k][1];
+        c.z = ev->roots[k][2];
+        c.t = ev->roots[k][3];
+        /* The roots come from a closed form in double: a guard of 1e-9 of
+         * the scale covers their rounding; the certifier decides the rest. */
+        double guard = e->guard * (1.0 + fabs(c.t));
+        if (k == ev->nearest && want_intruder) {
+            int rc = VB_OK;
+            ev->intruder[k] = tangent_intruder(e->hash, &c, q, guard, buf, cap, &rc);
+            if (rc != VB_OK)
+                return rc;
+        } else {
+            ev->intruder[k] = tangent_empty(e->hash, &c, q, guard) ? VBS_INF_COLOUR : 0u;
+        }
+    }
+    return VB_OK;
+}
+
+static int emit_roots(emit_ctx *e, const uint32_t q[4], const vbs_cand *proto, int own,
+                      int depth);
+
+/* Keeps the empty tangent spheres of ev; when the one nearest proto is cut,
+ * tries the quadruples with its intruder swapped in, `depth` swaps deep. */
+static int consume_roots(emit_ctx *e, const uint32_t q[4], const vbs_cand *proto,
+                         const root_eval *ev, int depth)
+{
+    int rc = VB_OK;
+    for (int k = 0; k < ev->n && rc == VB_OK; k++) {
+        uint32_t j = ev->intruder[k];
+        if (j == VBS_INF_COLOUR) {
+            if (vb_vertex_list_push(&e->res->candidates, q, 4, ev->roots[k][0], ev->roots[k][1],
+                                    ev->roots[k][2], ev->roots[k][3], 0.0, VB_VERTEX_CANDIDATE))
+                rc = VB_ENOMEM;
+            continue;
+        }
+        e->res->dropped++;
+        if (k != ev->nearest || depth == 0)
+            continue;
+        vbs_cand c = *proto;
+        c.x = ev->roots[k][0];
+        c.y = ev->roots[k][1];
+        c.z = ev->roots[k][2];
+        c.t = ev->roots[k][3];
+        for (int a = 0; a < 4 && rc == VB_OK; a++) {
+            uint32_t q2[4];
+            for (int b = 0; b < 4; b++)
+                q2[b] = b == a ? j : q[b];
+            qsort(q2, 4, sizeof *q2, cmp_u32);
+            int fresh = qset_add(&e->seen, q2);
+            if (fresh < 0)
+                rc = VB_ENOMEM;
+            else if (fresh) {
+                e->res->swaps++;
+                rc = emit_roots(e, q2, &c, 0, depth - 1);
+            }
+        }
+    }
+    return rc;
+}
+
+static int emit_roots(emit_ctx *e, const uint32_t q[4], const vbs_cand *proto, int own,
+                      int depth)
+{
+    root_eval ev;
+    int rc = eval_roots(e, q, proto, own, depth > 0, &e->qbuf, &e->qcap, &ev);
+    return rc != VB_OK ? rc : consume_roots(e, q, proto, &ev, depth);
+}
+
+/* The sampled quadruples, evaluated in parallel (per-thread buffers). */
+typedef struct sampled_ctx {
+    const emit_ctx *e;
+    const qrec *qs;
+    const size_t *which;
+    root_eval *ev;
+    uint32_t *tbuf[VBS_MAX_THREADS];
+    size_t tcap[VBS_MAX_THREADS];
+    int err;
+} sampled_ctx;
+
+static void sampled_eval(void *arg, size_t i, int tid)
+{
+    sampled_ctx *c = arg;
+    const qrec *r = c->qs + c->which[i];
+    if (eval_roots(c->e, r->q, &r->c, 1, VBS_SWAP_DEPTH > 0, &c->tbuf[tid], &c->tcap[tid],
+                   &c->ev[i]))
+        c->err = VB_ENOMEM;
+}
+
+/* Spheres tried as the fourth of each triple by the neighbourhood completion. */
+#define VBS_RING 4
+
 /* Work of the neighbourhood completion. */
 typedef struct ring_item {
     uint32_t q[4];
     vbs_cand c;              /* the vertex it came from (point, t) */
     int n;                   /* roots */
     double roots[2][4];
-    uint32_t intruder[2];
+    int empty[2];            /* tangent sphere k is empty */
 } ring_item;
 
 typedef struct ring_ctx {
@@ -548,7 +643,7 @@ static void ring_nearest(void *arg, size_t i, int tid)
     r->nb[i] = nb;
 }
 
-/* Phase C: both tangent spheres of item i and their intruders. */
+/* Phase C: both tangent spheres of item i and whether each is empty. */
 static void ring_eval(void *arg, size_t i, int tid)
 {
     ring_ctx *r = arg;
@@ -569,12 +664,9 @@ static void ring_eval(void *arg, size_t i, int tid)
         c.y = it->roots[k][1];
         c.z = it->roots[k][2];
         c.t = it->roots[k][3];
-        int rc = VB_OK;
-        it->intruder[k] = tangent_intruder(r->e->hash, &c, it->q, r->e->guard * (1.0 + fabs(c.t)),
-                                           &r->tbuf[tid], &r->tcap[tid], &rc);
-        if (rc != VB_OK)
-            r->err = rc;
+        it->empty[k] = tangent_empty(r->e->hash, &c, it->q, r->e->guard * (1.0 + fabs(c.t)));
     }
+    (void)tid;
 }
 
 /* Neighbourhood completion: every vertex found so far tries, for each triple
@@ -660,7 +752,7 @@ static int complete_ring(emit_ctx *e, int nthreads)
             const ring_item *it = r.items + i;
             e->res->ring_tries++;
             for (int k = 0; k < it->n && rc == VB_OK; k++) {
-                if (it->intruder[k] != VBS_INF_COLOUR) {
+                if (!it->empty[k]) {
                     e->res->dropped++;
                     continue;
                 }
@@ -784,11 +876,30 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
     for (size_t k = 0; rc == VB_OK && k < nq; k++)
         if (qset_add(&ec.seen, qs[k].q) < 0)
             rc = VB_ENOMEM;
-    for (size_t k = 0; rc == VB_OK && k < nq; k++) {
-        if (k > 0 && memcmp(qs[k].q, qs[k - 1].q, sizeof qs[k].q) == 0)
-            continue;
-        rc = emit_roots(&ec, qs[k].q, &qs[k].c, 1, VBS_SWAP_DEPTH);
+    /* Distinct quadruples (the first, deterministic, candidate of each). */
+    size_t *which = malloc((nq + 1) * sizeof *which), nw = 0;
+    root_eval *evs = malloc((nq + 1) * sizeof *evs);
+    if (rc == VB_OK && (!which || !evs))
+        rc = VB_ENOMEM;
+    for (size_t k = 0; rc == VB_OK && k < nq; k++)
+        if (k == 0 || memcmp(qs[k].q, qs[k - 1].q, sizeof qs[k].q) != 0)
+            which[nw++] = k;
+    if (rc == VB_OK) {
+        sampled_ctx sc;
+        memset(&sc, 0, sizeof sc);
+        sc.e = &ec;
+        sc.qs = qs;
+        sc.which = which;
+        sc.ev = evs;
+        pfor(sampled_eval, &sc, nw, vbs_threads());
+        for (int t = 0; t < VBS_MAX_THREADS; t++)
+            free(sc.tbuf[t]);
+        rc = sc.err;
     }
+    for (size_t k = 0; rc == VB_OK && k < nw; k++)
+        rc = consume_roots(&ec, qs[which[k]].q, &qs[which[k]].c, &evs[k], VBS_SWAP_DEPTH);
+    free(which);
+    free(evs);
     res->from_sampling = res->candidates.n;
     if (rc == VB_OK)
         rc = complete_ring(&ec, vbs_threads());

@@ -185,7 +185,8 @@ static int batch_add(batch_buf *bb, const vb_sphere_set *s, uint32_t i, double c
     b->cy = s->y[i];
     b->cz = s->z[i];
     b->r = s->r[i];
-    b->clip = clip / s->r[i];
+    b->scale = vbs_frame_scale(s->r[i]);
+    b->clip = clip / b->scale;
     b->id = i;
     b->bis_start = (uint32_t)bb->nbis;
     b->bis_count = (uint32_t)bd->nbis;

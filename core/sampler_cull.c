@@ -155,8 +155,8 @@ static int make_bisectors(const vb_sphere_set *s, uint32_t i, vbs_base_data *bd)
         if (j == i)
             continue;
         vbs_bisector *b = &bd->bis[bd->nbis];
-        if (vbs_bisector_make(s->x[i], s->y[i], s->z[i], s->r[i], s->x[j], s->y[j], s->z[j],
-                              s->r[j], j, b)) {
+        if (vbs_bisector_make(s->x[i], s->y[i], s->z[i], s->r[i], vbs_frame_scale(s->r[i]),
+                              s->x[j], s->y[j], s->z[j], s->r[j], j, b)) {
             bd->norm[bd->nbis] = sqrt(b->ex * b->ex + b->ey * b->ey + b->ez * b->ez);
             bd->nbis++;
         }
@@ -352,7 +352,7 @@ int vbs_cull_base(vb_ctx *ctx, const vbs_culler *cu, uint32_t i, vbs_base_data *
     if (s->contained && s->contained[i]) /* empty cell: nothing matters */
         return coarse_uniform(bd, cu, 0) ? vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory") : VB_OK;
     const double c[3] = {s->x[i], s->y[i], s->z[i]};
-    double ri = s->r[i], clip = cu->clip / ri, rmax = cu->hash->rmax;
+    double ri = s->r[i], sc = vbs_frame_scale(ri), clip = cu->clip / sc, rmax = cu->hash->rmax;
     int rc;
     if (cu->all_pairs) {
         rc = vbs_hash_query(cu->hash, c, DBL_MAX / 4, &bd->near, &bd->nnear, &bd->near_cap);
@@ -380,7 +380,7 @@ int vbs_cull_base(vb_ctx *ctx, const vbs_culler *cu, uint32_t i, vbs_base_data *
         rc = cull_hierarchy(cu, bd, clip, &tmax);
     if (rc != VB_OK)
         return vb_error(ctx, rc, NULL, 0, "out of memory (culling)");
-    double r1 = (ri * 2.0 * tmax + rmax - ri) * (1.0 + REL_MARGIN);
+    double r1 = (sc * 2.0 * tmax + rmax - ri) * (1.0 + REL_MARGIN);
     if (r1 > r0) {
         bd->nnear = 0;
         rc = vbs_hash_query(cu->hash, c, r1, &bd->near, &bd->nnear, &bd->near_cap);

@@ -4,7 +4,8 @@
  * gpu/vertices_newton.cl. Names carry the prefix vbs_ (sampler shared).
  *
  * Frame (Sec. 3.1): every base sphere i is translated to the origin and scaled
- * to radius 1. A neighbour j becomes e = (c_j - c_i)/R_i, delta = R_j/R_i - 1.
+ * to radius 1 (a point site, R_i = 0, keeps scale 1: vbs_frame_scale). A
+ * neighbour j becomes e = (c_j - c_i)/s, delta = (R_j - R_i)/s.
  * Rays leave the centre (Sec. 3.3) in direction d; the point at distance s is
  * s*d. Equidistance |s d - e| - R_j' = s - 1 squares to
  *     s^2 - 2 s d.e + |e|^2 = s^2 + 2 s delta + delta^2,
@@ -69,12 +70,13 @@ VBS_ASSERT_LAYOUT(sizeof(vbs_bisector) == 48, "vbs_bisector layout shared with O
  * tile_off[tile_start + k + 1]). */
 typedef struct vbs_base {
     double cx, cy, cz, r;
+    double scale;         /* frame scale s: R_i, or 1 for a point site */
     double clip;          /* clip distance in the normalised frame */
     vbs_u32 id;           /* sphere index */
     vbs_u32 bis_start, bis_count;
     vbs_u32 tile_start;
 } vbs_base;
-VBS_ASSERT_LAYOUT(sizeof(vbs_base) == 56, "vbs_base layout shared with OpenCL");
+VBS_ASSERT_LAYOUT(sizeof(vbs_base) == 64, "vbs_base layout shared with OpenCL");
 
 /* Parameters of one run. tol is in world units (the paper's epsilon). */
 typedef struct vbs_params {
@@ -154,17 +156,24 @@ VBS_FN vbs_u32 vbs_tile_of(double u, vbs_u32 T)
 
 /* ---- Sec. 3.2: bisectors in the normalised frame ------------------------ */
 
-/* Fills the bisector of base (ci, Ri) and sphere id j (cj, Rj). Returns 0 when
- * the spheres are nested (|e| <= |delta|): then one cell never reaches the
- * other sphere, and the pair has no bisector to store. */
-VBS_FN int vbs_bisector_make(double cix, double ciy, double ciz, double ri, double cjx,
-                             double cjy, double cjz, double rj, vbs_u32 j,
+/* Scale of a base's normalised frame: its radius, or 1 for a point site. */
+VBS_FN double vbs_frame_scale(double r)
+{
+    return r > 0.0 ? r : 1.0;
+}
+
+/* Fills the bisector of base (ci, Ri) and sphere id j (cj, Rj) in the frame
+ * of scale sc (vbs_frame_scale(Ri)). Returns 0 when the spheres are nested
+ * (|e| <= |delta|): then one cell never reaches the other sphere, and the
+ * pair has no bisector to store. */
+VBS_FN int vbs_bisector_make(double cix, double ciy, double ciz, double ri, double sc,
+                             double cjx, double cjy, double cjz, double rj, vbs_u32 j,
                              vbs_bisector *b)
 {
-    b->ex = (cjx - cix) / ri;
-    b->ey = (cjy - ciy) / ri;
-    b->ez = (cjz - ciz) / ri;
-    b->delta = rj / ri - 1.0;
+    b->ex = (cjx - cix) / sc;
+    b->ey = (cjy - ciy) / sc;
+    b->ez = (cjz - ciz) / sc;
+    b->delta = (rj - ri) / sc;
     b->num = (b->ex * b->ex + b->ey * b->ey + b->ez * b->ez) - b->delta * b->delta;
     b->id = j;
     b->pad = 0u;
@@ -391,10 +400,10 @@ VBS_FN void vbs_emit_point(const VBS_GLOBAL vbs_base *base, vbs_u32 a, vbs_u32 b
     }
     vbs_cand *o = em->out + em->n;
     double np = VBS_SQRT(P[0] * P[0] + P[1] * P[1] + P[2] * P[2]);
-    o->x = base->cx + base->r * P[0];
-    o->y = base->cy + base->r * P[1];
-    o->z = base->cz + base->r * P[2];
-    o->t = base->r * (np - 1.0);
+    o->x = base->cx + base->scale * P[0];
+    o->y = base->cy + base->scale * P[1];
+    o->z = base->cz + base->scale * P[2];
+    o->t = base->scale * np - base->r;
     o->ids[0] = base->id;
     o->ids[1] = a;
     o->ids[2] = b;
@@ -451,7 +460,7 @@ VBS_FN void vbs_process_cell(const VBS_GLOBAL vbs_base *base,
     vbs_quad stack[VBS_STACK];
     vbs_u32 top = 0u;
     stack[top++] = *root;
-    double eq_tol = p->tol / base->r;
+    double eq_tol = p->tol / base->scale;
     while (top > 0u) {
         vbs_quad q = stack[--top];
         /* Distinct finite colours and the corners that carry each. */

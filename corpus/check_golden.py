@@ -3,11 +3,14 @@
 brute force over all quadruples in 300-digit decimal arithmetic (no code shared
 with vorball) and compares ids and doubles with golden/CASE.tsv.
 
-    python3 corpus/check_golden.py corpus/inputs/CASE.xyzr corpus/golden/CASE.tsv
+    python3 corpus/check_golden.py [--fast] corpus/inputs/CASE.xyzr corpus/golden/CASE.tsv
 
-Cost grows as n^4 with slow arithmetic: meant for the constructed cases (up to
-a few dozen spheres; the 70-atom crambin fragment takes minutes). Not run by
-ctest. Exit status 0 when the golden agrees exactly.
+Cost grows as n^4 with slow arithmetic: seconds to a minute for the
+constructed cases. --fast first solves each quadruple in doubles and skips it
+when a sphere is closer than t by more than 1e-6 of the input's scale: a
+heuristic, not a proof (a few minutes for the 70-atom crambin fragment, and
+wrong on jittered_lattice, whose quadruples doubles cannot solve).
+Not run by ctest. Exit status 0 when the golden agrees exactly.
 
 Method: for a quadruple a, b, c, d the tangency conditions |p - c_i| = r_i + t,
 squared and subtracted from the one of sphere a, are three linear equations in
@@ -40,9 +43,9 @@ def det3(a, b, c):
             + a[2] * (b[0] * c[1] - b[1] * c[0]))
 
 
-def tangent_spheres(quad, S):
-    """Points (x, y, z, t) tangent to the four spheres; None when the
-    quadruple does not determine a finite set."""
+def tangent_spheres(quad, S, zero=ZERO):
+    """Points (x, y, z, t) tangent to the four spheres (Decimal or float S);
+    None when the quadruple does not determine a finite set."""
     x0, y0, z0, r0 = S[quad[0]]
     w0 = x0 * x0 + y0 * y0 + z0 * z0 - r0 * r0
     rows, rhs = [], []
@@ -56,7 +59,7 @@ def tangent_spheres(quad, S):
 
     v = [(1 if k % 2 == 0 else -1) * det3(*minor(k)) for k in range(4)]
     k = max(range(4), key=lambda i: abs(v[i]))
-    if abs(v[k]) <= ZERO:
+    if abs(v[k]) <= zero:
         return None
     m = minor(k)
     D = det3(*m)
@@ -66,27 +69,47 @@ def tangent_spheres(quad, S):
         for i in range(3):
             mm[i][j] = rhs[i]
         sol.append(det3(*mm) / D)
-    u = sol[:k] + [Decimal(0)] + sol[k:]
+    u = sol[:k] + [0 * D] + sol[k:]
     q = [u[0] - x0, u[1] - y0, u[2] - z0]
     s0 = r0 + u[3]
     A = v[0] ** 2 + v[1] ** 2 + v[2] ** 2 - v[3] ** 2
     B = 2 * (q[0] * v[0] + q[1] * v[1] + q[2] * v[2] - s0 * v[3])
     C = q[0] ** 2 + q[1] ** 2 + q[2] ** 2 - s0 * s0
-    if abs(A) <= ZERO:
-        mus = [-C / B] if abs(B) > ZERO else []
+    if abs(A) <= zero:
+        mus = [-C / B] if abs(B) > zero else []
     else:
         disc = B * B - 4 * A * C
         if disc < 0:
             return []
-        sq = disc.sqrt()
+        sq = disc ** 0.5 if isinstance(disc, float) else disc.sqrt()
         mus = [(-B - sq) / (2 * A), (-B + sq) / (2 * A)]
     points = [[u[i] + mu * v[i] for i in range(4)] for mu in mus]
     return [p for p in points if all(S[i][3] + p[3] >= 0 for i in quad)]
 
 
-def vertices(S):
+def far_from_empty(quad, F, margin):
+    """--fast: True when every double root of the quadruple has a sphere
+    closer than t by more than margin (or there is clearly no root)."""
+    try:
+        roots = tangent_spheres(quad, F, 1e-9 * margin)
+    except ZeroDivisionError:
+        return False
+    if roots is None:
+        return False
+    for p in roots:
+        if all(((p[0] - x) ** 2 + (p[1] - y) ** 2 + (p[2] - z) ** 2) ** 0.5 - r - p[3] > -margin
+               for x, y, z, r in F):
+            return False
+    return True
+
+
+def vertices(S, fast):
+    F = [tuple(float(c) for c in s) for s in S]
+    scale = 1 + max(abs(c) for s in F for c in s)
     found = {}
     for quad in itertools.combinations(range(len(S)), 4):
+        if fast and far_from_empty(quad, F, 1e-6 * scale):
+            continue
         for p in tangent_spheres(quad, S) or []:
             gaps = [((p[0] - x) ** 2 + (p[1] - y) ** 2 + (p[2] - z) ** 2).sqrt() - r - p[3]
                     for x, y, z, r in S]
@@ -110,16 +133,19 @@ def read_golden(path):
 
 
 def main():
-    if len(sys.argv) != 3:
+    args = sys.argv[1:]
+    fast = args[:1] == ["--fast"]
+    args = args[1:] if fast else args
+    if len(args) != 2:
         sys.exit(__doc__)
-    mine = vertices(read_xyzr(sys.argv[1]))
-    golden = read_golden(sys.argv[2])
+    mine = vertices(read_xyzr(args[0]), fast)
+    golden = read_golden(args[1])
     # float() of a 300-digit value is the nearest double: compare bit for bit
     # (0.0 == -0.0 here; the golden's sign of zero is not checked).
     if mine == golden:
-        print("%s: %d vertices, identical" % (sys.argv[2], len(mine)))
+        print("%s: %d vertices, identical" % (args[1], len(mine)))
         return 0
-    print("%s: golden %d vertices, brute force %d" % (sys.argv[2], len(golden), len(mine)))
+    print("%s: golden %d vertices, brute force %d" % (args[1], len(golden), len(mine)))
     for v in sorted(set(golden) - set(mine))[:10]:
         print("  only in golden:", v)
     for v in sorted(set(mine) - set(golden))[:10]:

@@ -291,11 +291,15 @@ static void ld_mul(long double al, long double ah, long double bl, long double b
 }
 #endif
 
-void vbx_round_prepare(vbx_round_common *rc, const mpz_t D, const mpz_t den)
+void vbx_round_prepare(vbx_round_common *rc, const mpz_t D, const mpz_t den, mpz_ptr t1,
+                       mpz_ptr t2)
 {
     rc->ok = 0;
     rc->root = 0;
     rc->dl = rc->dh = rc->sl = rc->sh = 0.0L;
+    rc->D = D;
+    rc->t1 = t1;
+    rc->t2 = t2;
 #if VBX_FAST_ROUND
     if (!ld_enclose_z(den, &rc->dl, &rc->dh) || rc->dl == 0.0L)
         return;
@@ -309,33 +313,15 @@ void vbx_round_prepare(vbx_round_common *rc, const mpz_t D, const mpz_t den)
         rc->root = 1;
     }
     rc->ok = 1;
-#else
-    (void)D;
-    (void)den;
 #endif
 }
 
-int vbx_round_with(const vbx_round_common *rc, const mpz_t num, const mpz_t b, double *out,
-                   double *lo, double *hi)
-{
 #if VBX_FAST_ROUND
-    long double vl, vh;
-    if (!rc->ok || !ld_enclose_z(num, &vl, &vh))
-        return 0;
-    if (vl == 0.0L && (!rc->root || mpz_sgn(b) == 0)) {
-        /* Exactly 0, which MPFR gives as +0; the enclosure below would
-         * straddle 0 and cannot tell +0 from -0. */
-        *out = *lo = *hi = 0.0;
-        return 1;
-    }
-    if (rc->root && mpz_sgn(b) != 0) {
-        long double nl = vl, nh = vh, bl, bh, pl, ph;
-        if (!ld_enclose_z(b, &bl, &bh))
-            return 0;
-        ld_mul(bl, bh, rc->sl, rc->sh, 0, &pl, &ph);
-        vl = ld_down(nl + pl);
-        vh = ld_up(nh + ph);
-    }
+/* The end of vbx_round_with: divides the enclosure [vl, vh] of the
+ * numerator by den and rounds; 1 when decided. */
+static int ld_finish(const vbx_round_common *rc, long double vl, long double vh, double *out,
+                     double *lo, double *hi)
+{
     /* den is a non-zero integer: its enclosure excludes 0. */
     ld_mul(vl, vh, rc->dl, rc->dh, 1, &vl, &vh);
     /* Rounding to nearest double is monotone, so when both ends round to
@@ -350,6 +336,44 @@ int vbx_round_with(const vbx_round_common *rc, const mpz_t num, const mpz_t b, d
     *lo = (long double)rl > vl ? nextafter(rl, -INFINITY) : rl;
     *hi = (long double)rh < vh ? nextafter(rh, INFINITY) : rh;
     return 1;
+}
+#endif
+
+int vbx_round_with(const vbx_round_common *rc, const mpz_t num, const mpz_t b, double *out,
+                   double *lo, double *hi)
+{
+#if VBX_FAST_ROUND
+    long double nl, nh, bl, bh, pl, ph;
+    if (!rc->ok || !ld_enclose_z(num, &nl, &nh))
+        return 0;
+    int sn = mpz_sgn(num), sb = rc->root ? mpz_sgn(b) : 0;
+    /* An exact 0 is left to MPFR, whose sign of zero (from the directed
+     * roundings of its enclosure) is the one the output has always had. */
+    if (sn == 0 && sb == 0)
+        return 0;
+    if (sb == 0)
+        return ld_finish(rc, nl, nh, out, lo, hi);
+    if (!ld_enclose_z(b, &bl, &bh))
+        return 0;
+    ld_mul(bl, bh, rc->sl, rc->sh, 0, &pl, &ph);
+    if (ld_finish(rc, ld_down(nl + pl), ld_up(nh + ph), out, lo, hi))
+        return 1;
+    if (sn == 0 || sn == sb)
+        return 0;
+    /* Opposite signs cancel in num + b sqrt(D), widening the enclosure by
+     * the ratio of the parts to the sum. Rationalise: num + b sqrt(D) =
+     * (num^2 - b^2 D) / (num - b sqrt(D)), an exact integer over a sum of
+     * two terms of one sign. */
+    mpz_mul(rc->t1, num, num);
+    mpz_mul(rc->t2, b, b);
+    mpz_mul(rc->t2, rc->t2, rc->D);
+    mpz_sub(rc->t1, rc->t1, rc->t2);
+    long double ml = ld_down(nl - ph), mh = ld_up(nh - pl), vl, vh;
+    /* t1 = 0: exactly 0 (D a square), MPFR's zero as above. */
+    if (mpz_sgn(rc->t1) == 0 || !(ml > 0.0L || mh < 0.0L) || !ld_enclose_z(rc->t1, &vl, &vh))
+        return 0;
+    ld_mul(vl, vh, ml, mh, 1, &vl, &vh);
+    return ld_finish(rc, vl, vh, out, lo, hi);
 #else
     (void)rc;
     (void)num;
@@ -365,8 +389,12 @@ int vbx_round_fast(const mpz_t num, const mpz_t b, const mpz_t D, const mpz_t de
                    double *lo, double *hi)
 {
     vbx_round_common rc;
-    vbx_round_prepare(&rc, D, den);
-    return vbx_round_with(&rc, num, b, out, lo, hi);
+    mpz_t t1, t2;
+    mpz_inits(t1, t2, (mpz_ptr)0);
+    vbx_round_prepare(&rc, D, den, t1, t2);
+    int ok = vbx_round_with(&rc, num, b, out, lo, hi);
+    mpz_clears(t1, t2, (mpz_ptr)0);
+    return ok;
 }
 
 int vbx_round(const mpz_t num, const mpz_t b, const mpz_t D, const mpz_t den, double *out,

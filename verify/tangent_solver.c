@@ -416,11 +416,11 @@ int vbx_sigma_in(vbx_solver *canon, vbx_solver *ours, const vbx_root *r)
 int vbx_root_coords(vbx_solver *s, const vbx_root *r, double out[4], vbx_ia box[4])
 {
     const vbx_data *d = s->d;
-    /* t[0], t[1] are free scratch between the solver's calls. */
+    /* t[0..3] are free scratch between the solver's calls. */
     mpz_t *num = &s->t[0], *den = &s->t[1];
     mpz_mul(*den, r->den, d->scale);
     vbx_round_common common;
-    vbx_round_prepare(&common, s->delta, *den);
+    vbx_round_prepare(&common, s->delta, *den, s->t[2], s->t[3]);
     int rc = VB_OK;
     for (int k = 0; k < 4 && rc == VB_OK; k++) {
         /* x = X_base + q_x; t = s - R_base. */

@@ -51,19 +51,25 @@ int vbx_round_mpfr(const mpz_t num, const mpz_t b, const mpz_t D, const mpz_t de
 /* The fast path of vbx_round, without MPFR: a 64-bit (x87 extended) interval
  * evaluation of the exact value. Returns 1 with the same *out as
  * vbx_round_mpfr when the whole enclosure rounds to one double (and a
- * 53-bit enclosure in *lo, *hi), 0 when it cannot tell (a near tie, heavy
- * cancellation, overflow, or a platform without a 64-bit long double). */
+ * 53-bit enclosure in *lo, *hi), 0 when it cannot tell (a near tie,
+ * overflow, or a platform without a 64-bit long double). Cancellation
+ * between num and b*sqrt(D) is removed exactly (see vbx_round_with). */
 int vbx_round_fast(const mpz_t num, const mpz_t b, const mpz_t D, const mpz_t den, double *out,
                    double *lo, double *hi);
 
 /* The part of vbx_round_fast shared by every coordinate of one root:
- * enclosures of den and sqrt(D). */
+ * enclosures of den and sqrt(D), D itself and two scratch integers. */
 typedef struct vbx_round_common {
     int ok, root;              /* ok: usable; root: D != 0 */
     long double dl, dh, sl, sh;
+    mpz_srcptr D;
+    mpz_ptr t1, t2;
 } vbx_round_common;
 
-void vbx_round_prepare(vbx_round_common *rc, const mpz_t D, const mpz_t den);
+/* Prepares rc for values over den in Q(sqrt(D)); D, t1 and t2 must outlive
+ * rc's use (t1, t2: scratch, clobbered by vbx_round_with). */
+void vbx_round_prepare(vbx_round_common *rc, const mpz_t D, const mpz_t den, mpz_ptr t1,
+                       mpz_ptr t2);
 
 /* vbx_round_fast for (num + b*sqrt(D)) / den with D and den prepared in rc. */
 int vbx_round_with(const vbx_round_common *rc, const mpz_t num, const mpz_t b, double *out,

@@ -42,7 +42,7 @@ static void test_ray_hit(void)
     for (int k = 0; k < 2000; k++) {
         vbs_bisector b;
         double cj[3] = {6 * rnd() - 3, 6 * rnd() - 3, 6 * rnd() - 3}, rj = 0.3 + 2 * rnd();
-        if (!vbs_bisector_make(0, 0, 0, 1.0, cj[0], cj[1], cj[2], rj, 7, &b))
+        if (!vbs_bisector_make(0, 0, 0, 1.0, 1.0, cj[0], cj[1], cj[2], rj, 7, &b))
             continue;
         double d[3];
         vbs_face_dir((vbs_u32)(k % 6), 2 * rnd() - 1, 2 * rnd() - 1, d);
@@ -68,8 +68,8 @@ static void test_ray_hit(void)
 static void test_envelope_tie(void)
 {
     vbs_bisector b[2];
-    CHECK(vbs_bisector_make(0, 0, 0, 1, 4, 0, 0, 1, 9, &b[0]));
-    CHECK(vbs_bisector_make(0, 0, 0, 1, 0, 4, 0, 1, 3, &b[1]));
+    CHECK(vbs_bisector_make(0, 0, 0, 1, 1, 4, 0, 0, 1, 9, &b[0]));
+    CHECK(vbs_bisector_make(0, 0, 0, 1, 1, 0, 4, 0, 1, 3, &b[1]));
     vbs_u32 list[2] = {0, 1};
     double d[3] = {sqrt(0.5), sqrt(0.5), 0.0}, s;
     CHECK_INT(vbs_envelope(b, list, 2, 1e9, d, &s), 3);
@@ -101,7 +101,7 @@ static void test_tangent_and_newton(void)
         vbs_bisector tri[3];
         int ok = 1;
         for (int a = 0; a < 3; a++)
-            ok &= vbs_bisector_make(s[0][0], s[0][1], s[0][2], s[0][3], s[a + 1][0], s[a + 1][1],
+            ok &= vbs_bisector_make(s[0][0], s[0][1], s[0][2], s[0][3], s[0][3], s[a + 1][0], s[a + 1][1],
                                     s[a + 1][2], s[a + 1][3], (vbs_u32)a, &tri[a]);
         if (!ok)
             continue;
@@ -126,9 +126,9 @@ static void test_tangent_and_newton(void)
 static void test_singular(void)
 {
     vbs_bisector tri[3];
-    CHECK(vbs_bisector_make(0, 0, 0, 1, 3, 0, 0, 1, 1, &tri[0]));
-    CHECK(vbs_bisector_make(0, 0, 0, 1, 0, 3, 0, 1, 2, &tri[1]));
-    CHECK(vbs_bisector_make(0, 0, 0, 1, 3, 3, 0, 1, 3, &tri[2]));
+    CHECK(vbs_bisector_make(0, 0, 0, 1, 1, 3, 0, 0, 1, 1, &tri[0]));
+    CHECK(vbs_bisector_make(0, 0, 0, 1, 1, 0, 3, 0, 1, 2, &tri[1]));
+    CHECK(vbs_bisector_make(0, 0, 0, 1, 1, 3, 3, 0, 1, 3, &tri[2]));
     double P[3] = {1.5, 1.5, 0.2};
     CHECK_INT(vbs_newton(&tri[0], &tri[1], &tri[2], 1e-12, 40, P), VBS_NEWTON_SINGULAR);
 }

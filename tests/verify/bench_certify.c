@@ -121,6 +121,17 @@ int main(int argc, char **argv)
         }
         vb_vertex_list_free(&rej);
     }
+    /* Candidates whose coordinates needed MPFR at least once. */
+    size_t slow_cand = 0;
+    for (size_t k = 0; rc == VB_OK && k < cand.n; k++) {
+        uint64_t before = vb_certifier_slow_rounds(c);
+        double p[3] = {cand.x[k], cand.y[k], cand.z[k]};
+        vb_cert_result res;
+        rc = vb_certify_candidate(ctx, c, cand.ids + cand.start[k],
+                                  cand.start[k + 1] - cand.start[k], p, 0.0, &res);
+        slow_cand += vb_certifier_slow_rounds(c) > before;
+    }
+    printf("%s candidates needing MPFR: %zu of %zu\n", argv[1], slow_cand, cand.n);
     vb_vertex_list_free(&first);
     vb_vertex_list_free(&cand);
     vb_certifier_close(c);

@@ -188,11 +188,15 @@ static void test_near_ties(void)
         CHECK(same_bits(round_scaled(tie_down, "0", "0", two200, k3, &fast, &slow), 1.0));
         CHECK_INT(fast, 0);
         CHECK_INT((int)slow, 5);
-        /* Exactly 0 is +0 (an enclosure straddling 0 could give -0). */
+        /* Exactly 0 goes to MPFR (its sign of zero is the output's). */
         CHECK(same_bits(round_scaled("0", "0", "5", two53, k3, &fast, &slow), 0.0));
-        CHECK_INT(fast, 1);
+        CHECK_INT(fast, 0);
         CHECK(same_bits(round_scaled("0", "5", "0", two53, k3, &fast, &slow), 0.0));
-        CHECK_INT(fast, 1);
+        CHECK_INT(fast, 0);
+        /* -6 + 2 sqrt(9) = 0 exactly: MPFR's enclosure ends are -0 and +0. */
+        CHECK(same_bits(round_scaled("-6", "2", "9", two53, k3, &fast, &slow), -0.0));
+        CHECK_INT(fast, 0);
+        CHECK_INT((int)slow, 8);
         /* Tiny values of both signs next to 0 keep their sign. */
         CHECK(same_bits(round_scaled("0", "-1", "2", two200, k3, &fast, &slow), tiny));
         CHECK(same_bits(round_scaled("-1", "0", "0", two200, k3, &fast, &slow), -0x1p-200));
@@ -201,12 +205,43 @@ static void test_near_ties(void)
                                      &fast, &slow),
                         up));
         CHECK_INT(fast, 1);
-        CHECK_INT((int)slow, 5);
+        CHECK_INT((int)slow, 8);
+    }
+}
+
+/* Heavy cancellation: 10^40 - sqrt(10^80 - 10^41) = 5.000...000125 (the
+ * parts agree to 40 digits). The fast path must still decide, through the
+ * rationalised form, and agree with MPFR. */
+static void test_cancellation(void)
+{
+    const char *e40 = "10000000000000000000000000000000000000000";
+    const char *D = "9999999999999999999999999999999999999990"
+                    "0000000000000000000000000000000000000000";
+    for (int sign = -1; sign <= 1; sign += 2) {
+        mpz_t num, b, zD, den;
+        mpz_inits(num, b, zD, den, (mpz_ptr)0);
+        mpz_set_str(num, e40, 10);
+        mpz_set_si(b, -1);
+        mpz_set_str(zD, D, 10);
+        mpz_set_si(den, sign);
+        double f = 0.0, m = 1.0, lo, hi, mlo, mhi;
+        CHECK_INT(vbx_round_fast(num, b, zD, den, &f, &lo, &hi), 1);
+        CHECK_INT(vbx_round_mpfr(num, b, zD, den, &m, &mlo, &mhi), VB_OK);
+        CHECK(same_bits(f, m));
+        CHECK(same_bits(f, sign * 5.0)); /* 5 + 1.25e-40 rounds to 5 */
+        /* The same value with num and b negated over -den. */
+        mpz_neg(num, num);
+        mpz_neg(b, b);
+        mpz_neg(den, den);
+        CHECK_INT(vbx_round_fast(num, b, zD, den, &f, &lo, &hi), 1);
+        CHECK(same_bits(f, m));
+        mpz_clears(num, b, zD, den, (mpz_ptr)0);
     }
 }
 
 int main(void)
 {
+    test_cancellation();
     test_random_elements();
     test_random_vertices();
     test_near_ties();
