@@ -235,11 +235,11 @@ static int targeted(const full_base *fb, const vbs_bisector *bis, const vbs_para
         }
         vbs_cand buf[VBS_MAX_CAND];
         vbs_emit em = {buf, VBS_MAX_CAND, 0u, 0u, 0xffffffffu};
+        /* seq is set when the searches' results are merged in order. */
         vbs_process_cell(&fb->base, bis, fb->off, fb->idx, &q, f, &quad, VBS_CF_TARGETED,
                          &em);
         int found = 0;
         for (vbs_u32 k = 0; k < em.n; k++) {
-            buf[k].seq = (vbs_u32)extra->n;
             if (vb_cand_vec_push(extra, buf + k)) {
                 *err = VB_ENOMEM;
                 return 0;
@@ -252,6 +252,53 @@ static int targeted(const full_base *fb, const vbs_bisector *bis, const vbs_para
             return 1;
     }
     return 0;
+}
+
+/* The targeted searches of one run: item w searches vertex wk[w].cluster
+ * from sphere wk[w].base; thread t keeps its candidates and their items. */
+typedef struct tgt_ctx {
+    const vb_sphere_set *set;
+    const vbs_culler *cu;
+    const vbs_params *params;
+    const vb_cand_vec *raw;
+    const match_ctx *m;
+    const work *wk;
+    unsigned depth;
+    uint8_t *found;
+    vb_cand_vec out[VBS_MAX_THREADS];
+    size_t *item[VBS_MAX_THREADS];
+    size_t item_cap[VBS_MAX_THREADS];
+    int err;
+} tgt_ctx;
+
+static void tgt_search(void *arg, size_t w, int tid)
+{
+    tgt_ctx *c = arg;
+    uint32_t mb = c->wk[w].base;
+    const vbs_bis_store *st = c->cu->store;
+    if (st->off[mb + 1] == st->off[mb])
+        return;
+    full_base fb;
+    full_base_set(&fb, c->set, st, mb, c->cu->clip);
+    const vbs_cand *v = c->raw->v + c->m->cl_items[c->m->cl_start[c->wk[w].cluster]];
+    size_t before = c->out[tid].n;
+    int rc = VB_OK;
+    c->found[w] = (uint8_t)targeted(&fb, st->bis + st->off[mb], c->params, v, c->depth,
+                                    &c->out[tid], &rc);
+    if (c->out[tid].n > c->item_cap[tid]) {
+        size_t nc = c->out[tid].cap;
+        size_t *p = realloc(c->item[tid], nc * sizeof *p);
+        if (!p)
+            rc = VB_ENOMEM;
+        else {
+            c->item[tid] = p;
+            c->item_cap[tid] = nc;
+        }
+    }
+    for (size_t k = before; rc == VB_OK && k < c->out[tid].n; k++)
+        c->item[tid][k] = w;
+    if (rc != VB_OK)
+        c->err = rc;
 }
 
 /* Empty tangent sphere in double: returns the sphere (outside the four ids)
@@ -782,7 +829,6 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
     work *wk = NULL;
     size_t nwk = 0, wcap = 0;
     vb_cand_vec extra = {0};
-    full_base fb;
     uint32_t *tbuf = NULL;
     size_t tcap = 0;
     int rc = (!mem || !found) ? VB_ENOMEM : cluster(&m, raw);
@@ -821,23 +867,43 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
         res->complete_first += (uint64_t)(complete && nf == nm);
         res->first_cell += (uint64_t)(plausible && found[0] == 0);
     }
-    /* Sec. 5.5, one base at a time, with all bisectors the culling kept. */
-    const vbs_bisector *bis = NULL;
-    size_t nbis = 0;
+    /* Sec. 5.5, in parallel; results merged in work order. */
     if (rc == VB_OK && nwk)
         qsort(wk, nwk, sizeof *wk, cmp_work);
-    for (size_t w = 0; rc == VB_OK && w < nwk; w++) {
-        if (w == 0 || wk[w].base != wk[w - 1].base) {
-            uint32_t mb = wk[w].base;
-            bis = cu->store->bis + cu->store->off[mb];
-            nbis = cu->store->off[mb + 1] - cu->store->off[mb];
-            full_base_set(&fb, set, cu->store, mb, cu->clip);
+    if (rc == VB_OK && nwk) {
+        tgt_ctx tc;
+        memset(&tc, 0, sizeof tc);
+        tc.set = set;
+        tc.cu = cu;
+        tc.params = params;
+        tc.raw = raw;
+        tc.m = &m;
+        tc.wk = wk;
+        tc.depth = target_depth;
+        tc.found = calloc(nwk, 1);
+        int nt = vbs_threads();
+        if (!tc.found)
+            rc = VB_ENOMEM;
+        else
+            pfor(tgt_search, &tc, nwk, nt);
+        if (rc == VB_OK && tc.err)
+            rc = tc.err;
+        size_t at[VBS_MAX_THREADS] = {0};
+        for (size_t w = 0; rc == VB_OK && w < nwk; w++) {
+            int t = (int)(w % (size_t)(nt < 1 ? 1 : nt > VBS_MAX_THREADS ? VBS_MAX_THREADS : nt));
+            res->targeted_searches++;
+            res->targeted_found += tc.found[w];
+            while (rc == VB_OK && at[t] < tc.out[t].n && tc.item[t][at[t]] == w) {
+                vbs_cand c = tc.out[t].v[at[t]++];
+                c.seq = (vbs_u32)extra.n;
+                rc = vb_cand_vec_push(&extra, &c);
+            }
         }
-        const vbs_cand *v = raw->v + m.cl_items[m.cl_start[wk[w].cluster]];
-        res->targeted_searches++;
-        if (nbis > 0 && targeted(&fb, bis, params, v, target_depth,
-                                    &extra, &rc))
-            res->targeted_found++;
+        for (int t = 0; t < VBS_MAX_THREADS; t++) {
+            vb_cand_vec_free(&tc.out[t]);
+            free(tc.item[t]);
+        }
+        free(tc.found);
     }
     /* Pass 2 on everything found; extra candidates follow the raw ones. */
     for (size_t k = 0; rc == VB_OK && k < extra.n; k++)

@@ -190,7 +190,10 @@ int vbx_round_mpfr(const mpz_t num, const mpz_t b, const mpz_t D, const mpz_t de
          * round to the same double, so does every value between them. */
         double dl = mpfr_get_d(l, MPFR_RNDN), dh = mpfr_get_d(h, MPFR_RNDN);
         if (dl == dh) {
-            *out = dl;
+            /* A zero is written +0 whatever the sign of the enclosure's
+             * ends, so the output does not depend on which quadruple of a
+             * degenerate vertex was solved. */
+            *out = dl == 0.0 ? 0.0 : dl;
             rc = VB_OK;
             break;
         }

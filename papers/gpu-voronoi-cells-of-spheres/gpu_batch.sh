@@ -20,7 +20,7 @@ for f in corpus/inputs/*.xyzr "$OUT/in/1crn.pdb" "$OUT/in/1crn_apbs.xyzr" "$OUT/
     n=$(basename "$f")
     for d in gpu cpu ref; do
         [ $d = ref ] && [ "$n" = 3pqr.xyzr ] && continue
-        timeout 300 "$vorball" vertices --device $d --stats "$f" > "$OUT/v_${d}_$n.tsv" 2> "$OUT/v_${d}_$n.err"
+        timeout 60 "$vorball" vertices --device $d --stats "$f" > "$OUT/v_${d}_$n.tsv" 2> "$OUT/v_${d}_$n.err"
         echo "$n $d exit=$?" >> "$id"
     done
     if cmp -s "$OUT/v_gpu_$n.tsv" "$OUT/v_cpu_$n.tsv"; then echo "$n gpu==cpu" >> "$id"; else echo "$n gpu!=cpu" >> "$id"; fi

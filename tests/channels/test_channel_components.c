@@ -130,7 +130,10 @@ static void test_cells(vb_ctx *ctx)
         double best = INFINITY;
         int32_t arg = -1;
         for (size_t i = 0; i < s->n; i++) {
-            double e = sqrt(pow(p[0] - s->x[i], 2) + pow(p[1] - s->y[i], 2) + pow(p[2] - s->z[i], 2)) - s->r[i];
+            /* The same arithmetic as the cell list (pow() may differ from
+             * x * x by an ulp without optimisation): this checks the search. */
+            double dx = p[0] - s->x[i], dy = p[1] - s->y[i], dz = p[2] - s->z[i];
+            double e = sqrt(dx * dx + dy * dy + dz * dz) - s->r[i];
             if (e < best) {
                 best = e;
                 arg = (int32_t)i;

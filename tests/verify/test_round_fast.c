@@ -188,13 +188,14 @@ static void test_near_ties(void)
         CHECK(same_bits(round_scaled(tie_down, "0", "0", two200, k3, &fast, &slow), 1.0));
         CHECK_INT(fast, 0);
         CHECK_INT((int)slow, 5);
-        /* Exactly 0 goes to MPFR (its sign of zero is the output's). */
+        /* Exactly 0 goes to MPFR and is always +0, whatever the form. */
         CHECK(same_bits(round_scaled("0", "0", "5", two53, k3, &fast, &slow), 0.0));
         CHECK_INT(fast, 0);
         CHECK(same_bits(round_scaled("0", "5", "0", two53, k3, &fast, &slow), 0.0));
         CHECK_INT(fast, 0);
-        /* -6 + 2 sqrt(9) = 0 exactly: MPFR's enclosure ends are -0 and +0. */
-        CHECK(same_bits(round_scaled("-6", "2", "9", two53, k3, &fast, &slow), -0.0));
+        /* -6 + 2 sqrt(9) = 0 exactly: an enclosure end may be -0, the output
+         * is +0 (a degenerate vertex's zero must not depend on the quadruple). */
+        CHECK(same_bits(round_scaled("-6", "2", "9", two53, k3, &fast, &slow), 0.0));
         CHECK_INT(fast, 0);
         CHECK_INT((int)slow, 8);
         /* Tiny values of both signs next to 0 keep their sign. */
