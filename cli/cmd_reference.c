@@ -9,7 +9,7 @@
 #include "vb_vertex_io.h"
 
 static const char *const usage_text =
-    "usage: vorball reference IN [-o FILE] [--format tsv|json|voronota] [--stats]\n"
+    "usage: vorball reference IN [-o FILE] [--output-format tsv|json|voronota] [--stats]\n"
     "                         [input options]\n"
     "\n"
     "Computes every vertex of the additively weighted Voronoi diagram of the\n"
@@ -19,18 +19,9 @@ static const char *const usage_text =
     "nearest double. Cost grows as n^4: meant for inputs of a few hundred spheres.\n"
     "\n"
     "  -o FILE          write the vertices to FILE (default stdout)\n"
-    "  --format F       output format: tsv (default), json, voronota; the input\n"
-    "                   format names below (auto, xyzr, pdb, ...) select how IN is read\n"
-    "  --output-format F  the same, as `vorball vertices` spells it\n"
+    "  --output-format F  tsv (default), json or voronota, as for `vorball vertices`\n"
+    "                   (--format, as for every command, is the input format)\n"
     "  --stats          print filter and exact-evaluation counts and the time to stderr\n";
-
-/* --format names either the output (tsv, json, voronota) or, as for every
- * command, the input; the two sets of names do not overlap. */
-static int is_output_format(const char *name)
-{
-    return strcmp(name, "tsv") == 0 || strcmp(name, "json") == 0 ||
-           strcmp(name, "voronota") == 0;
-}
 
 int vb_cmd_reference(int argc, char **argv)
 {
@@ -48,9 +39,6 @@ int vb_cmd_reference(int argc, char **argv)
             if (++i >= argc)
                 return vb_cli_usage_error(argv[0], "-o needs a file name");
             out_path = argv[i];
-        } else if (strcmp(argv[i], "--format") == 0 && i + 1 < argc &&
-                   is_output_format(argv[i + 1])) {
-            fmt_name = argv[++i];
         } else if (strcmp(argv[i], "--output-format") == 0) {
             if (++i >= argc)
                 return vb_cli_usage_error(argv[0], "--output-format needs tsv, json or voronota");

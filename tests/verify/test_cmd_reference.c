@@ -56,13 +56,13 @@ int main(int argc, char **argv)
     CHECK_INT(run(args, out, sizeof out), 0);
     CHECK(strstr(out, "\n0,1,2,3,4,5,6,7\t0\t0\t0\t1.2320508075688772\tcertified\n") != NULL);
 
-    snprintf(args, sizeof args, "reference --format voronota %s/cube.xyzr", dir);
+    snprintf(args, sizeof args, "reference --output-format voronota %s/cube.xyzr", dir);
     CHECK_INT(run(args, out, sizeof out), 0);
     /* Voronota lists the degree-8 vertex as quadruple lines. */
     CHECK(strstr(out, "0 1 2 3 0 0 0 1.2320508075688772") != NULL ||
           strstr(out, "0 1 2 4 0 0 0 1.2320508075688772") != NULL);
 
-    snprintf(args, sizeof args, "reference %s/cube.xyzr --format json -o %s/cube.json --stats 2>%s/err",
+    snprintf(args, sizeof args, "reference %s/cube.xyzr --output-format json -o %s/cube.json --stats 2>%s/err",
              dir, dir, dir);
     CHECK_INT(run(args, out, sizeof out), 0);
     snprintf(args, sizeof args, "%s/cube.json", dir);
