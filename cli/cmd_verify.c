@@ -9,6 +9,7 @@
 #include "cli_common.h"
 #include "commands.h"
 #include "input_options.h"
+#include "vb_json.h"
 #include "vb_verify.h"
 #include "vb_vertex_io.h"
 
@@ -394,20 +395,6 @@ static void print_human(FILE *f, const options *o, const vb_sphere_set *set,
     fputc('\n', f);
 }
 
-static void json_string(FILE *f, const char *s)
-{
-    fputc('"', f);
-    for (const unsigned char *p = (const unsigned char *)s; *p; p++) {
-        if (*p == '"' || *p == '\\')
-            fprintf(f, "\\%c", *p);
-        else if (*p < 0x20)
-            fprintf(f, "\\u%04x", *p);
-        else
-            fputc(*p, f);
-    }
-    fputc('"', f);
-}
-
 static void json_ids(FILE *f, const uint32_t *ids, size_t n)
 {
     fputc('[', f);
@@ -420,9 +407,9 @@ static void print_json(FILE *f, const options *o, const vb_vertex_list *v, const
                        uint32_t *scratch, vb_vertex_format fmt)
 {
     fputs("{\"spheres\":", f);
-    json_string(f, o->spheres_path);
+    vb_json_write_string(f, o->spheres_path);
     fputs(",\"vertices\":", f);
-    json_string(f, o->vertices_path);
+    vb_json_write_string(f, o->vertices_path);
     fprintf(f, ",\"format\":\"%s\",\"tol\":%.17g,\"complete\":%s,\"lines\":%zu",
             fmt == VB_VFMT_VORONOTA ? "voronota" : fmt == VB_VFMT_JSON ? "json" : "tsv", o->tol,
             o->complete ? "true" : "false", n->lines);

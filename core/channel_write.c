@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "vbc_channel.h"
+#include "vb_json.h"
 
 static const char *kind_name(int kind)
 {
@@ -109,28 +110,12 @@ void vbc_write_stats_row(FILE *f, const vbc_frame_info *fi, const vbc_grid *g,
             fi->ms_total);
 }
 
-/* Writes s as a JSON string (quotes, backslashes and control bytes escaped). */
-static void json_string(FILE *f, const char *s)
-{
-    fputc('"', f);
-    for (; *s; s++) {
-        unsigned char c = (unsigned char)*s;
-        if (c == '"' || c == '\\')
-            fprintf(f, "\\%c", c);
-        else if (c < 0x20)
-            fprintf(f, "\\u%04x", c);
-        else
-            fputc(c, f);
-    }
-    fputc('"', f);
-}
-
 void vbc_write_json_begin(FILE *f, const char *input, double probe, int n, const char *device)
 {
     fprintf(f, "{\n  \"input\": ");
-    json_string(f, input);
+    vb_json_write_string(f, input);
     fprintf(f, ",\n  \"probe_A\": %.3f,\n  \"grid\": %d,\n  \"device\": ", probe, n);
-    json_string(f, device);
+    vb_json_write_string(f, device);
     fprintf(f, ",\n  \"frames\": [");
 }
 

@@ -6,6 +6,8 @@
 #include <math.h>
 #include <string.h>
 
+#include "vb_json.h"
+
 int vb_vertex_format_parse(vb_ctx *ctx, const char *name, vb_vertex_format *out)
 {
     if (strcmp(name, "tsv") == 0)
@@ -58,20 +60,6 @@ static void write_tsv(FILE *f, const vb_vertex_list *v, const char *comment)
     }
 }
 
-static void json_string(FILE *f, const char *s)
-{
-    fputc('"', f);
-    for (const unsigned char *p = (const unsigned char *)s; *p; p++) {
-        if (*p == '"' || *p == '\\')
-            fprintf(f, "\\%c", *p);
-        else if (*p < 0x20)
-            fprintf(f, "\\u%04x", *p);
-        else
-            fputc(*p, f);
-    }
-    fputc('"', f);
-}
-
 /* JSON has no NaN or Inf: a non-finite value (only possible in a candidate
  * list) is written as null, which the reader refuses with a line number. */
 static void json_number(FILE *f, const char *key, double d)
@@ -87,7 +75,7 @@ static void write_json(FILE *f, const vb_vertex_list *v, const char *comment)
     fputs("{", f);
     if (comment) {
         fputs("\"comment\":", f);
-        json_string(f, comment);
+        vb_json_write_string(f, comment);
         fputs(",", f);
     }
     fputs("\"vertices\":[", f);
