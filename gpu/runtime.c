@@ -111,8 +111,8 @@ int vbg_runtime_open(vb_ctx *ctx, vbg_device_kind kind, vbg_runtime **out)
     if (!found && (kind == VBG_DEVICE_AUTO || kind == VBG_DEVICE_CPU))
         found = find_device(CL_DEVICE_TYPE_CPU, &plat, &dev);
     if (!found)
-        return vb_error(ctx, VB_EDEVICE, NULL, 0, "no OpenCL %s device with double precision found",
-                        kind == VBG_DEVICE_GPU ? "GPU" : kind == VBG_DEVICE_CPU ? "CPU" : "");
+        return vb_error(ctx, VB_EDEVICE, NULL, 0, "no OpenCL %sdevice with double precision found",
+                        kind == VBG_DEVICE_GPU ? "GPU " : kind == VBG_DEVICE_CPU ? "CPU " : "");
     vbg_runtime *rt = calloc(1, sizeof *rt);
     if (!rt)
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory");
