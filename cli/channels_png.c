@@ -1,5 +1,5 @@
 /* The eight panels of the 2D channel pipeline, rendered from the flag bytes
- * and labels the OpenCL pipeline returns for a planar cut of the molecule. */
+ * and labels the channel pipeline (OpenCL or reference) returns for a planar cut of the molecule. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -23,7 +23,7 @@ static void label_colour(uint32_t l, uint8_t *px)
     put(px, 90 + (h >> 24) % 150, 90 + (h >> 16) % 150, 90 + (h >> 8) % 150);
 }
 
-int vbc_png_stages(vb_ctx *ctx, vbc_gpu *gp, const vb_sphere_set *s, double probe, int n,
+int vbc_png_stages(vb_ctx *ctx, vbc_pipe *pipe, const vb_sphere_set *s, double probe, int n,
                    int normal, const vbc_options *opt, const char *path)
 {
     int ax = normal == 0 ? 1 : 0, ay = normal == 2 ? 1 : 2;
@@ -71,7 +71,7 @@ int vbc_png_stages(vb_ctx *ctx, vbc_gpu *gp, const vb_sphere_set *s, double prob
         goto done;
     }
     vbc_atoms_pack(&g, &cut, probe, atoms);
-    if ((rc = vbc_gpu_frame(ctx, gp, &g, atoms, cut.n, probe, VBC_WANT_FLAGS | VBC_WANT_LABELS, &fo)) != VB_OK)
+    if ((rc = vbc_pipe_frame(ctx, pipe, &g, atoms, cut.n, probe, VBC_WANT_FLAGS | VBC_WANT_LABELS, &fo)) != VB_OK)
         goto done;
     vbc_options o2 = *opt;
     o2.keep_cavities = 1; /* in a cut, a pore is often closed: show it */

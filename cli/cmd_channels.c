@@ -1,7 +1,8 @@
 /* `vorball channels`: channels and cavities of a molecule or of every frame
  * of a trajectory (multi-model PDB/PQR/mmCIF, or DCD with a PDB topology),
  * by the discrete-Voronoi pipeline of the Facet-JFA paper (Sec. 4) on
- * OpenCL, with components, centrelines, bottlenecks and lining residues. */
+ * OpenCL or its C reference, with components, centrelines, bottlenecks and
+ * lining residues. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -11,7 +12,7 @@
 #include "commands.h"
 #include "input_options.h"
 #include "vb_dcd.h"
-#include "vbc_channel_gpu.h"
+#include "vbc_channel_pipe.h"
 #include "vbi_input.h"
 
 static const char *cmd = "channels";
@@ -38,11 +39,12 @@ static void usage(FILE *f)
             "Channels (Voronoi edges inside the molecule that reach its surface) and cavities\n"
             "(those that do not) of every frame of INPUT: PDB, PQR, mmCIF or XYZR; several\n"
             "MODELs are a trajectory. With --dcd, INPUT is the PDB topology of a DCD file.\n"
-            "Per frame, on OpenCL: Facet-JFA labels of the atom centres on an n^3 grid, Voronoi\n"
-            "edge voxels, atomic mask (balls r + probe), molecular mask (rays along x, y, z),\n"
-            "interior = atomic xor molecular, channels = edges and interior; then components,\n"
-            "centrelines (widest path between the openings) with the clearance radius (distance\n"
-            "to the nearest atom surface) at each point, bottleneck and lining residues.\n"
+            "Per frame, on OpenCL (or its C reference, --device ref): Facet-JFA labels of the\n"
+            "atom centres on an n^3 grid, Voronoi edge voxels, atomic mask (balls r + probe),\n"
+            "molecular mask (rays along x, y, z), interior = atomic xor molecular, channels =\n"
+            "edges and interior; then components, centrelines (widest path between the\n"
+            "openings) with the clearance radius (distance to the nearest atom surface) at\n"
+            "each point, bottleneck and lining residues.\n"
             "\n"
             "options:\n"
             "  -o FILE             channel table (CSV; default stdout)\n"
@@ -66,7 +68,11 @@ static void usage(FILE *f)
             "                      centroid of the first frame\n"
             "  --png-normal x|y|z  normal of that slice (default x: the slice holds the z axis)\n"
             "  --jfa VARIANT       facet (default), jfa, jfa+1, jfa+2, 1+jfa\n"
-            "  --device D          auto (default), gpu, cpu\n"
+            "  --device D          auto (default: a GPU, else the CPU OpenCL device), gpu, cpu,\n"
+            "                      ref (the plain-C reference: same output, slower). Without a\n"
+            "                      usable OpenCL device the reference runs, with a warning\n"
+            "                      (W804; W805 for gpu on a CPU device; W806 when OpenCL fails\n"
+            "                      mid-run: that frame and the rest are rerun on the reference)\n"
             "  --repeat N          run every frame N times (timings; outputs written once)\n");
     vb_cli_input_help(f);
 }
@@ -199,8 +205,8 @@ static int parse_args(int argc, char **argv, ch_args *A)
             if (vbj_variant_parse(NULL, v, &A->variant) != VB_OK || A->variant == VBJ_FACET_FULL)
                 return vb_cli_usage_error(cmd, "--jfa: facet, jfa, jfa+1, jfa+2 or 1+jfa, not '%s'", v), -1;
         } else if (strcmp(a, "--device") == 0) {
-            if (vbg_device_kind_parse(NULL, v, &A->device) != VB_OK || A->device == VBG_DEVICE_REF)
-                return vb_cli_usage_error(cmd, "--device: auto, gpu or cpu, not '%s'", v), -1;
+            if (vbg_device_kind_parse(NULL, v, &A->device) != VB_OK)
+                return vb_cli_usage_error(cmd, "--device: auto, gpu, cpu or ref, not '%s'", v), -1;
         } else {
             return vb_cli_usage_error(cmd, "unknown option '%s' (see --help)", a), -1;
         }
@@ -336,7 +342,7 @@ typedef struct {
 } sinks;
 
 /* Runs one frame through the pipeline `repeat` times and writes its outputs. */
-static int do_frame(vb_ctx *ctx, const ch_args *A, vbc_gpu *gp, long index, int model,
+static int do_frame(vb_ctx *ctx, const ch_args *A, vbc_pipe *pipe, long index, int model,
                     const vb_sphere_set *s, sinks *S)
 {
     vbc_grid g;
@@ -362,7 +368,7 @@ static int do_frame(vb_ctx *ctx, const ch_args *A, vbc_gpu *gp, long index, int 
         vbc_result_free(&res);
         double t0 = vb_cli_now();
         vbc_atoms_pack(&g, s, A->probe, atoms);
-        rc = vbc_gpu_frame(ctx, gp, &g, atoms, s->n, A->probe, want_volume ? VBC_WANT_FLAGS : 0, &fo);
+        rc = vbc_pipe_frame(ctx, pipe, &g, atoms, s->n, A->probe, want_volume ? VBC_WANT_FLAGS : 0, &fo);
         double t1 = vb_cli_now();
         if (rc == VB_OK)
             rc = vbc_analyse_clear(ctx, &g, s, fo.voxels, fo.clearance, fo.nvoxels, &A->opt, &res);
@@ -405,7 +411,7 @@ static int do_frame(vb_ctx *ctx, const ch_args *A, vbc_gpu *gp, long index, int 
             rc = vbc_write_volume(ctx, name, &g, fo.flags, A->volume_bit);
     }
     if (rc == VB_OK && A->png && S->frames_done == 0)
-        rc = vbc_png_stages(ctx, gp, s, A->probe, A->grid, A->png_axis, &A->opt, A->png);
+        rc = vbc_png_stages(ctx, pipe, s, A->probe, A->grid, A->png_axis, &A->opt, A->png);
     vbc_frame_out_free(&fo);
     vbc_result_free(&res);
     S->frames_done++;
@@ -425,8 +431,7 @@ int vb_cmd_channels(int argc, char **argv)
     }
     int rc = VB_OK;
     vb_radii_table *radii = NULL;
-    vbg_runtime *rt = NULL;
-    vbc_gpu *gp = NULL;
+    vbc_pipe *pipe = NULL;
     frames F;
     memset(&F, 0, sizeof F);
     sinks S = {NULL, NULL, NULL, 0, 0.0, 0.0, 1};
@@ -434,9 +439,7 @@ int vb_cmd_channels(int argc, char **argv)
     if (A.in.radii_path)
         rc = vb_radii_load(ctx, A.in.radii_path, &radii);
     if (rc == VB_OK)
-        rc = vbg_runtime_open(ctx, A.device, &rt);
-    if (rc == VB_OK)
-        rc = vbc_gpu_open(ctx, rt, A.variant, &gp);
+        rc = vbc_pipe_open(ctx, A.device, A.variant, &pipe);
     if (rc == VB_OK)
         rc = frames_open(ctx, &A, radii, &F);
     if (rc == VB_OK && !(S.table = vb_cli_open_output(ctx, A.out)))
@@ -447,9 +450,9 @@ int vb_cmd_channels(int argc, char **argv)
         rc = vb_errcode(ctx);
     if (rc != VB_OK)
         goto done;
-    const char *device = vbg_runtime_device_name(rt);
     if (A.json)
-        vbc_write_json_begin(S.table, A.dcd ? A.dcd : A.input, A.probe, A.grid, device);
+        vbc_write_json_begin(S.table, A.dcd ? A.dcd : A.input, A.probe, A.grid,
+                             vbc_pipe_device_name(pipe));
     else
         vbc_write_csv_header(S.table);
     if (S.stats)
@@ -461,7 +464,7 @@ int vb_cmd_channels(int argc, char **argv)
         if ((rc = frames_next(ctx, &F, index, &s, &model)) != VB_OK || !s)
             break;
         if (index >= A.f0 && (index - A.f0) % A.fstep == 0)
-            rc = do_frame(ctx, &A, gp, index, model, s, &S);
+            rc = do_frame(ctx, &A, pipe, index, model, s, &S);
         vb_spheres_free(s);
         if (rc != VB_OK)
             break;
@@ -484,6 +487,7 @@ int vb_cmd_channels(int argc, char **argv)
     }
     if (rc == VB_OK) {
         long runs = S.frames_done * A.repeat;
+        const char *device = vbc_pipe_device_name(pipe); /* where the last frame ran */
         vb_info(ctx, "channels: %ld frames on %s in %.3f s", S.frames_done, device, wall);
         fprintf(stderr, "vorball channels: %ld frame(s), %ld run(s) on %s: %.3f ms/run "
                         "(%.1f FPS), of which GPU stages %.3f ms (%.1f FPS)\n",
@@ -504,8 +508,7 @@ done:
         rc = rc == VB_OK ? c : rc;
     }
     frames_close(&F);
-    vbc_gpu_close(gp);
-    vbg_runtime_close(rt);
+    vbc_pipe_close(pipe);
     vb_radii_free(radii);
     int exit_code = rc == VB_OK ? VB_EXIT_OK : vb_cli_fail(ctx, rc);
     vb_close(ctx);

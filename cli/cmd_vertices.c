@@ -29,6 +29,8 @@ static void help(FILE *f)
             "  --tiles T            culling tiles per cube face side, a power of two\n"
             "                       (default: from S)\n"
             "  --all-pairs          no neighbour culling (every cell tests all bisectors)\n"
+            "  --threads N          host threads (default: VORBALL_THREADS or all CPUs);\n"
+            "                       the output does not depend on it\n"
             "  --stats              pipeline and certifier counters on stderr\n",
             VB_SAMPLER_DEFAULT_SAMPLES);
     vb_cli_input_help(f);

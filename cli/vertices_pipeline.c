@@ -1,6 +1,7 @@
 /* Backend choice, fallback, sampling and certification for vertices/bench. */
 #include "vertices_pipeline.h"
 
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -52,6 +53,16 @@ int vb_pipeline_option(const char *cmd, int argc, char **argv, int *i,
         (*i)++;
         return 1;
     }
+    if (strcmp(a, "--threads") == 0) {
+        size_t t;
+        if (!has || vb_cli_parse_size(argv[*i + 1], &t) || t < 1 || t > 64) {
+            vb_cli_usage_error(cmd, "--threads needs an integer in 1..64");
+            return -1;
+        }
+        so->threads = (unsigned)t;
+        (*i)++;
+        return 1;
+    }
     if (strcmp(a, "--all-pairs") == 0) {
         so->all_pairs = 1;
         return 1;
@@ -93,7 +104,67 @@ static void bar_update(void *user, double frac)
     b->shown = 1;
 }
 
-static int sample(vb_ctx *ctx, const vb_sphere_set *set, vb_sampler_backend *be,
+/* The OpenCL set-up (context, queue, program build or cache load) runs on
+ * its own thread, with its own context for messages, while the sampler
+ * culls the first batch; the sampler takes the backend (or, when the device
+ * cannot be used, the reference backend after warning W760) through
+ * await_backend before its first batch. */
+typedef struct opener {
+    vb_ctx *ctx;              /* the pipeline's context (warnings, fallback) */
+    vb_ctx *tctx;             /* the thread's context */
+    vbg_device_kind kind;
+    pthread_t th;
+    int started, joined;
+    vbg_runtime *rt;
+    vb_sampler_backend *be;   /* what await_backend handed out */
+    int rc;
+    double t_start, t_setup, t_wait;
+} opener;
+
+static void *open_device(void *arg)
+{
+    opener *op = arg;
+    op->rc = op->tctx ? vbg_runtime_open(op->tctx, op->kind, &op->rt) : VB_ENOMEM;
+    if (op->rc == VB_OK)
+        op->rc = vbg_sampler_open(op->tctx, op->rt, &op->be);
+    if (op->rc != VB_OK) {
+        vbg_runtime_close(op->rt);
+        op->rt = NULL;
+        op->be = NULL;
+    }
+    op->t_setup = vb_cli_now() - op->t_start;
+    return NULL;
+}
+
+static void opener_join(opener *op)
+{
+    if (op->joined)
+        return;
+    if (op->started)
+        pthread_join(op->th, NULL);
+    else
+        open_device(op);
+    op->joined = 1;
+}
+
+static vb_sampler_backend *await_backend(void *user)
+{
+    opener *op = user;
+    double t0 = vb_cli_now();
+    opener_join(op);
+    op->t_wait = vb_cli_now() - t0;
+    if (op->rc == VB_OK) {
+        vb_info(op->ctx, "OpenCL device: %s", vbg_runtime_device_name(op->rt));
+        return op->be;
+    }
+    vb_warn(op->ctx, 760, NULL, 0, "no usable OpenCL device (%s); using the reference backend",
+            op->tctx ? vb_errmsg(op->tctx) : "out of memory");
+    if (vb_sampler_ref_open(op->ctx, &op->be) != VB_OK)
+        op->be = NULL;
+    return op->be;
+}
+
+static int sample(vb_ctx *ctx, const vb_sphere_set *set, vb_sampler_backend *be, opener *op,
                   const vb_sampler_options *opt, int progress, vb_pipeline_result *res)
 {
     vb_sampler_options o = *opt;
@@ -102,9 +173,21 @@ static int sample(vb_ctx *ctx, const vb_sphere_set *set, vb_sampler_backend *be,
         o.progress = bar_update;
         o.progress_user = &b;
     }
-    snprintf(res->backend, sizeof res->backend, "%s", be->name);
-    snprintf(res->device, sizeof res->device, "%s", be->device);
+    if (!be) {
+        o.await_backend = await_backend;
+        o.await_user = op;
+        /* The batch size cannot wait for the device: GPUs want large
+         * launches; the output does not depend on it. */
+        if (!o.batch_rays)
+            o.batch_rays = op->kind == VBG_DEVICE_CPU ? 1u << 22 : 1u << 25;
+    }
     int rc = vb_sampler_run(ctx, set, &o, be, &res->sampler);
+    if (!be)
+        be = op->be;
+    if (be) {
+        snprintf(res->backend, sizeof res->backend, "%s", be->name);
+        snprintf(res->device, sizeof res->device, "%s", be->device);
+    }
     if (b.shown)
         fputs("\r\033[K", stderr);
     return rc;
@@ -244,21 +327,27 @@ int vb_pipeline_run(vb_ctx *ctx, const vb_sphere_set *set, vbg_device_kind kind,
     vb_sampler_backend *be = NULL;
     vbg_runtime *rt = NULL;
     int rc = VB_OK;
+    opener op;
+    memset(&op, 0, sizeof op);
+    op.ctx = ctx;
+    op.kind = kind;
+    op.t_start = t0;
     if (kind != VBG_DEVICE_REF) {
-        rc = vbg_runtime_open(ctx, kind, &rt);
-        if (rc == VB_OK)
-            rc = vbg_sampler_open(ctx, rt, &be);
-        if (rc != VB_OK) {
-            vb_warn(ctx, 760, NULL, 0, "no usable OpenCL device (%s); using the reference backend",
-                    vb_errmsg(ctx));
-            vb_clear_error(ctx);
-            vbg_runtime_close(rt);
-            rt = NULL;
-        }
-    }
-    if (!be && (rc = vb_sampler_ref_open(ctx, &be)) != VB_OK)
+        if (vb_open(&op.tctx, NULL) != VB_OK)
+            op.tctx = NULL;
+        op.started = pthread_create(&op.th, NULL, open_device, &op) == 0;
+    } else if ((rc = vb_sampler_ref_open(ctx, &be)) != VB_OK) {
         return rc;
-    rc = sample(ctx, set, be, opt, progress, res);
+    }
+    rc = sample(ctx, set, be, &op, opt, progress, res);
+    if (kind != VBG_DEVICE_REF) {
+        opener_join(&op); /* when sampling failed before it needed the device */
+        be = op.be;
+        rt = op.rt;
+        vb_close(op.tctx);
+        res->t_setup = op.t_setup;
+        res->t_setup_wait = op.t_wait;
+    }
     if (rc != VB_OK && VB_CATEGORY(rc) == VB_EDEVICE && rt) {
         /* The device failed mid-run: the reference backend gives the same
          * certified output, so finish there. */
@@ -270,7 +359,7 @@ int vb_pipeline_run(vb_ctx *ctx, const vb_sphere_set *set, vbg_device_kind kind,
         vb_sampler_result_free(&res->sampler);
         rc = vb_sampler_ref_open(ctx, &be);
         if (rc == VB_OK)
-            rc = sample(ctx, set, be, opt, progress, res);
+            rc = sample(ctx, set, be, &op, opt, progress, res);
     }
     vb_sampler_backend_close(be);
     vbg_runtime_close(rt);
@@ -279,6 +368,8 @@ int vb_pipeline_run(vb_ctx *ctx, const vb_sphere_set *set, vbg_device_kind kind,
     double t1 = vb_cli_now();
     vb_certifier *cert = NULL;
     rc = vb_certifier_open(ctx, set, &cert);
+    if (rc == VB_OK)
+        vb_certifier_set_threads(cert, opt->threads);
     /* No distance limit here: the exact solution nearest the candidate is
      * what gets certified, and far-away vertices (hull cells, nearly
      * coplanar centres) have candidates whose absolute error exceeds tol. */

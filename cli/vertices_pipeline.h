@@ -13,6 +13,8 @@ typedef struct vb_pipeline_result {
     vb_sampler_result sampler;
     vb_vertex_list certified;   /* canonical, sorted */
     vb_vertex_list rejected;    /* candidates the certifier refused */
+    double t_setup;             /* OpenCL runtime + program, on its own thread */
+    double t_setup_wait;        /* of that, the time sampling waited for it */
     double t_certify, t_total;
     double max_dist;
     size_t repaired_candidates; /* intruder-swap candidates certified (see repair) */            /* largest candidate-to-exact distance certified */
@@ -32,7 +34,7 @@ int vb_pipeline_run(vb_ctx *ctx, const vb_sphere_set *set, vbg_device_kind kind,
                     const vb_sampler_options *opt, int progress, vb_pipeline_result *res);
 
 /* Parses the options shared by vertices and bench (--device, --samples,
- * --tol, --all-pairs) at argv[*i], advancing *i past a value. Returns 1 if
+ * --tol, --tiles, --threads, --all-pairs) at argv[*i], advancing *i past a value. Returns 1 if
  * consumed, 0 if not one of them, -1 on a bad value (usage message printed
  * naming cmd). */
 int vb_pipeline_option(const char *cmd, int argc, char **argv, int *i, vb_sampler_options *so,

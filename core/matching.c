@@ -139,6 +139,21 @@ static int cmp_u32(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+/* Ascending sort of four ids (the same order qsort gives, without its call
+ * overhead on the hot paths of the swaps and the completion). */
+static void sort4(uint32_t q[4])
+{
+    for (int a = 1; a < 4; a++) {
+        uint32_t x = q[a];
+        int b = a;
+        while (b > 0 && q[b - 1] > x) {
+            q[b] = q[b - 1];
+            b--;
+        }
+        q[b] = x;
+    }
+}
+
 static size_t uniq(uint32_t *v, size_t n)
 {
     qsort(v, n, sizeof *v, cmp_u32);
@@ -580,7 +595,7 @@ static int consume_roots(emit_ctx *e, const uint32_t q[4], const vbs_cand *proto
             uint32_t q2[4];
             for (int b = 0; b < 4; b++)
                 q2[b] = b == a ? j : q[b];
-            qsort(q2, 4, sizeof *q2, cmp_u32);
+            sort4(q2);
             int fresh = qset_add(&e->seen, q2);
             if (fresh < 0)
                 rc = VB_ENOMEM;
@@ -640,51 +655,98 @@ typedef struct ring_ctx {
     uint32_t (*best)[VBS_RING];
     int *nb;
     ring_item *items;
-    uint32_t *tbuf[VBS_MAX_THREADS];
-    size_t tcap[VBS_MAX_THREADS];
     int err;
 } ring_ctx;
 
+/* Keeps best[0..*nb) the VBS_RING smallest (gap, id) pairs seen. */
+static void ring_insert(uint32_t *best, double *gap, int *nb, uint32_t j, double g)
+{
+    int at = *nb < VBS_RING ? (*nb)++ : VBS_RING;
+    while (at > 0 && (gap[at - 1] > g || (gap[at - 1] == g && best[at - 1] > j))) {
+        if (at < VBS_RING) {
+            gap[at] = gap[at - 1];
+            best[at] = best[at - 1];
+        }
+        at--;
+    }
+    if (at < VBS_RING) {
+        gap[at] = g;
+        best[at] = j;
+    }
+}
+
 /* Phase A: the VBS_RING spheres with the smallest gaps |p - c_j| - r_j - t
- * among the non-members of vertex lo + i. */
+ * (ties: lowest id) among the non-members of vertex lo + i whose centre lies
+ * within t + rmax + 4h of p. The grid cells are visited in Chebyshev shells
+ * around the cell of p clamped to the grid box; a cell of shell k >= 2 is at
+ * least (k - 1) h from that point and so from p (clamping is the projection
+ * onto the box), so every sphere of the shell has a gap of at least
+ * (k - 1) h - rmax - t. Once VBS_RING spheres are kept and that bound
+ * exceeds the largest kept gap, no farther sphere can enter: the result is
+ * the one of the plain scan over the whole radius (the (gap, id) order is
+ * total), at a fraction of the distance evaluations. */
 static void ring_nearest(void *arg, size_t i, int tid)
 {
     ring_ctx *r = arg;
     const vb_sphere_set *s = r->e->set;
+    const vbs_hash *g = r->e->hash;
     const vb_vertex_list *v = r->v;
     size_t k = r->lo + i;
     const uint32_t *q = v->ids + v->start[k];
     const double p[3] = {v->x[k], v->y[k], v->z[k]};
     double t = v->t[k];
-    size_t n = 0;
-    double radius = t + r->e->hash->rmax + 4.0 * r->e->hash->h;
+    double radius = t + g->rmax + 4.0 * g->h;
     r->nb[i] = 0;
+    (void)tid;
     if (radius < 0.0)
         return;
-    if (vbs_hash_query(r->e->hash, p, radius, &r->tbuf[tid], &n, &r->tcap[tid])) {
-        r->err = VB_ENOMEM;
-        return;
+    int lo[3], hi[3], cc[3], ext = 0;
+    for (int a = 0; a < 3; a++) {
+        double l = (p[a] - radius - g->lo[a]) / g->h, u = (p[a] + radius - g->lo[a]) / g->h;
+        lo[a] = l < 0.0 ? 0 : l >= (double)g->dim[a] ? g->dim[a] : (int)l;
+        hi[a] = u < 0.0 ? -1 : u >= (double)g->dim[a] ? g->dim[a] - 1 : (int)u;
+        if (lo[a] > hi[a])
+            return;
+        double c = (p[a] - g->lo[a]) / g->h;
+        cc[a] = c < 0.0 ? 0 : c >= (double)g->dim[a] ? g->dim[a] - 1 : (int)c;
+        int e = cc[a] - lo[a] > hi[a] - cc[a] ? cc[a] - lo[a] : hi[a] - cc[a];
+        if (e > ext)
+            ext = e;
     }
+    double r2 = radius * radius;
     uint32_t *best = r->best[i];
     double gap[VBS_RING];
     int nb = 0;
-    for (size_t m = 0; m < n; m++) {
-        uint32_t j = r->tbuf[tid][m];
-        if (j == q[0] || j == q[1] || j == q[2] || j == q[3] || (s->contained && s->contained[j]))
-            continue;
-        double dx = s->x[j] - p[0], dy = s->y[j] - p[1], dz = s->z[j] - p[2];
-        double g = sqrt(dx * dx + dy * dy + dz * dz) - s->r[j] - t;
-        int at = nb < VBS_RING ? nb++ : VBS_RING;
-        while (at > 0 && (gap[at - 1] > g || (gap[at - 1] == g && best[at - 1] > j))) {
-            if (at < VBS_RING) {
-                gap[at] = gap[at - 1];
-                best[at] = best[at - 1];
+    for (int sh = 0; sh <= ext; sh++) {
+        if (nb == VBS_RING && sh >= 2 &&
+            (double)(sh - 1) * g->h * (1.0 - 1e-9) - g->rmax - t > gap[VBS_RING - 1] + 1e-9 * (1.0 + fabs(gap[VBS_RING - 1])))
+            break;
+        for (int z = cc[2] - sh; z <= cc[2] + sh; z++) {
+            if (z < lo[2] || z > hi[2])
+                continue;
+            for (int y = cc[1] - sh; y <= cc[1] + sh; y++) {
+                if (y < lo[1] || y > hi[1])
+                    continue;
+                int full = z == cc[2] - sh || z == cc[2] + sh || y == cc[1] - sh || y == cc[1] + sh;
+                int step = full || sh == 0 ? 1 : 2 * sh;
+                for (int x = cc[0] - sh; x <= cc[0] + sh; x += step) {
+                    if (x < lo[0] || x > hi[0])
+                        continue;
+                    size_t c = ((size_t)z * (size_t)g->dim[1] + (size_t)y) * (size_t)g->dim[0] +
+                               (size_t)x;
+                    for (uint32_t m = g->start[c]; m < g->start[c + 1]; m++) {
+                        uint32_t j = g->idx[m];
+                        double dx = s->x[j] - p[0], dy = s->y[j] - p[1], dz = s->z[j] - p[2];
+                        if (dx * dx + dy * dy + dz * dz > r2)
+                            continue;
+                        if (j == q[0] || j == q[1] || j == q[2] || j == q[3] ||
+                            (s->contained && s->contained[j]))
+                            continue;
+                        ring_insert(best, gap, &nb, j,
+                                    sqrt(dx * dx + dy * dy + dz * dz) - s->r[j] - t);
+                    }
+                }
             }
-            at--;
-        }
-        if (at < VBS_RING) {
-            gap[at] = g;
-            best[at] = j;
         }
     }
     r->nb[i] = nb;
@@ -760,7 +822,7 @@ static int complete_ring(emit_ctx *e, int nthreads)
                     uint32_t q2[4];
                     for (int a = 0; a < 4; a++)
                         q2[a] = a == drop ? r.best[i][b] : q[a];
-                    qsort(q2, 4, sizeof *q2, cmp_u32);
+                    sort4(q2);
                     int fresh = qset_add(&e->seen, q2);
                     if (fresh < 0) {
                         rc = VB_ENOMEM;
@@ -811,8 +873,6 @@ static int complete_ring(emit_ctx *e, int nthreads)
         }
         lo = hi;
     }
-    for (int t = 0; t < VBS_MAX_THREADS; t++)
-        free(r.tbuf[t]);
     free(r.best);
     free(r.nb);
     free(r.items);
@@ -820,8 +880,8 @@ static int complete_ring(emit_ctx *e, int nthreads)
 }
 
 int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
-              const vbs_params *params, unsigned target_depth, vb_cand_vec *raw,
-              vb_sampler_result *res)
+              const vbs_params *params, unsigned target_depth, int nthreads,
+              vb_cand_vec *raw, vb_sampler_result *res)
 {
     match_ctx m = {set, params->tol, NULL, NULL, NULL, NULL, NULL, 0};
     uint32_t *mem = malloc(4 * (raw->n + 1) * sizeof *mem);
@@ -870,6 +930,7 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
     /* Sec. 5.5, in parallel; results merged in work order. */
     if (rc == VB_OK && nwk)
         qsort(wk, nwk, sizeof *wk, cmp_work);
+    double tt0 = vbs_now();
     if (rc == VB_OK && nwk) {
         tgt_ctx tc;
         memset(&tc, 0, sizeof tc);
@@ -881,7 +942,7 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
         tc.wk = wk;
         tc.depth = target_depth;
         tc.found = calloc(nwk, 1);
-        int nt = vbs_threads();
+        int nt = nthreads;
         if (!tc.found)
             rc = VB_ENOMEM;
         else
@@ -905,6 +966,7 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
         }
         free(tc.found);
     }
+    res->times.targeted += vbs_now() - tt0;
     /* Pass 2 on everything found; extra candidates follow the raw ones. */
     for (size_t k = 0; rc == VB_OK && k < extra.n; k++)
         if (vb_cand_vec_push(raw, extra.v + k))
@@ -930,12 +992,13 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
     for (size_t k = 0; rc == VB_OK && k < raw->n; k++) {
         qs[nq].c = raw->v[k];
         memcpy(qs[nq].q, raw->v[k].ids, sizeof qs[nq].q);
-        qsort(qs[nq].q, 4, sizeof *qs[nq].q, cmp_u32);
+        sort4(qs[nq].q);
         nq++;
     }
     if (rc == VB_OK && nq)
         qsort(qs, nq, sizeof *qs, cmp_qrec);
     /* Sampled quadruples first (all marked seen), then their swaps. */
+    double tt1 = vbs_now();
     /* 1e-9 of the bounding-box diagonal (the default tol is 1e-5 of it). */
     double diag = 1e5 * vb_sampler_default_tol(set);
     emit_ctx ec = {set, cu->hash, 1e-9 * diag, NULL, 0, {NULL, 0, 0}, res};
@@ -957,7 +1020,7 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
         sc.qs = qs;
         sc.which = which;
         sc.ev = evs;
-        pfor(sampled_eval, &sc, nw, vbs_threads());
+        pfor(sampled_eval, &sc, nw, nthreads);
         for (int t = 0; t < VBS_MAX_THREADS; t++)
             free(sc.tbuf[t]);
         rc = sc.err;
@@ -967,8 +1030,11 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
     free(which);
     free(evs);
     res->from_sampling = res->candidates.n;
+    double tt2 = vbs_now();
+    res->times.tangent += tt2 - tt1;
     if (rc == VB_OK)
-        rc = complete_ring(&ec, vbs_threads());
+        rc = complete_ring(&ec, nthreads);
+    res->times.completion += vbs_now() - tt2;
     free(ec.qbuf);
     free(ec.seen.keys);
     free(qs);

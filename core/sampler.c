@@ -52,9 +52,18 @@ static int cull_batch(vb_ctx *ctx, const vbs_culler *cu, vbs_base_data *slots, s
     return VB_OK;
 }
 
-int vbs_threads(void)
+int vbs_threads(unsigned requested)
 {
-    long n = sysconf(_SC_NPROCESSORS_ONLN);
+    long n = (long)requested;
+    const char *env = getenv("VORBALL_THREADS");
+    if (n <= 0 && env && *env) {
+        char *end;
+        long v = strtol(env, &end, 10);
+        if (*end == '\0' && v > 0)
+            n = v;
+    }
+    if (n <= 0)
+        n = sysconf(_SC_NPROCESSORS_ONLN);
     return n < 1 ? 1 : n > VBS_MAX_THREADS ? VBS_MAX_THREADS : (int)n;
 }
 
@@ -97,7 +106,7 @@ static int store_add(vbs_bis_store *st, uint32_t i, const vbs_base_data *bd)
     return VB_OK;
 }
 
-static double now(void)
+double vbs_now(void)
 {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
@@ -245,6 +254,8 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
     vbs_params params = {o.tol, 1e-12, o.samples, o.tiles, o.max_depth, o.max_iter};
     size_t S = o.samples, rays_per_base = 6 * S * S;
     size_t ntiles = 6u * (size_t)o.tiles * o.tiles;
+    if (!be && (!o.await_backend || !o.batch_rays))
+        return vb_error(ctx, VB_EMISUSE, NULL, 0, "no sampling backend");
     size_t want = o.batch_rays ? o.batch_rays : be->batch_rays;
     size_t per_batch = want / rays_per_base;
     if (per_batch < 1)
@@ -261,7 +272,7 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
     vbs_bis_store store = {calloc(set->n + 1, sizeof(size_t)), NULL, 0, 0, coarse_t,
                            malloc((set->n * 6u * coarse_t * coarse_t + 1) * sizeof(uint32_t)),
                            NULL, 0, 0};
-    int nthreads = vbs_threads();
+    int nthreads = vbs_threads(o.threads);
     batch_buf bb;
     memset(&bb, 0, sizeof bb);
     vb_cand_vec raw = {0};
@@ -279,7 +290,7 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
         rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (batch buffers)");
     for (size_t b0 = 0; rc == VB_OK && b0 < set->n; b0 += per_batch) {
         size_t b1 = b0 + per_batch < set->n ? b0 + per_batch : set->n;
-        double t0 = now();
+        double t0 = vbs_now();
         bb.nbases = bb.nbis = bb.nidx = 0;
         bb.tile_off[0] = 0;
         rc = cull_batch(ctx, &cu, slots, b0, b1, nthreads);
@@ -287,13 +298,17 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
             if (batch_add(&bb, set, (uint32_t)i, res->clip, &slots[i - b0], ntiles) ||
                 store_add(&store, (uint32_t)i, &slots[i - b0]))
                 rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (batch)");
-        res->times.cull += now() - t0;
+        res->times.cull += vbs_now() - t0;
         if (rc != VB_OK)
             break;
         res->bisectors += bb.nbis;
         vb_sampler_batch batch = {bb.nbases, bb.bases, bb.nbis, bb.bis, bb.nbases * ntiles + 1,
                                   bb.tile_off, bb.nidx, bb.tile_idx, params};
         vb_sampler_batch_out out = {&raw, 0, &res->times};
+        if (!be && !(be = o.await_backend(o.await_user))) {
+            rc = vb_errcode(ctx) != VB_OK ? vb_errcode(ctx) : VB_EDEVICE;
+            break;
+        }
         rc = be->run_batch(ctx, be, &batch, &out);
         if (rc != VB_OK)
             break;
@@ -322,12 +337,12 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
             vb_warn(ctx, 761, NULL, 0,
                     "%llu candidate(s) did not fit the %d per grid cell; raise --samples",
                     (unsigned long long)res->overflow, VBS_MAX_CAND);
-        double t0 = now();
+        double t0 = vbs_now();
         res->raw_candidates = raw.n;
         if (raw.n)
             qsort(raw.v, raw.n, sizeof *raw.v, cmp_cand);
-        rc = vbs_match(ctx, set, &cu, &params, o.target_depth, &raw, res);
-        res->times.matching += now() - t0;
+        rc = vbs_match(ctx, set, &cu, &params, o.target_depth, nthreads, &raw, res);
+        res->times.matching += vbs_now() - t0;
     }
     vb_cand_vec_free(&raw);
     free(store.off);

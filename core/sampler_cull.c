@@ -83,6 +83,9 @@ void vbs_base_data_free(vbs_base_data *bd)
     free(bd->tile_idx);
     free(bd->near);
     free(bd->keep);
+    free(bd->remap);
+    free(bd->sortkey);
+    free(bd->tmp);
     free(bd->co_off);
     free(bd->co_idx);
     for (int k = 0; k < 2; k++) {
@@ -195,6 +198,12 @@ static int push_u32(uint32_t **v, size_t *n, size_t *cap, uint32_t x)
     return VB_OK;
 }
 
+static int cmp_u64(const void *pa, const void *pb)
+{
+    uint64_t a = *(const uint64_t *)pa, b = *(const uint64_t *)pb;
+    return (a > b) - (a < b);
+}
+
 static int cmp_bis_id(const void *pa, const void *pb)
 {
     const vbs_bisector *a = pa, *b = pb;
@@ -274,24 +283,11 @@ static int cull_hierarchy(const vbs_culler *cu, vbs_base_data *bd, double clip, 
     return VB_OK;
 }
 
-/* Position of sphere `id` among the base's (sorted) bisectors, or nbis. */
-static size_t find_id(const vbs_base_data *bd, uint32_t id)
-{
-    size_t lo = 0, hi = bd->nbis;
-    while (lo < hi) {
-        size_t mid = lo + (hi - lo) / 2;
-        if (bd->bis[mid].id < id)
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
-    return lo < bd->nbis && bd->bis[lo].id == id ? lo : bd->nbis;
-}
-
 /* The T = 2 level (or the finest, if coarser), renumbered to the kept
- * bisectors; entries culled everywhere at the finest level are dropped,
- * which keeps the lists sufficient (the finest tiles cover every ray). */
-static int coarse_lists(vbs_base_data *bd, const vbs_culler *cu, const uint32_t *oldid)
+ * bisectors (bd->remap); entries culled everywhere at the finest level are
+ * dropped, which keeps the lists sufficient (the finest tiles cover every
+ * ray). */
+static int coarse_lists(vbs_base_data *bd, const vbs_culler *cu)
 {
     const vbs_tiles *fine = cu->levels + cu->nlevels - 1;
     int from_fine = fine->T <= VBS_COARSE_T;
@@ -305,7 +301,7 @@ static int coarse_lists(vbs_base_data *bd, const vbs_culler *cu, const uint32_t 
     for (size_t k = 0; k < nt; k++) {
         bd->co_off[k] = (uint32_t)bd->nco;
         for (uint32_t q = off[k]; q < off[k + 1]; q++) {
-            size_t pos = from_fine ? idx[q] : find_id(bd, oldid[idx[q]]);
+            size_t pos = from_fine ? idx[q] : bd->remap[idx[q]];
             if (pos < bd->nbis && push_u32(&bd->co_idx, &bd->nco, &bd->co_cap, (uint32_t)pos))
                 return VB_ENOMEM;
         }
@@ -400,30 +396,42 @@ int vbs_cull_base(vb_ctx *ctx, const vbs_culler *cu, uint32_t i, vbs_base_data *
     memset(keep, 0, bd->nbis);
     for (size_t k = 0; k < bd->nidx; k++)
         keep[bd->tile_idx[k]] = 1;
-    /* near[] is no longer needed: it becomes old position -> sphere id. */
-    uint32_t *oldid = bd->near;
+    /* Sort the kept ones by id (ids are unique within a base) through
+     * (id, old position) keys, and renumber the lists through the map old
+     * position -> new position (culled ones: UINT32_MAX). */
+    if (bd->remap_cap < bd->nbis) {
+        uint32_t *rm = realloc(bd->remap, bd->nbis * sizeof *rm);
+        uint64_t *sk = rm ? realloc(bd->sortkey, bd->nbis * sizeof *sk) : NULL;
+        vbs_bisector *tb = sk ? realloc(bd->tmp, bd->nbis * sizeof *tb) : NULL;
+        if (rm)
+            bd->remap = rm;
+        if (sk)
+            bd->sortkey = sk;
+        if (tb)
+            bd->tmp = tb;
+        if (!tb)
+            return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (culling)");
+        bd->remap_cap = bd->nbis;
+    }
     size_t m = 0;
     for (size_t q = 0; q < bd->nbis; q++) {
-        oldid[q] = bd->bis[q].id;
+        bd->remap[q] = UINT32_MAX;
         if (keep[q])
-            bd->bis[m++] = bd->bis[q];
+            bd->sortkey[m++] = (uint64_t)bd->bis[q].id << 32 | (uint64_t)q;
     }
     if (m)
-        qsort(bd->bis, m, sizeof *bd->bis, cmp_bis_id);
-    for (size_t k = 0; k < bd->nidx; k++) {
-        uint32_t id = oldid[bd->tile_idx[k]];
-        size_t lo = 0, hi = m;
-        while (lo < hi) {
-            size_t mid = lo + (hi - lo) / 2;
-            if (bd->bis[mid].id < id)
-                lo = mid + 1;
-            else
-                hi = mid;
-        }
-        bd->tile_idx[k] = (uint32_t)lo;
+        qsort(bd->sortkey, m, sizeof *bd->sortkey, cmp_u64);
+    if (bd->nbis)
+        memcpy(bd->tmp, bd->bis, bd->nbis * sizeof *bd->bis);
+    for (size_t k = 0; k < m; k++) {
+        uint32_t q = (uint32_t)(bd->sortkey[k] & 0xffffffffu);
+        bd->bis[k] = bd->tmp[q];
+        bd->remap[q] = (uint32_t)k;
     }
+    for (size_t k = 0; k < bd->nidx; k++)
+        bd->tile_idx[k] = bd->remap[bd->tile_idx[k]];
     bd->nbis = m;
-    return coarse_lists(bd, cu, oldid) ? vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (culling)")
-                                       : VB_OK;
+    return coarse_lists(bd, cu) ? vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (culling)")
+                                : VB_OK;
 }
 

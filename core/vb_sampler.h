@@ -36,8 +36,17 @@ typedef struct vb_sampler_options {
     int all_pairs;           /* 1: no culling, every cell tests all n - 1 bisectors */
     int topology;            /* 1: collect face adjacency and edge evidence */
     unsigned batch_rays;     /* rays per backend batch (0: backend's choice) */
+    unsigned threads;        /* host threads (0: VORBALL_THREADS or online CPUs);
+                                the output does not depend on it */
     void (*progress)(void *user, double fraction); /* may be NULL */
     void *progress_user;
+    /* When vb_sampler_run gets no backend: called once, before the first
+     * batch, to obtain it, so that a device's set-up (context, program
+     * build) overlaps the culling of that batch; batch_rays must then be
+     * set. Returns the backend (still owned by the caller) or NULL with an
+     * error in the context. */
+    struct vb_sampler_backend *(*await_backend)(void *user);
+    void *await_user;
 } vb_sampler_options;
 
 /* One batch for a backend: the bases, their bisectors and culling tiles. */
@@ -65,6 +74,9 @@ void vb_cand_vec_free(vb_cand_vec *cv);
 /* Seconds spent per stage (wall clock; device stages as the backend measures). */
 typedef struct vb_stage_times {
     double cull, upload, envelope, vertices, matching;
+    /* Parts of matching: targeted search (5.5), tangent spheres of the
+     * sampled quadruples with their swaps, neighbourhood completion. */
+    double targeted, tangent, completion;
 } vb_stage_times;
 
 /* What a backend returns for one batch: candidates appended to cand in any
@@ -135,8 +147,9 @@ void vb_sampler_result_init(vb_sampler_result *r);
 void vb_sampler_result_free(vb_sampler_result *r);
 
 /* Runs the pipeline up to (not including) certification. set must be
- * validated (contained spheres flagged). Returns VB_OK, VB_EMISUSE (bad
- * options), VB_ENOMEM or the backend's VB_EDEVICE. */
+ * validated (contained spheres flagged). be may be NULL when
+ * opt->await_backend and opt->batch_rays are set. Returns VB_OK, VB_EMISUSE
+ * (bad options), VB_ENOMEM or the backend's VB_EDEVICE. */
 int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_options *opt,
                    vb_sampler_backend *be, vb_sampler_result *res);
 

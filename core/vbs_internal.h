@@ -6,9 +6,14 @@
 
 #include "vb_sampler.h"
 
-/* Host threads for the parallel stages (online CPUs, at most VBS_MAX_THREADS). */
+/* Host threads for the parallel stages: `requested` when positive, else the
+ * environment variable VORBALL_THREADS when it is a positive integer, else
+ * the online CPUs; at most VBS_MAX_THREADS. Results never depend on it. */
 #define VBS_MAX_THREADS 64
-int vbs_threads(void);
+int vbs_threads(unsigned requested);
+
+/* Monotonic wall clock in seconds (stage times). */
+double vbs_now(void);
 
 /* Uniform grid of sphere centres (CSR: cell k holds idx[start[k]..start[k+1])). */
 typedef struct vbs_hash {
@@ -53,6 +58,10 @@ typedef struct vbs_base_data {
     uint32_t *near;
     size_t nnear, near_cap;
     uint8_t *keep;
+    uint32_t *remap;         /* old bisector position -> kept position */
+    uint64_t *sortkey;       /* (id, old position) of the kept bisectors */
+    vbs_bisector *tmp;       /* the bisectors before compaction */
+    size_t remap_cap;
     uint32_t *lvl_off[2], *lvl_idx[2]; /* coarser levels of the tile hierarchy */
     size_t lvl_n[2], lvl_cap[2];
     /* Lists of the coarse tiles (T = VBS_COARSE_T or the finest if coarser),
@@ -95,10 +104,11 @@ int vbs_cull_base(vb_ctx *ctx, const vbs_culler *cu, uint32_t i, vbs_base_data *
 double vbs_clip_distance(const vb_sphere_set *set);
 
 /* Matching (Sec. 5.4), targeted search (5.5) and the tangent-sphere test on
- * the sorted raw candidates; fills res->candidates and the counters. */
+ * the sorted raw candidates, on nthreads threads (the result does not depend
+ * on it); fills res->candidates and the counters. */
 int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
-              const vbs_params *params, unsigned target_depth, vb_cand_vec *raw,
-              vb_sampler_result *res);
+              const vbs_params *params, unsigned target_depth, int nthreads,
+              vb_cand_vec *raw, vb_sampler_result *res);
 
 /* Topology evidence of the bases of a batch. */
 typedef struct vbs_topo_acc {

@@ -162,8 +162,8 @@ static cl_int clearance(vbc_gpu *p, const vbc_grid *g, size_t natoms, double pro
                                out->clearance, 0, NULL, NULL);
 }
 
-int vbc_gpu_frame(vb_ctx *ctx, vbc_gpu *p, const vbc_grid *g, const float *atoms4, size_t natoms,
-                  double probe, unsigned want, vbc_frame_out *out)
+int vbc_frame_seeds(vb_ctx *ctx, const vbc_grid *g, const float *atoms4, size_t natoms,
+                    vbj_seeds *out)
 {
     memset(out, 0, sizeof *out);
     uint32_t n = (uint32_t)g->nx;
@@ -172,6 +172,20 @@ int vbc_gpu_frame(vb_ctx *ctx, vbc_gpu *p, const vbc_grid *g, const float *atoms
                         g->nx, g->ny, g->nz);
     if (natoms == 0)
         return vb_error(ctx, VB_EINPUT_EMPTY, NULL, 0, "no atoms in the frame");
+    /* JFA puts pixel p's centre at p, we put voxel i's at i + 0.5. */
+    int rc = vbj_seeds_alloc(ctx, g->dim, n, natoms, out);
+    for (size_t a = 0; a < natoms && rc == VB_OK; a++)
+        rc = vbj_seed_set(ctx, out, a, atoms4[4 * a] - 0.5, atoms4[4 * a + 1] - 0.5,
+                          g->dim == 3 ? atoms4[4 * a + 2] - 0.5 : 0.0);
+    if (rc != VB_OK)
+        vbj_seeds_free(out);
+    return rc;
+}
+
+int vbc_gpu_frame(vb_ctx *ctx, vbc_gpu *p, const vbc_grid *g, const float *atoms4, size_t natoms,
+                  double probe, unsigned want, vbc_frame_out *out)
+{
+    memset(out, 0, sizeof *out);
     cl_command_queue q = vbg_runtime_queue(p->rt);
     size_t nv = vbc_grid_voxels(g);
     size_t nrb = (size_t)vbc_rb_size(g->nx, g->ny, g->nz);
@@ -181,6 +195,8 @@ int vbc_gpu_frame(vb_ctx *ctx, vbc_gpu *p, const vbc_grid *g, const float *atoms
     memset(&jr, 0, sizeof jr);
 
     double t0 = now_ms();
+    if ((rc = vbc_frame_seeds(ctx, g, atoms4, natoms, &seeds)) != VB_OK)
+        return rc;
     cl_int err = ensure(p, &p->atoms, &p->atoms_cap, natoms, 4 * sizeof(float));
     if (err == CL_SUCCESS)
         err = ensure(p, &p->flags, &p->voxels_cap, nv, 1);
@@ -194,14 +210,6 @@ int vbc_gpu_frame(vb_ctx *ctx, vbc_gpu *p, const vbc_grid *g, const float *atoms
     if ((rc = vbg_check(ctx, err, "channel upload")) != VB_OK)
         goto done;
 
-    /* Seeds: JFA puts pixel p's centre at p, we put voxel i's at i + 0.5. */
-    if ((rc = vbj_seeds_alloc(ctx, g->dim, n, natoms, &seeds)) != VB_OK)
-        goto done;
-    for (size_t a = 0; a < natoms && rc == VB_OK; a++)
-        rc = vbj_seed_set(ctx, &seeds, a, atoms4[4 * a] - 0.5, atoms4[4 * a + 1] - 0.5,
-                          g->dim == 3 ? atoms4[4 * a + 2] - 0.5 : 0.0);
-    if (rc != VB_OK)
-        goto done;
     if ((rc = vbg_check(ctx, clFinish(q), "channel upload")) != VB_OK)
         goto done;
     double t1 = now_ms();

@@ -98,10 +98,10 @@ kernel void facet_step(global const uint *list, global const uint *cnt, uint j,
                         continue;
                     global const int *s = seeds + (size_t)v * stride;
                     ulong d = vbj_dist2(px, py, pz, s[0], s[1], dim == 3 ? s[2] : 0);
-                    /* Selects, not a branch (see VBJ_OFFER in jfa.cl). */
-                    uint m = d == bd ? min(v, best) : best;
-                    best = d < bd ? v : m;
-                    bd = min(bd, d);
+                    if (vbj_better(d, v, bd, best)) {
+                        bd = d;
+                        best = v;
+                    }
                 }
         Bnew[origin(c.x, c.y, c.z, lf, n)] = best;
     }

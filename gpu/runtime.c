@@ -1,8 +1,13 @@
 /* OpenCL runtime: device choice, program build and cache, error mapping. */
 #include "vbg_runtime.h"
 
+#include <errno.h>
+#include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #define VBG_MAX_PROGRAMS 16
 
@@ -204,6 +209,129 @@ static int build_failed(vb_ctx *ctx, vbg_runtime *rt, cl_program prog, const cha
     return VB_EDEVICE;
 }
 
+/* Program binary cache: building the kernels from source costs a few
+ * hundred milliseconds on some drivers, more than the whole pipeline on a
+ * small protein. Binaries live in $XDG_CACHE_HOME/vorball (else
+ * $HOME/.cache/vorball), named by a 64-bit FNV-1a hash of the platform,
+ * device and driver identity, the build options and the complete source, so
+ * a changed kernel or driver never meets a stale binary. The cache is only
+ * an accelerator: any failure to read, load or write it falls back to the
+ * source build silently; VORBALL_NO_PROGRAM_CACHE (non-empty) turns it off. */
+static uint64_t fnv1a(uint64_t h, const char *s, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        h = (h ^ (unsigned char)s[i]) * 1099511628211ull;
+    return (h ^ 0xff) * 1099511628211ull; /* field separator */
+}
+
+static int cache_path(const vbg_runtime *rt, const char *name, const char *opts, const char *src,
+                      char *path, size_t cap, int make_dir)
+{
+    const char *off = getenv("VORBALL_NO_PROGRAM_CACHE");
+    if (off && *off)
+        return 0;
+    char dir[900];
+    const char *xdg = getenv("XDG_CACHE_HOME"), *home = getenv("HOME");
+    if (xdg && *xdg)
+        snprintf(dir, sizeof dir, "%s/vorball", xdg);
+    else if (home && *home)
+        snprintf(dir, sizeof dir, "%s/.cache/vorball", home);
+    else
+        return 0;
+    uint64_t h = 1469598103934665603ull;
+    char info[512];
+    const cl_platform_info pq[] = {CL_PLATFORM_NAME, CL_PLATFORM_VERSION};
+    const cl_device_info dq[] = {CL_DEVICE_NAME, CL_DEVICE_VERSION, CL_DRIVER_VERSION,
+                                 CL_DEVICE_VENDOR};
+    for (int k = 0; k < 2; k++) {
+        info[0] = '\0';
+        if (clGetPlatformInfo(rt->platform, pq[k], sizeof info - 1, info, NULL) != CL_SUCCESS)
+            return 0;
+        info[sizeof info - 1] = '\0';
+        h = fnv1a(h, info, strlen(info));
+    }
+    for (int k = 0; k < 4; k++) {
+        info[0] = '\0';
+        if (clGetDeviceInfo(rt->device, dq[k], sizeof info - 1, info, NULL) != CL_SUCCESS)
+            return 0;
+        info[sizeof info - 1] = '\0';
+        h = fnv1a(h, info, strlen(info));
+    }
+    h = fnv1a(h, opts, strlen(opts));
+    h = fnv1a(h, src, strlen(src));
+    if (make_dir) {
+        /* Parent first: $HOME/.cache may not exist yet. */
+        char parent[900];
+        snprintf(parent, sizeof parent, "%s", dir);
+        char *slash = strrchr(parent, '/');
+        if (slash && slash != parent) {
+            *slash = '\0';
+            if (mkdir(parent, 0755) != 0 && errno != EEXIST)
+                return 0;
+        }
+        if (mkdir(dir, 0755) != 0 && errno != EEXIST)
+            return 0;
+    }
+    int n = snprintf(path, cap, "%s/%s-%016llx.bin", dir, name, (unsigned long long)h);
+    return n > 0 && (size_t)n < cap;
+}
+
+/* The cached binary built with opts, or NULL. */
+static cl_program cache_load(const vbg_runtime *rt, const char *path, const char *opts)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    unsigned char *bin = NULL;
+    long n = -1;
+    if (fseek(f, 0, SEEK_END) == 0 && (n = ftell(f)) > 0 && fseek(f, 0, SEEK_SET) == 0 &&
+        (bin = malloc((size_t)n)) && fread(bin, 1, (size_t)n, f) != (size_t)n) {
+        free(bin);
+        bin = NULL;
+    }
+    fclose(f);
+    if (!bin)
+        return NULL;
+    size_t len = (size_t)n;
+    const unsigned char *bp = bin;
+    cl_int status = CL_SUCCESS, err;
+    cl_program prog = clCreateProgramWithBinary(rt->context, 1, &rt->device, &len, &bp, &status, &err);
+    free(bin);
+    if (!prog)
+        return NULL;
+    if (err != CL_SUCCESS || status != CL_SUCCESS ||
+        clBuildProgram(prog, 1, &rt->device, opts, NULL, NULL) != CL_SUCCESS) {
+        clReleaseProgram(prog);
+        return NULL;
+    }
+    return prog;
+}
+
+/* Writes the device binary of prog to path (through a temporary file and a
+ * rename, so a concurrent reader never sees half a binary). */
+static void cache_store(const vbg_runtime *rt, cl_program prog, const char *path)
+{
+    size_t len = 0;
+    if (clGetProgramInfo(prog, CL_PROGRAM_BINARY_SIZES, sizeof len, &len, NULL) != CL_SUCCESS ||
+        len == 0)
+        return;
+    unsigned char *bin = malloc(len);
+    if (!bin)
+        return;
+    char tmp[1300];
+    snprintf(tmp, sizeof tmp, "%s.%ld.tmp", path, (long)getpid());
+    FILE *f = NULL;
+    if (clGetProgramInfo(prog, CL_PROGRAM_BINARIES, sizeof bin, &bin, NULL) == CL_SUCCESS &&
+        (f = fopen(tmp, "wb")) != NULL) {
+        int ok = fwrite(bin, 1, len, f) == len;
+        ok = fclose(f) == 0 && ok;
+        if (!ok || rename(tmp, path) != 0)
+            remove(tmp);
+    }
+    free(bin);
+    (void)rt;
+}
+
 int vbg_program_get(vb_ctx *ctx, vbg_runtime *rt, const char *name, const char *options,
                     cl_program *out)
 {
@@ -222,11 +350,6 @@ int vbg_program_get(vb_ctx *ctx, vbg_runtime *rt, const char *name, const char *
     const char *src = disk ? disk : vbg_kernel_source(name);
     if (!src)
         return vb_error(ctx, VB_EINTERNAL, NULL, 0, "no kernel source named %s", name);
-    cl_int err;
-    cl_program prog = clCreateProgramWithSource(rt->context, 1, &src, NULL, &err);
-    free(disk);
-    if (vbg_check(ctx, err, "clCreateProgramWithSource"))
-        return VB_EDEVICE;
     /* No fast-math or mad flags: kernels compute candidates whose quality the
      * exact certifier judges, and PoCL and the GPU must round alike. Headers
      * of kernels loaded from disk are found beside them and in ../core. */
@@ -236,9 +359,24 @@ int vbg_program_get(vb_ctx *ctx, vbg_runtime *rt, const char *name, const char *
                  options ? options : "");
     else
         snprintf(opts, sizeof opts, "-cl-std=CL1.2 %s", options ? options : "");
-    err = clBuildProgram(prog, 1, &rt->device, opts, NULL, NULL);
-    if (err != CL_SUCCESS)
-        return build_failed(ctx, rt, prog, name, err);
+    /* Kernels read from disk may include edited headers the hash cannot see. */
+    char path[1200];
+    int cached = !disk && cache_path(rt, name, opts, src, path, sizeof path, 0);
+    cl_program prog = cached ? cache_load(rt, path, opts) : NULL;
+    if (!prog) {
+        cl_int err;
+        prog = clCreateProgramWithSource(rt->context, 1, &src, NULL, &err);
+        free(disk);
+        disk = NULL;
+        if (vbg_check(ctx, err, "clCreateProgramWithSource"))
+            return VB_EDEVICE;
+        err = clBuildProgram(prog, 1, &rt->device, opts, NULL, NULL);
+        if (err != CL_SUCCESS)
+            return build_failed(ctx, rt, prog, name, err);
+        if (cached && cache_path(rt, name, opts, src, path, sizeof path, 1))
+            cache_store(rt, prog, path);
+    }
+    free(disk);
     snprintf(rt->programs[rt->nprograms].key, sizeof rt->programs[0].key, "%s", key);
     rt->programs[rt->nprograms].program = prog;
     rt->nprograms++;

@@ -42,6 +42,12 @@ int vbc_gpu_frame(vb_ctx *ctx, vbc_gpu *p, const vbc_grid *g, const float *atoms
 
 void vbc_frame_out_free(vbc_frame_out *o);
 
+/* The JFA seeds of a frame (every backend places them alike): atom a at
+ * atoms4's centre minus half a voxel. Checks the grid as vbc_gpu_frame does.
+ * Allocates *out (vbj_seeds_free). VB_EMISUSE / VB_EINPUT_EMPTY / VB_ENOMEM. */
+int vbc_frame_seeds(vb_ctx *ctx, const vbc_grid *g, const float *atoms4, size_t natoms,
+                    vbj_seeds *out);
+
 /* Where clearances are computed: 0 (default) on the device when it is a GPU,
  * 1 always on the device (tests of the kernel on PoCL), -1 never. */
 void vbc_gpu_set_device_clearance(vbc_gpu *p, int mode);

@@ -2,14 +2,25 @@
 """Turns the JSON files of jfa_run.sh into the tables of results/jfa/README
 parts and the data file of the speed-up plot (jfa_speedup.gp).
 
-    python3 jfa_tables.py RESULTS_DIR > tables.md   (writes RESULTS_DIR/jfa_speedup.dat)
+    python3 jfa_tables.py RESULTS_DIR [ERRORS_DIR] > tables.md
+                                            (writes RESULTS_DIR/jfa_speedup.dat)
+
+Runs made without --check (jfa_run.sh with JFA_CHECK=) carry times only; their
+error figures are taken from ERRORS_DIR, an earlier run of the same
+configurations (same grid, seeds and variant), which is valid only while the
+kernels return the same labels bit for bit (test_jfa checks that on the device).
 """
 import json
 import os
 import sys
 
 
-def load(d, name):
+ERROR_KEYS = ["wrong", "wrong_rate", "max_err", "mean_err", "boundary_exact",
+              "boundary_found", "boundary_missed", "boundary_extra"]
+ERRORS_DIR = None
+
+
+def read(d, name):
     p = os.path.join(d, name + ".json")
     if not os.path.exists(p):
         return None
@@ -17,12 +28,31 @@ def load(d, name):
         return json.load(f)
 
 
+def load(d, name):
+    doc = read(d, name)
+    if doc is None or all("wrong_rate" in r for r in doc["runs"]):
+        return doc
+    old = read(ERRORS_DIR, name) if ERRORS_DIR else None
+    if old is None:
+        sys.exit("%s: no error figures (run with --check or give ERRORS_DIR)" % name)
+    for k in ("dim", "n", "seeds", "source"):
+        if os.path.basename(str(old[k])) != os.path.basename(str(doc[k])):
+            sys.exit("%s: %s differs from the error run's" % (name, k))
+    errs = {r["variant"]: r for r in old["runs"]}
+    for r in doc["runs"]:
+        if "wrong_rate" not in r:
+            r.update({k: errs[r["variant"]][k] for k in ERROR_KEYS})
+    return doc
+
+
 def runs(doc):
     return {r["variant"]: r for r in doc["runs"]}
 
 
 def main():
+    global ERRORS_DIR
     d = sys.argv[1]
+    ERRORS_DIR = sys.argv[2] if len(sys.argv) > 2 else None
     out = []
     sizes = [256, 512, 1024, 2048, 4096]
     seeds = [10, 100, 1000, 10000, 100000]
