@@ -68,11 +68,11 @@ static void usage(FILE *f)
             "                      centroid of the first frame\n"
             "  --png-normal x|y|z  normal of that slice (default x: the slice holds the z axis)\n"
             "  --jfa VARIANT       facet (default), jfa, jfa+1, jfa+2, 1+jfa\n"
-            "  --device D          auto (default: a GPU, else the CPU OpenCL device), gpu, cpu,\n"
-            "                      ref (the plain-C reference: same output, slower). Without a\n"
-            "                      usable OpenCL device the reference runs, with a warning\n"
-            "                      (W804; W805 for gpu on a CPU device; W806 when OpenCL fails\n"
-            "                      mid-run: that frame and the rest are rerun on the reference)\n"
+            "  --device D          auto (default: GPU, else the CPU OpenCL device), gpu, cpu\n"
+            "                      or ref (plain C, same output). If no OpenCL device works,\n"
+            "                      the reference runs after warning W804 (W805: gpu without\n"
+            "                      a GPU tries the CPU device; W806: OpenCL failed mid-run,\n"
+            "                      that frame and the rest rerun on the reference)\n"
             "  --repeat N          run every frame N times (timings; outputs written once)\n");
     vb_cli_input_help(f);
 }

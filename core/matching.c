@@ -879,6 +879,66 @@ static int complete_ring(emit_ctx *e, int nthreads)
     return rc;
 }
 
+/* Pass 1's tangent test of every cluster that needs it (incomplete, or seen
+ * from sphere 0), in parallel: plaus[c] = 1 when its tangent sphere is empty
+ * or it needs no test. */
+typedef struct plaus_ctx {
+    const match_ctx *m;
+    const vb_cand_vec *raw;
+    const vbs_hash *hash;
+    double tol;
+    uint8_t *plaus;
+    uint32_t *mem[VBS_MAX_THREADS], *found[VBS_MAX_THREADS];
+    uint32_t *tbuf[VBS_MAX_THREADS];
+    size_t tcap[VBS_MAX_THREADS], mcap[VBS_MAX_THREADS];
+    int err;
+} plaus_ctx;
+
+static void plaus_eval(void *arg, size_t c, int tid)
+{
+    plaus_ctx *p = arg;
+    const match_ctx *m = p->m;
+    size_t k = m->cl_start[c + 1] - m->cl_start[c];
+    if (p->mcap[tid] < k) {
+        size_t nc = 2 * k;
+        uint32_t *a = realloc(p->mem[tid], 4 * nc * sizeof *a);
+        uint32_t *b = a ? realloc(p->found[tid], nc * sizeof *b) : NULL;
+        if (a)
+            p->mem[tid] = a;
+        if (b)
+            p->found[tid] = b;
+        if (!b) {
+            p->err = VB_ENOMEM;
+            return;
+        }
+        p->mcap[tid] = nc;
+    }
+    size_t nm, nf = cluster_sets(m, p->raw, c, p->mem[tid], &nm, p->found[tid]);
+    p->plaus[c] = 1;
+    if (nf < nm || p->found[tid][0] == 0) {
+        const vbs_cand *rep = p->raw->v + m->cl_items[m->cl_start[c]];
+        uint32_t q4[4];
+        memcpy(q4, rep->ids, sizeof q4);
+        int rc = VB_OK;
+        p->plaus[c] = tangent_intruder(p->hash, rep, q4, p->tol, &p->tbuf[tid], &p->tcap[tid],
+                                       &rc) == VBS_INF_COLOUR;
+        if (rc != VB_OK)
+            p->err = rc;
+    }
+}
+
+/* Index sort of the quadruple records (qsort on 80-byte records spends its
+ * time copying); ties keep the input order, as the stable merge sort of
+ * qsort did. */
+static const qrec *qrec_base;
+
+static int cmp_qrec_idx(const void *pa, const void *pb)
+{
+    uint32_t a = *(const uint32_t *)pa, b = *(const uint32_t *)pb;
+    int c = cmp_qrec(qrec_base + a, qrec_base + b);
+    return c ? c : (a > b) - (a < b);
+}
+
 int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
               const vbs_params *params, unsigned target_depth, int nthreads,
               vb_cand_vec *raw, vb_sampler_result *res)
@@ -892,21 +952,33 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
     uint32_t *tbuf = NULL;
     size_t tcap = 0;
     int rc = (!mem || !found) ? VB_ENOMEM : cluster(&m, raw);
+    /* A vertex whose tangent sphere is not empty is spurious whichever
+     * cells see it: test first, search only for the plausible ones. */
+    uint8_t *plaus = rc == VB_OK ? malloc(m.ncl + 1) : NULL;
+    if (rc == VB_OK && !plaus)
+        rc = VB_ENOMEM;
+    if (rc == VB_OK) {
+        plaus_ctx pc;
+        memset(&pc, 0, sizeof pc);
+        pc.m = &m;
+        pc.raw = raw;
+        pc.hash = cu->hash;
+        pc.tol = params->tol;
+        pc.plaus = plaus;
+        pfor(plaus_eval, &pc, m.ncl, nthreads);
+        for (int t = 0; t < VBS_MAX_THREADS; t++) {
+            free(pc.mem[t]);
+            free(pc.found[t]);
+            free(pc.tbuf[t]);
+        }
+        rc = pc.err;
+    }
     /* Pass 1: completeness, the first cell (Fig. 13), work for 5.5. */
     for (size_t c = 0; rc == VB_OK && c < m.ncl; c++) {
         size_t nm, nf = cluster_sets(&m, raw, c, mem, &nm, found);
         size_t fi = 0;
         int complete = 1;
-        /* A vertex whose tangent sphere is not empty is spurious whichever
-         * cells see it: test first, search only for the plausible ones. */
-        const vbs_cand *rep = raw->v + m.cl_items[m.cl_start[c]];
-        int plausible = 1;
-        if (nf < nm || found[0] == 0) {
-            uint32_t q4[4];
-            memcpy(q4, rep->ids, sizeof q4);
-            plausible = tangent_intruder(cu->hash, rep, q4, params->tol, &tbuf, &tcap, &rc) ==
-                        VBS_INF_COLOUR;
-        }
+        int plausible = plaus[c];
         for (size_t q = 0; q < nm && plausible; q++) {
             while (fi < nf && found[fi] < mem[q])
                 fi++;
@@ -995,8 +1067,24 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
         sort4(qs[nq].q);
         nq++;
     }
-    if (rc == VB_OK && nq)
-        qsort(qs, nq, sizeof *qs, cmp_qrec);
+    if (rc == VB_OK && nq) {
+        uint32_t *ix = malloc(nq * sizeof *ix);
+        qrec *sorted = ix ? malloc(nq * sizeof *sorted) : NULL;
+        if (!sorted) {
+            free(ix);
+            rc = VB_ENOMEM;
+        } else {
+            for (size_t k = 0; k < nq; k++)
+                ix[k] = (uint32_t)k;
+            qrec_base = qs;
+            qsort(ix, nq, sizeof *ix, cmp_qrec_idx);
+            for (size_t k = 0; k < nq; k++)
+                sorted[k] = qs[ix[k]];
+            free(ix);
+            free(qs);
+            qs = sorted;
+        }
+    }
     /* Sampled quadruples first (all marked seen), then their swaps. */
     double tt1 = vbs_now();
     /* 1e-9 of the bounding-box diagonal (the default tol is 1e-5 of it). */
@@ -1038,7 +1126,7 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
     free(ec.qbuf);
     free(ec.seen.keys);
     free(qs);
-    free(tbuf);
+    free(plaus);
     vb_cand_vec_free(&extra);
     free(wk);
     free(mem);

@@ -5,50 +5,86 @@
 #include <time.h>
 
 #include <pthread.h>
+#include <stdatomic.h>
 #include <unistd.h>
 
 #include "vbs_internal.h"
 
-/* Culling of one batch on several threads: base k of the batch goes to
- * thread k mod nthreads, into its own slot; the batch is then assembled in
- * base order, so the result does not depend on the thread count. */
-typedef struct cull_job {
+/* Culling of one batch on worker threads, started while the previous batch
+ * is assembled and runs on the device: bases are handed out one at a time
+ * (their costs differ a hundredfold between buried and hull spheres), each
+ * into its own slot; the batch is then assembled in base order, so the
+ * result does not depend on the thread count or the schedule. */
+typedef struct cull_async {
     vb_ctx *ctx;
     const vbs_culler *cu;
     vbs_base_data *slots;
-    size_t b0, b1, first, step;
-    int rc;
-} cull_job;
+    size_t b0, b1;
+    atomic_size_t next;
+    atomic_int failed;
+    int nt, active;
+    pthread_t th[VBS_MAX_THREADS];
+    int started[VBS_MAX_THREADS];
+    int rc[VBS_MAX_THREADS];
+    struct cull_arg {
+        struct cull_async *a;
+        int t;
+    } arg[VBS_MAX_THREADS];
+} cull_async;
 
-static void *cull_worker(void *arg)
+static void *cull_worker(void *p)
 {
-    cull_job *j = arg;
-    for (size_t i = j->b0 + j->first; i < j->b1 && j->rc == VB_OK; i += j->step)
-        j->rc = vbs_cull_base(j->ctx, j->cu, (uint32_t)i, &j->slots[i - j->b0]);
+    struct cull_arg *w = p;
+    cull_async *a = w->a;
+    for (;;) {
+        size_t i = atomic_fetch_add(&a->next, 1);
+        if (i >= a->b1 || atomic_load(&a->failed))
+            break;
+        int rc = vbs_cull_base(a->ctx, a->cu, (uint32_t)i, &a->slots[i - a->b0]);
+        if (rc != VB_OK) {
+            a->rc[w->t] = rc;
+            atomic_store(&a->failed, 1);
+            break;
+        }
+    }
     return NULL;
 }
 
-static int cull_batch(vb_ctx *ctx, const vbs_culler *cu, vbs_base_data *slots, size_t b0,
-                      size_t b1, int nthreads)
+static void cull_start(cull_async *a, vb_ctx *ctx, const vbs_culler *cu, vbs_base_data *slots,
+                       size_t b0, size_t b1, int nthreads)
 {
-    cull_job jobs[VBS_MAX_THREADS];
-    pthread_t th[VBS_MAX_THREADS];
-    int started[VBS_MAX_THREADS] = {0};
-    for (int t = 0; t < nthreads; t++)
-        jobs[t] = (cull_job){ctx, cu, slots, b0, b1, (size_t)t, (size_t)nthreads, VB_OK};
-    for (int t = 1; t < nthreads; t++)
-        started[t] = pthread_create(&th[t], NULL, cull_worker, &jobs[t]) == 0;
-    cull_worker(&jobs[0]);
-    /* A thread that could not start has its share done here. */
-    for (int t = 1; t < nthreads; t++) {
-        if (started[t])
-            pthread_join(th[t], NULL);
-        else
-            cull_worker(&jobs[t]);
+    a->ctx = ctx;
+    a->cu = cu;
+    a->slots = slots;
+    a->b0 = b0;
+    a->b1 = b1;
+    atomic_store(&a->next, b0);
+    atomic_store(&a->failed, 0);
+    a->nt = nthreads;
+    a->active = 1;
+    for (int t = 0; t < nthreads; t++) {
+        a->rc[t] = VB_OK;
+        a->arg[t] = (struct cull_arg){a, t};
+        a->started[t] = pthread_create(&a->th[t], NULL, cull_worker, &a->arg[t]) == 0;
     }
-    for (int t = 0; t < nthreads; t++)
-        if (jobs[t].rc != VB_OK)
-            return jobs[t].rc;
+}
+
+/* Waits for the batch; a thread that could not start has its share (what
+ * is left) done here. Returns the first error. */
+static int cull_join(cull_async *a)
+{
+    if (!a->active)
+        return VB_OK;
+    a->active = 0;
+    for (int t = 0; t < a->nt; t++) {
+        if (a->started[t])
+            pthread_join(a->th[t], NULL);
+        else
+            cull_worker(&a->arg[t]);
+    }
+    for (int t = 0; t < a->nt; t++)
+        if (a->rc[t] != VB_OK)
+            return a->rc[t];
     return VB_OK;
 }
 
@@ -267,7 +303,10 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
     vbs_tiles levels[8];
     int nlevels = 0;
     memset(levels, 0, sizeof levels);
-    vbs_base_data *slots = calloc(per_batch, sizeof *slots);
+    /* Two sets of slots: batch k + 1 is culled into one while batch k, in
+     * the other, is assembled and runs on the backend. */
+    vbs_base_data *slots = calloc(2 * per_batch, sizeof *slots);
+    cull_async *ca = calloc(1, sizeof *ca);
     unsigned coarse_t = o.tiles < VBS_COARSE_T ? o.tiles : VBS_COARSE_T;
     vbs_bis_store store = {calloc(set->n + 1, sizeof(size_t)), NULL, 0, 0, coarse_t,
                            malloc((set->n * 6u * coarse_t * coarse_t + 1) * sizeof(uint32_t)),
@@ -286,17 +325,24 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
     vbs_culler cu = {set, &hash, levels, nlevels, res->clip, o.all_pairs, &store};
     bb.bases = malloc(per_batch * sizeof *bb.bases);
     bb.tile_off = malloc((per_batch * ntiles + 1) * sizeof *bb.tile_off);
-    if (rc == VB_OK && (!bb.bases || !bb.tile_off || !slots || !store.off || !store.co_off))
+    if (rc == VB_OK &&
+        (!bb.bases || !bb.tile_off || !slots || !ca || !store.off || !store.co_off))
         rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (batch buffers)");
-    for (size_t b0 = 0; rc == VB_OK && b0 < set->n; b0 += per_batch) {
+    if (rc == VB_OK && set->n > 0)
+        cull_start(ca, ctx, &cu, slots, 0, per_batch, nthreads);
+    for (size_t b0 = 0, cur = 0; rc == VB_OK && b0 < set->n; b0 += per_batch, cur ^= 1) {
         size_t b1 = b0 + per_batch < set->n ? b0 + per_batch : set->n;
+        vbs_base_data *sl = slots + cur * per_batch;
         double t0 = vbs_now();
         bb.nbases = bb.nbis = bb.nidx = 0;
         bb.tile_off[0] = 0;
-        rc = cull_batch(ctx, &cu, slots, b0, b1, nthreads);
+        rc = cull_join(ca);
+        if (rc == VB_OK && b1 < set->n)
+            cull_start(ca, ctx, &cu, slots + (cur ^ 1) * per_batch, b1,
+                       b1 + per_batch < set->n ? b1 + per_batch : set->n, nthreads);
         for (size_t i = b0; i < b1 && rc == VB_OK; i++)
-            if (batch_add(&bb, set, (uint32_t)i, res->clip, &slots[i - b0], ntiles) ||
-                store_add(&store, (uint32_t)i, &slots[i - b0]))
+            if (batch_add(&bb, set, (uint32_t)i, res->clip, &sl[i - b0], ntiles) ||
+                store_add(&store, (uint32_t)i, &sl[i - b0]))
                 rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (batch)");
         res->times.cull += vbs_now() - t0;
         if (rc != VB_OK)
@@ -321,11 +367,15 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
         if (o.progress)
             o.progress(o.progress_user, (double)b1 / (double)set->n);
     }
+    int crc = ca ? cull_join(ca) : VB_OK; /* a batch culled ahead of an error */
+    if (rc == VB_OK)
+        rc = crc;
+    free(ca);
     free(bb.bases);
     free(bb.bis);
     free(bb.tile_off);
     free(bb.tile_idx);
-    for (size_t k = 0; slots && k < per_batch; k++)
+    for (size_t k = 0; slots && k < 2 * per_batch; k++)
         vbs_base_data_free(&slots[k]);
     free(slots);
     if (rc == VB_OK && o.topology && vbs_topo_finish(&topo, &res->topo))
