@@ -207,6 +207,10 @@ static int grid_build(center_grid *g, const vb_sphere_set *s)
     qsort(rs, s->n, sizeof *rs, cmp_double);
     g->h = 2.0 * rs[s->n / 2];
     free(rs);
+    /* Radius-0 points (PQR polar hydrogens) can make the median 0: start
+     * from a unit edge, which the loop below grows as needed. */
+    if (!(g->h > 0))
+        g->h = 1.0;
     size_t limit = 4 * s->n + 64;
     for (;;) {
         double cells = 1;

@@ -540,6 +540,9 @@ static void test_zero_radius(void)
     CHECK_ERROR(ctx, rc, VB_EINPUT_RADIUS, "z.xyzr:2:");
     o.zero_radius = VB_ZERO_RADIUS_POINT;
     CHECK_INT(read_validate(ctx, "z.xyzr", xyzr, &o, 4), VB_OK);
+    /* Mostly points: the containment grid must still get a positive cell. */
+    const char *points = "0 0 0 0\n3 0 0 0\n0 3 0 0\n0 0 3 1\n9 9 9 0\n";
+    CHECK_INT(read_validate(ctx, "p.xyzr", points, &o, 4), VB_OK);
     const char *negative = "0 0 0 1\n3 0 0 -0.5\n0 3 0 1\n0 0 3 1\n";
     rc = read_validate(ctx, "n.xyzr", negative, &o, 4);
     CHECK_ERROR(ctx, rc, VB_EINPUT_RADIUS, "n.xyzr:2:");
