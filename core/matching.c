@@ -154,9 +154,24 @@ static void sort4(uint32_t q[4])
     }
 }
 
+/* Sorts v and drops repeats; returns the new length. The lists are short
+ * (4 ids per candidate of one cluster), so small ones are sorted by
+ * insertion rather than through qsort's calls. */
 static size_t uniq(uint32_t *v, size_t n)
 {
-    qsort(v, n, sizeof *v, cmp_u32);
+    if (n <= 32) {
+        for (size_t a = 1; a < n; a++) {
+            uint32_t x = v[a];
+            size_t b = a;
+            while (b > 0 && v[b - 1] > x) {
+                v[b] = v[b - 1];
+                b--;
+            }
+            v[b] = x;
+        }
+    } else {
+        qsort(v, n, sizeof *v, cmp_u32);
+    }
     size_t m = 0;
     for (size_t k = 0; k < n; k++)
         if (m == 0 || v[m - 1] != v[k])
@@ -397,6 +412,21 @@ static size_t qhash(const uint32_t q[4], size_t mask)
     return (size_t)(h ^ (h >> 29)) & mask;
 }
 
+/* 1 when q is in the set (read-only: safe on several threads while nobody
+ * inserts). */
+static int qset_has(const qset *s, const uint32_t q[4])
+{
+    if (s->cap == 0)
+        return 0;
+    size_t h = qhash(q, s->cap - 1);
+    while (s->keys[h][0] != 0xffffffffu) {
+        if (memcmp(s->keys[h], q, 4 * sizeof *q) == 0)
+            return 1;
+        h = (h + 1) & (s->cap - 1);
+    }
+    return 0;
+}
+
 /* Inserts q; returns 1 if new, 0 if present, -1 on allocation failure. */
 static int qset_add(qset *s, const uint32_t q[4])
 {
@@ -434,19 +464,6 @@ typedef struct qrec {
     uint32_t q[4];
     vbs_cand c;
 } qrec;
-
-static int cmp_qrec(const void *pa, const void *pb)
-{
-    const qrec *a = pa, *b = pb;
-    for (int k = 0; k < 4; k++)
-        if (a->q[k] != b->q[k])
-            return a->q[k] < b->q[k] ? -1 : 1;
-    if (a->c.ids[0] != b->c.ids[0])
-        return a->c.ids[0] < b->c.ids[0] ? -1 : 1;
-    if (a->c.cell != b->c.cell)
-        return a->c.cell < b->c.cell ? -1 : 1;
-    return (a->c.seq > b->c.seq) - (a->c.seq < b->c.seq);
-}
 
 /* A tiny parallel-for: item i goes to thread i mod nt; a thread that cannot
  * start has its share run by the caller. Items must be independent. */
@@ -654,6 +671,10 @@ typedef struct ring_ctx {
     size_t lo;               /* first vertex of the round */
     uint32_t (*best)[VBS_RING];
     int *nb;
+    /* Per vertex i, the quadruple of (drop, b) at slot (4 i + drop) VBS_RING
+     * + b, sorted, and whether it was seen before the round. */
+    uint32_t (*quad)[4];
+    uint8_t *old;
     ring_item *items;
     int err;
 } ring_ctx;
@@ -750,6 +771,17 @@ static void ring_nearest(void *arg, size_t i, int tid)
         }
     }
     r->nb[i] = nb;
+    /* The quadruples phase B will try, and which of them the set already
+     * holds (the set is not written during this phase). */
+    for (int drop = 0; drop < 4; drop++)
+        for (int b = 0; b < nb; b++) {
+            size_t slot = (4 * i + (size_t)drop) * VBS_RING + (size_t)b;
+            uint32_t *q2 = r->quad[slot];
+            for (int a = 0; a < 4; a++)
+                q2[a] = a == drop ? best[b] : q[a];
+            sort4(q2);
+            r->old[slot] = (uint8_t)qset_has(&r->e->seen, q2);
+        }
 }
 
 /* Phase C: both tangent spheres of item i and whether each is empty. */
@@ -800,11 +832,17 @@ static int complete_ring(emit_ctx *e, int nthreads)
         r.lo = lo;
         uint32_t(*best)[VBS_RING] = realloc(r.best, nv * sizeof *best);
         int *nb = best ? realloc(r.nb, nv * sizeof *nb) : NULL;
+        uint32_t(*quad)[4] = nb ? realloc(r.quad, 4 * VBS_RING * nv * sizeof *quad) : NULL;
+        uint8_t *old = quad ? realloc(r.old, 4 * VBS_RING * nv) : NULL;
         if (best)
             r.best = best;
         if (nb)
             r.nb = nb;
-        if (!best || !nb) {
+        if (quad)
+            r.quad = quad;
+        if (old)
+            r.old = old;
+        if (!old) {
             rc = VB_ENOMEM;
             break;
         }
@@ -813,16 +851,16 @@ static int complete_ring(emit_ctx *e, int nthreads)
             rc = r.err;
             break;
         }
-        /* Phase B: the fresh quadruples, in vertex order. */
+        /* Phase B: the fresh quadruples, in vertex order (those the set
+         * held before the round were found in phase A). */
         size_t ni = 0;
         for (size_t i = 0; i < nv && rc == VB_OK; i++) {
-            const uint32_t *q = v->ids + v->start[lo + i];
             for (int drop = 0; drop < 4 && rc == VB_OK; drop++)
                 for (int b = 0; b < r.nb[i] && rc == VB_OK; b++) {
-                    uint32_t q2[4];
-                    for (int a = 0; a < 4; a++)
-                        q2[a] = a == drop ? r.best[i][b] : q[a];
-                    sort4(q2);
+                    size_t slot = (4 * i + (size_t)drop) * VBS_RING + (size_t)b;
+                    if (r.old[slot])
+                        continue;
+                    const uint32_t *q2 = r.quad[slot];
                     int fresh = qset_add(&e->seen, q2);
                     if (fresh < 0) {
                         rc = VB_ENOMEM;
@@ -875,6 +913,8 @@ static int complete_ring(emit_ctx *e, int nthreads)
     }
     free(r.best);
     free(r.nb);
+    free(r.quad);
+    free(r.old);
     free(r.items);
     return rc;
 }
@@ -927,16 +967,20 @@ static void plaus_eval(void *arg, size_t c, int tid)
     }
 }
 
-/* Index sort of the quadruple records (qsort on 80-byte records spends its
- * time copying); ties keep the input order, as the stable merge sort of
- * qsort did. */
-static const qrec *qrec_base;
+/* Sort key of a quadruple record: quadruple, base, grid cell, rank, then the
+ * record's position, so ties keep the input order as the stable merge sort
+ * of qsort did (sorting the 80-byte records spends its time copying). */
+typedef struct qkey {
+    uint32_t k[7], idx;
+} qkey;
 
-static int cmp_qrec_idx(const void *pa, const void *pb)
+static int cmp_qkey(const void *pa, const void *pb)
 {
-    uint32_t a = *(const uint32_t *)pa, b = *(const uint32_t *)pb;
-    int c = cmp_qrec(qrec_base + a, qrec_base + b);
-    return c ? c : (a > b) - (a < b);
+    const qkey *a = pa, *b = pb;
+    for (int i = 0; i < 7; i++)
+        if (a->k[i] != b->k[i])
+            return a->k[i] < b->k[i] ? -1 : 1;
+    return (a->idx > b->idx) - (a->idx < b->idx);
 }
 
 int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
@@ -949,8 +993,6 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
     work *wk = NULL;
     size_t nwk = 0, wcap = 0;
     vb_cand_vec extra = {0};
-    uint32_t *tbuf = NULL;
-    size_t tcap = 0;
     int rc = (!mem || !found) ? VB_ENOMEM : cluster(&m, raw);
     /* A vertex whose tangent sphere is not empty is spurious whichever
      * cells see it: test first, search only for the plausible ones. */
@@ -1068,18 +1110,20 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
         nq++;
     }
     if (rc == VB_OK && nq) {
-        uint32_t *ix = malloc(nq * sizeof *ix);
+        qkey *ix = malloc(nq * sizeof *ix);
         qrec *sorted = ix ? malloc(nq * sizeof *sorted) : NULL;
         if (!sorted) {
             free(ix);
             rc = VB_ENOMEM;
         } else {
+            for (size_t k = 0; k < nq; k++) {
+                const qrec *r = qs + k;
+                ix[k] = (qkey){{r->q[0], r->q[1], r->q[2], r->q[3], r->c.ids[0], r->c.cell,
+                                r->c.seq}, (uint32_t)k};
+            }
+            qsort(ix, nq, sizeof *ix, cmp_qkey);
             for (size_t k = 0; k < nq; k++)
-                ix[k] = (uint32_t)k;
-            qrec_base = qs;
-            qsort(ix, nq, sizeof *ix, cmp_qrec_idx);
-            for (size_t k = 0; k < nq; k++)
-                sorted[k] = qs[ix[k]];
+                sorted[k] = qs[ix[k].idx];
             free(ix);
             free(qs);
             qs = sorted;

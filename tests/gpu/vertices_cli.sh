@@ -3,7 +3,8 @@
 # falls back to the reference backend with warning W760 and the same bytes;
 # bench prints its table and JSON; --topology on a general-position set
 # satisfies the edge count of a simple diagram (every vertex has four edges:
-# 2 finite + infinite = 4 V); bad options are usage errors (exit 2).
+# 2 finite + infinite = 4 V); the thread count never changes the output;
+# bad options are usage errors (exit 2).
 # usage: vertices_cli.sh VORBALL WORK_DIR
 vorball=$1 work=$2/vertices_cli
 fail() { echo "FAIL: $*" >&2; exit 1; }
@@ -23,6 +24,31 @@ if ! "$vorball" devices 2>/dev/null | grep -q 'GPU'; then
     grep -q 'W760' "$work/gpu.err" || fail "no W760 warning on fallback"
     cmp -s "$work/ref.tsv" "$work/gpu.tsv" || fail "fallback output differs from ref"
 fi
+# Host threads never change the bytes: --threads, VORBALL_THREADS, and the
+# OpenCL CPU device (its set-up overlaps the culling) against ref.
+for t in 1 3 7; do
+    "$vorball" vertices --device ref --threads $t "$work/set.xyzr" > "$work/t$t.tsv" 2>/dev/null ||
+        fail "--threads $t failed"
+    cmp -s "$work/ref.tsv" "$work/t$t.tsv" || fail "--threads $t output differs"
+done
+VORBALL_THREADS=5 "$vorball" vertices --device auto "$work/set.xyzr" > "$work/env.tsv" 2>/dev/null ||
+    fail "VORBALL_THREADS run failed"
+cmp -s "$work/ref.tsv" "$work/env.tsv" || fail "VORBALL_THREADS=5 output differs"
+# The program binary cache: written on the first OpenCL run, used by the
+# next; a damaged binary falls back to the source build, same bytes.
+if "$vorball" devices 2>/dev/null | grep -q 'CPU'; then
+    rm -rf "$work/cache"
+    for k in 1 2 3; do
+        XDG_CACHE_HOME="$work/cache" "$vorball" vertices --device cpu "$work/set.xyzr" \
+            > "$work/cache$k.tsv" 2>/dev/null || fail "cached run $k failed"
+        cmp -s "$work/ref.tsv" "$work/cache$k.tsv" || fail "cached run $k output differs"
+        nbin=$(ls "$work/cache/vorball/" 2>/dev/null | grep -c '\.bin$')
+        [ "$nbin" -eq 2 ] || fail "expected 2 cached program binaries, found $nbin"
+        [ $k -eq 2 ] && for b in "$work/cache/vorball/"*.bin; do echo damaged > "$b"; done
+    done
+fi
+"$vorball" vertices --threads 0 "$work/set.xyzr" > /dev/null 2>&1
+[ $? -eq 2 ] || fail "--threads 0 must be a usage error"
 "$vorball" vertices --device ref --topology "$work/topo.tsv" "$work/set.xyzr" > /dev/null 2>&1 ||
     fail "--topology failed"
 fin=$(awk '$1 == "edge" && $3 != -1' "$work/topo.tsv" | wc -l)
