@@ -224,76 +224,33 @@ int vbj_ref_run(vb_ctx *ctx, const vbj_seeds *s, const vbj_options *opt, vbj_res
     return rc;
 }
 
-/* Nearest seed to the pixel centre p by rings of buckets around p's bucket,
- * stopping once no unvisited bucket can hold a seed as near as the best. */
-static uint32_t exact_pixel(const vbj_seeds *s, const vbj_cells *c, const uint32_t px[3])
-{
-    int dim = s->dim, G = (int)c->g;
-    int64_t bs = (int64_t)1 << c->shift;
-    int64_t p[3] = {(int64_t)px[0] * VBJ_FIX_ONE, (int64_t)px[1] * VBJ_FIX_ONE,
-                    (int64_t)px[2] * VBJ_FIX_ONE};
-    int b[3] = {(int)(px[0] >> c->shift), (int)(px[1] >> c->shift),
-                dim == 3 ? (int)(px[2] >> c->shift) : 0};
-    uint32_t best = VBJ_NONE;
-    uint64_t bd = UINT64_MAX;
-    for (int r = 0;; r++) {
-        int rz = dim == 3 ? r : 0;
-        for (int dz = -rz; dz <= rz; dz++) {
-            int iz = b[2] + dz;
-            if (iz < 0 || iz >= (dim == 3 ? G : 1))
-                continue;
-            int zedge = dim == 3 && (dz == -r || dz == r);
-            for (int dy = -r; dy <= r; dy++) {
-                int iy = b[1] + dy;
-                if (iy < 0 || iy >= G)
-                    continue;
-                int step = (zedge || dy == -r || dy == r || r == 0) ? 1 : 2 * r;
-                for (int dx = -r; dx <= r; dx += step) {
-                    int ix = b[0] + dx;
-                    if (ix < 0 || ix >= G)
-                        continue;
-                    size_t bk = ((size_t)iz * G + iy) * G + ix;
-                    for (uint32_t j = c->start[bk]; j < c->start[bk + 1]; j++) {
-                        uint32_t v = c->items[j];
-                        uint64_t d = vbj_dist2((int32_t)p[0], (int32_t)p[1], (int32_t)p[2],
-                                               s->x[v], s->y[v], s->z[v]);
-                        if (vbj_better(d, v, bd, best)) {
-                            bd = d;
-                            best = v;
-                        }
-                    }
-                }
-            }
-        }
-        /* Seeds outside the visited block lie beyond one of its faces. */
-        int64_t D = INT64_MAX;
-        for (int a = 0; a < dim; a++) {
-            if (b[a] - r - 1 >= 0) {
-                int64_t lo = (int64_t)(b[a] - r) * bs * VBJ_FIX_ONE - VBJ_FIX_HALF;
-                D = p[a] - lo < D ? p[a] - lo : D;
-            }
-            if (b[a] + r + 1 < G) {
-                int64_t hi = (int64_t)(b[a] + r + 1) * bs * VBJ_FIX_ONE - VBJ_FIX_HALF;
-                D = hi - p[a] < D ? hi - p[a] : D;
-            }
-        }
-        if (D == INT64_MAX || (best != VBJ_NONE && bd < (uint64_t)D * (uint64_t)D))
-            return best;
-    }
-}
-
 int vbj_ref_exact(vb_ctx *ctx, const vbj_seeds *s, uint32_t *labels)
 {
     vbj_cells c;
     int rc = vbj_cells_build(ctx, s, &c);
     if (rc)
         return rc;
+    /* The seeds interleaved as the kernel reads them (x, y[, z], pad). */
+    uint32_t stride = s->dim == 3 ? 4 : 2;
+    int32_t *seeds = calloc(s->k * stride, sizeof *seeds);
+    if (!seeds) {
+        vbj_cells_free(&c);
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory for %zu seeds", s->k);
+    }
+    for (size_t i = 0; i < s->k; i++) {
+        seeds[stride * i] = s->x[i];
+        seeds[stride * i + 1] = s->y[i];
+        if (stride == 4)
+            seeds[stride * i + 2] = s->z[i];
+    }
     level L = make_level(s, s->n);
     for (size_t i = 0; i < L.cells; i++) {
         uint32_t px[3];
         coords(&L, i, px);
-        labels[i] = exact_pixel(s, &c, px);
+        labels[i] = vbj_exact_nearest(seeds, stride, c.start, c.items, (uint32_t)s->dim, c.shift,
+                                      c.g, px[0], px[1], px[2]);
     }
+    free(seeds);
     vbj_cells_free(&c);
     return VB_OK;
 }
