@@ -72,6 +72,69 @@ static uint32_t robust_colour(const vbs_base *b, const vbs_bisector *bis, const 
     return second - best > 1e-9 * best ? colour : AMBIGUOUS;
 }
 
+/* Two-colour test of one grid cell: q holds the colours of its nq corner
+ * rays. Ambiguous corners say nothing either way and are skipped. Writes
+ * the sorted triple {base, a, b} and returns 1 when exactly two finite
+ * colours a, b remain; 0 otherwise. */
+static int cell_triple(const uint32_t *q, int nq, uint32_t base, uint32_t t[3])
+{
+    uint32_t a = VBS_INF_COLOUR, c2 = VBS_INF_COLOUR;
+    for (int m = 0; m < nq; m++) {
+        if (q[m] >= AMBIGUOUS || q[m] == a || q[m] == c2)
+            continue;
+        if (a == VBS_INF_COLOUR)
+            a = q[m];
+        else if (c2 == VBS_INF_COLOUR)
+            c2 = q[m];
+        else
+            return 0;
+    }
+    if (c2 == VBS_INF_COLOUR)
+        return 0;
+    t[0] = base;
+    t[1] = a;
+    t[2] = c2;
+    sort3(t);
+    return 1;
+}
+
+/* Edge triples of one base, buffered in buf (cap entries of 3) and flushed
+ * into the accumulator when full. */
+typedef struct triple_buf {
+    vbs_topo_acc *acc;
+    uint32_t *buf;
+    size_t n, cap;
+} triple_buf;
+
+static int emit_cell(triple_buf *tb, const uint32_t *q, int nq, uint32_t base)
+{
+    uint32_t *t = tb->buf + 3 * tb->n;
+    if (!cell_triple(q, nq, base, t))
+        return VB_OK;
+    /* Neighbouring cells repeat the same triple: skip runs. */
+    if (tb->n > 0 && memcmp(t, t - 3, 3 * sizeof *t) == 0)
+        return VB_OK;
+    if (++tb->n < tb->cap)
+        return VB_OK;
+    tb->n = 0;
+    return push(&tb->acc->triples, &tb->acc->ntriples, &tb->acc->triples_cap, tb->buf,
+                3 * tb->cap);
+}
+
+/* Index of the grid row next to a face boundary: sign > 0 is the row before
+ * coordinate +1 (k = S-2), sign < 0 the row after -1 (k = 1); with
+ * edge_row, the face cells along that boundary. */
+static unsigned inner_row(int sign, unsigned S)
+{
+    return sign > 0 ? S - 2u : 1u;
+}
+
+/* Index of the boundary row itself (coordinate +1 or -1). */
+static unsigned edge_row(int sign, unsigned S)
+{
+    return sign > 0 ? S - 1u : 0u;
+}
+
 int vbs_topo_collect(vbs_topo_acc *acc, const vb_sampler_batch *bt, size_t k)
 {
     unsigned S = bt->params.samples, T = bt->params.tiles;
@@ -103,43 +166,60 @@ int vbs_topo_collect(vbs_topo_acc *acc, const vb_sampler_batch *bt, size_t k)
         rc = push(&acc->faces, &acc->nfaces, &acc->faces_cap, f, 2);
     }
     /* Edges: grid cells with exactly two finite colours. */
-    size_t nt = 0;
+    triple_buf tb = {acc, tmp, 0, rays / 3};
+#define COL(f, iu, iv) colours[((size_t)(f) * S + (iv)) * S + (iu)]
     for (unsigned f = 0; f < 6 && rc == VB_OK; f++)
-        for (unsigned iv = 0; iv + 1 < S; iv++)
-            for (unsigned iu = 0; iu + 1 < S; iu++) {
-                const uint32_t *c = colours + (size_t)f * S * S;
-                uint32_t q[4] = {c[iv * S + iu], c[iv * S + iu + 1], c[(iv + 1) * S + iu],
-                                 c[(iv + 1) * S + iu + 1]};
-                uint32_t a = VBS_INF_COLOUR, c2 = VBS_INF_COLOUR;
-                int other = 0;
-                /* Ambiguous corners say nothing either way: skip them. */
-                for (int m = 0; m < 4; m++) {
-                    if (q[m] >= AMBIGUOUS || q[m] == a || q[m] == c2)
-                        continue;
-                    if (a == VBS_INF_COLOUR)
-                        a = q[m];
-                    else if (c2 == VBS_INF_COLOUR)
-                        c2 = q[m];
-                    else
-                        other = 1;
-                }
-                if (other || c2 == VBS_INF_COLOUR)
-                    continue;
-                tmp[3 * nt] = base;
-                tmp[3 * nt + 1] = a;
-                tmp[3 * nt + 2] = c2;
-                sort3(tmp + 3 * nt);
-                /* Neighbouring cells repeat the same triple: skip runs. */
-                if (nt > 0 && memcmp(tmp + 3 * nt, tmp + 3 * (nt - 1), 3 * sizeof *tmp) == 0)
-                    continue;
-                nt++;
-                if (3 * (nt + 1) > rays) {
-                    rc = push(&acc->triples, &acc->ntriples, &acc->triples_cap, tmp, 3 * nt);
-                    nt = 0;
-                }
+        for (unsigned iv = 0; iv + 1 < S && rc == VB_OK; iv++)
+            for (unsigned iu = 0; iu + 1 < S && rc == VB_OK; iu++) {
+                uint32_t q[4] = {COL(f, iu, iv), COL(f, iu + 1, iv), COL(f, iu, iv + 1),
+                                 COL(f, iu + 1, iv + 1)};
+                rc = emit_cell(&tb, q, 4, base);
             }
+    /* Cells across the cube's seams and corners. A face's grid cells end at
+     * the seam rays; an edge running along a seam (directions of an
+     * axis-aligned input) puts exactly those rays on the trisector, where
+     * they are ambiguous, so no face cell sees its two colours. A seam cell
+     * is the union of the two face cells that meet at the seam (rows next to
+     * the seam and the seam rays of both faces); a corner cell the union of
+     * the three face cells at the corner. Ray spacing stays the grid's, so
+     * they say no more than a face cell would.
+     * Face f (axis a, sign s) at u = sg borders face g (axis a+1, sign sg):
+     * there g's u runs along the seam as f's v does, and g's v = s. */
+    for (unsigned f = 0; f < 6 && rc == VB_OK; f++) {
+        unsigned a = f / 2u;
+        int s = (f & 1u) ? -1 : 1;
+        for (int sg = -1; sg <= 1 && rc == VB_OK; sg += 2) {
+            unsigned g = 2u * ((a + 1u) % 3u) + (sg > 0 ? 0u : 1u);
+            unsigned fu = inner_row(sg, S), fs = edge_row(sg, S);
+            unsigned gv = inner_row(s, S), gs = edge_row(s, S);
+            for (unsigned t = 0; t + 1 < S && rc == VB_OK; t++) {
+                uint32_t q[8] = {COL(f, fu, t), COL(f, fu, t + 1), COL(f, fs, t),
+                                 COL(f, fs, t + 1), COL(g, t, gv), COL(g, t + 1, gv),
+                                 COL(g, t, gs), COL(g, t + 1, gs)};
+                rc = emit_cell(&tb, q, 8, base);
+            }
+        }
+    }
+    /* Corner (sx, sy, sz): on the face of axis a the corner is at
+     * u = s[a+1], v = s[a+2]. */
+    for (unsigned c = 0; c < 8 && rc == VB_OK; c++) {
+        int sgn[3] = {(c & 1u) ? -1 : 1, (c & 2u) ? -1 : 1, (c & 4u) ? -1 : 1};
+        uint32_t q[12];
+        for (unsigned a = 0; a < 3; a++) {
+            unsigned f = 2u * a + (sgn[a] > 0 ? 0u : 1u);
+            int su = sgn[(a + 1u) % 3u], sv = sgn[(a + 2u) % 3u];
+            unsigned iu = inner_row(su, S), eu = edge_row(su, S);
+            unsigned iv = inner_row(sv, S), ev = edge_row(sv, S);
+            q[4 * a] = COL(f, iu, iv);
+            q[4 * a + 1] = COL(f, eu, iv);
+            q[4 * a + 2] = COL(f, iu, ev);
+            q[4 * a + 3] = COL(f, eu, ev);
+        }
+        rc = emit_cell(&tb, q, 12, base);
+    }
+#undef COL
     if (rc == VB_OK)
-        rc = push(&acc->triples, &acc->ntriples, &acc->triples_cap, tmp, 3 * nt);
+        rc = push(&acc->triples, &acc->ntriples, &acc->triples_cap, tmp, 3 * tb.n);
     free(colours);
     return rc;
 }
