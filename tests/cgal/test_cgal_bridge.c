@@ -33,19 +33,6 @@ static vb_sphere_set *make_set(size_t n, const long (*c)[4], int exp10)
     return s;
 }
 
-static void free_set(vb_sphere_set *s)
-{
-    free(s->x);
-    free(s->y);
-    free(s->z);
-    free(s->r);
-    free(s->ex);
-    free(s->ey);
-    free(s->ez);
-    free(s->er);
-    free(s);
-}
-
 static size_t degree(const vb_vertex_list *v, size_t k)
 {
     return v->start[k + 1] - v->start[k];
@@ -144,7 +131,7 @@ static void test_cube(vb_ctx *ctx)
     CHECK_INT(diff.missing, 1);
     vb_vertex_list_free(&v);
     vb_cgal_free(d);
-    free_set(s);
+    vb_spheres_free(s);
 }
 
 /* 3 x 3 x 3 simple cubic block, spacing 2: eight degree-8 vertices at the
@@ -194,7 +181,7 @@ static void test_lattice(vb_ctx *ctx)
     vb_vertex_list_free(&v);
     vb_cgal_free(p);
     vb_cgal_free(d);
-    free_set(s);
+    vb_spheres_free(s);
 }
 
 /* Unequal radii: refused for Voronoi; the power vertex of
@@ -227,7 +214,7 @@ static void test_power(vb_ctx *ctx)
     CHECK(vb_cgal_identical(&diff));
     vb_vertex_list_free(&v);
     vb_cgal_free(d);
-    free_set(s);
+    vb_spheres_free(s);
 }
 
 /* Coplanar centres: no vertices, not an error. */
@@ -239,7 +226,7 @@ static void test_flat(vb_ctx *ctx)
     CHECK_INT(vb_cgal_build(ctx, s, VB_CGAL_VORONOI, &d), VB_OK);
     CHECK_INT(vb_cgal_size(d), 0);
     vb_cgal_free(d);
-    free_set(s);
+    vb_spheres_free(s);
 }
 
 int main(void)

@@ -22,17 +22,6 @@ static inline vb_sphere_set *synth_alloc(size_t n)
     return s;
 }
 
-static inline void synth_free(vb_sphere_set *s)
-{
-    if (!s)
-        return;
-    free(s->x);
-    free(s->y);
-    free(s->z);
-    free(s->r);
-    free(s);
-}
-
 /* `rings` rings of `per` atoms of radius r on a circle of radius rc around the
  * z axis, rings `dz` apart and staggered by half a step, centred on z = 0.
  * Clearance on the axis: hypot(rc, 0) - r = rc - r at the ring heights. */

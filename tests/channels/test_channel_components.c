@@ -87,7 +87,7 @@ static void test_handmade(vb_ctx *ctx)
     CHECK_INT(vbc_analyse(ctx, &g, s, v, 0, &opt, &res), VB_OK);
     CHECK_INT(res.nchannels, 0);
     CHECK(res.channels == NULL);
-    synth_free(s);
+    vb_spheres_free(s);
 }
 
 /* Two mouths on a branched component: the centreline joins the two mouths
@@ -111,7 +111,7 @@ static void test_mouth_to_mouth(vb_ctx *ctx)
     CHECK_INT(res.channels[0].mouths, 2);
     CHECK_NEAR(res.channels[0].length, 10.0, 1e-12);
     vbc_result_free(&res);
-    synth_free(s);
+    vb_spheres_free(s);
 }
 
 /* Clearance through the cell list equals brute force. */
@@ -143,7 +143,7 @@ static void test_cells(vb_ctx *ctx)
     }
     CHECK_INT(bad, 0);
     vbc_cells_free(c);
-    synth_free(s);
+    vb_spheres_free(s);
 }
 
 static int analyse_synth(vb_ctx *ctx, const vb_sphere_set *s, double probe, int n,
@@ -196,7 +196,7 @@ static void test_cylinder_pore(vb_ctx *ctx)
         CHECK_INT(c->nlining, 96);
     }
     vbc_result_free(&res);
-    synth_free(s);
+    vb_spheres_free(s);
 }
 
 /* The shell: a cavity, kept only when asked for, never a channel. */
@@ -225,7 +225,7 @@ static void test_shell_cavity(vb_ctx *ctx)
         kept_cav += res.channels[t].kind == VBC_CAVITY;
     CHECK_INT(kept_cav, 0);
     vbc_result_free(&res);
-    synth_free(s);
+    vb_spheres_free(s);
 }
 
 int main(void)

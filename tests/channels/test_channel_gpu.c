@@ -137,9 +137,9 @@ int main(void)
         CHECK_INT(vbc_gpu_frame(ctx, gp, &g, a4, 1, 1.0, 0, &fo), VB_EMISUSE);
         vbc_gpu_close(gp);
     }
-    synth_free(cyl);
-    synth_free(shell);
-    synth_free(flat);
+    vb_spheres_free(cyl);
+    vb_spheres_free(shell);
+    vb_spheres_free(flat);
     vbg_runtime_close(rt);
     vb_close(ctx);
     VB_TEST_END();

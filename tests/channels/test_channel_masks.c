@@ -81,7 +81,7 @@ static void test_single_ball(vb_ctx *ctx)
     /* One seed: one label everywhere, no Voronoi edge. */
     CHECK_INT(count_bits(r.flags, nv, VBC_F_EDGE), 0);
     run_free(&r);
-    synth_free(s);
+    vb_spheres_free(s);
 }
 
 /* Two balls side by side along x: x rays that hit both fill the gap, so the
@@ -103,7 +103,7 @@ static void test_two_balls(vb_ctx *ctx)
     /* Two regions only: a bisector plane, but no voxel sees three labels. */
     CHECK_INT(count_bits(r.flags, vbc_grid_voxels(&r.g), VBC_F_EDGE), 0);
     run_free(&r);
-    synth_free(s);
+    vb_spheres_free(s);
 }
 
 /* Three atoms in the plane z = 0: their Voronoi edge is the line through the
@@ -147,7 +147,7 @@ static void test_edges(vb_ctx *ctx)
     size_t e2 = count_bits(r.flags, nv, VBC_F_EDGE);
     CHECK(e2 > 3 * 20 && e2 < 3 * 64 * 3);
     run_free(&r);
-    synth_free(s);
+    vb_spheres_free(s);
 }
 
 /* A cylinder of 8 rings x 12 atoms (rc 6, r 1.6): with probe 1 a pore of
@@ -217,7 +217,7 @@ static void test_cylinder(vb_ctx *ctx)
     run_ref(ctx, s, 4.6, 64, 3, &r);
     CHECK_INT(r.flags[vox_at(&r.g, 0.01, 0.01, 0.01)] & VBC_F_CHANNEL, 0);
     run_free(&r);
-    synth_free(s);
+    vb_spheres_free(s);
 }
 
 /* A closed shell: the hollow is interior, its Voronoi edges are channel
@@ -247,7 +247,7 @@ static void test_shell(vb_ctx *ctx)
     CHECK_INT(outside, 0);
     CHECK_INT(inner_mouths, 0);
     run_free(&r);
-    synth_free(s);
+    vb_spheres_free(s);
 }
 
 static void test_grid_fit_errors(vb_ctx *ctx)
@@ -261,7 +261,7 @@ static void test_grid_fit_errors(vb_ctx *ctx)
     s->n = 0;
     CHECK_INT(vbc_grid_fit(ctx, s, 1.4, 64, 3, &g), VB_EINPUT_EMPTY);
     s->n = 1;
-    synth_free(s);
+    vb_spheres_free(s);
 }
 
 int main(void)

@@ -155,9 +155,9 @@ int main(void)
         CHECK_INT(vbc_pipe_frame(ctx, ref, &g, a4, 1, 1.0, 0, &fo), VB_EMISUSE);
     vbc_pipe_close(ocl);
     vbc_pipe_close(ref);
-    synth_free(cyl);
-    synth_free(shell);
-    synth_free(flat);
+    vb_spheres_free(cyl);
+    vb_spheres_free(shell);
+    vb_spheres_free(flat);
     vb_close(ctx);
     fclose(diag);
     VB_TEST_END();

@@ -130,8 +130,8 @@ static void test_backends_agree(void)
     vb_sphere_set *shell = synth_shell(240, 9.0, 1.6);
     write_xyzr("cyl.xyzr", cyl);
     write_xyzr("shell.xyzr", shell);
-    synth_free(cyl);
-    synth_free(shell);
+    vb_spheres_free(cyl);
+    vb_spheres_free(shell);
     char in[2048];
     snprintf(in, sizeof in, "%s/cyl.xyzr", dir);
     same_output(in, "--probe 1.0 --grid 32", 1);

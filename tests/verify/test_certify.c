@@ -60,7 +60,7 @@ static void test_tetrahedron(void)
     CHECK_INT(st->certified, 2);
     CHECK_INT(st->rejected, 4);
     vb_certifier_close(c);
-    vt_free(s);
+    vb_spheres_free(s);
     vb_close(ctx);
 }
 
@@ -79,7 +79,7 @@ static void test_overlap_and_intruder(void)
     CHECK_INT(r.verdict, VB_CERT_OK);
     CHECK(r.t == -0.2679491924311227);
     vb_certifier_close(c);
-    vt_free(s);
+    vb_spheres_free(s);
 
     /* A small fifth sphere at the centre intrudes; a sphere inside sphere 0
      * (contained) never joins the vertex. */
@@ -93,7 +93,7 @@ static void test_overlap_and_intruder(void)
     CHECK_INT(vb_certify_candidate(ctx, c, with_contained, 4, p, 0.0, &r), VB_OK);
     CHECK(r.verdict == VB_CERT_INTRUDER || r.verdict == VB_CERT_NO_SOLUTION);
     vb_certifier_close(c);
-    vt_free(s);
+    vb_spheres_free(s);
     vb_close(ctx);
 }
 
@@ -146,7 +146,7 @@ static void test_cube(void)
     CHECK(st->filter_failures > 0);
     CHECK(st->filter_calls > st->filter_failures);
     vb_certifier_close(c);
-    vt_free(s);
+    vb_spheres_free(s);
     vb_close(ctx);
 }
 
@@ -175,7 +175,7 @@ static void test_two_vertices(void)
     CHECK(r.z == -5.573374202401989);
     CHECK(r.key != key);
     vb_certifier_close(c);
-    vt_free(s);
+    vb_spheres_free(s);
 
     /* Radius 2 instead of 0.5: sqrt(2 + z^2) = sqrt(8 + z^2) + 1 has no
      * solution (the bisectors do not meet, Fig. 7). */
@@ -186,7 +186,7 @@ static void test_two_vertices(void)
     CHECK_INT(vb_certify_candidate(ctx, c, ids, 4, up, 0.1, &r), VB_OK);
     CHECK_INT(r.verdict, VB_CERT_NO_SOLUTION);
     vb_certifier_close(c);
-    vt_free(s);
+    vb_spheres_free(s);
     vb_close(ctx);
 }
 
@@ -216,7 +216,7 @@ static void test_linear_case(void)
     CHECK(out.n == 1 && out.t[0] == 17.0 / 6.0);
     vb_vertex_list_free(&out);
     vb_certifier_close(c);
-    vt_free(s);
+    vb_spheres_free(s);
     /* R_a = 5 (all radii + 3): the same point, t = -1/6 < 0. */
     const char *w[] = {"0", "0", "0", "5", "2", "3", "0", "7",
                        "0", "0", "4", "5", "-1", "-3", "1", "4"};
@@ -226,7 +226,7 @@ static void test_linear_case(void)
     CHECK_INT(r.verdict, VB_CERT_OK);
     CHECK(r.t == -1.0 / 6.0);
     vb_certifier_close(c);
-    vt_free(s);
+    vb_spheres_free(s);
     /* Mirror (r_i = -dx_i): the single root has t + R_a = -29/6 < 0, no
      * outer tangent sphere. */
     const char *m[] = {"0", "0", "0", "5", "2", "3", "0", "3",
@@ -236,7 +236,7 @@ static void test_linear_case(void)
     CHECK_INT(vb_certify_candidate(ctx, c, ids, 4, p, 0.1, &r), VB_OK);
     CHECK_INT(r.verdict, VB_CERT_NO_SOLUTION);
     vb_certifier_close(c);
-    vt_free(s);
+    vb_spheres_free(s);
     vb_close(ctx);
 }
 
@@ -264,7 +264,7 @@ static void test_double_root(void)
     CHECK_INT(out.n, 1);
     vb_vertex_list_free(&out);
     vb_certifier_close(c);
-    vt_free(s);
+    vb_spheres_free(s);
     vb_close(ctx);
 }
 
@@ -290,7 +290,7 @@ static void test_rank_deficient(void)
     CHECK_INT(vb_certify_candidate(ctx, c, plane, 4, p, 0.0, &r), VB_OK);
     CHECK_INT(r.verdict, VB_CERT_NO_SOLUTION);
     vb_certifier_close(c);
-    vt_free(s);
+    vb_spheres_free(s);
     vb_close(ctx);
 }
 
@@ -324,7 +324,7 @@ static void test_list(void)
     vb_vertex_list_free(&out);
     vb_vertex_list_free(&rej);
     vb_certifier_close(c);
-    vt_free(s);
+    vb_spheres_free(s);
     vb_close(ctx);
 }
 

@@ -186,7 +186,7 @@ static void compare_with_brute_force(size_t n, unsigned rmin, unsigned rspan, ui
     CHECK(st->rejected > 0 && st->rejected < st->candidates);
     vb_vertex_list_free(&out);
     vb_close(ctx);
-    vt_free(s);
+    vb_spheres_free(s);
 }
 
 /* The certifier and the reference agree: every reference vertex certifies
@@ -245,7 +245,7 @@ static void certifier_agrees(size_t n, unsigned rmin, unsigned rspan, uint64_t s
     vb_certifier_close(c);
     vb_vertex_list_free(&ref);
     vb_close(ctx);
-    vt_free(s);
+    vb_spheres_free(s);
 }
 
 static void test_cube_reference(void)
@@ -273,7 +273,7 @@ static void test_cube_reference(void)
     CHECK(vb_ctx_stats(ctx)->filter_failures > 0);
     vb_vertex_list_free(&out);
     vb_close(ctx);
-    vt_free(s);
+    vb_spheres_free(s);
 }
 
 static void test_two_and_contained(void)
@@ -291,7 +291,7 @@ static void test_two_and_contained(void)
     CHECK(out.z[0] == -5.573374202401989 && out.z[1] == 5.573374202401989);
     CHECK(out.t[0] == 5.25 && out.t[1] == 5.25);
     vb_vertex_list_free(&out);
-    vt_free(s);
+    vb_spheres_free(s);
 
     /* Tetrahedron plus a sphere inside sphere 0: the contained sphere is in
      * no vertex. */
@@ -309,7 +309,7 @@ static void test_two_and_contained(void)
     CHECK(out.x[0] == 0.0 && out.t[0] == 0.7320508075688773);
     vb_vertex_list_free(&out);
     vb_close(ctx);
-    vt_free(s);
+    vb_spheres_free(s);
 }
 
 int main(void)

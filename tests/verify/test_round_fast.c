@@ -131,7 +131,7 @@ static void test_random_vertices(void)
     vbx_solver_free(&sol);
     vbx_data_free(&d);
     vb_close(ctx);
-    vt_free(s);
+    vb_spheres_free(s);
     gmp_randclear(rs);
 }
 

@@ -35,7 +35,7 @@ static vb_decimal vt_decimal(const char *s)
     return d;
 }
 
-/* n spheres from 4n strings "x", "y", "z", "r". Free with vt_free. */
+/* n spheres from 4n strings "x", "y", "z", "r". Free with vb_spheres_free. */
 static vb_sphere_set *vt_set(size_t n, const char *const *v)
 {
     vb_sphere_set *s = calloc(1, sizeof *s);
@@ -62,21 +62,6 @@ static vb_sphere_set *vt_set(size_t n, const char *const *v)
         s->line[i] = (long)i + 1;
     }
     return s;
-}
-
-static void vt_free(vb_sphere_set *s)
-{
-    free(s->x);
-    free(s->y);
-    free(s->z);
-    free(s->r);
-    free(s->ex);
-    free(s->ey);
-    free(s->ez);
-    free(s->er);
-    free(s->line);
-    free(s->contained);
-    free(s);
 }
 
 #endif
