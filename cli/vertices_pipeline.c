@@ -320,6 +320,34 @@ static int repair(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier *cert,
     return rc;
 }
 
+/* Exact certification of the sampled candidates, then the repair rounds;
+ * t_certify and t_total (from t0) are set. */
+static int certify(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_options *opt,
+                   double t0, vb_pipeline_result *res)
+{
+    double t1 = vb_cli_now();
+    vb_certifier *cert = NULL;
+    int rc = vb_certifier_open(ctx, set, &cert);
+    if (rc == VB_OK)
+        vb_certifier_set_threads(cert, opt->threads);
+    /* No distance limit here: the exact solution nearest the candidate is
+     * what gets certified, and far-away vertices (hull cells, nearly
+     * coplanar centres) have candidates whose absolute error exceeds tol. */
+    if (rc == VB_OK)
+        rc = vb_certify_list(ctx, cert, &res->sampler.candidates, 0.0, &res->certified,
+                             &res->rejected);
+    if (rc == VB_OK)
+        rc = repair(ctx, set, cert, res);
+    vb_certifier_close(cert);
+    for (size_t k = 0; rc == VB_OK && k < res->certified.n; k++)
+        if (res->certified.dist[k] > res->max_dist)
+            res->max_dist = res->certified.dist[k];
+    double t2 = vb_cli_now();
+    res->t_certify = t2 - t1;
+    res->t_total = t2 - t0;
+    return rc;
+}
+
 int vb_pipeline_run(vb_ctx *ctx, const vb_sphere_set *set, vbg_device_kind kind,
                     const vb_sampler_options *opt, int progress, vb_pipeline_result *res)
 {
@@ -361,29 +389,66 @@ int vb_pipeline_run(vb_ctx *ctx, const vb_sphere_set *set, vbg_device_kind kind,
         if (rc == VB_OK)
             rc = sample(ctx, set, be, &op, opt, progress, res);
     }
+    /* Releasing the context takes tens of milliseconds on a GPU: after the
+     * certification, which does not need it. */
+    if (rc == VB_OK)
+        rc = certify(ctx, set, opt, t0, res);
     vb_sampler_backend_close(be);
     vbg_runtime_close(rt);
-    if (rc != VB_OK)
-        return rc;
-    double t1 = vb_cli_now();
-    vb_certifier *cert = NULL;
-    rc = vb_certifier_open(ctx, set, &cert);
-    if (rc == VB_OK)
-        vb_certifier_set_threads(cert, opt->threads);
-    /* No distance limit here: the exact solution nearest the candidate is
-     * what gets certified, and far-away vertices (hull cells, nearly
-     * coplanar centres) have candidates whose absolute error exceeds tol. */
-    if (rc == VB_OK)
-        rc = vb_certify_list(ctx, cert, &res->sampler.candidates, 0.0, &res->certified,
-                             &res->rejected);
-    if (rc == VB_OK)
-        rc = repair(ctx, set, cert, res);
-    vb_certifier_close(cert);
-    for (size_t k = 0; rc == VB_OK && k < res->certified.n; k++)
-        if (res->certified.dist[k] > res->max_dist)
-            res->max_dist = res->certified.dist[k];
-    double t2 = vb_cli_now();
-    res->t_certify = t2 - t1;
-    res->t_total = t2 - t0;
     return rc;
+}
+
+int vb_pipeline_device_open(vb_ctx *ctx, vbg_device_kind kind, vb_pipeline_device *dev)
+{
+    double t0 = vb_cli_now();
+    memset(dev, 0, sizeof *dev);
+    int rc = VB_OK;
+    if (kind != VBG_DEVICE_REF) {
+        rc = vbg_runtime_open(ctx, kind, &dev->rt);
+        if (rc == VB_OK)
+            rc = vbg_sampler_open(ctx, dev->rt, &dev->be);
+        if (rc != VB_OK) {
+            if (VB_CATEGORY(rc) == VB_ENOMEM)
+                return rc;
+            vb_warn(ctx, 760, NULL, 0, "no usable OpenCL device (%s); using the reference backend",
+                    vb_errmsg(ctx));
+            vb_clear_error(ctx);
+            vbg_runtime_close(dev->rt);
+            dev->rt = NULL;
+        } else {
+            vb_info(ctx, "OpenCL device: %s", vbg_runtime_device_name(dev->rt));
+        }
+    }
+    if (!dev->be)
+        rc = vb_sampler_ref_open(ctx, &dev->be);
+    dev->t_open = vb_cli_now() - t0;
+    return rc;
+}
+
+void vb_pipeline_device_close(vb_pipeline_device *dev)
+{
+    vb_sampler_backend_close(dev->be);
+    vbg_runtime_close(dev->rt);
+    memset(dev, 0, sizeof *dev);
+}
+
+int vb_pipeline_run_on(vb_ctx *ctx, const vb_sphere_set *set, vb_pipeline_device *dev,
+                       const vb_sampler_options *opt, int progress, vb_pipeline_result *res)
+{
+    double t0 = vb_cli_now();
+    opener unused;
+    memset(&unused, 0, sizeof unused);
+    int rc = sample(ctx, set, dev->be, &unused, opt, progress, res);
+    if (rc != VB_OK && VB_CATEGORY(rc) == VB_EDEVICE && dev->rt) {
+        /* As in vb_pipeline_run; later runs stay on the reference backend. */
+        vb_warn(ctx, 762, NULL, 0, "OpenCL device failed (%s); rerunning on the reference backend",
+                vb_errmsg(ctx));
+        vb_clear_error(ctx);
+        vb_pipeline_device_close(dev);
+        vb_sampler_result_free(&res->sampler);
+        rc = vb_sampler_ref_open(ctx, &dev->be);
+        if (rc == VB_OK)
+            rc = sample(ctx, set, dev->be, &unused, opt, progress, res);
+    }
+    return rc == VB_OK ? certify(ctx, set, opt, t0, res) : rc;
 }

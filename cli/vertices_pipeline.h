@@ -16,8 +16,8 @@ typedef struct vb_pipeline_result {
     double t_setup;             /* OpenCL runtime + program, on its own thread */
     double t_setup_wait;        /* of that, the time sampling waited for it */
     double t_certify, t_total;
-    double max_dist;
-    size_t repaired_candidates; /* intruder-swap candidates certified (see repair) */            /* largest candidate-to-exact distance certified */
+    double max_dist;            /* largest candidate-to-exact distance certified */
+    size_t repaired_candidates; /* intruder-swap candidates certified (see repair) */
     char backend[16];
     char device[160];
 } vb_pipeline_result;
@@ -32,6 +32,27 @@ void vb_pipeline_result_free(vb_pipeline_result *r);
  * Returns VB_OK or an error status (message in ctx). */
 int vb_pipeline_run(vb_ctx *ctx, const vb_sphere_set *set, vbg_device_kind kind,
                     const vb_sampler_options *opt, int progress, vb_pipeline_result *res);
+
+/* A sampling backend opened once for several runs (bench): the OpenCL
+ * context, queue and programs, or the reference backend. */
+typedef struct vb_pipeline_device {
+    vbg_runtime *rt;            /* NULL on the reference backend */
+    vb_sampler_backend *be;
+    double t_open;              /* seconds the opening took */
+} vb_pipeline_device;
+
+/* Opens the backend for `kind`; when OpenCL is unavailable, warns (W760)
+ * and opens the reference backend instead. Returns VB_OK or an error
+ * status; close with vb_pipeline_device_close. */
+int vb_pipeline_device_open(vb_ctx *ctx, vbg_device_kind kind, vb_pipeline_device *dev);
+void vb_pipeline_device_close(vb_pipeline_device *dev);
+
+/* vb_pipeline_run on an opened backend: the same output, without the
+ * set-up (t_setup stays 0). A device that fails mid-run is closed with
+ * warning W762 and the run, and later runs on dev, use the reference
+ * backend. */
+int vb_pipeline_run_on(vb_ctx *ctx, const vb_sphere_set *set, vb_pipeline_device *dev,
+                       const vb_sampler_options *opt, int progress, vb_pipeline_result *res);
 
 /* Parses the options shared by vertices and bench (--device, --samples,
  * --tol, --tiles, --threads, --all-pairs) at argv[*i], advancing *i past a value. Returns 1 if

@@ -74,7 +74,7 @@ static void match_free(match_ctx *m)
 
 /* Clusters of candidates closer than tol; clusters are numbered in the order
  * of their first candidate, candidates inside a cluster keep their order. */
-static int cluster(match_ctx *m, const vb_cand_vec *cv)
+static int cluster(match_ctx *m, const vb_cand_vec *cv, int nthreads)
 {
     size_t n = cv->n;
     match_free(m);
@@ -92,7 +92,10 @@ static int cluster(match_ctx *m, const vb_cand_vec *cv)
         m->parent[k] = (uint32_t)k;
         keys[k] = (xkey){cv->v[k].x, (uint32_t)k};
     }
-    qsort(keys, n, sizeof *keys, cmp_x);
+    if (vbs_psort(keys, n, sizeof *keys, cmp_x, nthreads) != VB_OK) {
+        free(keys);
+        return VB_ENOMEM;
+    }
     for (size_t k = 0; k < n; k++)
         m->order[k] = keys[k].k;
     free(keys);
@@ -398,64 +401,163 @@ static int tangent_empty(const vbs_hash *h, const vbs_cand *k, const uint32_t q[
     return 1;
 }
 
-/* Set of sorted quadruples already handled (open addressing). */
-typedef struct qset {
+/* Set of sorted quadruples already handled: VBS_QPARTS open-addressing
+ * tables, a quadruple's table chosen by the top bits of its hash, so that
+ * inserts into different tables can run on different threads. */
+#define VBS_QPARTS 64
+typedef struct qtab {
     uint32_t (*keys)[4];
     size_t cap, n;
+} qtab;
+
+typedef struct qset {
+    qtab part[VBS_QPARTS];
 } qset;
 
-static size_t qhash(const uint32_t q[4], size_t mask)
+static uint64_t qhash(const uint32_t q[4])
 {
     uint64_t h = 1469598103934665603ull;
     for (int k = 0; k < 4; k++)
         h = (h ^ q[k]) * 1099511628211ull;
-    return (size_t)(h ^ (h >> 29)) & mask;
+    return h;
+}
+
+/* Table of a quadruple with hash h (the multiply leaves the top bits the
+ * best mixed), and its first slot in a table of cap entries. */
+static unsigned qpart(uint64_t h)
+{
+    return (unsigned)(h >> 58);
+}
+
+static size_t qslot(uint64_t h, size_t cap)
+{
+    return (size_t)(h ^ (h >> 29)) & (cap - 1);
 }
 
 /* 1 when q is in the set (read-only: safe on several threads while nobody
  * inserts). */
 static int qset_has(const qset *s, const uint32_t q[4])
 {
-    if (s->cap == 0)
+    uint64_t hv = qhash(q);
+    const qtab *t = &s->part[qpart(hv)];
+    if (t->cap == 0)
         return 0;
-    size_t h = qhash(q, s->cap - 1);
-    while (s->keys[h][0] != 0xffffffffu) {
-        if (memcmp(s->keys[h], q, 4 * sizeof *q) == 0)
+    for (size_t h = qslot(hv, t->cap); t->keys[h][0] != 0xffffffffu; h = (h + 1) & (t->cap - 1))
+        if (memcmp(t->keys[h], q, 4 * sizeof *q) == 0)
             return 1;
-        h = (h + 1) & (s->cap - 1);
-    }
     return 0;
 }
 
-/* Inserts q; returns 1 if new, 0 if present, -1 on allocation failure. */
-static int qset_add(qset *s, const uint32_t q[4])
+/* Inserts q, whose hash is hv, into its table t; returns 1 if new, 0 if
+ * present, -1 on allocation failure. Touches no other table. */
+static int qtab_add(qtab *t, uint64_t hv, const uint32_t q[4])
 {
-    if (2 * (s->n + 1) > s->cap) {
-        size_t nc = s->cap ? 2 * s->cap : 1024;
+    if (2 * (t->n + 1) > t->cap) {
+        size_t nc = t->cap ? 2 * t->cap : 256;
         uint32_t (*k)[4] = malloc(nc * sizeof *k);
         if (!k)
             return -1;
         memset(k, 0xff, nc * sizeof *k);
-        for (size_t i = 0; i < s->cap; i++)
-            if (s->keys[i][0] != 0xffffffffu) {
-                size_t h = qhash(s->keys[i], nc - 1);
+        for (size_t i = 0; i < t->cap; i++)
+            if (t->keys[i][0] != 0xffffffffu) {
+                size_t h = qslot(qhash(t->keys[i]), nc);
                 while (k[h][0] != 0xffffffffu)
                     h = (h + 1) & (nc - 1);
-                memcpy(k[h], s->keys[i], sizeof k[h]);
+                memcpy(k[h], t->keys[i], sizeof k[h]);
             }
-        free(s->keys);
-        s->keys = k;
-        s->cap = nc;
+        free(t->keys);
+        t->keys = k;
+        t->cap = nc;
     }
-    size_t h = qhash(q, s->cap - 1);
-    while (s->keys[h][0] != 0xffffffffu) {
-        if (memcmp(s->keys[h], q, 4 * sizeof *q) == 0)
+    size_t h = qslot(hv, t->cap);
+    while (t->keys[h][0] != 0xffffffffu) {
+        if (memcmp(t->keys[h], q, 4 * sizeof *q) == 0)
             return 0;
-        h = (h + 1) & (s->cap - 1);
+        h = (h + 1) & (t->cap - 1);
     }
-    memcpy(s->keys[h], q, 4 * sizeof *q);
-    s->n++;
+    memcpy(t->keys[h], q, 4 * sizeof *q);
+    t->n++;
     return 1;
+}
+
+static int qset_add(qset *s, const uint32_t q[4])
+{
+    uint64_t hv = qhash(q);
+    return qtab_add(&s->part[qpart(hv)], hv, q);
+}
+
+static void qset_free(qset *s)
+{
+    for (int p = 0; p < VBS_QPARTS; p++)
+        free(s->part[p].keys);
+    memset(s, 0, sizeof *s);
+}
+
+typedef void (*pfor_fn)(void *ctx, size_t i, int tid);
+static void pfor(pfor_fn fn, void *ctx, size_t n, int nt);
+
+/* Bulk insertion: the items of each table of the set in index order. */
+typedef struct qbulk {
+    qset *s;
+    const uint32_t (*q)[4];
+    const uint64_t *hash;
+    const size_t *start;     /* VBS_QPARTS + 1 */
+    const uint32_t *items;
+    uint8_t *fresh;
+    int err;
+} qbulk;
+
+static void qbulk_table(void *arg, size_t p, int tid)
+{
+    qbulk *b = arg;
+    (void)tid;
+    for (size_t j = b->start[p]; j < b->start[p + 1]; j++) {
+        uint32_t k = b->items[j];
+        int f = qtab_add(&b->s->part[p], b->hash[k], b->q[k]);
+        if (f < 0) {
+            b->err = VB_ENOMEM;
+            return;
+        }
+        if (b->fresh)
+            b->fresh[k] = (uint8_t)f;
+    }
+}
+
+/* Inserts q[k] for every k < n with !skip[k] (skip may be NULL), the
+ * tables of the set in parallel. fresh (may be NULL) gets 1 where q[k]
+ * entered the set, else 0: within a table the items go in index order, so
+ * set and flags are those of qset_add called for k = 0, 1, ... in turn.
+ * Returns VB_OK or VB_ENOMEM. */
+static int qset_add_bulk(qset *s, const uint32_t (*q)[4], size_t n, const uint8_t *skip,
+                         uint8_t *fresh, int nthreads)
+{
+    uint64_t *hash = malloc((n + 1) * sizeof *hash);
+    uint32_t *items = malloc((n + 1) * sizeof *items);
+    size_t start[VBS_QPARTS + 1] = {0}, fill[VBS_QPARTS];
+    if (!hash || !items) {
+        free(hash);
+        free(items);
+        return VB_ENOMEM;
+    }
+    for (size_t k = 0; k < n; k++) {
+        if (fresh)
+            fresh[k] = 0;
+        if (skip && skip[k])
+            continue;
+        hash[k] = qhash(q[k]);
+        start[qpart(hash[k]) + 1]++;
+    }
+    for (int p = 0; p < VBS_QPARTS; p++)
+        start[p + 1] += start[p];
+    memcpy(fill, start, sizeof fill);
+    for (size_t k = 0; k < n; k++)
+        if (!(skip && skip[k]))
+            items[fill[qpart(hash[k])]++] = (uint32_t)k;
+    qbulk b = {s, q, hash, start, items, fresh, VB_OK};
+    pfor(qbulk_table, &b, VBS_QPARTS, nthreads);
+    free(hash);
+    free(items);
+    return b.err;
 }
 
 /* A candidate with its sorted quadruple; sorted by quadruple, then by the
@@ -467,8 +569,6 @@ typedef struct qrec {
 
 /* A tiny parallel-for: item i goes to thread i mod nt; a thread that cannot
  * start has its share run by the caller. Items must be independent. */
-typedef void (*pfor_fn)(void *ctx, size_t i, int tid);
-
 typedef struct pfor_job {
     pfor_fn fn;
     void *ctx;
@@ -658,8 +758,7 @@ static void sampled_eval(void *arg, size_t i, int tid)
 
 /* Work of the neighbourhood completion. */
 typedef struct ring_item {
-    uint32_t q[4];
-    vbs_cand c;              /* the vertex it came from (point, t) */
+    uint32_t slot;           /* its quadruple: ring_ctx quad[slot] */
     int n;                   /* roots */
     double roots[2][4];
     int empty[2];            /* tangent sphere k is empty */
@@ -675,6 +774,7 @@ typedef struct ring_ctx {
      * + b, sorted, and whether it was seen before the round. */
     uint32_t (*quad)[4];
     uint8_t *old;
+    uint8_t *fresh;          /* phase B: the slot's quadruple is new */
     ring_item *items;
     int err;
 } ring_ctx;
@@ -718,6 +818,7 @@ static void ring_nearest(void *arg, size_t i, int tid)
     double t = v->t[k];
     double radius = t + g->rmax + 4.0 * g->h;
     r->nb[i] = 0;
+    memset(r->old + 4 * i * VBS_RING, 1, 4 * VBS_RING);
     (void)tid;
     if (radius < 0.0)
         return;
@@ -771,6 +872,8 @@ static void ring_nearest(void *arg, size_t i, int tid)
         }
     }
     r->nb[i] = nb;
+    for (size_t slot = 4 * i * VBS_RING; slot < 4 * (i + 1) * VBS_RING; slot++)
+        r->old[slot] = 1; /* unused unless filled below */
     /* The quadruples phase B will try, and which of them the set already
      * holds (the set is not written during this phase). */
     for (int drop = 0; drop < 4; drop++)
@@ -790,9 +893,10 @@ static void ring_eval(void *arg, size_t i, int tid)
     ring_ctx *r = arg;
     ring_item *it = r->items + i;
     const vb_sphere_set *s = r->e->set;
+    const uint32_t *q = r->quad[it->slot];
     double sp[4][4];
     for (int k = 0; k < 4; k++) {
-        uint32_t j = it->q[k];
+        uint32_t j = q[k];
         sp[k][0] = s->x[j];
         sp[k][1] = s->y[j];
         sp[k][2] = s->z[j];
@@ -800,12 +904,13 @@ static void ring_eval(void *arg, size_t i, int tid)
     }
     it->n = vbs_tangent_roots(sp, it->roots);
     for (int k = 0; k < it->n; k++) {
-        vbs_cand c = it->c;
+        vbs_cand c;
+        memset(&c, 0, sizeof c);
         c.x = it->roots[k][0];
         c.y = it->roots[k][1];
         c.z = it->roots[k][2];
         c.t = it->roots[k][3];
-        it->empty[k] = tangent_empty(r->e->hash, &c, it->q, r->e->guard * (1.0 + fabs(c.t)));
+        it->empty[k] = tangent_empty(r->e->hash, &c, q, r->e->guard * (1.0 + fabs(c.t)));
     }
     (void)tid;
 }
@@ -834,6 +939,7 @@ static int complete_ring(emit_ctx *e, int nthreads)
         int *nb = best ? realloc(r.nb, nv * sizeof *nb) : NULL;
         uint32_t(*quad)[4] = nb ? realloc(r.quad, 4 * VBS_RING * nv * sizeof *quad) : NULL;
         uint8_t *old = quad ? realloc(r.old, 4 * VBS_RING * nv) : NULL;
+        uint8_t *fresh = old ? realloc(r.fresh, 4 * VBS_RING * nv) : NULL;
         if (best)
             r.best = best;
         if (nb)
@@ -842,7 +948,9 @@ static int complete_ring(emit_ctx *e, int nthreads)
             r.quad = quad;
         if (old)
             r.old = old;
-        if (!old) {
+        if (fresh)
+            r.fresh = fresh;
+        if (!fresh) {
             rc = VB_ENOMEM;
             break;
         }
@@ -853,42 +961,25 @@ static int complete_ring(emit_ctx *e, int nthreads)
         }
         /* Phase B: the fresh quadruples, in vertex order (those the set
          * held before the round were found in phase A). */
-        size_t ni = 0;
-        for (size_t i = 0; i < nv && rc == VB_OK; i++) {
-            for (int drop = 0; drop < 4 && rc == VB_OK; drop++)
-                for (int b = 0; b < r.nb[i] && rc == VB_OK; b++) {
-                    size_t slot = (4 * i + (size_t)drop) * VBS_RING + (size_t)b;
-                    if (r.old[slot])
-                        continue;
-                    const uint32_t *q2 = r.quad[slot];
-                    int fresh = qset_add(&e->seen, q2);
-                    if (fresh < 0) {
-                        rc = VB_ENOMEM;
-                        break;
-                    }
-                    if (!fresh)
-                        continue;
-                    if (ni == cap) {
-                        size_t nc = cap ? 2 * cap : 1024;
-                        ring_item *p = realloc(r.items, nc * sizeof *p);
-                        if (!p) {
-                            rc = VB_ENOMEM;
-                            break;
-                        }
-                        r.items = p;
-                        cap = nc;
-                    }
-                    ring_item *it = r.items + ni++;
-                    memcpy(it->q, q2, sizeof it->q);
-                    memset(&it->c, 0, sizeof it->c);
-                    it->c.x = v->x[lo + i];
-                    it->c.y = v->y[lo + i];
-                    it->c.z = v->z[lo + i];
-                    it->c.t = v->t[lo + i];
-                }
-        }
+        rc = qset_add_bulk(&e->seen, (const uint32_t(*)[4])r.quad, 4 * VBS_RING * nv, r.old,
+                           r.fresh, nthreads);
         if (rc != VB_OK)
             break;
+        size_t ni = 0, nslots = 4 * VBS_RING * nv;
+        for (size_t k = 0; k < nslots; k++)
+            ni += r.fresh[k];
+        if (ni > cap) {
+            ring_item *p = realloc(r.items, ni * sizeof *p);
+            if (!p) {
+                rc = VB_ENOMEM;
+                break;
+            }
+            r.items = p;
+            cap = ni;
+        }
+        for (size_t k = 0, at = 0; k < nslots; k++)
+            if (r.fresh[k])
+                r.items[at++].slot = (uint32_t)k;
         pfor(ring_eval, &r, ni, nthreads);
         if (r.err) {
             rc = r.err;
@@ -903,7 +994,7 @@ static int complete_ring(emit_ctx *e, int nthreads)
                     e->res->dropped++;
                     continue;
                 }
-                if (vb_vertex_list_push(v, it->q, 4, it->roots[k][0], it->roots[k][1],
+                if (vb_vertex_list_push(v, r.quad[it->slot], 4, it->roots[k][0], it->roots[k][1],
                                         it->roots[k][2], it->roots[k][3], 0.0,
                                         VB_VERTEX_CANDIDATE))
                     rc = VB_ENOMEM;
@@ -915,6 +1006,7 @@ static int complete_ring(emit_ctx *e, int nthreads)
     free(r.nb);
     free(r.quad);
     free(r.old);
+    free(r.fresh);
     free(r.items);
     return rc;
 }
@@ -993,7 +1085,7 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
     work *wk = NULL;
     size_t nwk = 0, wcap = 0;
     vb_cand_vec extra = {0};
-    int rc = (!mem || !found) ? VB_ENOMEM : cluster(&m, raw);
+    int rc = (!mem || !found) ? VB_ENOMEM : cluster(&m, raw, nthreads);
     /* A vertex whose tangent sphere is not empty is spurious whichever
      * cells see it: test first, search only for the plausible ones. */
     uint8_t *plaus = rc == VB_OK ? malloc(m.ncl + 1) : NULL;
@@ -1090,7 +1182,7 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
         free(found);
         mem = malloc(4 * (raw->n + 1) * sizeof *mem);
         found = malloc((raw->n + 1) * sizeof *found);
-        rc = (!mem || !found) ? VB_ENOMEM : cluster(&m, raw);
+        rc = (!mem || !found) ? VB_ENOMEM : cluster(&m, raw, nthreads);
     }
     /* Completeness after 5.5, then every distinct quadruple once. */
     qrec *qs = malloc((raw->n + 1) * sizeof *qs);
@@ -1121,8 +1213,8 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
                 ix[k] = (qkey){{r->q[0], r->q[1], r->q[2], r->q[3], r->c.ids[0], r->c.cell,
                                 r->c.seq}, (uint32_t)k};
             }
-            qsort(ix, nq, sizeof *ix, cmp_qkey);
-            for (size_t k = 0; k < nq; k++)
+            rc = vbs_psort(ix, nq, sizeof *ix, cmp_qkey, nthreads);
+            for (size_t k = 0; rc == VB_OK && k < nq; k++)
                 sorted[k] = qs[ix[k].idx];
             free(ix);
             free(qs);
@@ -1133,18 +1225,21 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
     double tt1 = vbs_now();
     /* 1e-9 of the bounding-box diagonal (the default tol is 1e-5 of it). */
     double diag = 1e5 * vb_sampler_default_tol(set);
-    emit_ctx ec = {set, cu->hash, 1e-9 * diag, NULL, 0, {NULL, 0, 0}, res};
-    for (size_t k = 0; rc == VB_OK && k < nq; k++)
-        if (qset_add(&ec.seen, qs[k].q) < 0)
-            rc = VB_ENOMEM;
+    emit_ctx ec = {set, cu->hash, 1e-9 * diag, NULL, 0, {{{NULL, 0, 0}}}, res};
     /* Distinct quadruples (the first, deterministic, candidate of each). */
     size_t *which = malloc((nq + 1) * sizeof *which), nw = 0;
     root_eval *evs = malloc((nq + 1) * sizeof *evs);
-    if (rc == VB_OK && (!which || !evs))
+    uint32_t (*distinct)[4] = malloc((nq + 1) * sizeof *distinct);
+    if (rc == VB_OK && (!which || !evs || !distinct))
         rc = VB_ENOMEM;
     for (size_t k = 0; rc == VB_OK && k < nq; k++)
-        if (k == 0 || memcmp(qs[k].q, qs[k - 1].q, sizeof qs[k].q) != 0)
+        if (k == 0 || memcmp(qs[k].q, qs[k - 1].q, sizeof qs[k].q) != 0) {
+            memcpy(distinct[nw], qs[k].q, sizeof distinct[nw]);
             which[nw++] = k;
+        }
+    if (rc == VB_OK)
+        rc = qset_add_bulk(&ec.seen, (const uint32_t(*)[4])distinct, nw, NULL, NULL, nthreads);
+    free(distinct);
     if (rc == VB_OK) {
         sampled_ctx sc;
         memset(&sc, 0, sizeof sc);
@@ -1168,7 +1263,7 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
         rc = complete_ring(&ec, nthreads);
     res->times.completion += vbs_now() - tt2;
     free(ec.qbuf);
-    free(ec.seen.keys);
+    qset_free(&ec.seen);
     free(qs);
     free(plaus);
     vb_cand_vec_free(&extra);

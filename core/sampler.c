@@ -389,9 +389,11 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
                     (unsigned long long)res->overflow, VBS_MAX_CAND);
         double t0 = vbs_now();
         res->raw_candidates = raw.n;
-        if (raw.n)
-            qsort(raw.v, raw.n, sizeof *raw.v, cmp_cand);
-        rc = vbs_match(ctx, set, &cu, &params, o.target_depth, nthreads, &raw, res);
+        rc = vbs_psort(raw.v, raw.n, sizeof *raw.v, cmp_cand, nthreads);
+        if (rc != VB_OK)
+            rc = vb_error(ctx, rc, NULL, 0, "out of memory (sorting candidates)");
+        else
+            rc = vbs_match(ctx, set, &cu, &params, o.target_depth, nthreads, &raw, res);
         res->times.matching += vbs_now() - t0;
     }
     vb_cand_vec_free(&raw);

@@ -20,6 +20,14 @@
  * at all: a hit point p = s d satisfies |p - e| = s + delta and |p - e| >=
  * |e| - s, so s >= (|e| - delta) / 2 and no sphere farther than
  * 2 T_max R_i + R_j - R_i from c_i can matter (the bound of issue 3).
+ * The same holds per tile: bisector j can matter on tile P only if
+ * s_min(j) = (|e| - delta) / 2 <= T_P. So when the first look (a shell of
+ * contact distance) leaves some tile unbounded or loosely bounded and the
+ * query must widen (hull spheres: to every sphere), the second look skips,
+ * on each tile, the bisectors with s_min above the largest first-look T_P
+ * of its finest descendants (a T_P over a subset bounds the envelope too)
+ * before any cone bound is computed: only the open tiles pay for the far
+ * spheres.
  * theta carries a margin of 1e-7 rad and the bounds a relative margin of
  * 1e-9, far above the rounding errors of these few operations. */
 #include <float.h>
@@ -88,6 +96,8 @@ void vbs_base_data_free(vbs_base_data *bd)
     free(bd->tmp);
     free(bd->co_off);
     free(bd->co_idx);
+    free(bd->lim);
+    free(bd->smin);
     for (int k = 0; k < 2; k++) {
         free(bd->lvl_off[k]);
         free(bd->lvl_idx[k]);
@@ -216,8 +226,9 @@ static int cmp_bis_id(const void *pa, const void *pb)
  * level l go to (off, idx); the parent lists are (poff, pidx). Returns the
  * largest T_P of the level in *tmax. */
 static int cull_level(const vbs_tiles *t, const vbs_base_data *bd, double *gb, const uint32_t *poff,
-                      const uint32_t *pidx, unsigned pT, uint32_t *off, uint32_t **idx,
-                      size_t *nidx, size_t *cap, double clip, double *tmax)
+                      const uint32_t *pidx, unsigned pT, const double *lim, uint32_t *off,
+                      uint32_t **idx, size_t *nidx, size_t *cap, double clip, double *tp_out,
+                      double *tmax)
 {
     unsigned T = t->T;
     size_t nt = 6u * (size_t)T * T;
@@ -235,22 +246,32 @@ static int cull_level(const vbs_tiles *t, const vbs_base_data *bd, double *gb, c
         double tp = clip;
         for (size_t q = lo; q < hi; q++) {
             uint32_t b = pidx ? pidx[q] : (uint32_t)q;
+            if (lim && bd->smin[b] > lim[k]) { /* out of reach on every ray of the tile */
+                gb[2 * (q - lo)] = gb[2 * (q - lo) + 1] = -1.0;
+                continue;
+            }
             cone_bounds(t, k, bd->bis + b, bd->norm[b], &gb[2 * (q - lo)], &gb[2 * (q - lo) + 1]);
-            double gmin = gb[2 * (q - lo)];
-            if (gmin > 0.0) {
-                double sb = bd->bis[b].num / (2.0 * gmin);
+            /* Divide only when the bound can improve (rounding in the
+             * product test only ever leaves tp larger: still an upper bound). */
+            double gmin = gb[2 * (q - lo)], num = bd->bis[b].num;
+            if (gmin > 0.0 && num < 2.0 * gmin * tp) {
+                double sb = num / (2.0 * gmin);
                 if (sb < tp)
                     tp = sb;
             }
         }
         tp *= 1.0 + REL_MARGIN;
+        if (tp_out)
+            tp_out[k] = tp;
         if (tp > *tmax)
             *tmax = tp;
         off[k] = (uint32_t)*nidx;
         for (size_t q = lo; q < hi; q++) {
             uint32_t b = pidx ? pidx[q] : (uint32_t)q;
+            /* num / (2 gmax) > tp, without the division and with a margin
+             * over its rounding: keeping a few more is always safe. */
             double gmax = gb[2 * (q - lo) + 1];
-            if (!(gmax > 0.0) || bd->bis[b].num / (2.0 * gmax) > tp)
+            if (!(gmax > 0.0) || bd->bis[b].num > 2.0 * gmax * tp * (1.0 + REL_MARGIN))
                 continue;
             if (push_u32(idx, nidx, cap, b))
                 return VB_ENOMEM;
@@ -260,10 +281,22 @@ static int cull_level(const vbs_tiles *t, const vbs_base_data *bd, double *gb, c
     return VB_OK;
 }
 
+/* Offset of level l's tiles in bd->lim (levels T = 1, 2, 4, ... in a row). */
+static size_t lim_at(int l)
+{
+    size_t at = 0;
+    for (int k = 0; k < l; k++)
+        at += 6u * ((size_t)1 << k) * ((size_t)1 << k);
+    return at;
+}
+
 /* Runs the hierarchy (T = 1, 2, 4, ..., finest) over the base's current
- * bisectors; the finest lists end in bd->tile_off / bd->tile_idx. Returns
- * the finest level's largest T_P in *tmax. */
-static int cull_hierarchy(const vbs_culler *cu, vbs_base_data *bd, double clip, double *tmax)
+ * bisectors; the finest lists end in bd->tile_off / bd->tile_idx. With
+ * use_lim, tiles skip bisectors beyond bd->lim (second look); otherwise the
+ * finest level's T_P go to the finest part of bd->lim. Returns the finest
+ * level's largest T_P in *tmax. */
+static int cull_hierarchy(const vbs_culler *cu, vbs_base_data *bd, double clip, int use_lim,
+                          double *tmax)
 {
     uint32_t *poff = NULL, *pidx = NULL;
     unsigned pT = 0;
@@ -274,7 +307,9 @@ static int cull_hierarchy(const vbs_culler *cu, vbs_base_data *bd, double clip, 
         uint32_t **idx = last ? &bd->tile_idx : &bd->lvl_idx[l & 1];
         size_t *nidx = last ? &bd->nidx : &bd->lvl_n[l & 1];
         size_t *cap = last ? &bd->idx_cap : &bd->lvl_cap[l & 1];
-        if (cull_level(t, bd, bd->gb, poff, pidx, pT, off, idx, nidx, cap, clip, tmax))
+        double *lim = bd->lim + lim_at(l);
+        if (cull_level(t, bd, bd->gb, poff, pidx, pT, use_lim ? lim : NULL, off, idx, nidx, cap,
+                       clip, !use_lim && last ? lim : NULL, tmax))
             return VB_ENOMEM;
         poff = off;
         pidx = *idx;
@@ -331,6 +366,40 @@ static int coarse_uniform(vbs_base_data *bd, const vbs_culler *cu, int all)
     return VB_OK;
 }
 
+/* The second look's limits: bd->lim of the coarser levels from the finest
+ * one the first look left there (each tile: the largest of its four
+ * children), and s_min of every bisector, lowered by a relative margin far
+ * above its rounding error. */
+static int second_look_limits(const vbs_culler *cu, vbs_base_data *bd)
+{
+    if (bd->smin_cap < bd->nbis) {
+        double *p = realloc(bd->smin, bd->nbis * sizeof *p);
+        if (!p)
+            return VB_ENOMEM;
+        bd->smin = p;
+        bd->smin_cap = bd->nbis;
+    }
+    for (size_t q = 0; q < bd->nbis; q++) {
+        double ne = bd->norm[q], dl = bd->bis[q].delta;
+        bd->smin[q] = 0.5 * (ne - dl) - REL_MARGIN * (ne + fabs(dl));
+    }
+    for (int l = cu->nlevels - 2; l >= 0; l--) {
+        size_t T = (size_t)1 << l;
+        double *lim = bd->lim + lim_at(l), *child = bd->lim + lim_at(l + 1);
+        for (size_t f = 0; f < 6; f++)
+            for (size_t tv = 0; tv < T; tv++)
+                for (size_t tu = 0; tu < T; tu++) {
+                    double m = 0.0;
+                    for (size_t c = 0; c < 4; c++) {
+                        double x = child[(f * 2 * T + 2 * tv + c / 2) * 2 * T + 2 * tu + c % 2];
+                        m = x > m ? x : m;
+                    }
+                    lim[(f * T + tv) * T + tu] = m;
+                }
+    }
+    return VB_OK;
+}
+
 int vbs_cull_base(vb_ctx *ctx, const vbs_culler *cu, uint32_t i, vbs_base_data *bd)
 {
     const vb_sphere_set *s = cu->set;
@@ -340,7 +409,8 @@ int vbs_cull_base(vb_ctx *ctx, const vbs_culler *cu, uint32_t i, vbs_base_data *
         bd->tile_off = malloc((nt + 1) * sizeof *bd->tile_off);
         bd->lvl_off[0] = malloc((nt + 1) * sizeof *bd->lvl_off[0]);
         bd->lvl_off[1] = malloc((nt + 1) * sizeof *bd->lvl_off[1]);
-        if (!bd->tile_off || !bd->lvl_off[0] || !bd->lvl_off[1])
+        bd->lim = malloc(lim_at(cu->nlevels) * sizeof *bd->lim);
+        if (!bd->tile_off || !bd->lvl_off[0] || !bd->lvl_off[1] || !bd->lim)
             return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (culling)");
     }
     bd->nbis = bd->nidx = bd->nnear = 0;
@@ -373,7 +443,7 @@ int vbs_cull_base(vb_ctx *ctx, const vbs_culler *cu, uint32_t i, vbs_base_data *
     if (rc == VB_OK)
         rc = make_bisectors(s, i, bd);
     if (rc == VB_OK)
-        rc = cull_hierarchy(cu, bd, clip, &tmax);
+        rc = cull_hierarchy(cu, bd, clip, 0, &tmax);
     if (rc != VB_OK)
         return vb_error(ctx, rc, NULL, 0, "out of memory (culling)");
     double r1 = (sc * 2.0 * tmax + rmax - ri) * (1.0 + REL_MARGIN);
@@ -383,7 +453,9 @@ int vbs_cull_base(vb_ctx *ctx, const vbs_culler *cu, uint32_t i, vbs_base_data *
         if (rc == VB_OK)
             rc = make_bisectors(s, i, bd);
         if (rc == VB_OK)
-            rc = cull_hierarchy(cu, bd, clip, &tmax);
+            rc = second_look_limits(cu, bd);
+        if (rc == VB_OK)
+            rc = cull_hierarchy(cu, bd, clip, 1, &tmax);
         if (rc != VB_OK)
             return vb_error(ctx, rc, NULL, 0, "out of memory (culling)");
     }

@@ -15,6 +15,13 @@ int vbs_threads(unsigned requested);
 /* Monotonic wall clock in seconds (stage times). */
 double vbs_now(void);
 
+/* Sorts base[0..n) (elements of `size` bytes) on up to nthreads threads:
+ * chunks by qsort, then merged. cmp must be a total order (ties broken by
+ * an index), so the result is the one sorted array whatever nthreads is.
+ * Returns VB_OK, or VB_ENOMEM with base unchanged. */
+int vbs_psort(void *base, size_t n, size_t size, int (*cmp)(const void *, const void *),
+              int nthreads);
+
 /* Uniform grid of sphere centres (CSR: cell k holds idx[start[k]..start[k+1])). */
 typedef struct vbs_hash {
     double lo[3], h;
@@ -64,6 +71,12 @@ typedef struct vbs_base_data {
     size_t remap_cap;
     uint32_t *lvl_off[2], *lvl_idx[2]; /* coarser levels of the tile hierarchy */
     size_t lvl_n[2], lvl_cap[2];
+    /* Second look (a widened query): per tile of every level, the largest
+     * first-look envelope bound T_P of its finest descendants (levels one
+     * after another, coarsest first), and per bisector the least distance
+     * at which any ray can hit it. */
+    double *lim, *smin;
+    size_t smin_cap;
     /* Lists of the coarse tiles (T = VBS_COARSE_T or the finest if coarser),
      * kept for the targeted search: 6 T^2 + 1 offsets, indices into bis. */
     uint32_t *co_off, *co_idx;

@@ -19,12 +19,16 @@ echo /usr/local/nvidia/lib64/libnvidia-opencl.so.1 > /etc/OpenCL/vendors/nvidia.
 { "$vorball" devices; nvidia-smi -L; echo "cpus: $(nproc)"; grep -m1 'model name' /proc/cpuinfo; } \
     > "$OUT/devices.txt" 2>&1
 sh "$here/prepare_inputs.sh" corpus/data "$in" 2> "$OUT/prepare.err"
-# 1. Speed at 100^2: bench (stage times; setup = OpenCL set-up on its own
-#    thread, setup_wait = what sampling waited for it), then the process
-#    wall time of `vorball vertices` (parsing and writing included).
+# 1. Speed at 100^2: bench with the device opened once (stage times;
+#    device_setup = that opening), bench --cold opening it for every run
+#    (setup = OpenCL set-up on its own thread, setup_wait = what sampling
+#    waited for it), then the process wall time of `vorball vertices`
+#    (parsing and writing included).
 for f in 1crn_apbs.xyzr 3pqr.xyzr; do
-    timeout 60 "$vorball" bench --device gpu --samples 100 --repeat 3 --json "$in/$f" \
+    timeout 60 "$vorball" bench --device gpu --samples 100 --repeat 5 --json "$in/$f" \
         > "$OUT/perf_${f%.*}.json" 2> "$OUT/perf_${f%.*}.err"
+    timeout 60 "$vorball" bench --device gpu --samples 100 --repeat 3 --cold --json "$in/$f" \
+        > "$OUT/perf_cold_${f%.*}.json" 2> "$OUT/perf_cold_${f%.*}.err"
     for k in 1 2 3; do
         t0=$(date +%s.%N)
         timeout 60 "$vorball" vertices --device gpu --samples 100 "$in/$f" > /tmp/v.tsv 2>/dev/null
