@@ -2,6 +2,7 @@
 #include "vertices_pipeline.h"
 
 #include <pthread.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -118,6 +119,7 @@ typedef struct opener {
     vbg_runtime *rt;
     vb_sampler_backend *be;   /* what await_backend handed out */
     int rc;
+    atomic_int done;          /* open_device has finished */
     double t_start, t_setup, t_wait;
 } opener;
 
@@ -133,7 +135,16 @@ static void *open_device(void *arg)
         op->be = NULL;
     }
     op->t_setup = vb_cli_now() - op->t_start;
+    atomic_store(&op->done, 1);
     return NULL;
+}
+
+/* Without its thread the set-up runs inside await_backend: nothing to
+ * cull ahead for. */
+static int backend_ready(void *user)
+{
+    opener *op = user;
+    return !op->started || atomic_load(&op->done);
 }
 
 static void opener_join(opener *op)
@@ -175,6 +186,7 @@ static int sample(vb_ctx *ctx, const vb_sphere_set *set, vb_sampler_backend *be,
     }
     if (!be) {
         o.await_backend = await_backend;
+        o.backend_ready = backend_ready;
         o.await_user = op;
         /* The batch size cannot wait for the device: GPUs want large
          * launches; the output does not depend on it. */

@@ -323,19 +323,24 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
     for (unsigned T = 1; rc == VB_OK && T <= o.tiles; T *= 2)
         rc = vbs_tiles_build(ctx, T, &levels[nlevels++]);
     vbs_culler cu = {set, &hash, levels, nlevels, res->clip, o.all_pairs, &store};
-    bb.bases = malloc(per_batch * sizeof *bb.bases);
-    bb.tile_off = malloc((per_batch * ntiles + 1) * sizeof *bb.tile_off);
+    /* Waiting for a device, the first batch may grow (see backend_ready). */
+    size_t max_bases = per_batch * (!be && o.backend_ready ? VB_SAMPLER_MAX_AHEAD : 1u);
+    bb.bases = malloc(max_bases * sizeof *bb.bases);
+    bb.tile_off = malloc((max_bases * ntiles + 1) * sizeof *bb.tile_off);
     if (rc == VB_OK &&
         (!bb.bases || !bb.tile_off || !slots || !ca || !store.off || !store.co_off))
         rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (batch buffers)");
+    int pending = 0; /* bb holds culled bases not yet run */
     if (rc == VB_OK && set->n > 0)
         cull_start(ca, ctx, &cu, slots, 0, per_batch, nthreads);
     for (size_t b0 = 0, cur = 0; rc == VB_OK && b0 < set->n; b0 += per_batch, cur ^= 1) {
         size_t b1 = b0 + per_batch < set->n ? b0 + per_batch : set->n;
         vbs_base_data *sl = slots + cur * per_batch;
         double t0 = vbs_now();
-        bb.nbases = bb.nbis = bb.nidx = 0;
-        bb.tile_off[0] = 0;
+        if (!pending) {
+            bb.nbases = bb.nbis = bb.nidx = 0;
+            bb.tile_off[0] = 0;
+        }
         rc = cull_join(ca);
         if (rc == VB_OK && b1 < set->n)
             cull_start(ca, ctx, &cu, slots + (cur ^ 1) * per_batch, b1,
@@ -347,6 +352,12 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
         res->times.cull += vbs_now() - t0;
         if (rc != VB_OK)
             break;
+        /* The device is still being set up: cull on, into the same batch. */
+        pending = !be && o.backend_ready && b1 < set->n &&
+                  bb.nbases + (b1 + per_batch < set->n ? per_batch : set->n - b1) <= max_bases &&
+                  !o.backend_ready(o.await_user);
+        if (pending)
+            continue;
         res->bisectors += bb.nbis;
         vb_sampler_batch batch = {bb.nbases, bb.bases, bb.nbis, bb.bis, bb.nbases * ntiles + 1,
                                   bb.tile_off, bb.nidx, bb.tile_idx, params};

@@ -46,8 +46,15 @@ typedef struct vb_sampler_options {
      * set. Returns the backend (still owned by the caller) or NULL with an
      * error in the context. */
     struct vb_sampler_backend *(*await_backend)(void *user);
+    /* May be NULL: nonzero once await_backend would return at once. While
+     * it says 0, further batches are culled and joined to the first one
+     * (up to VB_SAMPLER_MAX_AHEAD batches), so the set-up hides more
+     * culling; the output does not depend on how bases are batched. */
+    int (*backend_ready)(void *user);
     void *await_user;
 } vb_sampler_options;
+
+#define VB_SAMPLER_MAX_AHEAD 8u
 
 /* One batch for a backend: the bases, their bisectors and culling tiles. */
 typedef struct vb_sampler_batch {

@@ -76,6 +76,83 @@ static int run(vb_ctx *ctx, vb_sphere_set *s, vbg_device_kind kind, unsigned sam
     return vb_pipeline_run(ctx, s, kind, &o, 0, r);
 }
 
+/* A backend awaited like a device still being set up: not ready for the
+ * first `not_ready` polls; counts the batches it runs. */
+typedef struct slow_device {
+    vb_sampler_backend *ref;
+    int polls, not_ready, batches;
+    size_t largest;          /* bases of the largest batch */
+} slow_device;
+
+static slow_device *slow_of; /* the one the wrapper below forwards to */
+
+static int slow_run(vb_ctx *ctx, vb_sampler_backend *be, const vb_sampler_batch *b,
+                    vb_sampler_batch_out *out)
+{
+    (void)be;
+    slow_of->batches++;
+    if (b->nbases > slow_of->largest)
+        slow_of->largest = b->nbases;
+    return slow_of->ref->run_batch(ctx, slow_of->ref, b, out);
+}
+
+static vb_sampler_backend slow_be = {"slow", "slow", 0, NULL, slow_run, NULL};
+
+static vb_sampler_backend *slow_await(void *user)
+{
+    (void)user;
+    return &slow_be;
+}
+
+static int slow_ready(void *user)
+{
+    slow_device *d = user;
+    return ++d->polls > d->not_ready;
+}
+
+/* Batches culled while the device is being set up join the first one: the
+ * first batch grows (at most VB_SAMPLER_MAX_AHEAD batches), and the
+ * candidates are those of batches of the plain size. */
+static void check_cull_ahead(vb_ctx *ctx)
+{
+    vb_sphere_set *s = load(ctx, random_set(60));
+    CHECK(s != NULL);
+    if (!s)
+        return;
+    slow_device d = {NULL, 0, 5, 0, 0};
+    CHECK_INT(vb_sampler_ref_open(ctx, &d.ref), VB_OK);
+    slow_of = &d;
+    vb_sampler_options o;
+    memset(&o, 0, sizeof o);
+    o.samples = 8;
+    o.batch_rays = 6u * 8u * 8u * 4u; /* four bases per batch: 15 batches */
+    vb_sampler_result plain, ahead;
+    vb_sampler_result_init(&plain);
+    vb_sampler_result_init(&ahead);
+    CHECK_INT(vb_sampler_run(ctx, s, &o, d.ref, &plain), VB_OK);
+    o.await_backend = slow_await;
+    o.backend_ready = slow_ready;
+    o.await_user = &d;
+    CHECK_INT(vb_sampler_run(ctx, s, &o, NULL, &ahead), VB_OK);
+    /* Polls 1-5 say "not ready": batches 1-6 go to the device as one. */
+    CHECK_INT(d.largest, 24);
+    CHECK_INT(d.batches, 15 - 5);
+    CHECK_INT(ahead.raw_candidates, plain.raw_candidates);
+    CHECK_INT(ahead.bisectors, plain.bisectors);
+    CHECK(same_list(&plain.candidates, &ahead.candidates));
+    /* A device that never gets ready: the first batch stops growing at
+     * VB_SAMPLER_MAX_AHEAD batches. */
+    d = (slow_device){d.ref, 0, 1000, 0, 0};
+    vb_sampler_result_free(&ahead);
+    CHECK_INT(vb_sampler_run(ctx, s, &o, NULL, &ahead), VB_OK);
+    CHECK_INT(d.largest, 4 * VB_SAMPLER_MAX_AHEAD);
+    CHECK(same_list(&plain.candidates, &ahead.candidates));
+    vb_sampler_result_free(&plain);
+    vb_sampler_result_free(&ahead);
+    vb_sampler_backend_close(d.ref);
+    vb_spheres_free(s);
+}
+
 static void check_set(vb_ctx *ctx, const char *name, char *text, int have_cpu)
 {
     vb_sphere_set *s = load(ctx, text);
@@ -132,6 +209,7 @@ int main(void)
         printf("no OpenCL CPU device: backend identity not tested here\n");
     check_set(ctx, "random", random_set(40), have_cpu);
     check_set(ctx, "lattice", lattice(), have_cpu);
+    check_cull_ahead(ctx);
     /* Without a device the OpenCL request falls back to ref (W760). */
     vb_close(ctx);
     VB_TEST_END();
