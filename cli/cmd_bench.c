@@ -60,7 +60,8 @@ static void row(FILE *f, int json, int first, const char *input, size_t atoms,
         fprintf(f,
                 "%s\n  {\"input\": \"%s\", \"atoms\": %zu, \"samples\": %u, \"backend\": \"%s\", "
                 "\"device\": \"%s\", \"vertices\": %zu, \"first_cell\": %llu, \"from_sampling\": %llu, "
-                "\"rejected\": %zu, \"incomplete\": %llu, \"targeted_found\": %llu, "
+                "\"rejected\": %zu, \"incomplete\": %llu, \"sampled_vertices\": %llu, "
+                "\"vertices_incomplete\": %llu, \"targeted_found\": %llu, "
                 "\"cull\": %.6f, \"upload\": %.6f, \"envelope\": %.6f, \"vertices_s\": %.6f, "
                 "\"matching\": %.6f, \"targeted\": %.6f, \"tangent\": %.6f, \"completion\": %.6f, "
                 "\"certification\": %.6f, \"setup\": %.6f, \"setup_wait\": %.6f, \"total\": %.6f, "
@@ -69,6 +70,8 @@ static void row(FILE *f, int json, int first, const char *input, size_t atoms,
                 r->certified.n, (unsigned long long)r->sampler.first_cell,
                 (unsigned long long)r->sampler.from_sampling, r->rejected.n,
                 (unsigned long long)r->sampler.incomplete,
+                (unsigned long long)r->sampler.sampled_vertices,
+                (unsigned long long)r->sampler.vertices_incomplete,
                 (unsigned long long)r->sampler.targeted_found, t->cull, t->upload, t->envelope,
                 t->vertices, t->matching, t->targeted, t->tangent, t->completion, r->t_certify,
                 r->t_setup, r->t_setup_wait, r->t_total,

@@ -242,6 +242,49 @@ static void full_base_set(full_base *fb, const vb_sphere_set *s, const vbs_bis_s
 
 /* Sec. 5.5 for one (vertex, sphere): returns 1 when found; new candidates
  * (the vertex itself or neighbours revealed by the small cells) go to extra. */
+/* The last resort of the targeted search: corners of ever smaller cells
+ * around the vertex may never show all three other colours (a face that
+ * meets the vertex in a thin wedge keeps its angle at every scale). Solve
+ * the vertex's own triple from the ray towards it (d, length n, world
+ * units from the base) and accept the point when it is that vertex and the
+ * base's lower envelope along its ray reaches it: no other bisector comes
+ * first, so the base's cell has the vertex. Returns 1 when found. */
+static int targeted_triple(const full_base *fb, const vbs_bisector *bis, const vbs_params *p,
+                           const vbs_cand *v, const double d[3], double n, vb_cand_vec *extra,
+                           int *err)
+{
+    uint32_t ids[3];
+    int k3 = 0;
+    for (int a = 0; a < 4; a++)
+        if (v->ids[a] != fb->base.id && k3 < 3)
+            ids[k3++] = v->ids[a];
+    vbs_bisector tri[3];
+    for (int a = 0; a < k3; a++)
+        if (!vbs_find_bisector(&fb->base, bis, ids[a], &tri[a]))
+            return 0;
+    double du[3] = {d[0] / n, d[1] / n, d[2] / n}, P[3], eq_tol = p->tol / fb->base.scale;
+    vbs_u32 fl = VBS_CF_TARGETED;
+    if (k3 != 3 || !vbs_solve_triple(tri, du, eq_tol, -1.0, p->sing, p->max_iter, P, &fl))
+        return 0;
+    double np = sqrt(P[0] * P[0] + P[1] * P[1] + P[2] * P[2]), u, w, dd[3], s;
+    const double e[3] = {P[0] / np, P[1] / np, P[2] / np};
+    vbs_u32 f = vbs_dir_face(e, &u, &w);
+    vbs_envelope_at(&fb->base, bis, fb->off, fb->idx, fb->T, f, u, w, dd, &s);
+    if (!(s >= np - eq_tol))
+        return 0;
+    vbs_cand c;
+    vbs_emit em = {&c, 1u, 0u, 0u, 0xffffffffu};
+    vbs_emit_point(&fb->base, ids[0], ids[1], ids[2], P, fl, &em);
+    double dx = c.x - v->x, dy = c.y - v->y, dz = c.z - v->z;
+    if (!(sqrt(dx * dx + dy * dy + dz * dz) <= p->tol))
+        return 0;
+    if (vb_cand_vec_push(extra, &c)) {
+        *err = VB_ENOMEM;
+        return 0;
+    }
+    return 1;
+}
+
 static int targeted(const full_base *fb, const vbs_bisector *bis, const vbs_params *p,
                     const vbs_cand *v, unsigned depth, vb_cand_vec *extra, int *err)
 {
@@ -284,7 +327,7 @@ static int targeted(const full_base *fb, const vbs_bisector *bis, const vbs_para
         if (found)
             return 1;
     }
-    return 0;
+    return targeted_triple(fb, bis, p, v, d, n, extra, err);
 }
 
 /* The targeted searches of one run: item w searches vertex wk[w].cluster
@@ -1011,14 +1054,15 @@ static int complete_ring(emit_ctx *e, int nthreads)
     return rc;
 }
 
-/* Pass 1's tangent test of every cluster that needs it (incomplete, or seen
- * from sphere 0), in parallel: plaus[c] = 1 when its tangent sphere is empty
- * or it needs no test. */
+/* The tangent test of clusters, in parallel: in pass 1 of every cluster
+ * that needs it (incomplete, or seen from sphere 0; plaus[c] = 1 when its
+ * tangent sphere is empty or it needs no test), with `all` of every one. */
 typedef struct plaus_ctx {
     const match_ctx *m;
     const vb_cand_vec *raw;
     const vbs_hash *hash;
     double tol;
+    int all;
     uint8_t *plaus;
     uint32_t *mem[VBS_MAX_THREADS], *found[VBS_MAX_THREADS];
     uint32_t *tbuf[VBS_MAX_THREADS];
@@ -1047,7 +1091,7 @@ static void plaus_eval(void *arg, size_t c, int tid)
     }
     size_t nm, nf = cluster_sets(m, p->raw, c, p->mem[tid], &nm, p->found[tid]);
     p->plaus[c] = 1;
-    if (nf < nm || p->found[tid][0] == 0) {
+    if (p->all || nf < nm || p->found[tid][0] == 0) {
         const vbs_cand *rep = p->raw->v + m->cl_items[m->cl_start[c]];
         uint32_t q4[4];
         memcpy(q4, rep->ids, sizeof q4);
@@ -1057,6 +1101,27 @@ static void plaus_eval(void *arg, size_t c, int tid)
         if (rc != VB_OK)
             p->err = rc;
     }
+}
+
+/* Runs plaus_eval over every cluster of m; returns VB_OK or VB_ENOMEM. */
+static int tangent_tests(const match_ctx *m, const vb_cand_vec *raw, const vbs_hash *hash,
+                         double tol, int all, uint8_t *plaus, int nthreads)
+{
+    plaus_ctx pc;
+    memset(&pc, 0, sizeof pc);
+    pc.m = m;
+    pc.raw = raw;
+    pc.hash = hash;
+    pc.tol = tol;
+    pc.all = all;
+    pc.plaus = plaus;
+    pfor(plaus_eval, &pc, m->ncl, nthreads);
+    for (int t = 0; t < VBS_MAX_THREADS; t++) {
+        free(pc.mem[t]);
+        free(pc.found[t]);
+        free(pc.tbuf[t]);
+    }
+    return pc.err;
 }
 
 /* Sort key of a quadruple record: quadruple, base, grid cell, rank, then the
@@ -1091,22 +1156,8 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
     uint8_t *plaus = rc == VB_OK ? malloc(m.ncl + 1) : NULL;
     if (rc == VB_OK && !plaus)
         rc = VB_ENOMEM;
-    if (rc == VB_OK) {
-        plaus_ctx pc;
-        memset(&pc, 0, sizeof pc);
-        pc.m = &m;
-        pc.raw = raw;
-        pc.hash = cu->hash;
-        pc.tol = params->tol;
-        pc.plaus = plaus;
-        pfor(plaus_eval, &pc, m.ncl, nthreads);
-        for (int t = 0; t < VBS_MAX_THREADS; t++) {
-            free(pc.mem[t]);
-            free(pc.found[t]);
-            free(pc.tbuf[t]);
-        }
-        rc = pc.err;
-    }
+    if (rc == VB_OK)
+        rc = tangent_tests(&m, raw, cu->hash, params->tol, 0, plaus, nthreads);
     /* Pass 1: completeness, the first cell (Fig. 13), work for 5.5. */
     for (size_t c = 0; rc == VB_OK && c < m.ncl; c++) {
         size_t nm, nf = cluster_sets(&m, raw, c, mem, &nm, found);
@@ -1189,12 +1240,23 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
     size_t nq = 0;
     if (rc == VB_OK && !qs)
         rc = VB_ENOMEM;
+    /* The vertices among the clusters are those with an empty tangent
+     * sphere (the spurious ones die there): how many of them sampling and
+     * 5.5 found from all of their spheres. */
+    uint8_t *empty = rc == VB_OK ? malloc(m.ncl + 1) : NULL;
+    if (rc == VB_OK && !empty)
+        rc = VB_ENOMEM;
+    if (rc == VB_OK)
+        rc = tangent_tests(&m, raw, cu->hash, params->tol, 1, empty, nthreads);
     for (size_t c = 0; rc == VB_OK && c < m.ncl; c++) {
         size_t nm, nf = cluster_sets(&m, raw, c, mem, &nm, found);
+        int complete = nf == nm && memcmp(mem, found, nm * sizeof *mem) == 0;
         res->clusters++;
-        if (!(nf == nm && memcmp(mem, found, nm * sizeof *mem) == 0))
-            res->incomplete++;
+        res->incomplete += (uint64_t)!complete;
+        res->sampled_vertices += empty[c];
+        res->vertices_incomplete += (uint64_t)(empty[c] && !complete);
     }
+    free(empty);
     for (size_t k = 0; rc == VB_OK && k < raw->n; k++) {
         qs[nq].c = raw->v[k];
         memcpy(qs[nq].q, raw->v[k].ids, sizeof qs[nq].q);

@@ -139,6 +139,9 @@ typedef struct vb_sampler_result {
     uint64_t targeted_searches;   /* (vertex, sphere) searches run */
     uint64_t targeted_found;      /* of those, successful */
     uint64_t incomplete;          /* still not found from all their spheres after 5.5 */
+    uint64_t sampled_vertices;    /* clusters with an empty tangent sphere: the vertices
+                                     sampling and 5.5 saw */
+    uint64_t vertices_incomplete; /* of those, not found from all their spheres after 5.5 */
     uint64_t dropped;             /* tangent spheres (quadruple roots) that were not empty */
     uint64_t swaps;               /* quadruples tried by swapping in an intruder */
     uint64_t ring_tries;          /* quadruples tried by the neighbourhood completion */

@@ -24,6 +24,16 @@ if ! "$vorball" devices 2>/dev/null | grep -q 'GPU'; then
     grep -q 'W760' "$work/gpu.err" || fail "no W760 warning on fallback"
     cmp -s "$work/ref.tsv" "$work/gpu.tsv" || fail "fallback output differs from ref"
 fi
+# Matching (Sec. 5.4-5.5): of the 264 vertices the sampling sees, all but
+# at most 2 are found from every one of their spheres once the targeted
+# search has run (it solves the vertex's own triple when the shrinking
+# cells never show all three colours).
+"$vorball" vertices --device ref --stats "$work/set.xyzr" > /dev/null 2> "$work/stats.err" ||
+    fail "--stats run failed"
+stat() { awk -v k="$1" '$1 == k { print $2 }' "$work/stats.err"; }
+[ "$(stat sampled_vertices)" = 264 ] || fail "sampled_vertices $(stat sampled_vertices), expected 264"
+[ "$(stat vertices_incomplete)" -le 2 ] || fail "vertices_incomplete $(stat vertices_incomplete) > 2"
+[ "$(stat certified_vertices)" = "$n" ] || fail "certified_vertices $(stat certified_vertices) != $n"
 # Host threads never change the bytes: --threads, VORBALL_THREADS, and the
 # OpenCL CPU device (its set-up overlaps the culling) against ref.
 for t in 1 3 7; do
