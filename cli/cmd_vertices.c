@@ -69,15 +69,17 @@ static void print_stats(vb_ctx *ctx, const vb_pipeline_result *r)
             (unsigned long long)st->exact_evals);
 }
 
-static int write_topology(vb_ctx *ctx, const char *path, const vb_pipeline_result *r)
+static int write_topology(vb_ctx *ctx, const char *path, const vb_sphere_set *set,
+                          const vb_pipeline_result *r)
 {
     vb_topology topo;
-    int rc = vb_topology_build(ctx, &r->sampler.topo, &r->certified, &topo);
+    int rc = vb_topology_build(ctx, set, &r->sampler.topo, &r->certified, &topo);
     if (rc != VB_OK)
         return rc;
     if (topo.unresolved)
         vb_warn(ctx, 765, NULL, 0,
-                "%zu trisector(s) carry more than two vertices; their edges are not paired",
+                "%zu trisector(s) whose edges could not be paired (collinear centres with more "
+                "than two vertices, or a closed edge through one vertex)",
                 topo.unresolved);
     FILE *f = vb_cli_open_output(ctx, path);
     rc = f ? vb_topology_write(ctx, f, &topo) : VB_EIO;
@@ -153,7 +155,7 @@ int vb_cmd_vertices(int argc, char **argv)
             rc = rc ? rc : vb_cli_close_output(ctx, out, outpath);
     }
     if (rc == VB_OK && topo_path)
-        rc = write_topology(ctx, topo_path, &res);
+        rc = write_topology(ctx, topo_path, set, &res);
     code = rc == VB_OK ? VB_EXIT_OK : vb_cli_fail(ctx, rc);
     vb_pipeline_result_free(&res);
     vb_spheres_free(set);

@@ -411,10 +411,7 @@ static uint32_t tangent_intruder(const vbs_hash *h, const vbs_cand *k, const uin
     return worst;
 }
 
-/* As tangent_intruder when only emptiness matters: walks the grid cells
- * around the tangent sphere and stops at the first sphere that cuts it by
- * more than tol. Returns 1 when empty. */
-static int tangent_empty(const vbs_hash *h, const vbs_cand *k, const uint32_t q[4], double tol)
+int vbs_tangent_empty(const vbs_hash *h, const vbs_cand *k, const uint32_t q[4], double tol)
 {
     const vb_sphere_set *s = h->set;
     const double p[3] = {k->x, k->y, k->z};
@@ -720,7 +717,7 @@ static int eval_roots(const emit_ctx *e, const uint32_t q[4], const vbs_cand *pr
             if (rc != VB_OK)
                 return rc;
         } else {
-            ev->intruder[k] = tangent_empty(e->hash, &c, q, guard) ? VBS_INF_COLOUR : 0u;
+            ev->intruder[k] = vbs_tangent_empty(e->hash, &c, q, guard) ? VBS_INF_COLOUR : 0u;
         }
     }
     return VB_OK;
@@ -953,7 +950,7 @@ static void ring_eval(void *arg, size_t i, int tid)
         c.y = it->roots[k][1];
         c.z = it->roots[k][2];
         c.t = it->roots[k][3];
-        it->empty[k] = tangent_empty(r->e->hash, &c, q, r->e->guard * (1.0 + fabs(c.t)));
+        it->empty[k] = vbs_tangent_empty(r->e->hash, &c, q, r->e->guard * (1.0 + fabs(c.t)));
     }
     (void)tid;
 }

@@ -4,9 +4,12 @@
  * A face (i, j) exists where a ray of i meets the bisector of j first. An
  * edge of cell i lies where two faces a, b meet: grid cells whose corners
  * carry exactly the two colours a, b show that the trisector of {i, a, b}
- * carries a Voronoi edge. The edge's ends are the certified vertices whose
- * members contain {i, a, b}. A vertex with exactly four members is in
- * general position and all four of its triples are edges, seen or not. */
+ * carries a Voronoi edge. The edges along a trisector are decided on the
+ * curve itself (trisector.c): the certified vertices whose members contain
+ * the triple, in their order along it, and between and beyond them one
+ * point each whose tangent sphere must be empty for that part to be an
+ * edge. Every triple of every vertex is tried so; the two-colour evidence
+ * is counted against the result (vb_topology.sampled). */
 #include <stdlib.h>
 #include <string.h>
 
@@ -290,17 +293,155 @@ static int cmp_tv(const void *pa, const void *pb)
     return c ? c : (a->v > b->v) - (a->v < b->v);
 }
 
-int vb_topology_build(vb_ctx *ctx, const vb_topology_evidence *ev, const vb_vertex_list *vx,
-                      vb_topology *out)
+/* Appends an edge; a finite one lists its lower row first. */
+static int add_edge(vb_topology *out, int64_t v0, int64_t v1, const uint32_t t[3])
+{
+    if (v1 >= 0 && v1 < v0) {
+        int64_t w = v0;
+        v0 = v1;
+        v1 = w;
+    }
+    if (out->nedges == out->edges_cap) {
+        size_t nc = out->edges_cap ? 2 * out->edges_cap : 256;
+        vb_topology_edge *p = realloc(out->edges, nc * sizeof *p);
+        if (!p)
+            return VB_ENOMEM;
+        out->edges = p;
+        out->edges_cap = nc;
+    }
+    vb_topology_edge *ed = out->edges + out->nedges++;
+    ed->v[0] = v0;
+    ed->v[1] = v1;
+    memcpy(ed->spheres, t, sizeof ed->spheres);
+    return VB_OK;
+}
+
+/* A vertex on a trisector: its branch parameter and row. */
+typedef struct on_curve {
+    double s;
+    uint32_t v;
+} on_curve;
+
+static int cmp_on_curve(const void *pa, const void *pb)
+{
+    const on_curve *a = pa, *b = pb;
+    if (a->s != b->s)
+        return a->s < b->s ? -1 : 1;
+    return (a->v > b->v) - (a->v < b->v);
+}
+
+/* Whether the trisector's point at branch parameter s is on a Voronoi edge
+ * of its three spheres: its tangent sphere holds no other sphere. A sphere
+ * within `band` of touching it is beyond what doubles decide: for equal
+ * radii the point is then decided in rationals (an exact lattice touches,
+ * a jittered one may cut by 1e-18); otherwise touching counts as on it. */
+static int on_edge(const vbs_hash *h, const vbs_trisector *tr, const uint32_t t[3], double s,
+                   double guard, uint32_t **near, size_t *near_cap)
+{
+    vbs_cand c;
+    memset(&c, 0, sizeof c);
+    double p[3];
+    vbs_trisector_point(tr, s, p, &c.t);
+    c.x = p[0];
+    c.y = p[1];
+    c.z = p[2];
+    const uint32_t q[4] = {t[0], t[1], t[2], t[2]};
+    double band = guard * (1.0 + fabs(c.t));
+    if (!vbs_tangent_empty(h, &c, q, band))
+        return 0; /* cut by more than the band */
+    c.t += 2.0 * band;
+    int clear = vbs_tangent_empty(h, &c, q, band);
+    c.t -= 2.0 * band;
+    if (clear || !vbs_trisector_equal_radii(h->set, t))
+        return 1;
+    size_t nn = 0;
+    if (vbs_hash_query(h, p, c.t + h->rmax + 2.0 * band, near, &nn, near_cap) != VB_OK)
+        return -1;
+    return vbs_trisector_exact_on_edge(h->set, t, p, *near, nn);
+}
+
+/* The edges along the trisector of t through the vertices rows[0..nv):
+ * sorted along the branch, consecutive vertices are joined where the curve
+ * between them is on the diagram, and the ends run to infinity (open
+ * branch) or join around (closed curve) where that part is. Membership can
+ * change only at a vertex, so one point per part decides it. A trisector
+ * that is not such a curve (collinear centres) keeps the plain join: one
+ * vertex runs to infinity, two are joined, more are counted unresolved. */
+typedef struct edge_scratch {
+    on_curve *oc;
+    uint32_t *near;
+    size_t near_cap;
+} edge_scratch;
+
+/* on_edge at s, with an allocation failure as VB_ENOMEM in *rc. */
+static int part_on_edge(const vbs_hash *h, const vbs_trisector *tr, const uint32_t t[3],
+                        double s, double guard, edge_scratch *sc, int *rc)
+{
+    int on = on_edge(h, tr, t, s, guard, &sc->near, &sc->near_cap);
+    if (on < 0)
+        *rc = VB_ENOMEM;
+    return on > 0;
+}
+
+static int trisector_edges(const vb_sphere_set *set, const vbs_hash *h, double guard,
+                           const vb_vertex_list *vx, const uint32_t t[3], const tv *rows,
+                           size_t nv, edge_scratch *sc, vb_topology *out)
+{
+    on_curve *oc = sc->oc;
+    vbs_trisector tr;
+    if (!vbs_trisector_init(set, t[0], t[1], t[2], &tr)) {
+        if (nv > 2) {
+            out->unresolved++;
+            return VB_OK;
+        }
+        return add_edge(out, rows[0].v, nv == 2 ? (int64_t)rows[1].v : -1, t);
+    }
+    for (size_t k = 0; k < nv; k++) {
+        uint32_t v = rows[k].v;
+        const double p[3] = {vx->x[v], vx->y[v], vx->z[v]};
+        oc[k] = (on_curve){vbs_trisector_param(&tr, p, vx->t[v]), v};
+    }
+    if (nv > 1)
+        qsort(oc, nv, sizeof *oc, cmp_on_curve);
+    int rc = VB_OK;
+    for (size_t k = 0; k + 1 < nv && rc == VB_OK; k++)
+        if (part_on_edge(h, &tr, t, 0.5 * (oc[k].s + oc[k + 1].s), guard, sc, &rc))
+            rc = add_edge(out, oc[k].v, oc[k + 1].v, t);
+    double first = oc[0].s, last = oc[nv - 1].s;
+    if (rc == VB_OK && !tr.closed) {
+        if (part_on_edge(h, &tr, t, first - (1.0 + fabs(first)), guard, sc, &rc))
+            rc = add_edge(out, oc[0].v, -1, t);
+        if (rc == VB_OK && part_on_edge(h, &tr, t, last + (1.0 + fabs(last)), guard, sc, &rc))
+            rc = add_edge(out, oc[nv - 1].v, -1, t);
+    } else if (rc == VB_OK) {
+        /* Around through s = +-pi. */
+        const double L = 3.14159265358979323846;
+        double mid = L - last > first + L ? 0.5 * (last + L) : 0.5 * (first - L);
+        if (part_on_edge(h, &tr, t, mid, guard, sc, &rc)) {
+            if (nv == 1)
+                out->unresolved++; /* a closed edge through one vertex */
+            else
+                rc = add_edge(out, oc[nv - 1].v, oc[0].v, t);
+        }
+    }
+    return rc;
+}
+
+int vb_topology_build(vb_ctx *ctx, const vb_sphere_set *set, const vb_topology_evidence *ev,
+                      const vb_vertex_list *vx, vb_topology *out)
 {
     vb_topology_init(out);
     size_t ntv = 0, cap = 0;
     tv *recs = NULL;
     uint32_t *faces = NULL, *trip = NULL;
+    edge_scratch sc = {NULL, NULL, 0};
     size_t nf = 0, fcap = 0, ntr = 0, tcap = 0;
-    int rc = push(&faces, &nf, &fcap, ev->faces, 2 * ev->nfaces);
-    if (rc == VB_OK)
-        rc = push(&trip, &ntr, &tcap, ev->triples, 3 * ev->ntriples);
+    vbs_hash hash;
+    memset(&hash, 0, sizeof hash);
+    int rc = vbs_hash_build(ctx, set, &hash);
+    if (rc != VB_OK)
+        return rc;
+    rc = push(&faces, &nf, &fcap, ev->faces, 2 * ev->nfaces);
     for (size_t k = 0; k < vx->n && rc == VB_OK; k++) {
         const uint32_t *m = vx->ids + vx->start[k];
         size_t nm = vx->start[k + 1] - vx->start[k];
@@ -321,13 +462,13 @@ int vb_topology_build(vb_ctx *ctx, const vb_topology_evidence *ev, const vb_vert
                         recs = p;
                     }
                     recs[ntv++] = (tv){{m[a], m[b], m[c]}, (uint32_t)k};
-                    if (nm == 4) {
-                        uint32_t t[3] = {m[a], m[b], m[c]};
-                        rc = push(&trip, &ntr, &tcap, t, 3);
-                    }
+                    uint32_t t[3] = {m[a], m[b], m[c]};
+                    rc = push(&trip, &ntr, &tcap, t, 3);
                 }
             }
     }
+    if (rc == VB_OK && !(sc.oc = malloc((ntv + 1) * sizeof *sc.oc)))
+        rc = VB_ENOMEM;
     if (rc == VB_OK) {
         if (ntv)
             qsort(recs, ntv, sizeof *recs, cmp_tv);
@@ -336,7 +477,10 @@ int vb_topology_build(vb_ctx *ctx, const vb_topology_evidence *ev, const vb_vert
         out->faces = faces;
         out->nfaces = nf / 2;
         faces = NULL;
-        /* Join each edge triple with the vertices that contain it. */
+        /* Rounding guard of the emptiness tests: 1e-9 of the bounding-box
+         * diagonal (as the matching's; the default tol is 1e-5 of it). */
+        double guard = 1e-4 * vb_sampler_default_tol(set);
+        /* Join each triple with the vertices that contain it. */
         size_t r = 0;
         for (size_t k = 0; k < ntr / 3 && rc == VB_OK; k++) {
             const uint32_t *t = trip + 3 * k;
@@ -345,30 +489,19 @@ int vb_topology_build(vb_ctx *ctx, const vb_topology_evidence *ev, const vb_vert
             size_t e = r;
             while (e < ntv && cmp_triple(recs[e].t, t) == 0)
                 e++;
-            size_t nv = e - r;
-            if (nv == 0 || nv > 2) {
-                out->unresolved += nv > 2;
-                continue;
-            }
-            if (out->nedges == out->edges_cap) {
-                size_t nc = out->edges_cap ? 2 * out->edges_cap : 256;
-                vb_topology_edge *p = realloc(out->edges, nc * sizeof *p);
-                if (!p) {
-                    rc = VB_ENOMEM;
-                    break;
-                }
-                out->edges = p;
-                out->edges_cap = nc;
-            }
-            vb_topology_edge *ed = out->edges + out->nedges++;
-            ed->v[0] = (int64_t)recs[r].v;
-            ed->v[1] = nv == 2 ? (int64_t)recs[r + 1].v : -1;
-            memcpy(ed->spheres, t, sizeof ed->spheres);
+            rc = trisector_edges(set, &hash, guard, vx, t, recs + r, e - r, &sc, out);
         }
+        /* How many edge lines the two-colour sampling saw (Sec. 4). */
+        for (size_t k = 0; rc == VB_OK && ev->ntriples && k < out->nedges; k++)
+            out->sampled += bsearch(out->edges[k].spheres, ev->triples, ev->ntriples,
+                                    3 * sizeof *ev->triples, cmp_triple) != NULL;
     }
+    free(sc.oc);
+    free(sc.near);
     free(recs);
     free(faces);
     free(trip);
+    vbs_hash_free(&hash);
     if (rc != VB_OK) {
         vb_topology_free(out);
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (topology)");
@@ -382,6 +515,8 @@ int vb_topology_write(vb_ctx *ctx, FILE *f, const vb_topology *t)
           "# edge\tv1\tv2\ti,j,k\t(0-based vertex rows of the vertex output; -1: the edge "
           "runs to infinity)\n",
           f);
+    fprintf(f, "# %zu faces, %zu edge lines (%zu of them seen by two-colour sampling)\n",
+            t->nfaces, t->nedges, t->sampled);
     for (size_t k = 0; k < t->nfaces; k++)
         fprintf(f, "face\t%u\t%u\n", (unsigned)t->faces[2 * k], (unsigned)t->faces[2 * k + 1]);
     for (size_t k = 0; k < t->nedges; k++) {

@@ -22,17 +22,21 @@ typedef struct vb_topology {
     size_t nfaces;
     vb_topology_edge *edges;
     size_t nedges, edges_cap;
-    size_t unresolved;     /* trisectors with more than two vertices (edges not paired) */
+    size_t sampled;        /* edge lines whose triple the two-colour test saw (Sec. 4) */
+    size_t unresolved;     /* trisectors whose edges could not be paired: more than two
+                              vertices on collinear centres' circle, or a closed edge
+                              through a single vertex */
 } vb_topology;
 
 void vb_topology_init(vb_topology *t);
 void vb_topology_free(vb_topology *t);
 
-/* Joins the sampler's evidence with the canonical certified vertices (as
- * written, same row order). Allocates into *out (free with
+/* Joins the sampler's evidence with the canonical certified vertices of
+ * `set` (as written, same row order): faces, and the edges along the
+ * trisector of every triple of a vertex. Allocates into *out (free with
  * vb_topology_free). Returns VB_OK or VB_ENOMEM. */
-int vb_topology_build(vb_ctx *ctx, const vb_topology_evidence *ev, const vb_vertex_list *vx,
-                      vb_topology *out);
+int vb_topology_build(vb_ctx *ctx, const vb_sphere_set *set, const vb_topology_evidence *ev,
+                      const vb_vertex_list *vx, vb_topology *out);
 
 /* Writes the faces and edges as tab-separated lines. VB_OK or VB_EIO. */
 int vb_topology_write(vb_ctx *ctx, FILE *f, const vb_topology *t);

@@ -40,6 +40,49 @@ void vbs_hash_free(vbs_hash *g);
 int vbs_hash_query(const vbs_hash *g, const double p[3], double radius, uint32_t **out,
                    size_t *n, size_t *cap);
 
+/* Whether the tangent sphere of candidate k (centre x, y, z, radius t) is
+ * empty: no sphere other than q[0..3] (repeat one for fewer) and the
+ * contained ones cuts it by more than tol. Walks the grid cells around it
+ * and stops at the first intruder. Returns 1 when empty. */
+int vbs_tangent_empty(const vbs_hash *h, const vbs_cand *k, const uint32_t q[4], double tol);
+
+/* The trisector of spheres a, b, c: centres p of the spheres tangent to
+ * all three from outside, |p - c_x| = r_x + t. p = c_a + w0 + t w1 + g n,
+ * with w0, w1 in the plane of the centres, n its unit normal and
+ * g^2 = A t^2 + B t + C. A >= 0: one open branch, t >= tmin, on which the
+ * offset g from the plane is monotone: its parameter s = g. A < 0: a
+ * closed curve, tmin <= t <= tmax, an ellipse in (t, g): its parameter is
+ * the angle s = atan2(g, sqrt(-A) (t - tc)) in (-pi, pi], tc the middle,
+ * with s = +-pi the point at tmin. (Not t itself: near the plane t moves
+ * with g^2 and loses the order of close vertices to rounding.) */
+typedef struct vbs_trisector {
+    double ca[3], w0[3], w1[3], n[3];
+    double A, B, C, tmin, tmax;
+    int closed;
+} vbs_trisector;
+
+/* Sets up the trisector of a, b, c. Returns 0 when it is not a curve of
+ * this kind (collinear centres: a circle around their axis; no valid
+ * branch). */
+int vbs_trisector_init(const vb_sphere_set *s, uint32_t a, uint32_t b, uint32_t c,
+                       vbs_trisector *tr);
+
+/* Branch parameter s of a point p (with its t) on the trisector. */
+double vbs_trisector_param(const vbs_trisector *tr, const double p[3], double t);
+
+/* Point (and t) at branch parameter s. */
+void vbs_trisector_point(const vbs_trisector *tr, double s, double p[3], double *t);
+
+/* 1 when spheres t[0..2] have exactly equal radii. */
+int vbs_trisector_equal_radii(const vb_sphere_set *s, const uint32_t t[3]);
+
+/* For a triple of equal radii: whether the point of its trisector line
+ * nearest p (taken exactly) is on the Voronoi edge of the triple, decided
+ * in rationals against the spheres cand[0..ncand) (the others must be
+ * farther than rounding). Returns 1 on the edge. */
+int vbs_trisector_exact_on_edge(const vb_sphere_set *s, const uint32_t t[3], const double p[3],
+                                const uint32_t *cand, size_t ncand);
+
 /* Direction tiles: 6*T*T cones (centre direction, cos/sin of the half-angle
  * with a safety margin), the same for every base. */
 typedef struct vbs_tiles {

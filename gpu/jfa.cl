@@ -2,36 +2,57 @@
  * length l every pixel reads the labels of its 3^d - 1 neighbours at distance
  * l and keeps the seed nearest to its centre (ties to the lower index).
  *
- * The step is bound by the distance work, not memory: on an H200, 256^3 with
- * 13,573 seeds, JFA+1 takes 3.9 ms, of which the label reads alone (the same
- * kernel with the distance work optimised away) take 0.75 ms; 27 candidate
- * seeds per pixel in 3D, each a squared distance and a compare with the tie
- * rule. So:
+ * On an H100, 256^3 with 13,573 seeds, JFA+1 takes 3.45 ms, 0.46 ms for each
+ * step with l <= 32 (27 candidates per pixel: a label read, a seed gather, a
+ * squared distance, a compare with the tie rule). Moving the arithmetic from
+ * doubles to floats gained about 10 % only, and code size counts: with the
+ * exact fallback inlined at each of the unrolled offers the kernel was 1.4x
+ * slower (papers/facet-jfa-and-channels/results/jfa/README.md). So:
  *
- * - A work-item owns a block of pixels spaced l apart (3D: 2 along y x 4
- *   along z; 2D: 4 along y). Neighbours of the block's pixels coincide, so
- *   the block reads (2+2)(4+2)3 = 72 labels for 8 pixels instead of 216.
- * - Per label read, the seed's coordinate terms (x^2, y^2 per row, z^2 per
- *   plane of the block) are computed once, and only when the label differs
- *   from the previous read's (neighbours mostly repeat a label); each pixel
- *   the read concerns then costs one add and the compare.
- * - Distances are doubles where doubles are exact: seeds and centres are
- *   16.16 fixed-point integers held in doubles, so differences are exact, and
- *   for |difference| < n 2^16 the sum of squares stays below dim n^2 2^32
- *   <= 2^53 (3D n <= 512, 2D n <= 1024): every value is an exact integer and
- *   the result equals the 64-bit integer reference bit for bit. The host picks
- *   the double program then (fp64 is on every device the runtime opens; one
- *   double compare replaces the two-word compares of 64-bit integers), and
- *   the build with -DVBJ_DIST64 (exact 64-bit integers) on larger grids.
- * - No branches around the reads: a neighbour outside the grid or without a
- *   label reads as VBJ_LNONE, whose distance is VBJ_DFAR, beyond every real
- *   one; pixels of a block that lie past the grid (when q / l < 4) get a
- *   valid centre and are never written.
- * The minimum over (distance, index) does not depend on the order of the
- * candidates, so the kernels agree with the C reference bit for bit.
+ * - A work-item owns a block of pixels spaced l apart: VBJ_BX x VBJ_BY2 in
+ *   2D, VBJ_BX x VBJ_BY x VBJ_BZ in 3D (build options: the host passes the
+ *   shape it launches for, 2 x 4 and 2 x 2 x 2). Neighbours of the block's
+ *   pixels coincide, so a 2 x 2 x 2 block reads 4^3 = 64 labels for 8 pixels
+ *   instead of 216.
+ * - Per label read, the seed's coordinate terms (x^2 + y^2 per column and
+ *   row, z^2 per plane of the block) are computed once, and only when the
+ *   label differs from the last one fetched; each pixel the read concerns
+ *   then costs one add and the compare.
+ * - Reads without a label are skipped, and so is a read whose label another
+ *   read of the same row already offers to all of its pixels (late steps
+ *   read the same label along x most of the time).
+ * - Distances, three builds:
+ *   VBJ_DISTF (the host's choice when n <= 256): a float filter; near ties
+ *     are redone exactly. Seeds and centres are 16.16 integers of magnitude
+ *     below 2^24, exact in float, so each difference e is an exact float
+ *     integer (|e| <= 2^24) and only the squares and the two adds round:
+ *     with u = 2^-24 the computed D~ = D (1 + t), |t| <= (1 + u)^3 - 1 <
+ *     3.0001 u = eps (all terms are >= 0, so relative errors do not grow;
+ *     D = 0 gives D~ = 0). Per pixel the kernel keeps h = fl(D~b (1 + 2^-19))
+ *     for its best seed b (h = infinity before the first).
+ *     A candidate c with D~c > h is farther: Dc >= D~c / (1 + eps) > D~b
+ *     (1 + 2^-19)(1 - u) / (1 + eps) >= Db (1 + 2^-19)(1 - u)(1 - eps) /
+ *     (1 + eps) > Db, since 2^-19 = 32 u exceeds u + 2 eps plus products.
+ *     A candidate with D~c < fl(h (1 - 2^-17)) is nearer: D~c < D~b
+ *     (1 + 2^-19)(1 - 2^-17)(1 + u)^2 < D~b (1 - 2^-18), so Dc <= D~c /
+ *     (1 - eps) < Db (1 - 2^-18)(1 + eps) / (1 - eps) < Db (2^-18 = 64 u).
+ *     c = b changes nothing. Anything else is a near tie (D~c within a
+ *     relative ~2^-17 of D~b, incl. exact ties and D~b = D~c = 0): it only
+ *     marks the pixel, whose step is then redone with exact 64-bit integer
+ *     distances (vbj_exact_step3: its 27 candidates from the integer seed
+ *     copy, vbj_dist2 and vbj_better as in the C reference). Pixels never
+ *     marked took only decisions proven above.
+ *   default: doubles holding the 16.16 integers, exact while dim n^2 2^32
+ *     <= 2^53 (3D n <= 512, 2D n <= 1024).
+ *   VBJ_DIST64: exact 64-bit integers, any n.
+ * - Pixels of a block that lie past the grid (when q / l is below the block
+ *   side) get a valid centre and are never written.
+ * Every decision equals the exact one, and the minimum over (distance,
+ * index) does not depend on the order of the candidates, so the kernels
+ * agree with the C reference bit for bit.
  *
- * Built four times: -DVBJ_LABEL16 for 16-bit label grids (fewer than 65535
- * seeds; half the memory traffic), crossed with -DVBJ_DIST64. */
+ * Built six times: -DVBJ_LABEL16 for 16-bit label grids (fewer than 65535
+ * seeds; half the memory traffic), crossed with the three distance builds. */
 #pragma OPENCL FP_CONTRACT OFF
 #include "vb_grid.h"
 
@@ -43,15 +64,22 @@ typedef uint vbj_label;
 #define VBJ_LNONE VBJ_NONE
 #endif
 
-#ifdef VBJ_DIST64
+#if defined(VBJ_DISTF)
+typedef float vbj_coord;
+typedef float vbj_d;
+typedef float2 vbj_seed2;
+typedef float4 vbj_seed3;
+#define VBJ_SQ(e) ((e) * (e))
+#define VBJ_DINIT INFINITY
+#define VBJ_CENTRE(p, f) ((float)vbj_cell_centre(p, f))
+#define VBJ_UP (1.0f + 0x1p-19f)
+#define VBJ_DOWN (1.0f - 0x1p-17f)
+#elif defined(VBJ_DIST64)
 typedef int vbj_coord;
 typedef ulong vbj_d;
 typedef int2 vbj_seed2;
 typedef int4 vbj_seed3;
 #define VBJ_SQ(e) ((ulong)((long)(e) * (e)))
-/* |difference| < 2^30 + 2^15, so three squares stay below 2^62 and
- * VBJ_DFAR plus two of them below 2^64. */
-#define VBJ_DFAR ((ulong)1 << 63)
 #define VBJ_DINIT ULONG_MAX
 #define VBJ_CENTRE(p, f) vbj_cell_centre(p, f)
 #else
@@ -61,7 +89,6 @@ typedef double vbj_d;
 typedef double2 vbj_seed2;
 typedef double4 vbj_seed3;
 #define VBJ_SQ(e) ((e) * (e))
-#define VBJ_DFAR 0x1p200
 #define VBJ_DINIT INFINITY
 #define VBJ_CENTRE(p, f) ((double)vbj_cell_centre(p, f))
 #endif
@@ -84,151 +111,289 @@ kernel void jfa_widen(global const vbj_label *src, global uint *dst, uint count)
     }
 }
 
-/* "Not a label": forces the first read of a work-item to fetch its seed. */
+/* "Not a label": forces the first offered read of a work-item to fetch its
+ * seed. */
 #define VBJ_NOCACHE 0xfffffffeu
 
-/* Offers the seed just read (label v) to pixel t of the block: nearer, or as
- * near with a lower index (Definition 2). dist is its squared distance.
- * A branch, not selects: most offers change nothing, and on an H200 the
- * select form (min / compare / select every offer) was 1.4x slower. */
-#define VBJ_OFFER(t, dist)                                                        \
+/* Work-items along an axis with blocks of B pixels spaced l (q / l and B are
+ * powers of two), and the first pixel of work-item w's block. */
+#define VBJ_ITEMS(q, l, B) ((q) / (l) >= (B) ? (q) / (B) : (l))
+#define VBJ_FIRST(w, l, B) ((w) % (l) + (B) * (l) * ((w) / (l)))
+
+/* Along an axis with blocks of B, read j (at first + (j - 1) l) concerns the
+ * block's pixels lo..hi. Read j defers to read i of the same row that
+ * concerns every pixel j does (and, concerning exactly the same pixels, comes
+ * first); j is skipped when such an i holds the same label. Deferring is a
+ * strict order, so a chain of skipped reads ends at one that is offered. */
+#define VBJ_LO(j) ((j) >= 2 ? (j) - 2 : 0)
+#define VBJ_HI(j, B) ((j) < (B) ? (j) : (B) - 1)
+#define VBJ_COVERS(i, j, B) (VBJ_LO(i) <= VBJ_LO(j) && VBJ_HI(i, B) >= VBJ_HI(j, B))
+#define VBJ_DEFERS(j, i, B)                                                       \
+    ((i) != (j) && VBJ_COVERS(i, j, B) && (!VBJ_COVERS(j, i, B) || (i) < (j)))
+
+/* Offers seed v at squared distance dist to the pixel whose state is
+ * (key, lab): nearer, or as near with a lower index (Definition 2). A branch,
+ * not selects: most offers change nothing. VBJ_DISTF: key is h of the filter
+ * above; a near tie (neither test decides) sets the pixel's bit in `near`
+ * and the pixel is redone exactly at the end (vbj_exact_step*), which keeps
+ * the rare slow path out of the unrolled offers. */
+#ifdef VBJ_DISTF
+#define VBJ_OFFER(key, lab, dist, bit)                                            \
+    {                                                                             \
+        float d_ = (dist);                                                        \
+        if (d_ <= (key) && v != (lab)) {                                          \
+            if (d_ < (key) * VBJ_DOWN) {                                          \
+                key = d_ * VBJ_UP;                                                \
+                lab = v;                                                          \
+            } else {                                                              \
+                near |= (bit);                                                    \
+            }                                                                     \
+        }                                                                         \
+    }
+#else
+#define VBJ_OFFER(key, lab, dist, bit)                                            \
     {                                                                             \
         vbj_d d_ = (dist);                                                        \
-        if (d_ < bd##t || (d_ == bd##t && v < bl##t)) {                           \
-            bd##t = d_;                                                           \
-            bl##t = v;                                                            \
+        if (d_ < (key) || (d_ == (key) && v < (lab))) {                           \
+            key = d_;                                                             \
+            lab = v;                                                              \
         }                                                                         \
     }
+#endif
 
-/* 2D: pixels y0 + t l (t < 4) of column x read rows y0 + (j - 1) l, j < 6;
- * row j concerns the pixels t with j - 2 <= t <= j (constants: the compiler
- * drops the others). */
-#define VBJ_IF2(t, J)                                                             \
-    if ((t) + 2 >= (J) && (t) <= (J))                                             \
-        VBJ_OFFER(t, ds##t)
-
-#define VBJ_READ2(J, xx, okx)                                                     \
-    {                                                                             \
-        uint v = okr_ && (okx) ? (uint)src[row_ + (xx)] : VBJ_LNONE;              \
-        if (v != cv) {                                                            \
-            cv = v;                                                               \
-            vbj_seed2 s_ = seeds[v == VBJ_LNONE ? 0u : v];                        \
-            vbj_d x_ = v == VBJ_LNONE ? VBJ_DFAR : VBJ_SQ(cx - s_.x);             \
-            ds0 = x_ + VBJ_SQ(cy0 - s_.y);                                        \
-            ds1 = x_ + VBJ_SQ(cy1 - s_.y);                                        \
-            ds2 = x_ + VBJ_SQ(cy2 - s_.y);                                        \
-            ds3 = x_ + VBJ_SQ(cy3 - s_.y);                                        \
-        }                                                                         \
-        VBJ_IF2(0, J) VBJ_IF2(1, J) VBJ_IF2(2, J) VBJ_IF2(3, J)                   \
+/* One pixel's step with exact integer distances, for pixels where the float
+ * filter met a near tie: its label after the step of length l. */
+__attribute__((noinline)) static uint vbj_exact_step2(global const vbj_label *src,
+                                                      global const int2 *iseeds, uint q,
+                                                      uint f, uint l, uint x, uint y)
+{
+    int cx = vbj_cell_centre(x, f), cy = vbj_cell_centre(y, f);
+    uint best = VBJ_LNONE;
+    ulong bd = ULONG_MAX;
+    for (int j = 0; j < 9; j++) {
+        uint xx = x + (uint)(j % 3) * l - l, yy = y + (uint)(j / 3) * l - l;
+        uint v = xx < q && yy < q ? src[yy * q + xx] : VBJ_LNONE;
+        if (v == VBJ_LNONE)
+            continue;
+        int2 s = iseeds[v];
+        ulong d = vbj_dist2(cx, cy, 0, s.x, s.y, 0);
+        if (vbj_better(d, v, bd, best)) {
+            bd = d;
+            best = v;
+        }
     }
+    return best;
+}
 
-#define VBJ_ROW2(J)                                                               \
-    {                                                                             \
-        uint yy_ = y0 + (uint)((J) - 1) * l;                                      \
-        int okr_ = yy_ < q;                                                       \
-        uint row_ = yy_ * q;                                                      \
-        VBJ_READ2(J, xm, xm < q)                                                  \
-        VBJ_READ2(J, x, 1)                                                        \
-        VBJ_READ2(J, xp, xp < q)                                                  \
+__attribute__((noinline)) static uint vbj_exact_step3(global const vbj_label *src,
+                                                      global const int4 *iseeds, uint q,
+                                                      uint f, uint l, uint x, uint y, uint z)
+{
+    int cx = vbj_cell_centre(x, f), cy = vbj_cell_centre(y, f), cz = vbj_cell_centre(z, f);
+    uint best = VBJ_LNONE;
+    ulong bd = ULONG_MAX;
+    for (int j = 0; j < 27; j++) {
+        uint xx = x + (uint)(j % 3) * l - l, yy = y + (uint)(j / 3 % 3) * l - l;
+        uint zz = z + (uint)(j / 9) * l - l;
+        uint v = xx < q && yy < q && zz < q ? src[(zz * q + yy) * q + xx] : VBJ_LNONE;
+        if (v == VBJ_LNONE)
+            continue;
+        int4 s = iseeds[v];
+        ulong d = vbj_dist2(cx, cy, cz, s.x, s.y, s.z);
+        if (vbj_better(d, v, bd, best)) {
+            bd = d;
+            best = v;
+        }
     }
+    return best;
+}
 
-/* One step of length l on a q x q grid of cells of f fine pixels. Work-item
- * (x, w) owns pixels y0 + t l, t < 4 (those past the grid when q / l = 2 are
- * skipped): global size q x (q / l >= 4 ? q / 4 : l). */
+/* Reads the labels of one row of the neighbourhood (x = x0 + (j - 1) l,
+ * j < VBJ_BX + 2) into vr; outside the grid (or !ok) reads as VBJ_LNONE. */
+static inline void vbj_row(global const vbj_label *src, uint *vr, int ok, uint row, uint x0,
+                           uint l, uint q)
+{
+#pragma unroll
+    for (int j = 0; j < VBJ_BX + 2; j++) {
+        uint xx = x0 + (uint)j * l - l;
+        vr[j] = ok && xx < q ? (uint)src[row + xx] : VBJ_LNONE;
+    }
+}
+
+/* Nonzero when read j of row vr is offered: a label, and no other read of
+ * the row offers it to all of j's pixels. */
+static inline int vbj_wanted(const uint *vr, int j)
+{
+    int keep = vr[j] != VBJ_LNONE;
+#pragma unroll
+    for (int i = 0; i < VBJ_BX + 2; i++)
+        if (VBJ_DEFERS(j, i, VBJ_BX))
+            keep &= vr[i] != vr[j];
+    return keep;
+}
+
+/* One step of length l on a q x q grid of cells of f fine pixels: work-item
+ * (wx, wy) owns a VBJ_BX x VBJ_BY2 block; global size
+ * VBJ_ITEMS(q, l, VBJ_BX) x VBJ_ITEMS(q, l, VBJ_BY2). seeds: in the build's
+ * coordinate type; iseeds: the 16.16 integers (the exact fallback). */
 kernel void jfa_step_2d(global const vbj_label *src, global vbj_label *dst,
-                        global const vbj_seed2 *seeds, uint q, uint f, uint l)
+                        global const vbj_seed2 *seeds, global const int2 *iseeds, uint q,
+                        uint f, uint l)
 {
-    uint x = get_global_id(0), w = get_global_id(1);
-    if (x >= q || w >= (q / l >= 4u ? q / 4u : l))
+    uint wx = get_global_id(0), wy = get_global_id(1);
+    if (wx >= VBJ_ITEMS(q, l, VBJ_BX) || wy >= VBJ_ITEMS(q, l, VBJ_BY2))
         return;
-    uint y0 = w % l + 4u * l * (w / l), xm = x - l, xp = x + l;
-    vbj_coord cx = VBJ_CENTRE(x, f), cy0 = VBJ_CENTRE(y0, f), cy1 = VBJ_CENTRE(y0 + l, f);
-    vbj_coord cy2 = y0 + 2u * l < q ? VBJ_CENTRE(y0 + 2u * l, f) : cy0;
-    vbj_coord cy3 = y0 + 3u * l < q ? VBJ_CENTRE(y0 + 3u * l, f) : cy0;
-    vbj_d bd0 = VBJ_DINIT, bd1 = VBJ_DINIT, bd2 = VBJ_DINIT, bd3 = VBJ_DINIT;
-    uint bl0 = VBJ_LNONE, bl1 = VBJ_LNONE, bl2 = VBJ_LNONE, bl3 = VBJ_LNONE;
-    vbj_d ds0 = 0, ds1 = 0, ds2 = 0, ds3 = 0;
+    uint x0 = VBJ_FIRST(wx, l, VBJ_BX), y0 = VBJ_FIRST(wy, l, VBJ_BY2);
+    vbj_coord cx[VBJ_BX], cy[VBJ_BY2];
+#pragma unroll
+    for (int a = 0; a < VBJ_BX; a++)
+        cx[a] = VBJ_CENTRE(x0 + (uint)a * l < q ? x0 + (uint)a * l : x0, f);
+#pragma unroll
+    for (int b = 0; b < VBJ_BY2; b++)
+        cy[b] = VBJ_CENTRE(y0 + (uint)b * l < q ? y0 + (uint)b * l : y0, f);
+    vbj_d key[VBJ_BX][VBJ_BY2], t[VBJ_BX][VBJ_BY2];
+    uint lab[VBJ_BX][VBJ_BY2], near = 0;
+#pragma unroll
+    for (int a = 0; a < VBJ_BX; a++)
+#pragma unroll
+        for (int b = 0; b < VBJ_BY2; b++) {
+            key[a][b] = VBJ_DINIT;
+            lab[a][b] = VBJ_LNONE;
+            t[a][b] = 0;
+        }
     uint cv = VBJ_NOCACHE;
-    VBJ_ROW2(0) VBJ_ROW2(1) VBJ_ROW2(2) VBJ_ROW2(3) VBJ_ROW2(4) VBJ_ROW2(5)
-    uint r = y0 * q + x, stride = l * q;
-    dst[r] = (vbj_label)bl0;
-    dst[r + stride] = (vbj_label)bl1;
-    if (y0 + 2u * l < q) {
-        dst[r + 2u * stride] = (vbj_label)bl2;
-        dst[r + 3u * stride] = (vbj_label)bl3;
+#pragma unroll
+    for (int jy = 0; jy < VBJ_BY2 + 2; jy++) {
+        uint yy = y0 + (uint)jy * l - l;
+        uint vr[VBJ_BX + 2];
+        vbj_row(src, vr, yy < q, yy * q, x0, l, q);
+#pragma unroll
+        for (int jx = 0; jx < VBJ_BX + 2; jx++) {
+            uint v = vr[jx];
+            if (!vbj_wanted(vr, jx))
+                continue;
+            if (v != cv) {
+                cv = v;
+                vbj_seed2 s = seeds[v];
+#pragma unroll
+                for (int a = 0; a < VBJ_BX; a++)
+#pragma unroll
+                    for (int b = 0; b < VBJ_BY2; b++)
+                        t[a][b] = VBJ_SQ(cx[a] - s.x) + VBJ_SQ(cy[b] - s.y);
+            }
+#pragma unroll
+            for (int a = 0; a < VBJ_BX; a++)
+#pragma unroll
+                for (int b = 0; b < VBJ_BY2; b++)
+                    if (a >= VBJ_LO(jx) && a <= VBJ_HI(jx, VBJ_BX) && b >= VBJ_LO(jy) &&
+                        b <= VBJ_HI(jy, VBJ_BY2))
+                        VBJ_OFFER(key[a][b], lab[a][b], t[a][b], 1u << (a * VBJ_BY2 + b))
+        }
     }
+#pragma unroll
+    for (int a = 0; a < VBJ_BX; a++)
+#pragma unroll
+        for (int b = 0; b < VBJ_BY2; b++) {
+            uint x = x0 + (uint)a * l, y = y0 + (uint)b * l;
+            if (x < q && y < q)
+                dst[y * q + x] = (vbj_label)(near & 1u << (a * VBJ_BY2 + b)
+                                                 ? vbj_exact_step2(src, iseeds, q, f, l, x, y)
+                                                 : lab[a][b]);
+        }
 }
 
-/* 3D: pixels (y0 + a l, z0 + b l), a < 2, b < 4, named t = ab, read rows
- * y0 + (JY - 1) l, JY < 4, of planes z0 + (JZ - 1) l, JZ < 6; the read
- * concerns a in JY-2..JY and b in JZ-2..JZ. */
-#define VBJ_IF3(a, b, JY, JZ)                                                     \
-    if ((a) + 2 >= (JY) && (a) <= (JY) && (b) + 2 >= (JZ) && (b) <= (JZ))         \
-        VBJ_OFFER(a##b, xy##a + zs##b)
-
-#define VBJ_READ3(JY, JZ, xx, okx)                                                \
-    {                                                                             \
-        uint v = okr_ && (okx) ? (uint)src[row_ + (xx)] : VBJ_LNONE;              \
-        if (v != cv) {                                                            \
-            cv = v;                                                               \
-            vbj_seed3 s_ = seeds[v == VBJ_LNONE ? 0u : v];                        \
-            vbj_d x_ = v == VBJ_LNONE ? VBJ_DFAR : VBJ_SQ(cx - s_.x);             \
-            xy0 = x_ + VBJ_SQ(cy0 - s_.y);                                        \
-            xy1 = x_ + VBJ_SQ(cy1 - s_.y);                                        \
-            zs0 = VBJ_SQ(cz0 - s_.z);                                             \
-            zs1 = VBJ_SQ(cz1 - s_.z);                                             \
-            zs2 = VBJ_SQ(cz2 - s_.z);                                             \
-            zs3 = VBJ_SQ(cz3 - s_.z);                                             \
-        }                                                                         \
-        VBJ_IF3(0, 0, JY, JZ) VBJ_IF3(0, 1, JY, JZ) VBJ_IF3(0, 2, JY, JZ)         \
-        VBJ_IF3(0, 3, JY, JZ) VBJ_IF3(1, 0, JY, JZ) VBJ_IF3(1, 1, JY, JZ)         \
-        VBJ_IF3(1, 2, JY, JZ) VBJ_IF3(1, 3, JY, JZ)                               \
-    }
-
-#define VBJ_ROW3(JY, JZ)                                                          \
-    {                                                                             \
-        uint yy_ = y0 + (uint)((JY) - 1) * l, zz_ = z0 + (uint)((JZ) - 1) * l;    \
-        int okr_ = yy_ < q && zz_ < q;                                            \
-        uint row_ = (zz_ * q + yy_) * q;                                          \
-        VBJ_READ3(JY, JZ, xm, xm < q)                                             \
-        VBJ_READ3(JY, JZ, x, 1)                                                   \
-        VBJ_READ3(JY, JZ, xp, xp < q)                                             \
-    }
-#define VBJ_PLANE3(JZ) VBJ_ROW3(0, JZ) VBJ_ROW3(1, JZ) VBJ_ROW3(2, JZ) VBJ_ROW3(3, JZ)
-
-/* The same on a q^3 grid: work-item (x, wy, wz) owns the 2 x 4 block above;
- * global size q x q / 2 x (q / l >= 4 ? q / 4 : l). */
+/* The same on a q^3 grid: work-item (wx, wy, wz) owns a VBJ_BX x VBJ_BY x
+ * VBJ_BZ block; the seed terms are x^2 + y^2 per column and row (txy) and z^2
+ * per plane (tz), so an offer is one add. */
 kernel void jfa_step_3d(global const vbj_label *src, global vbj_label *dst,
-                        global const vbj_seed3 *seeds, uint q, uint f, uint l)
+                        global const vbj_seed3 *seeds, global const int4 *iseeds, uint q,
+                        uint f, uint l)
 {
-    uint x = get_global_id(0), wy = get_global_id(1), wz = get_global_id(2);
-    if (x >= q || wy >= q / 2u || wz >= (q / l >= 4u ? q / 4u : l))
+    uint wx = get_global_id(0), wy = get_global_id(1), wz = get_global_id(2);
+    if (wx >= VBJ_ITEMS(q, l, VBJ_BX) || wy >= VBJ_ITEMS(q, l, VBJ_BY) ||
+        wz >= VBJ_ITEMS(q, l, VBJ_BZ))
         return;
-    uint y0 = wy % l + 2u * l * (wy / l), z0 = wz % l + 4u * l * (wz / l);
-    uint xm = x - l, xp = x + l;
-    vbj_coord cx = VBJ_CENTRE(x, f), cy0 = VBJ_CENTRE(y0, f), cy1 = VBJ_CENTRE(y0 + l, f);
-    vbj_coord cz0 = VBJ_CENTRE(z0, f), cz1 = VBJ_CENTRE(z0 + l, f);
-    vbj_coord cz2 = z0 + 2u * l < q ? VBJ_CENTRE(z0 + 2u * l, f) : cz0;
-    vbj_coord cz3 = z0 + 3u * l < q ? VBJ_CENTRE(z0 + 3u * l, f) : cz0;
-    vbj_d bd00 = VBJ_DINIT, bd01 = VBJ_DINIT, bd02 = VBJ_DINIT, bd03 = VBJ_DINIT;
-    vbj_d bd10 = VBJ_DINIT, bd11 = VBJ_DINIT, bd12 = VBJ_DINIT, bd13 = VBJ_DINIT;
-    uint bl00 = VBJ_LNONE, bl01 = VBJ_LNONE, bl02 = VBJ_LNONE, bl03 = VBJ_LNONE;
-    uint bl10 = VBJ_LNONE, bl11 = VBJ_LNONE, bl12 = VBJ_LNONE, bl13 = VBJ_LNONE;
-    vbj_d xy0 = 0, xy1 = 0, zs0 = 0, zs1 = 0, zs2 = 0, zs3 = 0;
+    uint x0 = VBJ_FIRST(wx, l, VBJ_BX), y0 = VBJ_FIRST(wy, l, VBJ_BY);
+    uint z0 = VBJ_FIRST(wz, l, VBJ_BZ);
+    vbj_coord cx[VBJ_BX], cy[VBJ_BY], cz[VBJ_BZ];
+#pragma unroll
+    for (int a = 0; a < VBJ_BX; a++)
+        cx[a] = VBJ_CENTRE(x0 + (uint)a * l < q ? x0 + (uint)a * l : x0, f);
+#pragma unroll
+    for (int b = 0; b < VBJ_BY; b++)
+        cy[b] = VBJ_CENTRE(y0 + (uint)b * l < q ? y0 + (uint)b * l : y0, f);
+#pragma unroll
+    for (int c = 0; c < VBJ_BZ; c++)
+        cz[c] = VBJ_CENTRE(z0 + (uint)c * l < q ? z0 + (uint)c * l : z0, f);
+    vbj_d key[VBJ_BX][VBJ_BY][VBJ_BZ], txy[VBJ_BX][VBJ_BY], tz[VBJ_BZ];
+    uint lab[VBJ_BX][VBJ_BY][VBJ_BZ], near = 0;
+#pragma unroll
+    for (int a = 0; a < VBJ_BX; a++)
+#pragma unroll
+        for (int b = 0; b < VBJ_BY; b++) {
+            txy[a][b] = 0;
+#pragma unroll
+            for (int c = 0; c < VBJ_BZ; c++) {
+                key[a][b][c] = VBJ_DINIT;
+                lab[a][b][c] = VBJ_LNONE;
+            }
+        }
+#pragma unroll
+    for (int c = 0; c < VBJ_BZ; c++)
+        tz[c] = 0;
     uint cv = VBJ_NOCACHE;
-    VBJ_PLANE3(0) VBJ_PLANE3(1) VBJ_PLANE3(2) VBJ_PLANE3(3) VBJ_PLANE3(4) VBJ_PLANE3(5)
-    uint r = (z0 * q + y0) * q + x, sy = l * q, sz = l * q * q;
-    dst[r] = (vbj_label)bl00;
-    dst[r + sy] = (vbj_label)bl10;
-    dst[r + sz] = (vbj_label)bl01;
-    dst[r + sz + sy] = (vbj_label)bl11;
-    if (z0 + 2u * l < q) {
-        dst[r + 2u * sz] = (vbj_label)bl02;
-        dst[r + 2u * sz + sy] = (vbj_label)bl12;
-        dst[r + 3u * sz] = (vbj_label)bl03;
-        dst[r + 3u * sz + sy] = (vbj_label)bl13;
-    }
+#pragma unroll
+    for (int jz = 0; jz < VBJ_BZ + 2; jz++)
+#pragma unroll
+        for (int jy = 0; jy < VBJ_BY + 2; jy++) {
+            uint yy = y0 + (uint)jy * l - l, zz = z0 + (uint)jz * l - l;
+            uint vr[VBJ_BX + 2];
+            vbj_row(src, vr, yy < q && zz < q, (zz * q + yy) * q, x0, l, q);
+#pragma unroll
+            for (int jx = 0; jx < VBJ_BX + 2; jx++) {
+                uint v = vr[jx];
+                if (!vbj_wanted(vr, jx))
+                    continue;
+                if (v != cv) {
+                    cv = v;
+                    vbj_seed3 s = seeds[v];
+#pragma unroll
+                    for (int a = 0; a < VBJ_BX; a++)
+#pragma unroll
+                        for (int b = 0; b < VBJ_BY; b++)
+                            txy[a][b] = VBJ_SQ(cx[a] - s.x) + VBJ_SQ(cy[b] - s.y);
+#pragma unroll
+                    for (int c = 0; c < VBJ_BZ; c++)
+                        tz[c] = VBJ_SQ(cz[c] - s.z);
+                }
+#pragma unroll
+                for (int a = 0; a < VBJ_BX; a++)
+#pragma unroll
+                    for (int b = 0; b < VBJ_BY; b++)
+#pragma unroll
+                        for (int c = 0; c < VBJ_BZ; c++)
+                            if (a >= VBJ_LO(jx) && a <= VBJ_HI(jx, VBJ_BX) &&
+                                b >= VBJ_LO(jy) && b <= VBJ_HI(jy, VBJ_BY) &&
+                                c >= VBJ_LO(jz) && c <= VBJ_HI(jz, VBJ_BZ))
+                                VBJ_OFFER(key[a][b][c], lab[a][b][c], txy[a][b] + tz[c],
+                                          1u << ((a * VBJ_BY + b) * VBJ_BZ + c))
+            }
+        }
+#pragma unroll
+    for (int a = 0; a < VBJ_BX; a++)
+#pragma unroll
+        for (int b = 0; b < VBJ_BY; b++)
+#pragma unroll
+            for (int c = 0; c < VBJ_BZ; c++) {
+                uint x = x0 + (uint)a * l, y = y0 + (uint)b * l, z = z0 + (uint)c * l;
+                if (x < q && y < q && z < q)
+                    dst[(z * q + y) * q + x] =
+                        (vbj_label)(near & 1u << ((a * VBJ_BY + b) * VBJ_BZ + c)
+                                        ? vbj_exact_step3(src, iseeds, q, f, l, x, y, z)
+                                        : lab[a][b][c]);
+            }
 }
+
 /* Number of distinct labels among each pixel and its 3^d - 1 neighbours
  * (dim 2 or 3): 1 interior, 2 facet, >= 3 edge, >= 4 vertex. */
 kernel void jfa_count_labels(global const uint *lab, global uchar *out, uint n, uint dim)

@@ -38,10 +38,11 @@ typedef struct vbj_clbuf {
     size_t bytes;
 } vbj_clbuf;
 
-/* Kernels, created on first use and kept by the engine. jfa.cl is built four
+/* Kernels, created on first use and kept by the engine. jfa.cl is built six
  * ways (its programs, too, are built on first use): the build number says
- * 16-bit labels (VBJ_JFA_LABEL16) and exact 64-bit integer distances
- * (VBJ_JFA_DIST64, else doubles); kernel `k` of build `b` is b * VBJ_KJFA + k. */
+ * 16-bit labels (VBJ_JFA_LABEL16) and the distances: exact 64-bit integers
+ * (VBJ_JFA_DIST64), a float filter with exact fallback (VBJ_JFA_FLOAT), else
+ * exact doubles; kernel `k` of build `b` is b * VBJ_KJFA + k. */
 enum {
     VBJ_K_PLACE = 0,
     VBJ_K_STEP2,
@@ -52,7 +53,8 @@ enum {
 };
 #define VBJ_JFA_LABEL16 1
 #define VBJ_JFA_DIST64 2
-#define VBJ_JFA_BUILDS 4
+#define VBJ_JFA_FLOAT 4
+#define VBJ_JFA_BUILDS 6
 enum {
     VBJ_K_EXPAND = VBJ_JFA_BUILDS * VBJ_KJFA, /* first kernel of facet_jfa.cl */
     VBJ_K_FSTEP,
@@ -62,16 +64,17 @@ enum {
     VBJ_NKERNELS
 };
 
-/* Nonzero when every squared distance on an [n]^dim grid is an exact double
- * (the step kernels may then use doubles; see gpu/jfa.cl). */
-int vbj_double_exact(int dim, uint32_t n);
+/* The distance build of jfa.cl for an [n]^dim grid: VBJ_JFA_FLOAT where
+ * every coordinate is an exact float, else 0 (doubles) where every squared
+ * distance is an exact double, else VBJ_JFA_DIST64 (see gpu/jfa.cl). */
+int vbj_dist_build(int dim, uint32_t n);
 
 struct vbj_engine {
     vbg_runtime *rt; /* NULL for the reference backend */
     int own_rt;
     cl_program jfa[VBJ_JFA_BUILDS], facet, exact; /* owned by the runtime's program cache */
     cl_kernel kernels[VBJ_NKERNELS];
-    vbj_clbuf seeds, seeds_d, pairs, grid[2], store[2], tmp, list[2], counter, labels, cells_start,
+    vbj_clbuf seeds, seeds_fp, pairs, grid[2], store[2], tmp, list[2], counter, labels, cells_start,
         cells_items;
     cl_mem device_labels; /* one of the buffers above, or NULL */
     /* Profiling events of the timed commands of a run (vbj_cl_event). */
@@ -110,8 +113,9 @@ int vbj_cl_set_args(vb_ctx *ctx, cl_kernel k, const char *what, int nargs, const
 int vbj_cl_launch(vb_ctx *ctx, vbj_engine *e, cl_kernel k, int dims, const size_t *global,
                   const char *what);
 
-/* Uploads the seeds as int2 (2D) or int4 (3D) into e->seeds and, where
- * vbj_double_exact, as double2 / double4 into e->seeds_d. */
+/* Uploads the seeds as int2 (2D) or int4 (3D) into e->seeds and, unless
+ * vbj_dist_build is VBJ_JFA_DIST64, in the step kernels' coordinate type
+ * (float or double, 2 or 4 per seed) into e->seeds_fp. */
 int vbj_cl_upload_seeds(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s);
 
 /* Places the seeds on the grid of cells of f pixels (vbj_place) and uploads

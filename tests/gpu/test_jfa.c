@@ -162,24 +162,34 @@ static void backends_agree(vb_ctx *ctx, vbj_engine *ref, vbj_engine *cl, int dim
 
 /* Seeds on a lattice of pitch 4 pixels at integer positions: every pixel
  * between two lattice points is equally far from both, so the labels test
- * the tie rule (lowest index) in every kernel. Returns the number of seeds. */
-static size_t lattice(vb_ctx *ctx, int dim, uint32_t n, vbj_seeds *s)
+ * the tie rule (lowest index) in every kernel. Seed i sits at lattice point
+ * 37 i mod k (k a power of two, so a permutation): indices do not follow the
+ * order in which kernels read neighbours, so the first seed offered is not
+ * always the lowest. jitter (units of 2^-16 px) then moves seed i by
+ * (i mod 3 - 1) jitter along x: the ties become near ties that only exact
+ * arithmetic separates (the float filter's fallback). Returns the number of
+ * seeds. */
+static size_t lattice(vb_ctx *ctx, int dim, uint32_t n, int jitter, vbj_seeds *s)
 {
     uint32_t m = n / 4, k = m * m * (dim == 3 ? m : 1);
     if (vbj_seeds_alloc(ctx, dim, n, k, s))
         return 0;
-    for (uint32_t i = 0; i < k; i++)
-        vbj_seed_set(ctx, s, i, 4.0 * (i % m) + 1, 4.0 * ((i / m) % m) + 1,
-                     dim == 3 ? 4.0 * (i / (m * m)) + 1 : 0);
+    for (uint32_t i = 0; i < k; i++) {
+        uint32_t p = (uint32_t)(37u * i) % k;
+        double dx = ((int)(i % 3) - 1) * jitter / 65536.0;
+        vbj_seed_set(ctx, s, i, 4.0 * (p % m) + 1 + dx, 4.0 * ((p / m) % m) + 1,
+                     dim == 3 ? 4.0 * (p / (m * m)) + 1 : 0);
+    }
     return k;
 }
 
 /* Every variant (all), or JFA+1 and Facet-JFA only (for large grids). */
-static void ties(vb_ctx *ctx, vbj_engine *ref, vbj_engine *cl, int dim, uint32_t n, int all)
+static void ties(vb_ctx *ctx, vbj_engine *ref, vbj_engine *cl, int dim, uint32_t n, int all,
+                 int jitter)
 {
     static const vbj_variant some[] = {VBJ_JFA1, VBJ_FACET};
     vbj_seeds s;
-    if (!lattice(ctx, dim, n, &s)) {
+    if (!lattice(ctx, dim, n, jitter, &s)) {
         CHECK(0);
         return;
     }
@@ -282,9 +292,11 @@ int main(void)
         backends_agree(ctx, ref, cl, 3, 16, 1, VBJ_DIST_UNIFORM);
         wide_labels(ctx, ref, cl);
         integer_distances(ctx, ref, cl);
-        ties(ctx, ref, cl, 2, 64, 1);
-        ties(ctx, ref, cl, 3, 32, 1);
-        ties(ctx, ref, cl, 2, 2048, 0);
+        ties(ctx, ref, cl, 2, 64, 1, 0);
+        ties(ctx, ref, cl, 3, 32, 1, 0);
+        ties(ctx, ref, cl, 2, 2048, 0, 0);
+        ties(ctx, ref, cl, 2, 64, 0, 1);
+        ties(ctx, ref, cl, 3, 32, 0, 1);
         vbj_engine_close(cl);
     } else {
         printf("no OpenCL device: %s (reference backend only)\n", vb_errmsg(ctx));

@@ -115,7 +115,9 @@ static int slow_ready(void *user)
  * candidates are those of batches of the plain size. */
 static void check_cull_ahead(vb_ctx *ctx)
 {
-    vb_sphere_set *s = load(ctx, random_set(60));
+    char *text = random_set(60);
+    vb_sphere_set *s = load(ctx, text);
+    free(text);
     CHECK(s != NULL);
     if (!s)
         return;

@@ -55,4 +55,27 @@ for f in "$inputs"/*.xyzr; do
         fail "cpu run failed on $f"
     cmp -s "$work/a.top" "$work/b.top" || fail "topology differs ref/cpu on $f"
 done
+# Edge lines checked line for line by an exact rational computation on
+# the equal-radius corpus inputs (papers/gpu-voronoi-cells-of-spheres):
+# their counts, and two known lines of lattice_subset: the degree-6 vertex
+# (-0.5, 1.5, 0.5) has an edge to infinity along 9,16,27, and the triple
+# 2,7,25 meets at vertex 9 only in a point (no edge).
+for c in bcc_lattice:240 hexagonal_ring:32 lattice_subset:185; do
+    f=${c%%:*} want=${c#*:}
+    "$vorball" vertices --device ref --topology "$work/$f.top" -o "$work/$f.tsv" \
+        "$inputs/$f.xyzr" 2> /dev/null || fail "run failed on $f"
+    got=$(grep -c '^edge' "$work/$f.top")
+    [ "$got" -eq "$want" ] || fail "$f: $got edge lines, expected $want"
+done
+v41=$(awk '$1 == "9,16,21,23,26,27" { print NR - 3 }' "$work/lattice_subset.tsv")
+grep -q "^edge	$v41	-1	9,16,27\$" "$work/lattice_subset.top" ||
+    fail "lattice_subset: missing infinite edge of the degree-6 vertex"
+grep -q "	2,7,25\$" "$work/lattice_subset.top" && fail "lattice_subset: false edge 2,7,25"
+# General position: every vertex has four edges (crambin fragment).
+"$vorball" vertices --device ref --topology "$work/crambin.top" -o "$work/crambin.tsv" \
+    "$inputs/crambin_fragment.xyzr" 2> /dev/null || fail "crambin run failed"
+odd=$(awk '$1 == "edge" { d[$2]++; if ($3 != -1) d[$3]++ } END { n = 0; for (v in d) if (d[v] != 4) n++; print n + 0 }' "$work/crambin.top")
+[ "$odd" -eq 0 ] || fail "crambin_fragment: $odd vertices without exactly four edges"
+[ "$(awk '$1 == "edge" { d[$2] = 1; if ($3 != -1) d[$3] = 1 } END { n = 0; for (v in d) n++; print n }' "$work/crambin.top")" -eq "$(grep -vc '^#' "$work/crambin.tsv")" ] ||
+    fail "crambin_fragment: a vertex without edges"
 echo "ok: 8 vertices, 54 faces, 12 finite edges ($fin lines), $inf infinite lines"
