@@ -1051,15 +1051,14 @@ static int complete_ring(emit_ctx *e, int nthreads)
     return rc;
 }
 
-/* The tangent test of clusters, in parallel: in pass 1 of every cluster
- * that needs it (incomplete, or seen from sphere 0; plaus[c] = 1 when its
- * tangent sphere is empty or it needs no test), with `all` of every one. */
+/* The tangent test of every cluster that needs it (incomplete, or seen
+ * from sphere 0), in parallel: plaus[c] = 1 when its tangent sphere is
+ * empty or it needs no test. */
 typedef struct plaus_ctx {
     const match_ctx *m;
     const vb_cand_vec *raw;
     const vbs_hash *hash;
     double tol;
-    int all;
     uint8_t *plaus;
     uint32_t *mem[VBS_MAX_THREADS], *found[VBS_MAX_THREADS];
     uint32_t *tbuf[VBS_MAX_THREADS];
@@ -1088,7 +1087,7 @@ static void plaus_eval(void *arg, size_t c, int tid)
     }
     size_t nm, nf = cluster_sets(m, p->raw, c, p->mem[tid], &nm, p->found[tid]);
     p->plaus[c] = 1;
-    if (p->all || nf < nm || p->found[tid][0] == 0) {
+    if (nf < nm || p->found[tid][0] == 0) {
         const vbs_cand *rep = p->raw->v + m->cl_items[m->cl_start[c]];
         uint32_t q4[4];
         memcpy(q4, rep->ids, sizeof q4);
@@ -1102,7 +1101,7 @@ static void plaus_eval(void *arg, size_t c, int tid)
 
 /* Runs plaus_eval over every cluster of m; returns VB_OK or VB_ENOMEM. */
 static int tangent_tests(const match_ctx *m, const vb_cand_vec *raw, const vbs_hash *hash,
-                         double tol, int all, uint8_t *plaus, int nthreads)
+                         double tol, uint8_t *plaus, int nthreads)
 {
     plaus_ctx pc;
     memset(&pc, 0, sizeof pc);
@@ -1110,7 +1109,6 @@ static int tangent_tests(const match_ctx *m, const vb_cand_vec *raw, const vbs_h
     pc.raw = raw;
     pc.hash = hash;
     pc.tol = tol;
-    pc.all = all;
     pc.plaus = plaus;
     pfor(plaus_eval, &pc, m->ncl, nthreads);
     for (int t = 0; t < VBS_MAX_THREADS; t++) {
@@ -1154,7 +1152,7 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
     if (rc == VB_OK && !plaus)
         rc = VB_ENOMEM;
     if (rc == VB_OK)
-        rc = tangent_tests(&m, raw, cu->hash, params->tol, 0, plaus, nthreads);
+        rc = tangent_tests(&m, raw, cu->hash, params->tol, plaus, nthreads);
     /* Pass 1: completeness, the first cell (Fig. 13), work for 5.5. */
     for (size_t c = 0; rc == VB_OK && c < m.ncl; c++) {
         size_t nm, nf = cluster_sets(&m, raw, c, mem, &nm, found);
@@ -1237,14 +1235,15 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
     size_t nq = 0;
     if (rc == VB_OK && !qs)
         rc = VB_ENOMEM;
-    /* The vertices among the clusters are those with an empty tangent
-     * sphere (the spurious ones die there): how many of them sampling and
-     * 5.5 found from all of their spheres. */
+    /* The vertices among the clusters: those found from all of their
+     * spheres (but not from sphere 0 alone, as in pass 1) and those with an
+     * empty tangent sphere (the spurious ones die there); how many of them
+     * sampling and 5.5 did not find from all of their spheres. */
     uint8_t *empty = rc == VB_OK ? malloc(m.ncl + 1) : NULL;
     if (rc == VB_OK && !empty)
         rc = VB_ENOMEM;
     if (rc == VB_OK)
-        rc = tangent_tests(&m, raw, cu->hash, params->tol, 1, empty, nthreads);
+        rc = tangent_tests(&m, raw, cu->hash, params->tol, empty, nthreads);
     for (size_t c = 0; rc == VB_OK && c < m.ncl; c++) {
         size_t nm, nf = cluster_sets(&m, raw, c, mem, &nm, found);
         int complete = nf == nm && memcmp(mem, found, nm * sizeof *mem) == 0;
