@@ -105,12 +105,43 @@ void vbs_base_data_free(vbs_base_data *bd)
     memset(bd, 0, sizeof *bd);
 }
 
-/* D * 128 (D/q)^3 (capped): D is the bounding-box diagonal plus twice the
- * largest radius, q the finest decimal unit of the input. For equal radii
- * the circumcentre of four non-coplanar centres on the grid q Z^3 is
- * adj(A) b / det(A) with integer det(A) >= 1, |adj| <= 8 M^2, |b| <= 3 M^2,
- * M = D/q, which stays inside this distance; rays are clipped there, and a
- * ray that meets no bisector closer is "infinite". */
+/* Same decimal value (mantissas without trailing zeros). */
+static int same_decimal(vb_decimal a, vb_decimal b)
+{
+    while (a.mant != 0 && a.mant % 10 == 0) {
+        a.mant /= 10;
+        a.exp10++;
+    }
+    while (b.mant != 0 && b.mant % 10 == 0) {
+        b.mant /= 10;
+        b.exp10++;
+    }
+    return a.mant == b.mant && (a.mant == 0 || a.exp10 == b.exp10);
+}
+
+/* A distance beyond every vertex, from any sphere's centre (capped at
+ * 1e200). D is the bounding-box diagonal plus twice the largest radius, q
+ * the finest decimal unit of the input, M = D/q; in units of q, with the
+ * origin at a member c_0 of a vertex's quadruple, centres and radii are
+ * integers of size at most M.
+ * Equal radii: D * 128 M^3. The circumcentre of four non-coplanar centres
+ * is adj(A) b / det(A) with integer det(A) >= 1, |adj| <= 8 M^2,
+ * |b| <= 3 M^2 (A = 2 (c_k - c_0)).
+ * Unequal radii: D * 3e4 M^7. A vertex p with tangent radius t is at
+ * |p - c_0| = r_0 + t, so bounding t is enough. Subtracting the tangency
+ * equations gives A p = b + t d (d_k = -2 (r_k - r_0), |d| <= 2 M). If
+ * det(A) != 0, p = (u + t w) / det(A) with u = adj(A) b, w = adj(A) d
+ * (|u| <= 125 M^4, |w| <= 84 M^3, |det| <= 48 M^3), and |p - c_0|^2 =
+ * (r_0 + t)^2 becomes an integer quadratic alpha t^2 + beta t + gamma = 0
+ * with |alpha| <= 9400 M^6, |beta| <= 25600 M^7, |gamma| <= 18000 M^8:
+ * Cauchy's bound gives |t| <= 1 + 25600 M^8 (alpha != 0; else
+ * |t| <= |gamma|). If the centres are coplanar, the 3 x 4 system in
+ * (p, t) has a non-zero 3 x 3 minor only with t's column (the coordinate
+ * columns span the plane), and Cramer's rule gives |t| <= 72 M^4. A
+ * quadruple without such an isolated solution has a curve of common
+ * tangent spheres and is not what makes an isolated vertex. So
+ * |p - c_0| <= q (M + 1 + 25600 M^8) <= 3e4 D M^7. Rays are clipped
+ * there, and a ray that meets no bisector closer is "infinite". */
 double vbs_clip_distance(const vb_sphere_set *set)
 {
     double lo[3] = {set->x[0], set->y[0], set->z[0]}, hi[3] = {lo[0], lo[1], lo[2]};
@@ -137,7 +168,10 @@ double vbs_clip_distance(const vb_sphere_set *set)
                     (hi[2] - lo[2]) * (hi[2] - lo[2])) + 2.0 * rmax;
     double q = emin == 400 ? D * 1e-9 : pow(10.0, emin);
     double M = D / q;
-    double L = D * 128.0 * M * M * M;
+    int equal = 1;
+    for (size_t i = 1; i < set->n && equal; i++)
+        equal = set->er ? same_decimal(set->er[i], set->er[0]) : set->r[i] == set->r[0];
+    double L = equal ? D * 128.0 * M * M * M : D * 3e4 * pow(M, 7.0);
     if (!(L < 1e200))
         L = 1e200;
     return L;
