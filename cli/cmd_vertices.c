@@ -78,8 +78,8 @@ static int write_topology(vb_ctx *ctx, const char *path, const vb_sphere_set *se
         return rc;
     if (topo.unresolved)
         vb_warn(ctx, 765, NULL, 0,
-                "%zu trisector(s) whose edges could not be paired (collinear centres with more "
-                "than two vertices, or a closed edge through one vertex)",
+                "%zu trisector(s) whose edges could not be paired (no trisector curve for "
+                "the triple in doubles, or a closed edge through one vertex)",
                 topo.unresolved);
     FILE *f = vb_cli_open_output(ctx, path);
     rc = f ? vb_topology_write(ctx, f, &topo) : VB_EIO;

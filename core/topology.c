@@ -360,13 +360,8 @@ static int on_edge(const vbs_hash *h, const vbs_trisector *tr, const uint32_t t[
     return vbs_trisector_exact_on_edge(h->set, t, p, *near, nn);
 }
 
-/* The edges along the trisector of t through the vertices rows[0..nv):
- * sorted along the branch, consecutive vertices are joined where the curve
- * between them is on the diagram, and the ends run to infinity (open
- * branch) or join around (closed curve) where that part is. Membership can
- * change only at a vertex, so one point per part decides it. A trisector
- * that is not such a curve (collinear centres) keeps the plain join: one
- * vertex runs to infinity, two are joined, more are counted unresolved. */
+/* Buffers reused across triples: the vertices on a curve, the spheres
+ * near a test point. */
 typedef struct edge_scratch {
     on_curve *oc;
     uint32_t *near;
@@ -383,6 +378,13 @@ static int part_on_edge(const vbs_hash *h, const vbs_trisector *tr, const uint32
     return on > 0;
 }
 
+/* The edges along the trisector of t through the vertices rows[0..nv):
+ * sorted along the branch, consecutive vertices are joined where the curve
+ * between them is on the diagram, and the ends run to infinity (open
+ * branch) or join around (closed curve) where that part is. Membership can
+ * change only at a vertex, so one point per part decides it. Where doubles
+ * find no trisector curve the plain join is kept: one vertex runs to
+ * infinity, two are joined, more are counted unresolved. */
 static int trisector_edges(const vb_sphere_set *set, const vbs_hash *h, double guard,
                            const vb_vertex_list *vx, const uint32_t t[3], const tv *rows,
                            size_t nv, edge_scratch *sc, vb_topology *out)

@@ -15,6 +15,57 @@ static double dot(const double a[3], const double b[3])
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
+/* Collinear centres: by the symmetry about their axis the trisector is one
+ * circle, at axial position z (from c_a, along the unit axis e) and a
+ * fixed t; with z_k the axial positions, subtracting a's condition from
+ * b's and c's gives -2 z_k z - 2 (r_k - r_a) t = r_k^2 - r_a^2 - z_k^2,
+ * and the radius is rho^2 = (r_a + t)^2 - z^2. Returns 0 when there is
+ * no such circle. */
+static int circle_init(const double ca[3], const double u[3], const double v[3], double ra,
+                       double rb, double rc, vbs_trisector *tr)
+{
+    double nu = sqrt(dot(u, u)), nv = sqrt(dot(v, v));
+    const double *far = nu >= nv ? u : v;
+    double nf = nu >= nv ? nu : nv;
+    if (!(nf > 0.0))
+        return 0;
+    double e[3] = {far[0] / nf, far[1] / nf, far[2] / nf};
+    double zb = dot(u, e), zc = dot(v, e);
+    /* [-2 zb, -2 (rb - ra); -2 zc, -2 (rc - ra)] (z, t) = (fb, fc) */
+    double a11 = -2.0 * zb, a12 = -2.0 * (rb - ra), a21 = -2.0 * zc, a22 = -2.0 * (rc - ra);
+    double fb = rb * rb - ra * ra - zb * zb, fc = rc * rc - ra * ra - zc * zc;
+    double det = a11 * a22 - a12 * a21;
+    if (!(fabs(det) > 1e-12 * (fabs(a11 * a22) + fabs(a12 * a21))))
+        return 0;
+    double z = (fb * a22 - a12 * fc) / det, t = (a11 * fc - fb * a21) / det;
+    double rho2 = (ra + t) * (ra + t) - z * z;
+    if (!(rho2 > 0.0))
+        return 0;
+    /* e1, e2: an orthonormal pair across the axis. */
+    double h[3] = {1.0, 0.0, 0.0};
+    if (fabs(e[0]) > 0.6)
+        h[0] = 0.0, h[1] = 1.0;
+    double hd = dot(h, e);
+    double e1[3] = {h[0] - hd * e[0], h[1] - hd * e[1], h[2] - hd * e[2]};
+    double n1 = sqrt(dot(e1, e1));
+    for (int k = 0; k < 3; k++) {
+        e1[k] /= n1;
+        tr->ca[k] = ca[k];
+        tr->w0[k] = ca[k] + z * e[k];   /* the circle's centre */
+        tr->w1[k] = e1[k];
+    }
+    tr->n[0] = e[1] * e1[2] - e[2] * e1[1];
+    tr->n[1] = e[2] * e1[0] - e[0] * e1[2];
+    tr->n[2] = e[0] * e1[1] - e[1] * e1[0];
+    tr->A = 0.0;
+    tr->B = 0.0;
+    tr->C = sqrt(rho2);
+    tr->tmin = tr->tmax = t;
+    tr->closed = 1;
+    tr->circle = 1;
+    return 1;
+}
+
 int vbs_trisector_init(const vb_sphere_set *s, uint32_t a, uint32_t b, uint32_t c,
                        vbs_trisector *tr)
 {
@@ -25,8 +76,9 @@ int vbs_trisector_init(const vb_sphere_set *s, uint32_t a, uint32_t b, uint32_t 
     double uu = dot(u, u), vv = dot(v, v), uv = dot(u, v), det = uu * vv - uv * uv;
     double nx = u[1] * v[2] - u[2] * v[1], ny = u[2] * v[0] - u[0] * v[2],
            nz = u[0] * v[1] - u[1] * v[0], nn = sqrt(nx * nx + ny * ny + nz * nz);
+    tr->circle = 0;
     if (!(det > 1e-12 * uu * vv) || !(nn > 0.0))
-        return 0;
+        return circle_init(ca, u, v, ra, rb, rc, tr);
     double eu0 = 0.5 * (uu + ra * ra - rb * rb), eu1 = ra - rb;
     double ev0 = 0.5 * (vv + ra * ra - rc * rc), ev1 = ra - rc;
     double al0 = (vv * eu0 - uv * ev0) / det, be0 = (uu * ev0 - uv * eu0) / det;
@@ -67,6 +119,10 @@ int vbs_trisector_init(const vb_sphere_set *s, uint32_t a, uint32_t b, uint32_t 
 
 double vbs_trisector_param(const vbs_trisector *tr, const double p[3], double t)
 {
+    if (tr->circle) {
+        const double q[3] = {p[0] - tr->w0[0], p[1] - tr->w0[1], p[2] - tr->w0[2]};
+        return atan2(dot(q, tr->n), dot(q, tr->w1));
+    }
     const double q[3] = {p[0] - tr->ca[0], p[1] - tr->ca[1], p[2] - tr->ca[2]};
     double g = dot(q, tr->n);
     if (!tr->closed)
@@ -78,6 +134,12 @@ double vbs_trisector_param(const vbs_trisector *tr, const double p[3], double t)
 void vbs_trisector_point(const vbs_trisector *tr, double s, double p[3], double *t)
 {
     double g, tt;
+    if (tr->circle) {
+        for (int k = 0; k < 3; k++)
+            p[k] = tr->w0[k] + tr->C * (cos(s) * tr->w1[k] + sin(s) * tr->n[k]);
+        *t = tr->tmin;
+        return;
+    }
     if (tr->closed) {
         double tc = 0.5 * (tr->tmin + tr->tmax), g2 = (tr->A * tc + tr->B) * tc + tr->C;
         double R = g2 > 0.0 ? sqrt(g2) : 0.0;

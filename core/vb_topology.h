@@ -24,8 +24,8 @@ typedef struct vb_topology {
     size_t nedges, edges_cap;
     size_t sampled;        /* edge lines whose triple the two-colour test saw (Sec. 4) */
     size_t unresolved;     /* trisectors whose edges could not be paired: more than two
-                              vertices on collinear centres' circle, or a closed edge
-                              through a single vertex */
+                              vertices where doubles find no trisector curve, or a closed
+                              edge through a single vertex */
 } vb_topology;
 
 void vb_topology_init(vb_topology *t);

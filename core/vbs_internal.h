@@ -54,16 +54,17 @@ int vbs_tangent_empty(const vbs_hash *h, const vbs_cand *k, const uint32_t q[4],
  * closed curve, tmin <= t <= tmax, an ellipse in (t, g): its parameter is
  * the angle s = atan2(g, sqrt(-A) (t - tc)) in (-pi, pi], tc the middle,
  * with s = +-pi the point at tmin. (Not t itself: near the plane t moves
- * with g^2 and loses the order of close vertices to rounding.) */
+ * with g^2 and loses the order of close vertices to rounding.) Collinear
+ * centres (`circle`): a circle of radius C around w0 at fixed t = tmin,
+ * in the plane of the unit vectors w1, n; s is the angle from w1. */
 typedef struct vbs_trisector {
     double ca[3], w0[3], w1[3], n[3];
     double A, B, C, tmin, tmax;
-    int closed;
+    int closed, circle;
 } vbs_trisector;
 
-/* Sets up the trisector of a, b, c. Returns 0 when it is not a curve of
- * this kind (collinear centres: a circle around their axis; no valid
- * branch). */
+/* Sets up the trisector of a, b, c. Returns 0 when there is none (three
+ * equal spheres on a line; no valid branch). */
 int vbs_trisector_init(const vb_sphere_set *s, uint32_t a, uint32_t b, uint32_t c,
                        vbs_trisector *tr);
 

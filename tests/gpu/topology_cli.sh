@@ -71,11 +71,15 @@ v41=$(awk '$1 == "9,16,21,23,26,27" { print NR - 3 }' "$work/lattice_subset.tsv"
 grep -q "^edge	$v41	-1	9,16,27\$" "$work/lattice_subset.top" ||
     fail "lattice_subset: missing infinite edge of the degree-6 vertex"
 grep -q "	2,7,25\$" "$work/lattice_subset.top" && fail "lattice_subset: false edge 2,7,25"
-# General position: every vertex has four edges (crambin fragment).
-"$vorball" vertices --device ref --topology "$work/crambin.top" -o "$work/crambin.tsv" \
-    "$inputs/crambin_fragment.xyzr" 2> /dev/null || fail "crambin run failed"
-odd=$(awk '$1 == "edge" { d[$2]++; if ($3 != -1) d[$3]++ } END { n = 0; for (v in d) if (d[v] != 4) n++; print n + 0 }' "$work/crambin.top")
-[ "$odd" -eq 0 ] || fail "crambin_fragment: $odd vertices without exactly four edges"
-[ "$(awk '$1 == "edge" { d[$2] = 1; if ($3 != -1) d[$3] = 1 } END { n = 0; for (v in d) n++; print n }' "$work/crambin.top")" -eq "$(grep -vc '^#' "$work/crambin.tsv")" ] ||
-    fail "crambin_fragment: a vertex without edges"
+# General position: every vertex has four edges (crambin fragment; and the
+# collinear centres, whose collinear triples have a circle as trisector).
+for f in crambin_fragment collinear_centres; do
+    "$vorball" vertices --device ref --topology "$work/$f.top" -o "$work/$f.tsv" \
+        "$inputs/$f.xyzr" 2> "$work/$f.err" || fail "$f run failed"
+    grep -q W765 "$work/$f.err" && fail "$f: unpaired trisectors"
+    odd=$(awk '$1 == "edge" { d[$2]++; if ($3 != -1) d[$3]++ } END { n = 0; for (v in d) if (d[v] != 4) n++; print n + 0 }' "$work/$f.top")
+    [ "$odd" -eq 0 ] || fail "$f: $odd vertices without exactly four edges"
+    [ "$(awk '$1 == "edge" { d[$2] = 1; if ($3 != -1) d[$3] = 1 } END { n = 0; for (v in d) n++; print n }' "$work/$f.top")" -eq "$(grep -vc '^#' "$work/$f.tsv")" ] ||
+        fail "$f: a vertex without edges"
+done
 echo "ok: 8 vertices, 54 faces, 12 finite edges ($fin lines), $inf infinite lines"
