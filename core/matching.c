@@ -18,7 +18,6 @@
  * rounding guard; a sampled quadruple whose own sphere is cut tries the
  * quadruples with the intruder swapped in; and the neighbourhood completion
  * (complete_ring) walks from every kept vertex to its neighbours. */
-#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -631,19 +630,9 @@ static void pfor(pfor_fn fn, void *ctx, size_t n, int nt)
     if (nt > VBS_MAX_THREADS)
         nt = VBS_MAX_THREADS;
     pfor_job jobs[VBS_MAX_THREADS];
-    pthread_t th[VBS_MAX_THREADS];
-    int started[VBS_MAX_THREADS] = {0};
     for (int t = 0; t < nt; t++)
         jobs[t] = (pfor_job){fn, ctx, n, t, nt};
-    for (int t = 1; t < nt; t++)
-        started[t] = pthread_create(&th[t], NULL, pfor_worker, &jobs[t]) == 0;
-    pfor_worker(&jobs[0]);
-    for (int t = 1; t < nt; t++) {
-        if (started[t])
-            pthread_join(th[t], NULL);
-        else
-            pfor_worker(&jobs[t]);
-    }
+    vbs_run_jobs(pfor_worker, jobs, sizeof *jobs, nt);
 }
 
 /* Both tangent spheres of a quadruple (Fig. 8: one quadruple, two vertices),

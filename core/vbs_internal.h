@@ -15,6 +15,11 @@ int vbs_threads(unsigned requested);
 /* Monotonic wall clock in seconds (stage times). */
 double vbs_now(void);
 
+/* Runs fn on each of the n jobs (job_size bytes each, at most
+ * VBS_MAX_THREADS), one thread each; the caller runs the first and any
+ * whose thread could not be started. Returns when all have finished. */
+void vbs_run_jobs(void *(*fn)(void *), void *jobs, size_t job_size, int n);
+
 /* Sorts base[0..n) (elements of `size` bytes) on up to nthreads threads:
  * chunks by qsort, then merged. cmp must be a total order (ties broken by
  * an index), so the result is the one sorted array whatever nthreads is.

@@ -1,4 +1,4 @@
-/* vbs_psort: the same array as qsort for every thread count, on sizes
+/* vbs_psort (core/parallel.c): the same array as qsort for every thread count, on sizes
  * around the threshold where it starts using threads, with repeated keys
  * (ties broken by an index, as its callers do), and stable on equal
  * elements. */

@@ -1,4 +1,5 @@
-/* Sorting large arrays of the matching stage on several threads. */
+/* Work on several threads: running a set of jobs, and the sort of the
+ * matching stage's large arrays. */
 #include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
@@ -44,20 +45,22 @@ static void *merge_runs(void *arg)
     return NULL;
 }
 
-/* Runs jobs[0..n) with fn, one thread each (the caller takes the first and
- * any a thread could not be started for). */
-static void run_jobs(void *(*fn)(void *), psort_job *jobs, int n)
+void vbs_run_jobs(void *(*fn)(void *), void *jobs, size_t job_size, int n)
 {
     pthread_t th[VBS_MAX_THREADS];
     int started[VBS_MAX_THREADS] = {0};
+    char *job = jobs;
+    if (n > VBS_MAX_THREADS)
+        n = VBS_MAX_THREADS;
     for (int t = 1; t < n; t++)
-        started[t] = pthread_create(&th[t], NULL, fn, &jobs[t]) == 0;
-    fn(&jobs[0]);
+        started[t] = pthread_create(&th[t], NULL, fn, job + (size_t)t * job_size) == 0;
+    if (n > 0)
+        fn(job);
     for (int t = 1; t < n; t++) {
         if (started[t])
             pthread_join(th[t], NULL);
         else
-            fn(&jobs[t]);
+            fn(job + (size_t)t * job_size);
     }
 }
 
@@ -81,7 +84,7 @@ int vbs_psort(void *base, size_t n, size_t size, int (*cmp)(const void *, const 
     psort_job jobs[VBS_MAX_THREADS];
     for (int t = 0; t < nt; t++)
         jobs[t] = (psort_job){base, NULL, bound[t], 0, bound[t + 1], size, cmp};
-    run_jobs(sort_chunk, jobs, nt);
+    vbs_run_jobs(sort_chunk, jobs, sizeof *jobs, nt);
     char *src = base, *dst = tmp;
     for (int runs = nt; runs > 1; runs = (runs + 1) / 2) {
         int nj = 0;
@@ -89,7 +92,7 @@ int vbs_psort(void *base, size_t n, size_t size, int (*cmp)(const void *, const 
             size_t hi = r + 2 <= runs ? bound[r + 2] : bound[r + 1];
             jobs[nj++] = (psort_job){src, dst, bound[r], bound[r + 1], hi, size, cmp};
         }
-        run_jobs(merge_runs, jobs, nj);
+        vbs_run_jobs(merge_runs, jobs, sizeof *jobs, nj);
         /* The surviving boundaries: every other one. */
         int k = 0;
         for (int r = 0; r <= runs; r += 2)
