@@ -660,10 +660,10 @@ typedef struct root_eval {
     uint32_t intruder[2];
 } root_eval;
 
-static int eval_roots(const emit_ctx *e, const uint32_t q[4], const vbs_cand *proto, int own,
-                      int want_intruder, uint32_t **buf, size_t *cap, root_eval *ev)
+/* Both tangent spheres (centre, radius) of the spheres q[0..3]
+ * (vbs_tangent_roots); returns how many. */
+static int quad_roots(const vb_sphere_set *s, const uint32_t q[4], double roots[2][4])
 {
-    const vb_sphere_set *s = e->set;
     double sp[4][4];
     for (int k = 0; k < 4; k++) {
         uint32_t j = q[k];
@@ -672,7 +672,13 @@ static int eval_roots(const emit_ctx *e, const uint32_t q[4], const vbs_cand *pr
         sp[k][2] = s->z[j];
         sp[k][3] = s->r[j];
     }
-    ev->n = vbs_tangent_roots(sp, ev->roots);
+    return vbs_tangent_roots(sp, roots);
+}
+
+static int eval_roots(const emit_ctx *e, const uint32_t q[4], const vbs_cand *proto, int own,
+                      int want_intruder, uint32_t **buf, size_t *cap, root_eval *ev)
+{
+    ev->n = quad_roots(e->set, q, ev->roots);
     if (ev->n == 0 && own) {
         /* Only a Newton point of this very quadruple may stand in. */
         ev->roots[0][0] = proto->x;
@@ -921,17 +927,8 @@ static void ring_eval(void *arg, size_t i, int tid)
 {
     ring_ctx *r = arg;
     ring_item *it = r->items + i;
-    const vb_sphere_set *s = r->e->set;
     const uint32_t *q = r->quad[it->slot];
-    double sp[4][4];
-    for (int k = 0; k < 4; k++) {
-        uint32_t j = q[k];
-        sp[k][0] = s->x[j];
-        sp[k][1] = s->y[j];
-        sp[k][2] = s->z[j];
-        sp[k][3] = s->r[j];
-    }
-    it->n = vbs_tangent_roots(sp, it->roots);
+    it->n = quad_roots(r->e->set, q, it->roots);
     for (int k = 0; k < it->n; k++) {
         vbs_cand c;
         memset(&c, 0, sizeof c);
@@ -1328,15 +1325,10 @@ int vb_sampler_swap_candidates(const vb_sphere_set *set, const uint32_t ids[4],
 {
     for (int a = 0; a < 4; a++) {
         uint32_t q[4];
-        double sp[4][4], roots[2][4];
-        for (int b = 0; b < 4; b++) {
+        double roots[2][4];
+        for (int b = 0; b < 4; b++)
             q[b] = b == a ? intruder : ids[b];
-            sp[b][0] = set->x[q[b]];
-            sp[b][1] = set->y[q[b]];
-            sp[b][2] = set->z[q[b]];
-            sp[b][3] = set->r[q[b]];
-        }
-        int n = vbs_tangent_roots(sp, roots);
+        int n = quad_roots(set, q, roots);
         if (n == 0) {
             memcpy(roots[0], p, sizeof roots[0]);
             n = 1;
