@@ -332,6 +332,23 @@ static int repair(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier *cert,
     return rc;
 }
 
+/* The device failed mid-run: the reference backend gives the same
+ * certified output, so warn (W762), close *be and sample again on a
+ * reference backend left in *be. */
+static int rerun_on_ref(vb_ctx *ctx, const vb_sphere_set *set, vb_sampler_backend **be,
+                        opener *op, const vb_sampler_options *opt, int progress,
+                        vb_pipeline_result *res)
+{
+    vb_warn(ctx, 762, NULL, 0, "OpenCL device failed (%s); rerunning on the reference backend",
+            vb_errmsg(ctx));
+    vb_clear_error(ctx);
+    vb_sampler_backend_close(*be);
+    *be = NULL;
+    vb_sampler_result_free(&res->sampler);
+    int rc = vb_sampler_ref_open(ctx, be);
+    return rc == VB_OK ? sample(ctx, set, *be, op, opt, progress, res) : rc;
+}
+
 /* Exact certification of the sampled candidates, then the repair rounds;
  * t_certify and t_total (from t0) are set. */
 static int certify(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_options *opt,
@@ -388,19 +405,8 @@ int vb_pipeline_run(vb_ctx *ctx, const vb_sphere_set *set, vbg_device_kind kind,
         res->t_setup = op.t_setup;
         res->t_setup_wait = op.t_wait;
     }
-    if (rc != VB_OK && VB_CATEGORY(rc) == VB_EDEVICE && rt) {
-        /* The device failed mid-run: the reference backend gives the same
-         * certified output, so finish there. */
-        vb_warn(ctx, 762, NULL, 0, "OpenCL device failed (%s); rerunning on the reference backend",
-                vb_errmsg(ctx));
-        vb_clear_error(ctx);
-        vb_sampler_backend_close(be);
-        be = NULL;
-        vb_sampler_result_free(&res->sampler);
-        rc = vb_sampler_ref_open(ctx, &be);
-        if (rc == VB_OK)
-            rc = sample(ctx, set, be, &op, opt, progress, res);
-    }
+    if (rc != VB_OK && VB_CATEGORY(rc) == VB_EDEVICE && rt)
+        rc = rerun_on_ref(ctx, set, &be, &op, opt, progress, res);
     /* Releasing the context takes tens of milliseconds on a GPU: after the
      * certification, which does not need it. */
     if (rc == VB_OK)
@@ -452,15 +458,10 @@ int vb_pipeline_run_on(vb_ctx *ctx, const vb_sphere_set *set, vb_pipeline_device
     memset(&unused, 0, sizeof unused);
     int rc = sample(ctx, set, dev->be, &unused, opt, progress, res);
     if (rc != VB_OK && VB_CATEGORY(rc) == VB_EDEVICE && dev->rt) {
-        /* As in vb_pipeline_run; later runs stay on the reference backend. */
-        vb_warn(ctx, 762, NULL, 0, "OpenCL device failed (%s); rerunning on the reference backend",
-                vb_errmsg(ctx));
-        vb_clear_error(ctx);
-        vb_pipeline_device_close(dev);
-        vb_sampler_result_free(&res->sampler);
-        rc = vb_sampler_ref_open(ctx, &dev->be);
-        if (rc == VB_OK)
-            rc = sample(ctx, set, dev->be, &unused, opt, progress, res);
+        /* Later runs on dev stay on the reference backend. */
+        rc = rerun_on_ref(ctx, set, &dev->be, &unused, opt, progress, res);
+        vbg_runtime_close(dev->rt);
+        dev->rt = NULL;
     }
     return rc == VB_OK ? certify(ctx, set, opt, t0, res) : rc;
 }
