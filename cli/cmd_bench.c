@@ -90,11 +90,8 @@ static void row(FILE *f, int json, int first, const char *input, size_t atoms,
 
 int vb_cmd_bench(int argc, char **argv)
 {
-    vb_cli_input_opts in;
-    vb_cli_input_defaults(&in);
-    vb_sampler_options so;
-    memset(&so, 0, sizeof so);
-    vbg_device_kind kind = VBG_DEVICE_AUTO;
+    vb_pipeline_opts po;
+    vb_pipeline_opts_defaults(&po);
     unsigned samples[32] = {VB_SAMPLER_DEFAULT_SAMPLES};
     int nsamples = 1, json = 0, cold = 0;
     size_t repeat = 1;
@@ -115,12 +112,10 @@ int vb_cmd_bench(int argc, char **argv)
             free(inputs);
             vb_close(ctx);
             return VB_EXIT_OK;
-        } else if ((r = vb_cli_input_option(&in, argc, argv, &i)) != 0) {
-            code = r < 0 ? VB_EXIT_USAGE : code;
         } else if (strcmp(a, "--samples") == 0 && i + 1 < argc) {
             if ((nsamples = parse_samples(argv[++i], samples)) < 1)
                 code = vb_cli_usage_error("bench", "--samples needs S or S1,S2,... in 2..4096");
-        } else if ((r = vb_pipeline_option("bench", argc, argv, &i, &so, &kind, ctx)) != 0) {
+        } else if ((r = vb_pipeline_option("bench", argc, argv, &i, &po, ctx)) != 0) {
             code = r < 0 ? VB_EXIT_USAGE : code;
         } else if (strcmp(a, "--repeat") == 0 && i + 1 < argc) {
             if (vb_cli_parse_size(argv[++i], &repeat) || repeat < 1)
@@ -149,7 +144,7 @@ int vb_cmd_bench(int argc, char **argv)
     vb_pipeline_device dev;
     memset(&dev, 0, sizeof dev);
     if (rc == VB_OK && !cold)
-        rc = vb_pipeline_device_open(ctx, kind, &dev);
+        rc = vb_pipeline_device_open(ctx, po.kind, &dev);
     if (rc == VB_OK && json)
         fputs("[", out);
     else if (rc == VB_OK)
@@ -159,7 +154,7 @@ int vb_cmd_bench(int argc, char **argv)
     int first = 1;
     for (int k = 0; k < ninputs && rc == VB_OK; k++) {
         vb_sphere_set *set = NULL;
-        rc = vb_cli_load_spheres(ctx, inputs[k], &in, 4, &set);
+        rc = vb_cli_load_spheres(ctx, inputs[k], &po.in, 4, &set);
         for (int s = 0; s < nsamples && rc == VB_OK; s++) {
             vb_pipeline_result best;
             vb_pipeline_result_init(&best);
@@ -167,9 +162,9 @@ int vb_cmd_bench(int argc, char **argv)
             for (size_t rep = 0; rep < repeat && rc == VB_OK; rep++) {
                 vb_pipeline_result r;
                 vb_pipeline_result_init(&r);
-                so.samples = samples[s];
-                rc = cold ? vb_pipeline_run(ctx, set, kind, &so, 1, &r)
-                          : vb_pipeline_run_on(ctx, set, &dev, &so, 1, &r);
+                po.so.samples = samples[s];
+                rc = cold ? vb_pipeline_run(ctx, set, po.kind, &po.so, 1, &r)
+                          : vb_pipeline_run_on(ctx, set, &dev, &po.so, 1, &r);
                 if (rep == 0)
                     first_total = r.t_total;
                 if (rc == VB_OK && (rep == 0 || r.t_total < best.t_total)) {

@@ -74,22 +74,17 @@ static const char *const usage_tail =
 typedef struct {
     const char *spheres, *vertices, *out, *cgal_out;
     int power, timing, reference;
-    vb_cli_input_opts in;
-    vb_sampler_options so;
-    vbg_device_kind kind;
+    vb_pipeline_opts po;
 } options;
 
 static int parse_args(vb_ctx *ctx, int argc, char **argv, options *o)
 {
     memset(o, 0, sizeof *o);
-    vb_cli_input_defaults(&o->in);
-    o->kind = VBG_DEVICE_AUTO;
+    vb_pipeline_opts_defaults(&o->po);
     const char *with = NULL;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
-        int used = vb_cli_input_option(&o->in, argc, argv, &i);
-        if (used == 0)
-            used = vb_pipeline_option("crosscheck", argc, argv, &i, &o->so, &o->kind, ctx);
+        int used = vb_pipeline_option("crosscheck", argc, argv, &i, &o->po, ctx);
         if (used < 0)
             return VB_EXIT_USAGE;
         if (used > 0)
@@ -179,7 +174,7 @@ static int run(vb_ctx *ctx, const options *o)
     long *lines = NULL;
     FILE *out = NULL;
     int ex = VB_EXIT_OK;
-    int rc = vb_cli_load_spheres(ctx, o->spheres, &o->in, 4, &set);
+    int rc = vb_cli_load_spheres(ctx, o->spheres, &o->po.in, 4, &set);
     if (rc != VB_OK)
         goto fail;
 
@@ -236,7 +231,7 @@ static int run(vb_ctx *ctx, const options *o)
     } else {
         vb_pipeline_result res;
         vb_pipeline_result_init(&res);
-        rc = vb_pipeline_run(ctx, set, o->kind, &o->so, 1, &res);
+        rc = vb_pipeline_run(ctx, set, o->po.kind, &o->po.so, 1, &res);
         if (rc == VB_OK) {
             /* The certified list moves over; the rest of the result goes. */
             mine = res.certified;

@@ -91,11 +91,8 @@ static int write_topology(vb_ctx *ctx, const char *path, const vb_sphere_set *se
 
 int vb_cmd_vertices(int argc, char **argv)
 {
-    vb_cli_input_opts in;
-    vb_cli_input_defaults(&in);
-    vb_sampler_options so;
-    memset(&so, 0, sizeof so);
-    vbg_device_kind kind = VBG_DEVICE_AUTO;
+    vb_pipeline_opts po;
+    vb_pipeline_opts_defaults(&po);
     const char *outpath = NULL, *input = NULL, *topo_path = NULL;
     vb_vertex_format vfmt = VB_VFMT_TSV;
     int stats = 0;
@@ -110,9 +107,7 @@ int vb_cmd_vertices(int argc, char **argv)
             help(stdout);
             vb_close(ctx);
             return VB_EXIT_OK;
-        } else if ((r = vb_cli_input_option(&in, argc, argv, &i)) != 0) {
-            code = r < 0 ? VB_EXIT_USAGE : code;
-        } else if ((r = vb_pipeline_option("vertices", argc, argv, &i, &so, &kind, ctx)) != 0) {
+        } else if ((r = vb_pipeline_option("vertices", argc, argv, &i, &po, ctx)) != 0) {
             code = r < 0 ? VB_EXIT_USAGE : code;
         } else if (strcmp(a, "-o") == 0 && i + 1 < argc) {
             outpath = argv[++i];
@@ -121,7 +116,7 @@ int vb_cmd_vertices(int argc, char **argv)
                 code = vb_cli_usage_error("vertices", "%s", vb_errmsg(ctx));
         } else if (strcmp(a, "--topology") == 0 && i + 1 < argc) {
             topo_path = argv[++i];
-            so.topology = 1;
+            po.so.topology = 1;
         } else if (strcmp(a, "--stats") == 0) {
             stats = 1;
         } else if (a[0] == '-' && a[1] != '\0') {
@@ -141,9 +136,9 @@ int vb_cmd_vertices(int argc, char **argv)
     vb_sphere_set *set = NULL;
     vb_pipeline_result res;
     vb_pipeline_result_init(&res);
-    int rc = vb_cli_load_spheres(ctx, input, &in, 4, &set);
+    int rc = vb_cli_load_spheres(ctx, input, &po.in, 4, &set);
     if (rc == VB_OK)
-        rc = vb_pipeline_run(ctx, set, kind, &so, 1, &res);
+        rc = vb_pipeline_run(ctx, set, po.kind, &po.so, 1, &res);
     if (rc == VB_OK && stats)
         print_stats(ctx, &res);
     if (rc == VB_OK && res.rejected.n)

@@ -11,13 +11,24 @@
 #include "cli_common.h"
 #include "vbg_sampler.h"
 
-int vb_pipeline_option(const char *cmd, int argc, char **argv, int *i,
-                          vb_sampler_options *so, vbg_device_kind *kind, vb_ctx *ctx)
+void vb_pipeline_opts_defaults(vb_pipeline_opts *o)
 {
+    memset(o, 0, sizeof *o);
+    vb_cli_input_defaults(&o->in);
+    o->kind = VBG_DEVICE_AUTO;
+}
+
+int vb_pipeline_option(const char *cmd, int argc, char **argv, int *i, vb_pipeline_opts *o,
+                       vb_ctx *ctx)
+{
+    int used = vb_cli_input_option(&o->in, argc, argv, i);
+    if (used != 0)
+        return used;
+    vb_sampler_options *so = &o->so;
     const char *a = argv[*i];
     int has = *i + 1 < argc;
     if (strcmp(a, "--device") == 0) {
-        if (!has || vbg_device_kind_parse(ctx, argv[*i + 1], kind) != VB_OK) {
+        if (!has || vbg_device_kind_parse(ctx, argv[*i + 1], &o->kind) != VB_OK) {
             vb_cli_usage_error(cmd, "--device needs auto, gpu, cpu or ref");
             return -1;
         }

@@ -5,6 +5,7 @@
 #ifndef VB_CLI_VERTICES_PIPELINE_H
 #define VB_CLI_VERTICES_PIPELINE_H
 
+#include "input_options.h"
 #include "vb_sampler.h"
 #include "vb_verify.h"
 #include "vbg_runtime.h"
@@ -54,11 +55,24 @@ void vb_pipeline_device_close(vb_pipeline_device *dev);
 int vb_pipeline_run_on(vb_ctx *ctx, const vb_sphere_set *set, vb_pipeline_device *dev,
                        const vb_sampler_options *opt, int progress, vb_pipeline_result *res);
 
-/* Parses the options shared by vertices and bench (--device, --samples,
- * --tol, --tiles, --threads, --all-pairs) at argv[*i], advancing *i past a value. Returns 1 if
- * consumed, 0 if not one of them, -1 on a bad value (usage message printed
- * naming cmd). */
-int vb_pipeline_option(const char *cmd, int argc, char **argv, int *i, vb_sampler_options *so,
-                       vbg_device_kind *kind, vb_ctx *ctx);
+/* The options of the commands that run the pipeline (vertices, bench,
+ * crosscheck): how the input is read, the backend and the sampling. */
+typedef struct vb_pipeline_opts {
+    vb_cli_input_opts in;
+    vb_sampler_options so;
+    vbg_device_kind kind;
+} vb_pipeline_opts;
+
+/* Sets the defaults: input defaults, sampler options zero (their own
+ * defaults), device auto. */
+void vb_pipeline_opts_defaults(vb_pipeline_opts *o);
+
+/* Parses an input option (vb_cli_input_option) or one of the pipeline's
+ * (--device, --samples, --tol, --tiles, --threads, --all-pairs) at argv[*i],
+ * advancing *i past a value. Returns 1 if consumed, 0 if not one of them, -1
+ * on a bad value (usage message printed naming cmd, or argv[0] for an input
+ * option). */
+int vb_pipeline_option(const char *cmd, int argc, char **argv, int *i, vb_pipeline_opts *o,
+                       vb_ctx *ctx);
 
 #endif

@@ -1,6 +1,7 @@
-/* Atom-level rules shared by the PDB, PQR and mmCIF readers: which residues
- * are water, which atoms are hydrogens, element guesses from atom names, and
- * the one-line reports of what was left out. */
+/* Atom-level rules shared by the PDB, PQR and mmCIF readers: which records
+ * and models are read, which residues are water, which atoms are hydrogens,
+ * element guesses from atom names, and the one-line reports of what was left
+ * out. */
 #include "vbi_input.h"
 
 #include <ctype.h>
@@ -167,6 +168,59 @@ int vbi_models_check(vb_ctx *ctx, const char *name, const vbi_models *m)
                     m->seen_model ? "" : " (it has a single model, number 1)");
 }
 
+int vbi_builder_close(vbi_builder *b, const vbi_models *m, int rc, vb_sphere_set **out)
+{
+    if (rc == VB_OK)
+        rc = vbi_models_check(b->ctx, b->name, m);
+    if (rc != VB_OK) {
+        vbi_builder_discard(b);
+        return rc;
+    }
+    vbi_builder_finish(b, 1, out);
+    return VB_OK;
+}
+
+vbi_record vbi_record_kind(int (*is)(const char *, size_t, const char *), const char *s,
+                           size_t n)
+{
+    if (is(s, n, "MODEL"))
+        return VBI_REC_MODEL;
+    if (is(s, n, "ENDMDL"))
+        return VBI_REC_ENDMDL;
+    if (is(s, n, "END"))
+        return VBI_REC_END;
+    if (is(s, n, "ATOM") || is(s, n, "HETATM"))
+        return VBI_REC_ATOM;
+    return VBI_REC_OTHER;
+}
+
+void vbi_atom_scan_init(vbi_atom_scan *s, int want)
+{
+    vbi_models_init(&s->models, want);
+    s->ended = 0;
+}
+
+int vbi_atom_scan_takes(vbi_atom_scan *s, vbi_record rec, int32_t model_serial,
+                        vbi_dropped *dr)
+{
+    switch (rec) {
+    case VBI_REC_MODEL: vbi_models_begin(&s->models, model_serial, dr); return 0;
+    case VBI_REC_ENDMDL: vbi_models_end(&s->models); return 0;
+    case VBI_REC_END: s->ended = 1; return 0;
+    case VBI_REC_OTHER: return 0;
+    case VBI_REC_ATOM: break;
+    }
+    if (s->ended) {
+        dr->after_end++;
+        return 0;
+    }
+    if (!vbi_models_takes(&s->models)) {
+        dr->other_models++;
+        return 0;
+    }
+    return 1;
+}
+
 void vbi_altloc_init(vbi_altloc *a)
 {
     memset(a, 0, sizeof *a);
@@ -187,4 +241,22 @@ int vbi_altloc_keeps(vbi_altloc *a, const vb_atom_info *info)
     if (a->kept == ' ')
         a->kept = info->altloc;
     return info->altloc == a->kept;
+}
+
+int vbi_atom_dropped(const vb_read_options *opt, vbi_altloc *alt, const vb_atom_info *info,
+                     vbi_dropped *dr)
+{
+    if (!opt->keep_water && vbi_is_water(info->resname)) {
+        dr->water++;
+        return 1;
+    }
+    if (alt && !vbi_altloc_keeps(alt, info)) {
+        dr->altloc++;
+        return 1;
+    }
+    if (opt->drop_hydrogens && vbi_is_hydrogen(info->element)) {
+        dr->hydrogens++;
+        return 1;
+    }
+    return 0;
 }

@@ -78,6 +78,21 @@ int vbi_slurp(vb_ctx *ctx, const char *path, char **buf, size_t *len)
     return VB_OK;
 }
 
+/* A PDB or PQR parse over the whole buffer, then the one-line reports of
+ * what it left out. */
+static int read_reported(int (*parse)(vb_ctx *, const char *, const char *, size_t, long,
+                                      const vb_read_options *, vbi_dropped *, vb_sphere_set **),
+                         vb_ctx *ctx, const char *name, const char *buf, size_t len,
+                         const vb_read_options *opt, vb_sphere_set **out)
+{
+    vbi_dropped dr;
+    memset(&dr, 0, sizeof dr);
+    int rc = parse(ctx, name, buf, len, 1, opt, &dr, out);
+    if (rc == VB_OK)
+        vbi_report_dropped(ctx, name, &dr);
+    return rc;
+}
+
 int vb_spheres_read_buffer(vb_ctx *ctx, const char *name, const char *buf, size_t len,
                            const vb_read_options *opt, vb_sphere_set **out)
 {
@@ -97,8 +112,8 @@ int vb_spheres_read_buffer(vb_ctx *ctx, const char *name, const char *buf, size_
     }
     switch (fmt) {
     case VB_FMT_XYZR: return vbi_read_xyzr(ctx, name, buf, len, opt, out);
-    case VB_FMT_PDB: return vbi_read_pdb(ctx, name, buf, len, opt, out);
-    case VB_FMT_PQR: return vbi_read_pqr(ctx, name, buf, len, opt, out);
+    case VB_FMT_PDB: return read_reported(vbi_pdb_parse, ctx, name, buf, len, opt, out);
+    case VB_FMT_PQR: return read_reported(vbi_pqr_parse, ctx, name, buf, len, opt, out);
     case VB_FMT_MMCIF: return vbi_read_mmcif(ctx, name, buf, len, opt, out);
     default: return vb_error(ctx, VB_EMISUSE, name, 0, "invalid format value %d", (int)fmt);
     }

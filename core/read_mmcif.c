@@ -150,18 +150,8 @@ static int take_row(cif_reader *r, const vbi_cif_token *row, const int *col)
         r->truncated = 1;
         r->truncated_line = line;
     }
-    if (!r->opt->keep_water && vbi_is_water(info.resname)) {
-        r->dr->water++;
+    if (vbi_atom_dropped(r->opt, &r->alt, &info, r->dr))
         return VB_OK;
-    }
-    if (!vbi_altloc_keeps(&r->alt, &info)) {
-        r->dr->altloc++;
-        return VB_OK;
-    }
-    if (r->opt->drop_hydrogens && vbi_is_hydrogen(info.element)) {
-        r->dr->hydrogens++;
-        return VB_OK;
-    }
     int rc = vbi_radius_for(r->ctx, r->opt, r->name, line, info.element, &e[3], &d[3],
                             &r->dr->unknown_elements);
     if (rc == VB_OK)
@@ -262,18 +252,14 @@ int vbi_mmcif_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len,
                       "unterminated quoted value or text field");
     if (rc == VB_OK && !found)
         rc = vb_error(ctx, VB_EINPUT_EMPTY, name, 0, "no _atom_site loop in the mmCIF input");
-    if (rc == VB_OK)
-        rc = vbi_models_check(ctx, name, &r.models);
-    if (rc != VB_OK) {
-        vbi_builder_discard(&r.b);
+    rc = vbi_builder_close(&r.b, &r.models, rc, out);
+    if (rc != VB_OK)
         return rc;
-    }
     if (r.truncated)
         vb_warn(ctx, 709, name, r.truncated_line,
                 "atom, residue or chain names longer than 7 characters were truncated");
     if (serial)
         *serial = r.models.taken_serial;
-    vbi_builder_finish(&r.b, 1, out);
     return VB_OK;
 }
 

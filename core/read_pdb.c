@@ -78,78 +78,31 @@ int vbi_pdb_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
     int rc = vbi_builder_init(&b, ctx, name, opt->max_spheres, 1);
     if (rc != VB_OK)
         return rc;
-    vbi_models m;
-    vbi_models_init(&m, opt->model);
+    vbi_atom_scan scan;
+    vbi_atom_scan_init(&scan, opt->model);
     vbi_altloc alt;
     vbi_altloc_init(&alt);
-    int ended = 0; /* an END record was met: what follows is not this entry */
     vbi_lines it;
     vbi_lines_init(&it, buf, len, first_line);
     const char *line;
     size_t n;
     while (rc == VB_OK && vbi_lines_next(&it, &line, &n)) {
-        if (vbi_pdb_record(line, n, "MODEL")) {
-            vbi_models_begin(&m, vbi_pdb_model_serial(line, n), dr);
+        vbi_record rec = vbi_record_kind(vbi_pdb_record, line, n);
+        int32_t serial = rec == VBI_REC_MODEL ? vbi_pdb_model_serial(line, n) : 0;
+        if (!vbi_atom_scan_takes(&scan, rec, serial, dr))
             continue;
-        }
-        if (vbi_pdb_record(line, n, "ENDMDL")) {
-            vbi_models_end(&m);
-            continue;
-        }
-        if (vbi_pdb_record(line, n, "END")) {
-            ended = 1;
-            continue;
-        }
-        if (!vbi_pdb_record(line, n, "ATOM") && !vbi_pdb_record(line, n, "HETATM"))
-            continue;
-        if (ended) {
-            dr->after_end++;
-            continue;
-        }
-        if (!vbi_models_takes(&m)) {
-            dr->other_models++;
-            continue;
-        }
         vb_atom_info info;
         vb_decimal e[4];
         double d[4];
         rc = parse_atom_line(ctx, name, it.lineno, line, n, &info, e, d);
         if (rc != VB_OK)
             break;
-        if (!opt->keep_water && vbi_is_water(info.resname)) {
-            dr->water++;
+        if (vbi_atom_dropped(opt, &alt, &info, dr))
             continue;
-        }
-        if (!vbi_altloc_keeps(&alt, &info)) {
-            dr->altloc++;
-            continue;
-        }
-        if (opt->drop_hydrogens && vbi_is_hydrogen(info.element)) {
-            dr->hydrogens++;
-            continue;
-        }
         rc = vbi_radius_for(ctx, opt, name, it.lineno, info.element, &e[3], &d[3],
                             &dr->unknown_elements);
         if (rc == VB_OK)
             rc = vbi_builder_push(&b, e, d, &info, it.lineno);
     }
-    if (rc == VB_OK)
-        rc = vbi_models_check(ctx, name, &m);
-    if (rc != VB_OK) {
-        vbi_builder_discard(&b);
-        return rc;
-    }
-    vbi_builder_finish(&b, 1, out);
-    return VB_OK;
-}
-
-int vbi_read_pdb(vb_ctx *ctx, const char *name, const char *buf, size_t len,
-                 const vb_read_options *opt, vb_sphere_set **out)
-{
-    vbi_dropped dr;
-    memset(&dr, 0, sizeof dr);
-    int rc = vbi_pdb_parse(ctx, name, buf, len, 1, opt, &dr, out);
-    if (rc == VB_OK)
-        vbi_report_dropped(ctx, name, &dr);
-    return rc;
+    return vbi_builder_close(&b, &scan.models, rc, out);
 }

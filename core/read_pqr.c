@@ -34,10 +34,9 @@ int vbi_pqr_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
     int rc = vbi_builder_init(&b, ctx, name, opt->max_spheres, 1);
     if (rc != VB_OK)
         return rc;
-    vbi_models m;
-    vbi_models_init(&m, opt->model);
+    vbi_atom_scan scan;
+    vbi_atom_scan_init(&scan, opt->model);
     const int zero_policy = vbi_zero_radius_policy(opt, VB_FMT_PQR);
-    int ended = 0; /* an END record was met: what follows is not this entry */
     vbi_lines it;
     vbi_lines_init(&it, buf, len, first_line);
     const char *line;
@@ -50,31 +49,12 @@ int vbi_pqr_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
             tl[nt++] = k;
         if (nt == 0)
             continue;
-        if (record_is(tok[0], tl[0], "MODEL")) {
-            int32_t serial = 0;
-            if (nt > 1)
-                vbi_parse_int(tok[1], tl[1], &serial);
-            vbi_models_begin(&m, serial, dr);
+        vbi_record rec = vbi_record_kind(record_is, tok[0], tl[0]);
+        int32_t serial = 0;
+        if (rec == VBI_REC_MODEL && nt > 1)
+            vbi_parse_int(tok[1], tl[1], &serial);
+        if (!vbi_atom_scan_takes(&scan, rec, serial, dr))
             continue;
-        }
-        if (record_is(tok[0], tl[0], "ENDMDL")) {
-            vbi_models_end(&m);
-            continue;
-        }
-        if (record_is(tok[0], tl[0], "END")) {
-            ended = 1;
-            continue;
-        }
-        if (!record_is(tok[0], tl[0], "ATOM") && !record_is(tok[0], tl[0], "HETATM"))
-            continue;
-        if (ended) {
-            dr->after_end++;
-            continue;
-        }
-        if (!vbi_models_takes(&m)) {
-            dr->other_models++;
-            continue;
-        }
         if (nt < 10 || nt > VBI_PQR_MAX_TOKENS) {
             rc = vb_error(ctx, VB_EINPUT_MALFORMED, name, it.lineno,
                           "PQR record with %d%s fields (expected 10 to %d: "
@@ -113,36 +93,12 @@ int vbi_pqr_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
         /* PQR has no element column: PDB2PQR names start with the element,
          * so the name's first letter says hydrogen or not. */
         vbi_element_from_bare_name(info.name, info.element);
-        if (!opt->keep_water && vbi_is_water(info.resname)) {
-            dr->water++;
-            continue;
-        }
-        if (opt->drop_hydrogens && vbi_is_hydrogen(info.element)) {
-            dr->hydrogens++;
-            continue;
-        }
-        if (vbi_zero_radius_skip(zero_policy, e[3], dr))
+        if (vbi_atom_dropped(opt, NULL, &info, dr) || vbi_zero_radius_skip(zero_policy, e[3], dr))
             continue;
         rc = vbi_builder_push(&b, e, d, &info, it.lineno);
     }
+    rc = vbi_builder_close(&b, &scan.models, rc, out);
     if (rc == VB_OK)
-        rc = vbi_models_check(ctx, name, &m);
-    if (rc != VB_OK) {
-        vbi_builder_discard(&b);
-        return rc;
-    }
-    vbi_builder_finish(&b, 1, out);
-    (*out)->allows_zero_radius = zero_policy == VB_ZERO_RADIUS_POINT;
-    return VB_OK;
-}
-
-int vbi_read_pqr(vb_ctx *ctx, const char *name, const char *buf, size_t len,
-                 const vb_read_options *opt, vb_sphere_set **out)
-{
-    vbi_dropped dr;
-    memset(&dr, 0, sizeof dr);
-    int rc = vbi_pqr_parse(ctx, name, buf, len, 1, opt, &dr, out);
-    if (rc == VB_OK)
-        vbi_report_dropped(ctx, name, &dr);
+        (*out)->allows_zero_radius = zero_policy == VB_ZERO_RADIUS_POINT;
     return rc;
 }

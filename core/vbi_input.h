@@ -148,6 +148,40 @@ int vbi_models_takes(const vbi_models *m);
 /* VB_EINPUT_MODEL (message set) when the wanted model never came. */
 int vbi_models_check(vb_ctx *ctx, const char *name, const vbi_models *m);
 
+/* Ends a reader's pass over the builder: unless rc is already a failure,
+ * vbi_models_check on m; then the set goes to *out with its atom records, or
+ * is discarded and the failure returned. */
+int vbi_builder_close(vbi_builder *b, const vbi_models *m, int rc, vb_sphere_set **out);
+
+/* The records a PDB or PQR reader acts on. */
+typedef enum vbi_record {
+    VBI_REC_OTHER,
+    VBI_REC_MODEL,
+    VBI_REC_ENDMDL,
+    VBI_REC_END,
+    VBI_REC_ATOM /* ATOM or HETATM */
+} vbi_record;
+
+/* What record s[0..n) is; is(s, n, rec) says whether it holds record `rec`
+ * (vbi_pdb_record for PDB columns, a whole-token match for PQR). */
+vbi_record vbi_record_kind(int (*is)(const char *, size_t, const char *), const char *s,
+                           size_t n);
+
+/* Which atom records of a PDB or PQR file are read: those of the wanted
+ * model (MODEL/ENDMDL blocks), none after END. */
+typedef struct vbi_atom_scan {
+    vbi_models models;
+    int ended; /* an END record was met: what follows is not this entry */
+} vbi_atom_scan;
+
+void vbi_atom_scan_init(vbi_atom_scan *s, int want);
+/* Feeds one record (model_serial: the serial of a MODEL record, else
+ * ignored). Returns 1 for an atom record the reader parses, 0 for any other
+ * record (MODEL, ENDMDL and END update the scan; atoms of other models or
+ * after END are counted in dr). */
+int vbi_atom_scan_takes(vbi_atom_scan *s, vbi_record rec, int32_t model_serial,
+                        vbi_dropped *dr);
+
 /* Alternate locations, per residue (chain, resseq, icode): blank is always
  * kept, and of the lettered ones the first met in the residue (usually 'A'). */
 typedef struct vbi_altloc {
@@ -162,6 +196,13 @@ void vbi_altloc_init(vbi_altloc *a);
 /* True when the atom's alternate location is the one kept. */
 int vbi_altloc_keeps(vbi_altloc *a, const vb_atom_info *info);
 
+/* The atoms a reader leaves out on purpose, tested in this order: water
+ * (unless opt->keep_water), other alternate locations (alt NULL: the format
+ * has none), hydrogens (opt->drop_hydrogens). Returns 1 when the atom is
+ * left out (counted in dr), 0 when it is read. */
+int vbi_atom_dropped(const vb_read_options *opt, vbi_altloc *alt, const vb_atom_info *info,
+                     vbi_dropped *dr);
+
 /* Content detection into *out. Returns VB_OK, VB_EINPUT_EMPTY (only blank
  * and '#' lines) or VB_EINPUT_FORMAT (nothing fits); sets no message. */
 int vbi_detect_format(const char *buf, size_t len, vb_format *out);
@@ -171,14 +212,10 @@ int vbi_detect_error(vb_ctx *ctx, const char *name, int rc);
 /* Per-format readers over a whole buffer. */
 int vbi_read_xyzr(vb_ctx *ctx, const char *name, const char *buf, size_t len,
                   const vb_read_options *opt, vb_sphere_set **out);
-int vbi_read_pdb(vb_ctx *ctx, const char *name, const char *buf, size_t len,
-                 const vb_read_options *opt, vb_sphere_set **out);
 /* The PDB reader on part of a file: lines are numbered from first_line, and
  * what it leaves out is added to *dr instead of being reported. */
 int vbi_pdb_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, long first_line,
                   const vb_read_options *opt, vbi_dropped *dr, vb_sphere_set **out);
-int vbi_read_pqr(vb_ctx *ctx, const char *name, const char *buf, size_t len,
-                 const vb_read_options *opt, vb_sphere_set **out);
 int vbi_read_mmcif(vb_ctx *ctx, const char *name, const char *buf, size_t len,
                    const vb_read_options *opt, vb_sphere_set **out);
 /* The PQR reader on part of a file, as vbi_pdb_parse. */

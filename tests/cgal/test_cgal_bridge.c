@@ -6,20 +6,12 @@
 
 #include "vb_cgal.h"
 #include "vb_test.h"
+#include "vb_test_spheres.h"
 
 /* A sphere set from decimals given as mantissa and a shared exponent. */
 static vb_sphere_set *make_set(size_t n, const long (*c)[4], int exp10)
 {
-    vb_sphere_set *s = calloc(1, sizeof *s);
-    s->n = n;
-    s->x = calloc(n, sizeof(double));
-    s->y = calloc(n, sizeof(double));
-    s->z = calloc(n, sizeof(double));
-    s->r = calloc(n, sizeof(double));
-    s->ex = calloc(n, sizeof(vb_decimal));
-    s->ey = calloc(n, sizeof(vb_decimal));
-    s->ez = calloc(n, sizeof(vb_decimal));
-    s->er = calloc(n, sizeof(vb_decimal));
+    vb_sphere_set *s = vb_test_spheres_alloc(n, 1);
     double scale = pow(10.0, exp10);
     for (size_t i = 0; i < n; i++) {
         vb_decimal *d[4] = {&s->ex[i], &s->ey[i], &s->ez[i], &s->er[i]};

@@ -9,25 +9,15 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_test_spheres.h"
 #include "vbc_channel.h"
-
-static inline vb_sphere_set *synth_alloc(size_t n)
-{
-    vb_sphere_set *s = calloc(1, sizeof *s);
-    s->n = n;
-    s->x = calloc(n, sizeof(double));
-    s->y = calloc(n, sizeof(double));
-    s->z = calloc(n, sizeof(double));
-    s->r = calloc(n, sizeof(double));
-    return s;
-}
 
 /* `rings` rings of `per` atoms of radius r on a circle of radius rc around the
  * z axis, rings `dz` apart and staggered by half a step, centred on z = 0.
  * Clearance on the axis: hypot(rc, 0) - r = rc - r at the ring heights. */
 static inline vb_sphere_set *synth_cylinder(int rings, int per, double rc, double r, double dz)
 {
-    vb_sphere_set *s = synth_alloc((size_t)rings * (size_t)per);
+    vb_sphere_set *s = vb_test_spheres_alloc((size_t)rings * (size_t)per, 0);
     const double pi = 3.14159265358979323846;
     for (int k = 0; k < rings; k++)
         for (int a = 0; a < per; a++) {
@@ -44,7 +34,7 @@ static inline vb_sphere_set *synth_cylinder(int rings, int per, double rc, doubl
 /* n atoms of radius r on a sphere of radius rs (Fibonacci lattice). */
 static inline vb_sphere_set *synth_shell(int n, double rs, double r)
 {
-    vb_sphere_set *s = synth_alloc((size_t)n);
+    vb_sphere_set *s = vb_test_spheres_alloc((size_t)n, 0);
     const double golden = 2.39996322972865332;
     for (int i = 0; i < n; i++) {
         double zz = 1.0 - 2.0 * (i + 0.5) / n, rr = sqrt(1.0 - zz * zz);

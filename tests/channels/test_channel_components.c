@@ -21,7 +21,7 @@ static vbc_grid unit_grid(int n)
 static void test_handmade(vb_ctx *ctx)
 {
     vbc_grid g = unit_grid(16);
-    vb_sphere_set *s = synth_alloc(1);
+    vb_sphere_set *s = vb_test_spheres_alloc(1, 0);
     s->r[0] = 1.0;
     s->x[0] = 6.5;
     s->y[0] = 9.5;
@@ -95,7 +95,7 @@ static void test_handmade(vb_ctx *ctx)
 static void test_mouth_to_mouth(vb_ctx *ctx)
 {
     vbc_grid g = unit_grid(32);
-    vb_sphere_set *s = synth_alloc(1);
+    vb_sphere_set *s = vb_test_spheres_alloc(1, 0);
     s->r[0] = 1.0;
     uint32_t v[64];
     size_t n = 0;

@@ -59,7 +59,7 @@ static void run_free(run *r)
  * equals the atomic one and nothing is interior. */
 static void test_single_ball(vb_ctx *ctx)
 {
-    vb_sphere_set *s = synth_alloc(1);
+    vb_sphere_set *s = vb_test_spheres_alloc(1, 0);
     s->r[0] = 1.0;
     run r;
     run_ref(ctx, s, 0.0, 16, 3, &r);
@@ -88,7 +88,7 @@ static void test_single_ball(vb_ctx *ctx)
  * gap between them is molecular but not atomic (interior). */
 static void test_two_balls(vb_ctx *ctx)
 {
-    vb_sphere_set *s = synth_alloc(2);
+    vb_sphere_set *s = vb_test_spheres_alloc(2, 0);
     s->x[0] = -4.0;
     s->x[1] = 4.0;
     s->r[0] = s->r[1] = 2.0;
@@ -111,7 +111,7 @@ static void test_two_balls(vb_ctx *ctx)
  * two regions meet. */
 static void test_edges(vb_ctx *ctx)
 {
-    vb_sphere_set *s = synth_alloc(3);
+    vb_sphere_set *s = vb_test_spheres_alloc(3, 0);
     const double pi = 3.14159265358979323846;
     for (int a = 0; a < 3; a++) {
         s->x[a] = 5.0 * cos(2 * pi * a / 3 + 0.3);
@@ -252,7 +252,7 @@ static void test_shell(vb_ctx *ctx)
 
 static void test_grid_fit_errors(vb_ctx *ctx)
 {
-    vb_sphere_set *s = synth_alloc(1);
+    vb_sphere_set *s = vb_test_spheres_alloc(1, 0);
     s->r[0] = 1.0;
     vbc_grid g;
     CHECK_INT(vbc_grid_fit(ctx, s, 1.4, 4, 3, &g), VB_EMISUSE);

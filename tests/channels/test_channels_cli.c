@@ -3,13 +3,11 @@
  * near HOLE's; every output file is written; the MD trajectory is processed
  * frame by frame; a DCD written from that trajectory gives the same frames. */
 #include <stdlib.h>
-#include <unistd.h>
 
+#include "cli_env.h"
 #include "vb_dcd.h"
 #include "vb_spheres.h"
 #include "vb_test.h"
-
-static char bin[1024], src[1024], dir[256];
 
 static int run(const char *args)
 {
@@ -161,16 +159,7 @@ static void test_usage(void)
 
 int main(void)
 {
-    const char *b = getenv("VORBALL_BINARY_DIR"), *s = getenv("VORBALL_SOURCE_DIR");
-    if (!b || !s) {
-        fprintf(stderr, "VORBALL_BINARY_DIR and VORBALL_SOURCE_DIR must be set\n");
-        return 1;
-    }
-    snprintf(bin, sizeof bin, "%s/cli/vorball", b);
-    snprintf(src, sizeof src, "%s", s);
-    const char *t = getenv("TMPDIR");
-    snprintf(dir, sizeof dir, "%s/vbc_cli_XXXXXX", t && *t ? t : "/tmp");
-    if (!mkdtemp(dir))
+    if (cli_env_open("vbc_cli") != 0)
         return 1;
     vb_ctx *ctx;
     vb_config cfg = {0, NULL};
@@ -180,9 +169,6 @@ int main(void)
     test_trajectory_and_dcd(ctx);
     test_usage();
     vb_close(ctx);
-    char cmd[512];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-    if (vb_test_failed == 0 && system(cmd) != 0)
-        fprintf(stderr, "could not remove %s\n", dir);
+    cli_env_close();
     VB_TEST_END();
 }

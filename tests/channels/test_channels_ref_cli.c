@@ -6,12 +6,10 @@
  * the same output. */
 #include <stdlib.h>
 #include <sys/stat.h>
-#include <unistd.h>
 
+#include "cli_env.h"
 #include "synth.h"
 #include "vb_test.h"
-
-static char bin[1024], src[1024], dir[256];
 
 /* Runs `vorball channels ARGS` with optional environment prefix; stderr goes
  * to dir/err.txt (overwritten). Returns the exit status. */
@@ -190,16 +188,7 @@ static void test_fallback(void)
 
 int main(void)
 {
-    const char *b = getenv("VORBALL_BINARY_DIR"), *s = getenv("VORBALL_SOURCE_DIR");
-    if (!b || !s) {
-        fprintf(stderr, "VORBALL_BINARY_DIR and VORBALL_SOURCE_DIR must be set\n");
-        return 1;
-    }
-    snprintf(bin, sizeof bin, "%s/cli/vorball", b);
-    snprintf(src, sizeof src, "%s", s);
-    const char *t = getenv("TMPDIR");
-    snprintf(dir, sizeof dir, "%s/vbc_ref_XXXXXX", t && *t ? t : "/tmp");
-    if (!mkdtemp(dir))
+    if (cli_env_open("vbc_ref") != 0)
         return 1;
     char empty[300];
     snprintf(empty, sizeof empty, "%s/empty", dir);
@@ -207,9 +196,6 @@ int main(void)
         return 1;
     test_backends_agree();
     test_fallback();
-    char cmd[512];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-    if (vb_test_failed == 0 && system(cmd) != 0)
-        fprintf(stderr, "could not remove %s\n", dir);
+    cli_env_close();
     VB_TEST_END();
 }

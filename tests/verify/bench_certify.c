@@ -15,6 +15,7 @@
 
 #include "vb_vertex_io.h"
 #include "vb_verify.h"
+#include "vt_lists.h"
 
 static double now(clockid_t id)
 {
@@ -37,19 +38,6 @@ static uint64_t checksum(const vb_vertex_list *v)
             h *= 1099511628211ull;
         }
     return h;
-}
-
-static int same_list(const vb_vertex_list *a, const vb_vertex_list *b)
-{
-    if (a->n != b->n || a->nids != b->nids)
-        return 0;
-    return memcmp(a->start, b->start, (a->n + 1) * sizeof *a->start) == 0 &&
-           memcmp(a->ids, b->ids, a->nids * sizeof *a->ids) == 0 &&
-           memcmp(a->x, b->x, a->n * sizeof *a->x) == 0 &&
-           memcmp(a->y, b->y, a->n * sizeof *a->y) == 0 &&
-           memcmp(a->z, b->z, a->n * sizeof *a->z) == 0 &&
-           memcmp(a->t, b->t, a->n * sizeof *a->t) == 0 &&
-           memcmp(a->dist, b->dist, a->n * sizeof *a->dist) == 0;
 }
 
 int main(int argc, char **argv)
@@ -112,7 +100,7 @@ int main(int argc, char **argv)
         if (i == 0) {
             first = out;
         } else {
-            if (!same_list(&first, &out)) {
+            if (!vt_same_list(&first, &out, 1)) {
                 fprintf(stderr, "bench_certify: %u threads differ from the first run\n",
                         threads);
                 bad = 1;

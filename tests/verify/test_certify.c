@@ -97,24 +97,11 @@ static void test_overlap_and_intruder(void)
     vb_close(ctx);
 }
 
-/* Cubic lattice: spheres at (+-1, +-1, +-1), radius 0.5, id = bits (x, y, z). */
-static vb_sphere_set *cube(void)
-{
-    const char *v[32];
-    for (int i = 0; i < 8; i++) {
-        v[4 * i] = (i & 1) ? "1" : "-1";
-        v[4 * i + 1] = (i & 2) ? "1" : "-1";
-        v[4 * i + 2] = (i & 4) ? "1" : "-1";
-        v[4 * i + 3] = "0.5";
-    }
-    return vt_set(8, v);
-}
-
 static void test_cube(void)
 {
     vb_ctx *ctx;
     vb_open(&ctx, NULL);
-    vb_sphere_set *s = cube();
+    vb_sphere_set *s = vt_cube();
     vb_certifier *c;
     CHECK_INT(vb_certifier_open(ctx, s, &c), VB_OK);
     double p[3] = {0, 0, 0};
@@ -298,7 +285,7 @@ static void test_list(void)
 {
     vb_ctx *ctx;
     vb_open(&ctx, NULL);
-    vb_sphere_set *s = cube();
+    vb_sphere_set *s = vt_cube();
     vb_certifier *c;
     CHECK_INT(vb_certifier_open(ctx, s, &c), VB_OK);
     vb_vertex_list cand, out, rej;

@@ -11,20 +11,7 @@
 #include "vb_test.h"
 #include "vb_verify.h"
 #include "vb_vertex_io.h"
-
-static int same_list(const vb_vertex_list *a, const vb_vertex_list *b, int with_dist)
-{
-    if (a->n != b->n || a->nids != b->nids)
-        return 0;
-    return memcmp(a->start, b->start, (a->n + 1) * sizeof *a->start) == 0 &&
-           memcmp(a->ids, b->ids, a->nids * sizeof *a->ids) == 0 &&
-           memcmp(a->x, b->x, a->n * sizeof *a->x) == 0 &&
-           memcmp(a->y, b->y, a->n * sizeof *a->y) == 0 &&
-           memcmp(a->z, b->z, a->n * sizeof *a->z) == 0 &&
-           memcmp(a->t, b->t, a->n * sizeof *a->t) == 0 &&
-           memcmp(a->status, b->status, a->n) == 0 &&
-           (!with_dist || memcmp(a->dist, b->dist, a->n * sizeof *a->dist) == 0);
-}
+#include "vt_lists.h"
 
 /* Candidates from the golden vertices g of a set of n spheres. */
 static int make_candidates(const vb_vertex_list *g, size_t n, vb_vertex_list *cand)
@@ -76,7 +63,7 @@ static void certify(const vb_sphere_set *set, const vb_vertex_list *cand, unsign
             vb_vertex_list again;
             vb_vertex_list_init(&again);
             r->rc = vb_certify_list(ctx, c, cand, 0.0, &again, NULL);
-            if (r->rc == VB_OK && !same_list(&again, &r->out, 1))
+            if (r->rc == VB_OK && !vt_same_list(&again, &r->out, 1))
                 r->rc = -1;
             vb_vertex_list_free(&again);
         }
@@ -123,9 +110,9 @@ static size_t check_case(const char *src, const char *name)
         certify(set, &cand, 1, &one);
         CHECK_INT(one.rc, VB_OK);
         /* Every golden vertex has a candidate at its exact rounded point. */
-        if (!same_list(&one.out, &g, 0))
+        if (!vt_same_list(&one.out, &g, 0))
             fprintf(stderr, "%s: certified list differs from the golden answer\n", name);
-        CHECK(same_list(&one.out, &g, 0));
+        CHECK(vt_same_list(&one.out, &g, 0));
         /* Two lists: candidates counted twice, each vertex once per list. */
         CHECK_INT(one.st.candidates, 2 * ncand);
         CHECK_INT(one.st.certified, 2 * g.n);
@@ -134,8 +121,8 @@ static size_t check_case(const char *src, const char *name)
             run r;
             certify(set, &cand, threads[i], &r);
             CHECK_INT(r.rc, VB_OK);
-            CHECK(same_list(&r.out, &one.out, 1));
-            CHECK(same_list(&r.rej, &one.rej, 1));
+            CHECK(vt_same_list(&r.out, &one.out, 1));
+            CHECK(vt_same_list(&r.rej, &one.rej, 1));
             CHECK(memcmp(&r.st, &one.st, sizeof r.st) == 0);
             free_run(&r);
         }

@@ -250,14 +250,7 @@ static void certifier_agrees(size_t n, unsigned rmin, unsigned rspan, uint64_t s
 
 static void test_cube_reference(void)
 {
-    const char *v[32];
-    for (int i = 0; i < 8; i++) {
-        v[4 * i] = (i & 1) ? "1" : "-1";
-        v[4 * i + 1] = (i & 2) ? "1" : "-1";
-        v[4 * i + 2] = (i & 4) ? "1" : "-1";
-        v[4 * i + 3] = "0.5";
-    }
-    vb_sphere_set *s = vt_set(8, v);
+    vb_sphere_set *s = vt_cube();
     vb_ctx *ctx;
     vb_open(&ctx, NULL);
     vb_vertex_list out;

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "vb_spheres.h"
+#include "vb_test_spheres.h"
 
 /* "-1.250" -> mant -125, exp10 -2 (trailing zeros stripped). */
 static vb_decimal vt_decimal(const char *s)
@@ -38,16 +39,7 @@ static vb_decimal vt_decimal(const char *s)
 /* n spheres from 4n strings "x", "y", "z", "r". Free with vb_spheres_free. */
 static vb_sphere_set *vt_set(size_t n, const char *const *v)
 {
-    vb_sphere_set *s = calloc(1, sizeof *s);
-    s->n = n;
-    s->x = calloc(n, sizeof(double));
-    s->y = calloc(n, sizeof(double));
-    s->z = calloc(n, sizeof(double));
-    s->r = calloc(n, sizeof(double));
-    s->ex = calloc(n, sizeof(vb_decimal));
-    s->ey = calloc(n, sizeof(vb_decimal));
-    s->ez = calloc(n, sizeof(vb_decimal));
-    s->er = calloc(n, sizeof(vb_decimal));
+    vb_sphere_set *s = vb_test_spheres_alloc(n, 1);
     s->line = calloc(n, sizeof(long));
     s->contained = calloc(n, 1);
     for (size_t i = 0; i < n; i++) {
@@ -62,6 +54,20 @@ static vb_sphere_set *vt_set(size_t n, const char *const *v)
         s->line[i] = (long)i + 1;
     }
     return s;
+}
+
+/* The cubic lattice: spheres at (+-1, +-1, +-1), radius 0.5, id = bits
+ * (x, y, z); its one vertex is the centre, of degree 8. */
+static inline vb_sphere_set *vt_cube(void)
+{
+    const char *v[32];
+    for (int i = 0; i < 8; i++) {
+        v[4 * i] = (i & 1) ? "1" : "-1";
+        v[4 * i + 1] = (i & 2) ? "1" : "-1";
+        v[4 * i + 2] = (i & 4) ? "1" : "-1";
+        v[4 * i + 3] = "0.5";
+    }
+    return vt_set(8, v);
 }
 
 #endif
