@@ -159,6 +159,24 @@ int vbj_dist_build(int dim, uint32_t n)
  * VBJ_ITEMS). */
 static size_t items(cl_uint q, cl_uint l, uint32_t b) { return q / l >= b ? q / b : l; }
 
+/* Whether the device takes NVIDIA's -cl-nv-* build options. The float build
+ * of the step kernels is latency bound: capped at 48 registers (more
+ * resident warps), JFA+1 on 256^3 with 13,573 seeds took 3.23 ms on an H100
+ * instead of 3.44 (32: 3.71, 40: 3.36, 64 or more: 3.41-3.42 ms;
+ * papers/facet-jfa-and-channels/results/jfa/kernels/h100_regcap/). The other
+ * builds were not measured with a cap and keep the compiler's choice. */
+static int has_nv_options(const vbj_engine *e)
+{
+    char ext[4096];
+    size_t len = 0;
+    if (clGetDeviceInfo(vbg_runtime_device(e->rt), CL_DEVICE_EXTENSIONS, sizeof ext - 1, ext,
+                        &len) != CL_SUCCESS ||
+        len >= sizeof ext)
+        return 0;
+    ext[len] = '\0';
+    return strstr(ext, "cl_nv_compiler_options") != NULL;
+}
+
 int vbj_cl_kernel(vb_ctx *ctx, vbj_engine *e, int which, cl_kernel *out)
 {
     static const char *jfa_names[VBJ_KJFA] = {"jfa_place", "jfa_step_2d", "jfa_step_3d",
@@ -170,11 +188,12 @@ int vbj_cl_kernel(vb_ctx *ctx, vbj_engine *e, int which, cl_kernel *out)
         cl_program p;
         if (which < VBJ_K_EXPAND) {
             int b = which / VBJ_KJFA, rc;
-            char opt[160];
-            snprintf(opt, sizeof opt, "%s%s -DVBJ_BX=%u -DVBJ_BY=%u -DVBJ_BZ=%u -DVBJ_BY2=%u",
+            char opt[192];
+            snprintf(opt, sizeof opt, "%s%s -DVBJ_BX=%u -DVBJ_BY=%u -DVBJ_BZ=%u -DVBJ_BY2=%u%s",
                      b & VBJ_JFA_LABEL16 ? "-DVBJ_LABEL16 " : "",
                      b & VBJ_JFA_DIST64 ? "-DVBJ_DIST64" : b & VBJ_JFA_FLOAT ? "-DVBJ_DISTF" : "",
-                     block3[0], block3[1], block3[2], block2[1]);
+                     block3[0], block3[1], block3[2], block2[1],
+                     b & VBJ_JFA_FLOAT && has_nv_options(e) ? " -cl-nv-maxrregcount=48" : "");
             if (!e->jfa[b] && (rc = vbg_program_get(ctx, e->rt, "jfa.cl", opt, &e->jfa[b])))
                 return rc;
             p = e->jfa[b];

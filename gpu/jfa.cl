@@ -2,9 +2,10 @@
  * length l every pixel reads the labels of its 3^d - 1 neighbours at distance
  * l and keeps the seed nearest to its centre (ties to the lower index).
  *
- * On an H100, 256^3 with 13,573 seeds, JFA+1 takes 3.45 ms, 0.46 ms for each
- * step with l <= 32 (27 candidates per pixel: a label read, a seed gather, a
- * squared distance, a compare with the tie rule). Moving the arithmetic from
+ * On an H100, 256^3 with 13,573 seeds, JFA+1 takes 3.23 ms, 0.43 ms for each
+ * step with l <= 8 (27 candidates per pixel: a label read, a seed gather, a
+ * squared distance, a compare with the tie rule; the float build capped at
+ * 48 registers on NVIDIA, see gpu/jfa.c). Moving the arithmetic from
  * doubles to floats gained about 10 % only, and code size counts: with the
  * exact fallback inlined at each of the unrolled offers the kernel was 1.4x
  * slower (papers/facet-jfa-and-channels/results/jfa/README.md). So:
@@ -117,8 +118,11 @@ kernel void jfa_widen(global const vbj_label *src, global uint *dst, uint count)
 
 /* Work-items along an axis with blocks of B pixels spaced l (q / l and B are
  * powers of two), and the first pixel of work-item w's block. */
-#define VBJ_ITEMS(q, l, B) ((q) / (l) >= (B) ? (q) / (B) : (l))
-#define VBJ_FIRST(w, l, B) ((w) % (l) + (B) * (l) * ((w) / (l)))
+#define VBJ_ITEMS(q, l, B) ((q) >> vbj_lg(l) >= (B) ? (q) / (B) : (l))
+#define VBJ_FIRST(w, l, B) (((w) & ((l) - 1)) + (B) * (l) * ((w) >> vbj_lg(l)))
+
+/* log2 of a power of two: shifts and masks instead of divisions by l. */
+static inline uint vbj_lg(uint l) { return popcount(l - 1); }
 
 /* Along an axis with blocks of B, read j (at first + (j - 1) l) concerns the
  * block's pixels lo..hi. Read j defers to read i of the same row that
