@@ -181,12 +181,12 @@ int vbj_cl_kernel(vb_ctx *ctx, vbj_engine *e, int which, cl_kernel *out)
 {
     static const char *jfa_names[VBJ_KJFA] = {"jfa_place", "jfa_step_2d", "jfa_step_3d",
                                               "jfa_count_labels", "jfa_widen"};
-    static const char *names[] = {"facet_expand", "facet_step", "facet_mark_refine",
-                                  "facet_fill", "jfa_exact"};
+    static const char *names[] = {"facet_step", "facet_mark_refine", "facet_strip",
+                                  "jfa_exact"};
     if (!e->kernels[which]) {
         const char *name;
         cl_program p;
-        if (which < VBJ_K_EXPAND) {
+        if (which < VBJ_K_FSTEP) {
             int b = which / VBJ_KJFA, rc;
             char opt[192];
             snprintf(opt, sizeof opt, "%s%s -DVBJ_BX=%u -DVBJ_BY=%u -DVBJ_BZ=%u -DVBJ_BY2=%u%s",
@@ -200,7 +200,7 @@ int vbj_cl_kernel(vb_ctx *ctx, vbj_engine *e, int which, cl_kernel *out)
             name = jfa_names[which % VBJ_KJFA];
         } else {
             p = which < VBJ_K_EXACT ? e->facet : e->exact;
-            name = names[which - VBJ_K_EXPAND];
+            name = names[which - VBJ_K_FSTEP];
         }
         cl_int err;
         e->kernels[which] = clCreateKernel(p, name, &err);

@@ -1,6 +1,6 @@
 /* Host side of Facet-JFA on OpenCL (kernels in gpu/facet_jfa.cl): JFA on the
- * coarse grid, then per doubling refine / step / write back / mark over the
- * active list only. List lengths stay on the device (the kernels loop over
+ * coarse grid, then per doubling one step (the children of marked cells
+ * inherit their labels) and the marking, over the active list only. List lengths stay on the device (the kernels loop over
  * them), so the host waits once, at the end, not once per level. */
 #include "jfa_internal.h"
 
@@ -34,32 +34,24 @@ static int launch_list(vb_ctx *ctx, vbj_engine *e, int which, const char *name, 
     return vbj_cl_launch(ctx, e, k, 1, &g, name);
 }
 
-/* Steps 2-9 of Algorithm 1 on the device, then the counts. */
+/* Steps 2-9 of Algorithm 1 on the device, then the counts. The labels of
+ * the last level end in *out_mem (with marks). */
 static int timed(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, int compact, uint32_t m,
-                 size_t npairs, vbj_result *out, int *cur_out)
+                 size_t npairs, vbj_result *out, cl_mem *out_mem)
 {
     cl_command_queue queue = vbg_runtime_queue(e->rt);
-    cl_uint n = s->n, dim = (cl_uint)s->dim, ln = log2u(n), lm = log2u(m), lfmax = ln - lm;
+    cl_uint n = s->n, dim = (cl_uint)s->dim, ln = log2u(n), lm = log2u(m);
     cl_uint levels = ln - lm;
-    size_t pixels = out->pixels;
     uint64_t cells_m = (uint64_t)1 << (dim * lm);
     int rc;
-    /* Steps 2-4: JFA on the coarse m^d grid, copied into the fine arrays. */
+    /* Steps 2-4: JFA on the coarse m^d grid: level 0's dense array. */
     uint32_t steps[40];
     int which = 0;
     if ((rc = vbj_cl_dense(ctx, e, s, n / m, npairs, 0, steps, vbj_schedule(VBJ_JFA, m, steps),
                            &out->counts, &which)))
         return rc;
-    cl_uint none = VBJ_NONE, zero = 0, first = (cl_uint)cells_m;
+    cl_uint zero = 0, first = (cl_uint)cells_m;
     if (vbg_check(ctx,
-                  clEnqueueFillBuffer(queue, e->store[0].mem, &none, sizeof none, 0, pixels * 4,
-                                      0, NULL, vbj_cl_event(e)),
-                  "facet clear") ||
-        vbg_check(ctx,
-                  clEnqueueFillBuffer(queue, e->store[1].mem, &none, sizeof none, 0, pixels * 4,
-                                      0, NULL, vbj_cl_event(e)),
-                  "facet clear") ||
-        vbg_check(ctx,
                   clEnqueueFillBuffer(queue, e->counter.mem, &zero, sizeof zero, 0,
                                       (levels + 2) * 4, 0, NULL, NULL),
                   "facet counters") ||
@@ -68,59 +60,47 @@ static int timed(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, int compact, ui
                                        NULL),
                   "facet counters"))
         return VB_EDEVICE;
-    {
-        vbj_arg a[] = {VBJ_ARG(e->grid[which].mem), VBJ_ARG(e->store[0].mem),
-                       VBJ_ARG(e->store[1].mem),    VBJ_ARG(lm),
-                       VBJ_ARG(lfmax),              VBJ_ARG(n),
-                       VBJ_ARG(dim)};
-        if ((rc = launch_list(ctx, e, VBJ_K_EXPAND, "facet_expand", 7, a, cells_m)))
-            return rc;
-    }
+    cl_mem prev = e->grid[which].mem;
 
     /* Step 7 for the coarse grid: nothing is marked before the first
      * doubling, so every coarse cell is refined (children into list 0). */
-    int L = 0, cur = 0; /* list of the current cells; array holding their labels */
+    int L = 0; /* list of the current cells */
     {
         cl_uint dense = 1, j = 0, sh = 0, mk = 0, rf = levels > 0;
         if (!rf)
             mk = 1; /* m = n: only the marking, for the boundary */
-        vbj_arg a[] = {VBJ_ARG(e->list[1].mem),     VBJ_ARG(dense), VBJ_ARG(e->counter.mem),
-                       VBJ_ARG(j),                  VBJ_ARG(sh),    VBJ_ARG(mk),
-                       VBJ_ARG(rf),                 VBJ_ARG(e->store[0].mem),
-                       VBJ_ARG(e->store[1].mem),    VBJ_ARG(e->list[0].mem),
-                       VBJ_ARG(lm),                 VBJ_ARG(lfmax),
-                       VBJ_ARG(lfmax),              VBJ_ARG(n),
-                       VBJ_ARG(dim)};
-        if ((rc = launch_list(ctx, e, VBJ_K_MARKREFINE, "facet_mark_refine", 15, a, cells_m)))
+        vbj_arg a[] = {VBJ_ARG(e->list[1].mem), VBJ_ARG(dense), VBJ_ARG(e->counter.mem),
+                       VBJ_ARG(j),              VBJ_ARG(sh),    VBJ_ARG(mk),
+                       VBJ_ARG(rf),             VBJ_ARG(prev),  VBJ_ARG(e->list[0].mem),
+                       VBJ_ARG(lm),             VBJ_ARG(dim)};
+        if ((rc = launch_list(ctx, e, VBJ_K_MARKREFINE, "facet_mark_refine", 11, a, cells_m)))
             return rc;
     }
 
-    /* Steps 8-9 per doubling: one l = 1 step on the children of the refined
-     * cells, then marking and (but at the last level) refinement. */
+    /* Steps 8-9 per doubling: the children of marked cells inherit, one
+     * l = 1 step on the children of the refined cells, then marking and (but
+     * at the last level) refinement. The level's labels (B) alternate
+     * between two buffers: the step reads the level above. */
+    vbj_clbuf *bufs[2] = {&e->store[0], &e->store[1]};
     for (cl_uint j = 1; j <= levels; j++) {
         cl_uint lq = lm + j, lf = ln - lq, last = j == levels;
         cl_uint mk = compact || last, rf = !last, sh = dim, nd = 0;
         uint64_t cells_max = (uint64_t)1 << (dim * lq);
-        vbj_arg sa[] = {VBJ_ARG(e->list[L].mem),       VBJ_ARG(e->counter.mem),
-                        VBJ_ARG(j),                    VBJ_ARG(e->store[cur].mem),
-                        VBJ_ARG(e->store[1 - cur].mem), VBJ_ARG(e->seeds.mem),
-                        VBJ_ARG(lq),                   VBJ_ARG(lf),
-                        VBJ_ARG(lfmax),                VBJ_ARG(n),
-                        VBJ_ARG(dim)};
-        if ((rc = launch_list(ctx, e, VBJ_K_FSTEP, "facet_step", 11, sa, cells_max)))
+        cl_mem B = bufs[j & 1]->mem;
+        vbj_arg sa[] = {VBJ_ARG(e->list[L].mem), VBJ_ARG(e->counter.mem), VBJ_ARG(j),
+                        VBJ_ARG(prev),           VBJ_ARG(B),              VBJ_ARG(e->seeds.mem),
+                        VBJ_ARG(lq),             VBJ_ARG(lf),             VBJ_ARG(dim)};
+        if ((rc = launch_list(ctx, e, VBJ_K_FSTEP, "facet_step", 9, sa, cells_max)))
             return rc;
-        cur = 1 - cur;
-        vbj_arg ma[] = {VBJ_ARG(e->list[L].mem),       VBJ_ARG(nd), VBJ_ARG(e->counter.mem),
-                        VBJ_ARG(j),                    VBJ_ARG(sh), VBJ_ARG(mk),
-                        VBJ_ARG(rf),                   VBJ_ARG(e->store[cur].mem),
-                        VBJ_ARG(e->store[1 - cur].mem), VBJ_ARG(e->list[1 - L].mem),
-                        VBJ_ARG(lq),                   VBJ_ARG(lf),
-                        VBJ_ARG(lfmax),                VBJ_ARG(n),
-                        VBJ_ARG(dim)};
-        if ((rc = launch_list(ctx, e, VBJ_K_MARKREFINE, "facet_mark_refine", 15, ma,
+        vbj_arg ma[] = {VBJ_ARG(e->list[L].mem), VBJ_ARG(nd), VBJ_ARG(e->counter.mem),
+                        VBJ_ARG(j),              VBJ_ARG(sh), VBJ_ARG(mk),
+                        VBJ_ARG(rf),             VBJ_ARG(B),  VBJ_ARG(e->list[1 - L].mem),
+                        VBJ_ARG(lq),             VBJ_ARG(dim)};
+        if ((rc = launch_list(ctx, e, VBJ_K_MARKREFINE, "facet_mark_refine", 11, ma,
                               cells_max)))
             return rc;
         L = 1 - L;
+        prev = B;
     }
     cl_uint cnt[40];
     if (vbg_check(ctx,
@@ -141,7 +121,7 @@ static int timed(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, int compact, ui
         out->counts.threads += cells_m;
     out->counts.boundary = cnt[levels + 1];
 
-    *cur_out = cur;
+    *out_mem = prev;
     return VB_OK;
 }
 
@@ -151,8 +131,7 @@ int vbj_cl_facet(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, const vbj_optio
     cl_command_queue queue = vbg_runtime_queue(e->rt);
     double t0 = vbj_now_ms();
     uint32_t m = opt->m ? opt->m : vbj_start_resolution(s);
-    cl_uint n = s->n, dim = (cl_uint)s->dim, lfmax = log2u(n) - log2u(m);
-    cl_uint levels = lfmax;
+    cl_uint n = s->n, levels = log2u(n) - log2u(m);
     size_t pixels = out->pixels, npairs;
     int compact = opt->variant == VBJ_FACET;
     int rc;
@@ -167,8 +146,8 @@ int vbj_cl_facet(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, const vbj_optio
         return rc;
     double t1 = vbj_now_ms();
     vbj_cl_record(e);
-    int cur = 0;
-    rc = timed(ctx, e, s, compact, m, npairs, out, &cur);
+    cl_mem last = NULL;
+    rc = timed(ctx, e, s, compact, m, npairs, out, &last);
     if (!rc && vbg_check(ctx, clFinish(queue), "facet-jfa"))
         rc = VB_EDEVICE;
     double t2 = vbj_now_ms();
@@ -176,22 +155,20 @@ int vbj_cl_facet(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, const vbj_optio
     if (rc)
         return rc;
 
-    /* The interior pixels inherit their marked ancestor's label. */
+    /* The last level's labels without the marks. */
     cl_kernel k;
-    if ((rc = vbj_clbuf_reserve(ctx, e, &e->labels, pixels * 4)) ||
-        (rc = vbj_cl_kernel(ctx, e, VBJ_K_FILL, &k)))
+    cl_uint cells = (cl_uint)pixels;
+    if ((rc = vbj_cl_kernel(ctx, e, VBJ_K_STRIP, &k)))
         return rc;
-    vbj_arg fa[] = {VBJ_ARG(e->store[cur].mem), VBJ_ARG(e->labels.mem), VBJ_ARG(n),
-                    VBJ_ARG(lfmax), VBJ_ARG(dim)};
-    size_t gf[3] = {n, n, dim == 3 ? n : 1};
-    if ((rc = vbj_cl_set_args(ctx, k, "facet_fill", 5, fa)) ||
-        (rc = vbj_cl_launch(ctx, e, k, 3, gf, "facet_fill")))
+    vbj_arg fa[] = {VBJ_ARG(last), VBJ_ARG(cells)};
+    if ((rc = vbj_cl_set_args(ctx, k, "facet_strip", 2, fa)) ||
+        (rc = vbj_cl_launch(ctx, e, k, 1, &pixels, "facet_strip")))
         return rc;
-    if (vbg_check(ctx, clFinish(queue), "facet fill"))
+    if (vbg_check(ctx, clFinish(queue), "facet strip"))
         return VB_EDEVICE;
     out->ms_fill = vbj_now_ms() - t2;
     out->ms_kernel = t2 - t1;
     out->ms_transfer = t1 - t0;
-    *result = e->labels.mem;
+    *result = last;
     return VB_OK;
 }

@@ -56,10 +56,9 @@ enum {
 #define VBJ_JFA_FLOAT 4
 #define VBJ_JFA_BUILDS 6
 enum {
-    VBJ_K_EXPAND = VBJ_JFA_BUILDS * VBJ_KJFA, /* first kernel of facet_jfa.cl */
-    VBJ_K_FSTEP,
+    VBJ_K_FSTEP = VBJ_JFA_BUILDS * VBJ_KJFA, /* first kernel of facet_jfa.cl */
     VBJ_K_MARKREFINE,
-    VBJ_K_FILL,
+    VBJ_K_STRIP,
     VBJ_K_EXACT, /* jfa_exact.cl */
     VBJ_NKERNELS
 };
@@ -130,7 +129,7 @@ int vbj_cl_dense(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, uint32_t f, siz
                  int narrow, const uint32_t *steps, int nsteps, vbj_counts *counts, int *which);
 
 /* OpenCL Facet-JFA (gpu/jfa_facet.c): fills out's counts and times; the
- * filled label grid is *result (e->labels). */
+ * label grid of the last level is *result (one of the engine's buffers). */
 int vbj_cl_facet(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, const vbj_options *opt,
                  vbj_result *out, cl_mem *result);
 

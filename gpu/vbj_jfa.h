@@ -97,7 +97,7 @@ int vbj_seeds_from_world(vb_ctx *ctx, const vbj_grid_fit *fit, const double *x, 
 
 /* What vbj_run returns besides timings and counts. */
 enum {
-    VBJ_WANT_LABELS = 1,  /* full label grid (Facet-JFA: interior pixels filled) */
+    VBJ_WANT_LABELS = 1,  /* full label grid */
     VBJ_WANT_NLABELS = 2, /* per pixel, number of distinct labels among the pixel and
                              its 3^d - 1 neighbours: 1 interior, 2 on a Voronoi facet
                              (a boundary pixel, Definition 6), >= 3 near a Voronoi
@@ -131,9 +131,9 @@ typedef struct vbj_result {
     vbj_counts counts;
     double ms_kernel;    /* device time of the algorithm: seeding, steps, refinement,
                             marking (wall clock between queue drains); excludes uploads,
-                            downloads and, for Facet-JFA, the fill of interior pixels */
+                            downloads and making the full 32-bit label grid */
     double ms_fill;      /* after the algorithm, making the full 32-bit label grid:
-                            Facet-JFA's fill of interior pixels; for dense runs with
+                            Facet-JFA's pass that drops the marks; for dense runs with
                             fewer than 65535 seeds (16-bit labels on the device) the
                             widening; 0 otherwise */
     double ms_gpu;       /* OpenCL backend: sum of the device execution times (profiling
