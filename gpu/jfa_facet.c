@@ -1,7 +1,8 @@
 /* Host side of Facet-JFA on OpenCL (kernels in gpu/facet_jfa.cl): JFA on the
  * coarse grid, then per doubling one step (the children of marked cells
- * inherit their labels) and the marking, over the active list only. List lengths stay on the device (the kernels loop over
- * them), so the host waits once, at the end, not once per level. */
+ * inherit their labels) and the marking, over the active list only. List
+ * lengths stay on the device (the kernels loop over them), so the host waits
+ * once, at the end, not once per level. */
 #include "jfa_internal.h"
 
 static uint32_t log2u(uint32_t v)
