@@ -45,9 +45,12 @@ static inline uint encode(uint x, uint y, uint z, uint lq)
  * the level above: every cell whose parent is marked inherits the parent's
  * label and mark into B; each of the cnt[j] << dim listed cells (the
  * children of the unmarked parents) takes one JFA step with l = 1: the
- * nearest seed among its own and its neighbours' labels before the step
- * (each cell's parent's label), written to B. The two parts write disjoint
- * cells and read only prev, so they share one launch. */
+ * nearest seed among its own and its neighbours' labels before the step,
+ * written to B. Before the step every cell holds its parent's label, so
+ * those 3^d cells offer the labels of the 2^d parents around the cell's
+ * corner (parents p - 1 and p along x for an even x, p and p + 1 for an odd
+ * one; the same set, read 2^d times instead of 3^d). The two parts write
+ * disjoint cells and read only prev, so they share one launch. */
 kernel void facet_step(global const uint *list, global const uint *cnt, uint j,
                        global const uint *prev, global uint *B, global const int *seeds,
                        uint lq, uint lf, uint dim)
@@ -60,22 +63,26 @@ kernel void facet_step(global const uint *list, global const uint *cnt, uint j,
             B[i] = p;
     }
     uint count = cnt[j] << dim;
-    uint q = 1u << lq, f = 1u << lf, stride = dim == 3 ? 4u : 2u;
-    int rz = dim == 3 ? 1 : 0;
+    uint qp = 1u << (lq - 1u), f = 1u << lf, stride = dim == 3 ? 4u : 2u;
+    uint nz = dim == 3 ? 2u : 1u;
     for (uint i = get_global_id(0); i < count; i += get_global_size(0)) {
         uint idx = list[i];
         cell3 c = decode(idx, lq, dim);
         int px = vbj_cell_centre(c.x, f), py = vbj_cell_centre(c.y, f);
         int pz = dim == 3 ? vbj_cell_centre(c.z, f) : 0;
+        /* First parent of the 2^d: p - 1 for an even coordinate (past qp
+         * as unsigned at 0), p for an odd one. */
+        uint x0 = (c.x >> 1) - 1u + (c.x & 1u), y0 = (c.y >> 1) - 1u + (c.y & 1u);
+        uint z0 = dim == 3 ? (c.z >> 1) - 1u + (c.z & 1u) : 0u;
         uint best = VBJ_NONE;
         ulong bd = ULONG_MAX;
-        for (int dz = -rz; dz <= rz; dz++)
-            for (int dy = -1; dy <= 1; dy++)
-                for (int dx = -1; dx <= 1; dx++) {
-                    uint x = c.x + (uint)dx, y = c.y + (uint)dy, z = c.z + (uint)dz;
-                    if (x >= q || y >= q || (dim == 3 && z >= q))
-                        continue; /* outside (past q as unsigned) */
-                    uint v = prev[encode(x >> 1, y >> 1, z >> 1, lq - 1u)] & VBJ_LABEL_MASK;
+        for (uint dz = 0; dz < nz; dz++)
+            for (uint dy = 0; dy < 2; dy++)
+                for (uint dx = 0; dx < 2; dx++) {
+                    uint x = x0 + dx, y = y0 + dy, z = z0 + dz;
+                    if (x >= qp || y >= qp || (dim == 3 && z >= qp))
+                        continue; /* outside */
+                    uint v = prev[encode(x, y, z, lq - 1u)] & VBJ_LABEL_MASK;
                     if (v == (VBJ_NONE & VBJ_LABEL_MASK) || v == best)
                         continue;
                     global const int *s = seeds + (size_t)v * stride;
