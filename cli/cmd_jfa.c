@@ -31,6 +31,9 @@ static void help(FILE *f)
             "  -V, --variant V[,V..]  jfa|jfa+1|jfa+2|1+jfa|facet|facet-full|all (default jfa+1)\n"
             "  -m M                   Facet-JFA start resolution (default: smallest without\n"
             "                         seed collisions)\n"
+            "      --fuse-cells C     Facet-JFA on OpenCL: the coarse JFA and the levels of at\n"
+            "                         most C cells run in one launch (default 4096 in 2D,\n"
+            "                         1024 in 3D; 1: one launch per phase, as the paper)\n"
             "      --device D         auto|gpu|cpu|ref (default auto: GPU, else PoCL, else ref)\n"
             "      --check            compare with the exact diagram (wrong pixels, distance\n"
             "                         errors, boundary pixels)\n"
@@ -194,7 +197,7 @@ static void print_text(FILE *f, const char *device, const vbj_seeds *s, const ch
 
 typedef struct {
     int dim, dim_given, check, json, repeat;
-    uint32_t n, m;
+    uint32_t n, m, fuse_cells;
     size_t k;
     uint64_t rng;
     double margin;
@@ -291,6 +294,12 @@ static int parse_args(vb_ctx *ctx, int argc, char **argv, jfa_args *a, int *exit
                 return 0;
             }
             a->m = (uint32_t)sz;
+        } else if (strcmp(o, "--fuse-cells") == 0) {
+            if (vb_cli_parse_size(argv[++i], &sz) || sz == 0 || sz > UINT32_MAX) {
+                *exit_code = vb_cli_usage_error("jfa", "bad --fuse-cells '%s'", argv[i]);
+                return 0;
+            }
+            a->fuse_cells = (uint32_t)sz;
         } else if (strcmp(o, "--device") == 0)
             a->device = argv[++i];
         else if (strcmp(o, "--repeat") == 0) {
@@ -412,7 +421,7 @@ int vb_cmd_jfa(int argc, char **argv)
     for (int i = 0; !rc && i < a.vl.nv; i++) {
         run_figures *x = &runs[i];
         x->v = a.vl.v[i];
-        vbj_options o = {x->v, a.m, VBJ_WANT_LABELS};
+        vbj_options o = {x->v, a.m, VBJ_WANT_LABELS, a.fuse_cells};
         double sum = 0, mn = 0, gpu = 0;
         /* Timed runs follow an untimed one that allocates the device buffers. */
         if (a.repeat > 1 && !(rc = vbj_run(ctx, e, &s, &o, &x->r)))

@@ -44,6 +44,9 @@ typedef uint64_t vbj_u64;
 #define VBJ_MARK 0x80000000u
 #define VBJ_LABEL_MASK 0x7fffffffu
 #define VBJ_MAX_SEEDS 0x7ffffffeu
+/* Pixels per work-item of the boundary count (gpu/jfa.cl's jfa_boundary), along
+ * the last axis; the host sizes that launch by it. */
+#define VBJ_BND_B 8
 
 /* Fixed-point centre of the cell at coarse position p when a cell spans f
  * fine pixels (f a power of two; f = 1 is the pixel itself). */

@@ -214,7 +214,8 @@ int vbc_gpu_frame(vb_ctx *ctx, vbc_gpu *p, const vbc_grid *g, const float *atoms
         goto done;
     double t1 = now_ms();
     out->ms_upload = t1 - t0;
-    vbj_options jo = {p->variant, 0, VBJ_WANT_DEVICE | ((want & VBC_WANT_LABELS) ? VBJ_WANT_LABELS : 0)};
+    vbj_options jo = {p->variant, 0,
+                      VBJ_WANT_DEVICE | ((want & VBC_WANT_LABELS) ? VBJ_WANT_LABELS : 0), 0};
     if ((rc = vbj_run(ctx, p->jfa, &seeds, &jo, &jr)) != VB_OK)
         goto done;
     cl_mem labels = vbj_engine_labels_device(p->jfa);

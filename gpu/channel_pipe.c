@@ -119,7 +119,7 @@ static int ref_frame(vb_ctx *ctx, vbc_pipe *p, const vbc_grid *g, const float *a
         return rc;
     double t1 = now_ms();
     out->ms_upload = t1 - t0;
-    vbj_options jo = {p->variant, 0, VBJ_WANT_LABELS};
+    vbj_options jo = {p->variant, 0, VBJ_WANT_LABELS, 0};
     if ((rc = vbj_run(ctx, p->ref, &seeds, &jo, &jr)) != VB_OK)
         goto done;
     double t2 = now_ms();

@@ -41,6 +41,22 @@ static inline uint encode(uint x, uint y, uint z, uint lq)
     return x | (y << lq) | (z << (2u * lq));
 }
 
+/* Offers label v (none: the value that means "no seed") to a cell centred
+ * at (px, py, pz) whose nearest so far is (*bd, *best): the nearer seed wins,
+ * ties to the lower index. */
+static inline void offer(global const int *seeds, uint dim, int px, int py, int pz, uint v,
+                         uint none, ulong *bd, uint *best)
+{
+    if (v == none || v == *best)
+        return;
+    global const int *s = seeds + (size_t)v * (dim == 3 ? 4u : 2u);
+    ulong d = vbj_dist2(px, py, pz, s[0], s[1], dim == 3 ? s[2] : 0);
+    if (vbj_better(d, v, *bd, *best)) {
+        *bd = d;
+        *best = v;
+    }
+}
+
 /* Doubling j to level 2^lq (cells of 2^lf pixels), from prev, the labels of
  * the level above: every cell whose parent is marked inherits the parent's
  * label and mark into B; each of the cnt[j] << dim listed cells (the
@@ -51,21 +67,21 @@ static inline uint encode(uint x, uint y, uint z, uint lq)
  * corner (parents p - 1 and p along x for an even x, p and p + 1 for an odd
  * one; the same set, read 2^d times instead of 3^d). The two parts write
  * disjoint cells and read only prev, so they share one launch. */
-kernel void facet_step(global const uint *list, global const uint *cnt, uint j,
+static void step_level(global const uint *list, global const uint *cnt, uint j,
                        global const uint *prev, global uint *B, global const int *seeds,
-                       uint lq, uint lf, uint dim)
+                       uint lq, uint lf, uint dim, uint first, uint stride_items)
 {
     uint cells = 1u << (dim * lq);
-    for (uint i = get_global_id(0); i < cells; i += get_global_size(0)) {
+    for (uint i = first; i < cells; i += stride_items) {
         cell3 c = decode(i, lq, dim);
         uint p = prev[encode(c.x >> 1, c.y >> 1, c.z >> 1, lq - 1u)];
         if (p & VBJ_MARK)
             B[i] = p;
     }
     uint count = cnt[j] << dim;
-    uint qp = 1u << (lq - 1u), f = 1u << lf, stride = dim == 3 ? 4u : 2u;
+    uint qp = 1u << (lq - 1u), f = 1u << lf;
     uint nz = dim == 3 ? 2u : 1u;
-    for (uint i = get_global_id(0); i < count; i += get_global_size(0)) {
+    for (uint i = first; i < count; i += stride_items) {
         uint idx = list[i];
         cell3 c = decode(idx, lq, dim);
         int px = vbj_cell_centre(c.x, f), py = vbj_cell_centre(c.y, f);
@@ -82,18 +98,22 @@ kernel void facet_step(global const uint *list, global const uint *cnt, uint j,
                     uint x = x0 + dx, y = y0 + dy, z = z0 + dz;
                     if (x >= qp || y >= qp || (dim == 3 && z >= qp))
                         continue; /* outside */
-                    uint v = prev[encode(x, y, z, lq - 1u)] & VBJ_LABEL_MASK;
-                    if (v == (VBJ_NONE & VBJ_LABEL_MASK) || v == best)
-                        continue;
-                    global const int *s = seeds + (size_t)v * stride;
-                    ulong d = vbj_dist2(px, py, pz, s[0], s[1], dim == 3 ? s[2] : 0);
-                    if (vbj_better(d, v, bd, best)) {
-                        bd = d;
-                        best = v;
-                    }
+                    offer(seeds, dim, px, py, pz,
+                          prev[encode(x, y, z, lq - 1u)] & VBJ_LABEL_MASK,
+                          VBJ_NONE & VBJ_LABEL_MASK, &bd, &best);
                 }
         B[idx] = best;
     }
+}
+
+/* The work-items of a list kernel share its loops: work-item i of N takes
+ * entries i, i + N, ... (N: the global size, so a fixed launch covers any
+ * list length). */
+kernel void facet_step(global const uint *list, global const uint *cnt, uint j,
+                       global const uint *prev, global uint *B, global const int *seeds,
+                       uint lq, uint lf, uint dim)
+{
+    step_level(list, cnt, j, prev, B, seeds, lq, lf, dim, get_global_id(0), get_global_size(0));
 }
 
 /* For the cnt[j] << shift listed cells (dense: cell i) of level 2^lq, whose
@@ -103,14 +123,15 @@ kernel void facet_step(global const uint *list, global const uint *cnt, uint j,
  * lists the cell itself, so next ends as the boundary pixels. Marking only
  * sets VBJ_MARK, so concurrent readers that compare labels see the same
  * label. */
-kernel void facet_mark_refine(global const uint *list, uint dense, global uint *cnt, uint j,
+static void mark_refine_level(global const uint *list, uint dense, global uint *cnt, uint j,
                               uint shift, uint do_mark, uint do_refine, global uint *B,
-                              global uint *next, uint lq, uint dim)
+                              global uint *next, uint lq, uint dim, uint first,
+                              uint stride_items)
 {
     uint count = cnt[j] << shift;
     uint q = 1u << lq, nc = 1u << dim;
     int rz = dim == 3 ? 1 : 0;
-    for (uint i = get_global_id(0); i < count; i += get_global_size(0)) {
+    for (uint i = first; i < count; i += stride_items) {
         uint idx = dense ? i : list[i];
         cell3 c = decode(idx, lq, dim);
         uint me = B[idx] & VBJ_LABEL_MASK;
@@ -133,6 +154,90 @@ kernel void facet_mark_refine(global const uint *list, uint dense, global uint *
         } else {
             next[atomic_inc(&cnt[j + 1])] = idx;
         }
+    }
+}
+
+kernel void facet_mark_refine(global const uint *list, uint dense, global uint *cnt, uint j,
+                              uint shift, uint do_mark, uint do_refine, global uint *B,
+                              global uint *next, uint lq, uint dim)
+{
+    mark_refine_level(list, dense, cnt, j, shift, do_mark, do_refine, B, next, lq, dim,
+                      get_global_id(0), get_global_size(0));
+}
+
+/* One dense JFA step of length l on the q^d grid of cells of f pixels, src
+ * to dst, exactly as the C reference: each cell takes the nearest seed
+ * (ties to the lower index) among its own and its 3^d - 1 neighbours'
+ * labels. Cells first, first + stride_items, ... */
+static void coarse_step(global const uint *src, global uint *dst, global const int *seeds,
+                        uint q, uint lq, uint f, uint l, uint dim, uint first,
+                        uint stride_items)
+{
+    uint cells = 1u << (dim * lq);
+    int rz = dim == 3 ? 1 : 0;
+    for (uint i = first; i < cells; i += stride_items) {
+        cell3 c = decode(i, lq, dim);
+        int px = vbj_cell_centre(c.x, f), py = vbj_cell_centre(c.y, f);
+        int pz = dim == 3 ? vbj_cell_centre(c.z, f) : 0;
+        uint best = VBJ_NONE;
+        ulong bd = ULONG_MAX;
+        for (int dz = -rz; dz <= rz; dz++)
+            for (int dy = -1; dy <= 1; dy++)
+                for (int dx = -1; dx <= 1; dx++) {
+                    uint x = c.x + (uint)dx * l, y = c.y + (uint)dy * l, z = c.z + (uint)dz * l;
+                    if (x >= q || y >= q || (dim == 3 && z >= q))
+                        continue; /* outside */
+                    offer(seeds, dim, px, py, pz, src[encode(x, y, z, lq)], VBJ_NONE, &bd,
+                          &best);
+                }
+        dst[i] = best;
+    }
+}
+
+/* The start of Facet-JFA in one work-group, for small levels, where a launch
+ * per phase would cost more than the phase: the counters (cnt[0] = m^d, the
+ * rest 0), the seeds placed on the coarse m^d grid (g0), JFA on it (lengths
+ * m/2 .. 1, g0 and g1 in turn), its marking/refinement as level 0 (list0),
+ * then doublings 1 .. jlast exactly as facet_step and facet_mark_refine
+ * (level j's labels in store[j & 1], its list in list[j & 1]), with a
+ * barrier between phases. compact and levels as the host's loop: a doubling
+ * marks when compact or at the last level, and refines but at the last. */
+kernel void facet_small(global const uint *pairs, uint npairs, global uint *g0, global uint *g1,
+                        global const int *seeds, global uint *cnt, uint ncnt,
+                        global uint *store0, global uint *store1, global uint *list0,
+                        global uint *list1, uint lm, uint ln, uint dim, uint compact,
+                        uint jlast)
+{
+    uint me = get_local_id(0), items = get_local_size(0);
+    uint m = 1u << lm, cells = 1u << (dim * lm), levels = ln - lm;
+    for (uint i = me; i < ncnt; i += items)
+        cnt[i] = i == 0 ? cells : 0u;
+    for (uint i = me; i < cells; i += items)
+        g0[i] = VBJ_NONE;
+    barrier(CLK_GLOBAL_MEM_FENCE);
+    for (uint i = me; i < npairs; i += items)
+        g0[pairs[2 * i]] = pairs[2 * i + 1];
+    global uint *src = g0, *dst = g1;
+    for (uint l = m >> 1; l >= 1; l >>= 1) {
+        barrier(CLK_GLOBAL_MEM_FENCE);
+        coarse_step(src, dst, seeds, m, lm, 1u << (ln - lm), l, dim, me, items);
+        global uint *t = src;
+        src = dst;
+        dst = t;
+    }
+    barrier(CLK_GLOBAL_MEM_FENCE);
+    mark_refine_level(list1, 1, cnt, 0, 0, 0, 1, src, list0, lm, dim, me, items);
+    global const uint *prev = src;
+    for (uint j = 1; j <= jlast; j++) {
+        uint lq = lm + j, last = j == levels;
+        global uint *B = j & 1 ? store1 : store0;
+        global uint *from = j & 1 ? list0 : list1, *to = j & 1 ? list1 : list0;
+        barrier(CLK_GLOBAL_MEM_FENCE);
+        step_level(from, cnt, j, prev, B, seeds, lq, ln - lq, dim, me, items);
+        barrier(CLK_GLOBAL_MEM_FENCE);
+        mark_refine_level(from, 0, cnt, j, dim, compact || last, !last, B, to, lq, dim, me,
+                          items);
+        prev = B;
     }
 }
 

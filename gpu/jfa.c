@@ -180,9 +180,10 @@ static int has_nv_options(const vbj_engine *e)
 int vbj_cl_kernel(vb_ctx *ctx, vbj_engine *e, int which, cl_kernel *out)
 {
     static const char *jfa_names[VBJ_KJFA] = {"jfa_place", "jfa_step_2d", "jfa_step_3d",
-                                              "jfa_count_labels", "jfa_widen"};
+                                              "jfa_count_labels", "jfa_widen",
+                                              "jfa_boundary"};
     static const char *names[] = {"facet_step", "facet_mark_refine", "facet_strip",
-                                  "jfa_exact"};
+                                  "facet_small", "jfa_exact"};
     if (!e->kernels[which]) {
         const char *name;
         cl_program p;
@@ -412,10 +413,45 @@ static int check_options(vb_ctx *ctx, const vbj_seeds *s, const vbj_options *o)
     return VB_OK;
 }
 
-/* Dense variants on OpenCL: prepare (untimed), run (timed), widen 16-bit
- * labels to the 32-bit grid (timed apart, as ms_fill). */
-static int cl_dense_run(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, const vbj_options *o,
-                        vbj_result *out, cl_mem *result)
+/* Counts the boundary pixels of label grid `lab` (16-bit when narrow) into
+ * counts->boundary; the read of the count waits for the queue. */
+static int count_boundary(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, int narrow, cl_mem lab,
+                          vbj_counts *counts)
+{
+    cl_command_queue queue = vbg_runtime_queue(e->rt);
+    cl_uint zero = 0, nn = s->n, dd = (cl_uint)s->dim, total = 0;
+    size_t blocks = (s->n + VBJ_BND_B - 1) / VBJ_BND_B;
+    size_t g[3] = {s->n, s->dim == 3 ? s->n : blocks, s->dim == 3 ? blocks : 1};
+    cl_kernel k;
+    int rc;
+    if ((rc = vbj_clbuf_reserve(ctx, e, &e->counter, 4)) ||
+        (rc = vbj_cl_kernel(ctx, e,
+                            ((narrow ? VBJ_JFA_LABEL16 : 0) | vbj_dist_build(s->dim, s->n)) *
+                                    VBJ_KJFA +
+                                VBJ_K_BOUNDARY,
+                            &k)))
+        return rc;
+    if (vbg_check(ctx,
+                  clEnqueueFillBuffer(queue, e->counter.mem, &zero, sizeof zero, 0, 4, 0, NULL,
+                                      vbj_cl_event(e)),
+                  "boundary counter"))
+        return VB_EDEVICE;
+    vbj_arg a[] = {VBJ_ARG(lab), VBJ_ARG(e->counter.mem), VBJ_ARG(nn), VBJ_ARG(dd)};
+    if ((rc = vbj_cl_set_args(ctx, k, "jfa_boundary", 4, a)) ||
+        (rc = vbj_cl_launch(ctx, e, k, 3, g, "jfa_boundary")))
+        return rc;
+    if (vbg_check(ctx,
+                  clEnqueueReadBuffer(queue, e->counter.mem, CL_TRUE, 0, 4, &total, 0, NULL,
+                                      NULL),
+                  "boundary counter read"))
+        return VB_EDEVICE;
+    counts->boundary = total;
+    counts->threads += g[0] * g[1] * g[2];
+    return VB_OK;
+}
+
+int vbj_cl_dense_run(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, vbj_variant v, int boundary,
+                     vbj_result *out, cl_mem *result)
 {
     cl_command_queue queue = vbg_runtime_queue(e->rt);
     double t0 = vbj_now_ms();
@@ -426,9 +462,11 @@ static int cl_dense_run(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, const vb
         return rc;
     double t1 = vbj_now_ms();
     uint32_t steps[40];
-    int ns = vbj_schedule(o->variant, s->n, steps), which = 0;
+    int ns = vbj_schedule(v, s->n, steps), which = 0;
     vbj_cl_record(e);
     rc = vbj_cl_dense(ctx, e, s, 1, npairs, narrow, steps, ns, &out->counts, &which);
+    if (!rc && boundary)
+        rc = count_boundary(ctx, e, s, narrow, e->grid[which].mem, &out->counts);
     if (!rc && vbg_check(ctx, clFinish(queue), "jfa"))
         rc = VB_EDEVICE;
     double t2 = vbj_now_ms();
@@ -463,7 +501,7 @@ static int cl_dense_run(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, const vb
 int vbj_run(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, const vbj_options *opt,
             vbj_result *out)
 {
-    vbj_options def = {VBJ_JFA1, 0, 0};
+    vbj_options def = {VBJ_JFA1, 0, 0, 0};
     const vbj_options *o = opt ? opt : &def;
     memset(out, 0, sizeof *out);
     out->dim = s->dim;
@@ -481,7 +519,7 @@ int vbj_run(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, const vbj_options *o
         cl_mem result = NULL;
         e->device_labels = NULL;
         rc = facet ? vbj_cl_facet(ctx, e, s, o, out, &result)
-                   : cl_dense_run(ctx, e, s, o, out, &result);
+                   : vbj_cl_dense_run(ctx, e, s, o->variant, 0, out, &result);
         if (rc)
             goto fail;
         if (want & VBJ_WANT_DEVICE)

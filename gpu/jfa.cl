@@ -2,13 +2,14 @@
  * length l every pixel reads the labels of its 3^d - 1 neighbours at distance
  * l and keeps the seed nearest to its centre (ties to the lower index).
  *
- * On an H100, 256^3 with 13,573 seeds, JFA+1 takes 3.23 ms, 0.43 ms for each
- * step with l <= 8 (27 candidates per pixel: a label read, a seed gather, a
- * squared distance, a compare with the tie rule; the float build capped at
- * 48 registers on NVIDIA, see gpu/jfa.c). Moving the arithmetic from
- * doubles to floats gained about 10 % only, and code size counts: with the
- * exact fallback inlined at each of the unrolled offers the kernel was 1.4x
- * slower (papers/facet-jfa-and-channels/results/jfa/README.md). So:
+ * On an H100, 256^3 with 13,573 seeds, JFA+1 takes 3.23 ms (an H200: 3.22
+ * ms), 0.43 ms for each step with l <= 8 (27 candidates per pixel: a label
+ * read, a seed gather, a squared distance, a compare with the tie rule; the
+ * float build capped at 48 registers on NVIDIA, see gpu/jfa.c). Moving the
+ * arithmetic from doubles to floats gained about 10 % only, and code size
+ * counts: with the exact fallback inlined at each of the unrolled offers the
+ * kernel was 1.4x slower
+ * (papers/facet-jfa-and-channels/results/jfa/README.md). So:
  *
  * - A work-item owns a block of pixels spaced l apart: VBJ_BX x VBJ_BY2 in
  *   2D, VBJ_BX x VBJ_BY x VBJ_BZ in 3D (build options: the host passes the
@@ -396,6 +397,67 @@ kernel void jfa_step_3d(global const vbj_label *src, global vbj_label *dst,
                                         ? vbj_exact_step3(src, iseeds, q, f, l, x, y, z)
                                         : lab[a][b][c]);
             }
+}
+
+/* "No such line" in jfa_boundary (past the grid), unlike VBJ_NONE ("not one
+ * label"). */
+#define VBJ_BND_ABSENT 0xfffffffeu
+
+/* The label shared by the cross-section of a pixel's neighbourhood at
+ * position w of the last axis (3D: x +- 1, y +- 1 at z = w; 2D: x +- 1 at
+ * y = w; inside the grid), or VBJ_NONE when they differ. */
+static uint vbj_section_label(global const vbj_label *lab, uint n, uint dim, uint x, uint y,
+                              uint w)
+{
+    uint first = VBJ_NONE;
+    int same = 1, ry = dim == 3 ? 1 : 0;
+    for (int dy = -ry; dy <= ry; dy++)
+        for (int dx = -1; dx <= 1; dx++) {
+            uint xx = x + (uint)dx, yy = y + (uint)dy;
+            if (xx >= n || yy >= n)
+                continue;
+            uint v = lab[(dim == 3 ? (w * n + yy) * n : w * n) + xx];
+            same &= first == VBJ_NONE || v == first;
+            first = v;
+        }
+    return same ? first : VBJ_NONE;
+}
+
+/* Adds to *count the pixels of the n^d label grid (dim 2 or 3) with a
+ * neighbour (3^d - 1, l = 1) of another label: the boundary pixels, which
+ * Facet-JFA leaves unmarked. A work-item takes VBJ_BND_B pixels along the
+ * last axis: a pixel is interior when the cross-sections before, at and
+ * after it each share one label, the same (or lie past the grid), so a
+ * cross-section is read once for up to three pixels. Global size n x n x
+ * ceil(n / VBJ_BND_B) (3D), n x ceil(n / VBJ_BND_B) (2D); one atomic per
+ * work-group. */
+kernel void jfa_boundary(global const vbj_label *lab, global uint *count, uint n, uint dim)
+{
+    local uint group_count;
+    uint x = get_global_id(0), y = dim == 3 ? get_global_id(1) : 0;
+    uint w0 = (dim == 3 ? get_global_id(2) : get_global_id(1)) * VBJ_BND_B;
+    int first = get_local_id(0) == 0 && get_local_id(1) == 0 && get_local_id(2) == 0;
+    if (first)
+        group_count = 0;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    if (x < n && y < n && w0 < n) {
+        uint u[VBJ_BND_B + 2], edge = 0;
+#pragma unroll
+        for (int t = 0; t < VBJ_BND_B + 2; t++) {
+            uint w = w0 + (uint)t - 1u;
+            u[t] = w < n ? vbj_section_label(lab, n, dim, x, y, w) : VBJ_BND_ABSENT;
+        }
+#pragma unroll
+        for (int i = 1; i <= VBJ_BND_B; i++)
+            if (u[i] != VBJ_BND_ABSENT)
+                edge += u[i] == VBJ_NONE || (u[i - 1] != u[i] && u[i - 1] != VBJ_BND_ABSENT) ||
+                        (u[i + 1] != u[i] && u[i + 1] != VBJ_BND_ABSENT);
+        if (edge)
+            atomic_add(&group_count, edge);
+    }
+    barrier(CLK_LOCAL_MEM_FENCE);
+    if (first && group_count)
+        atomic_add(count, group_count);
 }
 
 /* Number of distinct labels among each pixel and its 3^d - 1 neighbours

@@ -2,7 +2,10 @@
  * coarse grid, then per doubling one step (the children of marked cells
  * inherit their labels) and the marking, over the active list only. List
  * lengths stay on the device (the kernels loop over them), so the host waits
- * once, at the end, not once per level. */
+ * once, at the end, not once per level. The coarse JFA and the small levels
+ * run in one launch (facet_small), where a launch per phase costs more than
+ * the phase; starting at m = n, the run is JFA on the grid and a count of its
+ * boundary pixels. */
 #include "jfa_internal.h"
 
 static uint32_t log2u(uint32_t v)
@@ -35,55 +38,115 @@ static int launch_list(vb_ctx *ctx, vbj_engine *e, int which, const char *name, 
     return vbj_cl_launch(ctx, e, k, 1, &g, name);
 }
 
-/* Steps 2-9 of Algorithm 1 on the device, then the counts. The labels of
- * the last level end in *out_mem (with marks). */
-static int timed(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, int compact, uint32_t m,
-                 size_t npairs, vbj_result *out, cl_mem *out_mem)
+/* Most work-items of the one work-group of facet_small. */
+#define VBJ_FUSE_ITEMS ((size_t)1024)
+
+/* The start of the run in one launch (facet_small): the coarse JFA, its
+ * marking and doublings 1 .. jlast. Its coarse steps count as the C
+ * reference counts them. */
+static int launch_small(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, int compact, cl_uint lm,
+                        size_t npairs, cl_uint jlast, vbj_counts *counts)
+{
+    cl_uint np = (cl_uint)npairs, ln = log2u(s->n), dim = (cl_uint)s->dim;
+    cl_uint ncnt = ln - lm + 2, cp = (cl_uint)compact;
+    size_t cells = (size_t)1 << (dim * lm), wg = 0;
+    cl_kernel k;
+    int rc;
+    if ((rc = vbj_clbuf_reserve(ctx, e, &e->grid[0], cells * 4)) ||
+        (rc = vbj_clbuf_reserve(ctx, e, &e->grid[1], cells * 4)) ||
+        (rc = vbj_cl_kernel(ctx, e, VBJ_K_FSMALL, &k)))
+        return rc;
+    vbj_arg a[] = {VBJ_ARG(e->pairs.mem),    VBJ_ARG(np),            VBJ_ARG(e->grid[0].mem),
+                   VBJ_ARG(e->grid[1].mem),  VBJ_ARG(e->seeds.mem),  VBJ_ARG(e->counter.mem),
+                   VBJ_ARG(ncnt),            VBJ_ARG(e->store[0].mem), VBJ_ARG(e->store[1].mem),
+                   VBJ_ARG(e->list[0].mem),  VBJ_ARG(e->list[1].mem), VBJ_ARG(lm),
+                   VBJ_ARG(ln),              VBJ_ARG(dim),           VBJ_ARG(cp),
+                   VBJ_ARG(jlast)};
+    if ((rc = vbj_cl_set_args(ctx, k, "facet_small", 16, a)))
+        return rc;
+    if (vbg_check(ctx,
+                  clGetKernelWorkGroupInfo(k, vbg_runtime_device(e->rt), CL_KERNEL_WORK_GROUP_SIZE,
+                                           sizeof wg, &wg, NULL),
+                  "facet_small work-group size"))
+        return VB_EDEVICE;
+    if (wg > VBJ_FUSE_ITEMS)
+        wg = VBJ_FUSE_ITEMS;
+    if (vbg_check(ctx,
+                  clEnqueueNDRangeKernel(vbg_runtime_queue(e->rt), k, 1, NULL, &wg, &wg, 0, NULL,
+                                         vbj_cl_event(e)),
+                  "facet_small"))
+        return VB_EDEVICE;
+    counts->threads += npairs;
+    for (cl_uint l = (1u << lm) / 2; l >= 1; l /= 2) {
+        counts->steps++;
+        counts->step_pixels += cells;
+        counts->threads += cells;
+    }
+    return VB_OK;
+}
+
+/* The start of the run a launch per phase: JFA on the coarse m^d grid
+ * (steps 2-4 of Algorithm 1; level 0's dense array, *prev), the counters,
+ * and step 7 for the coarse grid: nothing is marked before the first
+ * doubling, so every coarse cell is refined (children into list 0). */
+static int start(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, uint32_t m, cl_uint levels,
+                 size_t npairs, vbj_counts *counts, cl_mem *prev)
 {
     cl_command_queue queue = vbg_runtime_queue(e->rt);
-    cl_uint n = s->n, dim = (cl_uint)s->dim, ln = log2u(n), lm = log2u(m);
-    cl_uint levels = ln - lm;
+    cl_uint dim = (cl_uint)s->dim, lm = log2u(m);
     uint64_t cells_m = (uint64_t)1 << (dim * lm);
-    int rc;
-    /* Steps 2-4: JFA on the coarse m^d grid: level 0's dense array. */
     uint32_t steps[40];
-    int which = 0;
-    if ((rc = vbj_cl_dense(ctx, e, s, n / m, npairs, 0, steps, vbj_schedule(VBJ_JFA, m, steps),
-                           &out->counts, &which)))
+    int which = 0, rc;
+    if ((rc = vbj_cl_dense(ctx, e, s, s->n / m, npairs, 0, steps,
+                           vbj_schedule(VBJ_JFA, m, steps), counts, &which)))
         return rc;
-    cl_uint zero = 0, first = (cl_uint)cells_m;
+    cl_uint zero = 0, first = (cl_uint)cells_m; /* fills copy their pattern at once */
     if (vbg_check(ctx,
                   clEnqueueFillBuffer(queue, e->counter.mem, &zero, sizeof zero, 0,
                                       (levels + 2) * 4, 0, NULL, NULL),
                   "facet counters") ||
         vbg_check(ctx,
-                  clEnqueueWriteBuffer(queue, e->counter.mem, CL_FALSE, 0, 4, &first, 0, NULL,
-                                       NULL),
+                  clEnqueueFillBuffer(queue, e->counter.mem, &first, sizeof first, 0, 4, 0, NULL,
+                                      NULL),
                   "facet counters"))
         return VB_EDEVICE;
-    cl_mem prev = e->grid[which].mem;
+    *prev = e->grid[which].mem;
+    cl_uint dense = 1, j = 0, sh = 0, mk = 0, rf = 1;
+    vbj_arg a[] = {VBJ_ARG(e->list[1].mem), VBJ_ARG(dense), VBJ_ARG(e->counter.mem),
+                   VBJ_ARG(j),              VBJ_ARG(sh),    VBJ_ARG(mk),
+                   VBJ_ARG(rf),             VBJ_ARG(*prev), VBJ_ARG(e->list[0].mem),
+                   VBJ_ARG(lm),             VBJ_ARG(dim)};
+    return launch_list(ctx, e, VBJ_K_MARKREFINE, "facet_mark_refine", 11, a, cells_m);
+}
 
-    /* Step 7 for the coarse grid: nothing is marked before the first
-     * doubling, so every coarse cell is refined (children into list 0). */
-    int L = 0; /* list of the current cells */
-    {
-        cl_uint dense = 1, j = 0, sh = 0, mk = 0, rf = levels > 0;
-        if (!rf)
-            mk = 1; /* m = n: only the marking, for the boundary */
-        vbj_arg a[] = {VBJ_ARG(e->list[1].mem), VBJ_ARG(dense), VBJ_ARG(e->counter.mem),
-                       VBJ_ARG(j),              VBJ_ARG(sh),    VBJ_ARG(mk),
-                       VBJ_ARG(rf),             VBJ_ARG(prev),  VBJ_ARG(e->list[0].mem),
-                       VBJ_ARG(lm),             VBJ_ARG(dim)};
-        if ((rc = launch_list(ctx, e, VBJ_K_MARKREFINE, "facet_mark_refine", 11, a, cells_m)))
+/* Steps 2-9 of Algorithm 1 on the device, then the counts. The labels of
+ * the last level end in *out_mem (with marks). Levels of at most `fuse`
+ * cells, with everything before them, run in one launch (launch_small). */
+static int timed(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, int compact, uint32_t m,
+                 uint32_t fuse, size_t npairs, vbj_result *out, cl_mem *out_mem)
+{
+    cl_command_queue queue = vbg_runtime_queue(e->rt);
+    cl_uint n = s->n, dim = (cl_uint)s->dim, ln = log2u(n), lm = log2u(m);
+    cl_uint levels = ln - lm, j0 = 0;
+    uint64_t cells_m = (uint64_t)1 << (dim * lm);
+    int rc, L = 0; /* L: list of the current cells */
+    vbj_clbuf *bufs[2] = {&e->store[0], &e->store[1]};
+    cl_mem prev;
+    if (fuse != VBJ_FUSE_NONE && cells_m <= fuse) {
+        while (j0 < levels && (uint64_t)1 << (dim * (lm + j0 + 1)) <= fuse)
+            j0++;
+        if ((rc = launch_small(ctx, e, s, compact, lm, npairs, j0, &out->counts)))
             return rc;
-    }
+        L = (int)(j0 & 1);
+        prev = j0 ? bufs[j0 & 1]->mem : e->grid[(lm & 1)].mem; /* lm coarse steps */
+    } else if ((rc = start(ctx, e, s, m, levels, npairs, &out->counts, &prev)))
+        return rc;
 
     /* Steps 8-9 per doubling: the children of marked cells inherit, one
      * l = 1 step on the children of the refined cells, then marking and (but
      * at the last level) refinement. The level's labels (B) alternate
      * between two buffers: the step reads the level above. */
-    vbj_clbuf *bufs[2] = {&e->store[0], &e->store[1]};
-    for (cl_uint j = 1; j <= levels; j++) {
+    for (cl_uint j = j0 + 1; j <= levels; j++) {
         cl_uint lq = lm + j, lf = ln - lq, last = j == levels;
         cl_uint mk = compact || last, rf = !last, sh = dim, nd = 0;
         uint64_t cells_max = (uint64_t)1 << (dim * lq);
@@ -118,8 +181,6 @@ static int timed(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, int compact, ui
         out->counts.step_pixels += children;
         out->counts.steps++;
     }
-    if (levels == 0)
-        out->counts.threads += cells_m;
     out->counts.boundary = cnt[levels + 1];
 
     *out_mem = prev;
@@ -137,6 +198,8 @@ int vbj_cl_facet(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, const vbj_optio
     int compact = opt->variant == VBJ_FACET;
     int rc;
     out->counts.m = m;
+    if (levels == 0) /* m = n: JFA on the grid itself, then its boundary */
+        return vbj_cl_dense_run(ctx, e, s, VBJ_JFA, 1, out, result);
     if ((rc = vbj_cl_upload_seeds(ctx, e, s)) ||
         (rc = vbj_cl_upload_pairs(ctx, e, s, n / m, &npairs, &out->counts.collisions)) ||
         (rc = vbj_clbuf_reserve(ctx, e, &e->store[0], pixels * 4)) ||
@@ -148,7 +211,10 @@ int vbj_cl_facet(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, const vbj_optio
     double t1 = vbj_now_ms();
     vbj_cl_record(e);
     cl_mem last = NULL;
-    rc = timed(ctx, e, s, compact, m, npairs, out, &last);
+    uint32_t fuse = opt->fuse_cells      ? opt->fuse_cells
+                    : s->dim == 3 ? VBJ_FUSE_CELLS_3D
+                                  : VBJ_FUSE_CELLS_2D;
+    rc = timed(ctx, e, s, compact, m, fuse, npairs, out, &last);
     if (!rc && vbg_check(ctx, clFinish(queue), "facet-jfa"))
         rc = VB_EDEVICE;
     double t2 = vbj_now_ms();

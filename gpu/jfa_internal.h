@@ -49,6 +49,7 @@ enum {
     VBJ_K_STEP3,
     VBJ_K_COUNT,
     VBJ_K_WIDEN,
+    VBJ_K_BOUNDARY,
     VBJ_KJFA /* kernels per jfa.cl build */
 };
 #define VBJ_JFA_LABEL16 1
@@ -59,6 +60,7 @@ enum {
     VBJ_K_FSTEP = VBJ_JFA_BUILDS * VBJ_KJFA, /* first kernel of facet_jfa.cl */
     VBJ_K_MARKREFINE,
     VBJ_K_STRIP,
+    VBJ_K_FSMALL,
     VBJ_K_EXACT, /* jfa_exact.cl */
     VBJ_NKERNELS
 };
@@ -127,6 +129,14 @@ int vbj_cl_upload_pairs(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, uint32_t
  * than 65535 seeds), else 32-bit. Adds to counts. Asynchronous. */
 int vbj_cl_dense(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, uint32_t f, size_t npairs,
                  int narrow, const uint32_t *steps, int nsteps, vbj_counts *counts, int *which);
+
+/* A dense run on OpenCL: JFA with the step lengths of variant v on the n^d
+ * grid (prepared untimed, run timed; 16-bit labels below 65535 seeds, widened
+ * to the 32-bit grid *result afterwards as ms_fill). With boundary, the run
+ * also counts the boundary pixels (jfa_boundary) into out->counts.boundary:
+ * Facet-JFA when it starts at m = n. */
+int vbj_cl_dense_run(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, vbj_variant v, int boundary,
+                     vbj_result *out, cl_mem *result);
 
 /* OpenCL Facet-JFA (gpu/jfa_facet.c): fills out's counts and times; the
  * label grid of the last level is *result (one of the engine's buffers). */

@@ -109,14 +109,23 @@ typedef struct vbj_options {
     vbj_variant variant;
     uint32_t m;    /* Facet-JFA start resolution; 0 = smallest without seed collisions */
     unsigned want; /* VBJ_WANT_* bits; 0 = labels only */
+    uint32_t fuse_cells; /* Facet-JFA on OpenCL: the coarse JFA and the levels of at most
+                            this many cells run in one launch (one work-group); 0 = the
+                            default (VBJ_FUSE_CELLS_2D or _3D), VBJ_FUSE_NONE = a launch per
+                            phase (as the paper). Labels and counts do not depend on it. */
 } vbj_options;
+/* Defaults of fuse_cells, the fastest on an H200 (papers/facet-jfa-and-channels/results/jfa/
+ * kernels/h200_fuse/sweep.md). */
+#define VBJ_FUSE_CELLS_2D 4096u
+#define VBJ_FUSE_CELLS_3D 1024u
+#define VBJ_FUSE_NONE 1u
 
 /* Work done, as in the paper's supplement: a "pixel processed" is one
  * work-item running a JFA step on one pixel or cell. */
 typedef struct vbj_counts {
     uint64_t step_pixels;    /* work-items of JFA steps (dense and l = 1 refinement steps) */
     uint64_t threads;        /* all work-items launched (steps, refine, mark, seeding) */
-    uint32_t steps;          /* number of JFA step launches */
+    uint32_t steps;          /* number of JFA steps (dense, and Facet-JFA's per doubling) */
     uint32_t m;              /* Facet-JFA: start resolution used (0 otherwise) */
     uint64_t boundary;       /* Facet-JFA: unmarked pixels at the end (= boundary pixels) */
     uint32_t collisions;     /* seeds that shared their start pixel with a nearer seed */

@@ -36,7 +36,7 @@ static void brute(const vbj_seeds *s, uint32_t *out)
 
 static int run(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, vbj_variant v, vbj_result *r)
 {
-    vbj_options o = {v, 0, VBJ_WANT_LABELS};
+    vbj_options o = {v, 0, VBJ_WANT_LABELS, 0};
     int rc = vbj_run(ctx, e, s, &o, r);
     if (rc)
         fprintf(stderr, "vbj_run %s on %s: %s\n", vbj_variant_name(v),
@@ -102,7 +102,7 @@ static void random_seeds(vb_ctx *ctx, vbj_engine *e, int dim, uint32_t n, size_t
         vbj_result_free(&r);
     }
     vbj_result f, full;
-    vbj_options o = {VBJ_FACET, n / 8, VBJ_WANT_LABELS};
+    vbj_options o = {VBJ_FACET, n / 8, VBJ_WANT_LABELS, 0};
     CHECK_INT(vbj_run(ctx, e, &s, &o, &f), VB_OK);
     o.variant = VBJ_FACET_FULL;
     CHECK_INT(vbj_run(ctx, e, &s, &o, &full), VB_OK);
@@ -138,7 +138,7 @@ static void backends_agree(vb_ctx *ctx, vbj_engine *ref, vbj_engine *cl, int dim
     CHECK(memcmp(a, b, P * 4) == 0);
     for (int i = 0; i < NVAR; i++) {
         vbj_result x, y;
-        vbj_options o = {all_variants[i], 0, VBJ_WANT_LABELS | VBJ_WANT_NLABELS};
+        vbj_options o = {all_variants[i], 0, VBJ_WANT_LABELS | VBJ_WANT_NLABELS, 0};
         int rx = vbj_run(ctx, ref, &s, &o, &x), ry = vbj_run(ctx, cl, &s, &o, &y);
         CHECK_INT(rx, VB_OK);
         CHECK_INT(ry, VB_OK);
@@ -195,7 +195,7 @@ static void ties(vb_ctx *ctx, vbj_engine *ref, vbj_engine *cl, int dim, uint32_t
     }
     for (int i = 0; i < (all ? NVAR : 2); i++) {
         vbj_result x, y;
-        vbj_options o = {all ? all_variants[i] : some[i], 0, VBJ_WANT_LABELS};
+        vbj_options o = {all ? all_variants[i] : some[i], 0, VBJ_WANT_LABELS, 0};
         CHECK_INT(vbj_run(ctx, ref, &s, &o, &x), VB_OK);
         CHECK_INT(vbj_run(ctx, cl, &s, &o, &y), VB_OK);
         if (x.labels && y.labels)
@@ -212,7 +212,7 @@ static void wide_labels(vb_ctx *ctx, vbj_engine *ref, vbj_engine *cl)
     vbj_seeds s;
     CHECK_INT(vbj_seeds_generate(ctx, 2, 512, 70000, VBJ_DIST_UNIFORM, 5, &s), VB_OK);
     vbj_result x, y;
-    vbj_options o = {VBJ_JFA1, 0, VBJ_WANT_LABELS};
+    vbj_options o = {VBJ_JFA1, 0, VBJ_WANT_LABELS, 0};
     CHECK_INT(vbj_run(ctx, ref, &s, &o, &x), VB_OK);
     CHECK_INT(vbj_run(ctx, cl, &s, &o, &y), VB_OK);
     if (x.labels && y.labels)
@@ -232,13 +232,51 @@ static void integer_distances(vb_ctx *ctx, vbj_engine *ref, vbj_engine *cl)
     static const vbj_variant vs[] = {VBJ_JFA1, VBJ_FACET};
     for (int i = 0; i < 2; i++) {
         vbj_result x, y;
-        vbj_options o = {vs[i], 0, VBJ_WANT_LABELS};
+        vbj_options o = {vs[i], 0, VBJ_WANT_LABELS, 0};
         CHECK_INT(vbj_run(ctx, ref, &s, &o, &x), VB_OK);
         CHECK_INT(vbj_run(ctx, cl, &s, &o, &y), VB_OK);
         if (x.labels && y.labels)
             CHECK(memcmp(x.labels, y.labels, npix(&s) * 4) == 0);
         vbj_result_free(&x);
         vbj_result_free(&y);
+    }
+    vbj_seeds_free(&s);
+}
+
+/* Facet-JFA on OpenCL runs its small levels in one launch (fuse_cells):
+ * with none, some (the rest a launch per phase) or all of the levels there,
+ * labels and counts equal the reference's. k seeds, few enough that the
+ * run starts coarse and doubles several times (the thresholds give the
+ * test cases none, the coarse JFA only, or the first one or two doublings
+ * too in one launch). */
+static void fused_levels(vb_ctx *ctx, vbj_engine *ref, vbj_engine *cl, int dim, uint32_t n,
+                         size_t k, vbj_distribution dist)
+{
+    static const uint32_t fuse[] = {VBJ_FUSE_NONE, 64, 512, 0, UINT32_MAX};
+    static const vbj_variant vs[] = {VBJ_FACET, VBJ_FACET_FULL};
+    vbj_seeds s;
+    CHECK_INT(vbj_seeds_generate(ctx, dim, n, k, dist, 31u, &s), VB_OK);
+    for (int v = 0; v < 2; v++) {
+        vbj_result x;
+        vbj_options o = {vs[v], 0, VBJ_WANT_LABELS, 0};
+        if (vbj_run(ctx, ref, &s, &o, &x)) {
+            CHECK(0);
+            continue;
+        }
+        CHECK(x.counts.m <= n / 4); /* two doublings at least */
+        for (int f = 0; f < 5; f++) {
+            vbj_result y;
+            o.fuse_cells = fuse[f];
+            CHECK_INT(vbj_run(ctx, cl, &s, &o, &y), VB_OK);
+            if (!y.labels)
+                continue;
+            CHECK(memcmp(x.labels, y.labels, npix(&s) * 4) == 0);
+            CHECK_INT(x.counts.step_pixels, y.counts.step_pixels);
+            CHECK_INT(x.counts.boundary, y.counts.boundary);
+            CHECK_INT(x.counts.steps, y.counts.steps);
+            vbj_result_free(&y);
+        }
+        vbj_result_free(&x);
     }
     vbj_seeds_free(&s);
 }
@@ -297,6 +335,9 @@ int main(void)
         ties(ctx, ref, cl, 2, 2048, 0, 0);
         ties(ctx, ref, cl, 2, 64, 0, 1);
         ties(ctx, ref, cl, 3, 32, 0, 1);
+        fused_levels(ctx, ref, cl, 2, 256, 12, VBJ_DIST_UNIFORM);
+        fused_levels(ctx, ref, cl, 2, 512, 30, VBJ_DIST_UNIFORM);
+        fused_levels(ctx, ref, cl, 3, 64, 10, VBJ_DIST_UNIFORM);
         vbj_engine_close(cl);
     } else {
         printf("no OpenCL device: %s (reference backend only)\n", vb_errmsg(ctx));
