@@ -295,6 +295,13 @@ int vbj_cl_upload_seeds(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s)
     return rc;
 }
 
+/* Index of kernel `kernel` (VBJ_K_PLACE ..) in the build of jfa.cl for s's
+ * grid, with 16-bit labels when narrow. */
+static int jfa_kernel_index(const vbj_seeds *s, int narrow, int kernel)
+{
+    return ((narrow ? VBJ_JFA_LABEL16 : 0) | vbj_dist_build(s->dim, s->n)) * VBJ_KJFA + kernel;
+}
+
 int vbj_cl_upload_pairs(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, uint32_t f,
                         size_t *count, uint32_t *collisions)
 {
@@ -332,8 +339,7 @@ int vbj_cl_dense(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, uint32_t f, siz
     cl_kernel k;
     cl_uint np = (cl_uint)npairs;
     int dist = vbj_dist_build(s->dim, s->n);
-    int build = (narrow ? VBJ_JFA_LABEL16 : 0) | dist;
-    if ((rc = vbj_cl_kernel(ctx, e, build * VBJ_KJFA + VBJ_K_PLACE, &k)))
+    if ((rc = vbj_cl_kernel(ctx, e, jfa_kernel_index(s, narrow, VBJ_K_PLACE), &k)))
         return rc;
     vbj_arg pa[] = {VBJ_ARG(e->grid[0].mem), VBJ_ARG(e->pairs.mem), VBJ_ARG(np)};
     size_t gp = npairs;
@@ -341,8 +347,8 @@ int vbj_cl_dense(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, uint32_t f, siz
         (rc = vbj_cl_launch(ctx, e, k, 1, &gp, "jfa_place")))
         return rc;
     counts->threads += npairs;
-    if ((rc = vbj_cl_kernel(ctx, e, build * VBJ_KJFA + (d == 3 ? VBJ_K_STEP3 : VBJ_K_STEP2),
-                            &k)))
+    if ((rc = vbj_cl_kernel(ctx, e,
+                            jfa_kernel_index(s, narrow, d == 3 ? VBJ_K_STEP3 : VBJ_K_STEP2), &k)))
         return rc;
     cl_mem seeds = dist == VBJ_JFA_DIST64 ? e->seeds.mem : e->seeds_fp.mem;
     int cur = 0;
@@ -425,11 +431,7 @@ static int count_boundary(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, int na
     cl_kernel k;
     int rc;
     if ((rc = vbj_clbuf_reserve(ctx, e, &e->counter, 4)) ||
-        (rc = vbj_cl_kernel(ctx, e,
-                            ((narrow ? VBJ_JFA_LABEL16 : 0) | vbj_dist_build(s->dim, s->n)) *
-                                    VBJ_KJFA +
-                                VBJ_K_BOUNDARY,
-                            &k)))
+        (rc = vbj_cl_kernel(ctx, e, jfa_kernel_index(s, narrow, VBJ_K_BOUNDARY), &k)))
         return rc;
     if (vbg_check(ctx,
                   clEnqueueFillBuffer(queue, e->counter.mem, &zero, sizeof zero, 0, 4, 0, NULL,
@@ -481,10 +483,7 @@ int vbj_cl_dense_run(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, vbj_variant
     cl_kernel k;
     cl_uint count = (cl_uint)out->pixels;
     if ((rc = vbj_clbuf_reserve(ctx, e, &e->labels, out->pixels * 4)) ||
-        (rc = vbj_cl_kernel(ctx, e,
-                            (VBJ_JFA_LABEL16 | vbj_dist_build(s->dim, s->n)) * VBJ_KJFA +
-                                VBJ_K_WIDEN,
-                            &k)))
+        (rc = vbj_cl_kernel(ctx, e, jfa_kernel_index(s, 1, VBJ_K_WIDEN), &k)))
         return rc;
     vbj_arg a[] = {VBJ_ARG(e->grid[which].mem), VBJ_ARG(e->labels.mem), VBJ_ARG(count)};
     size_t g = out->pixels;

@@ -76,12 +76,9 @@ static int launch_small(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, int comp
                                          vbj_cl_event(e)),
                   "facet_small"))
         return VB_EDEVICE;
-    counts->threads += npairs;
-    for (cl_uint l = (1u << lm) / 2; l >= 1; l /= 2) {
-        counts->steps++;
-        counts->step_pixels += cells;
-        counts->threads += cells;
-    }
+    counts->threads += npairs + (uint64_t)lm * cells; /* lm coarse steps: m/2 .. 1 */
+    counts->steps += lm;
+    counts->step_pixels += (uint64_t)lm * cells;
     return VB_OK;
 }
 
