@@ -103,7 +103,7 @@ void vbc_pipe_inject_device_fault(vbc_pipe *p, long frame)
     p->fault_at = frame;
 }
 
-/* The reference frame: JFA labels in C, the masks of core/channel_masks_ref.c
+/* The reference frame: JFA labels in C, the masks of core/discrete/channel_masks_ref.c
  * (bit for bit those of gpu/channels.cl), the voxel list in index order. */
 static int ref_frame(vb_ctx *ctx, vbc_pipe *p, const vbc_grid *g, const float *atoms4,
                      size_t natoms, unsigned want, vbc_frame_out *out)

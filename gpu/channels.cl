@@ -2,7 +2,7 @@
  * grid computed by gpu/jfa: the atomic mask by scattering atoms, the ray
  * bounds along the three axes, then one pass that classifies every voxel and
  * appends channel voxels to a compact list. The per-voxel arithmetic is
- * core/channel_math.h, shared with the C reference. */
+ * core/discrete/channel_math.h, shared with the C reference. */
 #pragma OPENCL FP_CONTRACT OFF
 
 #include "channel_math.h"

@@ -352,11 +352,14 @@ int vbg_program_get(vb_ctx *ctx, vbg_runtime *rt, const char *name, const char *
         return vb_error(ctx, VB_EINTERNAL, NULL, 0, "no kernel source named %s", name);
     /* No fast-math or mad flags: kernels compute candidates whose quality the
      * exact certifier judges, and PoCL and the GPU must round alike. Headers
-     * of kernels loaded from disk are found beside them and in ../core. */
+     * of kernels loaded from disk are found beside them and in the core
+     * wings they share with the host (../core, ../core/cells,
+     * ../core/discrete). */
     char opts[2048];
     if (disk)
-        snprintf(opts, sizeof opts, "-cl-std=CL1.2 -I %s -I %s/../core %s", dir, dir,
-                 options ? options : "");
+        snprintf(opts, sizeof opts,
+                 "-cl-std=CL1.2 -I %s -I %s/../core -I %s/../core/cells -I %s/../core/discrete %s",
+                 dir, dir, dir, dir, options ? options : "");
     else
         snprintf(opts, sizeof opts, "-cl-std=CL1.2 %s", options ? options : "");
     /* Kernels read from disk may include edited headers the hash cannot see. */

@@ -4,7 +4,7 @@
  *
  * Backends: OpenCL (gpu/jfa*.cl, gpu/facet_jfa*.cl) or the plain-C reference
  * (VBG_DEVICE_REF). Both run the same algorithms with the same exact integer
- * distance math (core/vb_grid.h), so they return identical labels.
+ * distance math (core/discrete/vb_grid.h), so they return identical labels.
  *
  * Typical use (channels):
  *   vbj_grid_fit fit;  vbj_seeds s;  vbj_result r;

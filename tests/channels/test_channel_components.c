@@ -1,5 +1,5 @@
 /* Components, classification, centrelines, radii, bottlenecks, lining atoms
- * and pruning (core/channel_components.c): hand-made voxel sets with known
+ * and pruning (core/discrete/channel_components.c): hand-made voxel sets with known
  * answers, then the synthetic pore and the closed shell end to end. */
 #include "synth.h"
 #include "vb_test.h"

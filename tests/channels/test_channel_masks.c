@@ -1,4 +1,4 @@
-/* Each stage of the reference mask pipeline (core/channel_masks_ref.c) on
+/* Each stage of the reference mask pipeline (core/discrete/channel_masks_ref.c) on
  * synthetic molecules whose masks are known: one ball, two balls, a cylinder
  * with a pore along z, a closed shell. */
 #include "synth.h"

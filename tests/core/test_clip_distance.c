@@ -1,4 +1,4 @@
-/* vbs_clip_distance: the proven bounds of core/sampler_cull.c, D 128 M^3
+/* vbs_clip_distance: the proven bounds of core/cells/sampler_cull.c, D 128 M^3
  * for equal radii (written in any form: 1.5 and 1.50 are equal) and
  * D 3e4 M^7 otherwise, with D the bounding-box diagonal plus twice the
  * largest radius and M = D / q for the finest decimal unit q. */

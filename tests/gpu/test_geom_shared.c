@@ -1,4 +1,4 @@
-/* Unit tests of core/vb_geom_shared.h, the math shared by the reference
+/* Unit tests of core/cells/vb_geom_shared.h, the math shared by the reference
  * backend and the sampling kernels: face mapping, the ray/bisector hit and
  * its sheet, Newton on three bisectors, the double tangent-sphere solver. */
 #include <math.h>

@@ -1,5 +1,5 @@
 /* The one copy of the sampling geometry of the seed paper (Sec. 3-5), compiled
- * as C11 by the reference backend (core/sampler_ref.c) and the host stages
+ * as C11 by the reference backend (core/cells/sampler_ref.c) and the host stages
  * (culling, targeted search), and as OpenCL C by gpu/sample_envelope.cl and
  * gpu/vertices_newton.cl. Names carry the prefix vbs_ (sampler shared).
  *

@@ -43,7 +43,7 @@ uint32_t vbc_farthest(const vbc_graph *A, const uint32_t *members, size_t m);
 /* Centre of voxel index v in Å. */
 void vbc_voxel_centre(const vbc_grid *g, uint32_t v, double p[3]);
 
-/* Ends *a, *b of the centreline of a component with mouths (core/channel_ends.c);
+/* Ends *a, *b of the centreline of a component with mouths (core/discrete/channel_ends.c);
  * *through = 1 when they lie on opposite faces of the molecule. parent is
  * scratch of one entry per position. Returns 0, or -1 when out of memory. */
 int vbc_channel_ends(vbc_graph *A, uint32_t *parent, const uint32_t *members, size_t m,

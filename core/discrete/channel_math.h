@@ -1,5 +1,5 @@
 /* The arithmetic of the channel masks, written once for the C reference
- * (core/channel_masks_ref.c) and the OpenCL kernels (gpu/channels.cl).
+ * (core/discrete/channel_masks_ref.c) and the OpenCL kernels (gpu/channels.cl).
  *
  * Everything is in grid units: voxel (i,j,k) has its centre at
  * (i + 0.5, j + 0.5, k + 0.5); an atom is a float4 (x, y, z, R) with R the

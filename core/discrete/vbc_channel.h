@@ -124,7 +124,7 @@ double vbc_cells_clearance(const vbc_cells *c, const double p[3], int32_t *atom)
 void vbc_cells_within(const vbc_cells *c, const double p[3], double reach,
                       void (*fn)(int32_t atom, void *user), void *user);
 
-/* Writers (core/channel_write.c). */
+/* Writers (core/discrete/channel_write.c). */
 
 /* What a frame's table rows carry besides the channels. */
 typedef struct vbc_frame_info {
