@@ -1,0 +1,64 @@
+/* The direction-cover proposer: candidate quadruples that provably hold
+ * every vertex of the diagram (see vb_cover_shared.h for the argument).
+ *
+ * For each sphere i (not contained in another) the cover subdivides the
+ * sphere of directions around c_i until, in every patch, the neighbours that
+ * can be nearest there are few; the quadruples {i, j, k, l} with j, k, l
+ * among those labels and all > i are proposed. Every vertex belongs to the
+ * cell of its smallest member, so proposing only quadruples whose smallest
+ * id is the base covers every vertex once, with no matching between cells.
+ * The proposals are quadruples, not points: the exact certifier solves each
+ * and keeps the roots whose tangent sphere is empty. */
+#ifndef VB_COVER_H
+#define VB_COVER_H
+
+#include "vb.h"
+#include "vb_spheres.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define VB_COVER_DEFAULT_TILES 2u    /* root squares per face side */
+#define VB_COVER_DEFAULT_MIN_LEVEL 2u
+#define VB_COVER_MAX_LEVEL 24u        /* deepest subdivision (then enumerate) */
+
+typedef struct vb_cover_options {
+    unsigned tiles;      /* root squares per face side, power of two (0: default) */
+    unsigned min_level;  /* subdivide owned patches at least to this level (0: default) */
+    unsigned max_level;  /* enumerate whatever is left at this level (0: VB_COVER_MAX_LEVEL) */
+    unsigned enum_max;   /* enumerate a patch once it has at most this many owned labels (0: 3) */
+    unsigned threads;    /* host threads (0: VORBALL_THREADS or online CPUs) */
+} vb_cover_options;
+
+typedef struct vb_cover_stats {
+    uint64_t cells;          /* base spheres covered */
+    uint64_t neighbours;     /* neighbour records built */
+    uint64_t far_neighbours; /* of those, beyond the near radius (hull patches) */
+    uint64_t patches;        /* patches evaluated */
+    uint64_t evals;          /* label enclosures evaluated */
+    uint64_t leaves;         /* patches that enumerated quadruples */
+    uint64_t max_level_leaves; /* of those, at the deepest level */
+    uint64_t quads;          /* distinct quadruples proposed */
+    unsigned max_level_seen;
+} vb_cover_stats;
+
+/* Quadruples, 4 sorted ids each, sorted lexicographically, no repeats. */
+typedef struct vb_quad_list {
+    uint32_t (*q)[4];
+    size_t n, cap;
+} vb_quad_list;
+
+void vb_quad_list_free(vb_quad_list *l);
+
+/* Runs the cover on a validated set (contained spheres flagged) and appends
+ * the proposed quadruples to out (sorted, unique). Returns VB_OK, VB_ENOMEM
+ * or VB_EMISUSE (bad options); stats may be NULL. The quadruples do not
+ * depend on the thread count. */
+int vb_cover_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *opt,
+                 vb_quad_list *out, vb_cover_stats *stats);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
