@@ -15,478 +15,266 @@
 #include "vb_cover_shared.h"
 #include "vbs_internal.h"
 
-/* ---- uniform grid of the centres ---------------------------------------- */
+/* ---- a bounding-volume hierarchy of the centres ------------------------- */
 
-typedef struct cgrid {
-    double lo[3], cell;
-    int dim[3];
-    uint32_t *start; /* dim0*dim1*dim2 + 1 */
-    uint32_t *ids;
-    double rmax;
-} cgrid;
+/* Spheres (not contained) sorted along a Morton curve of their centres, in
+ * leaves of VBQ_LEAF; a complete binary tree over the leaves (heap order,
+ * node 1 the root, leaves from `first`), each node with the box of its
+ * centres and the largest radius below it. Conservative by construction:
+ * a query prunes a node only when no centre in its box can pass. */
+typedef struct bvh {
+    uint32_t *ids;     /* m sphere ids in curve order */
+    size_t m;
+    size_t first;      /* index of the first leaf node; leaves first..2 first-1 */
+    double *box;       /* 6 per node: lo xyz, hi xyz (empty: lo > hi) */
+    double *rmax;      /* per node */
+    double rmax_all;
+} bvh;
 
-static void cgrid_free(cgrid *g)
+static void bvh_free(bvh *t)
 {
-    free(g->start);
-    free(g->ids);
+    free(t->ids);
+    free(t->box);
+    free(t->rmax);
 }
 
-static size_t cgrid_slot(const cgrid *g, int x, int y, int z)
+typedef struct mkey {
+    uint64_t key;
+    uint32_t id;
+} mkey;
+
+static int cmp_mkey(const void *pa, const void *pb)
 {
-    return ((size_t)z * g->dim[1] + (size_t)y) * g->dim[0] + (size_t)x;
+    const mkey *a = pa, *b = pb;
+    if (a->key != b->key)
+        return a->key < b->key ? -1 : 1;
+    return (a->id > b->id) - (a->id < b->id);
 }
 
-static int cgrid_coord(const cgrid *g, double v, int a)
+static int cmp_double(const void *pa, const void *pb)
 {
-    double w = (v - g->lo[a]) / g->cell;
-    if (!(w > 0.0))
-        return 0;
-    int k = w >= (double)g->dim[a] ? g->dim[a] - 1 : (int)w;
-    return k;
+    double a = *(const double *)pa, b = *(const double *)pb;
+    return (a > b) - (a < b);
 }
 
-static int cgrid_build(const vb_sphere_set *s, cgrid *g)
+/* Spreads the low 21 bits of v to every third bit. */
+static uint64_t spread3(uint64_t v)
 {
-    memset(g, 0, sizeof *g);
-    double hi[3];
+    v &= 0x1fffffu;
+    v = (v | v << 32) & 0x1f00000000ffffull;
+    v = (v | v << 16) & 0x1f0000ff0000ffull;
+    v = (v | v << 8) & 0x100f00f00f00f00full;
+    v = (v | v << 4) & 0x10c30c30c30c30c3ull;
+    v = (v | v << 2) & 0x1249249249249249ull;
+    return v;
+}
+
+static int bvh_build(const vb_sphere_set *s, bvh *t)
+{
+    memset(t, 0, sizeof *t);
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     size_t m = 0;
     for (size_t i = 0; i < s->n; i++) {
         if (s->contained[i])
             continue;
         const double p[3] = {s->x[i], s->y[i], s->z[i]};
         for (int a = 0; a < 3; a++) {
-            if (m == 0 || p[a] < g->lo[a])
-                g->lo[a] = p[a];
-            if (m == 0 || p[a] > hi[a])
-                hi[a] = p[a];
+            lo[a] = p[a] < lo[a] ? p[a] : lo[a];
+            hi[a] = p[a] > hi[a] ? p[a] : hi[a];
         }
-        if (s->r[i] > g->rmax)
-            g->rmax = s->r[i];
+        if (s->r[i] > t->rmax_all)
+            t->rmax_all = s->r[i];
         m++;
     }
-    double ext = 0.0;
-    for (int a = 0; a < 3; a++)
-        ext = hi[a] - g->lo[a] > ext ? hi[a] - g->lo[a] : ext;
-    /* About two centres per cell in a protein-like density. */
-    double vol = 1.0;
-    for (int a = 0; a < 3; a++)
-        vol *= (hi[a] - g->lo[a]) + 1e-9 * (ext + 1.0);
-    g->cell = cbrt(2.0 * vol / (double)(m ? m : 1));
-    if (!(g->cell > 0.0))
-        g->cell = 1.0;
-    size_t cells = 1;
-    for (int a = 0; a < 3; a++) {
-        double d = (hi[a] - g->lo[a]) / g->cell;
-        g->dim[a] = d >= 1023.0 ? 1024 : (int)d + 1;
-        cells *= (size_t)g->dim[a];
+    mkey *k = malloc((m ? m : 1) * sizeof *k);
+    t->ids = malloc((m ? m : 1) * sizeof *t->ids);
+    size_t leaves = (m + VBQ_LEAF - 1) / VBQ_LEAF, first = 1;
+    while (first < leaves)
+        first *= 2;
+    t->first = first;
+    t->m = m;
+    t->box = malloc(2 * first * 6 * sizeof *t->box);
+    t->rmax = calloc(2 * first, sizeof *t->rmax);
+    if (!k || !t->ids || !t->box || !t->rmax) {
+        free(k);
+        return VB_ENOMEM;
     }
-    /* Cap the cell count at a few per sphere. */
-    while (cells > 8 * (m + 1)) {
-        g->cell *= 1.26;
-        cells = 1;
+    size_t w = 0;
+    for (size_t i = 0; i < s->n; i++) {
+        if (s->contained[i])
+            continue;
+        const double p[3] = {s->x[i], s->y[i], s->z[i]};
+        uint64_t key = 0;
         for (int a = 0; a < 3; a++) {
-            double d = (hi[a] - g->lo[a]) / g->cell;
-            g->dim[a] = d >= 1023.0 ? 1024 : (int)d + 1;
-            cells *= (size_t)g->dim[a];
+            double ext = hi[a] - lo[a];
+            double q = ext > 0.0 ? (p[a] - lo[a]) / ext * 2097151.0 : 0.0;
+            uint64_t c = q > 0.0 ? (uint64_t)q : 0u;
+            key |= spread3(c > 2097151u ? 2097151u : c) << a;
+        }
+        k[w].key = key;
+        k[w++].id = (uint32_t)i;
+    }
+    qsort(k, m, sizeof *k, cmp_mkey);
+    for (size_t i = 0; i < m; i++)
+        t->ids[i] = k[i].id;
+    free(k);
+    for (size_t nd = 0; nd < 2 * first; nd++) {
+        for (int a = 0; a < 3; a++) {
+            t->box[6 * nd + a] = INFINITY;
+            t->box[6 * nd + 3 + a] = -INFINITY;
         }
     }
-    g->start = calloc(cells + 1, sizeof *g->start);
-    g->ids = malloc((m ? m : 1) * sizeof *g->ids);
-    if (!g->start || !g->ids)
-        return VB_ENOMEM;
-    for (size_t i = 0; i < s->n; i++)
-        if (!s->contained[i])
-            g->start[cgrid_slot(g, cgrid_coord(g, s->x[i], 0), cgrid_coord(g, s->y[i], 1),
-                                cgrid_coord(g, s->z[i], 2)) + 1]++;
-    for (size_t c = 0; c < cells; c++)
-        g->start[c + 1] += g->start[c];
-    uint32_t *fill = malloc(cells * sizeof *fill);
-    if (!fill)
-        return VB_ENOMEM;
-    memcpy(fill, g->start, cells * sizeof *fill);
-    for (size_t i = 0; i < s->n; i++)
-        if (!s->contained[i])
-            g->ids[fill[cgrid_slot(g, cgrid_coord(g, s->x[i], 0), cgrid_coord(g, s->y[i], 1),
-                                   cgrid_coord(g, s->z[i], 2))]++] = (uint32_t)i;
-    free(fill);
+    for (size_t l = 0; l < leaves; l++) {
+        size_t nd = first + l;
+        for (size_t q = l * VBQ_LEAF; q < m && q < (l + 1) * VBQ_LEAF; q++) {
+            uint32_t i = t->ids[q];
+            const double p[3] = {s->x[i], s->y[i], s->z[i]};
+            for (int a = 0; a < 3; a++) {
+                if (p[a] < t->box[6 * nd + a])
+                    t->box[6 * nd + a] = p[a];
+                if (p[a] > t->box[6 * nd + 3 + a])
+                    t->box[6 * nd + 3 + a] = p[a];
+            }
+            if (s->r[i] > t->rmax[nd])
+                t->rmax[nd] = s->r[i];
+        }
+    }
+    for (size_t nd = first - 1; nd >= 1; nd--) {
+        for (int a = 0; a < 3; a++) {
+            double l0 = t->box[6 * (2 * nd) + a], l1 = t->box[6 * (2 * nd + 1) + a];
+            double h0 = t->box[6 * (2 * nd) + 3 + a], h1 = t->box[6 * (2 * nd + 1) + 3 + a];
+            t->box[6 * nd + a] = l0 < l1 ? l0 : l1;
+            t->box[6 * nd + 3 + a] = h0 > h1 ? h0 : h1;
+        }
+        double r0 = t->rmax[2 * nd], r1 = t->rmax[2 * nd + 1];
+        t->rmax[nd] = r0 > r1 ? r0 : r1;
+    }
     return VB_OK;
 }
 
-/* ---- per-thread scratch -------------------------------------------------- */
-
-typedef struct frame {
-    vbs_u32 f, level, iu, iv;
-    size_t off, len;   /* labels in lab[off .. off + len) */
-    double ecert;      /* every sphere with e_j <= ecert is in the list (or INFINITY) */
-    vbs_u32 stall;     /* consecutive levels that excluded no label */
-} frame;
-
-typedef struct scratch {
-    vbq_nb *nb;        /* neighbour records of the current cell */
-    size_t nnb, nb_cap;
-    uint32_t *nbidx;   /* per sphere: its record in nb, or UINT32_MAX */
-    uint32_t *stamp;   /* per sphere: token of the list it was last seen in */
-    uint32_t token;
-    uint32_t *lab;     /* stacked label lists (indices into nb) */
-    size_t lab_cap;
-    frame *st;
-    size_t st_cap;
-    double *lo, *hi;
-    size_t lo_cap, hi_cap;
-    uint32_t *own;
-    size_t own_cap;
-    uint32_t (*q)[4];  /* quadruples of this thread */
-    size_t nq, q_cap;
-    vb_cover_stats stats;
-} scratch;
-
-static int grow(void **p, size_t *cap, size_t need, size_t elem)
+/* The first guess of a near list's radius: a little more than the median
+ * extent of the leaves (eight neighbouring centres), which follows the local
+ * density of the input wherever most of it is. Only speed depends on it. */
+static double near_radius(const bvh *t)
 {
-    if (need <= *cap)
-        return 0;
-    size_t nc = *cap ? *cap : 256;
-    while (nc < need)
-        nc *= 2;
-    void *q = realloc(*p, nc * elem);
-    if (!q)
-        return -1;
-    *p = q;
-    *cap = nc;
-    return 0;
+    size_t leaves = (t->m + VBQ_LEAF - 1) / VBQ_LEAF;
+    double *ext = malloc((leaves ? leaves : 1) * sizeof *ext);
+    if (!ext || leaves == 0) {
+        free(ext);
+        return 1.0;
+    }
+    for (size_t l = 0; l < leaves; l++) {
+        size_t nd = t->first + l;
+        double e = 0.0;
+        for (int a = 0; a < 3; a++) {
+            double w = t->box[6 * nd + 3 + a] - t->box[6 * nd + a];
+            e = w > e ? w : e;
+        }
+        ext[l] = e;
+    }
+    qsort(ext, leaves, sizeof *ext, cmp_double);
+    double r = 0.6 * ext[leaves / 2];
+    free(ext);
+    return r > 0.0 ? r : 1.0;
 }
+
+/* ---- the cells on worker threads ---------------------------------------- */
 
 typedef struct job {
     const vb_sphere_set *set;
-    const cgrid *g;
-    vbs_u32 T, min_level, max_level, enum_max;
+    vbq_env env;
     atomic_size_t next;
     atomic_int failed;
 } job;
 
-/* The record of neighbour j of base i, made once per cell; its index. */
-static int nb_of(scratch *sc, const vb_sphere_set *s, uint32_t i, uint32_t j, uint32_t *idx)
-{
-    if (sc->nbidx[j] != UINT32_MAX) {
-        *idx = sc->nbidx[j];
-        return 0;
-    }
-    if (grow((void **)&sc->nb, &sc->nb_cap, sc->nnb + 1, sizeof *sc->nb))
-        return -1;
-    vbq_nb_make(s->x[i], s->y[i], s->z[i], s->r[i], s->x[j], s->y[j], s->z[j], s->r[j], j,
-                &sc->nb[sc->nnb]);
-    sc->nbidx[j] = (uint32_t)sc->nnb;
-    *idx = (uint32_t)sc->nnb++;
-    sc->stats.neighbours++;
-    return 0;
-}
-
-static int lab_push(scratch *sc, size_t at, uint32_t v)
-{
-    if (grow((void **)&sc->lab, &sc->lab_cap, at + 1, sizeof *sc->lab))
-        return -1;
-    sc->lab[at] = v;
-    return 0;
-}
-
-/* Neighbours of i whose centre lies within rq of c_i, appended to the
- * label list at lab[off + *len ...]. */
-static int gather_ball(scratch *sc, const job *jb, uint32_t i, double rq, size_t off, size_t *len)
-{
-    const vb_sphere_set *s = jb->set;
-    const cgrid *g = jb->g;
-    int lo[3], hi[3];
-    const double c[3] = {s->x[i], s->y[i], s->z[i]};
-    for (int a = 0; a < 3; a++) {
-        lo[a] = cgrid_coord(g, c[a] - rq, a);
-        hi[a] = cgrid_coord(g, c[a] + rq, a);
-    }
-    double rq2 = rq * rq;
-    for (int z = lo[2]; z <= hi[2]; z++)
-        for (int y = lo[1]; y <= hi[1]; y++)
-            for (int x = lo[0]; x <= hi[0]; x++) {
-                size_t sl = cgrid_slot(g, x, y, z);
-                for (uint32_t k = g->start[sl]; k < g->start[sl + 1]; k++) {
-                    uint32_t j = g->ids[k], idx;
-                    if (j == i)
-                        continue;
-                    double dx = s->x[j] - c[0], dy = s->y[j] - c[1], dz = s->z[j] - c[2];
-                    if (dx * dx + dy * dy + dz * dz > rq2)
-                        continue;
-                    if (nb_of(sc, s, i, j, &idx) || lab_push(sc, off + *len, idx))
-                        return -1;
-                    (*len)++;
-                }
-            }
-    return 0;
-}
-
-/* Every sphere not in the list lab[off .. off + *len) that can be a label in
- * the patch (m, h) with lower envelope LO, appended to it: f_j(u) >= LO >= 0
- * somewhere needs u.d + delta >= 0 (N > 0), and when LO > 0 also e_j <= 1/LO
- * (|a_j| + b_j = 1/e_j, e_j = |c_i - c_j| - R_j + R_i). A grid cell is skipped
- * when the interval bound of max u.(c - c_i) over the patch box and the
- * cell's box, plus R_max - R_i, is negative, or when the cell lies beyond
- * 1/LO + R_max - R_i (both with a relative margin far above the rounding
- * errors); each remaining sphere is kept when its enclosure reaches LO. */
-static int gather_far(scratch *sc, const job *jb, uint32_t i, const double m[3],
-                      const double h[3], double LO, size_t off, size_t *len)
-{
-    const vb_sphere_set *s = jb->set;
-    const cgrid *g = jb->g;
-    const double c[3] = {s->x[i], s->y[i], s->z[i]};
-    double slack = g->rmax - s->r[i];
-    double reach = LO > 0.0 ? (1.0 / LO) * (1.0 + 1e-9) + slack + 1e-9 * g->cell : INFINITY;
-    uint32_t tok = ++sc->token;
-    for (size_t k = 0; k < *len; k++)
-        sc->stamp[sc->nb[sc->lab[off + k]].id] = tok;
-    sc->stamp[i] = tok;
-    for (int z = 0; z < g->dim[2]; z++)
-        for (int y = 0; y < g->dim[1]; y++)
-            for (int x = 0; x < g->dim[0]; x++) {
-                size_t sl = cgrid_slot(g, x, y, z);
-                if (g->start[sl] == g->start[sl + 1])
-                    continue;
-                const int xyz[3] = {x, y, z};
-                double best = 0.0, near2 = 0.0;
-                for (int a = 0; a < 3; a++) {
-                    /* Centres of the cell lie in [b0, b1]; the outer cells
-                     * take everything beyond the grid (cgrid_coord clamps). */
-                    double b0 = g->lo[a] + g->cell * xyz[a] - c[a];
-                    double b1 = xyz[a] + 1 == g->dim[a] ? INFINITY : b0 + g->cell;
-                    if (xyz[a] == 0)
-                        b0 = -INFINITY;
-                    double u0 = m[a] - h[a], u1 = m[a] + h[a];
-                    double p[4] = {u0 * b0, u0 * b1, u1 * b0, u1 * b1};
-                    double mx = -INFINITY;
-                    for (int q = 0; q < 4; q++)
-                        if (p[q] == p[q] && p[q] > mx)
-                            mx = p[q];
-                        else if (p[q] != p[q])
-                            mx = INFINITY; /* 0 * inf: cannot tell */
-                    best += mx;
-                    double dn = b0 > 0.0 ? b0 : (b1 < 0.0 ? -b1 : 0.0);
-                    near2 += dn * dn;
-                }
-                if (best + slack < -1e-9 * (fabs(best) + fabs(slack) + g->cell))
-                    continue;
-                if (near2 > reach * reach)
-                    continue;
-                for (uint32_t k = g->start[sl]; k < g->start[sl + 1]; k++) {
-                    uint32_t j = g->ids[k], idx;
-                    if (sc->stamp[j] == tok)
-                        continue;
-                    sc->stamp[j] = tok;
-                    if (nb_of(sc, s, i, j, &idx))
-                        return -1;
-                    double l, hh;
-                    vbq_eval(&sc->nb[idx], m, h, &l, &hh);
-                    if (!(hh >= LO))
-                        continue;
-                    if (lab_push(sc, off + *len, idx))
-                        return -1;
-                    (*len)++;
-                    sc->stats.far_neighbours++;
-                }
-            }
-    return 0;
-}
-
-static int push_quad(scratch *sc, uint32_t a, uint32_t b, uint32_t c, uint32_t d)
-{
-    uint32_t v[4] = {a, b, c, d};
-    for (int x = 1; x < 4; x++)
-        for (int y = x; y > 0 && v[y - 1] > v[y]; y--) {
-            uint32_t t = v[y];
-            v[y] = v[y - 1];
-            v[y - 1] = t;
-        }
-    if (grow((void **)&sc->q, &sc->q_cap, sc->nq + 1, sizeof *sc->q))
-        return -1;
-    memcpy(sc->q[sc->nq++], v, sizeof v);
-    return 0;
-}
-
-static int cmp_quad(const void *pa, const void *pb)
-{
-    const uint32_t *a = pa, *b = pb;
-    for (int k = 0; k < 4; k++)
-        if (a[k] != b[k])
-            return a[k] < b[k] ? -1 : 1;
-    return 0;
-}
-
-/* Sorts q[from ..] and drops repeats. */
-static void unique_tail(uint32_t (*q)[4], size_t from, size_t *n)
-{
-    if (*n - from < 2)
-        return;
-    qsort(q + from, *n - from, sizeof *q, cmp_quad);
-    size_t w = from + 1;
-    for (size_t k = from + 1; k < *n; k++)
-        if (cmp_quad(q[k], q[w - 1]) != 0)
-            memcpy(q[w++], q[k], sizeof *q);
-    *n = w;
-}
-
-/* The first level at which a patch that is not closed fetches its far
- * spheres instead of subdividing further. */
-#define VBQ_FETCH_LEVEL 2u
-/* Levels without an exclusion before a patch enumerates (when it has at
- * most VBQ_STALL_ENUM owned labels: 364 quadruples). */
-#define VBQ_STALL 4u
-#define VBQ_STALL_ENUM 14u
-
-/* Covers the cell of sphere i: quadruples {i < j < k < l} appended to sc->q. */
-static int cover_cell(scratch *sc, const job *jb, uint32_t i)
-{
-    const vb_sphere_set *s = jb->set;
-    const cgrid *g = jb->g;
-    size_t qfrom = sc->nq;
-    /* Near list: every sphere whose centre is within rq of c_i, so every
-     * sphere with e_j <= rq - (R_max - R_i) is in it. */
-    double rq = 2.0 * g->cell + 2.0 * g->rmax;
-    size_t len0 = 0;
-    int rc = VB_ENOMEM;
-    if (gather_ball(sc, jb, i, rq, 0, &len0))
-        goto done;
-    double ecert0 = (rq - (g->rmax - s->r[i])) * (1.0 - 1e-9);
-
-    vbs_u32 T = jb->T;
-    size_t nst = 0;
-    for (vbs_u32 f = 0; f < 6; f++)
-        for (vbs_u32 iv = 0; iv < T; iv++)
-            for (vbs_u32 iu = 0; iu < T; iu++) {
-                if (grow((void **)&sc->st, &sc->st_cap, nst + 1, sizeof *sc->st))
-                    goto done;
-                sc->st[nst++] = (frame){f, 0u, iu, iv, 0, len0, ecert0, 0u};
-            }
-    /* The roots share lab[0 .. len0); lists of deeper frames are stacked
-     * above top. A frame's list lies below the lists of every frame pushed
-     * after it, so popping a frame frees everything above its list. */
-    size_t top = len0;
-    while (nst > 0) {
-        frame fr = sc->st[--nst];
-        if (fr.off + fr.len < top)
-            top = fr.off + fr.len > len0 ? fr.off + fr.len : len0;
-        double u0, u1, v0, v1, m[3], h[3];
-        vbq_patch_square(T, fr.level, fr.iu, fr.iv, &u0, &u1, &v0, &v1);
-        vbq_patch_box(fr.f, u0, u1, v0, v1, m, h);
-        sc->stats.patches++;
-        if (grow((void **)&sc->lo, &sc->lo_cap, fr.len + 1, sizeof *sc->lo) ||
-            grow((void **)&sc->hi, &sc->hi_cap, fr.len + 1, sizeof *sc->hi))
-            goto done;
-        /* LO: the envelope is at least max(0, lo_k) everywhere in P (0 is
-         * "infinity", the envelope's floor). */
-        double LO = 0.0;
-        for (size_t k = 0; k < fr.len; k++) {
-            vbq_eval(&sc->nb[sc->lab[fr.off + k]], m, h, &sc->lo[k], &sc->hi[k]);
-            if (sc->lo[k] > LO)
-                LO = sc->lo[k];
-        }
-        sc->stats.evals += fr.len;
-        /* Closed: no sphere outside the list can reach LO, because each has
-         * e_j > ecert and so f_j <= 1/e_j < 1/ecert <= LO. */
-        int closed = fr.ecert == INFINITY || (LO > 0.0 && 1.0 / fr.ecert < LO * (1.0 - 1e-9));
-        if (!closed && fr.level >= VBQ_FETCH_LEVEL) {
-            size_t nlen = fr.len;
-            if (grow((void **)&sc->lab, &sc->lab_cap, top + fr.len + 1, sizeof *sc->lab))
-                goto done;
-            memcpy(sc->lab + top, sc->lab + fr.off, fr.len * sizeof *sc->lab);
-            if (gather_far(sc, jb, i, m, h, LO, top, &nlen))
-                goto done;
-            fr.off = top;
-            fr.ecert = INFINITY;
-            top += nlen;
-            if (nlen > fr.len) {
-                /* Evaluate again with the far labels. */
-                fr.len = nlen;
-                sc->st[nst++] = fr;
-                sc->stats.patches--;
-                continue;
-            }
-            closed = 1;
-        }
-        /* The surviving labels, copied above top. */
-        if (grow((void **)&sc->lab, &sc->lab_cap, top + fr.len + 1, sizeof *sc->lab))
-            goto done;
-        size_t keep = 0, owned = 0;
-        for (size_t k = 0; k < fr.len; k++)
-            if (sc->hi[k] >= LO) {
-                uint32_t li = sc->lab[fr.off + k];
-                sc->lab[top + keep++] = li;
-                if (sc->nb[li].id > i)
-                    owned++;
-            }
-        /* Fewer than three owned labels: no vertex of this cell whose
-         * smallest member is i lies in P (once the list is known whole). */
-        if (closed && owned < 3)
-            continue;
-        /* Labels that tie exactly along a curve (equal spheres on a circle,
-         * lattices) survive every subdivision there: once VBQ_STALL levels
-         * in a row excluded nothing, more levels would only multiply the
-         * patches, so the patch enumerates (a larger patch only adds
-         * quadruples whose roots the certifier refutes). */
-        int stalled = keep == fr.len ? fr.stall + 1u >= VBQ_STALL : 0;
-        int deep = fr.level + 1u >= jb->max_level || (stalled && owned <= VBQ_STALL_ENUM);
-        if (closed && (deep || (fr.level >= jb->min_level && owned <= jb->enum_max))) {
-            sc->stats.leaves++;
-            if (deep)
-                sc->stats.max_level_leaves++;
-            if (fr.level > sc->stats.max_level_seen)
-                sc->stats.max_level_seen = fr.level;
-            if (grow((void **)&sc->own, &sc->own_cap, owned + 1, sizeof *sc->own))
-                goto done;
-            size_t no = 0;
-            for (size_t k = 0; k < keep; k++) {
-                uint32_t id = sc->nb[sc->lab[top + k]].id;
-                if (id > i)
-                    sc->own[no++] = id;
-            }
-            for (size_t a = 0; a < no; a++)
-                for (size_t b = a + 1; b < no; b++)
-                    for (size_t c = b + 1; c < no; c++)
-                        if (push_quad(sc, i, sc->own[a], sc->own[b], sc->own[c]))
-                            goto done;
-            continue;
-        }
-        /* Subdivide: the four children share the surviving list. */
-        size_t off = top;
-        top += keep;
-        if (grow((void **)&sc->st, &sc->st_cap, nst + 4, sizeof *sc->st))
-            goto done;
-        for (vbs_u32 c = 0; c < 4; c++)
-            sc->st[nst++] = (frame){fr.f, fr.level + 1u, 2u * fr.iu + (c & 1u),
-                                    2u * fr.iv + (c >> 1), off, keep, fr.ecert,
-                                    keep == fr.len ? fr.stall + 1u : 0u};
-    }
-    rc = VB_OK;
-done:
-    for (size_t k = 0; k < sc->nnb; k++)
-        sc->nbidx[sc->nb[k].id] = UINT32_MAX;
-    sc->nnb = 0;
-    if (rc == VB_OK) {
-        unique_tail(sc->q, qfrom, &sc->nq);
-        sc->stats.cells++;
-    }
-    return rc;
-}
-
+/* A worker's arena (grown when a cell overflows it) and its quadruples. */
 typedef struct worker {
     job *jb;
-    scratch sc;
+    vbq_arena ar;
+    uint32_t (*q)[4];
+    size_t nq, q_cap;
+    vb_cover_stats st;
     int rc;
 } worker;
+
+static void arena_free(vbq_arena *a)
+{
+    free(a->nb);
+    free(a->lab);
+    free(a->st);
+    free(a->q);
+    memset(a, 0, sizeof *a);
+}
+
+/* (Re)allocates an arena with the given capacities. */
+static int arena_make(vbq_arena *a, uint32_t nb, uint32_t lab, uint32_t st, uint32_t q)
+{
+    arena_free(a);
+    a->nb = malloc((size_t)nb * sizeof *a->nb);
+    a->lab = malloc((size_t)lab * sizeof *a->lab);
+    a->st = malloc((size_t)st * sizeof *a->st);
+    a->q = malloc(4 * (size_t)q * sizeof *a->q);
+    a->nb_cap = nb;
+    a->lab_cap = lab;
+    a->st_cap = st;
+    a->q_cap = q;
+    return a->nb && a->lab && a->st && a->q ? VB_OK : VB_ENOMEM;
+}
+
+/* Arena capacities of the first try; a cell that overflows one is covered
+ * again with that capacity doubled (up to the 32-bit index range). */
+#define VBQ_NB0 1024u
+#define VBQ_LAB0 8192u
+#define VBQ_ST0 512u
+#define VBQ_Q0 512u
+
+static int cover_one(worker *w, uint32_t i)
+{
+    vbq_cell_out o;
+    for (;;) {
+        vbq_cover_cell(&w->jb->env, &w->ar, i, &o);
+        if (o.status == VBQ_OK)
+            break;
+        uint32_t nb = w->ar.nb_cap, lab = w->ar.lab_cap, st = w->ar.st_cap, q = w->ar.q_cap;
+        uint32_t *grow = o.status == VBQ_OVER_NB ? &nb : o.status == VBQ_OVER_LAB ? &lab
+                         : o.status == VBQ_OVER_ST ? &st : &q;
+        if (*grow >= (1u << 30))
+            return VB_ENOMEM;
+        *grow *= 2u;
+        if (arena_make(&w->ar, nb, lab, st, q) != VB_OK)
+            return VB_ENOMEM;
+        w->st.retries++;
+    }
+    if (w->nq + o.nq > w->q_cap) {
+        size_t nc = w->q_cap ? w->q_cap : 4096;
+        while (nc < w->nq + o.nq)
+            nc *= 2;
+        void *p = realloc(w->q, nc * sizeof *w->q);
+        if (!p)
+            return VB_ENOMEM;
+        w->q = p;
+        w->q_cap = nc;
+    }
+    memcpy(w->q + w->nq, w->ar.q, (size_t)o.nq * sizeof *w->q);
+    w->nq += o.nq;
+    w->st.cells++;
+    w->st.neighbours += o.nnb;
+    w->st.far_neighbours += o.far;
+    w->st.patches += o.patches;
+    w->st.evals += 1000u * (uint64_t)o.evals_k;
+    w->st.leaves += o.leaves;
+    w->st.max_level_leaves += o.deep;
+    if (o.maxlev > w->st.max_level_seen)
+        w->st.max_level_seen = o.maxlev;
+    return VB_OK;
+}
 
 static void *work(void *arg)
 {
     worker *w = arg;
     job *jb = w->jb;
     const vb_sphere_set *s = jb->set;
-    w->sc.nbidx = malloc(s->n * sizeof *w->sc.nbidx);
-    w->sc.stamp = calloc(s->n, sizeof *w->sc.stamp);
-    if (w->sc.nbidx)
-        memset(w->sc.nbidx, 0xff, s->n * sizeof *w->sc.nbidx);
-    if (!w->sc.nbidx || !w->sc.stamp) {
+    if (!w->ar.nb && arena_make(&w->ar, VBQ_NB0, VBQ_LAB0, VBQ_ST0, VBQ_Q0) != VB_OK) {
         w->rc = VB_ENOMEM;
         atomic_store(&jb->failed, 1);
         return NULL;
@@ -497,7 +285,7 @@ static void *work(void *arg)
             break;
         if (s->contained[i])
             continue;
-        int rc = cover_cell(&w->sc, jb, (uint32_t)i);
+        int rc = cover_one(w, (uint32_t)i);
         if (rc != VB_OK) {
             w->rc = rc;
             atomic_store(&jb->failed, 1);
@@ -507,17 +295,13 @@ static void *work(void *arg)
     return NULL;
 }
 
-static void scratch_free(scratch *sc)
+static int cmp_quad(const void *pa, const void *pb)
 {
-    free(sc->nb);
-    free(sc->nbidx);
-    free(sc->stamp);
-    free(sc->own);
-    free(sc->lab);
-    free(sc->st);
-    free(sc->lo);
-    free(sc->hi);
-    free(sc->q);
+    const uint32_t *a = pa, *b = pb;
+    for (int k = 0; k < 4; k++)
+        if (a[k] != b[k])
+            return a[k] < b[k] ? -1 : 1;
+    return 0;
 }
 
 void vb_quad_list_free(vb_quad_list *l)
@@ -533,21 +317,34 @@ int vb_cover_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *
     job jb;
     memset(&jb, 0, sizeof jb);
     jb.set = set;
-    jb.T = o.tiles ? o.tiles : VB_COVER_DEFAULT_TILES;
-    jb.min_level = o.min_level ? o.min_level : VB_COVER_DEFAULT_MIN_LEVEL;
-    jb.max_level = o.max_level ? o.max_level : VB_COVER_MAX_LEVEL;
-    jb.enum_max = o.enum_max ? o.enum_max : 3u;
-    if ((jb.T & (jb.T - 1u)) || jb.T > 16u || jb.max_level > VB_COVER_MAX_LEVEL ||
-        jb.enum_max < 3u || jb.enum_max > 64u)
+    vbq_env *e = &jb.env;
+    e->T = o.tiles ? o.tiles : VB_COVER_DEFAULT_TILES;
+    e->min_level = o.min_level ? o.min_level : VB_COVER_DEFAULT_MIN_LEVEL;
+    e->max_level = o.max_level ? o.max_level : VB_COVER_MAX_LEVEL;
+    e->enum_max = o.enum_max ? o.enum_max : 3u;
+    if ((e->T & (e->T - 1u)) || e->T > 16u || e->max_level > VB_COVER_MAX_LEVEL ||
+        e->enum_max < 3u || e->enum_max > 64u)
         return vb_error(ctx, VB_EMISUSE, NULL, 0, "bad cover options");
     if (!set->contained)
         return vb_error(ctx, VB_EMISUSE, NULL, 0, "cover needs a validated sphere set");
-    cgrid g;
-    if (cgrid_build(set, &g) != VB_OK) {
-        cgrid_free(&g);
-        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover grid)");
+    if (set->n > UINT32_MAX - 1)
+        return vb_error(ctx, VB_EINPUT_TOOLARGE, NULL, 0, "more than 2^32 - 2 spheres");
+    bvh g;
+    if (bvh_build(set, &g) != VB_OK) {
+        bvh_free(&g);
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover tree)");
     }
-    jb.g = &g;
+    e->x = set->x;
+    e->y = set->y;
+    e->z = set->z;
+    e->r = set->r;
+    e->box = g.box;
+    e->rmax = g.rmax;
+    e->ids = g.ids;
+    e->first = (uint32_t)g.first;
+    e->m = (uint32_t)g.m;
+    e->rmax_all = g.rmax_all;
+    e->near = near_radius(&g);
     int nt = vbs_threads(o.threads);
     worker *w = calloc((size_t)nt, sizeof *w);
     pthread_t *th = calloc((size_t)nt, sizeof *th);
@@ -571,7 +368,7 @@ int vb_cover_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *
     }
     size_t total = 0;
     for (int t = 0; rc == VB_OK && t < nt; t++)
-        total += w[t].sc.nq;
+        total += w[t].nq;
     if (rc == VB_OK && total + out->n > out->cap) {
         void *p = realloc(out->q, (total + out->n) * sizeof *out->q);
         if (!p)
@@ -584,11 +381,11 @@ int vb_cover_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *
     vb_cover_stats st;
     memset(&st, 0, sizeof st);
     for (int t = 0; w && t < nt; t++) {
-        if (rc == VB_OK && w[t].sc.nq) {
-            memcpy(out->q + out->n, w[t].sc.q, w[t].sc.nq * sizeof *out->q);
-            out->n += w[t].sc.nq;
+        if (rc == VB_OK && w[t].nq) {
+            memcpy(out->q + out->n, w[t].q, w[t].nq * sizeof *out->q);
+            out->n += w[t].nq;
         }
-        const vb_cover_stats *ws = &w[t].sc.stats;
+        const vb_cover_stats *ws = &w[t].st;
         st.cells += ws->cells;
         st.neighbours += ws->neighbours;
         st.far_neighbours += ws->far_neighbours;
@@ -596,22 +393,20 @@ int vb_cover_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *
         st.evals += ws->evals;
         st.leaves += ws->leaves;
         st.max_level_leaves += ws->max_level_leaves;
+        st.retries += ws->retries;
         if (ws->max_level_seen > st.max_level_seen)
             st.max_level_seen = ws->max_level_seen;
-        scratch_free(&w[t].sc);
+        arena_free(&w[t].ar);
+        free(w[t].q);
     }
     free(w);
     free(th);
     free(started);
-    cgrid_free(&g);
-    if (rc == VB_OK && out->n > 1) {
+    bvh_free(&g);
+    /* Each cell's list is sorted and unique and cells own disjoint
+     * quadruples (by their smallest id): one sort makes the order canonical. */
+    if (rc == VB_OK && out->n > 1)
         qsort(out->q, out->n, sizeof *out->q, cmp_quad);
-        size_t k = 1;
-        for (size_t a = 1; a < out->n; a++)
-            if (cmp_quad(out->q[a], out->q[k - 1]) != 0)
-                memcpy(out->q[k++], out->q[a], sizeof *out->q);
-        out->n = k;
-    }
     st.quads = out->n;
     if (stats)
         *stats = st;

@@ -40,6 +40,7 @@ typedef struct vb_cover_stats {
     uint64_t leaves;         /* patches that enumerated quadruples */
     uint64_t max_level_leaves; /* of those, at the deepest level */
     uint64_t quads;          /* distinct quadruples proposed */
+    uint64_t retries;        /* cells covered again with a larger arena */
     unsigned max_level_seen;
 } vb_cover_stats;
 

@@ -52,96 +52,58 @@ VBS_ASSERT_LAYOUT(sizeof(vbq_nb) == 48, "vbq_nb layout shared with OpenCL");
 /* A floor for sums of non-negative terms that may underflow. */
 #define VBQ_TINY 1e-300
 
-/* ---- interval helpers (outward by one double, C and OpenCL) --------------
- * For an exact result x of +, -, *, / of doubles, round-to-nearest returns r
- * with pred(r) <= x <= succ(r) (verify/vbx_ia.h gives the proof). */
-VBS_FN double vbq_up(double x)
-{
-    return nextafter(x, (double)INFINITY);
-}
-
-VBS_FN double vbq_down(double x)
-{
-    return nextafter(x, -(double)INFINITY);
-}
-
-VBS_FN void vbq_sub_ia(double alo, double ahi, double blo, double bhi, double *lo, double *hi)
-{
-    *lo = vbq_down(alo - bhi);
-    *hi = vbq_up(ahi - blo);
-}
-
-VBS_FN void vbq_sqr_ia(double lo, double hi, double *rlo, double *rhi)
-{
-    double l = VBS_FABS(lo), h = VBS_FABS(hi);
-    double mx = l > h ? l : h, mn = l < h ? l : h;
-    *rlo = (lo <= 0.0 && hi >= 0.0) ? 0.0 : vbq_down(mn * mn);
-    if (*rlo < 0.0)
-        *rlo = 0.0;
-    *rhi = vbq_up(mx * mx);
-}
-
-/* a / b for an interval b > 0 (callers check). */
-VBS_FN void vbq_div_pos_ia(double alo, double ahi, double blo, double bhi, double *lo, double *hi)
-{
-    double q1 = alo / blo, q2 = alo / bhi, q3 = ahi / blo, q4 = ahi / bhi;
-    double l = q1 < q2 ? q1 : q2, h = q1 > q2 ? q1 : q2;
-    l = q3 < l ? q3 : l;
-    h = q3 > h ? q3 : h;
-    l = q4 < l ? q4 : l;
-    h = q4 > h ? q4 : h;
-    *lo = vbq_down(l);
-    *hi = vbq_up(h);
-}
-
 /* ---- the neighbours ------------------------------------------------------ */
 
-/* Fills nb for base (ci, Ri) and sphere j (cj, Rj), all doubles nearest to
- * the input decimals, so every exact input lies in [pred(x), succ(x)]. The
- * enclosure of a = d / N and b = delta / N is interval arithmetic from those
- * input intervals; a~, b~ are the midpoints and err the half-widths summed
- * (|u|_inf <= 1), rounded up. Returns 0 when the enclosure of N does not
- * prove N > 0 (nested or nearly nested spheres: the caller keeps j in every
- * patch), 1 otherwise. */
+/* u = 2^-53 and a bound slightly above it for |X - x| of an input decimal X
+ * and its nearest double x (|X - x| <= u |x| / (1 - u)). */
+#define VBQ_U 1.1102230246251565e-16
+#define VBQ_U_IN 1.1102230246251568e-16
+
+/* Fills nb for base (ci, Ri) and sphere j (cj, Rj), doubles nearest to the
+ * input decimals. Error bound of a~ = fl(d~ / N~), b~ = fl(delta~ / N~)
+ * against the exact a = D / M, b = Delta / M of the decimals:
+ *   each difference d~ = fl(x_j - x_i) is within e = 2.02 u (|x_i| + |x_j|)
+ *   of the exact D (input error 1.01 u per operand, one rounding);
+ *   N~ = fl(sum d~^2 - delta~^2) is within
+ *     E = sum_k e_k (2 |d~_k| + e_k) + 4.01 u (sum_k d~_k^2)
+ *   of the exact M (squares of perturbed values, then four squares and
+ *   three additions: gamma_4 of the sum of the magnitudes);
+ *   when N~ > 2E, |D/M - d~/N~| <= (e + |d~| E / N~) / (N~ - E), and the
+ *   final division adds u |a~|.
+ * err sums the four bounds and is multiplied by 1 + 1e-14, which covers the
+ * (at most 20) roundings of its own non-negative terms; VBQ_TINY covers
+ * underflow. Returns 0 when N~ <= 2E (nested or nearly nested spheres: err
+ * is infinite and the caller keeps j in every patch), 1 otherwise. */
 VBS_FN int vbq_nb_make(double cix, double ciy, double ciz, double ri, double cjx, double cjy,
                        double cjz, double rj, vbs_u32 j, vbq_nb *nb)
 {
-    double dlo[4], dhi[4];
     double ci[4] = {cix, ciy, ciz, ri}, cj[4] = {cjx, cjy, cjz, rj};
-    for (int k = 0; k < 4; k++)
-        vbq_sub_ia(vbq_down(cj[k]), vbq_up(cj[k]), vbq_down(ci[k]), vbq_up(ci[k]), &dlo[k],
-                   &dhi[k]);
-    double slo = 0.0, shi = 0.0;
-    for (int k = 0; k < 3; k++) {
-        double qlo, qhi;
-        vbq_sqr_ia(dlo[k], dhi[k], &qlo, &qhi);
-        slo = vbq_down(slo + qlo);
-        shi = vbq_up(shi + qhi);
+    double d[4], e[4], E = 0.0, mag = 0.0;
+    for (int k = 0; k < 4; k++) {
+        d[k] = cj[k] - ci[k];
+        e[k] = 2.02 * VBQ_U_IN * (VBS_FABS(ci[k]) + VBS_FABS(cj[k])) + VBQ_TINY;
+        E += e[k] * (2.0 * VBS_FABS(d[k]) + e[k]);
+        mag += d[k] * d[k];
     }
-    double rlo, rhi, nlo, nhi;
-    vbq_sqr_ia(dlo[3], dhi[3], &rlo, &rhi);
-    vbq_sub_ia(slo, shi, rlo, rhi, &nlo, &nhi);
+    double N = ((d[0] * d[0] + d[1] * d[1]) + d[2] * d[2]) - d[3] * d[3];
+    E = (E + 4.01 * VBQ_U * mag) * (1.0 + 1e-14) + VBQ_TINY;
     nb->id = j;
     nb->pad = 0u;
-    if (!(nlo > 0.0)) {
+    if (!(N > 2.0 * E)) {
         nb->ax = nb->ay = nb->az = nb->b = 0.0;
         nb->err = (double)INFINITY;
         return 0;
     }
-    double mid[4], err = 0.0;
+    double inv = 1.0 / (N - E), q[4], err = 0.0;
     for (int k = 0; k < 4; k++) {
-        double lo, hi;
-        vbq_div_pos_ia(dlo[k], dhi[k], nlo, nhi, &lo, &hi);
-        mid[k] = 0.5 * lo + 0.5 * hi;
-        /* |exact - mid| <= max(hi - mid, mid - lo), each rounded up. */
-        double e1 = vbq_up(hi - mid[k]), e2 = vbq_up(mid[k] - lo);
-        err = vbq_up(err + (e1 > e2 ? e1 : e2));
+        q[k] = d[k] / N;
+        err += (e[k] + VBS_FABS(d[k]) * (E / N)) * inv + VBQ_U * VBS_FABS(q[k]);
     }
-    nb->ax = mid[0];
-    nb->ay = mid[1];
-    nb->az = mid[2];
-    nb->b = mid[3];
-    nb->err = err;
+    nb->ax = q[0];
+    nb->ay = q[1];
+    nb->az = q[2];
+    nb->b = q[3];
+    nb->err = err * (1.0 + 1e-14) + VBQ_TINY;
     return 1;
 }
 
@@ -156,8 +118,7 @@ VBS_FN int vbq_nb_make(double cix, double ciy, double ciz, double ri, double cjx
  * in {v0, v1, clamp(0)}; likewise for v. The nine points (corners, the
  * clamped zeros on each edge, the clamped centre) hold all of them.
  * vbs_face_dir computes each component with at most 6 roundings, so within
- * 6u relative: the box is widened by 8u |x| + VBQ_TINY on each side, and m,
- * h are rounded outward. */
+ * 6u relative: the box is widened by 8u |x| + VBQ_TINY on each side. */
 VBS_FN void vbq_patch_box(vbs_u32 f, double u0, double u1, double v0, double v1, double m[3],
                           double h[3])
 {
@@ -175,11 +136,12 @@ VBS_FN void vbq_patch_box(vbs_u32 f, double u0, double u1, double v0, double v1,
             }
         }
     for (int k = 0; k < 3; k++) {
-        double l = lo[k] - (8.0 * 1.1102230246251565e-16 * VBS_FABS(lo[k]) + VBQ_TINY);
-        double g = hi[k] + (8.0 * 1.1102230246251565e-16 * VBS_FABS(hi[k]) + VBQ_TINY);
+        double l = lo[k] - (8.0 * VBQ_U * VBS_FABS(lo[k]) + VBQ_TINY);
+        double g = hi[k] + (8.0 * VBQ_U * VBS_FABS(hi[k]) + VBQ_TINY);
         m[k] = 0.5 * l + 0.5 * g;
-        double e1 = vbq_up(g - m[k]), e2 = vbq_up(m[k] - l);
-        h[k] = e1 > e2 ? e1 : e2;
+        /* max(g - m, m - l) rounds once: 1 + 2u covers it. */
+        double e1 = g - m[k], e2 = m[k] - l;
+        h[k] = (e1 > e2 ? e1 : e2) * (1.0 + 2.0 * VBQ_U) + VBQ_TINY;
     }
 }
 
@@ -205,6 +167,28 @@ VBS_FN void vbq_eval(const vbq_nb *nb, const double m[3], const double h[3], dou
     *hi = F + R;
 }
 
+/* Encloses f_k(u) - f_j(u) = (a_k - a_j).u + (b_k - b_j) over the same u
+ * as vbq_eval, with the bound of vbq_eval applied to the difference
+ * (coefficients differenced once more: G covers both operands, err adds). A
+ * difference is far tighter than two separate enclosures, since most of
+ * a~.m cancels. */
+VBS_FN void vbq_eval_diff(const vbq_nb *k, const vbq_nb *j, const double m[3], const double h[3],
+                          double *lo, double *hi)
+{
+    double dx = k->ax - j->ax, dy = k->ay - j->ay, dz = k->az - j->az, db = k->b - j->b;
+    double F = ((dx * m[0] + dy * m[1]) + dz * m[2]) + db;
+    double adx = VBS_FABS(dx), ady = VBS_FABS(dy), adz = VBS_FABS(dz);
+    /* The differences of the coefficients round once each: u times the sum
+     * of both operands' magnitudes, weighted by |m| <= 1 + h. */
+    double G = ((VBS_FABS(k->ax) + VBS_FABS(j->ax)) + (VBS_FABS(k->ay) + VBS_FABS(j->ay))) +
+               ((VBS_FABS(k->az) + VBS_FABS(j->az)) + (VBS_FABS(k->b) + VBS_FABS(j->b)));
+    double R = (((adx * h[0] + ady * h[1]) + adz * h[2]) + (k->err + j->err)) +
+               VBQ_C * (2.0 * G + VBS_FABS(F));
+    R = R * (1.0 + VBQ_C) + VBQ_TINY;
+    *lo = F - R;
+    *hi = F + R;
+}
+
 /* The square of a patch: level l, integer position (iu, iv) of 2^l T
  * squares per face side. Dyadic, so u0..v1 are exact doubles. */
 VBS_FN void vbq_patch_square(vbs_u32 T, vbs_u32 level, vbs_u32 iu, vbs_u32 iv, double *u0,
@@ -215,6 +199,447 @@ VBS_FN void vbq_patch_square(vbs_u32 T, vbs_u32 level, vbs_u32 iu, vbs_u32 iv, d
     *u1 = -1.0 + side * (double)(iu + 1u);
     *v0 = -1.0 + side * (double)iv;
     *v1 = -1.0 + side * (double)(iv + 1u);
+}
+
+/* ---- the cover of one cell ---------------------------------------------- */
+
+/* Tuning (speed only; every value keeps the cover complete). */
+#define VBQ_LEAF 8u            /* spheres per leaf of the tree */
+#define VBQ_FETCH_LEVEL 2u     /* unclosed patches from this level fetch rings */
+
+#define VBQ_STALL 4u           /* levels without an exclusion before enumerating */
+#define VBQ_STALL_ENUM 14u     /* ... when at most this many owned labels */
+#define VBQ_DOM_MAX 12u        /* patches with at most this many labels test pairs */
+#define VBQ_STACK 64u          /* tree traversal stack (depth <= 33) */
+
+/* Statuses of vbq_cover_cell: 0, or which arena ran out (the host reruns the
+ * cell with larger arenas). */
+#define VBQ_OK 0u
+#define VBQ_OVER_NB 1u
+#define VBQ_OVER_LAB 2u
+#define VBQ_OVER_ST 3u
+#define VBQ_OVER_Q 4u
+
+/* A patch waiting in the depth-first stack. */
+typedef struct vbq_frame {
+    vbs_u32 f, level, iu, iv;
+    vbs_u32 off, len;  /* labels in lab[off .. off + len): indices into nb */
+    vbs_u32 stall;     /* consecutive levels that excluded no label */
+    vbs_u32 pad;
+    double rq;         /* every sphere centred within rq of c_i is in the list or was
+                          excluded by an ancestor (INFINITY: every sphere) */
+} vbq_frame;
+VBS_ASSERT_LAYOUT(sizeof(vbq_frame) == 40, "vbq_frame layout shared with OpenCL");
+
+/* What one cell's cover did (counters for --stats; nq quadruples written). */
+typedef struct vbq_cell_out {
+    vbs_u32 status, nq, nnb, far;
+    vbs_u32 patches, evals_k, leaves, deep, maxlev;
+    vbs_u32 lab_hw, st_hw;  /* high-water marks of the label and frame stacks */
+    vbs_u32 qoff;           /* where a backend stored the quadruples */
+} vbq_cell_out;
+VBS_ASSERT_LAYOUT(sizeof(vbq_cell_out) == 48, "vbq_cell_out layout shared with OpenCL");
+
+/* The input of every cell: the spheres, and a tree over the centres of the
+ * spheres that no other sphere contains: their ids along a Morton curve,
+ * in leaves of VBQ_LEAF, a complete binary tree over the leaves (heap
+ * order: node 1 the root, leaves from `first`), each node with the box of
+ * its centres (lo xyz, hi xyz) and the largest radius below it. */
+typedef struct vbq_env {
+    const VBS_GLOBAL double *x, *y, *z, *r;
+    const VBS_GLOBAL double *box;
+    const VBS_GLOBAL double *rmax;
+    const VBS_GLOBAL vbs_u32 *ids;
+    vbs_u32 first, m;
+    double rmax_all;   /* largest radius of the tree's spheres */
+    double near;       /* first guess of a near list's radius, beyond 2 rmax_all */
+    vbs_u32 T, min_level, max_level, enum_max;
+} vbq_env;
+
+/* Scratch of one cell, fixed capacities. */
+typedef struct vbq_arena {
+    VBS_GLOBAL vbq_nb *nb;
+    VBS_GLOBAL vbs_u32 *lab;
+    VBS_GLOBAL vbq_frame *st;
+    VBS_GLOBAL vbs_u32 *q;      /* 4 per quadruple */
+    vbs_u32 nb_cap, lab_cap, st_cap, q_cap;
+} vbq_arena;
+
+/* Squared distance from c to node nd's box (0 inside), and to its farthest
+ * corner. */
+VBS_FN double vbq_box_dist2(const vbq_env *e, vbs_u32 nd, const double c[3])
+{
+    double d2 = 0.0;
+    for (int a = 0; a < 3; a++) {
+        double l = e->box[6u * nd + (vbs_u32)a], h = e->box[6u * nd + 3u + (vbs_u32)a];
+        double dn = c[a] < l ? l - c[a] : (c[a] > h ? c[a] - h : 0.0);
+        d2 += dn * dn;
+    }
+    return d2;
+}
+
+VBS_FN double vbq_box_far2(const vbq_env *e, vbs_u32 nd, const double c[3])
+{
+    double d2 = 0.0;
+    for (int a = 0; a < 3; a++) {
+        double l = VBS_FABS(e->box[6u * nd + (vbs_u32)a] - c[a]);
+        double h = VBS_FABS(e->box[6u * nd + 3u + (vbs_u32)a] - c[a]);
+        double f = l > h ? l : h;
+        d2 += f * f;
+    }
+    return d2;
+}
+
+/* Appends the record of sphere j as a neighbour of i; 0 when nb is full. */
+VBS_FN int vbq_push_nb(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i,
+                       vbs_u32 j)
+{
+    if (o->nnb >= ar->nb_cap) {
+        o->status = VBQ_OVER_NB;
+        return 0;
+    }
+    vbq_nb nb;
+    vbq_nb_make(e->x[i], e->y[i], e->z[i], e->r[i], e->x[j], e->y[j], e->z[j], e->r[j], j, &nb);
+    ar->nb[o->nnb++] = nb;
+    return 1;
+}
+
+/* The spheres centred in (rq0, rq1] from c_i (rq0 < 0: from 0) that can be
+ * labels in the patch (m, h) with lower envelope LO, appended to the list at
+ * lab[off + *len ...]. Where f_j >= LO at u: u.d + delta >= LO N >= 0, so
+ * the sphere reaches the half-space u.(x - c_i) >= R_i - R_j; and for LO > 0
+ * the bisector along u is at most s = 1/(2 LO) from c_i, so the tangent
+ * sphere there, centre c_i + s u and radius s - R_i, must reach sphere j:
+ * |c_i + s u - c_j| <= s - R_i + R_j. A node is pruned when one of these
+ * fails for every u of the patch box and every centre of its box (R_j <= its
+ * R_max), or when its box lies within rq0 or beyond rq1; the bounds carry a
+ * relative margin of 1e-9, far above the rounding errors of these few
+ * operations. A sphere left is kept when its enclosure reaches LO; with
+ * LO < 0 (the near list) every sphere of the ring is kept. Returns 0 when an
+ * arena is full. */
+VBS_FN int vbq_gather(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i,
+                      const double m[3], const double h[3], double LO, double rq0, double rq1,
+                      vbs_u32 off, vbs_u32 *len)
+{
+    const double c[3] = {e->x[i], e->y[i], e->z[i]};
+    double sdist = LO > 0.0 ? 0.5 / LO : (double)INFINITY;
+    int half = LO >= 0.0;
+    double in2 = rq0 > 0.0 ? rq0 * rq0 * (1.0 - 1e-9) : -1.0;
+    double out2 = rq1 * rq1 * (1.0 + 1e-9);
+    vbs_u32 stack[VBQ_STACK], ns = 0;
+    if (e->m)
+        stack[ns++] = 1u;
+    while (ns) {
+        vbs_u32 nd = stack[--ns];
+        const VBS_GLOBAL double *bx = e->box + 6u * nd;
+        double slack = e->rmax[nd] - e->r[i];
+        double best = 0.0, mag = 0.0, dmax2 = 0.0, dmin2 = 0.0, bb2 = 0.0;
+        for (int a = 0; a < 3; a++) {
+            double b0 = bx[a] - c[a], b1 = bx[3 + a] - c[a];
+            double u0 = m[a] - h[a], u1 = m[a] + h[a];
+            double p0 = u0 * b0, p1 = u0 * b1, p2 = u1 * b0, p3 = u1 * b1;
+            double mx = p0 > p1 ? p0 : p1;
+            mx = p2 > mx ? p2 : mx;
+            mx = p3 > mx ? p3 : mx;
+            best += mx;
+            mag += VBS_FABS(b0) + VBS_FABS(b1);
+            double f = VBS_FABS(b0) > VBS_FABS(b1) ? VBS_FABS(b0) : VBS_FABS(b1);
+            dmax2 += f * f;
+            double dn = b0 > 0.0 ? b0 : (b1 < 0.0 ? -b1 : 0.0);
+            dmin2 += dn * dn;
+            if (sdist < (double)INFINITY) {
+                double t0 = sdist * u0, t1 = sdist * u1;
+                double gp = b0 > t1 ? b0 - t1 : (t0 > b1 ? t0 - b1 : 0.0);
+                bb2 += gp * gp;
+            }
+        }
+        if (dmax2 < in2 || dmin2 > out2)
+            continue;
+        if (half && best + slack < -1e-9 * (mag + VBS_FABS(slack) + 1e-300))
+            continue;
+        if (sdist < (double)INFINITY) {
+            double reach = (sdist + slack) * (1.0 + 1e-9) + 1e-9 * (mag + sdist);
+            if (reach < 0.0 || bb2 > reach * reach)
+                continue;
+        }
+        if (nd < e->first) {
+            stack[ns++] = 2u * nd + 1u;
+            stack[ns++] = 2u * nd;
+            continue;
+        }
+        vbs_u32 q0 = (nd - e->first) * VBQ_LEAF;
+        for (vbs_u32 q = q0; q < e->m && q < q0 + VBQ_LEAF; q++) {
+            vbs_u32 j = e->ids[q];
+            if (j == i)
+                continue;
+            double dx = e->x[j] - c[0], dy = e->y[j] - c[1], dz = e->z[j] - c[2];
+            double d2 = dx * dx + dy * dy + dz * dz;
+            if ((rq0 > 0.0 && !(d2 > rq0 * rq0)) || d2 > rq1 * rq1)
+                continue; /* inside: in the list or excluded; outside: a later ring */
+            if (!vbq_push_nb(e, ar, o, i, j))
+                return 0;
+            if (half) {
+                double lo, hi;
+                vbq_eval(&ar->nb[o->nnb - 1u], m, h, &lo, &hi);
+                if (!(hi >= LO)) {
+                    o->nnb--; /* not needed: drop the record again */
+                    continue;
+                }
+                o->far++;
+            }
+            if (off + *len >= ar->lab_cap) {
+                o->status = VBQ_OVER_LAB;
+                return 0;
+            }
+            ar->lab[off + (*len)++] = o->nnb - 1u;
+        }
+    }
+    return 1;
+}
+
+/* Inserts quadruple (i, a, b, c) (i smallest) into the sorted unique list
+ * q[0 .. nq). Returns 0 when q is full. */
+VBS_FN int vbq_add_quad(const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i, vbs_u32 a, vbs_u32 b,
+                        vbs_u32 c)
+{
+    vbs_u32 v[4] = {i, a, b, c};
+    for (int x = 2; x < 4; x++)
+        for (int y = x; y > 1 && v[y - 1] > v[y]; y--) {
+            vbs_u32 t = v[y];
+            v[y] = v[y - 1];
+            v[y - 1] = t;
+        }
+    /* Binary search for the first entry >= v (entries share v[0] = i). */
+    vbs_u32 lo = 0u, hi = o->nq;
+    while (lo < hi) {
+        vbs_u32 mid = (lo + hi) / 2u;
+        const VBS_GLOBAL vbs_u32 *w = ar->q + 4u * mid;
+        int less = w[1] != v[1] ? w[1] < v[1] : (w[2] != v[2] ? w[2] < v[2] : w[3] < v[3]);
+        if (less)
+            lo = mid + 1u;
+        else
+            hi = mid;
+    }
+    if (lo < o->nq) {
+        const VBS_GLOBAL vbs_u32 *w = ar->q + 4u * lo;
+        if (w[1] == v[1] && w[2] == v[2] && w[3] == v[3])
+            return 1;
+    }
+    if (o->nq >= ar->q_cap) {
+        o->status = VBQ_OVER_Q;
+        return 0;
+    }
+    for (vbs_u32 k = o->nq; k > lo; k--)
+        for (int x = 0; x < 4; x++)
+            ar->q[4u * k + (vbs_u32)x] = ar->q[4u * (k - 1u) + (vbs_u32)x];
+    for (int x = 0; x < 4; x++)
+        ar->q[4u * lo + (vbs_u32)x] = v[x];
+    o->nq++;
+    return 1;
+}
+
+/* Covers the cell of sphere i: writes the quadruples {i < j < k < l} whose
+ * roots hold every vertex of the cell with smallest member i to ar->q
+ * (sorted, unique; o->nq of them) and the counters to *o. o->status is
+ * VBQ_OK, or the arena that ran out (the output is then incomplete and must
+ * not be used). See the top of this file for why the quadruples are
+ * complete. */
+VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbq_cell_out *o)
+{
+    o->status = VBQ_OK;
+    o->nq = o->nnb = o->far = 0u;
+    o->patches = o->evals_k = o->leaves = o->deep = o->maxlev = 0u;
+    o->lab_hw = o->st_hw = o->qoff = 0u;
+    double evals = 0.0;
+    const double c[3] = {e->x[i], e->y[i], e->z[i]};
+    const double m0[3] = {0.0, 0.0, 0.0}, h0[3] = {1.0, 1.0, 1.0};
+    /* Near list: every sphere centred within rq of c_i; so every sphere
+     * with e_j <= rq - (R_max - R_i) is in it. */
+    double rq = e->near + 2.0 * e->rmax_all;
+    vbs_u32 len0 = 0u;
+    if (!vbq_gather(e, ar, o, i, m0, h0, -1.0, -1.0, rq, 0u, &len0))
+        return;
+    /* Beyond this distance from c_i there is no centre. */
+    double far = VBS_SQRT(vbq_box_far2(e, 1u, c)) * (1.0 + 1e-9);
+    vbs_u32 T = e->T, nst = 0u;
+    if (6u * T * T > ar->st_cap) {
+        o->status = VBQ_OVER_ST;
+        return;
+    }
+    for (vbs_u32 f = 0u; f < 6u; f++)
+        for (vbs_u32 iv = 0u; iv < T; iv++)
+            for (vbs_u32 iu = 0u; iu < T; iu++) {
+                vbq_frame fr;
+                fr.f = f;
+                fr.level = 0u;
+                fr.iu = iu;
+                fr.iv = iv;
+                fr.off = 0u;
+                fr.len = len0;
+                fr.stall = 0u;
+                fr.pad = 0u;
+                fr.rq = rq >= far ? (double)INFINITY : rq;
+                ar->st[nst++] = fr;
+            }
+    /* The roots share lab[0 .. len0); lists of deeper frames are stacked
+     * above top. A frame's list lies below the lists of every frame pushed
+     * after it, so popping a frame frees everything above its list. */
+    vbs_u32 top = len0;
+    double slack_i = e->rmax_all - e->r[i];
+    while (nst > 0u) {
+        o->st_hw = nst > o->st_hw ? nst : o->st_hw;
+        o->lab_hw = top > o->lab_hw ? top : o->lab_hw;
+        vbq_frame fr = ar->st[--nst];
+        if (fr.off + fr.len < top)
+            top = fr.off + fr.len > len0 ? fr.off + fr.len : len0;
+        double u0, u1, v0, v1, m[3], h[3];
+        vbq_patch_square(T, fr.level, fr.iu, fr.iv, &u0, &u1, &v0, &v1);
+        vbq_patch_box(fr.f, u0, u1, v0, v1, m, h);
+        o->patches++;
+        /* LO: the envelope is at least max(0, lo_k) everywhere in P (0 is
+         * "infinity", the floor of the envelope). */
+        double LO = 0.0;
+        for (vbs_u32 k = 0u; k < fr.len; k++) {
+            double lo, hi;
+            vbq_eval(&ar->nb[ar->lab[fr.off + k]], m, h, &lo, &hi);
+            LO = lo > LO ? lo : LO;
+        }
+        evals += (double)fr.len;
+        /* Closed: no sphere outside the list can reach LO. Each such sphere
+         * is centred beyond rq, so e_j > ecert = rq - (R_max - R_i) and f_j
+         * <= 1/e_j < 1/ecert <= LO. */
+        double ecert = fr.rq - slack_i;
+        int closed = fr.rq == (double)INFINITY ||
+                     (LO > 0.0 && ecert > 0.0 && 1.0 / ecert < LO * (1.0 - 1e-9));
+        /* A fetch takes every sphere that can reach LO anywhere in the
+         * patch; the children share what it found. Fetching from deeper
+         * levels makes each fetch smaller but repeats it in every child
+         * (measured: level 2 is the cheaper on proteins and the capsid). */
+        if (!closed && fr.level >= VBQ_FETCH_LEVEL) {
+            /* Fetch the next ring: out to the reach LO asks for, at most
+             * twice the present radius (LO grows with what is found). */
+            double want = LO > 0.0 ? (1.0 / LO) * (1.0 + 1e-8) + slack_i + 1e-9 * fr.rq
+                                   : (double)INFINITY;
+            double rq1 = want < 2.0 * fr.rq ? want : 2.0 * fr.rq;
+            if (rq1 >= far)
+                rq1 = (double)INFINITY;
+            if (top + fr.len > ar->lab_cap) {
+                o->status = VBQ_OVER_LAB;
+                return;
+            }
+            for (vbs_u32 k = 0u; k < fr.len; k++)
+                ar->lab[top + k] = ar->lab[fr.off + k];
+            vbs_u32 nlen = fr.len;
+            if (!vbq_gather(e, ar, o, i, m, h, LO, fr.rq, rq1, top, &nlen))
+                return;
+            fr.off = top;
+            fr.len = nlen;
+            fr.rq = rq1;
+            top += nlen;
+            ar->st[nst++] = fr; /* evaluated again with the new labels */
+            o->patches--;
+            continue;
+        }
+        /* The surviving labels, copied above top. */
+        if (top + fr.len > ar->lab_cap) {
+            o->status = VBQ_OVER_LAB;
+            return;
+        }
+        vbs_u32 keep = 0u, owned = 0u;
+        for (vbs_u32 k = 0u; k < fr.len; k++) {
+            vbs_u32 li = ar->lab[fr.off + k];
+            double lo, hi;
+            vbq_eval(&ar->nb[li], m, h, &lo, &hi);
+            if (hi >= LO) {
+                ar->lab[top + keep++] = li;
+                if (ar->nb[li].id > i)
+                    owned++;
+            }
+        }
+        evals += (double)fr.len;
+        /* Pairwise dominance: where f_k - f_j > 0 all over P, j is nowhere
+         * the largest in P. Few labels only (it is quadratic). */
+        if (closed && owned >= 3u && keep <= VBQ_DOM_MAX) {
+            vbs_u32 w = 0u;
+            owned = 0u;
+            for (vbs_u32 a = 0u; a < keep; a++) {
+                vbq_nb nj = ar->nb[ar->lab[top + a]];
+                int dom = 0;
+                for (vbs_u32 b = 0u; b < keep && !dom; b++) {
+                    if (b == a)
+                        continue;
+                    vbq_nb nk = ar->nb[ar->lab[top + b]];
+                    double dl, dh;
+                    vbq_eval_diff(&nk, &nj, m, h, &dl, &dh);
+                    dom = dl > 0.0;
+                }
+                evals += (double)(keep - 1u);
+                if (!dom) {
+                    ar->lab[top + w++] = ar->lab[top + a];
+                    if (nj.id > i)
+                        owned++;
+                }
+            }
+            keep = w;
+        }
+        /* Fewer than three owned labels: no vertex of this cell whose
+         * smallest member is i lies in P (once the list is known whole). */
+        if (closed && owned < 3u)
+            continue;
+        /* Labels that tie exactly along a curve (equal spheres on a circle,
+         * lattices) survive every subdivision there: once VBQ_STALL levels
+         * in a row excluded nothing, more levels would only multiply the
+         * patches, so the patch enumerates (a larger patch only adds
+         * quadruples whose roots the certifier refutes). */
+        int stalled = keep == fr.len && fr.stall + 1u >= VBQ_STALL;
+        int deep = fr.level + 1u >= e->max_level || (stalled && owned <= VBQ_STALL_ENUM);
+        if (closed && (deep || (fr.level >= e->min_level && owned <= e->enum_max))) {
+            o->leaves++;
+            if (deep)
+                o->deep++;
+            if (fr.level > o->maxlev)
+                o->maxlev = fr.level;
+            for (vbs_u32 a = 0u; a < keep; a++) {
+                vbs_u32 ja = ar->nb[ar->lab[top + a]].id;
+                if (ja < i)
+                    continue;
+                for (vbs_u32 b = a + 1u; b < keep; b++) {
+                    vbs_u32 jb = ar->nb[ar->lab[top + b]].id;
+                    if (jb < i)
+                        continue;
+                    for (vbs_u32 d = b + 1u; d < keep; d++) {
+                        vbs_u32 jd = ar->nb[ar->lab[top + d]].id;
+                        if (jd < i)
+                            continue;
+                        if (!vbq_add_quad(ar, o, i, ja, jb, jd))
+                            return;
+                    }
+                }
+            }
+            continue;
+        }
+        /* Subdivide: the four children share the surviving list. */
+        if (nst + 4u > ar->st_cap) {
+            o->status = VBQ_OVER_ST;
+            return;
+        }
+        vbs_u32 off = top;
+        top += keep;
+        for (vbs_u32 k = 0u; k < 4u; k++) {
+            vbq_frame ch;
+            ch.f = fr.f;
+            ch.level = fr.level + 1u;
+            ch.iu = 2u * fr.iu + (k & 1u);
+            ch.iv = 2u * fr.iv + (k >> 1);
+            ch.off = off;
+            ch.len = keep;
+            ch.stall = keep == fr.len ? fr.stall + 1u : 0u;
+            ch.pad = 0u;
+            ch.rq = fr.rq;
+            ar->st[nst++] = ch;
+        }
+    }
+    o->evals_k = (vbs_u32)(evals / 1000.0);
 }
 
 #endif
