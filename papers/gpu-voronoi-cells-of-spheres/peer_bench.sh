@@ -63,7 +63,7 @@ for in in "$@"; do
     [ "$n" -le "$COMPLETE_MAX" ] && complete=(--complete)
     log "$name: $n spheres, threads $THREADS"
     printf '{"input":"%s","spheres":%s,"threads":%s,"voronota_parts":%s,"vorball_device":"%s","host":"%s","nproc":%s}\n' \
-        "$in" "$n" "$THREADS" "$VORONOTA_PARTS" "$VORBALL_DEVICE" "$(hostname)" "$(nproc)" > "$d/run.json"
+        "$in" "$n" "$THREADS" "$VORONOTA_PARTS" "$VORBALL_DEVICE" "$(cat /proc/sys/kernel/hostname 2>/dev/null)" "$(nproc)" > "$d/run.json"
     files=()
     if has vorball && [ "$VORBALL" != - ]; then
         log "$name: vorball bench"
