@@ -183,6 +183,8 @@ static double near_radius(const bvh *t)
 typedef struct job {
     const vb_sphere_set *set;
     vbq_env env;
+    const uint32_t *cells;  /* the cells to cover */
+    size_t ncells;
     atomic_size_t next;
     atomic_int failed;
 } job;
@@ -221,12 +223,42 @@ static int arena_make(vbq_arena *a, uint32_t nb, uint32_t lab, uint32_t st, uint
     return a->nb && a->lab && a->st && a->q ? VB_OK : VB_ENOMEM;
 }
 
-/* Arena capacities of the first try; a cell that overflows one is covered
- * again with that capacity doubled (up to the 32-bit index range). */
+/* Arena capacities of the first try on the host; a cell that overflows one
+ * is covered again with that capacity doubled. */
 #define VBQ_NB0 1024u
 #define VBQ_LAB0 8192u
 #define VBQ_ST0 512u
 #define VBQ_Q0 512u
+
+static int quads_append(worker *w, const uint32_t *q, size_t n)
+{
+    if (w->nq + n > w->q_cap) {
+        size_t nc = w->q_cap ? w->q_cap : 4096;
+        while (nc < w->nq + n)
+            nc *= 2;
+        void *p = realloc(w->q, nc * sizeof *w->q);
+        if (!p)
+            return VB_ENOMEM;
+        w->q = p;
+        w->q_cap = nc;
+    }
+    memcpy(w->q + w->nq, q, n * sizeof *w->q);
+    w->nq += n;
+    return VB_OK;
+}
+
+static void stats_add(vb_cover_stats *st, const vbq_cell_out *o)
+{
+    st->cells++;
+    st->neighbours += o->nnb;
+    st->far_neighbours += o->far;
+    st->patches += o->patches;
+    st->evals += 1000u * (uint64_t)o->evals_k;
+    st->leaves += o->leaves;
+    st->max_level_leaves += o->deep;
+    if (o->maxlev > st->max_level_seen)
+        st->max_level_seen = o->maxlev;
+}
 
 static int cover_one(worker *w, uint32_t i)
 {
@@ -245,47 +277,24 @@ static int cover_one(worker *w, uint32_t i)
             return VB_ENOMEM;
         w->st.retries++;
     }
-    if (w->nq + o.nq > w->q_cap) {
-        size_t nc = w->q_cap ? w->q_cap : 4096;
-        while (nc < w->nq + o.nq)
-            nc *= 2;
-        void *p = realloc(w->q, nc * sizeof *w->q);
-        if (!p)
-            return VB_ENOMEM;
-        w->q = p;
-        w->q_cap = nc;
-    }
-    memcpy(w->q + w->nq, w->ar.q, (size_t)o.nq * sizeof *w->q);
-    w->nq += o.nq;
-    w->st.cells++;
-    w->st.neighbours += o.nnb;
-    w->st.far_neighbours += o.far;
-    w->st.patches += o.patches;
-    w->st.evals += 1000u * (uint64_t)o.evals_k;
-    w->st.leaves += o.leaves;
-    w->st.max_level_leaves += o.deep;
-    if (o.maxlev > w->st.max_level_seen)
-        w->st.max_level_seen = o.maxlev;
-    return VB_OK;
+    stats_add(&w->st, &o);
+    return quads_append(w, w->ar.q, o.nq);
 }
 
 static void *work(void *arg)
 {
     worker *w = arg;
     job *jb = w->jb;
-    const vb_sphere_set *s = jb->set;
     if (!w->ar.nb && arena_make(&w->ar, VBQ_NB0, VBQ_LAB0, VBQ_ST0, VBQ_Q0) != VB_OK) {
         w->rc = VB_ENOMEM;
         atomic_store(&jb->failed, 1);
         return NULL;
     }
     for (;;) {
-        size_t i = atomic_fetch_add(&jb->next, 1);
-        if (i >= s->n || atomic_load(&jb->failed))
+        size_t k = atomic_fetch_add(&jb->next, 1);
+        if (k >= jb->ncells || atomic_load(&jb->failed))
             break;
-        if (s->contained[i])
-            continue;
-        int rc = cover_one(w, (uint32_t)i);
+        int rc = cover_one(w, jb->cells[k]);
         if (rc != VB_OK) {
             w->rc = rc;
             atomic_store(&jb->failed, 1);
@@ -293,6 +302,68 @@ static void *work(void *arg)
         }
     }
     return NULL;
+}
+
+/* Covers jb->cells on nt host threads, appending to the workers' lists. */
+static int cover_host(job *jb, worker *w, int nt)
+{
+    atomic_store(&jb->next, 0);
+    atomic_store(&jb->failed, 0);
+    pthread_t *th = calloc((size_t)nt, sizeof *th);
+    int *started = calloc((size_t)nt, sizeof *started);
+    if (!th || !started) {
+        free(th);
+        free(started);
+        return VB_ENOMEM;
+    }
+    for (int t = 1; t < nt; t++)
+        started[t] = pthread_create(&th[t], NULL, work, &w[t]) == 0;
+    work(&w[0]);
+    for (int t = 1; t < nt; t++) {
+        if (started[t])
+            pthread_join(th[t], NULL);
+        else
+            work(&w[t]);
+    }
+    free(th);
+    free(started);
+    for (int t = 0; t < nt; t++)
+        if (w[t].rc != VB_OK)
+            return w[t].rc;
+    return VB_OK;
+}
+
+/* Covers jb->cells on the backend batch by batch; the cells it leaves (an
+ * arena ran out there) are collected in *left for the host. */
+static int cover_device(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w0,
+                        uint32_t **left, size_t *nleft)
+{
+    size_t batch = be->batch_cells ? be->batch_cells : 65536;
+    vbq_cell_out *outs = malloc(batch * sizeof *outs);
+    uint32_t *lf = malloc((jb->ncells ? jb->ncells : 1) * sizeof *lf);
+    size_t nl = 0;
+    int rc = outs && lf ? VB_OK : vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
+    if (rc == VB_OK)
+        rc = be->begin(ctx, be, &jb->env, jb->set->n);
+    for (size_t b0 = 0; rc == VB_OK && b0 < jb->ncells; b0 += batch) {
+        size_t n = jb->ncells - b0 < batch ? jb->ncells - b0 : batch;
+        const uint32_t *quads = NULL;
+        rc = be->run(ctx, be, jb->cells + b0, n, outs, &quads);
+        for (size_t k = 0; rc == VB_OK && k < n; k++) {
+            if (outs[k].status != VBQ_OK) {
+                lf[nl++] = jb->cells[b0 + k];
+                continue;
+            }
+            stats_add(&w0->st, &outs[k]);
+            rc = quads_append(w0, quads + 4 * (size_t)outs[k].qoff, outs[k].nq);
+            if (rc != VB_OK)
+                rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
+        }
+    }
+    free(outs);
+    *left = lf;
+    *nleft = nl;
+    return rc;
 }
 
 static int cmp_quad(const void *pa, const void *pb)
@@ -310,8 +381,14 @@ void vb_quad_list_free(vb_quad_list *l)
     memset(l, 0, sizeof *l);
 }
 
+void vb_cover_backend_close(vb_cover_backend *be)
+{
+    if (be && be->close)
+        be->close(be);
+}
+
 int vb_cover_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *opt,
-                 vb_quad_list *out, vb_cover_stats *stats)
+                 vb_cover_backend *be, vb_quad_list *out, vb_cover_stats *stats)
 {
     vb_cover_options o = opt ? *opt : (vb_cover_options){0};
     job jb;
@@ -345,27 +422,28 @@ int vb_cover_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *
     e->m = (uint32_t)g.m;
     e->rmax_all = g.rmax_all;
     e->near = near_radius(&g);
+    /* Cells in the tree's curve order: neighbouring cells share neighbours
+     * (caches, and a device's work-items). */
+    jb.cells = g.ids;
+    jb.ncells = g.m;
     int nt = vbs_threads(o.threads);
     worker *w = calloc((size_t)nt, sizeof *w);
-    pthread_t *th = calloc((size_t)nt, sizeof *th);
-    int *started = calloc((size_t)nt, sizeof *started);
-    int rc = w && th && started ? VB_OK : VB_ENOMEM;
-    for (int t = 0; rc == VB_OK && t < nt; t++) {
+    int rc = w ? VB_OK : VB_ENOMEM;
+    for (int t = 0; rc == VB_OK && t < nt; t++)
         w[t].jb = &jb;
-        started[t] = t > 0 && pthread_create(&th[t], NULL, work, &w[t]) == 0;
-    }
-    if (rc == VB_OK) {
-        work(&w[0]);
-        for (int t = 1; t < nt; t++) {
-            if (started[t])
-                pthread_join(th[t], NULL);
-            else
-                work(&w[t]);
+    uint32_t *left = NULL;
+    size_t nleft = 0;
+    if (rc == VB_OK && be) {
+        rc = cover_device(ctx, &jb, be, &w[0], &left, &nleft);
+        if (rc == VB_OK) {
+            w[0].st.host_cells = nleft;
+            jb.cells = left;
+            jb.ncells = nleft;
         }
-        for (int t = 0; t < nt; t++)
-            if (w[t].rc != VB_OK && rc == VB_OK)
-                rc = w[t].rc;
     }
+    if (rc == VB_OK && jb.ncells)
+        rc = cover_host(&jb, w, nt);
+    free(left);
     size_t total = 0;
     for (int t = 0; rc == VB_OK && t < nt; t++)
         total += w[t].nq;
@@ -394,14 +472,13 @@ int vb_cover_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *
         st.leaves += ws->leaves;
         st.max_level_leaves += ws->max_level_leaves;
         st.retries += ws->retries;
+        st.host_cells += ws->host_cells;
         if (ws->max_level_seen > st.max_level_seen)
             st.max_level_seen = ws->max_level_seen;
         arena_free(&w[t].ar);
         free(w[t].q);
     }
     free(w);
-    free(th);
-    free(started);
     bvh_free(&g);
     /* Each cell's list is sorted and unique and cells own disjoint
      * quadruples (by their smallest id): one sort makes the order canonical. */

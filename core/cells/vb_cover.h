@@ -13,6 +13,7 @@
 #define VB_COVER_H
 
 #include "vb.h"
+#include "vb_cover_shared.h"
 #include "vb_spheres.h"
 
 #ifdef __cplusplus
@@ -41,6 +42,7 @@ typedef struct vb_cover_stats {
     uint64_t max_level_leaves; /* of those, at the deepest level */
     uint64_t quads;          /* distinct quadruples proposed */
     uint64_t retries;        /* cells covered again with a larger arena */
+    uint64_t host_cells;     /* cells a device left to the host */
     unsigned max_level_seen;
 } vb_cover_stats;
 
@@ -52,12 +54,39 @@ typedef struct vb_quad_list {
 
 void vb_quad_list_free(vb_quad_list *l);
 
+/* A device that covers cells (gpu/cover_ocl.c): the same vbq_cover_cell on
+ * the device, with fixed arenas. */
+typedef struct vb_cover_backend vb_cover_backend;
+struct vb_cover_backend {
+    const char *name;        /* "opencl" */
+    char device[160];        /* human-readable device */
+    size_t batch_cells;      /* cells per run call */
+    void *state;
+    /* Uploads the input shared by every cell (env's arrays, n spheres) for
+     * the runs that follow. VB_OK, VB_ENOMEM or VB_EDEVICE (message in ctx). */
+    int (*begin)(vb_ctx *ctx, vb_cover_backend *be, const vbq_env *env, size_t n);
+    /* Covers cells[0 .. ncells): out[k] gets cell k's counters and status;
+     * when the status is VBQ_OK its out[k].nq quadruples are at
+     * (*quads) + 4 out[k].qoff (owned by the backend, valid until the next
+     * call). A cell with another status has no quadruples and is covered on
+     * the host. VB_OK, VB_ENOMEM or VB_EDEVICE. */
+    int (*run)(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, size_t ncells,
+               vbq_cell_out *out, const uint32_t **quads);
+    void (*close)(vb_cover_backend *be);
+};
+
+/* Closes a backend; NULL is allowed. */
+void vb_cover_backend_close(vb_cover_backend *be);
+
 /* Runs the cover on a validated set (contained spheres flagged) and appends
- * the proposed quadruples to out (sorted, unique). Returns VB_OK, VB_ENOMEM
- * or VB_EMISUSE (bad options); stats may be NULL. The quadruples do not
- * depend on the thread count. */
+ * the proposed quadruples to out (sorted, unique). be NULL covers every cell
+ * on host threads; otherwise be covers them batch by batch and the host
+ * covers the cells whose arenas ran out on the device. Returns VB_OK,
+ * VB_ENOMEM, VB_EMISUSE (bad options), VB_EINPUT_TOOLARGE or the backend's
+ * VB_EDEVICE (out is then unchanged); stats may be NULL. The quadruples do
+ * not depend on the backend or the thread count. */
 int vb_cover_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *opt,
-                 vb_quad_list *out, vb_cover_stats *stats);
+                 vb_cover_backend *be, vb_quad_list *out, vb_cover_stats *stats);
 
 #ifdef __cplusplus
 }

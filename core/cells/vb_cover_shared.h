@@ -290,20 +290,6 @@ VBS_FN double vbq_box_far2(const vbq_env *e, vbs_u32 nd, const double c[3])
     return d2;
 }
 
-/* Appends the record of sphere j as a neighbour of i; 0 when nb is full. */
-VBS_FN int vbq_push_nb(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i,
-                       vbs_u32 j)
-{
-    if (o->nnb >= ar->nb_cap) {
-        o->status = VBQ_OVER_NB;
-        return 0;
-    }
-    vbq_nb nb;
-    vbq_nb_make(e->x[i], e->y[i], e->z[i], e->r[i], e->x[j], e->y[j], e->z[j], e->r[j], j, &nb);
-    ar->nb[o->nnb++] = nb;
-    return 1;
-}
-
 /* The spheres centred in (rq0, rq1] from c_i (rq0 < 0: from 0) that can be
  * labels in the patch (m, h) with lower envelope LO, appended to the list at
  * lab[off + *len ...]. Where f_j >= LO at u: u.d + delta >= LO N >= 0, so
@@ -323,7 +309,7 @@ VBS_FN int vbq_gather(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vb
 {
     const double c[3] = {e->x[i], e->y[i], e->z[i]};
     double sdist = LO > 0.0 ? 0.5 / LO : (double)INFINITY;
-    int half = LO >= 0.0;
+    int filter = LO >= 0.0;
     double in2 = rq0 > 0.0 ? rq0 * rq0 * (1.0 - 1e-9) : -1.0;
     double out2 = rq1 * rq1 * (1.0 + 1e-9);
     vbs_u32 stack[VBQ_STACK], ns = 0;
@@ -355,7 +341,7 @@ VBS_FN int vbq_gather(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vb
         }
         if (dmax2 < in2 || dmin2 > out2)
             continue;
-        if (half && best + slack < -1e-9 * (mag + VBS_FABS(slack) + 1e-300))
+        if (filter && best + slack < -1e-9 * (mag + VBS_FABS(slack) + 1e-300))
             continue;
         if (sdist < (double)INFINITY) {
             double reach = (sdist + slack) * (1.0 + 1e-9) + 1e-9 * (mag + sdist);
@@ -376,17 +362,21 @@ VBS_FN int vbq_gather(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vb
             double d2 = dx * dx + dy * dy + dz * dz;
             if ((rq0 > 0.0 && !(d2 > rq0 * rq0)) || d2 > rq1 * rq1)
                 continue; /* inside: in the list or excluded; outside: a later ring */
-            if (!vbq_push_nb(e, ar, o, i, j))
-                return 0;
-            if (half) {
+            vbq_nb rec;
+            vbq_nb_make(e->x[i], e->y[i], e->z[i], e->r[i], e->x[j], e->y[j], e->z[j], e->r[j], j,
+                        &rec);
+            if (filter) {
                 double lo, hi;
-                vbq_eval(&ar->nb[o->nnb - 1u], m, h, &lo, &hi);
-                if (!(hi >= LO)) {
-                    o->nnb--; /* not needed: drop the record again */
+                vbq_eval(&rec, m, h, &lo, &hi);
+                if (!(hi >= LO))
                     continue;
-                }
                 o->far++;
             }
+            if (o->nnb >= ar->nb_cap) {
+                o->status = VBQ_OVER_NB;
+                return 0;
+            }
+            ar->nb[o->nnb++] = rec;
             if (off + *len >= ar->lab_cap) {
                 o->status = VBQ_OVER_LAB;
                 return 0;
@@ -500,8 +490,9 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbq
          * "infinity", the floor of the envelope). */
         double LO = 0.0;
         for (vbs_u32 k = 0u; k < fr.len; k++) {
+            vbq_nb rec = ar->nb[ar->lab[fr.off + k]];
             double lo, hi;
-            vbq_eval(&ar->nb[ar->lab[fr.off + k]], m, h, &lo, &hi);
+            vbq_eval(&rec, m, h, &lo, &hi);
             LO = lo > LO ? lo : LO;
         }
         evals += (double)fr.len;
@@ -548,11 +539,12 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbq
         vbs_u32 keep = 0u, owned = 0u;
         for (vbs_u32 k = 0u; k < fr.len; k++) {
             vbs_u32 li = ar->lab[fr.off + k];
+            vbq_nb rec = ar->nb[li];
             double lo, hi;
-            vbq_eval(&ar->nb[li], m, h, &lo, &hi);
+            vbq_eval(&rec, m, h, &lo, &hi);
             if (hi >= LO) {
                 ar->lab[top + keep++] = li;
-                if (ar->nb[li].id > i)
+                if (rec.id > i)
                     owned++;
             }
         }

@@ -1,0 +1,72 @@
+/* The direction cover on OpenCL: one work-item covers one cell at a time
+ * with vbq_cover_cell (core/cells/vb_cover_shared.h, the same code the host
+ * runs), taking cells from a shared counter so that cheap buried cells and
+ * costly exposed ones balance. Each work-item owns a slice of the arenas. A
+ * cell whose arena or the output ran out is marked and covered again on
+ * the host; quadruples go to one output array in any order (the host
+ * sorts them). */
+#pragma OPENCL FP_CONTRACT OFF
+
+#include "vb_cover_shared.h"
+
+/* A cell whose quadruples did not fit the output array. */
+#define VBQ_OVER_OUT 5u
+
+__kernel void vbq_cover_kernel(__global const double *x, __global const double *y,
+                               __global const double *z, __global const double *r,
+                               __global const double *box, __global const double *rmax,
+                               __global const uint *ids, const uint first, const uint m,
+                               const double rmax_all, const double near, const uint T,
+                               const uint min_level, const uint max_level, const uint enum_max,
+                               __global const uint *cells, const uint ncells,
+                               __global vbq_nb *nb, __global uint *lab, __global vbq_frame *st,
+                               __global uint *q, const uint nb_cap, const uint lab_cap,
+                               const uint st_cap, const uint q_cap,
+                               __global vbq_cell_out *outs, __global uint *qout,
+                               const uint qout_cap, __global uint *counters)
+{
+    size_t w = get_global_id(0);
+    vbq_env e;
+    e.x = x;
+    e.y = y;
+    e.z = z;
+    e.r = r;
+    e.box = box;
+    e.rmax = rmax;
+    e.ids = ids;
+    e.first = first;
+    e.m = m;
+    e.rmax_all = rmax_all;
+    e.near = near;
+    e.T = T;
+    e.min_level = min_level;
+    e.max_level = max_level;
+    e.enum_max = enum_max;
+    vbq_arena ar;
+    ar.nb = nb + w * (size_t)nb_cap;
+    ar.lab = lab + w * (size_t)lab_cap;
+    ar.st = st + w * (size_t)st_cap;
+    ar.q = q + w * 4u * (size_t)q_cap;
+    ar.nb_cap = nb_cap;
+    ar.lab_cap = lab_cap;
+    ar.st_cap = st_cap;
+    ar.q_cap = q_cap;
+    for (;;) {
+        uint c = atomic_inc(&counters[0]);
+        if (c >= ncells)
+            break;
+        vbq_cell_out o;
+        vbq_cover_cell(&e, &ar, cells[c], &o);
+        if (o.status == VBQ_OK && o.nq > 0u) {
+            uint base = atomic_add(&counters[1], o.nq);
+            if (base + o.nq <= qout_cap) {
+                for (uint k = 0u; k < 4u * o.nq; k++)
+                    qout[4u * (size_t)base + k] = ar.q[k];
+                o.qoff = base;
+            } else {
+                o.status = VBQ_OVER_OUT;
+            }
+        }
+        outs[c] = o;
+    }
+}
