@@ -16,9 +16,10 @@ typedef struct cov_buf {
 typedef struct cov_state {
     vbg_runtime *rt;
     cl_kernel k;
+    int wg;                  /* 1: one work-group of 32 per cell (vbq_cover_wg) */
     cov_buf x, y, z, r, box, rmax, ids;
     cov_buf cells, nb, lab, st, q, outs, qout, counters;
-    size_t workers;          /* work-items, each with its arena slice */
+    size_t workers;          /* arena slices: work-items, or work-groups with wg */
     uint32_t nb_cap, lab_cap, st_cap, q_cap;
     size_t qout_cap;         /* quadruples the output array holds */
     uint32_t *host_q;        /* read-back of the quadruples */
@@ -26,13 +27,18 @@ typedef struct cov_state {
     vbq_env env;             /* scalars of the uploaded input */
 } cov_state;
 
-/* Arena capacities per work-item: enough for almost every cell of the
- * proteins and the capsid measured (nb p99 below 10^4 there); the rest are
- * covered on the host with growing arenas. */
+/* Arena capacities per slice: enough for almost every cell of the proteins
+ * and the capsid measured (nb p99 below 10^4 there); the rest are covered on
+ * the host with growing arenas. A group's slice (GPUs) is larger: there are
+ * few groups. */
 #define COV_NB 2048u
 #define COV_LAB 8192u
 #define COV_ST 256u
 #define COV_Q 256u
+#define COV_WG_NB 8192u
+#define COV_WG_LAB 32768u
+#define COV_WG_Q 512u
+#define COV_WG 32u
 
 static void release(cov_buf *b)
 {
@@ -95,7 +101,8 @@ static int cov_begin(vb_ctx *ctx, vb_cover_backend *be, const vbq_env *env, size
     if (rc == VB_OK)
         rc = ensure(ctx, s, &s->lab, w * s->lab_cap * sizeof(uint32_t), CL_MEM_READ_WRITE);
     if (rc == VB_OK)
-        rc = ensure(ctx, s, &s->st, w * s->st_cap * sizeof(vbq_frame), CL_MEM_READ_WRITE);
+        rc = ensure(ctx, s, &s->st, (s->wg ? 1 : w) * s->st_cap * sizeof(vbq_frame),
+                    CL_MEM_READ_WRITE);
     if (rc == VB_OK)
         rc = ensure(ctx, s, &s->q, w * 4 * s->q_cap * sizeof(uint32_t), CL_MEM_READ_WRITE);
     if (rc == VB_OK)
@@ -171,10 +178,17 @@ static int cov_run(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, siz
              set_arg(ctx, k, a++, sizeof(cl_mem), &s->counters.mem)
                  ? VB_EDEVICE
                  : VB_OK;
-    size_t local = 64, global = s->workers < ncells ? s->workers : ncells;
-    global = (global + local - 1) / local * local;
-    if (global > s->workers)
-        global = s->workers; /* a multiple of local by construction */
+    size_t local, global;
+    if (s->wg) {
+        local = COV_WG;
+        global = (s->workers < ncells ? s->workers : ncells) * COV_WG;
+    } else {
+        local = 64;
+        global = s->workers < ncells ? s->workers : ncells;
+        global = (global + local - 1) / local * local;
+        if (global > s->workers)
+            global = s->workers; /* a multiple of local by construction */
+    }
     if (rc == VB_OK)
         rc = vbg_check(ctx, clEnqueueNDRangeKernel(q, k, 1, NULL, &global, &local, 0, NULL, NULL),
                        "cover kernel");
@@ -248,16 +262,23 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
     be->state = s;
     be->close = cov_close;
     s->rt = rt;
-    s->nb_cap = COV_NB;
-    s->lab_cap = COV_LAB;
+    /* GPUs run a group per cell; a CPU device (PoCL) a work-item per cell,
+     * which its compiler turns into plain loops. VORBALL_COVER_KERNEL=item|group
+     * overrides (tests run both on PoCL). */
+    const char *kn = getenv("VORBALL_COVER_KERNEL");
+    s->wg = kn && strcmp(kn, "group") == 0 ? 1 : kn && strcmp(kn, "item") == 0 ? 0
+                                                : vbg_runtime_is_gpu(rt);
+    s->nb_cap = s->wg ? COV_WG_NB : COV_NB;
+    s->lab_cap = s->wg ? COV_WG_LAB : COV_LAB;
     s->st_cap = COV_ST;
-    s->q_cap = COV_Q;
+    s->q_cap = s->wg ? COV_WG_Q : COV_Q;
     cl_program prog;
-    int rc = vbg_program_get(ctx, rt, "cover.cl", NULL, &prog);
+    int rc = vbg_program_get(ctx, rt, s->wg ? "cover_wg.cl" : "cover.cl", NULL, &prog);
     cl_int err = CL_SUCCESS;
+    const char *kname = s->wg ? "vbq_cover_wg" : "vbq_cover_kernel";
     if (rc == VB_OK) {
-        s->k = clCreateKernel(prog, "vbq_cover_kernel", &err);
-        rc = vbg_check(ctx, err, "clCreateKernel(vbq_cover_kernel)");
+        s->k = clCreateKernel(prog, kname, &err);
+        rc = vbg_check(ctx, err, kname);
     }
     /* Work-items: as many as the device keeps busy, within an eighth of its
      * memory for the arenas (and never above what a batch can use). */
@@ -278,13 +299,15 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
         return rc;
     }
     size_t arena = (size_t)s->nb_cap * sizeof(vbq_nb) + (size_t)s->lab_cap * 4 +
-                   (size_t)s->st_cap * sizeof(vbq_frame) + (size_t)s->q_cap * 16;
-    size_t want = vbg_runtime_is_gpu(rt) ? (size_t)units * 512 : (size_t)units * 64;
+                   (s->wg ? 0 : (size_t)s->st_cap * sizeof(vbq_frame)) + (size_t)s->q_cap * 16;
+    size_t want = s->wg ? (size_t)units * 16
+                        : (vbg_runtime_is_gpu(rt) ? (size_t)units * 512 : (size_t)units * 64);
     size_t fit = (size_t)(mem / 8) / arena;
     want = want < fit ? want : fit;
-    want = want / 64 * 64;
-    if (want < 64)
-        want = 64;
+    if (!s->wg)
+        want = want / 64 * 64;
+    if (want < (s->wg ? 1u : 64u))
+        want = s->wg ? 1u : 64u;
     s->workers = want;
     be->name = "opencl";
     snprintf(be->device, sizeof be->device, "%s", vbg_runtime_device_name(rt));

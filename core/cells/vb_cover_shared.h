@@ -290,88 +290,131 @@ VBS_FN double vbq_box_far2(const vbq_env *e, vbs_u32 nd, const double c[3])
     return d2;
 }
 
-/* The spheres centred in (rq0, rq1] from c_i (rq0 < 0: from 0) that can be
- * labels in the patch (m, h) with lower envelope LO, appended to the list at
- * lab[off + *len ...]. Where f_j >= LO at u: u.d + delta >= LO N >= 0, so
- * the sphere reaches the half-space u.(x - c_i) >= R_i - R_j; and for LO > 0
- * the bisector along u is at most s = 1/(2 LO) from c_i, so the tangent
- * sphere there, centre c_i + s u and radius s - R_i, must reach sphere j:
- * |c_i + s u - c_j| <= s - R_i + R_j. A node is pruned when one of these
- * fails for every u of the patch box and every centre of its box (R_j <= its
- * R_max), or when its box lies within rq0 or beyond rq1; the bounds carry a
- * relative margin of 1e-9, far above the rounding errors of these few
- * operations. A sphere left is kept when its enclosure reaches LO; with
- * LO < 0 (the near list) every sphere of the ring is kept. Returns 0 when an
- * arena is full. */
+/* A query of the tree for the spheres centred in (rq0, rq1] from c_i
+ * (rq0 < 0: from 0) that can be labels in the patch (m, h) with lower
+ * envelope LO (LO < 0: every sphere of the ring, the near list). Where
+ * f_j >= LO at u: u.d + delta >= LO N >= 0, so the sphere reaches the
+ * half-space u.(x - c_i) >= R_i - R_j; and for LO > 0 the bisector along u
+ * is at most s = 1/(2 LO) from c_i, so the tangent sphere there, centre
+ * c_i + s u and radius s - R_i, must reach sphere j: |c_i + s u - c_j| <=
+ * s - R_i + R_j. A node is pruned when one of these fails for every u of
+ * the patch box and every centre of its box (R_j <= its R_max), or when its
+ * box lies within rq0 or beyond rq1; the bounds carry a relative margin of
+ * 1e-9, far above the rounding errors of these few operations. */
+typedef struct vbq_query {
+    double c[3], ri;
+    double m[3], h[3];
+    double LO, rq0, rq1;
+    double sdist, in2, out2;
+    int filter;
+} vbq_query;
+
+VBS_FN void vbq_query_make(const vbq_env *e, vbs_u32 i, const double m[3], const double h[3],
+                           double LO, double rq0, double rq1, vbq_query *q)
+{
+    q->c[0] = e->x[i];
+    q->c[1] = e->y[i];
+    q->c[2] = e->z[i];
+    q->ri = e->r[i];
+    for (int a = 0; a < 3; a++) {
+        q->m[a] = m[a];
+        q->h[a] = h[a];
+    }
+    q->LO = LO;
+    q->rq0 = rq0;
+    q->rq1 = rq1;
+    q->sdist = LO > 0.0 ? 0.5 / LO : (double)INFINITY;
+    q->filter = LO >= 0.0;
+    q->in2 = rq0 > 0.0 ? rq0 * rq0 * (1.0 - 1e-9) : -1.0;
+    q->out2 = rq1 * rq1 * (1.0 + 1e-9);
+}
+
+/* Can node nd hold a sphere that passes the query? */
+VBS_FN int vbq_node_pass(const vbq_env *e, const vbq_query *q, vbs_u32 nd)
+{
+    const VBS_GLOBAL double *bx = e->box + 6u * nd;
+    double slack = e->rmax[nd] - q->ri;
+    double best = 0.0, mag = 0.0, dmax2 = 0.0, dmin2 = 0.0, bb2 = 0.0;
+    for (int a = 0; a < 3; a++) {
+        double b0 = bx[a] - q->c[a], b1 = bx[3 + a] - q->c[a];
+        double u0 = q->m[a] - q->h[a], u1 = q->m[a] + q->h[a];
+        double p0 = u0 * b0, p1 = u0 * b1, p2 = u1 * b0, p3 = u1 * b1;
+        double mx = p0 > p1 ? p0 : p1;
+        mx = p2 > mx ? p2 : mx;
+        mx = p3 > mx ? p3 : mx;
+        best += mx;
+        mag += VBS_FABS(b0) + VBS_FABS(b1);
+        double f = VBS_FABS(b0) > VBS_FABS(b1) ? VBS_FABS(b0) : VBS_FABS(b1);
+        dmax2 += f * f;
+        double dn = b0 > 0.0 ? b0 : (b1 < 0.0 ? -b1 : 0.0);
+        dmin2 += dn * dn;
+        if (q->sdist < (double)INFINITY) {
+            double t0 = q->sdist * u0, t1 = q->sdist * u1;
+            double gp = b0 > t1 ? b0 - t1 : (t0 > b1 ? t0 - b1 : 0.0);
+            bb2 += gp * gp;
+        }
+    }
+    if (dmax2 < q->in2 || dmin2 > q->out2)
+        return 0;
+    if (q->filter && best + slack < -1e-9 * (mag + VBS_FABS(slack) + 1e-300))
+        return 0;
+    if (q->sdist < (double)INFINITY) {
+        double reach = (q->sdist + slack) * (1.0 + 1e-9) + 1e-9 * (mag + q->sdist);
+        if (reach < 0.0 || bb2 > reach * reach)
+            return 0;
+    }
+    return 1;
+}
+
+/* Does sphere j (not the base) pass the query? Fills its record when so.
+ * Spheres within rq0 are in the list or were excluded; those beyond rq1
+ * belong to a later ring. A sphere of a ring is kept when its enclosure
+ * reaches LO. */
+VBS_FN int vbq_sphere_pass(const vbq_env *e, const vbq_query *q, vbs_u32 j,
+                           vbq_nb *rec)
+{
+    double dx = e->x[j] - q->c[0], dy = e->y[j] - q->c[1], dz = e->z[j] - q->c[2];
+    double d2 = dx * dx + dy * dy + dz * dz;
+    if ((q->rq0 > 0.0 && !(d2 > q->rq0 * q->rq0)) || d2 > q->rq1 * q->rq1)
+        return 0;
+    vbq_nb_make(q->c[0], q->c[1], q->c[2], q->ri, e->x[j], e->y[j], e->z[j], e->r[j], j, rec);
+    if (q->filter) {
+        double lo, hi;
+        vbq_eval(rec, q->m, q->h, &lo, &hi);
+        if (!(hi >= q->LO))
+            return 0;
+    }
+    return 1;
+}
+
+/* The query on one work-item: passing spheres appended to nb and to the
+ * list at lab[off + *len ...]. Returns 0 when an arena is full. */
 VBS_FN int vbq_gather(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i,
                       const double m[3], const double h[3], double LO, double rq0, double rq1,
                       vbs_u32 off, vbs_u32 *len)
 {
-    const double c[3] = {e->x[i], e->y[i], e->z[i]};
-    double sdist = LO > 0.0 ? 0.5 / LO : (double)INFINITY;
-    int filter = LO >= 0.0;
-    double in2 = rq0 > 0.0 ? rq0 * rq0 * (1.0 - 1e-9) : -1.0;
-    double out2 = rq1 * rq1 * (1.0 + 1e-9);
+    vbq_query q;
+    vbq_query_make(e, i, m, h, LO, rq0, rq1, &q);
     vbs_u32 stack[VBQ_STACK], ns = 0;
     if (e->m)
         stack[ns++] = 1u;
     while (ns) {
         vbs_u32 nd = stack[--ns];
-        const VBS_GLOBAL double *bx = e->box + 6u * nd;
-        double slack = e->rmax[nd] - e->r[i];
-        double best = 0.0, mag = 0.0, dmax2 = 0.0, dmin2 = 0.0, bb2 = 0.0;
-        for (int a = 0; a < 3; a++) {
-            double b0 = bx[a] - c[a], b1 = bx[3 + a] - c[a];
-            double u0 = m[a] - h[a], u1 = m[a] + h[a];
-            double p0 = u0 * b0, p1 = u0 * b1, p2 = u1 * b0, p3 = u1 * b1;
-            double mx = p0 > p1 ? p0 : p1;
-            mx = p2 > mx ? p2 : mx;
-            mx = p3 > mx ? p3 : mx;
-            best += mx;
-            mag += VBS_FABS(b0) + VBS_FABS(b1);
-            double f = VBS_FABS(b0) > VBS_FABS(b1) ? VBS_FABS(b0) : VBS_FABS(b1);
-            dmax2 += f * f;
-            double dn = b0 > 0.0 ? b0 : (b1 < 0.0 ? -b1 : 0.0);
-            dmin2 += dn * dn;
-            if (sdist < (double)INFINITY) {
-                double t0 = sdist * u0, t1 = sdist * u1;
-                double gp = b0 > t1 ? b0 - t1 : (t0 > b1 ? t0 - b1 : 0.0);
-                bb2 += gp * gp;
-            }
-        }
-        if (dmax2 < in2 || dmin2 > out2)
+        if (!vbq_node_pass(e, &q, nd))
             continue;
-        if (filter && best + slack < -1e-9 * (mag + VBS_FABS(slack) + 1e-300))
-            continue;
-        if (sdist < (double)INFINITY) {
-            double reach = (sdist + slack) * (1.0 + 1e-9) + 1e-9 * (mag + sdist);
-            if (reach < 0.0 || bb2 > reach * reach)
-                continue;
-        }
         if (nd < e->first) {
             stack[ns++] = 2u * nd + 1u;
             stack[ns++] = 2u * nd;
             continue;
         }
         vbs_u32 q0 = (nd - e->first) * VBQ_LEAF;
-        for (vbs_u32 q = q0; q < e->m && q < q0 + VBQ_LEAF; q++) {
-            vbs_u32 j = e->ids[q];
-            if (j == i)
-                continue;
-            double dx = e->x[j] - c[0], dy = e->y[j] - c[1], dz = e->z[j] - c[2];
-            double d2 = dx * dx + dy * dy + dz * dz;
-            if ((rq0 > 0.0 && !(d2 > rq0 * rq0)) || d2 > rq1 * rq1)
-                continue; /* inside: in the list or excluded; outside: a later ring */
+        for (vbs_u32 k = q0; k < e->m && k < q0 + VBQ_LEAF; k++) {
+            vbs_u32 j = e->ids[k];
             vbq_nb rec;
-            vbq_nb_make(e->x[i], e->y[i], e->z[i], e->r[i], e->x[j], e->y[j], e->z[j], e->r[j], j,
-                        &rec);
-            if (filter) {
-                double lo, hi;
-                vbq_eval(&rec, m, h, &lo, &hi);
-                if (!(hi >= LO))
-                    continue;
+            if (j == i || !vbq_sphere_pass(e, &q, j, &rec))
+                continue;
+            if (q.filter)
                 o->far++;
-            }
             if (o->nnb >= ar->nb_cap) {
                 o->status = VBQ_OVER_NB;
                 return 0;
@@ -385,6 +428,79 @@ VBS_FN int vbq_gather(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vb
         }
     }
     return 1;
+}
+
+/* ---- the decisions of a patch (the same for every backend) ------------- */
+
+/* Closed: no sphere outside the list can reach LO. Each such sphere is
+ * centred beyond rq, so e_j > ecert = rq - (R_max - R_i) and f_j <= 1/e_j
+ * < 1/ecert <= LO. slack_i = R_max - R_i. */
+VBS_FN int vbq_closed(double rq, double LO, double slack_i)
+{
+    double ecert = rq - slack_i;
+    return rq == (double)INFINITY || (LO > 0.0 && ecert > 0.0 && 1.0 / ecert < LO * (1.0 - 1e-9));
+}
+
+/* The outer radius of the next ring a patch fetches: out to the reach LO
+ * asks for, at most twice the present radius (LO grows with what is
+ * found); infinite once it passes the farthest centre. */
+VBS_FN double vbq_ring_radius(double rq, double LO, double slack_i, double far)
+{
+    double want = LO > 0.0 ? (1.0 / LO) * (1.0 + 1e-8) + slack_i + 1e-9 * rq : (double)INFINITY;
+    double rq1 = want < 2.0 * rq ? want : 2.0 * rq;
+    return rq1 >= far ? (double)INFINITY : rq1;
+}
+
+/* What a closed patch with `keep` surviving labels (of `len`), `owned` of
+ * them above the base, does: 0 nothing (fewer than three owned labels: no
+ * vertex with smallest member i in P), 1 subdivide, 2 enumerate, 3
+ * enumerate at the deepest level. Labels that tie exactly along a curve
+ * (equal spheres on a circle, lattices) survive every subdivision there:
+ * once VBQ_STALL levels in a row excluded nothing, more levels would only
+ * multiply the patches, so the patch enumerates (a larger patch only adds
+ * quadruples whose roots the certifier refutes). */
+VBS_FN int vbq_decide(const vbq_env *e, const vbq_frame *fr, vbs_u32 keep, vbs_u32 owned)
+{
+    if (owned < 3u)
+        return 0;
+    int stalled = keep == fr->len && fr->stall + 1u >= VBQ_STALL;
+    int deep = fr->level + 1u >= e->max_level || (stalled && owned <= VBQ_STALL_ENUM);
+    if (deep)
+        return 3;
+    if (fr->level >= e->min_level && owned <= e->enum_max)
+        return 2;
+    return 1;
+}
+
+/* Root patch k of 6 T^2 (face-major), over the near list lab[0 .. len0)
+ * of radius rq (every sphere, once rq passes the farthest centre). */
+VBS_FN vbq_frame vbq_root(vbs_u32 T, vbs_u32 k, vbs_u32 len0, double rq, double far)
+{
+    vbq_frame fr;
+    fr.f = k / (T * T);
+    fr.level = 0u;
+    fr.iu = k % T;
+    fr.iv = (k / T) % T;
+    fr.off = 0u;
+    fr.len = len0;
+    fr.stall = 0u;
+    fr.pad = 0u;
+    fr.rq = rq >= far ? (double)INFINITY : rq;
+    return fr;
+}
+
+/* The four children of a subdivided patch, sharing its surviving list. */
+VBS_FN void vbq_child(const vbq_frame *fr, vbs_u32 k, vbs_u32 off, vbs_u32 keep, vbq_frame *ch)
+{
+    ch->f = fr->f;
+    ch->level = fr->level + 1u;
+    ch->iu = 2u * fr->iu + (k & 1u);
+    ch->iv = 2u * fr->iv + (k >> 1);
+    ch->off = off;
+    ch->len = keep;
+    ch->stall = keep == fr->len ? fr->stall + 1u : 0u;
+    ch->pad = 0u;
+    ch->rq = fr->rq;
 }
 
 /* Inserts quadruple (i, a, b, c) (i smallest) into the sorted unique list
@@ -456,21 +572,8 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbq
         o->status = VBQ_OVER_ST;
         return;
     }
-    for (vbs_u32 f = 0u; f < 6u; f++)
-        for (vbs_u32 iv = 0u; iv < T; iv++)
-            for (vbs_u32 iu = 0u; iu < T; iu++) {
-                vbq_frame fr;
-                fr.f = f;
-                fr.level = 0u;
-                fr.iu = iu;
-                fr.iv = iv;
-                fr.off = 0u;
-                fr.len = len0;
-                fr.stall = 0u;
-                fr.pad = 0u;
-                fr.rq = rq >= far ? (double)INFINITY : rq;
-                ar->st[nst++] = fr;
-            }
+    for (vbs_u32 k = 0u; k < 6u * T * T; k++)
+        ar->st[nst++] = vbq_root(T, k, len0, rq, far);
     /* The roots share lab[0 .. len0); lists of deeper frames are stacked
      * above top. A frame's list lies below the lists of every frame pushed
      * after it, so popping a frame frees everything above its list. */
@@ -496,24 +599,13 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbq
             LO = lo > LO ? lo : LO;
         }
         evals += (double)fr.len;
-        /* Closed: no sphere outside the list can reach LO. Each such sphere
-         * is centred beyond rq, so e_j > ecert = rq - (R_max - R_i) and f_j
-         * <= 1/e_j < 1/ecert <= LO. */
-        double ecert = fr.rq - slack_i;
-        int closed = fr.rq == (double)INFINITY ||
-                     (LO > 0.0 && ecert > 0.0 && 1.0 / ecert < LO * (1.0 - 1e-9));
+        int closed = vbq_closed(fr.rq, LO, slack_i);
         /* A fetch takes every sphere that can reach LO anywhere in the
          * patch; the children share what it found. Fetching from deeper
          * levels makes each fetch smaller but repeats it in every child
          * (measured: level 2 is the cheaper on proteins and the capsid). */
         if (!closed && fr.level >= VBQ_FETCH_LEVEL) {
-            /* Fetch the next ring: out to the reach LO asks for, at most
-             * twice the present radius (LO grows with what is found). */
-            double want = LO > 0.0 ? (1.0 / LO) * (1.0 + 1e-8) + slack_i + 1e-9 * fr.rq
-                                   : (double)INFINITY;
-            double rq1 = want < 2.0 * fr.rq ? want : 2.0 * fr.rq;
-            if (rq1 >= far)
-                rq1 = (double)INFINITY;
+            double rq1 = vbq_ring_radius(fr.rq, LO, slack_i, far);
             if (top + fr.len > ar->lab_cap) {
                 o->status = VBQ_OVER_LAB;
                 return;
@@ -574,20 +666,12 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbq
             }
             keep = w;
         }
-        /* Fewer than three owned labels: no vertex of this cell whose
-         * smallest member is i lies in P (once the list is known whole). */
-        if (closed && owned < 3u)
+        int act = closed ? vbq_decide(e, &fr, keep, owned) : 1;
+        if (act == 0)
             continue;
-        /* Labels that tie exactly along a curve (equal spheres on a circle,
-         * lattices) survive every subdivision there: once VBQ_STALL levels
-         * in a row excluded nothing, more levels would only multiply the
-         * patches, so the patch enumerates (a larger patch only adds
-         * quadruples whose roots the certifier refutes). */
-        int stalled = keep == fr.len && fr.stall + 1u >= VBQ_STALL;
-        int deep = fr.level + 1u >= e->max_level || (stalled && owned <= VBQ_STALL_ENUM);
-        if (closed && (deep || (fr.level >= e->min_level && owned <= e->enum_max))) {
+        if (act >= 2) {
             o->leaves++;
-            if (deep)
+            if (act == 3)
                 o->deep++;
             if (fr.level > o->maxlev)
                 o->maxlev = fr.level;
@@ -619,15 +703,7 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbq
         top += keep;
         for (vbs_u32 k = 0u; k < 4u; k++) {
             vbq_frame ch;
-            ch.f = fr.f;
-            ch.level = fr.level + 1u;
-            ch.iu = 2u * fr.iu + (k & 1u);
-            ch.iv = 2u * fr.iv + (k >> 1);
-            ch.off = off;
-            ch.len = keep;
-            ch.stall = keep == fr.len ? fr.stall + 1u : 0u;
-            ch.pad = 0u;
-            ch.rq = fr.rq;
+            vbq_child(&fr, k, off, keep, &ch);
             ar->st[nst++] = ch;
         }
     }

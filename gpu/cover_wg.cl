@@ -1,0 +1,382 @@
+/* The direction cover on OpenCL with one work-group per cell (GPUs); the
+ * work-item kernel beside it (cover.cl) serves CPU devices. */
+#pragma OPENCL FP_CONTRACT OFF
+
+#include "vb_cover_shared.h"
+
+/* A cell whose quadruples did not fit the output array. */
+#define VBQ_OVER_OUT 5u
+
+/* ---- the cover with one work-group per cell (GPUs) ----------------------
+ * The same decisions as vbq_cover_cell, made once per patch by the group:
+ * the lanes evaluate a patch's labels side by side (reading the list and
+ * the records together), reduce LO, compact the survivors, and walk the
+ * tree breadth-first for the near list and the ring fetches. Lists and
+ * records live in the group's arena slice (global memory); the frame stack,
+ * the node stack and the scalars in local memory. Labels land in the lists
+ * in any order, which changes no decision (every one depends on the set). */
+
+#define WG 32u
+#define WG_ST 96u
+#define WG_NODES 1024u
+
+/* Shared scalars of a group (indices into sh[]). */
+#define S_CELL 0
+#define S_NST 1
+#define S_NS 2
+#define S_NNB 3
+#define S_LEN 4
+#define S_OWNED 5
+#define S_STATUS 6
+#define S_TOP 7
+#define S_FAR 8
+#define S_N 9
+
+/* The query on the group: passing spheres appended to nb (shared count
+ * sh[S_NNB]) and to lab[off + sh[S_LEN] ...]. Every lane calls it; on
+ * return sh[S_STATUS] says whether an arena or the node stack ran out. */
+static inline __attribute__((always_inline)) void wg_gather(const vbq_env *e, const vbq_query *q, vbs_u32 i, __global vbq_nb *nb,
+                      uint nb_cap, __global uint *lab, uint lab_cap, uint off,
+                      __local uint *sh, __local uint *nodes)
+{
+    uint lane = get_local_id(0);
+    if (lane == 0u) {
+        sh[S_NS] = e->m ? 1u : 0u;
+        nodes[0] = 1u;
+    }
+    barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
+    for (;;) {
+        uint n = sh[S_NS];
+        if (n == 0u || sh[S_STATUS] != VBQ_OK)
+            break;
+        uint take = n < WG ? n : WG;
+        uint nd = lane < take ? nodes[n - 1u - lane] : 0u;
+        barrier(CLK_LOCAL_MEM_FENCE);
+        if (lane == 0u)
+            sh[S_NS] = n - take;
+        barrier(CLK_LOCAL_MEM_FENCE);
+        if (nd != 0u && vbq_node_pass(e, q, nd)) {
+            if (nd < e->first) {
+                uint k = atomic_add(&sh[S_NS], 2u);
+                if (k + 2u <= WG_NODES) {
+                    nodes[k] = 2u * nd;
+                    nodes[k + 1u] = 2u * nd + 1u;
+                } else {
+                    sh[S_STATUS] = VBQ_OVER_ST;
+                }
+            } else {
+                uint q0 = (nd - e->first) * VBQ_LEAF;
+                for (uint k = q0; k < e->m && k < q0 + VBQ_LEAF; k++) {
+                    uint j = e->ids[k];
+                    vbq_nb rec;
+                    if (j == i || !vbq_sphere_pass(e, q, j, &rec))
+                        continue;
+                    if (q->filter)
+                        atomic_inc(&sh[S_FAR]);
+                    uint idx = atomic_inc(&sh[S_NNB]);
+                    uint pos = atomic_inc(&sh[S_LEN]);
+                    if (idx >= nb_cap)
+                        sh[S_STATUS] = VBQ_OVER_NB;
+                    else if (off + pos >= lab_cap)
+                        sh[S_STATUS] = VBQ_OVER_LAB;
+                    else {
+                        nb[idx] = rec;
+                        lab[off + pos] = idx;
+                    }
+                }
+            }
+        }
+        barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
+    }
+    barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
+}
+
+/* Largest of the lanes' values v (every lane gets it). */
+static inline __attribute__((always_inline)) double wg_max(double v, __local double *red)
+{
+    uint lane = get_local_id(0);
+    red[lane] = v;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    for (uint s = WG / 2u; s > 0u; s >>= 1) {
+        if (lane < s && red[lane + s] > red[lane])
+            red[lane] = red[lane + s];
+        barrier(CLK_LOCAL_MEM_FENCE);
+    }
+    double r = red[0];
+    barrier(CLK_LOCAL_MEM_FENCE);
+    return r;
+}
+
+__kernel __attribute__((reqd_work_group_size(32, 1, 1)))
+void vbq_cover_wg(__global const double *x, __global const double *y, __global const double *z,
+                  __global const double *r, __global const double *box,
+                  __global const double *rmax, __global const uint *ids, const uint first,
+                  const uint m, const double rmax_all, const double near, const uint T,
+                  const uint min_level, const uint max_level, const uint enum_max,
+                  __global const uint *cells, const uint ncells, __global vbq_nb *nbs,
+                  __global uint *labs, __global vbq_frame *unused_st, __global uint *qs,
+                  const uint nb_cap, const uint lab_cap, const uint st_cap, const uint q_cap,
+                  __global vbq_cell_out *outs, __global uint *qout, const uint qout_cap,
+                  __global uint *counters)
+{
+    __local vbq_frame stk[WG_ST];
+    __local uint nodes[WG_NODES];
+    __local double red[WG];
+    __local uint sh[S_N];
+    __local uint dom[VBQ_DOM_MAX];
+    __local vbq_frame cur;
+    uint lane = get_local_id(0);
+    size_t g = get_group_id(0);
+    vbq_env e;
+    e.x = x;
+    e.y = y;
+    e.z = z;
+    e.r = r;
+    e.box = box;
+    e.rmax = rmax;
+    e.ids = ids;
+    e.first = first;
+    e.m = m;
+    e.rmax_all = rmax_all;
+    e.near = near;
+    e.T = T;
+    e.min_level = min_level;
+    e.max_level = max_level;
+    e.enum_max = enum_max;
+    __global vbq_nb *nb = nbs + g * (size_t)nb_cap;
+    __global uint *lab = labs + g * (size_t)lab_cap;
+    __global uint *qa = qs + g * 4u * (size_t)q_cap;
+    vbq_arena ar;
+    ar.nb = nb;
+    ar.lab = lab;
+    ar.st = unused_st;
+    ar.q = qa;
+    ar.nb_cap = nb_cap;
+    ar.lab_cap = lab_cap;
+    ar.st_cap = st_cap;
+    ar.q_cap = q_cap;
+    for (;;) {
+        if (lane == 0u)
+            sh[S_CELL] = atomic_inc(&counters[0]);
+        barrier(CLK_LOCAL_MEM_FENCE);
+        uint c = sh[S_CELL];
+        barrier(CLK_LOCAL_MEM_FENCE);
+        if (c >= ncells)
+            break;
+        uint i = cells[c];
+        vbq_cell_out o;   /* lane 0's counters */
+        o.status = VBQ_OK;
+        o.nq = o.nnb = o.far = 0u;
+        o.patches = o.evals_k = o.leaves = o.deep = o.maxlev = 0u;
+        o.lab_hw = o.st_hw = o.qoff = 0u;
+        double evals = 0.0;
+        if (lane == 0u) {
+            sh[S_NNB] = 0u;
+            sh[S_LEN] = 0u;
+            sh[S_STATUS] = VBQ_OK;
+            sh[S_FAR] = 0u;
+        }
+        barrier(CLK_LOCAL_MEM_FENCE);
+        const double ci[3] = {x[i], y[i], z[i]};
+        const double m0[3] = {0.0, 0.0, 0.0}, h0[3] = {1.0, 1.0, 1.0};
+        double rq = near + 2.0 * rmax_all;
+        vbq_query qq;
+        vbq_query_make(&e, i, m0, h0, -1.0, -1.0, rq, &qq);
+        wg_gather(&e, &qq, i, nb, nb_cap, lab, lab_cap, 0u, sh, nodes);
+        uint len0 = sh[S_LEN];
+        double far = sqrt(vbq_box_far2(&e, 1u, ci)) * (1.0 + 1e-9);
+        double slack_i = rmax_all - r[i];
+        uint nroot = 6u * T * T;
+        if (nroot > WG_ST && lane == 0u)
+            sh[S_STATUS] = VBQ_OVER_ST;
+        if (lane == 0u && sh[S_STATUS] == VBQ_OK) {
+            for (uint k = 0u; k < nroot; k++)
+                stk[k] = vbq_root(T, k, len0, rq, far);
+            sh[S_NST] = nroot;
+            sh[S_TOP] = len0;
+        }
+        barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
+        for (;;) {
+            /* Every lane reads the condition before lane 0 pops. */
+            int go = sh[S_STATUS] == VBQ_OK && sh[S_NST] > 0u;
+            barrier(CLK_LOCAL_MEM_FENCE);
+            if (!go)
+                break;
+            if (lane == 0u) {
+                uint nst = sh[S_NST], top = sh[S_TOP];
+                o.st_hw = nst > o.st_hw ? nst : o.st_hw;
+                o.lab_hw = top > o.lab_hw ? top : o.lab_hw;
+                cur = stk[nst - 1u];
+                sh[S_NST] = nst - 1u;
+                if (cur.off + cur.len < top)
+                    sh[S_TOP] = cur.off + cur.len > len0 ? cur.off + cur.len : len0;
+                o.patches++;
+            }
+            barrier(CLK_LOCAL_MEM_FENCE);
+            vbq_frame fr = cur;
+            uint top = sh[S_TOP];
+            double u0, u1, v0, v1, mm[3], hh[3];
+            vbq_patch_square(T, fr.level, fr.iu, fr.iv, &u0, &u1, &v0, &v1);
+            vbq_patch_box(fr.f, u0, u1, v0, v1, mm, hh);
+            double lmax = 0.0;
+            for (uint k = lane; k < fr.len; k += WG) {
+                vbq_nb rec = nb[lab[fr.off + k]];
+                double lo, hi;
+                vbq_eval(&rec, mm, hh, &lo, &hi);
+                lmax = lo > lmax ? lo : lmax;
+            }
+            double LO = wg_max(lmax, red);
+            evals += (double)fr.len;
+            int closed = vbq_closed(fr.rq, LO, slack_i);
+            if (!closed && fr.level >= VBQ_FETCH_LEVEL) {
+                double rq1 = vbq_ring_radius(fr.rq, LO, slack_i, far);
+                if (top + fr.len > lab_cap) {
+                    if (lane == 0u)
+                        sh[S_STATUS] = VBQ_OVER_LAB;
+                    barrier(CLK_LOCAL_MEM_FENCE);
+                    break;
+                }
+                for (uint k = lane; k < fr.len; k += WG)
+                    lab[top + k] = lab[fr.off + k];
+                if (lane == 0u)
+                    sh[S_LEN] = fr.len;
+                barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
+                vbq_query_make(&e, i, mm, hh, LO, fr.rq, rq1, &qq);
+                wg_gather(&e, &qq, i, nb, nb_cap, lab, lab_cap, top, sh, nodes);
+                if (lane == 0u && sh[S_STATUS] == VBQ_OK) {
+                    uint nlen = sh[S_LEN];
+                    fr.off = top;
+                    fr.len = nlen;
+                    fr.rq = rq1;
+                    sh[S_TOP] = top + nlen;
+                    uint nst = sh[S_NST];
+                    if (nst >= WG_ST)
+                        sh[S_STATUS] = VBQ_OVER_ST;
+                    else {
+                        stk[nst] = fr;
+                        sh[S_NST] = nst + 1u;
+                    }
+                    o.patches--;
+                }
+                barrier(CLK_LOCAL_MEM_FENCE);
+                continue;
+            }
+            if (top + fr.len > lab_cap) {
+                if (lane == 0u)
+                    sh[S_STATUS] = VBQ_OVER_LAB;
+                barrier(CLK_LOCAL_MEM_FENCE);
+                break;
+            }
+            if (lane == 0u) {
+                sh[S_LEN] = 0u;
+                sh[S_OWNED] = 0u;
+            }
+            barrier(CLK_LOCAL_MEM_FENCE);
+            for (uint k = lane; k < fr.len; k += WG) {
+                uint li = lab[fr.off + k];
+                vbq_nb rec = nb[li];
+                double lo, hi;
+                vbq_eval(&rec, mm, hh, &lo, &hi);
+                if (hi >= LO) {
+                    uint pos = atomic_inc(&sh[S_LEN]);
+                    lab[top + pos] = li;
+                    if (rec.id > i)
+                        atomic_inc(&sh[S_OWNED]);
+                }
+            }
+            barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
+            evals += (double)fr.len;
+            uint keep = sh[S_LEN], owned = sh[S_OWNED];
+            if (closed && owned >= 3u && keep <= VBQ_DOM_MAX) {
+                if (lane < keep) {
+                    vbq_nb nj = nb[lab[top + lane]];
+                    uint d = 0u;
+                    for (uint b = 0u; b < keep && !d; b++) {
+                        if (b == lane)
+                            continue;
+                        vbq_nb nk = nb[lab[top + b]];
+                        double dl, dh;
+                        vbq_eval_diff(&nk, &nj, mm, hh, &dl, &dh);
+                        d = dl > 0.0;
+                    }
+                    dom[lane] = d;
+                }
+                barrier(CLK_LOCAL_MEM_FENCE);
+                evals += (double)(keep * (keep - 1u));
+                if (lane == 0u) {
+                    uint w = 0u, ow = 0u;
+                    for (uint a = 0u; a < keep; a++)
+                        if (!dom[a]) {
+                            uint li = lab[top + a];
+                            lab[top + w++] = li;
+                            if (nb[li].id > i)
+                                ow++;
+                        }
+                    sh[S_LEN] = w;
+                    sh[S_OWNED] = ow;
+                }
+                barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
+                keep = sh[S_LEN];
+                owned = sh[S_OWNED];
+            }
+            int act = closed ? vbq_decide(&e, &fr, keep, owned) : 1;
+            if (lane == 0u && act >= 2) {
+                o.leaves++;
+                if (act == 3)
+                    o.deep++;
+                if (fr.level > o.maxlev)
+                    o.maxlev = fr.level;
+                for (uint a = 0u; a < keep && o.status == VBQ_OK; a++) {
+                    uint ja = nb[lab[top + a]].id;
+                    if (ja < i)
+                        continue;
+                    for (uint b = a + 1u; b < keep && o.status == VBQ_OK; b++) {
+                        uint jb = nb[lab[top + b]].id;
+                        if (jb < i)
+                            continue;
+                        for (uint d = b + 1u; d < keep && o.status == VBQ_OK; d++) {
+                            uint jd = nb[lab[top + d]].id;
+                            if (jd >= i)
+                                vbq_add_quad(&ar, &o, i, ja, jb, jd);
+                        }
+                    }
+                }
+                if (o.status != VBQ_OK)
+                    sh[S_STATUS] = o.status;
+            }
+            if (lane == 0u && act == 1) {
+                uint nst = sh[S_NST];
+                if (nst + 4u > WG_ST) {
+                    sh[S_STATUS] = VBQ_OVER_ST;
+                } else {
+                    for (uint k = 0u; k < 4u; k++) {
+                        vbq_frame ch;
+                        vbq_child(&fr, k, top, keep, &ch);
+                        stk[nst + k] = ch;
+                    }
+                    sh[S_NST] = nst + 4u;
+                    sh[S_TOP] = top + keep;
+                }
+            }
+            barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
+        }
+        if (lane == 0u) {
+            o.status = sh[S_STATUS];
+            o.nnb = sh[S_NNB];
+            o.far = sh[S_FAR];
+            o.evals_k = (uint)(evals / 1000.0);
+            if (o.status == VBQ_OK && o.nq > 0u) {
+                uint base = atomic_add(&counters[1], o.nq);
+                if (base + o.nq <= qout_cap) {
+                    for (uint k = 0u; k < 4u * o.nq; k++)
+                        qout[4u * (size_t)base + k] = qa[k];
+                    o.qoff = base;
+                } else {
+                    o.status = VBQ_OVER_OUT;
+                }
+            }
+            outs[c] = o;
+        }
+        barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
+    }
+}
