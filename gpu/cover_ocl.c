@@ -308,6 +308,10 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
         want = want / 64 * 64;
     if (want < (s->wg ? 1u : 64u))
         want = s->wg ? 1u : 64u;
+    /* VORBALL_COVER_SLICES overrides the count (measurements). */
+    const char *ws = getenv("VORBALL_COVER_SLICES");
+    if (ws && atol(ws) > 0)
+        want = (size_t)atol(ws);
     s->workers = want;
     be->name = "opencl";
     snprintf(be->device, sizeof be->device, "%s", vbg_runtime_device_name(rt));

@@ -333,36 +333,168 @@ static int cover_host(job *jb, worker *w, int nt)
     return VB_OK;
 }
 
-/* Covers jb->cells on the backend batch by batch; the cells it leaves (an
- * arena ran out there) are collected in *left for the host. */
-static int cover_device(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w0,
-                        uint32_t **left, size_t *nleft)
+/* The device and the host together: the calling thread feeds the backend
+ * batches from the front of the cell list, host threads take single cells
+ * from its back, and the cells a device batch could not finish (an arena
+ * ran out there) go to a queue the host threads serve first. Which side
+ * covers a cell changes nothing it proposes. */
+typedef struct share {
+    pthread_mutex_t mu;
+    pthread_cond_t cv;
+    size_t front, back;    /* cells [front, back) are still untaken */
+    uint32_t *left;        /* cells the device left to the host */
+    size_t nleft, lhead;
+    int done;              /* the device takes no more batches */
+} share;
+
+typedef struct hybrid_arg {
+    worker *w;
+    share *sh;
+} hybrid_arg;
+
+static void *hybrid_host(void *arg)
+{
+    hybrid_arg *ha = arg;
+    worker *w = ha->w;
+    share *sh = ha->sh;
+    job *jb = w->jb;
+    if (!w->ar.nb && arena_make(&w->ar, VBQ_NB0, VBQ_LAB0, VBQ_ST0, VBQ_Q0) != VB_OK) {
+        w->rc = VB_ENOMEM;
+        atomic_store(&jb->failed, 1);
+        return NULL;
+    }
+    for (;;) {
+        pthread_mutex_lock(&sh->mu);
+        uint32_t cell = 0;
+        int have = 0;
+        while (!have && !atomic_load(&jb->failed)) {
+            if (sh->lhead < sh->nleft) {
+                cell = sh->left[sh->lhead++];
+                have = 1;
+            } else if (sh->front < sh->back) {
+                cell = jb->cells[--sh->back];
+                have = 1;
+            } else if (sh->done) {
+                break;
+            } else {
+                pthread_cond_wait(&sh->cv, &sh->mu);
+            }
+        }
+        pthread_mutex_unlock(&sh->mu);
+        if (!have)
+            return NULL;
+        int rc = cover_one(w, cell);
+        if (rc != VB_OK) {
+            w->rc = rc;
+            atomic_store(&jb->failed, 1);
+            pthread_mutex_lock(&sh->mu);
+            pthread_cond_broadcast(&sh->cv);
+            pthread_mutex_unlock(&sh->mu);
+            return NULL;
+        }
+    }
+}
+
+/* Feeds the device; returns its status (VB_EDEVICE: the caller covers
+ * everything on the host again). */
+static int hybrid_device(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w0, share *sh)
 {
     size_t batch = be->batch_cells ? be->batch_cells : 65536;
     vbq_cell_out *outs = malloc(batch * sizeof *outs);
-    uint32_t *lf = malloc((jb->ncells ? jb->ncells : 1) * sizeof *lf);
-    size_t nl = 0;
-    int rc = outs && lf ? VB_OK : vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
-    if (rc == VB_OK)
-        rc = be->begin(ctx, be, &jb->env, jb->set->n);
-    for (size_t b0 = 0; rc == VB_OK && b0 < jb->ncells; b0 += batch) {
-        size_t n = jb->ncells - b0 < batch ? jb->ncells - b0 : batch;
+    if (!outs)
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
+    int rc = be->begin(ctx, be, &jb->env, jb->set->n);
+    while (rc == VB_OK && !atomic_load(&jb->failed)) {
+        pthread_mutex_lock(&sh->mu);
+        size_t b0 = sh->front, n = sh->back - sh->front < batch ? sh->back - sh->front : batch;
+        sh->front += n;
+        pthread_mutex_unlock(&sh->mu);
+        if (n == 0)
+            break;
         const uint32_t *quads = NULL;
+        double t0 = vbs_now();
         rc = be->run(ctx, be, jb->cells + b0, n, outs, &quads);
+        w0->st.t_device += vbs_now() - t0;
+        if (rc != VB_OK)
+            break;
+        size_t nl = 0;
         for (size_t k = 0; rc == VB_OK && k < n; k++) {
             if (outs[k].status != VBQ_OK) {
-                lf[nl++] = jb->cells[b0 + k];
+                outs[nl++].qoff = jb->cells[b0 + k]; /* reuse the slot for the cell id */
                 continue;
             }
             stats_add(&w0->st, &outs[k]);
-            rc = quads_append(w0, quads + 4 * (size_t)outs[k].qoff, outs[k].nq);
-            if (rc != VB_OK)
+            if (quads_append(w0, quads + 4 * (size_t)outs[k].qoff, outs[k].nq) != VB_OK)
                 rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
         }
+        pthread_mutex_lock(&sh->mu);
+        for (size_t k = 0; k < nl; k++)
+            sh->left[sh->nleft++] = outs[k].qoff;
+        pthread_cond_broadcast(&sh->cv);
+        pthread_mutex_unlock(&sh->mu);
+        w0->st.host_cells += nl;
     }
     free(outs);
-    *left = lf;
-    *nleft = nl;
+    return rc;
+}
+
+/* Covers jb->cells with the backend and nt host threads (the calling
+ * thread drives the device, then helps the host). */
+static int cover_hybrid(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w, int nt)
+{
+    share sh;
+    memset(&sh, 0, sizeof sh);
+    sh.back = jb->ncells;
+    sh.left = malloc((jb->ncells ? jb->ncells : 1) * sizeof *sh.left);
+    if (!sh.left || pthread_mutex_init(&sh.mu, NULL)) {
+        free(sh.left);
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
+    }
+    pthread_cond_init(&sh.cv, NULL);
+    atomic_store(&jb->failed, 0);
+    hybrid_arg *ha = calloc((size_t)nt, sizeof *ha);
+    pthread_t *th = calloc((size_t)nt, sizeof *th);
+    int *started = calloc((size_t)nt, sizeof *started);
+    int rc = ha && th && started ? VB_OK : VB_ENOMEM;
+    /* One core drives the device; the others cover on the host. */
+    for (int t = 1; rc == VB_OK && t < nt; t++) {
+        ha[t] = (hybrid_arg){&w[t], &sh};
+        started[t] = pthread_create(&th[t], NULL, hybrid_host, &ha[t]) == 0;
+    }
+    int drc = rc == VB_OK ? hybrid_device(ctx, jb, be, &w[0], &sh) : rc;
+    pthread_mutex_lock(&sh.mu);
+    sh.done = 1;
+    if (drc != VB_OK) {
+        /* The host takes every cell the device did not finish: all of them
+         * again is simplest and costs nothing in the output. */
+        atomic_store(&jb->failed, 1);
+    }
+    pthread_cond_broadcast(&sh.cv);
+    pthread_mutex_unlock(&sh.mu);
+    if (rc == VB_OK) {
+        ha[0] = (hybrid_arg){&w[0], &sh};
+        if (drc == VB_OK)
+            hybrid_host(&ha[0]);
+        for (int t = 1; t < nt; t++) {
+            if (started[t])
+                pthread_join(th[t], NULL);
+            else if (drc == VB_OK) {
+                ha[t] = (hybrid_arg){&w[t], &sh};
+                hybrid_host(&ha[t]);
+            }
+        }
+    }
+    for (int t = 0; rc == VB_OK && t < nt; t++)
+        if (w[t].rc != VB_OK)
+            rc = w[t].rc;
+    if (rc == VB_OK)
+        rc = drc;
+    free(ha);
+    free(th);
+    free(started);
+    free(sh.left);
+    pthread_mutex_destroy(&sh.mu);
+    pthread_cond_destroy(&sh.cv);
     return rc;
 }
 
@@ -431,19 +563,12 @@ int vb_cover_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *
     int rc = w ? VB_OK : VB_ENOMEM;
     for (int t = 0; rc == VB_OK && t < nt; t++)
         w[t].jb = &jb;
-    uint32_t *left = NULL;
-    size_t nleft = 0;
-    if (rc == VB_OK && be) {
-        rc = cover_device(ctx, &jb, be, &w[0], &left, &nleft);
-        if (rc == VB_OK) {
-            w[0].st.host_cells = nleft;
-            jb.cells = left;
-            jb.ncells = nleft;
-        }
-    }
-    if (rc == VB_OK && jb.ncells)
+    double t0 = vbs_now();
+    if (rc == VB_OK && be)
+        rc = cover_hybrid(ctx, &jb, be, w, nt);
+    else if (rc == VB_OK && jb.ncells)
         rc = cover_host(&jb, w, nt);
-    free(left);
+    w[0].st.t_host = vbs_now() - t0;
     size_t total = 0;
     for (int t = 0; rc == VB_OK && t < nt; t++)
         total += w[t].nq;
@@ -473,6 +598,8 @@ int vb_cover_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *
         st.max_level_leaves += ws->max_level_leaves;
         st.retries += ws->retries;
         st.host_cells += ws->host_cells;
+        st.t_device += ws->t_device;
+        st.t_host += ws->t_host;
         if (ws->max_level_seen > st.max_level_seen)
             st.max_level_seen = ws->max_level_seen;
         arena_free(&w[t].ar);

@@ -43,6 +43,8 @@ typedef struct vb_cover_stats {
     uint64_t quads;          /* distinct quadruples proposed */
     uint64_t retries;        /* cells covered again with a larger arena */
     uint64_t host_cells;     /* cells a device left to the host */
+    double t_device;         /* seconds in the device's batches (wall) */
+    double t_host;           /* seconds of the whole cover (wall) */
     unsigned max_level_seen;
 } vb_cover_stats;
 
