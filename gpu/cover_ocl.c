@@ -1,36 +1,50 @@
-/* Host side of the cover kernel (gpu/cover.cl): the shared input uploaded
- * once per run, per-work-item arenas sized from the device's memory, one
- * launch per batch of cells, read-back of the per-cell results and of the
- * quadruples. Every error path releases what it made and reports
- * VB_EDEVICE; the caller falls back to the host. */
+/* Host side of the cover kernels (gpu/cover.cl: a work-item per cell, for
+ * CPU devices; gpu/cover_wg.cl: a work-group per cell, for GPUs): the shared
+ * input uploaded once per run, arena slices sized from the device's memory,
+ * launches per batch of cells, read-back of the per-cell results and the
+ * quadruples. A batch runs in two tiers: many small slices first, then the
+ * cells that ran out of them again on a few large slices; what still does
+ * not fit is left to the host. Every error path reports VB_EDEVICE; the
+ * caller falls back to the host. */
 #include <stdlib.h>
 #include <string.h>
 
 #include "vbg_cover.h"
+
+/* A cell whose quadruples did not fit the output array (cover*.cl). */
+#define COV_OVER_OUT 5u
 
 typedef struct cov_buf {
     cl_mem mem;
     size_t size;
 } cov_buf;
 
+/* Arena slices of one tier: `slices` of them (work-items, or work-groups). */
+typedef struct cov_tier {
+    cov_buf nb, lab, st, q;
+    size_t slices;
+    uint32_t nb_cap, lab_cap, st_cap, q_cap;
+} cov_tier;
+
 typedef struct cov_state {
     vbg_runtime *rt;
     cl_kernel k;
-    int wg;                  /* 1: one work-group of 32 per cell (vbq_cover_wg) */
+    int wg;                  /* 1: one work-group of 32 per cell (cover_wg.cl) */
     cov_buf x, y, z, r, box, rmax, ids;
-    cov_buf cells, nb, lab, st, q, outs, qout, counters;
-    size_t workers;          /* arena slices: work-items, or work-groups with wg */
-    uint32_t nb_cap, lab_cap, st_cap, q_cap;
+    cov_buf cells, outs, qout, counters;
+    cov_tier tier[2];
     size_t qout_cap;         /* quadruples the output array holds */
-    uint32_t *host_q;        /* read-back of the quadruples */
-    size_t host_q_cap;
+    uint32_t *host_q;        /* read-back of the quadruples of a batch */
+    size_t host_q_cap, host_nq;
+    vbq_cell_out *outs2;     /* results of the second tier */
+    uint32_t *cells2;
+    size_t cap2;
     vbq_env env;             /* scalars of the uploaded input */
 } cov_state;
 
-/* Arena capacities per slice: enough for almost every cell of the proteins
- * and the capsid measured (nb p99 below 10^4 there); the rest are covered on
- * the host with growing arenas. A group's slice (GPUs) is larger: there are
- * few groups. */
+/* Arena capacities. The first tier fits almost every cell of the proteins
+ * and the capsid measured; the second takes the exposed cells whose ring
+ * fetches hold thousands of spheres (up to ~10^5 records on the capsid). */
 #define COV_NB 2048u
 #define COV_LAB 8192u
 #define COV_ST 256u
@@ -38,6 +52,9 @@ typedef struct cov_state {
 #define COV_WG_NB 8192u
 #define COV_WG_LAB 32768u
 #define COV_WG_Q 512u
+#define COV_BIG_NB 131072u
+#define COV_BIG_LAB 262144u
+#define COV_BIG_Q 4096u
 #define COV_WG 32u
 
 static void release(cov_buf *b)
@@ -77,6 +94,20 @@ static int upload(vb_ctx *ctx, cov_state *s, cov_buf *b, const void *src, size_t
                      "clEnqueueWriteBuffer");
 }
 
+static int tier_alloc(vb_ctx *ctx, cov_state *s, cov_tier *t)
+{
+    size_t w = t->slices;
+    int rc = ensure(ctx, s, &t->nb, w * t->nb_cap * sizeof(vbq_nb), CL_MEM_READ_WRITE);
+    if (rc == VB_OK)
+        rc = ensure(ctx, s, &t->lab, w * t->lab_cap * sizeof(uint32_t), CL_MEM_READ_WRITE);
+    if (rc == VB_OK)
+        rc = ensure(ctx, s, &t->st, (s->wg ? 1 : w) * t->st_cap * sizeof(vbq_frame),
+                    CL_MEM_READ_WRITE);
+    if (rc == VB_OK)
+        rc = ensure(ctx, s, &t->q, w * 4 * t->q_cap * sizeof(uint32_t), CL_MEM_READ_WRITE);
+    return rc;
+}
+
 static int cov_begin(vb_ctx *ctx, vb_cover_backend *be, const vbq_env *env, size_t n)
 {
     cov_state *s = be->state;
@@ -95,16 +126,9 @@ static int cov_begin(vb_ctx *ctx, vb_cover_backend *be, const vbq_env *env, size
         rc = upload(ctx, s, &s->rmax, env->rmax, nodes * sizeof(double));
     if (rc == VB_OK)
         rc = upload(ctx, s, &s->ids, env->ids, (size_t)env->m * sizeof(uint32_t));
-    size_t w = s->workers;
-    if (rc == VB_OK)
-        rc = ensure(ctx, s, &s->nb, w * s->nb_cap * sizeof(vbq_nb), CL_MEM_READ_WRITE);
-    if (rc == VB_OK)
-        rc = ensure(ctx, s, &s->lab, w * s->lab_cap * sizeof(uint32_t), CL_MEM_READ_WRITE);
-    if (rc == VB_OK)
-        rc = ensure(ctx, s, &s->st, (s->wg ? 1 : w) * s->st_cap * sizeof(vbq_frame),
-                    CL_MEM_READ_WRITE);
-    if (rc == VB_OK)
-        rc = ensure(ctx, s, &s->q, w * 4 * s->q_cap * sizeof(uint32_t), CL_MEM_READ_WRITE);
+    for (int t = 0; rc == VB_OK && t < 2; t++)
+        if (s->tier[t].slices)
+            rc = tier_alloc(ctx, s, &s->tier[t]);
     if (rc == VB_OK)
         rc = ensure(ctx, s, &s->counters, 2 * sizeof(cl_uint), CL_MEM_READ_WRITE);
     return rc;
@@ -115,19 +139,32 @@ static int set_arg(vb_ctx *ctx, cl_kernel k, cl_uint i, size_t size, const void 
     return vbg_check(ctx, clSetKernelArg(k, i, size, v), "clSetKernelArg");
 }
 
-static int cov_run(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, size_t ncells,
-                   vbq_cell_out *out, const uint32_t **quads)
+/* Appends room for n more quadruples to host_q. */
+static int host_q_room(vb_ctx *ctx, cov_state *s, size_t n)
 {
-    cov_state *s = be->state;
-    cl_command_queue q = vbg_runtime_queue(s->rt);
-    *quads = NULL;
-    if (ncells == 0)
+    if (s->host_nq + n <= s->host_q_cap)
         return VB_OK;
-    if (ncells > UINT32_MAX)
-        return vb_error(ctx, VB_EINTERNAL, NULL, 0, "cover batch too large");
-    /* About 10 quadruples per cell on proteins: room for 24, and cells
-     * beyond it are marked and covered on the host. */
-    size_t want = 24 * ncells;
+    size_t nc = s->host_q_cap ? s->host_q_cap : 4096;
+    while (nc < s->host_nq + n)
+        nc *= 2;
+    uint32_t *h = realloc(s->host_q, 4 * nc * sizeof *h);
+    if (!h)
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (quadruples)");
+    s->host_q = h;
+    s->host_q_cap = nc;
+    return VB_OK;
+}
+
+/* One launch of tier t over cells[0 .. ncells): out[k] and the quadruples
+ * appended to host_q (out[k].qoff made relative to host_q). */
+static int run_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *cells,
+                    size_t ncells, vbq_cell_out *out)
+{
+    cl_command_queue q = vbg_runtime_queue(s->rt);
+    /* About 10 quadruples per cell on proteins: room for 24 (more on the
+     * second tier, whose cells are the large ones); cells beyond it are
+     * marked and covered on the host. */
+    size_t want = (t == &s->tier[0] ? 24 : 256) * ncells;
     if (want > s->qout_cap)
         s->qout_cap = want;
     int rc = upload(ctx, s, &s->cells, cells, ncells * sizeof(uint32_t));
@@ -143,7 +180,7 @@ static int cov_run(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, siz
                        "clEnqueueWriteBuffer");
     const vbq_env *e = &s->env;
     cl_uint nc = (cl_uint)ncells, qcap = (cl_uint)s->qout_cap;
-    cl_uint nbc = s->nb_cap, labc = s->lab_cap, stc = s->st_cap, qc = s->q_cap;
+    cl_uint nbc = t->nb_cap, labc = t->lab_cap, stc = t->st_cap, qc = t->q_cap;
     cl_uint a = 0;
     cl_kernel k = s->k;
     if (rc == VB_OK)
@@ -164,10 +201,10 @@ static int cov_run(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, siz
              set_arg(ctx, k, a++, sizeof(cl_uint), &e->enum_max) ||
              set_arg(ctx, k, a++, sizeof(cl_mem), &s->cells.mem) ||
              set_arg(ctx, k, a++, sizeof(cl_uint), &nc) ||
-             set_arg(ctx, k, a++, sizeof(cl_mem), &s->nb.mem) ||
-             set_arg(ctx, k, a++, sizeof(cl_mem), &s->lab.mem) ||
-             set_arg(ctx, k, a++, sizeof(cl_mem), &s->st.mem) ||
-             set_arg(ctx, k, a++, sizeof(cl_mem), &s->q.mem) ||
+             set_arg(ctx, k, a++, sizeof(cl_mem), &t->nb.mem) ||
+             set_arg(ctx, k, a++, sizeof(cl_mem), &t->lab.mem) ||
+             set_arg(ctx, k, a++, sizeof(cl_mem), &t->st.mem) ||
+             set_arg(ctx, k, a++, sizeof(cl_mem), &t->q.mem) ||
              set_arg(ctx, k, a++, sizeof(cl_uint), &nbc) ||
              set_arg(ctx, k, a++, sizeof(cl_uint), &labc) ||
              set_arg(ctx, k, a++, sizeof(cl_uint), &stc) ||
@@ -181,13 +218,13 @@ static int cov_run(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, siz
     size_t local, global;
     if (s->wg) {
         local = COV_WG;
-        global = (s->workers < ncells ? s->workers : ncells) * COV_WG;
+        global = (t->slices < ncells ? t->slices : ncells) * COV_WG;
     } else {
         local = 64;
-        global = s->workers < ncells ? s->workers : ncells;
+        global = t->slices < ncells ? t->slices : ncells;
         global = (global + local - 1) / local * local;
-        if (global > s->workers)
-            global = s->workers; /* a multiple of local by construction */
+        if (global > t->slices)
+            global = t->slices; /* a multiple of local by construction */
     }
     if (rc == VB_OK)
         rc = vbg_check(ctx, clEnqueueNDRangeKernel(q, k, 1, NULL, &global, &local, 0, NULL, NULL),
@@ -204,30 +241,68 @@ static int cov_run(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, siz
                                            counters, 0, NULL, NULL),
                        "read counters");
     size_t nq = counters[1] < s->qout_cap ? counters[1] : s->qout_cap;
-    if (rc == VB_OK && nq > s->host_q_cap) {
-        uint32_t *h = realloc(s->host_q, 4 * nq * sizeof *h);
-        if (!h)
-            rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (quadruples)");
-        else {
-            s->host_q = h;
-            s->host_q_cap = nq;
-        }
-    }
+    if (rc == VB_OK)
+        rc = host_q_room(ctx, s, nq);
     if (rc == VB_OK && nq)
         rc = vbg_check(ctx,
                        clEnqueueReadBuffer(q, s->qout.mem, CL_TRUE, 0, 4 * nq * sizeof(uint32_t),
-                                           s->host_q, 0, NULL, NULL),
+                                           s->host_q + 4 * s->host_nq, 0, NULL, NULL),
                        "read quadruples");
     if (rc != VB_OK) {
-        /* Nothing half-done may reach the caller. */
-        clFinish(q);
+        clFinish(q); /* nothing half-done may reach the caller */
         return rc;
     }
+    for (size_t c = 0; c < ncells; c++)
+        if (out[c].status == VBQ_OK)
+            out[c].qoff += (uint32_t)s->host_nq;
+    s->host_nq += nq;
     /* The next batch gets room for what this one needed. */
     if (counters[1] > s->qout_cap)
         s->qout_cap = counters[1] + counters[1] / 4;
-    *quads = s->host_q;
     return VB_OK;
+}
+
+static int cov_run(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, size_t ncells,
+                   vbq_cell_out *out, const uint32_t **quads)
+{
+    cov_state *s = be->state;
+    *quads = NULL;
+    s->host_nq = 0;
+    if (ncells == 0)
+        return VB_OK;
+    if (ncells > UINT32_MAX)
+        return vb_error(ctx, VB_EINTERNAL, NULL, 0, "cover batch too large");
+    int rc = run_tier(ctx, s, &s->tier[0], cells, ncells, out);
+    /* The cells that ran out of a small slice, once more on large ones. */
+    size_t n2 = 0;
+    for (size_t c = 0; rc == VB_OK && s->tier[1].slices && c < ncells; c++)
+        if (out[c].status != VBQ_OK)
+            n2++;
+    if (rc == VB_OK && n2) {
+        if (n2 > s->cap2) {
+            vbq_cell_out *o2 = realloc(s->outs2, n2 * sizeof *o2);
+            if (o2)
+                s->outs2 = o2;
+            uint32_t *c2 = realloc(s->cells2, n2 * sizeof *c2);
+            if (c2)
+                s->cells2 = c2;
+            if (!o2 || !c2)
+                return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
+            s->cap2 = n2;
+        }
+        size_t j = 0;
+        for (size_t c = 0; c < ncells; c++)
+            if (out[c].status != VBQ_OK)
+                s->cells2[j++] = cells[c];
+        rc = run_tier(ctx, s, &s->tier[1], s->cells2, n2, s->outs2);
+        j = 0;
+        for (size_t c = 0; rc == VB_OK && c < ncells; c++)
+            if (out[c].status != VBQ_OK)
+                out[c] = s->outs2[j++];
+    }
+    if (rc == VB_OK)
+        *quads = s->host_q;
+    return rc;
 }
 
 static void cov_close(vb_cover_backend *be)
@@ -236,17 +311,31 @@ static void cov_close(vb_cover_backend *be)
         return;
     cov_state *s = be->state;
     if (s) {
-        cov_buf *all[] = {&s->x,   &s->y,  &s->z,    &s->r,    &s->box,  &s->rmax,
-                          &s->ids, &s->cells, &s->nb, &s->lab, &s->st,  &s->q,
-                          &s->outs, &s->qout, &s->counters};
+        cov_buf *all[] = {&s->x,   &s->y,     &s->z,    &s->r,    &s->box,
+                          &s->rmax, &s->ids,  &s->cells, &s->outs, &s->qout,
+                          &s->counters};
         for (size_t k = 0; k < sizeof all / sizeof all[0]; k++)
             release(all[k]);
+        for (int t = 0; t < 2; t++) {
+            release(&s->tier[t].nb);
+            release(&s->tier[t].lab);
+            release(&s->tier[t].st);
+            release(&s->tier[t].q);
+        }
         if (s->k)
             clReleaseKernel(s->k);
         free(s->host_q);
+        free(s->outs2);
+        free(s->cells2);
         free(s);
     }
     free(be);
+}
+
+static size_t tier_bytes(const cov_state *s, const cov_tier *t)
+{
+    return (size_t)t->nb_cap * sizeof(vbq_nb) + (size_t)t->lab_cap * 4 +
+           (s->wg ? 0 : (size_t)t->st_cap * sizeof(vbq_frame)) + (size_t)t->q_cap * 16;
 }
 
 int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
@@ -263,15 +352,21 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
     be->close = cov_close;
     s->rt = rt;
     /* GPUs run a group per cell; a CPU device (PoCL) a work-item per cell,
-     * which its compiler turns into plain loops. VORBALL_COVER_KERNEL=item|group
-     * overrides (tests run both on PoCL). */
+     * which its compiler turns into plain loops (its work-group compiler
+     * does not handle the group kernel's barriers in loops).
+     * VORBALL_COVER_KERNEL=item|group overrides. */
     const char *kn = getenv("VORBALL_COVER_KERNEL");
     s->wg = kn && strcmp(kn, "group") == 0 ? 1 : kn && strcmp(kn, "item") == 0 ? 0
                                                 : vbg_runtime_is_gpu(rt);
-    s->nb_cap = s->wg ? COV_WG_NB : COV_NB;
-    s->lab_cap = s->wg ? COV_WG_LAB : COV_LAB;
-    s->st_cap = COV_ST;
-    s->q_cap = s->wg ? COV_WG_Q : COV_Q;
+    cov_tier *t0 = &s->tier[0], *t1 = &s->tier[1];
+    t0->nb_cap = s->wg ? COV_WG_NB : COV_NB;
+    t0->lab_cap = s->wg ? COV_WG_LAB : COV_LAB;
+    t0->st_cap = COV_ST;
+    t0->q_cap = s->wg ? COV_WG_Q : COV_Q;
+    t1->nb_cap = COV_BIG_NB;
+    t1->lab_cap = COV_BIG_LAB;
+    t1->st_cap = COV_ST;
+    t1->q_cap = COV_BIG_Q;
     cl_program prog;
     int rc = vbg_program_get(ctx, rt, s->wg ? "cover_wg.cl" : "cover.cl", NULL, &prog);
     cl_int err = CL_SUCCESS;
@@ -280,8 +375,6 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
         s->k = clCreateKernel(prog, kname, &err);
         rc = vbg_check(ctx, err, kname);
     }
-    /* Work-items: as many as the device keeps busy, within an eighth of its
-     * memory for the arenas (and never above what a batch can use). */
     cl_device_id dev = vbg_runtime_device(rt);
     cl_ulong mem = 0;
     cl_uint units = 1;
@@ -298,11 +391,12 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
         cov_close(be);
         return rc;
     }
-    size_t arena = (size_t)s->nb_cap * sizeof(vbq_nb) + (size_t)s->lab_cap * 4 +
-                   (s->wg ? 0 : (size_t)s->st_cap * sizeof(vbq_frame)) + (size_t)s->q_cap * 16;
+    /* Slices: as many as keep the device busy, the first tier within an
+     * eighth of its memory and the second within a sixteenth; a CPU device
+     * gets no second tier (its cells are as cheap on the host). */
     size_t want = s->wg ? (size_t)units * 16
                         : (vbg_runtime_is_gpu(rt) ? (size_t)units * 512 : (size_t)units * 64);
-    size_t fit = (size_t)(mem / 8) / arena;
+    size_t fit = (size_t)(mem / 8) / tier_bytes(s, t0);
     want = want < fit ? want : fit;
     if (!s->wg)
         want = want / 64 * 64;
@@ -312,7 +406,11 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
     const char *ws = getenv("VORBALL_COVER_SLICES");
     if (ws && atol(ws) > 0)
         want = (size_t)atol(ws);
-    s->workers = want;
+    t0->slices = want;
+    if (s->wg) {
+        size_t w2 = (size_t)units * 4, fit2 = (size_t)(mem / 16) / tier_bytes(s, t1);
+        t1->slices = w2 < fit2 ? w2 : fit2;
+    }
     be->name = "opencl";
     snprintf(be->device, sizeof be->device, "%s", vbg_runtime_device_name(rt));
     be->batch_cells = vbg_runtime_is_gpu(rt) ? 1u << 18 : 1u << 14;
