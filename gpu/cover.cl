@@ -18,7 +18,8 @@ __kernel void vbq_cover_kernel(__global const double *x, __global const double *
                                __global const uint *ids, const uint first, const uint m,
                                const double rmax_all, const double near, const uint T,
                                const uint min_level, const uint max_level, const uint enum_max,
-                               __global const uint *cells, const uint ncells,
+                               __global const uint *cells, __global const uint *roots,
+                               const uint ncells,
                                __global vbq_nb *nb, __global uint *lab, __global vbq_frame *st,
                                __global uint *q, const uint nb_cap, const uint lab_cap,
                                const uint st_cap, const uint q_cap,
@@ -56,7 +57,7 @@ __kernel void vbq_cover_kernel(__global const double *x, __global const double *
         if (c >= ncells)
             break;
         vbq_cell_out o;
-        vbq_cover_cell(&e, &ar, cells[c], &o);
+        vbq_cover_cell(&e, &ar, cells[c], roots[c], &o);
         if (o.status == VBQ_OK && o.nq > 0u) {
             uint base = atomic_add(&counters[1], o.nq);
             if (base + o.nq <= qout_cap) {

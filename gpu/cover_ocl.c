@@ -31,14 +31,14 @@ typedef struct cov_state {
     cl_kernel k;
     int wg;                  /* 1: one work-group of 32 per cell (cover_wg.cl) */
     cov_buf x, y, z, r, box, rmax, ids;
-    cov_buf cells, outs, qout, counters;
+    cov_buf cells, roots, outs, qout, counters;
     cov_tier tier[2];
     size_t qout_cap;         /* quadruples the output array holds */
     uint32_t *host_q;        /* read-back of the quadruples of a batch */
     size_t host_q_cap, host_nq;
-    vbq_cell_out *outs2;     /* results of the second tier */
-    uint32_t *cells2;
-    size_t cap2;
+    vbq_cell_out *outs2;     /* results of the second tier, a task per root patch */
+    uint32_t *cells2, *roots2, *hroots;
+    size_t cap2, hroots_cap;
     vbq_env env;             /* scalars of the uploaded input */
 } cov_state;
 
@@ -155,10 +155,11 @@ static int host_q_room(vb_ctx *ctx, cov_state *s, size_t n)
     return VB_OK;
 }
 
-/* One launch of tier t over cells[0 .. ncells): out[k] and the quadruples
- * appended to host_q (out[k].qoff made relative to host_q). */
+/* One launch of tier t over the tasks (cells[k], roots[k]) for k <
+ * ncells: out[k] and the quadruples appended to host_q (out[k].qoff made
+ * relative to host_q). */
 static int run_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *cells,
-                    size_t ncells, vbq_cell_out *out)
+                    const uint32_t *roots, size_t ncells, vbq_cell_out *out)
 {
     cl_command_queue q = vbg_runtime_queue(s->rt);
     /* About 10 quadruples per cell on proteins: room for 24 (more on the
@@ -168,6 +169,8 @@ static int run_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *cell
     if (want > s->qout_cap)
         s->qout_cap = want;
     int rc = upload(ctx, s, &s->cells, cells, ncells * sizeof(uint32_t));
+    if (rc == VB_OK)
+        rc = upload(ctx, s, &s->roots, roots, ncells * sizeof(uint32_t));
     if (rc == VB_OK)
         rc = ensure(ctx, s, &s->outs, ncells * sizeof(vbq_cell_out), CL_MEM_READ_WRITE);
     if (rc == VB_OK)
@@ -200,6 +203,7 @@ static int run_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *cell
              set_arg(ctx, k, a++, sizeof(cl_uint), &e->max_level) ||
              set_arg(ctx, k, a++, sizeof(cl_uint), &e->enum_max) ||
              set_arg(ctx, k, a++, sizeof(cl_mem), &s->cells.mem) ||
+             set_arg(ctx, k, a++, sizeof(cl_mem), &s->roots.mem) ||
              set_arg(ctx, k, a++, sizeof(cl_uint), &nc) ||
              set_arg(ctx, k, a++, sizeof(cl_mem), &t->nb.mem) ||
              set_arg(ctx, k, a++, sizeof(cl_mem), &t->lab.mem) ||
@@ -272,12 +276,23 @@ static int cov_run(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, siz
         return VB_OK;
     if (ncells > UINT32_MAX)
         return vb_error(ctx, VB_EINTERNAL, NULL, 0, "cover batch too large");
-    int rc = run_tier(ctx, s, &s->tier[0], cells, ncells, out);
-    /* The cells that ran out of a small slice, once more on large ones. */
-    size_t n2 = 0;
+    if (ncells > s->hroots_cap) {
+        uint32_t *hr = realloc(s->hroots, ncells * sizeof *hr);
+        if (!hr)
+            return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
+        s->hroots = hr;
+        s->hroots_cap = ncells;
+    }
+    for (size_t c = 0; c < ncells; c++)
+        s->hroots[c] = VBQ_ALL_ROOTS;
+    int rc = run_tier(ctx, s, &s->tier[0], cells, s->hroots, ncells, out);
+    /* The cells that ran out of a small slice, once more on large ones, as
+     * one task per root patch: a costly exposed cell then runs on many
+     * groups at once instead of lengthening the batch. */
+    size_t nroot = 6u * (size_t)s->env.T * s->env.T, n2 = 0;
     for (size_t c = 0; rc == VB_OK && s->tier[1].slices && c < ncells; c++)
         if (out[c].status != VBQ_OK)
-            n2++;
+            n2 += nroot;
     if (rc == VB_OK && n2) {
         if (n2 > s->cap2) {
             vbq_cell_out *o2 = realloc(s->outs2, n2 * sizeof *o2);
@@ -286,19 +301,62 @@ static int cov_run(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, siz
             uint32_t *c2 = realloc(s->cells2, n2 * sizeof *c2);
             if (c2)
                 s->cells2 = c2;
-            if (!o2 || !c2)
+            uint32_t *r2 = realloc(s->roots2, n2 * sizeof *r2);
+            if (r2)
+                s->roots2 = r2;
+            if (!o2 || !c2 || !r2)
                 return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
             s->cap2 = n2;
         }
         size_t j = 0;
         for (size_t c = 0; c < ncells; c++)
             if (out[c].status != VBQ_OK)
-                s->cells2[j++] = cells[c];
-        rc = run_tier(ctx, s, &s->tier[1], s->cells2, n2, s->outs2);
+                for (size_t r = 0; r < nroot; r++, j++) {
+                    s->cells2[j] = cells[c];
+                    s->roots2[j] = (uint32_t)r;
+                }
+        rc = run_tier(ctx, s, &s->tier[1], s->cells2, s->roots2, n2, s->outs2);
+        /* A cell whose tasks all finished gets their quadruples, one after
+         * the other at the end of host_q (repeats between tasks are dropped
+         * by the driver). */
         j = 0;
-        for (size_t c = 0; rc == VB_OK && c < ncells; c++)
-            if (out[c].status != VBQ_OK)
-                out[c] = s->outs2[j++];
+        for (size_t c = 0; rc == VB_OK && c < ncells; c++) {
+            if (out[c].status != VBQ_OK) {
+                const vbq_cell_out *t = s->outs2 + j;
+                j += nroot;
+                vbq_cell_out sum = t[0];
+                size_t nq = 0;
+                for (size_t r = 0; r < nroot; r++) {
+                    if (t[r].status != VBQ_OK)
+                        sum.status = t[r].status;
+                    nq += t[r].nq;
+                }
+                if (sum.status != VBQ_OK) {
+                    out[c].status = sum.status;
+                    continue;
+                }
+                rc = host_q_room(ctx, s, nq);
+                if (rc != VB_OK)
+                    break;
+                sum.qoff = (uint32_t)s->host_nq;
+                sum.nq = (uint32_t)nq;
+                for (size_t r = 1; r < nroot; r++) {
+                    sum.nnb += t[r].nnb;
+                    sum.far += t[r].far;
+                    sum.patches += t[r].patches;
+                    sum.evals_k += t[r].evals_k;
+                    sum.leaves += t[r].leaves;
+                    sum.deep += t[r].deep;
+                    sum.maxlev = t[r].maxlev > sum.maxlev ? t[r].maxlev : sum.maxlev;
+                }
+                for (size_t r = 0; r < nroot; r++) {
+                    memmove(s->host_q + 4 * s->host_nq, s->host_q + 4 * (size_t)t[r].qoff,
+                            4 * (size_t)t[r].nq * sizeof *s->host_q);
+                    s->host_nq += t[r].nq;
+                }
+                out[c] = sum;
+            }
+        }
     }
     if (rc == VB_OK)
         *quads = s->host_q;
@@ -311,9 +369,9 @@ static void cov_close(vb_cover_backend *be)
         return;
     cov_state *s = be->state;
     if (s) {
-        cov_buf *all[] = {&s->x,   &s->y,     &s->z,    &s->r,    &s->box,
-                          &s->rmax, &s->ids,  &s->cells, &s->outs, &s->qout,
-                          &s->counters};
+        cov_buf *all[] = {&s->x,    &s->y,     &s->z,     &s->r,    &s->box,
+                          &s->rmax, &s->ids,   &s->cells, &s->roots, &s->outs,
+                          &s->qout, &s->counters};
         for (size_t k = 0; k < sizeof all / sizeof all[0]; k++)
             release(all[k]);
         for (int t = 0; t < 2; t++) {
@@ -327,6 +385,8 @@ static void cov_close(vb_cover_backend *be)
         free(s->host_q);
         free(s->outs2);
         free(s->cells2);
+        free(s->roots2);
+        free(s->hroots);
         free(s);
     }
     free(be);
@@ -411,6 +471,14 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
         size_t w2 = (size_t)units * 4, fit2 = (size_t)(mem / 16) / tier_bytes(s, t1);
         t1->slices = w2 < fit2 ? w2 : fit2;
     }
+    /* Test knobs: VORBALL_COVER_NB shrinks the first tier's records (so that
+     * cells overflow), VORBALL_COVER_TIER2 sets the second tier's slices
+     * (also on CPU devices, to test the split into root-patch tasks). */
+    const char *knb = getenv("VORBALL_COVER_NB"), *kt2 = getenv("VORBALL_COVER_TIER2");
+    if (knb && atol(knb) > 0)
+        t0->nb_cap = (uint32_t)atol(knb);
+    if (kt2 && atol(kt2) >= 0)
+        t1->slices = (size_t)atol(kt2);
     be->name = "opencl";
     snprintf(be->device, sizeof be->device, "%s", vbg_runtime_device_name(rt));
     be->batch_cells = vbg_runtime_is_gpu(rt) ? 1u << 18 : 1u << 14;

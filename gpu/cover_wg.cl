@@ -2,6 +2,8 @@
  * work-item kernel beside it (cover.cl) serves CPU devices. */
 #pragma OPENCL FP_CONTRACT OFF
 
+/* The parts of a fetching patch live in the group's local memory. */
+#define VBQ_SQ __local
 #include "vb_cover_shared.h"
 
 /* A cell whose quadruples did not fit the output array. */
@@ -91,6 +93,66 @@ static inline __attribute__((always_inline)) void wg_gather(const vbq_env *e, co
     barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
 }
 
+/* The ring fetch of a patch resolved by its parts (vbq_gather_sub) on the
+ * group. */
+static inline __attribute__((always_inline)) void
+wg_gather_sub(const vbq_env *e, vbs_u32 i, double rq0, double rq1, __local const vbq_sub *sub,
+              __global vbq_nb *nb, uint nb_cap, __global uint *lab, uint lab_cap, uint off,
+              __local uint *sh, __local uint *nodes)
+{
+    uint lane = get_local_id(0);
+    const double c[3] = {e->x[i], e->y[i], e->z[i]};
+    double ri = e->r[i];
+    if (lane == 0u) {
+        sh[S_NS] = e->m ? 1u : 0u;
+        nodes[0] = 1u;
+    }
+    barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
+    for (;;) {
+        uint n = sh[S_NS];
+        if (n == 0u || sh[S_STATUS] != VBQ_OK)
+            break;
+        uint take = n < WG ? n : WG;
+        uint nd = lane < take ? nodes[n - 1u - lane] : 0u;
+        barrier(CLK_LOCAL_MEM_FENCE);
+        if (lane == 0u)
+            sh[S_NS] = n - take;
+        barrier(CLK_LOCAL_MEM_FENCE);
+        if (nd != 0u && vbq_node_pass_sub(e, c, ri, rq0, rq1, sub, nd)) {
+            if (nd < e->first) {
+                uint k = atomic_add(&sh[S_NS], 2u);
+                if (k + 2u <= WG_NODES) {
+                    nodes[k] = 2u * nd;
+                    nodes[k + 1u] = 2u * nd + 1u;
+                } else {
+                    sh[S_STATUS] = VBQ_OVER_ST;
+                }
+            } else {
+                uint q0 = (nd - e->first) * VBQ_LEAF;
+                for (uint k = q0; k < e->m && k < q0 + VBQ_LEAF; k++) {
+                    uint j = e->ids[k];
+                    vbq_nb rec;
+                    if (j == i || !vbq_sphere_pass_sub(e, c, ri, rq0, rq1, sub, j, &rec))
+                        continue;
+                    atomic_inc(&sh[S_FAR]);
+                    uint idx = atomic_inc(&sh[S_NNB]);
+                    uint pos = atomic_inc(&sh[S_LEN]);
+                    if (idx >= nb_cap)
+                        sh[S_STATUS] = VBQ_OVER_NB;
+                    else if (off + pos >= lab_cap)
+                        sh[S_STATUS] = VBQ_OVER_LAB;
+                    else {
+                        nb[idx] = rec;
+                        lab[off + pos] = idx;
+                    }
+                }
+            }
+        }
+        barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
+    }
+    barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
+}
+
 /* Largest of the lanes' values v (every lane gets it). */
 static inline __attribute__((always_inline)) double wg_max(double v, __local double *red)
 {
@@ -113,7 +175,8 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
                   __global const double *rmax, __global const uint *ids, const uint first,
                   const uint m, const double rmax_all, const double near, const uint T,
                   const uint min_level, const uint max_level, const uint enum_max,
-                  __global const uint *cells, const uint ncells, __global vbq_nb *nbs,
+                  __global const uint *cells, __global const uint *roots, const uint ncells,
+                  __global vbq_nb *nbs,
                   __global uint *labs, __global vbq_frame *unused_st, __global uint *qs,
                   const uint nb_cap, const uint lab_cap, const uint st_cap, const uint q_cap,
                   __global vbq_cell_out *outs, __global uint *qout, const uint qout_cap,
@@ -125,6 +188,7 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
     __local uint sh[S_N];
     __local uint dom[VBQ_DOM_MAX];
     __local vbq_frame cur;
+    __local vbq_sub subs[VBQ_NSUB];
     uint lane = get_local_id(0);
     size_t g = get_group_id(0);
     vbq_env e;
@@ -190,9 +254,11 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
         if (nroot > WG_ST && lane == 0u)
             sh[S_STATUS] = VBQ_OVER_ST;
         if (lane == 0u && sh[S_STATUS] == VBQ_OK) {
+            uint rt = roots[c], n0 = 0u;
             for (uint k = 0u; k < nroot; k++)
-                stk[k] = vbq_root(T, k, len0, rq, far);
-            sh[S_NST] = nroot;
+                if (rt == VBQ_ALL_ROOTS || rt == k)
+                    stk[n0++] = vbq_root(T, k, len0, rq, far);
+            sh[S_NST] = n0;
             sh[S_TOP] = len0;
         }
         barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
@@ -241,8 +307,34 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
                 if (lane == 0u)
                     sh[S_LEN] = fr.len;
                 barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
-                vbq_query_make(&e, i, mm, hh, LO, fr.rq, rq1, &qq);
-                wg_gather(&e, &qq, i, nb, nb_cap, lab, lab_cap, top, sh, nodes);
+                /* The parts' lower envelopes: each lane's maxima, then one
+                 * reduction per part. */
+                double lg[VBQ_NSUB];
+                for (uint g = 0u; g < VBQ_NSUB; g++)
+                    lg[g] = 0.0;
+                for (uint g = lane; g < VBQ_NSUB; g += WG)
+                    vbq_sub_box(fr.f, u0, u1, v0, v1, g, subs[g].m, subs[g].h);
+                barrier(CLK_LOCAL_MEM_FENCE);
+                for (uint k = lane; k < fr.len; k += WG) {
+                    vbq_nb rec = nb[lab[fr.off + k]];
+                    for (uint g = 0u; g < VBQ_NSUB; g++) {
+                        double sm[3] = {subs[g].m[0], subs[g].m[1], subs[g].m[2]};
+                        double sh3[3] = {subs[g].h[0], subs[g].h[1], subs[g].h[2]};
+                        double lo, hi;
+                        vbq_eval(&rec, sm, sh3, &lo, &hi);
+                        lg[g] = lo > lg[g] ? lo : lg[g];
+                    }
+                }
+                for (uint g = 0u; g < VBQ_NSUB; g++) {
+                    double v = wg_max(lg[g], red);
+                    if (lane == 0u) {
+                        subs[g].LO = v;
+                        subs[g].sdist = v > 0.0 ? 0.5 / v : (double)INFINITY;
+                    }
+                }
+                barrier(CLK_LOCAL_MEM_FENCE);
+                evals += (double)(VBQ_NSUB * fr.len);
+                wg_gather_sub(&e, i, fr.rq, rq1, subs, nb, nb_cap, lab, lab_cap, top, sh, nodes);
                 if (lane == 0u && sh[S_STATUS] == VBQ_OK) {
                     uint nlen = sh[S_LEN];
                     fr.off = top;

@@ -264,7 +264,7 @@ static int cover_one(worker *w, uint32_t i)
 {
     vbq_cell_out o;
     for (;;) {
-        vbq_cover_cell(&w->jb->env, &w->ar, i, &o);
+        vbq_cover_cell(&w->jb->env, &w->ar, i, VBQ_ALL_ROOTS, &o);
         if (o.status == VBQ_OK)
             break;
         uint32_t nb = w->ar.nb_cap, lab = w->ar.lab_cap, st = w->ar.st_cap, q = w->ar.q_cap;
@@ -607,10 +607,17 @@ int vb_cover_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *
     }
     free(w);
     bvh_free(&g);
-    /* Each cell's list is sorted and unique and cells own disjoint
-     * quadruples (by their smallest id): one sort makes the order canonical. */
-    if (rc == VB_OK && out->n > 1)
+    /* Cells own disjoint quadruples (by their smallest id), but a device may
+     * split a cell's root patches into tasks whose lists share some: one
+     * sort and one pass of repeats make the list canonical. */
+    if (rc == VB_OK && out->n > 1) {
         qsort(out->q, out->n, sizeof *out->q, cmp_quad);
+        size_t k = 1;
+        for (size_t a = 1; a < out->n; a++)
+            if (cmp_quad(out->q[a], out->q[k - 1]) != 0)
+                memcpy(out->q[k++], out->q[a], sizeof *out->q);
+        out->n = k;
+    }
     st.quads = out->n;
     if (stats)
         *stats = st;

@@ -387,6 +387,152 @@ VBS_FN int vbq_sphere_pass(const vbq_env *e, const vbq_query *q, vbs_u32 j,
     return 1;
 }
 
+/* ---- ring fetches resolved by sub-patch --------------------------------
+ * A fetching patch is split VBQ_SUB x VBQ_SUB; each part g gets its own box
+ * and lower envelope LO_g from the list. A sphere can be a label somewhere
+ * in the patch only if it can be one somewhere in some part, i.e. only if
+ * it passes the query of some part: a far sharper test than the patch's
+ * single LO where the cell's reach varies across the patch (exposed cells
+ * facing a cavity). The address space of the parts' array is VBQ_SQ
+ * (private by default; the group kernel keeps them in local memory). */
+#ifndef VBQ_SUB
+#define VBQ_SUB 2u
+#endif
+#define VBQ_NSUB (VBQ_SUB * VBQ_SUB)
+#ifndef VBQ_SQ
+#define VBQ_SQ
+#endif
+
+typedef struct vbq_sub {
+    double m[3], h[3];
+    double LO, sdist;
+} vbq_sub;
+
+/* Part g (row-major) of the square [u0,u1] x [v0,v1] on face f. */
+VBS_FN void vbq_sub_box(vbs_u32 f, double u0, double u1, double v0, double v1, vbs_u32 g,
+                        double m[3], double h[3])
+{
+    double du = (u1 - u0) / (double)VBQ_SUB, dv = (v1 - v0) / (double)VBQ_SUB;
+    vbs_u32 a = g % VBQ_SUB, b = g / VBQ_SUB;
+    /* The parts' edges are the patch's dyadic grid refined VBQ_SUB times:
+     * exact doubles, and the outer ones equal the patch's edges. */
+    double a0 = a == 0u ? u0 : u0 + du * (double)a, a1 = a + 1u == VBQ_SUB ? u1 : u0 + du * (double)(a + 1u);
+    double b0 = b == 0u ? v0 : v0 + dv * (double)b, b1 = b + 1u == VBQ_SUB ? v1 : v0 + dv * (double)(b + 1u);
+    vbq_patch_box(f, a0, a1, b0, b1, m, h);
+}
+
+/* Can node nd hold a sphere that is centred in (rq0, rq1] and reaches
+ * LO_g in some part g? (vbq_node_pass for each part.) */
+VBS_FN int vbq_node_pass_sub(const vbq_env *e, const double c[3], double ri, double rq0,
+                             double rq1, const VBQ_SQ vbq_sub *sub, vbs_u32 nd)
+{
+    const VBS_GLOBAL double *bx = e->box + 6u * nd;
+    double slack = e->rmax[nd] - ri;
+    double b0[3], b1[3], mag = 0.0, dmax2 = 0.0, dmin2 = 0.0;
+    for (int a = 0; a < 3; a++) {
+        b0[a] = bx[a] - c[a];
+        b1[a] = bx[3 + a] - c[a];
+        mag += VBS_FABS(b0[a]) + VBS_FABS(b1[a]);
+        double f = VBS_FABS(b0[a]) > VBS_FABS(b1[a]) ? VBS_FABS(b0[a]) : VBS_FABS(b1[a]);
+        dmax2 += f * f;
+        double dn = b0[a] > 0.0 ? b0[a] : (b1[a] < 0.0 ? -b1[a] : 0.0);
+        dmin2 += dn * dn;
+    }
+    double in2 = rq0 > 0.0 ? rq0 * rq0 * (1.0 - 1e-9) : -1.0, out2 = rq1 * rq1 * (1.0 + 1e-9);
+    if (dmax2 < in2 || dmin2 > out2)
+        return 0;
+    for (vbs_u32 g = 0u; g < VBQ_NSUB; g++) {
+        double best = 0.0, bb2 = 0.0;
+        double sd = sub[g].sdist;
+        for (int a = 0; a < 3; a++) {
+            double u0 = sub[g].m[a] - sub[g].h[a], u1 = sub[g].m[a] + sub[g].h[a];
+            double p0 = u0 * b0[a], p1 = u0 * b1[a], p2 = u1 * b0[a], p3 = u1 * b1[a];
+            double mx = p0 > p1 ? p0 : p1;
+            mx = p2 > mx ? p2 : mx;
+            mx = p3 > mx ? p3 : mx;
+            best += mx;
+            if (sd < (double)INFINITY) {
+                double t0 = sd * u0, t1 = sd * u1;
+                double gp = b0[a] > t1 ? b0[a] - t1 : (t0 > b1[a] ? t0 - b1[a] : 0.0);
+                bb2 += gp * gp;
+            }
+        }
+        if (best + slack < -1e-9 * (mag + VBS_FABS(slack) + 1e-300))
+            continue;
+        if (sd < (double)INFINITY) {
+            double reach = (sd + slack) * (1.0 + 1e-9) + 1e-9 * (mag + sd);
+            if (reach < 0.0 || bb2 > reach * reach)
+                continue;
+        }
+        return 1;
+    }
+    return 0;
+}
+
+/* Does sphere j (centred in (rq0, rq1] from c) reach LO_g in some part g?
+ * Fills its record when so. */
+VBS_FN int vbq_sphere_pass_sub(const vbq_env *e, const double c[3], double ri, double rq0,
+                               double rq1, const VBQ_SQ vbq_sub *sub, vbs_u32 j, vbq_nb *rec)
+{
+    double dx = e->x[j] - c[0], dy = e->y[j] - c[1], dz = e->z[j] - c[2];
+    double d2 = dx * dx + dy * dy + dz * dz;
+    if ((rq0 > 0.0 && !(d2 > rq0 * rq0)) || d2 > rq1 * rq1)
+        return 0;
+    vbq_nb_make(c[0], c[1], c[2], ri, e->x[j], e->y[j], e->z[j], e->r[j], j, rec);
+    for (vbs_u32 g = 0u; g < VBQ_NSUB; g++) {
+        double m[3] = {sub[g].m[0], sub[g].m[1], sub[g].m[2]};
+        double h[3] = {sub[g].h[0], sub[g].h[1], sub[g].h[2]};
+        double lo, hi;
+        vbq_eval(rec, m, h, &lo, &hi);
+        if (hi >= sub[g].LO)
+            return 1;
+    }
+    return 0;
+}
+
+/* The ring fetch on one work-item, resolved by parts: spheres centred in
+ * (rq0, rq1] that reach some part's LO_g, appended to nb and to the list at
+ * lab[off + *len ...]. Returns 0 when an arena is full. */
+VBS_FN int vbq_gather_sub(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i,
+                          const VBQ_SQ vbq_sub *sub, double rq0, double rq1, vbs_u32 off,
+                          vbs_u32 *len)
+{
+    const double c[3] = {e->x[i], e->y[i], e->z[i]};
+    double ri = e->r[i];
+    vbs_u32 stack[VBQ_STACK], ns = 0;
+    if (e->m)
+        stack[ns++] = 1u;
+    while (ns) {
+        vbs_u32 nd = stack[--ns];
+        if (!vbq_node_pass_sub(e, c, ri, rq0, rq1, sub, nd))
+            continue;
+        if (nd < e->first) {
+            stack[ns++] = 2u * nd + 1u;
+            stack[ns++] = 2u * nd;
+            continue;
+        }
+        vbs_u32 q0 = (nd - e->first) * VBQ_LEAF;
+        for (vbs_u32 k = q0; k < e->m && k < q0 + VBQ_LEAF; k++) {
+            vbs_u32 j = e->ids[k];
+            vbq_nb rec;
+            if (j == i || !vbq_sphere_pass_sub(e, c, ri, rq0, rq1, sub, j, &rec))
+                continue;
+            o->far++;
+            if (o->nnb >= ar->nb_cap) {
+                o->status = VBQ_OVER_NB;
+                return 0;
+            }
+            ar->nb[o->nnb++] = rec;
+            if (off + *len >= ar->lab_cap) {
+                o->status = VBQ_OVER_LAB;
+                return 0;
+            }
+            ar->lab[off + (*len)++] = o->nnb - 1u;
+        }
+    }
+    return 1;
+}
+
 /* The query on one work-item: passing spheres appended to nb and to the
  * list at lab[off + *len ...]. Returns 0 when an arena is full. */
 VBS_FN int vbq_gather(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i,
@@ -544,13 +690,18 @@ VBS_FN int vbq_add_quad(const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i, vbs_u32
     return 1;
 }
 
-/* Covers the cell of sphere i: writes the quadruples {i < j < k < l} whose
- * roots hold every vertex of the cell with smallest member i to ar->q
- * (sorted, unique; o->nq of them) and the counters to *o. o->status is
- * VBQ_OK, or the arena that ran out (the output is then incomplete and must
- * not be used). See the top of this file for why the quadruples are
- * complete. */
-VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbq_cell_out *o)
+/* Root patches of a task: one of the 6 T^2, or all of them. */
+#define VBQ_ALL_ROOTS 0xffffffffu
+
+/* Covers the cell of sphere i (the root patch `root` of it, or every one
+ * with VBQ_ALL_ROOTS): writes the quadruples {i < j < k < l} whose roots
+ * hold every vertex of the cell with smallest member i in those directions
+ * to ar->q (sorted, unique; o->nq of them) and the counters to *o.
+ * o->status is VBQ_OK, or the arena that ran out (the output is then
+ * incomplete and must not be used). See the top of this file for why the
+ * quadruples are complete. */
+VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs_u32 root,
+                           vbq_cell_out *o)
 {
     o->status = VBQ_OK;
     o->nq = o->nnb = o->far = 0u;
@@ -573,7 +724,8 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbq
         return;
     }
     for (vbs_u32 k = 0u; k < 6u * T * T; k++)
-        ar->st[nst++] = vbq_root(T, k, len0, rq, far);
+        if (root == VBQ_ALL_ROOTS || root == k)
+            ar->st[nst++] = vbq_root(T, k, len0, rq, far);
     /* The roots share lab[0 .. len0); lists of deeper frames are stacked
      * above top. A frame's list lies below the lists of every frame pushed
      * after it, so popping a frame frees everything above its list. */
@@ -612,8 +764,22 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbq
             }
             for (vbs_u32 k = 0u; k < fr.len; k++)
                 ar->lab[top + k] = ar->lab[fr.off + k];
+            vbq_sub sub[VBQ_NSUB];
+            for (vbs_u32 g = 0u; g < VBQ_NSUB; g++) {
+                vbq_sub_box(fr.f, u0, u1, v0, v1, g, sub[g].m, sub[g].h);
+                double lg = 0.0;
+                for (vbs_u32 k = 0u; k < fr.len; k++) {
+                    vbq_nb rec = ar->nb[ar->lab[fr.off + k]];
+                    double lo, hi;
+                    vbq_eval(&rec, sub[g].m, sub[g].h, &lo, &hi);
+                    lg = lo > lg ? lo : lg;
+                }
+                sub[g].LO = lg;
+                sub[g].sdist = lg > 0.0 ? 0.5 / lg : (double)INFINITY;
+            }
+            evals += (double)(VBQ_NSUB * fr.len);
             vbs_u32 nlen = fr.len;
-            if (!vbq_gather(e, ar, o, i, m, h, LO, fr.rq, rq1, top, &nlen))
+            if (!vbq_gather_sub(e, ar, o, i, sub, fr.rq, rq1, top, &nlen))
                 return;
             fr.off = top;
             fr.len = nlen;
