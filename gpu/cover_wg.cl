@@ -2,8 +2,10 @@
  * work-item kernel beside it (cover.cl) serves CPU devices. */
 #pragma OPENCL FP_CONTRACT OFF
 
-/* The parts of a fetching patch live in the group's local memory. */
+/* The parts of a fetching patch live in the group's local memory; the
+ * work-item versions of the shared code (for private parts) are left out. */
 #define VBQ_SQ __local
+#define VBQ_GROUP_ONLY
 #include "vb_cover_shared.h"
 
 /* A cell whose quadruples did not fit the output array. */
@@ -312,8 +314,14 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
                 double lg[VBQ_NSUB];
                 for (uint g = 0u; g < VBQ_NSUB; g++)
                     lg[g] = 0.0;
-                for (uint g = lane; g < VBQ_NSUB; g += WG)
-                    vbq_sub_box(fr.f, u0, u1, v0, v1, g, subs[g].m, subs[g].h);
+                for (uint g = lane; g < VBQ_NSUB; g += WG) {
+                    double sm[3], sh3[3];
+                    vbq_sub_box(fr.f, u0, u1, v0, v1, g, sm, sh3);
+                    for (int a = 0; a < 3; a++) {
+                        subs[g].m[a] = sm[a];
+                        subs[g].h[a] = sh3[a];
+                    }
+                }
                 barrier(CLK_LOCAL_MEM_FENCE);
                 for (uint k = lane; k < fr.len; k += WG) {
                     vbq_nb rec = nb[lab[fr.off + k]];

@@ -490,6 +490,7 @@ VBS_FN int vbq_sphere_pass_sub(const vbq_env *e, const double c[3], double ri, d
     return 0;
 }
 
+#ifndef VBQ_GROUP_ONLY
 /* The ring fetch on one work-item, resolved by parts: spheres centred in
  * (rq0, rq1] that reach some part's LO_g, appended to nb and to the list at
  * lab[off + *len ...]. Returns 0 when an arena is full. */
@@ -532,6 +533,7 @@ VBS_FN int vbq_gather_sub(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o
     }
     return 1;
 }
+#endif
 
 /* The query on one work-item: passing spheres appended to nb and to the
  * list at lab[off + *len ...]. Returns 0 when an arena is full. */
@@ -692,6 +694,8 @@ VBS_FN int vbq_add_quad(const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i, vbs_u32
 
 /* Root patches of a task: one of the 6 T^2, or all of them. */
 #define VBQ_ALL_ROOTS 0xffffffffu
+
+#ifndef VBQ_GROUP_ONLY
 
 /* Covers the cell of sphere i (the root patch `root` of it, or every one
  * with VBQ_ALL_ROOTS): writes the quadruples {i < j < k < l} whose roots
@@ -875,5 +879,6 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
     }
     o->evals_k = (vbs_u32)(evals / 1000.0);
 }
+#endif /* VBQ_GROUP_ONLY */
 
 #endif
