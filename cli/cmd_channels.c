@@ -366,13 +366,13 @@ static int do_frame(vb_ctx *ctx, const ch_args *A, vbc_pipe *pipe, long index, i
     for (int r = 0; r < A->repeat && rc == VB_OK; r++) {
         vbc_frame_out_free(&fo);
         vbc_result_free(&res);
-        double t0 = vb_cli_now();
+        double t0 = vb_now();
         vbc_atoms_pack(&g, s, A->probe, atoms);
         rc = vbc_pipe_frame(ctx, pipe, &g, atoms, s->n, A->probe, want_volume ? VBC_WANT_FLAGS : 0, &fo);
-        double t1 = vb_cli_now();
+        double t1 = vb_now();
         if (rc == VB_OK)
             rc = vbc_analyse_clear(ctx, &g, s, fo.voxels, fo.clearance, fo.nvoxels, &A->opt, &res);
-        double t2 = vb_cli_now();
+        double t2 = vb_now();
         fi.ms_upload += fo.ms_upload;
         fi.ms_jfa += fo.ms_jfa;
         fi.ms_masks += fo.ms_masks;
@@ -457,7 +457,7 @@ int vb_cmd_channels(int argc, char **argv)
         vbc_write_csv_header(S.table);
     if (S.stats)
         vbc_write_stats_header(S.stats);
-    double t0 = vb_cli_now();
+    double t0 = vb_now();
     for (long index = 0; A.f1 < 0 || index < A.f1; index++) {
         vb_sphere_set *s = NULL;
         int model;
@@ -469,7 +469,7 @@ int vb_cmd_channels(int argc, char **argv)
         if (rc != VB_OK)
             break;
     }
-    double wall = vb_cli_now() - t0;
+    double wall = vb_now() - t0;
     if (rc == VB_OK && S.frames_done == 0)
         rc = vb_error(ctx, VB_EINPUT_MODEL, A.input, 0, "no frame selected (--frames / --model)");
     if (rc == VB_OK && A.volume && !strstr(A.volume, "%d") && S.frames_done > 1)

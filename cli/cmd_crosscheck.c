@@ -179,11 +179,11 @@ static int run(vb_ctx *ctx, const options *o)
         goto fail;
 
     int mode = o->power ? VB_CGAL_POWER : VB_CGAL_VORONOI;
-    double t0 = vb_cli_now();
+    double t0 = vb_now();
     rc = vb_cgal_build(ctx, set, mode, &cgal);
     if (rc != VB_OK)
         goto fail;
-    double t_cgal = vb_cli_now() - t0;
+    double t_cgal = vb_now() - t0;
     int equal = 1;
     for (size_t i = 1; i < set->n && equal; i++)
         equal = vb_decimal_cmp(set->er[i], set->er[0]) == 0;
@@ -212,7 +212,7 @@ static int run(vb_ctx *ctx, const options *o)
 
     char source[256];
     unsigned flags = 0;
-    t0 = vb_cli_now();
+    t0 = vb_now();
     if (o->vertices) {
         vb_vertex_format fmt;
         rc = vb_vertex_read_file(ctx, o->vertices, &mine, &fmt, &lines);
@@ -243,7 +243,7 @@ static int run(vb_ctx *ctx, const options *o)
         if (rc != VB_OK)
             goto fail;
     }
-    double t_mine = vb_cli_now() - t0;
+    double t_mine = vb_now() - t0;
 
     out = vb_cli_open_output(ctx, o->out);
     if (!out) {
@@ -259,11 +259,11 @@ static int run(vb_ctx *ctx, const options *o)
                      "ids compared, coordinates not\n");
     fprintf(out, "# vorball's vertices: %s\n", source);
     vb_cgal_diff diff;
-    t0 = vb_cli_now();
+    t0 = vb_now();
     rc = vb_cgal_compare(ctx, cgal, set, &mine, lines, flags, out, &diff);
     if (rc != VB_OK)
         goto fail;
-    double t_cmp = vb_cli_now() - t0;
+    double t_cmp = vb_now() - t0;
     print_summary(out, &diff);
     rc = vb_cli_close_output(ctx, out, o->out);
     out = NULL;

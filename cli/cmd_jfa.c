@@ -8,6 +8,7 @@
 #include "commands.h"
 #include "input_options.h"
 #include "jfa_png.h"
+#include "vb_json.h"
 #include "vbj_jfa.h"
 
 static void help(FILE *f)
@@ -120,18 +121,6 @@ static int write_png(vb_ctx *ctx, const char *path, const vbj_seeds *s, const ui
     return rc;
 }
 
-static void json_str(FILE *f, const char *s)
-{
-    fputc('"', f);
-    for (; *s; s++) {
-        if (*s == '"' || *s == '\\')
-            fputc('\\', f);
-        if ((unsigned char)*s >= 0x20)
-            fputc(*s, f);
-    }
-    fputc('"', f);
-}
-
 typedef struct {
     vbj_variant v;
     vbj_result r;      /* last run */
@@ -144,9 +133,9 @@ static void print_json(FILE *f, const char *device, const vbj_seeds *s, const ch
                        const run_figures *runs, int nruns, int repeat, double exact_ms)
 {
     fprintf(f, "{\"device\": ");
-    json_str(f, device);
+    vb_json_write_string(f, device);
     fprintf(f, ", \"dim\": %d, \"n\": %u, \"seeds\": %zu, \"source\": ", s->dim, s->n, s->k);
-    json_str(f, source);
+    vb_json_write_string(f, source);
     fprintf(f, ", \"repeat\": %d", repeat);
     if (exact_ms >= 0)
         fprintf(f, ", \"exact_ms\": %.4f", exact_ms);
@@ -412,9 +401,9 @@ int vb_cmd_jfa(int argc, char **argv)
         if (!exact)
             rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "exact labels: out of memory");
         else {
-            double t0 = vb_cli_now();
+            double t0 = vb_now();
             rc = vbj_exact(ctx, e, &s, exact);
-            exact_ms = (vb_cli_now() - t0) * 1e3;
+            exact_ms = (vb_now() - t0) * 1e3;
         }
     }
     int warned_collision = 0, warned_m = 0;

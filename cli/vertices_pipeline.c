@@ -107,7 +107,7 @@ typedef struct bar {
 static void bar_update(void *user, double frac)
 {
     bar *b = user;
-    if (vb_cli_now() - b->start < 1.0)
+    if (vb_now() - b->start < 1.0)
         return;
     int w = 40, k = (int)(frac * w + 0.5);
     fprintf(stderr, "\rsampling [%.*s%*s] %3d%%", k, "########################################",
@@ -145,7 +145,7 @@ static void *open_device(void *arg)
         op->rt = NULL;
         op->be = NULL;
     }
-    op->t_setup = vb_cli_now() - op->t_start;
+    op->t_setup = vb_now() - op->t_start;
     atomic_store(&op->done, 1);
     return NULL;
 }
@@ -172,9 +172,9 @@ static void opener_join(opener *op)
 static vb_sampler_backend *await_backend(void *user)
 {
     opener *op = user;
-    double t0 = vb_cli_now();
+    double t0 = vb_now();
     opener_join(op);
-    op->t_wait = vb_cli_now() - t0;
+    op->t_wait = vb_now() - t0;
     if (op->rc == VB_OK) {
         vb_info(op->ctx, "OpenCL device: %s", vbg_runtime_device_name(op->rt));
         return op->be;
@@ -190,7 +190,7 @@ static int sample(vb_ctx *ctx, const vb_sphere_set *set, vb_sampler_backend *be,
                   const vb_sampler_options *opt, int progress, vb_pipeline_result *res)
 {
     vb_sampler_options o = *opt;
-    bar b = {vb_cli_now(), 0};
+    bar b = {vb_now(), 0};
     if (progress && isatty(fileno(stderr))) {
         o.progress = bar_update;
         o.progress_user = &b;
@@ -365,7 +365,7 @@ static int rerun_on_ref(vb_ctx *ctx, const vb_sphere_set *set, vb_sampler_backen
 static int certify(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_options *opt,
                    double t0, vb_pipeline_result *res)
 {
-    double t1 = vb_cli_now();
+    double t1 = vb_now();
     vb_certifier *cert = NULL;
     int rc = vb_certifier_open(ctx, set, &cert);
     if (rc == VB_OK)
@@ -382,7 +382,7 @@ static int certify(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
     for (size_t k = 0; rc == VB_OK && k < res->certified.n; k++)
         if (res->certified.dist[k] > res->max_dist)
             res->max_dist = res->certified.dist[k];
-    double t2 = vb_cli_now();
+    double t2 = vb_now();
     res->t_certify = t2 - t1;
     res->t_total = t2 - t0;
     return rc;
@@ -391,7 +391,7 @@ static int certify(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
 int vb_pipeline_run(vb_ctx *ctx, const vb_sphere_set *set, vbg_device_kind kind,
                     const vb_sampler_options *opt, int progress, vb_pipeline_result *res)
 {
-    double t0 = vb_cli_now();
+    double t0 = vb_now();
     vb_sampler_backend *be = NULL;
     vbg_runtime *rt = NULL;
     int rc = VB_OK;
@@ -429,7 +429,7 @@ int vb_pipeline_run(vb_ctx *ctx, const vb_sphere_set *set, vbg_device_kind kind,
 
 int vb_pipeline_device_open(vb_ctx *ctx, vbg_device_kind kind, vb_pipeline_device *dev)
 {
-    double t0 = vb_cli_now();
+    double t0 = vb_now();
     memset(dev, 0, sizeof *dev);
     int rc = VB_OK;
     if (kind != VBG_DEVICE_REF) {
@@ -450,7 +450,7 @@ int vb_pipeline_device_open(vb_ctx *ctx, vbg_device_kind kind, vb_pipeline_devic
     }
     if (!dev->be)
         rc = vb_sampler_ref_open(ctx, &dev->be);
-    dev->t_open = vb_cli_now() - t0;
+    dev->t_open = vb_now() - t0;
     return rc;
 }
 
@@ -464,7 +464,7 @@ void vb_pipeline_device_close(vb_pipeline_device *dev)
 int vb_pipeline_run_on(vb_ctx *ctx, const vb_sphere_set *set, vb_pipeline_device *dev,
                        const vb_sampler_options *opt, int progress, vb_pipeline_result *res)
 {
-    double t0 = vb_cli_now();
+    double t0 = vb_now();
     opener unused;
     memset(&unused, 0, sizeof unused);
     int rc = sample(ctx, set, dev->be, &unused, opt, progress, res);

@@ -1,8 +1,8 @@
 /* Host side of gpu/channels.cl: buffers, launches and the JFA hand-off. */
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "vb_parallel.h"
 #include "vbc_channel_gpu.h"
 
 struct vbc_gpu {
@@ -14,13 +14,6 @@ struct vbc_gpu {
     size_t atoms_cap, voxels_cap, rb_cap, list_cap, clear_cap; /* in elements */
     int device_clearance; /* see vbc_gpu_set_device_clearance */
 };
-
-static double now_ms(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return 1e3 * (double)t.tv_sec + 1e-6 * (double)t.tv_nsec;
-}
 
 int vbc_gpu_open(vb_ctx *ctx, vbg_runtime *rt, vbj_variant variant, vbc_gpu **out)
 {
@@ -194,7 +187,7 @@ int vbc_gpu_frame(vb_ctx *ctx, vbc_gpu *p, const vbc_grid *g, const float *atoms
     vbj_result jr;
     memset(&jr, 0, sizeof jr);
 
-    double t0 = now_ms();
+    double t0 = 1e3 * vb_now();
     if ((rc = vbc_frame_seeds(ctx, g, atoms4, natoms, &seeds)) != VB_OK)
         return rc;
     cl_int err = ensure(p, &p->atoms, &p->atoms_cap, natoms, 4 * sizeof(float));
@@ -212,7 +205,7 @@ int vbc_gpu_frame(vb_ctx *ctx, vbc_gpu *p, const vbc_grid *g, const float *atoms
 
     if ((rc = vbg_check(ctx, clFinish(q), "channel upload")) != VB_OK)
         goto done;
-    double t1 = now_ms();
+    double t1 = 1e3 * vb_now();
     out->ms_upload = t1 - t0;
     vbj_options jo = {p->variant, 0,
                       VBJ_WANT_DEVICE | ((want & VBC_WANT_LABELS) ? VBJ_WANT_LABELS : 0), 0};
@@ -223,7 +216,7 @@ int vbc_gpu_frame(vb_ctx *ctx, vbc_gpu *p, const vbc_grid *g, const float *atoms
         rc = vb_error(ctx, VB_EINTERNAL, NULL, 0, "JFA engine kept no device labels");
         goto done;
     }
-    double t2 = now_ms();
+    double t2 = 1e3 * vb_now();
     out->ms_jfa = t2 - t1;
     out->jfa = jr.counts;
 
@@ -286,7 +279,7 @@ int vbc_gpu_frame(vb_ctx *ctx, vbc_gpu *p, const vbc_grid *g, const float *atoms
     }
     if ((rc = vbg_check(ctx, err, "channel download")) != VB_OK)
         goto done;
-    out->ms_masks = now_ms() - t2;
+    out->ms_masks = 1e3 * vb_now() - t2;
     if (want & VBC_WANT_LABELS) {
         out->labels = jr.labels;
         jr.labels = NULL;

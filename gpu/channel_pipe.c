@@ -2,8 +2,8 @@
  * fallback from OpenCL to the plain-C reference (see vbc_channel_pipe.h). */
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "vb_parallel.h"
 #include "vbc_channel_pipe.h"
 
 struct vbc_pipe {
@@ -14,13 +14,6 @@ struct vbc_pipe {
     long ocl_frames;    /* frames run on OpenCL so far */
     long fault_at;      /* vbc_pipe_inject_device_fault */
 };
-
-static double now_ms(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return 1e3 * (double)t.tv_sec + 1e-6 * (double)t.tv_nsec;
-}
 
 /* Drops the OpenCL backend; later frames run on the reference. */
 static void drop_opencl(vbc_pipe *p)
@@ -113,16 +106,16 @@ static int ref_frame(vb_ctx *ctx, vbc_pipe *p, const vbc_grid *g, const float *a
     memset(&jr, 0, sizeof jr);
     uint8_t *flags = NULL;
     int *rb = NULL;
-    double t0 = now_ms();
+    double t0 = 1e3 * vb_now();
     int rc = vbc_frame_seeds(ctx, g, atoms4, natoms, &seeds);
     if (rc != VB_OK)
         return rc;
-    double t1 = now_ms();
+    double t1 = 1e3 * vb_now();
     out->ms_upload = t1 - t0;
     vbj_options jo = {p->variant, 0, VBJ_WANT_LABELS, 0};
     if ((rc = vbj_run(ctx, p->ref, &seeds, &jo, &jr)) != VB_OK)
         goto done;
-    double t2 = now_ms();
+    double t2 = 1e3 * vb_now();
     out->ms_jfa = t2 - t1;
     out->jfa = jr.counts;
     flags = malloc(vbc_grid_voxels(g));
@@ -135,7 +128,7 @@ static int ref_frame(vb_ctx *ctx, vbc_pipe *p, const vbc_grid *g, const float *a
     vbc_masks_ref(g, atoms4, natoms, (const int32_t *)jr.labels, g->dim == 3 ? 3 : 2, rb, flags);
     if ((rc = vbc_flags_compact(ctx, g, flags, &out->voxels, &out->nvoxels)) != VB_OK)
         goto done;
-    out->ms_masks = now_ms() - t2;
+    out->ms_masks = 1e3 * vb_now() - t2;
     if (want & VBC_WANT_FLAGS) {
         out->flags = flags;
         flags = NULL;

@@ -456,13 +456,13 @@ int vbj_cl_dense_run(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, vbj_variant
                      vbj_result *out, cl_mem *result)
 {
     cl_command_queue queue = vbg_runtime_queue(e->rt);
-    double t0 = vbj_now_ms();
+    double t0 = 1e3 * vb_now();
     size_t npairs;
     int rc, narrow = s->k < 0xffff;
     if ((rc = vbj_cl_upload_seeds(ctx, e, s)) ||
         (rc = vbj_cl_upload_pairs(ctx, e, s, 1, &npairs, &out->counts.collisions)))
         return rc;
-    double t1 = vbj_now_ms();
+    double t1 = 1e3 * vb_now();
     uint32_t steps[40];
     int ns = vbj_schedule(v, s->n, steps), which = 0;
     vbj_cl_record(e);
@@ -471,7 +471,7 @@ int vbj_cl_dense_run(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, vbj_variant
         rc = count_boundary(ctx, e, s, narrow, e->grid[which].mem, &out->counts);
     if (!rc && vbg_check(ctx, clFinish(queue), "jfa"))
         rc = VB_EDEVICE;
-    double t2 = vbj_now_ms();
+    double t2 = 1e3 * vb_now();
     out->ms_gpu = vbj_cl_recorded_ms(e);
     if (rc)
         return rc;
@@ -492,7 +492,7 @@ int vbj_cl_dense_run(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, vbj_variant
         return rc;
     if (vbg_check(ctx, clFinish(queue), "jfa widen"))
         return VB_EDEVICE;
-    out->ms_fill = vbj_now_ms() - t2;
+    out->ms_fill = 1e3 * vb_now() - t2;
     *result = e->labels.mem;
     return VB_OK;
 }
@@ -524,7 +524,7 @@ int vbj_run(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, const vbj_options *o
         if (want & VBJ_WANT_DEVICE)
             e->device_labels = result;
         if (want & (VBJ_WANT_LABELS | VBJ_WANT_NLABELS)) {
-            double t0 = vbj_now_ms();
+            double t0 = 1e3 * vb_now();
             out->labels = malloc(out->pixels * sizeof *out->labels);
             if (!out->labels) {
                 rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "labels: out of memory");
@@ -537,7 +537,7 @@ int vbj_run(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, const vbj_options *o
                 rc = VB_EDEVICE;
                 goto fail;
             }
-            out->ms_transfer += vbj_now_ms() - t0;
+            out->ms_transfer += 1e3 * vb_now() - t0;
         }
         if (want & VBJ_WANT_NLABELS) {
             out->nlabels = malloc(out->pixels);

@@ -188,7 +188,7 @@ int vbj_cl_facet(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, const vbj_optio
                  vbj_result *out, cl_mem *result)
 {
     cl_command_queue queue = vbg_runtime_queue(e->rt);
-    double t0 = vbj_now_ms();
+    double t0 = 1e3 * vb_now();
     uint32_t m = opt->m ? opt->m : vbj_start_resolution(s);
     cl_uint n = s->n, levels = log2u(n) - log2u(m);
     size_t pixels = out->pixels, npairs;
@@ -205,7 +205,7 @@ int vbj_cl_facet(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, const vbj_optio
         (rc = vbj_clbuf_reserve(ctx, e, &e->list[0], pixels * 4)) ||
         (rc = vbj_clbuf_reserve(ctx, e, &e->list[1], pixels * 4)))
         return rc;
-    double t1 = vbj_now_ms();
+    double t1 = 1e3 * vb_now();
     vbj_cl_record(e);
     cl_mem last = NULL;
     uint32_t fuse = opt->fuse_cells      ? opt->fuse_cells
@@ -214,7 +214,7 @@ int vbj_cl_facet(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, const vbj_optio
     rc = timed(ctx, e, s, compact, m, fuse, npairs, out, &last);
     if (!rc && vbg_check(ctx, clFinish(queue), "facet-jfa"))
         rc = VB_EDEVICE;
-    double t2 = vbj_now_ms();
+    double t2 = 1e3 * vb_now();
     out->ms_gpu = vbj_cl_recorded_ms(e);
     if (rc)
         return rc;
@@ -230,7 +230,7 @@ int vbj_cl_facet(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, const vbj_optio
         return rc;
     if (vbg_check(ctx, clFinish(queue), "facet strip"))
         return VB_EDEVICE;
-    out->ms_fill = vbj_now_ms() - t2;
+    out->ms_fill = 1e3 * vb_now() - t2;
     out->ms_kernel = t2 - t1;
     out->ms_transfer = t1 - t0;
     *result = last;

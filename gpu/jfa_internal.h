@@ -3,6 +3,7 @@
 #ifndef VBJ_INTERNAL_H
 #define VBJ_INTERNAL_H
 
+#include "vb_parallel.h"
 #include "vbj_jfa.h"
 
 /* Step lengths of a dense variant on a q^d grid (JFA family only): writes at
@@ -150,6 +151,5 @@ int vbj_cl_exact(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, uint32_t *label
 int vbj_cl_count_labels(vb_ctx *ctx, vbj_engine *e, int dim, uint32_t n, cl_mem labels,
                         uint8_t *out);
 
-double vbj_now_ms(void);
 
 #endif

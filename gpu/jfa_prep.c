@@ -4,7 +4,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "jfa_internal.h"
 
@@ -22,13 +21,6 @@ int vbj_variant_parse(vb_ctx *ctx, const char *s, vbj_variant *out)
 }
 
 const char *vbj_variant_name(vbj_variant v) { return (unsigned)v < 6 ? variant_names[v] : "?"; }
-
-double vbj_now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}
 
 int vbj_schedule(vbj_variant v, uint32_t q, uint32_t *steps)
 {

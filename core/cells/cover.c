@@ -7,7 +7,6 @@
 #include "vb_cover.h"
 
 #include <math.h>
-#include <pthread.h>
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
@@ -548,23 +547,13 @@ int vb_cover_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover grid)");
     }
     jb.g = &g;
-    int nt = vbs_threads(o.threads);
+    int nt = vb_threads(o.threads);
     worker *w = calloc((size_t)nt, sizeof *w);
-    pthread_t *th = calloc((size_t)nt, sizeof *th);
-    int *started = calloc((size_t)nt, sizeof *started);
-    int rc = w && th && started ? VB_OK : VB_ENOMEM;
-    for (int t = 0; rc == VB_OK && t < nt; t++) {
+    int rc = w ? VB_OK : VB_ENOMEM;
+    for (int t = 0; rc == VB_OK && t < nt; t++)
         w[t].jb = &jb;
-        started[t] = t > 0 && pthread_create(&th[t], NULL, work, &w[t]) == 0;
-    }
     if (rc == VB_OK) {
-        work(&w[0]);
-        for (int t = 1; t < nt; t++) {
-            if (started[t])
-                pthread_join(th[t], NULL);
-            else
-                work(&w[t]);
-        }
+        vb_run_jobs(work, w, sizeof *w, nt);
         for (int t = 0; t < nt; t++)
             if (w[t].rc != VB_OK && rc == VB_OK)
                 rc = w[t].rc;
@@ -601,8 +590,6 @@ int vb_cover_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *
         scratch_free(&w[t].sc);
     }
     free(w);
-    free(th);
-    free(started);
     cgrid_free(&g);
     if (rc == VB_OK && out->n > 1) {
         qsort(out->q, out->n, sizeof *out->q, cmp_quad);

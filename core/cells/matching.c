@@ -91,7 +91,7 @@ static int cluster(match_ctx *m, const vb_cand_vec *cv, int nthreads)
         m->parent[k] = (uint32_t)k;
         keys[k] = (xkey){cv->v[k].x, (uint32_t)k};
     }
-    if (vbs_psort(keys, n, sizeof *keys, cmp_x, nthreads) != VB_OK) {
+    if (vb_psort(keys, n, sizeof *keys, cmp_x, nthreads) != VB_OK) {
         free(keys);
         return VB_ENOMEM;
     }
@@ -340,9 +340,9 @@ typedef struct tgt_ctx {
     const work *wk;
     unsigned depth;
     uint8_t *found;
-    vb_cand_vec out[VBS_MAX_THREADS];
-    size_t *item[VBS_MAX_THREADS];
-    size_t item_cap[VBS_MAX_THREADS];
+    vb_cand_vec out[VB_MAX_THREADS];
+    size_t *item[VB_MAX_THREADS];
+    size_t item_cap[VB_MAX_THREADS];
     int err;
 } tgt_ctx;
 
@@ -532,8 +532,6 @@ static void qset_free(qset *s)
     memset(s, 0, sizeof *s);
 }
 
-typedef void (*pfor_fn)(void *ctx, size_t i, int tid);
-static void pfor(pfor_fn fn, void *ctx, size_t n, int nt);
 
 /* Bulk insertion: the items of each table of the set in index order. */
 typedef struct qbulk {
@@ -593,7 +591,7 @@ static int qset_add_bulk(qset *s, const uint32_t (*q)[4], size_t n, const uint8_
         if (!(skip && skip[k]))
             items[fill[qpart(hash[k])]++] = (uint32_t)k;
     qbulk b = {s, q, hash, start, items, fresh, VB_OK};
-    pfor(qbulk_table, &b, VBS_QPARTS, nthreads);
+    vb_parallel_for(qbulk_table, &b, VBS_QPARTS, nthreads);
     free(hash);
     free(items);
     return b.err;
@@ -605,35 +603,6 @@ typedef struct qrec {
     uint32_t q[4];
     vbs_cand c;
 } qrec;
-
-/* A tiny parallel-for: item i goes to thread i mod nt; a thread that cannot
- * start has its share run by the caller. Items must be independent. */
-typedef struct pfor_job {
-    pfor_fn fn;
-    void *ctx;
-    size_t n;
-    int tid, nt;
-} pfor_job;
-
-static void *pfor_worker(void *arg)
-{
-    pfor_job *j = arg;
-    for (size_t i = (size_t)j->tid; i < j->n; i += (size_t)j->nt)
-        j->fn(j->ctx, i, j->tid);
-    return NULL;
-}
-
-static void pfor(pfor_fn fn, void *ctx, size_t n, int nt)
-{
-    if (nt < 1)
-        nt = 1;
-    if (nt > VBS_MAX_THREADS)
-        nt = VBS_MAX_THREADS;
-    pfor_job jobs[VBS_MAX_THREADS];
-    for (int t = 0; t < nt; t++)
-        jobs[t] = (pfor_job){fn, ctx, n, t, nt};
-    vbs_run_jobs(pfor_worker, jobs, sizeof *jobs, nt);
-}
 
 /* Both tangent spheres of a quadruple (Fig. 8: one quadruple, two vertices),
  * each kept if its tangent sphere is empty; the point p stands in when the
@@ -774,8 +743,8 @@ typedef struct sampled_ctx {
     const qrec *qs;
     const size_t *which;
     root_eval *ev;
-    uint32_t *tbuf[VBS_MAX_THREADS];
-    size_t tcap[VBS_MAX_THREADS];
+    uint32_t *tbuf[VB_MAX_THREADS];
+    size_t tcap[VB_MAX_THREADS];
     int err;
 } sampled_ctx;
 
@@ -980,7 +949,7 @@ static int complete_ring(emit_ctx *e, int nthreads)
             rc = VB_ENOMEM;
             break;
         }
-        pfor(ring_nearest, &r, nv, nthreads);
+        vb_parallel_for(ring_nearest, &r, nv, nthreads);
         if (r.err) {
             rc = r.err;
             break;
@@ -1006,7 +975,7 @@ static int complete_ring(emit_ctx *e, int nthreads)
         for (size_t k = 0, at = 0; k < nslots; k++)
             if (r.fresh[k])
                 r.items[at++].slot = (uint32_t)k;
-        pfor(ring_eval, &r, ni, nthreads);
+        vb_parallel_for(ring_eval, &r, ni, nthreads);
         if (r.err) {
             rc = r.err;
             break;
@@ -1046,9 +1015,9 @@ typedef struct plaus_ctx {
     const vbs_hash *hash;
     double tol;
     uint8_t *plaus;
-    uint32_t *mem[VBS_MAX_THREADS], *found[VBS_MAX_THREADS];
-    uint32_t *tbuf[VBS_MAX_THREADS];
-    size_t tcap[VBS_MAX_THREADS], mcap[VBS_MAX_THREADS];
+    uint32_t *mem[VB_MAX_THREADS], *found[VB_MAX_THREADS];
+    uint32_t *tbuf[VB_MAX_THREADS];
+    size_t tcap[VB_MAX_THREADS], mcap[VB_MAX_THREADS];
     int err;
 } plaus_ctx;
 
@@ -1096,8 +1065,8 @@ static int tangent_tests(const match_ctx *m, const vb_cand_vec *raw, const vbs_h
     pc.hash = hash;
     pc.tol = tol;
     pc.plaus = plaus;
-    pfor(plaus_eval, &pc, m->ncl, nthreads);
-    for (int t = 0; t < VBS_MAX_THREADS; t++) {
+    vb_parallel_for(plaus_eval, &pc, m->ncl, nthreads);
+    for (int t = 0; t < VB_MAX_THREADS; t++) {
         free(pc.mem[t]);
         free(pc.found[t]);
         free(pc.tbuf[t]);
@@ -1168,7 +1137,7 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
     /* Sec. 5.5, in parallel; results merged in work order. */
     if (rc == VB_OK && nwk)
         qsort(wk, nwk, sizeof *wk, cmp_work);
-    double tt0 = vbs_now();
+    double tt0 = vb_now();
     if (rc == VB_OK && nwk) {
         tgt_ctx tc;
         memset(&tc, 0, sizeof tc);
@@ -1184,12 +1153,12 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
         if (!tc.found)
             rc = VB_ENOMEM;
         else
-            pfor(tgt_search, &tc, nwk, nt);
+            vb_parallel_for(tgt_search, &tc, nwk, nt);
         if (rc == VB_OK && tc.err)
             rc = tc.err;
-        size_t at[VBS_MAX_THREADS] = {0};
+        size_t at[VB_MAX_THREADS] = {0};
         for (size_t w = 0; rc == VB_OK && w < nwk; w++) {
-            int t = (int)(w % (size_t)(nt < 1 ? 1 : nt > VBS_MAX_THREADS ? VBS_MAX_THREADS : nt));
+            int t = (int)(w % (size_t)(nt < 1 ? 1 : nt > VB_MAX_THREADS ? VB_MAX_THREADS : nt));
             res->targeted_searches++;
             res->targeted_found += tc.found[w];
             while (rc == VB_OK && at[t] < tc.out[t].n && tc.item[t][at[t]] == w) {
@@ -1198,13 +1167,13 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
                 rc = vb_cand_vec_push(&extra, &c);
             }
         }
-        for (int t = 0; t < VBS_MAX_THREADS; t++) {
+        for (int t = 0; t < VB_MAX_THREADS; t++) {
             vb_cand_vec_free(&tc.out[t]);
             free(tc.item[t]);
         }
         free(tc.found);
     }
-    res->times.targeted += vbs_now() - tt0;
+    res->times.targeted += vb_now() - tt0;
     /* Pass 2 on everything found; extra candidates follow the raw ones. */
     for (size_t k = 0; rc == VB_OK && k < extra.n; k++)
         if (vb_cand_vec_push(raw, extra.v + k))
@@ -1257,7 +1226,7 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
                 ix[k] = (qkey){{r->q[0], r->q[1], r->q[2], r->q[3], r->c.ids[0], r->c.cell,
                                 r->c.seq}, (uint32_t)k};
             }
-            rc = vbs_psort(ix, nq, sizeof *ix, cmp_qkey, nthreads);
+            rc = vb_psort(ix, nq, sizeof *ix, cmp_qkey, nthreads);
             for (size_t k = 0; rc == VB_OK && k < nq; k++)
                 sorted[k] = qs[ix[k].idx];
             free(ix);
@@ -1266,7 +1235,7 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
         }
     }
     /* Sampled quadruples first (all marked seen), then their swaps. */
-    double tt1 = vbs_now();
+    double tt1 = vb_now();
     /* 1e-9 of the bounding-box diagonal (the default tol is 1e-5 of it). */
     double diag = 1e5 * vb_sampler_default_tol(set);
     emit_ctx ec = {set, cu->hash, 1e-9 * diag, NULL, 0, {{{NULL, 0, 0}}}, res};
@@ -1291,8 +1260,8 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
         sc.qs = qs;
         sc.which = which;
         sc.ev = evs;
-        pfor(sampled_eval, &sc, nw, nthreads);
-        for (int t = 0; t < VBS_MAX_THREADS; t++)
+        vb_parallel_for(sampled_eval, &sc, nw, nthreads);
+        for (int t = 0; t < VB_MAX_THREADS; t++)
             free(sc.tbuf[t]);
         rc = sc.err;
     }
@@ -1301,11 +1270,11 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
     free(which);
     free(evs);
     res->from_sampling = res->candidates.n;
-    double tt2 = vbs_now();
+    double tt2 = vb_now();
     res->times.tangent += tt2 - tt1;
     if (rc == VB_OK)
         rc = complete_ring(&ec, nthreads);
-    res->times.completion += vbs_now() - tt2;
+    res->times.completion += vb_now() - tt2;
     free(ec.qbuf);
     qset_free(&ec.seen);
     free(qs);

@@ -2,16 +2,9 @@
  * of vb_geom_shared.h called in loops, in the same order of operations. */
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "vb_parallel.h"
 #include "vb_sampler.h"
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 int vb_cand_vec_push(vb_cand_vec *cv, const vbs_cand *c)
 {
@@ -54,7 +47,7 @@ static int ref_run_batch(vb_ctx *ctx, vb_sampler_backend *be, const vb_sampler_b
         st->colours = c;
         st->cap = rays * b->nbases;
     }
-    double t0 = now();
+    double t0 = vb_now();
     for (size_t k = 0; k < b->nbases; k++) {
         uint32_t *col = st->colours + k * rays;
         for (vbs_u32 f = 0; f < 6u; f++)
@@ -63,7 +56,7 @@ static int ref_run_batch(vb_ctx *ctx, vb_sampler_backend *be, const vb_sampler_b
                     col[((size_t)f * S + iv) * S + iu] = vbs_ray_colour(
                         b->bases + k, b->bis, b->tile_off, b->tile_idx, T, S, f, iu, iv);
     }
-    double t1 = now();
+    double t1 = vb_now();
     vbs_u32 cells = 6u * (S - 1u) * (S - 1u);
     vbs_cand buf[VBS_MAX_CAND];
     for (size_t k = 0; k < b->nbases; k++) {
@@ -78,7 +71,7 @@ static int ref_run_batch(vb_ctx *ctx, vb_sampler_backend *be, const vb_sampler_b
                     return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (candidates)");
         }
     }
-    double t2 = now();
+    double t2 = vb_now();
     out->times->envelope += t1 - t0;
     out->times->vertices += t2 - t1;
     return VB_OK;

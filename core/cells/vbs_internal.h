@@ -4,28 +4,8 @@
 #ifndef VBS_INTERNAL_H
 #define VBS_INTERNAL_H
 
+#include "vb_parallel.h"
 #include "vb_sampler.h"
-
-/* Host threads for the parallel stages: `requested` when positive, else the
- * environment variable VORBALL_THREADS when it is a positive integer, else
- * the online CPUs; at most VBS_MAX_THREADS. Results never depend on it. */
-#define VBS_MAX_THREADS 64
-int vbs_threads(unsigned requested);
-
-/* Monotonic wall clock in seconds (stage times). */
-double vbs_now(void);
-
-/* Runs fn on each of the n jobs (job_size bytes each, at most
- * VBS_MAX_THREADS), one thread each; the caller runs the first and any
- * whose thread could not be started. Returns when all have finished. */
-void vbs_run_jobs(void *(*fn)(void *), void *jobs, size_t job_size, int n);
-
-/* Sorts base[0..n) (elements of `size` bytes) on up to nthreads threads:
- * chunks by qsort, then merged. cmp must be a total order (ties broken by
- * an index), so the result is the one sorted array whatever nthreads is.
- * Returns VB_OK, or VB_ENOMEM with base unchanged. */
-int vbs_psort(void *base, size_t n, size_t size, int (*cmp)(const void *, const void *),
-              int nthreads);
 
 /* Uniform grid of sphere centres (CSR: cell k holds idx[start[k]..start[k+1])). */
 typedef struct vbs_hash {
