@@ -131,25 +131,6 @@ void vb_sampler_result_free(vb_sampler_result *r)
     vb_sampler_result_init(r);
 }
 
-double vb_sampler_default_tol(const vb_sphere_set *set)
-{
-    double lo[3] = {set->x[0], set->y[0], set->z[0]}, hi[3] = {lo[0], lo[1], lo[2]};
-    for (size_t i = 0; i < set->n; i++) {
-        const double p[3] = {set->x[i] - set->r[i], set->y[i] - set->r[i], set->z[i] - set->r[i]};
-        const double q[3] = {set->x[i] + set->r[i], set->y[i] + set->r[i], set->z[i] + set->r[i]};
-        for (int a = 0; a < 3; a++) {
-            if (p[a] < lo[a])
-                lo[a] = p[a];
-            if (q[a] > hi[a])
-                hi[a] = q[a];
-        }
-    }
-    double d2 = 0.0;
-    for (int a = 0; a < 3; a++)
-        d2 += (hi[a] - lo[a]) * (hi[a] - lo[a]);
-    return 1e-5 * sqrt(d2);
-}
-
 /* Candidates in the order (base, grid cell, rank in cell): independent of the
  * order in which a device appended them. */
 static int cmp_cand(const void *pa, const void *pb)

@@ -1,6 +1,7 @@
-/* Internal to the sampling pipeline (core/sampler*.c, matching.c,
- * topology.c): the spatial hash of centres, the conservative culling of
- * bisectors into direction tiles, matching and topology evidence. */
+/* Internal to the sampling pipeline (core/cells/sampler*.c, the matching
+ * stage of vbs_match.h, topology.c): the spatial hash of centres, the
+ * conservative culling of bisectors into direction tiles, the tangent test,
+ * the entry of matching and the topology evidence. */
 #ifndef VBS_INTERNAL_H
 #define VBS_INTERNAL_H
 
@@ -145,9 +146,10 @@ int vbs_cull_base(vb_ctx *ctx, const vbs_culler *cu, uint32_t i, vbs_base_data *
 /* The clip distance derived from the input (world units). */
 double vbs_clip_distance(const vb_sphere_set *set);
 
-/* Matching (Sec. 5.4), targeted search (5.5) and the tangent-sphere test on
- * the sorted raw candidates, on nthreads threads (the result does not depend
- * on it); fills res->candidates and the counters. */
+/* Matching (Sec. 5.4), targeted search (5.5), the tangent-sphere test and
+ * our completions on the sorted raw candidates (matching.c runs the phases
+ * of vbs_match.h), on nthreads threads (the result does not depend on it);
+ * fills res->candidates and the counters. */
 int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
               const vbs_params *params, unsigned target_depth, int nthreads,
               vb_cand_vec *raw, vb_sampler_result *res);
