@@ -13,6 +13,7 @@
 #include "input_options.h"
 #include "vb_dcd.h"
 #include "vbc_channel_pipe.h"
+#include "vbg_runtime.h"
 #include "vbi_input.h"
 
 static const char *cmd = "channels";
@@ -26,7 +27,7 @@ typedef struct {
     int repeat;
     unsigned volume_bit;
     vbj_variant variant;
-    vbg_device_kind device;
+    vb_device_kind device;
     vbc_options opt;
     vb_cli_input_opts in;
 } ch_args;
@@ -205,7 +206,7 @@ static int parse_args(int argc, char **argv, ch_args *A)
             if (vbj_variant_parse(NULL, v, &A->variant) != VB_OK || A->variant == VBJ_FACET_FULL)
                 return vb_cli_usage_error(cmd, "--jfa: facet, jfa, jfa+1, jfa+2 or 1+jfa, not '%s'", v), -1;
         } else if (strcmp(a, "--device") == 0) {
-            if (vbg_device_kind_parse(NULL, v, &A->device) != VB_OK)
+            if (vb_device_kind_parse(NULL, v, &A->device) != VB_OK)
                 return vb_cli_usage_error(cmd, "--device: auto, gpu, cpu or ref, not '%s'", v), -1;
         } else {
             return vb_cli_usage_error(cmd, "unknown option '%s' (see --help)", a), -1;
@@ -439,7 +440,7 @@ int vb_cmd_channels(int argc, char **argv)
     if (A.in.radii_path)
         rc = vb_radii_load(ctx, A.in.radii_path, &radii);
     if (rc == VB_OK)
-        rc = vbc_pipe_open(ctx, A.device, A.variant, &pipe);
+        rc = vbc_pipe_open(ctx, &vbg_device_layer, A.device, A.variant, &pipe);
     if (rc == VB_OK)
         rc = frames_open(ctx, &A, radii, &F);
     if (rc == VB_OK && !(S.table = vb_cli_open_output(ctx, A.out)))

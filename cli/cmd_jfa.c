@@ -9,6 +9,7 @@
 #include "input_options.h"
 #include "jfa_png.h"
 #include "vb_json.h"
+#include "vbg_runtime.h"
 #include "vbj_jfa.h"
 
 static void help(FILE *f)
@@ -361,8 +362,8 @@ int vb_cmd_jfa(int argc, char **argv)
         vb_close(ctx);
         return vb_cli_usage_error("jfa", "bad --slice '%s' (z values below n)", a.slices);
     }
-    vbg_device_kind kind;
-    int rc = vbg_device_kind_parse(ctx, a.device, &kind);
+    vb_device_kind kind;
+    int rc = vb_device_kind_parse(ctx, a.device, &kind);
     if (rc) {
         ec = vb_cli_usage_error("jfa", "%s", vb_errmsg(ctx));
         vb_close(ctx);
@@ -382,16 +383,10 @@ int vb_cmd_jfa(int argc, char **argv)
         snprintf(source, sizeof source, "%s, rng %llu", vbj_distribution_name(a.dist),
                  (unsigned long long)a.rng);
     }
-    vbj_engine *e = NULL;
-    if (!rc) {
-        rc = vbj_engine_open(ctx, kind, &e);
-        if (rc == VB_EDEVICE && kind == VBG_DEVICE_AUTO) {
-            vb_warn(ctx, 781, NULL, 0, "no OpenCL device (%s): using the reference backend",
-                    vb_errmsg(ctx));
-            vb_clear_error(ctx);
-            rc = vbj_engine_open(ctx, VBG_DEVICE_REF, &e);
-        }
-    }
+    vbj_backend *e = NULL;
+    vb_device *dev = NULL;
+    if (!rc)
+        rc = vbj_backend_open(ctx, &vbg_device_layer, kind, &dev, &e);
     run_figures runs[8];
     memset(runs, 0, sizeof runs);
     uint32_t *exact = NULL;
@@ -456,11 +451,11 @@ int vb_cmd_jfa(int argc, char **argv)
         if (!f)
             rc = VB_EIO;
         else {
-            const char *dev = vbj_engine_device_name(e);
+            const char *device = e->device;
             if (a.json)
-                print_json(f, dev, &s, source, runs, a.vl.nv, a.repeat, exact_ms);
+                print_json(f, device, &s, source, runs, a.vl.nv, a.repeat, exact_ms);
             else
-                print_text(f, dev, &s, source, runs, a.vl.nv);
+                print_text(f, device, &s, source, runs, a.vl.nv);
             rc = vb_cli_close_output(ctx, f, a.out);
         }
     }
@@ -468,7 +463,9 @@ int vb_cmd_jfa(int argc, char **argv)
     for (int i = 0; i < 8; i++)
         vbj_result_free(&runs[i].r);
     free(exact);
-    vbj_engine_close(e);
+    vbj_backend_close(e);
+    if (dev)
+        vbg_device_layer.close(dev);
     vbj_seeds_free(&s);
     vb_close(ctx);
     return ec;

@@ -15,7 +15,7 @@ void vb_pipeline_opts_defaults(vb_pipeline_opts *o)
 {
     memset(o, 0, sizeof *o);
     vb_cli_input_defaults(&o->in);
-    o->kind = VBG_DEVICE_AUTO;
+    o->kind = VB_DEVICE_AUTO;
 }
 
 int vb_pipeline_option(const char *cmd, int argc, char **argv, int *i, vb_pipeline_opts *o,
@@ -28,7 +28,7 @@ int vb_pipeline_option(const char *cmd, int argc, char **argv, int *i, vb_pipeli
     const char *a = argv[*i];
     int has = *i + 1 < argc;
     if (strcmp(a, "--device") == 0) {
-        if (!has || vbg_device_kind_parse(ctx, argv[*i + 1], &o->kind) != VB_OK) {
+        if (!has || vb_device_kind_parse(ctx, argv[*i + 1], &o->kind) != VB_OK) {
             vb_cli_usage_error(cmd, "--device needs auto, gpu, cpu or ref");
             return -1;
         }
@@ -124,7 +124,7 @@ static void bar_update(void *user, double frac)
 typedef struct opener {
     vb_ctx *ctx;              /* the pipeline's context (warnings, fallback) */
     vb_ctx *tctx;             /* the thread's context */
-    vbg_device_kind kind;
+    vb_device_kind kind;
     pthread_t th;
     int started, joined;
     vbg_runtime *rt;
@@ -202,7 +202,7 @@ static int sample(vb_ctx *ctx, const vb_sphere_set *set, vb_sampler_backend *be,
         /* The batch size cannot wait for the device: GPUs want large
          * launches; the output does not depend on it. */
         if (!o.batch_rays)
-            o.batch_rays = op->kind == VBG_DEVICE_CPU ? 1u << 22 : 1u << 25;
+            o.batch_rays = op->kind == VB_DEVICE_CPU ? 1u << 22 : 1u << 25;
     }
     int rc = vb_sampler_run(ctx, set, &o, be, &res->sampler);
     if (!be)
@@ -388,7 +388,7 @@ static int certify(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
     return rc;
 }
 
-int vb_pipeline_run(vb_ctx *ctx, const vb_sphere_set *set, vbg_device_kind kind,
+int vb_pipeline_run(vb_ctx *ctx, const vb_sphere_set *set, vb_device_kind kind,
                     const vb_sampler_options *opt, int progress, vb_pipeline_result *res)
 {
     double t0 = vb_now();
@@ -400,7 +400,7 @@ int vb_pipeline_run(vb_ctx *ctx, const vb_sphere_set *set, vbg_device_kind kind,
     op.ctx = ctx;
     op.kind = kind;
     op.t_start = t0;
-    if (kind != VBG_DEVICE_REF) {
+    if (kind != VB_DEVICE_REF) {
         if (vb_open(&op.tctx, NULL) != VB_OK)
             op.tctx = NULL;
         op.started = pthread_create(&op.th, NULL, open_device, &op) == 0;
@@ -408,7 +408,7 @@ int vb_pipeline_run(vb_ctx *ctx, const vb_sphere_set *set, vbg_device_kind kind,
         return rc;
     }
     rc = sample(ctx, set, be, &op, opt, progress, res);
-    if (kind != VBG_DEVICE_REF) {
+    if (kind != VB_DEVICE_REF) {
         opener_join(&op); /* when sampling failed before it needed the device */
         be = op.be;
         rt = op.rt;
@@ -427,12 +427,12 @@ int vb_pipeline_run(vb_ctx *ctx, const vb_sphere_set *set, vbg_device_kind kind,
     return rc;
 }
 
-int vb_pipeline_device_open(vb_ctx *ctx, vbg_device_kind kind, vb_pipeline_device *dev)
+int vb_pipeline_device_open(vb_ctx *ctx, vb_device_kind kind, vb_pipeline_device *dev)
 {
     double t0 = vb_now();
     memset(dev, 0, sizeof *dev);
     int rc = VB_OK;
-    if (kind != VBG_DEVICE_REF) {
+    if (kind != VB_DEVICE_REF) {
         rc = vbg_runtime_open(ctx, kind, &dev->rt);
         if (rc == VB_OK)
             rc = vbg_sampler_open(ctx, dev->rt, &dev->be);

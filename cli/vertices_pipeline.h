@@ -31,7 +31,7 @@ void vb_pipeline_result_free(vb_pipeline_result *r);
  * backend, whose output is the same. progress (may be false) draws a bar on
  * stderr when it is a terminal and the run takes more than a second.
  * Returns VB_OK or an error status (message in ctx). */
-int vb_pipeline_run(vb_ctx *ctx, const vb_sphere_set *set, vbg_device_kind kind,
+int vb_pipeline_run(vb_ctx *ctx, const vb_sphere_set *set, vb_device_kind kind,
                     const vb_sampler_options *opt, int progress, vb_pipeline_result *res);
 
 /* A sampling backend opened once for several runs (bench): the OpenCL
@@ -45,7 +45,7 @@ typedef struct vb_pipeline_device {
 /* Opens the backend for `kind`; when OpenCL is unavailable, warns (W760)
  * and opens the reference backend instead. Returns VB_OK or an error
  * status; close with vb_pipeline_device_close. */
-int vb_pipeline_device_open(vb_ctx *ctx, vbg_device_kind kind, vb_pipeline_device *dev);
+int vb_pipeline_device_open(vb_ctx *ctx, vb_device_kind kind, vb_pipeline_device *dev);
 void vb_pipeline_device_close(vb_pipeline_device *dev);
 
 /* vb_pipeline_run on an opened backend: the same output, without the
@@ -60,7 +60,7 @@ int vb_pipeline_run_on(vb_ctx *ctx, const vb_sphere_set *set, vb_pipeline_device
 typedef struct vb_pipeline_opts {
     vb_cli_input_opts in;
     vb_sampler_options so;
-    vbg_device_kind kind;
+    vb_device_kind kind;
 } vb_pipeline_opts;
 
 /* Sets the defaults: input defaults, sampler options zero (their own

@@ -16,7 +16,11 @@
  *   W830-W839  MPI scale-out
  *
  * VB_DIAG_LIST(X) expands X(kind, number, name, meaning) for every entry, so
- * the README table and the --help texts can be checked against one list. */
+ * the README table and the --help texts can be checked against one list;
+ * every entry is also a name, VB_<kind>_<name> (VB_W_DEVICE_FALLBACK = 760),
+ * which every vb_warn call uses instead of the bare number. Errors are
+ * raised through their status codes (vb.h): vb_diag_number maps those to
+ * the E numbers. */
 #ifndef VB_DIAG_H
 #define VB_DIAG_H
 
@@ -70,7 +74,18 @@
     X(W, 802, VOLUME_FIRST_FRAME, "volume file holds the first frame only")                    \
     X(W, 803, VOXEL_COARSE, "voxel edge coarser than the probe radius")                        \
     X(W, 804, CHANNELS_DEVICE_FALLBACK, "no usable OpenCL device: channels on the reference")  \
-    X(W, 805, CHANNELS_GPU_TO_CPU, "no usable OpenCL GPU: channels try the CPU device")        \
     X(W, 806, CHANNELS_DEVICE_FAILED, "OpenCL failed mid-run: rest of channels on reference")
+
+/* Retired numbers, never to be used again: X(kind, number, meaning, why). */
+#define VB_DIAG_RETIRED(X)                                                                     \
+    X(W, 805, "no usable OpenCL GPU: channels try the CPU device",                             \
+      "one fallback rule for every command: --device gpu means a GPU, else the reference")
+
+
+enum vb_diag {
+#define VB_DIAG_ENUM(kind, number, name, meaning) VB_##kind##_##name = number,
+    VB_DIAG_LIST(VB_DIAG_ENUM)
+#undef VB_DIAG_ENUM
+};
 
 #endif

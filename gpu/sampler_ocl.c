@@ -216,9 +216,7 @@ int vbg_sampler_open(vb_ctx *ctx, vbg_runtime *rt, vb_sampler_backend **out)
     }
     be->name = "opencl";
     snprintf(be->device, sizeof be->device, "%s", vbg_runtime_device_name(rt));
-    /* GPUs want large launches; a CPU device gains little beyond a few
-     * million rays and keeps memory small. */
-    be->batch_rays = vbg_runtime_is_gpu(rt) ? 1u << 25 : 1u << 22;
+    be->batch_rays = vb_sampler_batch_rays(vbg_runtime_is_gpu(rt));
     be->run_batch = ocl_run_batch;
     *out = be;
     return VB_OK;

@@ -117,20 +117,6 @@ static int store_add(vbs_bis_store *st, uint32_t i, const vbs_base_data *bd)
     return VB_OK;
 }
 
-void vb_sampler_result_init(vb_sampler_result *r)
-{
-    memset(r, 0, sizeof *r);
-    vb_vertex_list_init(&r->candidates);
-}
-
-void vb_sampler_result_free(vb_sampler_result *r)
-{
-    vb_vertex_list_free(&r->candidates);
-    free(r->topo.faces);
-    free(r->topo.triples);
-    vb_sampler_result_init(r);
-}
-
 /* Candidates in the order (base, grid cell, rank in cell): independent of the
  * order in which a device appended them. */
 static int cmp_cand(const void *pa, const void *pb)

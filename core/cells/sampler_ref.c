@@ -6,27 +6,6 @@
 #include "vb_parallel.h"
 #include "vb_sampler.h"
 
-int vb_cand_vec_push(vb_cand_vec *cv, const vbs_cand *c)
-{
-    if (cv->n == cv->cap) {
-        size_t nc = cv->cap ? 2 * cv->cap : 1024;
-        vbs_cand *p = realloc(cv->v, nc * sizeof *p);
-        if (!p)
-            return VB_ENOMEM;
-        cv->v = p;
-        cv->cap = nc;
-    }
-    cv->v[cv->n++] = *c;
-    return VB_OK;
-}
-
-void vb_cand_vec_free(vb_cand_vec *cv)
-{
-    free(cv->v);
-    cv->v = NULL;
-    cv->n = cv->cap = 0;
-}
-
 /* The reference backend's state: the colour grid of the current batch. */
 typedef struct ref_state {
     uint32_t *colours;
@@ -99,7 +78,7 @@ int vb_sampler_ref_open(vb_ctx *ctx, vb_sampler_backend **out)
     be->state = st;
     be->name = "ref";
     snprintf(be->device, sizeof be->device, "plain C reference (host CPU, 1 thread)");
-    be->batch_rays = 1u << 22;
+    be->batch_rays = vb_sampler_batch_rays(0);
     be->run_batch = ref_run_batch;
     be->close = ref_close;
     *out = be;

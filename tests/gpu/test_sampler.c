@@ -65,7 +65,7 @@ static int same_list(const vb_vertex_list *a, const vb_vertex_list *b)
     return memcmp(a->ids, b->ids, a->nids * sizeof *a->ids) == 0;
 }
 
-static int run(vb_ctx *ctx, vb_sphere_set *s, vbg_device_kind kind, unsigned samples,
+static int run(vb_ctx *ctx, vb_sphere_set *s, vb_device_kind kind, unsigned samples,
                int all_pairs, vb_pipeline_result *r)
 {
     vb_sampler_options o;
@@ -166,19 +166,19 @@ static void check_set(vb_ctx *ctx, const char *name, char *text, int have_cpu)
     vb_vertex_list_init(&ref);
     CHECK_INT(vb_reference(ctx, s, &ref), VB_OK);
     vb_pipeline_result a, b, c;
-    CHECK_INT(run(ctx, s, VBG_DEVICE_REF, 0, 0, &a), VB_OK);
+    CHECK_INT(run(ctx, s, VB_DEVICE_REF, 0, 0, &a), VB_OK);
     CHECK_INT(a.rejected.n, 0);
     CHECK(ref.n > 0);
     if (!same_list(&ref, &a.certified))
         fprintf(stderr, "%s: pipeline %zu vertices, reference %zu\n", name, a.certified.n, ref.n);
     CHECK(same_list(&ref, &a.certified));
     /* Culling is conservative: identical envelopes, so identical candidates. */
-    CHECK_INT(run(ctx, s, VBG_DEVICE_REF, 0, 1, &b), VB_OK);
+    CHECK_INT(run(ctx, s, VB_DEVICE_REF, 0, 1, &b), VB_OK);
     CHECK_INT(b.sampler.raw_candidates, a.sampler.raw_candidates);
     CHECK(b.sampler.bisectors > a.sampler.bisectors);
     CHECK(same_list(&a.certified, &b.certified));
     if (have_cpu) {
-        CHECK_INT(run(ctx, s, VBG_DEVICE_CPU, 0, 0, &c), VB_OK);
+        CHECK_INT(run(ctx, s, VB_DEVICE_CPU, 0, 0, &c), VB_OK);
         CHECK_STR(c.backend, "opencl");
         CHECK_INT(c.sampler.raw_candidates, a.sampler.raw_candidates);
         CHECK(same_list(&a.certified, &c.certified));
@@ -187,7 +187,7 @@ static void check_set(vb_ctx *ctx, const char *name, char *text, int have_cpu)
     vb_pipeline_result_free(&b);
     /* Coarse sampling: cells miss vertices, the targeted search and the
      * completion recover them. */
-    CHECK_INT(run(ctx, s, VBG_DEVICE_REF, 6, 0, &b), VB_OK);
+    CHECK_INT(run(ctx, s, VB_DEVICE_REF, 6, 0, &b), VB_OK);
     CHECK(same_list(&ref, &b.certified));
     if (strcmp(name, "random") == 0)
         CHECK(b.sampler.targeted_found > 0);
@@ -204,7 +204,7 @@ int main(void)
     if (vb_open(&ctx, &cfg))
         return 1;
     vbg_runtime *rt = NULL;
-    int have_cpu = vbg_runtime_open(ctx, VBG_DEVICE_CPU, &rt) == VB_OK;
+    int have_cpu = vbg_runtime_open(ctx, VB_DEVICE_CPU, &rt) == VB_OK;
     vbg_runtime_close(rt);
     vb_clear_error(ctx);
     if (!have_cpu)

@@ -5,7 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "jfa_internal.h"
+#include "vb_parallel.h"
+#include "vbj_prep.h"
 
 typedef struct {
     int dim;

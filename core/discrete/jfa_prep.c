@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "jfa_internal.h"
+#include "vbj_prep.h"
 
 static const char *variant_names[] = {"jfa", "jfa+1", "jfa+2", "1+jfa", "facet", "facet-full"};
 
