@@ -13,7 +13,7 @@
 #include "input_options.h"
 #include "vb_dcd.h"
 #include "vbc_channel_pipe.h"
-#include "vbg_runtime.h"
+#include "vb_default.h"
 #include "vbi_input.h"
 
 static const char *cmd = "channels";
@@ -440,7 +440,7 @@ int vb_cmd_channels(int argc, char **argv)
     if (A.in.radii_path)
         rc = vb_radii_load(ctx, A.in.radii_path, &radii);
     if (rc == VB_OK)
-        rc = vbc_pipe_open(ctx, &vbg_device_layer, A.device, A.variant, &pipe);
+        rc = vbc_pipe_open(ctx, vb_default_devices(), A.device, A.variant, &pipe);
     if (rc == VB_OK)
         rc = frames_open(ctx, &A, radii, &F);
     if (rc == VB_OK && !(S.table = vb_cli_open_output(ctx, A.out)))

@@ -11,7 +11,8 @@
 #include "vb_cgal.h"
 #include "vb_verify.h"
 #include "vb_vertex_io.h"
-#include "vertices_pipeline.h"
+#include "pipeline_options.h"
+#include "vb_default.h"
 
 static const char *const usage_head =
     "usage: vorball crosscheck [--with vertices|reference | --vertices FILE] [--power]\n"
@@ -229,9 +230,13 @@ static int run(vb_ctx *ctx, const options *o)
             goto fail;
         snprintf(source, sizeof source, "vorball reference");
     } else {
-        vb_pipeline_result res;
-        vb_pipeline_result_init(&res);
-        rc = vb_pipeline_run(ctx, set, o->po.kind, &o->po.so, 1, &res);
+        vb_vertices_result res;
+        vb_vertices_result_init(&res);
+        vb_vertices_config cfg = o->po.cfg;
+        vb_cli_bar bar;
+        vb_cli_bar_attach(&bar, &cfg.sampler);
+        rc = vb_vertices_run_default(ctx, set, &cfg, &res);
+        vb_cli_bar_clear(&bar);
         if (rc == VB_OK) {
             /* The certified list moves over; the rest of the result goes. */
             mine = res.certified;
@@ -239,7 +244,7 @@ static int run(vb_ctx *ctx, const options *o)
             snprintf(source, sizeof source, "vorball vertices (backend %s, %s)", res.backend,
                      res.device);
         }
-        vb_pipeline_result_free(&res);
+        vb_vertices_result_free(&res);
         if (rc != VB_OK)
             goto fail;
     }

@@ -9,7 +9,7 @@
 #include "input_options.h"
 #include "jfa_png.h"
 #include "vb_json.h"
-#include "vbg_runtime.h"
+#include "vb_default.h"
 #include "vbj_jfa.h"
 
 static void help(FILE *f)
@@ -386,7 +386,7 @@ int vb_cmd_jfa(int argc, char **argv)
     vbj_backend *e = NULL;
     vb_device *dev = NULL;
     if (!rc)
-        rc = vbj_backend_open(ctx, &vbg_device_layer, kind, &dev, &e);
+        rc = vbj_backend_open(ctx, vb_default_devices(), kind, &dev, &e);
     run_figures runs[8];
     memset(runs, 0, sizeof runs);
     uint32_t *exact = NULL;
@@ -465,7 +465,7 @@ int vb_cmd_jfa(int argc, char **argv)
     free(exact);
     vbj_backend_close(e);
     if (dev)
-        vbg_device_layer.close(dev);
+        vb_default_devices()->close(dev);
     vbj_seeds_free(&s);
     vb_close(ctx);
     return ec;
