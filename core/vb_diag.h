@@ -59,7 +59,6 @@
     X(W, 712, ZERO_DROPPED, "spheres of radius 0 dropped (--zero-radius drop)")                \
     X(W, 713, ZERO_POINTS, "spheres of radius 0 kept as point sites")                          \
     X(W, 720, REFERENCE_SLOW, "exact reference on a large input: may take very long")          \
-    X(W, 740, VERIFY_EMPTY, "vertex file without vertex lines")                                \
     X(W, 760, DEVICE_FALLBACK, "no usable OpenCL device: reference backend used")              \
     X(W, 761, CAND_OVERFLOW, "candidates did not fit a sampling grid cell")                    \
     X(W, 762, DEVICE_FAILED_RERUN, "OpenCL device failed mid-run: rerun on the reference")     \
@@ -78,6 +77,8 @@
 
 /* Retired numbers, never to be used again: X(kind, number, meaning, why). */
 #define VB_DIAG_RETIRED(X)                                                                     \
+    X(W, 740, "vertex file without vertex lines",                                              \
+      "verify refuses such a file: E105 (nothing verified is not a success)")                  \
     X(W, 805, "no usable OpenCL GPU: channels try the CPU device",                             \
       "one fallback rule for every command: --device gpu means a GPU, else the reference")
 
