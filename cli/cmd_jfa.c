@@ -88,12 +88,11 @@ static int parse_variants(vb_ctx *ctx, const char *s, variant_list *out)
 static int protein_seeds(vb_ctx *ctx, const char *path, const vb_cli_input_opts *io, uint32_t n,
                          double margin, vbj_seeds *s)
 {
-    /* Only the centres matter: radii (zero in some PQR files) are not
-     * validated. */
-    vb_read_options ro;
-    vb_cli_input_read_options(io, NULL, &ro);
+    /* Only the centres make seeds, but the input is checked as every
+     * command checks it (radii, duplicates, magnitudes: the same numbered
+     * errors); PQR's radius-0 points are legal. */
     vb_sphere_set *set = NULL;
-    int rc = vb_spheres_read_file(ctx, path, &ro, &set);
+    int rc = vb_cli_load_spheres(ctx, path, io, 1, &set);
     if (rc)
         return rc;
     vbj_grid_fit fit;
