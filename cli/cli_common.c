@@ -1,5 +1,6 @@
 /* Exit codes, diagnostics and file helpers for the subcommands. */
 #include "cli_common.h"
+#include "vb_diag.h"
 
 #include <errno.h>
 #include <stdarg.h>
@@ -8,18 +9,7 @@
 
 int vb_cli_exit_code(int status)
 {
-    switch (VB_CATEGORY(status)) {
-    case VB_OK: return VB_EXIT_OK;
-    case VB_EINPUT: return VB_EXIT_INPUT + VB_DETAIL(status);
-    case VB_EDEGENERATE: return VB_EXIT_DEGENERATE;
-    case VB_EPREC: return VB_EXIT_PREC;
-    case VB_ENOMEM: return VB_EXIT_NOMEM;
-    case VB_EDEVICE: return VB_EXIT_DEVICE;
-    case VB_EMISUSE: return VB_EXIT_USAGE;
-    case VB_EIO: return VB_EXIT_IO;
-    case VB_EMISMATCH: return VB_EXIT_MISMATCH;
-    default: return VB_EXIT_INTERNAL;
-    }
+    return vb_diag_exit(status);
 }
 
 int vb_cli_fail(vb_ctx *ctx, int status)

@@ -70,10 +70,10 @@ static void usage(FILE *f)
             "  --png-normal x|y|z  normal of that slice (default x: the slice holds the z axis)\n"
             "  --jfa VARIANT       facet (default), jfa, jfa+1, jfa+2, 1+jfa\n"
             "  --device D          auto (default: GPU, else the CPU OpenCL device), gpu, cpu\n"
-            "                      or ref (plain C, same output). If no OpenCL device works,\n"
-            "                      the reference runs after warning W804 (W805: gpu without\n"
-            "                      a GPU tries the CPU device; W806: OpenCL failed mid-run,\n"
-            "                      that frame and the rest rerun on the reference)\n"
+            "                      or ref (plain C, same output). If that OpenCL device cannot\n"
+            "                      be used, the reference runs after warning W804 (W806:\n"
+            "                      OpenCL failed mid-run, that frame and the rest rerun on\n"
+            "                      the reference)\n"
             "  --repeat N          run every frame N times (timings; outputs written once)\n");
     vb_cli_input_help(f);
 }

@@ -13,6 +13,7 @@
 #include "vb_vertex_io.h"
 #include "pipeline_options.h"
 #include "vb_default.h"
+#include "vb_diag.h"
 
 static const char *const usage_head =
     "usage: vorball crosscheck [--with vertices|reference | --vertices FILE] [--power]\n"
@@ -151,7 +152,7 @@ static int keep_claimed(vb_ctx *ctx, vb_vertex_list *v, long **lines, const char
         k++;
     }
     if (dropped)
-        vb_warn(ctx, 793, path, 0, "%zu lines marked rejected are not compared", dropped);
+        vb_warn(ctx, VB_W_CROSSCHECK_REJECTED, path, 0, "%zu lines marked rejected are not compared", dropped);
     vb_vertex_list_free(v);
     *v = kept;
     return VB_OK;
@@ -189,7 +190,7 @@ static int run(vb_ctx *ctx, const options *o)
     for (size_t i = 1; i < set->n && equal; i++)
         equal = vb_decimal_cmp(set->er[i], set->er[0]) == 0;
     if (o->power && !equal)
-        vb_warn(ctx, 790, o->spheres, 0,
+        vb_warn(ctx, VB_W_CROSSCHECK_POWER, o->spheres, 0,
                 "radii differ: comparing with CGAL's power diagram, which is not the "
                 "diagram of spheres vorball computes; only ids are compared");
 

@@ -11,6 +11,7 @@
 #include "vb_json.h"
 #include "vb_default.h"
 #include "vbj_jfa.h"
+#include "vb_diag.h"
 
 static void help(FILE *f)
 {
@@ -422,7 +423,7 @@ int vb_cmd_jfa(int argc, char **argv)
         x->mean_gpu_ms = gpu / a.repeat;
         x->min_ms = mn;
         if (x->r.counts.collisions && !warned_collision) {
-            vb_warn(ctx, 780, NULL, 0,
+            vb_warn(ctx, VB_W_JFA_SEEDS_LOST, NULL, 0,
                     "%u seed(s) share their start pixel with a nearer seed and cannot own "
                     "any pixel",
                     x->r.counts.collisions);
@@ -430,7 +431,7 @@ int vb_cmd_jfa(int argc, char **argv)
         }
         if ((x->v == VBJ_FACET || x->v == VBJ_FACET_FULL) && x->r.counts.m == s.n && s.n > 1 &&
             !warned_m) {
-            vb_warn(ctx, 782, NULL, 0,
+            vb_warn(ctx, VB_W_FACET_START_FINE, NULL, 0,
                     "Facet-JFA starts at m = n = %u (seeds too close): it does the work of "
                     "JFA and more",
                     s.n);

@@ -10,6 +10,7 @@
 #include "vb_vertex_io.h"
 #include "pipeline_options.h"
 #include "vb_default.h"
+#include "vb_diag.h"
 
 static void help(FILE *f)
 {
@@ -80,7 +81,7 @@ static int write_topology(vb_ctx *ctx, const char *path, const vb_sphere_set *se
     if (rc != VB_OK)
         return rc;
     if (topo.unresolved)
-        vb_warn(ctx, 765, NULL, 0,
+        vb_warn(ctx, VB_W_TOPO_UNPAIRED, NULL, 0,
                 "%zu trisector(s) whose edges could not be paired (no trisector curve for "
                 "the triple in doubles, or a closed edge through one vertex)",
                 topo.unresolved);
@@ -148,7 +149,7 @@ int vb_cmd_vertices(int argc, char **argv)
     if (rc == VB_OK && stats)
         print_stats(ctx, &res);
     if (rc == VB_OK && res.rejected.n)
-        vb_warn(ctx, 763, NULL, 0, "the certifier rejected %zu candidate(s)", res.rejected.n);
+        vb_warn(ctx, VB_W_CERT_REJECTED, NULL, 0, "the certifier rejected %zu candidate(s)", res.rejected.n);
     if (rc == VB_OK) {
         FILE *out = vb_cli_open_output(ctx, outpath);
         rc = out ? vb_vertex_write(ctx, out, &res.certified, vfmt, NULL) : VB_EIO;

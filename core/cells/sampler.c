@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "vbs_internal.h"
+#include "vb_diag.h"
 
 /* Culling of one batch on worker threads, started while the previous batch
  * is assembled and runs on the device: bases are handed out one at a time
@@ -330,7 +331,7 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
     free(topo.triples);
     if (rc == VB_OK) {
         if (res->overflow)
-            vb_warn(ctx, 761, NULL, 0,
+            vb_warn(ctx, VB_W_CAND_OVERFLOW, NULL, 0,
                     "%llu candidate(s) did not fit the %d per grid cell; raise --samples",
                     (unsigned long long)res->overflow, VBS_MAX_CAND);
         double t0 = vb_now();
