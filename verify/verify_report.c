@@ -24,6 +24,11 @@ static const char *not_vertex_reason(int verdict)
     }
 }
 
+static const char *format_name(vb_vertex_format fmt)
+{
+    return fmt == VB_VFMT_VORONOTA ? "voronota" : fmt == VB_VFMT_JSON ? "json" : "tsv";
+}
+
 static void print_ids(FILE *f, const uint32_t *ids, size_t n)
 {
     for (size_t i = 0; i < n; i++)
@@ -100,7 +105,7 @@ static void print_human(FILE *f, const char *name, const vb_sphere_set *set,
     }
     fprintf(f,
             "verify: %zu lines (%s", n->lines,
-            fmt == VB_VFMT_VORONOTA ? "voronota" : fmt == VB_VFMT_JSON ? "json" : "tsv");
+            format_name(fmt));
     if (fmt == VB_VFMT_VORONOTA)
         fprintf(f, ", %zu vertices", n->groups);
     fprintf(f,
@@ -132,7 +137,7 @@ static void print_json(FILE *f, const char *spheres_name, const char *name,
     fputs(",\"vertices\":", f);
     vb_json_write_string(f, name);
     fprintf(f, ",\"format\":\"%s\",\"tol\":%.17g,\"complete\":%s,\"lines\":%zu",
-            fmt == VB_VFMT_VORONOTA ? "voronota" : fmt == VB_VFMT_JSON ? "json" : "tsv", r->tol,
+            format_name(fmt), r->tol,
             r->complete ? "true" : "false", n->lines);
     if (fmt == VB_VFMT_VORONOTA)
         fprintf(f, ",\"groups\":%zu", n->groups);

@@ -33,4 +33,7 @@ void vbj_cells_free(vbj_cells *c);
 int vbj_ref_run(vb_ctx *ctx, const vbj_seeds *s, const vbj_options *opt, vbj_result *out);
 int vbj_ref_exact(vb_ctx *ctx, const vbj_seeds *s, uint32_t *labels);
 
+/* log2 of a power of two (the floor of log2 for others; 0 for 0 and 1). */
+uint32_t vbj_log2u(uint32_t v);
+
 #endif
