@@ -1,26 +1,15 @@
 /* Exit codes, diagnostics and file helpers for the subcommands. */
 #include "cli_common.h"
+#include "vb_diag.h"
 
 #include <errno.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 int vb_cli_exit_code(int status)
 {
-    switch (VB_CATEGORY(status)) {
-    case VB_OK: return VB_EXIT_OK;
-    case VB_EINPUT: return VB_EXIT_INPUT + VB_DETAIL(status);
-    case VB_EDEGENERATE: return VB_EXIT_DEGENERATE;
-    case VB_EPREC: return VB_EXIT_PREC;
-    case VB_ENOMEM: return VB_EXIT_NOMEM;
-    case VB_EDEVICE: return VB_EXIT_DEVICE;
-    case VB_EMISUSE: return VB_EXIT_USAGE;
-    case VB_EIO: return VB_EXIT_IO;
-    case VB_EMISMATCH: return VB_EXIT_MISMATCH;
-    default: return VB_EXIT_INTERNAL;
-    }
+    return vb_diag_exit(status);
 }
 
 int vb_cli_fail(vb_ctx *ctx, int status)
@@ -91,11 +80,4 @@ int vb_cli_parse_size(const char *s, size_t *out)
 int vb_cli_is_help(const char *arg)
 {
     return strcmp(arg, "-h") == 0 || strcmp(arg, "--help") == 0;
-}
-
-double vb_cli_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }

@@ -5,6 +5,7 @@
 #include <stdio.h>
 
 #include "vb.h"
+#include "vb_parallel.h"
 
 /* Exit codes of the `vorball` command (documented in README and --help):
  *   0 success, 1 a check found a difference (verify/crosscheck), 2 usage,
@@ -55,8 +56,5 @@ int vb_cli_parse_size(const char *s, size_t *out);
 
 /* True when `arg` equals -h or --help. */
 int vb_cli_is_help(const char *arg);
-
-/* Monotonic wall clock in seconds. */
-double vb_cli_now(void);
 
 #endif

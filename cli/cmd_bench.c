@@ -7,7 +7,9 @@
 #include "cli_common.h"
 #include "commands.h"
 #include "input_options.h"
-#include "vertices_pipeline.h"
+#include "pipeline_options.h"
+#include "vb_json.h"
+#include "vb_default.h"
 
 static void help(FILE *f)
 {
@@ -53,20 +55,24 @@ static const char *base_name(const char *p)
 }
 
 static void row(FILE *f, int json, int first, const char *input, size_t atoms,
-                const vb_pipeline_result *r, double first_total, double device_setup)
+                const vb_vertices_result *r, double first_total, double device_setup)
 {
     const vb_stage_times *t = &r->sampler.times;
     if (json) {
+        fprintf(f, "%s\n  {\"input\": ", first ? "" : ",");
+        vb_json_write_string(f, input);
+        fprintf(f, ", \"atoms\": %zu, \"samples\": %u, \"backend\": ", atoms, r->sampler.samples);
+        vb_json_write_string(f, r->backend);
+        fputs(", \"device\": ", f);
+        vb_json_write_string(f, r->device);
         fprintf(f,
-                "%s\n  {\"input\": \"%s\", \"atoms\": %zu, \"samples\": %u, \"backend\": \"%s\", "
-                "\"device\": \"%s\", \"vertices\": %zu, \"first_cell\": %llu, \"from_sampling\": %llu, "
+                ", \"vertices\": %zu, \"first_cell\": %llu, \"from_sampling\": %llu, "
                 "\"rejected\": %zu, \"incomplete\": %llu, \"sampled_vertices\": %llu, "
                 "\"vertices_incomplete\": %llu, \"targeted_found\": %llu, "
                 "\"cull\": %.6f, \"upload\": %.6f, \"envelope\": %.6f, \"vertices_s\": %.6f, "
                 "\"matching\": %.6f, \"targeted\": %.6f, \"tangent\": %.6f, \"completion\": %.6f, "
                 "\"certification\": %.6f, \"setup\": %.6f, \"setup_wait\": %.6f, \"total\": %.6f, "
                 "\"total_first_run\": %.6f, \"device_setup\": %.6f}",
-                first ? "" : ",", input, atoms, r->sampler.samples, r->backend, r->device,
                 r->certified.n, (unsigned long long)r->sampler.first_cell,
                 (unsigned long long)r->sampler.from_sampling, r->rejected.n,
                 (unsigned long long)r->sampler.incomplete,
@@ -141,10 +147,9 @@ int vb_cmd_bench(int argc, char **argv)
     }
     FILE *out = vb_cli_open_output(ctx, outpath);
     int rc = out ? VB_OK : VB_EIO;
-    vb_pipeline_device dev;
-    memset(&dev, 0, sizeof dev);
+    vb_vertices_engine *dev = NULL;
     if (rc == VB_OK && !cold)
-        rc = vb_pipeline_device_open(ctx, po.kind, &dev);
+        rc = vb_vertices_open(ctx, vb_default_backends(), &po.cfg, &dev);
     if (rc == VB_OK && json)
         fputs("[", out);
     else if (rc == VB_OK)
@@ -156,35 +161,39 @@ int vb_cmd_bench(int argc, char **argv)
         vb_sphere_set *set = NULL;
         rc = vb_cli_load_spheres(ctx, inputs[k], &po.in, 4, &set);
         for (int s = 0; s < nsamples && rc == VB_OK; s++) {
-            vb_pipeline_result best;
-            vb_pipeline_result_init(&best);
+            vb_vertices_result best;
+            vb_vertices_result_init(&best);
             double first_total = 0.0;
             for (size_t rep = 0; rep < repeat && rc == VB_OK; rep++) {
-                vb_pipeline_result r;
-                vb_pipeline_result_init(&r);
-                po.so.samples = samples[s];
-                rc = cold ? vb_pipeline_run(ctx, set, po.kind, &po.so, 1, &r)
-                          : vb_pipeline_run_on(ctx, set, &dev, &po.so, 1, &r);
+                vb_vertices_result r;
+                vb_vertices_result_init(&r);
+                po.cfg.sampler.samples = samples[s];
+                vb_vertices_config cfg = po.cfg;
+                vb_cli_bar bar;
+                vb_cli_bar_attach(&bar, &cfg.sampler);
+                rc = cold ? vb_vertices_run_default(ctx, set, &cfg, &r)
+                          : vb_vertices_run_on(ctx, dev, set, &cfg, &r);
+                vb_cli_bar_clear(&bar);
                 if (rep == 0)
                     first_total = r.t_total;
                 if (rc == VB_OK && (rep == 0 || r.t_total < best.t_total)) {
-                    vb_pipeline_result_free(&best);
+                    vb_vertices_result_free(&best);
                     best = r;
                 } else {
-                    vb_pipeline_result_free(&r);
+                    vb_vertices_result_free(&r);
                 }
             }
             if (rc == VB_OK) {
                 row(out, json, first, base_name(inputs[k]), set->n, &best, first_total,
-                    cold ? 0.0 : dev.t_open);
+                    cold ? 0.0 : vb_vertices_open_seconds(dev));
                 fflush(out);
                 first = 0;
             }
-            vb_pipeline_result_free(&best);
+            vb_vertices_result_free(&best);
         }
         vb_spheres_free(set);
     }
-    vb_pipeline_device_close(&dev);
+    vb_vertices_close(dev);
     if (rc == VB_OK && json)
         fputs("\n]\n", out);
     if (out)

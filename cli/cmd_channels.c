@@ -7,13 +7,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "channels_png.h"
 #include "cli_common.h"
 #include "commands.h"
 #include "input_options.h"
-#include "vb_dcd.h"
-#include "vbc_channel_pipe.h"
-#include "vbi_input.h"
+#include "jfa_png.h"
+#include "vb_default.h"
+#include "vb_diag.h"
+#include "vb_frames.h"
+#include "vbc_frame.h"
 
 static const char *cmd = "channels";
 
@@ -26,7 +27,7 @@ typedef struct {
     int repeat;
     unsigned volume_bit;
     vbj_variant variant;
-    vbg_device_kind device;
+    vb_device_kind device;
     vbc_options opt;
     vb_cli_input_opts in;
 } ch_args;
@@ -69,10 +70,10 @@ static void usage(FILE *f)
             "  --png-normal x|y|z  normal of that slice (default x: the slice holds the z axis)\n"
             "  --jfa VARIANT       facet (default), jfa, jfa+1, jfa+2, 1+jfa\n"
             "  --device D          auto (default: GPU, else the CPU OpenCL device), gpu, cpu\n"
-            "                      or ref (plain C, same output). If no OpenCL device works,\n"
-            "                      the reference runs after warning W804 (W805: gpu without\n"
-            "                      a GPU tries the CPU device; W806: OpenCL failed mid-run,\n"
-            "                      that frame and the rest rerun on the reference)\n"
+            "                      or ref (plain C, same output). If that OpenCL device cannot\n"
+            "                      be used, the reference runs after warning W804 (W806:\n"
+            "                      OpenCL failed mid-run, that frame and the rest rerun on\n"
+            "                      the reference)\n"
             "  --repeat N          run every frame N times (timings; outputs written once)\n");
     vb_cli_input_help(f);
 }
@@ -205,7 +206,7 @@ static int parse_args(int argc, char **argv, ch_args *A)
             if (vbj_variant_parse(NULL, v, &A->variant) != VB_OK || A->variant == VBJ_FACET_FULL)
                 return vb_cli_usage_error(cmd, "--jfa: facet, jfa, jfa+1, jfa+2 or 1+jfa, not '%s'", v), -1;
         } else if (strcmp(a, "--device") == 0) {
-            if (vbg_device_kind_parse(NULL, v, &A->device) != VB_OK)
+            if (vb_device_kind_parse(NULL, v, &A->device) != VB_OK)
                 return vb_cli_usage_error(cmd, "--device: auto, gpu, cpu or ref, not '%s'", v), -1;
         } else {
             return vb_cli_usage_error(cmd, "unknown option '%s' (see --help)", a), -1;
@@ -218,110 +219,6 @@ static int parse_args(int argc, char **argv, ch_args *A)
     if (A->dcd && strcmp(A->input, "-") == 0)
         return vb_cli_usage_error(cmd, "the DCD topology must be a file"), -1;
     return 0;
-}
-
-/* Where frames come from: a multi-model reader, or a DCD plus topology. */
-typedef struct {
-    vb_frame_reader *rd;
-    vb_dcd *dcd;
-    vb_sphere_set *topo;  /* DCD: every atom of the topology */
-    size_t *keep;         /* DCD: topology atoms that enter the analysis */
-    size_t nkeep;
-    double *xyz;          /* DCD: one frame, 3 * natoms */
-} frames;
-
-static void frames_close(frames *F)
-{
-    vb_frame_reader_close(F->rd);
-    vb_dcd_close(F->dcd);
-    vb_spheres_free(F->topo);
-    free(F->keep);
-    free(F->xyz);
-}
-
-/* A sphere set holding the kept atoms (coordinates filled per frame). */
-static int subset_alloc(vb_ctx *ctx, const vb_sphere_set *t, const size_t *keep, size_t n,
-                        vb_sphere_set **out)
-{
-    vb_sphere_set *s = calloc(1, sizeof *s);
-    if (s) {
-        s->n = n;
-        s->x = malloc(n * sizeof(double));
-        s->y = malloc(n * sizeof(double));
-        s->z = malloc(n * sizeof(double));
-        s->r = malloc(n * sizeof(double));
-        s->info = t->info ? malloc(n * sizeof *s->info) : NULL;
-    }
-    if (!s || !s->x || !s->y || !s->z || !s->r || (t->info && !s->info)) {
-        vb_spheres_free(s);
-        return vb_error(ctx, VB_ENOMEM, NULL, 0, "frame of %zu atoms", n);
-    }
-    for (size_t i = 0; i < n; i++) {
-        s->r[i] = t->r[keep[i]];
-        if (t->info)
-            s->info[i] = t->info[keep[i]];
-    }
-    *out = s;
-    return VB_OK;
-}
-
-static int frames_open(vb_ctx *ctx, const ch_args *A, const vb_radii_table *radii, frames *F)
-{
-    memset(F, 0, sizeof *F);
-    vb_read_options ro;
-    vb_cli_input_read_options(&A->in, radii, &ro);
-    if (!A->dcd)
-        return vb_frame_reader_open(ctx, A->input, &ro, &F->rd); /* --model picks one frame */
-    /* The topology must list every atom of the DCD: read all, select after. */
-    vb_read_options all = ro;
-    all.keep_water = 1;
-    all.drop_hydrogens = 0;
-    int rc = vb_spheres_read_file(ctx, A->input, &all, &F->topo);
-    if (rc == VB_OK)
-        rc = vb_dcd_open(ctx, A->dcd, &F->dcd);
-    if (rc != VB_OK)
-        return rc;
-    size_t na = vb_dcd_atoms(F->dcd);
-    if (na != F->topo->n)
-        return vb_error(ctx, VB_EINPUT_MODEL, A->dcd, 0,
-                        "DCD has %zu atoms per frame, topology %s has %zu", na, A->input, F->topo->n);
-    F->keep = malloc(na * sizeof *F->keep);
-    F->xyz = malloc(3 * na * sizeof *F->xyz);
-    if (!F->keep || !F->xyz)
-        return vb_error(ctx, VB_ENOMEM, NULL, 0, "DCD frame of %zu atoms", na);
-    for (size_t i = 0; i < na; i++) {
-        const vb_atom_info *a = F->topo->info ? &F->topo->info[i] : NULL;
-        if (a && !A->in.keep_water && vbi_is_water(a->resname))
-            continue;
-        if (a && A->in.drop_hydrogens && vbi_is_hydrogen(a->element))
-            continue;
-        F->keep[F->nkeep++] = i;
-    }
-    if (F->nkeep == 0)
-        return vb_error(ctx, VB_EINPUT_EMPTY, A->input, 0, "no atoms left after dropping water");
-    return VB_OK;
-}
-
-/* Next frame (*out NULL at the end); *model gets its MODEL serial. */
-static int frames_next(vb_ctx *ctx, frames *F, long index, vb_sphere_set **out, int *model)
-{
-    *out = NULL;
-    if (F->rd)
-        return vb_frame_reader_next(ctx, F->rd, out, model);
-    size_t na = F->topo->n;
-    int got;
-    int rc = vb_dcd_next(ctx, F->dcd, F->xyz, F->xyz + na, F->xyz + 2 * na, NULL, &got);
-    if (rc != VB_OK || !got)
-        return rc;
-    if ((rc = subset_alloc(ctx, F->topo, F->keep, F->nkeep, out)) != VB_OK)
-        return rc;
-    for (size_t i = 0; i < F->nkeep; i++) {
-        (*out)->x[i] = F->xyz[F->keep[i]];
-        (*out)->y[i] = F->xyz[na + F->keep[i]];
-        (*out)->z[i] = F->xyz[2 * na + F->keep[i]];
-    }
-    *model = (int)(index + 1);
-    return VB_OK;
 }
 
 /* The per-frame volume name: '%d' replaced by the frame index. */
@@ -341,6 +238,17 @@ typedef struct {
     int json_first;
 } sinks;
 
+/* Writes the eight pipeline stages of the first frame (--png). */
+static int write_stages(vb_ctx *ctx, const ch_args *A, vbc_pipe *pipe, const vb_sphere_set *s)
+{
+    vbc_image img;
+    int rc = vbc_stages_render(ctx, pipe, s, A->probe, A->grid, A->png_axis, &A->opt, &img);
+    if (rc == VB_OK)
+        rc = vb_png_write_rgb(ctx, A->png, img.w, img.h, img.rgb);
+    vbc_image_free(&img);
+    return rc;
+}
+
 /* Runs one frame through the pipeline `repeat` times and writes its outputs. */
 static int do_frame(vb_ctx *ctx, const ch_args *A, vbc_pipe *pipe, long index, int model,
                     const vb_sphere_set *s, sinks *S)
@@ -351,40 +259,26 @@ static int do_frame(vb_ctx *ctx, const ch_args *A, vbc_pipe *pipe, long index, i
         return rc;
     /* A voxel wider than the probe cannot resolve the necks that matter. */
     if (S->frames_done == 0 && g.h > fmax(A->probe, 0.5))
-        vb_warn(ctx, 803, A->input, 0,
+        vb_warn(ctx, VB_W_VOXEL_COARSE, A->input, 0,
                 "voxel edge %.2f A is coarser than the probe radius %.2f A: narrow channels may be "
                 "missed (raise --grid)", g.h, A->probe);
-    float *atoms = malloc(4 * s->n * sizeof *atoms);
-    if (!atoms)
-        return vb_error(ctx, VB_ENOMEM, NULL, 0, "frame of %zu atoms", s->n);
     int want_volume = A->volume && (strstr(A->volume, "%d") || S->frames_done == 0);
-    vbc_frame_out fo;
-    vbc_result res;
-    memset(&fo, 0, sizeof fo);
-    memset(&res, 0, sizeof res);
+    vbc_frame F;
+    memset(&F, 0, sizeof F);
     vbc_frame_info fi = {index, model, s->n, 0, 0, 0, 0, 0, 0};
     for (int r = 0; r < A->repeat && rc == VB_OK; r++) {
-        vbc_frame_out_free(&fo);
-        vbc_result_free(&res);
-        double t0 = vb_cli_now();
-        vbc_atoms_pack(&g, s, A->probe, atoms);
-        rc = vbc_pipe_frame(ctx, pipe, &g, atoms, s->n, A->probe, want_volume ? VBC_WANT_FLAGS : 0, &fo);
-        double t1 = vb_cli_now();
-        if (rc == VB_OK)
-            rc = vbc_analyse_clear(ctx, &g, s, fo.voxels, fo.clearance, fo.nvoxels, &A->opt, &res);
-        double t2 = vb_cli_now();
-        fi.ms_upload += fo.ms_upload;
-        fi.ms_jfa += fo.ms_jfa;
-        fi.ms_masks += fo.ms_masks;
-        fi.ms_analysis += 1e3 * (t2 - t1);
-        fi.ms_total += 1e3 * (t2 - t0);
-        S->sum_masks += 1e3 * (t1 - t0);
-        S->sum_total += 1e3 * (t2 - t0);
+        rc = vbc_frame_run(ctx, pipe, &g, s, A->probe, want_volume ? VBC_WANT_FLAGS : 0, &A->opt,
+                           &F);
+        fi.ms_upload += F.out.ms_upload;
+        fi.ms_jfa += F.out.ms_jfa;
+        fi.ms_masks += F.out.ms_masks;
+        fi.ms_analysis += F.ms_analysis;
+        fi.ms_total += F.ms_masks + F.ms_analysis;
+        S->sum_masks += F.ms_masks;
+        S->sum_total += F.ms_masks + F.ms_analysis;
     }
-    free(atoms);
     if (rc != VB_OK) {
-        vbc_frame_out_free(&fo);
-        vbc_result_free(&res);
+        vbc_frame_free(&F);
         return rc;
     }
     double inv = 1.0 / A->repeat;
@@ -393,27 +287,26 @@ static int do_frame(vb_ctx *ctx, const ch_args *A, vbc_pipe *pipe, long index, i
     fi.ms_masks *= inv;
     fi.ms_analysis *= inv;
     fi.ms_total *= inv;
-    fi.channel_voxels = fo.nvoxels;
+    fi.channel_voxels = F.out.nvoxels;
     if (A->json)
-        vbc_write_json_frame(S->table, S->json_first, &fi, &g, s, &res);
+        vbc_write_json_frame(S->table, S->json_first, &fi, &g, s, &F.result);
     else
-        vbc_write_csv_rows(S->table, &fi, &g, s, &res);
+        vbc_write_csv_rows(S->table, &fi, &g, s, &F.result);
     S->json_first = 0;
     if (S->stats)
-        vbc_write_stats_row(S->stats, &fi, &g, &res);
+        vbc_write_stats_row(S->stats, &fi, &g, &F.result);
     if (S->cl)
-        vbc_write_centrelines_pdb(S->cl, model, &res);
+        vbc_write_centrelines_pdb(S->cl, model, &F.result);
     if (want_volume) {
         char name[4096];
         if (volume_name(A->volume, index, name, sizeof name) != 0)
             rc = vb_error(ctx, VB_EMISUSE, NULL, 0, "volume file name too long");
         else
-            rc = vbc_write_volume(ctx, name, &g, fo.flags, A->volume_bit);
+            rc = vbc_write_volume(ctx, name, &g, F.out.flags, A->volume_bit);
     }
     if (rc == VB_OK && A->png && S->frames_done == 0)
-        rc = vbc_png_stages(ctx, pipe, s, A->probe, A->grid, A->png_axis, &A->opt, A->png);
-    vbc_frame_out_free(&fo);
-    vbc_result_free(&res);
+        rc = write_stages(ctx, A, pipe, s);
+    vbc_frame_free(&F);
     S->frames_done++;
     return rc;
 }
@@ -432,16 +325,17 @@ int vb_cmd_channels(int argc, char **argv)
     int rc = VB_OK;
     vb_radii_table *radii = NULL;
     vbc_pipe *pipe = NULL;
-    frames F;
-    memset(&F, 0, sizeof F);
+    vb_frame_source *F = NULL;
     sinks S = {NULL, NULL, NULL, 0, 0.0, 0.0, 1};
     FILE *pml = NULL;
     if (A.in.radii_path)
         rc = vb_radii_load(ctx, A.in.radii_path, &radii);
     if (rc == VB_OK)
-        rc = vbc_pipe_open(ctx, A.device, A.variant, &pipe);
+        rc = vbc_pipe_open(ctx, vb_default_devices(), A.device, A.variant, &pipe);
+    vb_read_options ro;
+    vb_cli_input_read_options(&A.in, radii, &ro);
     if (rc == VB_OK)
-        rc = frames_open(ctx, &A, radii, &F);
+        rc = vb_frame_source_open(ctx, A.input, A.dcd, &ro, &F);
     if (rc == VB_OK && !(S.table = vb_cli_open_output(ctx, A.out)))
         rc = vb_errcode(ctx);
     if (rc == VB_OK && A.stats && !(S.stats = vb_cli_open_output(ctx, A.stats)))
@@ -457,11 +351,11 @@ int vb_cmd_channels(int argc, char **argv)
         vbc_write_csv_header(S.table);
     if (S.stats)
         vbc_write_stats_header(S.stats);
-    double t0 = vb_cli_now();
+    double t0 = vb_now();
     for (long index = 0; A.f1 < 0 || index < A.f1; index++) {
         vb_sphere_set *s = NULL;
         int model;
-        if ((rc = frames_next(ctx, &F, index, &s, &model)) != VB_OK || !s)
+        if ((rc = vb_frame_source_next(ctx, F, &s, &model)) != VB_OK || !s)
             break;
         if (index >= A.f0 && (index - A.f0) % A.fstep == 0)
             rc = do_frame(ctx, &A, pipe, index, model, s, &S);
@@ -469,11 +363,11 @@ int vb_cmd_channels(int argc, char **argv)
         if (rc != VB_OK)
             break;
     }
-    double wall = vb_cli_now() - t0;
+    double wall = vb_now() - t0;
     if (rc == VB_OK && S.frames_done == 0)
         rc = vb_error(ctx, VB_EINPUT_MODEL, A.input, 0, "no frame selected (--frames / --model)");
     if (rc == VB_OK && A.volume && !strstr(A.volume, "%d") && S.frames_done > 1)
-        vb_warn(ctx, 802, A.volume, 0, "volume holds the first of %ld frames ('%%d' in the name "
+        vb_warn(ctx, VB_W_VOLUME_FIRST_FRAME, A.volume, 0, "volume holds the first of %ld frames ('%%d' in the name "
                 "writes one per frame)", S.frames_done);
     if (rc == VB_OK && A.json)
         vbc_write_json_end(S.table);
@@ -507,7 +401,7 @@ done:
         int c = vb_cli_close_output(ctx, S.cl, A.centrelines);
         rc = rc == VB_OK ? c : rc;
     }
-    frames_close(&F);
+    vb_frame_source_close(F);
     vbc_pipe_close(pipe);
     vb_radii_free(radii);
     int exit_code = rc == VB_OK ? VB_EXIT_OK : vb_cli_fail(ctx, rc);

@@ -11,7 +11,9 @@
 #include "vb_cgal.h"
 #include "vb_verify.h"
 #include "vb_vertex_io.h"
-#include "vertices_pipeline.h"
+#include "pipeline_options.h"
+#include "vb_default.h"
+#include "vb_diag.h"
 
 static const char *const usage_head =
     "usage: vorball crosscheck [--with vertices|reference | --vertices FILE] [--power]\n"
@@ -150,7 +152,7 @@ static int keep_claimed(vb_ctx *ctx, vb_vertex_list *v, long **lines, const char
         k++;
     }
     if (dropped)
-        vb_warn(ctx, 793, path, 0, "%zu lines marked rejected are not compared", dropped);
+        vb_warn(ctx, VB_W_CROSSCHECK_REJECTED, path, 0, "%zu lines marked rejected are not compared", dropped);
     vb_vertex_list_free(v);
     *v = kept;
     return VB_OK;
@@ -179,16 +181,16 @@ static int run(vb_ctx *ctx, const options *o)
         goto fail;
 
     int mode = o->power ? VB_CGAL_POWER : VB_CGAL_VORONOI;
-    double t0 = vb_cli_now();
+    double t0 = vb_now();
     rc = vb_cgal_build(ctx, set, mode, &cgal);
     if (rc != VB_OK)
         goto fail;
-    double t_cgal = vb_cli_now() - t0;
+    double t_cgal = vb_now() - t0;
     int equal = 1;
     for (size_t i = 1; i < set->n && equal; i++)
         equal = vb_decimal_cmp(set->er[i], set->er[0]) == 0;
     if (o->power && !equal)
-        vb_warn(ctx, 790, o->spheres, 0,
+        vb_warn(ctx, VB_W_CROSSCHECK_POWER, o->spheres, 0,
                 "radii differ: comparing with CGAL's power diagram, which is not the "
                 "diagram of spheres vorball computes; only ids are compared");
 
@@ -212,7 +214,7 @@ static int run(vb_ctx *ctx, const options *o)
 
     char source[256];
     unsigned flags = 0;
-    t0 = vb_cli_now();
+    t0 = vb_now();
     if (o->vertices) {
         vb_vertex_format fmt;
         rc = vb_vertex_read_file(ctx, o->vertices, &mine, &fmt, &lines);
@@ -229,9 +231,13 @@ static int run(vb_ctx *ctx, const options *o)
             goto fail;
         snprintf(source, sizeof source, "vorball reference");
     } else {
-        vb_pipeline_result res;
-        vb_pipeline_result_init(&res);
-        rc = vb_pipeline_run(ctx, set, o->po.kind, &o->po.so, 1, &res);
+        vb_vertices_result res;
+        vb_vertices_result_init(&res);
+        vb_vertices_config cfg = o->po.cfg;
+        vb_cli_bar bar;
+        vb_cli_bar_attach(&bar, &cfg.sampler);
+        rc = vb_vertices_run_default(ctx, set, &cfg, &res);
+        vb_cli_bar_clear(&bar);
         if (rc == VB_OK) {
             /* The certified list moves over; the rest of the result goes. */
             mine = res.certified;
@@ -239,11 +245,11 @@ static int run(vb_ctx *ctx, const options *o)
             snprintf(source, sizeof source, "vorball vertices (backend %s, %s)", res.backend,
                      res.device);
         }
-        vb_pipeline_result_free(&res);
+        vb_vertices_result_free(&res);
         if (rc != VB_OK)
             goto fail;
     }
-    double t_mine = vb_cli_now() - t0;
+    double t_mine = vb_now() - t0;
 
     out = vb_cli_open_output(ctx, o->out);
     if (!out) {
@@ -259,11 +265,11 @@ static int run(vb_ctx *ctx, const options *o)
                      "ids compared, coordinates not\n");
     fprintf(out, "# vorball's vertices: %s\n", source);
     vb_cgal_diff diff;
-    t0 = vb_cli_now();
+    t0 = vb_now();
     rc = vb_cgal_compare(ctx, cgal, set, &mine, lines, flags, out, &diff);
     if (rc != VB_OK)
         goto fail;
-    double t_cmp = vb_cli_now() - t0;
+    double t_cmp = vb_now() - t0;
     print_summary(out, &diff);
     rc = vb_cli_close_output(ctx, out, o->out);
     out = NULL;

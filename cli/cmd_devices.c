@@ -37,7 +37,7 @@ int vb_cmd_devices(int argc, char **argv)
     int rc = out ? vbg_list_devices(ctx, out) : VB_EIO;
     if (out && rc == VB_OK) {
         vbg_runtime *rt;
-        if (vbg_runtime_open(ctx, VBG_DEVICE_AUTO, &rt) == VB_OK) {
+        if (vbg_runtime_open(ctx, VB_DEVICE_AUTO, &rt) == VB_OK) {
             fprintf(out, "#auto\t%s\n", vbg_runtime_device_name(rt));
             vbg_runtime_close(rt);
         } else {

@@ -8,7 +8,10 @@
 #include "commands.h"
 #include "input_options.h"
 #include "jfa_png.h"
+#include "vb_json.h"
+#include "vb_default.h"
 #include "vbj_jfa.h"
+#include "vb_diag.h"
 
 static void help(FILE *f)
 {
@@ -86,12 +89,11 @@ static int parse_variants(vb_ctx *ctx, const char *s, variant_list *out)
 static int protein_seeds(vb_ctx *ctx, const char *path, const vb_cli_input_opts *io, uint32_t n,
                          double margin, vbj_seeds *s)
 {
-    /* Only the centres matter: radii (zero in some PQR files) are not
-     * validated. */
-    vb_read_options ro;
-    vb_cli_input_read_options(io, NULL, &ro);
+    /* Only the centres make seeds, but the input is checked as every
+     * command checks it (radii, duplicates, magnitudes: the same numbered
+     * errors); PQR's radius-0 points are legal. */
     vb_sphere_set *set = NULL;
-    int rc = vb_spheres_read_file(ctx, path, &ro, &set);
+    int rc = vb_cli_load_spheres(ctx, path, io, 1, &set);
     if (rc)
         return rc;
     vbj_grid_fit fit;
@@ -120,18 +122,6 @@ static int write_png(vb_ctx *ctx, const char *path, const vbj_seeds *s, const ui
     return rc;
 }
 
-static void json_str(FILE *f, const char *s)
-{
-    fputc('"', f);
-    for (; *s; s++) {
-        if (*s == '"' || *s == '\\')
-            fputc('\\', f);
-        if ((unsigned char)*s >= 0x20)
-            fputc(*s, f);
-    }
-    fputc('"', f);
-}
-
 typedef struct {
     vbj_variant v;
     vbj_result r;      /* last run */
@@ -144,9 +134,9 @@ static void print_json(FILE *f, const char *device, const vbj_seeds *s, const ch
                        const run_figures *runs, int nruns, int repeat, double exact_ms)
 {
     fprintf(f, "{\"device\": ");
-    json_str(f, device);
+    vb_json_write_string(f, device);
     fprintf(f, ", \"dim\": %d, \"n\": %u, \"seeds\": %zu, \"source\": ", s->dim, s->n, s->k);
-    json_str(f, source);
+    vb_json_write_string(f, source);
     fprintf(f, ", \"repeat\": %d", repeat);
     if (exact_ms >= 0)
         fprintf(f, ", \"exact_ms\": %.4f", exact_ms);
@@ -372,8 +362,8 @@ int vb_cmd_jfa(int argc, char **argv)
         vb_close(ctx);
         return vb_cli_usage_error("jfa", "bad --slice '%s' (z values below n)", a.slices);
     }
-    vbg_device_kind kind;
-    int rc = vbg_device_kind_parse(ctx, a.device, &kind);
+    vb_device_kind kind;
+    int rc = vb_device_kind_parse(ctx, a.device, &kind);
     if (rc) {
         ec = vb_cli_usage_error("jfa", "%s", vb_errmsg(ctx));
         vb_close(ctx);
@@ -393,16 +383,10 @@ int vb_cmd_jfa(int argc, char **argv)
         snprintf(source, sizeof source, "%s, rng %llu", vbj_distribution_name(a.dist),
                  (unsigned long long)a.rng);
     }
-    vbj_engine *e = NULL;
-    if (!rc) {
-        rc = vbj_engine_open(ctx, kind, &e);
-        if (rc == VB_EDEVICE && kind == VBG_DEVICE_AUTO) {
-            vb_warn(ctx, 781, NULL, 0, "no OpenCL device (%s): using the reference backend",
-                    vb_errmsg(ctx));
-            vb_clear_error(ctx);
-            rc = vbj_engine_open(ctx, VBG_DEVICE_REF, &e);
-        }
-    }
+    vbj_backend *e = NULL;
+    vb_device *dev = NULL;
+    if (!rc)
+        rc = vbj_backend_open(ctx, vb_default_devices(), kind, &dev, &e);
     run_figures runs[8];
     memset(runs, 0, sizeof runs);
     uint32_t *exact = NULL;
@@ -412,9 +396,9 @@ int vb_cmd_jfa(int argc, char **argv)
         if (!exact)
             rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "exact labels: out of memory");
         else {
-            double t0 = vb_cli_now();
+            double t0 = vb_now();
             rc = vbj_exact(ctx, e, &s, exact);
-            exact_ms = (vb_cli_now() - t0) * 1e3;
+            exact_ms = (vb_now() - t0) * 1e3;
         }
     }
     int warned_collision = 0, warned_m = 0;
@@ -439,7 +423,7 @@ int vb_cmd_jfa(int argc, char **argv)
         x->mean_gpu_ms = gpu / a.repeat;
         x->min_ms = mn;
         if (x->r.counts.collisions && !warned_collision) {
-            vb_warn(ctx, 780, NULL, 0,
+            vb_warn(ctx, VB_W_JFA_SEEDS_LOST, NULL, 0,
                     "%u seed(s) share their start pixel with a nearer seed and cannot own "
                     "any pixel",
                     x->r.counts.collisions);
@@ -447,7 +431,7 @@ int vb_cmd_jfa(int argc, char **argv)
         }
         if ((x->v == VBJ_FACET || x->v == VBJ_FACET_FULL) && x->r.counts.m == s.n && s.n > 1 &&
             !warned_m) {
-            vb_warn(ctx, 782, NULL, 0,
+            vb_warn(ctx, VB_W_FACET_START_FINE, NULL, 0,
                     "Facet-JFA starts at m = n = %u (seeds too close): it does the work of "
                     "JFA and more",
                     s.n);
@@ -467,11 +451,11 @@ int vb_cmd_jfa(int argc, char **argv)
         if (!f)
             rc = VB_EIO;
         else {
-            const char *dev = vbj_engine_device_name(e);
+            const char *device = e->device;
             if (a.json)
-                print_json(f, dev, &s, source, runs, a.vl.nv, a.repeat, exact_ms);
+                print_json(f, device, &s, source, runs, a.vl.nv, a.repeat, exact_ms);
             else
-                print_text(f, dev, &s, source, runs, a.vl.nv);
+                print_text(f, device, &s, source, runs, a.vl.nv);
             rc = vb_cli_close_output(ctx, f, a.out);
         }
     }
@@ -479,7 +463,9 @@ int vb_cmd_jfa(int argc, char **argv)
     for (int i = 0; i < 8; i++)
         vbj_result_free(&runs[i].r);
     free(exact);
-    vbj_engine_close(e);
+    vbj_backend_close(e);
+    if (dev)
+        vb_default_devices()->close(dev);
     vbj_seeds_free(&s);
     vb_close(ctx);
     return ec;

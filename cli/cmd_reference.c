@@ -77,11 +77,11 @@ int vb_cmd_reference(int argc, char **argv)
     vb_vertex_list out;
     vb_vertex_list_init(&out);
     int exit_code = VB_EXIT_OK;
-    double t0 = vb_cli_now();
+    double t0 = vb_now();
     rc = vb_cli_load_spheres(ctx, in_path, &in, 4, &set);
     if (rc == VB_OK)
         rc = vb_reference(ctx, set, &out);
-    double t1 = vb_cli_now();
+    double t1 = vb_now();
     if (rc == VB_OK) {
         FILE *f = vb_cli_open_output(ctx, out_path);
         if (!f) {

@@ -8,7 +8,9 @@
 #include "input_options.h"
 #include "vb_topology.h"
 #include "vb_vertex_io.h"
-#include "vertices_pipeline.h"
+#include "pipeline_options.h"
+#include "vb_default.h"
+#include "vb_diag.h"
 
 static void help(FILE *f)
 {
@@ -22,6 +24,8 @@ static void help(FILE *f)
             "  --output-format F    tsv (default), json or voronota\n"
             "  --device D           auto (default: a GPU, else PoCL on the CPU), gpu, cpu, or\n"
             "                       ref (plain-C reference backend; same output)\n"
+            "  --proposer P         how candidates are proposed (default sampling, the\n"
+            "                       seed paper's rays; the output does not depend on it)\n"
             "  --samples S          S x S rays per cube face, 6 S^2 per sphere (default %u)\n"
             "  --tol T              Newton / matching tolerance in input units\n"
             "                       (default 1e-5 of the bounding-box diagonal)\n"
@@ -41,7 +45,7 @@ static void help(FILE *f)
             "Warnings W760-W779 come from this command.\n");
 }
 
-static void print_stats(vb_ctx *ctx, const vb_pipeline_result *r)
+static void print_stats(vb_ctx *ctx, const vb_vertices_result *r)
 {
     const vb_sampler_result *s = &r->sampler;
     const vb_stats *st = vb_ctx_stats(ctx);
@@ -70,14 +74,14 @@ static void print_stats(vb_ctx *ctx, const vb_pipeline_result *r)
 }
 
 static int write_topology(vb_ctx *ctx, const char *path, const vb_sphere_set *set,
-                          const vb_pipeline_result *r)
+                          const vb_vertices_result *r)
 {
     vb_topology topo;
     int rc = vb_topology_build(ctx, set, &r->sampler.topo, &r->certified, &topo);
     if (rc != VB_OK)
         return rc;
     if (topo.unresolved)
-        vb_warn(ctx, 765, NULL, 0,
+        vb_warn(ctx, VB_W_TOPO_UNPAIRED, NULL, 0,
                 "%zu trisector(s) whose edges could not be paired (no trisector curve for "
                 "the triple in doubles, or a closed edge through one vertex)",
                 topo.unresolved);
@@ -116,7 +120,7 @@ int vb_cmd_vertices(int argc, char **argv)
                 code = vb_cli_usage_error("vertices", "%s", vb_errmsg(ctx));
         } else if (strcmp(a, "--topology") == 0 && i + 1 < argc) {
             topo_path = argv[++i];
-            po.so.topology = 1;
+            po.cfg.sampler.topology = 1;
         } else if (strcmp(a, "--stats") == 0) {
             stats = 1;
         } else if (a[0] == '-' && a[1] != '\0') {
@@ -134,15 +138,18 @@ int vb_cmd_vertices(int argc, char **argv)
         return code;
     }
     vb_sphere_set *set = NULL;
-    vb_pipeline_result res;
-    vb_pipeline_result_init(&res);
+    vb_vertices_result res;
+    vb_vertices_result_init(&res);
     int rc = vb_cli_load_spheres(ctx, input, &po.in, 4, &set);
+    vb_cli_bar bar;
+    vb_cli_bar_attach(&bar, &po.cfg.sampler);
     if (rc == VB_OK)
-        rc = vb_pipeline_run(ctx, set, po.kind, &po.so, 1, &res);
+        rc = vb_vertices_run_default(ctx, set, &po.cfg, &res);
+    vb_cli_bar_clear(&bar);
     if (rc == VB_OK && stats)
         print_stats(ctx, &res);
     if (rc == VB_OK && res.rejected.n)
-        vb_warn(ctx, 763, NULL, 0, "the certifier rejected %zu candidate(s)", res.rejected.n);
+        vb_warn(ctx, VB_W_CERT_REJECTED, NULL, 0, "the certifier rejected %zu candidate(s)", res.rejected.n);
     if (rc == VB_OK) {
         FILE *out = vb_cli_open_output(ctx, outpath);
         rc = out ? vb_vertex_write(ctx, out, &res.certified, vfmt, NULL) : VB_EIO;
@@ -152,7 +159,7 @@ int vb_cmd_vertices(int argc, char **argv)
     if (rc == VB_OK && topo_path)
         rc = write_topology(ctx, topo_path, set, &res);
     code = rc == VB_OK ? VB_EXIT_OK : vb_cli_fail(ctx, rc);
-    vb_pipeline_result_free(&res);
+    vb_vertices_result_free(&res);
     vb_spheres_free(set);
     vb_close(ctx);
     return code;

@@ -116,23 +116,7 @@ void vb_cli_input_read_options(const vb_cli_input_opts *o, const vb_radii_table 
 int vb_cli_load_spheres(vb_ctx *ctx, const char *path, const vb_cli_input_opts *o,
                         size_t min_count, vb_sphere_set **out)
 {
-    *out = NULL;
-    vb_radii_table *radii = NULL;
-    int rc = VB_OK;
-    if (o->radii_path)
-        rc = vb_radii_load(ctx, o->radii_path, &radii);
     vb_read_options ro;
-    vb_cli_input_read_options(o, radii, &ro);
-    vb_sphere_set *set = NULL;
-    if (rc == VB_OK)
-        rc = vb_spheres_read_file(ctx, path, &ro, &set);
-    if (rc == VB_OK)
-        rc = vb_spheres_validate(ctx, set, min_count);
-    vb_radii_free(radii);
-    if (rc != VB_OK) {
-        vb_spheres_free(set);
-        return rc;
-    }
-    *out = set;
-    return VB_OK;
+    vb_cli_input_read_options(o, NULL, &ro);
+    return vb_spheres_load(ctx, path, &ro, o->radii_path, min_count, out);
 }

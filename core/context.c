@@ -1,11 +1,23 @@
 /* The context: error state, diagnostics and counters. */
 #include "vb.h"
+#include "vb_diag.h"
 
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 
+/* The exit status of an internal error (E6), for codes the catalogue lacks. */
+#define VB_EXIT_CODE_INTERNAL 6
+
+/* The misuse guard: a context that is open carries VB_CTX_LIVE; vb_close
+ * overwrites it before freeing, so a call on a closed context meets
+ * VB_CTX_DEAD while the memory has not been reused (SQLite's magic). Every
+ * call checks it; NULL and dead contexts are VB_EMISUSE, never a crash. */
+#define VB_CTX_LIVE 0xa7u
+#define VB_CTX_DEAD 0x5du
+
 struct vb_ctx {
+    unsigned char state;
     vb_config cfg;
     int errcode;
     char errmsg[1024];
@@ -22,34 +34,45 @@ int vb_open(vb_ctx **out, const vb_config *cfg)
         c->cfg = *cfg;
     else
         c->cfg.verbosity = 1;
+    c->state = VB_CTX_LIVE;
     *out = c;
     return VB_OK;
 }
 
+int vb_ctx_check(const vb_ctx *ctx)
+{
+    return ctx && ctx->state == VB_CTX_LIVE ? VB_OK : VB_EMISUSE;
+}
+
 void vb_close(vb_ctx *ctx)
 {
+    if (vb_ctx_check(ctx) != VB_OK)
+        return;
+    ctx->state = VB_CTX_DEAD;
     free(ctx);
 }
 
 const char *vb_errmsg(const vb_ctx *ctx)
 {
-    return ctx ? ctx->errmsg : "no context";
+    return vb_ctx_check(ctx) == VB_OK ? ctx->errmsg : "no context (NULL or closed)";
 }
 
 int vb_errcode(const vb_ctx *ctx)
 {
-    return ctx ? ctx->errcode : VB_EMISUSE;
+    return vb_ctx_check(ctx) == VB_OK ? ctx->errcode : VB_EMISUSE;
 }
 
 void vb_clear_error(vb_ctx *ctx)
 {
+    if (vb_ctx_check(ctx) != VB_OK)
+        return;
     ctx->errcode = VB_OK;
     ctx->errmsg[0] = '\0';
 }
 
 vb_stats *vb_ctx_stats(vb_ctx *ctx)
 {
-    return &ctx->stats;
+    return vb_ctx_check(ctx) == VB_OK ? &ctx->stats : NULL;
 }
 
 int vb_diag_number(int code)
@@ -57,6 +80,19 @@ int vb_diag_number(int code)
     if (VB_CATEGORY(code) == VB_EINPUT && VB_DETAIL(code) > 0)
         return 100 + VB_DETAIL(code);
     return VB_CATEGORY(code);
+}
+
+int vb_diag_exit(int status)
+{
+    if (status == VB_OK)
+        return 0;
+    int number = vb_diag_number(status);
+#define VB_DIAG_EXIT(kind, num, name, exit, meaning)                                              \
+    if (#kind[0] == 'E' && num == number)                                                       \
+        return exit;
+    VB_DIAG_LIST(VB_DIAG_EXIT)
+#undef VB_DIAG_EXIT
+    return VB_EXIT_CODE_INTERNAL;
 }
 
 const char *vb_errstr(int code)
@@ -92,7 +128,7 @@ const char *vb_errstr(int code)
 
 int vb_error(vb_ctx *ctx, int code, const char *file, long line, const char *fmt, ...)
 {
-    if (!ctx)
+    if (vb_ctx_check(ctx) != VB_OK)
         return code;
     ctx->errcode = code;
     size_t off = 0;
@@ -117,11 +153,13 @@ static FILE *diag_stream(const vb_ctx *ctx)
     return ctx->cfg.diag ? ctx->cfg.diag : stderr;
 }
 
-void vb_warn(vb_ctx *ctx, int num, const char *file, long line, const char *fmt, ...)
+int vb_warn(vb_ctx *ctx, int num, const char *file, long line, const char *fmt, ...)
 {
+    if (vb_ctx_check(ctx) != VB_OK)
+        return VB_EMISUSE;
     ctx->stats.warnings++;
     if (ctx->cfg.verbosity < 1)
-        return;
+        return VB_OK;
     FILE *f = diag_stream(ctx);
     if (file && line > 0)
         fprintf(f, "vorball: W%d: %s:%ld: ", num, file, line);
@@ -134,11 +172,12 @@ void vb_warn(vb_ctx *ctx, int num, const char *file, long line, const char *fmt,
     vfprintf(f, fmt, ap);
     va_end(ap);
     fputc('\n', f);
+    return VB_OK;
 }
 
 void vb_info(vb_ctx *ctx, const char *fmt, ...)
 {
-    if (ctx->cfg.verbosity < 2)
+    if (vb_ctx_check(ctx) != VB_OK || ctx->cfg.verbosity < 2)
         return;
     FILE *f = diag_stream(ctx);
     fputs("vorball: ", f);

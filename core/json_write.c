@@ -1,4 +1,6 @@
-/* JSON string literals for the writers of every command. */
+/* JSON string literals and CSV fields for the writers of every command. */
+#include <string.h>
+
 #include "vb_json.h"
 
 void vb_json_write_string(FILE *f, const char *s)
@@ -11,6 +13,21 @@ void vb_json_write_string(FILE *f, const char *s)
             fprintf(f, "\\u%04x", *p);
         else
             fputc(*p, f);
+    }
+    fputc('"', f);
+}
+
+void vb_csv_write_field(FILE *f, const char *s)
+{
+    if (!strpbrk(s, ",\"\r\n")) {
+        fputs(s, f);
+        return;
+    }
+    fputc('"', f);
+    for (const char *p = s; *p; p++) {
+        if (*p == '"')
+            fputc('"', f);
+        fputc(*p, f);
     }
     fputc('"', f);
 }

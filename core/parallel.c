@@ -1,13 +1,14 @@
-/* Work on several threads: running a set of jobs, and the sort of the
- * matching stage's large arrays. */
-#include <pthread.h>
+/* Clocks and threads (vb_parallel.h): the monotonic clock, the thread-count
+ * policy, the launcher, the parallel for and the parallel sort. */
+#include "vb_parallel.h"
+
 #include <stdlib.h>
 #include <string.h>
-
-#include "vbs_internal.h"
+#include <time.h>
+#include <unistd.h>
 
 /* Below this many elements the threads cost more than they save. */
-#define VBS_PSORT_MIN 8192
+#define VB_PSORT_MIN 8192
 
 typedef struct psort_job {
     char *src, *dst;
@@ -45,32 +46,106 @@ static void *merge_runs(void *arg)
     return NULL;
 }
 
-void vbs_run_jobs(void *(*fn)(void *), void *jobs, size_t job_size, int n)
+double vb_now(void)
 {
-    pthread_t th[VBS_MAX_THREADS];
-    int started[VBS_MAX_THREADS] = {0};
-    char *job = jobs;
-    if (n > VBS_MAX_THREADS)
-        n = VBS_MAX_THREADS;
-    for (int t = 1; t < n; t++)
-        started[t] = pthread_create(&th[t], NULL, fn, job + (size_t)t * job_size) == 0;
-    if (n > 0)
-        fn(job);
-    for (int t = 1; t < n; t++) {
-        if (started[t])
-            pthread_join(th[t], NULL);
-        else
-            fn(job + (size_t)t * job_size);
-    }
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-int vbs_psort(void *base, size_t n, size_t size, int (*cmp)(const void *, const void *),
+int vb_threads(unsigned requested)
+{
+    long n = (long)requested;
+    const char *env = getenv("VORBALL_THREADS");
+    if (n <= 0 && env && *env) {
+        char *end;
+        long v = strtol(env, &end, 10);
+        if (*end == '\0' && v > 0)
+            n = v;
+    }
+    if (n <= 0)
+        n = sysconf(_SC_NPROCESSORS_ONLN);
+    return n < 1 ? 1 : n > VB_MAX_THREADS ? VB_MAX_THREADS : (int)n;
+}
+
+/* Starts jobs first..n-1 of g on threads. */
+static int start_from(vb_jobs *g, int first)
+{
+    int started = 0;
+    for (int t = 0; t < g->n; t++) {
+        g->started[t] = t >= first &&
+                        pthread_create(&g->th[t], NULL, g->fn, g->jobs + (size_t)t * g->job_size) == 0;
+        started += g->started[t];
+    }
+    return started;
+}
+
+static void setup(vb_jobs *g, void *(*fn)(void *), void *jobs, size_t job_size, int n)
+{
+    g->fn = fn;
+    g->jobs = jobs;
+    g->job_size = job_size;
+    g->n = n < 0 ? 0 : n > VB_MAX_THREADS ? VB_MAX_THREADS : n;
+}
+
+int vb_jobs_start(vb_jobs *g, void *(*fn)(void *), void *jobs, size_t job_size, int n)
+{
+    setup(g, fn, jobs, job_size, n);
+    return start_from(g, 0);
+}
+
+void vb_jobs_join(vb_jobs *g)
+{
+    for (int t = 0; t < g->n; t++) {
+        if (g->started[t])
+            pthread_join(g->th[t], NULL);
+        else
+            g->fn(g->jobs + (size_t)t * g->job_size);
+        g->started[t] = 0;
+    }
+    g->n = 0;
+}
+
+void vb_run_jobs(void *(*fn)(void *), void *jobs, size_t job_size, int n)
+{
+    vb_jobs g;
+    setup(&g, fn, jobs, job_size, n);
+    start_from(&g, 1);
+    /* The caller's job: vb_jobs_join runs what did not start, job 0 first. */
+    vb_jobs_join(&g);
+}
+
+typedef struct for_job {
+    vb_for_fn fn;
+    void *ctx;
+    size_t n;
+    int tid, nt;
+} for_job;
+
+static void *for_worker(void *arg)
+{
+    for_job *j = arg;
+    for (size_t i = (size_t)j->tid; i < j->n; i += (size_t)j->nt)
+        j->fn(j->ctx, i, j->tid);
+    return NULL;
+}
+
+void vb_parallel_for(vb_for_fn fn, void *ctx, size_t n, int nthreads)
+{
+    int nt = nthreads < 1 ? 1 : nthreads > VB_MAX_THREADS ? VB_MAX_THREADS : nthreads;
+    for_job jobs[VB_MAX_THREADS];
+    for (int t = 0; t < nt; t++)
+        jobs[t] = (for_job){fn, ctx, n, t, nt};
+    vb_run_jobs(for_worker, jobs, sizeof *jobs, nt);
+}
+
+int vb_psort(void *base, size_t n, size_t size, int (*cmp)(const void *, const void *),
               int nthreads)
 {
-    int nt = nthreads < 1 ? 1 : nthreads > VBS_MAX_THREADS ? VBS_MAX_THREADS : nthreads;
+    int nt = nthreads < 1 ? 1 : nthreads > VB_MAX_THREADS ? VB_MAX_THREADS : nthreads;
     if (n < 2)
         return VB_OK;
-    if (nt == 1 || n < VBS_PSORT_MIN) {
+    if (nt == 1 || n < VB_PSORT_MIN) {
         qsort(base, n, size, cmp);
         return VB_OK;
     }
@@ -78,13 +153,13 @@ int vbs_psort(void *base, size_t n, size_t size, int (*cmp)(const void *, const 
     if (!tmp)
         return VB_ENOMEM;
     /* Run boundaries: nt chunks of nearly equal length. */
-    size_t bound[VBS_MAX_THREADS + 1];
+    size_t bound[VB_MAX_THREADS + 1];
     for (int t = 0; t <= nt; t++)
         bound[t] = n * (size_t)t / (size_t)nt;
-    psort_job jobs[VBS_MAX_THREADS];
+    psort_job jobs[VB_MAX_THREADS];
     for (int t = 0; t < nt; t++)
         jobs[t] = (psort_job){base, NULL, bound[t], 0, bound[t + 1], size, cmp};
-    vbs_run_jobs(sort_chunk, jobs, sizeof *jobs, nt);
+    vb_run_jobs(sort_chunk, jobs, sizeof *jobs, nt);
     char *src = base, *dst = tmp;
     for (int runs = nt; runs > 1; runs = (runs + 1) / 2) {
         int nj = 0;
@@ -92,7 +167,7 @@ int vbs_psort(void *base, size_t n, size_t size, int (*cmp)(const void *, const 
             size_t hi = r + 2 <= runs ? bound[r + 2] : bound[r + 1];
             jobs[nj++] = (psort_job){src, dst, bound[r], bound[r + 1], hi, size, cmp};
         }
-        vbs_run_jobs(merge_runs, jobs, sizeof *jobs, nj);
+        vb_run_jobs(merge_runs, jobs, sizeof *jobs, nj);
         /* The surviving boundaries: every other one. */
         int k = 0;
         for (int r = 0; r <= runs; r += 2)

@@ -76,8 +76,15 @@ typedef struct vb_ctx vb_ctx;
  * Free with vb_close. */
 int vb_open(vb_ctx **out, const vb_config *cfg);
 
-/* Frees the context; NULL is allowed. */
+/* Frees the context; NULL (and a closed context) is allowed. */
 void vb_close(vb_ctx *ctx);
+
+/* The misuse guard: VB_OK for an open context, VB_EMISUSE for NULL or one
+ * already closed (detected while its memory is not reused). Every call of
+ * this header checks it first: vb_warn, vb_info and vb_clear_error then do
+ * nothing, vb_error returns its code, vb_errcode VB_EMISUSE, vb_errmsg a
+ * static text and vb_ctx_stats NULL. */
+int vb_ctx_check(const vb_ctx *ctx);
 
 /* Last error message (never NULL; "" when none). Valid until the next call
  * that sets an error. */
@@ -94,9 +101,11 @@ int vb_error(vb_ctx *ctx, int code, const char *file, long line, const char *fmt
 #endif
     ;
 
-/* Emits warning number `num` (W7xx) to the diagnostic stream when verbosity
- * allows, and counts it. file may be NULL, line 0 for none. */
-void vb_warn(vb_ctx *ctx, int num, const char *file, long line, const char *fmt, ...)
+/* Emits warning number `num` (a VB_W_* name of vb_diag.h) to the diagnostic
+ * stream when verbosity allows, and counts it. file may be NULL, line 0 for
+ * none. Returns VB_OK, or VB_EMISUSE (nothing done) for a NULL or closed
+ * context. */
+int vb_warn(vb_ctx *ctx, int num, const char *file, long line, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 5, 6)))
 #endif
@@ -109,7 +118,7 @@ void vb_info(vb_ctx *ctx, const char *fmt, ...)
 #endif
     ;
 
-/* Mutable access to the context's counters; never NULL for a valid ctx. */
+/* Mutable access to the context's counters; never NULL for an open ctx. */
 vb_stats *vb_ctx_stats(vb_ctx *ctx);
 
 /* Resets the error state to VB_OK. */

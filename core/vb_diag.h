@@ -15,62 +15,86 @@
  *   W800-W829  channels and trajectories
  *   W830-W839  MPI scale-out
  *
- * VB_DIAG_LIST(X) expands X(kind, number, name, meaning) for every entry, so
- * the README table and the --help texts can be checked against one list. */
+ * VB_DIAG_LIST(X) expands X(kind, number, name, exit, meaning) for every
+ * entry (exit: the status of `vorball` for an error, 0 for a warning), so
+ * the README table is checked against one list (tests/core/test_diag_readme.c,
+ * which also prints it) and the CLI takes its exit codes from it;
+ * every entry is also a name, VB_<kind>_<name> (VB_W_DEVICE_FALLBACK = 760),
+ * which every vb_warn call uses instead of the bare number. Errors are
+ * raised through their status codes (vb.h): vb_diag_number maps those to
+ * the E numbers. */
 #ifndef VB_DIAG_H
 #define VB_DIAG_H
 
-#define VB_DIAG_LIST(X)                                                                        \
-    X(E, 1, EINPUT, "bad input")                                                               \
-    X(E, 2, EDEGENERATE, "degenerate input for the operation")                                 \
-    X(E, 3, EPREC, "precision limit reached")                                                  \
-    X(E, 4, ENOMEM, "out of memory")                                                           \
-    X(E, 5, EDEVICE, "OpenCL device failure that could not fall back")                         \
-    X(E, 6, EINTERNAL, "internal error (a bug: please report it)")                             \
-    X(E, 7, EMISUSE, "misuse of an option or of the API")                                      \
-    X(E, 8, EIO, "file cannot be opened, read or written")                                     \
-    X(E, 9, EMISMATCH, "a check ran and found a difference")                                   \
-    X(E, 101, INPUT_MALFORMED, "malformed line")                                               \
-    X(E, 102, INPUT_NONFINITE, "NaN or infinite value")                                        \
-    X(E, 103, INPUT_RADIUS, "radius < 0, or 0 where --zero-radius does not accept it")         \
-    X(E, 104, INPUT_DUPLICATE, "duplicate sphere")                                             \
-    X(E, 105, INPUT_EMPTY, "empty input")                                                      \
-    X(E, 106, INPUT_TOOFEW, "fewer than 4 spheres")                                            \
-    X(E, 107, INPUT_MAGNITUDE, "absurd magnitude or more than 18 significant digits")          \
-    X(E, 108, INPUT_ELEMENT, "unknown element (--strict-elements)")                            \
-    X(E, 109, INPUT_FORMAT, "format not recognised")                                           \
-    X(E, 110, INPUT_TOOLARGE, "input too large")                                               \
-    X(E, 111, INPUT_MODEL, "requested model absent")                                           \
-    X(W, 701, CONTAINED, "a sphere lies inside another: its cell is empty")                    \
-    X(W, 702, CONTAINED_COUNT, "count of spheres inside others")                               \
-    X(W, 703, WATER_DROPPED, "water atoms dropped")                                            \
-    X(W, 704, ALTLOC_DROPPED, "atoms of other alternate locations dropped")                    \
-    X(W, 705, MODELS_IGNORED, "atoms of other models ignored")                                 \
-    X(W, 706, HYDROGENS_DROPPED, "hydrogen atoms dropped (--no-hydrogens)")                    \
-    X(W, 707, ELEMENT_UNKNOWN, "unknown element: default radius used")                         \
-    X(W, 708, ELEMENT_UNKNOWN_COUNT, "count of atoms with an unknown element")                 \
-    X(W, 709, NAMES_TRUNCATED, "atom, residue or chain names truncated")                       \
-    X(W, 710, AFTER_END, "atom records after END ignored")                                     \
-    X(W, 711, CIF_BLOCK_IGNORED, "a further mmCIF _atom_site loop ignored")                    \
-    X(W, 712, ZERO_DROPPED, "spheres of radius 0 dropped (--zero-radius drop)")                \
-    X(W, 713, ZERO_POINTS, "spheres of radius 0 kept as point sites")                          \
-    X(W, 720, REFERENCE_SLOW, "exact reference on a large input: may take very long")          \
-    X(W, 740, VERIFY_EMPTY, "vertex file without vertex lines")                                \
-    X(W, 760, DEVICE_FALLBACK, "no usable OpenCL device: reference backend used")              \
-    X(W, 761, CAND_OVERFLOW, "candidates did not fit a sampling grid cell")                    \
-    X(W, 762, DEVICE_FAILED_RERUN, "OpenCL device failed mid-run: rerun on the reference")     \
-    X(W, 763, CERT_REJECTED, "the certifier rejected candidates")                              \
-    X(W, 765, TOPO_UNPAIRED, "trisector edges that could not be paired")                       \
-    X(W, 780, JFA_SEEDS_LOST, "seeds share their start pixel with a nearer seed")              \
-    X(W, 781, JFA_DEVICE_FALLBACK, "no OpenCL device for jfa: reference backend used")         \
-    X(W, 782, FACET_START_FINE, "Facet-JFA cannot start coarser than n")                       \
-    X(W, 790, CROSSCHECK_POWER, "radii differ: compared with CGAL's power diagram (ids only)") \
-    X(W, 793, CROSSCHECK_REJECTED, "lines marked rejected are not compared")                   \
-    X(W, 801, DCD_PARTIAL_FRAME, "DCD ends inside a frame: partial frame ignored")             \
-    X(W, 802, VOLUME_FIRST_FRAME, "volume file holds the first frame only")                    \
-    X(W, 803, VOXEL_COARSE, "voxel edge coarser than the probe radius")                        \
-    X(W, 804, CHANNELS_DEVICE_FALLBACK, "no usable OpenCL device: channels on the reference")  \
-    X(W, 805, CHANNELS_GPU_TO_CPU, "no usable OpenCL GPU: channels try the CPU device")        \
-    X(W, 806, CHANNELS_DEVICE_FAILED, "OpenCL failed mid-run: rest of channels on reference")
+#define VB_DIAG_LIST(X)                                                                                  \
+    X(E, 1, EINPUT, 10, "bad input")                                                                     \
+    X(E, 2, EDEGENERATE, 7, "degenerate input for the operation")                                        \
+    X(E, 3, EPREC, 8, "precision limit reached")                                                         \
+    X(E, 4, ENOMEM, 4, "out of memory")                                                                  \
+    X(E, 5, EDEVICE, 5, "OpenCL device failure that could not fall back")                                \
+    X(E, 6, EINTERNAL, 6, "internal error (a bug: please report it)")                                    \
+    X(E, 7, EMISUSE, 2, "misuse of an option or of the API")                                             \
+    X(E, 8, EIO, 3, "file cannot be opened, read or written")                                            \
+    X(E, 9, EMISMATCH, 1, "a check ran and found a difference")                                          \
+    X(E, 101, INPUT_MALFORMED, 11, "malformed line")                                                     \
+    X(E, 102, INPUT_NONFINITE, 12, "NaN or infinite value")                                              \
+    X(E, 103, INPUT_RADIUS, 13, "radius < 0, or 0 where --zero-radius does not accept it")               \
+    X(E, 104, INPUT_DUPLICATE, 14, "duplicate sphere")                                                   \
+    X(E, 105, INPUT_EMPTY, 15, "empty input (no spheres; verify: no vertex lines)")                      \
+    X(E, 106, INPUT_TOOFEW, 16, "fewer than 4 spheres")                                                  \
+    X(E, 107, INPUT_MAGNITUDE, 17, "|coordinate| > 1e9, radius > 1e6 or over 18 significant digits")     \
+    X(E, 108, INPUT_ELEMENT, 18, "unknown element (--strict-elements)")                                  \
+    X(E, 109, INPUT_FORMAT, 19, "format not recognised")                                                 \
+    X(E, 110, INPUT_TOOLARGE, 20, "input too large (a file over 2 GiB, or too many spheres)")            \
+    X(E, 111, INPUT_MODEL, 21, "requested model absent")                                                 \
+    X(W, 701, CONTAINED, 0, "a sphere lies inside another: its cell is empty")                           \
+    X(W, 702, CONTAINED_COUNT, 0, "count of spheres inside others")                                      \
+    X(W, 703, WATER_DROPPED, 0, "water atoms dropped")                                                   \
+    X(W, 704, ALTLOC_DROPPED, 0, "atoms of other alternate locations dropped")                           \
+    X(W, 705, MODELS_IGNORED, 0, "atoms of other models ignored")                                        \
+    X(W, 706, HYDROGENS_DROPPED, 0, "hydrogen atoms dropped (--no-hydrogens)")                           \
+    X(W, 707, ELEMENT_UNKNOWN, 0, "unknown element: default radius used")                                \
+    X(W, 708, ELEMENT_UNKNOWN_COUNT, 0, "count of atoms with an unknown element")                        \
+    X(W, 709, NAMES_TRUNCATED, 0, "atom, residue or chain names truncated")                              \
+    X(W, 710, AFTER_END, 0, "atom records after END ignored")                                            \
+    X(W, 711, CIF_BLOCK_IGNORED, 0, "a further mmCIF _atom_site loop ignored")                           \
+    X(W, 712, ZERO_DROPPED, 0, "spheres of radius 0 dropped (--zero-radius drop)")                       \
+    X(W, 713, ZERO_POINTS, 0, "spheres of radius 0 kept as point sites")                                 \
+    X(W, 720, REFERENCE_SLOW, 0, "exact reference on a large input: may take very long")                 \
+    X(W, 760, DEVICE_FALLBACK, 0, "no usable OpenCL device: vertices on the reference backend")          \
+    X(W, 761, CAND_OVERFLOW, 0, "candidates did not fit a sampling grid cell")                           \
+    X(W, 762, DEVICE_FAILED_RERUN, 0, "OpenCL device failed mid-run: rerun on the reference")            \
+    X(W, 763, CERT_REJECTED, 0, "the certifier rejected candidates")                                     \
+    X(W, 765, TOPO_UNPAIRED, 0, "trisector edges that could not be paired")                              \
+    X(W, 780, JFA_SEEDS_LOST, 0, "seeds share their start pixel with a nearer seed")                     \
+    X(W, 781, JFA_DEVICE_FALLBACK, 0, "no usable OpenCL device: jfa on the reference backend")           \
+    X(W, 782, FACET_START_FINE, 0, "Facet-JFA cannot start coarser than n")                              \
+    X(W, 790, CROSSCHECK_POWER, 0, "radii differ: compared with CGAL's power diagram (ids only)")        \
+    X(W, 791, CROSSCHECK_FLAT, 0, "the centres span fewer than 3 dimensions: no vertices")               \
+    X(W, 792, CROSSCHECK_HIDDEN, 0, "spheres hidden in the power diagram (no power cell)")               \
+    X(W, 793, CROSSCHECK_REJECTED, 0, "lines marked rejected are not compared")                          \
+    X(W, 801, DCD_PARTIAL_FRAME, 0, "DCD ends inside a frame: partial frame ignored")                    \
+    X(W, 802, VOLUME_FIRST_FRAME, 0, "volume file holds the first frame only")                           \
+    X(W, 803, VOXEL_COARSE, 0, "voxel edge coarser than the probe radius")                               \
+    X(W, 804, CHANNELS_DEVICE_FALLBACK, 0, "no usable OpenCL device: channels on the reference backend") \
+    X(W, 806, CHANNELS_DEVICE_FAILED, 0, "OpenCL failed mid-run: rest of channels on reference")
+
+/* Retired numbers, never to be used again: X(kind, number, meaning, why). */
+#define VB_DIAG_RETIRED(X)                                                                               \
+    X(W, 740, "vertex file without vertex lines",                                                        \
+      "verify refuses such a file: E105 (nothing verified is not a success)")                            \
+    X(W, 805, "no usable OpenCL GPU: channels try the CPU device",                                       \
+      "one fallback rule for every command: --device gpu means a GPU, else the reference")
+
+
+enum vb_diag {
+#define VB_DIAG_ENUM(kind, number, name, exit, meaning) VB_##kind##_##name = number,
+    VB_DIAG_LIST(VB_DIAG_ENUM)
+#undef VB_DIAG_ENUM
+};
+
+/* The exit status of `vorball` for a status code (primary or extended):
+ * the exit of its E entry; 6 (internal) for a code without one. */
+int vb_diag_exit(int status);
 
 #endif

@@ -1,8 +1,9 @@
 /* Host side of gpu/channels.cl: buffers, launches and the JFA hand-off. */
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "vb_parallel.h"
+#include "jfa_internal.h"
 #include "vbc_channel_gpu.h"
 
 struct vbc_gpu {
@@ -14,13 +15,6 @@ struct vbc_gpu {
     size_t atoms_cap, voxels_cap, rb_cap, list_cap, clear_cap; /* in elements */
     int device_clearance; /* see vbc_gpu_set_device_clearance */
 };
-
-static double now_ms(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return 1e3 * (double)t.tv_sec + 1e-6 * (double)t.tv_nsec;
-}
 
 int vbc_gpu_open(vb_ctx *ctx, vbg_runtime *rt, vbj_variant variant, vbc_gpu **out)
 {
@@ -76,15 +70,6 @@ void vbc_gpu_close(vbc_gpu *p)
 void vbc_gpu_set_device_clearance(vbc_gpu *p, int mode)
 {
     p->device_clearance = mode;
-}
-
-void vbc_frame_out_free(vbc_frame_out *o)
-{
-    free(o->voxels);
-    free(o->flags);
-    free(o->labels);
-    free(o->clearance);
-    memset(o, 0, sizeof *o);
 }
 
 /* Makes *buf hold at least `need` elements of `size` bytes, growing by half
@@ -162,26 +147,6 @@ static cl_int clearance(vbc_gpu *p, const vbc_grid *g, size_t natoms, double pro
                                out->clearance, 0, NULL, NULL);
 }
 
-int vbc_frame_seeds(vb_ctx *ctx, const vbc_grid *g, const float *atoms4, size_t natoms,
-                    vbj_seeds *out)
-{
-    memset(out, 0, sizeof *out);
-    uint32_t n = (uint32_t)g->nx;
-    if (n < 2 || (n & (n - 1)) != 0 || g->ny != g->nx || (g->dim == 3 && g->nz != g->nx))
-        return vb_error(ctx, VB_EMISUSE, NULL, 0, "channel grid %dx%dx%d: sides must be one power of two",
-                        g->nx, g->ny, g->nz);
-    if (natoms == 0)
-        return vb_error(ctx, VB_EINPUT_EMPTY, NULL, 0, "no atoms in the frame");
-    /* JFA puts pixel p's centre at p, we put voxel i's at i + 0.5. */
-    int rc = vbj_seeds_alloc(ctx, g->dim, n, natoms, out);
-    for (size_t a = 0; a < natoms && rc == VB_OK; a++)
-        rc = vbj_seed_set(ctx, out, a, atoms4[4 * a] - 0.5, atoms4[4 * a + 1] - 0.5,
-                          g->dim == 3 ? atoms4[4 * a + 2] - 0.5 : 0.0);
-    if (rc != VB_OK)
-        vbj_seeds_free(out);
-    return rc;
-}
-
 int vbc_gpu_frame(vb_ctx *ctx, vbc_gpu *p, const vbc_grid *g, const float *atoms4, size_t natoms,
                   double probe, unsigned want, vbc_frame_out *out)
 {
@@ -194,7 +159,7 @@ int vbc_gpu_frame(vb_ctx *ctx, vbc_gpu *p, const vbc_grid *g, const float *atoms
     vbj_result jr;
     memset(&jr, 0, sizeof jr);
 
-    double t0 = now_ms();
+    double t0 = 1e3 * vb_now();
     if ((rc = vbc_frame_seeds(ctx, g, atoms4, natoms, &seeds)) != VB_OK)
         return rc;
     cl_int err = ensure(p, &p->atoms, &p->atoms_cap, natoms, 4 * sizeof(float));
@@ -212,18 +177,22 @@ int vbc_gpu_frame(vb_ctx *ctx, vbc_gpu *p, const vbc_grid *g, const float *atoms
 
     if ((rc = vbg_check(ctx, clFinish(q), "channel upload")) != VB_OK)
         goto done;
-    double t1 = now_ms();
+    double t1 = 1e3 * vb_now();
     out->ms_upload = t1 - t0;
-    vbj_options jo = {p->variant, 0,
-                      VBJ_WANT_DEVICE | ((want & VBC_WANT_LABELS) ? VBJ_WANT_LABELS : 0), 0};
-    if ((rc = vbj_run(ctx, p->jfa, &seeds, &jo, &jr)) != VB_OK)
+    vbj_options jo = {p->variant, 0, 0, 0};
+    jr.dim = seeds.dim;
+    jr.n = seeds.n;
+    jr.pixels = (size_t)seeds.n * seeds.n * (seeds.dim == 3 ? seeds.n : 1);
+    if ((rc = vbj_cl_run(ctx, p->jfa, &seeds, &jo,
+                         VBJ_WANT_DEVICE | ((want & VBC_WANT_LABELS) ? VBJ_WANT_LABELS : 0),
+                         &jr)) != VB_OK)
         goto done;
     cl_mem labels = vbj_engine_labels_device(p->jfa);
     if (!labels) {
         rc = vb_error(ctx, VB_EINTERNAL, NULL, 0, "JFA engine kept no device labels");
         goto done;
     }
-    double t2 = now_ms();
+    double t2 = 1e3 * vb_now();
     out->ms_jfa = t2 - t1;
     out->jfa = jr.counts;
 
@@ -286,7 +255,7 @@ int vbc_gpu_frame(vb_ctx *ctx, vbc_gpu *p, const vbc_grid *g, const float *atoms
     }
     if ((rc = vbg_check(ctx, err, "channel download")) != VB_OK)
         goto done;
-    out->ms_masks = now_ms() - t2;
+    out->ms_masks = 1e3 * vb_now() - t2;
     if (want & VBC_WANT_LABELS) {
         out->labels = jr.labels;
         jr.labels = NULL;
@@ -297,4 +266,39 @@ done:
     if (rc != VB_OK)
         vbc_frame_out_free(out);
     return rc;
+}
+
+/* ---- the engine table (vbc_channel_pipe.h) ---- */
+
+static int engine_frame(vb_ctx *ctx, vbc_engine *e, const vbc_grid *g, const float *atoms4,
+                        size_t natoms, double probe, unsigned want, vbc_frame_out *out)
+{
+    return vbc_gpu_frame(ctx, e->state, g, atoms4, natoms, probe, want, out);
+}
+
+static void engine_close(vbc_engine *e)
+{
+    vbc_gpu_close(e->state);
+    free(e);
+}
+
+int vbg_channels_open(vb_ctx *ctx, vbg_runtime *rt, vbj_variant variant, vbc_engine **out)
+{
+    *out = NULL;
+    vbc_engine *e = calloc(1, sizeof *e);
+    if (!e)
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "channel pipeline");
+    vbc_gpu *gp = NULL;
+    int rc = vbc_gpu_open(ctx, rt, variant, &gp);
+    if (rc != VB_OK) {
+        free(e);
+        return rc;
+    }
+    e->state = gp;
+    e->name = "opencl";
+    snprintf(e->device, sizeof e->device, "%s", vbg_runtime_device_name(rt));
+    e->frame = engine_frame;
+    e->close = engine_close;
+    *out = e;
+    return VB_OK;
 }

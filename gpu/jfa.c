@@ -1,5 +1,7 @@
-/* Host side of the JFA module: the engine (reference or OpenCL), vbj_run's
- * dispatch, and the dense JFA variants on OpenCL (kernels in gpu/jfa.cl). */
+/* Host toolbox of the OpenCL JFA backend: the engine's buffers, kernels,
+ * launches and profiling events, and the dense JFA variants (kernels in
+ * gpu/jfa.cl). Facet-JFA (jfa_facet.c) and the exact diagram (jfa_exact.c)
+ * build on it; jfa_ocl.c puts them behind the vbj_backend table. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -32,24 +34,6 @@ int vbj_engine_open_runtime(vb_ctx *ctx, vbg_runtime *rt, vbj_engine **out)
     return VB_OK;
 }
 
-int vbj_engine_open(vb_ctx *ctx, vbg_device_kind kind, vbj_engine **out)
-{
-    *out = NULL;
-    if (kind == VBG_DEVICE_REF)
-        return vbj_engine_open_runtime(ctx, NULL, out);
-    vbg_runtime *rt = NULL;
-    int rc = vbg_runtime_open(ctx, kind, &rt);
-    if (rc)
-        return rc;
-    rc = vbj_engine_open_runtime(ctx, rt, out);
-    if (rc) {
-        vbg_runtime_close(rt);
-        return rc;
-    }
-    (*out)->own_rt = 1;
-    return VB_OK;
-}
-
 static void release(vbj_clbuf *b)
 {
     if (b->mem)
@@ -71,18 +55,9 @@ void vbj_engine_close(vbj_engine *e)
         if (e->kernels[i])
             clReleaseKernel(e->kernels[i]);
     free(e->events);
-    /* Programs belong to the runtime's cache. */
-    if (e->own_rt)
-        vbg_runtime_close(e->rt);
+    /* Programs belong to the runtime's cache; the runtime to the caller. */
     free(e);
 }
-
-const char *vbj_engine_device_name(const vbj_engine *e)
-{
-    return e->rt ? vbg_runtime_device_name(e->rt) : "reference (C)";
-}
-
-int vbj_engine_is_opencl(const vbj_engine *e) { return e->rt != NULL; }
 
 cl_mem vbj_engine_labels_device(const vbj_engine *e) { return e->device_labels; }
 
@@ -398,27 +373,6 @@ int vbj_cl_count_labels(vb_ctx *ctx, vbj_engine *e, int dim, uint32_t n, cl_mem 
     return VB_OK;
 }
 
-void vbj_result_free(vbj_result *r)
-{
-    if (!r)
-        return;
-    free(r->labels);
-    free(r->nlabels);
-    memset(r, 0, sizeof *r);
-}
-
-static int check_options(vb_ctx *ctx, const vbj_seeds *s, const vbj_options *o)
-{
-    if ((unsigned)o->variant > VBJ_FACET_FULL)
-        return vb_error(ctx, VB_EMISUSE, NULL, 0, "unknown JFA variant %d", (int)o->variant);
-    if (o->m && (o->m > s->n || (o->m & (o->m - 1))))
-        return vb_error(ctx, VB_EMISUSE, NULL, 0,
-                        "start resolution m = %u must be a power of two <= n = %u", o->m, s->n);
-    if (s->dim != 2 && s->dim != 3)
-        return vb_error(ctx, VB_EMISUSE, NULL, 0, "grid dimension must be 2 or 3");
-    return VB_OK;
-}
-
 /* Counts the boundary pixels of label grid `lab` (16-bit when narrow) into
  * counts->boundary; the read of the count waits for the queue. */
 static int count_boundary(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, int narrow, cl_mem lab,
@@ -456,13 +410,13 @@ int vbj_cl_dense_run(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, vbj_variant
                      vbj_result *out, cl_mem *result)
 {
     cl_command_queue queue = vbg_runtime_queue(e->rt);
-    double t0 = vbj_now_ms();
+    double t0 = 1e3 * vb_now();
     size_t npairs;
     int rc, narrow = s->k < 0xffff;
     if ((rc = vbj_cl_upload_seeds(ctx, e, s)) ||
         (rc = vbj_cl_upload_pairs(ctx, e, s, 1, &npairs, &out->counts.collisions)))
         return rc;
-    double t1 = vbj_now_ms();
+    double t1 = 1e3 * vb_now();
     uint32_t steps[40];
     int ns = vbj_schedule(v, s->n, steps), which = 0;
     vbj_cl_record(e);
@@ -471,7 +425,7 @@ int vbj_cl_dense_run(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, vbj_variant
         rc = count_boundary(ctx, e, s, narrow, e->grid[which].mem, &out->counts);
     if (!rc && vbg_check(ctx, clFinish(queue), "jfa"))
         rc = VB_EDEVICE;
-    double t2 = vbj_now_ms();
+    double t2 = 1e3 * vb_now();
     out->ms_gpu = vbj_cl_recorded_ms(e);
     if (rc)
         return rc;
@@ -492,87 +446,8 @@ int vbj_cl_dense_run(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, vbj_variant
         return rc;
     if (vbg_check(ctx, clFinish(queue), "jfa widen"))
         return VB_EDEVICE;
-    out->ms_fill = vbj_now_ms() - t2;
+    out->ms_fill = 1e3 * vb_now() - t2;
     *result = e->labels.mem;
     return VB_OK;
 }
 
-int vbj_run(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, const vbj_options *opt,
-            vbj_result *out)
-{
-    vbj_options def = {VBJ_JFA1, 0, 0, 0};
-    const vbj_options *o = opt ? opt : &def;
-    memset(out, 0, sizeof *out);
-    out->dim = s->dim;
-    out->n = s->n;
-    out->pixels = (size_t)s->n * s->n * (s->dim == 3 ? s->n : 1);
-    int rc = check_options(ctx, s, o);
-    if (rc)
-        return rc;
-    unsigned want = o->want ? o->want : VBJ_WANT_LABELS;
-    int facet = o->variant == VBJ_FACET || o->variant == VBJ_FACET_FULL;
-    if (!e->rt) {
-        if ((rc = vbj_ref_run(ctx, s, o, out)))
-            goto fail;
-    } else {
-        cl_mem result = NULL;
-        e->device_labels = NULL;
-        rc = facet ? vbj_cl_facet(ctx, e, s, o, out, &result)
-                   : vbj_cl_dense_run(ctx, e, s, o->variant, 0, out, &result);
-        if (rc)
-            goto fail;
-        if (want & VBJ_WANT_DEVICE)
-            e->device_labels = result;
-        if (want & (VBJ_WANT_LABELS | VBJ_WANT_NLABELS)) {
-            double t0 = vbj_now_ms();
-            out->labels = malloc(out->pixels * sizeof *out->labels);
-            if (!out->labels) {
-                rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "labels: out of memory");
-                goto fail;
-            }
-            if (vbg_check(ctx,
-                          clEnqueueReadBuffer(vbg_runtime_queue(e->rt), result, CL_TRUE, 0,
-                                              out->pixels * 4, out->labels, 0, NULL, NULL),
-                          "labels download")) {
-                rc = VB_EDEVICE;
-                goto fail;
-            }
-            out->ms_transfer += vbj_now_ms() - t0;
-        }
-        if (want & VBJ_WANT_NLABELS) {
-            out->nlabels = malloc(out->pixels);
-            if (!out->nlabels) {
-                rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "label counts: out of memory");
-                goto fail;
-            }
-            if ((rc = vbj_cl_count_labels(ctx, e, s->dim, s->n, result, out->nlabels)))
-                goto fail;
-        }
-        if (!(want & VBJ_WANT_LABELS)) {
-            free(out->labels);
-            out->labels = NULL;
-        }
-        return VB_OK;
-    }
-    if (want & VBJ_WANT_NLABELS) {
-        out->nlabels = malloc(out->pixels);
-        if (!out->nlabels) {
-            rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "label counts: out of memory");
-            goto fail;
-        }
-        vbj_count_labels(s->dim, s->n, out->labels, out->nlabels);
-    }
-    if (!(want & VBJ_WANT_LABELS)) {
-        free(out->labels);
-        out->labels = NULL;
-    }
-    return VB_OK;
-fail:
-    vbj_result_free(out);
-    return rc;
-}
-
-int vbj_exact(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, uint32_t *labels)
-{
-    return e->rt ? vbj_cl_exact(ctx, e, s, labels) : vbj_ref_exact(ctx, s, labels);
-}

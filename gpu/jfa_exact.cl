@@ -2,7 +2,7 @@
  * measured against): for each pixel the nearest seed, ties to the lowest
  * index, found by rings of seed buckets around the pixel's bucket until no
  * unvisited bucket can hold a seed as near: vbj_exact_nearest, the one copy
- * the C reference (gpu/jfa_ref.c) runs too. */
+ * the C reference (core/discrete/jfa_ref.c) runs too. */
 #pragma OPENCL FP_CONTRACT OFF
 #include "vb_grid.h"
 

@@ -8,16 +8,6 @@
  * boundary pixels. */
 #include "jfa_internal.h"
 
-static uint32_t log2u(uint32_t v)
-{
-    uint32_t r = 0;
-    while (v > 1) {
-        v >>= 1;
-        r++;
-    }
-    return r;
-}
-
 /* Work-items per list kernel: enough to fill a large GPU; each loops over
  * the list with this stride, so the count can stay on the device. */
 #define VBJ_LIST_ITEMS ((size_t)1 << 18)
@@ -47,7 +37,7 @@ static int launch_list(vb_ctx *ctx, vbj_engine *e, int which, const char *name, 
 static int launch_small(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, int compact, cl_uint lm,
                         size_t npairs, cl_uint jlast, vbj_counts *counts)
 {
-    cl_uint np = (cl_uint)npairs, ln = log2u(s->n), dim = (cl_uint)s->dim;
+    cl_uint np = (cl_uint)npairs, ln = vbj_log2u(s->n), dim = (cl_uint)s->dim;
     cl_uint ncnt = ln - lm + 2, cp = (cl_uint)compact;
     size_t cells = (size_t)1 << (dim * lm), wg = 0;
     cl_kernel k;
@@ -90,7 +80,7 @@ static int start(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, uint32_t m, cl_
                  size_t npairs, vbj_counts *counts, cl_mem *prev)
 {
     cl_command_queue queue = vbg_runtime_queue(e->rt);
-    cl_uint dim = (cl_uint)s->dim, lm = log2u(m);
+    cl_uint dim = (cl_uint)s->dim, lm = vbj_log2u(m);
     uint64_t cells_m = (uint64_t)1 << (dim * lm);
     uint32_t steps[40];
     int which = 0, rc;
@@ -123,7 +113,7 @@ static int timed(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, int compact, ui
                  uint32_t fuse, size_t npairs, vbj_result *out, cl_mem *out_mem)
 {
     cl_command_queue queue = vbg_runtime_queue(e->rt);
-    cl_uint n = s->n, dim = (cl_uint)s->dim, ln = log2u(n), lm = log2u(m);
+    cl_uint n = s->n, dim = (cl_uint)s->dim, ln = vbj_log2u(n), lm = vbj_log2u(m);
     cl_uint levels = ln - lm, j0 = 0;
     uint64_t cells_m = (uint64_t)1 << (dim * lm);
     int rc, L = 0; /* L: list of the current cells */
@@ -188,9 +178,9 @@ int vbj_cl_facet(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, const vbj_optio
                  vbj_result *out, cl_mem *result)
 {
     cl_command_queue queue = vbg_runtime_queue(e->rt);
-    double t0 = vbj_now_ms();
+    double t0 = 1e3 * vb_now();
     uint32_t m = opt->m ? opt->m : vbj_start_resolution(s);
-    cl_uint n = s->n, levels = log2u(n) - log2u(m);
+    cl_uint n = s->n, levels = vbj_log2u(n) - vbj_log2u(m);
     size_t pixels = out->pixels, npairs;
     int compact = opt->variant == VBJ_FACET;
     int rc;
@@ -205,7 +195,7 @@ int vbj_cl_facet(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, const vbj_optio
         (rc = vbj_clbuf_reserve(ctx, e, &e->list[0], pixels * 4)) ||
         (rc = vbj_clbuf_reserve(ctx, e, &e->list[1], pixels * 4)))
         return rc;
-    double t1 = vbj_now_ms();
+    double t1 = 1e3 * vb_now();
     vbj_cl_record(e);
     cl_mem last = NULL;
     uint32_t fuse = opt->fuse_cells      ? opt->fuse_cells
@@ -214,7 +204,7 @@ int vbj_cl_facet(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, const vbj_optio
     rc = timed(ctx, e, s, compact, m, fuse, npairs, out, &last);
     if (!rc && vbg_check(ctx, clFinish(queue), "facet-jfa"))
         rc = VB_EDEVICE;
-    double t2 = vbj_now_ms();
+    double t2 = 1e3 * vb_now();
     out->ms_gpu = vbj_cl_recorded_ms(e);
     if (rc)
         return rc;
@@ -230,7 +220,7 @@ int vbj_cl_facet(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, const vbj_optio
         return rc;
     if (vbg_check(ctx, clFinish(queue), "facet strip"))
         return VB_EDEVICE;
-    out->ms_fill = vbj_now_ms() - t2;
+    out->ms_fill = 1e3 * vb_now() - t2;
     out->ms_kernel = t2 - t1;
     out->ms_transfer = t1 - t0;
     *result = last;

@@ -1,36 +1,34 @@
-/* Internal to the JFA module (gpu/jfa*.c): the engine, the host-side
- * preprocessing shared by both backends, and the backend entry points. */
+/* Internal to the OpenCL JFA backend (gpu/jfa*.c): the engine, its buffers
+ * and kernels, and the host toolbox the dense, Facet-JFA and exact runs
+ * share (gpu/jfa.c). The preparation both backends share is in
+ * core/discrete/vbj_prep.h. */
 #ifndef VBJ_INTERNAL_H
 #define VBJ_INTERNAL_H
 
-#include "vbj_jfa.h"
+#include "vb_parallel.h"
+#include "vbg_runtime.h"
+#include "vbj_prep.h"
 
-/* Step lengths of a dense variant on a q^d grid (JFA family only): writes at
- * most 2 + log2(q) lengths to steps and returns their number. */
-int vbj_schedule(vbj_variant v, uint32_t q, uint32_t *steps);
+/* The OpenCL engine: a runtime (borrowed) with the programs, kernels and
+ * buffers of every run. */
+typedef struct vbj_engine vbj_engine;
 
-/* Seeds placed on a grid of cells of f fine pixels (side n/f): pairs[2i] is a
- * cell's linear index, pairs[2i+1] the seed it starts with (the seed nearest
- * to the cell centre, ties to the lower index). *collisions counts seeds that
- * lost their cell. Allocates *pairs (free()). */
-int vbj_place(vb_ctx *ctx, const vbj_seeds *s, uint32_t f, uint32_t **pairs, size_t *count,
-              uint32_t *collisions);
+/* Opens an engine on a runtime (borrowed: close it after the engine). Builds
+ * facet_jfa.cl and jfa_exact.cl; jfa.cl's builds wait for their first use.
+ * VB_EDEVICE / VB_ENOMEM. */
+int vbj_engine_open_runtime(vb_ctx *ctx, vbg_runtime *rt, vbj_engine **out);
+void vbj_engine_close(vbj_engine *e);
 
-/* A uniform bucket grid over the seeds for the exact search: bucket b holds
- * the seeds items[start[b] .. start[b+1]) (ascending index) whose nearest
- * pixel p has p >> shift == b's coordinates; g buckets per axis. */
-typedef struct vbj_cells {
-    uint32_t shift, g;
-    uint32_t *start; /* g^d + 1 */
-    uint32_t *items; /* k */
-} vbj_cells;
+/* vbj_run on the engine (after vbj_run's checks; want never 0). With
+ * VBJ_WANT_DEVICE the label grid stays on the device: vbj_engine_labels_device. */
+#define VBJ_WANT_DEVICE 4u
+int vbj_cl_run(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, const vbj_options *o,
+               unsigned want, vbj_result *out);
 
-int vbj_cells_build(vb_ctx *ctx, const vbj_seeds *s, vbj_cells *out);
-void vbj_cells_free(vbj_cells *c);
-
-/* The plain-C backend (gpu/jfa_ref.c). */
-int vbj_ref_run(vb_ctx *ctx, const vbj_seeds *s, const vbj_options *opt, vbj_result *out);
-int vbj_ref_exact(vb_ctx *ctx, const vbj_seeds *s, uint32_t *labels);
+/* The label grid of the last run with VBJ_WANT_DEVICE (n^dim cl_uint, seed
+ * indices), owned by the engine, valid until the next run or close; NULL
+ * when not wanted. */
+cl_mem vbj_engine_labels_device(const vbj_engine *e);
 
 /* Buffers the OpenCL engine keeps between runs (grown, never shrunk). */
 typedef struct vbj_clbuf {
@@ -71,8 +69,7 @@ enum {
 int vbj_dist_build(int dim, uint32_t n);
 
 struct vbj_engine {
-    vbg_runtime *rt; /* NULL for the reference backend */
-    int own_rt;
+    vbg_runtime *rt;
     cl_program jfa[VBJ_JFA_BUILDS], facet, exact; /* owned by the runtime's program cache */
     cl_kernel kernels[VBJ_NKERNELS];
     vbj_clbuf seeds, seeds_fp, pairs, grid[2], store[2], tmp, list[2], counter, labels, cells_start,
@@ -150,6 +147,5 @@ int vbj_cl_exact(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, uint32_t *label
 int vbj_cl_count_labels(vb_ctx *ctx, vbj_engine *e, int dim, uint32_t n, cl_mem labels,
                         uint8_t *out);
 
-double vbj_now_ms(void);
 
 #endif

@@ -11,7 +11,7 @@
 
 #define VBG_MAX_PROGRAMS 16
 
-struct vbg_runtime {
+struct vb_device {
     cl_platform_id platform;
     cl_device_id device;
     cl_context context;
@@ -54,21 +54,6 @@ int vbg_check(vb_ctx *ctx, cl_int err, const char *what)
     return vb_error(ctx, VB_EDEVICE, NULL, 0, "%s: %s (%d)", what, cl_error_name(err), (int)err);
 }
 
-int vbg_device_kind_parse(vb_ctx *ctx, const char *s, vbg_device_kind *out)
-{
-    static const struct {
-        const char *name;
-        vbg_device_kind kind;
-    } kinds[] = {{"auto", VBG_DEVICE_AUTO}, {"gpu", VBG_DEVICE_GPU},
-                 {"cpu", VBG_DEVICE_CPU}, {"ref", VBG_DEVICE_REF}};
-    for (size_t i = 0; i < sizeof kinds / sizeof kinds[0]; i++)
-        if (strcmp(s, kinds[i].name) == 0) {
-            *out = kinds[i].kind;
-            return VB_OK;
-        }
-    return vb_error(ctx, VB_EMISUSE, NULL, 0, "unknown device '%s' (auto, gpu, cpu or ref)", s);
-}
-
 static int device_has_fp64(cl_device_id d)
 {
     cl_device_fp_config cfg = 0;
@@ -103,21 +88,21 @@ static int find_device(cl_device_type type, cl_platform_id *plat, cl_device_id *
     return 0;
 }
 
-int vbg_runtime_open(vb_ctx *ctx, vbg_device_kind kind, vbg_runtime **out)
+int vbg_runtime_open(vb_ctx *ctx, vb_device_kind kind, vbg_runtime **out)
 {
     *out = NULL;
-    if (kind == VBG_DEVICE_REF)
+    if (kind == VB_DEVICE_REF)
         return vb_error(ctx, VB_EMISUSE, NULL, 0, "the reference backend has no OpenCL runtime");
     cl_platform_id plat = NULL;
     cl_device_id dev = NULL;
     int found = 0;
-    if (kind == VBG_DEVICE_AUTO || kind == VBG_DEVICE_GPU)
+    if (kind == VB_DEVICE_AUTO || kind == VB_DEVICE_GPU)
         found = find_device(CL_DEVICE_TYPE_GPU, &plat, &dev);
-    if (!found && (kind == VBG_DEVICE_AUTO || kind == VBG_DEVICE_CPU))
+    if (!found && (kind == VB_DEVICE_AUTO || kind == VB_DEVICE_CPU))
         found = find_device(CL_DEVICE_TYPE_CPU, &plat, &dev);
     if (!found)
         return vb_error(ctx, VB_EDEVICE, NULL, 0, "no OpenCL %sdevice with double precision found",
-                        kind == VBG_DEVICE_GPU ? "GPU " : kind == VBG_DEVICE_CPU ? "CPU " : "");
+                        kind == VB_DEVICE_GPU ? "GPU " : kind == VB_DEVICE_CPU ? "CPU " : "");
     vbg_runtime *rt = calloc(1, sizeof *rt);
     if (!rt)
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory");

@@ -3,8 +3,8 @@
  * include launch overhead. */
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "vb_parallel.h"
 #include "vbg_sampler.h"
 
 typedef struct ocl_buf {
@@ -20,13 +20,6 @@ typedef struct ocl_state {
     size_t host_cap;
     size_t cand_cap;          /* candidate slots on the device */
 } ocl_state;
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 /* Makes sure buffer b holds `need` bytes (keeps the old one when it does). */
 static int ensure(vb_ctx *ctx, ocl_state *st, ocl_buf *b, size_t need, cl_mem_flags flags)
@@ -84,7 +77,7 @@ static int ocl_run_batch(vb_ctx *ctx, vb_sampler_backend *be, const vb_sampler_b
     cl_uint S = p->samples, T = p->tiles, nb = (cl_uint)b->nbases;
     size_t rays = 6u * (size_t)S * S * b->nbases;
     size_t cells = 6u * (size_t)(S - 1) * (S - 1) * b->nbases;
-    double t0 = now();
+    double t0 = vb_now();
     cl_uint zero[2] = {0, 0};
     if (buf_write(ctx, st, &st->bases, b->bases, b->nbases * sizeof *b->bases) ||
         buf_write(ctx, st, &st->bis, b->bis, b->nbis * sizeof *b->bis) ||
@@ -99,7 +92,7 @@ static int ocl_run_batch(vb_ctx *ctx, vb_sampler_backend *be, const vb_sampler_b
     if (ensure(ctx, st, &st->cand, st->cand_cap * sizeof(vbs_cand), CL_MEM_READ_WRITE) ||
         vbg_check(ctx, clFinish(q), "upload"))
         return VB_EDEVICE;
-    double t1 = now();
+    double t1 = vb_now();
     {
         const void *v[] = {&st->bases.mem, &st->bis.mem, &st->off.mem, &st->idx.mem,
                            &st->colours.mem, &S, &T, &nb};
@@ -110,7 +103,7 @@ static int ocl_run_batch(vb_ctx *ctx, vb_sampler_backend *be, const vb_sampler_b
             vbg_check(ctx, clFinish(q), "envelope kernel"))
             return VB_EDEVICE;
     }
-    double t2 = now();
+    double t2 = vb_now();
     cl_uint counters[2];
     for (;;) {
         cl_uint cap = (cl_uint)st->cand_cap;
@@ -155,7 +148,7 @@ static int ocl_run_batch(vb_ctx *ctx, vb_sampler_backend *be, const vb_sampler_b
         if (vb_cand_vec_push(out->cand, st->host_cand + k))
             return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (candidates)");
     out->overflow += counters[1];
-    double t3 = now();
+    double t3 = vb_now();
     out->times->upload += t1 - t0;
     out->times->envelope += t2 - t1;
     out->times->vertices += t3 - t2;
@@ -223,9 +216,7 @@ int vbg_sampler_open(vb_ctx *ctx, vbg_runtime *rt, vb_sampler_backend **out)
     }
     be->name = "opencl";
     snprintf(be->device, sizeof be->device, "%s", vbg_runtime_device_name(rt));
-    /* GPUs want large launches; a CPU device gains little beyond a few
-     * million rays and keeps memory small. */
-    be->batch_rays = vbg_runtime_is_gpu(rt) ? 1u << 25 : 1u << 22;
+    be->batch_rays = vb_sampler_batch_rays(vbg_runtime_is_gpu(rt));
     be->run_batch = ocl_run_batch;
     *out = be;
     return VB_OK;

@@ -6,29 +6,25 @@
 
 #ifndef CL_TARGET_OPENCL_VERSION
 #define CL_TARGET_OPENCL_VERSION 120
+/* The device layer of the library on OpenCL: these runtimes and the
+ * OpenCL engines of every stage (gpu/device_layer.c). */
+extern const vb_device_layer vbg_device_layer;
+
 #endif
 #include <CL/cl.h>
 #include <stdio.h>
 
 #include "vb.h"
+#include "vb_device.h"
 
-typedef enum vbg_device_kind {
-    VBG_DEVICE_AUTO = 0, /* a GPU if one is present, else a CPU device (PoCL) */
-    VBG_DEVICE_GPU,
-    VBG_DEVICE_CPU,
-    VBG_DEVICE_REF       /* no OpenCL: the plain-C reference backend */
-} vbg_device_kind;
-
-typedef struct vbg_runtime vbg_runtime;
-
-/* Parses "auto|gpu|cpu|ref". Returns VB_OK or VB_EMISUSE. */
-int vbg_device_kind_parse(vb_ctx *ctx, const char *s, vbg_device_kind *out);
+/* The runtime is the device of the device layer (core/vb_device.h). */
+typedef struct vb_device vbg_runtime;
 
 /* Opens an OpenCL context and in-order queue (profiling enabled) on a device of
  * the requested kind with double-precision support. VB_EDEVICE when none is
  * available (the caller decides about falling back to the reference backend
- * and warns). kind must not be VBG_DEVICE_REF. */
-int vbg_runtime_open(vb_ctx *ctx, vbg_device_kind kind, vbg_runtime **out);
+ * and warns: vb_device.h). kind must not be VB_DEVICE_REF. */
+int vbg_runtime_open(vb_ctx *ctx, vb_device_kind kind, vbg_runtime **out);
 
 void vbg_runtime_close(vbg_runtime *rt);
 
@@ -55,5 +51,9 @@ int vbg_list_devices(vb_ctx *ctx, FILE *out);
 
 /* Returns the embedded source of kernel file `name`, or NULL if unknown. */
 const char *vbg_kernel_source(const char *name);
+
+/* The device layer of the library on OpenCL: these runtimes and the
+ * OpenCL engines of every stage (gpu/device_layer.c). */
+extern const vb_device_layer vbg_device_layer;
 
 #endif

@@ -7,12 +7,11 @@
  * built exactly as one thread does it. Which worker judged a candidate
  * changes nothing it computes, so the lists, keys and summed stats are the
  * same for every thread count. */
-#include <pthread.h>
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
+#include "vb_parallel.h"
 #include "vbx_cert.h"
 
 /* Candidates a worker takes at a time: large enough to make the shared
@@ -20,7 +19,6 @@
 #define CHUNK 32
 /* Fewer candidates than this per thread are not worth a thread. */
 #define MIN_PER_THREAD 64
-#define MAX_THREADS 256
 
 /* Outcome of one candidate. */
 typedef struct cert_out {
@@ -53,19 +51,6 @@ void vb_certifier_set_threads(vb_certifier *c, unsigned threads)
 uint64_t vb_certifier_slow_rounds(const vb_certifier *c)
 {
     return c->slow_rounds + c->sol.slow_rounds + c->canon.slow_rounds;
-}
-
-static unsigned default_threads(void)
-{
-    const char *e = getenv("VORBALL_THREADS");
-    if (e && *e) {
-        char *end;
-        unsigned long v = strtoul(e, &end, 10);
-        if (*end == '\0' && v > 0)
-            return v > MAX_THREADS ? MAX_THREADS : (unsigned)v;
-    }
-    long n = sysconf(_SC_NPROCESSORS_ONLN);
-    return n > 0 ? (unsigned)(n > MAX_THREADS ? MAX_THREADS : n) : 1u;
 }
 
 static int judge(worker *w, size_t k)
@@ -144,8 +129,6 @@ static void add_stats(vb_stats *to, const vb_stats *from)
  * context; the others get clones and contexts of their own. */
 static int run_workers(vb_ctx *ctx, vb_certifier *c, worker *ws, unsigned nt)
 {
-    pthread_t th[MAX_THREADS];
-    unsigned started = 1;
     int rc = VB_OK;
     for (unsigned i = 1; i < nt; i++) {
         ws[i] = ws[0];
@@ -159,14 +142,9 @@ static int run_workers(vb_ctx *ctx, vb_certifier *c, worker *ws, unsigned nt)
             break;
         }
     }
-    /* A thread that cannot start leaves its share to the others. */
-    for (unsigned i = 1; rc == VB_OK && i < nt; i++, started++)
-        if (pthread_create(&th[i], NULL, work, &ws[i]) != 0)
-            break;
+    /* A thread that cannot start has its share run by the caller. */
     if (rc == VB_OK)
-        work(&ws[0]);
-    for (unsigned i = 1; i < started; i++)
-        pthread_join(th[i], NULL);
+        vb_run_jobs(work, ws, sizeof *ws, (int)nt);
     for (unsigned i = 1; i < nt; i++) {
         if (!ws[i].c)
             break;
@@ -251,9 +229,7 @@ static int merge(vb_ctx *ctx, vb_certifier *c, const vb_vertex_list *cand, const
 int vb_certify_list(vb_ctx *ctx, vb_certifier *c, const vb_vertex_list *cand, double tol,
                     vb_vertex_list *out, vb_vertex_list *rejected)
 {
-    unsigned nt = c->threads ? c->threads : default_threads();
-    if (nt > MAX_THREADS)
-        nt = MAX_THREADS;
+    unsigned nt = (unsigned)vb_threads(c->threads);
     size_t most = cand->n / MIN_PER_THREAD;
     if (most < 1)
         most = 1;

@@ -10,6 +10,7 @@
 // alone, from which the point is re-derived in GMP integers without CGAL.
 // Nothing crosses the extern "C" boundary as an exception.
 #include "vb_cgal.h"
+#include "vb_diag.h"
 
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
@@ -396,7 +397,7 @@ int build(vb_ctx *ctx, const vb_sphere_set *set, int mode, vb_cgal_diagram **out
         dimension = tr.dimension();
         kept = tr.number_of_vertices();
         if (kept != n)
-            vb_warn(ctx, 792, set->source, 0,
+            vb_warn(ctx, VB_W_CROSSCHECK_HIDDEN, set->source, 0,
                     "%zu of %zu spheres own no power cell (hidden by larger neighbours); "
                     "they are in no power vertex",
                     n - kept, n);
@@ -404,7 +405,7 @@ int build(vb_ctx *ctx, const vb_sphere_set *set, int mode, vb_cgal_diagram **out
             collect_vertices(tr, cx, cr, *d);
     }
     if (dimension < 3)
-        vb_warn(ctx, 791, set->source, 0,
+        vb_warn(ctx, VB_W_CROSSCHECK_FLAT, set->source, 0,
                 "the centres span only %dD: the diagram has no vertices", dimension);
     *out = d.release();
     return VB_OK;

@@ -25,6 +25,7 @@
 
 #include "vbx_burial.h"
 #include "vbx_cert.h"
+#include "vb_diag.h"
 
 /* Neighbours tried first as intruders: the nearest few of the base sphere. */
 #define VBX_NEAR_K 12
@@ -383,7 +384,7 @@ int vb_reference(vb_ctx *ctx, const vb_sphere_set *set, vb_vertex_list *out)
         return rc;
     ref_state rs = {ctx, c, set->n, NULL, NULL, NULL, {UINT32_MAX, UINT32_MAX}, NULL, out};
     if (set->n > VBX_REFERENCE_LARGE)
-        vb_warn(ctx, 720, set->source, 0,
+        vb_warn(ctx, VB_W_REFERENCE_SLOW, set->source, 0,
                 "exact reference on %zu spheres: the enumeration grows as n^4 and may "
                 "take very long",
                 set->n);

@@ -96,6 +96,12 @@ uint64_t vb_certifier_slow_rounds(const vb_certifier *c);
  * touch; see verify/reference.c). Returns VB_OK, VB_ENOMEM, VB_EPREC. */
 int vb_reference(vb_ctx *ctx, const vb_sphere_set *set, vb_vertex_list *out);
 
+/* The exact certifier behind the certifier table of the vertex pipeline
+ * (vb_vertices.h): vb_certifier_open / vb_certify_list (no distance limit)
+ * / vb_certify_candidate. */
+struct vb_certifier_ops;
+extern const struct vb_certifier_ops vb_exact_certifier;
+
 #ifdef __cplusplus
 }
 #endif

@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "vb_cover_shared.h"
+#include "vb_parallel.h"
 #include "vbs_internal.h"
 
 /* ---- a bounding-volume hierarchy of the centres ------------------------- */
@@ -309,24 +310,7 @@ static int cover_host(job *jb, worker *w, int nt)
 {
     atomic_store(&jb->next, 0);
     atomic_store(&jb->failed, 0);
-    pthread_t *th = calloc((size_t)nt, sizeof *th);
-    int *started = calloc((size_t)nt, sizeof *started);
-    if (!th || !started) {
-        free(th);
-        free(started);
-        return VB_ENOMEM;
-    }
-    for (int t = 1; t < nt; t++)
-        started[t] = pthread_create(&th[t], NULL, work, &w[t]) == 0;
-    work(&w[0]);
-    for (int t = 1; t < nt; t++) {
-        if (started[t])
-            pthread_join(th[t], NULL);
-        else
-            work(&w[t]);
-    }
-    free(th);
-    free(started);
+    vb_run_jobs(work, w, sizeof *w, nt);
     for (int t = 0; t < nt; t++)
         if (w[t].rc != VB_OK)
             return w[t].rc;
@@ -412,9 +396,9 @@ static int hybrid_device(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w0,
         if (n == 0)
             break;
         const uint32_t *quads = NULL;
-        double t0 = vbs_now();
+        double t0 = vb_now();
         rc = be->run(ctx, be, jb->cells + b0, n, outs, &quads);
-        w0->st.t_device += vbs_now() - t0;
+        w0->st.t_device += vb_now() - t0;
         if (rc != VB_OK)
             break;
         size_t nl = 0;
@@ -453,36 +437,28 @@ static int cover_hybrid(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w, i
     pthread_cond_init(&sh.cv, NULL);
     atomic_store(&jb->failed, 0);
     hybrid_arg *ha = calloc((size_t)nt, sizeof *ha);
-    pthread_t *th = calloc((size_t)nt, sizeof *th);
-    int *started = calloc((size_t)nt, sizeof *started);
-    int rc = ha && th && started ? VB_OK : VB_ENOMEM;
-    /* One core drives the device; the others cover on the host. */
-    for (int t = 1; rc == VB_OK && t < nt; t++) {
+    vb_jobs *g = calloc(1, sizeof *g);
+    int rc = ha && g ? VB_OK : VB_ENOMEM;
+    for (int t = 0; rc == VB_OK && t < nt; t++)
         ha[t] = (hybrid_arg){&w[t], &sh};
-        started[t] = pthread_create(&th[t], NULL, hybrid_host, &ha[t]) == 0;
-    }
+    /* One core drives the device; the others cover on the host. */
+    if (rc == VB_OK && nt > 1)
+        vb_jobs_start(g, hybrid_host, ha + 1, sizeof *ha, nt - 1);
     int drc = rc == VB_OK ? hybrid_device(ctx, jb, be, &w[0], &sh) : rc;
     pthread_mutex_lock(&sh.mu);
     sh.done = 1;
-    if (drc != VB_OK) {
-        /* The host takes every cell the device did not finish: all of them
-         * again is simplest and costs nothing in the output. */
+    /* A failed device: the host threads stop, and the caller covers every
+     * cell on the host again (simplest, and it changes nothing in the
+     * output). */
+    if (drc != VB_OK)
         atomic_store(&jb->failed, 1);
-    }
     pthread_cond_broadcast(&sh.cv);
     pthread_mutex_unlock(&sh.mu);
     if (rc == VB_OK) {
-        ha[0] = (hybrid_arg){&w[0], &sh};
         if (drc == VB_OK)
             hybrid_host(&ha[0]);
-        for (int t = 1; t < nt; t++) {
-            if (started[t])
-                pthread_join(th[t], NULL);
-            else if (drc == VB_OK) {
-                ha[t] = (hybrid_arg){&w[t], &sh};
-                hybrid_host(&ha[t]);
-            }
-        }
+        if (nt > 1)
+            vb_jobs_join(g);
     }
     for (int t = 0; rc == VB_OK && t < nt; t++)
         if (w[t].rc != VB_OK)
@@ -490,8 +466,7 @@ static int cover_hybrid(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w, i
     if (rc == VB_OK)
         rc = drc;
     free(ha);
-    free(th);
-    free(started);
+    free(g);
     free(sh.left);
     pthread_mutex_destroy(&sh.mu);
     pthread_cond_destroy(&sh.cv);
@@ -558,17 +533,17 @@ int vb_cover_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *
      * (caches, and a device's work-items). */
     jb.cells = g.ids;
     jb.ncells = g.m;
-    int nt = vbs_threads(o.threads);
+    int nt = vb_threads(o.threads);
     worker *w = calloc((size_t)nt, sizeof *w);
     int rc = w ? VB_OK : VB_ENOMEM;
     for (int t = 0; rc == VB_OK && t < nt; t++)
         w[t].jb = &jb;
-    double t0 = vbs_now();
+    double t0 = vb_now();
     if (rc == VB_OK && be)
         rc = cover_hybrid(ctx, &jb, be, w, nt);
     else if (rc == VB_OK && jb.ncells)
         rc = cover_host(&jb, w, nt);
-    w[0].st.t_host = vbs_now() - t0;
+    w[0].st.t_host = vb_now() - t0;
     size_t total = 0;
     for (int t = 0; rc == VB_OK && t < nt; t++)
         total += w[t].nq;

@@ -1,14 +1,11 @@
 /* The sampling pipeline driver: options, batches of bases for the backend,
  * deterministic order of the candidates, then matching (matching.c). */
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
-
-#include <pthread.h>
-#include <stdatomic.h>
-#include <unistd.h>
 
 #include "vbs_internal.h"
+#include "vb_diag.h"
 
 /* Culling of one batch on worker threads, started while the previous batch
  * is assembled and runs on the device: bases are handed out one at a time
@@ -23,13 +20,12 @@ typedef struct cull_async {
     atomic_size_t next;
     atomic_int failed;
     int nt, active;
-    pthread_t th[VBS_MAX_THREADS];
-    int started[VBS_MAX_THREADS];
-    int rc[VBS_MAX_THREADS];
+    vb_jobs jobs;
+    int rc[VB_MAX_THREADS];
     struct cull_arg {
         struct cull_async *a;
         int t;
-    } arg[VBS_MAX_THREADS];
+    } arg[VB_MAX_THREADS];
 } cull_async;
 
 static void *cull_worker(void *p)
@@ -65,8 +61,8 @@ static void cull_start(cull_async *a, vb_ctx *ctx, const vbs_culler *cu, vbs_bas
     for (int t = 0; t < nthreads; t++) {
         a->rc[t] = VB_OK;
         a->arg[t] = (struct cull_arg){a, t};
-        a->started[t] = pthread_create(&a->th[t], NULL, cull_worker, &a->arg[t]) == 0;
     }
+    vb_jobs_start(&a->jobs, cull_worker, a->arg, sizeof a->arg[0], nthreads);
 }
 
 /* Waits for the batch; a thread that could not start has its share (what
@@ -76,31 +72,11 @@ static int cull_join(cull_async *a)
     if (!a->active)
         return VB_OK;
     a->active = 0;
-    for (int t = 0; t < a->nt; t++) {
-        if (a->started[t])
-            pthread_join(a->th[t], NULL);
-        else
-            cull_worker(&a->arg[t]);
-    }
+    vb_jobs_join(&a->jobs);
     for (int t = 0; t < a->nt; t++)
         if (a->rc[t] != VB_OK)
             return a->rc[t];
     return VB_OK;
-}
-
-int vbs_threads(unsigned requested)
-{
-    long n = (long)requested;
-    const char *env = getenv("VORBALL_THREADS");
-    if (n <= 0 && env && *env) {
-        char *end;
-        long v = strtol(env, &end, 10);
-        if (*end == '\0' && v > 0)
-            n = v;
-    }
-    if (n <= 0)
-        n = sysconf(_SC_NPROCESSORS_ONLN);
-    return n < 1 ? 1 : n > VBS_MAX_THREADS ? VBS_MAX_THREADS : (int)n;
 }
 
 static int store_add(vbs_bis_store *st, uint32_t i, const vbs_base_data *bd)
@@ -140,46 +116,6 @@ static int store_add(vbs_bis_store *st, uint32_t i, const vbs_base_data *bd)
     st->nco += bd->nco;
     st->co_off[((size_t)i + 1) * nt] = (uint32_t)st->nco;
     return VB_OK;
-}
-
-double vbs_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-void vb_sampler_result_init(vb_sampler_result *r)
-{
-    memset(r, 0, sizeof *r);
-    vb_vertex_list_init(&r->candidates);
-}
-
-void vb_sampler_result_free(vb_sampler_result *r)
-{
-    vb_vertex_list_free(&r->candidates);
-    free(r->topo.faces);
-    free(r->topo.triples);
-    vb_sampler_result_init(r);
-}
-
-double vb_sampler_default_tol(const vb_sphere_set *set)
-{
-    double lo[3] = {set->x[0], set->y[0], set->z[0]}, hi[3] = {lo[0], lo[1], lo[2]};
-    for (size_t i = 0; i < set->n; i++) {
-        const double p[3] = {set->x[i] - set->r[i], set->y[i] - set->r[i], set->z[i] - set->r[i]};
-        const double q[3] = {set->x[i] + set->r[i], set->y[i] + set->r[i], set->z[i] + set->r[i]};
-        for (int a = 0; a < 3; a++) {
-            if (p[a] < lo[a])
-                lo[a] = p[a];
-            if (q[a] > hi[a])
-                hi[a] = q[a];
-        }
-    }
-    double d2 = 0.0;
-    for (int a = 0; a < 3; a++)
-        d2 += (hi[a] - lo[a]) * (hi[a] - lo[a]);
-    return 1e-5 * sqrt(d2);
 }
 
 /* Candidates in the order (base, grid cell, rank in cell): independent of the
@@ -311,7 +247,7 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
     vbs_bis_store store = {calloc(set->n + 1, sizeof(size_t)), NULL, 0, 0, coarse_t,
                            malloc((set->n * 6u * coarse_t * coarse_t + 1) * sizeof(uint32_t)),
                            NULL, 0, 0};
-    int nthreads = vbs_threads(o.threads);
+    int nthreads = vb_threads(o.threads);
     batch_buf bb;
     memset(&bb, 0, sizeof bb);
     vb_cand_vec raw = {0};
@@ -336,7 +272,7 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
     for (size_t b0 = 0, cur = 0; rc == VB_OK && b0 < set->n; b0 += per_batch, cur ^= 1) {
         size_t b1 = b0 + per_batch < set->n ? b0 + per_batch : set->n;
         vbs_base_data *sl = slots + cur * per_batch;
-        double t0 = vbs_now();
+        double t0 = vb_now();
         if (!pending) {
             bb.nbases = bb.nbis = bb.nidx = 0;
             bb.tile_off[0] = 0;
@@ -349,7 +285,7 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
             if (batch_add(&bb, set, (uint32_t)i, res->clip, &sl[i - b0], ntiles) ||
                 store_add(&store, (uint32_t)i, &sl[i - b0]))
                 rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (batch)");
-        res->times.cull += vbs_now() - t0;
+        res->times.cull += vb_now() - t0;
         if (rc != VB_OK)
             break;
         /* The device is still being set up: cull on, into the same batch. */
@@ -395,17 +331,17 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
     free(topo.triples);
     if (rc == VB_OK) {
         if (res->overflow)
-            vb_warn(ctx, 761, NULL, 0,
+            vb_warn(ctx, VB_W_CAND_OVERFLOW, NULL, 0,
                     "%llu candidate(s) did not fit the %d per grid cell; raise --samples",
                     (unsigned long long)res->overflow, VBS_MAX_CAND);
-        double t0 = vbs_now();
+        double t0 = vb_now();
         res->raw_candidates = raw.n;
-        rc = vbs_psort(raw.v, raw.n, sizeof *raw.v, cmp_cand, nthreads);
+        rc = vb_psort(raw.v, raw.n, sizeof *raw.v, cmp_cand, nthreads);
         if (rc != VB_OK)
             rc = vb_error(ctx, rc, NULL, 0, "out of memory (sorting candidates)");
         else
             rc = vbs_match(ctx, set, &cu, &params, o.target_depth, nthreads, &raw, res);
-        res->times.matching += vbs_now() - t0;
+        res->times.matching += vb_now() - t0;
     }
     vb_cand_vec_free(&raw);
     free(store.off);

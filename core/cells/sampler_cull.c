@@ -177,6 +177,27 @@ double vbs_clip_distance(const vb_sphere_set *set)
     return L;
 }
 
+/* The matching tolerance, and the rounding guards of the tangent tests
+ * scaled from it, follow the input's size as the clip distance does. */
+double vb_sampler_default_tol(const vb_sphere_set *set)
+{
+    double lo[3] = {set->x[0], set->y[0], set->z[0]}, hi[3] = {lo[0], lo[1], lo[2]};
+    for (size_t i = 0; i < set->n; i++) {
+        const double p[3] = {set->x[i] - set->r[i], set->y[i] - set->r[i], set->z[i] - set->r[i]};
+        const double q[3] = {set->x[i] + set->r[i], set->y[i] + set->r[i], set->z[i] + set->r[i]};
+        for (int a = 0; a < 3; a++) {
+            if (p[a] < lo[a])
+                lo[a] = p[a];
+            if (q[a] > hi[a])
+                hi[a] = q[a];
+        }
+    }
+    double d2 = 0.0;
+    for (int a = 0; a < 3; a++)
+        d2 += (hi[a] - lo[a]) * (hi[a] - lo[a]);
+    return 1e-5 * sqrt(d2);
+}
+
 /* Bisectors of base i with the spheres in bd->near, with |e|
  * of each kept beside it for the cone bounds. */
 static int make_bisectors(const vb_sphere_set *s, uint32_t i, vbs_base_data *bd)

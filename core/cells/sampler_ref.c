@@ -2,37 +2,9 @@
  * of vb_geom_shared.h called in loops, in the same order of operations. */
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "vb_parallel.h"
 #include "vb_sampler.h"
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-int vb_cand_vec_push(vb_cand_vec *cv, const vbs_cand *c)
-{
-    if (cv->n == cv->cap) {
-        size_t nc = cv->cap ? 2 * cv->cap : 1024;
-        vbs_cand *p = realloc(cv->v, nc * sizeof *p);
-        if (!p)
-            return VB_ENOMEM;
-        cv->v = p;
-        cv->cap = nc;
-    }
-    cv->v[cv->n++] = *c;
-    return VB_OK;
-}
-
-void vb_cand_vec_free(vb_cand_vec *cv)
-{
-    free(cv->v);
-    cv->v = NULL;
-    cv->n = cv->cap = 0;
-}
 
 /* The reference backend's state: the colour grid of the current batch. */
 typedef struct ref_state {
@@ -54,7 +26,7 @@ static int ref_run_batch(vb_ctx *ctx, vb_sampler_backend *be, const vb_sampler_b
         st->colours = c;
         st->cap = rays * b->nbases;
     }
-    double t0 = now();
+    double t0 = vb_now();
     for (size_t k = 0; k < b->nbases; k++) {
         uint32_t *col = st->colours + k * rays;
         for (vbs_u32 f = 0; f < 6u; f++)
@@ -63,7 +35,7 @@ static int ref_run_batch(vb_ctx *ctx, vb_sampler_backend *be, const vb_sampler_b
                     col[((size_t)f * S + iv) * S + iu] = vbs_ray_colour(
                         b->bases + k, b->bis, b->tile_off, b->tile_idx, T, S, f, iu, iv);
     }
-    double t1 = now();
+    double t1 = vb_now();
     vbs_u32 cells = 6u * (S - 1u) * (S - 1u);
     vbs_cand buf[VBS_MAX_CAND];
     for (size_t k = 0; k < b->nbases; k++) {
@@ -78,7 +50,7 @@ static int ref_run_batch(vb_ctx *ctx, vb_sampler_backend *be, const vb_sampler_b
                     return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (candidates)");
         }
     }
-    double t2 = now();
+    double t2 = vb_now();
     out->times->envelope += t1 - t0;
     out->times->vertices += t2 - t1;
     return VB_OK;
@@ -106,7 +78,7 @@ int vb_sampler_ref_open(vb_ctx *ctx, vb_sampler_backend **out)
     be->state = st;
     be->name = "ref";
     snprintf(be->device, sizeof be->device, "plain C reference (host CPU, 1 thread)");
-    be->batch_rays = 1u << 22;
+    be->batch_rays = vb_sampler_batch_rays(0);
     be->run_batch = ref_run_batch;
     be->close = ref_close;
     *out = be;

@@ -22,25 +22,21 @@
 #ifndef VB_GEOM_SHARED_H
 #define VB_GEOM_SHARED_H
 
+#include "vb_cl_compat.h"
+
 #ifdef __OPENCL_C_VERSION__
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
 #pragma OPENCL FP_CONTRACT OFF
-typedef uint vbs_u32;
-#define VBS_GLOBAL __global
-#define VBS_FN static inline
-#define VBS_SQRT sqrt
-#define VBS_FABS fabs
 #define VBS_ASSERT_LAYOUT(cond, msg)
 #else
 #include <math.h>
-#include <stdint.h>
-typedef uint32_t vbs_u32;
-#define VBS_GLOBAL
-#define VBS_FN static inline
-#define VBS_SQRT sqrt
-#define VBS_FABS fabs
 #define VBS_ASSERT_LAYOUT(cond, msg) _Static_assert(cond, msg)
 #endif
+typedef vb_u32 vbs_u32;
+#define VBS_GLOBAL VB_GLOBAL
+#define VBS_FN VB_SHARED_FN
+#define VBS_SQRT sqrt
+#define VBS_FABS fabs
 
 /* Colour of a ray that meets no bisector before the clip distance (Sec. 3.3:
  * the "bisector with infinity"). */

@@ -109,6 +109,12 @@ struct vb_sampler_backend {
     void (*close)(vb_sampler_backend *be);
 };
 
+/* The batch-size policy, one copy for every backend: rays per batch on a
+ * GPU (large launches) or on a CPU (the reference, or an OpenCL CPU device,
+ * gains little beyond a few million rays and keeps memory small). The
+ * output does not depend on it. */
+unsigned vb_sampler_batch_rays(int gpu);
+
 /* Opens the plain-C reference backend. Free with vb_sampler_backend_close. */
 int vb_sampler_ref_open(vb_ctx *ctx, vb_sampler_backend **out);
 

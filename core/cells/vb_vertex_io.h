@@ -47,13 +47,18 @@ const char *vb_vertex_status_name(int status);
 int vb_vertex_write(vb_ctx *ctx, FILE *f, const vb_vertex_list *v, vb_vertex_format fmt,
                     const char *comment);
 
+/* Largest vertex file read: the input layer's limit for sphere files. */
+#define VB_VERTEX_MAX_FILE_BYTES ((size_t)2 << 30)
+
 /* Reads a vertex file (path or "-"), detecting tsv / json / voronota by
  * content. Appends to *out (status CANDIDATE unless the file says otherwise);
  * *lines (may be NULL) gets a malloc'd array (caller frees) of the 1-based
  * source line of each appended vertex, indexed from the first one appended.
  * An empty file, or one with only '#' lines, is a tsv file of no vertices.
- * Errors: VB_EINPUT_MALFORMED / VB_EINPUT_NONFINITE with file:line, VB_EIO,
- * VB_ENOMEM; on error *out keeps what it had before the call. */
+ * Errors: VB_EINPUT_MALFORMED (also a line that names a sphere twice) /
+ * VB_EINPUT_NONFINITE with file:line, VB_EINPUT_TOOLARGE (a file over
+ * VB_VERTEX_MAX_FILE_BYTES), VB_EIO, VB_ENOMEM; on error *out keeps what it
+ * had before the call. */
 int vb_vertex_read_file(vb_ctx *ctx, const char *path, vb_vertex_list *out,
                         vb_vertex_format *detected, long **lines);
 

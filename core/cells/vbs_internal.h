@@ -1,31 +1,12 @@
-/* Internal to the sampling pipeline (core/sampler*.c, matching.c,
- * topology.c): the spatial hash of centres, the conservative culling of
- * bisectors into direction tiles, matching and topology evidence. */
+/* Internal to the sampling pipeline (core/cells/sampler*.c, the matching
+ * stage of vbs_match.h, topology.c): the spatial hash of centres, the
+ * conservative culling of bisectors into direction tiles, the tangent test,
+ * the entry of matching and the topology evidence. */
 #ifndef VBS_INTERNAL_H
 #define VBS_INTERNAL_H
 
+#include "vb_parallel.h"
 #include "vb_sampler.h"
-
-/* Host threads for the parallel stages: `requested` when positive, else the
- * environment variable VORBALL_THREADS when it is a positive integer, else
- * the online CPUs; at most VBS_MAX_THREADS. Results never depend on it. */
-#define VBS_MAX_THREADS 64
-int vbs_threads(unsigned requested);
-
-/* Monotonic wall clock in seconds (stage times). */
-double vbs_now(void);
-
-/* Runs fn on each of the n jobs (job_size bytes each, at most
- * VBS_MAX_THREADS), one thread each; the caller runs the first and any
- * whose thread could not be started. Returns when all have finished. */
-void vbs_run_jobs(void *(*fn)(void *), void *jobs, size_t job_size, int n);
-
-/* Sorts base[0..n) (elements of `size` bytes) on up to nthreads threads:
- * chunks by qsort, then merged. cmp must be a total order (ties broken by
- * an index), so the result is the one sorted array whatever nthreads is.
- * Returns VB_OK, or VB_ENOMEM with base unchanged. */
-int vbs_psort(void *base, size_t n, size_t size, int (*cmp)(const void *, const void *),
-              int nthreads);
 
 /* Uniform grid of sphere centres (CSR: cell k holds idx[start[k]..start[k+1])). */
 typedef struct vbs_hash {
@@ -165,9 +146,10 @@ int vbs_cull_base(vb_ctx *ctx, const vbs_culler *cu, uint32_t i, vbs_base_data *
 /* The clip distance derived from the input (world units). */
 double vbs_clip_distance(const vb_sphere_set *set);
 
-/* Matching (Sec. 5.4), targeted search (5.5) and the tangent-sphere test on
- * the sorted raw candidates, on nthreads threads (the result does not depend
- * on it); fills res->candidates and the counters. */
+/* Matching (Sec. 5.4), targeted search (5.5), the tangent-sphere test and
+ * our completions on the sorted raw candidates (matching.c runs the phases
+ * of vbs_match.h), on nthreads threads (the result does not depend on it);
+ * fills res->candidates and the counters. */
 int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
               const vbs_params *params, unsigned target_depth, int nthreads,
               vb_cand_vec *raw, vb_sampler_result *res);

@@ -7,6 +7,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 /* Reading state shared by the three parsers. */
 typedef struct {
@@ -35,6 +36,12 @@ static int push_id(reader *r, uint32_t id)
 
 static int push_vertex(reader *r, long line, const double p[4], int status)
 {
+    /* A vertex names each of its spheres once: a repeat is a broken writer. */
+    for (size_t a = 1; a < r->nids; a++)
+        for (size_t b = 0; b < a; b++)
+            if (r->ids[a] == r->ids[b])
+                return vb_error(r->ctx, VB_EINPUT_MALFORMED, r->name, line,
+                                "sphere %u is named twice", (unsigned)r->ids[a]);
     if (r->nlines == r->lines_cap) {
         size_t cap = r->lines_cap ? 2 * r->lines_cap : 64;
         long *l = realloc(r->lines, cap * sizeof *l);
@@ -512,6 +519,12 @@ int vb_vertex_read_buffer(vb_ctx *ctx, const char *name, const char *buf, size_t
     return VB_OK;
 }
 
+static int too_large(vb_ctx *ctx, const char *path)
+{
+    return vb_error(ctx, VB_EINPUT_TOOLARGE, path, 0, "vertex file is larger than %zu MiB",
+                    VB_VERTEX_MAX_FILE_BYTES >> 20);
+}
+
 int vb_vertex_read_file(vb_ctx *ctx, const char *path, vb_vertex_list *out,
                         vb_vertex_format *detected, long **lines)
 {
@@ -522,9 +535,20 @@ int vb_vertex_read_file(vb_ctx *ctx, const char *path, vb_vertex_list *out,
     char *buf = NULL;
     size_t len = 0, cap = 0;
     int rc = VB_OK;
-    for (;;) {
+    struct stat st;
+    /* A regular file says its size; a pipe is cut one byte past the limit. */
+    if (fstat(fileno(f), &st) == 0 && S_ISREG(st.st_mode) &&
+        (uint64_t)st.st_size > VB_VERTEX_MAX_FILE_BYTES)
+        rc = too_large(ctx, path);
+    for (; rc == VB_OK;) {
+        if (len > VB_VERTEX_MAX_FILE_BYTES) {
+            rc = too_large(ctx, path);
+            break;
+        }
         if (len == cap) {
             size_t ncap = cap ? 2 * cap : 65536;
+            if (ncap > VB_VERTEX_MAX_FILE_BYTES + 1)
+                ncap = VB_VERTEX_MAX_FILE_BYTES + 1;
             char *p = realloc(buf, ncap);
             if (!p) {
                 rc = vb_error(ctx, VB_ENOMEM, path, 0, "out of memory reading vertices");

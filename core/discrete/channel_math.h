@@ -9,16 +9,11 @@
 #ifndef VBC_CHANNEL_MATH_H
 #define VBC_CHANNEL_MATH_H
 
-#ifdef __OPENCL_C_VERSION__
-#define VBC_INLINE inline
-#define VBC_GLOBAL __global
-typedef uchar vbc_u8;
-#else
-#include <stdint.h>
-#define VBC_INLINE static inline
-#define VBC_GLOBAL
-typedef uint8_t vbc_u8;
-#endif
+#include "vb_cl_compat.h"
+
+#define VBC_INLINE VB_SHARED_FN
+#define VBC_GLOBAL VB_GLOBAL
+typedef vb_u8 vbc_u8;
 
 /* Bits of the per-voxel flag byte written by the mask stage. */
 #define VBC_F_ATOMIC 1u   /* inside a ball of radius r_atom + r_solvent (AM) */

@@ -56,7 +56,9 @@ static void emit_csv(FILE *f, const char *label, int index)
 
 static void emit_json(FILE *f, const char *label, int index)
 {
-    fprintf(f, "%s\"%s\"", index ? "," : "", label);
+    if (index)
+        fputc(',', f);
+    vb_json_write_string(f, label);
 }
 
 void vbc_write_csv_header(FILE *f)
@@ -78,7 +80,19 @@ void vbc_write_csv_rows(FILE *f, const vbc_frame_info *fi, const vbc_grid *g,
                 fi->frame, fi->model, t + 1, kind_name(c->kind), c->through, c->length, c->bottleneck, b->x, b->y,
                 b->z, p->x, p->y, p->z, e->x, e->y, e->z, c->voxels, (double)c->voxels * v1, c->mouths,
                 c->npoints, c->nlining);
-        each_residue(s, res, c, emit_csv, f);
+        /* The residues are one field: names may hold commas or quotes. */
+        char *field = NULL;
+        size_t len = 0;
+        FILE *m = open_memstream(&field, &len);
+        if (m) {
+            each_residue(s, res, c, emit_csv, m);
+            fclose(m);
+        }
+        if (field)
+            vb_csv_write_field(f, field);
+        else /* no memory for the field: the names as they are */
+            each_residue(s, res, c, emit_csv, f);
+        free(field);
         fputc('\n', f);
     }
 }

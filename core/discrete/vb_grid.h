@@ -11,26 +11,16 @@
 #ifndef VB_GRID_H
 #define VB_GRID_H
 
-#ifdef __OPENCL_C_VERSION__
-typedef int vbj_i32;
-typedef uint vbj_u32;
-typedef long vbj_i64;
-typedef ulong vbj_u64;
-#define VBJ_FN static inline
-#define VBJ_GLOBAL __global
-#define VBJ_I64_MAX LONG_MAX
-#define VBJ_U64_MAX ULONG_MAX
-#else
-#include <stdint.h>
-typedef int32_t vbj_i32;
-typedef uint32_t vbj_u32;
-typedef int64_t vbj_i64;
-typedef uint64_t vbj_u64;
-#define VBJ_FN static inline
-#define VBJ_GLOBAL
-#define VBJ_I64_MAX INT64_MAX
-#define VBJ_U64_MAX UINT64_MAX
-#endif
+#include "vb_cl_compat.h"
+
+typedef vb_i32 vbj_i32;
+typedef vb_u32 vbj_u32;
+typedef vb_i64 vbj_i64;
+typedef vb_u64 vbj_u64;
+#define VBJ_FN VB_SHARED_FN
+#define VBJ_GLOBAL VB_GLOBAL
+#define VBJ_I64_MAX VB_I64_MAX
+#define VBJ_U64_MAX VB_U64_MAX
 
 #define VBJ_FIX_BITS 16
 #define VBJ_FIX_ONE 65536

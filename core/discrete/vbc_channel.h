@@ -24,7 +24,9 @@ typedef struct vbc_grid {
     double h;         /* voxel edge, Å */
 } vbc_grid;
 
-/* Fits an n^dim grid of cubic voxels around the spheres grown by `probe`,
+/* Fits an n^dim grid of cubic voxels around the spheres grown by `probe`
+ * (voxel i has its centre at i + 0.5; the JFA fit, vbj_fit_grid, says why
+ * its pixels differ),
  * with two voxels of empty margin on every side so every axis ray starts and
  * ends outside the atomic mask. VB_EMISUSE for n < 8 or n > 1024, dim not 2/3
  * or a negative probe; VB_EINPUT_EMPTY for an empty set. */

@@ -3,6 +3,7 @@
  * element guesses from atom names, and the one-line reports of what was left
  * out. */
 #include "vbi_input.h"
+#include "vb_diag.h"
 
 #include <ctype.h>
 #include <string.h>
@@ -98,31 +99,31 @@ int vbi_zero_radius_skip(int policy, vb_decimal r, vbi_dropped *dr)
 void vbi_report_dropped(vb_ctx *ctx, const char *name, const vbi_dropped *dr)
 {
     if (dr->water)
-        vb_warn(ctx, 703, name, 0, "%zu water atom%s dropped (--water keeps them)", dr->water,
+        vb_warn(ctx, VB_W_WATER_DROPPED, name, 0, "%zu water atom%s dropped (--water keeps them)", dr->water,
                 dr->water == 1 ? "" : "s");
     if (dr->altloc)
-        vb_warn(ctx, 704, name, 0,
+        vb_warn(ctx, VB_W_ALTLOC_DROPPED, name, 0,
                 "%zu atom%s of other alternate locations dropped (first location kept)",
                 dr->altloc, dr->altloc == 1 ? "" : "s");
     if (dr->other_models)
-        vb_warn(ctx, 705, name, 0, "%zu atom%s of %zu other model%s ignored (--model N)",
+        vb_warn(ctx, VB_W_MODELS_IGNORED, name, 0, "%zu atom%s of %zu other model%s ignored (--model N)",
                 dr->other_models, dr->other_models == 1 ? "" : "s", dr->other_model_count,
                 dr->other_model_count == 1 ? "" : "s");
     if (dr->hydrogens)
-        vb_warn(ctx, 706, name, 0, "%zu hydrogen atom%s dropped (--no-hydrogens)", dr->hydrogens,
+        vb_warn(ctx, VB_W_HYDROGENS_DROPPED, name, 0, "%zu hydrogen atom%s dropped (--no-hydrogens)", dr->hydrogens,
                 dr->hydrogens == 1 ? "" : "s");
     if (dr->after_end)
-        vb_warn(ctx, 710, name, 0, "%zu atom record%s after the END record ignored", dr->after_end,
+        vb_warn(ctx, VB_W_AFTER_END, name, 0, "%zu atom record%s after the END record ignored", dr->after_end,
                 dr->after_end == 1 ? "" : "s");
     if (dr->zero_dropped)
-        vb_warn(ctx, 712, name, 0, "%zu sphere%s of radius 0 dropped (--zero-radius drop)",
+        vb_warn(ctx, VB_W_ZERO_DROPPED, name, 0, "%zu sphere%s of radius 0 dropped (--zero-radius drop)",
                 dr->zero_dropped, dr->zero_dropped == 1 ? "" : "s");
     if (dr->zero_points)
-        vb_warn(ctx, 713, name, 0,
+        vb_warn(ctx, VB_W_ZERO_POINTS, name, 0,
                 "%zu sphere%s of radius 0 kept as point sites (--zero-radius error|drop to change)",
                 dr->zero_points, dr->zero_points == 1 ? "" : "s");
     if (dr->unknown_elements > 1)
-        vb_warn(ctx, 708, name, 0, "%zu atoms in all had an unknown element and radius 1.70",
+        vb_warn(ctx, VB_W_ELEMENT_UNKNOWN_COUNT, name, 0, "%zu atoms in all had an unknown element and radius 1.70",
                 dr->unknown_elements);
 }
 

@@ -8,6 +8,7 @@
  * Deuterium takes hydrogen's radius. Unknown elements get 1.70 (carbon) with
  * a warning, or are refused in strict mode. */
 #include "vbi_input.h"
+#include "vb_diag.h"
 
 #include <ctype.h>
 #include <stdlib.h>
@@ -63,7 +64,7 @@ int vbi_radius_for(vb_ctx *ctx, const vb_read_options *opt, const char *name, lo
         return vb_error(ctx, VB_EINPUT_ELEMENT, name, line,
                         "unknown element '%s' (no radius; --radii FILE supplies one)", element);
     if ((*unknown)++ == 0)
-        vb_warn(ctx, 707, name, line, "unknown element '%s': radius %s used", element,
+        vb_warn(ctx, VB_W_ELEMENT_UNKNOWN, name, line, "unknown element '%s': radius %s used", element,
                 default_radius);
     vb_decimal_parse(default_radius, strlen(default_radius), e, d);
     return VB_OK;

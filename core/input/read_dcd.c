@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "vb_dcd.h"
+#include "vb_diag.h"
 
 struct vb_dcd {
     FILE *f;
@@ -255,7 +256,7 @@ int vb_dcd_next(vb_ctx *ctx, vb_dcd *d, double *x, double *y, double *z, double 
     return VB_OK;
 bad:
     if (r == -1 || r == 0) {
-        vb_warn(ctx, 801, d->path, 0, "DCD ends inside frame %ld; the partial frame is ignored",
+        vb_warn(ctx, VB_W_DCD_PARTIAL_FRAME, d->path, 0, "DCD ends inside frame %ld; the partial frame is ignored",
                 d->frame + 1);
         return VB_OK;
     }

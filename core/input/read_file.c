@@ -1,8 +1,7 @@
-/* Entry points of the input layer: file or stdin into one buffer (with a
- * size limit), format detection or the forced format, then the reader. */
+/* Entry points of the input layer: the whole input in one buffer
+ * (slurp.c), format detection or the forced format, then the reader. */
 #include "vbi_input.h"
 
-#include <errno.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -29,53 +28,6 @@ int vbi_detect_error(vb_ctx *ctx, const char *name, int rc)
         return vb_error(ctx, rc, name, 0, "empty input (no spheres)");
     return vb_error(ctx, rc, name, 0,
                     "format not recognised (not XYZR, PDB, PQR or mmCIF); --format names it");
-}
-
-int vbi_slurp(vb_ctx *ctx, const char *path, char **buf, size_t *len)
-{
-    *buf = NULL;
-    *len = 0;
-    int is_stdin = strcmp(path, "-") == 0;
-    FILE *f = is_stdin ? stdin : fopen(path, "rb");
-    if (!f)
-        return vb_error(ctx, VB_EIO, path, 0, "cannot open: %s", strerror(errno));
-    /* One byte past the limit is enough to know the input is too large. */
-    size_t cap = 1 << 16, n = 0;
-    char *b = malloc(cap + 1);
-    int rc = VB_OK;
-    while (b && rc == VB_OK) {
-        size_t got = fread(b + n, 1, cap - n, f);
-        n += got;
-        if (n > VBI_MAX_FILE_BYTES)
-            rc = vb_error(ctx, VB_EINPUT_TOOLARGE, path, 0, "input is larger than 2 GiB");
-        else if (got == 0)
-            break;
-        else if (n == cap) {
-            size_t ncap = cap > VBI_MAX_FILE_BYTES / 2 ? VBI_MAX_FILE_BYTES + 1 : 2 * cap;
-            char *nb = realloc(b, ncap + 1);
-            if (!nb) {
-                free(b);
-                b = NULL;
-            } else {
-                b = nb;
-                cap = ncap;
-            }
-        }
-    }
-    if (rc == VB_OK && !b)
-        rc = vb_error(ctx, VB_ENOMEM, path, 0, "out of memory reading the input");
-    else if (rc == VB_OK && ferror(f))
-        rc = vb_error(ctx, VB_EIO, path, 0, "read error: %s", strerror(errno));
-    if (!is_stdin)
-        fclose(f);
-    if (rc != VB_OK) {
-        free(b);
-        return rc;
-    }
-    b[n] = '\0';
-    *buf = b;
-    *len = n;
-    return VB_OK;
 }
 
 /* A PDB or PQR parse over the whole buffer, then the one-line reports of

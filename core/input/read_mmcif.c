@@ -4,6 +4,7 @@
  * present (they match the PDB file), else label_*. */
 #include "vbi_cif.h"
 #include "vbi_input.h"
+#include "vb_diag.h"
 
 #include <ctype.h>
 #include <stdlib.h>
@@ -241,7 +242,7 @@ int vbi_mmcif_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len,
             continue;
         if (found) {
             /* A second block's atoms are another structure, not more of this one. */
-            vb_warn(ctx, 711, name, t.line, "a further _atom_site loop (another data block) ignored");
+            vb_warn(ctx, VB_W_CIF_BLOCK_IGNORED, name, t.line, "a further _atom_site loop (another data block) ignored");
             break;
         }
         found = 1;
@@ -256,7 +257,7 @@ int vbi_mmcif_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len,
     if (rc != VB_OK)
         return rc;
     if (r.truncated)
-        vb_warn(ctx, 709, name, r.truncated_line,
+        vb_warn(ctx, VB_W_NAMES_TRUNCATED, name, r.truncated_line,
                 "atom, residue or chain names longer than 7 characters were truncated");
     if (serial)
         *serial = r.models.taken_serial;

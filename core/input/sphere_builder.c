@@ -23,6 +23,30 @@ void vb_spheres_free(vb_sphere_set *s)
     free(s);
 }
 
+int vb_spheres_new(vb_ctx *ctx, const char *name, size_t n, int with_info, vb_sphere_set **out)
+{
+    *out = NULL;
+    vb_sphere_set *s = calloc(1, sizeof *s);
+    size_t m = n ? n : 1;
+    if (s) {
+        s->n = n;
+        s->x = calloc(m, sizeof *s->x);
+        s->y = calloc(m, sizeof *s->y);
+        s->z = calloc(m, sizeof *s->z);
+        s->r = calloc(m, sizeof *s->r);
+        s->line = calloc(m, sizeof *s->line);
+        s->info = with_info ? calloc(m, sizeof *s->info) : NULL;
+        s->source = strdup(name ? name : "<spheres>");
+    }
+    if (!s || !s->x || !s->y || !s->z || !s->r || !s->line || (with_info && !s->info) ||
+        !s->source) {
+        vb_spheres_free(s);
+        return vb_error(ctx, VB_ENOMEM, name, 0, "out of memory for %zu spheres", n);
+    }
+    *out = s;
+    return VB_OK;
+}
+
 int vbi_builder_init(vbi_builder *b, vb_ctx *ctx, const char *name, size_t max, int with_info)
 {
     memset(b, 0, sizeof *b);

@@ -2,6 +2,7 @@
  * duplicates (sort, O(n log n)) and contained spheres (uniform grid, then a
  * filtered exact predicate). */
 #include "vb_spheres.h"
+#include "vb_diag.h"
 
 #include <float.h>
 #include <gmp.h>
@@ -304,12 +305,12 @@ static int find_contained(vb_ctx *ctx, vb_sphere_set *s)
             continue;
         s->contained[i] = 1;
         if (count++ < VBI_CONTAINED_SHOWN)
-            vb_warn(ctx, 701, s->source, s->line[i],
+            vb_warn(ctx, VB_W_CONTAINED, s->source, s->line[i],
                     "sphere %zu lies inside sphere %zu (line %ld): its cell is empty", i, by[i],
                     s->line[by[i]]);
     }
     if (count > VBI_CONTAINED_SHOWN)
-        vb_warn(ctx, 702, s->source, 0, "%zu spheres in all lie inside another sphere", count);
+        vb_warn(ctx, VB_W_CONTAINED_COUNT, s->source, 0, "%zu spheres in all lie inside another sphere", count);
     free(by);
     return VB_OK;
 }

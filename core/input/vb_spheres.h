@@ -102,6 +102,21 @@ int vb_spheres_read_buffer(vb_ctx *ctx, const char *name, const char *buf, size_
  * indices stay stable. Decided exactly on the decimals. */
 int vb_spheres_validate(vb_ctx *ctx, vb_sphere_set *set, size_t min_count);
 
+/* A set of n spheres built in memory (a frame of a binary trajectory, a
+ * planar cut): x, y, z, r and line zeroed, info zeroed when with_info,
+ * source a copy of name. It has no exact decimals (ex .. er NULL), so it is
+ * not Voronoi input for the exact side (vb_spheres_validate needs them).
+ * VB_OK or VB_ENOMEM; free with vb_spheres_free. */
+int vb_spheres_new(vb_ctx *ctx, const char *name, size_t n, int with_info, vb_sphere_set **out);
+
+/* Reads `path` ("-" = stdin) with the options (radii_path, when not NULL,
+ * a radii table file to load for it instead of ro->radii) and validates
+ * the set with vb_spheres_validate(min_count). On success *out owns the set
+ * (free with vb_spheres_free); on failure *out is NULL and the status says
+ * why (message in the context). */
+int vb_spheres_load(vb_ctx *ctx, const char *path, const vb_read_options *ro,
+                    const char *radii_path, size_t min_count, vb_sphere_set **out);
+
 /* Frees a set; NULL is allowed. */
 void vb_spheres_free(vb_sphere_set *set);
 

@@ -102,7 +102,7 @@ int main(void)
     if (vb_open(&ctx, NULL) != VB_OK)
         return 1;
     vbg_runtime *rt = NULL;
-    int rc = vbg_runtime_open(ctx, VBG_DEVICE_AUTO, &rt);
+    int rc = vbg_runtime_open(ctx, VB_DEVICE_AUTO, &rt);
     CHECK_INT(rc, VB_OK);
     if (rc != VB_OK) {
         fprintf(stderr, "no OpenCL device: %s\n", vb_errmsg(ctx));

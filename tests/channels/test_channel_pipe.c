@@ -6,6 +6,7 @@
 #include "synth.h"
 #include "vb_test.h"
 #include "vbc_channel_pipe.h"
+#include "vbg_runtime.h"
 
 static int cmp_u32(const void *a, const void *b)
 {
@@ -80,7 +81,7 @@ static void compare(vb_ctx *ctx, vbc_pipe *ocl, vbc_pipe *ref, const vb_sphere_s
 static void fault(vb_ctx *ctx, vbc_pipe *ref, const vb_sphere_set *cyl, FILE *diag)
 {
     vbc_pipe *p;
-    CHECK_INT(vbc_pipe_open(ctx, VBG_DEVICE_AUTO, VBJ_FACET, &p), VB_OK);
+    CHECK_INT(vbc_pipe_open(ctx, &vbg_device_layer, VB_DEVICE_AUTO, VBJ_FACET, &p), VB_OK);
     vbc_pipe_inject_device_fault(p, 2);
     uint64_t w0 = vb_ctx_stats(ctx)->warnings;
     long at = ftell(diag);
@@ -117,7 +118,7 @@ int main(void)
     if (!diag || vb_open(&ctx, &cfg) != VB_OK)
         return 1;
     vbc_pipe *ref = NULL, *ocl = NULL;
-    CHECK_INT(vbc_pipe_open(ctx, VBG_DEVICE_REF, VBJ_FACET, &ref), VB_OK);
+    CHECK_INT(vbc_pipe_open(ctx, &vbg_device_layer, VB_DEVICE_REF, VBJ_FACET, &ref), VB_OK);
     CHECK_STR(vbc_pipe_device_name(ref), "reference (C)");
     vb_sphere_set *cyl = synth_cylinder(8, 12, 6.0, 1.6, 2.6);
     vb_sphere_set *shell = synth_shell(240, 9.0, 1.6);
@@ -125,8 +126,8 @@ int main(void)
     vbj_variant variants[2] = {VBJ_FACET, VBJ_JFA1};
     for (int t = 0; t < 2; t++) {
         vbc_pipe *r = NULL;
-        CHECK_INT(vbc_pipe_open(ctx, VBG_DEVICE_AUTO, variants[t], &ocl), VB_OK);
-        CHECK_INT(vbc_pipe_open(ctx, VBG_DEVICE_REF, variants[t], &r), VB_OK);
+        CHECK_INT(vbc_pipe_open(ctx, &vbg_device_layer, VB_DEVICE_AUTO, variants[t], &ocl), VB_OK);
+        CHECK_INT(vbc_pipe_open(ctx, &vbg_device_layer, VB_DEVICE_REF, variants[t], &r), VB_OK);
         /* This test compares backends: it needs OpenCL (PoCL in CI). */
         CHECK(ocl && !vbc_pipe_is_ref(ocl));
         if (!ocl || !r || vbc_pipe_is_ref(ocl)) {

@@ -2,6 +2,7 @@
 #include <stdlib.h>
 
 #include "vb.h"
+#include "vb_diag.h"
 #include "vb_test.h"
 #include "vb_vertex.h"
 
@@ -28,13 +29,31 @@ static void test_warnings_counted(void)
     vb_config cfg = {.verbosity = 1, .diag = sink};
     vb_ctx *ctx;
     CHECK_INT(vb_open(&ctx, &cfg), VB_OK);
-    vb_warn(ctx, 701, "x.pdb", 3, "sphere %d is contained", 2);
+    vb_warn(ctx, VB_W_CONTAINED, "x.pdb", 3, "sphere %d is contained", 2);
     CHECK_INT(vb_ctx_stats(ctx)->warnings, 1);
     rewind(sink);
     char buf[128] = {0};
     CHECK(fgets(buf, sizeof buf, sink) != NULL);
     CHECK_STR(buf, "vorball: W701: x.pdb:3: sphere 2 is contained\n");
     fclose(sink);
+    vb_close(ctx);
+}
+
+/* The misuse guard: a NULL context is caught, never dereferenced. */
+static void test_misuse(void)
+{
+    CHECK_INT(vb_ctx_check(NULL), VB_EMISUSE);
+    CHECK_INT(vb_warn(NULL, VB_W_CONTAINED, "x.pdb", 3, "sphere %d", 2), VB_EMISUSE);
+    CHECK_INT(vb_errcode(NULL), VB_EMISUSE);
+    CHECK_INT(vb_error(NULL, VB_EINPUT, NULL, 0, "no context"), VB_EINPUT);
+    CHECK(vb_ctx_stats(NULL) == NULL);
+    CHECK(vb_errmsg(NULL)[0] != '\0');
+    vb_clear_error(NULL);
+    vb_info(NULL, "nothing");
+    vb_close(NULL);
+    vb_ctx *ctx;
+    CHECK_INT(vb_open(&ctx, NULL), VB_OK);
+    CHECK_INT(vb_ctx_check(ctx), VB_OK);
     vb_close(ctx);
 }
 
@@ -60,6 +79,7 @@ int main(void)
 {
     test_errors();
     test_warnings_counted();
+    test_misuse();
     test_vertex_sort();
     VB_TEST_END();
 }

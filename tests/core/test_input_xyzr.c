@@ -3,7 +3,7 @@
  * CLI input options. */
 #include <float.h>
 
-#include "input_options.h"
+#include "vb_spheres.h"
 #include "input_test_util.h"
 
 static void test_decimal(void)
@@ -235,65 +235,25 @@ static void test_contained_grid(void)
     vb_close(ctx);
 }
 
-static void test_cli_options(void)
+/* The one read-and-check call every command uses (the option parsing of
+ * the CLI is tested through the command: tests/pipeline/input_options.sh). */
+static void test_load(void)
 {
-    vb_cli_input_opts o;
-    vb_cli_input_defaults(&o);
-    char *argv[] = {"vertices", "--format", "pdb", "--model", "3", "--radii", "r.txt",
-                    "--water", "--no-hydrogens", "--strict-elements", "-o", "x", "--model"};
-    int argc = 13, i = 1;
-    CHECK_INT(vb_cli_input_option(&o, argc, argv, &i), 1);
-    CHECK_INT(i, 2);
-    CHECK_INT(o.format, VB_FMT_PDB);
-    i = 3;
-    CHECK_INT(vb_cli_input_option(&o, argc, argv, &i), 1);
-    CHECK_INT(o.model, 3);
-    i = 5;
-    CHECK_INT(vb_cli_input_option(&o, argc, argv, &i), 1);
-    CHECK_STR(o.radii_path, "r.txt");
-    for (i = 7; i <= 9; i++)
-        CHECK_INT(vb_cli_input_option(&o, argc, argv, &i), 1);
-    CHECK(o.keep_water && o.drop_hydrogens && o.strict_elements);
-    i = 10;
-    CHECK_INT(vb_cli_input_option(&o, argc, argv, &i), 0);
-    CHECK_INT(i, 10);
-    i = 12; /* --model without a value */
-    CHECK_INT(vb_cli_input_option(&o, argc, argv, &i), -1);
-    char *bad[] = {"jfa", "--format", "gro", "--model", "0", "--model", "x2"};
-    i = 1;
-    CHECK_INT(vb_cli_input_option(&o, 7, bad, &i), -1);
-    i = 3;
-    CHECK_INT(vb_cli_input_option(&o, 7, bad, &i), -1);
-    i = 5;
-    CHECK_INT(vb_cli_input_option(&o, 7, bad, &i), -1);
-
-    FILE *f = tmpfile();
-    vb_cli_input_help(f);
-    rewind(f);
-    char help[2048] = {0};
-    CHECK(fread(help, 1, sizeof help - 1, f) > 0);
-    fclose(f);
-    const char *names[] = {"--format F", "--model N", "--radii FILE", "--water",
-                           "--no-hydrogens", "--strict-elements"};
-    for (int k = 0; k < 6; k++)
-        CHECK(strstr(help, names[k]) != NULL);
-
+    vb_read_options ro;
+    memset(&ro, 0, sizeof ro);
     vb_ctx *ctx = open_ctx(NULL);
-    vb_cli_input_defaults(&o);
     const char *path = temp_file(four);
     char path_copy[64];
     strcpy(path_copy, path);
     vb_sphere_set *s = NULL;
-    CHECK_INT(vb_cli_load_spheres(ctx, path_copy, &o, 4, &s), VB_OK);
+    CHECK_INT(vb_spheres_load(ctx, path_copy, &ro, NULL, 4, &s), VB_OK);
     CHECK(s && s->n == 4 && s->contained && s->contained[3] == 0);
     vb_spheres_free(s);
-    CHECK_ERROR(ctx, vb_cli_load_spheres(ctx, path_copy, &o, 5, &s), VB_EINPUT_TOOFEW, path_copy);
+    CHECK_ERROR(ctx, vb_spheres_load(ctx, path_copy, &ro, NULL, 5, &s), VB_EINPUT_TOOFEW, path_copy);
     CHECK(s == NULL);
-    o.radii_path = "/nonexistent/radii.txt";
-    CHECK_ERROR(ctx, vb_cli_load_spheres(ctx, path_copy, &o, 4, &s), VB_EIO,
+    CHECK_ERROR(ctx, vb_spheres_load(ctx, path_copy, &ro, "/nonexistent/radii.txt", 4, &s), VB_EIO,
                 "/nonexistent/radii.txt");
-    o.radii_path = NULL;
-    CHECK_ERROR(ctx, vb_cli_load_spheres(ctx, "/nonexistent/in.xyzr", &o, 4, &s), VB_EIO,
+    CHECK_ERROR(ctx, vb_spheres_load(ctx, "/nonexistent/in.xyzr", &ro, NULL, 4, &s), VB_EIO,
                 "/nonexistent/in.xyzr");
     remove(path_copy);
     vb_close(ctx);
@@ -306,6 +266,6 @@ int main(void)
     test_errors();
     test_contained();
     test_contained_grid();
-    test_cli_options();
+    test_load();
     VB_TEST_END();
 }

@@ -1,4 +1,4 @@
-/* vbs_psort (core/parallel.c): the same array as qsort for every thread count, on sizes
+/* vb_psort (core/parallel.c): the same array as qsort for every thread count, on sizes
  * around the threshold where it starts using threads, with repeated keys
  * (ties broken by an index, as its callers do), and stable on equal
  * elements. */
@@ -6,7 +6,7 @@
 #include <stdlib.h>
 
 #include "vb_test.h"
-#include "vbs_internal.h"
+#include "vb_parallel.h"
 
 typedef struct item {
     uint32_t key, idx;
@@ -48,12 +48,12 @@ int main(void)
         qsort(ref, n, sizeof *ref, cmp_item);
         for (size_t ti = 0; ti < sizeof threads / sizeof *threads; ti++) {
             memcpy(got, orig, n * sizeof *got);
-            CHECK_INT(vbs_psort(got, n, sizeof *got, cmp_item, threads[ti]), VB_OK);
+            CHECK_INT(vb_psort(got, n, sizeof *got, cmp_item, threads[ti]), VB_OK);
             CHECK(memcmp(got, ref, n * sizeof *got) == 0);
             /* Key-only order: sorted by key, and equal keys keep their
              * input order (the idx of the input). */
             memcpy(got, orig, n * sizeof *got);
-            CHECK_INT(vbs_psort(got, n, sizeof *got, cmp_key, threads[ti]), VB_OK);
+            CHECK_INT(vb_psort(got, n, sizeof *got, cmp_key, threads[ti]), VB_OK);
             size_t bad = 0;
             for (size_t k = 1; k < n; k++)
                 bad += got[k - 1].key > got[k].key ||

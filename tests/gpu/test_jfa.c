@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "vb_test.h"
-#include "vbj_jfa.h"
+#include "vbg_jfa.h"
 
 static const vbj_variant all_variants[] = {VBJ_JFA,   VBJ_JFA1,  VBJ_JFA2,
                                            VBJ_1JFA,  VBJ_FACET, VBJ_FACET_FULL};
@@ -34,17 +34,17 @@ static void brute(const vbj_seeds *s, uint32_t *out)
     }
 }
 
-static int run(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, vbj_variant v, vbj_result *r)
+static int run(vb_ctx *ctx, vbj_backend *e, const vbj_seeds *s, vbj_variant v, vbj_result *r)
 {
     vbj_options o = {v, 0, VBJ_WANT_LABELS, 0};
     int rc = vbj_run(ctx, e, s, &o, r);
     if (rc)
         fprintf(stderr, "vbj_run %s on %s: %s\n", vbj_variant_name(v),
-                vbj_engine_device_name(e), vb_errmsg(ctx));
+                e->device, vb_errmsg(ctx));
     return rc;
 }
 
-static void two_seeds(vb_ctx *ctx, vbj_engine *e, int dim, uint32_t n)
+static void two_seeds(vb_ctx *ctx, vbj_backend *e, int dim, uint32_t n)
 {
     vbj_seeds s;
     CHECK_INT(vbj_seeds_alloc(ctx, dim, n, 2, &s), VB_OK);
@@ -74,7 +74,7 @@ static void two_seeds(vb_ctx *ctx, vbj_engine *e, int dim, uint32_t n)
  * can repair): exact == brute force; each variant's error bounded;
  * Facet-JFA from a given coarse m equals its uncompacted run and its unmarked
  * pixels are exactly the boundary pixels of its diagram. */
-static void random_seeds(vb_ctx *ctx, vbj_engine *e, int dim, uint32_t n, size_t k,
+static void random_seeds(vb_ctx *ctx, vbj_backend *e, int dim, uint32_t n, size_t k,
                          vbj_distribution dist, uint64_t rng)
 {
     vbj_seeds s;
@@ -126,7 +126,7 @@ static void random_seeds(vb_ctx *ctx, vbj_engine *e, int dim, uint32_t n, size_t
 }
 
 /* The OpenCL kernels against the C reference: same labels, same counts. */
-static void backends_agree(vb_ctx *ctx, vbj_engine *ref, vbj_engine *cl, int dim, uint32_t n,
+static void backends_agree(vb_ctx *ctx, vbj_backend *ref, vbj_backend *cl, int dim, uint32_t n,
                            size_t k, vbj_distribution dist)
 {
     vbj_seeds s;
@@ -184,7 +184,7 @@ static size_t lattice(vb_ctx *ctx, int dim, uint32_t n, int jitter, vbj_seeds *s
 }
 
 /* Every variant (all), or JFA+1 and Facet-JFA only (for large grids). */
-static void ties(vb_ctx *ctx, vbj_engine *ref, vbj_engine *cl, int dim, uint32_t n, int all,
+static void ties(vb_ctx *ctx, vbj_backend *ref, vbj_backend *cl, int dim, uint32_t n, int all,
                  int jitter)
 {
     static const vbj_variant some[] = {VBJ_JFA1, VBJ_FACET};
@@ -207,7 +207,7 @@ static void ties(vb_ctx *ctx, vbj_engine *ref, vbj_engine *cl, int dim, uint32_t
 }
 
 /* 65535 seeds or more take the 32-bit label kernels on the device. */
-static void wide_labels(vb_ctx *ctx, vbj_engine *ref, vbj_engine *cl)
+static void wide_labels(vb_ctx *ctx, vbj_backend *ref, vbj_backend *cl)
 {
     vbj_seeds s;
     CHECK_INT(vbj_seeds_generate(ctx, 2, 512, 70000, VBJ_DIST_UNIFORM, 5, &s), VB_OK);
@@ -225,7 +225,7 @@ static void wide_labels(vb_ctx *ctx, vbj_engine *ref, vbj_engine *cl)
 
 /* Grids past the exact range of doubles (2D n > 1024) take the kernels with
  * 64-bit integer distances: the same labels as the reference there too. */
-static void integer_distances(vb_ctx *ctx, vbj_engine *ref, vbj_engine *cl)
+static void integer_distances(vb_ctx *ctx, vbj_backend *ref, vbj_backend *cl)
 {
     vbj_seeds s;
     CHECK_INT(vbj_seeds_generate(ctx, 2, 2048, 40, VBJ_DIST_CLUSTERED, 9, &s), VB_OK);
@@ -249,7 +249,7 @@ static void integer_distances(vb_ctx *ctx, vbj_engine *ref, vbj_engine *cl)
  * run starts coarse and doubles several times (the thresholds give the
  * test cases none, the coarse JFA only, or the first one or two doublings
  * too in one launch). */
-static void fused_levels(vb_ctx *ctx, vbj_engine *ref, vbj_engine *cl, int dim, uint32_t n,
+static void fused_levels(vb_ctx *ctx, vbj_backend *ref, vbj_backend *cl, int dim, uint32_t n,
                          size_t k, vbj_distribution dist)
 {
     static const uint32_t fuse[] = {VBJ_FUSE_NONE, 64, 512, 0, UINT32_MAX};
@@ -310,8 +310,8 @@ int main(void)
     vb_config cfg = {0, NULL};
     if (vb_open(&ctx, &cfg))
         return 1;
-    vbj_engine *ref = NULL, *cl = NULL;
-    CHECK_INT(vbj_engine_open(ctx, VBG_DEVICE_REF, &ref), VB_OK);
+    vbj_backend *ref = NULL, *cl = NULL;
+    CHECK_INT(vbj_ref_open(ctx, &ref), VB_OK);
     start_resolution(ctx);
     two_seeds(ctx, ref, 2, 64);
     two_seeds(ctx, ref, 3, 16);
@@ -320,8 +320,9 @@ int main(void)
     random_seeds(ctx, ref, 2, 128, 40, VBJ_DIST_CLUSTERED, 3);
     random_seeds(ctx, ref, 3, 32, 30, VBJ_DIST_UNIFORM, 1);
     random_seeds(ctx, ref, 3, 32, 20, VBJ_DIST_SHELL, 2);
-    if (vbj_engine_open(ctx, VBG_DEVICE_AUTO, &cl) == VB_OK) {
-        printf("OpenCL device: %s\n", vbj_engine_device_name(cl));
+    vbg_runtime *rt = NULL;
+    if (vbg_runtime_open(ctx, VB_DEVICE_AUTO, &rt) == VB_OK && vbg_jfa_open(ctx, rt, &cl) == VB_OK) {
+        printf("OpenCL device: %s\n", cl->device);
         two_seeds(ctx, cl, 2, 64);
         two_seeds(ctx, cl, 3, 16);
         backends_agree(ctx, ref, cl, 2, 64, 50, VBJ_DIST_UNIFORM);
@@ -338,11 +339,12 @@ int main(void)
         fused_levels(ctx, ref, cl, 2, 256, 12, VBJ_DIST_UNIFORM);
         fused_levels(ctx, ref, cl, 2, 512, 30, VBJ_DIST_UNIFORM);
         fused_levels(ctx, ref, cl, 3, 64, 10, VBJ_DIST_UNIFORM);
-        vbj_engine_close(cl);
+        vbj_backend_close(cl);
     } else {
         printf("no OpenCL device: %s (reference backend only)\n", vb_errmsg(ctx));
     }
-    vbj_engine_close(ref);
+    vbg_runtime_close(rt);
+    vbj_backend_close(ref);
     vb_close(ctx);
     VB_TEST_END();
 }

@@ -8,12 +8,12 @@
 
 static void test_kind_parse(vb_ctx *ctx)
 {
-    vbg_device_kind k;
-    CHECK_INT(vbg_device_kind_parse(ctx, "ref", &k), VB_OK);
-    CHECK_INT(k, VBG_DEVICE_REF);
-    CHECK_INT(vbg_device_kind_parse(ctx, "gpu", &k), VB_OK);
-    CHECK_INT(k, VBG_DEVICE_GPU);
-    CHECK_INT(vbg_device_kind_parse(ctx, "tpu", &k), VB_EMISUSE);
+    vb_device_kind k;
+    CHECK_INT(vb_device_kind_parse(ctx, "ref", &k), VB_OK);
+    CHECK_INT(k, VB_DEVICE_REF);
+    CHECK_INT(vb_device_kind_parse(ctx, "gpu", &k), VB_OK);
+    CHECK_INT(k, VB_DEVICE_GPU);
+    CHECK_INT(vb_device_kind_parse(ctx, "tpu", &k), VB_EMISUSE);
     CHECK(strstr(vb_errmsg(ctx), "tpu") != NULL);
 }
 
@@ -65,7 +65,7 @@ int main(void)
     snprintf(dir, sizeof dir, "%s/tests/gpu/kernels", src ? src : ".");
     setenv("VORBALL_KERNEL_DIR", dir, 1);
     vbg_runtime *rt;
-    int rc = vbg_runtime_open(ctx, VBG_DEVICE_CPU, &rt);
+    int rc = vbg_runtime_open(ctx, VB_DEVICE_CPU, &rt);
     CHECK_INT(rc, VB_OK);
     if (rc == VB_OK) {
         CHECK(!vbg_runtime_is_gpu(rt));
@@ -75,7 +75,7 @@ int main(void)
         vbg_runtime_close(rt);
     }
     vbg_runtime *none;
-    CHECK_INT(vbg_runtime_open(ctx, VBG_DEVICE_REF, &none), VB_EMISUSE);
+    CHECK_INT(vbg_runtime_open(ctx, VB_DEVICE_REF, &none), VB_EMISUSE);
     CHECK(none == NULL);
     vb_close(ctx);
     VB_TEST_END();

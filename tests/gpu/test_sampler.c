@@ -9,7 +9,8 @@
 
 #include "vb_test.h"
 #include "vb_verify.h"
-#include "vertices_pipeline.h"
+#include "vb_vertices.h"
+#include "vbg_runtime.h"
 
 static uint64_t lcg = 99;
 
@@ -65,15 +66,20 @@ static int same_list(const vb_vertex_list *a, const vb_vertex_list *b)
     return memcmp(a->ids, b->ids, a->nids * sizeof *a->ids) == 0;
 }
 
-static int run(vb_ctx *ctx, vb_sphere_set *s, vbg_device_kind kind, unsigned samples,
-               int all_pairs, vb_pipeline_result *r)
+/* The library's pipeline with the OpenCL device layer and the exact
+ * certifier, as the command wires them. */
+static const vb_vertices_backends backends = {&vbg_device_layer, &vb_exact_certifier};
+
+static int run(vb_ctx *ctx, vb_sphere_set *s, vb_device_kind kind, unsigned samples,
+               int all_pairs, vb_vertices_result *r)
 {
-    vb_sampler_options o;
-    memset(&o, 0, sizeof o);
-    o.samples = samples;
-    o.all_pairs = all_pairs;
-    vb_pipeline_result_init(r);
-    return vb_pipeline_run(ctx, s, kind, &o, 0, r);
+    vb_vertices_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.device = kind;
+    cfg.sampler.samples = samples;
+    cfg.sampler.all_pairs = all_pairs;
+    vb_vertices_result_init(r);
+    return vb_vertices_run(ctx, s, &cfg, &backends, r);
 }
 
 /* A backend awaited like a device still being set up: not ready for the
@@ -165,34 +171,34 @@ static void check_set(vb_ctx *ctx, const char *name, char *text, int have_cpu)
     vb_vertex_list ref;
     vb_vertex_list_init(&ref);
     CHECK_INT(vb_reference(ctx, s, &ref), VB_OK);
-    vb_pipeline_result a, b, c;
-    CHECK_INT(run(ctx, s, VBG_DEVICE_REF, 0, 0, &a), VB_OK);
+    vb_vertices_result a, b, c;
+    CHECK_INT(run(ctx, s, VB_DEVICE_REF, 0, 0, &a), VB_OK);
     CHECK_INT(a.rejected.n, 0);
     CHECK(ref.n > 0);
     if (!same_list(&ref, &a.certified))
         fprintf(stderr, "%s: pipeline %zu vertices, reference %zu\n", name, a.certified.n, ref.n);
     CHECK(same_list(&ref, &a.certified));
     /* Culling is conservative: identical envelopes, so identical candidates. */
-    CHECK_INT(run(ctx, s, VBG_DEVICE_REF, 0, 1, &b), VB_OK);
+    CHECK_INT(run(ctx, s, VB_DEVICE_REF, 0, 1, &b), VB_OK);
     CHECK_INT(b.sampler.raw_candidates, a.sampler.raw_candidates);
     CHECK(b.sampler.bisectors > a.sampler.bisectors);
     CHECK(same_list(&a.certified, &b.certified));
     if (have_cpu) {
-        CHECK_INT(run(ctx, s, VBG_DEVICE_CPU, 0, 0, &c), VB_OK);
+        CHECK_INT(run(ctx, s, VB_DEVICE_CPU, 0, 0, &c), VB_OK);
         CHECK_STR(c.backend, "opencl");
         CHECK_INT(c.sampler.raw_candidates, a.sampler.raw_candidates);
         CHECK(same_list(&a.certified, &c.certified));
-        vb_pipeline_result_free(&c);
+        vb_vertices_result_free(&c);
     }
-    vb_pipeline_result_free(&b);
+    vb_vertices_result_free(&b);
     /* Coarse sampling: cells miss vertices, the targeted search and the
      * completion recover them. */
-    CHECK_INT(run(ctx, s, VBG_DEVICE_REF, 6, 0, &b), VB_OK);
+    CHECK_INT(run(ctx, s, VB_DEVICE_REF, 6, 0, &b), VB_OK);
     CHECK(same_list(&ref, &b.certified));
     if (strcmp(name, "random") == 0)
         CHECK(b.sampler.targeted_found > 0);
-    vb_pipeline_result_free(&b);
-    vb_pipeline_result_free(&a);
+    vb_vertices_result_free(&b);
+    vb_vertices_result_free(&a);
     vb_vertex_list_free(&ref);
     vb_spheres_free(s);
 }
@@ -204,7 +210,7 @@ int main(void)
     if (vb_open(&ctx, &cfg))
         return 1;
     vbg_runtime *rt = NULL;
-    int have_cpu = vbg_runtime_open(ctx, VBG_DEVICE_CPU, &rt) == VB_OK;
+    int have_cpu = vbg_runtime_open(ctx, VB_DEVICE_CPU, &rt) == VB_OK;
     vbg_runtime_close(rt);
     vb_clear_error(ctx);
     if (!have_cpu)

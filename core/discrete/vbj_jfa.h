@@ -2,18 +2,20 @@
  * Algorithm and its variants, Facet-JFA (paper "facet-jfa-and-channels",
  * Sec. 2), the exact nearest-seed reference and the error figures.
  *
- * Backends: OpenCL (gpu/jfa*.cl, gpu/facet_jfa*.cl) or the plain-C reference
- * (VBG_DEVICE_REF). Both run the same algorithms with the same exact integer
- * distance math (core/discrete/vb_grid.h), so they return identical labels.
+ * Backends (vbj_backend): OpenCL (gpu/jfa*.cl, gpu/facet_jfa.cl) or the
+ * plain-C reference (core/discrete/jfa_ref.c). Both run the same algorithms
+ * with the same exact integer distance math (core/discrete/vb_grid.h), so
+ * they return identical labels.
  *
  * Typical use (channels):
  *   vbj_grid_fit fit;  vbj_seeds s;  vbj_result r;
  *   vbj_fit_grid(ctx, x, y, z, k, 256, 3.0, &fit);
  *   vbj_seeds_from_world(ctx, &fit, x, y, z, k, &s);
- *   vbj_engine_open(ctx, VBG_DEVICE_AUTO, &e);
+ *   vbj_backend_open(ctx, &vbg_device_layer, VB_DEVICE_AUTO, &dev, &e);
  *   vbj_options o = {0};  o.variant = VBJ_FACET;  o.want = VBJ_WANT_LABELS | VBJ_WANT_NLABELS;
  *   vbj_run(ctx, e, &s, &o, &r);      // r.labels[(z*n + y)*n + x], r.nlabels[...]
- *   ... vbj_result_free(&r); vbj_seeds_free(&s); vbj_engine_close(e); */
+ *   ... vbj_result_free(&r); vbj_seeds_free(&s); vbj_backend_close(e);
+ *   layer->close(dev); */
 #ifndef VBJ_JFA_H
 #define VBJ_JFA_H
 
@@ -22,7 +24,7 @@
 
 #include "vb.h"
 #include "vb_grid.h"
-#include "vbg_runtime.h"
+#include "vb_device.h"
 
 /* Algorithms. Steps l run n/2, n/4, ..., 1 (gather form: each pixel reads its
  * 3^d - 1 neighbours at distance l). */
@@ -77,7 +79,12 @@ int vbj_seeds_generate(vb_ctx *ctx, int dim, uint32_t n, size_t k, vbj_distribut
 int vbj_seeds_read(vb_ctx *ctx, const char *path, int dim, uint32_t n, vbj_seeds *out);
 
 /* Mapping between world coordinates (Angstrom) and a 3D grid:
- * grid = (world - origin) / pitch. */
+ * grid = (world - origin) / pitch, pixel p with its centre AT p (the JFA
+ * paper's convention, that of seed files and of vb_grid.h). The channel
+ * grid (vbc_grid_fit) puts voxel i's centre at i + 0.5 instead, the
+ * convention of its mask arithmetic (channel_math.h); both are kept because
+ * each is what its kernels and outputs compute in, and vbc_frame_seeds
+ * converts between them (minus half a voxel). */
 typedef struct vbj_grid_fit {
     uint32_t n;
     double origin[3]; /* world position of pixel (0,0,0)'s centre */
@@ -98,11 +105,10 @@ int vbj_seeds_from_world(vb_ctx *ctx, const vbj_grid_fit *fit, const double *x, 
 /* What vbj_run returns besides timings and counts. */
 enum {
     VBJ_WANT_LABELS = 1,  /* full label grid */
-    VBJ_WANT_NLABELS = 2, /* per pixel, number of distinct labels among the pixel and
+    VBJ_WANT_NLABELS = 2  /* per pixel, number of distinct labels among the pixel and
                              its 3^d - 1 neighbours: 1 interior, 2 on a Voronoi facet
                              (a boundary pixel, Definition 6), >= 3 near a Voronoi
                              edge (3D; a vertex in 2D), >= 4 near a vertex (3D) */
-    VBJ_WANT_DEVICE = 4   /* keep the label grid on the device (vbj_engine_labels_device) */
 };
 
 typedef struct vbj_options {
@@ -154,34 +160,45 @@ typedef struct vbj_result {
 
 void vbj_result_free(vbj_result *r);
 
-typedef struct vbj_engine vbj_engine;
+/* The JFA backends table, as the sampler's: one interface, the plain-C
+ * reference (vbj_ref_open) and OpenCL (the device layer's jfa_open). */
+typedef struct vbj_backend vbj_backend;
+struct vbj_backend {
+    const char *name;        /* "ref", "opencl" */
+    char device[160];        /* "reference (C)" or the OpenCL device name */
+    void *state;
+    /* vbj_run after its checks: out is zeroed with dim, n and pixels set;
+     * want is never 0. VB_ENOMEM, VB_EDEVICE (message in ctx). */
+    int (*run)(vb_ctx *ctx, vbj_backend *be, const vbj_seeds *s, const vbj_options *opt,
+               unsigned want, vbj_result *out);
+    /* vbj_exact. */
+    int (*exact)(vb_ctx *ctx, vbj_backend *be, const vbj_seeds *s, uint32_t *labels);
+    void (*close)(vbj_backend *be);
+};
 
-/* Opens an engine on a device kind: VBG_DEVICE_REF is the plain-C backend;
- * the other kinds open an OpenCL runtime (VB_EDEVICE when none). */
-int vbj_engine_open(vb_ctx *ctx, vbg_device_kind kind, vbj_engine **out);
-/* Opens an engine on an existing runtime (borrowed: close it after the engine). */
-int vbj_engine_open_runtime(vb_ctx *ctx, vbg_runtime *rt, vbj_engine **out);
-void vbj_engine_close(vbj_engine *e);
-/* "reference (C)" or the OpenCL device name. */
-const char *vbj_engine_device_name(const vbj_engine *e);
-/* Nonzero for an OpenCL engine. */
-int vbj_engine_is_opencl(const vbj_engine *e);
+/* Opens the plain-C reference backend. Close with vbj_backend_close. */
+int vbj_ref_open(vb_ctx *ctx, vbj_backend **out);
+
+/* Opens the backend for a device kind by the device layer's one fallback
+ * rule (vb_device.h): on VB_EDEVICE warning W781 and the reference.
+ * *dev gets the device to close after the backend (NULL on the
+ * reference). layer may be NULL (reference only). */
+int vbj_backend_open(vb_ctx *ctx, const vb_device_layer *layer, vb_device_kind kind,
+                     vb_device **dev, vbj_backend **out);
+
+/* Closes any backend; NULL is allowed. */
+void vbj_backend_close(vbj_backend *be);
 
 /* Computes the discrete Voronoi diagram of `s` on [n]^dim with options `opt`
  * (NULL = JFA+1, labels). Fills *out (zeroed first; free with vbj_result_free).
  * VB_EMISUSE on bad options, VB_ENOMEM, VB_EDEVICE. */
-int vbj_run(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, const vbj_options *opt,
+int vbj_run(vb_ctx *ctx, vbj_backend *be, const vbj_seeds *s, const vbj_options *opt,
             vbj_result *out);
 
-/* The label grid of the last run with VBJ_WANT_DEVICE (n^dim cl_uint, seed
- * indices), owned by the engine, valid until the next vbj_run or close.
- * NULL for the reference backend or when not wanted. */
-cl_mem vbj_engine_labels_device(const vbj_engine *e);
-
 /* The exact discrete Voronoi diagram: labels[p] = nearest seed to pixel p,
- * ties to the lowest index (cell-list search; on the engine's device, or in C
- * for the reference engine). labels has n^dim entries (caller-owned). */
-int vbj_exact(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, uint32_t *labels);
+ * ties to the lowest index (cell-list search; on the backend's device, or in
+ * C for the reference). labels has n^dim entries (caller-owned). */
+int vbj_exact(vb_ctx *ctx, vbj_backend *be, const vbj_seeds *s, uint32_t *labels);
 
 /* Error figures of a label grid against the exact one. Tie-tolerant: a pixel
  * is wrong only if its seed is strictly farther than the nearest one. */

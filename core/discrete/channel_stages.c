@@ -1,11 +1,11 @@
-/* The eight panels of the 2D channel pipeline, rendered from the flag bytes
- * and labels the channel pipeline (OpenCL or reference) returns for a planar cut of the molecule. */
+/* The 2D pipeline stages of the channel analysis (the Facet-JFA paper's
+ * Fig. 5): the planar cut of a molecule, its frame run, and the eight
+ * panels rendered from the flag bytes and labels the pipeline returns. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "channels_png.h"
-#include "jfa_png.h"
+#include "vbc_frame.h"
 
 #define GAP 4
 
@@ -23,65 +23,65 @@ static void label_colour(uint32_t l, uint8_t *px)
     put(px, 90 + (h >> 24) % 150, 90 + (h >> 16) % 150, 90 + (h >> 8) % 150);
 }
 
-int vbc_png_stages(vb_ctx *ctx, vbc_pipe *pipe, const vb_sphere_set *s, double probe, int n,
-                   int normal, const vbc_options *opt, const char *path)
+int vbc_planar_cut(vb_ctx *ctx, const vb_sphere_set *s, int normal, vb_sphere_set **out)
 {
+    *out = NULL;
     int ax = normal == 0 ? 1 : 0, ay = normal == 2 ? 1 : 2;
     const double *c[3] = {s->x, s->y, s->z};
     double centre = 0.0;
     for (size_t i = 0; i < s->n; i++)
         centre += c[normal][i];
     centre /= (double)s->n;
-    vb_sphere_set cut;
-    memset(&cut, 0, sizeof cut);
-    cut.x = malloc(s->n * sizeof(double));
-    cut.y = malloc(s->n * sizeof(double));
-    cut.z = calloc(s->n, sizeof(double));
-    cut.r = malloc(s->n * sizeof(double));
-    int rc = VB_OK;
-    float *atoms = NULL;
-    uint8_t *rgb = NULL;
-    vbc_frame_out fo;
-    vbc_result res;
-    memset(&fo, 0, sizeof fo);
-    memset(&res, 0, sizeof res);
-    if (!cut.x || !cut.y || !cut.z || !cut.r) {
-        rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "planar cut");
-        goto done;
-    }
+    vb_sphere_set *cut;
+    int rc = vb_spheres_new(ctx, "planar cut", s->n, 0, &cut);
+    if (rc != VB_OK)
+        return rc;
+    cut->n = 0;
     for (size_t i = 0; i < s->n; i++) {
         double d = c[normal][i] - centre;
         if (fabs(d) >= s->r[i])
             continue;
-        cut.x[cut.n] = c[ax][i];
-        cut.y[cut.n] = c[ay][i];
-        cut.r[cut.n] = sqrt(s->r[i] * s->r[i] - d * d);
-        cut.n++;
+        cut->x[cut->n] = c[ax][i];
+        cut->y[cut->n] = c[ay][i];
+        cut->r[cut->n] = sqrt(s->r[i] * s->r[i] - d * d);
+        cut->n++;
     }
-    if (cut.n == 0) {
-        rc = vb_error(ctx, VB_EINPUT_EMPTY, NULL, 0, "the slice for --png meets no atom");
-        goto done;
+    if (cut->n == 0) {
+        vb_spheres_free(cut);
+        return vb_error(ctx, VB_EINPUT_EMPTY, NULL, 0, "the slice for --png meets no atom");
     }
+    *out = cut;
+    return VB_OK;
+}
+
+void vbc_image_free(vbc_image *img)
+{
+    free(img->rgb);
+    memset(img, 0, sizeof *img);
+}
+
+int vbc_stages_render(vb_ctx *ctx, vbc_pipe *pipe, const vb_sphere_set *s, double probe, int n,
+                      int normal, const vbc_options *opt, vbc_image *img)
+{
+    memset(img, 0, sizeof *img);
+    vb_sphere_set *cut = NULL;
+    vbc_frame F;
+    memset(&F, 0, sizeof F);
     vbc_grid g;
-    if ((rc = vbc_grid_fit(ctx, &cut, probe, n, 2, &g)) != VB_OK)
-        goto done;
-    atoms = malloc(4 * cut.n * sizeof *atoms);
-    if (!atoms) {
-        rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "planar cut");
-        goto done;
-    }
-    vbc_atoms_pack(&g, &cut, probe, atoms);
-    if ((rc = vbc_pipe_frame(ctx, pipe, &g, atoms, cut.n, probe, VBC_WANT_FLAGS | VBC_WANT_LABELS, &fo)) != VB_OK)
-        goto done;
+    int rc = vbc_planar_cut(ctx, s, normal, &cut);
+    if (rc == VB_OK)
+        rc = vbc_grid_fit(ctx, cut, probe, n, 2, &g);
     vbc_options o2 = *opt;
     o2.keep_cavities = 1; /* in a cut, a pore is often closed: show it */
-    if ((rc = vbc_analyse_clear(ctx, &g, &cut, fo.voxels, fo.clearance, fo.nvoxels, &o2, &res)) != VB_OK)
+    if (rc == VB_OK)
+        rc = vbc_frame_run(ctx, pipe, &g, cut, probe, VBC_WANT_FLAGS | VBC_WANT_LABELS, &o2, &F);
+    if (rc != VB_OK)
         goto done;
 
     uint32_t W = 4 * (uint32_t)n + 5 * GAP, H = 2 * (uint32_t)n + 3 * GAP;
-    rgb = malloc((size_t)W * H * 3);
+    uint8_t *rgb = malloc((size_t)W * H * 3);
     if (!rgb) {
-        rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "PNG of %ux%u", W, H);
+        rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "picture of %ux%u", W, H);
         goto done;
     }
     memset(rgb, 255, (size_t)W * H * 3);
@@ -91,16 +91,16 @@ int vbc_png_stages(vb_ctx *ctx, vbc_pipe *pipe, const vb_sphere_set *s, double p
         for (int j = 0; j < n; j++)
             for (int i = 0; i < n; i++) {
                 size_t v = (size_t)i + (size_t)n * (size_t)j;
-                unsigned f = fo.flags[v];
+                unsigned f = F.out.flags[v];
                 /* Row 0 of the image is the top: flip y. */
                 uint8_t *px = rgb + 3 * ((size_t)(oy + (uint32_t)(n - 1 - j)) * W + ox + (uint32_t)i);
                 int in_atom = 0, in_sas = 0;
                 if (panel < 2) {
-                    for (size_t a = 0; a < cut.n && !in_atom; a++) {
-                        double dx = i + 0.5 - atoms[4 * a], dy = j + 0.5 - atoms[4 * a + 1];
+                    for (size_t a = 0; a < cut->n && !in_atom; a++) {
+                        double dx = i + 0.5 - F.atoms4[4 * a], dy = j + 0.5 - F.atoms4[4 * a + 1];
                         double d = sqrt(dx * dx + dy * dy) * g.h;
-                        in_atom |= d <= cut.r[a];
-                        in_sas |= d <= cut.r[a] + probe;
+                        in_atom |= d <= cut->r[a];
+                        in_sas |= d <= cut->r[a] + probe;
                     }
                 }
                 switch (panel) {
@@ -112,7 +112,7 @@ int vbc_png_stages(vb_ctx *ctx, vbc_pipe *pipe, const vb_sphere_set *s, double p
                     else if (in_sas) put(px, 170, 200, 240);
                     break;
                 case 2: /* (c) Voronoi regions */
-                    label_colour(fo.labels[v], px);
+                    label_colour(F.out.labels[v], px);
                     break;
                 case 3: /* (d) Voronoi edges */
                     if (f & VBC_F_EDGE) put(px, 0, 0, 0);
@@ -134,10 +134,10 @@ int vbc_png_stages(vb_ctx *ctx, vbc_pipe *pipe, const vb_sphere_set *s, double p
                 }
             }
         if (panel == 7)
-            for (size_t t = 0; t < res.nchannels; t++) {
-                const vbc_channel *ch = &res.channels[t];
+            for (size_t t = 0; t < F.result.nchannels; t++) {
+                const vbc_channel *ch = &F.result.channels[t];
                 for (size_t u = 0; u < ch->npoints; u++) {
-                    const vbc_point *p = res.points + ch->first_point + u;
+                    const vbc_point *p = F.result.points + ch->first_point + u;
                     int i = (int)((p->x - g.origin[0]) / g.h), j = (int)((p->y - g.origin[1]) / g.h);
                     if (i >= 0 && j >= 0 && i < n && j < n)
                         put(rgb + 3 * ((size_t)(oy + (uint32_t)(n - 1 - j)) * W + ox + (uint32_t)i),
@@ -145,15 +145,11 @@ int vbc_png_stages(vb_ctx *ctx, vbc_pipe *pipe, const vb_sphere_set *s, double p
                 }
             }
     }
-    rc = vb_png_write_rgb(ctx, path, W, H, rgb);
+    img->w = W;
+    img->h = H;
+    img->rgb = rgb;
 done:
-    free(cut.x);
-    free(cut.y);
-    free(cut.z);
-    free(cut.r);
-    free(atoms);
-    free(rgb);
-    vbc_frame_out_free(&fo);
-    vbc_result_free(&res);
+    vbc_frame_free(&F);
+    vb_spheres_free(cut);
     return rc;
 }

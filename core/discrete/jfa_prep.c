@@ -4,9 +4,8 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
-#include "jfa_internal.h"
+#include "vbj_prep.h"
 
 static const char *variant_names[] = {"jfa", "jfa+1", "jfa+2", "1+jfa", "facet", "facet-full"};
 
@@ -23,13 +22,6 @@ int vbj_variant_parse(vb_ctx *ctx, const char *s, vbj_variant *out)
 
 const char *vbj_variant_name(vbj_variant v) { return (unsigned)v < 6 ? variant_names[v] : "?"; }
 
-double vbj_now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}
-
 int vbj_schedule(vbj_variant v, uint32_t q, uint32_t *steps)
 {
     int k = 0;
@@ -44,7 +36,7 @@ int vbj_schedule(vbj_variant v, uint32_t q, uint32_t *steps)
     return k;
 }
 
-static uint32_t log2u(uint32_t v)
+uint32_t vbj_log2u(uint32_t v)
 {
     uint32_t r = 0;
     while (v > 1) {
@@ -73,7 +65,7 @@ static int cmp_placed(const void *a, const void *b)
 int vbj_place(vb_ctx *ctx, const vbj_seeds *s, uint32_t f, uint32_t **pairs, size_t *count,
               uint32_t *collisions)
 {
-    uint32_t q = s->n / f, sh = log2u(f);
+    uint32_t q = s->n / f, sh = vbj_log2u(f);
     placed *p = malloc(s->k * sizeof *p);
     if (!p)
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "seed placement: out of memory");
@@ -127,7 +119,7 @@ static int cmp_u64(const void *a, const void *b)
 
 uint32_t vbj_start_resolution(const vbj_seeds *s)
 {
-    uint32_t logn = log2u(s->n);
+    uint32_t logn = vbj_log2u(s->n);
     if (s->k < 2)
         return 1;
     uint64_t *keys = malloc(s->k * sizeof *keys);

@@ -1,0 +1,129 @@
+/* The options of the commands that run the vertex pipeline, and the
+ * progress bar they draw. */
+#include "pipeline_options.h"
+
+#include <stdio.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "cli_common.h"
+
+/* " sampling ...": the names of the library's proposers. */
+static const char *proposer_names(void)
+{
+    static char buf[256];
+    size_t n = 0;
+    buf[0] = '\0';
+    for (int k = 0; vb_proposers[k] && n < sizeof buf; k++)
+        n += (size_t)snprintf(buf + n, sizeof buf - n, " %s", vb_proposers[k]->name);
+    return buf;
+}
+
+void vb_pipeline_opts_defaults(vb_pipeline_opts *o)
+{
+    memset(o, 0, sizeof *o);
+    vb_cli_input_defaults(&o->in);
+    o->cfg.device = VB_DEVICE_AUTO;
+}
+
+int vb_pipeline_option(const char *cmd, int argc, char **argv, int *i, vb_pipeline_opts *o,
+                       vb_ctx *ctx)
+{
+    int used = vb_cli_input_option(&o->in, argc, argv, i);
+    if (used != 0)
+        return used;
+    vb_sampler_options *so = &o->cfg.sampler;
+    const char *a = argv[*i];
+    int has = *i + 1 < argc;
+    if (strcmp(a, "--device") == 0) {
+        if (!has || vb_device_kind_parse(ctx, argv[*i + 1], &o->cfg.device) != VB_OK) {
+            vb_cli_usage_error(cmd, "--device needs auto, gpu, cpu or ref");
+            return -1;
+        }
+        (*i)++;
+        return 1;
+    }
+    if (strcmp(a, "--samples") == 0) {
+        size_t s;
+        if (!has || vb_cli_parse_size(argv[*i + 1], &s) || s < 2 || s > 4096) {
+            vb_cli_usage_error(cmd, "--samples needs an integer in 2..4096");
+            return -1;
+        }
+        so->samples = (unsigned)s;
+        (*i)++;
+        return 1;
+    }
+    if (strcmp(a, "--tol") == 0) {
+        double t;
+        if (!has || vb_cli_parse_double(argv[*i + 1], &t) || !(t > 0.0)) {
+            vb_cli_usage_error(cmd, "--tol needs a positive number");
+            return -1;
+        }
+        so->tol = t;
+        (*i)++;
+        return 1;
+    }
+    if (strcmp(a, "--tiles") == 0) {
+        size_t t;
+        if (!has || vb_cli_parse_size(argv[*i + 1], &t) || t < 1 || t > 64 || (t & (t - 1))) {
+            vb_cli_usage_error(cmd, "--tiles needs a power of two in 1..64");
+            return -1;
+        }
+        so->tiles = (unsigned)t;
+        (*i)++;
+        return 1;
+    }
+    if (strcmp(a, "--threads") == 0) {
+        size_t t;
+        if (!has || vb_cli_parse_size(argv[*i + 1], &t) || t < 1 || t > 64) {
+            vb_cli_usage_error(cmd, "--threads needs an integer in 1..64");
+            return -1;
+        }
+        so->threads = (unsigned)t;
+        (*i)++;
+        return 1;
+    }
+    if (strcmp(a, "--proposer") == 0) {
+        if (!has || !vb_proposer_find(argv[*i + 1])) {
+            vb_cli_usage_error(cmd, "--proposer needs one of:%s", proposer_names());
+            return -1;
+        }
+        o->cfg.proposer = argv[++*i];
+        return 1;
+    }
+    if (strcmp(a, "--all-pairs") == 0) {
+        so->all_pairs = 1;
+        return 1;
+    }
+    return 0;
+}
+
+/* Draws only after a second and only on a terminal, so logs stay clean. */
+static void bar_update(void *user, double frac)
+{
+    vb_cli_bar *b = user;
+    if (vb_now() - b->start < 1.0)
+        return;
+    int w = 40, k = (int)(frac * w + 0.5);
+    fprintf(stderr, "\rsampling [%.*s%*s] %3d%%", k, "########################################",
+            w - k, "", (int)(frac * 100.0 + 0.5));
+    fflush(stderr);
+    b->shown = 1;
+}
+
+void vb_cli_bar_attach(vb_cli_bar *b, vb_sampler_options *so)
+{
+    b->start = vb_now();
+    b->shown = 0;
+    if (isatty(fileno(stderr))) {
+        so->progress = bar_update;
+        so->progress_user = b;
+    }
+}
+
+void vb_cli_bar_clear(vb_cli_bar *b)
+{
+    if (b->shown)
+        fputs("\r\033[K", stderr);
+    b->shown = 0;
+}

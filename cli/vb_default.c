@@ -1,0 +1,22 @@
+/* The default backends of the library (vb_default.h). */
+#include "vb_default.h"
+
+#include "vb_verify.h"
+#include "vbg_runtime.h"
+
+const vb_vertices_backends *vb_default_backends(void)
+{
+    static const vb_vertices_backends be = {&vbg_device_layer, &vb_exact_certifier};
+    return &be;
+}
+
+const vb_device_layer *vb_default_devices(void)
+{
+    return &vbg_device_layer;
+}
+
+int vb_vertices_run_default(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertices_config *cfg,
+                            vb_vertices_result *res)
+{
+    return vb_vertices_run(ctx, set, cfg, vb_default_backends(), res);
+}

@@ -1,0 +1,28 @@
+/* The library with its default backends wired: the OpenCL device layer of
+ * gpu/ (a GPU, else PoCL, else the plain-C twins) and the exact certifier
+ * of verify/, for callers that want the pipelines as the command runs them
+ * (the command itself, a binding).
+ *
+ * Why here: core/ must not include gpu/ or verify/ (its drivers take them
+ * through tables), and gpu/ and verify/ never touch each other, so the one
+ * place that names all three is above them, with the command. It is its
+ * own library target (vb_default): a binding links it, never the command's
+ * sources. */
+#ifndef VB_DEFAULT_H
+#define VB_DEFAULT_H
+
+#include "vb_vertices.h"
+
+/* The default tables: devices = gpu/'s vbg_device_layer, certifier =
+ * verify/'s vb_exact_certifier. Static; never NULL. */
+const vb_vertices_backends *vb_default_backends(void);
+
+/* The device layer alone, for the discrete pipelines (vbj_backend_open,
+ * vbc_pipe_open). */
+const vb_device_layer *vb_default_devices(void);
+
+/* vb_vertices_run with the default backends. */
+int vb_vertices_run_default(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertices_config *cfg,
+                            vb_vertices_result *res);
+
+#endif

@@ -1,0 +1,47 @@
+/* Small pieces every part of the sampling pipeline uses (the driver, the
+ * backends, matching): the growable candidate array, the batch-size policy,
+ * and the result's set-up and release. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "vb_sampler.h"
+
+int vb_cand_vec_push(vb_cand_vec *cv, const vbs_cand *c)
+{
+    if (cv->n == cv->cap) {
+        size_t nc = cv->cap ? 2 * cv->cap : 1024;
+        vbs_cand *p = realloc(cv->v, nc * sizeof *p);
+        if (!p)
+            return VB_ENOMEM;
+        cv->v = p;
+        cv->cap = nc;
+    }
+    cv->v[cv->n++] = *c;
+    return VB_OK;
+}
+
+void vb_cand_vec_free(vb_cand_vec *cv)
+{
+    free(cv->v);
+    cv->v = NULL;
+    cv->n = cv->cap = 0;
+}
+
+unsigned vb_sampler_batch_rays(int gpu)
+{
+    return gpu ? 1u << 25 : 1u << 22;
+}
+
+void vb_sampler_result_init(vb_sampler_result *r)
+{
+    memset(r, 0, sizeof *r);
+    vb_vertex_list_init(&r->candidates);
+}
+
+void vb_sampler_result_free(vb_sampler_result *r)
+{
+    vb_vertex_list_free(&r->candidates);
+    free(r->topo.faces);
+    free(r->topo.triples);
+    vb_sampler_result_init(r);
+}

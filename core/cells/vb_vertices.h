@@ -1,0 +1,149 @@
+/* The vertex pipeline as a library call: device choice (opened on its own
+ * thread while the first batch is culled) with the one fallback rule,
+ * proposal of candidate vertices, exact certification, the intruder-swap
+ * repair rounds and the canonical merge.
+ *
+ * The driver (core/cells/vertices.c) takes what it cannot build itself
+ * through tables, so core/ never includes gpu/ or verify/ headers:
+ *   - the device layer (vb_device.h; gpu/'s vbg_device_layer, or NULL),
+ *   - the proposer of candidates (vb_proposer; vb_proposers lists them, the
+ *     ray sampling of the seed paper first),
+ *   - the certifier (vb_certifier_ops; verify/'s vb_exact_certifier).
+ * cli/vb_default.h wires the default tables for callers that want them
+ * (the command, a binding): vb_vertices_run_default. */
+#ifndef VB_VERTICES_H
+#define VB_VERTICES_H
+
+#include "vb_device.h"
+#include "vb_sampler.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- the certifier table ----------------------------------------------- */
+
+typedef struct vb_certifier_ops {
+    const char *name;
+    /* Builds the certifier of a validated set (the set must outlive it),
+     * judging lists on `threads` threads (0: vb_threads' default). */
+    int (*open)(vb_ctx *ctx, const vb_sphere_set *set, unsigned threads, void **cert);
+    /* Certifies every candidate: the canonical certified set (sorted, one
+     * entry per exact vertex with all its members) to certified, refused
+     * candidates to rejected. No distance limit: the exact solution nearest
+     * the candidate is judged. */
+    int (*certify_list)(vb_ctx *ctx, void *cert, const vb_vertex_list *cand,
+                        vb_vertex_list *certified, vb_vertex_list *rejected);
+    /* One candidate of four ids at p (x y z t): *intruder is the sphere
+     * that cuts its tangent sphere, or UINT32_MAX when none does (or the
+     * ids define no such sphere). */
+    int (*intruder)(vb_ctx *ctx, void *cert, const uint32_t ids[4], const double p[4],
+                    uint32_t *intruder);
+    void (*close)(void *cert);
+} vb_certifier_ops;
+
+/* ---- proposers ----------------------------------------------------------- */
+
+/* How a proposer obtains its device-side state when the driver opens the
+ * device on a thread of its own: state() waits for the opening (or falls
+ * back) and returns the state, or NULL with an error in the context;
+ * ready() says whether state() would return at once. kind is the device
+ * asked for (a hint for sizes chosen before the device is known). */
+typedef struct vb_proposer_await {
+    void *(*state)(void *user);
+    int (*ready)(void *user);
+    void *user;
+    vb_device_kind kind;
+} vb_proposer_await;
+
+/* A proposer of candidate vertices: candidates (ids, approximate point and
+ * tangent radius) for the certifier, from which every vertex of the
+ * diagram must be reachable by certification and the repair rounds. */
+typedef struct vb_proposer {
+    const char *name;  /* "sampling" */
+    /* Opens the proposer on an opened device of `layer`, or its plain-C
+     * twin when dev is NULL. Called on the opener thread for a device (it
+     * may build programs). VB_OK, VB_ENOMEM, VB_EDEVICE. */
+    int (*open)(vb_ctx *ctx, const vb_device_layer *layer, vb_device *dev, void **state);
+    /* Proposes candidates for the validated set into res (candidates and
+     * the counters it has); state is NULL when `await` must supply it.
+     * VB_OK, VB_EMISUSE, VB_ENOMEM, VB_EDEVICE (the driver then reruns it on
+     * the twin). */
+    int (*run)(vb_ctx *ctx, void *state, const vb_proposer_await *await,
+               const vb_sphere_set *set, const vb_sampler_options *opt, vb_sampler_result *res);
+    const char *(*backend)(const void *state); /* "ref", "opencl" */
+    const char *(*device)(const void *state);  /* human-readable device */
+    void (*close)(void *state);
+} vb_proposer;
+
+/* The ray sampling of the seed paper (vb_sampler_run) as a proposer. */
+extern const vb_proposer vb_proposer_sampling;
+
+/* The proposers of the library, NULL-terminated; the first is the default. */
+extern const vb_proposer *const vb_proposers[];
+
+/* The proposer called `name` (NULL: the default), or NULL. */
+const vb_proposer *vb_proposer_find(const char *name);
+
+/* ---- the pipeline -------------------------------------------------------- */
+
+typedef struct vb_vertices_backends {
+    const vb_device_layer *devices;        /* NULL: plain-C twins only */
+    const vb_certifier_ops *certifier;
+} vb_vertices_backends;
+
+typedef struct vb_vertices_config {
+    vb_device_kind device;       /* default VB_DEVICE_AUTO (0) */
+    const char *proposer;        /* vb_proposers name; NULL: the default */
+    vb_sampler_options sampler;  /* sampling options, threads, progress */
+} vb_vertices_config;
+
+typedef struct vb_vertices_result {
+    vb_sampler_result sampler;  /* what the proposer found, and its counters */
+    vb_vertex_list certified;   /* canonical, sorted */
+    vb_vertex_list rejected;    /* candidates the certifier refused */
+    double t_setup;             /* device opening, on its own thread */
+    double t_setup_wait;        /* of that, the time the proposer waited for it */
+    double t_certify, t_total;
+    double max_dist;            /* largest candidate-to-exact distance certified */
+    size_t repaired_candidates; /* intruder-swap candidates certified (see repair) */
+    char backend[16];
+    char device[160];
+} vb_vertices_result;
+
+void vb_vertices_result_init(vb_vertices_result *r);
+void vb_vertices_result_free(vb_vertices_result *r);
+
+/* Runs the pipeline on a validated set (contained spheres flagged): opens
+ * the device cfg->device asks for on its own thread while the proposer
+ * starts (warning W760 and the twin when it cannot be used), proposes,
+ * reruns on the twin when the device fails mid-run (W762), certifies,
+ * repairs and merges. The result does not depend on the device or the
+ * thread count. Returns VB_OK or an error status (message in ctx):
+ * VB_EMISUSE (bad options, unknown proposer), VB_ENOMEM, VB_EPREC. */
+int vb_vertices_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertices_config *cfg,
+                    const vb_vertices_backends *be, vb_vertices_result *res);
+
+/* A device and proposer opened once for several runs (bench). */
+typedef struct vb_vertices_engine vb_vertices_engine;
+
+/* Opens the device and the proposer of cfg (synchronously, W760 and the
+ * twin when the device cannot be used). Close with vb_vertices_close. */
+int vb_vertices_open(vb_ctx *ctx, const vb_vertices_backends *be, const vb_vertices_config *cfg,
+                     vb_vertices_engine **out);
+
+/* Seconds vb_vertices_open took. */
+double vb_vertices_open_seconds(const vb_vertices_engine *e);
+
+/* vb_vertices_run on an opened engine: the same output, without the
+ * set-up (t_setup stays 0). A device that fails mid-run is dropped with
+ * W762: the run, and later runs on e, use the twin. */
+int vb_vertices_run_on(vb_ctx *ctx, vb_vertices_engine *e, const vb_sphere_set *set,
+                       const vb_vertices_config *cfg, vb_vertices_result *res);
+
+void vb_vertices_close(vb_vertices_engine *e);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

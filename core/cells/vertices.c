@@ -1,0 +1,420 @@
+/* The vertex pipeline as a library call (vb_vertices.h): the device opened
+ * on its own thread by the one fallback rule, the proposer, exact
+ * certification through the certifier table, the intruder-swap repair
+ * rounds and the canonical merge. Orchestration only: the geometry lives in
+ * the proposer, the certifier and vb_sampler_swap_candidates. */
+#include "vb_vertices.h"
+
+#include <stdatomic.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "vb_diag.h"
+#include "vb_parallel.h"
+
+const vb_proposer *const vb_proposers[] = {&vb_proposer_sampling, NULL};
+
+const vb_proposer *vb_proposer_find(const char *name)
+{
+    for (int i = 0; vb_proposers[i]; i++)
+        if (!name || strcmp(vb_proposers[i]->name, name) == 0)
+            return vb_proposers[i];
+    return NULL;
+}
+
+static const vb_proposer *proposer_of(vb_ctx *ctx, const vb_vertices_config *cfg)
+{
+    const vb_proposer *p = vb_proposer_find(cfg->proposer);
+    if (!p)
+        vb_error(ctx, VB_EMISUSE, NULL, 0, "unknown proposer '%s'", cfg->proposer);
+    return p;
+}
+
+void vb_vertices_result_init(vb_vertices_result *r)
+{
+    memset(r, 0, sizeof *r);
+    vb_sampler_result_init(&r->sampler);
+    vb_vertex_list_init(&r->certified);
+    vb_vertex_list_init(&r->rejected);
+}
+
+void vb_vertices_result_free(vb_vertices_result *r)
+{
+    vb_sampler_result_free(&r->sampler);
+    vb_vertex_list_free(&r->certified);
+    vb_vertex_list_free(&r->rejected);
+    vb_vertices_result_init(r);
+}
+
+static int open_proposer(vb_ctx *ctx, const vb_device_layer *layer, vb_device *dev, void *user,
+                         void **engine)
+{
+    const vb_proposer *p = user;
+    return p->open(ctx, layer, dev, engine);
+}
+
+static vb_engine_request request_of(const vb_vertices_config *cfg, const vb_proposer *p)
+{
+    vb_engine_request req = {cfg->device, open_proposer, (void *)p, VB_W_DEVICE_FALLBACK,
+                             "vertices"};
+    return req;
+}
+
+/* The device set-up (context, queue, program build or cache load) runs on
+ * its own thread, with its own context for messages, while the proposer
+ * starts (the sampler culls its first batches); the proposer takes its
+ * state (or, when the device cannot be used, the twin's after warning
+ * W760) through await_state. */
+typedef struct opener {
+    vb_ctx *ctx;              /* the pipeline's context (warnings, fallback) */
+    vb_ctx *tctx;             /* the thread's context */
+    const vb_device_layer *layer;
+    const vb_proposer *prop;
+    vb_engine_request req;
+    vb_jobs job;
+    int started, joined;
+    vb_device *dev;           /* NULL on the twin */
+    void *state;              /* what await_state handed out */
+    int rc;
+    atomic_int done;          /* open_device has finished */
+    double t_start, t_setup, t_wait;
+} opener;
+
+static void *open_device(void *arg)
+{
+    opener *op = arg;
+    op->rc = op->tctx ? vb_device_try(op->tctx, op->layer, &op->req, &op->dev, &op->state)
+                      : VB_ENOMEM;
+    op->t_setup = vb_now() - op->t_start;
+    atomic_store(&op->done, 1);
+    return NULL;
+}
+
+/* Without its thread the set-up runs inside await_state: nothing to
+ * propose ahead for. */
+static int opener_ready(void *user)
+{
+    opener *op = user;
+    return !op->started || atomic_load(&op->done);
+}
+
+static void opener_join(opener *op)
+{
+    if (op->joined)
+        return;
+    vb_jobs_join(&op->job);
+    op->joined = 1;
+}
+
+static void *await_state(void *user)
+{
+    opener *op = user;
+    double t0 = vb_now();
+    opener_join(op);
+    op->t_wait = vb_now() - t0;
+    if (op->rc == VB_OK) {
+        vb_info(op->ctx, "OpenCL device: %s", op->layer->name(op->dev));
+        return op->state;
+    }
+    if (VB_CATEGORY(op->rc) != VB_EDEVICE) {
+        vb_error(op->ctx, op->rc, NULL, 0, "%s", op->tctx ? vb_errmsg(op->tctx) : "out of memory");
+        return NULL;
+    }
+    vb_device_fallback_warn(op->ctx, &op->req, vb_errmsg(op->tctx));
+    if (op->prop->open(op->ctx, op->layer, NULL, &op->state) != VB_OK)
+        op->state = NULL;
+    return op->state;
+}
+
+/* Runs the proposer on state (NULL: through await) and names what ran. */
+static int propose(vb_ctx *ctx, const vb_proposer *p, void *state, const vb_proposer_await *aw,
+                   const vb_sphere_set *set, const vb_vertices_config *cfg, vb_vertices_result *res)
+{
+    int rc = p->run(ctx, state, aw, set, &cfg->sampler, &res->sampler);
+    if (!state && aw)
+        state = ((opener *)aw->user)->state;
+    if (state) {
+        snprintf(res->backend, sizeof res->backend, "%s", p->backend(state));
+        snprintf(res->device, sizeof res->device, "%s", p->device(state));
+    }
+    return rc;
+}
+
+/* Sorted quadruples already handed to the certifier. */
+typedef struct quads {
+    uint32_t *q;
+    size_t n, cap;
+} quads;
+
+static int cmp_quad_sorted(const void *pa, const void *pb)
+{
+    const uint32_t *a = pa, *b = pb;
+    for (int k = 0; k < 4; k++)
+        if (a[k] != b[k])
+            return a[k] < b[k] ? -1 : 1;
+    return 0;
+}
+
+static int quads_add(quads *s, const vb_vertex_list *v)
+{
+    for (size_t k = 0; k < v->n; k++) {
+        if (v->start[k + 1] - v->start[k] != 4)
+            continue;
+        if (s->n == s->cap) {
+            size_t nc = s->cap ? 2 * s->cap : 1024;
+            uint32_t *p = realloc(s->q, 4 * nc * sizeof *p);
+            if (!p)
+                return VB_ENOMEM;
+            s->q = p;
+            s->cap = nc;
+        }
+        memcpy(s->q + 4 * s->n++, v->ids + v->start[k], 4 * sizeof *s->q);
+    }
+    if (s->n)
+        qsort(s->q, s->n, 4 * sizeof *s->q, cmp_quad_sorted);
+    return VB_OK;
+}
+
+/* Appends src to dst, then sorts and drops exact repeats (same members and
+ * the same rounded exact point: the same canonical vertex). */
+static int merge_certified(vb_vertex_list *dst, const vb_vertex_list *src)
+{
+    for (size_t k = 0; k < src->n; k++)
+        if (vb_vertex_list_push(dst, src->ids + src->start[k], src->start[k + 1] - src->start[k],
+                                src->x[k], src->y[k], src->z[k], src->t[k], src->dist[k],
+                                src->status[k]))
+            return VB_ENOMEM;
+    if (vb_vertex_list_sort(dst))
+        return VB_ENOMEM;
+    vb_vertex_list out;
+    vb_vertex_list_init(&out);
+    for (size_t k = 0; k < dst->n; k++) {
+        size_t n = dst->start[k + 1] - dst->start[k];
+        if (k > 0 && n == dst->start[k] - dst->start[k - 1] &&
+            memcmp(dst->ids + dst->start[k], dst->ids + dst->start[k - 1], n * sizeof *dst->ids) == 0 &&
+            dst->x[k] == dst->x[k - 1] && dst->y[k] == dst->y[k - 1] && dst->z[k] == dst->z[k - 1] &&
+            dst->t[k] == dst->t[k - 1])
+            continue;
+        if (vb_vertex_list_push(&out, dst->ids + dst->start[k], n, dst->x[k], dst->y[k], dst->z[k],
+                                dst->t[k], dst->dist[k], dst->status[k])) {
+            vb_vertex_list_free(&out);
+            return VB_ENOMEM;
+        }
+    }
+    vb_vertex_list_free(dst);
+    *dst = out;
+    return VB_OK;
+}
+
+/* Candidates the certifier refused because a sphere cuts their tangent
+ * sphere sit next to vertices with that sphere: certify the quadruples with
+ * the intruder swapped in, for a few rounds (jittered lattices, nearly
+ * degenerate protein vertices). */
+static int repair(vb_ctx *ctx, const vb_sphere_set *set, const vb_certifier_ops *ops,
+                  void *cert, vb_vertices_result *res)
+{
+    quads seen = {0};
+    vb_vertex_list todo, next, ok, bad;
+    vb_vertex_list_init(&todo);
+    vb_vertex_list_init(&next);
+    vb_vertex_list_init(&ok);
+    vb_vertex_list_init(&bad);
+    int rc = quads_add(&seen, &res->sampler.candidates);
+    for (size_t k = 0; rc == VB_OK && k < res->rejected.n; k++)
+        rc = vb_vertex_list_push(&todo, res->rejected.ids + res->rejected.start[k],
+                                 res->rejected.start[k + 1] - res->rejected.start[k],
+                                 res->rejected.x[k], res->rejected.y[k], res->rejected.z[k],
+                                 res->rejected.t[k], 0.0, VB_VERTEX_CANDIDATE);
+    for (int round = 0; rc == VB_OK && round < 4 && todo.n > 0; round++) {
+        vb_vertex_list swaps;
+        vb_vertex_list_init(&swaps);
+        for (size_t k = 0; rc == VB_OK && k < todo.n; k++) {
+            const uint32_t *ids = todo.ids + todo.start[k];
+            if (todo.start[k + 1] - todo.start[k] != 4)
+                continue;
+            double p[4] = {todo.x[k], todo.y[k], todo.z[k], todo.t[k]};
+            uint32_t intruder;
+            rc = ops->intruder(ctx, cert, ids, p, &intruder);
+            if (rc == VB_OK && intruder != UINT32_MAX)
+                rc = vb_sampler_swap_candidates(set, ids, intruder, p, &swaps);
+        }
+        /* Keep the swaps not certified before. */
+        for (size_t k = 0; rc == VB_OK && k < swaps.n; k++) {
+            const uint32_t *q = swaps.ids + swaps.start[k];
+            if (seen.n && bsearch(q, seen.q, seen.n, 4 * sizeof *seen.q, cmp_quad_sorted))
+                continue;
+            rc = vb_vertex_list_push(&next, q, 4, swaps.x[k], swaps.y[k], swaps.z[k], swaps.t[k],
+                                     0.0, VB_VERTEX_CANDIDATE);
+        }
+        vb_vertex_list_free(&swaps);
+        if (rc == VB_OK)
+            rc = quads_add(&seen, &next);
+        if (rc == VB_OK)
+            rc = ops->certify_list(ctx, cert, &next, &ok, &bad);
+        if (rc == VB_OK)
+            rc = merge_certified(&res->certified, &ok);
+        res->repaired_candidates += next.n;
+        vb_vertex_list_free(&todo);
+        todo = bad;
+        vb_vertex_list_init(&bad);
+        vb_vertex_list_free(&next);
+        vb_vertex_list_free(&ok);
+    }
+    vb_vertex_list_free(&todo);
+    free(seen.q);
+    if (rc == VB_ENOMEM)
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (repair)");
+    return rc;
+}
+
+/* The device failed mid-run: the twin gives the same certified output, so
+ * warn (W762), close *state and propose again on the twin, left in *state. */
+static int rerun_on_twin(vb_ctx *ctx, const vb_device_layer *layer, vb_device *dev,
+                         const vb_proposer *p, void **state, const vb_sphere_set *set,
+                         const vb_vertices_config *cfg, vb_vertices_result *res)
+{
+    vb_device_failed_warn(ctx, VB_W_DEVICE_FAILED_RERUN, layer->name(dev), vb_errmsg(ctx),
+                          "rerunning on the reference backend");
+    vb_clear_error(ctx);
+    p->close(*state);
+    *state = NULL;
+    vb_sampler_result_free(&res->sampler);
+    int rc = p->open(ctx, layer, NULL, state);
+    return rc == VB_OK ? propose(ctx, p, *state, NULL, set, cfg, res) : rc;
+}
+
+/* Exact certification of the candidates, then the repair rounds;
+ * t_certify and t_total (from t0) are set. */
+static int certify(vb_ctx *ctx, const vb_certifier_ops *ops, const vb_sphere_set *set,
+                   const vb_vertices_config *cfg, double t0, vb_vertices_result *res)
+{
+    double t1 = vb_now();
+    void *cert = NULL;
+    int rc = ops->open(ctx, set, cfg->sampler.threads, &cert);
+    if (rc == VB_OK)
+        rc = ops->certify_list(ctx, cert, &res->sampler.candidates, &res->certified,
+                               &res->rejected);
+    if (rc == VB_OK)
+        rc = repair(ctx, set, ops, cert, res);
+    if (cert)
+        ops->close(cert);
+    for (size_t k = 0; rc == VB_OK && k < res->certified.n; k++)
+        if (res->certified.dist[k] > res->max_dist)
+            res->max_dist = res->certified.dist[k];
+    double t2 = vb_now();
+    res->t_certify = t2 - t1;
+    res->t_total = t2 - t0;
+    return rc;
+}
+
+int vb_vertices_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertices_config *cfg,
+                    const vb_vertices_backends *be, vb_vertices_result *res)
+{
+    double t0 = vb_now();
+    const vb_proposer *p = proposer_of(ctx, cfg);
+    if (!p)
+        return VB_EMISUSE;
+    void *state = NULL;
+    vb_device *dev = NULL;
+    int rc = VB_OK, async = cfg->device != VB_DEVICE_REF;
+    opener op;
+    memset(&op, 0, sizeof op);
+    op.ctx = ctx;
+    op.layer = be->devices;
+    op.prop = p;
+    op.req = request_of(cfg, p);
+    op.t_start = t0;
+    if (async) {
+        if (vb_open(&op.tctx, NULL) != VB_OK)
+            op.tctx = NULL;
+        op.started = vb_jobs_start(&op.job, open_device, &op, sizeof op, 1) == 1;
+    } else if ((rc = p->open(ctx, be->devices, NULL, &state)) != VB_OK) {
+        return rc;
+    }
+    vb_proposer_await aw = {await_state, opener_ready, &op, cfg->device};
+    rc = propose(ctx, p, state, async ? &aw : NULL, set, cfg, res);
+    if (async) {
+        opener_join(&op); /* when the proposer failed before it needed the device */
+        state = op.state;
+        dev = op.rc == VB_OK ? op.dev : NULL;
+        vb_close(op.tctx);
+        res->t_setup = op.t_setup;
+        res->t_setup_wait = op.t_wait;
+    }
+    if (rc != VB_OK && VB_CATEGORY(rc) == VB_EDEVICE && dev)
+        rc = rerun_on_twin(ctx, be->devices, dev, p, &state, set, cfg, res);
+    /* Releasing a GPU context takes tens of milliseconds: after the
+     * certification, which does not need it. */
+    if (rc == VB_OK)
+        rc = certify(ctx, be->certifier, set, cfg, t0, res);
+    if (state)
+        p->close(state);
+    if (dev)
+        be->devices->close(dev);
+    return rc;
+}
+
+struct vb_vertices_engine {
+    vb_vertices_backends be;
+    const vb_proposer *prop;
+    vb_device *dev;   /* NULL on the twin */
+    void *state;
+    double t_open;
+};
+
+int vb_vertices_open(vb_ctx *ctx, const vb_vertices_backends *be, const vb_vertices_config *cfg,
+                     vb_vertices_engine **out)
+{
+    double t0 = vb_now();
+    *out = NULL;
+    const vb_proposer *p = proposer_of(ctx, cfg);
+    if (!p)
+        return VB_EMISUSE;
+    vb_vertices_engine *e = calloc(1, sizeof *e);
+    if (!e)
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory");
+    e->be = *be;
+    e->prop = p;
+    vb_engine_request req = request_of(cfg, p);
+    int rc = vb_device_open_engine(ctx, be->devices, &req, &e->dev, &e->state);
+    if (rc != VB_OK) {
+        free(e);
+        return rc;
+    }
+    if (e->dev)
+        vb_info(ctx, "OpenCL device: %s", be->devices->name(e->dev));
+    e->t_open = vb_now() - t0;
+    *out = e;
+    return VB_OK;
+}
+
+double vb_vertices_open_seconds(const vb_vertices_engine *e)
+{
+    return e->t_open;
+}
+
+void vb_vertices_close(vb_vertices_engine *e)
+{
+    if (!e)
+        return;
+    if (e->state)
+        e->prop->close(e->state);
+    if (e->dev)
+        e->be.devices->close(e->dev);
+    free(e);
+}
+
+int vb_vertices_run_on(vb_ctx *ctx, vb_vertices_engine *e, const vb_sphere_set *set,
+                       const vb_vertices_config *cfg, vb_vertices_result *res)
+{
+    double t0 = vb_now();
+    int rc = propose(ctx, e->prop, e->state, NULL, set, cfg, res);
+    if (rc != VB_OK && VB_CATEGORY(rc) == VB_EDEVICE && e->dev) {
+        /* Later runs on e stay on the twin. */
+        rc = rerun_on_twin(ctx, e->be.devices, e->dev, e->prop, &e->state, set, cfg, res);
+        e->be.devices->close(e->dev);
+        e->dev = NULL;
+    }
+    return rc == VB_OK ? certify(ctx, e->be.certifier, set, cfg, t0, res) : rc;
+}

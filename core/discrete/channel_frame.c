@@ -1,0 +1,47 @@
+/* One frame of the channel analysis: pack, pipe, analyse (vbc_frame.h). */
+#include <stdlib.h>
+#include <string.h>
+
+#include "vb_parallel.h"
+#include "vbc_frame.h"
+
+void vbc_frame_free(vbc_frame *f)
+{
+    free(f->atoms4);
+    vbc_frame_out_free(&f->out);
+    vbc_result_free(&f->result);
+    memset(f, 0, sizeof *f);
+}
+
+int vbc_frame_run(vb_ctx *ctx, vbc_pipe *pipe, const vbc_grid *g, const vb_sphere_set *s,
+                  double probe, unsigned want, const vbc_options *opt, vbc_frame *f)
+{
+    vbc_frame_out_free(&f->out);
+    vbc_result_free(&f->result);
+    memset(&f->result, 0, sizeof f->result);
+    f->grid = *g;
+    f->ms_masks = f->ms_analysis = 0.0;
+    if (f->atoms_cap < s->n) {
+        float *a = realloc(f->atoms4, 4 * s->n * sizeof *a);
+        if (!a)
+            return vb_error(ctx, VB_ENOMEM, NULL, 0, "frame of %zu atoms", s->n);
+        f->atoms4 = a;
+        f->atoms_cap = s->n;
+    }
+    double t0 = vb_now();
+    vbc_atoms_pack(g, s, probe, f->atoms4);
+    int rc = vbc_pipe_frame(ctx, pipe, g, f->atoms4, s->n, probe, want, &f->out);
+    double t1 = vb_now();
+    if (rc == VB_OK)
+        rc = vbc_analyse_clear(ctx, g, s, f->out.voxels, f->out.clearance, f->out.nvoxels, opt,
+                               &f->result);
+    double t2 = vb_now();
+    f->ms_masks = 1e3 * (t1 - t0);
+    f->ms_analysis = 1e3 * (t2 - t1);
+    if (rc != VB_OK) {
+        vbc_frame_out_free(&f->out);
+        vbc_result_free(&f->result);
+        memset(&f->result, 0, sizeof f->result);
+    }
+    return rc;
+}

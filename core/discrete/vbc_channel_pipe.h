@@ -1,0 +1,93 @@
+/* The channel frame pipeline: atoms -> discrete Voronoi labels -> masks ->
+ * the compact list of channel voxels, behind one engine table whatever runs
+ * it: OpenCL (gpu/channel_gpu.c, the device layer's channels_open) or the
+ * plain-C reference (the JFA reference, vbc_masks_ref, vbc_flags_compact;
+ * clearances left to the host analysis). Both give the same channel voxel
+ * set, so the same tables and centrelines.
+ *
+ * The pipe opens the engine by the device layer's one fallback rule
+ * (vb_device.h) and drops a device that fails in the middle of a run:
+ *   W804  no usable OpenCL device: the reference backend runs every frame
+ *   W806  OpenCL failed during a frame: that frame and the rest on the reference */
+#ifndef VBC_CHANNEL_PIPE_H
+#define VBC_CHANNEL_PIPE_H
+
+#include "vb_device.h"
+#include "vbc_channel.h"
+#include "vbj_jfa.h"
+
+/* What a frame run returns besides the voxel list. */
+enum {
+    VBC_WANT_FLAGS = 1, /* the flag volume (VBC_F_* per voxel) on the host */
+    VBC_WANT_LABELS = 2 /* the Voronoi labels on the host */
+};
+
+typedef struct vbc_frame_out {
+    uint32_t *voxels;   /* channel voxels, index | VBC_MOUTH_BIT, device order */
+    size_t nvoxels;
+    uint8_t *flags;     /* nx*ny*nz, when VBC_WANT_FLAGS (else NULL) */
+    uint32_t *labels;   /* nx*ny*nz, when VBC_WANT_LABELS (else NULL) */
+    float *clearance;   /* per listed voxel, Å (GPU devices only; NULL on CPU
+                           devices, where the host's cell list is faster) */
+    double ms_upload;   /* atoms to the device */
+    double ms_jfa;      /* vbj_run wall time (seed upload, algorithm, fill) */
+    double ms_masks;    /* atomic mask, rays, classification, list download */
+    vbj_counts jfa;     /* the JFA run's work counts */
+} vbc_frame_out;
+
+void vbc_frame_out_free(vbc_frame_out *o);
+
+/* The JFA seeds of a frame (every engine places them alike): atom a at
+ * atoms4's centre minus half a voxel (JFA puts pixel p's centre at p, the
+ * channel grid puts voxel i's at i + 0.5). Checks the grid: the sides must
+ * be one power of two. Allocates *out (vbj_seeds_free). VB_EMISUSE /
+ * VB_EINPUT_EMPTY / VB_ENOMEM. */
+int vbc_frame_seeds(vb_ctx *ctx, const vbc_grid *g, const float *atoms4, size_t natoms,
+                    vbj_seeds *out);
+
+/* The engines table. */
+typedef struct vbc_engine vbc_engine;
+struct vbc_engine {
+    const char *name;        /* "ref", "opencl" */
+    char device[160];        /* "reference (C)" or the OpenCL device name */
+    void *state;
+    /* Runs one frame: g a vbc_grid_fit grid (sides one power of two),
+     * atoms4 the vbc_atoms_pack output for `probe`. Fills *out (zeroed
+     * first). VB_EDEVICE / VB_ENOMEM / VB_EMISUSE. */
+    int (*frame)(vb_ctx *ctx, vbc_engine *e, const vbc_grid *g, const float *atoms4,
+                 size_t natoms, double probe, unsigned want, vbc_frame_out *out);
+    void (*close)(vbc_engine *e);
+};
+
+/* Opens the plain-C reference engine for a JFA variant. */
+int vbc_engine_ref_open(vb_ctx *ctx, vbj_variant variant, vbc_engine **out);
+/* Closes any engine; NULL is allowed. */
+void vbc_engine_close(vbc_engine *e);
+
+typedef struct vbc_pipe vbc_pipe;
+
+/* Opens the pipeline for device `kind` with JFA `variant` by the one
+ * fallback rule (W804). layer may be NULL (reference only). VB_ENOMEM, or
+ * VB_EDEVICE only if even the reference cannot open. */
+int vbc_pipe_open(vb_ctx *ctx, const vb_device_layer *layer, vb_device_kind kind,
+                  vbj_variant variant, vbc_pipe **out);
+void vbc_pipe_close(vbc_pipe *p);
+
+/* Runs one frame on the engine (same arguments and contract as its frame
+ * function). When the OpenCL engine fails with VB_EDEVICE, warns W806,
+ * releases OpenCL and reruns the frame on the reference, which then serves
+ * every later frame. out->clearance is NULL on the reference. */
+int vbc_pipe_frame(vb_ctx *ctx, vbc_pipe *p, const vbc_grid *g, const float *atoms4, size_t natoms,
+                   double probe, unsigned want, vbc_frame_out *out);
+
+/* The device running the frames now: the OpenCL name or "reference (C)". */
+const char *vbc_pipe_device_name(const vbc_pipe *p);
+/* Nonzero while frames run on the reference backend. */
+int vbc_pipe_is_ref(const vbc_pipe *p);
+
+/* Fault injection (tests, as SQLite's *fault.test): the OpenCL engine fails
+ * with VB_EDEVICE on its frame number `frame` (counted from 0 over this
+ * pipe's OpenCL frames); -1 (the default) never. */
+void vbc_pipe_inject_device_fault(vbc_pipe *p, long frame);
+
+#endif

@@ -1,0 +1,56 @@
+/* One frame of the channel analysis as a library call: the spheres packed
+ * on a fitted grid, the frame pipeline (labels, masks, channel voxels),
+ * then the analysis (components, centrelines, bottlenecks, lining). The
+ * `channels` command runs it per frame, the pipeline stages of its --png
+ * picture on a planar cut of the molecule. */
+#ifndef VBC_FRAME_H
+#define VBC_FRAME_H
+
+#include "vbc_channel_pipe.h"
+
+typedef struct vbc_frame {
+    vbc_grid grid;
+    float *atoms4;          /* the packed spheres (vbc_atoms_pack), grid units */
+    size_t atoms_cap;
+    vbc_frame_out out;      /* channel voxels, flags / labels as wanted, device times */
+    vbc_result result;      /* the analysis */
+    double ms_masks;        /* packing and the frame pipeline */
+    double ms_analysis;
+} vbc_frame;
+
+/* Zero-initialised is empty; vbc_frame_free releases. */
+void vbc_frame_free(vbc_frame *f);
+
+/* Runs one frame of the spheres s on grid g (a vbc_grid_fit grid for
+ * `probe`) through the pipe and the analysis with opt; `want` as for
+ * vbc_pipe_frame. *f is refilled (its buffers reused); on failure it holds
+ * nothing of the frame. VB_OK, VB_ENOMEM, VB_EMISUSE, VB_EDEVICE. */
+int vbc_frame_run(vb_ctx *ctx, vbc_pipe *pipe, const vbc_grid *g, const vb_sphere_set *s,
+                  double probe, unsigned want, const vbc_options *opt, vbc_frame *f);
+
+/* The planar cut of s by the plane through its centroid normal to axis
+ * `normal` (0 x, 1 y, 2 z): every sphere the plane crosses becomes a disk
+ * of its cross-section radius, in the plane's two other axes (z 0).
+ * *out has no atom records. VB_EINPUT_EMPTY when the plane meets no
+ * sphere, VB_ENOMEM. */
+int vbc_planar_cut(vb_ctx *ctx, const vb_sphere_set *s, int normal, vb_sphere_set **out);
+
+/* An RGB picture: h rows of w pixels, 3 bytes each, row 0 at the top. */
+typedef struct vbc_image {
+    uint32_t w, h;
+    uint8_t *rgb;
+} vbc_image;
+
+void vbc_image_free(vbc_image *img);
+
+/* The eight panels of the 2D pipeline (the paper's Fig. 5), 4 x 2, for the
+ * planar cut of s normal to `normal` on an n x n grid: input disks, disks
+ * grown by the probe, Voronoi regions, Voronoi edges, atomic region,
+ * molecular region, interior, channels (cavities kept: in a cut a pore is
+ * often closed) with their centrelines. Fills *img (free with
+ * vbc_image_free). VB_EINPUT_EMPTY when the plane meets no atom; VB_ENOMEM,
+ * VB_EDEVICE. */
+int vbc_stages_render(vb_ctx *ctx, vbc_pipe *pipe, const vb_sphere_set *s, double probe, int n,
+                      int normal, const vbc_options *opt, vbc_image *img);
+
+#endif

@@ -1,0 +1,35 @@
+/* The frames of a molecule for the discrete pipelines (channels): the
+ * models of a multi-model PDB / PQR / mmCIF / XYZR file, or the frames of a
+ * DCD trajectory over a topology file that lists its atoms.
+ *
+ * Every frame is checked as the sphere input of every command is: frames
+ * read from text by vb_spheres_validate (radius < 0, duplicates, absurd
+ * magnitudes: the same numbered errors as `vorball vertices`); DCD frames,
+ * which carry no decimals, coordinate by coordinate (E102 for a NaN or
+ * infinite value, E107 beyond 1e9, naming the frame), with their radii from
+ * the validated topology. */
+#ifndef VB_FRAMES_H
+#define VB_FRAMES_H
+
+#include "vb_spheres.h"
+
+typedef struct vb_frame_source vb_frame_source;
+
+/* Opens the frames of `path` ("-" = stdin), or with dcd_path the frames of
+ * that DCD with `path` its topology (a file: every atom of the DCD, water
+ * and hydrogens too; ro->keep_water and ro->drop_hydrogens then select the
+ * atoms of the frames). VB_EINPUT_MODEL when the atom counts differ,
+ * VB_EINPUT_EMPTY when no atom is left, the readers' errors, VB_ENOMEM.
+ * Close with vb_frame_source_close. */
+int vb_frame_source_open(vb_ctx *ctx, const char *path, const char *dcd_path,
+                         const vb_read_options *ro, vb_frame_source **out);
+
+/* The next frame, checked (caller frees; *out NULL at the end, with VB_OK)
+ * and its model number (the MODEL serial, or 1 + the frame index of a
+ * DCD). */
+int vb_frame_source_next(vb_ctx *ctx, vb_frame_source *src, vb_sphere_set **out, int *model);
+
+/* NULL is allowed. */
+void vb_frame_source_close(vb_frame_source *src);
+
+#endif

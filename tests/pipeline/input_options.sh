@@ -1,0 +1,34 @@
+#!/bin/sh
+# The input options every command shares (cli/input_options.c), as users
+# type them: each is accepted, a bad or missing value is a usage error
+# (exit 2), --help lists them, and a missing file is an i/o error (exit 3)
+# naming it.
+# usage: input_options.sh VORBALL CORPUS_DIR WORK_DIR
+vorball=$1 corpus=$2 work=$3/input_options
+here=$(cd "$(dirname "$0")" && pwd)
+. "$here/lib.sh"
+mkdir -p "$work" || fail "cannot create $work"
+cd "$corpus/inputs" || fail "no $corpus/inputs"
+out=$work/out.txt
+in=cubic_lattice.xyzr
+run 0 "$out" "$vorball" reference --format xyzr --model 1 --water --no-hydrogens \
+    --strict-elements --zero-radius point "$in" -o "$work/ref.tsv"
+cmp -s "$work/ref.tsv" ../golden/cubic_lattice.tsv || fail "options changed the xyzr vertices"
+run 0 "$out" "$vorball" reference --help
+for name in "--format F" "--model N" "--radii FILE" "--water" "--no-hydrogens" "--strict-elements" \
+            "--zero-radius M"; do
+    expect_line "$out" "^  $name"
+done
+run 2 "$out" "$vorball" reference --format gro "$in"
+expect_line "$out" "unknown format 'gro'"
+run 2 "$out" "$vorball" reference --model 0 "$in"
+run 2 "$out" "$vorball" reference --model x2 "$in"
+run 2 "$out" "$vorball" reference "$in" --model
+run 2 "$out" "$vorball" reference --zero-radius maybe "$in"
+run 3 "$out" "$vorball" reference --radii /nonexistent/radii.txt "$in"
+expect_line "$out" "/nonexistent/radii.txt"
+run 3 "$out" "$vorball" reference /nonexistent/in.xyzr
+expect_line "$out" "/nonexistent/in.xyzr"
+head -3 "$in" > "$work/three.xyzr"
+run 16 "$out" "$vorball" reference "$work/three.xyzr"
+echo "ok: input options"
