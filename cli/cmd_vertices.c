@@ -24,12 +24,15 @@ static void help(FILE *f)
             "  --output-format F    tsv (default), json or voronota\n"
             "  --device D           auto (default: a GPU, else PoCL on the CPU), gpu, cpu, or\n"
             "                       ref (plain-C reference backend; same output)\n"
-            "  --proposer P         how candidates are proposed (default sampling, the\n"
-            "                       seed paper's rays; the output does not depend on it)\n"
+            "  --proposer P         how candidates are proposed: cover (default; a direction\n"
+            "                       cover of every cell that proves no vertex is missing)\n"
+            "                       or sampling (the seed paper's rays; proves nothing about\n"
+            "                       completeness); the vertices written are the same\n"
             "  --samples S          S x S rays per cube face, 6 S^2 per sphere (default %u)\n"
             "  --tol T              Newton / matching tolerance in input units\n"
             "                       (default 1e-5 of the bounding-box diagonal)\n"
             "  --topology FILE      write faces (sphere pairs) and edges (vertex pairs)\n"
+            "                       from the sampling's evidence (implies --proposer sampling)\n"
             "  --tiles T            culling tiles per cube face side, a power of two\n"
             "                       (default: from S)\n"
             "  --all-pairs          no neighbour culling (every cell tests all bisectors)\n"
@@ -133,6 +136,11 @@ int vb_cmd_vertices(int argc, char **argv)
     }
     if (code == VB_EXIT_OK && !input)
         code = vb_cli_usage_error("vertices", "no input file (use - for stdin)");
+    /* Faces and edges come from the sampling's evidence. */
+    if (code == VB_EXIT_OK && topo_path && !po.cfg.proposer)
+        po.cfg.proposer = "sampling";
+    if (code == VB_EXIT_OK && topo_path && strcmp(po.cfg.proposer, "sampling") != 0)
+        code = vb_cli_usage_error("vertices", "--topology needs --proposer sampling");
     if (code != VB_EXIT_OK) {
         vb_close(ctx);
         return code;
@@ -148,11 +156,15 @@ int vb_cmd_vertices(int argc, char **argv)
     vb_cli_bar_clear(&bar);
     if (rc == VB_OK && stats)
         print_stats(ctx, &res);
-    if (rc == VB_OK && res.rejected.n)
+    /* A cover's refused roots are quadruples that hold no vertex: expected,
+     * and no warning. */
+    if (rc == VB_OK && res.rejected.n && !res.sampler.complete)
         vb_warn(ctx, VB_W_CERT_REJECTED, NULL, 0, "the certifier rejected %zu candidate(s)", res.rejected.n);
+    char note[512];
+    vb_vertices_certificate(&res, note, sizeof note);
     if (rc == VB_OK) {
         FILE *out = vb_cli_open_output(ctx, outpath);
-        rc = out ? vb_vertex_write(ctx, out, &res.certified, vfmt, NULL) : VB_EIO;
+        rc = out ? vb_vertex_write(ctx, out, &res.certified, vfmt, note[0] ? note : NULL) : VB_EIO;
         if (out)
             rc = rc ? rc : vb_cli_close_output(ctx, out, outpath);
     }

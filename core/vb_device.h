@@ -34,6 +34,7 @@ int vb_device_kind_parse(vb_ctx *ctx, const char *s, vb_device_kind *out);
 typedef struct vb_device vb_device;
 
 struct vb_sampler_backend;
+struct vb_cover_backend;
 struct vbj_backend;
 struct vbc_engine;
 
@@ -49,9 +50,11 @@ typedef struct vb_device_layer {
     const char *(*name)(const vb_device *dev);
     int (*is_gpu)(const vb_device *dev);
     /* The engines of the stages on an opened device (they build their
-     * programs): the sampling backend of the vertex pipeline, the JFA
-     * engine, the channel frame engine for a JFA variant. */
+     * programs): the sampling backend of the vertex pipeline, the
+     * direction cover's backend, the JFA engine, the channel frame engine
+     * for a JFA variant. */
     int (*sampler_open)(vb_ctx *ctx, vb_device *dev, struct vb_sampler_backend **out);
+    int (*cover_open)(vb_ctx *ctx, vb_device *dev, struct vb_cover_backend **out);
     int (*jfa_open)(vb_ctx *ctx, vb_device *dev, struct vbj_backend **out);
     int (*channels_open)(vb_ctx *ctx, vb_device *dev, int jfa_variant, struct vbc_engine **out);
 } vb_device_layer;

@@ -1,6 +1,7 @@
 /* The device layer of the library on OpenCL (core/vb_device.h): runtimes as
  * devices, and on them the OpenCL engine of every stage. */
 #include "vbc_channel_gpu.h"
+#include "vbg_cover.h"
 #include "vbg_jfa.h"
 #include "vbg_runtime.h"
 #include "vbg_sampler.h"
@@ -21,6 +22,7 @@ const vb_device_layer vbg_device_layer = {
     vbg_runtime_device_name,
     vbg_runtime_is_gpu,
     vbg_sampler_open,
+    vbg_cover_open,
     vbg_jfa_open,
     open_channels,
 };

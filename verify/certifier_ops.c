@@ -39,4 +39,4 @@ static void ops_close(void *cert)
 }
 
 const vb_certifier_ops vb_exact_certifier = {"exact", ops_open, ops_list, ops_intruder,
-                                             ops_close};
+                                             ops_close, NULL};

@@ -41,6 +41,7 @@ void vb_sampler_result_init(vb_sampler_result *r)
 void vb_sampler_result_free(vb_sampler_result *r)
 {
     vb_vertex_list_free(&r->candidates);
+    free(r->quads.q);
     free(r->topo.faces);
     free(r->topo.triples);
     vb_sampler_result_init(r);

@@ -157,6 +157,17 @@ typedef struct vb_sampler_result {
                                      tangent test), before the neighbourhood completion */
     uint64_t bisectors;           /* bisectors kept by the culling */
     vb_topology_evidence topo;    /* filled when options.topology */
+    /* A proposer of quadruples (the direction cover) leaves candidates
+     * empty and these instead: sorted unique sphere quadruples whose exact
+     * roots hold every vertex (certify each root). complete says that the
+     * proposer proves that no vertex is missing. */
+    struct {
+        uint32_t (*q)[4];
+        size_t n, cap;
+    } quads;
+    int complete;
+    uint64_t cover_cells, cover_patches, cover_host_cells; /* the cover's counters */
+    double t_cover_device;        /* seconds in the cover's device batches */
 } vb_sampler_result;
 
 void vb_sampler_result_init(vb_sampler_result *r);

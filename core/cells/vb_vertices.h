@@ -40,6 +40,13 @@ typedef struct vb_certifier_ops {
     int (*intruder)(vb_ctx *ctx, void *cert, const uint32_t ids[4], const double p[4],
                     uint32_t *intruder);
     void (*close)(void *cert);
+    /* May be NULL. Certifies every exact root of each sorted quadruple
+     * quads[0 .. n) and writes the canonical certified set (as
+     * certify_list) to certified; rejected (may be NULL) gets the roots
+     * that are not vertices. Without it the driver certifies one candidate
+     * per double root. */
+    int (*certify_quads)(vb_ctx *ctx, void *cert, const uint32_t (*quads)[4], size_t n,
+                         vb_vertex_list *certified, vb_vertex_list *rejected);
 } vb_certifier_ops;
 
 /* ---- proposers ----------------------------------------------------------- */
@@ -79,6 +86,10 @@ typedef struct vb_proposer {
 /* The ray sampling of the seed paper (vb_sampler_run) as a proposer. */
 extern const vb_proposer vb_proposer_sampling;
 
+/* The direction cover (vb_cover_run): quadruples proven to hold every
+ * vertex; the default. */
+extern const vb_proposer vb_proposer_cover;
+
 /* The proposers of the library, NULL-terminated; the first is the default. */
 extern const vb_proposer *const vb_proposers[];
 
@@ -86,6 +97,8 @@ extern const vb_proposer *const vb_proposers[];
 const vb_proposer *vb_proposer_find(const char *name);
 
 /* ---- the pipeline -------------------------------------------------------- */
+
+
 
 typedef struct vb_vertices_backends {
     const vb_device_layer *devices;        /* NULL: plain-C twins only */
@@ -110,6 +123,13 @@ typedef struct vb_vertices_result {
     char backend[16];
     char device[160];
 } vb_vertices_result;
+
+/* What a result proves, as one line for an output file's header (empty
+ * when the proposer proves nothing about completeness): for a complete
+ * proposer, the number of certified vertices, that every vertex of the
+ * diagram is among them, and the cover's counts. The text depends on the
+ * input alone, never on the device or the thread count. */
+void vb_vertices_certificate(const vb_vertices_result *r, char *buf, size_t size);
 
 void vb_vertices_result_init(vb_vertices_result *r);
 void vb_vertices_result_free(vb_vertices_result *r);

@@ -76,6 +76,7 @@ static int run(vb_ctx *ctx, vb_sphere_set *s, vb_device_kind kind, unsigned samp
     vb_vertices_config cfg;
     memset(&cfg, 0, sizeof cfg);
     cfg.device = kind;
+    cfg.proposer = "sampling"; /* these tests are about the ray sampling */
     cfg.sampler.samples = samples;
     cfg.sampler.all_pairs = all_pairs;
     vb_vertices_result_init(r);
