@@ -533,6 +533,15 @@ int vb_cover_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *
      * (caches, and a device's work-items). */
     jb.cells = g.ids;
     jb.ncells = g.m;
+    if (o.nparts > 1) {
+        if (o.part >= o.nparts) {
+            bvh_free(&g);
+            return vb_error(ctx, VB_EMISUSE, NULL, 0, "cover part %u of %u", o.part, o.nparts);
+        }
+        size_t b0 = g.m * (size_t)o.part / o.nparts, b1 = g.m * ((size_t)o.part + 1) / o.nparts;
+        jb.cells = g.ids + b0;
+        jb.ncells = b1 - b0;
+    }
     int nt = vb_threads(o.threads);
     worker *w = calloc((size_t)nt, sizeof *w);
     int rc = w ? VB_OK : VB_ENOMEM;

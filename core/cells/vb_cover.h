@@ -30,6 +30,11 @@ typedef struct vb_cover_options {
     unsigned max_level;  /* enumerate whatever is left at this level (0: VB_COVER_MAX_LEVEL) */
     unsigned enum_max;   /* enumerate a patch once it has at most this many owned labels (0: 3) */
     unsigned threads;    /* host threads (0: VORBALL_THREADS or online CPUs) */
+    /* Work split across processes (MPI ranks): this run covers part `part`
+     * of `nparts` (0 or 1: everything). The parts are runs of cells along
+     * the tree's curve, balanced by count, the same for every process; the
+     * union of the parts' quadruples is the whole run's. */
+    unsigned part, nparts;
 } vb_cover_options;
 
 typedef struct vb_cover_stats {
