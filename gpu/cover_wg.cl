@@ -269,7 +269,7 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
         if (lane == 0u && sh[S_STATUS] == VBQ_OK) {
             uint rt = roots[c], n0 = 0u;
             for (uint k = 0u; k < nroot; k++)
-                if (rt == VBQ_ALL_ROOTS || rt == k)
+                if (vbq_task_root(rt, k))
                     stk[n0++] = vbq_root(T, k, len0, rq, far);
             sh[S_NST] = n0;
             sh[S_TOP] = len0;
@@ -460,12 +460,15 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
                 if (nst + 4u > WG_ST) {
                     sh[S_STATUS] = VBQ_OVER_ST;
                 } else {
+                    uint rt = roots[c], nc = 0u;
                     for (uint k = 0u; k < 4u; k++) {
+                        if (!vbq_task_child(rt, fr.level, k))
+                            continue;
                         vbq_frame ch;
                         vbq_child(&fr, k, top, keep, &ch);
-                        stk[nst + k] = ch;
+                        stk[nst + nc++] = ch;
                     }
-                    sh[S_NST] = nst + 4u;
+                    sh[S_NST] = nst + nc;
                     sh[S_TOP] = top + keep;
                 }
             }
