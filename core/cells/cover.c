@@ -233,6 +233,8 @@ static int arena_make(vbq_arena *a, uint32_t nb, uint32_t lab, uint32_t st, uint
 
 static int quads_append(worker *w, const uint32_t *q, size_t n)
 {
+    if (n == 0)
+        return VB_OK;
     if (w->nq + n > w->q_cap) {
         size_t nc = w->q_cap ? w->q_cap : 4096;
         while (nc < w->nq + n)
