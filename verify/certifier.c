@@ -1,4 +1,5 @@
 /* The exact certifier: candidate -> exact tangent sphere -> empty? -> canonical vertex. */
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -19,6 +20,34 @@ static int open_scratch(vb_certifier *c)
     return c->ids && c->members && c->is_def && c->slots ? 0 : -1;
 }
 
+/* The scaled input as 64-bit integers for the filter of vb_certify_quads:
+ * qd.ok only when every value is below 2^62 in magnitude and 10^E is a
+ * double. 0, or -1 when out of memory. */
+static int open_qdata(vb_certifier *c)
+{
+    size_t n = c->set->n;
+    c->qz = malloc(4 * (n ? n : 1) * sizeof *c->qz);
+    if (!c->qz)
+        return -1;
+    c->qd.z = c->qz;
+    c->qd.ok = 0;
+    c->qd.ops = vbx_qf_ops_best();
+#if LONG_MAX < 0x3fffffffffffffff
+    return 0; /* mpz_get_si needs a 64-bit long */
+#endif
+    double sc = mpz_get_d(c->d.scale);
+    if (mpz_cmp_d(c->d.scale, sc) != 0)
+        return 0;
+    for (size_t i = 0; i < 4 * n; i++) {
+        if (mpz_sizeinbase(c->d.c[i], 2) > 61)
+            return 0;
+        c->qz[i] = (int64_t)mpz_get_si(c->d.c[i]);
+    }
+    c->qd.scale = sc;
+    c->qd.ok = 1;
+    return 0;
+}
+
 int vb_certifier_open(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier **out)
 {
     *out = NULL;
@@ -36,7 +65,8 @@ int vb_certifier_open(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier **out)
         free(c);
         return rc;
     }
-    if (open_scratch(c) != 0 || vbx_sindex_build(&c->t, c->d.box, c->d.near, set->n) != 0) {
+    if (open_scratch(c) != 0 || vbx_sindex_build(&c->t, c->d.box, c->d.near, set->n) != 0 ||
+        open_qdata(c) != 0) {
         vb_certifier_close(c);
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (certifier)");
     }
@@ -54,6 +84,8 @@ vb_certifier *vbx_certifier_worker(const vb_certifier *c)
     w->set = c->set;
     w->d = c->d;
     w->t = c->t;
+    w->qd = c->qd;
+    w->qz = c->qz;
     w->borrowed = 1;
     if (open_scratch(w) != 0) {
         vb_certifier_close(w);
@@ -71,6 +103,7 @@ void vb_certifier_close(vb_certifier *c)
     if (!c->borrowed) {
         vbx_data_free(&c->d);
         vbx_sindex_free(&c->t);
+        free(c->qz);
     }
     free(c->ids);
     free(c->members);

@@ -5,6 +5,7 @@
 #include "vb_verify.h"
 #include "vbx_exact.h"
 #include "vbx_sindex.h"
+#include "vbx_quad.h"
 
 /* One canonical vertex identity: its sorted member set and the root of its
  * canonical quadruple (see vbx_cert_key_of). */
@@ -19,6 +20,8 @@ struct vb_certifier {
     const vb_sphere_set *set;
     vbx_data d;
     vbx_sindex t;          /* centres for the emptiness scans */
+    vbx_qdata qd;          /* the scaled input in 64-bit integers (vb_certify_quads) */
+    int64_t *qz;           /* qd.z, owned unless borrowed */
     int borrowed;          /* worker of vb_certify_list: d and t belong to the parent */
     unsigned threads;      /* vb_certify_list threads; 0 = VORBALL_THREADS or online CPUs */
     uint64_t slow_rounds;  /* MPFR roundings of finished worker runs (vb_certifier_counts) */
