@@ -344,6 +344,25 @@ static int old_way(const vb_sphere_set *set, const vb_quad_list *q, vb_vertex_li
     return rc;
 }
 
+/* Independent of the index: each vertex's members touch it and every other
+ * sphere stays outside, in plain double with a tolerance. */
+static int brute_empty(const vb_sphere_set *set, const vb_vertex_list *v)
+{
+    for (size_t k = 0; k < v->n; k++) {
+        const uint32_t *m = v->ids + v->start[k];
+        size_t nm = v->start[k + 1] - v->start[k], next = 0;
+        for (uint32_t j = 0; j < set->n; j++) {
+            double dx = v->x[k] - set->x[j], dy = v->y[k] - set->y[j], dz = v->z[k] - set->z[j];
+            double g = sqrt(dx * dx + dy * dy + dz * dz) - set->r[j] - v->t[k];
+            int member = next < nm && m[next] == j;
+            next += member;
+            if (member ? fabs(g) > 1e-9 : g < -1e-9)
+                return 0;
+        }
+    }
+    return 1;
+}
+
 static int same_stats(const vb_stats *a, const vb_stats *b)
 {
     return a->filter_calls == b->filter_calls && a->filter_failures == b->filter_failures &&
@@ -370,6 +389,7 @@ static void test_threads_and_old_way(void)
         CHECK(memcmp(&one.qs, &more.qs, sizeof one.qs) == 0);
         vb_vertex_list_free(&more.out);
     }
+    CHECK(brute_empty(s, &one.out));
     /* The filter decides as the exact certifier does. */
     vb_vertex_list old;
     vb_vertex_list_init(&old);
