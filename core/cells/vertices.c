@@ -179,35 +179,12 @@ static int quads_add(quads *s, const vb_vertex_list *v)
     return VB_OK;
 }
 
-/* Appends src to dst, then sorts and drops exact repeats (same members and
- * the same rounded exact point: the same canonical vertex). */
+/* Appends src to dst and makes dst canonical again (sorted, exact repeats
+ * dropped: the same canonical vertex). */
 static int merge_certified(vb_vertex_list *dst, const vb_vertex_list *src)
 {
-    for (size_t k = 0; k < src->n; k++)
-        if (vb_vertex_list_push(dst, src->ids + src->start[k], src->start[k + 1] - src->start[k],
-                                src->x[k], src->y[k], src->z[k], src->t[k], src->dist[k],
-                                src->status[k]))
-            return VB_ENOMEM;
-    if (vb_vertex_list_sort(dst))
-        return VB_ENOMEM;
-    vb_vertex_list out;
-    vb_vertex_list_init(&out);
-    for (size_t k = 0; k < dst->n; k++) {
-        size_t n = dst->start[k + 1] - dst->start[k];
-        if (k > 0 && n == dst->start[k] - dst->start[k - 1] &&
-            memcmp(dst->ids + dst->start[k], dst->ids + dst->start[k - 1], n * sizeof *dst->ids) == 0 &&
-            dst->x[k] == dst->x[k - 1] && dst->y[k] == dst->y[k - 1] && dst->z[k] == dst->z[k - 1] &&
-            dst->t[k] == dst->t[k - 1])
-            continue;
-        if (vb_vertex_list_push(&out, dst->ids + dst->start[k], n, dst->x[k], dst->y[k], dst->z[k],
-                                dst->t[k], dst->dist[k], dst->status[k])) {
-            vb_vertex_list_free(&out);
-            return VB_ENOMEM;
-        }
-    }
-    vb_vertex_list_free(dst);
-    *dst = out;
-    return VB_OK;
+    int rc = vb_vertex_list_append(dst, src);
+    return rc == VB_OK ? vb_vertex_list_canonical(dst, NULL) : rc;
 }
 
 /* Candidates the certifier refused because a sphere cuts their tangent
