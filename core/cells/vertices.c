@@ -449,6 +449,7 @@ void vb_vertices_certificate(const vb_vertices_result *r, char *buf, size_t size
     }
     snprintf(buf, size,
              "complete: %zu certified vertices, every vertex of the diagram "
-             "(direction cover of %llu cells, %zu quadruples, every root decided exactly)",
-             r->certified.n, (unsigned long long)s->cover_cells, s->quads.n);
+             "(direction cover of %llu cells, %llu quadruples, every root decided exactly)",
+             r->certified.n, (unsigned long long)s->cover_cells,
+             (unsigned long long)s->cover_quads);
 }
