@@ -405,6 +405,8 @@ static int open_outputs(vb_ctx *ctx, const ch_args *A, FILE *out[VB_CLI_ROUND_SI
     return VB_OK;
 }
 
+/* Closes rank 0's outputs; after a failure (of any rank: rc is agreed) the
+ * files are removed, so no table of part of the frames is left behind. */
 static int close_outputs(vb_ctx *ctx, const ch_args *A, FILE *out[VB_CLI_ROUND_SINKS], int rc)
 {
     const char *path[VB_CLI_ROUND_SINKS] = {A->out, A->stats, A->centrelines};
@@ -413,6 +415,9 @@ static int close_outputs(vb_ctx *ctx, const ch_args *A, FILE *out[VB_CLI_ROUND_S
             int c = vb_cli_close_output(ctx, out[k], path[k]);
             rc = rc == VB_OK ? c : rc;
         }
+    for (int k = 0; k < VB_CLI_ROUND_SINKS && rc != VB_OK; k++)
+        if (out[k] && out[k] != stdout)
+            remove(path[k]);
     return rc;
 }
 
