@@ -13,7 +13,8 @@
 # usage: sh papers/mpi-scaling/device_mpi.sh BUILD_DIR OUTDIR
 #   BUILD_DIR  an MPI build (cli/vorball) or a carried folder (prepare_carry.sh)
 #   OUTDIR     cpu/ (strong_scaling.sh's table), gpu.tsv, gpu/ (runs), host.txt
-# Environment: STEPS ("cpu gpu"), GPU_RANKS ("1 2 4"); the rest as for
+# Environment: STEPS ("cpu gpu"), GPU_RANKS ("1 2 4"), GPU_INPUT (the tiled
+# capsid strong_scaling.sh prepares, else made here); the rest as for
 # strong_scaling.sh (CORES, RANKS, FRAMES, GRID, TILE, MPIRUN).
 # Run from the repository root.
 set -u
@@ -52,7 +53,10 @@ for step in ${STEPS:-cpu gpu}; do
         ;;
     gpu)
         cap=$out/cpu/in/capsid8.xyzr
-        if [ ! -s "$cap" ]; then
+        if [ -n "${GPU_INPUT:-}" ]; then
+            cap=$GPU_INPUT
+            [ -s "$cap" ] || { echo "device_mpi.sh: no $cap" >&2; exit 2; }
+        elif [ ! -s "$cap" ]; then
             mkdir -p "$out/cpu/in"
             python3 papers/gpu-voronoi-cells-of-spheres/cif_to_xyzr.py \
                 corpus/data/4yvs_ev71_capsid.cif "$out/cpu/in/capsid.xyzr" &&
