@@ -61,6 +61,7 @@
     X(W, 712, ZERO_DROPPED, 0, "spheres of radius 0 dropped (--zero-radius drop)")                       \
     X(W, 713, ZERO_POINTS, 0, "spheres of radius 0 kept as point sites")                                 \
     X(W, 720, REFERENCE_SLOW, 0, "exact reference on a large input: may take very long")                 \
+    X(W, 735, MODEL_OPEN_AT_END, 0, "the input ends inside a MODEL (no ENDMDL/END): truncated?")         \
     X(W, 760, DEVICE_FALLBACK, 0, "no usable OpenCL device: vertices on the reference backend")          \
     X(W, 761, CAND_OVERFLOW, 0, "candidates did not fit a sampling grid cell")                           \
     X(W, 762, DEVICE_FAILED_RERUN, 0, "OpenCL device failed mid-run: rerun on the reference")            \
@@ -73,7 +74,7 @@
     X(W, 791, CROSSCHECK_FLAT, 0, "the centres span fewer than 3 dimensions: no vertices")               \
     X(W, 792, CROSSCHECK_HIDDEN, 0, "spheres hidden in the power diagram (no power cell)")               \
     X(W, 793, CROSSCHECK_REJECTED, 0, "lines marked rejected are not compared")                          \
-    X(W, 801, DCD_PARTIAL_FRAME, 0, "DCD ends inside a frame: partial frame ignored")                    \
+    X(W, 801, DCD_PARTIAL_FRAME, 0, "DCD ends with less than a frame (cut or stray bytes): ignored")     \
     X(W, 802, VOLUME_FIRST_FRAME, 0, "volume file holds the first frame only")                           \
     X(W, 803, VOXEL_COARSE, 0, "voxel edge coarser than the probe radius")                               \
     X(W, 804, CHANNELS_DEVICE_FALLBACK, 0, "no usable OpenCL device: channels on the reference backend") \
