@@ -54,7 +54,8 @@ static void help(FILE *f)
             "\nCounts: 'pixels' is the number of work-items that ran a JFA step (the\n"
             "paper's pixels processed); 'boundary' (Facet-JFA) the pixels left unmarked.\n"
             "Warnings: W780 seeds lost to a shared start pixel, W781 no OpenCL device\n"
-            "(reference backend used), W782 Facet-JFA cannot start coarser than n.\n");
+            "(reference backend used), W782 Facet-JFA cannot start coarser than n,\n"
+            "W751 OpenCL failed mid-run (that run and the rest on the reference).\n");
 }
 
 typedef struct {

@@ -1,6 +1,9 @@
 /* Host side of the sampling kernels: buffers, launches, read-back. Stage
  * times are wall clock around each stage with the queue drained, so they
- * include launch overhead. */
+ * include launch overhead. Every host-to-device write is blocking: a batch
+ * that fails part way returns with nothing queued that still reads host
+ * memory its caller is about to free (a queued upload of freed batch
+ * buffers crashed `vertices` when a later call failed). */
 #include <stdlib.h>
 #include <string.h>
 
@@ -44,7 +47,7 @@ static int buf_write(vb_ctx *ctx, ocl_state *st, ocl_buf *b, const void *src, si
     if (n == 0)
         return VB_OK;
     return vbg_check(ctx,
-                     clEnqueueWriteBuffer(vbg_runtime_queue(st->rt), b->mem, CL_FALSE, 0, n, src,
+                     clEnqueueWriteBuffer(vbg_runtime_queue(st->rt), b->mem, CL_TRUE, 0, n, src,
                                           0, NULL, NULL),
                      "clEnqueueWriteBuffer");
 }
@@ -114,7 +117,7 @@ static int ocl_run_batch(vb_ctx *ctx, vb_sampler_backend *be, const vb_sampler_b
                             sizeof(cl_mem), sizeof(cl_mem), sizeof(cl_mem), sizeof(cl_mem),
                             sizeof cap, sizeof nb};
         if (vbg_check(ctx,
-                      clEnqueueWriteBuffer(q, st->counters.mem, CL_FALSE, 0, sizeof zero, zero,
+                      clEnqueueWriteBuffer(q, st->counters.mem, CL_TRUE, 0, sizeof zero, zero,
                                            0, NULL, NULL),
                       "clEnqueueWriteBuffer") ||
             set_args(ctx, st->vert, 10, s, v) ||
