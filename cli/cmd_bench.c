@@ -146,7 +146,7 @@ int vb_cmd_bench(int argc, char **argv)
         return code;
     }
     FILE *out = vb_cli_open_output(ctx, outpath);
-    int rc = out ? VB_OK : VB_EIO;
+    int rc = out ? VB_OK : vb_errcode(ctx);
     vb_vertices_engine *dev = NULL;
     if (rc == VB_OK && !cold)
         rc = vb_vertices_open(ctx, vb_default_backends(), &po.cfg, &dev);
@@ -196,8 +196,7 @@ int vb_cmd_bench(int argc, char **argv)
     vb_vertices_close(dev);
     if (rc == VB_OK && json)
         fputs("\n]\n", out);
-    if (out)
-        rc = rc ? rc : vb_cli_close_output(ctx, out, outpath);
+    rc = vb_cli_finish_output(ctx, out, outpath, rc);
     code = rc == VB_OK ? VB_EXIT_OK : vb_cli_fail(ctx, rc);
     free(inputs);
     vb_close(ctx);

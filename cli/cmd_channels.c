@@ -301,7 +301,7 @@ static int do_frame(vb_ctx *ctx, const ch_args *A, vbc_pipe *pipe, long index, i
         char name[4096];
         if (volume_name(A->volume, index, name, sizeof name) != 0)
             rc = vb_error(ctx, VB_EMISUSE, NULL, 0, "volume file name too long");
-        else
+        else if ((rc = vb_cli_check_output(ctx, name)) == VB_OK)
             rc = vbc_write_volume(ctx, name, &g, F.out.flags, A->volume_bit);
     }
     if (rc == VB_OK && A->png && S->frames_done == 0)
@@ -389,18 +389,10 @@ int vb_cmd_channels(int argc, char **argv)
                 S.sum_masks / runs, 1e3 * runs / S.sum_masks);
     }
 done:
-    if (S.table) {
-        int c = vb_cli_close_output(ctx, S.table, A.out);
-        rc = rc == VB_OK ? c : rc;
-    }
-    if (S.stats) {
-        int c = vb_cli_close_output(ctx, S.stats, A.stats);
-        rc = rc == VB_OK ? c : rc;
-    }
-    if (S.cl) {
-        int c = vb_cli_close_output(ctx, S.cl, A.centrelines);
-        rc = rc == VB_OK ? c : rc;
-    }
+    /* All or nothing: a failure discards every output of the command. */
+    rc = vb_cli_finish_output(ctx, S.table, A.out, rc);
+    rc = vb_cli_finish_output(ctx, S.stats, A.stats, rc);
+    rc = vb_cli_finish_output(ctx, S.cl, A.centrelines, rc);
     vb_frame_source_close(F);
     vbc_pipe_close(pipe);
     vb_radii_free(radii);

@@ -450,7 +450,7 @@ int vb_cmd_jfa(int argc, char **argv)
     if (!rc) {
         FILE *f = vb_cli_open_output(ctx, a.out);
         if (!f)
-            rc = VB_EIO;
+            rc = vb_errcode(ctx);
         else {
             const char *device = e->device;
             if (a.json)

@@ -91,9 +91,7 @@ int vb_cmd_reference(int argc, char **argv)
             snprintf(comment, sizeof comment, "vorball reference %s: %zu spheres, %zu vertices",
                      in_path, set->n, out.n);
             rc = vb_vertex_write(ctx, f, &out, fmt, comment);
-            int rc2 = vb_cli_close_output(ctx, f, out_path);
-            if (rc == VB_OK)
-                rc = rc2;
+            rc = vb_cli_finish_output(ctx, f, out_path, rc);
         }
     }
     if (rc == VB_OK && stats) {

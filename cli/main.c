@@ -4,6 +4,7 @@
 
 #include "cli_common.h"
 #include "commands.h"
+#include "vb_output.h"
 
 typedef struct {
     const char *name;
@@ -68,9 +69,25 @@ int main(int argc, char **argv)
         printf("vorball 0.1.0\n");
         return VB_EXIT_OK;
     }
+    vb_cli_set_args(argc, argv);
+    /* A command's output files appear together when it succeeds (or when a
+     * check ran and wrote its report of differences), none when it fails. */
+    vb_output_defer(1);
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
-        if (strcmp(argv[1], commands[i].name) == 0)
-            return commands[i].run(argc - 1, argv + 1);
+        if (strcmp(argv[1], commands[i].name) == 0) {
+            int code = commands[i].run(argc - 1, argv + 1);
+            if (code == VB_EXIT_OK || code == VB_EXIT_MISMATCH) {
+                vb_ctx *ctx = NULL;
+                int rc = vb_open(&ctx, NULL);
+                if (rc == VB_OK)
+                    rc = vb_output_commit_deferred(ctx);
+                if (rc != VB_OK)
+                    code = vb_cli_fail(ctx, rc);
+                vb_close(ctx);
+            }
+            vb_output_discard_all();
+            return code;
+        }
     fprintf(stderr, "vorball: unknown command '%s'\n", argv[1]);
     usage(stderr);
     return VB_EXIT_USAGE;
