@@ -453,10 +453,13 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
     }
     /* Slices: as many as keep the device busy, the first tier within an
      * eighth of its memory and the second within a sixteenth; a CPU device
-     * gets no second tier (its cells are as cheap on the host). */
+     * gets no second tier (its cells are as cheap on the host). A CPU
+     * device's "global memory" is all of host RAM: there the first tier
+     * stays within the device layer's budget (vbg_runtime_memory_budget). */
     size_t want = s->wg ? (size_t)units * 16
                         : (vbg_runtime_is_gpu(rt) ? (size_t)units * 512 : (size_t)units * 64);
-    size_t fit = (size_t)(mem / 8) / tier_bytes(s, t0);
+    size_t room = vbg_runtime_is_gpu(rt) ? (size_t)(mem / 8) : vbg_runtime_memory_budget(rt);
+    size_t fit = room / tier_bytes(s, t0);
     want = want < fit ? want : fit;
     if (!s->wg)
         want = want / 64 * 64;

@@ -267,10 +267,22 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
         (!bb.bases || !bb.tile_off || !slots || !ca || !store.off || !store.co_off))
         rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (batch buffers)");
     int pending = 0; /* bb holds culled bases not yet run */
+    /* Bases culled at a time (`step`): before the backend is known, an
+     * eighth of per_batch, joined into the first batch while the device is
+     * still being set up (up to per_batch, and beyond while the batch holds
+     * less than VB_SAMPLER_AHEAD_BYTES); then what the backend prefers. A
+     * batch sized for a GPU when the device turns out to be PoCL held the
+     * culled data of thousands of bases more than PoCL runs at once (the
+     * 26k-atom capsid took 11 GB on PoCL against 6.4 GB on the reference).
+     * The culling of the next range is under way while a batch runs:
+     * `cull_end` ends the range it covers. */
+    size_t step = be ? per_batch : (per_batch + VB_SAMPLER_MAX_AHEAD - 1) / VB_SAMPLER_MAX_AHEAD;
+    size_t cull_end = step;
+    int be_known = be != NULL;
     if (rc == VB_OK && set->n > 0)
-        cull_start(ca, ctx, &cu, slots, 0, per_batch, nthreads);
-    for (size_t b0 = 0, cur = 0; rc == VB_OK && b0 < set->n; b0 += per_batch, cur ^= 1) {
-        size_t b1 = b0 + per_batch < set->n ? b0 + per_batch : set->n;
+        cull_start(ca, ctx, &cu, slots, 0, cull_end, nthreads);
+    for (size_t b0 = 0, cur = 0; rc == VB_OK && b0 < set->n; cur ^= 1) {
+        size_t b1 = cull_end;
         vbs_base_data *sl = slots + cur * per_batch;
         double t0 = vb_now();
         if (!pending) {
@@ -278,9 +290,10 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
             bb.tile_off[0] = 0;
         }
         rc = cull_join(ca);
-        if (rc == VB_OK && b1 < set->n)
-            cull_start(ca, ctx, &cu, slots + (cur ^ 1) * per_batch, b1,
-                       b1 + per_batch < set->n ? b1 + per_batch : set->n, nthreads);
+        if (rc == VB_OK && b1 < set->n) {
+            cull_end = b1 + step < set->n ? b1 + step : set->n;
+            cull_start(ca, ctx, &cu, slots + (cur ^ 1) * per_batch, b1, cull_end, nthreads);
+        }
         for (size_t i = b0; i < b1 && rc == VB_OK; i++)
             if (batch_add(&bb, set, (uint32_t)i, res->clip, &sl[i - b0], ntiles) ||
                 store_add(&store, (uint32_t)i, &sl[i - b0]))
@@ -288,10 +301,15 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
         res->times.cull += vb_now() - t0;
         if (rc != VB_OK)
             break;
-        /* The device is still being set up: cull on, into the same batch. */
+        /* The device is still being set up: cull on, into the same batch,
+         * up to per_batch, and beyond while the batch is small in bytes. */
+        size_t bytes = bb.nbases * (sizeof *bb.bases + ntiles * sizeof *bb.tile_off) +
+                       bb.nbis * sizeof *bb.bis + bb.nidx * sizeof *bb.tile_idx;
         pending = !be && o.backend_ready && b1 < set->n &&
-                  bb.nbases + (b1 + per_batch < set->n ? per_batch : set->n - b1) <= max_bases &&
+                  bb.nbases + (cull_end - b1) <= max_bases &&
+                  (bb.nbases + (cull_end - b1) <= per_batch || bytes < VB_SAMPLER_AHEAD_BYTES) &&
                   !o.backend_ready(o.await_user);
+        b0 = b1;
         if (pending)
             continue;
         res->bisectors += bb.nbis;
@@ -301,6 +319,11 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
         if (!be && !(be = o.await_backend(o.await_user))) {
             rc = vb_errcode(ctx) != VB_OK ? vb_errcode(ctx) : VB_EDEVICE;
             break;
+        }
+        if (!be_known) {
+            size_t pref = be->batch_rays ? be->batch_rays / rays_per_base : per_batch;
+            step = pref < 1 ? 1 : pref > per_batch ? per_batch : pref;
+            be_known = 1;
         }
         rc = be->run_batch(ctx, be, &batch, &out);
         if (rc != VB_OK)

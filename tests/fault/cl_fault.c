@@ -14,7 +14,8 @@
  *                      CL_INVALID_COMMAND_QUEUE for clFinish,
  *                      CL_OUT_OF_RESOURCES otherwise)
  *   VB_CLFAULT_COUNTS  file to which "name count" lines of every call made
- *                      are appended at exit (the counting pass)
+ *                      are appended at exit (the counting pass), then
+ *                      "# max_buffer_bytes N", the largest clCreateBuffer
  * A failing call does what the specification says of an error: no object,
  * no event, *errcode_ret set; it is named on stderr ("clfault: ..."). */
 #define _GNU_SOURCE
@@ -51,6 +52,7 @@ static const char *const vbf_names[VBF_COUNT] = {
 
 static atomic_ulong vbf_calls[VBF_COUNT];
 static atomic_ulong vbf_any;
+static atomic_ulong vbf_max_buffer;
 
 static const struct {
     const char *name;
@@ -130,6 +132,7 @@ __attribute__((destructor)) static void vbf_report(void)
         if (c)
             fprintf(f, "%s %lu\n", vbf_names[i], c);
     }
+    fprintf(f, "# max_buffer_bytes %lu\n", atomic_load(&vbf_max_buffer));
     fclose(f);
 }
 
@@ -201,9 +204,26 @@ VBF_STATUS(clGetKernelWorkGroupInfo,
            (cl_kernel k, cl_device_id d, cl_kernel_work_group_info w, size_t n, void *v,
             size_t *r),
            (k, d, w, n, v, r))
-VBF_OBJECT(cl_mem, clCreateBuffer,
-           (cl_context c, cl_mem_flags f, size_t n, void *h, cl_int *errcode_ret),
-           (c, f, n, h, errcode_ret))
+/* clCreateBuffer also keeps the largest size asked for. */
+static cl_mem(CL_API_CALL *vbf_real_create_buffer)(cl_context, cl_mem_flags, size_t, void *,
+                                                   cl_int *);
+
+CL_API_ENTRY cl_mem CL_API_CALL clCreateBuffer(cl_context c, cl_mem_flags f, size_t n, void *h,
+                                               cl_int *errcode_ret)
+{
+    unsigned long seen = atomic_load(&vbf_max_buffer);
+    while (n > seen && !atomic_compare_exchange_weak(&vbf_max_buffer, &seen, n))
+        ;
+    cl_int err = vbf_fault(VBF_clCreateBuffer);
+    if (err != CL_SUCCESS) {
+        if (errcode_ret)
+            *errcode_ret = err;
+        return NULL;
+    }
+    if (!vbf_real_create_buffer)
+        *(void **)&vbf_real_create_buffer = vbf_real("clCreateBuffer");
+    return vbf_real_create_buffer(c, f, n, h, errcode_ret);
+}
 VBF_STATUS(clEnqueueWriteBuffer,
            (cl_command_queue q, cl_mem m, cl_bool b, size_t o, size_t n, const void *p,
             cl_uint ne, const cl_event *w, cl_event *e),
