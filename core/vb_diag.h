@@ -47,6 +47,9 @@
     X(E, 109, INPUT_FORMAT, 19, "format not recognised")                                                 \
     X(E, 110, INPUT_TOOLARGE, 20, "input too large (a file over 2 GiB, or too many spheres)")            \
     X(E, 111, INPUT_MODEL, 21, "requested model absent")                                                 \
+    X(E, 130, INPUT_REFERENCE_SIZE, 40, "more spheres than `reference` takes without --force")          \
+    X(E, 131, INPUT_SCALE, 41, "a radius below 1e-50 of the extent: beyond the sampler's doubles")       \
+    X(E, 132, INPUT_TOL, 42, "--tol below 1e-12 of the extent: finer than the sampler resolves")         \
     X(W, 701, CONTAINED, 0, "a sphere lies inside another: its cell is empty")                           \
     X(W, 702, CONTAINED_COUNT, 0, "count of spheres inside others")                                      \
     X(W, 703, WATER_DROPPED, 0, "water atoms dropped")                                                   \

@@ -118,6 +118,58 @@ static int store_add(vbs_bis_store *st, uint32_t i, const vbs_base_data *bd)
     return VB_OK;
 }
 
+/* Ratio of the extent to the smallest positive radius above which the
+ * sampler refuses the input (E131), and the finest --tol it takes, as a
+ * fraction of the extent (E132).
+ *
+ * Radii. In the frame of sphere i (scale s = R_i, vb_geom_shared.h) a
+ * neighbour is e = (c_j - c_i)/s, delta = (R_j - R_i)/s, both at most
+ * rho = D/s in size (D: the diagonal of the spheres' box, which bounds
+ * |c_j - c_i| and |R_j - R_i|). Newton (Eq. 3) evaluates L = |e|^2 -
+ * delta^2 - 2 P.e and L^2 - 4 delta^2 |P|^2. At points within 1e25 D of the
+ * sphere (|P| <= 1e25 rho) |L| <= (2 + 2e25) rho^2 < 3e25 rho^2, so both
+ * terms stay below 9e50 rho^4 + 4e50 rho^4 < 1.3e51 rho^4, finite (below
+ * 1.8e308) for rho <= 1e50 with a factor 1e50 to spare, and the gradient
+ * terms (4 L e, 8 delta^2 P) are smaller still. At rho = 1e78 (radius 1e-77
+ * in a 10 A box) L^2 is 1e312 and overflows: every vertex was lost without a
+ * word. The exact reference (`vorball reference`) has no such limit.
+ *
+ * Tolerance. Candidates are accepted when their equidistance defect is
+ * within tol/s in the frame; Newton stops once its step is below 1e-13
+ * (|P| + 1) and rounds each iterate to 1.1e-16 of |P|, so for vertices
+ * within the box it cannot promise a defect below about 1e-13 rho, i.e.
+ * 1e-13 D in world units. On the corpus, vertices start to be lost below
+ * about 1e-15 D (coplanar_centres: 24 of 26 at tol = 7e-16 D; crambin_fragment
+ * 272 of 349 at 1e-18), silently. tol >= 1e-12 D keeps ten times the
+ * stopping rule. */
+#define VBS_MAX_EXTENT_OVER_RADIUS 1e50
+#define VBS_MIN_TOL_OVER_EXTENT 1e-12
+
+/* VB_EINPUT_SCALE when a radius is too small for the double-precision
+ * frame, VB_EINPUT_TOL when a given tol is finer than the candidates can be
+ * (see above). */
+static int check_double_range(vb_ctx *ctx, const vb_sphere_set *set, double tol)
+{
+    double D = vb_sampler_default_tol(set) / 1e-5;
+    size_t small = SIZE_MAX;
+    for (size_t i = 0; i < set->n; i++)
+        if (set->r[i] > 0.0 && (small == SIZE_MAX || set->r[i] < set->r[small]))
+            small = i;
+    const char *src = set->source ? set->source : "<spheres>";
+    if (small != SIZE_MAX && D / set->r[small] > VBS_MAX_EXTENT_OVER_RADIUS)
+        return vb_error(ctx, VB_EINPUT_SCALE, src, set->line ? set->line[small] : 0,
+                        "radius %.3g is below 1e-50 of the input's extent %.3g: beyond the "
+                        "double precision of the sampling proposer (the cover proposer, the "
+                        "default, and `vorball reference` compute it)",
+                        set->r[small], D);
+    if (tol > 0.0 && tol < VBS_MIN_TOL_OVER_EXTENT * D)
+        return vb_error(ctx, VB_EINPUT_TOL, src, 0,
+                        "--tol %.3g is below 1e-12 of the input's extent %.3g: finer than the "
+                        "sampling proposer's candidates can be (the default is 1e-5 of it)",
+                        tol, D);
+    return VB_OK;
+}
+
 /* Candidates in the order (base, grid cell, rank in cell): independent of the
  * order in which a device appended them. */
 static int cmp_cand(const void *pa, const void *pb)
@@ -213,6 +265,9 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
     if (o.tiles > 64u || (o.tiles & (o.tiles - 1u)) != 0)
         return vb_error(ctx, VB_EMISUSE, NULL, 0,
                         "culling tiles must be a power of two up to 64 (got %u)", o.tiles);
+    int rc = set->n ? check_double_range(ctx, set, o.tol) : VB_OK;
+    if (rc != VB_OK)
+        return rc;
     if (!(o.tol > 0.0))
         o.tol = vb_sampler_default_tol(set);
     if (set->n > 0xfffffff0u)
@@ -253,7 +308,7 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
     vb_cand_vec raw = {0};
     vbs_topo_acc topo;
     memset(&topo, 0, sizeof topo);
-    int rc = vbs_hash_build(ctx, set, &hash);
+    rc = vbs_hash_build(ctx, set, &hash);
     if (rc != VB_OK)
         return rc;
     for (unsigned T = 1; rc == VB_OK && T <= o.tiles; T *= 2)

@@ -183,7 +183,10 @@ void vb_sampler_result_free(vb_sampler_result *r);
 /* Runs the pipeline up to (not including) certification. set must be
  * validated (contained spheres flagged). be may be NULL when
  * opt->await_backend and opt->batch_rays are set. Returns VB_OK, VB_EMISUSE
- * (bad options), VB_ENOMEM or the backend's VB_EDEVICE. */
+ * (bad options), VB_EINPUT_SCALE (a radius below 1e-50 of the input's
+ * extent: beyond the doubles of the normalised frames), VB_EINPUT_TOL
+ * (opt->tol below 1e-12 of the extent), VB_ENOMEM or the backend's
+ * VB_EDEVICE. */
 int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_options *opt,
                    vb_sampler_backend *be, vb_sampler_result *res);
 
