@@ -6,6 +6,22 @@
 #include "commands.h"
 #include "vb_output.h"
 
+/* An ASan build of vorball keeps ASan's alternate signal stack off: on some
+ * hosts ASan aborts when it cannot unmap that stack as a PoCL worker thread
+ * exits (see tests/CMakeLists.txt). ASAN_OPTIONS still overrides it. */
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define VB_ASAN 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__) || defined(VB_ASAN)
+const char *__asan_default_options(void);
+const char *__asan_default_options(void)
+{
+    return "use_sigaltstack=0";
+}
+#endif
+
 typedef struct {
     const char *name;
     int (*run)(int argc, char **argv);
