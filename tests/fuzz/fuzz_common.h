@@ -36,4 +36,34 @@ static int vb_fuzz_read(const uint8_t *data, size_t size, vb_format format)
     return 0;
 }
 
+/* For readers that take a path: writes the input to this process's own
+ * temporary file and returns its name (static), or NULL. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <unistd.h>
+
+static char vb_fuzz_path[256];
+
+static void vb_fuzz_remove(void)
+{
+    remove(vb_fuzz_path);
+}
+
+static const char *vb_fuzz_file(const uint8_t *data, size_t size)
+{
+    char *path = vb_fuzz_path;
+    if (!path[0]) {
+        const char *dir = getenv("TMPDIR");
+        snprintf(path, sizeof vb_fuzz_path, "%s/vb_fuzz_input.%ld", dir && *dir ? dir : "/tmp",
+                 (long)getpid());
+        atexit(vb_fuzz_remove);
+    }
+    FILE *f = fopen(path, "wb");
+    if (!f)
+        return NULL;
+    int ok = fwrite(data, 1, size, f) == size;
+    ok = fclose(f) == 0 && ok;
+    return ok ? path : NULL;
+}
+
 #endif
