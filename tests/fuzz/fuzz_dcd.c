@@ -8,10 +8,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    const char *path = vb_fuzz_file(data, size);
-    vb_ctx *ctx = NULL;
-    vb_config cfg = {.verbosity = 0};
-    if (!path || vb_open(&ctx, &cfg) != VB_OK)
+    vb_ctx *ctx;
+    const char *path = vb_fuzz_begin(data, size, &ctx);
+    if (!path)
         return 0;
     vb_dcd *d = NULL;
     if (vb_dcd_open(ctx, path, &d) == VB_OK) {

@@ -6,19 +6,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    const char *path = vb_fuzz_file(data, size);
-    vb_ctx *ctx = NULL;
-    vb_config cfg = {.verbosity = 0};
-    if (!path || vb_open(&ctx, &cfg) != VB_OK)
+    vb_ctx *ctx;
+    const char *path = vb_fuzz_begin(data, size, &ctx);
+    if (!path)
         return 0;
     vb_read_options opt;
     memset(&opt, 0, sizeof opt);
-    opt.max_spheres = 4096;
-    if (size > 0) {
-        opt.model = data[0] & 3;
-        opt.keep_water = (data[0] >> 2) & 1;
-        opt.drop_hydrogens = (data[0] >> 3) & 1;
-    }
+    vb_fuzz_options(data, size, &opt);
     vb_frame_reader *rd = NULL;
     if (vb_frame_reader_open(ctx, path, &opt, &rd) == VB_OK) {
         for (int f = 0; f < 64; f++) {

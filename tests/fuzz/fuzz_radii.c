@@ -13,10 +13,9 @@ static const char pdb[] =
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    const char *path = vb_fuzz_file(data, size);
-    vb_ctx *ctx = NULL;
-    vb_config cfg = {.verbosity = 0};
-    if (!path || vb_open(&ctx, &cfg) != VB_OK)
+    vb_ctx *ctx;
+    const char *path = vb_fuzz_begin(data, size, &ctx);
+    if (!path)
         return 0;
     vb_radii_table *radii = NULL;
     if (vb_radii_load(ctx, path, &radii) == VB_OK) {

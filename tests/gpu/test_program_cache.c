@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "vb_test.h"
+#include "vbi_input.h"
 #include "vbg_runtime.h"
 
 static char cache_root[256], cache_dir[300];
@@ -30,18 +31,12 @@ static int find_cached(const char *prefix, char *path, size_t cap)
     return found;
 }
 
+/* The bytes of a file (the input layer's vbi_slurp), NULL if unreadable. */
 static unsigned char *slurp(const char *path, size_t *len)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    unsigned char *b = malloc(n > 0 ? (size_t)n : 1);
-    *len = fread(b, 1, (size_t)n, f);
-    fclose(f);
-    return b;
+    char *b = NULL;
+    *len = 0;
+    return vbi_slurp(NULL, path, &b, len) == VB_OK ? (unsigned char *)b : NULL;
 }
 
 static void spit(const char *path, const unsigned char *b, size_t len)
@@ -62,7 +57,7 @@ static const char *build(const char *opts, int *rc)
     vb_ctx *ctx;
     vb_open(&ctx, &cfg);
     vbg_runtime *rt = NULL;
-    *rc = vbg_runtime_open(ctx, VBG_DEVICE_CPU, &rt);
+    *rc = vbg_runtime_open(ctx, VB_DEVICE_CPU, &rt);
     cl_program prog;
     if (*rc == VB_OK)
         *rc = vbg_program_get(ctx, rt, "jfa_exact.cl", opts, &prog);

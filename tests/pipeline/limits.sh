@@ -11,9 +11,7 @@
 vorball=$1 corpus=$2 work=$3/limits
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/lib.sh"
-rm -rf "$work"
-mkdir -p "$work" || fail "cannot create $work"
-cd "$work" || fail "no $work"
+fresh_dir "$work"
 out=$work/out.txt
 frag=$corpus/inputs/crambin_fragment.xyzr
 

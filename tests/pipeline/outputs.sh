@@ -9,9 +9,7 @@
 vorball=$1 corpus=$2 work=$3/outputs
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/lib.sh"
-rm -rf "$work"
-mkdir -p "$work" || fail "cannot create $work"
-cd "$work" || fail "no $work"
+fresh_dir "$work"
 out=$work/out.txt
 no_temps() {
     left=$(ls -A | grep 'vorball-' || true)
