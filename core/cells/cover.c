@@ -624,8 +624,9 @@ int vb_cover_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *
     /* Cells own disjoint quadruples (by their smallest id), but a device may
      * split a cell's root patches into tasks whose lists share some: one
      * sort and one pass of repeats make the list canonical. */
+    if (rc == VB_OK && out->n > 1)
+        rc = vb_psort(out->q, out->n, sizeof *out->q, cmp_quad, nt);
     if (rc == VB_OK && out->n > 1) {
-        qsort(out->q, out->n, sizeof *out->q, cmp_quad);
         size_t k = 1;
         for (size_t a = 1; a < out->n; a++)
             if (cmp_quad(out->q[a], out->q[k - 1]) != 0)
