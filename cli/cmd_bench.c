@@ -167,7 +167,7 @@ int vb_cmd_bench(int argc, char **argv)
     /* Rank 0 writes; every rank runs its part of each run. */
     int rank0 = vb_world_rank() == 0;
     FILE *out = rank0 ? vb_cli_open_output(ctx, outpath) : NULL;
-    int rc = rank0 && !out ? VB_EIO : VB_OK;
+    int rc = rank0 && !out ? vb_errcode(ctx) : VB_OK;
     int busy = vb_cli_vertices_part(ctx, &po.cfg);
     vb_vertices_engine *dev = NULL;
     if (rc == VB_OK && !cold && busy)
@@ -236,7 +236,7 @@ int vb_cmd_bench(int argc, char **argv)
     if (rc == VB_OK && rank0 && json)
         fputs("\n]\n", out);
     if (out)
-        rc = rc ? rc : vb_cli_close_output(ctx, out, outpath);
+        rc = vb_cli_finish_output(ctx, out, outpath, rc);
     code = vb_world_end(ctx, rc);
     free(inputs);
     vb_close(ctx);

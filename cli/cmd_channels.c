@@ -315,7 +315,7 @@ static int do_frame(vb_ctx *ctx, const ch_args *A, vbc_pipe *pipe, long index, i
         char name[4096];
         if (volume_name(A->volume, index, name, sizeof name) != 0)
             rc = vb_error(ctx, VB_EMISUSE, NULL, 0, "volume file name too long");
-        else
+        else if ((rc = vb_cli_check_output(ctx, name)) == VB_OK)
             rc = vbc_write_volume(ctx, name, &g, F.out.flags, A->volume_bit);
     }
     if (rc == VB_OK && A->png && first)
@@ -405,19 +405,15 @@ static int open_outputs(vb_ctx *ctx, const ch_args *A, FILE *out[VB_CLI_ROUND_SI
     return VB_OK;
 }
 
-/* Closes rank 0's outputs; after a failure (of any rank: rc is agreed) the
- * files are removed, so no table of part of the frames is left behind. */
+/* Closes rank 0's outputs; after a failure (of any rank: rc is agreed)
+ * they are discarded (vb_cli_finish_output), so no table of part of the
+ * frames is left behind. */
 static int close_outputs(vb_ctx *ctx, const ch_args *A, FILE *out[VB_CLI_ROUND_SINKS], int rc)
 {
     const char *path[VB_CLI_ROUND_SINKS] = {A->out, A->stats, A->centrelines};
     for (int k = 0; k < VB_CLI_ROUND_SINKS; k++)
-        if (out[k]) {
-            int c = vb_cli_close_output(ctx, out[k], path[k]);
-            rc = rc == VB_OK ? c : rc;
-        }
-    for (int k = 0; k < VB_CLI_ROUND_SINKS && rc != VB_OK; k++)
-        if (out[k] && out[k] != stdout)
-            remove(path[k]);
+        if (out[k])
+            rc = vb_cli_finish_output(ctx, out[k], path[k], rc);
     return rc;
 }
 

@@ -54,7 +54,8 @@ static void help(FILE *f)
             "\nCounts: 'pixels' is the number of work-items that ran a JFA step (the\n"
             "paper's pixels processed); 'boundary' (Facet-JFA) the pixels left unmarked.\n"
             "Warnings: W780 seeds lost to a shared start pixel, W781 no OpenCL device\n"
-            "(reference backend used), W782 Facet-JFA cannot start coarser than n.\n");
+            "(reference backend used), W782 Facet-JFA cannot start coarser than n,\n"
+            "W751 OpenCL failed mid-run (that run and the rest on the reference).\n");
 }
 
 typedef struct {
@@ -449,7 +450,7 @@ int vb_cmd_jfa(int argc, char **argv)
     if (!rc) {
         FILE *f = vb_cli_open_output(ctx, a.out);
         if (!f)
-            rc = VB_EIO;
+            rc = vb_errcode(ctx);
         else {
             const char *device = e->device;
             if (a.json)

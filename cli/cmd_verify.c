@@ -95,7 +95,7 @@ static int run(vb_ctx *ctx, const options *o, int *mismatch)
     if (rc == VB_OK)
         rc = vb_verify_file(ctx, set, o->vertices_path, o->tol, o->complete, &r);
     if (rc == VB_OK && !(out = vb_cli_open_output(ctx, o->out_path)))
-        rc = VB_EIO;
+        rc = vb_errcode(ctx);
     if (rc == VB_OK) {
         rc = o->json ? vb_verify_write_json(ctx, out, o->spheres_path, o->vertices_path, set, &r)
                      : vb_verify_write_text(ctx, out, o->vertices_path, set, &r);

@@ -102,9 +102,8 @@ static int write_topology(vb_ctx *ctx, const char *path, const vb_sphere_set *se
                 "the triple in doubles, or a closed edge through one vertex)",
                 topo.unresolved);
     FILE *f = vb_cli_open_output(ctx, path);
-    rc = f ? vb_topology_write(ctx, f, &topo) : VB_EIO;
-    if (f)
-        rc = rc ? rc : vb_cli_close_output(ctx, f, path);
+    rc = f ? vb_topology_write(ctx, f, &topo) : vb_errcode(ctx);
+    rc = vb_cli_finish_output(ctx, f, path, rc);
     vb_topology_free(&topo);
     return rc;
 }
@@ -189,9 +188,9 @@ int vb_cmd_vertices(int argc, char **argv)
     vb_vertices_certificate(&res, note, sizeof note);
     if (writer) {
         FILE *out = vb_cli_open_output(ctx, outpath);
-        rc = out ? vb_vertex_write(ctx, out, &res.certified, vfmt, note[0] ? note : NULL) : VB_EIO;
-        if (out)
-            rc = rc ? rc : vb_cli_close_output(ctx, out, outpath);
+        rc = out ? vb_vertex_write(ctx, out, &res.certified, vfmt, note[0] ? note : NULL)
+                 : vb_errcode(ctx);
+        rc = vb_cli_finish_output(ctx, out, outpath, rc);
     }
     if (writer && rc == VB_OK && topo_path)
         rc = write_topology(ctx, topo_path, set, &res);

@@ -132,6 +132,9 @@ const char *vb_errstr(int code)
     case VB_EINPUT_FORMAT: return "input format not recognised";
     case VB_EINPUT_TOOLARGE: return "input too large";
     case VB_EINPUT_MODEL: return "model not present";
+    case VB_EINPUT_REFERENCE_SIZE: return "too many spheres for the exact reference";
+    case VB_EINPUT_SCALE: return "radii too small for the sampling pipeline";
+    case VB_EINPUT_TOL: return "tolerance finer than the sampling pipeline resolves";
     default: break;
     }
     switch (VB_CATEGORY(code)) {

@@ -44,7 +44,11 @@ enum vb_input_error {
     VB_EINPUT_ELEMENT    = VB_EINPUT | (8 << 8), /* E108 unknown element (strict mode) */
     VB_EINPUT_FORMAT     = VB_EINPUT | (9 << 8), /* E109 format not recognised / wrong --format */
     VB_EINPUT_TOOLARGE   = VB_EINPUT | (10 << 8),/* E110 file or sphere count over limit */
-    VB_EINPUT_MODEL      = VB_EINPUT | (11 << 8) /* E111 requested model/frame absent */
+    VB_EINPUT_MODEL      = VB_EINPUT | (11 << 8),/* E111 requested model/frame absent */
+    /* E130-E139: limits of an operation on an input it could otherwise read. */
+    VB_EINPUT_REFERENCE_SIZE = VB_EINPUT | (30 << 8), /* E130 too many spheres for `reference` */
+    VB_EINPUT_SCALE      = VB_EINPUT | (31 << 8),/* E131 radii too small for the sampler's doubles */
+    VB_EINPUT_TOL        = VB_EINPUT | (32 << 8) /* E132 --tol finer than the sampler's doubles */
 };
 
 #define VB_CATEGORY(code) ((code) & 0xff)

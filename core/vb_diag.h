@@ -48,6 +48,9 @@
     X(E, 109, INPUT_FORMAT, 19, "format not recognised")                                                 \
     X(E, 110, INPUT_TOOLARGE, 20, "input too large (a file over 2 GiB, or too many spheres)")            \
     X(E, 111, INPUT_MODEL, 21, "requested model absent")                                                 \
+    X(E, 130, INPUT_REFERENCE_SIZE, 40, "more spheres than `reference` takes without --force")          \
+    X(E, 131, INPUT_SCALE, 41, "a radius below 1e-50 of the extent: beyond the sampler's doubles")       \
+    X(E, 132, INPUT_TOL, 42, "--tol below 1e-12 of the extent: finer than the sampler resolves")         \
     X(E, 150, MPI_FAILED, 50, "MPI failed between ranks: the job is aborted")                           \
     X(E, 151, MPI_COMMAND, 2, "the command runs on one process only, not on several MPI ranks")        \
     X(E, 152, MPI_STDIN, 2, "under MPI every rank reads the input: give a file, not stdin")             \
@@ -65,6 +68,9 @@
     X(W, 712, ZERO_DROPPED, 0, "spheres of radius 0 dropped (--zero-radius drop)")                       \
     X(W, 713, ZERO_POINTS, 0, "spheres of radius 0 kept as point sites")                                 \
     X(W, 720, REFERENCE_SLOW, 0, "exact reference on a large input: may take very long")                 \
+    X(W, 735, MODEL_OPEN_AT_END, 0, "the input ends inside a MODEL (no ENDMDL/END): truncated?")         \
+    X(W, 750, PROGRAM_CACHE_BAD, 0, "a cached OpenCL program cannot be used: rebuilt from source")       \
+    X(W, 751, JFA_DEVICE_FAILED, 0, "OpenCL failed mid-run in jfa: the rest runs on the reference")      \
     X(W, 760, DEVICE_FALLBACK, 0, "no usable OpenCL device: vertices on the reference backend")          \
     X(W, 761, CAND_OVERFLOW, 0, "candidates did not fit a sampling grid cell")                           \
     X(W, 762, DEVICE_FAILED_RERUN, 0, "OpenCL device failed mid-run: rerun on the reference")            \
@@ -77,7 +83,7 @@
     X(W, 791, CROSSCHECK_FLAT, 0, "the centres span fewer than 3 dimensions: no vertices")               \
     X(W, 792, CROSSCHECK_HIDDEN, 0, "spheres hidden in the power diagram (no power cell)")               \
     X(W, 793, CROSSCHECK_REJECTED, 0, "lines marked rejected are not compared")                          \
-    X(W, 801, DCD_PARTIAL_FRAME, 0, "DCD ends inside a frame: partial frame ignored")                    \
+    X(W, 801, DCD_PARTIAL_FRAME, 0, "DCD ends with less than a frame (cut or stray bytes): ignored")     \
     X(W, 802, VOLUME_FIRST_FRAME, 0, "volume file holds the first frame only")                           \
     X(W, 803, VOXEL_COARSE, 0, "voxel edge coarser than the probe radius")                               \
     X(W, 804, CHANNELS_DEVICE_FALLBACK, 0, "no usable OpenCL device: channels on the reference backend") \

@@ -46,6 +46,7 @@ void vbj_engine_close(vbj_engine *e)
 {
     if (!e)
         return;
+    vbj_cl_recorded_ms(e); /* events of a run that failed */
     vbj_clbuf *all[] = {&e->seeds, &e->seeds_fp, &e->pairs, &e->grid[0], &e->grid[1], &e->store[0], &e->store[1],
                         &e->tmp, &e->list[0], &e->list[1], &e->counter, &e->labels,
                         &e->cells_start, &e->cells_items};
@@ -73,6 +74,8 @@ cl_event *vbj_cl_event(vbj_engine *e)
         e->events = ev;
         e->cap_events = cap;
     }
+    /* A command that fails to enqueue leaves no event: the slot stays NULL. */
+    e->events[e->nevents] = NULL;
     return &e->events[e->nevents++];
 }
 
@@ -87,6 +90,8 @@ double vbj_cl_recorded_ms(vbj_engine *e)
     double ns = 0;
     for (int i = 0; i < e->nevents; i++) {
         cl_ulong a = 0, b = 0;
+        if (!e->events[i])
+            continue;
         if (clGetEventProfilingInfo(e->events[i], CL_PROFILING_COMMAND_START, sizeof a, &a,
                                     NULL) == CL_SUCCESS &&
             clGetEventProfilingInfo(e->events[i], CL_PROFILING_COMMAND_END, sizeof b, &b,
@@ -109,12 +114,19 @@ int vbj_clbuf_reserve(vb_ctx *ctx, vbj_engine *e, vbj_clbuf *b, size_t bytes)
     release(b);
     cl_int err;
     b->mem = clCreateBuffer(vbg_runtime_context(e->rt), CL_MEM_READ_WRITE, bytes, NULL, &err);
+    /* The device is out of memory, not the host: VB_EDEVICE, so that the
+     * caller falls back to the reference backend. */
     if (err == CL_MEM_OBJECT_ALLOCATION_FAILURE || err == CL_OUT_OF_HOST_MEMORY ||
-        err == CL_INVALID_BUFFER_SIZE)
-        return vb_error(ctx, VB_ENOMEM, NULL, 0, "device buffer of %zu bytes: out of memory",
-                        bytes);
-    if (vbg_check(ctx, err, "clCreateBuffer"))
+        err == CL_INVALID_BUFFER_SIZE) {
+        b->mem = NULL;
+        return vb_error(ctx, VB_EDEVICE, NULL, 0, "device buffer of %zu bytes: %s", bytes,
+                        err == CL_INVALID_BUFFER_SIZE ? "larger than the device allows"
+                                                      : "device out of memory");
+    }
+    if (vbg_check(ctx, err, "clCreateBuffer")) {
+        b->mem = NULL;
         return VB_EDEVICE;
+    }
     b->bytes = bytes;
     return VB_OK;
 }

@@ -32,6 +32,12 @@ int vbg_runtime_open(vb_ctx *ctx, vb_device_kind kind, vbg_runtime **out);
 
 void vbg_runtime_close(vbg_runtime *rt);
 
+/* Bytes of device memory one pipeline stage may hold at once on rt's device
+ * (the device layer's budget: a bounded share of the device, and on a CPU
+ * device of the host memory free now; VORBALL_DEVICE_MEMORY_MIB overrides
+ * it). Stages split their work to fit it; the output does not depend on it. */
+size_t vbg_runtime_memory_budget(const vbg_runtime *rt);
+
 cl_context vbg_runtime_context(const vbg_runtime *rt);
 cl_command_queue vbg_runtime_queue(const vbg_runtime *rt);
 cl_device_id vbg_runtime_device(const vbg_runtime *rt);

@@ -37,7 +37,9 @@ typedef struct vb_sampler_options {
     double tol;              /* world units; <= 0: 1e-5 of the bounding-box diagonal */
     int all_pairs;           /* 1: no culling, every cell tests all n - 1 bisectors */
     int topology;            /* 1: collect face adjacency and edge evidence */
-    unsigned batch_rays;     /* rays per backend batch (0: backend's choice) */
+    unsigned batch_rays;     /* rays per backend batch (0: backend's choice); with
+                                await_backend, of the batches culled before the
+                                backend is known (then at most its choice) */
     unsigned part, nparts;   /* this process's part of the work (MPI ranks; 0 or 1 part:
                                 all of it); the cover splits its cells, see vb_cover.h */
     unsigned threads;        /* host threads (0: VORBALL_THREADS or online CPUs);
@@ -66,6 +68,9 @@ typedef struct vb_sampler_options {
 } vb_sampler_options;
 
 #define VB_SAMPLER_MAX_AHEAD 8u
+/* Host bytes of batch data (bases, bisectors, tiles) beyond which the first
+ * batch stops growing while the device is set up. */
+#define VB_SAMPLER_AHEAD_BYTES ((size_t)256 << 20)
 
 /* One batch for a backend: the bases, their bisectors and culling tiles. */
 typedef struct vb_sampler_batch {
@@ -190,7 +195,10 @@ void vb_sampler_result_free(vb_sampler_result *r);
 /* Runs the pipeline up to (not including) certification. set must be
  * validated (contained spheres flagged). be may be NULL when
  * opt->await_backend and opt->batch_rays are set. Returns VB_OK, VB_EMISUSE
- * (bad options), VB_ENOMEM or the backend's VB_EDEVICE. */
+ * (bad options), VB_EINPUT_SCALE (a radius below 1e-50 of the input's
+ * extent: beyond the doubles of the normalised frames), VB_EINPUT_TOL
+ * (opt->tol below 1e-12 of the extent), VB_ENOMEM or the backend's
+ * VB_EDEVICE. */
 int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_options *opt,
                    vb_sampler_backend *be, vb_sampler_result *res);
 

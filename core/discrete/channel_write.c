@@ -6,6 +6,7 @@
 
 #include "vbc_channel.h"
 #include "vb_json.h"
+#include "vb_output.h"
 
 static const char *kind_name(int kind)
 {
@@ -280,10 +281,12 @@ int vbc_write_volume(vb_ctx *ctx, const char *path, const vbc_grid *g, const uin
     int vtk = ends_with(path, ".vtk");
     if (!vtk && !ends_with(path, ".mrc") && !ends_with(path, ".map"))
         return vb_error(ctx, VB_EMISUSE, NULL, 0, "volume %s: use a .mrc, .map or .vtk name", path);
-    FILE *f = fopen(path, "wb");
+    FILE *f = vb_output_open(ctx, path);
     if (!f)
-        return vb_error(ctx, VB_EIO, path, 0, "cannot create volume file");
-    int bad = vtk ? write_vtk(f, g, flags, bit) : write_mrc(f, g, flags, bit);
-    bad |= fclose(f) != 0;
-    return bad ? vb_error(ctx, VB_EIO, path, 0, "cannot write volume file") : VB_OK;
+        return vb_errcode(ctx);
+    if (vtk ? write_vtk(f, g, flags, bit) : write_mrc(f, g, flags, bit)) {
+        vb_output_discard(f);
+        return vb_error(ctx, VB_EIO, path, 0, "cannot write volume file");
+    }
+    return vb_output_commit(ctx, f);
 }

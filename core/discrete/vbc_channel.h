@@ -166,7 +166,8 @@ void vbc_write_pymol(FILE *f, const char *molecule, const char *centrelines);
 
 /* Writes the voxels of flags that have `bit` set as a 0/1 byte volume:
  * MRC (".mrc", ".map") or legacy VTK structured points (".vtk"), positioned in
- * Å. VB_EMISUSE for another extension, VB_EIO when writing fails. */
+ * Å. VB_EMISUSE for another extension, VB_EIO when writing fails. The file
+ * appears whole or not at all (vb_output.h). */
 int vbc_write_volume(vb_ctx *ctx, const char *path, const vbc_grid *g, const uint8_t *flags,
                      unsigned bit);
 

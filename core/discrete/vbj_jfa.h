@@ -167,6 +167,11 @@ struct vbj_backend {
     const char *name;        /* "ref", "opencl" */
     char device[160];        /* "reference (C)" or the OpenCL device name */
     void *state;
+    /* Nonzero (W751) on a device backend that vbj_backend_open opened: a
+     * device failure mid-run warns it and that run and the rest go to the
+     * reference, which gives the same labels. 0: the failure is reported and
+     * the backend's owner falls back (channels: W806). */
+    int fallback_warning;
     /* vbj_run after its checks: out is zeroed with dim, n and pixels set;
      * want is never 0. VB_ENOMEM, VB_EDEVICE (message in ctx). */
     int (*run)(vb_ctx *ctx, vbj_backend *be, const vbj_seeds *s, const vbj_options *opt,
@@ -182,7 +187,9 @@ int vbj_ref_open(vb_ctx *ctx, vbj_backend **out);
 /* Opens the backend for a device kind by the device layer's one fallback
  * rule (vb_device.h): on VB_EDEVICE warning W781 and the reference.
  * *dev gets the device to close after the backend (NULL on the
- * reference). layer may be NULL (reference only). */
+ * reference). layer may be NULL (reference only). A device that fails
+ * during a later vbj_run or vbj_exact is dropped with W751 and the backend
+ * becomes the reference for that run and the rest. */
 int vbj_backend_open(vb_ctx *ctx, const vb_device_layer *layer, vb_device_kind kind,
                      vb_device **dev, vbj_backend **out);
 
