@@ -77,7 +77,10 @@
     X(W, 802, VOLUME_FIRST_FRAME, 0, "volume file holds the first frame only")                           \
     X(W, 803, VOXEL_COARSE, 0, "voxel edge coarser than the probe radius")                               \
     X(W, 804, CHANNELS_DEVICE_FALLBACK, 0, "no usable OpenCL device: channels on the reference backend") \
-    X(W, 806, CHANNELS_DEVICE_FAILED, 0, "OpenCL failed mid-run: rest of channels on reference")
+    X(W, 806, CHANNELS_DEVICE_FAILED, 0, "OpenCL failed mid-run: rest of channels on reference")      \
+    X(W, 807, PLOT_NO_GNUPLOT, 0, "gnuplot not found or failed: plot script kept, no PNG")            \
+    X(W, 808, PORE_NOT_FOUND, 0, "no pore: no axis candidate could be swept")                         \
+    X(W, 809, ATOMS_IGNORED, 0, "atoms left out by --ignore (count)")
 
 /* Retired numbers, never to be used again: X(kind, number, meaning, why). */
 #define VB_DIAG_RETIRED(X)                                                                               \
