@@ -13,6 +13,7 @@ const char *vbc_axis_source_name(int source)
     case VBC_AXIS_CHAINS: return "chains";
     case VBC_AXIS_CHANNEL: return "channel";
     case VBC_AXIS_PRINCIPAL: return "principal";
+    case VBC_AXIS_SUBUNIT: return "subunit";
     default: return "none";
     }
 }
@@ -122,13 +123,14 @@ void vbc_axis_principal(const vb_sphere_set *s, vbc_axis out[3])
 
 #define MAX_CHAINS 64
 
-int vbc_axis_from_chains(const vb_sphere_set *s, vbc_axis *out)
+/* The centroids of the chains of at least 8 atoms (fewer are ions or
+ * ligands, not subunits), in the order of their first atoms, and the
+ * smallest and largest such chain. Returns how many, -1 for more than
+ * MAX_CHAINS chains (a large assembly: no single symmetry axis to trust). */
+static int chain_centroids(const vb_sphere_set *s, double *cx, double *cy, double *cz,
+                           size_t *count, size_t *lo_out, size_t *hi_out)
 {
-    if (!s->info || s->n == 0)
-        return 0;
     char names[MAX_CHAINS][8];
-    double cx[MAX_CHAINS], cy[MAX_CHAINS], cz[MAX_CHAINS];
-    size_t count[MAX_CHAINS];
     int nc = 0;
     for (size_t i = 0; i < s->n; i++) {
         int c = 0;
@@ -136,7 +138,7 @@ int vbc_axis_from_chains(const vb_sphere_set *s, vbc_axis *out)
             c++;
         if (c == nc) {
             if (nc == MAX_CHAINS)
-                return 0; /* a large assembly: no single symmetry axis to trust */
+                return -1;
             snprintf(names[nc], sizeof names[nc], "%s", s->info[i].chain);
             cx[nc] = cy[nc] = cz[nc] = 0.0;
             count[nc++] = 0;
@@ -146,7 +148,6 @@ int vbc_axis_from_chains(const vb_sphere_set *s, vbc_axis *out)
         cz[c] += s->z[i];
         count[c]++;
     }
-    /* Chains of fewer than 8 atoms are ions or ligands, not subunits. */
     int k = 0;
     size_t lo = (size_t)-1, hi = 0;
     for (int c = 0; c < nc; c++) {
@@ -160,6 +161,36 @@ int vbc_axis_from_chains(const vb_sphere_set *s, vbc_axis *out)
         hi = count[k] > hi ? count[k] : hi;
         k++;
     }
+    *lo_out = lo;
+    *hi_out = hi;
+    return k;
+}
+
+int vbc_axis_subunits(const vb_sphere_set *s, const vbc_axis *sym, vbc_axis *out, int max)
+{
+    double cx[MAX_CHAINS], cy[MAX_CHAINS], cz[MAX_CHAINS];
+    size_t count[MAX_CHAINS], lo, hi;
+    if (!s->info || s->n == 0 || sym->source != VBC_AXIS_CHAINS || sym->chains < 3)
+        return 0;
+    int k = chain_centroids(s, cx, cy, cz, count, &lo, &hi), n = 0;
+    for (int c = 0; c < k && n < max; c++, n++) {
+        out[n] = *sym;
+        out[n].c[0] = cx[c];
+        out[n].c[1] = cy[c];
+        out[n].c[2] = cz[c];
+        out[n].source = VBC_AXIS_SUBUNIT;
+        out[n].chains = c + 1;
+    }
+    return n;
+}
+
+int vbc_axis_from_chains(const vb_sphere_set *s, vbc_axis *out)
+{
+    double cx[MAX_CHAINS], cy[MAX_CHAINS], cz[MAX_CHAINS];
+    size_t count[MAX_CHAINS], lo, hi;
+    if (!s->info || s->n == 0)
+        return 0;
+    int k = chain_centroids(s, cx, cy, cz, count, &lo, &hi);
     if (k < 2 || (double)hi > 1.25 * (double)lo)
         return 0;
     double m[3], cov[3][3], w[3], v[3][3];

@@ -144,6 +144,43 @@ double vbc_plane_maximise(const vbc_cells *c, const double u[3], double travel, 
     return R;
 }
 
+double vbc_plane_widest(const vbc_cells *c, const double u[3], double reach, vbc_outside_fn outside,
+                        void *user, double p[3], int32_t *atom)
+{
+    double e1[3], e2[3], best[3] = {p[0], p[1], p[2]};
+    plane_frame(u, e1, e2);
+    int32_t a;
+    double R = vbc_cells_clearance(c, p, &a);
+    long n = (long)floor(reach / 0.5);
+    for (long i = -n; i <= n; i++)
+        for (long j = -n; j <= n; j++) {
+            double di = 0.5 * (double)i, dj = 0.5 * (double)j;
+            if (di * di + dj * dj > reach * reach)
+                continue;
+            double q[3];
+            for (int k = 0; k < 3; k++)
+                q[k] = p[k] + di * e1[k] + dj * e2[k];
+            if (outside && outside(user, q))
+                continue;
+            double Rq = vbc_cells_clearance(c, q, &a);
+            if (Rq > R) { /* strict: the first of equals (in scan order) stays */
+                R = Rq;
+                memcpy(best, q, sizeof q);
+            }
+        }
+    memcpy(p, best, sizeof best);
+    double q[3] = {p[0], p[1], p[2]};
+    double Rq = vbc_plane_maximise(c, u, reach, q, &a);
+    if (!outside || !outside(user, q)) {
+        memcpy(p, q, sizeof q);
+        R = Rq;
+    } else {
+        R = vbc_cells_clearance(c, p, &a); /* the ascent left the molecule: the lattice's best */
+    }
+    *atom = a;
+    return R;
+}
+
 void vbc_pore_free(vbc_pore *p)
 {
     free(p->pts);

@@ -36,7 +36,8 @@ static int sweep(vb_ctx *ctx, const vbc_cells *cells, const vb_sphere_set *s, co
 
 static int open_pore(const vbc_pore *p)
 {
-    return p->n > 0 && p->pts[p->min_at].r > 0.0 && p->open_lo && p->open_hi;
+    /* More than the start: a start outside the molecule is no pore. */
+    return p->n > 1 && p->pts[p->min_at].r > 0.0 && p->open_lo && p->open_hi;
 }
 
 /* The widest through channel's axis: its end-to-end direction through its
@@ -65,6 +66,38 @@ static int channel_axis(const vbc_result *res, vbc_axis *ax)
     ax->c[2] = m->z;
     ax->source = VBC_AXIS_CHANNEL;
     return 1;
+}
+
+/* The widest open pore of one subunit replaces the nearly closed central
+ * one *out when it is clearly wider (the rule in vbc_pore.h); ties go to
+ * the earlier chain. */
+static int subunit_pore(vb_ctx *ctx, const vbc_cells *cells, const vb_sphere_set *s,
+                        const vbc_pore_request *req, mask_view *M, vbc_pore *out)
+{
+    vbc_axis sub[16];
+    int n = vbc_axis_subunits(s, &out->axis, sub, 16);
+    double need = fmax(VBC_SUBUNIT_MIN_RADIUS, 2.0 * out->pts[out->min_at].r);
+    for (int k = 0; k < n; k++) {
+        /* The subunit's widest place near its centroid, in the centroid's plane. */
+        int32_t atom;
+        vbc_plane_widest(cells, sub[k].u, VBC_SUBUNIT_REACH, M->flags ? outside_mask : NULL, M, sub[k].c,
+                         &atom);
+        vbc_pore p;
+        int rc = sweep(ctx, cells, s, &sub[k], req, M, &p);
+        if (rc != VB_OK) {
+            vbc_pore_free(out);
+            return rc;
+        }
+        double r = p.n ? p.pts[p.min_at].r : 0.0;
+        if (open_pore(&p) && r > need) {
+            vbc_pore_free(out);
+            *out = p;
+            need = r;
+        } else {
+            vbc_pore_free(&p);
+        }
+    }
+    return VB_OK;
 }
 
 int vbc_pore_find(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const vbc_cells *cells,
@@ -131,6 +164,9 @@ int vbc_pore_find(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const vb
         if (force[k] || (open_pore(out) && out->axis.source != VBC_AXIS_PRINCIPAL))
             break;
     }
+    if (have && !req->have_through && out->axis.source == VBC_AXIS_CHAINS && out->axis.chains >= 3 &&
+        out->pts[out->min_at].r < VBC_SUBUNIT_CENTRAL_MAX)
+        return subunit_pore(ctx, cells, s, req, &M, out);
     return VB_OK;
 }
 

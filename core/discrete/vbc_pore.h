@@ -18,7 +18,13 @@
  * of their centroids, through their mean), the line through the centroids
  * of two stacked chains (a head-to-head dimer as gramicidin A), else the
  * direction of the widest through channel of the discrete analysis, else
- * the principal axis of the molecule whose sweep is open and widest. */
+ * the principal axis of the molecule whose sweep is open and widest. When
+ * the symmetry axis of three or more chains is nearly closed (below
+ * VBC_SUBUNIT_CENTRAL_MAX) and a sweep parallel to it through one chain's
+ * centroid is open at both ends and clearly wider (above
+ * VBC_SUBUNIT_MIN_RADIUS and twice the central radius), that subunit's
+ * pore is the pore (a porin trimer; a closed gate on the axis of a
+ * tetrameric channel stays the pore, its subunits hold no open pore). */
 #ifndef VBC_PORE_H
 #define VBC_PORE_H
 
@@ -29,14 +35,20 @@ enum vbc_axis_source {
     VBC_AXIS_GIVEN,     /* --axis (and --through) */
     VBC_AXIS_CHAINS,    /* symmetry of the chains */
     VBC_AXIS_CHANNEL,   /* a through channel of the discrete analysis */
-    VBC_AXIS_PRINCIPAL  /* a principal axis of the atom centres */
+    VBC_AXIS_PRINCIPAL, /* a principal axis of the atom centres */
+    VBC_AXIS_SUBUNIT    /* the chains' symmetry axis moved to one chain's centroid */
 };
+
+/* The subunit rule above, in A. */
+#define VBC_SUBUNIT_CENTRAL_MAX 1.0
+#define VBC_SUBUNIT_MIN_RADIUS 1.0
+#define VBC_SUBUNIT_REACH 12.0 /* a subunit's sweep starts at its widest place this near its centroid */
 
 typedef struct vbc_axis {
     double u[3];   /* unit direction; the axial coordinate is s = p . u */
     double c[3];   /* where the sweep starts */
     int source;    /* enum vbc_axis_source */
-    int chains;    /* chains used (VBC_AXIS_CHAINS) */
+    int chains;    /* chains used (VBC_AXIS_CHAINS); the chain's rank (VBC_AXIS_SUBUNIT) */
 } vbc_axis;
 
 /* A short name of the axis source ("given", "chains", "channel",
@@ -51,6 +63,15 @@ const char *vbc_axis_source_name(int source);
  * apart than 40% of the molecule's extent along that line give the line
  * through them. Returns 1 with *out filled, 0 when the chains say nothing. */
 int vbc_axis_from_chains(const vb_sphere_set *s, vbc_axis *out);
+
+/* One pore per subunit (porins, aquaporins: the pores run through the
+ * monomers, parallel to the symmetry axis, and the axis itself is the
+ * closed interface between them): the direction of sym (an axis from
+ * vbc_axis_from_chains with three or more chains) through the centroid of
+ * each of those chains, in the order of their first atoms, source SUBUNIT
+ * and `chains` the chain's rank (1-based). Writes at most max axes to out
+ * and returns how many. */
+int vbc_axis_subunits(const vb_sphere_set *s, const vbc_axis *sym, vbc_axis *out, int max);
 
 /* The principal axes of the atom centres (eigenvectors of their covariance,
  * largest variance first), through the centroid, source PRINCIPAL. */
@@ -94,6 +115,17 @@ typedef struct vbc_pore {
  * gradients), eps shrinking to 1e-7 A. */
 double vbc_plane_maximise(const vbc_cells *c, const double u[3], double travel, double p[3],
                           int32_t *atom);
+
+/* The widest place inside the molecule in the plane through p normal to u
+ * within `reach` A of p: the best of a 0.5 A lattice on that disc without
+ * the points where outside(user, q) (scan order breaks ties; p itself
+ * when none is wider), then vbc_plane_maximise from there within reach,
+ * kept when it stays inside. Moves p there, returns R and the nearest atom
+ * in *atom. For a start point that the local ascent alone would not find
+ * (a pore beside a loop that fills the middle of a subunit). outside may
+ * be NULL (every point inside). */
+double vbc_plane_widest(const vbc_cells *c, const double u[3], double reach, vbc_outside_fn outside,
+                        void *user, double p[3], int32_t *atom);
 
 /* The sweep: from ax->c both ways along ax->u, one plane every opt->step,
  * each started from the previous plane's centre; a side stops at the first

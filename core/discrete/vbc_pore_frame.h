@@ -24,7 +24,8 @@ typedef struct vbc_pore_request {
  * through channel). An axis from the request is swept as given; otherwise
  * candidates are tried in the order of vbc_pore.h and the first open one
  * (smallest radius > 0) is taken, the chains' axis of three or more chains
- * even when closed (a closed gate is still the pore). *out is filled (free
+ * even when closed (a closed gate is still the pore) unless one subunit
+ * holds a clearly wider open pore (vbc_pore.h; not with --through). *out is filled (free
  * with vbc_pore_free); out->n == 0 when no candidate was usable.
  * VB_ENOMEM. */
 int vbc_pore_find(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const vbc_cells *cells,

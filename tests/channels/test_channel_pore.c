@@ -1,12 +1,13 @@
 /* The HOLE-style pore sweep (core/discrete/channel_pore.c) on synthetic pores
  * whose radius is known in closed form: a ring with a 1.0 A hole (narrower
- * than the 1.4 A probe) inside a wide tube, a funnel of rings, a closed gate;
- * and HOLE's Ohmic conductance on a hand-made profile. Every radius is
+ * than the 1.4 A probe) inside a wide tube, a funnel of rings, a closed gate,
+ * a trimer whose pore runs through one subunit (vbc_pore_find, the axis
+ * from the chains); and HOLE's Ohmic conductance on a hand-made profile. Every radius is
  * asserted to 1e-6 A (the sweep's radii are exact in double, vbc_pore.h),
  * every position to the plane. */
 #include "synth.h"
 #include "vb_test.h"
-#include "vbc_pore.h"
+#include "vbc_pore_frame.h"
 
 #define PI 3.14159265358979323846
 
@@ -162,6 +163,82 @@ static void test_conductance(void)
     CHECK_NEAR(p.F, 13.0 / PI, 1e-12);
 }
 
+/* A porin-like trimer: three tubes (chains A, B, C) of 8 rings of 12 atoms
+ * of 1.6 A, rings 2.5 A apart, their axes parallel to z at 5.5 A from it,
+ * 120 degrees apart; B's rings 4.3 A from its axis (2.7 A clear at each
+ * ring, z = +-1.25, +-3.75, ...), A's and C's 4.0 A (2.4 A). The trimer's
+ * own axis is closed by the walls (atoms 1.5 A from it), so the pore is
+ * B's: found from the chains alone, swept through B's axis, its narrowest
+ * radius 2.7 A at a ring. The molecule (the mask that ends the sweep and
+ * keeps the subunits' start points in) is the three tubes' outer cylinders
+ * for |z| <= 10.5; the grooves between the tubes are outside, as a probe's
+ * molecular surface leaves them. */
+static void test_subunit_pore(vb_ctx *ctx)
+{
+    const int rings = 8, per = 12;
+    vb_sphere_set *s = vb_test_spheres_alloc((size_t)(3 * rings * per), 0);
+    s->info = calloc(s->n, sizeof *s->info);
+    double cx[3], cy[3];
+    for (int t = 0; t < 3; t++) {
+        double th = 2.0 * PI * t / 3.0, rc = t == 1 ? 4.3 : 4.0;
+        cx[t] = 5.5 * cos(th);
+        cy[t] = 5.5 * sin(th);
+        for (int k = 0; k < rings; k++)
+            for (int a = 0; a < per; a++) {
+                size_t i = (size_t)((t * rings + k) * per + a);
+                double phi = 2.0 * PI * (a + 0.5 * (k % 2)) / per;
+                s->x[i] = cx[t] + rc * cos(phi);
+                s->y[i] = cy[t] + rc * sin(phi);
+                s->z[i] = (k - 0.5 * (rings - 1)) * 2.5;
+                s->r[i] = 1.6;
+                s->info[i].chain[0] = (char)('A' + t);
+            }
+    }
+    vbc_grid g = {64, 64, 56, 3, {-16.0, -16.0, -14.0}, 0.5};
+    size_t nv = (size_t)g.nx * (size_t)g.ny * (size_t)g.nz;
+    uint8_t *flags = calloc(nv, 1);
+    for (size_t v = 0; v < nv; v++) {
+        size_t i = v % (size_t)g.nx, j = v / (size_t)g.nx % (size_t)g.ny, k = v / ((size_t)g.nx * (size_t)g.ny);
+        double x = g.origin[0] + g.h * ((double)i + 0.5), y = g.origin[1] + g.h * ((double)j + 0.5);
+        double z = g.origin[2] + g.h * ((double)k + 0.5);
+        int in = 0;
+        for (int t = 0; t < 3; t++)
+            in |= hypot(x - cx[t], y - cy[t]) <= (t == 1 ? 4.3 : 4.0) + 1.6;
+        flags[v] = in && fabs(z) <= 10.5 ? VBC_F_MOLECULAR : 0;
+    }
+    vbc_cells *cells = NULL;
+    CHECK_INT(vbc_cells_build(ctx, s, 3.0, &cells), VB_OK);
+    vbc_result res;
+    memset(&res, 0, sizeof res);
+    vbc_pore_request req;
+    memset(&req, 0, sizeof req);
+    req.enabled = 1;
+    req.sweep.step = 0.25;
+    vbc_pore p;
+    CHECK_INT(vbc_pore_find(ctx, &g, flags, cells, s, &res, &req, &p), VB_OK);
+    CHECK_INT(p.axis.source, VBC_AXIS_SUBUNIT);
+    CHECK_INT(p.axis.chains, 2);
+    CHECK_NEAR(fabs(p.axis.u[2]), 1.0, 1e-9);
+    CHECK_INT(p.open_lo && p.open_hi, 1);
+    if (p.n > 0) {
+        const vbc_pore_point *m = &p.pts[p.min_at];
+        CHECK_NEAR(m->r, 2.7, 1e-6);
+        CHECK_NEAR(fmod(fabs(m->s) + 1.25, 2.5), 0.0, 1e-9);
+        CHECK_NEAR(hypot(m->x - cx[1], m->y - cy[1]), 0.0, 1e-4);
+    }
+    vbc_pore_free(&p);
+    /* With the trimer's axis given, the sweep stays on it: closed there. */
+    req.have_axis = 1;
+    req.u[2] = 1.0;
+    CHECK_INT(vbc_pore_find(ctx, &g, flags, cells, s, &res, &req, &p), VB_OK);
+    CHECK_INT(p.axis.source, VBC_AXIS_GIVEN);
+    CHECK(p.n > 0 && p.pts[p.min_at].r < 0.0);
+    vbc_pore_free(&p);
+    vbc_cells_free(cells);
+    free(flags);
+    vb_spheres_free(s);
+}
+
 int main(void)
 {
     vb_ctx *ctx;
@@ -170,6 +247,7 @@ int main(void)
     test_ring_hole(ctx);
     test_funnel(ctx);
     test_closed_gate(ctx);
+    test_subunit_pore(ctx);
     test_conductance();
     vb_close(ctx);
     VB_TEST_END();

@@ -1,7 +1,8 @@
 /* `vorball channels` end to end on corpus files: gramicidin A gives one
  * through channel along its pore (the y axis of this file) with a bottleneck
  * near HOLE's; every output file is written; the MD trajectory is processed
- * frame by frame; a DCD written from that trajectory gives the same frames. */
+ * frame by frame; a DCD written from that trajectory gives the same frames;
+ * a synthetic ring pore below the probe radius is measured exactly. */
 #include <stdlib.h>
 
 #include "cli_env.h"
@@ -119,6 +120,63 @@ static void test_readme_default(void)
           strstr(line, ":DVA"));
 }
 
+/* A synthetic pore as a user would give it: a PDB of a tube (10 rings of 16
+ * carbons, 6 A from the z axis) in four chains, narrowed at z = 0 by a ring
+ * of 8 carbons 2.5 A from the axis; radius 1.5 A for carbon, so the hole
+ * is 1.0 A, below the 1.4 A probe. At the defaults the pore is found from
+ * the chains (the 4-fold axis, z), passes the constriction, and reports
+ * 1.000 A there; the discrete channels cannot pass it. */
+static void test_synthetic_ring(void)
+{
+    char p[512], a[8192], line[4096];
+    snprintf(p, sizeof p, "%s/ring.pdb", dir);
+    FILE *f = fopen(p, "w");
+    CHECK(f != NULL);
+    if (!f)
+        return;
+    const double pi = 3.14159265358979323846;
+    int serial = 1;
+    for (int k = 0; k < 11; k++) {
+        int per = k < 10 ? 16 : 8;
+        for (int b = 0; b < per; b++) {
+            double phi = 2.0 * pi * (b + (k < 10 ? 0.5 * (k % 2) : 0.0)) / per;
+            double rc = k < 10 ? 6.0 : 2.5, z = k < 10 ? (k - 4.5) * 2.6 : 0.0;
+            fprintf(f, "ATOM  %5d  C   GLY %c%4d    %8.3f%8.3f%8.3f  1.00  0.00           C\n", serial++,
+                    'A' + b / (per / 4), k + 1, rc * cos(phi), rc * sin(phi), z);
+        }
+    }
+    fprintf(f, "END\n");
+    fclose(f);
+    snprintf(p, sizeof p, "%s/ring.radii", dir);
+    f = fopen(p, "w");
+    CHECK(f != NULL);
+    if (!f)
+        return;
+    fprintf(f, "C 1.5\n");
+    fclose(f);
+    snprintf(a, sizeof a, "%s/ring.pdb --radii %s/ring.radii --device ref -o %s/ring.csv", dir, dir, dir);
+    CHECK_INT(run(a), 0);
+    CHECK_INT(csv_line("ring.csv", 1, line, sizeof line), 0);
+    long frame, model, id;
+    char kind[16];
+    int through;
+    double len, bott, bx, by, bz;
+    int n = sscanf(line, "%ld,%ld,%ld,%15[a-z],%d,%lf,%lf,%lf,%lf,%lf", &frame, &model, &id, kind,
+                   &through, &len, &bott, &bx, &by, &bz);
+    CHECK_INT(n, 10);
+    CHECK_STR(kind, "pore");
+    CHECK_INT(through, 1);
+    CHECK_NEAR(bott, 1.0, 0.0011);
+    CHECK_NEAR(bx, 0.0, 0.002);
+    CHECK_NEAR(by, 0.0, 0.002);
+    CHECK_NEAR(bz, 0.0, 0.002);
+    /* No discrete channel gets through the 1.0 A hole with the 1.4 A probe. */
+    for (int row = 2; csv_line("ring.csv", row, line, sizeof line) == 0; row++) {
+        n = sscanf(line, "%ld,%ld,%ld,%15[a-z],%d", &frame, &model, &id, kind, &through);
+        CHECK(n == 5 && !(strcmp(kind, "channel") == 0 && through));
+    }
+}
+
 static void test_trajectory_and_dcd(vb_ctx *ctx)
 {
     char a[8192], line[4096];
@@ -202,6 +260,7 @@ int main(void)
         return 1;
     test_gramicidin();
     test_readme_default();
+    test_synthetic_ring();
     test_trajectory_and_dcd(ctx);
     test_usage();
     vb_close(ctx);
