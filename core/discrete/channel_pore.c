@@ -209,6 +209,26 @@ void vbc_pore_conductance(vbc_pore *p, double rho)
     p->g_macro_pS = 100.0 / (rho * p->F);
 }
 
+/* One plane of the sweep: the local ascent from p, and the ascent from the
+ * best point of a lattice around p (VBC_PLANE_LOOK A): the plane can hold
+ * several local maxima, and the previous plane's centre may sit below a
+ * lower one (HOLE's Monte Carlo search looks around too). The wider wins,
+ * the plain ascent on ties. */
+static double plane_best(const vbc_cells *c, const double u[3], vbc_outside_fn outside, void *user,
+                         double p[3], int32_t *atom)
+{
+    double q[3] = {p[0], p[1], p[2]};
+    int32_t b;
+    double r = vbc_plane_maximise(c, u, 0.0, p, atom);
+    double rq = vbc_plane_widest(c, u, VBC_PLANE_LOOK, outside, user, q, &b);
+    if (rq > r + 1e-9 && !(outside && outside(user, q))) {
+        memcpy(p, q, sizeof q);
+        *atom = b;
+        return rq;
+    }
+    return r;
+}
+
 /* Appends a point; returns -1 when out of memory. */
 static int push(vbc_pore_point **v, size_t *n, size_t *cap, const vbc_pore_point *q)
 {
@@ -251,7 +271,7 @@ int vbc_pore_sweep(vb_ctx *ctx, const vbc_cells *c, const vb_sphere_set *s, cons
     size_t ns[2] = {0, 0}, cap[2] = {0, 0};
     double start[3] = {ax->c[0], ax->c[1], ax->c[2]};
     int32_t atom;
-    double r0 = vbc_plane_maximise(c, u, 0.0, start, &atom);
+    double r0 = plane_best(c, u, outside, user, start, &atom);
     vbc_pore_point q0 = {dot3(start, u), start[0], start[1], start[2], r0, atom};
     int rc = VB_OK;
     for (int dir = 0; dir < 2 && rc == VB_OK; dir++) {
@@ -261,7 +281,7 @@ int vbc_pore_sweep(vb_ctx *ctx, const vbc_cells *c, const vb_sphere_set *s, cons
         for (long k = 1; !open && k * opt->step <= half; k++) {
             for (int i = 0; i < 3; i++)
                 p[i] += sign * opt->step * u[i];
-            double r = vbc_plane_maximise(c, u, 0.0, p, &atom);
+            double r = plane_best(c, u, outside, user, p, &atom);
             vbc_pore_point q = {dot3(p, u), p[0], p[1], p[2], r, atom};
             if (push(&side[dir], &ns[dir], &cap[dir], &q) != 0) {
                 rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "pore profile");

@@ -127,8 +127,13 @@ double vbc_plane_maximise(const vbc_cells *c, const double u[3], double travel, 
 double vbc_plane_widest(const vbc_cells *c, const double u[3], double reach, vbc_outside_fn outside,
                         void *user, double p[3], int32_t *atom);
 
+/* How far the sweep looks around the previous plane's centre in each plane
+ * (vbc_plane_widest) besides the local ascent, A. */
+#define VBC_PLANE_LOOK 1.5
+
 /* The sweep: from ax->c both ways along ax->u, one plane every opt->step,
- * each started from the previous plane's centre; a side stops at the first
+ * each started from the previous plane's centre (the local ascent from it
+ * or from the widest lattice point within VBC_PLANE_LOOK, the wider); a side stops at the first
  * point outside the molecule (outside(user, p), when outside is not NULL),
  * beyond opt->end_radius, or beyond opt->max_half. Fills *out (free with
  * vbc_pore_free), its points sorted by s, F and Gmacro over them.
