@@ -325,15 +325,76 @@ static int certify_quads(vb_ctx *ctx, const vb_certifier_ops *ops, void *cert,
     return rc == VB_ENOMEM ? vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (certify)") : rc;
 }
 
+/* The certifier's set-up (exact data and spatial index of the spheres)
+ * needs only the spheres: it runs on a thread of its own, with its own
+ * context for messages, while the proposer works. */
+typedef struct cert_opener {
+    const vb_certifier_ops *ops;
+    const vb_sphere_set *set;
+    unsigned threads;
+    vb_ctx *tctx;
+    void *cert;
+    int rc;
+    vb_jobs job;
+    int started;
+} cert_opener;
+
+static void *open_certifier(void *arg)
+{
+    cert_opener *co = arg;
+    co->rc = co->tctx ? co->ops->open(co->tctx, co->set, co->threads, &co->cert) : VB_ENOMEM;
+    return NULL;
+}
+
+static void cert_opener_start(cert_opener *co, const vb_certifier_ops *ops,
+                              const vb_sphere_set *set, unsigned threads)
+{
+    memset(co, 0, sizeof *co);
+    co->ops = ops;
+    co->set = set;
+    co->threads = threads;
+    if (vb_open(&co->tctx, NULL) != VB_OK)
+        co->tctx = NULL;
+    co->started = vb_jobs_start(&co->job, open_certifier, co, sizeof *co, 1) == 1;
+}
+
+/* Waits for the set-up (or runs it here when its thread did not start);
+ * the certifier, or NULL with the error in ctx. */
+static void *cert_opener_join(vb_ctx *ctx, cert_opener *co, int *rc)
+{
+    vb_jobs_join(&co->job);
+    *rc = co->rc;
+    if (co->rc != VB_OK) {
+        if (co->cert)
+            co->ops->close(co->cert);
+        co->cert = NULL;
+        *rc = vb_error(ctx, co->rc, NULL, 0, "%s", co->tctx ? vb_errmsg(co->tctx) : "out of memory");
+    }
+    vb_close(co->tctx);
+    co->tctx = NULL;
+    return co->cert;
+}
+
+/* After a failed proposal: the set-up's certifier and messages dropped
+ * (the proposal's error stands). */
+static void cert_opener_discard(cert_opener *co)
+{
+    vb_jobs_join(&co->job);
+    if (co->cert)
+        co->ops->close(co->cert);
+    vb_close(co->tctx);
+}
+
 /* Exact certification of the candidates, then the repair rounds (not for
  * a proposer that proves completeness: its refused quadruples are simply
- * not vertices); t_certify and t_total (from t0) are set. */
-static int certify(vb_ctx *ctx, const vb_certifier_ops *ops, const vb_sphere_set *set,
-                   const vb_vertices_config *cfg, double t0, vb_vertices_result *res)
+ * not vertices); t_certify and t_total (from t0) are set. The certifier
+ * comes from co (started before the proposer). */
+static int certify(vb_ctx *ctx, const vb_certifier_ops *ops, cert_opener *co,
+                   const vb_sphere_set *set, double t0, vb_vertices_result *res)
 {
     double t1 = vb_now();
-    void *cert = NULL;
-    int rc = ops->open(ctx, set, cfg->sampler.threads, &cert);
+    int rc = VB_OK;
+    void *cert = cert_opener_join(ctx, co, &rc);
     if (rc == VB_OK && res->sampler.complete)
         rc = certify_quads(ctx, ops, cert, set, res);
     else if (rc == VB_OK)
@@ -376,6 +437,8 @@ int vb_vertices_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertices_con
     } else if ((rc = p->open(ctx, be->devices, NULL, &state)) != VB_OK) {
         return rc;
     }
+    cert_opener co;
+    cert_opener_start(&co, be->certifier, set, cfg->sampler.threads);
     vb_proposer_await aw = {await_state, opener_ready, &op, cfg->device};
     rc = propose(ctx, p, state, async ? &aw : NULL, set, cfg, res);
     if (async) {
@@ -390,8 +453,11 @@ int vb_vertices_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertices_con
         rc = rerun_on_twin(ctx, be->devices, dev, p, &state, set, cfg, res);
     /* Releasing a GPU context takes tens of milliseconds: after the
      * certification, which does not need it. */
-    if (rc == VB_OK)
-        rc = certify(ctx, be->certifier, set, cfg, t0, res);
+    if (rc == VB_OK) {
+        rc = certify(ctx, be->certifier, &co, set, t0, res);
+    } else {
+        cert_opener_discard(&co);
+    }
     if (state)
         p->close(state);
     if (dev)
@@ -453,6 +519,8 @@ int vb_vertices_run_on(vb_ctx *ctx, vb_vertices_engine *e, const vb_sphere_set *
                        const vb_vertices_config *cfg, vb_vertices_result *res)
 {
     double t0 = vb_now();
+    cert_opener co;
+    cert_opener_start(&co, e->be.certifier, set, cfg->sampler.threads);
     int rc = propose(ctx, e->prop, e->state, NULL, set, cfg, res);
     if (rc != VB_OK && VB_CATEGORY(rc) == VB_EDEVICE && e->dev) {
         /* Later runs on e stay on the twin. */
@@ -460,7 +528,11 @@ int vb_vertices_run_on(vb_ctx *ctx, vb_vertices_engine *e, const vb_sphere_set *
         e->be.devices->close(e->dev);
         e->dev = NULL;
     }
-    return rc == VB_OK ? certify(ctx, e->be.certifier, set, cfg, t0, res) : rc;
+    if (rc != VB_OK) {
+        cert_opener_discard(&co);
+        return rc;
+    }
+    return certify(ctx, e->be.certifier, &co, set, t0, res);
 }
 
 void vb_vertices_certificate(const vb_vertices_result *r, char *buf, size_t size)
