@@ -11,7 +11,7 @@ mkdir -p "$work" || fail "cannot create $work"
 trj=$corpus/data/ngl_md_ascii_trj.pdb
 # 26 frames: on 2 ranks two rounds (16 + 10 frames), on 3 a round of 24 and
 # one of 2 that leaves rank 2 without a frame.
-opts="--grid 32 --frames ::2 --device ref"
+opts="--grid 32 --frames ::2 --device ref --no-pore"
 untimed() { # the statistics without their timing columns
     cut -d, -f1-12 "$1"
 }
@@ -45,4 +45,8 @@ for np in 2 3; do
     unms "$work/j.$np.json" > "$work/j.$np.cut"
     same_bytes "JSON on $np ranks" "$work/j.1.cut" "$work/j.$np.cut"
 done
+# The pore's axis comes from the first frame: under MPI it must be given.
+run 2 "$work/pore.err" mpi 2 "$vorball" channels --grid 32 --frames ::2 --device ref "$trj" -o "$work/pore.csv"
+expect_line "$work/pore.err" "E151: under MPI give --axis and --through"
+[ ! -e "$work/pore.csv" ] || fail "a refused channels job left $work/pore.csv"
 echo "ok: channels of 26 frames on 1, 2 and 3 ranks are one process's output"

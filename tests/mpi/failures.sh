@@ -18,7 +18,7 @@ expect_line "$work/f.err" '^vorball: E6: rank 1 of 3: failure injected'
 expect_line "$work/f.err" '^vorball: W831: rank 1 of 3 failed \(E6\): every rank stopped'
 [ ! -e "$work/f.tsv" ] || fail "a failed job left $work/f.tsv"
 VORBALL_TEST_FAIL_RANK=2
-run 6 "$work/fc.err" mpi 3 -x VORBALL_TEST_FAIL_RANK "$vorball" channels --grid 32 --frames ::10 \
+run 6 "$work/fc.err" mpi 3 -x VORBALL_TEST_FAIL_RANK "$vorball" channels --no-pore --grid 32 --frames ::10 \
     --device ref "$corpus/data/ngl_md_ascii_trj.pdb" -o "$work/fc.csv"
 expect_line "$work/fc.err" '^vorball: E6: rank 2 of 3: failure injected'
 [ ! -e "$work/fc.csv" ] || fail "a failed channels job left $work/fc.csv"
