@@ -30,6 +30,11 @@ typedef struct vb_cover_options {
     unsigned max_level;  /* enumerate whatever is left at this level (0: VB_COVER_MAX_LEVEL) */
     unsigned enum_max;   /* enumerate a patch once it has at most this many owned labels (0: 3) */
     unsigned threads;    /* host threads (0: VORBALL_THREADS or online CPUs) */
+    /* Work split across processes (MPI ranks): this run covers part `part`
+     * of `nparts` (0 or 1: everything). The parts are runs of cells along
+     * the tree's curve, balanced by count, the same for every process; the
+     * union of the parts' quadruples is the whole run's. */
+    unsigned part, nparts;
 } vb_cover_options;
 
 typedef struct vb_cover_stats {
@@ -80,6 +85,16 @@ struct vb_cover_backend {
 /* Closes a backend; NULL is allowed. */
 void vb_cover_backend_close(vb_cover_backend *be);
 
+/* The shared input of every cell: the tree over the centres and the
+ * parameters, in *env (its arrays belong to *tree and to set). For
+ * backends and tests that run vbq_cover_cell themselves; vb_cover_run
+ * calls it. VB_OK, VB_EMISUSE (bad options, set not validated),
+ * VB_EINPUT_TOOLARGE, VB_ENOMEM. Free with vb_cover_tree_free. */
+typedef struct vb_cover_tree vb_cover_tree;
+int vb_cover_prepare(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *opt,
+                     vb_cover_tree **tree, vbq_env *env);
+void vb_cover_tree_free(vb_cover_tree *tree);
+
 /* Runs the cover on a validated set (contained spheres flagged) and appends
  * the proposed quadruples to out (sorted, unique). be NULL covers every cell
  * on host threads; otherwise be covers them batch by batch and the host
@@ -89,6 +104,35 @@ void vb_cover_backend_close(vb_cover_backend *be);
  * not depend on the backend or the thread count. */
 int vb_cover_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *opt,
                  vb_cover_backend *be, vb_quad_list *out, vb_cover_stats *stats);
+
+/* A consumer of the cover's quadruples, part by part: part is sorted and
+ * unique, and the sink may take its array (leaving *part zeroed). Parts
+ * are disjoint (a quadruple is proposed by the cell of its smallest id),
+ * but a vertex of degree > 4 is the root of quadruples of several of its
+ * members' cells, which may lie in different parts. Returns VB_OK or an
+ * error that stops the cover (returned by vb_cover_run_parts). */
+typedef int (*vb_cover_sink)(void *user, vb_quad_list *part);
+
+/* Cells per pipeline part by default, and the most parts. */
+#define VB_COVER_PART_CELLS 8192u
+#define VB_COVER_MAX_PARTS 8u
+
+/* Parts for a pipelined run of `cells` cells: VORBALL_COVER_PARTS (1-64)
+ * when set, else one per VB_COVER_PART_CELLS cells, 1 to
+ * VB_COVER_MAX_PARTS. Only speed depends on it. */
+unsigned vb_cover_pipeline_parts(size_t cells);
+
+/* vb_cover_run in `parts` runs of cells along the tree's curve (of this
+ * process's share, opt->part of opt->nparts), the tree built once: each
+ * part's quadruples go to sink as soon as its cells are covered, so that
+ * a consumer (the certifier) works on one part while the next is covered.
+ * The union of the parts is vb_cover_run's list. Returns VB_OK, the sink's
+ * error, VB_EMISUSE (parts not 1-64, no sink, bad options), VB_ENOMEM,
+ * VB_EINPUT_TOOLARGE or the backend's VB_EDEVICE; stats (may be NULL) sum
+ * the parts. */
+int vb_cover_run_parts(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *opt,
+                       vb_cover_backend *be, unsigned parts, vb_cover_sink sink, void *user,
+                       vb_cover_stats *stats);
 
 #ifdef __cplusplus
 }
