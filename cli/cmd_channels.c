@@ -79,7 +79,8 @@ static void usage(FILE *f)
             "  --png FILE          the 2D pipeline stages (paper Fig. 5) on the slice through the\n"
             "                      centroid of the first frame\n"
             "  --png-normal x|y|z  normal of that slice (default x: the slice holds the z axis)\n"
-            "  --jfa VARIANT       facet (default), jfa, jfa+1, jfa+2, 1+jfa\n"
+            "  --jfa VARIANT       facet (default), exact (the exact diagram by tiles), jfa,\n"
+            "                      jfa+1, jfa+2, 1+jfa\n"
             "  --device D          auto (default: GPU, else the CPU OpenCL device), gpu, cpu\n"
             "                      or ref (plain C, same output). If that OpenCL device cannot\n"
             "                      be used, the reference runs after warning W804 (W806:\n"
@@ -308,8 +309,10 @@ static int parse_args(int argc, char **argv, ch_args *A)
                 return vb_cli_usage_error(cmd, "--png-normal needs x, y or z, not '%s'", v), -1;
             A->png_axis = v[0] - 'x';
         } else if (strcmp(a, "--jfa") == 0) {
-            if (vbj_variant_parse(NULL, v, &A->variant) != VB_OK || A->variant == VBJ_FACET_FULL)
-                return vb_cli_usage_error(cmd, "--jfa: facet, jfa, jfa+1, jfa+2 or 1+jfa, not '%s'", v), -1;
+            /* exact-boundary counts boundary pixels the masks never read. */
+            if (vbj_variant_parse(NULL, v, &A->variant) != VB_OK || A->variant == VBJ_FACET_FULL ||
+                A->variant == VBJ_EXACT_BOUNDARY)
+                return vb_cli_usage_error(cmd, "--jfa: facet, exact, jfa, jfa+1, jfa+2 or 1+jfa, not '%s'", v), -1;
         } else if (strcmp(a, "--device") == 0) {
             if (vb_device_kind_parse(NULL, v, &A->device) != VB_OK)
                 return vb_cli_usage_error(cmd, "--device: auto, gpu, cpu or ref, not '%s'", v), -1;

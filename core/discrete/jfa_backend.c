@@ -18,7 +18,7 @@ void vbj_result_free(vbj_result *r)
 
 static int check_options(vb_ctx *ctx, const vbj_seeds *s, const vbj_options *o)
 {
-    if ((unsigned)o->variant > VBJ_FACET_FULL)
+    if ((unsigned)o->variant >= VBJ_NVARIANTS)
         return vb_error(ctx, VB_EMISUSE, NULL, 0, "unknown JFA variant %d", (int)o->variant);
     if (o->m && (o->m > s->n || (o->m & (o->m - 1))))
         return vb_error(ctx, VB_EMISUSE, NULL, 0,
