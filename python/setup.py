@@ -51,9 +51,14 @@ class BuildWithLibvorball(build_ext):
         if not libs:
             raise SystemExit("setup.py: cmake --install gave no libvorball.so in " + stage)
         libdir = os.path.dirname(libs[0])
+        headers = glob.glob(os.path.join(stage, "include", "vorball", "*.h"))
         for ext in self.extensions:
             ext.include_dirs.append(os.path.join(stage, "include", "vorball"))
             ext.library_dirs.append(libdir)
+            # The library's headers and the library itself: an extension
+            # left in build/ by an earlier install is rebuilt when either
+            # is newer (a struct of the library changed, or its code).
+            ext.depends = list(ext.depends) + headers + [os.path.realpath(libs[0])]
         super().run()
         # The loader looks for the soname (libvorball.so.0): copy the file
         # under that name beside the extension.

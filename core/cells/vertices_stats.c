@@ -33,4 +33,3 @@ void vb_vertices_write_stats(vb_ctx *ctx, FILE *f, const vb_vertices_result *r)
             (unsigned long long)st->filter_calls, (unsigned long long)st->filter_failures,
             (unsigned long long)st->exact_evals);
 }
-

@@ -10,6 +10,16 @@
 #include <Python.h>
 #include <stdio.h>
 
+/* Py_NewRef came with Python 3.10; the package supports 3.9 (pyproject). */
+#if PY_VERSION_HEX < 0x030A0000
+static inline PyObject *vbpy_newref(PyObject *o)
+{
+    Py_INCREF(o);
+    return o;
+}
+#define Py_NewRef vbpy_newref
+#endif
+
 #include "vb_spheres.h"
 #include "vb_vertex.h"
 

@@ -177,6 +177,6 @@ def test_exit_status_is_the_commands(tmp_path):
     with pytest.raises(vorball.VorballError) as e:
         vorball.vertices(xyz, np.ones(4), device="ref")
     p = tmp_path / "dup.xyzr"
-    p.write_text("".join("%r %r %r 1\n" % tuple(v) for v in xyz))
+    p.write_text("".join("%r %r %r 1\n" % tuple(v) for v in xyz.tolist()))
     _, err = cli("vertices", "--device", "ref", p, rc=e.value.exit_status)
     assert ("E%d:" % e.value.number) in err

@@ -21,13 +21,18 @@ def test_silent_by_default_and_verbose_prints(capfd):
     numbers = {w.number for w in res.warnings}
     assert res.backend != "ref" or 760 in numbers  # fell back to the reference: said so
     vorball.vertices(CONTAINED, device="cpu")       # PoCL's OpenCL: silent too
+    out, err = capfd.readouterr()
+    assert out == "" and err == ""
     assert 701 in numbers  # the contained sphere, as the command warns
     _, cli_err = cli("vertices", "--device", "ref", CONTAINED)
     assert [l for l in cli_err.splitlines() if "W701" in l] == \
         [str(w) for w in res.warnings if w.number == 701]
-    vorball.vertices(CONTAINED, device="ref", verbose=True)
+    loud = vorball.vertices(CONTAINED, device="ref", verbose=True)
     out, err = capfd.readouterr()
+    # Exactly the collected warnings, each once, as the command prints them.
     assert out == "" and "vorball: W701: " in err
+    assert err.splitlines() == [str(w) for w in loud.warnings] == \
+        [l for l in cli_err.splitlines() if l.startswith("vorball: W")]
 
 
 def test_one_exception_class():

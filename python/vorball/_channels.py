@@ -1,16 +1,20 @@
 """Channels and cavities of a molecule (the discrete Voronoi pipeline of
 the Facet-JFA paper, Sec. 4, with components, centrelines, bottlenecks and
 lining atoms), one frame at a time."""
+from __future__ import annotations
+
 import csv
 import io
 import json as _json
 import numbers
+from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from . import _core
-from ._errors import emit, misuse, parse
-from ._spheres import as_spheres
+from ._errors import Diagnostic, emit, misuse, parse
+from ._spheres import SphereInput, Spheres, as_spheres
 
 # The columns of the table that the bound structures give at full
 # precision; every other column of the library's CSV is added as the
@@ -56,7 +60,25 @@ class Channels:
     device, ms, warnings, spheres
     """
 
-    def __init__(self, d, warnings, spheres, frame, model):
+    table: np.ndarray
+    centrelines: List[np.ndarray]
+    lining: List[np.ndarray]
+    grid: Dict[str, Any]
+    components: int
+    pruned: int
+    channel_voxels: int
+    csv: str
+    json: str
+    flags: Optional[np.ndarray]
+    device: str
+    ms: Dict[str, float]
+    warnings: List[Diagnostic]
+    spheres: Spheres
+    frame: int
+    model: int
+
+    def __init__(self, d: Dict[str, Any], warnings: List[Diagnostic], spheres: Spheres,
+                 frame: int, model: int) -> None:
         self.spheres, self.warnings = spheres, warnings
         self.frame, self.model = frame, model
         self.csv, self.json = d["csv"], d["json"]
@@ -108,25 +130,25 @@ class Channels:
         else:
             self.flags = None
 
-    def __len__(self):
+    def __len__(self) -> int:
         return len(self.table)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return "<vorball.Channels frame %d: %d channel(s) on %s>" % (self.frame, len(self),
                                                                        self.device)
 
-    def profile(self, k=0):
+    def profile(self, k: int = 0) -> Tuple[np.ndarray, np.ndarray]:
         """The pore profile of row k: (s, r), the clearance radius r along
         the centreline at arc length s (Å) from its first point."""
         c = self.centrelines[k]
         return c["s"], c["r"]
 
-    def to_json(self):
+    def to_json(self) -> Any:
         """The JSON document as Python objects."""
         return _json.loads(self.json)
 
 
-def channel_flags():
+def channel_flags() -> Dict[str, int]:
     """The bits of Channels.flags: {'atomic': 1, 'molecular': 2, ...}."""
     return _core.channel_flag_bits()
 
@@ -142,22 +164,27 @@ def _check(grid, probe, min_length, min_radius, lining_tol):
         raise misuse("grid must be a power of two in 16..1024, not %d" % grid)
 
 
-def run_channels(pipe, first, xyz, r, grid, probe, min_length=5.0, min_radius=0.0,
-                 lining_tol=1.0, cavities=False, flags=False, zero_radius="auto",
-                 verbose=False):
+def run_channels(pipe: Any, first: bool, xyz: SphereInput, r: Optional[ArrayLike], grid: int,
+                 probe: float, min_length: float = 5.0, min_radius: float = 0.0,
+                 lining_tol: float = 1.0, cavities: bool = False, flags: bool = False,
+                 zero_radius: str = "auto", verbose: bool = False) -> Channels:
+    """One frame through an opened channel pipe (vorball.channels, Engine.channels)."""
     _check(grid, probe, min_length, min_radius, lining_tol)
-    s = as_spheres(xyz, r, min_count=1, zero_radius=zero_radius, verbose=verbose, exact=False)
+    s, made = as_spheres(xyz, r, min_count=1, zero_radius=zero_radius, exact=False,
+                         revalidated=False)
     d, diag = _core.channels_run(pipe, s._capsule, int(grid), float(probe), float(min_length),
                                  float(min_radius), float(lining_tol), bool(cavities),
                                  int(s.model), int(s.index), bool(flags), bool(first))
-    w = parse(diag)
+    w = made + parse(diag)
     emit(w, verbose)
     return Channels(d, w, s, s.index, s.model)
 
 
-def channels(xyz, r=None, grid=128, probe=1.4, *, device="auto", jfa="facet", min_length=5.0,
-             min_radius=0.0, lining_tol=1.0, cavities=False, flags=False, zero_radius="auto",
-             verbose=False):
+def channels(xyz: SphereInput, r: Optional[ArrayLike] = None, grid: int = 128,
+             probe: float = 1.4, *, device: str = "auto", jfa: str = "facet",
+             min_length: float = 5.0, min_radius: float = 0.0, lining_tol: float = 1.0,
+             cavities: bool = False, flags: bool = False, zero_radius: str = "auto",
+             verbose: bool = False) -> Channels:
     """Channels and cavities of one set of spheres, as `vorball channels`.
 
     xyz, r: arrays, a Spheres (a frame of vorball.frames: its index and

@@ -1,8 +1,10 @@
 """Errors and diagnostics: one exception class carrying the catalogue's
 E-number, and the warnings a call collected instead of printing them."""
+from __future__ import annotations
+
 import re
 import sys
-from typing import NamedTuple
+from typing import Dict, Iterable, List, NamedTuple, Optional, Tuple, Union
 
 from . import _core
 
@@ -13,7 +15,7 @@ ARRAYS = "<arrays>"
 _ROW = re.compile(re.escape(ARRAYS) + r":(\d+): ")
 
 
-def rows(text):
+def rows(text: str) -> str:
     """Rewrites '<arrays>:N: ' (line N of the arrays' text) as '<arrays> row N-1: '."""
     return _ROW.sub(lambda m: "%s row %d: " % (ARRAYS, int(m.group(1)) - 1), text)
 
@@ -24,7 +26,7 @@ class Diagnostic(NamedTuple):
     number: int    # the catalogue number (vorball.catalogue()), 0 for info lines
     message: str   # the text after "vorball: W<n>: "
 
-    def __str__(self):
+    def __str__(self) -> str:
         if self.kind == "W":
             return "vorball: W%d: %s" % (self.number, self.message)
         return "vorball: " + self.message
@@ -33,7 +35,7 @@ class Diagnostic(NamedTuple):
 _LINE = re.compile(r"^vorball: W(\d+): (.*)$")
 
 
-def parse(text):
+def parse(text: Optional[str]) -> List[Diagnostic]:
     """The diagnostics of a call's captured text, one per line."""
     out = []
     for line in rows(text or "").splitlines():
@@ -47,7 +49,7 @@ def parse(text):
     return out
 
 
-def emit(diagnostics, verbose):
+def emit(diagnostics: Iterable[Diagnostic], verbose: bool) -> None:
     """Prints the diagnostics on sys.stderr when verbose, as the command does."""
     if verbose:
         for d in diagnostics:
@@ -67,14 +69,24 @@ class VorballError(Exception):
     diagnostics  the warnings emitted before the failure
     """
 
-    def __init__(self, number, message, status=None, exit_status=None, diagnostics=None):
+    number: int
+    message: str
+    status: Optional[int]
+    exit_status: Optional[int]
+    diagnostics: List[Diagnostic]
+    row: Optional[int]
+
+    def __init__(self, number: int, message: str, status: Optional[int] = None,
+                 exit_status: Optional[int] = None,
+                 diagnostics: Union[str, Iterable[Diagnostic], None] = None) -> None:
         message = rows(message)
         super().__init__("E%d: %s" % (number, message))
         self.number = number
         self.message = message
         self.status = status
         self.exit_status = exit_status
-        self.diagnostics = parse(diagnostics) if isinstance(diagnostics, str) else list(diagnostics or [])
+        self.diagnostics = (parse(diagnostics) if isinstance(diagnostics, str)
+                            else [Diagnostic(*d) for d in diagnostics or []])
         m = re.match(re.escape(ARRAYS) + r" row (\d+)[:,] ", message)
         self.row = int(m.group(1)) if m else None
 
@@ -86,7 +98,7 @@ class VorballError(Exception):
 _core._set_error_class(VorballError)
 
 
-def error(number, message):
+def error(number: int, message: str) -> VorballError:
     """A VorballError of catalogue number `number` raised by the package
     itself, with the status code and exit status the library gives it."""
     status = number if number < 100 else 1 | ((number - 100) << 8)  # VB_EINPUT | detail << 8
@@ -94,7 +106,7 @@ def error(number, message):
     return VorballError(number, message, status, entry.exit_status if entry else None)
 
 
-def misuse(message):
+def misuse(message: str) -> VorballError:
     """A VorballError for a wrong argument (E7: misuse of an option or of the API)."""
     return error(7, message)
 
@@ -102,12 +114,12 @@ def misuse(message):
 class CatalogueEntry(NamedTuple):
     kind: str        # "E" or "W"
     number: int
-    name: str        # the C name after VB_E_ / VB_W_ (None when retired)
-    exit_status: int  # the command's exit status (0 for warnings; None when retired)
+    name: Optional[str]  # the C name after VB_E_ / VB_W_ (None when retired)
+    exit_status: Optional[int]  # the command's exit status (0 for warnings; None when retired)
     meaning: str
 
 
-def catalogue():
+def catalogue() -> Dict[Tuple[str, int], CatalogueEntry]:
     """Every diagnostic number vorball uses ({(kind, number): CatalogueEntry}),
     from the library's catalogue (core/vb_diag.h), retired numbers included."""
     return {(k, n): CatalogueEntry(k, n, name, ex, meaning)

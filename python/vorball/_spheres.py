@@ -1,13 +1,20 @@
 """Sphere sets: read from files by the library's readers, built from NumPy
 arrays (exactly: see `spheres`), and the frames of trajectories."""
+from __future__ import annotations
+
 import decimal
 import numbers
 import os
+from typing import Any, Iterator, List, Optional, Tuple, Union
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from . import _core
-from ._errors import ARRAYS, emit, misuse, parse
+from ._errors import ARRAYS, Diagnostic, emit, misuse, parse
+
+# A file path as the calls take it.
+PathLike = Union[str, os.PathLike]
 
 _ZERO = {"auto": _core.ZERO_RADIUS_AUTO, "error": _core.ZERO_RADIUS_ERROR,
          "point": _core.ZERO_RADIUS_POINT, "drop": _core.ZERO_RADIUS_DROP}
@@ -35,7 +42,19 @@ class Spheres:
     elements, ...). Arrays are read-only views.
     """
 
-    def __init__(self, capsule, diagnostics="", index=0, model=1):
+    n: int
+    source: str
+    exact: bool
+    index: int
+    model: int
+    warnings: List[Diagnostic]
+    xyz: np.ndarray
+    r: np.ndarray
+    line: np.ndarray
+    contained: np.ndarray
+
+    def __init__(self, capsule: Any, diagnostics: Union[str, List[Diagnostic]] = "",
+                 index: int = 0, model: int = 1) -> None:
         self._capsule = capsule
         info = _core.spheres_info(capsule)
         self.n = info["n"]
@@ -55,15 +74,15 @@ class Spheres:
         self._has_atoms = info["atoms"]
         self._atoms = None
 
-    def __len__(self):
+    def __len__(self) -> int:
         return self.n
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return "<vorball.Spheres %d from %r%s>" % (
             self.n, self.source, "" if self.exact else " (doubles only)")
 
     @property
-    def atoms(self):
+    def atoms(self) -> Optional[np.ndarray]:
         """The atom records (structured array), or None."""
         if self._has_atoms and self._atoms is None:
             raw, itemsize, off = _core.spheres_atoms(self._capsule)
@@ -84,7 +103,7 @@ class Spheres:
         return self._atoms
 
     @property
-    def decimals(self):
+    def decimals(self) -> Optional[np.ndarray]:
         """The exact input numbers: an (n, 4) object array of decimal.Decimal
         (x, y, z, r), or None for a set of doubles only."""
         d = _core.spheres_decimals(self._capsule)
@@ -96,6 +115,10 @@ class Spheres:
         for k, (m, e) in enumerate(zip(mant.tolist(), exp.tolist())):
             out[k] = decimal.Decimal(m).scaleb(e, decimal.Context(prec=40))
         return out.reshape(self.n, 4)
+
+
+# What the calls accept as spheres: a Spheres, a file path, or arrays.
+SphereInput = Union[Spheres, PathLike, ArrayLike]
 
 
 def _read_args(format, model, water, hydrogens, strict_elements, radii, zero_radius):
@@ -110,8 +133,9 @@ def _read_args(format, model, water, hydrogens, strict_elements, radii, zero_rad
             _zero_radius(zero_radius), radii)
 
 
-def read(path, format="auto", model=None, water=False, hydrogens=True, strict_elements=False,
-         radii=None, zero_radius="auto", verbose=False):
+def read(path: PathLike, format: str = "auto", model: Optional[int] = None, water: bool = False,
+         hydrogens: bool = True, strict_elements: bool = False, radii: Optional[PathLike] = None,
+         zero_radius: str = "auto", verbose: bool = False) -> Spheres:
     """Reads the spheres of a file as every `vorball` command does.
 
     path is any format the command reads (detected by content, or named by
@@ -143,9 +167,11 @@ class Frames:
     close() releases the file.
     """
 
-    def __init__(self, path, trajectory=None, start=0, stop=None, step=1, format="auto",
-                 model=None, water=False, hydrogens=True, strict_elements=False, radii=None,
-                 zero_radius="auto", verbose=False):
+    def __init__(self, path: PathLike, trajectory: Optional[PathLike] = None, start: int = 0,
+                 stop: Optional[int] = None, step: int = 1, format: str = "auto",
+                 model: Optional[int] = None, water: bool = False, hydrogens: bool = True,
+                 strict_elements: bool = False, radii: Optional[PathLike] = None,
+                 zero_radius: str = "auto", verbose: bool = False) -> None:
         for name, v in (("start", start), ("step", step)):
             if not isinstance(v, numbers.Integral) or v < (1 if name == "step" else 0):
                 raise misuse("%s must be an integer >= %d, not %r" % (name, name == "step", v))
@@ -160,10 +186,10 @@ class Frames:
         emit(self.warnings, verbose)
         self._index = 0
 
-    def __iter__(self):
+    def __iter__(self) -> Iterator[Spheres]:
         return self
 
-    def __next__(self):
+    def __next__(self) -> Spheres:
         while self._capsule is not None:
             if self.stop is not None and self._index >= self.stop:
                 break
@@ -180,19 +206,19 @@ class Frames:
         self.close()
         raise StopIteration
 
-    def close(self):
+    def close(self) -> None:
         if self._capsule is not None:
             _core.frames_close(self._capsule)
             self._capsule = None
 
-    def __enter__(self):
+    def __enter__(self) -> Frames:
         return self
 
-    def __exit__(self, *exc):
+    def __exit__(self, *exc: object) -> None:
         self.close()
 
 
-def frames(path, trajectory=None, **kw):
+def frames(path: PathLike, trajectory: Optional[PathLike] = None, **kw: Any) -> Frames:
     """The frames of `path` (see Frames): `for f in vorball.frames(top, dcd): ...`."""
     return Frames(path, trajectory, **kw)
 
@@ -247,7 +273,8 @@ def _unmasked(a, what):
     return np.asarray(a)
 
 
-def spheres(xyz, r=None, zero_radius="auto", min_count=1, verbose=False):
+def spheres(xyz: Union[Spheres, ArrayLike], r: Optional[ArrayLike] = None,
+            zero_radius: str = "auto", min_count: int = 1, verbose: bool = False) -> Spheres:
     """Spheres from arrays, with exact decimals as the certifier needs them.
 
     xyz is (n, 3) (or (n, 4) x y z r when r is None); r is (n,) or one
@@ -296,20 +323,31 @@ def spheres(xyz, r=None, zero_radius="auto", min_count=1, verbose=False):
     return s
 
 
-def as_spheres(xyz, r=None, min_count=1, zero_radius="auto", verbose=False, exact=True):
+# The warnings of validation (vb_spheres_validate): a run that validates
+# its set again in its own context (vertices, verify) emits them again.
+VALIDATION = frozenset({701, 702})
+
+
+def as_spheres(xyz: SphereInput, r: Optional[ArrayLike] = None, min_count: int = 1,
+               zero_radius: str = "auto", exact: bool = True,
+               revalidated: bool = True) -> Tuple[Spheres, List[Diagnostic]]:
     """A Spheres from what the public calls accept: a Spheres, a path (read),
     or arrays (spheres()). With exact, a set of doubles only (a binary
-    trajectory's frame) is rebuilt from its float64 arrays (repr rule)."""
+    trajectory's frame) is rebuilt from its float64 arrays (repr rule).
+    Also returns the warnings of making the set here (none for a Spheres
+    given as it is), without those of validation when the run repeats
+    them (revalidated): what the command prints before its run, once."""
     if isinstance(xyz, Spheres):
         if r is not None:
             raise misuse("r is given with a Spheres that has its radii")
-        if exact and not xyz.exact:
-            s = spheres(xyz.xyz, xyz.r, zero_radius, min_count, verbose)
-            s.index, s.model = xyz.index, xyz.model
-            return s
-        return xyz
-    if isinstance(xyz, (str, os.PathLike)):
+        if not (exact and not xyz.exact):
+            return xyz, []
+        s = spheres(xyz.xyz, xyz.r, zero_radius, min_count)
+        s.index, s.model = xyz.index, xyz.model
+    elif isinstance(xyz, (str, os.PathLike)):
         if r is not None:
             raise misuse("r is given with a file that has its radii")
-        return read(xyz, zero_radius=zero_radius, verbose=verbose)
-    return spheres(xyz, r, zero_radius, min_count, verbose)
+        s = read(xyz, zero_radius=zero_radius)
+    else:
+        s = spheres(xyz, r, zero_radius, min_count)
+    return s, [w for w in s.warnings if not (revalidated and w.number in VALIDATION)]

@@ -1,14 +1,22 @@
 """Exact judgement of vertices against spheres (`vorball verify`)."""
+from __future__ import annotations
+
 import json as _json
 import numbers
 import os
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from . import _core
-from ._errors import emit, error, misuse, parse
-from ._spheres import as_spheres
+from ._errors import Diagnostic, emit, error, misuse, parse
+from ._spheres import PathLike, SphereInput, as_spheres
 from ._vertices import Result
+
+# Vertices as verify takes them: a Result, (ids, xyz, t) in memory, or a
+# vertex file.
+VertexInput = Union[Result, Tuple[Sequence[ArrayLike], ArrayLike, ArrayLike], PathLike]
 
 # Problem bits of each line (enum vb_verify_problem).
 NOT_VERTEX, WRONG_COORDS, MISSING, DUPLICATE = 1, 2, 4, 8
@@ -33,7 +41,22 @@ class Report:
     text, json the report `vorball verify` writes (text, and --json)
     """
 
-    def __init__(self, d, warnings):
+    ok: bool
+    counts: Dict[str, int]
+    format: str
+    tol: float
+    text: str
+    json: str
+    problems: np.ndarray
+    line: np.ndarray
+    dist: np.ndarray
+    dt: np.ndarray
+    exact: np.ndarray
+    intruder: np.ndarray
+    missed: Tuple[List[np.ndarray], np.ndarray, np.ndarray]
+    warnings: List[Diagnostic]
+
+    def __init__(self, d: Dict[str, Any], warnings: List[Diagnostic]) -> None:
         self.warnings = warnings
         self.ok = bool(d["ok"])
         self.counts = dict(d["counts"])
@@ -55,14 +78,15 @@ class Report:
             if len(start) > 1 else np.empty((0, 3))
         self.missed = (ids, xyz, np.frombuffer(m["t"], dtype=np.float64))
 
-    def classes(self, k):
+    def classes(self, k: int) -> List[str]:
         """The names of the problems of line k ([] when certified)."""
         return [name for bit, name in _NAMES if self.problems[k] & bit]
 
-    def to_json(self):
+    def to_json(self) -> Any:
+        """The --json report as Python objects."""
         return _json.loads(self.json)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         c = self.counts
         return "<vorball.Report %s: %d of %d lines certified, %d missed>" % (
             "ok" if self.ok else "PROBLEMS", c["certified"], c["lines"], c["missed"])
@@ -105,8 +129,9 @@ def _is_vertices(v):
     return isinstance(v, (Result, str, os.PathLike)) or (isinstance(v, tuple) and len(v) == 3)
 
 
-def verify(xyz, r=None, vertices=None, *, tol=1e-6, complete=False, format="tsv",
-           zero_radius="auto", verbose=False):
+def verify(xyz: SphereInput, r: Union[ArrayLike, VertexInput, None] = None,
+           vertices: Optional[VertexInput] = None, *, tol: float = 1e-6, complete: bool = False,
+           format: str = "tsv", zero_radius: str = "auto", verbose: bool = False) -> Report:
     """Judges vertices exactly against the spheres, as `vorball verify`.
 
     xyz, r: the spheres (arrays, a Spheres or a file path; r may be left
@@ -124,7 +149,7 @@ def verify(xyz, r=None, vertices=None, *, tol=1e-6, complete=False, format="tsv"
         raise misuse("verify needs vertices: a Result, (ids, xyz, t) or a vertex file path")
     if not isinstance(tol, numbers.Real) or not tol > 0:
         raise misuse("tol must be > 0, not %r" % (tol,))
-    s = as_spheres(xyz, r, min_count=4, zero_radius=zero_radius, verbose=verbose)
+    s, made = as_spheres(xyz, r, min_count=4, zero_radius=zero_radius)
     if isinstance(vertices, (str, os.PathLike)):
         v = os.fspath(vertices)
         name = v
@@ -132,6 +157,6 @@ def verify(xyz, r=None, vertices=None, *, tol=1e-6, complete=False, format="tsv"
         v = _csr(vertices)
         name = "<vertices>"
     d, diag = _core.verify_run(s._capsule, v, format, name, float(tol), bool(complete), s.source)
-    w = parse(diag)
+    w = made + parse(diag)
     emit(w, verbose)
     return Report(d, w)

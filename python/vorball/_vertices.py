@@ -1,14 +1,18 @@
 """The certified Voronoi vertices of spheres (the vertex pipeline)."""
+from __future__ import annotations
+
 import numbers
 import os
 import threading
-from typing import NamedTuple
+from typing import Any, Dict, List, NamedTuple, Optional, Union
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from . import _core
-from ._errors import emit, misuse, parse
-from ._spheres import as_spheres
+from ._errors import Diagnostic, emit, misuse, parse
+from ._channels import Channels, run_channels
+from ._spheres import PathLike, SphereInput, Spheres, as_spheres
 
 
 class Certificate(NamedTuple):
@@ -61,14 +65,30 @@ class Result(tuple):
     stats    the counters `vorball vertices --stats` prints, as a dict
     times    seconds per stage (setup, certify, total, cull, ...)
     backend, device   what ran ('opencl' or 'ref', and the device name)
-    warnings the warnings of the run (vorball.Diagnostic), printed only
-             when verbose
+    warnings the warnings (vorball.Diagnostic) of reading the file or arrays
+             given to this call, then of the run, each once: the lines
+             the command prints; printed only when verbose
     spheres  the Spheres the vertices belong to
     Vertices are in the command's canonical order; to_text() gives the
     bytes `vorball vertices` writes.
     """
 
-    def __new__(cls, d, warnings, spheres):
+    ids: List[np.ndarray]
+    xyz: np.ndarray
+    t: np.ndarray
+    ids_flat: np.ndarray
+    offsets: np.ndarray
+    certificate: Certificate
+    stats: Dict[str, Union[int, float, str]]
+    times: Dict[str, float]
+    backend: str
+    device: str
+    max_distance: float
+    warnings: List[Diagnostic]
+    spheres: Optional[Spheres]
+
+    def __new__(cls, d: Dict[str, Any], warnings: List[Diagnostic],
+                spheres: Optional[Spheres]) -> Result:
         flat, start = _csr(d)
         ids = np.split(flat, start[1:-1]) if len(start) > 1 else []
         xyz = np.stack([np.frombuffer(d[k], dtype=np.float64) for k in "xyz"], axis=1) \
@@ -93,18 +113,18 @@ class Result(tuple):
         state = {k: v for k, v in self.__dict__.items() if k != "spheres"}
         return (_restore, (tuple(self), state))
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return "<vorball.Result %d certified vertices%s, %s on %s>" % (
             len(self.t), ", complete" if self.certificate.complete else "", self.backend,
             self.device)
 
-    def to_text(self, format="tsv"):
+    def to_text(self, format: str = "tsv") -> str:
         """The vertex file `vorball vertices --output-format F` writes (tsv,
         json or voronota), byte for byte, certificate line included."""
         return vertex_text(self.ids_flat, self.offsets, self.xyz, self.t, format,
                            self.certificate.text)
 
-    def write(self, path, format="tsv"):
+    def write(self, path: PathLike, format: str = "tsv") -> None:
         """Writes to_text(format) to path."""
         text = self.to_text(format)
         with open(os.fspath(path), "w", encoding="utf-8", newline="") as f:
@@ -118,7 +138,8 @@ def _restore(fields, state):
     return r
 
 
-def vertex_text(ids_flat, offsets, xyz, t, format="tsv", comment=None):
+def vertex_text(ids_flat: ArrayLike, offsets: ArrayLike, xyz: ArrayLike, t: ArrayLike,
+                format: str = "tsv", comment: Optional[str] = None) -> str:
     """The library's vertex writer over CSR arrays (see Result.to_text)."""
     ids = np.ascontiguousarray(ids_flat, dtype=np.uint32)
     off = np.ascontiguousarray(offsets, dtype=np.int64)
@@ -145,8 +166,10 @@ def _proposer(p):
     return p
 
 
-def vertices(xyz, r=None, device="auto", samples=30, *, proposer=None, tol=None, tiles=0,
-             all_pairs=False, threads=0, zero_radius="auto", verbose=False):
+def vertices(xyz: SphereInput, r: Optional[ArrayLike] = None, device: str = "auto",
+             samples: int = 30, *, proposer: Optional[str] = None, tol: Optional[float] = None,
+             tiles: int = 0, all_pairs: bool = False, threads: int = 0,
+             zero_radius: str = "auto", verbose: bool = False) -> Result:
     """The certified Voronoi vertices of spheres, as `vorball vertices`.
 
     xyz, r: arrays (see vorball.spheres for how each number becomes an
@@ -164,9 +187,9 @@ def vertices(xyz, r=None, device="auto", samples=30, *, proposer=None, tol=None,
     opts = _options(samples, tol, tiles, all_pairs, threads)
     if not isinstance(device, str):
         raise misuse("device must be auto, gpu, cpu or ref, not %r" % (device,))
-    s = as_spheres(xyz, r, min_count=4, zero_radius=zero_radius, verbose=verbose)
+    s, made = as_spheres(xyz, r, min_count=4, zero_radius=zero_radius)
     d, diag = _core.vertices_run(s._capsule, None, device, _proposer(proposer), *opts)
-    w = parse(diag)
+    w = made + parse(diag)
     emit(w, verbose)
     return Result(d, w, s)
 
@@ -181,12 +204,13 @@ class Engine:
     device.
     """
 
-    def __init__(self, device="auto", proposer=None, jfa="facet", verbose=False):
+    def __init__(self, device: str = "auto", proposer: Optional[str] = None, jfa: str = "facet",
+                 verbose: bool = False) -> None:
         if not isinstance(device, str) or not isinstance(jfa, str):
             raise misuse("device and jfa are names")
         self.device, self.proposer, self.jfa = device, _proposer(proposer), jfa
         self.verbose = verbose
-        self.warnings = []  # from opening the devices (W760, W804)
+        self.warnings: List[Diagnostic] = []  # from opening the devices (W760, W804)
         self._vertices = None
         self._pipe = None
         self._lock = threading.Lock()
@@ -200,24 +224,26 @@ class Engine:
         self.warnings.extend(w)
         return cap
 
-    def vertices(self, xyz, r=None, samples=30, *, tol=None, tiles=0, all_pairs=False,
-                 threads=0, zero_radius="auto", verbose=None):
+    def vertices(self, xyz: SphereInput, r: Optional[ArrayLike] = None, samples: int = 30, *,
+                 tol: Optional[float] = None, tiles: int = 0, all_pairs: bool = False,
+                 threads: int = 0, zero_radius: str = "auto",
+                 verbose: Optional[bool] = None) -> Result:
         """vorball.vertices on this engine's device and proposer."""
         verbose = self.verbose if verbose is None else verbose
         opts = _options(samples, tol, tiles, all_pairs, threads)
-        s = as_spheres(xyz, r, min_count=4, zero_radius=zero_radius, verbose=verbose)
+        s, made = as_spheres(xyz, r, min_count=4, zero_radius=zero_radius)
         with self._lock:
             if self._vertices is None:
                 self._vertices = self._open(_core.vertices_engine_open, self.device,
                                             self.proposer)
             d, diag = _core.vertices_run(s._capsule, self._vertices, self.device, self.proposer, *opts)
-        w = parse(diag)
+        w = made + parse(diag)
         emit(w, verbose)
         return Result(d, w, s)
 
-    def channels(self, xyz, r=None, grid=128, probe=1.4, **kw):
+    def channels(self, xyz: SphereInput, r: Optional[ArrayLike] = None, grid: int = 128,
+                 probe: float = 1.4, **kw: Any) -> Channels:
         """vorball.channels on this engine's device (see there)."""
-        from ._channels import run_channels
         with self._lock:
             if self._pipe is None:
                 self._pipe = self._open(_core.channels_open, self.device, self.jfa)
@@ -226,13 +252,13 @@ class Engine:
             return run_channels(self._pipe, first, xyz, r, grid, probe,
                                 verbose=kw.pop("verbose", self.verbose), **kw)
 
-    def close(self):
+    def close(self) -> None:
         with self._lock:
             self._vertices = None
             self._pipe = None
 
-    def __enter__(self):
+    def __enter__(self) -> Engine:
         return self
 
-    def __exit__(self, *exc):
+    def __exit__(self, *exc: object) -> None:
         self.close()
