@@ -51,6 +51,7 @@ static int cover_run(vb_ctx *ctx, void *state, const vb_proposer_await *aw,
     res->quads.cap = q.cap;
     res->complete = 1;
     res->cover_cells = st.cells;
+    res->cover_quads = q.n;
     res->cover_patches = st.patches;
     res->cover_host_cells = st.host_cells;
     res->t_cover_device = st.t_device;

@@ -85,6 +85,16 @@ struct vb_cover_backend {
 /* Closes a backend; NULL is allowed. */
 void vb_cover_backend_close(vb_cover_backend *be);
 
+/* The shared input of every cell: the tree over the centres and the
+ * parameters, in *env (its arrays belong to *tree and to set). For
+ * backends and tests that run vbq_cover_cell themselves; vb_cover_run
+ * calls it. VB_OK, VB_EMISUSE (bad options, set not validated),
+ * VB_EINPUT_TOOLARGE, VB_ENOMEM. Free with vb_cover_tree_free. */
+typedef struct vb_cover_tree vb_cover_tree;
+int vb_cover_prepare(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *opt,
+                     vb_cover_tree **tree, vbq_env *env);
+void vb_cover_tree_free(vb_cover_tree *tree);
+
 /* Runs the cover on a validated set (contained spheres flagged) and appends
  * the proposed quadruples to out (sorted, unique). be NULL covers every cell
  * on host threads; otherwise be covers them batch by batch and the host

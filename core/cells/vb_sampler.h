@@ -169,6 +169,8 @@ typedef struct vb_sampler_result {
     } quads;
     int complete;
     uint64_t cover_cells, cover_patches, cover_host_cells; /* the cover's counters */
+    uint64_t cover_quads;         /* quadruples proposed: quads.n, as a counter that
+                                     processes which covered parts of the cells can add up */
     double t_cover_device;        /* seconds in the cover's device batches */
 } vb_sampler_result;
 
