@@ -98,11 +98,12 @@ static PyObject *result_dict(vb_ctx *ctx, const vb_vertices_result *r)
     PyObject *stats = vbpy_text_take(&st);
     const vb_stage_times *tm = &s->times;
     PyObject *d = Py_BuildValue(
-        "{s:N,s:s,s:O,s:n,s:n,s:n,s:K,s:K,s:K,s:s,s:s,s:d,s:n,"
+        "{s:N,s:s,s:O,s:n,s:n,s:K,s:K,s:K,s:K,s:s,s:s,s:d,s:n,"
         "s:{s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d}}",
         "stats", stats, "certificate", note, "complete", s->complete ? Py_True : Py_False,
         "certified", (Py_ssize_t)r->certified.n, "rejected", (Py_ssize_t)r->rejected.n,
-        "quadruples", (Py_ssize_t)s->quads.n, "cover_cells", (unsigned long long)s->cover_cells,
+        "quadruples", (unsigned long long)s->cover_quads, "cover_cells",
+        (unsigned long long)s->cover_cells,
         "cover_patches", (unsigned long long)s->cover_patches, "cover_host_cells",
         (unsigned long long)s->cover_host_cells, "backend", r->backend, "device", r->device,
         "max_distance", r->max_dist, "repaired", (Py_ssize_t)r->repaired_candidates, "times",
