@@ -57,36 +57,18 @@ static void help(FILE *f)
             "Warnings W760-W779 come from this command.\n");
 }
 
+/* The library's counters (vb_vertices_write_stats), and under MPI the
+ * ranks' totals and the merge. */
 static void print_stats(vb_ctx *ctx, const vb_vertices_result *r, const vb_cli_vertex_totals *tot)
 {
-    const vb_sampler_result *s = &r->sampler;
-    const vb_stats *st = vb_ctx_stats(ctx);
-    fprintf(stderr,
-            "backend\t%s\ndevice\t%s\nsamples\t%u\ntiles\t%u\ntol\t%.6g\nclip\t%.6g\n"
-            "rays\t%llu\nbisectors\t%llu\nraw_candidates\t%llu\nvertices_matched\t%llu\n"
-            "complete_first_pass\t%llu\ntargeted_searches\t%llu\ntargeted_found\t%llu\n"
-            "incomplete_after_search\t%llu\nsampled_vertices\t%llu\n"
-            "vertices_incomplete\t%llu\ndropped_tangent_test\t%llu\nfrom_sampling\t%llu\n"
-            "swaps\t%llu\nring_tries\t%llu\nfirst_cell\t%llu\ncandidates_certified\t%llu\n"
-            "certifier_rejected\t%zu\nrepair_candidates\t%zu\ncertified_vertices\t%zu\n"
-            "max_candidate_distance\t%.3g\n"
-            "filter_calls\t%llu\nfilter_failures\t%llu\nexact_evals\t%llu\n",
-            r->backend, r->device, s->samples, s->tiles, s->tol, s->clip,
-            (unsigned long long)s->rays, (unsigned long long)s->bisectors,
-            (unsigned long long)s->raw_candidates, (unsigned long long)s->clusters,
-            (unsigned long long)s->complete_first, (unsigned long long)s->targeted_searches,
-            (unsigned long long)s->targeted_found, (unsigned long long)s->incomplete,
-            (unsigned long long)s->sampled_vertices, (unsigned long long)s->vertices_incomplete,
-            (unsigned long long)s->dropped, (unsigned long long)s->from_sampling,
-            (unsigned long long)s->swaps, (unsigned long long)s->ring_tries,
-            (unsigned long long)s->first_cell, (unsigned long long)tot->candidates,
-            tot->rejected, tot->repaired, r->certified.n, r->max_dist,
-            (unsigned long long)st->filter_calls, (unsigned long long)st->filter_failures,
-            (unsigned long long)st->exact_evals);
+    vb_vertices_write_stats(ctx, stderr, r);
     if (vb_world_size() > 1)
-        fprintf(stderr, "ranks\t%d\ncover_quadruples\t%llu\nmerged_repeats\t%zu\ncombine_s\t%.3f\n",
-                vb_world_size(), (unsigned long long)s->cover_quads, tot->repeats,
-                tot->t_combine);
+        fprintf(stderr,
+                "ranks\t%d\nranks_candidates_certified\t%zu\nranks_certifier_rejected\t%zu\n"
+                "ranks_repair_candidates\t%zu\ncover_quadruples\t%llu\nmerged_repeats\t%zu\n"
+                "combine_s\t%.3f\n",
+                vb_world_size(), tot->candidates, tot->rejected, tot->repaired,
+                (unsigned long long)r->sampler.cover_quads, tot->repeats, tot->t_combine);
 }
 
 static int write_topology(vb_ctx *ctx, const char *path, const vb_sphere_set *set,
