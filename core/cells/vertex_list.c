@@ -76,7 +76,12 @@ int vb_vertex_list_push(vb_vertex_list *v, const uint32_t *ids, size_t nids, dou
         return VB_ENOMEM;
     uint32_t *dst = v->ids + v->nids;
     memcpy(dst, ids, nids * sizeof *ids);
-    qsort(dst, nids, sizeof *dst, cmp_u32);
+    /* Most callers pass sorted ids (certified vertices): no qsort then. */
+    size_t sorted = 1;
+    while (sorted < nids && dst[sorted - 1] <= dst[sorted])
+        sorted++;
+    if (sorted < nids)
+        qsort(dst, nids, sizeof *dst, cmp_u32);
     size_t k = v->n;
     v->x[k] = x;
     v->y[k] = y;
