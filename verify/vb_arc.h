@@ -18,7 +18,9 @@
 #ifndef VB_ARC_H
 #define VB_ARC_H
 
-#include "vb_verify.h"
+#include <stdio.h>
+
+#include "vb_verify_file.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -36,13 +38,14 @@ typedef struct vb_arc_report {
     uint64_t filter_calls, filter_failures, exact_evals, candidates;
 } vb_arc_report;
 
-/* Traces every arc of every vertex of `in` (certified vertices: sorted ids of
- * all their spheres, coordinates and t the exact vertex rounded to nearest,
- * as vorball writes them; the status is ignored) and of every vertex found
- * on the way, single-threaded and deterministic. Fills *out (free with
+/* Traces every arc of every vertex of `in` and of every vertex found on the
+ * way, single-threaded and deterministic. `in` must hold certified vertices,
+ * each once: sorted ids of all their spheres, x y z t the exact vertex
+ * rounded to nearest, as vorball writes them (the status is ignored; a
+ * vertex that is not one gives undecided arcs or wrong closures, so judge a
+ * foreign file first: vb_verify_arcs). Fills *out (free with
  * vb_arc_report_free, also on error). Returns VB_OK when the closure ran to
- * the end (see vb_arc_report_complete), VB_EINPUT when an input vertex is not
- * a certified vertex with exactly those members, VB_ENOMEM, VB_EINTERNAL. */
+ * the end (see vb_arc_report_complete), VB_ENOMEM, VB_EINTERNAL. */
 int vb_arc_close(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_list *in,
                  vb_arc_report *out);
 
@@ -50,6 +53,16 @@ int vb_arc_close(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_list *in
 int vb_arc_report_complete(const vb_arc_report *r);
 
 void vb_arc_report_free(vb_arc_report *r);
+
+/* Arc closure of a judged vertex file: the exact vertices of its certified
+ * lines (one per exact vertex, so a Voronota group counts once) through
+ * vb_arc_close. Same returns as vb_arc_close. */
+int vb_verify_arcs(vb_ctx *ctx, const vb_sphere_set *set, const vb_verify_report *judged,
+                   vb_arc_report *out);
+
+/* The certificate as text: one "NAME: missing vertex IDS at X Y Z t T" line
+ * per added vertex, then "NAME: arcs: ..." with the counts. VB_OK or VB_EIO. */
+int vb_arc_write_text(vb_ctx *ctx, FILE *f, const char *name, const vb_arc_report *r);
 
 #ifdef __cplusplus
 }
