@@ -75,6 +75,19 @@ vb_stats *vb_ctx_stats(vb_ctx *ctx)
     return vb_ctx_check(ctx) == VB_OK ? &ctx->stats : NULL;
 }
 
+void vb_stats_add(vb_stats *to, const vb_stats *from)
+{
+    if (!to || !from)
+        return;
+    to->filter_calls += from->filter_calls;
+    to->filter_failures += from->filter_failures;
+    to->exact_evals += from->exact_evals;
+    to->candidates += from->candidates;
+    to->certified += from->certified;
+    to->rejected += from->rejected;
+    to->warnings += from->warnings;
+}
+
 int vb_diag_number(int code)
 {
     if (VB_CATEGORY(code) == VB_EINPUT && VB_DETAIL(code) > 0)

@@ -121,6 +121,10 @@ void vb_info(vb_ctx *ctx, const char *fmt, ...)
 /* Mutable access to the context's counters; never NULL for an open ctx. */
 vb_stats *vb_ctx_stats(vb_ctx *ctx);
 
+/* Adds every counter of `from` to `to` (a worker's context into the
+ * caller's); NULL for either does nothing. */
+void vb_stats_add(vb_stats *to, const vb_stats *from);
+
 /* Resets the error state to VB_OK. */
 void vb_clear_error(vb_ctx *ctx);
 

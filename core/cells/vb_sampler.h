@@ -26,6 +26,8 @@ extern "C" {
 #define VB_SAMPLER_DEFAULT_ITER 40u
 #define VB_SAMPLER_DEFAULT_TARGET_DEPTH 10u
 
+struct vb_quad_list; /* vb_cover.h */
+
 typedef struct vb_sampler_options {
     unsigned samples;        /* S >= 2 (0: default) */
     unsigned tiles;          /* culling tiles per face side (0: automatic) */
@@ -54,6 +56,13 @@ typedef struct vb_sampler_options {
      * culling; the output does not depend on how bases are batched. */
     int (*backend_ready)(void *user);
     void *await_user;
+    /* May be NULL. A proposer of quadruples (the cover) hands them to it
+     * part by part as they are proposed, sorted and unique (the contract
+     * of vb_cover_sink: parts disjoint, the sink may take a part's array),
+     * and leaves res->quads empty; a
+     * sink's error stops the proposer and is returned. */
+    int (*quads_sink)(void *user, struct vb_quad_list *part);
+    void *quads_user;
 } vb_sampler_options;
 
 #define VB_SAMPLER_MAX_AHEAD 8u
@@ -169,6 +178,9 @@ typedef struct vb_sampler_result {
     } quads;
     int complete;
     uint64_t cover_cells, cover_patches, cover_host_cells; /* the cover's counters */
+    uint64_t cover_quads;         /* quadruples proposed (in quads, or handed to the sink),
+                                     a counter that processes which covered parts of the
+                                     cells can add up */
     double t_cover_device;        /* seconds in the cover's device batches */
 } vb_sampler_result;
 

@@ -5,6 +5,8 @@
  * the proposer, the certifier and vb_sampler_swap_candidates. */
 #include "vb_vertices.h"
 
+#include "vbv_certify.h"
+
 #include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -179,35 +181,12 @@ static int quads_add(quads *s, const vb_vertex_list *v)
     return VB_OK;
 }
 
-/* Appends src to dst, then sorts and drops exact repeats (same members and
- * the same rounded exact point: the same canonical vertex). */
+/* Appends src to dst and makes dst canonical again (sorted, exact repeats
+ * dropped: the same canonical vertex). */
 static int merge_certified(vb_vertex_list *dst, const vb_vertex_list *src)
 {
-    for (size_t k = 0; k < src->n; k++)
-        if (vb_vertex_list_push(dst, src->ids + src->start[k], src->start[k + 1] - src->start[k],
-                                src->x[k], src->y[k], src->z[k], src->t[k], src->dist[k],
-                                src->status[k]))
-            return VB_ENOMEM;
-    if (vb_vertex_list_sort(dst))
-        return VB_ENOMEM;
-    vb_vertex_list out;
-    vb_vertex_list_init(&out);
-    for (size_t k = 0; k < dst->n; k++) {
-        size_t n = dst->start[k + 1] - dst->start[k];
-        if (k > 0 && n == dst->start[k] - dst->start[k - 1] &&
-            memcmp(dst->ids + dst->start[k], dst->ids + dst->start[k - 1], n * sizeof *dst->ids) == 0 &&
-            dst->x[k] == dst->x[k - 1] && dst->y[k] == dst->y[k - 1] && dst->z[k] == dst->z[k - 1] &&
-            dst->t[k] == dst->t[k - 1])
-            continue;
-        if (vb_vertex_list_push(&out, dst->ids + dst->start[k], n, dst->x[k], dst->y[k], dst->z[k],
-                                dst->t[k], dst->dist[k], dst->status[k])) {
-            vb_vertex_list_free(&out);
-            return VB_ENOMEM;
-        }
-    }
-    vb_vertex_list_free(dst);
-    *dst = out;
-    return VB_OK;
+    int rc = vb_vertex_list_append(dst, src);
+    return rc == VB_OK ? vb_vertex_list_canonical(dst, NULL) : rc;
 }
 
 /* Candidates the certifier refused because a sphere cuts their tangent
@@ -327,16 +306,27 @@ static int certify_quads(vb_ctx *ctx, const vb_certifier_ops *ops, void *cert,
 
 /* Exact certification of the candidates, then the repair rounds (not for
  * a proposer that proves completeness: its refused quadruples are simply
- * not vertices); t_certify and t_total (from t0) are set. */
-static int certify(vb_ctx *ctx, const vb_certifier_ops *ops, const vb_sphere_set *set,
-                   const vb_vertices_config *cfg, double t0, vb_vertices_result *res)
+ * not vertices); t_certify and t_total (from t0) are set. The certifier is
+ * the stream's when the proposer streamed its quadruples there (their
+ * vertices are then merged), else the set-up's (started before the
+ * proposer). */
+static int certify(vb_ctx *ctx, const vb_certifier_ops *ops, vbv_cert_open *co,
+                   vbv_cert_stream *cs, const vb_sphere_set *set, double t0,
+                   vb_vertices_result *res)
 {
     double t1 = vb_now();
+    int rc = VB_OK;
     void *cert = NULL;
-    int rc = ops->open(ctx, set, cfg->sampler.threads, &cert);
-    if (rc == VB_OK && res->sampler.complete)
+    if (cs) {
+        rc = vbv_cert_stream_finish(ctx, cs, &res->certified);
+        cert = vbv_cert_stream_free(cs);
+    } else {
+        cert = vbv_cert_open_join(ctx, co, &rc);
+    }
+    /* Quadruples the proposer kept (it streamed none, or had no stream). */
+    if (rc == VB_OK && res->sampler.complete && res->sampler.quads.n)
         rc = certify_quads(ctx, ops, cert, set, res);
-    else if (rc == VB_OK)
+    else if (rc == VB_OK && !res->sampler.complete)
         rc = ops->certify_list(ctx, cert, &res->sampler.candidates, &res->certified,
                                &res->rejected);
     if (rc == VB_OK && !res->sampler.complete)
@@ -350,6 +340,51 @@ static int certify(vb_ctx *ctx, const vb_certifier_ops *ops, const vb_sphere_set
     res->t_certify = t2 - t1;
     res->t_total = t2 - t0;
     return rc;
+}
+
+/* The configuration the proposer sees: with a stream, the quadruples of a
+ * complete proposer go to it part by part. */
+static vb_vertices_config streamed(const vb_vertices_config *cfg, vbv_cert_stream *cs)
+{
+    vb_vertices_config c = *cfg;
+    if (cs) {
+        c.sampler.quads_sink = vbv_cert_stream_sink;
+        c.sampler.quads_user = cs;
+    }
+    return c;
+}
+
+/* Starts the set-up and, when the certifier judges quadruples, a stream
+ * over it (*csp NULL otherwise, or when the stream cannot be made). */
+static void certifier_start(const vb_certifier_ops *ops, const vb_sphere_set *set,
+                            const vb_vertices_config *cfg, vbv_cert_open *co,
+                            vbv_cert_stream *cs, vbv_cert_stream **csp)
+{
+    vbv_cert_open_start(co, ops, set, cfg->sampler.threads);
+    *csp = NULL;
+    if (ops->certify_quads && vbv_cert_stream_init(cs, co) == VB_OK)
+        *csp = cs;
+}
+
+/* A proposal stopped by the stream (its sink failed) carries the stream's
+ * error: its message is moved to ctx. Any other status is returned. */
+static int stream_error(vb_ctx *ctx, vbv_cert_stream *cs, int rc)
+{
+    if (rc != VB_OK && cs && cs->rc == rc)
+        return vb_error(ctx, rc, NULL, 0, "%s", vb_errmsg(cs->tctx));
+    return rc;
+}
+
+/* After a failed proposal: the certifier and its work dropped. */
+static void certifier_discard(const vb_certifier_ops *ops, vbv_cert_open *co, vbv_cert_stream *cs)
+{
+    if (cs) {
+        void *cert = vbv_cert_stream_free(cs);
+        if (cert)
+            ops->close(cert);
+    } else {
+        vbv_cert_open_discard(co);
+    }
 }
 
 int vb_vertices_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertices_config *cfg,
@@ -376,8 +411,12 @@ int vb_vertices_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertices_con
     } else if ((rc = p->open(ctx, be->devices, NULL, &state)) != VB_OK) {
         return rc;
     }
+    vbv_cert_open co;
+    vbv_cert_stream css, *cs;
+    certifier_start(be->certifier, set, cfg, &co, &css, &cs);
+    vb_vertices_config pcfg = streamed(cfg, cs);
     vb_proposer_await aw = {await_state, opener_ready, &op, cfg->device};
-    rc = propose(ctx, p, state, async ? &aw : NULL, set, cfg, res);
+    rc = propose(ctx, p, state, async ? &aw : NULL, set, &pcfg, res);
     if (async) {
         opener_join(&op); /* when the proposer failed before it needed the device */
         state = op.state;
@@ -386,12 +425,18 @@ int vb_vertices_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertices_con
         res->t_setup = op.t_setup;
         res->t_setup_wait = op.t_wait;
     }
-    if (rc != VB_OK && VB_CATEGORY(rc) == VB_EDEVICE && dev)
-        rc = rerun_on_twin(ctx, be->devices, dev, p, &state, set, cfg, res);
+    rc = stream_error(ctx, cs, rc);
+    if (rc != VB_OK && VB_CATEGORY(rc) == VB_EDEVICE && dev) {
+        if (cs)
+            vbv_cert_stream_reset(cs);
+        rc = stream_error(ctx, cs, rerun_on_twin(ctx, be->devices, dev, p, &state, set, &pcfg, res));
+    }
     /* Releasing a GPU context takes tens of milliseconds: after the
      * certification, which does not need it. */
     if (rc == VB_OK)
-        rc = certify(ctx, be->certifier, set, cfg, t0, res);
+        rc = certify(ctx, be->certifier, &co, cs, set, t0, res);
+    else
+        certifier_discard(be->certifier, &co, cs);
     if (state)
         p->close(state);
     if (dev)
@@ -453,14 +498,25 @@ int vb_vertices_run_on(vb_ctx *ctx, vb_vertices_engine *e, const vb_sphere_set *
                        const vb_vertices_config *cfg, vb_vertices_result *res)
 {
     double t0 = vb_now();
-    int rc = propose(ctx, e->prop, e->state, NULL, set, cfg, res);
+    vbv_cert_open co;
+    vbv_cert_stream css, *cs;
+    certifier_start(e->be.certifier, set, cfg, &co, &css, &cs);
+    vb_vertices_config pcfg = streamed(cfg, cs);
+    int rc = stream_error(ctx, cs, propose(ctx, e->prop, e->state, NULL, set, &pcfg, res));
     if (rc != VB_OK && VB_CATEGORY(rc) == VB_EDEVICE && e->dev) {
         /* Later runs on e stay on the twin. */
-        rc = rerun_on_twin(ctx, e->be.devices, e->dev, e->prop, &e->state, set, cfg, res);
+        if (cs)
+            vbv_cert_stream_reset(cs);
+        rc = stream_error(ctx, cs, rerun_on_twin(ctx, e->be.devices, e->dev, e->prop, &e->state,
+                                                 set, &pcfg, res));
         e->be.devices->close(e->dev);
         e->dev = NULL;
     }
-    return rc == VB_OK ? certify(ctx, e->be.certifier, set, cfg, t0, res) : rc;
+    if (rc != VB_OK) {
+        certifier_discard(e->be.certifier, &co, cs);
+        return rc;
+    }
+    return certify(ctx, e->be.certifier, &co, cs, set, t0, res);
 }
 
 void vb_vertices_certificate(const vb_vertices_result *r, char *buf, size_t size)
@@ -472,6 +528,7 @@ void vb_vertices_certificate(const vb_vertices_result *r, char *buf, size_t size
     }
     snprintf(buf, size,
              "complete: %zu certified vertices, every vertex of the diagram "
-             "(direction cover of %llu cells, %zu quadruples, every root decided exactly)",
-             r->certified.n, (unsigned long long)s->cover_cells, s->quads.n);
+             "(direction cover of %llu cells, %llu quadruples, every root decided exactly)",
+             r->certified.n, (unsigned long long)s->cover_cells,
+             (unsigned long long)s->cover_quads);
 }
