@@ -86,6 +86,13 @@ arcs)
     # Voronota's degree-8 vertices as tetrahedra: one vertex each
     run 0 "$out" "$vorball" verify cubic_lattice.xyzr "$here/data/cubic_lattice_kuhn.voronota" --arcs
     expect_line "$out" ": arcs: 8 vertices traced, 48 half arcs: .* 0 vertices added; 1 components$"
+    # what it does not prove: a component with no vertex in the file (the
+    # lens cell of sphere 8 of coplanar_centres) is not seen
+    grep -v '^0,7,8,10	' ../golden/coplanar_centres.tsv > "$bad"
+    run 0 "$out" "$vorball" verify coplanar_centres.xyzr "$bad" --arcs
+    expect_line "$out" ": arcs: 24 vertices traced, .* 0 vertices added; 1 components$"
+    run 0 "$out" "$vorball" verify coplanar_centres.xyzr ../golden/coplanar_centres.tsv --arcs
+    expect_line "$out" ": arcs: 26 vertices traced, .* 0 vertices added; 2 components$"
     # no JSON report of the arcs yet: a usage error
     run 2 "$out" "$vorball" verify cubic_lattice.xyzr "$cubic" --arcs --json ;;
 voronota_groups)
