@@ -1,6 +1,7 @@
 /* Exit codes, diagnostics and file helpers for the subcommands. */
 #include "cli_common.h"
 #include "vb_diag.h"
+#include "vb_world.h"
 
 #include <errno.h>
 #include <stdarg.h>
@@ -22,6 +23,9 @@ int vb_cli_fail(vb_ctx *ctx, int status)
 
 int vb_cli_usage_error(const char *cmd, const char *fmt, ...)
 {
+    /* Every MPI rank parses the same command line: one message. */
+    if (vb_world_rank() != 0)
+        return VB_EXIT_USAGE;
     fprintf(stderr, "vorball %s: ", cmd);
     va_list ap;
     va_start(ap, fmt);

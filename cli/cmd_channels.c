@@ -14,7 +14,9 @@
 #include "vb_default.h"
 #include "vb_diag.h"
 #include "vb_frames.h"
+#include "vb_world.h"
 #include "vbc_frame.h"
+#include "frame_rounds.h"
 
 static const char *cmd = "channels";
 
@@ -74,7 +76,12 @@ static void usage(FILE *f)
             "                      be used, the reference runs after warning W804 (W806:\n"
             "                      OpenCL failed mid-run, that frame and the rest rerun on\n"
             "                      the reference)\n"
-            "  --repeat N          run every frame N times (timings; outputs written once)\n");
+            "  --repeat N          run every frame N times (timings; outputs written once)\n"
+            "\n"
+            "Under mpirun -np N (a build with VORBALL_WITH_MPI) the selected frames are dealt\n"
+            "round-robin over the ranks (each reads INPUT), and rank 0 writes the tables in\n"
+            "frame order: the same bytes as one process (timings aside). Volumes and the\n"
+            "picture are written by the rank that ran their frame.\n");
     vb_cli_input_help(f);
 }
 
@@ -231,11 +238,15 @@ static int volume_name(const char *pattern, long frame, char *buf, size_t len)
     return n >= 0 && n < (int)len ? 0 : -1;
 }
 
+/* Where a frame's outputs go: the streams of its round (frame_rounds.h),
+ * table, statistics and centrelines, in the sinks' order. */
+enum { SINK_TABLE, SINK_STATS, SINK_CL };
+
 typedef struct {
-    FILE *table, *stats, *cl;
-    long frames_done;
+    vb_cli_rounds *rounds;
+    int stats, cl;          /* those sinks are wanted */
+    long frames_done;       /* this rank's frames */
     double sum_total, sum_masks;
-    int json_first;
 } sinks;
 
 /* Writes the eight pipeline stages of the first frame (--png). */
@@ -249,20 +260,22 @@ static int write_stages(vb_ctx *ctx, const ch_args *A, vbc_pipe *pipe, const vb_
     return rc;
 }
 
-/* Runs one frame through the pipeline `repeat` times and writes its outputs. */
+/* Runs one frame through the pipeline `repeat` times and writes its outputs;
+ * `first`: it is the first frame of the selection (volume, picture, the
+ * voxel warning). */
 static int do_frame(vb_ctx *ctx, const ch_args *A, vbc_pipe *pipe, long index, int model,
-                    const vb_sphere_set *s, sinks *S)
+                    int first, const vb_sphere_set *s, sinks *S)
 {
     vbc_grid g;
     int rc = vbc_grid_fit(ctx, s, A->probe, A->grid, 3, &g);
     if (rc != VB_OK)
         return rc;
     /* A voxel wider than the probe cannot resolve the necks that matter. */
-    if (S->frames_done == 0 && g.h > fmax(A->probe, 0.5))
+    if (first && g.h > fmax(A->probe, 0.5))
         vb_warn(ctx, VB_W_VOXEL_COARSE, A->input, 0,
                 "voxel edge %.2f A is coarser than the probe radius %.2f A: narrow channels may be "
                 "missed (raise --grid)", g.h, A->probe);
-    int want_volume = A->volume && (strstr(A->volume, "%d") || S->frames_done == 0);
+    int want_volume = A->volume && (strstr(A->volume, "%d") || first);
     vbc_frame F;
     memset(&F, 0, sizeof F);
     vbc_frame_info fi = {index, model, s->n, 0, 0, 0, 0, 0, 0};
@@ -288,26 +301,123 @@ static int do_frame(vb_ctx *ctx, const ch_args *A, vbc_pipe *pipe, long index, i
     fi.ms_analysis *= inv;
     fi.ms_total *= inv;
     fi.channel_voxels = F.out.nvoxels;
+    FILE *table = vb_cli_rounds_stream(S->rounds, SINK_TABLE);
     if (A->json)
-        vbc_write_json_frame(S->table, S->json_first, &fi, &g, s, &F.result);
+        vbc_write_json_frame(table, first, &fi, &g, s, &F.result);
     else
-        vbc_write_csv_rows(S->table, &fi, &g, s, &F.result);
-    S->json_first = 0;
+        vbc_write_csv_rows(table, &fi, &g, s, &F.result);
     if (S->stats)
-        vbc_write_stats_row(S->stats, &fi, &g, &F.result);
+        vbc_write_stats_row(vb_cli_rounds_stream(S->rounds, SINK_STATS), &fi, &g, &F.result);
     if (S->cl)
-        vbc_write_centrelines_pdb(S->cl, model, &F.result);
-    if (want_volume) {
+        vbc_write_centrelines_pdb(vb_cli_rounds_stream(S->rounds, SINK_CL), model, &F.result);
+    rc = vb_cli_rounds_frame_done(ctx, S->rounds);
+    if (rc == VB_OK && want_volume) {
         char name[4096];
         if (volume_name(A->volume, index, name, sizeof name) != 0)
             rc = vb_error(ctx, VB_EMISUSE, NULL, 0, "volume file name too long");
         else
             rc = vbc_write_volume(ctx, name, &g, F.out.flags, A->volume_bit);
     }
-    if (rc == VB_OK && A->png && S->frames_done == 0)
+    if (rc == VB_OK && A->png && first)
         rc = write_stages(ctx, A, pipe, s);
     vbc_frame_free(&F);
     S->frames_done++;
+    return rc;
+}
+
+/* The frames of F in rounds (frame_rounds.h): every rank reads every frame,
+ * runs the selected ones that are its own, and rank 0 writes each round's
+ * outputs to out[] in frame order. *selected gets the frames selected.
+ * Returns the status agreed by every rank. */
+static int run_frames(vb_ctx *ctx, const ch_args *A, vbc_pipe *pipe, vb_frame_source *F,
+                      sinks *S, FILE *out[VB_CLI_ROUND_SINKS], long *selected)
+{
+    long index = 0, j = 0, j0 = 0, round = vb_cli_rounds_length();
+    int rc = VB_OK, end = 0;
+    while (rc == VB_OK && !end) {
+        int frc = VB_OK;
+        while (frc == VB_OK && j < j0 + round) {
+            if (A->f1 >= 0 && index >= A->f1) {
+                end = 1;
+                break;
+            }
+            vb_sphere_set *s = NULL;
+            int model, quiet = vb_world_quiet(ctx);
+            frc = vb_frame_source_next(ctx, F, &s, &model);
+            vb_world_loud(ctx, quiet);
+            if (frc != VB_OK || !s) {
+                end = 1;
+                break;
+            }
+            if (index >= A->f0 && (index - A->f0) % A->fstep == 0) {
+                if (vb_cli_rounds_mine(j))
+                    frc = do_frame(ctx, A, pipe, index, model, j == 0, s, S);
+                j++;
+            }
+            vb_spheres_free(s);
+            index++;
+        }
+        /* A rank that failed comes here at once; the others at the end of
+         * the round: the same collective, so every rank stops together. */
+        rc = vb_cli_rounds_flush(ctx, S->rounds, frc, j0, j, out);
+        j0 = j;
+    }
+    *selected = j;
+    return rc;
+}
+
+/* The closing line on stderr: this process's frames, or under MPI every
+ * rank's (per-run times are means over the ranks' runs, and the frame rate
+ * of the whole job is on the wall clock). */
+static int report(vb_ctx *ctx, const ch_args *A, vbc_pipe *pipe, const sinks *S, double wall)
+{
+    double sum[2] = {S->sum_total, S->sum_masks};
+    uint64_t frames = (uint64_t)S->frames_done;
+    int rc = vb_world_sum_u64(ctx, &frames, 1);
+    if (rc == VB_OK)
+        rc = vb_world_sum_double(ctx, sum, 2);
+    if (rc != VB_OK || vb_world_rank() != 0)
+        return rc;
+    long runs = (long)frames * A->repeat;
+    const char *device = vbc_pipe_device_name(pipe); /* where the last frame ran */
+    vb_info(ctx, "channels: %ld frames on %s in %.3f s", (long)frames, device, wall);
+    if (vb_world_size() < 2)
+        fprintf(stderr, "vorball channels: %ld frame(s), %ld run(s) on %s: %.3f ms/run "
+                        "(%.1f FPS), of which GPU stages %.3f ms (%.1f FPS)\n",
+                (long)frames, runs, device, sum[0] / runs, 1e3 * runs / sum[0], sum[1] / runs,
+                1e3 * runs / sum[1]);
+    else
+        fprintf(stderr, "vorball channels: %ld frame(s), %ld run(s) on %d ranks (rank 0: %s): "
+                        "%.3f ms/run, of which GPU stages %.3f ms; %.1f frames/s in all "
+                        "(%.3f s wall)\n",
+                (long)frames, runs, vb_world_size(), device, sum[0] / runs, sum[1] / runs,
+                frames / wall, wall);
+    return VB_OK;
+}
+
+/* Rank 0's output files: table, statistics, centrelines (the sinks' order). */
+static int open_outputs(vb_ctx *ctx, const ch_args *A, FILE *out[VB_CLI_ROUND_SINKS])
+{
+    const char *path[VB_CLI_ROUND_SINKS] = {A->out, A->stats, A->centrelines};
+    for (int k = 0; k < VB_CLI_ROUND_SINKS; k++)
+        if ((k == SINK_TABLE || path[k]) && !(out[k] = vb_cli_open_output(ctx, path[k])))
+            return vb_errcode(ctx);
+    return VB_OK;
+}
+
+/* Closes rank 0's outputs; after a failure (of any rank: rc is agreed) the
+ * files are removed, so no table of part of the frames is left behind. */
+static int close_outputs(vb_ctx *ctx, const ch_args *A, FILE *out[VB_CLI_ROUND_SINKS], int rc)
+{
+    const char *path[VB_CLI_ROUND_SINKS] = {A->out, A->stats, A->centrelines};
+    for (int k = 0; k < VB_CLI_ROUND_SINKS; k++)
+        if (out[k]) {
+            int c = vb_cli_close_output(ctx, out[k], path[k]);
+            rc = rc == VB_OK ? c : rc;
+        }
+    for (int k = 0; k < VB_CLI_ROUND_SINKS && rc != VB_OK; k++)
+        if (out[k] && out[k] != stdout)
+            remove(path[k]);
     return rc;
 }
 
@@ -317,61 +427,62 @@ int vb_cmd_channels(int argc, char **argv)
     int pr = parse_args(argc, argv, &A);
     if (pr != 0)
         return pr > 0 ? VB_EXIT_OK : VB_EXIT_USAGE;
+    int code = vb_world_check_input(cmd, A.input);
+    if (code)
+        return code;
     vb_ctx *ctx;
-    if (vb_open(&ctx, NULL) != VB_OK) {
+    if (vb_world_open_ctx(&ctx) != VB_OK) {
         fprintf(stderr, "vorball: out of memory\n");
         return VB_EXIT_NOMEM;
     }
-    int rc = VB_OK;
+    int rc = VB_OK, rank0 = vb_world_rank() == 0;
     vb_radii_table *radii = NULL;
     vbc_pipe *pipe = NULL;
     vb_frame_source *F = NULL;
-    sinks S = {NULL, NULL, NULL, 0, 0.0, 0.0, 1};
-    FILE *pml = NULL;
+    sinks S = {NULL, A.stats != NULL, A.centrelines != NULL, 0, 0.0, 0.0};
+    FILE *out[VB_CLI_ROUND_SINKS] = {NULL, NULL, NULL}, *pml = NULL;
+    /* Every rank reads the input; rank 0 alone prints its warnings. */
+    int quiet = vb_world_quiet(ctx);
     if (A.in.radii_path)
         rc = vb_radii_load(ctx, A.in.radii_path, &radii);
+    vb_world_loud(ctx, quiet);
     if (rc == VB_OK)
         rc = vbc_pipe_open(ctx, vb_default_devices(), A.device, A.variant, &pipe);
     vb_read_options ro;
     vb_cli_input_read_options(&A.in, radii, &ro);
+    quiet = vb_world_quiet(ctx);
     if (rc == VB_OK)
         rc = vb_frame_source_open(ctx, A.input, A.dcd, &ro, &F);
-    if (rc == VB_OK && !(S.table = vb_cli_open_output(ctx, A.out)))
-        rc = vb_errcode(ctx);
-    if (rc == VB_OK && A.stats && !(S.stats = vb_cli_open_output(ctx, A.stats)))
-        rc = vb_errcode(ctx);
-    if (rc == VB_OK && A.centrelines && !(S.cl = vb_cli_open_output(ctx, A.centrelines)))
-        rc = vb_errcode(ctx);
-    if (rc != VB_OK)
+    vb_world_loud(ctx, quiet);
+    if (rc == VB_OK)
+        rc = vb_cli_rounds_open(ctx, &S.rounds);
+    if (rc == VB_OK && rank0)
+        rc = open_outputs(ctx, &A, out);
+    if ((rc = vb_world_agree(ctx, rc)) != VB_OK)
         goto done;
-    if (A.json)
-        vbc_write_json_begin(S.table, A.dcd ? A.dcd : A.input, A.probe, A.grid,
+    if (rank0 && A.json)
+        vbc_write_json_begin(out[SINK_TABLE], A.dcd ? A.dcd : A.input, A.probe, A.grid,
                              vbc_pipe_device_name(pipe));
-    else
-        vbc_write_csv_header(S.table);
-    if (S.stats)
-        vbc_write_stats_header(S.stats);
+    else if (rank0)
+        vbc_write_csv_header(out[SINK_TABLE]);
+    if (rank0 && out[SINK_STATS])
+        vbc_write_stats_header(out[SINK_STATS]);
     double t0 = vb_now();
-    for (long index = 0; A.f1 < 0 || index < A.f1; index++) {
-        vb_sphere_set *s = NULL;
-        int model;
-        if ((rc = vb_frame_source_next(ctx, F, &s, &model)) != VB_OK || !s)
-            break;
-        if (index >= A.f0 && (index - A.f0) % A.fstep == 0)
-            rc = do_frame(ctx, &A, pipe, index, model, s, &S);
-        vb_spheres_free(s);
-        if (rc != VB_OK)
-            break;
-    }
+    long selected = 0;
+    rc = run_frames(ctx, &A, pipe, F, &S, out, &selected);
     double wall = vb_now() - t0;
-    if (rc == VB_OK && S.frames_done == 0)
+    if (rc == VB_OK && selected == 0)
         rc = vb_error(ctx, VB_EINPUT_MODEL, A.input, 0, "no frame selected (--frames / --model)");
-    if (rc == VB_OK && A.volume && !strstr(A.volume, "%d") && S.frames_done > 1)
+    /* The collectives first, while every rank agrees on rc; then rank 0's
+     * own writing. */
+    if (rc == VB_OK)
+        rc = report(ctx, &A, pipe, &S, wall);
+    if (rc == VB_OK && rank0 && A.volume && !strstr(A.volume, "%d") && selected > 1)
         vb_warn(ctx, VB_W_VOLUME_FIRST_FRAME, A.volume, 0, "volume holds the first of %ld frames ('%%d' in the name "
-                "writes one per frame)", S.frames_done);
-    if (rc == VB_OK && A.json)
-        vbc_write_json_end(S.table);
-    if (rc == VB_OK && A.pymol) {
+                "writes one per frame)", selected);
+    if (rc == VB_OK && rank0 && A.json)
+        vbc_write_json_end(out[SINK_TABLE]);
+    if (rc == VB_OK && rank0 && A.pymol) {
         if (!(pml = vb_cli_open_output(ctx, A.pymol)))
             rc = vb_errcode(ctx);
         else {
@@ -379,32 +490,13 @@ int vb_cmd_channels(int argc, char **argv)
             rc = vb_cli_close_output(ctx, pml, A.pymol);
         }
     }
-    if (rc == VB_OK) {
-        long runs = S.frames_done * A.repeat;
-        const char *device = vbc_pipe_device_name(pipe); /* where the last frame ran */
-        vb_info(ctx, "channels: %ld frames on %s in %.3f s", S.frames_done, device, wall);
-        fprintf(stderr, "vorball channels: %ld frame(s), %ld run(s) on %s: %.3f ms/run "
-                        "(%.1f FPS), of which GPU stages %.3f ms (%.1f FPS)\n",
-                S.frames_done, runs, device, S.sum_total / runs, 1e3 * runs / S.sum_total,
-                S.sum_masks / runs, 1e3 * runs / S.sum_masks);
-    }
 done:
-    if (S.table) {
-        int c = vb_cli_close_output(ctx, S.table, A.out);
-        rc = rc == VB_OK ? c : rc;
-    }
-    if (S.stats) {
-        int c = vb_cli_close_output(ctx, S.stats, A.stats);
-        rc = rc == VB_OK ? c : rc;
-    }
-    if (S.cl) {
-        int c = vb_cli_close_output(ctx, S.cl, A.centrelines);
-        rc = rc == VB_OK ? c : rc;
-    }
+    rc = close_outputs(ctx, &A, out, rc);
+    vb_cli_rounds_close(S.rounds);
     vb_frame_source_close(F);
     vbc_pipe_close(pipe);
     vb_radii_free(radii);
-    int exit_code = rc == VB_OK ? VB_EXIT_OK : vb_cli_fail(ctx, rc);
+    int exit_code = vb_world_end(ctx, rc);
     vb_close(ctx);
     return exit_code;
 }

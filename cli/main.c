@@ -4,6 +4,7 @@
 
 #include "cli_common.h"
 #include "commands.h"
+#include "vb_world.h"
 
 typedef struct {
     const char *name;
@@ -54,10 +55,14 @@ static void usage(FILE *f)
             "6 internal, 7 degenerate, 8 precision, 11-21 bad input (see README).\n");
 }
 
-int main(int argc, char **argv)
+/* The command line after the world joined: a command, help or version. */
+static int dispatch(int argc, char **argv)
 {
+    /* Mistakes are the same on every MPI rank: rank 0 names them. */
+    FILE *err = vb_world_rank() == 0 ? stderr : NULL;
     if (argc < 2) {
-        usage(stderr);
+        if (err)
+            usage(err);
         return VB_EXIT_USAGE;
     }
     if (vb_cli_is_help(argv[1])) {
@@ -69,9 +74,22 @@ int main(int argc, char **argv)
         return VB_EXIT_OK;
     }
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
-        if (strcmp(argv[1], commands[i].name) == 0)
-            return commands[i].run(argc - 1, argv + 1);
-    fprintf(stderr, "vorball: unknown command '%s'\n", argv[1]);
-    usage(stderr);
+        if (strcmp(argv[1], commands[i].name) == 0) {
+            int code = vb_world_check_command(commands[i].name);
+            return code ? code : commands[i].run(argc - 1, argv + 1);
+        }
+    if (err) {
+        fprintf(err, "vorball: unknown command '%s'\n", argv[1]);
+        usage(err);
+    }
     return VB_EXIT_USAGE;
+}
+
+int main(int argc, char **argv)
+{
+    /* Under mpirun (a build with VORBALL_WITH_MPI) every rank runs this. */
+    int code = vb_world_init(&argc, &argv);
+    if (code)
+        return code;
+    return vb_world_finish(dispatch(argc, argv));
 }

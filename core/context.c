@@ -70,6 +70,15 @@ void vb_clear_error(vb_ctx *ctx)
     ctx->errmsg[0] = '\0';
 }
 
+int vb_set_verbosity(vb_ctx *ctx, int verbosity)
+{
+    if (vb_ctx_check(ctx) != VB_OK)
+        return -1;
+    int old = ctx->cfg.verbosity;
+    ctx->cfg.verbosity = verbosity;
+    return old;
+}
+
 vb_stats *vb_ctx_stats(vb_ctx *ctx)
 {
     return vb_ctx_check(ctx) == VB_OK ? &ctx->stats : NULL;

@@ -118,6 +118,12 @@ void vb_info(vb_ctx *ctx, const char *fmt, ...)
 #endif
     ;
 
+/* Sets the context's verbosity (as vb_config's) and returns the previous
+ * one; -1 (nothing done) for a NULL or closed context. Lets a caller
+ * silence warnings that another process prints already (MPI ranks that
+ * all read the same input). */
+int vb_set_verbosity(vb_ctx *ctx, int verbosity);
+
 /* Mutable access to the context's counters; never NULL for an open ctx. */
 vb_stats *vb_ctx_stats(vb_ctx *ctx);
 

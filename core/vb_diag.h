@@ -6,7 +6,8 @@
  * Ranges:
  *   E1-E9      status categories (vb.h enum vb_status), printed as E<category>
  *   E101-E139  input errors (extended VB_EINPUT codes, exit 10 + detail)
- *   E140-E159  resource limits and pipeline errors
+ *   E140-E149  resource limits and pipeline errors
+ *   E150-E159  MPI scale-out
  *   W701-W739  input layer (readers, element inference, validation)
  *   W740-W749  vertex files and verify
  *   W750-W759  device layer (program cache, device memory, fault fallback)
@@ -47,6 +48,9 @@
     X(E, 109, INPUT_FORMAT, 19, "format not recognised")                                                 \
     X(E, 110, INPUT_TOOLARGE, 20, "input too large (a file over 2 GiB, or too many spheres)")            \
     X(E, 111, INPUT_MODEL, 21, "requested model absent")                                                 \
+    X(E, 150, MPI_FAILED, 50, "MPI failed between ranks: the job is aborted")                           \
+    X(E, 151, MPI_COMMAND, 2, "the command runs on one process only, not on several MPI ranks")        \
+    X(E, 152, MPI_STDIN, 2, "under MPI every rank reads the input: give a file, not stdin")             \
     X(W, 701, CONTAINED, 0, "a sphere lies inside another: its cell is empty")                           \
     X(W, 702, CONTAINED_COUNT, 0, "count of spheres inside others")                                      \
     X(W, 703, WATER_DROPPED, 0, "water atoms dropped")                                                   \
@@ -77,7 +81,9 @@
     X(W, 802, VOLUME_FIRST_FRAME, 0, "volume file holds the first frame only")                           \
     X(W, 803, VOXEL_COARSE, 0, "voxel edge coarser than the probe radius")                               \
     X(W, 804, CHANNELS_DEVICE_FALLBACK, 0, "no usable OpenCL device: channels on the reference backend") \
-    X(W, 806, CHANNELS_DEVICE_FAILED, 0, "OpenCL failed mid-run: rest of channels on reference")
+    X(W, 806, CHANNELS_DEVICE_FAILED, 0, "OpenCL failed mid-run: rest of channels on reference")        \
+    X(W, 830, MPI_SAMPLING_RANK0, 0, "--proposer sampling does not split: rank 0 runs it alone")       \
+    X(W, 831, MPI_STOPPED, 0, "a rank failed: every rank stopped (the error names the rank)")
 
 /* Retired numbers, never to be used again: X(kind, number, meaning, why). */
 #define VB_DIAG_RETIRED(X)                                                                               \

@@ -62,8 +62,10 @@ static int device_has_fp64(cl_device_id d)
     return cfg != 0;
 }
 
-/* Finds the first device of `type` with fp64 over all platforms. */
-static int find_device(cl_device_type type, cl_platform_id *plat, cl_device_id *dev)
+/* Finds device number `index` (modulo their count) among the devices of
+ * `type` with fp64, counted over the platforms in their order. */
+static int find_device(cl_device_type type, unsigned index, cl_platform_id *plat,
+                       cl_device_id *dev)
 {
     cl_uint np = 0;
     if (clGetPlatformIDs(0, NULL, &np) != CL_SUCCESS || np == 0)
@@ -73,6 +75,9 @@ static int find_device(cl_device_type type, cl_platform_id *plat, cl_device_id *
         np = 16;
     if (clGetPlatformIDs(np, ps, NULL) != CL_SUCCESS)
         return 0;
+    cl_platform_id fp[256];
+    cl_device_id fd[256];
+    unsigned n = 0;
     for (cl_uint p = 0; p < np; p++) {
         cl_device_id ds[16];
         cl_uint nd = 0;
@@ -80,12 +85,37 @@ static int find_device(cl_device_type type, cl_platform_id *plat, cl_device_id *
             continue;
         for (cl_uint i = 0; i < nd && i < 16; i++)
             if (device_has_fp64(ds[i])) {
-                *plat = ps[p];
-                *dev = ds[i];
-                return 1;
+                fp[n] = ps[p];
+                fd[n++] = ds[i];
             }
     }
-    return 0;
+    if (n == 0)
+        return 0;
+    *plat = fp[index % n];
+    *dev = fd[index % n];
+    return 1;
+}
+
+/* VORBALL_DEVICE_INDEX: which of the devices of a kind to open (0 when
+ * unset). The MPI ranks on one host set it to their rank on the host
+ * (cli/world_mpi.c), so each takes its own GPU; more ranks than GPUs share
+ * them round-robin (the index is taken modulo their count), and a
+ * scheduler that shows each rank one GPU (CUDA_VISIBLE_DEVICES) gives
+ * index mod 1 = that GPU. VB_OK, or VB_EMISUSE for a value that is not a
+ * number from 0. */
+static int device_index(vb_ctx *ctx, unsigned *out)
+{
+    const char *v = getenv("VORBALL_DEVICE_INDEX");
+    *out = 0;
+    if (!v || !*v)
+        return VB_OK;
+    char *end;
+    unsigned long k = strtoul(v, &end, 10);
+    if (*end != '\0' || v[0] == '-' || k > 65535)
+        return vb_error(ctx, VB_EMISUSE, NULL, 0,
+                        "VORBALL_DEVICE_INDEX='%s': a device number from 0 to 65535 is wanted", v);
+    *out = (unsigned)k;
+    return VB_OK;
 }
 
 int vbg_runtime_open(vb_ctx *ctx, vb_device_kind kind, vbg_runtime **out)
@@ -96,10 +126,13 @@ int vbg_runtime_open(vb_ctx *ctx, vb_device_kind kind, vbg_runtime **out)
     cl_platform_id plat = NULL;
     cl_device_id dev = NULL;
     int found = 0;
+    unsigned index;
+    if (device_index(ctx, &index) != VB_OK)
+        return VB_EMISUSE;
     if (kind == VB_DEVICE_AUTO || kind == VB_DEVICE_GPU)
-        found = find_device(CL_DEVICE_TYPE_GPU, &plat, &dev);
+        found = find_device(CL_DEVICE_TYPE_GPU, index, &plat, &dev);
     if (!found && (kind == VB_DEVICE_AUTO || kind == VB_DEVICE_CPU))
-        found = find_device(CL_DEVICE_TYPE_CPU, &plat, &dev);
+        found = find_device(CL_DEVICE_TYPE_CPU, index, &plat, &dev);
     if (!found)
         return vb_error(ctx, VB_EDEVICE, NULL, 0, "no OpenCL %sdevice with double precision found",
                         kind == VB_DEVICE_GPU ? "GPU " : kind == VB_DEVICE_CPU ? "CPU " : "");

@@ -21,9 +21,13 @@ extern const vb_device_layer vbg_device_layer;
 typedef struct vb_device vbg_runtime;
 
 /* Opens an OpenCL context and in-order queue (profiling enabled) on a device of
- * the requested kind with double-precision support. VB_EDEVICE when none is
- * available (the caller decides about falling back to the reference backend
- * and warns: vb_device.h). kind must not be VB_DEVICE_REF. */
+ * the requested kind with double-precision support: the first, or number
+ * VORBALL_DEVICE_INDEX (modulo their count) of those devices, counted over
+ * the platforms in order (one GPU per MPI rank on a host). VB_EDEVICE when
+ * none is available (the caller decides about falling back to the
+ * reference backend and warns: vb_device.h), VB_EMISUSE for a
+ * VORBALL_DEVICE_INDEX that is not a number. kind must not be
+ * VB_DEVICE_REF. */
 int vbg_runtime_open(vb_ctx *ctx, vb_device_kind kind, vbg_runtime **out);
 
 void vbg_runtime_close(vbg_runtime *rt);

@@ -612,8 +612,8 @@ unsigned vb_cover_pipeline_parts(size_t cells)
         if (*end == '\0' && v >= 1 && v <= 64)
             return (unsigned)v;
     }
-    size_t k = cells / VB_COVER_PART_CELLS;
-    return k < 1 ? 1u : k > VB_COVER_MAX_PARTS ? VB_COVER_MAX_PARTS : (unsigned)k;
+    (void)cells;
+    return 1u;
 }
 
 int vb_cover_run_parts(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *opt,
