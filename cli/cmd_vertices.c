@@ -65,10 +65,9 @@ static void print_stats(vb_ctx *ctx, const vb_vertices_result *r, const vb_cli_v
     if (vb_world_size() > 1)
         fprintf(stderr,
                 "ranks\t%d\nranks_candidates_certified\t%zu\nranks_certifier_rejected\t%zu\n"
-                "ranks_repair_candidates\t%zu\ncover_quadruples\t%llu\nmerged_repeats\t%zu\n"
-                "combine_s\t%.3f\n",
-                vb_world_size(), tot->candidates, tot->rejected, tot->repaired,
-                (unsigned long long)r->sampler.cover_quads, tot->repeats, tot->t_combine);
+                "ranks_repair_candidates\t%zu\nmerged_repeats\t%zu\ncombine_s\t%.3f\n",
+                vb_world_size(), tot->candidates, tot->rejected, tot->repaired, tot->repeats,
+                tot->t_combine);
 }
 
 static int write_topology(vb_ctx *ctx, const char *path, const vb_sphere_set *set,

@@ -32,4 +32,9 @@ void vb_vertices_write_stats(vb_ctx *ctx, FILE *f, const vb_vertices_result *r)
             r->rejected.n, r->repaired_candidates, r->certified.n, r->max_dist,
             (unsigned long long)st->filter_calls, (unsigned long long)st->filter_failures,
             (unsigned long long)st->exact_evals);
+    /* The cover's counters (zero for the sampling proposer). */
+    fprintf(f, "cover_cells\t%llu\ncover_patches\t%llu\ncover_host_cells\t%llu\n"
+               "cover_quadruples\t%llu\n",
+            (unsigned long long)s->cover_cells, (unsigned long long)s->cover_patches,
+            (unsigned long long)s->cover_host_cells, (unsigned long long)s->cover_quads);
 }
