@@ -44,7 +44,13 @@ enum vb_input_error {
     VB_EINPUT_ELEMENT    = VB_EINPUT | (8 << 8), /* E108 unknown element (strict mode) */
     VB_EINPUT_FORMAT     = VB_EINPUT | (9 << 8), /* E109 format not recognised / wrong --format */
     VB_EINPUT_TOOLARGE   = VB_EINPUT | (10 << 8),/* E110 file or sphere count over limit */
-    VB_EINPUT_MODEL      = VB_EINPUT | (11 << 8) /* E111 requested model/frame absent */
+    VB_EINPUT_MODEL      = VB_EINPUT | (11 << 8),/* E111 requested model/frame absent */
+    VB_EINPUT_INFERRED   = VB_EINPUT | (12 << 8),/* E112 element not written (strict mode) */
+    VB_EINPUT_COMPRESSED = VB_EINPUT | (13 << 8),/* E113 damaged gzip/bzip2 data */
+    VB_EINPUT_NOSPHERES  = VB_EINPUT | (14 << 8),/* E114 trajectory/topology alone: no spheres */
+    VB_EINPUT_TRAJECTORY = VB_EINPUT | (15 << 8),/* E115 damaged binary trajectory */
+    VB_EINPUT_TOPOLOGY   = VB_EINPUT | (16 << 8),/* E116 trajectory and topology disagree */
+    VB_EINPUT_ASSEMBLY   = VB_EINPUT | (17 << 8) /* E117 assembly absent or malformed */
 };
 
 #define VB_CATEGORY(code) ((code) & 0xff)

@@ -47,6 +47,12 @@
     X(E, 109, INPUT_FORMAT, 19, "format not recognised")                                                 \
     X(E, 110, INPUT_TOOLARGE, 20, "input too large (a file over 2 GiB, or too many spheres)")            \
     X(E, 111, INPUT_MODEL, 21, "requested model absent")                                                 \
+    X(E, 112, INPUT_INFERRED, 22, "element column blank: it would be guessed (--strict-elements)")       \
+    X(E, 113, INPUT_COMPRESSED, 23, "gzip or bzip2 data damaged or cut short")                           \
+    X(E, 114, INPUT_NOSPHERES, 24, "a trajectory or topology alone: no spheres (give both)")             \
+    X(E, 115, INPUT_TRAJECTORY, 25, "XTC, TRR or DCD data damaged")                                      \
+    X(E, 116, INPUT_TOPOLOGY, 26, "trajectory and topology disagree (atom count)")                       \
+    X(E, 117, INPUT_ASSEMBLY, 27, "--assembly: absent, or its operators malformed")                      \
     X(W, 701, CONTAINED, 0, "a sphere lies inside another: its cell is empty")                           \
     X(W, 702, CONTAINED_COUNT, 0, "count of spheres inside others")                                      \
     X(W, 703, WATER_DROPPED, 0, "water atoms dropped")                                                   \
@@ -60,7 +66,14 @@
     X(W, 711, CIF_BLOCK_IGNORED, 0, "a further mmCIF _atom_site loop ignored")                           \
     X(W, 712, ZERO_DROPPED, 0, "spheres of radius 0 dropped (--zero-radius drop)")                       \
     X(W, 713, ZERO_POINTS, 0, "spheres of radius 0 kept as point sites")                                 \
+    X(W, 714, ELEMENT_INFERRED, 0, "element column blank: element inferred from the atom name")         \
+    X(W, 715, ELEMENT_INFERRED_COUNT, 0, "count of atoms whose element was inferred")                   \
+    X(W, 716, ELEMENT_ALIGNMENT, 0, "a two-letter element read from the name's alignment alone")        \
+    X(W, 717, ELEMENT_FROM_MASS, 0, "PSF: elements taken from the atom masses")                         \
+    X(W, 718, TRR_NO_COORDINATES, 0, "TRR frames without coordinates skipped")                          \
+    X(W, 719, COMPRESSED_TRAILING, 0, "bytes after the end of gzip/bzip2 data ignored")                 \
     X(W, 720, REFERENCE_SLOW, 0, "exact reference on a large input: may take very long")                 \
+    X(W, 721, ASSEMBLY_CHAINS, 0, "--assembly: chains of the file outside the assembly left out")       \
     X(W, 760, DEVICE_FALLBACK, 0, "no usable OpenCL device: vertices on the reference backend")          \
     X(W, 761, CAND_OVERFLOW, 0, "candidates did not fit a sampling grid cell")                           \
     X(W, 762, DEVICE_FAILED_RERUN, 0, "OpenCL device failed mid-run: rerun on the reference")            \

@@ -16,11 +16,14 @@ run 0 "$out" "$vorball" reference --format xyzr --model 1 --water --no-hydrogens
 cmp -s "$work/ref.tsv" ../golden/cubic_lattice.tsv || fail "options changed the xyzr vertices"
 run 0 "$out" "$vorball" reference --help
 for name in "--format F" "--model N" "--radii FILE" "--water" "--no-hydrogens" "--strict-elements" \
-            "--zero-radius M"; do
+            "--zero-radius M" "--assembly N"; do
     expect_line "$out" "^  $name"
 done
-run 2 "$out" "$vorball" reference --format gro "$in"
-expect_line "$out" "unknown format 'gro'"
+run 2 "$out" "$vorball" reference --format xtc "$in"
+expect_line "$out" "unknown format 'xtc'"
+# XYZR forced to GRO: malformed at its count line (exit 11), not an empty frame.
+run 11 "$out" "$vorball" reference --format gro "$in"
+expect_line "$out" "E101: cubic_lattice.xyzr:2:"
 run 2 "$out" "$vorball" reference --model 0 "$in"
 run 2 "$out" "$vorball" reference --model x2 "$in"
 run 2 "$out" "$vorball" reference "$in" --model
