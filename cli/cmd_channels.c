@@ -1,5 +1,6 @@
 /* `vorball channels`: channels and cavities of a molecule or of every frame
- * of a trajectory (multi-model PDB/PQR/mmCIF, or DCD with a PDB topology),
+ * of a trajectory (multi-model PDB/PQR/mmCIF/GRO, or a DCD, XTC or TRR with
+ * its topology),
  * by the discrete-Voronoi pipeline of the Facet-JFA paper (Sec. 4) on
  * OpenCL or its C reference, with components, centrelines, bottlenecks and
  * lining residues. */
@@ -11,6 +12,7 @@
 #include "commands.h"
 #include "input_options.h"
 #include "jfa_png.h"
+#include "progress.h"
 #include "vb_default.h"
 #include "vb_diag.h"
 #include "vb_frames.h"
@@ -20,7 +22,7 @@ static const char *cmd = "channels";
 
 typedef struct {
     const char *input, *out, *dcd, *centrelines, *pymol, *volume, *stats, *png;
-    int json, cavities, png_axis;
+    int json, cavities, png_axis, stats_stderr;
     double probe;
     int grid;
     long f0, f1, fstep;   /* --frames a:b:step (f1 < 0: to the end) */
@@ -38,8 +40,10 @@ static void usage(FILE *f)
             "usage: vorball channels [options] INPUT|-\n"
             "\n"
             "Channels (Voronoi edges inside the molecule that reach its surface) and cavities\n"
-            "(those that do not) of every frame of INPUT: PDB, PQR, mmCIF or XYZR; several\n"
-            "MODELs are a trajectory. With --dcd, INPUT is the PDB topology of a DCD file.\n"
+            "(those that do not) of every frame of INPUT: PDB, PQR, mmCIF, GRO or XYZR (gzip\n"
+            "or bzip2 compressed too); several MODELs or GRO frames are a trajectory. With\n"
+            "--traj, INPUT is the topology (PDB, GRO, mmCIF, PQR or a CHARMM/NAMD PSF) of a\n"
+            "DCD, XTC or TRR trajectory.\n"
             "Per frame, on OpenCL (or its C reference, --device ref): Facet-JFA labels of the\n"
             "atom centres on an n^3 grid, Voronoi edge voxels, atomic mask (balls r + probe),\n"
             "molecular mask (rays along x, y, z), interior = atomic xor molecular, channels =\n"
@@ -48,13 +52,15 @@ static void usage(FILE *f)
             "each point, bottleneck and lining residues.\n"
             "\n"
             "options:\n"
-            "  -o FILE             channel table (CSV; default stdout)\n"
+            "  -o FILE             channel table (CSV; default stdout); columns below\n"
             "  --json              the table as JSON, with centrelines\n"
-            "  --stats FILE        per-frame statistics (CSV): counts and timings\n"
+            "  --stats             per-frame statistics (CSV: counts and timings) on stderr\n"
+            "  --stats-file FILE   the same statistics to FILE\n"
             "  --probe R           solvent radius in A (default 1.4)\n"
             "  --grid N            grid side, a power of two 16..1024 (default 128)\n"
             "  --frames A:B:S      frames A, A+S, ... before B (from 0, B excluded; parts optional)\n"
-            "  --dcd FILE          read coordinates from a DCD trajectory (INPUT = topology)\n"
+            "  --traj FILE         coordinates from a DCD, XTC or TRR trajectory (INPUT = its\n"
+            "                      topology; told apart by magic number); --dcd is the same\n"
             "  --min-length L      prune centrelines shorter than L A (default 5)\n"
             "  --min-radius R      prune channels whose bottleneck is below R A (default 0)\n"
             "  --lining-tol T      an atom lines a point when its surface is within radius + T A\n"
@@ -74,7 +80,12 @@ static void usage(FILE *f)
             "                      be used, the reference runs after warning W804 (W806:\n"
             "                      OpenCL failed mid-run, that frame and the rest rerun on\n"
             "                      the reference)\n"
-            "  --repeat N          run every frame N times (timings; outputs written once)\n");
+            "  --repeat N          run every frame N times (timings; outputs written once)\n"
+            "\n"
+            "The channel table (CSV), one row per channel or cavity of each frame:\n"
+            "%s"
+            "\n",
+            vbc_table_columns_help());
     vb_cli_input_help(f);
 }
 
@@ -147,8 +158,21 @@ static int parse_args(int argc, char **argv, ch_args *A)
             A->input = a;
             continue;
         }
+        /* Flags first; then options with a value; anything else is not an
+         * option of this command (a typo is never taken for a value). */
+        static const char *const flags[] = {"--json", "--cavities", "--stats"};
+        static const char *const valued[] = {
+            "-o", "--stats-file", "--traj", "--dcd", "--centerlines", "--centrelines", "--pymol",
+            "--volume", "--png", "--probe", "--grid", "--frames", "--repeat", "--min-length",
+            "--min-radius", "--lining-tol", "--volume-mask", "--png-normal", "--jfa", "--device"};
+        int flag = 0, takes = 0;
+        for (size_t k = 0; k < sizeof flags / sizeof flags[0]; k++)
+            flag |= strcmp(a, flags[k]) == 0;
+        for (size_t k = 0; k < sizeof valued / sizeof valued[0]; k++)
+            takes |= strcmp(a, valued[k]) == 0;
+        if (!flag && !takes)
+            return vb_cli_usage_error(cmd, "unknown option '%s' (see --help)", a), -1;
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-        int takes = strcmp(a, "--json") && strcmp(a, "--cavities");
         if (takes && !v)
             return vb_cli_usage_error(cmd, "%s needs a value", a), -1;
         if (takes)
@@ -157,8 +181,9 @@ static int parse_args(int argc, char **argv, ch_args *A)
         if (strcmp(a, "-o") == 0) A->out = v;
         else if (strcmp(a, "--json") == 0) A->json = 1;
         else if (strcmp(a, "--cavities") == 0) A->opt.keep_cavities = 1;
-        else if (strcmp(a, "--stats") == 0) A->stats = v;
-        else if (strcmp(a, "--dcd") == 0) A->dcd = v;
+        else if (strcmp(a, "--stats") == 0) A->stats_stderr = 1;
+        else if (strcmp(a, "--stats-file") == 0) A->stats = v;
+        else if (strcmp(a, "--dcd") == 0 || strcmp(a, "--traj") == 0) A->dcd = v;
         else if (strcmp(a, "--centerlines") == 0 || strcmp(a, "--centrelines") == 0) A->centrelines = v;
         else if (strcmp(a, "--pymol") == 0) A->pymol = v;
         else if (strcmp(a, "--volume") == 0) A->volume = v;
@@ -217,7 +242,9 @@ static int parse_args(int argc, char **argv, ch_args *A)
     if (A->pymol && !A->centrelines)
         return vb_cli_usage_error(cmd, "--pymol draws the --centerlines file: give both"), -1;
     if (A->dcd && strcmp(A->input, "-") == 0)
-        return vb_cli_usage_error(cmd, "the DCD topology must be a file"), -1;
+        return vb_cli_usage_error(cmd, "the trajectory's topology must be a file"), -1;
+    if (A->stats && A->stats_stderr)
+        return vb_cli_usage_error(cmd, "--stats (stderr) or --stats-file FILE, not both"), -1;
     return 0;
 }
 
@@ -340,6 +367,8 @@ int vb_cmd_channels(int argc, char **argv)
         rc = vb_errcode(ctx);
     if (rc == VB_OK && A.stats && !(S.stats = vb_cli_open_output(ctx, A.stats)))
         rc = vb_errcode(ctx);
+    if (rc == VB_OK && A.stats_stderr)
+        S.stats = stderr;
     if (rc == VB_OK && A.centrelines && !(S.cl = vb_cli_open_output(ctx, A.centrelines)))
         rc = vb_errcode(ctx);
     if (rc != VB_OK)
@@ -352,11 +381,14 @@ int vb_cmd_channels(int argc, char **argv)
     if (S.stats)
         vbc_write_stats_header(S.stats);
     double t0 = vb_now();
+    vb_cli_status_start("channels: reading the first frame");
     for (long index = 0; A.f1 < 0 || index < A.f1; index++) {
         vb_sphere_set *s = NULL;
         int model;
         if ((rc = vb_frame_source_next(ctx, F, &s, &model)) != VB_OK || !s)
             break;
+        vb_cli_status_set("channels: frame %ld (%ld analysed) on %s", index, S.frames_done,
+                          vbc_pipe_device_name(pipe));
         if (index >= A.f0 && (index - A.f0) % A.fstep == 0)
             rc = do_frame(ctx, &A, pipe, index, model, s, &S);
         vb_spheres_free(s);
@@ -364,6 +396,7 @@ int vb_cmd_channels(int argc, char **argv)
             break;
     }
     double wall = vb_now() - t0;
+    vb_cli_status_stop();
     if (rc == VB_OK && S.frames_done == 0)
         rc = vb_error(ctx, VB_EINPUT_MODEL, A.input, 0, "no frame selected (--frames / --model)");
     if (rc == VB_OK && A.volume && !strstr(A.volume, "%d") && S.frames_done > 1)
@@ -393,13 +426,22 @@ done:
         int c = vb_cli_close_output(ctx, S.table, A.out);
         rc = rc == VB_OK ? c : rc;
     }
-    if (S.stats) {
+    if (S.stats && S.stats != stderr) {
         int c = vb_cli_close_output(ctx, S.stats, A.stats);
         rc = rc == VB_OK ? c : rc;
     }
     if (S.cl) {
         int c = vb_cli_close_output(ctx, S.cl, A.centrelines);
         rc = rc == VB_OK ? c : rc;
+    }
+    /* A failing command leaves no partial table behind (the rows of the
+     * frames before the failure are not an answer). */
+    if (rc != VB_OK) {
+        const char *made[3] = {S.table ? A.out : NULL, S.stats && S.stats != stderr ? A.stats : NULL,
+                               S.cl ? A.centrelines : NULL};
+        for (int k = 0; k < 3; k++)
+            if (made[k] && strcmp(made[k], "-") != 0)
+                remove(made[k]);
     }
     vb_frame_source_close(F);
     vbc_pipe_close(pipe);
