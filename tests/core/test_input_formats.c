@@ -90,8 +90,11 @@ static void test_pdb(void)
     static const char cb[] = "ATOM      7  CB  ALA A   1       3.000   3.000   3.000  1.00 10.00\n";
     char no9[sizeof pdb_sample + 16];
     const char *at = strstr(pdb_sample, cb);
-    snprintf(no9, sizeof no9, "%.*s%.66s           C\n%s", (int)(at - pdb_sample), pdb_sample, cb,
-             at + strlen(cb));
+    size_t head = (size_t)(at - pdb_sample);
+    memcpy(no9, pdb_sample, head);
+    memcpy(no9 + head, cb, 66);
+    memcpy(no9 + head + 66, "           C\n", 13);
+    strcpy(no9 + head + 79, at + strlen(cb));
     CHECK_ERROR(ctx, read_text(ctx, "s.pdb", no9, &o, &s), VB_EINPUT_ELEMENT, "s.pdb:10:");
 
     /* A single-model file is model 1; model 2 is absent. */
