@@ -51,7 +51,7 @@ static void usage(FILE *f)
     fprintf(f,
             "\n'vorball <command> --help' describes each command.\n"
             "Exit codes: 0 ok, 1 check failed, 2 usage, 3 i/o, 4 memory, 5 device,\n"
-            "6 internal, 7 degenerate, 8 precision, 11-21 bad input (see README).\n");
+            "6 internal, 7 degenerate, 8 precision, 11-27 bad input (see README).\n");
 }
 
 int main(int argc, char **argv)
