@@ -1,0 +1,15 @@
+/* libFuzzer target: mmCIF biological assemblies (--assembly 1 or 2, by the
+ * first byte): the _pdbx_struct_assembly_gen / _pdbx_struct_oper_list
+ * categories, operator expressions and the exact moves. */
+#include "fuzz_common.h"
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    vb_read_options opt;
+    vb_fuzz_options(data, size, VB_FMT_MMCIF, &opt);
+    opt.model = 0;
+    opt.assembly = size > 0 ? 1 + ((data[0] >> 5) & 1) : 1;
+    return vb_fuzz_read_with(data, size, &opt);
+}
