@@ -16,10 +16,13 @@ static void help(FILE *f)
 {
     fprintf(f,
             "usage: vorball vertices [options] INPUT|-\n\n"
-            "Voronoi vertices of the spheres (additively weighted diagram): rays from every\n"
-            "sphere, lower envelope of the bisectors, Newton-Raphson in grid cells of three\n"
-            "or more colours, matching across cells, then exact certification. Every line\n"
-            "written is a certified vertex with all the spheres it touches.\n\n"
+            "Voronoi vertices of the spheres (additively weighted diagram). By default a\n"
+            "direction cover of every cell (rigorous bounds of the lower envelope of the\n"
+            "bisectors over patches of directions) proves which neighbours can meet in the\n"
+            "cell; every quadruple of them is solved exactly and each root certified (it\n"
+            "touches its four spheres and no sphere enters it). Every line written is a\n"
+            "certified vertex with all the spheres it touches, and the header says whether\n"
+            "the list is proven complete.\n\n"
             "  -o FILE              output file (default stdout)\n"
             "  --output-format F    tsv (default), json or voronota\n"
             "  --device D           auto (default: a GPU, else PoCL on the CPU), gpu, cpu, or\n"
@@ -42,9 +45,9 @@ static void help(FILE *f)
             VB_SAMPLER_DEFAULT_SAMPLES);
     vb_cli_input_help(f);
     fprintf(f,
-            "\nCells of spheres on the hull are unbounded: rays are clipped at a distance\n"
-            "derived from the input (see README); a ray that meets no bisector before it is\n"
-            "'infinite', and a vertex there would be a vertex at infinity, never written.\n"
+            "\nCells of spheres on the hull are unbounded: the cover treats infinity as one\n"
+            "more label; with --proposer sampling rays are clipped at a distance derived\n"
+            "from the input (see README) and a vertex beyond it is never written.\n"
             "Warnings W760-W779 come from this command.\n");
 }
 

@@ -287,9 +287,9 @@ static int cov_run(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, siz
         s->hroots[c] = VBQ_ALL_ROOTS;
     int rc = run_tier(ctx, s, &s->tier[0], cells, s->hroots, ncells, out);
     /* The cells that ran out of a small slice, once more on large ones, as
-     * one task per root patch: a costly exposed cell then runs on many
-     * groups at once instead of lengthening the batch. */
-    size_t nroot = 6u * (size_t)s->env.T * s->env.T, n2 = 0;
+     * one task per child of a root patch: a costly exposed cell then runs on
+     * many groups at once instead of lengthening the batch. */
+    size_t nroot = 24u * (size_t)s->env.T * s->env.T, n2 = 0;
     for (size_t c = 0; rc == VB_OK && s->tier[1].slices && c < ncells; c++)
         if (out[c].status != VBQ_OK)
             n2 += nroot;
@@ -313,7 +313,7 @@ static int cov_run(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, siz
             if (out[c].status != VBQ_OK)
                 for (size_t r = 0; r < nroot; r++, j++) {
                     s->cells2[j] = cells[c];
-                    s->roots2[j] = (uint32_t)r;
+                    s->roots2[j] = VBQ_TASK((uint32_t)(r / 4), (uint32_t)(r % 4) + 1u);
                 }
         rc = run_tier(ctx, s, &s->tier[1], s->cells2, s->roots2, n2, s->outs2);
         /* A cell whose tasks all finished gets their quadruples, one after

@@ -4,7 +4,9 @@
 
 /* The parts of a fetching patch live in the group's local memory; the
  * work-item versions of the shared code (for private parts) are left out. */
+#ifndef VBQ_SQ
 #define VBQ_SQ __local
+#endif
 #define VBQ_GROUP_ONLY
 #include "vb_cover_shared.h"
 
@@ -20,7 +22,16 @@
  * the node stack and the scalars in local memory. Labels land in the lists
  * in any order, which changes no decision (every one depends on the set). */
 
+/* Lanes of a group: 32 on GPUs (one warp); any power of two gives the same
+ * result (the emulation in tests/gpu runs 4). */
+#ifndef WG
 #define WG 32u
+#endif
+/* The group's shared variables; tests/gpu/cover_wg_emu.c runs this file as C
+ * on 32 threads, with them static. */
+#ifndef WG_SHARED
+#define WG_SHARED __local
+#endif
 #define WG_ST 96u
 #define WG_NODES 1024u
 
@@ -171,7 +182,7 @@ static inline __attribute__((always_inline)) double wg_max(double v, __local dou
     return r;
 }
 
-__kernel __attribute__((reqd_work_group_size(32, 1, 1)))
+__kernel __attribute__((reqd_work_group_size(WG, 1, 1)))
 void vbq_cover_wg(__global const double *x, __global const double *y, __global const double *z,
                   __global const double *r, __global const double *box,
                   __global const double *rmax, __global const uint *ids, const uint first,
@@ -184,13 +195,13 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
                   __global vbq_cell_out *outs, __global uint *qout, const uint qout_cap,
                   __global uint *counters)
 {
-    __local vbq_frame stk[WG_ST];
-    __local uint nodes[WG_NODES];
-    __local double red[WG];
-    __local uint sh[S_N];
-    __local uint dom[VBQ_DOM_MAX];
-    __local vbq_frame cur;
-    __local vbq_sub subs[VBQ_NSUB];
+    WG_SHARED vbq_frame stk[WG_ST];
+    WG_SHARED uint nodes[WG_NODES];
+    WG_SHARED double red[WG];
+    WG_SHARED uint sh[S_N];
+    WG_SHARED uint dom[VBQ_DOM_MAX];
+    WG_SHARED vbq_frame cur;
+    WG_SHARED vbq_sub subs[VBQ_NSUB];
     uint lane = get_local_id(0);
     size_t g = get_group_id(0);
     vbq_env e;
@@ -258,7 +269,7 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
         if (lane == 0u && sh[S_STATUS] == VBQ_OK) {
             uint rt = roots[c], n0 = 0u;
             for (uint k = 0u; k < nroot; k++)
-                if (rt == VBQ_ALL_ROOTS || rt == k)
+                if (vbq_task_root(rt, k))
                     stk[n0++] = vbq_root(T, k, len0, rq, far);
             sh[S_NST] = n0;
             sh[S_TOP] = len0;
@@ -388,18 +399,18 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
             evals += (double)fr.len;
             uint keep = sh[S_LEN], owned = sh[S_OWNED];
             if (closed && owned >= 3u && keep <= VBQ_DOM_MAX) {
-                if (lane < keep) {
-                    vbq_nb nj = nb[lab[top + lane]];
+                for (uint a = lane; a < keep; a += WG) {
+                    vbq_nb nj = nb[lab[top + a]];
                     uint d = 0u;
                     for (uint b = 0u; b < keep && !d; b++) {
-                        if (b == lane)
+                        if (b == a)
                             continue;
                         vbq_nb nk = nb[lab[top + b]];
                         double dl, dh;
                         vbq_eval_diff(&nk, &nj, mm, hh, &dl, &dh);
                         d = dl > 0.0;
                     }
-                    dom[lane] = d;
+                    dom[a] = d;
                 }
                 barrier(CLK_LOCAL_MEM_FENCE);
                 evals += (double)(keep * (keep - 1u));
@@ -449,12 +460,15 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
                 if (nst + 4u > WG_ST) {
                     sh[S_STATUS] = VBQ_OVER_ST;
                 } else {
+                    uint rt = roots[c], nc = 0u;
                     for (uint k = 0u; k < 4u; k++) {
+                        if (!vbq_task_child(rt, fr.level, k))
+                            continue;
                         vbq_frame ch;
                         vbq_child(&fr, k, top, keep, &ch);
-                        stk[nst + k] = ch;
+                        stk[nst + nc++] = ch;
                     }
-                    sh[S_NST] = nst + 4u;
+                    sh[S_NST] = nst + nc;
                     sh[S_TOP] = top + keep;
                 }
             }

@@ -1,4 +1,5 @@
 /* The exact certifier: candidate -> exact tangent sphere -> empty? -> canonical vertex. */
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -19,6 +20,34 @@ static int open_scratch(vb_certifier *c)
     return c->ids && c->members && c->is_def && c->slots ? 0 : -1;
 }
 
+/* The scaled input as 64-bit integers for the filter of vb_certify_quads:
+ * qd.ok only when every value is below 2^62 in magnitude and 10^E is a
+ * double. 0, or -1 when out of memory. */
+static int open_qdata(vb_certifier *c)
+{
+    size_t n = c->set->n;
+    c->qz = malloc(4 * (n ? n : 1) * sizeof *c->qz);
+    if (!c->qz)
+        return -1;
+    c->qd.z = c->qz;
+    c->qd.ok = 0;
+    c->qd.ops = vbx_qf_ops_best();
+#if LONG_MAX < 0x3fffffffffffffff
+    return 0; /* mpz_get_si needs a 64-bit long */
+#endif
+    double sc = mpz_get_d(c->d.scale);
+    if (mpz_cmp_d(c->d.scale, sc) != 0)
+        return 0;
+    for (size_t i = 0; i < 4 * n; i++) {
+        if (mpz_sizeinbase(c->d.c[i], 2) > 61)
+            return 0;
+        c->qz[i] = (int64_t)mpz_get_si(c->d.c[i]);
+    }
+    c->qd.scale = sc;
+    c->qd.ok = 1;
+    return 0;
+}
+
 int vb_certifier_open(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier **out)
 {
     *out = NULL;
@@ -36,13 +65,11 @@ int vb_certifier_open(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier **out)
         free(c);
         return rc;
     }
-    if (open_scratch(c) != 0 || vbx_grid_build(&c->g, c->d.near, set->n) != 0 ||
-        !(c->gbox = malloc(4 * (set->n ? set->n : 1) * sizeof *c->gbox))) {
+    if (open_scratch(c) != 0 || vbx_sindex_build(&c->t, c->d.box, c->d.near, set->n) != 0 ||
+        open_qdata(c) != 0) {
         vb_certifier_close(c);
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (certifier)");
     }
-    for (size_t q = 0; q < set->n; q++)
-        memcpy(&c->gbox[4 * q], &c->d.box[4 * (size_t)c->g.ids[q]], 4 * sizeof *c->gbox);
     *out = c;
     return VB_OK;
 }
@@ -52,12 +79,13 @@ vb_certifier *vbx_certifier_worker(const vb_certifier *c)
     vb_certifier *w = calloc(1, sizeof *w);
     if (!w)
         return NULL;
-    /* Shallow copies: the parent's GMP integers and grid arrays are only
+    /* Shallow copies: the parent's GMP integers and index arrays are only
      * read while workers run, which GMP allows from several threads. */
     w->set = c->set;
     w->d = c->d;
-    w->g = c->g;
-    w->gbox = c->gbox;
+    w->t = c->t;
+    w->qd = c->qd;
+    w->qz = c->qz;
     w->borrowed = 1;
     if (open_scratch(w) != 0) {
         vb_certifier_close(w);
@@ -74,8 +102,8 @@ void vb_certifier_close(vb_certifier *c)
     vbx_solver_free(&c->canon);
     if (!c->borrowed) {
         vbx_data_free(&c->d);
-        vbx_grid_free(&c->g);
-        free(c->gbox);
+        vbx_sindex_free(&c->t);
+        free(c->qz);
     }
     free(c->ids);
     free(c->members);
@@ -105,36 +133,6 @@ static vbx_ia distance_excess(const vbx_ia cj[4], const vbx_ia box[4])
     d2 = vbx_ia_add(d2, vbx_ia_sqr(vbx_ia_sub(box[1], cj[1])));
     d2 = vbx_ia_add(d2, vbx_ia_sqr(vbx_ia_sub(box[2], cj[2])));
     return vbx_ia_sub(vbx_ia_sub(vbx_ia_sqrt(d2), cj[3]), box[3]);
-}
-
-/* A cheaper filter of the same predicate for the many spheres of a scan that
- * are far outside: 1 when |p - c_j| - R_j - t > 0 is proven, 0 when it
- * cannot tell. Plain round-to-nearest with one relative margin instead of a
- * step outward per operation (u = 2^-53; normal range, checked below):
- *  - g~ = fl(p_lo - c_hi) (or fl(c_lo - p_hi)) has the sign of the exact
- *    difference, which is a lower bound of |p_k - c_jk| for every point of
- *    the boxes; when g~ > 0 the exact one is >= g~ / (1 + u). Axes with
- *    g~ <= 0 are left out, which only lowers the bound.
- *  - d~ = fl(fl(g0~^2) + fl(g1~^2) + fl(g2~^2)): at most 3 more roundings per
- *    term (square, two sums), so |p - c_j|^2 >= d~ / (1 + u)^5. Terms that
- *    underflow lose at most 2^-1074 each, negligible when d~ >= 2^-900.
- *  - r~ = fl(t_hi + R_hi) >= (t + R_j) / (1 + u) when positive, so
- *    (t + R_j)^2 <= fl(r~^2) (1 + u)^3.
- * Hence d~ > fl(r~^2) (1 + u)^8 proves the claim, and fl(fl(r~^2) (1 + 2^-40))
- * exceeds that by far ((1 + u)^8 < 1 + 2^-49). Infinite or NaN bounds make
- * the comparisons fail: "cannot tell". */
-static int surely_outside(const vbx_ia cj[4], const vbx_ia box[4])
-{
-    double r = box[3].hi + cj[3].hi;
-    if (r < 0.0)
-        return 1; /* t + R_j < 0 <= |p - c_j| (fl keeps the sign of a sum) */
-    double d2 = 0.0;
-    for (int k = 0; k < 3; k++) {
-        double g = vbx_max(box[k].lo - cj[k].hi, cj[k].lo - box[k].hi);
-        if (g > 0.0)
-            d2 += g * g;
-    }
-    return d2 >= 0x1p-900 && d2 <= DBL_MAX && d2 > (r * r) * (1.0 + 0x1p-40);
 }
 
 static int is_solved_row(const vbx_solver *s, uint32_t j)
@@ -170,62 +168,62 @@ static int cmp_u32(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-void vbx_cert_scan(vb_ctx *ctx, vb_certifier *c, const vbx_root *r, const uint32_t *def,
-                   size_t ndef, const vbx_ia box[4], int *verdict, uint32_t *intruder)
+/* The scan of vbx_cert_scan; `first`: stop at the first proven intruder. */
+static void scan(vb_ctx *ctx, vb_certifier *c, const vbx_root *r, const uint32_t *def,
+                 size_t ndef, const vbx_ia box[4], int first, int *verdict, uint32_t *intruder)
 {
     vb_stats *st = vb_ctx_stats(ctx);
     for (size_t i = 0; i < ndef; i++)
         c->is_def[def[i]] = 1;
     /* Sphere j can reach into the open tangent ball only if
-     * |p - c_j| < t + R_j <= t + Rmax: scan centres within t + Rmax of the
-     * enclosure of p (bounds pushed outward, see vbx_ia.h and vbx_grid.h). */
-    double rad = vbx_succ(box[3].hi + c->d.rmax);
-    double blo[3], bhi[3];
-    for (int k = 0; k < 3; k++) {
-        blo[k] = vbx_pred(box[k].lo - rad);
-        bhi[k] = vbx_succ(box[k].hi + rad);
-    }
-    int lo[3], hi[3];
-    vbx_grid_range(&c->g, blo, bhi, lo, hi);
-    size_t nm = 0;
+     * |p - c_j| < t + R_j: the walk visits every run of slots the index
+     * cannot rule out (vbx_sindex.h), and each sphere there is filtered
+     * cheaply (vbx_probe_outside), then by distance_excess, then exactly. */
+    const vbx_sindex *t = &c->t;
+    vbx_probe pr;
+    vbx_probe_init(&pr, t, box);
+    vbx_walk w;
+    vbx_walk_init(&w, t, box);
+    size_t nm = 0, q0, q1;
     int found = 0;
     double depth = 0.0;
-    for (int kz = lo[2]; kz <= hi[2]; kz++)
-        for (int ky = lo[1]; ky <= hi[1]; ky++)
-            for (int kx = lo[0]; kx <= hi[0]; kx++) {
-                size_t cell = vbx_grid_cell(&c->g, kx, ky, kz);
-                for (size_t q = c->g.start[cell]; q < c->g.start[cell + 1]; q++) {
-                    uint32_t j = c->g.ids[q];
-                    if (c->is_def[j])
-                        continue;
-                    st->filter_calls++;
-                    /* gbox: the same enclosures in grid order, read
-                     * contiguously cell by cell. */
-                    const vbx_ia *cj = &c->gbox[4 * q];
-                    if (surely_outside(cj, box))
-                        continue;
-                    vbx_ia g = distance_excess(cj, box);
-                    int sg = vbx_ia_sign(g), exact = sg == 0;
-                    if (exact) {
-                        st->filter_failures++;
-                        st->exact_evals++;
-                        sg = vbx_sign_distance(&c->sol, r, j);
-                    }
-                    if (sg > 0)
-                        continue;
-                    if (sg == 0) {
-                        c->members[ndef + nm++] = j;
-                        continue;
-                    }
-                    /* Report the deepest intruder (exactly decided ones sit at ~0). */
-                    double dj = exact ? 0.0 : vbx_ia_mid(g);
-                    if (!found || dj < depth || (dj == depth && j < *intruder)) {
-                        depth = dj;
-                        *intruder = j;
-                    }
-                    found = 1;
-                }
+    while (vbx_walk_next(&w, &q0, &q1))
+        for (size_t q = q0; q < q1; q++) {
+            /* The cheap test first (vbx_sindex.h), then the defining ids. */
+            const double *cm = &t->mid[4 * q];
+            if (vbx_probe_outside(&pr, cm)) {
+                st->filter_calls++;
+                continue;
             }
+            uint32_t j = t->ids[q];
+            if (c->is_def[j])
+                continue;
+            st->filter_calls++;
+            const vbx_ia *cj = &t->box[4 * q];
+            vbx_ia g = distance_excess(cj, box);
+            int sg = vbx_ia_sign(g), exact = sg == 0;
+            if (exact) {
+                st->filter_failures++;
+                st->exact_evals++;
+                sg = vbx_sign_distance(&c->sol, r, j);
+            }
+            if (sg > 0)
+                continue;
+            if (sg == 0) {
+                c->members[ndef + nm++] = j;
+                continue;
+            }
+            /* Report the deepest intruder (exactly decided ones sit at ~0). */
+            double dj = exact ? 0.0 : vbx_ia_mid(g);
+            if (!found || dj < depth || (dj == depth && j < *intruder)) {
+                depth = dj;
+                *intruder = j;
+            }
+            found = 1;
+            if (first)
+                goto done;
+        }
+done:
     for (size_t i = 0; i < ndef; i++)
         c->is_def[def[i]] = 0;
     if (found) {
@@ -237,6 +235,19 @@ void vbx_cert_scan(vb_ctx *ctx, vb_certifier *c, const vbx_root *r, const uint32
     c->nmembers = ndef + nm;
     qsort(c->members, c->nmembers, sizeof *c->members, cmp_u32);
     *verdict = VB_CERT_OK;
+}
+
+void vbx_cert_scan(vb_ctx *ctx, vb_certifier *c, const vbx_root *r, const uint32_t *def,
+                   size_t ndef, const vbx_ia box[4], int *verdict, uint32_t *intruder)
+{
+    scan(ctx, c, r, def, ndef, box, 0, verdict, intruder);
+}
+
+void vbx_cert_scan_empty(vb_ctx *ctx, vb_certifier *c, const vbx_root *r, const uint32_t *def,
+                         size_t ndef, const vbx_ia box[4], int *verdict)
+{
+    uint32_t intruder;
+    scan(ctx, c, r, def, ndef, box, 1, verdict, &intruder);
 }
 
 /* Solves c->canon for the sorted quadruple q; 1 when it is SOLVED with a root. */

@@ -33,10 +33,20 @@ static int ops_intruder(vb_ctx *ctx, void *cert, const uint32_t ids[4], const do
     return rc;
 }
 
+/* Every exact root of the proposer's quadruples (vb_certify_quads): the
+ * roots that are not vertices are counted in the context's stats (rejected
+ * quadruples), not listed. */
+static int ops_quads(vb_ctx *ctx, void *cert, const uint32_t (*quads)[4], size_t n,
+                     vb_vertex_list *certified, vb_vertex_list *rejected)
+{
+    (void)rejected;
+    return vb_certify_quads(ctx, cert, quads, n, certified, NULL);
+}
+
 static void ops_close(void *cert)
 {
     vb_certifier_close(cert);
 }
 
 const vb_certifier_ops vb_exact_certifier = {"exact", ops_open, ops_list, ops_intruder,
-                                             ops_close, NULL};
+                                             ops_close, ops_quads};

@@ -75,11 +75,49 @@ int vb_certify_candidate(vb_ctx *ctx, vb_certifier *c, const uint32_t *ids, size
 int vb_certify_list(vb_ctx *ctx, vb_certifier *c, const vb_vertex_list *cand, double tol,
                     vb_vertex_list *out, vb_vertex_list *rejected);
 
-/* Threads for vb_certify_list: 0 (the default) takes the environment
- * variable VORBALL_THREADS when it is a positive integer, else the online
- * CPUs. The output does not depend on it: results are placed by candidate
- * index and merged in candidate order, so every thread count writes the same
- * lists, keys and stats as one thread. */
+/* What vb_certify_quads did, for benchmarks and tests (every counter is the
+ * same for any thread count). A root is one of the at most two exact
+ * solutions of a quadruple's tangent system. */
+typedef struct vb_cert_quad_stats {
+    uint64_t quads;             /* quadruples judged */
+    uint64_t no_root;           /* filter: no real root (delta < 0 proven) */
+    uint64_t refused_tangent;   /* filter: roots with t + R < 0 proven for a member */
+    uint64_t refused_intruder;  /* filter: roots with a sphere proven inside */
+    uint64_t rejected_fast;     /* quadruples without a vertex, decided with no GMP */
+    uint64_t roots_fast;        /* roots certified with no GMP (filter and long double rounding) */
+    uint64_t roots_round_exact; /* roots the filter certified whose rounding needed GMP */
+    uint64_t roots_exact;       /* roots judged on the exact path (filter undecided) */
+    uint64_t quads_exact;       /* quadruples the filter could not set up: every root exact */
+    uint64_t exact_solves;      /* GMP solves of a quadruple */
+    uint64_t mpfr_rounds;       /* coordinates that MPFR rounded */
+    uint64_t vertices;          /* distinct vertices appended to out */
+    uint64_t duplicates;        /* certified roots of degree > 4 already written by another quadruple */
+} vb_cert_quad_stats;
+
+/* Certifies every exact root of every quadruple: quads[k] holds 4 sphere ids
+ * in increasing order, and the quadruples are in strictly increasing
+ * lexicographic order (vb_cover_run's output is). Each root whose tangent
+ * sphere touches every member from outside (t + R_i >= 0) and has no sphere
+ * inside is a vertex; it is appended to `out` once, in canonical form: all
+ * member ids sorted, x, y, z, t the exact vertex rounded correctly, status
+ * CERTIFIED, dist 0 -- as vb_certify_list writes certified vertices. A
+ * vertex of degree > 4 comes from several quadruples and is written once
+ * per call (the certifier's keys identify it). out need not be empty; it is
+ * left sorted (vb_vertex_list_sort's order). Counts in the context's stats:
+ * candidates (quadruples), rejected (quadruples without a vertex),
+ * certified (vertices appended), and the filter counters; *stats (may be
+ * NULL) gets the details. Runs on the threads of vb_certifier_set_threads;
+ * output and counters do not depend on their number. Returns VB_OK,
+ * VB_EMISUSE (quadruples not as above; out unchanged), VB_ENOMEM, VB_EPREC
+ * or VB_EINTERNAL (message in ctx). */
+int vb_certify_quads(vb_ctx *ctx, vb_certifier *c, const uint32_t (*quads)[4], size_t n,
+                     vb_vertex_list *out, vb_cert_quad_stats *stats);
+
+/* Threads for vb_certify_list and vb_certify_quads: 0 (the default) takes
+ * the environment variable VORBALL_THREADS when it is a positive integer,
+ * else the online CPUs. The output does not depend on it: results are
+ * placed by candidate (quadruple) index and merged in that order, so every
+ * thread count writes the same lists, keys and stats as one thread. */
 void vb_certifier_set_threads(vb_certifier *c, unsigned threads);
 
 /* Counters of the certifier beyond vb_stats, for benchmarks: roundings of

@@ -4,7 +4,8 @@
 
 #include "vb_verify.h"
 #include "vbx_exact.h"
-#include "vbx_grid.h"
+#include "vbx_sindex.h"
+#include "vbx_quad.h"
 
 /* One canonical vertex identity: its sorted member set and the root of its
  * canonical quadruple (see vbx_cert_key_of). */
@@ -18,9 +19,10 @@ typedef struct vbx_key_entry {
 struct vb_certifier {
     const vb_sphere_set *set;
     vbx_data d;
-    vbx_grid g;
-    vbx_ia *gbox;          /* 4 per grid slot: d.box of g.ids[q], in grid order */
-    int borrowed;          /* worker of vb_certify_list: d and g belong to the parent */
+    vbx_sindex t;          /* centres for the emptiness scans */
+    vbx_qdata qd;          /* the scaled input in 64-bit integers (vb_certify_quads) */
+    int64_t *qz;           /* qd.z, owned unless borrowed */
+    int borrowed;          /* worker of vb_certify_list: d and t belong to the parent */
     unsigned threads;      /* vb_certify_list threads; 0 = VORBALL_THREADS or online CPUs */
     uint64_t slow_rounds;  /* MPFR roundings of finished worker runs (vb_certifier_counts) */
     vbx_solver sol, canon;
@@ -42,11 +44,16 @@ struct vb_certifier {
 int vbx_cert_defining(vb_ctx *ctx, vb_certifier *c, const vbx_root *r, const uint32_t *def,
                       size_t ndef, const vbx_ia box[4]);
 
-/* The empty tangent sphere: scans the grid around root r and sets *verdict
+/* The empty tangent sphere: scans the hierarchy around root r and sets *verdict
  * to VB_CERT_OK (all touching spheres, def included, sorted in c->members)
  * or VB_CERT_INTRUDER (*intruder: the deepest sphere inside). */
 void vbx_cert_scan(vb_ctx *ctx, vb_certifier *c, const vbx_root *r, const uint32_t *def,
                    size_t ndef, const vbx_ia box[4], int *verdict, uint32_t *intruder);
+
+/* vbx_cert_scan for callers that need no intruder's name: stops at the
+ * first sphere proven inside (*verdict = VB_CERT_INTRUDER, c->nmembers = 0). */
+void vbx_cert_scan_empty(vb_ctx *ctx, vb_certifier *c, const vbx_root *r, const uint32_t *def,
+                         size_t ndef, const vbx_ia box[4], int *verdict);
 
 /* Outer tangency (t + R_j >= 0) of sphere j at root r of c->sol: filter on
  * box, exact fallback. Returns the sign. */

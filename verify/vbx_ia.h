@@ -34,17 +34,20 @@ typedef struct vbx_ia {
 
 /* Next double towards +inf (x itself for +inf and NaN). For finite non-zero
  * x the bit pattern moves by one unit towards +inf: +1 when positive, -1
- * when negative; the sign is applied arithmetically because a branch on it
- * is unpredictable in the filters. */
+ * when negative (from DBL_MAX that gives +inf's pattern, as it should); the
+ * sign is applied arithmetically because a branch on it is unpredictable in
+ * the filters. Zero, infinities and NaN (magnitude bits 0 or >= those of
+ * +inf, so that magnitude - 1 wraps or reaches 0x7fef...f) take the rare
+ * branch: one unsigned comparison tells them apart. */
 static inline double vbx_succ(double x)
 {
-    if (__builtin_expect(!(fabs(x) < INFINITY) || x == 0.0, 0)) {
+    uint64_t b;
+    memcpy(&b, &x, sizeof b);
+    if (__builtin_expect((b & 0x7fffffffffffffffu) - 1u >= 0x7fefffffffffffffu, 0)) {
         if (x == 0.0)
             return 4.9406564584124654e-324; /* smallest subnormal */
         return x > 0.0 || x != x ? x : -DBL_MAX;
     }
-    uint64_t b;
-    memcpy(&b, &x, sizeof b);
     b += 1u - ((b >> 63) << 1);
     memcpy(&x, &b, sizeof b);
     return x;

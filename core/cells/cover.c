@@ -233,6 +233,8 @@ static int arena_make(vbq_arena *a, uint32_t nb, uint32_t lab, uint32_t st, uint
 
 static int quads_append(worker *w, const uint32_t *q, size_t n)
 {
+    if (n == 0)
+        return VB_OK;
     if (w->nq + n > w->q_cap) {
         size_t nc = w->q_cap ? w->q_cap : 4096;
         while (nc < w->nq + n)
@@ -494,14 +496,16 @@ void vb_cover_backend_close(vb_cover_backend *be)
         be->close(be);
 }
 
-int vb_cover_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *opt,
-                 vb_cover_backend *be, vb_quad_list *out, vb_cover_stats *stats)
+struct vb_cover_tree {
+    bvh g;
+};
+
+int vb_cover_prepare(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *opt,
+                     vb_cover_tree **tree, vbq_env *e)
 {
+    *tree = NULL;
     vb_cover_options o = opt ? *opt : (vb_cover_options){0};
-    job jb;
-    memset(&jb, 0, sizeof jb);
-    jb.set = set;
-    vbq_env *e = &jb.env;
+    memset(e, 0, sizeof *e);
     e->T = o.tiles ? o.tiles : VB_COVER_DEFAULT_TILES;
     e->min_level = o.min_level ? o.min_level : VB_COVER_DEFAULT_MIN_LEVEL;
     e->max_level = o.max_level ? o.max_level : VB_COVER_MAX_LEVEL;
@@ -513,26 +517,61 @@ int vb_cover_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *
         return vb_error(ctx, VB_EMISUSE, NULL, 0, "cover needs a validated sphere set");
     if (set->n > UINT32_MAX - 1)
         return vb_error(ctx, VB_EINPUT_TOOLARGE, NULL, 0, "more than 2^32 - 2 spheres");
-    bvh g;
-    if (bvh_build(set, &g) != VB_OK) {
-        bvh_free(&g);
+    vb_cover_tree *t = calloc(1, sizeof *t);
+    if (!t || bvh_build(set, &t->g) != VB_OK) {
+        if (t)
+            bvh_free(&t->g);
+        free(t);
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover tree)");
     }
+    bvh *g = &t->g;
     e->x = set->x;
     e->y = set->y;
     e->z = set->z;
     e->r = set->r;
-    e->box = g.box;
-    e->rmax = g.rmax;
-    e->ids = g.ids;
-    e->first = (uint32_t)g.first;
-    e->m = (uint32_t)g.m;
-    e->rmax_all = g.rmax_all;
-    e->near = near_radius(&g);
+    e->box = g->box;
+    e->rmax = g->rmax;
+    e->ids = g->ids;
+    e->first = (uint32_t)g->first;
+    e->m = (uint32_t)g->m;
+    e->rmax_all = g->rmax_all;
+    e->near = near_radius(g);
+    *tree = t;
+    return VB_OK;
+}
+
+void vb_cover_tree_free(vb_cover_tree *t)
+{
+    if (t)
+        bvh_free(&t->g);
+    free(t);
+}
+
+int vb_cover_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *opt,
+                 vb_cover_backend *be, vb_quad_list *out, vb_cover_stats *stats)
+{
+    vb_cover_options o = opt ? *opt : (vb_cover_options){0};
+    job jb;
+    memset(&jb, 0, sizeof jb);
+    jb.set = set;
+    vb_cover_tree *tree = NULL;
+    int prc = vb_cover_prepare(ctx, set, &o, &tree, &jb.env);
+    if (prc != VB_OK)
+        return prc;
+    bvh g = tree->g;
     /* Cells in the tree's curve order: neighbouring cells share neighbours
      * (caches, and a device's work-items). */
     jb.cells = g.ids;
     jb.ncells = g.m;
+    if (o.nparts > 1) {
+        if (o.part >= o.nparts) {
+            vb_cover_tree_free(tree);
+            return vb_error(ctx, VB_EMISUSE, NULL, 0, "cover part %u of %u", o.part, o.nparts);
+        }
+        size_t b0 = g.m * (size_t)o.part / o.nparts, b1 = g.m * ((size_t)o.part + 1) / o.nparts;
+        jb.cells = g.ids + b0;
+        jb.ncells = b1 - b0;
+    }
     int nt = vb_threads(o.threads);
     worker *w = calloc((size_t)nt, sizeof *w);
     int rc = w ? VB_OK : VB_ENOMEM;
@@ -581,12 +620,13 @@ int vb_cover_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *
         free(w[t].q);
     }
     free(w);
-    bvh_free(&g);
+    vb_cover_tree_free(tree);
     /* Cells own disjoint quadruples (by their smallest id), but a device may
      * split a cell's root patches into tasks whose lists share some: one
      * sort and one pass of repeats make the list canonical. */
+    if (rc == VB_OK && out->n > 1)
+        rc = vb_psort(out->q, out->n, sizeof *out->q, cmp_quad, nt);
     if (rc == VB_OK && out->n > 1) {
-        qsort(out->q, out->n, sizeof *out->q, cmp_quad);
         size_t k = 1;
         for (size_t a = 1; a < out->n; a++)
             if (cmp_quad(out->q[a], out->q[k - 1]) != 0)

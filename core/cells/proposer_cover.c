@@ -37,6 +37,8 @@ static int cover_run(vb_ctx *ctx, void *state, const vb_proposer_await *aw,
     vb_cover_options o;
     memset(&o, 0, sizeof o);
     o.threads = opt->threads;
+    o.part = opt->part;
+    o.nparts = opt->nparts;
     vb_quad_list q = {0};
     vb_cover_stats st;
     int rc = vb_cover_run(ctx, set, &o, s->be, &q, &st);
@@ -49,6 +51,7 @@ static int cover_run(vb_ctx *ctx, void *state, const vb_proposer_await *aw,
     res->quads.cap = q.cap;
     res->complete = 1;
     res->cover_cells = st.cells;
+    res->cover_quads = q.n;
     res->cover_patches = st.patches;
     res->cover_host_cells = st.host_cells;
     res->t_cover_device = st.t_device;

@@ -30,6 +30,11 @@ typedef struct vb_cover_options {
     unsigned max_level;  /* enumerate whatever is left at this level (0: VB_COVER_MAX_LEVEL) */
     unsigned enum_max;   /* enumerate a patch once it has at most this many owned labels (0: 3) */
     unsigned threads;    /* host threads (0: VORBALL_THREADS or online CPUs) */
+    /* Work split across processes (MPI ranks): this run covers part `part`
+     * of `nparts` (0 or 1: everything). The parts are runs of cells along
+     * the tree's curve, balanced by count, the same for every process; the
+     * union of the parts' quadruples is the whole run's. */
+    unsigned part, nparts;
 } vb_cover_options;
 
 typedef struct vb_cover_stats {
@@ -79,6 +84,16 @@ struct vb_cover_backend {
 
 /* Closes a backend; NULL is allowed. */
 void vb_cover_backend_close(vb_cover_backend *be);
+
+/* The shared input of every cell: the tree over the centres and the
+ * parameters, in *env (its arrays belong to *tree and to set). For
+ * backends and tests that run vbq_cover_cell themselves; vb_cover_run
+ * calls it. VB_OK, VB_EMISUSE (bad options, set not validated),
+ * VB_EINPUT_TOOLARGE, VB_ENOMEM. Free with vb_cover_tree_free. */
+typedef struct vb_cover_tree vb_cover_tree;
+int vb_cover_prepare(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *opt,
+                     vb_cover_tree **tree, vbq_env *env);
+void vb_cover_tree_free(vb_cover_tree *tree);
 
 /* Runs the cover on a validated set (contained spheres flagged) and appends
  * the proposed quadruples to out (sorted, unique). be NULL covers every cell

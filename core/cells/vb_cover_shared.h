@@ -692,8 +692,24 @@ VBS_FN int vbq_add_quad(const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i, vbs_u32
     return 1;
 }
 
-/* Root patches of a task: one of the 6 T^2, or all of them. */
+/* The root patches of a task: all of them (VBQ_ALL_ROOTS), or root r
+ * alone (task (r << 3)), or child c (0..3) of root r alone (task (r << 3) |
+ * (c + 1)): the root's own evaluation is the same in every task, and only
+ * its subdivision keeps one child, so the union of the tasks makes the
+ * whole cell's decisions. */
 #define VBQ_ALL_ROOTS 0xffffffffu
+#define VBQ_TASK(r, c) (((r) << 3) | (c))
+
+VBS_FN int vbq_task_root(vbs_u32 task, vbs_u32 k)
+{
+    return task == VBQ_ALL_ROOTS || (task >> 3) == k;
+}
+
+/* Does a task keep child k of a subdivided patch at `level`? */
+VBS_FN int vbq_task_child(vbs_u32 task, vbs_u32 level, vbs_u32 k)
+{
+    return task == VBQ_ALL_ROOTS || level > 0u || (task & 7u) == 0u || (task & 7u) == k + 1u;
+}
 
 #ifndef VBQ_GROUP_ONLY
 
@@ -728,7 +744,7 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
         return;
     }
     for (vbs_u32 k = 0u; k < 6u * T * T; k++)
-        if (root == VBQ_ALL_ROOTS || root == k)
+        if (vbq_task_root(root, k))
             ar->st[nst++] = vbq_root(T, k, len0, rq, far);
     /* The roots share lab[0 .. len0); lists of deeper frames are stacked
      * above top. A frame's list lies below the lists of every frame pushed
@@ -872,6 +888,8 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
         vbs_u32 off = top;
         top += keep;
         for (vbs_u32 k = 0u; k < 4u; k++) {
+            if (!vbq_task_child(root, fr.level, k))
+                continue;
             vbq_frame ch;
             vbq_child(&fr, k, off, keep, &ch);
             ar->st[nst++] = ch;

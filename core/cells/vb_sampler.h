@@ -36,6 +36,8 @@ typedef struct vb_sampler_options {
     int all_pairs;           /* 1: no culling, every cell tests all n - 1 bisectors */
     int topology;            /* 1: collect face adjacency and edge evidence */
     unsigned batch_rays;     /* rays per backend batch (0: backend's choice) */
+    unsigned part, nparts;   /* this process's part of the work (MPI ranks; 0 or 1 part:
+                                all of it); the cover splits its cells, see vb_cover.h */
     unsigned threads;        /* host threads (0: VORBALL_THREADS or online CPUs);
                                 the output does not depend on it */
     void (*progress)(void *user, double fraction); /* may be NULL */
@@ -167,6 +169,8 @@ typedef struct vb_sampler_result {
     } quads;
     int complete;
     uint64_t cover_cells, cover_patches, cover_host_cells; /* the cover's counters */
+    uint64_t cover_quads;         /* quadruples proposed: quads.n, as a counter that
+                                     processes which covered parts of the cells can add up */
     double t_cover_device;        /* seconds in the cover's device batches */
 } vb_sampler_result;
 

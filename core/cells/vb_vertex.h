@@ -44,6 +44,29 @@ int vb_vertex_list_push(vb_vertex_list *v, const uint32_t *ids, size_t nids, dou
  * common prefix), then x, y, z, t. Returns VB_OK or VB_ENOMEM. */
 int vb_vertex_list_sort(vb_vertex_list *v);
 
+/* Appends every vertex of src to dst as it is (no sorting). VB_OK or
+ * VB_ENOMEM (dst may then hold part of src). */
+int vb_vertex_list_append(vb_vertex_list *dst, const vb_vertex_list *src);
+
+/* Makes v canonical: sorted (vb_vertex_list_sort), exact repeats dropped.
+ * A repeat has the same members and the same point and t as the entry
+ * before it: the one exact vertex reached twice (through two quadruples of
+ * a vertex of degree > 4, by a repair round, or by two processes that
+ * certified parts of one input); the first in v's order is kept. *dropped
+ * (may be NULL) gets the number dropped. VB_OK, or VB_ENOMEM with v
+ * holding the same vertices (perhaps sorted). */
+int vb_vertex_list_canonical(vb_vertex_list *v, size_t *dropped);
+
+/* A list as bytes, for another process of the same build and byte order
+ * (MPI ranks): *buf (malloc'd, the caller frees) gets *len bytes. VB_OK or
+ * VB_ENOMEM. */
+int vb_vertex_list_pack(const vb_vertex_list *v, unsigned char **buf, size_t *len);
+
+/* Appends the vertices of a vb_vertex_list_pack buffer to v. VB_OK,
+ * VB_ENOMEM, or VB_EINTERNAL (message in ctx) when buf is not such a
+ * buffer (wrong size, offsets out of order). */
+int vb_vertex_list_unpack(vb_ctx *ctx, const unsigned char *buf, size_t len, vb_vertex_list *v);
+
 #ifdef __cplusplus
 }
 #endif

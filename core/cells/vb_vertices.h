@@ -42,9 +42,10 @@ typedef struct vb_certifier_ops {
     void (*close)(void *cert);
     /* May be NULL. Certifies every exact root of each sorted quadruple
      * quads[0 .. n) and writes the canonical certified set (as
-     * certify_list) to certified; rejected (may be NULL) gets the roots
-     * that are not vertices. Without it the driver certifies one candidate
-     * per double root. */
+     * certify_list) to certified; rejected (may be NULL) may get the roots
+     * that are not vertices, or be left as it is (the exact certifier
+     * counts them in the context's stats instead). Without it the driver
+     * certifies one candidate per double root. */
     int (*certify_quads)(vb_ctx *ctx, void *cert, const uint32_t (*quads)[4], size_t n,
                          vb_vertex_list *certified, vb_vertex_list *rejected);
 } vb_certifier_ops;

@@ -76,7 +76,12 @@ int vb_vertex_list_push(vb_vertex_list *v, const uint32_t *ids, size_t nids, dou
         return VB_ENOMEM;
     uint32_t *dst = v->ids + v->nids;
     memcpy(dst, ids, nids * sizeof *ids);
-    qsort(dst, nids, sizeof *dst, cmp_u32);
+    /* Most callers pass sorted ids (certified vertices): no qsort then. */
+    size_t sorted = 1;
+    while (sorted < nids && dst[sorted - 1] <= dst[sorted])
+        sorted++;
+    if (sorted < nids)
+        qsort(dst, nids, sizeof *dst, cmp_u32);
     size_t k = v->n;
     v->x[k] = x;
     v->y[k] = y;
@@ -147,5 +152,51 @@ int vb_vertex_list_sort(vb_vertex_list *v)
     }
     vb_vertex_list_free(v);
     *v = out;
+    return VB_OK;
+}
+
+int vb_vertex_list_append(vb_vertex_list *dst, const vb_vertex_list *src)
+{
+    if (reserve_vertices(dst, dst->n + src->n) || reserve_ids(dst, dst->nids + src->nids))
+        return VB_ENOMEM;
+    for (size_t k = 0; k < src->n; k++)
+        if (vb_vertex_list_push(dst, src->ids + src->start[k], src->start[k + 1] - src->start[k],
+                                src->x[k], src->y[k], src->z[k], src->t[k], src->dist[k],
+                                src->status[k]))
+            return VB_ENOMEM;
+    return VB_OK;
+}
+
+/* Same members, same rounded point and t: the same canonical vertex. */
+static int same_vertex(const vb_vertex_list *v, size_t a, size_t b)
+{
+    size_t n = v->start[a + 1] - v->start[a];
+    return n == v->start[b + 1] - v->start[b] &&
+           memcmp(v->ids + v->start[a], v->ids + v->start[b], n * sizeof *v->ids) == 0 &&
+           v->x[a] == v->x[b] && v->y[a] == v->y[b] && v->z[a] == v->z[b] && v->t[a] == v->t[b];
+}
+
+int vb_vertex_list_canonical(vb_vertex_list *v, size_t *dropped)
+{
+    if (vb_vertex_list_sort(v))
+        return VB_ENOMEM;
+    vb_vertex_list out;
+    vb_vertex_list_init(&out);
+    size_t drop = 0;
+    for (size_t k = 0; k < v->n; k++) {
+        if (k > 0 && same_vertex(v, k, k - 1)) {
+            drop++;
+            continue;
+        }
+        if (vb_vertex_list_push(&out, v->ids + v->start[k], v->start[k + 1] - v->start[k], v->x[k],
+                                v->y[k], v->z[k], v->t[k], v->dist[k], v->status[k])) {
+            vb_vertex_list_free(&out);
+            return VB_ENOMEM;
+        }
+    }
+    vb_vertex_list_free(v);
+    *v = out;
+    if (dropped)
+        *dropped = drop;
     return VB_OK;
 }

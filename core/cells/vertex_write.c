@@ -1,12 +1,15 @@
 /* Writers of vertex files: tsv (default), json and Voronota's vertex lines.
  * Numbers are printed with %.17g so that every double reads back bit-exactly;
+ * large lists are formatted on threads, written in order (the same bytes);
  * goldens in corpus/ are compared byte for byte, so the layout is fixed. */
 #include "vb_vertex_io.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "vb_json.h"
+#include "vb_parallel.h"
 
 int vb_vertex_format_parse(vb_ctx *ctx, const char *name, vb_vertex_format *out)
 {
@@ -46,18 +49,21 @@ static void write_comment_lines(FILE *f, const char *comment)
     }
 }
 
-static void write_tsv(FILE *f, const vb_vertex_list *v, const char *comment)
+/* One vertex as a line of each format (json: the array's element, with the
+ * separator before it). */
+typedef void (*line_fn)(FILE *f, const vb_vertex_list *v, size_t k);
+
+static void ids_csv(FILE *f, const vb_vertex_list *v, size_t k)
 {
-    fputs("# vorball vertices\n", f);
-    if (comment)
-        write_comment_lines(f, comment);
-    fputs("# ids\tx\ty\tz\tt\tstatus\n", f);
-    for (size_t k = 0; k < v->n; k++) {
-        for (size_t i = v->start[k]; i < v->start[k + 1]; i++)
-            fprintf(f, i == v->start[k] ? "%u" : ",%u", (unsigned)v->ids[i]);
-        fprintf(f, "\t%.17g\t%.17g\t%.17g\t%.17g\t%s\n", v->x[k], v->y[k], v->z[k], v->t[k],
-                vb_vertex_status_name(v->status[k]));
-    }
+    for (size_t i = v->start[k]; i < v->start[k + 1]; i++)
+        fprintf(f, i == v->start[k] ? "%u" : ",%u", (unsigned)v->ids[i]);
+}
+
+static void tsv_line(FILE *f, const vb_vertex_list *v, size_t k)
+{
+    ids_csv(f, v, k);
+    fprintf(f, "\t%.17g\t%.17g\t%.17g\t%.17g\t%s\n", v->x[k], v->y[k], v->z[k], v->t[k],
+            vb_vertex_status_name(v->status[k]));
 }
 
 /* JSON has no NaN or Inf: a non-finite value (only possible in a candidate
@@ -70,7 +76,103 @@ static void json_number(FILE *f, const char *key, double d)
         fprintf(f, ",\"%s\":null", key);
 }
 
-static void write_json(FILE *f, const vb_vertex_list *v, const char *comment)
+static void json_item(FILE *f, const vb_vertex_list *v, size_t k)
+{
+    fputs(k ? ",\n{\"ids\":[" : "\n{\"ids\":[", f);
+    ids_csv(f, v, k);
+    fputs("]", f);
+    json_number(f, "x", v->x[k]);
+    json_number(f, "y", v->y[k]);
+    json_number(f, "z", v->z[k]);
+    json_number(f, "t", v->t[k]);
+    fprintf(f, ",\"status\":\"%s\"}", vb_vertex_status_name(v->status[k]));
+}
+
+/* Voronota lists one tangent sphere per quadruple. A vertex with k > 4
+ * members is written as the k - 3 quadruples made of its three smallest ids
+ * and each further id: together they name every member, and at least one of
+ * them determines the point on its own (see vb_vertex_io.h). */
+static void voronota_lines(FILE *f, const vb_vertex_list *v, size_t k)
+{
+    const uint32_t *id = v->ids + v->start[k];
+    size_t m = v->start[k + 1] - v->start[k];
+    for (size_t j = 3; j < m; j++)
+        fprintf(f, "%u %u %u %u %.17g %.17g %.17g %.17g\n", (unsigned)id[0], (unsigned)id[1],
+                (unsigned)id[2], (unsigned)id[j], v->x[k], v->y[k], v->z[k], v->t[k]);
+}
+
+/* Formatting 17 digits is most of the cost of writing: blocks of vertices
+ * are formatted on the threads (vb_threads(0)) into memory, a round of them
+ * at a time, and written in order, so the bytes are those of one thread. */
+#define WRITE_BLOCK 4096u
+
+typedef struct blocks {
+    const vb_vertex_list *v;
+    line_fn fn;
+    size_t k0;
+    char **buf;
+    size_t *len;
+} blocks;
+
+static void format_block(void *arg, size_t i, int tid)
+{
+    (void)tid;
+    blocks *b = arg;
+    FILE *m = open_memstream(&b->buf[i], &b->len[i]);
+    if (!m) {
+        b->buf[i] = NULL;
+        return;
+    }
+    size_t k0 = b->k0 + i * WRITE_BLOCK, k1 = k0 + WRITE_BLOCK;
+    for (size_t k = k0; k < k1 && k < b->v->n; k++)
+        b->fn(m, b->v, k);
+    if (fclose(m) != 0) {
+        free(b->buf[i]);
+        b->buf[i] = NULL;
+    }
+}
+
+static int write_lines(vb_ctx *ctx, FILE *f, const vb_vertex_list *v, line_fn fn)
+{
+    int nt = vb_threads(0);
+    if (nt == 1 || v->n <= WRITE_BLOCK) {
+        for (size_t k = 0; k < v->n; k++)
+            fn(f, v, k);
+        return VB_OK;
+    }
+    size_t round = 4u * (size_t)nt;
+    char **buf = calloc(round, sizeof *buf);
+    size_t *len = calloc(round, sizeof *len);
+    int rc = buf && len ? VB_OK : VB_ENOMEM;
+    for (size_t k0 = 0; rc == VB_OK && k0 < v->n; k0 += round * WRITE_BLOCK) {
+        size_t nb = (v->n - k0 + WRITE_BLOCK - 1) / WRITE_BLOCK;
+        nb = nb < round ? nb : round;
+        blocks b = {v, fn, k0, buf, len};
+        vb_parallel_for(format_block, &b, nb, nt);
+        for (size_t i = 0; i < nb; i++) {
+            if (!buf[i])
+                rc = VB_ENOMEM;
+            else if (rc == VB_OK)
+                fwrite(buf[i], 1, len[i], f);
+            free(buf[i]);
+            buf[i] = NULL;
+        }
+    }
+    free(buf);
+    free(len);
+    return rc == VB_OK ? VB_OK : vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (writing vertices)");
+}
+
+static int write_tsv(vb_ctx *ctx, FILE *f, const vb_vertex_list *v, const char *comment)
+{
+    fputs("# vorball vertices\n", f);
+    if (comment)
+        write_comment_lines(f, comment);
+    fputs("# ids\tx\ty\tz\tt\tstatus\n", f);
+    return write_lines(ctx, f, v, tsv_line);
+}
+
+static int write_json(vb_ctx *ctx, FILE *f, const vb_vertex_list *v, const char *comment)
 {
     fputs("{", f);
     if (comment) {
@@ -79,37 +181,20 @@ static void write_json(FILE *f, const vb_vertex_list *v, const char *comment)
         fputs(",", f);
     }
     fputs("\"vertices\":[", f);
-    for (size_t k = 0; k < v->n; k++) {
-        fputs(k ? ",\n{\"ids\":[" : "\n{\"ids\":[", f);
-        for (size_t i = v->start[k]; i < v->start[k + 1]; i++)
-            fprintf(f, i == v->start[k] ? "%u" : ",%u", (unsigned)v->ids[i]);
-        fputs("]", f);
-        json_number(f, "x", v->x[k]);
-        json_number(f, "y", v->y[k]);
-        json_number(f, "z", v->z[k]);
-        json_number(f, "t", v->t[k]);
-        fprintf(f, ",\"status\":\"%s\"}", vb_vertex_status_name(v->status[k]));
-    }
+    int rc = write_lines(ctx, f, v, json_item);
     fputs("\n]}\n", f);
+    return rc;
 }
 
-/* Voronota lists one tangent sphere per quadruple. A vertex with k > 4
- * members is written as the k - 3 quadruples made of its three smallest ids
- * and each further id: together they name every member, and at least one of
- * them determines the point on its own (see vb_vertex_io.h). */
 static int write_voronota(vb_ctx *ctx, FILE *f, const vb_vertex_list *v)
 {
     for (size_t k = 0; k < v->n; k++) {
-        const uint32_t *id = v->ids + v->start[k];
         size_t m = v->start[k + 1] - v->start[k];
         if (m < 4)
             return vb_error(ctx, VB_EMISUSE, NULL, 0,
                             "vertex %zu has %zu ids: voronota lines need 4", k, m);
-        for (size_t j = 3; j < m; j++)
-            fprintf(f, "%u %u %u %u %.17g %.17g %.17g %.17g\n", (unsigned)id[0], (unsigned)id[1],
-                    (unsigned)id[2], (unsigned)id[j], v->x[k], v->y[k], v->z[k], v->t[k]);
     }
-    return VB_OK;
+    return write_lines(ctx, f, v, voronota_lines);
 }
 
 int vb_vertex_write(vb_ctx *ctx, FILE *f, const vb_vertex_list *v, vb_vertex_format fmt,
@@ -117,8 +202,8 @@ int vb_vertex_write(vb_ctx *ctx, FILE *f, const vb_vertex_list *v, vb_vertex_for
 {
     int rc = VB_OK;
     switch (fmt) {
-    case VB_VFMT_TSV: write_tsv(f, v, comment); break;
-    case VB_VFMT_JSON: write_json(f, v, comment); break;
+    case VB_VFMT_TSV: rc = write_tsv(ctx, f, v, comment); break;
+    case VB_VFMT_JSON: rc = write_json(ctx, f, v, comment); break;
     case VB_VFMT_VORONOTA: rc = write_voronota(ctx, f, v); break;
     default: return vb_error(ctx, VB_EMISUSE, NULL, 0, "unknown vertex format %d", (int)fmt);
     }

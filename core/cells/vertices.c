@@ -179,35 +179,12 @@ static int quads_add(quads *s, const vb_vertex_list *v)
     return VB_OK;
 }
 
-/* Appends src to dst, then sorts and drops exact repeats (same members and
- * the same rounded exact point: the same canonical vertex). */
+/* Appends src to dst and makes dst canonical again (sorted, exact repeats
+ * dropped: the same canonical vertex). */
 static int merge_certified(vb_vertex_list *dst, const vb_vertex_list *src)
 {
-    for (size_t k = 0; k < src->n; k++)
-        if (vb_vertex_list_push(dst, src->ids + src->start[k], src->start[k + 1] - src->start[k],
-                                src->x[k], src->y[k], src->z[k], src->t[k], src->dist[k],
-                                src->status[k]))
-            return VB_ENOMEM;
-    if (vb_vertex_list_sort(dst))
-        return VB_ENOMEM;
-    vb_vertex_list out;
-    vb_vertex_list_init(&out);
-    for (size_t k = 0; k < dst->n; k++) {
-        size_t n = dst->start[k + 1] - dst->start[k];
-        if (k > 0 && n == dst->start[k] - dst->start[k - 1] &&
-            memcmp(dst->ids + dst->start[k], dst->ids + dst->start[k - 1], n * sizeof *dst->ids) == 0 &&
-            dst->x[k] == dst->x[k - 1] && dst->y[k] == dst->y[k - 1] && dst->z[k] == dst->z[k - 1] &&
-            dst->t[k] == dst->t[k - 1])
-            continue;
-        if (vb_vertex_list_push(&out, dst->ids + dst->start[k], n, dst->x[k], dst->y[k], dst->z[k],
-                                dst->t[k], dst->dist[k], dst->status[k])) {
-            vb_vertex_list_free(&out);
-            return VB_ENOMEM;
-        }
-    }
-    vb_vertex_list_free(dst);
-    *dst = out;
-    return VB_OK;
+    int rc = vb_vertex_list_append(dst, src);
+    return rc == VB_OK ? vb_vertex_list_canonical(dst, NULL) : rc;
 }
 
 /* Candidates the certifier refused because a sphere cuts their tangent
@@ -325,15 +302,76 @@ static int certify_quads(vb_ctx *ctx, const vb_certifier_ops *ops, void *cert,
     return rc == VB_ENOMEM ? vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (certify)") : rc;
 }
 
+/* The certifier's set-up (exact data and spatial index of the spheres)
+ * needs only the spheres: it runs on a thread of its own, with its own
+ * context for messages, while the proposer works. */
+typedef struct cert_opener {
+    const vb_certifier_ops *ops;
+    const vb_sphere_set *set;
+    unsigned threads;
+    vb_ctx *tctx;
+    void *cert;
+    int rc;
+    vb_jobs job;
+    int started;
+} cert_opener;
+
+static void *open_certifier(void *arg)
+{
+    cert_opener *co = arg;
+    co->rc = co->tctx ? co->ops->open(co->tctx, co->set, co->threads, &co->cert) : VB_ENOMEM;
+    return NULL;
+}
+
+static void cert_opener_start(cert_opener *co, const vb_certifier_ops *ops,
+                              const vb_sphere_set *set, unsigned threads)
+{
+    memset(co, 0, sizeof *co);
+    co->ops = ops;
+    co->set = set;
+    co->threads = threads;
+    if (vb_open(&co->tctx, NULL) != VB_OK)
+        co->tctx = NULL;
+    co->started = vb_jobs_start(&co->job, open_certifier, co, sizeof *co, 1) == 1;
+}
+
+/* Waits for the set-up (or runs it here when its thread did not start);
+ * the certifier, or NULL with the error in ctx. */
+static void *cert_opener_join(vb_ctx *ctx, cert_opener *co, int *rc)
+{
+    vb_jobs_join(&co->job);
+    *rc = co->rc;
+    if (co->rc != VB_OK) {
+        if (co->cert)
+            co->ops->close(co->cert);
+        co->cert = NULL;
+        *rc = vb_error(ctx, co->rc, NULL, 0, "%s", co->tctx ? vb_errmsg(co->tctx) : "out of memory");
+    }
+    vb_close(co->tctx);
+    co->tctx = NULL;
+    return co->cert;
+}
+
+/* After a failed proposal: the set-up's certifier and messages dropped
+ * (the proposal's error stands). */
+static void cert_opener_discard(cert_opener *co)
+{
+    vb_jobs_join(&co->job);
+    if (co->cert)
+        co->ops->close(co->cert);
+    vb_close(co->tctx);
+}
+
 /* Exact certification of the candidates, then the repair rounds (not for
  * a proposer that proves completeness: its refused quadruples are simply
- * not vertices); t_certify and t_total (from t0) are set. */
-static int certify(vb_ctx *ctx, const vb_certifier_ops *ops, const vb_sphere_set *set,
-                   const vb_vertices_config *cfg, double t0, vb_vertices_result *res)
+ * not vertices); t_certify and t_total (from t0) are set. The certifier
+ * comes from co (started before the proposer). */
+static int certify(vb_ctx *ctx, const vb_certifier_ops *ops, cert_opener *co,
+                   const vb_sphere_set *set, double t0, vb_vertices_result *res)
 {
     double t1 = vb_now();
-    void *cert = NULL;
-    int rc = ops->open(ctx, set, cfg->sampler.threads, &cert);
+    int rc = VB_OK;
+    void *cert = cert_opener_join(ctx, co, &rc);
     if (rc == VB_OK && res->sampler.complete)
         rc = certify_quads(ctx, ops, cert, set, res);
     else if (rc == VB_OK)
@@ -376,6 +414,8 @@ int vb_vertices_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertices_con
     } else if ((rc = p->open(ctx, be->devices, NULL, &state)) != VB_OK) {
         return rc;
     }
+    cert_opener co;
+    cert_opener_start(&co, be->certifier, set, cfg->sampler.threads);
     vb_proposer_await aw = {await_state, opener_ready, &op, cfg->device};
     rc = propose(ctx, p, state, async ? &aw : NULL, set, cfg, res);
     if (async) {
@@ -390,8 +430,11 @@ int vb_vertices_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertices_con
         rc = rerun_on_twin(ctx, be->devices, dev, p, &state, set, cfg, res);
     /* Releasing a GPU context takes tens of milliseconds: after the
      * certification, which does not need it. */
-    if (rc == VB_OK)
-        rc = certify(ctx, be->certifier, set, cfg, t0, res);
+    if (rc == VB_OK) {
+        rc = certify(ctx, be->certifier, &co, set, t0, res);
+    } else {
+        cert_opener_discard(&co);
+    }
     if (state)
         p->close(state);
     if (dev)
@@ -453,6 +496,8 @@ int vb_vertices_run_on(vb_ctx *ctx, vb_vertices_engine *e, const vb_sphere_set *
                        const vb_vertices_config *cfg, vb_vertices_result *res)
 {
     double t0 = vb_now();
+    cert_opener co;
+    cert_opener_start(&co, e->be.certifier, set, cfg->sampler.threads);
     int rc = propose(ctx, e->prop, e->state, NULL, set, cfg, res);
     if (rc != VB_OK && VB_CATEGORY(rc) == VB_EDEVICE && e->dev) {
         /* Later runs on e stay on the twin. */
@@ -460,7 +505,11 @@ int vb_vertices_run_on(vb_ctx *ctx, vb_vertices_engine *e, const vb_sphere_set *
         e->be.devices->close(e->dev);
         e->dev = NULL;
     }
-    return rc == VB_OK ? certify(ctx, e->be.certifier, set, cfg, t0, res) : rc;
+    if (rc != VB_OK) {
+        cert_opener_discard(&co);
+        return rc;
+    }
+    return certify(ctx, e->be.certifier, &co, set, t0, res);
 }
 
 void vb_vertices_certificate(const vb_vertices_result *r, char *buf, size_t size)
@@ -472,6 +521,7 @@ void vb_vertices_certificate(const vb_vertices_result *r, char *buf, size_t size
     }
     snprintf(buf, size,
              "complete: %zu certified vertices, every vertex of the diagram "
-             "(direction cover of %llu cells, %zu quadruples, every root decided exactly)",
-             r->certified.n, (unsigned long long)s->cover_cells, s->quads.n);
+             "(direction cover of %llu cells, %llu quadruples, every root decided exactly)",
+             r->certified.n, (unsigned long long)s->cover_cells,
+             (unsigned long long)s->cover_quads);
 }

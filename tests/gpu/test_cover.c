@@ -1,0 +1,189 @@
+/* The direction cover (core/cells/vb_cover.h) gives the same quadruples on
+ * every path: host threads (1 and 3), the work-item kernel on the OpenCL CPU
+ * device (PoCL), the same with small first-tier arenas so that cells move to
+ * the second tier as root-patch tasks, and the GPU's group kernel run on
+ * host threads (cover_wg_emu.c). Every quadruple is sorted, owned by its
+ * smallest id, and the list is sorted and unique. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cover_wg_emu.h"
+#include "vb_cover.h"
+#include "vb_test.h"
+#include "vbg_cover.h"
+#include "vbg_runtime.h"
+
+static int cmp_quad(const void *pa, const void *pb)
+{
+    const uint32_t *a = pa, *b = pb;
+    for (int k = 0; k < 4; k++)
+        if (a[k] != b[k])
+            return a[k] < b[k] ? -1 : 1;
+    return 0;
+}
+
+static int same(const vb_quad_list *a, const vb_quad_list *b)
+{
+    return a->n == b->n && (a->n == 0 || memcmp(a->q, b->q, a->n * sizeof *a->q) == 0);
+}
+
+static void check_canonical(const vb_quad_list *l)
+{
+    int ok = 1;
+    for (size_t k = 0; k < l->n; k++) {
+        const uint32_t *q = l->q[k];
+        if (!(q[0] < q[1] && q[1] < q[2] && q[2] < q[3]))
+            ok = 0;
+        if (k > 0 && cmp_quad(l->q[k - 1], q) >= 0)
+            ok = 0;
+    }
+    CHECK(ok);
+}
+
+static int host_cover(vb_ctx *ctx, const vb_sphere_set *s, unsigned threads, vb_quad_list *out)
+{
+    vb_cover_options o;
+    memset(&o, 0, sizeof o);
+    o.threads = threads;
+    return vb_cover_run(ctx, s, &o, NULL, out, NULL);
+}
+
+/* The group kernel on host threads, over every cell. */
+static int emulated(vb_ctx *ctx, const vb_sphere_set *s, vb_quad_list *out)
+{
+    vb_cover_tree *tree;
+    vbq_env env;
+    int rc = vb_cover_prepare(ctx, s, NULL, &tree, &env);
+    if (rc != VB_OK)
+        return rc;
+    uint32_t n = env.m, cap = 512u * (n ? n : 1), nq = 0;
+    uint32_t *roots = malloc((n ? n : 1) * sizeof *roots);
+    vbq_cell_out *outs = calloc(n ? n : 1, sizeof *outs);
+    uint32_t *qout = malloc(4 * (size_t)cap * sizeof *qout);
+    for (uint32_t k = 0; roots && k < n; k++)
+        roots[k] = VBQ_ALL_ROOTS;
+    rc = roots && outs && qout ? VB_OK : VB_ENOMEM;
+    if (rc == VB_OK && vb_cover_wg_emulate(&env, env.ids, roots, n, outs, qout, cap, &nq) != 0)
+        rc = VB_EINTERNAL;
+    for (uint32_t k = 0; rc == VB_OK && k < n; k++)
+        if (outs[k].status != VBQ_OK)
+            rc = VB_EINTERNAL; /* every cell fits the emulator's arenas */
+    if (rc == VB_OK) {
+        out->q = malloc((nq ? nq : 1) * sizeof *out->q);
+        if (!out->q)
+            rc = VB_ENOMEM;
+        else {
+            memcpy(out->q, qout, (size_t)nq * sizeof *out->q);
+            out->n = out->cap = nq;
+            qsort(out->q, nq, sizeof *out->q, cmp_quad);
+        }
+    }
+    free(roots);
+    free(outs);
+    free(qout);
+    vb_cover_tree_free(tree);
+    return rc;
+}
+
+/* The work-item kernel on the OpenCL CPU device; with small first-tier
+ * arenas the cells overflow and run again as root-patch tasks. */
+static int device_cover(vb_ctx *ctx, const vb_sphere_set *s, int split, vb_quad_list *out)
+{
+    if (split) {
+        setenv("VORBALL_COVER_NB", "48", 1);
+        setenv("VORBALL_COVER_TIER2", "64", 1);
+    }
+    vbg_runtime *rt = NULL;
+    vb_cover_backend *be = NULL;
+    int rc = vbg_runtime_open(ctx, VB_DEVICE_CPU, &rt);
+    if (rc == VB_OK)
+        rc = vbg_cover_open(ctx, rt, &be);
+    vb_cover_options o;
+    memset(&o, 0, sizeof o);
+    o.threads = 1; /* the device does every cell: nothing left for the host */
+    vb_cover_stats st;
+    if (rc == VB_OK)
+        rc = vb_cover_run(ctx, s, &o, be, out, &st);
+    if (rc == VB_OK && split)
+        CHECK(st.host_cells == 0);
+    vb_cover_backend_close(be);
+    vbg_runtime_close(rt);
+    unsetenv("VORBALL_COVER_NB");
+    unsetenv("VORBALL_COVER_TIER2");
+    return rc;
+}
+
+static void one(vb_ctx *ctx, const char *path, int have_device, int emulate)
+{
+    vb_read_options ro;
+    memset(&ro, 0, sizeof ro);
+    vb_sphere_set *s = NULL;
+    int rc = vb_spheres_load(ctx, path, &ro, NULL, 4, &s);
+    CHECK_INT(rc, VB_OK);
+    if (rc != VB_OK)
+        return;
+    vb_quad_list a = {0}, b = {0}, c = {0}, d = {0}, e = {0};
+    CHECK_INT(host_cover(ctx, s, 1, &a), VB_OK);
+    CHECK(a.n > 0);
+    check_canonical(&a);
+    for (size_t k = 0; k < a.n; k++)
+        if (s->contained[a.q[k][0]] || s->contained[a.q[k][3]]) {
+            CHECK(0); /* a contained sphere has no cell and no quadruple */
+            break;
+        }
+    CHECK_INT(host_cover(ctx, s, 3, &b), VB_OK);
+    CHECK(same(&a, &b));
+    /* A barrier per step on threads: the smaller inputs only. */
+    if (emulate) {
+        CHECK_INT(emulated(ctx, s, &c), VB_OK);
+        CHECK(same(&a, &c));
+    }
+    if (have_device) {
+        CHECK_INT(device_cover(ctx, s, 0, &d), VB_OK);
+        CHECK(same(&a, &d));
+        CHECK_INT(device_cover(ctx, s, 1, &e), VB_OK);
+        CHECK(same(&a, &e));
+    }
+    if ((emulate && !same(&a, &c)) || (have_device && (!same(&a, &d) || !same(&a, &e))))
+        fprintf(stderr, "%s: host %zu, emulated group kernel %zu, device %zu, split %zu\n",
+                path, a.n, c.n, d.n, e.n);
+    vb_quad_list_free(&a);
+    vb_quad_list_free(&b);
+    vb_quad_list_free(&c);
+    vb_quad_list_free(&d);
+    vb_quad_list_free(&e);
+    vb_spheres_free(s);
+}
+
+int main(void)
+{
+    const char *src = getenv("VORBALL_SOURCE_DIR");
+    if (!src) {
+        fprintf(stderr, "VORBALL_SOURCE_DIR must be set\n");
+        return 1;
+    }
+    vb_ctx *ctx;
+    vb_config cfg = {0, NULL};
+    if (vb_open(&ctx, &cfg) != VB_OK)
+        return 1;
+    vbg_runtime *rt = NULL;
+    int have_device = vbg_runtime_open(ctx, VB_DEVICE_CPU, &rt) == VB_OK;
+    vbg_runtime_close(rt);
+    vb_clear_error(ctx);
+    if (!have_device)
+        fprintf(stderr, "no OpenCL CPU device: the device paths are not tested\n");
+    const char *cases[] = {"corpus/inputs/cubic_lattice.xyzr", "corpus/inputs/hexagonal_ring.xyzr",
+                           "corpus/inputs/two_vertices_one_quadruple.xyzr",
+                           "corpus/inputs/contained_sphere.xyzr",
+                           "corpus/inputs/bisectors_no_meet.xyzr",
+                           "corpus/inputs/jittered_lattice.xyzr",
+                           "corpus/inputs/crambin_fragment.xyzr"};
+    char path[4096];
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        snprintf(path, sizeof path, "%s/%s", src, cases[k]);
+        one(ctx, path, have_device, k < 6);
+    }
+    vb_close(ctx);
+    VB_TEST_END();
+}

@@ -1,0 +1,106 @@
+/* The filtered tangent solve of one quadruple (verify/quad_filter.c), the
+ * fast path of vb_certify_quads.
+ *
+ * Same equations, unknowns and root order as the exact solver
+ * (tangent_solver.c): base a = q[0], rows q[1..3], u = (q, s) with
+ * q = p - c_a, s = t + R_a in scaled units (input times 10^E), the line
+ * u = (U + mu v) / (2 D) and the roots mu = (-B +- sqrt(delta)) / A. When
+ * every row entry is below 2^28 (scaled, relative to the base), v, U and D
+ * are computed exactly in 128-bit integers; A, B, C, delta, the roots and
+ * the coordinates are double-double numbers with a proven radius
+ * (vbx_dd.h). They give the double intervals of the decisions (t + R_i and
+ * the emptiness scan's box) and, by two exact-sign tests at the midpoints
+ * around a guess, the correctly rounded coordinates. The exact solver
+ * prefers the free unknown s (k = 3) whenever its minor is non-zero; the
+ * filter runs only then, so its root with +sqrt(delta) is the exact
+ * solver's root[0] (sigma = +1) and the one with -sqrt(delta) its root[1].
+ * Anything else goes to the exact path. */
+#ifndef VBX_QUAD_H
+#define VBX_QUAD_H
+
+#include <stdint.h>
+
+#include "vbx_dd.h"
+#include "vbx_ia.h"
+
+__extension__ typedef __int128 vbx_i128;
+
+typedef struct vbx_qf_ops vbx_qf_ops;
+
+/* The scaled input as 64-bit integers, when it fits (vb_certifier_open). */
+typedef struct vbx_qdata {
+    const vbx_qf_ops *ops; /* vbx_qf_ops_plain, or vbx_qf_ops_fma on a CPU with FMA */
+    int ok;             /* every scaled value fits |z| < 2^62 and 10^E is exact in double */
+    const int64_t *z;   /* 4n: X, Y, Z, R times 10^E */
+    double scale;       /* 10^E (exact) */
+} vbx_qdata;
+
+/* The exact line of a quadruple. */
+typedef struct vbx_qline {
+    uint32_t q[4];
+    int64_t r[4];       /* R_i - R_a (r[0] = 0) */
+    vbx_i128 v[4], U[3], D; /* v = kernel (v[3] = -D), U = particular solution (U_3 = 0) */
+} vbx_qline;
+
+enum vbx_qf_status {
+    VBX_QF_EXACT = 0,   /* the filter cannot set up or decide the roots: exact path */
+    VBX_QF_NONE = 1,    /* proven: no real root (delta < 0) */
+    VBX_QF_TWO = 2      /* two distinct real roots (delta > 0, A != 0 proven) */
+};
+
+/* What the two roots share, in double-double with proven radii. */
+typedef struct vbx_qprep {
+    vbx_dd v[4], U[3], D, A, B, C, sq; /* sq = sqrt(delta) */
+    int sb;                             /* sign of B, 0 when the enclosure cannot tell */
+} vbx_qprep;
+
+/* One root: root 0 is the exact solver's sigma = +1, root 1 sigma = -1. */
+typedef struct vbx_qroot {
+    vbx_dd Pn, Qd;      /* mu = -Pn / Qd */
+    vbx_ia s;           /* t + R_a, scaled */
+    vbx_dd N[4], Den[2];/* x, y, z = N[k] / Den[0], t = N[3] / Den[1], input units */
+    vbx_ia p[4];        /* enclosures of x, y, z, t (the emptiness scans' box) */
+} vbx_qroot;
+
+/* The exact line of sorted quadruple q: 1 when the rows fit (|entry| < 2^28
+ * relative to the base, scaled) and D != 0 (the exact solver's k = 3), 0
+ * otherwise (the exact path decides). */
+int vbx_qf_line(const vbx_qdata *z, const uint32_t q[4], vbx_qline *L);
+
+/* A, B, C, delta and sqrt(delta) of L: enum vbx_qf_status. */
+int vbx_qf_prep(const vbx_qline *L, vbx_qprep *P);
+
+/* Root `root` of a prepared line with two roots: Pn, Qd and s. */
+void vbx_qf_root(const vbx_qprep *P, int root, vbx_qroot *R);
+
+/* Sign of t + R_i at root enclosure s for member index i (0..3): +1, -1,
+ * or 0 when the enclosure cannot tell. */
+int vbx_qf_tangent_sign(const vbx_qline *L, vbx_ia s, int i);
+
+/* The point of root R: N, Den and the box p. 1, or 0 when a value leaves
+ * the range the double-double bounds assume (the exact path decides). */
+int vbx_qf_point(const vbx_qdata *z, const vbx_qline *L, const vbx_qprep *P, vbx_qroot *R);
+
+/* The correctly rounded x, y, z, t (input units) of a root with its point:
+ * 1 when all four are decided (out set), 0 when one is not (a near tie, a
+ * value at 0: the caller rounds exactly). */
+int vbx_qf_round(const vbx_qroot *R, double out[4]);
+
+/* The double-double steps, in two builds of quad_filter.c with equal
+ * results: plain, and compiled for FMA (faster products; vbx_two_prod). */
+struct vbx_qf_ops {
+    int (*line)(const vbx_qdata *z, const uint32_t q[4], vbx_qline *L);
+    int (*prep)(const vbx_qline *L, vbx_qprep *P);
+    void (*root)(const vbx_qprep *P, int root, vbx_qroot *R);
+    int (*point)(const vbx_qdata *z, const vbx_qline *L, const vbx_qprep *P, vbx_qroot *R);
+    int (*round)(const vbx_qroot *R, double out[4]);
+};
+extern const vbx_qf_ops vbx_qf_ops_plain;
+#ifdef VBX_QF_HAVE_FMA
+extern const vbx_qf_ops vbx_qf_ops_fma;
+#endif
+
+/* The ops for this CPU. */
+const vbx_qf_ops *vbx_qf_ops_best(void);
+
+#endif
