@@ -22,6 +22,10 @@ grep -v '^#' ../golden/cubic_lattice.tsv > "$work/golden_body.tsv"
 grep -v '^#' "$work/ref_bz2.tsv" | cmp -s - "$work/golden_body.tsv" || fail "bzip2 input changed the vertices"
 "$vorball" reference - -o "$work/ref_gz.tsv" < "$work/in.gz" > "$out" 2>&1 || fail "gzip on stdin failed"
 grep -v '^#' "$work/ref_gz.tsv" | cmp -s - "$work/golden_body.tsv" || fail "gzip on stdin changed the vertices"
+run 0 "$out" "$vorball" --help
+expect_line "$out" "vorball --version"
+run 0 "$out" "$vorball" --version
+expect_line "$out" "^vorball [0-9]"
 run 0 "$out" "$vorball" reference --help
 for name in "--format F" "--model N" "--radii FILE" "--water" "--no-hydrogens" "--strict-elements" \
             "--zero-radius M" "--assembly N"; do
