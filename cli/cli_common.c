@@ -1,11 +1,15 @@
 /* Exit codes, diagnostics and file helpers for the subcommands. */
 #include "cli_common.h"
 #include "vb_diag.h"
+#include "vb_world.h"
 
 #include <errno.h>
+#include <sys/stat.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "vb_output.h"
 
 int vb_cli_exit_code(int status)
 {
@@ -22,6 +26,9 @@ int vb_cli_fail(vb_ctx *ctx, int status)
 
 int vb_cli_usage_error(const char *cmd, const char *fmt, ...)
 {
+    /* Every MPI rank parses the same command line: one message. */
+    if (vb_world_rank() != 0)
+        return VB_EXIT_USAGE;
     fprintf(stderr, "vorball %s: ", cmd);
     va_list ap;
     va_start(ap, fmt);
@@ -31,26 +38,74 @@ int vb_cli_usage_error(const char *cmd, const char *fmt, ...)
     return VB_EXIT_USAGE;
 }
 
+/* The command line, for the check that no output overwrites an input. */
+static int cli_argc;
+static char **cli_argv;
+
+void vb_cli_set_args(int argc, char **argv)
+{
+    cli_argc = argc;
+    cli_argv = argv;
+}
+
+int vb_cli_check_output(vb_ctx *ctx, const char *path)
+{
+    struct stat out;
+    if (!path || strcmp(path, "-") == 0 || stat(path, &out) != 0 || !S_ISREG(out.st_mode))
+        return VB_OK;
+    /* Arguments naming the output's file: the output itself (its own
+     * argument, if the path was given on the command line) and anything
+     * else, which is an input or another output. Compared by device and
+     * inode, so "./in.pdb", "in.pdb" and a link to it are the same file. */
+    int same = 0, self = 0;
+    const char *other = NULL;
+    for (int i = 1; i < cli_argc; i++) {
+        struct stat st;
+        const char *a = cli_argv[i];
+        if (a[0] == '-' || stat(a, &st) != 0 || st.st_dev != out.st_dev || st.st_ino != out.st_ino)
+            continue;
+        same++;
+        if (!self && (a == path || strcmp(a, path) == 0))
+            self = 1;
+        else if (!other)
+            other = a;
+    }
+    if (same > self)
+        return vb_error(ctx, VB_EMISUSE, path, 0,
+                        "output is the same file as '%s' on the command line: refused (it "
+                        "would be overwritten)", other ? other : path);
+    return VB_OK;
+}
+
 FILE *vb_cli_open_output(vb_ctx *ctx, const char *path)
 {
     if (!path || strcmp(path, "-") == 0)
         return stdout;
-    FILE *f = fopen(path, "w");
-    if (!f)
-        vb_error(ctx, VB_EIO, path, 0, "cannot open for writing: %s", strerror(errno));
-    return f;
+    if (vb_cli_check_output(ctx, path) != VB_OK)
+        return NULL;
+    return vb_output_open(ctx, path);
 }
 
 int vb_cli_close_output(vb_ctx *ctx, FILE *f, const char *path)
 {
-    int bad = ferror(f);
-    if (f == stdout)
-        bad |= fflush(f) != 0;
-    else
-        bad |= fclose(f) != 0;
-    if (bad)
+    if (f != stdout)
+        return vb_output_commit(ctx, f);
+    if (ferror(f) || fflush(f) != 0)
         return vb_error(ctx, VB_EIO, path ? path : "<stdout>", 0, "write failed");
     return VB_OK;
+}
+
+int vb_cli_finish_output(vb_ctx *ctx, FILE *f, const char *path, int rc)
+{
+    if (!f)
+        return rc;
+    if (rc == VB_OK)
+        return vb_cli_close_output(ctx, f, path);
+    if (f == stdout)
+        fflush(f);
+    else
+        vb_output_discard(f);
+    return rc;
 }
 
 int vb_cli_parse_double(const char *s, double *out)

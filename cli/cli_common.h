@@ -41,13 +41,31 @@ int vb_cli_usage_error(const char *cmd, const char *fmt, ...)
 #endif
     ;
 
-/* Opens the output: NULL or "-" is stdout. Returns NULL and sets the context
- * error (VB_EIO) on failure. Close with vb_cli_close_output. */
+/* Remembers the command line (main does, before the subcommand runs), for
+ * vb_cli_check_output. */
+void vb_cli_set_args(int argc, char **argv);
+
+/* VB_EMISUSE (message naming both) when `path` exists and is the same file
+ * (device and inode, through links) as another argument of the command line:
+ * an input, or another output. VB_OK otherwise, and for "-" or NULL. */
+int vb_cli_check_output(vb_ctx *ctx, const char *path);
+
+/* Opens the output: NULL or "-" is stdout; a file is refused when it is an
+ * input (vb_cli_check_output) and is otherwise written under a temporary
+ * name and renamed when closed (vb_output.h), so a failing command leaves no
+ * partial file. Returns NULL with the context error (VB_EMISUSE, VB_EIO) on
+ * failure. Finish with vb_cli_close_output or vb_cli_finish_output. */
 FILE *vb_cli_open_output(vb_ctx *ctx, const char *path);
 
 /* Closes an output opened by vb_cli_open_output (stdout is flushed, not
- * closed). Returns VB_OK or VB_EIO (with message) if a write failed. */
+ * closed) and puts the file in place. Returns VB_OK or VB_EIO (with message)
+ * if a write, the close or the rename failed. */
 int vb_cli_close_output(vb_ctx *ctx, FILE *f, const char *path);
+
+/* Ends an output after a command's work returned rc: VB_OK closes it as
+ * vb_cli_close_output does (and returns that status); a failure discards
+ * the file (the path keeps what it held) and returns rc. f may be NULL. */
+int vb_cli_finish_output(vb_ctx *ctx, FILE *f, const char *path, int rc);
 
 /* Parses a whole string as a double / a non-negative integer. Returns 0 on
  * success, -1 if the text is not a complete number. */

@@ -10,6 +10,8 @@
 #include "pipeline_options.h"
 #include "vb_json.h"
 #include "vb_default.h"
+#include "vb_world.h"
+#include "vertex_parts.h"
 
 static void help(FILE *f)
 {
@@ -28,7 +30,11 @@ static void help(FILE *f)
             "  --tol T, --tiles T, --threads N, --all-pairs  as for vertices\n"
             "  --json               JSON array instead of the table\n"
             "  -o FILE              output file (default stdout)\n"
-            "A progress bar goes to stderr when it is a terminal and a run is slow.\n",
+            "A progress bar goes to stderr when it is a terminal and a run is slow.\n"
+            "Under mpirun -np N each run is split over the ranks as `vertices` splits it:\n"
+            "stage times are the slowest rank's, total is rank 0's wall clock from a\n"
+            "barrier to the merged vertices (JSON adds ranks and combine, the gather\n"
+            "and merge).\n",
             VB_SAMPLER_DEFAULT_SAMPLES);
     vb_cli_input_help(f);
 }
@@ -55,7 +61,8 @@ static const char *base_name(const char *p)
 }
 
 static void row(FILE *f, int json, int first, const char *input, size_t atoms,
-                const vb_vertices_result *r, double first_total, double device_setup)
+                const vb_vertices_result *r, const vb_cli_vertex_totals *tot, double first_total,
+                double device_setup)
 {
     const vb_stage_times *t = &r->sampler.times;
     if (json) {
@@ -72,9 +79,9 @@ static void row(FILE *f, int json, int first, const char *input, size_t atoms,
                 "\"cull\": %.6f, \"upload\": %.6f, \"envelope\": %.6f, \"vertices_s\": %.6f, "
                 "\"matching\": %.6f, \"targeted\": %.6f, \"tangent\": %.6f, \"completion\": %.6f, "
                 "\"certification\": %.6f, \"setup\": %.6f, \"setup_wait\": %.6f, \"total\": %.6f, "
-                "\"total_first_run\": %.6f, \"device_setup\": %.6f}",
+                "\"total_first_run\": %.6f, \"device_setup\": %.6f",
                 r->certified.n, (unsigned long long)r->sampler.first_cell,
-                (unsigned long long)r->sampler.from_sampling, r->rejected.n,
+                (unsigned long long)r->sampler.from_sampling, tot->rejected,
                 (unsigned long long)r->sampler.incomplete,
                 (unsigned long long)r->sampler.sampled_vertices,
                 (unsigned long long)r->sampler.vertices_incomplete,
@@ -82,6 +89,11 @@ static void row(FILE *f, int json, int first, const char *input, size_t atoms,
                 t->vertices, t->matching, t->targeted, t->tangent, t->completion, r->t_certify,
                 r->t_setup, r->t_setup_wait, r->t_total,
                 first_total, device_setup);
+        if (vb_world_size() > 1)
+            fprintf(f, ", \"ranks\": %d, \"combine\": %.6f, \"merged_repeats\": %zu}",
+                    vb_world_size(), tot->t_combine, tot->repeats);
+        else
+            fputs("}", f);
     } else {
         if (first && device_setup > 0.0)
             fprintf(f, "# backend %s: %s (opened once, in %.3f s)\n", r->backend, r->device,
@@ -105,7 +117,7 @@ int vb_cmd_bench(int argc, char **argv)
     const char **inputs = calloc((size_t)argc, sizeof *inputs);
     int ninputs = 0;
     vb_ctx *ctx;
-    if (!inputs || vb_open(&ctx, NULL)) {
+    if (!inputs || vb_world_open_ctx(&ctx)) {
         free(inputs);
         return VB_EXIT_NOMEM;
     }
@@ -145,47 +157,74 @@ int vb_cmd_bench(int argc, char **argv)
         vb_close(ctx);
         return code;
     }
-    FILE *out = vb_cli_open_output(ctx, outpath);
-    int rc = out ? VB_OK : VB_EIO;
+    for (int k = 0; k < ninputs && code == VB_EXIT_OK; k++)
+        code = vb_world_check_input("bench", inputs[k]);
+    if (code != VB_EXIT_OK) {
+        free(inputs);
+        vb_close(ctx);
+        return code;
+    }
+    /* Rank 0 writes; every rank runs its part of each run. */
+    int rank0 = vb_world_rank() == 0;
+    FILE *out = rank0 ? vb_cli_open_output(ctx, outpath) : NULL;
+    int rc = rank0 && !out ? vb_errcode(ctx) : VB_OK;
+    int busy = vb_cli_vertices_part(ctx, &po.cfg);
     vb_vertices_engine *dev = NULL;
-    if (rc == VB_OK && !cold)
+    if (rc == VB_OK && !cold && busy)
         rc = vb_vertices_open(ctx, vb_default_backends(), &po.cfg, &dev);
-    if (rc == VB_OK && json)
+    rc = vb_world_agree(ctx, rc);
+    if (rc == VB_OK && rank0 && json)
         fputs("[", out);
-    else if (rc == VB_OK)
+    else if (rc == VB_OK && rank0)
         fprintf(out, "%-18s %6s %7s %9s %8s %8s %9s %9s %9s %9s %9s\n", "input", "atoms",
                 "samples", "vertices", "cull", "upload", "envelope", "vertices", "matching",
                 "certify", "total");
     int first = 1;
     for (int k = 0; k < ninputs && rc == VB_OK; k++) {
         vb_sphere_set *set = NULL;
-        rc = vb_cli_load_spheres(ctx, inputs[k], &po.in, 4, &set);
+        int quiet = vb_world_quiet(ctx);
+        rc = vb_world_agree(ctx, vb_cli_load_spheres(ctx, inputs[k], &po.in, 4, &set));
+        vb_world_loud(ctx, quiet);
         for (int s = 0; s < nsamples && rc == VB_OK; s++) {
             vb_vertices_result best;
             vb_vertices_result_init(&best);
+            vb_cli_vertex_totals best_tot;
+            memset(&best_tot, 0, sizeof best_tot);
             double first_total = 0.0;
             for (size_t rep = 0; rep < repeat && rc == VB_OK; rep++) {
                 vb_vertices_result r;
                 vb_vertices_result_init(&r);
+                vb_cli_vertex_totals tot;
                 po.cfg.sampler.samples = samples[s];
                 vb_vertices_config cfg = po.cfg;
                 vb_cli_bar bar;
                 vb_cli_bar_attach(&bar, &cfg.sampler);
-                rc = cold ? vb_vertices_run_default(ctx, set, &cfg, &r)
-                          : vb_vertices_run_on(ctx, dev, set, &cfg, &r);
+                /* Split runs start together and end when rank 0 holds the
+                 * merged vertices. */
+                vb_world_barrier();
+                double t0 = vb_now();
+                if (busy)
+                    rc = cold ? vb_vertices_run_default(ctx, set, &cfg, &r)
+                              : vb_vertices_run_on(ctx, dev, set, &cfg, &r);
                 vb_cli_bar_clear(&bar);
+                rc = vb_world_agree(ctx, rc);
+                if (rc == VB_OK)
+                    rc = vb_world_agree(ctx, vb_cli_vertices_combine(ctx, &r, &tot));
+                if (vb_world_size() > 1)
+                    r.t_total = vb_now() - t0;
                 if (rep == 0)
                     first_total = r.t_total;
                 if (rc == VB_OK && (rep == 0 || r.t_total < best.t_total)) {
                     vb_vertices_result_free(&best);
                     best = r;
+                    best_tot = tot;
                 } else {
                     vb_vertices_result_free(&r);
                 }
             }
-            if (rc == VB_OK) {
-                row(out, json, first, base_name(inputs[k]), set->n, &best, first_total,
-                    cold ? 0.0 : vb_vertices_open_seconds(dev));
+            if (rc == VB_OK && rank0) {
+                row(out, json, first, base_name(inputs[k]), set->n, &best, &best_tot,
+                    first_total, cold || !dev ? 0.0 : vb_vertices_open_seconds(dev));
                 fflush(out);
                 first = 0;
             }
@@ -194,11 +233,11 @@ int vb_cmd_bench(int argc, char **argv)
         vb_spheres_free(set);
     }
     vb_vertices_close(dev);
-    if (rc == VB_OK && json)
+    if (rc == VB_OK && rank0 && json)
         fputs("\n]\n", out);
     if (out)
-        rc = rc ? rc : vb_cli_close_output(ctx, out, outpath);
-    code = rc == VB_OK ? VB_EXIT_OK : vb_cli_fail(ctx, rc);
+        rc = vb_cli_finish_output(ctx, out, outpath, rc);
+    code = vb_world_end(ctx, rc);
     free(inputs);
     vb_close(ctx);
     return code;

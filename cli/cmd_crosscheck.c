@@ -198,15 +198,12 @@ static int run(vb_ctx *ctx, const options *o)
         vb_vertex_list cl;
         vb_vertex_list_init(&cl);
         FILE *f = vb_cli_open_output(ctx, o->cgal_out);
-        rc = f ? vb_cgal_to_list(ctx, cgal, &cl) : VB_EIO;
+        rc = f ? vb_cgal_to_list(ctx, cgal, &cl) : vb_errcode(ctx);
         if (rc == VB_OK)
             rc = vb_vertex_write(ctx, f, &cl, VB_VFMT_TSV,
                                  o->power ? "CGAL power diagram (Regular_triangulation_3, Epeck)"
                                           : "CGAL Delaunay_triangulation_3 circumcentres, Epeck");
-        if (f) {
-            int rc2 = vb_cli_close_output(ctx, f, o->cgal_out);
-            rc = rc ? rc : rc2;
-        }
+        rc = vb_cli_finish_output(ctx, f, o->cgal_out, rc);
         vb_vertex_list_free(&cl);
         if (rc != VB_OK)
             goto fail;
@@ -253,7 +250,7 @@ static int run(vb_ctx *ctx, const options *o)
 
     out = vb_cli_open_output(ctx, o->out);
     if (!out) {
-        rc = VB_EIO;
+        rc = vb_errcode(ctx);
         goto fail;
     }
     fprintf(out, "# vorball crosscheck of %s (%zu spheres) against CGAL %s %s\n", o->spheres,
@@ -287,8 +284,7 @@ static int run(vb_ctx *ctx, const options *o)
     goto done;
 fail:
     ex = vb_cli_fail(ctx, rc);
-    if (out)
-        vb_cli_close_output(ctx, out, o->out);
+    vb_cli_finish_output(ctx, out, o->out, rc);
 done:
     free(lines);
     vb_vertex_list_free(&mine);

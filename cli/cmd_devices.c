@@ -34,7 +34,7 @@ int vb_cmd_devices(int argc, char **argv)
     if (vb_open(&ctx, NULL))
         return VB_EXIT_NOMEM;
     FILE *out = vb_cli_open_output(ctx, outpath);
-    int rc = out ? vbg_list_devices(ctx, out) : VB_EIO;
+    int rc = out ? vbg_list_devices(ctx, out) : vb_errcode(ctx);
     if (out && rc == VB_OK) {
         vbg_runtime *rt;
         if (vbg_runtime_open(ctx, VB_DEVICE_AUTO, &rt) == VB_OK) {
@@ -45,8 +45,7 @@ int vb_cmd_devices(int argc, char **argv)
             vb_clear_error(ctx);
         }
     }
-    if (out)
-        rc = rc ? rc : vb_cli_close_output(ctx, out, outpath);
+    rc = vb_cli_finish_output(ctx, out, outpath, rc);
     int code = rc ? vb_cli_fail(ctx, rc) : VB_EXIT_OK;
     vb_close(ctx);
     return code;

@@ -31,7 +31,11 @@ static void help(FILE *f)
             "      --protein FILE     seeds at the atom centres of FILE (PDB, mmCIF, PQR, XYZR)\n"
             "                         fitted into an [n]^3 grid\n"
             "      --margin A         protein: margin around the atoms in Angstrom (default 2)\n"
-            "  -V, --variant V[,V..]  jfa|jfa+1|jfa+2|1+jfa|facet|facet-full|all (default jfa+1)\n"
+            "  -V, --variant V[,V..]  jfa|jfa+1|jfa+2|1+jfa|facet|facet-full|exact|\n"
+            "                         exact-boundary|all (default jfa+1; all: the first five\n"
+            "                         and exact). exact: the exact diagram by tiles (complete\n"
+            "                         seed lists per tile, exact decisions); exact-boundary:\n"
+            "                         the same and its boundary pixels counted\n"
             "  -m M                   Facet-JFA start resolution (default: smallest without\n"
             "                         seed collisions)\n"
             "      --fuse-cells C     Facet-JFA on OpenCL: the coarse JFA and the levels of at\n"
@@ -52,9 +56,14 @@ static void help(FILE *f)
     vb_cli_input_help(f);
     fprintf(f,
             "\nCounts: 'pixels' is the number of work-items that ran a JFA step (the\n"
-            "paper's pixels processed); 'boundary' (Facet-JFA) the pixels left unmarked.\n"
+            "paper's pixels processed; exact: the voxels decided one by one, those of\n"
+            "tiles left with one seed are filled); 'boundary' (Facet-JFA) the pixels left\n"
+            "unmarked (exact-boundary: the boundary pixels). With --check, 'wrong' counts\n"
+            "pixels whose seed is strictly farther than the nearest, 'differ' (JSON) those\n"
+            "whose label is not the exact diagram's (ties to the lowest index).\n"
             "Warnings: W780 seeds lost to a shared start pixel, W781 no OpenCL device\n"
-            "(reference backend used), W782 Facet-JFA cannot start coarser than n.\n");
+            "(reference backend used), W782 Facet-JFA cannot start coarser than n,\n"
+            "W751 OpenCL failed mid-run (that run and the rest on the reference).\n");
 }
 
 typedef struct {
@@ -69,12 +78,13 @@ static int parse_variants(vb_ctx *ctx, const char *s, variant_list *out)
     snprintf(buf, sizeof buf, "%s", s);
     for (char *tok = strtok(buf, ","); tok; tok = strtok(NULL, ",")) {
         int all = strcmp(tok, "all") == 0;
-        int need = all ? VBJ_FACET + 1 : 1;
+        int need = all ? VBJ_FACET + 2 : 1;
         if (out->nv + need > 8)
             return vb_error(ctx, VB_EMISUSE, NULL, 0, "too many variants");
         if (all) {
             for (int i = 0; i <= VBJ_FACET; i++)
                 out->v[out->nv++] = (vbj_variant)i;
+            out->v[out->nv++] = VBJ_EXACT;
             continue;
         }
         int rc = vbj_variant_parse(ctx, tok, &out->v[out->nv]);
@@ -154,13 +164,23 @@ static void print_json(FILE *f, const char *device, const vbj_seeds *s, const ch
                 x->r.ms_transfer, c->steps, (unsigned long long)c->step_pixels,
                 (unsigned long long)c->threads, c->m, (unsigned long long)c->boundary,
                 c->collisions);
+        if (VBJ_IS_EXACT(x->v))
+            fprintf(f,
+                    ", \"tiles\": %llu, \"tiles_uniform\": %llu, \"candidates\": %llu, "
+                    "\"survivors\": %llu, \"evals\": %llu, \"exact_voxels\": %llu, "
+                    "\"tiles_chunked\": %llu, \"visited\": %llu",
+                    (unsigned long long)c->tiles, (unsigned long long)c->tiles_uniform,
+                    (unsigned long long)c->candidates, (unsigned long long)c->survivors,
+                    (unsigned long long)c->evals, (unsigned long long)c->exact_voxels,
+                    (unsigned long long)c->tiles_chunked, (unsigned long long)c->visited);
         if (x->checked)
             fprintf(f,
-                    ", \"wrong\": %zu, \"wrong_rate\": %.8g, \"max_err\": %.6g, "
+                    ", \"wrong\": %zu, \"differ\": %zu, \"wrong_rate\": %.8g, \"max_err\": %.6g, "
                     "\"mean_err\": %.6g, \"boundary_exact\": %zu, \"boundary_found\": %zu, "
                     "\"boundary_missed\": %zu, \"boundary_extra\": %zu",
-                    x->m.wrong, x->m.wrong_rate, x->m.max_err, x->m.mean_err, x->m.boundary_exact,
-                    x->m.boundary_found, x->m.boundary_missed, x->m.boundary_extra);
+                    x->m.wrong, x->m.differ, x->m.wrong_rate, x->m.max_err, x->m.mean_err,
+                    x->m.boundary_exact, x->m.boundary_found, x->m.boundary_missed,
+                    x->m.boundary_extra);
         fprintf(f, "}");
     }
     fprintf(f, "\n]}\n");
@@ -171,11 +191,11 @@ static void print_text(FILE *f, const char *device, const vbj_seeds *s, const ch
 {
     fprintf(f, "# device: %s\n# grid: %u^%d, %zu seeds (%s)\n", device, s->n, s->dim, s->k,
             source);
-    fprintf(f, "%-10s %10s %10s %14s %6s %12s %12s %12s %10s\n", "variant", "ms", "ms_min",
+    fprintf(f, "%-14s %10s %10s %14s %6s %12s %12s %12s %10s\n", "variant", "ms", "ms_min",
             "pixels", "m", "boundary", "wrong", "wrong_rate", "max_err");
     for (int i = 0; i < nruns; i++) {
         const run_figures *x = &runs[i];
-        fprintf(f, "%-10s %10.3f %10.3f %14llu %6u %12llu", vbj_variant_name(x->v), x->mean_ms,
+        fprintf(f, "%-14s %10.3f %10.3f %14llu %6u %12llu", vbj_variant_name(x->v), x->mean_ms,
                 x->min_ms, (unsigned long long)x->r.counts.step_pixels, x->r.counts.m,
                 (unsigned long long)x->r.counts.boundary);
         if (x->checked)
@@ -449,7 +469,7 @@ int vb_cmd_jfa(int argc, char **argv)
     if (!rc) {
         FILE *f = vb_cli_open_output(ctx, a.out);
         if (!f)
-            rc = VB_EIO;
+            rc = vb_errcode(ctx);
         else {
             const char *device = e->device;
             if (a.json)

@@ -10,23 +10,25 @@
 
 static const char *const usage_text =
     "usage: vorball reference IN [-o FILE] [--output-format tsv|json|voronota] [--stats]\n"
-    "                         [input options]\n"
+    "                         [--force] [input options]\n"
     "\n"
     "Computes every vertex of the additively weighted Voronoi diagram of the\n"
     "spheres in IN ('-' reads stdin) exactly: all quadruples, a proven interval\n"
     "filter, GMP for what it cannot decide. Each vertex is listed once with all\n"
     "the spheres it touches; coordinates are the exact values rounded to the\n"
-    "nearest double. Cost grows as n^4: meant for inputs of a few hundred spheres.\n"
+    "nearest double. Cost grows as n^4: meant for inputs of a few hundred spheres;\n"
+    "above 500 it refuses (E130, exit 40) unless --force.\n"
     "\n"
     "  -o FILE          write the vertices to FILE (default stdout)\n"
     "  --output-format F  tsv (default), json or voronota, as for `vorball vertices`\n"
     "                   (--format, as for every command, is the input format)\n"
-    "  --stats          print filter and exact-evaluation counts and the time to stderr\n";
+    "  --stats          print filter and exact-evaluation counts and the time to stderr\n"
+    "  --force          run on more than 500 spheres (minutes to hours)\n";
 
 int vb_cmd_reference(int argc, char **argv)
 {
     const char *in_path = NULL, *out_path = NULL, *fmt_name = "tsv";
-    int stats = 0;
+    int stats = 0, force = 0;
     vb_cli_input_opts in;
     vb_cli_input_defaults(&in);
     for (int i = 1; i < argc; i++) {
@@ -45,6 +47,8 @@ int vb_cmd_reference(int argc, char **argv)
             fmt_name = argv[i];
         } else if (strcmp(argv[i], "--stats") == 0) {
             stats = 1;
+        } else if (strcmp(argv[i], "--force") == 0) {
+            force = 1;
         } else {
             int used = vb_cli_input_option(&in, argc, argv, &i);
             if (used < 0)
@@ -79,6 +83,12 @@ int vb_cmd_reference(int argc, char **argv)
     int exit_code = VB_EXIT_OK;
     double t0 = vb_now();
     rc = vb_cli_load_spheres(ctx, in_path, &in, 4, &set);
+    if (rc == VB_OK && set->n > VB_REFERENCE_MAX_SPHERES && !force)
+        rc = vb_error(ctx, VB_EINPUT_REFERENCE_SIZE, in_path, 0,
+                      "%zu spheres: the exact reference takes at most %d without --force (its "
+                      "time grows as n^2.7 to n^4; `vorball vertices` is the pipeline for "
+                      "large inputs)",
+                      set->n, VB_REFERENCE_MAX_SPHERES);
     if (rc == VB_OK)
         rc = vb_reference(ctx, set, &out);
     double t1 = vb_now();
@@ -91,9 +101,7 @@ int vb_cmd_reference(int argc, char **argv)
             snprintf(comment, sizeof comment, "vorball reference %s: %zu spheres, %zu vertices",
                      in_path, set->n, out.n);
             rc = vb_vertex_write(ctx, f, &out, fmt, comment);
-            int rc2 = vb_cli_close_output(ctx, f, out_path);
-            if (rc == VB_OK)
-                rc = rc2;
+            rc = vb_cli_finish_output(ctx, f, out_path, rc);
         }
     }
     if (rc == VB_OK && stats) {

@@ -6,11 +6,12 @@
 #include "cli_common.h"
 #include "commands.h"
 #include "input_options.h"
+#include "vb_arc.h"
 #include "vb_verify_file.h"
 
 static const char *const usage_text =
-    "usage: vorball verify SPHERES VERTICES [--tol T] [--complete] [--json] [-o FILE]\n"
-    "                      [input options]\n"
+    "usage: vorball verify SPHERES VERTICES [--tol T] [--complete] [--arcs] [--json]\n"
+    "                      [-o FILE] [input options]\n"
     "\n"
     "Checks every line of VERTICES (tsv, json or Voronota's 'q1 q2 q3 q4 x y z r',\n"
     "detected by content; '-' reads stdin) exactly against SPHERES. Each line is\n"
@@ -27,20 +28,24 @@ static const char *const usage_text =
     "  --tol T      distance tolerance, > 0 (default 1e-6)\n"
     "  --complete   also compute all vertices exactly (vorball reference) and list\n"
     "               those the file misses (brute force: small inputs)\n"
+    "  --arcs       exact arc closure (any size): trace every Voronoi edge of the\n"
+    "               certified vertices to its next vertex exactly, list each vertex\n"
+    "               the file misses on the way, and print the counts (half arcs\n"
+    "               closed, to infinity, undecided; components); not with --json\n"
     "  --json       report as JSON with counts per class\n"
     "  -o FILE      write the report to FILE (default stdout)\n";
 
 static const char *const usage_tail =
     "\n"
-    "Exit status: 0 when every line is certified (and, with --complete, nothing\n"
-    "is missed), 1 when a problem was found, 15 (E105) when VERTICES has no vertex\n"
+    "Exit status: 0 when every line is certified (and, with --complete or --arcs,\n"
+    "nothing is missed and no arc is undecided), 1 when a problem was found, 15 (E105) when VERTICES has no vertex\n"
     "line (nothing verified), 11 (E101) for a line that names a sphere twice, 20\n"
     "(E110) for a vertex file over 2 GiB, other codes as for every command.\n";
 
 typedef struct {
     const char *spheres_path, *vertices_path, *out_path;
     double tol;
-    int complete, json;
+    int complete, arcs, json;
     vb_cli_input_opts in;
 } options;
 
@@ -60,6 +65,8 @@ static int parse_args(int argc, char **argv, options *o)
             if (i + 1 >= argc || vb_cli_parse_double(argv[++i], &o->tol) || !(o->tol > 0) ||
                 !isfinite(o->tol))
                 return vb_cli_usage_error("verify", "--tol needs a positive number");
+        } else if (strcmp(a, "--arcs") == 0) {
+            o->arcs = 1;
         } else if (strcmp(a, "--complete") == 0) {
             o->complete = 1;
         } else if (strcmp(a, "--json") == 0) {
@@ -80,6 +87,8 @@ static int parse_args(int argc, char **argv, options *o)
         return vb_cli_usage_error("verify", "needs SPHERES and VERTICES");
     if (strcmp(pos[0], "-") == 0 && strcmp(pos[1], "-") == 0)
         return vb_cli_usage_error("verify", "only one of SPHERES and VERTICES can be '-'");
+    if (o->arcs && o->json)
+        return vb_cli_usage_error("verify", "--arcs has no JSON report yet");
     o->spheres_path = pos[0];
     o->vertices_path = pos[1];
     return VB_EXIT_OK;
@@ -95,11 +104,19 @@ static int run(vb_ctx *ctx, const options *o, int *mismatch)
     if (rc == VB_OK)
         rc = vb_verify_file(ctx, set, o->vertices_path, o->tol, o->complete, &r);
     if (rc == VB_OK && !(out = vb_cli_open_output(ctx, o->out_path)))
-        rc = VB_EIO;
+        rc = vb_errcode(ctx);
     if (rc == VB_OK) {
         rc = o->json ? vb_verify_write_json(ctx, out, o->spheres_path, o->vertices_path, set, &r)
                      : vb_verify_write_text(ctx, out, o->vertices_path, set, &r);
         *mismatch = !vb_verify_report_ok(&r);
+        if (rc == VB_OK && o->arcs) {
+            vb_arc_report ar;
+            rc = vb_verify_arcs(ctx, set, &r, &ar);
+            if (rc == VB_OK)
+                rc = vb_arc_write_text(ctx, out, o->vertices_path, &ar);
+            *mismatch |= rc == VB_OK && !vb_arc_report_complete(&ar);
+            vb_arc_report_free(&ar);
+        }
         int rc2 = vb_cli_close_output(ctx, out, o->out_path);
         rc = rc ? rc : rc2;
     }

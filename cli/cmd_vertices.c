@@ -11,6 +11,8 @@
 #include "pipeline_options.h"
 #include "vb_default.h"
 #include "vb_diag.h"
+#include "vb_world.h"
+#include "vertex_parts.h"
 
 static void help(FILE *f)
 {
@@ -41,7 +43,11 @@ static void help(FILE *f)
             "  --all-pairs          no neighbour culling (every cell tests all bisectors)\n"
             "  --threads N          host threads (default: VORBALL_THREADS or all CPUs);\n"
             "                       the output does not depend on it\n"
-            "  --stats              pipeline and certifier counters on stderr\n",
+            "  --stats              pipeline and certifier counters on stderr\n"
+            "Under mpirun -np N (a build with VORBALL_WITH_MPI) every rank reads INPUT,\n"
+            "the cover's cells are split over the ranks (--proposer sampling runs on\n"
+            "rank 0 alone, W830) and rank 0 writes the merged output, byte-identical to\n"
+            "one process's.\n",
             VB_SAMPLER_DEFAULT_SAMPLES);
     vb_cli_input_help(f);
     fprintf(f,
@@ -51,32 +57,18 @@ static void help(FILE *f)
             "Warnings W760-W779 come from this command.\n");
 }
 
-static void print_stats(vb_ctx *ctx, const vb_vertices_result *r)
+/* The library's counters (vb_vertices_write_stats), and under MPI the
+ * ranks' totals and the merge. */
+static void print_stats(vb_ctx *ctx, const vb_vertices_result *r, const vb_cli_vertex_totals *tot)
 {
-    const vb_sampler_result *s = &r->sampler;
-    const vb_stats *st = vb_ctx_stats(ctx);
-    fprintf(stderr,
-            "backend\t%s\ndevice\t%s\nsamples\t%u\ntiles\t%u\ntol\t%.6g\nclip\t%.6g\n"
-            "rays\t%llu\nbisectors\t%llu\nraw_candidates\t%llu\nvertices_matched\t%llu\n"
-            "complete_first_pass\t%llu\ntargeted_searches\t%llu\ntargeted_found\t%llu\n"
-            "incomplete_after_search\t%llu\nsampled_vertices\t%llu\n"
-            "vertices_incomplete\t%llu\ndropped_tangent_test\t%llu\nfrom_sampling\t%llu\n"
-            "swaps\t%llu\nring_tries\t%llu\nfirst_cell\t%llu\ncandidates_certified\t%llu\n"
-            "certifier_rejected\t%zu\nrepair_candidates\t%zu\ncertified_vertices\t%zu\n"
-            "max_candidate_distance\t%.3g\n"
-            "filter_calls\t%llu\nfilter_failures\t%llu\nexact_evals\t%llu\n",
-            r->backend, r->device, s->samples, s->tiles, s->tol, s->clip,
-            (unsigned long long)s->rays, (unsigned long long)s->bisectors,
-            (unsigned long long)s->raw_candidates, (unsigned long long)s->clusters,
-            (unsigned long long)s->complete_first, (unsigned long long)s->targeted_searches,
-            (unsigned long long)s->targeted_found, (unsigned long long)s->incomplete,
-            (unsigned long long)s->sampled_vertices, (unsigned long long)s->vertices_incomplete,
-            (unsigned long long)s->dropped, (unsigned long long)s->from_sampling,
-            (unsigned long long)s->swaps, (unsigned long long)s->ring_tries,
-            (unsigned long long)s->first_cell, (unsigned long long)s->candidates.n,
-            r->rejected.n, r->repaired_candidates, r->certified.n, r->max_dist,
-            (unsigned long long)st->filter_calls, (unsigned long long)st->filter_failures,
-            (unsigned long long)st->exact_evals);
+    vb_vertices_write_stats(ctx, stderr, r);
+    if (vb_world_size() > 1)
+        fprintf(stderr,
+                "ranks\t%d\nranks_candidates_certified\t%zu\nranks_certifier_rejected\t%zu\n"
+                "ranks_repair_candidates\t%zu\ncover_quadruples\t%llu\nmerged_repeats\t%zu\n"
+                "combine_s\t%.3f\n",
+                vb_world_size(), tot->candidates, tot->rejected, tot->repaired,
+                (unsigned long long)r->sampler.cover_quads, tot->repeats, tot->t_combine);
 }
 
 static int write_topology(vb_ctx *ctx, const char *path, const vb_sphere_set *set,
@@ -92,9 +84,8 @@ static int write_topology(vb_ctx *ctx, const char *path, const vb_sphere_set *se
                 "the triple in doubles, or a closed edge through one vertex)",
                 topo.unresolved);
     FILE *f = vb_cli_open_output(ctx, path);
-    rc = f ? vb_topology_write(ctx, f, &topo) : VB_EIO;
-    if (f)
-        rc = rc ? rc : vb_cli_close_output(ctx, f, path);
+    rc = f ? vb_topology_write(ctx, f, &topo) : vb_errcode(ctx);
+    rc = vb_cli_finish_output(ctx, f, path, rc);
     vb_topology_free(&topo);
     return rc;
 }
@@ -107,7 +98,7 @@ int vb_cmd_vertices(int argc, char **argv)
     vb_vertex_format vfmt = VB_VFMT_TSV;
     int stats = 0;
     vb_ctx *ctx;
-    if (vb_open(&ctx, NULL))
+    if (vb_world_open_ctx(&ctx))
         return VB_EXIT_NOMEM;
     int code = VB_EXIT_OK;
     for (int i = 1; i < argc && code == VB_EXIT_OK; i++) {
@@ -144,6 +135,8 @@ int vb_cmd_vertices(int argc, char **argv)
         po.cfg.proposer = "sampling";
     if (code == VB_EXIT_OK && topo_path && strcmp(po.cfg.proposer, "sampling") != 0)
         code = vb_cli_usage_error("vertices", "--topology needs --proposer sampling");
+    if (code == VB_EXIT_OK)
+        code = vb_world_check_input("vertices", input);
     if (code != VB_EXIT_OK) {
         vb_close(ctx);
         return code;
@@ -151,29 +144,39 @@ int vb_cmd_vertices(int argc, char **argv)
     vb_sphere_set *set = NULL;
     vb_vertices_result res;
     vb_vertices_result_init(&res);
+    vb_cli_vertex_totals tot;
+    /* Every rank reads the input; rank 0 alone prints its warnings. */
+    int quiet = vb_world_quiet(ctx);
     int rc = vb_cli_load_spheres(ctx, input, &po.in, 4, &set);
+    vb_world_loud(ctx, quiet);
+    int busy = vb_cli_vertices_part(ctx, &po.cfg);
     vb_cli_bar bar;
     vb_cli_bar_attach(&bar, &po.cfg.sampler);
-    if (rc == VB_OK)
+    if (rc == VB_OK && busy)
         rc = vb_vertices_run_default(ctx, set, &po.cfg, &res);
     vb_cli_bar_clear(&bar);
-    if (rc == VB_OK && stats)
-        print_stats(ctx, &res);
+    /* Rank 0 writes once every rank's part is certified and merged. */
+    rc = vb_world_agree(ctx, rc);
+    if (rc == VB_OK)
+        rc = vb_world_agree(ctx, vb_cli_vertices_combine(ctx, &res, &tot));
+    int writer = rc == VB_OK && vb_world_rank() == 0;
+    if (writer && stats)
+        print_stats(ctx, &res, &tot);
     /* A cover's refused roots are quadruples that hold no vertex: expected,
      * and no warning. */
-    if (rc == VB_OK && res.rejected.n && !res.sampler.complete)
-        vb_warn(ctx, VB_W_CERT_REJECTED, NULL, 0, "the certifier rejected %zu candidate(s)", res.rejected.n);
+    if (writer && tot.rejected && !res.sampler.complete)
+        vb_warn(ctx, VB_W_CERT_REJECTED, NULL, 0, "the certifier rejected %zu candidate(s)", tot.rejected);
     char note[512];
     vb_vertices_certificate(&res, note, sizeof note);
-    if (rc == VB_OK) {
+    if (writer) {
         FILE *out = vb_cli_open_output(ctx, outpath);
-        rc = out ? vb_vertex_write(ctx, out, &res.certified, vfmt, note[0] ? note : NULL) : VB_EIO;
-        if (out)
-            rc = rc ? rc : vb_cli_close_output(ctx, out, outpath);
+        rc = out ? vb_vertex_write(ctx, out, &res.certified, vfmt, note[0] ? note : NULL)
+                 : vb_errcode(ctx);
+        rc = vb_cli_finish_output(ctx, out, outpath, rc);
     }
-    if (rc == VB_OK && topo_path)
+    if (writer && rc == VB_OK && topo_path)
         rc = write_topology(ctx, topo_path, set, &res);
-    code = rc == VB_OK ? VB_EXIT_OK : vb_cli_fail(ctx, rc);
+    code = vb_world_end(ctx, rc);
     vb_vertices_result_free(&res);
     vb_spheres_free(set);
     vb_close(ctx);

@@ -1,6 +1,9 @@
 /* PNG output of label grids through libpng. */
 #include "jfa_png.h"
 
+#include "cli_common.h"
+#include "vb_output.h"
+
 #include <errno.h>
 #include <png.h>
 #include <setjmp.h>
@@ -9,21 +12,21 @@
 
 int vb_png_write_rgb(vb_ctx *ctx, const char *path, uint32_t w, uint32_t h, const uint8_t *rgb)
 {
-    FILE *f = fopen(path, "wb");
+    FILE *f = vb_cli_open_output(ctx, path);
     if (!f)
-        return vb_error(ctx, VB_EIO, path, 0, "cannot open for writing: %s", strerror(errno));
+        return vb_errcode(ctx);
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
     png_infop info = png ? png_create_info_struct(png) : NULL;
     if (!png || !info) {
         png_destroy_write_struct(&png, NULL);
-        fclose(f);
-        return vb_error(ctx, VB_ENOMEM, path, 0, "libpng: out of memory");
+        return vb_cli_finish_output(ctx, f, path,
+                                    vb_error(ctx, VB_ENOMEM, path, 0, "libpng: out of memory"));
     }
     /* libpng reports write errors by longjmp. */
     if (setjmp(png_jmpbuf(png))) {
         png_destroy_write_struct(&png, &info);
-        fclose(f);
-        return vb_error(ctx, VB_EIO, path, 0, "PNG write failed");
+        return vb_cli_finish_output(ctx, f, path,
+                                    vb_error(ctx, VB_EIO, path, 0, "PNG write failed"));
     }
     png_init_io(png, f);
     png_set_IHDR(png, info, w, h, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
@@ -33,9 +36,7 @@ int vb_png_write_rgb(vb_ctx *ctx, const char *path, uint32_t w, uint32_t h, cons
         png_write_row(png, (png_const_bytep)(rgb + (size_t)y * w * 3));
     png_write_end(png, NULL);
     png_destroy_write_struct(&png, &info);
-    if (fclose(f) != 0)
-        return vb_error(ctx, VB_EIO, path, 0, "write failed: %s", strerror(errno));
-    return VB_OK;
+    return vb_cli_close_output(ctx, f, path);
 }
 
 /* A bright, well-spread colour per label (integer hash). */

@@ -4,6 +4,24 @@
 
 #include "cli_common.h"
 #include "commands.h"
+#include "vb_world.h"
+#include "vb_output.h"
+
+/* An ASan build of vorball keeps ASan's alternate signal stack off: on some
+ * hosts ASan aborts when it cannot unmap that stack as a PoCL worker thread
+ * exits (see tests/CMakeLists.txt). ASAN_OPTIONS still overrides it. */
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define VB_ASAN 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__) || defined(VB_ASAN)
+const char *__asan_default_options(void);
+const char *__asan_default_options(void)
+{
+    return "use_sigaltstack=0";
+}
+#endif
 
 typedef struct {
     const char *name;
@@ -55,10 +73,14 @@ static void usage(FILE *f)
             "6 internal, 7 degenerate, 8 precision, 11-27 bad input (see README).\n");
 }
 
-int main(int argc, char **argv)
+/* The command line after the world joined: a command, help or version. */
+static int dispatch(int argc, char **argv)
 {
+    /* Mistakes are the same on every MPI rank: rank 0 names them. */
+    FILE *err = vb_world_rank() == 0 ? stderr : NULL;
     if (argc < 2) {
-        usage(stderr);
+        if (err)
+            usage(err);
         return VB_EXIT_USAGE;
     }
     if (vb_cli_is_help(argv[1])) {
@@ -69,10 +91,40 @@ int main(int argc, char **argv)
         printf("vorball 0.1.0\n");
         return VB_EXIT_OK;
     }
+    vb_cli_set_args(argc, argv);
+    /* A command's output files appear together when it succeeds (or when a
+     * check ran and wrote its report of differences), none when it fails. */
+    vb_output_defer(1);
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
-        if (strcmp(argv[1], commands[i].name) == 0)
-            return commands[i].run(argc - 1, argv + 1);
-    fprintf(stderr, "vorball: unknown command '%s'\n", argv[1]);
-    usage(stderr);
+        if (strcmp(argv[1], commands[i].name) == 0) {
+            int code = vb_world_check_command(commands[i].name);
+            if (code)
+                return code;
+            code = commands[i].run(argc - 1, argv + 1);
+            if (code == VB_EXIT_OK || code == VB_EXIT_MISMATCH) {
+                vb_ctx *ctx = NULL;
+                int rc = vb_open(&ctx, NULL);
+                if (rc == VB_OK)
+                    rc = vb_output_commit_deferred(ctx);
+                if (rc != VB_OK)
+                    code = vb_cli_fail(ctx, rc);
+                vb_close(ctx);
+            }
+            vb_output_discard_all();
+            return code;
+        }
+    if (err) {
+        fprintf(err, "vorball: unknown command '%s'\n", argv[1]);
+        usage(err);
+    }
     return VB_EXIT_USAGE;
+}
+
+int main(int argc, char **argv)
+{
+    /* Under mpirun (a build with VORBALL_WITH_MPI) every rank runs this. */
+    int code = vb_world_init(&argc, &argv);
+    if (code)
+        return code;
+    return vb_world_finish(dispatch(argc, argv));
 }

@@ -70,9 +70,31 @@ void vb_clear_error(vb_ctx *ctx)
     ctx->errmsg[0] = '\0';
 }
 
+int vb_set_verbosity(vb_ctx *ctx, int verbosity)
+{
+    if (vb_ctx_check(ctx) != VB_OK)
+        return -1;
+    int old = ctx->cfg.verbosity;
+    ctx->cfg.verbosity = verbosity;
+    return old;
+}
+
 vb_stats *vb_ctx_stats(vb_ctx *ctx)
 {
     return vb_ctx_check(ctx) == VB_OK ? &ctx->stats : NULL;
+}
+
+void vb_stats_add(vb_stats *to, const vb_stats *from)
+{
+    if (!to || !from)
+        return;
+    to->filter_calls += from->filter_calls;
+    to->filter_failures += from->filter_failures;
+    to->exact_evals += from->exact_evals;
+    to->candidates += from->candidates;
+    to->certified += from->certified;
+    to->rejected += from->rejected;
+    to->warnings += from->warnings;
 }
 
 int vb_diag_number(int code)
@@ -116,6 +138,9 @@ const char *vb_errstr(int code)
     case VB_EINPUT_TRAJECTORY: return "damaged trajectory";
     case VB_EINPUT_TOPOLOGY: return "trajectory and topology disagree";
     case VB_EINPUT_ASSEMBLY: return "assembly absent or malformed";
+    case VB_EINPUT_REFERENCE_SIZE: return "too many spheres for the exact reference";
+    case VB_EINPUT_SCALE: return "radii too small for the sampling pipeline";
+    case VB_EINPUT_TOL: return "tolerance finer than the sampling pipeline resolves";
     default: break;
     }
     switch (VB_CATEGORY(code)) {

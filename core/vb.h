@@ -50,7 +50,11 @@ enum vb_input_error {
     VB_EINPUT_NOSPHERES  = VB_EINPUT | (14 << 8),/* E114 trajectory/topology alone: no spheres */
     VB_EINPUT_TRAJECTORY = VB_EINPUT | (15 << 8),/* E115 damaged binary trajectory */
     VB_EINPUT_TOPOLOGY   = VB_EINPUT | (16 << 8),/* E116 trajectory and topology disagree */
-    VB_EINPUT_ASSEMBLY   = VB_EINPUT | (17 << 8) /* E117 assembly absent or malformed */
+    VB_EINPUT_ASSEMBLY   = VB_EINPUT | (17 << 8),/* E117 assembly absent or malformed */
+    /* E130-E139: limits of an operation on an input it could otherwise read. */
+    VB_EINPUT_REFERENCE_SIZE = VB_EINPUT | (30 << 8), /* E130 too many spheres for `reference` */
+    VB_EINPUT_SCALE      = VB_EINPUT | (31 << 8),/* E131 radii too small for the sampler's doubles */
+    VB_EINPUT_TOL        = VB_EINPUT | (32 << 8) /* E132 --tol finer than the sampler's doubles */
 };
 
 #define VB_CATEGORY(code) ((code) & 0xff)
@@ -124,8 +128,18 @@ void vb_info(vb_ctx *ctx, const char *fmt, ...)
 #endif
     ;
 
+/* Sets the context's verbosity (as vb_config's) and returns the previous
+ * one; -1 (nothing done) for a NULL or closed context. Lets a caller
+ * silence warnings that another process prints already (MPI ranks that
+ * all read the same input). */
+int vb_set_verbosity(vb_ctx *ctx, int verbosity);
+
 /* Mutable access to the context's counters; never NULL for an open ctx. */
 vb_stats *vb_ctx_stats(vb_ctx *ctx);
+
+/* Adds every counter of `from` to `to` (a worker's context into the
+ * caller's); NULL for either does nothing. */
+void vb_stats_add(vb_stats *to, const vb_stats *from);
 
 /* Resets the error state to VB_OK. */
 void vb_clear_error(vb_ctx *ctx);

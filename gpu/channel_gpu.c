@@ -94,7 +94,8 @@ static cl_int classify(vbc_gpu *p, cl_mem labels, const vbc_grid *g, int min_lab
 {
     cl_command_queue q = vbg_runtime_queue(p->rt);
     cl_uint zero = 0, cap = (cl_uint)p->list_cap;
-    cl_int err = clEnqueueWriteBuffer(q, p->count, CL_FALSE, 0, sizeof zero, &zero, 0, NULL, NULL);
+    /* Blocking: `zero` lives on this stack frame, which an error below leaves. */
+    cl_int err = clEnqueueWriteBuffer(q, p->count, CL_TRUE, 0, sizeof zero, &zero, 0, NULL, NULL);
     cl_int a = 0;
     err |= clSetKernelArg(p->k_classify, a++, sizeof labels, &labels);
     err |= clSetKernelArg(p->k_classify, a++, sizeof p->flags, &p->flags);
@@ -170,7 +171,7 @@ int vbc_gpu_frame(vb_ctx *ctx, vbc_gpu *p, const vbc_grid *g, const float *atoms
     if (err == CL_SUCCESS)
         err = ensure(p, &p->list, &p->list_cap, 1024, sizeof(cl_uint));
     if (err == CL_SUCCESS)
-        err = clEnqueueWriteBuffer(q, p->atoms, CL_FALSE, 0, natoms * 4 * sizeof(float), atoms4, 0,
+        err = clEnqueueWriteBuffer(q, p->atoms, CL_TRUE, 0, natoms * 4 * sizeof(float), atoms4, 0,
                                    NULL, NULL);
     if ((rc = vbg_check(ctx, err, "channel upload")) != VB_OK)
         goto done;

@@ -224,7 +224,7 @@ static int run_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *cell
         local = COV_WG;
         global = (t->slices < ncells ? t->slices : ncells) * COV_WG;
     } else {
-        local = 64;
+        local = t->slices < 64 ? t->slices : 64;
         global = t->slices < ncells ? t->slices : ncells;
         global = (global + local - 1) / local * local;
         if (global > t->slices)
@@ -453,15 +453,20 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
     }
     /* Slices: as many as keep the device busy, the first tier within an
      * eighth of its memory and the second within a sixteenth; a CPU device
-     * gets no second tier (its cells are as cheap on the host). */
+     * gets no second tier (its cells are as cheap on the host). A CPU
+     * device's "global memory" is all of host RAM: there the first tier
+     * stays within the device layer's budget (vbg_runtime_memory_budget). */
     size_t want = s->wg ? (size_t)units * 16
                         : (vbg_runtime_is_gpu(rt) ? (size_t)units * 512 : (size_t)units * 64);
-    size_t fit = (size_t)(mem / 8) / tier_bytes(s, t0);
+    size_t room = vbg_runtime_is_gpu(rt) ? (size_t)(mem / 8) : vbg_runtime_memory_budget(rt);
+    size_t fit = room / tier_bytes(s, t0);
     want = want < fit ? want : fit;
-    if (!s->wg)
+    /* Work-items come in groups of 64 (cov_run), fewer only when the room
+     * holds fewer slices (a small device budget): then one group of them. */
+    if (!s->wg && want >= 64)
         want = want / 64 * 64;
-    if (want < (s->wg ? 1u : 64u))
-        want = s->wg ? 1u : 64u;
+    if (want < 1)
+        want = 1;
     /* VORBALL_COVER_SLICES overrides the count (measurements). */
     const char *ws = getenv("VORBALL_COVER_SLICES");
     if (ws && atol(ws) > 0)

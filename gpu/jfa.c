@@ -26,7 +26,8 @@ int vbj_engine_open_runtime(vb_ctx *ctx, vbg_runtime *rt, vbj_engine **out)
     int rc;
     /* jfa.cl's four builds wait for their first use (vbj_cl_kernel). */
     if (rt && ((rc = vbg_program_get(ctx, rt, "facet_jfa.cl", "", &e->facet)) ||
-               (rc = vbg_program_get(ctx, rt, "jfa_exact.cl", "", &e->exact)))) {
+               (rc = vbg_program_get(ctx, rt, "jfa_exact.cl", "", &e->exact)) ||
+               (rc = vbg_program_get(ctx, rt, "jfa_tiles.cl", "", &e->tiles)))) {
         free(e);
         return rc;
     }
@@ -46,9 +47,10 @@ void vbj_engine_close(vbj_engine *e)
 {
     if (!e)
         return;
+    vbj_cl_recorded_ms(e); /* events of a run that failed */
     vbj_clbuf *all[] = {&e->seeds, &e->seeds_fp, &e->pairs, &e->grid[0], &e->grid[1], &e->store[0], &e->store[1],
                         &e->tmp, &e->list[0], &e->list[1], &e->counter, &e->labels,
-                        &e->cells_start, &e->cells_items};
+                        &e->cells_start, &e->cells_items, &e->tcounters};
     for (size_t i = 0; i < sizeof all / sizeof all[0]; i++)
         release(all[i]);
     for (int i = 0; i < VBJ_NKERNELS; i++)
@@ -73,6 +75,8 @@ cl_event *vbj_cl_event(vbj_engine *e)
         e->events = ev;
         e->cap_events = cap;
     }
+    /* A command that fails to enqueue leaves no event: the slot stays NULL. */
+    e->events[e->nevents] = NULL;
     return &e->events[e->nevents++];
 }
 
@@ -87,6 +91,8 @@ double vbj_cl_recorded_ms(vbj_engine *e)
     double ns = 0;
     for (int i = 0; i < e->nevents; i++) {
         cl_ulong a = 0, b = 0;
+        if (!e->events[i])
+            continue;
         if (clGetEventProfilingInfo(e->events[i], CL_PROFILING_COMMAND_START, sizeof a, &a,
                                     NULL) == CL_SUCCESS &&
             clGetEventProfilingInfo(e->events[i], CL_PROFILING_COMMAND_END, sizeof b, &b,
@@ -109,12 +115,19 @@ int vbj_clbuf_reserve(vb_ctx *ctx, vbj_engine *e, vbj_clbuf *b, size_t bytes)
     release(b);
     cl_int err;
     b->mem = clCreateBuffer(vbg_runtime_context(e->rt), CL_MEM_READ_WRITE, bytes, NULL, &err);
+    /* The device is out of memory, not the host: VB_EDEVICE, so that the
+     * caller falls back to the reference backend. */
     if (err == CL_MEM_OBJECT_ALLOCATION_FAILURE || err == CL_OUT_OF_HOST_MEMORY ||
-        err == CL_INVALID_BUFFER_SIZE)
-        return vb_error(ctx, VB_ENOMEM, NULL, 0, "device buffer of %zu bytes: out of memory",
-                        bytes);
-    if (vbg_check(ctx, err, "clCreateBuffer"))
+        err == CL_INVALID_BUFFER_SIZE) {
+        b->mem = NULL;
+        return vb_error(ctx, VB_EDEVICE, NULL, 0, "device buffer of %zu bytes: %s", bytes,
+                        err == CL_INVALID_BUFFER_SIZE ? "larger than the device allows"
+                                                      : "device out of memory");
+    }
+    if (vbg_check(ctx, err, "clCreateBuffer")) {
+        b->mem = NULL;
         return VB_EDEVICE;
+    }
     b->bytes = bytes;
     return VB_OK;
 }
@@ -157,8 +170,8 @@ int vbj_cl_kernel(vb_ctx *ctx, vbj_engine *e, int which, cl_kernel *out)
     static const char *jfa_names[VBJ_KJFA] = {"jfa_place", "jfa_step_2d", "jfa_step_3d",
                                               "jfa_count_labels", "jfa_widen",
                                               "jfa_boundary"};
-    static const char *names[] = {"facet_step", "facet_mark_refine", "facet_strip",
-                                  "facet_small", "jfa_exact"};
+    static const char *names[] = {"facet_step",  "facet_mark_refine", "facet_strip",
+                                  "facet_small", "jfa_exact",         "jfa_tiles"};
     if (!e->kernels[which]) {
         const char *name;
         cl_program p;
@@ -175,7 +188,7 @@ int vbj_cl_kernel(vb_ctx *ctx, vbj_engine *e, int which, cl_kernel *out)
             p = e->jfa[b];
             name = jfa_names[which % VBJ_KJFA];
         } else {
-            p = which < VBJ_K_EXACT ? e->facet : e->exact;
+            p = which < VBJ_K_EXACT ? e->facet : which == VBJ_K_EXACT ? e->exact : e->tiles;
             name = names[which - VBJ_K_FSTEP];
         }
         cl_int err;
@@ -220,6 +233,20 @@ int vbj_cl_set_args(vb_ctx *ctx, cl_kernel k, const char *what, int nargs,
         }
     }
     return VB_OK;
+}
+
+int vbj_cl_upload(vb_ctx *ctx, vbj_engine *e, vbj_clbuf *b, const void *data, size_t bytes,
+                  const char *what)
+{
+    int rc = vbj_clbuf_reserve(ctx, e, b, bytes);
+    if (rc)
+        return rc;
+    return vbg_check(ctx,
+                     clEnqueueWriteBuffer(vbg_runtime_queue(e->rt), b->mem, CL_TRUE, 0, bytes,
+                                          data, 0, NULL, NULL),
+                     what)
+               ? VB_EDEVICE
+               : VB_OK;
 }
 
 int vbj_cl_upload_seeds(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s)
@@ -270,9 +297,7 @@ int vbj_cl_upload_seeds(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s)
     return rc;
 }
 
-/* Index of kernel `kernel` (VBJ_K_PLACE ..) in the build of jfa.cl for s's
- * grid, with 16-bit labels when narrow. */
-static int jfa_kernel_index(const vbj_seeds *s, int narrow, int kernel)
+int vbj_cl_jfa_kernel_index(const vbj_seeds *s, int narrow, int kernel)
 {
     return ((narrow ? VBJ_JFA_LABEL16 : 0) | vbj_dist_build(s->dim, s->n)) * VBJ_KJFA + kernel;
 }
@@ -314,7 +339,7 @@ int vbj_cl_dense(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, uint32_t f, siz
     cl_kernel k;
     cl_uint np = (cl_uint)npairs;
     int dist = vbj_dist_build(s->dim, s->n);
-    if ((rc = vbj_cl_kernel(ctx, e, jfa_kernel_index(s, narrow, VBJ_K_PLACE), &k)))
+    if ((rc = vbj_cl_kernel(ctx, e, vbj_cl_jfa_kernel_index(s, narrow, VBJ_K_PLACE), &k)))
         return rc;
     vbj_arg pa[] = {VBJ_ARG(e->grid[0].mem), VBJ_ARG(e->pairs.mem), VBJ_ARG(np)};
     size_t gp = npairs;
@@ -323,7 +348,7 @@ int vbj_cl_dense(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, uint32_t f, siz
         return rc;
     counts->threads += npairs;
     if ((rc = vbj_cl_kernel(ctx, e,
-                            jfa_kernel_index(s, narrow, d == 3 ? VBJ_K_STEP3 : VBJ_K_STEP2), &k)))
+                            vbj_cl_jfa_kernel_index(s, narrow, d == 3 ? VBJ_K_STEP3 : VBJ_K_STEP2), &k)))
         return rc;
     cl_mem seeds = dist == VBJ_JFA_DIST64 ? e->seeds.mem : e->seeds_fp.mem;
     int cur = 0;
@@ -373,9 +398,7 @@ int vbj_cl_count_labels(vb_ctx *ctx, vbj_engine *e, int dim, uint32_t n, cl_mem 
     return VB_OK;
 }
 
-/* Counts the boundary pixels of label grid `lab` (16-bit when narrow) into
- * counts->boundary; the read of the count waits for the queue. */
-static int count_boundary(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, int narrow, cl_mem lab,
+int vbj_cl_count_boundary(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, int narrow, cl_mem lab,
                           vbj_counts *counts)
 {
     cl_command_queue queue = vbg_runtime_queue(e->rt);
@@ -385,7 +408,7 @@ static int count_boundary(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, int na
     cl_kernel k;
     int rc;
     if ((rc = vbj_clbuf_reserve(ctx, e, &e->counter, 4)) ||
-        (rc = vbj_cl_kernel(ctx, e, jfa_kernel_index(s, narrow, VBJ_K_BOUNDARY), &k)))
+        (rc = vbj_cl_kernel(ctx, e, vbj_cl_jfa_kernel_index(s, narrow, VBJ_K_BOUNDARY), &k)))
         return rc;
     if (vbg_check(ctx,
                   clEnqueueFillBuffer(queue, e->counter.mem, &zero, sizeof zero, 0, 4, 0, NULL,
@@ -422,7 +445,7 @@ int vbj_cl_dense_run(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, vbj_variant
     vbj_cl_record(e);
     rc = vbj_cl_dense(ctx, e, s, 1, npairs, narrow, steps, ns, &out->counts, &which);
     if (!rc && boundary)
-        rc = count_boundary(ctx, e, s, narrow, e->grid[which].mem, &out->counts);
+        rc = vbj_cl_count_boundary(ctx, e, s, narrow, e->grid[which].mem, &out->counts);
     if (!rc && vbg_check(ctx, clFinish(queue), "jfa"))
         rc = VB_EDEVICE;
     double t2 = 1e3 * vb_now();
@@ -437,7 +460,7 @@ int vbj_cl_dense_run(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, vbj_variant
     cl_kernel k;
     cl_uint count = (cl_uint)out->pixels;
     if ((rc = vbj_clbuf_reserve(ctx, e, &e->labels, out->pixels * 4)) ||
-        (rc = vbj_cl_kernel(ctx, e, jfa_kernel_index(s, 1, VBJ_K_WIDEN), &k)))
+        (rc = vbj_cl_kernel(ctx, e, vbj_cl_jfa_kernel_index(s, 1, VBJ_K_WIDEN), &k)))
         return rc;
     vbj_arg a[] = {VBJ_ARG(e->grid[which].mem), VBJ_ARG(e->labels.mem), VBJ_ARG(count)};
     size_t g = out->pixels;

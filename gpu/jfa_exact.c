@@ -3,20 +3,6 @@
  * shared with the C reference) and searched per pixel on the device. */
 #include "jfa_internal.h"
 
-static int upload(vb_ctx *ctx, vbj_engine *e, vbj_clbuf *b, const void *data, size_t bytes,
-                  const char *what)
-{
-    int rc = vbj_clbuf_reserve(ctx, e, b, bytes);
-    if (rc)
-        return rc;
-    return vbg_check(ctx,
-                     clEnqueueWriteBuffer(vbg_runtime_queue(e->rt), b->mem, CL_TRUE, 0, bytes,
-                                          data, 0, NULL, NULL),
-                     what)
-               ? VB_EDEVICE
-               : VB_OK;
-}
-
 int vbj_cl_exact(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, uint32_t *labels)
 {
     vbj_cells c;
@@ -28,8 +14,8 @@ int vbj_cl_exact(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, uint32_t *label
     cl_kernel k;
     cl_uint n = s->n, dim = (cl_uint)s->dim, shift = c.shift, g = c.g;
     if ((rc = vbj_cl_upload_seeds(ctx, e, s)) ||
-        (rc = upload(ctx, e, &e->cells_start, c.start, (nb + 1) * 4, "bucket upload")) ||
-        (rc = upload(ctx, e, &e->cells_items, c.items, s->k * 4, "bucket upload")) ||
+        (rc = vbj_cl_upload(ctx, e, &e->cells_start, c.start, (nb + 1) * 4, "bucket upload")) ||
+        (rc = vbj_cl_upload(ctx, e, &e->cells_items, c.items, s->k * 4, "bucket upload")) ||
         (rc = vbj_clbuf_reserve(ctx, e, &e->labels, pixels * 4)) ||
         (rc = vbj_cl_kernel(ctx, e, VBJ_K_EXACT, &k)))
         goto done;

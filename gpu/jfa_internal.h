@@ -14,7 +14,8 @@
 typedef struct vbj_engine vbj_engine;
 
 /* Opens an engine on a runtime (borrowed: close it after the engine). Builds
- * facet_jfa.cl and jfa_exact.cl; jfa.cl's builds wait for their first use.
+ * facet_jfa.cl, jfa_exact.cl and jfa_tiles.cl; jfa.cl's builds wait for
+ * their first use (runs fetch their kernels before their clocks start).
  * VB_EDEVICE / VB_ENOMEM. */
 int vbj_engine_open_runtime(vb_ctx *ctx, vbg_runtime *rt, vbj_engine **out);
 void vbj_engine_close(vbj_engine *e);
@@ -60,6 +61,7 @@ enum {
     VBJ_K_STRIP,
     VBJ_K_FSMALL,
     VBJ_K_EXACT, /* jfa_exact.cl */
+    VBJ_K_TILES, /* jfa_tiles.cl */
     VBJ_NKERNELS
 };
 
@@ -70,10 +72,10 @@ int vbj_dist_build(int dim, uint32_t n);
 
 struct vbj_engine {
     vbg_runtime *rt;
-    cl_program jfa[VBJ_JFA_BUILDS], facet, exact; /* owned by the runtime's program cache */
+    cl_program jfa[VBJ_JFA_BUILDS], facet, exact, tiles; /* owned by the runtime's program cache */
     cl_kernel kernels[VBJ_NKERNELS];
     vbj_clbuf seeds, seeds_fp, pairs, grid[2], store[2], tmp, list[2], counter, labels, cells_start,
-        cells_items;
+        cells_items, tcounters;
     cl_mem device_labels; /* one of the buffers above, or NULL */
     /* Profiling events of the timed commands of a run (vbj_cl_event). */
     cl_event *events;
@@ -111,6 +113,15 @@ int vbj_cl_set_args(vb_ctx *ctx, cl_kernel k, const char *what, int nargs, const
 int vbj_cl_launch(vb_ctx *ctx, vbj_engine *e, cl_kernel k, int dims, const size_t *global,
                   const char *what);
 
+/* Index of kernel `kernel` (VBJ_K_PLACE ..) in the build of jfa.cl for s's
+ * grid, with 16-bit labels when narrow. */
+int vbj_cl_jfa_kernel_index(const vbj_seeds *s, int narrow, int kernel);
+
+/* Reserves b for `bytes` and writes `data` into it, blocking; `what` names
+ * the transfer in a device error. VB_ENOMEM / VB_EDEVICE. */
+int vbj_cl_upload(vb_ctx *ctx, vbj_engine *e, vbj_clbuf *b, const void *data, size_t bytes,
+                  const char *what);
+
 /* Uploads the seeds as int2 (2D) or int4 (3D) into e->seeds and, unless
  * vbj_dist_build is VBJ_JFA_DIST64, in the step kernels' coordinate type
  * (float or double, 2 or 4 per seed) into e->seeds_fp. */
@@ -139,6 +150,17 @@ int vbj_cl_dense_run(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, vbj_variant
  * label grid of the last level is *result (one of the engine's buffers). */
 int vbj_cl_facet(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, const vbj_options *opt,
                  vbj_result *out, cl_mem *result);
+
+/* Counts the boundary pixels of label grid `lab` (16-bit when narrow) into
+ * counts->boundary; the read of the count waits for the queue. */
+int vbj_cl_count_boundary(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, int narrow, cl_mem lab,
+                          vbj_counts *counts);
+
+/* The exact tiled engine (gpu/jfa_tiles.c): variant VBJ_EXACT or
+ * VBJ_EXACT_BOUNDARY; fills out's counts and times; the 32-bit label grid
+ * is *result (the engine's labels buffer). */
+int vbj_cl_tiles(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, vbj_variant v, vbj_result *out,
+                 cl_mem *result);
 
 /* OpenCL exact reference (gpu/jfa_exact.c) into host labels. */
 int vbj_cl_exact(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, uint32_t *labels);

@@ -13,8 +13,9 @@ int vbj_cl_run(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, const vbj_options
     int facet = o->variant == VBJ_FACET || o->variant == VBJ_FACET_FULL;
     cl_mem result = NULL;
     e->device_labels = NULL;
-    int rc = facet ? vbj_cl_facet(ctx, e, s, o, out, &result)
-                   : vbj_cl_dense_run(ctx, e, s, o->variant, 0, out, &result);
+    int rc = VBJ_IS_EXACT(o->variant) ? vbj_cl_tiles(ctx, e, s, o->variant, out, &result)
+             : facet                  ? vbj_cl_facet(ctx, e, s, o, out, &result)
+                                      : vbj_cl_dense_run(ctx, e, s, o->variant, 0, out, &result);
     if (rc)
         return rc;
     if (want & VBJ_WANT_DEVICE)

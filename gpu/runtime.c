@@ -1,7 +1,9 @@
 /* OpenCL runtime: device choice, program build and cache, error mapping. */
 #include "vbg_runtime.h"
+#include "vb_diag.h"
 
 #include <errno.h>
+#include <stdatomic.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -62,8 +64,10 @@ static int device_has_fp64(cl_device_id d)
     return cfg != 0;
 }
 
-/* Finds the first device of `type` with fp64 over all platforms. */
-static int find_device(cl_device_type type, cl_platform_id *plat, cl_device_id *dev)
+/* Finds device number `index` (modulo their count) among the devices of
+ * `type` with fp64, counted over the platforms in their order. */
+static int find_device(cl_device_type type, unsigned index, cl_platform_id *plat,
+                       cl_device_id *dev)
 {
     cl_uint np = 0;
     if (clGetPlatformIDs(0, NULL, &np) != CL_SUCCESS || np == 0)
@@ -73,6 +77,9 @@ static int find_device(cl_device_type type, cl_platform_id *plat, cl_device_id *
         np = 16;
     if (clGetPlatformIDs(np, ps, NULL) != CL_SUCCESS)
         return 0;
+    cl_platform_id fp[256];
+    cl_device_id fd[256];
+    unsigned n = 0;
     for (cl_uint p = 0; p < np; p++) {
         cl_device_id ds[16];
         cl_uint nd = 0;
@@ -80,12 +87,37 @@ static int find_device(cl_device_type type, cl_platform_id *plat, cl_device_id *
             continue;
         for (cl_uint i = 0; i < nd && i < 16; i++)
             if (device_has_fp64(ds[i])) {
-                *plat = ps[p];
-                *dev = ds[i];
-                return 1;
+                fp[n] = ps[p];
+                fd[n++] = ds[i];
             }
     }
-    return 0;
+    if (n == 0)
+        return 0;
+    *plat = fp[index % n];
+    *dev = fd[index % n];
+    return 1;
+}
+
+/* VORBALL_DEVICE_INDEX: which of the devices of a kind to open (0 when
+ * unset). The MPI ranks on one host set it to their rank on the host
+ * (cli/world_mpi.c), so each takes its own GPU; more ranks than GPUs share
+ * them round-robin (the index is taken modulo their count), and a
+ * scheduler that shows each rank one GPU (CUDA_VISIBLE_DEVICES) gives
+ * index mod 1 = that GPU. VB_OK, or VB_EMISUSE for a value that is not a
+ * number from 0. */
+static int device_index(vb_ctx *ctx, unsigned *out)
+{
+    const char *v = getenv("VORBALL_DEVICE_INDEX");
+    *out = 0;
+    if (!v || !*v)
+        return VB_OK;
+    char *end;
+    unsigned long k = strtoul(v, &end, 10);
+    if (*end != '\0' || v[0] == '-' || k > 65535)
+        return vb_error(ctx, VB_EMISUSE, NULL, 0,
+                        "VORBALL_DEVICE_INDEX='%s': a device number from 0 to 65535 is wanted", v);
+    *out = (unsigned)k;
+    return VB_OK;
 }
 
 int vbg_runtime_open(vb_ctx *ctx, vb_device_kind kind, vbg_runtime **out)
@@ -96,10 +128,13 @@ int vbg_runtime_open(vb_ctx *ctx, vb_device_kind kind, vbg_runtime **out)
     cl_platform_id plat = NULL;
     cl_device_id dev = NULL;
     int found = 0;
+    unsigned index;
+    if (device_index(ctx, &index) != VB_OK)
+        return VB_EMISUSE;
     if (kind == VB_DEVICE_AUTO || kind == VB_DEVICE_GPU)
-        found = find_device(CL_DEVICE_TYPE_GPU, &plat, &dev);
+        found = find_device(CL_DEVICE_TYPE_GPU, index, &plat, &dev);
     if (!found && (kind == VB_DEVICE_AUTO || kind == VB_DEVICE_CPU))
-        found = find_device(CL_DEVICE_TYPE_CPU, &plat, &dev);
+        found = find_device(CL_DEVICE_TYPE_CPU, index, &plat, &dev);
     if (!found)
         return vb_error(ctx, VB_EDEVICE, NULL, 0, "no OpenCL %sdevice with double precision found",
                         kind == VB_DEVICE_GPU ? "GPU " : kind == VB_DEVICE_CPU ? "CPU " : "");
@@ -143,6 +178,45 @@ void vbg_runtime_close(vbg_runtime *rt)
     if (rt->context)
         clReleaseContext(rt->context);
     free(rt);
+}
+
+/* Device memory one stage may hold at once. A CPU device (PoCL) allocates
+ * host memory: it gets at most 1/8 of the memory free when asked and never
+ * more than 256 MiB (a batch of 2^22 rays, PoCL's own batch size, needs
+ * less than 64 MiB on proteins), so a run on PoCL needs little beyond what
+ * the reference
+ * backend needs (batches sized for a GPU, on all of host memory, took
+ * 13.6 GB for the 26k-atom capsid against 6.4 GB on the reference). A GPU
+ * gets a quarter of its memory, at most 8 GiB; both at most one allocation's
+ * maximum and at least 16 MiB. VORBALL_DEVICE_MEMORY_MIB sets the budget
+ * (tests, shared machines). */
+#define VBG_BUDGET_CPU_CAP ((size_t)256 << 20)
+#define VBG_BUDGET_GPU_CAP ((size_t)8 << 30)
+#define VBG_BUDGET_FLOOR ((size_t)16 << 20)
+
+size_t vbg_runtime_memory_budget(const vbg_runtime *rt)
+{
+    const char *env = getenv("VORBALL_DEVICE_MEMORY_MIB");
+    if (env && *env) {
+        char *end;
+        unsigned long long mib = strtoull(env, &end, 10);
+        if (*end == '\0' && mib > 0 && mib < ((unsigned long long)1 << 40))
+            return (size_t)mib << 20;
+    }
+    cl_ulong max_alloc = 0, global = 0;
+    clGetDeviceInfo(rt->device, CL_DEVICE_MAX_MEM_ALLOC_SIZE, sizeof max_alloc, &max_alloc, NULL);
+    clGetDeviceInfo(rt->device, CL_DEVICE_GLOBAL_MEM_SIZE, sizeof global, &global, NULL);
+    size_t budget = rt->is_gpu ? VBG_BUDGET_GPU_CAP : VBG_BUDGET_CPU_CAP;
+    if (global && global / 4 < budget)
+        budget = (size_t)(global / 4);
+    if (max_alloc && max_alloc < budget)
+        budget = (size_t)max_alloc;
+    if (!rt->is_gpu) {
+        long pages = sysconf(_SC_AVPHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+        if (pages > 0 && page > 0 && (size_t)pages / 8 * (size_t)page < budget)
+            budget = (size_t)pages / 8 * (size_t)page;
+    }
+    return budget < VBG_BUDGET_FLOOR ? VBG_BUDGET_FLOOR : budget;
 }
 
 cl_context vbg_runtime_context(const vbg_runtime *rt) { return rt->context; }
@@ -200,8 +274,23 @@ static int build_failed(vb_ctx *ctx, vbg_runtime *rt, cl_program prog, const cha
  * $HOME/.cache/vorball), named by a 64-bit FNV-1a hash of the platform,
  * device and driver identity, the build options and the complete source, so
  * a changed kernel or driver never meets a stale binary. The cache is only
- * an accelerator: any failure to read, load or write it falls back to the
- * source build silently; VORBALL_NO_PROGRAM_CACHE (non-empty) turns it off. */
+ * an accelerator: a file that is missing is built silently; one that cannot
+ * be used is rebuilt after warning W750; a failure to write it is ignored.
+ * VORBALL_NO_PROGRAM_CACHE (non-empty) turns it off.
+ *
+ * A driver handed a damaged binary may crash rather than fail (PoCL aborts
+ * on a file one byte short and segfaults on half of one), so nothing reaches
+ * clCreateProgramWithBinary unchecked: a file is
+ *   magic (VBG_CACHE_MAGIC), then 4 little-endian-as-written u64: the key
+ *   hash, the key length, the binary length, the FNV-1a sum of the binary;
+ *   the key ("name\noptions\n"); the binary,
+ * and it is used only when its length is exactly that, the hash and the key
+ * are the ones asked for (a binary of the same kernel built with other
+ * options under the expected name is refused) and the sum matches. */
+#define VBG_CACHE_MAGIC "vorball program cache 1\n"
+#define VBG_CACHE_MAGIC_LEN 24
+#define VBG_CACHE_HEADER (VBG_CACHE_MAGIC_LEN + 4 * 8)
+
 static uint64_t fnv1a(uint64_t h, const char *s, size_t n)
 {
     for (size_t i = 0; i < n; i++)
@@ -209,8 +298,9 @@ static uint64_t fnv1a(uint64_t h, const char *s, size_t n)
     return (h ^ 0xff) * 1099511628211ull; /* field separator */
 }
 
+/* Path of the cached binary of (name, opts, src) and its key hash. */
 static int cache_path(const vbg_runtime *rt, const char *name, const char *opts, const char *src,
-                      char *path, size_t cap, int make_dir)
+                      char *path, size_t cap, int make_dir, uint64_t *hash)
 {
     const char *off = getenv("VORBALL_NO_PROGRAM_CACHE");
     if (off && *off)
@@ -257,58 +347,125 @@ static int cache_path(const vbg_runtime *rt, const char *name, const char *opts,
         if (mkdir(dir, 0755) != 0 && errno != EEXIST)
             return 0;
     }
+    *hash = h;
     int n = snprintf(path, cap, "%s/%s-%016llx.bin", dir, name, (unsigned long long)h);
     return n > 0 && (size_t)n < cap;
 }
 
-/* The cached binary built with opts, or NULL. */
-static cl_program cache_load(const vbg_runtime *rt, const char *path, const char *opts)
+/* The key stored inside a cache file: kernel file name and options. */
+static int cache_key(char *key, size_t cap, const char *name, const char *opts)
 {
+    int n = snprintf(key, cap, "%s\n%s\n", name, opts);
+    return n > 0 && (size_t)n < cap ? n : -1;
+}
+
+/* Reads and checks the cache file at path. Returns the binary (malloc'd,
+ * *len bytes), or NULL with *why saying what is wrong ("" when there is no
+ * file: nothing to warn about). */
+static unsigned char *cache_read(const char *path, uint64_t hash, const char *key, size_t key_len,
+                                 size_t *len, const char **why)
+{
+    *why = "";
     FILE *f = fopen(path, "rb");
     if (!f)
         return NULL;
     unsigned char *bin = NULL;
-    long n = -1;
-    if (fseek(f, 0, SEEK_END) == 0 && (n = ftell(f)) > 0 && fseek(f, 0, SEEK_SET) == 0 &&
-        (bin = malloc((size_t)n)) && fread(bin, 1, (size_t)n, f) != (size_t)n) {
-        free(bin);
-        bin = NULL;
+    unsigned char hdr[VBG_CACHE_HEADER];
+    uint64_t v[4];
+    long size = -1;
+    if (fseek(f, 0, SEEK_END) != 0 || (size = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0)
+        *why = "cannot read it";
+    else if ((size_t)size < VBG_CACHE_HEADER || fread(hdr, 1, sizeof hdr, f) != sizeof hdr ||
+             memcmp(hdr, VBG_CACHE_MAGIC, VBG_CACHE_MAGIC_LEN) != 0)
+        *why = "not a vorball program cache file";
+    else {
+        memcpy(v, hdr + VBG_CACHE_MAGIC_LEN, sizeof v);
+        if (v[0] != hash || v[1] != key_len)
+            *why = "built for another kernel, options or device";
+        else if (v[2] == 0 || v[2] != (uint64_t)size - VBG_CACHE_HEADER - key_len)
+            *why = "its length does not match its header (truncated or padded)";
+        else if (!(bin = malloc(key_len + (size_t)v[2])) ||
+                 fread(bin, 1, key_len + (size_t)v[2], f) != key_len + (size_t)v[2])
+            *why = bin ? "cannot read it" : "out of memory";
+        else if (memcmp(bin, key, key_len) != 0)
+            *why = "built for another kernel or other options";
+        else if (fnv1a(1469598103934665603ull, (const char *)bin + key_len, (size_t)v[2]) != v[3])
+            *why = "its checksum does not match (damaged)";
     }
     fclose(f);
-    if (!bin)
-        return NULL;
-    size_t len = (size_t)n;
-    const unsigned char *bp = bin;
-    cl_int status = CL_SUCCESS, err;
-    cl_program prog = clCreateProgramWithBinary(rt->context, 1, &rt->device, &len, &bp, &status, &err);
-    free(bin);
-    if (!prog)
-        return NULL;
-    if (err != CL_SUCCESS || status != CL_SUCCESS ||
-        clBuildProgram(prog, 1, &rt->device, opts, NULL, NULL) != CL_SUCCESS) {
-        clReleaseProgram(prog);
+    if (**why) {
+        free(bin);
         return NULL;
     }
+    memmove(bin, bin + key_len, (size_t)v[2]);
+    *len = (size_t)v[2];
+    return bin;
+}
+
+/* The cached binary built with opts, or NULL: silently when there is none,
+ * after warning W750 when the file cannot be used (it is rebuilt and
+ * rewritten by the caller). */
+static cl_program cache_load(vb_ctx *ctx, const vbg_runtime *rt, const char *path, uint64_t hash,
+                             const char *name, const char *opts)
+{
+    char key[2400];
+    int key_len = cache_key(key, sizeof key, name, opts);
+    if (key_len < 0)
+        return NULL;
+    size_t len = 0;
+    const char *why;
+    unsigned char *bin = cache_read(path, hash, key, (size_t)key_len, &len, &why);
+    cl_program prog = NULL;
+    if (bin) {
+        const unsigned char *bp = bin;
+        cl_int status = CL_SUCCESS, err;
+        prog = clCreateProgramWithBinary(rt->context, 1, &rt->device, &len, &bp, &status, &err);
+        if (!prog || err != CL_SUCCESS || status != CL_SUCCESS ||
+            clBuildProgram(prog, 1, &rt->device, opts, NULL, NULL) != CL_SUCCESS) {
+            if (prog)
+                clReleaseProgram(prog);
+            prog = NULL;
+            why = "the OpenCL driver refused the binary";
+        }
+        free(bin);
+    }
+    if (!prog && *why)
+        vb_warn(ctx, VB_W_PROGRAM_CACHE_BAD, path, 0, "cached program of %s cannot be used (%s): rebuilt from source",
+                name, why);
     return prog;
 }
 
-/* Writes the device binary of prog to path (through a temporary file and a
- * rename, so a concurrent reader never sees half a binary). */
-static void cache_store(const vbg_runtime *rt, cl_program prog, const char *path)
+/* Writes the device binary of prog to path with its header and key, through
+ * a temporary file and a rename, so a concurrent reader never sees half a
+ * file. */
+static void cache_store(const vbg_runtime *rt, cl_program prog, const char *path, uint64_t hash,
+                        const char *name, const char *opts)
 {
+    char key[2400];
+    int key_len = cache_key(key, sizeof key, name, opts);
     size_t len = 0;
-    if (clGetProgramInfo(prog, CL_PROGRAM_BINARY_SIZES, sizeof len, &len, NULL) != CL_SUCCESS ||
+    if (key_len < 0 ||
+        clGetProgramInfo(prog, CL_PROGRAM_BINARY_SIZES, sizeof len, &len, NULL) != CL_SUCCESS ||
         len == 0)
         return;
     unsigned char *bin = malloc(len);
     if (!bin)
         return;
+    static atomic_uint serial;
     char tmp[1300];
-    snprintf(tmp, sizeof tmp, "%s.%ld.tmp", path, (long)getpid());
+    snprintf(tmp, sizeof tmp, "%s.%ld.%u.tmp", path, (long)getpid(),
+             atomic_fetch_add(&serial, 1u));
     FILE *f = NULL;
     if (clGetProgramInfo(prog, CL_PROGRAM_BINARIES, sizeof bin, &bin, NULL) == CL_SUCCESS &&
         (f = fopen(tmp, "wb")) != NULL) {
-        int ok = fwrite(bin, 1, len, f) == len;
+        unsigned char hdr[VBG_CACHE_HEADER];
+        uint64_t v[4] = {hash, (uint64_t)key_len, (uint64_t)len,
+                         fnv1a(1469598103934665603ull, (const char *)bin, len)};
+        memcpy(hdr, VBG_CACHE_MAGIC, VBG_CACHE_MAGIC_LEN);
+        memcpy(hdr + VBG_CACHE_MAGIC_LEN, v, sizeof v);
+        int ok = fwrite(hdr, 1, sizeof hdr, f) == sizeof hdr &&
+                 fwrite(key, 1, (size_t)key_len, f) == (size_t)key_len &&
+                 fwrite(bin, 1, len, f) == len;
         ok = fclose(f) == 0 && ok;
         if (!ok || rename(tmp, path) != 0)
             remove(tmp);
@@ -349,8 +506,9 @@ int vbg_program_get(vb_ctx *ctx, vbg_runtime *rt, const char *name, const char *
         snprintf(opts, sizeof opts, "-cl-std=CL1.2 %s", options ? options : "");
     /* Kernels read from disk may include edited headers the hash cannot see. */
     char path[1200];
-    int cached = !disk && cache_path(rt, name, opts, src, path, sizeof path, 0);
-    cl_program prog = cached ? cache_load(rt, path, opts) : NULL;
+    uint64_t hash = 0;
+    int cached = !disk && cache_path(rt, name, opts, src, path, sizeof path, 0, &hash);
+    cl_program prog = cached ? cache_load(ctx, rt, path, hash, name, opts) : NULL;
     if (!prog) {
         cl_int err;
         prog = clCreateProgramWithSource(rt->context, 1, &src, NULL, &err);
@@ -361,8 +519,8 @@ int vbg_program_get(vb_ctx *ctx, vbg_runtime *rt, const char *name, const char *
         err = clBuildProgram(prog, 1, &rt->device, opts, NULL, NULL);
         if (err != CL_SUCCESS)
             return build_failed(ctx, rt, prog, name, err);
-        if (cached && cache_path(rt, name, opts, src, path, sizeof path, 1))
-            cache_store(rt, prog, path);
+        if (cached && cache_path(rt, name, opts, src, path, sizeof path, 1, &hash))
+            cache_store(rt, prog, path, hash, name, opts);
     }
     free(disk);
     snprintf(rt->programs[rt->nprograms].key, sizeof rt->programs[0].key, "%s", key);

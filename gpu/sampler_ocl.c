@@ -1,6 +1,9 @@
 /* Host side of the sampling kernels: buffers, launches, read-back. Stage
  * times are wall clock around each stage with the queue drained, so they
- * include launch overhead. */
+ * include launch overhead. Every host-to-device write is blocking: a batch
+ * that fails part way returns with nothing queued that still reads host
+ * memory its caller is about to free (a queued upload of freed batch
+ * buffers crashed `vertices` when a later call failed). */
 #include <stdlib.h>
 #include <string.h>
 
@@ -19,7 +22,11 @@ typedef struct ocl_state {
     vbs_cand *host_cand;
     size_t host_cap;
     size_t cand_cap;          /* candidate slots on the device */
+    size_t budget;            /* device bytes a batch may hold (vbg_runtime_memory_budget) */
 } ocl_state;
+
+/* A part of a batch whose candidates would not fit the budget: split it. */
+#define OCL_SPLIT (-1)
 
 /* Makes sure buffer b holds `need` bytes (keeps the old one when it does). */
 static int ensure(vb_ctx *ctx, ocl_state *st, ocl_buf *b, size_t need, cl_mem_flags flags)
@@ -44,7 +51,7 @@ static int buf_write(vb_ctx *ctx, ocl_state *st, ocl_buf *b, const void *src, si
     if (n == 0)
         return VB_OK;
     return vbg_check(ctx,
-                     clEnqueueWriteBuffer(vbg_runtime_queue(st->rt), b->mem, CL_FALSE, 0, n, src,
+                     clEnqueueWriteBuffer(vbg_runtime_queue(st->rt), b->mem, CL_TRUE, 0, n, src,
                                           0, NULL, NULL),
                      "clEnqueueWriteBuffer");
 }
@@ -68,8 +75,11 @@ static int set_args(vb_ctx *ctx, cl_kernel k, int n, const size_t *sizes, const 
     return VB_OK;
 }
 
-static int ocl_run_batch(vb_ctx *ctx, vb_sampler_backend *be, const vb_sampler_batch *b,
-                         vb_sampler_batch_out *out)
+/* Runs one part of a batch (all of it when it fits the budget). OCL_SPLIT,
+ * with nothing added to out, when its candidates would take more than half
+ * the budget and it has more than one base. */
+static int run_part(vb_ctx *ctx, vb_sampler_backend *be, const vb_sampler_batch *b,
+                    vb_sampler_batch_out *out)
 {
     ocl_state *st = be->state;
     cl_command_queue q = vbg_runtime_queue(st->rt);
@@ -87,8 +97,11 @@ static int ocl_run_batch(vb_ctx *ctx, vb_sampler_backend *be, const vb_sampler_b
         ensure(ctx, st, &st->colours, rays * sizeof(cl_uint), CL_MEM_READ_WRITE) ||
         ensure(ctx, st, &st->counters, sizeof zero, CL_MEM_READ_WRITE))
         return VB_EDEVICE;
-    if (!st->cand_cap)
-        st->cand_cap = 1u << 16;
+    if (!st->cand_cap) {
+        /* A first guess, within half the budget with ensure's slack. */
+        size_t fit = st->budget / 2 / sizeof(vbs_cand) * 4 / 5;
+        st->cand_cap = fit < ((size_t)1 << 16) ? (fit ? fit : 1) : (size_t)1 << 16;
+    }
     if (ensure(ctx, st, &st->cand, st->cand_cap * sizeof(vbs_cand), CL_MEM_READ_WRITE) ||
         vbg_check(ctx, clFinish(q), "upload"))
         return VB_EDEVICE;
@@ -114,7 +127,7 @@ static int ocl_run_batch(vb_ctx *ctx, vb_sampler_backend *be, const vb_sampler_b
                             sizeof(cl_mem), sizeof(cl_mem), sizeof(cl_mem), sizeof(cl_mem),
                             sizeof cap, sizeof nb};
         if (vbg_check(ctx,
-                      clEnqueueWriteBuffer(q, st->counters.mem, CL_FALSE, 0, sizeof zero, zero,
+                      clEnqueueWriteBuffer(q, st->counters.mem, CL_TRUE, 0, sizeof zero, zero,
                                            0, NULL, NULL),
                       "clEnqueueWriteBuffer") ||
             set_args(ctx, st->vert, 10, s, v) ||
@@ -126,7 +139,11 @@ static int ocl_run_batch(vb_ctx *ctx, vb_sampler_backend *be, const vb_sampler_b
             return VB_EDEVICE;
         if (counters[0] <= cap)
             break;
-        /* More candidates than slots: grow and run the stage again. */
+        /* More candidates than slots: grow and run the stage again, or
+         * split the part when they would not fit half the budget. */
+        if (b->nbases > 1 &&
+            ((size_t)counters[0] + counters[0] / 2) * sizeof(vbs_cand) * 5 / 4 > st->budget / 2)
+            return OCL_SPLIT;
         st->cand_cap = (size_t)counters[0] + counters[0] / 2;
         if (ensure(ctx, st, &st->cand, st->cand_cap * sizeof(vbs_cand), CL_MEM_READ_WRITE))
             return VB_EDEVICE;
@@ -153,6 +170,97 @@ static int ocl_run_batch(vb_ctx *ctx, vb_sampler_backend *be, const vb_sampler_b
     out->times->envelope += t2 - t1;
     out->times->vertices += t3 - t2;
     return VB_OK;
+}
+
+/* Device bytes of bases [k0, k1) of b without their candidates: inputs and
+ * ray colours, with ensure's quarter of slack. */
+static size_t part_bytes(const vb_sampler_batch *b, size_t k0, size_t k1)
+{
+    size_t nt = (b->ntile_off - 1) / (b->nbases ? b->nbases : 1);
+    size_t S = b->params.samples;
+    const vbs_base *f = &b->bases[k0], *l = &b->bases[k1 - 1];
+    size_t nbis = l->bis_start + l->bis_count - f->bis_start;
+    size_t nidx = b->tile_off[k1 * nt] - b->tile_off[k0 * nt];
+    size_t bytes = (k1 - k0) * sizeof *b->bases + nbis * sizeof *b->bis +
+                   ((k1 - k0) * nt + 1 + nidx) * sizeof(uint32_t) +
+                   6 * S * S * (k1 - k0) * sizeof(cl_uint);
+    return bytes + bytes / 4;
+}
+
+/* Bases [k0, k1) of b as a batch of their own, offsets rebased (the
+ * arrays are freed by part_free). */
+typedef struct part {
+    vb_sampler_batch b;
+    vbs_base *bases;
+    uint32_t *off, *idx;
+} part;
+
+static int part_make(const vb_sampler_batch *b, size_t k0, size_t k1, part *pt)
+{
+    memset(pt, 0, sizeof *pt);
+    size_t nt = (b->ntile_off - 1) / b->nbases, n = k1 - k0;
+    uint32_t bis0 = b->bases[k0].bis_start, idx0 = b->tile_off[k0 * nt];
+    const vbs_base *l = &b->bases[k1 - 1];
+    size_t nbis = l->bis_start + l->bis_count - bis0, nidx = b->tile_off[k1 * nt] - idx0;
+    pt->bases = malloc(n * sizeof *pt->bases);
+    pt->off = malloc((n * nt + 1) * sizeof *pt->off);
+    pt->idx = malloc((nidx ? nidx : 1) * sizeof *pt->idx);
+    if (!pt->bases || !pt->off || !pt->idx)
+        return VB_ENOMEM;
+    for (size_t k = 0; k < n; k++) {
+        pt->bases[k] = b->bases[k0 + k];
+        pt->bases[k].bis_start -= bis0;
+        pt->bases[k].tile_start = (uint32_t)(k * nt);
+    }
+    for (size_t k = 0; k <= n * nt; k++)
+        pt->off[k] = b->tile_off[k0 * nt + k] - idx0;
+    for (size_t k = 0; k < nidx; k++)
+        pt->idx[k] = b->tile_idx[idx0 + k] - bis0;
+    vb_sampler_batch sub = {n, pt->bases, nbis, b->bis + bis0, n * nt + 1, pt->off, nidx,
+                            pt->idx, b->params};
+    pt->b = sub;
+    return VB_OK;
+}
+
+static void part_free(part *pt)
+{
+    free(pt->bases);
+    free(pt->off);
+    free(pt->idx);
+}
+
+/* Bases [k0, k1) of b, halved until each part fits the device budget; the
+ * candidates do not depend on how the bases are grouped. */
+static int run_range(vb_ctx *ctx, vb_sampler_backend *be, const vb_sampler_batch *b, size_t k0,
+                     size_t k1, vb_sampler_batch_out *out)
+{
+    ocl_state *st = be->state;
+    if (k1 - k0 > 1 && part_bytes(b, k0, k1) > st->budget / 2) {
+        size_t mid = k0 + (k1 - k0) / 2;
+        int rc = run_range(ctx, be, b, k0, mid, out);
+        return rc ? rc : run_range(ctx, be, b, mid, k1, out);
+    }
+    int rc;
+    if (k0 == 0 && k1 == b->nbases) {
+        rc = run_part(ctx, be, b, out);
+    } else {
+        part pt;
+        rc = part_make(b, k0, k1, &pt) ? vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (batch)")
+                                        : run_part(ctx, be, &pt.b, out);
+        part_free(&pt);
+    }
+    if (rc == OCL_SPLIT) {
+        size_t mid = k0 + (k1 - k0) / 2;
+        rc = run_range(ctx, be, b, k0, mid, out);
+        return rc ? rc : run_range(ctx, be, b, mid, k1, out);
+    }
+    return rc;
+}
+
+static int ocl_run_batch(vb_ctx *ctx, vb_sampler_backend *be, const vb_sampler_batch *b,
+                         vb_sampler_batch_out *out)
+{
+    return b->nbases ? run_range(ctx, be, b, 0, b->nbases, out) : VB_OK;
 }
 
 static void release(ocl_buf *b)
@@ -217,6 +325,7 @@ int vbg_sampler_open(vb_ctx *ctx, vbg_runtime *rt, vb_sampler_backend **out)
     be->name = "opencl";
     snprintf(be->device, sizeof be->device, "%s", vbg_runtime_device_name(rt));
     be->batch_rays = vb_sampler_batch_rays(vbg_runtime_is_gpu(rt));
+    st->budget = vbg_runtime_memory_budget(rt);
     be->run_batch = ocl_run_batch;
     *out = be;
     return VB_OK;

@@ -21,12 +21,22 @@ extern const vb_device_layer vbg_device_layer;
 typedef struct vb_device vbg_runtime;
 
 /* Opens an OpenCL context and in-order queue (profiling enabled) on a device of
- * the requested kind with double-precision support. VB_EDEVICE when none is
- * available (the caller decides about falling back to the reference backend
- * and warns: vb_device.h). kind must not be VB_DEVICE_REF. */
+ * the requested kind with double-precision support: the first, or number
+ * VORBALL_DEVICE_INDEX (modulo their count) of those devices, counted over
+ * the platforms in order (one GPU per MPI rank on a host). VB_EDEVICE when
+ * none is available (the caller decides about falling back to the
+ * reference backend and warns: vb_device.h), VB_EMISUSE for a
+ * VORBALL_DEVICE_INDEX that is not a number. kind must not be
+ * VB_DEVICE_REF. */
 int vbg_runtime_open(vb_ctx *ctx, vb_device_kind kind, vbg_runtime **out);
 
 void vbg_runtime_close(vbg_runtime *rt);
+
+/* Bytes of device memory one pipeline stage may hold at once on rt's device
+ * (the device layer's budget: a bounded share of the device, and on a CPU
+ * device of the host memory free now; VORBALL_DEVICE_MEMORY_MIB overrides
+ * it). Stages split their work to fit it; the output does not depend on it. */
+size_t vbg_runtime_memory_budget(const vbg_runtime *rt);
 
 cl_context vbg_runtime_context(const vbg_runtime *rt);
 cl_command_queue vbg_runtime_queue(const vbg_runtime *rt);

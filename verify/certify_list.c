@@ -114,17 +114,6 @@ static void *work(void *arg)
     return NULL;
 }
 
-static void add_stats(vb_stats *to, const vb_stats *from)
-{
-    to->filter_calls += from->filter_calls;
-    to->filter_failures += from->filter_failures;
-    to->exact_evals += from->exact_evals;
-    to->candidates += from->candidates;
-    to->certified += from->certified;
-    to->rejected += from->rejected;
-    to->warnings += from->warnings;
-}
-
 /* Phase 1 on nt threads: worker 0 is c itself on the caller's thread and
  * context; the others get clones and contexts of their own. */
 static int run_workers(vb_ctx *ctx, vb_certifier *c, worker *ws, unsigned nt)
@@ -148,7 +137,7 @@ static int run_workers(vb_ctx *ctx, vb_certifier *c, worker *ws, unsigned nt)
     for (unsigned i = 1; i < nt; i++) {
         if (!ws[i].c)
             break;
-        add_stats(vb_ctx_stats(ctx), vb_ctx_stats(ws[i].ctx));
+        vb_stats_add(vb_ctx_stats(ctx), vb_ctx_stats(ws[i].ctx));
         c->slow_rounds += ws[i].c->sol.slow_rounds;
         vb_certifier_close(ws[i].c);
     }

@@ -304,17 +304,6 @@ static void *work(void *arg)
     return NULL;
 }
 
-static void add_stats(vb_stats *to, const vb_stats *from)
-{
-    to->filter_calls += from->filter_calls;
-    to->filter_failures += from->filter_failures;
-    to->exact_evals += from->exact_evals;
-    to->candidates += from->candidates;
-    to->certified += from->certified;
-    to->rejected += from->rejected;
-    to->warnings += from->warnings;
-}
-
 static void add_qstats(vb_cert_quad_stats *to, const vb_cert_quad_stats *from)
 {
     to->quads += from->quads;
@@ -547,7 +536,7 @@ int vb_certify_quads(vb_ctx *ctx, vb_certifier *c, const uint32_t (*quads)[4], s
     add_qstats(&qs, &ws[0].st);
     for (unsigned i = 1; i < nt; i++) {
         if (ws[i].ctx)
-            add_stats(vb_ctx_stats(ctx), vb_ctx_stats(ws[i].ctx));
+            vb_stats_add(vb_ctx_stats(ctx), vb_ctx_stats(ws[i].ctx));
         if (ws[i].c) {
             qs.mpfr_rounds += ws[i].c->sol.slow_rounds;
             c->slow_rounds += ws[i].c->sol.slow_rounds;

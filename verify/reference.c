@@ -29,8 +29,6 @@
 
 /* Neighbours tried first as intruders: the nearest few of the base sphere. */
 #define VBX_NEAR_K 12
-/* Above this many spheres W720 warns that the n^4 enumeration will be slow. */
-#define VBX_REFERENCE_LARGE 2000
 
 typedef struct ref_state {
     vb_ctx *ctx;
@@ -383,7 +381,7 @@ int vb_reference(vb_ctx *ctx, const vb_sphere_set *set, vb_vertex_list *out)
     if (rc != VB_OK)
         return rc;
     ref_state rs = {ctx, c, set->n, NULL, NULL, NULL, {UINT32_MAX, UINT32_MAX}, NULL, out};
-    if (set->n > VBX_REFERENCE_LARGE)
+    if (set->n > VB_REFERENCE_MAX_SPHERES)
         vb_warn(ctx, VB_W_REFERENCE_SLOW, set->source, 0,
                 "exact reference on %zu spheres: the enumeration grows as n^4 and may "
                 "take very long",

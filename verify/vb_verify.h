@@ -125,11 +125,17 @@ void vb_certifier_set_threads(vb_certifier *c, unsigned threads);
  * (all calls since open, every thread). */
 uint64_t vb_certifier_slow_rounds(const vb_certifier *c);
 
+/* Spheres above which `vorball reference` refuses an input unless --force
+ * (E130), and vb_reference warns (W720): the enumeration grows as about
+ * n^2.7 in practice (n^4 at worst): 800 spheres took 140 s, 1000 equal
+ * spheres 3.4 min of CPU. */
+#define VB_REFERENCE_MAX_SPHERES 500
+
 /* Exact reference: every vertex of the diagram from all quadruples (with
  * filters and conservative culling), canonical and sorted, dist = 0; appended
  * to out (which it sorts). Stats: candidates = quadruples examined, rejected
  * = those the filter refuted, certified = vertices found. Cost grows as n^4
- * (W720 above 2000 spheres). Not enumerated: vertices whose members' tangency
+ * (W720 above VB_REFERENCE_MAX_SPHERES). Not enumerated: vertices whose members' tangency
  * system has rank < 3 yet an isolated solution (needs nested spheres that
  * touch; see verify/reference.c). Returns VB_OK, VB_ENOMEM, VB_EPREC. */
 int vb_reference(vb_ctx *ctx, const vb_sphere_set *set, vb_vertex_list *out);

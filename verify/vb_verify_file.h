@@ -71,6 +71,16 @@ typedef struct vb_verify_report {
 int vb_verify_file(vb_ctx *ctx, const vb_sphere_set *set, const char *path, double tol,
                    int complete, vb_verify_report *out);
 
+/* As vb_verify_file for vertices in memory (a binding's arrays): the n
+ * vertices of v are judged as the lines 1 .. n of a vertex file called
+ * `name` in `format` (VB_VFMT_VORONOTA groups quadruple lines by exact
+ * vertex, as for a file). v is copied; ids need not be sorted. Fills *out
+ * (free with vb_verify_report_free, also on error). VB_EINPUT_EMPTY for
+ * n = 0, VB_ENOMEM, VB_EPREC, VB_EINTERNAL. */
+int vb_verify_list(vb_ctx *ctx, const vb_sphere_set *set, const char *name,
+                   const vb_vertex_list *v, vb_vertex_format format, double tol, int complete,
+                   vb_verify_report *out);
+
 /* 1 when every line is certified and nothing was missed. */
 int vb_verify_report_ok(const vb_verify_report *r);
 

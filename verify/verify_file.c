@@ -247,8 +247,7 @@ static void tally(const vb_vertex_list *v, const vb_verify_line *j, size_t nmiss
         n->groups += i == 0 || sorted[i].key != sorted[i - 1].key;
 }
 
-int vb_verify_file(vb_ctx *ctx, const vb_sphere_set *set, const char *path, double tol,
-                   int complete, vb_verify_report *out)
+static void report_init(vb_verify_report *out, double tol, int complete)
 {
     memset(out, 0, sizeof *out);
     vb_vertex_list_init(&out->vertices);
@@ -256,30 +255,63 @@ int vb_verify_file(vb_ctx *ctx, const vb_sphere_set *set, const char *path, doub
     out->tol = tol;
     out->complete = complete;
     out->format = VB_VFMT_TSV;
+}
+
+/* Judges the lines in out->vertices (source lines in out->lines); name is
+ * the vertex file in messages. */
+static int judge_report(vb_ctx *ctx, const vb_sphere_set *set, const char *name,
+                        vb_verify_report *out)
+{
     vb_certifier *cert = NULL;
     key_entry *sorted = NULL;
     size_t nsorted = 0;
     const vb_vertex_list *v = &out->vertices;
-    int rc = vb_vertex_read_file(ctx, path, &out->vertices, &out->format, &out->lines);
-    if (rc == VB_OK && v->n == 0)
-        rc = vb_error(ctx, VB_EINPUT_EMPTY, path, 0, "no vertex lines: nothing to verify");
+    int rc = VB_OK;
+    if (v->n == 0)
+        rc = vb_error(ctx, VB_EINPUT_EMPTY, name, 0, "no vertex lines: nothing to verify");
     if (rc == VB_OK)
         rc = vb_certifier_open(ctx, set, &cert);
     if (rc == VB_OK && !(out->judged = calloc(v->n, sizeof *out->judged)))
         rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory");
     for (size_t k = 0; rc == VB_OK && k < v->n; k++)
-        if ((rc = judge_line(ctx, cert, set, v, k, tol, &out->judged[k])) == VB_ENOMEM)
+        if ((rc = judge_line(ctx, cert, set, v, k, out->tol, &out->judged[k])) == VB_ENOMEM)
             rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory");
     if (rc == VB_OK && judge_groups(v, out->lines, out->judged, out->format == VB_VFMT_VORONOTA,
                                     &sorted, &nsorted) != VB_OK)
         rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory");
-    if (rc == VB_OK && complete)
+    if (rc == VB_OK && out->complete)
         rc = find_missed(ctx, cert, set, sorted, nsorted, &out->missed);
     if (rc == VB_OK)
         tally(v, out->judged, out->missed.n, sorted, nsorted, &out->counts);
     free(sorted);
     vb_certifier_close(cert);
     return rc;
+}
+
+int vb_verify_file(vb_ctx *ctx, const vb_sphere_set *set, const char *path, double tol,
+                   int complete, vb_verify_report *out)
+{
+    report_init(out, tol, complete);
+    int rc = vb_vertex_read_file(ctx, path, &out->vertices, &out->format, &out->lines);
+    return rc == VB_OK ? judge_report(ctx, set, path, out) : rc;
+}
+
+int vb_verify_list(vb_ctx *ctx, const vb_sphere_set *set, const char *name,
+                   const vb_vertex_list *v, vb_vertex_format format, double tol, int complete,
+                   vb_verify_report *out)
+{
+    report_init(out, tol, complete);
+    out->format = format;
+    if (v->n && !(out->lines = malloc(v->n * sizeof *out->lines)))
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory");
+    for (size_t k = 0; k < v->n; k++) {
+        out->lines[k] = (long)k + 1;
+        if (vb_vertex_list_push(&out->vertices, v->ids + v->start[k], v->start[k + 1] - v->start[k],
+                                v->x[k], v->y[k], v->z[k], v->t[k], v->dist[k],
+                                v->status[k]) != VB_OK)
+            return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory");
+    }
+    return judge_report(ctx, set, name, out);
 }
 
 int vb_verify_report_ok(const vb_verify_report *r)

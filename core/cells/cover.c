@@ -547,10 +547,82 @@ void vb_cover_tree_free(vb_cover_tree *t)
     free(t);
 }
 
-int vb_cover_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *opt,
-                 vb_cover_backend *be, vb_quad_list *out, vb_cover_stats *stats)
+/* Sorts l on nt threads and drops repeats. */
+static int canonical(vb_quad_list *l, int nt)
+{
+    int rc = l->n > 1 ? vb_psort(l->q, l->n, sizeof *l->q, cmp_quad, nt) : VB_OK;
+    if (rc == VB_OK && l->n > 1) {
+        size_t k = 1;
+        for (size_t a = 1; a < l->n; a++)
+            if (cmp_quad(l->q[a], l->q[k - 1]) != 0)
+                memcpy(l->q[k++], l->q[a], sizeof *l->q);
+        l->n = k;
+    }
+    return rc;
+}
+
+/* Workers' quadruples of one run appended to out, sorted and unique.
+ * Cells own disjoint quadruples (by their smallest id), but a device may
+ * split a cell's root patches into tasks whose lists share some: one sort
+ * and one pass of repeats make the list canonical. */
+static int gather(worker *w, int nt, vb_quad_list *out)
+{
+    size_t total = out->n, n0 = out->n;
+    for (int t = 0; t < nt; t++)
+        total += w[t].nq;
+    if (total > out->cap) {
+        void *p = realloc(out->q, total * sizeof *out->q);
+        if (!p)
+            return VB_ENOMEM;
+        out->q = p;
+        out->cap = total;
+    }
+    for (int t = 0; t < nt; t++) {
+        if (w[t].nq)
+            memcpy(out->q + out->n, w[t].q, w[t].nq * sizeof *out->q);
+        out->n += w[t].nq;
+        w[t].nq = 0;
+    }
+    return out->n > n0 ? canonical(out, nt) : VB_OK;
+}
+
+static void stats_sum(vb_cover_stats *st, const vb_cover_stats *ws)
+{
+    st->cells += ws->cells;
+    st->neighbours += ws->neighbours;
+    st->far_neighbours += ws->far_neighbours;
+    st->patches += ws->patches;
+    st->evals += ws->evals;
+    st->leaves += ws->leaves;
+    st->max_level_leaves += ws->max_level_leaves;
+    st->retries += ws->retries;
+    st->host_cells += ws->host_cells;
+    st->t_device += ws->t_device;
+    st->t_host += ws->t_host;
+    if (ws->max_level_seen > st->max_level_seen)
+        st->max_level_seen = ws->max_level_seen;
+}
+
+unsigned vb_cover_pipeline_parts(size_t cells)
+{
+    const char *e = getenv("VORBALL_COVER_PARTS");
+    if (e && *e) {
+        char *end;
+        unsigned long v = strtoul(e, &end, 10);
+        if (*end == '\0' && v >= 1 && v <= 64)
+            return (unsigned)v;
+    }
+    (void)cells;
+    return 1u;
+}
+
+int vb_cover_run_parts(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *opt,
+                       vb_cover_backend *be, unsigned parts, vb_cover_sink sink, void *user,
+                       vb_cover_stats *stats)
 {
     vb_cover_options o = opt ? *opt : (vb_cover_options){0};
+    if (parts < 1 || parts > 64 || !sink)
+        return vb_error(ctx, VB_EMISUSE, NULL, 0, "cover: %u pipeline parts", parts);
     job jb;
     memset(&jb, 0, sizeof jb);
     jb.set = set;
@@ -561,82 +633,95 @@ int vb_cover_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *
     bvh g = tree->g;
     /* Cells in the tree's curve order: neighbouring cells share neighbours
      * (caches, and a device's work-items). */
-    jb.cells = g.ids;
-    jb.ncells = g.m;
+    const uint32_t *cells = g.ids;
+    size_t ncells = g.m;
     if (o.nparts > 1) {
         if (o.part >= o.nparts) {
             vb_cover_tree_free(tree);
             return vb_error(ctx, VB_EMISUSE, NULL, 0, "cover part %u of %u", o.part, o.nparts);
         }
         size_t b0 = g.m * (size_t)o.part / o.nparts, b1 = g.m * ((size_t)o.part + 1) / o.nparts;
-        jb.cells = g.ids + b0;
-        jb.ncells = b1 - b0;
+        cells += b0;
+        ncells = b1 - b0;
     }
     int nt = vb_threads(o.threads);
     worker *w = calloc((size_t)nt, sizeof *w);
     int rc = w ? VB_OK : VB_ENOMEM;
     for (int t = 0; rc == VB_OK && t < nt; t++)
         w[t].jb = &jb;
-    double t0 = vb_now();
-    if (rc == VB_OK && be)
-        rc = cover_hybrid(ctx, &jb, be, w, nt);
-    else if (rc == VB_OK && jb.ncells)
-        rc = cover_host(&jb, w, nt);
-    w[0].st.t_host = vb_now() - t0;
-    size_t total = 0;
-    for (int t = 0; rc == VB_OK && t < nt; t++)
-        total += w[t].nq;
-    if (rc == VB_OK && total + out->n > out->cap) {
-        void *p = realloc(out->q, (total + out->n) * sizeof *out->q);
-        if (!p)
-            rc = VB_ENOMEM;
-        else {
-            out->q = p;
-            out->cap = total + out->n;
-        }
-    }
     vb_cover_stats st;
     memset(&st, 0, sizeof st);
+    for (unsigned p = 0; rc == VB_OK && p < parts; p++) {
+        size_t c0 = ncells * p / parts, c1 = ncells * (p + 1) / parts;
+        jb.cells = cells + c0;
+        jb.ncells = c1 - c0;
+        double t0 = vb_now();
+        if (be)
+            rc = cover_hybrid(ctx, &jb, be, w, nt);
+        else if (jb.ncells)
+            rc = cover_host(&jb, w, nt);
+        st.t_host += vb_now() - t0;
+        vb_quad_list part = {0};
+        if (rc == VB_OK)
+            rc = gather(w, nt, &part);
+        st.quads += part.n;
+        if (rc == VB_OK)
+            rc = sink(user, &part);
+        vb_quad_list_free(&part);
+    }
     for (int t = 0; w && t < nt; t++) {
-        if (rc == VB_OK && w[t].nq) {
-            memcpy(out->q + out->n, w[t].q, w[t].nq * sizeof *out->q);
-            out->n += w[t].nq;
-        }
-        const vb_cover_stats *ws = &w[t].st;
-        st.cells += ws->cells;
-        st.neighbours += ws->neighbours;
-        st.far_neighbours += ws->far_neighbours;
-        st.patches += ws->patches;
-        st.evals += ws->evals;
-        st.leaves += ws->leaves;
-        st.max_level_leaves += ws->max_level_leaves;
-        st.retries += ws->retries;
-        st.host_cells += ws->host_cells;
-        st.t_device += ws->t_device;
-        st.t_host += ws->t_host;
-        if (ws->max_level_seen > st.max_level_seen)
-            st.max_level_seen = ws->max_level_seen;
+        stats_sum(&st, &w[t].st);
         arena_free(&w[t].ar);
         free(w[t].q);
     }
     free(w);
     vb_cover_tree_free(tree);
-    /* Cells own disjoint quadruples (by their smallest id), but a device may
-     * split a cell's root patches into tasks whose lists share some: one
-     * sort and one pass of repeats make the list canonical. */
-    if (rc == VB_OK && out->n > 1)
-        rc = vb_psort(out->q, out->n, sizeof *out->q, cmp_quad, nt);
-    if (rc == VB_OK && out->n > 1) {
-        size_t k = 1;
-        for (size_t a = 1; a < out->n; a++)
-            if (cmp_quad(out->q[a], out->q[k - 1]) != 0)
-                memcpy(out->q[k++], out->q[a], sizeof *out->q);
-        out->n = k;
-    }
-    st.quads = out->n;
     if (stats)
         *stats = st;
     if (rc == VB_ENOMEM)
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
+    return rc;
+}
+
+/* vb_cover_run's sink: each part merged into the caller's list. */
+static int append_part(void *user, vb_quad_list *part)
+{
+    vb_quad_list *out = user;
+    if (out->n == 0) {
+        vb_quad_list_free(out);
+        *out = *part;
+        memset(part, 0, sizeof *part);
+        return VB_OK;
+    }
+    if (out->n + part->n > out->cap) {
+        void *p = realloc(out->q, (out->n + part->n) * sizeof *out->q);
+        if (!p)
+            return VB_ENOMEM;
+        out->q = p;
+        out->cap = out->n + part->n;
+    }
+    memcpy(out->q + out->n, part->q, part->n * sizeof *out->q);
+    out->n += part->n;
+    return VB_OK;
+}
+
+int vb_cover_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *opt,
+                 vb_cover_backend *be, vb_quad_list *out, vb_cover_stats *stats)
+{
+    vb_quad_list mine = {0};
+    int rc = vb_cover_run_parts(ctx, set, opt, be, 1, append_part, &mine, stats);
+    if (rc == VB_OK && out->n == 0) {
+        vb_quad_list_free(out);
+        *out = mine;
+        return VB_OK;
+    }
+    if (rc == VB_OK) {
+        rc = append_part(out, &mine);
+        if (rc == VB_OK)
+            rc = canonical(out, vb_threads(opt ? opt->threads : 0));
+        if (rc != VB_OK)
+            rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
+    }
+    vb_quad_list_free(&mine);
     return rc;
 }

@@ -1,7 +1,8 @@
 /* The direction cover (vb_cover.h) behind the proposer table: its OpenCL
  * backend on a device (the device layer's cover_open), or the host's
  * threads. It proposes quadruples whose exact roots hold every vertex, so
- * the result says `complete`. */
+ * the result says `complete`; with a sink in the options they go to it
+ * part by part (vb_cover_run_parts), for the certifier to overlap. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -41,7 +42,10 @@ static int cover_run(vb_ctx *ctx, void *state, const vb_proposer_await *aw,
     o.nparts = opt->nparts;
     vb_quad_list q = {0};
     vb_cover_stats st;
-    int rc = vb_cover_run(ctx, set, &o, s->be, &q, &st);
+    int rc = opt->quads_sink
+                 ? vb_cover_run_parts(ctx, set, &o, s->be, vb_cover_pipeline_parts(set->n),
+                                      opt->quads_sink, opt->quads_user, &st)
+                 : vb_cover_run(ctx, set, &o, s->be, &q, &st);
     if (rc != VB_OK) {
         vb_quad_list_free(&q);
         return rc;
@@ -51,7 +55,7 @@ static int cover_run(vb_ctx *ctx, void *state, const vb_proposer_await *aw,
     res->quads.cap = q.cap;
     res->complete = 1;
     res->cover_cells = st.cells;
-    res->cover_quads = q.n;
+    res->cover_quads = st.quads;
     res->cover_patches = st.patches;
     res->cover_host_cells = st.host_cells;
     res->t_cover_device = st.t_device;

@@ -118,6 +118,58 @@ static int store_add(vbs_bis_store *st, uint32_t i, const vbs_base_data *bd)
     return VB_OK;
 }
 
+/* Ratio of the extent to the smallest positive radius above which the
+ * sampler refuses the input (E131), and the finest --tol it takes, as a
+ * fraction of the extent (E132).
+ *
+ * Radii. In the frame of sphere i (scale s = R_i, vb_geom_shared.h) a
+ * neighbour is e = (c_j - c_i)/s, delta = (R_j - R_i)/s, both at most
+ * rho = D/s in size (D: the diagonal of the spheres' box, which bounds
+ * |c_j - c_i| and |R_j - R_i|). Newton (Eq. 3) evaluates L = |e|^2 -
+ * delta^2 - 2 P.e and L^2 - 4 delta^2 |P|^2. At points within 1e25 D of the
+ * sphere (|P| <= 1e25 rho) |L| <= (2 + 2e25) rho^2 < 3e25 rho^2, so both
+ * terms stay below 9e50 rho^4 + 4e50 rho^4 < 1.3e51 rho^4, finite (below
+ * 1.8e308) for rho <= 1e50 with a factor 1e50 to spare, and the gradient
+ * terms (4 L e, 8 delta^2 P) are smaller still. At rho = 1e78 (radius 1e-77
+ * in a 10 A box) L^2 is 1e312 and overflows: every vertex was lost without a
+ * word. The exact reference (`vorball reference`) has no such limit.
+ *
+ * Tolerance. Candidates are accepted when their equidistance defect is
+ * within tol/s in the frame; Newton stops once its step is below 1e-13
+ * (|P| + 1) and rounds each iterate to 1.1e-16 of |P|, so for vertices
+ * within the box it cannot promise a defect below about 1e-13 rho, i.e.
+ * 1e-13 D in world units. On the corpus, vertices start to be lost below
+ * about 1e-15 D (coplanar_centres: 24 of 26 at tol = 7e-16 D; crambin_fragment
+ * 272 of 349 at 1e-18), silently. tol >= 1e-12 D keeps ten times the
+ * stopping rule. */
+#define VBS_MAX_EXTENT_OVER_RADIUS 1e50
+#define VBS_MIN_TOL_OVER_EXTENT 1e-12
+
+/* VB_EINPUT_SCALE when a radius is too small for the double-precision
+ * frame, VB_EINPUT_TOL when a given tol is finer than the candidates can be
+ * (see above). */
+static int check_double_range(vb_ctx *ctx, const vb_sphere_set *set, double tol)
+{
+    double D = vb_sampler_default_tol(set) / 1e-5;
+    size_t small = SIZE_MAX;
+    for (size_t i = 0; i < set->n; i++)
+        if (set->r[i] > 0.0 && (small == SIZE_MAX || set->r[i] < set->r[small]))
+            small = i;
+    const char *src = set->source ? set->source : "<spheres>";
+    if (small != SIZE_MAX && D / set->r[small] > VBS_MAX_EXTENT_OVER_RADIUS)
+        return vb_error(ctx, VB_EINPUT_SCALE, src, set->line ? set->line[small] : 0,
+                        "radius %.3g is below 1e-50 of the input's extent %.3g: beyond the "
+                        "double precision of the sampling proposer (the cover proposer, the "
+                        "default, and `vorball reference` compute it)",
+                        set->r[small], D);
+    if (tol > 0.0 && tol < VBS_MIN_TOL_OVER_EXTENT * D)
+        return vb_error(ctx, VB_EINPUT_TOL, src, 0,
+                        "--tol %.3g is below 1e-12 of the input's extent %.3g: finer than the "
+                        "sampling proposer's candidates can be (the default is 1e-5 of it)",
+                        tol, D);
+    return VB_OK;
+}
+
 /* Candidates in the order (base, grid cell, rank in cell): independent of the
  * order in which a device appended them. */
 static int cmp_cand(const void *pa, const void *pb)
@@ -213,6 +265,9 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
     if (o.tiles > 64u || (o.tiles & (o.tiles - 1u)) != 0)
         return vb_error(ctx, VB_EMISUSE, NULL, 0,
                         "culling tiles must be a power of two up to 64 (got %u)", o.tiles);
+    int rc = set->n ? check_double_range(ctx, set, o.tol) : VB_OK;
+    if (rc != VB_OK)
+        return rc;
     if (!(o.tol > 0.0))
         o.tol = vb_sampler_default_tol(set);
     if (set->n > 0xfffffff0u)
@@ -253,7 +308,7 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
     vb_cand_vec raw = {0};
     vbs_topo_acc topo;
     memset(&topo, 0, sizeof topo);
-    int rc = vbs_hash_build(ctx, set, &hash);
+    rc = vbs_hash_build(ctx, set, &hash);
     if (rc != VB_OK)
         return rc;
     for (unsigned T = 1; rc == VB_OK && T <= o.tiles; T *= 2)
@@ -267,10 +322,22 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
         (!bb.bases || !bb.tile_off || !slots || !ca || !store.off || !store.co_off))
         rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (batch buffers)");
     int pending = 0; /* bb holds culled bases not yet run */
+    /* Bases culled at a time (`step`): before the backend is known, an
+     * eighth of per_batch, joined into the first batch while the device is
+     * still being set up (up to per_batch, and beyond while the batch holds
+     * less than VB_SAMPLER_AHEAD_BYTES); then what the backend prefers. A
+     * batch sized for a GPU when the device turns out to be PoCL held the
+     * culled data of thousands of bases more than PoCL runs at once (the
+     * 26k-atom capsid took 11 GB on PoCL against 6.4 GB on the reference).
+     * The culling of the next range is under way while a batch runs:
+     * `cull_end` ends the range it covers. */
+    size_t step = be ? per_batch : (per_batch + VB_SAMPLER_MAX_AHEAD - 1) / VB_SAMPLER_MAX_AHEAD;
+    size_t cull_end = step;
+    int be_known = be != NULL;
     if (rc == VB_OK && set->n > 0)
-        cull_start(ca, ctx, &cu, slots, 0, per_batch, nthreads);
-    for (size_t b0 = 0, cur = 0; rc == VB_OK && b0 < set->n; b0 += per_batch, cur ^= 1) {
-        size_t b1 = b0 + per_batch < set->n ? b0 + per_batch : set->n;
+        cull_start(ca, ctx, &cu, slots, 0, cull_end, nthreads);
+    for (size_t b0 = 0, cur = 0; rc == VB_OK && b0 < set->n; cur ^= 1) {
+        size_t b1 = cull_end;
         vbs_base_data *sl = slots + cur * per_batch;
         double t0 = vb_now();
         if (!pending) {
@@ -278,9 +345,10 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
             bb.tile_off[0] = 0;
         }
         rc = cull_join(ca);
-        if (rc == VB_OK && b1 < set->n)
-            cull_start(ca, ctx, &cu, slots + (cur ^ 1) * per_batch, b1,
-                       b1 + per_batch < set->n ? b1 + per_batch : set->n, nthreads);
+        if (rc == VB_OK && b1 < set->n) {
+            cull_end = b1 + step < set->n ? b1 + step : set->n;
+            cull_start(ca, ctx, &cu, slots + (cur ^ 1) * per_batch, b1, cull_end, nthreads);
+        }
         for (size_t i = b0; i < b1 && rc == VB_OK; i++)
             if (batch_add(&bb, set, (uint32_t)i, res->clip, &sl[i - b0], ntiles) ||
                 store_add(&store, (uint32_t)i, &sl[i - b0]))
@@ -288,10 +356,15 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
         res->times.cull += vb_now() - t0;
         if (rc != VB_OK)
             break;
-        /* The device is still being set up: cull on, into the same batch. */
+        /* The device is still being set up: cull on, into the same batch,
+         * up to per_batch, and beyond while the batch is small in bytes. */
+        size_t bytes = bb.nbases * (sizeof *bb.bases + ntiles * sizeof *bb.tile_off) +
+                       bb.nbis * sizeof *bb.bis + bb.nidx * sizeof *bb.tile_idx;
         pending = !be && o.backend_ready && b1 < set->n &&
-                  bb.nbases + (b1 + per_batch < set->n ? per_batch : set->n - b1) <= max_bases &&
+                  bb.nbases + (cull_end - b1) <= max_bases &&
+                  (bb.nbases + (cull_end - b1) <= per_batch || bytes < VB_SAMPLER_AHEAD_BYTES) &&
                   !o.backend_ready(o.await_user);
+        b0 = b1;
         if (pending)
             continue;
         res->bisectors += bb.nbis;
@@ -301,6 +374,11 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
         if (!be && !(be = o.await_backend(o.await_user))) {
             rc = vb_errcode(ctx) != VB_OK ? vb_errcode(ctx) : VB_EDEVICE;
             break;
+        }
+        if (!be_known) {
+            size_t pref = be->batch_rays ? be->batch_rays / rays_per_base : per_batch;
+            step = pref < 1 ? 1 : pref > per_batch ? per_batch : pref;
+            be_known = 1;
         }
         rc = be->run_batch(ctx, be, &batch, &out);
         if (rc != VB_OK)

@@ -26,6 +26,8 @@ extern "C" {
 #define VB_SAMPLER_DEFAULT_ITER 40u
 #define VB_SAMPLER_DEFAULT_TARGET_DEPTH 10u
 
+struct vb_quad_list; /* vb_cover.h */
+
 typedef struct vb_sampler_options {
     unsigned samples;        /* S >= 2 (0: default) */
     unsigned tiles;          /* culling tiles per face side (0: automatic) */
@@ -35,7 +37,9 @@ typedef struct vb_sampler_options {
     double tol;              /* world units; <= 0: 1e-5 of the bounding-box diagonal */
     int all_pairs;           /* 1: no culling, every cell tests all n - 1 bisectors */
     int topology;            /* 1: collect face adjacency and edge evidence */
-    unsigned batch_rays;     /* rays per backend batch (0: backend's choice) */
+    unsigned batch_rays;     /* rays per backend batch (0: backend's choice); with
+                                await_backend, of the batches culled before the
+                                backend is known (then at most its choice) */
     unsigned part, nparts;   /* this process's part of the work (MPI ranks; 0 or 1 part:
                                 all of it); the cover splits its cells, see vb_cover.h */
     unsigned threads;        /* host threads (0: VORBALL_THREADS or online CPUs);
@@ -54,9 +58,19 @@ typedef struct vb_sampler_options {
      * culling; the output does not depend on how bases are batched. */
     int (*backend_ready)(void *user);
     void *await_user;
+    /* May be NULL. A proposer of quadruples (the cover) hands them to it
+     * part by part as they are proposed, sorted and unique (the contract
+     * of vb_cover_sink: parts disjoint, the sink may take a part's array),
+     * and leaves res->quads empty; a
+     * sink's error stops the proposer and is returned. */
+    int (*quads_sink)(void *user, struct vb_quad_list *part);
+    void *quads_user;
 } vb_sampler_options;
 
 #define VB_SAMPLER_MAX_AHEAD 8u
+/* Host bytes of batch data (bases, bisectors, tiles) beyond which the first
+ * batch stops growing while the device is set up. */
+#define VB_SAMPLER_AHEAD_BYTES ((size_t)256 << 20)
 
 /* One batch for a backend: the bases, their bisectors and culling tiles. */
 typedef struct vb_sampler_batch {
@@ -169,8 +183,9 @@ typedef struct vb_sampler_result {
     } quads;
     int complete;
     uint64_t cover_cells, cover_patches, cover_host_cells; /* the cover's counters */
-    uint64_t cover_quads;         /* quadruples proposed: quads.n, as a counter that
-                                     processes which covered parts of the cells can add up */
+    uint64_t cover_quads;         /* quadruples proposed (in quads, or handed to the sink),
+                                     a counter that processes which covered parts of the
+                                     cells can add up */
     double t_cover_device;        /* seconds in the cover's device batches */
 } vb_sampler_result;
 
@@ -180,7 +195,10 @@ void vb_sampler_result_free(vb_sampler_result *r);
 /* Runs the pipeline up to (not including) certification. set must be
  * validated (contained spheres flagged). be may be NULL when
  * opt->await_backend and opt->batch_rays are set. Returns VB_OK, VB_EMISUSE
- * (bad options), VB_ENOMEM or the backend's VB_EDEVICE. */
+ * (bad options), VB_EINPUT_SCALE (a radius below 1e-50 of the input's
+ * extent: beyond the doubles of the normalised frames), VB_EINPUT_TOL
+ * (opt->tol below 1e-12 of the extent), VB_ENOMEM or the backend's
+ * VB_EDEVICE. */
 int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_options *opt,
                    vb_sampler_backend *be, vb_sampler_result *res);
 

@@ -44,6 +44,15 @@ int vb_vertex_list_push(vb_vertex_list *v, const uint32_t *ids, size_t nids, dou
  * common prefix), then x, y, z, t. Returns VB_OK or VB_ENOMEM. */
 int vb_vertex_list_sort(vb_vertex_list *v);
 
+/* Appends the vertices of nparts (at most 64) sorted lists to out in
+ * canonical order (vb_vertex_list_sort's), a merge that writes a repeat
+ * once: an entry with the same members, point and t as the one written
+ * before it (one exact vertex of degree > 4 certified in two lists);
+ * *dropped (may be NULL) gets their number. VB_OK, VB_ENOMEM (out may then
+ * hold part of them) or VB_EMISUSE (more than 64 lists). */
+int vb_vertex_list_merge(vb_vertex_list *out, const vb_vertex_list *parts, size_t nparts,
+                         size_t *dropped);
+
 /* Appends every vertex of src to dst as it is (no sorting). VB_OK or
  * VB_ENOMEM (dst may then hold part of src). */
 int vb_vertex_list_append(vb_vertex_list *dst, const vb_vertex_list *src);

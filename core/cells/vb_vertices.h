@@ -14,6 +14,8 @@
 #ifndef VB_VERTICES_H
 #define VB_VERTICES_H
 
+#include <stdio.h>
+
 #include "vb_device.h"
 #include "vb_sampler.h"
 
@@ -131,6 +133,12 @@ typedef struct vb_vertices_result {
  * diagram is among them, and the cover's counts. The text depends on the
  * input alone, never on the device or the thread count. */
 void vb_vertices_certificate(const vb_vertices_result *r, char *buf, size_t size);
+
+/* Writes the counters of a finished run r to f, one "name<TAB>value" line
+ * each (backend, device, the proposer's counters, certified and rejected
+ * counts, and the context's filter counters: filter_calls, filter_failures,
+ * exact_evals), as `vorball vertices --stats` prints them. No timings. */
+void vb_vertices_write_stats(vb_ctx *ctx, FILE *f, const vb_vertices_result *r);
 
 void vb_vertices_result_init(vb_vertices_result *r);
 void vb_vertices_result_free(vb_vertices_result *r);

@@ -107,13 +107,12 @@ typedef struct {
     size_t k;
 } sort_key;
 
-static int cmp_key(const void *pa, const void *pb)
+/* The canonical order of entry a of list u and entry b of list v. */
+static int cmp_entries(const vb_vertex_list *u, size_t a, const vb_vertex_list *v, size_t b)
 {
-    const sort_key *a = pa, *b = pb;
-    const vb_vertex_list *v = a->v;
-    size_t na = v->start[a->k + 1] - v->start[a->k];
-    size_t nb = v->start[b->k + 1] - v->start[b->k];
-    const uint32_t *ia = v->ids + v->start[a->k], *ib = v->ids + v->start[b->k];
+    size_t na = u->start[a + 1] - u->start[a];
+    size_t nb = v->start[b + 1] - v->start[b];
+    const uint32_t *ia = u->ids + u->start[a], *ib = v->ids + v->start[b];
     size_t m = na < nb ? na : nb;
     for (size_t i = 0; i < m; i++)
         if (ia[i] != ib[i])
@@ -121,10 +120,23 @@ static int cmp_key(const void *pa, const void *pb)
     if (na != nb)
         return na < nb ? -1 : 1;
     int c;
-    if ((c = cmp_double(v->x[a->k], v->x[b->k])) || (c = cmp_double(v->y[a->k], v->y[b->k])) ||
-        (c = cmp_double(v->z[a->k], v->z[b->k])) || (c = cmp_double(v->t[a->k], v->t[b->k])))
+    if ((c = cmp_double(u->x[a], v->x[b])) || (c = cmp_double(u->y[a], v->y[b])) ||
+        (c = cmp_double(u->z[a], v->z[b])) || (c = cmp_double(u->t[a], v->t[b])))
         return c;
-    return (a->k > b->k) - (a->k < b->k);
+    return 0;
+}
+
+static int cmp_key(const void *pa, const void *pb)
+{
+    const sort_key *a = pa, *b = pb;
+    int c = cmp_entries(a->v, a->k, b->v, b->k);
+    return c ? c : (a->k > b->k) - (a->k < b->k);
+}
+
+static int push_entry(vb_vertex_list *out, const vb_vertex_list *v, size_t k)
+{
+    return vb_vertex_list_push(out, v->ids + v->start[k], v->start[k + 1] - v->start[k], v->x[k],
+                               v->y[k], v->z[k], v->t[k], v->dist[k], v->status[k]);
 }
 
 int vb_vertex_list_sort(vb_vertex_list *v)
@@ -142,8 +154,7 @@ int vb_vertex_list_sort(vb_vertex_list *v)
     int rc = VB_OK;
     for (size_t i = 0; i < v->n && rc == VB_OK; i++) {
         size_t k = keys[i].k;
-        rc = vb_vertex_list_push(&out, v->ids + v->start[k], v->start[k + 1] - v->start[k],
-                                 v->x[k], v->y[k], v->z[k], v->t[k], v->dist[k], v->status[k]);
+        rc = push_entry(&out, v, k);
     }
     free(keys);
     if (rc != VB_OK) {
@@ -196,6 +207,36 @@ int vb_vertex_list_canonical(vb_vertex_list *v, size_t *dropped)
     }
     vb_vertex_list_free(v);
     *v = out;
+    if (dropped)
+        *dropped = drop;
+    return VB_OK;
+}
+
+
+int vb_vertex_list_merge(vb_vertex_list *out, const vb_vertex_list *parts, size_t nparts,
+                         size_t *dropped)
+{
+    size_t pos[64] = {0}, n0 = out->n, drop = 0;
+    if (dropped)
+        *dropped = 0;
+    if (nparts > 64)
+        return VB_EMISUSE;
+    for (;;) {
+        size_t best = nparts;
+        for (size_t p = 0; p < nparts; p++)
+            if (pos[p] < parts[p].n &&
+                (best == nparts || cmp_entries(&parts[p], pos[p], &parts[best], pos[best]) < 0))
+                best = p;
+        if (best == nparts)
+            break;
+        size_t k = pos[best]++;
+        if (out->n > n0 && cmp_entries(out, out->n - 1, &parts[best], k) == 0) {
+            drop++;
+            continue;
+        }
+        if (push_entry(out, &parts[best], k) != VB_OK)
+            return VB_ENOMEM;
+    }
     if (dropped)
         *dropped = drop;
     return VB_OK;

@@ -5,6 +5,8 @@
  * the proposer, the certifier and vb_sampler_swap_candidates. */
 #include "vb_vertices.h"
 
+#include "vbv_certify.h"
+
 #include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -302,79 +304,29 @@ static int certify_quads(vb_ctx *ctx, const vb_certifier_ops *ops, void *cert,
     return rc == VB_ENOMEM ? vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (certify)") : rc;
 }
 
-/* The certifier's set-up (exact data and spatial index of the spheres)
- * needs only the spheres: it runs on a thread of its own, with its own
- * context for messages, while the proposer works. */
-typedef struct cert_opener {
-    const vb_certifier_ops *ops;
-    const vb_sphere_set *set;
-    unsigned threads;
-    vb_ctx *tctx;
-    void *cert;
-    int rc;
-    vb_jobs job;
-    int started;
-} cert_opener;
-
-static void *open_certifier(void *arg)
-{
-    cert_opener *co = arg;
-    co->rc = co->tctx ? co->ops->open(co->tctx, co->set, co->threads, &co->cert) : VB_ENOMEM;
-    return NULL;
-}
-
-static void cert_opener_start(cert_opener *co, const vb_certifier_ops *ops,
-                              const vb_sphere_set *set, unsigned threads)
-{
-    memset(co, 0, sizeof *co);
-    co->ops = ops;
-    co->set = set;
-    co->threads = threads;
-    if (vb_open(&co->tctx, NULL) != VB_OK)
-        co->tctx = NULL;
-    co->started = vb_jobs_start(&co->job, open_certifier, co, sizeof *co, 1) == 1;
-}
-
-/* Waits for the set-up (or runs it here when its thread did not start);
- * the certifier, or NULL with the error in ctx. */
-static void *cert_opener_join(vb_ctx *ctx, cert_opener *co, int *rc)
-{
-    vb_jobs_join(&co->job);
-    *rc = co->rc;
-    if (co->rc != VB_OK) {
-        if (co->cert)
-            co->ops->close(co->cert);
-        co->cert = NULL;
-        *rc = vb_error(ctx, co->rc, NULL, 0, "%s", co->tctx ? vb_errmsg(co->tctx) : "out of memory");
-    }
-    vb_close(co->tctx);
-    co->tctx = NULL;
-    return co->cert;
-}
-
-/* After a failed proposal: the set-up's certifier and messages dropped
- * (the proposal's error stands). */
-static void cert_opener_discard(cert_opener *co)
-{
-    vb_jobs_join(&co->job);
-    if (co->cert)
-        co->ops->close(co->cert);
-    vb_close(co->tctx);
-}
-
 /* Exact certification of the candidates, then the repair rounds (not for
  * a proposer that proves completeness: its refused quadruples are simply
- * not vertices); t_certify and t_total (from t0) are set. The certifier
- * comes from co (started before the proposer). */
-static int certify(vb_ctx *ctx, const vb_certifier_ops *ops, cert_opener *co,
-                   const vb_sphere_set *set, double t0, vb_vertices_result *res)
+ * not vertices); t_certify and t_total (from t0) are set. The certifier is
+ * the stream's when the proposer streamed its quadruples there (their
+ * vertices are then merged), else the set-up's (started before the
+ * proposer). */
+static int certify(vb_ctx *ctx, const vb_certifier_ops *ops, vbv_cert_open *co,
+                   vbv_cert_stream *cs, const vb_sphere_set *set, double t0,
+                   vb_vertices_result *res)
 {
     double t1 = vb_now();
     int rc = VB_OK;
-    void *cert = cert_opener_join(ctx, co, &rc);
-    if (rc == VB_OK && res->sampler.complete)
+    void *cert = NULL;
+    if (cs) {
+        rc = vbv_cert_stream_finish(ctx, cs, &res->certified);
+        cert = vbv_cert_stream_free(cs);
+    } else {
+        cert = vbv_cert_open_join(ctx, co, &rc);
+    }
+    /* Quadruples the proposer kept (it streamed none, or had no stream). */
+    if (rc == VB_OK && res->sampler.complete && res->sampler.quads.n)
         rc = certify_quads(ctx, ops, cert, set, res);
-    else if (rc == VB_OK)
+    else if (rc == VB_OK && !res->sampler.complete)
         rc = ops->certify_list(ctx, cert, &res->sampler.candidates, &res->certified,
                                &res->rejected);
     if (rc == VB_OK && !res->sampler.complete)
@@ -388,6 +340,51 @@ static int certify(vb_ctx *ctx, const vb_certifier_ops *ops, cert_opener *co,
     res->t_certify = t2 - t1;
     res->t_total = t2 - t0;
     return rc;
+}
+
+/* The configuration the proposer sees: with a stream, the quadruples of a
+ * complete proposer go to it part by part. */
+static vb_vertices_config streamed(const vb_vertices_config *cfg, vbv_cert_stream *cs)
+{
+    vb_vertices_config c = *cfg;
+    if (cs) {
+        c.sampler.quads_sink = vbv_cert_stream_sink;
+        c.sampler.quads_user = cs;
+    }
+    return c;
+}
+
+/* Starts the set-up and, when the certifier judges quadruples, a stream
+ * over it (*csp NULL otherwise, or when the stream cannot be made). */
+static void certifier_start(const vb_certifier_ops *ops, const vb_sphere_set *set,
+                            const vb_vertices_config *cfg, vbv_cert_open *co,
+                            vbv_cert_stream *cs, vbv_cert_stream **csp)
+{
+    vbv_cert_open_start(co, ops, set, cfg->sampler.threads);
+    *csp = NULL;
+    if (ops->certify_quads && vbv_cert_stream_init(cs, co) == VB_OK)
+        *csp = cs;
+}
+
+/* A proposal stopped by the stream (its sink failed) carries the stream's
+ * error: its message is moved to ctx. Any other status is returned. */
+static int stream_error(vb_ctx *ctx, vbv_cert_stream *cs, int rc)
+{
+    if (rc != VB_OK && cs && cs->rc == rc)
+        return vb_error(ctx, rc, NULL, 0, "%s", vb_errmsg(cs->tctx));
+    return rc;
+}
+
+/* After a failed proposal: the certifier and its work dropped. */
+static void certifier_discard(const vb_certifier_ops *ops, vbv_cert_open *co, vbv_cert_stream *cs)
+{
+    if (cs) {
+        void *cert = vbv_cert_stream_free(cs);
+        if (cert)
+            ops->close(cert);
+    } else {
+        vbv_cert_open_discard(co);
+    }
 }
 
 int vb_vertices_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertices_config *cfg,
@@ -414,10 +411,12 @@ int vb_vertices_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertices_con
     } else if ((rc = p->open(ctx, be->devices, NULL, &state)) != VB_OK) {
         return rc;
     }
-    cert_opener co;
-    cert_opener_start(&co, be->certifier, set, cfg->sampler.threads);
+    vbv_cert_open co;
+    vbv_cert_stream css, *cs;
+    certifier_start(be->certifier, set, cfg, &co, &css, &cs);
+    vb_vertices_config pcfg = streamed(cfg, cs);
     vb_proposer_await aw = {await_state, opener_ready, &op, cfg->device};
-    rc = propose(ctx, p, state, async ? &aw : NULL, set, cfg, res);
+    rc = propose(ctx, p, state, async ? &aw : NULL, set, &pcfg, res);
     if (async) {
         opener_join(&op); /* when the proposer failed before it needed the device */
         state = op.state;
@@ -426,15 +425,18 @@ int vb_vertices_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertices_con
         res->t_setup = op.t_setup;
         res->t_setup_wait = op.t_wait;
     }
-    if (rc != VB_OK && VB_CATEGORY(rc) == VB_EDEVICE && dev)
-        rc = rerun_on_twin(ctx, be->devices, dev, p, &state, set, cfg, res);
+    rc = stream_error(ctx, cs, rc);
+    if (rc != VB_OK && VB_CATEGORY(rc) == VB_EDEVICE && dev) {
+        if (cs)
+            vbv_cert_stream_reset(cs);
+        rc = stream_error(ctx, cs, rerun_on_twin(ctx, be->devices, dev, p, &state, set, &pcfg, res));
+    }
     /* Releasing a GPU context takes tens of milliseconds: after the
      * certification, which does not need it. */
-    if (rc == VB_OK) {
-        rc = certify(ctx, be->certifier, &co, set, t0, res);
-    } else {
-        cert_opener_discard(&co);
-    }
+    if (rc == VB_OK)
+        rc = certify(ctx, be->certifier, &co, cs, set, t0, res);
+    else
+        certifier_discard(be->certifier, &co, cs);
     if (state)
         p->close(state);
     if (dev)
@@ -496,20 +498,25 @@ int vb_vertices_run_on(vb_ctx *ctx, vb_vertices_engine *e, const vb_sphere_set *
                        const vb_vertices_config *cfg, vb_vertices_result *res)
 {
     double t0 = vb_now();
-    cert_opener co;
-    cert_opener_start(&co, e->be.certifier, set, cfg->sampler.threads);
-    int rc = propose(ctx, e->prop, e->state, NULL, set, cfg, res);
+    vbv_cert_open co;
+    vbv_cert_stream css, *cs;
+    certifier_start(e->be.certifier, set, cfg, &co, &css, &cs);
+    vb_vertices_config pcfg = streamed(cfg, cs);
+    int rc = stream_error(ctx, cs, propose(ctx, e->prop, e->state, NULL, set, &pcfg, res));
     if (rc != VB_OK && VB_CATEGORY(rc) == VB_EDEVICE && e->dev) {
         /* Later runs on e stay on the twin. */
-        rc = rerun_on_twin(ctx, e->be.devices, e->dev, e->prop, &e->state, set, cfg, res);
+        if (cs)
+            vbv_cert_stream_reset(cs);
+        rc = stream_error(ctx, cs, rerun_on_twin(ctx, e->be.devices, e->dev, e->prop, &e->state,
+                                                 set, &pcfg, res));
         e->be.devices->close(e->dev);
         e->dev = NULL;
     }
     if (rc != VB_OK) {
-        cert_opener_discard(&co);
+        certifier_discard(e->be.certifier, &co, cs);
         return rc;
     }
-    return certify(ctx, e->be.certifier, &co, set, t0, res);
+    return certify(ctx, e->be.certifier, &co, cs, set, t0, res);
 }
 
 void vb_vertices_certificate(const vb_vertices_result *r, char *buf, size_t size)

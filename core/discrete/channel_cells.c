@@ -95,6 +95,11 @@ void vbc_cells_free(vbc_cells *c)
     free(c);
 }
 
+const vb_sphere_set *vbc_cells_spheres(const vbc_cells *c)
+{
+    return c->s;
+}
+
 /* Visits the cells at Chebyshev distance exactly `ring` from cell q0. */
 static void visit_ring(const vbc_cells *c, const int q0[3], int ring,
                        void (*fn)(const vbc_cells *, int32_t, void *), void *user)

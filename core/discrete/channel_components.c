@@ -261,7 +261,8 @@ int vbc_analyse_clear(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, co
             p0 += res->channels[t].npoints;
         if (grow((void **)&res->points, &ptcap, p0 + np, sizeof *res->points))
             goto done;
-        vbc_channel ch = {kind, through, m, nm, 0.0, INFINITY, 0, p0, np, 0, 0};
+        vbc_channel ch = {kind, kind == VBC_CAVITY ? VBC_WHY_CAVITY : through ? VBC_WHY_THROUGH : VBC_WHY_TUNNEL,
+                          through, m, nm, 0.0, INFINITY, 0, p0, np, 0, 0};
         L.stamp++;
         size_t l0 = L.n;
         for (size_t t = 0; t < np; t++) {

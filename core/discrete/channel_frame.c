@@ -20,7 +20,11 @@ int vbc_frame_run(vb_ctx *ctx, vbc_pipe *pipe, const vbc_grid *g, const vb_spher
     vbc_result_free(&f->result);
     memset(&f->result, 0, sizeof f->result);
     f->grid = *g;
-    f->ms_masks = f->ms_analysis = 0.0;
+    f->ms_masks = f->ms_analysis = f->ms_pore = 0.0;
+    memset(&f->axis, 0, sizeof f->axis);
+    const vbc_pore_request *req = opt->pore && opt->pore->enabled ? opt->pore : NULL;
+    if (req)
+        want |= VBC_WANT_FLAGS;
     if (f->atoms_cap < s->n) {
         float *a = realloc(f->atoms4, 4 * s->n * sizeof *a);
         if (!a)
@@ -36,8 +40,12 @@ int vbc_frame_run(vb_ctx *ctx, vbc_pipe *pipe, const vbc_grid *g, const vb_spher
         rc = vbc_analyse_clear(ctx, g, s, f->out.voxels, f->out.clearance, f->out.nvoxels, opt,
                                &f->result);
     double t2 = vb_now();
+    if (rc == VB_OK)
+        rc = vbc_pore_stage(ctx, g, f->out.flags, s, req, opt->lining_tol, &f->result, &f->axis);
+    double t3 = vb_now();
     f->ms_masks = 1e3 * (t1 - t0);
     f->ms_analysis = 1e3 * (t2 - t1);
+    f->ms_pore = 1e3 * (t3 - t2);
     if (rc != VB_OK) {
         vbc_frame_out_free(&f->out);
         vbc_result_free(&f->result);

@@ -73,6 +73,7 @@ int vbc_stages_render(vb_ctx *ctx, vbc_pipe *pipe, const vb_sphere_set *s, doubl
         rc = vbc_grid_fit(ctx, cut, probe, n, 2, &g);
     vbc_options o2 = *opt;
     o2.keep_cavities = 1; /* in a cut, a pore is often closed: show it */
+    o2.pore = NULL;       /* the pore sweep is a 3D stage */
     if (rc == VB_OK)
         rc = vbc_frame_run(ctx, pipe, &g, cut, probe, VBC_WANT_FLAGS | VBC_WANT_LABELS, &o2, &F);
     if (rc != VB_OK)

@@ -6,10 +6,18 @@
 
 #include "vbc_channel.h"
 #include "vb_json.h"
+#include "vb_output.h"
+#include "vbc_pore.h"
 
 static const char *kind_name(int kind)
 {
-    return kind == VBC_CHANNEL ? "channel" : "cavity";
+    return kind == VBC_CHANNEL ? "channel" : kind == VBC_PORE ? "pore" : "cavity";
+}
+
+/* Axial coordinate of a point on the pore's axis (the pore's s). */
+static double axial(const vbc_result *res, const vbc_point *p)
+{
+    return p->x * res->pore.u[0] + p->y * res->pore.u[1] + p->z * res->pore.u[2];
 }
 
 /* "A:GLY12" (chain, residue name, number, insertion code), or "#<index>"
@@ -69,7 +77,7 @@ static const struct {
     {"frame", "index of the frame in the input, from 0"},
     {"model", "its MODEL serial (PDB), else frame + 1"},
     {"channel", "number in the frame, 1 = the longest"},
-    {"kind", "channel (reaches the molecular surface) or cavity (--cavities)"},
+    {"kind", "pore (the axis sweep), channel (reaches the molecular surface) or cavity (--cavities)"},
     {"through", "1 when the centreline joins openings on opposite sides (a pore)"},
     {"length_A", "centreline length, A"},
     {"bottleneck_A", "smallest clearance radius on it (to the nearest atom surface), A"},
@@ -88,6 +96,9 @@ static const struct {
     {"points", "points of the centreline (--centerlines, JSON)"},
     {"lining_atoms", "atoms whose surface is within radius + --lining-tol of a point"},
     {"lining_residues", "their residues, chain:NAMEnumber joined by ';' (one field)"},
+    {"reason", "why the row is what it is (pore along the axis, through, branch, tunnel, cavity)"},
+    {"bottleneck_s_A", "axial position of the bottleneck along the pore's axis, A (empty: no pore)"},
+    {"g_macro_pS", "the pore's macroscopic conductance estimate, pS (pore row only)"},
 };
 
 const char *vbc_table_columns_help(void)
@@ -135,6 +146,18 @@ void vbc_write_csv_rows(FILE *f, const vbc_frame_info *fi, const vbc_grid *g,
         else /* no memory for the field: the names as they are */
             each_residue(s, res, c, emit_csv, f);
         free(field);
+        fputc(',', f);
+        vb_csv_write_field(f, vbc_why_text(c->why));
+        if (res->pore.present)
+            fprintf(f, ",%.3f", axial(res, b));
+        else
+            fputc(',', f);
+        if (c->kind == VBC_PORE && isfinite(res->pore.F))
+            fprintf(f, ",%.1f", res->pore.g_macro_pS);
+        else if (c->kind == VBC_PORE)
+            fprintf(f, ",0.0");
+        else
+            fputc(',', f);
         fputc('\n', f);
     }
 }
@@ -142,7 +165,8 @@ void vbc_write_csv_rows(FILE *f, const vbc_frame_info *fi, const vbc_grid *g,
 void vbc_write_stats_header(FILE *f)
 {
     fprintf(f, "frame,model,atoms,grid,voxel_A,channel_voxels,components,pruned,channels,cavities,"
-               "longest_A,widest_bottleneck_A,ms_upload,ms_jfa,ms_masks,ms_analysis,ms_total\n");
+               "longest_A,widest_bottleneck_A,ms_upload,ms_jfa,ms_masks,ms_analysis,ms_total,pore_rmin_A,"
+               "pore_rmin_s_A,pore_rmin_x,pore_rmin_y,pore_rmin_z,pore_g_macro_pS,pore_open,ms_pore\n");
 }
 
 void vbc_write_stats_row(FILE *f, const vbc_frame_info *fi, const vbc_grid *g,
@@ -152,7 +176,7 @@ void vbc_write_stats_row(FILE *f, const vbc_frame_info *fi, const vbc_grid *g,
     double longest = 0.0, widest = 0.0;
     for (size_t t = 0; t < res->nchannels; t++) {
         const vbc_channel *c = &res->channels[t];
-        if (c->kind == VBC_CHANNEL) {
+        if (c->kind != VBC_CAVITY) {
             nch++;
             widest = fmax(widest, c->bottleneck);
         } else {
@@ -160,10 +184,20 @@ void vbc_write_stats_row(FILE *f, const vbc_frame_info *fi, const vbc_grid *g,
         }
         longest = fmax(longest, c->length);
     }
-    fprintf(f, "%ld,%d,%zu,%d,%.4f,%zu,%zu,%zu,%zu,%zu,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f\n", fi->frame,
+    fprintf(f, "%ld,%d,%zu,%d,%.4f,%zu,%zu,%zu,%zu,%zu,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f", fi->frame,
             fi->model, fi->atoms, g->nx, g->h, fi->channel_voxels, res->components, res->pruned, nch,
             ncav, longest, widest, fi->ms_upload, fi->ms_jfa, fi->ms_masks, fi->ms_analysis,
             fi->ms_total);
+    if (res->pore.present) {
+        const vbc_channel *c = &res->channels[0];
+        const vbc_point *b = res->points + c->first_point + c->bottleneck_at;
+        fprintf(f, ",%.3f,%.3f,%.3f,%.3f,%.3f,%.1f,%d", c->bottleneck, axial(res, b), b->x, b->y, b->z,
+                isfinite(res->pore.F) ? res->pore.g_macro_pS : 0.0,
+                res->pore.open_lo && res->pore.open_hi);
+    } else {
+        fprintf(f, ",,,,,,,");
+    }
+    fprintf(f, ",%.3f\n", fi->ms_pore);
 }
 
 void vbc_write_json_begin(FILE *f, const char *input, double probe, int n, const char *device)
@@ -182,10 +216,20 @@ void vbc_write_json_frame(FILE *f, int first, const vbc_frame_info *fi, const vb
     fprintf(f, "%s\n    {\"frame\": %ld, \"model\": %d, \"atoms\": %zu, \"voxel_A\": %.5f,"
                " \"origin\": [%.4f, %.4f, %.4f], \"channel_voxels\": %zu, \"components\": %zu,"
                " \"pruned\": %zu,\n     \"ms\": {\"upload\": %.3f, \"jfa\": %.3f, \"masks\": %.3f,"
-               " \"analysis\": %.3f, \"total\": %.3f},\n     \"channels\": [",
+               " \"analysis\": %.3f, \"pore\": %.3f, \"total\": %.3f},\n",
             first ? "" : ",", fi->frame, fi->model, fi->atoms, g->h, g->origin[0], g->origin[1],
             g->origin[2], fi->channel_voxels, res->components, res->pruned, fi->ms_upload,
-            fi->ms_jfa, fi->ms_masks, fi->ms_analysis, fi->ms_total);
+            fi->ms_jfa, fi->ms_masks, fi->ms_analysis, fi->ms_pore, fi->ms_total);
+    const vbc_pore_summary *P = &res->pore;
+    if (P->present)
+        fprintf(f, "     \"pore\": {\"axis\": [%.5f, %.5f, %.5f], \"start\": [%.3f, %.3f, %.3f],"
+                   " \"axis_from\": \"%s\", \"chains\": %d, \"step_A\": %.4f,"
+                   " \"open_low\": %s, \"open_high\": %s, \"F_per_A\": %.5f,"
+                   " \"g_macro_pS\": %.2f, \"rho_ohm_m\": %.5f},\n",
+                P->u[0], P->u[1], P->u[2], P->c[0], P->c[1], P->c[2], vbc_axis_source_name(P->source),
+                P->chains, P->step, P->open_lo ? "true" : "false", P->open_hi ? "true" : "false",
+                isfinite(P->F) ? P->F : -1.0, isfinite(P->F) ? P->g_macro_pS : 0.0, 1.0 / 12.0);
+    fprintf(f, "     \"channels\": [");
     for (size_t t = 0; t < res->nchannels; t++) {
         const vbc_channel *c = &res->channels[t];
         const vbc_point *p = res->points + c->first_point, *b = p + c->bottleneck_at;
@@ -195,6 +239,13 @@ void vbc_write_json_frame(FILE *f, int first, const vbc_frame_info *fi, const vb
                 t ? "," : "", t + 1, kind_name(c->kind), c->through ? "true" : "false", c->length, c->bottleneck, b->x, b->y, b->z,
                 c->voxels, (double)c->voxels * v1, c->mouths);
         each_residue(s, res, c, emit_json, f);
+        fprintf(f, "],\n        \"reason\": ");
+        vb_json_write_string(f, vbc_why_text(c->why));
+        if (P->present)
+            fprintf(f, ", \"bottleneck_s_A\": %.3f", axial(res, b));
+        fprintf(f, ", \"nearest_atoms\": [");
+        for (size_t u = 0; u < c->npoints; u++)
+            fprintf(f, "%s%d", u ? ", " : "", (int)p[u].atom);
         fprintf(f, "],\n        \"centreline\": [");
         for (size_t u = 0; u < c->npoints; u++)
             fprintf(f, "%s[%.3f, %.3f, %.3f, %.3f]", u ? ", " : "", p[u].x, p[u].y, p[u].z, p[u].r);
@@ -208,29 +259,63 @@ void vbc_write_json_end(FILE *f)
     fprintf(f, "\n  ]\n}\n");
 }
 
+/* Atom name of point u of a residue: "P" and three base-36 digits (unique
+ * for 46,656 points), so every point has its own name in the residue as
+ * strict PDB readers demand. */
+static void point_name(size_t u, char name[5])
+{
+    static const char digits[] = "0123456789ABCDEFGHIJKLMNOPQRSTUVWXYZ";
+    name[0] = 'P';
+    name[1] = digits[(u / 1296) % 36];
+    name[2] = digits[(u / 36) % 36];
+    name[3] = digits[u % 36];
+    name[4] = '\0';
+}
+
+/* Points written for channel t: a residue holds at most 46,656 points and a
+ * file at most 99,999 atoms (the PDB's fixed columns). */
+static size_t points_written(size_t npoints, size_t before)
+{
+    size_t n = npoints < 46656 ? npoints : 46656;
+    return before >= 99999 ? 0 : n < 99999 - before ? n : 99999 - before;
+}
+
 void vbc_write_centrelines_pdb(FILE *f, int model, const vbc_result *res)
 {
     fprintf(f, "MODEL     %4d\n", model);
-    long serial = 1;
+    size_t serial = 1;
     for (size_t t = 0; t < res->nchannels; t++) {
         const vbc_channel *c = &res->channels[t];
         const vbc_point *p = res->points + c->first_point;
-        long first = serial;
-        for (size_t u = 0; u < c->npoints; u++, serial++)
-            fprintf(f, "HETATM%5ld  CL  %3s %c%4d    %8.3f%8.3f%8.3f  1.00%6.2f           X\n",
-                    serial % 100000, c->kind == VBC_CHANNEL ? "CHN" : "CAV",
+        size_t n = points_written(c->npoints, serial - 1);
+        for (size_t u = 0; u < n; u++, serial++) {
+            char name[5];
+            point_name(u, name);
+            fprintf(f, "HETATM%5zu %-4s %3s %c%4d    %8.3f%8.3f%8.3f  1.00%6.2f           X\n", serial,
+                    name, c->kind == VBC_CHANNEL ? "CHN" : c->kind == VBC_PORE ? "POR" : "CAV",
                     (char)('A' + (int)(t % 26)), (int)((t + 1) % 10000), p[u].x, p[u].y, p[u].z,
-                    fmin(p[u].r, 999.99));
-        /* Serial numbers wrap at 100000: bonds are only written while they are unique. */
-        for (long q = first; q + 1 < serial && serial < 100000; q++)
-            fprintf(f, "CONECT%5ld%5ld\n", q, q + 1);
+                    fmax(fmin(p[u].r, 999.99), -99.99));
+        }
     }
     fprintf(f, "ENDMDL\n");
 }
 
+void vbc_write_centrelines_conect(FILE *f, const vbc_result *first)
+{
+    size_t serial = 1;
+    for (size_t t = 0; first && t < first->nchannels; t++) {
+        size_t n = points_written(first->channels[t].npoints, serial - 1);
+        for (size_t u = 0; u + 1 < n; u++)
+            fprintf(f, "CONECT%5zu%5zu\n", serial + u, serial + u + 1);
+        serial += n;
+    }
+    fprintf(f, "END\n");
+}
+
 void vbc_write_pymol(FILE *f, const char *molecule, const char *centrelines)
 {
-    fprintf(f, "# vorball channels: centrelines with the clearance radius in the B-factor\n");
+    fprintf(f, "# vorball channels: centrelines with the clearance radius in the B-factor.\n"
+               "# Paths are relative to this script's folder: run it there (pymol NAME.pml).\n");
     if (molecule)
         fprintf(f, "load %s, molecule\nhide everything, molecule\nshow cartoon, molecule\n"
                    "show lines, molecule\n", molecule);
@@ -252,8 +337,23 @@ static int ends_with(const char *s, const char *suffix)
     return a >= b && strcmp(s + a - b, suffix) == 0;
 }
 
-/* MRC 2014 header: 256 little-endian words; mode 0 (signed bytes). */
-static int write_mrc(FILE *f, const vbc_grid *g, const uint8_t *flags, unsigned bit)
+/* The value of voxel v of a volume being written: a mask bit or a float. */
+typedef struct {
+    const uint8_t *flags;
+    unsigned bit;
+    const float *values;
+    double scale;
+} volume_src;
+
+static double volume_at(const volume_src *V, size_t v)
+{
+    return V->values ? V->values[v] * V->scale : (V->flags[v] & V->bit) ? 1.0 : 0.0;
+}
+
+/* MRC 2014 header: 256 little-endian words; mode 0 (signed bytes) for a
+ * mask, mode 2 (float32) for values; dmin, dmax, dmean and rms from the data
+ * and nversion 20140, as mrcfile.validate asks. */
+static int write_mrc(FILE *f, const vbc_grid *g, const volume_src *V)
 {
     int32_t w[256];
     memset(w, 0, sizeof w);
@@ -261,7 +361,7 @@ static int write_mrc(FILE *f, const vbc_grid *g, const uint8_t *flags, unsigned 
     w[0] = g->nx;
     w[1] = g->ny;
     w[2] = g->nz;
-    w[3] = 0; /* mode: int8 */
+    w[3] = V->values ? 2 : 0;
     w[7] = g->nx;
     w[8] = g->ny;
     w[9] = g->nz;
@@ -270,17 +370,24 @@ static int write_mrc(FILE *f, const vbc_grid *g, const uint8_t *flags, unsigned 
     w[16] = 1;
     w[17] = 2;
     w[18] = 3;
-    fl = 0.0f;
-    memcpy(&w[19], &fl, 4);
-    fl = 1.0f;
-    memcpy(&w[20], &fl, 4);
-    size_t nv = vbc_grid_voxels(g), on = 0;
-    for (size_t v = 0; v < nv; v++)
-        on += (flags[v] & bit) != 0;
-    fl = (float)((double)on / (double)nv);
-    memcpy(&w[21], &fl, 4);
+    size_t nv = vbc_grid_voxels(g);
+    double lo = INFINITY, hi = -INFINITY, sum = 0.0, sum2 = 0.0;
+    for (size_t v = 0; v < nv; v++) {
+        double x = (float)volume_at(V, v);
+        lo = fmin(lo, x);
+        hi = fmax(hi, x);
+        sum += x;
+    }
+    double mean = sum / (double)nv;
+    for (size_t v = 0; v < nv; v++) {
+        double d = (float)volume_at(V, v) - mean;
+        sum2 += d * d;
+    }
+    float stats[3] = {(float)lo, (float)hi, (float)mean};
+    memcpy(&w[19], stats, sizeof stats);
     w[22] = 1; /* space group P1 */
-    /* Origin of the map in Å: the centre of voxel (0,0,0). */
+    w[27] = 20140; /* nversion: MRC 2014 */
+    /* Origin of the map in A: the centre of voxel (0,0,0). */
     for (int a = 0; a < 3; a++) {
         fl = (float)(g->origin[a] + 0.5 * g->h);
         memcpy(&w[49 + a], &fl, 4);
@@ -288,44 +395,81 @@ static int write_mrc(FILE *f, const vbc_grid *g, const uint8_t *flags, unsigned 
     memcpy(&w[52], "MAP ", 4);
     unsigned char stamp[4] = {0x44, 0x44, 0, 0};
     memcpy(&w[53], stamp, 4);
+    fl = (float)sqrt(sum2 / (double)nv);
+    memcpy(&w[54], &fl, 4);
     w[55] = 1;
     char label[80];
     memset(label, ' ', sizeof label);
-    memcpy(label, "vorball channels mask", 21);
+    memcpy(label, "vorball channels", 16);
     memcpy(&w[56], label, sizeof label);
     if (fwrite(w, 4, 256, f) != 256)
         return -1;
-    for (size_t v = 0; v < nv; v++)
-        if (fputc((flags[v] & bit) ? 1 : 0, f) == EOF)
+    for (size_t v = 0; v < nv; v++) {
+        if (V->values) {
+            float x = (float)volume_at(V, v);
+            if (fwrite(&x, 4, 1, f) != 1)
+                return -1;
+        } else if (fputc(volume_at(V, v) != 0.0 ? 1 : 0, f) == EOF) {
             return -1;
+        }
+    }
     return 0;
 }
 
-static int write_vtk(FILE *f, const vbc_grid *g, const uint8_t *flags, unsigned bit)
+static int write_vtk(FILE *f, const vbc_grid *g, const volume_src *V)
 {
     size_t nv = vbc_grid_voxels(g);
-    fprintf(f, "# vtk DataFile Version 3.0\nvorball channels mask\nBINARY\n"
+    fprintf(f, "# vtk DataFile Version 3.0\nvorball channels\nBINARY\n"
                "DATASET STRUCTURED_POINTS\nDIMENSIONS %d %d %d\nORIGIN %.6f %.6f %.6f\n"
-               "SPACING %.6f %.6f %.6f\nPOINT_DATA %zu\nSCALARS mask unsigned_char 1\n"
+               "SPACING %.6f %.6f %.6f\nPOINT_DATA %zu\nSCALARS %s %s 1\n"
                "LOOKUP_TABLE default\n",
             g->nx, g->ny, g->nz, g->origin[0] + 0.5 * g->h, g->origin[1] + 0.5 * g->h,
-            g->origin[2] + 0.5 * g->h, g->h, g->h, g->h, nv);
-    for (size_t v = 0; v < nv; v++)
-        if (fputc((flags[v] & bit) ? 1 : 0, f) == EOF)
+            g->origin[2] + 0.5 * g->h, g->h, g->h, g->h, nv, V->values ? "occupancy" : "mask",
+            V->values ? "float" : "unsigned_char");
+    for (size_t v = 0; v < nv; v++) {
+        if (V->values) {
+            /* Legacy VTK binary data is big-endian. */
+            float x = (float)volume_at(V, v);
+            unsigned char b[4], o[4];
+            memcpy(b, &x, 4);
+            o[0] = b[3];
+            o[1] = b[2];
+            o[2] = b[1];
+            o[3] = b[0];
+            if (fwrite(o, 1, 4, f) != 4)
+                return -1;
+        } else if (fputc(volume_at(V, v) != 0.0 ? 1 : 0, f) == EOF) {
             return -1;
+        }
+    }
     return 0;
+}
+
+static int write_volume(vb_ctx *ctx, const char *path, const vbc_grid *g, const volume_src *V)
+{
+    int vtk = ends_with(path, ".vtk");
+    if (!vtk && !ends_with(path, ".mrc") && !ends_with(path, ".map"))
+        return vb_error(ctx, VB_EMISUSE, NULL, 0, "volume %s: use a .mrc, .map or .vtk name", path);
+    FILE *f = vb_output_open(ctx, path);
+    if (!f)
+        return vb_errcode(ctx);
+    if (vtk ? write_vtk(f, g, V) : write_mrc(f, g, V)) {
+        vb_output_discard(f);
+        return vb_error(ctx, VB_EIO, path, 0, "cannot write volume file");
+    }
+    return vb_output_commit(ctx, f);
 }
 
 int vbc_write_volume(vb_ctx *ctx, const char *path, const vbc_grid *g, const uint8_t *flags,
                      unsigned bit)
 {
-    int vtk = ends_with(path, ".vtk");
-    if (!vtk && !ends_with(path, ".mrc") && !ends_with(path, ".map"))
-        return vb_error(ctx, VB_EMISUSE, NULL, 0, "volume %s: use a .mrc, .map or .vtk name", path);
-    FILE *f = fopen(path, "wb");
-    if (!f)
-        return vb_error(ctx, VB_EIO, path, 0, "cannot create volume file");
-    int bad = vtk ? write_vtk(f, g, flags, bit) : write_mrc(f, g, flags, bit);
-    bad |= fclose(f) != 0;
-    return bad ? vb_error(ctx, VB_EIO, path, 0, "cannot write volume file") : VB_OK;
+    volume_src V = {flags, bit, NULL, 1.0};
+    return write_volume(ctx, path, g, &V);
+}
+
+int vbc_write_volume_f32(vb_ctx *ctx, const char *path, const vbc_grid *g, const float *values,
+                         double scale)
+{
+    volume_src V = {NULL, 0, values, scale};
+    return write_volume(ctx, path, g, &V);
 }

@@ -1,5 +1,6 @@
 /* The JFA backends table: the checks every run shares, the plain-C
  * reference behind the table, and the backend a device kind opens. */
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -17,7 +18,7 @@ void vbj_result_free(vbj_result *r)
 
 static int check_options(vb_ctx *ctx, const vbj_seeds *s, const vbj_options *o)
 {
-    if ((unsigned)o->variant > VBJ_FACET_FULL)
+    if ((unsigned)o->variant >= VBJ_NVARIANTS)
         return vb_error(ctx, VB_EMISUSE, NULL, 0, "unknown JFA variant %d", (int)o->variant);
     if (o->m && (o->m > s->n || (o->m & (o->m - 1))))
         return vb_error(ctx, VB_EMISUSE, NULL, 0,
@@ -27,19 +28,53 @@ static int check_options(vb_ctx *ctx, const vbj_seeds *s, const vbj_options *o)
     return VB_OK;
 }
 
+/* A device backend that failed with VB_EDEVICE becomes the reference in
+ * place (W751) when it falls back itself: returns 1 when the caller should
+ * run again. The OpenCL state is closed; be keeps its address. */
+static int fall_back(vb_ctx *ctx, vbj_backend *be, int rc, const char *what)
+{
+    vbj_backend *ref = NULL;
+    if (VB_CATEGORY(rc) != VB_EDEVICE || !be->fallback_warning)
+        return 0;
+    char reason[256];
+    snprintf(reason, sizeof reason, "%s", vb_errmsg(ctx));
+    vb_clear_error(ctx);
+    if (vbj_ref_open(ctx, &ref) != VB_OK)
+        return 0;
+    char rest[96];
+    snprintf(rest, sizeof rest, "%s and the rest of jfa run on the reference backend", what);
+    vb_device_failed_warn(ctx, be->fallback_warning, be->device, reason, rest);
+    vbj_backend dead = *be;
+    *be = *ref;
+    *ref = dead;
+    vbj_backend_close(ref); /* the OpenCL backend, now at ref's address */
+    return 1;
+}
+
+static void result_reset(vbj_result *out, const vbj_seeds *s)
+{
+    vbj_result_free(out);
+    out->dim = s->dim;
+    out->n = s->n;
+    out->pixels = (size_t)s->n * s->n * (s->dim == 3 ? s->n : 1);
+}
+
 int vbj_run(vb_ctx *ctx, vbj_backend *be, const vbj_seeds *s, const vbj_options *opt,
             vbj_result *out)
 {
     vbj_options def = {VBJ_JFA1, 0, 0, 0};
     const vbj_options *o = opt ? opt : &def;
     memset(out, 0, sizeof *out);
-    out->dim = s->dim;
-    out->n = s->n;
-    out->pixels = (size_t)s->n * s->n * (s->dim == 3 ? s->n : 1);
+    result_reset(out, s);
     int rc = check_options(ctx, s, o);
     if (rc)
         return rc;
-    rc = be->run(ctx, be, s, o, o->want ? o->want : VBJ_WANT_LABELS, out);
+    unsigned want = o->want ? o->want : VBJ_WANT_LABELS;
+    rc = be->run(ctx, be, s, o, want, out);
+    if (rc != VB_OK && fall_back(ctx, be, rc, vbj_variant_name(o->variant))) {
+        result_reset(out, s);
+        rc = be->run(ctx, be, s, o, want, out);
+    }
     if (rc)
         vbj_result_free(out);
     return rc;
@@ -47,7 +82,10 @@ int vbj_run(vb_ctx *ctx, vbj_backend *be, const vbj_seeds *s, const vbj_options 
 
 int vbj_exact(vb_ctx *ctx, vbj_backend *be, const vbj_seeds *s, uint32_t *labels)
 {
-    return be->exact(ctx, be, s, labels);
+    int rc = be->exact(ctx, be, s, labels);
+    if (rc != VB_OK && fall_back(ctx, be, rc, "the exact diagram"))
+        rc = be->exact(ctx, be, s, labels);
+    return rc;
 }
 
 void vbj_backend_close(vbj_backend *be)
@@ -117,5 +155,7 @@ int vbj_backend_open(vb_ctx *ctx, const vb_device_layer *layer, vb_device_kind k
     void *e = NULL;
     int rc = vb_device_open_engine(ctx, layer, &req, dev, &e);
     *out = e;
+    if (rc == VB_OK && *dev)
+        (*out)->fallback_warning = VB_W_JFA_DEVICE_FAILED;
     return rc;
 }

@@ -39,6 +39,20 @@ void vbj_boundary_mask(int dim, uint32_t n, const uint32_t *labels, uint8_t *out
     }
 }
 
+uint64_t vbj_boundary_count(int dim, uint32_t n, const uint32_t *labels)
+{
+    size_t total = (size_t)n * n * (dim == 3 ? n : 1), nb[26];
+    uint64_t count = 0;
+    for (size_t i = 0; i < total; i++) {
+        size_t c = neighbours(dim, n, i, nb);
+        int b = 0;
+        for (size_t j = 0; j < c && !b; j++)
+            b = labels[nb[j]] != labels[i];
+        count += (uint64_t)b;
+    }
+    return count;
+}
+
 void vbj_count_labels(int dim, uint32_t n, const uint32_t *labels, uint8_t *out)
 {
     size_t total = (size_t)n * n * (dim == 3 ? n : 1), nb[26];
@@ -72,6 +86,7 @@ int vbj_compare(vb_ctx *ctx, const vbj_seeds *s, const uint32_t *labels, const u
             return vb_error(ctx, VB_EMISUSE, NULL, 0, "pixel %zu: label %u or %u out of range",
                             i, a, e);
         if (a != e) {
+            out->differ++;
             int32_t px = (int32_t)(i % n) * VBJ_FIX_ONE, py = (int32_t)((i / n) % n) * VBJ_FIX_ONE;
             int32_t pz = s->dim == 3 ? (int32_t)(i / ((size_t)n * n)) * VBJ_FIX_ONE : 0;
             uint64_t da = vbj_dist2(px, py, pz, s->x[a], s->y[a], s->z[a]);

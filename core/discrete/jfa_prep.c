@@ -7,20 +7,27 @@
 
 #include "vbj_prep.h"
 
-static const char *variant_names[] = {"jfa", "jfa+1", "jfa+2", "1+jfa", "facet", "facet-full"};
+static const char *variant_names[VBJ_NVARIANTS] = {"jfa",   "jfa+1",      "jfa+2",
+                                                   "1+jfa", "facet",      "facet-full",
+                                                   "exact", "exact-boundary"};
 
 int vbj_variant_parse(vb_ctx *ctx, const char *s, vbj_variant *out)
 {
-    for (int i = 0; i < 6; i++)
+    for (int i = 0; i < VBJ_NVARIANTS; i++)
         if (strcmp(s, variant_names[i]) == 0) {
             *out = (vbj_variant)i;
             return VB_OK;
         }
     return vb_error(ctx, VB_EMISUSE, NULL, 0,
-                    "unknown variant '%s' (jfa|jfa+1|jfa+2|1+jfa|facet|facet-full)", s);
+                    "unknown variant '%s' (jfa|jfa+1|jfa+2|1+jfa|facet|facet-full|exact|"
+                    "exact-boundary)",
+                    s);
 }
 
-const char *vbj_variant_name(vbj_variant v) { return (unsigned)v < 6 ? variant_names[v] : "?"; }
+const char *vbj_variant_name(vbj_variant v)
+{
+    return (unsigned)v < VBJ_NVARIANTS ? variant_names[v] : "?";
+}
 
 int vbj_schedule(vbj_variant v, uint32_t q, uint32_t *steps)
 {
@@ -145,12 +152,19 @@ uint32_t vbj_start_resolution(const vbj_seeds *s)
 
 int vbj_cells_build(vb_ctx *ctx, const vbj_seeds *s, vbj_cells *out)
 {
+    return vbj_cells_build_min(ctx, s, 0, out);
+}
+
+int vbj_cells_build_min(vb_ctx *ctx, const vbj_seeds *s, uint32_t min_shift, vbj_cells *out)
+{
     memset(out, 0, sizeof *out);
     /* About one seed per bucket: side n / k^(1/d), a power of two. */
     double per_axis = s->dim == 3 ? cbrt((double)s->k) : sqrt((double)s->k);
     uint32_t shift = 0;
     while ((double)(s->n >> (shift + 1)) >= per_axis)
         shift++;
+    if (shift < min_shift)
+        shift = min_shift;
     uint32_t g = s->n >> shift;
     size_t nb = (size_t)g * g * (s->dim == 3 ? g : 1);
     out->shift = shift;

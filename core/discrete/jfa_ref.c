@@ -209,8 +209,29 @@ static int facet(vb_ctx *ctx, const vbj_seeds *s, const vbj_options *opt, vbj_re
     return rc;
 }
 
+/* The exact variants: the seed grid (host preparation, ms_transfer), the
+ * tiles (ms_kernel) and for exact-boundary the boundary count. */
+static int exact_tiles(vb_ctx *ctx, const vbj_seeds *s, const vbj_options *opt, vbj_result *out)
+{
+    double t0 = 1e3 * vb_now();
+    vbj_tiles_prep p;
+    int rc = vbj_tiles_prep_build(ctx, s, &p);
+    if (rc)
+        return rc;
+    double t1 = 1e3 * vb_now();
+    rc = vbj_tiles_ref_run(ctx, s, &p, out);
+    if (!rc && opt->variant == VBJ_EXACT_BOUNDARY)
+        out->counts.boundary = vbj_boundary_count(s->dim, s->n, out->labels);
+    out->ms_kernel = 1e3 * vb_now() - t1;
+    out->ms_transfer = t1 - t0;
+    vbj_tiles_prep_free(&p);
+    return rc;
+}
+
 int vbj_ref_run(vb_ctx *ctx, const vbj_seeds *s, const vbj_options *opt, vbj_result *out)
 {
+    if (VBJ_IS_EXACT(opt->variant))
+        return exact_tiles(ctx, s, opt, out);
     double t0 = 1e3 * vb_now();
     int rc;
     if (opt->variant == VBJ_FACET || opt->variant == VBJ_FACET_FULL) {

@@ -54,15 +54,32 @@ void vbc_masks_ref(const vbc_grid *g, const float *atoms4, size_t natoms, const 
 int vbc_flags_compact(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, uint32_t **out,
                       size_t *count);
 
+struct vbc_pore_request; /* vbc_pore_frame.h */
+
 /* What the analysis keeps and how it decides. */
 typedef struct vbc_options {
     double min_length;  /* Å; shorter centrelines are pruned */
     double min_radius;  /* Å; channels whose bottleneck is narrower are pruned */
     double lining_tol;  /* Å; an atom lines a point when its surface is within R + tol */
     int keep_cavities;  /* 0 drops components that do not reach the surface */
+    const struct vbc_pore_request *pore; /* the pore stage of vbc_frame_run; NULL: none */
 } vbc_options;
 
-enum vbc_kind { VBC_CHANNEL = 0, VBC_CAVITY = 1 };
+enum vbc_kind { VBC_CHANNEL = 0, VBC_CAVITY = 1, VBC_PORE = 2 };
+
+/* Why a channel stands where it does in the table (vbc_rank). */
+enum vbc_why {
+    VBC_WHY_PORE = 0,     /* the pore along the axis, open at both ends */
+    VBC_WHY_PORE_CLOSED,  /* the pore along the axis, closed somewhere (radius <= 0) */
+    VBC_WHY_PORE_ONE_END, /* the pore along the axis, leaving the molecule at one end only */
+    VBC_WHY_THROUGH,      /* openings on opposite faces of the molecule */
+    VBC_WHY_PORE_BRANCH,  /* runs along the pore for part of its way: a vestibule or side branch */
+    VBC_WHY_TUNNEL,       /* reaches the surface, not through */
+    VBC_WHY_CAVITY        /* does not reach the surface */
+};
+
+/* A short phrase for the table ("pore along the axis, open at both ends", ...). */
+const char *vbc_why_text(int why);
 
 /* One point of a centreline: position (Å) and the radius of the largest
  * sphere centred there that overlaps no atom (distance to the nearest atom
@@ -74,6 +91,7 @@ typedef struct vbc_point {
 
 typedef struct vbc_channel {
     int kind;               /* enum vbc_kind */
+    int why;                /* enum vbc_why, set by vbc_rank */
     int through;            /* the centreline joins openings on opposite faces (a pore) */
     size_t voxels;          /* channel voxels in the component */
     size_t mouths;          /* of those, voxels on the molecular surface */
@@ -84,13 +102,24 @@ typedef struct vbc_channel {
     size_t first_lining, nlining; /* slice of vbc_result.lining (atom indices, ascending) */
 } vbc_channel;
 
+/* The pore of a frame (vbc_pore.h) as the writers need it. */
+typedef struct vbc_pore_summary {
+    int present;
+    double u[3], c[3];      /* the axis: direction and start of the sweep */
+    int source, chains;     /* enum vbc_axis_source; chains used */
+    double step;            /* A between planes */
+    double F, g_macro_pS;   /* HOLE's geometric factor (1/A) and Gmacro (1 M KCl) */
+    int open_lo, open_hi;   /* each end left the molecule */
+} vbc_pore_summary;
+
 typedef struct vbc_result {
-    size_t nchannels;       /* kept channels and cavities, longest first */
+    size_t nchannels;       /* kept channels and cavities, ranked by vbc_rank (else longest first) */
     vbc_channel *channels;
     vbc_point *points;
     int32_t *lining;
     size_t components;      /* connected components before pruning */
     size_t pruned;          /* components removed by the thresholds */
+    vbc_pore_summary pore;  /* when present, channels[0] is the pore (kind VBC_PORE) */
 } vbc_result;
 
 /* Connected components (26-connectivity) of the channel voxels `vox` (sorted
@@ -117,6 +146,9 @@ typedef struct vbc_cells vbc_cells;
 int vbc_cells_build(vb_ctx *ctx, const vb_sphere_set *s, double cell, vbc_cells **out);
 void vbc_cells_free(vbc_cells *c);
 
+/* The spheres the cell list was built over. */
+const vb_sphere_set *vbc_cells_spheres(const vbc_cells *c);
+
 /* Distance from p to the nearest sphere surface (negative inside a sphere)
  * and that sphere's index in *atom. */
 double vbc_cells_clearance(const vbc_cells *c, const double p[3], int32_t *atom);
@@ -125,6 +157,14 @@ double vbc_cells_clearance(const vbc_cells *c, const double p[3], int32_t *atom)
  * (|p - c| - r <= reach). */
 void vbc_cells_within(const vbc_cells *c, const double p[3], double reach,
                       void (*fn)(int32_t atom, void *user), void *user);
+
+/* A copy of s without the atoms whose residue name is one of resnames[0..n)
+ * (case-insensitive; a set without atom records keeps every sphere), in
+ * *out (free with vb_spheres_free), *dropped the count left out; no exact
+ * decimals (a channel set). VB_EINPUT_EMPTY when nothing is left,
+ * VB_ENOMEM. */
+int vbc_spheres_without(vb_ctx *ctx, const vb_sphere_set *s, const char *const *resnames, size_t n,
+                        vb_sphere_set **out, size_t *dropped);
 
 /* Writers (core/discrete/channel_write.c). */
 
@@ -135,6 +175,7 @@ typedef struct vbc_frame_info {
     size_t atoms;
     size_t channel_voxels; /* before components */
     double ms_upload, ms_jfa, ms_masks, ms_analysis, ms_total;
+    double ms_pore;        /* the pore stage (part of ms_total) */
 } vbc_frame_info;
 
 /* The channel table's columns, one "  name  meaning" line each (static
@@ -159,18 +200,45 @@ void vbc_write_json_frame(FILE *f, int first, const vbc_frame_info *fi, const vb
                           const vb_sphere_set *s, const vbc_result *res);
 void vbc_write_json_end(FILE *f);
 
-/* Centrelines as PDB pseudo-atoms (one MODEL per frame): residue CHN for a
- * channel, CAV for a cavity, one residue number per channel, the clearance
- * radius in the B-factor column, CONECT records joining consecutive points. */
+/* Centrelines as PDB pseudo-atoms (one MODEL per frame): one residue per
+ * channel (POR the pore, CHN a channel, CAV a cavity; chain A, B, ... and
+ * number 1, 2, ... by rank), atom names P000, P001, ... unique in their
+ * residue, serials 1.. unique in the model, the radius in the B-factor
+ * column. At most 46,656 points a channel and 99,999 a model are written. */
 void vbc_write_centrelines_pdb(FILE *f, int model, const vbc_result *res);
+
+/* After the last model: CONECT records joining consecutive points of each
+ * channel of the first model `first` (serials as written), then END. */
+void vbc_write_centrelines_conect(FILE *f, const vbc_result *first);
 
 /* A PyMOL script that loads the molecule (when not NULL) and the centreline
  * PDB and shows the points as spheres of their radius, coloured by it. */
 void vbc_write_pymol(FILE *f, const char *molecule, const char *centrelines);
 
+/* The radius profile of every channel of a frame as CSV rows (header first):
+ * per point its index, axial coordinate s (on the pore's axis, when the
+ * frame has a pore; else empty), arc length along the centreline, position,
+ * radius, nearest atom ("A:GLY12:CA") and the atoms whose surface is within
+ * radius + 0.05 A (those that bound the sphere), ';'-separated. */
+void vbc_write_profile_header(FILE *f);
+void vbc_write_profile_rows(FILE *f, const vbc_frame_info *fi, const vb_sphere_set *s,
+                            const vbc_result *res);
+
+/* Adds 1 to count[v] for every voxel v of g that is a channel voxel in flags
+ * (may be NULL) or whose centre lies inside a sphere of the pore of res.
+ * VB_ENOMEM. */
+int vbc_occupancy_add(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const vbc_result *res,
+                      float *count);
+
+/* Writes values[v] * scale as a float32 volume on g: MRC (mode 2) or legacy
+ * VTK, as vbc_write_volume decides by the name. VB_EMISUSE / VB_EIO. */
+int vbc_write_volume_f32(vb_ctx *ctx, const char *path, const vbc_grid *g, const float *values,
+                         double scale);
+
 /* Writes the voxels of flags that have `bit` set as a 0/1 byte volume:
  * MRC (".mrc", ".map") or legacy VTK structured points (".vtk"), positioned in
- * Å. VB_EMISUSE for another extension, VB_EIO when writing fails. */
+ * Å. VB_EMISUSE for another extension, VB_EIO when writing fails. The file
+ * appears whole or not at all (vb_output.h). */
 int vbc_write_volume(vb_ctx *ctx, const char *path, const vbc_grid *g, const uint8_t *flags,
                      unsigned bit);
 

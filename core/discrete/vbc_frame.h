@@ -7,6 +7,7 @@
 #define VBC_FRAME_H
 
 #include "vbc_channel_pipe.h"
+#include "vbc_pore_frame.h"
 
 typedef struct vbc_frame {
     vbc_grid grid;
@@ -15,7 +16,9 @@ typedef struct vbc_frame {
     vbc_frame_out out;      /* channel voxels, flags / labels as wanted, device times */
     vbc_result result;      /* the analysis */
     double ms_masks;        /* packing and the frame pipeline */
-    double ms_analysis;
+    double ms_analysis;     /* components and centrelines */
+    double ms_pore;         /* the pore stage (vbc_pore_stage), refinement and ranking */
+    vbc_axis axis;          /* the pore's axis (source VBC_AXIS_NONE without a pore) */
 } vbc_frame;
 
 /* Zero-initialised is empty; vbc_frame_free releases. */
@@ -23,7 +26,9 @@ void vbc_frame_free(vbc_frame *f);
 
 /* Runs one frame of the spheres s on grid g (a vbc_grid_fit grid for
  * `probe`) through the pipe and the analysis with opt; `want` as for
- * vbc_pipe_frame. *f is refilled (its buffers reused); on failure it holds
+ * vbc_pipe_frame; then the pore stage (vbc_pore_stage with opt->pore, which
+ * needs the flag volume: it is fetched and kept whatever `want` says), or
+ * without opt->pore the refinement and ranking alone. *f is refilled (its buffers reused); on failure it holds
  * nothing of the frame. VB_OK, VB_ENOMEM, VB_EMISUSE, VB_EDEVICE. */
 int vbc_frame_run(vb_ctx *ctx, vbc_pipe *pipe, const vbc_grid *g, const vb_sphere_set *s,
                   double probe, unsigned want, const vbc_options *opt, vbc_frame *f);

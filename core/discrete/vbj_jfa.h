@@ -34,11 +34,21 @@ typedef enum vbj_variant {
     VBJ_JFA2,      /* JFA+2: two more steps, l = 2 then 1 */
     VBJ_1JFA,      /* 1+JFA: one step with l = 1 first */
     VBJ_FACET,     /* Facet-JFA (Algorithm 1) with compaction of unmarked pixels */
-    VBJ_FACET_FULL /* Facet-JFA without skipping marked pixels (the run Facet-JFA
-                      refines; for tests and counts) */
+    VBJ_FACET_FULL, /* Facet-JFA without skipping marked pixels (the run Facet-JFA
+                       refines; for tests and counts) */
+    VBJ_EXACT,      /* the exact diagram by tiles (vbj_tiles.h): per tile a provably
+                       complete list of seeds from a seed grid, each voxel decided
+                       exactly (float filter, 64-bit integer fallback) */
+    VBJ_EXACT_BOUNDARY /* the same labels and, as Facet-JFA reports them, the
+                          boundary pixels counted (counts.boundary) */
 } vbj_variant;
+#define VBJ_NVARIANTS 8
 
-/* Parses "jfa|jfa+1|jfa+2|1+jfa|facet|facet-full". VB_OK or VB_EMISUSE. */
+/* True for the two exact variants. */
+#define VBJ_IS_EXACT(v) ((v) == VBJ_EXACT || (v) == VBJ_EXACT_BOUNDARY)
+
+/* Parses "jfa|jfa+1|jfa+2|1+jfa|facet|facet-full|exact|exact-boundary".
+ * VB_OK or VB_EMISUSE. */
 int vbj_variant_parse(vb_ctx *ctx, const char *s, vbj_variant *out);
 /* Static name of a variant ("jfa+1", ...). */
 const char *vbj_variant_name(vbj_variant v);
@@ -135,6 +145,15 @@ typedef struct vbj_counts {
     uint32_t m;              /* Facet-JFA: start resolution used (0 otherwise) */
     uint64_t boundary;       /* Facet-JFA: unmarked pixels at the end (= boundary pixels) */
     uint32_t collisions;     /* seeds that shared their start pixel with a nearer seed */
+    /* The exact variants (0 for the others): */
+    uint64_t tiles;          /* tiles of S^d voxels (S = 8 in 3D, 16 in 2D) */
+    uint64_t tiles_uniform;  /* tiles filled without per-voxel work (one survivor) */
+    uint64_t candidates;     /* seeds within the distance bound, summed over tiles */
+    uint64_t survivors;      /* seeds left by the dominance test, summed over tiles */
+    uint64_t evals;          /* voxel x survivor distances in float (the filter) */
+    uint64_t exact_voxels;   /* voxels decided with 64-bit integers (near ties, far seeds) */
+    uint64_t tiles_chunked;  /* tiles with more survivors than one local-memory stage */
+    uint64_t visited;        /* seed records read by the ring searches */
 } vbj_counts;
 
 typedef struct vbj_result {
@@ -167,6 +186,11 @@ struct vbj_backend {
     const char *name;        /* "ref", "opencl" */
     char device[160];        /* "reference (C)" or the OpenCL device name */
     void *state;
+    /* Nonzero (W751) on a device backend that vbj_backend_open opened: a
+     * device failure mid-run warns it and that run and the rest go to the
+     * reference, which gives the same labels. 0: the failure is reported and
+     * the backend's owner falls back (channels: W806). */
+    int fallback_warning;
     /* vbj_run after its checks: out is zeroed with dim, n and pixels set;
      * want is never 0. VB_ENOMEM, VB_EDEVICE (message in ctx). */
     int (*run)(vb_ctx *ctx, vbj_backend *be, const vbj_seeds *s, const vbj_options *opt,
@@ -182,7 +206,9 @@ int vbj_ref_open(vb_ctx *ctx, vbj_backend **out);
 /* Opens the backend for a device kind by the device layer's one fallback
  * rule (vb_device.h): on VB_EDEVICE warning W781 and the reference.
  * *dev gets the device to close after the backend (NULL on the
- * reference). layer may be NULL (reference only). */
+ * reference). layer may be NULL (reference only). A device that fails
+ * during a later vbj_run or vbj_exact is dropped with W751 and the backend
+ * becomes the reference for that run and the rest. */
 int vbj_backend_open(vb_ctx *ctx, const vb_device_layer *layer, vb_device_kind kind,
                      vb_device **dev, vbj_backend **out);
 
@@ -205,6 +231,7 @@ int vbj_exact(vb_ctx *ctx, vbj_backend *be, const vbj_seeds *s, uint32_t *labels
 typedef struct vbj_metrics {
     size_t pixels;
     size_t wrong;            /* pixels whose seed is strictly farther than the nearest */
+    size_t differ;           /* pixels whose label is not the exact one (ties included) */
     double wrong_rate;       /* wrong / pixels */
     double max_err;          /* max over pixels of |p - s(p)| - |p - nearest|, in pixels */
     double mean_err;         /* the same, averaged over all pixels */
@@ -222,6 +249,9 @@ int vbj_compare(vb_ctx *ctx, const vbj_seeds *s, const uint32_t *labels, const u
 /* Boundary pixels (Definition 6) of a label grid: out[p] = 1 when a neighbour
  * has another label. out has n^dim entries. */
 void vbj_boundary_mask(int dim, uint32_t n, const uint32_t *labels, uint8_t *out);
+
+/* The number of boundary pixels (Definition 6) of a label grid. */
+uint64_t vbj_boundary_count(int dim, uint32_t n, const uint32_t *labels);
 
 /* Per-pixel distinct-label counts (see VBJ_WANT_NLABELS) of a label grid. */
 void vbj_count_labels(int dim, uint32_t n, const uint32_t *labels, uint8_t *out);

@@ -27,7 +27,37 @@ typedef struct vbj_cells {
 } vbj_cells;
 
 int vbj_cells_build(vb_ctx *ctx, const vbj_seeds *s, vbj_cells *out);
+/* The same with buckets of at least 2^min_shift pixels per axis. */
+int vbj_cells_build_min(vb_ctx *ctx, const vbj_seeds *s, uint32_t min_shift, vbj_cells *out);
 void vbj_cells_free(vbj_cells *c);
+
+/* The seed grid of the exact tiled engine (vbj_tiles.h), for both backends:
+ * tiles of 2^ts voxels per axis, buckets of 2^bs >= 2^ts pixels (g per
+ * axis, about one seed each), bucket b's seeds at records start[b] ..
+ * start[b + 1], each record (x, y, z, index) as int32 (z 0 in 2D), seeds
+ * of a bucket in ascending index. */
+typedef struct vbj_tiles_prep {
+    uint32_t ts, bs, g;
+    size_t nbuckets;  /* g^d */
+    uint32_t *start;  /* nbuckets + 1 */
+    int32_t *recs;    /* 4 k */
+} vbj_tiles_prep;
+
+/* Builds the seed grid of s. Allocates; VB_ENOMEM. */
+int vbj_tiles_prep_build(vb_ctx *ctx, const vbj_seeds *s, vbj_tiles_prep *out);
+void vbj_tiles_prep_free(vbj_tiles_prep *p);
+
+/* The plain-C twin of the tiled engine: the exact labels of every voxel
+ * into out->labels (allocated; out->pixels set by the caller) and the work
+ * counts. VB_ENOMEM. */
+int vbj_tiles_ref_run(vb_ctx *ctx, const vbj_seeds *s, const vbj_tiles_prep *p, vbj_result *out);
+
+/* The counts of a tiled run from its counters (VBJ_XT_C_*, summed over
+ * tiles): the exact-engine fields of c, steps = 1, step_pixels = voxels of
+ * the tiles not filled as uniform, threads += one work-item per row of
+ * VBJ_XT_ROW voxels. */
+void vbj_tiles_counts(const vbj_seeds *s, const vbj_tiles_prep *p, const uint64_t *cnt,
+                      vbj_counts *c);
 
 /* The plain-C backend (core/discrete/jfa_ref.c). */
 int vbj_ref_run(vb_ctx *ctx, const vbj_seeds *s, const vbj_options *opt, vbj_result *out);

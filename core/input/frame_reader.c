@@ -21,6 +21,9 @@ struct vb_frame_reader {
     size_t head_len, head_pos;
     char *line;            /* getline buffer */
     size_t line_cap;
+    const char *rest;      /* what is left of the physical line to serve */
+    size_t rest_len;
+    int open_at_eof;       /* the last block ended with the input, inside a MODEL */
     long lineno;           /* lines consumed so far */
     int unread;            /* serve the last line again */
     const char *last;      /* the last line served */
@@ -58,7 +61,35 @@ static int next_line(vb_frame_reader *rd, const char **s, size_t *n)
     return got;
 }
 
+static int next_physical(vb_frame_reader *rd, const char **s, size_t *n);
+
+/* The next line of the physical lines (getline's, ending in '\n'), split
+ * after each '\r' not followed by '\n' (old Mac OS files): every line
+ * served ends in its own terminator. */
 static int next_line_raw(vb_frame_reader *rd, const char **s, size_t *n)
+{
+    if (rd->rest_len == 0) {
+        int got = next_physical(rd, &rd->rest, &rd->rest_len);
+        if (got <= 0)
+            return got;
+    }
+    const char *p = rd->rest;
+    size_t len = rd->rest_len, k = 0;
+    while (k < len && p[k] != '\n' && !(p[k] == '\r' && (k + 1 == len || p[k + 1] != '\n')))
+        k++;
+    if (k < len)
+        k++;
+    *s = p;
+    *n = k;
+    rd->rest += k;
+    rd->rest_len -= k;
+    rd->lineno++;
+    return 1;
+}
+
+/* The next physical line, from the head read ahead, then from the file (a
+ * file with lone CRs only is one physical line: read whole, then split). */
+static int next_physical(vb_frame_reader *rd, const char **s, size_t *n)
 {
     if (rd->head_pos < rd->head_len) {
         const char *p = rd->head + rd->head_pos;
@@ -69,7 +100,6 @@ static int next_line_raw(vb_frame_reader *rd, const char **s, size_t *n)
             *s = p;
             *n = (size_t)(nl - p) + 1;
             rd->head_pos += *n;
-            rd->lineno++;
             return 1;
         }
         ssize_t got = getline(&rd->line, &rd->line_cap, rd->f);
@@ -86,7 +116,6 @@ static int next_line_raw(vb_frame_reader *rd, const char **s, size_t *n)
         rd->head_pos = rd->head_len;
         *s = rd->line;
         *n = left + tail;
-        rd->lineno++;
         return 1;
     }
     ssize_t got = getline(&rd->line, &rd->line_cap, rd->f);
@@ -94,7 +123,6 @@ static int next_line_raw(vb_frame_reader *rd, const char **s, size_t *n)
         return ferror(rd->f) ? -1 : 0;
     *s = rd->line;
     *n = (size_t)got;
-    rd->lineno++;
     return 1;
 }
 
@@ -154,6 +182,7 @@ int vb_frame_reader_open(vb_ctx *ctx, const char *path, const vb_read_options *o
     }
     rd->head_len = fread(rd->head, 1, VBI_DETECT_BYTES, rd->f);
     rd->head[rd->head_len] = '\0';
+    rd->head_pos = vbi_bom_length(rd->head, rd->head_len);
     if (ferror(rd->f)) {
         int rc = vbi_input_read_error(ctx, path);
         vb_frame_reader_close(rd);
@@ -166,7 +195,7 @@ int vb_frame_reader_open(vb_ctx *ctx, const char *path, const vb_read_options *o
     }
     rd->fmt = rd->opt.format;
     if (rd->fmt == VB_FMT_AUTO) {
-        int rc = vbi_detect_format(rd->head, rd->head_len, &rd->fmt);
+        int rc = vbi_detect_format(rd->head + rd->head_pos, rd->head_len - rd->head_pos, &rd->fmt);
         if (rc != VB_OK) {
             vb_frame_reader_close(rd);
             return vbi_detect_error(ctx, path, rc);
@@ -195,6 +224,13 @@ int vb_frame_reader_open(vb_ctx *ctx, const char *path, const vb_read_options *o
         rd->text_len = rd->chunk_len;
         rd->chunk = NULL;
         rd->chunk_len = rd->chunk_cap = 0;
+        if (rd->text) {
+            vbi_lone_cr_to_lf(rd->text, rd->text_len);
+            if ((rc = vbi_check_nul(ctx, path, rd->text, rd->text_len, 1)) != VB_OK) {
+                vb_frame_reader_close(rd);
+                return rc;
+            }
+        }
     }
     *out = rd;
     return VB_OK;
@@ -217,7 +253,10 @@ static int gather_block(vb_ctx *ctx, vb_frame_reader *rd, long *first, int *seri
     int got, in_block = 0;
     size_t loose_atoms = 0; /* atoms gathered before the first MODEL */
     *first = 0;
+    rd->open_at_eof = 0;
     while ((got = next_line(rd, &s, &n)) > 0) {
+        if (memchr(s, '\0', n))
+            return -vbi_check_nul(ctx, rd->name, s, n, rd->lineno);
         if (vbi_pdb_record(s, n, "MODEL")) {
             if (in_block) {
                 /* MODEL without ENDMDL: this line opens the next block. */
@@ -253,6 +292,7 @@ static int gather_block(vb_ctx *ctx, vb_frame_reader *rd, long *first, int *seri
     }
     if (got < 0)
         return -vbi_input_read_error(ctx, rd->name);
+    rd->open_at_eof = in_block;
     return *first != 0 && (in_block || !rd->seen_model);
 }
 
@@ -324,6 +364,9 @@ int vb_frame_reader_next(vb_ctx *ctx, vb_frame_reader *rd, vb_sphere_set **out,
                                      &rd->dr, out);
             if (rc != VB_OK)
                 return rc;
+            /* A block closed by the next MODEL lacks ENDMDL, yet it is whole. */
+            if (!rd->open_at_eof)
+                rd->dr.open_model_line = 0;
             rd->frames++;
         }
         /* --model N picks one frame out of the stream. */

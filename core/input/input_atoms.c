@@ -5,6 +5,9 @@
 #include "vbi_input.h"
 #include "vb_diag.h"
 
+#include <ctype.h>
+#include <stdint.h>
+#include <stdlib.h>
 #include <string.h>
 
 int vbi_is_water(const char *resname)
@@ -78,6 +81,10 @@ void vbi_report_dropped(vb_ctx *ctx, const char *name, const vbi_dropped *dr)
         vb_warn(ctx, VB_W_ZERO_POINTS, name, 0,
                 "%zu sphere%s of radius 0 kept as point sites (--zero-radius error|drop to change)",
                 dr->zero_points, dr->zero_points == 1 ? "" : "s");
+    if (dr->open_model_line)
+        vb_warn(ctx, VB_W_MODEL_OPEN_AT_END, name, dr->open_model_line,
+                "the input ends inside this MODEL (no ENDMDL, no END): the file may be "
+                "truncated; the model's atoms were read as they stand");
     vbi_report_inferred(ctx, name, dr);
     if (dr->unknown_elements > 1)
         vb_warn(ctx, VB_W_ELEMENT_UNKNOWN_COUNT, name, 0, "%zu atoms in all had an unknown element and radius 1.70",
@@ -179,26 +186,89 @@ int vbi_atom_scan_takes(vbi_atom_scan *s, vbi_record rec, int32_t model_serial,
     return 1;
 }
 
+void vbi_atom_scan_note_open_model(const vbi_atom_scan *s, long model_line, vbi_dropped *dr)
+{
+    if (s->models.in_model && s->models.taking && !s->ended && model_line > 0)
+        dr->open_model_line = model_line;
+}
+
 void vbi_altloc_init(vbi_altloc *a)
 {
     memset(a, 0, sizeof *a);
 }
 
+void vbi_altloc_free(vbi_altloc *a)
+{
+    free(a->slots);
+    vbi_altloc_init(a);
+}
+
+static int same_residue(const vbi_altloc_res *r, const vb_atom_info *info)
+{
+    return r->resseq == info->resseq && r->icode == info->icode &&
+           strcmp(r->chain, info->chain) == 0;
+}
+
+static size_t residue_hash(const vbi_altloc_res *r, size_t mask)
+{
+    uint64_t h = 1469598103934665603ull;
+    for (const char *c = r->chain; *c; c++)
+        h = (h ^ (unsigned char)*c) * 1099511628211ull;
+    h = (h ^ (uint32_t)r->resseq) * 1099511628211ull;
+    h = (h ^ (unsigned char)r->icode) * 1099511628211ull;
+    return (size_t)(h ^ (h >> 29)) & mask;
+}
+
+/* The slot of residue r: its own, or the empty one where it belongs. */
+static vbi_altloc_res *residue_slot(vbi_altloc_res *slots, size_t cap, const vbi_altloc_res *r)
+{
+    size_t i = residue_hash(r, cap - 1);
+    while (slots[i].kept && !(slots[i].resseq == r->resseq && slots[i].icode == r->icode &&
+                              strcmp(slots[i].chain, r->chain) == 0))
+        i = (i + 1) & (cap - 1);
+    return &slots[i];
+}
+
+static int residue_table_grow(vbi_altloc *a)
+{
+    size_t cap = a->cap ? 2 * a->cap : 64;
+    vbi_altloc_res *slots = calloc(cap, sizeof *slots);
+    if (!slots)
+        return -1;
+    for (size_t i = 0; i < a->cap; i++)
+        if (a->slots[i].kept)
+            *residue_slot(slots, cap, &a->slots[i]) = a->slots[i];
+    free(a->slots);
+    a->slots = slots;
+    a->cap = cap;
+    a->last = NULL;
+    return 0;
+}
+
 int vbi_altloc_keeps(vbi_altloc *a, const vb_atom_info *info)
 {
-    if (strcmp(a->chain, info->chain) != 0 || a->resseq != info->resseq ||
-        a->icode != info->icode || !a->started) {
-        memcpy(a->chain, info->chain, sizeof a->chain);
-        a->resseq = info->resseq;
-        a->icode = info->icode;
-        a->kept = ' ';
-        a->started = 1;
-    }
     if (info->altloc == ' ')
         return 1;
-    if (a->kept == ' ')
-        a->kept = info->altloc;
-    return info->altloc == a->kept;
+    /* Lettered atoms of one residue usually come together: the last
+     * residue answers most lookups. */
+    if (!a->last || !same_residue(a->last, info)) {
+        vbi_altloc_res key;
+        memset(&key, 0, sizeof key);
+        memcpy(key.chain, info->chain, sizeof key.chain);
+        key.chain[sizeof key.chain - 1] = '\0';
+        key.resseq = info->resseq;
+        key.icode = info->icode;
+        if (2 * (a->n + 1) > a->cap && residue_table_grow(a) != 0)
+            return -1;
+        vbi_altloc_res *r = residue_slot(a->slots, a->cap, &key);
+        if (!r->kept) {
+            key.kept = info->altloc;
+            *r = key;
+            a->n++;
+        }
+        a->last = r;
+    }
+    return info->altloc == a->last->kept;
 }
 
 int vbi_atom_dropped(const vb_read_options *opt, vbi_altloc *alt, const vb_atom_info *info,
@@ -208,7 +278,10 @@ int vbi_atom_dropped(const vb_read_options *opt, vbi_altloc *alt, const vb_atom_
         dr->water++;
         return 1;
     }
-    if (alt && !vbi_altloc_keeps(alt, info)) {
+    int keep = alt ? vbi_altloc_keeps(alt, info) : 1;
+    if (keep < 0)
+        return -1;
+    if (!keep) {
         dr->altloc++;
         return 1;
     }

@@ -11,20 +11,65 @@ void vbi_lines_init(vbi_lines *it, const char *buf, size_t len, long first_line)
     it->lineno = first_line - 1;
 }
 
+/* End of the line that starts at s: the first '\n', or a '\r' not followed
+ * by '\n' (old Mac OS line ends), or `end`. */
+static const char *line_end(const char *s, const char *end)
+{
+    for (const char *p = s; p < end; p++)
+        if (*p == '\n' || (*p == '\r' && (p + 1 == end || p[1] != '\n')))
+            return p;
+    return end;
+}
+
 int vbi_lines_next(vbi_lines *it, const char **line, size_t *len)
 {
     if (it->p >= it->end)
         return 0;
     const char *s = it->p;
-    const char *nl = memchr(s, '\n', (size_t)(it->end - s));
-    const char *e = nl ? nl : it->end;
-    it->p = nl ? nl + 1 : it->end;
+    const char *e = line_end(s, it->end);
+    it->p = e < it->end ? e + 1 : it->end;
     if (e > s && e[-1] == '\r')
         e--;
     *line = s;
     *len = (size_t)(e - s);
     it->lineno++;
     return 1;
+}
+
+size_t vbi_bom_length(const char *buf, size_t len)
+{
+    return len >= 3 && memcmp(buf, "\xef\xbb\xbf", 3) == 0 ? 3 : 0;
+}
+
+int vbi_has_lone_cr(const char *buf, size_t len)
+{
+    for (const char *p = buf, *end = buf + len; (p = memchr(p, '\r', (size_t)(end - p))); p++)
+        if (p + 1 == end || p[1] != '\n')
+            return 1;
+    return 0;
+}
+
+void vbi_lone_cr_to_lf(char *buf, size_t len)
+{
+    for (size_t i = 0; i < len; i++)
+        if (buf[i] == '\r' && (i + 1 == len || buf[i + 1] != '\n'))
+            buf[i] = '\n';
+}
+
+int vbi_check_nul(vb_ctx *ctx, const char *name, const char *buf, size_t len, long first_line)
+{
+    const char *nul = memchr(buf, '\0', len);
+    if (!nul)
+        return VB_OK;
+    vbi_lines it;
+    vbi_lines_init(&it, buf, (size_t)(nul - buf) + 1, first_line);
+    const char *line = buf;
+    size_t n;
+    while (vbi_lines_next(&it, &line, &n))
+        ;
+    return vb_error(ctx, VB_EINPUT_MALFORMED, name, it.lineno,
+                    "NUL byte in column %zu (binary data in a text file?)",
+                    (size_t)(nul - line) + 1);
 }
 
 static int is_space(char c)

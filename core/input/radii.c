@@ -92,11 +92,13 @@ int vb_radii_load(vb_ctx *ctx, const char *path, vb_radii_table **out)
         free(buf);
         return vb_error(ctx, VB_ENOMEM, path, 0, "out of memory");
     }
+    size_t bom = vbi_bom_length(buf, len);
+    rc = vbi_check_nul(ctx, path, buf + bom, len - bom, 1);
     vbi_lines it;
-    vbi_lines_init(&it, buf, len, 1);
+    vbi_lines_init(&it, buf + bom, len - bom, 1);
     const char *line, *tok;
     size_t n, k;
-    while (vbi_lines_next(&it, &line, &n)) {
+    while (rc == VB_OK && vbi_lines_next(&it, &line, &n)) {
         const char *hash = memchr(line, '#', n);
         const char *end = hash ? hash : line + n, *p = line;
         if ((k = vbi_token(&p, end, &tok)) == 0)

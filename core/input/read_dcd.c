@@ -5,6 +5,7 @@
  * unit cell (6 doubles, CHARMM with ICNTRL[10]), then X, Y, Z as float32 -
  * after the first frame only the free atoms when some are fixed - and a 4th
  * coordinate record when ICNTRL[11] is set. */
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -22,10 +23,22 @@ struct vb_dcd {
     long nset;
     double delta;
     int32_t *free_idx;  /* 0-based indices of the free atoms (nfree of them) */
-    float *buf;         /* natoms floats */
+    float *buf;         /* natoms floats, allocated with the first frame */
     double *fixed[3];   /* first-frame coordinates when atoms are fixed */
     long frame;         /* frames read so far */
+    long long size;     /* file size in bytes, -1 when it cannot be told */
 };
+
+/* Bytes between the read position and the end of the file (LLONG_MAX when
+ * the size is unknown): no record longer than this is allocated or read, so
+ * a header that claims 2^31 atoms costs nothing. */
+static long long bytes_left(vb_dcd *d)
+{
+    long pos = ftell(d->f);
+    if (d->size < 0 || pos < 0)
+        return LLONG_MAX;
+    return pos <= d->size ? d->size - pos : 0;
+}
 
 static uint32_t bswap32(uint32_t v)
 {
@@ -55,10 +68,15 @@ static void fix_floats(const vb_dcd *d, float *p, size_t n)
 static int read_record(vb_dcd *d, void *buf, size_t len)
 {
     int32_t m0, m1;
-    if (fread(&m0, 4, 1, d->f) != 1)
+    size_t got = fread(&m0, 1, 4, d->f);
+    if (got == 0 && feof(d->f))
         return 0;
+    if (got != 4)
+        return -1;
     if ((size_t)(uint32_t)fix32(d, m0) != len)
         return -2;
+    if ((unsigned long long)len + 4 > (unsigned long long)bytes_left(d))
+        return -1;
     if (buf) {
         if (fread(buf, 1, len, d->f) != len)
             return -1;
@@ -121,6 +139,13 @@ int vb_dcd_open(vb_ctx *ctx, const char *path, vb_dcd **out)
         return vb_errcode(ctx);
     }
     unsigned char hdr[92];
+    d->size = -1;
+    if (fseek(d->f, 0, SEEK_END) == 0) {
+        long end = ftell(d->f);
+        d->size = end >= 0 ? end : -1;
+    }
+    if (fseek(d->f, 0, SEEK_SET) != 0)
+        d->size = -1;
     if (fread(hdr, 1, sizeof hdr, d->f) != sizeof hdr || memcmp(hdr + 4, "CORD", 4) != 0) {
         int rc = vb_error(ctx, VB_EINPUT_FORMAT, path, 0, "not a DCD file (no CORD header)");
         vb_dcd_close(d);
@@ -174,16 +199,11 @@ int vb_dcd_open(vb_ctx *ctx, const char *path, vb_dcd **out)
         return bad_header(ctx, d, "atom counts out of range");
     d->natoms = (size_t)na;
     d->nfree = (size_t)(na - nfixed);
-    d->buf = malloc(d->natoms * sizeof *d->buf);
-    if (!d->buf) {
-        vb_dcd_close(d);
-        return vb_error(ctx, VB_ENOMEM, NULL, 0, "DCD frame of %zu atoms", d->natoms);
-    }
     if (nfixed > 0) {
+        if (4ull * d->nfree + 8 > (unsigned long long)bytes_left(d))
+            return bad_header(ctx, d, "free atom list runs past the end of the file");
         d->free_idx = malloc(d->nfree * sizeof *d->free_idx);
-        for (int a = 0; a < 3; a++)
-            d->fixed[a] = malloc(d->natoms * sizeof(double));
-        if (!d->free_idx || !d->fixed[0] || !d->fixed[1] || !d->fixed[2]) {
+        if (!d->free_idx) {
             vb_dcd_close(d);
             return vb_error(ctx, VB_ENOMEM, NULL, 0, "DCD fixed-atom tables");
         }
@@ -204,12 +224,47 @@ size_t vb_dcd_atoms(const vb_dcd *d) { return d->natoms; }
 long vb_dcd_header_frames(const vb_dcd *d) { return d->nset; }
 double vb_dcd_delta(const vb_dcd *d) { return d->delta; }
 
+/* Bytes of the next frame: optional cell, X, Y, Z, optional 4th record. */
+static unsigned long long frame_bytes(const vb_dcd *d, size_t n)
+{
+    unsigned long long rec = 4ull * n + 8;
+    return (d->has_cell ? 6 * 8 + 8 : 0) + 3 * rec + (d->has_4d ? rec : 0);
+}
+
+/* The frame buffers, allocated when the file holds a whole first frame. */
+static int frame_buffers(vb_ctx *ctx, vb_dcd *d)
+{
+    if (d->buf)
+        return VB_OK;
+    d->buf = malloc(d->natoms * sizeof *d->buf);
+    for (int a = 0; d->free_idx && a < 3; a++)
+        d->fixed[a] = malloc(d->natoms * sizeof(double));
+    if (!d->buf || (d->free_idx && (!d->fixed[0] || !d->fixed[1] || !d->fixed[2])))
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "DCD frame of %zu atoms", d->natoms);
+    return VB_OK;
+}
+
 int vb_dcd_next(vb_ctx *ctx, vb_dcd *d, double *x, double *y, double *z, double cell[6], int *got)
 {
     *got = 0;
     int partial = d->free_idx && d->frame > 0;
     size_t n = partial ? d->nfree : d->natoms;
     int r;
+    /* What is left must be a whole frame: fewer bytes are a truncated last
+     * frame or stray bytes after the last one, and are reported. */
+    long long left = bytes_left(d);
+    if (left == 0)
+        return VB_OK;
+    if ((unsigned long long)left < frame_bytes(d, n)) {
+        vb_warn(ctx, VB_W_DCD_PARTIAL_FRAME, d->path, 0,
+                "DCD ends with %lld byte%s after frame %ld, less than a frame of %zu atoms: "
+                "ignored", left, left == 1 ? "" : "s", d->frame, n);
+        fseek(d->f, 0, SEEK_END);
+        return VB_OK;
+    }
+    int rc = frame_buffers(ctx, d);
+    if (rc != VB_OK)
+        return rc;
     if (d->has_cell) {
         double c[6];
         r = read_record(d, c, sizeof c);

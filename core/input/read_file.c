@@ -61,23 +61,42 @@ int vb_spheres_read_buffer(vb_ctx *ctx, const char *name, const char *buf, size_
     int rc0 = vbi_refuse_nonspheres(ctx, name, buf, len);
     if (rc0 != VB_OK)
         return rc0;
+    /* A byte-order mark is not text of line 1; lone CRs end lines (read on
+     * a copy with '\n' in their place, so every reader sees the same lines);
+     * a NUL byte is never text. */
+    size_t bom = vbi_bom_length(buf, len);
+    buf += bom;
+    len -= bom;
+    char *copy = NULL;
+    if (vbi_has_lone_cr(buf, len)) {
+        if (!(copy = malloc(len + 1)))
+            return vb_error(ctx, VB_ENOMEM, name, 0, "out of memory reading the input");
+        memcpy(copy, buf, len);
+        copy[len] = '\0';
+        vbi_lone_cr_to_lf(copy, len);
+        buf = copy;
+    }
+    int rc = vbi_check_nul(ctx, name, buf, len, 1);
     vb_format fmt = opt->format;
-    if (fmt == VB_FMT_AUTO) {
-        int rc = vbi_detect_format(buf, len, &fmt);
-        if (rc != VB_OK)
-            return vbi_detect_error(ctx, name, rc);
+    if (rc == VB_OK && fmt == VB_FMT_AUTO && (rc = vbi_detect_format(buf, len, &fmt)) != VB_OK)
+        rc = vbi_detect_error(ctx, name, rc);
+    if (rc == VB_OK && opt->assembly > 0 && fmt != VB_FMT_MMCIF)
+        rc = vb_error(ctx, VB_EINPUT_ASSEMBLY, name, 0,
+                      "--assembly reads mmCIF biological assemblies; this input is not mmCIF");
+    if (rc == VB_OK) {
+        switch (fmt) {
+        case VB_FMT_XYZR: rc = vbi_read_xyzr(ctx, name, buf, len, opt, out); break;
+        case VB_FMT_PDB: rc = read_reported(vbi_pdb_parse, ctx, name, buf, len, opt, out); break;
+        case VB_FMT_PQR: rc = read_reported(vbi_pqr_parse, ctx, name, buf, len, opt, out); break;
+        case VB_FMT_MMCIF: rc = vbi_read_mmcif(ctx, name, buf, len, opt, out); break;
+        case VB_FMT_GRO: rc = vbi_read_gro(ctx, name, buf, len, opt, out); break;
+        default:
+            rc = vb_error(ctx, VB_EMISUSE, name, 0, "invalid format value %d", (int)fmt);
+            break;
+        }
     }
-    if (opt->assembly > 0 && fmt != VB_FMT_MMCIF)
-        return vb_error(ctx, VB_EINPUT_ASSEMBLY, name, 0,
-                        "--assembly reads mmCIF biological assemblies; this input is not mmCIF");
-    switch (fmt) {
-    case VB_FMT_XYZR: return vbi_read_xyzr(ctx, name, buf, len, opt, out);
-    case VB_FMT_PDB: return read_reported(vbi_pdb_parse, ctx, name, buf, len, opt, out);
-    case VB_FMT_PQR: return read_reported(vbi_pqr_parse, ctx, name, buf, len, opt, out);
-    case VB_FMT_MMCIF: return vbi_read_mmcif(ctx, name, buf, len, opt, out);
-    case VB_FMT_GRO: return vbi_read_gro(ctx, name, buf, len, opt, out);
-    default: return vb_error(ctx, VB_EMISUSE, name, 0, "invalid format value %d", (int)fmt);
-    }
+    free(copy);
+    return rc;
 }
 
 int vb_spheres_read_file(vb_ctx *ctx, const char *path, const vb_read_options *opt,

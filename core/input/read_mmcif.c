@@ -172,7 +172,10 @@ static int take_row(cif_reader *r, const vbi_cif_token *row, const int *col)
         r->truncated = 1;
         r->truncated_line = line;
     }
-    if (vbi_atom_dropped(r->opt, &r->alt, &info, r->dr))
+    int drop = vbi_atom_dropped(r->opt, &r->alt, &info, r->dr);
+    if (drop < 0)
+        return vb_error(r->ctx, VB_ENOMEM, r->name, line, "out of memory (alternate locations)");
+    if (drop)
         return VB_OK;
     if (how != VBI_INFER_NONE) {
         int rc = vbi_element_inferred(r->ctx, r->opt, r->name, line, &info, how, r->dr);
@@ -281,6 +284,7 @@ int vbi_mmcif_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len,
                       "unterminated quoted value or text field");
     if (rc == VB_OK && !found)
         rc = vb_error(ctx, VB_EINPUT_EMPTY, name, 0, "no _atom_site loop in the mmCIF input");
+    vbi_altloc_free(&r.alt);
     rc = vbi_builder_close(&r.b, &r.models, rc, out);
     if (rc == VB_OK && opt->assembly > 0 && (*out)->n > 0)
         rc = vbi_assembly_build(ctx, name, buf, len, opt->assembly,

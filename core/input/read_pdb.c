@@ -102,10 +102,13 @@ int vbi_pdb_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
     vbi_lines_init(&it, buf, len, first_line);
     const char *line;
     size_t n;
+    long model_line = 0;
     while (rc == VB_OK && vbi_lines_next(&it, &line, &n)) {
         vbi_record rec = vbi_record_kind(vbi_pdb_record, line, n);
         int32_t serial = rec == VBI_REC_MODEL ? vbi_pdb_model_serial(line, n) : 0;
         records += rec == VBI_REC_ATOM;
+        if (rec == VBI_REC_MODEL)
+            model_line = it.lineno;
         if (!vbi_atom_scan_takes(&scan, rec, serial, dr))
             continue;
         vb_atom_info info;
@@ -115,7 +118,10 @@ int vbi_pdb_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
         rc = parse_atom_line(ctx, name, it.lineno, line, n, &text, &info, e, d, &how);
         if (rc != VB_OK)
             break;
-        if (vbi_atom_dropped(opt, &alt, &info, dr))
+        int drop = vbi_atom_dropped(opt, &alt, &info, dr);
+        if (drop < 0)
+            rc = vb_error(ctx, VB_ENOMEM, name, it.lineno, "out of memory (alternate locations)");
+        if (drop)
             continue;
         if (how != VBI_INFER_NONE &&
             (rc = vbi_element_inferred(ctx, opt, name, it.lineno, &info, how, dr)) != VB_OK)
@@ -125,6 +131,8 @@ int vbi_pdb_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
         if (rc == VB_OK)
             rc = vbi_builder_push(&b, e, d, &info, it.lineno);
     }
+    vbi_altloc_free(&alt);
+    vbi_atom_scan_note_open_model(&scan, model_line, dr);
     if (rc == VB_OK && records == 0)
         rc = vb_error(ctx, VB_EINPUT_EMPTY, name, 0,
                       "no atoms: no ATOM or HETATM record in the PDB input");

@@ -41,6 +41,7 @@ int vbi_pqr_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
     vbi_lines_init(&it, buf, len, first_line);
     const char *line;
     size_t n;
+    long model_line = 0;
     while (rc == VB_OK && vbi_lines_next(&it, &line, &n)) {
         const char *tok[VBI_PQR_MAX_TOKENS + 1], *p = line;
         size_t tl[VBI_PQR_MAX_TOKENS + 1], k;
@@ -53,6 +54,8 @@ int vbi_pqr_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
         int32_t serial = 0;
         if (rec == VBI_REC_MODEL && nt > 1)
             vbi_parse_int(tok[1], tl[1], &serial);
+        if (rec == VBI_REC_MODEL)
+            model_line = it.lineno;
         if (!vbi_atom_scan_takes(&scan, rec, serial, dr))
             continue;
         if (nt < 10 || nt > VBI_PQR_MAX_TOKENS) {
@@ -98,6 +101,7 @@ int vbi_pqr_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
             continue;
         rc = vbi_builder_push(&b, e, d, &info, it.lineno);
     }
+    vbi_atom_scan_note_open_model(&scan, model_line, dr);
     rc = vbi_builder_close(&b, &scan.models, rc, out);
     if (rc == VB_OK)
         (*out)->allows_zero_radius = zero_policy == VB_ZERO_RADIUS_POINT;

@@ -50,15 +50,32 @@ typedef struct {
     size_t idx;
 } dup_key;
 
-static int dup_key_cmp(const void *pa, const void *pb)
+/* Order of two spheres by the values of x, y, z, r (never by the bytes of
+ * vb_decimal: its padding is not set by the readers, and "1.52" and
+ * "1.520" are one value). */
+static int same_sphere_cmp(const vb_decimal a[4], const vb_decimal b[4])
 {
-    const dup_key *a = pa, *b = pb;
     for (int k = 0; k < 4; k++) {
-        int c = vb_decimal_cmp(a->v[k], b->v[k]);
+        int c = vb_decimal_cmp(a[k], b[k]);
         if (c)
             return c;
     }
-    return (a->idx > b->idx) - (a->idx < b->idx);
+    return 0;
+}
+
+static int dup_key_cmp(const void *pa, const void *pb)
+{
+    const dup_key *a = pa, *b = pb;
+    int c = same_sphere_cmp(a->v, b->v);
+    return c ? c : (a->idx > b->idx) - (a->idx < b->idx);
+}
+
+static void sphere_values(const vb_sphere_set *s, size_t i, vb_decimal v[4])
+{
+    v[0] = s->ex[i];
+    v[1] = s->ey[i];
+    v[2] = s->ez[i];
+    v[3] = s->er[i];
 }
 
 static int check_duplicates(vb_ctx *ctx, const vb_sphere_set *s)
@@ -67,10 +84,7 @@ static int check_duplicates(vb_ctx *ctx, const vb_sphere_set *s)
     if (!k)
         return vb_error(ctx, VB_ENOMEM, s->source, 0, "out of memory");
     for (size_t i = 0; i < s->n; i++) {
-        k[i].v[0] = s->ex[i];
-        k[i].v[1] = s->ey[i];
-        k[i].v[2] = s->ez[i];
-        k[i].v[3] = s->er[i];
+        sphere_values(s, i, k[i].v);
         k[i].idx = i;
     }
     qsort(k, s->n, sizeof *k, dup_key_cmp);
@@ -78,7 +92,7 @@ static int check_duplicates(vb_ctx *ctx, const vb_sphere_set *s)
      * top down: the later sphere with the smallest index. */
     size_t first = SIZE_MAX, second = SIZE_MAX;
     for (size_t i = 1; i < s->n; i++)
-        if (memcmp(k[i - 1].v, k[i].v, sizeof k[i].v) == 0 && k[i].idx < second) {
+        if (same_sphere_cmp(k[i - 1].v, k[i].v) == 0 && k[i].idx < second) {
             first = k[i - 1].idx;
             second = k[i].idx;
         }
@@ -86,14 +100,16 @@ static int check_duplicates(vb_ctx *ctx, const vb_sphere_set *s)
     if (second == SIZE_MAX)
         return VB_OK;
     /* Several copies: the earliest copy of the same sphere is the partner. */
-    for (size_t i = 0; i < first; i++)
-        if (s->ex[i].mant == s->ex[second].mant && s->ex[i].exp10 == s->ex[second].exp10 &&
-            s->ey[i].mant == s->ey[second].mant && s->ey[i].exp10 == s->ey[second].exp10 &&
-            s->ez[i].mant == s->ez[second].mant && s->ez[i].exp10 == s->ez[second].exp10 &&
-            s->er[i].mant == s->er[second].mant && s->er[i].exp10 == s->er[second].exp10) {
+    vb_decimal want[4];
+    sphere_values(s, second, want);
+    for (size_t i = 0; i < first; i++) {
+        vb_decimal v[4];
+        sphere_values(s, i, v);
+        if (same_sphere_cmp(v, want) == 0) {
             first = i;
             break;
         }
+    }
     return vb_error(ctx, VB_EINPUT_DUPLICATE, s->source, s->line[second],
                     "sphere %zu is identical to sphere %zu at line %ld", second, first,
                     s->line[first]);

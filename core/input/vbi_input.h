@@ -53,8 +53,24 @@ typedef struct vbi_lines {
     long lineno;        /* number of the line last returned */
 } vbi_lines;
 
+/* Lines end at "\n", "\r\n" or a lone "\r" (old Mac OS files). */
 void vbi_lines_init(vbi_lines *it, const char *buf, size_t len, long first_line);
 int vbi_lines_next(vbi_lines *it, const char **line, size_t *len);
+
+/* 3 when buf starts with a UTF-8 byte-order mark (skipped by every text
+ * reader), else 0. */
+size_t vbi_bom_length(const char *buf, size_t len);
+
+/* Whether buf holds a '\r' not followed by '\n'; vbi_lone_cr_to_lf turns
+ * each into '\n' in place (same length, same line numbers), so readers with
+ * their own tokenizer (mmCIF) see the lines vbi_lines sees. */
+int vbi_has_lone_cr(const char *buf, size_t len);
+void vbi_lone_cr_to_lf(char *buf, size_t len);
+
+/* VB_EINPUT_MALFORMED naming the line (counted from first_line as vbi_lines
+ * counts) and column of the first NUL byte of buf, else VB_OK: a NUL inside a
+ * fixed-column field would otherwise end the field's text early. */
+int vbi_check_nul(vb_ctx *ctx, const char *name, const char *buf, size_t len, long first_line);
 
 /* Next whitespace-separated token of [*p, end): returns its length (0 at the
  * end) and its start in *tok; advances *p. */
@@ -110,6 +126,8 @@ typedef struct vbi_dropped {
     size_t inferred_alignment;/* of those, two-letter elements from column 13 alone (W716) */
     char inferred_el[VBI_INFERRED_KINDS][4]; /* the inferred elements and their counts */
     size_t inferred_count[VBI_INFERRED_KINDS];
+    long open_model_line;     /* the MODEL record of a taken model the input ends
+                                 inside (no ENDMDL, no END): W735 */
 } vbi_dropped;
 
 /* How an element was inferred (element_infer.c says the rules). */
@@ -217,24 +235,39 @@ void vbi_atom_scan_init(vbi_atom_scan *s, int want);
 int vbi_atom_scan_takes(vbi_atom_scan *s, vbi_record rec, int32_t model_serial,
                         vbi_dropped *dr);
 
+/* At the end of a parse: when the input ended inside the taken model (no
+ * ENDMDL, no END after it), records its MODEL line (model_line) in dr for
+ * warning W735. The frame reader clears it for blocks that did not end the
+ * input. */
+void vbi_atom_scan_note_open_model(const vbi_atom_scan *s, long model_line, vbi_dropped *dr);
+
 /* Alternate locations, per residue (chain, resseq, icode): blank is always
  * kept, and of the lettered ones the first met in the residue (usually 'A'). */
-typedef struct vbi_altloc {
+typedef struct vbi_altloc_res {
     char chain[8];
     int32_t resseq;
     char icode;
-    char kept;
-    int started;
+    char kept;        /* 0: empty slot */
+} vbi_altloc_res;
+
+typedef struct vbi_altloc {
+    vbi_altloc_res *slots; /* residues that had a lettered location (hash table) */
+    size_t cap, n;
+    vbi_altloc_res *last;  /* the residue of the previous lettered atom */
 } vbi_altloc;
 
+/* The residue is remembered for the whole file, so a block of location B
+ * that comes back after other residues is still dropped beside A. */
 void vbi_altloc_init(vbi_altloc *a);
-/* True when the atom's alternate location is the one kept. */
+void vbi_altloc_free(vbi_altloc *a);
+/* 1 when the atom's alternate location is the one kept, 0 when it is
+ * dropped, -1 when out of memory. */
 int vbi_altloc_keeps(vbi_altloc *a, const vb_atom_info *info);
 
 /* The atoms a reader leaves out on purpose, tested in this order: water
  * (unless opt->keep_water), other alternate locations (alt NULL: the format
  * has none), hydrogens (opt->drop_hydrogens). Returns 1 when the atom is
- * left out (counted in dr), 0 when it is read. */
+ * left out (counted in dr), 0 when it is read, -1 when out of memory. */
 int vbi_atom_dropped(const vb_read_options *opt, vbi_altloc *alt, const vb_atom_info *info,
                      vbi_dropped *dr);
 

@@ -4,13 +4,16 @@
 usage: hole_compare.py radii RADFILE OUT.radii
          HOLE's .rad file -> vorball --radii file (one radius per element, from the
          general 'VDWR X??? ???' records); prints what cannot be carried over
+       hole_compare.py table OUTDIR NAME...
+         Markdown tables from compare's outputs: the minimum radii side by side, and
+         each profile at 15 axial positions where both have a point
        hole_compare.py compare NAME HOLE_STDOUT HOLE.sph VORBALL.json OUTDIR [HOLE_STDOUT...]
          writes OUTDIR/NAME_summary.json, NAME_hole_profile.tsv, NAME_vorball_profile.tsv,
          NAME_profiles.tsv (side by side on HOLE's axial positions); further HOLE
          outputs (other random seeds) give the spread of HOLE's own minimum radius
 Axial position s = p . CVECT (HOLE's cenxyz.cvec, CVECT as HOLE found or was given).
-The vorball channel compared is the one whose centreline covers most of HOLE's
-centre line (points within COVER_A = 1.5 A of it). Standard library only.
+The vorball channel compared is its pore (kind "pore", HOLE's measure), else the one
+whose centreline covers most of HOLE's centre line (points within COVER_A = 1.5 A of it). Standard library only.
 """
 import json
 import math
@@ -141,7 +144,9 @@ def compare(name, hole_out, sph, vjson, outdir, more):
         cov = near / len(hole_pts)
         cov_all.append({"id": c["id"], "kind": c.get("kind"), "coverage": round(cov, 4),
                         "bottleneck_A": c.get("bottleneck_A"), "length_A": c.get("length_A")})
-        if cov > best_cov:
+        # The pore row (HOLE's own measure) is the one compared whenever there is one.
+        if best is None or (c.get("kind") == "pore") > (best.get("kind") == "pore") or \
+                ((c.get("kind") == "pore") == (best.get("kind") == "pore") and cov > best_cov):
             best, best_cov = c, cov
     vpts = []
     if best:
@@ -167,7 +172,9 @@ def compare(name, hole_out, sph, vjson, outdir, more):
                     "matched_channel": best.get("id") if best else None,
                     "matched_coverage": round(best_cov, 4) if best else None,
                     "bottleneck": vmin, "length_A": best.get("length_A") if best else None,
-                    "through": best.get("through") if best else None},
+                    "through": best.get("through") if best else None,
+                    "kind": best.get("kind") if best else None,
+                    "pore": frame.get("pore")},
         "channels_coverage": cov_all,
         # A symmetric pore (gramicidin's dimer) has its narrowest point twice: each
         # tool's radius where the other has its minimum tells the same place apart.
@@ -208,8 +215,46 @@ def compare(name, hole_out, sph, vjson, outdir, more):
              vmin["radius"] if vmin else None, "%.3f" % vmin["s"] if vmin else None), file=sys.stderr)
 
 
+def table(outdir, names, rows=15):
+    """Markdown: one summary row per structure, then each profile at `rows` axial positions."""
+    out = ["| structure | atoms | HOLE Rmin (A) | HOLE s (A) | HOLE Rmin, 5 seeds | vorball (A) | vorball s (A) |"
+           " vorball - HOLE (A) | vorball at HOLE's s (A) | voxel (A) | axis | HOLE Gmacro (pS) | vorball Gmacro (pS) |",
+           "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    profiles = []
+    for name in names:
+        s = json.load(open(os.path.join(outdir, name + "_summary.json")))
+        h, v = s["hole"], s["vorball"]
+        hm, vb = s.get("hole_min_at") or {}, v.get("bottleneck") or {}
+        pore = v.get("pore") or {}
+        vj = json.load(open(os.path.join(outdir, name + "_vorball.json")))
+        rng = s.get("hole_rmin_range_A")
+        at = s.get("vorball_radius_at_hole_min")
+        out.append("| %s | %s | %.3f | %.2f | %s | %.3f | %.2f | %+.3f | %s | %.3f | %s | %.0f | %s |" % (
+            name, vj["frames"][0].get("atoms"), h["rmin_A"], hm["s"],
+            "%.3f-%.3f" % tuple(rng) if rng else "", vb["radius"], vb["s"], s["delta_rmin_A"],
+            "" if at is None else "%.3f" % at, v["voxel_A"], pore.get("axis_from", v.get("kind")), h["gmacro_pS"],
+            "%.0f" % pore["g_macro_pS"] if pore.get("g_macro_pS") else ""))
+        both = []
+        for line in open(os.path.join(outdir, name + "_profiles.tsv")):
+            f = line.rstrip("\n").split("\t")
+            if len(f) >= 3 and f[2] and not line.startswith(("#", "s\t")):
+                both.append((float(f[0]), float(f[1]), float(f[2])))
+        if both:
+            pick = sorted({round(k * (len(both) - 1) / (rows - 1)) for k in range(rows)})
+            profiles.append((name, [both[i] for i in pick]))
+    for name, pts in profiles:
+        out += ["", "%s: radius (A) against s (A), HOLE's axial coordinate (p . CVECT)" % name, "",
+                "| s | " + " | ".join("%.1f" % p[0] for p in pts) + " |",
+                "|---|" + "---|" * len(pts),
+                "| HOLE | " + " | ".join("%.2f" % p[1] for p in pts) + " |",
+                "| vorball | " + " | ".join("%.2f" % p[2] for p in pts) + " |"]
+    print("\n".join(out))
+
+
 def main(argv):
-    if len(argv) >= 3 and argv[0] == "radii":
+    if len(argv) >= 3 and argv[0] == "table":
+        table(argv[1], argv[2:])
+    elif len(argv) >= 3 and argv[0] == "radii":
         rad_to_radii(argv[1], argv[2])
     elif len(argv) >= 6 and argv[0] == "compare":
         compare(argv[1], argv[2], argv[3], argv[4], argv[5], argv[6:])

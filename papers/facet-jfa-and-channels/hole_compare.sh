@@ -1,12 +1,13 @@
 #!/bin/bash
-# HOLE 2 (osmart/hole2) against `vorball channels` on its own two examples: gramicidin A
-# (1grm_single_hole2.pdb) and the cholera toxin B pentamer (1chb_hole2.pdb), with the
-# same van der Waals radii (HOLE's rad/simple.rad, one value per element).
+# HOLE 2 (osmart/hole2) against `vorball channels` on its own examples: gramicidin A
+# (1grm_single_hole2.pdb), the cholera toxin B pentamer (1chb_hole2.pdb) and, when
+# MALTOPORIN is set, the maltoporin trimer (1af6, 10,050 protein atoms, one pore per
+# monomer), with the same van der Waals radii (HOLE's rad/simple.rad, one value per element).
 #
 # usage: hole_compare.sh HOLEBIN VORBALL OUTDIR
 #   HOLEBIN  the hole binary (built apart); its radius file is HOLE_RAD, by default
 #            HOLE's install layout: $(dirname HOLEBIN)/../share/hole2/rad/simple.rad
-#   OUTDIR   gets per structure NAME (1grm, 1chb): NAME_hole.inp / .out / .sph (HOLE's
+#   OUTDIR   gets per structure NAME (1grm, 1chb, 1af6): NAME_hole.inp / .out / .sph (HOLE's
 #            input, output and sphere centres), NAME_vorball.json (`vorball channels
 #            --json`), NAME_summary.json (minimum radius and its axial position for
 #            both, HOLE's conductance estimate, the matched vorball channel),
@@ -15,14 +16,21 @@
 # HOLE's input is the example's own (examples/01_gramicidin_1grm/hole.inp,
 # examples/02_choleratoxin_1chb/02_hole.inp) with the radius file's path, a fixed
 # random seed ('raseed', HOLE_SEED, default 1: HOLE otherwise seeds from the clock)
-# and, for 1chb, without 'shorto 2' so that the profile is printed (output only).
+# and, for 1chb, without 'shorto 2' so that the profile is printed (output only); for
+# 1af6 examples/03_maltoporin_1af6/03_example.inp (HOLE's cvect and cpoint: the pore of
+# chain B through one of its sugars; vorball gets them as --axis and --through, and
+# --ignore for HOLE's ignore card).
 # Environment (optional):
 #   DATA=DIR        the PDB files (default: the repository's corpus/data)
 #   HOLE_SEED=S     HOLE's random seed;  HOLE_SEEDS="S ..." extra seeds for the spread
 #                   of HOLE's own minimum radius (default "2 3 4 5")
-#   GRID_1grm, GRID_1chb   vorball grid (default 256);  PROBE_1grm (default 1.0, the
-#                   pore is closed at 1.4), PROBE_1chb (default 1.4)
+#   GRID_1grm, GRID_1chb   vorball grid (default 128, vorball's own);  PROBE_1grm,
+#                   PROBE_1chb (default 1.4, vorball's own: its pore passes
+#                   constrictions below the probe)
 #   DEVICE=D        vorball device (default auto)
+#   MALTOPORIN=FILE 03_1af6.pdb of HOLE's examples (examples/03_maltoporin_1af6/; not
+#                   in this repository: PDB 1AF6 as HOLE ships it); unset: skipped
+#   GRID_1af6, PROBE_1af6   as for the others (default 128, 1.4)
 # Needs bash, python3 (standard library) and the binaries; nothing is built here.
 set -u
 if [ $# -lt 3 ]; then
@@ -48,17 +56,23 @@ hole_input() { # name pdb seed -> HOLE input on stdout (paths relative to OUTDIR
     1grm) printf '%s\n' "coord $2" "radius hole.rad" "sphpdb $1_hole$3.sph" "endrad 5." "raseed $3" ;;
     1chb) printf '%s\n' "coord $2" "radius hole.rad" "ignore hoh tip wat" "conn" \
               "sphpdb $1_hole$3.sph" "raseed $3" ;;
+    1af6) printf '%s\n' "coord $2" "radius hole.rad" "ignore FRU GLC MG HOH" "cvect 0.0 0.0 1.0" \
+              "cpoint -14.285 47.809 82.707" "sphpdb $1_hole$3.sph" "raseed $3" ;;
     esac
 }
 
 tsv=$OUT/hole_compare.tsv
-printf 'name\thole_rmin_A\thole_s_A\thole_gmacro_pS\thole_rmin_range_A\tvorball_bottleneck_A\tvorball_s_A\tdelta_rmin_A\tdelta_s_A\tvorball_r_at_hole_min\thole_r_at_vorball_min\tvorball_channel\tcoverage\tgrid\tprobe\n' > "$tsv"
-for name in 1grm 1chb; do
+printf 'name\thole_rmin_A\thole_s_A\thole_gmacro_pS\thole_rmin_range_A\tvorball_bottleneck_A\tvorball_s_A\tdelta_rmin_A\tdelta_s_A\tvorball_r_at_hole_min\thole_r_at_vorball_min\tvorball_channel\tcoverage\tgrid\tprobe\tvoxel_A\tvorball_gmacro_pS\n' > "$tsv"
+names="1grm 1chb"
+[ -n "${MALTOPORIN:-}" ] && names="$names 1af6"
+for name in $names; do
     case $name in
-    1grm) pdb=1grm_single_hole2.pdb grid=${GRID_1grm:-256} probe=${PROBE_1grm:-1.0} ;;
-    1chb) pdb=1chb_hole2.pdb grid=${GRID_1chb:-256} probe=${PROBE_1chb:-1.4} ;;
+    1grm) pdb=1grm_single_hole2.pdb grid=${GRID_1grm:-128} probe=${PROBE_1grm:-1.4} vopt=(--end-radius 5) ;;
+    1chb) pdb=1chb_hole2.pdb grid=${GRID_1chb:-128} probe=${PROBE_1chb:-1.4} vopt=() ;;
+    1af6) pdb=03_1af6.pdb grid=${GRID_1af6:-128} probe=${PROBE_1af6:-1.4}
+          vopt=(--ignore FRU,GLC,MG,HOH --axis 0,0,1 --through -14.285,47.809,82.707) ;;
     esac
-    cp "$DATA/$pdb" "$OUT/$pdb" || exit 3
+    if [ "$name" = 1af6 ]; then cp "$MALTOPORIN" "$OUT/$pdb" || exit 3; else cp "$DATA/$pdb" "$OUT/$pdb" || exit 3; fi
     extra=()
     for s in $HOLE_SEED $HOLE_SEEDS; do
         hole_input "$name" "$pdb" "$s" > "$OUT/${name}_hole$s.inp"
@@ -70,7 +84,7 @@ for name in 1grm 1chb; do
     rm -f "$OUT/sr_gseed_tempfile"
     echo "hole_compare: $name: vorball channels (grid $grid, probe $probe)" >&2
     "$VORBALL" channels --device "$DEVICE" --radii "$OUT/vorball.radii" --grid "$grid" --probe "$probe" \
-        --json -o "$OUT/${name}_vorball.json" --centerlines "$OUT/${name}_vorball_centerlines.pdb" \
+        "${vopt[@]}" --json -o "$OUT/${name}_vorball.json" --centerlines "$OUT/${name}_vorball_centerlines.pdb" \
         "$OUT/$pdb" 2> "$OUT/${name}_vorball.err"
     echo "hole_compare:   rc $?" >&2
     $py compare "$name" "$OUT/${name}_hole$HOLE_SEED.out" "$OUT/${name}_hole$HOLE_SEED.sph" \
@@ -86,7 +100,8 @@ rng = s.get("hole_rmin_range_A")
 row = [s["name"], f(h.get("rmin_A"), "%.5f"), f(hm.get("s")), f(h.get("gmacro_pS"), "%.1f"),
        "%.5f-%.5f" % tuple(rng) if rng else "", f(vb.get("radius")), f(vb.get("s")), f(s.get("delta_rmin_A")),
        f(s.get("delta_s_A")), f(s.get("vorball_radius_at_hole_min")), f(s.get("hole_radius_at_vorball_min")),
-       f(v.get("matched_channel")), f(v.get("matched_coverage")), sys.argv[3], sys.argv[4]]
+       f(v.get("matched_channel")), f(v.get("matched_coverage")), sys.argv[3], sys.argv[4],
+       f(v.get("voxel_A")), f((v.get("pore") or {}).get("g_macro_pS"), "%.1f")]
 open(sys.argv[2], "a").write("\t".join(row) + "\n")
 EOF
 done

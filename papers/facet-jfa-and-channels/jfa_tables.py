@@ -57,11 +57,13 @@ def main():
     sizes = [256, 512, 1024, 2048, 4096]
     seeds = [10, 100, 1000, 10000, 100000]
     device = None
-    dat = ["# n seeds jfa+1_ms facet_ms speedup facet_m facet_pixels jfa+1_pixels"]
+    dat = ["# n seeds jfa+1_ms facet_ms speedup facet_m facet_pixels jfa+1_pixels exact_ms "
+           "exact_speedup (JFA+1 over exact; 0 without an exact run)"]
     out.append("### 2D: Facet-JFA against JFA+1 (uniform seeds, mean of 10 runs)\n")
     out.append("| n | seeds | JFA ms | JFA+1 ms | Facet ms | speed-up vs JFA+1 | m | "
-               "pixels JFA+1 / Facet | wrong JFA+1 | wrong Facet | max err Facet (px) |")
-    out.append("|---|---|---|---|---|---|---|---|---|---|---|")
+               "pixels JFA+1 / Facet | wrong JFA+1 | wrong Facet | max err Facet (px) | "
+               "exact ms | wrong exact |")
+    out.append("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for n in sizes:
         for k in seeds:
             doc = load(d, "fig2d_n%d_k%d" % (n, k))
@@ -72,12 +74,16 @@ def main():
             j, j1, fa = r["jfa"], r["jfa+1"], r["facet"]
             sp = j1["time_ms"] / fa["time_ms"]
             ratio = j1["pixels_processed"] / max(fa["pixels_processed"], 1)
-            out.append("| %d | %d | %.3f | %.3f | %.3f | %.2f | %d | %.1f | %.2e | %.2e | %.2f |" % (
+            ex = r.get("exact")
+            out.append("| %d | %d | %.3f | %.3f | %.3f | %.2f | %d | %.1f | %.2e | %.2e | %.2f | %s | %s |" % (
                 n, k, j["time_ms"], j1["time_ms"], fa["time_ms"], sp, fa["m"], ratio,
-                j1["wrong_rate"], fa["wrong_rate"], fa["max_err"]))
-            dat.append("%d %d %.4f %.4f %.4f %d %d %d" % (
+                j1["wrong_rate"], fa["wrong_rate"], fa["max_err"],
+                "%.3f" % ex["time_ms"] if ex else "-",
+                ex.get("wrong", "-") if ex else "-"))
+            dat.append("%d %d %.4f %.4f %.4f %d %d %d %.4f %.4f" % (
                 n, k, j1["time_ms"], fa["time_ms"], sp, fa["m"], fa["pixels_processed"],
-                j1["pixels_processed"]))
+                j1["pixels_processed"], ex["time_ms"] if ex else 0,
+                j1["time_ms"] / ex["time_ms"] if ex and ex["time_ms"] > 0 else 0))
         dat.append("")
         dat.append("")
     with open(os.path.join(d, "jfa_speedup.dat"), "w") as f:

@@ -34,7 +34,7 @@ static void test_handmade(vb_ctx *ctx)
     v[n++] = V(&g, 12, 6, 6); /* diagonal neighbour of (11,5,5): same component */
     v[n++] = V(&g, 2, 12, 12);
     v[n++] = V(&g, 3, 12, 12);
-    vbc_options opt = {0.0, 0.0, 0.5, 1};
+    vbc_options opt = {0.0, 0.0, 0.5, 1, NULL};
     vbc_result res;
     CHECK_INT(vbc_analyse(ctx, &g, s, v, n, &opt, &res), VB_OK);
     CHECK_INT(res.components, 2);
@@ -104,7 +104,7 @@ static void test_mouth_to_mouth(vb_ctx *ctx)
     /* A 20-voxel dead-end branch from the middle. */
     for (int j = 11; j <= 30; j++)
         v[n++] = V(&g, 9, j, 10);
-    vbc_options opt = {0.0, 0.0, 0.5, 0};
+    vbc_options opt = {0.0, 0.0, 0.5, 0, NULL};
     vbc_result res;
     CHECK_INT(vbc_analyse(ctx, &g, s, v, n, &opt, &res), VB_OK);
     CHECK_INT(res.nchannels, 1);
@@ -175,7 +175,7 @@ static int analyse_synth(vb_ctx *ctx, const vb_sphere_set *s, double probe, int 
 static void test_cylinder_pore(vb_ctx *ctx)
 {
     vb_sphere_set *s = synth_cylinder(8, 12, 6.0, 1.6, 2.6);
-    vbc_options opt = {15.0, 0.0, 1.0, 0};
+    vbc_options opt = {15.0, 0.0, 1.0, 0, NULL};
     vbc_result res;
     vbc_grid g;
     CHECK_INT(analyse_synth(ctx, s, 1.0, 64, &opt, &res, &g), VB_OK);
@@ -203,7 +203,7 @@ static void test_cylinder_pore(vb_ctx *ctx)
 static void test_shell_cavity(vb_ctx *ctx)
 {
     vb_sphere_set *s = synth_shell(240, 9.0, 1.6);
-    vbc_options opt = {2.0, 0.0, 1.0, 1};
+    vbc_options opt = {2.0, 0.0, 1.0, 1, NULL};
     vbc_result res;
     vbc_grid g;
     CHECK_INT(analyse_synth(ctx, s, 1.0, 48, &opt, &res, &g), VB_OK);

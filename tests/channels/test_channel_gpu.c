@@ -77,7 +77,7 @@ static void compare(vb_ctx *ctx, vbc_gpu *gp, const vb_sphere_set *s, double pro
         }
         CHECK(worst < 1e-3);
         vbc_cells_free(cells);
-        vbc_options opt = {2.0, 0.0, 1.0, 1};
+        vbc_options opt = {2.0, 0.0, 1.0, 1, NULL};
         vbc_result r1, r2;
         CHECK_INT(vbc_analyse(ctx, &g, s, fo.voxels, fo.nvoxels, &opt, &r1), VB_OK);
         CHECK_INT(vbc_analyse_clear(ctx, &g, s, fo.voxels, fo.clearance, fo.nvoxels, &opt, &r2), VB_OK);

@@ -47,7 +47,7 @@ static size_t same_frame(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s,
     CHECK(memcmp(x, y, a->nvoxels * sizeof *x) == 0);
     free(x);
     free(y);
-    vbc_options opt = {2.0, 0.0, 1.0, 1};
+    vbc_options opt = {2.0, 0.0, 1.0, 1, NULL};
     vbc_result ra, rb;
     CHECK_INT(vbc_analyse(ctx, g, s, a->voxels, a->nvoxels, &opt, &ra), VB_OK);
     CHECK_INT(vbc_analyse(ctx, g, s, b->voxels, b->nvoxels, &opt, &rb), VB_OK);

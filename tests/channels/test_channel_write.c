@@ -36,10 +36,16 @@ int main(void)
     s->info[1].icode = ' ';
     vbc_point pts[2] = {{0, 0, 0, 1.0, 0}, {1, 0, 0, 1.5, 1}};
     int32_t lining[2] = {0, 1};
-    vbc_channel ch = {VBC_CHANNEL, 1, 10, 2, 1.0, 1.0, 0, 0, 2, 0, 2};
-    vbc_result res = {1, &ch, pts, lining, 1, 0};
+    vbc_channel ch = {VBC_CHANNEL, VBC_WHY_THROUGH, 1, 10, 2, 1.0, 1.0, 0, 0, 2, 0, 2};
+    vbc_result res;
+    memset(&res, 0, sizeof res);
+    res.nchannels = 1;
+    res.channels = &ch;
+    res.points = pts;
+    res.lining = lining;
+    res.components = 1;
     vbc_grid g = {16, 16, 16, 3, {0, 0, 0}, 1.0};
-    vbc_frame_info fi = {0, 1, 2, 10, 0, 0, 0, 0, 0};
+    vbc_frame_info fi = {0, 1, 2, 10, 0, 0, 0, 0, 0, 0};
 
     FILE *f = tmpfile();
     CHECK(f != NULL);
@@ -47,7 +53,7 @@ int main(void)
     char *csv = slurp(f);
     fclose(f);
     /* The last field, quoted, inner quote doubled; 22 fields in all. */
-    CHECK(csv && strstr(csv, ",\"A:G\"\"Y1;B,C:A\\L2\"\n") != NULL);
+    CHECK(csv && strstr(csv, ",\"A:G\"\"Y1;B,C:A\\L2\",through: openings on opposite faces,,\n") != NULL);
 
     f = tmpfile();
     vbc_write_json_frame(f, 1, &fi, &g, s, &res);

@@ -2,7 +2,8 @@
  * through channel along its pore (the y axis of this file) with a bottleneck
  * near HOLE's; every output file is written; the MD trajectory is processed
  * frame by frame; a DCD written from that trajectory gives the same frames;
- * an XTC over its topology is read; a failing run leaves no table. */
+ * an XTC over its topology is read; a failing run leaves no table; a synthetic
+ * ring pore below the probe radius is measured exactly. */
 #include <stdlib.h>
 
 #include "cli_env.h"
@@ -68,21 +69,113 @@ static void test_gramicidin(void)
     int n = sscanf(line, "%ld,%ld,%ld,%15[a-z],%d,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf", &frame,
                    &model, &id, kind, &through, &len, &bott, &bx, &by, &bz, &sx, &sy, &sz, &ex, &ey, &ez);
     CHECK_INT(n, 16);
-    CHECK_STR(kind, "channel");
+    /* Row 1 is the pore, swept along the axis of the two stacked chains. */
+    CHECK_STR(kind, "pore");
     CHECK_INT(through, 1);
     /* The pore runs along y from one face (y < -12) to the other (y > 12). */
     CHECK(sy * ey < 0.0 && fabs(sy) > 12.0 && fabs(ey) > 12.0);
-    CHECK(len > 28.0 && len < 50.0);
-    /* HOLE (simple radii) finds 1.15 A; with Bondi radii and a 0.5 A grid we
-     * expect 1.0 .. 1.5 (bounded below by the probe). */
-    CHECK(bott >= 1.0 && bott < 1.5);
-    CHECK(fabs(by) < 12.0);
+    CHECK(len > 26.0 && len < 50.0);
+    /* Bondi radii: the sweep's exact radius, 1.34 A at |y| = 9.5 (below the
+     * 1.4 A probe, so the discrete channel cannot pass it). */
+    CHECK_NEAR(bott, 1.337, 0.01);
+    CHECK_NEAR(fabs(by), 9.49, 0.15);
+    CHECK(strstr(line, "pore along the axis, open at both ends") != NULL);
     /* Outputs: MRC = 1024-byte header + 64^3 bytes; PDB and script non-empty. */
     CHECK_INT(file_size("m.mrc"), 1024 + 64 * 64 * 64);
     CHECK(file_size("c.pdb") > 100);
     CHECK(file_size("c.pml") > 50);
     CHECK(file_size("s.png") > 1000);
     CHECK_INT(csv_line("st.csv", 2, line, sizeof line), -1); /* one frame */
+}
+
+/* The README's example at the defaults (probe 1.4 A, 128^3) with HOLE's
+ * radii: the pore and its radius within a voxel of HOLE's 1.198 A (it is
+ * within 0.01 A), at HOLE's axial position (|s| = 9.5: the dimer has the
+ * constriction twice), and HOLE's Gmacro (274.7 pS with endrad 5 A). */
+static void test_readme_default(void)
+{
+    char a[8192], line[4096];
+    snprintf(a, sizeof a,
+             "%s/corpus/data/1grm_single_hole2.pdb --radii %s/papers/facet-jfa-and-channels/channels/hole_simple.radii "
+             "--end-radius 5 -o %s/d.csv --profile %s/dp.csv",
+             src, src, dir, dir);
+    CHECK_INT(run(a), 0);
+    CHECK_INT(csv_line("d.csv", 1, line, sizeof line), 0);
+    long frame, model, id;
+    char kind[16];
+    int through;
+    double len, bott, bx, by, bz;
+    int n = sscanf(line, "%ld,%ld,%ld,%15[a-z],%d,%lf,%lf,%lf,%lf,%lf", &frame, &model, &id, kind,
+                   &through, &len, &bott, &bx, &by, &bz);
+    CHECK_INT(n, 10);
+    CHECK_STR(kind, "pore");
+    CHECK_NEAR(bott, 1.198, 0.02);
+    CHECK_NEAR(fabs(by), 9.5, 0.1);
+    const char *g = strrchr(line, ',');
+    CHECK(g && fabs(atof(g + 1) - 274.7) < 0.03 * 274.7);
+    /* The profile lists the pore's points first, nearest atoms named. */
+    CHECK_INT(csv_line("dp.csv", 1, line, sizeof line), 0);
+    CHECK(strncmp(line, "0,1,1,pore,0,", 13) == 0);
+    CHECK(strstr(line, ":TRP") || strstr(line, ":LEU") || strstr(line, ":VAL") || strstr(line, ":ALA") ||
+          strstr(line, ":GLY") || strstr(line, ":ETA") || strstr(line, ":FOR") || strstr(line, ":DLE") ||
+          strstr(line, ":DVA"));
+}
+
+/* A synthetic pore as a user would give it: a PDB of a tube (10 rings of 16
+ * carbons, 6 A from the z axis) in four chains, narrowed at z = 0 by a ring
+ * of 8 carbons 2.5 A from the axis; radius 1.5 A for carbon, so the hole
+ * is 1.0 A, below the 1.4 A probe. At the defaults the pore is found from
+ * the chains (the 4-fold axis, z), passes the constriction, and reports
+ * 1.000 A there; the discrete channels cannot pass it. */
+static void test_synthetic_ring(void)
+{
+    char p[512], a[8192], line[4096];
+    snprintf(p, sizeof p, "%s/ring.pdb", dir);
+    FILE *f = fopen(p, "w");
+    CHECK(f != NULL);
+    if (!f)
+        return;
+    const double pi = 3.14159265358979323846;
+    int serial = 1;
+    for (int k = 0; k < 11; k++) {
+        int per = k < 10 ? 16 : 8;
+        for (int b = 0; b < per; b++) {
+            double phi = 2.0 * pi * (b + (k < 10 ? 0.5 * (k % 2) : 0.0)) / per;
+            double rc = k < 10 ? 6.0 : 2.5, z = k < 10 ? (k - 4.5) * 2.6 : 0.0;
+            fprintf(f, "ATOM  %5d  C   GLY %c%4d    %8.3f%8.3f%8.3f  1.00  0.00           C\n", serial++,
+                    'A' + b / (per / 4), k + 1, rc * cos(phi), rc * sin(phi), z);
+        }
+    }
+    fprintf(f, "END\n");
+    fclose(f);
+    snprintf(p, sizeof p, "%s/ring.radii", dir);
+    f = fopen(p, "w");
+    CHECK(f != NULL);
+    if (!f)
+        return;
+    fprintf(f, "C 1.5\n");
+    fclose(f);
+    snprintf(a, sizeof a, "%s/ring.pdb --radii %s/ring.radii --device ref -o %s/ring.csv", dir, dir, dir);
+    CHECK_INT(run(a), 0);
+    CHECK_INT(csv_line("ring.csv", 1, line, sizeof line), 0);
+    long frame, model, id;
+    char kind[16];
+    int through;
+    double len, bott, bx, by, bz;
+    int n = sscanf(line, "%ld,%ld,%ld,%15[a-z],%d,%lf,%lf,%lf,%lf,%lf", &frame, &model, &id, kind,
+                   &through, &len, &bott, &bx, &by, &bz);
+    CHECK_INT(n, 10);
+    CHECK_STR(kind, "pore");
+    CHECK_INT(through, 1);
+    CHECK_NEAR(bott, 1.0, 0.0011);
+    CHECK_NEAR(bx, 0.0, 0.002);
+    CHECK_NEAR(by, 0.0, 0.002);
+    CHECK_NEAR(bz, 0.0, 0.002);
+    /* No discrete channel gets through the 1.0 A hole with the 1.4 A probe. */
+    for (int row = 2; csv_line("ring.csv", row, line, sizeof line) == 0; row++) {
+        n = sscanf(line, "%ld,%ld,%ld,%15[a-z],%d", &frame, &model, &id, kind, &through);
+        CHECK(n == 5 && !(strcmp(kind, "channel") == 0 && through));
+    }
 }
 
 static void test_trajectory_and_dcd(vb_ctx *ctx)
@@ -199,6 +292,8 @@ int main(void)
     if (vb_open(&ctx, &cfg) != VB_OK)
         return 1;
     test_gramicidin();
+    test_readme_default();
+    test_synthetic_ring();
     test_trajectory_and_dcd(ctx);
     test_usage();
     test_xtc();

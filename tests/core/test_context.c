@@ -39,6 +39,30 @@ static void test_warnings_counted(void)
     vb_close(ctx);
 }
 
+/* Quiet while reading what another process warns about already (MPI ranks
+ * reading one input), loud again after; the warnings still count. */
+static void test_verbosity(void)
+{
+    FILE *sink = tmpfile();
+    vb_config cfg = {.verbosity = 1, .diag = sink};
+    vb_ctx *ctx;
+    CHECK_INT(vb_open(&ctx, &cfg), VB_OK);
+    int old = vb_set_verbosity(ctx, 0);
+    CHECK_INT(old, 1);
+    vb_warn(ctx, VB_W_CONTAINED, NULL, 0, "quiet");
+    CHECK_INT(vb_set_verbosity(ctx, old), 0);
+    vb_warn(ctx, VB_W_CONTAINED, NULL, 0, "loud");
+    CHECK_INT(vb_ctx_stats(ctx)->warnings, 2);
+    rewind(sink);
+    char buf[128] = {0};
+    CHECK(fgets(buf, sizeof buf, sink) != NULL);
+    CHECK_STR(buf, "vorball: W701: loud\n");
+    CHECK(fgets(buf, sizeof buf, sink) == NULL);
+    CHECK_INT(vb_set_verbosity(NULL, 1), -1);
+    fclose(sink);
+    vb_close(ctx);
+}
+
 /* The misuse guard: a NULL context is caught, never dereferenced. */
 static void test_misuse(void)
 {
@@ -79,6 +103,7 @@ int main(void)
 {
     test_errors();
     test_warnings_counted();
+    test_verbosity();
     test_misuse();
     test_vertex_sort();
     VB_TEST_END();

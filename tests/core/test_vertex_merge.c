@@ -128,6 +128,38 @@ static void test_merge_parts(void)
     vb_close(ctx);
 }
 
+/* The pipeline's merge of parts certified apart: each part sorted, the
+ * two roots of one quadruple in different parts, an empty part, a vertex
+ * of degree 5 certified in two parts. */
+static void test_merge_sorted(void)
+{
+    vb_vertex_list v, part[4], out;
+    whole(&v);
+    for (int r = 0; r < 4; r++)
+        vb_vertex_list_init(&part[r]);
+    vb_vertex_list_init(&out);
+    copy(&part[0], &v, 2);
+    copy(&part[0], &v, 4);
+    copy(&part[2], &v, 0);
+    copy(&part[2], &v, 1);
+    copy(&part[3], &v, 0); /* the degree-5 vertex from a second part */
+    copy(&part[3], &v, 3);
+    size_t dropped = 0;
+    CHECK_INT(vb_vertex_list_merge(&out, part, 4, &dropped), VB_OK);
+    CHECK_INT(dropped, 1);
+    CHECK_INT(out.n, 5);
+    char *a = text(&v), *b = text(&out);
+    CHECK_STR(b, a);
+    free(a);
+    free(b);
+    CHECK_INT(vb_vertex_list_merge(&out, part, 65, NULL), VB_EMISUSE);
+    CHECK_INT(out.n, 5);
+    for (int r = 0; r < 4; r++)
+        vb_vertex_list_free(&part[r]);
+    vb_vertex_list_free(&out);
+    vb_vertex_list_free(&v);
+}
+
 /* Append keeps order and contents; it is how the pipeline's repair merges. */
 static void test_append(void)
 {
@@ -151,6 +183,7 @@ int main(void)
 {
     test_pack_roundtrip();
     test_merge_parts();
+    test_merge_sorted();
     test_append();
     VB_TEST_END();
 }

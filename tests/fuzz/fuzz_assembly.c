@@ -8,7 +8,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     vb_read_options opt;
-    vb_fuzz_options(data, size, VB_FMT_MMCIF, &opt);
+    memset(&opt, 0, sizeof opt);
+    opt.format = VB_FMT_MMCIF;
+    vb_fuzz_options(data, size, &opt);
     opt.model = 0;
     opt.assembly = size > 0 ? 1 + ((data[0] >> 5) & 1) : 1;
     return vb_fuzz_read_with(data, size, &opt);

@@ -12,7 +12,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (vb_open(&ctx, &cfg) != VB_OK)
         return 0;
     vb_read_options opt;
-    vb_fuzz_options(data, size, VB_FMT_AUTO, &opt);
+    memset(&opt, 0, sizeof opt);
+    opt.format = VB_FMT_AUTO;
+    vb_fuzz_options(data, size, &opt);
     vb_sphere_set *set = NULL;
     vbi_read_psf(ctx, "fuzz", (const char *)data, size, &opt, &set);
     vb_spheres_free(set);

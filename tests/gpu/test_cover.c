@@ -49,6 +49,54 @@ static int host_cover(vb_ctx *ctx, const vb_sphere_set *s, unsigned threads, vb_
     return vb_cover_run(ctx, s, &o, NULL, out, NULL);
 }
 
+/* The cover in parts (vb_cover_run_parts), the parts joined. */
+typedef struct joined {
+    vb_quad_list all;
+    size_t parts;
+    int disjoint;
+} joined;
+
+static int join_part(void *user, vb_quad_list *part)
+{
+    joined *j = user;
+    j->parts++;
+    check_canonical(part);
+    /* Disjoint from the parts before: no smallest id seen before. */
+    for (size_t k = 0; k < part->n; k++)
+        for (size_t a = 0; a < j->all.n; a++)
+            if (j->all.q[a][0] == part->q[k][0]) {
+                j->disjoint = 0;
+                a = j->all.n;
+                k = part->n;
+            }
+    void *p = realloc(j->all.q, (j->all.n + part->n + 1) * sizeof *j->all.q);
+    if (!p)
+        return VB_ENOMEM;
+    j->all.q = p;
+    if (part->n)
+        memcpy(j->all.q + j->all.n, part->q, part->n * sizeof *part->q);
+    j->all.n += part->n;
+    j->all.cap = j->all.n;
+    return VB_OK;
+}
+
+static int parts_cover(vb_ctx *ctx, const vb_sphere_set *s, unsigned parts, vb_quad_list *out)
+{
+    joined j = {{0}, 0, 1};
+    vb_cover_options o;
+    memset(&o, 0, sizeof o);
+    o.threads = 2;
+    vb_cover_stats st;
+    int rc = vb_cover_run_parts(ctx, s, &o, NULL, parts, join_part, &j, &st);
+    CHECK_INT(j.parts, parts);
+    CHECK(j.disjoint);
+    CHECK_INT(st.quads, j.all.n);
+    if (j.all.n)
+        qsort(j.all.q, j.all.n, sizeof *j.all.q, cmp_quad);
+    *out = j.all;
+    return rc;
+}
+
 /* The group kernel on host threads, over every cell. */
 static int emulated(vb_ctx *ctx, const vb_sphere_set *s, vb_quad_list *out)
 {
@@ -133,6 +181,9 @@ static void one(vb_ctx *ctx, const char *path, int have_device, int emulate)
             break;
         }
     CHECK_INT(host_cover(ctx, s, 3, &b), VB_OK);
+    CHECK(same(&a, &b));
+    vb_quad_list_free(&b);
+    CHECK_INT(parts_cover(ctx, s, 5, &b), VB_OK);
     CHECK(same(&a, &b));
     /* A barrier per step on threads: the smaller inputs only. */
     if (emulate) {

@@ -1,16 +1,18 @@
 /* JFA module: the exact search against brute force, every variant against the
- * exact diagram (zero error where they must agree, bounded otherwise),
- * Facet-JFA against the uncompacted run it refines, and the OpenCL kernels
- * (PoCL when no GPU) against the C reference, bit for bit. */
+ * exact diagram (zero error where they must agree, bounded otherwise; the
+ * exact tiled variants label for label), Facet-JFA against the uncompacted
+ * run it refines, and the OpenCL kernels (PoCL when no GPU) against the C
+ * reference, bit for bit and count for count. */
 #include <stdlib.h>
 #include <string.h>
 
 #include "vb_test.h"
 #include "vbg_jfa.h"
 
-static const vbj_variant all_variants[] = {VBJ_JFA,   VBJ_JFA1,  VBJ_JFA2,
-                                           VBJ_1JFA,  VBJ_FACET, VBJ_FACET_FULL};
-#define NVAR 6
+/* Facet-JFA's uncompacted run last: random_seeds leaves it out. */
+static const vbj_variant all_variants[] = {VBJ_JFA,   VBJ_JFA1,  VBJ_JFA2,           VBJ_1JFA,
+                                           VBJ_FACET, VBJ_EXACT, VBJ_EXACT_BOUNDARY, VBJ_FACET_FULL};
+#define NVAR 8
 
 static size_t npix(const vbj_seeds *s) { return (size_t)s->n * s->n * (s->dim == 3 ? s->n : 1); }
 
@@ -99,6 +101,15 @@ static void random_seeds(vb_ctx *ctx, vbj_backend *e, int dim, uint32_t n, size_
         CHECK(m.wrong_rate < 0.01);
         CHECK(m.max_err < 0.1 * n);
         CHECK(m.wrong == 0 || m.max_err > 0);
+        if (VBJ_IS_EXACT(all_variants[i])) {
+            CHECK(memcmp(r.labels, ex, P * 4) == 0);
+            CHECK_INT(m.differ, 0);
+            CHECK_INT(r.counts.tiles, P >> (dim == 3 ? 9 : 8));
+            CHECK(r.counts.survivors >= r.counts.tiles);
+            CHECK(r.counts.candidates >= r.counts.survivors);
+            CHECK_INT(r.counts.boundary,
+                      all_variants[i] == VBJ_EXACT_BOUNDARY ? m.boundary_exact : 0);
+        }
         vbj_result_free(&r);
     }
     vbj_result f, full;
@@ -123,6 +134,20 @@ static void random_seeds(vb_ctx *ctx, vbj_backend *e, int dim, uint32_t n, size_
     free(bf);
     free(bm);
     vbj_seeds_free(&s);
+}
+
+/* The exact engine's work counts: the twin and the kernel make the same
+ * decisions (rings, bounds, dominance, float filter, fallbacks). */
+static void exact_counts_agree(const vbj_counts *x, const vbj_counts *y)
+{
+    CHECK_INT(x->tiles, y->tiles);
+    CHECK_INT(x->tiles_uniform, y->tiles_uniform);
+    CHECK_INT(x->candidates, y->candidates);
+    CHECK_INT(x->survivors, y->survivors);
+    CHECK_INT(x->evals, y->evals);
+    CHECK_INT(x->exact_voxels, y->exact_voxels);
+    CHECK_INT(x->tiles_chunked, y->tiles_chunked);
+    CHECK_INT(x->visited, y->visited);
 }
 
 /* The OpenCL kernels against the C reference: same labels, same counts. */
@@ -152,6 +177,7 @@ static void backends_agree(vb_ctx *ctx, vbj_backend *ref, vbj_backend *cl, int d
         CHECK_INT(x.counts.boundary, y.counts.boundary);
         CHECK_INT(x.counts.steps, y.counts.steps);
         CHECK_INT(x.counts.m, y.counts.m);
+        exact_counts_agree(&x.counts, &y.counts);
         vbj_result_free(&x);
         vbj_result_free(&y);
     }
@@ -183,26 +209,109 @@ static size_t lattice(vb_ctx *ctx, int dim, uint32_t n, int jitter, vbj_seeds *s
     return k;
 }
 
-/* Every variant (all), or JFA+1 and Facet-JFA only (for large grids). */
+/* Every variant (all), or JFA+1, Facet-JFA and exact only (for large
+ * grids); the exact variant equals brute force (every tie and near tie to
+ * the nearest, then lowest index), on both backends. */
 static void ties(vb_ctx *ctx, vbj_backend *ref, vbj_backend *cl, int dim, uint32_t n, int all,
                  int jitter)
 {
-    static const vbj_variant some[] = {VBJ_JFA1, VBJ_FACET};
+    static const vbj_variant some[] = {VBJ_JFA1, VBJ_FACET, VBJ_EXACT};
     vbj_seeds s;
     if (!lattice(ctx, dim, n, jitter, &s)) {
         CHECK(0);
         return;
     }
-    for (int i = 0; i < (all ? NVAR : 2); i++) {
+    /* Brute force on the small grids; the cell search (vbj_exact) on the
+     * 2048^2 lattice, where brute force would take 10^12 distances. */
+    uint32_t *bf = malloc(npix(&s) * 4);
+    if (npix(&s) <= 65536)
+        brute(&s, bf);
+    else
+        CHECK_INT(vbj_exact(ctx, ref, &s, bf), VB_OK);
+    for (int i = 0; i < (all ? NVAR : 3); i++) {
         vbj_result x, y;
         vbj_options o = {all ? all_variants[i] : some[i], 0, VBJ_WANT_LABELS, 0};
         CHECK_INT(vbj_run(ctx, ref, &s, &o, &x), VB_OK);
         CHECK_INT(vbj_run(ctx, cl, &s, &o, &y), VB_OK);
         if (x.labels && y.labels)
             CHECK(memcmp(x.labels, y.labels, npix(&s) * 4) == 0);
+        if (VBJ_IS_EXACT(o.variant) && y.labels) {
+            CHECK(memcmp(y.labels, bf, npix(&s) * 4) == 0);
+            CHECK(y.counts.exact_voxels > 0); /* the ties reached the integer fallback */
+            exact_counts_agree(&x.counts, &y.counts);
+        }
         vbj_result_free(&x);
         vbj_result_free(&y);
     }
+    free(bf);
+    vbj_seeds_free(&s);
+}
+
+/* Two cases that only the rule itself gets right (a mutant of it fails
+ * here): at pixel (0, 0) of a 256^2 grid, seed 1 = (128, 1/16) px is nearer
+ * than seed 0 = (128 + 2^-16, 0) px by one unit of 2^-32 px^2 in squared
+ * distances of about 2^46 units, where floats see no difference (their ulp
+ * there is 2^23: float distances would tie and give seed 0); seed 2 =
+ * (1/16, 128) px is exactly as near as seed 1 (ties to the higher index
+ * would give seed 2). Seed 3 keeps the rest of the grid busy. The exact
+ * variants on either backend must say 1 there, and equal brute force
+ * everywhere. */
+static void rule_mutants(vb_ctx *ctx, vbj_backend *be)
+{
+    vbj_seeds s;
+    CHECK_INT(vbj_seeds_alloc(ctx, 2, 256, 4, &s), VB_OK);
+    s.x[0] = 8388609; /* 128 px + 1 unit: D = 8388609^2 */
+    s.y[0] = 0;
+    s.x[1] = 8388608; /* D = 8388608^2 + 4096^2 = 8388609^2 - 1 */
+    s.y[1] = 4096;
+    s.x[2] = 4096; /* the same D as seed 1 */
+    s.y[2] = 8388608;
+    s.x[3] = 200 * VBJ_FIX_ONE;
+    s.y[3] = 190 * VBJ_FIX_ONE;
+    CHECK(vbj_dist2(0, 0, 0, s.x[1], s.y[1], 0) + 1 == vbj_dist2(0, 0, 0, s.x[0], s.y[0], 0));
+    CHECK(vbj_dist2(0, 0, 0, s.x[1], s.y[1], 0) == vbj_dist2(0, 0, 0, s.x[2], s.y[2], 0));
+    CHECK((float)vbj_dist2(0, 0, 0, s.x[0], s.y[0], 0) ==
+          (float)vbj_dist2(0, 0, 0, s.x[1], s.y[1], 0));
+    uint32_t *bf = malloc(npix(&s) * 4);
+    brute(&s, bf);
+    CHECK_INT(bf[0], 1);
+    for (int v = VBJ_EXACT; v <= VBJ_EXACT_BOUNDARY; v++) {
+        vbj_result r;
+        if (run(ctx, be, &s, (vbj_variant)v, &r)) {
+            CHECK(0);
+            continue;
+        }
+        CHECK_INT(r.labels[0], 1);
+        CHECK(memcmp(r.labels, bf, npix(&s) * 4) == 0);
+        vbj_result_free(&r);
+    }
+    free(bf);
+    vbj_seeds_free(&s);
+}
+
+/* A shell of seeds: near its centre every seed's bisector with the centre
+ * owner crosses the tile, so tiles hold more survivors than one local-memory
+ * stage (tiles_chunked); labels and counts as the reference's. */
+static void chunked_tiles(vb_ctx *ctx, vbj_backend *ref, vbj_backend *cl, int dim, uint32_t n,
+                          size_t k)
+{
+    vbj_seeds s;
+    CHECK_INT(vbj_seeds_generate(ctx, dim, n, k, VBJ_DIST_SHELL, 4, &s), VB_OK);
+    vbj_result x, y;
+    vbj_options o = {VBJ_EXACT, 0, VBJ_WANT_LABELS, 0};
+    CHECK_INT(vbj_run(ctx, ref, &s, &o, &x), VB_OK);
+    CHECK_INT(vbj_run(ctx, cl, &s, &o, &y), VB_OK);
+    if (x.labels && y.labels) {
+        uint32_t *ex = malloc(npix(&s) * 4);
+        CHECK_INT(vbj_exact(ctx, ref, &s, ex), VB_OK);
+        CHECK(memcmp(x.labels, ex, npix(&s) * 4) == 0);
+        CHECK(memcmp(y.labels, ex, npix(&s) * 4) == 0);
+        CHECK(x.counts.tiles_chunked > 0);
+        exact_counts_agree(&x.counts, &y.counts);
+        free(ex);
+    }
+    vbj_result_free(&x);
+    vbj_result_free(&y);
     vbj_seeds_free(&s);
 }
 
@@ -229,14 +338,19 @@ static void integer_distances(vb_ctx *ctx, vbj_backend *ref, vbj_backend *cl)
 {
     vbj_seeds s;
     CHECK_INT(vbj_seeds_generate(ctx, 2, 2048, 40, VBJ_DIST_CLUSTERED, 9, &s), VB_OK);
-    static const vbj_variant vs[] = {VBJ_JFA1, VBJ_FACET};
-    for (int i = 0; i < 2; i++) {
+    static const vbj_variant vs[] = {VBJ_JFA1, VBJ_FACET, VBJ_EXACT};
+    for (int i = 0; i < 3; i++) {
         vbj_result x, y;
         vbj_options o = {vs[i], 0, VBJ_WANT_LABELS, 0};
         CHECK_INT(vbj_run(ctx, ref, &s, &o, &x), VB_OK);
         CHECK_INT(vbj_run(ctx, cl, &s, &o, &y), VB_OK);
         if (x.labels && y.labels)
             CHECK(memcmp(x.labels, y.labels, npix(&s) * 4) == 0);
+        /* Seeds hundreds of pixels from most tiles: the integer path. */
+        if (vs[i] == VBJ_EXACT) {
+            CHECK(y.counts.exact_voxels > 0);
+            exact_counts_agree(&x.counts, &y.counts);
+        }
         vbj_result_free(&x);
         vbj_result_free(&y);
     }
@@ -320,6 +434,7 @@ int main(void)
     random_seeds(ctx, ref, 2, 128, 40, VBJ_DIST_CLUSTERED, 3);
     random_seeds(ctx, ref, 3, 32, 30, VBJ_DIST_UNIFORM, 1);
     random_seeds(ctx, ref, 3, 32, 20, VBJ_DIST_SHELL, 2);
+    rule_mutants(ctx, ref);
     vbg_runtime *rt = NULL;
     if (vbg_runtime_open(ctx, VB_DEVICE_AUTO, &rt) == VB_OK && vbg_jfa_open(ctx, rt, &cl) == VB_OK) {
         printf("OpenCL device: %s\n", cl->device);
@@ -339,6 +454,9 @@ int main(void)
         fused_levels(ctx, ref, cl, 2, 256, 12, VBJ_DIST_UNIFORM);
         fused_levels(ctx, ref, cl, 2, 512, 30, VBJ_DIST_UNIFORM);
         fused_levels(ctx, ref, cl, 3, 64, 10, VBJ_DIST_UNIFORM);
+        rule_mutants(ctx, cl);
+        chunked_tiles(ctx, ref, cl, 3, 64, 2000);
+        chunked_tiles(ctx, ref, cl, 2, 256, 3000);
         vbj_backend_close(cl);
     } else {
         printf("no OpenCL device: %s (reference backend only)\n", vb_errmsg(ctx));

@@ -55,6 +55,32 @@ static void test_errors(vb_ctx *ctx, vbg_runtime *rt)
     CHECK_STR(vb_errmsg(ctx), "clFoo: CL_OUT_OF_RESOURCES (-5)");
 }
 
+/* VORBALL_DEVICE_INDEX (one device per MPI rank): taken modulo the
+ * devices of the kind, so index 7 on a host with one CPU device opens that
+ * device; a value that is not a number is refused, never read as 0. */
+static void test_device_index(vb_ctx *ctx)
+{
+    vbg_runtime *a = NULL, *b = NULL;
+    unsetenv("VORBALL_DEVICE_INDEX");
+    if (vbg_runtime_open(ctx, VB_DEVICE_CPU, &a) != VB_OK)
+        return;
+    setenv("VORBALL_DEVICE_INDEX", "7", 1);
+    CHECK_INT(vbg_runtime_open(ctx, VB_DEVICE_CPU, &b), VB_OK);
+    if (b)
+        CHECK_STR(vbg_runtime_device_name(b), vbg_runtime_device_name(a));
+    vbg_runtime_close(b);
+    const char *bad[] = {"x", "-1", "1x", "70000"};
+    for (int k = 0; k < 4; k++) {
+        b = NULL;
+        setenv("VORBALL_DEVICE_INDEX", bad[k], 1);
+        CHECK_INT(vbg_runtime_open(ctx, VB_DEVICE_CPU, &b), VB_EMISUSE);
+        CHECK(b == NULL);
+        CHECK(strstr(vb_errmsg(ctx), "VORBALL_DEVICE_INDEX") != NULL);
+    }
+    unsetenv("VORBALL_DEVICE_INDEX");
+    vbg_runtime_close(a);
+}
+
 int main(void)
 {
     vb_ctx *ctx;
@@ -74,6 +100,7 @@ int main(void)
         test_errors(ctx, rt);
         vbg_runtime_close(rt);
     }
+    test_device_index(ctx);
     vbg_runtime *none;
     CHECK_INT(vbg_runtime_open(ctx, VB_DEVICE_REF, &none), VB_EMISUSE);
     CHECK(none == NULL);

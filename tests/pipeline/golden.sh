@@ -21,5 +21,8 @@ cmp "$work/reference.tsv" "$golden" || {
 }
 run 0 "$work/verify.txt" "$vorball" verify "$case.xyzr" "$golden" --complete
 expect_line "$work/verify.txt" "^verify: .* 0 not a vertex, 0 wrong coordinates, 0 missing members, 0 duplicate, 0 missed$"
+# exact arc closure: every Voronoi edge of the golden ends at a golden vertex
+run 0 "$work/arcs.txt" "$vorball" verify "$case.xyzr" "$golden" --arcs
+expect_line "$work/arcs.txt" "^$golden: arcs: [0-9]+ vertices traced, [0-9]+ half arcs: .* 0 undecided; 0 vertices added; [0-9]+ components$"
 sh "$here/properties.sh" "$case" "$golden" "$work" || fail "$case: property does not hold"
 echo "ok: $case ($(vertex_lines "$golden" | wc -l) vertices)"

@@ -5,6 +5,13 @@ fail() {
     exit 1
 }
 
+# fresh_dir DIR: DIR emptied (made if absent) and made the current folder.
+fresh_dir() {
+    rm -rf "$1"
+    mkdir -p "$1" || fail "cannot create $1"
+    cd "$1" || fail "no $1"
+}
+
 # run EXPECTED_EXIT OUTFILE CMD...: runs CMD with stdout+stderr to OUTFILE and
 # fails unless it exits with EXPECTED_EXIT.
 run() {

@@ -1,0 +1,133 @@
+/* `channels --plot`: the pore's radius profile as a gnuplot script (data
+ * inline, kept beside the picture) and the PNG gnuplot draws from it. */
+#include <math.h>
+#include <spawn.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "channels_plot.h"
+#include "cli_common.h"
+#include "vb_diag.h"
+
+extern char **environ;
+
+/* Runs `gnuplot script`; returns its exit status, or -1 when it cannot start. */
+static int run_gnuplot(const char *script)
+{
+    pid_t pid;
+    char *argv[] = {"gnuplot", (char *)script, NULL};
+    if (posix_spawnp(&pid, "gnuplot", NULL, NULL, argv, environ) != 0)
+        return -1;
+    int st;
+    if (waitpid(pid, &st, 0) < 0)
+        return -1;
+    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+/* Writes a gnuplot string literal (single quotes doubled). */
+static void gp_string(FILE *f, const char *s)
+{
+    fputc('\'', f);
+    for (; *s; s++) {
+        if (*s == '\'')
+            fputc('\'', f);
+        fputc(*s, f);
+    }
+    fputc('\'', f);
+}
+
+int vb_channels_plot(vb_ctx *ctx, const char *png, const char *title, const vbc_result *res,
+                     const vbc_series *series)
+{
+    if (!res->pore.present || res->nchannels == 0 || res->channels[0].kind != VBC_PORE)
+        return vb_warn(ctx, VB_W_PORE_NOT_FOUND, png, 0, "no pore in the first frame: nothing to plot"), VB_OK;
+    char script[4200], tmp[4200];
+    if (snprintf(script, sizeof script, "%s.gp", png) >= (int)sizeof script ||
+        snprintf(tmp, sizeof tmp, "%s.tmp%ld.png", png, (long)getpid()) >= (int)sizeof tmp)
+        return vb_error(ctx, VB_EMISUSE, NULL, 0, "plot file name too long");
+    FILE *f = vb_cli_open_output(ctx, script);
+    if (!f)
+        return vb_errcode(ctx);
+    const vbc_channel *c = &res->channels[0];
+    const vbc_point *p = res->points + c->first_point;
+    const double *u = res->pore.u;
+    int multi = series && series->n > 1;
+    fprintf(f, "# vorball channels --plot: the pore's radius profile (HOLE's colours: red\n"
+               "# below 1.15 A, too tight for a water molecule; green up to 2.30 A, one\n"
+               "# water; blue above). Rerun with: gnuplot THIS_FILE\n");
+    fprintf(f, "$profile << EOD\n# s_A radius_A\n");
+    for (size_t k = 0; k < c->npoints; k++)
+        fprintf(f, "%.4f %.4f\n", p[k].x * u[0] + p[k].y * u[1] + p[k].z * u[2], p[k].r);
+    fprintf(f, "EOD\n");
+    if (multi) {
+        fprintf(f, "$series << EOD\n# frame rmin_A s_A\n");
+        for (size_t k = 0; k < series->n; k++)
+            fprintf(f, "%ld %.4f %.4f\n", series->frame[k], series->rmin[k], series->s[k]);
+        fprintf(f, "EOD\n");
+    }
+    fprintf(f, "set terminal pngcairo size %d,600 font ',11'\nset output ", multi ? 1400 : 800);
+    gp_string(f, tmp);
+    fprintf(f, "\nset grid\n");
+    if (multi)
+        fprintf(f, "set multiplot layout 1,2\n");
+    fprintf(f, "set title ");
+    gp_string(f, title);
+    fprintf(f, " noenhanced\nset xlabel 'axial coordinate s (A) along (%.3f, %.3f, %.3f)'\n"
+               "set ylabel 'pore radius (A)'\nset yrange [0:*]\n"
+               "set style rect fc rgb '#ffdddd' fs solid 0.5 noborder\n"
+               "set object 1 rect from graph 0, first 0 to graph 1, first 1.15 behind\n"
+               "set style rect fc rgb '#ddffdd' fs solid 0.5 noborder\n"
+               "set object 2 rect from graph 0, first 1.15 to graph 1, first 2.30 behind\n"
+               "plot $profile using 1:2 with lines lw 2 lc rgb '#1f4e9a' title 'vorball pore'\n",
+            u[0], u[1], u[2]);
+    if (multi)
+        fprintf(f, "unset object 1\nunset object 2\nset title 'smallest pore radius per frame'\n"
+                   "set xlabel 'frame'\nset ylabel 'radius (A) / position s (A)'\nset yrange [*:*]\n"
+                   "plot $series using 1:2 with linespoints title 'smallest radius',"
+                   " $series using 1:3 with lines axes x1y1 title 's of the smallest radius'\n"
+                   "unset multiplot\n");
+    int rc = vb_cli_close_output(ctx, f, script);
+    if (rc != VB_OK)
+        return rc;
+    int st = run_gnuplot(script);
+    if (st != 0) {
+        remove(tmp);
+        vb_warn(ctx, VB_W_PLOT_NO_GNUPLOT, script, 0,
+                "gnuplot %s: the script is kept, run 'gnuplot %s' for %s",
+                st < 0 ? "not found" : "failed", script, png);
+        return VB_OK;
+    }
+    /* The script wrote a temporary name: the PNG appears whole or not at all. */
+    if (rename(tmp, png) != 0) {
+        remove(tmp);
+        return vb_error(ctx, VB_EIO, png, 0, "cannot write the plot");
+    }
+    /* The kept script should draw the picture itself when rerun. */
+    FILE *g = fopen(script, "r");
+    char *text = NULL;
+    size_t len = 0;
+    if (g) {
+        FILE *m = open_memstream(&text, &len);
+        int ch;
+        while (m && (ch = fgetc(g)) != EOF)
+            fputc(ch, m);
+        if (m)
+            fclose(m);
+        fclose(g);
+    }
+    if (text) {
+        char *at = strstr(text, tmp);
+        FILE *w = at ? fopen(script, "w") : NULL;
+        if (w) {
+            fwrite(text, 1, (size_t)(at - text), w);
+            fputs(png, w);
+            fputs(at + strlen(tmp), w);
+            fclose(w);
+        }
+        free(text);
+    }
+    return VB_OK;
+}

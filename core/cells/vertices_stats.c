@@ -1,0 +1,35 @@
+/* The vertex pipeline's counters as `vorball vertices --stats` prints them
+ * (vb_vertices_write_stats): one "name<TAB>value" line each, for the
+ * command and the bindings alike. */
+#include <stdio.h>
+
+#include "vb_vertices.h"
+
+void vb_vertices_write_stats(vb_ctx *ctx, FILE *f, const vb_vertices_result *r)
+{
+    const vb_sampler_result *s = &r->sampler;
+    static const vb_stats none;
+    const vb_stats *st = vb_ctx_stats(ctx) ? vb_ctx_stats(ctx) : &none;
+    fprintf(f,
+            "backend\t%s\ndevice\t%s\nsamples\t%u\ntiles\t%u\ntol\t%.6g\nclip\t%.6g\n"
+            "rays\t%llu\nbisectors\t%llu\nraw_candidates\t%llu\nvertices_matched\t%llu\n"
+            "complete_first_pass\t%llu\ntargeted_searches\t%llu\ntargeted_found\t%llu\n"
+            "incomplete_after_search\t%llu\nsampled_vertices\t%llu\n"
+            "vertices_incomplete\t%llu\ndropped_tangent_test\t%llu\nfrom_sampling\t%llu\n"
+            "swaps\t%llu\nring_tries\t%llu\nfirst_cell\t%llu\ncandidates_certified\t%llu\n"
+            "certifier_rejected\t%zu\nrepair_candidates\t%zu\ncertified_vertices\t%zu\n"
+            "max_candidate_distance\t%.3g\n"
+            "filter_calls\t%llu\nfilter_failures\t%llu\nexact_evals\t%llu\n",
+            r->backend, r->device, s->samples, s->tiles, s->tol, s->clip,
+            (unsigned long long)s->rays, (unsigned long long)s->bisectors,
+            (unsigned long long)s->raw_candidates, (unsigned long long)s->clusters,
+            (unsigned long long)s->complete_first, (unsigned long long)s->targeted_searches,
+            (unsigned long long)s->targeted_found, (unsigned long long)s->incomplete,
+            (unsigned long long)s->sampled_vertices, (unsigned long long)s->vertices_incomplete,
+            (unsigned long long)s->dropped, (unsigned long long)s->from_sampling,
+            (unsigned long long)s->swaps, (unsigned long long)s->ring_tries,
+            (unsigned long long)s->first_cell, (unsigned long long)s->candidates.n,
+            r->rejected.n, r->repaired_candidates, r->certified.n, r->max_dist,
+            (unsigned long long)st->filter_calls, (unsigned long long)st->filter_failures,
+            (unsigned long long)st->exact_evals);
+}

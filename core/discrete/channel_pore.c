@@ -1,0 +1,323 @@
+/* The HOLE-style pore sweep (vbc_pore.h): the largest empty sphere in each
+ * plane normal to the axis, found by a deterministic max-min ascent. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "vbc_pore.h"
+
+/* Atoms considered active at most (the nearest ones); more only happen on
+ * highly symmetric rings, where any 32 of them decide as well. */
+#define MAX_ACTIVE 32
+
+typedef struct {
+    const vb_sphere_set *s;
+    double p[3];
+    int32_t id[MAX_ACTIVE];
+    int n;
+} active_set;
+
+static void active_add(int32_t atom, void *user)
+{
+    active_set *A = user;
+    if (A->n < MAX_ACTIVE)
+        A->id[A->n++] = atom;
+}
+
+static double dot3(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* Two unit vectors completing u to an orthonormal frame. */
+static void plane_frame(const double u[3], double e1[3], double e2[3])
+{
+    double a[3] = {0.0, 0.0, 0.0};
+    int k = fabs(u[0]) <= fabs(u[1]) && fabs(u[0]) <= fabs(u[2]) ? 0 : fabs(u[1]) <= fabs(u[2]) ? 1 : 2;
+    a[k] = 1.0;
+    double d = dot3(a, u);
+    for (int i = 0; i < 3; i++)
+        e1[i] = a[i] - d * u[i];
+    double n = sqrt(dot3(e1, e1));
+    for (int i = 0; i < 3; i++)
+        e1[i] /= n;
+    e2[0] = u[1] * e1[2] - u[2] * e1[1];
+    e2[1] = u[2] * e1[0] - u[0] * e1[2];
+    e2[2] = u[0] * e1[1] - u[1] * e1[0];
+}
+
+/* The point of the convex hull of g[0..n) (2D) nearest the origin, in *m.
+ * Returns 0 when the origin lies in the hull (no ascent direction). */
+static int min_norm_point(const double (*g)[2], int n, double m[2])
+{
+    double best = INFINITY;
+    for (int i = 0; i < n; i++)
+        for (int j = i; j < n; j++) {
+            double q[2] = {g[i][0], g[i][1]};
+            if (j > i) {
+                double d[2] = {g[j][0] - g[i][0], g[j][1] - g[i][1]};
+                double dd = d[0] * d[0] + d[1] * d[1];
+                if (dd == 0.0)
+                    continue;
+                double t = -(q[0] * d[0] + q[1] * d[1]) / dd;
+                if (t <= 0.0 || t >= 1.0)
+                    continue;
+                q[0] += t * d[0];
+                q[1] += t * d[1];
+            }
+            double qq = q[0] * q[0] + q[1] * q[1];
+            if (qq >= best)
+                continue;
+            /* q is the hull's nearest point iff every point lies beyond the
+             * line through q normal to q. */
+            int ok = 1;
+            for (int k = 0; k < n && ok; k++)
+                ok = g[k][0] * q[0] + g[k][1] * q[1] >= qq * (1.0 - 1e-12) - 1e-15;
+            if (ok) {
+                best = qq;
+                m[0] = q[0];
+                m[1] = q[1];
+            }
+        }
+    return best < INFINITY && best > 1e-20;
+}
+
+double vbc_plane_maximise(const vbc_cells *c, const double u[3], double travel, double p[3],
+                          int32_t *atom)
+{
+    const vb_sphere_set *s = vbc_cells_spheres(c);
+    double e1[3], e2[3], p0[3] = {p[0], p[1], p[2]};
+    plane_frame(u, e1, e2);
+    int32_t a;
+    double R = vbc_cells_clearance(c, p, &a);
+    double eps = 0.1, step = 0.1;
+    for (int it = 0; it < 400 && eps >= 1e-7; it++) {
+        active_set A = {s, {p[0], p[1], p[2]}, {0}, 0};
+        vbc_cells_within(c, p, R + eps, active_add, &A);
+        double g[MAX_ACTIVE][2];
+        int n = 0;
+        for (int k = 0; k < A.n; k++) {
+            int32_t i = A.id[k];
+            double d[3] = {p[0] - s->x[i], p[1] - s->y[i], p[2] - s->z[i]};
+            double len = sqrt(dot3(d, d));
+            if (len == 0.0) { /* on a centre: any direction leads out */
+                g[n][0] = 1.0;
+                g[n++][1] = 0.0;
+                continue;
+            }
+            g[n][0] = dot3(d, e1) / len;
+            g[n++][1] = dot3(d, e2) / len;
+        }
+        double m[2];
+        if (n == 0 || !min_norm_point((const double (*)[2])g, n, m)) {
+            eps *= 0.25; /* stationary for this eps: look closer */
+            continue;
+        }
+        double mn = sqrt(m[0] * m[0] + m[1] * m[1]);
+        double d[3];
+        for (int i = 0; i < 3; i++)
+            d[i] = (m[0] * e1[i] + m[1] * e2[i]) / mn;
+        /* Backtracking along d: an inactive atom cannot catch up within eps/2. */
+        int moved = 0;
+        for (double t = fmin(step, fmax(eps, 1e-7)); t >= 1e-8; t *= 0.5) {
+            double q[3] = {p[0] + t * d[0], p[1] + t * d[1], p[2] + t * d[2]};
+            if (travel > 0.0) {
+                double w[3] = {q[0] - p0[0], q[1] - p0[1], q[2] - p0[2]};
+                if (dot3(w, w) > travel * travel)
+                    continue;
+            }
+            int32_t b;
+            double Rq = vbc_cells_clearance(c, q, &b);
+            if (Rq > R + 1e-13) {
+                memcpy(p, q, sizeof q);
+                R = Rq;
+                a = b;
+                step = fmin(2.0 * t, 1.0);
+                moved = 1;
+                break;
+            }
+        }
+        if (!moved)
+            eps *= 0.25;
+    }
+    *atom = a;
+    return R;
+}
+
+double vbc_plane_widest(const vbc_cells *c, const double u[3], double reach, vbc_outside_fn outside,
+                        void *user, double p[3], int32_t *atom)
+{
+    double e1[3], e2[3], best[3] = {p[0], p[1], p[2]};
+    plane_frame(u, e1, e2);
+    int32_t a;
+    double R = vbc_cells_clearance(c, p, &a);
+    long n = (long)floor(reach / 0.5);
+    for (long i = -n; i <= n; i++)
+        for (long j = -n; j <= n; j++) {
+            double di = 0.5 * (double)i, dj = 0.5 * (double)j;
+            if (di * di + dj * dj > reach * reach)
+                continue;
+            double q[3];
+            for (int k = 0; k < 3; k++)
+                q[k] = p[k] + di * e1[k] + dj * e2[k];
+            if (outside && outside(user, q))
+                continue;
+            double Rq = vbc_cells_clearance(c, q, &a);
+            if (Rq > R) { /* strict: the first of equals (in scan order) stays */
+                R = Rq;
+                memcpy(best, q, sizeof q);
+            }
+        }
+    memcpy(p, best, sizeof best);
+    double q[3] = {p[0], p[1], p[2]};
+    double Rq = vbc_plane_maximise(c, u, reach, q, &a);
+    if (!outside || !outside(user, q)) {
+        memcpy(p, q, sizeof q);
+        R = Rq;
+    } else {
+        R = vbc_cells_clearance(c, p, &a); /* the ascent left the molecule: the lattice's best */
+    }
+    *atom = a;
+    return R;
+}
+
+void vbc_pore_free(vbc_pore *p)
+{
+    free(p->pts);
+    memset(p, 0, sizeof *p);
+}
+
+void vbc_pore_conductance(vbc_pore *p, double rho)
+{
+    const double pi = 3.14159265358979323846;
+    p->F = 0.0;
+    p->g_macro_pS = 0.0;
+    if (p->n < 2)
+        return;
+    for (size_t i = 0; i < p->n; i++) {
+        double r = p->pts[i].r;
+        if (!(r > 0.0)) {
+            p->F = INFINITY;
+            return;
+        }
+        double lo = i > 0 ? p->pts[i].s - p->pts[i - 1].s : p->pts[1].s - p->pts[0].s;
+        double hi = i + 1 < p->n ? p->pts[i + 1].s - p->pts[i].s : lo;
+        if (i == 0)
+            lo = hi;
+        p->F += 0.5 * (lo + hi) / (pi * r * r);
+    }
+    p->g_macro_pS = 100.0 / (rho * p->F);
+}
+
+/* One plane of the sweep: the local ascent from p, and the ascent from the
+ * best point of a lattice around p (VBC_PLANE_LOOK A): the plane can hold
+ * several local maxima, and the previous plane's centre may sit below a
+ * lower one (HOLE's Monte Carlo search looks around too). The wider wins,
+ * the plain ascent on ties. */
+static double plane_best(const vbc_cells *c, const double u[3], vbc_outside_fn outside, void *user,
+                         double p[3], int32_t *atom)
+{
+    double q[3] = {p[0], p[1], p[2]};
+    int32_t b;
+    double r = vbc_plane_maximise(c, u, 0.0, p, atom);
+    double rq = vbc_plane_widest(c, u, VBC_PLANE_LOOK, outside, user, q, &b);
+    if (rq > r + 1e-9 && !(outside && outside(user, q))) {
+        memcpy(p, q, sizeof q);
+        *atom = b;
+        return rq;
+    }
+    return r;
+}
+
+/* Appends a point; returns -1 when out of memory. */
+static int push(vbc_pore_point **v, size_t *n, size_t *cap, const vbc_pore_point *q)
+{
+    if (*n == *cap) {
+        size_t c = *cap ? 2 * *cap : 256;
+        vbc_pore_point *w = realloc(*v, c * sizeof *w);
+        if (!w)
+            return -1;
+        *v = w;
+        *cap = c;
+    }
+    (*v)[(*n)++] = *q;
+    return 0;
+}
+
+int vbc_pore_sweep(vb_ctx *ctx, const vbc_cells *c, const vb_sphere_set *s, const vbc_axis *ax,
+                   const vbc_pore_options *opt, vbc_outside_fn outside, void *user, vbc_pore *out)
+{
+    memset(out, 0, sizeof *out);
+    double un = sqrt(dot3(ax->u, ax->u));
+    if (!(un > 0.0) || !isfinite(un) || !(opt->step > 0.0))
+        return vb_error(ctx, VB_EMISUSE, NULL, 0, "pore sweep: axis of length %g, step %g", un,
+                        opt->step);
+    out->axis = *ax;
+    double u[3] = {ax->u[0] / un, ax->u[1] / un, ax->u[2] / un};
+    memcpy(out->axis.u, u, sizeof u);
+    double half = opt->max_half;
+    if (!(half > 0.0)) {
+        /* The molecule's extent along the axis bounds either side. */
+        double lo = INFINITY, hi = -INFINITY;
+        for (size_t i = 0; i < s->n; i++) {
+            double v = s->x[i] * u[0] + s->y[i] * u[1] + s->z[i] * u[2];
+            lo = fmin(lo, v - s->r[i]);
+            hi = fmax(hi, v + s->r[i]);
+        }
+        double s0 = dot3(ax->c, u);
+        half = fmax(fabs(hi - s0), fabs(s0 - lo)) + 2.0;
+    }
+    vbc_pore_point *side[2] = {NULL, NULL};
+    size_t ns[2] = {0, 0}, cap[2] = {0, 0};
+    double start[3] = {ax->c[0], ax->c[1], ax->c[2]};
+    int32_t atom;
+    double r0 = plane_best(c, u, outside, user, start, &atom);
+    vbc_pore_point q0 = {dot3(start, u), start[0], start[1], start[2], r0, atom};
+    int rc = VB_OK;
+    for (int dir = 0; dir < 2 && rc == VB_OK; dir++) {
+        double p[3] = {start[0], start[1], start[2]};
+        double sign = dir == 0 ? 1.0 : -1.0;
+        int open = outside && outside(user, p);
+        for (long k = 1; !open && k * opt->step <= half; k++) {
+            for (int i = 0; i < 3; i++)
+                p[i] += sign * opt->step * u[i];
+            double r = plane_best(c, u, outside, user, p, &atom);
+            vbc_pore_point q = {dot3(p, u), p[0], p[1], p[2], r, atom};
+            if (push(&side[dir], &ns[dir], &cap[dir], &q) != 0) {
+                rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "pore profile");
+                break;
+            }
+            if (outside && outside(user, p))
+                open = 1;
+            else if (opt->end_radius > 0.0 && r > opt->end_radius)
+                break;
+        }
+        if (dir == 0)
+            out->open_hi = open;
+        else
+            out->open_lo = open;
+    }
+    if (rc == VB_OK) {
+        out->n = ns[0] + ns[1] + 1;
+        out->pts = malloc(out->n * sizeof *out->pts);
+        if (!out->pts)
+            rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "pore profile");
+    }
+    if (rc == VB_OK) {
+        size_t t = 0;
+        for (size_t k = ns[1]; k > 0; k--)
+            out->pts[t++] = side[1][k - 1];
+        out->pts[t++] = q0;
+        for (size_t k = 0; k < ns[0]; k++)
+            out->pts[t++] = side[0][k];
+        for (size_t k = 1; k < out->n; k++)
+            if (out->pts[k].r < out->pts[out->min_at].r)
+                out->min_at = k;
+        vbc_pore_conductance(out, VBC_RHO_KCL);
+    }
+    free(side[0]);
+    free(side[1]);
+    if (rc != VB_OK)
+        vbc_pore_free(out);
+    return rc;
+}

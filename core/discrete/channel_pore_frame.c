@@ -1,0 +1,338 @@
+/* The pore stage of a frame (vbc_pore_frame.h): axis candidates, the sweep
+ * in the molecule's mask, the pore in the table, refined bottlenecks. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "vbc_pore_frame.h"
+
+typedef struct {
+    const vbc_grid *g;
+    const uint8_t *flags;
+} mask_view;
+
+/* Outside the molecule: off the grid or in a voxel without the molecular bit. */
+static int outside_mask(void *user, const double p[3])
+{
+    const mask_view *M = user;
+    const vbc_grid *g = M->g;
+    long idx[3];
+    int n[3] = {g->nx, g->ny, g->nz};
+    for (int a = 0; a < 3; a++) {
+        double f = floor((p[a] - g->origin[a]) / g->h);
+        if (!(f >= 0.0) || f >= (double)n[a])
+            return 1;
+        idx[a] = (long)f;
+    }
+    size_t v = (size_t)idx[0] + (size_t)g->nx * ((size_t)idx[1] + (size_t)g->ny * (size_t)idx[2]);
+    return (M->flags[v] & VBC_F_MOLECULAR) == 0;
+}
+
+static int sweep(vb_ctx *ctx, const vbc_cells *cells, const vb_sphere_set *s, const vbc_axis *ax,
+                 const vbc_pore_request *req, mask_view *M, vbc_pore *out)
+{
+    return vbc_pore_sweep(ctx, cells, s, ax, &req->sweep, M->flags ? outside_mask : NULL, M, out);
+}
+
+static int open_pore(const vbc_pore *p)
+{
+    /* More than the start: a start outside the molecule is no pore. */
+    return p->n > 1 && p->pts[p->min_at].r > 0.0 && p->open_lo && p->open_hi;
+}
+
+/* The widest through channel's axis: its end-to-end direction through its
+ * bottleneck. Returns 0 when there is none. */
+static int channel_axis(const vbc_result *res, vbc_axis *ax)
+{
+    const vbc_channel *best = NULL;
+    for (size_t t = 0; t < res->nchannels; t++) {
+        const vbc_channel *c = &res->channels[t];
+        if (c->kind == VBC_CHANNEL && c->through && (!best || c->bottleneck > best->bottleneck))
+            best = c;
+    }
+    if (!best || best->npoints < 2)
+        return 0;
+    const vbc_point *a = &res->points[best->first_point], *b = a + best->npoints - 1;
+    const vbc_point *m = a + best->bottleneck_at;
+    double d[3] = {b->x - a->x, b->y - a->y, b->z - a->z};
+    double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    if (!(len > 0.0))
+        return 0;
+    memset(ax, 0, sizeof *ax);
+    for (int k = 0; k < 3; k++)
+        ax->u[k] = d[k] / len;
+    ax->c[0] = m->x;
+    ax->c[1] = m->y;
+    ax->c[2] = m->z;
+    ax->source = VBC_AXIS_CHANNEL;
+    return 1;
+}
+
+/* The widest open pore of one subunit replaces the nearly closed central
+ * one *out when it is clearly wider (the rule in vbc_pore.h); ties go to
+ * the earlier chain. */
+static int subunit_pore(vb_ctx *ctx, const vbc_cells *cells, const vb_sphere_set *s,
+                        const vbc_pore_request *req, mask_view *M, vbc_pore *out)
+{
+    vbc_axis sub[16];
+    int n = vbc_axis_subunits(s, &out->axis, sub, 16);
+    double need = fmax(VBC_SUBUNIT_MIN_RADIUS, 2.0 * out->pts[out->min_at].r);
+    for (int k = 0; k < n; k++) {
+        /* The subunit's widest place near its centroid, in the centroid's plane. */
+        int32_t atom;
+        vbc_plane_widest(cells, sub[k].u, VBC_SUBUNIT_REACH, M->flags ? outside_mask : NULL, M, sub[k].c,
+                         &atom);
+        vbc_pore p;
+        int rc = sweep(ctx, cells, s, &sub[k], req, M, &p);
+        if (rc != VB_OK) {
+            vbc_pore_free(out);
+            return rc;
+        }
+        double r = p.n ? p.pts[p.min_at].r : 0.0;
+        if (open_pore(&p) && r > need) {
+            vbc_pore_free(out);
+            *out = p;
+            need = r;
+        } else {
+            vbc_pore_free(&p);
+        }
+    }
+    return VB_OK;
+}
+
+int vbc_pore_find(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const vbc_cells *cells,
+                  const vb_sphere_set *s, const vbc_result *res, const vbc_pore_request *req,
+                  vbc_pore *out)
+{
+    memset(out, 0, sizeof *out);
+    mask_view M = {g, flags};
+    double centroid[3] = {0.0, 0.0, 0.0};
+    for (size_t i = 0; i < s->n; i++) {
+        centroid[0] += s->x[i];
+        centroid[1] += s->y[i];
+        centroid[2] += s->z[i];
+    }
+    for (int k = 0; k < 3; k++)
+        centroid[k] /= (double)s->n;
+    if (req->have_axis) {
+        vbc_axis ax;
+        memset(&ax, 0, sizeof ax);
+        memcpy(ax.u, req->u, sizeof ax.u);
+        memcpy(ax.c, req->have_through ? req->c : centroid, sizeof ax.c);
+        ax.source = req->found_source ? req->found_source : VBC_AXIS_GIVEN;
+        ax.chains = req->found_chains;
+        return sweep(ctx, cells, s, &ax, req, &M, out);
+    }
+    /* Candidates in order; the first open one wins. */
+    vbc_axis cand[6];
+    int force[6] = {0}, nc = 0;
+    if (vbc_axis_from_chains(s, &cand[nc])) {
+        force[nc] = cand[nc].chains >= 3;
+        nc++;
+    }
+    if (channel_axis(res, &cand[nc]))
+        nc++;
+    vbc_axis_principal(s, &cand[nc]);
+    nc += 3;
+    if (req->have_through)
+        for (int k = 0; k < nc; k++)
+            memcpy(cand[k].c, req->c, sizeof req->c);
+    int have = 0;
+    for (int k = 0; k < nc; k++) {
+        vbc_pore p;
+        int rc = sweep(ctx, cells, s, &cand[k], req, &M, &p);
+        if (rc != VB_OK) {
+            vbc_pore_free(out);
+            return rc;
+        }
+        int better;
+        if (!have)
+            better = 1;
+        else if (cand[k].source == VBC_AXIS_PRINCIPAL && out->axis.source == VBC_AXIS_PRINCIPAL)
+            /* Among the principal axes: open first, then the widest constriction. */
+            better = (open_pore(&p) && !open_pore(out)) ||
+                     (open_pore(&p) == open_pore(out) && p.pts[p.min_at].r > out->pts[out->min_at].r);
+        else
+            better = open_pore(&p) && !open_pore(out);
+        if (better) {
+            vbc_pore_free(out);
+            *out = p;
+            have = 1;
+        } else {
+            vbc_pore_free(&p);
+        }
+        if (force[k] || (open_pore(out) && out->axis.source != VBC_AXIS_PRINCIPAL))
+            break;
+    }
+    if (have && !req->have_through && out->axis.source == VBC_AXIS_CHAINS && out->axis.chains >= 3 &&
+        out->pts[out->min_at].r < VBC_SUBUNIT_CENTRAL_MAX)
+        return subunit_pore(ctx, cells, s, req, &M, out);
+    return VB_OK;
+}
+
+typedef struct {
+    int32_t *list;
+    size_t n, cap;
+    uint8_t *mark;
+    int failed;
+} lining_set;
+
+static void lining_put(int32_t atom, void *user)
+{
+    lining_set *L = user;
+    if (L->mark[atom])
+        return;
+    if (L->n == L->cap) {
+        size_t c = L->cap ? 2 * L->cap : 64;
+        int32_t *w = realloc(L->list, c * sizeof *w);
+        if (!w) {
+            L->failed = 1;
+            return;
+        }
+        L->list = w;
+        L->cap = c;
+    }
+    L->mark[atom] = 1;
+    L->list[L->n++] = atom;
+}
+
+static int cmp_i32(const void *a, const void *b)
+{
+    int32_t x = *(const int32_t *)a, y = *(const int32_t *)b;
+    return (x > y) - (x < y);
+}
+
+int vbc_result_add_pore(vb_ctx *ctx, vbc_result *res, const vbc_pore *p, const vbc_cells *cells,
+                        double lining_tol)
+{
+    const vb_sphere_set *s = vbc_cells_spheres(cells);
+    size_t np = 0, nl = 0;
+    for (size_t t = 0; t < res->nchannels; t++) {
+        np += res->channels[t].npoints;
+        nl += res->channels[t].nlining;
+    }
+    lining_set L = {NULL, 0, 0, calloc(s->n ? s->n : 1, 1), 0};
+    vbc_channel *ch = malloc((res->nchannels + 1) * sizeof *ch);
+    vbc_point *pts = malloc((np + p->n) * sizeof *pts);
+    if (!L.mark || !ch || !pts)
+        goto nomem;
+    double len = 0.0;
+    for (size_t k = 0; k < p->n; k++) {
+        const vbc_pore_point *q = &p->pts[k];
+        pts[k] = (vbc_point){q->x, q->y, q->z, q->r, q->atom};
+        if (k > 0)
+            len += sqrt((q->x - q[-1].x) * (q->x - q[-1].x) + (q->y - q[-1].y) * (q->y - q[-1].y) +
+                        (q->z - q[-1].z) * (q->z - q[-1].z));
+        double c[3] = {q->x, q->y, q->z};
+        vbc_cells_within(cells, c, q->r + lining_tol, lining_put, &L);
+        if (L.failed)
+            goto nomem;
+    }
+    int32_t *lin = malloc((nl + L.n + 1) * sizeof *lin);
+    if (!lin)
+        goto nomem;
+    qsort(L.list, L.n, sizeof *L.list, cmp_i32);
+    memcpy(lin, L.list, L.n * sizeof *lin);
+    if (nl)
+        memcpy(lin + L.n, res->lining, nl * sizeof *lin);
+    if (np)
+        memcpy(pts + p->n, res->points, np * sizeof *pts);
+    int open = p->open_lo && p->open_hi;
+    double rmin = p->pts[p->min_at].r;
+    ch[0] = (vbc_channel){VBC_PORE,
+                          rmin <= 0.0 ? VBC_WHY_PORE_CLOSED : open ? VBC_WHY_PORE : VBC_WHY_PORE_ONE_END,
+                          open, 0, (size_t)(p->open_lo + p->open_hi), len, rmin, p->min_at, 0, p->n,
+                          0, L.n};
+    for (size_t t = 0; t < res->nchannels; t++) {
+        ch[t + 1] = res->channels[t];
+        ch[t + 1].first_point += p->n;
+        ch[t + 1].first_lining += L.n;
+    }
+    free(res->channels);
+    free(res->points);
+    free(res->lining);
+    res->channels = ch;
+    res->points = pts;
+    res->lining = lin;
+    res->nchannels++;
+    vbc_pore_summary *S = &res->pore;
+    S->present = 1;
+    memcpy(S->u, p->axis.u, sizeof S->u);
+    memcpy(S->c, p->axis.c, sizeof S->c);
+    S->source = p->axis.source;
+    S->chains = p->axis.chains;
+    S->step = p->n > 1 ? (p->pts[p->n - 1].s - p->pts[0].s) / (double)(p->n - 1) : 0.0;
+    S->F = p->F;
+    S->g_macro_pS = p->g_macro_pS;
+    S->open_lo = p->open_lo;
+    S->open_hi = p->open_hi;
+    free(L.list);
+    free(L.mark);
+    return VB_OK;
+nomem:
+    free(L.list);
+    free(L.mark);
+    free(ch);
+    free(pts);
+    return vb_error(ctx, VB_ENOMEM, NULL, 0, "pore of %zu points", p->n);
+}
+
+void vbc_refine_bottlenecks(vbc_result *res, const vbc_cells *cells, double h)
+{
+    for (size_t t = 0; t < res->nchannels; t++) {
+        vbc_channel *c = &res->channels[t];
+        if (c->kind == VBC_PORE || c->npoints < 2)
+            continue;
+        vbc_point *p = res->points + c->first_point;
+        size_t b = c->bottleneck_at;
+        size_t lo = b >= 2 ? b - 2 : 0, hi = b + 2 < c->npoints ? b + 2 : c->npoints - 1;
+        for (size_t k = lo; k <= hi; k++) {
+            const vbc_point *a = &p[k > 0 ? k - 1 : k], *z = &p[k + 1 < c->npoints ? k + 1 : k];
+            double u[3] = {z->x - a->x, z->y - a->y, z->z - a->z};
+            double n = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+            if (!(n > 0.0))
+                continue;
+            for (int i = 0; i < 3; i++)
+                u[i] /= n;
+            double q[3] = {p[k].x, p[k].y, p[k].z};
+            int32_t atom;
+            double r = vbc_plane_maximise(cells, u, h, q, &atom);
+            if (r > p[k].r) {
+                p[k] = (vbc_point){q[0], q[1], q[2], r, atom};
+            }
+        }
+        c->bottleneck = INFINITY;
+        for (size_t k = 0; k < c->npoints; k++)
+            if (p[k].r < c->bottleneck) {
+                c->bottleneck = p[k].r;
+                c->bottleneck_at = k;
+            }
+    }
+}
+
+int vbc_pore_stage(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const vb_sphere_set *s,
+                   const vbc_pore_request *req, double lining_tol, vbc_result *res,
+                   vbc_axis *found)
+{
+    vbc_cells *cells = NULL;
+    int rc = vbc_cells_build(ctx, s, 3.0, &cells);
+    if (rc != VB_OK)
+        return rc;
+    vbc_refine_bottlenecks(res, cells, g->h);
+    if (found)
+        memset(found, 0, sizeof *found);
+    if (req && req->enabled) {
+        vbc_pore p;
+        rc = vbc_pore_find(ctx, g, flags, cells, s, res, req, &p);
+        if (rc == VB_OK && p.n > 0) {
+            rc = vbc_result_add_pore(ctx, res, &p, cells, lining_tol);
+            if (found)
+                *found = p.axis;
+        }
+        vbc_pore_free(&p);
+    }
+    if (rc == VB_OK)
+        vbc_rank(res);
+    vbc_cells_free(cells);
+    return rc;
+}

@@ -1,0 +1,155 @@
+/* The pore of a channel protein as HOLE and CHAP users know it: a path along
+ * an axis, one point per plane normal to the axis, each point the centre of
+ * the largest sphere in its plane that overlaps no atom (Smart et al. 1993,
+ * 1996: R(p) = min_i |X_i - p| - vdW_i, maximised with p kept on the plane).
+ * The path passes constrictions of any radius, narrower than the probe too,
+ * and closed gates (radius <= 0 there): the probe only defines the molecular
+ * surface, i.e. where the path leaves the molecule (its mouths).
+ *
+ * The radii are doubles, not certified quantities. Each R(p) is a minimum
+ * of sqrt(dx^2 + dy^2 + dz^2) - r evaluated in double: with coordinates
+ * below 1e4 A its rounding error is below 1e-11 A (each term: relative error
+ * 3u of a length < 3e4 A, plus u of r); the in-plane maximisation stops
+ * when no direction gains more than 1e-7 A. Both are far below the voxel
+ * edges (0.1-0.6 A) that the comparison with HOLE is judged against.
+ *
+ * Axis: given (--axis, --through: HOLE's cvect/cpoint), or found: the
+ * symmetry axis of three or more chains of equal size (normal of the plane
+ * of their centroids, through their mean), the line through the centroids
+ * of two stacked chains (a head-to-head dimer as gramicidin A), else the
+ * direction of the widest through channel of the discrete analysis, else
+ * the principal axis of the molecule whose sweep is open and widest. When
+ * the symmetry axis of three or more chains is nearly closed (below
+ * VBC_SUBUNIT_CENTRAL_MAX) and a sweep parallel to it through one chain's
+ * centroid is open at both ends and clearly wider (above
+ * VBC_SUBUNIT_MIN_RADIUS and twice the central radius), that subunit's
+ * pore is the pore (a porin trimer; a closed gate on the axis of a
+ * tetrameric channel stays the pore, its subunits hold no open pore). */
+#ifndef VBC_PORE_H
+#define VBC_PORE_H
+
+#include "vbc_channel.h"
+
+enum vbc_axis_source {
+    VBC_AXIS_NONE = 0,
+    VBC_AXIS_GIVEN,     /* --axis (and --through) */
+    VBC_AXIS_CHAINS,    /* symmetry of the chains */
+    VBC_AXIS_CHANNEL,   /* a through channel of the discrete analysis */
+    VBC_AXIS_PRINCIPAL, /* a principal axis of the atom centres */
+    VBC_AXIS_SUBUNIT    /* the chains' symmetry axis moved to one chain's centroid */
+};
+
+/* The subunit rule above, in A. */
+#define VBC_SUBUNIT_CENTRAL_MAX 1.0
+#define VBC_SUBUNIT_MIN_RADIUS 1.0
+#define VBC_SUBUNIT_REACH 12.0 /* a subunit's sweep starts at its widest place this near its centroid */
+
+typedef struct vbc_axis {
+    double u[3];   /* unit direction; the axial coordinate is s = p . u */
+    double c[3];   /* where the sweep starts */
+    int source;    /* enum vbc_axis_source */
+    int chains;    /* chains used (VBC_AXIS_CHAINS); the chain's rank (VBC_AXIS_SUBUNIT) */
+} vbc_axis;
+
+/* A short name of the axis source ("given", "chains", "channel",
+ * "principal", "none"). */
+const char *vbc_axis_source_name(int source);
+
+/* The axis from the chains of s (s->info): three or more chains of at
+ * least 8 atoms whose sizes differ by at most 25% and whose centroids lie
+ * at similar distances (within 35%) from their mean give the normal of the
+ * centroids' best plane (through the mean; oriented so that the largest
+ * component is positive); two such chains whose centroids are farther
+ * apart than 40% of the molecule's extent along that line give the line
+ * through them. Returns 1 with *out filled, 0 when the chains say nothing. */
+int vbc_axis_from_chains(const vb_sphere_set *s, vbc_axis *out);
+
+/* One pore per subunit (porins, aquaporins: the pores run through the
+ * monomers, parallel to the symmetry axis, and the axis itself is the
+ * closed interface between them): the direction of sym (an axis from
+ * vbc_axis_from_chains with three or more chains) through the centroid of
+ * each of those chains, in the order of their first atoms, source SUBUNIT
+ * and `chains` the chain's rank (1-based). Writes at most max axes to out
+ * and returns how many. */
+int vbc_axis_subunits(const vb_sphere_set *s, const vbc_axis *sym, vbc_axis *out, int max);
+
+/* The principal axes of the atom centres (eigenvectors of their covariance,
+ * largest variance first), through the centroid, source PRINCIPAL. */
+void vbc_axis_principal(const vb_sphere_set *s, vbc_axis out[3]);
+
+/* One plane of the sweep. */
+typedef struct vbc_pore_point {
+    double s;          /* axial coordinate p . u, A */
+    double x, y, z;    /* the sphere centre */
+    double r;          /* its radius, A: distance to the nearest atom surface */
+    int32_t atom;      /* the nearest atom */
+} vbc_pore_point;
+
+typedef struct vbc_pore_options {
+    double step;        /* A between planes (HOLE's sample: 0.25) */
+    double end_radius;  /* a side ends where the radius exceeds this (HOLE's endrad); 0: none */
+    double max_half;    /* A from the start on each side at most; 0: the molecule's extent */
+} vbc_pore_options;
+
+/* Whether a point lies outside the molecule (the probe's molecular mask):
+ * the sweep ends there. user is the caller's. */
+typedef int (*vbc_outside_fn)(void *user, const double p[3]);
+
+typedef struct vbc_pore {
+    vbc_axis axis;
+    vbc_pore_point *pts;   /* increasing s */
+    size_t n;
+    size_t min_at;         /* index of the smallest radius */
+    int open_lo, open_hi;  /* that end left the molecule (else: end radius, length) */
+    double F;              /* sum ds / (pi r^2) over the points, 1/A (HOLE's geometric factor) */
+    double g_macro_pS;     /* 100 / (rho F) with rho = 1/12 ohm m (1 M KCl): HOLE's Gmacro */
+} vbc_pore;
+
+/* HOLE's resistivity of 1 M KCl, ohm m. */
+#define VBC_RHO_KCL (1.0 / 12.0)
+
+/* Maximises R over the plane through p normal to u (unit), moving p, and
+ * returns R with the nearest atom in *atom; `travel` > 0 keeps p within
+ * that distance of where it started. Deterministic: steepest ascent of the
+ * max-min on the eps-active atoms (min-norm point of their in-plane
+ * gradients), eps shrinking to 1e-7 A. */
+double vbc_plane_maximise(const vbc_cells *c, const double u[3], double travel, double p[3],
+                          int32_t *atom);
+
+/* The widest place inside the molecule in the plane through p normal to u
+ * within `reach` A of p: the best of a 0.5 A lattice on that disc without
+ * the points where outside(user, q) (scan order breaks ties; p itself
+ * when none is wider), then vbc_plane_maximise from there within reach,
+ * kept when it stays inside. Moves p there, returns R and the nearest atom
+ * in *atom. For a start point that the local ascent alone would not find
+ * (a pore beside a loop that fills the middle of a subunit). outside may
+ * be NULL (every point inside). */
+double vbc_plane_widest(const vbc_cells *c, const double u[3], double reach, vbc_outside_fn outside,
+                        void *user, double p[3], int32_t *atom);
+
+/* How far the sweep looks around the previous plane's centre in each plane
+ * (vbc_plane_widest) besides the local ascent, A. */
+#define VBC_PLANE_LOOK 1.5
+
+/* The sweep: from ax->c both ways along ax->u, one plane every opt->step,
+ * each started from the previous plane's centre (the local ascent from it
+ * or from the widest lattice point within VBC_PLANE_LOOK, the wider); a side stops at the first
+ * point outside the molecule (outside(user, p), when outside is not NULL),
+ * beyond opt->end_radius, or beyond opt->max_half. Fills *out (free with
+ * vbc_pore_free), its points sorted by s, F and Gmacro over them.
+ * VB_ENOMEM, VB_EMISUSE for a bad axis or step. */
+int vbc_pore_sweep(vb_ctx *ctx, const vbc_cells *c, const vb_sphere_set *s, const vbc_axis *ax,
+                   const vbc_pore_options *opt, vbc_outside_fn outside, void *user, vbc_pore *out);
+
+/* HOLE's macroscopic conductance of a profile (Smart et al. 1996: the pore
+ * as a stack of slabs of electrolyte of resistivity rho, G^-1 = rho sum
+ * ds / A(s)): F = sum over the points of ds / (pi r^2), each point the
+ * middle of a slab reaching half way to its neighbours (the end points: the
+ * whole gap to their one neighbour); a point with r <= 0 closes the pore (F
+ * infinite, G 0). G = 100 / (rho F) pS for rho in ohm m and F in 1/A
+ * (1/(rho F) with F in 1/m is 1e-10/(rho F) S). */
+void vbc_pore_conductance(vbc_pore *p, double rho);
+
+void vbc_pore_free(vbc_pore *p);
+
+#endif

@@ -1,0 +1,59 @@
+/* The pore of one frame next to its discrete channels: choose the axis
+ * (given, the chains, a through channel, the principal axes), sweep it
+ * (vbc_pore_sweep) inside the molecule that the probe's mask defines, put
+ * the pore in the result as channel 1, rank the rest (vbc_rank) and refine
+ * the discrete bottlenecks off the voxel centres. */
+#ifndef VBC_PORE_FRAME_H
+#define VBC_PORE_FRAME_H
+
+#include "vbc_pore.h"
+
+typedef struct vbc_pore_request {
+    int enabled;
+    int have_axis;        /* --axis: u is the axis */
+    int have_through;     /* --through: the sweep starts at c */
+    double u[3], c[3];
+    int found_source;     /* when the axis was found on an earlier frame: its source */
+    int found_chains;
+    vbc_pore_options sweep;
+} vbc_pore_request;
+
+/* Finds the pore of the spheres s on grid g with the molecular mask in
+ * flags (VBC_F_MOLECULAR per voxel; NULL: the sweep ends at the molecule's
+ * extent or end_radius) and the discrete channels res (for the axis of a
+ * through channel). An axis from the request is swept as given; otherwise
+ * candidates are tried in the order of vbc_pore.h and the first open one
+ * (smallest radius > 0) is taken, the chains' axis of three or more chains
+ * even when closed (a closed gate is still the pore) unless one subunit
+ * holds a clearly wider open pore (vbc_pore.h; not with --through). *out is filled (free
+ * with vbc_pore_free); out->n == 0 when no candidate was usable.
+ * VB_ENOMEM. */
+int vbc_pore_find(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const vbc_cells *cells,
+                  const vb_sphere_set *s, const vbc_result *res, const vbc_pore_request *req,
+                  vbc_pore *out);
+
+/* Puts the pore p at the head of res (kind VBC_PORE, its points, lining
+ * atoms within r + lining_tol, res->pore filled). VB_ENOMEM. */
+int vbc_result_add_pore(vb_ctx *ctx, vbc_result *res, const vbc_pore *p, const vbc_cells *cells,
+                        double lining_tol);
+
+/* Moves each discrete channel's points within two of its bottleneck off the
+ * voxel centre to the widest place in the plane normal to the centreline
+ * there (at most one voxel edge h away), then recomputes the bottleneck. */
+void vbc_refine_bottlenecks(vbc_result *res, const vbc_cells *cells, double h);
+
+/* Orders the table and gives each entry its reason (enum vbc_why): the pore
+ * first, then through channels (widest bottleneck first), channels that run
+ * along the pore for a third of their points or more (branches), other
+ * channels (longest first), cavities (longest first). */
+void vbc_rank(vbc_result *res);
+
+/* The whole pore stage of a frame: cells over s, vbc_pore_find,
+ * vbc_result_add_pore, vbc_refine_bottlenecks, vbc_rank. When req is NULL
+ * or disabled only the refinement and the ranking run. *found (may be NULL)
+ * gets the axis used. VB_ENOMEM. */
+int vbc_pore_stage(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const vb_sphere_set *s,
+                   const vbc_pore_request *req, double lining_tol, vbc_result *res,
+                   vbc_axis *found);
+
+#endif

@@ -1,0 +1,96 @@
+/* The C side of the Python package (vorball._core): one library context
+ * per call, its diagnostics captured instead of printed, failures raised as
+ * vorball.VorballError, sphere sets and engines held in capsules. The
+ * Python modules of python/vorball/ turn what these functions return
+ * (bytes, tuples, text) into NumPy arrays; nothing here needs NumPy. */
+#ifndef VBPY_H
+#define VBPY_H
+
+#define PY_SSIZE_T_CLEAN
+#include <Python.h>
+#include <stdio.h>
+
+/* Py_NewRef came with Python 3.10; the package supports 3.9 (pyproject). */
+#if PY_VERSION_HEX < 0x030A0000
+static inline PyObject *vbpy_newref(PyObject *o)
+{
+    Py_INCREF(o);
+    return o;
+}
+#define Py_NewRef vbpy_newref
+#endif
+
+#include "vb_spheres.h"
+#include "vb_vertex.h"
+
+/* One library call's context: warnings go to a memory stream, never to
+ * stderr (the Python side prints them when asked). */
+typedef struct vbpy_call {
+    vb_ctx *ctx;
+    FILE *diag;
+    char *text;
+    size_t len;
+} vbpy_call;
+
+/* Opens the context. 0, or -1 with MemoryError set. */
+int vbpy_call_open(vbpy_call *c);
+
+/* The diagnostics captured so far as a str (new reference; NULL with an
+ * exception set) and the context closed: every call ends in exactly one
+ * of vbpy_call_done and vbpy_call_fail. */
+PyObject *vbpy_call_done(vbpy_call *c);
+
+/* Raises VorballError for status rc with the context's message and the
+ * diagnostics captured, closes the context and returns NULL. */
+PyObject *vbpy_call_fail(vbpy_call *c, int rc);
+
+/* Raises VorballError for a misuse found by the binding itself (E7 or the
+ * number of `status`), formatted as printf. Returns NULL. */
+PyObject *vbpy_raise(int status, const char *fmt, ...);
+
+/* (value, diagnostics) as a 2-tuple, stealing value; closes the call.
+ * NULL (value released) on failure. */
+PyObject *vbpy_call_return(vbpy_call *c, PyObject *value);
+
+/* A bytes object holding a copy of n items of size bytes each at p. */
+PyObject *vbpy_bytes(const void *p, size_t n, size_t size);
+
+/* The text a writer leaves in a memory stream: open, write through f,
+ * then vbpy_text_take. */
+typedef struct vbpy_text {
+    FILE *f;
+    char *buf;
+    size_t len;
+} vbpy_text;
+
+int vbpy_text_open(vbpy_text *t);          /* 0, or -1 with MemoryError set */
+PyObject *vbpy_text_take(vbpy_text *t);    /* a str (new), the stream freed */
+
+/* Capsules: sphere sets ("vorball.spheres"). */
+PyObject *vbpy_spheres_capsule(vb_sphere_set *set);
+vb_sphere_set *vbpy_spheres_get(PyObject *capsule); /* NULL with TypeError set */
+
+/* The set validated again in the call's context, as the command validates
+ * its input with the call's counters and warnings (W701): *run is a
+ * shallow copy of set with its own contained flags (free run->contained
+ * afterwards), so a set shared between threads is never written.
+ * VB_EMISUSE for a set without decimals. No Python calls: safe without
+ * the GIL. */
+int vbpy_validate(vb_ctx *ctx, const vb_sphere_set *set, size_t min_count, vb_sphere_set *run);
+
+/* Parses "auto|gpu|cpu|ref" (the library's words) or raises E7. */
+int vbpy_device_kind(const char *name, int *kind);
+
+/* A vertex list from arrays: ids (uint32 buffer), start (int64 buffer of
+ * n + 1 offsets), x y z t (float64 buffers of n), every vertex of
+ * `status`. 0, or -1 with an exception set (out then empty). */
+int vbpy_vertex_list(PyObject *ids, PyObject *start, PyObject *x, PyObject *y, PyObject *z,
+                     PyObject *t, int status, vb_vertex_list *out);
+
+/* The functions of each file, for the module table. */
+extern PyMethodDef vbpy_spheres_methods[];
+extern PyMethodDef vbpy_vertices_methods[];
+extern PyMethodDef vbpy_verify_methods[];
+extern PyMethodDef vbpy_channels_methods[];
+
+#endif

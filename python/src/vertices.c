@@ -1,0 +1,261 @@
+/* The vertex pipeline for Python: vb_vertices_run_default (or a run on an
+ * engine opened once, for trajectories) on a set, its certified vertices
+ * and counters handed back, and the library's writer of vertex files. */
+#include "vbpy.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "vb_default.h"
+#include "vb_diag.h"
+#include "vb_vertex_io.h"
+
+#define ENGINE_CAPSULE "vorball.vertices_engine"
+
+static void engine_destroy(PyObject *cap)
+{
+    vb_vertices_close(PyCapsule_GetPointer(cap, ENGINE_CAPSULE));
+}
+
+/* Fills cfg from the Python arguments; -1 with an exception set. */
+static int config(const char *device, PyObject *proposer, vb_vertices_config *cfg)
+{
+    memset(cfg, 0, sizeof *cfg);
+    int kind;
+    if (vbpy_device_kind(device, &kind) != 0)
+        return -1;
+    cfg->device = (vb_device_kind)kind;
+    if (proposer != Py_None) {
+        if (!(cfg->proposer = PyUnicode_AsUTF8(proposer)))
+            return -1;
+        if (!vb_proposer_find(cfg->proposer)) {
+            vbpy_raise(VB_EMISUSE, "unknown proposer '%s'", cfg->proposer);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+static PyObject *engine_open(PyObject *self, PyObject *args)
+{
+    (void)self;
+    const char *device;
+    PyObject *proposer;
+    if (!PyArg_ParseTuple(args, "sO", &device, &proposer))
+        return NULL;
+    vb_vertices_config cfg;
+    vbpy_call c;
+    if (config(device, proposer, &cfg) != 0 || vbpy_call_open(&c) != 0)
+        return NULL;
+    vb_vertices_engine *e = NULL;
+    int rc;
+    Py_BEGIN_ALLOW_THREADS
+    rc = vb_vertices_open(c.ctx, vb_default_backends(), &cfg, &e);
+    Py_END_ALLOW_THREADS
+    if (rc != VB_OK)
+        return vbpy_call_fail(&c, rc);
+    PyObject *cap = PyCapsule_New(e, ENGINE_CAPSULE, engine_destroy);
+    if (!cap)
+        vb_vertices_close(e);
+    return vbpy_call_return(&c, cap);
+}
+
+static PyObject *vertex_arrays(const vb_vertex_list *v, PyObject *d)
+{
+    int64_t *start = malloc((v->n + 1) * sizeof *start);
+    if (!start)
+        return PyErr_NoMemory();
+    for (size_t k = 0; k <= v->n; k++)
+        start[k] = v->start ? (int64_t)v->start[k] : 0;
+    PyObject *sb = vbpy_bytes(start, v->n + 1, 8);
+    free(start);
+    int bad = !sb || PyDict_SetItemString(d, "start", sb) != 0;
+    Py_XDECREF(sb);
+    const struct {
+        const char *key;
+        const void *p;
+        size_t n, size;
+    } a[] = {{"ids", v->ids, v->nids, 4}, {"x", v->x, v->n, 8}, {"y", v->y, v->n, 8},
+             {"z", v->z, v->n, 8},        {"t", v->t, v->n, 8}, {"dist", v->dist, v->n, 8}};
+    for (size_t k = 0; k < sizeof a / sizeof a[0] && !bad; k++) {
+        PyObject *b = vbpy_bytes(a[k].p, a[k].n, a[k].size);
+        bad = !b || PyDict_SetItemString(d, a[k].key, b) != 0;
+        Py_XDECREF(b);
+    }
+    return bad ? NULL : d;
+}
+
+/* The result of a run as a dict (see python/vorball/_vertices.py). */
+static PyObject *result_dict(vb_ctx *ctx, const vb_vertices_result *r)
+{
+    const vb_sampler_result *s = &r->sampler;
+    char note[512];
+    vb_vertices_certificate(r, note, sizeof note);
+    vbpy_text st;
+    if (vbpy_text_open(&st) != 0)
+        return NULL;
+    vb_vertices_write_stats(ctx, st.f, r);
+    PyObject *stats = vbpy_text_take(&st);
+    const vb_stage_times *tm = &s->times;
+    PyObject *d = Py_BuildValue(
+        "{s:N,s:s,s:O,s:n,s:n,s:K,s:K,s:K,s:K,s:s,s:s,s:d,s:n,"
+        "s:{s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d}}",
+        "stats", stats, "certificate", note, "complete", s->complete ? Py_True : Py_False,
+        "certified", (Py_ssize_t)r->certified.n, "rejected", (Py_ssize_t)r->rejected.n,
+        "quadruples", (unsigned long long)s->cover_quads, "cover_cells",
+        (unsigned long long)s->cover_cells,
+        "cover_patches", (unsigned long long)s->cover_patches, "cover_host_cells",
+        (unsigned long long)s->cover_host_cells, "backend", r->backend, "device", r->device,
+        "max_distance", r->max_dist, "repaired", (Py_ssize_t)r->repaired_candidates, "times",
+        "setup", r->t_setup, "setup_wait", r->t_setup_wait, "certify", r->t_certify, "total",
+        r->t_total, "cull", tm->cull, "upload", tm->upload, "envelope", tm->envelope, "vertices",
+        tm->vertices, "matching", tm->matching, "targeted", tm->targeted, "tangent", tm->tangent,
+        "completion", tm->completion, "cover_device", s->t_cover_device);
+    if (!d)
+        return NULL;
+    if (!vertex_arrays(&r->certified, d)) {
+        Py_DECREF(d);
+        return NULL;
+    }
+    return d;
+}
+
+static PyObject *vertices_run(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *cap, *engine, *proposer;
+    const char *device;
+    unsigned samples, tiles, threads;
+    double tol;
+    int all_pairs;
+    if (!PyArg_ParseTuple(args, "OOsOIdIpI", &cap, &engine, &device, &proposer, &samples, &tol,
+                          &tiles, &all_pairs, &threads))
+        return NULL;
+    vb_sphere_set *set = vbpy_spheres_get(cap);
+    vb_vertices_engine *e = engine == Py_None ? NULL : PyCapsule_GetPointer(engine, ENGINE_CAPSULE);
+    vb_vertices_config cfg;
+    if (!set || (engine != Py_None && !e) || config(device, proposer, &cfg) != 0)
+        return NULL;
+    cfg.sampler.samples = samples;
+    cfg.sampler.tol = tol;
+    cfg.sampler.tiles = tiles;
+    cfg.sampler.all_pairs = all_pairs;
+    cfg.sampler.threads = threads;
+    vbpy_call c;
+    if (vbpy_call_open(&c) != 0)
+        return NULL;
+    vb_vertices_result res;
+    vb_vertices_result_init(&res);
+    int rc;
+    vb_sphere_set run;
+    Py_BEGIN_ALLOW_THREADS
+    rc = vbpy_validate(c.ctx, set, 4, &run);
+    if (rc == VB_OK)
+        rc = e ? vb_vertices_run_on(c.ctx, e, &run, &cfg, &res)
+               : vb_vertices_run_default(c.ctx, &run, &cfg, &res);
+    free(run.contained);
+    Py_END_ALLOW_THREADS
+    /* As the command: a cover's refused roots are expected, a sampler's are not. */
+    if (rc == VB_OK && res.rejected.n && !res.sampler.complete)
+        vb_warn(c.ctx, VB_W_CERT_REJECTED, NULL, 0, "the certifier rejected %zu candidate(s)",
+                res.rejected.n);
+    PyObject *d = rc == VB_OK ? result_dict(c.ctx, &res) : NULL;
+    vb_vertices_result_free(&res);
+    if (rc != VB_OK)
+        return vbpy_call_fail(&c, rc);
+    return vbpy_call_return(&c, d);
+}
+
+int vbpy_vertex_list(PyObject *ids, PyObject *start, PyObject *x, PyObject *y, PyObject *z,
+                     PyObject *t, int status, vb_vertex_list *out)
+{
+    vb_vertex_list_init(out);
+    Py_buffer b[6];
+    PyObject *o[6] = {ids, start, x, y, z, t};
+    int got = 0, rc = 0;
+    for (; got < 6; got++)
+        if (PyObject_GetBuffer(o[got], &b[got], PyBUF_C_CONTIGUOUS) != 0) {
+            rc = -1;
+            break;
+        }
+    size_t n = 0, nids = 0;
+    if (rc == 0) {
+        nids = (size_t)b[0].len / 4;
+        n = (size_t)b[1].len / 8;
+        n = n ? n - 1 : 0;
+        for (int k = 2; k < 6; k++)
+            if ((size_t)b[k].len != 8 * n)
+                rc = -1;
+        if (rc)
+            PyErr_SetString(PyExc_ValueError, "vertex arrays of different lengths");
+    }
+    const uint32_t *id = rc == 0 ? b[0].buf : NULL;
+    const int64_t *st = rc == 0 ? b[1].buf : NULL;
+    for (size_t k = 0; rc == 0 && k < n; k++) {
+        if (st[k] < 0 || st[k + 1] < st[k] || (size_t)st[k + 1] > nids) {
+            PyErr_SetString(PyExc_ValueError, "vertex offsets out of order");
+            rc = -1;
+            break;
+        }
+        const double *xs = b[2].buf, *ys = b[3].buf, *zs = b[4].buf, *ts = b[5].buf;
+        if (vb_vertex_list_push(out, id + st[k], (size_t)(st[k + 1] - st[k]), xs[k], ys[k], zs[k],
+                                ts[k], 0.0, status) != VB_OK) {
+            PyErr_NoMemory();
+            rc = -1;
+        }
+    }
+    while (got > 0)
+        PyBuffer_Release(&b[--got]);
+    if (rc)
+        vb_vertex_list_free(out);
+    return rc;
+}
+
+static PyObject *vertex_text(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *ids, *start, *x, *y, *z, *t, *comment;
+    const char *format;
+    if (!PyArg_ParseTuple(args, "OOOOOOsO", &ids, &start, &x, &y, &z, &t, &format, &comment))
+        return NULL;
+    const char *note = comment == Py_None ? NULL : PyUnicode_AsUTF8(comment);
+    if (comment != Py_None && !note)
+        return NULL;
+    vb_vertex_format fmt;
+    if (vb_vertex_format_parse(NULL, format, &fmt) != VB_OK)
+        return vbpy_raise(VB_EMISUSE, "vertex format must be tsv, json or voronota, not '%s'",
+                          format);
+    vb_vertex_list v;
+    if (vbpy_vertex_list(ids, start, x, y, z, t, VB_VERTEX_CERTIFIED, &v) != 0)
+        return NULL;
+    vbpy_text out;
+    vbpy_call c;
+    if (vbpy_text_open(&out) != 0) {
+        vb_vertex_list_free(&v);
+        return NULL;
+    }
+    if (vbpy_call_open(&c) != 0) {
+        Py_XDECREF(vbpy_text_take(&out));
+        vb_vertex_list_free(&v);
+        return NULL;
+    }
+    int rc = vb_vertex_write(c.ctx, out.f, &v, fmt, note && *note ? note : NULL);
+    vb_vertex_list_free(&v);
+    PyObject *s = vbpy_text_take(&out);
+    if (rc != VB_OK) {
+        Py_XDECREF(s);
+        return vbpy_call_fail(&c, rc);
+    }
+    Py_XDECREF(vbpy_call_done(&c));
+    return s;
+}
+
+PyMethodDef vbpy_vertices_methods[] = {
+    {"vertices_engine_open", engine_open, METH_VARARGS,
+     "vertices_engine_open(device, proposer) -> (capsule, diagnostics)"},
+    {"vertices_run", vertices_run, METH_VARARGS,
+     "vertices_run(spheres, engine, device, proposer, samples, tol, tiles, all_pairs, threads) "
+     "-> (dict, diagnostics)"},
+    {"vertex_text", vertex_text, METH_VARARGS,
+     "vertex_text(ids, start, x, y, z, t, format, comment) -> str (the library's writer)"},
+    {NULL, NULL, 0, NULL}};

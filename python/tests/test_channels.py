@@ -1,0 +1,112 @@
+"""Channels through the package: the command's table and JSON, the tables
+as NumPy structured arrays at full precision, pore profiles, and a loop
+over the frames of a trajectory on one device."""
+import csv
+import io
+import json
+
+import numpy as np
+import pytest
+import vorball
+
+from conftest import cli, corpus
+
+GRAMICIDIN = corpus("data", "1grm_single_hole2.pdb")
+TRAJ = corpus("data", "ngl_md_ascii_trj.pdb")
+
+
+@pytest.fixture(scope="module")
+def gramicidin():
+    return vorball.channels(vorball.read(GRAMICIDIN), grid=64, device="ref")
+
+
+def test_same_table_as_the_command(gramicidin):
+    out, _ = cli("channels", "--device", "ref", "--grid", 64, GRAMICIDIN)
+    assert gramicidin.csv == out
+    j, _ = cli("channels", "--device", "ref", "--grid", 64, "--json", GRAMICIDIN)
+    mine, theirs = gramicidin.to_json(), json.loads(j)
+    for frame in (mine["frames"][0], theirs["frames"][0]):
+        frame.pop("ms")  # timings
+    assert mine == theirs
+
+
+def test_table_is_the_csv_at_full_precision(gramicidin):
+    t = gramicidin.table
+    rows = list(csv.DictReader(io.StringIO(gramicidin.csv)))
+    assert len(t) == len(rows) >= 2
+    assert list(t.dtype.names) == list(rows[0].keys())  # every column the library writes
+    for k, row in enumerate(rows):
+        for name in t.dtype.names:
+            v = t[name][k]
+            if t.dtype[name].kind == "f":
+                assert "%.3f" % v == row[name], name
+            elif t.dtype[name].kind == "b":
+                assert int(v) == int(row[name]), name
+            else:
+                assert str(v) == row[name], name
+    assert t["kind"][0] == "channel" and t["length_A"][0] >= t["length_A"][-1]
+
+
+def test_profiles_and_lining(gramicidin):
+    s = gramicidin.spheres
+    for k, row in enumerate(gramicidin.table):
+        c = gramicidin.centrelines[k]
+        dist, r = gramicidin.profile(k)
+        assert len(c) == row["points"] and len(r) == len(c)
+        assert np.all(np.diff(dist) > 0) and dist[0] == 0
+        assert abs(dist[-1] - row["length_A"]) < 1e-6 * max(1, row["length_A"])
+        assert r.min() == row["bottleneck_A"]
+        # The clearance is the distance to the bounding atom's surface.
+        a = c["atom"]
+        clear = np.linalg.norm(np.column_stack([c["x"], c["y"], c["z"]]) - s.xyz[a], axis=1) - s.r[a]
+        assert np.allclose(clear, r, atol=1e-9)
+        lining = gramicidin.lining[k]
+        assert len(lining) == row["lining_atoms"] and np.all(np.diff(lining) > 0)
+        residues = sorted({"%s:%s%d" % (s.atoms["chain"][i], s.atoms["resname"][i],
+                                        s.atoms["resseq"][i]) for i in lining})
+        assert residues == sorted(row["lining_residues"].split(";"))
+
+
+def test_trajectory_loop_on_one_engine():
+    """Frames 0..2 on one opened device: the command's rows over the same frames."""
+    out, _ = cli("channels", "--device", "ref", "--grid", 64, "--frames", "0:3", TRAJ)
+    rows = []
+    with vorball.Engine(device="ref") as eng:
+        for f in vorball.frames(TRAJ, stop=3):
+            ch = eng.channels(f, grid=64)
+            assert (ch.frame, ch.model) == (f.index, f.model)
+            rows.extend(ch.csv.splitlines()[1:])
+    assert "\n".join([out.splitlines()[0]] + rows) + "\n" == out
+
+
+def test_arrays_and_flags():
+    s = vorball.read(GRAMICIDIN)
+    ch = vorball.channels(s.xyz, s.r, grid=32, device="ref", flags=True)
+    bits = vorball.channel_flags()
+    assert ch.flags.shape == (32, 32, 32)
+    assert np.count_nonzero(ch.flags & bits["channel"]) == ch.channel_voxels
+    # No atom records from arrays: lining residues are atom indices.
+    assert all(r.startswith("#") for row in ch.table for r in row["lining_residues"].split(";"))
+
+
+def test_channel_errors():
+    s = vorball.read(GRAMICIDIN)
+    for kw in ({"grid": 100}, {"probe": -1.0}, {"jfa": "nope"}, {"device": "tpu"}):
+        with pytest.raises(vorball.VorballError) as e:
+            vorball.channels(s, **{"device": "ref", **kw})
+        assert e.value.number == 7, kw
+
+
+def test_example_script(tmp_path):
+    """papers/'s example: per-frame vertices and pore profiles of a trajectory."""
+    import subprocess
+    import sys
+    script = corpus("..", "papers", "facet-jfa-and-channels", "trajectory_python.py")
+    p = subprocess.run([sys.executable, script, "--frames", "3", "--device", "ref", "--out",
+                        str(tmp_path), "--no-plot"], capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    rows = [l.split("\t") for l in (tmp_path / "frames.tsv").read_text().splitlines()[1:]]
+    assert [int(r[0]) for r in rows] == [0, 1, 2]
+    assert all(int(r[2]) > 1000 and r[3] == "1" for r in rows)  # vertices, complete
+    first = vorball.channels(next(iter(vorball.frames(TRAJ))), grid=64, device="ref")
+    assert float(rows[0][5]) == round(first.table["bottleneck_A"][0], 4)

@@ -1,0 +1,30 @@
+"""vorball: the Voronoi diagram of spheres, certified exactly, and the
+channels of molecules, as NumPy arrays.
+
+    import vorball
+    s = vorball.read("1crn.pdb")                  # or arrays: vorball.vertices(xyz, r)
+    ids, xyz, t = vorball.vertices(s)              # every vertex proven exactly
+    ch = vorball.channels(s, grid=128)             # ch.table, ch.profile(0)
+
+The calls run the library of the `vorball` command (libvorball) in the
+process: the same readers, the same pipelines, the same bytes
+(Result.to_text() is what `vorball vertices` writes). Errors raise
+VorballError with the catalogue's E-number; warnings are collected on the
+results (.warnings) and printed only with verbose=True.
+"""
+from ._errors import CatalogueEntry, Diagnostic, VorballError, catalogue
+from ._spheres import Frames, Spheres, frames, read, spheres
+from ._vertices import Certificate, Engine, Result, vertex_text, vertices
+from ._verify import DUPLICATE, MISSING, NOT_VERTEX, WRONG_COORDS, Report, verify
+from ._channels import Channels, channel_flags, channels
+
+__all__ = ["CatalogueEntry", "Certificate", "Channels", "Diagnostic", "DUPLICATE", "Engine",
+           "Frames", "MISSING", "NOT_VERTEX", "Report", "Result", "Spheres", "VorballError",
+           "WRONG_COORDS", "catalogue", "channel_flags", "channels", "frames", "read",
+           "spheres", "verify", "vertex_text", "vertices"]
+
+try:
+    from importlib.metadata import PackageNotFoundError, version as _version
+    __version__ = _version("vorball")
+except (ImportError, PackageNotFoundError):  # an in-place build
+    __version__ = "unknown"

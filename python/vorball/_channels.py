@@ -1,0 +1,209 @@
+"""Channels and cavities of a molecule (the discrete Voronoi pipeline of
+the Facet-JFA paper, Sec. 4, with components, centrelines, bottlenecks and
+lining atoms), one frame at a time."""
+from __future__ import annotations
+
+import csv
+import io
+import json as _json
+import numbers
+from typing import Any, Dict, List, Optional, Tuple
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from . import _core
+from ._errors import Diagnostic, emit, misuse, parse
+from ._spheres import SphereInput, Spheres, as_spheres
+
+# The columns of the table that the bound structures give at full
+# precision; every other column of the library's CSV is added as the
+# library writes it (so new columns appear without a change here).
+_TABLE = [("frame", "i8"), ("model", "i8"), ("channel", "i8"), ("kind", "U7"), ("through", "?"),
+          ("length_A", "f8"), ("bottleneck_A", "f8"), ("bottleneck_x", "f8"),
+          ("bottleneck_y", "f8"), ("bottleneck_z", "f8"), ("start_x", "f8"), ("start_y", "f8"),
+          ("start_z", "f8"), ("end_x", "f8"), ("end_y", "f8"), ("end_z", "f8"), ("voxels", "i8"),
+          ("volume_A3", "f8"), ("mouths", "i8"), ("points", "i8"), ("lining_atoms", "i8")]
+_KNOWN = {name for name, _ in _TABLE}
+_POINT = np.dtype([("s", "f8"), ("x", "f8"), ("y", "f8"), ("z", "f8"), ("r", "f8"), ("atom", "i4")])
+
+
+def _typed(values):
+    """A column of CSV strings as int64, float64 or str, by content."""
+    for conv, dt in ((int, "i8"), (float, "f8")):
+        try:
+            return np.array([conv(v) for v in values], dtype=dt)
+        except ValueError:
+            pass
+    return np.array(values, dtype=str)
+
+
+class Channels:
+    """The channels (and, when asked, cavities) of one frame.
+
+    table        structured array, one row per channel, longest first, with
+                 the columns of the command's CSV (frame, model, channel,
+                 kind, through, length_A, bottleneck_A, bottleneck_x/y/z,
+                 start_*, end_*, voxels, volume_A3, mouths, points,
+                 lining_atoms, lining_residues, and any the library adds);
+                 numbers at full precision
+    centrelines  list of structured arrays, one per row: s (arc length
+                 from the first point, Å), x, y, z, r (clearance: distance
+                 to the nearest atom surface, Å), atom (the atom bounding r)
+    lining       list of int arrays: the atoms lining each channel
+    grid         dict: nx, ny, nz, h (voxel edge, Å), origin
+    components, pruned, channel_voxels   counts before pruning
+    csv, json    what `vorball channels` writes for this frame (the CSV
+                 with its header; the JSON document)
+    flags        with flags=True: the (nz, ny, nx) uint8 volume of VBC_F_*
+                 bits (vorball.channel_flags())
+    device, ms, warnings, spheres
+    """
+
+    table: np.ndarray
+    centrelines: List[np.ndarray]
+    lining: List[np.ndarray]
+    grid: Dict[str, Any]
+    components: int
+    pruned: int
+    channel_voxels: int
+    csv: str
+    json: str
+    flags: Optional[np.ndarray]
+    device: str
+    ms: Dict[str, float]
+    warnings: List[Diagnostic]
+    spheres: Spheres
+    frame: int
+    model: int
+
+    def __init__(self, d: Dict[str, Any], warnings: List[Diagnostic], spheres: Spheres,
+                 frame: int, model: int) -> None:
+        self.spheres, self.warnings = spheres, warnings
+        self.frame, self.model = frame, model
+        self.csv, self.json = d["csv"], d["json"]
+        self.device, self.ms = d["device"], dict(d["ms"])
+        self.components, self.pruned = d["components"], d["pruned"]
+        self.channel_voxels = d["channel_voxels"]
+        g = d["grid"]
+        self.grid = {"nx": g["nx"], "ny": g["ny"], "nz": g["nz"], "h": g["h"],
+                     "origin": tuple(g["origin"])}
+        pts = np.frombuffer(d["points"], dtype=np.float64).reshape(-1, 4)
+        atoms = np.frombuffer(d["point_atoms"], dtype=np.int32)
+        lining = np.frombuffer(d["lining"], dtype=np.int32)
+        rows = list(csv.DictReader(io.StringIO(self.csv)))
+        header = next(csv.reader(io.StringIO(self.csv)), [])
+        chans = d["channels"]
+        self.centrelines, self.lining = [], []
+        table = []
+        for t, (kind, through, voxels, mouths, length, bottleneck, at, p0, npts, l0, nl) in \
+                enumerate(chans):
+            c = np.zeros(npts, dtype=_POINT)
+            p = pts[p0:p0 + npts]
+            c["x"], c["y"], c["z"], c["r"] = p[:, 0], p[:, 1], p[:, 2], p[:, 3]
+            c["atom"] = atoms[p0:p0 + npts]
+            if npts > 1:
+                c["s"][1:] = np.cumsum(np.linalg.norm(np.diff(p[:, :3], axis=0), axis=1))
+            c.setflags(write=False)
+            self.centrelines.append(c)
+            self.lining.append(lining[l0:l0 + nl].astype(np.int64))
+            b, first, last = p[at], p[0], p[-1]
+            h = g["h"]
+            table.append((frame, model, t + 1, "channel" if kind == 0 else "cavity", bool(through),
+                          length, bottleneck, b[0], b[1], b[2], first[0], first[1], first[2],
+                          last[0], last[1], last[2], voxels, voxels * (h * h * h), mouths, npts, nl))
+        extra = [name for name in header if name not in _KNOWN]
+        cols = {name: _typed([row[name] for row in rows]) for name in extra}
+        dtype = _TABLE + [(name, cols[name].dtype.str if cols[name].size else "U1")
+                          for name in extra]
+        out = np.zeros(len(table), dtype=dtype)
+        for k, row in enumerate(table):
+            for (name, _), v in zip(_TABLE, row):
+                out[name][k] = v
+        for name in extra:
+            if len(table):
+                out[name] = cols[name]
+        out.setflags(write=False)
+        self.table = out
+        if "flags" in d:
+            self.flags = np.frombuffer(d["flags"], dtype=np.uint8).reshape(g["nz"], g["ny"], g["nx"])
+        else:
+            self.flags = None
+
+    def __len__(self) -> int:
+        return len(self.table)
+
+    def __repr__(self) -> str:
+        return "<vorball.Channels frame %d: %d channel(s) on %s>" % (self.frame, len(self),
+                                                                       self.device)
+
+    def profile(self, k: int = 0) -> Tuple[np.ndarray, np.ndarray]:
+        """The pore profile of row k: (s, r), the clearance radius r along
+        the centreline at arc length s (Å) from its first point."""
+        c = self.centrelines[k]
+        return c["s"], c["r"]
+
+    def to_json(self) -> Any:
+        """The JSON document as Python objects."""
+        return _json.loads(self.json)
+
+
+def channel_flags() -> Dict[str, int]:
+    """The bits of Channels.flags: {'atomic': 1, 'molecular': 2, ...}."""
+    return _core.channel_flag_bits()
+
+
+def _check(grid, probe, min_length, min_radius, lining_tol):
+    if not isinstance(grid, numbers.Integral) or isinstance(grid, bool):
+        raise misuse("grid must be an integer (a power of two 16..1024), not %r" % (grid,))
+    for name, v in (("probe", probe), ("min_length", min_length), ("min_radius", min_radius),
+                    ("lining_tol", lining_tol)):
+        if not isinstance(v, numbers.Real) or isinstance(v, bool):
+            raise misuse("%s must be a length in A, not %r" % (name, v))
+    if not (16 <= grid <= 1024 and grid & (grid - 1) == 0):
+        raise misuse("grid must be a power of two in 16..1024, not %d" % grid)
+
+
+def run_channels(pipe: Any, first: bool, xyz: SphereInput, r: Optional[ArrayLike], grid: int,
+                 probe: float, min_length: float = 5.0, min_radius: float = 0.0,
+                 lining_tol: float = 1.0, cavities: bool = False, flags: bool = False,
+                 zero_radius: str = "auto", verbose: bool = False) -> Channels:
+    """One frame through an opened channel pipe (vorball.channels, Engine.channels)."""
+    _check(grid, probe, min_length, min_radius, lining_tol)
+    s, made = as_spheres(xyz, r, min_count=1, zero_radius=zero_radius, exact=False,
+                         revalidated=False)
+    d, diag = _core.channels_run(pipe, s._capsule, int(grid), float(probe), float(min_length),
+                                 float(min_radius), float(lining_tol), bool(cavities),
+                                 int(s.model), int(s.index), bool(flags), bool(first))
+    w = made + parse(diag)
+    emit(w, verbose)
+    return Channels(d, w, s, s.index, s.model)
+
+
+def channels(xyz: SphereInput, r: Optional[ArrayLike] = None, grid: int = 128,
+             probe: float = 1.4, *, device: str = "auto", jfa: str = "facet",
+             min_length: float = 5.0, min_radius: float = 0.0, lining_tol: float = 1.0,
+             cavities: bool = False, flags: bool = False, zero_radius: str = "auto",
+             verbose: bool = False) -> Channels:
+    """Channels and cavities of one set of spheres, as `vorball channels`.
+
+    xyz, r: arrays, a Spheres (a frame of vorball.frames: its index and
+    model go into the table), or a file path (its first model). grid: the
+    side of the cubic grid (a power of two 16..1024); probe: the solvent
+    radius (Å); device: auto, gpu, cpu or ref (W804 when it falls back);
+    jfa: facet, jfa, jfa+1, jfa+2 or 1+jfa; min_length, min_radius,
+    lining_tol, cavities as the command's options; flags=True keeps the
+    mask volume. For the frames of a trajectory, open the device once:
+    `with vorball.Engine() as e: for f in vorball.frames(...): e.channels(f)`.
+    Returns Channels; raises VorballError.
+    """
+    if not isinstance(device, str) or not isinstance(jfa, str):
+        raise misuse("device and jfa are names")
+    _check(grid, probe, min_length, min_radius, lining_tol)
+    pipe, diag = _core.channels_open(device, jfa)
+    w = parse(diag)
+    emit(w, verbose)
+    c = run_channels(pipe, True, xyz, r, grid, probe, min_length, min_radius, lining_tol,
+                     cavities, flags, zero_radius, verbose)
+    c.warnings[:0] = w
+    return c

@@ -1,0 +1,264 @@
+"""The certified Voronoi vertices of spheres (the vertex pipeline)."""
+from __future__ import annotations
+
+import numbers
+import os
+import threading
+from typing import Any, Dict, List, NamedTuple, Optional, Union
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from . import _core
+from ._errors import Diagnostic, emit, misuse, parse
+from ._channels import Channels, run_channels
+from ._spheres import PathLike, SphereInput, Spheres, as_spheres
+
+
+class Certificate(NamedTuple):
+    """What a run proves. complete: every vertex of the diagram is among the
+    certified ones (the direction cover's proof; False for the sampling
+    proposer, which proves nothing about completeness); text: the line the
+    command writes into its output header ('' when not complete)."""
+    complete: bool
+    text: str
+    certified: int     # certified vertices (each proven exactly)
+    rejected: int      # candidates (or cover roots) the certifier refused
+    quadruples: int    # quadruples the cover proposed
+    cover_cells: int
+    cover_patches: int
+    cover_host_cells: int
+
+
+def _number(text):
+    for conv in (int, float):
+        try:
+            return conv(text)
+        except ValueError:
+            pass
+    return text
+
+
+def _stats(text):
+    out = {}
+    for line in text.splitlines():
+        key, _, value = line.partition("\t")
+        out[key] = _number(value)
+    return out
+
+
+def _csr(d):
+    flat = np.frombuffer(d["ids"], dtype=np.uint32).astype(np.int64)
+    start = np.frombuffer(d["start"], dtype=np.int64)
+    return flat, start
+
+
+class Result(tuple):
+    """The certified vertices: unpacks as (ids, xyz, t).
+
+    ids      list of int64 arrays, the sorted 0-based ids of all the spheres
+             each vertex touches (4, or more at a degenerate vertex)
+    xyz      (m, 3) float64: the exact vertex rounded to the nearest double
+    t        (m,) float64: the tangent radius (negative where spheres overlap)
+    ids_flat, offsets   the same ids as one array and m + 1 offsets
+    certificate  a Certificate (complete, counts)
+    stats    the counters `vorball vertices --stats` prints, as a dict
+    times    seconds per stage (setup, certify, total, cull, ...)
+    backend, device   what ran ('opencl' or 'ref', and the device name)
+    warnings the warnings (vorball.Diagnostic) of reading the file or arrays
+             given to this call, then of the run, each once: the lines
+             the command prints; printed only when verbose
+    spheres  the Spheres the vertices belong to
+    Vertices are in the command's canonical order; to_text() gives the
+    bytes `vorball vertices` writes.
+    """
+
+    ids: List[np.ndarray]
+    xyz: np.ndarray
+    t: np.ndarray
+    ids_flat: np.ndarray
+    offsets: np.ndarray
+    certificate: Certificate
+    stats: Dict[str, Union[int, float, str]]
+    times: Dict[str, float]
+    backend: str
+    device: str
+    max_distance: float
+    warnings: List[Diagnostic]
+    spheres: Optional[Spheres]
+
+    def __new__(cls, d: Dict[str, Any], warnings: List[Diagnostic],
+                spheres: Optional[Spheres]) -> Result:
+        flat, start = _csr(d)
+        ids = np.split(flat, start[1:-1]) if len(start) > 1 else []
+        xyz = np.stack([np.frombuffer(d[k], dtype=np.float64) for k in "xyz"], axis=1) \
+            if len(start) > 1 else np.empty((0, 3))
+        t = np.frombuffer(d["t"], dtype=np.float64)
+        self = super().__new__(cls, (ids, xyz, t))
+        self.ids, self.xyz, self.t = ids, xyz, t
+        self.ids_flat, self.offsets = flat, start
+        self.certificate = Certificate(bool(d["complete"]), d["certificate"], d["certified"],
+                                       d["rejected"], d["quadruples"], d["cover_cells"],
+                                       d["cover_patches"], d["cover_host_cells"])
+        self.stats = _stats(d["stats"])
+        self.times = dict(d["times"])
+        self.backend, self.device = d["backend"], d["device"]
+        self.max_distance = d["max_distance"]
+        self.warnings = warnings
+        self.spheres = spheres
+        return self
+
+    def __reduce__(self):
+        # Pickled without its Spheres (a handle on library memory).
+        state = {k: v for k, v in self.__dict__.items() if k != "spheres"}
+        return (_restore, (tuple(self), state))
+
+    def __repr__(self) -> str:
+        return "<vorball.Result %d certified vertices%s, %s on %s>" % (
+            len(self.t), ", complete" if self.certificate.complete else "", self.backend,
+            self.device)
+
+    def to_text(self, format: str = "tsv") -> str:
+        """The vertex file `vorball vertices --output-format F` writes (tsv,
+        json or voronota), byte for byte, certificate line included."""
+        return vertex_text(self.ids_flat, self.offsets, self.xyz, self.t, format,
+                           self.certificate.text)
+
+    def write(self, path: PathLike, format: str = "tsv") -> None:
+        """Writes to_text(format) to path."""
+        text = self.to_text(format)
+        with open(os.fspath(path), "w", encoding="utf-8", newline="") as f:
+            f.write(text)
+
+
+def _restore(fields, state):
+    r = tuple.__new__(Result, fields)
+    r.__dict__.update(state)
+    r.spheres = None
+    return r
+
+
+def vertex_text(ids_flat: ArrayLike, offsets: ArrayLike, xyz: ArrayLike, t: ArrayLike,
+                format: str = "tsv", comment: Optional[str] = None) -> str:
+    """The library's vertex writer over CSR arrays (see Result.to_text)."""
+    ids = np.ascontiguousarray(ids_flat, dtype=np.uint32)
+    off = np.ascontiguousarray(offsets, dtype=np.int64)
+    xyz = np.asarray(xyz, dtype=np.float64).reshape(-1, 3)
+    cols = [np.ascontiguousarray(xyz[:, k]) for k in range(3)]
+    return _core.vertex_text(ids, off, cols[0], cols[1], cols[2],
+                             np.ascontiguousarray(t, dtype=np.float64), format, comment)
+
+
+def _options(samples, tol, tiles, all_pairs, threads):
+    for name, v, lo in (("samples", samples, 0), ("tiles", tiles, 0), ("threads", threads, 0)):
+        if not isinstance(v, numbers.Integral) or isinstance(v, bool) or not lo <= v < 2**31:
+            raise misuse("%s must be a non-negative integer, not %r" % (name, v))
+    if tol is None:
+        tol = 0.0
+    elif not isinstance(tol, numbers.Real) or not tol > 0:
+        raise misuse("tol must be a positive length, not %r" % (tol,))
+    return int(samples), float(tol), int(tiles), bool(all_pairs), int(threads)
+
+
+def _proposer(p):
+    if p is not None and not isinstance(p, str):
+        raise misuse("proposer must be a name (cover, sampling), not %r" % (p,))
+    return p
+
+
+def vertices(xyz: SphereInput, r: Optional[ArrayLike] = None, device: str = "auto",
+             samples: int = 30, *, proposer: Optional[str] = None, tol: Optional[float] = None,
+             tiles: int = 0, all_pairs: bool = False, threads: int = 0,
+             zero_radius: str = "auto", verbose: bool = False) -> Result:
+    """The certified Voronoi vertices of spheres, as `vorball vertices`.
+
+    xyz, r: arrays (see vorball.spheres for how each number becomes an
+    exact decimal), or a Spheres (vorball.read, a frame), or a file path.
+    device: auto (a GPU, else PoCL on the CPU), gpu, cpu or ref (the
+    plain-C reference; same output); a device that cannot be used falls
+    back to the reference with warning W760. samples: S x S rays per cube
+    face for the sampling proposer; proposer: 'cover' (the default: proves
+    that no vertex is missing) or 'sampling' (the seed paper's rays); tol,
+    tiles, all_pairs, threads as the command's --tol, --tiles, --all-pairs,
+    --threads (the output never depends on threads or device).
+    Returns a Result that unpacks as (ids, xyz, t). Raises VorballError.
+    Nothing is printed unless verbose.
+    """
+    opts = _options(samples, tol, tiles, all_pairs, threads)
+    if not isinstance(device, str):
+        raise misuse("device must be auto, gpu, cpu or ref, not %r" % (device,))
+    s, made = as_spheres(xyz, r, min_count=4, zero_radius=zero_radius)
+    d, diag = _core.vertices_run(s._capsule, None, device, _proposer(proposer), *opts)
+    w = made + parse(diag)
+    emit(w, verbose)
+    return Result(d, w, s)
+
+
+class Engine:
+    """A device opened once for many runs (the frames of a trajectory): the
+    vertex pipeline's device and proposer, and the channel pipeline, each
+    opened on first use by the one fallback rule. engine.vertices() and
+    engine.channels() take the arguments of vorball.vertices and
+    vorball.channels and give the same results. Safe to share between
+    threads (one run at a time). A context manager; close() releases the
+    device.
+    """
+
+    def __init__(self, device: str = "auto", proposer: Optional[str] = None, jfa: str = "facet",
+                 verbose: bool = False) -> None:
+        if not isinstance(device, str) or not isinstance(jfa, str):
+            raise misuse("device and jfa are names")
+        self.device, self.proposer, self.jfa = device, _proposer(proposer), jfa
+        self.verbose = verbose
+        self.warnings: List[Diagnostic] = []  # from opening the devices (W760, W804)
+        self._vertices = None
+        self._pipe = None
+        self._lock = threading.Lock()
+        self._frames_run = 0
+
+    def _open(self, opener, *args):
+        """A capsule from opener(*args), its warnings kept (call with the lock)."""
+        cap, diag = opener(*args)
+        w = parse(diag)
+        emit(w, self.verbose)
+        self.warnings.extend(w)
+        return cap
+
+    def vertices(self, xyz: SphereInput, r: Optional[ArrayLike] = None, samples: int = 30, *,
+                 tol: Optional[float] = None, tiles: int = 0, all_pairs: bool = False,
+                 threads: int = 0, zero_radius: str = "auto",
+                 verbose: Optional[bool] = None) -> Result:
+        """vorball.vertices on this engine's device and proposer."""
+        verbose = self.verbose if verbose is None else verbose
+        opts = _options(samples, tol, tiles, all_pairs, threads)
+        s, made = as_spheres(xyz, r, min_count=4, zero_radius=zero_radius)
+        with self._lock:
+            if self._vertices is None:
+                self._vertices = self._open(_core.vertices_engine_open, self.device,
+                                            self.proposer)
+            d, diag = _core.vertices_run(s._capsule, self._vertices, self.device, self.proposer, *opts)
+        w = made + parse(diag)
+        emit(w, verbose)
+        return Result(d, w, s)
+
+    def channels(self, xyz: SphereInput, r: Optional[ArrayLike] = None, grid: int = 128,
+                 probe: float = 1.4, **kw: Any) -> Channels:
+        """vorball.channels on this engine's device (see there)."""
+        with self._lock:
+            if self._pipe is None:
+                self._pipe = self._open(_core.channels_open, self.device, self.jfa)
+            first = self._frames_run == 0
+            self._frames_run += 1
+            return run_channels(self._pipe, first, xyz, r, grid, probe,
+                                verbose=kw.pop("verbose", self.verbose), **kw)
+
+    def close(self) -> None:
+        with self._lock:
+            self._vertices = None
+            self._pipe = None
+
+    def __enter__(self) -> Engine:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()

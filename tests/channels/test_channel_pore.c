@@ -1,0 +1,254 @@
+/* The HOLE-style pore sweep (core/discrete/channel_pore.c) on synthetic pores
+ * whose radius is known in closed form: a ring with a 1.0 A hole (narrower
+ * than the 1.4 A probe) inside a wide tube, a funnel of rings, a closed gate,
+ * a trimer whose pore runs through one subunit (vbc_pore_find, the axis
+ * from the chains); and HOLE's Ohmic conductance on a hand-made profile. Every radius is
+ * asserted to 1e-6 A (the sweep's radii are exact in double, vbc_pore.h),
+ * every position to the plane. */
+#include "synth.h"
+#include "vb_test.h"
+#include "vbc_pore_frame.h"
+
+#define PI 3.14159265358979323846
+
+/* A copy of s with `per` atoms of radius r added on a ring of radius rc
+ * around the z axis in the plane z. */
+static vb_sphere_set *with_ring(vb_sphere_set *s, int per, double rc, double r, double z)
+{
+    vb_sphere_set *t = vb_test_spheres_alloc(s->n + (size_t)per, 0);
+    for (size_t i = 0; i < s->n; i++) {
+        t->x[i] = s->x[i];
+        t->y[i] = s->y[i];
+        t->z[i] = s->z[i];
+        t->r[i] = s->r[i];
+    }
+    for (int a = 0; a < per; a++) {
+        size_t i = s->n + (size_t)a;
+        t->x[i] = rc * cos(2.0 * PI * a / per);
+        t->y[i] = rc * sin(2.0 * PI * a / per);
+        t->z[i] = z;
+        t->r[i] = r;
+    }
+    vb_spheres_free(s);
+    return t;
+}
+
+/* Sweeps s along z from (0, 0, z0), step ds, max_half A each way. */
+static int sweep_z(vb_ctx *ctx, const vb_sphere_set *s, double z0, double ds, double half,
+                   vbc_pore *p)
+{
+    vbc_cells *cells = NULL;
+    int rc = vbc_cells_build(ctx, s, 3.0, &cells);
+    if (rc != VB_OK)
+        return rc;
+    vbc_axis ax = {{0.0, 0.0, 1.0}, {0.0, 0.0, z0}, VBC_AXIS_GIVEN, 0};
+    vbc_pore_options opt = {ds, 0.0, half};
+    rc = vbc_pore_sweep(ctx, cells, s, &ax, &opt, NULL, NULL, p);
+    vbc_cells_free(cells);
+    return rc;
+}
+
+/* The point of the sweep in the plane z (-1 when none). */
+static long at_s(const vbc_pore *p, double z)
+{
+    for (size_t k = 0; k < p->n; k++)
+        if (fabs(p->pts[k].s - z) < 1e-9)
+            return (long)k;
+    return -1;
+}
+
+/* A tube of 10 rings of 16 atoms (radius 1.5 A at 6 A from the axis: 4.5 A
+ * clear) with a ring of 6 atoms of 1.5 A at 2.5 A in the plane z = 0: the
+ * hole there is exactly 1.0 A, below the probe radius, and nowhere else is
+ * the pore as narrow. The sweep starts off the constriction (z = 5) and
+ * reaches it by its own steps. */
+static void test_ring_hole(vb_ctx *ctx)
+{
+    vb_sphere_set *s = with_ring(synth_cylinder(10, 16, 6.0, 1.5, 2.6), 6, 2.5, 1.5, 0.0);
+    vbc_pore p;
+    CHECK_INT(sweep_z(ctx, s, 5.0, 0.25, 9.0, &p), VB_OK);
+    CHECK_INT(p.n, 2 * 36 + 1);
+    const vbc_pore_point *m = &p.pts[p.min_at];
+    CHECK_NEAR(m->r, 1.0, 1e-6);
+    CHECK_NEAR(m->s, 0.0, 1e-9);
+    CHECK_NEAR(hypot(m->x, m->y), 0.0, 1e-6);
+    CHECK(m->atom >= 160); /* one of the ring's atoms */
+    /* Points sorted by s, the first at 5 - 9, the last at 5 + 9. */
+    CHECK_NEAR(p.pts[0].s, -4.0, 1e-9);
+    CHECK_NEAR(p.pts[p.n - 1].s, 14.0, 1e-9);
+    /* A plane 1 A off the ring: the ring's atoms are 1.0 A farther in z, so
+     * the largest sphere is hypot(2.5, 1) - 1.5 on the axis (the tube is
+     * farther: hypot(6, 0.3) - 1.5 at least). */
+    long k = at_s(&p, 1.0);
+    CHECK(k >= 0);
+    if (k >= 0)
+        CHECK_NEAR(p.pts[k].r, hypot(2.5, 1.0) - 1.5, 1e-6);
+    CHECK(p.g_macro_pS > 0.0);
+    vbc_pore_free(&p);
+    vb_spheres_free(s);
+}
+
+/* A funnel: six rings of 12 atoms of 1.6 A, ring k at z = 2.6 k and
+ * 2.6 + 0.6 k A from the axis (staggered by half a step). In each ring's
+ * plane the largest sphere sits on the axis with radius 1.0 + 0.6 k (the
+ * neighbouring rings are farther: hypot(rc', 2.6) > rc for rc < 5.3), the
+ * narrowest at z = 0; past the narrow end the radius grows as
+ * hypot(2.6, z) - 1.6. */
+static void test_funnel(vb_ctx *ctx)
+{
+    vb_sphere_set *s = vb_test_spheres_alloc(6 * 12, 0);
+    for (int k = 0; k < 6; k++)
+        for (int a = 0; a < 12; a++) {
+            size_t i = (size_t)(12 * k + a);
+            double phi = 2.0 * PI * (a + 0.5 * (k % 2)) / 12.0, rc = 2.6 + 0.6 * k;
+            s->x[i] = rc * cos(phi);
+            s->y[i] = rc * sin(phi);
+            s->z[i] = 2.6 * k;
+            s->r[i] = 1.6;
+        }
+    vbc_pore p;
+    CHECK_INT(sweep_z(ctx, s, 0.0, 0.65, 13.0, &p), VB_OK);
+    CHECK_NEAR(p.pts[p.min_at].r, 1.0, 1e-6);
+    CHECK_NEAR(p.pts[p.min_at].s, 0.0, 1e-9);
+    for (int k = 0; k < 6; k++) {
+        long i = at_s(&p, 2.6 * k);
+        CHECK(i >= 0);
+        if (i >= 0) {
+            CHECK_NEAR(p.pts[i].r, 1.0 + 0.6 * k, 1e-6);
+            CHECK_NEAR(hypot(p.pts[i].x, p.pts[i].y), 0.0, 1e-6);
+        }
+    }
+    long i = at_s(&p, -1.3);
+    CHECK(i >= 0);
+    if (i >= 0)
+        CHECK_NEAR(p.pts[i].r, hypot(2.6, 1.3) - 1.6, 1e-6);
+    vbc_pore_free(&p);
+    vb_spheres_free(s);
+}
+
+/* The tube closed by a gate: 6 atoms of 1.6 A at 1.0 A from the axis in the
+ * plane z = 0 overlap on the axis, the radius there is 1.0 - 1.6 = -0.6 (a
+ * closed pore), and a closed pore conducts nothing. */
+static void test_closed_gate(vb_ctx *ctx)
+{
+    vb_sphere_set *s = with_ring(synth_cylinder(10, 16, 6.0, 1.5, 2.6), 6, 1.0, 1.6, 0.0);
+    vbc_pore p;
+    CHECK_INT(sweep_z(ctx, s, 2.0, 0.5, 6.0, &p), VB_OK);
+    CHECK_NEAR(p.pts[p.min_at].r, -0.6, 1e-6);
+    CHECK_NEAR(p.pts[p.min_at].s, 0.0, 1e-9);
+    CHECK(isinf(p.F));
+    CHECK_INT(p.g_macro_pS == 0.0, 1);
+    vbc_pore_free(&p);
+    vb_spheres_free(s);
+}
+
+/* HOLE's Ohmic estimate on a cylinder of radius 1 A sampled at 10 points
+ * 1 A apart: every point holds a slab of 1 A (the ends too), F = 10 / pi,
+ * G = 100 / (rho F) = 120 pi pS for 1 M KCl. */
+static void test_conductance(void)
+{
+    vbc_pore_point pts[10];
+    for (int k = 0; k < 10; k++)
+        pts[k] = (vbc_pore_point){(double)k, 0.0, 0.0, (double)k, 1.0, 0};
+    vbc_pore p;
+    memset(&p, 0, sizeof p);
+    p.pts = pts;
+    p.n = 10;
+    vbc_pore_conductance(&p, VBC_RHO_KCL);
+    CHECK_NEAR(p.F, 10.0 / PI, 1e-12);
+    CHECK_NEAR(p.g_macro_pS, 120.0 * PI, 1e-9);
+    /* Half the radius at one point: that slab's resistance four times. */
+    pts[4].r = 0.5;
+    vbc_pore_conductance(&p, VBC_RHO_KCL);
+    CHECK_NEAR(p.F, 13.0 / PI, 1e-12);
+}
+
+/* A porin-like trimer: three tubes (chains A, B, C) of 8 rings of 12 atoms
+ * of 1.6 A, rings 2.5 A apart, their axes parallel to z at 5.5 A from it,
+ * 120 degrees apart; B's rings 4.3 A from its axis (2.7 A clear at each
+ * ring, z = +-1.25, +-3.75, ...), A's and C's 4.0 A (2.4 A). The trimer's
+ * own axis is closed by the walls (atoms 1.5 A from it), so the pore is
+ * B's: found from the chains alone, swept through B's axis, its narrowest
+ * radius 2.7 A at a ring. The molecule (the mask that ends the sweep and
+ * keeps the subunits' start points in) is the three tubes' outer cylinders
+ * for |z| <= 10.5; the grooves between the tubes are outside, as a probe's
+ * molecular surface leaves them. */
+static void test_subunit_pore(vb_ctx *ctx)
+{
+    const int rings = 8, per = 12;
+    vb_sphere_set *s = vb_test_spheres_alloc((size_t)(3 * rings * per), 0);
+    s->info = calloc(s->n, sizeof *s->info);
+    double cx[3], cy[3];
+    for (int t = 0; t < 3; t++) {
+        double th = 2.0 * PI * t / 3.0, rc = t == 1 ? 4.3 : 4.0;
+        cx[t] = 5.5 * cos(th);
+        cy[t] = 5.5 * sin(th);
+        for (int k = 0; k < rings; k++)
+            for (int a = 0; a < per; a++) {
+                size_t i = (size_t)((t * rings + k) * per + a);
+                double phi = 2.0 * PI * (a + 0.5 * (k % 2)) / per;
+                s->x[i] = cx[t] + rc * cos(phi);
+                s->y[i] = cy[t] + rc * sin(phi);
+                s->z[i] = (k - 0.5 * (rings - 1)) * 2.5;
+                s->r[i] = 1.6;
+                s->info[i].chain[0] = (char)('A' + t);
+            }
+    }
+    vbc_grid g = {64, 64, 56, 3, {-16.0, -16.0, -14.0}, 0.5};
+    size_t nv = (size_t)g.nx * (size_t)g.ny * (size_t)g.nz;
+    uint8_t *flags = calloc(nv, 1);
+    for (size_t v = 0; v < nv; v++) {
+        size_t i = v % (size_t)g.nx, j = v / (size_t)g.nx % (size_t)g.ny, k = v / ((size_t)g.nx * (size_t)g.ny);
+        double x = g.origin[0] + g.h * ((double)i + 0.5), y = g.origin[1] + g.h * ((double)j + 0.5);
+        double z = g.origin[2] + g.h * ((double)k + 0.5);
+        int in = 0;
+        for (int t = 0; t < 3; t++)
+            in |= hypot(x - cx[t], y - cy[t]) <= (t == 1 ? 4.3 : 4.0) + 1.6;
+        flags[v] = in && fabs(z) <= 10.5 ? VBC_F_MOLECULAR : 0;
+    }
+    vbc_cells *cells = NULL;
+    CHECK_INT(vbc_cells_build(ctx, s, 3.0, &cells), VB_OK);
+    vbc_result res;
+    memset(&res, 0, sizeof res);
+    vbc_pore_request req;
+    memset(&req, 0, sizeof req);
+    req.enabled = 1;
+    req.sweep.step = 0.25;
+    vbc_pore p;
+    CHECK_INT(vbc_pore_find(ctx, &g, flags, cells, s, &res, &req, &p), VB_OK);
+    CHECK_INT(p.axis.source, VBC_AXIS_SUBUNIT);
+    CHECK_INT(p.axis.chains, 2);
+    CHECK_NEAR(fabs(p.axis.u[2]), 1.0, 1e-9);
+    CHECK_INT(p.open_lo && p.open_hi, 1);
+    if (p.n > 0) {
+        const vbc_pore_point *m = &p.pts[p.min_at];
+        CHECK_NEAR(m->r, 2.7, 1e-6);
+        CHECK_NEAR(fmod(fabs(m->s) + 1.25, 2.5), 0.0, 1e-9);
+        CHECK_NEAR(hypot(m->x - cx[1], m->y - cy[1]), 0.0, 1e-4);
+    }
+    vbc_pore_free(&p);
+    /* With the trimer's axis given, the sweep stays on it: closed there. */
+    req.have_axis = 1;
+    req.u[2] = 1.0;
+    CHECK_INT(vbc_pore_find(ctx, &g, flags, cells, s, &res, &req, &p), VB_OK);
+    CHECK_INT(p.axis.source, VBC_AXIS_GIVEN);
+    CHECK(p.n > 0 && p.pts[p.min_at].r < 0.0);
+    vbc_pore_free(&p);
+    vbc_cells_free(cells);
+    free(flags);
+    vb_spheres_free(s);
+}
+
+int main(void)
+{
+    vb_ctx *ctx;
+    if (vb_open(&ctx, NULL) != VB_OK)
+        return 1;
+    test_ring_hole(ctx);
+    test_funnel(ctx);
+    test_closed_gate(ctx);
+    test_subunit_pore(ctx);
+    test_conductance();
+    vb_close(ctx);
+    VB_TEST_END();
+}

@@ -1,0 +1,434 @@
+/* Damaged and unusual input (issue 18, items 1, 4 and 6): each is read
+ * correctly or reported with a numbered diagnostic, never silently wrong.
+ * Exact duplicates whose decimals differ in padding or spelling; a DCD that
+ * claims 2^31 - 1 atoms, DCDs ending in stray bytes; NUL bytes, a UTF-8
+ * byte-order mark, CR-only line ends, a truncated last MODEL and an altloc
+ * block that comes back after other residues, through the buffer readers and
+ * the frame reader. */
+#include <stdint.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "input_test_util.h"
+#include "vb_dcd.h"
+
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define VB_TEST_HAS_ASAN 1
+#endif
+#endif
+
+#define ATOM(serial, name, alt, res, seq, x, y, z, el)                                            \
+    "ATOM  " serial " " name alt res " A" seq "    " x y z "  1.00 10.00          " el "\n"
+
+/* Four carbons and an oxygen, each line 80 columns. */
+#define PDB_C1 ATOM("    1", " C  ", " ", "ALA", "   1", "   0.000", "   0.000", "   0.000", " C")
+#define PDB_C2 ATOM("    2", " C  ", " ", "ALA", "   2", "   3.000", "   0.000", "   0.000", " C")
+#define PDB_C3 ATOM("    3", " C  ", " ", "ALA", "   3", "   0.000", "   3.000", "   0.000", " C")
+#define PDB_C4 ATOM("    4", " C  ", " ", "ALA", "   4", "   0.000", "   0.000", "   3.000", " C")
+#define PDB_O5 ATOM("    5", " O  ", " ", "SER", "   5", "   2.000", "   2.000", "   2.000", " O")
+
+static vb_sphere_set *alloc_set(size_t n, unsigned char fill)
+{
+    vb_sphere_set *s = calloc(1, sizeof *s);
+    s->n = n;
+    double **d[4] = {&s->x, &s->y, &s->z, &s->r};
+    vb_decimal **e[4] = {&s->ex, &s->ey, &s->ez, &s->er};
+    for (int k = 0; k < 4; k++) {
+        *d[k] = calloc(n, sizeof(double));
+        *e[k] = malloc(n * sizeof(vb_decimal));
+        memset(*e[k], fill, n * sizeof(vb_decimal));
+    }
+    s->line = calloc(n, sizeof *s->line);
+    s->contained = calloc(n, 1);
+    return s;
+}
+
+static void set_sphere(vb_sphere_set *s, size_t i, const vb_decimal v[4])
+{
+    vb_decimal *e[4] = {s->ex, s->ey, s->ez, s->er};
+    double *d[4] = {s->x, s->y, s->z, s->r};
+    for (int k = 0; k < 4; k++) {
+        e[k][i].mant = v[k].mant;       /* the padding keeps the fill byte */
+        e[k][i].exp10 = v[k].exp10;
+        d[k][i] = (double)v[k].mant * pow(10.0, v[k].exp10);
+    }
+    s->line[i] = (long)i + 1;
+}
+
+/* Item 1: duplicates are equal values, whatever the padding bytes of
+ * vb_decimal or the spelling (1.52 and 1.520). */
+static void test_duplicates(void)
+{
+    vb_ctx *ctx = open_ctx(NULL);
+    const vb_decimal sph[5][4] = {{{0, 0}, {0, 0}, {0, 0}, {152, -2}},
+                                  {{3, 0}, {0, 0}, {0, 0}, {17, -1}},
+                                  {{0, 0}, {3, 0}, {0, 0}, {17, -1}},
+                                  {{0, 0}, {0, 0}, {3, 0}, {17, -1}},
+                                  {{0, 0}, {0, 0}, {0, 0}, {1520, -3}}};
+    vb_sphere_set *s = alloc_set(5, 0xab);
+    for (size_t i = 0; i < 5; i++)
+        set_sphere(s, i, sph[i]);
+    memset(&s->er[4], 0x00, sizeof s->er[4]); /* other padding, same value */
+    s->er[4].mant = 1520;
+    s->er[4].exp10 = -3;
+    s->source = strdup("dup");
+    CHECK_ERROR(ctx, vb_spheres_validate(ctx, s, 4), VB_EINPUT_DUPLICATE, "dup:5:");
+    CHECK(strstr(vb_errmsg(ctx), "sphere 4 is identical to sphere 0 at line 1") != NULL);
+    vb_spheres_free(s);
+
+    /* As the issue found it: the radius of element Q from a --radii row, the
+     * same as O's from the table, at O's coordinates. */
+    vb_radii_table *radii = NULL;
+    char path[64];
+    strcpy(path, temp_file("Q 1.52\n"));
+    CHECK_INT(vb_radii_load(ctx, path, &radii), VB_OK);
+    remove(path);
+    vb_read_options o;
+    memset(&o, 0, sizeof o);
+    o.radii = radii;
+    const char *pdb = PDB_O5 PDB_C1 PDB_C2 PDB_C3 PDB_C4
+        ATOM("    6", " Q  ", " ", "ALA", "   6", "   2.000", "   2.000", "   2.000", " Q");
+    CHECK_ERROR(ctx, read_validate(ctx, "q.pdb", pdb, &o, 4), VB_EINPUT_DUPLICATE, "q.pdb:6:");
+    vb_radii_free(radii);
+    vb_close(ctx);
+}
+
+static void put_record(FILE *f, const void *p, int32_t len)
+{
+    fwrite(&len, 4, 1, f);
+    fwrite(p, 1, (size_t)len, f);
+    fwrite(&len, 4, 1, f);
+}
+
+/* A CHARMM DCD header (196 bytes) announcing na atoms and no frame. */
+static void write_dcd_header(const char *path, int32_t na)
+{
+    FILE *f = fopen(path, "wb");
+    unsigned char hdr[84];
+    memset(hdr, 0, sizeof hdr);
+    memcpy(hdr, "CORD", 4);
+    int32_t charmm = 24;
+    memcpy(hdr + 4 + 19 * 4, &charmm, 4);
+    put_record(f, hdr, 84);
+    char title[84];
+    int32_t nt = 1;
+    memcpy(title, &nt, 4);
+    memset(title + 4, ' ', 80);
+    put_record(f, title, 84);
+    put_record(f, &na, 4);
+    fclose(f);
+}
+
+/* Opens path and reads every frame; returns the frames read, -1 on an error
+ * (its code in *rc). */
+static long read_dcd_frames(vb_ctx *ctx, const char *path, size_t na, int *rc)
+{
+    vb_dcd *d = NULL;
+    *rc = vb_dcd_open(ctx, path, &d);
+    if (*rc != VB_OK)
+        return -1;
+    double *xyz = malloc(3 * na * sizeof *xyz);
+    long frames = 0;
+    for (int got = 1; got;) {
+        *rc = vb_dcd_next(ctx, d, xyz, xyz + na, xyz + 2 * na, NULL, &got);
+        if (*rc != VB_OK) {
+            frames = -1;
+            break;
+        }
+        frames += got;
+    }
+    free(xyz);
+    vb_dcd_close(d);
+    return frames;
+}
+
+/* Item 4: 196 bytes that claim 2^31 - 1 atoms open without a frame buffer
+ * (the reader sized it to the claim before, and used the reader after
+ * freeing it when that allocation failed). Run with the address space
+ * bounded to 2 GiB where no sanitizer needs more, so the old allocation of
+ * 8 GiB fails as it would on a small machine. */
+static void test_dcd_huge_claim(void)
+{
+    char path[64];
+    strcpy(path, temp_file(""));
+    write_dcd_header(path, INT32_MAX);
+    pid_t pid = fork();
+    if (pid == 0) {
+#if !defined(__SANITIZE_ADDRESS__) && !defined(VB_TEST_HAS_ASAN)
+        struct rlimit lim = {(rlim_t)2 << 30, (rlim_t)2 << 30};
+        setrlimit(RLIMIT_AS, &lim);
+#endif
+        vb_ctx *ctx = open_ctx(NULL);
+        int rc;
+        long frames = read_dcd_frames(ctx, path, 0, &rc);
+        vb_close(ctx);
+        _exit(frames == 0 && rc == VB_OK ? 0 : 1);
+    }
+    int status = -1;
+    waitpid(pid, &status, 0);
+    CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+    remove(path);
+}
+
+/* Item 6: stray bytes after the last frame, fewer than 4 (no marker) or more
+ * (a marker that does not match), are reported with W801. */
+static void test_dcd_stray_bytes(void)
+{
+    FILE *diag;
+    vb_ctx *ctx = open_ctx(&diag);
+    char path[64];
+    strcpy(path, temp_file(""));
+    const size_t na = 3;
+    const double x[3] = {1, 2, 3}, y[3] = {4, 5, 6}, z[3] = {7, 8, 9};
+    const size_t stray[2] = {3, 10};
+    for (int k = 0; k < 2; k++) {
+        vb_dcd_writer *w = NULL;
+        CHECK_INT(vb_dcd_writer_open(ctx, path, na, 1.0, "stray", &w), VB_OK);
+        CHECK_INT(vb_dcd_writer_frame(ctx, w, x, y, z), VB_OK);
+        CHECK_INT(vb_dcd_writer_frame(ctx, w, x, y, z), VB_OK);
+        CHECK_INT(vb_dcd_writer_close(ctx, w), VB_OK);
+        FILE *f = fopen(path, "ab");
+        for (size_t i = 0; i < stray[k]; i++)
+            fputc(0x5a, f);
+        fclose(f);
+        int rc;
+        CHECK_INT(read_dcd_frames(ctx, path, na, &rc), 2);
+        CHECK_INT(rc, VB_OK);
+        char want[160];
+        snprintf(want, sizeof want, "W801: %s: DCD ends with %zu bytes after frame 2", path,
+                 stray[k]);
+        CHECK(strstr(diag_text(diag), want) != NULL);
+    }
+    remove(path);
+    vb_close(ctx);
+}
+
+/* Item 6: a NUL byte in a coordinate field is an error naming the line; it
+ * used to end the field ("   1\0999" read as 1). */
+static void test_nul_byte(void)
+{
+    vb_ctx *ctx = open_ctx(NULL);
+    static const char line3[] =
+        ATOM("    3", " C  ", " ", "ALA", "   3", "   1\0999", "   0.000", "   0.000", " C");
+    const char *head = PDB_C1 PDB_C2;
+    size_t nh = strlen(head), n3 = sizeof line3 - 1, len = nh + n3;
+    char buf[512];
+    memcpy(buf, head, nh);
+    memcpy(buf + nh, line3, n3);
+    vb_sphere_set *s = NULL;
+    CHECK_ERROR(ctx, vb_spheres_read_buffer(ctx, "nul.pdb", buf, len, NULL, &s),
+                VB_EINPUT_MALFORMED, "nul.pdb:3: NUL byte in column 35");
+    CHECK(s == NULL);
+
+    /* Through the frame reader (streamed PDB) too. */
+    char path[64];
+    strcpy(path, temp_file(""));
+    FILE *f = fopen(path, "wb");
+    fwrite(buf, 1, len, f);
+    fclose(f);
+    vb_frame_reader *rd = NULL;
+    CHECK_INT(vb_frame_reader_open(ctx, path, NULL, &rd), VB_OK);
+    int model;
+    char prefix[96];
+    snprintf(prefix, sizeof prefix, "%s:3: NUL byte", path);
+    if (rd)
+        CHECK_ERROR(ctx, vb_frame_reader_next(ctx, rd, &s, &model), VB_EINPUT_MALFORMED, prefix);
+    vb_frame_reader_close(rd);
+    remove(path);
+    vb_close(ctx);
+}
+
+/* Item 6: a byte-order mark does not hide the first atom, in PDB and PQR. */
+static void test_bom(void)
+{
+    vb_ctx *ctx = open_ctx(NULL);
+    vb_sphere_set *s = NULL;
+    CHECK_INT(read_text(ctx, "bom.pdb", "\xef\xbb\xbf" PDB_C1 PDB_C2 PDB_C3 PDB_C4, NULL, &s),
+              VB_OK);
+    CHECK_INT(s ? s->n : 0, 4);
+    if (s) {
+        CHECK_INT(s->line[0], 1);
+        CHECK_DEC(s->ex[1], 3, 0);
+    }
+    vb_spheres_free(s);
+    const char *pqr = "\xef\xbb\xbf"
+                      "ATOM      1  N   ALA A   1       1.000   2.000   3.000 -0.30 1.55\n"
+                      "ATOM      2  CA  ALA A   1       2.000   2.000   3.000  0.10 1.70\n";
+    CHECK_INT(read_text(ctx, "bom.pqr", pqr, NULL, &s), VB_OK);
+    CHECK_INT(s ? s->n : 0, 2);
+    if (s)
+        CHECK_DEC(s->er[0], 155, -2);
+    vb_spheres_free(s);
+
+    char path[64];
+    strcpy(path, temp_file("\xef\xbb\xbf" PDB_C1 PDB_C2 PDB_C3));
+    vb_frame_reader *rd = NULL;
+    int model;
+    CHECK_INT(vb_frame_reader_open(ctx, path, NULL, &rd), VB_OK);
+    CHECK_INT(vb_frame_reader_next(ctx, rd, &s, &model), VB_OK);
+    CHECK_INT(s ? s->n : 0, 3);
+    vb_spheres_free(s);
+    vb_frame_reader_close(rd);
+    remove(path);
+    vb_close(ctx);
+}
+
+/* Copies text with every "\n" replaced by "\r" (static buffer). */
+static const char *cr_only(const char *text)
+{
+    static char buf[4096];
+    size_t n = strlen(text);
+    for (size_t i = 0; i <= n; i++)
+        buf[i] = text[i] == '\n' ? '\r' : text[i];
+    return buf;
+}
+
+/* Item 6: CR-only line ends (old Mac OS) keep every atom and line number,
+ * in every text format and through the frame reader. */
+static void test_cr_only(void)
+{
+    vb_ctx *ctx = open_ctx(NULL);
+    vb_sphere_set *s = NULL;
+    CHECK_INT(read_text(ctx, "cr.pdb", cr_only(PDB_C1 PDB_C2 PDB_C3 PDB_C4 PDB_O5), NULL, &s),
+              VB_OK);
+    CHECK_INT(s ? s->n : 0, 5);
+    if (s && s->n == 5) {
+        CHECK_INT(s->line[4], 5);
+        CHECK_DEC(s->ez[3], 3, 0);
+        CHECK_DEC(s->er[4], 152, -2);
+    }
+    vb_spheres_free(s);
+    CHECK_INT(read_text(ctx, "cr.xyzr", cr_only("0 0 0 1\n1 0 0 1\n0 1 0 1\n0 0 1 1.5\n"), NULL,
+                        &s),
+              VB_OK);
+    CHECK_INT(s ? s->n : 0, 4);
+    if (s && s->n == 4)
+        CHECK_DEC(s->er[3], 15, -1);
+    vb_spheres_free(s);
+    const char *cif = "data_x\nloop_\n_atom_site.group_PDB\n_atom_site.type_symbol\n"
+                      "_atom_site.Cartn_x\n_atom_site.Cartn_y\n_atom_site.Cartn_z\n"
+                      "# a comment\nATOM C 0 0 0\nATOM C 3 0 0\nATOM O 0 3 0\n";
+    CHECK_INT(read_text(ctx, "cr.cif", cr_only(cif), NULL, &s), VB_OK);
+    CHECK_INT(s ? s->n : 0, 3);
+    if (s && s->n == 3) {
+        CHECK_INT(s->line[2], 11);
+        CHECK_DEC(s->er[2], 152, -2);
+    }
+    vb_spheres_free(s);
+
+    /* Two models, streamed. */
+    char path[64];
+    strcpy(path, temp_file(cr_only("MODEL        1\n" PDB_C1 PDB_C2 "ENDMDL\n"
+                                   "MODEL        2\n" PDB_C3 PDB_C4 PDB_O5 "ENDMDL\nEND\n")));
+    vb_frame_reader *rd = NULL;
+    int model = 0;
+    CHECK_INT(vb_frame_reader_open(ctx, path, NULL, &rd), VB_OK);
+    const size_t want[3] = {2, 3, 0};
+    const long first_line[2] = {2, 6};
+    for (int k = 0; rd && k < 3; k++) {
+        CHECK_INT(vb_frame_reader_next(ctx, rd, &s, &model), VB_OK);
+        CHECK_INT(s ? s->n : 0, want[k]);
+        if (s && k < 2) {
+            CHECK_INT(model, k + 1);
+            CHECK_INT(s->line[0], first_line[k]);
+        }
+        vb_spheres_free(s);
+    }
+    vb_frame_reader_close(rd);
+    remove(path);
+    vb_close(ctx);
+}
+
+/* Item 6: a last MODEL that the input ends inside (no ENDMDL, no END) is
+ * read with warning W735 naming its MODEL line; a MODEL closed by the next
+ * MODEL, or by END, is not. */
+static void test_truncated_model(void)
+{
+    FILE *diag;
+    vb_ctx *ctx = open_ctx(&diag);
+    char path[64];
+    strcpy(path, temp_file("MODEL        1\n" PDB_C1 PDB_C2 PDB_C3 "ENDMDL\n"
+                           "MODEL        2\n" PDB_C1 PDB_C2));
+    vb_frame_reader *rd = NULL;
+    vb_sphere_set *s = NULL;
+    int model;
+    CHECK_INT(vb_frame_reader_open(ctx, path, NULL, &rd), VB_OK);
+    size_t sizes[3] = {3, 2, 0};
+    for (int k = 0; k < 3; k++) {
+        CHECK_INT(vb_frame_reader_next(ctx, rd, &s, &model), VB_OK);
+        CHECK_INT(s ? s->n : 0, sizes[k]);
+        vb_spheres_free(s);
+    }
+    vb_frame_reader_close(rd);
+    char want[128];
+    snprintf(want, sizeof want, "W735: %s:6: the input ends inside this MODEL", path);
+    CHECK(strstr(diag_text(diag), want) != NULL);
+
+    /* The same file read whole for --model 2. */
+    vb_read_options o;
+    memset(&o, 0, sizeof o);
+    o.model = 2;
+    CHECK_INT(vb_spheres_read_file(ctx, path, &o, &s), VB_OK);
+    CHECK_INT(s ? s->n : 0, 2);
+    vb_spheres_free(s);
+    CHECK(strstr(diag_text(diag), want) != NULL);
+    remove(path);
+
+    /* MODELs closed by the next MODEL and by END: no W735. */
+    FILE *clean;
+    vb_ctx *c2 = open_ctx(&clean);
+    strcpy(path, temp_file("MODEL        1\n" PDB_C1 PDB_C2 "MODEL        2\n" PDB_C3 "END\n"));
+    CHECK_INT(vb_frame_reader_open(c2, path, NULL, &rd), VB_OK);
+    for (int k = 0; k < 3; k++) {
+        CHECK_INT(vb_frame_reader_next(c2, rd, &s, &model), VB_OK);
+        CHECK_INT(s ? s->n : 0, k == 0 ? 2 : k == 1 ? 1 : 0);
+        vb_spheres_free(s);
+    }
+    vb_frame_reader_close(rd);
+    CHECK(strstr(diag_text(clean), "W735") == NULL);
+    remove(path);
+    vb_close(c2);
+    vb_close(ctx);
+}
+
+/* Item 6: the B block of residue 1 that comes back after residue 2 is
+ * dropped like the contiguous one (it was kept beside A). */
+static void test_altloc_split(void)
+{
+    FILE *diag;
+    vb_ctx *ctx = open_ctx(&diag);
+    const char *pdb =
+        ATOM("    1", " N  ", "A", "SER", "   1", "   1.000", "   0.000", "   0.000", " N")
+        ATOM("    2", " CA ", "A", "SER", "   1", "   2.000", "   0.000", "   0.000", " C")
+        ATOM("    3", " N  ", " ", "ALA", "   2", "   5.000", "   0.000", "   0.000", " N")
+        ATOM("    4", " C  ", " ", "ALA", "   2", "   6.000", "   0.000", "   0.000", " C")
+        ATOM("    5", " N  ", "B", "SER", "   1", "   1.100", "   0.000", "   0.000", " N")
+        ATOM("    6", " CA ", "B", "SER", "   1", "   2.100", "   0.000", "   0.000", " C")
+        ATOM("    7", " N  ", "A", "GLY", "   3", "   9.000", "   0.000", "   0.000", " N");
+    vb_sphere_set *s = NULL;
+    CHECK_INT(read_text(ctx, "alt.pdb", pdb, NULL, &s), VB_OK);
+    CHECK_INT(s ? s->n : 0, 5);
+    if (s && s->n == 5) {
+        const long lines[5] = {1, 2, 3, 4, 7};
+        for (int i = 0; i < 5; i++)
+            CHECK_INT(s->line[i], lines[i]);
+    }
+    vb_spheres_free(s);
+    CHECK(strstr(diag_text(diag), "W704: alt.pdb: 2 atoms of other alternate locations") != NULL);
+    vb_close(ctx);
+}
+
+int main(void)
+{
+    test_duplicates();
+    test_dcd_huge_claim();
+    test_dcd_stray_bytes();
+    test_nul_byte();
+    test_bom();
+    test_cr_only();
+    test_truncated_model();
+    test_altloc_split();
+    VB_TEST_END();
+}

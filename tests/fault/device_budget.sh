@@ -1,0 +1,44 @@
+#!/bin/sh
+# Device memory (issue 18, item 12): the sampler's device buffers stay
+# within the device layer's budget, whatever size of batch it is handed,
+# with output bytes identical to --device ref. With VORBALL_DEVICE_MEMORY_MIB
+# small, the batches of crambin run in parts; the shim reports the largest
+# clCreateBuffer. With "peak" as 5th argument (label long): on 3pqr (5352
+# atoms) the default device (PoCL) peaks within 1.2 times the resident memory
+# of --device cpu (it took 1.5 times: batches sized for a GPU).
+# usage: device_budget.sh VORBALL SHIM CORPUS_DIR WORK_DIR [peak]
+vorball=$1 shim=$2 corpus=$3 work=$4/device_budget
+here=$(cd "$(dirname "$0")" && pwd)
+. "$here/../pipeline/lib.sh"
+mkdir -p "$work" || fail "cannot create $work"
+ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}verify_asan_link_order=0"
+export ASAN_OPTIONS
+if [ "$5" = peak ]; then
+    in=$corpus/data/3pqr.pqr
+    [ -x /usr/bin/time ] || { echo "no /usr/bin/time: skipped"; exit 0; }
+    /usr/bin/time -f '%M' -o "$work/cpu.kb" "$vorball" vertices --device cpu "$in" \
+        -o "$work/cpu.tsv" 2> "$work/cpu.err" || fail "--device cpu failed"
+    /usr/bin/time -f '%M' -o "$work/auto.kb" "$vorball" vertices "$in" \
+        -o "$work/auto.tsv" 2> "$work/auto.err" || fail "the default device failed"
+    cmp -s "$work/cpu.tsv" "$work/auto.tsv" || fail "the default device wrote other vertices"
+    cpu=$(tail -n 1 "$work/cpu.kb") auto=$(tail -n 1 "$work/auto.kb")
+    [ $((auto * 10)) -le $((cpu * 12)) ] ||
+        fail "the default device peaked at $auto KB, --device cpu at $cpu KB"
+    echo "ok: default device $auto KB, --device cpu $cpu KB"
+    exit 0
+fi
+in=$corpus/data/1crn.pdb
+run 0 "$work/ref.err" "$vorball" vertices --device ref "$in" -o "$work/ref.tsv"
+for mib in 1 4; do
+    rm -f "$work/counts.txt" "$work/v.tsv"
+    VORBALL_DEVICE_MEMORY_MIB=$mib LD_PRELOAD=$shim VB_CLFAULT_COUNTS=$work/counts.txt \
+        "$vorball" vertices "$in" -o "$work/v.tsv" > "$work/v.err" 2>&1 ||
+        { cat "$work/v.err" >&2; fail "vertices with a budget of $mib MiB failed"; }
+    grep -Eq 'W7[0-9]{2}' "$work/v.err" && { cat "$work/v.err" >&2; fail "a warning at $mib MiB"; }
+    cmp -s "$work/v.tsv" "$work/ref.tsv" || fail "a budget of $mib MiB changed the vertices"
+    grep -q '^clEnqueueNDRangeKernel ' "$work/counts.txt" || fail "no kernel ran on OpenCL"
+    max=$(sed -n 's/^# max_buffer_bytes //p' "$work/counts.txt" | sort -n | tail -n 1)
+    [ "$max" -le $((mib << 20)) ] || fail "a device buffer of $max bytes, budget $mib MiB"
+    echo "budget $mib MiB: largest device buffer $max bytes"
+done
+echo "ok: device buffers within the budget"

@@ -1,0 +1,31 @@
+#!/bin/sh
+# The installed library as a program outside the tree sees it: `cmake
+# --install` of the libvorball component into a scratch prefix, a client
+# compiled against the installed headers with the flags of the installed
+# vorball.pc (pkg-config), linked to the installed libvorball.so only, run
+# on a corpus case: it must certify the golden number of vertices and
+# verify all of them in memory.
+# usage: install.sh BUILD_DIR CC CORPUS WORK_DIR [EXTRA_CFLAGS]
+build=$1 cc=$2 corpus=$3 work=$4/install extra=$5
+. "$(dirname "$0")/lib.sh"
+rm -rf "$work" && mkdir -p "$work" || fail "cannot create $work"
+cmake --install "$build" --prefix "$work/prefix" --component libvorball > "$work/install.log" 2>&1 ||
+    { cat "$work/install.log" >&2; fail "cmake --install failed"; }
+pc=$(find "$work/prefix" -name vorball.pc | head -n 1)
+[ -n "$pc" ] || fail "no vorball.pc installed"
+libdir=$(dirname "$(dirname "$pc")")
+cflags=$(PKG_CONFIG_PATH=$(dirname "$pc") pkg-config --cflags vorball) || fail "pkg-config --cflags"
+libs=$(PKG_CONFIG_PATH=$(dirname "$pc") pkg-config --libs vorball) || fail "pkg-config --libs"
+# shellcheck disable=SC2086 # the flags are words
+"$cc" -std=c11 -Wall -Wextra -Werror $extra $cflags "$(dirname "$0")/install_client.c" $libs \
+    -Wl,-rpath,"$libdir" -o "$work/client" > "$work/cc.log" 2>&1 ||
+    { cat "$work/cc.log" >&2; fail "the client does not compile against the installed headers"; }
+case=cubic_lattice
+"$work/client" "$corpus/inputs/$case.xyzr" > "$work/out.txt" 2> "$work/err.txt" ||
+    { cat "$work/err.txt" >&2; fail "client failed"; }
+n=$(vertex_lines "$corpus/golden/$case.tsv" | wc -l)
+[ "$(cat "$work/out.txt")" = "$n $n" ] ||
+    fail "client printed '$(cat "$work/out.txt")', expected '$n $n' (golden $case)"
+# Nothing but the library's own dependencies: the client needs no static archive.
+ldd "$work/client" | grep -q "$libdir/libvorball.so" || fail "client not linked to the installed libvorball"
+echo "ok: installed libvorball certified and verified $n vertices of $case"

@@ -1,0 +1,665 @@
+/* The first sphere that touches along an arc of a trisector (vbx_arc.h):
+ * candidates from a provably conservative region of the arc, their roots
+ * on the curve, and the positions of those roots against the arc's ends.
+ *
+ * Why the candidates are complete. In the (S, G) coordinates of the plane
+ * (u = O + S ES + G EG) every L_j is affine, so L_j < 0 somewhere on a part
+ * of the arc only if L_j < 0 somewhere on any convex region that holds that
+ * part. The regions used:
+ *   - a bounded arc of an open branch, between positions G0 < G1: S on the
+ *     branch is Sc + sqrt(k^2 G^2 + cp), monotone on each side of G = 0, so
+ *     the arc lies in the box G in [G0, G1], S between the ends' values (and
+ *     the branch's Smin when G = 0 lies between them);
+ *   - a tail to infinity, G >= G1 >= 0: the branch lies between its
+ *     asymptote S = Sc + k G and the parallel line through the tail's first
+ *     point (the gap S - Sc - k G shrinks as G grows), a half-strip: its
+ *     segment at G1 plus the recession direction D = (k, 1). L_j is >= 0 on
+ *     it exactly when it is at the segment's two ends and grad L_j . D >= 0.
+ *     A tail starting at G0 < 0 adds the box [G0, 0] x [Smin, S(G0)];
+ *   - a closed curve: the box of the whole ellipse.
+ * L_j(u) < 0 at a point u of such a box means |c_j - p_u|^2 < (t_u + R_j)^2
+ * + Q(u) with p_u = c_a + u_q, t_u = u_s - R_a, so |c_j - p_u| < |t_u| +
+ * sqrt(max(Q(u), 0)) + R_j: a tangent-ball query of the certifier's index
+ * (vbx_sindex.h) with radius |t| + sqrt(Q+) over the box's enclosure sees
+ * every such j. grad L_j . D < 0 means m_j . D_u > 0, a half-space of
+ * centres and radii: the index's hierarchy is walked with that test. Every
+ * bound is an interval enclosure, so the exact frame's region lies inside
+ * the one queried. Where the enclosures fail (nearly collinear centres, a
+ * parabola) every sphere is a candidate.
+ *
+ * Then each candidate's fine test (L_j > 0 over the region: skipped), and
+ * for the rest the roots of T + j, filtered (verify/quad_filter.c) and
+ * exactly where the filter cannot place them. A member of an end's vertex
+ * has that end as one of its two roots: when exactly one root's position
+ * cannot be told from that end and the other's can, the first is the end. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "vbx_arc.h"
+
+enum { PART_BOX = 0, PART_STRIP = 1 };
+
+typedef struct part {
+    int kind;
+    vbx_ia S, G;   /* box; strip: its segment (G a point interval) */
+    vbx_ia D[2];   /* strip: recession direction (dS, dG) */
+} part;
+
+typedef struct region {
+    int brute;
+    int n;
+    part p[2];
+} region;
+
+static vbx_ia ia_hull(vbx_ia a, vbx_ia b)
+{
+    vbx_ia r = {vbx_min(a.lo, b.lo), vbx_max(a.hi, b.hi)};
+    return r;
+}
+
+static vbx_ia ia_span(double lo, double hi)
+{
+    vbx_ia r = {lo, hi};
+    return r;
+}
+
+/* S on the open branch at |G| = g (g an interval >= 0). */
+static vbx_ia branch_S(const vbx_tframe *f, vbx_ia g)
+{
+    vbx_ia kg = vbx_ia_mul(f->k, g);
+    return vbx_ia_add(f->Sc, vbx_ia_sqrt(vbx_ia_add(vbx_ia_sqr(kg), f->cp)));
+}
+
+/* The region of the arc from e0 to e1 (see the top). */
+static void region_of(const vbx_tframe *f, const vbx_arc_end *e0, const vbx_arc_end *e1,
+                      region *rg)
+{
+    memset(rg, 0, sizeof *rg);
+    if (!f->ok) {
+        rg->brute = 1;
+        return;
+    }
+    if (f->kind != VBX_TRI_OPEN) {
+        rg->n = 1;
+        rg->p[0].kind = PART_BOX;
+        rg->p[0].S = ia_span(vbx_ia_sub(f->Sc, f->ax).lo, vbx_ia_add(f->Sc, f->ax).hi);
+        rg->p[0].G = ia_span(-f->bx.hi, f->bx.hi);
+        return;
+    }
+    if (!e0->inf && !e1->inf) {
+        part *p = &rg->p[rg->n++];
+        p->kind = PART_BOX;
+        p->G = ia_span(e0->key.G.lo, e1->key.G.hi);
+        double shi = vbx_max(e0->key.S.hi, e1->key.S.hi);
+        double slo = vbx_min(e0->key.S.lo, e1->key.S.lo);
+        if (p->G.lo <= 0.0 && p->G.hi >= 0.0)
+            slo = vbx_min(slo, f->Smin.lo);
+        p->S = ia_span(slo, shi);
+        return;
+    }
+    /* A tail: forward (e1 at infinity) from G0, or backward (e0 at
+     * infinity) to G1; mirrored to g = +-G >= g0. */
+    int fwd = e1->inf;
+    vbx_ia G0 = fwd ? e0->key.G : vbx_ia_neg(e1->key.G);
+    double sgn = fwd ? 1.0 : -1.0;
+    double g1;
+    if (G0.lo >= 0.0) {
+        g1 = G0.lo;
+    } else {
+        part *b = &rg->p[rg->n++];
+        b->kind = PART_BOX;
+        vbx_ia far = branch_S(f, vbx_ia_point(-G0.lo));
+        b->S = ia_span(f->Smin.lo, vbx_max(far.hi, f->Smin.hi));
+        b->G = fwd ? ia_span(G0.lo, 0.0) : ia_span(0.0, -G0.lo);
+        g1 = 0.0;
+    }
+    part *s = &rg->p[rg->n++];
+    s->kind = PART_STRIP;
+    vbx_ia gi = vbx_ia_point(g1);
+    vbx_ia on = branch_S(f, gi), asym = vbx_ia_add(f->Sc, vbx_ia_mul(f->k, gi));
+    s->S = ia_hull(on, asym);
+    s->G = vbx_ia_point(sgn * g1);
+    s->D[0] = f->k;
+    s->D[1] = vbx_ia_point(sgn);
+}
+
+/* u = O + S ES + G EG over intervals. */
+static void u_of(const vbx_tframe *f, vbx_ia S, vbx_ia G, vbx_ia u[4])
+{
+    for (int k = 0; k < 4; k++)
+        u[k] = vbx_ia_add(f->O[k], vbx_ia_add(vbx_ia_mul(S, f->ES[k]), vbx_ia_mul(G, f->EG[k])));
+}
+
+static int push_cand(vbx_arcw *w, uint32_t j)
+{
+    if (w->mark[j])
+        return VB_OK;
+    if (w->ncand == w->cand_cap) {
+        size_t nc = w->cand_cap ? 2 * w->cand_cap : 256;
+        uint32_t *p = realloc(w->cand, nc * sizeof *p);
+        if (!p)
+            return VB_ENOMEM;
+        w->cand = p;
+        w->cand_cap = nc;
+    }
+    w->mark[j] = 1;
+    w->cand[w->ncand++] = j;
+    return VB_OK;
+}
+
+/* Every sphere that may reach into a ball of radius |t| + sqrt(Q+) around a
+ * point of the box S x G (see the top). */
+static int query_box(vbx_arcw *w, const vbx_tframe *f, vbx_ia S, vbx_ia G)
+{
+    const vbx_ia *ba = &w->c->d.box[4 * (size_t)f->t[0]];
+    vbx_ia u[4], p[4];
+    u_of(f, S, G, u);
+    for (int k = 0; k < 3; k++)
+        p[k] = vbx_ia_add(ba[k], u[k]);
+    vbx_ia t = vbx_ia_sub(u[3], ba[3]);
+    vbx_ia Q = vbx_ia_sub(vbx_ia_add(vbx_ia_add(vbx_ia_sqr(u[0]), vbx_ia_sqr(u[1])),
+                                     vbx_ia_sqr(u[2])),
+                          vbx_ia_sqr(u[3]));
+    double at = vbx_max(-t.lo, t.hi);
+    double rad = vbx_succ(at + (Q.hi > 0.0 ? vbx_succ(sqrt(Q.hi)) : 0.0));
+    if (!(rad < INFINITY) || rad != rad)
+        return 1; /* unbounded: the caller goes brute force */
+    p[3] = vbx_ia_point(rad);
+    const vbx_sindex *ix = &w->c->t;
+    vbx_walk walk;
+    vbx_walk_init(&walk, ix, p);
+    size_t s0, s1;
+    while (vbx_walk_next(&walk, &s0, &s1))
+        for (size_t s = s0; s < s1; s++) {
+            if (vbx_outside_sphere(&ix->box[4 * s], p))
+                continue;
+            if (push_cand(w, ix->ids[s]) != VB_OK)
+                return -1;
+        }
+    return 0;
+}
+
+/* Upper bound of m_j . D over the centres in [lo, hi] and radii in
+ * [0, rmax] (m_j = (c_j - c_a, R_j - R_a)). */
+static double half_hi(const vbx_ia *ba, const vbx_ia D[4], const double lo[3], const double hi[3],
+                      double rmax)
+{
+    vbx_ia s = vbx_ia_point(0.0);
+    for (int k = 0; k < 3; k++)
+        s = vbx_ia_add(s, vbx_ia_mul(D[k], vbx_ia_sub(ia_span(lo[k], hi[k]), ba[k])));
+    s = vbx_ia_add(s, vbx_ia_mul(D[3], vbx_ia_sub(ia_span(0.0, rmax), ba[3])));
+    return s.hi;
+}
+
+/* Every sphere with m_j . D_u > 0 possible. */
+static int query_half(vbx_arcw *w, const vbx_tframe *f, const vbx_ia Ddir[2])
+{
+    vbx_ia D[4];
+    for (int k = 0; k < 4; k++)
+        D[k] = vbx_ia_add(vbx_ia_mul(Ddir[0], f->ES[k]), vbx_ia_mul(Ddir[1], f->EG[k]));
+    const vbx_ia *ba = &w->c->d.box[4 * (size_t)f->t[0]];
+    const vbx_sindex *ix = &w->c->t;
+    if (!ix->n)
+        return 0;
+    uint32_t stack[VBX_SINDEX_STACK];
+    uint32_t sp = 0;
+    stack[sp++] = 0;
+    while (sp) {
+        const vbx_bvh_node *nd = &ix->node[stack[--sp]];
+        if (!(half_hi(ba, D, nd->lo, nd->hi, nd->rmax) > 0.0))
+            continue;
+        if (!nd->count) {
+            uint32_t i = (uint32_t)(nd - ix->node);
+            stack[sp++] = nd->first;
+            stack[sp++] = i + 1;
+            continue;
+        }
+        for (uint32_t s = nd->first; s < nd->first + nd->count; s++) {
+            const vbx_ia *cj = &ix->box[4 * (size_t)s];
+            double lo[3] = {cj[0].lo, cj[1].lo, cj[2].lo}, hi[3] = {cj[0].hi, cj[1].hi, cj[2].hi};
+            vbx_ia Dr[4] = {D[0], D[1], D[2], D[3]};
+            /* one sphere: its radius enclosure instead of [0, rmax] */
+            vbx_ia sum = vbx_ia_point(0.0);
+            for (int k = 0; k < 3; k++)
+                sum = vbx_ia_add(sum, vbx_ia_mul(Dr[k], vbx_ia_sub(ia_span(lo[k], hi[k]), ba[k])));
+            sum = vbx_ia_add(sum, vbx_ia_mul(Dr[3], vbx_ia_sub(cj[3], ba[3])));
+            if (sum.hi > 0.0 && push_cand(w, ix->ids[s]) != VB_OK)
+                return -1;
+        }
+    }
+    return 0;
+}
+
+static void clear_cands(vbx_arcw *w)
+{
+    for (size_t i = 0; i < w->ncand; i++)
+        w->mark[w->cand[i]] = 0;
+    w->ncand = 0;
+}
+
+/* Candidates of the region: VB_OK, VB_ENOMEM; sets rg->brute when a query
+ * cannot be bounded. */
+static int gather(vbx_arcw *w, const vbx_tframe *f, region *rg)
+{
+    clear_cands(w);
+    if (!rg->brute)
+        for (int i = 0; i < rg->n; i++) {
+            const part *p = &rg->p[i];
+            int r = query_box(w, f, p->S, p->G);
+            if (r == 0 && p->kind == PART_STRIP)
+                r = query_half(w, f, p->D);
+            if (r < 0)
+                return VB_ENOMEM;
+            if (r > 0) {
+                rg->brute = 1;
+                break;
+            }
+        }
+    if (rg->brute) {
+        clear_cands(w);
+        w->cnt.brute++;
+        for (size_t j = 0; j < w->set->n; j++)
+            if (push_cand(w, (uint32_t)j) != VB_OK)
+                return VB_ENOMEM;
+    }
+    return VB_OK;
+}
+
+/* 1 when L_j > 0 is proven over the whole region. */
+static int clear_of(const vbx_arcw *w, const vbx_tframe *f, const region *rg, uint32_t j)
+{
+    if (rg->brute)
+        return 0;
+    const vbx_ia *ba = &w->c->d.box[4 * (size_t)f->t[0]], *bj = &w->c->d.box[4 * (size_t)j];
+    vbx_ia m[4];
+    for (int k = 0; k < 4; k++)
+        m[k] = vbx_ia_sub(bj[k], ba[k]);
+    vbx_ia W = vbx_ia_sub(vbx_ia_add(vbx_ia_add(vbx_ia_sqr(m[0]), vbx_ia_sqr(m[1])),
+                                     vbx_ia_sqr(m[2])),
+                          vbx_ia_sqr(m[3]));
+    vbx_ia mES = vbx_ia_point(0.0), mEG = mES, mO = mES;
+    for (int k = 0; k < 4; k++) {
+        mES = vbx_ia_add(mES, vbx_ia_mul(m[k], f->ES[k]));
+        mEG = vbx_ia_add(mEG, vbx_ia_mul(m[k], f->EG[k]));
+        mO = vbx_ia_add(mO, vbx_ia_mul(m[k], f->O[k]));
+    }
+    vbx_ia two = vbx_ia_point(-2.0);
+    vbx_ia lS = vbx_ia_mul(two, mES), lG = vbx_ia_mul(two, mEG);
+    vbx_ia l0 = vbx_ia_add(W, vbx_ia_mul(two, mO));
+    for (int i = 0; i < rg->n; i++) {
+        const part *p = &rg->p[i];
+        vbx_ia L = vbx_ia_add(vbx_ia_add(vbx_ia_mul(lS, p->S), vbx_ia_mul(lG, p->G)), l0);
+        if (!(L.lo > 0.0))
+            return 0;
+        if (p->kind == PART_STRIP) {
+            vbx_ia dL = vbx_ia_add(vbx_ia_mul(lS, p->D[0]), vbx_ia_mul(lG, p->D[1]));
+            if (!(dL.lo >= 0.0))
+                return 0;
+        }
+    }
+    return 1;
+}
+
+static int is_member(const uint32_t *m, size_t nm, uint32_t j)
+{
+    size_t lo = 0, hi = nm;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (m[mid] < j)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo < nm && m[lo] == j;
+}
+
+/* Makes sure end e has its exact point. */
+static int need_end(vbx_arcw *w, vbx_tframe *f, vbx_arc_end *e)
+{
+    if (e->inf || *e->have)
+        return VB_OK;
+    if (!vbx_xpt_of_vertex(w, f, e->m, e->nm, e->xyzt, e->x))
+        return VB_EDEGENERATE;
+    *e->have = 1;
+    return VB_OK;
+}
+
+/* cmp(y, e): -1, 0, 1, or 2 (undecided) when exact is 0; with exact, the
+ * exact answer (or VB_EDEGENERATE as -9). */
+static int cmp_end(vbx_arcw *w, vbx_tframe *f, const vbx_key *ky, const vbx_xpt *xy,
+                   vbx_arc_end *e, int exact)
+{
+    int c = vbx_pos_cmp(w, f, ky, NULL, &e->key, NULL);
+    if (c != 2 || !exact)
+        return c;
+    if (need_end(w, f, e) != VB_OK)
+        return -9;
+    return vbx_pos_cmp(w, f, ky, xy, &e->key, e->x);
+}
+
+enum { POS_OUT = 0, POS_IN = 1, POS_END = 2, POS_OPEN = 3 };
+
+/* Where a point with comparisons c0 = cmp(y, e0), c1 = cmp(y, e1) lies
+ * (either 2 = undecided). loop: e0 == e1 on a closed curve; wrap: e0 after
+ * e1 on a closed curve. */
+static int place(int c0, int c1, int open, int loop, int wrap)
+{
+    if (c0 == 0 || c1 == 0)
+        return POS_END;
+    if (loop)
+        return c0 == 2 ? POS_OPEN : POS_IN;
+    if (open || !wrap) {
+        if (c0 == -1 || c1 == 1)
+            return POS_OUT;
+        if (c0 == 2 || c1 == 2)
+            return POS_OPEN;
+        return POS_IN;
+    }
+    if (c0 == 1 || c1 == -1)
+        return POS_IN;
+    if (c0 == 2 || c1 == 2)
+        return POS_OPEN;
+    return POS_OUT;
+}
+
+typedef struct search {
+    vbx_tframe *f;
+    vbx_arc_end *e0, *e1;
+    int open, loop, wrap;
+    vbx_touch *first, *last;
+} search;
+
+/* Solves sorted T + j exactly into w->sq; returns its number of roots (0
+ * when it names none). */
+static int solve_quad(vbx_arcw *w, const uint32_t t[3], uint32_t j)
+{
+    uint32_t q[4] = {t[0], t[1], t[2], j};
+
+    for (int i = 1; i < 4; i++)
+        for (int k = i; k > 0 && q[k - 1] > q[k]; k--) {
+            uint32_t x = q[k];
+            q[k] = q[k - 1];
+            q[k - 1] = x;
+        }
+    w->cnt.exact_evals++;
+    if (vbx_solve(&w->sq, q[0], q + 1) != VBX_SOLVED)
+        return 0;
+    return w->sq.nroots;
+}
+
+/* The exact point of touch tp (solving its quadruple again when needed). */
+static int touch_exact(vbx_arcw *w, vbx_tframe *f, vbx_touch *tp)
+{
+    if (tp->have)
+        return VB_OK;
+    int nr = solve_quad(w, f->t, tp->j);
+    if (tp->r >= nr)
+        return vb_error(w->ctx, VB_EINTERNAL, NULL, 0,
+                        "arc closure: the filter and the exact solver disagree on %u %u %u %u",
+                        f->t[0], f->t[1], f->t[2], tp->j);
+    vbx_xpt_of_root(w, f, &w->sq, &w->sq.root[tp->r], &tp->x);
+    tp->have = 1;
+    return VB_OK;
+}
+
+static void touch_set(vbx_touch *dst, uint32_t j, int r, int seg, const vbx_key *k,
+                      const vbx_xpt *x)
+{
+    dst->found = 1;
+    dst->j = j;
+    dst->r = r;
+    dst->seg = seg;
+    dst->key = *k;
+    dst->have = x != NULL;
+    if (x) {
+        mpz_set(dst->x.d, x->d);
+        mpz_set(dst->x.den, x->den);
+        for (int i = 0; i < 4; i++) {
+            mpz_set(dst->x.U[i].a, x->U[i].a);
+            mpz_set(dst->x.U[i].b, x->U[i].b);
+        }
+        mpz_set(dst->x.Gn.a, x->Gn.a);
+        mpz_set(dst->x.Gn.b, x->Gn.b);
+        mpz_set(dst->x.Sn.a, x->Sn.a);
+        mpz_set(dst->x.Sn.b, x->Sn.b);
+    }
+}
+
+/* Order of two touches along the arc: -1 (a first), 0, 1. */
+static int touch_order(vbx_arcw *w, vbx_tframe *f, vbx_touch *a, vbx_touch *b)
+{
+    if (a->seg != b->seg)
+        return a->seg < b->seg ? -1 : 1;
+    int c = vbx_pos_cmp(w, f, &a->key, NULL, &b->key, NULL);
+    if (c != 2)
+        return c;
+    int rc = touch_exact(w, f, a);
+    if (rc == VB_OK)
+        rc = touch_exact(w, f, b);
+    if (rc != VB_OK)
+        return -9;
+    return vbx_pos_cmp(w, f, &a->key, &a->x, &b->key, &b->x);
+}
+
+/* Offers an inside point (j, root r) to first and last. */
+static int offer(vbx_arcw *w, search *sr, uint32_t j, int r, int c0, const vbx_key *k,
+                 const vbx_xpt *x)
+{
+    int seg = (sr->open || sr->loop || sr->wrap) && !sr->open ? (c0 == 1 ? 0 : 1) : 0;
+    vbx_touch *slot[2] = {sr->first, sr->last};
+    for (int s = 0; s < 2; s++) {
+        vbx_touch *tp = slot[s];
+        if (!tp)
+            continue;
+        if (tp->found) {
+            vbx_touch cand;
+            cand.found = 1;
+            cand.j = j;
+            cand.r = r;
+            cand.seg = seg;
+            cand.key = *k;
+            cand.have = 0;
+            /* the candidate's exact point lives in x (w->yx) when set */
+            int o;
+            if (x) {
+                vbx_xpt_init(&cand.x);
+                touch_set(&cand, j, r, seg, k, x);
+                o = touch_order(w, sr->f, &cand, tp);
+                vbx_xpt_clear(&cand.x);
+            } else {
+                vbx_xpt_init(&cand.x);
+                o = touch_order(w, sr->f, &cand, tp);
+                if (o != -9 && ((s == 0 && o < 0) || (s == 1 && o > 0)))
+                    touch_set(tp, j, r, seg, k, cand.have ? &cand.x : NULL);
+                vbx_xpt_clear(&cand.x);
+                if (o == -9)
+                    return VB_EDEGENERATE;
+                continue;
+            }
+            if (o == -9)
+                return VB_EDEGENERATE;
+            if (!((s == 0 && o < 0) || (s == 1 && o > 0)))
+                continue;
+        }
+        touch_set(tp, j, r, seg, k, x);
+    }
+    return VB_OK;
+}
+
+/* Exact placement of both roots of T + j. */
+static int exact_roots(vbx_arcw *w, search *sr, uint32_t j)
+{
+    vbx_tframe *f = sr->f;
+    int nr = solve_quad(w, f->t, j);
+    for (int r = 0; r < nr; r++) {
+        vbx_solver *s = &w->sq;
+        const vbx_root *root = &s->root[r];
+        /* On the trisector: t + R_a > 0 (the branch), and a touching of j:
+         * t + R_j >= 0. */
+        if (vbx_sign_tangent(s, root, f->t[0]) <= 0 || vbx_sign_tangent(s, root, j) < 0)
+            continue;
+        vbx_xpt *y = &w->yx[r];
+        vbx_xpt_of_root(w, f, s, root, y);
+        vbx_key ky;
+        memset(&ky, 0, sizeof ky);
+        ky.half = -1; /* the filter knows nothing: exact comparisons only */
+        ky.G = ky.S = ky.val = ia_span(-INFINITY, INFINITY);
+        int c0 = sr->e0->inf ? 1 : cmp_end(w, f, &ky, y, sr->e0, 1);
+        int c1 = sr->e1->inf ? -1 : cmp_end(w, f, &ky, y, sr->e1, 1);
+        if (c0 == -9 || c1 == -9)
+            return VB_EDEGENERATE;
+        int pl = place(c0, c1, f->kind == VBX_TRI_OPEN, sr->loop, sr->wrap);
+        if (pl != POS_IN)
+            continue;
+        int rc = offer(w, sr, j, r, c0, &ky, y);
+        if (rc != VB_OK)
+            return rc;
+    }
+    return VB_OK;
+}
+
+/* Filtered placement of the roots of T + j; falls back to exact_roots. */
+static int candidate(vbx_arcw *w, search *sr, uint32_t j)
+{
+    vbx_tframe *f = sr->f;
+    const vb_certifier *c = w->c;
+    w->cnt.root_checks++;
+    uint32_t q[4] = {f->t[0], f->t[1], f->t[2], j};
+    for (int i = 1; i < 4; i++)
+        for (int k = i; k > 0 && q[k - 1] > q[k]; k--) {
+            uint32_t x = q[k];
+            q[k] = q[k - 1];
+            q[k - 1] = x;
+        }
+    const vbx_qf_ops *ops = c->qd.ops;
+    vbx_qline L;
+    vbx_qprep P;
+    w->cnt.filter_calls++;
+    int fs = c->qd.ok && ops->line(&c->qd, q, &L) ? ops->prep(&L, &P) : VBX_QF_EXACT;
+    if (fs == VBX_QF_NONE)
+        return VB_OK;
+    if (fs == VBX_QF_EXACT) {
+        w->cnt.filter_failures++;
+        return exact_roots(w, sr, j);
+    }
+    const vbx_ia *ba = &c->d.box[4 * (size_t)f->t[0]], *bj = &c->d.box[4 * (size_t)j];
+    vbx_key ky[2];
+    int c0[2], c1[2], on[2];
+    for (int r = 0; r < 2; r++) {
+        vbx_qroot R;
+        ops->root(&P, r, &R);
+        if (!ops->point(&c->qd, &L, &P, &R)) {
+            w->cnt.filter_failures++;
+            return exact_roots(w, sr, j);
+        }
+        int sa = vbx_ia_sign(vbx_ia_add(R.p[3], ba[3]));
+        vbx_ia tj = vbx_ia_add(R.p[3], bj[3]);
+        if (sa < 0 || tj.hi < 0.0) {
+            on[r] = 0;
+            continue;
+        }
+        if (sa == 0 || !(tj.lo >= 0.0)) {
+            w->cnt.filter_failures++;
+            return exact_roots(w, sr, j);
+        }
+        on[r] = 1;
+        vbx_key_of_box(w, f, R.p, &ky[r]);
+        c0[r] = sr->e0->inf ? 1 : vbx_pos_cmp(w, f, &ky[r], NULL, &sr->e0->key, NULL);
+        c1[r] = sr->e1->inf ? -1 : vbx_pos_cmp(w, f, &ky[r], NULL, &sr->e1->key, NULL);
+    }
+    /* A member of an end's vertex: one root is that end. */
+    for (int e = 0; e < 2; e++) {
+        const vbx_arc_end *end = e ? sr->e1 : sr->e0;
+        int *cc = e ? c1 : c0;
+        if (end->inf || !is_member(end->m, end->nm, j))
+            continue;
+        int u0 = on[0] && cc[0] == 2, u1 = on[1] && cc[1] == 2;
+        int d0 = !on[0] || cc[0] != 2, d1 = !on[1] || cc[1] != 2;
+        if (u0 && d1)
+            cc[0] = 0;
+        else if (u1 && d0)
+            cc[1] = 0;
+    }
+    int pl[2];
+    for (int r = 0; r < 2; r++) {
+        pl[r] = on[r] ? place(c0[r], c1[r], f->kind == VBX_TRI_OPEN, sr->loop, sr->wrap) : POS_OUT;
+        if (pl[r] == POS_OPEN) {
+            w->cnt.filter_failures++;
+            return exact_roots(w, sr, j);
+        }
+    }
+    for (int r = 0; r < 2; r++)
+        if (pl[r] == POS_IN) {
+            int rc = offer(w, sr, j, r, c0[r], &ky[r], NULL);
+            if (rc != VB_OK)
+                return rc;
+        }
+    return VB_OK;
+}
+
+int vbx_arc_search(vbx_arcw *w, vbx_tframe *f, vbx_arc_end *e0, vbx_arc_end *e1,
+                   vbx_touch *first, vbx_touch *last)
+{
+    search sr = {f, e0, e1, f->kind == VBX_TRI_OPEN, 0, 0, first, last};
+    if (first)
+        first->found = 0;
+    if (last)
+        last->found = 0;
+    if (!sr.open) {
+        sr.loop = e0 == e1;
+        if (!sr.loop) {
+            int c = vbx_pos_cmp(w, f, &e0->key, NULL, &e1->key, NULL);
+            if (c == 2) {
+                if (need_end(w, f, e0) != VB_OK || need_end(w, f, e1) != VB_OK)
+                    return VB_EDEGENERATE;
+                c = vbx_pos_cmp(w, f, &e0->key, e0->x, &e1->key, e1->x);
+            }
+            sr.wrap = c > 0;
+        }
+    }
+    region rg;
+    region_of(f, e0, e1, &rg);
+    int rc = gather(w, f, &rg);
+    for (size_t i = 0; rc == VB_OK && i < w->ncand; i++) {
+        uint32_t j = w->cand[i];
+        if (j == f->t[0] || j == f->t[1] || j == f->t[2] ||
+            (w->set->contained && w->set->contained[j]))
+            continue;
+        w->cnt.candidates++;
+        if (clear_of(w, f, &rg, j))
+            continue;
+        rc = candidate(w, &sr, j);
+    }
+    clear_cands(w);
+    return rc;
+}
+
+int vbx_touch_certify(vbx_arcw *w, vbx_tframe *f, const vbx_touch *tp, double xyzt[4])
+{
+    vb_certifier *c = w->c;
+    uint32_t q[4] = {f->t[0], f->t[1], f->t[2], tp->j};
+    for (int i = 1; i < 4; i++)
+        for (int k = i; k > 0 && q[k - 1] > q[k]; k--) {
+            uint32_t x = q[k];
+            q[k] = q[k - 1];
+            q[k - 1] = x;
+        }
+    if (vbx_solve(&c->sol, q[0], q + 1) != VBX_SOLVED || tp->r >= c->sol.nroots) {
+        vb_error(w->ctx, VB_EINTERNAL, NULL, 0, "arc closure: quadruple %u %u %u %u has no root %d",
+                 q[0], q[1], q[2], q[3], tp->r);
+        return -1;
+    }
+    const vbx_root *root = &c->sol.root[tp->r];
+    vbx_ia box[4];
+    int rc = vbx_root_coords(&c->sol, root, xyzt, box);
+    if (rc != VB_OK) {
+        vb_error(w->ctx, rc, NULL, 0, "cannot round an exact vertex to double");
+        return -1;
+    }
+    if (!vbx_cert_defining(w->ctx, c, root, q, 4, box))
+        return 0;
+    int verdict;
+    uint32_t intruder;
+    vbx_cert_scan(w->ctx, c, root, q, 4, box, &verdict, &intruder);
+    return verdict == VB_CERT_OK;
+}

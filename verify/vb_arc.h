@@ -1,0 +1,70 @@
+/* Arc closure: exact completeness evidence for a list of certified vertices.
+ *
+ * Every Voronoi vertex v of spheres M (|M| >= 4) has, for each triple T of
+ * M, up to two arcs of T's trisector leaving it (decided exactly from the
+ * signs of the other members' L_j along the curve's tangent: verify/vbx_arc.h).
+ * Along each arc the first sphere j beyond T that touches the moving tangent
+ * sphere is found from a provably conservative set of candidates, positions
+ * compared by the filter and in Q(sqrt(delta)) where it cannot tell
+ * (verify/arc_search.c). That point is the next vertex: it is certified
+ * exactly and looked up in the list; a vertex not in the list is added and
+ * traced in turn. An arc with no touching sphere runs to infinity (open
+ * branch) or closes on itself (closed curve).
+ *
+ * What a run with nothing added and nothing undecided proves: the list is
+ * closed under the edges of the diagram, i.e. it holds every vertex of each
+ * connected component of the vertex-edge graph that it meets. It does not
+ * prove that a component with no vertex in the list does not exist. */
+#ifndef VB_ARC_H
+#define VB_ARC_H
+
+#include <stdio.h>
+
+#include "vb_verify_file.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct vb_arc_report {
+    size_t vertices;        /* vertices traced: the input's and those added */
+    size_t half_arcs;       /* arcs leaving a vertex (each finite arc counts from both ends) */
+    size_t closed;          /* half arcs that end at a certified vertex */
+    size_t infinite;        /* half arcs to infinity */
+    size_t loops;           /* half arcs of a closed curve that return to their vertex */
+    size_t undecided;       /* half arcs not traced (a degenerate point: VB_EDEGENERATE) */
+    size_t components;      /* connected components of the vertex-edge graph */
+    vb_vertex_list added;   /* certified vertices found by tracing, not in the input (sorted) */
+    uint64_t filter_calls, filter_failures, exact_evals, candidates;
+} vb_arc_report;
+
+/* Traces every arc of every vertex of `in` and of every vertex found on the
+ * way, single-threaded and deterministic. `in` must hold certified vertices,
+ * each once: sorted ids of all their spheres, x y z t the exact vertex
+ * rounded to nearest, as vorball writes them (the status is ignored; a
+ * vertex that is not one gives undecided arcs or wrong closures, so judge a
+ * foreign file first: vb_verify_arcs). Fills *out (free with
+ * vb_arc_report_free, also on error). Returns VB_OK when the closure ran to
+ * the end (see vb_arc_report_complete), VB_ENOMEM, VB_EINTERNAL. */
+int vb_arc_close(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_list *in,
+                 vb_arc_report *out);
+
+/* 1 when every arc was traced and no vertex was added. */
+int vb_arc_report_complete(const vb_arc_report *r);
+
+void vb_arc_report_free(vb_arc_report *r);
+
+/* Arc closure of a judged vertex file: the exact vertices of its certified
+ * lines (one per exact vertex, so a Voronota group counts once) through
+ * vb_arc_close. Same returns as vb_arc_close. */
+int vb_verify_arcs(vb_ctx *ctx, const vb_sphere_set *set, const vb_verify_report *judged,
+                   vb_arc_report *out);
+
+/* The certificate as text: one "NAME: missing vertex IDS at X Y Z t T" line
+ * per added vertex, then "NAME: arcs: ..." with the counts. VB_OK or VB_EIO. */
+int vb_arc_write_text(vb_ctx *ctx, FILE *f, const char *name, const vb_arc_report *r);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
