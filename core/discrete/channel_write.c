@@ -77,7 +77,7 @@ static const struct {
     {"frame", "index of the frame in the input, from 0"},
     {"model", "its MODEL serial (PDB), else frame + 1"},
     {"channel", "number in the frame, 1 = the longest"},
-    {"kind", "pore (the axis sweep), channel (reaches the molecular surface) or cavity (--cavities)"},
+    {"kind", "pore (the axis sweep), channel (reaches the surface) or cavity (--cavities)"},
     {"through", "1 when the centreline joins openings on opposite sides (a pore)"},
     {"length_A", "centreline length, A"},
     {"bottleneck_A", "smallest clearance radius on it (to the nearest atom surface), A"},
@@ -96,9 +96,9 @@ static const struct {
     {"points", "points of the centreline (--centerlines, JSON)"},
     {"lining_atoms", "atoms whose surface is within radius + --lining-tol of a point"},
     {"lining_residues", "their residues, chain:NAMEnumber joined by ';' (one field)"},
-    {"reason", "why the row is what it is (pore along the axis, through, branch, tunnel, cavity)"},
-    {"bottleneck_s_A", "axial position of the bottleneck along the pore's axis, A (empty: no pore)"},
-    {"g_macro_pS", "the pore's macroscopic conductance estimate, pS (pore row only)"},
+    {"reason", "why it is listed: pore along the axis, through, branch, tunnel or cavity"},
+    {"bottleneck_s_A", "the bottleneck's position along the pore axis, A (empty: no pore)"},
+    {"g_macro_pS", "the pore row: its macroscopic conductance estimate, pS"},
 };
 
 const char *vbc_table_columns_help(void)
