@@ -1,5 +1,6 @@
 /* `vorball channels`: channels and cavities of a molecule or of every frame
- * of a trajectory (multi-model PDB/PQR/mmCIF, or DCD with a PDB topology),
+ * of a trajectory (multi-model PDB/PQR/mmCIF/GRO, or a DCD, XTC or TRR with
+ * its topology),
  * by the discrete-Voronoi pipeline of the Facet-JFA paper (Sec. 4) on
  * OpenCL or its C reference, with components, centrelines, bottlenecks and
  * lining residues. */
@@ -13,6 +14,7 @@
 #include "input_options.h"
 #include "channels_plot.h"
 #include "jfa_png.h"
+#include "progress.h"
 #include "vb_default.h"
 #include "vb_diag.h"
 #include "vb_frames.h"
@@ -27,7 +29,7 @@ static const char *cmd = "channels";
 typedef struct {
     const char *input, *out, *dcd, *centrelines, *pymol, *volume, *stats, *png;
     const char *profile, *plot, *occupancy;
-    int json, cavities, png_axis, fixed_grid;
+    int json, cavities, png_axis, fixed_grid, stats_stderr;
     vbc_pore_request pore;
     char ignore_buf[1024];
     const char *ignore[MAX_IGNORE];
@@ -49,8 +51,10 @@ static void usage(FILE *f)
             "usage: vorball channels [options] INPUT|-\n"
             "\n"
             "Channels (Voronoi edges inside the molecule that reach its surface) and cavities\n"
-            "(those that do not) of every frame of INPUT: PDB, PQR, mmCIF or XYZR; several\n"
-            "MODELs are a trajectory. With --dcd, INPUT is the PDB topology of a DCD file.\n"
+            "(those that do not) of every frame of INPUT: PDB, PQR, mmCIF, GRO or XYZR (gzip\n"
+            "or bzip2 compressed too); several MODELs or GRO frames are a trajectory. With\n"
+            "--traj, INPUT is the topology (PDB, GRO, mmCIF, PQR or a CHARMM/NAMD PSF) of a\n"
+            "DCD, XTC or TRR trajectory.\n"
             "Per frame, on OpenCL (or its C reference, --device ref): Facet-JFA labels of the\n"
             "atom centres on an n^3 grid, Voronoi edge voxels, atomic mask (balls r + probe),\n"
             "molecular mask (rays along x, y, z), interior = atomic xor molecular, channels =\n"
@@ -59,13 +63,15 @@ static void usage(FILE *f)
             "each point, bottleneck and lining residues.\n"
             "\n"
             "options:\n"
-            "  -o FILE             channel table (CSV; default stdout)\n"
+            "  -o FILE             channel table (CSV; default stdout); columns below\n"
             "  --json              the table as JSON, with centrelines\n"
-            "  --stats FILE        per-frame statistics (CSV): counts and timings\n"
+            "  --stats             per-frame statistics (CSV: counts and timings) on stderr\n"
+            "  --stats-file FILE   the same statistics to FILE\n"
             "  --probe R           solvent radius in A (default 1.4)\n"
             "  --grid N            grid side, a power of two 16..1024 (default 128)\n"
             "  --frames A:B:S      frames A, A+S, ... before B (from 0, B excluded; parts optional)\n"
-            "  --dcd FILE          read coordinates from a DCD trajectory (INPUT = topology)\n"
+            "  --traj FILE         coordinates from a DCD, XTC or TRR trajectory (INPUT = its\n"
+            "                      topology; told apart by magic number); --dcd is the same\n"
             "  --min-length L      prune centrelines shorter than L A (default 5)\n"
             "  --min-radius R      prune channels whose bottleneck is below R A (default 0)\n"
             "  --lining-tol T      an atom lines a point when its surface is within radius + T A\n"
@@ -114,7 +120,12 @@ static void usage(FILE *f)
             "frame order: the same bytes as one process (timings aside). Volumes and the\n"
             "picture are written by the rank that ran their frame. Under MPI the pore needs\n"
             "--axis and --through (or --no-pore), and --profile, --plot, --fixed-grid and\n"
-            "--occupancy run on one process only.\n");
+            "--occupancy run on one process only.\n"
+            "\n"
+            "The channel table (CSV), one row per pore, channel or cavity of each frame:\n"
+            "%s"
+            "\n",
+            vbc_table_columns_help());
     vb_cli_input_help(f);
 }
 
@@ -210,9 +221,23 @@ static int parse_args(int argc, char **argv, ch_args *A)
             A->input = a;
             continue;
         }
+        /* Flags first; then options with a value; anything else is not an
+         * option of this command (a typo is never taken for a value). */
+        static const char *const flags[] = {"--json", "--cavities", "--stats", "--no-pore", "--fixed-grid"};
+        static const char *const valued[] = {
+            "-o", "--stats-file", "--traj", "--dcd", "--centerlines", "--centrelines", "--pymol",
+            "--volume", "--png", "--probe", "--grid", "--frames", "--repeat", "--min-length",
+            "--min-radius", "--lining-tol", "--volume-mask", "--png-normal", "--jfa", "--device",
+            "--axis", "--through", "--sample", "--end-radius", "--ignore", "--profile", "--plot",
+            "--occupancy"};
+        int flag = 0, takes = 0;
+        for (size_t k = 0; k < sizeof flags / sizeof flags[0]; k++)
+            flag |= strcmp(a, flags[k]) == 0;
+        for (size_t k = 0; k < sizeof valued / sizeof valued[0]; k++)
+            takes |= strcmp(a, valued[k]) == 0;
+        if (!flag && !takes)
+            return vb_cli_usage_error(cmd, "unknown option '%s' (see --help)", a), -1;
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-        int takes = strcmp(a, "--json") && strcmp(a, "--cavities") && strcmp(a, "--no-pore") &&
-                    strcmp(a, "--fixed-grid");
         if (takes && !v)
             return vb_cli_usage_error(cmd, "%s needs a value", a), -1;
         if (takes)
@@ -221,8 +246,9 @@ static int parse_args(int argc, char **argv, ch_args *A)
         if (strcmp(a, "-o") == 0) A->out = v;
         else if (strcmp(a, "--json") == 0) A->json = 1;
         else if (strcmp(a, "--cavities") == 0) A->opt.keep_cavities = 1;
-        else if (strcmp(a, "--stats") == 0) A->stats = v;
-        else if (strcmp(a, "--dcd") == 0) A->dcd = v;
+        else if (strcmp(a, "--stats") == 0) A->stats_stderr = 1;
+        else if (strcmp(a, "--stats-file") == 0) A->stats = v;
+        else if (strcmp(a, "--dcd") == 0 || strcmp(a, "--traj") == 0) A->dcd = v;
         else if (strcmp(a, "--centerlines") == 0 || strcmp(a, "--centrelines") == 0) A->centrelines = v;
         else if (strcmp(a, "--pymol") == 0) A->pymol = v;
         else if (strcmp(a, "--volume") == 0) A->volume = v;
@@ -325,7 +351,9 @@ static int parse_args(int argc, char **argv, ch_args *A)
     if (A->pymol && !A->centrelines)
         return vb_cli_usage_error(cmd, "--pymol draws the --centerlines file: give both"), -1;
     if (A->dcd && strcmp(A->input, "-") == 0)
-        return vb_cli_usage_error(cmd, "the DCD topology must be a file"), -1;
+        return vb_cli_usage_error(cmd, "the trajectory's topology must be a file"), -1;
+    if (A->stats && A->stats_stderr)
+        return vb_cli_usage_error(cmd, "--stats (stderr) or --stats-file FILE, not both"), -1;
     if (A->occupancy && !A->fixed_grid)
         return vb_cli_usage_error(cmd, "--occupancy adds frames on one grid: give --fixed-grid"), -1;
     if (A->plot && !A->pore.enabled)
@@ -560,6 +588,8 @@ static int run_frames(vb_ctx *ctx, ch_args *A, vbc_pipe *pipe, vb_frame_source *
                 end = 1;
                 break;
             }
+            vb_cli_status_set("channels: frame %ld (%ld analysed) on %s", index, S->frames_done,
+                              vbc_pipe_device_name(pipe));
             if (index >= A->f0 && (index - A->f0) % A->fstep == 0) {
                 if (vb_cli_rounds_mine(j))
                     frc = do_frame(ctx, A, pipe, index, model, j == 0, s, S);
@@ -606,12 +636,15 @@ static int report(vb_ctx *ctx, const ch_args *A, vbc_pipe *pipe, const sinks *S,
     return VB_OK;
 }
 
-/* Rank 0's output files: table, statistics, centrelines (the sinks' order). */
+/* Rank 0's output files: table, statistics, centrelines (the sinks' order);
+ * --stats (no file) sends the statistics to stderr. */
 static int open_outputs(vb_ctx *ctx, const ch_args *A, FILE *out[VB_CLI_ROUND_SINKS])
 {
     const char *path[VB_CLI_ROUND_SINKS] = {A->out, A->stats, A->centrelines};
+    if (A->stats_stderr)
+        out[SINK_STATS] = stderr;
     for (int k = 0; k < VB_CLI_ROUND_SINKS; k++)
-        if ((k == SINK_TABLE || path[k]) && !(out[k] = vb_cli_open_output(ctx, path[k])))
+        if (!out[k] && (k == SINK_TABLE || path[k]) && !(out[k] = vb_cli_open_output(ctx, path[k])))
             return vb_errcode(ctx);
     return VB_OK;
 }
@@ -623,7 +656,9 @@ static int close_outputs(vb_ctx *ctx, const ch_args *A, FILE *out[VB_CLI_ROUND_S
 {
     const char *path[VB_CLI_ROUND_SINKS] = {A->out, A->stats, A->centrelines};
     for (int k = 0; k < VB_CLI_ROUND_SINKS; k++)
-        if (out[k])
+        if (out[k] == stderr)
+            fflush(stderr);
+        else if (out[k])
             rc = vb_cli_finish_output(ctx, out[k], path[k], rc);
     return rc;
 }
@@ -709,7 +744,7 @@ int vb_cmd_channels(int argc, char **argv)
     vb_frame_source *F = NULL;
     sinks S;
     memset(&S, 0, sizeof S);
-    S.stats = A.stats != NULL;
+    S.stats = A.stats != NULL || A.stats_stderr;
     S.cl = A.centrelines != NULL;
     FILE *out[VB_CLI_ROUND_SINKS] = {NULL, NULL, NULL}, *pml = NULL;
     /* Every rank reads the input; rank 0 alone prints its warnings. */
@@ -744,8 +779,12 @@ int vb_cmd_channels(int argc, char **argv)
         vbc_write_profile_header(S.profile);
     double t0 = vb_now();
     long selected = 0;
+    /* The status line shares stderr with --stats: the rows would cut it. */
+    if (rank0 && !A.stats_stderr)
+        vb_cli_status_start("channels: reading the first frame");
     rc = run_frames(ctx, &A, pipe, F, &S, out, &selected);
     double wall = vb_now() - t0;
+    vb_cli_status_stop();
     if (rc == VB_OK && selected == 0)
         rc = vb_error(ctx, VB_EINPUT_MODEL, A.input, 0, "no frame selected (--frames / --model)");
     /* The collectives first, while every rank agrees on rc; then rank 0's

@@ -41,7 +41,7 @@ int vb_cli_input_option(vb_cli_input_opts *o, int argc, char **argv, int *i)
         if (!v)
             return -1;
         if (vb_format_parse(NULL, v, &o->format) != VB_OK) {
-            vb_cli_usage_error(argv[0], "unknown format '%s' (auto, xyzr, pdb, pqr, cif)", v);
+            vb_cli_usage_error(argv[0], "unknown format '%s' (auto, xyzr, pdb, pqr, cif, gro)", v);
             return -1;
         }
         return 1;
@@ -73,6 +73,18 @@ int vb_cli_input_option(vb_cli_input_opts *o, int argc, char **argv, int *i)
         o->model = (int)n;
         return 1;
     }
+    if (strcmp(a, "--assembly") == 0) {
+        const char *v = option_value(argc, argv, i);
+        size_t n;
+        if (!v)
+            return -1;
+        if (vb_cli_parse_size(v, &n) != 0 || n < 1 || n > 999999) {
+            vb_cli_usage_error(argv[0], "--assembly needs an assembly number >= 1, not '%s'", v);
+            return -1;
+        }
+        o->assembly = (int)n;
+        return 1;
+    }
     if (strcmp(a, "--radii") == 0) {
         const char *v = option_value(argc, argv, i);
         if (!v)
@@ -87,14 +99,19 @@ void vb_cli_input_help(FILE *f)
 {
     fputs("input options:\n"
           "  --format F          input format: auto (default, by content), xyzr (also\n"
-          "                      Voronota balls), pdb, pqr, cif|mmcif\n"
-          "  --model N           read model N of a multi-model PDB/mmCIF (default: first)\n"
+          "                      Voronota balls), pdb, pqr, cif|mmcif, gro; gzip and\n"
+          "                      bzip2 files (and stdin) are decompressed whatever the name\n"
+          "  --model N           read model N of a multi-model PDB/mmCIF/GRO (default: first)\n"
+          "  --assembly N        mmCIF: biological assembly N (_pdbx_struct_assembly_gen),\n"
+          "                      its copies moved by the operators exactly\n"
           "  --radii FILE        element radii, lines 'ELEMENT RADIUS' ('#' comments),\n"
-          "                      for PDB/mmCIF; unlisted elements keep the built-in radii\n"
+          "                      for PDB/mmCIF/GRO; unlisted elements keep the built-in radii\n"
           "  --water             keep water (HOH, WAT, ...; dropped by default, counted)\n"
           "  --no-hydrogens      drop H/D atoms (kept by default)\n"
-          "  --strict-elements   an element without a radius is an error (E108), not\n"
-          "                      radius 1.70 with a warning\n"
+          "  --strict-elements   refuse what would be guessed: an element without a radius\n"
+          "                      (E108; else radius 1.70, W707) and an element the file\n"
+          "                      does not give (E112; else inferred from atom and residue\n"
+          "                      names, W714/W715)\n"
           "  --zero-radius M     radius-0 spheres: error, point (a point site) or drop;\n"
           "                      default point for PQR (PARSE polar hydrogens), else error\n",
           f);
@@ -110,6 +127,7 @@ void vb_cli_input_read_options(const vb_cli_input_opts *o, const vb_radii_table 
     ro->drop_hydrogens = o->drop_hydrogens;
     ro->strict_elements = o->strict_elements;
     ro->zero_radius = o->zero_radius;
+    ro->assembly = o->assembly;
     ro->radii = radii;
 }
 

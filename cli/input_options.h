@@ -1,5 +1,5 @@
 /* The input options every subcommand shares (--format, --model, --radii,
- * --water, --no-hydrogens, --strict-elements) and the one call that reads
+ * --water, --no-hydrogens, --strict-elements, --zero-radius, --assembly) and the one call that reads
  * and validates a sphere file with them. */
 #ifndef VB_CLI_INPUT_OPTIONS_H
 #define VB_CLI_INPUT_OPTIONS_H
@@ -16,6 +16,7 @@ typedef struct vb_cli_input_opts {
     int drop_hydrogens;      /* --no-hydrogens */
     int strict_elements;     /* --strict-elements */
     int zero_radius;         /* --zero-radius error|point|drop (enum vb_zero_radius; default auto) */
+    int assembly;            /* --assembly N (mmCIF biological assembly; default 0: as written) */
 } vb_cli_input_opts;
 
 /* Zero-initialising a vb_cli_input_opts gives the defaults; this does it. */

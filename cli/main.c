@@ -67,9 +67,10 @@ static void usage(FILE *f)
     fprintf(f, "  (crosscheck is not built: it needs CGAL headers and -DVORBALL_WITH_CGAL=ON)\n");
 #endif
     fprintf(f,
-            "\n'vorball <command> --help' describes each command.\n"
+            "\n'vorball <command> --help' describes each command; 'vorball --version'\n"
+            "prints the version.\n"
             "Exit codes: 0 ok, 1 check failed, 2 usage, 3 i/o, 4 memory, 5 device,\n"
-            "6 internal, 7 degenerate, 8 precision, 11-21 bad input (see README).\n");
+            "6 internal, 7 degenerate, 8 precision, 11-27 bad input (see README).\n");
 }
 
 /* The command line after the world joined: a command, help or version. */

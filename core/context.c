@@ -132,6 +132,12 @@ const char *vb_errstr(int code)
     case VB_EINPUT_FORMAT: return "input format not recognised";
     case VB_EINPUT_TOOLARGE: return "input too large";
     case VB_EINPUT_MODEL: return "model not present";
+    case VB_EINPUT_INFERRED: return "element not in the file";
+    case VB_EINPUT_COMPRESSED: return "damaged compressed data";
+    case VB_EINPUT_NOSPHERES: return "no spheres: trajectory or topology alone";
+    case VB_EINPUT_TRAJECTORY: return "damaged trajectory";
+    case VB_EINPUT_TOPOLOGY: return "trajectory and topology disagree";
+    case VB_EINPUT_ASSEMBLY: return "assembly absent or malformed";
     case VB_EINPUT_REFERENCE_SIZE: return "too many spheres for the exact reference";
     case VB_EINPUT_SCALE: return "radii too small for the sampling pipeline";
     case VB_EINPUT_TOL: return "tolerance finer than the sampling pipeline resolves";

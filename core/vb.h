@@ -45,6 +45,12 @@ enum vb_input_error {
     VB_EINPUT_FORMAT     = VB_EINPUT | (9 << 8), /* E109 format not recognised / wrong --format */
     VB_EINPUT_TOOLARGE   = VB_EINPUT | (10 << 8),/* E110 file or sphere count over limit */
     VB_EINPUT_MODEL      = VB_EINPUT | (11 << 8),/* E111 requested model/frame absent */
+    VB_EINPUT_INFERRED   = VB_EINPUT | (12 << 8),/* E112 element not written (strict mode) */
+    VB_EINPUT_COMPRESSED = VB_EINPUT | (13 << 8),/* E113 damaged gzip/bzip2 data */
+    VB_EINPUT_NOSPHERES  = VB_EINPUT | (14 << 8),/* E114 trajectory/topology alone: no spheres */
+    VB_EINPUT_TRAJECTORY = VB_EINPUT | (15 << 8),/* E115 damaged binary trajectory */
+    VB_EINPUT_TOPOLOGY   = VB_EINPUT | (16 << 8),/* E116 trajectory and topology disagree */
+    VB_EINPUT_ASSEMBLY   = VB_EINPUT | (17 << 8),/* E117 assembly absent or malformed */
     /* E130-E139: limits of an operation on an input it could otherwise read. */
     VB_EINPUT_REFERENCE_SIZE = VB_EINPUT | (30 << 8), /* E130 too many spheres for `reference` */
     VB_EINPUT_SCALE      = VB_EINPUT | (31 << 8),/* E131 radii too small for the sampler's doubles */

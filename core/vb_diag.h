@@ -48,6 +48,12 @@
     X(E, 109, INPUT_FORMAT, 19, "format not recognised")                                                 \
     X(E, 110, INPUT_TOOLARGE, 20, "input too large (a file over 2 GiB, or too many spheres)")            \
     X(E, 111, INPUT_MODEL, 21, "requested model absent")                                                 \
+    X(E, 112, INPUT_INFERRED, 22, "element column blank: it would be guessed (--strict-elements)")       \
+    X(E, 113, INPUT_COMPRESSED, 23, "gzip or bzip2 data damaged or cut short")                           \
+    X(E, 114, INPUT_NOSPHERES, 24, "a trajectory or topology alone: no spheres (give both)")             \
+    X(E, 115, INPUT_TRAJECTORY, 25, "XTC, TRR or DCD data damaged")                                      \
+    X(E, 116, INPUT_TOPOLOGY, 26, "trajectory and topology disagree (atom count)")                       \
+    X(E, 117, INPUT_ASSEMBLY, 27, "--assembly: absent, or its operators malformed")                      \
     X(E, 130, INPUT_REFERENCE_SIZE, 40, "more spheres than `reference` takes without --force")          \
     X(E, 131, INPUT_SCALE, 41, "a radius below 1e-50 of the extent: beyond the sampler's doubles")       \
     X(E, 132, INPUT_TOL, 42, "--tol below 1e-12 of the extent: finer than the sampler resolves")         \
@@ -67,7 +73,14 @@
     X(W, 711, CIF_BLOCK_IGNORED, 0, "a further mmCIF _atom_site loop ignored")                           \
     X(W, 712, ZERO_DROPPED, 0, "spheres of radius 0 dropped (--zero-radius drop)")                       \
     X(W, 713, ZERO_POINTS, 0, "spheres of radius 0 kept as point sites")                                 \
+    X(W, 714, ELEMENT_INFERRED, 0, "element column blank: element inferred from the atom name")         \
+    X(W, 715, ELEMENT_INFERRED_COUNT, 0, "count of atoms whose element was inferred")                   \
+    X(W, 716, ELEMENT_ALIGNMENT, 0, "a two-letter element read from the name's alignment alone")        \
+    X(W, 717, ELEMENT_FROM_MASS, 0, "PSF: elements taken from the atom masses")                         \
+    X(W, 718, TRR_NO_COORDINATES, 0, "TRR frames without coordinates skipped")                          \
+    X(W, 719, COMPRESSED_TRAILING, 0, "bytes after the end of gzip/bzip2 data ignored")                 \
     X(W, 720, REFERENCE_SLOW, 0, "exact reference on a large input: may take very long")                 \
+    X(W, 721, ASSEMBLY_CHAINS, 0, "--assembly: chains of the file outside the assembly left out")       \
     X(W, 735, MODEL_OPEN_AT_END, 0, "the input ends inside a MODEL (no ENDMDL/END): truncated?")         \
     X(W, 750, PROGRAM_CACHE_BAD, 0, "a cached OpenCL program cannot be used: rebuilt from source")       \
     X(W, 751, JFA_DEVICE_FAILED, 0, "OpenCL failed mid-run in jfa: the rest runs on the reference")      \

@@ -17,7 +17,8 @@ int vbc_grid_fit(vb_ctx *ctx, const vb_sphere_set *s, double probe, int n, int d
     if (!(probe >= 0.0) || !isfinite(probe))
         return vb_error(ctx, VB_EMISUSE, NULL, 0, "probe radius must be >= 0");
     if (!s || s->n == 0)
-        return vb_error(ctx, VB_EINPUT_EMPTY, NULL, 0, "no atoms to fit a grid around");
+        return vb_error(ctx, VB_EINPUT_EMPTY, s && s->source ? s->source : NULL, 0,
+                        "no atoms to fit a grid around");
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (size_t i = 0; i < s->n; i++) {
         double c[3] = {s->x[i], s->y[i], s->z[i]};

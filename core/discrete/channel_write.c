@@ -69,11 +69,56 @@ static void emit_json(FILE *f, const char *label, int index)
     vb_json_write_string(f, label);
 }
 
+/* The table's columns and what they hold: the CSV header, `channels --help`
+ * and the README (a test keeps it equal) come from this one list. */
+static const struct {
+    const char *name, *meaning;
+} columns[] = {
+    {"frame", "index of the frame in the input, from 0"},
+    {"model", "its MODEL serial (PDB), else frame + 1"},
+    {"channel", "number in the frame, 1 = the longest"},
+    {"kind", "pore (the axis sweep), channel (reaches the surface) or cavity (--cavities)"},
+    {"through", "1 when the centreline joins openings on opposite sides (a pore)"},
+    {"length_A", "centreline length, A"},
+    {"bottleneck_A", "smallest clearance radius on it (to the nearest atom surface), A"},
+    {"bottleneck_x", "where that is, A (and _y, _z)"},
+    {"bottleneck_y", NULL},
+    {"bottleneck_z", NULL},
+    {"start_x", "the centreline's first point, A (and _y, _z)"},
+    {"start_y", NULL},
+    {"start_z", NULL},
+    {"end_x", "its last point, A (and _y, _z)"},
+    {"end_y", NULL},
+    {"end_z", NULL},
+    {"voxels", "channel voxels of the component"},
+    {"volume_A3", "voxels times the voxel volume, A^3"},
+    {"mouths", "of those voxels, the ones on the molecular surface (a voxel count)"},
+    {"points", "points of the centreline (--centerlines, JSON)"},
+    {"lining_atoms", "atoms whose surface is within radius + --lining-tol of a point"},
+    {"lining_residues", "their residues, chain:NAMEnumber joined by ';' (one field)"},
+    {"reason", "why it is listed: pore along the axis, through, branch, tunnel or cavity"},
+    {"bottleneck_s_A", "the bottleneck's position along the pore axis, A (empty: no pore)"},
+    {"g_macro_pS", "the pore row: its macroscopic conductance estimate, pS"},
+};
+
+const char *vbc_table_columns_help(void)
+{
+    static char text[4096];
+    if (text[0])
+        return text;
+    size_t off = 0;
+    for (size_t k = 0; k < sizeof columns / sizeof columns[0] && off < sizeof text; k++)
+        if (columns[k].meaning)
+            off += (size_t)snprintf(text + off, sizeof text - off, "  %-19s %s\n", columns[k].name,
+                                    columns[k].meaning);
+    return text;
+}
+
 void vbc_write_csv_header(FILE *f)
 {
-    fprintf(f, "frame,model,channel,kind,through,length_A,bottleneck_A,bottleneck_x,bottleneck_y,"
-               "bottleneck_z,start_x,start_y,start_z,end_x,end_y,end_z,voxels,volume_A3,mouths,"
-               "points,lining_atoms,lining_residues,reason,bottleneck_s_A,g_macro_pS\n");
+    for (size_t k = 0; k < sizeof columns / sizeof columns[0]; k++)
+        fprintf(f, "%s%s", k ? "," : "", columns[k].name);
+    fputc('\n', f);
 }
 
 void vbc_write_csv_rows(FILE *f, const vbc_frame_info *fi, const vbc_grid *g,

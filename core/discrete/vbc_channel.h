@@ -178,6 +178,10 @@ typedef struct vbc_frame_info {
     double ms_pore;        /* the pore stage (part of ms_total) */
 } vbc_frame_info;
 
+/* The channel table's columns, one "  name  meaning" line each (static
+ * text): `vorball channels --help` and the README print it. */
+const char *vbc_table_columns_help(void);
+
 /* CSV: one header line, then one row per kept channel of each frame. */
 void vbc_write_csv_header(FILE *f);
 void vbc_write_csv_rows(FILE *f, const vbc_frame_info *fi, const vbc_grid *g,

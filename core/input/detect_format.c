@@ -1,9 +1,97 @@
 /* Format detection by content. PDB and PQR share the ATOM record; they are
  * told apart by PDB's fixed occupancy and B-factor columns (55-60, 61-66),
- * which PQR's free-format charge and radius do not respect. */
+ * which PQR's free-format charge and radius do not respect. GRO is a title,
+ * an atom count and fixed columns. Binary trajectories (XTC, TRR, DCD) are
+ * known by their magic numbers and never parsed as text. */
 #include "vbi_input.h"
 
+#include <stdint.h>
 #include <string.h>
+
+static uint32_t be32(const unsigned char *p)
+{
+    return (uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | p[3];
+}
+
+int vbi_trajectory_kind(const unsigned char *p, size_t n)
+{
+    if (n < 8)
+        return VBI_TRAJ_NONE;
+    uint32_t m = be32(p);
+    /* XTC: 1995 (2023 for GROMACS' 64-bit variant), then the atom count. */
+    if (m == 1995 || m == 2023)
+        return VBI_TRAJ_XTC;
+    /* TRR: 1993, then the version string's two lengths (13, 12). */
+    if (m == 1993)
+        return VBI_TRAJ_TRR;
+    /* DCD: a first Fortran record of 84 bytes in either byte order, "CORD". */
+    if ((m == 84 || m == 0x54000000u) && memcmp(p + 4, "CORD", 4) == 0)
+        return VBI_TRAJ_DCD;
+    return VBI_TRAJ_NONE;
+}
+
+const char *vbi_trajectory_name(int kind)
+{
+    return kind == VBI_TRAJ_XTC ? "XTC" : kind == VBI_TRAJ_TRR ? "TRR" : kind == VBI_TRAJ_DCD ? "DCD" : "?";
+}
+
+int vbi_is_psf(const char *buf, size_t len)
+{
+    const char *p = buf, *tok;
+    size_t k = vbi_token(&p, buf + len, &tok);
+    return k == 3 && memcmp(tok, "PSF", 3) == 0;
+}
+
+int vbi_refuse_nonspheres(vb_ctx *ctx, const char *name, const char *buf, size_t len)
+{
+    int kind = vbi_trajectory_kind((const unsigned char *)buf, len);
+    if (kind != VBI_TRAJ_NONE)
+        return vb_error(ctx, VB_EINPUT_NOSPHERES, name, 0,
+                        "%s trajectories hold coordinates only, no atoms or radii: give this "
+                        "one with a topology (vorball channels TOPOLOGY --traj %s)",
+                        vbi_trajectory_name(kind), name);
+    if (vbi_is_psf(buf, len))
+        return vb_error(ctx, VB_EINPUT_NOSPHERES, name, 0,
+                        "a PSF topology holds atoms without coordinates: give it with a "
+                        "trajectory (vorball channels %s --traj FILE.dcd|.xtc|.trr)",
+                        name);
+    return VB_OK;
+}
+
+int vbi_pdb_header_record(const char *line, size_t n)
+{
+    static const char *const rec[] = {"HEADER", "TITLE",  "COMPND", "SOURCE", "KEYWDS", "EXPDTA",
+                                      "AUTHOR", "REVDAT", "JRNL",   "REMARK", "SEQRES", "HET",
+                                      "HETNAM", "FORMUL", "HELIX",  "SHEET",  "CRYST1", "ORIGX1",
+                                      "SCALE1", "MODEL",  "ENDMDL", "TER",    "CONECT", "MASTER",
+                                      "END",    "DBREF",  "SEQADV", "LINK",   "SITE",   "NUMMDL"};
+    for (size_t k = 0; k < sizeof rec / sizeof rec[0]; k++)
+        if (vbi_pdb_record(line, n, rec[k]))
+            return 1;
+    return 0;
+}
+
+/* A GRO file: a title line, the atom count alone on line 2, then atom
+ * lines with x, y, z from column 21 (nm, fixed width). */
+static int gro_fits(const char *buf, size_t len)
+{
+    vbi_lines it;
+    vbi_lines_init(&it, buf, len, 1);
+    const char *line, *tok;
+    size_t n;
+    if (!vbi_lines_next(&it, &line, &n) || !vbi_lines_next(&it, &line, &n))
+        return 0;
+    const char *p = line;
+    size_t k = vbi_token(&p, line + n, &tok);
+    int32_t count;
+    if (k == 0 || vbi_parse_int(tok, k, &count) != 0 || count < 0 || vbi_token(&p, line + n, &tok))
+        return 0;
+    if (count == 0)
+        return 1;
+    if (!vbi_lines_next(&it, &line, &n))
+        return 0;
+    return vbi_gro_atom_fits(line, n);
+}
 
 /* How many ATOM/HETATM lines are looked at to tell PDB from PQR. */
 #define VBI_DETECT_ATOM_LINES 50
@@ -65,7 +153,9 @@ int vbi_detect_format(const char *buf, size_t len, vb_format *out)
     vbi_lines_init(&it, buf, len, 1);
     const char *line, *tok;
     size_t n;
-    int first = 1, atoms = 0, pdb_votes = 0, pqr_votes = 0;
+    int first = 1, atoms = 0, pdb_votes = 0, pqr_votes = 0, records = 0;
+    if (gro_fits(buf, len))
+        return *out = VB_FMT_GRO, VB_OK;
     while (vbi_lines_next(&it, &line, &n)) {
         const char *p = line;
         size_t k = vbi_token(&p, line + n, &tok);
@@ -82,6 +172,7 @@ int vbi_detect_format(const char *buf, size_t len, vb_format *out)
             if (strchr("0123456789+-.", tok[0]))
                 return *out = VB_FMT_XYZR, VB_OK;
         }
+        records += vbi_pdb_header_record(line, n);
         if (!vbi_pdb_record(line, n, "ATOM") && !vbi_pdb_record(line, n, "HETATM"))
             continue;
         /* Lines that keep PDB's columns vote PDB; lines that break them but
@@ -96,6 +187,10 @@ int vbi_detect_format(const char *buf, size_t len, vb_format *out)
     }
     if (first)
         return VB_EINPUT_EMPTY;
+    /* PDB records without a single atom are a PDB file with no atoms: its
+     * reader says so, naming the file. */
+    if (atoms == 0 && records > 0)
+        return *out = VB_FMT_PDB, VB_OK;
     if (atoms == 0)
         return VB_EINPUT_FORMAT;
     *out = pqr_votes > pdb_votes ? VB_FMT_PQR : VB_FMT_PDB;

@@ -34,8 +34,10 @@ struct vb_frame_reader {
     int frames;            /* frames returned */
     int done;
     vbi_dropped dr;
-    char *text;            /* whole input (mmCIF, XYZR) */
+    char *text;            /* whole input (mmCIF, XYZR, GRO) */
     size_t text_len;
+    size_t text_off;       /* GRO: where the next frame starts */
+    long text_line;        /* GRO: its first line */
 };
 
 static int next_line_raw(vb_frame_reader *rd, const char **s, size_t *n);
@@ -166,11 +168,10 @@ int vb_frame_reader_open(vb_ctx *ctx, const char *path, const vb_read_options *o
     }
     if (opt)
         rd->opt = *opt;
-    int is_stdin = strcmp(path, "-") == 0;
-    rd->f = is_stdin ? stdin : fopen(path, "rb");
-    rd->own_file = !is_stdin;
+    rd->f = vbi_open_input(ctx, path, NULL);
+    rd->own_file = 1;
     if (!rd->f) {
-        int rc = vb_error(ctx, VB_EIO, path, 0, "cannot open: %s", strerror(errno));
+        int rc = vb_errcode(ctx);
         vb_frame_reader_close(rd);
         return rc;
     }
@@ -183,8 +184,14 @@ int vb_frame_reader_open(vb_ctx *ctx, const char *path, const vb_read_options *o
     rd->head[rd->head_len] = '\0';
     rd->head_pos = vbi_bom_length(rd->head, rd->head_len);
     if (ferror(rd->f)) {
+        int rc = vbi_input_read_error(ctx, path);
         vb_frame_reader_close(rd);
-        return vb_error(ctx, VB_EIO, path, 0, "read error");
+        return rc;
+    }
+    int rc0 = vbi_refuse_nonspheres(ctx, path, rd->head, rd->head_len);
+    if (rc0 != VB_OK) {
+        vb_frame_reader_close(rd);
+        return rc0;
     }
     rd->fmt = rd->opt.format;
     if (rd->fmt == VB_FMT_AUTO) {
@@ -194,7 +201,7 @@ int vb_frame_reader_open(vb_ctx *ctx, const char *path, const vb_read_options *o
             return vbi_detect_error(ctx, path, rc);
         }
     }
-    if (rd->fmt == VB_FMT_MMCIF || rd->fmt == VB_FMT_XYZR) {
+    if (rd->fmt == VB_FMT_MMCIF || rd->fmt == VB_FMT_XYZR || rd->fmt == VB_FMT_GRO) {
         /* Not streamed: the rest of the text joins the head. */
         const char *s;
         size_t n;
@@ -204,7 +211,7 @@ int vb_frame_reader_open(vb_ctx *ctx, const char *path, const vb_read_options *o
                 break;
         int rc = VB_OK;
         if (got < 0)
-            rc = vb_error(ctx, VB_EIO, path, 0, "read error");
+            rc = vbi_input_read_error(ctx, path);
         else if (got > 0 && rd->chunk_len > VBI_MAX_FILE_BYTES)
             rc = vb_error(ctx, VB_EINPUT_TOOLARGE, path, 0, "input is larger than 2 GiB");
         else if (got > 0)
@@ -284,7 +291,7 @@ static int gather_block(vb_ctx *ctx, vb_frame_reader *rd, long *first, int *seri
             return 1;
     }
     if (got < 0)
-        return -vb_error(ctx, VB_EIO, rd->name, 0, "read error");
+        return -vbi_input_read_error(ctx, rd->name);
     rd->open_at_eof = in_block;
     return *first != 0 && (in_block || !rd->seen_model);
 }
@@ -298,7 +305,26 @@ int vb_frame_reader_next(vb_ctx *ctx, vb_frame_reader *rd, vb_sphere_set **out,
     vb_read_options one = rd->opt;
     int serial = 1, rc = VB_OK;
     for (;;) {
-        if (rd->fmt == VB_FMT_MMCIF || rd->fmt == VB_FMT_XYZR) {
+        if (rd->fmt == VB_FMT_GRO) {
+            size_t off = rd->text_off;
+            while (off < rd->text_len && strchr(" \t\r\n", rd->text[off]))
+                off++;
+            if (off >= rd->text_len)
+                break;
+            size_t used;
+            if (rd->text_line == 0)
+                rd->text_line = 1;
+            for (size_t i = rd->text_off; i < off; i++)
+                rd->text_line += rd->text[i] == '\n';
+            rc = vbi_gro_parse(ctx, rd->name, rd->text + off, rd->text_len - off, rd->text_line,
+                               &one, &rd->dr, out, &used);
+            if (rc != VB_OK)
+                return rc;
+            for (size_t i = off; i < off + used; i++)
+                rd->text_line += rd->text[i] == '\n';
+            rd->text_off = off + used;
+            serial = ++rd->frames;
+        } else if (rd->fmt == VB_FMT_MMCIF || rd->fmt == VB_FMT_XYZR) {
             int ordinal = rd->frames + 1;
             if (rd->fmt == VB_FMT_XYZR) {
                 if (ordinal > 1)

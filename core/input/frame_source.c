@@ -1,5 +1,6 @@
-/* The frames of a molecule: a multi-model reader, or a DCD plus its
- * topology, every frame checked (vb_frames.h). */
+/* The frames of a molecule: a multi-model reader, or a trajectory (DCD,
+ * XTC, TRR) plus its topology (PDB, GRO, mmCIF, PQR, PSF), every frame
+ * checked (vb_frames.h). */
 #include "vb_frames.h"
 
 #include <math.h>
@@ -7,16 +8,18 @@
 #include <string.h>
 
 #include "vb_dcd.h"
+#include "vb_xdr.h"
 #include "vbi_input.h"
 
 struct vb_frame_source {
     vb_frame_reader *rd;
     vb_dcd *dcd;
-    char *dcd_path;
-    vb_sphere_set *topo; /* DCD: every atom of the topology */
-    size_t *keep;        /* DCD: topology atoms that enter the analysis */
+    vb_xdr_traj *xdr;
+    char *dcd_path;      /* the trajectory's name */
+    vb_sphere_set *topo; /* trajectory: every atom of the topology */
+    size_t *keep;        /* trajectory: topology atoms that enter the analysis */
     size_t nkeep;
-    double *xyz;         /* DCD: one frame, 3 * natoms */
+    double *xyz;         /* one frame: DCD x..., y..., z...; XTC/TRR x0 y0 z0 x1 ... */
     long index;          /* frames read so far */
 };
 
@@ -26,6 +29,7 @@ void vb_frame_source_close(vb_frame_source *F)
         return;
     vb_frame_reader_close(F->rd);
     vb_dcd_close(F->dcd);
+    vb_xdr_close(F->xdr);
     vb_spheres_free(F->topo);
     free(F->dcd_path);
     free(F->keep);
@@ -33,30 +37,75 @@ void vb_frame_source_close(vb_frame_source *F)
     free(F);
 }
 
-static int open_dcd(vb_ctx *ctx, vb_frame_source *F, const char *path, const char *dcd_path,
-                    const vb_read_options *ro)
+/* The topology of a trajectory: a PSF (atoms without coordinates), or any
+ * sphere format, read whole (water and hydrogens too) and checked. */
+static int read_topology(vb_ctx *ctx, const char *path, const vb_read_options *ro,
+                         vb_sphere_set **out)
 {
-    /* The topology must list every atom of the DCD: read all, select after. */
     vb_read_options all = *ro;
     all.keep_water = 1;
     all.drop_hydrogens = 0;
-    int rc = vb_spheres_read_file(ctx, path, &all, &F->topo);
-    if (rc == VB_OK)
-        rc = vb_spheres_validate(ctx, F->topo, 1);
-    if (rc == VB_OK)
-        rc = vb_dcd_open(ctx, dcd_path, &F->dcd);
+    char *buf;
+    size_t len;
+    int rc = vbi_slurp(ctx, path, &buf, &len);
     if (rc != VB_OK)
         return rc;
-    if (!(F->dcd_path = strdup(dcd_path)))
+    if (vbi_is_psf(buf, len)) {
+        rc = vbi_read_psf(ctx, path, buf, len, &all, out);
+    } else {
+        rc = vb_spheres_read_buffer(ctx, path, buf, len, &all, out);
+        if (rc == VB_OK)
+            rc = vb_spheres_validate(ctx, *out, 1);
+    }
+    free(buf);
+    return rc;
+}
+
+/* Opens the trajectory, known by its magic number; *natoms its atoms. */
+static int open_trajectory(vb_ctx *ctx, vb_frame_source *F, const char *traj, size_t *natoms)
+{
+    unsigned char head[8] = {0};
+    FILE *f = vbi_open_input(ctx, traj, NULL);
+    if (!f)
+        return vb_errcode(ctx);
+    size_t got = fread(head, 1, sizeof head, f);
+    fclose(f);
+    int kind = vbi_trajectory_kind(head, got);
+    int rc;
+    if (kind == VBI_TRAJ_DCD) {
+        if ((rc = vb_dcd_open(ctx, traj, &F->dcd)) == VB_OK)
+            *natoms = vb_dcd_atoms(F->dcd);
+    } else if (kind == VBI_TRAJ_XTC || kind == VBI_TRAJ_TRR) {
+        if ((rc = vb_xdr_open(ctx, traj, &F->xdr)) == VB_OK)
+            *natoms = vb_xdr_atoms(F->xdr);
+    } else {
+        rc = vb_error(ctx, VB_EINPUT_FORMAT, traj, 0,
+                      "not a trajectory: no DCD, XTC or TRR magic number");
+    }
+    return rc;
+}
+
+static int open_traj(vb_ctx *ctx, vb_frame_source *F, const char *path, const char *traj,
+                     const vb_read_options *ro)
+{
+    /* The topology must list every atom of the trajectory: read all,
+     * select after. */
+    size_t na = 0;
+    int rc = read_topology(ctx, path, ro, &F->topo);
+    if (rc == VB_OK)
+        rc = open_trajectory(ctx, F, traj, &na);
+    if (rc != VB_OK)
+        return rc;
+    if (!(F->dcd_path = strdup(traj)))
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory");
-    size_t na = vb_dcd_atoms(F->dcd);
     if (na != F->topo->n)
-        return vb_error(ctx, VB_EINPUT_MODEL, dcd_path, 0,
-                        "DCD has %zu atoms per frame, topology %s has %zu", na, path, F->topo->n);
+        return vb_error(ctx, VB_EINPUT_TOPOLOGY, traj, 0,
+                        "trajectory has %zu atoms per frame, topology %s has %zu", na, path,
+                        F->topo->n);
     F->keep = malloc(na * sizeof *F->keep);
     F->xyz = malloc(3 * na * sizeof *F->xyz);
     if (!F->keep || !F->xyz)
-        return vb_error(ctx, VB_ENOMEM, NULL, 0, "DCD frame of %zu atoms", na);
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "trajectory frame of %zu atoms", na);
     for (size_t i = 0; i < na; i++) {
         const vb_atom_info *a = F->topo->info ? &F->topo->info[i] : NULL;
         if (a && !ro->keep_water && vbi_is_water(a->resname))
@@ -77,7 +126,7 @@ int vb_frame_source_open(vb_ctx *ctx, const char *path, const char *dcd_path,
     vb_frame_source *F = calloc(1, sizeof *F);
     if (!F)
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory");
-    int rc = dcd_path ? open_dcd(ctx, F, path, dcd_path, ro)
+    int rc = dcd_path ? open_traj(ctx, F, path, dcd_path, ro)
                       : vb_frame_reader_open(ctx, path, ro, &F->rd); /* --model picks one frame */
     if (rc != VB_OK) {
         vb_frame_source_close(F);
@@ -87,7 +136,7 @@ int vb_frame_source_open(vb_ctx *ctx, const char *path, const char *dcd_path,
     return VB_OK;
 }
 
-/* A DCD frame has no decimals: its coordinates are checked as doubles
+/* A trajectory frame has no decimals: its coordinates are checked as doubles
  * against the limits vb_spheres_validate applies to decimals. */
 static int check_frame(vb_ctx *ctx, const vb_frame_source *F, const vb_sphere_set *s)
 {
@@ -109,11 +158,24 @@ static int check_frame(vb_ctx *ctx, const vb_frame_source *F, const vb_sphere_se
     return VB_OK;
 }
 
-static int next_dcd(vb_ctx *ctx, vb_frame_source *F, vb_sphere_set **out, int *model)
+/* The next trajectory frame, in Angstrom: DCD stores Angstrom; XTC and
+ * TRR store nm. A float times 10 is exact in double (24 + 4 bits); a
+ * double-precision TRR coordinate times 10 is rounded once. */
+static int next_traj(vb_ctx *ctx, vb_frame_source *F, vb_sphere_set **out, int *model)
 {
     size_t na = F->topo->n;
-    int got;
-    int rc = vb_dcd_next(ctx, F->dcd, F->xyz, F->xyz + na, F->xyz + 2 * na, NULL, &got);
+    int got, rc;
+    const double *cx, *cy, *cz;
+    size_t stride;
+    if (F->dcd) {
+        rc = vb_dcd_next(ctx, F->dcd, F->xyz, F->xyz + na, F->xyz + 2 * na, NULL, &got);
+        cx = F->xyz, cy = F->xyz + na, cz = F->xyz + 2 * na, stride = 1;
+    } else {
+        rc = vb_xdr_next(ctx, F->xdr, F->xyz, NULL, &got);
+        for (size_t i = 0; rc == VB_OK && got && i < 3 * na; i++)
+            F->xyz[i] *= 10.0;
+        cx = F->xyz, cy = F->xyz + 1, cz = F->xyz + 2, stride = 3;
+    }
     if (rc != VB_OK || !got)
         return rc;
     vb_sphere_set *s;
@@ -121,9 +183,9 @@ static int next_dcd(vb_ctx *ctx, vb_frame_source *F, vb_sphere_set **out, int *m
         return rc;
     for (size_t i = 0; i < F->nkeep; i++) {
         size_t k = F->keep[i];
-        s->x[i] = F->xyz[k];
-        s->y[i] = F->xyz[na + k];
-        s->z[i] = F->xyz[2 * na + k];
+        s->x[i] = cx[stride * k];
+        s->y[i] = cy[stride * k];
+        s->z[i] = cz[stride * k];
         s->r[i] = F->topo->r[k];
         s->line[i] = F->topo->line[k];
         if (F->topo->info)
@@ -141,7 +203,7 @@ static int next_dcd(vb_ctx *ctx, vb_frame_source *F, vb_sphere_set **out, int *m
 int vb_frame_source_next(vb_ctx *ctx, vb_frame_source *F, vb_sphere_set **out, int *model)
 {
     *out = NULL;
-    int rc = F->rd ? vb_frame_reader_next(ctx, F->rd, out, model) : next_dcd(ctx, F, out, model);
+    int rc = F->rd ? vb_frame_reader_next(ctx, F->rd, out, model) : next_traj(ctx, F, out, model);
     if (rc == VB_OK && *out && F->rd && (rc = vb_spheres_validate(ctx, *out, 1)) != VB_OK) {
         vb_spheres_free(*out);
         *out = NULL;

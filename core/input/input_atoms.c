@@ -1,7 +1,7 @@
 /* Atom-level rules shared by the PDB, PQR and mmCIF readers: which records
  * and models are read, which residues are water, which atoms are hydrogens,
- * element guesses from atom names, and the one-line reports of what was left
- * out. */
+ * and the one-line reports of what was left out (element inference is
+ * element_infer.c). */
 #include "vbi_input.h"
 #include "vb_diag.h"
 
@@ -23,49 +23,6 @@ int vbi_is_water(const char *resname)
 int vbi_is_hydrogen(const char *element)
 {
     return strcmp(element, "H") == 0 || strcmp(element, "D") == 0;
-}
-
-/* Two-letter elements that may start in column 13 of a PDB atom name; H-led
- * names are hydrogens (HG, HD, HE are far more often H gamma/delta/epsilon). */
-static int two_letter_element(char a, char b)
-{
-    static const char *const two[] = {"CL", "BR", "SE", "NA", "MG", "CA", "FE", "ZN", "CU",
-                                      "MN", "CO", "NI", "AL", "SI", "AS", "LI", "CD"};
-    for (size_t k = 0; k < sizeof two / sizeof two[0]; k++)
-        if (two[k][0] == a && two[k][1] == b)
-            return 1;
-    return 0;
-}
-
-void vbi_element_from_name(const char *name4, char element[4])
-{
-    element[0] = '\0';
-    size_t i = 0;
-    while (i < 4 && name4[i] != '\0' && !isalpha((unsigned char)name4[i]))
-        i++;
-    if (i >= 4 || name4[i] == '\0')
-        return;
-    char a = (char)toupper((unsigned char)name4[i]);
-    char b = i + 1 < 4 ? (char)toupper((unsigned char)name4[i + 1]) : '\0';
-    /* Only a name that starts in column 13 can carry a two-letter element. */
-    if (i == 0 && a != 'H' && two_letter_element(a, b)) {
-        element[0] = a;
-        element[1] = b;
-        element[2] = '\0';
-        return;
-    }
-    element[0] = a;
-    element[1] = '\0';
-}
-
-void vbi_element_from_bare_name(const char *name, char element[4])
-{
-    /* Without column positions a name cannot say "two-letter element", so
-     * it is read as if it started in column 14. */
-    char name4[5] = "    ";
-    size_t k = strlen(name);
-    memcpy(name4 + 1, name, k < 3 ? k : 3);
-    vbi_element_from_name(name4, element);
 }
 
 int32_t vbi_pdb_model_serial(const char *line, size_t n)
@@ -128,6 +85,7 @@ void vbi_report_dropped(vb_ctx *ctx, const char *name, const vbi_dropped *dr)
         vb_warn(ctx, VB_W_MODEL_OPEN_AT_END, name, dr->open_model_line,
                 "the input ends inside this MODEL (no ENDMDL, no END): the file may be "
                 "truncated; the model's atoms were read as they stand");
+    vbi_report_inferred(ctx, name, dr);
     if (dr->unknown_elements > 1)
         vb_warn(ctx, VB_W_ELEMENT_UNKNOWN_COUNT, name, 0, "%zu atoms in all had an unknown element and radius 1.70",
                 dr->unknown_elements);

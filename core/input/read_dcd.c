@@ -11,6 +11,7 @@
 
 #include "vb_dcd.h"
 #include "vb_diag.h"
+#include "vbi_input.h"
 
 struct vb_dcd {
     FILE *f;
@@ -132,10 +133,10 @@ int vb_dcd_open(vb_ctx *ctx, const char *path, vb_dcd **out)
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "DCD reader");
     }
     strcpy(d->path, path);
-    d->f = fopen(path, "rb");
+    d->f = vbi_open_input(ctx, path, NULL);
     if (!d->f) {
         vb_dcd_close(d);
-        return vb_error(ctx, VB_EIO, path, 0, "cannot open DCD file");
+        return vb_errcode(ctx);
     }
     unsigned char hdr[92];
     d->size = -1;

@@ -12,14 +12,14 @@ int vb_format_parse(vb_ctx *ctx, const char *name, vb_format *out)
         vb_format fmt;
     } names[] = {{"auto", VB_FMT_AUTO}, {"xyzr", VB_FMT_XYZR}, {"balls", VB_FMT_XYZR},
                  {"pdb", VB_FMT_PDB},   {"pqr", VB_FMT_PQR},   {"cif", VB_FMT_MMCIF},
-                 {"mmcif", VB_FMT_MMCIF}};
+                 {"mmcif", VB_FMT_MMCIF}, {"gro", VB_FMT_GRO}};
     for (size_t k = 0; k < sizeof names / sizeof names[0]; k++)
         if (strcmp(names[k].name, name) == 0) {
             *out = names[k].fmt;
             return VB_OK;
         }
     return vb_error(ctx, VB_EMISUSE, NULL, 0,
-                    "unknown format '%s' (auto, xyzr, balls, pdb, pqr, cif, mmcif)", name);
+                    "unknown format '%s' (auto, xyzr, balls, pdb, pqr, cif, mmcif, gro)", name);
 }
 
 int vbi_detect_error(vb_ctx *ctx, const char *name, int rc)
@@ -27,7 +27,7 @@ int vbi_detect_error(vb_ctx *ctx, const char *name, int rc)
     if (rc == VB_EINPUT_EMPTY)
         return vb_error(ctx, rc, name, 0, "empty input (no spheres)");
     return vb_error(ctx, rc, name, 0,
-                    "format not recognised (not XYZR, PDB, PQR or mmCIF); --format names it");
+                    "format not recognised (not XYZR, PDB, PQR, mmCIF or GRO); --format names it");
 }
 
 /* A PDB or PQR parse over the whole buffer, then the one-line reports of
@@ -56,6 +56,11 @@ int vb_spheres_read_buffer(vb_ctx *ctx, const char *name, const char *buf, size_
     }
     if (len > VBI_MAX_FILE_BYTES)
         return vb_error(ctx, VB_EINPUT_TOOLARGE, name, 0, "input is larger than 2 GiB");
+    /* Binary trajectories and topologies are known by their first bytes and
+     * never parsed as text. */
+    int rc0 = vbi_refuse_nonspheres(ctx, name, buf, len);
+    if (rc0 != VB_OK)
+        return rc0;
     /* A byte-order mark is not text of line 1; lone CRs end lines (read on
      * a copy with '\n' in their place, so every reader sees the same lines);
      * a NUL byte is never text. */
@@ -75,12 +80,16 @@ int vb_spheres_read_buffer(vb_ctx *ctx, const char *name, const char *buf, size_
     vb_format fmt = opt->format;
     if (rc == VB_OK && fmt == VB_FMT_AUTO && (rc = vbi_detect_format(buf, len, &fmt)) != VB_OK)
         rc = vbi_detect_error(ctx, name, rc);
+    if (rc == VB_OK && opt->assembly > 0 && fmt != VB_FMT_MMCIF)
+        rc = vb_error(ctx, VB_EINPUT_ASSEMBLY, name, 0,
+                      "--assembly reads mmCIF biological assemblies; this input is not mmCIF");
     if (rc == VB_OK) {
         switch (fmt) {
         case VB_FMT_XYZR: rc = vbi_read_xyzr(ctx, name, buf, len, opt, out); break;
         case VB_FMT_PDB: rc = read_reported(vbi_pdb_parse, ctx, name, buf, len, opt, out); break;
         case VB_FMT_PQR: rc = read_reported(vbi_pqr_parse, ctx, name, buf, len, opt, out); break;
         case VB_FMT_MMCIF: rc = vbi_read_mmcif(ctx, name, buf, len, opt, out); break;
+        case VB_FMT_GRO: rc = vbi_read_gro(ctx, name, buf, len, opt, out); break;
         default:
             rc = vb_error(ctx, VB_EMISUSE, name, 0, "invalid format value %d", (int)fmt);
             break;

@@ -89,9 +89,29 @@ typedef struct {
     int32_t last_model;
     int truncated;
     long truncated_line;
+    char (*asym)[8];  /* --assembly: label_asym_id of each atom read */
+    size_t asym_cap;
 } cif_reader;
 
 static const char *const axis_names[3] = {"Cartn_x", "Cartn_y", "Cartn_z"};
+
+/* Records the label_asym_id of the atom just pushed (assemblies name
+ * chains by it). */
+static int note_asym(cif_reader *r, const vbi_cif_token *t)
+{
+    size_t n = r->b.set->n;
+    if (n > r->asym_cap) {
+        size_t cap = r->asym_cap ? 2 * r->asym_cap : 1024;
+        void *p = realloc(r->asym, cap * sizeof *r->asym);
+        if (!p)
+            return vb_error(r->ctx, VB_ENOMEM, r->name, 0, "out of memory");
+        r->asym = p;
+        r->asym_cap = cap;
+    }
+    int trunc = 0;
+    text_cell(r->asym[n - 1], sizeof r->asym[n - 1], t, &trunc);
+    return VB_OK;
+}
 
 static int take_row(cif_reader *r, const vbi_cif_token *row, const int *col)
 {
@@ -141,11 +161,12 @@ static int take_row(cif_reader *r, const vbi_cif_token *row, const int *col)
     info.altloc = t && t->len == 1 ? t->text[0] : ' ';
     t = cell(row, col, COL_TYPE);
     char el[4] = "";
+    int how = VBI_INFER_NONE;
     if (t && !vbi_copy_field(el, sizeof el, t->text, t->len)) {
         for (size_t c = 0; el[c]; c++)
             info.element[c] = (char)toupper((unsigned char)el[c]);
     } else {
-        vbi_element_from_bare_name(info.name, info.element);
+        how = vbi_infer_element(NULL, info.name, info.resname, VBI_LAYOUT_UNKNOWN, info.element);
     }
     if (trunc && !r->truncated) {
         r->truncated = 1;
@@ -156,10 +177,17 @@ static int take_row(cif_reader *r, const vbi_cif_token *row, const int *col)
         return vb_error(r->ctx, VB_ENOMEM, r->name, line, "out of memory (alternate locations)");
     if (drop)
         return VB_OK;
+    if (how != VBI_INFER_NONE) {
+        int rc = vbi_element_inferred(r->ctx, r->opt, r->name, line, &info, how, r->dr);
+        if (rc != VB_OK)
+            return rc;
+    }
     int rc = vbi_radius_for(r->ctx, r->opt, r->name, line, info.element, &e[3], &d[3],
                             &r->dr->unknown_elements);
     if (rc == VB_OK)
         rc = vbi_builder_push(&r->b, e, d, &info, line);
+    if (rc == VB_OK && r->opt->assembly > 0)
+        rc = note_asym(r, cell(row, col, COL_LABEL_ASYM));
     return rc;
 }
 
@@ -258,8 +286,16 @@ int vbi_mmcif_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len,
         rc = vb_error(ctx, VB_EINPUT_EMPTY, name, 0, "no _atom_site loop in the mmCIF input");
     vbi_altloc_free(&r.alt);
     rc = vbi_builder_close(&r.b, &r.models, rc, out);
-    if (rc != VB_OK)
+    if (rc == VB_OK && opt->assembly > 0 && (*out)->n > 0)
+        rc = vbi_assembly_build(ctx, name, buf, len, opt->assembly,
+                                (const char(*)[8])r.asym, opt->max_spheres ? opt->max_spheres
+                                                                           : VBI_DEFAULT_MAX_SPHERES, out);
+    free(r.asym);
+    if (rc != VB_OK) {
+        vb_spheres_free(*out);
+        *out = NULL;
         return rc;
+    }
     if (r.truncated)
         vb_warn(ctx, VB_W_NAMES_TRUNCATED, name, r.truncated_line,
                 "atom, residue or chain names longer than 7 characters were truncated");

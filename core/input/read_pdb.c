@@ -21,9 +21,20 @@ static char column_char(const char *line, size_t n, size_t col)
 
 static const char *const axis_names[3] = {"x coordinate", "y coordinate", "z coordinate"};
 
-/* Fills info, e and d from one ATOM/HETATM line (radius aside). */
+/* The text a reader parses, and how its atom names are laid out (looked at
+ * when a first atom lacks its element). */
+typedef struct {
+    const char *buf;
+    size_t len;
+    int layout; /* -1 until needed, then a VBI_LAYOUT_* */
+} pdb_text;
+
+/* Fills info, e and d from one ATOM/HETATM line (radius aside); *how gets
+ * VBI_INFER_NONE when columns 77-78 give the element, else how it was
+ * inferred. */
 static int parse_atom_line(vb_ctx *ctx, const char *name, long lineno, const char *line,
-                           size_t n, vb_atom_info *info, vb_decimal e[4], double d[4])
+                           size_t n, pdb_text *text, vb_atom_info *info, vb_decimal e[4],
+                           double d[4], int *how)
 {
     if (n < 54)
         return vb_error(ctx, VB_EINPUT_MALFORMED, name, lineno,
@@ -61,11 +72,14 @@ static int parse_atom_line(vb_ctx *ctx, const char *name, long lineno, const cha
     int alpha = el[0] != '\0';
     for (size_t c = 0; el[c]; c++)
         alpha &= isalpha((unsigned char)el[c]) != 0;
+    *how = VBI_INFER_NONE;
     if (alpha) {
         for (size_t c = 0; el[c]; c++)
             info->element[c] = (char)toupper((unsigned char)el[c]);
     } else {
-        vbi_element_from_name(name4, info->element);
+        if (text->layout < 0)
+            text->layout = vbi_pdb_name_layout(text->buf, text->len);
+        *how = vbi_infer_element(name4, info->name, info->resname, text->layout, info->element);
     }
     return VB_OK;
 }
@@ -82,6 +96,8 @@ int vbi_pdb_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
     vbi_atom_scan_init(&scan, opt->model);
     vbi_altloc alt;
     vbi_altloc_init(&alt);
+    pdb_text text = {buf, len, -1};
+    size_t records = 0; /* ATOM/HETATM records met, read or not */
     vbi_lines it;
     vbi_lines_init(&it, buf, len, first_line);
     const char *line;
@@ -90,6 +106,7 @@ int vbi_pdb_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
     while (rc == VB_OK && vbi_lines_next(&it, &line, &n)) {
         vbi_record rec = vbi_record_kind(vbi_pdb_record, line, n);
         int32_t serial = rec == VBI_REC_MODEL ? vbi_pdb_model_serial(line, n) : 0;
+        records += rec == VBI_REC_ATOM;
         if (rec == VBI_REC_MODEL)
             model_line = it.lineno;
         if (!vbi_atom_scan_takes(&scan, rec, serial, dr))
@@ -97,7 +114,8 @@ int vbi_pdb_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
         vb_atom_info info;
         vb_decimal e[4];
         double d[4];
-        rc = parse_atom_line(ctx, name, it.lineno, line, n, &info, e, d);
+        int how;
+        rc = parse_atom_line(ctx, name, it.lineno, line, n, &text, &info, e, d, &how);
         if (rc != VB_OK)
             break;
         int drop = vbi_atom_dropped(opt, &alt, &info, dr);
@@ -105,6 +123,9 @@ int vbi_pdb_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
             rc = vb_error(ctx, VB_ENOMEM, name, it.lineno, "out of memory (alternate locations)");
         if (drop)
             continue;
+        if (how != VBI_INFER_NONE &&
+            (rc = vbi_element_inferred(ctx, opt, name, it.lineno, &info, how, dr)) != VB_OK)
+            break;
         rc = vbi_radius_for(ctx, opt, name, it.lineno, info.element, &e[3], &d[3],
                             &dr->unknown_elements);
         if (rc == VB_OK)
@@ -112,5 +133,8 @@ int vbi_pdb_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
     }
     vbi_altloc_free(&alt);
     vbi_atom_scan_note_open_model(&scan, model_line, dr);
+    if (rc == VB_OK && records == 0)
+        rc = vb_error(ctx, VB_EINPUT_EMPTY, name, 0,
+                      "no atoms: no ATOM or HETATM record in the PDB input");
     return vbi_builder_close(&b, &scan.models, rc, out);
 }

@@ -93,9 +93,10 @@ int vbi_pqr_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
         if (first - 4 >= 2)
             vbi_copy_field(info.chain, sizeof info.chain, tok[4], tl[4]);
         vbi_parse_int(tok[first - 1], tl[first - 1], &info.resseq);
-        /* PQR has no element column: PDB2PQR names start with the element,
-         * so the name's first letter says hydrogen or not. */
-        vbi_element_from_bare_name(info.name, info.element);
+        /* PQR has no element column, and needs none for its radii: the
+         * inferred element only says hydrogen or not (--no-hydrogens), so
+         * it is not counted as an inference. */
+        vbi_infer_element(NULL, info.name, info.resname, VBI_LAYOUT_UNKNOWN, info.element);
         if (vbi_atom_dropped(opt, NULL, &info, dr) || vbi_zero_radius_skip(zero_policy, e[3], dr))
             continue;
         rc = vbi_builder_push(&b, e, d, &info, it.lineno);

@@ -1,5 +1,6 @@
 /* A file or stdin into one buffer, with the size limit of the input layer:
- * the first step of every reader and of the radii table. */
+ * the first step of every reader and of the radii table. Compressed input
+ * arrives decompressed (vbi_open_input). */
 #include "vbi_input.h"
 
 #include <errno.h>
@@ -10,10 +11,9 @@ int vbi_slurp(vb_ctx *ctx, const char *path, char **buf, size_t *len)
 {
     *buf = NULL;
     *len = 0;
-    int is_stdin = strcmp(path, "-") == 0;
-    FILE *f = is_stdin ? stdin : fopen(path, "rb");
+    FILE *f = vbi_open_input(ctx, path, NULL);
     if (!f)
-        return vb_error(ctx, VB_EIO, path, 0, "cannot open: %s", strerror(errno));
+        return vb_errcode(ctx);
     /* One byte past the limit is enough to know the input is too large. */
     size_t cap = 1 << 16, n = 0;
     char *b = malloc(cap + 1);
@@ -40,8 +40,8 @@ int vbi_slurp(vb_ctx *ctx, const char *path, char **buf, size_t *len)
     if (rc == VB_OK && !b)
         rc = vb_error(ctx, VB_ENOMEM, path, 0, "out of memory reading the input");
     else if (rc == VB_OK && ferror(f))
-        rc = vb_error(ctx, VB_EIO, path, 0, "read error: %s", strerror(errno));
-    if (!is_stdin)
+        rc = vbi_input_read_error(ctx, path);
+    if (f != stdin)
         fclose(f);
     if (rc != VB_OK) {
         free(b);

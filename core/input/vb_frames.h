@@ -1,11 +1,12 @@
 /* The frames of a molecule for the discrete pipelines (channels): the
- * models of a multi-model PDB / PQR / mmCIF / XYZR file, or the frames of a
- * DCD trajectory over a topology file that lists its atoms.
+ * models of a multi-model PDB / PQR / mmCIF / GRO / XYZR file, or the
+ * frames of a DCD, XTC or TRR trajectory over a topology file that lists
+ * its atoms (PDB, GRO, mmCIF, PQR, or a PSF).
  *
  * Every frame is checked as the sphere input of every command is: frames
  * read from text by vb_spheres_validate (radius < 0, duplicates, absurd
- * magnitudes: the same numbered errors as `vorball vertices`); DCD frames,
- * which carry no decimals, coordinate by coordinate (E102 for a NaN or
+ * magnitudes: the same numbered errors as `vorball vertices`); trajectory
+ * frames, which carry no decimals, coordinate by coordinate (E102 for a NaN or
  * infinite value, E107 beyond 1e9, naming the frame), with their radii from
  * the validated topology. */
 #ifndef VB_FRAMES_H
@@ -16,9 +17,11 @@
 typedef struct vb_frame_source vb_frame_source;
 
 /* Opens the frames of `path` ("-" = stdin), or with dcd_path the frames of
- * that DCD with `path` its topology (a file: every atom of the DCD, water
- * and hydrogens too; ro->keep_water and ro->drop_hydrogens then select the
- * atoms of the frames). VB_EINPUT_MODEL when the atom counts differ,
+ * that trajectory (DCD, XTC or TRR, told by its magic number; compressed
+ * too) with `path` its topology (a file: every atom of the trajectory,
+ * water and hydrogens too; ro->keep_water and ro->drop_hydrogens then
+ * select the atoms of the frames). VB_EINPUT_TOPOLOGY when the atom counts
+ * differ, VB_EINPUT_FORMAT when the trajectory is none of the three,
  * VB_EINPUT_EMPTY when no atom is left, the readers' errors, VB_ENOMEM.
  * Close with vb_frame_source_close. */
 int vb_frame_source_open(vb_ctx *ctx, const char *path, const char *dcd_path,

@@ -1,4 +1,5 @@
-/* Sphere sets and their readers (XYZR / Voronota balls, PDB, PQR, mmCIF).
+/* Sphere sets and their readers (XYZR / Voronota balls, PDB, PQR, mmCIF,
+ * GRO; gzip or bzip2 compressed or not).
  *
  * A sphere set is a struct of arrays. Every coordinate and radius is kept twice:
  * as the double nearest to the decimal written in the file (strtod, correctly
@@ -51,7 +52,8 @@ typedef enum vb_format {
     VB_FMT_XYZR,
     VB_FMT_PDB,
     VB_FMT_PQR,
-    VB_FMT_MMCIF
+    VB_FMT_MMCIF,
+    VB_FMT_GRO
 } vb_format;
 
 /* Radii table (element symbol -> radius as an exact decimal). */
@@ -77,9 +79,11 @@ typedef struct vb_read_options {
     const vb_radii_table *radii; /* NULL = built-in table (C 1.70, N 1.55, O 1.52, S 1.80, P 1.80, H 1.20, ...) */
     size_t max_spheres;          /* 0 = default limit (50,000,000) */
     int zero_radius;             /* enum vb_zero_radius */
+    int assembly;                /* mmCIF: biological assembly N of _pdbx_struct_assembly_gen
+                                  * (0 = the asymmetric unit as written) */
 } vb_read_options;
 
-/* Parses a format name ("xyzr", "pdb", "pqr", "cif"/"mmcif", "auto").
+/* Parses a format name ("xyzr", "pdb", "pqr", "cif"/"mmcif", "gro", "auto").
  * Returns VB_OK or VB_EMISUSE. */
 int vb_format_parse(vb_ctx *ctx, const char *name, vb_format *out);
 

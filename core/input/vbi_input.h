@@ -109,16 +109,11 @@ int vbi_is_water(const char *resname);
 /* Hydrogen or deuterium element symbol. */
 int vbi_is_hydrogen(const char *element);
 
-/* Guesses the element from a PDB atom name (columns 13-16) when columns 77-78
- * are blank: the first letter after leading digits, or two letters when the
- * name starts in column 13 (e.g. "FE  ", "CL  "). */
-void vbi_element_from_name(const char *name4, char element[4]);
+/* Distinct inferred elements counted one by one in the W715 line. */
+#define VBI_INFERRED_KINDS 12
 
-/* The same guess for a name without column positions (PQR, mmCIF without
- * type_symbol): always the first letter after leading digits. */
-void vbi_element_from_bare_name(const char *name, char element[4]);
-
-/* Counts of atoms a reader left out on purpose, reported as one line each. */
+/* Counts of atoms a reader left out on purpose (or read with an inferred
+ * element), reported as one line each. */
 typedef struct vbi_dropped {
     size_t water, altloc, hydrogens;
     size_t other_models;      /* atoms */
@@ -127,9 +122,49 @@ typedef struct vbi_dropped {
     size_t after_end;         /* atom records after END */
     size_t zero_dropped;      /* radius-0 spheres left out (--zero-radius drop) */
     size_t zero_points;       /* radius-0 spheres kept as points */
+    size_t inferred;          /* atoms whose element was inferred (W714, W715) */
+    size_t inferred_alignment;/* of those, two-letter elements from column 13 alone (W716) */
+    char inferred_el[VBI_INFERRED_KINDS][4]; /* the inferred elements and their counts */
+    size_t inferred_count[VBI_INFERRED_KINDS];
     long open_model_line;     /* the MODEL record of a taken model the input ends
                                  inside (no ENDMDL, no END): W735 */
 } vbi_dropped;
+
+/* How an element was inferred (element_infer.c says the rules). */
+enum { VBI_INFER_NONE = 0, VBI_INFER_RESIDUE, VBI_INFER_ALIGNMENT, VBI_INFER_LETTER };
+/* How a PDB file lays out atom names in columns 13-16. */
+enum { VBI_LAYOUT_UNKNOWN = 0, VBI_LAYOUT_PDB, VBI_LAYOUT_LEFT };
+
+/* True for a residue whose atoms are all H C N O S P (amino acids and their
+ * force-field variants, nucleotides, water): the first letter of an atom
+ * name is its element. */
+int vbi_plain_residue(const char *resname);
+
+/* Infers the element of an atom whose file does not give it: name4 is
+ * columns 13-16 of a PDB record (NULL for formats without columns), name
+ * the trimmed atom name, resname its residue, layout what
+ * vbi_pdb_name_layout said of the file. Writes the symbol (upper case, ""
+ * when the name has no letter) and returns VBI_INFER_RESIDUE,
+ * VBI_INFER_ALIGNMENT, VBI_INFER_LETTER or VBI_INFER_NONE. */
+int vbi_infer_element(const char *name4, const char *name, const char *resname, int layout,
+                      char element[4]);
+
+/* Whether the amino acids and nucleotides of a PDB text start one-letter
+ * names in column 14 (VBI_LAYOUT_PDB, the convention) or 13
+ * (VBI_LAYOUT_LEFT: CHARMM, NAMD and other writers that left-justify);
+ * VBI_LAYOUT_UNKNOWN when it has none. Looks at up to 2000 such atoms. */
+int vbi_pdb_name_layout(const char *buf, size_t len);
+
+/* Records that the element of `info` (atom of file:line) was inferred
+ * (`how`): VB_EINPUT_INFERRED under --strict-elements; otherwise counted in
+ * dr, with warning W714 for the first such atom and W716 for the first
+ * two-letter element taken from alignment alone. */
+int vbi_element_inferred(vb_ctx *ctx, const vb_read_options *opt, const char *file, long line,
+                         const vb_atom_info *info, int how, vbi_dropped *dr);
+
+/* Warning W715: how many atoms had their element inferred, per element. */
+void vbi_report_inferred(vb_ctx *ctx, const char *name, const vbi_dropped *dr);
+
 
 /* The zero-radius policy of opt for a format, AUTO resolved: points for PQR,
  * an error elsewhere. Returns VB_ZERO_RADIUS_ERROR, _POINT or _DROP. */
@@ -237,8 +272,32 @@ int vbi_atom_dropped(const vb_read_options *opt, vbi_altloc *alt, const vb_atom_
                      vbi_dropped *dr);
 
 /* Content detection into *out. Returns VB_OK, VB_EINPUT_EMPTY (only blank
- * and '#' lines) or VB_EINPUT_FORMAT (nothing fits); sets no message. */
+ * and '#' lines) or VB_EINPUT_FORMAT (nothing fits); sets no message. PDB
+ * header records without atoms are VB_FMT_PDB (its reader says "no
+ * atoms"). */
 int vbi_detect_format(const char *buf, size_t len, vb_format *out);
+
+/* True when the line is one of the common PDB records (HEADER, REMARK,
+ * CRYST1, ATOM, END, ...). */
+int vbi_pdb_header_record(const char *line, size_t n);
+
+/* Binary trajectories, by magic number. */
+enum { VBI_TRAJ_NONE = 0, VBI_TRAJ_DCD, VBI_TRAJ_XTC, VBI_TRAJ_TRR };
+/* The trajectory the first bytes announce (XTC 1995/2023 or TRR 1993 as
+ * big-endian integers, DCD an 84-byte record "CORD"), or VBI_TRAJ_NONE. */
+int vbi_trajectory_kind(const unsigned char *p, size_t n);
+/* "XTC", "TRR", "DCD". */
+const char *vbi_trajectory_name(int kind);
+/* True when the text is a PSF topology (first word "PSF"). */
+int vbi_is_psf(const char *buf, size_t len);
+/* VB_EINPUT_NOSPHERES (message naming what to give with it) when buf is a
+ * binary trajectory or a PSF topology: inputs that hold no spheres by
+ * themselves. VB_OK otherwise. Called before any text is parsed. */
+int vbi_refuse_nonspheres(vb_ctx *ctx, const char *name, const char *buf, size_t len);
+
+/* True when a line has GRO's atom layout: x, y, z decimals from column 21
+ * at a fixed spacing. */
+int vbi_gro_atom_fits(const char *line, size_t n);
 /* Sets the context message for a failed detection and returns rc. */
 int vbi_detect_error(vb_ctx *ctx, const char *name, int rc);
 
@@ -261,8 +320,60 @@ int vbi_mmcif_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len,
                     const vb_read_options *opt, int ordinal, vbi_dropped *dr, int *serial,
                     vb_sphere_set **out);
 
+/* The GRO reader on one frame at the start of buf (lines numbered from
+ * first_line; what it leaves out is added to *dr); *consumed gets the bytes
+ * of the frame. */
+int vbi_gro_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, long first_line,
+                  const vb_read_options *opt, vbi_dropped *dr, vb_sphere_set **out,
+                  size_t *consumed);
+/* A GRO file: frame opt->model (1 = the first), the others counted. */
+int vbi_read_gro(vb_ctx *ctx, const char *name, const char *buf, size_t len,
+                 const vb_read_options *opt, vb_sphere_set **out);
+/* Replaces *set - atoms read from the mmCIF text buf, atom i of chain
+ * asym[i] (label_asym_id) - by the copies of biological assembly `id`
+ * (assembly.c): coordinates moved by the operators exactly, E107 for one
+ * beyond 18 significant digits, VB_EINPUT_ASSEMBLY when the assembly, an
+ * operator or its expression is absent or malformed, VB_EINPUT_TOOLARGE past
+ * `max` spheres. On failure *set is left as it was. */
+int vbi_assembly_build(vb_ctx *ctx, const char *name, const char *buf, size_t len, int id,
+                       const char (*asym)[8], size_t max, vb_sphere_set **set);
+
+/* The PSF reader (read_psf.c): the !NATOM section as a sphere set with
+ * zero coordinates (a topology: not for vb_spheres_validate), radii from
+ * the elements of the masses. */
+int vbi_read_psf(vb_ctx *ctx, const char *name, const char *buf, size_t len,
+                 const vb_read_options *opt, vb_sphere_set **out);
+
+/* Multiplies a decimal by ten exactly (nm to Angstrom) and sets *d to the
+ * double nearest the result. Returns VB_OK. */
+int vbi_decimal_times_ten(vb_decimal *e, double *d);
+
 /* Reads a whole file ("-" = stdin) into a NUL-terminated buffer, refusing
- * more than VBI_MAX_FILE_BYTES. Caller frees *buf. */
+ * more than VBI_MAX_FILE_BYTES (decompressed: vbi_open_input). Caller frees
+ * *buf. */
 int vbi_slurp(vb_ctx *ctx, const char *path, char **buf, size_t *len);
+
+/* Compression of a stream, told by its first bytes. */
+enum { VBI_PLAIN = 0, VBI_GZIP, VBI_BZIP2 };
+/* VBI_GZIP for 1f 8b, VBI_BZIP2 for "BZh1".."BZh9", else VBI_PLAIN. */
+int vbi_compression_of(const unsigned char *p, size_t n);
+/* "gzip", "bzip2" or "plain". */
+const char *vbi_compression_name(int kind);
+
+/* Opens `path` ("-" = stdin) as the bytes it holds: gzip and bzip2 data
+ * (by magic number, whatever the name; concatenated streams too) come out
+ * decompressed. A plain file is its own stream (seekable); stdin and
+ * compressed input are read-only streams that seek forward only. NULL with
+ * the context error set when it cannot be opened (VB_EIO; a directory is
+ * named as one) or on VB_ENOMEM; *kind (may be NULL) gets VBI_PLAIN,
+ * VBI_GZIP or VBI_BZIP2. Damaged compressed data makes reads fail with the
+ * context error VB_EINPUT_COMPRESSED (E113) set; bytes after the end of the
+ * last stream are ignored with warning W719. Close with fclose. */
+FILE *vbi_open_input(vb_ctx *ctx, const char *path, int *kind);
+
+/* The error to return when a read from a vbi_open_input stream failed:
+ * VB_EINPUT_COMPRESSED when the decompressor already said why, else
+ * VB_EIO "read error" (message set). Call with errno as the read left it. */
+int vbi_input_read_error(vb_ctx *ctx, const char *path);
 
 #endif

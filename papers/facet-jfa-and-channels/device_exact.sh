@@ -76,7 +76,7 @@ chan() { # name, input, grid, then more channels arguments
     shift 3
     for v in facet exact; do
         run "chan_${name}_${n}_$v" 40 channels "$in" --device "$DEV" --grid "$n" --jfa "$v" \
-            --repeat $CREP "$@" -o /dev/null --stats "$O/chan_${name}_${n}_$v.csv"
+            --repeat $CREP "$@" -o /dev/null --stats-file "$O/chan_${name}_${n}_$v.csv"
     done
 }
 chan 1chb "$D/1chb_hole2.pdb" $C1

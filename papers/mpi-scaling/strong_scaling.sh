@@ -117,7 +117,7 @@ for np in $ranks; do
     r=$out/runs/channels.$np
     t=$(now)
     mpi "$np" 1 timeout 600 "$vorball" channels --device ref --grid "$grid" "$trj" -o "$r.csv" \
-        --stats "$r.stats" 2> "$r.err"
+        --stats-file "$r.stats" 2> "$r.err"
     rc=$? t=$(since "$t")
     if [ $rc -ne 0 ]; then say "channels on $np ranks failed (exit $rc): $(tail -3 "$r.err")"; continue; fi
     [ -n "$first" ] || { first=$np; t1=$t; }

@@ -259,7 +259,11 @@ static void test_grid_fit_errors(vb_ctx *ctx)
     CHECK_INT(vbc_grid_fit(ctx, s, -1.0, 64, 3, &g), VB_EMISUSE);
     CHECK_INT(vbc_grid_fit(ctx, s, 1.4, 64, 4, &g), VB_EMISUSE);
     s->n = 0;
+    free(s->source);
+    s->source = strdup("frame.pdb");
     CHECK_INT(vbc_grid_fit(ctx, s, 1.4, 64, 3, &g), VB_EINPUT_EMPTY);
+    /* The message names the input (issue 17). */
+    CHECK(strncmp(vb_errmsg(ctx), "frame.pdb: no atoms", 19) == 0);
     s->n = 1;
     vb_spheres_free(s);
 }

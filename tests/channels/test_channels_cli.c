@@ -2,7 +2,8 @@
  * through channel along its pore (the y axis of this file) with a bottleneck
  * near HOLE's; every output file is written; the MD trajectory is processed
  * frame by frame; a DCD written from that trajectory gives the same frames;
- * a synthetic ring pore below the probe radius is measured exactly. */
+ * an XTC over its topology is read; a failing run leaves no table; a synthetic
+ * ring pore below the probe radius is measured exactly. */
 #include <stdlib.h>
 
 #include "cli_env.h"
@@ -56,7 +57,7 @@ static void test_gramicidin(void)
     snprintf(a, sizeof a,
              "%s/corpus/data/1grm_single_hole2.pdb --probe 1.0 --grid 64 -o %s/t.csv "
              "--centerlines %s/c.pdb --pymol %s/c.pml --volume %s/m.mrc --png %s/s.png "
-             "--stats %s/st.csv",
+             "--stats-file %s/st.csv",
              src, dir, dir, dir, dir, dir, dir);
     CHECK_INT(run(a), 0);
     char line[4096];
@@ -180,7 +181,7 @@ static void test_synthetic_ring(void)
 static void test_trajectory_and_dcd(vb_ctx *ctx)
 {
     char a[8192], line[4096];
-    snprintf(a, sizeof a, "%s/corpus/data/ngl_md_ascii_trj.pdb --grid 32 --frames 0:51:25 -o %s/md.csv --stats %s/mds.csv",
+    snprintf(a, sizeof a, "%s/corpus/data/ngl_md_ascii_trj.pdb --grid 32 --frames 0:51:25 -o %s/md.csv --stats-file %s/mds.csv",
              src, dir, dir);
     CHECK_INT(run(a), 0);
     int frames = 0;
@@ -220,7 +221,7 @@ static void test_trajectory_and_dcd(vb_ctx *ctx)
     vb_frame_reader_close(rd);
     CHECK_INT(vb_dcd_writer_close(ctx, w), VB_OK);
     CHECK_INT(written, 51);
-    snprintf(a, sizeof a, "%s --dcd %s --grid 32 --frames 0:51:25 -o %s/dcd.csv --stats %s/dcds.csv",
+    snprintf(a, sizeof a, "%s --dcd %s --grid 32 --frames 0:51:25 -o %s/dcd.csv --stats-file %s/dcds.csv",
              pdb, dcd, dir, dir);
     CHECK_INT(run(a), 0);
     frames = 0;
@@ -248,6 +249,38 @@ static void test_usage(void)
     CHECK_INT(run(a), 2);
     snprintf(a, sizeof a, "%s/corpus/data/1grm_single_hole2.pdb --grid 32 --frames 3: -o /dev/null", src);
     CHECK_INT(run(a), 21); /* no such frame */
+    /* A typo of a flag is an unknown option, never "needs a value". */
+    snprintf(a, sizeof a, "%s/corpus/data/1grm_single_hole2.pdb --cavity", src);
+    CHECK_INT(run(a), 2);
+    /* A failing command leaves no partial table: a 10-atom XTC over the
+     * 272-atom topology is E116 (exit 26) after -o was opened. */
+    snprintf(a, sizeof a,
+             "%s/corpus/data/1grm_single_hole2.pdb --traj %s/corpus/data/xtc_10x10.xtc --grid 32 "
+             "-o %s/fail.csv",
+             src, src, dir);
+    CHECK_INT(run(a), 26);
+    CHECK_INT(file_size("fail.csv"), -1);
+}
+
+/* An XTC (MDAnalysis' writer, 10 frames of the MD trajectory) over the PDB
+ * as its topology: frames 0 and 9, in nm read as Angstrom. */
+static void test_xtc(void)
+{
+    char a[8192], line[4096];
+    snprintf(a, sizeof a,
+             "%s/corpus/data/ngl_md_ascii_trj.pdb --traj %s/corpus/data/ngl_md_10frames.xtc "
+             "--grid 32 --frames 0:10:9 -o %s/xtc.csv --stats-file %s/xtcs.csv",
+             src, src, dir, dir);
+    CHECK_INT(run(a), 0);
+    int frames = 0;
+    for (int r = 1; csv_line("xtcs.csv", r, line, sizeof line) == 0; r++, frames++) {
+        long f, m, at;
+        if (sscanf(line, "%ld,%ld,%ld", &f, &m, &at) == 3) {
+            CHECK_INT(f, 9 * frames);
+            CHECK_INT(at, 183);
+        }
+    }
+    CHECK_INT(frames, 2);
 }
 
 int main(void)
@@ -263,6 +296,7 @@ int main(void)
     test_synthetic_ring();
     test_trajectory_and_dcd(ctx);
     test_usage();
+    test_xtc();
     vb_close(ctx);
     cli_env_close();
     VB_TEST_END();

@@ -83,7 +83,19 @@ static void test_pdb(void)
     CHECK(s == NULL);
     o.model = 0;
     o.strict_elements = 1;
-    CHECK_ERROR(ctx, read_text(ctx, "s.pdb", pdb_sample, &o, &s), VB_EINPUT_ELEMENT, "s.pdb:10:");
+    /* Line 9 has no element column: strict mode refuses to infer it; line
+     * 10's element is unknown. */
+    CHECK_ERROR(ctx, read_text(ctx, "s.pdb", pdb_sample, &o, &s), VB_EINPUT_INFERRED, "s.pdb:9:");
+    CHECK(strstr(vb_errmsg(ctx), "'CB' of residue 'ALA'") != NULL);
+    static const char cb[] = "ATOM      7  CB  ALA A   1       3.000   3.000   3.000  1.00 10.00\n";
+    char no9[sizeof pdb_sample + 16];
+    const char *at = strstr(pdb_sample, cb);
+    size_t head = (size_t)(at - pdb_sample);
+    memcpy(no9, pdb_sample, head);
+    memcpy(no9 + head, cb, 66);
+    memcpy(no9 + head + 66, "           C\n", 13);
+    strcpy(no9 + head + 79, at + strlen(cb));
+    CHECK_ERROR(ctx, read_text(ctx, "s.pdb", no9, &o, &s), VB_EINPUT_ELEMENT, "s.pdb:10:");
 
     /* A single-model file is model 1; model 2 is absent. */
     const char *one = "ATOM      1  N   ALA A   1       1.000   2.000   3.000  1.00 10.00           N\n";
@@ -298,7 +310,10 @@ static void test_detect(void)
     CHECK_INT(read_text(ctx, "a", "\n# balls\n-1 2 3 4 # x\n", NULL, &s), VB_OK);
     CHECK_INT(s->n, 1);
     vb_spheres_free(s);
-    CHECK_ERROR(ctx, read_text(ctx, "a", "COMPND x\nREMARK y\n", NULL, &s), VB_EINPUT_FORMAT, "a:");
+    /* PDB records without atoms: a PDB file with no atoms, said so. */
+    CHECK_ERROR(ctx, read_text(ctx, "a", "COMPND x\nREMARK y\n", NULL, &s), VB_EINPUT_EMPTY, "a:");
+    CHECK(strstr(vb_errmsg(ctx), "no atoms") != NULL);
+    CHECK_ERROR(ctx, read_text(ctx, "a", "hello\nworld\n", NULL, &s), VB_EINPUT_FORMAT, "a:");
     /* Forcing a format: PDB text read as XYZR is malformed at line 1. */
     o.format = VB_FMT_XYZR;
     CHECK_ERROR(ctx, read_text(ctx, "a", pdb_sample, &o, &s), VB_EINPUT_MALFORMED, "a:1:");
@@ -307,7 +322,9 @@ static void test_detect(void)
     CHECK_INT(f, VB_FMT_MMCIF);
     CHECK_INT(vb_format_parse(ctx, "pqr", &f), VB_OK);
     CHECK_INT(f, VB_FMT_PQR);
-    CHECK_INT(vb_format_parse(ctx, "gro", &f), VB_EMISUSE);
+    CHECK_INT(vb_format_parse(ctx, "gro", &f), VB_OK);
+    CHECK_INT(f, VB_FMT_GRO);
+    CHECK_INT(vb_format_parse(ctx, "xtc", &f), VB_EMISUSE);
     vb_close(ctx);
 }
 

@@ -11,35 +11,41 @@
 #include "vb_spheres.h"
 
 /* Small limits keep each run fast (the limit path is exercised too); the
- * first byte picks the reading options, so they are fuzzed along. */
-static void vb_fuzz_options(const uint8_t *data, size_t size, vb_read_options *opt)
+ * first byte picks the reading options, so they are fuzzed along. The caller
+ * zeroes *opt and sets its format. */
+static inline void vb_fuzz_options(const uint8_t *data, size_t size, vb_read_options *opt)
 {
     opt->max_spheres = 4096;
     if (size > 0) {
         opt->model = data[0] & 3;
         opt->keep_water = (data[0] >> 2) & 1;
         opt->drop_hydrogens = (data[0] >> 3) & 1;
+        opt->strict_elements = (data[0] >> 4) & 1;
     }
 }
 
-static int vb_fuzz_read(const uint8_t *data, size_t size, vb_format format)
+/* Reads the buffer with opt, validates what was read, frees everything. */
+static inline int vb_fuzz_read_with(const uint8_t *data, size_t size, const vb_read_options *opt)
 {
     vb_ctx *ctx = NULL;
     vb_config cfg = {.verbosity = 0};
     if (vb_open(&ctx, &cfg) != VB_OK)
         return 0;
-    vb_read_options opt;
-    memset(&opt, 0, sizeof opt);
-    opt.format = format;
-    vb_fuzz_options(data, size, &opt);
-    if (size > 0)
-        opt.strict_elements = (data[0] >> 4) & 1;
     vb_sphere_set *set = NULL;
-    if (vb_spheres_read_buffer(ctx, "fuzz", (const char *)data, size, &opt, &set) == VB_OK)
+    if (vb_spheres_read_buffer(ctx, "fuzz", (const char *)data, size, opt, &set) == VB_OK)
         vb_spheres_validate(ctx, set, 1);
     vb_spheres_free(set);
     vb_close(ctx);
     return 0;
+}
+
+static inline int vb_fuzz_read(const uint8_t *data, size_t size, vb_format format)
+{
+    vb_read_options opt;
+    memset(&opt, 0, sizeof opt);
+    opt.format = format;
+    vb_fuzz_options(data, size, &opt);
+    return vb_fuzz_read_with(data, size, &opt);
 }
 
 /* For readers that take a path: writes the input to this process's own
@@ -50,12 +56,12 @@ static int vb_fuzz_read(const uint8_t *data, size_t size, vb_format format)
 
 static char vb_fuzz_path[256];
 
-static void vb_fuzz_remove(void)
+static inline void vb_fuzz_remove(void)
 {
     remove(vb_fuzz_path);
 }
 
-static const char *vb_fuzz_file(const uint8_t *data, size_t size)
+static inline const char *vb_fuzz_file(const uint8_t *data, size_t size)
 {
     char *path = vb_fuzz_path;
     if (!path[0]) {
@@ -75,7 +81,7 @@ static const char *vb_fuzz_file(const uint8_t *data, size_t size)
 /* The start of a target that reads a path: the input in a file (its name
  * returned) and a quiet context in *ctx; NULL (nothing to free) when either
  * fails. */
-static const char *vb_fuzz_begin(const uint8_t *data, size_t size, vb_ctx **ctx)
+static inline const char *vb_fuzz_begin(const uint8_t *data, size_t size, vb_ctx **ctx)
 {
     const char *path = vb_fuzz_file(data, size);
     vb_config cfg = {.verbosity = 0};

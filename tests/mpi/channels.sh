@@ -18,7 +18,7 @@ untimed() { # the statistics without their timing columns
 unms() { # JSON without the per-frame timings
     sed 's/"ms": {[^}]*}//' "$1"
 }
-run 0 "$work/c.1.err" "$vorball" channels $opts "$trj" -o "$work/c.1.csv" --stats "$work/s.1.csv" \
+run 0 "$work/c.1.err" "$vorball" channels $opts "$trj" -o "$work/c.1.csv" --stats-file "$work/s.1.csv" \
     --centerlines "$work/cl.1.pdb" --volume "$work/v.1.%d.mrc" --png "$work/p.1.png"
 run 0 "$work/j.1.err" "$vorball" channels $opts "$trj" --json -o "$work/j.1.json"
 n=$(grep -c '^[0-9]' "$work/s.1.csv")
@@ -28,7 +28,7 @@ run 0 "$work/c.np1.err" mpi 1 "$vorball" channels $opts "$trj" -o "$work/c.np1.c
 same_bytes "table on 1 rank" "$work/c.1.csv" "$work/c.np1.csv"
 for np in 2 3; do
     run 0 "$work/c.$np.err" mpi $np "$vorball" channels $opts "$trj" -o "$work/c.$np.csv" \
-        --stats "$work/s.$np.csv" --centerlines "$work/cl.$np.pdb" --volume "$work/v.$np.%d.mrc" \
+        --stats-file "$work/s.$np.csv" --centerlines "$work/cl.$np.pdb" --volume "$work/v.$np.%d.mrc" \
         --png "$work/p.$np.png"
     same_bytes "table on $np ranks" "$work/c.1.csv" "$work/c.$np.csv"
     same_bytes "centrelines on $np ranks" "$work/cl.1.pdb" "$work/cl.$np.pdb"

@@ -14,13 +14,28 @@ in=cubic_lattice.xyzr
 run 0 "$out" "$vorball" reference --format xyzr --model 1 --water --no-hydrogens \
     --strict-elements --zero-radius point "$in" -o "$work/ref.tsv"
 cmp -s "$work/ref.tsv" ../golden/cubic_lattice.tsv || fail "options changed the xyzr vertices"
+# gzip and bzip2 input, on stdin too: told by magic number, the same vertices.
+gzip -c "$in" > "$work/in.gz" && bzip2 -c "$in" > "$work/in.bz2" || fail "cannot compress $in"
+run 0 "$out" "$vorball" reference "$work/in.bz2" -o "$work/ref_bz2.tsv"
+# (the header line names the input; the vertices must be the same bytes)
+grep -v '^#' ../golden/cubic_lattice.tsv > "$work/golden_body.tsv"
+grep -v '^#' "$work/ref_bz2.tsv" | cmp -s - "$work/golden_body.tsv" || fail "bzip2 input changed the vertices"
+"$vorball" reference - -o "$work/ref_gz.tsv" < "$work/in.gz" > "$out" 2>&1 || fail "gzip on stdin failed"
+grep -v '^#' "$work/ref_gz.tsv" | cmp -s - "$work/golden_body.tsv" || fail "gzip on stdin changed the vertices"
+run 0 "$out" "$vorball" --help
+expect_line "$out" "vorball --version"
+run 0 "$out" "$vorball" --version
+expect_line "$out" "^vorball [0-9]"
 run 0 "$out" "$vorball" reference --help
 for name in "--format F" "--model N" "--radii FILE" "--water" "--no-hydrogens" "--strict-elements" \
-            "--zero-radius M"; do
+            "--zero-radius M" "--assembly N"; do
     expect_line "$out" "^  $name"
 done
-run 2 "$out" "$vorball" reference --format gro "$in"
-expect_line "$out" "unknown format 'gro'"
+run 2 "$out" "$vorball" reference --format xtc "$in"
+expect_line "$out" "unknown format 'xtc'"
+# XYZR forced to GRO: malformed at its count line (exit 11), not an empty frame.
+run 11 "$out" "$vorball" reference --format gro "$in"
+expect_line "$out" "E101: cubic_lattice.xyzr:2:"
 run 2 "$out" "$vorball" reference --model 0 "$in"
 run 2 "$out" "$vorball" reference --model x2 "$in"
 run 2 "$out" "$vorball" reference "$in" --model

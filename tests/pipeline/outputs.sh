@@ -24,7 +24,7 @@ run 2 "$out" "$vorball" channels --device ref --grid 32 in.pdb -o in.pdb
 expect_line "$out" "E7: in.pdb: output is the same file as 'in.pdb' on the command line"
 run 2 "$out" "$vorball" channels --device ref --grid 32 in.pdb -o link.pdb
 expect_line "$out" "E7: link.pdb: output is the same file as 'in.pdb'"
-run 2 "$out" "$vorball" channels --device ref --grid 32 link.pdb -o out.csv --stats ./in.pdb
+run 2 "$out" "$vorball" channels --device ref --grid 32 link.pdb -o out.csv --stats-file ./in.pdb
 expect_line "$out" "E7: ./in.pdb: output is the same file as 'link.pdb'"
 [ "$(cksum < in.pdb)" = "$sum" ] || fail "channels changed its input"
 [ ! -e out.csv ] || fail "a refused command left out.csv"
@@ -49,7 +49,7 @@ no_temps
     echo ENDMDL
 } > two.pdb
 echo keep > old.csv
-set -- --device ref --grid 32 two.pdb -o old.csv --stats s.csv --centerlines c.pdb \
+set -- --device ref --grid 32 two.pdb -o old.csv --stats-file s.csv --centerlines c.pdb \
     --pymol p.pml --volume v.mrc --png p.png
 run 11 "$out" "$vorball" channels "$@"
 expect_line "$out" "E101: two.pdb:272: "
@@ -80,7 +80,7 @@ no_temps
 
 # SIGTERM while channels writes: its temporary files go with it.
 "$vorball" channels --device ref --grid 32 --repeat 400 "$corpus/data/ngl_md_ascii_trj.pdb" \
-    -o term.csv --stats term_s.csv 2> /dev/null &
+    -o term.csv --stats-file term_s.csv 2> /dev/null &
 pid=$!
 i=0
 while [ $i -lt 100 ] && ! ls -A | grep -q 'term.*vorball-'; do

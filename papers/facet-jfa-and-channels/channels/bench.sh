@@ -42,9 +42,9 @@ for n in $grids; do
     [ -n "$QUICK" ] && rep=5
     for v in facet jfa+1; do
         run "fps_1grm_${n}_$v" "$GRM" --probe 1.0 --grid $n --jfa $v --repeat $rep \
-            -o /dev/null --stats "$O/fps_1grm_${n}_${v}_stats.csv"
+            -o /dev/null --stats-file "$O/fps_1grm_${n}_${v}_stats.csv"
         run "fps_1chb_${n}_$v" "$CHB" --grid $n --jfa $v --repeat $rep \
-            -o /dev/null --stats "$O/fps_1chb_${n}_${v}_stats.csv"
+            -o /dev/null --stats-file "$O/fps_1chb_${n}_${v}_stats.csv"
     done
 done
 
@@ -65,5 +65,5 @@ run chb_256 "$CHB" --grid 256 --json -o "$O/chb_256.json" --centerlines "$O/chb_
     --pymol "$O/chb.pml" --png "$O/chb_stages.png"
 run chb_hole_256 "$CHB" --radii "$HERE/hole_simple.radii" --grid 256 --json -o "$O/chb_hole_256.json"
 # The 51-frame MD trajectory, frame by frame.
-run md_128 "$MD" --grid 128 -o "$O/md_128.csv" --stats "$O/md_128_stats.csv" \
+run md_128 "$MD" --grid 128 -o "$O/md_128.csv" --stats-file "$O/md_128_stats.csv" \
     --centerlines "$O/md_centrelines.pdb"

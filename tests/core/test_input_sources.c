@@ -1,0 +1,260 @@
+/* Inputs as users have them (issue 17), on real files of corpus/data:
+ * gzip and bzip2 copies read as the plain file, a cut one is E113; the
+ * elements of a CHARMM PDB without element columns are inferred (C-alpha,
+ * never calcium) and counted, or refused under --strict-elements (E112);
+ * GRO coordinates become Angstrom exactly; a PSF or PDB topology with a DCD
+ * gives the same frames, a count mismatch is E116; mmCIF biological
+ * assemblies are built from their operators (E117 when absent). */
+#include "input_test_util.h"
+#include "vb_frames.h"
+
+static vb_sphere_set *read_corpus(vb_ctx *ctx, const char *rel, const vb_read_options *o, int want)
+{
+    vb_sphere_set *s = NULL;
+    vb_read_options def;
+    memset(&def, 0, sizeof def);
+    CHECK_INT(vb_spheres_read_file(ctx, corpus_path(rel), o ? o : &def, &s), want);
+    return s;
+}
+
+/* Every sphere equal: exact decimals, doubles, names. */
+static int same_set(const vb_sphere_set *a, const vb_sphere_set *b)
+{
+    if (!a || !b || a->n != b->n)
+        return 0;
+    for (size_t i = 0; i < a->n; i++)
+        if (a->ex[i].mant != b->ex[i].mant || a->ex[i].exp10 != b->ex[i].exp10 ||
+            a->ez[i].mant != b->ez[i].mant || a->x[i] != b->x[i] || a->r[i] != b->r[i] ||
+            strcmp(a->info[i].name, b->info[i].name) != 0)
+            return 0;
+    return 1;
+}
+
+static void test_compressed(vb_ctx *ctx)
+{
+    vb_sphere_set *plain = read_corpus(ctx, "data/1crn.pdb", NULL, VB_OK);
+    vb_sphere_set *gz = read_corpus(ctx, "data/1crn.pdb.gz", NULL, VB_OK);
+    vb_sphere_set *bz = read_corpus(ctx, "data/1crn.pdb.bz2", NULL, VB_OK);
+    CHECK_INT(plain ? plain->n : 0, 327);
+    CHECK(same_set(plain, gz));
+    CHECK(same_set(plain, bz));
+    vb_spheres_free(gz);
+    vb_spheres_free(bz);
+    vb_spheres_free(plain);
+
+    /* The gzip file cut in half: damaged data, named, never "no spheres". */
+    char path[] = "/tmp/vb_cut_XXXXXX";
+    int fd = mkstemp(path);
+    FILE *in = fopen(corpus_path("data/1crn.pdb.gz"), "rb");
+    unsigned char buf[5000];
+    size_t n = in ? fread(buf, 1, sizeof buf, in) : 0;
+    FILE *out = fdopen(fd, "wb");
+    fwrite(buf, 1, n, out);
+    fclose(out);
+    if (in)
+        fclose(in);
+    vb_sphere_set *s = NULL;
+    vb_read_options o;
+    memset(&o, 0, sizeof o);
+    CHECK_INT(vb_spheres_read_file(ctx, path, &o, &s), VB_EINPUT_COMPRESSED);
+    CHECK(s == NULL);
+    CHECK(strstr(vb_errmsg(ctx), path) != NULL);
+    remove(path);
+}
+
+/* adk_open.pdb: CHARMM output, columns 77-78 blank, names left-justified
+ * ("CA  " is the C-alpha): 3341 atoms, each element inferred. */
+static void test_inferred_elements(void)
+{
+    FILE *diag;
+    vb_ctx *ctx = open_ctx(&diag);
+    vb_sphere_set *s = read_corpus(ctx, "data/adk_open.pdb.gz", NULL, VB_OK);
+    size_t ca = 0, calcium = 0;
+    for (size_t i = 0; s && i < s->n; i++) {
+        if (strcmp(s->info[i].name, "CA") == 0) {
+            ca++;
+            CHECK(strcmp(s->info[i].element, "C") == 0);
+            CHECK(s->r[i] == 1.70);
+        }
+        calcium += strcmp(s->info[i].element, "CA") == 0;
+    }
+    CHECK_INT(s ? s->n : 0, 3341);
+    CHECK_INT(ca, 214);
+    CHECK_INT(calcium, 0);
+    const char *t = diag_text(diag);
+    CHECK(strstr(t, "W714") != NULL);
+    CHECK(strstr(t, "W715") != NULL && strstr(t, "3341 atoms without an element") != NULL);
+    CHECK(strstr(t, "W716") == NULL);
+    vb_spheres_free(s);
+
+    /* --strict-elements refuses the first atom (line 5 after 4 header lines). */
+    vb_read_options o;
+    memset(&o, 0, sizeof o);
+    o.strict_elements = 1;
+    s = read_corpus(ctx, "data/adk_open.pdb.gz", &o, VB_EINPUT_INFERRED);
+    CHECK(s == NULL);
+    CHECK(strstr(vb_errmsg(ctx), "adk_open.pdb.gz:") != NULL);
+    CHECK(strstr(vb_errmsg(ctx), "'N' of residue 'MET'") != NULL);
+    vb_close(ctx);
+    fclose(diag);
+
+    /* The convention where a file keeps it: " CA " in ALA is carbon, "CA  "
+     * in residue CA is calcium, a left-justified "FE  " in HEM is iron. */
+    ctx = open_ctx(&diag);
+    const char *pdb = "ATOM      1  N   ALA A   1       1.000   2.000   3.000  1.00 10.00\n"
+                      "ATOM      2  CA  ALA A   1       2.000   2.000   3.000  1.00 10.00\n"
+                      "HETATM    3 CA    CA A   2       5.000   2.000   3.000  1.00 10.00\n"
+                      "HETATM    4 FE   HEM A   3       8.000   2.000   3.000  1.00 10.00\n"
+                      "HETATM    5 CL   CLA A   4      11.000   2.000   3.000  1.00 10.00\n";
+    CHECK_INT(read_text(ctx, "c.pdb", pdb, NULL, &s), VB_OK);
+    static const char *const want[] = {"N", "C", "CA", "FE", "CL"};
+    for (size_t i = 0; s && i < 5; i++)
+        CHECK(strcmp(s->info[i].element, want[i]) == 0);
+    t = diag_text(diag);
+    CHECK(strstr(t, "W716") != NULL && strstr(t, "c.pdb:4:") != NULL);
+    CHECK(strstr(t, "5 atoms without an element") != NULL);
+    vb_spheres_free(s);
+    vb_close(ctx);
+    fclose(diag);
+}
+
+static void test_gro(vb_ctx *ctx)
+{
+    /* MDAnalysis' test.gro (bzip2): nm to Angstrom by the exponent. */
+    vb_sphere_set *s = read_corpus(ctx, "data/mda_test.gro.bz2", NULL, VB_OK);
+    CHECK_INT(s ? s->n : 0, 5);
+    if (s && s->n == 5) {
+        CHECK_DEC(s->ex[1], 3, 0); /* 0.300 nm = 3 A */
+        CHECK(s->x[1] == 3.0 && s->y[1] == 4.0 && s->z[1] == 5.0);
+        CHECK(strcmp(s->info[1].resname, "ARG") == 0 && strcmp(s->info[1].element, "C") == 0);
+    }
+    vb_spheres_free(s);
+    /* Adenylate kinase in OPLS-AA: the protein and four Na+ ions. */
+    s = read_corpus(ctx, "data/adk_oplsaa_protein.gro.gz", NULL, VB_OK);
+    CHECK_INT(s ? s->n : 0, 3345);
+    if (s && s->n == 3345) {
+        CHECK_DEC(s->ex[0], 5202, -2); /* 5.202 nm = 52.02 A */
+        CHECK(s->x[0] == 52.02 && s->z[0] == 31.55);
+        CHECK(strcmp(s->info[0].element, "N") == 0);
+        CHECK(strcmp(s->info[3344].element, "NA") == 0);
+        CHECK(strcmp(s->info[3340].element, "O") == 0);
+    }
+    vb_spheres_free(s);
+}
+
+/* Frames of the 2-frame DCD over a topology; returns the frames met. */
+static int dcd_frames(vb_ctx *ctx, const char *topo, vb_sphere_set **first)
+{
+    vb_frame_source *F = NULL;
+    vb_read_options o;
+    memset(&o, 0, sizeof o);
+    o.keep_water = 1;
+    char dcd[4096];
+    snprintf(dcd, sizeof dcd, "%s", corpus_path("data/adk_dims_2frames.dcd"));
+    if (vb_frame_source_open(ctx, corpus_path(topo), dcd, &o, &F) != VB_OK)
+        return -1;
+    int frames = 0, model;
+    vb_sphere_set *s;
+    while (vb_frame_source_next(ctx, F, &s, &model) == VB_OK && s) {
+        if (frames++ == 0 && first)
+            *first = s;
+        else
+            vb_spheres_free(s);
+    }
+    vb_frame_source_close(F);
+    return frames;
+}
+
+static void test_psf_dcd(vb_ctx *ctx)
+{
+    vb_sphere_set *a = NULL, *b = NULL;
+    int fa = 0;
+    /* A PSF alone holds no coordinates: E114 naming what to give. */
+    vb_frame_source *F = NULL;
+    vb_read_options o;
+    memset(&o, 0, sizeof o);
+    CHECK_INT(vb_frame_source_open(ctx, corpus_path("data/adk_natom.psf.gz"), NULL, &o, &F),
+              VB_EINPUT_NOSPHERES);
+    char dcd[4096];
+    snprintf(dcd, sizeof dcd, "%s", corpus_path("data/adk_dims_2frames.dcd"));
+    CHECK_INT(vb_frame_source_open(ctx, corpus_path("data/adk_natom.psf.gz"), dcd, &o, &F), VB_OK);
+    int model;
+    while (F && vb_frame_source_next(ctx, F, &a, &model) == VB_OK && a) {
+        if (fa++ == 0)
+            break;
+    }
+    vb_frame_source_close(F);
+    CHECK_INT(fa, 1);
+    CHECK_INT(dcd_frames(ctx, "data/adk_open.pdb.gz", &b), 2);
+    /* The PSF (elements from masses) and the PDB (inferred) agree. */
+    CHECK_INT(a ? a->n : 0, 3341);
+    CHECK_INT(b ? b->n : 0, 3341);
+    int same = a && b && a->n == b->n;
+    for (size_t i = 0; same && i < a->n; i++)
+        same = a->x[i] == b->x[i] && a->z[i] == b->z[i] && a->r[i] == b->r[i] &&
+               strcmp(a->info[i].element, b->info[i].element) == 0;
+    CHECK(same);
+    vb_spheres_free(a);
+    vb_spheres_free(b);
+    /* A 10-atom XTC on the 3341-atom topology: E116. */
+    snprintf(dcd, sizeof dcd, "%s", corpus_path("data/xtc_10x10.xtc"));
+    F = NULL;
+    CHECK_INT(vb_frame_source_open(ctx, corpus_path("data/adk_natom.psf.gz"), dcd, &o, &F),
+              VB_EINPUT_TOPOLOGY);
+    CHECK(F == NULL);
+}
+
+static void test_assembly(vb_ctx *ctx)
+{
+    vb_read_options o;
+    memset(&o, 0, sizeof o);
+    o.assembly = 1;
+    /* Crambin: assembly 1 is the identity on chain A. */
+    vb_sphere_set *au = read_corpus(ctx, "data/1crn.cif", NULL, VB_OK);
+    vb_sphere_set *s = read_corpus(ctx, "data/1crn.cif", &o, VB_OK);
+    CHECK(same_set(au, s));
+    vb_spheres_free(s);
+    /* EV71 capsid: 12 crystal operators on the 15 chains of the asymmetric
+     * unit (5 protomers): 60 protomers, 317,160 atoms; copy 1 is the
+     * asymmetric unit, copy 2 (x, y, z) -> (-x, -y, z) exactly. */
+    vb_sphere_set *cap = read_corpus(ctx, "data/4yvs_ev71_capsid.cif", NULL, VB_OK);
+    s = read_corpus(ctx, "data/4yvs_ev71_capsid.cif", &o, VB_OK);
+    CHECK_INT(cap ? cap->n : 0, 26430);
+    CHECK_INT(s ? s->n : 0, 12 * 26430);
+    if (cap && s && s->n == 12 * cap->n) {
+        size_t n = cap->n, bad = 0;
+        for (size_t i = 0; i < n; i++) {
+            bad += s->ex[i].mant != cap->ex[i].mant || s->x[i] != cap->x[i];
+            bad += s->ex[n + i].mant != -cap->ex[i].mant || s->y[n + i] != -cap->y[i] ||
+                   s->ez[n + i].mant != cap->ez[i].mant || s->r[n + i] != cap->r[i];
+        }
+        CHECK_INT(bad, 0);
+    }
+    vb_spheres_free(s);
+    vb_spheres_free(cap);
+    /* Too many spheres fails before building them. */
+    o.max_spheres = 300000;
+    s = read_corpus(ctx, "data/4yvs_ev71_capsid.cif", &o, VB_EINPUT_TOOLARGE);
+    CHECK(s == NULL);
+    o.max_spheres = 0;
+    /* Absent assembly; an assembly of a PDB file. */
+    o.assembly = 2;
+    s = read_corpus(ctx, "data/1crn.cif", &o, VB_EINPUT_ASSEMBLY);
+    CHECK(s == NULL && strstr(vb_errmsg(ctx), "1crn.cif") != NULL);
+    o.assembly = 1;
+    s = read_corpus(ctx, "data/1crn.pdb", &o, VB_EINPUT_ASSEMBLY);
+    CHECK(s == NULL);
+    vb_spheres_free(au);
+}
+
+int main(void)
+{
+    vb_ctx *ctx = open_ctx(NULL);
+    test_compressed(ctx);
+    test_inferred_elements();
+    test_gro(ctx);
+    test_psf_dcd(ctx);
+    test_assembly(ctx);
+    vb_close(ctx);
+    VB_TEST_END();
+}
