@@ -171,8 +171,12 @@ static PyObject *channels_run(PyObject *self, PyObject *args)
         vbc_frame_free(&F);
         return vbpy_call_fail(&c, rc);
     }
-    vbc_frame_info fi = {frame, model, s->n, F.out.nvoxels, F.out.ms_upload, F.out.ms_jfa,
-                         F.out.ms_masks, F.ms_analysis, F.ms_masks + F.ms_analysis};
+    /* No pore stage here (opt.pore NULL): the tables of `vorball channels
+     * --no-pore`. */
+    vbc_frame_info fi = {frame,          model,         s->n,
+                         F.out.nvoxels,  F.out.ms_upload, F.out.ms_jfa,
+                         F.out.ms_masks, F.ms_analysis, F.ms_masks + F.ms_analysis,
+                         0.0};
     const char *device = vbc_pipe_device_name(pipe);
     PyObject *csv = NULL, *json = NULL;
     PyObject *d = NULL;

@@ -86,6 +86,12 @@ int main(void)
              bin ? bin : "/tmp", (long)getpid());
     snprintf(cache_dir, sizeof cache_dir, "%s/vorball", cache_root);
     setenv("XDG_CACHE_HOME", cache_root, 1);
+    /* PoCL's own cache private too: a cache shared with another tree
+     * (.ci/test's sanitizer tree reuses the Release tree's) changes what
+     * the first build writes. */
+    char pocl_dir[600];
+    snprintf(pocl_dir, sizeof pocl_dir, "%s/pocl", cache_root);
+    setenv("POCL_CACHE_DIR", pocl_dir, 1);
     unsetenv("VORBALL_KERNEL_DIR");
     unsetenv("VORBALL_NO_PROGRAM_CACHE");
 
