@@ -603,7 +603,7 @@ static void stats_sum(vb_cover_stats *st, const vb_cover_stats *ws)
         st->max_level_seen = ws->max_level_seen;
 }
 
-unsigned vb_cover_pipeline_parts(size_t cells)
+unsigned vb_cover_pipeline_parts(void)
 {
     const char *e = getenv("VORBALL_COVER_PARTS");
     if (e && *e) {
@@ -612,7 +612,6 @@ unsigned vb_cover_pipeline_parts(size_t cells)
         if (*end == '\0' && v >= 1 && v <= 64)
             return (unsigned)v;
     }
-    (void)cells;
     return 1u;
 }
 
@@ -708,20 +707,10 @@ static int append_part(void *user, vb_quad_list *part)
 int vb_cover_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *opt,
                  vb_cover_backend *be, vb_quad_list *out, vb_cover_stats *stats)
 {
-    vb_quad_list mine = {0};
-    int rc = vb_cover_run_parts(ctx, set, opt, be, 1, append_part, &mine, stats);
-    if (rc == VB_OK && out->n == 0) {
-        vb_quad_list_free(out);
-        *out = mine;
-        return VB_OK;
-    }
-    if (rc == VB_OK) {
-        rc = append_part(out, &mine);
-        if (rc == VB_OK)
-            rc = canonical(out, vb_threads(opt ? opt->threads : 0));
-        if (rc != VB_OK)
-            rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
-    }
-    vb_quad_list_free(&mine);
+    size_t n0 = out->n;
+    int rc = vb_cover_run_parts(ctx, set, opt, be, 1, append_part, out, stats);
+    /* Appended to earlier quadruples: the whole list made canonical again. */
+    if (rc == VB_OK && n0 > 0 && canonical(out, vb_threads(opt ? opt->threads : 0)) != VB_OK)
+        rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
     return rc;
 }

@@ -43,7 +43,7 @@ static int cover_run(vb_ctx *ctx, void *state, const vb_proposer_await *aw,
     vb_quad_list q = {0};
     vb_cover_stats st;
     int rc = opt->quads_sink
-                 ? vb_cover_run_parts(ctx, set, &o, s->be, vb_cover_pipeline_parts(set->n),
+                 ? vb_cover_run_parts(ctx, set, &o, s->be, vb_cover_pipeline_parts(),
                                       opt->quads_sink, opt->quads_user, &st)
                  : vb_cover_run(ctx, set, &o, s->be, &q, &st);
     if (rc != VB_OK) {

@@ -113,14 +113,14 @@ int vb_cover_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *
  * error that stops the cover (returned by vb_cover_run_parts). */
 typedef int (*vb_cover_sink)(void *user, vb_quad_list *part);
 
-/* Parts for a pipelined run of `cells` cells: VORBALL_COVER_PARTS (1-64)
+/* Parts for a pipelined run: VORBALL_COVER_PARTS (1-64)
  * when set, else 1. Only speed depends on it. One part is the default
  * because it was the fastest measured: on an NVIDIA H200 with 16 host
  * cores, the 211,440-sphere tiled capsid took 1.38 s in 1 part, 1.85 s in
  * 4 and 1.83 s in 8 (each part's device batches end on their slowest
  * cells, and the certifier's threads take the host threads that help the
  * device). */
-unsigned vb_cover_pipeline_parts(size_t cells);
+unsigned vb_cover_pipeline_parts(void);
 
 /* vb_cover_run in `parts` runs of cells along the tree's curve (of this
  * process's share, opt->part of opt->nparts), the tree built once: each
