@@ -118,9 +118,9 @@ static void usage(FILE *f)
             "Under mpirun -np N (a build with VORBALL_WITH_MPI) the selected frames are dealt\n"
             "round-robin over the ranks (each reads INPUT), and rank 0 writes the tables in\n"
             "frame order: the same bytes as one process (timings aside). Volumes and the\n"
-            "picture are written by the rank that ran their frame. Under MPI the pore needs\n"
-            "--axis and --through (or --no-pore), and --profile, --plot, --fixed-grid and\n"
-            "--occupancy run on one process only.\n"
+            "picture are written by the rank that ran their frame. Every rank finds the\n"
+            "first frame's pore axis itself; --profile, --plot, --fixed-grid and\n"
+            "--occupancy run on one process only (E151).\n"
             "\n"
             "The channel table (CSV), one row per pore, channel or cavity of each frame:\n"
             "%s"
@@ -564,6 +564,40 @@ static int do_frame(vb_ctx *ctx, ch_args *A, vbc_pipe *pipe, long index, int mod
     return rc;
 }
 
+/* Under MPI the first selected frame belongs to rank 0, but every rank's
+ * later frames sweep its pore axis: a rank that does not own it runs the
+ * same analysis of it (no output) and keeps the axis, so each rank holds the
+ * axis one process would. Without a pore on that frame the axis stays free,
+ * as in one process. */
+static int first_frame_axis(vb_ctx *ctx, ch_args *A, vbc_pipe *pipe, long index,
+                            const vb_sphere_set *s0, sinks *S)
+{
+    vb_sphere_set *kept = NULL;
+    const vb_sphere_set *s = s0;
+    int rc = VB_OK;
+    if (A->nignore) {
+        size_t dropped;
+        if ((rc = vbc_spheres_without(ctx, s0, A->ignore, A->nignore, &kept, &dropped)) != VB_OK)
+            return rc;
+        s = kept;
+    }
+    vbc_grid g;
+    vbc_frame F;
+    memset(&F, 0, sizeof F);
+    if ((rc = frame_grid(ctx, A, s, index, S, &g)) == VB_OK)
+        rc = vbc_frame_run(ctx, pipe, &g, s, A->probe, 0, &A->opt, &F);
+    if (rc == VB_OK && F.result.pore.present) {
+        memcpy(A->pore.u, F.axis.u, sizeof A->pore.u);
+        memcpy(A->pore.c, F.axis.c, sizeof A->pore.c);
+        A->pore.have_axis = A->pore.have_through = 1;
+        A->pore.found_source = F.axis.source;
+        A->pore.found_chains = F.axis.chains;
+    }
+    vbc_frame_free(&F);
+    vb_spheres_free(kept);
+    return rc;
+}
+
 /* The frames of F in rounds (frame_rounds.h): every rank reads every frame,
  * runs the selected ones that are its own, and rank 0 writes each round's
  * outputs to out[] in frame order. *selected gets the frames selected.
@@ -593,6 +627,8 @@ static int run_frames(vb_ctx *ctx, ch_args *A, vbc_pipe *pipe, vb_frame_source *
             if (index >= A->f0 && (index - A->f0) % A->fstep == 0) {
                 if (vb_cli_rounds_mine(j))
                     frc = do_frame(ctx, A, pipe, index, model, j == 0, s, S);
+                else if (j == 0 && A->pore.enabled && !A->pore.have_axis)
+                    frc = first_frame_axis(ctx, A, pipe, index, s, S);
                 j++;
             }
             vb_spheres_free(s);
@@ -722,15 +758,14 @@ int vb_cmd_channels(int argc, char **argv)
     int code = vb_world_check_input(cmd, A.input);
     if (code)
         return code;
-    /* The first frame's pore axis fixes the later frames', and the profile,
-     * plot and occupancy gather every frame: under MPI the axis must be given
-     * and those outputs run on one process. */
-    if (vb_world_size() > 1 && (A.profile || A.plot || A.fixed_grid || A.occupancy ||
-                                (A.pore.enabled && !(A.pore.have_axis && A.pore.have_through)))) {
+    /* The profile, plot, fixed grid and occupancy gather every frame in one
+     * process (the pore axis of the first frame is found by every rank:
+     * first_frame_axis). */
+    if (vb_world_size() > 1 && (A.profile || A.plot || A.fixed_grid || A.occupancy)) {
         if (vb_world_rank() == 0)
-            fprintf(stderr, "vorball channels: E%d: under MPI give --axis and --through (or "
-                            "--no-pore); --profile, --plot, --fixed-grid and --occupancy run on "
-                            "one process only\n", VB_E_MPI_COMMAND);
+            fprintf(stderr, "vorball channels: E%d: --profile, --plot, --fixed-grid and "
+                            "--occupancy run on one process only (not under MPI)\n",
+                    VB_E_MPI_COMMAND);
         return VB_EXIT_USAGE;
     }
     vb_ctx *ctx;

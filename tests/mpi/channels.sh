@@ -45,8 +45,18 @@ for np in 2 3; do
     unms "$work/j.$np.json" > "$work/j.$np.cut"
     same_bytes "JSON on $np ranks" "$work/j.1.cut" "$work/j.$np.cut"
 done
-# The pore's axis comes from the first frame: under MPI it must be given.
-run 2 "$work/pore.err" mpi 2 "$vorball" channels --grid 32 --frames ::2 --device ref "$trj" -o "$work/pore.csv"
-expect_line "$work/pore.err" "E151: under MPI give --axis and --through"
-[ ! -e "$work/pore.csv" ] || fail "a refused channels job left $work/pore.csv"
+# The pore (default): later frames sweep the first frame's axis, which every
+# rank finds itself; the table is one process's.
+popts="--grid 32 --frames ::2 --device ref"
+run 0 "$work/pore.1.err" "$vorball" channels $popts "$trj" -o "$work/pore.1.csv"
+grep -q '^0,1,1,pore,' "$work/pore.1.csv" || fail "no pore in the first frame's table"
+for np in 2 3; do
+    run 0 "$work/pore.$np.err" mpi $np "$vorball" channels $popts "$trj" -o "$work/pore.$np.csv"
+    same_bytes "pore table on $np ranks" "$work/pore.1.csv" "$work/pore.$np.csv"
+done
+# The outputs gathered over every frame run on one process only.
+run 2 "$work/prof.err" mpi 2 "$vorball" channels $popts "$trj" -o "$work/prof.csv" --profile "$work/prof.prof.csv"
+expect_line "$work/prof.err" "E151: --profile, --plot, --fixed-grid and --occupancy run on one process only"
+[ ! -e "$work/prof.csv" ] || fail "a refused channels job left $work/prof.csv"
+[ ! -e "$work/prof.prof.csv" ] || fail "a refused channels job left $work/prof.prof.csv"
 echo "ok: channels of 26 frames on 1, 2 and 3 ranks are one process's output"
