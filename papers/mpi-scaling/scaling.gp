@@ -11,7 +11,7 @@ set key bottom left
 set logscale x 2
 set xlabel "MPI ranks"
 set ylabel "parallel efficiency"
-set yrange [0:1.15]
+set yrange [0:1.25]
 set grid
 set title "vorball over MPI ranks: 211,440-atom capsid (vertices), 500-frame trajectory (channels)"
 plot tsv using (strcol(1) eq "vertices" ? $2 : NaN):6 with linespoints lw 2 pt 7 \

@@ -14,7 +14,8 @@
 #   OUTDIR     scaling.tsv (the table), scaling.txt (what was printed), runs/
 # Environment: CORES (default nproc), RANKS ("1 2 4 8 16"; counts that do not
 # divide CORES are skipped), FRAMES (500), GRID (64), TILE (the capsid's
-# copies per axis, "2 2 2"), MPIRUN (mpirun from PATH, else the carried one).
+# copies per axis, "2 2 2"), MPIRUN (mpirun from PATH, else the carried one),
+# WORKLOADS ("vertices channels": which of the two run).
 # Run from the repository root.
 # Plot (here, with gnuplot): gnuplot -e "tsv='OUTDIR/scaling.tsv'; png='x.png'" \
 #   papers/mpi-scaling/scaling.gp
@@ -79,8 +80,10 @@ row() { # benchmark ranks threads seconds base_seconds base_ranks identical note
 # 1. Vertices: bench times a run from a barrier to rank 0's merged vertices
 # (input reading apart); `vertices -o` end to end at the first and last
 # rank counts, whose files must be the same bytes.
+workloads=${WORKLOADS:-vertices channels}
 first= last=
 for np in $ranks; do
+    case " $workloads " in *" vertices "*) ;; *) break ;; esac
     [ $((cores % np)) -eq 0 ] || continue
     th=$((cores / np)) r=$out/runs/bench.$np
     mpi "$np" "$th" timeout 600 "$vorball" bench --device ref --json "$cap" > "$r.json" 2> "$r.err"
@@ -113,6 +116,7 @@ rm -f "$out/runs/vertices."*.tsv
 # 2. Channels: frames dealt round-robin, one rank per core, end to end.
 first=
 for np in $ranks; do
+    case " $workloads " in *" channels "*) ;; *) break ;; esac
     [ "$np" -le "$cores" ] || continue
     r=$out/runs/channels.$np
     t=$(now)
