@@ -458,6 +458,42 @@ static int frame_grid(vb_ctx *ctx, const ch_args *A, const vb_sphere_set *s, lon
     return VB_OK;
 }
 
+/* The spheres a frame analyses (s0 without the --ignore residues: *kept
+ * holds them when any were left out, else NULL and *s is s0) and its grid.
+ * On failure nothing is held. */
+static int frame_prepare(vb_ctx *ctx, ch_args *A, const vb_sphere_set *s0, long index, sinks *S,
+                         vb_sphere_set **kept, const vb_sphere_set **s, vbc_grid *g)
+{
+    int rc = VB_OK;
+    *kept = NULL;
+    *s = s0;
+    if (A->nignore) {
+        size_t dropped;
+        if ((rc = vbc_spheres_without(ctx, s0, A->ignore, A->nignore, kept, &dropped)) != VB_OK)
+            return rc;
+        S->ignored += dropped;
+        *s = *kept;
+    }
+    if ((rc = frame_grid(ctx, A, *s, index, S, g)) != VB_OK) {
+        vb_spheres_free(*kept);
+        *kept = NULL;
+    }
+    return rc;
+}
+
+/* Later frames sweep the first frame's pore axis (HOLE's fixed cvect and
+ * cpoint): kept in A once a frame found a pore along a free axis. */
+static void keep_pore_axis(ch_args *A, const vbc_frame *F)
+{
+    if (!A->pore.enabled || !F->result.pore.present || A->pore.have_axis)
+        return;
+    memcpy(A->pore.u, F->axis.u, sizeof A->pore.u);
+    memcpy(A->pore.c, F->axis.c, sizeof A->pore.c);
+    A->pore.have_axis = A->pore.have_through = 1;
+    A->pore.found_source = F->axis.source;
+    A->pore.found_chains = F->axis.chains;
+}
+
 /* Runs one frame through the pipeline `repeat` times and writes its outputs;
  * `first`: it is the first frame of the selection (volume, picture, the
  * voxel warning, the pore's axis for the later frames). Under MPI the
@@ -465,21 +501,12 @@ static int frame_grid(vb_ctx *ctx, const ch_args *A, const vb_sphere_set *s, lon
 static int do_frame(vb_ctx *ctx, ch_args *A, vbc_pipe *pipe, long index, int model, int first,
                     const vb_sphere_set *s0, sinks *S)
 {
-    vb_sphere_set *kept = NULL;
-    const vb_sphere_set *s = s0;
-    int rc = VB_OK;
-    if (A->nignore) {
-        size_t dropped;
-        if ((rc = vbc_spheres_without(ctx, s0, A->ignore, A->nignore, &kept, &dropped)) != VB_OK)
-            return rc;
-        S->ignored += dropped;
-        s = kept;
-    }
+    vb_sphere_set *kept;
+    const vb_sphere_set *s;
     vbc_grid g;
-    if ((rc = frame_grid(ctx, A, s, index, S, &g)) != VB_OK) {
-        vb_spheres_free(kept);
+    int rc = frame_prepare(ctx, A, s0, index, S, &kept, &s, &g);
+    if (rc != VB_OK)
         return rc;
-    }
     /* A voxel wider than the probe cannot resolve the necks that matter. */
     if (first && g.h > fmax(A->probe, 0.5))
         vb_warn(ctx, VB_W_VOXEL_COARSE, A->input, 0,
@@ -516,14 +543,7 @@ static int do_frame(vb_ctx *ctx, ch_args *A, vbc_pipe *pipe, long index, int mod
     fi.channel_voxels = F.out.nvoxels;
     if (A->pore.enabled && !F.result.pore.present && first)
         vb_warn(ctx, VB_W_PORE_NOT_FOUND, A->input, 0, "no pore found along any axis candidate");
-    /* Later frames sweep the first frame's axis (HOLE's fixed cvect and cpoint). */
-    if (A->pore.enabled && F.result.pore.present && !A->pore.have_axis) {
-        memcpy(A->pore.u, F.axis.u, sizeof A->pore.u);
-        memcpy(A->pore.c, F.axis.c, sizeof A->pore.c);
-        A->pore.have_axis = A->pore.have_through = 1;
-        A->pore.found_source = F.axis.source;
-        A->pore.found_chains = F.axis.chains;
-    }
+    keep_pore_axis(A, &F);
     FILE *table = vb_cli_rounds_stream(S->rounds, SINK_TABLE);
     if (A->json)
         vbc_write_json_frame(table, first, &fi, &g, s, &F.result);
@@ -572,27 +592,18 @@ static int do_frame(vb_ctx *ctx, ch_args *A, vbc_pipe *pipe, long index, int mod
 static int first_frame_axis(vb_ctx *ctx, ch_args *A, vbc_pipe *pipe, long index,
                             const vb_sphere_set *s0, sinks *S)
 {
-    vb_sphere_set *kept = NULL;
-    const vb_sphere_set *s = s0;
-    int rc = VB_OK;
-    if (A->nignore) {
-        size_t dropped;
-        if ((rc = vbc_spheres_without(ctx, s0, A->ignore, A->nignore, &kept, &dropped)) != VB_OK)
-            return rc;
-        s = kept;
-    }
+    vb_sphere_set *kept;
+    const vb_sphere_set *s;
     vbc_grid g;
+    size_t ignored = S->ignored; /* counted by the rank that owns the frame */
+    int rc = frame_prepare(ctx, A, s0, index, S, &kept, &s, &g);
+    S->ignored = ignored;
+    if (rc != VB_OK)
+        return rc;
     vbc_frame F;
     memset(&F, 0, sizeof F);
-    if ((rc = frame_grid(ctx, A, s, index, S, &g)) == VB_OK)
-        rc = vbc_frame_run(ctx, pipe, &g, s, A->probe, 0, &A->opt, &F);
-    if (rc == VB_OK && F.result.pore.present) {
-        memcpy(A->pore.u, F.axis.u, sizeof A->pore.u);
-        memcpy(A->pore.c, F.axis.c, sizeof A->pore.c);
-        A->pore.have_axis = A->pore.have_through = 1;
-        A->pore.found_source = F.axis.source;
-        A->pore.found_chains = F.axis.chains;
-    }
+    if ((rc = vbc_frame_run(ctx, pipe, &g, s, A->probe, 0, &A->opt, &F)) == VB_OK)
+        keep_pore_axis(A, &F);
     vbc_frame_free(&F);
     vb_spheres_free(kept);
     return rc;
