@@ -202,6 +202,19 @@ static int cmp_i32(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+/* Length of the polyline through p[0..n), summed from the first point in the
+ * order channel_components.c sums a voxel path, so a path no point of which
+ * moved keeps its length to the bit. */
+static double path_length(const vbc_point *p, size_t n)
+{
+    double len = 0.0;
+    for (size_t k = 1; k < n; k++)
+        len += sqrt((p[k].x - p[k - 1].x) * (p[k].x - p[k - 1].x) +
+                    (p[k].y - p[k - 1].y) * (p[k].y - p[k - 1].y) +
+                    (p[k].z - p[k - 1].z) * (p[k].z - p[k - 1].z));
+    return len;
+}
+
 int vbc_result_add_pore(vb_ctx *ctx, vbc_result *res, const vbc_pore *p, const vbc_cells *cells,
                         double lining_tol)
 {
@@ -216,13 +229,9 @@ int vbc_result_add_pore(vb_ctx *ctx, vbc_result *res, const vbc_pore *p, const v
     vbc_point *pts = malloc((np + p->n) * sizeof *pts);
     if (!L.mark || !ch || !pts)
         goto nomem;
-    double len = 0.0;
     for (size_t k = 0; k < p->n; k++) {
         const vbc_pore_point *q = &p->pts[k];
         pts[k] = (vbc_point){q->x, q->y, q->z, q->r, q->atom};
-        if (k > 0)
-            len += sqrt((q->x - q[-1].x) * (q->x - q[-1].x) + (q->y - q[-1].y) * (q->y - q[-1].y) +
-                        (q->z - q[-1].z) * (q->z - q[-1].z));
         double c[3] = {q->x, q->y, q->z};
         vbc_cells_within(cells, c, q->r + lining_tol, lining_put, &L);
         if (L.failed)
@@ -237,6 +246,7 @@ int vbc_result_add_pore(vb_ctx *ctx, vbc_result *res, const vbc_pore *p, const v
         memcpy(lin + L.n, res->lining, nl * sizeof *lin);
     if (np)
         memcpy(pts + p->n, res->points, np * sizeof *pts);
+    double len = path_length(pts, p->n);
     int open = p->open_lo && p->open_hi;
     double rmin = p->pts[p->min_at].r;
     ch[0] = (vbc_channel){VBC_PORE,
@@ -301,6 +311,10 @@ void vbc_refine_bottlenecks(vbc_result *res, const vbc_cells *cells, double h)
                 p[k] = (vbc_point){q[0], q[1], q[2], r, atom};
             }
         }
+        /* length_A is the length of the centreline as written (the moved
+         * points' polyline), not the voxel path's: the pruning by
+         * --min-length saw the latter. */
+        c->length = path_length(p, c->npoints);
         c->bottleneck = INFINITY;
         for (size_t k = 0; k < c->npoints; k++)
             if (p[k].r < c->bottleneck) {

@@ -79,7 +79,7 @@ static const struct {
     {"channel", "number in the frame, 1 = the longest"},
     {"kind", "pore (the axis sweep), channel (reaches the surface) or cavity (--cavities)"},
     {"through", "1 when the centreline joins openings on opposite sides (a pore)"},
-    {"length_A", "centreline length, A"},
+    {"length_A", "length of the centreline through its points as written, A"},
     {"bottleneck_A", "smallest clearance radius on it (to the nearest atom surface), A"},
     {"bottleneck_x", "where that is, A (and _y, _z)"},
     {"bottleneck_y", NULL},

@@ -119,6 +119,19 @@ def test_centrelines_pdb_gemmi(run):
         assert np.allclose(pos, np.array(c["centreline"])[:, :3], atol=6e-4)
 
 
+def test_length_is_the_centrelines_length(run):
+    """length_A is the length of the polyline through the written points, for
+    the pore and for the channels whose bottleneck points were moved off the
+    voxel centres (to the JSON's 3 decimals: each segment within 2e-3)."""
+    _, table, _, frame = run
+    assert [c["kind"] for c in frame["channels"]] == [r["kind"] for r in table]
+    for c, row in zip(frame["channels"], table):
+        p = np.array(c["centreline"])[:, :3]
+        length = np.linalg.norm(np.diff(p, axis=0), axis=1).sum()
+        assert abs(length - c["length_A"]) <= 2e-3 * len(p), (c["id"], length, c["length_A"])
+        assert "%.3f" % c["length_A"] == row["length_A"]
+
+
 def test_trajectory_centrelines_one_model_per_frame(tmp_path):
     import gemmi
     cli("channels", "--no-pore", "--grid", GRID, "--device", "ref", "--frames", "0:3",
