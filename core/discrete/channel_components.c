@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_parallel.h"
 #include "vbc_graph.h"
 
 static int cmp_u32(const void *a, const void *b)
@@ -122,7 +123,12 @@ int vbc_analyse_clear(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, co
             goto done;
         for (size_t t = 0; t < nvox; t++)
             key[t] = ((uint64_t)(vox[t] & ~VBC_MOUTH_BIT) << 32) | (uint64_t)t;
-        qsort(key, nvox, sizeof *key, cmp_u64);
+        /* Keys are distinct (the slot is in them): one sorted order on any
+         * number of threads. */
+        if (vb_psort(key, nvox, sizeof *key, cmp_u64, vb_threads(0)) != VB_OK) {
+            free(key);
+            goto done;
+        }
         for (size_t t = 0; t < nvox; t++) {
             size_t from = (size_t)(key[t] & 0xffffffffu);
             sorted[t] = vox[from];
@@ -132,7 +138,8 @@ int vbc_analyse_clear(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, co
         free(key);
     } else {
         memcpy(sorted, vox, nvox * sizeof *sorted);
-        qsort(sorted, nvox, sizeof *sorted, cmp_u32);
+        if (vb_psort(sorted, nvox, sizeof *sorted, cmp_u32, vb_threads(0)) != VB_OK)
+            goto done;
     }
     for (size_t t = 0; t < nvox; t++) {
         mouth[t] = (sorted[t] & VBC_MOUTH_BIT) != 0;

@@ -3,6 +3,7 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "vb_parallel.h"
 #include "vbc_graph.h"
 
 /* A pair of openings counts as "through" the molecule when they are at
@@ -80,7 +81,11 @@ static int widest_through(vbc_graph *A, uint32_t *parent, const uint32_t *member
         head[l] = tail[l] = (uint32_t)r;
         next[r] = UINT32_MAX;
     }
-    qsort(S, m, sizeof *S, cmp_by_clear);
+    /* A total order (ties by position): the same on any number of threads. */
+    if (vb_psort(S, m, sizeof *S, cmp_by_clear, vb_threads(0)) != VB_OK) {
+        found = -1;
+        goto out;
+    }
     for (size_t t = 0; t < m && !found; t++) {
         uint32_t u = S[t].pos;
         A->hpos[u] = 1;

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_parallel.h"
 #include "vbc_pore.h"
 
 /* Atoms considered active at most (the nearest ones); more only happen on
@@ -82,6 +83,18 @@ static int min_norm_point(const double (*g)[2], int n, double m[2])
     return best < INFINITY && best > 1e-20;
 }
 
+/* True when some atom of A has its surface within `reach` of q. */
+static int blocked_by(const vb_sphere_set *s, const active_set *A, const double q[3], double reach)
+{
+    for (int k = 0; k < A->n; k++) {
+        int32_t i = A->id[k];
+        double dx = q[0] - s->x[i], dy = q[1] - s->y[i], dz = q[2] - s->z[i];
+        if (sqrt(dx * dx + dy * dy + dz * dz) - s->r[i] <= reach)
+            return 1;
+    }
+    return 0;
+}
+
 double vbc_plane_maximise(const vbc_cells *c, const double u[3], double travel, double p[3],
                           int32_t *atom)
 {
@@ -126,6 +139,12 @@ double vbc_plane_maximise(const vbc_cells *c, const double u[3], double travel, 
                 if (dot3(w, w) > travel * travel)
                     continue;
             }
+            /* The clearance at q is at most any one atom's distance, taken
+             * by the very expression vbc_cells_clearance takes the least of:
+             * an active atom within R + 1e-13 of q decides "no step" as the
+             * full query would, at a fraction of its cost. */
+            if (blocked_by(s, &A, q, R + 1e-13))
+                continue;
             int32_t b;
             double Rq = vbc_cells_clearance(c, q, &b);
             if (Rq > R + 1e-13) {
@@ -244,6 +263,46 @@ static int push(vbc_pore_point **v, size_t *n, size_t *cap, const vbc_pore_point
     return 0;
 }
 
+/* One side of the sweep from the start: planes at +-step, +-2 step, ...
+ * along u (sign), each from the previous plane's centre. The two sides
+ * depend on the start alone, so they run at once (vb_run_jobs); each fills
+ * its own points. */
+typedef struct {
+    const vbc_cells *c;
+    const double *u, *start;
+    const vbc_pore_options *opt;
+    vbc_outside_fn outside;
+    void *user;
+    double half, sign;
+    vbc_pore_point *pts;
+    size_t n, cap;
+    int open, failed;
+} sweep_side;
+
+static void *sweep_side_run(void *arg)
+{
+    sweep_side *S = arg;
+    const double *u = S->u;
+    double p[3] = {S->start[0], S->start[1], S->start[2]};
+    int32_t atom;
+    S->open = S->outside && S->outside(S->user, p);
+    for (long k = 1; !S->open && k * S->opt->step <= S->half; k++) {
+        for (int i = 0; i < 3; i++)
+            p[i] += S->sign * S->opt->step * u[i];
+        double r = plane_best(S->c, u, S->outside, S->user, p, &atom);
+        vbc_pore_point q = {dot3(p, u), p[0], p[1], p[2], r, atom};
+        if (push(&S->pts, &S->n, &S->cap, &q) != 0) {
+            S->failed = 1;
+            break;
+        }
+        if (S->outside && S->outside(S->user, p))
+            S->open = 1;
+        else if (S->opt->end_radius > 0.0 && r > S->opt->end_radius)
+            break;
+    }
+    return NULL;
+}
+
 int vbc_pore_sweep(vb_ctx *ctx, const vbc_cells *c, const vb_sphere_set *s, const vbc_axis *ax,
                    const vbc_pore_options *opt, vbc_outside_fn outside, void *user, vbc_pore *out)
 {
@@ -267,36 +326,26 @@ int vbc_pore_sweep(vb_ctx *ctx, const vbc_cells *c, const vb_sphere_set *s, cons
         double s0 = dot3(ax->c, u);
         half = fmax(fabs(hi - s0), fabs(s0 - lo)) + 2.0;
     }
-    vbc_pore_point *side[2] = {NULL, NULL};
-    size_t ns[2] = {0, 0}, cap[2] = {0, 0};
     double start[3] = {ax->c[0], ax->c[1], ax->c[2]};
     int32_t atom;
     double r0 = plane_best(c, u, outside, user, start, &atom);
     vbc_pore_point q0 = {dot3(start, u), start[0], start[1], start[2], r0, atom};
     int rc = VB_OK;
-    for (int dir = 0; dir < 2 && rc == VB_OK; dir++) {
-        double p[3] = {start[0], start[1], start[2]};
-        double sign = dir == 0 ? 1.0 : -1.0;
-        int open = outside && outside(user, p);
-        for (long k = 1; !open && k * opt->step <= half; k++) {
-            for (int i = 0; i < 3; i++)
-                p[i] += sign * opt->step * u[i];
-            double r = plane_best(c, u, outside, user, p, &atom);
-            vbc_pore_point q = {dot3(p, u), p[0], p[1], p[2], r, atom};
-            if (push(&side[dir], &ns[dir], &cap[dir], &q) != 0) {
-                rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "pore profile");
-                break;
-            }
-            if (outside && outside(user, p))
-                open = 1;
-            else if (opt->end_radius > 0.0 && r > opt->end_radius)
-                break;
-        }
-        if (dir == 0)
-            out->open_hi = open;
-        else
-            out->open_lo = open;
-    }
+    sweep_side side[2];
+    for (int dir = 0; dir < 2; dir++)
+        side[dir] = (sweep_side){c, u, start, opt, outside, user, half, dir == 0 ? 1.0 : -1.0,
+                                 NULL, 0, 0, 0, 0};
+    if (vb_threads(0) > 1)
+        vb_run_jobs(sweep_side_run, side, sizeof *side, 2);
+    else
+        for (int dir = 0; dir < 2; dir++)
+            sweep_side_run(&side[dir]);
+    if (side[0].failed || side[1].failed)
+        rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "pore profile");
+    out->open_hi = side[0].open;
+    out->open_lo = side[1].open;
+    vbc_pore_point *sidep[2] = {side[0].pts, side[1].pts};
+    size_t ns[2] = {side[0].n, side[1].n};
     if (rc == VB_OK) {
         out->n = ns[0] + ns[1] + 1;
         out->pts = malloc(out->n * sizeof *out->pts);
@@ -306,17 +355,17 @@ int vbc_pore_sweep(vb_ctx *ctx, const vbc_cells *c, const vb_sphere_set *s, cons
     if (rc == VB_OK) {
         size_t t = 0;
         for (size_t k = ns[1]; k > 0; k--)
-            out->pts[t++] = side[1][k - 1];
+            out->pts[t++] = sidep[1][k - 1];
         out->pts[t++] = q0;
         for (size_t k = 0; k < ns[0]; k++)
-            out->pts[t++] = side[0][k];
+            out->pts[t++] = sidep[0][k];
         for (size_t k = 1; k < out->n; k++)
             if (out->pts[k].r < out->pts[out->min_at].r)
                 out->min_at = k;
         vbc_pore_conductance(out, VBC_RHO_KCL);
     }
-    free(side[0]);
-    free(side[1]);
+    free(sidep[0]);
+    free(sidep[1]);
     if (rc != VB_OK)
         vbc_pore_free(out);
     return rc;

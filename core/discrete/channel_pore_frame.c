@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_parallel.h"
 #include "vbc_pore_frame.h"
 
 typedef struct {
@@ -68,6 +69,67 @@ static int channel_axis(const vbc_result *res, vbc_axis *ax)
     return 1;
 }
 
+/* Sweeps that the choice below takes in any case run at once, each on its
+ * own thread (vb_run_jobs), and are then judged in their order: the same
+ * pores as one after the other. A job reports no error to the context
+ * (which is not shared between threads); the caller does. */
+typedef struct {
+    const vbc_cells *cells;
+    const vb_sphere_set *s;
+    vbc_axis ax;
+    const vbc_pore_request *req;
+    mask_view *M;
+    int widest_first; /* a subunit: first its widest place near the centroid */
+    vbc_pore pore;
+    int rc;
+} sweep_job;
+
+static void sweep_job_set(sweep_job *J, const vbc_cells *cells, const vb_sphere_set *s,
+                          const vbc_axis *ax, const vbc_pore_request *req, mask_view *M,
+                          int widest_first)
+{
+    memset(J, 0, sizeof *J);
+    J->cells = cells;
+    J->s = s;
+    J->ax = *ax;
+    J->req = req;
+    J->M = M;
+    J->widest_first = widest_first;
+    J->rc = VB_OK;
+}
+
+static void *sweep_job_run(void *arg)
+{
+    sweep_job *J = arg;
+    if (J->widest_first) {
+        int32_t atom;
+        vbc_plane_widest(J->cells, J->ax.u, VBC_SUBUNIT_REACH, J->M->flags ? outside_mask : NULL,
+                         J->M, J->ax.c, &atom);
+    }
+    J->rc = sweep(NULL, J->cells, J->s, &J->ax, J->req, J->M, &J->pore);
+    return NULL;
+}
+
+/* Runs the n jobs (at once when there are threads to spare); returns the
+ * first failure, reported to ctx, with every pore freed, else VB_OK. */
+static int sweep_jobs(vb_ctx *ctx, sweep_job *J, int n)
+{
+    if (n > 1 && vb_threads(0) > 1)
+        vb_run_jobs(sweep_job_run, J, sizeof *J, n);
+    else
+        for (int k = 0; k < n; k++)
+            sweep_job_run(&J[k]);
+    for (int k = 0; k < n; k++)
+        if (J[k].rc != VB_OK) {
+            int rc = J[k].rc;
+            for (int j = 0; j < n; j++)
+                vbc_pore_free(&J[j].pore);
+            return vb_error(ctx, rc, NULL, 0, "pore sweep (%s)",
+                            rc == VB_ENOMEM ? "out of memory" : vb_errstr(rc));
+        }
+    return VB_OK;
+}
+
 /* The widest open pore of one subunit replaces the nearly closed central
  * one *out when it is clearly wider (the rule in vbc_pore.h); ties go to
  * the earlier chain. */
@@ -77,24 +139,25 @@ static int subunit_pore(vb_ctx *ctx, const vbc_cells *cells, const vb_sphere_set
     vbc_axis sub[16];
     int n = vbc_axis_subunits(s, &out->axis, sub, 16);
     double need = fmax(VBC_SUBUNIT_MIN_RADIUS, 2.0 * out->pts[out->min_at].r);
+    /* Each subunit from its widest place near its centroid, in the
+     * centroid's plane; all of them are judged. */
+    sweep_job J[16];
+    for (int k = 0; k < n; k++)
+        sweep_job_set(&J[k], cells, s, &sub[k], req, M, 1);
+    int rc = sweep_jobs(ctx, J, n);
+    if (rc != VB_OK) {
+        vbc_pore_free(out);
+        return rc;
+    }
     for (int k = 0; k < n; k++) {
-        /* The subunit's widest place near its centroid, in the centroid's plane. */
-        int32_t atom;
-        vbc_plane_widest(cells, sub[k].u, VBC_SUBUNIT_REACH, M->flags ? outside_mask : NULL, M, sub[k].c,
-                         &atom);
-        vbc_pore p;
-        int rc = sweep(ctx, cells, s, &sub[k], req, M, &p);
-        if (rc != VB_OK) {
+        vbc_pore *p = &J[k].pore;
+        double r = p->n ? p->pts[p->min_at].r : 0.0;
+        if (open_pore(p) && r > need) {
             vbc_pore_free(out);
-            return rc;
-        }
-        double r = p.n ? p.pts[p.min_at].r : 0.0;
-        if (open_pore(&p) && r > need) {
-            vbc_pore_free(out);
-            *out = p;
+            *out = *p;
             need = r;
         } else {
-            vbc_pore_free(&p);
+            vbc_pore_free(p);
         }
     }
     return VB_OK;
@@ -138,9 +201,29 @@ int vbc_pore_find(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const vb
         for (int k = 0; k < nc; k++)
             memcpy(cand[k].c, req->c, sizeof req->c);
     int have = 0;
+    /* Once the loop reaches the principal axes (the last three) it judges
+     * all three (no break among them), so they are swept at once. */
+    sweep_job J[3];
+    int first_principal = nc - 3, swept = 0;
     for (int k = 0; k < nc; k++) {
         vbc_pore p;
-        int rc = sweep(ctx, cells, s, &cand[k], req, &M, &p);
+        int rc;
+        if (k < first_principal) {
+            rc = sweep(ctx, cells, s, &cand[k], req, &M, &p);
+        } else {
+            if (!swept) {
+                for (int j = 0; j < 3; j++)
+                    sweep_job_set(&J[j], cells, s, &cand[first_principal + j], req, &M, 0);
+                rc = sweep_jobs(ctx, J, 3);
+                swept = 1;
+                if (rc != VB_OK) {
+                    vbc_pore_free(out);
+                    return rc;
+                }
+            }
+            p = J[k - first_principal].pore;
+            rc = VB_OK;
+        }
         if (rc != VB_OK) {
             vbc_pore_free(out);
             return rc;
@@ -202,6 +285,19 @@ static int cmp_i32(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+/* Length of the polyline through p[0..n), summed from the first point in the
+ * order channel_components.c sums a voxel path, so a path no point of which
+ * moved keeps its length to the bit. */
+static double path_length(const vbc_point *p, size_t n)
+{
+    double len = 0.0;
+    for (size_t k = 1; k < n; k++)
+        len += sqrt((p[k].x - p[k - 1].x) * (p[k].x - p[k - 1].x) +
+                    (p[k].y - p[k - 1].y) * (p[k].y - p[k - 1].y) +
+                    (p[k].z - p[k - 1].z) * (p[k].z - p[k - 1].z));
+    return len;
+}
+
 int vbc_result_add_pore(vb_ctx *ctx, vbc_result *res, const vbc_pore *p, const vbc_cells *cells,
                         double lining_tol)
 {
@@ -216,13 +312,9 @@ int vbc_result_add_pore(vb_ctx *ctx, vbc_result *res, const vbc_pore *p, const v
     vbc_point *pts = malloc((np + p->n) * sizeof *pts);
     if (!L.mark || !ch || !pts)
         goto nomem;
-    double len = 0.0;
     for (size_t k = 0; k < p->n; k++) {
         const vbc_pore_point *q = &p->pts[k];
         pts[k] = (vbc_point){q->x, q->y, q->z, q->r, q->atom};
-        if (k > 0)
-            len += sqrt((q->x - q[-1].x) * (q->x - q[-1].x) + (q->y - q[-1].y) * (q->y - q[-1].y) +
-                        (q->z - q[-1].z) * (q->z - q[-1].z));
         double c[3] = {q->x, q->y, q->z};
         vbc_cells_within(cells, c, q->r + lining_tol, lining_put, &L);
         if (L.failed)
@@ -237,6 +329,7 @@ int vbc_result_add_pore(vb_ctx *ctx, vbc_result *res, const vbc_pore *p, const v
         memcpy(lin + L.n, res->lining, nl * sizeof *lin);
     if (np)
         memcpy(pts + p->n, res->points, np * sizeof *pts);
+    double len = path_length(pts, p->n);
     int open = p->open_lo && p->open_hi;
     double rmin = p->pts[p->min_at].r;
     ch[0] = (vbc_channel){VBC_PORE,
@@ -301,6 +394,10 @@ void vbc_refine_bottlenecks(vbc_result *res, const vbc_cells *cells, double h)
                 p[k] = (vbc_point){q[0], q[1], q[2], r, atom};
             }
         }
+        /* length_A is the length of the centreline as written (the moved
+         * points' polyline), not the voxel path's: the pruning by
+         * --min-length saw the latter. */
+        c->length = path_length(p, c->npoints);
         c->bottleneck = INFINITY;
         for (size_t k = 0; k < c->npoints; k++)
             if (p[k].r < c->bottleneck) {

@@ -79,7 +79,7 @@ static const struct {
     {"channel", "number in the frame, 1 = the longest"},
     {"kind", "pore (the axis sweep), channel (reaches the surface) or cavity (--cavities)"},
     {"through", "1 when the centreline joins openings on opposite sides (a pore)"},
-    {"length_A", "centreline length, A"},
+    {"length_A", "length of the centreline through its points as written, A"},
     {"bottleneck_A", "smallest clearance radius on it (to the nearest atom surface), A"},
     {"bottleneck_x", "where that is, A (and _y, _z)"},
     {"bottleneck_y", NULL},
@@ -259,13 +259,16 @@ void vbc_write_json_end(FILE *f)
     fprintf(f, "\n  ]\n}\n");
 }
 
-/* Atom name of point u of a residue: "P" and three base-36 digits (unique
- * for 46,656 points), so every point has its own name in the residue as
- * strict PDB readers demand. */
+/* Atom name of point u of a residue: "Q" (HOLE's letter for its sphere
+ * centres) and three base-36 digits (unique for 46,656 points), so every
+ * point has its own name in the residue as strict PDB readers demand. The
+ * letter is no element's: a reader that guesses the element from the name
+ * when it does not know the file's "X" (Biopython) finds none, where "P"
+ * made every point phosphorus. */
 static void point_name(size_t u, char name[5])
 {
     static const char digits[] = "0123456789ABCDEFGHIJKLMNOPQRSTUVWXYZ";
-    name[0] = 'P';
+    name[0] = 'Q';
     name[1] = digits[(u / 1296) % 36];
     name[2] = digits[(u / 36) % 36];
     name[3] = digits[u % 36];
@@ -442,7 +445,9 @@ static int write_vtk(FILE *f, const vbc_grid *g, const volume_src *V)
             return -1;
         }
     }
-    return 0;
+    /* VTK's own writers end a binary block with a newline, and readers
+     * (meshio) check for it before the next section. */
+    return fputc('\n', f) == EOF ? -1 : 0;
 }
 
 static int write_volume(vb_ctx *ctx, const char *path, const vbc_grid *g, const volume_src *V)

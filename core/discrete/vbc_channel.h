@@ -95,7 +95,7 @@ typedef struct vbc_channel {
     int through;            /* the centreline joins openings on opposite faces (a pore) */
     size_t voxels;          /* channel voxels in the component */
     size_t mouths;          /* of those, voxels on the molecular surface */
-    double length;          /* centreline length, Å */
+    double length;          /* centreline length, Å: the polyline through its points */
     double bottleneck;      /* smallest radius on the centreline, Å */
     size_t bottleneck_at;   /* its index into the points */
     size_t first_point, npoints; /* slice of vbc_result.points */

@@ -47,9 +47,6 @@ def test_table_is_the_csv_at_full_precision(gramicidin):
     assert t["kind"][0] == "channel" and t["length_A"][0] >= t["length_A"][-1]
 
 
-@pytest.mark.xfail(strict=True, reason="since the channels branch (bottlenecks refined off the "
-                   "voxel centres) the table's length_A is not the centreline polyline's length "
-                   "(up to 0.77 A apart on 1grm at 64^3): to reconcile")
 def test_profiles_and_lining(gramicidin):
     s = gramicidin.spheres
     for k, row in enumerate(gramicidin.table):
