@@ -11,6 +11,7 @@
 
 static const char *const usage_text =
     "usage: vorball verify SPHERES VERTICES [--tol T] [--complete] [--arcs] [--json]\n"
+    "                      [--threads N]\n"
     "                      [-o FILE] [input options]\n"
     "\n"
     "Checks every line of VERTICES (tsv, json or Voronota's 'q1 q2 q3 q4 x y z r',\n"
@@ -33,6 +34,8 @@ static const char *const usage_text =
     "               the file misses on the way, and print the counts (half arcs\n"
     "               closed, to infinity, undecided; components); not with --json\n"
     "  --json       report as JSON with counts per class\n"
+    "  --threads N  host threads of the arc closure (default: VORBALL_THREADS or\n"
+    "               all CPUs); the report does not depend on it\n"
     "  -o FILE      write the report to FILE (default stdout)\n";
 
 static const char *const usage_tail =
@@ -46,6 +49,7 @@ typedef struct {
     const char *spheres_path, *vertices_path, *out_path;
     double tol;
     int complete, arcs, json;
+    unsigned threads;
     vb_cli_input_opts in;
 } options;
 
@@ -67,6 +71,11 @@ static int parse_args(int argc, char **argv, options *o)
                 return vb_cli_usage_error("verify", "--tol needs a positive number");
         } else if (strcmp(a, "--arcs") == 0) {
             o->arcs = 1;
+        } else if (strcmp(a, "--threads") == 0) {
+            size_t t;
+            if (i + 1 >= argc || vb_cli_parse_size(argv[++i], &t) || t < 1 || t > 64)
+                return vb_cli_usage_error("verify", "--threads needs an integer in 1..64");
+            o->threads = (unsigned)t;
         } else if (strcmp(a, "--complete") == 0) {
             o->complete = 1;
         } else if (strcmp(a, "--json") == 0) {
@@ -111,7 +120,7 @@ static int run(vb_ctx *ctx, const options *o, int *mismatch)
         *mismatch = !vb_verify_report_ok(&r);
         if (rc == VB_OK && o->arcs) {
             vb_arc_report ar;
-            rc = vb_verify_arcs(ctx, set, &r, &ar);
+            rc = vb_verify_arcs(ctx, set, &r, o->threads, &ar);
             if (rc == VB_OK)
                 rc = vb_arc_write_text(ctx, out, o->vertices_path, &ar);
             *mismatch |= rc == VB_OK && !vb_arc_report_complete(&ar);

@@ -1,7 +1,10 @@
 /* Arc closure (vb_arc.h): the tracing loop over the vertices, the lookup of
  * the next vertex of each arc, and the counts of the certificate. */
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "vb_parallel.h"
 
 #include "vb_arc.h"
 #include "vbx_arc.h"
@@ -112,64 +115,98 @@ static size_t uf_root(uf *u, size_t i)
 
 /* ---- tracing ------------------------------------------------------------- */
 
-typedef struct closure {
-    vb_ctx *ctx;
-    vbx_arcw w;
-    vb_vertex_list all; /* input + added, in tracing order */
-    vtable tab;
-    uf comp;
-    vb_arc_report *r;
-} closure;
+/* What one half arc found: its end, and for a vertex its members (in the
+ * worker's pool) and rounded point. */
+enum { EV_CLOSED = 0, EV_INF = 1, EV_LOOP = 2, EV_UNDECIDED = 3 };
 
-/* The next vertex of arc tp of triple frame f: certified, looked up, added
- * when new. from is the index of the arc's start. */
-static int arrive(closure *cl, vbx_tframe *f, const vbx_touch *tp, size_t from)
-{
+typedef struct hev {
     double p[4];
-    int ok = vbx_touch_certify(&cl->w, f, tp, p);
-    if (ok < 0)
-        return vb_errcode(cl->ctx);
-    if (ok == 0) {
-        /* A sphere cuts the first touching point: the arc was not an edge
-         * there; the local test and the search disagree (degenerate). */
-        cl->r->undecided++;
-        return VB_OK;
+    size_t moff;
+    uint32_t nm;
+    int kind;
+} hev;
+
+/* One thread's tracer: its certifier, context and worker, and the events of
+ * the vertices it traced in the current round. */
+typedef struct tracer {
+    vb_ctx *ctx;
+    vb_certifier *c;
+    vbx_arcw w;
+    int have_w;
+    hev *ev;
+    size_t nev, ev_cap;
+    uint32_t *pool;
+    size_t npool, pool_cap;
+    int rc;
+    size_t fail_at;   /* the first vertex (in the round) whose tracing failed */
+} tracer;
+
+typedef struct round {
+    tracer *tr;
+    unsigned nt;
+    const vb_vertex_list *all;
+    size_t lo, hi;          /* the vertices of this round */
+    size_t *first;          /* per vertex of the round: first event */
+    uint32_t *count;        /* ... number of events */
+    uint16_t *who;          /* ... the tracer that holds them */
+    atomic_size_t next;     /* next chunk */
+} tround;
+
+enum { RCHUNK = 8 };
+
+static int push_event(tracer *t, int kind, const uint32_t *m, size_t nm, const double p[4])
+{
+    if (t->nev == t->ev_cap) {
+        size_t cap = t->ev_cap ? 2 * t->ev_cap : 256;
+        hev *e = realloc(t->ev, cap * sizeof *e);
+        if (!e)
+            return VB_ENOMEM;
+        t->ev = e;
+        t->ev_cap = cap;
     }
-    vb_certifier *c = cl->w.c;
-    size_t *s = vfind(&cl->tab, c->members, c->nmembers, p);
-    size_t k;
-    if (*s) {
-        k = *s - 1;
-    } else {
-        k = cl->all.n;
-        int rc = vb_vertex_list_push(&cl->all, c->members, c->nmembers, p[0], p[1], p[2], p[3],
-                                     0, VB_VERTEX_CERTIFIED);
-        if (rc == VB_OK)
-            rc = vb_vertex_list_push(&cl->r->added, c->members, c->nmembers, p[0], p[1], p[2],
-                                     p[3], 0, VB_VERTEX_CERTIFIED);
-        if (rc != VB_OK)
-            return rc;
-        if (2 * (cl->all.n + 1) > cl->tab.cap) {
-            if (vgrow(&cl->tab) != VB_OK)
+    hev *e = &t->ev[t->nev++];
+    e->kind = kind;
+    e->nm = (uint32_t)nm;
+    e->moff = t->npool;
+    if (p)
+        memcpy(e->p, p, sizeof e->p);
+    if (nm) {
+        if (t->npool + nm > t->pool_cap) {
+            size_t cap = t->pool_cap ? 2 * t->pool_cap : 1024;
+            while (cap < t->npool + nm)
+                cap *= 2;
+            uint32_t *q = realloc(t->pool, cap * sizeof *q);
+            if (!q)
                 return VB_ENOMEM;
-        } else {
-            *s = k + 1;
+            t->pool = q;
+            t->pool_cap = cap;
         }
+        memcpy(t->pool + t->npool, m, nm * sizeof *m);
+        t->npool += nm;
     }
-    cl->r->closed++;
-    if (uf_fit(&cl->comp, cl->all.n) != VB_OK)
-        return VB_ENOMEM;
-    size_t a = uf_root(&cl->comp, from), b = uf_root(&cl->comp, k);
-    if (a != b)
-        cl->comp.p[a > b ? a : b] = a < b ? a : b;
     return VB_OK;
 }
 
-/* Both arcs of triple t at vertex k. */
-static int trace_triple(closure *cl, size_t k, const uint32_t *m, size_t nm, const double p[4],
+/* The next vertex of arc tp of triple frame f, certified, as an event. */
+static int arrive(tracer *tr, vbx_tframe *f, const vbx_touch *tp)
+{
+    double p[4];
+    int ok = vbx_touch_certify(&tr->w, f, tp, p);
+    if (ok < 0)
+        return vb_errcode(tr->ctx);
+    if (ok == 0) {
+        /* A sphere cuts the first touching point: the arc was not an edge
+         * there; the local test and the search disagree (degenerate). */
+        return push_event(tr, EV_UNDECIDED, NULL, 0, NULL);
+    }
+    return push_event(tr, EV_CLOSED, tr->c->members, tr->c->nmembers, p);
+}
+
+/* Both arcs of triple t at a vertex (members m, rounded point p). */
+static int trace_triple(tracer *tr, const uint32_t *m, size_t nm, const double p[4],
                         const vbx_ia box[4], const uint32_t t[3])
 {
-    vbx_arcw *w = &cl->w;
+    vbx_arcw *w = &tr->w;
     vbx_tframe f;
     vbx_tframe_init(&f);
     int rc = vbx_tframe_setup(w, &f, t);
@@ -189,9 +226,7 @@ static int trace_triple(closure *cl, size_t k, const uint32_t *m, size_t nm, con
     }
     rc = vbx_local_arcs(w, &f, m, nm, p, box, &x, &have, &fwd, &bwd, &extra);
     if (rc == VB_EDEGENERATE) {
-        cl->r->half_arcs++;
-        cl->r->undecided++;
-        rc = VB_OK;
+        rc = push_event(tr, EV_UNDECIDED, NULL, 0, NULL);
         goto done;
     }
     if (rc != VB_OK)
@@ -220,7 +255,6 @@ static int trace_triple(closure *cl, size_t k, const uint32_t *m, size_t nm, con
     for (int dir = 0; dir < 2 && rc == VB_OK; dir++) {
         if (!(dir == 0 ? fwd : bwd))
             continue;
-        cl->r->half_arcs++;
         tp.found = 0;
         tp.have = 0;
         if (dir == 0)
@@ -228,20 +262,16 @@ static int trace_triple(closure *cl, size_t k, const uint32_t *m, size_t nm, con
         else
             rc = vbx_arc_search(w, &f, open ? &einf : &ev, &ev, NULL, &tp);
         if (rc == VB_EDEGENERATE) {
-            cl->r->undecided++;
-            rc = VB_OK;
+            rc = push_event(tr, EV_UNDECIDED, NULL, 0, NULL);
             continue;
         }
         if (rc != VB_OK)
             break;
         if (!tp.found) {
-            if (open)
-                cl->r->infinite++;
-            else
-                cl->r->loops++;
+            rc = push_event(tr, open ? EV_INF : EV_LOOP, NULL, 0, NULL);
             continue;
         }
-        rc = arrive(cl, &f, &tp, k);
+        rc = arrive(tr, &f, &tp);
     }
 done:
     vbx_xpt_clear(&tp.x);
@@ -250,17 +280,13 @@ done:
     return rc;
 }
 
-static int trace_vertex(closure *cl, size_t k)
+/* Every arc of vertex k of the round's list, as events of tracer tr. */
+static int trace_vertex(tracer *tr, const vb_vertex_list *all, size_t k)
 {
-    /* Copy: tracing may grow cl->all. */
-    size_t s = cl->all.start[k], nm = cl->all.start[k + 1] - s;
-    uint32_t mbuf[64];
-    uint32_t *m = nm <= 64 ? mbuf : malloc(nm * sizeof *m);
-    if (!m)
-        return VB_ENOMEM;
-    memcpy(m, cl->all.ids + s, nm * sizeof *m);
+    size_t s = all->start[k], nm = all->start[k + 1] - s;
+    const uint32_t *m = all->ids + s;
     double p[4];
-    vpoint(&cl->all, k, p);
+    vpoint(all, k, p);
     vbx_ia box[4];
     vbx_box_of_rounded(p, box);
     int rc = VB_OK;
@@ -268,15 +294,174 @@ static int trace_vertex(closure *cl, size_t k)
         for (size_t b = a + 1; b < nm && rc == VB_OK; b++)
             for (size_t c = b + 1; c < nm && rc == VB_OK; c++) {
                 uint32_t t[3] = {m[a], m[b], m[c]};
-                rc = trace_triple(cl, k, m, nm, p, box, t);
+                rc = trace_triple(tr, m, nm, p, box, t);
             }
-    if (m != mbuf)
-        free(m);
+    return rc;
+}
+
+typedef struct rjob {
+    tround *r;
+    unsigned index;
+} rjob;
+
+/* A thread of a round: chunks of vertices in turn; each vertex's events
+ * are a function of that vertex alone (the worker keeps no state from one
+ * arc to the next beyond its counters), so which thread traced it does not
+ * matter. */
+static void *round_work(void *arg)
+{
+    rjob *j = arg;
+    tround *r = j->r;
+    tracer *tr = &r->tr[j->index];
+    size_t n = r->hi - r->lo;
+    for (;;) {
+        size_t c0 = atomic_fetch_add(&r->next, RCHUNK);
+        if (c0 >= n || tr->rc != VB_OK)
+            break;
+        size_t c1 = c0 + RCHUNK < n ? c0 + RCHUNK : n;
+        for (size_t i = c0; i < c1; i++) {
+            r->first[i] = tr->nev;
+            r->who[i] = (uint16_t)j->index;
+            int rc = trace_vertex(tr, r->all, r->lo + i);
+            r->count[i] = (uint32_t)(tr->nev - r->first[i]);
+            if (rc != VB_OK) {
+                tr->rc = rc;
+                tr->fail_at = i;
+                break;
+            }
+        }
+    }
+    return NULL;
+}
+
+typedef struct closure {
+    vb_ctx *ctx;
+    vb_vertex_list all; /* input + added, in tracing order */
+    vtable tab;
+    uf comp;
+    vb_arc_report *r;
+} closure;
+
+/* The events of vertex k (tracer tr, events [e0, e0 + n)) into the
+ * counts, the list of vertices and the components, in event order. */
+static int merge_vertex(closure *cl, tracer *tr, size_t e0, size_t n, size_t k)
+{
+    vb_arc_report *r = cl->r;
+    for (size_t i = e0; i < e0 + n; i++) {
+        const hev *e = &tr->ev[i];
+        r->half_arcs++;
+        if (e->kind == EV_INF) {
+            r->infinite++;
+            continue;
+        }
+        if (e->kind == EV_LOOP) {
+            r->loops++;
+            continue;
+        }
+        if (e->kind == EV_UNDECIDED) {
+            r->undecided++;
+            continue;
+        }
+        const uint32_t *m = tr->pool + e->moff;
+        size_t *s = vfind(&cl->tab, m, e->nm, e->p);
+        size_t to;
+        if (*s) {
+            to = *s - 1;
+        } else {
+            to = cl->all.n;
+            int rc = vb_vertex_list_push(&cl->all, m, e->nm, e->p[0], e->p[1], e->p[2], e->p[3],
+                                         0, VB_VERTEX_CERTIFIED);
+            if (rc == VB_OK)
+                rc = vb_vertex_list_push(&r->added, m, e->nm, e->p[0], e->p[1], e->p[2], e->p[3],
+                                         0, VB_VERTEX_CERTIFIED);
+            if (rc != VB_OK)
+                return rc;
+            if (2 * (cl->all.n + 1) > cl->tab.cap) {
+                if (vgrow(&cl->tab) != VB_OK)
+                    return VB_ENOMEM;
+            } else {
+                *s = to + 1;
+            }
+        }
+        r->closed++;
+        if (uf_fit(&cl->comp, cl->all.n) != VB_OK)
+            return VB_ENOMEM;
+        size_t a = uf_root(&cl->comp, k), b = uf_root(&cl->comp, to);
+        if (a != b)
+            cl->comp.p[a > b ? a : b] = a < b ? a : b;
+    }
+    return VB_OK;
+}
+
+static void add_counters(vb_arc_report *r, const vbx_arc_counters *c)
+{
+    r->filter_calls += c->filter_calls;
+    r->filter_failures += c->filter_failures;
+    r->exact_evals += c->exact_evals;
+    r->candidates += c->candidates;
+}
+
+/* Rounds: every vertex not yet traced is traced (in parallel), then the
+ * events are merged in vertex order; vertices found new go to the end of
+ * the list and make the next round. The list, the counts and the added
+ * vertices are therefore the same on any number of threads. */
+static int run_rounds(closure *cl, tracer *tr, unsigned nt)
+{
+    size_t lo = 0;
+    int rc = VB_OK;
+    while (rc == VB_OK && lo < cl->all.n) {
+        size_t hi = cl->all.n, n = hi - lo;
+        tround r;
+        memset(&r, 0, sizeof r);
+        r.tr = tr;
+        r.all = &cl->all;
+        r.lo = lo;
+        r.hi = hi;
+        r.first = malloc(n * sizeof *r.first);
+        r.count = malloc(n * sizeof *r.count);
+        r.who = malloc(n * sizeof *r.who);
+        atomic_init(&r.next, 0);
+        rjob jobs[VB_MAX_THREADS];
+        unsigned use = nt;
+        if (use > (n + RCHUNK - 1) / RCHUNK)
+            use = (unsigned)((n + RCHUNK - 1) / RCHUNK);
+        if (use < 1)
+            use = 1;
+        for (unsigned i = 0; i < use; i++) {
+            jobs[i].r = &r;
+            jobs[i].index = i;
+            tr[i].nev = 0;
+            tr[i].npool = 0;
+            tr[i].rc = VB_OK;
+            tr[i].fail_at = SIZE_MAX;
+        }
+        if (!r.first || !r.count || !r.who) {
+            rc = vb_error(cl->ctx, VB_ENOMEM, NULL, 0, "out of memory (arc closure)");
+        } else {
+            vb_run_jobs(round_work, jobs, sizeof *jobs, (int)use);
+            /* The first failing vertex's error, as one thread would meet it. */
+            unsigned bad = 0;
+            for (unsigned i = 1; i < use; i++)
+                if (tr[i].fail_at < tr[bad].fail_at)
+                    bad = i;
+            if (tr[bad].rc != VB_OK) {
+                rc = tr[bad].rc;
+                if (bad != 0)
+                    vb_error(cl->ctx, rc, NULL, 0, "%s", vb_errmsg(tr[bad].ctx));
+            }
+        }
+        for (size_t i = 0; rc == VB_OK && i < n; i++)
+            rc = merge_vertex(cl, &tr[r.who[i]], r.first[i], r.count[i], lo + i);
+        free(r.first);
+        free(r.count);
+        free(r.who);
+        lo = hi;
+    }
     return rc;
 }
 
 int vb_arc_close(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_list *in,
-                 vb_arc_report *out)
+                 unsigned threads, vb_arc_report *out)
 {
     memset(out, 0, sizeof *out);
     vb_vertex_list_init(&out->added);
@@ -285,10 +470,26 @@ int vb_arc_close(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_list *in
     cl.ctx = ctx;
     cl.r = out;
     vb_vertex_list_init(&cl.all);
+    unsigned nt = (unsigned)vb_threads(threads);
+    size_t most = in->n / 64 + 1;
+    if (nt > most)
+        nt = (unsigned)most;
+    tracer *tr = calloc(nt, sizeof *tr);
     vb_certifier *c = NULL;
-    int rc = vb_certifier_open(ctx, set, &c);
-    if (rc == VB_OK)
-        rc = vbx_arcw_init(&cl.w, ctx, c);
+    int rc = tr ? vb_certifier_open(ctx, set, &c) : VB_ENOMEM;
+    for (unsigned i = 0; rc == VB_OK && i < nt; i++) {
+        tr[i].ctx = ctx;
+        tr[i].c = c;
+        if (i > 0) {
+            tr[i].c = vbx_certifier_worker(c);
+            if (!tr[i].c || vb_open(&tr[i].ctx, NULL) != VB_OK) {
+                rc = VB_ENOMEM;
+                break;
+            }
+        }
+        rc = vbx_arcw_init(&tr[i].w, tr[i].ctx, tr[i].c);
+        tr[i].have_w = 1;
+    }
     for (size_t k = 0; rc == VB_OK && k < in->n; k++) {
         size_t s = in->start[k];
         rc = vb_vertex_list_push(&cl.all, in->ids + s, in->start[k + 1] - s, in->x[k], in->y[k],
@@ -299,21 +500,31 @@ int vb_arc_close(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_list *in
         rc = vgrow(&cl.tab);
     if (rc == VB_OK)
         rc = uf_fit(&cl.comp, cl.all.n);
-    for (size_t k = 0; rc == VB_OK && k < cl.all.n; k++)
-        rc = trace_vertex(&cl, k);
+    if (rc == VB_OK)
+        rc = run_rounds(&cl, tr, nt);
     if (rc == VB_OK) {
         out->vertices = cl.all.n;
         for (size_t k = 0; k < cl.all.n; k++)
             out->components += uf_root(&cl.comp, k) == k;
-        out->filter_calls = cl.w.cnt.filter_calls;
-        out->filter_failures = cl.w.cnt.filter_failures;
-        out->exact_evals = cl.w.cnt.exact_evals;
-        out->candidates = cl.w.cnt.candidates;
+        for (unsigned i = 0; i < nt; i++)
+            add_counters(out, &tr[i].w.cnt);
         rc = vb_vertex_list_sort(&out->added);
     }
-    if (c)
-        vbx_arcw_free(&cl.w);
+    if (rc == VB_ENOMEM && vb_errcode(ctx) != VB_ENOMEM)
+        vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (arc closure)");
+    for (unsigned i = 0; tr && i < nt; i++) {
+        if (tr[i].have_w)
+            vbx_arcw_free(&tr[i].w);
+        free(tr[i].ev);
+        free(tr[i].pool);
+        if (i > 0) {
+            vb_certifier_close(tr[i].c);
+            if (tr[i].ctx)
+                vb_close(tr[i].ctx);
+        }
+    }
     vb_certifier_close(c);
+    free(tr);
     vb_vertex_list_free(&cl.all);
     free(cl.tab.slot);
     free(cl.comp.p);

@@ -39,7 +39,8 @@ typedef struct vb_arc_report {
 } vb_arc_report;
 
 /* Traces every arc of every vertex of `in` and of every vertex found on the
- * way, single-threaded and deterministic. `in` must hold certified vertices,
+ * way, in rounds on up to `threads` host threads (0: VORBALL_THREADS or the
+ * online CPUs); the report does not depend on their number. `in` must hold certified vertices,
  * each once: sorted ids of all their spheres, x y z t the exact vertex
  * rounded to nearest, as vorball writes them (the status is ignored; a
  * vertex that is not one gives undecided arcs or wrong closures, so judge a
@@ -47,7 +48,7 @@ typedef struct vb_arc_report {
  * vb_arc_report_free, also on error). Returns VB_OK when the closure ran to
  * the end (see vb_arc_report_complete), VB_ENOMEM, VB_EINTERNAL. */
 int vb_arc_close(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_list *in,
-                 vb_arc_report *out);
+                 unsigned threads, vb_arc_report *out);
 
 /* 1 when every arc was traced and no vertex was added. */
 int vb_arc_report_complete(const vb_arc_report *r);
@@ -58,7 +59,7 @@ void vb_arc_report_free(vb_arc_report *r);
  * lines (one per exact vertex, so a Voronota group counts once) through
  * vb_arc_close. Same returns as vb_arc_close. */
 int vb_verify_arcs(vb_ctx *ctx, const vb_sphere_set *set, const vb_verify_report *judged,
-                   vb_arc_report *out);
+                   unsigned threads, vb_arc_report *out);
 
 /* The certificate as text: one "NAME: missing vertex IDS at X Y Z t T" line
  * per added vertex, then "NAME: arcs: ..." with the counts. VB_OK or VB_EIO. */

@@ -5,7 +5,7 @@
 #include "vb_arc.h"
 
 int vb_verify_arcs(vb_ctx *ctx, const vb_sphere_set *set, const vb_verify_report *judged,
-                   vb_arc_report *out)
+                   unsigned threads, vb_arc_report *out)
 {
     vb_vertex_list in;
     vb_vertex_list_init(&in);
@@ -27,7 +27,7 @@ int vb_verify_arcs(vb_ctx *ctx, const vb_sphere_set *set, const vb_verify_report
     }
     free(seen);
     if (rc == VB_OK)
-        rc = vb_arc_close(ctx, set, &in, out);
+        rc = vb_arc_close(ctx, set, &in, threads, out);
     else
         vb_arc_report_free(out);
     vb_vertex_list_free(&in);

@@ -48,7 +48,7 @@ static void one_case(const char *name, const char *in, const char *gold)
         rc = vb_vertex_read_file(ctx, gold, &g, NULL, NULL);
     CHECK_INT(rc, VB_OK);
     vb_arc_report r;
-    rc = vb_arc_close(ctx, s, &g, &r);
+    rc = vb_arc_close(ctx, s, &g, 0, &r);
     CHECK_INT(rc, VB_OK);
     fprintf(stderr, "%s: %zu vertices, %zu half arcs: %zu closed, %zu infinite, %zu loops, "
             "%zu undecided, %zu added, %zu components\n", name, r.vertices, r.half_arcs,
@@ -70,7 +70,7 @@ static void one_case(const char *name, const char *in, const char *gold)
         size_t drop = g.n / 2;
         vb_vertex_list cut;
         subset(&g, &cut, 0, g.n, drop);
-        rc = vb_arc_close(ctx, s, &cut, &r);
+        rc = vb_arc_close(ctx, s, &cut, 0, &r);
         CHECK_INT(rc, VB_OK);
         CHECK_INT(r.added.n, 1);
         CHECK(!vb_arc_report_complete(&r));
@@ -82,7 +82,7 @@ static void one_case(const char *name, const char *in, const char *gold)
     if (g.n >= 2 && comps == 1) {
         vb_vertex_list one;
         subset(&g, &one, 0, 1, (size_t)-1);
-        rc = vb_arc_close(ctx, s, &one, &r);
+        rc = vb_arc_close(ctx, s, &one, 0, &r);
         CHECK_INT(rc, VB_OK);
         CHECK_INT(r.added.n + 1, g.n);
         CHECK_INT(r.vertices, g.n);
