@@ -113,21 +113,81 @@ static size_t uf_root(uf *u, size_t i)
     return i;
 }
 
+/* ---- arrivals: (vertex, triple) pairs reached by a forward arc ---------- */
+
+typedef struct akey {
+    size_t to; /* index + 1, 0 = empty */
+    uint32_t t[3];
+} akey;
+
+typedef struct aset {
+    akey *slot;
+    size_t cap, n; /* cap a power of two */
+} aset;
+
+static size_t ahash(const aset *a, size_t to, const uint32_t t[3])
+{
+    uint64_t h = mix(mix(mix(mix(0, to), t[0]), t[1]), t[2]);
+    return (size_t)h & (a->cap - 1);
+}
+
+static akey *afind(aset *a, size_t to, const uint32_t t[3])
+{
+    size_t i = ahash(a, to, t);
+    while (a->slot[i].to && !(a->slot[i].to == to + 1 && a->slot[i].t[0] == t[0] &&
+                              a->slot[i].t[1] == t[1] && a->slot[i].t[2] == t[2]))
+        i = (i + 1) & (a->cap - 1);
+    return &a->slot[i];
+}
+
+static int aput(aset *a, size_t to, const uint32_t t[3])
+{
+    if (2 * (a->n + 1) > a->cap) {
+        size_t cap = a->cap ? 2 * a->cap : 1024;
+        akey *old = a->slot;
+        size_t ocap = a->cap;
+        a->slot = calloc(cap, sizeof *a->slot);
+        if (!a->slot) {
+            a->slot = old;
+            return VB_ENOMEM;
+        }
+        a->cap = cap;
+        for (size_t i = 0; i < ocap; i++)
+            if (old[i].to)
+                *afind(a, old[i].to - 1, old[i].t) = old[i];
+        free(old);
+    }
+    akey *k = afind(a, to, t);
+    if (!k->to) {
+        k->to = to + 1;
+        memcpy(k->t, t, sizeof k->t);
+        a->n++;
+    }
+    return VB_OK;
+}
+
+static int ahas(aset *a, size_t to, const uint32_t t[3])
+{
+    return a->cap && afind(a, to, t)->to != 0;
+}
+
 /* ---- tracing ------------------------------------------------------------- */
 
 /* What one half arc found: its end, and for a vertex its members (in the
- * worker's pool) and rounded point. */
-enum { EV_CLOSED = 0, EV_INF = 1, EV_LOOP = 2, EV_UNDECIDED = 3 };
+ * worker's pool) and rounded point; EV_PENDING: a backward arc left for
+ * later (see run_rounds). */
+enum { EV_CLOSED = 0, EV_INF = 1, EV_LOOP = 2, EV_UNDECIDED = 3, EV_PENDING = 4 };
 
 typedef struct hev {
     double p[4];
     size_t moff;
     uint32_t nm;
-    int kind;
+    uint32_t t[3];
+    int kind, dir;
 } hev;
 
 /* One thread's tracer: its certifier, context and worker, and the events of
- * the vertices it traced in the current round. */
+ * the items it traced in the current phase. */
 typedef struct tracer {
     vb_ctx *ctx;
     vb_certifier *c;
@@ -138,23 +198,32 @@ typedef struct tracer {
     uint32_t *pool;
     size_t npool, pool_cap;
     int rc;
-    size_t fail_at;   /* the first vertex (in the round) whose tracing failed */
+    size_t fail_at;   /* the first item (in the phase) whose tracing failed */
 } tracer;
 
-typedef struct round {
+/* An item of a phase: every triple of vertex k (forward arcs traced,
+ * backward ones left pending), or the backward arc of triple t alone. */
+typedef struct item {
+    size_t k;
+    uint32_t t[3];
+    int all;
+} item;
+
+typedef struct tphase {
     tracer *tr;
-    unsigned nt;
     const vb_vertex_list *all;
-    size_t lo, hi;          /* the vertices of this round */
-    size_t *first;          /* per vertex of the round: first event */
+    const item *it;
+    size_t n;
+    size_t *first;          /* per item: first event */
     uint32_t *count;        /* ... number of events */
     uint16_t *who;          /* ... the tracer that holds them */
     atomic_size_t next;     /* next chunk */
-} tround;
+} tphase;
 
 enum { RCHUNK = 8 };
 
-static int push_event(tracer *t, int kind, const uint32_t *m, size_t nm, const double p[4])
+static int push_event(tracer *t, int kind, const uint32_t tri[3], int dir, const uint32_t *m,
+                      size_t nm, const double p[4])
 {
     if (t->nev == t->ev_cap) {
         size_t cap = t->ev_cap ? 2 * t->ev_cap : 256;
@@ -166,6 +235,8 @@ static int push_event(tracer *t, int kind, const uint32_t *m, size_t nm, const d
     }
     hev *e = &t->ev[t->nev++];
     e->kind = kind;
+    e->dir = dir;
+    memcpy(e->t, tri, sizeof e->t);
     e->nm = (uint32_t)nm;
     e->moff = t->npool;
     if (p)
@@ -188,7 +259,7 @@ static int push_event(tracer *t, int kind, const uint32_t *m, size_t nm, const d
 }
 
 /* The next vertex of arc tp of triple frame f, certified, as an event. */
-static int arrive(tracer *tr, vbx_tframe *f, const vbx_touch *tp)
+static int arrive(tracer *tr, vbx_tframe *f, const vbx_touch *tp, int dir)
 {
     double p[4];
     int ok = vbx_touch_certify(&tr->w, f, tp, p);
@@ -197,14 +268,16 @@ static int arrive(tracer *tr, vbx_tframe *f, const vbx_touch *tp)
     if (ok == 0) {
         /* A sphere cuts the first touching point: the arc was not an edge
          * there; the local test and the search disagree (degenerate). */
-        return push_event(tr, EV_UNDECIDED, NULL, 0, NULL);
+        return push_event(tr, EV_UNDECIDED, f->t, dir, NULL, 0, NULL);
     }
-    return push_event(tr, EV_CLOSED, tr->c->members, tr->c->nmembers, p);
+    return push_event(tr, EV_CLOSED, f->t, dir, tr->c->members, tr->c->nmembers, p);
 }
 
-/* Both arcs of triple t at a vertex (members m, rounded point p). */
+/* The arcs of triple t at a vertex (members m, rounded point p): with all,
+ * the forward arc traced and the backward one pending; else the backward
+ * arc traced. */
 static int trace_triple(tracer *tr, const uint32_t *m, size_t nm, const double p[4],
-                        const vbx_ia box[4], const uint32_t t[3])
+                        const vbx_ia box[4], const uint32_t t[3], int all)
 {
     vbx_arcw *w = &tr->w;
     vbx_tframe f;
@@ -226,7 +299,7 @@ static int trace_triple(tracer *tr, const uint32_t *m, size_t nm, const double p
     }
     rc = vbx_local_arcs(w, &f, m, nm, p, box, &x, &have, &fwd, &bwd, &extra);
     if (rc == VB_EDEGENERATE) {
-        rc = push_event(tr, EV_UNDECIDED, NULL, 0, NULL);
+        rc = all ? push_event(tr, EV_UNDECIDED, t, 0, NULL, 0, NULL) : VB_OK;
         goto done;
     }
     if (rc != VB_OK)
@@ -253,8 +326,12 @@ static int trace_triple(tracer *tr, const uint32_t *m, size_t nm, const double p
     einf.inf = 1;
     int open = f.kind == VBX_TRI_OPEN;
     for (int dir = 0; dir < 2 && rc == VB_OK; dir++) {
-        if (!(dir == 0 ? fwd : bwd))
+        if (!(dir == 0 ? fwd : bwd) || (dir == 0 && !all))
             continue;
+        if (dir == 1 && all) {
+            rc = push_event(tr, EV_PENDING, t, 1, NULL, 0, NULL);
+            continue;
+        }
         tp.found = 0;
         tp.have = 0;
         if (dir == 0)
@@ -262,16 +339,16 @@ static int trace_triple(tracer *tr, const uint32_t *m, size_t nm, const double p
         else
             rc = vbx_arc_search(w, &f, open ? &einf : &ev, &ev, NULL, &tp);
         if (rc == VB_EDEGENERATE) {
-            rc = push_event(tr, EV_UNDECIDED, NULL, 0, NULL);
+            rc = push_event(tr, EV_UNDECIDED, t, dir, NULL, 0, NULL);
             continue;
         }
         if (rc != VB_OK)
             break;
         if (!tp.found) {
-            rc = push_event(tr, open ? EV_INF : EV_LOOP, NULL, 0, NULL);
+            rc = push_event(tr, open ? EV_INF : EV_LOOP, t, dir, NULL, 0, NULL);
             continue;
         }
-        rc = arrive(tr, &f, &tp);
+        rc = arrive(tr, &f, &tp, dir);
     }
 done:
     vbx_xpt_clear(&tp.x);
@@ -280,50 +357,51 @@ done:
     return rc;
 }
 
-/* Every arc of vertex k of the round's list, as events of tracer tr. */
-static int trace_vertex(tracer *tr, const vb_vertex_list *all, size_t k)
+/* One item, as events of tracer tr. */
+static int trace_item(tracer *tr, const vb_vertex_list *all, const item *it)
 {
-    size_t s = all->start[k], nm = all->start[k + 1] - s;
+    size_t k = it->k, s = all->start[k], nm = all->start[k + 1] - s;
     const uint32_t *m = all->ids + s;
     double p[4];
     vpoint(all, k, p);
     vbx_ia box[4];
     vbx_box_of_rounded(p, box);
+    if (!it->all)
+        return trace_triple(tr, m, nm, p, box, it->t, 0);
     int rc = VB_OK;
     for (size_t a = 0; a < nm && rc == VB_OK; a++)
         for (size_t b = a + 1; b < nm && rc == VB_OK; b++)
             for (size_t c = b + 1; c < nm && rc == VB_OK; c++) {
                 uint32_t t[3] = {m[a], m[b], m[c]};
-                rc = trace_triple(tr, m, nm, p, box, t);
+                rc = trace_triple(tr, m, nm, p, box, t, 1);
             }
     return rc;
 }
 
 typedef struct rjob {
-    tround *r;
+    tphase *ph;
     unsigned index;
 } rjob;
 
-/* A thread of a round: chunks of vertices in turn; each vertex's events
- * are a function of that vertex alone (the worker keeps no state from one
- * arc to the next beyond its counters), so which thread traced it does not
+/* A thread of a phase: chunks of items in turn; each item's events are a
+ * function of that item alone (the worker keeps no state from one arc to
+ * the next beyond its counters), so which thread traced it does not
  * matter. */
-static void *round_work(void *arg)
+static void *phase_work(void *arg)
 {
     rjob *j = arg;
-    tround *r = j->r;
-    tracer *tr = &r->tr[j->index];
-    size_t n = r->hi - r->lo;
+    tphase *ph = j->ph;
+    tracer *tr = &ph->tr[j->index];
     for (;;) {
-        size_t c0 = atomic_fetch_add(&r->next, RCHUNK);
-        if (c0 >= n || tr->rc != VB_OK)
+        size_t c0 = atomic_fetch_add(&ph->next, RCHUNK);
+        if (c0 >= ph->n || tr->rc != VB_OK)
             break;
-        size_t c1 = c0 + RCHUNK < n ? c0 + RCHUNK : n;
+        size_t c1 = c0 + RCHUNK < ph->n ? c0 + RCHUNK : ph->n;
         for (size_t i = c0; i < c1; i++) {
-            r->first[i] = tr->nev;
-            r->who[i] = (uint16_t)j->index;
-            int rc = trace_vertex(tr, r->all, r->lo + i);
-            r->count[i] = (uint32_t)(tr->nev - r->first[i]);
+            ph->first[i] = tr->nev;
+            ph->who[i] = (uint16_t)j->index;
+            int rc = trace_item(tr, ph->all, &ph->it[i]);
+            ph->count[i] = (uint32_t)(tr->nev - ph->first[i]);
             if (rc != VB_OK) {
                 tr->rc = rc;
                 tr->fail_at = i;
@@ -339,16 +417,42 @@ typedef struct closure {
     vb_vertex_list all; /* input + added, in tracing order */
     vtable tab;
     uf comp;
+    aset arrived;       /* (vertex, triple) reached by a forward arc */
+    item *pend;         /* backward arcs left pending in this round */
+    size_t npend, pend_cap;
     vb_arc_report *r;
 } closure;
 
-/* The events of vertex k (tracer tr, events [e0, e0 + n)) into the
- * counts, the list of vertices and the components, in event order. */
-static int merge_vertex(closure *cl, tracer *tr, size_t e0, size_t n, size_t k)
+static int push_item(item **v, size_t *n, size_t *cap, size_t k, const uint32_t t[3], int all)
+{
+    if (*n == *cap) {
+        size_t c = *cap ? 2 * *cap : 256;
+        item *p = realloc(*v, c * sizeof *p);
+        if (!p)
+            return VB_ENOMEM;
+        *v = p;
+        *cap = c;
+    }
+    item *it = &(*v)[(*n)++];
+    it->k = k;
+    memcpy(it->t, t, sizeof it->t);
+    it->all = all;
+    return VB_OK;
+}
+
+/* The events of item k's vertex (tracer tr, events [e0, e0 + n)) into the
+ * counts, the list of vertices, the components and the arrivals, in event
+ * order; pending arcs to cl->pend. */
+static int merge_events(closure *cl, tracer *tr, size_t e0, size_t n, size_t k)
 {
     vb_arc_report *r = cl->r;
     for (size_t i = e0; i < e0 + n; i++) {
         const hev *e = &tr->ev[i];
+        if (e->kind == EV_PENDING) {
+            if (push_item(&cl->pend, &cl->npend, &cl->pend_cap, k, e->t, 0) != VB_OK)
+                return VB_ENOMEM;
+            continue;
+        }
         r->half_arcs++;
         if (e->kind == EV_INF) {
             r->infinite++;
@@ -384,6 +488,8 @@ static int merge_vertex(closure *cl, tracer *tr, size_t e0, size_t n, size_t k)
             }
         }
         r->closed++;
+        if (e->dir == 0 && aput(&cl->arrived, to, e->t) != VB_OK)
+            return VB_ENOMEM;
         if (uf_fit(&cl->comp, cl->all.n) != VB_OK)
             return VB_ENOMEM;
         size_t a = uf_root(&cl->comp, k), b = uf_root(&cl->comp, to);
@@ -393,71 +499,108 @@ static int merge_vertex(closure *cl, tracer *tr, size_t e0, size_t n, size_t k)
     return VB_OK;
 }
 
-static void add_counters(vb_arc_report *r, const vbx_arc_counters *c)
+/* Runs the n items on the tracers and merges their events in item order. */
+static int run_phase(closure *cl, tracer *tr, unsigned nt, const item *it, size_t n)
 {
-    r->filter_calls += c->filter_calls;
-    r->filter_failures += c->filter_failures;
-    r->exact_evals += c->exact_evals;
-    r->candidates += c->candidates;
+    if (!n)
+        return VB_OK;
+    tphase ph;
+    memset(&ph, 0, sizeof ph);
+    ph.tr = tr;
+    ph.all = &cl->all;
+    ph.it = it;
+    ph.n = n;
+    ph.first = malloc(n * sizeof *ph.first);
+    ph.count = malloc(n * sizeof *ph.count);
+    ph.who = malloc(n * sizeof *ph.who);
+    atomic_init(&ph.next, 0);
+    int rc = VB_OK;
+    rjob jobs[VB_MAX_THREADS];
+    unsigned use = nt;
+    if (use > (n + RCHUNK - 1) / RCHUNK)
+        use = (unsigned)((n + RCHUNK - 1) / RCHUNK);
+    if (use < 1)
+        use = 1;
+    for (unsigned i = 0; i < use; i++) {
+        jobs[i].ph = &ph;
+        jobs[i].index = i;
+        tr[i].nev = 0;
+        tr[i].npool = 0;
+        tr[i].rc = VB_OK;
+        tr[i].fail_at = SIZE_MAX;
+    }
+    if (!ph.first || !ph.count || !ph.who) {
+        rc = VB_ENOMEM;
+    } else {
+        vb_run_jobs(phase_work, jobs, sizeof *jobs, (int)use);
+        /* The first failing item's error, as one thread would meet it. */
+        unsigned bad = 0;
+        for (unsigned i = 1; i < use; i++)
+            if (tr[i].fail_at < tr[bad].fail_at)
+                bad = i;
+        if (tr[bad].rc != VB_OK) {
+            rc = tr[bad].rc;
+            if (bad != 0)
+                vb_error(cl->ctx, rc, NULL, 0, "%s", vb_errmsg(tr[bad].ctx));
+        }
+    }
+    for (size_t i = 0; rc == VB_OK && i < n; i++)
+        rc = merge_events(cl, &tr[ph.who[i]], ph.first[i], ph.count[i], it[i].k);
+    free(ph.first);
+    free(ph.count);
+    free(ph.who);
+    return rc;
 }
 
-/* Rounds: every vertex not yet traced is traced (in parallel), then the
- * events are merged in vertex order; vertices found new go to the end of
+/* Rounds: every vertex not yet traced has its forward arcs traced (in
+ * parallel), the events merged in vertex order; then each backward arc is
+ * either the reverse of a forward arc already traced that arrived at its
+ * vertex with its triple (the forward search proved the open arc between
+ * the two vertices free of touching spheres, so the backward search would
+ * end at that arc's start: counted closed without a search), or traced
+ * itself, in a second parallel phase. Vertices found new go to the end of
  * the list and make the next round. The list, the counts and the added
  * vertices are therefore the same on any number of threads. */
 static int run_rounds(closure *cl, tracer *tr, unsigned nt)
 {
     size_t lo = 0;
     int rc = VB_OK;
+    item *it = NULL, *back = NULL;
+    size_t it_cap = 0, back_cap = 0;
     while (rc == VB_OK && lo < cl->all.n) {
-        size_t hi = cl->all.n, n = hi - lo;
-        tround r;
-        memset(&r, 0, sizeof r);
-        r.tr = tr;
-        r.all = &cl->all;
-        r.lo = lo;
-        r.hi = hi;
-        r.first = malloc(n * sizeof *r.first);
-        r.count = malloc(n * sizeof *r.count);
-        r.who = malloc(n * sizeof *r.who);
-        atomic_init(&r.next, 0);
-        rjob jobs[VB_MAX_THREADS];
-        unsigned use = nt;
-        if (use > (n + RCHUNK - 1) / RCHUNK)
-            use = (unsigned)((n + RCHUNK - 1) / RCHUNK);
-        if (use < 1)
-            use = 1;
-        for (unsigned i = 0; i < use; i++) {
-            jobs[i].r = &r;
-            jobs[i].index = i;
-            tr[i].nev = 0;
-            tr[i].npool = 0;
-            tr[i].rc = VB_OK;
-            tr[i].fail_at = SIZE_MAX;
-        }
-        if (!r.first || !r.count || !r.who) {
-            rc = vb_error(cl->ctx, VB_ENOMEM, NULL, 0, "out of memory (arc closure)");
-        } else {
-            vb_run_jobs(round_work, jobs, sizeof *jobs, (int)use);
-            /* The first failing vertex's error, as one thread would meet it. */
-            unsigned bad = 0;
-            for (unsigned i = 1; i < use; i++)
-                if (tr[i].fail_at < tr[bad].fail_at)
-                    bad = i;
-            if (tr[bad].rc != VB_OK) {
-                rc = tr[bad].rc;
-                if (bad != 0)
-                    vb_error(cl->ctx, rc, NULL, 0, "%s", vb_errmsg(tr[bad].ctx));
+        size_t hi = cl->all.n, nit = 0, nback = 0;
+        static const uint32_t none[3] = {0, 0, 0};
+        for (size_t k = lo; rc == VB_OK && k < hi; k++)
+            rc = push_item(&it, &nit, &it_cap, k, none, 1);
+        cl->npend = 0;
+        if (rc == VB_OK)
+            rc = run_phase(cl, tr, nt, it, nit);
+        for (size_t i = 0; rc == VB_OK && i < cl->npend; i++) {
+            const item *pi = &cl->pend[i];
+            if (ahas(&cl->arrived, pi->k, pi->t)) {
+                cl->r->half_arcs++;
+                cl->r->closed++;
+            } else {
+                rc = push_item(&back, &nback, &back_cap, pi->k, pi->t, 0);
             }
         }
-        for (size_t i = 0; rc == VB_OK && i < n; i++)
-            rc = merge_vertex(cl, &tr[r.who[i]], r.first[i], r.count[i], lo + i);
-        free(r.first);
-        free(r.count);
-        free(r.who);
+        if (rc == VB_OK)
+            rc = run_phase(cl, tr, nt, back, nback);
         lo = hi;
     }
+    free(it);
+    free(back);
+    if (rc == VB_ENOMEM)
+        vb_error(cl->ctx, VB_ENOMEM, NULL, 0, "out of memory (arc closure)");
     return rc;
+}
+
+static void add_counters(vb_arc_report *r, const vbx_arc_counters *c)
+{
+    r->filter_calls += c->filter_calls;
+    r->filter_failures += c->filter_failures;
+    r->exact_evals += c->exact_evals;
+    r->candidates += c->candidates;
 }
 
 int vb_arc_close(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_list *in,
@@ -528,6 +671,8 @@ int vb_arc_close(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_list *in
     vb_vertex_list_free(&cl.all);
     free(cl.tab.slot);
     free(cl.comp.p);
+    free(cl.arrived.slot);
+    free(cl.pend);
     return rc;
 }
 
