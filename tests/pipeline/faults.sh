@@ -105,6 +105,15 @@ arcs)
         ids=$(sed -n "${l}p" "$g" | cut -f1)
         expect_line "$out" "^$bad: missing vertex $ids at "
     done
+    # a real miss: sampling with 6 x 6 rays per face misses the far hull
+    # vertex 0,1,2,8 of far_hull_vertex (t = 1892); --arcs certifies it and
+    # writes the golden
+    run 0 "$work/far_s.err" "$vorball" vertices --device ref --proposer sampling --samples 6 far_hull_vertex.xyzr -o "$work/far_s.tsv"
+    grep -q '^0,1,2,8	' "$work/far_s.tsv" && fail "sampling at --samples 6 no longer misses 0,1,2,8: the case lost its point"
+    run 0 "$work/far_a.err" "$vorball" vertices --device ref --proposer sampling --samples 6 --arcs far_hull_vertex.xyzr -o "$work/far_a.tsv"
+    expect_line "$work/far_a.tsv" "^# arcs: every arc closed exactly: 17 vertices, 68 half arcs: .* 0 undecided; 1 vertices added by tracing; 1 connected components$"
+    grep -v '^#' "$work/far_a.tsv" > "$work/far_a.lines"
+    grep -v '^#' ../golden/far_hull_vertex.tsv | cmp - "$work/far_a.lines" || fail "sampling + arcs does not give the golden of far_hull_vertex"
     # the JSON form: counts and the missing vertex, "ok" false, exit 1
     sed "${v4}d" "$cubic" > "$bad"
     run $MISMATCH "$out" "$vorball" verify cubic_lattice.xyzr "$bad" --arcs --json
