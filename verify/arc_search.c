@@ -753,7 +753,7 @@ static int gather_capped(vbx_arcw *w, const vbx_tframe *f, const region *rg, siz
     return 1;
 }
 
-enum { TAIL_PIECES = 48, TAIL_CAP_MIN = 64 };
+enum { TAIL_PIECES = 48, TAIL_CAP_MIN = 64, TAIL_STRIP_FROM = 2 };
 
 /* An open arc from a vertex to infinity (forward: sr->e1 at infinity;
  * backward: sr->e0), searched outwards in pieces of doubling length.
@@ -809,7 +809,9 @@ static int search_tail(vbx_arcw *w, search *sr)
             return 1;
         region tail;
         tail_from(f, gb, sgn, &tail);
-        int g = gather_capped(w, f, &tail, cap);
+        /* (most arcs end within the first pieces: the strip is tried from
+         * the TAIL_STRIP_FROM-th piece on) */
+        int g = piece + 1 >= TAIL_STRIP_FROM ? gather_capped(w, f, &tail, cap) : 0;
         if (g < 0)
             return -VB_ENOMEM;
         if (g > 0) {
