@@ -171,6 +171,81 @@ static int ahas(aset *a, size_t to, const uint32_t t[3])
     return a->cap && afind(a, to, t)->to != 0;
 }
 
+/* ---- the vertices of each triple ------------------------------------------ */
+
+/* (triple, vertex) for every triple of every vertex of the list, sorted:
+ * where a forward arc is likely to end (run_rounds: the next vertex along a
+ * triple's curve is one that holds the triple). */
+typedef struct tent {
+    uint32_t t[3];
+    uint32_t k;
+} tent;
+
+typedef struct tmap {
+    tent *e;
+    size_t n, cap;
+    size_t done;  /* vertices entered */
+} tmap;
+
+static int tent_cmp(const void *pa, const void *pb)
+{
+    const tent *a = pa, *b = pb;
+    for (int i = 0; i < 3; i++)
+        if (a->t[i] != b->t[i])
+            return a->t[i] < b->t[i] ? -1 : 1;
+    return (a->k > b->k) - (a->k < b->k);
+}
+
+/* Enters the vertices [m->done, all->n) and sorts again. VB_OK, VB_ENOMEM
+ * (the map is then left empty: no shortcut is taken). */
+static int tmap_update(tmap *m, const vb_vertex_list *all)
+{
+    for (size_t k = m->done; k < all->n; k++) {
+        size_t s = all->start[k], nm = all->start[k + 1] - s;
+        const uint32_t *id = all->ids + s;
+        for (size_t a = 0; a < nm; a++)
+            for (size_t b = a + 1; b < nm; b++)
+                for (size_t c = b + 1; c < nm; c++) {
+                    if (m->n == m->cap) {
+                        size_t cap = m->cap ? 2 * m->cap : 4096;
+                        tent *e = realloc(m->e, cap * sizeof *e);
+                        if (!e) {
+                            m->n = 0;
+                            return VB_ENOMEM;
+                        }
+                        m->e = e;
+                        m->cap = cap;
+                    }
+                    tent *e = &m->e[m->n++];
+                    e->t[0] = id[a];
+                    e->t[1] = id[b];
+                    e->t[2] = id[c];
+                    e->k = (uint32_t)k;
+                }
+    }
+    m->done = all->n;
+    qsort(m->e, m->n, sizeof *m->e, tent_cmp);
+    return VB_OK;
+}
+
+/* The entries of triple t: [*lo, *hi). */
+static void tmap_range(const tmap *m, const uint32_t t[3], size_t *lo, size_t *hi)
+{
+    tent key = {{t[0], t[1], t[2]}, 0};
+    size_t a = 0, b = m->n;
+    while (a < b) {
+        size_t mid = a + (b - a) / 2;
+        if (tent_cmp(&m->e[mid], &key) < 0)
+            a = mid + 1;
+        else
+            b = mid;
+    }
+    *lo = a;
+    while (a < m->n && m->e[a].t[0] == t[0] && m->e[a].t[1] == t[1] && m->e[a].t[2] == t[2])
+        a++;
+    *hi = a;
+}
+
 /* ---- tracing ------------------------------------------------------------- */
 
 /* What one half arc found: its end, and for a vertex its members (in the
@@ -189,6 +264,7 @@ typedef struct hev {
 /* One thread's tracer: its certifier, context and worker, and the events of
  * the items it traced in the current phase. */
 typedef struct tracer {
+    const tmap *map;        /* the list's triples (NULL: no shortcut) */
     vb_ctx *ctx;
     vb_certifier *c;
     vbx_arcw w;
@@ -276,8 +352,79 @@ static int arrive(tracer *tr, vbx_tframe *f, const vbx_touch *tp, int dir)
 /* The arcs of triple t at a vertex (members m, rounded point p): with all,
  * the forward arc traced and the backward one pending; else the backward
  * arc traced. */
-static int trace_triple(tracer *tr, const uint32_t *m, size_t nm, const double p[4],
-                        const vbx_ia box[4], const uint32_t t[3], int all)
+/* The forward arc of an open branch from vertex k (end ev) when the list
+ * holds a vertex u of the same triple ahead of it: the open arc between
+ * them is searched (a bounded region, far smaller than the tail's). Returns
+ * 2 with *to = u when no sphere touches inside (then the arc ends at u,
+ * which the list holds, certified), 1 when one does (*tp, the first), 0
+ * when there is no such u or positions cannot be told by the filter (the
+ * caller searches the tail), or -status. */
+static int forward_to_known(tracer *tr, const vb_vertex_list *all, vbx_tframe *f,
+                            vbx_arc_end *ev, size_t k, vbx_touch *tp, size_t *to)
+{
+    if (!tr->map || !tr->map->n)
+        return 0;
+    size_t lo, hi;
+    tmap_range(tr->map, f->t, &lo, &hi);
+    vbx_arcw *w = &tr->w;
+    size_t best = SIZE_MAX;
+    vbx_key kbest;
+    for (size_t i = lo; i < hi; i++) {
+        size_t u = tr->map->e[i].k;
+        if (u == k)
+            continue;
+        double pu[4];
+        vpoint(all, u, pu);
+        vbx_ia bu[4];
+        vbx_box_of_rounded(pu, bu);
+        vbx_key ku;
+        vbx_key_of_box(w, f, bu, &ku);
+        int c = vbx_pos_cmp(w, f, &ev->key, NULL, &ku, NULL);
+        if (c == 2)
+            return 0;
+        if (c >= 0)
+            continue;
+        if (best != SIZE_MAX) {
+            int c2 = vbx_pos_cmp(w, f, &ku, NULL, &kbest, NULL);
+            if (c2 == 2 || c2 == 0)
+                return 0;
+            if (c2 > 0)
+                continue;
+        }
+        best = u;
+        kbest = ku;
+    }
+    if (best == SIZE_MAX)
+        return 0;
+    double pu[4];
+    vpoint(all, best, pu);
+    vbx_xpt xu;
+    vbx_xpt_init(&xu);
+    int have = 0;
+    vbx_arc_end eu = {0};
+    eu.key = kbest;
+    eu.m = all->ids + all->start[best];
+    eu.nm = all->start[best + 1] - all->start[best];
+    eu.xyzt = pu;
+    eu.x = &xu;
+    eu.have = &have;
+    tp->found = 0;
+    tp->have = 0;
+    int rc = vbx_arc_search(w, f, ev, &eu, tp, NULL);
+    vbx_xpt_clear(&xu);
+    if (rc == VB_EDEGENERATE)
+        return 0;
+    if (rc != VB_OK)
+        return -rc;
+    if (tp->found)
+        return 1;
+    *to = best;
+    return 2;
+}
+
+static int trace_triple(tracer *tr, const vb_vertex_list *lst, size_t k, const uint32_t *m,
+                        size_t nm, const double p[4], const vbx_ia box[4], const uint32_t t[3],
+                        int all)
 {
     vbx_arcw *w = &tr->w;
     vbx_tframe f;
@@ -334,6 +481,27 @@ static int trace_triple(tracer *tr, const uint32_t *m, size_t nm, const double p
         }
         tp.found = 0;
         tp.have = 0;
+        if (dir == 0 && open) {
+            size_t to;
+            int sc = forward_to_known(tr, lst, &f, &ev, k, &tp, &to);
+            if (sc < 0) {
+                rc = -sc;
+                break;
+            }
+            if (sc == 2) {
+                double pu[4];
+                vpoint(lst, to, pu);
+                size_t s0 = lst->start[to];
+                rc = push_event(tr, EV_CLOSED, t, 0, lst->ids + s0, lst->start[to + 1] - s0, pu);
+                continue;
+            }
+            if (sc == 1) {
+                rc = arrive(tr, &f, &tp, dir);
+                continue;
+            }
+            tp.found = 0;
+            tp.have = 0;
+        }
         if (dir == 0)
             rc = vbx_arc_search(w, &f, &ev, open ? &einf : &ev, &tp, NULL);
         else
@@ -367,13 +535,13 @@ static int trace_item(tracer *tr, const vb_vertex_list *all, const item *it)
     vbx_ia box[4];
     vbx_box_of_rounded(p, box);
     if (!it->all)
-        return trace_triple(tr, m, nm, p, box, it->t, 0);
+        return trace_triple(tr, all, k, m, nm, p, box, it->t, 0);
     int rc = VB_OK;
     for (size_t a = 0; a < nm && rc == VB_OK; a++)
         for (size_t b = a + 1; b < nm && rc == VB_OK; b++)
             for (size_t c = b + 1; c < nm && rc == VB_OK; c++) {
                 uint32_t t[3] = {m[a], m[b], m[c]};
-                rc = trace_triple(tr, m, nm, p, box, t, 1);
+                rc = trace_triple(tr, all, k, m, nm, p, box, t, 1);
             }
     return rc;
 }
@@ -418,6 +586,7 @@ typedef struct closure {
     vtable tab;
     uf comp;
     aset arrived;       /* (vertex, triple) reached by a forward arc */
+    tmap map;           /* the triples of the list */
     item *pend;         /* backward arcs left pending in this round */
     size_t npend, pend_cap;
     vb_arc_report *r;
@@ -569,6 +738,10 @@ static int run_rounds(closure *cl, tracer *tr, unsigned nt)
     size_t it_cap = 0, back_cap = 0;
     while (rc == VB_OK && lo < cl->all.n) {
         size_t hi = cl->all.n, nit = 0, nback = 0;
+        /* the map is read by every thread of the round: built before it */
+        const tmap *map = tmap_update(&cl->map, &cl->all) == VB_OK ? &cl->map : NULL;
+        for (unsigned i = 0; i < nt; i++)
+            tr[i].map = map;
         static const uint32_t none[3] = {0, 0, 0};
         for (size_t k = lo; rc == VB_OK && k < hi; k++)
             rc = push_item(&it, &nit, &it_cap, k, none, 1);
@@ -673,6 +846,7 @@ int vb_arc_close(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_list *in
     free(cl.comp.p);
     free(cl.arrived.slot);
     free(cl.pend);
+    free(cl.map.e);
     return rc;
 }
 

@@ -73,6 +73,9 @@ static vbx_ia branch_S(const vbx_tframe *f, vbx_ia g)
     return vbx_ia_add(f->Sc, vbx_ia_sqrt(vbx_ia_add(vbx_ia_sqr(kg), f->cp)));
 }
 
+static void piece_parts(const vbx_tframe *f, vbx_ia Sa, double ga, double gb, double sgn,
+                        region *rg);
+
 /* The region of the arc from e0 to e1 (see the top). */
 static void region_of(const vbx_tframe *f, const vbx_arc_end *e0, const vbx_arc_end *e1,
                       region *rg)
@@ -111,14 +114,13 @@ static void region_of(const vbx_tframe *f, const vbx_arc_end *e0, const vbx_arc_
         return;
     }
     if (!e0->inf && !e1->inf) {
-        part *p = &rg->p[rg->n++];
-        p->kind = PART_BOX;
-        p->G = ia_span(e0->key.G.lo, e1->key.G.hi);
-        double shi = vbx_max(e0->key.S.hi, e1->key.S.hi);
-        double slo = vbx_min(e0->key.S.lo, e1->key.S.lo);
-        if (p->G.lo <= 0.0 && p->G.hi >= 0.0)
-            slo = vbx_min(slo, f->Smin.lo);
-        p->S = ia_span(slo, shi);
+        /* a bounded arc: thin boxes from e0's G to e1's (piece_parts) */
+        if (!(e0->key.G.lo <= e1->key.G.hi) || !(e0->key.G.lo > -INFINITY) ||
+            !(e1->key.G.hi < INFINITY)) {
+            rg->brute = 1;
+            return;
+        }
+        piece_parts(f, e0->key.S, e0->key.G.lo, e1->key.G.hi, 1.0, rg);
         return;
     }
     /* A tail: forward (e1 at infinity) from G0, or backward (e0 at
