@@ -52,7 +52,7 @@ typedef struct region {
     part p[40];
 } region;
 
-enum { PIECE_PARTS = 4, ELLIPSE_SLABS = 16 };
+enum { PIECE_PARTS = 4, BOUNDED_PARTS = 2, ELLIPSE_SLABS = 16 };
 
 static vbx_ia ia_hull(vbx_ia a, vbx_ia b)
 {
@@ -74,7 +74,7 @@ static vbx_ia branch_S(const vbx_tframe *f, vbx_ia g)
 }
 
 static void piece_parts(const vbx_tframe *f, vbx_ia Sa, double ga, double gb, double sgn,
-                        region *rg);
+                        int parts, region *rg);
 
 /* The region of the arc from e0 to e1 (see the top). */
 static void region_of(const vbx_tframe *f, const vbx_arc_end *e0, const vbx_arc_end *e1,
@@ -120,7 +120,7 @@ static void region_of(const vbx_tframe *f, const vbx_arc_end *e0, const vbx_arc_
             rg->brute = 1;
             return;
         }
-        piece_parts(f, e0->key.S, e0->key.G.lo, e1->key.G.hi, 1.0, rg);
+        piece_parts(f, e0->key.S, e0->key.G.lo, e1->key.G.hi, 1.0, BOUNDED_PARTS, rg);
         return;
     }
     /* A tail: forward (e1 at infinity) from G0, or backward (e0 at
@@ -683,18 +683,18 @@ static int scan_region(vbx_arcw *w, search *sr, region *rg)
 }
 
 /* The boxes of the open branch over mirrored positions g in [ga, gb] (G =
- * sgn g), PIECE_PARTS of them appended to rg: each from breakpoint g_i
+ * sgn g), `parts` of them appended to rg: each from breakpoint g_i
  * to g_i+1 (shared by neighbours, so they cover [ga, gb]), its S from the
  * branch's at g_i (Sa at ga: the start vertex's enclosure) to the
  * branch's at g_i+1, and Smin when G = 0 lies between (S depends on |G|
  * alone and grows with it). Thin boxes keep Q small over each, so the
  * tangent-ball queries stay close to the arc. */
 static void piece_parts(const vbx_tframe *f, vbx_ia Sa, double ga, double gb, double sgn,
-                        region *rg)
+                        int parts, region *rg)
 {
     double g0 = ga;
-    for (int i = 1; i <= PIECE_PARTS; i++) {
-        double g1 = i == PIECE_PARTS ? gb : ga + (gb - ga) * i / PIECE_PARTS;
+    for (int i = 1; i <= parts; i++) {
+        double g1 = i == parts ? gb : ga + (gb - ga) * i / parts;
         g1 = vbx_min(vbx_max(g1, g0), gb);
         part *p = &rg->p[rg->n++];
         p->kind = PART_BOX;
@@ -800,7 +800,7 @@ static int search_tail(vbx_arcw *w, search *sr)
             return 0;
         region rg;
         memset(&rg, 0, sizeof rg);
-        piece_parts(f, Sa, ga, gb, sgn, &rg);
+        piece_parts(f, Sa, ga, gb, sgn, PIECE_PARTS, &rg);
         w->cnt.tail_pieces++;
         int rc = scan_region(w, sr, &rg);
         if (rc != VB_OK)
