@@ -9,7 +9,10 @@
  * (verify/arc_search.c). That point is the next vertex: it is certified
  * exactly and looked up in the list; a vertex not in the list is added and
  * traced in turn. An arc with no touching sphere runs to infinity (open
- * branch) or closes on itself (closed curve).
+ * branch) or closes on itself (closed curve). A forward arc is first
+ * searched up to the nearest listed vertex of its triple ahead, and a
+ * backward arc that reverses a forward arc traced to its vertex is closed
+ * by that search (verify/arc_closure.c says why both are exact).
  *
  * What a run with nothing added and nothing undecided proves: the list is
  * closed under the edges of the diagram, i.e. it holds every vertex of each
