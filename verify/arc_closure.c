@@ -197,8 +197,10 @@ static int tent_cmp(const void *pa, const void *pb)
 }
 
 /* Enters the vertices [m->done, all->n) and sorts again. VB_OK, VB_ENOMEM
- * (the map is then left empty: no shortcut is taken). */
-static int tmap_update(tmap *m, const vb_vertex_list *all)
+ * (the map is then emptied). A map that lacks vertices costs searches,
+ * never a wrong end: the bounded search of forward_to_known proves its end
+ * whichever listed vertex it is given (a nearer vertex is found inside). */
+static int tmap_update(tmap *m, const vb_vertex_list *all, unsigned nt)
 {
     for (size_t k = m->done; k < all->n; k++) {
         size_t s = all->start[k], nm = all->start[k + 1] - s;
@@ -224,7 +226,12 @@ static int tmap_update(tmap *m, const vb_vertex_list *all)
                 }
     }
     m->done = all->n;
-    qsort(m->e, m->n, sizeof *m->e, tent_cmp);
+    /* tent_cmp is a total order (the vertex breaks ties): the same array on
+     * any number of threads */
+    if (vb_psort(m->e, m->n, sizeof *m->e, tent_cmp, (int)nt) != VB_OK) {
+        m->n = 0;
+        return VB_ENOMEM;
+    }
     return VB_OK;
 }
 
@@ -739,7 +746,7 @@ static int run_rounds(closure *cl, tracer *tr, unsigned nt)
     while (rc == VB_OK && lo < cl->all.n) {
         size_t hi = cl->all.n, nit = 0, nback = 0;
         /* the map is read by every thread of the round: built before it */
-        const tmap *map = tmap_update(&cl->map, &cl->all) == VB_OK ? &cl->map : NULL;
+        const tmap *map = tmap_update(&cl->map, &cl->all, nt) == VB_OK ? &cl->map : NULL;
         for (unsigned i = 0; i < nt; i++)
             tr[i].map = map;
         static const uint32_t none[3] = {0, 0, 0};
