@@ -11,6 +11,7 @@
 
 static const char *const usage_text =
     "usage: vorball verify SPHERES VERTICES [--tol T] [--complete] [--arcs] [--json]\n"
+    "                      [--threads N]\n"
     "                      [-o FILE] [input options]\n"
     "\n"
     "Checks every line of VERTICES (tsv, json or Voronota's 'q1 q2 q3 q4 x y z r',\n"
@@ -31,8 +32,11 @@ static const char *const usage_text =
     "  --arcs       exact arc closure (any size): trace every Voronoi edge of the\n"
     "               certified vertices to its next vertex exactly, list each vertex\n"
     "               the file misses on the way, and print the counts (half arcs\n"
-    "               closed, to infinity, undecided; components); not with --json\n"
+    "               closed, to infinity, undecided; components; with --json a\n"
+    "               member \"arcs\")\n"
     "  --json       report as JSON with counts per class\n"
+    "  --threads N  host threads of the arc closure (default: VORBALL_THREADS or\n"
+    "               all CPUs); the report does not depend on it\n"
     "  -o FILE      write the report to FILE (default stdout)\n";
 
 static const char *const usage_tail =
@@ -46,6 +50,7 @@ typedef struct {
     const char *spheres_path, *vertices_path, *out_path;
     double tol;
     int complete, arcs, json;
+    unsigned threads;
     vb_cli_input_opts in;
 } options;
 
@@ -67,6 +72,11 @@ static int parse_args(int argc, char **argv, options *o)
                 return vb_cli_usage_error("verify", "--tol needs a positive number");
         } else if (strcmp(a, "--arcs") == 0) {
             o->arcs = 1;
+        } else if (strcmp(a, "--threads") == 0) {
+            size_t t;
+            if (i + 1 >= argc || vb_cli_parse_size(argv[++i], &t) || t < 1 || t > 64)
+                return vb_cli_usage_error("verify", "--threads needs an integer in 1..64");
+            o->threads = (unsigned)t;
         } else if (strcmp(a, "--complete") == 0) {
             o->complete = 1;
         } else if (strcmp(a, "--json") == 0) {
@@ -87,8 +97,6 @@ static int parse_args(int argc, char **argv, options *o)
         return vb_cli_usage_error("verify", "needs SPHERES and VERTICES");
     if (strcmp(pos[0], "-") == 0 && strcmp(pos[1], "-") == 0)
         return vb_cli_usage_error("verify", "only one of SPHERES and VERTICES can be '-'");
-    if (o->arcs && o->json)
-        return vb_cli_usage_error("verify", "--arcs has no JSON report yet");
     o->spheres_path = pos[0];
     o->vertices_path = pos[1];
     return VB_EXIT_OK;
@@ -105,21 +113,28 @@ static int run(vb_ctx *ctx, const options *o, int *mismatch)
         rc = vb_verify_file(ctx, set, o->vertices_path, o->tol, o->complete, &r);
     if (rc == VB_OK && !(out = vb_cli_open_output(ctx, o->out_path)))
         rc = vb_errcode(ctx);
+    vb_arc_report ar;
+    memset(&ar, 0, sizeof ar);
+    vb_vertex_list_init(&ar.added);
+    if (rc == VB_OK && o->arcs)
+        rc = vb_verify_arcs(ctx, set, &r, o->threads, &ar);
     if (rc == VB_OK) {
-        rc = o->json ? vb_verify_write_json(ctx, out, o->spheres_path, o->vertices_path, set, &r)
-                     : vb_verify_write_text(ctx, out, o->vertices_path, set, &r);
-        *mismatch = !vb_verify_report_ok(&r);
-        if (rc == VB_OK && o->arcs) {
-            vb_arc_report ar;
-            rc = vb_verify_arcs(ctx, set, &r, &ar);
-            if (rc == VB_OK)
-                rc = vb_arc_write_text(ctx, out, o->vertices_path, &ar);
-            *mismatch |= rc == VB_OK && !vb_arc_report_complete(&ar);
-            vb_arc_report_free(&ar);
-        }
+        if (o->json && o->arcs)
+            rc = vb_verify_write_json_arcs(ctx, out, o->spheres_path, o->vertices_path, set, &r,
+                                           &ar);
+        else if (o->json)
+            rc = vb_verify_write_json(ctx, out, o->spheres_path, o->vertices_path, set, &r);
+        else
+            rc = vb_verify_write_text(ctx, out, o->vertices_path, set, &r);
+        if (rc == VB_OK && o->arcs && !o->json)
+            rc = vb_arc_write_text(ctx, out, o->vertices_path, &ar);
+        *mismatch = !vb_verify_report_ok(&r) || (o->arcs && !vb_arc_report_complete(&ar));
+    }
+    if (out) {
         int rc2 = vb_cli_close_output(ctx, out, o->out_path);
         rc = rc ? rc : rc2;
     }
+    vb_arc_report_free(&ar);
     vb_verify_report_free(&r);
     vb_spheres_free(set);
     return rc;

@@ -6,6 +6,7 @@
 #include "cli_common.h"
 #include "commands.h"
 #include "input_options.h"
+#include "vb_arc.h"
 #include "vb_topology.h"
 #include "vb_vertex_io.h"
 #include "pipeline_options.h"
@@ -44,6 +45,10 @@ static void help(FILE *f)
             "  --threads N          host threads (default: VORBALL_THREADS or all CPUs);\n"
             "                       the output does not depend on it\n"
             "  --stats              pipeline and certifier counters on stderr\n"
+            "  --arcs               after the proposer, trace every Voronoi edge of the\n"
+            "                       certified vertices exactly to its next vertex (arc\n"
+            "                       closure); vertices found on the way are certified and\n"
+            "                       written, and one more header line gives the counts\n"
             "Under mpirun -np N (a build with VORBALL_WITH_MPI) every rank reads INPUT,\n"
             "the cover's cells are split over the ranks (--proposer sampling runs on\n"
             "rank 0 alone, W830) and rank 0 writes the merged output, byte-identical to\n"
@@ -95,7 +100,7 @@ int vb_cmd_vertices(int argc, char **argv)
     vb_pipeline_opts_defaults(&po);
     const char *outpath = NULL, *input = NULL, *topo_path = NULL;
     vb_vertex_format vfmt = VB_VFMT_TSV;
-    int stats = 0;
+    int stats = 0, arcs = 0;
     vb_ctx *ctx;
     if (vb_world_open_ctx(&ctx))
         return VB_EXIT_NOMEM;
@@ -119,6 +124,8 @@ int vb_cmd_vertices(int argc, char **argv)
             po.cfg.sampler.topology = 1;
         } else if (strcmp(a, "--stats") == 0) {
             stats = 1;
+        } else if (strcmp(a, "--arcs") == 0) {
+            arcs = 1;
         } else if (a[0] == '-' && a[1] != '\0') {
             code = vb_cli_usage_error("vertices", "unknown option '%s'", a);
         } else if (!input) {
@@ -165,8 +172,28 @@ int vb_cmd_vertices(int argc, char **argv)
      * and no warning. */
     if (writer && tot.rejected && !res.sampler.complete)
         vb_warn(ctx, VB_W_CERT_REJECTED, NULL, 0, "the certifier rejected %zu candidate(s)", tot.rejected);
-    char note[512];
+    char note[1024];
     vb_vertices_certificate(&res, note, sizeof note);
+    /* Rank 0 holds the merged list: it traces every arc of it. */
+    vb_arc_report ar;
+    memset(&ar, 0, sizeof ar);
+    vb_vertex_list_init(&ar.added);
+    if (writer && arcs) {
+        rc = vb_arc_complete_list(ctx, set, &res.certified, po.cfg.sampler.threads, &ar);
+        writer = rc == VB_OK;
+        if (writer) {
+            size_t used = strlen(note);
+            if (used && used + 1 < sizeof note)
+                note[used++] = '\n';
+            vb_arc_certificate(&ar, note + used, sizeof note - used);
+            if (stats)
+                vb_arc_write_stats(stderr, &ar);
+            if (ar.undecided)
+                vb_warn(ctx, VB_W_ARCS_UNDECIDED, NULL, 0,
+                        "%zu half arc(s) could not be traced exactly: the list is not proven "
+                        "closed under the edges of the diagram", ar.undecided);
+        }
+    }
     if (writer) {
         FILE *out = vb_cli_open_output(ctx, outpath);
         rc = out ? vb_vertex_write(ctx, out, &res.certified, vfmt, note[0] ? note : NULL)
@@ -176,6 +203,7 @@ int vb_cmd_vertices(int argc, char **argv)
     if (writer && rc == VB_OK && topo_path)
         rc = write_topology(ctx, topo_path, set, &res);
     code = vb_world_end(ctx, rc);
+    vb_arc_report_free(&ar);
     vb_vertices_result_free(&res);
     vb_spheres_free(set);
     vb_close(ctx);

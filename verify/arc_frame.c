@@ -328,6 +328,7 @@ static void filter_frame(vbx_tframe *f, const vbx_ia n[3])
         if (!(f->cp.lo > 0.0) || !(f->k.lo > 0.0))
             return;
         f->Smin = vbx_ia_add(f->Sc, vbx_ia_sqrt(f->cp));
+        f->mq = mfss;
         f->ok = 1;
         return;
     }

@@ -33,6 +33,7 @@
  * has that end as one of its two roots: when exactly one root's position
  * cannot be told from that end and the other's can, the first is the end. */
 #include <stdlib.h>
+#include <float.h>
 #include <string.h>
 
 #include "vbx_arc.h"
@@ -48,8 +49,10 @@ typedef struct part {
 typedef struct region {
     int brute;
     int n;
-    part p[2];
+    part p[40];
 } region;
+
+enum { PIECE_PARTS = 4, BOUNDED_PARTS = 2, ELLIPSE_SLABS = 16 };
 
 static vbx_ia ia_hull(vbx_ia a, vbx_ia b)
 {
@@ -70,6 +73,9 @@ static vbx_ia branch_S(const vbx_tframe *f, vbx_ia g)
     return vbx_ia_add(f->Sc, vbx_ia_sqrt(vbx_ia_add(vbx_ia_sqr(kg), f->cp)));
 }
 
+static void piece_parts(const vbx_tframe *f, vbx_ia Sa, double ga, double gb, double sgn,
+                        int parts, region *rg);
+
 /* The region of the arc from e0 to e1 (see the top). */
 static void region_of(const vbx_tframe *f, const vbx_arc_end *e0, const vbx_arc_end *e1,
                       region *rg)
@@ -80,21 +86,41 @@ static void region_of(const vbx_tframe *f, const vbx_arc_end *e0, const vbx_arc_
         return;
     }
     if (f->kind != VBX_TRI_OPEN) {
-        rg->n = 1;
-        rg->p[0].kind = PART_BOX;
-        rg->p[0].S = ia_span(vbx_ia_sub(f->Sc, f->ax).lo, vbx_ia_add(f->Sc, f->ax).hi);
-        rg->p[0].G = ia_span(-f->bx.hi, f->bx.hi);
+        /* The curve is S = Sc +- ax sqrt(1 - G^2 / bx^2), |G| <= bx: over
+         * each slab of G (breakpoints shared by neighbours, so the slabs
+         * cover [-bx, bx]) the upper and the lower half lie in the boxes
+         * of that enclosure. A slab where 1 - G^2 / bx^2 < 0 throughout
+         * holds none of the curve. */
+        double gmax = f->bx.hi;
+        vbx_ia one = vbx_ia_point(1.0), bx2 = vbx_ia_sqr(f->bx);
+        double g0 = -gmax;
+        for (int i = 1; i <= ELLIPSE_SLABS; i++) {
+            double g1 = i == ELLIPSE_SLABS ? gmax : -gmax + 2.0 * gmax * i / ELLIPSE_SLABS;
+            vbx_ia G = ia_span(g0, vbx_max(g0, g1));
+            g0 = vbx_max(g0, g1);
+            vbx_ia r = vbx_ia_sub(one, vbx_ia_div(vbx_ia_sqr(G), bx2));
+            if (!(r.hi >= 0.0))
+                continue;
+            r.lo = vbx_max(r.lo, 0.0);
+            vbx_ia h = vbx_ia_mul(f->ax, vbx_ia_sqrt(r));
+            part *up = &rg->p[rg->n++], *dn = &rg->p[rg->n++];
+            up->kind = dn->kind = PART_BOX;
+            up->G = dn->G = G;
+            up->S = vbx_ia_add(f->Sc, h);
+            dn->S = vbx_ia_sub(f->Sc, h);
+        }
+        if (!rg->n)
+            rg->brute = 1; /* the enclosures miss the curve: cannot be */
         return;
     }
     if (!e0->inf && !e1->inf) {
-        part *p = &rg->p[rg->n++];
-        p->kind = PART_BOX;
-        p->G = ia_span(e0->key.G.lo, e1->key.G.hi);
-        double shi = vbx_max(e0->key.S.hi, e1->key.S.hi);
-        double slo = vbx_min(e0->key.S.lo, e1->key.S.lo);
-        if (p->G.lo <= 0.0 && p->G.hi >= 0.0)
-            slo = vbx_min(slo, f->Smin.lo);
-        p->S = ia_span(slo, shi);
+        /* a bounded arc: thin boxes from e0's G to e1's (piece_parts) */
+        if (!(e0->key.G.lo <= e1->key.G.hi) || !(e0->key.G.lo > -INFINITY) ||
+            !(e1->key.G.hi < INFINITY)) {
+            rg->brute = 1;
+            return;
+        }
+        piece_parts(f, e0->key.S, e0->key.G.lo, e1->key.G.hi, 1.0, BOUNDED_PARTS, rg);
         return;
     }
     /* A tail: forward (e1 at infinity) from G0, or backward (e0 at
@@ -160,10 +186,30 @@ static int query_box(vbx_arcw *w, const vbx_tframe *f, vbx_ia S, vbx_ia G)
     vbx_ia Q = vbx_ia_sub(vbx_ia_add(vbx_ia_add(vbx_ia_sqr(u[0]), vbx_ia_sqr(u[1])),
                                      vbx_ia_sqr(u[2])),
                           vbx_ia_sqr(u[3]));
+    if (f->kind == VBX_TRI_OPEN) {
+        /* The same Q in the conic's form (vbx_tframe.mq): each of S and G
+         * appears once, so the enclosure is tight where the sum of squares
+         * over the box's enclosure of u is not; both enclose Q, keep the
+         * smaller upper end. */
+        vbx_ia kg = vbx_ia_mul(f->k, G);
+        vbx_ia ds = vbx_ia_sub(S, f->Sc);
+        vbx_ia Qc = vbx_ia_mul(f->mq, vbx_ia_sub(vbx_ia_add(vbx_ia_sqr(kg), f->cp), vbx_ia_sqr(ds)));
+        if (Qc.hi < Q.hi)
+            Q.hi = Qc.hi;
+    }
     double at = vbx_max(-t.lo, t.hi);
     double rad = vbx_succ(at + (Q.hi > 0.0 ? vbx_succ(sqrt(Q.hi)) : 0.0));
+    if (Q.hi > 0.0 && at > 0.0) {
+        /* (at + Q / (2 at) + R)^2 >= (at + R)^2 + Q for R >= 0, so the walk
+         * may use that radius, far smaller for a large tangent ball. */
+        double r2 = vbx_succ(at + vbx_succ(vbx_succ(Q.hi / at) * 0.5));
+        if (r2 < rad)
+            rad = r2;
+    }
     if (!(rad < INFINITY) || rad != rad)
         return 1; /* unbounded: the caller goes brute force */
+    vbx_ia pb[4] = {p[0], p[1], p[2], vbx_ia_point(0.0)};
+    double Qp = Q.hi > 0.0 ? Q.hi : 0.0;
     p[3] = vbx_ia_point(rad);
     const vbx_sindex *ix = &w->c->t;
     vbx_walk walk;
@@ -172,6 +218,18 @@ static int query_box(vbx_arcw *w, const vbx_tframe *f, vbx_ia S, vbx_ia G)
     while (vbx_walk_next(&walk, &s0, &s1))
         for (size_t s = s0; s < s1; s++) {
             if (vbx_outside_sphere(&ix->box[4 * s], p))
+                continue;
+            /* the sharper form of the same bound: |c_j - p_u|^2 < (|t| +
+             * R_j)^2 + Q+ (gap: the distance from the centre's enclosure
+             * to the box's, a lower bound of |c_j - p_u|) */
+            const vbx_ia *cj = &ix->box[4 * s];
+            double clo[3] = {cj[0].lo, cj[1].lo, cj[2].lo}, chi[3] = {cj[0].hi, cj[1].hi, cj[2].hi};
+            /* (vbx_outside_box: d2 >= |q - c|^2 (1 + u)^-5 above 2^-900,
+             * and fl(d2 (1 - 2^-50)) stays below that) */
+            double d2 = vbx_gap2(clo, chi, pb);
+            vbx_ia tr = vbx_ia_add(vbx_ia_point(at), vbx_ia_point(cj[3].hi));
+            vbx_ia rhs = vbx_ia_add(vbx_ia_sqr(tr), vbx_ia_point(Qp));
+            if (d2 >= 0x1p-900 && d2 <= DBL_MAX && d2 * (1.0 - 0x1p-50) > rhs.hi)
                 continue;
             if (push_cand(w, ix->ids[s]) != VB_OK)
                 return -1;
@@ -191,8 +249,9 @@ static double half_hi(const vbx_ia *ba, const vbx_ia D[4], const double lo[3], c
     return s.hi;
 }
 
-/* Every sphere with m_j . D_u > 0 possible. */
-static int query_half(vbx_arcw *w, const vbx_tframe *f, const vbx_ia Ddir[2])
+/* Every sphere with m_j . D_u > 0 possible: 0, -1 out of memory, or 2
+ * once more than cap candidates are held (the walk stops there). */
+static int query_half_capped(vbx_arcw *w, const vbx_tframe *f, const vbx_ia Ddir[2], size_t cap)
 {
     vbx_ia D[4];
     for (int k = 0; k < 4; k++)
@@ -226,8 +285,15 @@ static int query_half(vbx_arcw *w, const vbx_tframe *f, const vbx_ia Ddir[2])
             if (sum.hi > 0.0 && push_cand(w, ix->ids[s]) != VB_OK)
                 return -1;
         }
+        if (w->ncand > cap)
+            return 2;
     }
     return 0;
+}
+
+static int query_half(vbx_arcw *w, const vbx_tframe *f, const vbx_ia Ddir[2])
+{
+    return query_half_capped(w, f, Ddir, SIZE_MAX);
 }
 
 static void clear_cands(vbx_arcw *w)
@@ -597,6 +663,186 @@ static int candidate(vbx_arcw *w, search *sr, uint32_t j)
     return VB_OK;
 }
 
+/* The candidates of region rg offered to the search (see the top). */
+static int scan_region(vbx_arcw *w, search *sr, region *rg)
+{
+    vbx_tframe *f = sr->f;
+    int rc = gather(w, f, rg);
+    for (size_t i = 0; rc == VB_OK && i < w->ncand; i++) {
+        uint32_t j = w->cand[i];
+        if (j == f->t[0] || j == f->t[1] || j == f->t[2] ||
+            (w->set->contained && w->set->contained[j]))
+            continue;
+        w->cnt.candidates++;
+        if (clear_of(w, f, rg, j))
+            continue;
+        rc = candidate(w, sr, j);
+    }
+    clear_cands(w);
+    return rc;
+}
+
+/* The boxes of the open branch over mirrored positions g in [ga, gb] (G =
+ * sgn g), `parts` of them appended to rg: each from breakpoint g_i
+ * to g_i+1 (shared by neighbours, so they cover [ga, gb]), its S from the
+ * branch's at g_i (Sa at ga: the start vertex's enclosure) to the
+ * branch's at g_i+1, and Smin when G = 0 lies between (S depends on |G|
+ * alone and grows with it). Thin boxes keep Q small over each, so the
+ * tangent-ball queries stay close to the arc. */
+static void piece_parts(const vbx_tframe *f, vbx_ia Sa, double ga, double gb, double sgn,
+                        int parts, region *rg)
+{
+    double g0 = ga;
+    for (int i = 1; i <= parts; i++) {
+        double g1 = i == parts ? gb : ga + (gb - ga) * i / parts;
+        g1 = vbx_min(vbx_max(g1, g0), gb);
+        part *p = &rg->p[rg->n++];
+        p->kind = PART_BOX;
+        vbx_ia Sb = branch_S(f, vbx_ia_point(g1 < 0.0 ? -g1 : g1));
+        double slo = vbx_min(Sa.lo, Sb.lo), shi = vbx_max(Sa.hi, Sb.hi);
+        if (g0 <= 0.0 && g1 >= 0.0)
+            slo = vbx_min(slo, f->Smin.lo);
+        p->S = ia_span(slo, shi);
+        p->G = sgn > 0 ? ia_span(g0, g1) : ia_span(-g1, -g0);
+        Sa = Sb;
+        g0 = g1;
+    }
+}
+
+/* The tail of the open branch beyond mirrored position g (a double): the
+ * region_of tail with its start at the point interval g. */
+static void tail_from(const vbx_tframe *f, double g, double sgn, region *rg)
+{
+    memset(rg, 0, sizeof *rg);
+    double g1 = g;
+    if (g < 0.0) {
+        part *b = &rg->p[rg->n++];
+        vbx_ia far = branch_S(f, vbx_ia_point(-g));
+        b->kind = PART_BOX;
+        b->S = ia_span(f->Smin.lo, vbx_max(far.hi, f->Smin.hi));
+        b->G = sgn > 0 ? ia_span(g, 0.0) : ia_span(0.0, -g);
+        g1 = 0.0;
+    }
+    part *s = &rg->p[rg->n++];
+    s->kind = PART_STRIP;
+    vbx_ia gi = vbx_ia_point(g1);
+    vbx_ia on = branch_S(f, gi), asym = vbx_ia_add(f->Sc, vbx_ia_mul(f->k, gi));
+    s->S = ia_hull(on, asym);
+    s->G = vbx_ia_point(sgn * g1);
+    s->D[0] = f->k;
+    s->D[1] = vbx_ia_point(sgn);
+}
+
+/* Candidates of a tail region when there are at most cap of them: 1 when
+ * gathered (then w->cand holds them, as gather would), 0 when over the cap
+ * or unbounded (nothing held), -1 out of memory. */
+static int gather_capped(vbx_arcw *w, const vbx_tframe *f, const region *rg, size_t cap)
+{
+    clear_cands(w);
+    for (int i = 0; i < rg->n; i++) {
+        const part *p = &rg->p[i];
+        /* the half-space first: it is the part that may be large */
+        int r = p->kind == PART_STRIP ? query_half_capped(w, f, p->D, cap) : 0;
+        if (r == 0)
+            r = query_box(w, f, p->S, p->G);
+        if (r < 0)
+            return -1;
+        if (r > 0 || w->ncand > cap) {
+            clear_cands(w);
+            return 0;
+        }
+    }
+    return 1;
+}
+
+enum { TAIL_PIECES = 48, TAIL_CAP_MIN = 64, TAIL_STRIP_FROM = 2 };
+
+/* An open arc from a vertex to infinity (forward: sr->e1 at infinity;
+ * backward: sr->e0), searched outwards in pieces of doubling length.
+ *
+ * Why it finds the same first touch as one search of the whole tail: the
+ * touch held after the pieces up to mirrored position gb is the first
+ * among every sphere offered so far, and those include every sphere with
+ * L_j <= 0 somewhere on the arc up to gb (each piece's box holds its part
+ * of the arc). So when that touch provably lies at or before gb, no other
+ * sphere touches earlier and it is the answer. Otherwise the search goes
+ * on; after a piece whose tail beyond gb has few candidates (its
+ * half-strip, as in region_of) that tail is searched whole, which decides
+ * the rest. Pieces only change which spheres are looked at when, never a
+ * sign: a piece that cannot be bounded falls back to the whole tail.
+ * Returns 1 when decided, 0 when the caller must search the whole tail,
+ * or a negative VB_ status negated. */
+static int search_tail(vbx_arcw *w, search *sr)
+{
+    vbx_tframe *f = sr->f;
+    int fwd = sr->e1->inf;
+    const vbx_arc_end *ev = fwd ? sr->e0 : sr->e1;
+    vbx_touch *tp = fwd ? sr->first : sr->last;
+    double sgn = fwd ? 1.0 : -1.0;
+    if (!tp || !f->ok || f->kind != VBX_TRI_OPEN || ev->inf)
+        return 0;
+    vbx_ia G0 = fwd ? ev->key.G : vbx_ia_neg(ev->key.G);
+    /* First length: the vertex's tangent radius s along the plane's G
+     * direction (|EG| = 1 / |n|); any positive length would do. */
+    double eg = 0.0;
+    for (int k = 0; k < 3; k++) {
+        double m = 0.5 * (f->EG[k].lo + f->EG[k].hi);
+        eg += m * m;
+    }
+    double step = 0.25 * ev->key.S.hi / sqrt(eg);
+    if (!(step > 0.0) || !(step < INFINITY) || !(G0.lo > -INFINITY) || !(G0.hi < INFINITY))
+        return 0;
+    double ga = G0.lo, gb = G0.hi + step;
+    vbx_ia Sa = ev->key.S;
+    size_t cap = TAIL_CAP_MIN;
+    for (int piece = 0; piece < TAIL_PIECES; piece++) {
+        if (!(gb < INFINITY))
+            return 0;
+        region rg;
+        memset(&rg, 0, sizeof rg);
+        piece_parts(f, Sa, ga, gb, sgn, PIECE_PARTS, &rg);
+        w->cnt.tail_pieces++;
+        int rc = scan_region(w, sr, &rg);
+        if (rc != VB_OK)
+            return -rc;
+        if (rg.brute)
+            return 0;
+        if (tp->found && (fwd ? tp->key.G.hi <= gb : -tp->key.G.lo <= gb))
+            return 1;
+        region tail;
+        tail_from(f, gb, sgn, &tail);
+        /* (most arcs end within the first pieces: the strip is tried from
+         * the TAIL_STRIP_FROM-th piece on) */
+        int g = piece + 1 >= TAIL_STRIP_FROM ? gather_capped(w, f, &tail, cap) : 0;
+        if (g < 0)
+            return -VB_ENOMEM;
+        if (g > 0) {
+            /* gather_capped left the candidates in w->cand: scan them as
+             * scan_region would (gather is not repeated). */
+            w->cnt.tail_strips++;
+            for (size_t i = 0; rc == VB_OK && i < w->ncand; i++) {
+                uint32_t j = w->cand[i];
+                if (j == f->t[0] || j == f->t[1] || j == f->t[2] ||
+                    (w->set->contained && w->set->contained[j]))
+                    continue;
+                w->cnt.candidates++;
+                if (clear_of(w, f, &tail, j))
+                    continue;
+                rc = candidate(w, sr, j);
+            }
+            clear_cands(w);
+            return rc == VB_OK ? 1 : -rc;
+        }
+        Sa = branch_S(f, vbx_ia_point(gb < 0.0 ? -gb : gb));
+        step *= 2.0;
+        ga = gb;
+        gb = gb + step;
+        if (cap < 1u << 20)
+            cap *= 2;
+    }
+    return 0;
+}
+
 int vbx_arc_search(vbx_arcw *w, vbx_tframe *f, vbx_arc_end *e0, vbx_arc_end *e1,
                    vbx_touch *first, vbx_touch *last)
 {
@@ -617,21 +863,20 @@ int vbx_arc_search(vbx_arcw *w, vbx_tframe *f, vbx_arc_end *e0, vbx_arc_end *e1,
             sr.wrap = c > 0;
         }
     }
+    if (sr.open && (e0->inf || e1->inf) && !(first && last)) {
+        int d = search_tail(w, &sr);
+        if (d < 0)
+            return -d;
+        if (d > 0)
+            return VB_OK;
+        if (first)
+            first->found = 0;
+        if (last)
+            last->found = 0;
+    }
     region rg;
     region_of(f, e0, e1, &rg);
-    int rc = gather(w, f, &rg);
-    for (size_t i = 0; rc == VB_OK && i < w->ncand; i++) {
-        uint32_t j = w->cand[i];
-        if (j == f->t[0] || j == f->t[1] || j == f->t[2] ||
-            (w->set->contained && w->set->contained[j]))
-            continue;
-        w->cnt.candidates++;
-        if (clear_of(w, f, &rg, j))
-            continue;
-        rc = candidate(w, &sr, j);
-    }
-    clear_cands(w);
-    return rc;
+    return scan_region(w, &sr, &rg);
 }
 
 int vbx_touch_certify(vbx_arcw *w, vbx_tframe *f, const vbx_touch *tp, double xyzt[4])

@@ -9,7 +9,10 @@
  * (verify/arc_search.c). That point is the next vertex: it is certified
  * exactly and looked up in the list; a vertex not in the list is added and
  * traced in turn. An arc with no touching sphere runs to infinity (open
- * branch) or closes on itself (closed curve).
+ * branch) or closes on itself (closed curve). A forward arc is first
+ * searched up to the nearest listed vertex of its triple ahead, and a
+ * backward arc that reverses a forward arc traced to its vertex is closed
+ * by that search (verify/arc_closure.c says why both are exact).
  *
  * What a run with nothing added and nothing undecided proves: the list is
  * closed under the edges of the diagram, i.e. it holds every vertex of each
@@ -36,10 +39,12 @@ typedef struct vb_arc_report {
     size_t components;      /* connected components of the vertex-edge graph */
     vb_vertex_list added;   /* certified vertices found by tracing, not in the input (sorted) */
     uint64_t filter_calls, filter_failures, exact_evals, candidates;
+    double seconds;         /* vb_arc_complete_list: wall time of the closure */
 } vb_arc_report;
 
 /* Traces every arc of every vertex of `in` and of every vertex found on the
- * way, single-threaded and deterministic. `in` must hold certified vertices,
+ * way, in rounds on up to `threads` host threads (0: VORBALL_THREADS or the
+ * online CPUs); the report does not depend on their number. `in` must hold certified vertices,
  * each once: sorted ids of all their spheres, x y z t the exact vertex
  * rounded to nearest, as vorball writes them (the status is ignored; a
  * vertex that is not one gives undecided arcs or wrong closures, so judge a
@@ -47,7 +52,7 @@ typedef struct vb_arc_report {
  * vb_arc_report_free, also on error). Returns VB_OK when the closure ran to
  * the end (see vb_arc_report_complete), VB_ENOMEM, VB_EINTERNAL. */
 int vb_arc_close(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_list *in,
-                 vb_arc_report *out);
+                 unsigned threads, vb_arc_report *out);
 
 /* 1 when every arc was traced and no vertex was added. */
 int vb_arc_report_complete(const vb_arc_report *r);
@@ -58,11 +63,35 @@ void vb_arc_report_free(vb_arc_report *r);
  * lines (one per exact vertex, so a Voronota group counts once) through
  * vb_arc_close. Same returns as vb_arc_close. */
 int vb_verify_arcs(vb_ctx *ctx, const vb_sphere_set *set, const vb_verify_report *judged,
-                   vb_arc_report *out);
+                   unsigned threads, vb_arc_report *out);
+
+/* Closes the certified list `list` of a pipeline run in place: vb_arc_close
+ * on it, then the vertices found on the way (certified exactly) appended
+ * and the list sorted canonically again. *out keeps the counts and the
+ * added vertices (free with vb_arc_report_free, also on error). Same
+ * returns as vb_arc_close. */
+int vb_arc_complete_list(vb_ctx *ctx, const vb_sphere_set *set, vb_vertex_list *list,
+                         unsigned threads, vb_arc_report *out);
+
+/* The certificate as one header line ("arcs: ...", no newline) into buf. */
+void vb_arc_certificate(const vb_arc_report *r, char *buf, size_t size);
+
+/* The counts and the tracing predicates' filter/exact counters, one
+ * "name<TAB>value" line each (vorball vertices --arcs --stats). */
+void vb_arc_write_stats(FILE *f, const vb_arc_report *r);
 
 /* The certificate as text: one "NAME: missing vertex IDS at X Y Z t T" line
  * per added vertex, then "NAME: arcs: ..." with the counts. VB_OK or VB_EIO. */
 int vb_arc_write_text(vb_ctx *ctx, FILE *f, const char *name, const vb_arc_report *r);
+
+/* The verify report as JSON (vb_verify_write_json) with a member "arcs":
+ * {"vertices", "half_arcs", "closed", "infinite", "loops", "undecided",
+ * "added", "components", "complete", "missing": [{"ids", "x", "y", "z",
+ * "t"}, ...]}; "ok" is false also when the closure is not complete.
+ * VB_OK, VB_ENOMEM or VB_EIO. */
+int vb_verify_write_json_arcs(vb_ctx *ctx, FILE *f, const char *spheres_name, const char *name,
+                              const vb_sphere_set *set, const vb_verify_report *judged,
+                              const vb_arc_report *r);
 
 #ifdef __cplusplus
 }

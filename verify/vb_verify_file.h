@@ -96,6 +96,14 @@ int vb_verify_write_text(vb_ctx *ctx, FILE *f, const char *name, const vb_sphere
 int vb_verify_write_json(vb_ctx *ctx, FILE *f, const char *spheres_name, const char *name,
                          const vb_sphere_set *set, const vb_verify_report *r);
 
+/* The same with one more member, "key": the JSON value that more(f, arg)
+ * writes, before "ok"; "ok" is also false when more_ok is 0 (more NULL:
+ * vb_verify_write_json). VB_OK or VB_ENOMEM. */
+int vb_verify_write_json_more(vb_ctx *ctx, FILE *f, const char *spheres_name, const char *name,
+                              const vb_sphere_set *set, const vb_verify_report *r,
+                              const char *key, void (*more)(FILE *, const void *),
+                              const void *arg, int more_ok);
+
 #ifdef __cplusplus
 }
 #endif

@@ -97,6 +97,7 @@ typedef struct vbx_tframe {
     vbx_ia Sc;             /* centre's S (closed: both; open: the asymptotes') */
     vbx_ia k, Smin;        /* open hyperbola: asymptotes S = Sc +- k G, branch's S at G = 0 */
     vbx_ia cp;             /* open: (S - Sc)^2 = k^2 G^2 + cp on the branch */
+    vbx_ia mq;             /* open: Q(u) = mq (k^2 G^2 + cp - (S - Sc)^2) on the plane */
     vbx_ia ax, bx;         /* closed: semi-axes along S and G */
     /* exact, scaled (set up lazily by vbx_tframe_exact) */
     int exact;
@@ -110,6 +111,7 @@ typedef struct vbx_tframe {
 typedef struct vbx_arc_counters {
     uint64_t filter_calls, filter_failures, exact_evals;
     uint64_t candidates, root_checks, brute;
+    uint64_t tail_pieces, tail_strips; /* vbx_arc_search: pieces of tails, tails ended by a strip */
 } vbx_arc_counters;
 
 typedef struct vbx_arcw {

@@ -2,10 +2,12 @@
  * certificate (vb_arc_write_text). */
 #include <stdlib.h>
 
+#include "vb_json.h"
+
 #include "vb_arc.h"
 
 int vb_verify_arcs(vb_ctx *ctx, const vb_sphere_set *set, const vb_verify_report *judged,
-                   vb_arc_report *out)
+                   unsigned threads, vb_arc_report *out)
 {
     vb_vertex_list in;
     vb_vertex_list_init(&in);
@@ -27,7 +29,7 @@ int vb_verify_arcs(vb_ctx *ctx, const vb_sphere_set *set, const vb_verify_report
     }
     free(seen);
     if (rc == VB_OK)
-        rc = vb_arc_close(ctx, set, &in, out);
+        rc = vb_arc_close(ctx, set, &in, threads, out);
     else
         vb_arc_report_free(out);
     vb_vertex_list_free(&in);
@@ -52,4 +54,36 @@ int vb_arc_write_text(vb_ctx *ctx, FILE *f, const char *name, const vb_arc_repor
     if (ferror(f))
         return vb_error(ctx, VB_EIO, NULL, 0, "cannot write the arc report");
     return VB_OK;
+}
+
+/* The arc report as a JSON object (vb_verify_write_json_arcs). */
+static void arcs_json(FILE *f, const void *arg)
+{
+    const vb_arc_report *r = arg;
+    const vb_vertex_list *a = &r->added;
+    fprintf(f,
+            "{\"vertices\":%zu,\"half_arcs\":%zu,\"closed\":%zu,\"infinite\":%zu,"
+            "\"loops\":%zu,\"undecided\":%zu,\"added\":%zu,\"components\":%zu,"
+            "\"complete\":%s,\"missing\":[",
+            r->vertices, r->half_arcs, r->closed, r->infinite, r->loops, r->undecided, a->n,
+            r->components, vb_arc_report_complete(r) ? "true" : "false");
+    for (size_t k = 0; k < a->n; k++) {
+        fputs(k ? ",\n{\"ids\":[" : "\n{\"ids\":[", f);
+        for (size_t i = a->start[k]; i < a->start[k + 1]; i++)
+            fprintf(f, i > a->start[k] ? ",%u" : "%u", (unsigned)a->ids[i]);
+        fprintf(f, "],\"x\":%.17g,\"y\":%.17g,\"z\":%.17g,\"t\":%.17g}", a->x[k], a->y[k],
+                a->z[k], a->t[k]);
+    }
+    fputs("]}", f);
+}
+
+int vb_verify_write_json_arcs(vb_ctx *ctx, FILE *f, const char *spheres_name, const char *name,
+                              const vb_sphere_set *set, const vb_verify_report *judged,
+                              const vb_arc_report *r)
+{
+    int rc = vb_verify_write_json_more(ctx, f, spheres_name, name, set, judged, "arcs",
+                                       arcs_json, r, vb_arc_report_complete(r));
+    if (rc == VB_OK && ferror(f))
+        rc = vb_error(ctx, VB_EIO, NULL, 0, "cannot write the arc report");
+    return rc;
 }

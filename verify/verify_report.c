@@ -125,7 +125,8 @@ static void json_ids(FILE *f, const uint32_t *ids, size_t n)
 }
 
 static void print_json(FILE *f, const char *spheres_name, const char *name,
-                       const vb_verify_report *r, uint32_t *scratch)
+                       const vb_verify_report *r, uint32_t *scratch, const char *key,
+                       void (*more)(FILE *, const void *), const void *arg, int more_ok)
 {
     const vb_vertex_list *v = &r->vertices, *missed = &r->missed;
     const long *lines = r->lines;
@@ -181,8 +182,13 @@ static void print_json(FILE *f, const char *spheres_name, const char *name,
         fprintf(f, ",\"x\":%.17g,\"y\":%.17g,\"z\":%.17g,\"t\":%.17g}", missed->x[k],
                 missed->y[k], missed->z[k], missed->t[k]);
     }
-    int ok = n->certified == n->lines && n->missed == 0;
-    fprintf(f, "\n],\"ok\":%s}\n", ok ? "true" : "false");
+    int ok = n->certified == n->lines && n->missed == 0 && (!more || more_ok);
+    fputs("\n]", f);
+    if (more) {
+        fprintf(f, ",\"%s\":", key);
+        more(f, arg);
+    }
+    fprintf(f, ",\"ok\":%s}\n", ok ? "true" : "false");
 }
 
 /* Scratch for the member lists of the report: one id per sphere. */
@@ -205,13 +211,21 @@ int vb_verify_write_text(vb_ctx *ctx, FILE *f, const char *name, const vb_sphere
     return VB_OK;
 }
 
-int vb_verify_write_json(vb_ctx *ctx, FILE *f, const char *spheres_name, const char *name,
-                         const vb_sphere_set *set, const vb_verify_report *r)
+int vb_verify_write_json_more(vb_ctx *ctx, FILE *f, const char *spheres_name, const char *name,
+                              const vb_sphere_set *set, const vb_verify_report *r,
+                              const char *key, void (*more)(FILE *, const void *),
+                              const void *arg, int more_ok)
 {
     uint32_t *scratch = scratch_for(ctx, set);
     if (!scratch)
         return VB_ENOMEM;
-    print_json(f, spheres_name, name, r, scratch);
+    print_json(f, spheres_name, name, r, scratch, key, more, arg, more_ok);
     free(scratch);
     return VB_OK;
+}
+
+int vb_verify_write_json(vb_ctx *ctx, FILE *f, const char *spheres_name, const char *name,
+                         const vb_sphere_set *set, const vb_verify_report *r)
+{
+    return vb_verify_write_json_more(ctx, f, spheres_name, name, set, r, NULL, NULL, NULL, 1);
 }

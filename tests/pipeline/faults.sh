@@ -93,8 +93,35 @@ arcs)
     expect_line "$out" ": arcs: 24 vertices traced, .* 0 vertices added; 1 components$"
     run 0 "$out" "$vorball" verify coplanar_centres.xyzr ../golden/coplanar_centres.tsv --arcs
     expect_line "$out" ": arcs: 26 vertices traced, .* 0 vertices added; 2 components$"
-    # no JSON report of the arcs yet: a usage error
-    run 2 "$out" "$vorball" verify cubic_lattice.xyzr "$cubic" --arcs --json ;;
+    # the far hull vertices (the 3 of largest t) of crambin_fragment deleted:
+    # all three found again
+    awk -F '\t' '!/^#/ { print $5 "\t" NR }' "$g" | sort -g -r | head -3 | cut -f2 > "$work/far.txt"
+    awk 'NR == FNR { far[$1] = 1; next } !(FNR in far)' "$work/far.txt" "$g" > "$bad"
+    [ $(($(grep -c -v '^#' "$g") - $(grep -c -v '^#' "$bad"))) -eq 3 ] || fail "expected to drop 3 vertices"
+    run $MISMATCH "$out" "$vorball" verify crambin_fragment.xyzr "$bad" --arcs
+    [ "$(grep -c ': missing vertex .* (found by arc closure)$' "$out")" -eq 3 ] || fail "expected the 3 far hull vertices back"
+    expect_line "$out" " 0 undecided; 3 vertices added; 1 components$"
+    for l in $(cat "$work/far.txt"); do
+        ids=$(sed -n "${l}p" "$g" | cut -f1)
+        expect_line "$out" "^$bad: missing vertex $ids at "
+    done
+    # a real miss: sampling with 6 x 6 rays per face misses the far hull
+    # vertex 0,1,2,8 of far_hull_vertex (t = 1892); --arcs certifies it and
+    # writes the golden
+    run 0 "$work/far_s.err" "$vorball" vertices --device ref --proposer sampling --samples 6 far_hull_vertex.xyzr -o "$work/far_s.tsv"
+    grep -q '^0,1,2,8	' "$work/far_s.tsv" && fail "sampling at --samples 6 no longer misses 0,1,2,8: the case lost its point"
+    run 0 "$work/far_a.err" "$vorball" vertices --device ref --proposer sampling --samples 6 --arcs far_hull_vertex.xyzr -o "$work/far_a.tsv"
+    expect_line "$work/far_a.tsv" "^# arcs: every arc closed exactly: 17 vertices, 68 half arcs: .* 0 undecided; 1 vertices added by tracing; 1 connected components$"
+    grep -v '^#' "$work/far_a.tsv" > "$work/far_a.lines"
+    grep -v '^#' ../golden/far_hull_vertex.tsv | cmp - "$work/far_a.lines" || fail "sampling + arcs does not give the golden of far_hull_vertex"
+    # the JSON form: counts and the missing vertex, "ok" false, exit 1
+    sed "${v4}d" "$cubic" > "$bad"
+    run $MISMATCH "$out" "$vorball" verify cubic_lattice.xyzr "$bad" --arcs --json
+    expect_line "$out" '"arcs":\{"vertices":8,"half_arcs":48,"closed":24,"infinite":24,"loops":0,"undecided":0,"added":1,"components":1,"complete":false,"missing":\['
+    expect_line "$out" "^\\{\"ids\":\\[$(sed -n "${v4}p" "$cubic" | cut -f1)\\],\"x\":"
+    expect_line "$out" '"ok":false\}$'
+    run 0 "$out" "$vorball" verify cubic_lattice.xyzr "$cubic" --arcs --json
+    expect_line "$out" '"added":0,"components":1,"complete":true,"missing":\[\]\},"ok":true\}$' ;;
 voronota_groups)
     # Voronota-style: each degree-8 vertex as the 6 tetrahedra of its cube
     # (2 comment lines, then 48 quadruple lines)

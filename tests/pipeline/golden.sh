@@ -1,7 +1,9 @@
 #!/bin/sh
 # One corpus case: `vorball reference` reproduces the golden byte for byte,
-# `vorball verify --complete` accepts the golden, and the golden shows the
-# property the case was built for (properties.sh).
+# `vorball verify --complete` accepts the golden, every arc of it closes
+# (verify --arcs, and vertices --arcs reproduces it with its certificate on
+# any thread count), and the golden shows the property the case was built
+# for (properties.sh).
 # usage: golden.sh VORBALL CORPUS_DIR CASE WORK_DIR
 vorball=$1 corpus=$2 case=$3 work=$4/golden_$3
 here=$(cd "$(dirname "$0")" && pwd)
@@ -24,5 +26,16 @@ expect_line "$work/verify.txt" "^verify: .* 0 not a vertex, 0 wrong coordinates,
 # exact arc closure: every Voronoi edge of the golden ends at a golden vertex
 run 0 "$work/arcs.txt" "$vorball" verify "$case.xyzr" "$golden" --arcs
 expect_line "$work/arcs.txt" "^$golden: arcs: [0-9]+ vertices traced, [0-9]+ half arcs: .* 0 undecided; 0 vertices added; [0-9]+ components$"
+# vertices --arcs: the cover's list traced, the golden's vertices written
+# with the certificate's header line, the same bytes on 1 and 3 threads
+for t in 1 3; do
+    run 0 "$work/arcs$t.err" "$vorball" vertices --device ref --arcs --threads $t "$case.xyzr" -o "$work/arcs$t.tsv"
+done
+cmp "$work/arcs1.tsv" "$work/arcs3.tsv" || fail "vertices --arcs differs between 1 and 3 threads"
+vertex_lines "$work/arcs1.tsv" > "$work/arcs1.lines"
+vertex_lines "$golden" > "$work/golden.lines"
+cmp "$work/arcs1.lines" "$work/golden.lines" || fail "vertices --arcs does not reproduce $golden"
+n=$(grep -c . "$work/golden.lines")
+expect_line "$work/arcs1.tsv" "^# arcs: every arc closed exactly: $n vertices, [0-9]+ half arcs: .* 0 undecided; 0 vertices added by tracing; [0-9]+ connected components$"
 sh "$here/properties.sh" "$case" "$golden" "$work" || fail "$case: property does not hold"
 echo "ok: $case ($(vertex_lines "$golden" | wc -l) vertices)"

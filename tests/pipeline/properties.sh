@@ -80,6 +80,10 @@ lattice_subset)
         "29, 18, 2, 1 vertices of degree 4, 5, 6, 7 expected" ;;
 crambin_fragment)
     awk_check '{ if (n < 4) bad++ } END { exit !(bad == 0 && NR > 100) }' "a real diagram expected" ;;
+far_hull_vertex)
+    # one far hull vertex, 0,1,2,8 at t = 1892 (the next largest t is 53)
+    awk_check '$1 == "0,1,2,8" && $5 > 1800 { far++ } $5 > 100 { big++ } END { exit !(far == 1 && big == 1 && NR == 17) }' \
+        "17 vertices, one far hull vertex 0,1,2,8 with t > 1800 expected" ;;
 *)
     fail "no property known for case $case" ;;
 esac

@@ -1,0 +1,47 @@
+/* Arc closure of a list the pipeline certified (vb_arc_complete_list), the
+ * certificate as a header line and its counters for --stats. */
+#include <stdio.h>
+
+#include "vb_arc.h"
+#include "vb_parallel.h"
+
+int vb_arc_complete_list(vb_ctx *ctx, const vb_sphere_set *set, vb_vertex_list *list,
+                         unsigned threads, vb_arc_report *out)
+{
+    double t0 = vb_now();
+    int rc = vb_arc_close(ctx, set, list, threads, out);
+    const vb_vertex_list *a = &out->added;
+    for (size_t k = 0; rc == VB_OK && k < a->n; k++)
+        rc = vb_vertex_list_push(list, a->ids + a->start[k], a->start[k + 1] - a->start[k],
+                                 a->x[k], a->y[k], a->z[k], a->t[k], 0, VB_VERTEX_CERTIFIED);
+    if (rc == VB_OK && a->n)
+        rc = vb_vertex_list_sort(list);
+    if (rc == VB_ENOMEM)
+        rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (arc closure)");
+    out->seconds = vb_now() - t0;
+    return rc;
+}
+
+void vb_arc_certificate(const vb_arc_report *r, char *buf, size_t size)
+{
+    snprintf(buf, size,
+             "arcs: %s: %zu vertices, %zu half arcs: %zu closed at a vertex, %zu to infinity, "
+             "%zu closed loops, %zu undecided; %zu vertices added by tracing; %zu connected "
+             "components",
+             r->undecided ? "NOT every arc closed" : "every arc closed exactly", r->vertices,
+             r->half_arcs, r->closed, r->infinite, r->loops, r->undecided, r->added.n,
+             r->components);
+}
+
+void vb_arc_write_stats(FILE *f, const vb_arc_report *r)
+{
+    fprintf(f,
+            "arc_half_arcs\t%zu\narc_closed\t%zu\narc_infinite\t%zu\narc_loops\t%zu\n"
+            "arc_undecided\t%zu\narc_added\t%zu\narc_components\t%zu\n"
+            "arc_filter_calls\t%llu\narc_filter_failures\t%llu\narc_exact_evals\t%llu\n"
+            "arc_candidates\t%llu\narc_s\t%.3f\n",
+            r->half_arcs, r->closed, r->infinite, r->loops, r->undecided, r->added.n,
+            r->components, (unsigned long long)r->filter_calls,
+            (unsigned long long)r->filter_failures, (unsigned long long)r->exact_evals,
+            (unsigned long long)r->candidates, r->seconds);
+}
