@@ -175,6 +175,8 @@ typedef struct vbj_result {
                             is launch and synchronisation overhead */
     double ms_transfer;  /* host preparation (seed placement, start resolution), seed
                             upload and label download */
+    double ms_prep;      /* the exact variants: the host's part of ms_transfer, building
+                            the seed grid (vbj_tiles_prep_build); 0 for the others */
 } vbj_result;
 
 void vbj_result_free(vbj_result *r);
