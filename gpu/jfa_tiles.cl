@@ -2,13 +2,13 @@
  * one work-item per row of VBJ_XT_ROW voxels along x (64 work-items in 3D,
  * 32 in 2D). The decisions and their proofs are in
  * core/discrete/vbj_tiles.h; the plain-C twin, core/discrete/jfa_tiles.c,
- * runs the same ring search and tests, so labels and counts agree.
+ * runs the same search and tests, so labels and counts agree.
  *
- * Per tile: (1) rings of seed buckets around the tile's bucket (from its
- * first non-empty ring, shell by shell), the work
- * shared by the work-items, each ring closed by a work-group reduction of
- * U^2 and of the centre voxel's owner, until no unvisited seed can matter;
- * (2) the block again: the seeds within the distance bound that the centre
+ * Per tile: (1) the block of buckets around the tile's bucket out to its
+ * first non-empty ring, then grown once to the radius its bound allows,
+ * read by rows shared among the work-items, each pass closed by a
+ * work-group reduction of U^2 and of the centre voxel's owner; (2) the
+ * block the final bound needs: the seeds within the distance bound that the centre
  * owner does not dominate (the survivors), staged in local memory as
  * (x, y, z, index) relative to the tile's first voxel; (3) one survivor:
  * the tile is that seed's; else each work-item runs the float filter over

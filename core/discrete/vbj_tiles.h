@@ -87,7 +87,7 @@
  * survivor too far for exact floats. Every label therefore equals the exact
  * one, and no decision depends on the order of the survivors.
  *
- * Both backends run the same ring search, the same tests and the same
+ * Both backends run the same search, the same tests and the same
  * float expressions in the same order (contraction off), so their labels
  * and their work counts agree exactly. */
 #ifndef VBJ_TILES_H
@@ -118,7 +118,7 @@ enum {
     VBJ_XT_C_EVALS,       /* voxel x survivor float evaluations */
     VBJ_XT_C_EXACT,       /* voxels decided with 64-bit integers */
     VBJ_XT_C_CHUNKED,     /* tiles with more than VBJ_XT_CAP survivors */
-    VBJ_XT_C_VISITED,     /* seeds read by the ring searches (both passes) */
+    VBJ_XT_C_VISITED,     /* seeds read by the searches (bounds, then survivors) */
     VBJ_XT_NC
 };
 
