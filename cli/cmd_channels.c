@@ -55,12 +55,13 @@ static void usage(FILE *f)
             "or bzip2 compressed too); several MODELs or GRO frames are a trajectory. With\n"
             "--traj, INPUT is the topology (PDB, GRO, mmCIF, PQR or a CHARMM/NAMD PSF) of a\n"
             "DCD, XTC or TRR trajectory.\n"
-            "Per frame, on OpenCL (or its C reference, --device ref): Facet-JFA labels of the\n"
-            "atom centres on an n^3 grid, Voronoi edge voxels, atomic mask (balls r + probe),\n"
-            "molecular mask (rays along x, y, z), interior = atomic xor molecular, channels =\n"
-            "edges and interior; then components, centrelines (widest path between the\n"
-            "openings) with the clearance radius (distance to the nearest atom surface) at\n"
-            "each point, bottleneck and lining residues.\n"
+            "Per frame, on OpenCL (or its C reference, --device ref): the exact discrete\n"
+            "Voronoi labels of the atom centres on an n^3 grid (--jfa), Voronoi edge voxels,\n"
+            "atomic mask (balls r + probe), molecular mask (rays along x, y, z), interior =\n"
+            "atomic xor molecular, channels = edges and interior; then components,\n"
+            "centrelines (widest path between the openings) with the clearance radius\n"
+            "(distance to the nearest atom surface) at each point, bottleneck and lining\n"
+            "residues.\n"
             "\n"
             "options:\n"
             "  -o FILE             channel table (CSV; default stdout); columns below\n"
@@ -85,8 +86,9 @@ static void usage(FILE *f)
             "  --png FILE          the 2D pipeline stages (paper Fig. 5) on the slice through the\n"
             "                      centroid of the first frame\n"
             "  --png-normal x|y|z  normal of that slice (default x: the slice holds the z axis)\n"
-            "  --jfa VARIANT       facet (default), exact (the exact diagram by tiles), jfa,\n"
-            "                      jfa+1, jfa+2, 1+jfa\n"
+            "  --jfa VARIANT       exact (default: the exact diagram by tiles, the fastest\n"
+            "                      engine too), facet (Facet-JFA), jfa, jfa+1, jfa+2, 1+jfa\n"
+            "                      (approximations: a few voxels may take a wrong label)\n"
             "  --device D          auto (default: GPU, else the CPU OpenCL device), gpu, cpu\n"
             "                      or ref (plain C, same output). If that OpenCL device cannot\n"
             "                      be used, the reference runs after warning W804 (W806:\n"
@@ -197,7 +199,7 @@ static int parse_args(int argc, char **argv, ch_args *A)
     A->fstep = 1;
     A->repeat = 1;
     A->volume_bit = VBC_F_CHANNEL;
-    A->variant = VBJ_FACET;
+    A->variant = VBJ_EXACT;
     A->png_axis = 0;
     A->opt.min_length = 5.0;
     A->opt.min_radius = 0.0;
@@ -338,7 +340,7 @@ static int parse_args(int argc, char **argv, ch_args *A)
             /* exact-boundary counts boundary pixels the masks never read. */
             if (vbj_variant_parse(NULL, v, &A->variant) != VB_OK || A->variant == VBJ_FACET_FULL ||
                 A->variant == VBJ_EXACT_BOUNDARY)
-                return vb_cli_usage_error(cmd, "--jfa: facet, exact, jfa, jfa+1, jfa+2 or 1+jfa, not '%s'", v), -1;
+                return vb_cli_usage_error(cmd, "--jfa: exact, facet, jfa, jfa+1, jfa+2 or 1+jfa, not '%s'", v), -1;
         } else if (strcmp(a, "--device") == 0) {
             if (vb_device_kind_parse(NULL, v, &A->device) != VB_OK)
                 return vb_cli_usage_error(cmd, "--device: auto, gpu, cpu or ref, not '%s'", v), -1;

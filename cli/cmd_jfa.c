@@ -156,12 +156,13 @@ static void print_json(FILE *f, const char *device, const vbj_seeds *s, const ch
         const vbj_counts *c = &x->r.counts;
         fprintf(f,
                 "%s\n  {\"variant\": \"%s\", \"time_ms\": %.4f, \"time_ms_min\": %.4f, "
-                "\"gpu_ms\": %.4f, \"fill_ms\": %.4f, \"prep_transfer_ms\": %.4f, \"steps\": %u, "
+                "\"gpu_ms\": %.4f, \"fill_ms\": %.4f, \"prep_transfer_ms\": %.4f, \"prep_ms\": %.4f, "
+                "\"steps\": %u, "
                 "\"pixels_processed\": %llu, \"threads\": %llu, \"m\": %u, \"boundary\": %llu, "
                 "\"collisions\": %u",
                 i ? "," : "", vbj_variant_name(x->v), x->mean_ms, x->min_ms, x->mean_gpu_ms,
                 x->r.ms_fill,
-                x->r.ms_transfer, c->steps, (unsigned long long)c->step_pixels,
+                x->r.ms_transfer, x->r.ms_prep, c->steps, (unsigned long long)c->step_pixels,
                 (unsigned long long)c->threads, c->m, (unsigned long long)c->boundary,
                 c->collisions);
         if (VBJ_IS_EXACT(x->v))

@@ -50,7 +50,7 @@ void vbj_engine_close(vbj_engine *e)
     vbj_cl_recorded_ms(e); /* events of a run that failed */
     vbj_clbuf *all[] = {&e->seeds, &e->seeds_fp, &e->pairs, &e->grid[0], &e->grid[1], &e->store[0], &e->store[1],
                         &e->tmp, &e->list[0], &e->list[1], &e->counter, &e->labels,
-                        &e->cells_start, &e->cells_items, &e->tcounters};
+                        &e->cells_start, &e->cells_items, &e->cells_ring0, &e->tcounters};
     for (size_t i = 0; i < sizeof all / sizeof all[0]; i++)
         release(all[i]);
     for (int i = 0; i < VBJ_NKERNELS; i++)

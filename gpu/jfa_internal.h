@@ -75,7 +75,7 @@ struct vbj_engine {
     cl_program jfa[VBJ_JFA_BUILDS], facet, exact, tiles; /* owned by the runtime's program cache */
     cl_kernel kernels[VBJ_NKERNELS];
     vbj_clbuf seeds, seeds_fp, pairs, grid[2], store[2], tmp, list[2], counter, labels, cells_start,
-        cells_items, tcounters;
+        cells_items, cells_ring0, tcounters;
     cl_mem device_labels; /* one of the buffers above, or NULL */
     /* Profiling events of the timed commands of a run (vbj_cl_event). */
     cl_event *events;

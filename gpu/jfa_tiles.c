@@ -15,11 +15,13 @@ int vbj_cl_tiles(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, vbj_variant v, 
     int rc = vbj_tiles_prep_build(ctx, s, &p);
     if (rc)
         return rc;
+    out->ms_prep = 1e3 * vb_now() - t0;
     int boundary = v == VBJ_EXACT_BOUNDARY;
     cl_kernel k, kb = NULL;
     size_t ncnt = (size_t)VBJ_XT_NC * VBJ_XT_SLOTS;
     if ((rc = vbj_cl_upload(ctx, e, &e->cells_start, p.start, (p.nbuckets + 1) * 4, "seed grid upload")) ||
         (rc = vbj_cl_upload(ctx, e, &e->cells_items, p.recs, s->k * 16, "seed grid upload")) ||
+        (rc = vbj_cl_upload(ctx, e, &e->cells_ring0, p.ring0, p.nbuckets, "seed grid upload")) ||
         (rc = vbj_clbuf_reserve(ctx, e, &e->labels, out->pixels * 4)) ||
         (rc = vbj_clbuf_reserve(ctx, e, &e->tcounters, ncnt * 4)) ||
         (rc = vbj_cl_kernel(ctx, e, VBJ_K_TILES, &k)) ||
@@ -31,12 +33,12 @@ int vbj_cl_tiles(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, vbj_variant v, 
     size_t wg = (size_t)S * S * (s->dim == 3 ? S : 1) / row, gs = tiles * wg;
     {
         vbj_arg a[] = {VBJ_ARG(e->cells_items.mem), VBJ_ARG(e->cells_start.mem),
-                       VBJ_ARG(e->labels.mem),      VBJ_ARG(e->tcounters.mem),
-                       VBJ_ARG(n),                  VBJ_ARG(dim),
-                       VBJ_ARG(ts),                 VBJ_ARG(bs),
-                       VBJ_ARG(g)};
-        if ((rc = vbj_cl_set_args(ctx, k, "jfa_tiles", 9, a)) ||
-            (rc = vbg_check(ctx, clSetKernelArg(k, 9, VBJ_XT_CAP * 16, NULL), "jfa_tiles local")
+                       VBJ_ARG(e->cells_ring0.mem), VBJ_ARG(e->labels.mem),
+                       VBJ_ARG(e->tcounters.mem),   VBJ_ARG(n),
+                       VBJ_ARG(dim),                VBJ_ARG(ts),
+                       VBJ_ARG(bs),                 VBJ_ARG(g)};
+        if ((rc = vbj_cl_set_args(ctx, k, "jfa_tiles", 10, a)) ||
+            (rc = vbg_check(ctx, clSetKernelArg(k, 10, VBJ_XT_CAP * 16, NULL), "jfa_tiles local")
                       ? VB_EDEVICE
                       : VB_OK))
             goto done;

@@ -2,12 +2,13 @@
  * one work-item per row of VBJ_XT_ROW voxels along x (64 work-items in 3D,
  * 32 in 2D). The decisions and their proofs are in
  * core/discrete/vbj_tiles.h; the plain-C twin, core/discrete/jfa_tiles.c,
- * runs the same ring search and tests, so labels and counts agree.
+ * runs the same search and tests, so labels and counts agree.
  *
- * Per tile: (1) rings of seed buckets around the tile's bucket, the work
- * shared by the work-items, each ring closed by a work-group reduction of
- * U^2 and of the centre voxel's owner, until no unvisited seed can matter;
- * (2) the block again: the seeds within the distance bound that the centre
+ * Per tile: (1) the block of buckets around the tile's bucket out to its
+ * first non-empty ring, then grown once to the radius its bound allows,
+ * read by rows shared among the work-items, each pass closed by a
+ * work-group reduction of U^2 and of the centre voxel's owner; (2) the
+ * block the final bound needs: the seeds within the distance bound that the centre
  * owner does not dominate (the survivors), staged in local memory as
  * (x, y, z, index) relative to the tile's first voxel; (3) one survivor:
  * the tile is that seed's; else each work-item runs the float filter over
@@ -25,43 +26,87 @@ typedef struct {
     global const uint *start;
     vbj_xt_box box;
     int b0[3];
-    int g;
+    int g, r0;
     uint dim, bs;
 } tile_ctx;
 
-/* Bucket of offset q (0 .. (2r + 1)^d - 1) of the block of radius r around
- * b0, or -1 when it lies outside the grid or, with ring_only, inside the
- * block of radius r - 1. */
-static int block_bucket(const tile_ctx *t, uint q, int r, int ring_only)
+/* The bound U^2 and the centre owner (cd its distance, cv its index, cj
+ * its record) as the search goes, the same in every work-item between
+ * passes. */
+typedef struct {
+    ulong u2, cd;
+    uint cv, cj;
+} bound_state;
+
+/* Adds this work-item's share of the seeds of the block of radius R less
+ * the block of radius Rin to st, then reduces st over the work-group
+ * (ru .. rj: VBJ_XT_WG entries of local memory each). Every work-item calls
+ * it with the same R and Rin (it holds barriers). */
+__attribute__((always_inline)) static void bound_pass(const tile_ctx *t, int R, int Rin, int cx,
+                                                      int cy, int cz, uint lid, uint W,
+                                                      bound_state *st, uint *visited,
+                                                      local ulong *ru, local ulong *rd,
+                                                      local uint *rv, local uint *rj)
 {
-    int side = 2 * r + 1;
-    int dx = (int)(q % (uint)side) - r, dy = (int)(q / (uint)side % (uint)side) - r;
-    int dz = t->dim == 3 ? (int)(q / (uint)(side * side)) - r : 0;
-    if (ring_only && abs(dx) != r && abs(dy) != r && abs(dz) != r)
-        return -1;
-    int x = t->b0[0] + dx, y = t->b0[1] + dy, z = t->b0[2] + dz;
-    if (x < 0 || y < 0 || z < 0 || x >= t->g || y >= t->g || (t->dim == 3 ? z >= t->g : z > 0))
-        return -1;
-    return (z * t->g + y) * t->g + x;
+    for (uint u = lid, m = vbj_xt_units(R, Rin, t->dim); u < m; u += W) {
+        int f, l;
+        if (!vbj_xt_unit(t->b0[0], t->b0[1], t->b0[2], R, Rin, u, t->g, t->dim, &f, &l))
+            continue;
+        for (uint j = t->start[f]; j < t->start[l + 1]; j++) {
+            int4 e = t->recs[j];
+            ulong n2, f2;
+            vbj_xt_bounds(t->box, e.x, e.y, e.z, t->dim, &n2, &f2);
+            st->u2 = f2 < st->u2 ? f2 : st->u2;
+            ulong d = vbj_dist2(cx, cy, cz, e.x, e.y, e.z);
+            if (vbj_better(d, (uint)e.w, st->cd, st->cv)) {
+                st->cd = d;
+                st->cv = (uint)e.w;
+                st->cj = j;
+            }
+            (*visited)++;
+        }
+    }
+    ru[lid] = st->u2;
+    rd[lid] = st->cd;
+    rv[lid] = st->cv;
+    rj[lid] = st->cj;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    for (uint h = W >> 1; h > 0; h >>= 1) {
+        if (lid < h) {
+            ru[lid] = ru[lid + h] < ru[lid] ? ru[lid + h] : ru[lid];
+            if (vbj_better(rd[lid + h], rv[lid + h], rd[lid], rv[lid])) {
+                rd[lid] = rd[lid + h];
+                rv[lid] = rv[lid + h];
+                rj[lid] = rj[lid + h];
+            }
+        }
+        barrier(CLK_LOCAL_MEM_FENCE);
+    }
+    st->u2 = ru[0];
+    st->cd = rd[0];
+    st->cv = rv[0];
+    st->cj = rj[0];
+    barrier(CLK_LOCAL_MEM_FENCE);
 }
 
-/* Survivors of this work-item's share of the block of radius R, in a fixed
- * order (always inlined: PoCL 3 gave a called function its own copy of a
- * kernel's automatic local variable, lcount here). first_pass: counts candidates and visits, sets *far, stores the
- * survivor at an atomic slot of *lcount when below VBJ_XT_CAP; otherwise
- * stores its k-th survivor at slot base + k when that falls in [lo, lo +
- * VBJ_XT_CAP). Returns the number of survivors met. */
-__attribute__((always_inline)) static uint collect(const tile_ctx *t, int R, ulong u2, uint cv, int4 c, uint lid, uint W,
-                    local int4 *list, local uint *lcount, int first_pass, uint base, uint lo,
-                    uint *visited, uint *cand, int *far)
+/* Survivors of this work-item's share of the block of radius R (its rows,
+ * in a fixed order; always inlined: PoCL 3 gave a called function its own
+ * copy of a kernel's automatic local variable, lcount here). first_pass:
+ * counts candidates and visits, sets *far, stores the survivor at an atomic
+ * slot of *lcount when below VBJ_XT_CAP; otherwise stores its k-th survivor
+ * at slot base + k when that falls in [lo, lo + VBJ_XT_CAP). Returns the
+ * number of survivors met. */
+__attribute__((always_inline)) static uint collect(const tile_ctx *t, int R, ulong u2, uint cv,
+                                                   int4 c, uint lid, uint W, local int4 *list,
+                                                   local uint *lcount, int first_pass, uint base,
+                                                   uint lo, uint *visited, uint *cand, int *far)
 {
-    uint side = (uint)(2 * R + 1), cube = t->dim == 3 ? side * side * side : side * side;
     uint mine = 0;
-    for (uint q = lid; q < cube; q += W) {
-        int b = block_bucket(t, q, R, 0);
-        if (b < 0)
+    for (uint u = lid, m = vbj_xt_units(R, -1, t->dim); u < m; u += W) {
+        int f, l;
+        if (!vbj_xt_unit(t->b0[0], t->b0[1], t->b0[2], R, -1, u, t->g, t->dim, &f, &l))
             continue;
-        for (uint j = t->start[b]; j < t->start[b + 1]; j++) {
+        for (uint j = t->start[f]; j < t->start[l + 1]; j++) {
             int4 e = t->recs[j];
             uint v = (uint)e.w;
             ulong n2, f2;
@@ -124,7 +169,8 @@ __attribute__((noinline)) static uint exact_among(local const int4 *list, uint n
 
 /* list: VBJ_XT_CAP int4 of local memory (a kernel argument, so that
  * exact_among sees the same buffer). */
-kernel void jfa_tiles(global const int4 *recs, global const uint *start, global uint *labels,
+kernel void jfa_tiles(global const int4 *recs, global const uint *start,
+                      global const uchar *ring0, global uint *labels,
                       global uint *counters, uint n, uint dim, uint ts, uint bs, uint g,
                       local int4 *list)
 {
@@ -145,6 +191,7 @@ kernel void jfa_tiles(global const int4 *recs, global const uint *start, global 
     t.b0[0] = (int)((tx << ts) >> bs);
     t.b0[1] = (int)((ty << ts) >> bs);
     t.b0[2] = dim == 3 ? (int)((tz << ts) >> bs) : 0;
+    t.r0 = ring0[(t.b0[2] * t.g + t.b0[1]) * t.g + t.b0[0]];
     int cx = t.box.lo[0] + (int)(S / 2u) * VBJ_FIX_ONE, cy = t.box.lo[1] + (int)(S / 2u) * VBJ_FIX_ONE;
     int cz = dim == 3 ? t.box.lo[2] + (int)(S / 2u) * VBJ_FIX_ONE : 0;
     uint visited = 0, cand = 0;
@@ -155,54 +202,24 @@ kernel void jfa_tiles(global const int4 *recs, global const uint *start, global 
         lflag = 0;
     }
 
-    /* (1) Rings: U^2 and the centre's owner (cv, its record cj). */
-    ulong u2 = ULONG_MAX, cd = ULONG_MAX;
-    uint cv = VBJ_NONE, cj = 0;
-    int R = 0;
-    for (;; R++) {
-        uint side = (uint)(2 * R + 1), cube = dim == 3 ? side * side * side : side * side;
-        for (uint q = lid; q < cube; q += W) {
-            int b = block_bucket(&t, q, R, 1);
-            if (b < 0)
-                continue;
-            for (uint j = start[b]; j < start[b + 1]; j++) {
-                int4 e = recs[j];
-                ulong n2, f2;
-                vbj_xt_bounds(t.box, e.x, e.y, e.z, dim, &n2, &f2);
-                u2 = f2 < u2 ? f2 : u2;
-                ulong d = vbj_dist2(cx, cy, cz, e.x, e.y, e.z);
-                if (vbj_better(d, (uint)e.w, cd, cv)) {
-                    cd = d;
-                    cv = (uint)e.w;
-                    cj = j;
-                }
-                visited++;
-            }
-        }
-        ru[lid] = u2;
-        rd[lid] = cd;
-        rv[lid] = cv;
-        rj[lid] = cj;
-        barrier(CLK_LOCAL_MEM_FENCE);
-        for (uint h = W >> 1; h > 0; h >>= 1) {
-            if (lid < h) {
-                ru[lid] = ru[lid + h] < ru[lid] ? ru[lid + h] : ru[lid];
-                if (vbj_better(rd[lid + h], rv[lid + h], rd[lid], rv[lid])) {
-                    rd[lid] = rd[lid + h];
-                    rv[lid] = rv[lid + h];
-                    rj[lid] = rj[lid + h];
-                }
-            }
-            barrier(CLK_LOCAL_MEM_FENCE);
-        }
-        u2 = ru[0];
-        cd = rd[0];
-        cv = rv[0];
-        cj = rj[0];
-        barrier(CLK_LOCAL_MEM_FENCE);
-        if (vbj_xt_done(vbj_xt_gap(t.box, t.b0[0], t.b0[1], t.b0[2], R, bs, (int)g, dim), u2))
+    /* (1) The block of radius r0 (more rings only past the saturation of
+     * ring0), grown to R1: U^2 and the centre's owner (cv, its record cj). */
+    bound_state st = {ULONG_MAX, ULONG_MAX, VBJ_NONE, 0u};
+    int R = t.r0, Rin = -1;
+    /* One call site for the pass and its barriers, in a loop whose exit
+     * depends on reduced values only (PoCL copies the code after a
+     * barrier under a branch). */
+    for (;;) {
+        bound_pass(&t, R, Rin, cx, cy, cz, lid, W, &st, &visited, ru, rd, rv, rj);
+        int next = vbj_xt_next(t.box, t.b0[0], t.b0[1], t.b0[2], R, bs, t.g, dim, st.u2);
+        if (next == R)
             break;
+        Rin = R;
+        R = next;
     }
+    ulong u2 = st.u2;
+    uint cv = st.cv, cj = st.cj;
+    R = vbj_xt_radius(t.box, t.b0[0], t.b0[1], t.b0[2], t.r0, bs, t.g, dim, u2);
     int4 c = recs[cj];
 
     /* (2) Survivors (lcount and lflag were cleared before the rings' barriers). */

@@ -224,6 +224,7 @@ static int exact_tiles(vb_ctx *ctx, const vbj_seeds *s, const vbj_options *opt, 
         out->counts.boundary = vbj_boundary_count(s->dim, s->n, out->labels);
     out->ms_kernel = 1e3 * vb_now() - t1;
     out->ms_transfer = t1 - t0;
+    out->ms_prep = t1 - t0;
     vbj_tiles_prep_free(&p);
     return rc;
 }

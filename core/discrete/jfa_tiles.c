@@ -15,7 +15,52 @@ void vbj_tiles_prep_free(vbj_tiles_prep *p)
 {
     free(p->start);
     free(p->recs);
+    free(p->ring0);
     memset(p, 0, sizeof *p);
+}
+
+/* ring0: the chessboard distance transform of the occupied buckets on the
+ * g^d bucket grid, saturated at VBJ_XT_RING0_MAX. Two raster passes with the
+ * unit 3^d mask (Rosenfeld and Pfaltz): the forward pass takes the
+ * neighbours before a bucket in raster order, the backward pass those after
+ * it; with unit weights this is the chessboard distance exactly (a shortest
+ * king's path to the nearest occupied bucket is monotone in every axis, so
+ * one of the two passes carries it), and saturation only lowers values
+ * above the cap to the cap. */
+static void ring0_build(const vbj_tiles_prep *p, uint32_t dim)
+{
+    int32_t g = (int32_t)p->g, gz = dim == 3 ? g : 1;
+    uint8_t *d = p->ring0;
+    for (size_t b = 0; b < p->nbuckets; b++)
+        d[b] = p->start[b + 1] > p->start[b] ? 0 : (uint8_t)VBJ_XT_RING0_MAX;
+    for (int pass = 0; pass < 2; pass++) {
+        int32_t step = pass ? -1 : 1;
+        for (int32_t zi = 0; zi < gz; zi++)
+            for (int32_t yi = 0; yi < g; yi++)
+                for (int32_t xi = 0; xi < g; xi++) {
+                    int32_t z = pass ? gz - 1 - zi : zi, y = pass ? g - 1 - yi : yi;
+                    int32_t x = pass ? g - 1 - xi : xi;
+                    size_t b = ((size_t)z * (size_t)g + (size_t)y) * (size_t)g + (size_t)x;
+                    unsigned best = d[b];
+                    if (best == 0)
+                        continue;
+                    /* The neighbours already visited in this pass's order:
+                     * the layer before (all 3^(d-1)), the row before in this
+                     * layer (3), the bucket before in this row. */
+                    for (int32_t dz = dim == 3 ? -1 : 0; dz <= 0; dz++)
+                        for (int32_t dy = -1; dy <= (dz ? 1 : 0); dy++)
+                            for (int32_t dx = -1; dx <= (dz || dy ? 1 : -1); dx++) {
+                                int32_t nz = z + step * dz, ny = y + step * dy, nx = x + step * dx;
+                                if (nz < 0 || nz >= gz || ny < 0 || ny >= g || nx < 0 || nx >= g)
+                                    continue;
+                                unsigned v = d[((size_t)nz * (size_t)g + (size_t)ny) * (size_t)g +
+                                               (size_t)nx] +
+                                             1u;
+                                best = v < best ? v : best;
+                            }
+                    d[b] = (uint8_t)best;
+                }
+    }
 }
 
 int vbj_tiles_prep_build(vb_ctx *ctx, const vbj_seeds *s, vbj_tiles_prep *out)
@@ -32,7 +77,8 @@ int vbj_tiles_prep_build(vb_ctx *ctx, const vbj_seeds *s, vbj_tiles_prep *out)
     out->nbuckets = (size_t)c.g * c.g * (dim == 3 ? c.g : 1);
     out->start = c.start; /* taken over */
     out->recs = malloc(s->k * 4 * sizeof *out->recs);
-    if (!out->recs) {
+    out->ring0 = malloc(out->nbuckets);
+    if (!out->recs || !out->ring0) {
         free(c.items);
         vbj_tiles_prep_free(out);
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "seed grid: out of memory");
@@ -45,6 +91,7 @@ int vbj_tiles_prep_build(vb_ctx *ctx, const vbj_seeds *s, vbj_tiles_prep *out)
         out->recs[4 * j + 3] = (int32_t)v;
     }
     free(c.items);
+    ring0_build(out, dim);
     return VB_OK;
 }
 
@@ -94,6 +141,40 @@ static uint32_t exact_among(const int32_t *sv, size_t n, int32_t x, int32_t y, i
     return best;
 }
 
+/* The bound U^2 and the centre owner (cd its distance, cs its index, c its
+ * record) as a search goes. */
+typedef struct {
+    uint64_t u2, cd;
+    uint32_t cs;
+    const int32_t *c;
+} bound_state;
+
+/* Adds the seeds of the block of radius R less the block of radius Rin
+ * around bucket b0 to st. */
+static void bound_pass(const vbj_tiles_prep *p, vbj_xt_box box, const int32_t *cen,
+                       const int32_t *b0, int32_t R, int32_t Rin, uint32_t dim, bound_state *st,
+                       scratch *w)
+{
+    for (uint32_t u = 0, m = vbj_xt_units(R, Rin, dim); u < m; u++) {
+        int32_t f, l;
+        if (!vbj_xt_unit(b0[0], b0[1], b0[2], R, Rin, u, (int32_t)p->g, dim, &f, &l))
+            continue;
+        for (uint32_t j = p->start[f]; j < p->start[l + 1]; j++) {
+            const int32_t *e = p->recs + 4 * (size_t)j;
+            uint64_t n2, f2;
+            vbj_xt_bounds(box, e[0], e[1], e[2], dim, &n2, &f2);
+            st->u2 = f2 < st->u2 ? f2 : st->u2;
+            uint64_t d = vbj_dist2(cen[0], cen[1], cen[2], e[0], e[1], e[2]);
+            if (vbj_better(d, (uint32_t)e[3], st->cd, st->cs)) {
+                st->cd = d;
+                st->cs = (uint32_t)e[3];
+                st->c = e;
+            }
+            w->cnt[VBJ_XT_C_VISITED]++;
+        }
+    }
+}
+
 static void tile(void *arg, size_t t, int tid)
 {
     job *J = arg;
@@ -106,75 +187,55 @@ static void tile(void *arg, size_t t, int tid)
     int32_t cen[3];
     for (int a = 0; a < 3; a++)
         cen[a] = a < (int)dim ? box.lo[a] + (int32_t)(S / 2) * VBJ_FIX_ONE : 0;
-    int32_t g = (int32_t)p->g, b0[3], lo[3], hi[3];
+    int32_t g = (int32_t)p->g, b0[3];
     for (int a = 0; a < 3; a++)
         b0[a] = a < (int)dim ? (int32_t)((tc[a] << p->ts) >> p->bs) : 0;
+    int32_t r0 = p->ring0[((size_t)b0[2] * p->g + (size_t)b0[1]) * p->g + (size_t)b0[0]];
 
-    /* Rings: U^2 and the centre's owner. */
-    uint64_t u2 = UINT64_MAX, cd = UINT64_MAX;
-    uint32_t cs = VBJ_NONE;
-    const int32_t *c = NULL; /* the centre owner's record */
-    int32_t R = 0;
-    for (;; R++) {
-        for (int a = 0; a < 3; a++) {
-            lo[a] = a < (int)dim ? (b0[a] - R < 0 ? 0 : b0[a] - R) : 0;
-            hi[a] = a < (int)dim ? (b0[a] + R >= g ? g - 1 : b0[a] + R) : 0;
-        }
-        for (int32_t bz = lo[2]; bz <= hi[2]; bz++)
-            for (int32_t by = lo[1]; by <= hi[1]; by++)
-                for (int32_t bx = lo[0]; bx <= hi[0]; bx++) {
-                    int32_t cheb = abs(bx - b0[0]);
-                    cheb = abs(by - b0[1]) > cheb ? abs(by - b0[1]) : cheb;
-                    cheb = abs(bz - b0[2]) > cheb ? abs(bz - b0[2]) : cheb;
-                    if (cheb != R)
-                        continue;
-                    size_t b = ((size_t)bz * p->g + (size_t)by) * p->g + (size_t)bx;
-                    for (uint32_t j = p->start[b]; j < p->start[b + 1]; j++) {
-                        const int32_t *e = p->recs + 4 * (size_t)j;
-                        uint64_t n2, f2;
-                        vbj_xt_bounds(box, e[0], e[1], e[2], dim, &n2, &f2);
-                        u2 = f2 < u2 ? f2 : u2;
-                        uint64_t d = vbj_dist2(cen[0], cen[1], cen[2], e[0], e[1], e[2]);
-                        if (vbj_better(d, (uint32_t)e[3], cd, cs)) {
-                            cd = d;
-                            cs = (uint32_t)e[3];
-                            c = e;
-                        }
-                        w->cnt[VBJ_XT_C_VISITED]++;
-                    }
-                }
-        if (vbj_xt_done(vbj_xt_gap(box, b0[0], b0[1], b0[2], R, p->bs, g, dim), u2))
+    /* (A) The block of radius r0 (more rings only past the saturation of
+     * ring0), (B) grown to R1: U^2 and the centre's owner (vbj_tiles.h). */
+    bound_state st = {UINT64_MAX, UINT64_MAX, VBJ_NONE, NULL};
+    int32_t R = r0, Rin = -1;
+    for (;;) {
+        bound_pass(p, box, cen, b0, R, Rin, dim, &st, w);
+        int32_t next = vbj_xt_next(box, b0[0], b0[1], b0[2], R, p->bs, g, dim, st.u2);
+        if (next == R)
             break;
+        Rin = R;
+        R = next;
     }
+    uint64_t u2 = st.u2;
+    uint32_t cs = st.cs;
+    const int32_t *c = st.c;
+    R = vbj_xt_radius(box, b0[0], b0[1], b0[2], r0, p->bs, g, dim, u2);
 
-    /* The block again: candidates, then survivors of the dominance test. */
+    /* (C) The block of radius R2: candidates, then survivors of the
+     * dominance test. */
     size_t ns = 0;
     int far = 0;
-    for (int32_t bz = lo[2]; bz <= hi[2]; bz++)
-        for (int32_t by = lo[1]; by <= hi[1]; by++)
-            for (int32_t bx = lo[0]; bx <= hi[0]; bx++) {
-                size_t b = ((size_t)bz * p->g + (size_t)by) * p->g + (size_t)bx;
-                for (uint32_t j = p->start[b]; j < p->start[b + 1]; j++) {
-                    const int32_t *e = p->recs + 4 * (size_t)j;
-                    uint64_t n2, f2;
-                    uint32_t v = (uint32_t)e[3];
-                    w->cnt[VBJ_XT_C_VISITED]++;
-                    vbj_xt_bounds(box, e[0], e[1], e[2], dim, &n2, &f2);
-                    if (n2 > u2)
-                        continue;
-                    w->cnt[VBJ_XT_C_CAND]++;
-                    if (v != cs &&
-                        vbj_xt_dominated(box, c[0], c[1], c[2], cs, e[0], e[1], e[2], v, dim))
-                        continue;
-                    int32_t r[4] = {e[0] - box.lo[0], e[1] - box.lo[1], e[2] - box.lo[2],
-                                    (int32_t)v};
-                    far |= !vbj_xt_float_ok(r[0], r[1], r[2]);
-                    if (push(w, ns++, r)) {
-                        w->failed = 1;
-                        return;
-                    }
-                }
+    for (uint32_t u = 0, m = vbj_xt_units(R, -1, dim); u < m; u++) {
+        int32_t f, l;
+        if (!vbj_xt_unit(b0[0], b0[1], b0[2], R, -1, u, g, dim, &f, &l))
+            continue;
+        for (uint32_t j = p->start[f]; j < p->start[l + 1]; j++) {
+            const int32_t *e = p->recs + 4 * (size_t)j;
+            uint64_t n2, f2;
+            uint32_t v = (uint32_t)e[3];
+            w->cnt[VBJ_XT_C_VISITED]++;
+            vbj_xt_bounds(box, e[0], e[1], e[2], dim, &n2, &f2);
+            if (n2 > u2)
+                continue;
+            w->cnt[VBJ_XT_C_CAND]++;
+            if (v != cs && vbj_xt_dominated(box, c[0], c[1], c[2], cs, e[0], e[1], e[2], v, dim))
+                continue;
+            int32_t r[4] = {e[0] - box.lo[0], e[1] - box.lo[1], e[2] - box.lo[2], (int32_t)v};
+            far |= !vbj_xt_float_ok(r[0], r[1], r[2]);
+            if (push(w, ns++, r)) {
+                w->failed = 1;
+                return;
             }
+        }
+    }
     w->cnt[VBJ_XT_C_SURV] += ns;
     w->cnt[VBJ_XT_C_UNIFORM] += ns == 1;
     w->cnt[VBJ_XT_C_CHUNKED] += ns > VBJ_XT_CAP;

@@ -153,7 +153,7 @@ typedef struct vbj_counts {
     uint64_t evals;          /* voxel x survivor distances in float (the filter) */
     uint64_t exact_voxels;   /* voxels decided with 64-bit integers (near ties, far seeds) */
     uint64_t tiles_chunked;  /* tiles with more survivors than one local-memory stage */
-    uint64_t visited;        /* seed records read by the ring searches */
+    uint64_t visited;        /* seed records read by the searches of the tiles */
 } vbj_counts;
 
 typedef struct vbj_result {
@@ -175,6 +175,8 @@ typedef struct vbj_result {
                             is launch and synchronisation overhead */
     double ms_transfer;  /* host preparation (seed placement, start resolution), seed
                             upload and label download */
+    double ms_prep;      /* the exact variants: the host's part of ms_transfer, building
+                            the seed grid (vbj_tiles_prep_build); 0 for the others */
 } vbj_result;
 
 void vbj_result_free(vbj_result *r);

@@ -35,12 +35,15 @@ void vbj_cells_free(vbj_cells *c);
  * tiles of 2^ts voxels per axis, buckets of 2^bs >= 2^ts pixels (g per
  * axis, about one seed each), bucket b's seeds at records start[b] ..
  * start[b + 1], each record (x, y, z, index) as int32 (z 0 in 2D), seeds
- * of a bucket in ascending index. */
+ * of a bucket in ascending index; ring0[b] the Chebyshev distance in
+ * buckets from b to the nearest bucket holding a seed, at most
+ * VBJ_XT_RING0_MAX (where b's ring search starts). */
 typedef struct vbj_tiles_prep {
     uint32_t ts, bs, g;
     size_t nbuckets;  /* g^d */
     uint32_t *start;  /* nbuckets + 1 */
     int32_t *recs;    /* 4 k */
+    uint8_t *ring0;   /* nbuckets */
 } vbj_tiles_prep;
 
 /* Builds the seed grid of s. Allocates; VB_ENOMEM. */

@@ -25,15 +25,36 @@
  * whose nearest pixel p has p >> bs = b, i.e. coordinates in
  * [(b 2^bs) px - 1/2, ((b + 1) 2^bs) px - 1/2). After the buckets of the
  * block [b0 - r, b0 + r]^d are visited, every other seed lies beyond a face
- * of the block, at least vbj_xt_gap = D from the box. Rings r = 0, 1, ...
- * are visited until D > U (exactly: D^2 > U^2 with U^2 the smallest far^2
- * seen): an unvisited seed then has far >= near >= D > U, so it can neither
- * lower U nor pass near <= U. Nor can it be nearest to any point of the box:
- * the true nearest s* to a voxel p has |p - s*| <= U < D.
+ * of the block, at least vbj_xt_gap = D(r) from the box (D grows with r).
+ * So for any bound V >= U, every seed with near <= U, every seed that
+ * could lower U, and the nearest seed to every voxel of the box (|p - s*|
+ * <= U) lie in the block of the smallest r with D(r) > V (exactly: D^2 >
+ * V^2, vbj_xt_done): a seed outside has far >= near >= D > V >= U.
+ *
+ * The search. ring0[b] is the Chebyshev distance in buckets from b to the
+ * nearest bucket holding a seed (saturated at VBJ_XT_RING0_MAX: a smaller
+ * value only searches more), so the block of radius r0 = ring0[b0] holds a
+ * seed and every smaller block none. (A) The block of radius r0 (and, only
+ * when saturation left it empty, the next rings until a seed is met)
+ * gives a first bound V = the smallest far seen, and the centre owner
+ * among those seeds. (B) The blocks grow at once to the smallest R1 with
+ * D(R1) > V; the seeds added lower V to the true U (the minimiser of far
+ * lies in that block, by the remark above) and give the true centre owner
+ * (its distance to the centre is at most U). (C) R2 <= R1, the smallest
+ * radius with D(R2) > U, bounds the block whose seeds are tested below:
+ * it holds every seed with near <= U.
+ *
+ * Blocks are read by rows of buckets (vbj_xt_unit): the buckets of one row
+ * are consecutive in the seed grid, so a row's seeds are one range of
+ * records whatever the number of empty buckets in it; a block less a
+ * smaller block is read as the rows outside the smaller one plus two
+ * segments of each row through it. The cost of a tile is then the number
+ * of rows of its blocks, (2R + 1)^(d - 1), plus the seeds read, not the
+ * (2R + 1)^d buckets: far from the seeds (the empty corners of a protein's
+ * box, where R is large) the buckets would dominate.
  *
  * The dominance test. Let c be the owner of the tile's centre voxel (found
- * exactly in the same ring search: by the last remark it is a visited
- * seed). A seed s is dropped when c beats it at every voxel centre of the
+ * exactly in the search above). A seed s is dropped when c beats it at every voxel centre of the
  * box: f(p) = |p - s|^2 - |p - c|^2 is a sum over the axes of functions
  * affine in p_a (the squares of p cancel), so its minimum over the box is
  * the sum over the axes of the smaller of the two end values, exact in
@@ -66,7 +87,7 @@
  * survivor too far for exact floats. Every label therefore equals the exact
  * one, and no decision depends on the order of the survivors.
  *
- * Both backends run the same ring search, the same tests and the same
+ * Both backends run the same search, the same tests and the same
  * float expressions in the same order (contraction off), so their labels
  * and their work counts agree exactly. */
 #ifndef VBJ_TILES_H
@@ -87,6 +108,8 @@
 #define VBJ_XT_FLOAT_MAX (16777216 - 15 * VBJ_FIX_ONE)
 /* 1 + 2^-19: the filter's margin (see above). */
 #define VBJ_XT_UP (1.0f + 0x1p-19f)
+/* The largest start ring stored per bucket (an 8-bit count). */
+#define VBJ_XT_RING0_MAX 255u
 /* Counters of a run (vbj_counts' exact-engine fields), in this order. */
 enum {
     VBJ_XT_C_UNIFORM = 0, /* tiles with one survivor */
@@ -95,7 +118,7 @@ enum {
     VBJ_XT_C_EVALS,       /* voxel x survivor float evaluations */
     VBJ_XT_C_EXACT,       /* voxels decided with 64-bit integers */
     VBJ_XT_C_CHUNKED,     /* tiles with more than VBJ_XT_CAP survivors */
-    VBJ_XT_C_VISITED,     /* seeds read by the ring searches (both passes) */
+    VBJ_XT_C_VISITED,     /* seeds read by the searches (bounds, then survivors) */
     VBJ_XT_NC
 };
 
@@ -173,10 +196,79 @@ VBJ_FN vbj_i64 vbj_xt_gap(vbj_xt_box b, vbj_i32 cx, vbj_i32 cy, vbj_i32 cz, vbj_
     return D;
 }
 
-/* True when the ring search may stop: no seed beyond gap D can matter. */
+/* Row units of the block of radius R around a bucket less the block of
+ * radius Rin (Rin < R; Rin < 0: the whole block): one unit per row of the
+ * block ((2R + 1)^(d - 1) rows along x) for the whole block, else two per
+ * row (the row whole or its two ends). */
+VBJ_FN vbj_u32 vbj_xt_units(vbj_i32 R, vbj_i32 Rin, vbj_u32 dim)
+{
+    vbj_u32 s = 2u * (vbj_u32)R + 1u, rows = dim == 3 ? s * s : s;
+    return Rin < 0 ? rows : 2u * rows;
+}
+
+/* Unit u of vbj_xt_units(R, Rin, dim) around bucket (bx, by, bz) of a grid
+ * of g buckets per axis: 1 and its buckets *first .. *last (one row, so
+ * their seeds are records start[*first] .. start[*last + 1]), or 0 when it
+ * holds no bucket of the grid. Every bucket of the block less the inner
+ * block lies in exactly one unit. */
+VBJ_FN int vbj_xt_unit(vbj_i32 bx, vbj_i32 by, vbj_i32 bz, vbj_i32 R, vbj_i32 Rin, vbj_u32 u,
+                       vbj_i32 g, vbj_u32 dim, vbj_i32 *first, vbj_i32 *last)
+{
+    vbj_u32 s = 2u * (vbj_u32)R + 1u, row = Rin < 0 ? u : u >> 1, end = Rin < 0 ? 0u : u & 1u;
+    vbj_i32 dy = (vbj_i32)(row % s) - R, dz = dim == 3 ? (vbj_i32)(row / s) - R : 0;
+    vbj_i32 y = by + dy, z = bz + dz;
+    if (y < 0 || y >= g || z < 0 || z >= (dim == 3 ? g : 1))
+        return 0;
+    vbj_i32 ay = dy < 0 ? -dy : dy, az = dz < 0 ? -dz : dz;
+    vbj_i32 xa = -R, xb = R;
+    if ((ay > az ? ay : az) > Rin) {
+        if (end)
+            return 0; /* the row lies outside the inner block: whole in unit 0 */
+    } else if (end == 0) {
+        xb = -Rin - 1;
+    } else {
+        xa = Rin + 1;
+    }
+    xa += bx;
+    xb += bx;
+    xa = xa < 0 ? 0 : xa;
+    xb = xb >= g ? g - 1 : xb;
+    if (xa > xb)
+        return 0;
+    vbj_i32 base = (z * g + y) * g;
+    *first = base + xa;
+    *last = base + xb;
+    return 1;
+}
+
+/* True when a block with gap D leaves out no seed within sqrt(u2) of the box. */
 VBJ_FN int vbj_xt_done(vbj_i64 D, vbj_u64 u2)
 {
     return D == VBJ_I64_MAX || (D > 0 && (vbj_u64)D * (vbj_u64)D > u2);
+}
+
+/* The smallest radius r >= r0 whose block leaves every unvisited seed
+ * beyond sqrt(v2) of box b (vbj_xt_done). */
+VBJ_FN vbj_i32 vbj_xt_radius(vbj_xt_box b, vbj_i32 bx, vbj_i32 by, vbj_i32 bz, vbj_i32 r0,
+                             vbj_u32 bs, vbj_i32 g, vbj_u32 dim, vbj_u64 v2)
+{
+    vbj_i32 r = r0;
+    while (!vbj_xt_done(vbj_xt_gap(b, bx, by, bz, r, bs, g, dim), v2))
+        r++;
+    return r;
+}
+
+/* The radius the search reads next after the block of radius R with bound
+ * u2 (steps A and B above): R + 1 while no seed was met (u2 infinite), the
+ * block growing until one is, unless it covers the grid; then the smallest
+ * radius >= R that leaves out no seed within sqrt(u2). R itself means the
+ * search is over: after step B u2 only fell, so R still qualifies. */
+VBJ_FN vbj_i32 vbj_xt_next(vbj_xt_box b, vbj_i32 bx, vbj_i32 by, vbj_i32 bz, vbj_i32 R,
+                           vbj_u32 bs, vbj_i32 g, vbj_u32 dim, vbj_u64 u2)
+{
+    if (u2 == VBJ_U64_MAX)
+        return vbj_xt_gap(b, bx, by, bz, R, bs, g, dim) == VBJ_I64_MAX ? R : R + 1;
+    return vbj_xt_radius(b, bx, by, bz, R, bs, g, dim, u2);
 }
 
 /* True when seed s (index si) owns no voxel centre of box b because seed t

@@ -28,9 +28,10 @@ static PyObject *pipe_open(PyObject *self, PyObject *args)
     vbj_variant variant;
     if (vbpy_device_kind(device, &kind) != 0)
         return NULL;
-    if (vbj_variant_parse(NULL, jfa, &variant) != VB_OK || variant == VBJ_FACET_FULL)
-        return vbpy_raise(VB_EMISUSE, "jfa must be facet, jfa, jfa+1, jfa+2 or 1+jfa, not '%s'",
-                          jfa);
+    if (vbj_variant_parse(NULL, jfa, &variant) != VB_OK || variant == VBJ_FACET_FULL ||
+        variant == VBJ_EXACT_BOUNDARY)
+        return vbpy_raise(VB_EMISUSE,
+                          "jfa must be exact, facet, jfa, jfa+1, jfa+2 or 1+jfa, not '%s'", jfa);
     vbpy_call c;
     if (vbpy_call_open(&c) != 0)
         return NULL;

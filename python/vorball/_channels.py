@@ -181,7 +181,7 @@ def run_channels(pipe: Any, first: bool, xyz: SphereInput, r: Optional[ArrayLike
 
 
 def channels(xyz: SphereInput, r: Optional[ArrayLike] = None, grid: int = 128,
-             probe: float = 1.4, *, device: str = "auto", jfa: str = "facet",
+             probe: float = 1.4, *, device: str = "auto", jfa: str = "exact",
              min_length: float = 5.0, min_radius: float = 0.0, lining_tol: float = 1.0,
              cavities: bool = False, flags: bool = False, zero_radius: str = "auto",
              verbose: bool = False) -> Channels:
@@ -191,7 +191,7 @@ def channels(xyz: SphereInput, r: Optional[ArrayLike] = None, grid: int = 128,
     model go into the table), or a file path (its first model). grid: the
     side of the cubic grid (a power of two 16..1024); probe: the solvent
     radius (Å); device: auto, gpu, cpu or ref (W804 when it falls back);
-    jfa: facet, jfa, jfa+1, jfa+2 or 1+jfa; min_length, min_radius,
+    jfa: exact (the default), facet, jfa, jfa+1, jfa+2 or 1+jfa; min_length, min_radius,
     lining_tol, cavities as the command's options; flags=True keeps the
     mask volume. For the frames of a trajectory, open the device once:
     `with vorball.Engine() as e: for f in vorball.frames(...): e.channels(f)`.

@@ -204,7 +204,7 @@ class Engine:
     device.
     """
 
-    def __init__(self, device: str = "auto", proposer: Optional[str] = None, jfa: str = "facet",
+    def __init__(self, device: str = "auto", proposer: Optional[str] = None, jfa: str = "exact",
                  verbose: bool = False) -> None:
         if not isinstance(device, str) or not isinstance(jfa, str):
             raise misuse("device and jfa are names")

@@ -112,8 +112,9 @@ int main(void)
     vb_sphere_set *cyl = synth_cylinder(8, 12, 6.0, 1.6, 2.6);
     vb_sphere_set *shell = synth_shell(240, 9.0, 1.6);
     vb_sphere_set *flat = synth_cylinder(1, 12, 6.0, 1.6, 2.6);
-    vbj_variant variants[2] = {VBJ_FACET, VBJ_JFA1};
-    for (int t = 0; t < 2; t++) {
+    /* The default engine first (it takes the larger cases), then two others. */
+    vbj_variant variants[3] = {VBJ_EXACT, VBJ_FACET, VBJ_JFA1};
+    for (int t = 0; t < 3; t++) {
         vbc_gpu *gp = NULL;
         rc = vbc_gpu_open(ctx, rt, variants[t], &gp);
         CHECK_INT(rc, VB_OK);

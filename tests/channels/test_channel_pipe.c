@@ -123,8 +123,9 @@ int main(void)
     vb_sphere_set *cyl = synth_cylinder(8, 12, 6.0, 1.6, 2.6);
     vb_sphere_set *shell = synth_shell(240, 9.0, 1.6);
     vb_sphere_set *flat = synth_cylinder(1, 12, 6.0, 1.6, 2.6);
-    vbj_variant variants[2] = {VBJ_FACET, VBJ_JFA1};
-    for (int t = 0; t < 2; t++) {
+    /* The default engine first (it takes the larger cases), then two others. */
+    vbj_variant variants[3] = {VBJ_EXACT, VBJ_FACET, VBJ_JFA1};
+    for (int t = 0; t < 3; t++) {
         vbc_pipe *r = NULL;
         CHECK_INT(vbc_pipe_open(ctx, &vbg_device_layer, VB_DEVICE_AUTO, variants[t], &ocl), VB_OK);
         CHECK_INT(vbc_pipe_open(ctx, &vbg_device_layer, VB_DEVICE_REF, variants[t], &r), VB_OK);

@@ -140,7 +140,7 @@ static void test_backends_agree(void)
     snprintf(in, sizeof in, "%s/corpus/data/1grm_single_hole2.pdb", src);
     same_output(in, "--probe 1.0 --grid 32", 2);
     same_output(in, "--probe 1.0 --grid 64", 1);
-    same_output(in, "--probe 1.0 --grid 64 --jfa exact", 1);
+    same_output(in, "--probe 1.0 --grid 64 --jfa facet", 1);
     snprintf(in, sizeof in, "%s/corpus/data/ngl_md_ascii_trj.pdb", src);
     same_output(in, "--grid 32 --frames 0:51:25", 2);
 

@@ -86,6 +86,8 @@ int main(void)
              bin ? bin : "/tmp", (long)getpid());
     snprintf(cache_dir, sizeof cache_dir, "%s/vorball", cache_root);
     setenv("XDG_CACHE_HOME", cache_root, 1);
+    /* PoCL is left to its own cache unless asked (gpu/runtime.c). */
+    setenv("VORBALL_PROGRAM_CACHE", "1", 1);
     /* PoCL's own cache private too: a cache shared with another tree
      * (.ci/test's sanitizer tree reuses the Release tree's) changes what
      * the first build writes. */
