@@ -1,6 +1,7 @@
 /* `vorball vertices`: certified Voronoi vertices of spheres by the seed
  * paper's sampling pipeline, optionally with the cell topology. */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "cli_common.h"
@@ -37,8 +38,10 @@ static void help(FILE *f)
             "  --samples S          S x S rays per cube face, 6 S^2 per sphere (default %u)\n"
             "  --tol T              Newton / matching tolerance in input units\n"
             "                       (default 1e-5 of the bounding-box diagonal)\n"
-            "  --topology FILE      write faces (sphere pairs) and edges (vertex pairs)\n"
-            "                       from the sampling's evidence (implies --proposer sampling)\n"
+            "  --topology FILE      write faces (sphere pairs) and edges (vertex pairs):\n"
+            "                       exact, from arc closure (implies --arcs); with\n"
+            "                       --proposer sampling and no --arcs, from the sampling's\n"
+            "                       evidence in doubles as the seed paper's Sec. 4\n"
             "  --tiles T            culling tiles per cube face side, a power of two\n"
             "                       (default: from S)\n"
             "  --all-pairs          no neighbour culling (every cell tests all bisectors)\n"
@@ -75,14 +78,27 @@ static void print_stats(vb_ctx *ctx, const vb_vertices_result *r, const vb_cli_v
                 tot->t_combine);
 }
 
+/* The topology file: exact (arc closure's edges, taken over: *edges is
+ * NULL after) when edges is non-NULL, else from the sampling's evidence. */
 static int write_topology(vb_ctx *ctx, const char *path, const vb_sphere_set *set,
-                          const vb_vertices_result *r)
+                          const vb_vertices_result *r, const vb_arc_report *ar,
+                          vb_topology_edge **edges, size_t nedges)
 {
     vb_topology topo;
-    int rc = vb_topology_build(ctx, set, &r->sampler.topo, &r->certified, &topo);
+    int rc;
+    if (edges) {
+        rc = vb_arc_topology(ctx, set, &r->certified, *edges, nedges, ar, &topo);
+        *edges = NULL;
+    } else {
+        rc = vb_topology_build(ctx, set, &r->sampler.topo, &r->certified, &topo);
+    }
     if (rc != VB_OK)
         return rc;
-    if (topo.unresolved)
+    if (topo.unresolved && topo.exact)
+        vb_warn(ctx, VB_W_TOPO_UNPAIRED, NULL, 0,
+                "%zu vertex(es) whose faces could not be decided exactly (the pairs of "
+                "their edges' triples are written)", topo.unresolved);
+    else if (topo.unresolved)
         vb_warn(ctx, VB_W_TOPO_UNPAIRED, NULL, 0,
                 "%zu trisector(s) whose edges could not be paired (no trisector curve for "
                 "the triple in doubles, or a closed edge through one vertex)",
@@ -136,11 +152,14 @@ int vb_cmd_vertices(int argc, char **argv)
     }
     if (code == VB_EXIT_OK && !input)
         code = vb_cli_usage_error("vertices", "no input file (use - for stdin)");
-    /* Faces and edges come from the sampling's evidence. */
-    if (code == VB_EXIT_OK && topo_path && !po.cfg.proposer)
-        po.cfg.proposer = "sampling";
-    if (code == VB_EXIT_OK && topo_path && strcmp(po.cfg.proposer, "sampling") != 0)
-        code = vb_cli_usage_error("vertices", "--topology needs --proposer sampling");
+    /* Faces and edges come from arc closure, or with the sampling proposer
+     * alone from its evidence (which the sampler then keeps). */
+    int sampled_topo = topo_path && !arcs && po.cfg.proposer &&
+                       strcmp(po.cfg.proposer, "sampling") == 0;
+    if (topo_path && !sampled_topo) {
+        arcs = 1;
+        po.cfg.sampler.topology = 0;
+    }
     if (code == VB_EXIT_OK)
         code = vb_world_check_input("vertices", input);
     if (code != VB_EXIT_OK) {
@@ -176,10 +195,13 @@ int vb_cmd_vertices(int argc, char **argv)
     vb_vertices_certificate(&res, note, sizeof note);
     /* Rank 0 holds the merged list: it traces every arc of it. */
     vb_arc_report ar;
+    vb_topology_edge *edges = NULL;
+    size_t nedges = 0;
     memset(&ar, 0, sizeof ar);
     vb_vertex_list_init(&ar.added);
     if (writer && arcs) {
-        rc = vb_arc_complete_list(ctx, set, &res.certified, po.cfg.sampler.threads, &ar);
+        rc = vb_arc_complete_list_edges(ctx, set, &res.certified, po.cfg.sampler.threads, &ar,
+                                        topo_path ? &edges : NULL, &nedges);
         writer = rc == VB_OK;
         if (writer) {
             size_t used = strlen(note);
@@ -201,8 +223,10 @@ int vb_cmd_vertices(int argc, char **argv)
         rc = vb_cli_finish_output(ctx, out, outpath, rc);
     }
     if (writer && rc == VB_OK && topo_path)
-        rc = write_topology(ctx, topo_path, set, &res);
+        rc = write_topology(ctx, topo_path, set, &res, &ar, sampled_topo ? NULL : &edges,
+                            nedges);
     code = vb_world_end(ctx, rc);
+    free(edges);
     vb_arc_report_free(&ar);
     vb_vertices_result_free(&res);
     vb_spheres_free(set);

@@ -88,7 +88,7 @@
     X(W, 761, CAND_OVERFLOW, 0, "candidates did not fit a sampling grid cell")                           \
     X(W, 762, DEVICE_FAILED_RERUN, 0, "OpenCL device failed mid-run: rerun on the reference")            \
     X(W, 763, CERT_REJECTED, 0, "the certifier rejected candidates")                                     \
-    X(W, 765, TOPO_UNPAIRED, 0, "trisector edges that could not be paired")                              \
+    X(W, 765, TOPO_UNPAIRED, 0, "trisector edges that could not be paired, or vertex faces not decided") \
     X(W, 766, ARCS_UNDECIDED, 0, "arcs that could not be traced exactly: the list is not proven closed") \
     X(W, 780, JFA_SEEDS_LOST, 0, "seeds share their start pixel with a nearer seed")                     \
     X(W, 781, JFA_DEVICE_FALLBACK, 0, "no usable OpenCL device: jfa on the reference backend")           \

@@ -587,8 +587,22 @@ static void *phase_work(void *arg)
     return NULL;
 }
 
+/* A traced edge (vb_arc_close_edges), oriented forward along its curve:
+ * from its start to its end (vertex indices of closure.all), with the kind
+ * of half arc that recorded it. */
+enum { TE_FWD = 0, TE_BWD = 1, TE_INF = 2, TE_LOOP = 3 };
+
+typedef struct tedge {
+    size_t from, to; /* to: SIZE_MAX for infinity */
+    uint32_t t[3];
+    int kind;
+} tedge;
+
 typedef struct closure {
     vb_ctx *ctx;
+    tedge *ed;          /* NULL unless edges are wanted */
+    size_t ned, ed_cap;
+    int want_edges;
     vb_vertex_list all; /* input + added, in tracing order */
     vtable tab;
     uf comp;
@@ -616,6 +630,26 @@ static int push_item(item **v, size_t *n, size_t *cap, size_t k, const uint32_t 
     return VB_OK;
 }
 
+static int push_tedge(closure *cl, size_t from, size_t to, const uint32_t t[3], int kind)
+{
+    if (!cl->want_edges)
+        return VB_OK;
+    if (cl->ned == cl->ed_cap) {
+        size_t cap = cl->ed_cap ? 2 * cl->ed_cap : 1024;
+        tedge *p = realloc(cl->ed, cap * sizeof *p);
+        if (!p)
+            return VB_ENOMEM;
+        cl->ed = p;
+        cl->ed_cap = cap;
+    }
+    tedge *e = &cl->ed[cl->ned++];
+    e->from = from;
+    e->to = to;
+    memcpy(e->t, t, sizeof e->t);
+    e->kind = kind;
+    return VB_OK;
+}
+
 /* The events of item k's vertex (tracer tr, events [e0, e0 + n)) into the
  * counts, the list of vertices, the components and the arrivals, in event
  * order; pending arcs to cl->pend. */
@@ -632,10 +666,14 @@ static int merge_events(closure *cl, tracer *tr, size_t e0, size_t n, size_t k)
         r->half_arcs++;
         if (e->kind == EV_INF) {
             r->infinite++;
+            if (push_tedge(cl, k, SIZE_MAX, e->t, TE_INF) != VB_OK)
+                return VB_ENOMEM;
             continue;
         }
         if (e->kind == EV_LOOP) {
             r->loops++;
+            if (push_tedge(cl, k, k, e->t, TE_LOOP) != VB_OK)
+                return VB_ENOMEM;
             continue;
         }
         if (e->kind == EV_UNDECIDED) {
@@ -665,6 +703,11 @@ static int merge_events(closure *cl, tracer *tr, size_t e0, size_t n, size_t k)
         }
         r->closed++;
         if (e->dir == 0 && aput(&cl->arrived, to, e->t) != VB_OK)
+            return VB_ENOMEM;
+        /* a backward arc from k that ends at `to` is the edge that leaves
+         * `to` forward */
+        if (push_tedge(cl, e->dir == 0 ? k : to, e->dir == 0 ? to : k, e->t,
+                       e->dir == 0 ? TE_FWD : TE_BWD) != VB_OK)
             return VB_ENOMEM;
         if (uf_fit(&cl->comp, cl->all.n) != VB_OK)
             return VB_ENOMEM;
@@ -783,8 +826,73 @@ static void add_counters(vb_arc_report *r, const vbx_arc_counters *c)
     r->candidates += c->candidates;
 }
 
-int vb_arc_close(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_list *in,
-                 unsigned threads, vb_arc_report *out)
+static int tedge_cmp(const void *pa, const void *pb)
+{
+    const tedge *a = pa, *b = pb;
+    if (a->from != b->from)
+        return a->from < b->from ? -1 : 1;
+    for (int i = 0; i < 3; i++)
+        if (a->t[i] != b->t[i])
+            return a->t[i] < b->t[i] ? -1 : 1;
+    if (a->kind != b->kind)
+        return a->kind < b->kind ? -1 : 1;
+    return (a->to > b->to) - (a->to < b->to);
+}
+
+/* Each edge once, its ends as rows of in and then of the sorted added list
+ * (where_added: tracing order -> sorted row). A finite edge was recorded by
+ * the forward half arc at its start, and again by the backward half arc at
+ * its end unless that one was closed by the shortcut (run_rounds): the
+ * forward half arc of a vertex and triple is unique, so a backward record
+ * is dropped exactly when the forward record of its start and triple ends
+ * where it does. Two edges of one closed curve between the same two
+ * vertices leave them forward from different starts and stay two. Both
+ * half arcs of a closed loop record it: kept once. The half arcs to
+ * infinity of a vertex and triple, one each way, are two edges. */
+static int emit_edges(closure *cl, size_t nin, const size_t *where_added,
+                      vb_topology_edge **edges, size_t *nedges)
+{
+    if (cl->ned)
+        qsort(cl->ed, cl->ned, sizeof *cl->ed, tedge_cmp);
+    vb_topology_edge *o = malloc((cl->ned ? cl->ned : 1) * sizeof *o);
+    if (!o)
+        return VB_ENOMEM;
+    size_t n = 0;
+    for (size_t g = 0; g < cl->ned;) {
+        size_t h = g;
+        while (h < cl->ned && cl->ed[h].from == cl->ed[g].from &&
+               memcmp(cl->ed[h].t, cl->ed[g].t, sizeof cl->ed[g].t) == 0)
+            h++;
+        size_t fwd_to = SIZE_MAX;
+        int have_fwd = 0, have_loop = 0;
+        for (size_t i = g; i < h; i++) {
+            const tedge *e = &cl->ed[i];
+            if (e->kind == TE_FWD) {
+                have_fwd = 1;
+                fwd_to = e->to;
+            } else if (e->kind == TE_BWD && have_fwd && e->to == fwd_to) {
+                continue;
+            } else if (e->kind == TE_LOOP) {
+                if (have_loop)
+                    continue;
+                have_loop = 1;
+            }
+            size_t a = e->from, b = e->to;
+            o[n].v[0] = (int64_t)(a < nin ? a : nin + where_added[a - nin]);
+            o[n].v[1] = b == SIZE_MAX ? -1 : (int64_t)(b < nin ? b : nin + where_added[b - nin]);
+            memcpy(o[n].spheres, e->t, sizeof e->t);
+            n++;
+        }
+        g = h;
+    }
+    *edges = o;
+    *nedges = n;
+    return VB_OK;
+}
+
+static int close_list(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_list *in,
+                      unsigned threads, vb_arc_report *out, vb_topology_edge **edges,
+                      size_t *nedges)
 {
     memset(out, 0, sizeof *out);
     vb_vertex_list_init(&out->added);
@@ -792,6 +900,12 @@ int vb_arc_close(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_list *in
     memset(&cl, 0, sizeof cl);
     cl.ctx = ctx;
     cl.r = out;
+    cl.want_edges = edges != NULL;
+    size_t *where = NULL;
+    if (edges) {
+        *edges = NULL;
+        *nedges = 0;
+    }
     vb_vertex_list_init(&cl.all);
     unsigned nt = (unsigned)vb_threads(threads);
     size_t most = in->n / 64 + 1;
@@ -831,8 +945,15 @@ int vb_arc_close(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_list *in
             out->components += uf_root(&cl.comp, k) == k;
         for (unsigned i = 0; i < nt; i++)
             add_counters(out, &tr[i].w.cnt);
-        rc = vb_vertex_list_sort(&out->added);
+        if (edges && !(where = malloc((out->added.n ? out->added.n : 1) * sizeof *where)))
+            rc = VB_ENOMEM;
+        if (rc == VB_OK)
+            rc = vb_vertex_list_sort_perm(&out->added, where);
+        if (rc == VB_OK && edges)
+            rc = emit_edges(&cl, in->n, where, edges, nedges);
     }
+    free(where);
+    free(cl.ed);
     if (rc == VB_ENOMEM && vb_errcode(ctx) != VB_ENOMEM)
         vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (arc closure)");
     for (unsigned i = 0; tr && i < nt; i++) {
@@ -855,6 +976,19 @@ int vb_arc_close(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_list *in
     free(cl.pend);
     free(cl.map.e);
     return rc;
+}
+
+int vb_arc_close(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_list *in,
+                 unsigned threads, vb_arc_report *out)
+{
+    return close_list(ctx, set, in, threads, out, NULL, NULL);
+}
+
+int vb_arc_close_edges(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_list *in,
+                       unsigned threads, vb_arc_report *out, vb_topology_edge **edges,
+                       size_t *nedges)
+{
+    return close_list(ctx, set, in, threads, out, edges, nedges);
 }
 
 int vb_arc_report_complete(const vb_arc_report *r)

@@ -1,25 +1,67 @@
 /* Arc closure of a list the pipeline certified (vb_arc_complete_list), the
  * certificate as a header line and its counters for --stats. */
 #include <stdio.h>
+#include <stdlib.h>
 
 #include "vb_arc.h"
 #include "vb_parallel.h"
 
-int vb_arc_complete_list(vb_ctx *ctx, const vb_sphere_set *set, vb_vertex_list *list,
-                         unsigned threads, vb_arc_report *out)
+static int edge_cmp(const void *pa, const void *pb)
+{
+    const vb_topology_edge *a = pa, *b = pb;
+    for (int i = 0; i < 3; i++)
+        if (a->spheres[i] != b->spheres[i])
+            return a->spheres[i] < b->spheres[i] ? -1 : 1;
+    for (int i = 0; i < 2; i++)
+        if (a->v[i] != b->v[i])
+            return a->v[i] < b->v[i] ? -1 : 1;
+    return 0;
+}
+
+int vb_arc_complete_list_edges(vb_ctx *ctx, const vb_sphere_set *set, vb_vertex_list *list,
+                               unsigned threads, vb_arc_report *out, vb_topology_edge **edges,
+                               size_t *nedges)
 {
     double t0 = vb_now();
-    int rc = vb_arc_close(ctx, set, list, threads, out);
+    size_t *where = NULL;
+    int rc = vb_arc_close_edges(ctx, set, list, threads, out, edges, nedges);
     const vb_vertex_list *a = &out->added;
     for (size_t k = 0; rc == VB_OK && k < a->n; k++)
         rc = vb_vertex_list_push(list, a->ids + a->start[k], a->start[k + 1] - a->start[k],
                                  a->x[k], a->y[k], a->z[k], a->t[k], 0, VB_VERTEX_CERTIFIED);
+    if (rc == VB_OK && a->n && edges && !(where = malloc(list->n * sizeof *where)))
+        rc = VB_ENOMEM;
     if (rc == VB_OK && a->n)
-        rc = vb_vertex_list_sort(list);
+        rc = vb_vertex_list_sort_perm(list, where);
+    for (size_t k = 0; rc == VB_OK && edges && k < *nedges; k++) {
+        vb_topology_edge *e = &(*edges)[k];
+        for (int i = 0; i < 2 && where; i++)
+            if (e->v[i] >= 0)
+                e->v[i] = (int64_t)where[e->v[i]];
+        if (e->v[1] >= 0 && e->v[1] < e->v[0]) {
+            int64_t s = e->v[0];
+            e->v[0] = e->v[1];
+            e->v[1] = s;
+        }
+    }
+    if (rc == VB_OK && edges && *nedges)
+        qsort(*edges, *nedges, sizeof **edges, edge_cmp);
+    free(where);
+    if (rc != VB_OK && edges) {
+        free(*edges);
+        *edges = NULL;
+        *nedges = 0;
+    }
     if (rc == VB_ENOMEM)
         rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (arc closure)");
     out->seconds = vb_now() - t0;
     return rc;
+}
+
+int vb_arc_complete_list(vb_ctx *ctx, const vb_sphere_set *set, vb_vertex_list *list,
+                         unsigned threads, vb_arc_report *out)
+{
+    return vb_arc_complete_list_edges(ctx, set, list, threads, out, NULL, NULL);
 }
 
 void vb_arc_certificate(const vb_arc_report *r, char *buf, size_t size)

@@ -23,6 +23,7 @@
 
 #include <stdio.h>
 
+#include "vb_topology.h"
 #include "vb_verify_file.h"
 
 #ifdef __cplusplus
@@ -54,6 +55,19 @@ typedef struct vb_arc_report {
 int vb_arc_close(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_list *in,
                  unsigned threads, vb_arc_report *out);
 
+/* vb_arc_close, and every Voronoi edge it traced once into *edges
+ * (*nedges of them; malloc'd, free() it; NULL on error): its triple (the
+ * three smallest ids where more spheres share the curve), v[0] its start
+ * and v[1] its end in the curve's forward direction, as rows of `in` and
+ * then, from in->n on, rows of out->added (sorted); v[1] = -1: the edge
+ * runs to infinity; v[0] = v[1]: a closed loop through one vertex. The
+ * order (by start, triple, kind of record, end) is the same on any number
+ * of threads. A half arc left undecided records nothing, so the edges are all
+ * of the diagram's at the traced vertices exactly when r->undecided == 0. */
+int vb_arc_close_edges(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_list *in,
+                       unsigned threads, vb_arc_report *out, vb_topology_edge **edges,
+                       size_t *nedges);
+
 /* 1 when every arc was traced and no vertex was added. */
 int vb_arc_report_complete(const vb_arc_report *r);
 
@@ -72,6 +86,28 @@ int vb_verify_arcs(vb_ctx *ctx, const vb_sphere_set *set, const vb_verify_report
  * returns as vb_arc_close. */
 int vb_arc_complete_list(vb_ctx *ctx, const vb_sphere_set *set, vb_vertex_list *list,
                          unsigned threads, vb_arc_report *out);
+
+/* vb_arc_complete_list that also gives the traced edges (vb_arc_close_edges)
+ * with their ends as rows of the closed, sorted list; finite edges with
+ * v[0] < v[1], all sorted by (triple, v[0], v[1]). Same returns. */
+int vb_arc_complete_list_edges(vb_ctx *ctx, const vb_sphere_set *set, vb_vertex_list *list,
+                               unsigned threads, vb_arc_report *out, vb_topology_edge **edges,
+                               size_t *nedges);
+
+/* The exact topology of a closed list (`vorball vertices --topology`):
+ * edges the traced arcs (from vb_arc_complete_list_edges on `list`; the
+ * array is taken over), faces the sphere pairs that share a face at a
+ * vertex of `list`: all six pairs of a vertex of four spheres; at a vertex
+ * of more, the pairs (i, j) whose contact directions u_i, u_j (unit vectors
+ * from the vertex to the centres) are joined by an edge of the convex hull
+ * of all the members' directions, decided exactly in Q(sqrt(delta)) (the
+ * local cells at a vertex are the normal fan of that hull). A vertex whose
+ * exact point cannot be identified counts in out->unresolved and gives the
+ * pairs of its edges' triples. Fills *out (vb_topology_free), out->exact =
+ * 1. VB_OK, VB_ENOMEM. */
+int vb_arc_topology(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_list *list,
+                    vb_topology_edge *edges, size_t nedges, const vb_arc_report *r,
+                    vb_topology *out);
 
 /* The certificate as one header line ("arcs: ...", no newline) into buf. */
 void vb_arc_certificate(const vb_arc_report *r, char *buf, size_t size);

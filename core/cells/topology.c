@@ -517,8 +517,25 @@ int vb_topology_write(vb_ctx *ctx, FILE *f, const vb_topology *t)
           "# edge\tv1\tv2\ti,j,k\t(0-based vertex rows of the vertex output; -1: the edge "
           "runs to infinity)\n",
           f);
-    fprintf(f, "# %zu faces, %zu edge lines (%zu of them seen by two-colour sampling)\n",
-            t->nfaces, t->nedges, t->sampled);
+    if (t->exact) {
+        size_t fin = 0, inf = 0, loops = 0;
+        for (size_t k = 0; k < t->nedges; k++) {
+            const vb_topology_edge *e = t->edges + k;
+            fin += e->v[1] >= 0 && e->v[1] != e->v[0];
+            inf += e->v[1] < 0;
+            loops += e->v[1] == e->v[0];
+        }
+        fprintf(f,
+                "# edges exact (from arc closure): every Voronoi edge at the vertices traced "
+                "to its ends, once each (more spheres on one edge: the triple of its three "
+                "smallest ids; v1 = v2: a closed loop); faces decided exactly at the vertices\n"
+                "# %zu faces, %zu edges: %zu between vertices, %zu to infinity, %zu closed "
+                "loops; %zu half arcs undecided, %zu vertices with undecided faces\n",
+                t->nfaces, t->nedges, fin, inf, loops, t->undecided, t->unresolved);
+    } else {
+        fprintf(f, "# %zu faces, %zu edge lines (%zu of them seen by two-colour sampling)\n",
+                t->nfaces, t->nedges, t->sampled);
+    }
     for (size_t k = 0; k < t->nfaces; k++)
         fprintf(f, "face\t%u\t%u\n", (unsigned)t->faces[2 * k], (unsigned)t->faces[2 * k + 1]);
     for (size_t k = 0; k < t->nedges; k++) {

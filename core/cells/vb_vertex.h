@@ -44,6 +44,10 @@ int vb_vertex_list_push(vb_vertex_list *v, const uint32_t *ids, size_t nids, dou
  * common prefix), then x, y, z, t. Returns VB_OK or VB_ENOMEM. */
 int vb_vertex_list_sort(vb_vertex_list *v);
 
+/* vb_vertex_list_sort, and where[k] (v->n entries, may be NULL) the new row
+ * of the vertex that was row k. Returns VB_OK or VB_ENOMEM (v unchanged). */
+int vb_vertex_list_sort_perm(vb_vertex_list *v, size_t *where);
+
 /* Appends the vertices of nparts (at most 64) sorted lists to out in
  * canonical order (vb_vertex_list_sort's), a merge that writes a repeat
  * once: an entry with the same members, point and t as the one written

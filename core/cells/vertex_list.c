@@ -141,6 +141,13 @@ static int push_entry(vb_vertex_list *out, const vb_vertex_list *v, size_t k)
 
 int vb_vertex_list_sort(vb_vertex_list *v)
 {
+    return vb_vertex_list_sort_perm(v, NULL);
+}
+
+int vb_vertex_list_sort_perm(vb_vertex_list *v, size_t *where)
+{
+    if (where && v->n == 1)
+        where[0] = 0;
     if (v->n < 2)
         return VB_OK;
     sort_key *keys = malloc(v->n * sizeof *keys);
@@ -154,6 +161,8 @@ int vb_vertex_list_sort(vb_vertex_list *v)
     int rc = VB_OK;
     for (size_t i = 0; i < v->n && rc == VB_OK; i++) {
         size_t k = keys[i].k;
+        if (where)
+            where[k] = i;
         rc = push_entry(&out, v, k);
     }
     free(keys);

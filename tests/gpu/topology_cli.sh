@@ -1,5 +1,6 @@
 #!/bin/sh
-# `vorball vertices --topology` on the 3x3x3 cubic lattice (spacing 1, equal
+# `vorball vertices --proposer sampling --topology` (the seed paper's Sec. 4
+# evidence; the exact topology is checked in tests/pipeline/topology.sh) on the 3x3x3 cubic lattice (spacing 1, equal
 # radii). Its Voronoi cells are unit cubes; the finite vertices are the 8
 # centres of the lattice's unit cubes, (0.5|1.5)^3, each shared by 8 spheres.
 # Counted by hand: the finite edges join cube centres one step apart, 3 axes
@@ -14,7 +15,7 @@
 vorball=$1 inputs=$2 work=$3/topology_cli lattice=$2/cubic_lattice.xyzr
 fail() { echo "FAIL: $*" >&2; exit 1; }
 mkdir -p "$work" || fail "cannot create $work"
-"$vorball" vertices --device ref --topology "$work/ref.top" -o "$work/ref.tsv" "$lattice" \
+"$vorball" vertices --device ref --proposer sampling --topology "$work/ref.top" -o "$work/ref.tsv" "$lattice" \
     2> "$work/ref.err" || fail "ref run failed: $(cat "$work/ref.err")"
 [ "$(grep -vc '^#' "$work/ref.tsv")" -eq 8 ] || fail "expected 8 vertices"
 [ "$(grep -c '^face' "$work/ref.top")" -eq 54 ] || fail "expected 54 faces"
@@ -43,15 +44,15 @@ for t in 9,10,12 9,10,13 9,12,13 10,12,13; do
 done
 grep -q "^edge	$v6	$v7	13,16,22\$" "$work/ref.top" || fail "missing edge $v6-$v7"
 grep -q "^edge	$v0	-1	0,1,3\$" "$work/ref.top" || fail "missing infinite edge of $v0"
-"$vorball" vertices --device cpu --topology "$work/cpu.top" -o "$work/cpu.tsv" "$lattice" \
+"$vorball" vertices --device cpu --proposer sampling --topology "$work/cpu.top" -o "$work/cpu.tsv" "$lattice" \
     2> "$work/cpu.err" || fail "cpu run failed: $(cat "$work/cpu.err")"
 cmp -s "$work/ref.tsv" "$work/cpu.tsv" || fail "vertex output differs ref/cpu"
 cmp -s "$work/ref.top" "$work/cpu.top" || fail "topology differs ref/cpu"
 grep -q W760 "$work/cpu.err" && echo "note: no OpenCL device, cpu ran the reference backend"
 for f in "$inputs"/*.xyzr; do
-    "$vorball" vertices --device ref --topology "$work/a.top" "$f" > /dev/null 2>&1 ||
+    "$vorball" vertices --device ref --proposer sampling --topology "$work/a.top" "$f" > /dev/null 2>&1 ||
         fail "ref run failed on $f"
-    "$vorball" vertices --device cpu --topology "$work/b.top" "$f" > /dev/null 2>&1 ||
+    "$vorball" vertices --device cpu --proposer sampling --topology "$work/b.top" "$f" > /dev/null 2>&1 ||
         fail "cpu run failed on $f"
     cmp -s "$work/a.top" "$work/b.top" || fail "topology differs ref/cpu on $f"
 done
@@ -62,7 +63,7 @@ done
 # 2,7,25 meets at vertex 9 only in a point (no edge).
 for c in bcc_lattice:240 hexagonal_ring:32 lattice_subset:185; do
     f=${c%%:*} want=${c#*:}
-    "$vorball" vertices --device ref --topology "$work/$f.top" -o "$work/$f.tsv" \
+    "$vorball" vertices --device ref --proposer sampling --topology "$work/$f.top" -o "$work/$f.tsv" \
         "$inputs/$f.xyzr" 2> /dev/null || fail "run failed on $f"
     got=$(grep -c '^edge' "$work/$f.top")
     [ "$got" -eq "$want" ] || fail "$f: $got edge lines, expected $want"
@@ -74,7 +75,7 @@ grep -q "	2,7,25\$" "$work/lattice_subset.top" && fail "lattice_subset: false ed
 # General position: every vertex has four edges (crambin fragment; and the
 # collinear centres, whose collinear triples have a circle as trisector).
 for f in crambin_fragment collinear_centres; do
-    "$vorball" vertices --device ref --topology "$work/$f.top" -o "$work/$f.tsv" \
+    "$vorball" vertices --device ref --proposer sampling --topology "$work/$f.top" -o "$work/$f.tsv" \
         "$inputs/$f.xyzr" 2> "$work/$f.err" || fail "$f run failed"
     grep -q W765 "$work/$f.err" && fail "$f: unpaired trisectors"
     odd=$(awk '$1 == "edge" { d[$2]++; if ($3 != -1) d[$3]++ } END { n = 0; for (v in d) if (d[v] != 4) n++; print n + 0 }' "$work/$f.top")

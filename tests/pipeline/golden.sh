@@ -2,7 +2,7 @@
 # One corpus case: `vorball reference` reproduces the golden byte for byte,
 # `vorball verify --complete` accepts the golden, every arc of it closes
 # (verify --arcs, and vertices --arcs reproduces it with its certificate on
-# any thread count), and the golden shows the property the case was built
+# any thread count, and its exact topology: topology.sh), and the golden shows the property the case was built
 # for (properties.sh).
 # usage: golden.sh VORBALL CORPUS_DIR CASE WORK_DIR
 vorball=$1 corpus=$2 case=$3 work=$4/golden_$3
@@ -27,11 +27,15 @@ expect_line "$work/verify.txt" "^verify: .* 0 not a vertex, 0 wrong coordinates,
 run 0 "$work/arcs.txt" "$vorball" verify "$case.xyzr" "$golden" --arcs
 expect_line "$work/arcs.txt" "^$golden: arcs: [0-9]+ vertices traced, [0-9]+ half arcs: .* 0 undecided; 0 vertices added; [0-9]+ components$"
 # vertices --arcs: the cover's list traced, the golden's vertices written
-# with the certificate's header line, the same bytes on 1 and 3 threads
+# with the certificate's header line, the same bytes on 1 and 3 threads;
+# with --topology the traced edges too (topology.sh checks them)
 for t in 1 3; do
-    run 0 "$work/arcs$t.err" "$vorball" vertices --device ref --arcs --threads $t "$case.xyzr" -o "$work/arcs$t.tsv"
+    run 0 "$work/arcs$t.err" "$vorball" vertices --device ref --arcs --threads $t "$case.xyzr" \
+        -o "$work/arcs$t.tsv" --topology "$work/arcs$t.top"
 done
 cmp "$work/arcs1.tsv" "$work/arcs3.tsv" || fail "vertices --arcs differs between 1 and 3 threads"
+cmp "$work/arcs1.top" "$work/arcs3.top" || fail "vertices --topology differs between 1 and 3 threads"
+sh "$here/topology.sh" "$case" "$work/arcs1.tsv" "$work/arcs1.top" || fail "$case: exact topology"
 vertex_lines "$work/arcs1.tsv" > "$work/arcs1.lines"
 vertex_lines "$golden" > "$work/golden.lines"
 cmp "$work/arcs1.lines" "$work/golden.lines" || fail "vertices --arcs does not reproduce $golden"

@@ -4,7 +4,12 @@
  * vertex back; a golden cut down to its first vertex grows back to the whole
  * golden where the vertex-edge graph is connected (the component counts are
  * asserted); the report is the same on 1, 2 and 3 threads, and
- * vb_arc_complete_list restores the removed vertex in place. */
+ * vb_arc_complete_list restores the removed vertex in place. The traced
+ * edges (vb_arc_complete_list_edges): one per finite edge (closed half arcs
+ * / 2), one per half arc to infinity, each triple among its ends' members,
+ * the same array on 1 and 3 threads, and the same edges with their rows in
+ * the final list when the closure starts from the golden less a vertex or
+ * from its first vertex alone (the vertices added on the way, sorted in). */
 #include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -31,6 +36,91 @@ static void subset(const vb_vertex_list *g, vb_vertex_list *out, size_t keep_fro
         if (k != drop)
             vb_vertex_list_push(out, g->ids + g->start[k], g->start[k + 1] - g->start[k], g->x[k],
                                 g->y[k], g->z[k], g->t[k], 0, VB_VERTEX_CERTIFIED);
+}
+
+/* Edge arrays equal field by field (the struct has padding). */
+static int same_edges(const vb_topology_edge *a, const vb_topology_edge *b, size_t n)
+{
+    for (size_t k = 0; k < n; k++)
+        if (a[k].v[0] != b[k].v[0] || a[k].v[1] != b[k].v[1] ||
+            memcmp(a[k].spheres, b[k].spheres, sizeof a[k].spheres) != 0)
+            return 0;
+    return 1;
+}
+
+static int has_id(const vb_vertex_list *v, int64_t row, uint32_t id)
+{
+    for (size_t i = v->start[row]; i < v->start[row + 1]; i++)
+        if (v->ids[i] == id)
+            return 1;
+    return 0;
+}
+
+/* The closed list and edges of the golden's vertices [from, to) less drop,
+ * on `threads` threads: *out the closed list, *e its edges. */
+static void closed_edges(vb_ctx *ctx, const vb_sphere_set *s, const vb_vertex_list *g,
+                         size_t from, size_t to, size_t drop, unsigned threads,
+                         vb_vertex_list *out, vb_topology_edge **e, size_t *ne,
+                         vb_arc_report *r)
+{
+    subset(g, out, from, to, drop);
+    int rc = vb_arc_complete_list_edges(ctx, s, out, threads, r, e, ne);
+    CHECK_INT(rc, VB_OK);
+}
+
+static void edges_case(vb_ctx *ctx, const vb_sphere_set *s, const vb_vertex_list *g,
+                       size_t comps)
+{
+    vb_vertex_list l1, l3;
+    vb_topology_edge *e1 = NULL, *e3 = NULL;
+    size_t n1 = 0, n3 = 0;
+    vb_arc_report r1, r3;
+    closed_edges(ctx, s, g, 0, g->n, (size_t)-1, 1, &l1, &e1, &n1, &r1);
+    closed_edges(ctx, s, g, 0, g->n, (size_t)-1, 3, &l3, &e3, &n3, &r3);
+    CHECK_INT(n3, n1);
+    CHECK(n1 == n3 && same_edges(e1, e3, n1));
+    size_t fin = 0, inf = 0;
+    for (size_t k = 0; k < n1; k++) {
+        const vb_topology_edge *e = &e1[k];
+        CHECK(e->v[0] >= 0 && (size_t)e->v[0] < g->n);
+        CHECK(e->v[1] >= -1 && e->v[1] < (int64_t)g->n);
+        CHECK(e->spheres[0] < e->spheres[1] && e->spheres[1] < e->spheres[2]);
+        if (e->v[1] < 0)
+            inf++;
+        else
+            fin += e->v[1] != e->v[0];
+        for (int i = 0; i < 2; i++)
+            for (int j = 0; j < 3 && e->v[i] >= 0; j++)
+                CHECK(has_id(g, e->v[i], e->spheres[j]));
+    }
+    CHECK_INT(2 * fin, r1.closed);
+    CHECK_INT(inf, r1.infinite);
+    /* Starting from less: the vertices come back, the edges are the same. */
+    for (int start = 0; start < 2; start++) {
+        if (g->n < 2 || (start == 1 && comps != 1))
+            continue;
+        vb_vertex_list lc;
+        vb_topology_edge *ec = NULL;
+        size_t nc = 0;
+        vb_arc_report rc;
+        if (start == 0)
+            closed_edges(ctx, s, g, 0, g->n, g->n / 2, 2, &lc, &ec, &nc, &rc);
+        else
+            closed_edges(ctx, s, g, 0, 1, (size_t)-1, 2, &lc, &ec, &nc, &rc);
+        CHECK_INT(lc.n, g->n);
+        CHECK(rc.added.n > 0);
+        CHECK_INT(nc, n1);
+        CHECK(nc == n1 && same_edges(ec, e1, n1));
+        free(ec);
+        vb_arc_report_free(&rc);
+        vb_vertex_list_free(&lc);
+    }
+    free(e1);
+    free(e3);
+    vb_arc_report_free(&r1);
+    vb_arc_report_free(&r3);
+    vb_vertex_list_free(&l1);
+    vb_vertex_list_free(&l3);
 }
 
 static void one_case(const char *name, const char *in, const char *gold)
@@ -130,6 +220,7 @@ static void one_case(const char *name, const char *in, const char *gold)
         vb_arc_report_free(&r);
         vb_vertex_list_free(&one);
     }
+    edges_case(ctx, s, &g, comps);
     vb_vertex_list_free(&g);
     vb_spheres_free(s);
     vb_close(ctx);
