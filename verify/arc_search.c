@@ -76,6 +76,31 @@ static vbx_ia branch_S(const vbx_tframe *f, vbx_ia g)
 static void piece_parts(const vbx_tframe *f, vbx_ia Sa, double ga, double gb, double sgn,
                         int parts, region *rg);
 
+/* The tail of the open branch beyond mirrored position g (a double; sgn
+ * +1 forward, -1 backward): from g < 0 a box up to the branch's vertex
+ * (g = 0), then the half-strip from max(g, 0) along the asymptote. */
+static void tail_from(const vbx_tframe *f, double g, double sgn, region *rg)
+{
+    memset(rg, 0, sizeof *rg);
+    double g1 = g;
+    if (g < 0.0) {
+        part *b = &rg->p[rg->n++];
+        vbx_ia far = branch_S(f, vbx_ia_point(-g));
+        b->kind = PART_BOX;
+        b->S = ia_span(f->Smin.lo, vbx_max(far.hi, f->Smin.hi));
+        b->G = sgn > 0 ? ia_span(g, 0.0) : ia_span(0.0, -g);
+        g1 = 0.0;
+    }
+    part *s = &rg->p[rg->n++];
+    s->kind = PART_STRIP;
+    vbx_ia gi = vbx_ia_point(g1);
+    vbx_ia on = branch_S(f, gi), asym = vbx_ia_add(f->Sc, vbx_ia_mul(f->k, gi));
+    s->S = ia_hull(on, asym);
+    s->G = vbx_ia_point(sgn * g1);
+    s->D[0] = f->k;
+    s->D[1] = vbx_ia_point(sgn);
+}
+
 /* The region of the arc from e0 to e1 (see the top). */
 static void region_of(const vbx_tframe *f, const vbx_arc_end *e0, const vbx_arc_end *e1,
                       region *rg)
@@ -127,26 +152,7 @@ static void region_of(const vbx_tframe *f, const vbx_arc_end *e0, const vbx_arc_
      * infinity) to G1; mirrored to g = +-G >= g0. */
     int fwd = e1->inf;
     vbx_ia G0 = fwd ? e0->key.G : vbx_ia_neg(e1->key.G);
-    double sgn = fwd ? 1.0 : -1.0;
-    double g1;
-    if (G0.lo >= 0.0) {
-        g1 = G0.lo;
-    } else {
-        part *b = &rg->p[rg->n++];
-        b->kind = PART_BOX;
-        vbx_ia far = branch_S(f, vbx_ia_point(-G0.lo));
-        b->S = ia_span(f->Smin.lo, vbx_max(far.hi, f->Smin.hi));
-        b->G = fwd ? ia_span(G0.lo, 0.0) : ia_span(0.0, -G0.lo);
-        g1 = 0.0;
-    }
-    part *s = &rg->p[rg->n++];
-    s->kind = PART_STRIP;
-    vbx_ia gi = vbx_ia_point(g1);
-    vbx_ia on = branch_S(f, gi), asym = vbx_ia_add(f->Sc, vbx_ia_mul(f->k, gi));
-    s->S = ia_hull(on, asym);
-    s->G = vbx_ia_point(sgn * g1);
-    s->D[0] = f->k;
-    s->D[1] = vbx_ia_point(sgn);
+    tail_from(f, G0.lo, fwd ? 1.0 : -1.0, rg);
 }
 
 /* u = O + S ES + G EG over intervals. */
@@ -709,29 +715,6 @@ static void piece_parts(const vbx_tframe *f, vbx_ia Sa, double ga, double gb, do
     }
 }
 
-/* The tail of the open branch beyond mirrored position g (a double): the
- * region_of tail with its start at the point interval g. */
-static void tail_from(const vbx_tframe *f, double g, double sgn, region *rg)
-{
-    memset(rg, 0, sizeof *rg);
-    double g1 = g;
-    if (g < 0.0) {
-        part *b = &rg->p[rg->n++];
-        vbx_ia far = branch_S(f, vbx_ia_point(-g));
-        b->kind = PART_BOX;
-        b->S = ia_span(f->Smin.lo, vbx_max(far.hi, f->Smin.hi));
-        b->G = sgn > 0 ? ia_span(g, 0.0) : ia_span(0.0, -g);
-        g1 = 0.0;
-    }
-    part *s = &rg->p[rg->n++];
-    s->kind = PART_STRIP;
-    vbx_ia gi = vbx_ia_point(g1);
-    vbx_ia on = branch_S(f, gi), asym = vbx_ia_add(f->Sc, vbx_ia_mul(f->k, gi));
-    s->S = ia_hull(on, asym);
-    s->G = vbx_ia_point(sgn * g1);
-    s->D[0] = f->k;
-    s->D[1] = vbx_ia_point(sgn);
-}
 
 /* Candidates of a tail region when there are at most cap of them: 1 when
  * gathered (then w->cand holds them, as gather would), 0 when over the cap
