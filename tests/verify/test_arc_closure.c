@@ -10,7 +10,6 @@
  * the same array on 1 and 3 threads, and the same edges with their rows in
  * the final list when the closure starts from the golden less a vertex or
  * from its first vertex alone (the vertices added on the way, sorted in). */
-#include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -18,6 +17,7 @@
 #include "vb_arc.h"
 #include "vb_test.h"
 #include "vb_vertex_io.h"
+#include "vt_corpus.h"
 
 static int same_vertex(const vb_vertex_list *a, size_t i, const vb_vertex_list *b, size_t k)
 {
@@ -228,26 +228,6 @@ static void one_case(const char *name, const char *in, const char *gold)
 
 int main(void)
 {
-    const char *src = getenv("VORBALL_SOURCE_DIR");
-    char dir[1024];
-    snprintf(dir, sizeof dir, "%s/corpus/inputs", src ? src : ".");
-    DIR *d = opendir(dir);
-    CHECK(d != NULL);
-    int cases = 0;
-    struct dirent *e;
-    while (d && (e = readdir(d))) {
-        size_t len = strlen(e->d_name);
-        if (len < 6 || strcmp(e->d_name + len - 5, ".xyzr") != 0)
-            continue;
-        char in[2048], gold[2048];
-        snprintf(in, sizeof in, "%s/%s", dir, e->d_name);
-        snprintf(gold, sizeof gold, "%s/corpus/golden/%.*s.tsv", src ? src : ".", (int)(len - 5),
-                 e->d_name);
-        one_case(e->d_name, in, gold);
-        cases++;
-    }
-    if (d)
-        closedir(d);
-    CHECK(cases >= 15);
+    CHECK(vt_each_golden(one_case) >= 15);
     VB_TEST_END();
 }
