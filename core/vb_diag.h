@@ -54,13 +54,13 @@
     X(E, 115, INPUT_TRAJECTORY, 25, "XTC, TRR or DCD data damaged")                                      \
     X(E, 116, INPUT_TOPOLOGY, 26, "trajectory and topology disagree (atom count)")                       \
     X(E, 117, INPUT_ASSEMBLY, 27, "--assembly: absent, or its operators malformed")                      \
-    X(E, 130, INPUT_REFERENCE_SIZE, 40, "more spheres than `reference` takes without --force")          \
+    X(E, 130, INPUT_REFERENCE_SIZE, 40, "more spheres than `reference` takes without --force")           \
     X(E, 131, INPUT_SCALE, 41, "a radius below 1e-50 of the extent: beyond the sampler's doubles")       \
     X(E, 132, INPUT_TOL, 42, "--tol below 1e-12 of the extent: finer than the sampler resolves")         \
-    X(E, 150, MPI_FAILED, 50, "MPI failed between ranks: the job is aborted")                           \
-    X(E, 151, MPI_COMMAND, 2, "the command runs on one process only, not on several MPI ranks")        \
-    X(E, 152, MPI_STDIN, 2, "under MPI every rank reads the input: give a file, not stdin")             \
-    X(W, 701, CONTAINED, 0, "a sphere lies inside another: its cell is empty")                           \
+    X(E, 150, MPI_FAILED, 50, "MPI failed between ranks: the job is aborted")                            \
+    X(E, 151, MPI_COMMAND, 2, "the command runs on one process only, not on several MPI ranks")          \
+    X(E, 152, MPI_STDIN, 2, "under MPI every rank reads the input: give a file, not stdin")              \
+    X(W, 701, CONTAINED, 0, "a sphere lies strictly inside another: its cell is empty")                  \
     X(W, 702, CONTAINED_COUNT, 0, "count of spheres inside others")                                      \
     X(W, 703, WATER_DROPPED, 0, "water atoms dropped")                                                   \
     X(W, 704, ALTLOC_DROPPED, 0, "atoms of other alternate locations dropped")                           \
@@ -73,14 +73,16 @@
     X(W, 711, CIF_BLOCK_IGNORED, 0, "a further mmCIF _atom_site loop ignored")                           \
     X(W, 712, ZERO_DROPPED, 0, "spheres of radius 0 dropped (--zero-radius drop)")                       \
     X(W, 713, ZERO_POINTS, 0, "spheres of radius 0 kept as point sites")                                 \
-    X(W, 714, ELEMENT_INFERRED, 0, "element column blank: element inferred from the atom name")         \
-    X(W, 715, ELEMENT_INFERRED_COUNT, 0, "count of atoms whose element was inferred")                   \
-    X(W, 716, ELEMENT_ALIGNMENT, 0, "a two-letter element read from the name's alignment alone")        \
-    X(W, 717, ELEMENT_FROM_MASS, 0, "PSF: elements taken from the atom masses")                         \
-    X(W, 718, TRR_NO_COORDINATES, 0, "TRR frames without coordinates skipped")                          \
-    X(W, 719, COMPRESSED_TRAILING, 0, "bytes after the end of gzip/bzip2 data ignored")                 \
+    X(W, 714, ELEMENT_INFERRED, 0, "element column blank: element inferred from the atom name")          \
+    X(W, 715, ELEMENT_INFERRED_COUNT, 0, "count of atoms whose element was inferred")                    \
+    X(W, 716, ELEMENT_ALIGNMENT, 0, "a two-letter element read from the name's alignment alone")         \
+    X(W, 717, ELEMENT_FROM_MASS, 0, "PSF: elements taken from the atom masses")                          \
+    X(W, 718, TRR_NO_COORDINATES, 0, "TRR frames without coordinates skipped")                           \
+    X(W, 719, COMPRESSED_TRAILING, 0, "bytes after the end of gzip/bzip2 data ignored")                  \
     X(W, 720, REFERENCE_SLOW, 0, "exact reference on a large input: may take very long")                 \
-    X(W, 721, ASSEMBLY_CHAINS, 0, "--assembly: chains of the file outside the assembly left out")       \
+    X(W, 721, ASSEMBLY_CHAINS, 0, "--assembly: chains of the file outside the assembly left out")        \
+    X(W, 722, TANGENT_INSIDE, 0, "a sphere touches a larger one from inside: a point or segment cell, kept") \
+    X(W, 723, TANGENT_INSIDE_COUNT, 0, "count of spheres touching a larger one from inside")             \
     X(W, 735, MODEL_OPEN_AT_END, 0, "the input ends inside a MODEL (no ENDMDL/END): truncated?")         \
     X(W, 750, PROGRAM_CACHE_BAD, 0, "a cached OpenCL program cannot be used: rebuilt from source")       \
     X(W, 751, JFA_DEVICE_FAILED, 0, "OpenCL failed mid-run in jfa: the rest runs on the reference")      \
@@ -101,11 +103,11 @@
     X(W, 802, VOLUME_FIRST_FRAME, 0, "volume file holds the first frame only")                           \
     X(W, 803, VOXEL_COARSE, 0, "voxel edge coarser than the probe radius")                               \
     X(W, 804, CHANNELS_DEVICE_FALLBACK, 0, "no usable OpenCL device: channels on the reference backend") \
-    X(W, 806, CHANNELS_DEVICE_FAILED, 0, "OpenCL failed mid-run: rest of channels on reference")        \
-    X(W, 807, PLOT_NO_GNUPLOT, 0, "gnuplot not found or failed: plot script kept, no PNG")              \
-    X(W, 808, PORE_NOT_FOUND, 0, "no pore: no axis candidate could be swept")                           \
-    X(W, 809, ATOMS_IGNORED, 0, "atoms left out by --ignore (count)")                                   \
-    X(W, 830, MPI_SAMPLING_RANK0, 0, "--proposer sampling does not split: rank 0 runs it alone")       \
+    X(W, 806, CHANNELS_DEVICE_FAILED, 0, "OpenCL failed mid-run: rest of channels on reference")         \
+    X(W, 807, PLOT_NO_GNUPLOT, 0, "gnuplot not found or failed: plot script kept, no PNG")               \
+    X(W, 808, PORE_NOT_FOUND, 0, "no pore: no axis candidate could be swept")                            \
+    X(W, 809, ATOMS_IGNORED, 0, "atoms left out by --ignore (count)")                                    \
+    X(W, 830, MPI_SAMPLING_RANK0, 0, "--proposer sampling does not split: rank 0 runs it alone")         \
     X(W, 831, MPI_STOPPED, 0, "a rank failed: every rank stopped (the error names the rank)")
 
 /* Retired numbers, never to be used again: X(kind, number, meaning, why). */

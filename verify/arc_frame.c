@@ -343,6 +343,98 @@ static void filter_frame(vbx_tframe *f, const vbx_ia n[3])
     f->ok = 1;
 }
 
+/* Internally tangent pairs of a triple (one sphere touches the other from
+ * inside: W = |c_x - c_y|^2 - (R_x - R_y)^2 = 0 exactly). The bisector of
+ * such a pair is a ray: from the smaller centre, away from the larger one.
+ * The tangent spheres of the triple lie on that ray and on the bisector of
+ * another pair, a surface that holds no segment of the ray unless that
+ * pair's bisector is a ray too, on the same line and overlapping it. So the
+ * triple has a curve of tangent spheres (an edge can run along it) only
+ * when two such rays overlap in more than a point, which needs collinear
+ * centres; otherwise its tangent spheres are a few points, each a vertex
+ * only through a fourth sphere whose other triples carry the edges.
+ * Returns 1 for "a few points" (no edge along the triple), 0 otherwise.
+ * Filter first, exact on doubt. */
+static int tangent_pair_points(vbx_arcw *w, const vbx_tframe *f, int collinear_possible)
+{
+    vbx_ia mbc[4];
+    ia_row(w, f->t[1], f->t[2], mbc);
+    vbx_ia Wbc = vbx_ia_sub(ia_dot3(mbc, mbc), vbx_ia_sqr(mbc[3]));
+    w->cnt.filter_calls++;
+    if (vbx_ia_sign(f->Wb) > 0 && vbx_ia_sign(f->Wc) > 0 && vbx_ia_sign(Wbc) > 0)
+        return 0;
+    w->cnt.filter_failures++;
+    w->cnt.exact_evals++;
+    mpz_t *z = w->z;
+    const vbx_data *d = &w->c->d;
+    static const int pairs[3][2] = {{0, 1}, {0, 2}, {1, 2}};
+    mpz_t row[3][5], dir[3], start[3];
+    for (int p = 0; p < 3; p++) {
+        for (int k = 0; k < 5; k++)
+            mpz_init(row[p][k]);
+        mpz_init(dir[p]);
+        mpz_init(start[p]);
+        vbx_row(d, f->t[pairs[p][0]], f->t[pairs[p][1]], row[p], z[0]);
+    }
+    int tangent[3], ntangent = 0;
+    for (int p = 0; p < 3; p++) {
+        tangent[p] = !mpz_sgn(row[p][4]);
+        ntangent += tangent[p];
+    }
+    int points = 0;
+    if (ntangent > 0) {
+        mpz_t *n = &z[1];
+        int collinear = 0;
+        if (collinear_possible) {
+            z_cross(row[0], row[1], n);
+            collinear = !mpz_sgn(n[0]) && !mpz_sgn(n[1]) && !mpz_sgn(n[2]);
+        }
+        points = 1;
+        if (collinear && ntangent >= 2) {
+            /* Positions along the line: D . p with D = c_b - c_a (not zero:
+             * the spheres are distinct and a tangent pair has distinct
+             * centres). Each ray starts at D . c_small and runs the way of
+             * D . (c_small - c_large). */
+            const mpz_t *D = row[0];
+            for (int p = 0; p < 3; p++) {
+                if (!tangent[p])
+                    continue;
+                uint32_t x = f->t[pairs[p][0]], y = f->t[pairs[p][1]];
+                /* row[p] = c_y - c_x with R_y - R_x in slot 3: y is the
+                 * larger when that is positive. */
+                uint32_t small = mpz_sgn(row[p][3]) > 0 ? x : y;
+                mpz_set_ui(start[p], 0);
+                for (int k = 0; k < 3; k++)
+                    mpz_addmul(start[p], D[k], d->c[4 * (size_t)small + (size_t)k]);
+                mpz_set_ui(dir[p], 0);
+                for (int k = 0; k < 3; k++)
+                    mpz_addmul(dir[p], D[k], row[p][k]);
+                /* dir of (c_small - c_large) is -(D . row) when small = x. */
+                if (small == x)
+                    mpz_neg(dir[p], dir[p]);
+            }
+            for (int p = 0; p < 3 && points; p++)
+                for (int q = p + 1; q < 3 && points; q++) {
+                    if (!tangent[p] || !tangent[q])
+                        continue;
+                    int sp = mpz_sgn(dir[p]), sq = mpz_sgn(dir[q]);
+                    int c = mpz_cmp(start[p], start[q]);
+                    /* Overlap beyond a point: same way, or facing each
+                     * other from distinct starts. */
+                    if (sp == sq || (sp > 0 && c < 0) || (sp < 0 && c > 0))
+                        points = 0;
+                }
+        }
+    }
+    for (int p = 0; p < 3; p++) {
+        for (int k = 0; k < 5; k++)
+            mpz_clear(row[p][k]);
+        mpz_clear(dir[p]);
+        mpz_clear(start[p]);
+    }
+    return points;
+}
+
 int vbx_tframe_setup(vbx_arcw *w, vbx_tframe *f, const uint32_t t[3])
 {
     f->exact = 0;
@@ -375,6 +467,8 @@ int vbx_tframe_setup(vbx_arcw *w, vbx_tframe *f, const uint32_t t[3])
         w->cnt.exact_evals++;
         kind = exact_kind(w, f, &parabola, &axis);
     }
+    if (kind != VBX_TRI_NONE && tangent_pair_points(w, f, collinear_possible))
+        kind = VBX_TRI_NONE;
     f->kind = kind;
     f->parabola = parabola;
     if (kind == VBX_TRI_NONE)

@@ -81,7 +81,8 @@ enum {
     VBX_TRI_OPEN = 0,     /* hyperbola branch or parabola: position G */
     VBX_TRI_CLOSED = 1,   /* ellipse (centres not collinear) */
     VBX_TRI_CIRCLE = 2,   /* collinear centres: a circle around the axis */
-    VBX_TRI_NONE = 3      /* rank-deficient rows (no curve): not traced */
+    VBX_TRI_NONE = 3      /* rank-deficient rows, or an internally tangent pair with centres
+                             not collinear (no curve, a few points): not traced */
 };
 
 typedef struct vbx_tframe {

@@ -151,7 +151,11 @@ static int contained_exact(const vb_sphere_set *s, size_t i, size_t j)
     return sign;
 }
 
-/* Is sphere i (radius strictly below j's) inside sphere j: |ci-cj| + Ri <= Rj?
+/* Where sphere i (radius strictly below j's) lies against sphere j:
+ * NEST_INSIDE when |ci-cj| + Ri < Rj (its cell is empty), NEST_TANGENT when
+ * |ci-cj| + Ri = Rj exactly (internally tangent: its cell is a point, a
+ * segment or a ray on the line of the centres, whose end can be a Voronoi
+ * vertex, so the sphere stays in the diagram), NEST_APART otherwise.
  *
  * Filter: e = (rj-ri)^2 - (dx^2+dy^2+dz^2) in double. Each input double is
  * within u = 2^-53 relative of its decimal; a difference t = p - q then has
@@ -159,7 +163,9 @@ static int contained_exact(const vb_sphere_set *s, size_t i, size_t j)
  * delta(2T + delta) + u(T + delta)^2 <= 5.1 u T^2 with T = |p|+|q|, and the
  * three sums add at most 3u * S where S = sum of the four T^2. So
  * |e^ - e| <= 8.2 u S (+ underflow, a few 2^-1074); we take 16 u S + 1e-290. */
-static int contained_filtered(vb_ctx *ctx, const vb_sphere_set *s, size_t i, size_t j)
+enum { NEST_APART = 0, NEST_INSIDE = 1, NEST_TANGENT = 2 };
+
+static int nesting(vb_ctx *ctx, const vb_sphere_set *s, size_t i, size_t j)
 {
     vb_stats *st = vb_ctx_stats(ctx);
     st->filter_calls++;
@@ -170,12 +176,13 @@ static int contained_filtered(vb_ctx *ctx, const vb_sphere_set *s, size_t i, siz
     double tz = fabs(s->z[i]) + fabs(s->z[j]), tr = s->r[i] + s->r[j];
     double bound = 16.0 * (DBL_EPSILON / 2) * (tx * tx + ty * ty + tz * tz + tr * tr) + 1e-290;
     if (e > bound)
-        return 1;
+        return NEST_INSIDE;
     if (e < -bound)
-        return 0;
+        return NEST_APART;
     st->filter_failures++;
     st->exact_evals++;
-    return contained_exact(s, i, j) >= 0;
+    int sg = contained_exact(s, i, j);
+    return sg > 0 ? NEST_INSIDE : sg == 0 ? NEST_TANGENT : NEST_APART;
 }
 
 static int cmp_double(const void *a, const void *b)
@@ -274,20 +281,56 @@ static void grid_free(center_grid *g)
     free(g->items);
 }
 
-/* Marks contained spheres and warns W701 (each, up to a limit) and W702
- * (the total). */
+/* Warns W701/W722 for the first VBI_CONTAINED_SHOWN spheres marked in
+ * `by` (the sphere each lies in or touches from inside), then W702/W723
+ * with the count. */
+static void warn_nested(vb_ctx *ctx, const vb_sphere_set *s, const size_t *by, int tangent)
+{
+    size_t count = 0;
+    for (size_t i = 0; i < s->n; i++) {
+        if (by[i] == SIZE_MAX)
+            continue;
+        if (count++ >= VBI_CONTAINED_SHOWN)
+            continue;
+        if (tangent)
+            vb_warn(ctx, VB_W_TANGENT_INSIDE, s->source, s->line[i],
+                    "sphere %zu touches sphere %zu (line %ld) from inside: its cell is a point or "
+                    "a segment on the line of their centres, kept in the diagram",
+                    i, by[i], s->line[by[i]]);
+        else
+            vb_warn(ctx, VB_W_CONTAINED, s->source, s->line[i],
+                    "sphere %zu lies inside sphere %zu (line %ld): its cell is empty", i, by[i],
+                    s->line[by[i]]);
+    }
+    if (count > VBI_CONTAINED_SHOWN) {
+        if (tangent)
+            vb_warn(ctx, VB_W_TANGENT_INSIDE_COUNT, s->source, 0,
+                    "%zu spheres in all touch a larger sphere from inside", count);
+        else
+            vb_warn(ctx, VB_W_CONTAINED_COUNT, s->source, 0,
+                    "%zu spheres in all lie inside another sphere", count);
+    }
+}
+
+/* Marks contained spheres (strictly inside another: empty cell) and warns
+ * W701 (each, up to a limit) and W702 (the total). A sphere that only
+ * touches a larger one from inside is not contained: its cell is a point or
+ * a segment that can end at a Voronoi vertex (W722, W723). Decided exactly:
+ * a sphere strictly inside any sphere is contained, whatever it touches. */
 static int find_contained(vb_ctx *ctx, vb_sphere_set *s)
 {
     center_grid g;
     memset(&g, 0, sizeof g);
     size_t *by = malloc(s->n * sizeof *by);
-    if (!by || grid_build(&g, s) != 0) {
+    size_t *touch = malloc(s->n * sizeof *touch);
+    if (!by || !touch || grid_build(&g, s) != 0) {
         free(by);
+        free(touch);
         grid_free(&g);
         return vb_error(ctx, VB_ENOMEM, s->source, 0, "out of memory");
     }
     for (size_t i = 0; i < s->n; i++)
-        by[i] = SIZE_MAX;
+        by[i] = touch[i] = SIZE_MAX;
     for (size_t j = 0; j < s->n; j++) {
         const double c[3] = {s->x[j], s->y[j], s->z[j]};
         size_t lo[3], hi[3];
@@ -309,25 +352,25 @@ static int find_contained(vb_ctx *ctx, vb_sphere_set *s)
                          * refused before we get here. */
                         if (by[i] != SIZE_MAX || vb_decimal_cmp(s->er[i], s->er[j]) >= 0)
                             continue;
-                        if (contained_filtered(ctx, s, i, j))
+                        int nest = nesting(ctx, s, i, j);
+                        if (nest == NEST_INSIDE)
                             by[i] = j;
+                        else if (nest == NEST_TANGENT && touch[i] == SIZE_MAX)
+                            touch[i] = j;
                     }
                 }
     }
     grid_free(&g);
-    size_t count = 0;
     for (size_t i = 0; i < s->n; i++) {
-        if (by[i] == SIZE_MAX)
-            continue;
-        s->contained[i] = 1;
-        if (count++ < VBI_CONTAINED_SHOWN)
-            vb_warn(ctx, VB_W_CONTAINED, s->source, s->line[i],
-                    "sphere %zu lies inside sphere %zu (line %ld): its cell is empty", i, by[i],
-                    s->line[by[i]]);
+        if (by[i] != SIZE_MAX) {
+            s->contained[i] = 1;
+            touch[i] = SIZE_MAX;
+        }
     }
-    if (count > VBI_CONTAINED_SHOWN)
-        vb_warn(ctx, VB_W_CONTAINED_COUNT, s->source, 0, "%zu spheres in all lie inside another sphere", count);
+    warn_nested(ctx, s, by, 0);
+    warn_nested(ctx, s, touch, 1);
     free(by);
+    free(touch);
     return VB_OK;
 }
 

@@ -169,14 +169,17 @@ static void test_contained(void)
                        "5 5 5.5 0.25\n";
     CHECK_INT(read_text(ctx, "c", text, NULL, &s), VB_OK);
     CHECK_INT(vb_spheres_validate(ctx, s, 4), VB_OK);
+    /* Touching from inside is not containment: the cell of sphere 1 is a
+     * point or a segment that can end at a vertex, so it stays (W722). */
     CHECK_INT(s->contained[0], 0);
-    CHECK_INT(s->contained[1], 1);
+    CHECK_INT(s->contained[1], 0);
     CHECK_INT(s->contained[2], 0);
     CHECK_INT(s->contained[3], 0);
     CHECK_INT(s->contained[4], 1);
     CHECK(vb_ctx_stats(ctx)->exact_evals >= 2);
     const char *w = diag_text(diag);
-    CHECK(strstr(w, "W701: c:2: sphere 1 lies inside sphere 0 (line 1)") != NULL);
+    CHECK(strstr(w, "W722: c:2: sphere 1 touches sphere 0 (line 1) from inside") != NULL);
+    CHECK(strstr(w, "W701: c:2:") == NULL);
     CHECK(strstr(w, "W701: c:5: sphere 4 lies inside sphere 3 (line 4)") != NULL);
     CHECK_INT(vb_ctx_stats(ctx)->warnings, 2);
     vb_spheres_free(s);
@@ -200,6 +203,30 @@ static void test_contained(void)
     CHECK(strstr(diag_text(diag), "W702: many: 12 spheres in all lie inside another sphere") !=
           NULL);
     vb_spheres_free(s);
+
+    /* Twelve spheres touching one from inside (six of radius 1 at 99, six
+     * of radius 2 at 98 along the axes): none contained, ten named (W722),
+     * one count (W723). */
+    strcpy(big, "0 0 0 100\n");
+    for (int i = 0; i < 12; i++) {
+        char line[64];
+        int r = i < 6 ? 1 : 2, a = i % 3, sg = (i / 3) % 2 ? -1 : 1;
+        int d = sg * (100 - r);
+        snprintf(line, sizeof line, "%d %d %d %d\n", a == 0 ? d : 0, a == 1 ? d : 0,
+                 a == 2 ? d : 0, r);
+        strcat(big, line);
+    }
+    st->warnings = 0;
+    CHECK_INT(read_text(ctx, "touch", big, NULL, &s), VB_OK);
+    CHECK_INT(vb_spheres_validate(ctx, s, 4), VB_OK);
+    count = 0;
+    for (size_t i = 0; i < s->n; i++)
+        count += s->contained[i];
+    CHECK_INT(count, 0);
+    CHECK_INT(st->warnings, 11);
+    CHECK(strstr(diag_text(diag), "W723: touch: 12 spheres in all touch a larger sphere from inside") !=
+          NULL);
+    vb_spheres_free(s);
     fclose(diag);
     vb_close(ctx);
 }
@@ -218,7 +245,7 @@ static void test_contained_grid(void)
             for (int k = 0; k < 40; k++)
                 p += sprintf(p, "%d %d %d 1\n", 3 * i, 3 * j, 3 * k);
     for (int t = 0; t < 1000; t++)
-        p += sprintf(p, "%d.5 %d %d 0.5\n", 3 * (t % 40), 3 * (t / 40 % 40), 3 * (t / 1600));
+        p += sprintf(p, "%d.25 %d %d 0.5\n", 3 * (t % 40), 3 * (t / 40 % 40), 3 * (t / 1600));
     vb_sphere_set *s = NULL;
     CHECK_INT(vb_spheres_read_buffer(ctx, "grid", text, (size_t)(p - text), NULL, &s), VB_OK);
     CHECK_INT(s->n, n);

@@ -84,6 +84,17 @@ far_hull_vertex)
     # one far hull vertex, 0,1,2,8 at t = 1892 (the next largest t is 53)
     awk_check '$1 == "0,1,2,8" && $5 > 1800 { far++ } $5 > 100 { big++ } END { exit !(far == 1 && big == 1 && NR == 17) }' \
         "17 vertices, one far hull vertex 0,1,2,8 with t > 1800 expected" ;;
+internally_tangent)
+    # sphere 0 touches 1, 2 and 3 from inside: its cell is the origin, a vertex at t = -2
+    awk_check '$1 == "0,1,2,3" && $2 == 0 && $3 == 0 && $4 == 0 && $5 == -2 { ok++ }
+               END { exit !(ok == 1 && NR == 1) }' "the vertex 0,1,2,3 at the origin, t = -2, expected" ;;
+nested_tangent_cluster)
+    # sphere 0 touches six spheres from inside at the origin (degree 7, t = -2);
+    # spheres 7 and 8 lie strictly inside others and touch nothing
+    awk_check '$1 == "0,1,2,3,4,5,6" && $2 == 0 && $3 == 0 && $4 == 0 && $5 == -2 { ok++ }
+               { for (k = 1; k <= n; k++) if (id[k] == 7 || id[k] == 8) bad++ }
+               END { exit !(ok == 1 && bad == 0 && NR == 17) }' \
+        "17 vertices, the degree-7 vertex at the origin, none touching 7 or 8, expected" ;;
 *)
     fail "no property known for case $case" ;;
 esac

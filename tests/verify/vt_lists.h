@@ -13,6 +13,8 @@ static inline int vt_same_list(const vb_vertex_list *a, const vb_vertex_list *b,
 {
     if (a->n != b->n || a->nids != b->nids)
         return 0;
+    if (a->n == 0) /* empty lists may have no arrays at all */
+        return 1;
     return memcmp(a->start, b->start, (a->n + 1) * sizeof *a->start) == 0 &&
            memcmp(a->ids, b->ids, a->nids * sizeof *a->ids) == 0 &&
            memcmp(a->x, b->x, a->n * sizeof *a->x) == 0 &&
