@@ -266,6 +266,13 @@ static int run_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *cell
     return VB_OK;
 }
 
+/* A cell that ran out of a small slice is tried again on large ones; a
+ * tie cluster (VBQ_CLUSTER) goes to the host, which decides it exactly. */
+static int retry_on_device(uint32_t status)
+{
+    return status != VBQ_OK && status != VBQ_CLUSTER;
+}
+
 static int cov_run(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, size_t ncells,
                    vbq_cell_out *out, const uint32_t **quads)
 {
@@ -291,7 +298,7 @@ static int cov_run(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, siz
      * many groups at once instead of lengthening the batch. */
     size_t nroot = 24u * (size_t)s->env.T * s->env.T, n2 = 0;
     for (size_t c = 0; rc == VB_OK && s->tier[1].slices && c < ncells; c++)
-        if (out[c].status != VBQ_OK)
+        if (retry_on_device(out[c].status))
             n2 += nroot;
     if (rc == VB_OK && n2) {
         if (n2 > s->cap2) {
@@ -310,7 +317,7 @@ static int cov_run(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, siz
         }
         size_t j = 0;
         for (size_t c = 0; c < ncells; c++)
-            if (out[c].status != VBQ_OK)
+            if (retry_on_device(out[c].status))
                 for (size_t r = 0; r < nroot; r++, j++) {
                     s->cells2[j] = cells[c];
                     s->roots2[j] = VBQ_TASK((uint32_t)(r / 4), (uint32_t)(r % 4) + 1u);
@@ -321,7 +328,7 @@ static int cov_run(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, siz
          * by the driver). */
         j = 0;
         for (size_t c = 0; rc == VB_OK && c < ncells; c++) {
-            if (out[c].status != VBQ_OK) {
+            if (retry_on_device(out[c].status)) {
                 const vbq_cell_out *t = s->outs2 + j;
                 j += nroot;
                 vbq_cell_out sum = t[0];

@@ -431,6 +431,12 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
                 owned = sh[S_OWNED];
             }
             int act = closed ? vbq_decide(&e, &fr, keep, owned) : 1;
+            /* a tie cluster: the host decides it (vbq_cover_cell) */
+            if (act != 0 && vbq_tie_cluster(&fr, act, closed, keep, owned)) {
+                if (lane == 0u)
+                    sh[S_STATUS] = VBQ_CLUSTER;
+                act = 0;
+            }
             if (lane == 0u && act >= 2) {
                 o.leaves++;
                 if (act == 3)

@@ -536,6 +536,7 @@ int vb_cover_prepare(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_optio
     e->m = (uint32_t)g->m;
     e->rmax_all = g->rmax_all;
     e->near = near_radius(g);
+    e->host = set;
     *tree = t;
     return VB_OK;
 }

@@ -219,6 +219,15 @@ VBS_FN void vbq_patch_square(vbs_u32 T, vbs_u32 level, vbs_u32 iu, vbs_u32 iv, d
 #define VBQ_OVER_LAB 2u
 #define VBQ_OVER_ST 3u
 #define VBQ_OVER_Q 4u
+/* 5 is the kernels' VBQ_OVER_OUT. A leaf that ties many labels: the cell
+ * is covered again on the host, which decides such leaves exactly
+ * (vbq_host_cluster). */
+#define VBQ_CLUSTER 6u
+
+/* A leaf enumerated at the deepest level or after a stall with more owned
+ * labels than this is a tie cluster, decided exactly before any of its
+ * C(owned, 3) quadruples is written (speed only: both ways are complete). */
+#define VBQ_CLUSTER_OWNED 5u
 
 /* A patch waiting in the depth-first stack. */
 typedef struct vbq_frame {
@@ -254,6 +263,9 @@ typedef struct vbq_env {
     double rmax_all;   /* largest radius of the tree's spheres */
     double near;       /* first guess of a near list's radius, beyond 2 rmax_all */
     vbs_u32 T, min_level, max_level, enum_max;
+#ifndef __OPENCL_C_VERSION__
+    const void *host;  /* the host's exact input for vbq_host_cluster (NULL: none) */
+#endif
 } vbq_env;
 
 /* Scratch of one cell, fixed capacities. */
@@ -692,6 +704,20 @@ VBS_FN int vbq_add_quad(const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i, vbs_u32
     return 1;
 }
 
+/* Is a patch a tie cluster to decide exactly (vbq_host_cluster) before
+ * anything else: a leaf to enumerate (act 3: deepest level or stalled) with
+ * more than VBQ_CLUSTER_OWNED owned labels, or a closed patch to subdivide
+ * that excluded nothing for a multiple of VBQ_STALL levels with as many
+ * (the decision holds at any level; trying it every VBQ_STALL levels bounds
+ * its cost where it fails). */
+VBS_FN int vbq_tie_cluster(const vbq_frame *fr, int act, int closed, vbs_u32 keep, vbs_u32 owned)
+{
+    if (owned <= VBQ_CLUSTER_OWNED)
+        return 0;
+    return act == 3 || (act == 1 && owned > VBQ_STALL_ENUM && closed && keep == fr->len &&
+                        (fr->stall + 1u) % VBQ_STALL == 0u);
+}
+
 /* The root patches of a task: all of them (VBQ_ALL_ROOTS), or root r
  * alone (task (r << 3)), or child c (0..3) of root r alone (task (r << 3) |
  * (c + 1)): the root's own evaluation is the same in every task, and only
@@ -712,6 +738,36 @@ VBS_FN int vbq_task_child(vbs_u32 task, vbs_u32 level, vbs_u32 k)
 }
 
 #ifndef VBQ_GROUP_ONLY
+
+#ifndef __OPENCL_C_VERSION__
+/* The exact decision of a tie cluster on the host (core/cells/
+ * cover_cluster.c): the owned labels ids[0 .. n) of a leaf of cell i.
+ * Returns 1 when it proved which quadruples the leaf needs and added them
+ * (vbq_add_quad), 0 when the leaf must be enumerated, -1 when an arena ran
+ * out (o->status set). */
+int vbq_host_cluster(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i,
+                     const vbs_u32 *ids, vbs_u32 n);
+
+/* vbq_host_cluster over the owned labels of the surviving list
+ * lab[top .. top + keep) (their ids copied above it). */
+static inline int vbq_cluster_leaf(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o,
+                                   vbs_u32 i, vbs_u32 top, vbs_u32 keep)
+{
+    if (!e->host)
+        return 0;
+    vbs_u32 no = 0u, base = top + keep;
+    if (base + keep > ar->lab_cap) {
+        o->status = VBQ_OVER_LAB;
+        return -1;
+    }
+    for (vbs_u32 a = 0u; a < keep; a++) {
+        vbs_u32 ja = ar->nb[ar->lab[top + a]].id;
+        if (ja > i)
+            ar->lab[base + no++] = ja;
+    }
+    return vbq_host_cluster(e, ar, o, i, ar->lab + base, no);
+}
+#endif
 
 /* Covers the cell of sphere i (the root patch `root` of it, or every one
  * with VBQ_ALL_ROOTS): writes the quadruples {i < j < k < l} whose roots
@@ -855,6 +911,20 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
         int act = closed ? vbq_decide(e, &fr, keep, owned) : 1;
         if (act == 0)
             continue;
+        if (vbq_tie_cluster(&fr, act, closed, keep, owned)) {
+#ifdef __OPENCL_C_VERSION__
+            o->status = VBQ_CLUSTER;
+            return;
+#else
+            int hc = vbq_cluster_leaf(e, ar, o, i, top, keep);
+            if (hc < 0)
+                return;
+            if (hc > 0) {
+                o->leaves++;
+                continue;
+            }
+#endif
+        }
         if (act >= 2) {
             o->leaves++;
             if (act == 3)

@@ -1,0 +1,172 @@
+/* The exact decision of a tie cluster (vbq_host_cluster, vb_cover_shared.h):
+ * a leaf of the direction cover whose owned labels never separated, because
+ * they tie exactly (the outer layers of a crystal tie at infinity, the
+ * spheres of a cospherical cluster at its centre). Enumerating such a leaf
+ * writes C(k, 3) quadruples that all solve to the same one or two points;
+ * this decides from the exact input which of them can hold a vertex.
+ *
+ * Why it is complete. Seen from c_i a label j is the affine function
+ * f_j(u) = p_j . (u, 1) of the direction u, with p_j = (d_j, delta_j) / N_j
+ * in R^4 (vb_cover_shared.h). Let the owned labels' points p_j lie in an
+ * affine plane P (affine rank <= 2). A vertex w of cell i whose smallest
+ * member is i has its other members M among the leaf's owned labels (the
+ * cover's argument), tied at the largest value of f over them at w, and w is
+ * an isolated point of that tie. For fixed u, f_j(u) is an affine function of
+ * p_j restricted to P, so the labels that tie at its maximum form a face of
+ * the polygon conv{p_j}: a vertex (one label), an edge, or all of them when
+ * the function is constant on P. The directions where an edge's labels tie
+ * at the top form a curve (one linear condition and an inequality), along
+ * which no owned label and no label outside the owned ones can make an
+ * isolated point (the latter would be tied at w, so a member smaller than
+ * i, or the label of infinity, where the common value is 0 and w no vertex).
+ * So M is every owned label and w lies where f is constant on P: u with
+ * (u, 1) orthogonal to P's two directions, a line that meets the unit
+ * sphere in at most two points, which are exactly the roots of the
+ * quadruple of i and any three owned labels spanning P. One such quadruple
+ * therefore holds every vertex the leaf can have (the certifier finds all
+ * its members); with affine rank <= 1 the ties run along a curve and the
+ * leaf has no vertex at all. Any other rank is left to the enumeration.
+ *
+ * The test is exact: p_j lifted to (p_j, 1) is a multiple of the integer
+ * vector V_j = (D_j, Delta_j, N_j) of the decimals scaled to a common
+ * exponent, so the affine rank of the points is the linear rank of the V_j
+ * minus one, found by fraction-free elimination in GMP integers. */
+#include <gmp.h>
+#include <stdlib.h>
+
+#include "vb_cover_shared.h"
+#include "vb_spheres.h"
+
+/* Rows of at most 4 integer 5-vectors in echelon form (fraction-free):
+ * row r has its first non-zero entry in column piv[r], zero below it in
+ * earlier rows' pivot columns. */
+typedef struct echelon {
+    mpz_t row[4][5];
+    int piv[4];
+    vbs_u32 id[4];
+    int n;
+    mpz_t t, vp;
+} echelon;
+
+static void ech_init(echelon *E)
+{
+    for (int r = 0; r < 4; r++)
+        for (int c = 0; c < 5; c++)
+            mpz_init(E->row[r][c]);
+    mpz_init(E->t);
+    mpz_init(E->vp);
+    E->n = 0;
+}
+
+static void ech_clear(echelon *E)
+{
+    for (int r = 0; r < 4; r++)
+        for (int c = 0; c < 5; c++)
+            mpz_clear(E->row[r][c]);
+    mpz_clear(E->t);
+    mpz_clear(E->vp);
+}
+
+/* Reduces v (overwritten) against the rows; appends it when it is not in
+ * their span (and there is room). Returns 1 when v was independent. */
+static int ech_add(echelon *E, mpz_t v[5], vbs_u32 id)
+{
+    for (int r = 0; r < E->n; r++) {
+        int p = E->piv[r];
+        if (!mpz_sgn(v[p]))
+            continue;
+        /* v <- row[p] v - v[p] row: v[p] becomes 0, exactly (v[p] is
+         * kept aside, since the loop overwrites it). */
+        mpz_set(E->vp, v[p]);
+        for (int c = 0; c < 5; c++) {
+            mpz_mul(E->t, E->row[r][p], v[c]);
+            mpz_submul(E->t, E->vp, E->row[r][c]);
+            mpz_swap(v[c], E->t);
+        }
+        /* keep the numbers small: divide by the content */
+        mpz_set_ui(E->t, 0);
+        for (int c = 0; c < 5; c++)
+            mpz_gcd(E->t, E->t, v[c]);
+        if (mpz_cmp_ui(E->t, 1) > 0)
+            for (int c = 0; c < 5; c++)
+                mpz_divexact(v[c], v[c], E->t);
+    }
+    int p = 0;
+    while (p < 5 && !mpz_sgn(v[p]))
+        p++;
+    if (p == 5)
+        return 0;
+    if (E->n < 4) {
+        for (int c = 0; c < 5; c++)
+            mpz_set(E->row[E->n][c], v[c]);
+        E->piv[E->n] = p;
+        E->id[E->n] = id;
+        E->n++;
+    }
+    return 1;
+}
+
+/* z = decimal * 10^(exp - emin). */
+static void dec_scaled(mpz_t z, vb_decimal d, int32_t emin, mpz_t t)
+{
+    mpz_set_si(z, (long)d.mant);
+    if (d.exp10 > emin) {
+        mpz_ui_pow_ui(t, 10, (unsigned long)(d.exp10 - emin));
+        mpz_mul(z, z, t);
+    }
+}
+
+int vbq_host_cluster(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i,
+                     const vbs_u32 *ids, vbs_u32 n)
+{
+    const vb_sphere_set *s = e->host;
+    if (!s || !s->ex || n < 3)
+        return 0;
+    int32_t emin = s->ex[i].exp10;
+    const vb_decimal *col[4] = {s->ex, s->ey, s->ez, s->er};
+    for (vbs_u32 k = 0; k <= n; k++) {
+        vbs_u32 j = k < n ? ids[k] : i;
+        for (int a = 0; a < 4; a++)
+            if (col[a][j].exp10 < emin)
+                emin = col[a][j].exp10;
+    }
+    echelon E;
+    ech_init(&E);
+    mpz_t v[5], ci[4], t;
+    for (int c = 0; c < 5; c++)
+        mpz_init(v[c]);
+    for (int a = 0; a < 4; a++)
+        mpz_init(ci[a]);
+    mpz_init(t);
+    for (int a = 0; a < 4; a++)
+        dec_scaled(ci[a], col[a][i], emin, t);
+    int decided = 1;
+    for (vbs_u32 k = 0; k < n && decided; k++) {
+        vbs_u32 j = ids[k];
+        for (int a = 0; a < 4; a++) {
+            dec_scaled(v[a], col[a][j], emin, t);
+            mpz_sub(v[a], v[a], ci[a]);
+        }
+        mpz_mul(v[4], v[0], v[0]);
+        mpz_addmul(v[4], v[1], v[1]);
+        mpz_addmul(v[4], v[2], v[2]);
+        mpz_submul(v[4], v[3], v[3]);
+        /* N_j = 0: j touches i from inside, f_j is not an affine function */
+        if (mpz_sgn(v[4]) <= 0) {
+            decided = 0;
+            break;
+        }
+        if (ech_add(&E, v, j) && E.n > 3)
+            decided = 0; /* affine rank >= 3 */
+    }
+    int rc = decided;
+    if (decided && E.n == 3 && !vbq_add_quad(ar, o, i, E.id[0], E.id[1], E.id[2]))
+        rc = -1;
+    for (int c = 0; c < 5; c++)
+        mpz_clear(v[c]);
+    for (int a = 0; a < 4; a++)
+        mpz_clear(ci[a]);
+    mpz_clear(t);
+    ech_clear(&E);
+    return rc;
+}
