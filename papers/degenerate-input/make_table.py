@@ -98,7 +98,8 @@ def markdown(head, rows):
                 if s is None or base is None or base[0] <= 0:
                     cells.append("-")
                 else:
-                    cells.append("%s%.0f" % (">" if s[1] else "", s[0] / base[0]))
+                    q = s[0] / base[0]
+                    cells.append("%s%.*f" % (">" if s[1] else "", 1 if q < 10 else 0, q))
             out.append("| %s | %s | %s | %s |" % (kind, num(str(n)), d["random"]["wall_s"] if "random" in d else "-",
                                                   " | ".join(cells)))
     return "\n".join(out) + "\n"
