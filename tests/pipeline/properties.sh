@@ -95,6 +95,21 @@ nested_tangent_cluster)
                { for (k = 1; k <= n; k++) if (id[k] == 7 || id[k] == 8) bad++ }
                END { exit !(ok == 1 && bad == 0 && NR == 17) }' \
         "17 vertices, the degree-7 vertex at the origin, none touching 7 or 8, expected" ;;
+cospherical_unequal)
+    # nine spheres of nine radii tangent to the sphere of radius 2 at the origin
+    awk_check '$1 == "0,1,2,3,4,5,6,7,8" && $2 == 0 && $3 == 0 && $4 == 0 && $5 == 2 { ok++ } n > 4 { big++ }
+               END { exit !(ok == 1 && big == 1 && NR == 19) }' \
+        "19 vertices, one of degree 9 (0..8) at the origin with t = 2, expected" ;;
+fcc_hull_ties)
+    # octahedral holes (degree 6) inside, ties of five on the flat hull
+    awk_check '{ d[n]++ } END { exit !(d[4] == 39 && d[5] == 12 && d[6] == 4 && NR == 55) }' \
+        "39 vertices of degree 4, 12 of degree 5, 4 of degree 6 expected" ;;
+near_cospherical)
+    # twelve balls within 1e-6 of tangent to one sphere: simple vertices crowded at its centre
+    awk_check 'n == 4 { dx = $2 - 1.5; dy = $3 + 2; dz = $4 - 0.5; dt = $5 - 8
+                        if (dx * dx + dy * dy + dz * dz < 1e-8 && dt * dt < 1e-8) near++ }
+               END { exit !(near == 17 && NR == 17) }' \
+        "17 vertices of degree 4, all within 1e-4 of (1.5, -2, 0.5) with t = 8, expected" ;;
 *)
     fail "no property known for case $case" ;;
 esac
