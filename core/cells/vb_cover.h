@@ -22,7 +22,10 @@ extern "C" {
 
 #define VB_COVER_DEFAULT_TILES 2u    /* root squares per face side */
 #define VB_COVER_DEFAULT_MIN_LEVEL 2u
-#define VB_COVER_MAX_LEVEL 24u        /* deepest subdivision (then enumerate) */
+#define VB_COVER_MAX_LEVEL 48u        /* deepest subdivision (then enumerate): near-ties of
+                                         1e-12 (jittered crystals, tangency to 1e-6)
+                                         separate by level 45; 2^48 T squares per
+                                         face side stay exact doubles for T <= 16 */
 
 typedef struct vb_cover_options {
     unsigned tiles;      /* root squares per face side, power of two (0: default) */

@@ -189,12 +189,13 @@ VBS_FN void vbq_eval_diff(const vbq_nb *k, const vbq_nb *j, const double m[3], c
     *hi = F + R;
 }
 
-/* The square of a patch: level l, integer position (iu, iv) of 2^l T
- * squares per face side. Dyadic, so u0..v1 are exact doubles. */
-VBS_FN void vbq_patch_square(vbs_u32 T, vbs_u32 level, vbs_u32 iu, vbs_u32 iv, double *u0,
+/* The square of a patch: level l (< 53 - log2 T), integer position
+ * (iu, iv) of 2^l T squares per face side. Dyadic, so u0..v1 are exact
+ * doubles (the positions are below 2^53). */
+VBS_FN void vbq_patch_square(vbs_u32 T, vbs_u32 level, vbs_u64 iu, vbs_u64 iv, double *u0,
                              double *u1, double *v0, double *v1)
 {
-    double side = 2.0 / ((double)T * (double)(1u << level));
+    double side = 2.0 / ((double)T * (double)((vbs_u64)1 << level));
     *u0 = -1.0 + side * (double)iu;
     *u1 = -1.0 + side * (double)(iu + 1u);
     *v0 = -1.0 + side * (double)iv;
@@ -231,14 +232,15 @@ VBS_FN void vbq_patch_square(vbs_u32 T, vbs_u32 level, vbs_u32 iu, vbs_u32 iv, d
 
 /* A patch waiting in the depth-first stack. */
 typedef struct vbq_frame {
-    vbs_u32 f, level, iu, iv;
+    vbs_u32 f, level;
+    vbs_u64 iu, iv;    /* 64 bits: near-ties need levels past 31 */
     vbs_u32 off, len;  /* labels in lab[off .. off + len): indices into nb */
     vbs_u32 stall;     /* consecutive levels that excluded no label */
     vbs_u32 pad;
     double rq;         /* every sphere centred within rq of c_i is in the list or was
                           excluded by an ancestor (INFINITY: every sphere) */
 } vbq_frame;
-VBS_ASSERT_LAYOUT(sizeof(vbq_frame) == 40, "vbq_frame layout shared with OpenCL");
+VBS_ASSERT_LAYOUT(sizeof(vbq_frame) == 48, "vbq_frame layout shared with OpenCL");
 
 /* What one cell's cover did (counters for --stats; nq quadruples written). */
 typedef struct vbq_cell_out {
@@ -654,8 +656,8 @@ VBS_FN void vbq_child(const vbq_frame *fr, vbs_u32 k, vbs_u32 off, vbs_u32 keep,
 {
     ch->f = fr->f;
     ch->level = fr->level + 1u;
-    ch->iu = 2u * fr->iu + (k & 1u);
-    ch->iv = 2u * fr->iv + (k >> 1);
+    ch->iu = 2u * fr->iu + (vbs_u64)(k & 1u);
+    ch->iv = 2u * fr->iv + (vbs_u64)(k >> 1);
     ch->off = off;
     ch->len = keep;
     ch->stall = keep == fr->len ? fr->stall + 1u : 0u;

@@ -33,6 +33,7 @@
 #define VBS_ASSERT_LAYOUT(cond, msg) _Static_assert(cond, msg)
 #endif
 typedef vb_u32 vbs_u32;
+typedef vb_u64 vbs_u64;
 #define VBS_GLOBAL VB_GLOBAL
 #define VBS_FN VB_SHARED_FN
 #define VBS_SQRT sqrt
