@@ -432,7 +432,7 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
             }
             int act = closed ? vbq_decide(&e, &fr, keep, owned) : 1;
             /* a tie cluster: the host decides it (vbq_cover_cell) */
-            if (act != 0 && vbq_tie_cluster(&fr, act, closed, keep, owned)) {
+            if (act != 0 && vbq_tie_cluster(nb, lab + top, keep, owned, i, act, closed)) {
                 if (lane == 0u)
                     sh[S_STATUS] = VBQ_CLUSTER;
                 act = 0;

@@ -706,18 +706,91 @@ VBS_FN int vbq_add_quad(const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i, vbs_u32
     return 1;
 }
 
-/* Is a patch a tie cluster to decide exactly (vbq_host_cluster) before
- * anything else: a leaf to enumerate (act 3: deepest level or stalled) with
- * more than VBQ_CLUSTER_OWNED owned labels, or a closed patch to subdivide
- * that excluded nothing for a multiple of VBQ_STALL levels with as many
- * (the decision holds at any level; trying it every VBQ_STALL levels bounds
- * its cost where it fails). */
-VBS_FN int vbq_tie_cluster(const vbq_frame *fr, int act, int closed, vbs_u32 keep, vbs_u32 owned)
+/* Do the owned labels (ids > i) of lab[0 .. keep) look like an exact tie
+ * cluster: are their points (a, b) in R^4 on one affine plane as far as the
+ * doubles tell (within 8 times the records' error bounds and 1e-12 of the
+ * points' size)? Only a trigger: the host decides exactly (vbq_host_cluster)
+ * and enumerates whatever is not a cluster; near-ties beyond the doubles'
+ * noise do not look flat and are left to the subdivision. Three passes: the
+ * point farthest from the first, the one farthest from their line, then
+ * every distance to the plane of the three. */
+VBS_FN int vbq_looks_flat(const VBS_GLOBAL vbq_nb *nb, const VBS_GLOBAL vbs_u32 *lab, vbs_u32 keep,
+                          vbs_u32 i)
 {
-    if (owned <= VBQ_CLUSTER_OWNED)
+    double p0[4] = {0.0, 0.0, 0.0, 0.0}, v1[4] = {0.0, 0.0, 0.0, 0.0}, v2[4] = {0.0, 0.0, 0.0, 0.0};
+    double scale = 0.0, emax = 0.0, best = -1.0;
+    int have = 0;
+    for (vbs_u32 a = 0u; a < keep; a++) {
+        vbq_nb r = nb[lab[a]];
+        if (r.id <= i)
+            continue;
+        if (!(r.err < (double)INFINITY))
+            return 0;
+        double q[4] = {r.ax, r.ay, r.az, r.b};
+        emax = r.err > emax ? r.err : emax;
+        for (int k = 0; k < 4; k++)
+            scale = VBS_FABS(q[k]) > scale ? VBS_FABS(q[k]) : scale;
+        if (!have) {
+            for (int k = 0; k < 4; k++)
+                p0[k] = q[k];
+            have = 1;
+            continue;
+        }
+        double d2 = 0.0;
+        for (int k = 0; k < 4; k++)
+            d2 += (q[k] - p0[k]) * (q[k] - p0[k]);
+        if (d2 > best) {
+            best = d2;
+            for (int k = 0; k < 4; k++)
+                v1[k] = q[k] - p0[k];
+        }
+    }
+    double tol = 8.0 * emax + 1e-12 * scale;
+    if (!(best > tol * tol))
+        return 1;
+    double n1 = VBS_SQRT(best);
+    for (int k = 0; k < 4; k++)
+        v1[k] /= n1;
+    for (int pass = 0; pass < 2; pass++) {
+        double far = -1.0, w2[4] = {0.0, 0.0, 0.0, 0.0};
+        for (vbs_u32 a = 0u; a < keep; a++) {
+            vbq_nb r = nb[lab[a]];
+            if (r.id <= i)
+                continue;
+            double w[4] = {r.ax - p0[0], r.ay - p0[1], r.az - p0[2], r.b - p0[3]};
+            double c1 = w[0] * v1[0] + w[1] * v1[1] + w[2] * v1[2] + w[3] * v1[3];
+            double c2 = w[0] * v2[0] + w[1] * v2[1] + w[2] * v2[2] + w[3] * v2[3];
+            double d2 = 0.0;
+            for (int k = 0; k < 4; k++) {
+                double e = w[k] - c1 * v1[k] - c2 * v2[k];
+                d2 += e * e;
+            }
+            if (d2 > far) {
+                far = d2;
+                for (int k = 0; k < 4; k++)
+                    w2[k] = w[k] - c1 * v1[k] - c2 * v2[k];
+            }
+        }
+        if (!(far > tol * tol))
+            return 1;
+        if (pass == 1)
+            return 0;
+        double n2 = VBS_SQRT(far);
+        for (int k = 0; k < 4; k++)
+            v2[k] = w2[k] / n2;
+    }
+    return 0;
+}
+
+/* Is a closed patch a tie cluster to decide exactly (vbq_host_cluster)
+ * before it is enumerated (act 3) or subdivided (act 1): more than
+ * VBQ_CLUSTER_OWNED owned labels that look flat (vbq_looks_flat). */
+VBS_FN int vbq_tie_cluster(const VBS_GLOBAL vbq_nb *nb, const VBS_GLOBAL vbs_u32 *lab,
+                           vbs_u32 keep, vbs_u32 owned, vbs_u32 i, int act, int closed)
+{
+    if (owned <= VBQ_CLUSTER_OWNED || !closed || (act != 1 && act != 3))
         return 0;
-    return act == 3 || (act == 1 && owned > VBQ_STALL_ENUM && closed && keep == fr->len &&
-                        (fr->stall + 1u) % VBQ_STALL == 0u);
+    return vbq_looks_flat(nb, lab, keep, i);
 }
 
 /* The root patches of a task: all of them (VBQ_ALL_ROOTS), or root r
@@ -913,7 +986,7 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
         int act = closed ? vbq_decide(e, &fr, keep, owned) : 1;
         if (act == 0)
             continue;
-        if (vbq_tie_cluster(&fr, act, closed, keep, owned)) {
+        if (vbq_tie_cluster(ar->nb, ar->lab + top, keep, owned, i, act, closed)) {
 #ifdef __OPENCL_C_VERSION__
             o->status = VBQ_CLUSTER;
             return;

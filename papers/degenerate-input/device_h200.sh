@@ -49,7 +49,7 @@ printf 'input\tspheres\tvertices\tcomplete\tbench_total_s\tcover_s\tcertify_s\tp
 for f in "$in"/*.xyzr; do
     c=$(basename "$f" .xyzr)
     n=$(grep -vc '^#' "$f")
-    timeout 120 "$vorball" bench --device gpu --repeat 3 --json "$f" > "$in/$c.bench.json" 2> "$in/$c.bench.err"
+    timeout 90 "$vorball" bench --device gpu --repeat 3 --json "$f" > "$in/$c.bench.json" 2> "$in/$c.bench.err"
     set -- $(python3 -c "import json,sys
 try:
     r = json.load(open(sys.argv[1]))[0]
@@ -57,9 +57,11 @@ try:
 except Exception:
     print('- - -')" "$in/$c.bench.json")
     total=$1 cover=$2 cert=$3
-    /usr/bin/time -f '%e %M' -o "$in/$c.time" timeout 300 "$vorball" vertices --device gpu --stats "$f" \
+    /usr/bin/time -f '%e %M' -o "$in/$c.time" timeout 120 "$vorball" vertices --device gpu --stats "$f" \
         -o "$in/$c.tsv" 2> "$in/$c.err"
-    read -r wall rss < "$in/$c.time" 2> /dev/null || { wall=timeout; rss=; }
+    # time(1) puts "Command exited with non-zero status N" first when it failed
+    wall=$(tail -n 1 "$in/$c.time" | cut -d' ' -f1) rss=$(tail -n 1 "$in/$c.time" | cut -d' ' -f2)
+    grep -q 'status 124' "$in/$c.time" && wall=timeout
     nv=$(grep -vc '^#' "$in/$c.tsv" 2> /dev/null)
     comp=no
     grep -q '^# complete: ' "$in/$c.tsv" 2> /dev/null && comp=yes
@@ -67,7 +69,6 @@ except Exception:
     ne=$(awk '$1 == "exact_evals" { print $2 }' "$in/$c.err")
     printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$c" "$n" "$nv" "$comp" "$total" "$cover" \
         "$cert" "$wall" "$rss" "$nq" "$ne" >> "$tsv"
-    cp "$in/$c.bench.json" "$out/" 2> /dev/null
 done
 # 4. the same bytes on the host threads for the crystal (the reference backend)
 timeout 200 "$vorball" vertices --device ref "$in/fcc29.xyzr" -o "$in/fcc29.ref.tsv" 2> /dev/null
