@@ -271,10 +271,35 @@ int vbi_altloc_keeps(vbi_altloc *a, const vb_atom_info *info);
 int vbi_atom_dropped(const vb_read_options *opt, vbi_altloc *alt, const vb_atom_info *info,
                      vbi_dropped *dr);
 
-/* Content detection into *out. Returns VB_OK, VB_EINPUT_EMPTY (only blank
- * and '#' lines) or VB_EINPUT_FORMAT (nothing fits); sets no message. PDB
- * header records without atoms are VB_FMT_PDB (its reader says "no
- * atoms"). */
+/* Content detection, the one path of every reader (whole buffers and
+ * streams alike): lines are fed one by one, whole, until the format is
+ * decided - GRO by its first three lines, mmCIF and XYZR by the first
+ * record, PDB against PQR by the first VBI_DETECT_ATOM_LINES atom records,
+ * however many header lines come before them. No byte budget: a stream is
+ * read as far as the decision needs. */
+typedef struct vbi_detector {
+    long lines;             /* lines fed */
+    int gro;                /* 1 GRO, -1 not GRO, 0 undecided */
+    int seen;               /* a record (non-blank, non-'#' line) was met */
+    int other_done;         /* the non-GRO decision is made */
+    vb_format other;        /* VB_FMT_MMCIF or VB_FMT_XYZR when the first record said so */
+    int atoms, pdb_votes, pqr_votes, records;
+} vbi_detector;
+
+void vbi_detector_init(vbi_detector *d);
+/* Feeds one whole line (without its terminator); returns 1 once the format
+ * is decided (later lines would not change it). */
+int vbi_detector_line(vbi_detector *d, const char *line, size_t n);
+/* Feeds the whole lines of buf (split as vbi_lines splits them; buf must
+ * end at a line end or at the end of the input); returns 1 once decided. */
+int vbi_detector_feed(vbi_detector *d, const char *buf, size_t len);
+/* The decision on the lines fed so far, into *out. Returns VB_OK,
+ * VB_EINPUT_EMPTY (only blank and '#' lines) or VB_EINPUT_FORMAT (nothing
+ * fits); sets no message. PDB header records without atoms are VB_FMT_PDB
+ * (its reader says "no atoms"). */
+int vbi_detector_result(const vbi_detector *d, vb_format *out);
+
+/* vbi_detector over the whole buffer: returns as vbi_detector_result. */
 int vbi_detect_format(const char *buf, size_t len, vb_format *out);
 
 /* True when the line is one of the common PDB records (HEADER, REMARK,
