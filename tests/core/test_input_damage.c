@@ -4,7 +4,9 @@
  * claims 2^31 - 1 atoms, DCDs ending in stray bytes; NUL bytes, a UTF-8
  * byte-order mark, CR-only line ends, a truncated last MODEL and an altloc
  * block that comes back after other residues, through the buffer readers and
- * the frame reader. */
+ * the frame reader. Issue 28: a GRO atom count that disagrees with the atom
+ * lines (item 2; the box line is checked, and never read as an atom: no
+ * W707, item 9). */
 #include <stdint.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -420,6 +422,57 @@ static void test_altloc_split(void)
     vb_close(ctx);
 }
 
+/* Issue 28, item 2: a GRO whose count says fewer atoms than its lines
+ * hold was read short, exit 0; one that says more read the box line as an
+ * atom of unknown element (W707). Both are E101 at the line, through the
+ * buffer reader (vertices, read()) and the frame reader (channels). */
+#define GRO_ATOM(k, x) "    1ALA     CA    " k "   " x "   0.100   0.100\n"
+static void test_gro_count(void)
+{
+    FILE *diag;
+    vb_ctx *ctx = open_ctx(&diag);
+    static const char atoms6[] = GRO_ATOM("1", "0.100") GRO_ATOM("2", "0.400")
+        GRO_ATOM("3", "0.700") GRO_ATOM("4", "1.000") GRO_ATOM("5", "1.300") GRO_ATOM("6", "1.600");
+    char text[1024];
+    vb_sphere_set *s = NULL;
+    /* Right: 6 atoms, and a triclinic box (9 numbers) is a box too. */
+    snprintf(text, sizeof text, "t\n6\n%s   1.0 1.0 1.0 0 0 0 0 0 0\n", atoms6);
+    CHECK_INT(read_text(ctx, "ok.gro", text, NULL, &s), VB_OK);
+    CHECK_INT(s ? s->n : 0, 6);
+    CHECK(s && s->x[5] == 16.0);
+    vb_spheres_free(s);
+    s = NULL;
+    /* The count says 3 of 6: line 6 (atom 4) is not the box. */
+    snprintf(text, sizeof text, "t\n3\n%s   1.0 1.0 1.0\n", atoms6);
+    CHECK_ERROR(ctx, read_text(ctx, "short.gro", text, NULL, &s), VB_EINPUT_MALFORMED,
+                "short.gro:6:");
+    CHECK(s == NULL);
+    CHECK(strstr(vb_errmsg(ctx), "count on line 2 says 3") != NULL);
+    /* The same through the frame reader, and for a later frame. */
+    const char *path = temp_file(text);
+    vb_read_options o;
+    memset(&o, 0, sizeof o);
+    vb_frame_reader *rd = NULL;
+    int model = 0;
+    CHECK_INT(vb_frame_reader_open(ctx, path, &o, &rd), VB_OK);
+    CHECK_INT(vb_frame_reader_next(ctx, rd, &s, &model), VB_EINPUT_MALFORMED);
+    CHECK(s == NULL);
+    vb_frame_reader_close(rd);
+    unlink(path);
+    char two[2048];
+    snprintf(two, sizeof two, "t\n6\n%s   1.0 1.0 1.0\nt\n3\n%s   1.0 1.0 1.0\n", atoms6, atoms6);
+    o.model = 2;
+    CHECK_ERROR(ctx, read_text(ctx, "two.gro", two, &o, &s), VB_EINPUT_MALFORMED, "two.gro:15:");
+    CHECK(strstr(vb_errmsg(ctx), "count on line 11 says 3") != NULL);
+    /* The count says 8 of 6: the box line comes early, E101 there, no W707. */
+    snprintf(text, sizeof text, "t\n8\n%s   1.0 1.0 1.0\n", atoms6);
+    CHECK_ERROR(ctx, read_text(ctx, "long.gro", text, NULL, &s), VB_EINPUT_MALFORMED,
+                "long.gro:9:");
+    CHECK(strstr(vb_errmsg(ctx), "box line after 6 atoms") != NULL);
+    CHECK(strstr(diag_text(diag), "W707") == NULL);
+    vb_close(ctx);
+}
+
 int main(void)
 {
     test_duplicates();
@@ -430,5 +483,6 @@ int main(void)
     test_cr_only();
     test_truncated_model();
     test_altloc_split();
+    test_gro_count();
     VB_TEST_END();
 }
