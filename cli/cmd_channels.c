@@ -783,7 +783,7 @@ int vb_cmd_channels(int argc, char **argv)
     }
     vb_ctx *ctx;
     if (vb_world_open_ctx(&ctx) != VB_OK) {
-        fprintf(stderr, "vorball: out of memory\n");
+        fprintf(stderr, "vorball: E%d: out of memory\n", vb_diag_number(VB_ENOMEM));
         return VB_EXIT_NOMEM;
     }
     int rc = VB_OK, rank0 = vb_world_rank() == 0;
