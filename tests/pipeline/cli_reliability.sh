@@ -6,7 +6,8 @@
 #  - a failed write of the vertices names the file (E8);
 #  - `channels --volume v%d.mrc` writes a file per frame for any number of
 #    frames (the output table held 32: E8 "too many output files" at 31),
-#    and none when a later one cannot be written.
+#    and none when a later one cannot be written;
+#  - a DCD cut inside its first frame: E111 names the DCD, not the topology.
 # usage: cli_reliability.sh VORBALL CORPUS_DIR WORK_DIR
 vorball=$1 corpus=$2 work=$3/cli_reliability
 here=$(cd "$(dirname "$0")" && pwd)
@@ -55,4 +56,10 @@ expect_line "$out" "E8: v40.mrc"
 [ "$(ls -d v*.mrc)" = "v40.mrc" ] || fail "partial output: $(ls -d v*.mrc | head -3)"
 [ -e ch.csv ] && fail "partial output: ch.csv"
 ls -a | grep -q vorball- && fail "temporary files left: $(ls -a | grep vorball-)"
+
+# A DCD with no whole frame (cut inside frame 1; W801 says so): E111 on it.
+dcd=$corpus/data/adk_dims_2frames.dcd
+head -c $(( $(wc -c < "$dcd") / 2 )) "$dcd" > cut.dcd
+run 21 "$out" "$vorball" channels --device ref --grid 16 --no-pore --dcd cut.dcd "$corpus/data/adk_natom.psf.gz"
+expect_line "$out" "^vorball: E111: cut.dcd: no whole frame"
 echo "cli_reliability: ok"
