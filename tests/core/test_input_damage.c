@@ -14,6 +14,7 @@
 
 #include "input_test_util.h"
 #include "vb_dcd.h"
+#include "vb_frames.h"
 
 #if defined(__has_feature)
 #if __has_feature(address_sanitizer)
@@ -473,6 +474,46 @@ static void test_gro_count(void)
     vb_close(ctx);
 }
 
+/* Issue 28, item 8: two atoms of a trajectory frame at the same place with
+ * the same radius are E104, as in a GRO or PDB frame (they were accepted),
+ * naming the trajectory, the frame and both atoms. */
+static void test_traj_duplicates(void)
+{
+    vb_ctx *ctx = open_ctx(NULL);
+    char top[64], dcd[64];
+    strcpy(top, temp_file("0 0 0 1\n3 0 0 1\n0 3 0 1\n0 0 3 1\n5 5 5 1\n"));
+    strcpy(dcd, temp_file(""));
+    const size_t na = 5;
+    const double x0[5] = {0, 3, 0, 0, 5}, y0[5] = {0, 0, 3, 0, 5}, z0[5] = {0, 0, 0, 3, 5};
+    /* Frame 1: atom 4 moves onto atom 2 (same radius: the same sphere). */
+    const double x1[5] = {0, 3, 0, 3, 5}, y1[5] = {0, 0, 3, 0, 5}, z1[5] = {0, 0, 0, 0, 5};
+    vb_dcd_writer *w = NULL;
+    CHECK_INT(vb_dcd_writer_open(ctx, dcd, na, 1.0, "dup", &w), VB_OK);
+    CHECK_INT(vb_dcd_writer_frame(ctx, w, x0, y0, z0), VB_OK);
+    CHECK_INT(vb_dcd_writer_frame(ctx, w, x1, y1, z1), VB_OK);
+    CHECK_INT(vb_dcd_writer_close(ctx, w), VB_OK);
+    vb_read_options o;
+    memset(&o, 0, sizeof o);
+    vb_frame_source *F = NULL;
+    vb_sphere_set *s = NULL;
+    int model = 0;
+    CHECK_INT(vb_frame_source_open(ctx, top, dcd, &o, &F), VB_OK);
+    CHECK_INT(vb_frame_source_next(ctx, F, &s, &model), VB_OK);
+    CHECK_INT(s ? s->n : 0, 5);
+    CHECK(s && s->x[3] == 0.0 && s->z[3] == 3.0);
+    vb_spheres_free(s);
+    s = NULL;
+    char want[200];
+    snprintf(want, sizeof want, "%s: frame 1: atom 4 (topology line 4) is identical to atom 2 "
+             "(topology line 2)", dcd);
+    CHECK_ERROR(ctx, vb_frame_source_next(ctx, F, &s, &model), VB_EINPUT_DUPLICATE, want);
+    CHECK(s == NULL);
+    vb_frame_source_close(F);
+    remove(top);
+    remove(dcd);
+    vb_close(ctx);
+}
+
 int main(void)
 {
     test_duplicates();
@@ -484,5 +525,6 @@ int main(void)
     test_truncated_model();
     test_altloc_split();
     test_gro_count();
+    test_traj_duplicates();
     VB_TEST_END();
 }
