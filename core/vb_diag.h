@@ -93,6 +93,7 @@
     X(W, 780, JFA_SEEDS_LOST, 0, "seeds share their start pixel with a nearer seed")                     \
     X(W, 781, JFA_DEVICE_FALLBACK, 0, "no usable OpenCL device: jfa on the reference backend")           \
     X(W, 782, FACET_START_FINE, 0, "Facet-JFA cannot start coarser than n")                              \
+    X(W, 783, PNG_EXTENSION, 0, "--png FILE named as another image format: PNG data written")            \
     X(W, 790, CROSSCHECK_POWER, 0, "radii differ: compared with CGAL's power diagram (ids only)")        \
     X(W, 791, CROSSCHECK_FLAT, 0, "the centres span fewer than 3 dimensions: no vertices")               \
     X(W, 792, CROSSCHECK_HIDDEN, 0, "spheres hidden in the power diagram (no power cell)")               \

@@ -7,7 +7,8 @@
 #  - `channels --volume v%d.mrc` writes a file per frame for any number of
 #    frames (the output table held 32: E8 "too many output files" at 31),
 #    and none when a later one cannot be written;
-#  - a DCD cut inside its first frame: E111 names the DCD, not the topology.
+#  - a DCD cut inside its first frame: E111 names the DCD, not the topology;
+#  - --png p.jpg writes PNG data: W783 says so.
 # usage: cli_reliability.sh VORBALL CORPUS_DIR WORK_DIR
 vorball=$1 corpus=$2 work=$3/cli_reliability
 here=$(cd "$(dirname "$0")" && pwd)
@@ -62,4 +63,11 @@ dcd=$corpus/data/adk_dims_2frames.dcd
 head -c $(( $(wc -c < "$dcd") / 2 )) "$dcd" > cut.dcd
 run 21 "$out" "$vorball" channels --device ref --grid 16 --no-pore --dcd cut.dcd "$corpus/data/adk_natom.psf.gz"
 expect_line "$out" "^vorball: E111: cut.dcd: no whole frame"
+
+# --png under another image format's name: written, with W783; .png silent.
+run 0 "$out" "$vorball" jfa --device ref -n 64 -k 20 --png p.jpg
+expect_line "$out" "^vorball: W783: p.jpg: named '.jpg', but --png writes PNG data"
+[ "$(head -c 4 p.jpg | tail -c 3)" = "PNG" ] || fail "p.jpg holds no PNG data"
+run 0 "$out" "$vorball" jfa --device ref -n 64 -k 20 --png p.png
+grep -q W783 "$out" && fail "W783 on a .png name"
 echo "cli_reliability: ok"
