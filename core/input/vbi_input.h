@@ -242,12 +242,16 @@ int vbi_atom_scan_takes(vbi_atom_scan *s, vbi_record rec, int32_t model_serial,
 void vbi_atom_scan_note_open_model(const vbi_atom_scan *s, long model_line, vbi_dropped *dr);
 
 /* Alternate locations, per residue (chain, resseq, icode): blank is always
- * kept, and of the lettered ones the first met in the residue (usually 'A'). */
+ * kept, and of the lettered ones the most occupied, ties to the first met
+ * in the residue (the rule of Biopython and PyMOL). Readers that know the
+ * occupancies offer them first (vbi_altloc_offer); without an offer the
+ * first met is kept. */
 typedef struct vbi_altloc_res {
     char chain[8];
     int32_t resseq;
     char icode;
     char kept;        /* 0: empty slot */
+    double occupancy; /* of the kept location's most occupied atom offered */
 } vbi_altloc_res;
 
 typedef struct vbi_altloc {
@@ -260,6 +264,11 @@ typedef struct vbi_altloc {
  * that comes back after other residues is still dropped beside A. */
 void vbi_altloc_init(vbi_altloc *a);
 void vbi_altloc_free(vbi_altloc *a);
+/* Offers a lettered atom's occupancy (blank: a negative value): its
+ * location becomes the residue's kept one when it is the residue's first
+ * offer or more occupied than any offered before. 0, or -1 when out of
+ * memory. An atom without a letter is ignored. */
+int vbi_altloc_offer(vbi_altloc *a, const vb_atom_info *info, double occupancy);
 /* 1 when the atom's alternate location is the one kept, 0 when it is
  * dropped, -1 when out of memory. */
 int vbi_altloc_keeps(vbi_altloc *a, const vb_atom_info *info);

@@ -514,6 +514,38 @@ static void test_traj_duplicates(void)
     vb_close(ctx);
 }
 
+/* Issue 28, item 9: of a residue's alternate locations the most occupied
+ * is kept (A 0.44 against B 0.56: B; the first, A, was kept), ties to the
+ * first met; without occupancies the first. */
+#define ATOM_OCC(serial, name, alt, seq, x, occ, el)                                              \
+    "ATOM  " serial " " name alt "SER A" seq "    " x "   0.000   0.000" occ " 10.00          " el \
+    "\n"
+static void test_altloc_occupancy(void)
+{
+    vb_ctx *ctx = open_ctx(NULL);
+    const char *pdb =
+        ATOM_OCC("    1", " N  ", "A", "   1", "   1.000", "  0.44", " N")
+        ATOM_OCC("    2", " CA ", "A", "   1", "   2.000", "  0.44", " C")
+        ATOM_OCC("    3", " N  ", "B", "   1", "   1.100", "  0.56", " N")
+        ATOM_OCC("    4", " CA ", "B", "   1", "   2.100", "  0.56", " C")
+        ATOM_OCC("    5", " N  ", "A", "   2", "   5.000", "  0.50", " N")
+        ATOM_OCC("    6", " N  ", "B", "   2", "   5.100", "  0.50", " N")
+        ATOM_OCC("    7", " N  ", "A", "   3", "   9.000", "      ", " N")
+        ATOM_OCC("    8", " N  ", "B", "   3", "   9.100", "      ", " N");
+    vb_sphere_set *s = NULL;
+    CHECK_INT(read_text(ctx, "occ.pdb", pdb, NULL, &s), VB_OK);
+    CHECK_INT(s ? s->n : 0, 4);
+    if (s && s->n == 4) {
+        const long lines[4] = {3, 4, 5, 7};
+        for (int i = 0; i < 4; i++)
+            CHECK_INT(s->line[i], lines[i]);
+        CHECK(s->x[0] == 1.1 && s->info[0].altloc == 'B');
+        CHECK(s->x[2] == 5.0 && s->info[2].altloc == 'A');
+    }
+    vb_spheres_free(s);
+    vb_close(ctx);
+}
+
 int main(void)
 {
     test_duplicates();
@@ -524,6 +556,7 @@ int main(void)
     test_cr_only();
     test_truncated_model();
     test_altloc_split();
+    test_altloc_occupancy();
     test_gro_count();
     test_traj_duplicates();
     VB_TEST_END();
