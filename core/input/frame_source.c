@@ -4,11 +4,13 @@
 #include "vb_frames.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "vb_dcd.h"
+#include "vb_diag.h"
 #include "vb_xdr.h"
 #include "vbi_input.h"
 
@@ -22,6 +24,9 @@ struct vb_frame_source {
     size_t nkeep;
     double *xyz;         /* one frame: DCD x..., y..., z...; XTC/TRR x0 y0 z0 x1 ... */
     long index;          /* frames read so far */
+    long contained_named; /* 1 + the frame whose contained spheres were named (W701) */
+    long contained_more;  /* later frames with contained spheres (counted, not named) */
+    char contained_src[512]; /* the file they came from, for that count's line */
 };
 
 void vb_frame_source_close(vb_frame_source *F)
@@ -256,9 +261,30 @@ int vb_frame_source_next(vb_ctx *ctx, vb_frame_source *F, vb_sphere_set **out, i
 {
     *out = NULL;
     int rc = F->rd ? vb_frame_reader_next(ctx, F->rd, out, model) : next_traj(ctx, F, out, model);
-    if (rc == VB_OK && *out && F->rd && (rc = vb_spheres_validate(ctx, *out, 1)) != VB_OK) {
+    if (rc == VB_OK && *out && F->rd &&
+        (rc = vbi_spheres_validate(ctx, *out, 1, F->contained_named == 0)) != VB_OK) {
         vb_spheres_free(*out);
         *out = NULL;
+    }
+    if (rc == VB_OK && *out && F->rd) {
+        size_t c = 0;
+        for (size_t i = 0; i < (*out)->n; i++)
+            c += (*out)->contained[i] != 0;
+        if (c && F->contained_named == 0) {
+            F->contained_named = F->index + 1;
+            snprintf(F->contained_src, sizeof F->contained_src, "%s",
+                     (*out)->source ? (*out)->source : "");
+        }
+        else if (c)
+            F->contained_more++;
+    }
+    /* The end: the frames whose contained spheres went unnamed, once. */
+    if (rc == VB_OK && !*out && F->contained_more > 0) {
+        vb_warn(ctx, VB_W_CONTAINED_COUNT, F->contained_src, 0,
+                "spheres inside others in %ld more frame%s (W701 named them for frame %ld "
+                "only)",
+                F->contained_more, F->contained_more == 1 ? "" : "s", F->contained_named - 1);
+        F->contained_more = 0;
     }
     if (rc == VB_OK && *out)
         F->index++;

@@ -3,6 +3,7 @@
  * filtered exact predicate). */
 #include "vb_spheres.h"
 #include "vb_diag.h"
+#include "vbi_input.h"
 
 #include <float.h>
 #include <gmp.h>
@@ -274,9 +275,9 @@ static void grid_free(center_grid *g)
     free(g->items);
 }
 
-/* Marks contained spheres and warns W701 (each, up to a limit) and W702
- * (the total). */
-static int find_contained(vb_ctx *ctx, vb_sphere_set *s)
+/* Marks contained spheres and, when warn, warns W701 (each, up to a
+ * limit) and W702 (the total). */
+static int find_contained(vb_ctx *ctx, vb_sphere_set *s, int warn)
 {
     center_grid g;
     memset(&g, 0, sizeof g);
@@ -320,18 +321,23 @@ static int find_contained(vb_ctx *ctx, vb_sphere_set *s)
         if (by[i] == SIZE_MAX)
             continue;
         s->contained[i] = 1;
-        if (count++ < VBI_CONTAINED_SHOWN)
+        if (count++ < VBI_CONTAINED_SHOWN && warn)
             vb_warn(ctx, VB_W_CONTAINED, s->source, s->line[i],
                     "sphere %zu lies inside sphere %zu (line %ld): its cell is empty", i, by[i],
                     s->line[by[i]]);
     }
-    if (count > VBI_CONTAINED_SHOWN)
+    if (count > VBI_CONTAINED_SHOWN && warn)
         vb_warn(ctx, VB_W_CONTAINED_COUNT, s->source, 0, "%zu spheres in all lie inside another sphere", count);
     free(by);
     return VB_OK;
 }
 
 int vb_spheres_validate(vb_ctx *ctx, vb_sphere_set *s, size_t min_count)
+{
+    return vbi_spheres_validate(ctx, s, min_count, 1);
+}
+
+int vbi_spheres_validate(vb_ctx *ctx, vb_sphere_set *s, size_t min_count, int warn_contained)
 {
     if (s->n == 0)
         return vb_error(ctx, VB_EINPUT_EMPTY, s->source, 0, "no spheres in the input");
@@ -349,5 +355,5 @@ int vb_spheres_validate(vb_ctx *ctx, vb_sphere_set *s, size_t min_count)
     s->contained = calloc(s->n, sizeof *s->contained);
     if (!s->contained)
         return vb_error(ctx, VB_ENOMEM, s->source, 0, "out of memory");
-    return find_contained(ctx, s);
+    return find_contained(ctx, s, warn_contained);
 }

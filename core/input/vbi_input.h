@@ -280,6 +280,12 @@ int vbi_altloc_keeps(vbi_altloc *a, const vb_atom_info *info);
 int vbi_atom_dropped(const vb_read_options *opt, vbi_altloc *alt, const vb_atom_info *info,
                      vbi_dropped *dr);
 
+/* vb_spheres_validate, with the contained spheres marked but named (W701,
+ * W702) only when warn_contained: the frame source names them for the
+ * first frame that has any and counts the others (one line for a
+ * trajectory, not one per frame). */
+int vbi_spheres_validate(vb_ctx *ctx, vb_sphere_set *s, size_t min_count, int warn_contained);
+
 /* Content detection, the one path of every reader (whole buffers and
  * streams alike): lines are fed one by one, whole, until the format is
  * decided - GRO by its first three lines, mmCIF and XYZR by the first

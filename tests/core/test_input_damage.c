@@ -546,6 +546,52 @@ static void test_altloc_occupancy(void)
     vb_close(ctx);
 }
 
+/* Issue 28, item 9: a sphere inside another in every model of an NMR file
+ * is named (W701) for the first model only, and the other models counted
+ * on one line (W702), not repeated per model. */
+static void test_contained_once(void)
+{
+    FILE *diag;
+    vb_ctx *ctx = open_ctx(&diag);
+    char text[4096] = "";
+    for (int m = 1; m <= 3; m++) {
+        char model[64];
+        snprintf(model, sizeof model, "MODEL     %4d\n", m);
+        strcat(text, model);
+        strcat(text, PDB_C1 PDB_C2 PDB_C3 PDB_C4);
+        /* An oxygen (1.52) at the first carbon's centre (1.70): inside it. */
+        strcat(text, ATOM("    5", " O  ", " ", "SER", "   5", "   0.000", "   0.000", "   0.100", " O"));
+        strcat(text, "ENDMDL\n");
+    }
+    const char *path = temp_file(text);
+    vb_read_options o;
+    memset(&o, 0, sizeof o);
+    vb_frame_source *F = NULL;
+    vb_sphere_set *s = NULL;
+    int model = 0, frames = 0;
+    CHECK_INT(vb_frame_source_open(ctx, path, NULL, &o, &F), VB_OK);
+    while (vb_frame_source_next(ctx, F, &s, &model) == VB_OK && s) {
+        CHECK_INT(s->n, 5);
+        CHECK_INT(s->contained[4], 1);
+        vb_spheres_free(s);
+        frames++;
+    }
+    vb_frame_source_close(F);
+    CHECK_INT(frames, 3);
+    const char *w = diag_text(diag);
+    size_t named = 0;
+    for (const char *p = w; (p = strstr(p, "W701")); p++)
+        named++;
+    CHECK_INT(named, 2); /* the W701 line, and the W702 line naming it */
+    CHECK(strstr(w, "W701: ") != NULL && strstr(strstr(w, "W701: ") + 1, "W701: ") == NULL);
+    char want[200];
+    snprintf(want, sizeof want, "W702: %s: spheres inside others in 2 more frames (W701 named "
+             "them for frame 0 only)", path);
+    CHECK(strstr(w, want) != NULL);
+    unlink(path);
+    vb_close(ctx);
+}
+
 int main(void)
 {
     test_duplicates();
@@ -559,5 +605,6 @@ int main(void)
     test_altloc_occupancy();
     test_gro_count();
     test_traj_duplicates();
+    test_contained_once();
     VB_TEST_END();
 }
