@@ -167,7 +167,15 @@ FILE *vb_output_open(vb_ctx *ctx, const char *path)
     } else if (temp_name(e->final, e->tmp, sizeof e->tmp) != 0) {
         vb_error(ctx, VB_EIO, path, 0, "output path too long");
     } else {
+        /* No signal between the file's creation and its entry going live:
+         * a SIGTERM there left the temporary file behind. */
+        sigset_t all, old;
+        sigfillset(&all);
+        pthread_sigmask(SIG_BLOCK, &all, &old);
         int fd = mkstemp(e->tmp);
+        if (fd >= 0)
+            e->live = 1;
+        pthread_sigmask(SIG_SETMASK, &old, NULL);
         if (fd < 0) {
             vb_error(ctx, VB_EIO, path, 0, "cannot open for writing: %s", strerror(errno));
         } else {
@@ -175,7 +183,6 @@ FILE *vb_output_open(vb_ctx *ctx, const char *path)
             mode_t mask = umask(0);
             umask(mask);
             fchmod(fd, exists ? (st.st_mode & 07777) : (0666 & ~mask));
-            e->live = 1;
             if (!(f = fdopen(fd, "w"))) {
                 vb_error(ctx, VB_ENOMEM, path, 0, "out of memory");
                 close(fd);
