@@ -57,6 +57,7 @@
     X(E, 130, INPUT_REFERENCE_SIZE, 40, "more spheres than `reference` takes without --force")          \
     X(E, 131, INPUT_SCALE, 41, "a radius below 1e-50 of the extent: beyond the sampler's doubles")       \
     X(E, 132, INPUT_TOL, 42, "--tol below 1e-12 of the extent: finer than the sampler resolves")         \
+    X(E, 140, MEMORY_ESTIMATE, 44, "not enough memory for the input: refused before the work starts") \
     X(E, 150, MPI_FAILED, 50, "MPI failed between ranks: the job is aborted")                           \
     X(E, 151, MPI_COMMAND, 2, "the command runs on one process only, not on several MPI ranks")        \
     X(E, 152, MPI_STDIN, 2, "under MPI every rank reads the input: give a file, not stdin")             \
