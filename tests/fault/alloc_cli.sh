@@ -2,16 +2,16 @@
 # Allocation failures (issue 28, as SQLite's malloc fault tests): COMMAND
 # runs under vorball_allocfault (alloc_fault.c: the n-th allocation of
 # vorball's own code fails). A counting pass finds how many allocations the
-# command makes; then every n from 1 to that count (and one past it) fails
-# once, and, from the first, a middle and the last, every later one fails
+# command makes; then every n from 1 to that count (and one past it; or
+# every STRIDE-th of them, the first and the last always) fails once, and, from the first, a middle and the last, every later one fails
 # too (the memory stays short). Each run must end either in success, with
 # the bytes of the counting pass, or in a clean numbered error: a
 # `vorball: E<n>:` line whose exit status is E<n>'s in core/vb_diag.h, no
 # signal, no sanitizer report (the sanitizer tree: leaks of every failure
 # path), and no output file left behind.
 # usage: alloc_cli.sh VORBALL_ALLOCFAULT SOURCE_DIR WORK_DIR
-#          vertices|vertices_arcs|vertices_threads|verify_arcs|channels|jfa
-vorball=$1 src=$2 cmd=$4 work=$3/alloc_$4
+#          vertices|vertices_arcs|vertices_threads|verify_arcs|channels|jfa [STRIDE]
+vorball=$1 src=$2 cmd=$4 work=$3/alloc_$4 stride=${5:-1}
 corpus=$src/corpus
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/../pipeline/lib.sh"
@@ -100,7 +100,10 @@ while [ $n -le $((total + 1)) ]; do
     VB_FAIL_ALLOC_AT=$n "$vorball" "$@" > run.err 2>&1
     rc=$?
     check "allocation $n of $total fails"
-    n=$((n + 1))
+    if [ $n -le "$total" ] && [ $((n + stride)) -gt "$total" ]; then
+        n=$total # the last allocation, whatever the stride
+    fi
+    n=$((n + stride))
 done
 for n in $(printf '%s\n' 1 $(((total + 1) / 2)) "$total" | sort -un); do
     clean
