@@ -29,7 +29,8 @@ int vb_cli_usage_error(const char *cmd, const char *fmt, ...)
     /* Every MPI rank parses the same command line: one message. */
     if (vb_world_rank() != 0)
         return VB_EXIT_USAGE;
-    fprintf(stderr, "vorball %s: ", cmd);
+    /* A usage error is misuse: its number, as every error has one. */
+    fprintf(stderr, "vorball %s: E%d: ", cmd, vb_diag_number(VB_EMISUSE));
     va_list ap;
     va_start(ap, fmt);
     vfprintf(stderr, fmt, ap);
@@ -74,6 +75,15 @@ int vb_cli_check_output(vb_ctx *ctx, const char *path)
         return vb_error(ctx, VB_EMISUSE, path, 0,
                         "output is the same file as '%s' on the command line: refused (it "
                         "would be overwritten)", other ? other : path);
+    /* An input '-' is stdin: `vorball vertices - -o IN < IN` would replace
+     * the file it reads. */
+    struct stat in;
+    for (int i = 1; i < cli_argc; i++)
+        if (strcmp(cli_argv[i], "-") == 0 && fstat(0, &in) == 0 && in.st_dev == out.st_dev &&
+            in.st_ino == out.st_ino)
+            return vb_error(ctx, VB_EMISUSE, path, 0,
+                            "output is the file standard input reads ('-' on the command "
+                            "line): refused (it would be overwritten)");
     return VB_OK;
 }
 

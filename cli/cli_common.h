@@ -47,7 +47,8 @@ void vb_cli_set_args(int argc, char **argv);
 
 /* VB_EMISUSE (message naming both) when `path` exists and is the same file
  * (device and inode, through links) as another argument of the command line:
- * an input, or another output. VB_OK otherwise, and for "-" or NULL. */
+ * an input, or another output; or as standard input when an argument is
+ * "-" (stdin read as an input). VB_OK otherwise, and for "-" or NULL. */
 int vb_cli_check_output(vb_ctx *ctx, const char *path);
 
 /* Opens the output: NULL or "-" is stdout; a file is refused when it is an

@@ -119,7 +119,7 @@ int vb_cmd_bench(int argc, char **argv)
     vb_ctx *ctx;
     if (!inputs || vb_world_open_ctx(&ctx)) {
         free(inputs);
-        return VB_EXIT_NOMEM;
+        return vb_cli_fail(NULL, VB_ENOMEM);
     }
     int code = VB_EXIT_OK;
     for (int i = 1; i < argc && code == VB_EXIT_OK; i++) {

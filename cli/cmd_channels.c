@@ -783,7 +783,7 @@ int vb_cmd_channels(int argc, char **argv)
     }
     vb_ctx *ctx;
     if (vb_world_open_ctx(&ctx) != VB_OK) {
-        fprintf(stderr, "vorball: out of memory\n");
+        fprintf(stderr, "vorball: E%d: out of memory\n", vb_diag_number(VB_ENOMEM));
         return VB_EXIT_NOMEM;
     }
     int rc = VB_OK, rank0 = vb_world_rank() == 0;
@@ -834,7 +834,11 @@ int vb_cmd_channels(int argc, char **argv)
     double wall = vb_now() - t0;
     vb_cli_status_stop();
     if (rc == VB_OK && selected == 0)
-        rc = vb_error(ctx, VB_EINPUT_MODEL, A.input, 0, "no frame selected (--frames / --model)");
+        /* Of a trajectory, the frames are the trajectory's (a DCD cut
+         * inside its first frame has none): name it, not the topology. */
+        rc = vb_error(ctx, VB_EINPUT_MODEL, A.dcd ? A.dcd : A.input, 0,
+                      A.dcd ? "no whole frame selected from the trajectory (--frames / --model)"
+                            : "no frame selected (--frames / --model)");
     /* The collectives first, while every rank agrees on rc; then rank 0's
      * own writing. */
     if (rc == VB_OK)

@@ -304,7 +304,7 @@ int vb_cmd_crosscheck(int argc, char **argv)
         }
     vb_ctx *ctx = NULL;
     if (vb_open(&ctx, NULL) != VB_OK) {
-        fprintf(stderr, "vorball: out of memory\n");
+        fprintf(stderr, "vorball: E%d: out of memory\n", vb_diag_number(VB_ENOMEM));
         return VB_EXIT_NOMEM;
     }
     options o;

@@ -32,7 +32,7 @@ int vb_cmd_devices(int argc, char **argv)
     }
     vb_ctx *ctx;
     if (vb_open(&ctx, NULL))
-        return VB_EXIT_NOMEM;
+        return vb_cli_fail(NULL, VB_ENOMEM);
     FILE *out = vb_cli_open_output(ctx, outpath);
     int rc = out ? vbg_list_devices(ctx, out) : vb_errcode(ctx);
     if (out && rc == VB_OK) {

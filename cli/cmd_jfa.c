@@ -370,7 +370,7 @@ int vb_cmd_jfa(int argc, char **argv)
 {
     vb_ctx *ctx;
     if (vb_open(&ctx, NULL))
-        return VB_EXIT_NOMEM;
+        return vb_cli_fail(NULL, VB_ENOMEM);
     jfa_args a;
     int ec;
     if (!parse_args(ctx, argc, argv, &a, &ec)) {

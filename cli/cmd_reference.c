@@ -68,7 +68,7 @@ int vb_cmd_reference(int argc, char **argv)
 
     vb_ctx *ctx;
     if (vb_open(&ctx, NULL) != VB_OK) {
-        fprintf(stderr, "vorball: out of memory\n");
+        fprintf(stderr, "vorball: E%d: out of memory\n", vb_diag_number(VB_ENOMEM));
         return VB_EXIT_NOMEM;
     }
     vb_vertex_format fmt;

@@ -158,7 +158,7 @@ int vb_cmd_verify(int argc, char **argv)
     vb_ctx *ctx;
     vb_config cfg = {.verbosity = 1};
     if (vb_open(&ctx, &cfg) != VB_OK) {
-        fprintf(stderr, "vorball: out of memory\n");
+        fprintf(stderr, "vorball: E%d: out of memory\n", vb_diag_number(VB_ENOMEM));
         return VB_EXIT_NOMEM;
     }
     int mismatch = 0;

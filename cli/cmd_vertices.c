@@ -119,7 +119,7 @@ int vb_cmd_vertices(int argc, char **argv)
     int stats = 0, arcs = 0;
     vb_ctx *ctx;
     if (vb_world_open_ctx(&ctx))
-        return VB_EXIT_NOMEM;
+        return vb_cli_fail(NULL, VB_ENOMEM);
     int code = VB_EXIT_OK;
     for (int i = 1; i < argc && code == VB_EXIT_OK; i++) {
         const char *a = argv[i];

@@ -2,6 +2,7 @@
 #include "jfa_png.h"
 
 #include "cli_common.h"
+#include "vb_diag.h"
 #include "vb_output.h"
 
 #include <errno.h>
@@ -9,9 +10,28 @@
 #include <setjmp.h>
 #include <stdio.h>
 #include <string.h>
+#include <strings.h>
+
+/* Warns (W783) when the name ends in another image format's extension:
+ * the bytes are PNG whatever the name says. */
+static void check_extension(vb_ctx *ctx, const char *path)
+{
+    static const char *const other[] = {".jpg", ".jpeg", ".gif", ".bmp", ".tif", ".tiff",
+                                        ".webp", ".ppm", ".svg", ".pdf", ".eps"};
+    const char *dot = strrchr(path, '.');
+    if (!dot || strchr(dot, '/'))
+        return;
+    for (size_t k = 0; k < sizeof other / sizeof other[0]; k++)
+        if (strcasecmp(dot, other[k]) == 0) {
+            vb_warn(ctx, VB_W_PNG_EXTENSION, path, 0,
+                    "named '%s', but --png writes PNG data (name it .png)", dot);
+            return;
+        }
+}
 
 int vb_png_write_rgb(vb_ctx *ctx, const char *path, uint32_t w, uint32_t h, const uint8_t *rgb)
 {
+    check_extension(ctx, path);
     FILE *f = vb_cli_open_output(ctx, path);
     if (!f)
         return vb_errcode(ctx);

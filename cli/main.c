@@ -114,7 +114,7 @@ static int dispatch(int argc, char **argv)
             return code;
         }
     if (err) {
-        fprintf(err, "vorball: unknown command '%s'\n", argv[1]);
+        fprintf(err, "vorball: E%d: unknown command '%s'\n", vb_diag_number(VB_EMISUSE), argv[1]);
         usage(err);
     }
     return VB_EXIT_USAGE;

@@ -99,7 +99,8 @@ void vb_stats_add(vb_stats *to, const vb_stats *from)
 
 int vb_diag_number(int code)
 {
-    if (VB_CATEGORY(code) == VB_EINPUT && VB_DETAIL(code) > 0)
+    if ((VB_CATEGORY(code) == VB_EINPUT || VB_CATEGORY(code) == VB_ENOMEM) &&
+        VB_DETAIL(code) > 0)
         return 100 + VB_DETAIL(code);
     return VB_CATEGORY(code);
 }
@@ -141,6 +142,7 @@ const char *vb_errstr(int code)
     case VB_EINPUT_REFERENCE_SIZE: return "too many spheres for the exact reference";
     case VB_EINPUT_SCALE: return "radii too small for the sampling pipeline";
     case VB_EINPUT_TOL: return "tolerance finer than the sampling pipeline resolves";
+    case VB_ENOMEM_ESTIMATE: return "not enough memory for the input";
     default: break;
     }
     switch (VB_CATEGORY(code)) {

@@ -1,12 +1,17 @@
 /* Output files written under a temporary name and renamed when complete
- * (see vb_output.h). The open ones sit in a small table, which a signal
- * handler can walk: it only reads fixed arrays and calls unlink. */
+ * (see vb_output.h). The open ones (and, with deferral, the closed ones
+ * waiting for their rename: one per frame of `channels --volume v%d.mrc`)
+ * sit in a table of fixed chunks, linked and never moved or freed, which a
+ * signal handler can walk: it only follows the links and calls unlink. A
+ * chunk is linked only once it is whole, so the handler never sees half of
+ * one; there is no limit but memory. */
 /* realpath is XSI. */
 #define _XOPEN_SOURCE 700
 #include "vb_output.h"
 
 #include <errno.h>
 #include <limits.h>
+#include <stdatomic.h>
 #include <pthread.h>
 #include <signal.h>
 #include <stdlib.h>
@@ -14,8 +19,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-/* Outputs open at once (channels writes five). */
-#define VB_OUTPUT_MAX 32
+/* Entries per chunk (channels writes five files, more with per-frame
+ * volumes). */
+#define VB_OUTPUT_CHUNK 32
 #define VB_OUTPUT_PATH 4096
 
 typedef struct out_entry {
@@ -27,16 +33,26 @@ typedef struct out_entry {
     char tmp[VB_OUTPUT_PATH];
 } out_entry;
 
-static out_entry outputs[VB_OUTPUT_MAX];
+typedef struct out_chunk {
+    out_entry e[VB_OUTPUT_CHUNK];
+    struct out_chunk *_Atomic next;
+} out_chunk;
+
+static out_chunk outputs;
 static pthread_mutex_t outputs_lock = PTHREAD_MUTEX_INITIALIZER;
 static int handlers_installed;
 static int defer_commits;
 
+/* Every entry e of the table, chunk by chunk. */
+#define FOR_EACH_ENTRY(e)                                                                        \
+    for (out_chunk *c_ = &outputs; c_; c_ = atomic_load(&c_->next))                              \
+        for (out_entry *e = c_->e; e < c_->e + VB_OUTPUT_CHUNK; e++)
+
 static void remove_live(void)
 {
-    for (int i = 0; i < VB_OUTPUT_MAX; i++)
-        if (outputs[i].live)
-            unlink(outputs[i].tmp);
+    FOR_EACH_ENTRY(e)
+        if (e->live)
+            unlink(e->tmp);
 }
 
 static void on_signal(int sig)
@@ -66,10 +82,35 @@ static void install_handlers(void)
 
 static out_entry *find(FILE *f)
 {
-    for (int i = 0; i < VB_OUTPUT_MAX; i++)
-        if (outputs[i].f == f && f)
-            return &outputs[i];
+    FOR_EACH_ENTRY(e)
+        if (e->f == f && f)
+            return e;
     return NULL;
+}
+
+/* A free entry (under outputs_lock): in the chunks there are, else in a
+ * new chunk linked at the end. NULL when out of memory. */
+static out_entry *free_entry(void)
+{
+    out_chunk *last = &outputs;
+    FOR_EACH_ENTRY(e) {
+        if (!e->f && !e->ready)
+            return e;
+        last = c_;
+    }
+    out_chunk *c = calloc(1, sizeof *c);
+    if (!c)
+        return NULL;
+    atomic_store(&last->next, c);
+    return &c->e[0];
+}
+
+const char *vb_output_name(FILE *f)
+{
+    pthread_mutex_lock(&outputs_lock);
+    out_entry *e = find(f);
+    pthread_mutex_unlock(&outputs_lock);
+    return e ? e->final : NULL;
 }
 
 int vb_output_is_open(FILE *f)
@@ -93,13 +134,10 @@ static int temp_name(const char *final, char *tmp, size_t cap)
 FILE *vb_output_open(vb_ctx *ctx, const char *path)
 {
     pthread_mutex_lock(&outputs_lock);
-    out_entry *e = NULL;
-    for (int i = 0; !e && i < VB_OUTPUT_MAX; i++)
-        if (!outputs[i].f && !outputs[i].ready)
-            e = &outputs[i];
+    out_entry *e = free_entry();
     if (!e) {
         pthread_mutex_unlock(&outputs_lock);
-        vb_error(ctx, VB_EIO, path, 0, "too many output files open at once");
+        vb_error(ctx, VB_ENOMEM, path, 0, "out of memory (output table)");
         return NULL;
     }
     install_handlers();
@@ -129,7 +167,15 @@ FILE *vb_output_open(vb_ctx *ctx, const char *path)
     } else if (temp_name(e->final, e->tmp, sizeof e->tmp) != 0) {
         vb_error(ctx, VB_EIO, path, 0, "output path too long");
     } else {
+        /* No signal between the file's creation and its entry going live:
+         * a SIGTERM there left the temporary file behind. */
+        sigset_t all, old;
+        sigfillset(&all);
+        pthread_sigmask(SIG_BLOCK, &all, &old);
         int fd = mkstemp(e->tmp);
+        if (fd >= 0)
+            e->live = 1;
+        pthread_sigmask(SIG_SETMASK, &old, NULL);
         if (fd < 0) {
             vb_error(ctx, VB_EIO, path, 0, "cannot open for writing: %s", strerror(errno));
         } else {
@@ -137,7 +183,6 @@ FILE *vb_output_open(vb_ctx *ctx, const char *path)
             mode_t mask = umask(0);
             umask(mask);
             fchmod(fd, exists ? (st.st_mode & 07777) : (0666 & ~mask));
-            e->live = 1;
             if (!(f = fdopen(fd, "w"))) {
                 vb_error(ctx, VB_ENOMEM, path, 0, "out of memory");
                 close(fd);
@@ -170,8 +215,7 @@ int vb_output_commit_deferred(vb_ctx *ctx)
 {
     int rc = VB_OK;
     pthread_mutex_lock(&outputs_lock);
-    for (int i = 0; i < VB_OUTPUT_MAX; i++) {
-        out_entry *e = &outputs[i];
+    FOR_EACH_ENTRY(e) {
         if (!e->ready)
             continue;
         if (rc == VB_OK && rename(e->tmp, e->final) != 0)
@@ -237,13 +281,13 @@ void vb_output_discard(FILE *f)
 void vb_output_discard_all(void)
 {
     pthread_mutex_lock(&outputs_lock);
-    for (int i = 0; i < VB_OUTPUT_MAX; i++)
-        if (outputs[i].f || outputs[i].ready) {
-            if (outputs[i].f)
-                fclose(outputs[i].f);
-            if (!outputs[i].direct)
-                unlink(outputs[i].tmp);
-            forget(&outputs[i]);
+    FOR_EACH_ENTRY(e)
+        if (e->f || e->ready) {
+            if (e->f)
+                fclose(e->f);
+            if (!e->direct)
+                unlink(e->tmp);
+            forget(e);
         }
     pthread_mutex_unlock(&outputs_lock);
 }

@@ -57,6 +57,12 @@ enum vb_input_error {
     VB_EINPUT_TOL        = VB_EINPUT | (32 << 8) /* E132 --tol finer than the sampler's doubles */
 };
 
+/* Extended codes of resource limits (E140-E149): category | (detail << 8),
+ * numbered 100 + detail as the input codes are. */
+enum vb_limit_error {
+    VB_ENOMEM_ESTIMATE = VB_ENOMEM | (40 << 8) /* E140 the estimated need exceeds the room */
+};
+
 #define VB_CATEGORY(code) ((code) & 0xff)
 #define VB_DETAIL(code) ((code) >> 8)
 

@@ -57,6 +57,7 @@
     X(E, 130, INPUT_REFERENCE_SIZE, 40, "more spheres than `reference` takes without --force")           \
     X(E, 131, INPUT_SCALE, 41, "a radius below 1e-50 of the extent: beyond the sampler's doubles")       \
     X(E, 132, INPUT_TOL, 42, "--tol below 1e-12 of the extent: finer than the sampler resolves")         \
+    X(E, 140, MEMORY_ESTIMATE, 44, "not enough memory for the input: refused before the work starts")    \
     X(E, 150, MPI_FAILED, 50, "MPI failed between ranks: the job is aborted")                            \
     X(E, 151, MPI_COMMAND, 2, "the command runs on one process only, not on several MPI ranks")          \
     X(E, 152, MPI_STDIN, 2, "under MPI every rank reads the input: give a file, not stdin")              \
@@ -95,6 +96,7 @@
     X(W, 780, JFA_SEEDS_LOST, 0, "seeds share their start pixel with a nearer seed")                     \
     X(W, 781, JFA_DEVICE_FALLBACK, 0, "no usable OpenCL device: jfa on the reference backend")           \
     X(W, 782, FACET_START_FINE, 0, "Facet-JFA cannot start coarser than n")                              \
+    X(W, 783, PNG_EXTENSION, 0, "--png FILE named as another image format: PNG data written")            \
     X(W, 790, CROSSCHECK_POWER, 0, "radii differ: compared with CGAL's power diagram (ids only)")        \
     X(W, 791, CROSSCHECK_FLAT, 0, "the centres span fewer than 3 dimensions: no vertices")               \
     X(W, 792, CROSSCHECK_HIDDEN, 0, "spheres hidden in the power diagram (no power cell)")               \

@@ -44,6 +44,11 @@ void vb_output_discard_all(void);
 void vb_output_defer(int on);
 int vb_output_commit_deferred(vb_ctx *ctx);
 
+/* The path f writes (through a link: its target), when f came from
+ * vb_output_open and is still open; NULL otherwise. Owned by the output
+ * table: valid until f is committed or discarded. */
+const char *vb_output_name(FILE *f);
+
 /* Nonzero when f came from vb_output_open and is still open. */
 int vb_output_is_open(FILE *f);
 

@@ -179,7 +179,10 @@ int vbj_cl_facet(vb_ctx *ctx, vbj_engine *e, const vbj_seeds *s, const vbj_optio
 {
     cl_command_queue queue = vbg_runtime_queue(e->rt);
     double t0 = 1e3 * vb_now();
-    uint32_t m = opt->m ? opt->m : vbj_start_resolution(s);
+    uint32_t m = opt->m;
+    int src = m ? VB_OK : vbj_start_resolution(ctx, s, &m);
+    if (src != VB_OK)
+        return src;
     cl_uint n = s->n, levels = vbj_log2u(n) - vbj_log2u(m);
     size_t pixels = out->pixels, npairs;
     int compact = opt->variant == VBJ_FACET;

@@ -131,6 +131,7 @@ int vbg_runtime_open(vb_ctx *ctx, vb_device_kind kind, vbg_runtime **out)
     unsigned index;
     if (device_index(ctx, &index) != VB_OK)
         return VB_EMISUSE;
+    vbg_pocl_cache_check(ctx);
     if (kind == VB_DEVICE_AUTO || kind == VB_DEVICE_GPU)
         found = find_device(CL_DEVICE_TYPE_GPU, index, &plat, &dev);
     if (!found && (kind == VB_DEVICE_AUTO || kind == VB_DEVICE_CPU))
@@ -298,6 +299,34 @@ static uint64_t fnv1a(uint64_t h, const char *s, size_t n)
     return (h ^ 0xff) * 1099511628211ull; /* field separator */
 }
 
+int vbg_cache_dir(char *dir, size_t cap, int make_dir)
+{
+    const char *xdg = getenv("XDG_CACHE_HOME"), *home = getenv("HOME");
+    int n;
+    if (xdg && *xdg)
+        n = snprintf(dir, cap, "%s/vorball", xdg);
+    else if (home && *home)
+        n = snprintf(dir, cap, "%s/.cache/vorball", home);
+    else
+        return 0;
+    if (n <= 0 || (size_t)n >= cap)
+        return 0;
+    if (make_dir) {
+        /* Parent first: $HOME/.cache may not exist yet. */
+        char *slash = strrchr(dir, '/');
+        if (slash && slash != dir) {
+            *slash = '\0';
+            int bad = mkdir(dir, 0755) != 0 && errno != EEXIST;
+            *slash = '/';
+            if (bad)
+                return 0;
+        }
+        if (mkdir(dir, 0755) != 0 && errno != EEXIST)
+            return 0;
+    }
+    return 1;
+}
+
 /* Path of the cached binary of (name, opts, src) and its key hash. */
 static int cache_path(const vbg_runtime *rt, const char *name, const char *opts, const char *src,
                       char *path, size_t cap, int make_dir, uint64_t *hash)
@@ -317,12 +346,7 @@ static int cache_path(const vbg_runtime *rt, const char *name, const char *opts,
         strstr(plat, "Portable Computing Language"))
         return 0;
     char dir[900];
-    const char *xdg = getenv("XDG_CACHE_HOME"), *home = getenv("HOME");
-    if (xdg && *xdg)
-        snprintf(dir, sizeof dir, "%s/vorball", xdg);
-    else if (home && *home)
-        snprintf(dir, sizeof dir, "%s/.cache/vorball", home);
-    else
+    if (!vbg_cache_dir(dir, sizeof dir, make_dir))
         return 0;
     uint64_t h = 1469598103934665603ull;
     char info[512];
@@ -345,19 +369,6 @@ static int cache_path(const vbg_runtime *rt, const char *name, const char *opts,
     }
     h = fnv1a(h, opts, strlen(opts));
     h = fnv1a(h, src, strlen(src));
-    if (make_dir) {
-        /* Parent first: $HOME/.cache may not exist yet. */
-        char parent[900];
-        snprintf(parent, sizeof parent, "%s", dir);
-        char *slash = strrchr(parent, '/');
-        if (slash && slash != parent) {
-            *slash = '\0';
-            if (mkdir(parent, 0755) != 0 && errno != EEXIST)
-                return 0;
-        }
-        if (mkdir(dir, 0755) != 0 && errno != EEXIST)
-            return 0;
-    }
     *hash = h;
     int n = snprintf(path, cap, "%s/%s-%016llx.bin", dir, name, (unsigned long long)h);
     return n > 0 && (size_t)n < cap;
@@ -555,6 +566,7 @@ static const char *type_name(cl_device_type t)
 int vbg_list_devices(vb_ctx *ctx, FILE *out)
 {
     cl_uint np = 0;
+    vbg_pocl_cache_check(ctx);
     cl_int err = clGetPlatformIDs(0, NULL, &np);
     if (err != CL_SUCCESS || np == 0) {
         fprintf(out, "no OpenCL platform found (the reference backend, --device ref, still works)\n");

@@ -59,6 +59,19 @@ int vbg_check(vb_ctx *ctx, cl_int err, const char *what);
 /* Writes a table of platforms and devices (name, type, version, fp64, memory). */
 int vbg_list_devices(vb_ctx *ctx, FILE *out);
 
+/* The folder of vorball's caches into dir: $XDG_CACHE_HOME/vorball, else
+ * $HOME/.cache/vorball (created with its parent when make_dir). Returns 1,
+ * or 0 when there is none (no such variable, a path over cap, or it could
+ * not be created). */
+int vbg_cache_dir(char *dir, size_t cap, int make_dir);
+
+/* Checks PoCL's kernel cache (gpu/pocl_cache.c) once per process, before
+ * the first OpenCL call: without POCL_CACHE_DIR, points it at
+ * <vbg_cache_dir>/pocl; removes each cached program with a damaged bitcode
+ * or kernel file, with warning W750. Never fails: the cache only saves
+ * time. Allocates nothing that outlives the call. */
+void vbg_pocl_cache_check(vb_ctx *ctx);
+
 /* Returns the embedded source of kernel file `name`, or NULL if unknown. */
 const char *vbg_kernel_source(const char *name);
 

@@ -66,11 +66,13 @@ int vbx_data_init(vb_ctx *ctx, vbx_data *d, const vb_sphere_set *set)
             if (e > emax)
                 emax = e;
         }
-    if (emax - emin > VBX_MAX_SCALE)
+    if (emax - emin > VBX_MAX_SCALE) {
+        mpz_clear(d->scale); /* a failed init holds nothing */
         return vb_error(ctx, VB_EINPUT_MAGNITUDE, set->source, 0,
                         "decimal exponents span %ld orders of magnitude; the exact "
                         "certifier accepts at most %d",
                         emax - emin, VBX_MAX_SCALE);
+    }
     d->c = malloc(4 * (set->n ? set->n : 1) * sizeof *d->c);
     d->box = malloc(4 * (set->n ? set->n : 1) * sizeof *d->box);
     d->near = malloc(4 * (set->n ? set->n : 1) * sizeof *d->near);
@@ -81,6 +83,7 @@ int vbx_data_init(vb_ctx *ctx, vbx_data *d, const vb_sphere_set *set)
         d->c = NULL;
         d->box = NULL;
         d->near = NULL;
+        mpz_clear(d->scale);
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (exact sphere data)");
     }
     mpz_ui_pow_ui(d->scale, 10, (unsigned long)(-emin));

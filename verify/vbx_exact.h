@@ -25,8 +25,9 @@ typedef struct vbx_data {
     double rmax;  /* >= every exact radius */
 } vbx_data;
 
-/* Fills d from the decimals of set (never from its doubles). Returns VB_OK,
- * VB_ENOMEM or VB_EINPUT_MAGNITUDE (exponent spread too large to scale). */
+/* Fills d from the decimals of set (never from its doubles). Returns VB_OK
+ * (free with vbx_data_free), VB_ENOMEM or VB_EINPUT_MAGNITUDE (exponent
+ * spread too large to scale); on failure d holds nothing. */
 int vbx_data_init(vb_ctx *ctx, vbx_data *d, const vb_sphere_set *set);
 void vbx_data_free(vbx_data *d);
 

@@ -155,15 +155,18 @@ static int bvh_build(const vb_sphere_set *s, bvh *t)
 
 /* The first guess of a near list's radius: a little more than the median
  * extent of the leaves (eight neighbouring centres), which follows the local
- * density of the input wherever most of it is. Only speed depends on it. */
-static double near_radius(const bvh *t)
+ * density of the input wherever most of it is. The vertices do not depend
+ * on it, but the count of quadruples proposed (the output's header) does:
+ * without memory for it no other guess is taken, the cover fails (-1). */
+static int near_radius(const bvh *t, double *out)
 {
     size_t leaves = (t->m + VBQ_LEAF - 1) / VBQ_LEAF;
-    double *ext = malloc((leaves ? leaves : 1) * sizeof *ext);
-    if (!ext || leaves == 0) {
-        free(ext);
-        return 1.0;
-    }
+    *out = 1.0;
+    if (leaves == 0)
+        return 0;
+    double *ext = malloc(leaves * sizeof *ext);
+    if (!ext)
+        return -1;
     for (size_t l = 0; l < leaves; l++) {
         size_t nd = t->first + l;
         double e = 0.0;
@@ -176,7 +179,8 @@ static double near_radius(const bvh *t)
     qsort(ext, leaves, sizeof *ext, cmp_double);
     double r = 0.6 * ext[leaves / 2];
     free(ext);
-    return r > 0.0 ? r : 1.0;
+    *out = r > 0.0 ? r : 1.0;
+    return 0;
 }
 
 /* ---- the cells on worker threads ---------------------------------------- */
@@ -518,7 +522,7 @@ int vb_cover_prepare(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_optio
     if (set->n > UINT32_MAX - 1)
         return vb_error(ctx, VB_EINPUT_TOOLARGE, NULL, 0, "more than 2^32 - 2 spheres");
     vb_cover_tree *t = calloc(1, sizeof *t);
-    if (!t || bvh_build(set, &t->g) != VB_OK) {
+    if (!t || bvh_build(set, &t->g) != VB_OK || near_radius(&t->g, &e->near) != 0) {
         if (t)
             bvh_free(&t->g);
         free(t);
@@ -535,7 +539,6 @@ int vb_cover_prepare(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_optio
     e->first = (uint32_t)g->first;
     e->m = (uint32_t)g->m;
     e->rmax_all = g->rmax_all;
-    e->near = near_radius(g);
     e->host = set;
     *tree = t;
     return VB_OK;

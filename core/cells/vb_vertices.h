@@ -148,8 +148,10 @@ void vb_vertices_result_free(vb_vertices_result *r);
  * starts (warning W760 and the twin when it cannot be used), proposes,
  * reruns on the twin when the device fails mid-run (W762), certifies,
  * repairs and merges. The result does not depend on the device or the
- * thread count. Returns VB_OK or an error status (message in ctx):
- * VB_EMISUSE (bad options, unknown proposer), VB_ENOMEM, VB_EPREC. */
+ * thread count. Before any of it, the memory the run needs is estimated
+ * (vb_vertices_memory_check). Returns VB_OK or an error status (message in
+ * ctx): VB_EMISUSE (bad options, unknown proposer), VB_ENOMEM_ESTIMATE
+ * (refused up front: the estimate exceeds the room), VB_ENOMEM, VB_EPREC. */
 int vb_vertices_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertices_config *cfg,
                     const vb_vertices_backends *be, vb_vertices_result *res);
 
@@ -165,12 +167,36 @@ int vb_vertices_open(vb_ctx *ctx, const vb_vertices_backends *be, const vb_verti
 double vb_vertices_open_seconds(const vb_vertices_engine *e);
 
 /* vb_vertices_run on an opened engine: the same output, without the
- * set-up (t_setup stays 0). A device that fails mid-run is dropped with
- * W762: the run, and later runs on e, use the twin. */
+ * set-up (t_setup stays 0), the same memory check first (the device
+ * already open). A device that fails mid-run is dropped with W762: the
+ * run, and later runs on e, use the twin. */
 int vb_vertices_run_on(vb_ctx *ctx, vb_vertices_engine *e, const vb_sphere_set *set,
                        const vb_vertices_config *cfg, vb_vertices_result *res);
 
 void vb_vertices_close(vb_vertices_engine *e);
+
+/* The memory a vertex run of set under cfg needs at least (the model and
+ * its measurements: cells/vertices_memory.c). */
+typedef struct vb_vertices_memory {
+    size_t resident;       /* bytes touched at the peak */
+    size_t address_space;  /* resident, plus the address space reserved untouched
+                            * (thread stacks and malloc arenas, an OpenCL runtime) */
+    size_t cells;          /* spheres not inside another */
+} vb_vertices_memory;
+
+/* Fills *out for set (validated: contained spheres flagged) under cfg;
+ * device_open: the OpenCL runtime is already mapped (not counted).
+ * Allocates nothing. */
+void vb_vertices_memory_estimate(const vb_sphere_set *set, const vb_vertices_config *cfg,
+                                 int device_open, vb_vertices_memory *out);
+
+/* Compares the estimate with the room left (vb_memory_room_get): the
+ * address space with ulimit -v, the resident need with every other limit.
+ * Returns VB_OK when it fits or no limit is known, else
+ * VB_ENOMEM_ESTIMATE (E140) with a message that says how much is needed,
+ * how much is available and under which limit. Allocates nothing. */
+int vb_vertices_memory_check(vb_ctx *ctx, const vb_sphere_set *set,
+                             const vb_vertices_config *cfg, int device_open);
 
 #ifdef __cplusplus
 }

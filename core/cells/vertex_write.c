@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "vb_json.h"
+#include "vb_output.h"
 #include "vb_parallel.h"
 
 int vb_vertex_format_parse(vb_ctx *ctx, const char *name, vb_vertex_format *out)
@@ -209,7 +210,9 @@ int vb_vertex_write(vb_ctx *ctx, FILE *f, const vb_vertex_list *v, vb_vertex_for
     }
     if (rc != VB_OK)
         return rc;
-    if (ferror(f))
-        return vb_error(ctx, VB_EIO, NULL, 0, "writing vertices failed");
+    if (ferror(f)) {
+        const char *name = f == stdout ? "<stdout>" : vb_output_name(f);
+        return vb_error(ctx, VB_EIO, name, 0, "writing vertices failed");
+    }
     return VB_OK;
 }

@@ -394,6 +394,9 @@ int vb_vertices_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertices_con
     const vb_proposer *p = proposer_of(ctx, cfg);
     if (!p)
         return VB_EMISUSE;
+    int mrc = vb_vertices_memory_check(ctx, set, cfg, 0);
+    if (mrc != VB_OK)
+        return mrc;
     void *state = NULL;
     vb_device *dev = NULL;
     int rc = VB_OK, async = cfg->device != VB_DEVICE_REF;
@@ -498,6 +501,9 @@ int vb_vertices_run_on(vb_ctx *ctx, vb_vertices_engine *e, const vb_sphere_set *
                        const vb_vertices_config *cfg, vb_vertices_result *res)
 {
     double t0 = vb_now();
+    int mrc = vb_vertices_memory_check(ctx, set, cfg, 1);
+    if (mrc != VB_OK)
+        return mrc;
     vbv_cert_open co;
     vbv_cert_stream css, *cs;
     certifier_start(e->be.certifier, set, cfg, &co, &css, &cs);

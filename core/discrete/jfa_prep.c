@@ -124,14 +124,16 @@ static int cmp_u64(const void *a, const void *b)
     return x < y ? -1 : x > y;
 }
 
-uint32_t vbj_start_resolution(const vbj_seeds *s)
+int vbj_start_resolution(vb_ctx *ctx, const vbj_seeds *s, uint32_t *m)
 {
     uint32_t logn = vbj_log2u(s->n);
-    if (s->k < 2)
-        return 1;
+    if (s->k < 2) {
+        *m = 1;
+        return VB_OK;
+    }
     uint64_t *keys = malloc(s->k * sizeof *keys);
     if (!keys)
-        return s->n; /* the safe answer: no coarsening */
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "facet-jfa: out of memory (start resolution)");
     for (size_t i = 0; i < s->k; i++)
         keys[i] = morton(s, i);
     qsort(keys, s->k, sizeof *keys, cmp_u64);
@@ -147,7 +149,8 @@ uint32_t vbj_start_resolution(const vbj_seeds *s)
         need = lvl > need ? lvl : need;
     }
     free(keys);
-    return 1u << (need > logn ? logn : need);
+    *m = 1u << (need > logn ? logn : need);
+    return VB_OK;
 }
 
 int vbj_cells_build(vb_ctx *ctx, const vbj_seeds *s, vbj_cells *out)

@@ -125,7 +125,10 @@ static int dense(vb_ctx *ctx, const vbj_seeds *s, const level *L, const uint32_t
  * label; their children inherit label and mark. */
 static int facet(vb_ctx *ctx, const vbj_seeds *s, const vbj_options *opt, vbj_result *out)
 {
-    uint32_t m = opt->m ? opt->m : vbj_start_resolution(s);
+    uint32_t m = opt->m;
+    int src = m ? VB_OK : vbj_start_resolution(ctx, s, &m);
+    if (src != VB_OK)
+        return src;
     uint32_t steps[40];
     level L = make_level(s, m);
     uint32_t *lab = NULL;

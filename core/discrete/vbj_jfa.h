@@ -258,9 +258,11 @@ uint64_t vbj_boundary_count(int dim, uint32_t n, const uint32_t *labels);
 /* Per-pixel distinct-label counts (see VBJ_WANT_NLABELS) of a label grid. */
 void vbj_count_labels(int dim, uint32_t n, const uint32_t *labels, uint8_t *out);
 
-/* Facet-JFA's default start resolution: the smallest power of two m such that
- * no two seeds fall into the same cell of the m^dim grid (n when two seeds
- * share a fine pixel). */
-uint32_t vbj_start_resolution(const vbj_seeds *s);
+/* Facet-JFA's default start resolution, in *m: the smallest power of two
+ * such that no two seeds fall into the same cell of the m^dim grid (n when
+ * two seeds share a fine pixel). Returns VB_OK, or VB_ENOMEM (message in
+ * ctx; *m untouched): a start guessed without the seeds' order would give
+ * another diagram, so none is. Allocates only scratch. */
+int vbj_start_resolution(vb_ctx *ctx, const vbj_seeds *s, uint32_t *m);
 
 #endif

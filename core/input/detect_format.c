@@ -71,28 +71,6 @@ int vbi_pdb_header_record(const char *line, size_t n)
     return 0;
 }
 
-/* A GRO file: a title line, the atom count alone on line 2, then atom
- * lines with x, y, z from column 21 (nm, fixed width). */
-static int gro_fits(const char *buf, size_t len)
-{
-    vbi_lines it;
-    vbi_lines_init(&it, buf, len, 1);
-    const char *line, *tok;
-    size_t n;
-    if (!vbi_lines_next(&it, &line, &n) || !vbi_lines_next(&it, &line, &n))
-        return 0;
-    const char *p = line;
-    size_t k = vbi_token(&p, line + n, &tok);
-    int32_t count;
-    if (k == 0 || vbi_parse_int(tok, k, &count) != 0 || count < 0 || vbi_token(&p, line + n, &tok))
-        return 0;
-    if (count == 0)
-        return 1;
-    if (!vbi_lines_next(&it, &line, &n))
-        return 0;
-    return vbi_gro_atom_fits(line, n);
-}
-
 /* How many ATOM/HETATM lines are looked at to tell PDB from PQR. */
 #define VBI_DETECT_ATOM_LINES 50
 
@@ -147,52 +125,114 @@ static int pqr_tokens_fit(const char *line, size_t n)
     return 1;
 }
 
-int vbi_detect_format(const char *buf, size_t len, vb_format *out)
+/* GRO is told by its first three lines: a title, the atom count alone on
+ * line 2, then (unless the count is 0) a line with GRO's atom layout.
+ * Returns 1 (GRO), -1 (not GRO) or 0 (needs the next line). */
+static int gro_line(vbi_detector *d, const char *line, size_t n)
+{
+    if (d->lines == 1)
+        return 0;
+    if (d->lines == 2) {
+        const char *p = line, *tok;
+        size_t k = vbi_token(&p, line + n, &tok);
+        int32_t count;
+        if (k == 0 || vbi_parse_int(tok, k, &count) != 0 || count < 0 ||
+            vbi_token(&p, line + n, &tok))
+            return -1;
+        return count == 0 ? 1 : 0;
+    }
+    return vbi_gro_atom_fits(line, n) ? 1 : -1;
+}
+
+/* The other formats, line by line, as one pass over the text: the first
+ * record decides mmCIF or XYZR; PDB against PQR is a vote of the first
+ * VBI_DETECT_ATOM_LINES atom records. Sets d->other_done when decided. */
+static void other_line(vbi_detector *d, const char *line, size_t n)
+{
+    const char *p = line, *tok;
+    size_t k = vbi_token(&p, line + n, &tok);
+    if (k == 0 || tok[0] == '#')
+        return;
+    if (!d->seen) {
+        d->seen = 1;
+        if ((k >= 5 && memcmp(tok, "data_", 5) == 0) || tok[0] == '_' ||
+            (k == 5 && memcmp(tok, "loop_", 5) == 0)) {
+            d->other = VB_FMT_MMCIF;
+            d->other_done = 1;
+            return;
+        }
+        /* Records of the other formats start with a letter or '_'; a
+         * number first means XYZR, and its reader names what is wrong
+         * with the line if anything is. */
+        if (strchr("0123456789+-.", tok[0])) {
+            d->other = VB_FMT_XYZR;
+            d->other_done = 1;
+            return;
+        }
+    }
+    d->records += vbi_pdb_header_record(line, n);
+    if (!vbi_pdb_record(line, n, "ATOM") && !vbi_pdb_record(line, n, "HETATM"))
+        return;
+    /* Lines that keep PDB's columns vote PDB; lines that break them but
+     * read as PQR vote PQR. A PDB file with one broken line stays PDB,
+     * so its reader can name the line. */
+    if (pdb_columns_fit(line, n))
+        d->pdb_votes++;
+    else if (pqr_tokens_fit(line, n))
+        d->pqr_votes++;
+    if (++d->atoms == VBI_DETECT_ATOM_LINES)
+        d->other_done = 1;
+}
+
+void vbi_detector_init(vbi_detector *d)
+{
+    memset(d, 0, sizeof *d);
+}
+
+int vbi_detector_line(vbi_detector *d, const char *line, size_t n)
+{
+    d->lines++;
+    if (d->gro == 0)
+        d->gro = gro_line(d, line, n);
+    if (!d->other_done)
+        other_line(d, line, n);
+    return d->gro == 1 || (d->gro == -1 && d->other_done);
+}
+
+int vbi_detector_feed(vbi_detector *d, const char *buf, size_t len)
 {
     vbi_lines it;
     vbi_lines_init(&it, buf, len, 1);
-    const char *line, *tok;
+    const char *line;
     size_t n;
-    int first = 1, atoms = 0, pdb_votes = 0, pqr_votes = 0, records = 0;
-    if (gro_fits(buf, len))
+    while (vbi_lines_next(&it, &line, &n))
+        if (vbi_detector_line(d, line, n))
+            return 1;
+    return 0;
+}
+
+int vbi_detector_result(const vbi_detector *d, vb_format *out)
+{
+    if (d->gro == 1)
         return *out = VB_FMT_GRO, VB_OK;
-    while (vbi_lines_next(&it, &line, &n)) {
-        const char *p = line;
-        size_t k = vbi_token(&p, line + n, &tok);
-        if (k == 0 || tok[0] == '#')
-            continue;
-        if (first) {
-            first = 0;
-            if ((k >= 5 && memcmp(tok, "data_", 5) == 0) || tok[0] == '_' ||
-                (k == 5 && memcmp(tok, "loop_", 5) == 0))
-                return *out = VB_FMT_MMCIF, VB_OK;
-            /* Records of the other formats start with a letter or '_'; a
-             * number first means XYZR, and its reader names what is wrong
-             * with the line if anything is. */
-            if (strchr("0123456789+-.", tok[0]))
-                return *out = VB_FMT_XYZR, VB_OK;
-        }
-        records += vbi_pdb_header_record(line, n);
-        if (!vbi_pdb_record(line, n, "ATOM") && !vbi_pdb_record(line, n, "HETATM"))
-            continue;
-        /* Lines that keep PDB's columns vote PDB; lines that break them but
-         * read as PQR vote PQR. A PDB file with one broken line stays PDB,
-         * so its reader can name the line. */
-        if (pdb_columns_fit(line, n))
-            pdb_votes++;
-        else if (pqr_tokens_fit(line, n))
-            pqr_votes++;
-        if (++atoms == VBI_DETECT_ATOM_LINES)
-            break;
-    }
-    if (first)
+    if (d->other == VB_FMT_MMCIF || d->other == VB_FMT_XYZR)
+        return *out = d->other, VB_OK;
+    if (!d->seen)
         return VB_EINPUT_EMPTY;
     /* PDB records without a single atom are a PDB file with no atoms: its
      * reader says so, naming the file. */
-    if (atoms == 0 && records > 0)
+    if (d->atoms == 0 && d->records > 0)
         return *out = VB_FMT_PDB, VB_OK;
-    if (atoms == 0)
+    if (d->atoms == 0)
         return VB_EINPUT_FORMAT;
-    *out = pqr_votes > pdb_votes ? VB_FMT_PQR : VB_FMT_PDB;
+    *out = d->pqr_votes > d->pdb_votes ? VB_FMT_PQR : VB_FMT_PDB;
     return VB_OK;
+}
+
+int vbi_detect_format(const char *buf, size_t len, vb_format *out)
+{
+    vbi_detector d;
+    vbi_detector_init(&d);
+    vbi_detector_feed(&d, buf, len);
+    return vbi_detector_result(&d, out);
 }

@@ -8,8 +8,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Bytes looked at to detect the format of a stream. */
-#define VBI_DETECT_BYTES ((size_t)1 << 16)
+/* The first read of a stream: enough for the magic numbers of the binary
+ * formats refused here; detection reads on by whole lines. */
+#define VBI_HEAD_BYTES ((size_t)1 << 16)
 
 struct vb_frame_reader {
     vb_format fmt;
@@ -157,6 +158,51 @@ void vb_frame_reader_close(vb_frame_reader *rd)
     free(rd);
 }
 
+/* Reads the head of the stream into rd->head: the first VBI_HEAD_BYTES
+ * (binary trajectories and PSF are refused on them), then, when the format
+ * is to be detected, on until the detector has seen enough whole lines to
+ * decide (however long the header) or the input ends. rd->fmt gets the
+ * format. Returns VB_OK or the error (message set). */
+static int read_head(vb_ctx *ctx, vb_frame_reader *rd)
+{
+    size_t cap = VBI_HEAD_BYTES, fed = 0;
+    vbi_detector det;
+    vbi_detector_init(&det);
+    rd->fmt = rd->opt.format;
+    for (;;) {
+        char *h = realloc(rd->head, cap + 1);
+        if (!h)
+            return vb_error(ctx, VB_ENOMEM, rd->name, 0, "out of memory");
+        rd->head = h;
+        rd->head_len += fread(rd->head + rd->head_len, 1, cap - rd->head_len, rd->f);
+        rd->head[rd->head_len] = '\0';
+        if (ferror(rd->f))
+            return vbi_input_read_error(ctx, rd->name);
+        int eof = rd->head_len < cap;
+        if (fed == 0) {
+            int rc = vbi_refuse_nonspheres(ctx, rd->name, rd->head, rd->head_len);
+            if (rc != VB_OK)
+                return rc;
+            rd->head_pos = fed = vbi_bom_length(rd->head, rd->head_len);
+        }
+        if (rd->fmt != VB_FMT_AUTO)
+            return VB_OK;
+        /* Whole lines only: up to the last '\n' read, or all at the end. */
+        size_t upto = rd->head_len;
+        if (!eof)
+            while (upto > fed && rd->head[upto - 1] != '\n')
+                upto--;
+        if (vbi_detector_feed(&det, rd->head + fed, upto - fed) || eof)
+            break;
+        fed = upto;
+        if (cap >= VBI_MAX_FILE_BYTES)
+            return vb_error(ctx, VB_EINPUT_TOOLARGE, rd->name, 0, "input is larger than 2 GiB");
+        cap *= 2;
+    }
+    int rc = vbi_detector_result(&det, &rd->fmt);
+    return rc == VB_OK ? VB_OK : vbi_detect_error(ctx, rd->name, rc);
+}
+
 int vb_frame_reader_open(vb_ctx *ctx, const char *path, const vb_read_options *opt,
                          vb_frame_reader **out)
 {
@@ -175,31 +221,10 @@ int vb_frame_reader_open(vb_ctx *ctx, const char *path, const vb_read_options *o
         vb_frame_reader_close(rd);
         return rc;
     }
-    rd->head = malloc(VBI_DETECT_BYTES + 1);
-    if (!rd->head) {
-        vb_frame_reader_close(rd);
-        return vb_error(ctx, VB_ENOMEM, path, 0, "out of memory");
-    }
-    rd->head_len = fread(rd->head, 1, VBI_DETECT_BYTES, rd->f);
-    rd->head[rd->head_len] = '\0';
-    rd->head_pos = vbi_bom_length(rd->head, rd->head_len);
-    if (ferror(rd->f)) {
-        int rc = vbi_input_read_error(ctx, path);
-        vb_frame_reader_close(rd);
-        return rc;
-    }
-    int rc0 = vbi_refuse_nonspheres(ctx, path, rd->head, rd->head_len);
+    int rc0 = read_head(ctx, rd);
     if (rc0 != VB_OK) {
         vb_frame_reader_close(rd);
         return rc0;
-    }
-    rd->fmt = rd->opt.format;
-    if (rd->fmt == VB_FMT_AUTO) {
-        int rc = vbi_detect_format(rd->head + rd->head_pos, rd->head_len - rd->head_pos, &rd->fmt);
-        if (rc != VB_OK) {
-            vb_frame_reader_close(rd);
-            return vbi_detect_error(ctx, path, rc);
-        }
     }
     if (rd->fmt == VB_FMT_MMCIF || rd->fmt == VB_FMT_XYZR || rd->fmt == VB_FMT_GRO) {
         /* Not streamed: the rest of the text joins the head. */

@@ -4,10 +4,13 @@
 #include "vb_frames.h"
 
 #include <math.h>
+#include <stdio.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "vb_dcd.h"
+#include "vb_diag.h"
 #include "vb_xdr.h"
 #include "vbi_input.h"
 
@@ -21,6 +24,9 @@ struct vb_frame_source {
     size_t nkeep;
     double *xyz;         /* one frame: DCD x..., y..., z...; XTC/TRR x0 y0 z0 x1 ... */
     long index;          /* frames read so far */
+    long contained_named; /* 1 + the frame whose contained spheres were named (W701) */
+    long contained_more;  /* later frames with contained spheres (counted, not named) */
+    char contained_src[512]; /* the file they came from, for that count's line */
 };
 
 void vb_frame_source_close(vb_frame_source *F)
@@ -158,6 +164,57 @@ static int check_frame(vb_ctx *ctx, const vb_frame_source *F, const vb_sphere_se
     return VB_OK;
 }
 
+typedef struct {
+    double v[4];
+    size_t idx;
+} frame_key;
+
+/* Order by x, y, z, r as numbers (-0 equals 0, as the decimals of a text
+ * frame compare), then by index. */
+static int frame_key_cmp(const void *pa, const void *pb)
+{
+    const frame_key *a = pa, *b = pb;
+    for (int k = 0; k < 4; k++)
+        if (a->v[k] != b->v[k])
+            return a->v[k] < b->v[k] ? -1 : 1;
+    return (a->idx > b->idx) - (a->idx < b->idx);
+}
+
+/* E104 when two atoms of a trajectory frame are the same sphere, as
+ * vb_spheres_validate says of a text frame (a GRO or PDB model): the pair
+ * with the smallest later atom is named. */
+static int check_frame_duplicates(vb_ctx *ctx, const vb_frame_source *F, const vb_sphere_set *s)
+{
+    frame_key *k = malloc(s->n * sizeof *k);
+    if (!k)
+        return vb_error(ctx, VB_ENOMEM, F->dcd_path, 0, "out of memory");
+    for (size_t i = 0; i < s->n; i++)
+        k[i] = (frame_key){{s->x[i], s->y[i], s->z[i], s->r[i]}, i};
+    qsort(k, s->n, sizeof *k, frame_key_cmp);
+    size_t first = SIZE_MAX, second = SIZE_MAX;
+    for (size_t i = 1; i < s->n; i++)
+        if (k[i - 1].v[0] == k[i].v[0] && k[i - 1].v[1] == k[i].v[1] &&
+            k[i - 1].v[2] == k[i].v[2] && k[i - 1].v[3] == k[i].v[3] && k[i].idx < second) {
+            second = k[i].idx;
+            first = k[i - 1].idx;
+        }
+    free(k);
+    if (second == SIZE_MAX)
+        return VB_OK;
+    /* Several copies: the earliest copy of the same sphere is the partner. */
+    for (size_t i = 0; i < first; i++)
+        if (s->x[i] == s->x[second] && s->y[i] == s->y[second] && s->z[i] == s->z[second] &&
+            s->r[i] == s->r[second]) {
+            first = i;
+            break;
+        }
+    size_t a = F->keep[first], b = F->keep[second];
+    return vb_error(ctx, VB_EINPUT_DUPLICATE, F->dcd_path, 0,
+                    "frame %ld: atom %zu (topology line %ld) is identical to atom %zu (topology "
+                    "line %ld)",
+                    F->index, b + 1, F->topo->line[b], a + 1, F->topo->line[a]);
+}
+
 /* The next trajectory frame, in Angstrom: DCD stores Angstrom; XTC and
  * TRR store nm. A float times 10 is exact in double (24 + 4 bits); a
  * double-precision TRR coordinate times 10 is rounded once. */
@@ -191,7 +248,7 @@ static int next_traj(vb_ctx *ctx, vb_frame_source *F, vb_sphere_set **out, int *
         if (F->topo->info)
             s->info[i] = F->topo->info[k];
     }
-    if ((rc = check_frame(ctx, F, s)) != VB_OK) {
+    if ((rc = check_frame(ctx, F, s)) != VB_OK || (rc = check_frame_duplicates(ctx, F, s)) != VB_OK) {
         vb_spheres_free(s);
         return rc;
     }
@@ -204,9 +261,30 @@ int vb_frame_source_next(vb_ctx *ctx, vb_frame_source *F, vb_sphere_set **out, i
 {
     *out = NULL;
     int rc = F->rd ? vb_frame_reader_next(ctx, F->rd, out, model) : next_traj(ctx, F, out, model);
-    if (rc == VB_OK && *out && F->rd && (rc = vb_spheres_validate(ctx, *out, 1)) != VB_OK) {
+    if (rc == VB_OK && *out && F->rd &&
+        (rc = vbi_spheres_validate(ctx, *out, 1, F->contained_named == 0)) != VB_OK) {
         vb_spheres_free(*out);
         *out = NULL;
+    }
+    if (rc == VB_OK && *out && F->rd) {
+        size_t c = 0;
+        for (size_t i = 0; i < (*out)->n; i++)
+            c += (*out)->contained[i] != 0;
+        if (c && F->contained_named == 0) {
+            F->contained_named = F->index + 1;
+            snprintf(F->contained_src, sizeof F->contained_src, "%s",
+                     (*out)->source ? (*out)->source : "");
+        }
+        else if (c)
+            F->contained_more++;
+    }
+    /* The end: the frames whose contained spheres went unnamed, once. */
+    if (rc == VB_OK && !*out && F->contained_more > 0) {
+        vb_warn(ctx, VB_W_CONTAINED_COUNT, F->contained_src, 0,
+                "spheres inside others in %ld more frame%s (W701 named them for frame %ld "
+                "only)",
+                F->contained_more, F->contained_more == 1 ? "" : "s", F->contained_named - 1);
+        F->contained_more = 0;
     }
     if (rc == VB_OK && *out)
         F->index++;

@@ -245,29 +245,53 @@ static int residue_table_grow(vbi_altloc *a)
     return 0;
 }
 
+/* The residue of info in the table (a->last), added with info's location
+ * and occupancy occ when new. 0, or -1 when out of memory. */
+static int residue_of(vbi_altloc *a, const vb_atom_info *info, double occ)
+{
+    /* Lettered atoms of one residue usually come together: the last
+     * residue answers most lookups. */
+    if (a->last && same_residue(a->last, info))
+        return 0;
+    vbi_altloc_res key;
+    memset(&key, 0, sizeof key);
+    memcpy(key.chain, info->chain, sizeof key.chain);
+    key.chain[sizeof key.chain - 1] = '\0';
+    key.resseq = info->resseq;
+    key.icode = info->icode;
+    if (2 * (a->n + 1) > a->cap && residue_table_grow(a) != 0)
+        return -1;
+    vbi_altloc_res *r = residue_slot(a->slots, a->cap, &key);
+    if (!r->kept) {
+        key.kept = info->altloc;
+        key.occupancy = occ;
+        *r = key;
+        a->n++;
+    }
+    a->last = r;
+    return 0;
+}
+
+int vbi_altloc_offer(vbi_altloc *a, const vb_atom_info *info, double occupancy)
+{
+    if (info->altloc == ' ')
+        return 0;
+    if (residue_of(a, info, occupancy) != 0)
+        return -1;
+    /* Strictly higher: ties go to the location met first. */
+    if (occupancy > a->last->occupancy) {
+        a->last->kept = info->altloc;
+        a->last->occupancy = occupancy;
+    }
+    return 0;
+}
+
 int vbi_altloc_keeps(vbi_altloc *a, const vb_atom_info *info)
 {
     if (info->altloc == ' ')
         return 1;
-    /* Lettered atoms of one residue usually come together: the last
-     * residue answers most lookups. */
-    if (!a->last || !same_residue(a->last, info)) {
-        vbi_altloc_res key;
-        memset(&key, 0, sizeof key);
-        memcpy(key.chain, info->chain, sizeof key.chain);
-        key.chain[sizeof key.chain - 1] = '\0';
-        key.resseq = info->resseq;
-        key.icode = info->icode;
-        if (2 * (a->n + 1) > a->cap && residue_table_grow(a) != 0)
-            return -1;
-        vbi_altloc_res *r = residue_slot(a->slots, a->cap, &key);
-        if (!r->kept) {
-            key.kept = info->altloc;
-            *r = key;
-            a->n++;
-        }
-        a->last = r;
-    }
+    if (residue_of(a, info, -1) != 0)
+        return -1;
     return info->altloc == a->last->kept;
 }
 

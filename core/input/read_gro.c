@@ -89,6 +89,22 @@ static int parse_atom(vb_ctx *ctx, const char *name, long lineno, const char *li
     return VB_OK;
 }
 
+/* True when a line is a GRO box line: 3 numbers (a rectangular box) or 9
+ * (a triclinic one), free format. An atom line never is one: its residue
+ * field ("1MET") is not a number. */
+static int box_line(const char *line, size_t n)
+{
+    const char *p = line, *tok;
+    size_t k;
+    int count = 0;
+    while ((k = vbi_token(&p, line + n, &tok)) > 0) {
+        vb_decimal e;
+        if (++count > 9 || vb_decimal_parse(tok, k, &e, NULL) != VB_OK)
+            return 0;
+    }
+    return count == 3 || count == 9;
+}
+
 int vbi_gro_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, long first_line,
                   const vb_read_options *opt, vbi_dropped *dr, vb_sphere_set **out,
                   size_t *consumed)
@@ -124,6 +140,14 @@ int vbi_gro_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
                           "GRO input ends after %d of its %d atoms", (int)i, (int)count);
             break;
         }
+        /* A count above the atoms: the box line comes early (read as an
+         * atom it would be one of unknown element). */
+        if (box_line(line, n)) {
+            rc = vb_error(ctx, VB_EINPUT_MALFORMED, name, it.lineno,
+                          "GRO box line after %d atoms, but the atom count on line %ld says %d",
+                          (int)i, first_line + 1, (int)count);
+            break;
+        }
         vb_atom_info info;
         vb_decimal e[4];
         double d[4];
@@ -143,6 +167,13 @@ int vbi_gro_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
     if (rc == VB_OK && !vbi_lines_next(&it, &line, &n))
         rc = vb_error(ctx, VB_EINPUT_MALFORMED, name, it.lineno + 1,
                       "GRO frame without its box line after %d atoms", (int)count);
+    /* A count below the atoms: the line after them is another atom, not
+     * the box (reading on would silently leave atoms out). */
+    else if (rc == VB_OK && !box_line(line, n))
+        rc = vb_error(ctx, VB_EINPUT_MALFORMED, name, it.lineno,
+                      "not a GRO box line (3 or 9 numbers)%s: the atom count on line %ld says %d",
+                      vbi_gro_atom_fits(line, n) ? " but an atom line" : "", first_line + 1,
+                      (int)count);
     if (rc != VB_OK) {
         vbi_builder_discard(&b);
         return rc;
@@ -171,6 +202,8 @@ static size_t skip_frame(const char *buf, size_t len, size_t *atoms)
     for (int32_t i = 0; i <= count; i++)
         if (!vbi_lines_next(&it, &line, &n))
             return 0;
+    if (!box_line(line, n))
+        return 0;
     *atoms = (size_t)count;
     return (size_t)(it.p - buf);
 }

@@ -29,6 +29,56 @@ typedef struct {
     int layout; /* -1 until needed, then a VBI_LAYOUT_* */
 } pdb_text;
 
+/* The residue of an atom line and its alternate location (columns 17,
+ * 22-27) into info. */
+static void residue_fields(const char *line, size_t n, vb_atom_info *info)
+{
+    const char *s;
+    size_t k;
+    info->altloc = column_char(line, n, 17);
+    k = column(line, n, 22, 22, &s);
+    vbi_copy_field(info->chain, sizeof info->chain, s, k);
+    k = column(line, n, 23, 26, &s);
+    vbi_parse_int(s, k, &info->resseq);
+    info->icode = column_char(line, n, 27);
+}
+
+/* Offers every lettered atom of the models read (columns 55-60: its
+ * occupancy) to alt, so each residue keeps its most occupied location
+ * (vbi_altloc_offer) before the atoms are read. -1 when out of memory. */
+static int altloc_prepass(const char *buf, size_t len, const vb_read_options *opt,
+                          vbi_altloc *alt)
+{
+    vbi_atom_scan scan;
+    vbi_atom_scan_init(&scan, opt->model);
+    vbi_dropped ignored;
+    memset(&ignored, 0, sizeof ignored);
+    vbi_lines it;
+    vbi_lines_init(&it, buf, len, 1);
+    const char *line;
+    size_t n;
+    while (vbi_lines_next(&it, &line, &n)) {
+        vbi_record rec = vbi_record_kind(vbi_pdb_record, line, n);
+        int32_t serial = rec == VBI_REC_MODEL ? vbi_pdb_model_serial(line, n) : 0;
+        if (!vbi_atom_scan_takes(&scan, rec, serial, &ignored) || column_char(line, n, 17) == ' ')
+            continue;
+        vb_atom_info info;
+        memset(&info, 0, sizeof info);
+        residue_fields(line, n, &info);
+        const char *s;
+        size_t k = column(line, n, 55, 60, &s);
+        char field[8];
+        vbi_copy_field(field, sizeof field, s, k);
+        vb_decimal e;
+        double occ = -1; /* blank or unreadable: below any occupancy */
+        if (field[0] && vb_decimal_parse(field, strlen(field), &e, &occ) != VB_OK)
+            occ = -1;
+        if (vbi_altloc_offer(alt, &info, occ) != 0)
+            return -1;
+    }
+    return 0;
+}
+
 /* Fills info, e and d from one ATOM/HETATM line (radius aside); *how gets
  * VBI_INFER_NONE when columns 77-78 give the element, else how it was
  * inferred. */
@@ -58,14 +108,9 @@ static int parse_atom_line(vb_ctx *ctx, const char *name, long lineno, const cha
     char name4[5] = "    ";
     memcpy(name4, s, k);
     vbi_copy_field(info->name, sizeof info->name, s, k);
-    info->altloc = column_char(line, n, 17);
     k = column(line, n, 18, 21, &s);
     vbi_copy_field(info->resname, sizeof info->resname, s, k);
-    k = column(line, n, 22, 22, &s);
-    vbi_copy_field(info->chain, sizeof info->chain, s, k);
-    k = column(line, n, 23, 26, &s);
-    vbi_parse_int(s, k, &info->resseq);
-    info->icode = column_char(line, n, 27);
+    residue_fields(line, n, info);
     k = column(line, n, 77, 78, &s);
     char el[4];
     vbi_copy_field(el, sizeof el, s, k);
@@ -96,6 +141,8 @@ int vbi_pdb_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
     vbi_atom_scan_init(&scan, opt->model);
     vbi_altloc alt;
     vbi_altloc_init(&alt);
+    if (altloc_prepass(buf, len, opt, &alt) != 0)
+        rc = vb_error(ctx, VB_ENOMEM, name, 0, "out of memory (alternate locations)");
     pdb_text text = {buf, len, -1};
     size_t records = 0; /* ATOM/HETATM records met, read or not */
     vbi_lines it;

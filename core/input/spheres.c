@@ -3,6 +3,7 @@
  * filtered exact predicate). */
 #include "vb_spheres.h"
 #include "vb_diag.h"
+#include "vbi_input.h"
 
 #include <float.h>
 #include <gmp.h>
@@ -312,12 +313,12 @@ static void warn_nested(vb_ctx *ctx, const vb_sphere_set *s, const size_t *by, i
     }
 }
 
-/* Marks contained spheres (strictly inside another: empty cell) and warns
- * W701 (each, up to a limit) and W702 (the total). A sphere that only
+/* Marks contained spheres (strictly inside another: empty cell) and, when
+ * warn, warns W701 (each, up to a limit) and W702 (the total). A sphere that only
  * touches a larger one from inside is not contained: its cell is a point or
  * a segment that can end at a Voronoi vertex (W722, W723). Decided exactly:
  * a sphere strictly inside any sphere is contained, whatever it touches. */
-static int find_contained(vb_ctx *ctx, vb_sphere_set *s)
+static int find_contained(vb_ctx *ctx, vb_sphere_set *s, int warn)
 {
     center_grid g;
     memset(&g, 0, sizeof g);
@@ -367,14 +368,21 @@ static int find_contained(vb_ctx *ctx, vb_sphere_set *s)
             touch[i] = SIZE_MAX;
         }
     }
-    warn_nested(ctx, s, by, 0);
-    warn_nested(ctx, s, touch, 1);
+    if (warn) {
+        warn_nested(ctx, s, by, 0);
+        warn_nested(ctx, s, touch, 1);
+    }
     free(by);
     free(touch);
     return VB_OK;
 }
 
 int vb_spheres_validate(vb_ctx *ctx, vb_sphere_set *s, size_t min_count)
+{
+    return vbi_spheres_validate(ctx, s, min_count, 1);
+}
+
+int vbi_spheres_validate(vb_ctx *ctx, vb_sphere_set *s, size_t min_count, int warn_contained)
 {
     if (s->n == 0)
         return vb_error(ctx, VB_EINPUT_EMPTY, s->source, 0, "no spheres in the input");
@@ -392,5 +400,5 @@ int vb_spheres_validate(vb_ctx *ctx, vb_sphere_set *s, size_t min_count)
     s->contained = calloc(s->n, sizeof *s->contained);
     if (!s->contained)
         return vb_error(ctx, VB_ENOMEM, s->source, 0, "out of memory");
-    return find_contained(ctx, s);
+    return find_contained(ctx, s, warn_contained);
 }

@@ -242,12 +242,16 @@ int vbi_atom_scan_takes(vbi_atom_scan *s, vbi_record rec, int32_t model_serial,
 void vbi_atom_scan_note_open_model(const vbi_atom_scan *s, long model_line, vbi_dropped *dr);
 
 /* Alternate locations, per residue (chain, resseq, icode): blank is always
- * kept, and of the lettered ones the first met in the residue (usually 'A'). */
+ * kept, and of the lettered ones the most occupied, ties to the first met
+ * in the residue (the rule of Biopython and PyMOL). Readers that know the
+ * occupancies offer them first (vbi_altloc_offer); without an offer the
+ * first met is kept. */
 typedef struct vbi_altloc_res {
     char chain[8];
     int32_t resseq;
     char icode;
     char kept;        /* 0: empty slot */
+    double occupancy; /* of the kept location's most occupied atom offered */
 } vbi_altloc_res;
 
 typedef struct vbi_altloc {
@@ -260,6 +264,11 @@ typedef struct vbi_altloc {
  * that comes back after other residues is still dropped beside A. */
 void vbi_altloc_init(vbi_altloc *a);
 void vbi_altloc_free(vbi_altloc *a);
+/* Offers a lettered atom's occupancy (blank: a negative value): its
+ * location becomes the residue's kept one when it is the residue's first
+ * offer or more occupied than any offered before. 0, or -1 when out of
+ * memory. An atom without a letter is ignored. */
+int vbi_altloc_offer(vbi_altloc *a, const vb_atom_info *info, double occupancy);
 /* 1 when the atom's alternate location is the one kept, 0 when it is
  * dropped, -1 when out of memory. */
 int vbi_altloc_keeps(vbi_altloc *a, const vb_atom_info *info);
@@ -271,10 +280,41 @@ int vbi_altloc_keeps(vbi_altloc *a, const vb_atom_info *info);
 int vbi_atom_dropped(const vb_read_options *opt, vbi_altloc *alt, const vb_atom_info *info,
                      vbi_dropped *dr);
 
-/* Content detection into *out. Returns VB_OK, VB_EINPUT_EMPTY (only blank
- * and '#' lines) or VB_EINPUT_FORMAT (nothing fits); sets no message. PDB
- * header records without atoms are VB_FMT_PDB (its reader says "no
- * atoms"). */
+/* vb_spheres_validate, with the contained spheres marked but named (W701,
+ * W702) only when warn_contained: the frame source names them for the
+ * first frame that has any and counts the others (one line for a
+ * trajectory, not one per frame). */
+int vbi_spheres_validate(vb_ctx *ctx, vb_sphere_set *s, size_t min_count, int warn_contained);
+
+/* Content detection, the one path of every reader (whole buffers and
+ * streams alike): lines are fed one by one, whole, until the format is
+ * decided - GRO by its first three lines, mmCIF and XYZR by the first
+ * record, PDB against PQR by the first VBI_DETECT_ATOM_LINES atom records,
+ * however many header lines come before them. No byte budget: a stream is
+ * read as far as the decision needs. */
+typedef struct vbi_detector {
+    long lines;             /* lines fed */
+    int gro;                /* 1 GRO, -1 not GRO, 0 undecided */
+    int seen;               /* a record (non-blank, non-'#' line) was met */
+    int other_done;         /* the non-GRO decision is made */
+    vb_format other;        /* VB_FMT_MMCIF or VB_FMT_XYZR when the first record said so */
+    int atoms, pdb_votes, pqr_votes, records;
+} vbi_detector;
+
+void vbi_detector_init(vbi_detector *d);
+/* Feeds one whole line (without its terminator); returns 1 once the format
+ * is decided (later lines would not change it). */
+int vbi_detector_line(vbi_detector *d, const char *line, size_t n);
+/* Feeds the whole lines of buf (split as vbi_lines splits them; buf must
+ * end at a line end or at the end of the input); returns 1 once decided. */
+int vbi_detector_feed(vbi_detector *d, const char *buf, size_t len);
+/* The decision on the lines fed so far, into *out. Returns VB_OK,
+ * VB_EINPUT_EMPTY (only blank and '#' lines) or VB_EINPUT_FORMAT (nothing
+ * fits); sets no message. PDB header records without atoms are VB_FMT_PDB
+ * (its reader says "no atoms"). */
+int vbi_detector_result(const vbi_detector *d, vb_format *out);
+
+/* vbi_detector over the whole buffer: returns as vbi_detector_result. */
 int vbi_detect_format(const char *buf, size_t len, vb_format *out);
 
 /* True when the line is one of the common PDB records (HEADER, REMARK,

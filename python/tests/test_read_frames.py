@@ -142,3 +142,31 @@ def test_frames_errors(tmp_path):
     with pytest.raises(vorball.VorballError) as e:
         vorball.frames(corpus("data", "1crn.pdb"), step=0)
     assert e.value.number == 7
+
+
+def test_frames_detect_past_a_long_header(tmp_path):
+    """frames() detects the format as read() does, past any header (issue 28:
+    a PQR behind 140 KiB of REMARK lines was read as PDB, element radii)."""
+    atoms = [l for l in open(corpus("data", "1crn_apbs.pqr")) if l.startswith("ATOM")]
+    p = tmp_path / "long.pqr"
+    p.write_text("REMARK   1 a long PDB2PQR header line, padded to seventy characters..\n" * 2000
+                 + "".join(atoms))
+    whole = vorball.read(p)
+    frame = next(iter(vorball.frames(p)))
+    assert len(whole) == len(frame) == 642
+    assert np.array_equal(whole.r, frame.r) and np.array_equal(whole.xyz, frame.xyz)
+    assert frame.r[0] == 2.0  # the file's radius, not nitrogen's 1.55
+
+
+def test_gro_count_must_match_the_atom_lines(tmp_path):
+    """A GRO whose count says 3 of its 6 atom lines: E101 at the fourth atom
+    line (issue 28: read() took 3 atoms, silently)."""
+    atoms = "".join("    1ALA     CA    %d   %5.3f   0.100   0.100\n" % (k, 0.1 + 0.3 * k)
+                    for k in range(6))
+    p = tmp_path / "short.gro"
+    p.write_text("t\n3\n" + atoms + "   1.0 1.0 1.0\n")
+    with pytest.raises(vorball.VorballError) as e:
+        vorball.read(p)
+    assert e.value.number == 101 and str(p) + ":6:" in e.value.message
+    p.write_text("t\n6\n" + atoms + "   1.0 1.0 1.0\n")
+    assert len(vorball.read(p)) == 6

@@ -4,7 +4,9 @@
  * claims 2^31 - 1 atoms, DCDs ending in stray bytes; NUL bytes, a UTF-8
  * byte-order mark, CR-only line ends, a truncated last MODEL and an altloc
  * block that comes back after other residues, through the buffer readers and
- * the frame reader. */
+ * the frame reader. Issue 28: a GRO atom count that disagrees with the atom
+ * lines (item 2; the box line is checked, and never read as an atom: no
+ * W707, item 9). */
 #include <stdint.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -12,6 +14,7 @@
 
 #include "input_test_util.h"
 #include "vb_dcd.h"
+#include "vb_frames.h"
 
 #if defined(__has_feature)
 #if __has_feature(address_sanitizer)
@@ -420,6 +423,175 @@ static void test_altloc_split(void)
     vb_close(ctx);
 }
 
+/* Issue 28, item 2: a GRO whose count says fewer atoms than its lines
+ * hold was read short, exit 0; one that says more read the box line as an
+ * atom of unknown element (W707). Both are E101 at the line, through the
+ * buffer reader (vertices, read()) and the frame reader (channels). */
+#define GRO_ATOM(k, x) "    1ALA     CA    " k "   " x "   0.100   0.100\n"
+static void test_gro_count(void)
+{
+    FILE *diag;
+    vb_ctx *ctx = open_ctx(&diag);
+    static const char atoms6[] = GRO_ATOM("1", "0.100") GRO_ATOM("2", "0.400")
+        GRO_ATOM("3", "0.700") GRO_ATOM("4", "1.000") GRO_ATOM("5", "1.300") GRO_ATOM("6", "1.600");
+    char text[1024];
+    vb_sphere_set *s = NULL;
+    /* Right: 6 atoms, and a triclinic box (9 numbers) is a box too. */
+    snprintf(text, sizeof text, "t\n6\n%s   1.0 1.0 1.0 0 0 0 0 0 0\n", atoms6);
+    CHECK_INT(read_text(ctx, "ok.gro", text, NULL, &s), VB_OK);
+    CHECK_INT(s ? s->n : 0, 6);
+    CHECK(s && s->x[5] == 16.0);
+    vb_spheres_free(s);
+    s = NULL;
+    /* The count says 3 of 6: line 6 (atom 4) is not the box. */
+    snprintf(text, sizeof text, "t\n3\n%s   1.0 1.0 1.0\n", atoms6);
+    CHECK_ERROR(ctx, read_text(ctx, "short.gro", text, NULL, &s), VB_EINPUT_MALFORMED,
+                "short.gro:6:");
+    CHECK(s == NULL);
+    CHECK(strstr(vb_errmsg(ctx), "count on line 2 says 3") != NULL);
+    /* The same through the frame reader, and for a later frame. */
+    const char *path = temp_file(text);
+    vb_read_options o;
+    memset(&o, 0, sizeof o);
+    vb_frame_reader *rd = NULL;
+    int model = 0;
+    CHECK_INT(vb_frame_reader_open(ctx, path, &o, &rd), VB_OK);
+    CHECK_INT(vb_frame_reader_next(ctx, rd, &s, &model), VB_EINPUT_MALFORMED);
+    CHECK(s == NULL);
+    vb_frame_reader_close(rd);
+    unlink(path);
+    char two[2048];
+    snprintf(two, sizeof two, "t\n6\n%s   1.0 1.0 1.0\nt\n3\n%s   1.0 1.0 1.0\n", atoms6, atoms6);
+    o.model = 2;
+    CHECK_ERROR(ctx, read_text(ctx, "two.gro", two, &o, &s), VB_EINPUT_MALFORMED, "two.gro:15:");
+    CHECK(strstr(vb_errmsg(ctx), "count on line 11 says 3") != NULL);
+    /* The count says 8 of 6: the box line comes early, E101 there, no W707. */
+    snprintf(text, sizeof text, "t\n8\n%s   1.0 1.0 1.0\n", atoms6);
+    CHECK_ERROR(ctx, read_text(ctx, "long.gro", text, NULL, &s), VB_EINPUT_MALFORMED,
+                "long.gro:9:");
+    CHECK(strstr(vb_errmsg(ctx), "box line after 6 atoms") != NULL);
+    CHECK(strstr(diag_text(diag), "W707") == NULL);
+    vb_close(ctx);
+}
+
+/* Issue 28, item 8: two atoms of a trajectory frame at the same place with
+ * the same radius are E104, as in a GRO or PDB frame (they were accepted),
+ * naming the trajectory, the frame and both atoms. */
+static void test_traj_duplicates(void)
+{
+    vb_ctx *ctx = open_ctx(NULL);
+    char top[64], dcd[64];
+    strcpy(top, temp_file("0 0 0 1\n3 0 0 1\n0 3 0 1\n0 0 3 1\n5 5 5 1\n"));
+    strcpy(dcd, temp_file(""));
+    const size_t na = 5;
+    const double x0[5] = {0, 3, 0, 0, 5}, y0[5] = {0, 0, 3, 0, 5}, z0[5] = {0, 0, 0, 3, 5};
+    /* Frame 1: atom 4 moves onto atom 2 (same radius: the same sphere). */
+    const double x1[5] = {0, 3, 0, 3, 5}, y1[5] = {0, 0, 3, 0, 5}, z1[5] = {0, 0, 0, 0, 5};
+    vb_dcd_writer *w = NULL;
+    CHECK_INT(vb_dcd_writer_open(ctx, dcd, na, 1.0, "dup", &w), VB_OK);
+    CHECK_INT(vb_dcd_writer_frame(ctx, w, x0, y0, z0), VB_OK);
+    CHECK_INT(vb_dcd_writer_frame(ctx, w, x1, y1, z1), VB_OK);
+    CHECK_INT(vb_dcd_writer_close(ctx, w), VB_OK);
+    vb_read_options o;
+    memset(&o, 0, sizeof o);
+    vb_frame_source *F = NULL;
+    vb_sphere_set *s = NULL;
+    int model = 0;
+    CHECK_INT(vb_frame_source_open(ctx, top, dcd, &o, &F), VB_OK);
+    CHECK_INT(vb_frame_source_next(ctx, F, &s, &model), VB_OK);
+    CHECK_INT(s ? s->n : 0, 5);
+    CHECK(s && s->x[3] == 0.0 && s->z[3] == 3.0);
+    vb_spheres_free(s);
+    s = NULL;
+    char want[200];
+    snprintf(want, sizeof want, "%s: frame 1: atom 4 (topology line 4) is identical to atom 2 "
+             "(topology line 2)", dcd);
+    CHECK_ERROR(ctx, vb_frame_source_next(ctx, F, &s, &model), VB_EINPUT_DUPLICATE, want);
+    CHECK(s == NULL);
+    vb_frame_source_close(F);
+    remove(top);
+    remove(dcd);
+    vb_close(ctx);
+}
+
+/* Issue 28, item 9: of a residue's alternate locations the most occupied
+ * is kept (A 0.44 against B 0.56: B; the first, A, was kept), ties to the
+ * first met; without occupancies the first. */
+#define ATOM_OCC(serial, name, alt, seq, x, occ, el)                                              \
+    "ATOM  " serial " " name alt "SER A" seq "    " x "   0.000   0.000" occ " 10.00          " el \
+    "\n"
+static void test_altloc_occupancy(void)
+{
+    vb_ctx *ctx = open_ctx(NULL);
+    const char *pdb =
+        ATOM_OCC("    1", " N  ", "A", "   1", "   1.000", "  0.44", " N")
+        ATOM_OCC("    2", " CA ", "A", "   1", "   2.000", "  0.44", " C")
+        ATOM_OCC("    3", " N  ", "B", "   1", "   1.100", "  0.56", " N")
+        ATOM_OCC("    4", " CA ", "B", "   1", "   2.100", "  0.56", " C")
+        ATOM_OCC("    5", " N  ", "A", "   2", "   5.000", "  0.50", " N")
+        ATOM_OCC("    6", " N  ", "B", "   2", "   5.100", "  0.50", " N")
+        ATOM_OCC("    7", " N  ", "A", "   3", "   9.000", "      ", " N")
+        ATOM_OCC("    8", " N  ", "B", "   3", "   9.100", "      ", " N");
+    vb_sphere_set *s = NULL;
+    CHECK_INT(read_text(ctx, "occ.pdb", pdb, NULL, &s), VB_OK);
+    CHECK_INT(s ? s->n : 0, 4);
+    if (s && s->n == 4) {
+        const long lines[4] = {3, 4, 5, 7};
+        for (int i = 0; i < 4; i++)
+            CHECK_INT(s->line[i], lines[i]);
+        CHECK(s->x[0] == 1.1 && s->info[0].altloc == 'B');
+        CHECK(s->x[2] == 5.0 && s->info[2].altloc == 'A');
+    }
+    vb_spheres_free(s);
+    vb_close(ctx);
+}
+
+/* Issue 28, item 9: a sphere inside another in every model of an NMR file
+ * is named (W701) for the first model only, and the other models counted
+ * on one line (W702), not repeated per model. */
+static void test_contained_once(void)
+{
+    FILE *diag;
+    vb_ctx *ctx = open_ctx(&diag);
+    char text[4096] = "";
+    for (int m = 1; m <= 3; m++) {
+        char model[64];
+        snprintf(model, sizeof model, "MODEL     %4d\n", m);
+        strcat(text, model);
+        strcat(text, PDB_C1 PDB_C2 PDB_C3 PDB_C4);
+        /* An oxygen (1.52) at the first carbon's centre (1.70): inside it. */
+        strcat(text, ATOM("    5", " O  ", " ", "SER", "   5", "   0.000", "   0.000", "   0.100", " O"));
+        strcat(text, "ENDMDL\n");
+    }
+    const char *path = temp_file(text);
+    vb_read_options o;
+    memset(&o, 0, sizeof o);
+    vb_frame_source *F = NULL;
+    vb_sphere_set *s = NULL;
+    int model = 0, frames = 0;
+    CHECK_INT(vb_frame_source_open(ctx, path, NULL, &o, &F), VB_OK);
+    while (vb_frame_source_next(ctx, F, &s, &model) == VB_OK && s) {
+        CHECK_INT(s->n, 5);
+        CHECK_INT(s->contained[4], 1);
+        vb_spheres_free(s);
+        frames++;
+    }
+    vb_frame_source_close(F);
+    CHECK_INT(frames, 3);
+    const char *w = diag_text(diag);
+    size_t named = 0;
+    for (const char *p = w; (p = strstr(p, "W701")); p++)
+        named++;
+    CHECK_INT(named, 2); /* the W701 line, and the W702 line naming it */
+    CHECK(strstr(w, "W701: ") != NULL && strstr(strstr(w, "W701: ") + 1, "W701: ") == NULL);
+    char want[200];
+    snprintf(want, sizeof want, "W702: %s: spheres inside others in 2 more frames (W701 named "
+             "them for frame 0 only)", path);
+    CHECK(strstr(w, want) != NULL);
+    unlink(path);
+    vb_close(ctx);
+}
+
 int main(void)
 {
     test_duplicates();
@@ -430,5 +602,9 @@ int main(void)
     test_cr_only();
     test_truncated_model();
     test_altloc_split();
+    test_altloc_occupancy();
+    test_gro_count();
+    test_traj_duplicates();
+    test_contained_once();
     VB_TEST_END();
 }
