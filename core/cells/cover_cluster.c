@@ -35,7 +35,7 @@
 #include <stdlib.h>
 
 #include "vb_cover_shared.h"
-#include "vb_spheres.h"
+#include "vb_decimal_mpz.h"
 
 /* Rows of at most 4 integer 5-vectors in echelon form (fraction-free):
  * row r has its first non-zero entry in column piv[r], zero below it in
@@ -106,16 +106,6 @@ static int ech_add(echelon *E, mpz_t v[5], vbs_u32 id)
     return 1;
 }
 
-/* z = decimal * 10^(exp - emin). */
-static void dec_scaled(mpz_t z, vb_decimal d, int32_t emin, mpz_t t)
-{
-    mpz_set_si(z, (long)d.mant);
-    if (d.exp10 > emin) {
-        mpz_ui_pow_ui(t, 10, (unsigned long)(d.exp10 - emin));
-        mpz_mul(z, z, t);
-    }
-}
-
 int vbq_host_cluster(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i,
                      const vbs_u32 *ids, vbs_u32 n)
 {
@@ -139,12 +129,12 @@ int vbq_host_cluster(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs
         mpz_init(ci[a]);
     mpz_init(t);
     for (int a = 0; a < 4; a++)
-        dec_scaled(ci[a], col[a][i], emin, t);
+        vb_decimal_to_mpz(ci[a], col[a][i], emin, t);
     int decided = 1;
     for (vbs_u32 k = 0; k < n && decided; k++) {
         vbs_u32 j = ids[k];
         for (int a = 0; a < 4; a++) {
-            dec_scaled(v[a], col[a][j], emin, t);
+            vb_decimal_to_mpz(v[a], col[a][j], emin, t);
             mpz_sub(v[a], v[a], ci[a]);
         }
         mpz_mul(v[4], v[0], v[0]);

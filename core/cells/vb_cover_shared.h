@@ -220,14 +220,15 @@ VBS_FN void vbq_patch_square(vbs_u32 T, vbs_u32 level, vbs_u64 iu, vbs_u64 iv, d
 #define VBQ_OVER_LAB 2u
 #define VBQ_OVER_ST 3u
 #define VBQ_OVER_Q 4u
-/* 5 is the kernels' VBQ_OVER_OUT. A leaf that ties many labels: the cell
- * is covered again on the host, which decides such leaves exactly
- * (vbq_host_cluster). */
+/* 5 is the kernels' VBQ_OVER_OUT. A patch that looks like a tie cluster
+ * (vbq_tie_cluster): the cell is covered again on the host, which decides
+ * such patches exactly (vbq_host_cluster). */
 #define VBQ_CLUSTER 6u
 
-/* A leaf enumerated at the deepest level or after a stall with more owned
- * labels than this is a tie cluster, decided exactly before any of its
- * C(owned, 3) quadruples is written (speed only: both ways are complete). */
+/* A closed patch to enumerate or subdivide with more owned labels than this
+ * that look flat is a tie cluster, decided exactly before any of its
+ * C(owned, 3) quadruples is written or its children are made (speed only:
+ * both ways are complete). */
 #define VBQ_CLUSTER_OWNED 5u
 
 /* A patch waiting in the depth-first stack. */
@@ -760,15 +761,15 @@ VBS_FN int vbq_looks_flat(const VBS_GLOBAL vbq_nb *nb, const VBS_GLOBAL vbs_u32 
             double w[4] = {r.ax - p0[0], r.ay - p0[1], r.az - p0[2], r.b - p0[3]};
             double c1 = w[0] * v1[0] + w[1] * v1[1] + w[2] * v1[2] + w[3] * v1[3];
             double c2 = w[0] * v2[0] + w[1] * v2[1] + w[2] * v2[2] + w[3] * v2[3];
-            double d2 = 0.0;
+            double e[4], d2 = 0.0;
             for (int k = 0; k < 4; k++) {
-                double e = w[k] - c1 * v1[k] - c2 * v2[k];
-                d2 += e * e;
+                e[k] = w[k] - c1 * v1[k] - c2 * v2[k];
+                d2 += e[k] * e[k];
             }
             if (d2 > far) {
                 far = d2;
                 for (int k = 0; k < 4; k++)
-                    w2[k] = w[k] - c1 * v1[k] - c2 * v2[k];
+                    w2[k] = e[k];
             }
         }
         if (!(far > tol * tol))

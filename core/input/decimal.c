@@ -2,6 +2,7 @@
  * double strtod makes of the same text. Parsing our own grammar first means
  * strtod never sees hex floats, "nan(...)" or locale surprises. */
 #include "vb_spheres.h"
+#include "vb_decimal_mpz.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -156,4 +157,13 @@ int vb_decimal_cmp(vb_decimal a, vb_decimal b)
     int c = cmp_magnitude(a.mant < 0 ? -a.mant : a.mant, a.exp10,
                           b.mant < 0 ? -b.mant : b.mant, b.exp10);
     return sa > 0 ? c : -c;
+}
+
+void vb_decimal_to_mpz(mpz_t z, vb_decimal d, int32_t emin, mpz_t tmp)
+{
+    mpz_set_si(z, (long)d.mant);
+    if (d.exp10 > emin) {
+        mpz_ui_pow_ui(tmp, 10, (unsigned long)(d.exp10 - emin));
+        mpz_mul(z, z, tmp);
+    }
 }

@@ -2,6 +2,7 @@
  * duplicates (sort, O(n log n)) and contained spheres (uniform grid, then a
  * filtered exact predicate). */
 #include "vb_spheres.h"
+#include "vb_decimal_mpz.h"
 #include "vb_diag.h"
 #include "vbi_input.h"
 
@@ -116,16 +117,6 @@ static int check_duplicates(vb_ctx *ctx, const vb_sphere_set *s)
                     s->line[first]);
 }
 
-/* Sets z = mant * 10^(exp - emin). */
-static void dec_to_mpz(mpz_t z, vb_decimal d, int32_t emin, mpz_t tmp)
-{
-    mpz_set_si(z, (long)d.mant);
-    if (d.exp10 > emin) {
-        mpz_ui_pow_ui(tmp, 10, (unsigned long)(d.exp10 - emin));
-        mpz_mul(z, z, tmp);
-    }
-}
-
 /* Exact sign of (Rj - Ri)^2 - |ci - cj|^2 on the decimals. */
 static int contained_exact(const vb_sphere_set *s, size_t i, size_t j)
 {
@@ -138,8 +129,8 @@ static int contained_exact(const vb_sphere_set *s, size_t i, size_t j)
     mpz_t a, b, t, acc;
     mpz_inits(a, b, t, acc, NULL);
     for (int k = 0; k < 4; k++) {
-        dec_to_mpz(a, v[k], emin, t);
-        dec_to_mpz(b, v[k + 4], emin, t);
+        vb_decimal_to_mpz(a, v[k], emin, t);
+        vb_decimal_to_mpz(b, v[k + 4], emin, t);
         mpz_sub(a, a, b);
         mpz_mul(a, a, a);
         if (k == 3)

@@ -38,10 +38,14 @@ zero. Every number is computed as a Fraction and written as its exact
 decimal (no binary floating point). Standard library only.
 """
 import argparse
-import math
 import sys
 from fractions import Fraction
 from pathlib import Path
+
+# The exact decimal writer (and Pythagorean points) of the corpus generator:
+# one copy for every script that writes exact inputs.
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "corpus" / "equal-radius"))
+from generate import dec, sphere_points  # noqa: E402 (corpus/equal-radius/generate.py)
 
 ORIGIN = (Fraction("10.25"), Fraction("-3.7"), Fraction("0.125"))
 DEFAULTS = {"fcc": ("3.61", "1.28"), "bcc": ("2.87", "1.24"), "sc": ("3.35", "1.68")}
@@ -55,23 +59,6 @@ BASIS = {
 SIZES = {"fcc": [5, 7, 10, 14], "bcc": [6, 9, 13, 17], "sc": [8, 11, 16, 22]}
 JITTERS = ["1e-12", "1e-9", "1e-6", "1e-3"]
 MASK = (1 << 64) - 1
-
-
-def dec(q):
-    """Exact decimal text of a Fraction whose denominator divides 10^k."""
-    q = Fraction(q)
-    den, twos, fives = q.denominator, 0, 0
-    while den % 2 == 0:
-        den, twos = den // 2, twos + 1
-    while den % 5 == 0:
-        den, fives = den // 5, fives + 1
-    if den != 1:
-        raise ValueError("%s is not a finite decimal" % q)
-    k = max(twos, fives)
-    n = q * 10**k
-    sign = "-" if n < 0 else ""
-    digits = str(abs(n.numerator)).rjust(k + 1, "0")
-    return sign + (digits if k == 0 else digits[:-k] + "." + digits[-k:])
 
 
 class SplitMix64:
@@ -136,19 +123,6 @@ def random_like(kind, n, a, r, seed=1):
     return ["%d uniform random balls of radius %s in [0, %s)^3 (the box and density of the %s crystal"
             " of %d^3 cells), thousandths, splitmix64 seed %d" % (count, dec(r), dec(n * a), kind, n, seed)], \
         [(p, r) for p in pts]
-
-
-def sphere_points(d):
-    pts = []
-    for x in range(-d, d + 1):
-        for y in range(-d, d + 1):
-            z2 = d * d - x * x - y * y
-            if z2 < 0:
-                continue
-            z = math.isqrt(z2)
-            if z * z == z2:
-                pts += [(x, y, z)] if z == 0 else [(x, y, z), (x, y, -z)]
-    return sorted(pts)
 
 
 def cospherical(k, unequal=False, seed=7):

@@ -26,6 +26,11 @@ import sys
 from fractions import Fraction as F
 from pathlib import Path
 
+# The exact decimal writer (and Pythagorean points) of the corpus generator:
+# one copy for every script that writes exact inputs.
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "corpus" / "equal-radius"))
+from generate import dec  # noqa: E402 (corpus/equal-radius/generate.py)
+
 MASK = (1 << 64) - 1
 KINDS = ["nested", "internal", "tangent", "coincident", "grid", "jittered", "cospherical"]
 
@@ -51,20 +56,6 @@ class Rng:
         """A uniform decimal in [lo, hi] with PLACES decimals."""
         u = 10**places
         return F(lo) + F(self.below(int((F(hi) - F(lo)) * u) + 1), u)
-
-
-def dec(q):
-    q = F(q)
-    den, k2, k5 = q.denominator, 0, 0
-    while den % 2 == 0:
-        den, k2 = den // 2, k2 + 1
-    while den % 5 == 0:
-        den, k5 = den // 5, k5 + 1
-    assert den == 1, q
-    k = max(k2, k5)
-    n = q * 10**k
-    digits = str(abs(n.numerator)).rjust(k + 1, "0")
-    return ("-" if n < 0 else "") + (digits if k == 0 else digits[:-k] + "." + digits[-k:])
 
 
 def sphere_points(d):
