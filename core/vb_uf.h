@@ -12,6 +12,10 @@
 
 #include "vb.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct vb_uf {
     uint32_t *p; /* parent of each element; a root is its own parent */
     size_t n;    /* elements */
@@ -52,5 +56,9 @@ static inline uint32_t vb_uf_join(vb_uf *u, uint32_t a, uint32_t b)
 
 /* Frees the parents; the structure holds no element again. */
 void vb_uf_free(vb_uf *u);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

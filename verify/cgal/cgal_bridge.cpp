@@ -10,6 +10,7 @@
 // the facet between them) are one vertex. vorball's side: each line's ids
 // alone, from which the point is re-derived in GMP integers without CGAL.
 // Nothing crosses the extern "C" boundary as an exception.
+#include "vb_uf.h"
 #include "vbx_cgal.hpp"
 
 #include <CGAL/Delaunay_triangulation_3.h>
@@ -125,15 +126,19 @@ double tangent_radius(mpq_srcptr d2, mpq_srcptr R)
     return t;
 }
 
-// Union-find over finite cells.
-size_t find_root(std::vector<size_t> &parent, size_t i)
-{
-    while (parent[i] != i) {
-        parent[i] = parent[parent[i]];
-        i = parent[i];
+// The union-find of the library (vb_uf.h) over finite cells, freed on
+// every way out.
+struct CellSets {
+    vb_uf u = {};
+    explicit CellSets(size_t n)
+    {
+        if (vb_uf_fit(&u, n) != VB_OK)
+            throw std::bad_alloc();
     }
-    return i;
-}
+    ~CellSets() { vb_uf_free(&u); }
+    CellSets(const CellSets &) = delete;
+    CellSets &operator=(const CellSets &) = delete;
+};
 
 CGAL::Bounded_side cell_side(const DT &tr, DT::Cell_handle c, const DT::Point &p)
 {
@@ -158,8 +163,7 @@ void collect_vertices(const Tr &tr, const QVec &cx, const QVec &cr, vb_cgal_diag
         c->info() = cells.size();
         cells.push_back(c);
     }
-    std::vector<size_t> parent(cells.size());
-    std::iota(parent.begin(), parent.end(), 0);
+    CellSets sets(cells.size());
     for (auto c : cells) {
         for (int i = 0; i < 4; i++) {
             auto nb = c->neighbor(i);
@@ -167,9 +171,7 @@ void collect_vertices(const Tr &tr, const QVec &cx, const QVec &cr, vb_cgal_diag
                 continue;
             const auto &far = nb->vertex(nb->index(c))->point();
             if (cell_side(tr, c, far) == CGAL::ON_BOUNDARY) {
-                size_t a = find_root(parent, c->info()), b = find_root(parent, nb->info());
-                if (a != b)
-                    parent[std::max(a, b)] = std::min(a, b);
+                vb_uf_join(&sets.u, (uint32_t)c->info(), (uint32_t)nb->info());
             }
         }
     }
@@ -177,7 +179,7 @@ void collect_vertices(const Tr &tr, const QVec &cx, const QVec &cr, vb_cgal_diag
     std::vector<std::vector<uint32_t>> members(cells.size());
     std::vector<size_t> groups;
     for (size_t i = 0; i < cells.size(); i++) {
-        size_t r = find_root(parent, i);
+        size_t r = vb_uf_root(&sets.u, (uint32_t)i);
         if (r == i)
             groups.push_back(i);
         for (int k = 0; k < 4; k++)
