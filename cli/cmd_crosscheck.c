@@ -1,6 +1,6 @@
 /* `vorball crosscheck SPHERES`: CGAL as an independent witness. With equal
  * radii the Voronoi diagram of spheres is the Voronoi diagram of the centres;
- * CGAL computes it exactly (verify/cgal_bridge.cpp) and this command compares
+ * CGAL computes it exactly (verify/cgal/cgal_bridge.cpp) and this command compares
  * it with vorball's certified vertices, computed here or read from a file. */
 #include <stdlib.h>
 #include <string.h>

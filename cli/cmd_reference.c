@@ -1,5 +1,5 @@
 /* `vorball reference IN`: every Voronoi vertex of the spheres, exactly, by
- * brute force over quadruples (verify/reference.c). Small inputs only. */
+ * brute force over quadruples (verify/judge/reference.c). Small inputs only. */
 #include <string.h>
 
 #include "cli_common.h"

@@ -1,5 +1,5 @@
 /* `vorball verify SPHERES VERTICES`: parses the options, judges the vertex
- * file with vb_verify_file (verify/vb_verify_file.h) and writes its report. */
+ * file with vb_verify_file (verify/judge/vb_verify_file.h) and writes its report. */
 #include <math.h>
 #include <string.h>
 

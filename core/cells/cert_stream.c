@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_array.h"
+
 static void *open_certifier(void *arg)
 {
     vbv_cert_open *co = arg;
@@ -98,14 +100,8 @@ int vbv_cert_stream_sink(void *user, vb_quad_list *part)
     int rc = stream_wait(cs);
     if (rc != VB_OK)
         return rc;
-    if (cs->nparts == cs->cap) {
-        size_t nc = cs->cap ? 2 * cs->cap : 8;
-        vb_vertex_list *p = realloc(cs->parts, nc * sizeof *p);
-        if (!p)
-            return cs->rc = vb_error(cs->tctx, VB_ENOMEM, NULL, 0, "out of memory (certifier)");
-        cs->parts = p;
-        cs->cap = nc;
-    }
+    if (VB_ARRAY_FIT(cs->parts, cs->cap, cs->nparts + 1, 8) != VB_OK)
+        return cs->rc = vb_error(cs->tctx, VB_ENOMEM, NULL, 0, "out of memory (certifier)");
     vb_vertex_list_init(&cs->parts[cs->nparts++]);
     cs->cur = *part;
     memset(part, 0, sizeof *part);

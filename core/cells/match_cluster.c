@@ -10,15 +10,6 @@
 
 #include "vbs_match.h"
 
-static uint32_t find(uint32_t *p, uint32_t a)
-{
-    while (p[a] != a) {
-        p[a] = p[p[a]];
-        a = p[a];
-    }
-    return a;
-}
-
 typedef struct xkey {
     double x;
     uint32_t k;
@@ -34,12 +25,12 @@ static int cmp_x(const void *pa, const void *pb)
 
 void vbs_clusters_free(vbs_clusters *m)
 {
-    free(m->parent);
+    vb_uf_free(&m->uf);
     free(m->order);
     free(m->cl_of);
     free(m->cl_start);
     free(m->cl_items);
-    m->parent = m->order = m->cl_of = m->cl_start = m->cl_items = NULL;
+    m->order = m->cl_of = m->cl_start = m->cl_items = NULL;
     m->ncl = 0;
 }
 
@@ -47,20 +38,17 @@ int vbs_clusters_build(vbs_clusters *m, const vb_cand_vec *cv, int nthreads)
 {
     size_t n = cv->n;
     vbs_clusters_free(m);
-    m->parent = malloc((n + 1) * sizeof *m->parent);
     m->order = malloc((n + 1) * sizeof *m->order);
     m->cl_of = malloc((n + 1) * sizeof *m->cl_of);
     m->cl_start = calloc(n + 2, sizeof *m->cl_start);
     m->cl_items = malloc((n + 1) * sizeof *m->cl_items);
-    if (!m->parent || !m->order || !m->cl_of || !m->cl_start || !m->cl_items)
+    if (vb_uf_fit(&m->uf, n) != VB_OK || !m->order || !m->cl_of || !m->cl_start || !m->cl_items)
         return VB_ENOMEM;
     xkey *keys = malloc((n + 1) * sizeof *keys);
     if (!keys)
         return VB_ENOMEM;
-    for (size_t k = 0; k < n; k++) {
-        m->parent[k] = (uint32_t)k;
+    for (size_t k = 0; k < n; k++)
         keys[k] = (xkey){cv->v[k].x, (uint32_t)k};
-    }
     if (vb_psort(keys, n, sizeof *keys, cmp_x, nthreads) != VB_OK) {
         free(keys);
         return VB_ENOMEM;
@@ -78,19 +66,13 @@ int vbs_clusters_build(vbs_clusters *m, const vb_cand_vec *cv, int nthreads)
             double dy = cb->y - ca->y, dz = cb->z - ca->z, dt = cb->t - ca->t;
             if (fabs(dy) > tol || fabs(dz) > tol || fabs(dt) > tol)
                 continue;
-            uint32_t ra = find(m->parent, m->order[a]), rb = find(m->parent, m->order[b]);
-            if (ra != rb) {
-                if (ra < rb)
-                    m->parent[rb] = ra;
-                else
-                    m->parent[ra] = rb;
-            }
+            vb_uf_join(&m->uf, m->order[a], m->order[b]);
         }
     }
     /* Number clusters by first candidate (roots are the smallest index). */
     size_t ncl = 0;
     for (size_t k = 0; k < n; k++) {
-        uint32_t r = find(m->parent, (uint32_t)k);
+        uint32_t r = vb_uf_root(&m->uf, (uint32_t)k);
         m->cl_of[k] = r == k ? (uint32_t)ncl++ : m->cl_of[r];
     }
     for (size_t k = 0; k < n; k++)

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_array.h"
 #include "vbs_match.h"
 
 static int cmp_work(const void *pa, const void *pb)
@@ -203,14 +204,9 @@ int vbs_targeted_work(const vbs_clusters *m, const vb_cand_vec *raw, const uint8
             if (fi < nf && found[fi] == mem[q])
                 continue;
             complete = 0;
-            if (*nwk == *wcap) {
-                *wcap = *wcap ? 2 * *wcap : 256;
-                vbs_work *p = realloc(*wk, *wcap * sizeof *p);
-                if (!p) {
-                    rc = VB_ENOMEM;
-                    break;
-                }
-                *wk = p;
+            if (VB_ARRAY_FIT(*wk, *wcap, *nwk + 1, 256) != VB_OK) {
+                rc = VB_ENOMEM;
+                break;
             }
             (*wk)[(*nwk)++] = (vbs_work){mem[q], (uint32_t)c};
         }

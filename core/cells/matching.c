@@ -46,7 +46,7 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
               const vbs_params *params, unsigned target_depth, int nthreads,
               vb_cand_vec *raw, vb_sampler_result *res)
 {
-    vbs_clusters m = {set, params->tol, NULL, NULL, NULL, NULL, NULL, 0};
+    vbs_clusters m = {set, params->tol, {NULL, 0, 0}, NULL, NULL, NULL, NULL, 0};
     vbs_work *wk = NULL;
     size_t nwk = 0, wcap = 0;
     vb_cand_vec extra = {0};

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_array.h"
 #include "vbs_internal.h"
 #include "vb_diag.h"
 
@@ -81,16 +82,8 @@ static int cull_join(cull_async *a)
 
 static int store_add(vbs_bis_store *st, uint32_t i, const vbs_base_data *bd)
 {
-    if (st->nbis + bd->nbis > st->cap) {
-        size_t nc = st->cap ? st->cap : 4096;
-        while (nc < st->nbis + bd->nbis)
-            nc *= 2;
-        vbs_bisector *p = realloc(st->bis, nc * sizeof *p);
-        if (!p)
-            return VB_ENOMEM;
-        st->bis = p;
-        st->cap = nc;
-    }
+    if (VB_ARRAY_FIT(st->bis, st->cap, st->nbis + bd->nbis, 4096) != VB_OK)
+        return VB_ENOMEM;
     if (bd->nbis)
         memcpy(st->bis + st->nbis, bd->bis, bd->nbis * sizeof *bd->bis);
     st->off[i] = st->nbis;
@@ -99,16 +92,8 @@ static int store_add(vbs_bis_store *st, uint32_t i, const vbs_base_data *bd)
     /* Coarse lists: the culler's coarse T may be finer than the store's
      * nominal VBS_COARSE_T only when the finest level is coarser. */
     size_t nt = 6u * (size_t)st->T * st->T;
-    if (st->nco + bd->nco > st->co_cap) {
-        size_t nc = st->co_cap ? st->co_cap : 4096;
-        while (nc < st->nco + bd->nco)
-            nc *= 2;
-        uint32_t *p = realloc(st->co_idx, nc * sizeof *p);
-        if (!p)
-            return VB_ENOMEM;
-        st->co_idx = p;
-        st->co_cap = nc;
-    }
+    if (VB_ARRAY_FIT(st->co_idx, st->co_cap, st->nco + bd->nco, 4096) != VB_OK)
+        return VB_ENOMEM;
     for (size_t k = 0; k < nt; k++)
         st->co_off[(size_t)i * nt + k] = (uint32_t)(st->nco + bd->co_off[k]);
     if (bd->nco)
@@ -191,27 +176,11 @@ typedef struct batch_buf {
     size_t cap_bis, cap_idx;
 } batch_buf;
 
-static int grow(void **p, size_t *cap, size_t need, size_t elem)
-{
-    if (need <= *cap)
-        return VB_OK;
-    size_t nc = *cap ? *cap : 1024;
-    while (nc < need)
-        nc *= 2;
-    void *q = realloc(*p, nc * elem);
-    if (!q)
-        return VB_ENOMEM;
-    *p = q;
-    *cap = nc;
-    return VB_OK;
-}
-
 static int batch_add(batch_buf *bb, const vb_sphere_set *s, uint32_t i, double clip,
                      const vbs_base_data *bd, size_t ntiles)
 {
-    if (grow((void **)&bb->bis, &bb->cap_bis, bb->nbis + bd->nbis, sizeof *bb->bis) ||
-        grow((void **)&bb->tile_idx, &bb->cap_idx, bb->nidx + bd->tile_off[ntiles],
-             sizeof *bb->tile_idx))
+    if (VB_ARRAY_FIT(bb->bis, bb->cap_bis, bb->nbis + bd->nbis, 1024) != VB_OK ||
+        VB_ARRAY_FIT(bb->tile_idx, bb->cap_idx, bb->nidx + bd->tile_off[ntiles], 1024) != VB_OK)
         return VB_ENOMEM;
     vbs_base *b = bb->bases + bb->nbases;
     b->cx = s->x[i];

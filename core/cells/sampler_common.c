@@ -4,18 +4,13 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_array.h"
 #include "vb_sampler.h"
 
 int vb_cand_vec_push(vb_cand_vec *cv, const vbs_cand *c)
 {
-    if (cv->n == cv->cap) {
-        size_t nc = cv->cap ? 2 * cv->cap : 1024;
-        vbs_cand *p = realloc(cv->v, nc * sizeof *p);
-        if (!p)
-            return VB_ENOMEM;
-        cv->v = p;
-        cv->cap = nc;
-    }
+    if (VB_ARRAY_FIT(cv->v, cv->cap, cv->n + 1, 1024) != VB_OK)
+        return VB_ENOMEM;
     cv->v[cv->n++] = *c;
     return VB_OK;
 }

@@ -34,6 +34,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_array.h"
 #include "vbs_internal.h"
 
 #define THETA_MARGIN 1e-7
@@ -251,14 +252,8 @@ static void cone_bounds(const vbs_tiles *t, size_t k, const vbs_bisector *b, dou
 
 static int push_u32(uint32_t **v, size_t *n, size_t *cap, uint32_t x)
 {
-    if (*n == *cap) {
-        size_t nc = *cap ? 2 * *cap : 1024;
-        uint32_t *p = realloc(*v, nc * sizeof *p);
-        if (!p)
-            return VB_ENOMEM;
-        *v = p;
-        *cap = nc;
-    }
+    if (VB_ARRAY_FIT(*v, *cap, *n + 1, 1024) != VB_OK)
+        return VB_ENOMEM;
     (*v)[(*n)++] = x;
     return VB_OK;
 }

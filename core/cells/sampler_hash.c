@@ -2,6 +2,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_array.h"
 #include "vbs_internal.h"
 
 /* Cells are sized for about two centres each so that the short queries of
@@ -110,14 +111,8 @@ int vbs_hash_query(const vbs_hash *g, const double p[3], double radius, uint32_t
                     double dx = s->x[j] - p[0], dy = s->y[j] - p[1], dz = s->z[j] - p[2];
                     if (dx * dx + dy * dy + dz * dz > r2)
                         continue;
-                    if (*n == *cap) {
-                        size_t nc = *cap ? 2 * *cap : 256;
-                        uint32_t *t = realloc(*out, nc * sizeof *t);
-                        if (!t)
-                            return VB_ENOMEM;
-                        *out = t;
-                        *cap = nc;
-                    }
+                    if (VB_ARRAY_FIT(*out, *cap, *n + 1, 256) != VB_OK)
+                        return VB_ENOMEM;
                     (*out)[(*n)++] = j;
                 }
             }

@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_array.h"
 #include "vb_topology.h"
 #include "vbs_internal.h"
 
@@ -24,16 +25,8 @@ static int cmp_u32(const void *a, const void *b)
 
 static int push(uint32_t **v, size_t *n, size_t *cap, const uint32_t *x, size_t k)
 {
-    if (*n + k > *cap) {
-        size_t nc = *cap ? *cap : 1024;
-        while (nc < *n + k)
-            nc *= 2;
-        uint32_t *p = realloc(*v, nc * sizeof *p);
-        if (!p)
-            return VB_ENOMEM;
-        *v = p;
-        *cap = nc;
-    }
+    if (VB_ARRAY_FIT(*v, *cap, *n + k, 1024) != VB_OK)
+        return VB_ENOMEM;
     if (k)
         memcpy(*v + *n, x, k * sizeof *x);
     *n += k;
@@ -301,14 +294,8 @@ static int add_edge(vb_topology *out, int64_t v0, int64_t v1, const uint32_t t[3
         v0 = v1;
         v1 = w;
     }
-    if (out->nedges == out->edges_cap) {
-        size_t nc = out->edges_cap ? 2 * out->edges_cap : 256;
-        vb_topology_edge *p = realloc(out->edges, nc * sizeof *p);
-        if (!p)
-            return VB_ENOMEM;
-        out->edges = p;
-        out->edges_cap = nc;
-    }
+    if (VB_ARRAY_FIT(out->edges, out->edges_cap, out->nedges + 1, 256) != VB_OK)
+        return VB_ENOMEM;
     vb_topology_edge *ed = out->edges + out->nedges++;
     ed->v[0] = v0;
     ed->v[1] = v1;

@@ -27,7 +27,7 @@ typedef struct vb_topology {
                               than two vertices where doubles find no trisector curve, or
                               a closed edge through a single vertex; exact: vertices whose
                               faces could not be decided (their edges' pairs are used) */
-    int exact;             /* 1: from arc closure (vb_arc_topology in verify/vb_arc.h):
+    int exact;             /* 1: from arc closure (vb_arc_topology in verify/arcs/vb_arc.h):
                               edges are the traced arcs, faces decided exactly */
     size_t undecided;      /* exact: half arcs arc closure could not trace */
 } vb_topology;

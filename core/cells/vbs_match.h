@@ -13,6 +13,7 @@
 #ifndef VBS_MATCH_H
 #define VBS_MATCH_H
 
+#include "vb_uf.h"
 #include "vbs_internal.h"
 
 /* ---- Sec. 5.4: clusters (match_cluster.c) ------------------------------ */
@@ -22,7 +23,7 @@
 typedef struct vbs_clusters {
     const vb_sphere_set *set;
     double tol;
-    uint32_t *parent;
+    vb_uf uf;             /* the clusters while they are built */
     uint32_t *order;      /* candidates sorted by x */
     uint32_t *cl_of;      /* cluster of each candidate */
     uint32_t *cl_start;   /* CSR of candidates per cluster */

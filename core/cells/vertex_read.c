@@ -9,6 +9,8 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "vb_array.h"
+
 /* Reading state shared by the three parsers. */
 typedef struct {
     vb_ctx *ctx;
@@ -22,14 +24,8 @@ typedef struct {
 
 static int push_id(reader *r, uint32_t id)
 {
-    if (r->nids == r->ids_cap) {
-        size_t cap = r->ids_cap ? 2 * r->ids_cap : 16;
-        uint32_t *p = realloc(r->ids, cap * sizeof *p);
-        if (!p)
-            return vb_error(r->ctx, VB_ENOMEM, r->name, 0, "out of memory reading vertices");
-        r->ids = p;
-        r->ids_cap = cap;
-    }
+    if (VB_ARRAY_FIT(r->ids, r->ids_cap, r->nids + 1, 16) != VB_OK)
+        return vb_error(r->ctx, VB_ENOMEM, r->name, 0, "out of memory reading vertices");
     r->ids[r->nids++] = id;
     return VB_OK;
 }
@@ -42,14 +38,8 @@ static int push_vertex(reader *r, long line, const double p[4], int status)
             if (r->ids[a] == r->ids[b])
                 return vb_error(r->ctx, VB_EINPUT_MALFORMED, r->name, line,
                                 "sphere %u is named twice", (unsigned)r->ids[a]);
-    if (r->nlines == r->lines_cap) {
-        size_t cap = r->lines_cap ? 2 * r->lines_cap : 64;
-        long *l = realloc(r->lines, cap * sizeof *l);
-        if (!l)
-            return vb_error(r->ctx, VB_ENOMEM, r->name, 0, "out of memory reading vertices");
-        r->lines = l;
-        r->lines_cap = cap;
-    }
+    if (VB_ARRAY_FIT(r->lines, r->lines_cap, r->nlines + 1, 64) != VB_OK)
+        return vb_error(r->ctx, VB_ENOMEM, r->name, 0, "out of memory reading vertices");
     if (vb_vertex_list_push(r->out, r->ids, r->nids, p[0], p[1], p[2], p[3], 0.0, status))
         return vb_error(r->ctx, VB_ENOMEM, r->name, 0, "out of memory reading vertices");
     r->lines[r->nlines++] = line;

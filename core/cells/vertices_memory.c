@@ -3,7 +3,7 @@
  * item 7: 2e6 spheres under a 4 GB limit ran 8 minutes before E4).
  *
  * The model: what is alive at once at the pipeline's peak, the merge at the
- * end of the certifier's quadruple judge (verify/certify_quads.c), with
+ * end of the certifier's quadruple judge (verify/certify/certify_quads.c), with
  * every count taken at the low end of what was measured, so that the
  * estimate stays below the true need: a run it refuses would not have fit.
  *

@@ -1,4 +1,4 @@
-/* Arc closure (verify/vb_arc.h) on the corpus: every golden is closed (no
+/* Arc closure (verify/arcs/vb_arc.h) on the corpus: every golden is closed (no
  * arc undecided, no vertex added, half arcs accounted for, each finite arc
  * seen from both ends); a golden with one vertex removed gets exactly that
  * vertex back; a golden cut down to its first vertex grows back to the whole

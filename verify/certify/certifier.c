@@ -3,6 +3,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_array.h"
+
 #include "vbx_cert.h"
 
 /* Solvers and per-candidate scratch (sized by the sphere count); 0 or -1. */
@@ -15,9 +17,7 @@ static int open_scratch(vb_certifier *c)
     c->ids = malloc(n1 * sizeof *c->ids);
     c->members = malloc(n1 * sizeof *c->members);
     c->is_def = calloc(n1, 1);
-    c->nslots = 64;
-    c->slots = calloc(c->nslots, sizeof *c->slots);
-    return c->ids && c->members && c->is_def && c->slots ? 0 : -1;
+    return c->ids && c->members && c->is_def ? 0 : -1;
 }
 
 /* The scaled input as 64-bit integers for the filter of vb_certify_quads:
@@ -108,7 +108,8 @@ void vb_certifier_close(vb_certifier *c)
     free(c->ids);
     free(c->members);
     free(c->is_def);
-    free(c->slots);
+    free(c->keys);
+    vb_hash_free(&c->keytab);
     free(c->pool);
     free(c);
 }
@@ -306,24 +307,27 @@ static uint64_t hash_members(const uint32_t *m, size_t n, int sigma)
     return h;
 }
 
-static int grow_table(vb_certifier *c)
+/* A key sought (vb_hash_same_fn): members m (n of them), root sigma. */
+typedef struct key_probe {
+    const vb_certifier *c;
+    uint64_t hash;
+    const uint32_t *m;
+    size_t n;
+    int sigma;
+} key_probe;
+
+static int key_same(const void *key, size_t k)
 {
-    size_t ns = c->nslots * 2;
-    vbx_key_entry *s = calloc(ns, sizeof *s);
-    if (!s)
-        return VB_ENOMEM;
-    for (size_t i = 0; i < c->nslots; i++) {
-        if (!c->slots[i].n)
-            continue;
-        size_t h = (size_t)(c->slots[i].hash & (ns - 1));
-        while (s[h].n)
-            h = (h + 1) & (ns - 1);
-        s[h] = c->slots[i];
-    }
-    free(c->slots);
-    c->slots = s;
-    c->nslots = ns;
-    return VB_OK;
+    const key_probe *q = key;
+    const vbx_key_entry *e = &q->c->keys[k];
+    return e->hash == q->hash && e->n == q->n && e->sigma == q->sigma &&
+           memcmp(q->c->pool + e->off, q->m, q->n * sizeof *q->m) == 0;
+}
+
+static uint64_t key_hash_of(const void *arg, size_t k)
+{
+    const vb_certifier *c = arg;
+    return c->keys[k].hash;
 }
 
 int vbx_cert_identity(vb_ctx *ctx, vb_certifier *c, const vbx_root *r, int *sigma)
@@ -347,31 +351,22 @@ int vbx_cert_key_of(vb_ctx *ctx, vb_certifier *c, const uint32_t *m, size_t n, i
                     size_t *key)
 {
     uint64_t h = hash_members(m, n, sigma);
-    size_t i = (size_t)(h & (c->nslots - 1));
-    for (; c->slots[i].n; i = (i + 1) & (c->nslots - 1)) {
-        const vbx_key_entry *e = &c->slots[i];
-        if (e->hash == h && e->n == n && e->sigma == sigma &&
-            memcmp(c->pool + e->off, m, n * sizeof *m) == 0) {
-            *key = e->key;
-            return VB_OK;
-        }
+    key_probe q = {c, h, m, n, sigma};
+    if (!c->keytab.cap && vb_hash_fit(&c->keytab, 0, key_hash_of, c) != VB_OK)
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (vertex keys)");
+    size_t *slot = vb_hash_slot(&c->keytab, h, key_same, &q);
+    if (*slot) {
+        *key = *slot - 1;
+        return VB_OK;
     }
-    if (c->npool + n > c->pool_cap) {
-        size_t cap = c->pool_cap ? c->pool_cap : 1024;
-        while (cap < c->npool + n)
-            cap *= 2;
-        uint32_t *p = realloc(c->pool, cap * sizeof *p);
-        if (!p)
-            return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (vertex keys)");
-        c->pool = p;
-        c->pool_cap = cap;
-    }
+    if (VB_ARRAY_FIT(c->pool, c->pool_cap, c->npool + n, 1024) != VB_OK ||
+        VB_ARRAY_FIT(c->keys, c->keys_cap, c->nkeys + 1, 64) != VB_OK)
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (vertex keys)");
     memcpy(c->pool + c->npool, m, n * sizeof *m);
-    vbx_key_entry e = {h, c->npool, n, sigma, c->nkeys};
+    c->keys[c->nkeys] = (vbx_key_entry){h, c->npool, n, sigma};
     c->npool += n;
-    c->slots[i] = e;
     *key = c->nkeys++;
-    if (2 * c->nkeys > c->nslots && grow_table(c) != VB_OK)
+    if (vb_hash_put(&c->keytab, slot, *key, key_hash_of, c) != VB_OK)
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (vertex keys)");
     return VB_OK;
 }

@@ -2,17 +2,17 @@
  *
  * Every Voronoi vertex v of spheres M (|M| >= 4) has, for each triple T of
  * M, up to two arcs of T's trisector leaving it (decided exactly from the
- * signs of the other members' L_j along the curve's tangent: verify/vbx_arc.h).
+ * signs of the other members' L_j along the curve's tangent: verify/arcs/vbx_arc.h).
  * Along each arc the first sphere j beyond T that touches the moving tangent
  * sphere is found from a provably conservative set of candidates, positions
  * compared by the filter and in Q(sqrt(delta)) where it cannot tell
- * (verify/arc_search.c). That point is the next vertex: it is certified
+ * (verify/arcs/arc_search.c). That point is the next vertex: it is certified
  * exactly and looked up in the list; a vertex not in the list is added and
  * traced in turn. An arc with no touching sphere runs to infinity (open
  * branch) or closes on itself (closed curve). A forward arc is first
  * searched up to the nearest listed vertex of its triple ahead, and a
  * backward arc that reverses a forward arc traced to its vertex is closed
- * by that search (verify/arc_closure.c says why both are exact).
+ * by that search (verify/arcs/arc_closure.c says why both are exact).
  *
  * What a run with nothing added and nothing undecided proves: the list is
  * closed under the edges of the diagram, i.e. it holds every vertex of each

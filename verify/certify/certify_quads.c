@@ -28,6 +28,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_array.h"
 #include "vb_parallel.h"
 #include "vbx_cert.h"
 
@@ -65,14 +66,8 @@ typedef struct qworker {
 static int push_rec(qworker *w, size_t k, const double xyzt[4], const uint32_t *m, size_t nm,
                     int sigma)
 {
-    if (w->nrec == w->rec_cap) {
-        size_t cap = w->rec_cap ? 2 * w->rec_cap : 1024;
-        qrec *r = realloc(w->rec, cap * sizeof *r);
-        if (!r)
-            return vb_error(w->ctx, VB_ENOMEM, NULL, 0, "out of memory (certified vertices)");
-        w->rec = r;
-        w->rec_cap = cap;
-    }
+    if (VB_ARRAY_FIT(w->rec, w->rec_cap, w->nrec + 1, 1024) != VB_OK)
+        return vb_error(w->ctx, VB_ENOMEM, NULL, 0, "out of memory (certified vertices)");
     qrec *r = &w->rec[w->nrec++];
     memcpy(r->xyzt, xyzt, sizeof r->xyzt);
     r->quad = k;
@@ -81,16 +76,8 @@ static int push_rec(qworker *w, size_t k, const double xyzt[4], const uint32_t *
     r->moff = 0;
     if (nm == 4)
         return VB_OK;
-    if (w->npool + nm > w->pool_cap) {
-        size_t cap = w->pool_cap ? w->pool_cap : 1024;
-        while (cap < w->npool + nm)
-            cap *= 2;
-        uint32_t *p = realloc(w->pool, cap * sizeof *p);
-        if (!p)
-            return vb_error(w->ctx, VB_ENOMEM, NULL, 0, "out of memory (certified vertices)");
-        w->pool = p;
-        w->pool_cap = cap;
-    }
+    if (VB_ARRAY_FIT(w->pool, w->pool_cap, w->npool + nm, 1024) != VB_OK)
+        return vb_error(w->ctx, VB_ENOMEM, NULL, 0, "out of memory (certified vertices)");
     memcpy(w->pool + w->npool, m, nm * sizeof *m);
     r->moff = w->npool;
     w->npool += nm;
@@ -412,17 +399,12 @@ static int merge(vb_ctx *ctx, vb_certifier *c, const uint32_t (*quads)[4], size_
             if (rc != VB_OK)
                 break;
             if (key >= nwhere) {
-                size_t nw = nwhere ? nwhere : 64;
-                while (nw <= key)
-                    nw *= 2;
-                size_t *wh = realloc(where, nw * sizeof *wh);
-                if (!wh) {
+                size_t old = nwhere;
+                if (VB_ARRAY_FIT(where, nwhere, key + 1, 64) != VB_OK) {
                     rc = VB_ENOMEM;
                     break;
                 }
-                memset(wh + nwhere, 0, (nw - nwhere) * sizeof *wh);
-                where = wh;
-                nwhere = nw;
+                memset(where + old, 0, (nwhere - old) * sizeof *where);
             }
             if (where[key]) {
                 qs->duplicates++;

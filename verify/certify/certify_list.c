@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_array.h"
 #include "vb_parallel.h"
 #include "vbx_cert.h"
 
@@ -76,16 +77,8 @@ static int judge(worker *w, size_t k)
     o->nm = 0;
     if (res.verdict != VB_CERT_OK)
         return VB_OK;
-    if (w->npool + res.nmembers > w->cap) {
-        size_t cap = w->cap ? w->cap : 4096;
-        while (cap < w->npool + res.nmembers)
-            cap *= 2;
-        uint32_t *np = realloc(w->pool, cap * sizeof *np);
-        if (!np)
-            return vb_error(w->ctx, VB_ENOMEM, NULL, 0, "out of memory (certified vertices)");
-        w->pool = np;
-        w->cap = cap;
-    }
+    if (VB_ARRAY_FIT(w->pool, w->cap, w->npool + res.nmembers, 4096) != VB_OK)
+        return vb_error(w->ctx, VB_ENOMEM, NULL, 0, "out of memory (certified vertices)");
     memcpy(w->pool + w->npool, res.members, res.nmembers * sizeof *res.members);
     o->moff = w->npool;
     o->nm = (uint32_t)res.nmembers;
@@ -186,18 +179,13 @@ static int merge(vb_ctx *ctx, vb_certifier *c, const vb_vertex_list *cand, const
         if (rc != VB_OK)
             break;
         if (key >= nwhere) {
-            size_t nw = nwhere ? nwhere : 64;
-            while (nw <= key)
-                nw *= 2;
-            size_t *w = realloc(where, nw * sizeof *w);
-            if (!w) {
+            size_t old = nwhere;
+            if (VB_ARRAY_FIT(where, nwhere, key + 1, 64) != VB_OK) {
                 rc = VB_ENOMEM;
                 break;
             }
-            for (size_t i = nwhere; i < nw; i++)
-                w[i] = SIZE_MAX;
-            where = w;
-            nwhere = nw;
+            for (size_t i = old; i < nwhere; i++)
+                where[i] = SIZE_MAX;
         }
         if (where[key] == SIZE_MAX) {
             where[key] = out->n;

@@ -137,7 +137,7 @@ uint64_t vb_certifier_slow_rounds(const vb_certifier *c);
  * = those the filter refuted, certified = vertices found. Cost grows as n^4
  * (W720 above VB_REFERENCE_MAX_SPHERES). Not enumerated: vertices whose members' tangency
  * system has rank < 3 yet an isolated solution (needs nested spheres that
- * touch; see verify/reference.c). Returns VB_OK, VB_ENOMEM, VB_EPREC. */
+ * touch; see verify/judge/reference.c). Returns VB_OK, VB_ENOMEM, VB_EPREC. */
 int vb_reference(vb_ctx *ctx, const vb_sphere_set *set, vb_vertex_list *out);
 
 /* The exact certifier behind the certifier table of the vertex pipeline

@@ -2,18 +2,18 @@
 #ifndef VBX_CERT_H
 #define VBX_CERT_H
 
+#include "vb_hash.h"
 #include "vb_verify.h"
 #include "vbx_exact.h"
 #include "vbx_sindex.h"
 #include "vbx_quad.h"
 
 /* One canonical vertex identity: its sorted member set and the root of its
- * canonical quadruple (see vbx_cert_key_of). */
+ * canonical quadruple (see vbx_cert_key_of); the key is its index. */
 typedef struct vbx_key_entry {
     uint64_t hash;
     size_t off, n; /* members in pool[off .. off + n) */
     int sigma;
-    size_t key;
 } vbx_key_entry;
 
 struct vb_certifier {
@@ -30,8 +30,9 @@ struct vb_certifier {
     uint32_t *members;     /* result of the last judged root */
     size_t nmembers, cap;  /* capacity of ids and members */
     uint8_t *is_def;       /* n flags: defining ids of the current root */
-    vbx_key_entry *slots;  /* open-addressing table of keys */
-    size_t nslots, nkeys;
+    vbx_key_entry *keys;   /* the identities, by key */
+    size_t nkeys, keys_cap;
+    vb_hash keytab;        /* the keys by identity */
     uint32_t *pool;
     size_t npool, pool_cap;
 };

@@ -1,4 +1,4 @@
-/* The filtered tangent solve of one quadruple (verify/quad_filter.c), the
+/* The filtered tangent solve of one quadruple (verify/exact/quad_filter.c), the
  * fast path of vb_certify_quads.
  *
  * Same equations, unknowns and root order as the exact solver

@@ -1,0 +1,461 @@
+/* The direction cover, shared with the kernels (part of vb_cover_shared.h,
+ * which includes it last; include that header, never this one): the
+ * decisions of a patch, the same for every backend (closed, ring radius,
+ * enumerate or subdivide, tie clusters), and the depth-first cover of one
+ * cell. */
+#ifndef VBQ_CELL_SHARED_H
+#define VBQ_CELL_SHARED_H
+
+/* ---- the decisions of a patch (the same for every backend) ------------- */
+
+/* Closed: no sphere outside the list can reach LO. Each such sphere is
+ * centred beyond rq, so e_j > ecert = rq - (R_max - R_i) and f_j <= 1/e_j
+ * < 1/ecert <= LO. slack_i = R_max - R_i. */
+VBS_FN int vbq_closed(double rq, double LO, double slack_i)
+{
+    double ecert = rq - slack_i;
+    return rq == (double)INFINITY || (LO > 0.0 && ecert > 0.0 && 1.0 / ecert < LO * (1.0 - 1e-9));
+}
+
+/* The outer radius of the next ring a patch fetches: out to the reach LO
+ * asks for, at most twice the present radius (LO grows with what is
+ * found); infinite once it passes the farthest centre. */
+VBS_FN double vbq_ring_radius(double rq, double LO, double slack_i, double far)
+{
+    double want = LO > 0.0 ? (1.0 / LO) * (1.0 + 1e-8) + slack_i + 1e-9 * rq : (double)INFINITY;
+    double rq1 = want < 2.0 * rq ? want : 2.0 * rq;
+    return rq1 >= far ? (double)INFINITY : rq1;
+}
+
+/* What a closed patch with `keep` surviving labels (of `len`), `owned` of
+ * them above the base, does: 0 nothing (fewer than three owned labels: no
+ * vertex with smallest member i in P), 1 subdivide, 2 enumerate, 3
+ * enumerate at the deepest level. Labels that tie exactly along a curve
+ * (equal spheres on a circle, lattices) survive every subdivision there:
+ * once VBQ_STALL levels in a row excluded nothing, more levels would only
+ * multiply the patches, so the patch enumerates (a larger patch only adds
+ * quadruples whose roots the certifier refutes). */
+VBS_FN int vbq_decide(const vbq_env *e, const vbq_frame *fr, vbs_u32 keep, vbs_u32 owned)
+{
+    if (owned < 3u)
+        return 0;
+    int stalled = keep == fr->len && fr->stall + 1u >= VBQ_STALL;
+    int deep = fr->level + 1u >= e->max_level || (stalled && owned <= VBQ_STALL_ENUM);
+    if (deep)
+        return 3;
+    if (fr->level >= e->min_level && owned <= e->enum_max)
+        return 2;
+    return 1;
+}
+
+/* Root patch k of 6 T^2 (face-major), over the near list lab[0 .. len0)
+ * of radius rq (every sphere, once rq passes the farthest centre). */
+VBS_FN vbq_frame vbq_root(vbs_u32 T, vbs_u32 k, vbs_u32 len0, double rq, double far)
+{
+    vbq_frame fr;
+    fr.f = k / (T * T);
+    fr.level = 0u;
+    fr.iu = k % T;
+    fr.iv = (k / T) % T;
+    fr.off = 0u;
+    fr.len = len0;
+    fr.stall = 0u;
+    fr.pad = 0u;
+    fr.rq = rq >= far ? (double)INFINITY : rq;
+    return fr;
+}
+
+/* The four children of a subdivided patch, sharing its surviving list. */
+VBS_FN void vbq_child(const vbq_frame *fr, vbs_u32 k, vbs_u32 off, vbs_u32 keep, vbq_frame *ch)
+{
+    ch->f = fr->f;
+    ch->level = fr->level + 1u;
+    ch->iu = 2u * fr->iu + (vbs_u64)(k & 1u);
+    ch->iv = 2u * fr->iv + (vbs_u64)(k >> 1);
+    ch->off = off;
+    ch->len = keep;
+    ch->stall = keep == fr->len ? fr->stall + 1u : 0u;
+    ch->pad = 0u;
+    ch->rq = fr->rq;
+}
+
+/* Inserts quadruple (i, a, b, c) (i smallest) into the sorted unique list
+ * q[0 .. nq). Returns 0 when q is full. */
+VBS_FN int vbq_add_quad(const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i, vbs_u32 a, vbs_u32 b,
+                        vbs_u32 c)
+{
+    vbs_u32 v[4] = {i, a, b, c};
+    for (int x = 2; x < 4; x++)
+        for (int y = x; y > 1 && v[y - 1] > v[y]; y--) {
+            vbs_u32 t = v[y];
+            v[y] = v[y - 1];
+            v[y - 1] = t;
+        }
+    /* Binary search for the first entry >= v (entries share v[0] = i). */
+    vbs_u32 lo = 0u, hi = o->nq;
+    while (lo < hi) {
+        vbs_u32 mid = (lo + hi) / 2u;
+        const VBS_GLOBAL vbs_u32 *w = ar->q + 4u * mid;
+        int less = w[1] != v[1] ? w[1] < v[1] : (w[2] != v[2] ? w[2] < v[2] : w[3] < v[3]);
+        if (less)
+            lo = mid + 1u;
+        else
+            hi = mid;
+    }
+    if (lo < o->nq) {
+        const VBS_GLOBAL vbs_u32 *w = ar->q + 4u * lo;
+        if (w[1] == v[1] && w[2] == v[2] && w[3] == v[3])
+            return 1;
+    }
+    if (o->nq >= ar->q_cap) {
+        o->status = VBQ_OVER_Q;
+        return 0;
+    }
+    for (vbs_u32 k = o->nq; k > lo; k--)
+        for (int x = 0; x < 4; x++)
+            ar->q[4u * k + (vbs_u32)x] = ar->q[4u * (k - 1u) + (vbs_u32)x];
+    for (int x = 0; x < 4; x++)
+        ar->q[4u * lo + (vbs_u32)x] = v[x];
+    o->nq++;
+    return 1;
+}
+
+/* Do the owned labels (ids > i) of lab[0 .. keep) look like an exact tie
+ * cluster: are their points (a, b) in R^4 on one affine plane as far as the
+ * doubles tell (within 8 times the records' error bounds and 1e-12 of the
+ * points' size)? Only a trigger: the host decides exactly (vbq_host_cluster)
+ * and enumerates whatever is not a cluster; near-ties beyond the doubles'
+ * noise do not look flat and are left to the subdivision. Three passes: the
+ * point farthest from the first, the one farthest from their line, then
+ * every distance to the plane of the three. */
+VBS_FN int vbq_looks_flat(const VBS_GLOBAL vbq_nb *nb, const VBS_GLOBAL vbs_u32 *lab, vbs_u32 keep,
+                          vbs_u32 i)
+{
+    double p0[4] = {0.0, 0.0, 0.0, 0.0}, v1[4] = {0.0, 0.0, 0.0, 0.0}, v2[4] = {0.0, 0.0, 0.0, 0.0};
+    double scale = 0.0, emax = 0.0, best = -1.0;
+    int have = 0;
+    for (vbs_u32 a = 0u; a < keep; a++) {
+        vbq_nb r = nb[lab[a]];
+        if (r.id <= i)
+            continue;
+        if (!(r.err < (double)INFINITY))
+            return 0;
+        double q[4] = {r.ax, r.ay, r.az, r.b};
+        emax = r.err > emax ? r.err : emax;
+        for (int k = 0; k < 4; k++)
+            scale = VBS_FABS(q[k]) > scale ? VBS_FABS(q[k]) : scale;
+        if (!have) {
+            for (int k = 0; k < 4; k++)
+                p0[k] = q[k];
+            have = 1;
+            continue;
+        }
+        double d2 = 0.0;
+        for (int k = 0; k < 4; k++)
+            d2 += (q[k] - p0[k]) * (q[k] - p0[k]);
+        if (d2 > best) {
+            best = d2;
+            for (int k = 0; k < 4; k++)
+                v1[k] = q[k] - p0[k];
+        }
+    }
+    double tol = 8.0 * emax + 1e-12 * scale;
+    if (!(best > tol * tol))
+        return 1;
+    double n1 = VBS_SQRT(best);
+    for (int k = 0; k < 4; k++)
+        v1[k] /= n1;
+    for (int pass = 0; pass < 2; pass++) {
+        double far = -1.0, w2[4] = {0.0, 0.0, 0.0, 0.0};
+        for (vbs_u32 a = 0u; a < keep; a++) {
+            vbq_nb r = nb[lab[a]];
+            if (r.id <= i)
+                continue;
+            double w[4] = {r.ax - p0[0], r.ay - p0[1], r.az - p0[2], r.b - p0[3]};
+            double c1 = w[0] * v1[0] + w[1] * v1[1] + w[2] * v1[2] + w[3] * v1[3];
+            double c2 = w[0] * v2[0] + w[1] * v2[1] + w[2] * v2[2] + w[3] * v2[3];
+            double e[4], d2 = 0.0;
+            for (int k = 0; k < 4; k++) {
+                e[k] = w[k] - c1 * v1[k] - c2 * v2[k];
+                d2 += e[k] * e[k];
+            }
+            if (d2 > far) {
+                far = d2;
+                for (int k = 0; k < 4; k++)
+                    w2[k] = e[k];
+            }
+        }
+        if (!(far > tol * tol))
+            return 1;
+        if (pass == 1)
+            return 0;
+        double n2 = VBS_SQRT(far);
+        for (int k = 0; k < 4; k++)
+            v2[k] = w2[k] / n2;
+    }
+    return 0;
+}
+
+/* Is a closed patch a tie cluster to decide exactly (vbq_host_cluster)
+ * before it is enumerated (act 3) or subdivided (act 1): more than
+ * VBQ_CLUSTER_OWNED owned labels that look flat (vbq_looks_flat). */
+VBS_FN int vbq_tie_cluster(const VBS_GLOBAL vbq_nb *nb, const VBS_GLOBAL vbs_u32 *lab,
+                           vbs_u32 keep, vbs_u32 owned, vbs_u32 i, int act, int closed)
+{
+    if (owned <= VBQ_CLUSTER_OWNED || !closed || (act != 1 && act != 3))
+        return 0;
+    return vbq_looks_flat(nb, lab, keep, i);
+}
+
+/* The root patches of a task: all of them (VBQ_ALL_ROOTS), or root r
+ * alone (task (r << 3)), or child c (0..3) of root r alone (task (r << 3) |
+ * (c + 1)): the root's own evaluation is the same in every task, and only
+ * its subdivision keeps one child, so the union of the tasks makes the
+ * whole cell's decisions. */
+#define VBQ_ALL_ROOTS 0xffffffffu
+#define VBQ_TASK(r, c) (((r) << 3) | (c))
+
+VBS_FN int vbq_task_root(vbs_u32 task, vbs_u32 k)
+{
+    return task == VBQ_ALL_ROOTS || (task >> 3) == k;
+}
+
+/* Does a task keep child k of a subdivided patch at `level`? */
+VBS_FN int vbq_task_child(vbs_u32 task, vbs_u32 level, vbs_u32 k)
+{
+    return task == VBQ_ALL_ROOTS || level > 0u || (task & 7u) == 0u || (task & 7u) == k + 1u;
+}
+
+#ifndef VBQ_GROUP_ONLY
+
+#ifndef __OPENCL_C_VERSION__
+/* The exact decision of a tie cluster on the host (core/cells/
+ * cover_cluster.c): the owned labels ids[0 .. n) of a leaf of cell i.
+ * Returns 1 when it proved which quadruples the leaf needs and added them
+ * (vbq_add_quad), 0 when the leaf must be enumerated, -1 when an arena ran
+ * out (o->status set). */
+int vbq_host_cluster(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i,
+                     const vbs_u32 *ids, vbs_u32 n);
+
+/* vbq_host_cluster over the owned labels of the surviving list
+ * lab[top .. top + keep) (their ids copied above it). */
+static inline int vbq_cluster_leaf(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o,
+                                   vbs_u32 i, vbs_u32 top, vbs_u32 keep)
+{
+    if (!e->host)
+        return 0;
+    vbs_u32 no = 0u, base = top + keep;
+    if (base + keep > ar->lab_cap) {
+        o->status = VBQ_OVER_LAB;
+        return -1;
+    }
+    for (vbs_u32 a = 0u; a < keep; a++) {
+        vbs_u32 ja = ar->nb[ar->lab[top + a]].id;
+        if (ja > i)
+            ar->lab[base + no++] = ja;
+    }
+    return vbq_host_cluster(e, ar, o, i, ar->lab + base, no);
+}
+#endif
+
+/* Covers the cell of sphere i (the root patch `root` of it, or every one
+ * with VBQ_ALL_ROOTS): writes the quadruples {i < j < k < l} whose roots
+ * hold every vertex of the cell with smallest member i in those directions
+ * to ar->q (sorted, unique; o->nq of them) and the counters to *o.
+ * o->status is VBQ_OK, or the arena that ran out (the output is then
+ * incomplete and must not be used). See the top of this file for why the
+ * quadruples are complete. */
+VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs_u32 root,
+                           vbq_cell_out *o)
+{
+    o->status = VBQ_OK;
+    o->nq = o->nnb = o->far = 0u;
+    o->patches = o->evals_k = o->leaves = o->deep = o->maxlev = 0u;
+    o->lab_hw = o->st_hw = o->qoff = 0u;
+    double evals = 0.0;
+    const double c[3] = {e->x[i], e->y[i], e->z[i]};
+    const double m0[3] = {0.0, 0.0, 0.0}, h0[3] = {1.0, 1.0, 1.0};
+    /* Near list: every sphere centred within rq of c_i; so every sphere
+     * with e_j <= rq - (R_max - R_i) is in it. */
+    double rq = e->near + 2.0 * e->rmax_all;
+    vbs_u32 len0 = 0u;
+    if (!vbq_gather(e, ar, o, i, m0, h0, -1.0, -1.0, rq, 0u, &len0))
+        return;
+    /* Beyond this distance from c_i there is no centre. */
+    double far = VBS_SQRT(vbq_box_far2(e, 1u, c)) * (1.0 + 1e-9);
+    vbs_u32 T = e->T, nst = 0u;
+    if (6u * T * T > ar->st_cap) {
+        o->status = VBQ_OVER_ST;
+        return;
+    }
+    for (vbs_u32 k = 0u; k < 6u * T * T; k++)
+        if (vbq_task_root(root, k))
+            ar->st[nst++] = vbq_root(T, k, len0, rq, far);
+    /* The roots share lab[0 .. len0); lists of deeper frames are stacked
+     * above top. A frame's list lies below the lists of every frame pushed
+     * after it, so popping a frame frees everything above its list. */
+    vbs_u32 top = len0;
+    double slack_i = e->rmax_all - e->r[i];
+    while (nst > 0u) {
+        o->st_hw = nst > o->st_hw ? nst : o->st_hw;
+        o->lab_hw = top > o->lab_hw ? top : o->lab_hw;
+        vbq_frame fr = ar->st[--nst];
+        if (fr.off + fr.len < top)
+            top = fr.off + fr.len > len0 ? fr.off + fr.len : len0;
+        double u0, u1, v0, v1, m[3], h[3];
+        vbq_patch_square(T, fr.level, fr.iu, fr.iv, &u0, &u1, &v0, &v1);
+        vbq_patch_box(fr.f, u0, u1, v0, v1, m, h);
+        o->patches++;
+        /* LO: the envelope is at least max(0, lo_k) everywhere in P (0 is
+         * "infinity", the floor of the envelope). */
+        double LO = 0.0;
+        for (vbs_u32 k = 0u; k < fr.len; k++) {
+            vbq_nb rec = ar->nb[ar->lab[fr.off + k]];
+            double lo, hi;
+            vbq_eval(&rec, m, h, &lo, &hi);
+            LO = lo > LO ? lo : LO;
+        }
+        evals += (double)fr.len;
+        int closed = vbq_closed(fr.rq, LO, slack_i);
+        /* A fetch takes every sphere that can reach LO anywhere in the
+         * patch; the children share what it found. Fetching from deeper
+         * levels makes each fetch smaller but repeats it in every child
+         * (measured: level 2 is the cheaper on proteins and the capsid). */
+        if (!closed && fr.level >= VBQ_FETCH_LEVEL) {
+            double rq1 = vbq_ring_radius(fr.rq, LO, slack_i, far);
+            if (top + fr.len > ar->lab_cap) {
+                o->status = VBQ_OVER_LAB;
+                return;
+            }
+            for (vbs_u32 k = 0u; k < fr.len; k++)
+                ar->lab[top + k] = ar->lab[fr.off + k];
+            vbq_sub sub[VBQ_NSUB];
+            for (vbs_u32 g = 0u; g < VBQ_NSUB; g++) {
+                vbq_sub_box(fr.f, u0, u1, v0, v1, g, sub[g].m, sub[g].h);
+                double lg = 0.0;
+                for (vbs_u32 k = 0u; k < fr.len; k++) {
+                    vbq_nb rec = ar->nb[ar->lab[fr.off + k]];
+                    double lo, hi;
+                    vbq_eval(&rec, sub[g].m, sub[g].h, &lo, &hi);
+                    lg = lo > lg ? lo : lg;
+                }
+                sub[g].LO = lg;
+                sub[g].sdist = lg > 0.0 ? 0.5 / lg : (double)INFINITY;
+            }
+            evals += (double)(VBQ_NSUB * fr.len);
+            vbs_u32 nlen = fr.len;
+            if (!vbq_gather_sub(e, ar, o, i, sub, fr.rq, rq1, top, &nlen))
+                return;
+            fr.off = top;
+            fr.len = nlen;
+            fr.rq = rq1;
+            top += nlen;
+            ar->st[nst++] = fr; /* evaluated again with the new labels */
+            o->patches--;
+            continue;
+        }
+        /* The surviving labels, copied above top. */
+        if (top + fr.len > ar->lab_cap) {
+            o->status = VBQ_OVER_LAB;
+            return;
+        }
+        vbs_u32 keep = 0u, owned = 0u;
+        for (vbs_u32 k = 0u; k < fr.len; k++) {
+            vbs_u32 li = ar->lab[fr.off + k];
+            vbq_nb rec = ar->nb[li];
+            double lo, hi;
+            vbq_eval(&rec, m, h, &lo, &hi);
+            if (hi >= LO) {
+                ar->lab[top + keep++] = li;
+                if (rec.id > i)
+                    owned++;
+            }
+        }
+        evals += (double)fr.len;
+        /* Pairwise dominance: where f_k - f_j > 0 all over P, j is nowhere
+         * the largest in P. Few labels only (it is quadratic). */
+        if (closed && owned >= 3u && keep <= VBQ_DOM_MAX) {
+            vbs_u32 w = 0u;
+            owned = 0u;
+            for (vbs_u32 a = 0u; a < keep; a++) {
+                vbq_nb nj = ar->nb[ar->lab[top + a]];
+                int dom = 0;
+                for (vbs_u32 b = 0u; b < keep && !dom; b++) {
+                    if (b == a)
+                        continue;
+                    vbq_nb nk = ar->nb[ar->lab[top + b]];
+                    double dl, dh;
+                    vbq_eval_diff(&nk, &nj, m, h, &dl, &dh);
+                    dom = dl > 0.0;
+                }
+                evals += (double)(keep - 1u);
+                if (!dom) {
+                    ar->lab[top + w++] = ar->lab[top + a];
+                    if (nj.id > i)
+                        owned++;
+                }
+            }
+            keep = w;
+        }
+        int act = closed ? vbq_decide(e, &fr, keep, owned) : 1;
+        if (act == 0)
+            continue;
+        if (vbq_tie_cluster(ar->nb, ar->lab + top, keep, owned, i, act, closed)) {
+#ifdef __OPENCL_C_VERSION__
+            o->status = VBQ_CLUSTER;
+            return;
+#else
+            int hc = vbq_cluster_leaf(e, ar, o, i, top, keep);
+            if (hc < 0)
+                return;
+            if (hc > 0) {
+                o->leaves++;
+                continue;
+            }
+#endif
+        }
+        if (act >= 2) {
+            o->leaves++;
+            if (act == 3)
+                o->deep++;
+            if (fr.level > o->maxlev)
+                o->maxlev = fr.level;
+            for (vbs_u32 a = 0u; a < keep; a++) {
+                vbs_u32 ja = ar->nb[ar->lab[top + a]].id;
+                if (ja < i)
+                    continue;
+                for (vbs_u32 b = a + 1u; b < keep; b++) {
+                    vbs_u32 jb = ar->nb[ar->lab[top + b]].id;
+                    if (jb < i)
+                        continue;
+                    for (vbs_u32 d = b + 1u; d < keep; d++) {
+                        vbs_u32 jd = ar->nb[ar->lab[top + d]].id;
+                        if (jd < i)
+                            continue;
+                        if (!vbq_add_quad(ar, o, i, ja, jb, jd))
+                            return;
+                    }
+                }
+            }
+            continue;
+        }
+        /* Subdivide: the four children share the surviving list. */
+        if (nst + 4u > ar->st_cap) {
+            o->status = VBQ_OVER_ST;
+            return;
+        }
+        vbs_u32 off = top;
+        top += keep;
+        for (vbs_u32 k = 0u; k < 4u; k++) {
+            if (!vbq_task_child(root, fr.level, k))
+                continue;
+            vbq_frame ch;
+            vbq_child(&fr, k, off, keep, &ch);
+            ar->st[nst++] = ch;
+        }
+    }
+    o->evals_k = (vbs_u32)(evals / 1000.0);
+}
+#endif /* VBQ_GROUP_ONLY */
+
+#endif

@@ -1,0 +1,400 @@
+/* The direction cover, shared with the kernels (part of vb_cover_shared.h,
+ * which includes it after the neighbours and the patches; include that
+ * header, never this one): the tuning and statuses of the cover, a cell's
+ * environment (the tree of the centres) and arenas, the tree queries, and
+ * the neighbours gathered for a patch (rings fetched by sub-patch). */
+#ifndef VBQ_GATHER_SHARED_H
+#define VBQ_GATHER_SHARED_H
+
+/* ---- the cover of one cell ---------------------------------------------- */
+
+/* Tuning (speed only; every value keeps the cover complete). */
+#define VBQ_LEAF 8u            /* spheres per leaf of the tree */
+#define VBQ_FETCH_LEVEL 2u     /* unclosed patches from this level fetch rings */
+
+#define VBQ_STALL 4u           /* levels without an exclusion before enumerating */
+#define VBQ_STALL_ENUM 14u     /* ... when at most this many owned labels */
+#define VBQ_DOM_MAX 12u        /* patches with at most this many labels test pairs */
+#define VBQ_STACK 64u          /* tree traversal stack (depth <= 33) */
+
+/* Statuses of vbq_cover_cell: 0, or which arena ran out (the host reruns the
+ * cell with larger arenas). */
+#define VBQ_OK 0u
+#define VBQ_OVER_NB 1u
+#define VBQ_OVER_LAB 2u
+#define VBQ_OVER_ST 3u
+#define VBQ_OVER_Q 4u
+/* 5 is the kernels' VBQ_OVER_OUT. A patch that looks like a tie cluster
+ * (vbq_tie_cluster): the cell is covered again on the host, which decides
+ * such patches exactly (vbq_host_cluster). */
+#define VBQ_CLUSTER 6u
+
+/* A closed patch to enumerate or subdivide with more owned labels than this
+ * that look flat is a tie cluster, decided exactly before any of its
+ * C(owned, 3) quadruples is written or its children are made (speed only:
+ * both ways are complete). */
+#define VBQ_CLUSTER_OWNED 5u
+
+/* A patch waiting in the depth-first stack. */
+typedef struct vbq_frame {
+    vbs_u32 f, level;
+    vbs_u64 iu, iv;    /* 64 bits: near-ties need levels past 31 */
+    vbs_u32 off, len;  /* labels in lab[off .. off + len): indices into nb */
+    vbs_u32 stall;     /* consecutive levels that excluded no label */
+    vbs_u32 pad;
+    double rq;         /* every sphere centred within rq of c_i is in the list or was
+                          excluded by an ancestor (INFINITY: every sphere) */
+} vbq_frame;
+VBS_ASSERT_LAYOUT(sizeof(vbq_frame) == 48, "vbq_frame layout shared with OpenCL");
+
+/* What one cell's cover did (counters for --stats; nq quadruples written). */
+typedef struct vbq_cell_out {
+    vbs_u32 status, nq, nnb, far;
+    vbs_u32 patches, evals_k, leaves, deep, maxlev;
+    vbs_u32 lab_hw, st_hw;  /* high-water marks of the label and frame stacks */
+    vbs_u32 qoff;           /* where a backend stored the quadruples */
+} vbq_cell_out;
+VBS_ASSERT_LAYOUT(sizeof(vbq_cell_out) == 48, "vbq_cell_out layout shared with OpenCL");
+
+/* The input of every cell: the spheres, and a tree over the centres of the
+ * spheres that no other sphere contains: their ids along a Morton curve,
+ * in leaves of VBQ_LEAF, a complete binary tree over the leaves (heap
+ * order: node 1 the root, leaves from `first`), each node with the box of
+ * its centres (lo xyz, hi xyz) and the largest radius below it. */
+typedef struct vbq_env {
+    const VBS_GLOBAL double *x, *y, *z, *r;
+    const VBS_GLOBAL double *box;
+    const VBS_GLOBAL double *rmax;
+    const VBS_GLOBAL vbs_u32 *ids;
+    vbs_u32 first, m;
+    double rmax_all;   /* largest radius of the tree's spheres */
+    double near;       /* first guess of a near list's radius, beyond 2 rmax_all */
+    vbs_u32 T, min_level, max_level, enum_max;
+#ifndef __OPENCL_C_VERSION__
+    const void *host;  /* the host's exact input for vbq_host_cluster (NULL: none) */
+#endif
+} vbq_env;
+
+/* Scratch of one cell, fixed capacities. */
+typedef struct vbq_arena {
+    VBS_GLOBAL vbq_nb *nb;
+    VBS_GLOBAL vbs_u32 *lab;
+    VBS_GLOBAL vbq_frame *st;
+    VBS_GLOBAL vbs_u32 *q;      /* 4 per quadruple */
+    vbs_u32 nb_cap, lab_cap, st_cap, q_cap;
+} vbq_arena;
+
+/* Squared distance from c to node nd's box (0 inside), and to its farthest
+ * corner. */
+VBS_FN double vbq_box_dist2(const vbq_env *e, vbs_u32 nd, const double c[3])
+{
+    double d2 = 0.0;
+    for (int a = 0; a < 3; a++) {
+        double l = e->box[6u * nd + (vbs_u32)a], h = e->box[6u * nd + 3u + (vbs_u32)a];
+        double dn = c[a] < l ? l - c[a] : (c[a] > h ? c[a] - h : 0.0);
+        d2 += dn * dn;
+    }
+    return d2;
+}
+
+VBS_FN double vbq_box_far2(const vbq_env *e, vbs_u32 nd, const double c[3])
+{
+    double d2 = 0.0;
+    for (int a = 0; a < 3; a++) {
+        double l = VBS_FABS(e->box[6u * nd + (vbs_u32)a] - c[a]);
+        double h = VBS_FABS(e->box[6u * nd + 3u + (vbs_u32)a] - c[a]);
+        double f = l > h ? l : h;
+        d2 += f * f;
+    }
+    return d2;
+}
+
+/* A query of the tree for the spheres centred in (rq0, rq1] from c_i
+ * (rq0 < 0: from 0) that can be labels in the patch (m, h) with lower
+ * envelope LO (LO < 0: every sphere of the ring, the near list). Where
+ * f_j >= LO at u: u.d + delta >= LO N >= 0, so the sphere reaches the
+ * half-space u.(x - c_i) >= R_i - R_j; and for LO > 0 the bisector along u
+ * is at most s = 1/(2 LO) from c_i, so the tangent sphere there, centre
+ * c_i + s u and radius s - R_i, must reach sphere j: |c_i + s u - c_j| <=
+ * s - R_i + R_j. A node is pruned when one of these fails for every u of
+ * the patch box and every centre of its box (R_j <= its R_max), or when its
+ * box lies within rq0 or beyond rq1; the bounds carry a relative margin of
+ * 1e-9, far above the rounding errors of these few operations. */
+typedef struct vbq_query {
+    double c[3], ri;
+    double m[3], h[3];
+    double LO, rq0, rq1;
+    double sdist, in2, out2;
+    int filter;
+} vbq_query;
+
+VBS_FN void vbq_query_make(const vbq_env *e, vbs_u32 i, const double m[3], const double h[3],
+                           double LO, double rq0, double rq1, vbq_query *q)
+{
+    q->c[0] = e->x[i];
+    q->c[1] = e->y[i];
+    q->c[2] = e->z[i];
+    q->ri = e->r[i];
+    for (int a = 0; a < 3; a++) {
+        q->m[a] = m[a];
+        q->h[a] = h[a];
+    }
+    q->LO = LO;
+    q->rq0 = rq0;
+    q->rq1 = rq1;
+    q->sdist = LO > 0.0 ? 0.5 / LO : (double)INFINITY;
+    q->filter = LO >= 0.0;
+    q->in2 = rq0 > 0.0 ? rq0 * rq0 * (1.0 - 1e-9) : -1.0;
+    q->out2 = rq1 * rq1 * (1.0 + 1e-9);
+}
+
+/* Can node nd hold a sphere that passes the query? */
+VBS_FN int vbq_node_pass(const vbq_env *e, const vbq_query *q, vbs_u32 nd)
+{
+    const VBS_GLOBAL double *bx = e->box + 6u * nd;
+    double slack = e->rmax[nd] - q->ri;
+    double best = 0.0, mag = 0.0, dmax2 = 0.0, dmin2 = 0.0, bb2 = 0.0;
+    for (int a = 0; a < 3; a++) {
+        double b0 = bx[a] - q->c[a], b1 = bx[3 + a] - q->c[a];
+        double u0 = q->m[a] - q->h[a], u1 = q->m[a] + q->h[a];
+        double p0 = u0 * b0, p1 = u0 * b1, p2 = u1 * b0, p3 = u1 * b1;
+        double mx = p0 > p1 ? p0 : p1;
+        mx = p2 > mx ? p2 : mx;
+        mx = p3 > mx ? p3 : mx;
+        best += mx;
+        mag += VBS_FABS(b0) + VBS_FABS(b1);
+        double f = VBS_FABS(b0) > VBS_FABS(b1) ? VBS_FABS(b0) : VBS_FABS(b1);
+        dmax2 += f * f;
+        double dn = b0 > 0.0 ? b0 : (b1 < 0.0 ? -b1 : 0.0);
+        dmin2 += dn * dn;
+        if (q->sdist < (double)INFINITY) {
+            double t0 = q->sdist * u0, t1 = q->sdist * u1;
+            double gp = b0 > t1 ? b0 - t1 : (t0 > b1 ? t0 - b1 : 0.0);
+            bb2 += gp * gp;
+        }
+    }
+    if (dmax2 < q->in2 || dmin2 > q->out2)
+        return 0;
+    if (q->filter && best + slack < -1e-9 * (mag + VBS_FABS(slack) + 1e-300))
+        return 0;
+    if (q->sdist < (double)INFINITY) {
+        double reach = (q->sdist + slack) * (1.0 + 1e-9) + 1e-9 * (mag + q->sdist);
+        if (reach < 0.0 || bb2 > reach * reach)
+            return 0;
+    }
+    return 1;
+}
+
+/* Does sphere j (not the base) pass the query? Fills its record when so.
+ * Spheres within rq0 are in the list or were excluded; those beyond rq1
+ * belong to a later ring. A sphere of a ring is kept when its enclosure
+ * reaches LO. */
+VBS_FN int vbq_sphere_pass(const vbq_env *e, const vbq_query *q, vbs_u32 j,
+                           vbq_nb *rec)
+{
+    double dx = e->x[j] - q->c[0], dy = e->y[j] - q->c[1], dz = e->z[j] - q->c[2];
+    double d2 = dx * dx + dy * dy + dz * dz;
+    if ((q->rq0 > 0.0 && !(d2 > q->rq0 * q->rq0)) || d2 > q->rq1 * q->rq1)
+        return 0;
+    vbq_nb_make(q->c[0], q->c[1], q->c[2], q->ri, e->x[j], e->y[j], e->z[j], e->r[j], j, rec);
+    if (q->filter) {
+        double lo, hi;
+        vbq_eval(rec, q->m, q->h, &lo, &hi);
+        if (!(hi >= q->LO))
+            return 0;
+    }
+    return 1;
+}
+
+/* ---- ring fetches resolved by sub-patch --------------------------------
+ * A fetching patch is split VBQ_SUB x VBQ_SUB; each part g gets its own box
+ * and lower envelope LO_g from the list. A sphere can be a label somewhere
+ * in the patch only if it can be one somewhere in some part, i.e. only if
+ * it passes the query of some part: a far sharper test than the patch's
+ * single LO where the cell's reach varies across the patch (exposed cells
+ * facing a cavity). The address space of the parts' array is VBQ_SQ
+ * (private by default; the group kernel keeps them in local memory). */
+#ifndef VBQ_SUB
+#define VBQ_SUB 2u
+#endif
+#define VBQ_NSUB (VBQ_SUB * VBQ_SUB)
+#ifndef VBQ_SQ
+#define VBQ_SQ
+#endif
+
+typedef struct vbq_sub {
+    double m[3], h[3];
+    double LO, sdist;
+} vbq_sub;
+
+/* Part g (row-major) of the square [u0,u1] x [v0,v1] on face f. */
+VBS_FN void vbq_sub_box(vbs_u32 f, double u0, double u1, double v0, double v1, vbs_u32 g,
+                        double m[3], double h[3])
+{
+    double du = (u1 - u0) / (double)VBQ_SUB, dv = (v1 - v0) / (double)VBQ_SUB;
+    vbs_u32 a = g % VBQ_SUB, b = g / VBQ_SUB;
+    /* The parts' edges are the patch's dyadic grid refined VBQ_SUB times:
+     * exact doubles, and the outer ones equal the patch's edges. */
+    double a0 = a == 0u ? u0 : u0 + du * (double)a, a1 = a + 1u == VBQ_SUB ? u1 : u0 + du * (double)(a + 1u);
+    double b0 = b == 0u ? v0 : v0 + dv * (double)b, b1 = b + 1u == VBQ_SUB ? v1 : v0 + dv * (double)(b + 1u);
+    vbq_patch_box(f, a0, a1, b0, b1, m, h);
+}
+
+/* Can node nd hold a sphere that is centred in (rq0, rq1] and reaches
+ * LO_g in some part g? (vbq_node_pass for each part.) */
+VBS_FN int vbq_node_pass_sub(const vbq_env *e, const double c[3], double ri, double rq0,
+                             double rq1, const VBQ_SQ vbq_sub *sub, vbs_u32 nd)
+{
+    const VBS_GLOBAL double *bx = e->box + 6u * nd;
+    double slack = e->rmax[nd] - ri;
+    double b0[3], b1[3], mag = 0.0, dmax2 = 0.0, dmin2 = 0.0;
+    for (int a = 0; a < 3; a++) {
+        b0[a] = bx[a] - c[a];
+        b1[a] = bx[3 + a] - c[a];
+        mag += VBS_FABS(b0[a]) + VBS_FABS(b1[a]);
+        double f = VBS_FABS(b0[a]) > VBS_FABS(b1[a]) ? VBS_FABS(b0[a]) : VBS_FABS(b1[a]);
+        dmax2 += f * f;
+        double dn = b0[a] > 0.0 ? b0[a] : (b1[a] < 0.0 ? -b1[a] : 0.0);
+        dmin2 += dn * dn;
+    }
+    double in2 = rq0 > 0.0 ? rq0 * rq0 * (1.0 - 1e-9) : -1.0, out2 = rq1 * rq1 * (1.0 + 1e-9);
+    if (dmax2 < in2 || dmin2 > out2)
+        return 0;
+    for (vbs_u32 g = 0u; g < VBQ_NSUB; g++) {
+        double best = 0.0, bb2 = 0.0;
+        double sd = sub[g].sdist;
+        for (int a = 0; a < 3; a++) {
+            double u0 = sub[g].m[a] - sub[g].h[a], u1 = sub[g].m[a] + sub[g].h[a];
+            double p0 = u0 * b0[a], p1 = u0 * b1[a], p2 = u1 * b0[a], p3 = u1 * b1[a];
+            double mx = p0 > p1 ? p0 : p1;
+            mx = p2 > mx ? p2 : mx;
+            mx = p3 > mx ? p3 : mx;
+            best += mx;
+            if (sd < (double)INFINITY) {
+                double t0 = sd * u0, t1 = sd * u1;
+                double gp = b0[a] > t1 ? b0[a] - t1 : (t0 > b1[a] ? t0 - b1[a] : 0.0);
+                bb2 += gp * gp;
+            }
+        }
+        if (best + slack < -1e-9 * (mag + VBS_FABS(slack) + 1e-300))
+            continue;
+        if (sd < (double)INFINITY) {
+            double reach = (sd + slack) * (1.0 + 1e-9) + 1e-9 * (mag + sd);
+            if (reach < 0.0 || bb2 > reach * reach)
+                continue;
+        }
+        return 1;
+    }
+    return 0;
+}
+
+/* Does sphere j (centred in (rq0, rq1] from c) reach LO_g in some part g?
+ * Fills its record when so. */
+VBS_FN int vbq_sphere_pass_sub(const vbq_env *e, const double c[3], double ri, double rq0,
+                               double rq1, const VBQ_SQ vbq_sub *sub, vbs_u32 j, vbq_nb *rec)
+{
+    double dx = e->x[j] - c[0], dy = e->y[j] - c[1], dz = e->z[j] - c[2];
+    double d2 = dx * dx + dy * dy + dz * dz;
+    if ((rq0 > 0.0 && !(d2 > rq0 * rq0)) || d2 > rq1 * rq1)
+        return 0;
+    vbq_nb_make(c[0], c[1], c[2], ri, e->x[j], e->y[j], e->z[j], e->r[j], j, rec);
+    for (vbs_u32 g = 0u; g < VBQ_NSUB; g++) {
+        double m[3] = {sub[g].m[0], sub[g].m[1], sub[g].m[2]};
+        double h[3] = {sub[g].h[0], sub[g].h[1], sub[g].h[2]};
+        double lo, hi;
+        vbq_eval(rec, m, h, &lo, &hi);
+        if (hi >= sub[g].LO)
+            return 1;
+    }
+    return 0;
+}
+
+#ifndef VBQ_GROUP_ONLY
+/* The ring fetch on one work-item, resolved by parts: spheres centred in
+ * (rq0, rq1] that reach some part's LO_g, appended to nb and to the list at
+ * lab[off + *len ...]. Returns 0 when an arena is full. */
+VBS_FN int vbq_gather_sub(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i,
+                          const VBQ_SQ vbq_sub *sub, double rq0, double rq1, vbs_u32 off,
+                          vbs_u32 *len)
+{
+    const double c[3] = {e->x[i], e->y[i], e->z[i]};
+    double ri = e->r[i];
+    vbs_u32 stack[VBQ_STACK], ns = 0;
+    if (e->m)
+        stack[ns++] = 1u;
+    while (ns) {
+        vbs_u32 nd = stack[--ns];
+        if (!vbq_node_pass_sub(e, c, ri, rq0, rq1, sub, nd))
+            continue;
+        if (nd < e->first) {
+            stack[ns++] = 2u * nd + 1u;
+            stack[ns++] = 2u * nd;
+            continue;
+        }
+        vbs_u32 q0 = (nd - e->first) * VBQ_LEAF;
+        for (vbs_u32 k = q0; k < e->m && k < q0 + VBQ_LEAF; k++) {
+            vbs_u32 j = e->ids[k];
+            vbq_nb rec;
+            if (j == i || !vbq_sphere_pass_sub(e, c, ri, rq0, rq1, sub, j, &rec))
+                continue;
+            o->far++;
+            if (o->nnb >= ar->nb_cap) {
+                o->status = VBQ_OVER_NB;
+                return 0;
+            }
+            ar->nb[o->nnb++] = rec;
+            if (off + *len >= ar->lab_cap) {
+                o->status = VBQ_OVER_LAB;
+                return 0;
+            }
+            ar->lab[off + (*len)++] = o->nnb - 1u;
+        }
+    }
+    return 1;
+}
+#endif
+
+/* The query on one work-item: passing spheres appended to nb and to the
+ * list at lab[off + *len ...]. Returns 0 when an arena is full. */
+VBS_FN int vbq_gather(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i,
+                      const double m[3], const double h[3], double LO, double rq0, double rq1,
+                      vbs_u32 off, vbs_u32 *len)
+{
+    vbq_query q;
+    vbq_query_make(e, i, m, h, LO, rq0, rq1, &q);
+    vbs_u32 stack[VBQ_STACK], ns = 0;
+    if (e->m)
+        stack[ns++] = 1u;
+    while (ns) {
+        vbs_u32 nd = stack[--ns];
+        if (!vbq_node_pass(e, &q, nd))
+            continue;
+        if (nd < e->first) {
+            stack[ns++] = 2u * nd + 1u;
+            stack[ns++] = 2u * nd;
+            continue;
+        }
+        vbs_u32 q0 = (nd - e->first) * VBQ_LEAF;
+        for (vbs_u32 k = q0; k < e->m && k < q0 + VBQ_LEAF; k++) {
+            vbs_u32 j = e->ids[k];
+            vbq_nb rec;
+            if (j == i || !vbq_sphere_pass(e, &q, j, &rec))
+                continue;
+            if (q.filter)
+                o->far++;
+            if (o->nnb >= ar->nb_cap) {
+                o->status = VBQ_OVER_NB;
+                return 0;
+            }
+            ar->nb[o->nnb++] = rec;
+            if (off + *len >= ar->lab_cap) {
+                o->status = VBQ_OVER_LAB;
+                return 0;
+            }
+            ar->lab[off + (*len)++] = o->nnb - 1u;
+        }
+    }
+    return 1;
+}
+
+#endif

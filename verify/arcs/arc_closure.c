@@ -1,0 +1,535 @@
+/* Arc closure (vb_arc.h): the tracing loop over the vertices in rounds,
+ * the lookup of the next vertex of each arc, the components and the counts
+ * of the certificate, and the edges (the tracers: arc_tracer.c). */
+#include <stdlib.h>
+#include <string.h>
+
+#include "vb_array.h"
+#include "vb_hash.h"
+#include "vb_parallel.h"
+#include "vb_uf.h"
+
+#include "vb_arc.h"
+#include "vbx_closure.h"
+
+/* ---- the set of known vertices: members + rounded point -> index -------- */
+
+/* A vertex sought: members m (nm of them) and rounded point p, against the
+ * vertices of list v. */
+typedef struct vkey {
+    const vb_vertex_list *v;
+    const uint32_t *m;
+    size_t nm;
+    const double *p;
+} vkey;
+
+static uint64_t vhash(const uint32_t *m, size_t nm, const double p[4])
+{
+    uint64_t h = nm;
+    for (size_t i = 0; i < nm; i++)
+        h = vb_hash_mix(h, m[i]);
+    for (int k = 0; k < 4; k++) {
+        uint64_t b;
+        double x = p[k] == 0 ? 0.0 : p[k];
+        memcpy(&b, &x, sizeof b);
+        h = vb_hash_mix(h, b);
+    }
+    return h;
+}
+
+static int vsame(const void *key, size_t k)
+{
+    const vkey *q = key;
+    const vb_vertex_list *v = q->v;
+    size_t s = v->start[k], n = v->start[k + 1] - s;
+    return n == q->nm && memcmp(v->ids + s, q->m, q->nm * sizeof *q->m) == 0 &&
+           v->x[k] == q->p[0] && v->y[k] == q->p[1] && v->z[k] == q->p[2] && v->t[k] == q->p[3];
+}
+
+/* The hash of vertex k of the list arg (vb_hash_of_fn). */
+static uint64_t vhash_of(const void *arg, size_t k)
+{
+    const vb_vertex_list *v = arg;
+    double p[4];
+    vbx_vertex_point(v, k, p);
+    size_t s = v->start[k];
+    return vhash(v->ids + s, v->start[k + 1] - s, p);
+}
+
+/* The slot of the vertex of members m and rounded point p in the table of
+ * the closure's list (vb_hash_slot). */
+static size_t *vslot(vb_hash *tab, const vb_vertex_list *all, const uint32_t *m, size_t nm,
+                     const double p[4])
+{
+    vkey q = {all, m, nm, p};
+    return vb_hash_slot(tab, vhash(m, nm, p), vsame, &q);
+}
+
+/* ---- arrivals: (vertex, triple) pairs reached by a forward arc ---------- */
+
+typedef struct akey {
+    size_t to;
+    uint32_t t[3];
+} akey;
+
+/* The pairs in order of arrival and the table of them. */
+typedef struct aset {
+    akey *k;
+    size_t n, cap;
+    vb_hash tab;
+} aset;
+
+static uint64_t ahash(const akey *k)
+{
+    return vb_hash_mix(vb_hash_mix(vb_hash_mix(vb_hash_mix(0, k->to), k->t[0]), k->t[1]),
+                       k->t[2]);
+}
+
+/* A pair sought in set a. */
+typedef struct asame_arg {
+    const aset *a;
+    const akey *q;
+} asame_arg;
+
+static int asame(const void *key, size_t i)
+{
+    const asame_arg *x = key;
+    const akey *e = &x->a->k[i];
+    return e->to == x->q->to && e->t[0] == x->q->t[0] && e->t[1] == x->q->t[1] &&
+           e->t[2] == x->q->t[2];
+}
+
+static uint64_t ahash_of(const void *arg, size_t i)
+{
+    const aset *a = arg;
+    return ahash(&a->k[i]);
+}
+
+static int aput(aset *a, size_t to, const uint32_t t[3])
+{
+    akey q = {to, {t[0], t[1], t[2]}};
+    asame_arg x = {a, &q};
+    if (!a->tab.cap && vb_hash_fit(&a->tab, 0, ahash_of, a) != VB_OK)
+        return VB_ENOMEM;
+    size_t *s = vb_hash_slot(&a->tab, ahash(&q), asame, &x);
+    if (*s)
+        return VB_OK;
+    if (VB_ARRAY_FIT(a->k, a->cap, a->n + 1, 1024) != VB_OK)
+        return VB_ENOMEM;
+    a->k[a->n] = q;
+    return vb_hash_put(&a->tab, s, a->n++, ahash_of, a);
+}
+
+static int ahas(const aset *a, size_t to, const uint32_t t[3])
+{
+    akey q = {to, {t[0], t[1], t[2]}};
+    asame_arg x = {a, &q};
+    return vb_hash_get(&a->tab, ahash(&q), asame, &x) != SIZE_MAX;
+}
+
+/* ---- the closure --------------------------------------------------------- */
+
+/* A traced edge (vb_arc_close_edges), oriented forward along its curve:
+ * from its start to its end (vertex indices of closure.all), with the kind
+ * of half arc that recorded it. */
+enum { TE_FWD = 0, TE_BWD = 1, TE_INF = 2, TE_LOOP = 3 };
+
+typedef struct tedge {
+    size_t from, to; /* to: SIZE_MAX for infinity */
+    uint32_t t[3];
+    int kind;
+} tedge;
+
+typedef struct closure {
+    vb_ctx *ctx;
+    tedge *ed;          /* NULL unless edges are wanted */
+    size_t ned, ed_cap;
+    int want_edges;
+    vb_vertex_list all; /* input + added, in tracing order */
+    vb_hash tab;        /* the vertices of all */
+    vb_uf comp;         /* components of the vertex-edge graph */
+    aset arrived;       /* (vertex, triple) reached by a forward arc */
+    vbx_tmap map;       /* the triples of the list */
+    vbx_item *pend;     /* backward arcs left pending in this round */
+    size_t npend, pend_cap;
+    vb_arc_report *r;
+} closure;
+
+static int push_item(vbx_item **v, size_t *n, size_t *cap, size_t k, const uint32_t t[3], int all)
+{
+    if (VB_ARRAY_FIT(*v, *cap, *n + 1, 256) != VB_OK)
+        return VB_ENOMEM;
+    vbx_item *it = &(*v)[(*n)++];
+    it->k = k;
+    memcpy(it->t, t, sizeof it->t);
+    it->all = all;
+    return VB_OK;
+}
+
+static int push_tedge(closure *cl, size_t from, size_t to, const uint32_t t[3], int kind)
+{
+    if (!cl->want_edges)
+        return VB_OK;
+    if (VB_ARRAY_FIT(cl->ed, cl->ed_cap, cl->ned + 1, 1024) != VB_OK)
+        return VB_ENOMEM;
+    tedge *e = &cl->ed[cl->ned++];
+    e->from = from;
+    e->to = to;
+    memcpy(e->t, t, sizeof e->t);
+    e->kind = kind;
+    return VB_OK;
+}
+
+/* The events of vbx_item k's vertex (vbx_tracer tr, events [e0, e0 + n)) into the
+ * counts, the list of vertices, the components and the arrivals, in event
+ * order; pending arcs to cl->pend. */
+static int merge_events(closure *cl, vbx_tracer *tr, size_t e0, size_t n, size_t k)
+{
+    vb_arc_report *r = cl->r;
+    for (size_t i = e0; i < e0 + n; i++) {
+        const vbx_hev *e = &tr->ev[i];
+        if (e->kind == VBX_EV_PENDING) {
+            if (push_item(&cl->pend, &cl->npend, &cl->pend_cap, k, e->t, 0) != VB_OK)
+                return VB_ENOMEM;
+            continue;
+        }
+        r->half_arcs++;
+        if (e->kind == VBX_EV_INF) {
+            r->infinite++;
+            if (push_tedge(cl, k, SIZE_MAX, e->t, TE_INF) != VB_OK)
+                return VB_ENOMEM;
+            continue;
+        }
+        if (e->kind == VBX_EV_LOOP) {
+            r->loops++;
+            if (push_tedge(cl, k, k, e->t, TE_LOOP) != VB_OK)
+                return VB_ENOMEM;
+            continue;
+        }
+        if (e->kind == VBX_EV_UNDECIDED) {
+            r->undecided++;
+            continue;
+        }
+        const uint32_t *m = tr->pool + e->moff;
+        size_t *s = vslot(&cl->tab, &cl->all, m, e->nm, e->p);
+        size_t to;
+        if (*s) {
+            to = *s - 1;
+        } else {
+            to = cl->all.n;
+            int rc = vb_vertex_list_push(&cl->all, m, e->nm, e->p[0], e->p[1], e->p[2], e->p[3],
+                                         0, VB_VERTEX_CERTIFIED);
+            if (rc == VB_OK)
+                rc = vb_vertex_list_push(&r->added, m, e->nm, e->p[0], e->p[1], e->p[2], e->p[3],
+                                         0, VB_VERTEX_CERTIFIED);
+            if (rc != VB_OK)
+                return rc;
+            if (vb_hash_put(&cl->tab, s, to, vhash_of, &cl->all) != VB_OK)
+                return VB_ENOMEM;
+        }
+        r->closed++;
+        if (e->dir == 0 && aput(&cl->arrived, to, e->t) != VB_OK)
+            return VB_ENOMEM;
+        /* a backward arc from k that ends at `to` is the edge that leaves
+         * `to` forward */
+        if (push_tedge(cl, e->dir == 0 ? k : to, e->dir == 0 ? to : k, e->t,
+                       e->dir == 0 ? TE_FWD : TE_BWD) != VB_OK)
+            return VB_ENOMEM;
+        if (vb_uf_fit(&cl->comp, cl->all.n) != VB_OK)
+            return VB_ENOMEM;
+        vb_uf_join(&cl->comp, (uint32_t)k, (uint32_t)to);
+    }
+    return VB_OK;
+}
+
+/* Runs the n items on the tracers and merges their events in vbx_item order. */
+static int run_phase(closure *cl, vbx_tracer *tr, unsigned nt, const vbx_item *it, size_t n)
+{
+    if (!n)
+        return VB_OK;
+    vbx_tphase ph;
+    memset(&ph, 0, sizeof ph);
+    ph.tr = tr;
+    ph.all = &cl->all;
+    ph.it = it;
+    ph.n = n;
+    ph.first = malloc(n * sizeof *ph.first);
+    ph.count = malloc(n * sizeof *ph.count);
+    ph.who = malloc(n * sizeof *ph.who);
+    atomic_init(&ph.next, 0);
+    int rc = VB_OK;
+    vbx_rjob jobs[VB_MAX_THREADS];
+    unsigned use = nt;
+    if (use > (n + VBX_RCHUNK - 1) / VBX_RCHUNK)
+        use = (unsigned)((n + VBX_RCHUNK - 1) / VBX_RCHUNK);
+    if (use < 1)
+        use = 1;
+    for (unsigned i = 0; i < use; i++) {
+        jobs[i].ph = &ph;
+        jobs[i].index = i;
+        tr[i].nev = 0;
+        tr[i].npool = 0;
+        tr[i].rc = VB_OK;
+        tr[i].fail_at = SIZE_MAX;
+    }
+    if (!ph.first || !ph.count || !ph.who) {
+        rc = VB_ENOMEM;
+    } else {
+        vb_run_jobs(vbx_phase_work, jobs, sizeof *jobs, (int)use);
+        /* The first failing vbx_item's error, as one thread would meet it. */
+        unsigned bad = 0;
+        for (unsigned i = 1; i < use; i++)
+            if (tr[i].fail_at < tr[bad].fail_at)
+                bad = i;
+        if (tr[bad].rc != VB_OK) {
+            rc = tr[bad].rc;
+            if (bad != 0)
+                vb_error(cl->ctx, rc, NULL, 0, "%s", vb_errmsg(tr[bad].ctx));
+        }
+    }
+    for (size_t i = 0; rc == VB_OK && i < n; i++)
+        rc = merge_events(cl, &tr[ph.who[i]], ph.first[i], ph.count[i], it[i].k);
+    free(ph.first);
+    free(ph.count);
+    free(ph.who);
+    return rc;
+}
+
+/* Rounds: every vertex not yet traced has its forward arcs traced (in
+ * parallel), the events merged in vertex order; then each backward arc is
+ * either the reverse of a forward arc already traced that arrived at its
+ * vertex with its triple (the forward search proved the open arc between
+ * the two vertices free of touching spheres, so the backward search would
+ * end at that arc's start: counted closed without a search), or traced
+ * itself, in a second parallel phase. Vertices found new go to the end of
+ * the list and make the next round. The list, the counts and the added
+ * vertices are therefore the same on any number of threads. */
+static int run_rounds(closure *cl, vbx_tracer *tr, unsigned nt)
+{
+    size_t lo = 0;
+    int rc = VB_OK;
+    vbx_item *it = NULL, *back = NULL;
+    size_t it_cap = 0, back_cap = 0;
+    while (rc == VB_OK && lo < cl->all.n) {
+        size_t hi = cl->all.n, nit = 0, nback = 0;
+        /* the map is read by every thread of the round: built before it */
+        const vbx_tmap *map = vbx_tmap_update(&cl->map, &cl->all, nt) == VB_OK ? &cl->map : NULL;
+        for (unsigned i = 0; i < nt; i++)
+            tr[i].map = map;
+        static const uint32_t none[3] = {0, 0, 0};
+        for (size_t k = lo; rc == VB_OK && k < hi; k++)
+            rc = push_item(&it, &nit, &it_cap, k, none, 1);
+        cl->npend = 0;
+        if (rc == VB_OK)
+            rc = run_phase(cl, tr, nt, it, nit);
+        for (size_t i = 0; rc == VB_OK && i < cl->npend; i++) {
+            const vbx_item *pi = &cl->pend[i];
+            if (ahas(&cl->arrived, pi->k, pi->t)) {
+                cl->r->half_arcs++;
+                cl->r->closed++;
+            } else {
+                rc = push_item(&back, &nback, &back_cap, pi->k, pi->t, 0);
+            }
+        }
+        if (rc == VB_OK)
+            rc = run_phase(cl, tr, nt, back, nback);
+        lo = hi;
+    }
+    free(it);
+    free(back);
+    if (rc == VB_ENOMEM)
+        vb_error(cl->ctx, VB_ENOMEM, NULL, 0, "out of memory (arc closure)");
+    return rc;
+}
+
+static void add_counters(vb_arc_report *r, const vbx_arc_counters *c)
+{
+    r->filter_calls += c->filter_calls;
+    r->filter_failures += c->filter_failures;
+    r->exact_evals += c->exact_evals;
+    r->candidates += c->candidates;
+}
+
+static int tedge_cmp(const void *pa, const void *pb)
+{
+    const tedge *a = pa, *b = pb;
+    if (a->from != b->from)
+        return a->from < b->from ? -1 : 1;
+    for (int i = 0; i < 3; i++)
+        if (a->t[i] != b->t[i])
+            return a->t[i] < b->t[i] ? -1 : 1;
+    if (a->kind != b->kind)
+        return a->kind < b->kind ? -1 : 1;
+    return (a->to > b->to) - (a->to < b->to);
+}
+
+/* Each edge once, its ends as rows of in and then of the sorted added list
+ * (where_added: tracing order -> sorted row). A finite edge was recorded by
+ * the forward half arc at its start, and again by the backward half arc at
+ * its end unless that one was closed by the shortcut (run_rounds): the
+ * forward half arc of a vertex and triple is unique, so a backward record
+ * is dropped exactly when the forward record of its start and triple ends
+ * where it does. Two edges of one closed curve between the same two
+ * vertices leave them forward from different starts and stay two. Both
+ * half arcs of a closed loop record it: kept once. The half arcs to
+ * infinity of a vertex and triple, one each way, are two edges. */
+static int emit_edges(closure *cl, size_t nin, const size_t *where_added,
+                      vb_topology_edge **edges, size_t *nedges)
+{
+    if (cl->ned)
+        qsort(cl->ed, cl->ned, sizeof *cl->ed, tedge_cmp);
+    vb_topology_edge *o = malloc((cl->ned ? cl->ned : 1) * sizeof *o);
+    if (!o)
+        return VB_ENOMEM;
+    size_t n = 0;
+    for (size_t g = 0; g < cl->ned;) {
+        size_t h = g;
+        while (h < cl->ned && cl->ed[h].from == cl->ed[g].from &&
+               memcmp(cl->ed[h].t, cl->ed[g].t, sizeof cl->ed[g].t) == 0)
+            h++;
+        size_t fwd_to = SIZE_MAX;
+        int have_fwd = 0, have_loop = 0;
+        for (size_t i = g; i < h; i++) {
+            const tedge *e = &cl->ed[i];
+            if (e->kind == TE_FWD) {
+                have_fwd = 1;
+                fwd_to = e->to;
+            } else if (e->kind == TE_BWD && have_fwd && e->to == fwd_to) {
+                continue;
+            } else if (e->kind == TE_LOOP) {
+                if (have_loop)
+                    continue;
+                have_loop = 1;
+            }
+            size_t a = e->from, b = e->to;
+            o[n].v[0] = (int64_t)(a < nin ? a : nin + where_added[a - nin]);
+            o[n].v[1] = b == SIZE_MAX ? -1 : (int64_t)(b < nin ? b : nin + where_added[b - nin]);
+            memcpy(o[n].spheres, e->t, sizeof e->t);
+            n++;
+        }
+        g = h;
+    }
+    *edges = o;
+    *nedges = n;
+    return VB_OK;
+}
+
+static int close_list(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_list *in,
+                      unsigned threads, vb_arc_report *out, vb_topology_edge **edges,
+                      size_t *nedges)
+{
+    memset(out, 0, sizeof *out);
+    vb_vertex_list_init(&out->added);
+    closure cl;
+    memset(&cl, 0, sizeof cl);
+    cl.ctx = ctx;
+    cl.r = out;
+    cl.want_edges = edges != NULL;
+    size_t *where = NULL;
+    if (edges) {
+        *edges = NULL;
+        *nedges = 0;
+    }
+    vb_vertex_list_init(&cl.all);
+    unsigned nt = (unsigned)vb_threads(threads);
+    size_t most = in->n / 64 + 1;
+    if (nt > most)
+        nt = (unsigned)most;
+    vbx_tracer *tr = calloc(nt, sizeof *tr);
+    vb_certifier *c = NULL;
+    int rc = tr ? vb_certifier_open(ctx, set, &c) : VB_ENOMEM;
+    for (unsigned i = 0; rc == VB_OK && i < nt; i++) {
+        tr[i].ctx = ctx;
+        tr[i].c = c;
+        if (i > 0) {
+            tr[i].c = vbx_certifier_worker(c);
+            if (!tr[i].c || vb_open(&tr[i].ctx, NULL) != VB_OK) {
+                rc = VB_ENOMEM;
+                break;
+            }
+        }
+        rc = vbx_arcw_init(&tr[i].w, tr[i].ctx, tr[i].c);
+        tr[i].have_w = 1;
+    }
+    for (size_t k = 0; rc == VB_OK && k < in->n; k++) {
+        size_t s = in->start[k];
+        rc = vb_vertex_list_push(&cl.all, in->ids + s, in->start[k + 1] - s, in->x[k], in->y[k],
+                                 in->z[k], in->t[k], 0, VB_VERTEX_CERTIFIED);
+    }
+    if (rc == VB_OK)
+        rc = vb_hash_fit(&cl.tab, cl.all.n, vhash_of, &cl.all);
+    for (size_t k = 0; rc == VB_OK && k < cl.all.n; k++) {
+        double p[4];
+        vbx_vertex_point(&cl.all, k, p);
+        size_t s = cl.all.start[k];
+        size_t *slot = vslot(&cl.tab, &cl.all, cl.all.ids + s, cl.all.start[k + 1] - s, p);
+        rc = vb_hash_put(&cl.tab, slot, k, vhash_of, &cl.all);
+    }
+    if (rc == VB_OK)
+        rc = vb_uf_fit(&cl.comp, cl.all.n);
+    if (rc == VB_OK)
+        rc = run_rounds(&cl, tr, nt);
+    if (rc == VB_OK) {
+        out->vertices = cl.all.n;
+        for (size_t k = 0; k < cl.all.n; k++)
+            out->components += vb_uf_root(&cl.comp, (uint32_t)k) == k;
+        for (unsigned i = 0; i < nt; i++)
+            add_counters(out, &tr[i].w.cnt);
+        if (edges && !(where = malloc((out->added.n ? out->added.n : 1) * sizeof *where)))
+            rc = VB_ENOMEM;
+        if (rc == VB_OK)
+            rc = vb_vertex_list_sort_perm(&out->added, where);
+        if (rc == VB_OK && edges)
+            rc = emit_edges(&cl, in->n, where, edges, nedges);
+    }
+    free(where);
+    free(cl.ed);
+    if (rc == VB_ENOMEM && vb_errcode(ctx) != VB_ENOMEM)
+        vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (arc closure)");
+    for (unsigned i = 0; tr && i < nt; i++) {
+        if (tr[i].have_w)
+            vbx_arcw_free(&tr[i].w);
+        free(tr[i].ev);
+        free(tr[i].pool);
+        if (i > 0) {
+            vb_certifier_close(tr[i].c);
+            if (tr[i].ctx)
+                vb_close(tr[i].ctx);
+        }
+    }
+    vb_certifier_close(c);
+    free(tr);
+    vb_vertex_list_free(&cl.all);
+    vb_hash_free(&cl.tab);
+    vb_uf_free(&cl.comp);
+    vb_hash_free(&cl.arrived.tab);
+    free(cl.arrived.k);
+    free(cl.pend);
+    free(cl.map.e);
+    return rc;
+}
+
+int vb_arc_close(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_list *in,
+                 unsigned threads, vb_arc_report *out)
+{
+    return close_list(ctx, set, in, threads, out, NULL, NULL);
+}
+
+int vb_arc_close_edges(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_list *in,
+                       unsigned threads, vb_arc_report *out, vb_topology_edge **edges,
+                       size_t *nedges)
+{
+    return close_list(ctx, set, in, threads, out, edges, nedges);
+}
+
+int vb_arc_report_complete(const vb_arc_report *r)
+{
+    return r->undecided == 0 && r->added.n == 0;
+}
+
+void vb_arc_report_free(vb_arc_report *r)
+{
+    vb_vertex_list_free(&r->added);
+    memset(r, 0, sizeof *r);
+    vb_vertex_list_init(&r->added);
+}

@@ -1,0 +1,376 @@
+/* The regions of an arc of a trisector (vbx_region.h) and the candidates
+ * they give: every sphere that may touch the tangent sphere along the arc.
+ *
+ * Why the candidates are complete. In the (S, G) coordinates of the plane
+ * (u = O + S ES + G EG) every L_j is affine, so L_j < 0 somewhere on a part
+ * of the arc only if L_j < 0 somewhere on any convex region that holds that
+ * part. The regions used:
+ *   - a bounded arc of an open branch, between positions G0 < G1: S on the
+ *     branch is Sc + sqrt(k^2 G^2 + cp), monotone on each side of G = 0, so
+ *     the arc lies in the box G in [G0, G1], S between the ends' values (and
+ *     the branch's Smin when G = 0 lies between them);
+ *   - a tail to infinity, G >= G1 >= 0: the branch lies between its
+ *     asymptote S = Sc + k G and the parallel line through the tail's first
+ *     point (the gap S - Sc - k G shrinks as G grows), a half-strip: its
+ *     segment at G1 plus the recession direction D = (k, 1). L_j is >= 0 on
+ *     it exactly when it is at the segment's two ends and grad L_j . D >= 0.
+ *     A tail starting at G0 < 0 adds the box [G0, 0] x [Smin, S(G0)];
+ *   - a closed curve: the box of the whole ellipse.
+ * L_j(u) < 0 at a point u of such a box means |c_j - p_u|^2 < (t_u + R_j)^2
+ * + Q(u) with p_u = c_a + u_q, t_u = u_s - R_a, so |c_j - p_u| < |t_u| +
+ * sqrt(max(Q(u), 0)) + R_j: a tangent-ball query of the certifier's index
+ * (vbx_sindex.h) with radius |t| + sqrt(Q+) over the box's enclosure sees
+ * every such j. grad L_j . D < 0 means m_j . D_u > 0, a half-space of
+ * centres and radii: the index's hierarchy is walked with that test. Every
+ * bound is an interval enclosure, so the exact frame's region lies inside
+ * the one queried. Where the enclosures fail (nearly collinear centres, a
+ * parabola) every sphere is a candidate. */
+#include <float.h>
+#include <string.h>
+
+#include "vb_array.h"
+
+#include "vbx_region.h"
+
+enum { VBX_BOUNDED_PARTS = 2, VBX_ELLIPSE_SLABS = 16 };
+
+static vbx_ia ia_hull(vbx_ia a, vbx_ia b)
+{
+    vbx_ia r = {vbx_min(a.lo, b.lo), vbx_max(a.hi, b.hi)};
+    return r;
+}
+
+static vbx_ia ia_span(double lo, double hi)
+{
+    vbx_ia r = {lo, hi};
+    return r;
+}
+
+vbx_ia vbx_branch_S(const vbx_tframe *f, vbx_ia g)
+{
+    vbx_ia kg = vbx_ia_mul(f->k, g);
+    return vbx_ia_add(f->Sc, vbx_ia_sqrt(vbx_ia_add(vbx_ia_sqr(kg), f->cp)));
+}
+
+void vbx_tail_from(const vbx_tframe *f, double g, double sgn, vbx_region *rg)
+{
+    memset(rg, 0, sizeof *rg);
+    double g1 = g;
+    if (g < 0.0) {
+        vbx_part *b = &rg->p[rg->n++];
+        vbx_ia far = vbx_branch_S(f, vbx_ia_point(-g));
+        b->kind = VBX_PART_BOX;
+        b->S = ia_span(f->Smin.lo, vbx_max(far.hi, f->Smin.hi));
+        b->G = sgn > 0 ? ia_span(g, 0.0) : ia_span(0.0, -g);
+        g1 = 0.0;
+    }
+    vbx_part *s = &rg->p[rg->n++];
+    s->kind = VBX_PART_STRIP;
+    vbx_ia gi = vbx_ia_point(g1);
+    vbx_ia on = vbx_branch_S(f, gi), asym = vbx_ia_add(f->Sc, vbx_ia_mul(f->k, gi));
+    s->S = ia_hull(on, asym);
+    s->G = vbx_ia_point(sgn * g1);
+    s->D[0] = f->k;
+    s->D[1] = vbx_ia_point(sgn);
+}
+
+void vbx_region_of(const vbx_tframe *f, const vbx_arc_end *e0, const vbx_arc_end *e1,
+                   vbx_region *rg)
+{
+    memset(rg, 0, sizeof *rg);
+    if (!f->ok) {
+        rg->brute = 1;
+        return;
+    }
+    if (f->kind != VBX_TRI_OPEN) {
+        /* The curve is S = Sc +- ax sqrt(1 - G^2 / bx^2), |G| <= bx: over
+         * each slab of G (breakpoints shared by neighbours, so the slabs
+         * cover [-bx, bx]) the upper and the lower half lie in the boxes
+         * of that enclosure. A slab where 1 - G^2 / bx^2 < 0 throughout
+         * holds none of the curve. */
+        double gmax = f->bx.hi;
+        vbx_ia one = vbx_ia_point(1.0), bx2 = vbx_ia_sqr(f->bx);
+        double g0 = -gmax;
+        for (int i = 1; i <= VBX_ELLIPSE_SLABS; i++) {
+            double g1 = i == VBX_ELLIPSE_SLABS ? gmax : -gmax + 2.0 * gmax * i / VBX_ELLIPSE_SLABS;
+            vbx_ia G = ia_span(g0, vbx_max(g0, g1));
+            g0 = vbx_max(g0, g1);
+            vbx_ia r = vbx_ia_sub(one, vbx_ia_div(vbx_ia_sqr(G), bx2));
+            if (!(r.hi >= 0.0))
+                continue;
+            r.lo = vbx_max(r.lo, 0.0);
+            vbx_ia h = vbx_ia_mul(f->ax, vbx_ia_sqrt(r));
+            vbx_part *up = &rg->p[rg->n++], *dn = &rg->p[rg->n++];
+            up->kind = dn->kind = VBX_PART_BOX;
+            up->G = dn->G = G;
+            up->S = vbx_ia_add(f->Sc, h);
+            dn->S = vbx_ia_sub(f->Sc, h);
+        }
+        if (!rg->n)
+            rg->brute = 1; /* the enclosures miss the curve: cannot be */
+        return;
+    }
+    if (!e0->inf && !e1->inf) {
+        /* a bounded arc: thin boxes from e0's G to e1's (piece_parts) */
+        if (!(e0->key.G.lo <= e1->key.G.hi) || !(e0->key.G.lo > -INFINITY) ||
+            !(e1->key.G.hi < INFINITY)) {
+            rg->brute = 1;
+            return;
+        }
+        vbx_piece_parts(f, e0->key.S, e0->key.G.lo, e1->key.G.hi, 1.0, VBX_BOUNDED_PARTS, rg);
+        return;
+    }
+    /* A tail: forward (e1 at infinity) from G0, or backward (e0 at
+     * infinity) to G1; mirrored to g = +-G >= g0. */
+    int fwd = e1->inf;
+    vbx_ia G0 = fwd ? e0->key.G : vbx_ia_neg(e1->key.G);
+    vbx_tail_from(f, G0.lo, fwd ? 1.0 : -1.0, rg);
+}
+
+/* u = O + S ES + G EG over intervals. */
+static void u_of(const vbx_tframe *f, vbx_ia S, vbx_ia G, vbx_ia u[4])
+{
+    for (int k = 0; k < 4; k++)
+        u[k] = vbx_ia_add(f->O[k], vbx_ia_add(vbx_ia_mul(S, f->ES[k]), vbx_ia_mul(G, f->EG[k])));
+}
+
+static int push_cand(vbx_arcw *w, uint32_t j)
+{
+    if (w->mark[j])
+        return VB_OK;
+    if (VB_ARRAY_FIT(w->cand, w->cand_cap, w->ncand + 1, 256) != VB_OK)
+        return VB_ENOMEM;
+    w->mark[j] = 1;
+    w->cand[w->ncand++] = j;
+    return VB_OK;
+}
+
+/* Every sphere that may reach into a ball of radius |t| + sqrt(Q+) around a
+ * point of the box S x G (see the top). */
+static int query_box(vbx_arcw *w, const vbx_tframe *f, vbx_ia S, vbx_ia G)
+{
+    const vbx_ia *ba = &w->c->d.box[4 * (size_t)f->t[0]];
+    vbx_ia u[4], p[4];
+    u_of(f, S, G, u);
+    for (int k = 0; k < 3; k++)
+        p[k] = vbx_ia_add(ba[k], u[k]);
+    vbx_ia t = vbx_ia_sub(u[3], ba[3]);
+    vbx_ia Q = vbx_ia_sub(vbx_ia_add(vbx_ia_add(vbx_ia_sqr(u[0]), vbx_ia_sqr(u[1])),
+                                     vbx_ia_sqr(u[2])),
+                          vbx_ia_sqr(u[3]));
+    if (f->kind == VBX_TRI_OPEN) {
+        /* The same Q in the conic's form (vbx_tframe.mq): each of S and G
+         * appears once, so the enclosure is tight where the sum of squares
+         * over the box's enclosure of u is not; both enclose Q, keep the
+         * smaller upper end. */
+        vbx_ia kg = vbx_ia_mul(f->k, G);
+        vbx_ia ds = vbx_ia_sub(S, f->Sc);
+        vbx_ia Qc = vbx_ia_mul(f->mq, vbx_ia_sub(vbx_ia_add(vbx_ia_sqr(kg), f->cp), vbx_ia_sqr(ds)));
+        if (Qc.hi < Q.hi)
+            Q.hi = Qc.hi;
+    }
+    double at = vbx_max(-t.lo, t.hi);
+    double rad = vbx_succ(at + (Q.hi > 0.0 ? vbx_succ(sqrt(Q.hi)) : 0.0));
+    if (Q.hi > 0.0 && at > 0.0) {
+        /* (at + Q / (2 at) + R)^2 >= (at + R)^2 + Q for R >= 0, so the walk
+         * may use that radius, far smaller for a large tangent ball. */
+        double r2 = vbx_succ(at + vbx_succ(vbx_succ(Q.hi / at) * 0.5));
+        if (r2 < rad)
+            rad = r2;
+    }
+    if (!(rad < INFINITY) || rad != rad)
+        return 1; /* unbounded: the caller goes brute force */
+    vbx_ia pb[4] = {p[0], p[1], p[2], vbx_ia_point(0.0)};
+    double Qp = Q.hi > 0.0 ? Q.hi : 0.0;
+    p[3] = vbx_ia_point(rad);
+    const vbx_sindex *ix = &w->c->t;
+    vbx_walk walk;
+    vbx_walk_init(&walk, ix, p);
+    size_t s0, s1;
+    while (vbx_walk_next(&walk, &s0, &s1))
+        for (size_t s = s0; s < s1; s++) {
+            if (vbx_outside_sphere(&ix->box[4 * s], p))
+                continue;
+            /* the sharper form of the same bound: |c_j - p_u|^2 < (|t| +
+             * R_j)^2 + Q+ (gap: the distance from the centre's enclosure
+             * to the box's, a lower bound of |c_j - p_u|) */
+            const vbx_ia *cj = &ix->box[4 * s];
+            double clo[3] = {cj[0].lo, cj[1].lo, cj[2].lo}, chi[3] = {cj[0].hi, cj[1].hi, cj[2].hi};
+            /* (vbx_outside_box: d2 >= |q - c|^2 (1 + u)^-5 above 2^-900,
+             * and fl(d2 (1 - 2^-50)) stays below that) */
+            double d2 = vbx_gap2(clo, chi, pb);
+            vbx_ia tr = vbx_ia_add(vbx_ia_point(at), vbx_ia_point(cj[3].hi));
+            vbx_ia rhs = vbx_ia_add(vbx_ia_sqr(tr), vbx_ia_point(Qp));
+            if (d2 >= 0x1p-900 && d2 <= DBL_MAX && d2 * (1.0 - 0x1p-50) > rhs.hi)
+                continue;
+            if (push_cand(w, ix->ids[s]) != VB_OK)
+                return -1;
+        }
+    return 0;
+}
+
+/* Upper bound of m_j . D over the centres in [lo, hi] and radii in
+ * [0, rmax] (m_j = (c_j - c_a, R_j - R_a)). */
+static double half_hi(const vbx_ia *ba, const vbx_ia D[4], const double lo[3], const double hi[3],
+                      double rmax)
+{
+    vbx_ia s = vbx_ia_point(0.0);
+    for (int k = 0; k < 3; k++)
+        s = vbx_ia_add(s, vbx_ia_mul(D[k], vbx_ia_sub(ia_span(lo[k], hi[k]), ba[k])));
+    s = vbx_ia_add(s, vbx_ia_mul(D[3], vbx_ia_sub(ia_span(0.0, rmax), ba[3])));
+    return s.hi;
+}
+
+/* Every sphere with m_j . D_u > 0 possible: 0, -1 out of memory, or 2
+ * once more than cap candidates are held (the walk stops there). */
+static int query_half_capped(vbx_arcw *w, const vbx_tframe *f, const vbx_ia Ddir[2], size_t cap)
+{
+    vbx_ia D[4];
+    for (int k = 0; k < 4; k++)
+        D[k] = vbx_ia_add(vbx_ia_mul(Ddir[0], f->ES[k]), vbx_ia_mul(Ddir[1], f->EG[k]));
+    const vbx_ia *ba = &w->c->d.box[4 * (size_t)f->t[0]];
+    const vbx_sindex *ix = &w->c->t;
+    if (!ix->n)
+        return 0;
+    uint32_t stack[VBX_SINDEX_STACK];
+    uint32_t sp = 0;
+    stack[sp++] = 0;
+    while (sp) {
+        const vbx_bvh_node *nd = &ix->node[stack[--sp]];
+        if (!(half_hi(ba, D, nd->lo, nd->hi, nd->rmax) > 0.0))
+            continue;
+        if (!nd->count) {
+            uint32_t i = (uint32_t)(nd - ix->node);
+            stack[sp++] = nd->first;
+            stack[sp++] = i + 1;
+            continue;
+        }
+        for (uint32_t s = nd->first; s < nd->first + nd->count; s++) {
+            const vbx_ia *cj = &ix->box[4 * (size_t)s];
+            double lo[3] = {cj[0].lo, cj[1].lo, cj[2].lo}, hi[3] = {cj[0].hi, cj[1].hi, cj[2].hi};
+            vbx_ia Dr[4] = {D[0], D[1], D[2], D[3]};
+            /* one sphere: its radius enclosure instead of [0, rmax] */
+            vbx_ia sum = vbx_ia_point(0.0);
+            for (int k = 0; k < 3; k++)
+                sum = vbx_ia_add(sum, vbx_ia_mul(Dr[k], vbx_ia_sub(ia_span(lo[k], hi[k]), ba[k])));
+            sum = vbx_ia_add(sum, vbx_ia_mul(Dr[3], vbx_ia_sub(cj[3], ba[3])));
+            if (sum.hi > 0.0 && push_cand(w, ix->ids[s]) != VB_OK)
+                return -1;
+        }
+        if (w->ncand > cap)
+            return 2;
+    }
+    return 0;
+}
+
+static int query_half(vbx_arcw *w, const vbx_tframe *f, const vbx_ia Ddir[2])
+{
+    return query_half_capped(w, f, Ddir, SIZE_MAX);
+}
+
+void vbx_clear_cands(vbx_arcw *w)
+{
+    for (size_t i = 0; i < w->ncand; i++)
+        w->mark[w->cand[i]] = 0;
+    w->ncand = 0;
+}
+
+int vbx_gather(vbx_arcw *w, const vbx_tframe *f, vbx_region *rg)
+{
+    vbx_clear_cands(w);
+    if (!rg->brute)
+        for (int i = 0; i < rg->n; i++) {
+            const vbx_part *p = &rg->p[i];
+            int r = query_box(w, f, p->S, p->G);
+            if (r == 0 && p->kind == VBX_PART_STRIP)
+                r = query_half(w, f, p->D);
+            if (r < 0)
+                return VB_ENOMEM;
+            if (r > 0) {
+                rg->brute = 1;
+                break;
+            }
+        }
+    if (rg->brute) {
+        vbx_clear_cands(w);
+        w->cnt.brute++;
+        for (size_t j = 0; j < w->set->n; j++)
+            if (push_cand(w, (uint32_t)j) != VB_OK)
+                return VB_ENOMEM;
+    }
+    return VB_OK;
+}
+
+int vbx_clear_of(const vbx_arcw *w, const vbx_tframe *f, const vbx_region *rg, uint32_t j)
+{
+    if (rg->brute)
+        return 0;
+    const vbx_ia *ba = &w->c->d.box[4 * (size_t)f->t[0]], *bj = &w->c->d.box[4 * (size_t)j];
+    vbx_ia m[4];
+    for (int k = 0; k < 4; k++)
+        m[k] = vbx_ia_sub(bj[k], ba[k]);
+    vbx_ia W = vbx_ia_sub(vbx_ia_add(vbx_ia_add(vbx_ia_sqr(m[0]), vbx_ia_sqr(m[1])),
+                                     vbx_ia_sqr(m[2])),
+                          vbx_ia_sqr(m[3]));
+    vbx_ia mES = vbx_ia_point(0.0), mEG = mES, mO = mES;
+    for (int k = 0; k < 4; k++) {
+        mES = vbx_ia_add(mES, vbx_ia_mul(m[k], f->ES[k]));
+        mEG = vbx_ia_add(mEG, vbx_ia_mul(m[k], f->EG[k]));
+        mO = vbx_ia_add(mO, vbx_ia_mul(m[k], f->O[k]));
+    }
+    vbx_ia two = vbx_ia_point(-2.0);
+    vbx_ia lS = vbx_ia_mul(two, mES), lG = vbx_ia_mul(two, mEG);
+    vbx_ia l0 = vbx_ia_add(W, vbx_ia_mul(two, mO));
+    for (int i = 0; i < rg->n; i++) {
+        const vbx_part *p = &rg->p[i];
+        vbx_ia L = vbx_ia_add(vbx_ia_add(vbx_ia_mul(lS, p->S), vbx_ia_mul(lG, p->G)), l0);
+        if (!(L.lo > 0.0))
+            return 0;
+        if (p->kind == VBX_PART_STRIP) {
+            vbx_ia dL = vbx_ia_add(vbx_ia_mul(lS, p->D[0]), vbx_ia_mul(lG, p->D[1]));
+            if (!(dL.lo >= 0.0))
+                return 0;
+        }
+    }
+    return 1;
+}
+
+void vbx_piece_parts(const vbx_tframe *f, vbx_ia Sa, double ga, double gb, double sgn,
+                     int parts, vbx_region *rg)
+{
+    double g0 = ga;
+    for (int i = 1; i <= parts; i++) {
+        double g1 = i == parts ? gb : ga + (gb - ga) * i / parts;
+        g1 = vbx_min(vbx_max(g1, g0), gb);
+        vbx_part *p = &rg->p[rg->n++];
+        p->kind = VBX_PART_BOX;
+        vbx_ia Sb = vbx_branch_S(f, vbx_ia_point(g1 < 0.0 ? -g1 : g1));
+        double slo = vbx_min(Sa.lo, Sb.lo), shi = vbx_max(Sa.hi, Sb.hi);
+        if (g0 <= 0.0 && g1 >= 0.0)
+            slo = vbx_min(slo, f->Smin.lo);
+        p->S = ia_span(slo, shi);
+        p->G = sgn > 0 ? ia_span(g0, g1) : ia_span(-g1, -g0);
+        Sa = Sb;
+        g0 = g1;
+    }
+}
+
+
+int vbx_gather_capped(vbx_arcw *w, const vbx_tframe *f, const vbx_region *rg, size_t cap)
+{
+    vbx_clear_cands(w);
+    for (int i = 0; i < rg->n; i++) {
+        const vbx_part *p = &rg->p[i];
+        /* the half-space first: it is the part that may be large */
+        int r = p->kind == VBX_PART_STRIP ? query_half_capped(w, f, p->D, cap) : 0;
+        if (r == 0)
+            r = query_box(w, f, p->S, p->G);
+        if (r < 0)
+            return -1;
+        if (r > 0 || w->ncand > cap) {
+            vbx_clear_cands(w);
+            return 0;
+        }
+    }
+    return 1;
+}

@@ -1,0 +1,271 @@
+/* The tracers of arc closure (vbx_closure.h): the arcs of one vertex or
+ * one triple traced to their ends, as events, on one thread each. */
+#include <stdint.h>
+#include <string.h>
+
+#include "vb_array.h"
+
+#include "vbx_closure.h"
+
+static int push_event(vbx_tracer *t, int kind, const uint32_t tri[3], int dir, const uint32_t *m,
+                      size_t nm, const double p[4])
+{
+    if (VB_ARRAY_FIT(t->ev, t->ev_cap, t->nev + 1, 256) != VB_OK)
+        return VB_ENOMEM;
+    vbx_hev *e = &t->ev[t->nev++];
+    e->kind = kind;
+    e->dir = dir;
+    memcpy(e->t, tri, sizeof e->t);
+    e->nm = (uint32_t)nm;
+    e->moff = t->npool;
+    if (p)
+        memcpy(e->p, p, sizeof e->p);
+    if (nm) {
+        if (VB_ARRAY_FIT(t->pool, t->pool_cap, t->npool + nm, 1024) != VB_OK)
+            return VB_ENOMEM;
+        memcpy(t->pool + t->npool, m, nm * sizeof *m);
+        t->npool += nm;
+    }
+    return VB_OK;
+}
+
+/* The next vertex of arc tp of triple frame f, certified, as an event. */
+static int arrive(vbx_tracer *tr, vbx_tframe *f, const vbx_touch *tp, int dir)
+{
+    double p[4];
+    int ok = vbx_touch_certify(&tr->w, f, tp, p);
+    if (ok < 0)
+        return vb_errcode(tr->ctx);
+    if (ok == 0) {
+        /* A sphere cuts the first touching point: the arc was not an edge
+         * there; the local test and the search disagree (degenerate). */
+        return push_event(tr, VBX_EV_UNDECIDED, f->t, dir, NULL, 0, NULL);
+    }
+    return push_event(tr, VBX_EV_CLOSED, f->t, dir, tr->c->members, tr->c->nmembers, p);
+}
+
+/* The forward arc of an open branch from vertex k (end ev) when the list
+ * holds a vertex u of the same triple ahead of it: the open arc between
+ * them is searched (a bounded region, far smaller than the tail's). Returns
+ * 2 with *to = u when no sphere touches inside (then the arc ends at u,
+ * which the list holds, certified), 1 when one does (*tp, the first), 0
+ * when there is no such u or positions cannot be told by the filter (the
+ * caller searches the tail), or -status. */
+static int forward_to_known(vbx_tracer *tr, const vb_vertex_list *all, vbx_tframe *f,
+                            vbx_arc_end *ev, size_t k, vbx_touch *tp, size_t *to)
+{
+    if (!tr->map || !tr->map->n)
+        return 0;
+    size_t lo, hi;
+    vbx_tmap_range(tr->map, f->t, &lo, &hi);
+    vbx_arcw *w = &tr->w;
+    size_t best = SIZE_MAX;
+    vbx_key kbest;
+    for (size_t i = lo; i < hi; i++) {
+        size_t u = tr->map->e[i].k;
+        if (u == k)
+            continue;
+        double pu[4];
+        vbx_vertex_point(all, u, pu);
+        vbx_ia bu[4];
+        vbx_box_of_rounded(pu, bu);
+        vbx_key ku;
+        vbx_key_of_box(w, f, bu, &ku);
+        int c = vbx_pos_cmp(w, f, &ev->key, NULL, &ku, NULL);
+        if (c == 2)
+            return 0;
+        if (c >= 0)
+            continue;
+        if (best != SIZE_MAX) {
+            int c2 = vbx_pos_cmp(w, f, &ku, NULL, &kbest, NULL);
+            if (c2 == 2 || c2 == 0)
+                return 0;
+            if (c2 > 0)
+                continue;
+        }
+        best = u;
+        kbest = ku;
+    }
+    if (best == SIZE_MAX)
+        return 0;
+    double pu[4];
+    vbx_vertex_point(all, best, pu);
+    vbx_xpt xu;
+    vbx_xpt_init(&xu);
+    int have = 0;
+    vbx_arc_end eu = {0};
+    eu.key = kbest;
+    eu.m = all->ids + all->start[best];
+    eu.nm = all->start[best + 1] - all->start[best];
+    eu.xyzt = pu;
+    eu.x = &xu;
+    eu.have = &have;
+    tp->found = 0;
+    tp->have = 0;
+    int rc = vbx_arc_search(w, f, ev, &eu, tp, NULL);
+    vbx_xpt_clear(&xu);
+    if (rc == VB_EDEGENERATE)
+        return 0;
+    if (rc != VB_OK)
+        return -rc;
+    if (tp->found)
+        return 1;
+    *to = best;
+    return 2;
+}
+
+/* The arcs of triple t at a vertex (members m, rounded point p): with all,
+ * the forward arc traced and the backward one pending; else the backward
+ * arc traced. */
+static int trace_triple(vbx_tracer *tr, const vb_vertex_list *lst, size_t k, const uint32_t *m,
+                        size_t nm, const double p[4], const vbx_ia box[4], const uint32_t t[3],
+                        int all)
+{
+    vbx_arcw *w = &tr->w;
+    vbx_tframe f;
+    vbx_tframe_init(&f);
+    int rc = vbx_tframe_setup(w, &f, t);
+    if (rc != VB_OK) {
+        vbx_tframe_clear(&f);
+        return rc;
+    }
+    vbx_xpt x;
+    vbx_xpt_init(&x);
+    int have = 0, fwd = 0, bwd = 0;
+    uint64_t extra = 0;
+    vbx_touch tp;
+    memset(&tp, 0, sizeof tp);
+    vbx_xpt_init(&tp.x);
+    if (f.kind == VBX_TRI_NONE) {
+        goto done;
+    }
+    rc = vbx_local_arcs(w, &f, m, nm, p, box, &x, &have, &fwd, &bwd, &extra);
+    if (rc == VB_EDEGENERATE) {
+        rc = all ? push_event(tr, VBX_EV_UNDECIDED, t, 0, NULL, 0, NULL) : VB_OK;
+        goto done;
+    }
+    if (rc != VB_OK)
+        goto done;
+    if (extra) {
+        /* Spheres beyond T carry the same curve: trace it for the triple of
+         * the three smallest ids only. */
+        size_t ix = 0;
+        for (size_t i = 0; i < nm; i++) {
+            if (m[i] == t[0] || m[i] == t[1] || m[i] == t[2])
+                continue;
+            if (ix < 64 && (extra >> ix & 1) && m[i] < t[2])
+                goto done;
+            ix++;
+        }
+    }
+    vbx_arc_end ev = {0}, einf = {0};
+    ev.m = m;
+    ev.nm = nm;
+    ev.xyzt = p;
+    ev.x = &x;
+    ev.have = &have;
+    vbx_key_of_box(w, &f, box, &ev.key);
+    einf.inf = 1;
+    int open = f.kind == VBX_TRI_OPEN;
+    for (int dir = 0; dir < 2 && rc == VB_OK; dir++) {
+        if (!(dir == 0 ? fwd : bwd) || (dir == 0 && !all))
+            continue;
+        if (dir == 1 && all) {
+            rc = push_event(tr, VBX_EV_PENDING, t, 1, NULL, 0, NULL);
+            continue;
+        }
+        tp.found = 0;
+        tp.have = 0;
+        if (dir == 0 && open) {
+            size_t to;
+            int sc = forward_to_known(tr, lst, &f, &ev, k, &tp, &to);
+            if (sc < 0) {
+                rc = -sc;
+                break;
+            }
+            if (sc == 2) {
+                double pu[4];
+                vbx_vertex_point(lst, to, pu);
+                size_t s0 = lst->start[to];
+                rc = push_event(tr, VBX_EV_CLOSED, t, 0, lst->ids + s0, lst->start[to + 1] - s0, pu);
+                continue;
+            }
+            if (sc == 1) {
+                rc = arrive(tr, &f, &tp, dir);
+                continue;
+            }
+            tp.found = 0;
+            tp.have = 0;
+        }
+        if (dir == 0)
+            rc = vbx_arc_search(w, &f, &ev, open ? &einf : &ev, &tp, NULL);
+        else
+            rc = vbx_arc_search(w, &f, open ? &einf : &ev, &ev, NULL, &tp);
+        if (rc == VB_EDEGENERATE) {
+            rc = push_event(tr, VBX_EV_UNDECIDED, t, dir, NULL, 0, NULL);
+            continue;
+        }
+        if (rc != VB_OK)
+            break;
+        if (!tp.found) {
+            rc = push_event(tr, open ? VBX_EV_INF : VBX_EV_LOOP, t, dir, NULL, 0, NULL);
+            continue;
+        }
+        rc = arrive(tr, &f, &tp, dir);
+    }
+done:
+    vbx_xpt_clear(&tp.x);
+    vbx_xpt_clear(&x);
+    vbx_tframe_clear(&f);
+    return rc;
+}
+
+/* One vbx_item, as events of vbx_tracer tr. */
+static int trace_item(vbx_tracer *tr, const vb_vertex_list *all, const vbx_item *it)
+{
+    size_t k = it->k, s = all->start[k], nm = all->start[k + 1] - s;
+    const uint32_t *m = all->ids + s;
+    double p[4];
+    vbx_vertex_point(all, k, p);
+    vbx_ia box[4];
+    vbx_box_of_rounded(p, box);
+    if (!it->all)
+        return trace_triple(tr, all, k, m, nm, p, box, it->t, 0);
+    int rc = VB_OK;
+    for (size_t a = 0; a < nm && rc == VB_OK; a++)
+        for (size_t b = a + 1; b < nm && rc == VB_OK; b++)
+            for (size_t c = b + 1; c < nm && rc == VB_OK; c++) {
+                uint32_t t[3] = {m[a], m[b], m[c]};
+                rc = trace_triple(tr, all, k, m, nm, p, box, t, 1);
+            }
+    return rc;
+}
+
+/* A thread of a phase: chunks of items in turn; each vbx_item's events are a
+ * function of that vbx_item alone (the worker keeps no state from one arc to
+ * the next beyond its counters), so which thread traced it does not
+ * matter. */
+void *vbx_phase_work(void *arg)
+{
+    vbx_rjob *j = arg;
+    vbx_tphase *ph = j->ph;
+    vbx_tracer *tr = &ph->tr[j->index];
+    for (;;) {
+        size_t c0 = atomic_fetch_add(&ph->next, VBX_RCHUNK);
+        if (c0 >= ph->n || tr->rc != VB_OK)
+            break;
+        size_t c1 = c0 + VBX_RCHUNK < ph->n ? c0 + VBX_RCHUNK : ph->n;
+        for (size_t i = c0; i < c1; i++) {
+            ph->first[i] = tr->nev;
+            ph->who[i] = (uint16_t)j->index;
+            int rc = trace_item(tr, ph->all, &ph->it[i]);
+            ph->count[i] = (uint32_t)(tr->nev - ph->first[i]);
+            if (rc != VB_OK) {
+                tr->rc = rc;
+                tr->fail_at = i;
+                break;
+            }
+        }
+    }
+    return NULL;
+}

@@ -1,0 +1,120 @@
+/* Internals of the closure loop (arc_closure.c) and its tracers
+ * (arc_tracer.c): the vertices of each triple, what one half arc found, a
+ * thread's tracer and the phases of a round. */
+#ifndef VBX_CLOSURE_H
+#define VBX_CLOSURE_H
+
+#include <stdatomic.h>
+
+#include "vb_vertex.h"
+#include "vbx_arc.h"
+
+/* The rounded point (x, y, z, t) of vertex k of a list. */
+static inline void vbx_vertex_point(const vb_vertex_list *v, size_t k, double p[4])
+{
+    p[0] = v->x[k];
+    p[1] = v->y[k];
+    p[2] = v->z[k];
+    p[3] = v->t[k];
+}
+
+/* ---- the vertices of each triple (arc_triples.c) -------------------------- */
+
+/* (triple, vertex) for every triple of every vertex of the list, sorted:
+ * where a forward arc is likely to end (the next vertex along a triple's
+ * curve is one that holds the triple). */
+typedef struct vbx_tent {
+    uint32_t t[3];
+    uint32_t k;
+} vbx_tent;
+
+typedef struct vbx_tmap {
+    vbx_tent *e;
+    size_t n, cap;
+    size_t done; /* vertices entered */
+} vbx_tmap;
+
+/* Enters the vertices [m->done, all->n) and sorts again (on nt threads, the
+ * same array on any number). VB_OK, VB_ENOMEM (the map is then emptied). A
+ * map that lacks vertices costs searches, never a wrong end: the bounded
+ * search of the tracer proves its end whichever listed vertex it is given
+ * (a nearer vertex is found inside). */
+int vbx_tmap_update(vbx_tmap *m, const vb_vertex_list *all, unsigned nt);
+
+/* The entries of triple t: [*lo, *hi). */
+void vbx_tmap_range(const vbx_tmap *m, const uint32_t t[3], size_t *lo, size_t *hi);
+
+/* ---- tracing (arc_tracer.c) ---------------------------------------------- */
+
+/* What one half arc found: its end, and for a vertex its members (in the
+ * worker's pool) and rounded point; VBX_EV_PENDING: a backward arc left for
+ * later (see run_rounds in arc_closure.c). */
+enum {
+    VBX_EV_CLOSED = 0,
+    VBX_EV_INF = 1,
+    VBX_EV_LOOP = 2,
+    VBX_EV_UNDECIDED = 3,
+    VBX_EV_PENDING = 4
+};
+
+typedef struct vbx_hev {
+    double p[4];
+    size_t moff;
+    uint32_t nm;
+    uint32_t t[3];
+    int kind, dir;
+} vbx_hev;
+
+/* One thread's tracer: its certifier, context and worker, and the events of
+ * the items it traced in the current phase. */
+typedef struct vbx_tracer {
+    const vbx_tmap *map; /* the list's triples (NULL: no shortcut) */
+    vb_ctx *ctx;
+    vb_certifier *c;
+    vbx_arcw w;
+    int have_w;
+    vbx_hev *ev;
+    size_t nev, ev_cap;
+    uint32_t *pool;
+    size_t npool, pool_cap;
+    int rc;
+    size_t fail_at; /* the first item (in the phase) whose tracing failed */
+} vbx_tracer;
+
+/* An item of a phase: every triple of vertex k (forward arcs traced,
+ * backward ones left pending), or the backward arc of triple t alone. */
+typedef struct vbx_item {
+    size_t k;
+    uint32_t t[3];
+    int all;
+} vbx_item;
+
+/* A phase: items taken in chunks by the tracers; each item's events stay
+ * in the tracer that traced it (who, first, count). */
+typedef struct vbx_tphase {
+    vbx_tracer *tr;
+    const vb_vertex_list *all;
+    const vbx_item *it;
+    size_t n;
+    size_t *first;      /* per item: first event */
+    uint32_t *count;    /* ... number of events */
+    uint16_t *who;      /* ... the tracer that holds them */
+    atomic_size_t next; /* next chunk */
+} vbx_tphase;
+
+/* Items a tracer takes at a time. */
+enum { VBX_RCHUNK = 8 };
+
+/* The job of one thread of a phase (vb_run_jobs). */
+typedef struct vbx_rjob {
+    vbx_tphase *ph;
+    unsigned index;
+} vbx_rjob;
+
+/* A thread of a phase (arg: a vbx_rjob): chunks of items in turn, each
+ * item's events appended to the job's tracer; stops at the first failure
+ * (the tracer's rc and fail_at). Each item's events are a function of that
+ * item alone, so which thread traced it does not matter. */
+void *vbx_phase_work(void *arg);
+
+#endif

@@ -1,0 +1,64 @@
+/* The regions of arc closure's search (arc_region.c): convex parts of the
+ * (S, G) plane of a triple that hold an arc of its trisector, and the
+ * spheres that may touch inside them (why these are complete: the top of
+ * arc_region.c). */
+#ifndef VBX_REGION_H
+#define VBX_REGION_H
+
+#include "vbx_arc.h"
+
+enum { VBX_PART_BOX = 0, VBX_PART_STRIP = 1 };
+
+typedef struct vbx_part {
+    int kind;
+    vbx_ia S, G;   /* box; strip: its segment (G a point interval) */
+    vbx_ia D[2];   /* strip: recession direction (dS, dG) */
+} vbx_part;
+
+typedef struct vbx_region {
+    int brute;
+    int n;
+    vbx_part p[40];
+} vbx_region;
+
+/* Boxes of one piece of a tail searched outwards (arc_search.c). */
+enum { VBX_PIECE_PARTS = 4 };
+
+/* S on the open branch at |G| = g (g an interval >= 0). */
+vbx_ia vbx_branch_S(const vbx_tframe *f, vbx_ia g);
+
+/* The boxes of the open branch over mirrored positions g in [ga, gb] (G =
+ * sgn g), `parts` of them appended to rg: each from breakpoint g_i
+ * to g_i+1 (shared by neighbours, so they cover [ga, gb]), its S from the
+ * branch's at g_i (Sa at ga: the start vertex's enclosure) to the
+ * branch's at g_i+1, and Smin when G = 0 lies between (S depends on |G|
+ * alone and grows with it). Thin boxes keep Q small over each, so the
+ * tangent-ball queries stay close to the arc. */
+void vbx_piece_parts(const vbx_tframe *f, vbx_ia Sa, double ga, double gb, double sgn,
+                     int parts, vbx_region *rg);
+
+/* The tail of the open branch beyond mirrored position g (a double; sgn
+ * +1 forward, -1 backward): from g < 0 a box up to the branch's vertex
+ * (g = 0), then the half-strip from max(g, 0) along the asymptote. */
+void vbx_tail_from(const vbx_tframe *f, double g, double sgn, vbx_region *rg);
+
+/* The region of the arc from e0 to e1 (arc_region.c says which). */
+void vbx_region_of(const vbx_tframe *f, const vbx_arc_end *e0, const vbx_arc_end *e1,
+                   vbx_region *rg);
+
+/* Candidates of the region: VB_OK, VB_ENOMEM; sets rg->brute when a query
+ * cannot be bounded. */
+int vbx_gather(vbx_arcw *w, const vbx_tframe *f, vbx_region *rg);
+
+/* Candidates of a tail region when there are at most cap of them: 1 when
+ * gathered (then w->cand holds them, as vbx_gather would), 0 when over the cap
+ * or unbounded (nothing held), -1 out of memory. */
+int vbx_gather_capped(vbx_arcw *w, const vbx_tframe *f, const vbx_region *rg, size_t cap);
+
+/* 1 when L_j > 0 is proven over the whole region. */
+int vbx_clear_of(const vbx_arcw *w, const vbx_tframe *f, const vbx_region *rg, uint32_t j);
+
+/* Empties the worker's candidates (and their marks). */
+void vbx_clear_cands(vbx_arcw *w);
+
+#endif
