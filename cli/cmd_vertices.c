@@ -9,7 +9,6 @@
 #include "input_options.h"
 #include "pipeline_options.h"
 #include "vorball.h"
-#include "vb_diag.h"
 #include "vb_world.h"
 #include "vertex_parts.h"
 
