@@ -80,6 +80,10 @@ typedef struct vbpy_text {
 int vbpy_text_open(vbpy_text *t);          /* 0, or -1 with MemoryError set */
 PyObject *vbpy_text_take(vbpy_text *t);    /* a str (new), the stream freed */
 
+/* Arc closure's counts as a dict (vertices, half_arcs, closed, infinite,
+ * loops, undecided, components, added, complete). NULL with an exception. */
+PyObject *vbpy_arcs_dict(const vb_arc_report *a);
+
 /* Capsules: sphere sets ("vorball.spheres"). */
 PyObject *vbpy_spheres_capsule(vb_sphere_set *set);
 vb_sphere_set *vbpy_spheres_get(PyObject *capsule); /* NULL with TypeError set */

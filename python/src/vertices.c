@@ -83,12 +83,8 @@ static PyObject *vertex_arrays(const vb_vertex_list *v, PyObject *d)
     return bad ? NULL : d;
 }
 
-/* Arc closure's counts as a dict, or None when it did not run. */
-static PyObject *arcs_dict(const vb_completion *c)
+PyObject *vbpy_arcs_dict(const vb_arc_report *a)
 {
-    const vb_arc_report *a = &c->arcs;
-    if (!c->traced)
-        Py_RETURN_NONE;
     return Py_BuildValue("{s:n,s:n,s:n,s:n,s:n,s:n,s:n,s:n,s:O}", "vertices",
                          (Py_ssize_t)a->vertices, "half_arcs", (Py_ssize_t)a->half_arcs,
                          "closed", (Py_ssize_t)a->closed, "infinite", (Py_ssize_t)a->infinite,
@@ -156,7 +152,8 @@ static PyObject *result_dict(vb_ctx *ctx, const vb_vertices_result *r, const vb_
         "completion", tm->completion, "cover_device", s->t_cover_device);
     if (!d)
         return NULL;
-    PyObject *arcs = arcs_dict(c), *topo = arcs ? topology_dict(c) : NULL;
+    PyObject *arcs = c->traced ? vbpy_arcs_dict(&c->arcs) : Py_NewRef(Py_None);
+    PyObject *topo = arcs ? topology_dict(c) : NULL;
     int bad = !topo || PyDict_SetItemString(d, "arcs", arcs) != 0 ||
               PyDict_SetItemString(d, "topology", topo) != 0;
     Py_XDECREF(arcs);

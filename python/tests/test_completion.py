@@ -113,3 +113,32 @@ def test_no_completion_by_default():
     res = vorball.vertices(corpus("inputs", "cubic_lattice.xyzr"), device="ref")
     assert res.arcs is None and res.topology is None
     assert "arcs:" not in res.certificate.text
+
+
+def test_verify_arcs_finds_what_a_file_misses(tmp_path):
+    """verify(..., arcs=True) is `vorball verify --arcs`: three vertex lines
+    cut from the cover's file are found again by arc closure, with the
+    command's text and JSON."""
+    path = corpus("inputs", "crambin_fragment.xyzr")
+    full, _ = cli("vertices", "--device", "ref", path)
+    lines = full.splitlines(keepends=True)
+    body = [line for line in lines if not line.startswith("#")]
+    dropped = [body[10], body[20], body[30]]
+    cut = tmp_path / "cut.tsv"
+    cut.write_text("".join(line for line in lines if line not in dropped))
+    out, _ = cli("verify", path, cut, "--arcs", rc=1)
+    js, _ = cli("verify", path, cut, "--arcs", "--json", rc=1)
+    rep = vorball.verify(path, str(cut), arcs=True, threads=2)
+    assert rep.text == out and rep.json == js
+    assert not rep.ok and not rep.arcs.complete
+    assert rep.arcs.added == 3 and rep.arcs.undecided == 0
+    assert rep.arcs.vertices == len(body)
+    want = sorted(tuple(int(v) for v in line.split("\t")[0].split(",")) for line in dropped)
+    assert sorted(tuple(int(i) for i in ids) for ids in rep.arcs_missing[0]) == want
+    assert rep.to_json()["arcs"]["added"] == 3
+    # The whole list, in memory: closed, nothing added; without arcs, None.
+    res = vorball.vertices(path, device="ref")
+    whole = vorball.verify(path, res, arcs=True)
+    assert whole.ok and whole.arcs.complete and whole.arcs.added == 0
+    assert len(whole.arcs_missing[0]) == 0
+    assert vorball.verify(path, res).arcs is None
