@@ -7,12 +7,8 @@
 #include "cli_common.h"
 #include "commands.h"
 #include "input_options.h"
-#include "vb_arc.h"
-#include "vb_topology.h"
-#include "vb_vertex_io.h"
 #include "pipeline_options.h"
-#include "vb_default.h"
-#include "vb_diag.h"
+#include "vorball.h"
 #include "vb_world.h"
 #include "vertex_parts.h"
 
@@ -78,36 +74,12 @@ static void print_stats(vb_ctx *ctx, const vb_vertices_result *r, const vb_cli_v
                 tot->t_combine);
 }
 
-/* The topology file: exact (arc closure's edges, taken over: *edges is
- * NULL after) when edges is non-NULL, else from the sampling's evidence. */
-static int write_topology(vb_ctx *ctx, const char *path, const vb_sphere_set *set,
-                          const vb_vertices_result *r, const vb_arc_report *ar,
-                          vb_topology_edge **edges, size_t nedges)
+/* The topology file, built by the completion (vb_complete.h). */
+static int write_topology(vb_ctx *ctx, const char *path, const vb_topology *topo)
 {
-    vb_topology topo;
-    int rc;
-    if (edges) {
-        rc = vb_arc_topology(ctx, set, &r->certified, *edges, nedges, ar, &topo);
-        *edges = NULL;
-    } else {
-        rc = vb_topology_build(ctx, set, &r->sampler.topo, &r->certified, &topo);
-    }
-    if (rc != VB_OK)
-        return rc;
-    if (topo.unresolved && topo.exact)
-        vb_warn(ctx, VB_W_TOPO_UNPAIRED, NULL, 0,
-                "%zu vertex(es) whose faces could not be decided exactly (the pairs of "
-                "their edges' triples are written)", topo.unresolved);
-    else if (topo.unresolved)
-        vb_warn(ctx, VB_W_TOPO_UNPAIRED, NULL, 0,
-                "%zu trisector(s) whose edges could not be paired (no trisector curve for "
-                "the triple in doubles, or a closed edge through one vertex)",
-                topo.unresolved);
     FILE *f = vb_cli_open_output(ctx, path);
-    rc = f ? vb_topology_write(ctx, f, &topo) : vb_errcode(ctx);
-    rc = vb_cli_finish_output(ctx, f, path, rc);
-    vb_topology_free(&topo);
-    return rc;
+    int rc = f ? vb_topology_write(ctx, f, topo) : vb_errcode(ctx);
+    return vb_cli_finish_output(ctx, f, path, rc);
 }
 
 int vb_cmd_vertices(int argc, char **argv)
@@ -116,7 +88,8 @@ int vb_cmd_vertices(int argc, char **argv)
     vb_pipeline_opts_defaults(&po);
     const char *outpath = NULL, *input = NULL, *topo_path = NULL;
     vb_vertex_format vfmt = VB_VFMT_TSV;
-    int stats = 0, arcs = 0;
+    int stats = 0;
+    vb_completion_opts co = {0};
     vb_ctx *ctx;
     if (vb_world_open_ctx(&ctx))
         return vb_cli_fail(NULL, VB_ENOMEM);
@@ -137,11 +110,11 @@ int vb_cmd_vertices(int argc, char **argv)
                 code = vb_cli_usage_error("vertices", "%s", vb_errmsg(ctx));
         } else if (strcmp(a, "--topology") == 0 && i + 1 < argc) {
             topo_path = argv[++i];
-            po.cfg.sampler.topology = 1;
+            co.topology = 1;
         } else if (strcmp(a, "--stats") == 0) {
             stats = 1;
         } else if (strcmp(a, "--arcs") == 0) {
-            arcs = 1;
+            co.arcs = 1;
         } else if (a[0] == '-' && a[1] != '\0') {
             code = vb_cli_usage_error("vertices", "unknown option '%s'", a);
         } else if (!input) {
@@ -152,14 +125,7 @@ int vb_cmd_vertices(int argc, char **argv)
     }
     if (code == VB_EXIT_OK && !input)
         code = vb_cli_usage_error("vertices", "no input file (use - for stdin)");
-    /* Faces and edges come from arc closure, or with the sampling proposer
-     * alone from its evidence (which the sampler then keeps). */
-    int sampled_topo = topo_path && !arcs && po.cfg.proposer &&
-                       strcmp(po.cfg.proposer, "sampling") == 0;
-    if (topo_path && !sampled_topo) {
-        arcs = 1;
-        po.cfg.sampler.topology = 0;
-    }
+    vb_completion_plan(&po.cfg, &co);
     if (code == VB_EXIT_OK)
         code = vb_world_check_input("vertices", input);
     if (code != VB_EXIT_OK) {
@@ -187,47 +153,26 @@ int vb_cmd_vertices(int argc, char **argv)
     int writer = rc == VB_OK && vb_world_rank() == 0;
     if (writer && stats)
         print_stats(ctx, &res, &tot);
-    /* A cover's refused roots are quadruples that hold no vertex: expected,
-     * and no warning. */
-    if (writer && tot.rejected && !res.sampler.complete)
-        vb_warn(ctx, VB_W_CERT_REJECTED, NULL, 0, "the certifier rejected %zu candidate(s)", tot.rejected);
-    char note[1024];
-    vb_vertices_certificate(&res, note, sizeof note);
-    /* Rank 0 holds the merged list: it traces every arc of it. */
-    vb_arc_report ar;
-    vb_topology_edge *edges = NULL;
-    size_t nedges = 0;
-    memset(&ar, 0, sizeof ar);
-    vb_vertex_list_init(&ar.added);
-    if (writer && arcs) {
-        rc = vb_arc_complete_list_edges(ctx, set, &res.certified, po.cfg.sampler.threads, &ar,
-                                        topo_path ? &edges : NULL, &nedges);
+    /* Rank 0 holds the merged list: it completes it (arc closure, faces
+     * and edges, the certificate). */
+    co.stats = stats ? stderr : NULL;
+    vb_completion done;
+    vb_completion_init(&done);
+    if (writer) {
+        rc = vb_vertices_complete(ctx, set, &res, tot.rejected, &co, &done);
         writer = rc == VB_OK;
-        if (writer) {
-            size_t used = strlen(note);
-            if (used && used + 1 < sizeof note)
-                note[used++] = '\n';
-            vb_arc_certificate(&ar, note + used, sizeof note - used);
-            if (stats)
-                vb_arc_write_stats(stderr, &ar);
-            if (ar.undecided)
-                vb_warn(ctx, VB_W_ARCS_UNDECIDED, NULL, 0,
-                        "%zu half arc(s) could not be traced exactly: the list is not proven "
-                        "closed under the edges of the diagram", ar.undecided);
-        }
     }
     if (writer) {
+        const char *note = done.certificate;
         FILE *out = vb_cli_open_output(ctx, outpath);
         rc = out ? vb_vertex_write(ctx, out, &res.certified, vfmt, note[0] ? note : NULL)
                  : vb_errcode(ctx);
         rc = vb_cli_finish_output(ctx, out, outpath, rc);
     }
     if (writer && rc == VB_OK && topo_path)
-        rc = write_topology(ctx, topo_path, set, &res, &ar, sampled_topo ? NULL : &edges,
-                            nedges);
+        rc = write_topology(ctx, topo_path, &done.topology);
     code = vb_world_end(ctx, rc);
-    free(edges);
-    vb_arc_report_free(&ar);
+    vb_completion_free(&done);
     vb_vertices_result_free(&res);
     vb_spheres_free(set);
     vb_close(ctx);

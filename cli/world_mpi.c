@@ -30,7 +30,7 @@ static struct {
     int rank, size;
     int stopped;        /* an agree failed because of another rank */
     int injected;       /* VORBALL_TEST_FAIL_RANK already fired */
-    FILE *diag;         /* ranks > 0: the context's warnings, kept */
+    FILE *diag;         /* ranks > 0: the context's diagnostic records, kept */
     char *diag_buf;
     size_t diag_len;
 } W = {0, 0, 1, 0, 0, NULL, NULL, 0};
@@ -191,14 +191,26 @@ int vb_world_check_input(const char *cmd, const char *path)
     return exit_of(VB_E_MPI_STDIN);
 }
 
+/* A rank's kept diagnostic record (the context's log callback), as five
+ * NUL-terminated fields: kind, number, line, file ("" for none), message.
+ * Rank 0 prints it, tagged with the ranks that gave it: no text is parsed. */
+static void keep_record(void *arg, const vb_diag_record *r)
+{
+    (void)arg;
+    fprintf(W.diag, "%c%c%d%c%ld%c%s%c%s%c", r->kind, 0, r->number, 0, r->line, 0,
+            r->file ? r->file : "", 0, r->message, 0);
+}
+
 int vb_world_open_ctx(vb_ctx **ctx)
 {
     if (W.rank == 0 || W.size < 2)
         return vb_open(ctx, NULL);
     if (!W.diag && !(W.diag = open_memstream(&W.diag_buf, &W.diag_len)))
         return VB_ENOMEM;
-    vb_config cfg = {1, W.diag};
-    return vb_open(ctx, &cfg);
+    int rc = vb_open(ctx, NULL);
+    if (rc == VB_OK)
+        vb_set_log(*ctx, keep_record, NULL);
+    return rc;
 }
 
 int vb_world_quiet(vb_ctx *ctx)
@@ -344,40 +356,74 @@ static void rank_list(const unsigned char *on, char *out, size_t size)
 }
 
 /* One rank's report for rank 0: its own status, its error message, and
- * the warnings it kept, as "code\0message\0warnings". */
+ * the records it kept (keep_record), as "code message\0 records". */
 typedef struct report {
     int code;
-    const char *msg, *diag;
+    const char *msg, *rec, *end;  /* records: [rec, end) */
 } report;
+
+/* The length of the record at p (five NUL-terminated fields) before end,
+ * or 0 when it is cut short. */
+static size_t record_len(const char *p, const char *end)
+{
+    const char *q = p;
+    for (int k = 0; k < 5; k++) {
+        const char *z = memchr(q, '\0', (size_t)(end - q));
+        if (!z)
+            return 0;
+        q = z + 1;
+    }
+    return (size_t)(q - p);
+}
 
 static int parse_report(const unsigned char *b, size_t len, report *r)
 {
-    if (len < sizeof(int) + 2 || b[len - 1] != '\0')
+    if (len < sizeof(int) + 1 || b[len - 1] != '\0')
         return -1;
     memcpy(&r->code, b, sizeof(int));
     r->msg = (const char *)b + sizeof(int);
-    size_t m = strlen(r->msg);
-    if (sizeof(int) + m + 1 >= len)
-        return -1;
-    r->diag = r->msg + m + 1;
+    r->rec = r->msg + strlen(r->msg) + 1;
+    r->end = (const char *)b + len;
+    for (const char *p = r->rec; p < r->end;) {
+        size_t l = record_len(p, r->end);
+        if (!l)
+            return -1;
+        p += l;
+    }
     return 0;
 }
 
-/* "vorball: W760: rest" as "vorball: W760: ranks 1-2 of 3: rest". */
-static void print_tagged(const char *line, size_t len, const char *ranks, int plural)
+/* A record as rank 0 prints it: "vorball: W760: ranks 1-2 of 3: file:line:
+ * message", as vb_warn would with the ranks after the number. */
+static void print_tagged(const char *rec, const char *ranks, int plural)
 {
-    const char *p = line;
-    if (len > 9 && strncmp(line, "vorball: ", 9) == 0) {
-        p = line + 9;
-        const char *colon = memchr(p, ':', len - 9);
-        if (colon && (p[0] == 'W' || p[0] == 'E') && colon - p < 8)
-            p = colon + 2 <= line + len ? colon + 2 : colon + 1;
-    }
-    fprintf(stderr, "%.*s%s %s of %d: %.*s\n", (int)(p - line), line, plural ? "ranks" : "rank",
-            ranks, W.size, (int)(len - (size_t)(p - line)), p);
+    const char *kind = rec, *number = kind + strlen(kind) + 1;
+    const char *line = number + strlen(number) + 1, *file = line + strlen(line) + 1;
+    const char *msg = file + strlen(file) + 1;
+    fputs("vorball: ", stderr);
+    if (kind[0] == 'W')
+        fprintf(stderr, "W%s: ", number);
+    fprintf(stderr, "%s %s of %d: ", plural ? "ranks" : "rank", ranks, W.size);
+    if (*file && strcmp(line, "0") != 0)
+        fprintf(stderr, "%s:%s: ", file, line);
+    else if (*file)
+        fprintf(stderr, "%s: ", file);
+    fprintf(stderr, "%s\n", msg);
 }
 
-/* The warnings of ranks 1.., each distinct line once, in the order first
+/* Whether rank q kept the record [p, p + len). */
+static int kept_by(const report *q, const char *p, size_t len)
+{
+    for (const char *m = q->rec; m < q->end;) {
+        size_t ml = record_len(m, q->end);
+        if (ml == len && memcmp(m, p, len) == 0)
+            return 1;
+        m += ml;
+    }
+    return 0;
+}
+
+/* The records of ranks 1.., each distinct one once, in the order first
  * given, with the ranks that gave it. */
 static void print_kept(const report *rep)
 {
@@ -386,32 +432,24 @@ static void print_kept(const report *rep)
     if (!on || !ranks)
         oom_die("warnings of the ranks");
     for (int r = 1; r < W.size; r++) {
-        for (const char *l = rep[r].diag; *l;) {
-            size_t len = strcspn(l, "\n");
+        for (const char *l = rep[r].rec; l < rep[r].end;) {
+            size_t len = record_len(l, rep[r].end);
             int seen = 0;
             /* Given by an earlier rank: printed with it already. */
             for (int q = 1; q < r && !seen; q++)
-                for (const char *m = rep[q].diag; *m && !seen;) {
-                    size_t ml = strcspn(m, "\n");
-                    seen = ml == len && memcmp(m, l, len) == 0;
-                    m += ml + (m[ml] == '\n');
-                }
+                seen = kept_by(&rep[q], l, len);
             if (!seen) {
                 memset(on, 0, (size_t)W.size);
                 int count = 0;
                 for (int q = r; q < W.size; q++)
-                    for (const char *m = rep[q].diag; *m;) {
-                        size_t ml = strcspn(m, "\n");
-                        if (ml == len && memcmp(m, l, len) == 0) {
-                            count += !on[q];
-                            on[q] = 1;
-                        }
-                        m += ml + (m[ml] == '\n');
+                    if (kept_by(&rep[q], l, len)) {
+                        count++;
+                        on[q] = 1;
                     }
                 rank_list(on, ranks, 16 * (size_t)W.size + 16);
-                print_tagged(l, len, ranks, count > 1);
+                print_tagged(l, ranks, count > 1);
             }
-            l += len + (l[len] == '\n');
+            l += len;
         }
     }
     free(on);
@@ -461,18 +499,20 @@ int vb_world_end(vb_ctx *ctx, int rc)
     free(codes);
     /* Each rank's report to rank 0. */
     const char *msg = own != VB_OK ? vb_errmsg(ctx) : "";
-    const char *diag = "";
+    const char *rec = "";
+    size_t ld = 0;
     if (W.diag) {
         fflush(W.diag);
-        diag = W.diag_buf ? W.diag_buf : "";
+        rec = W.diag_buf ? W.diag_buf : "";
+        ld = W.diag_buf ? W.diag_len : 0;
     }
-    size_t lm = strlen(msg), ld = strlen(diag), len = sizeof(int) + lm + 1 + ld + 1;
+    size_t lm = strlen(msg), len = sizeof(int) + lm + 1 + ld;
     unsigned char *mine = malloc(len);
     if (!mine)
         oom_die("report to rank 0");
     memcpy(mine, &own, sizeof(int));
     memcpy(mine + sizeof(int), msg, lm + 1);
-    memcpy(mine + sizeof(int) + lm + 1, diag, ld + 1);
+    memcpy(mine + sizeof(int) + lm + 1, rec, ld);
     unsigned char **parts = NULL;
     size_t *lens = NULL;
     vb_world_gather(ctx, mine, len, &parts, &lens);
@@ -483,7 +523,7 @@ int vb_world_end(vb_ctx *ctx, int rc)
             oom_die("reports of the ranks");
         for (int r = 0; r < W.size; r++)
             if (parse_report(parts[r], lens[r], &rep[r]) != 0)
-                rep[r] = (report){VB_EINTERNAL, "garbled report", ""};
+                rep[r] = (report){VB_EINTERNAL, "garbled report", "", ""};
         fflush(stderr);
         print_kept(rep);
         print_errors(rep);

@@ -21,6 +21,11 @@ struct vb_ctx {
     vb_config cfg;
     int errcode;
     char errmsg[1024];
+    size_t errmsg_at;       /* where the message starts after "file:line: " */
+    char errfile[256];      /* the file vb_error was given ("" none) */
+    long errline;
+    vb_log_fn log;          /* NULL: text to the diagnostic stream */
+    void *log_arg;
     vb_stats stats;
 };
 
@@ -68,6 +73,21 @@ void vb_clear_error(vb_ctx *ctx)
         return;
     ctx->errcode = VB_OK;
     ctx->errmsg[0] = '\0';
+    ctx->errmsg_at = 0;
+    ctx->errfile[0] = '\0';
+    ctx->errline = 0;
+}
+
+int vb_error_record(const vb_ctx *ctx, vb_diag_record *out)
+{
+    if (vb_ctx_check(ctx) != VB_OK)
+        return VB_EMISUSE;
+    out->kind = 'E';
+    out->number = ctx->errcode == VB_OK ? 0 : vb_diag_number(ctx->errcode);
+    out->file = ctx->errfile[0] ? ctx->errfile : NULL;
+    out->line = ctx->errline;
+    out->message = ctx->errmsg + ctx->errmsg_at;
+    return VB_OK;
 }
 
 int vb_set_verbosity(vb_ctx *ctx, int verbosity)
@@ -77,6 +97,15 @@ int vb_set_verbosity(vb_ctx *ctx, int verbosity)
     int old = ctx->cfg.verbosity;
     ctx->cfg.verbosity = verbosity;
     return old;
+}
+
+int vb_set_log(vb_ctx *ctx, vb_log_fn fn, void *arg)
+{
+    if (vb_ctx_check(ctx) != VB_OK)
+        return VB_EMISUSE;
+    ctx->log = fn;
+    ctx->log_arg = fn ? arg : NULL;
+    return VB_OK;
 }
 
 vb_stats *vb_ctx_stats(vb_ctx *ctx)
@@ -174,6 +203,9 @@ int vb_error(vb_ctx *ctx, int code, const char *file, long line, const char *fmt
         k = 0;
     if (k > 0)
         off = (size_t)k < sizeof ctx->errmsg ? (size_t)k : sizeof ctx->errmsg - 1;
+    ctx->errmsg_at = off;
+    snprintf(ctx->errfile, sizeof ctx->errfile, "%s", file ? file : "");
+    ctx->errline = file && line > 0 ? line : 0;
     va_list ap;
     va_start(ap, fmt);
     vsnprintf(ctx->errmsg + off, sizeof ctx->errmsg - off, fmt, ap);
@@ -186,6 +218,16 @@ static FILE *diag_stream(const vb_ctx *ctx)
     return ctx->cfg.diag ? ctx->cfg.diag : stderr;
 }
 
+/* A record to the log callback, its message formatted from fmt. */
+static void log_record(const vb_ctx *ctx, char kind, int num, const char *file, long line,
+                       const char *fmt, va_list ap)
+{
+    char msg[2048];
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    vb_diag_record rec = {kind, num, file, file ? line : 0, msg};
+    ctx->log(ctx->log_arg, &rec);
+}
+
 int vb_warn(vb_ctx *ctx, int num, const char *file, long line, const char *fmt, ...)
 {
     if (vb_ctx_check(ctx) != VB_OK)
@@ -193,6 +235,13 @@ int vb_warn(vb_ctx *ctx, int num, const char *file, long line, const char *fmt, 
     ctx->stats.warnings++;
     if (ctx->cfg.verbosity < 1)
         return VB_OK;
+    va_list ap;
+    if (ctx->log) {
+        va_start(ap, fmt);
+        log_record(ctx, 'W', num, file, line > 0 ? line : 0, fmt, ap);
+        va_end(ap);
+        return VB_OK;
+    }
     FILE *f = diag_stream(ctx);
     if (file && line > 0)
         fprintf(f, "vorball: W%d: %s:%ld: ", num, file, line);
@@ -200,7 +249,6 @@ int vb_warn(vb_ctx *ctx, int num, const char *file, long line, const char *fmt, 
         fprintf(f, "vorball: W%d: %s: ", num, file);
     else
         fprintf(f, "vorball: W%d: ", num);
-    va_list ap;
     va_start(ap, fmt);
     vfprintf(f, fmt, ap);
     va_end(ap);
@@ -212,9 +260,15 @@ void vb_info(vb_ctx *ctx, const char *fmt, ...)
 {
     if (vb_ctx_check(ctx) != VB_OK || ctx->cfg.verbosity < 2)
         return;
+    va_list ap;
+    if (ctx->log) {
+        va_start(ap, fmt);
+        log_record(ctx, 'I', 0, NULL, 0, fmt, ap);
+        va_end(ap);
+        return;
+    }
     FILE *f = diag_stream(ctx);
     fputs("vorball: ", f);
-    va_list ap;
     va_start(ap, fmt);
     vfprintf(f, fmt, ap);
     va_end(ap);

@@ -69,6 +69,23 @@ enum vb_limit_error {
 /* Returns a static English name for a status code, extended or primary. */
 const char *vb_errstr(int code);
 
+/* One diagnostic as it leaves the library: what a log callback receives
+ * (SQLite's SQLITE_CONFIG_LOG), so that a host prints, raises, warns or
+ * forwards it without parsing text back. */
+typedef struct vb_diag_record {
+    char kind;                /* 'W' a warning, 'I' an informational line, 'E' an error */
+    int number;               /* the catalogue number (vb_diag.h); 0 for 'I' */
+    const char *file;         /* the file (or source) it names, or NULL */
+    long line;                /* its line, 0 for none */
+    const char *message;      /* the text: no prefix, no location, no newline */
+} vb_diag_record;
+
+/* A log callback: called once per warning or info line that the verbosity
+ * lets through, on the thread that emitted it (several threads of one run
+ * may call it at once: a callback that collects must lock). The record
+ * and its strings are valid during the call only. */
+typedef void (*vb_log_fn)(void *arg, const vb_diag_record *rec);
+
 /* Configuration handed to vb_open. Zero-initialise, then set what you need. */
 typedef struct vb_config {
     int verbosity;            /* 0 quiet, 1 warnings (default when 0-init: warnings on), 2 info */
@@ -140,12 +157,24 @@ void vb_info(vb_ctx *ctx, const char *fmt, ...)
  * all read the same input). */
 int vb_set_verbosity(vb_ctx *ctx, int verbosity);
 
+/* Installs the context's log callback: from now on every warning and info
+ * line the verbosity lets through goes to fn(arg, record) instead of the
+ * text "vorball: W<n>: file:line: message" on the diagnostic stream; NULL
+ * restores the text. VB_OK, or VB_EMISUSE (nothing done) for a NULL or
+ * closed context. */
+int vb_set_log(vb_ctx *ctx, vb_log_fn fn, void *arg);
+
 /* Mutable access to the context's counters; never NULL for an open ctx. */
 vb_stats *vb_ctx_stats(vb_ctx *ctx);
 
 /* Adds every counter of `from` to `to` (a worker's context into the
  * caller's); NULL for either does nothing. */
 void vb_stats_add(vb_stats *to, const vb_stats *from);
+
+/* The last error as a record (kind 'E', its E-number, the file and line
+ * vb_error was given, the message without them); VB_OK, or VB_EMISUSE for
+ * a NULL or closed context. Valid until the next call that sets an error. */
+int vb_error_record(const vb_ctx *ctx, vb_diag_record *out);
 
 /* Resets the error state to VB_OK. */
 void vb_clear_error(vb_ctx *ctx);

@@ -2,6 +2,7 @@
  * (vbpy.h). */
 #include "vbpy.h"
 
+#include <pthread.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -12,31 +13,91 @@
 /* vorball.VorballError, handed over by the package when it is imported. */
 static PyObject *error_class;
 
+/* The log callback: a copy of the record kept, under the call's lock. */
+static void keep_record(void *arg, const vb_diag_record *r)
+{
+    vbpy_call *c = arg;
+    pthread_mutex_lock(c->lock);
+    if (c->n == c->cap) {
+        size_t nc = c->cap ? 2 * c->cap : 8;
+        vbpy_record *p = realloc(c->rec, nc * sizeof *p);
+        if (p) {
+            c->rec = p;
+            c->cap = nc;
+        }
+    }
+    if (c->n < c->cap) {
+        vbpy_record *k = &c->rec[c->n];
+        k->kind = r->kind;
+        k->number = r->number;
+        k->line = r->line;
+        k->file = r->file ? strdup(r->file) : NULL;
+        k->message = strdup(r->message);
+        if (k->message && (k->file || !r->file))
+            c->n++;
+        else {
+            free(k->file);
+            free(k->message);
+            c->lost = 1;
+        }
+    } else {
+        c->lost = 1;
+    }
+    pthread_mutex_unlock(c->lock);
+}
+
+static void records_free(vbpy_call *c)
+{
+    for (size_t k = 0; k < c->n; k++) {
+        free(c->rec[k].file);
+        free(c->rec[k].message);
+    }
+    free(c->rec);
+    c->rec = NULL;
+    c->n = c->cap = 0;
+}
+
 int vbpy_call_open(vbpy_call *c)
 {
     memset(c, 0, sizeof *c);
-    c->diag = open_memstream(&c->text, &c->len);
-    vb_config cfg = {1, c->diag};
-    if (!c->diag || vb_open(&c->ctx, &cfg) != VB_OK) {
-        if (c->diag)
-            fclose(c->diag);
-        free(c->text);
+    vb_config cfg = {1, NULL};
+    if (!(c->lock = malloc(sizeof(pthread_mutex_t))) ||
+        pthread_mutex_init(c->lock, NULL) != 0) {
+        free(c->lock);
         PyErr_NoMemory();
         return -1;
     }
+    if (vb_open(&c->ctx, &cfg) != VB_OK) {
+        pthread_mutex_destroy(c->lock);
+        free(c->lock);
+        PyErr_NoMemory();
+        return -1;
+    }
+    vb_set_log(c->ctx, keep_record, c);
     return 0;
 }
 
-/* The diagnostics as a str; the stream and the context released. */
+/* The records as a list of tuples; the records and the context released. */
 static PyObject *call_close(vbpy_call *c)
 {
     vb_close(c->ctx);
     c->ctx = NULL;
-    fclose(c->diag);
-    PyObject *s = PyUnicode_DecodeUTF8(c->text ? c->text : "", (Py_ssize_t)c->len, "replace");
-    free(c->text);
-    c->text = NULL;
-    return s;
+    pthread_mutex_destroy(c->lock);
+    free(c->lock);
+    c->lock = NULL;
+    PyObject *list = c->lost ? PyErr_NoMemory() : PyList_New((Py_ssize_t)c->n);
+    for (size_t k = 0; list && k < c->n; k++) {
+        const vbpy_record *r = &c->rec[k];
+        PyObject *t = Py_BuildValue("(Cizls)", r->kind, r->number, r->file, r->line,
+                                    r->message);
+        if (!t) {
+            Py_CLEAR(list);
+            break;
+        }
+        PyList_SET_ITEM(list, (Py_ssize_t)k, t);
+    }
+    records_free(c);
+    return list;
 }
 
 PyObject *vbpy_call_done(vbpy_call *c)
@@ -44,12 +105,19 @@ PyObject *vbpy_call_done(vbpy_call *c)
     return call_close(c);
 }
 
-/* Raises error_class(number, message, status, exit_status, diagnostics). */
-static void raise_error(int status, const char *msg, PyObject *diag)
+/* Raises error_class(number, message, status, exit_status, diagnostics,
+ * file, line, row): message without its location when file is given; row
+ * (>= 0) the row of spheres given as arrays that the binding names. */
+static void raise_error(int status, const char *msg, PyObject *diag, const char *file,
+                        long line, Py_ssize_t row)
 {
     PyObject *cls = error_class ? error_class : PyExc_RuntimeError;
-    PyObject *e = PyObject_CallFunction(cls, "isiiO", vb_diag_number(status), msg, status,
-                                        vb_diag_exit(status), diag ? diag : Py_None);
+    PyObject *r = row >= 0 ? PyLong_FromSsize_t(row) : Py_NewRef(Py_None);
+    PyObject *e = r ? PyObject_CallFunction(cls, "isiiOzlO", vb_diag_number(status), msg,
+                                            status, vb_diag_exit(status), diag ? diag : Py_None,
+                                            file, line, r)
+                    : NULL;
+    Py_XDECREF(r);
     if (e) {
         PyErr_SetObject(cls, e);
         Py_DECREF(e);
@@ -58,17 +126,25 @@ static void raise_error(int status, const char *msg, PyObject *diag)
 
 PyObject *vbpy_call_fail(vbpy_call *c, int rc)
 {
-    const char *m = vb_errmsg(c->ctx);
-    char *msg = strdup(m && *m ? m : vb_errstr(rc));
+    /* The error as a record: its message and location apart. */
+    vb_diag_record er;
+    vb_error_record(c->ctx, &er);
+    const char *m = er.message && *er.message ? er.message : NULL;
+    char *msg = strdup(m ? m : vb_errstr(rc));
+    char *file = m && er.file ? strdup(er.file) : NULL;
+    long line = er.line;
     PyObject *diag = call_close(c);
-    if (!msg) {
+    if (!msg || (m && er.file && !file)) {
+        free(msg);
+        free(file);
         Py_XDECREF(diag);
         return PyErr_NoMemory();
     }
     /* A Python error raised while the call ran (MemoryError) wins. */
     if (!PyErr_Occurred())
-        raise_error(rc, msg, diag);
+        raise_error(rc, msg, diag, file, line, -1);
     free(msg);
+    free(file);
     Py_XDECREF(diag);
     return NULL;
 }
@@ -80,7 +156,18 @@ PyObject *vbpy_raise(int status, const char *fmt, ...)
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
-    raise_error(status, msg, NULL);
+    raise_error(status, msg, NULL, NULL, 0, -1);
+    return NULL;
+}
+
+PyObject *vbpy_raise_row(int status, Py_ssize_t row, const char *fmt, ...)
+{
+    char msg[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    raise_error(status, msg, NULL, NULL, 0, row);
     return NULL;
 }
 

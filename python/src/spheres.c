@@ -235,15 +235,16 @@ static int column_token(const column *c, Py_ssize_t i, char *out, size_t size, i
         const char *s = PyUnicode_Check(o) ? PyUnicode_AsUTF8AndSize(o, &len) : NULL;
         if (!s) {
             PyErr_Clear();
-            vbpy_raise(VB_EINPUT_MALFORMED, "%s row %zd, column %d: not a str", name, i, col);
+            vbpy_raise_row(VB_EINPUT_MALFORMED, i, "%s row %zd, column %d: not a str", name, i,
+                           col);
             return -1;
         }
         int bad = len == 0 || (size_t)len >= size;
         for (Py_ssize_t k = 0; k < len && !bad; k++)
             bad = (unsigned char)s[k] <= ' ' || s[k] == '#' || (unsigned char)s[k] >= 127;
         if (bad) {
-            vbpy_raise(VB_EINPUT_MALFORMED, "%s row %zd, column %d: '%.40s' is not a decimal",
-                       name, i, col, s);
+            vbpy_raise_row(VB_EINPUT_MALFORMED, i,
+                           "%s row %zd, column %d: '%.40s' is not a decimal", name, i, col, s);
             return -1;
         }
         memcpy(out, s, (size_t)len);

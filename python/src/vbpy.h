@@ -20,23 +20,33 @@ static inline PyObject *vbpy_newref(PyObject *o)
 #define Py_NewRef vbpy_newref
 #endif
 
-#include "vb_spheres.h"
-#include "vb_vertex.h"
+#include "vorball.h"
 
-/* One library call's context: warnings go to a memory stream, never to
- * stderr (the Python side prints them when asked). */
+/* One library call's context: its diagnostics are collected as records
+ * through the log callback (vb_set_log), never printed and never parsed
+ * back from text (the Python side warns or prints them). */
+typedef struct vbpy_record {
+    char kind;
+    int number;
+    char *file;             /* NULL when none */
+    long line;
+    char *message;
+} vbpy_record;
+
 typedef struct vbpy_call {
     vb_ctx *ctx;
-    FILE *diag;
-    char *text;
-    size_t len;
+    vbpy_record *rec;
+    size_t n, cap;
+    int lost;               /* a record could not be kept (out of memory) */
+    void *lock;             /* pthread_mutex_t: threads of a run may log at once */
 } vbpy_call;
 
 /* Opens the context. 0, or -1 with MemoryError set. */
 int vbpy_call_open(vbpy_call *c);
 
-/* The diagnostics captured so far as a str (new reference; NULL with an
- * exception set) and the context closed: every call ends in exactly one
+/* The diagnostics captured so far as a list of (kind, number, file, line,
+ * message) tuples (new reference; NULL with an exception set) and the
+ * context closed: every call ends in exactly one
  * of vbpy_call_done and vbpy_call_fail. */
 PyObject *vbpy_call_done(vbpy_call *c);
 
@@ -47,6 +57,10 @@ PyObject *vbpy_call_fail(vbpy_call *c, int rc);
 /* Raises VorballError for a misuse found by the binding itself (E7 or the
  * number of `status`), formatted as printf. Returns NULL. */
 PyObject *vbpy_raise(int status, const char *fmt, ...);
+
+/* vbpy_raise for a value of spheres given as arrays: the error carries
+ * the row (VorballError.row) beside the message that names it. */
+PyObject *vbpy_raise_row(int status, Py_ssize_t row, const char *fmt, ...);
 
 /* (value, diagnostics) as a 2-tuple, stealing value; closes the call.
  * NULL (value released) on failure. */
@@ -65,6 +79,10 @@ typedef struct vbpy_text {
 
 int vbpy_text_open(vbpy_text *t);          /* 0, or -1 with MemoryError set */
 PyObject *vbpy_text_take(vbpy_text *t);    /* a str (new), the stream freed */
+
+/* Arc closure's counts as a dict (vertices, half_arcs, closed, infinite,
+ * loops, undecided, components, added, complete). NULL with an exception. */
+PyObject *vbpy_arcs_dict(const vb_arc_report *a);
 
 /* Capsules: sphere sets ("vorball.spheres"). */
 PyObject *vbpy_spheres_capsule(vb_sphere_set *set);

@@ -1,12 +1,11 @@
 /* Exact judgement of vertices for Python: a vertex file (vb_verify_file,
  * as `vorball verify` reads it) or vertices in memory (vb_verify_list),
- * every line's verdict and the report the command writes. */
+ * with arc closure when asked (vb_verify_arcs, as `--arcs`), every line's
+ * verdict and the report the command writes. */
 #include "vbpy.h"
 
 #include <stdlib.h>
 #include <string.h>
-
-#include "vb_verify_file.h"
 
 /* The per-line judgements as bytes: problems (int32), line (int64), dist
  * and dt (float64), exact x y z t (4 float64 per line), intruder
@@ -67,8 +66,23 @@ static PyObject *missed_dict(const vb_vertex_list *v)
     return d;
 }
 
+/* Arc closure's counts and the vertices it found that the lines miss, or
+ * None when it did not run. */
+static PyObject *arcs_dict(const vb_arc_report *a)
+{
+    if (!a)
+        Py_RETURN_NONE;
+    PyObject *d = vbpy_arcs_dict(a), *m = d ? missed_dict(&a->added) : NULL;
+    if (!m || PyDict_SetItemString(d, "missing", m) != 0)
+        Py_CLEAR(d);
+    Py_XDECREF(m);
+    return d;
+}
+
+/* The report as a dict; with a (arc closure ran) its text and JSON as
+ * `--arcs` writes them, and ok only when the closure is complete too. */
 static PyObject *report_dict(vb_ctx *ctx, const vb_sphere_set *set, const char *spheres_name,
-                             const char *name, const vb_verify_report *r)
+                             const char *name, const vb_verify_report *r, const vb_arc_report *a)
 {
     vbpy_text text, json;
     if (vbpy_text_open(&text) != 0)
@@ -78,8 +92,11 @@ static PyObject *report_dict(vb_ctx *ctx, const vb_sphere_set *set, const char *
         return NULL;
     }
     int rc = vb_verify_write_text(ctx, text.f, name, set, r);
+    if (rc == VB_OK && a)
+        rc = vb_arc_write_text(ctx, text.f, name, a);
     if (rc == VB_OK)
-        rc = vb_verify_write_json(ctx, json.f, spheres_name, name, set, r);
+        rc = a ? vb_verify_write_json_arcs(ctx, json.f, spheres_name, name, set, r, a)
+               : vb_verify_write_json(ctx, json.f, spheres_name, name, set, r);
     PyObject *ts = vbpy_text_take(&text), *js = vbpy_text_take(&json);
     if (rc != VB_OK) {
         Py_XDECREF(ts);
@@ -88,13 +105,15 @@ static PyObject *report_dict(vb_ctx *ctx, const vb_sphere_set *set, const char *
     }
     static const char *const formats[] = {"tsv", "json", "voronota"};
     const vb_verify_counts *n = &r->counts;
+    int ok = vb_verify_report_ok(r) && (!a || vb_arc_report_complete(a));
     PyObject *d = Py_BuildValue(
-        "{s:N,s:N,s:O,s:s,s:d,s:{s:n,s:n,s:n,s:n,s:n,s:n,s:n,s:n},s:N}", "text", ts, "json", js,
-        "ok", vb_verify_report_ok(r) ? Py_True : Py_False, "format", formats[r->format], "tol",
+        "{s:N,s:N,s:O,s:s,s:d,s:{s:n,s:n,s:n,s:n,s:n,s:n,s:n,s:n},s:N,s:N}", "text", ts, "json",
+        js, "ok", ok ? Py_True : Py_False, "format", formats[r->format], "tol",
         r->tol, "counts", "lines", (Py_ssize_t)n->lines, "certified", (Py_ssize_t)n->certified,
         "not_vertex", (Py_ssize_t)n->not_vertex, "wrong", (Py_ssize_t)n->wrong, "missing",
         (Py_ssize_t)n->missing, "duplicate", (Py_ssize_t)n->duplicate, "missed",
-        (Py_ssize_t)n->missed, "groups", (Py_ssize_t)n->groups, "missed", missed_dict(&r->missed));
+        (Py_ssize_t)n->missed, "groups", (Py_ssize_t)n->groups, "missed", missed_dict(&r->missed),
+        "arcs", arcs_dict(a));
     if (d && line_arrays(r, d) != 0)
         Py_CLEAR(d);
     return d;
@@ -106,9 +125,10 @@ static PyObject *verify_run(PyObject *self, PyObject *args)
     PyObject *cap, *vertices;
     const char *format, *name, *spheres_name;
     double tol;
-    int complete;
-    if (!PyArg_ParseTuple(args, "OOssdps", &cap, &vertices, &format, &name, &tol, &complete,
-                          &spheres_name))
+    int complete, arcs;
+    unsigned threads;
+    if (!PyArg_ParseTuple(args, "OOssdpspI", &cap, &vertices, &format, &name, &tol, &complete,
+                          &spheres_name, &arcs, &threads))
         return NULL;
     vb_sphere_set *set = vbpy_spheres_get(cap);
     if (!set)
@@ -140,16 +160,24 @@ static PyObject *verify_run(PyObject *self, PyObject *args)
     int rc;
     const char *p = path ? PyBytes_AS_STRING(path) : NULL;
     vb_sphere_set run;
+    vb_arc_report ar;
     memset(&r, 0, sizeof r);
+    memset(&ar, 0, sizeof ar);
+    vb_vertex_list_init(&ar.added);
     Py_BEGIN_ALLOW_THREADS
     rc = vbpy_validate(c.ctx, set, 4, &run);
     if (rc == VB_OK)
         rc = p ? vb_verify_file(c.ctx, &run, p, tol, complete, &r)
                : vb_verify_list(c.ctx, &run, name, &v, fmt, tol, complete, &r);
+    if (rc == VB_OK && arcs)
+        rc = vb_verify_arcs(c.ctx, &run, &r, threads, &ar);
     Py_END_ALLOW_THREADS
     vb_vertex_list_free(&v);
-    PyObject *d = rc == VB_OK ? report_dict(c.ctx, &run, spheres_name, p ? p : name, &r) : NULL;
+    PyObject *d = rc == VB_OK ? report_dict(c.ctx, &run, spheres_name, p ? p : name, &r,
+                                            arcs ? &ar : NULL)
+                              : NULL;
     free(run.contained);
+    vb_arc_report_free(&ar);
     vb_verify_report_free(&r);
     Py_XDECREF(path);
     if (rc != VB_OK)
@@ -160,5 +188,5 @@ static PyObject *verify_run(PyObject *self, PyObject *args)
 PyMethodDef vbpy_verify_methods[] = {
     {"verify_run", verify_run, METH_VARARGS,
      "verify_run(spheres, path or (ids, start, x, y, z, t), format, name, tol, complete, "
-     "spheres_name) -> (dict, diagnostics)"},
+     "spheres_name, arcs, threads) -> (dict, diagnostics)"},
     {NULL, NULL, 0, NULL}};

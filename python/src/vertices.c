@@ -1,14 +1,12 @@
-/* The vertex pipeline for Python: vb_vertices_run_default (or a run on an
- * engine opened once, for trajectories) on a set, its certified vertices
- * and counters handed back, and the library's writer of vertex files. */
+/* The vertex flow for Python: vb_vertices_run_complete (or a run on an
+ * engine opened once, for trajectories, then vb_vertices_complete) on a
+ * set, its certified vertices, completion (arc closure, faces and edges,
+ * certificate) and counters handed back, and the library's writer of
+ * vertex files. */
 #include "vbpy.h"
 
 #include <stdlib.h>
 #include <string.h>
-
-#include "vb_default.h"
-#include "vb_diag.h"
-#include "vb_vertex_io.h"
 
 #define ENGINE_CAPSULE "vorball.vertices_engine"
 
@@ -85,16 +83,57 @@ static PyObject *vertex_arrays(const vb_vertex_list *v, PyObject *d)
     return bad ? NULL : d;
 }
 
+PyObject *vbpy_arcs_dict(const vb_arc_report *a)
+{
+    return Py_BuildValue("{s:n,s:n,s:n,s:n,s:n,s:n,s:n,s:n,s:O}", "vertices",
+                         (Py_ssize_t)a->vertices, "half_arcs", (Py_ssize_t)a->half_arcs,
+                         "closed", (Py_ssize_t)a->closed, "infinite", (Py_ssize_t)a->infinite,
+                         "loops", (Py_ssize_t)a->loops, "undecided", (Py_ssize_t)a->undecided,
+                         "components", (Py_ssize_t)a->components, "added",
+                         (Py_ssize_t)a->added.n,
+                         "complete", vb_arc_report_complete(a) ? Py_True : Py_False);
+}
+
+/* The faces and edges as bytes (faces: uint32 pairs; edges: int64 vertex
+ * rows, -1 for infinity, and uint32 sphere triples), or None. */
+static PyObject *topology_dict(const vb_completion *c)
+{
+    const vb_topology *t = &c->topology;
+    if (!c->has_topology)
+        Py_RETURN_NONE;
+    int64_t *v = malloc((2 * t->nedges + 1) * sizeof *v);
+    uint32_t *sp = malloc((3 * t->nedges + 1) * sizeof *sp);
+    if (!v || !sp) {
+        free(v);
+        free(sp);
+        return PyErr_NoMemory();
+    }
+    for (size_t k = 0; k < t->nedges; k++) {
+        memcpy(v + 2 * k, t->edges[k].v, sizeof t->edges[k].v);
+        memcpy(sp + 3 * k, t->edges[k].spheres, sizeof t->edges[k].spheres);
+    }
+    PyObject *d = Py_BuildValue("{s:N,s:N,s:N,s:O,s:n,s:n}", "faces",
+                                vbpy_bytes(t->faces, 2 * t->nfaces, 4), "edges",
+                                vbpy_bytes(v, 2 * t->nedges, 8), "edge_spheres",
+                                vbpy_bytes(sp, 3 * t->nedges, 4), "exact",
+                                t->exact ? Py_True : Py_False, "unresolved",
+                                (Py_ssize_t)t->unresolved, "sampled", (Py_ssize_t)t->sampled);
+    free(v);
+    free(sp);
+    return d;
+}
+
 /* The result of a run as a dict (see python/vorball/_vertices.py). */
-static PyObject *result_dict(vb_ctx *ctx, const vb_vertices_result *r)
+static PyObject *result_dict(vb_ctx *ctx, const vb_vertices_result *r, const vb_completion *c)
 {
     const vb_sampler_result *s = &r->sampler;
-    char note[512];
-    vb_vertices_certificate(r, note, sizeof note);
+    const char *note = c->certificate;
     vbpy_text st;
     if (vbpy_text_open(&st) != 0)
         return NULL;
     vb_vertices_write_stats(ctx, st.f, r);
+    if (c->traced)
+        vb_arc_write_stats(st.f, &c->arcs);
     PyObject *stats = vbpy_text_take(&st);
     const vb_stage_times *tm = &s->times;
     PyObject *d = Py_BuildValue(
@@ -113,7 +152,13 @@ static PyObject *result_dict(vb_ctx *ctx, const vb_vertices_result *r)
         "completion", tm->completion, "cover_device", s->t_cover_device);
     if (!d)
         return NULL;
-    if (!vertex_arrays(&r->certified, d)) {
+    PyObject *arcs = c->traced ? vbpy_arcs_dict(&c->arcs) : Py_NewRef(Py_None);
+    PyObject *topo = arcs ? topology_dict(c) : NULL;
+    int bad = !topo || PyDict_SetItemString(d, "arcs", arcs) != 0 ||
+              PyDict_SetItemString(d, "topology", topo) != 0;
+    Py_XDECREF(arcs);
+    Py_XDECREF(topo);
+    if (bad || !vertex_arrays(&r->certified, d)) {
         Py_DECREF(d);
         return NULL;
     }
@@ -128,8 +173,9 @@ static PyObject *vertices_run(PyObject *self, PyObject *args)
     unsigned samples, tiles, threads;
     double tol;
     int all_pairs;
-    if (!PyArg_ParseTuple(args, "OOsOIdIpI", &cap, &engine, &device, &proposer, &samples, &tol,
-                          &tiles, &all_pairs, &threads))
+    vb_completion_opts co = {0};
+    if (!PyArg_ParseTuple(args, "OOsOIdIpIpp", &cap, &engine, &device, &proposer, &samples, &tol,
+                          &tiles, &all_pairs, &threads, &co.arcs, &co.topology))
         return NULL;
     vb_sphere_set *set = vbpy_spheres_get(cap);
     vb_vertices_engine *e = engine == Py_None ? NULL : PyCapsule_GetPointer(engine, ENGINE_CAPSULE);
@@ -146,20 +192,24 @@ static PyObject *vertices_run(PyObject *self, PyObject *args)
         return NULL;
     vb_vertices_result res;
     vb_vertices_result_init(&res);
+    vb_completion done;
+    vb_completion_init(&done);
     int rc;
     vb_sphere_set run;
     Py_BEGIN_ALLOW_THREADS
     rc = vbpy_validate(c.ctx, set, 4, &run);
-    if (rc == VB_OK)
-        rc = e ? vb_vertices_run_on(c.ctx, e, &run, &cfg, &res)
-               : vb_vertices_run_default(c.ctx, &run, &cfg, &res);
+    if (rc == VB_OK && e) {
+        vb_completion_plan(&cfg, &co);
+        rc = vb_vertices_run_on(c.ctx, e, &run, &cfg, &res);
+        if (rc == VB_OK)
+            rc = vb_vertices_complete(c.ctx, &run, &res, res.rejected.n, &co, &done);
+    } else if (rc == VB_OK) {
+        rc = vb_vertices_run_complete(c.ctx, &run, &cfg, &co, &res, &done);
+    }
     free(run.contained);
     Py_END_ALLOW_THREADS
-    /* As the command: a cover's refused roots are expected, a sampler's are not. */
-    if (rc == VB_OK && res.rejected.n && !res.sampler.complete)
-        vb_warn(c.ctx, VB_W_CERT_REJECTED, NULL, 0, "the certifier rejected %zu candidate(s)",
-                res.rejected.n);
-    PyObject *d = rc == VB_OK ? result_dict(c.ctx, &res) : NULL;
+    PyObject *d = rc == VB_OK ? result_dict(c.ctx, &res, &done) : NULL;
+    vb_completion_free(&done);
     vb_vertices_result_free(&res);
     if (rc != VB_OK)
         return vbpy_call_fail(&c, rc);
@@ -254,8 +304,8 @@ PyMethodDef vbpy_vertices_methods[] = {
     {"vertices_engine_open", engine_open, METH_VARARGS,
      "vertices_engine_open(device, proposer) -> (capsule, diagnostics)"},
     {"vertices_run", vertices_run, METH_VARARGS,
-     "vertices_run(spheres, engine, device, proposer, samples, tol, tiles, all_pairs, threads) "
-     "-> (dict, diagnostics)"},
+     "vertices_run(spheres, engine, device, proposer, samples, tol, tiles, all_pairs, threads, "
+     "arcs, topology) -> (dict, diagnostics)"},
     {"vertex_text", vertex_text, METH_VARARGS,
      "vertex_text(ids, start, x, y, z, t, format, comment) -> str (the library's writer)"},
     {NULL, NULL, 0, NULL}};

@@ -1,7 +1,10 @@
 """Nothing prints unless asked; warnings are collected with their numbers;
 the one exception class; the catalogue; runs in threads."""
 import pickle
+import subprocess
+import sys
 import threading
+import warnings
 
 import numpy as np
 import pytest
@@ -40,6 +43,44 @@ def test_one_exception_class():
     assert isinstance(e, Exception) and str(e).startswith("E106: ")
     again = pickle.loads(pickle.dumps(e))
     assert (again.number, again.message, again.exit_status) == (106, e.message, 16)
+
+
+def test_warnings_through_the_warnings_module():
+    """Not verbose: each warning is also a VorballWarning carrying its
+    number, ignored unless a filter shows it; the records, not text."""
+    with warnings.catch_warnings(record=True) as got:
+        warnings.simplefilter("always", vorball.VorballWarning)
+        res = vorball.vertices(CONTAINED, device="ref")
+    w = [x.message for x in got if issubclass(x.category, vorball.VorballWarning)]
+    assert 701 in [m.number for m in w]
+    assert [m.number for m in w] == [d.number for d in res.warnings]
+    assert [str(m) for m in w] == [str(d) for d in res.warnings]
+    assert w[0].diagnostic == res.warnings[0]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", vorball.VorballWarning)
+        e = pytest.raises(vorball.VorballWarning, vorball.vertices, CONTAINED, device="ref")
+    assert e.value.number == 701
+    # Outside pytest (which shows every warning), the package's filter
+    # ignores them: a plain program prints nothing; a filter of its own shows them.
+    prog = "import vorball; vorball.vertices(%r, device='ref')" % CONTAINED
+    quiet = subprocess.run([sys.executable, "-c", prog], capture_output=True, text=True)
+    assert quiet.returncode == 0 and quiet.stderr == ""
+    show = "import warnings, vorball; warnings.simplefilter('always', vorball.VorballWarning); "
+    loud = subprocess.run([sys.executable, "-c", show + prog], capture_output=True, text=True)
+    assert "VorballWarning: vorball: W701: " in loud.stderr
+
+
+def test_error_record_apart(tmp_path):
+    """An error keeps the library's record: number, code, file and line
+    beside the message the command prints."""
+    p = tmp_path / "bad.xyzr"
+    p.write_text("0 0 0 1\n4 0 0 1\n0 4 0 -1\n0 0 4 1\n4 4 4 1\n")
+    e = pytest.raises(vorball.VorballError, vorball.vertices, str(p), device="ref").value
+    assert (e.number, e.code, e.file, e.line) == (103, 1 | (3 << 8), str(p), 3)
+    _, err = cli("vertices", "--device", "ref", p, rc=13)
+    assert err == "vorball: E103: %s\n" % e.message
+    again = pickle.loads(pickle.dumps(e))
+    assert (again.file, again.line, again.row, again.code) == (e.file, 3, None, e.code)
 
 
 def test_catalogue_is_the_libraries():

@@ -10,18 +10,19 @@ The calls run the library of the `vorball` command (libvorball) in the
 process: the same readers, the same pipelines, the same bytes
 (Result.to_text() is what `vorball vertices` writes). Errors raise
 VorballError with the catalogue's E-number; warnings are collected on the
-results (.warnings) and printed only with verbose=True.
+results (.warnings), printed with verbose=True and otherwise issued as
+VorballWarning (ignored unless a warnings filter shows them).
 """
-from ._errors import CatalogueEntry, Diagnostic, VorballError, catalogue
+from ._errors import CatalogueEntry, Diagnostic, VorballError, VorballWarning, catalogue
 from ._spheres import Frames, Spheres, frames, read, spheres
-from ._vertices import Certificate, Engine, Result, vertex_text, vertices
+from ._vertices import Arcs, Certificate, Engine, Result, Topology, vertex_text, vertices
 from ._verify import DUPLICATE, MISSING, NOT_VERTEX, WRONG_COORDS, Report, verify
 from ._channels import Channels, channel_flags, channels
 
-__all__ = ["CatalogueEntry", "Certificate", "Channels", "Diagnostic", "DUPLICATE", "Engine",
-           "Frames", "MISSING", "NOT_VERTEX", "Report", "Result", "Spheres", "VorballError",
-           "WRONG_COORDS", "catalogue", "channel_flags", "channels", "frames", "read",
-           "spheres", "verify", "vertex_text", "vertices"]
+__all__ = ["Arcs", "CatalogueEntry", "Certificate", "Channels", "Diagnostic", "DUPLICATE",
+           "Engine", "Frames", "MISSING", "NOT_VERTEX", "Report", "Result", "Spheres", "Topology",
+           "VorballError", "VorballWarning", "WRONG_COORDS", "catalogue", "channel_flags",
+           "channels", "frames", "read", "spheres", "verify", "vertex_text", "vertices"]
 
 try:
     from importlib.metadata import PackageNotFoundError, version as _version

@@ -1,10 +1,14 @@
 """Errors and diagnostics: one exception class carrying the catalogue's
-E-number, and the warnings a call collected instead of printing them."""
+E-number, one warning class carrying the W-number, and the warnings a call
+collected instead of printing them. The library hands its diagnostics over
+as records (kind, number, file, line, message: its log callback), never as
+text to parse back."""
 from __future__ import annotations
 
 import re
 import sys
-from typing import Dict, Iterable, List, NamedTuple, Optional, Tuple, Union
+import warnings
+from typing import Dict, Iterable, List, NamedTuple, Optional, Tuple
 
 from . import _core
 
@@ -32,28 +36,62 @@ class Diagnostic(NamedTuple):
         return "vorball: " + self.message
 
 
-_LINE = re.compile(r"^vorball: W(\d+): (.*)$")
+def _located(file: Optional[str], line: int, message: str) -> str:
+    """The message with its location, as the command prints it; spheres
+    given as arrays are named by row."""
+    if file == ARRAYS and line > 0:
+        return rows("%s row %d: %s" % (ARRAYS, line - 1, message))
+    if file and line > 0:
+        return rows("%s:%d: %s" % (file, line, message))
+    return rows("%s: %s" % (file, message) if file else message)
 
 
-def parse(text: Optional[str]) -> List[Diagnostic]:
-    """The diagnostics of a call's captured text, one per line."""
+def parse(records: Optional[Iterable[tuple]]) -> List[Diagnostic]:
+    """The diagnostics of a call: its records (kind, number, file, line,
+    message) from the library's log callback, or Diagnostic tuples."""
     out = []
-    for line in rows(text or "").splitlines():
-        m = _LINE.match(line)
-        if m:
-            out.append(Diagnostic("W", int(m.group(1)), m.group(2)))
-        elif line.startswith("vorball: "):
-            out.append(Diagnostic("I", 0, line[len("vorball: "):]))
-        elif line and out:  # a message over several lines
-            out[-1] = out[-1]._replace(message=out[-1].message + "\n" + line)
+    for r in records or []:
+        if len(r) == 5:
+            kind, number, file, line, message = r
+            out.append(Diagnostic(kind, number, _located(file, line, message)))
+        else:
+            out.append(Diagnostic(*r))
     return out
 
 
-def emit(diagnostics: Iterable[Diagnostic], verbose: bool) -> None:
-    """Prints the diagnostics on sys.stderr when verbose, as the command does."""
-    if verbose:
-        for d in diagnostics:
+class VorballWarning(UserWarning):
+    """A warning of the library, issued through the warnings module when a
+    call is not verbose. number: the catalogue's W-number (vorball.catalogue());
+    diagnostic: the vorball.Diagnostic. Ignored by default (the package
+    appends an 'ignore' filter, which any filter of the caller overrides:
+    warnings.simplefilter("always", vorball.VorballWarning) shows them,
+    "error" raises them)."""
+
+    number: int
+    diagnostic: Diagnostic
+
+    def __init__(self, diagnostic: Diagnostic) -> None:
+        super().__init__(str(diagnostic))
+        self.number = diagnostic.number
+        self.diagnostic = diagnostic
+
+
+warnings.filterwarnings("ignore", category=VorballWarning, append=True)
+
+
+def emit(diagnostics: Iterable[Diagnostic], verbose: Optional[bool],
+         stacklevel: int = 3) -> None:
+    """Prints the diagnostics on sys.stderr when verbose, as the command
+    does; otherwise issues each warning as a VorballWarning (stacklevel 3:
+    the caller of the package's function that called emit). verbose None:
+    neither (a call inside the package, whose caller emits them)."""
+    if verbose is None:
+        return
+    for d in diagnostics:
+        if verbose:
             print(d, file=sys.stderr)
+        elif d.kind == "W":
+            warnings.warn(VorballWarning(d), stacklevel=stacklevel)
 
 
 class VorballError(Exception):
@@ -64,7 +102,8 @@ class VorballError(Exception):
     message      the library's message (file:line: ... for input errors;
                  spheres given as arrays are named '<arrays> row i')
     row          for spheres given as arrays, the row the message names
-    status       the library's status code (vb.h)
+    file, line   where the library's error record points (None, 0: nowhere)
+    status       the library's status code (vb.h); also as code
     exit_status  the exit status of the `vorball` command for this error
     diagnostics  the warnings emitted before the failure
     """
@@ -75,24 +114,34 @@ class VorballError(Exception):
     exit_status: Optional[int]
     diagnostics: List[Diagnostic]
     row: Optional[int]
+    file: Optional[str]
+    line: int
 
     def __init__(self, number: int, message: str, status: Optional[int] = None,
                  exit_status: Optional[int] = None,
-                 diagnostics: Union[str, Iterable[Diagnostic], None] = None) -> None:
-        message = rows(message)
+                 diagnostics: Optional[Iterable[tuple]] = None,
+                 file: Optional[str] = None, line: int = 0, row: Optional[int] = None) -> None:
+        # From the library: the error record's message, file and line apart.
+        message = _located(file, line, message)
         super().__init__("E%d: %s" % (number, message))
         self.number = number
         self.message = message
         self.status = status
         self.exit_status = exit_status
-        self.diagnostics = (parse(diagnostics) if isinstance(diagnostics, str)
-                            else [Diagnostic(*d) for d in diagnostics or []])
-        m = re.match(re.escape(ARRAYS) + r" row (\d+)[:,] ", message)
-        self.row = int(m.group(1)) if m else None
+        self.diagnostics = parse(diagnostics)
+        self.file, self.line = file, line
+        self.row = row if row is not None else (
+            line - 1 if file == ARRAYS and line > 0 else None)
+
+    @property
+    def code(self) -> Optional[int]:
+        """The library's status code (status)."""
+        return self.status
 
     def __reduce__(self):
         return (type(self), (self.number, self.message, self.status, self.exit_status,
-                             [tuple(d) for d in self.diagnostics]))
+                             [tuple(d) for d in self.diagnostics]),
+                {"row": self.row, "file": self.file, "line": self.line})
 
 
 _core._set_error_class(VorballError)

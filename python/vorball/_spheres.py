@@ -5,7 +5,7 @@ from __future__ import annotations
 import decimal
 import numbers
 import os
-from typing import Any, Iterator, List, Optional, Tuple, Union
+from typing import Any, Iterable, Iterator, List, Optional, Tuple, Union
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -53,7 +53,7 @@ class Spheres:
     line: np.ndarray
     contained: np.ndarray
 
-    def __init__(self, capsule: Any, diagnostics: Union[str, List[Diagnostic]] = "",
+    def __init__(self, capsule: Any, diagnostics: Optional[Iterable[tuple]] = None,
                  index: int = 0, model: int = 1) -> None:
         self._capsule = capsule
         info = _core.spheres_info(capsule)
@@ -62,7 +62,7 @@ class Spheres:
         self.exact = info["exact"]
         self.index = index
         self.model = model
-        self.warnings = parse(diagnostics) if isinstance(diagnostics, str) else diagnostics
+        self.warnings = parse(diagnostics)
 
         self.xyz = np.stack([np.frombuffer(info[k], dtype=np.float64) for k in "xyz"], axis=1)
         self.xyz.setflags(write=False)
@@ -135,7 +135,7 @@ def _read_args(format, model, water, hydrogens, strict_elements, radii, zero_rad
 
 def read(path: PathLike, format: str = "auto", model: Optional[int] = None, water: bool = False,
          hydrogens: bool = True, strict_elements: bool = False, radii: Optional[PathLike] = None,
-         zero_radius: str = "auto", verbose: bool = False) -> Spheres:
+         zero_radius: str = "auto", verbose: Optional[bool] = False) -> Spheres:
     """Reads the spheres of a file as every `vorball` command does.
 
     path is any format the command reads (detected by content, or named by
@@ -274,7 +274,8 @@ def _unmasked(a, what):
 
 
 def spheres(xyz: Union[Spheres, ArrayLike], r: Optional[ArrayLike] = None,
-            zero_radius: str = "auto", min_count: int = 1, verbose: bool = False) -> Spheres:
+            zero_radius: str = "auto", min_count: int = 1,
+            verbose: Optional[bool] = False) -> Spheres:
     """Spheres from arrays, with exact decimals as the certifier needs them.
 
     xyz is (n, 3) (or (n, 4) x y z r when r is None); r is (n,) or one
@@ -342,12 +343,13 @@ def as_spheres(xyz: SphereInput, r: Optional[ArrayLike] = None, min_count: int =
             raise misuse("r is given with a Spheres that has its radii")
         if not (exact and not xyz.exact):
             return xyz, []
-        s = spheres(xyz.xyz, xyz.r, zero_radius, min_count)
+        s = spheres(xyz.xyz, xyz.r, zero_radius, min_count, verbose=None)
         s.index, s.model = xyz.index, xyz.model
     elif isinstance(xyz, (str, os.PathLike)):
         if r is not None:
             raise misuse("r is given with a file that has its radii")
-        s = read(xyz, zero_radius=zero_radius)
+        s = read(xyz, zero_radius=zero_radius, verbose=None)
     else:
-        s = spheres(xyz, r, zero_radius, min_count)
+        s = spheres(xyz, r, zero_radius, min_count, verbose=None)
+    # verbose=None: collected, not emitted; the caller emits them with its own.
     return s, [w for w in s.warnings if not (revalidated and w.number in VALIDATION)]

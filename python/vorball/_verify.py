@@ -12,7 +12,7 @@ from numpy.typing import ArrayLike
 from . import _core
 from ._errors import Diagnostic, emit, error, misuse, parse
 from ._spheres import PathLike, SphereInput, as_spheres
-from ._vertices import Result
+from ._vertices import Arcs, Result, _arcs
 
 # Vertices as verify takes them: a Result, (ids, xyz, t) in memory, or a
 # vertex file.
@@ -27,7 +27,8 @@ _NAMES = ((NOT_VERTEX, "not a vertex"), (WRONG_COORDS, "wrong coordinates"),
 class Report:
     """The judgement of every vertex (line) by the exact certifier.
 
-    ok         every line certified and (with complete) nothing missed
+    ok         every line certified, (with complete) nothing missed and
+               (with arcs) every arc closed with no vertex added
     counts     dict: lines, certified, not_vertex, wrong, missing,
                duplicate, missed, groups
     problems   (m,) int: the bits NOT_VERTEX, WRONG_COORDS, MISSING,
@@ -38,7 +39,11 @@ class Report:
     intruder   (m,) the sphere cutting the tangent sphere of a line that is
                not a vertex (-1 when none)
     missed     with complete: (ids, xyz, t) of the vertices no line names
-    text, json the report `vorball verify` writes (text, and --json)
+    arcs       with arcs: an Arcs (arc closure's counts; added: the vertices
+               it found that no line names), else None
+    arcs_missing  with arcs: (ids, xyz, t) of those vertices, else None
+    text, json the report `vorball verify` writes (text, and --json; with
+               arcs those of `--arcs`)
     """
 
     ok: bool
@@ -54,6 +59,8 @@ class Report:
     exact: np.ndarray
     intruder: np.ndarray
     missed: Tuple[List[np.ndarray], np.ndarray, np.ndarray]
+    arcs: Optional[Arcs]
+    arcs_missing: Optional[Tuple[List[np.ndarray], np.ndarray, np.ndarray]]
     warnings: List[Diagnostic]
 
     def __init__(self, d: Dict[str, Any], warnings: List[Diagnostic]) -> None:
@@ -70,13 +77,9 @@ class Report:
         intr = np.frombuffer(d["intruder"], dtype=np.uint32).astype(np.int64)
         intr[intr == 2**32 - 1] = -1
         self.intruder = intr
-        m = d["missed"]
-        flat = np.frombuffer(m["ids"], dtype=np.uint32).astype(np.int64)
-        start = np.frombuffer(m["start"], dtype=np.int64)
-        ids = np.split(flat, start[1:-1]) if len(start) > 1 else []
-        xyz = np.stack([np.frombuffer(m[k], dtype=np.float64) for k in "xyz"], axis=1) \
-            if len(start) > 1 else np.empty((0, 3))
-        self.missed = (ids, xyz, np.frombuffer(m["t"], dtype=np.float64))
+        self.missed = _rows(d["missed"])
+        self.arcs = _arcs(d["arcs"])
+        self.arcs_missing = _rows(d["arcs"]["missing"]) if d["arcs"] else None
 
     def classes(self, k: int) -> List[str]:
         """The names of the problems of line k ([] when certified)."""
@@ -90,6 +93,16 @@ class Report:
         c = self.counts
         return "<vorball.Report %s: %d of %d lines certified, %d missed>" % (
             "ok" if self.ok else "PROBLEMS", c["certified"], c["lines"], c["missed"])
+
+
+def _rows(m):
+    """(ids, xyz, t) of vertices handed over as CSR bytes."""
+    flat = np.frombuffer(m["ids"], dtype=np.uint32).astype(np.int64)
+    start = np.frombuffer(m["start"], dtype=np.int64)
+    ids = np.split(flat, start[1:-1]) if len(start) > 1 else []
+    xyz = np.stack([np.frombuffer(m[k], dtype=np.float64) for k in "xyz"], axis=1) \
+        if len(start) > 1 else np.empty((0, 3))
+    return ids, xyz, np.frombuffer(m["t"], dtype=np.float64)
 
 
 def _csr(vertices):
@@ -131,7 +144,8 @@ def _is_vertices(v):
 
 def verify(xyz: SphereInput, r: Union[ArrayLike, VertexInput, None] = None,
            vertices: Optional[VertexInput] = None, *, tol: float = 1e-6, complete: bool = False,
-           format: str = "tsv", zero_radius: str = "auto", verbose: bool = False) -> Report:
+           arcs: bool = False, threads: int = 0, format: str = "tsv", zero_radius: str = "auto",
+           verbose: bool = False) -> Report:
     """Judges vertices exactly against the spheres, as `vorball verify`.
 
     xyz, r: the spheres (arrays, a Spheres or a file path; r may be left
@@ -140,8 +154,10 @@ def verify(xyz: SphereInput, r: Union[ArrayLike, VertexInput, None] = None,
     vertex file (tsv, json or Voronota's, detected by content). format
     says how vertices in memory are grouped: 'voronota' judges quadruple
     lines of one vertex together. tol: distance tolerance (> 0); complete:
-    also list the vertices no line names (exact reference: small inputs).
-    Returns a Report; raises VorballError (E105 for no vertices).
+    also list the vertices no line names (exact reference: small inputs);
+    arcs: trace every edge of the certified lines exactly (`--arcs`, any
+    size; report.arcs, report.arcs_missing); threads: its host threads
+    (0: all CPUs; the report does not depend on it). Returns a Report; raises VorballError (E105 for no vertices).
     """
     if vertices is None and r is not None and _is_vertices(r):
         r, vertices = None, r
@@ -149,6 +165,9 @@ def verify(xyz: SphereInput, r: Union[ArrayLike, VertexInput, None] = None,
         raise misuse("verify needs vertices: a Result, (ids, xyz, t) or a vertex file path")
     if not isinstance(tol, numbers.Real) or not tol > 0:
         raise misuse("tol must be > 0, not %r" % (tol,))
+    if not isinstance(threads, numbers.Integral) or isinstance(threads, bool) or \
+            not 0 <= threads <= 64:
+        raise misuse("threads must be an integer in 0..64, not %r" % (threads,))
     s, made = as_spheres(xyz, r, min_count=4, zero_radius=zero_radius)
     if isinstance(vertices, (str, os.PathLike)):
         v = os.fspath(vertices)
@@ -156,7 +175,8 @@ def verify(xyz: SphereInput, r: Union[ArrayLike, VertexInput, None] = None,
     else:
         v = _csr(vertices)
         name = "<vertices>"
-    d, diag = _core.verify_run(s._capsule, v, format, name, float(tol), bool(complete), s.source)
+    d, diag = _core.verify_run(s._capsule, v, format, name, float(tol), bool(complete), s.source,
+                               bool(arcs), int(threads))
     w = made + parse(diag)
     emit(w, verbose)
     return Report(d, w)

@@ -30,6 +30,59 @@ class Certificate(NamedTuple):
     cover_host_cells: int
 
 
+class Arcs(NamedTuple):
+    """Arc closure of the certified list (vertices(..., arcs=True)): every
+    Voronoi edge of the certified vertices traced exactly to its next
+    vertex, as `vorball vertices --arcs` does. complete: every arc closed
+    and no vertex added; the other fields are the counts of the command's
+    '# arcs:' header line."""
+    complete: bool
+    vertices: int      # vertices traced: the proposer's and those added
+    half_arcs: int     # arcs leaving a vertex (a finite edge counts from both ends)
+    closed: int        # half arcs that end at a certified vertex
+    infinite: int      # half arcs to infinity
+    loops: int         # half arcs of a closed curve back to their vertex
+    undecided: int     # half arcs not traced exactly (warning W766)
+    added: int         # vertices found by tracing (certified and in the result)
+    components: int    # connected components of the vertex-edge graph
+
+
+class Topology(NamedTuple):
+    """Faces and edges of the diagram (vertices(..., topology=True)), the
+    file `vorball vertices --topology FILE` writes: exact from arc closure,
+    or with proposer='sampling' and arcs=False from the sampling's evidence.
+    faces         (k, 2) int64: sphere pairs i < j that share a face
+    edges         (m, 2) int64: rows of the result's vertices an edge joins
+                  (-1: the edge runs to infinity; both equal: a closed loop)
+    edge_spheres  (m, 3) int64: the three spheres whose faces meet along it
+    exact         True when from arc closure
+    unresolved    what could not be decided (warning W765)
+    sampled       edge lines the sampling's two-colour test saw"""
+    faces: np.ndarray
+    edges: np.ndarray
+    edge_spheres: np.ndarray
+    exact: bool
+    unresolved: int
+    sampled: int
+
+
+def _arcs(d):
+    return None if d is None else Arcs(d["complete"], d["vertices"], d["half_arcs"], d["closed"],
+                                       d["infinite"], d["loops"], d["undecided"], d["added"],
+                                       d["components"])
+
+
+def _topology(d):
+    if d is None:
+        return None
+
+    def rows(key, dtype, k):
+        return np.frombuffer(d[key], dtype=dtype).astype(np.int64).reshape(-1, k)
+    return Topology(rows("faces", np.uint32, 2), rows("edges", np.int64, 2),
+                    rows("edge_spheres", np.uint32, 3), bool(d["exact"]), d["unresolved"],
+                    d["sampled"])
+
+
 def _number(text):
     for conv in (int, float):
         try:
@@ -61,7 +114,10 @@ class Result(tuple):
     xyz      (m, 3) float64: the exact vertex rounded to the nearest double
     t        (m,) float64: the tangent radius (negative where spheres overlap)
     ids_flat, offsets   the same ids as one array and m + 1 offsets
-    certificate  a Certificate (complete, counts)
+    certificate  a Certificate (complete, counts; its text holds the
+             '# arcs:' line too when arcs were traced)
+    arcs     an Arcs (arc closure's counts) when asked for, else None
+    topology a Topology (faces and edges) when asked for, else None
     stats    the counters `vorball vertices --stats` prints, as a dict
     times    seconds per stage (setup, certify, total, cull, ...)
     backend, device   what ran ('opencl' or 'ref', and the device name)
@@ -79,6 +135,8 @@ class Result(tuple):
     ids_flat: np.ndarray
     offsets: np.ndarray
     certificate: Certificate
+    arcs: Optional[Arcs]
+    topology: Optional[Topology]
     stats: Dict[str, Union[int, float, str]]
     times: Dict[str, float]
     backend: str
@@ -100,6 +158,7 @@ class Result(tuple):
         self.certificate = Certificate(bool(d["complete"]), d["certificate"], d["certified"],
                                        d["rejected"], d["quadruples"], d["cover_cells"],
                                        d["cover_patches"], d["cover_host_cells"])
+        self.arcs, self.topology = _arcs(d["arcs"]), _topology(d["topology"])
         self.stats = _stats(d["stats"])
         self.times = dict(d["times"])
         self.backend, self.device = d["backend"], d["device"]
@@ -169,7 +228,8 @@ def _proposer(p):
 def vertices(xyz: SphereInput, r: Optional[ArrayLike] = None, device: str = "auto",
              samples: int = 30, *, proposer: Optional[str] = None, tol: Optional[float] = None,
              tiles: int = 0, all_pairs: bool = False, threads: int = 0,
-             zero_radius: str = "auto", verbose: bool = False) -> Result:
+             arcs: bool = False, topology: bool = False, zero_radius: str = "auto",
+             verbose: bool = False) -> Result:
     """The certified Voronoi vertices of spheres, as `vorball vertices`.
 
     xyz, r: arrays (see vorball.spheres for how each number becomes an
@@ -180,7 +240,11 @@ def vertices(xyz: SphereInput, r: Optional[ArrayLike] = None, device: str = "aut
     face for the sampling proposer; proposer: 'cover' (the default: proves
     that no vertex is missing) or 'sampling' (the seed paper's rays); tol,
     tiles, all_pairs, threads as the command's --tol, --tiles, --all-pairs,
-    --threads (the output never depends on threads or device).
+    --threads (the output never depends on threads or device). arcs: trace
+    every edge of the certified vertices exactly (`--arcs`: vertices found
+    on the way are certified and added, result.arcs holds the counts);
+    topology: the faces and edges (`--topology`; exact from arc closure,
+    which it implies unless proposer='sampling' and arcs=False).
     Returns a Result that unpacks as (ids, xyz, t). Raises VorballError.
     Nothing is printed unless verbose.
     """
@@ -188,7 +252,8 @@ def vertices(xyz: SphereInput, r: Optional[ArrayLike] = None, device: str = "aut
     if not isinstance(device, str):
         raise misuse("device must be auto, gpu, cpu or ref, not %r" % (device,))
     s, made = as_spheres(xyz, r, min_count=4, zero_radius=zero_radius)
-    d, diag = _core.vertices_run(s._capsule, None, device, _proposer(proposer), *opts)
+    d, diag = _core.vertices_run(s._capsule, None, device, _proposer(proposer), *opts,
+                                 bool(arcs), bool(topology))
     w = made + parse(diag)
     emit(w, verbose)
     return Result(d, w, s)
@@ -226,8 +291,8 @@ class Engine:
 
     def vertices(self, xyz: SphereInput, r: Optional[ArrayLike] = None, samples: int = 30, *,
                  tol: Optional[float] = None, tiles: int = 0, all_pairs: bool = False,
-                 threads: int = 0, zero_radius: str = "auto",
-                 verbose: Optional[bool] = None) -> Result:
+                 threads: int = 0, arcs: bool = False, topology: bool = False,
+                 zero_radius: str = "auto", verbose: Optional[bool] = None) -> Result:
         """vorball.vertices on this engine's device and proposer."""
         verbose = self.verbose if verbose is None else verbose
         opts = _options(samples, tol, tiles, all_pairs, threads)
@@ -236,7 +301,8 @@ class Engine:
             if self._vertices is None:
                 self._vertices = self._open(_core.vertices_engine_open, self.device,
                                             self.proposer)
-            d, diag = _core.vertices_run(s._capsule, self._vertices, self.device, self.proposer, *opts)
+            d, diag = _core.vertices_run(s._capsule, self._vertices, self.device, self.proposer,
+                                         *opts, bool(arcs), bool(topology))
         w = made + parse(diag)
         emit(w, verbose)
         return Result(d, w, s)

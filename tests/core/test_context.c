@@ -1,4 +1,5 @@
 /* Unit tests of the context: errors, extended codes, warnings, counters. */
+#include <stdio.h>
 #include <stdlib.h>
 
 #include "vb.h"
@@ -63,6 +64,88 @@ static void test_verbosity(void)
     vb_close(ctx);
 }
 
+/* The log callback: records (number, severity, file, line, message) in
+ * place of the text, nothing on the stream; NULL restores the text. */
+typedef struct kept {
+    int n;
+    char kind[4];
+    int number[4];
+    long line[4];
+    char file[4][32], message[4][64];
+} kept;
+
+static void keep(void *arg, const vb_diag_record *r)
+{
+    kept *k = arg;
+    if (k->n == 4)
+        return;
+    k->kind[k->n] = r->kind;
+    k->number[k->n] = r->number;
+    k->line[k->n] = r->line;
+    snprintf(k->file[k->n], sizeof k->file[0], "%s", r->file ? r->file : "(none)");
+    snprintf(k->message[k->n], sizeof k->message[0], "%s", r->message);
+    k->n++;
+}
+
+static void test_log_callback(void)
+{
+    FILE *sink = tmpfile();
+    vb_config cfg = {.verbosity = 2, .diag = sink};
+    vb_ctx *ctx;
+    kept k = {0};
+    CHECK_INT(vb_open(&ctx, &cfg), VB_OK);
+    CHECK_INT(vb_set_log(ctx, keep, &k), VB_OK);
+    vb_warn(ctx, VB_W_CONTAINED, "x.pdb", 3, "sphere %d is contained", 2);
+    vb_warn(ctx, VB_W_CERT_REJECTED, NULL, 0, "rejected %d", 5);
+    vb_warn(ctx, VB_W_CONTAINED, "y.pdb", 0, "no line");
+    vb_info(ctx, "info %s", "line");
+    CHECK_INT(k.n, 4);
+    CHECK_INT(k.kind[0], 'W');
+    CHECK_INT(k.number[0], 701);
+    CHECK_STR(k.file[0], "x.pdb");
+    CHECK_INT(k.line[0], 3);
+    CHECK_STR(k.message[0], "sphere 2 is contained");
+    CHECK_INT(k.number[1], 763);
+    CHECK_STR(k.file[1], "(none)");
+    CHECK_STR(k.message[1], "rejected 5");
+    CHECK_STR(k.file[2], "y.pdb");
+    CHECK_INT(k.line[2], 0);
+    CHECK_INT(k.kind[3], 'I');
+    CHECK_INT(k.number[3], 0);
+    CHECK_STR(k.message[3], "info line");
+    CHECK_INT(vb_ctx_stats(ctx)->warnings, 3);
+    CHECK_INT(ftell(sink), 0); /* nothing printed */
+    CHECK_INT(vb_set_log(ctx, NULL, NULL), VB_OK);
+    vb_warn(ctx, VB_W_CONTAINED, NULL, 0, "text again");
+    CHECK_INT(k.n, 4);
+    rewind(sink);
+    char buf[128] = {0};
+    CHECK(fgets(buf, sizeof buf, sink) != NULL);
+    CHECK_STR(buf, "vorball: W701: text again\n");
+    CHECK_INT(vb_set_log(NULL, keep, &k), VB_EMISUSE);
+    /* The error as a record: its number, location and message apart. */
+    vb_diag_record er;
+    vb_error(ctx, VB_EINPUT_RADIUS, "a.xyzr", 7, "radius %s is not positive", "-1");
+    CHECK_INT(vb_error_record(ctx, &er), VB_OK);
+    CHECK_INT(er.kind, 'E');
+    CHECK_INT(er.number, 103);
+    CHECK_STR(er.file, "a.xyzr");
+    CHECK_INT(er.line, 7);
+    CHECK_STR(er.message, "radius -1 is not positive");
+    CHECK_STR(vb_errmsg(ctx), "a.xyzr:7: radius -1 is not positive");
+    vb_error(ctx, VB_EIO, NULL, 0, "plain");
+    CHECK_INT(vb_error_record(ctx, &er), VB_OK);
+    CHECK(er.file == NULL && er.line == 0);
+    CHECK_STR(er.message, "plain");
+    vb_clear_error(ctx);
+    CHECK_INT(vb_error_record(ctx, &er), VB_OK);
+    CHECK_INT(er.number, 0);
+    CHECK_STR(er.message, "");
+    CHECK_INT(vb_error_record(NULL, &er), VB_EMISUSE);
+    fclose(sink);
+    vb_close(ctx);
+}
+
 /* The misuse guard: a NULL context is caught, never dereferenced. */
 static void test_misuse(void)
 {
@@ -104,6 +187,7 @@ int main(void)
     test_errors();
     test_warnings_counted();
     test_verbosity();
+    test_log_callback();
     test_misuse();
     test_vertex_sort();
     VB_TEST_END();

@@ -42,6 +42,16 @@ expect_line "$work/s.3.err" "^vorball: W830: .*rank 0 runs it alone, 2 rank"
 # Input warnings come once, from rank 0 (W713: PQR's radius-0 hydrogens).
 run 0 "$work/w.3.err" mpi 3 "$vorball" vertices --device ref "$corpus/data/1crn_apbs.pqr" -o "$work/w.tsv"
 [ "$(grep -c 'W713' "$work/w.3.err")" -eq 1 ] || { cat "$work/w.3.err" >&2; fail "W713 not printed exactly once"; }
+# The other ranks' warnings reach rank 0 as records (number, file, line,
+# message; cli/world_mpi.c) and are printed once, tagged with their ranks:
+# without a GPU every rank falls back to the reference (W760).
+run 0 "$work/g.3.err" mpi 3 "$vorball" vertices --device gpu "$corpus/inputs/contained_sphere.xyzr" \
+    -o "$work/g.tsv"
+if grep -q '^vorball: W760: no usable' "$work/g.3.err"; then
+    expect_line "$work/g.3.err" '^vorball: W760: ranks 1, 2 of 3: no usable OpenCL device'
+    [ "$(grep -c 'W760' "$work/g.3.err")" -eq 2 ] ||
+        { cat "$work/g.3.err" >&2; fail "W760 not once from rank 0, once from ranks 1, 2"; }
+fi
 # bench: the split run, timed on rank 0, finds the same vertices.
 run 0 "$work/b.1.out" "$vorball" bench --device ref --json "$crn"
 run 0 "$work/b.2.out" mpi 2 "$vorball" bench --device ref --json "$crn"

@@ -14,6 +14,24 @@ cmake --install "$build" --prefix "$work/prefix" --component libvorball > "$work
 pc=$(find "$work/prefix" -name vorball.pc | head -n 1)
 [ -n "$pc" ] || fail "no vorball.pc installed"
 libdir=$(dirname "$(dirname "$pc")")
+# The installed headers are vorball.h and what it includes, nothing more.
+inc=$(dirname "$(find "$work/prefix" -name vorball.h | head -n 1)")
+[ -f "$inc/vorball.h" ] || fail "no vorball.h installed"
+reached=vorball.h todo=vorball.h
+while [ -n "$todo" ]; do
+    next=""
+    for h in $todo; do
+        [ -f "$inc/$h" ] || fail "$h (included by the public headers) is not installed"
+        for d in $(sed -n 's/^#include "\(.*\)"$/\1/p' "$inc/$h"); do
+            case " $reached " in *" $d "*) ;; *) reached="$reached $d" next="$next $d" ;; esac
+        done
+    done
+    todo=$next
+done
+for f in "$inc"/*.h; do
+    case " $reached " in *" $(basename "$f") "*) ;;
+        *) fail "$(basename "$f") is installed but vorball.h does not include it" ;; esac
+done
 cflags=$(PKG_CONFIG_PATH=$(dirname "$pc") pkg-config --cflags vorball) || fail "pkg-config --cflags"
 libs=$(PKG_CONFIG_PATH=$(dirname "$pc") pkg-config --libs vorball) || fail "pkg-config --libs"
 # shellcheck disable=SC2086 # the flags are words

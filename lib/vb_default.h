@@ -5,9 +5,8 @@
  *
  * Why here: core/ must not include gpu/ or verify/ (its drivers take them
  * through tables), and gpu/ and verify/ never touch each other, so the one
- * place that names all three is above them, with the command. It is its
- * own library target (vb_default): a binding links it, never the command's
- * sources. */
+ * place that names all three is above them: the front door (lib/), whose
+ * target vb_default the command and the bindings link as peers. */
 #ifndef VB_DEFAULT_H
 #define VB_DEFAULT_H
 

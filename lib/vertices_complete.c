@@ -1,0 +1,107 @@
+/* The completion stage of the vertex flow (vb_complete.h). */
+#include "vb_complete.h"
+
+#include <string.h>
+
+#include "vb_default.h"
+#include "vb_diag.h"
+
+void vb_completion_plan(vb_vertices_config *cfg, vb_completion_opts *o)
+{
+    o->threads = cfg->sampler.threads;
+    if (!o->topology)
+        return;
+    /* Faces and edges come from arc closure, or with the sampling proposer
+     * alone from its evidence (which the sampler then keeps). */
+    int sampled = !o->arcs && cfg->proposer && strcmp(cfg->proposer, "sampling") == 0;
+    cfg->sampler.topology = sampled;
+    if (!sampled)
+        o->arcs = 1;
+}
+
+void vb_completion_init(vb_completion *c)
+{
+    memset(c, 0, sizeof *c);
+    vb_vertex_list_init(&c->arcs.added);
+    vb_topology_init(&c->topology);
+}
+
+void vb_completion_free(vb_completion *c)
+{
+    if (!c)
+        return;
+    vb_arc_report_free(&c->arcs);
+    vb_topology_free(&c->topology);
+    vb_completion_init(c);
+}
+
+/* The faces and edges: exact from the traced edges (taken over), else from
+ * the sampling's evidence; W765 for what could not be decided. */
+static int build_topology(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertices_result *res,
+                          vb_topology_edge *edges, size_t nedges, vb_completion *out)
+{
+    vb_topology *topo = &out->topology;
+    int rc = out->traced
+                 ? vb_arc_topology(ctx, set, &res->certified, edges, nedges, &out->arcs, topo)
+                 : vb_topology_build(ctx, set, &res->sampler.topo, &res->certified, topo);
+    if (rc != VB_OK)
+        return rc;
+    out->has_topology = 1;
+    if (topo->unresolved && topo->exact)
+        vb_warn(ctx, VB_W_TOPO_UNPAIRED, NULL, 0,
+                "%zu vertex(es) whose faces could not be decided exactly (the pairs of "
+                "their edges' triples are written)", topo->unresolved);
+    else if (topo->unresolved)
+        vb_warn(ctx, VB_W_TOPO_UNPAIRED, NULL, 0,
+                "%zu trisector(s) whose edges could not be paired (no trisector curve for "
+                "the triple in doubles, or a closed edge through one vertex)",
+                topo->unresolved);
+    return VB_OK;
+}
+
+int vb_vertices_complete(vb_ctx *ctx, const vb_sphere_set *set, vb_vertices_result *res,
+                         size_t rejected, const vb_completion_opts *o, vb_completion *out)
+{
+    vb_completion_init(out);
+    if (vb_ctx_check(ctx) != VB_OK || !set || !res || !o)
+        return vb_error(ctx, VB_EMISUSE, NULL, 0, "vb_vertices_complete: NULL argument");
+    /* A cover's refused roots are quadruples that hold no vertex: expected,
+     * and no warning. */
+    if (rejected && !res->sampler.complete)
+        vb_warn(ctx, VB_W_CERT_REJECTED, NULL, 0, "the certifier rejected %zu candidate(s)",
+                rejected);
+    /* The proposer's line speaks of the list it certified, before tracing. */
+    char *note = out->certificate;
+    size_t size = sizeof out->certificate;
+    vb_vertices_certificate(res, note, size);
+    vb_topology_edge *edges = NULL;
+    size_t nedges = 0;
+    if (o->arcs) {
+        int rc = vb_arc_complete_list_edges(ctx, set, &res->certified, o->threads, &out->arcs,
+                                            o->topology ? &edges : NULL, &nedges);
+        if (rc != VB_OK)
+            return rc;
+        out->traced = 1;
+        size_t used = strlen(note);
+        if (used && used + 1 < size)
+            note[used++] = '\n';
+        vb_arc_certificate(&out->arcs, note + used, size - used);
+        if (o->stats)
+            vb_arc_write_stats(o->stats, &out->arcs);
+        if (out->arcs.undecided)
+            vb_warn(ctx, VB_W_ARCS_UNDECIDED, NULL, 0,
+                    "%zu half arc(s) could not be traced exactly: the list is not proven "
+                    "closed under the edges of the diagram", out->arcs.undecided);
+    }
+    return o->topology ? build_topology(ctx, set, res, edges, nedges, out) : VB_OK;
+}
+
+int vb_vertices_run_complete(vb_ctx *ctx, const vb_sphere_set *set, vb_vertices_config *cfg,
+                             vb_completion_opts *o, vb_vertices_result *res,
+                             vb_completion *out)
+{
+    vb_completion_init(out);
+    vb_completion_plan(cfg, o);
+    int rc = vb_vertices_run_default(ctx, set, cfg, res);
+    return rc == VB_OK ? vb_vertices_complete(ctx, set, res, res->rejected.n, o, out) : rc;
+}

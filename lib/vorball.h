@@ -1,0 +1,33 @@
+/* vorball: the library's one public header. A program outside the tree
+ * includes this file alone (`pkg-config --cflags vorball`) and links
+ * libvorball; the headers it pulls in are the installed set, nothing more
+ * (lib/CMakeLists.txt installs exactly them; tests/pipeline/install.sh
+ * compiles a client against them).
+ *
+ * What a reader finds behind it, one flow per line:
+ *   - the context, status codes and the diagnostics catalogue (vb.h,
+ *     vb_diag.h): every call takes the context first and returns a status;
+ *     vb_errmsg says what failed;
+ *   - spheres from files, arrays and trajectory frames (vb_spheres.h,
+ *     vb_frames.h);
+ *   - the vertex flow with its default backends (vb_default.h:
+ *     vb_vertices_run_default) and with its completion -- arc closure,
+ *     faces and edges, the certificate -- in one call (vb_complete.h:
+ *     vb_vertices_run_complete); vertex files read and written
+ *     (vb_vertex_io.h);
+ *   - verify: judging a vertex file or list exactly (vb_verify_file.h);
+ *   - channels over frames and the discrete Voronoi engines (vbc_frame.h,
+ *     vbj_jfa.h through it), on the device layer of vb_default_devices. */
+#ifndef VORBALL_H
+#define VORBALL_H
+
+#include "vb.h"
+#include "vb_complete.h"
+#include "vb_default.h"
+#include "vb_diag.h"
+#include "vb_frames.h"
+#include "vb_verify_file.h"
+#include "vb_vertex_io.h"
+#include "vbc_frame.h"
+
+#endif
