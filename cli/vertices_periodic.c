@@ -48,19 +48,25 @@ void vb_cli_periodic_help(FILE *f)
             "                       the periodic box (implies --periodic), in input units\n");
 }
 
+int vb_cli_periodic_box(vb_ctx *ctx, const vb_sphere_set *set, const vb_cli_periodic *p,
+                        vb_box *box)
+{
+    if (p->nbox)
+        return vb_box_parse_args(ctx, p->box, p->nbox, box);
+    if (set->box) {
+        *box = *set->box;
+        return VB_OK;
+    }
+    return vb_error(ctx, VB_EINPUT_BOX, set->source, 0,
+                    "--periodic: the input carries no box (GRO box line, PDB CRYST1): give --box");
+}
+
 int vb_cli_vertices_periodic(vb_ctx *ctx, const vb_sphere_set *set, const vb_cli_periodic *p,
                              const vb_vertices_config *cfg, const char *outpath, int json,
                              int stats)
 {
     vb_box box;
-    int rc = VB_OK;
-    if (p->nbox)
-        rc = vb_box_parse_args(ctx, p->box, p->nbox, &box);
-    else if (set->box)
-        box = *set->box;
-    else
-        rc = vb_error(ctx, VB_EINPUT_BOX, set->source, 0,
-                      "--periodic: the input carries no box (GRO box line, PDB CRYST1): give --box");
+    int rc = vb_cli_periodic_box(ctx, set, p, &box);
     vb_periodic_result res;
     vb_periodic_result_init(&res);
     if (rc == VB_OK)

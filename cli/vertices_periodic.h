@@ -21,6 +21,11 @@ int vb_cli_periodic_option(const char *cmd, int argc, char **argv, int *i, vb_cl
 /* The help lines of --periodic and --box. */
 void vb_cli_periodic_help(FILE *f);
 
+/* The box of the run: --box's, else the set's; VB_EINPUT_BOX (E120) when
+ * neither gives one. */
+int vb_cli_periodic_box(vb_ctx *ctx, const vb_sphere_set *set, const vb_cli_periodic *p,
+                        vb_box *box);
+
 /* The periodic run of the validated set and its file: the box from --box
  * or else from the set (VB_EINPUT_BOX when neither), the run on the
  * default backends, --stats counters on stderr, the vertices to outpath

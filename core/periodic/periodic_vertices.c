@@ -12,22 +12,11 @@ void vb_periodic_result_init(vb_periodic_result *r)
     vb_vertices_result_init(&r->run);
 }
 
-static void vertices_free(vb_periodic_vertices *v)
-{
-    free(v->start);
-    free(v->m);
-    free(v->x);
-    free(v->y);
-    free(v->z);
-    free(v->t);
-    memset(v, 0, sizeof *v);
-}
-
 void vb_periodic_result_free(vb_periodic_result *r)
 {
     vb_periodic_images_free(&r->img);
     vb_vertices_result_free(&r->run);
-    vertices_free(&r->v);
+    vb_periodic_vertices_free(&r->v);
 }
 
 static int cmp_member(const vb_periodic_member *a, const vb_periodic_member *b)
@@ -56,10 +45,8 @@ static int cmp_list(const vb_periodic_member *a, const vb_periodic_member *b, si
     return 0;
 }
 
-/* Whether the sorted list `found` is its vertex's canonical translate:
- * among the translates that put a member of the smallest id at shift 0,
- * the lexicographically smallest list. scratch holds 2 m members. */
-static int is_canonical(const vb_periodic_member *found, size_t m, vb_periodic_member *scratch)
+int vb_periodic_is_canonical(const vb_periodic_member *found, size_t m,
+                             vb_periodic_member *scratch)
 {
     vb_periodic_member *best = scratch, *cand = scratch + m;
     int have = 0;
@@ -125,7 +112,7 @@ static int keep_canonical(vb_ctx *ctx, vb_periodic_result *res)
     vb_periodic_member *scratch = malloc(2 * widest * sizeof *scratch);
     row *order = malloc(nmax * sizeof *order);
     if (!all.start || !all.m || !all.x || !all.y || !all.z || !all.t || !scratch || !order) {
-        vertices_free(&all);
+        vb_periodic_vertices_free(&all);
         free(scratch);
         free(order);
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (periodic vertices)");
@@ -146,7 +133,7 @@ static int keep_canonical(vb_ctx *ctx, vb_periodic_result *res)
             res->beyond_rho++;
             continue;
         }
-        if (!is_canonical(mem, m, scratch)) {
+        if (!vb_periodic_is_canonical(mem, m, scratch)) {
             res->translates++;
             continue;
         }
@@ -183,7 +170,7 @@ static int keep_canonical(vb_ctx *ctx, vb_periodic_result *res)
             v->t[k] = all.t[a];
         }
     }
-    vertices_free(&all);
+    vb_periodic_vertices_free(&all);
     free(scratch);
     free(order);
     return rc == VB_OK ? VB_OK : vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (periodic vertices)");

@@ -130,6 +130,37 @@ int vb_periodic_vertices_run(vb_ctx *ctx, const vb_sphere_set *atoms, const vb_b
                              const vb_vertices_config *cfg, const vb_vertices_backends *be,
                              vb_periodic_result *res);
 
+/* Whether the sorted member list found[0 .. m) is its vertex's canonical
+ * translate (see above): among the translates that put a member of the
+ * smallest id at shift 0, the lexicographically smallest list. scratch
+ * holds 2 m members. 1 or 0. */
+int vb_periodic_is_canonical(const vb_periodic_member *found, size_t m,
+                             vb_periodic_member *scratch);
+
+void vb_periodic_vertices_free(vb_periodic_vertices *v);
+
+/* ---- periodic vertex files read back (periodic_read.c) ------------------- */
+
+/* Reads a periodic vertex file (tsv as vb_periodic_write writes it; '#'
+ * lines skipped) into *out, and *lines (malloc'd) the source line of each
+ * vertex. VB_OK, VB_EINPUT_MALFORMED (file:line), VB_EINPUT_EMPTY (no
+ * vertex line), VB_EIO, VB_ENOMEM; on failure *out is empty. */
+int vb_periodic_read(vb_ctx *ctx, const char *path, vb_periodic_vertices *out, long **lines);
+
+enum {
+    VB_PERIODIC_NOT_CANONICAL = 1, /* members not sorted, or not the canonical translate */
+    VB_PERIODIC_BEYOND = 2         /* a member beyond the images' reach, or t > rho: not a
+                                    * vertex of the periodic diagram (images.c) */
+};
+
+/* The vertices of v named by the spheres of img (the images' set), for the
+ * exact verifier: each vertex a without VB_PERIODIC_BEYOND in flags[a] is
+ * appended to out (status candidate), row[k] = a for out's vertex k (row
+ * and flags hold v->n entries). VB_OK or VB_ENOMEM. */
+int vb_periodic_to_images(vb_ctx *ctx, const vb_periodic_images *img,
+                          const vb_periodic_vertices *v, vb_vertex_list *out, size_t *row,
+                          uint8_t *flags);
+
 /* What a periodic result proves, one or more lines for a file's header. */
 void vb_periodic_certificate(const vb_periodic_result *r, const vb_box *box, char *buf,
                              size_t size);

@@ -77,3 +77,48 @@ expect_line small.err 'E135'
 [ ! -e small.tsv ] || fail "E135 left an output file"
 run 2 count.err "$vorball" vertices --box 4 4 4 4 fcc.xyzr
 echo "ok: E120, E135 and a bad --box refused"
+
+# verify --periodic: the files above certified line by line; planted faults
+# found with their line (a translate that is not canonical, a moved point,
+# a repeated line, a member swapped for another atom's image), exit 1.
+box=$(cat triclinic.box)
+# shellcheck disable=SC2086
+run 0 verify.out "$vorball" verify --periodic --box $box triclinic.xyzr triclinic.periodic.tsv
+expect_line verify.out '271 periodic vertex lines: 271 certified, 0 not canonical'
+python3 - <<'PY' || fail "planting faults"
+lines = open("triclinic.periodic.tsv").read().splitlines(True)
+head = [l for l in lines if l.startswith("#")]
+body = [l for l in lines if not l.startswith("#")]
+def members(l):
+    return l.split("\t")[0].replace("),", ")\n").split("\n")
+def shifted(l):
+    ids, rest = l.split("\t", 1)
+    out = []
+    for m in members(l):
+        i, s = m.split("@")
+        d = [int(c) for c in s.strip("()").split(",")]
+        out.append("%s@(%d,%d,%d)" % (i, d[0] + 1, d[1], d[2]))
+    return ",".join(out) + "\t" + rest
+def moved(l):
+    cols = l.split("\t")
+    cols[1] = repr(float(cols[1]) + 0.01)
+    return "\t".join(cols)
+def swapped(l):
+    ids, rest = l.split("\t", 1)
+    ms = members(l)
+    i, s = ms[-1].split("@")
+    ms[-1] = "%d@%s" % ((int(i) + 1) % 40, s)
+    return ",".join(sorted(ms, key=lambda m: (int(m.split("@")[0]), m))) + "\t" + rest
+for name, f in (("noncanonical", shifted), ("moved", moved), ("swapped", swapped)):
+    open("fault_%s.tsv" % name, "w").write("".join(head + [f(body[0])] + body[1:]))
+open("fault_duplicate.tsv", "w").write("".join(head + body + body[5:6]))
+PY
+for fault in noncanonical moved swapped duplicate; do
+    # shellcheck disable=SC2086
+    run 1 verify_$fault.out "$vorball" verify --periodic --box $box triclinic.xyzr fault_$fault.tsv
+done
+expect_line verify_noncanonical.out 'fault_noncanonical.tsv:5: not canonical'
+expect_line verify_moved.out 'fault_moved.tsv:5: wrong coordinates'
+expect_line verify_swapped.out 'fault_swapped.tsv:5: not a vertex'
+expect_line verify_duplicate.out 'fault_duplicate.tsv:276: duplicate'
+echo "ok: verify --periodic certifies the files and finds planted faults"
