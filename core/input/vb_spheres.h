@@ -167,6 +167,10 @@ int vb_decimal_parse(const char *tok, size_t len, vb_decimal *out, double *d);
 /* Compares two decimals exactly: -1, 0, +1. */
 int vb_decimal_cmp(vb_decimal a, vb_decimal b);
 
+/* The double nearest a decimal (correctly rounded, as strtod of its
+ * digits): the double the readers keep beside an exact value. */
+double vb_decimal_double(vb_decimal d);
+
 #ifdef __cplusplus
 }
 #endif

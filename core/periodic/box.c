@@ -9,14 +9,6 @@
 
 #include "vb_decimal_mpz.h"
 
-/* The double nearest the decimal (strtod of its digits, correctly
- * rounded), as the readers keep beside every exact value. */
-static double dec_double(vb_decimal d)
-{
-    char buf[48];
-    snprintf(buf, sizeof buf, "%lldE%d", (long long)d.mant, (int)d.exp10);
-    return strtod(buf, NULL);
-}
 
 /* 0: a box; 1: a component out of range; 2: flat (decided exactly). */
 static int box_check(const vb_decimal ev[9])
@@ -62,7 +54,7 @@ static void box_set(const vb_decimal ev[9], vb_box *out)
 {
     for (int k = 0; k < 9; k++) {
         out->ev[k] = ev[k];
-        out->v[k] = dec_double(ev[k]);
+        out->v[k] = vb_decimal_double(ev[k]);
     }
 }
 
@@ -117,10 +109,10 @@ int vb_box_from_cell(vb_ctx *ctx, const vb_decimal len[3], const vb_decimal deg[
         ev[8] = len[2];
         return vb_box_from_vectors(ctx, ev, file, line, out);
     }
-    double a = dec_double(len[0]), b = dec_double(len[1]), c = dec_double(len[2]);
+    double a = vb_decimal_double(len[0]), b = vb_decimal_double(len[1]), c = vb_decimal_double(len[2]);
     const double rad = 3.14159265358979323846 / 180.0;
-    double ca = cos(dec_double(deg[0]) * rad), cb = cos(dec_double(deg[1]) * rad);
-    double cg = cos(dec_double(deg[2]) * rad), sg = sin(dec_double(deg[2]) * rad);
+    double ca = cos(vb_decimal_double(deg[0]) * rad), cb = cos(vb_decimal_double(deg[1]) * rad);
+    double cg = cos(vb_decimal_double(deg[2]) * rad), sg = sin(vb_decimal_double(deg[2]) * rad);
     double cy = (ca - cb * cg) / sg, zz = 1.0 - cb * cb - cy * cy;
     if (!(zz > 0.0))
         return vb_error(ctx, VB_EINPUT_BOX, file, line, "box angles that make no cell");

@@ -244,12 +244,6 @@ static int dec_image(vb_decimal base, const int s[3], const vb_decimal v[3], vb_
     return VB_OK;
 }
 
-static double dec_double(vb_decimal d)
-{
-    char buf[48];
-    snprintf(buf, sizeof buf, "%lldE%d", (long long)d.mant, (int)d.exp10);
-    return strtod(buf, NULL);
-}
 
 void vb_periodic_images_free(vb_periodic_images *img)
 {
@@ -394,9 +388,9 @@ int vb_periodic_images_build(vb_ctx *ctx, const vb_sphere_set *atoms, const vb_b
                             "an image of atom %u has a coordinate beyond 18 digits", (unsigned)i);
         }
         int same = k < n0;
-        s->x[k] = same ? atoms->x[i] : dec_double(s->ex[k]);
-        s->y[k] = same ? atoms->y[i] : dec_double(s->ey[k]);
-        s->z[k] = same ? atoms->z[i] : dec_double(s->ez[k]);
+        s->x[k] = same ? atoms->x[i] : vb_decimal_double(s->ex[k]);
+        s->y[k] = same ? atoms->y[i] : vb_decimal_double(s->ey[k]);
+        s->z[k] = same ? atoms->z[i] : vb_decimal_double(s->ez[k]);
         s->r[k] = atoms->r[i];
         s->er[k] = atoms->er[i];
         s->line[k] = atoms->line ? atoms->line[i] : 0;

@@ -159,13 +159,7 @@ typedef struct key {
 
 static int cmp_key(const void *pa, const void *pb)
 {
-    const vb_periodic_member *a = &((const key *)pa)->m, *b = &((const key *)pb)->m;
-    if (a->id != b->id)
-        return a->id < b->id ? -1 : 1;
-    for (int k = 0; k < 3; k++)
-        if (a->s[k] != b->s[k])
-            return a->s[k] < b->s[k] ? -1 : 1;
-    return 0;
+    return vb_periodic_member_cmp(&((const key *)pa)->m, &((const key *)pb)->m);
 }
 
 int vb_periodic_to_images(vb_ctx *ctx, const vb_periodic_images *img,
@@ -195,7 +189,7 @@ int vb_periodic_to_images(vb_ctx *ctx, const vb_periodic_images *img,
         flags[a] = 0;
         /* The file's list must be its canonical translate, sorted. */
         for (size_t j = 1; j < m; j++)
-            if (cmp_key(&(key){mem[j - 1], 0}, &(key){mem[j], 0}) >= 0)
+            if (vb_periodic_member_cmp(&mem[j - 1], &mem[j]) >= 0)
                 flags[a] |= VB_PERIODIC_NOT_CANONICAL;
         if (!flags[a] && !vb_periodic_is_canonical(mem, m, scratch))
             flags[a] |= VB_PERIODIC_NOT_CANONICAL;

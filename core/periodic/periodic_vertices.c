@@ -19,7 +19,7 @@ void vb_periodic_result_free(vb_periodic_result *r)
     vb_periodic_vertices_free(&r->v);
 }
 
-static int cmp_member(const vb_periodic_member *a, const vb_periodic_member *b)
+int vb_periodic_member_cmp(const vb_periodic_member *a, const vb_periodic_member *b)
 {
     if (a->id != b->id)
         return a->id < b->id ? -1 : 1;
@@ -31,14 +31,14 @@ static int cmp_member(const vb_periodic_member *a, const vb_periodic_member *b)
 
 static int cmp_member_q(const void *a, const void *b)
 {
-    return cmp_member(a, b);
+    return vb_periodic_member_cmp(a, b);
 }
 
 /* Lexicographic order of two member lists of equal length. */
 static int cmp_list(const vb_periodic_member *a, const vb_periodic_member *b, size_t m)
 {
     for (size_t k = 0; k < m; k++) {
-        int c = cmp_member(a + k, b + k);
+        int c = vb_periodic_member_cmp(a + k, b + k);
         if (c)
             return c;
     }

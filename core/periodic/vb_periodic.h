@@ -96,6 +96,9 @@ typedef struct vb_periodic_member {
     int16_t s[3];
 } vb_periodic_member;
 
+/* Orders members by (id, dx, dy, dz): -1, 0, +1. */
+int vb_periodic_member_cmp(const vb_periodic_member *a, const vb_periodic_member *b);
+
 /* Periodic vertices, canonical translates (see above), sorted by member
  * list then point. Vertex k owns m[start[k] .. start[k + 1]). */
 typedef struct vb_periodic_vertices {
