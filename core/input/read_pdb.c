@@ -179,8 +179,11 @@ int vbi_pdb_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
     long model_line = 0;
     vb_box box;
     int has_box = 0;
+    size_t taken = 0;
     while (rc == VB_OK && vbi_lines_next(&it, &line, &n)) {
-        if (!has_box && vbi_pdb_record(line, n, "CRYST1"))
+        /* The box of the model read: the last CRYST1 before its first atom
+         * (trajectories as PDB write one per model). */
+        if (taken == 0 && vbi_pdb_record(line, n, "CRYST1"))
             has_box = cryst1_box(line, n, &box);
         vbi_record rec = vbi_record_kind(vbi_pdb_record, line, n);
         int32_t serial = rec == VBI_REC_MODEL ? vbi_pdb_model_serial(line, n) : 0;
@@ -208,6 +211,7 @@ int vbi_pdb_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
                             &dr->unknown_elements);
         if (rc == VB_OK)
             rc = vbi_builder_push(&b, e, d, &info, it.lineno);
+        taken++;
     }
     vbi_altloc_free(&alt);
     vbi_atom_scan_note_open_model(&scan, model_line, dr);

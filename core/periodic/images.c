@@ -16,7 +16,8 @@
  *    Which images are "nearby" only changes how tight the bound is, never
  *    its truth. The doubles' errors (atom and image positions, g, the
  *    distances: a few units in the last place of the coordinates'
- *    magnitude) are covered by an added margin of 1e-9 of that magnitude.
+ *    magnitude, times the box matrix's condition number for the wrapped
+ *    images) are covered by an added margin of 1e-9 of that magnitude.
  *
  * 2. The reach. Write a periodic vertex v (point p, radius t <= rho) as its
  *    canonical translate, which has a member i at shift 0: an atom, with
