@@ -32,6 +32,18 @@ for case in fcc random triclinic; do
 done
 echo "ok: periodic vertices equal the replicated open runs, same bytes on ref, cpu, 1 thread"
 
+# The json writer: the same members and doubles as the tsv.
+run 0 json.err "$vorball" vertices --box 4 4 4 --output-format json --device ref fcc.xyzr \
+    -o fcc.json
+python3 - <<'PY' || fail "json differs from tsv"
+import json
+d = json.load(open("fcc.json"))
+rows = [l.rstrip("\n").split("\t") for l in open("fcc.periodic.tsv") if not l.startswith("#")]
+assert d["comment"].startswith("periodic: box a = (4 0 0)")
+assert [",".join(v["ids"]) for v in d["vertices"]] == [r[0] for r in rows]
+assert [[v[k] for k in "xyzt"] for v in d["vertices"]] == [[float(c) for c in r[1:5]] for r in rows]
+PY
+
 # The box of a GRO file (nm, its last line, here triclinic) and of a PDB
 # CRYST1 record (lengths and right angles) are the boxes of --box.
 cat > box.gro <<'GRO'
