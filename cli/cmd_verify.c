@@ -8,6 +8,7 @@
 #include "input_options.h"
 #include "vb_arc.h"
 #include "vb_verify_file.h"
+#include "verify_periodic.h"
 
 static const char *const usage_text =
     "usage: vorball verify SPHERES VERTICES [--tol T] [--complete] [--arcs] [--json]\n"
@@ -27,6 +28,11 @@ static const char *const usage_text =
     "are grouped by exact vertex and membership is judged on the group's union.\n"
     "\n"
     "  --tol T      distance tolerance, > 0 (default 1e-6)\n"
+    "  --periodic, --box ...  VERTICES is a periodic vertex file (vorball vertices\n"
+    "               --periodic): each line must be its vertex's canonical translate,\n"
+    "               within the images' proven reach, and certified against the atoms\n"
+    "               and their images, once (classes: not canonical, not a vertex, ...);\n"
+    "               the box as for vertices (the file's, or --box)\n"
     "  --complete   also compute all vertices exactly (vorball reference) and list\n"
     "               those the file misses (brute force: small inputs)\n"
     "  --arcs       exact arc closure (any size): trace every Voronoi edge of the\n"
@@ -52,6 +58,7 @@ typedef struct {
     int complete, arcs, json;
     unsigned threads;
     vb_cli_input_opts in;
+    vb_cli_periodic per;
 } options;
 
 static int parse_args(int argc, char **argv, options *o)
@@ -66,6 +73,11 @@ static int parse_args(int argc, char **argv, options *o)
             return VB_EXIT_USAGE;
         if (used > 0)
             continue;
+        if ((used = vb_cli_periodic_option("verify", argc, argv, &i, &o->per)) != 0) {
+            if (used < 0)
+                return VB_EXIT_USAGE;
+            continue;
+        }
         if (strcmp(a, "--tol") == 0) {
             if (i + 1 >= argc || vb_cli_parse_double(argv[++i], &o->tol) || !(o->tol > 0) ||
                 !isfinite(o->tol))
@@ -95,6 +107,9 @@ static int parse_args(int argc, char **argv, options *o)
     }
     if (npos != 2)
         return vb_cli_usage_error("verify", "needs SPHERES and VERTICES");
+    if (o->per.on && (o->complete || o->arcs))
+        return vb_cli_usage_error("verify", "--periodic judges each line: without --complete "
+                                            "and --arcs");
     if (strcmp(pos[0], "-") == 0 && strcmp(pos[1], "-") == 0)
         return vb_cli_usage_error("verify", "only one of SPHERES and VERTICES can be '-'");
     o->spheres_path = pos[0];
@@ -109,6 +124,19 @@ static int run(vb_ctx *ctx, const options *o, int *mismatch)
     memset(&r, 0, sizeof r);
     FILE *out = NULL;
     int rc = vb_cli_load_spheres(ctx, o->spheres_path, &o->in, 4, &set);
+    if (rc == VB_OK && o->per.on) {
+        if (!(out = vb_cli_open_output(ctx, o->out_path)))
+            rc = vb_errcode(ctx);
+        if (rc == VB_OK)
+            rc = vb_cli_verify_periodic(ctx, set, &o->per, o->vertices_path, o->tol, o->json,
+                                        out, mismatch);
+        if (out) {
+            int rc2 = vb_cli_close_output(ctx, out, o->out_path);
+            rc = rc ? rc : rc2;
+        }
+        vb_spheres_free(set);
+        return rc;
+    }
     if (rc == VB_OK)
         rc = vb_verify_file(ctx, set, o->vertices_path, o->tol, o->complete, &r);
     if (rc == VB_OK && !(out = vb_cli_open_output(ctx, o->out_path)))

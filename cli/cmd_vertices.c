@@ -11,6 +11,7 @@
 #include "vorball.h"
 #include "vb_world.h"
 #include "vertex_parts.h"
+#include "vertices_periodic.h"
 
 static void help(FILE *f)
 {
@@ -53,6 +54,7 @@ static void help(FILE *f)
             "rank 0 alone, W830) and rank 0 writes the merged output, byte-identical to\n"
             "one process's.\n",
             VB_SAMPLER_DEFAULT_SAMPLES);
+    vb_cli_periodic_help(f);
     vb_cli_input_help(f);
     fprintf(f,
             "\nCells of spheres on the hull are unbounded: the cover treats infinity as one\n"
@@ -90,6 +92,7 @@ int vb_cmd_vertices(int argc, char **argv)
     vb_vertex_format vfmt = VB_VFMT_TSV;
     int stats = 0;
     vb_completion_opts co = {0};
+    vb_cli_periodic per = {0};
     vb_ctx *ctx;
     if (vb_world_open_ctx(&ctx))
         return vb_cli_fail(NULL, VB_ENOMEM);
@@ -102,6 +105,8 @@ int vb_cmd_vertices(int argc, char **argv)
             vb_close(ctx);
             return VB_EXIT_OK;
         } else if ((r = vb_pipeline_option("vertices", argc, argv, &i, &po, ctx)) != 0) {
+            code = r < 0 ? VB_EXIT_USAGE : code;
+        } else if ((r = vb_cli_periodic_option("vertices", argc, argv, &i, &per)) != 0) {
             code = r < 0 ? VB_EXIT_USAGE : code;
         } else if (strcmp(a, "-o") == 0 && i + 1 < argc) {
             outpath = argv[++i];
@@ -125,6 +130,10 @@ int vb_cmd_vertices(int argc, char **argv)
     }
     if (code == VB_EXIT_OK && !input)
         code = vb_cli_usage_error("vertices", "no input file (use - for stdin)");
+    if (code == VB_EXIT_OK && per.on && (co.arcs || topo_path || vb_world_size() > 1 ||
+                                         vfmt == VB_VFMT_VORONOTA))
+        code = vb_cli_usage_error("vertices", "--periodic runs on one process, without --arcs, "
+                                              "--topology and the voronota format");
     vb_completion_plan(&po.cfg, &co);
     if (code == VB_EXIT_OK)
         code = vb_world_check_input("vertices", input);
@@ -140,6 +149,15 @@ int vb_cmd_vertices(int argc, char **argv)
     int quiet = vb_world_quiet(ctx);
     int rc = vb_cli_load_spheres(ctx, input, &po.in, 4, &set);
     vb_world_loud(ctx, quiet);
+    if (per.on) {
+        if (rc == VB_OK)
+            rc = vb_cli_vertices_periodic(ctx, set, &per, &po.cfg, outpath,
+                                          vfmt == VB_VFMT_JSON, stats);
+        code = vb_world_end(ctx, rc);
+        vb_spheres_free(set);
+        vb_close(ctx);
+        return code;
+    }
     int busy = vb_cli_vertices_part(ctx, &po.cfg);
     vb_cli_bar bar;
     vb_cli_bar_attach(&bar, &po.cfg.sampler);

@@ -54,9 +54,11 @@
     X(E, 115, INPUT_TRAJECTORY, 25, "XTC, TRR or DCD data damaged")                                      \
     X(E, 116, INPUT_TOPOLOGY, 26, "trajectory and topology disagree (atom count)")                       \
     X(E, 117, INPUT_ASSEMBLY, 27, "--assembly: absent, or its operators malformed")                      \
+    X(E, 120, INPUT_BOX, 30, "--periodic: no box (file or --box), or a malformed or flat one")          \
     X(E, 130, INPUT_REFERENCE_SIZE, 40, "more spheres than `reference` takes without --force")           \
     X(E, 131, INPUT_SCALE, 41, "a radius below 1e-50 of the extent: beyond the sampler's doubles")       \
     X(E, 132, INPUT_TOL, 42, "--tol below 1e-12 of the extent: finer than the sampler resolves")         \
+    X(E, 135, INPUT_BOX_SMALL, 45, "periodic box too small: its cells reach past 4 box heights")        \
     X(E, 140, MEMORY_ESTIMATE, 44, "not enough memory for the input: refused before the work starts")    \
     X(E, 150, MPI_FAILED, 50, "MPI failed between ranks: the job is aborted")                            \
     X(E, 151, MPI_COMMAND, 2, "the command runs on one process only, not on several MPI ranks")          \

@@ -421,6 +421,21 @@ int vb_cover_run_parts(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_opt
         cells += b0;
         ncells = b1 - b0;
     }
+    /* Only the cells below base_limit, in the same curve order. */
+    uint32_t *kept = NULL;
+    if (o.base_limit) {
+        kept = malloc((ncells ? ncells : 1) * sizeof *kept);
+        if (!kept) {
+            vb_cover_tree_free(tree);
+            return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
+        }
+        size_t k = 0;
+        for (size_t c = 0; c < ncells; c++)
+            if (cells[c] < o.base_limit)
+                kept[k++] = cells[c];
+        cells = kept;
+        ncells = k;
+    }
     int nt = vb_threads(o.threads);
     worker *w = calloc((size_t)nt, sizeof *w);
     int rc = w ? VB_OK : VB_ENOMEM;
@@ -452,6 +467,7 @@ int vb_cover_run_parts(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_opt
         free(w[t].q);
     }
     free(w);
+    free(kept);
     vb_cover_tree_free(tree);
     if (stats)
         *stats = st;

@@ -40,6 +40,7 @@ static int cover_run(vb_ctx *ctx, void *state, const vb_proposer_await *aw,
     o.threads = opt->threads;
     o.part = opt->part;
     o.nparts = opt->nparts;
+    o.base_limit = opt->base_limit;
     vb_quad_list q = {0};
     vb_cover_stats st;
     int rc = opt->quads_sink

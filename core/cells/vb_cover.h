@@ -38,6 +38,10 @@ typedef struct vb_cover_options {
      * the tree's curve, balanced by count, the same for every process; the
      * union of the parts' quadruples is the whole run's. */
     unsigned part, nparts;
+    /* Nonzero: cover only the cells of spheres with id < base_limit (the
+     * other spheres stay neighbours). Periodic boxes put the box's atoms
+     * first and their images after them (core/periodic/). */
+    uint32_t base_limit;
 } vb_cover_options;
 
 typedef struct vb_cover_stats {

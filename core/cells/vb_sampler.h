@@ -42,6 +42,8 @@ typedef struct vb_sampler_options {
                                 backend is known (then at most its choice) */
     unsigned part, nparts;   /* this process's part of the work (MPI ranks; 0 or 1 part:
                                 all of it); the cover splits its cells, see vb_cover.h */
+    uint32_t base_limit;     /* nonzero: the cover covers only cells < base_limit
+                                (vb_cover_options; periodic images) */
     unsigned threads;        /* host threads (0: VORBALL_THREADS or online CPUs);
                                 the output does not depend on it */
     void (*progress)(void *user, double fraction); /* may be NULL */

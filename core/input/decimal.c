@@ -4,6 +4,7 @@
 #include "vb_spheres.h"
 #include "vb_decimal_mpz.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -166,4 +167,11 @@ void vb_decimal_to_mpz(mpz_t z, vb_decimal d, int32_t emin, mpz_t tmp)
         mpz_ui_pow_ui(tmp, 10, (unsigned long)(d.exp10 - emin));
         mpz_mul(z, z, tmp);
     }
+}
+
+double vb_decimal_double(vb_decimal d)
+{
+    char buf[48];
+    snprintf(buf, sizeof buf, "%lldE%d", (long long)d.mant, (int)d.exp10);
+    return strtod(buf, NULL);
 }

@@ -10,6 +10,7 @@
  * that decimal. GRO has no element column: elements are inferred from atom
  * and residue names, and counted (W714, W715). */
 #include "vbi_input.h"
+#include "vb_periodic.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -105,6 +106,34 @@ static int box_line(const char *line, size_t n)
     return count == 3 || count == 9;
 }
 
+/* The box of a GRO box line (nm, as Angstrom like the atoms): v1(x)
+ * v2(y) v3(z) [v1(y) v1(z) v2(x) v2(z) v3(x) v3(y)]; NULL when the line
+ * gives no box (zeros, a flat one). VB_OK or VB_ENOMEM. */
+static int gro_box(const char *line, size_t n, vb_box **out)
+{
+    static const int slot[9] = {0, 4, 8, 1, 2, 3, 5, 6, 7};
+    vb_decimal ev[9] = {{0, 0}};
+    const char *p = line, *tok;
+    size_t k;
+    int count = 0;
+    double d;
+    while (count < 9 && (k = vbi_token(&p, line + n, &tok)) > 0) {
+        vb_decimal e;
+        if (vb_decimal_parse(tok, k, &e, &d) != VB_OK)
+            return VB_OK;
+        vbi_decimal_times_ten(&e, &d);
+        ev[slot[count++]] = e;
+    }
+    vb_box b;
+    if (!vb_box_try(ev, &b))
+        return VB_OK;
+    *out = malloc(sizeof **out);
+    if (!*out)
+        return VB_ENOMEM;
+    **out = b;
+    return VB_OK;
+}
+
 int vbi_gro_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, long first_line,
                   const vb_read_options *opt, vbi_dropped *dr, vb_sphere_set **out,
                   size_t *consumed)
@@ -179,6 +208,11 @@ int vbi_gro_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
         return rc;
     }
     vbi_builder_finish(&b, 1, out);
+    if (*out && gro_box(line, n, &(*out)->box) != VB_OK) {
+        vb_spheres_free(*out);
+        *out = NULL;
+        return vb_error(ctx, VB_ENOMEM, name, 0, "out of memory");
+    }
     *consumed = (size_t)(it.p - buf);
     return VB_OK;
 }

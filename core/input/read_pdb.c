@@ -1,8 +1,10 @@
 /* PDB reader: fixed columns of ATOM/HETATM records, MODEL/ENDMDL, alternate
  * locations, water and hydrogens per the read options; radii by element. */
 #include "vbi_input.h"
+#include "vb_periodic.h"
 
 #include <ctype.h>
+#include <stdlib.h>
 #include <string.h>
 
 /* Columns [from, to], 1-based inclusive, clipped to the line. */
@@ -129,6 +131,31 @@ static int parse_atom_line(vb_ctx *ctx, const char *name, long lineno, const cha
     return VB_OK;
 }
 
+/* The box of a CRYST1 record (a b c in columns 7-33, alpha beta gamma in
+ * 34-54): 1 and *box set when it gives one. The unit cube 1 1 1 is the
+ * convention for "no crystal" (NMR models) and gives none. */
+static int cryst1_box(const char *line, size_t n, vb_box *box)
+{
+    static const int col[7] = {6, 15, 24, 33, 40, 47, 54};
+    vb_decimal d[6];
+    for (int k = 0; k < 6; k++) {
+        size_t a = (size_t)col[k], b = (size_t)col[k + 1];
+        if (b > n)
+            return 0;
+        while (a < b && line[a] == ' ')
+            a++;
+        while (b > a && line[b - 1] == ' ')
+            b--;
+        if (a == b || vb_decimal_parse(line + a, b - a, &d[k], NULL) != VB_OK)
+            return 0;
+    }
+    const vb_decimal one = {1, 0};
+    if (vb_decimal_cmp(d[0], one) == 0 && vb_decimal_cmp(d[1], one) == 0 &&
+        vb_decimal_cmp(d[2], one) == 0)
+        return 0;
+    return vb_box_from_cell(NULL, d, d + 3, NULL, 0, box) == VB_OK;
+}
+
 int vbi_pdb_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, long first_line,
                   const vb_read_options *opt, vbi_dropped *dr, vb_sphere_set **out)
 {
@@ -150,7 +177,14 @@ int vbi_pdb_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
     const char *line;
     size_t n;
     long model_line = 0;
+    vb_box box;
+    int has_box = 0;
+    size_t taken = 0;
     while (rc == VB_OK && vbi_lines_next(&it, &line, &n)) {
+        /* The box of the model read: the last CRYST1 before its first atom
+         * (trajectories as PDB write one per model). */
+        if (taken == 0 && vbi_pdb_record(line, n, "CRYST1"))
+            has_box = cryst1_box(line, n, &box);
         vbi_record rec = vbi_record_kind(vbi_pdb_record, line, n);
         int32_t serial = rec == VBI_REC_MODEL ? vbi_pdb_model_serial(line, n) : 0;
         records += rec == VBI_REC_ATOM;
@@ -177,11 +211,22 @@ int vbi_pdb_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
                             &dr->unknown_elements);
         if (rc == VB_OK)
             rc = vbi_builder_push(&b, e, d, &info, it.lineno);
+        taken++;
     }
     vbi_altloc_free(&alt);
     vbi_atom_scan_note_open_model(&scan, model_line, dr);
     if (rc == VB_OK && records == 0)
         rc = vb_error(ctx, VB_EINPUT_EMPTY, name, 0,
                       "no atoms: no ATOM or HETATM record in the PDB input");
-    return vbi_builder_close(&b, &scan.models, rc, out);
+    rc = vbi_builder_close(&b, &scan.models, rc, out);
+    if (rc == VB_OK && *out && has_box) {
+        (*out)->box = malloc(sizeof *(*out)->box);
+        if (!(*out)->box) {
+            vb_spheres_free(*out);
+            *out = NULL;
+            return vb_error(ctx, VB_ENOMEM, name, 0, "out of memory");
+        }
+        *(*out)->box = box;
+    }
+    return rc;
 }

@@ -20,6 +20,7 @@ void vb_spheres_free(vb_sphere_set *s)
     free(s->line);
     free(s->contained);
     free(s->source);
+    free(s->box);
     free(s);
 }
 

@@ -36,6 +36,15 @@ typedef struct vb_atom_info {
     uint8_t hetatm;   /* 1 for HETATM */
 } vb_atom_info;
 
+/* A periodic box: the edge vectors a, b, c (rows of ev and v: a = ev[0..2],
+ * b = ev[3..5], c = ev[6..8]) as exact decimals and their nearest doubles.
+ * The files' boxes (GRO's last line, PDB's CRYST1) and --box become one
+ * (core/periodic/vb_periodic.h says how lengths and angles do). */
+typedef struct vb_box {
+    vb_decimal ev[9];
+    double v[9];
+} vb_box;
+
 typedef struct vb_sphere_set {
     size_t n;
     double *x, *y, *z, *r;           /* nearest doubles */
@@ -45,6 +54,8 @@ typedef struct vb_sphere_set {
     uint8_t *contained;              /* 1 if the sphere lies inside another (empty cell); set by vb_spheres_validate */
     uint8_t allows_zero_radius;      /* the reader accepted radius-0 spheres as points (--zero-radius point) */
     char *source;                    /* file name as given ("-" = stdin), owned */
+    vb_box *box;                     /* the periodic box the file carries (GRO box line,
+                                      * PDB CRYST1), NULL when none; owned */
 } vb_sphere_set;
 
 typedef enum vb_format {
@@ -155,6 +166,10 @@ int vb_decimal_parse(const char *tok, size_t len, vb_decimal *out, double *d);
 
 /* Compares two decimals exactly: -1, 0, +1. */
 int vb_decimal_cmp(vb_decimal a, vb_decimal b);
+
+/* The double nearest a decimal (correctly rounded, as strtod of its
+ * digits): the double the readers keep beside an exact value. */
+double vb_decimal_double(vb_decimal d);
 
 #ifdef __cplusplus
 }

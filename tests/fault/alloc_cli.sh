@@ -10,7 +10,8 @@
 # signal, no sanitizer report (the sanitizer tree: leaks of every failure
 # path), and no output file left behind.
 # usage: alloc_cli.sh VORBALL_ALLOCFAULT SOURCE_DIR WORK_DIR
-#          vertices|vertices_arcs|vertices_threads|verify_arcs|channels|jfa [STRIDE]
+#          vertices|vertices_arcs|vertices_threads|vertices_periodic|verify_arcs|channels|jfa
+#          [STRIDE]
 vorball=$1 src=$2 cmd=$4 work=$3/alloc_$4 stride=${5:-1}
 corpus=$src/corpus
 here=$(cd "$(dirname "$0")" && pwd)
@@ -31,6 +32,12 @@ vertices_threads)
     # allocations varies by one or two from run to run).
     outs="v.tsv"
     set -- vertices "$corpus/equal-radius/random-100.xyzr" --device ref --threads 2 -o v.tsv ;;
+vertices_periodic)
+    # Periodic boxes (issue 34): images, the cover on the atoms' cells,
+    # canonical translates, the periodic writer.
+    printf '0.1 0.2 0.3 1.2\n2.1 2.2 0.3 1.2\n2.1 0.2 2.3 1.2\n0.1 2.2 2.3 1.2\n' > fcc1.xyzr
+    outs="p.tsv"
+    set -- vertices fcc1.xyzr --box 4 4 4 --device ref --threads 1 -o p.tsv ;;
 verify_arcs)
     "$vorball" vertices "$in" --device ref --threads 1 -o given.tsv > /dev/null 2>&1 ||
         fail "vertices for verify failed"

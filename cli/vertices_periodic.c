@@ -1,0 +1,92 @@
+/* `vorball vertices --periodic`: options, the library call, the file. */
+#include "vertices_periodic.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli_common.h"
+#include "vb_default.h"
+
+static int is_number(const char *s)
+{
+    char *end;
+    if (!*s)
+        return 0;
+    (void)strtod(s, &end);
+    return *end == '\0';
+}
+
+int vb_cli_periodic_option(const char *cmd, int argc, char **argv, int *i, vb_cli_periodic *p)
+{
+    const char *a = argv[*i];
+    if (strcmp(a, "--periodic") == 0) {
+        p->on = 1;
+        return 1;
+    }
+    if (strcmp(a, "--box") != 0)
+        return 0;
+    p->nbox = 0;
+    while (*i + 1 < argc && p->nbox < 9 && is_number(argv[*i + 1]))
+        p->box[p->nbox++] = argv[++*i];
+    if (p->nbox != 3 && p->nbox != 6 && p->nbox != 9) {
+        vb_cli_usage_error(cmd, "--box needs 3 numbers (a b c), 6 (a b c alpha beta gamma) or 9 "
+                                "(the vectors a, b, c)");
+        return -1;
+    }
+    p->on = 1;
+    return 1;
+}
+
+void vb_cli_periodic_help(FILE *f)
+{
+    fprintf(f,
+            "  --periodic           the periodic diagram of the box's atoms: the box of the\n"
+            "                       file (GRO's last line, PDB's CRYST1) or --box; members\n"
+            "                       written i@(dx,dy,dz) (atom i moved by dx a + dy b + dz c),\n"
+            "                       each vertex once; see README 'Periodic boxes'\n"
+            "  --box a b c [alpha beta gamma] | --box ax ay az bx by bz cx cy cz\n"
+            "                       the periodic box (implies --periodic), in input units\n");
+}
+
+int vb_cli_periodic_box(vb_ctx *ctx, const vb_sphere_set *set, const vb_cli_periodic *p,
+                        vb_box *box)
+{
+    if (p->nbox)
+        return vb_box_parse_args(ctx, p->box, p->nbox, box);
+    if (set->box) {
+        *box = *set->box;
+        return VB_OK;
+    }
+    return vb_error(ctx, VB_EINPUT_BOX, set->source, 0,
+                    "--periodic: the input carries no box (GRO box line, PDB CRYST1): give --box");
+}
+
+int vb_cli_vertices_periodic(vb_ctx *ctx, const vb_sphere_set *set, const vb_cli_periodic *p,
+                             const vb_vertices_config *cfg, const char *outpath, int json,
+                             int stats)
+{
+    vb_box box;
+    int rc = vb_cli_periodic_box(ctx, set, p, &box);
+    vb_periodic_result res;
+    vb_periodic_result_init(&res);
+    if (rc == VB_OK)
+        rc = vb_periodic_vertices_run(ctx, set, &box, cfg, vb_default_backends(), &res);
+    if (rc == VB_OK && stats) {
+        vb_vertices_write_stats(ctx, stderr, &res.run);
+        fprintf(stderr,
+                "periodic_atoms\t%zu\nperiodic_spheres\t%zu\nperiodic_rho\t%.9g\n"
+                "periodic_reach\t%.9g\nperiodic_vertices\t%zu\nperiodic_translates\t%zu\n"
+                "periodic_beyond_rho\t%zu\n",
+                res.img.n0, res.img.set->n, res.img.rho, res.img.reach, res.v.n, res.translates,
+                res.beyond_rho);
+    }
+    if (rc == VB_OK) {
+        char note[1024];
+        vb_periodic_certificate(&res, &box, note, sizeof note);
+        FILE *out = vb_cli_open_output(ctx, outpath);
+        rc = out ? vb_periodic_write(ctx, out, &res.v, json, note) : vb_errcode(ctx);
+        rc = vb_cli_finish_output(ctx, out, outpath, rc);
+    }
+    vb_periodic_result_free(&res);
+    return rc;
+}

@@ -1,0 +1,37 @@
+/* `vorball vertices --periodic`: the periodic box options and the periodic
+ * run (parse, call the library's vb_periodic_vertices_run, write). */
+#ifndef VB_CLI_VERTICES_PERIODIC_H
+#define VB_CLI_VERTICES_PERIODIC_H
+
+#include <stdio.h>
+
+#include "vb_periodic.h"
+
+typedef struct vb_cli_periodic {
+    int on;                   /* --periodic */
+    const char *box[9];       /* --box's numbers (argv strings) */
+    int nbox;                 /* 0: the box of the file */
+} vb_cli_periodic;
+
+/* Consumes argv[*i] when it is --periodic or --box (with its 3, 6 or 9
+ * numbers: the arguments after it that are numbers). Returns 1 if
+ * consumed, 0 if not one of them, -1 on a bad count (message printed). */
+int vb_cli_periodic_option(const char *cmd, int argc, char **argv, int *i, vb_cli_periodic *p);
+
+/* The help lines of --periodic and --box. */
+void vb_cli_periodic_help(FILE *f);
+
+/* The box of the run: --box's, else the set's; VB_EINPUT_BOX (E120) when
+ * neither gives one. */
+int vb_cli_periodic_box(vb_ctx *ctx, const vb_sphere_set *set, const vb_cli_periodic *p,
+                        vb_box *box);
+
+/* The periodic run of the validated set and its file: the box from --box
+ * or else from the set (VB_EINPUT_BOX when neither), the run on the
+ * default backends, --stats counters on stderr, the vertices to outpath
+ * (NULL: stdout; tsv or json). Returns a status. */
+int vb_cli_vertices_periodic(vb_ctx *ctx, const vb_sphere_set *set, const vb_cli_periodic *p,
+                             const vb_vertices_config *cfg, const char *outpath, int json,
+                             int stats);
+
+#endif

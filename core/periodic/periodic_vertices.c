@@ -1,0 +1,236 @@
+/* The periodic vertex pipeline: the open pipeline over the box's atoms and
+ * their images (images.c proves which suffice), the cover on the atoms'
+ * cells alone, and one canonical translate of each vertex kept. */
+#include "vb_periodic.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+void vb_periodic_result_init(vb_periodic_result *r)
+{
+    memset(r, 0, sizeof *r);
+    vb_vertices_result_init(&r->run);
+}
+
+void vb_periodic_result_free(vb_periodic_result *r)
+{
+    vb_periodic_images_free(&r->img);
+    vb_vertices_result_free(&r->run);
+    vb_periodic_vertices_free(&r->v);
+}
+
+int vb_periodic_member_cmp(const vb_periodic_member *a, const vb_periodic_member *b)
+{
+    if (a->id != b->id)
+        return a->id < b->id ? -1 : 1;
+    for (int k = 0; k < 3; k++)
+        if (a->s[k] != b->s[k])
+            return a->s[k] < b->s[k] ? -1 : 1;
+    return 0;
+}
+
+static int cmp_member_q(const void *a, const void *b)
+{
+    return vb_periodic_member_cmp(a, b);
+}
+
+/* Lexicographic order of two member lists of equal length. */
+static int cmp_list(const vb_periodic_member *a, const vb_periodic_member *b, size_t m)
+{
+    for (size_t k = 0; k < m; k++) {
+        int c = vb_periodic_member_cmp(a + k, b + k);
+        if (c)
+            return c;
+    }
+    return 0;
+}
+
+int vb_periodic_is_canonical(const vb_periodic_member *found, size_t m,
+                             vb_periodic_member *scratch)
+{
+    vb_periodic_member *best = scratch, *cand = scratch + m;
+    int have = 0;
+    uint32_t low = found[0].id;
+    for (size_t j = 0; j < m && found[j].id == low; j++) {
+        for (size_t k = 0; k < m; k++) {
+            cand[k].id = found[k].id;
+            for (int a = 0; a < 3; a++)
+                cand[k].s[a] = (int16_t)(found[k].s[a] - found[j].s[a]);
+        }
+        qsort(cand, m, sizeof *cand, cmp_member_q);
+        if (!have || cmp_list(cand, best, m) < 0) {
+            memcpy(best, cand, m * sizeof *best);
+            have = 1;
+        }
+    }
+    return cmp_list(found, best, m) == 0;
+}
+
+/* A row to sort, with its list (qsort has no context argument). */
+typedef struct row {
+    const vb_periodic_vertices *v;
+    size_t k;
+} row;
+
+static int cmp_vertex(const void *pa, const void *pb)
+{
+    const vb_periodic_vertices *v = ((const row *)pa)->v;
+    size_t a = ((const row *)pa)->k, b = ((const row *)pb)->k;
+    size_t ma = v->start[a + 1] - v->start[a], mb = v->start[b + 1] - v->start[b];
+    size_t m = ma < mb ? ma : mb;
+    int c = cmp_list(v->m + v->start[a], v->m + v->start[b], m);
+    if (c)
+        return c;
+    if (ma != mb)
+        return ma < mb ? -1 : 1;
+    const double pa4[4] = {v->x[a], v->y[a], v->z[a], v->t[a]};
+    const double pb4[4] = {v->x[b], v->y[b], v->z[b], v->t[b]};
+    for (int k = 0; k < 4; k++)
+        if (pa4[k] != pb4[k])
+            return pa4[k] < pb4[k] ? -1 : 1;
+    return 0;
+}
+
+/* Keeps the canonical translates of the run's certified vertices with
+ * t <= rho, sorted. */
+static int keep_canonical(vb_ctx *ctx, vb_periodic_result *res)
+{
+    const vb_vertex_list *c = &res->run.certified;
+    const vb_periodic_images *img = &res->img;
+    vb_periodic_vertices all;
+    memset(&all, 0, sizeof all);
+    size_t nmax = c->n ? c->n : 1, idmax = c->nids ? c->nids : 1, widest = 4;
+    for (size_t k = 0; k < c->n; k++)
+        if (c->start[k + 1] - c->start[k] > widest)
+            widest = c->start[k + 1] - c->start[k];
+    all.start = malloc((nmax + 1) * sizeof *all.start);
+    all.m = malloc(idmax * sizeof *all.m);
+    all.x = malloc(nmax * sizeof *all.x);
+    all.y = malloc(nmax * sizeof *all.y);
+    all.z = malloc(nmax * sizeof *all.z);
+    all.t = malloc(nmax * sizeof *all.t);
+    vb_periodic_member *scratch = malloc(2 * widest * sizeof *scratch);
+    row *order = malloc(nmax * sizeof *order);
+    if (!all.start || !all.m || !all.x || !all.y || !all.z || !all.t || !scratch || !order) {
+        vb_periodic_vertices_free(&all);
+        free(scratch);
+        free(order);
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (periodic vertices)");
+    }
+    all.start[0] = 0;
+    size_t w = 0, used = 0;
+    for (size_t k = 0; k < c->n; k++) {
+        size_t m = c->start[k + 1] - c->start[k];
+        vb_periodic_member *mem = all.m + used;
+        for (size_t j = 0; j < m; j++) {
+            uint32_t e = c->ids[c->start[k] + j];
+            mem[j].id = img->atom[e];
+            memcpy(mem[j].s, img->shift[e], sizeof mem[j].s);
+        }
+        qsort(mem, m, sizeof *mem, cmp_member_q);
+        /* images.c: a vertex with t > rho is no periodic vertex. */
+        if (c->t[k] > img->rho) {
+            res->beyond_rho++;
+            continue;
+        }
+        if (!vb_periodic_is_canonical(mem, m, scratch)) {
+            res->translates++;
+            continue;
+        }
+        all.x[w] = c->x[k];
+        all.y[w] = c->y[k];
+        all.z[w] = c->z[k];
+        all.t[w] = c->t[k];
+        used += m;
+        all.start[++w] = used;
+    }
+    all.n = w;
+    for (size_t k = 0; k < w; k++)
+        order[k] = (row){&all, k};
+    qsort(order, w, sizeof *order, cmp_vertex);
+    /* The sorted copy. */
+    vb_periodic_vertices *v = &res->v;
+    v->n = w;
+    v->start = malloc((w + 1) * sizeof *v->start);
+    v->m = malloc((used ? used : 1) * sizeof *v->m);
+    v->x = malloc(nmax * sizeof *v->x);
+    v->y = malloc(nmax * sizeof *v->y);
+    v->z = malloc(nmax * sizeof *v->z);
+    v->t = malloc(nmax * sizeof *v->t);
+    int rc = v->start && v->m && v->x && v->y && v->z && v->t ? VB_OK : VB_ENOMEM;
+    if (rc == VB_OK) {
+        v->start[0] = 0;
+        for (size_t k = 0; k < w; k++) {
+            size_t a = order[k].k, m = all.start[a + 1] - all.start[a];
+            memcpy(v->m + v->start[k], all.m + all.start[a], m * sizeof *v->m);
+            v->start[k + 1] = v->start[k] + m;
+            v->x[k] = all.x[a];
+            v->y[k] = all.y[a];
+            v->z[k] = all.z[a];
+            v->t[k] = all.t[a];
+        }
+    }
+    vb_periodic_vertices_free(&all);
+    free(scratch);
+    free(order);
+    return rc == VB_OK ? VB_OK : vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (periodic vertices)");
+}
+
+int vb_periodic_vertices_run(vb_ctx *ctx, const vb_sphere_set *atoms, const vb_box *box,
+                             const vb_vertices_config *cfg, const vb_vertices_backends *be,
+                             vb_periodic_result *res)
+{
+    if (cfg->proposer && strcmp(cfg->proposer, vb_proposer_cover.name) != 0)
+        return vb_error(ctx, VB_EMISUSE, NULL, 0,
+                        "periodic boxes need the direction cover (not --proposer %s): its "
+                        "completeness is what proves the periodic list complete",
+                        cfg->proposer);
+    int rc = vb_periodic_images_build(ctx, atoms, box, &res->img);
+    if (rc != VB_OK)
+        return rc;
+    vb_vertices_config c = *cfg;
+    c.proposer = vb_proposer_cover.name;
+    c.sampler.base_limit = (uint32_t)res->img.n0;
+    rc = vb_vertices_run(ctx, res->img.set, &c, be, &res->run);
+    if (rc == VB_OK && !res->run.sampler.complete)
+        rc = vb_error(ctx, VB_EINTERNAL, NULL, 0, "the cover did not report a complete run");
+    return rc == VB_OK ? keep_canonical(ctx, res) : rc;
+}
+
+/* A decimal as written exactly: digits, a point where its exponent puts
+ * one (no exponent notation), at most 48 characters. */
+static void dec_str(vb_decimal d, char *out, size_t size)
+{
+    char digits[24];
+    unsigned long long m = d.mant < 0 ? 0ull - (unsigned long long)d.mant : (unsigned long long)d.mant;
+    snprintf(digits, sizeof digits, "%llu", m);
+    const char *sign = d.mant < 0 ? "-" : "";
+    int len = (int)strlen(digits), e = d.exp10;
+    if (d.mant == 0)
+        snprintf(out, size, "0");
+    else if (e >= 0)
+        snprintf(out, size, "%s%s%.*s", sign, digits, e, "000000000000");
+    else if (-e < len)
+        snprintf(out, size, "%s%.*s.%s", sign, len + e, digits, digits + len + e);
+    else
+        snprintf(out, size, "%s0.%.*s%s", sign, -e - len, "000000000000000000000000", digits);
+}
+
+void vb_periodic_certificate(const vb_periodic_result *r, const vb_box *box, char *buf,
+                             size_t size)
+{
+    char v[9][48];
+    for (int k = 0; k < 9; k++)
+        dec_str(box->ev[k], v[k], sizeof v[k]);
+    snprintf(buf, size,
+             "periodic: box a = (%s %s %s), b = (%s %s %s), c = (%s %s %s); ids i@(dx,dy,dz) = "
+             "atom i moved by dx a + dy b + dz c\n"
+             "complete: %zu certified vertices of the periodic diagram, each once (its canonical "
+             "translate), every vertex of the diagram (direction cover of the %zu atoms' cells "
+             "among %zu atoms and images, %llu quadruples; every empty sphere has radius <= %.9g, "
+             "images within %.9g of the atoms)",
+             v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], r->v.n, r->img.n0,
+             r->img.set ? r->img.set->n : 0, (unsigned long long)r->run.sampler.cover_quads,
+             r->img.rho, r->img.reach);
+}

@@ -1,0 +1,58 @@
+/* Writers of periodic vertex files: the open files' layout (vertex_write.c)
+ * with members written i@(dx,dy,dz). Numbers with %.17g, so every double
+ * reads back bit-exactly. */
+#include "vb_periodic.h"
+
+#include <string.h>
+
+#include "vb_json.h"
+#include "vb_output.h"
+
+static void members(FILE *f, const vb_periodic_vertices *v, size_t k, int quoted)
+{
+    for (size_t j = v->start[k]; j < v->start[k + 1]; j++) {
+        const vb_periodic_member *m = v->m + j;
+        fprintf(f, "%s%s%u@(%d,%d,%d)%s", j == v->start[k] ? "" : ",", quoted ? "\"" : "",
+                (unsigned)m->id, m->s[0], m->s[1], m->s[2], quoted ? "\"" : "");
+    }
+}
+
+int vb_periodic_write(vb_ctx *ctx, FILE *f, const vb_periodic_vertices *v, int json,
+                      const char *comment)
+{
+    if (json) {
+        fputs("{", f);
+        if (comment) {
+            fputs("\"comment\":", f);
+            vb_json_write_string(f, comment);
+            fputs(",", f);
+        }
+        fputs("\"vertices\":[", f);
+        for (size_t k = 0; k < v->n; k++) {
+            fputs(k ? ",\n{\"ids\":[" : "\n{\"ids\":[", f);
+            members(f, v, k, 1);
+            fprintf(f, "],\"x\":%.17g,\"y\":%.17g,\"z\":%.17g,\"t\":%.17g,\"status\":\"certified\"}",
+                    v->x[k], v->y[k], v->z[k], v->t[k]);
+        }
+        fputs("\n]}\n", f);
+    } else {
+        fputs("# vorball periodic vertices\n", f);
+        for (const char *p = comment; p && *p;) {
+            size_t len = strcspn(p, "\n");
+            fprintf(f, "# %.*s\n", (int)len, p);
+            p += len;
+            p += *p == '\n';
+        }
+        fputs("# ids\tx\ty\tz\tt\tstatus\n", f);
+        for (size_t k = 0; k < v->n; k++) {
+            members(f, v, k, 0);
+            fprintf(f, "\t%.17g\t%.17g\t%.17g\t%.17g\tcertified\n", v->x[k], v->y[k], v->z[k],
+                    v->t[k]);
+        }
+    }
+    if (ferror(f)) {
+        const char *name = f == stdout ? "<stdout>" : vb_output_name(f);
+        return vb_error(ctx, VB_EIO, name, 0, "writing periodic vertices failed");
+    }
+    return VB_OK;
+}

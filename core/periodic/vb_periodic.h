@@ -1,0 +1,180 @@
+/* Periodic boxes: the Voronoi diagram of spheres repeated by a lattice.
+ *
+ * The box is a property of the sphere set (vb_sphere_set.box, from the
+ * file) or given apart (--box); its three edge vectors are exact decimals,
+ * so every image translation c + dx a + dy b + dz c is an exact decimal too.
+ *
+ * The periodic diagram is computed as the open diagram of the box's atoms
+ * and a layer of their images, lazily: only images within a proven reach
+ * of the atoms (images.c states the argument), with the direction cover run
+ * on the atoms' cells alone (the images are neighbours, never cells).
+ *
+ * Notation: a member of a periodic vertex is `i@(dx,dy,dz)`, atom i (its
+ * 0-based index in the input, as in open vertex files) translated by
+ * dx a + dy b + dz c. A periodic vertex stands for all its translates; it
+ * is written once, as its canonical translate: among the translates in
+ * which a member with the smallest atom id has shift (0,0,0), the one whose
+ * member list, sorted by (id, dx, dy, dz), is lexicographically smallest.
+ * Its point is that translate's point. */
+#ifndef VB_PERIODIC_H
+#define VB_PERIODIC_H
+
+#include <stdio.h>
+
+#include "vb_spheres.h"
+#include "vb_vertices.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- boxes (box.c) ------------------------------------------------------- */
+
+/* The box with edge vectors ev (rows a, b, c). Returns VB_OK, or
+ * VB_EINPUT_BOX naming file:line when the vectors are linearly dependent
+ * (decided exactly on the decimals) or a coordinate has more digits than
+ * an image needs room for. file may be NULL. Allocates nothing. */
+int vb_box_from_vectors(vb_ctx *ctx, const vb_decimal ev[9], const char *file, long line,
+                        vb_box *out);
+
+/* For readers: 1 and *out set when ev is a box (as vb_box_from_vectors
+ * would accept), else 0 and no message (a file's zero or flat box is no
+ * box: --periodic then asks for --box). */
+int vb_box_try(const vb_decimal ev[9], vb_box *out);
+
+/* The box of edge lengths len (a, b, c) and angles deg (alpha between b
+ * and c, beta between a and c, gamma between a and b, in degrees), in the
+ * convention of GROMACS and PDB: a along x, b in the xy plane. With three
+ * right angles the vectors are the exact lengths; otherwise the vectors'
+ * components are irrational in general: each is computed in double and
+ * rounded to 6 decimals (1e-6 of the input unit), and that decimal box is
+ * the exact box from there on. VB_OK or VB_EINPUT_BOX (an angle outside
+ * (0, 180), a length <= 0, angles that make no cell); ctx NULL: no
+ * message (a reader's try). */
+int vb_box_from_cell(vb_ctx *ctx, const vb_decimal len[3], const vb_decimal deg[3],
+                     const char *file, long line, vb_box *out);
+
+/* The box of `--box`: n = 3 numbers (a b c, a rectangular box), 6 (a b c
+ * alpha beta gamma) or 9 (the vectors a, b, c, as rows). VB_OK,
+ * VB_EINPUT_BOX (wrong count, malformed number, no cell). */
+int vb_box_parse_args(vb_ctx *ctx, const char *const *tok, int n, vb_box *out);
+
+/* Fractional coordinates of p (doubles, for bounds with margins only):
+ * p = f[0] a + f[1] b + f[2] c. inv is vb_box_inverse's. */
+void vb_box_inverse(const vb_box *box, double inv[9]);
+
+/* ---- images (images.c) --------------------------------------------------- */
+
+/* The box's atoms and the images that the periodic diagram needs. */
+typedef struct vb_periodic_images {
+    vb_sphere_set *set;     /* the atoms first (ids 0 .. n0), then the images; validated */
+    size_t n0;              /* atoms of the box */
+    uint32_t *atom;         /* per sphere of set: the atom it is an image of */
+    int16_t (*shift)[3];    /* per sphere of set: its translation (dx, dy, dz) */
+    double rho;             /* proven upper bound of every periodic vertex's radius t */
+    double reach;           /* images are kept within this distance of an atom (at least) */
+    int layers[3];          /* images span shifts -layers[k] .. layers[k] along edge k */
+} vb_periodic_images;
+
+/* Builds the atoms' images for the periodic diagram of `atoms` in `box`
+ * (the atoms must have exact decimals; they need not lie in the box), and
+ * validates the result (vb_spheres_validate: two atoms that coincide
+ * modulo the box are VB_EINPUT_DUPLICATE). Returns VB_OK, VB_EINPUT_BOX_SMALL
+ * (the reach exceeds 4 heights of the box: an atom's cell would meet
+ * images more than 4 layers away), VB_EINPUT_MAGNITUDE (an image
+ * coordinate beyond 18 digits), VB_ENOMEM. Free with
+ * vb_periodic_images_free. */
+int vb_periodic_images_build(vb_ctx *ctx, const vb_sphere_set *atoms, const vb_box *box,
+                             vb_periodic_images *out);
+
+void vb_periodic_images_free(vb_periodic_images *img);
+
+/* ---- the periodic vertex pipeline (periodic_vertices.c) ----------------- */
+
+typedef struct vb_periodic_member {
+    uint32_t id;
+    int16_t s[3];
+} vb_periodic_member;
+
+/* Orders members by (id, dx, dy, dz): -1, 0, +1. */
+int vb_periodic_member_cmp(const vb_periodic_member *a, const vb_periodic_member *b);
+
+/* Periodic vertices, canonical translates (see above), sorted by member
+ * list then point. Vertex k owns m[start[k] .. start[k + 1]). */
+typedef struct vb_periodic_vertices {
+    size_t n;
+    size_t *start;
+    vb_periodic_member *m;
+    double *x, *y, *z, *t;
+} vb_periodic_vertices;
+
+typedef struct vb_periodic_result {
+    vb_periodic_images img;
+    vb_vertices_result run;      /* the open run on img.set, cells of the atoms only */
+    vb_periodic_vertices v;
+    size_t translates;           /* certified vertices of the run that are not canonical */
+    size_t beyond_rho;           /* certified vertices of the run with t > rho: not periodic */
+} vb_periodic_result;
+
+void vb_periodic_result_init(vb_periodic_result *r);
+void vb_periodic_result_free(vb_periodic_result *r);
+
+/* The periodic diagram of the validated set `atoms` in `box`: builds the
+ * images (vb_periodic_images_build), runs the vertex pipeline on them with
+ * the direction cover on the atoms' cells (cfg's proposer must be the
+ * cover: VB_EMISUSE otherwise), and keeps each certified vertex's
+ * canonical translate once. Every vertex kept is certified exactly by
+ * the pipeline's certifier against atoms and images, and no sphere of the
+ * infinite periodic set can enter its tangent sphere (images.c); every
+ * vertex of the periodic diagram is kept (the cover's completeness). The
+ * bytes do not depend on the device or the thread count. Returns VB_OK or
+ * the errors of vb_periodic_images_build and vb_vertices_run. */
+int vb_periodic_vertices_run(vb_ctx *ctx, const vb_sphere_set *atoms, const vb_box *box,
+                             const vb_vertices_config *cfg, const vb_vertices_backends *be,
+                             vb_periodic_result *res);
+
+/* Whether the sorted member list found[0 .. m) is its vertex's canonical
+ * translate (see above): among the translates that put a member of the
+ * smallest id at shift 0, the lexicographically smallest list. scratch
+ * holds 2 m members. 1 or 0. */
+int vb_periodic_is_canonical(const vb_periodic_member *found, size_t m,
+                             vb_periodic_member *scratch);
+
+void vb_periodic_vertices_free(vb_periodic_vertices *v);
+
+/* ---- periodic vertex files read back (periodic_read.c) ------------------- */
+
+/* Reads a periodic vertex file (tsv as vb_periodic_write writes it; '#'
+ * lines skipped) into *out, and *lines (malloc'd) the source line of each
+ * vertex. VB_OK, VB_EINPUT_MALFORMED (file:line), VB_EINPUT_EMPTY (no
+ * vertex line), VB_EIO, VB_ENOMEM; on failure *out is empty. */
+int vb_periodic_read(vb_ctx *ctx, const char *path, vb_periodic_vertices *out, long **lines);
+
+enum {
+    VB_PERIODIC_NOT_CANONICAL = 1, /* members not sorted, or not the canonical translate */
+    VB_PERIODIC_BEYOND = 2         /* a member beyond the images' reach, or t > rho: not a
+                                    * vertex of the periodic diagram (images.c) */
+};
+
+/* The vertices of v named by the spheres of img (the images' set), for the
+ * exact verifier: each vertex a without VB_PERIODIC_BEYOND in flags[a] is
+ * appended to out (status candidate), row[k] = a for out's vertex k (row
+ * and flags hold v->n entries). VB_OK or VB_ENOMEM. */
+int vb_periodic_to_images(vb_ctx *ctx, const vb_periodic_images *img,
+                          const vb_periodic_vertices *v, vb_vertex_list *out, size_t *row,
+                          uint8_t *flags);
+
+/* What a periodic result proves, one or more lines for a file's header. */
+void vb_periodic_certificate(const vb_periodic_result *r, const vb_box *box, char *buf,
+                             size_t size);
+
+/* Writes the vertices: tsv (the default; ids column `i@(dx,dy,dz)` joined
+ * by ',') or json ("ids": ["i@(dx,dy,dz)", ...]); comment lines as the
+ * open writer's. VB_OK, VB_EMISUSE (voronota: it has no images), VB_EIO. */
+int vb_periodic_write(vb_ctx *ctx, FILE *f, const vb_periodic_vertices *v, int json,
+                      const char *comment);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
