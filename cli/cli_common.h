@@ -76,4 +76,9 @@ int vb_cli_parse_size(const char *s, size_t *out);
 /* True when `arg` equals -h or --help. */
 int vb_cli_is_help(const char *arg);
 
+/* Prints `vorball --version` to f: version and commit, build options, GMP,
+ * MPFR and CGAL versions, and the OpenCL device --device auto takes with
+ * its platform and driver versions. Returns the exit code (0). */
+int vb_cli_version(FILE *f);
+
 #endif

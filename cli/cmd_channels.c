@@ -20,6 +20,7 @@
 #include "vb_frames.h"
 #include "vb_world.h"
 #include "vbc_frame.h"
+#include "vbc_page.h"
 #include "frame_rounds.h"
 
 static const char *cmd = "channels";
@@ -28,7 +29,7 @@ static const char *cmd = "channels";
 
 typedef struct {
     const char *input, *out, *dcd, *centrelines, *pymol, *volume, *stats, *png;
-    const char *profile, *plot, *occupancy;
+    const char *profile, *plot, *occupancy, *html;
     int json, cavities, png_axis, fixed_grid, stats_stderr;
     vbc_pore_request pore;
     char ignore_buf[1024];
@@ -109,6 +110,9 @@ static void usage(FILE *f)
             "  --ignore RES,...    leave out atoms of these residue names (ligands, ions, ...)\n"
             "  --profile FILE      radius profile of every channel and frame (CSV: axial s,\n"
             "                      arc length, point, radius, nearest and touching atoms)\n"
+            "  --html FILE         a results page that opens offline in a browser: the\n"
+            "                      molecule, channels coloured by radius, the pore's profile,\n"
+            "                      the figures of each frame and a frame slider\n"
             "  --plot FILE.png     the pore's radius profile (first frame; with several\n"
             "                      frames also its smallest radius per frame) drawn by gnuplot\n"
             "                      from FILE.png.gp (kept; W807 without gnuplot)\n"
@@ -230,7 +234,7 @@ static int parse_args(int argc, char **argv, ch_args *A)
             "-o", "--stats-file", "--traj", "--dcd", "--centerlines", "--centrelines", "--pymol",
             "--volume", "--png", "--probe", "--grid", "--frames", "--repeat", "--min-length",
             "--min-radius", "--lining-tol", "--volume-mask", "--png-normal", "--jfa", "--device",
-            "--axis", "--through", "--sample", "--end-radius", "--ignore", "--profile", "--plot",
+            "--axis", "--through", "--sample", "--end-radius", "--ignore", "--profile", "--plot", "--html",
             "--occupancy"};
         int flag = 0, takes = 0;
         for (size_t k = 0; k < sizeof flags / sizeof flags[0]; k++)
@@ -258,6 +262,7 @@ static int parse_args(int argc, char **argv, ch_args *A)
         else if (strcmp(a, "--no-pore") == 0) A->pore.enabled = 0;
         else if (strcmp(a, "--fixed-grid") == 0) A->fixed_grid = 1;
         else if (strcmp(a, "--profile") == 0) A->profile = v;
+        else if (strcmp(a, "--html") == 0) A->html = v;
         else if (strcmp(a, "--plot") == 0) A->plot = v;
         else if (strcmp(a, "--occupancy") == 0) A->occupancy = v;
         else if (strcmp(a, "--axis") == 0 || strcmp(a, "--through") == 0) {
@@ -391,7 +396,24 @@ typedef struct {
     vbc_result first;       /* the first frame's result (CONECT records, the plot) */
     vbc_series series;      /* the pore's smallest radius per frame (the plot) */
     size_t ignored;         /* atoms left out by --ignore, over this rank's frames */
+    vb_page *page;          /* --html: made from the first frame's atoms */
 } sinks;
+
+/* Adds the frame to the results page (--html), made on the first frame. */
+static int page_frame(vb_ctx *ctx, const ch_args *A, sinks *S, const vb_sphere_set *s, long index,
+                      int model, const vbc_result *res)
+{
+    char label[64];
+    if (!S->page) {
+        char title[512];
+        snprintf(title, sizeof title, "vorball channels %s%s%s", A->input, A->dcd ? " + " : "",
+                 A->dcd ? A->dcd : "");
+        if (!(S->page = vb_page_new(ctx, title, s)))
+            return vb_errcode(ctx);
+    }
+    snprintf(label, sizeof label, "frame %ld (model %d)", index, model);
+    return vbc_page_add(S->page, label, s, res);
+}
 
 /* Writes the eight pipeline stages of the first frame (--png). */
 static int write_stages(vb_ctx *ctx, const ch_args *A, vbc_pipe *pipe, const vb_sphere_set *s)
@@ -558,6 +580,8 @@ static int do_frame(vb_ctx *ctx, ch_args *A, vbc_pipe *pipe, long index, int mod
     rc = vb_cli_rounds_frame_done(ctx, S->rounds);
     if (rc == VB_OK && S->profile)
         vbc_write_profile_rows(S->profile, &fi, s, &F.result);
+    if (rc == VB_OK && A->html)
+        rc = page_frame(ctx, A, S, s, index, model, &F.result);
     if (rc == VB_OK && A->plot)
         rc = series_add(ctx, &S->series, index, &F.result);
     if (rc == VB_OK && A->occupancy) {
@@ -774,10 +798,10 @@ int vb_cmd_channels(int argc, char **argv)
     /* The profile, plot, fixed grid and occupancy gather every frame in one
      * process (the pore axis of the first frame is found by every rank:
      * first_frame_axis). */
-    if (vb_world_size() > 1 && (A.profile || A.plot || A.fixed_grid || A.occupancy)) {
+    if (vb_world_size() > 1 && (A.profile || A.plot || A.fixed_grid || A.occupancy || A.html)) {
         if (vb_world_rank() == 0)
-            fprintf(stderr, "vorball channels: E%d: --profile, --plot, --fixed-grid and "
-                            "--occupancy run on one process only (not under MPI)\n",
+            fprintf(stderr, "vorball channels: E%d: --profile, --plot, --fixed-grid, "
+                            "--occupancy and --html run on one process only (not under MPI)\n",
                     VB_E_MPI_COMMAND);
         return VB_EXIT_USAGE;
     }
@@ -867,12 +891,15 @@ int vb_cmd_channels(int argc, char **argv)
         rc = vbc_write_volume_f32(ctx, A.occupancy, &S.fixed, S.occupancy, 1.0 / (double)S.frames_done);
     if (rc == VB_OK && A.plot)
         rc = vb_channels_plot(ctx, A.plot, A.input, &S.first, &S.series);
+    if (rc == VB_OK && A.html)
+        rc = vb_page_write(S.page, A.html);
 done:
     rc = close_outputs(ctx, &A, out, rc);
     if (S.profile)
         rc = vb_cli_finish_output(ctx, S.profile, A.profile, rc);
     vb_cli_rounds_close(S.rounds);
     vbc_result_free(&S.first);
+    vb_page_free(S.page);
     free(S.occupancy);
     free(S.series.frame);
     free(S.series.rmin);

@@ -25,7 +25,7 @@ static void help(FILE *f)
             "certified vertex with all the spheres it touches, and the header says whether\n"
             "the list is proven complete.\n\n"
             "  -o FILE              output file (default stdout)\n"
-            "  --output-format F    tsv (default), json or voronota\n"
+            "  --output-format F    tsv (default), json, voronota or npz (NumPy arrays)\n"
             "  --device D           auto (default: a GPU, else PoCL on the CPU), gpu, cpu, or\n"
             "                       ref (plain-C reference backend; same output)\n"
             "  --proposer P         how candidates are proposed: cover (default; a direction\n"

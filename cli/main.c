@@ -68,7 +68,7 @@ static void usage(FILE *f)
 #endif
     fprintf(f,
             "\n'vorball <command> --help' describes each command; 'vorball --version'\n"
-            "prints the version.\n"
+            "prints the version, commit, build options, library versions and device.\n"
             "Exit codes: 0 ok, 1 check failed, 2 usage, 3 i/o, 4 memory, 5 device,\n"
             "6 internal, 7 degenerate, 8 precision, 11-27 bad input (see README).\n");
 }
@@ -87,10 +87,8 @@ static int dispatch(int argc, char **argv)
         usage(stdout);
         return VB_EXIT_OK;
     }
-    if (strcmp(argv[1], "--version") == 0) {
-        printf("vorball 0.1.0\n");
-        return VB_EXIT_OK;
-    }
+    if (strcmp(argv[1], "--version") == 0)
+        return vb_cli_version(stdout);
     vb_cli_set_args(argc, argv);
     /* A command's output files appear together when it succeeds (or when a
      * check ran and wrote its report of differences), none when it fails. */

@@ -111,6 +111,7 @@
     X(W, 807, PLOT_NO_GNUPLOT, 0, "gnuplot not found or failed: plot script kept, no PNG")               \
     X(W, 808, PORE_NOT_FOUND, 0, "no pore: no axis candidate could be swept")                            \
     X(W, 809, ATOMS_IGNORED, 0, "atoms left out by --ignore (count)")                                    \
+    X(W, 829, PAGE_FULL, 0, "results page full: later frames left out of it (the tables have them)")    \
     X(W, 830, MPI_SAMPLING_RANK0, 0, "--proposer sampling does not split: rank 0 runs it alone")         \
     X(W, 831, MPI_STOPPED, 0, "a rank failed: every rank stopped (the error names the rank)")
 

@@ -226,6 +226,16 @@ cl_device_id vbg_runtime_device(const vbg_runtime *rt) { return rt->device; }
 const char *vbg_runtime_device_name(const vbg_runtime *rt) { return rt->name; }
 int vbg_runtime_is_gpu(const vbg_runtime *rt) { return rt->is_gpu; }
 
+void vbg_runtime_versions(const vbg_runtime *rt, char *buf, size_t len)
+{
+    char pv[256] = "?", dv[256] = "?", drv[256] = "?";
+    clGetPlatformInfo(rt->platform, CL_PLATFORM_VERSION, sizeof pv - 1, pv, NULL);
+    clGetDeviceInfo(rt->device, CL_DEVICE_VERSION, sizeof dv - 1, dv, NULL);
+    clGetDeviceInfo(rt->device, CL_DRIVER_VERSION, sizeof drv - 1, drv, NULL);
+    pv[sizeof pv - 1] = dv[sizeof dv - 1] = drv[sizeof drv - 1] = '\0';
+    snprintf(buf, len, "platform %s; device %s, driver %s", pv, dv, drv);
+}
+
 /* Reads a kernel file from VORBALL_KERNEL_DIR (development: edit kernels
  * without rebuilding). Returns malloc'd text or NULL. */
 static char *read_kernel_file(const char *dir, const char *name)

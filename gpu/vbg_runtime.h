@@ -44,6 +44,11 @@ cl_device_id vbg_runtime_device(const vbg_runtime *rt);
 /* "NVIDIA H100 80GB HBM3 (NVIDIA CUDA)" style name, owned by the runtime. */
 const char *vbg_runtime_device_name(const vbg_runtime *rt);
 int vbg_runtime_is_gpu(const vbg_runtime *rt);
+/* The versions behind the runtime, for provenance: "platform <version>;
+ * device <OpenCL version>, driver <version>" (e.g. "OpenCL 3.0 PoCL 3.1 ...;
+ * device OpenCL 3.0 PoCL HSTR: ..., driver 3.1"), into buf (always
+ * NUL-terminated). */
+void vbg_runtime_versions(const vbg_runtime *rt, char *buf, size_t len);
 
 /* Builds (once per runtime; cached) the program from kernel file `name`
  * (e.g. "jfa.cl"). Its `#include "x.h"` lines were resolved at build time.

@@ -4,6 +4,7 @@
 #define VB_TEST_H
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 static int vb_test_passed, vb_test_failed;
@@ -53,6 +54,23 @@ static int vb_test_passed, vb_test_failed;
                     va_ ? va_ : "(null)", vb_ ? vb_ : "(null)");                               \
         }                                                                                      \
     } while (0)
+
+/* The whole file at path, NUL-terminated (malloc'ed), or NULL. */
+static inline char *vb_test_slurp(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *b = n >= 0 ? malloc((size_t)n + 1) : NULL;
+    size_t got = b ? fread(b, 1, (size_t)n, f) : 0;
+    if (b)
+        b[got] = '\0';
+    fclose(f);
+    return b;
+}
 
 #define VB_TEST_END()                                                        \
     do {                                                                     \

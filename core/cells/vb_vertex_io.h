@@ -17,6 +17,9 @@
  *   lines may not (e.g. four coplanar corners of a cube). The reader keeps one
  *   entry per line; grouping lines into vertices needs exact arithmetic and is
  *   done by `vorball verify`.
+ * npz: a NumPy archive of arrays ids, start, xyz, t, status and comment
+ *   (vertex_npz.c says what each holds), the same doubles bit for bit; for
+ *   NumPy and other tools, not read back by vorball.
  * Non-finite numbers are refused by the reader (VB_EINPUT_NONFINITE). */
 #ifndef VB_VERTEX_IO_H
 #define VB_VERTEX_IO_H
@@ -33,10 +36,11 @@ extern "C" {
 typedef enum vb_vertex_format {
     VB_VFMT_TSV = 0,
     VB_VFMT_JSON,
-    VB_VFMT_VORONOTA
+    VB_VFMT_VORONOTA,
+    VB_VFMT_NPZ
 } vb_vertex_format;
 
-/* Parses "tsv|json|voronota". VB_OK or VB_EMISUSE. */
+/* Parses "tsv|json|voronota|npz". VB_OK or VB_EMISUSE. */
 int vb_vertex_format_parse(vb_ctx *ctx, const char *name, vb_vertex_format *out);
 
 /* Static name of a vertex status: "candidate", "certified", "rejected". */
@@ -46,6 +50,11 @@ const char *vb_vertex_status_name(int status);
  * that have one. Returns VB_OK or VB_EIO. */
 int vb_vertex_write(vb_ctx *ctx, FILE *f, const vb_vertex_list *v, vb_vertex_format fmt,
                     const char *comment);
+
+/* Writes the list as a NumPy .npz archive (vertex_npz.c) with `comment`
+ * (may be NULL) as its comment array. VB_OK, VB_EIO, VB_ENOMEM, or
+ * VB_EMISUSE for an array over 4 GiB (ZIP64 is not written). */
+int vb_vertex_write_npz(vb_ctx *ctx, FILE *f, const vb_vertex_list *v, const char *comment);
 
 /* Largest vertex file read: the input layer's limit for sphere files. */
 #define VB_VERTEX_MAX_FILE_BYTES ((size_t)2 << 30)

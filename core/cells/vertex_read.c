@@ -490,6 +490,10 @@ int vb_vertex_read_buffer(vb_ctx *ctx, const char *name, const char *buf, size_t
 {
     reader r = {ctx, name, out, NULL, 0, 0, NULL, 0, 0};
     size_t n0 = out->n;
+    if (len >= 4 && memcmp(buf, "PK\x03\x04", 4) == 0)
+        return vb_error(ctx, VB_EINPUT_FORMAT, name, 0,
+                        "an npz vertex file is for NumPy (np.load); vorball reads tsv, json and "
+                        "voronota vertex files");
     vb_vertex_format fmt = detect(buf, len);
     int rc = fmt == VB_VFMT_JSON ? parse_json(&r, buf, len) : parse_lines(&r, buf, len, fmt);
     free(r.ids);

@@ -20,9 +20,11 @@ int vb_vertex_format_parse(vb_ctx *ctx, const char *name, vb_vertex_format *out)
         *out = VB_VFMT_JSON;
     else if (strcmp(name, "voronota") == 0)
         *out = VB_VFMT_VORONOTA;
+    else if (strcmp(name, "npz") == 0)
+        *out = VB_VFMT_NPZ;
     else
         return vb_error(ctx, VB_EMISUSE, NULL, 0,
-                        "unknown vertex format '%s' (expected tsv, json or voronota)", name);
+                        "unknown vertex format '%s' (expected tsv, json, voronota or npz)", name);
     return VB_OK;
 }
 
@@ -206,6 +208,7 @@ int vb_vertex_write(vb_ctx *ctx, FILE *f, const vb_vertex_list *v, vb_vertex_for
     case VB_VFMT_TSV: rc = write_tsv(ctx, f, v, comment); break;
     case VB_VFMT_JSON: rc = write_json(ctx, f, v, comment); break;
     case VB_VFMT_VORONOTA: rc = write_voronota(ctx, f, v); break;
+    case VB_VFMT_NPZ: rc = vb_vertex_write_npz(ctx, f, v, comment); break;
     default: return vb_error(ctx, VB_EMISUSE, NULL, 0, "unknown vertex format %d", (int)fmt);
     }
     if (rc != VB_OK)

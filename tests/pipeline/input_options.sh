@@ -25,7 +25,10 @@ grep -v '^#' "$work/ref_gz.tsv" | cmp -s - "$work/golden_body.tsv" || fail "gzip
 run 0 "$out" "$vorball" --help
 expect_line "$out" "vorball --version"
 run 0 "$out" "$vorball" --version
-expect_line "$out" "^vorball [0-9]"
+expect_line "$out" "^vorball [0-9][0-9.]* \\(commit [0-9a-z]"
+expect_line "$out" "^build: [A-Za-z]*, [A-Za-z]* [0-9]"
+expect_line "$out" "^exact arithmetic: GMP [0-9][0-9.]*, MPFR [0-9]"
+expect_line "$out" "^device \\(--device auto\\): "
 run 0 "$out" "$vorball" reference --help
 for name in "--format F" "--model N" "--radii FILE" "--water" "--no-hydrogens" "--strict-elements" \
             "--zero-radius M" "--assembly N"; do

@@ -29,21 +29,6 @@ static char *body(const char *text)
     return out;
 }
 
-static char *slurp(const char *path)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *b = malloc((size_t)n + 1);
-    size_t got = fread(b, 1, (size_t)n, f);
-    b[got] = '\0';
-    fclose(f);
-    return b;
-}
-
 /* cover -> vb_certify_quads on one corpus input, against its golden. */
 static void one_case(const char *name, const char *in, const char *gold)
 {
@@ -75,7 +60,7 @@ static void one_case(const char *name, const char *in, const char *gold)
         FILE *m = open_memstream(&text, &tlen);
         vb_vertex_write(ctx, m, &out, VB_VFMT_TSV, NULL);
         fclose(m);
-        char *want = slurp(gold);
+        char *want = vb_test_slurp(gold);
         CHECK(want != NULL);
         if (want) {
             char *a = body(text), *b = body(want);

@@ -146,6 +146,9 @@ int vb_reference(vb_ctx *ctx, const vb_sphere_set *set, vb_vertex_list *out);
 struct vb_certifier_ops;
 extern const struct vb_certifier_ops vb_exact_certifier;
 
+/* The MPFR version the verifier runs with (mpfr_get_version). */
+const char *vb_verify_mpfr_version(void);
+
 #ifdef __cplusplus
 }
 #endif
