@@ -131,9 +131,9 @@ int vb_cmd_vertices(int argc, char **argv)
     if (code == VB_EXIT_OK && !input)
         code = vb_cli_usage_error("vertices", "no input file (use - for stdin)");
     if (code == VB_EXIT_OK && per.on && (co.arcs || topo_path || vb_world_size() > 1 ||
-                                         vfmt == VB_VFMT_VORONOTA))
+                                         vfmt == VB_VFMT_VORONOTA || vfmt == VB_VFMT_NPZ))
         code = vb_cli_usage_error("vertices", "--periodic runs on one process, without --arcs, "
-                                              "--topology and the voronota format");
+                                              "--topology and the voronota and npz formats");
     vb_completion_plan(&po.cfg, &co);
     if (code == VB_EXIT_OK)
         code = vb_world_check_input("vertices", input);
