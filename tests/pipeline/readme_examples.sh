@@ -78,7 +78,7 @@ while [ "$b" -le "$nblocks" ]; do
         done < block.txt ;;
     "bash .ci/build && "*)
         [ "$mode" = mpi ] || example "${first#bash .ci/build && }" ;;
-    "bash .ci/"* | "cmake "* | "python3 -m venv "* | ".venv/bin/"* | "import vorball" | "#"*) ;;
+    "bash .ci/"* | "bash python/wheel.sh"* | "cmake "* | "python3 -m venv "* | ".venv/bin/"* | "import vorball" | "#"*) ;;
     *) fail "README block $b is neither an example nor a known set-up: '$first'" ;;
     esac
     b=$((b + 1))
