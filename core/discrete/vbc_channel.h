@@ -211,9 +211,11 @@ void vbc_write_centrelines_pdb(FILE *f, int model, const vbc_result *res);
  * channel of the first model `first` (serials as written), then END. */
 void vbc_write_centrelines_conect(FILE *f, const vbc_result *first);
 
-/* A PyMOL script that loads the molecule (when not NULL) and the centreline
- * PDB and shows the points as spheres of their radius, coloured by it. */
-void vbc_write_pymol(FILE *f, const char *molecule, const char *centrelines);
+/* A PyMOL script, to be written at path `script`, that loads the molecule
+ * `input` (not when it is "-", stdin) and the centreline PDB, both by paths
+ * relative to the script's folder (core/discrete/channel_pymol.c), and shows
+ * the points as spheres of their radius, coloured by it. */
+void vbc_write_pymol(FILE *f, const char *script, const char *input, const char *centrelines);
 
 /* The radius profile of every channel of a frame as CSV rows (header first):
  * per point its index, axial coordinate s (on the pore's axis, when the

@@ -16,11 +16,11 @@ from ._errors import CatalogueEntry, Diagnostic, VorballError, catalogue
 from ._spheres import Frames, Spheres, frames, read, spheres
 from ._vertices import Certificate, Engine, Result, vertex_text, vertices
 from ._verify import DUPLICATE, MISSING, NOT_VERTEX, WRONG_COORDS, Report, verify
-from ._channels import Channels, channel_flags, channels
+from ._channels import Channels, channel_flags, channel_options, channels
 
 __all__ = ["CatalogueEntry", "Certificate", "Channels", "Diagnostic", "DUPLICATE", "Engine",
            "Frames", "MISSING", "NOT_VERTEX", "Report", "Result", "Spheres", "VorballError",
-           "WRONG_COORDS", "catalogue", "channel_flags", "channels", "frames", "read",
+           "WRONG_COORDS", "catalogue", "channel_flags", "channel_options", "channels", "frames", "read",
            "spheres", "verify", "vertex_text", "vertices"]
 
 try:

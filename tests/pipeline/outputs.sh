@@ -28,6 +28,18 @@ run 2 "$out" "$vorball" channels --device ref --grid 32 link.pdb -o out.csv --st
 expect_line "$out" "E7: ./in.pdb: output is the same file as 'link.pdb'"
 [ "$(cksum < in.pdb)" = "$sum" ] || fail "channels changed its input"
 [ ! -e out.csv ] || fail "a refused command left out.csv"
+# --plot (issue 32): the PNG is an output like the others, drawn by gnuplot
+# (where installed) and in place when the command ends; the script kept
+# beside it draws the same name; no temporary file is left.
+run 0 "$out" "$vorball" channels --device ref --grid 32 in.pdb -o plot.csv --plot plot.png
+if command -v gnuplot > /dev/null 2>&1; then
+    [ "$(head -c 4 plot.png | od -An -c | tr -d ' ')" = "211PNG" ] || fail "--plot wrote no PNG"
+else
+    expect_line "$out" "W807"
+fi
+grep -q "^set output 'plot.png'$" plot.png.gp || fail "the kept plot script draws another file"
+[ -z "$(ls -A | grep 'plot.png.tmp' || true)" ] || fail "--plot left temporary files"
+no_temps
 xsum=$(cksum < in.xyzr)
 run 2 "$out" "$vorball" vertices --device ref in.xyzr -o "$work/in.xyzr"
 run 2 "$out" "$vorball" reference in.xyzr -o in.xyzr
