@@ -173,7 +173,13 @@ int vbc_run_frame(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index, 
     vbc_frame_info fi = {index, model, o->s->n, 0, 0, 0, 0, 0, 0, 0};
     o->fi = fi;
     rc = frame_repeat(ctx, r, want, o);
-    if (rc == VB_OK && A->pore.enabled && !o->F.result.pore.present && first)
+    const vbc_pore_summary *ps = &o->F.result.pore;
+    if (rc == VB_OK && A->pore.enabled && !ps->present && first && ps->judged)
+        vb_warn(ctx, VB_W_PORE_NOT_FOUND, r->input, 0,
+                "no pore: the widest path along the %s axis is walled by the molecule's atoms for "
+                "%.1f A only (a pore needs %.0f A: vbc_pore.h); the table has none",
+                vbc_axis_source_name(ps->rejected_source), ps->buried, VBC_PORE_MIN_BURIED);
+    else if (rc == VB_OK && A->pore.enabled && !ps->present && first)
         vb_warn(ctx, VB_W_PORE_NOT_FOUND, r->input, 0, "no pore found along any axis candidate");
     if (rc == VB_OK)
         keep_pore_axis(A, &o->F);

@@ -110,6 +110,9 @@ typedef struct vbc_pore_summary {
     double step;            /* A between planes */
     double F, g_macro_pS;   /* HOLE's geometric factor (1/A) and Gmacro (1 M KCl) */
     int open_lo, open_hi;   /* each end left the molecule */
+    int judged;             /* the verdict ran (a found axis): buried below */
+    double buried;          /* A walled along the axis (vbc_pore_judge), also when no pore */
+    int rejected_source;    /* no pore: the axis of the path judged (enum vbc_axis_source) */
 } vbc_pore_summary;
 
 typedef struct vbc_result {
