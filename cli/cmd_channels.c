@@ -374,8 +374,8 @@ int vb_cmd_channels(int argc, char **argv)
     if (rc == VB_OK && rank0 && A.c.volume && !strstr(A.c.volume, "%d") && selected > 1)
         vb_warn(ctx, VB_W_VOLUME_FIRST_FRAME, A.c.volume, 0, "volume holds the first of %ld frames ('%%d' in the name "
                 "writes one per frame)", selected);
-    if (rc == VB_OK && S.run.ignored)
-        vb_warn(ctx, VB_W_ATOMS_IGNORED, A.input, 0, "%zu atoms left out by --ignore", S.run.ignored);
+    if (rc == VB_OK)
+        vbc_run_report_left_out(ctx, &S.run);
     if (rc == VB_OK && rank0 && A.c.json)
         vbc_write_json_end(out[SINK_TABLE]);
     if (rc == VB_OK && rank0 && out[SINK_CL])

@@ -108,7 +108,7 @@
     X(W, 806, CHANNELS_DEVICE_FAILED, 0, "OpenCL failed mid-run: rest of channels on reference")         \
     X(W, 807, PLOT_NO_GNUPLOT, 0, "gnuplot not found or failed: plot script kept, no PNG")               \
     X(W, 808, PORE_NOT_FOUND, 0, "no pore: no path crosses the molecule walled by its atoms")            \
-    X(W, 809, ATOMS_IGNORED, 0, "atoms left out by --ignore (count)")                                    \
+    X(W, 809, ATOMS_IGNORED, 0, "atoms left out by --membrane or --ignore (count per name)")             \
     X(W, 830, MPI_SAMPLING_RANK0, 0, "--proposer sampling does not split: rank 0 runs it alone")         \
     X(W, 831, MPI_STOPPED, 0, "a rank failed: every rank stopped (the error names the rank)")
 

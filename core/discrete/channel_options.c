@@ -11,7 +11,7 @@ enum vbc_opt_id {
     O_OUT, O_JSON, O_STATS, O_STATS_FILE, O_PROBE, O_GRID, O_FRAMES, O_TRAJ, O_MIN_LENGTH,
     O_MIN_RADIUS, O_LINING_TOL, O_CAVITIES, O_CENTRELINES, O_PYMOL, O_VOLUME, O_VOLUME_MASK,
     O_PNG, O_PNG_NORMAL, O_JFA, O_DEVICE, O_REPEAT, O_AXIS, O_THROUGH, O_SAMPLE, O_END_RADIUS,
-    O_NO_PORE, O_IGNORE, O_PROFILE, O_PLOT, O_FIXED_GRID, O_OCCUPANCY
+    O_NO_PORE, O_IGNORE, O_MEMBRANE, O_PROFILE, O_PLOT, O_FIXED_GRID, O_OCCUPANCY
 };
 
 #define NUM(a, b) (a), (b), NULL
@@ -84,6 +84,10 @@ static const vbc_opt_spec table[] = {
      "channels only, no pore sweep", VBC_SECT_PORE},
     {O_IGNORE, "--ignore", NULL, "ignore", VBC_OPT_NAMES, NONE, "RES,...", NULL,
      "leave out atoms of these residue names (ligands, ions, ...)", VBC_SECT_PORE},
+    {O_MEMBRANE, "--membrane", NULL, "membrane", VBC_OPT_NAMES, NONE, "RES,...|none",
+     VBC_MEMBRANE_DEFAULT,
+     "leave out the membrane: atoms of these residue names (membrane dummy atoms, lipids, "
+     "detergents; W809 counts them by name); none keeps every atom", VBC_SECT_PORE},
     {O_PROFILE, "--profile", NULL, NULL, VBC_OPT_PATH, NONE, "FILE", NULL,
      "radius profile of every channel and frame (CSV: axial s, arc length, point, radius, "
      "nearest and touching atoms)", VBC_SECT_PORE},
@@ -271,20 +275,22 @@ static int typed(const vbc_opt_spec *o, const char *v, double *num, double v3[3]
     }
 }
 
-static int set_names(vbc_channels_config *c, const char *v, char *err, size_t errlen)
+/* A list of residue names into buf (1024 bytes) and names[*n]. */
+static int set_names(const char *opt, const char *v, char *buf, const char **names, size_t *n,
+                     char *err, size_t errlen)
 {
-    if (strlen(v) >= sizeof c->ignore_buf)
-        return snprintf(err, errlen, "--ignore: list too long"), -1;
-    strcpy(c->ignore_buf, v);
-    c->nignore = 0;
+    if (strlen(v) >= 1024)
+        return snprintf(err, errlen, "%s: list too long", opt), -1;
+    strcpy(buf, v);
+    *n = 0;
     char *save = NULL;
-    for (char *tok = strtok_r(c->ignore_buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
-        if (c->nignore == VBC_MAX_NAMES)
-            return snprintf(err, errlen, "--ignore: at most %d names", VBC_MAX_NAMES), -1;
-        c->ignore[c->nignore++] = tok;
+    for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+        if (*n == VBC_MAX_NAMES)
+            return snprintf(err, errlen, "%s: at most %d names", opt, VBC_MAX_NAMES), -1;
+        names[(*n)++] = tok;
     }
-    if (c->nignore == 0)
-        return snprintf(err, errlen, "--ignore needs residue names, not '%s'", v), -1;
+    if (*n == 0)
+        return snprintf(err, errlen, "%s needs residue names, not '%s'", opt, v), -1;
     return 0;
 }
 
@@ -339,7 +345,14 @@ int vbc_channels_set(vbc_channels_config *c, const vbc_opt_spec *o, const char *
     case O_SAMPLE: c->pore.sweep.step = num; break;
     case O_END_RADIUS: c->pore.sweep.end_radius = num; break;
     case O_NO_PORE: c->pore.enabled = 0; break;
-    case O_IGNORE: return set_names(c, v, err, errlen);
+    case O_IGNORE:
+        return set_names(o->name, v, c->ignore_buf, c->ignore, &c->nignore, err, errlen);
+    case O_MEMBRANE:
+        if (strcmp(v, "none") == 0) {
+            c->nmembrane = 0;
+            return 0;
+        }
+        return set_names(o->name, v, c->membrane_buf, c->membrane, &c->nmembrane, err, errlen);
     case O_PROFILE: c->profile = v; break;
     case O_PLOT: c->plot = v; break;
     case O_FIXED_GRID: c->fixed_grid = 1; break;
@@ -382,22 +395,47 @@ int vbc_channels_check(vbc_channels_config *c, char *err, size_t errlen)
 }
 
 /* Writes text wrapped at `width` columns, continuation lines indented by
- * `indent`, the first line starting at column `col`. */
+ * `indent`, the first line starting at column `col`. A word longer than a
+ * line (a list of names) breaks after its commas. */
 static void wrap(FILE *f, const char *text, int col, int indent, int width)
 {
     const char *p = text;
+    int glued = 0; /* the piece continues a word broken after a comma */
     while (*p) {
         const char *w = p;
         while (*w && *w != ' ')
             w++;
         int len = (int)(w - p);
-        if (col > indent && col + 1 + len > width) {
+        if (len > width - indent) {
+            /* Up to the last comma that fits the rest of this line (or a
+             * whole line), at least one name. */
+            int room = width - col - (col > indent && !glued), cut = 0;
+            for (int k = 0; k < len; k++)
+                if (p[k] == ',' && (k + 1 <= room || cut == 0))
+                    cut = k + 1;
+            if (cut > 0 && cut < len) {
+                if (col > indent && col + (glued ? 0 : 1) + cut > width) {
+                    fprintf(f, "\n%*s", indent, "");
+                    col = indent;
+                } else if (col > indent && !glued) {
+                    fputc(' ', f);
+                    col++;
+                }
+                fprintf(f, "%.*s", cut, p);
+                col += cut;
+                p += cut;
+                glued = 1;
+                continue;
+            }
+        }
+        if (col > indent && (glued ? col + len > width : col + 1 + len > width)) {
             fprintf(f, "\n%*s", indent, "");
             col = indent;
-        } else if (col > indent) {
+        } else if (col > indent && !glued) {
             fputc(' ', f);
             col++;
         }
+        glued = 0;
         fprintf(f, "%.*s", len, p);
         col += len;
         p = *w ? w + 1 : w;

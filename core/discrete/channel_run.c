@@ -88,9 +88,15 @@ static int frame_prepare(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long 
     int rc = VB_OK;
     o->kept = NULL;
     o->s = s0;
-    if (A->nignore) {
-        size_t dropped;
-        if ((rc = vbc_spheres_without(ctx, s0, A->ignore, A->nignore, &o->kept, &dropped)) != VB_OK)
+    if (A->nignore || A->nmembrane) {
+        const char *names[2 * VBC_MAX_NAMES];
+        size_t n = 0, dropped;
+        for (size_t k = 0; k < A->nmembrane; k++)
+            names[n++] = A->membrane[k];
+        for (size_t k = 0; k < A->nignore; k++)
+            names[n++] = A->ignore[k];
+        rc = vbc_spheres_without(ctx, s0, names, n, r->left_out, &o->kept, &dropped);
+        if (rc != VB_OK)
             return rc;
         r->ignored += dropped;
         o->s = o->kept;
@@ -201,13 +207,40 @@ int vbc_run_frame(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index, 
     return VB_OK;
 }
 
+void vbc_run_report_left_out(vb_ctx *ctx, const vbc_run *r)
+{
+    const vbc_channels_config *A = r->cfg;
+    if (!r->ignored)
+        return;
+    char text[2048];
+    size_t o = 0;
+    text[0] = '\0';
+    for (int part = 0; part < 2; part++) {
+        size_t n = part ? A->nignore : A->nmembrane, base = part ? A->nmembrane : 0, shown = 0;
+        const char *const *names = part ? A->ignore : A->membrane;
+        for (size_t k = 0; k < n && o + 64 < sizeof text; k++) {
+            if (!r->left_out[base + k])
+                continue;
+            o += (size_t)snprintf(text + o, sizeof text - o, "%s%s%s %zu",
+                                  shown ? ", " : o ? "; " : "",
+                                  shown ? "" : part ? "--ignore: " : "membrane (--membrane none keeps it): ",
+                                  names[k], r->left_out[base + k]);
+            shown++;
+        }
+    }
+    vb_warn(ctx, VB_W_ATOMS_IGNORED, r->input, 0, "%zu atoms left out: %s", r->ignored, text);
+}
+
 int vbc_run_axis(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index)
 {
     vbc_run_out o;
     memset(&o, 0, sizeof o);
-    size_t ignored = r->ignored; /* counted by the rank that owns the frame */
+    /* Counted by the rank that owns the frame. */
+    size_t ignored = r->ignored, left_out[2 * VBC_MAX_NAMES];
+    memcpy(left_out, r->left_out, sizeof left_out);
     int rc = frame_prepare(ctx, r, s0, index, &o);
     r->ignored = ignored;
+    memcpy(r->left_out, left_out, sizeof left_out);
     if (rc != VB_OK)
         return rc;
     if ((rc = vbc_frame_run(ctx, r->pipe, &o.g, o.s, r->cfg->probe, 0, &r->cfg->opt, &o.F)) == VB_OK)

@@ -163,11 +163,11 @@ void vbc_cells_within(const vbc_cells *c, const double p[3], double reach,
 
 /* A copy of s without the atoms whose residue name is one of resnames[0..n)
  * (case-insensitive; a set without atom records keeps every sphere), in
- * *out (free with vb_spheres_free), *dropped the count left out; no exact
- * decimals (a channel set). VB_EINPUT_EMPTY when nothing is left,
- * VB_ENOMEM. */
+ * *out (free with vb_spheres_free), *dropped the count left out, counts[k]
+ * (when not NULL) increased by the atoms of name k; no exact decimals (a
+ * channel set). VB_EINPUT_EMPTY when nothing is left, VB_ENOMEM. */
 int vbc_spheres_without(vb_ctx *ctx, const vb_sphere_set *s, const char *const *resnames, size_t n,
-                        vb_sphere_set **out, size_t *dropped);
+                        size_t *counts, vb_sphere_set **out, size_t *dropped);
 
 /* Writers (core/discrete/channel_write.c). */
 

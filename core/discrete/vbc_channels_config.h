@@ -45,6 +45,19 @@ typedef struct vbc_opt_spec {
 
 #define VBC_MAX_NAMES 64
 
+/* The residues of a membrane that the channel analysis leaves out unless
+ * told otherwise (--membrane): OPM/PPM's membrane dummy atoms; phospholipids
+ * and sphingomyelin by their CHARMM/Slipids/GROMACS names; sterols; lipid
+ * and detergent components of the PDB's chemical dictionary (PC, PE, PG and
+ * cardiolipin ligands, monoolein, oleic and palmitic acid; LDAO, DDM, UDM,
+ * DM, beta-OG, NG, CHAPS, C8E4, DPC, SDS, HTG, CHS). A membrane around a
+ * channel hides the pore's mouths and turns its principal axes; a dummy
+ * atom read as N or O fills the pore. */
+#define VBC_MEMBRANE_DEFAULT                                                                   \
+    "DUM,POPC,POPE,POPG,POPS,POPA,POPI,DPPC,DPPE,DPPG,DPPS,DMPC,DMPE,DMPG,DOPC,DOPE,DOPG,"     \
+    "DOPS,DLPC,DLPE,DLPG,DSPC,DSPE,DSPG,SOPC,PLPC,PSM,CHL1,CHOL,CLR,PCW,PEE,PEF,PGW,LHG,CDL,"   \
+    "OLC,OLA,PLM,LPP,3PE,LDA,LMT,UDM,DMU,BOG,BNG,CPS,C8E,DPC,SDS,HTG,Y01"
+
 /* Everything `vorball channels` is asked to do besides reading its input:
  * the analysis (opt, pore), the engine, the frames and the outputs. */
 typedef struct vbc_channels_config {
@@ -55,6 +68,9 @@ typedef struct vbc_channels_config {
     char ignore_buf[1024];
     const char *ignore[VBC_MAX_NAMES]; /* --ignore: residue names (into ignore_buf) */
     size_t nignore;
+    char membrane_buf[1024];
+    const char *membrane[VBC_MAX_NAMES]; /* --membrane: residue names (into membrane_buf) */
+    size_t nmembrane;
     double probe;
     int grid;
     long f0, f1, fstep;   /* --frames a:b:step (f1 < 0: to the end) */

@@ -27,7 +27,8 @@ typedef struct vbc_run {
     float *occupancy;         /* --occupancy: frames per voxel */
     vbc_result first;         /* the first frame's result (CONECT records, the plot) */
     vbc_series series;        /* the pore's smallest radius per frame (with --plot) */
-    size_t ignored;           /* atoms left out by --ignore, over the frames analysed */
+    size_t ignored;           /* atoms left out by --membrane and --ignore, over the frames */
+    size_t left_out[2 * VBC_MAX_NAMES]; /* per name: cfg's membrane names, then its ignore names */
     unsigned want;            /* VBC_WANT_* the caller wants of every frame besides cfg's */
 } vbc_run;
 
@@ -59,6 +60,10 @@ int vbc_run_frame(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index, 
 /* After the frame's outputs are written: keeps the first frame's result in
  * r->first, frees the rest of *o. */
 void vbc_run_frame_done(vbc_run *r, int first, vbc_run_out *o);
+
+/* W809 for the atoms the run left out (nothing when none): the count, and
+ * per residue name of the membrane and of --ignore how many. */
+void vbc_run_report_left_out(vb_ctx *ctx, const vbc_run *r);
 
 /* The pore axis of the first frame without its outputs or counts (under
  * MPI, a rank that does not own the first frame still sweeps its axis on

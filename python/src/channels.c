@@ -303,6 +303,8 @@ static PyObject *channels_run(PyObject *self, PyObject *args)
     Py_BEGIN_ALLOW_THREADS
     rc = vbc_run_frame(c.ctx, &run, s, frame, model, first, &o);
     Py_END_ALLOW_THREADS
+    if (rc == VB_OK)
+        vbc_run_report_left_out(c.ctx, &run);
     if (rc != VB_OK) {
         vbc_run_free(&run);
         free(cfg);
