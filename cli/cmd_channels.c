@@ -136,7 +136,18 @@ typedef struct {
     int stats, cl;          /* those sinks are wanted */
     FILE *profile;          /* --profile (one process only) */
     vbc_run run;            /* the library's state over the frames (vbc_run.h) */
+    char frame0[4200];      /* --pymol: the first frame as PDB, when PyMOL needs it; else "" */
 } sinks;
+
+/* The first frame as PDB beside the PyMOL script (vbc_pymol_needs_frame0). */
+static int write_frame0(vb_ctx *ctx, const char *path, const vb_sphere_set *s)
+{
+    FILE *f = vb_cli_open_output(ctx, path);
+    if (!f)
+        return vb_errcode(ctx);
+    vbc_write_molecule_pdb(f, s);
+    return vb_cli_close_output(ctx, f, path);
+}
 
 /* Writes the eight pipeline stages of the first frame (--png). */
 static int write_stages(vb_ctx *ctx, const ch_args *A, vbc_pipe *pipe, const vb_sphere_set *s)
@@ -184,6 +195,8 @@ static int do_frame(vb_ctx *ctx, ch_args *A, vbc_pipe *pipe, long index, int mod
     }
     if (rc == VB_OK && c->png && first)
         rc = write_stages(ctx, A, pipe, o.s);
+    if (rc == VB_OK && first && S->frame0[0])
+        rc = write_frame0(ctx, S->frame0, s0);
     vbc_run_frame_done(&S->run, first, &o);
     return rc;
 }
@@ -321,6 +334,9 @@ int vb_cmd_channels(int argc, char **argv)
     memset(&S, 0, sizeof S);
     S.stats = A.c.stats != NULL || A.c.stats_stderr;
     S.cl = A.c.centrelines != NULL;
+    if (A.c.pymol && vbc_pymol_needs_frame0(A.input, A.c.traj) &&
+        snprintf(S.frame0, sizeof S.frame0, "%s.frame0.pdb", A.c.pymol) >= (int)sizeof S.frame0)
+        S.frame0[0] = '\0'; /* a name too long for a file anyway: the input is named */
     FILE *out[VB_CLI_ROUND_SINKS] = {NULL, NULL, NULL}, *pml = NULL;
     /* Every rank reads the input; rank 0 alone prints its warnings. */
     int quiet = vb_world_quiet(ctx);
@@ -384,7 +400,8 @@ int vb_cmd_channels(int argc, char **argv)
         if (!(pml = vb_cli_open_output(ctx, A.c.pymol)))
             rc = vb_errcode(ctx);
         else {
-            vbc_write_pymol(pml, A.c.pymol, A.input, A.c.centrelines);
+            vbc_write_pymol(pml, A.c.pymol, S.frame0[0] ? S.frame0 : A.input, A.c.centrelines,
+                            A.c.traj);
             rc = vb_cli_close_output(ctx, pml, A.c.pymol);
         }
     }

@@ -46,7 +46,9 @@ static const vbc_opt_spec table[] = {
     {O_CENTRELINES, "--centerlines", "--centrelines", NULL, VBC_OPT_PATH, NONE, "FILE", NULL,
      "centrelines as PDB pseudo-atoms, radius in the B-factor", VBC_SECT_MAIN},
     {O_PYMOL, "--pymol", NULL, NULL, VBC_OPT_PATH, NONE, "FILE", NULL,
-     "PyMOL script drawing them (needs --centerlines)", VBC_SECT_MAIN},
+     "PyMOL script drawing them (needs --centerlines) over the molecule and its trajectory "
+     "(load_traj); where PyMOL cannot read the input's coordinates (a PSF, GRO, compressed or "
+     "XYZR file) the first frame is written beside it as FILE.frame0.pdb", VBC_SECT_MAIN},
     {O_VOLUME, "--volume", NULL, NULL, VBC_OPT_PATH, NONE, "FILE", NULL,
      "mask volume, .mrc/.map (MRC) or .vtk; '%d' in the name writes one per frame, else the "
      "first frame only", VBC_SECT_MAIN},

@@ -215,10 +215,23 @@ void vbc_write_centrelines_pdb(FILE *f, int model, const vbc_result *res);
 void vbc_write_centrelines_conect(FILE *f, const vbc_result *first);
 
 /* A PyMOL script, to be written at path `script`, that loads the molecule
- * `input` (not when it is "-", stdin) and the centreline PDB, both by paths
- * relative to the script's folder (core/discrete/channel_pymol.c), and shows
- * the points as spheres of their radius, coloured by it. */
-void vbc_write_pymol(FILE *f, const char *script, const char *input, const char *centrelines);
+ * file (not when it is "-", stdin), then the trajectory traj into it (when
+ * not NULL: PyMOL's load_traj) and the centreline PDB, all by paths
+ * relative to the script's folder (core/discrete/channel_pymol.c), and
+ * shows the points as spheres of their radius, coloured by it. */
+void vbc_write_pymol(FILE *f, const char *script, const char *molecule, const char *centrelines,
+                     const char *traj);
+
+/* Whether the PyMOL script needs the first frame written as PDB beside it:
+ * the input is not a file PyMOL reads with its coordinates (a PSF, a GRO, a
+ * compressed or XYZR file), or it is the non-PDB topology of a trajectory.
+ * Never for stdin ("-"). */
+int vbc_pymol_needs_frame0(const char *input, const char *traj);
+
+/* The spheres s as PDB ATOM/HETATM records (names, residues, chains and
+ * elements from s->info; coordinates rounded to 0.001 A, the radius in the
+ * B-factor column), then END. */
+void vbc_write_molecule_pdb(FILE *f, const vb_sphere_set *s);
 
 /* The radius profile of every channel of a frame as CSV rows (header first):
  * per point its index, axial coordinate s (on the pore's axis, when the
