@@ -164,8 +164,9 @@ void vbc_pore_free(vbc_pore *p);
  * consecutive walled planes; a pore needs VBC_PORE_MIN_BURIED. A groove or
  * cleft on the surface of a soluble protein opens sideways within a few
  * planes; the tunnels of its packing stay short: measured on the 2-core
- * machine, crambin 8.7 A, 3njw 8.5 A, adenylate kinase 0 A; gramicidin A
- * 23.5 A, cholera toxin 28.2 A, maltoporin 27.5 A (their pores). */
+ * machine, crambin 8.8 A, 3njw 8.5 A, adenylate kinase 0 A; gramicidin A
+ * 23.5 A, cholera toxin 28.2 A, maltoporin 27.5 A (their pores; papers/
+ * facet-jfa-and-channels/channels/verdict_2core.md). */
 #define VBC_WALL_PROBE 1.0
 #define VBC_WALL_PIXEL 0.5
 #define VBC_WALL_REACH 12.0
