@@ -92,7 +92,7 @@ int vbc_pore_judge(const vbc_cells *c, const vbc_pore *p, vbc_pore_verdict *v)
 {
     memset(v, 0, sizeof *v);
     void *scratch = NULL;
-    size_t len = 0, lo = 0;
+    size_t len = 0, lo = 0, last = 0;
     int in_run = 0, have = 0;
     for (size_t k = 0; k < p->n; k++) {
         const vbc_pore_point *q = &p->pts[k];
@@ -103,20 +103,21 @@ int vbc_pore_judge(const vbc_cells *c, const vbc_pore *p, vbc_pore_verdict *v)
             return -1;
         }
         v->walled += (size_t)w;
-        if (w && !in_run) {
+        if (!w)
+            continue;
+        /* A walled plane extends the run unless the open gap before it
+         * is longer than VBC_WALL_GAP. */
+        if (!in_run || q->s - p->pts[last].s > VBC_WALL_GAP + 1e-9) {
             in_run = 1;
             lo = k;
         }
-        if (in_run && (!w || k + 1 == p->n)) {
-            size_t hi = w ? k : k - 1;
-            double span = p->pts[hi].s - p->pts[lo].s;
-            if (!have || span > v->buried) {
-                have = 1;
-                v->buried = span;
-                v->run_lo = lo;
-                v->run_hi = hi;
-            }
-            in_run = 0;
+        last = k;
+        double span = q->s - p->pts[lo].s;
+        if (!have || span > v->buried) {
+            have = 1;
+            v->buried = span;
+            v->run_lo = lo;
+            v->run_hi = k;
         }
     }
     free(scratch);

@@ -160,8 +160,9 @@ void vbc_pore_free(vbc_pore *p);
  * plane is rastered at VBC_WALL_PIXEL and flooded from the sphere, a pixel
  * free when no atom surface lies within the probe of it (so gaps between
  * the atoms of a helix or a barrel wall, narrower than the probe, are
- * wall). The buried length is the axial span of the longest run of
- * consecutive walled planes; a pore needs VBC_PORE_MIN_BURIED. A groove or
+ * wall). The buried length is the axial span of the longest run of walled
+ * planes, open gaps up to VBC_WALL_GAP long bridged (a missing cap at the
+ * junction of a dimer, a side window); a pore needs VBC_PORE_MIN_BURIED. A groove or
  * cleft on the surface of a soluble protein opens sideways within a few
  * planes; the tunnels of its packing stay short: measured on the 2-core
  * machine, crambin 8.8 A, 3njw 8.5 A, adenylate kinase 0 A; gramicidin A
@@ -172,6 +173,7 @@ void vbc_pore_free(vbc_pore *p);
 #define VBC_WALL_REACH 12.0
 #define VBC_WALL_MAX_REACH 60.0
 #define VBC_PORE_MIN_BURIED 15.0
+#define VBC_WALL_GAP 3.0
 
 typedef struct vbc_pore_verdict {
     size_t walled;          /* planes whose sphere is walled */

@@ -3,7 +3,7 @@
  * axis, a ring with every other atom gone with every other atom gone (gaps wider than the wall
  * probe's disc) does not, half a tube (a groove) does not; the buried length
  * of a tube is its walled span, and a tube shorter than VBC_PORE_MIN_BURIED
- * is no pore. */
+ * is no pore; a gap of one missing ring is bridged, of two is not. */
 #include "synth.h"
 #include "vb_test.h"
 #include "vbc_pore.h"
@@ -94,6 +94,47 @@ static void test_walls(vb_ctx *ctx)
     vb_spheres_free(groove);
 }
 
+/* Rings 7 (and 8 when `two`) of the 16 of a tube gone. */
+static int ring7 = 0, ring8 = 0;
+static int without_rings(size_t i, double x, double y)
+{
+    (void)x;
+    (void)y;
+    size_t ring = i / 16;
+    return !((ring7 && ring == 7) || (ring8 && ring == 8));
+}
+
+static double buried_of(vb_ctx *ctx, const vb_sphere_set *s)
+{
+    vbc_cells *c = NULL;
+    CHECK_INT(vbc_cells_build(ctx, s, 3.0, &c), VB_OK);
+    vbc_pore p;
+    pore_on_z(&p, -30.0, 30.0, 4.5);
+    vbc_pore_verdict v = {0, -1.0, 0, 0, 0};
+    CHECK_INT(vbc_pore_judge(c, &p, &v), 0);
+    vbc_pore_free(&p);
+    vbc_cells_free(c);
+    return v.buried;
+}
+
+/* A missing ring opens a gap shorter than VBC_WALL_GAP: bridged, the whole
+ * tube is buried; two missing rings open a longer one: the run splits. */
+static void test_gaps(vb_ctx *ctx)
+{
+    ring7 = 1;
+    vb_sphere_set *one = filtered(synth_cylinder(16, 16, 6.0, 1.5, 2.6), without_rings);
+    CHECK_INT((int)one->n, 15 * 16);
+    double b1 = buried_of(ctx, one);
+    CHECK(b1 >= 42.0 && b1 <= 44.0);
+    vb_spheres_free(one);
+    ring8 = 1;
+    vb_sphere_set *two = filtered(synth_cylinder(16, 16, 6.0, 1.5, 2.6), without_rings);
+    double b2 = buried_of(ctx, two);
+    CHECK(b2 > 15.0 && b2 < 25.0);
+    vb_spheres_free(two);
+    ring7 = ring8 = 0;
+}
+
 static void test_buried(vb_ctx *ctx)
 {
     /* 16 rings 2.6 A apart: atoms from z = -19.5 - 1.5 to 19.5 + 1.5. */
@@ -134,6 +175,7 @@ int main(void)
         return 1;
     test_walls(ctx);
     test_buried(ctx);
+    test_gaps(ctx);
     vb_close(ctx);
     VB_TEST_END();
 }
