@@ -39,18 +39,11 @@ static void gp_string(FILE *f, const char *s)
     fputc('\'', f);
 }
 
-int vb_channels_plot(vb_ctx *ctx, const char *png, const char *title, const vbc_result *res,
-                     const vbc_series *series)
+/* The gnuplot script drawing res's pore profile (and the series) into
+ * `output`. */
+static void write_script(FILE *f, const char *output, const char *title, const vbc_result *res,
+                         const vbc_series *series)
 {
-    if (!res->pore.present || res->nchannels == 0 || res->channels[0].kind != VBC_PORE)
-        return vb_warn(ctx, VB_W_PORE_NOT_FOUND, png, 0, "no pore in the first frame: nothing to plot"), VB_OK;
-    char script[4200], tmp[4200];
-    if (snprintf(script, sizeof script, "%s.gp", png) >= (int)sizeof script ||
-        snprintf(tmp, sizeof tmp, "%s.tmp%ld.png", png, (long)getpid()) >= (int)sizeof tmp)
-        return vb_error(ctx, VB_EMISUSE, NULL, 0, "plot file name too long");
-    FILE *f = vb_cli_open_output(ctx, script);
-    if (!f)
-        return vb_errcode(ctx);
     const vbc_channel *c = &res->channels[0];
     const vbc_point *p = res->points + c->first_point;
     const double *u = res->pore.u;
@@ -69,7 +62,7 @@ int vb_channels_plot(vb_ctx *ctx, const char *png, const char *title, const vbc_
         fprintf(f, "EOD\n");
     }
     fprintf(f, "set terminal pngcairo size %d,600 font ',11'\nset output ", multi ? 1400 : 800);
-    gp_string(f, tmp);
+    gp_string(f, output);
     fprintf(f, "\nset grid\n");
     if (multi)
         fprintf(f, "set multiplot layout 1,2\n");
@@ -89,10 +82,61 @@ int vb_channels_plot(vb_ctx *ctx, const char *png, const char *title, const vbc_
                    "plot $series using 1:2 with linespoints title 'smallest radius',"
                    " $series using 1:3 with lines axes x1y1 title 's of the smallest radius'\n"
                    "unset multiplot\n");
+}
+
+/* Copies the file `from` into the output `to` (vb_cli_open_output: it
+ * appears with the command's other outputs). VB_EIO when from cannot be
+ * read. */
+static int copy_into_output(vb_ctx *ctx, const char *from, const char *to)
+{
+    FILE *in = fopen(from, "rb");
+    if (!in)
+        return vb_error(ctx, VB_EIO, to, 0, "cannot read the plot gnuplot drew");
+    FILE *out = vb_cli_open_output(ctx, to);
+    if (!out) {
+        fclose(in);
+        return vb_errcode(ctx);
+    }
+    char buf[65536];
+    size_t n;
+    while ((n = fread(buf, 1, sizeof buf, in)) > 0)
+        fwrite(buf, 1, n, out);
+    int bad = ferror(in);
+    fclose(in);
+    return vb_cli_finish_output(ctx, out, to, bad ? vb_error(ctx, VB_EIO, from, 0, "read failed") : VB_OK);
+}
+
+int vb_channels_plot(vb_ctx *ctx, const char *png, const char *title, const vbc_result *res,
+                     const vbc_series *series)
+{
+    if (!res->pore.present || res->nchannels == 0 || res->channels[0].kind != VBC_PORE)
+        return vb_warn(ctx, VB_W_PORE_NOT_FOUND, png, 0, "no pore in the first frame: nothing to plot"), VB_OK;
+    char script[4200], run[4200], tmp[4200];
+    if (snprintf(script, sizeof script, "%s.gp", png) >= (int)sizeof script ||
+        snprintf(run, sizeof run, "%s.tmp%ld.gp", png, (long)getpid()) >= (int)sizeof run ||
+        snprintf(tmp, sizeof tmp, "%s.tmp%ld.png", png, (long)getpid()) >= (int)sizeof tmp)
+        return vb_error(ctx, VB_EMISUSE, NULL, 0, "plot file name too long");
+    /* The kept script draws `png` when rerun; it appears with the other
+     * outputs, after this command succeeds (vb_output.h defers the
+     * renames). gnuplot runs now, on a private copy that draws into a
+     * temporary picture, which then becomes an output like the others. */
+    FILE *f = vb_cli_open_output(ctx, script);
+    if (!f)
+        return vb_errcode(ctx);
+    write_script(f, png, title, res, series);
     int rc = vb_cli_close_output(ctx, f, script);
     if (rc != VB_OK)
         return rc;
-    int st = run_gnuplot(script);
+    FILE *r = fopen(run, "w");
+    if (!r)
+        return vb_error(ctx, VB_EIO, run, 0, "cannot write the plot script gnuplot runs");
+    write_script(r, tmp, title, res, series);
+    if (fclose(r) != 0) {
+        remove(run);
+        return vb_error(ctx, VB_EIO, run, 0, "cannot write the plot script gnuplot runs");
+    }
+    int st = run_gnuplot(run);
+    remove(run);
     if (st != 0) {
         remove(tmp);
         vb_warn(ctx, VB_W_PLOT_NO_GNUPLOT, script, 0,
@@ -100,34 +144,7 @@ int vb_channels_plot(vb_ctx *ctx, const char *png, const char *title, const vbc_
                 st < 0 ? "not found" : "failed", script, png);
         return VB_OK;
     }
-    /* The script wrote a temporary name: the PNG appears whole or not at all. */
-    if (rename(tmp, png) != 0) {
-        remove(tmp);
-        return vb_error(ctx, VB_EIO, png, 0, "cannot write the plot");
-    }
-    /* The kept script should draw the picture itself when rerun. */
-    FILE *g = fopen(script, "r");
-    char *text = NULL;
-    size_t len = 0;
-    if (g) {
-        FILE *m = open_memstream(&text, &len);
-        int ch;
-        while (m && (ch = fgetc(g)) != EOF)
-            fputc(ch, m);
-        if (m)
-            fclose(m);
-        fclose(g);
-    }
-    if (text) {
-        char *at = strstr(text, tmp);
-        FILE *w = at ? fopen(script, "w") : NULL;
-        if (w) {
-            fwrite(text, 1, (size_t)(at - text), w);
-            fputs(png, w);
-            fputs(at + strlen(tmp), w);
-            fclose(w);
-        }
-        free(text);
-    }
-    return VB_OK;
+    rc = copy_into_output(ctx, tmp, png);
+    remove(tmp);
+    return rc;
 }

@@ -2,14 +2,7 @@
 #ifndef VB_CHANNELS_PLOT_H
 #define VB_CHANNELS_PLOT_H
 
-#include "vbc_channel.h"
-
-/* The pore's smallest radius per frame of a trajectory. */
-typedef struct vbc_series {
-    long *frame;
-    double *rmin, *s;
-    size_t n, cap;
-} vbc_series;
+#include "vbc_run.h"
 
 /* Writes png.gp (the profile of res's pore inline, HOLE's radius bands,
  * with series of more than one frame a second panel of the smallest radius

@@ -1,5 +1,6 @@
 /* Exit codes, diagnostics and file helpers for the subcommands. */
 #include "cli_common.h"
+#include "vb_numtext.h"
 #include "vb_diag.h"
 #include "vb_world.h"
 
@@ -120,26 +121,12 @@ int vb_cli_finish_output(vb_ctx *ctx, FILE *f, const char *path, int rc)
 
 int vb_cli_parse_double(const char *s, double *out)
 {
-    char *end;
-    errno = 0;
-    double v = strtod(s, &end);
-    if (end == s || *end != '\0' || errno == ERANGE)
-        return -1;
-    *out = v;
-    return 0;
+    return vb_parse_double(s, out);
 }
 
 int vb_cli_parse_size(const char *s, size_t *out)
 {
-    char *end;
-    if (*s == '-' || *s == '\0')
-        return -1;
-    errno = 0;
-    unsigned long long v = strtoull(s, &end, 10);
-    if (*end != '\0' || errno == ERANGE)
-        return -1;
-    *out = (size_t)v;
-    return 0;
+    return vb_parse_size(s, out);
 }
 
 int vb_cli_is_help(const char *arg)

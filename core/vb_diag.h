@@ -87,6 +87,7 @@
     X(W, 722, TANGENT_INSIDE, 0, "a sphere touches a larger one from inside: a point or segment cell, kept") \
     X(W, 723, TANGENT_INSIDE_COUNT, 0, "count of spheres touching a larger one from inside")             \
     X(W, 735, MODEL_OPEN_AT_END, 0, "the input ends inside a MODEL (no ENDMDL/END): truncated?")         \
+    X(W, 736, RADII_PARTICULAR, 0, "radius file: HOLE rows for particular atom or residue names left out")   \
     X(W, 750, PROGRAM_CACHE_BAD, 0, "a cached OpenCL program cannot be used: rebuilt from source")       \
     X(W, 751, JFA_DEVICE_FAILED, 0, "OpenCL failed mid-run in jfa: the rest runs on the reference")      \
     X(W, 760, DEVICE_FALLBACK, 0, "no usable OpenCL device: vertices on the reference backend")          \
@@ -109,8 +110,8 @@
     X(W, 804, CHANNELS_DEVICE_FALLBACK, 0, "no usable OpenCL device: channels on the reference backend") \
     X(W, 806, CHANNELS_DEVICE_FAILED, 0, "OpenCL failed mid-run: rest of channels on reference")         \
     X(W, 807, PLOT_NO_GNUPLOT, 0, "gnuplot not found or failed: plot script kept, no PNG")               \
-    X(W, 808, PORE_NOT_FOUND, 0, "no pore: no axis candidate could be swept")                            \
-    X(W, 809, ATOMS_IGNORED, 0, "atoms left out by --ignore (count)")                                    \
+    X(W, 808, PORE_NOT_FOUND, 0, "no pore: no path crosses the molecule walled by its atoms")            \
+    X(W, 809, ATOMS_IGNORED, 0, "atoms left out by --membrane or --ignore (count per name)")             \
     X(W, 829, PAGE_FULL, 0, "results page full: later frames left out of it (the tables have them)")    \
     X(W, 830, MPI_SAMPLING_RANK0, 0, "--proposer sampling does not split: rank 0 runs it alone")         \
     X(W, 831, MPI_STOPPED, 0, "a rank failed: every rank stopped (the error names the rank)")

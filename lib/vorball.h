@@ -17,7 +17,9 @@
  *     (vb_vertex_io.h);
  *   - verify: judging a vertex file or list exactly (vb_verify_file.h);
  *   - channels over frames and the discrete Voronoi engines (vbc_frame.h,
- *     vbj_jfa.h through it), on the device layer of vb_default_devices. */
+ *     vbj_jfa.h through it), their options declared once and the run over
+ *     frames (vbc_run.h, vbc_channels_config.h), on the device layer of
+ *     vb_default_devices. */
 #ifndef VORBALL_H
 #define VORBALL_H
 
@@ -29,5 +31,6 @@
 #include "vb_verify_file.h"
 #include "vb_vertex_io.h"
 #include "vbc_frame.h"
+#include "vbc_run.h"
 
 #endif

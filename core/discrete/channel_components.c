@@ -83,88 +83,142 @@ int vbc_analyse(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, const ui
     return vbc_analyse_clear(ctx, g, s, vox, NULL, nvox, opt, res);
 }
 
-int vbc_analyse_clear(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, const uint32_t *vox,
-                      const float *vclear, size_t nvox, const vbc_options *opt, vbc_result *res)
-{
-    memset(res, 0, sizeof *res);
-    if (nvox == 0)
-        return VB_OK;
-    if (nvox >= ((size_t)1 << 30))
-        return vb_error(ctx, VB_EINPUT_TOOLARGE, NULL, 0, "%zu channel voxels: too many", nvox);
-    int rc = VB_ENOMEM;
+/* The analysis of one frame's channel voxels: the voxel graph and its
+ * scratch, shared by the steps below. */
+typedef struct {
     vbc_graph A;
-    memset(&A, 0, sizeof A);
-    A.g = g;
-    uint32_t *sorted = malloc(nvox * sizeof *sorted);
-    uint8_t *mouth = malloc(nvox);
-    uint32_t *parent = malloc(nvox * sizeof *parent);
-    uint32_t *order = malloc(nvox * sizeof *order);
-    size_t *cstart = malloc((nvox + 1) * sizeof *cstart);
-    uint32_t *comp = malloc(nvox * sizeof *comp);
-    A.dist = malloc(nvox * sizeof *A.dist);
-    A.pred = malloc(nvox * sizeof *A.pred);
-    A.heap = malloc(nvox * sizeof *A.heap);
-    A.hpos = malloc(nvox * sizeof *A.hpos);
-    A.rep = malloc(nvox * sizeof *A.rep);
-    double *clear = malloc(nvox * sizeof *clear);
-    int32_t *near = malloc(nvox * sizeof *near);
-    lining_acc L = {calloc(s->n, sizeof(int32_t)), 0, NULL, 0, 0, 0};
-    vbc_cells *cells = NULL;
-    uint32_t *path = NULL;
-    size_t pathcap = 0, chcap = 0, ptcap = 0;
-    if (!sorted || !mouth || !parent || !order || !cstart || !comp || !A.dist || !A.pred ||
-        !A.heap || !A.hpos || !A.rep || !clear || !near || !L.mark)
-        goto done;
-    A.clear = clear;
+    const vbc_grid *g;
+    const vbc_options *opt;
+    size_t nvox;
+    uint32_t *sorted;   /* voxel indices, ascending, mouth bit cleared */
+    uint8_t *mouth;
+    uint32_t *parent;   /* union-find, then scratch of vbc_channel_ends */
+    uint32_t *order;    /* positions grouped by component */
+    size_t *cstart;     /* component c holds order[cstart[c] .. cstart[c + 1]) */
+    uint32_t *comp;
+    size_t ncomp;
+    double *clear;      /* clearance per position (given, or computed per component) */
+    int32_t *near;
+    int given_clear;    /* the clearances came with the voxels */
+    lining_acc L;
+    vbc_cells *cells;
+    uint32_t *path;
+    size_t pathcap, chcap, ptcap;
+} analysis;
+
+static void analysis_free(analysis *W)
+{
+    free(W->sorted);
+    free(W->mouth);
+    free(W->parent);
+    free(W->order);
+    free(W->cstart);
+    free(W->comp);
+    free(W->A.dist);
+    free(W->A.pred);
+    free(W->A.heap);
+    free(W->A.hpos);
+    free(W->A.rep);
+    free(W->A.support);
+    free(W->A.adj_start);
+    free(W->A.adj);
+    free(W->A.adj_len);
+    free(W->clear);
+    free(W->near);
+    free(W->L.mark);
+    free(W->L.list);
+    free(W->path);
+    vbc_cells_free(W->cells);
+}
+
+/* The per-position arrays. Returns 0, or -1 when out of memory. */
+static int analysis_alloc(analysis *W, size_t natoms)
+{
+    size_t n = W->nvox;
+    W->sorted = malloc(n * sizeof *W->sorted);
+    W->mouth = malloc(n);
+    W->parent = malloc(n * sizeof *W->parent);
+    W->order = malloc(n * sizeof *W->order);
+    W->cstart = malloc((n + 1) * sizeof *W->cstart);
+    W->comp = malloc(n * sizeof *W->comp);
+    W->A.dist = malloc(n * sizeof *W->A.dist);
+    W->A.pred = malloc(n * sizeof *W->A.pred);
+    W->A.heap = malloc(n * sizeof *W->A.heap);
+    W->A.hpos = malloc(n * sizeof *W->A.hpos);
+    W->A.rep = malloc(n * sizeof *W->A.rep);
+    W->A.adj_start = malloc((n + 1) * sizeof *W->A.adj_start);
+    W->clear = malloc(n * sizeof *W->clear);
+    W->near = malloc(n * sizeof *W->near);
+    W->L.mark = calloc(natoms, sizeof(int32_t));
+    W->A.clear = W->clear;
+    return W->sorted && W->mouth && W->parent && W->order && W->cstart && W->comp && W->A.dist &&
+                   W->A.pred && W->A.heap && W->A.hpos && W->A.rep && W->A.adj_start &&
+                   W->clear && W->near && W->L.mark
+               ? 0
+               : -1;
+}
+
+/* The voxels in increasing index order (with their given clearances, when
+ * vclear is not NULL), the mouth bit split off, each its own union-find
+ * root. Returns 0, or -1 when out of memory. */
+static int load_voxels(analysis *W, const uint32_t *vox, const float *vclear)
+{
+    size_t nvox = W->nvox;
     if (vclear) {
         /* Sort (index, original slot) pairs so the clearances follow. */
         uint64_t *key = malloc(nvox * sizeof *key);
         if (!key)
-            goto done;
+            return -1;
         for (size_t t = 0; t < nvox; t++)
             key[t] = ((uint64_t)(vox[t] & ~VBC_MOUTH_BIT) << 32) | (uint64_t)t;
         /* Keys are distinct (the slot is in them): one sorted order on any
          * number of threads. */
         if (vb_psort(key, nvox, sizeof *key, cmp_u64, vb_threads(0)) != VB_OK) {
             free(key);
-            goto done;
+            return -1;
         }
         for (size_t t = 0; t < nvox; t++) {
             size_t from = (size_t)(key[t] & 0xffffffffu);
-            sorted[t] = vox[from];
-            clear[t] = vclear[from];
-            near[t] = -1;
+            W->sorted[t] = vox[from];
+            W->clear[t] = vclear[from];
+            W->near[t] = -1;
         }
         free(key);
     } else {
-        memcpy(sorted, vox, nvox * sizeof *sorted);
-        if (vb_psort(sorted, nvox, sizeof *sorted, cmp_u32, vb_threads(0)) != VB_OK)
-            goto done;
+        memcpy(W->sorted, vox, nvox * sizeof *W->sorted);
+        if (vb_psort(W->sorted, nvox, sizeof *W->sorted, cmp_u32, vb_threads(0)) != VB_OK)
+            return -1;
     }
     for (size_t t = 0; t < nvox; t++) {
-        mouth[t] = (sorted[t] & VBC_MOUTH_BIT) != 0;
-        sorted[t] &= ~VBC_MOUTH_BIT;
-        parent[t] = (uint32_t)t;
+        W->mouth[t] = (W->sorted[t] & VBC_MOUTH_BIT) != 0;
+        W->sorted[t] &= ~VBC_MOUTH_BIT;
+        W->parent[t] = (uint32_t)t;
     }
-    A.v = sorted;
-    A.mouth = mouth;
+    W->A.v = W->sorted;
+    W->A.mouth = W->mouth;
+    return 0;
+}
 
-    /* The voxel graph once (26-connectivity), then its components. The list is
-     * sorted, so the neighbours of voxel v in the row at offset o = dy*nx +
-     * dz*nx*ny lie at v + o - 1 .. v + o + 1, and a cursor per row offset only
-     * ever moves forward: the whole graph costs a linear merge, no lookups. */
-    size_t nxy = (size_t)g->nx * (size_t)g->ny, adjcap = 0, ne = 0;
+/* The voxel graph once (26-connectivity) as CSR adjacency with the step
+ * length of each edge, its components joined in the union-find. The list is
+ * sorted, so the neighbours of voxel v in the row at offset o = dy*nx +
+ * dz*nx*ny lie at v + o - 1 .. v + o + 1, and a cursor per row offset only
+ * ever moves forward: the whole graph costs a linear merge, no lookups.
+ * Returns 0, or -1 when out of memory. */
+static int link_voxels(analysis *W)
+{
+    const vbc_grid *g = W->g;
+    vbc_graph *A = &W->A;
+    const uint32_t *sorted = W->sorted;
+    size_t nvox = W->nvox, nxy = (size_t)g->nx * (size_t)g->ny, adjcap = 0, ne = 0;
     size_t cursor[9] = {0};
-    A.adj_start = malloc((nvox + 1) * sizeof *A.adj_start);
-    if (!A.adj_start)
-        goto done;
     for (size_t t = 0; t < nvox; t++) {
-        A.adj_start[t] = ne;
+        A->adj_start[t] = ne;
         uint32_t v = sorted[t];
         int i = (int)(v % (uint32_t)g->nx), j = (int)((v / (uint32_t)g->nx) % (uint32_t)g->ny);
         int k = (int)(v / nxy);
-        if (grow((void **)&A.adj, &adjcap, ne + 26, sizeof *A.adj))
-            goto done;
+        if (grow((void **)&A->adj, &adjcap, ne + 26, sizeof *A->adj))
+            return -1;
         for (int dz = -1; dz <= 1; dz++)
             for (int dy = -1; dy <= 1; dy++) {
                 size_t *cur = &cursor[(dz + 1) * 3 + dy + 1];
@@ -184,22 +238,30 @@ int vbc_analyse_clear(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, co
                         (int64_t)sorted[q] != target)
                         continue;
                     /* The step length code rides in the top two bits until the split below. */
-                    A.adj[ne++] = (uint32_t)q | ((uint32_t)(abs(dx) + abs(dy) + abs(dz)) << 30);
+                    A->adj[ne++] = (uint32_t)q | ((uint32_t)(abs(dx) + abs(dy) + abs(dz)) << 30);
                     if (q > t)
-                        vbc_uf_union(parent, (uint32_t)t, (uint32_t)q);
+                        vbc_uf_union(W->parent, (uint32_t)t, (uint32_t)q);
                 }
             }
     }
-    A.adj_start[nvox] = ne;
-    A.adj_len = malloc(ne ? ne : 1);
-    if (!A.adj_len)
-        goto done;
+    A->adj_start[nvox] = ne;
+    A->adj_len = malloc(ne ? ne : 1);
+    if (!A->adj_len)
+        return -1;
     for (size_t e = 0; e < ne; e++) {
-        A.adj_len[e] = (uint8_t)(A.adj[e] >> 30);
-        A.adj[e] &= 0x3fffffffu;
+        A->adj_len[e] = (uint8_t)(A->adj[e] >> 30);
+        A->adj[e] &= 0x3fffffffu;
     }
-    /* Components as CSR over `order`, numbered by their lowest voxel. */
-    size_t ncomp = 0;
+    return 0;
+}
+
+/* The components of the union-find as CSR over `order`, numbered by their
+ * lowest voxel. */
+static void group_components(analysis *W)
+{
+    size_t nvox = W->nvox, ncomp = 0;
+    uint32_t *parent = W->parent, *comp = W->comp;
+    size_t *cstart = W->cstart;
     for (size_t t = 0; t < nvox; t++) {
         uint32_t r = vbc_uf_find(parent, (uint32_t)t);
         if (r == t)
@@ -212,138 +274,174 @@ int vbc_analyse_clear(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, co
         cstart[c + 1] += cstart[c];
     for (size_t t = 0; t < nvox; t++) {
         uint32_t c = comp[vbc_uf_find(parent, (uint32_t)t)];
-        order[cstart[c]++] = (uint32_t)t;
+        W->order[cstart[c]++] = (uint32_t)t;
     }
     for (size_t c = ncomp; c > 0; c--)
         cstart[c] = cstart[c - 1];
     cstart[0] = 0;
-    res->components = ncomp;
+    W->ncomp = ncomp;
+}
 
-    if ((rc = vbc_cells_build(ctx, s, 3.0, &cells)) != VB_OK)
+/* The ends *a, *b of the centreline of component mem[0..m) and the
+ * widest (cheapest) path between them in W->path (b first), *np its
+ * length. Returns 0, or -1 when out of memory. */
+static int trace_path(analysis *W, const uint32_t *mem, size_t m, int kind, int *through,
+                      size_t *np)
+{
+    vbc_graph *A = &W->A;
+    uint32_t a, b;
+    *through = 0;
+    if (kind == VBC_CHANNEL) {
+        if (vbc_channel_ends(A, W->parent, mem, m, &a, &b, through) != 0)
+            return -1;
+    } else {
+        /* A cavity spans its extent: double sweep over plain lengths. */
+        vbc_sweep(A, mem, m, mem[0], 0);
+        a = vbc_farthest(A, mem, m);
+        vbc_sweep(A, mem, m, a, 0);
+        b = vbc_farthest(A, mem, m);
+    }
+    /* The centreline: the cheapest (widest) way from a to b. */
+    vbc_sweep(A, mem, m, a, 1);
+    *np = 0;
+    for (uint32_t q = b; q != UINT32_MAX; q = A->pred[q]) {
+        if (grow((void **)&W->path, &W->pathcap, *np + 1, sizeof *W->path))
+            return -1;
+        W->path[(*np)++] = q;
+    }
+    return 0;
+}
+
+/* The points of channel ch from W->path (ch->npoints of them, from
+ * ch->first_point on): voxel centres with their radii, the length, the
+ * bottleneck and the lining atoms (appended to W->L). Returns 0, or -1
+ * when out of memory. */
+static int channel_points(analysis *W, vbc_result *res, vbc_channel *ch)
+{
+    size_t np = ch->npoints, p0 = ch->first_point;
+    if (grow((void **)&res->points, &W->ptcap, p0 + np, sizeof *res->points))
+        return -1;
+    W->L.stamp++;
+    for (size_t t = 0; t < np; t++) {
+        uint32_t q = W->path[np - 1 - t];
+        vbc_point *pt = &res->points[p0 + t];
+        double p[3];
+        vbc_voxel_centre(W->g, W->sorted[q], p);
+        pt->x = p[0];
+        pt->y = p[1];
+        pt->z = p[2];
+        /* Reported radii are always the exact (double) cell-list answer. */
+        if (W->given_clear)
+            pt->r = vbc_cells_clearance(W->cells, p, &pt->atom);
+        else {
+            pt->r = W->clear[q];
+            pt->atom = W->near[q];
+        }
+        if (t > 0) {
+            const vbc_point *prev = pt - 1;
+            ch->length += sqrt((p[0] - prev->x) * (p[0] - prev->x) + (p[1] - prev->y) * (p[1] - prev->y) +
+                               (p[2] - prev->z) * (p[2] - prev->z));
+        }
+        if (pt->r < ch->bottleneck) {
+            ch->bottleneck = pt->r;
+            ch->bottleneck_at = t;
+        }
+        vbc_cells_within(W->cells, p, pt->r + W->opt->lining_tol, lining_add, &W->L);
+        if (W->L.failed)
+            return -1;
+    }
+    return 0;
+}
+
+/* Component c: classified, pruned (too small, a cavity not kept, too short
+ * or too narrow) or traced and appended to res. Returns 0, or -1 when out
+ * of memory. */
+static int analyse_component(analysis *W, size_t c, vbc_result *res)
+{
+    const uint32_t *mem = W->order + W->cstart[c];
+    size_t m = W->cstart[c + 1] - W->cstart[c];
+    const vbc_options *opt = W->opt;
+    size_t nm = 0;
+    for (size_t t = 0; t < m; t++)
+        nm += W->mouth[mem[t]];
+    int kind = nm > 0 ? VBC_CHANNEL : VBC_CAVITY;
+    /* A path through m voxels is at most (m - 1) long diagonals: components
+     * too small for min_length are pruned before any distance is computed
+     * (most components are specks in grooves). */
+    if ((kind == VBC_CAVITY && !opt->keep_cavities) ||
+        (double)(m - 1) * 1.7320508075688772 * W->g->h < opt->min_length) {
+        res->pruned++;
+        return 0;
+    }
+    for (size_t t = 0; t < m && !W->given_clear; t++) {
+        double p[3];
+        vbc_voxel_centre(W->g, W->sorted[mem[t]], p);
+        W->clear[mem[t]] = vbc_cells_clearance(W->cells, p, &W->near[mem[t]]);
+    }
+    int through;
+    size_t np;
+    if (trace_path(W, mem, m, kind, &through, &np) != 0)
+        return -1;
+    size_t p0 = 0;
+    for (size_t t = 0; t < res->nchannels; t++)
+        p0 += res->channels[t].npoints;
+    vbc_channel ch = {kind, kind == VBC_CAVITY ? VBC_WHY_CAVITY : through ? VBC_WHY_THROUGH : VBC_WHY_TUNNEL,
+                      through, m, nm, 0.0, INFINITY, 0, p0, np, 0, 0};
+    size_t l0 = W->L.n;
+    if (channel_points(W, res, &ch) != 0)
+        return -1;
+    if (ch.length < opt->min_length || ch.bottleneck < opt->min_radius) {
+        res->pruned++;
+        W->L.n = l0;
+        return 0;
+    }
+    if (W->L.n - l0 > 1)
+        qsort(W->L.list + l0, W->L.n - l0, sizeof *W->L.list, cmp_i32);
+    ch.first_lining = l0;
+    ch.nlining = W->L.n - l0;
+    if (grow((void **)&res->channels, &W->chcap, res->nchannels + 1, sizeof *res->channels))
+        return -1;
+    res->channels[res->nchannels++] = ch;
+    return 0;
+}
+
+int vbc_analyse_clear(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, const uint32_t *vox,
+                      const float *vclear, size_t nvox, const vbc_options *opt, vbc_result *res)
+{
+    memset(res, 0, sizeof *res);
+    if (nvox == 0)
+        return VB_OK;
+    if (nvox >= ((size_t)1 << 30))
+        return vb_error(ctx, VB_EINPUT_TOOLARGE, NULL, 0, "%zu channel voxels: too many", nvox);
+    analysis W;
+    memset(&W, 0, sizeof W);
+    W.A.g = W.g = g;
+    W.A.s = s;
+    W.opt = opt;
+    W.nvox = nvox;
+    W.given_clear = vclear != NULL;
+    int rc = VB_ENOMEM;
+    if (analysis_alloc(&W, s->n) != 0 || load_voxels(&W, vox, vclear) != 0 || link_voxels(&W) != 0)
+        goto done;
+    group_components(&W);
+    res->components = W.ncomp;
+    if ((rc = vbc_cells_build(ctx, s, 3.0, &W.cells)) != VB_OK)
         goto done;
     rc = VB_ENOMEM;
-    A.s = s;
-    for (size_t c = 0; c < ncomp; c++) {
-        const uint32_t *mem = order + cstart[c];
-        size_t m = cstart[c + 1] - cstart[c];
-        size_t nm = 0;
-        for (size_t t = 0; t < m; t++)
-            nm += mouth[mem[t]];
-        int kind = nm > 0 ? VBC_CHANNEL : VBC_CAVITY;
-        /* A path through m voxels is at most (m - 1) long diagonals: components
-         * too small for min_length are pruned before any distance is computed
-         * (most components are specks in grooves). */
-        if ((kind == VBC_CAVITY && !opt->keep_cavities) ||
-            (double)(m - 1) * 1.7320508075688772 * g->h < opt->min_length) {
-            res->pruned++;
-            continue;
-        }
-        for (size_t t = 0; t < m && !vclear; t++) {
-            double p[3];
-            vbc_voxel_centre(g, sorted[mem[t]], p);
-            clear[mem[t]] = vbc_cells_clearance(cells, p, &near[mem[t]]);
-        }
-        uint32_t a, b;
-        int through = 0;
-        if (kind == VBC_CHANNEL) {
-            if (vbc_channel_ends(&A, parent, mem, m, &a, &b, &through) != 0)
-                goto done;
-        } else {
-            /* A cavity spans its extent: double sweep over plain lengths. */
-            vbc_sweep(&A, mem, m, mem[0], 0);
-            a = vbc_farthest(&A, mem, m);
-            vbc_sweep(&A, mem, m, a, 0);
-            b = vbc_farthest(&A, mem, m);
-        }
-        /* The centreline: the cheapest (widest) way from a to b. */
-        vbc_sweep(&A, mem, m, a, 1);
-        size_t np = 0;
-        for (uint32_t q = b; q != UINT32_MAX; q = A.pred[q]) {
-            if (grow((void **)&path, &pathcap, np + 1, sizeof *path))
-                goto done;
-            path[np++] = q;
-        }
-        size_t p0 = 0;
-        for (size_t t = 0; t < res->nchannels; t++)
-            p0 += res->channels[t].npoints;
-        if (grow((void **)&res->points, &ptcap, p0 + np, sizeof *res->points))
+    for (size_t c = 0; c < W.ncomp; c++)
+        if (analyse_component(&W, c, res) != 0)
             goto done;
-        vbc_channel ch = {kind, kind == VBC_CAVITY ? VBC_WHY_CAVITY : through ? VBC_WHY_THROUGH : VBC_WHY_TUNNEL,
-                          through, m, nm, 0.0, INFINITY, 0, p0, np, 0, 0};
-        L.stamp++;
-        size_t l0 = L.n;
-        for (size_t t = 0; t < np; t++) {
-            uint32_t q = path[np - 1 - t];
-            vbc_point *pt = &res->points[p0 + t];
-            double p[3];
-            vbc_voxel_centre(g, sorted[q], p);
-            pt->x = p[0];
-            pt->y = p[1];
-            pt->z = p[2];
-            /* Reported radii are always the exact (double) cell-list answer. */
-            if (vclear)
-                pt->r = vbc_cells_clearance(cells, p, &pt->atom);
-            else {
-                pt->r = clear[q];
-                pt->atom = near[q];
-            }
-            if (t > 0) {
-                const vbc_point *q = pt - 1;
-                ch.length += sqrt((p[0] - q->x) * (p[0] - q->x) + (p[1] - q->y) * (p[1] - q->y) +
-                                  (p[2] - q->z) * (p[2] - q->z));
-            }
-            if (pt->r < ch.bottleneck) {
-                ch.bottleneck = pt->r;
-                ch.bottleneck_at = t;
-            }
-            vbc_cells_within(cells, p, pt->r + opt->lining_tol, lining_add, &L);
-            if (L.failed)
-                goto done;
-        }
-        if (ch.length < opt->min_length || ch.bottleneck < opt->min_radius) {
-            res->pruned++;
-            L.n = l0;
-            continue;
-        }
-        if (L.n - l0 > 1)
-            qsort(L.list + l0, L.n - l0, sizeof *L.list, cmp_i32);
-        ch.first_lining = l0;
-        ch.nlining = L.n - l0;
-        if (grow((void **)&res->channels, &chcap, res->nchannels + 1, sizeof *res->channels))
-            goto done;
-        res->channels[res->nchannels++] = ch;
-    }
     if (res->nchannels > 1)
         qsort(res->channels, res->nchannels, sizeof *res->channels, cmp_channel);
-    res->lining = L.list;
-    L.list = NULL;
+    res->lining = W.L.list;
+    W.L.list = NULL;
     rc = VB_OK;
 done:
     if (rc == VB_ENOMEM)
         vb_error(ctx, VB_ENOMEM, NULL, 0, "channel analysis of %zu voxels", nvox);
     if (rc != VB_OK)
         vbc_result_free(res);
-    free(sorted);
-    free(mouth);
-    free(parent);
-    free(order);
-    free(cstart);
-    free(comp);
-    free(A.dist);
-    free(A.pred);
-    free(A.heap);
-    free(A.hpos);
-    free(A.rep);
-    free(A.support);
-    free(A.adj_start);
-    free(A.adj);
-    free(A.adj_len);
-    free(clear);
-    free(near);
-    free(L.mark);
-    free(L.list);
-    free(path);
-    vbc_cells_free(cells);
+    analysis_free(&W);
     return rc;
 }
 

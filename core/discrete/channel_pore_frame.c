@@ -421,10 +421,21 @@ int vbc_pore_stage(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const v
     if (req && req->enabled) {
         vbc_pore p;
         rc = vbc_pore_find(ctx, g, flags, cells, s, res, req, &p);
-        if (rc == VB_OK && p.n > 0) {
+        /* A path along an axis the user gave is reported as it is; a found
+         * one only when it is a pore (the verdict, vbc_pore.h). */
+        vbc_pore_verdict v = {0, 0.0, 0, 0, 1};
+        int judge = !(req->have_axis && !req->found_source);
+        if (rc == VB_OK && p.n > 0 && judge && vbc_pore_judge(cells, &p, &v) != 0)
+            rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "pore verdict");
+        if (rc == VB_OK && p.n > 0 && v.is_pore) {
             rc = vbc_result_add_pore(ctx, res, &p, cells, lining_tol);
             if (found)
                 *found = p.axis;
+        }
+        if (rc == VB_OK && p.n > 0 && judge) {
+            res->pore.judged = 1;
+            res->pore.buried = v.buried;
+            res->pore.rejected_source = v.is_pore ? 0 : p.axis.source;
         }
         vbc_pore_free(&p);
     }

@@ -315,25 +315,6 @@ void vbc_write_centrelines_conect(FILE *f, const vbc_result *first)
     fprintf(f, "END\n");
 }
 
-void vbc_write_pymol(FILE *f, const char *molecule, const char *centrelines)
-{
-    fprintf(f, "# vorball channels: centrelines with the clearance radius in the B-factor.\n"
-               "# Paths are relative to this script's folder: run it there (pymol NAME.pml).\n");
-    if (molecule)
-        fprintf(f, "load %s, molecule\nhide everything, molecule\nshow cartoon, molecule\n"
-                   "show lines, molecule\n", molecule);
-    fprintf(f, "load %s, channels\n", centrelines);
-    fprintf(f, "hide everything, channels\n"
-               "alter channels, vdw=b\n"
-               "rebuild\n"
-               "show spheres, channels\n"
-               "show sticks, channels\n"
-               "set sphere_transparency, 0.4, channels\n"
-               "spectrum b, red_yellow_blue, channels, minimum=0.5, maximum=4.0\n"
-               "set all_states, off\n"
-               "zoom channels\n");
-}
-
 static int ends_with(const char *s, const char *suffix)
 {
     size_t a = strlen(s), b = strlen(suffix);

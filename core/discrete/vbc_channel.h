@@ -110,6 +110,9 @@ typedef struct vbc_pore_summary {
     double step;            /* A between planes */
     double F, g_macro_pS;   /* HOLE's geometric factor (1/A) and Gmacro (1 M KCl) */
     int open_lo, open_hi;   /* each end left the molecule */
+    int judged;             /* the verdict ran (a found axis): buried below */
+    double buried;          /* A walled along the axis (vbc_pore_judge), also when no pore */
+    int rejected_source;    /* no pore: the axis of the path judged (enum vbc_axis_source) */
 } vbc_pore_summary;
 
 typedef struct vbc_result {
@@ -160,11 +163,11 @@ void vbc_cells_within(const vbc_cells *c, const double p[3], double reach,
 
 /* A copy of s without the atoms whose residue name is one of resnames[0..n)
  * (case-insensitive; a set without atom records keeps every sphere), in
- * *out (free with vb_spheres_free), *dropped the count left out; no exact
- * decimals (a channel set). VB_EINPUT_EMPTY when nothing is left,
- * VB_ENOMEM. */
+ * *out (free with vb_spheres_free), *dropped the count left out, counts[k]
+ * (when not NULL) increased by the atoms of name k; no exact decimals (a
+ * channel set). VB_EINPUT_EMPTY when nothing is left, VB_ENOMEM. */
 int vbc_spheres_without(vb_ctx *ctx, const vb_sphere_set *s, const char *const *resnames, size_t n,
-                        vb_sphere_set **out, size_t *dropped);
+                        size_t *counts, vb_sphere_set **out, size_t *dropped);
 
 /* Writers (core/discrete/channel_write.c). */
 
@@ -211,9 +214,24 @@ void vbc_write_centrelines_pdb(FILE *f, int model, const vbc_result *res);
  * channel of the first model `first` (serials as written), then END. */
 void vbc_write_centrelines_conect(FILE *f, const vbc_result *first);
 
-/* A PyMOL script that loads the molecule (when not NULL) and the centreline
- * PDB and shows the points as spheres of their radius, coloured by it. */
-void vbc_write_pymol(FILE *f, const char *molecule, const char *centrelines);
+/* A PyMOL script, to be written at path `script`, that loads the molecule
+ * file (not when it is "-", stdin), then the trajectory traj into it (when
+ * not NULL: PyMOL's load_traj) and the centreline PDB, all by paths
+ * relative to the script's folder (core/discrete/channel_pymol.c), and
+ * shows the points as spheres of their radius, coloured by it. */
+void vbc_write_pymol(FILE *f, const char *script, const char *molecule, const char *centrelines,
+                     const char *traj);
+
+/* Whether the PyMOL script needs the first frame written as PDB beside it:
+ * the input is not a file PyMOL reads with its coordinates (a PSF, a GRO, a
+ * compressed or XYZR file), or it is the non-PDB topology of a trajectory.
+ * Never for stdin ("-"). */
+int vbc_pymol_needs_frame0(const char *input, const char *traj);
+
+/* The spheres s as PDB ATOM/HETATM records (names, residues, chains and
+ * elements from s->info; coordinates rounded to 0.001 A, the radius in the
+ * B-factor column), then END. */
+void vbc_write_molecule_pdb(FILE *f, const vb_sphere_set *s);
 
 /* The radius profile of every channel of a frame as CSV rows (header first):
  * per point its index, axial coordinate s (on the pore's axis, when the

@@ -6,13 +6,21 @@
  * Bondi value and get 1.40 like their neighbours (a convention: metal ions in
  * proteins are far smaller than any vdW radius, so any such value is rough).
  * Deuterium takes hydrogen's radius. Unknown elements get 1.70 (carbon) with
- * a warning, or are refused in strict mode. */
+ * a warning, or are refused in strict mode.
+ *
+ * A radius file is "ELEMENT RADIUS" per line, or HOLE's format (its
+ * rad/simple.rad, bondi.rad: "VDWR ATOM RES RADIUS" with '?' wildcards,
+ * "BOND" and "remark" lines): a VDWR row for every residue ("???") whose
+ * atom pattern is letters then wildcards ("C???", "FE??") is the radius of
+ * that element, the first such row winning as in HOLE; rows for particular
+ * atom or residue names are counted and left out (W736). */
 #include "vbi_input.h"
 #include "vb_diag.h"
 
 #include <ctype.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 typedef struct {
     char element[4];
@@ -78,6 +86,18 @@ void vb_radii_free(vb_radii_table *t)
     free(t);
 }
 
+/* HOLE's keywords: 1 a remark, 2 BOND, 3 VDWR, 0 none (case-insensitive). */
+static int hole_keyword(const char *tok, size_t k)
+{
+    if (k >= 6 && strncasecmp(tok, "remark", 6) == 0)
+        return 1;
+    if (k == 4 && strncasecmp(tok, "bond", 4) == 0)
+        return 2;
+    if (k == 4 && strncasecmp(tok, "vdwr", 4) == 0)
+        return 3;
+    return 0;
+}
+
 int vb_radii_load(vb_ctx *ctx, const char *path, vb_radii_table **out)
 {
     *out = NULL;
@@ -87,7 +107,7 @@ int vb_radii_load(vb_ctx *ctx, const char *path, vb_radii_table **out)
     if (rc != VB_OK)
         return rc;
     vb_radii_table *t = calloc(1, sizeof *t);
-    size_t cap = 0;
+    size_t cap = 0, particular = 0;
     if (!t) {
         free(buf);
         return vb_error(ctx, VB_ENOMEM, path, 0, "out of memory");
@@ -103,6 +123,29 @@ int vb_radii_load(vb_ctx *ctx, const char *path, vb_radii_table **out)
         const char *end = hash ? hash : line + n, *p = line;
         if ((k = vbi_token(&p, end, &tok)) == 0)
             continue;
+        int hole = hole_keyword(tok, k);
+        if (hole == 1 || hole == 2) /* a remark, or HOLE's bond radius */
+            continue;
+        if (hole == 3) {
+            /* VDWR ATOM RES RADIUS: the element's row, or a particular one. */
+            const char *atom, *res;
+            size_t ka = vbi_token(&p, end, &atom), kr = vbi_token(&p, end, &res);
+            size_t letters = 0;
+            while (letters < ka && isalpha((unsigned char)atom[letters]))
+                letters++;
+            int general = ka == 4 && kr == 3 && memcmp(res, "???", 3) == 0 && letters > 0 &&
+                          letters <= 2 && strspn(atom + letters, "?") == ka - letters;
+            /* A zero radius names no element (AMBER's lone pairs, "LP??"). */
+            const char *cur = p, *val;
+            size_t kv = vbi_token(&cur, end, &val);
+            int zero = kv > 0 && strspn(val, "0.") >= kv;
+            if (!general || zero) {
+                particular++;
+                continue;
+            }
+            tok = atom;
+            k = letters;
+        }
         radius_row row;
         memset(&row, 0, sizeof row);
         if (k >= sizeof row.element) {
@@ -142,6 +185,10 @@ int vb_radii_load(vb_ctx *ctx, const char *path, vb_radii_table **out)
         t->rows[t->n++] = row;
     }
     free(buf);
+    if (rc == VB_OK && particular)
+        vb_warn(ctx, VB_W_RADII_PARTICULAR, path, 0,
+                "%zu HOLE radius rows for particular atom or residue names left out: radii by "
+                "element only", particular);
     if (rc != VB_OK) {
         vb_radii_free(t);
         return rc;

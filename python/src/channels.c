@@ -9,7 +9,7 @@
 
 #include "vb_default.h"
 #include "vb_diag.h"
-#include "vbc_frame.h"
+#include "vbc_run.h"
 
 #define PIPE_CAPSULE "vorball.channel_pipe"
 
@@ -127,81 +127,243 @@ static PyObject *result_dict(const vbc_result *res, PyObject *d)
     return bad ? NULL : d;
 }
 
+#define CARRY_CAPSULE "vorball.channel_carry"
+
+static void carry_destroy(PyObject *cap)
+{
+    free(PyCapsule_GetPointer(cap, CARRY_CAPSULE));
+}
+
+/* What an Engine carries from frame to frame: the pore request as the
+ * first frame left it (vbc_run keeps the axis it found there). */
+static PyObject *carry_new(PyObject *self, PyObject *unused)
+{
+    (void)self;
+    (void)unused;
+    vbc_pore_request *q = calloc(1, sizeof *q);
+    if (!q)
+        return PyErr_NoMemory();
+    PyObject *cap = PyCapsule_New(q, CARRY_CAPSULE, carry_destroy);
+    if (!cap)
+        free(q);
+    return cap;
+}
+
+/* The text of Python value v for option o (vbc_channels_set parses it): a
+ * number with 17 digits (the same double back), integers, names, X,Y,Z.
+ * Returns 0, or -1 with a Python error set. */
+static int option_text(const vbc_opt_spec *o, PyObject *v, char *out, size_t len)
+{
+    const char *key = o->py;
+    int is_bool = PyBool_Check(v);
+    switch (o->type) {
+    case VBC_OPT_FLAG:
+        snprintf(out, len, "%d", PyObject_IsTrue(v) == 1);
+        return 0;
+    case VBC_OPT_REAL: {
+        double d = is_bool ? NAN : PyFloat_AsDouble(v);
+        if (is_bool || (d == -1.0 && PyErr_Occurred())) {
+            PyErr_Clear();
+            vbpy_raise(VB_EMISUSE, "%s must be a length in A, not a %s", key, Py_TYPE(v)->tp_name);
+            return -1;
+        }
+        snprintf(out, len, "%.17g", d);
+        return 0;
+    }
+    case VBC_OPT_COUNT:
+    case VBC_OPT_POW2: {
+        if (is_bool || !PyLong_Check(v)) {
+            vbpy_raise(VB_EMISUSE, "%s must be an integer, not a %s", key, Py_TYPE(v)->tp_name);
+            return -1;
+        }
+        long long n = PyLong_AsLongLong(v);
+        if (n == -1 && PyErr_Occurred()) {
+            PyErr_Clear();
+            n = -1;
+        }
+        snprintf(out, len, "%lld", n);
+        return 0;
+    }
+    case VBC_OPT_CHOICE:
+        if (!PyUnicode_Check(v)) {
+            vbpy_raise(VB_EMISUSE, "%s must be a name, not a %s", key, Py_TYPE(v)->tp_name);
+            return -1;
+        }
+        snprintf(out, len, "%s", PyUnicode_AsUTF8(v));
+        return 0;
+    case VBC_OPT_VEC3: {
+        double x[3];
+        if (!PySequence_Check(v) || PyUnicode_Check(v) || PySequence_Size(v) != 3) {
+            PyErr_Clear();
+            vbpy_raise(VB_EMISUSE, "%s must be three numbers", key);
+            return -1;
+        }
+        for (int k = 0; k < 3; k++) {
+            PyObject *e = PySequence_GetItem(v, k);
+            x[k] = e && !PyBool_Check(e) ? PyFloat_AsDouble(e) : NAN;
+            Py_XDECREF(e);
+            if (PyErr_Occurred() || isnan(x[k])) {
+                PyErr_Clear();
+                vbpy_raise(VB_EMISUSE, "%s must be three numbers", key);
+                return -1;
+            }
+        }
+        snprintf(out, len, "%.17g,%.17g,%.17g", x[0], x[1], x[2]);
+        return 0;
+    }
+    case VBC_OPT_NAMES:
+        if (!PyUnicode_Check(v)) {
+            vbpy_raise(VB_EMISUSE, "%s must be comma-separated residue names, not a %s", key,
+                       Py_TYPE(v)->tp_name);
+            return -1;
+        }
+        snprintf(out, len, "%s", PyUnicode_AsUTF8(v));
+        return 0;
+    default:
+        vbpy_raise(VB_EMISUSE, "%s is not an option of the binding", key);
+        return -1;
+    }
+}
+
+/* The configuration from the keyword dict: the library's defaults, then
+ * each keyword checked and set through the option table. Returns 0, or -1
+ * with a Python error set. */
+static int config_from(PyObject *kw, vbc_channels_config *cfg)
+{
+    vbc_channels_defaults(cfg);
+    char err[512], text[1024];
+    PyObject *key, *v;
+    Py_ssize_t pos = 0;
+    while (PyDict_Next(kw, &pos, &key, &v)) {
+        const char *name = PyUnicode_Check(key) ? PyUnicode_AsUTF8(key) : NULL;
+        const vbc_opt_spec *o = name ? vbc_channels_option_py(name) : NULL;
+        if (!o) {
+            vbpy_raise(VB_EMISUSE, "unknown channels option %s", name ? name : "?");
+            return -1;
+        }
+        if (v == Py_None)
+            continue; /* the library's default */
+        if (option_text(o, v, text, sizeof text) != 0)
+            return -1;
+        if (o->type == VBC_OPT_FLAG && text[0] == '0')
+            continue;
+        /* Python's keywords by their names in messages. */
+        if (vbc_channels_set(cfg, o, o->type == VBC_OPT_FLAG ? NULL : text, err, sizeof err) != 0) {
+            vbpy_raise(VB_EMISUSE, "%s (%s)", err, name);
+            return -1;
+        }
+    }
+    if (vbc_channels_check(cfg, err, sizeof err) != 0) {
+        vbpy_raise(VB_EMISUSE, "%s", err);
+        return -1;
+    }
+    return 0;
+}
+
 static PyObject *channels_run(PyObject *self, PyObject *args)
 {
     (void)self;
-    PyObject *pcap, *scap;
-    int grid, cavities, model, want_flags, first;
-    double probe;
+    PyObject *pcap, *scap, *kw, *ccap;
+    int model, want_flags, first;
     long frame;
-    vbc_options opt;
-    memset(&opt, 0, sizeof opt);
-    if (!PyArg_ParseTuple(args, "OOiddddpilpp", &pcap, &scap, &grid, &probe, &opt.min_length,
-                          &opt.min_radius, &opt.lining_tol, &cavities, &model, &frame,
-                          &want_flags, &first))
+    if (!PyArg_ParseTuple(args, "OOO!Oilpp", &pcap, &scap, &PyDict_Type, &kw, &ccap, &model,
+                          &frame, &want_flags, &first))
         return NULL;
-    opt.keep_cavities = cavities;
     vbc_pipe *pipe = PyCapsule_GetPointer(pcap, PIPE_CAPSULE);
     vb_sphere_set *s = pipe ? vbpy_spheres_get(scap) : NULL;
-    if (!s)
+    vbc_pore_request *carry = NULL;
+    if (!s || (ccap != Py_None && !(carry = PyCapsule_GetPointer(ccap, CARRY_CAPSULE))))
         return NULL;
-    /* The command's ranges (cli/cmd_channels.c); the library checks the grid. */
-    if (!(probe >= 0.0 && probe <= 20.0))
-        return vbpy_raise(VB_EMISUSE, "probe must be a radius in 0..20 A, not %g", probe);
-    if (!(opt.min_length >= 0 && opt.min_length <= 1e4 && opt.min_radius >= 0 &&
-          opt.min_radius <= 1e4 && opt.lining_tol >= 0 && opt.lining_tol <= 1e4))
-        return vbpy_raise(VB_EMISUSE, "min_length, min_radius and lining_tol must be in 0..1e4 A");
+    /* Heap: the configuration is large (its name lists). */
+    vbc_channels_config *cfg = malloc(sizeof *cfg);
+    if (!cfg)
+        return PyErr_NoMemory();
+    if (config_from(kw, cfg) != 0) {
+        free(cfg);
+        return NULL;
+    }
+    /* An engine's later frames sweep the axis its first frame found. */
+    if (carry && carry->have_axis && !cfg->pore.have_axis && !cfg->pore.have_through) {
+        vbc_pore_options sweep = cfg->pore.sweep;
+        int enabled = cfg->pore.enabled;
+        cfg->pore = *carry;
+        cfg->pore.sweep = sweep;
+        cfg->pore.enabled = enabled;
+    }
     vbpy_call c;
-    if (vbpy_call_open(&c) != 0)
+    if (vbpy_call_open(&c) != 0) {
+        free(cfg);
         return NULL;
-    vbc_grid g;
-    vbc_frame F;
-    memset(&F, 0, sizeof F);
+    }
+    vbc_run run;
+    vbc_run_out o;
     int rc;
+    vbc_run_init(&run, cfg, pipe, s->source);
+    run.want = want_flags ? VBC_WANT_FLAGS : 0;
     Py_BEGIN_ALLOW_THREADS
-    rc = vbc_grid_fit(c.ctx, s, probe, grid, 3, &g);
-    /* As the command warns on its first frame. */
-    if (rc == VB_OK && first && g.h > fmax(probe, 0.5))
-        vb_warn(c.ctx, VB_W_VOXEL_COARSE, s->source, 0,
-                "voxel edge %.2f A is coarser than the probe radius %.2f A: narrow channels may be "
-                "missed (raise grid)", g.h, probe);
-    if (rc == VB_OK)
-        rc = vbc_frame_run(c.ctx, pipe, &g, s, probe, want_flags ? VBC_WANT_FLAGS : 0, &opt, &F);
+    rc = vbc_run_frame(c.ctx, &run, s, frame, model, first, &o);
     Py_END_ALLOW_THREADS
+    if (rc == VB_OK)
+        vbc_run_report_left_out(c.ctx, &run);
     if (rc != VB_OK) {
-        vbc_frame_free(&F);
+        vbc_run_free(&run);
+        free(cfg);
         return vbpy_call_fail(&c, rc);
     }
-    /* No pore stage here (opt.pore NULL): the tables of `vorball channels
-     * --no-pore`. */
-    vbc_frame_info fi = {frame,          model,         s->n,
-                         F.out.nvoxels,  F.out.ms_upload, F.out.ms_jfa,
-                         F.out.ms_masks, F.ms_analysis, F.ms_masks + F.ms_analysis,
-                         0.0};
+    if (carry && cfg->pore.have_axis)
+        *carry = cfg->pore;
+    const vbc_grid g = o.g;
+    const vbc_frame_info fi = o.fi;
     const char *device = vbc_pipe_device_name(pipe);
     PyObject *csv = NULL, *json = NULL;
     PyObject *d = NULL;
-    if (frame_texts(s, &g, &fi, &F.result, probe, grid, device, &csv, &json) == 0)
+    if (frame_texts(o.s, &g, &fi, &o.F.result, cfg->probe, cfg->grid, device, &csv, &json) == 0)
         d = Py_BuildValue("{s:O,s:O,s:s,s:n,s:n,s:n,s:{s:i,s:i,s:i,s:d,s:(ddd)},"
-                          "s:{s:d,s:d,s:d,s:d,s:d}}",
+                          "s:{s:d,s:d,s:d,s:d,s:d,s:d}}",
                           "csv", csv, "json", json, "device", device, "components",
-                          (Py_ssize_t)F.result.components, "pruned", (Py_ssize_t)F.result.pruned,
-                          "channel_voxels", (Py_ssize_t)F.out.nvoxels, "grid", "nx", g.nx, "ny",
+                          (Py_ssize_t)o.F.result.components, "pruned", (Py_ssize_t)o.F.result.pruned,
+                          "channel_voxels", (Py_ssize_t)o.F.out.nvoxels, "grid", "nx", g.nx, "ny",
                           g.ny, "nz", g.nz, "h", g.h, "origin", g.origin[0], g.origin[1],
                           g.origin[2], "ms", "upload", fi.ms_upload, "jfa", fi.ms_jfa, "masks",
-                          fi.ms_masks, "analysis", fi.ms_analysis, "total", fi.ms_total);
+                          fi.ms_masks, "analysis", fi.ms_analysis, "pore", fi.ms_pore, "total",
+                          fi.ms_total);
     Py_XDECREF(csv);
     Py_XDECREF(json);
-    if (d && !result_dict(&F.result, d))
+    if (d && !result_dict(&o.F.result, d))
         Py_CLEAR(d);
     if (d && want_flags) {
-        PyObject *fl = vbpy_bytes(F.out.flags, vbc_grid_voxels(&g), 1);
+        PyObject *fl = vbpy_bytes(o.F.out.flags, vbc_grid_voxels(&g), 1);
         if (!fl || PyDict_SetItemString(d, "flags", fl) != 0)
             Py_CLEAR(d);
         Py_XDECREF(fl);
     }
-    vbc_frame_free(&F);
+    vbc_run_frame_done(&run, 0, &o);
+    vbc_run_free(&run);
+    free(cfg);
     return vbpy_call_return(&c, d);
+}
+
+/* The option table as Python sees it: per keyword (type, min, max,
+ * default text or None, choices or None, help). */
+static PyObject *option_table(PyObject *self, PyObject *unused)
+{
+    (void)self;
+    (void)unused;
+    static const char *const types[] = {"flag", "real", "count", "pow2", "path",
+                                        "choice", "vec3", "frames", "names"};
+    size_t n;
+    const vbc_opt_spec *t = vbc_channels_options(&n);
+    PyObject *d = PyDict_New();
+    for (size_t k = 0; d && k < n; k++) {
+        if (!t[k].py)
+            continue;
+        PyObject *row = Py_BuildValue("(sddzzs)", types[t[k].type], t[k].min, t[k].max, t[k].def,
+                                      t[k].choices, t[k].help);
+        if (!row || PyDict_SetItemString(d, t[k].py, row) != 0)
+            Py_CLEAR(d);
+        Py_XDECREF(row);
+    }
+    return d;
 }
 
 static PyObject *flag_bits(PyObject *self, PyObject *unused)
@@ -217,7 +379,11 @@ PyMethodDef vbpy_channels_methods[] = {
     {"channels_open", pipe_open, METH_VARARGS,
      "channels_open(device, jfa) -> (capsule, diagnostics)"},
     {"channels_run", channels_run, METH_VARARGS,
-     "channels_run(pipe, spheres, grid, probe, min_length, min_radius, lining_tol, cavities, "
-     "model, frame, want_flags, first) -> (dict, diagnostics)"},
+     "channels_run(pipe, spheres, options, carry, model, frame, want_flags, first) -> "
+     "(dict, diagnostics): options by their Python keywords (channel_options())"},
+    {"channels_carry", carry_new, METH_NOARGS,
+     "channels_carry() -> capsule: what an engine carries between frames (the pore axis)"},
+    {"channel_options", option_table, METH_NOARGS,
+     "channel_options() -> {keyword: (type, min, max, default, choices, help)}"},
     {"channel_flag_bits", flag_bits, METH_NOARGS, "The VBC_F_* bits of the flag volume."},
     {NULL, NULL, 0, NULL}};

@@ -21,13 +21,49 @@ def gramicidin():
 
 
 def test_same_table_as_the_command(gramicidin):
-    out, _ = cli("channels", "--no-pore", "--device", "ref", "--grid", 64, GRAMICIDIN)
+    """The same call gives the same answer: the pore sweep included."""
+    out, _ = cli("channels", "--device", "ref", "--grid", 64, GRAMICIDIN)
     assert gramicidin.csv == out
-    j, _ = cli("channels", "--no-pore", "--device", "ref", "--grid", 64, "--json", GRAMICIDIN)
+    j, _ = cli("channels", "--device", "ref", "--grid", 64, "--json", GRAMICIDIN)
     mine, theirs = gramicidin.to_json(), json.loads(j)
     for frame in (mine["frames"][0], theirs["frames"][0]):
         frame.pop("ms")  # timings
     assert mine == theirs
+    s = vorball.read(GRAMICIDIN)
+    no_pore = vorball.channels(s, grid=64, device="ref", no_pore=True, cavities=True)
+    out, _ = cli("channels", "--device", "ref", "--grid", 64, "--no-pore", "--cavities", GRAMICIDIN)
+    assert no_pore.csv == out and "pore" not in no_pore.table["kind"]
+
+
+def test_pore_at_the_defaults_as_the_command():
+    """Gramicidin at every default (grid 128, probe 1.4, the pore sweep):
+    1.337 A in the table of `vorball channels` and of vorball.channels
+    (1.84 A before the binding had the sweep)."""
+    out, _ = cli("channels", "--device", "ref", GRAMICIDIN)
+    ch = vorball.channels(vorball.read(GRAMICIDIN), device="ref")
+    assert ch.csv == out
+    assert ch.table["kind"][0] == "pore" and "%.3f" % ch.table["bottleneck_A"][0] == "1.337"
+    assert "%.3f" % ch.profile(0)[1].min() == "1.337"
+
+
+def test_pore_options_as_the_command():
+    """Options of the pore by the command's names: axis, through, sample,
+    end_radius, ignore; their ranges are the library's."""
+    s = vorball.read(GRAMICIDIN)
+    ch = vorball.channels(s, grid=64, device="ref", axis=(0, 0, 2), through=[0, 0, 1],
+                          sample=0.5, end_radius=5, ignore="FOR,ETA")
+    out, _ = cli("channels", "--device", "ref", "--grid", 64, "--axis", "0,0,2", "--through",
+                 "0,0,1", "--sample", 0.5, "--end-radius", 5, "--ignore", "FOR,ETA", GRAMICIDIN)
+    assert ch.csv == out
+    for kw in ({"sample": 9.0}, {"axis": (0, 0, 0)}, {"axis": (1, 2)}, {"no_pore": True,
+               "through": (0, 0, 0)}, {"grid": True}, {"probe": "1.4"}, {"bogus": 1}):
+        with pytest.raises(vorball.VorballError) as e:
+            vorball.channels(s, **{"device": "ref", "grid": 32, **kw})
+        assert e.value.number == 7, kw
+    table = vorball.channel_options()
+    assert table["probe"][:4] == ("real", 0.0, 20.0, "1.4")
+    assert table["grid"][:4] == ("pow2", 16.0, 1024.0, "128")
+    assert "probe" in vorball.channels.__doc__ and "min_length" in vorball.channels.__doc__
 
 
 def test_table_is_the_csv_at_full_precision(gramicidin):
@@ -44,7 +80,7 @@ def test_table_is_the_csv_at_full_precision(gramicidin):
                 assert int(v) == int(row[name]), name
             else:
                 assert str(v) == row[name], name
-    assert t["kind"][0] == "channel" and t["length_A"][0] >= t["length_A"][-1]
+    assert t["kind"][0] == "pore" and t["kind"][1] == "channel"
 
 
 def test_profiles_and_lining(gramicidin):
@@ -68,8 +104,9 @@ def test_profiles_and_lining(gramicidin):
 
 
 def test_trajectory_loop_on_one_engine():
-    """Frames 0..2 on one opened device: the command's rows over the same frames."""
-    out, _ = cli("channels", "--no-pore", "--device", "ref", "--grid", 64, "--frames", "0:3", TRAJ)
+    """Frames 0..2 on one opened device: the command's rows over the same
+    frames (the later frames sweep the first frame's pore axis)."""
+    out, _ = cli("channels", "--device", "ref", "--grid", 64, "--frames", "0:3", TRAJ)
     rows = []
     with vorball.Engine(device="ref") as eng:
         for f in vorball.frames(TRAJ, stop=3):

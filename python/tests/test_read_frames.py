@@ -129,7 +129,7 @@ def test_dcd_frames(tmp_path):
     assert [(c.frame, c.model) for c in ch] == [(0, 1), (1, 2), (2, 3)]
     assert all(len(c) for c in ch)  # channels found: the comparison below has rows
     assert ch[1].spheres is got[1]
-    out, _ = cli("channels", "--no-pore", "--device", "ref", "--grid", 32, "--dcd", tmp_path / "t.dcd",
+    out, _ = cli("channels", "--device", "ref", "--grid", 32, "--dcd", tmp_path / "t.dcd",
                  corpus("inputs", "crambin_fragment.xyzr"))
     assert "".join(c.csv.split("\n", 1)[1] for c in ch) == out.split("\n", 1)[1]
 

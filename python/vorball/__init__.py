@@ -17,12 +17,13 @@ from ._errors import CatalogueEntry, Diagnostic, VorballError, VorballWarning, c
 from ._spheres import Frames, Spheres, frames, read, spheres
 from ._vertices import Arcs, Certificate, Engine, Result, Topology, vertex_text, vertices
 from ._verify import DUPLICATE, MISSING, NOT_VERTEX, WRONG_COORDS, Report, verify
-from ._channels import Channels, channel_flags, channels
+from ._channels import Channels, channel_flags, channel_options, channels
 
 __all__ = ["Arcs", "CatalogueEntry", "Certificate", "Channels", "Diagnostic", "DUPLICATE",
            "Engine", "Frames", "MISSING", "NOT_VERTEX", "Report", "Result", "Spheres", "Topology",
            "VorballError", "VorballWarning", "WRONG_COORDS", "catalogue", "channel_flags",
-           "channels", "frames", "read", "spheres", "verify", "vertex_text", "vertices"]
+           "channel_options", "channels", "frames", "read", "spheres", "verify", "vertex_text",
+           "vertices"]
 
 try:
     from importlib.metadata import PackageNotFoundError, version as _version

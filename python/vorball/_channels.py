@@ -6,7 +6,6 @@ from __future__ import annotations
 import csv
 import io
 import json as _json
-import numbers
 from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
@@ -25,6 +24,7 @@ _TABLE = [("frame", "i8"), ("model", "i8"), ("channel", "i8"), ("kind", "U7"), (
           ("start_z", "f8"), ("end_x", "f8"), ("end_y", "f8"), ("end_z", "f8"), ("voxels", "i8"),
           ("volume_A3", "f8"), ("mouths", "i8"), ("points", "i8"), ("lining_atoms", "i8")]
 _KNOWN = {name for name, _ in _TABLE}
+_KIND = {0: "channel", 1: "cavity", 2: "pore"}  # enum vbc_kind, as the CSV writes it
 _POINT = np.dtype([("s", "f8"), ("x", "f8"), ("y", "f8"), ("z", "f8"), ("r", "f8"), ("atom", "i4")])
 
 
@@ -109,7 +109,7 @@ class Channels:
             self.lining.append(lining[l0:l0 + nl].astype(np.int64))
             b, first, last = p[at], p[0], p[-1]
             h = g["h"]
-            table.append((frame, model, t + 1, "channel" if kind == 0 else "cavity", bool(through),
+            table.append((frame, model, t + 1, _KIND[kind], bool(through),
                           length, bottleneck, b[0], b[1], b[2], first[0], first[1], first[2],
                           last[0], last[1], last[2], voxels, voxels * (h * h * h), mouths, npts, nl))
         extra = [name for name in header if name not in _KNOWN]
@@ -153,57 +153,93 @@ def channel_flags() -> Dict[str, int]:
     return _core.channel_flag_bits()
 
 
-def _check(grid, probe, min_length, min_radius, lining_tol):
-    if not isinstance(grid, numbers.Integral) or isinstance(grid, bool):
-        raise misuse("grid must be an integer (a power of two 16..1024), not %r" % (grid,))
-    for name, v in (("probe", probe), ("min_length", min_length), ("min_radius", min_radius),
-                    ("lining_tol", lining_tol)):
-        if not isinstance(v, numbers.Real) or isinstance(v, bool):
-            raise misuse("%s must be a length in A, not %r" % (name, v))
-    if not (16 <= grid <= 1024 and grid & (grid - 1) == 0):
-        raise misuse("grid must be a power of two in 16..1024, not %d" % grid)
+# The analysis's options, declared once in the library
+# (core/discrete/channel_options.c): {keyword: (type, min, max, default,
+# choices, help)}. The library checks every value and fills the defaults.
+OPTIONS: Dict[str, Tuple[str, float, float, Optional[str], Optional[str], str]] = \
+    _core.channel_options()
 
 
-def run_channels(pipe: Any, first: bool, xyz: SphereInput, r: Optional[ArrayLike], grid: int,
-                 probe: float, min_length: float = 5.0, min_radius: float = 0.0,
-                 lining_tol: float = 1.0, cavities: bool = False, flags: bool = False,
-                 zero_radius: str = "auto", verbose: bool = False) -> Channels:
+def _default(name: str) -> str:
+    return OPTIONS[name][3]
+
+
+def _options_doc() -> str:
+    lines = []
+    for name, (typ, lo, hi, default, choices, text) in sorted(OPTIONS.items()):
+        rng = " (%g..%g)" % (lo, hi) if typ in ("real", "count", "pow2") else ""
+        dflt = "; default %s" % default if default is not None else ""
+        lines.append("    %s: %s%s%s" % (name, text, rng, dflt))
+    return "\n".join(lines)
+
+
+def _keywords(grid, probe, options):
+    """The keyword dict for the library (None: its default)."""
+    kw = dict(options)
+    for name in kw:
+        if name not in OPTIONS or name in ("device", "jfa"):
+            raise misuse("unknown channels option %r (vorball.channel_options: %s)"
+                         % (name, ", ".join(sorted(OPTIONS))))
+    kw["grid"], kw["probe"] = grid, probe
+    return kw
+
+
+def channel_options() -> Dict[str, Tuple[str, float, float, Optional[str], Optional[str], str]]:
+    """The options of vorball.channels as the library declares them:
+    {keyword: (type, min, max, default, choices, help)}, the same table that
+    `vorball channels` parses and prints with --help."""
+    return dict(OPTIONS)
+
+
+def run_channels(pipe: Any, first: bool, xyz: SphereInput, r: Optional[ArrayLike],
+                 grid: Optional[int] = None, probe: Optional[float] = None, *, carry: Any = None,
+                 flags: bool = False, zero_radius: str = "auto", verbose: bool = False,
+                 **options: Any) -> Channels:
     """One frame through an opened channel pipe (vorball.channels, Engine.channels)."""
-    _check(grid, probe, min_length, min_radius, lining_tol)
+    kw = _keywords(grid, probe, options)
     s, made = as_spheres(xyz, r, min_count=1, zero_radius=zero_radius, exact=False,
                          revalidated=False)
-    d, diag = _core.channels_run(pipe, s._capsule, int(grid), float(probe), float(min_length),
-                                 float(min_radius), float(lining_tol), bool(cavities),
-                                 int(s.model), int(s.index), bool(flags), bool(first))
+    d, diag = _core.channels_run(pipe, s._capsule, kw, carry, int(s.model), int(s.index),
+                                 bool(flags), bool(first))
     w = made + parse(diag)
     emit(w, verbose)
     return Channels(d, w, s, s.index, s.model)
 
 
-def channels(xyz: SphereInput, r: Optional[ArrayLike] = None, grid: int = 128,
-             probe: float = 1.4, *, device: str = "auto", jfa: str = "exact",
-             min_length: float = 5.0, min_radius: float = 0.0, lining_tol: float = 1.0,
-             cavities: bool = False, flags: bool = False, zero_radius: str = "auto",
-             verbose: bool = False) -> Channels:
-    """Channels and cavities of one set of spheres, as `vorball channels`.
+def channels(xyz: SphereInput, r: Optional[ArrayLike] = None, grid: Optional[int] = None,
+             probe: Optional[float] = None, *, device: Optional[str] = None,
+             jfa: Optional[str] = None, flags: bool = False, zero_radius: str = "auto",
+             verbose: bool = False, **options: Any) -> Channels:
+    """Channels, cavities and the pore of one set of spheres, as `vorball
+    channels` (the same call: the same table, pore included).
 
     xyz, r: arrays, a Spheres (a frame of vorball.frames: its index and
-    model go into the table), or a file path (its first model). grid: the
-    side of the cubic grid (a power of two 16..1024); probe: the solvent
-    radius (Å); device: auto, gpu, cpu or ref (W804 when it falls back);
-    jfa: exact (the default), facet, jfa, jfa+1, jfa+2 or 1+jfa; min_length, min_radius,
-    lining_tol, cavities as the command's options; flags=True keeps the
-    mask volume. For the frames of a trajectory, open the device once:
-    `with vorball.Engine() as e: for f in vorball.frames(...): e.channels(f)`.
-    Returns Channels; raises VorballError.
+    model go into the table), or a file path (its first model). grid,
+    probe, device, jfa and the options below are the command's, by the same
+    names (--min-length is min_length, --no-pore no_pore=True, --axis
+    axis=(x, y, z), --ignore ignore="DUM,POPC"); None or absent: the
+    library's default. device: auto, gpu, cpu or ref (W804 when it falls
+    back). flags=True keeps the mask volume. For the frames of a
+    trajectory, open the device once: `with vorball.Engine() as e: for f in
+    vorball.frames(...): e.channels(f)` (later frames sweep the first
+    frame's pore axis, as the command does). Returns Channels; raises
+    VorballError.
+
+    Options (vorball.channel_options()):
+%s
     """
+    device = _default("device") if device is None else device
+    jfa = _default("jfa") if jfa is None else jfa
     if not isinstance(device, str) or not isinstance(jfa, str):
         raise misuse("device and jfa are names")
-    _check(grid, probe, min_length, min_radius, lining_tol)
+    kw = _keywords(grid, probe, options)
     pipe, diag = _core.channels_open(device, jfa)
     w = parse(diag)
     emit(w, verbose)
-    c = run_channels(pipe, True, xyz, r, grid, probe, min_length, min_radius, lining_tol,
-                     cavities, flags, zero_radius, verbose)
+    c = run_channels(pipe, True, xyz, r, flags=flags, zero_radius=zero_radius, verbose=verbose,
+                     **kw)
     c.warnings[:0] = w
     return c
+
+
+channels.__doc__ = (channels.__doc__ or "") % _options_doc()

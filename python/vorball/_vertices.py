@@ -12,6 +12,7 @@ from numpy.typing import ArrayLike
 from . import _core
 from ._errors import Diagnostic, emit, misuse, parse
 from ._channels import Channels, run_channels
+from ._channels import _default as channel_default
 from ._spheres import PathLike, SphereInput, Spheres, as_spheres
 
 
@@ -269,8 +270,9 @@ class Engine:
     device.
     """
 
-    def __init__(self, device: str = "auto", proposer: Optional[str] = None, jfa: str = "exact",
-                 verbose: bool = False) -> None:
+    def __init__(self, device: str = "auto", proposer: Optional[str] = None,
+                 jfa: Optional[str] = None, verbose: bool = False) -> None:
+        jfa = channel_default("jfa") if jfa is None else jfa  # the channel table's default
         if not isinstance(device, str) or not isinstance(jfa, str):
             raise misuse("device and jfa are names")
         self.device, self.proposer, self.jfa = device, _proposer(proposer), jfa
@@ -278,6 +280,7 @@ class Engine:
         self.warnings: List[Diagnostic] = []  # from opening the devices (W760, W804)
         self._vertices = None
         self._pipe = None
+        self._carry = None
         self._lock = threading.Lock()
         self._frames_run = 0
 
@@ -307,15 +310,19 @@ class Engine:
         emit(w, verbose)
         return Result(d, w, s)
 
-    def channels(self, xyz: SphereInput, r: Optional[ArrayLike] = None, grid: int = 128,
-                 probe: float = 1.4, **kw: Any) -> Channels:
-        """vorball.channels on this engine's device (see there)."""
+    def channels(self, xyz: SphereInput, r: Optional[ArrayLike] = None,
+                 grid: Optional[int] = None, probe: Optional[float] = None,
+                 **kw: Any) -> Channels:
+        """vorball.channels on this engine's device (see there); later frames
+        sweep the pore axis that the first frame found, as the command's
+        frames do."""
         with self._lock:
             if self._pipe is None:
                 self._pipe = self._open(_core.channels_open, self.device, self.jfa)
+                self._carry = _core.channels_carry()
             first = self._frames_run == 0
             self._frames_run += 1
-            return run_channels(self._pipe, first, xyz, r, grid, probe,
+            return run_channels(self._pipe, first, xyz, r, grid, probe, carry=self._carry,
                                 verbose=kw.pop("verbose", self.verbose), **kw)
 
     def close(self) -> None:

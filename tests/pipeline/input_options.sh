@@ -49,4 +49,27 @@ run 3 "$out" "$vorball" reference /nonexistent/in.xyzr
 expect_line "$out" "/nonexistent/in.xyzr"
 head -3 "$in" > "$work/three.xyzr"
 run 16 "$out" "$vorball" reference "$work/three.xyzr"
+# A radius file in HOLE's format (issue 32): its element rows ("C??? ???")
+# are the element radii, first row winning; remarks and BOND rows are
+# skipped; rows for particular names (and AMBER's zero-radius lone pairs)
+# are left out with W736. The pore is the one the plain file gives.
+grm=$corpus/data/1grm_single_hole2.pdb
+cat > "$work/hole.rad" << 'EOF2'
+remark: element radii in HOLE's format
+VDWR C??? ??? 1.85
+VDWR O??? ??? 1.65
+VDWR S??? ??? 2.00
+VDWR N??? ??? 1.75
+VDWR H??? ??? 1.00
+VDWR P??? ??? 2.10
+VDWR C??? ??? 9.99
+VDWR E2?  GLN 1.00
+VDWR LP?? ??? 0.00
+BOND C??? 0.85
+EOF2
+printf 'C 1.85\nO 1.65\nS 2.00\nN 1.75\nH 1.00\nP 2.10\n' > "$work/plain.radii"
+run 0 "$out" "$vorball" channels --device ref --grid 32 --radii "$work/hole.rad" "$grm" -o "$work/hole.csv"
+expect_line "$out" "W736: .*hole.rad: 2 HOLE radius rows for particular atom or residue names left out"
+run 0 "$out" "$vorball" channels --device ref --grid 32 --radii "$work/plain.radii" "$grm" -o "$work/plain.csv"
+cmp -s "$work/hole.csv" "$work/plain.csv" || fail "HOLE's radius format gave other radii than the plain file"
 echo "ok: input options"

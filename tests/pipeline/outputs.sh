@@ -28,6 +28,36 @@ run 2 "$out" "$vorball" channels --device ref --grid 32 link.pdb -o out.csv --st
 expect_line "$out" "E7: ./in.pdb: output is the same file as 'link.pdb'"
 [ "$(cksum < in.pdb)" = "$sum" ] || fail "channels changed its input"
 [ ! -e out.csv ] || fail "a refused command left out.csv"
+# --plot (issue 32): the PNG is an output like the others, drawn by gnuplot
+# (where installed) and in place when the command ends; the script kept
+# beside it draws the same name; no temporary file is left.
+run 0 "$out" "$vorball" channels --device ref --grid 32 in.pdb -o plot.csv --plot plot.png
+if command -v gnuplot > /dev/null 2>&1; then
+    [ "$(head -c 4 plot.png | od -An -c | tr -d ' ')" = "211PNG" ] || fail "--plot wrote no PNG"
+else
+    expect_line "$out" "W807"
+fi
+grep -q "^set output 'plot.png'$" plot.png.gp || fail "the kept plot script draws another file"
+[ -z "$(ls -A | grep 'plot.png.tmp' || true)" ] || fail "--plot left temporary files"
+no_temps
+# --pymol (issue 32): PyMOL loads a structure with coordinates and the
+# trajectory: a PSF topology or a GRO file gets its first frame written
+# beside the script as PDB; a trajectory is loaded into the molecule; a PDB
+# is loaded as it is.
+psf=$corpus/data/adk_natom.psf.gz dcd=$corpus/data/adk_dims_2frames.dcd
+run 0 "$out" "$vorball" channels --device ref --grid 16 --no-pore "$psf" --traj "$dcd" \
+    --centerlines a.pdb --pymol a.pml -o a.csv
+grep -q '^load a.pml.frame0.pdb, molecule$' a.pml || fail "the PyMOL script does not load the first frame"
+grep -q "^load_traj .*adk_dims_2frames.dcd, molecule$" a.pml || fail "the PyMOL script does not load the trajectory"
+[ "$(grep -c '^ATOM' a.pml.frame0.pdb)" = 3341 ] || fail "a.pml.frame0.pdb does not hold the 3341 atoms"
+run 0 "$out" "$vorball" channels --device ref --grid 16 --no-pore "$corpus/data/adk_oplsaa_protein.gro.gz" \
+    --centerlines g.pdb --pymol g.pml -o g.csv
+grep -q '^load g.pml.frame0.pdb, molecule$' g.pml || fail "the PyMOL script loads the GRO file"
+[ -s g.pml.frame0.pdb ] || fail "no first frame for the GRO input"
+run 0 "$out" "$vorball" channels --device ref --grid 16 --no-pore in.pdb --centerlines q.pdb --pymol q.pml -o q.csv
+grep -q '^load in.pdb, molecule$' q.pml || fail "the PyMOL script does not load the PDB input"
+[ ! -e q.pml.frame0.pdb ] || fail "a first frame written for a PDB input"
+no_temps
 xsum=$(cksum < in.xyzr)
 run 2 "$out" "$vorball" vertices --device ref in.xyzr -o "$work/in.xyzr"
 run 2 "$out" "$vorball" reference in.xyzr -o in.xyzr

@@ -1,0 +1,251 @@
+/* The channel analysis of a sequence of frames (vbc_run.h). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "vb_diag.h"
+#include "vbc_run.h"
+
+void vbc_run_init(vbc_run *r, vbc_channels_config *cfg, vbc_pipe *pipe, const char *input)
+{
+    memset(r, 0, sizeof *r);
+    r->cfg = cfg;
+    r->pipe = pipe;
+    r->input = input;
+}
+
+void vbc_run_free(vbc_run *r)
+{
+    vbc_result_free(&r->first);
+    free(r->occupancy);
+    free(r->series.frame);
+    free(r->series.rmin);
+    free(r->series.s);
+    memset(r, 0, sizeof *r);
+}
+
+/* Appends the frame's pore minimum to the series. */
+static int series_add(vb_ctx *ctx, vbc_series *S, long frame, const vbc_result *res)
+{
+    if (!res->pore.present)
+        return VB_OK;
+    if (S->n == S->cap) {
+        size_t c = S->cap ? 2 * S->cap : 64;
+        long *f = realloc(S->frame, c * sizeof *f);
+        if (f)
+            S->frame = f;
+        double *rr = realloc(S->rmin, c * sizeof *rr);
+        if (rr)
+            S->rmin = rr;
+        double *z = realloc(S->s, c * sizeof *z);
+        if (z)
+            S->s = z;
+        if (!f || !rr || !z)
+            return vb_error(ctx, VB_ENOMEM, NULL, 0, "pore series");
+        S->cap = c;
+    }
+    const vbc_channel *c = &res->channels[0];
+    const vbc_point *b = res->points + c->first_point + c->bottleneck_at;
+    S->frame[S->n] = frame;
+    S->rmin[S->n] = c->bottleneck;
+    S->s[S->n++] = b->x * res->pore.u[0] + b->y * res->pore.u[1] + b->z * res->pore.u[2];
+    return VB_OK;
+}
+
+/* The frame's grid: fitted to it, or the fixed grid of the first frame. */
+static int frame_grid(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s, long index, vbc_grid *g)
+{
+    const vbc_channels_config *A = r->cfg;
+    if (!A->fixed_grid)
+        return vbc_grid_fit(ctx, s, A->probe, A->grid, 3, g);
+    if (r->frames_done == 0) {
+        int rc = vbc_grid_fit(ctx, s, A->probe + 5.0, A->grid, 3, &r->fixed);
+        if (rc != VB_OK)
+            return rc;
+    }
+    *g = r->fixed;
+    /* Every atom must stay where the JFA seeds can be placed. */
+    for (size_t i = 0; i < s->n; i++) {
+        double c[3] = {s->x[i], s->y[i], s->z[i]};
+        for (int a = 0; a < 3; a++) {
+            double t = (c[a] - g->origin[a]) / g->h;
+            if (!(t >= 0.0 && t < (double)g->nx))
+                return vb_error(ctx, VB_EINPUT, A->traj ? A->traj : r->input, 0,
+                                "frame %ld: atom %zu leaves the fixed grid fitted to the first frame",
+                                index, i + 1);
+        }
+    }
+    return VB_OK;
+}
+
+/* The spheres a frame analyses (s0 without the --ignore residues: o->kept
+ * holds them when any were left out) and its grid. On failure nothing is
+ * held. */
+static int frame_prepare(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index,
+                         vbc_run_out *o)
+{
+    const vbc_channels_config *A = r->cfg;
+    int rc = VB_OK;
+    o->kept = NULL;
+    o->s = s0;
+    if (A->nignore || A->nmembrane) {
+        const char *names[2 * VBC_MAX_NAMES];
+        size_t n = 0, dropped;
+        for (size_t k = 0; k < A->nmembrane; k++)
+            names[n++] = A->membrane[k];
+        for (size_t k = 0; k < A->nignore; k++)
+            names[n++] = A->ignore[k];
+        rc = vbc_spheres_without(ctx, s0, names, n, r->left_out, &o->kept, &dropped);
+        if (rc != VB_OK)
+            return rc;
+        r->ignored += dropped;
+        o->s = o->kept;
+    }
+    if ((rc = frame_grid(ctx, r, o->s, index, &o->g)) != VB_OK) {
+        vb_spheres_free(o->kept);
+        o->kept = NULL;
+    }
+    return rc;
+}
+
+/* Later frames sweep the first frame's pore axis (HOLE's fixed cvect and
+ * cpoint): kept in the request once a frame found a pore along a free axis. */
+static void keep_pore_axis(vbc_channels_config *A, const vbc_frame *F)
+{
+    if (!A->pore.enabled || !F->result.pore.present || A->pore.have_axis)
+        return;
+    memcpy(A->pore.u, F->axis.u, sizeof A->pore.u);
+    memcpy(A->pore.c, F->axis.c, sizeof A->pore.c);
+    A->pore.have_axis = A->pore.have_through = 1;
+    A->pore.found_source = F->axis.source;
+    A->pore.found_chains = F->axis.chains;
+}
+
+/* The pipeline `repeat` times, the per-run mean timings in o->fi. */
+static int frame_repeat(vb_ctx *ctx, vbc_run *r, unsigned want, vbc_run_out *o)
+{
+    const vbc_channels_config *A = r->cfg;
+    vbc_frame_info *fi = &o->fi;
+    int rc = VB_OK;
+    for (int k = 0; k < A->repeat && rc == VB_OK; k++) {
+        rc = vbc_frame_run(ctx, r->pipe, &o->g, o->s, A->probe, want, &A->opt, &o->F);
+        fi->ms_upload += o->F.out.ms_upload;
+        fi->ms_jfa += o->F.out.ms_jfa;
+        fi->ms_masks += o->F.out.ms_masks;
+        fi->ms_analysis += o->F.ms_analysis;
+        fi->ms_pore += o->F.ms_pore;
+        fi->ms_total += o->F.ms_masks + o->F.ms_analysis + o->F.ms_pore;
+        r->sum_masks += o->F.ms_masks;
+        r->sum_total += o->F.ms_masks + o->F.ms_analysis + o->F.ms_pore;
+    }
+    double inv = 1.0 / A->repeat;
+    fi->ms_upload *= inv;
+    fi->ms_jfa *= inv;
+    fi->ms_masks *= inv;
+    fi->ms_analysis *= inv;
+    fi->ms_pore *= inv;
+    fi->ms_total *= inv;
+    fi->channel_voxels = o->F.out.nvoxels;
+    return rc;
+}
+
+void vbc_run_frame_done(vbc_run *r, int first, vbc_run_out *o)
+{
+    if (first) { /* kept for CONECT and the plot */
+        vbc_result_free(&r->first);
+        r->first = o->F.result;
+        memset(&o->F.result, 0, sizeof o->F.result);
+    }
+    vbc_frame_free(&o->F);
+    vb_spheres_free(o->kept);
+    memset(o, 0, sizeof *o);
+}
+
+int vbc_run_frame(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index, int model,
+                  int first, vbc_run_out *o)
+{
+    vbc_channels_config *A = r->cfg;
+    memset(o, 0, sizeof *o);
+    int rc = frame_prepare(ctx, r, s0, index, o);
+    if (rc != VB_OK)
+        return rc;
+    /* A voxel wider than the probe cannot resolve the necks that matter. */
+    if (first && o->g.h > fmax(A->probe, 0.5))
+        vb_warn(ctx, VB_W_VOXEL_COARSE, r->input, 0,
+                "voxel edge %.2f A is coarser than the probe radius %.2f A: narrow channels may be "
+                "missed (raise --grid)", o->g.h, A->probe);
+    int want_volume = A->volume && (strstr(A->volume, "%d") || first);
+    unsigned want = r->want | (want_volume || A->occupancy ? VBC_WANT_FLAGS : 0);
+    vbc_frame_info fi = {index, model, o->s->n, 0, 0, 0, 0, 0, 0, 0};
+    o->fi = fi;
+    rc = frame_repeat(ctx, r, want, o);
+    const vbc_pore_summary *ps = &o->F.result.pore;
+    if (rc == VB_OK && A->pore.enabled && !ps->present && first && ps->judged)
+        vb_warn(ctx, VB_W_PORE_NOT_FOUND, r->input, 0,
+                "no pore: the widest path along the %s axis is walled by the molecule's atoms for "
+                "%.1f A only (a pore needs %.0f A: vbc_pore.h); the table has none",
+                vbc_axis_source_name(ps->rejected_source), ps->buried, VBC_PORE_MIN_BURIED);
+    else if (rc == VB_OK && A->pore.enabled && !ps->present && first)
+        vb_warn(ctx, VB_W_PORE_NOT_FOUND, r->input, 0, "no pore found along any axis candidate");
+    if (rc == VB_OK)
+        keep_pore_axis(A, &o->F);
+    if (rc == VB_OK && A->plot)
+        rc = series_add(ctx, &r->series, index, &o->F.result);
+    if (rc == VB_OK && A->occupancy) {
+        if (!r->occupancy && !(r->occupancy = calloc(vbc_grid_voxels(&o->g), sizeof *r->occupancy)))
+            rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "occupancy map");
+        else
+            rc = vbc_occupancy_add(ctx, &o->g, o->F.out.flags, &o->F.result, r->occupancy);
+    }
+    if (rc != VB_OK) {
+        vbc_frame_free(&o->F);
+        vb_spheres_free(o->kept);
+        memset(o, 0, sizeof *o);
+        return rc;
+    }
+    r->frames_done++;
+    return VB_OK;
+}
+
+void vbc_run_report_left_out(vb_ctx *ctx, const vbc_run *r)
+{
+    const vbc_channels_config *A = r->cfg;
+    if (!r->ignored)
+        return;
+    char text[2048];
+    size_t o = 0;
+    text[0] = '\0';
+    for (int part = 0; part < 2; part++) {
+        size_t n = part ? A->nignore : A->nmembrane, base = part ? A->nmembrane : 0, shown = 0;
+        const char *const *names = part ? A->ignore : A->membrane;
+        for (size_t k = 0; k < n && o + 64 < sizeof text; k++) {
+            if (!r->left_out[base + k])
+                continue;
+            o += (size_t)snprintf(text + o, sizeof text - o, "%s%s%s %zu",
+                                  shown ? ", " : o ? "; " : "",
+                                  shown ? "" : part ? "--ignore: " : "membrane (--membrane none keeps it): ",
+                                  names[k], r->left_out[base + k]);
+            shown++;
+        }
+    }
+    vb_warn(ctx, VB_W_ATOMS_IGNORED, r->input, 0, "%zu atoms left out: %s", r->ignored, text);
+}
+
+int vbc_run_axis(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index)
+{
+    vbc_run_out o;
+    memset(&o, 0, sizeof o);
+    /* Counted by the rank that owns the frame. */
+    size_t ignored = r->ignored, left_out[2 * VBC_MAX_NAMES];
+    memcpy(left_out, r->left_out, sizeof left_out);
+    int rc = frame_prepare(ctx, r, s0, index, &o);
+    r->ignored = ignored;
+    memcpy(r->left_out, left_out, sizeof left_out);
+    if (rc != VB_OK)
+        return rc;
+    if ((rc = vbc_frame_run(ctx, r->pipe, &o.g, o.s, r->cfg->probe, 0, &r->cfg->opt, &o.F)) == VB_OK)
+        keep_pore_axis(r->cfg, &o.F);
+    vbc_frame_free(&o.F);
+    vb_spheres_free(o.kept);
+    return rc;
+}

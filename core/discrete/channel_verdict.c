@@ -1,0 +1,126 @@
+/* The pore verdict (vbc_pore.h): whether a swept path crosses the molecule
+ * as a pore, walled by its atoms over a buried length, or only wanders
+ * through grooves and packing gaps of a molecule that has no pore. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "vbc_pore.h"
+
+static void mark_hit(int32_t atom, void *user)
+{
+    (void)atom;
+    *(int *)user = 1;
+}
+
+/* Scratch of one plane's flood: a square raster of side 2n+1 pixels. */
+typedef struct {
+    uint8_t *state;   /* 0 unseen, 1 queued */
+    int32_t *queue;
+    size_t cap;
+} flood;
+
+int vbc_plane_walled(const vbc_cells *c, const double u[3], const double p[3], double r,
+                     void **scratch, size_t *scratch_len)
+{
+    /* The plane's basis a, b (a normal to u, then b = u x a). */
+    double a[3], b[3], t[3] = {1.0, 0.0, 0.0};
+    if (fabs(u[0]) > 0.9) {
+        t[0] = 0.0;
+        t[1] = 1.0;
+    }
+    a[0] = u[1] * t[2] - u[2] * t[1];
+    a[1] = u[2] * t[0] - u[0] * t[2];
+    a[2] = u[0] * t[1] - u[1] * t[0];
+    double na = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+    for (int k = 0; k < 3; k++)
+        a[k] /= na;
+    b[0] = u[1] * a[2] - u[2] * a[1];
+    b[1] = u[2] * a[0] - u[0] * a[2];
+    b[2] = u[0] * a[1] - u[1] * a[0];
+    double rr = r > 0.0 ? r : 0.0;
+    double reach = fmin(2.0 * rr + VBC_WALL_REACH, VBC_WALL_MAX_REACH);
+    int n = (int)ceil(reach / VBC_WALL_PIXEL);
+    size_t side = (size_t)(2 * n + 1), npix = side * side;
+    size_t need = npix * (sizeof(uint8_t) + sizeof(int32_t));
+    if (*scratch_len < need) {
+        void *m = realloc(*scratch, need);
+        if (!m)
+            return -1;
+        *scratch = m;
+        *scratch_len = need;
+    }
+    int32_t *queue = *scratch;
+    uint8_t *seen = (uint8_t *)(queue + npix);
+    memset(seen, 0, npix);
+    size_t head = 0, tail = 0;
+    int32_t start = (int32_t)((size_t)n * side + (size_t)n);
+    queue[tail++] = start;
+    seen[start] = 1;
+    double edge2 = (double)(n - 1) * (double)(n - 1);
+    while (head < tail) {
+        int32_t v = queue[head++];
+        int i = (int)(v / (int32_t)side) - n, j = (int)(v % (int32_t)side) - n;
+        if ((double)i * i + (double)j * j >= edge2)
+            return 0; /* a disc of the wall probe got out: not walled */
+        static const int step[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+        for (int k = 0; k < 4; k++) {
+            int ii = i + step[k][0], jj = j + step[k][1];
+            int32_t w = (int32_t)((size_t)(ii + n) * side + (size_t)(jj + n));
+            if (seen[w])
+                continue;
+            seen[w] = 1;
+            double x = ii * VBC_WALL_PIXEL, y = jj * VBC_WALL_PIXEL;
+            /* Inside the pore's own sphere the way is free; elsewhere a
+             * pixel is free when no atom surface comes within the probe. */
+            if (x * x + y * y > rr * rr) {
+                double q[3];
+                for (int d = 0; d < 3; d++)
+                    q[d] = p[d] + x * a[d] + y * b[d];
+                int hit = 0;
+                vbc_cells_within(c, q, VBC_WALL_PROBE, mark_hit, &hit);
+                if (hit)
+                    continue;
+            }
+            queue[tail++] = w;
+        }
+    }
+    return 1;
+}
+
+int vbc_pore_judge(const vbc_cells *c, const vbc_pore *p, vbc_pore_verdict *v)
+{
+    memset(v, 0, sizeof *v);
+    void *scratch = NULL;
+    size_t len = 0, lo = 0, last = 0;
+    int in_run = 0, have = 0;
+    for (size_t k = 0; k < p->n; k++) {
+        const vbc_pore_point *q = &p->pts[k];
+        double at[3] = {q->x, q->y, q->z};
+        int w = vbc_plane_walled(c, p->axis.u, at, q->r, &scratch, &len);
+        if (w < 0) {
+            free(scratch);
+            return -1;
+        }
+        v->walled += (size_t)w;
+        if (!w)
+            continue;
+        /* A walled plane extends the run unless the open gap before it
+         * is longer than VBC_WALL_GAP. */
+        if (!in_run || q->s - p->pts[last].s > VBC_WALL_GAP + 1e-9) {
+            in_run = 1;
+            lo = k;
+        }
+        last = k;
+        double span = q->s - p->pts[lo].s;
+        if (!have || span > v->buried) {
+            have = 1;
+            v->buried = span;
+            v->run_lo = lo;
+            v->run_hi = k;
+        }
+    }
+    free(scratch);
+    v->is_pore = v->buried >= VBC_PORE_MIN_BURIED;
+    return 0;
+}

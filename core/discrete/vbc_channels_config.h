@@ -1,0 +1,112 @@
+/* The options of the channel analysis, each declared once (geogram's
+ * CmdLine::declare_arg): name, value type, range, default and help in one
+ * table (channel_options.c) that `vorball channels` parses its command line
+ * with and prints as its --help, and that the Python binding reads for its
+ * keywords, their checks and its defaults. Input options (--radii, --model,
+ * --water, ...) are the readers' and are not here. */
+#ifndef VBC_CHANNELS_CONFIG_H
+#define VBC_CHANNELS_CONFIG_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "vb_device.h"
+#include "vbc_pore_frame.h"
+#include "vbj_jfa.h"
+
+enum vbc_opt_type {
+    VBC_OPT_FLAG,   /* no value: present sets it */
+    VBC_OPT_REAL,   /* a number in [min, max] */
+    VBC_OPT_COUNT,  /* an integer in [min, max] */
+    VBC_OPT_POW2,   /* a power of two in [min, max] */
+    VBC_OPT_PATH,   /* a file name */
+    VBC_OPT_CHOICE, /* one of the words in `choices` (comma-separated) */
+    VBC_OPT_VEC3,   /* X,Y,Z: three numbers of magnitude at most 1e6 */
+    VBC_OPT_FRAMES, /* A:B:S, each part optional */
+    VBC_OPT_NAMES   /* NAME,NAME,...: at most VBC_MAX_NAMES names */
+};
+
+/* Where --help lists an option. */
+enum vbc_opt_section { VBC_SECT_MAIN, VBC_SECT_PORE };
+
+typedef struct vbc_opt_spec {
+    int id;               /* enum vbc_opt_id (channel_options.c) */
+    const char *name;     /* "--probe" */
+    const char *alias;    /* a second spelling ("--centrelines"), or NULL */
+    const char *py;       /* the Python keyword, or NULL (the command's outputs) */
+    int type;             /* enum vbc_opt_type */
+    double min, max;      /* REAL, COUNT, POW2 */
+    const char *choices;  /* CHOICE: the words, comma-separated */
+    const char *value;    /* the value's name in --help ("R", "FILE") */
+    const char *def;      /* the default as text (NULL: none, the flag unset) */
+    const char *help;     /* one paragraph; --help wraps it */
+    int section;          /* enum vbc_opt_section */
+} vbc_opt_spec;
+
+#define VBC_MAX_NAMES 64
+
+/* The residues of a membrane that the channel analysis leaves out unless
+ * told otherwise (--membrane): OPM/PPM's membrane dummy atoms; phospholipids
+ * and sphingomyelin by their CHARMM/Slipids/GROMACS names; sterols; lipid
+ * and detergent components of the PDB's chemical dictionary (PC, PE, PG and
+ * cardiolipin ligands, monoolein, oleic and palmitic acid; LDAO, DDM, UDM,
+ * DM, beta-OG, NG, CHAPS, C8E4, DPC, SDS, HTG, CHS). A membrane around a
+ * channel hides the pore's mouths and turns its principal axes; a dummy
+ * atom read as N or O fills the pore. */
+#define VBC_MEMBRANE_DEFAULT                                                                   \
+    "DUM,POPC,POPE,POPG,POPS,POPA,POPI,DPPC,DPPE,DPPG,DPPS,DMPC,DMPE,DMPG,DOPC,DOPE,DOPG,"     \
+    "DOPS,DLPC,DLPE,DLPG,DSPC,DSPE,DSPG,SOPC,PLPC,PSM,CHL1,CHOL,CLR,PCW,PEE,PEF,PGW,LHG,CDL,"   \
+    "OLC,OLA,PLM,LPP,3PE,LDA,LMT,UDM,DMU,BOG,BNG,CPS,C8E,DPC,SDS,HTG,Y01"
+
+/* Everything `vorball channels` is asked to do besides reading its input:
+ * the analysis (opt, pore), the engine, the frames and the outputs. */
+typedef struct vbc_channels_config {
+    const char *out, *traj, *centrelines, *pymol, *volume, *stats, *png;
+    const char *profile, *plot, *occupancy, *html;
+    int json, png_axis, fixed_grid, stats_stderr;
+    vbc_pore_request pore;
+    char ignore_buf[1024];
+    const char *ignore[VBC_MAX_NAMES]; /* --ignore: residue names (into ignore_buf) */
+    size_t nignore;
+    char membrane_buf[1024];
+    const char *membrane[VBC_MAX_NAMES]; /* --membrane: residue names (into membrane_buf) */
+    size_t nmembrane;
+    double probe;
+    int grid;
+    long f0, f1, fstep;   /* --frames a:b:step (f1 < 0: to the end) */
+    int repeat;
+    unsigned volume_bit;  /* VBC_F_* of --volume-mask */
+    vbj_variant variant;
+    vb_device_kind device;
+    vbc_options opt;      /* its pore points at `pore` (vbc_channels_check) */
+} vbc_channels_config;
+
+/* The table: *n gets its length. Static. */
+const vbc_opt_spec *vbc_channels_options(size_t *n);
+
+/* The option called `name` (its name or alias, "--probe"), or NULL. */
+const vbc_opt_spec *vbc_channels_option(const char *name);
+
+/* The option whose Python keyword is `py`, or NULL. */
+const vbc_opt_spec *vbc_channels_option_py(const char *py);
+
+/* Fills c with every option's default (the table's `def`). */
+void vbc_channels_defaults(vbc_channels_config *c);
+
+/* Parses `value` (NULL for a flag) as option o and stores it in c. Text
+ * values are kept by pointer (paths) or copied (--ignore): value must
+ * outlive c for a path. Returns 0, or -1 with a message in err ("--grid
+ * needs a power of two in 16..1024, not '100'"). */
+int vbc_channels_set(vbc_channels_config *c, const vbc_opt_spec *o, const char *value, char *err,
+                     size_t errlen);
+
+/* The rules between options (--pymol needs --centerlines, ...), checked
+ * once every option is set; then points c->opt.pore at c->pore. Returns 0,
+ * or -1 with a message in err. */
+int vbc_channels_check(vbc_channels_config *c, char *err, size_t errlen);
+
+/* Writes the options of `section` as --help lines: "  NAME VALUE" in a
+ * column of 22, the help wrapped at 80 columns, range and default appended. */
+void vbc_channels_help(FILE *f, int section);
+
+#endif

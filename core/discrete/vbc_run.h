@@ -1,0 +1,73 @@
+/* The channel analysis of a sequence of frames, as `vorball channels` and
+ * the Python binding run it: per frame the residues left out (--ignore),
+ * the grid (fitted, or fixed on the first frame), the frame pipeline and
+ * pore stage `repeat` times with their timings, the pore axis carried from
+ * the first frame to the later ones, the pore series and the occupancy.
+ * The callers write what a frame gives (channel_write.c's writers). */
+#ifndef VBC_RUN_H
+#define VBC_RUN_H
+
+#include "vbc_channels_config.h"
+#include "vbc_frame.h"
+
+/* The pore's smallest radius per frame of a trajectory (the plot). */
+typedef struct vbc_series {
+    long *frame;
+    double *rmin, *s;
+    size_t n, cap;
+} vbc_series;
+
+typedef struct vbc_run {
+    vbc_channels_config *cfg; /* the caller's: its pore request takes the first frame's axis */
+    vbc_pipe *pipe;           /* the caller's */
+    const char *input;        /* named in warnings */
+    long frames_done;         /* frames analysed */
+    double sum_total, sum_masks; /* ms over every run of every frame */
+    vbc_grid fixed;           /* --fixed-grid: fitted on the first frame */
+    float *occupancy;         /* --occupancy: frames per voxel */
+    vbc_result first;         /* the first frame's result (CONECT records, the plot) */
+    vbc_series series;        /* the pore's smallest radius per frame (with --plot) */
+    size_t ignored;           /* atoms left out by --membrane and --ignore, over the frames */
+    size_t left_out[2 * VBC_MAX_NAMES]; /* per name: cfg's membrane names, then its ignore names */
+    unsigned want;            /* VBC_WANT_* the caller wants of every frame besides cfg's */
+} vbc_run;
+
+/* What one frame gives its writers. */
+typedef struct vbc_run_out {
+    vbc_frame F;              /* result, flags (when wanted), axis */
+    vbc_frame_info fi;        /* per-run mean timings */
+    vbc_grid g;
+    const vb_sphere_set *s;   /* the spheres analysed: the frame's, or `kept` */
+    vb_sphere_set *kept;      /* the frame without the --ignore residues, or NULL */
+} vbc_run_out;
+
+/* Starts a run of cfg (checked by vbc_channels_check) on pipe; input is
+ * the name warnings give. Nothing is allocated until the first frame. */
+void vbc_run_init(vbc_run *r, vbc_channels_config *cfg, vbc_pipe *pipe, const char *input);
+
+/* Releases what the run holds (not cfg, not the pipe). */
+void vbc_run_free(vbc_run *r);
+
+/* Analyses frame `index` (MODEL `model`) with spheres s0; `first`: the
+ * first frame of the selection (the voxel warning W803, the fixed grid,
+ * the pore axis for the later frames, the flag volume when cfg asks for a
+ * volume of the first frame only). Fills *o (free with
+ * vbc_run_frame_done). On failure *o holds nothing. VB_ENOMEM, VB_EINPUT
+ * (an atom leaves the fixed grid), VB_EINPUT_EMPTY, VB_EDEVICE. */
+int vbc_run_frame(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index, int model,
+                  int first, vbc_run_out *o);
+
+/* After the frame's outputs are written: keeps the first frame's result in
+ * r->first, frees the rest of *o. */
+void vbc_run_frame_done(vbc_run *r, int first, vbc_run_out *o);
+
+/* W809 for the atoms the run left out (nothing when none): the count, and
+ * per residue name of the membrane and of --ignore how many. */
+void vbc_run_report_left_out(vb_ctx *ctx, const vbc_run *r);
+
+/* The pore axis of the first frame without its outputs or counts (under
+ * MPI, a rank that does not own the first frame still sweeps its axis on
+ * the later ones). VB_OK or a failure of vbc_run_frame. */
+int vbc_run_axis(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index);
+
+#endif
