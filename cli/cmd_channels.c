@@ -206,6 +206,10 @@ static int do_frame(vb_ctx *ctx, ch_args *A, vbc_pipe *pipe, long index, int mod
         vbc_write_profile_rows(S->profile, &o.fi, o.s, res);
     if (rc == VB_OK && c->html)
         rc = page_frame(ctx, A, S, o.s, index, model, res);
+    /* --atoms: the atoms the analysis used (after --ignore and --membrane),
+     * whose ids the lining lists give. */
+    if (rc == VB_OK && first && A->in.atoms_path)
+        rc = vb_cli_write_atoms(ctx, A->in.atoms_path, o.s);
     if (rc == VB_OK && c->volume && (strstr(c->volume, "%d") || first)) {
         char name[4096];
         if (volume_name(c->volume, index, name, sizeof name) != 0)
@@ -334,10 +338,11 @@ int vb_cmd_channels(int argc, char **argv)
     /* The profile, plot, fixed grid and occupancy gather every frame in one
      * process (the pore axis of the first frame is found by every rank:
      * vbc_run_axis). */
-    if (vb_world_size() > 1 && (A.c.profile || A.c.plot || A.c.fixed_grid || A.c.occupancy || A.c.html)) {
+    if (vb_world_size() > 1 &&
+        (A.c.profile || A.c.plot || A.c.fixed_grid || A.c.occupancy || A.c.html || A.in.atoms_path)) {
         if (vb_world_rank() == 0)
             fprintf(stderr, "vorball channels: E%d: --profile, --plot, --fixed-grid, "
-                            "--occupancy and --html run on one process only (not under MPI)\n",
+                            "--occupancy, --html and --atoms run on one process only (not under MPI)\n",
                     VB_E_MPI_COMMAND);
         return VB_EXIT_USAGE;
     }

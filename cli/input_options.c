@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "cli_common.h"
+#include "vb_world.h"
 
 void vb_cli_input_defaults(vb_cli_input_opts *o)
 {
@@ -92,6 +93,13 @@ int vb_cli_input_option(vb_cli_input_opts *o, int argc, char **argv, int *i)
         o->radii_path = v;
         return 1;
     }
+    if (strcmp(a, "--atoms") == 0) {
+        const char *v = option_value(argc, argv, i);
+        if (!v)
+            return -1;
+        o->atoms_path = v;
+        return 1;
+    }
     return 0;
 }
 
@@ -106,6 +114,9 @@ void vb_cli_input_help(FILE *f)
           "                      its copies moved by the operators exactly\n"
           "  --radii FILE        element radii, lines 'ELEMENT RADIUS' ('#' comments),\n"
           "                      for PDB/mmCIF/GRO; unlisted elements keep the built-in radii\n"
+          "  --atoms FILE        the sphere table: what each 0-based id of the output\n"
+          "                      stands for (chain, residue, number, atom name, element,\n"
+          "                      source line, the exact x y z r used), TSV\n"
           "  --water             keep water (HOH, WAT, ...; dropped by default, counted)\n"
           "  --no-hydrogens      drop H/D atoms (kept by default)\n"
           "  --strict-elements   refuse what would be guessed: an element without a radius\n"
@@ -136,5 +147,17 @@ int vb_cli_load_spheres(vb_ctx *ctx, const char *path, const vb_cli_input_opts *
 {
     vb_read_options ro;
     vb_cli_input_read_options(o, NULL, &ro);
-    return vb_spheres_load(ctx, path, &ro, o->radii_path, min_count, out);
+    int rc = vb_spheres_load(ctx, path, &ro, o->radii_path, min_count, out);
+    /* The table of what was read, written by the process that writes the
+     * outputs (rank 0 under MPI). */
+    if (rc == VB_OK && o->atoms_path && vb_world_rank() == 0)
+        rc = vb_cli_write_atoms(ctx, o->atoms_path, *out);
+    return rc;
+}
+
+int vb_cli_write_atoms(vb_ctx *ctx, const char *path, const vb_sphere_set *s)
+{
+    FILE *f = vb_cli_open_output(ctx, path);
+    int rc = f ? vb_atoms_write(ctx, f, s) : vb_errcode(ctx);
+    return vb_cli_finish_output(ctx, f, path, rc);
 }

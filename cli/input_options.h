@@ -17,6 +17,7 @@ typedef struct vb_cli_input_opts {
     int strict_elements;     /* --strict-elements */
     int zero_radius;         /* --zero-radius error|point|drop (enum vb_zero_radius; default auto) */
     int assembly;            /* --assembly N (mmCIF biological assembly; default 0: as written) */
+    const char *atoms_path;  /* --atoms FILE: the sphere table (vb_atoms_write), or NULL */
 } vb_cli_input_opts;
 
 /* Zero-initialising a vb_cli_input_opts gives the defaults; this does it. */
@@ -42,5 +43,8 @@ void vb_cli_input_read_options(const vb_cli_input_opts *o, const vb_radii_table 
  * on failure *out is NULL. */
 int vb_cli_load_spheres(vb_ctx *ctx, const char *path, const vb_cli_input_opts *o,
                         size_t min_count, vb_sphere_set **out);
+
+/* Writes the sphere table of s (--atoms) to path (vb_atoms_write). */
+int vb_cli_write_atoms(vb_ctx *ctx, const char *path, const vb_sphere_set *s);
 
 #endif

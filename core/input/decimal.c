@@ -175,3 +175,35 @@ double vb_decimal_double(vb_decimal d)
     snprintf(buf, sizeof buf, "%lldE%d", (long long)d.mant, (int)d.exp10);
     return strtod(buf, NULL);
 }
+
+void vb_decimal_format(vb_decimal d, char *out, size_t size)
+{
+    char digits[24], buf[64];
+    unsigned long long m = d.mant < 0 ? 0ull - (unsigned long long)d.mant : (unsigned long long)d.mant;
+    int len = snprintf(digits, sizeof digits, "%llu", m), e = d.exp10, k = 0;
+    if (d.mant < 0)
+        buf[k++] = '-';
+    if (d.mant == 0) {
+        buf[k++] = '0';
+    } else if (e >= 0) { /* digits, then e zeros */
+        for (int j = 0; j < len && k < 40; j++)
+            buf[k++] = digits[j];
+        for (int j = 0; j < e && k < 60; j++)
+            buf[k++] = '0';
+    } else if (-e < len) { /* a point inside the digits */
+        for (int j = 0; j < len; j++) {
+            if (j == len + e)
+                buf[k++] = '.';
+            buf[k++] = digits[j];
+        }
+    } else { /* 0.000digits */
+        buf[k++] = '0';
+        buf[k++] = '.';
+        for (int j = 0; j < -e - len && k < 40; j++)
+            buf[k++] = '0';
+        for (int j = 0; j < len; j++)
+            buf[k++] = digits[j];
+    }
+    buf[k] = '\0';
+    snprintf(out, size, "%s", buf);
+}

@@ -171,6 +171,20 @@ int vb_decimal_cmp(vb_decimal a, vb_decimal b);
  * digits): the double the readers keep beside an exact value. */
 double vb_decimal_double(vb_decimal d);
 
+/* Writes the sphere table of s to f (TSV, `--atoms FILE`): a '#' line
+ * naming the source and count, a header line, then one row per sphere:
+ * id (0-based, as in vertex, cell and contact files), chain, resname,
+ * resseq, icode, atom, element, altloc, serial ('.' for each where the
+ * input has no atom records or the field is blank), the 1-based source
+ * line, and x, y, z, r as the exact decimals the library computed with
+ * (the radius from the radii table for PDB/mmCIF/GRO). VB_OK or VB_EIO. */
+int vb_atoms_write(vb_ctx *ctx, FILE *f, const vb_sphere_set *s);
+
+/* Writes d as its exact decimal: digits with a point where the exponent
+ * puts one, no exponent notation ("56.068", "-0.005", "1200"), into out
+ * (at most 48 characters are needed for any decimal the readers make). */
+void vb_decimal_format(vb_decimal d, char *out, size_t size);
+
 #ifdef __cplusplus
 }
 #endif

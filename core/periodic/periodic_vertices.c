@@ -198,31 +198,12 @@ int vb_periodic_vertices_run(vb_ctx *ctx, const vb_sphere_set *atoms, const vb_b
     return rc == VB_OK ? keep_canonical(ctx, res) : rc;
 }
 
-/* A decimal as written exactly: digits, a point where its exponent puts
- * one (no exponent notation), at most 48 characters. */
-static void dec_str(vb_decimal d, char *out, size_t size)
-{
-    char digits[24];
-    unsigned long long m = d.mant < 0 ? 0ull - (unsigned long long)d.mant : (unsigned long long)d.mant;
-    snprintf(digits, sizeof digits, "%llu", m);
-    const char *sign = d.mant < 0 ? "-" : "";
-    int len = (int)strlen(digits), e = d.exp10;
-    if (d.mant == 0)
-        snprintf(out, size, "0");
-    else if (e >= 0)
-        snprintf(out, size, "%s%s%.*s", sign, digits, e, "000000000000");
-    else if (-e < len)
-        snprintf(out, size, "%s%.*s.%s", sign, len + e, digits, digits + len + e);
-    else
-        snprintf(out, size, "%s0.%.*s%s", sign, -e - len, "000000000000000000000000", digits);
-}
-
 void vb_periodic_certificate(const vb_periodic_result *r, const vb_box *box, char *buf,
                              size_t size)
 {
     char v[9][48];
     for (int k = 0; k < 9; k++)
-        dec_str(box->ev[k], v[k], sizeof v[k]);
+        vb_decimal_format(box->ev[k], v[k], sizeof v[k]);
     snprintf(buf, size,
              "periodic: box a = (%s %s %s), b = (%s %s %s), c = (%s %s %s); ids i@(dx,dy,dz) = "
              "atom i moved by dx a + dy b + dz c\n"

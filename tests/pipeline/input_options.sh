@@ -22,6 +22,17 @@ grep -v '^#' ../golden/cubic_lattice.tsv > "$work/golden_body.tsv"
 grep -v '^#' "$work/ref_bz2.tsv" | cmp -s - "$work/golden_body.tsv" || fail "bzip2 input changed the vertices"
 "$vorball" reference - -o "$work/ref_gz.tsv" < "$work/in.gz" > "$out" 2>&1 || fail "gzip on stdin failed"
 grep -v '^#' "$work/ref_gz.tsv" | cmp -s - "$work/golden_body.tsv" || fail "gzip on stdin changed the vertices"
+# --atoms FILE: the sphere table, one row per 0-based id, exact decimals.
+run 0 "$out" "$vorball" reference "$in" --atoms "$work/atoms.tsv" -o "$work/ref_atoms.tsv"
+[ "$(grep -vc '^#' "$work/atoms.tsv")" -eq 28 ] || fail "--atoms: not 27 rows and a header"
+expect_line "$work/atoms.tsv" "^# vorball atoms: cubic_lattice.xyzr, 27 spheres$"
+expect_line "$work/atoms.tsv" "^id	chain	resname	resseq	icode	atom	element	altloc	serial	line	x	y	z	r$"
+expect_line "$work/atoms.tsv" "^0	\.	\.	\.	\.	\.	\.	\.	\.	1	0	0	0	0\.25$"
+expect_line "$work/atoms.tsv" "^26	\.	\.	\.	\.	\.	\.	\.	\.	27	2	2	2	0\.25$"
+run 0 "$out" "$vorball" vertices --device ref ../data/1crn.pdb --atoms "$work/atoms_1crn.tsv" -o "$work/1crn.tsv"
+expect_line "$work/atoms_1crn.tsv" "^0	A	THR	1	\.	N	N	\.	1	273	17\.047	14\.099	3\.625	1\.55$"
+[ "$(grep -vc '^#' "$work/atoms_1crn.tsv")" -eq 328 ] || fail "--atoms: 1crn has 327 atoms"
+run 2 "$out" "$vorball" vertices --atoms
 run 0 "$out" "$vorball" --help
 expect_line "$out" "vorball --version"
 run 0 "$out" "$vorball" --version
