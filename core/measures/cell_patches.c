@@ -33,12 +33,13 @@
  * target, until every value is within its target or the patch budget is
  * spent. */
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "vb.h"
 #include "vbm_cell.h"
-#include "vbm_series.h"
+#include "vbm_piece.h"
 
 #define GRID0 4              /* patches per face side at the start */
 #define MIN_SIDE 0x1p-40     /* a patch this small is not split further */
@@ -109,74 +110,29 @@ static vbx_ia ia_cube(vbx_ia a)
     return vbx_ia_mul(vbx_ia_sqr(a), a);
 }
 
-/* L = sigma d_w + a d_p + b d_q for series a, b. */
-static void ser_linear(vbm_ser *L, const vbm_ser *a, const vbm_ser *b, const vbm_nb *n, int w,
-                       int p, int q, double sigma)
+/* Taylor-model integrals over patch P owned by `owner` alone (-1: the
+ * ball): volume, SAS and contact area (vbm_piece). */
+static int taylor(const vbm_atom_in *in, const patch *P, int owner, vbx_ia *vol, vbx_ia *sas,
+                  vbx_ia *con)
 {
-    vbm_ser t;
-    vbm_affine(L, n->d[p], a, vbx_ia_mul(vbx_ia_point(sigma), n->d[w]));
-    vbm_affine(&t, n->d[q], b, vbx_ia_point(0.0));
-    vbm_add(L, L, &t);
-}
-
-/* s = sqrt(1 + a^2 + b^2) and 1 / s^3 as series at (A, B). */
-static int ser_s(vbm_ser *s, vbm_ser *inv_s3, vbm_ser *a, vbm_ser *b, vbx_ia A, vbx_ia B)
-{
-    vbm_ser q, t;
-    vbm_var(a, A, 0);
-    vbm_var(b, B, 1);
-    vbm_mul(&q, a, a);
-    vbm_mul(&t, b, b);
-    vbm_add(&q, &q, &t);
-    q.c[0] = vbx_ia_add(q.c[0], vbx_ia_point(1.0));
-    if (!vbm_sqrt(s, &q))
-        return 0;
-    vbm_mul(&t, &q, s);
-    return vbm_recip(inv_s3, &t);
-}
-
-/* Taylor-model integrals over patch P: the solid angle (owner < 0) or, for
- * owner j, the integrals of E^-3 and of sqrt(N + 2 delta E / s) E^-3. */
-static int taylor(const vbm_atom_in *in, const patch *P, int owner, vbx_ia *i1, vbx_ia *i2)
-{
-    int w, p, q;
-    double sigma;
-    face_axes(P->face, &w, &p, &q, &sigma);
+    vbm_axes ax;
+    face_axes(P->face, &ax.w, &ax.p, &ax.q, &ax.sigma);
     double ac = 0.5 * (P->a0 + P->a1), bc = 0.5 * (P->b0 + P->b1);
     double ha = 0.5 * (P->a1 - P->a0), hb = 0.5 * (P->b1 - P->b0);
-    vbm_ser r1[2], r2[2];
+    vbm_ser v[2][3];
     for (int k = 0; k < 2; k++) {
         vbx_ia A = k ? ia(P->a0, P->a1) : vbx_ia_point(ac);
         vbx_ia B = k ? ia(P->b0, P->b1) : vbx_ia_point(bc);
-        vbm_ser a, b, s, inv_s3;
-        if (!ser_s(&s, &inv_s3, &a, &b, A, B))
+        vbm_ser a, b;
+        vbm_var(&a, A, 0);
+        vbm_var(&b, B, 1);
+        if (!vbm_piece(in, owner, &ax, &a, &b, &v[k][0], &v[k][1], &v[k][2]))
             return 0;
-        if (owner < 0) {
-            r1[k] = inv_s3;
-            continue;
-        }
-        const vbm_nb *n = &in->nb[owner];
-        vbm_ser E, t, e1, e2, D, g;
-        ser_linear(&E, &a, &b, n, w, p, q, sigma);
-        vbm_affine(&t, n->delta, &s, vbx_ia_point(0.0));
-        vbm_add(&E, &E, &t);
-        if (!vbm_recip(&e1, &E))
-            return 0;
-        vbm_mul(&e2, &e1, &e1);
-        vbm_mul(&r1[k], &e2, &e1);
-        if (!i2)
-            continue;
-        if (!vbm_recip(&t, &s))
-            return 0;
-        vbm_mul(&D, &E, &t);
-        vbm_affine(&t, vbx_ia_add(n->delta, n->delta), &D, n->N);
-        if (!vbm_sqrt(&g, &t))
-            return 0;
-        vbm_mul(&r2[k], &g, &r1[k]);
     }
-    *i1 = vbm_integrate(&r1[0], &r1[1], ha, hb);
-    if (i2 && owner >= 0)
-        *i2 = vbm_integrate(&r2[0], &r2[1], ha, hb);
+    *vol = vbm_integrate(&v[0][0], &v[1][0], ha, hb);
+    *sas = vbm_integrate(&v[0][1], &v[1][1], ha, hb);
+    *con = owner >= 0 && in->contacts ? vbm_integrate(&v[0][2], &v[1][2], ha, hb)
+                                      : vbx_ia_point(0.0);
     return 1;
 }
 
@@ -191,6 +147,25 @@ static vbx_ia contact_bound(const vbm_nb *n, vbx_ia E, vbx_ia s)
     vbx_ia v = vbx_ia_div(vbx_ia_mul(vbx_ia_sqr(n->N), g), vbx_ia_mul(vbx_ia_point(4.0), ia_cube(E)));
     v.lo = vbx_max(v.lo, 0.0);
     return v;
+}
+
+/* The Voronoi edge of neighbours j and k on face (w, p, q, sigma):
+ * F = N_k E_j - N_j E_k > 0 where t_j < t_k (E = L + delta s > 0). */
+static void pair_curve(const vbm_atom_in *in, uint32_t j, uint32_t k, int w, int p, int q,
+                       double sigma, vbm_curve *cv)
+{
+    const vbm_nb *nj = &in->nb[j], *nk = &in->nb[k];
+    vbx_ia lj[3], lk[3];
+    for (int x = 0; x < 3; x++) {
+        lj[x] = vbx_ia_mul(nk->N, nj->d[x]);
+        lk[x] = vbx_ia_mul(nj->N, nk->d[x]);
+    }
+    cv->l0 = vbx_ia_mul(vbx_ia_point(sigma), vbx_ia_sub(lj[w], lk[w]));
+    cv->la = vbx_ia_sub(lj[p], lk[p]);
+    cv->lb = vbx_ia_sub(lj[q], lk[q]);
+    cv->kappa = vbx_ia_sub(vbx_ia_mul(nj->N, nk->delta), vbx_ia_mul(nk->N, nj->delta));
+    cv->pos = (int)j;
+    cv->neg = (int)k;
 }
 
 /* Classifies patch `pi` against the candidates [off, off + n) of the
@@ -249,6 +224,34 @@ static int classify(const vbm_atom_in *in, vbm_scratch *sc, size_t *ncand_used,
         tlo = vbx_min(tlo, cb[k].t.lo);
         covered |= cb[k].C.lo > 0.0;
     }
+    /* two neighbours compared directly: t_j > t_k wherever F_jk < 0
+     * (vbm_curve of the pair: linear in a and b but for kappa s, so its
+     * interval is far tighter than the two t intervals apart) */
+    if (kept >= 2 && kept <= 12) {
+        uint8_t drop[12] = {0};
+        for (size_t x = 0; x < kept; x++)
+            for (size_t y = 0; y < kept; y++) {
+                if (x == y || drop[y])
+                    continue;
+                vbm_curve cv;
+                pair_curve(in, cb[x].j, cb[y].j, w, p, q, sigma, &cv);
+                vbx_ia F = vbx_ia_sub(
+                    vbx_ia_add(cv.l0, vbx_ia_add(vbx_ia_mul(cv.la, A), vbx_ia_mul(cv.lb, B))),
+                    vbx_ia_mul(cv.kappa, s));
+                if (F.hi < 0.0) {
+                    drop[x] = 1;
+                    break;
+                }
+            }
+        size_t k2 = 0;
+        covered = 0;
+        for (size_t x = 0; x < kept; x++)
+            if (!drop[x]) {
+                cb[k2++] = cb[x];
+                covered |= cb[x].C.lo > 0.0;
+            }
+        kept = k2;
+    }
     if (!grow(&sc->cand, &sc->cap_cand, *ncand_used + kept, sizeof(uint32_t)) ||
         !grow(&sc->pair, &sc->cap_pair, *npair_used + kept, sizeof(vbm_pair)))
         return VB_ENOMEM;
@@ -269,36 +272,78 @@ static int classify(const vbm_atom_in *in, vbm_scratch *sc, size_t *ncand_used,
     vbx_ia r2 = vbx_ia_sqr(r);
     P->sas = covered ? vbx_ia_point(0.0) : ia(0.0, vbx_ia_mul(r2, omega).hi);
 
+    vbx_ia tv, ts, tc, tc2;
     if (kept == 0) { /* the ball's sphere: no neighbour reaches it here */
-        vbx_ia om;
-        P->sas = vbx_ia_mul(r2, omega);
-        if (taylor(in, P, -1, &om, NULL)) {
-            P->vol = ia_meet(P->vol, vbx_ia_div(vbx_ia_mul(ia_cube(r), om), vbx_ia_point(3.0)));
-            P->sas = ia_meet(P->sas, vbx_ia_mul(r2, om));
-        }
+        vbx_ia om = ia_meet(omega, vbm_solid_angle(P->a0, P->a1, P->b0, P->b1));
+        P->sas = vbx_ia_mul(r2, om);
+        P->vol = vbx_ia_div(vbx_ia_mul(ia_cube(r), om), vbx_ia_point(3.0));
     } else if (kept == 1 && covered) { /* one face, inside the ball */
         const vbm_nb *nb = &in->nb[cb[0].j];
-        vbx_ia i1, i2, c = vbx_ia_mul(contact_bound(nb, cb[0].E, s), area);
-        if (taylor(in, P, (int)cb[0].j, &i1, in->contacts ? &i2 : NULL)) {
-            P->vol = ia_meet(P->vol,
-                             vbx_ia_div(vbx_ia_mul(ia_cube(nb->N), i1), vbx_ia_point(24.0)));
-            if (in->contacts)
-                c = ia_meet(c, vbx_ia_div(vbx_ia_mul(vbx_ia_sqr(nb->N), i2), vbx_ia_point(4.0)));
+        vbx_ia c = vbx_ia_mul(contact_bound(nb, cb[0].E, s), area);
+        if (taylor(in, P, (int)cb[0].j, &tv, &ts, &tc)) {
+            P->vol = ia_meet(P->vol, tv);
+            c = ia_meet(c, tc);
         }
         if (in->contacts) {
             pair[0].j = cb[0].j;
             pair[0].area = c;
             P->npair = 1;
         }
-    } else if (in->contacts) { /* owners change inside: each may own none or all of it */
-        for (size_t k = 0; k < kept; k++) {
+    } else {
+        /* owners change inside: each may own none or all of it */
+        for (size_t k = 0; in->contacts && k < kept; k++) {
             pair[k].j = cb[k].j;
             pair[k].area = ia(0.0, vbx_ia_mul(contact_bound(&in->nb[cb[k].j], cb[k].E, s), area).hi);
         }
-        P->npair = (uint32_t)kept;
+        P->npair = in->contacts ? (uint32_t)kept : 0;
+        /* one curve across: the SAS circle of one neighbour, or the
+         * Voronoi edge of two that both cover the patch */
+        vbm_curve cv;
+        int cut = 0;
+        const vbm_nb *nj = &in->nb[cb[0].j];
+        if (kept == 1) {
+            cv.l0 = vbx_ia_mul(vbx_ia_point(sigma), nj->d[w]);
+            cv.la = nj->d[p];
+            cv.lb = nj->d[q];
+            cv.kappa = nj->k;
+            cv.pos = (int)cb[0].j;
+            cv.neg = -1;
+            cut = 1;
+        } else if (kept == 2 && covered) { /* the ball owns nothing here */
+            pair_curve(in, cb[0].j, cb[1].j, w, p, q, sigma, &cv);
+            cut = 1;
+        }
+        vbm_axes ax = {w, p, q, sigma};
+        if (cut && vbm_cut_integrate(in, &ax, &cv, P->a0, P->a1, P->b0, P->b1, &tv, &ts, &tc,
+                                     &tc2)) {
+            P->vol = ia_meet(P->vol, tv);
+            P->sas = ia_meet(P->sas, ts);
+            for (uint32_t k = 0; k < P->npair; k++)
+                pair[k].area = ia_meet(pair[k].area, (int)pair[k].j == cv.pos ? tc : tc2);
+        }
     }
     *npair_used += P->npair;
     return VB_OK;
+}
+
+/* The sum of the live weights: the finite ones added, the infinite ones
+ * counted (an unbounded patch must not turn the sum into inf - inf). */
+typedef struct load {
+    double finite;
+    size_t ninf;
+} load;
+
+static void load_add(load *l, double w, int sign)
+{
+    if (w < INFINITY)
+        l->finite += sign * w;
+    else
+        l->ninf += (size_t)(ptrdiff_t)sign;
+}
+
+static int load_done(const load *l)
+{
+    return l->ninf == 0 && l->finite <= 1.0;
 }
 
 /* Targets of the values: tolerance * max(|midpoint|, floor). */
@@ -382,7 +427,7 @@ static double target_of(double tol, vbx_ia v, double floor)
 /* Recomputes the targets from the current sums, every live weight, the heap
  * and the total weight. Returns the number of live patches. */
 static size_t retarget(const vbm_atom_in *in, vbm_scratch *sc, size_t np, targets *tg,
-                       double *total, vbm_atom_out *out)
+                       load *total, vbm_atom_out *out)
 {
     vbx_ia *sum = sc->sum;
     sum_live(in, sc, np, out, sum);
@@ -395,12 +440,13 @@ static size_t retarget(const vbm_atom_in *in, vbm_scratch *sc, size_t np, target
     patch *pt = sc->patch;
     uint32_t *h = sc->heap;
     size_t nh = 0;
-    *total = 0.0;
+    total->finite = 0.0;
+    total->ninf = 0;
     for (size_t i = 0; i < np; i++) {
         if (!pt[i].alive)
             continue;
         pt[i].w = pt[i].w == 0.0 && pt[i].a1 - pt[i].a0 < MIN_SIDE ? 0.0 : weight(sc, &pt[i], tg);
-        *total += pt[i].w;
+        load_add(total, pt[i].w, 1);
         h[nh++] = (uint32_t)i;
     }
     for (size_t i = nh / 2; i-- > 0;)
@@ -438,14 +484,18 @@ int vbm_cell_integrate(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out
                     return VB_ENOMEM;
                 np++;
             }
-    double total;
+    load total;
     size_t nh = retarget(in, sc, np, &tg, &total, out);
-    size_t next = 2 * nh;
+    size_t next = 2 * nh, recheck = 0;
     while (np < in->max_patches) {
-        if (total <= 1.0) {
+        /* done by the targets of the last sums: new sums, new targets; not
+         * done by those, refine on (the next such check after 1/8 more
+         * patches, so that checking stays linear in all) */
+        if (load_done(&total) && np >= recheck) {
             nh = retarget(in, sc, np, &tg, &total, out);
             next = 2 * nh;
-            if (total <= 1.0)
+            recheck = np + np / 8;
+            if (load_done(&total))
                 break;
         }
         if (nh == 0)
@@ -455,7 +505,7 @@ int vbm_cell_integrate(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out
         uint32_t top = h[0];
         if (pt[top].w <= 0.0)
             break;
-        total -= pt[top].w;
+        load_add(&total, pt[top].w, -1);
         h[0] = h[--nh];
         heap_down(pt, h, nh, 0);
         if (pt[top].a1 - pt[top].a0 < MIN_SIDE) {
@@ -488,7 +538,7 @@ int vbm_cell_integrate(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out
                 return VB_ENOMEM;
             P = (patch *)sc->patch + np;
             P->w = weight(sc, P, &tg);
-            total += P->w;
+            load_add(&total, P->w, 1);
             h[nh] = (uint32_t)np;
             heap_up(sc->patch, h, nh);
             nh++;

@@ -29,7 +29,7 @@ void vbm_sub(vbm_ser *r, const vbm_ser *f, const vbm_ser *g)
 void vbm_affine(vbm_ser *r, vbx_ia v, const vbm_ser *f, vbx_ia w)
 {
     for (int k = 0; k < VBM_NC; k++)
-        r->c[k] = vbx_ia_mul(v, f->c[k]);
+        r->c[k] = f->c[k].lo == 0.0 && f->c[k].hi == 0.0 ? f->c[k] : vbx_ia_mul(v, f->c[k]);
     r->c[0] = vbx_ia_add(r->c[0], w);
 }
 
@@ -42,7 +42,11 @@ static vbx_ia conv(const vbm_ser *f, const vbm_ser *g, int i, int j, int skip_lo
             int kl = VBM_IDX(k, l);
             if (kl == skip_lo || kl == skip_hi)
                 continue;
-            s = vbx_ia_add(s, vbx_ia_mul(f->c[kl], g->c[VBM_IDX(i - k, j - l)]));
+            vbx_ia x = f->c[kl], y = g->c[VBM_IDX(i - k, j - l)];
+            /* exact zeros (a variable's, a function of one variable's) add nothing */
+            if ((x.lo == 0.0 && x.hi == 0.0) || (y.lo == 0.0 && y.hi == 0.0))
+                continue;
+            s = vbx_ia_add(s, vbx_ia_mul(x, y));
         }
     return s;
 }
@@ -52,6 +56,12 @@ void vbm_mul(vbm_ser *r, const vbm_ser *f, const vbm_ser *g)
     for (int d = 0; d <= VBM_ORDER; d++)
         for (int j = 0; j <= d; j++)
             r->c[VBM_IDX(d - j, j)] = conv(f, g, d - j, j, -1, -1);
+}
+
+void vbm_square(vbm_ser *r, const vbm_ser *f)
+{
+    vbm_mul(r, f, f);
+    r->c[0] = vbx_ia_sqr(f->c[0]);
 }
 
 int vbm_recip(vbm_ser *r, const vbm_ser *f)

@@ -45,6 +45,10 @@ void vbm_affine(vbm_ser *r, vbx_ia v, const vbm_ser *f, vbx_ia w);
 /* r = f g (r must not alias f or g). */
 void vbm_mul(vbm_ser *r, const vbm_ser *f, const vbm_ser *g);
 
+/* r = f f (r must not alias f), with the constant term as a square (>= 0
+ * even when f's constant term is an interval across 0). */
+void vbm_square(vbm_ser *r, const vbm_ser *f);
+
 /* r = 1 / f (r must not alias f). Returns 0, leaving r unspecified, when
  * f's constant term may be 0 (no enclosure then). */
 int vbm_recip(vbm_ser *r, const vbm_ser *f);
