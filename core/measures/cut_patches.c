@@ -67,7 +67,18 @@ static int cut_one(const vbm_atom_in *in, const vbm_axes *ax, const vbm_curve *c
     for (int e = -1; e <= 1 && !eps; e += 2) {
         if (!root_series(cv, A, e, linear, &root[1], &lin))
             continue;
-        if (!(root[1].c[0].lo > b0 && root[1].c[0].hi < b1))
+        /* the root's range over [a0, a1]: from its ends where it is
+         * monotone (the derivative's sign proven over the box), far tighter
+         * than the box evaluation */
+        vbx_ia range = root[1].c[0];
+        if (ia_sign(root[1].c[VBM_IDX(1, 0)]) != 0) {
+            vbm_ser r0, r1, l2;
+            if (root_series(cv, vbx_ia_point(a0), e, linear, &r0, &l2) &&
+                root_series(cv, vbx_ia_point(a1), e, linear, &r1, &l2))
+                range = (vbx_ia){vbx_max(range.lo, vbx_min(r0.c[0].lo, r1.c[0].lo)),
+                                 vbx_min(range.hi, vbx_max(r0.c[0].hi, r1.c[0].hi))};
+        }
+        if (!(range.lo > b0 && range.hi < b1))
             continue;
         if (!linear && ia_sign(lin.c[0]) != ks)
             continue;
