@@ -243,13 +243,12 @@ static int classify(const vbm_atom_in *in, vbm_scratch *sc, size_t *ncand_used,
                     break;
                 }
             }
+        /* `covered` stays: a dropped neighbour that covers the patch proves
+         * that the one nearer than it does too */
         size_t k2 = 0;
-        covered = 0;
         for (size_t x = 0; x < kept; x++)
-            if (!drop[x]) {
+            if (!drop[x])
                 cb[k2++] = cb[x];
-                covered |= cb[x].C.lo > 0.0;
-            }
         kept = k2;
     }
     if (!grow(&sc->cand, &sc->cap_cand, *ncand_used + kept, sizeof(uint32_t)) ||
