@@ -29,7 +29,7 @@ static const char *const usage_text =
     "                   values below 1e-3 of the ball's volume or area are held to\n"
     "                   T times that floor)\n"
     "  --max-patches N  direction patches per atom before a value is left wider\n"
-    "                   than asked (W851; default 200000)\n"
+    "                   than asked (W851; default 5000)\n"
     "  --threads N      worker threads (default: all cores)\n"
     "  --stats          atoms, patches, empty and loose counts and the time on stderr\n";
 

@@ -22,8 +22,9 @@
 
 /* Default relative tolerance of --tolerance (see vb_measure_options). */
 #define VB_MEASURES_TOLERANCE 1e-6
-/* Default patch budget per atom. */
-#define VB_MEASURES_MAX_PATCHES 200000
+/* Default patch budget per atom: 1crn (327 atoms) in 140 s on 2 idle
+ * cores, every value enclosed but most wider than 1e-6 on proteins (W851). */
+#define VB_MEASURES_MAX_PATCHES 5000
 
 typedef struct vb_measure_options {
     double probe;       /* >= 0, added to every radius (nearest double of the decimal;

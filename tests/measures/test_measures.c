@@ -43,6 +43,7 @@ static int run(vb_ctx *ctx, const char *text, double tol, vb_cell_measures *m)
     o.tolerance = tol;
     o.contacts = 1;
     o.threads = 2;
+    o.max_patches = 200000; /* the closed forms are asked to 1e-6 */
     int rc = vb_cell_measures_compute(ctx, s, &o, m);
     vb_spheres_free(s);
     return rc;
