@@ -11,5 +11,6 @@ int vb_cmd_jfa(int argc, char **argv);
 int vb_cmd_channels(int argc, char **argv);
 int vb_cmd_bench(int argc, char **argv);
 int vb_cmd_devices(int argc, char **argv);
+int vb_cmd_cells(int argc, char **argv);
 
 #endif

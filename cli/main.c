@@ -50,6 +50,7 @@ static const command commands[] = {
 #ifndef VB_NO_CHANNELS
     {"channels", vb_cmd_channels, "channels and cavities in proteins and trajectories"},
 #endif
+    {"cells", vb_cmd_cells, "per-atom cell volume, SAS and contact areas, as proven enclosures"},
 #ifndef VB_NO_BENCH
     {"bench", vb_cmd_bench, "per-stage timings of the vertex pipeline"},
 #endif

@@ -15,6 +15,7 @@
  *   W780-W799  discrete Voronoi (JFA, Facet-JFA, exact engines) and crosscheck
  *   W800-W829  channels and trajectories
  *   W830-W839  MPI scale-out
+ *   W850-W859  cell measures
  *
  * VB_DIAG_LIST(X) expands X(kind, number, name, exit, meaning) for every
  * entry (exit: the status of `vorball` for an error, 0 for a warning), so
@@ -114,7 +115,9 @@
     X(W, 809, ATOMS_IGNORED, 0, "atoms left out by --membrane or --ignore (count per name)")             \
     X(W, 829, PAGE_FULL, 0, "results page full: later frames left out of it (the tables have them)")    \
     X(W, 830, MPI_SAMPLING_RANK0, 0, "--proposer sampling does not split: rank 0 runs it alone")         \
-    X(W, 831, MPI_STOPPED, 0, "a rank failed: every rank stopped (the error names the rank)")
+    X(W, 831, MPI_STOPPED, 0, "a rank failed: every rank stopped (the error names the rank)")                   \
+    X(W, 850, CELL_EMPTY, 0, "cells: an atom's constrained cell is empty: its measures are 0")          \
+    X(W, 851, CELL_LOOSE, 0, "cells: values left wider than --tolerance (patch budget spent)")
 
 /* Retired numbers, never to be used again: X(kind, number, meaning, why). */
 #define VB_DIAG_RETIRED(X)                                                                               \

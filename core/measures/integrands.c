@@ -1,0 +1,89 @@
+/* The integrands of the cell measures as Taylor models (vbm_piece.h). */
+#include <mpfr.h>
+
+#include "vbm_piece.h"
+
+/* atan of the ends of x, rounded outward by MPFR (atan is increasing). */
+static vbx_ia ia_atan(vbx_ia x)
+{
+    mpfr_t t;
+    mpfr_init2(t, 53);
+    vbx_ia r;
+    mpfr_set_d(t, x.lo, MPFR_RNDN); /* exact: 53 bits */
+    mpfr_atan(t, t, MPFR_RNDD);
+    r.lo = mpfr_get_d(t, MPFR_RNDD);
+    mpfr_set_d(t, x.hi, MPFR_RNDN);
+    mpfr_atan(t, t, MPFR_RNDU);
+    r.hi = mpfr_get_d(t, MPFR_RNDU);
+    mpfr_clear(t);
+    return r;
+}
+
+/* The solid angle of [0, a] x [0, b] seen from the centre of the cube face
+ * at distance 1: atan(a b / sqrt(1 + a^2 + b^2)). */
+static vbx_ia corner(double a, double b)
+{
+    vbx_ia A = vbx_ia_point(a), B = vbx_ia_point(b);
+    vbx_ia s = vbx_ia_sqrt(vbx_ia_add(vbx_ia_point(1.0), vbx_ia_add(vbx_ia_sqr(A), vbx_ia_sqr(B))));
+    return ia_atan(vbx_ia_div(vbx_ia_mul(A, B), s));
+}
+
+vbx_ia vbm_solid_angle(double a0, double a1, double b0, double b1)
+{
+    vbx_ia o = vbx_ia_sub(vbx_ia_add(corner(a1, b1), corner(a0, b0)),
+                          vbx_ia_add(corner(a0, b1), corner(a1, b0)));
+    o.lo = vbx_max(o.lo, 0.0);
+    return o;
+}
+
+int vbm_piece(const vbm_atom_in *in, int owner, const vbm_axes *ax, const vbm_ser *a,
+              const vbm_ser *b, vbm_ser *vol, vbm_ser *sas, vbm_ser *con)
+{
+    vbm_ser q, t, s, inv;
+    vbm_square(&q, a);
+    vbm_square(&t, b);
+    vbm_add(&q, &q, &t);
+    q.c[0] = vbx_ia_add(q.c[0], vbx_ia_point(1.0));
+    if (!vbm_sqrt(&s, &q))
+        return 0;
+    if (owner < 0) { /* r^3 / (3 s^3) and r^2 / s^3 */
+        vbx_ia r2 = vbx_ia_sqr(in->r);
+        vbm_mul(&t, &q, &s);
+        if (!vbm_recip(&inv, &t))
+            return 0;
+        vbm_affine(sas, r2, &inv, vbx_ia_point(0.0));
+        vbm_affine(vol, vbx_ia_div(vbx_ia_mul(r2, in->r), vbx_ia_point(3.0)), &inv,
+                   vbx_ia_point(0.0));
+        vbm_const(con, vbx_ia_point(0.0));
+        return 1;
+    }
+    /* E = sigma d_w + a d_p + b d_q + delta s; N^3 / (24 E^3) and
+     * N^2 sqrt(N + 2 delta E / s) / (4 E^3) */
+    const vbm_nb *n = &in->nb[owner];
+    vbm_ser E, e1, e2, e3, D, g;
+    vbm_affine(&E, n->d[ax->p], a, vbx_ia_mul(vbx_ia_point(ax->sigma), n->d[ax->w]));
+    vbm_affine(&t, n->d[ax->q], b, vbx_ia_point(0.0));
+    vbm_add(&E, &E, &t);
+    vbm_affine(&t, n->delta, &s, vbx_ia_point(0.0));
+    vbm_add(&E, &E, &t);
+    if (!vbm_recip(&e1, &E))
+        return 0;
+    vbm_mul(&e2, &e1, &e1);
+    vbm_mul(&e3, &e2, &e1);
+    vbm_affine(vol, vbx_ia_div(vbx_ia_mul(vbx_ia_sqr(n->N), n->N), vbx_ia_point(24.0)), &e3,
+               vbx_ia_point(0.0));
+    vbm_const(sas, vbx_ia_point(0.0));
+    if (!in->contacts) {
+        vbm_const(con, vbx_ia_point(0.0));
+        return 1;
+    }
+    if (!vbm_recip(&t, &s))
+        return 0;
+    vbm_mul(&D, &E, &t);
+    vbm_affine(&t, vbx_ia_add(n->delta, n->delta), &D, n->N);
+    if (!vbm_sqrt(&g, &t))
+        return 0;
+    vbm_mul(&t, &g, &e3);
+    vbm_affine(con, vbx_ia_div(vbx_ia_sqr(n->N), vbx_ia_point(4.0)), &t, vbx_ia_point(0.0));
+    return 1;
+}

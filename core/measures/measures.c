@@ -1,0 +1,387 @@
+/* Cell measures of a sphere set (vb_measures.h): neighbours within reach,
+ * one integration per atom (cell_patches.c) on a thread of its own, and the
+ * two sides of every contact met. */
+#include <gmp.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "vb_decimal_mpz.h"
+#include "vb_diag.h"
+#include "vb_measures.h"
+#include "vb_parallel.h"
+#include "vbm_cell.h"
+
+void vb_measure_defaults(vb_measure_options *opt)
+{
+    memset(opt, 0, sizeof *opt);
+    opt->probe = 1.4;
+    opt->tolerance = VB_MEASURES_TOLERANCE;
+}
+
+void vb_cell_measures_free(vb_cell_measures *m)
+{
+    free(m->vol_lo);
+    free(m->vol_hi);
+    free(m->sas_lo);
+    free(m->sas_hi);
+    free(m->empty);
+    free(m->loose);
+    free(m->contacts);
+    memset(m, 0, sizeof *m);
+}
+
+/* The nearest double of an exact decimal is within half an ulp: one step
+ * each way encloses it. */
+static vbx_ia widen(double x)
+{
+    vbx_ia r = {vbx_pred(x), vbx_succ(x)};
+    return r;
+}
+
+/* Exact signs of |cj - ci|^2 - (Rj - Ri)^2 (*sn) and of Rj - Ri (return). */
+static int exact_signs(const vb_sphere_set *s, size_t i, size_t j, int *sn)
+{
+    const vb_decimal v[8] = {s->ex[i], s->ey[i], s->ez[i], s->er[i],
+                             s->ex[j], s->ey[j], s->ez[j], s->er[j]};
+    int32_t emin = v[0].exp10;
+    for (int k = 1; k < 8; k++)
+        emin = v[k].exp10 < emin ? v[k].exp10 : emin;
+    mpz_t a, b, t, acc;
+    mpz_inits(a, b, t, acc, NULL);
+    int sd = 0;
+    for (int k = 0; k < 4; k++) {
+        vb_decimal_to_mpz(a, v[k + 4], emin, t);
+        vb_decimal_to_mpz(b, v[k], emin, t);
+        mpz_sub(a, a, b);
+        if (k == 3)
+            sd = mpz_sgn(a);
+        mpz_mul(a, a, a);
+        if (k == 3)
+            mpz_sub(acc, acc, a);
+        else
+            mpz_add(acc, acc, a);
+    }
+    *sn = mpz_sgn(acc);
+    mpz_clears(a, b, t, acc, NULL);
+    return sd;
+}
+
+/* Centres sorted by a grid cell of side `h` (keys: 21 bits per axis). */
+typedef struct grid_slot {
+    uint64_t cell;
+    uint64_t id;
+} grid_slot;
+
+typedef struct grid {
+    double x0[3], ih;
+    grid_slot *key; /* sorted by (cell, id) */
+    size_t n;
+} grid;
+
+static uint64_t cell_key(long cx, long cy, long cz)
+{
+    return ((uint64_t)cx << 42) | ((uint64_t)cy << 21) | (uint64_t)cz;
+}
+
+static long cell_of(const grid *g, int k, double x)
+{
+    double c = (x - g->x0[k]) * g->ih;
+    return c < 0 ? 0 : c > 2097000.0 ? 2097000 : (long)c;
+}
+
+static int cmp_u64(const void *a, const void *b)
+{
+    const grid_slot *x = a, *y = b;
+    if (x->cell != y->cell)
+        return x->cell < y->cell ? -1 : 1;
+    return x->id < y->id ? -1 : x->id > y->id;
+}
+
+typedef struct job {
+    const vb_sphere_set *set;
+    const vb_measure_options *opt;
+    const grid *g;
+    vbx_ia probe;
+    vb_cell_measures *out;
+    vbm_pair **pairs; /* per atom, j as sphere ids, sorted by id */
+    size_t *npairs;
+    vbm_scratch sc[VB_MAX_THREADS];
+    vbm_nb *nb[VB_MAX_THREADS];
+    size_t cap_nb[VB_MAX_THREADS];
+    size_t patches[VB_MAX_THREADS];
+    int failed;
+} job;
+
+static int cmp_pair(const void *a, const void *b)
+{
+    uint32_t x = ((const vbm_pair *)a)->j, y = ((const vbm_pair *)b)->j;
+    return x < y ? -1 : x > y;
+}
+
+/* Collects atom i's neighbours within reach. Returns 0 on a full answer,
+ * 1 when the cell is empty (a larger sphere touches i from inside), -1 on
+ * ENOMEM. */
+static int neighbours(job *jb, size_t i, int tid, size_t *nnb)
+{
+    const vb_sphere_set *s = jb->set;
+    const grid *g = jb->g;
+    vbx_ia ci[3] = {widen(s->x[i]), widen(s->y[i]), widen(s->z[i])};
+    vbx_ia Ri = widen(s->r[i]), ri = vbx_ia_add(Ri, jb->probe);
+    long c[3] = {cell_of(g, 0, s->x[i]), cell_of(g, 1, s->y[i]), cell_of(g, 2, s->z[i])};
+    size_t m = 0;
+    for (long dx = -1; dx <= 1; dx++)
+        for (long dy = -1; dy <= 1; dy++)
+            for (long dz = -1; dz <= 1; dz++) {
+                long x = c[0] + dx, y = c[1] + dy, z = c[2] + dz;
+                if (x < 0 || y < 0 || z < 0)
+                    continue;
+                uint64_t key = cell_key(x, y, z);
+                size_t lo = 0, hi = g->n;
+                while (lo < hi) {
+                    size_t mid = (lo + hi) / 2;
+                    if (g->key[mid].cell < key)
+                        lo = mid + 1;
+                    else
+                        hi = mid;
+                }
+                for (; lo < g->n && g->key[lo].cell == key; lo++) {
+                    size_t j = (size_t)g->key[lo].id;
+                    if (j == i || s->contained[j])
+                        continue;
+                    vbm_nb n;
+                    vbx_ia cj[3] = {widen(s->x[j]), widen(s->y[j]), widen(s->z[j])};
+                    vbx_ia Rj = widen(s->r[j]), d2 = vbx_ia_point(0.0);
+                    for (int k = 0; k < 3; k++) {
+                        n.d[k] = vbx_ia_sub(cj[k], ci[k]);
+                        d2 = vbx_ia_add(d2, vbx_ia_sqr(n.d[k]));
+                    }
+                    vbx_ia reach = vbx_ia_sqr(vbx_ia_add(ri, vbx_ia_add(Rj, jb->probe)));
+                    if (d2.lo > reach.hi)
+                        continue; /* the expanded balls do not meet */
+                    n.delta = vbx_ia_sub(Rj, Ri);
+                    n.N = vbx_ia_sub(d2, vbx_ia_sqr(n.delta));
+                    if (!(n.N.lo > 0.0)) {
+                        int sn, sd = exact_signs(s, i, j, &sn);
+                        if (sn <= 0 && sd > 0)
+                            return 1; /* i touches j from inside (contained is marked apart) */
+                        if (sn <= 0)
+                            continue; /* j inside i, touching: no constraint */
+                        n.N.lo = 0.0;
+                    }
+                    n.k = vbx_ia_sub(vbx_ia_div(n.N, vbx_ia_add(ri, ri)), n.delta);
+                    n.id = (uint32_t)j;
+                    if (m >= jb->cap_nb[tid]) {
+                        size_t cap = jb->cap_nb[tid] ? 2 * jb->cap_nb[tid] : 256;
+                        vbm_nb *p = realloc(jb->nb[tid], cap * sizeof *p);
+                        if (!p)
+                            return -1;
+                        jb->nb[tid] = p;
+                        jb->cap_nb[tid] = cap;
+                    }
+                    jb->nb[tid][m++] = n;
+                }
+            }
+    *nnb = m;
+    return 0;
+}
+
+static void one_atom(void *ctx, size_t i, int tid)
+{
+    job *jb = ctx;
+    vb_cell_measures *o = jb->out;
+    size_t nnb = 0;
+    int e = jb->set->contained[i] ? 1 : neighbours(jb, i, tid, &nnb);
+    if (e < 0 || nnb >= 65536) {
+        jb->failed = e < 0 ? VB_ENOMEM : VB_EINTERNAL;
+        return;
+    }
+    if (e > 0) {
+        o->empty[i] = 1;
+        return;
+    }
+    vbm_atom_in in = {vbx_ia_add(widen(jb->set->r[i]), jb->probe), jb->nb[tid], nnb,
+                      jb->opt->tolerance,
+                      jb->opt->max_patches ? jb->opt->max_patches : VB_MEASURES_MAX_PATCHES,
+                      jb->opt->contacts};
+    vbm_atom_out r;
+    if (vbm_cell_integrate(&in, &jb->sc[tid], &r) != VB_OK) {
+        jb->failed = VB_ENOMEM;
+        return;
+    }
+    o->vol_lo[i] = vbx_max(r.vol.lo, 0.0);
+    o->vol_hi[i] = r.vol.hi;
+    o->sas_lo[i] = vbx_max(r.sas.lo, 0.0);
+    o->sas_hi[i] = r.sas.hi;
+    o->loose[i] = (uint8_t)r.loose;
+    jb->patches[tid] += r.patches;
+    for (size_t k = 0; k < r.npairs; k++)
+        r.pairs[k].j = jb->nb[tid][r.pairs[k].j].id;
+    qsort(r.pairs, r.npairs, sizeof *r.pairs, cmp_pair);
+    jb->pairs[i] = r.pairs;
+    jb->npairs[i] = r.npairs;
+}
+
+/* The area of (i, j) seen from j, [0, 0] when j proved it absent. */
+static vbx_ia other_side(const job *jb, size_t j, uint32_t i)
+{
+    size_t lo = 0, hi = jb->npairs[j];
+    while (lo < hi) {
+        size_t mid = (lo + hi) / 2;
+        if (jb->pairs[j][mid].j < i)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    if (lo < jb->npairs[j] && jb->pairs[j][lo].j == i)
+        return jb->pairs[j][lo].area;
+    return vbx_ia_point(0.0);
+}
+
+/* Meets the two sides of every contact into o->contacts. */
+static int meet_contacts(vb_ctx *ctx, job *jb)
+{
+    vb_cell_measures *o = jb->out;
+    size_t total = 0;
+    for (size_t i = 0; i < o->n; i++)
+        total += jb->npairs[i];
+    o->contacts = malloc((total ? total : 1) * sizeof *o->contacts);
+    if (!o->contacts)
+        return VB_ENOMEM;
+    for (size_t i = 0; i < o->n; i++)
+        for (size_t k = 0; k < jb->npairs[i]; k++) {
+            uint32_t j = jb->pairs[i][k].j;
+            vbx_ia a = jb->pairs[i][k].area, b = other_side(jb, j, (uint32_t)i);
+            double lo = vbx_max(vbx_max(a.lo, b.lo), 0.0), hi = vbx_min(a.hi, b.hi);
+            if (lo > hi)
+                return vb_error(ctx, VB_EINTERNAL, jb->set->source, 0,
+                                "contact %zu-%u: the enclosures from both sides are disjoint "
+                                "([%.17g, %.17g] and [%.17g, %.17g])",
+                                i, j, a.lo, a.hi, b.lo, b.hi);
+            if (i < j && hi > 0.0) {
+                vb_contact c = {(uint32_t)i, j, lo, hi};
+                o->contacts[o->ncontacts++] = c;
+            }
+        }
+    return VB_OK;
+}
+
+/* W850 names the atoms with empty cells (the first few one by one), W851
+ * counts the values left wider than asked. */
+static void warn_atoms(vb_ctx *ctx, const vb_sphere_set *set, const vb_cell_measures *o)
+{
+    size_t named = 0;
+    for (size_t i = 0; i < o->n && named < 10; i++)
+        if (o->empty[i]) {
+            vb_warn(ctx, VB_W_CELL_EMPTY, set->source, set->line ? set->line[i] : 0,
+                    "atom %zu: its constrained cell is empty (inside or touching a larger "
+                    "sphere from inside): volume and SAS 0",
+                    i);
+            named++;
+        }
+    if (o->nempty > named)
+        vb_warn(ctx, VB_W_CELL_EMPTY, set->source, 0, "%zu more atoms with empty cells",
+                o->nempty - named);
+    if (o->nloose)
+        vb_warn(ctx, VB_W_CELL_LOOSE, set->source, 0,
+                "%zu atoms have a value wider than the tolerance asks (patch budget per atom "
+                "spent): their enclosures still hold",
+                o->nloose);
+}
+
+static int build_grid(grid *g, const vb_sphere_set *s, double probe)
+{
+    double rmax = 0.0;
+    for (int k = 0; k < 3; k++)
+        g->x0[k] = INFINITY;
+    for (size_t i = 0; i < s->n; i++) {
+        rmax = vbx_max(rmax, s->r[i]);
+        g->x0[0] = vbx_min(g->x0[0], s->x[i]);
+        g->x0[1] = vbx_min(g->x0[1], s->y[i]);
+        g->x0[2] = vbx_min(g->x0[2], s->z[i]);
+    }
+    /* a cell at least the reach, with a margin for the rounding of the
+     * cell index (neighbours are tested on exact enclosures afterwards) */
+    double h = (2.0 * (rmax + probe)) * (1.0 + 1e-9) + 1e-9;
+    g->ih = 1.0 / h;
+    g->n = s->n;
+    g->key = malloc((s->n ? s->n : 1) * sizeof *g->key);
+    if (!g->key)
+        return VB_ENOMEM;
+    for (size_t i = 0; i < s->n; i++) {
+        g->key[i].cell = cell_key(cell_of(g, 0, s->x[i]), cell_of(g, 1, s->y[i]),
+                                  cell_of(g, 2, s->z[i]));
+        g->key[i].id = i;
+    }
+    qsort(g->key, s->n, sizeof *g->key, cmp_u64);
+    return VB_OK;
+}
+
+int vb_cell_measures_compute(vb_ctx *ctx, const vb_sphere_set *set, const vb_measure_options *opt,
+                             vb_cell_measures *out)
+{
+    memset(out, 0, sizeof *out);
+    if (!(opt->probe >= 0.0) || !isfinite(opt->probe))
+        return vb_error(ctx, VB_EMISUSE, NULL, 0, "--probe %g: must be >= 0", opt->probe);
+    if (!(opt->tolerance > 0.0 && opt->tolerance < 1.0))
+        return vb_error(ctx, VB_EMISUSE, NULL, 0, "--tolerance %g: must lie in (0, 1)",
+                        opt->tolerance);
+    if (set->n > UINT32_MAX || !set->contained)
+        return vb_error(ctx, VB_EMISUSE, set->source, 0, "the sphere set is not validated");
+    size_t n = set->n;
+    out->n = n;
+    out->vol_lo = calloc(n + 1, sizeof(double));
+    out->vol_hi = calloc(n + 1, sizeof(double));
+    out->sas_lo = calloc(n + 1, sizeof(double));
+    out->sas_hi = calloc(n + 1, sizeof(double));
+    out->empty = calloc(n + 1, 1);
+    out->loose = calloc(n + 1, 1);
+    job *jb = calloc(1, sizeof *jb);
+    grid g = {{0}, 0, NULL, 0};
+    int rc = VB_ENOMEM;
+    if (!out->vol_lo || !out->vol_hi || !out->sas_lo || !out->sas_hi || !out->empty ||
+        !out->loose || !jb)
+        goto done;
+    jb->pairs = calloc(n + 1, sizeof *jb->pairs);
+    jb->npairs = calloc(n + 1, sizeof *jb->npairs);
+    if (!jb->pairs || !jb->npairs || build_grid(&g, set, opt->probe) != VB_OK)
+        goto done;
+    jb->set = set;
+    jb->opt = opt;
+    jb->g = &g;
+    jb->probe = opt->probe == 0.0 ? vbx_ia_point(0.0) : widen(opt->probe);
+    jb->out = out;
+    vb_parallel_for(one_atom, jb, n, vb_threads((unsigned)(opt->threads > 0 ? opt->threads : 0)));
+    if (jb->failed) {
+        rc = jb->failed == VB_ENOMEM
+                 ? VB_ENOMEM
+                 : vb_error(ctx, VB_EINTERNAL, set->source, 0, "over 65535 neighbours in reach");
+        goto done;
+    }
+    for (int t = 0; t < VB_MAX_THREADS; t++)
+        out->patches += jb->patches[t];
+    for (size_t i = 0; i < n; i++) {
+        out->nempty += out->empty[i];
+        out->nloose += out->loose[i];
+    }
+    warn_atoms(ctx, set, out);
+    rc = opt->contacts ? meet_contacts(ctx, jb) : VB_OK;
+done:
+    if (jb) {
+        for (int t = 0; t < VB_MAX_THREADS; t++) {
+            vbm_scratch_free(&jb->sc[t]);
+            free(jb->nb[t]);
+        }
+        if (jb->pairs)
+            for (size_t i = 0; i < n; i++)
+                free(jb->pairs[i]);
+        free(jb->pairs);
+        free(jb->npairs);
+    }
+    free(jb);
+    free(g.key);
+    if (rc == VB_ENOMEM)
+        rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory in the cell measures");
+    if (rc != VB_OK)
+        vb_cell_measures_free(out);
+    return rc;
+}

@@ -1,0 +1,59 @@
+/* One atom's constrained cell measured over its sphere of directions
+ * (cell_patches.c): the internal interface between the driver
+ * (measures.c) and the integrator. */
+#ifndef VBM_CELL_H
+#define VBM_CELL_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "vbx_ia.h"
+
+/* A neighbour j of atom i, as enclosures of exact values: d = cj - ci,
+ * delta = Rj - Ri, N = |d|^2 - delta^2 (> 0: neither sphere inside the
+ * other), k = N / (2 r) - delta with r = Ri + probe. Along a direction u the
+ * cell boundary with j lies at t = N / (2 (u.d + delta)) where u.d + delta >
+ * 0, and j's expanded ball covers the direction on i's expanded sphere iff
+ * u.d > k. */
+typedef struct vbm_nb {
+    vbx_ia d[3], delta, N, k;
+    uint32_t id;
+} vbm_nb;
+
+typedef struct vbm_pair {
+    uint32_t j; /* neighbour index into vbm_atom_in.nb */
+    vbx_ia area;
+} vbm_pair;
+
+typedef struct vbm_atom_in {
+    vbx_ia r;             /* Ri + probe */
+    const vbm_nb *nb;     /* the neighbours within reach (expanded balls that may meet) */
+    size_t nnb;           /* < 65536 */
+    double tolerance;     /* relative, see vb_measure_options */
+    size_t max_patches;
+    int contacts;
+} vbm_atom_in;
+
+typedef struct vbm_atom_out {
+    vbx_ia vol, sas;
+    vbm_pair *pairs;      /* npairs contact enclosures with hi > 0 (malloc'd; caller frees) */
+    size_t npairs;
+    size_t patches;
+    int loose;            /* a value is wider than the tolerance asks */
+} vbm_atom_out;
+
+/* Per-thread scratch of vbm_cell_integrate (zero-initialise; free with
+ * vbm_scratch_free). */
+typedef struct vbm_scratch {
+    void *patch, *heap, *cand, *pair, *tmp, *sum;
+    size_t cap_patch, cap_heap, cap_cand, cap_pair, cap_tmp, cap_sum;
+} vbm_scratch;
+
+/* Integrates the volume, SAS area and (in->contacts) contact areas of one
+ * atom's constrained cell to in->tolerance or in->max_patches. Returns VB_OK
+ * or VB_ENOMEM (out->pairs NULL then). */
+int vbm_cell_integrate(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out);
+
+void vbm_scratch_free(vbm_scratch *sc);
+
+#endif

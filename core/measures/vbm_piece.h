@@ -1,0 +1,45 @@
+/* The integrands of the cell measures per da db on a cube face, as Taylor
+ * models (integrands.c), and the integration of patches cut by one curve
+ * (cut_patches.c). See cell_patches.c for the formulas. */
+#ifndef VBM_PIECE_H
+#define VBM_PIECE_H
+
+#include "vbm_cell.h"
+#include "vbm_series.h"
+
+/* The axes of a face: the direction is sigma e_w + a e_p + b e_q. */
+typedef struct vbm_axes {
+    int w, p, q;
+    double sigma;
+} vbm_axes;
+
+/* Series of the three integrands where `owner` (-1: the ball's sphere, else
+ * a neighbour index) owns the directions (a, b) (given as series): vol, sas
+ * and con (contact area, owner's face). Returns 0 when a denominator or a
+ * root's argument is not proven away from 0. */
+int vbm_piece(const vbm_atom_in *in, int owner, const vbm_axes *ax, const vbm_ser *a,
+              const vbm_ser *b, vbm_ser *vol, vbm_ser *sas, vbm_ser *con);
+
+/* The solid angle of the patch [a0, a1] x [b0, b1] of a cube face, in
+ * closed form (signed corner terms atan(a b / sqrt(1 + a^2 + b^2)), atan
+ * rounded outward by MPFR). */
+vbx_ia vbm_solid_angle(double a0, double a1, double b0, double b1);
+
+/* A curve F = l0 + la a + lb b - kappa s = 0 across a patch; F > 0 is where
+ * owner `pos` owns, F < 0 where `neg` does (-1: the ball). */
+typedef struct vbm_curve {
+    vbx_ia l0, la, lb, kappa;
+    int pos, neg;
+} vbm_curve;
+
+/* Integrates the patch [a0, a1] x [b0, b1] of face `ax` split by the curve
+ * into its two single-owner parts, as the region between an edge and the
+ * curve b = b*(a) (or a = a*(b)) mapped onto a box: enclosures of the
+ * volume, SAS and contact areas of `pos` and `neg` (0 where they own
+ * nothing). Returns 0 when the curve does not cross the patch as one
+ * monotone graph (then the caller refines). */
+int vbm_cut_integrate(const vbm_atom_in *in, const vbm_axes *ax, const vbm_curve *cv, double a0,
+                      double a1, double b0, double b1, vbx_ia *vol, vbx_ia *sas, vbx_ia *con_pos,
+                      vbx_ia *con_neg);
+
+#endif

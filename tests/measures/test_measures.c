@@ -1,0 +1,208 @@
+/* Cell measures (core/measures/): enclosures against closed forms.
+ *  - one ball: 4/3 pi r^3 and 4 pi r^2;
+ *  - two equal balls: the cell is the ball cut by the bisector plane (cap
+ *    volume, cap area, contact disc), both sides of the contact;
+ *  - two and three unequal balls (hyperboloid faces): the volumes add up to
+ *    the union's volume and the SAS areas to its area (inclusion-exclusion:
+ *    lenses of pairs; the outer balls of the three do not meet);
+ *  - nested, internally tangent and externally tangent balls;
+ *  - bad options. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "vb.h"
+#include "vb_measures.h"
+#include "vb_spheres.h"
+#include "vb_test.h"
+
+#define PI 3.14159265358979323846
+
+static vb_sphere_set *spheres(vb_ctx *ctx, const char *text)
+{
+    vb_read_options ro;
+    memset(&ro, 0, sizeof ro);
+    ro.format = VB_FMT_XYZR;
+    vb_sphere_set *s = NULL;
+    if (vb_spheres_read_buffer(ctx, "test", text, strlen(text), &ro, &s) != VB_OK)
+        return NULL;
+    if (vb_spheres_validate(ctx, s, 1) != VB_OK) {
+        vb_spheres_free(s);
+        return NULL;
+    }
+    return s;
+}
+
+static int run(vb_ctx *ctx, const char *text, double tol, vb_cell_measures *m)
+{
+    vb_sphere_set *s = spheres(ctx, text);
+    if (!s)
+        return -1;
+    vb_measure_options o;
+    vb_measure_defaults(&o);
+    o.tolerance = tol;
+    o.contacts = 1;
+    o.threads = 2;
+    o.max_patches = 200000; /* the closed forms are asked to 1e-6 */
+    int rc = vb_cell_measures_compute(ctx, s, &o, m);
+    vb_spheres_free(s);
+    return rc;
+}
+
+/* lo <= x <= hi, with x known to ~1e-13 relative (double closed forms) and
+ * a width the tolerance allows */
+static int encloses(double lo, double hi, double x, double maxw)
+{
+    double slack = 1e-12 * fabs(x);
+    int ok = lo <= x + slack && x - slack <= hi && hi - lo <= maxw;
+    if (!ok)
+        fprintf(stderr, "  [%.15g, %.15g] vs %.15g (width %g, allowed %g)\n", lo, hi, x,
+                hi - lo, maxw);
+    return ok;
+}
+
+static double cap_volume(double r, double h)
+{
+    return PI * h * h * (3.0 * r - h) / 3.0;
+}
+
+/* Union of two balls of radii r1, r2 at distance d (< r1 + r2, no nesting). */
+static void union2(double r1, double r2, double d, double *vol, double *area)
+{
+    double x = (d * d + r1 * r1 - r2 * r2) / (2.0 * d); /* radical plane from c1 */
+    double h1 = r1 - x, h2 = r2 - (d - x);
+    *vol = 4.0 / 3.0 * PI * (r1 * r1 * r1 + r2 * r2 * r2) - cap_volume(r1, h1) -
+           cap_volume(r2, h2);
+    *area = 4.0 * PI * (r1 * r1 + r2 * r2) - 2.0 * PI * (r1 * h1 + r2 * h2);
+}
+
+static void test_one_ball(vb_ctx *ctx)
+{
+    vb_cell_measures m;
+    CHECK_INT(run(ctx, "1.5 -2 0.25 1.7\n", 1e-6, &m), VB_OK);
+    double r = 1.7 + 1.4, v = 4.0 / 3.0 * PI * r * r * r, a = 4.0 * PI * r * r;
+    CHECK(encloses(m.vol_lo[0], m.vol_hi[0], v, 1e-6 * v));
+    CHECK(encloses(m.sas_lo[0], m.sas_hi[0], a, 1e-6 * a));
+    CHECK_INT(m.ncontacts, 0);
+    vb_cell_measures_free(&m);
+}
+
+static void test_two_equal(vb_ctx *ctx)
+{
+    vb_cell_measures m;
+    CHECK_INT(run(ctx, "0 0 0 1\n1.5 0 0 1\n", 1e-6, &m), VB_OK);
+    double r = 2.4, h = r - 0.75;
+    double v = 4.0 / 3.0 * PI * r * r * r - cap_volume(r, h);
+    double a = 4.0 * PI * r * r - 2.0 * PI * r * h, c = PI * (r * r - 0.75 * 0.75);
+    for (int i = 0; i < 2; i++) {
+        CHECK(encloses(m.vol_lo[i], m.vol_hi[i], v, 1e-6 * v));
+        CHECK(encloses(m.sas_lo[i], m.sas_hi[i], a, 1e-6 * a));
+    }
+    CHECK_INT(m.ncontacts, 1);
+    if (m.ncontacts == 1) {
+        CHECK_INT(m.contacts[0].i, 0);
+        CHECK_INT(m.contacts[0].j, 1);
+        CHECK(encloses(m.contacts[0].lo, m.contacts[0].hi, c, 1e-6 * c));
+    }
+    vb_cell_measures_free(&m);
+}
+
+static void sums(const vb_cell_measures *m, double *vlo, double *vhi, double *alo, double *ahi)
+{
+    *vlo = *vhi = *alo = *ahi = 0.0;
+    for (size_t i = 0; i < m->n; i++) {
+        *vlo += m->vol_lo[i];
+        *vhi += m->vol_hi[i];
+        *alo += m->sas_lo[i];
+        *ahi += m->sas_hi[i];
+    }
+    /* the double sums are within n ulps of the exact sums */
+    *vlo *= 1.0 - 1e-14;
+    *alo *= 1.0 - 1e-14;
+    *vhi *= 1.0 + 1e-14;
+    *ahi *= 1.0 + 1e-14;
+}
+
+static void test_unequal(vb_ctx *ctx)
+{
+    vb_cell_measures m;
+    double v, a, vlo, vhi, alo, ahi;
+    CHECK_INT(run(ctx, "0 0 0 1.2\n2.1 0.3 -0.2 1.8\n", 1e-5, &m), VB_OK);
+    union2(2.6, 3.2, sqrt(2.1 * 2.1 + 0.09 + 0.04), &v, &a);
+    sums(&m, &vlo, &vhi, &alo, &ahi);
+    CHECK(encloses(vlo, vhi, v, 1e-5 * v));
+    CHECK(encloses(alo, ahi, a, 1e-5 * a));
+    CHECK_INT(m.ncontacts, 1);
+    vb_cell_measures_free(&m);
+
+    /* three in a row: balls 0 and 2 (expanded radii 2.9 and 3.0, 6.4 apart)
+     * do not meet, so the union is the sum less the two lenses */
+    CHECK_INT(run(ctx, "0 0 0 1.5\n3.1 0.2 0 1.9\n6.4 0 0 1.6\n", 1e-4, &m), VB_OK);
+    double v01, a01, v12, a12, d01 = sqrt(3.1 * 3.1 + 0.04), d12 = sqrt(3.3 * 3.3 + 0.04);
+    double r0 = 2.9, r1 = 3.3, r2 = 3.0;
+    union2(r0, r1, d01, &v01, &a01);
+    union2(r1, r2, d12, &v12, &a12);
+    double b1v = 4.0 / 3.0 * PI * r1 * r1 * r1, b1a = 4.0 * PI * r1 * r1;
+    v = v01 + v12 - b1v;
+    a = a01 + a12 - b1a;
+    sums(&m, &vlo, &vhi, &alo, &ahi);
+    CHECK(encloses(vlo, vhi, v, 1e-4 * v));
+    CHECK(encloses(alo, ahi, a, 1e-4 * a));
+    CHECK_INT(m.ncontacts, 2);
+    vb_cell_measures_free(&m);
+}
+
+static void test_nested_tangent(vb_ctx *ctx)
+{
+    vb_cell_measures m;
+    /* sphere 1 strictly inside sphere 0; sphere 2 touches 0 from inside */
+    CHECK_INT(run(ctx, "0 0 0 3\n0.5 0 0 1\n0 2 0 1\n", 1e-6, &m), VB_OK);
+    double r = 4.4, v = 4.0 / 3.0 * PI * r * r * r, a = 4.0 * PI * r * r;
+    CHECK(m.empty[1] && m.empty[2] && !m.empty[0]);
+    CHECK(m.vol_hi[1] == 0.0 && m.sas_hi[1] == 0.0 && m.vol_hi[2] == 0.0);
+    CHECK_INT(m.nempty, 2);
+    CHECK(encloses(m.vol_lo[0], m.vol_hi[0], v, 1e-6 * v));
+    CHECK(encloses(m.sas_lo[0], m.sas_hi[0], a, 1e-6 * a));
+    CHECK_INT(m.ncontacts, 0);
+    vb_cell_measures_free(&m);
+    /* expanded balls touching from outside (distance 2.4 + 2.4): whole balls */
+    CHECK_INT(run(ctx, "0 0 0 1\n0 0 4.8 1\n", 1e-6, &m), VB_OK);
+    r = 2.4;
+    v = 4.0 / 3.0 * PI * r * r * r;
+    for (int i = 0; i < 2; i++)
+        CHECK(encloses(m.vol_lo[i], m.vol_hi[i], v, 1e-6 * v));
+    /* the touching point may keep a contact [0, tiny] (area 0 enclosed) */
+    CHECK(m.ncontacts == 0 || (m.contacts[0].lo == 0.0 && m.contacts[0].hi < 1e-6));
+    vb_cell_measures_free(&m);
+}
+
+static void test_bad_options(vb_ctx *ctx)
+{
+    vb_sphere_set *s = spheres(ctx, "0 0 0 1\n");
+    vb_measure_options o;
+    vb_cell_measures m;
+    vb_measure_defaults(&o);
+    o.probe = -0.1;
+    CHECK_INT(vb_cell_measures_compute(ctx, s, &o, &m), VB_EMISUSE);
+    vb_measure_defaults(&o);
+    o.tolerance = 1.0;
+    CHECK_INT(vb_cell_measures_compute(ctx, s, &o, &m), VB_EMISUSE);
+    o.tolerance = 0.0;
+    CHECK_INT(vb_cell_measures_compute(ctx, s, &o, &m), VB_EMISUSE);
+    vb_spheres_free(s);
+}
+
+int main(void)
+{
+    vb_ctx *ctx;
+    if (vb_open(&ctx, NULL) != VB_OK)
+        return 1;
+    vb_set_verbosity(ctx, 0);
+    test_one_ball(ctx);
+    test_two_equal(ctx);
+    test_unequal(ctx);
+    test_nested_tangent(ctx);
+    test_bad_options(ctx);
+    vb_close(ctx);
+    VB_TEST_END();
+}
