@@ -1,5 +1,6 @@
-/* `vorball vertices`: certified Voronoi vertices of spheres by the seed
- * paper's sampling pipeline, optionally with the cell topology. */
+/* `vorball vertices`: certified Voronoi vertices of spheres (the direction
+ * cover by default, the seed paper's sampling on request), completed by the
+ * library (arc closure, topology, the certificate) on request. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>

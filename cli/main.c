@@ -33,7 +33,7 @@ typedef struct {
  * VB_NO_<NAME>; they are left out of the table and named in --help. */
 static const command commands[] = {
 #ifndef VB_NO_VERTICES
-    {"vertices", vb_cmd_vertices, "certified Voronoi vertices of spheres (sampling pipeline)"},
+    {"vertices", vb_cmd_vertices, "certified Voronoi vertices of spheres, proven complete (direction cover)"},
 #endif
 #ifndef VB_NO_REFERENCE
     {"reference", vb_cmd_reference, "all vertices exactly, by brute force (small inputs)"},
