@@ -16,6 +16,8 @@
  *     vb_vertices_run_complete); vertex files read and written
  *     (vb_vertex_io.h);
  *   - verify: judging a vertex file or list exactly (vb_verify_file.h);
+ *   - periodic boxes: the periodic diagram and its files (vb_periodic.h),
+ *     a periodic vertex file judged (vb_periodic_verify.h);
  *   - channels over frames and the discrete Voronoi engines (vbc_frame.h,
  *     vbj_jfa.h through it), their options declared once and the run over
  *     frames (vbc_run.h, vbc_channels_config.h), on the device layer of
@@ -28,6 +30,7 @@
 #include "vb_default.h"
 #include "vb_diag.h"
 #include "vb_frames.h"
+#include "vb_periodic_verify.h"
 #include "vb_verify_file.h"
 #include "vb_vertex_io.h"
 #include "vbc_frame.h"
