@@ -216,7 +216,8 @@ static void one_atom(void *ctx, size_t i, int tid)
     jb->patches[tid] += r.patches;
     for (size_t k = 0; k < r.npairs; k++)
         r.pairs[k].j = jb->nb[tid][r.pairs[k].j].id;
-    qsort(r.pairs, r.npairs, sizeof *r.pairs, cmp_pair);
+    if (r.npairs) /* qsort takes no NULL, even for 0 elements */
+        qsort(r.pairs, r.npairs, sizeof *r.pairs, cmp_pair);
     jb->pairs[i] = r.pairs;
     jb->npairs[i] = r.npairs;
 }

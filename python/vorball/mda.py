@@ -190,8 +190,10 @@ class VorballAnalysis(AnalysisBase):
                       else _as_radii(radii, atomgroup.n_atoms))
         self._vertices, self._channels = bool(vertices), bool(channels)
         self._device, self._samples, self._jfa = device, samples, jfa
+        # The channel table without the pore sweep (`vorball channels
+        # --no-pore`): since the binding sweeps the pore by default, say so.
         self._channel_kw = dict(grid=grid, probe=probe, min_length=min_length,
-                                min_radius=min_radius)
+                                min_radius=min_radius, no_pore=True)
         self._engine: Optional[Engine] = None
 
     def _configure_backend(self, backend, n_workers, unsupported_backend=False):

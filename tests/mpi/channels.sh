@@ -49,7 +49,11 @@ done
 # rank finds itself; the table is one process's.
 popts="--grid 32 --frames ::2 --device ref"
 run 0 "$work/pore.1.err" "$vorball" channels $popts "$trj" -o "$work/pore.1.csv"
-grep -q '^0,1,1,pore,' "$work/pore.1.csv" || fail "no pore in the first frame's table"
+# Since the pore verdict (issue 32) this peptide gets W808 (its path is not
+# walled by its atoms for 15 A): the sweep still runs on every rank, and the
+# table (no pore row) and the verdict must be one process's.
+grep -q '^0,1,1,pore,' "$work/pore.1.csv" || grep -q "W808" "$work/pore.1.err" ||
+    fail "first frame: neither a pore row nor the W808 verdict"
 for np in 2 3; do
     run 0 "$work/pore.$np.err" mpi $np "$vorball" channels $popts "$trj" -o "$work/pore.$np.csv"
     same_bytes "pore table on $np ranks" "$work/pore.1.csv" "$work/pore.$np.csv"
