@@ -1,18 +1,20 @@
 /* `vorball cells IN`: per-atom volume and SAS area of the additively
  * weighted cell inside the probe-expanded ball, and contact areas, as
- * proven enclosures (core/measures/). Parse, call, write. */
+ * proven enclosures (core/measures/), of one structure or of the frames of
+ * a trajectory (--traj, --frames). Parse, call (vb_cells.h), write. */
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli_common.h"
 #include "commands.h"
 #include "input_options.h"
-#include "vb_measures.h"
+#include "vb_cells.h"
 #include "vb_parallel.h"
 
 static const char *const usage_text =
-    "usage: vorball cells IN [-o FILE] [--contacts FILE] [--probe R] [--tolerance T]\n"
-    "                     [--max-patches N] [--threads N] [--stats] [input options]\n"
+    "usage: vorball cells IN [-o FILE] [--json] [--contacts FILE] [--probe R] [--tolerance T]\n"
+    "                     [--max-patches N] [--threads N] [--traj FILE] [--frames A:B:S]\n"
+    "                     [--stats] [input options]\n"
     "\n"
     "For every atom: the volume of its additively weighted Voronoi cell inside its\n"
     "expanded ball (radius R + probe) and its SAS area (the part of the expanded\n"
@@ -23,7 +25,13 @@ static const char *const usage_text =
     "\n"
     "  -o FILE          per-atom TSV (default stdout): id chain resname resseq atom\n"
     "                   volume volume_lo volume_hi sas sas_lo sas_hi ('.' = no such field)\n"
+    "  --json           -o as JSON: per-atom rows (the TSV's digits) and per-residue and\n"
+    "                   per-chain sums, each an interval sum rounded outward\n"
     "  --contacts FILE  TSV id1 id2 area area_lo area_hi (id1 < id2)\n"
+    "  --traj FILE      coordinates from a DCD, XTC or TRR trajectory (IN = its topology)\n"
+    "  --frames A:B:S   frames A (from 0) to B (excluded) every S; with --traj or --frames\n"
+    "                   every model of IN is a frame (--model picks one) and each table\n"
+    "                   has a `frame` column first (JSON: an array of frames)\n"
     "  --probe R        solvent radius added to every radius (default 1.4, >= 0)\n"
     "  --tolerance T    relative width asked of each value, in (0, 1) (default 1e-6;\n"
     "                   values below 1e-3 of the ball's volume or area are held to\n"
@@ -34,22 +42,100 @@ static const char *const usage_text =
     "  --stats          atoms, patches, empty and loose counts and the time on stderr\n";
 
 static int write_file(vb_ctx *ctx, const char *path, const vb_sphere_set *set,
-                      const vb_cell_measures *m, int contacts)
+                      const vb_cell_measures *m, int contacts, int json)
 {
     FILE *f = vb_cli_open_output(ctx, path);
     if (!f)
         return vb_errcode(ctx);
-    if (contacts)
+    int rc = VB_OK;
+    if (contacts) {
         vb_cell_measures_write_contacts(f, m);
-    else
+    } else if (json) {
+        rc = vb_cell_measures_write_json(ctx, f, set, m, -1, 0);
+        fputc('\n', f);
+    } else {
         vb_cell_measures_write_atoms(f, set, m);
-    return vb_cli_close_output(ctx, f, path);
+    }
+    int crc = vb_cli_close_output(ctx, f, path);
+    return rc != VB_OK ? rc : crc;
+}
+
+/* The outputs of a run over frames: one table of all frames each. */
+typedef struct {
+    vb_ctx *ctx;
+    FILE *out, *contacts;
+    int json;
+    long written;
+    size_t atoms, patches, nempty, nloose, ncontacts;
+} frames_sink;
+
+static int write_frame(void *arg, long frame, int model, const vb_sphere_set *set,
+                       const vb_cell_measures *m)
+{
+    frames_sink *S = arg;
+    int rc = VB_OK;
+    if (S->json) {
+        fputs(S->written ? ",\n" : "", S->out);
+        rc = vb_cell_measures_write_json(S->ctx, S->out, set, m, frame, model);
+    } else {
+        vb_cell_measures_write_atom_rows(S->out, set, m, frame);
+    }
+    if (S->contacts)
+        vb_cell_measures_write_contact_rows(S->contacts, m, frame);
+    S->written++;
+    S->atoms += m->n, S->patches += m->patches, S->nempty += m->nempty;
+    S->nloose += m->nloose, S->ncontacts += m->ncontacts;
+    return rc;
+}
+
+/* `cells` over the frames of IN (or of --traj): the tables of every frame. */
+static int run_frames(vb_ctx *ctx, const char *in_path, const char *traj,
+                      const vb_cli_input_opts *in, const vb_frame_range *range,
+                      const vb_measure_options *opt, const char *out_path,
+                      const char *contacts_path, int json, int stats)
+{
+    vb_radii_table *radii = NULL;
+    frames_sink S = {ctx, NULL, NULL, json, 0, 0, 0, 0, 0, 0};
+    int rc = in->radii_path ? vb_radii_load(ctx, in->radii_path, &radii) : VB_OK;
+    vb_read_options ro;
+    vb_cli_input_read_options(in, radii, &ro);
+    if (rc == VB_OK && !(S.out = vb_cli_open_output(ctx, out_path)))
+        rc = vb_errcode(ctx);
+    if (rc == VB_OK && contacts_path && !(S.contacts = vb_cli_open_output(ctx, contacts_path)))
+        rc = vb_errcode(ctx);
+    if (rc == VB_OK) {
+        if (json)
+            fputs("[\n", S.out);
+        else
+            vb_cell_measures_write_atoms_header(S.out, 1);
+        if (S.contacts)
+            vb_cell_measures_write_contacts_header(S.contacts, 1);
+    }
+    long frames = 0;
+    double t0 = vb_now();
+    if (rc == VB_OK)
+        rc = vb_cells_run_frames(ctx, in_path, traj, &ro, range, opt, write_frame, &S, &frames);
+    double t1 = vb_now();
+    if (rc == VB_OK && json)
+        fputs("\n]\n", S.out);
+    int crc = S.contacts ? vb_cli_close_output(ctx, S.contacts, contacts_path) : VB_OK;
+    int orc = S.out ? vb_cli_close_output(ctx, S.out, out_path) : VB_OK;
+    rc = rc != VB_OK ? rc : crc != VB_OK ? crc : orc;
+    if (rc == VB_OK && stats)
+        fprintf(stderr,
+                "cells: %ld frames, %zu atoms, %zu patches, %zu empty, %zu loose, %zu contacts, "
+                "%.3f s (%.3f frames/s)\n",
+                frames, S.atoms, S.patches, S.nempty, S.nloose, S.ncontacts, t1 - t0,
+                t1 > t0 ? (double)frames / (t1 - t0) : 0.0);
+    vb_radii_free(radii);
+    return rc;
 }
 
 int vb_cmd_cells(int argc, char **argv)
 {
-    const char *in_path = NULL, *out_path = NULL, *contacts_path = NULL;
-    int stats = 0;
+    const char *in_path = NULL, *out_path = NULL, *contacts_path = NULL, *traj = NULL;
+    int stats = 0, json = 0, frames = 0;
+    vb_frame_range range = {0, -1, 1};
     vb_measure_options opt;
     vb_measure_defaults(&opt);
     vb_cli_input_opts in;
@@ -63,7 +149,8 @@ int vb_cmd_cells(int argc, char **argv)
         }
         int has_value = strcmp(a, "-o") == 0 || strcmp(a, "--contacts") == 0 ||
                         strcmp(a, "--probe") == 0 || strcmp(a, "--tolerance") == 0 ||
-                        strcmp(a, "--max-patches") == 0 || strcmp(a, "--threads") == 0;
+                        strcmp(a, "--max-patches") == 0 || strcmp(a, "--threads") == 0 ||
+                        strcmp(a, "--traj") == 0 || strcmp(a, "--frames") == 0;
         if (has_value && i + 1 >= argc)
             return vb_cli_usage_error(argv[0], "%s needs a value", a);
         size_t sz;
@@ -86,6 +173,17 @@ int vb_cmd_cells(int argc, char **argv)
             opt.threads = (int)sz;
         } else if (strcmp(a, "--stats") == 0) {
             stats = 1;
+        } else if (strcmp(a, "--json") == 0) {
+            json = 1;
+        } else if (strcmp(a, "--traj") == 0) {
+            traj = argv[++i];
+            frames = 1;
+        } else if (strcmp(a, "--frames") == 0) {
+            if (vb_frame_range_parse(argv[++i], &range) != 0)
+                return vb_cli_usage_error(argv[0],
+                                          "--frames needs A:B:S (from 0, B > A, S >= 1), not '%s'",
+                                          argv[i]);
+            frames = 1;
         } else {
             int used = vb_cli_input_option(&in, argc, argv, &i);
             if (used < 0)
@@ -102,6 +200,8 @@ int vb_cmd_cells(int argc, char **argv)
     }
     if (!in_path)
         return vb_cli_usage_error(argv[0], "no input file (use '-' for stdin)");
+    if (traj && strcmp(in_path, "-") == 0)
+        return vb_cli_usage_error(argv[0], "the trajectory's topology must be a file");
     opt.contacts = contacts_path != NULL;
 
     vb_ctx *ctx;
@@ -116,15 +216,22 @@ int vb_cmd_cells(int argc, char **argv)
     int rc = vb_cli_check_output(ctx, out_path);
     if (rc == VB_OK)
         rc = vb_cli_check_output(ctx, contacts_path);
+    if (rc == VB_OK && frames) {
+        rc = run_frames(ctx, in_path, traj, &in, &range, &opt, out_path, contacts_path, json,
+                        stats);
+        int code = rc == VB_OK ? VB_EXIT_OK : vb_cli_fail(ctx, rc);
+        vb_close(ctx);
+        return code;
+    }
     if (rc == VB_OK)
         rc = vb_cli_load_spheres(ctx, in_path, &in, 1, &set);
     if (rc == VB_OK)
-        rc = vb_cell_measures_compute(ctx, set, &opt, &m);
+        rc = vb_cells_run(ctx, set, &opt, &m);
     double t1 = vb_now();
     if (rc == VB_OK && contacts_path)
-        rc = write_file(ctx, contacts_path, set, &m, 1);
+        rc = write_file(ctx, contacts_path, set, &m, 1, 0);
     if (rc == VB_OK)
-        rc = write_file(ctx, out_path, set, &m, 0);
+        rc = write_file(ctx, out_path, set, &m, 0, json);
     if (rc == VB_OK && stats)
         fprintf(stderr,
                 "cells: %zu atoms, %zu patches, %zu empty, %zu loose, %zu contacts, %.3f s\n",

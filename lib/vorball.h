@@ -15,6 +15,10 @@
  *     faces and edges, the certificate -- in one call (vb_complete.h:
  *     vb_vertices_run_complete); vertex files read and written
  *     (vb_vertex_io.h);
+ *   - cell measures: per-atom volume and SAS area and contact areas as
+ *     proven enclosures, of a set or of a trajectory's frames, in one call
+ *     (vb_cells.h: vb_cells_run, vb_cells_run_frames; the result and its
+ *     TSV and JSON writers: vb_measures.h);
  *   - verify: judging a vertex file or list exactly (vb_verify_file.h);
  *   - periodic boxes: the periodic diagram and its files (vb_periodic.h),
  *     a periodic vertex file judged (vb_periodic_verify.h);
@@ -26,6 +30,7 @@
 #define VORBALL_H
 
 #include "vb.h"
+#include "vb_cells.h"
 #include "vb_complete.h"
 #include "vb_default.h"
 #include "vb_diag.h"

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_frames.h"
 #include "vb_numtext.h"
 #include "vbc_channels_config.h"
 
@@ -166,37 +167,12 @@ static int parse_vec3(const char *s, double v[3])
 /* Parses "A:B:S" with each part optional ("10", ":50", "::5", "2:40:2"). */
 static int parse_frames(const char *s, long *a, long *b, long *step)
 {
-    char buf[96];
-    if (strlen(s) >= sizeof buf)
+    vb_frame_range r;
+    if (vb_frame_range_parse(s, &r) != 0)
         return -1;
-    strcpy(buf, s);
-    char *parts[3] = {buf, NULL, NULL};
-    char *c1 = strchr(buf, ':');
-    if (c1) {
-        *c1 = '\0';
-        parts[1] = c1 + 1;
-        char *c2 = strchr(parts[1], ':');
-        if (c2) {
-            *c2 = '\0';
-            parts[2] = c2 + 1;
-        }
-    }
-    long v[3] = {0, -1, 1};
-    for (int i = 0; i < 3; i++) {
-        if (!parts[i] || !*parts[i])
-            continue;
-        double x;
-        if (whole_count(parts[i], &x) != 0 || x > 1e9)
-            return -1;
-        v[i] = (long)x;
-    }
-    if (!c1)
-        v[1] = v[0] + 1; /* a single number is one frame */
-    if (v[2] < 1 || (v[1] >= 0 && v[1] <= v[0]))
-        return -1;
-    *a = v[0];
-    *b = v[1];
-    *step = v[2];
+    *a = r.first;
+    *b = r.end;
+    *step = r.step;
     return 0;
 }
 

@@ -35,4 +35,18 @@ int vb_frame_source_next(vb_ctx *ctx, vb_frame_source *src, vb_sphere_set **out,
 /* NULL is allowed. */
 void vb_frame_source_close(vb_frame_source *src);
 
+/* Which frames: index >= first, index < end (end < 0: to the last), every
+ * step-th from first (step >= 1), frames counted from 0 (`--frames`). */
+typedef struct vb_frame_range {
+    long first, end, step;
+} vb_frame_range;
+
+/* Parses "A:B:S" (parts optional: "A:", ":B", "A:B", "A:B:S"; a single
+ * number "A" is that frame alone; parts up to 1e9) into *out. 0, or -1 for
+ * text that is not such a range with B > A and S >= 1. */
+int vb_frame_range_parse(const char *text, vb_frame_range *out);
+
+/* 1 when frame `index` is in the range, else 0. */
+int vb_frame_range_has(const vb_frame_range *r, long index);
+
 #endif

@@ -3,31 +3,17 @@
 #include <string.h>
 
 #include "vb_measures.h"
-#include "vbx_ia.h"
+#include "vbm_text.h"
 
-/* Decimal text of an enclosure's ends, rounded outward: lo is moved down by
- * 1e-11 of itself before printing 12 significant digits (which move it by at
- * most 5e-12 of itself), hi up likewise, so the printed interval contains the
- * computed one. Measures are >= 0. */
-static void put_lo(FILE *f, double x)
-{
-    if (x <= 0.0) {
-        fputs("\t0", f);
-        return;
-    }
-    fprintf(f, "\t%.12g", vbx_pred(x - x * 1e-11));
-}
-
-static void put_hi(FILE *f, double x)
-{
-    fprintf(f, "\t%.12g", x <= 0.0 ? 0.0 : vbx_succ(x + x * 1e-11));
-}
-
+/* The midpoint, then the ends rounded outward (vbm_text.h). */
 static void put_value(FILE *f, double lo, double hi)
 {
-    fprintf(f, "\t%.12g", 0.5 * lo + 0.5 * hi);
-    put_lo(f, lo);
-    put_hi(f, hi);
+    fprintf(f, "\t%.12g", vbm_text_mid(lo, hi));
+    if (lo <= 0.0)
+        fputs("\t0", f);
+    else
+        fprintf(f, "\t%.12g", vbm_text_lo(lo));
+    fprintf(f, "\t%.12g", vbm_text_hi(hi));
 }
 
 static void put_field(FILE *f, const char *s)
@@ -35,11 +21,19 @@ static void put_field(FILE *f, const char *s)
     fprintf(f, "\t%s", s && s[0] && strcmp(s, " ") != 0 ? s : ".");
 }
 
-void vb_cell_measures_write_atoms(FILE *f, const vb_sphere_set *set, const vb_cell_measures *m)
+void vb_cell_measures_write_atoms_header(FILE *f, int frames)
 {
+    fputs(frames ? "frame\t" : "", f);
     fputs("id\tchain\tresname\tresseq\tatom\tvolume\tvolume_lo\tvolume_hi\tsas\tsas_lo\tsas_hi\n",
           f);
+}
+
+void vb_cell_measures_write_atom_rows(FILE *f, const vb_sphere_set *set, const vb_cell_measures *m,
+                                      long frame)
+{
     for (size_t i = 0; i < m->n; i++) {
+        if (frame >= 0)
+            fprintf(f, "%ld\t", frame);
         fprintf(f, "%zu", i);
         if (set->info) {
             const vb_atom_info *a = &set->info[i];
@@ -56,13 +50,31 @@ void vb_cell_measures_write_atoms(FILE *f, const vb_sphere_set *set, const vb_ce
     }
 }
 
-void vb_cell_measures_write_contacts(FILE *f, const vb_cell_measures *m)
+void vb_cell_measures_write_atoms(FILE *f, const vb_sphere_set *set, const vb_cell_measures *m)
 {
-    fputs("id1\tid2\tarea\tarea_lo\tarea_hi\n", f);
+    vb_cell_measures_write_atoms_header(f, 0);
+    vb_cell_measures_write_atom_rows(f, set, m, -1);
+}
+
+void vb_cell_measures_write_contacts_header(FILE *f, int frames)
+{
+    fputs(frames ? "frame\tid1\tid2\tarea\tarea_lo\tarea_hi\n" : "id1\tid2\tarea\tarea_lo\tarea_hi\n",
+          f);
+}
+
+void vb_cell_measures_write_contact_rows(FILE *f, const vb_cell_measures *m, long frame)
+{
     for (size_t k = 0; k < m->ncontacts; k++) {
+        if (frame >= 0)
+            fprintf(f, "%ld\t", frame);
         fprintf(f, "%u\t%u", m->contacts[k].i, m->contacts[k].j);
         put_value(f, m->contacts[k].lo, m->contacts[k].hi);
         fputc('\n', f);
     }
 }
 
+void vb_cell_measures_write_contacts(FILE *f, const vb_cell_measures *m)
+{
+    vb_cell_measures_write_contacts_header(f, 0);
+    vb_cell_measures_write_contact_rows(f, m, -1);
+}

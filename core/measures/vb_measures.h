@@ -81,4 +81,39 @@ void vb_cell_measures_write_atoms(FILE *f, const vb_sphere_set *set, const vb_ce
 /* Writes the contacts table: header, then id1 id2 area area_lo area_hi. */
 void vb_cell_measures_write_contacts(FILE *f, const vb_cell_measures *m);
 
+/* The headers and rows of the two tables apart, for tables of several
+ * frames: with frames (the header) or frame >= 0 (the rows) a `frame`
+ * column comes first; otherwise the bytes of the writers above. */
+void vb_cell_measures_write_atoms_header(FILE *f, int frames);
+void vb_cell_measures_write_atom_rows(FILE *f, const vb_sphere_set *set, const vb_cell_measures *m,
+                                      long frame);
+void vb_cell_measures_write_contacts_header(FILE *f, int frames);
+void vb_cell_measures_write_contact_rows(FILE *f, const vb_cell_measures *m, long frame);
+
+/* A sum of the measures over a group of atoms (a residue, a chain): each
+ * an interval sum of the atoms' enclosures, every addition rounded
+ * outward, so it encloses the group's exact sum. */
+typedef struct vb_cell_group {
+    size_t first;                    /* the group's first atom (its names) */
+    size_t natoms;
+    double vol_lo, vol_hi, sas_lo, sas_hi;
+} vb_cell_group;
+
+/* The residues (atoms of one chain, resseq, insertion code and resname,
+ * wherever they lie in the input) or, with by_chain, the chains of `set`,
+ * in the order of their first atom. *out is malloc'd (free it); none
+ * (NULL, 0) for a set without atom records. VB_OK or VB_ENOMEM. */
+int vb_cell_measures_groups(vb_ctx *ctx, const vb_sphere_set *set, const vb_cell_measures *m,
+                            int by_chain, vb_cell_group **out, size_t *nout);
+
+/* Writes one JSON object: "atoms" (per atom: id, chain, resname, resseq,
+ * icode, atom, volume(_lo, _hi), sas(_lo, _hi) with the TSV's digits,
+ * empty, loose) and, for inputs with atom records, "residues" and
+ * "chains" (vb_cell_measures_groups: atoms and the sums, printed as the
+ * TSV prints a value). With frame >= 0, "frame" and "model" first. No
+ * newline after the closing brace. VB_OK or VB_ENOMEM (nothing written);
+ * write errors are the stream's. */
+int vb_cell_measures_write_json(vb_ctx *ctx, FILE *f, const vb_sphere_set *set,
+                                const vb_cell_measures *m, long frame, int model);
+
 #endif

@@ -110,5 +110,6 @@ extern PyMethodDef vbpy_spheres_methods[];
 extern PyMethodDef vbpy_vertices_methods[];
 extern PyMethodDef vbpy_verify_methods[];
 extern PyMethodDef vbpy_channels_methods[];
+extern PyMethodDef vbpy_cells_methods[];
 
 #endif

@@ -5,6 +5,7 @@ channels of molecules, as NumPy arrays.
     s = vorball.read("1crn.pdb")                  # or arrays: vorball.vertices(xyz, r)
     ids, xyz, t = vorball.vertices(s)              # every vertex proven exactly
     ch = vorball.channels(s, grid=128)             # ch.table, ch.profile(0)
+    c = vorball.cells(s, contacts=True)            # c.volume, c.sas_lo, c.area
 
 The calls run the library of the `vorball` command (libvorball) in the
 process: the same readers, the same pipelines, the same bytes
@@ -18,10 +19,11 @@ from ._spheres import Frames, Spheres, frames, read, spheres
 from ._vertices import Arcs, Certificate, Engine, Result, Topology, vertex_text, vertices
 from ._verify import DUPLICATE, MISSING, NOT_VERTEX, WRONG_COORDS, Report, verify
 from ._channels import Channels, channel_flags, channel_options, channels
+from ._cells import Cells, cells
 
-__all__ = ["Arcs", "CatalogueEntry", "Certificate", "Channels", "Diagnostic", "DUPLICATE",
+__all__ = ["Arcs", "CatalogueEntry", "Cells", "Certificate", "Channels", "Diagnostic", "DUPLICATE",
            "Engine", "Frames", "MISSING", "NOT_VERTEX", "Report", "Result", "Spheres", "Topology",
-           "VorballError", "VorballWarning", "WRONG_COORDS", "catalogue", "channel_flags",
+           "VorballError", "VorballWarning", "WRONG_COORDS", "catalogue", "cells", "channel_flags",
            "channel_options", "channels", "frames", "read", "spheres", "verify", "vertex_text",
            "vertices"]
 
