@@ -8,6 +8,7 @@
 #include "commands.h"
 #include "input_options.h"
 #include "pipeline_options.h"
+#include "progress.h"
 #include "vb_json.h"
 #include "vb_default.h"
 #include "vb_world.h"
@@ -197,8 +198,7 @@ int vb_cmd_bench(int argc, char **argv)
                 vb_cli_vertex_totals tot;
                 po.cfg.sampler.samples = samples[s];
                 vb_vertices_config cfg = po.cfg;
-                vb_cli_bar bar;
-                vb_cli_bar_attach(&bar, &cfg.sampler);
+                vb_cli_progress_attach(ctx);
                 /* Split runs start together and end when rank 0 holds the
                  * merged vertices. */
                 vb_world_barrier();
@@ -206,7 +206,7 @@ int vb_cmd_bench(int argc, char **argv)
                 if (busy)
                     rc = cold ? vb_vertices_run_default(ctx, set, &cfg, &r)
                               : vb_vertices_run_on(ctx, dev, set, &cfg, &r);
-                vb_cli_bar_clear(&bar);
+                vb_cli_progress_clear();
                 rc = vb_world_agree(ctx, rc);
                 if (rc == VB_OK)
                     rc = vb_world_agree(ctx, vb_cli_vertices_combine(ctx, &r, &tot));

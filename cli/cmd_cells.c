@@ -8,6 +8,7 @@
 #include "cli_common.h"
 #include "commands.h"
 #include "input_options.h"
+#include "progress.h"
 #include "vb_cells.h"
 #include "vb_parallel.h"
 
@@ -209,6 +210,7 @@ int vb_cmd_cells(int argc, char **argv)
         fprintf(stderr, "vorball: E%d: out of memory\n", vb_diag_number(VB_ENOMEM));
         return VB_EXIT_NOMEM;
     }
+    vb_cli_progress_attach(ctx);
     vb_sphere_set *set = NULL;
     vb_cell_measures m;
     memset(&m, 0, sizeof m);
@@ -220,6 +222,7 @@ int vb_cmd_cells(int argc, char **argv)
         rc = run_frames(ctx, in_path, traj, &in, &range, &opt, out_path, contacts_path, json,
                         stats);
         int code = rc == VB_OK ? VB_EXIT_OK : vb_cli_fail(ctx, rc);
+        vb_cli_progress_clear();
         vb_close(ctx);
         return code;
     }
@@ -239,6 +242,7 @@ int vb_cmd_cells(int argc, char **argv)
     int exit_code = rc == VB_OK ? VB_EXIT_OK : vb_cli_fail(ctx, rc);
     vb_cell_measures_free(&m);
     vb_spheres_free(set);
+    vb_cli_progress_clear();
     vb_close(ctx);
     return exit_code;
 }

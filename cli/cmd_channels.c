@@ -385,6 +385,12 @@ int vb_cmd_channels(int argc, char **argv)
     if ((rc = vb_world_agree(ctx, rc)) != VB_OK)
         goto done;
     vbc_run_init(&S.run, &A.c, pipe, A.input);
+    /* --frames a:b:step with an end: the number of frames is known. */
+    if (A.c.f1 > A.c.f0 && A.c.fstep > 0)
+        S.run.frames_total = (A.c.f1 - A.c.f0 + A.c.fstep - 1) / A.c.fstep;
+    /* Progress shares stderr with --stats as the status line does: not then. */
+    if (!A.c.stats_stderr)
+        vb_cli_progress_attach(ctx);
     if (rank0 && A.c.json)
         vbc_write_json_begin(out[SINK_TABLE], A.c.traj ? A.c.traj : A.input, A.c.probe, A.c.grid,
                              vbc_pipe_device_name(pipe));

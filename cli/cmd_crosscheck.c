@@ -12,6 +12,7 @@
 #include "vb_verify.h"
 #include "vb_vertex_io.h"
 #include "pipeline_options.h"
+#include "progress.h"
 #include "vb_default.h"
 #include "vb_diag.h"
 
@@ -231,10 +232,9 @@ static int run(vb_ctx *ctx, const options *o)
         vb_vertices_result res;
         vb_vertices_result_init(&res);
         vb_vertices_config cfg = o->po.cfg;
-        vb_cli_bar bar;
-        vb_cli_bar_attach(&bar, &cfg.sampler);
+        vb_cli_progress_attach(ctx);
         rc = vb_vertices_run_default(ctx, set, &cfg, &res);
-        vb_cli_bar_clear(&bar);
+        vb_cli_progress_clear();
         if (rc == VB_OK) {
             /* The certified list moves over; the rest of the result goes. */
             mine = res.certified;

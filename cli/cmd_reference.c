@@ -5,6 +5,7 @@
 #include "cli_common.h"
 #include "commands.h"
 #include "input_options.h"
+#include "progress.h"
 #include "vb_verify.h"
 #include "vb_vertex_io.h"
 
@@ -71,6 +72,7 @@ int vb_cmd_reference(int argc, char **argv)
         fprintf(stderr, "vorball: E%d: out of memory\n", vb_diag_number(VB_ENOMEM));
         return VB_EXIT_NOMEM;
     }
+    vb_cli_progress_attach(ctx);
     vb_vertex_format fmt;
     int rc = vb_vertex_format_parse(ctx, fmt_name, &fmt);
     if (rc != VB_OK) {
@@ -121,6 +123,7 @@ int vb_cmd_reference(int argc, char **argv)
         exit_code = vb_cli_fail(ctx, rc);
     vb_vertex_list_free(&out);
     vb_spheres_free(set);
+    vb_cli_progress_clear();
     vb_close(ctx);
     return exit_code;
 }

@@ -6,6 +6,7 @@
 #include "cli_common.h"
 #include "commands.h"
 #include "input_options.h"
+#include "progress.h"
 #include "vb_arc.h"
 #include "vb_verify_file.h"
 #include "verify_periodic.h"
@@ -189,8 +190,10 @@ int vb_cmd_verify(int argc, char **argv)
         fprintf(stderr, "vorball: E%d: out of memory\n", vb_diag_number(VB_ENOMEM));
         return VB_EXIT_NOMEM;
     }
+    vb_cli_progress_attach(ctx);
     int mismatch = 0;
     int rc = run(ctx, &o, &mismatch);
+    vb_cli_progress_clear();
     ex = rc == VB_OK ? (mismatch ? VB_EXIT_MISMATCH : VB_EXIT_OK) : vb_cli_fail(ctx, rc);
     vb_close(ctx);
     return ex;

@@ -9,6 +9,7 @@
 #include "commands.h"
 #include "input_options.h"
 #include "pipeline_options.h"
+#include "progress.h"
 #include "vorball.h"
 #include "vb_world.h"
 #include "vertex_parts.h"
@@ -160,11 +161,10 @@ int vb_cmd_vertices(int argc, char **argv)
         return code;
     }
     int busy = vb_cli_vertices_part(ctx, &po.cfg);
-    vb_cli_bar bar;
-    vb_cli_bar_attach(&bar, &po.cfg.sampler);
+    vb_cli_progress_attach(ctx);
     if (rc == VB_OK && busy)
         rc = vb_vertices_run_default(ctx, set, &po.cfg, &res);
-    vb_cli_bar_clear(&bar);
+    vb_cli_progress_clear();
     /* Rank 0 writes once every rank's part is certified and merged. */
     rc = vb_world_agree(ctx, rc);
     if (rc == VB_OK)
@@ -190,6 +190,7 @@ int vb_cmd_vertices(int argc, char **argv)
     }
     if (writer && rc == VB_OK && topo_path)
         rc = write_topology(ctx, topo_path, &done.topology);
+    vb_cli_progress_clear();
     code = vb_world_end(ctx, rc);
     vb_completion_free(&done);
     vb_vertices_result_free(&res);

@@ -4,6 +4,7 @@
 
 #include "cli_common.h"
 #include "commands.h"
+#include "progress.h"
 #include "vb_world.h"
 #include "vb_output.h"
 
@@ -70,6 +71,8 @@ static void usage(FILE *f)
     fprintf(f,
             "\n'vorball <command> --help' describes each command; 'vorball --version'\n"
             "prints the version, commit, build options, library versions and device.\n"
+            "Long work draws one progress line on stderr when it is a terminal;\n"
+            "--quiet (anywhere on the line) turns it off, as VORBALL_NO_PROGRESS=1 does.\n"
             "Exit codes: 0 ok, 1 check failed, 2 usage, 3 i/o, 4 memory, 5 device,\n"
             "6 internal, 7 degenerate, 8 precision, 11-27 bad input (see README).\n");
 }
@@ -79,6 +82,16 @@ static int dispatch(int argc, char **argv)
 {
     /* Mistakes are the same on every MPI rank: rank 0 names them. */
     FILE *err = vb_world_rank() == 0 ? stderr : NULL;
+    /* --quiet, anywhere on the line, is global: no progress line. */
+    int kept = 1;
+    for (int i = 1; i < argc; i++) {
+        if (strcmp(argv[i], "--quiet") == 0)
+            vb_cli_set_quiet(1);
+        else
+            argv[kept++] = argv[i];
+    }
+    argc = kept;
+    argv[argc] = NULL;
     if (argc < 2) {
         if (err)
             usage(err);

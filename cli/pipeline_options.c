@@ -1,10 +1,8 @@
-/* The options of the commands that run the vertex pipeline, and the
- * progress bar they draw. */
+/* The options of the commands that run the vertex pipeline. */
 #include "pipeline_options.h"
 
 #include <stdio.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "cli_common.h"
 
@@ -98,32 +96,3 @@ int vb_pipeline_option(const char *cmd, int argc, char **argv, int *i, vb_pipeli
     return 0;
 }
 
-/* Draws only after a second and only on a terminal, so logs stay clean. */
-static void bar_update(void *user, double frac)
-{
-    vb_cli_bar *b = user;
-    if (vb_now() - b->start < 1.0)
-        return;
-    int w = 40, k = (int)(frac * w + 0.5);
-    fprintf(stderr, "\rsampling [%.*s%*s] %3d%%", k, "########################################",
-            w - k, "", (int)(frac * 100.0 + 0.5));
-    fflush(stderr);
-    b->shown = 1;
-}
-
-void vb_cli_bar_attach(vb_cli_bar *b, vb_sampler_options *so)
-{
-    b->start = vb_now();
-    b->shown = 0;
-    if (isatty(fileno(stderr))) {
-        so->progress = bar_update;
-        so->progress_user = b;
-    }
-}
-
-void vb_cli_bar_clear(vb_cli_bar *b)
-{
-    if (b->shown)
-        fputs("\r\033[K", stderr);
-    b->shown = 0;
-}

@@ -1,5 +1,5 @@
 /* The options of the commands that run the vertex pipeline (vertices,
- * bench, crosscheck) and the progress bar they draw on a terminal. */
+ * bench, crosscheck); their progress goes through progress.h. */
 #ifndef VB_CLI_PIPELINE_OPTIONS_H
 #define VB_CLI_PIPELINE_OPTIONS_H
 
@@ -23,16 +23,5 @@ void vb_pipeline_opts_defaults(vb_pipeline_opts *o);
  * argv[0] for an input option). */
 int vb_pipeline_option(const char *cmd, int argc, char **argv, int *i, vb_pipeline_opts *o,
                        vb_ctx *ctx);
-
-/* A progress bar on stderr: drawn only when stderr is a terminal and the
- * run takes more than a second. attach sets so's progress callback. */
-typedef struct vb_cli_bar {
-    double start;
-    int shown;
-} vb_cli_bar;
-
-void vb_cli_bar_attach(vb_cli_bar *b, vb_sampler_options *so);
-/* Erases the bar if it was drawn. */
-void vb_cli_bar_clear(vb_cli_bar *b);
 
 #endif

@@ -2,7 +2,9 @@
 #include "vb.h"
 #include "vb_diag.h"
 
+#include <pthread.h>
 #include <stdarg.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -16,6 +18,9 @@
 #define VB_CTX_LIVE 0xa7u
 #define VB_CTX_DEAD 0x5du
 
+/* Stages whose progress is tracked at once (more rotate through). */
+#define VB_PROGRESS_STAGES 4
+
 struct vb_ctx {
     unsigned char state;
     vb_config cfg;
@@ -27,6 +32,20 @@ struct vb_ctx {
     vb_log_fn log;          /* NULL: text to the diagnostic stream */
     void *log_arg;
     vb_stats stats;
+    /* Progress (vb_progress): the callback, or the context a worker
+     * forwards to; per stage (stages may run at once: the cover and the
+     * certification of its parts) the done last reported and the done
+     * below which a report is not worth a call. */
+    vb_progress_fn progress;
+    void *progress_user;
+    vb_ctx *progress_to;
+    pthread_mutex_t progress_lock;
+    struct {
+        _Atomic(const char *) stage;
+        _Atomic uint64_t gate;
+        uint64_t done;
+    } ps[VB_PROGRESS_STAGES];
+    unsigned ps_next;       /* the slot a new stage takes (round robin) */
 };
 
 int vb_open(vb_ctx **out, const vb_config *cfg)
@@ -39,6 +58,7 @@ int vb_open(vb_ctx **out, const vb_config *cfg)
         c->cfg = *cfg;
     else
         c->cfg.verbosity = 1;
+    pthread_mutex_init(&c->progress_lock, NULL);
     c->state = VB_CTX_LIVE;
     *out = c;
     return VB_OK;
@@ -54,6 +74,7 @@ void vb_close(vb_ctx *ctx)
     if (vb_ctx_check(ctx) != VB_OK)
         return;
     ctx->state = VB_CTX_DEAD;
+    pthread_mutex_destroy(&ctx->progress_lock);
     free(ctx);
 }
 
@@ -106,6 +127,68 @@ int vb_set_log(vb_ctx *ctx, vb_log_fn fn, void *arg)
     ctx->log = fn;
     ctx->log_arg = fn ? arg : NULL;
     return VB_OK;
+}
+
+int vb_set_progress(vb_ctx *ctx, vb_progress_fn fn, void *user)
+{
+    if (vb_ctx_check(ctx) != VB_OK)
+        return VB_EMISUSE;
+    pthread_mutex_lock(&ctx->progress_lock);
+    ctx->progress = fn;
+    ctx->progress_user = fn ? user : NULL;
+    for (int k = 0; k < VB_PROGRESS_STAGES; k++) {
+        atomic_store(&ctx->ps[k].stage, NULL);
+        atomic_store(&ctx->ps[k].gate, 0);
+        ctx->ps[k].done = 0;
+    }
+    pthread_mutex_unlock(&ctx->progress_lock);
+    return VB_OK;
+}
+
+void vb_progress_forward(vb_ctx *worker, vb_ctx *owner)
+{
+    if (vb_ctx_check(worker) == VB_OK && vb_ctx_check(owner) == VB_OK && worker != owner)
+        worker->progress_to = owner;
+}
+
+static int progress_slot(vb_ctx *ctx, const char *stage)
+{
+    for (int k = 0; k < VB_PROGRESS_STAGES; k++)
+    {
+        const char *s = atomic_load(&ctx->ps[k].stage);
+        if (s == stage || (s && strcmp(s, stage) == 0))
+            return k;
+    }
+    return -1;
+}
+
+void vb_progress(vb_ctx *ctx, const char *stage, uint64_t done, uint64_t total)
+{
+    if (vb_ctx_check(ctx) != VB_OK || !stage)
+        return;
+    for (int hops = 0; ctx->progress_to && hops < 8; hops++)
+        ctx = ctx->progress_to;
+    if (!ctx->progress)
+        return;
+    /* The fast path, without the lock: a known stage below its next 1/1000. */
+    int last = total > 0 && done >= total;
+    int k = progress_slot(ctx, stage);
+    if (k >= 0 && !last && done > 0 && done < atomic_load(&ctx->ps[k].gate))
+        return;
+    pthread_mutex_lock(&ctx->progress_lock);
+    k = progress_slot(ctx, stage);
+    int fresh = k < 0;
+    if (fresh) {
+        k = (int)(ctx->ps_next++ % VB_PROGRESS_STAGES);
+        atomic_store(&ctx->ps[k].stage, stage);
+    }
+    if (ctx->progress && (fresh || done == 0 || done > ctx->ps[k].done)) {
+        uint64_t step = total >= 1000 ? total / 1000 : 1;
+        ctx->ps[k].done = done;
+        atomic_store(&ctx->ps[k].gate, done + step);
+        ctx->progress(ctx->progress_user, stage, done, total);
+    }
+    pthread_mutex_unlock(&ctx->progress_lock);
 }
 
 vb_stats *vb_ctx_stats(vb_ctx *ctx)

@@ -166,6 +166,31 @@ int vb_set_verbosity(vb_ctx *ctx, int verbosity);
  * closed context. */
 int vb_set_log(vb_ctx *ctx, vb_log_fn fn, void *arg);
 
+/* A progress callback: `stage` names the loop ("cover", "certify",
+ * "arcs", "reference", "frames", "cells", "sampling"; a static string),
+ * `done` of `total` units are finished (total 0: not known). Called at a
+ * bounded rate (when done crosses a new 1/1000 of total, and once with
+ * done == total), serialised (never two calls at once, though possibly
+ * from a worker thread), with done increasing within one run of a stage.
+ * It only observes: results are the same with or without it. */
+typedef void (*vb_progress_fn)(void *user, const char *stage, uint64_t done, uint64_t total);
+
+/* Installs the context's progress callback (NULL removes it). VB_OK, or
+ * VB_EMISUSE (nothing done) for a NULL or closed context. */
+int vb_set_progress(vb_ctx *ctx, vb_progress_fn fn, void *user);
+
+/* Makes `worker` (a context a library loop opened for a thread) report
+ * its progress through `owner`'s callback and rate limit, so that a
+ * callback the caller installed is never lost on a worker context. owner
+ * must outlive worker's use; NULL for either does nothing. */
+void vb_progress_forward(vb_ctx *worker, vb_ctx *owner);
+
+/* Library loops report here: `done` of `total` units of `stage` finished.
+ * Cheap when no callback is installed or no new 1/1000 is crossed (one
+ * atomic load); thread-safe. Reports that go backwards within a stage
+ * are dropped, except done == 0 which starts a new run of it. */
+void vb_progress(vb_ctx *ctx, const char *stage, uint64_t done, uint64_t total);
+
 /* Mutable access to the context's counters; never NULL for an open ctx. */
 vb_stats *vb_ctx_stats(vb_ctx *ctx);
 

@@ -26,7 +26,17 @@ typedef struct job {
     size_t ncells;
     atomic_size_t next;
     atomic_int failed;
+    vb_ctx *ctx;            /* where progress goes (vb_progress) */
+    size_t base, all;       /* cells of earlier parts, and of every part */
+    atomic_size_t covered;  /* cells of this part covered so far */
 } job;
+
+/* n more cells covered: the progress of the whole cover, from any thread. */
+static void covered(job *jb, size_t n)
+{
+    size_t d = atomic_fetch_add(&jb->covered, n) + n;
+    vb_progress(jb->ctx, "cover", jb->base + d, jb->all);
+}
 
 /* A worker's arena (grown when a cell overflows it) and its quadruples. */
 typedef struct worker {
@@ -133,6 +143,7 @@ static void *work(void *arg)
             atomic_store(&jb->failed, 1);
             break;
         }
+        covered(jb, 1);
     }
     return NULL;
 }
@@ -208,6 +219,7 @@ static void *hybrid_host(void *arg)
             pthread_mutex_unlock(&sh->mu);
             return NULL;
         }
+        covered(jb, 1);
     }
 }
 
@@ -249,6 +261,7 @@ static int hybrid_device(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w0,
         pthread_cond_broadcast(&sh->cv);
         pthread_mutex_unlock(&sh->mu);
         w0->st.host_cells += nl;
+        covered(jb, n - nl);
     }
     free(outs);
     return rc;
@@ -404,6 +417,7 @@ int vb_cover_run_parts(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_opt
     job jb;
     memset(&jb, 0, sizeof jb);
     jb.set = set;
+    jb.ctx = ctx;
     vb_cover_tree *tree = NULL;
     int prc = vb_cover_prepare(ctx, set, &o, &tree, &jb.env);
     if (prc != VB_OK)
@@ -447,6 +461,11 @@ int vb_cover_run_parts(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_opt
         size_t c0 = ncells * p / parts, c1 = ncells * (p + 1) / parts;
         jb.cells = cells + c0;
         jb.ncells = c1 - c0;
+        jb.base = c0;
+        jb.all = ncells;
+        atomic_store(&jb.covered, 0);
+        if (p == 0)
+            vb_progress(ctx, "cover", 0, ncells);
         double t0 = vb_now();
         if (be)
             rc = cover_hybrid(ctx, &jb, be, w, nt);
@@ -461,6 +480,8 @@ int vb_cover_run_parts(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_opt
             rc = sink(user, &part);
         vb_quad_list_free(&part);
     }
+    if (rc == VB_OK)
+        vb_progress(ctx, "cover", ncells, ncells);
     for (int t = 0; w && t < nt; t++) {
         stats_sum(&st, &w[t].st);
         arena_free(&w[t].ar);

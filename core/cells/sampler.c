@@ -358,6 +358,7 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
             for (size_t k = 0; k < bb.nbases && rc == VB_OK; k++)
                 if (vbs_topo_collect(&topo, &batch, k))
                     rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (topology)");
+        vb_progress(ctx, "sampling", b1, set->n);
         if (o.progress)
             o.progress(o.progress_user, (double)b1 / (double)set->n);
     }

@@ -358,12 +358,15 @@ static vb_vertices_config streamed(const vb_vertices_config *cfg, vbv_cert_strea
  * over it (*csp NULL otherwise, or when the stream cannot be made). */
 static void certifier_start(const vb_certifier_ops *ops, const vb_sphere_set *set,
                             const vb_vertices_config *cfg, vbv_cert_open *co,
-                            vbv_cert_stream *cs, vbv_cert_stream **csp)
+                            vbv_cert_stream *cs, vbv_cert_stream **csp, vb_ctx *ctx)
 {
     vbv_cert_open_start(co, ops, set, cfg->sampler.threads);
+    vb_progress_forward(co->tctx, ctx);
     *csp = NULL;
-    if (ops->certify_quads && vbv_cert_stream_init(cs, co) == VB_OK)
+    if (ops->certify_quads && vbv_cert_stream_init(cs, co) == VB_OK) {
+        vb_progress_forward(cs->tctx, ctx);
         *csp = cs;
+    }
 }
 
 /* A proposal stopped by the stream (its sink failed) carries the stream's
@@ -416,7 +419,7 @@ int vb_vertices_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertices_con
     }
     vbv_cert_open co;
     vbv_cert_stream css, *cs;
-    certifier_start(be->certifier, set, cfg, &co, &css, &cs);
+    certifier_start(be->certifier, set, cfg, &co, &css, &cs, ctx);
     vb_vertices_config pcfg = streamed(cfg, cs);
     vb_proposer_await aw = {await_state, opener_ready, &op, cfg->device};
     rc = propose(ctx, p, state, async ? &aw : NULL, set, &pcfg, res);
@@ -506,7 +509,7 @@ int vb_vertices_run_on(vb_ctx *ctx, vb_vertices_engine *e, const vb_sphere_set *
         return mrc;
     vbv_cert_open co;
     vbv_cert_stream css, *cs;
-    certifier_start(e->be.certifier, set, cfg, &co, &css, &cs);
+    certifier_start(e->be.certifier, set, cfg, &co, &css, &cs, ctx);
     vb_vertices_config pcfg = streamed(cfg, cs);
     int rc = stream_error(ctx, cs, propose(ctx, e->prop, e->state, NULL, set, &pcfg, res));
     if (rc != VB_OK && VB_CATEGORY(rc) == VB_EDEVICE && e->dev) {

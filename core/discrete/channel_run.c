@@ -204,6 +204,8 @@ int vbc_run_frame(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index, 
         return rc;
     }
     r->frames_done++;
+    vb_progress(ctx, "frames", (uint64_t)r->frames_done,
+                r->frames_total > 0 ? (uint64_t)r->frames_total : 0);
     return VB_OK;
 }
 

@@ -22,6 +22,7 @@ typedef struct vbc_run {
     vbc_pipe *pipe;           /* the caller's */
     const char *input;        /* named in warnings */
     long frames_done;         /* frames analysed */
+    long frames_total;        /* frames to analyse when known (progress), else 0 */
     double sum_total, sum_masks; /* ms over every run of every frame */
     vbc_grid fixed;           /* --fixed-grid: fitted on the first frame */
     float *occupancy;         /* --occupancy: frames per voxel */

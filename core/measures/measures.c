@@ -2,6 +2,7 @@
  * one integration per atom (cell_patches.c) on a thread of its own, and the
  * two sides of every contact met. */
 #include <gmp.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -110,6 +111,8 @@ typedef struct job {
     size_t cap_nb[VB_MAX_THREADS];
     size_t patches[VB_MAX_THREADS];
     int failed;
+    vb_ctx *ctx;               /* where progress goes */
+    atomic_size_t atoms_done;  /* atoms finished, every thread (progress) */
 } job;
 
 static int cmp_pair(const void *a, const void *b)
@@ -185,9 +188,14 @@ static int neighbours(job *jb, size_t i, int tid, size_t *nnb)
     return 0;
 }
 
-static void one_atom(void *ctx, size_t i, int tid)
+/* One more atom done (or found empty): the progress, from any thread. */
+static void atom_done(job *jb)
 {
-    job *jb = ctx;
+    vb_progress(jb->ctx, "cells", atomic_fetch_add(&jb->atoms_done, 1) + 1, jb->set->n);
+}
+
+static void measure_atom(job *jb, size_t i, int tid)
+{
     vb_cell_measures *o = jb->out;
     size_t nnb = 0;
     int e = jb->set->contained[i] ? 1 : neighbours(jb, i, tid, &nnb);
@@ -220,6 +228,13 @@ static void one_atom(void *ctx, size_t i, int tid)
         qsort(r.pairs, r.npairs, sizeof *r.pairs, cmp_pair);
     jb->pairs[i] = r.pairs;
     jb->npairs[i] = r.npairs;
+}
+
+static void one_atom(void *ctx, size_t i, int tid)
+{
+    job *jb = ctx;
+    measure_atom(jb, i, tid);
+    atom_done(jb);
 }
 
 /* The area of (i, j) seen from j, [0, 0] when j proved it absent. */
@@ -351,6 +366,9 @@ int vb_cell_measures_compute(vb_ctx *ctx, const vb_sphere_set *set, const vb_mea
     jb->g = &g;
     jb->probe = opt->probe == 0.0 ? vbx_ia_point(0.0) : widen(opt->probe);
     jb->out = out;
+    jb->ctx = ctx;
+    atomic_init(&jb->atoms_done, 0);
+    vb_progress(ctx, "cells", 0, n);
     vb_parallel_for(one_atom, jb, n, vb_threads((unsigned)(opt->threads > 0 ? opt->threads : 0)));
     if (jb->failed) {
         rc = jb->failed == VB_ENOMEM

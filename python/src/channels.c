@@ -263,11 +263,11 @@ static int config_from(PyObject *kw, vbc_channels_config *cfg)
 static PyObject *channels_run(PyObject *self, PyObject *args)
 {
     (void)self;
-    PyObject *pcap, *scap, *kw, *ccap;
+    PyObject *pcap, *scap, *kw, *ccap, *progress;
     int model, want_flags, first;
     long frame;
-    if (!PyArg_ParseTuple(args, "OOO!Oilpp", &pcap, &scap, &PyDict_Type, &kw, &ccap, &model,
-                          &frame, &want_flags, &first))
+    if (!PyArg_ParseTuple(args, "OOO!OilppO", &pcap, &scap, &PyDict_Type, &kw, &ccap, &model,
+                          &frame, &want_flags, &first, &progress))
         return NULL;
     vbc_pipe *pipe = PyCapsule_GetPointer(pcap, PIPE_CAPSULE);
     vb_sphere_set *s = pipe ? vbpy_spheres_get(scap) : NULL;
@@ -291,15 +291,17 @@ static PyObject *channels_run(PyObject *self, PyObject *args)
         cfg->pore.enabled = enabled;
     }
     vbpy_call c;
-    if (vbpy_call_open(&c) != 0) {
+    if (vbpy_progress_check(progress) != 0 || vbpy_call_open(&c) != 0) {
         free(cfg);
         return NULL;
     }
+    vbpy_call_progress(&c, progress);
     vbc_run run;
     vbc_run_out o;
     int rc;
     vbc_run_init(&run, cfg, pipe, s->source);
     run.want = want_flags ? VBC_WANT_FLAGS : 0;
+    run.frames_total = 1; /* one frame a call: progress ("frames", 1, 1) */
     Py_BEGIN_ALLOW_THREADS
     rc = vbc_run_frame(c.ctx, &run, s, frame, model, first, &o);
     Py_END_ALLOW_THREADS

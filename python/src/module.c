@@ -77,6 +77,41 @@ int vbpy_call_open(vbpy_call *c)
     return 0;
 }
 
+/* The progress callback: the library serialises the calls; the GIL is
+ * taken here because the run released it (Py_BEGIN_ALLOW_THREADS). */
+static void call_progress(void *arg, const char *stage, uint64_t done, uint64_t total)
+{
+    vbpy_call *c = arg;
+    if (c->progress_off)
+        return;
+    PyGILState_STATE g = PyGILState_Ensure();
+    PyObject *r = PyObject_CallFunction(c->progress, "sKK", stage, (unsigned long long)done,
+                                        (unsigned long long)total);
+    if (r) {
+        Py_DECREF(r);
+    } else {
+        c->progress_off = 1;
+        PyErr_WriteUnraisable(c->progress);
+    }
+    PyGILState_Release(g);
+}
+
+int vbpy_progress_check(PyObject *fn)
+{
+    if (fn == Py_None || PyCallable_Check(fn))
+        return 0;
+    PyErr_SetString(PyExc_TypeError, "progress must be a callable or None");
+    return -1;
+}
+
+void vbpy_call_progress(vbpy_call *c, PyObject *fn)
+{
+    if (!fn || fn == Py_None)
+        return;
+    c->progress = fn;
+    vb_set_progress(c->ctx, call_progress, c);
+}
+
 /* The records as a list of tuples; the records and the context released. */
 static PyObject *call_close(vbpy_call *c)
 {

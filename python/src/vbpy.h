@@ -39,10 +39,23 @@ typedef struct vbpy_call {
     size_t n, cap;
     int lost;               /* a record could not be kept (out of memory) */
     void *lock;             /* pthread_mutex_t: threads of a run may log at once */
+    PyObject *progress;     /* the progress callable (borrowed), or NULL */
+    int progress_off;       /* it raised: no more calls */
 } vbpy_call;
 
 /* Opens the context. 0, or -1 with MemoryError set. */
 int vbpy_call_open(vbpy_call *c);
+
+/* Installs the callable `fn` (None: nothing) as the call's progress
+ * callback (vb_set_progress): fn(stage, done, total) from whichever thread
+ * reports, with the GIL taken. An exception it raises is printed as
+ * unraisable (sys.unraisablehook) and ends the calls; the run goes on.
+ * fn must have passed vbpy_progress_check and outlive the call (an
+ * argument of the Python call does). */
+void vbpy_call_progress(vbpy_call *c, PyObject *fn);
+
+/* 0 when fn is None or callable, else -1 with TypeError set. */
+int vbpy_progress_check(PyObject *fn);
 
 /* The diagnostics captured so far as a list of (kind, number, file, line,
  * message) tuples (new reference; NULL with an exception set) and the

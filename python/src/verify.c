@@ -122,13 +122,13 @@ static PyObject *report_dict(vb_ctx *ctx, const vb_sphere_set *set, const char *
 static PyObject *verify_run(PyObject *self, PyObject *args)
 {
     (void)self;
-    PyObject *cap, *vertices;
+    PyObject *cap, *vertices, *progress;
     const char *format, *name, *spheres_name;
     double tol;
     int complete, arcs;
     unsigned threads;
-    if (!PyArg_ParseTuple(args, "OOssdpspI", &cap, &vertices, &format, &name, &tol, &complete,
-                          &spheres_name, &arcs, &threads))
+    if (!PyArg_ParseTuple(args, "OOssdpspIO", &cap, &vertices, &format, &name, &tol, &complete,
+                          &spheres_name, &arcs, &threads, &progress))
         return NULL;
     vb_sphere_set *set = vbpy_spheres_get(cap);
     if (!set)
@@ -151,11 +151,12 @@ static PyObject *verify_run(PyObject *self, PyObject *args)
         return NULL;
     }
     vbpy_call c;
-    if (vbpy_call_open(&c) != 0) {
+    if (vbpy_progress_check(progress) != 0 || vbpy_call_open(&c) != 0) {
         Py_XDECREF(path);
         vb_vertex_list_free(&v);
         return NULL;
     }
+    vbpy_call_progress(&c, progress);
     vb_verify_report r;
     int rc;
     const char *p = path ? PyBytes_AS_STRING(path) : NULL;

@@ -168,14 +168,14 @@ static PyObject *result_dict(vb_ctx *ctx, const vb_vertices_result *r, const vb_
 static PyObject *vertices_run(PyObject *self, PyObject *args)
 {
     (void)self;
-    PyObject *cap, *engine, *proposer;
+    PyObject *cap, *engine, *proposer, *progress;
     const char *device;
     unsigned samples, tiles, threads;
     double tol;
     int all_pairs;
     vb_completion_opts co = {0};
-    if (!PyArg_ParseTuple(args, "OOsOIdIpIpp", &cap, &engine, &device, &proposer, &samples, &tol,
-                          &tiles, &all_pairs, &threads, &co.arcs, &co.topology))
+    if (!PyArg_ParseTuple(args, "OOsOIdIpIppO", &cap, &engine, &device, &proposer, &samples, &tol,
+                          &tiles, &all_pairs, &threads, &co.arcs, &co.topology, &progress))
         return NULL;
     vb_sphere_set *set = vbpy_spheres_get(cap);
     vb_vertices_engine *e = engine == Py_None ? NULL : PyCapsule_GetPointer(engine, ENGINE_CAPSULE);
@@ -188,8 +188,9 @@ static PyObject *vertices_run(PyObject *self, PyObject *args)
     cfg.sampler.all_pairs = all_pairs;
     cfg.sampler.threads = threads;
     vbpy_call c;
-    if (vbpy_call_open(&c) != 0)
+    if (vbpy_progress_check(progress) != 0 || vbpy_call_open(&c) != 0)
         return NULL;
+    vbpy_call_progress(&c, progress);
     vb_vertices_result res;
     vb_vertices_result_init(&res);
     vb_completion done;

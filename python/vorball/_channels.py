@@ -6,7 +6,7 @@ from __future__ import annotations
 import csv
 import io
 import json as _json
-from typing import Any, Dict, List, Optional, Tuple
+from typing import Any, Callable, Dict, List, Optional, Tuple
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -194,13 +194,14 @@ def channel_options() -> Dict[str, Tuple[str, float, float, Optional[str], Optio
 def run_channels(pipe: Any, first: bool, xyz: SphereInput, r: Optional[ArrayLike],
                  grid: Optional[int] = None, probe: Optional[float] = None, *, carry: Any = None,
                  flags: bool = False, zero_radius: str = "auto", verbose: bool = False,
+                 progress: Optional[Callable[[str, int, int], Any]] = None,
                  **options: Any) -> Channels:
     """One frame through an opened channel pipe (vorball.channels, Engine.channels)."""
     kw = _keywords(grid, probe, options)
     s, made = as_spheres(xyz, r, min_count=1, zero_radius=zero_radius, exact=False,
                          revalidated=False)
     d, diag = _core.channels_run(pipe, s._capsule, kw, carry, int(s.model), int(s.index),
-                                 bool(flags), bool(first))
+                                 bool(flags), bool(first), progress)
     w = made + parse(diag)
     emit(w, verbose)
     return Channels(d, w, s, s.index, s.model)
@@ -209,7 +210,8 @@ def run_channels(pipe: Any, first: bool, xyz: SphereInput, r: Optional[ArrayLike
 def channels(xyz: SphereInput, r: Optional[ArrayLike] = None, grid: Optional[int] = None,
              probe: Optional[float] = None, *, device: Optional[str] = None,
              jfa: Optional[str] = None, flags: bool = False, zero_radius: str = "auto",
-             verbose: bool = False, **options: Any) -> Channels:
+             verbose: bool = False, progress: Optional[Callable[[str, int, int], Any]] = None,
+             **options: Any) -> Channels:
     """Channels, cavities and the pore of one set of spheres, as `vorball
     channels` (the same call: the same table, pore included).
 
@@ -222,7 +224,9 @@ def channels(xyz: SphereInput, r: Optional[ArrayLike] = None, grid: Optional[int
     back). flags=True keeps the mask volume. For the frames of a
     trajectory, open the device once: `with vorball.Engine() as e: for f in
     vorball.frames(...): e.channels(f)` (later frames sweep the first
-    frame's pore axis, as the command does). Returns Channels; raises
+    frame's pore axis, as the command does). progress: a callable,
+    progress('frames', 1, 1) once the frame is analysed (the library's
+    progress callback, as for vorball.vertices). Returns Channels; raises
     VorballError.
 
     Options (vorball.channel_options()):
@@ -237,7 +241,7 @@ def channels(xyz: SphereInput, r: Optional[ArrayLike] = None, grid: Optional[int
     w = parse(diag)
     emit(w, verbose)
     c = run_channels(pipe, True, xyz, r, flags=flags, zero_radius=zero_radius, verbose=verbose,
-                     **kw)
+                     progress=progress, **kw)
     c.warnings[:0] = w
     return c
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 import json as _json
 import numbers
 import os
-from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -145,7 +145,8 @@ def _is_vertices(v):
 def verify(xyz: SphereInput, r: Union[ArrayLike, VertexInput, None] = None,
            vertices: Optional[VertexInput] = None, *, tol: float = 1e-6, complete: bool = False,
            arcs: bool = False, threads: int = 0, format: str = "tsv", zero_radius: str = "auto",
-           verbose: bool = False) -> Report:
+           verbose: bool = False, progress: Optional[Callable[[str, int, int], Any]] = None
+           ) -> Report:
     """Judges vertices exactly against the spheres, as `vorball verify`.
 
     xyz, r: the spheres (arrays, a Spheres or a file path; r may be left
@@ -157,7 +158,12 @@ def verify(xyz: SphereInput, r: Union[ArrayLike, VertexInput, None] = None,
     also list the vertices no line names (exact reference: small inputs);
     arcs: trace every edge of the certified lines exactly (`--arcs`, any
     size; report.arcs, report.arcs_missing); threads: its host threads
-    (0: all CPUs; the report does not depend on it). Returns a Report; raises VorballError (E105 for no vertices).
+    (0: all CPUs; the report does not depend on it). progress: a callable called as progress(stage, done, total) while
+    the library works (stage 'arcs'; done rises to
+    total within a stage, total 0 when not known), at most about 1000
+    times a stage, from a worker thread; an exception it raises is printed
+    as unraisable (sys.unraisablehook) and stops the calls, never the run.
+    Returns a Report; raises VorballError (E105 for no vertices).
     """
     if vertices is None and r is not None and _is_vertices(r):
         r, vertices = None, r
@@ -176,7 +182,7 @@ def verify(xyz: SphereInput, r: Union[ArrayLike, VertexInput, None] = None,
         v = _csr(vertices)
         name = "<vertices>"
     d, diag = _core.verify_run(s._capsule, v, format, name, float(tol), bool(complete), s.source,
-                               bool(arcs), int(threads))
+                               bool(arcs), int(threads), progress)
     w = made + parse(diag)
     emit(w, verbose)
     return Report(d, w)

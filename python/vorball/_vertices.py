@@ -4,7 +4,7 @@ from __future__ import annotations
 import numbers
 import os
 import threading
-from typing import Any, Dict, List, NamedTuple, Optional, Union
+from typing import Any, Callable, Dict, List, NamedTuple, Optional, Union
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -230,7 +230,8 @@ def vertices(xyz: SphereInput, r: Optional[ArrayLike] = None, device: str = "aut
              samples: int = 30, *, proposer: Optional[str] = None, tol: Optional[float] = None,
              tiles: int = 0, all_pairs: bool = False, threads: int = 0,
              arcs: bool = False, topology: bool = False, zero_radius: str = "auto",
-             verbose: bool = False) -> Result:
+             verbose: bool = False, progress: Optional[Callable[[str, int, int], Any]] = None
+             ) -> Result:
     """The certified Voronoi vertices of spheres, as `vorball vertices`.
 
     xyz, r: arrays (see vorball.spheres for how each number becomes an
@@ -246,6 +247,11 @@ def vertices(xyz: SphereInput, r: Optional[ArrayLike] = None, device: str = "aut
     on the way are certified and added, result.arcs holds the counts);
     topology: the faces and edges (`--topology`; exact from arc closure,
     which it implies unless proposer='sampling' and arcs=False).
+    progress: a callable called as progress(stage, done, total) while
+    the library works (stage 'cover', 'certify', 'arcs', ...; done rises to
+    total within a stage, total 0 when not known), at most about 1000
+    times a stage, from a worker thread; an exception it raises is printed
+    as unraisable (sys.unraisablehook) and stops the calls, never the run.
     Returns a Result that unpacks as (ids, xyz, t). Raises VorballError.
     Nothing is printed unless verbose.
     """
@@ -254,7 +260,7 @@ def vertices(xyz: SphereInput, r: Optional[ArrayLike] = None, device: str = "aut
         raise misuse("device must be auto, gpu, cpu or ref, not %r" % (device,))
     s, made = as_spheres(xyz, r, min_count=4, zero_radius=zero_radius)
     d, diag = _core.vertices_run(s._capsule, None, device, _proposer(proposer), *opts,
-                                 bool(arcs), bool(topology))
+                                 bool(arcs), bool(topology), progress)
     w = made + parse(diag)
     emit(w, verbose)
     return Result(d, w, s)
@@ -295,7 +301,8 @@ class Engine:
     def vertices(self, xyz: SphereInput, r: Optional[ArrayLike] = None, samples: int = 30, *,
                  tol: Optional[float] = None, tiles: int = 0, all_pairs: bool = False,
                  threads: int = 0, arcs: bool = False, topology: bool = False,
-                 zero_radius: str = "auto", verbose: Optional[bool] = None) -> Result:
+                 zero_radius: str = "auto", verbose: Optional[bool] = None,
+                 progress: Optional[Callable[[str, int, int], Any]] = None) -> Result:
         """vorball.vertices on this engine's device and proposer."""
         verbose = self.verbose if verbose is None else verbose
         opts = _options(samples, tol, tiles, all_pairs, threads)
@@ -305,7 +312,7 @@ class Engine:
                 self._vertices = self._open(_core.vertices_engine_open, self.device,
                                             self.proposer)
             d, diag = _core.vertices_run(s._capsule, self._vertices, self.device, self.proposer,
-                                         *opts, bool(arcs), bool(topology))
+                                         *opts, bool(arcs), bool(topology), progress)
         w = made + parse(diag)
         emit(w, verbose)
         return Result(d, w, s)

@@ -147,6 +147,61 @@ static void test_log_callback(void)
 }
 
 /* The misuse guard: a NULL context is caught, never dereferenced. */
+/* What a progress callback saw. */
+typedef struct seen {
+    int calls, last_stage_b;
+    uint64_t done[4096], total;
+} seen;
+
+static void keep_progress(void *user, const char *stage, uint64_t done, uint64_t total)
+{
+    seen *s = user;
+    if (stage[0] == 'b')
+        s->last_stage_b = 1;
+    if (s->calls < 4096 && stage[0] == 'a')
+        s->done[s->calls++] = done;
+    s->total = total;
+}
+
+/* vb_progress: at most one call per new 1/1000 of total and the last one
+ * always; never backwards; a worker context forwards to its owner; no
+ * callback, no call. */
+static void test_progress(void)
+{
+    vb_ctx *ctx, *worker;
+    CHECK_INT(vb_open(&ctx, NULL), VB_OK);
+    CHECK_INT(vb_open(&worker, NULL), VB_OK);
+    vb_progress(ctx, "a", 1, 10); /* nothing installed: nothing happens */
+    static seen s;
+    CHECK_INT(vb_set_progress(ctx, keep_progress, &s), VB_OK);
+    vb_progress_forward(worker, ctx);
+    const uint64_t total = 1000000;
+    vb_progress(ctx, "a", 0, total);
+    for (uint64_t d = 1; d <= total; d++)
+        vb_progress(d % 2 ? worker : ctx, "a", d, total);
+    CHECK(s.calls >= 1000 && s.calls <= 1002);
+    CHECK_INT((long)s.done[0], 0);
+    CHECK_INT((long)s.done[s.calls - 1], (long)total);
+    int up = 1;
+    for (int k = 1; k < s.calls; k++)
+        up &= s.done[k] > s.done[k - 1];
+    CHECK(up);
+    int before = s.calls;
+    vb_progress(worker, "a", 5, total); /* backwards: dropped */
+    CHECK_INT(s.calls, before);
+    vb_progress(ctx, "b", 1, 2);        /* another stage is reported */
+    CHECK(s.last_stage_b);
+    vb_progress(ctx, "a", 0, 7);        /* 0 starts a run of the stage again */
+    CHECK_INT(s.calls, before + 1);
+    CHECK_INT((long)s.total, 7);
+    CHECK_INT(vb_set_progress(ctx, NULL, NULL), VB_OK);
+    vb_progress(ctx, "a", 7, 7);
+    CHECK_INT(s.calls, before + 1);
+    CHECK_INT(vb_set_progress(NULL, keep_progress, &s), VB_EMISUSE);
+    vb_close(worker);
+    vb_close(ctx);
+}
+
 static void test_misuse(void)
 {
     CHECK_INT(vb_ctx_check(NULL), VB_EMISUSE);
@@ -188,6 +243,7 @@ int main(void)
     test_warnings_counted();
     test_verbosity();
     test_log_callback();
+    test_progress();
     test_misuse();
     test_vertex_sort();
     VB_TEST_END();

@@ -243,7 +243,8 @@ static int merge_events(closure *cl, vbx_tracer *tr, size_t e0, size_t n, size_t
 }
 
 /* Runs the n items on the tracers and merges their events in vbx_item order. */
-static int run_phase(closure *cl, vbx_tracer *tr, unsigned nt, const vbx_item *it, size_t n)
+static int run_phase(closure *cl, vbx_tracer *tr, unsigned nt, const vbx_item *it, size_t n,
+                     size_t base, size_t total)
 {
     if (!n)
         return VB_OK;
@@ -257,6 +258,10 @@ static int run_phase(closure *cl, vbx_tracer *tr, unsigned nt, const vbx_item *i
     ph.count = malloc(n * sizeof *ph.count);
     ph.who = malloc(n * sizeof *ph.who);
     atomic_init(&ph.next, 0);
+    atomic_init(&ph.done, 0);
+    ph.progress = total ? cl->ctx : NULL;
+    ph.base = base;
+    ph.total = total;
     int rc = VB_OK;
     vbx_rjob jobs[VB_MAX_THREADS];
     unsigned use = nt;
@@ -321,7 +326,7 @@ static int run_rounds(closure *cl, vbx_tracer *tr, unsigned nt)
             rc = push_item(&it, &nit, &it_cap, k, none, 1);
         cl->npend = 0;
         if (rc == VB_OK)
-            rc = run_phase(cl, tr, nt, it, nit);
+            rc = run_phase(cl, tr, nt, it, nit, lo, hi);
         for (size_t i = 0; rc == VB_OK && i < cl->npend; i++) {
             const vbx_item *pi = &cl->pend[i];
             if (ahas(&cl->arrived, pi->k, pi->t)) {
@@ -332,9 +337,11 @@ static int run_rounds(closure *cl, vbx_tracer *tr, unsigned nt)
             }
         }
         if (rc == VB_OK)
-            rc = run_phase(cl, tr, nt, back, nback);
+            rc = run_phase(cl, tr, nt, back, nback, 0, 0);
         lo = hi;
     }
+    if (rc == VB_OK)
+        vb_progress(cl->ctx, "arcs", cl->all.n, cl->all.n);
     free(it);
     free(back);
     if (rc == VB_ENOMEM)
@@ -447,6 +454,7 @@ static int close_list(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_lis
                 rc = VB_ENOMEM;
                 break;
             }
+            vb_progress_forward(tr[i].ctx, ctx);
         }
         rc = vbx_arcw_init(&tr[i].w, tr[i].ctx, tr[i].c);
         tr[i].have_w = 1;
@@ -467,8 +475,10 @@ static int close_list(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_lis
     }
     if (rc == VB_OK)
         rc = vb_uf_fit(&cl.comp, cl.all.n);
-    if (rc == VB_OK)
+    if (rc == VB_OK) {
+        vb_progress(ctx, "arcs", 0, cl.all.n);
         rc = run_rounds(&cl, tr, nt);
+    }
     if (rc == VB_OK) {
         out->vertices = cl.all.n;
         for (size_t k = 0; k < cl.all.n; k++)

@@ -266,6 +266,9 @@ void *vbx_phase_work(void *arg)
                 break;
             }
         }
+        if (ph->progress)
+            vb_progress(ph->progress, "arcs", ph->base + atomic_fetch_add(&ph->done, c1 - c0) +
+                                                  (c1 - c0), ph->total);
     }
     return NULL;
 }

@@ -100,6 +100,9 @@ typedef struct vbx_tphase {
     uint32_t *count;    /* ... number of events */
     uint16_t *who;      /* ... the tracer that holds them */
     atomic_size_t next; /* next chunk */
+    vb_ctx *progress;   /* NULL, or where "arcs" progress goes: base + items */
+    size_t base, total; /* done of total (vb_progress) */
+    atomic_size_t done; /* items traced so far */
 } vbx_tphase;
 
 /* Items a tracer takes at a time. */

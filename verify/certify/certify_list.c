@@ -123,6 +123,7 @@ static int run_workers(vb_ctx *ctx, vb_certifier *c, worker *ws, unsigned nt)
             rc = VB_ENOMEM;
             break;
         }
+        vb_progress_forward(ws[i].ctx, ctx);
     }
     /* A thread that cannot start has its share run by the caller. */
     if (rc == VB_OK)

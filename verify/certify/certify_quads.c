@@ -50,6 +50,7 @@ typedef struct qworker {
     const uint32_t (*quads)[4];
     size_t n;
     atomic_size_t *next;
+    atomic_size_t *judged;   /* quadruples judged by every worker (progress) */
     uint32_t *chunk_worker;  /* per chunk: who judged it */
     size_t *chunk_first;     /* per chunk: its first record, and (next entry) the end */
     size_t *chunk_end;
@@ -287,6 +288,7 @@ static void *work(void *arg)
             }
         }
         w->chunk_end[ch] = w->nrec;
+        vb_progress(w->ctx, "certify", atomic_fetch_add(w->judged, k1 - k0) + (k1 - k0), w->n);
     }
     return NULL;
 }
@@ -490,13 +492,16 @@ int vb_certify_quads(vb_ctx *ctx, vb_certifier *c, const uint32_t (*quads)[4], s
         free(chunk_end);
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (certifier)");
     }
-    atomic_size_t next;
+    atomic_size_t next, judged;
     atomic_init(&next, 0);
+    atomic_init(&judged, 0);
+    vb_progress(ctx, "certify", 0, n);
     uint64_t slow0 = c->sol.slow_rounds;
     for (unsigned i = 0; i < nt; i++) {
         ws[i].quads = quads;
         ws[i].n = n;
         ws[i].next = &next;
+        ws[i].judged = &judged;
         ws[i].chunk_worker = chunk_worker;
         ws[i].chunk_first = chunk_first;
         ws[i].chunk_end = chunk_end;
@@ -510,6 +515,7 @@ int vb_certify_quads(vb_ctx *ctx, vb_certifier *c, const uint32_t (*quads)[4], s
         ws[i].c = vbx_certifier_worker(c);
         if (!ws[i].c || vb_open(&ws[i].ctx, NULL) != VB_OK)
             rc = VB_ENOMEM;
+        vb_progress_forward(ws[i].ctx, ctx);
     }
     /* A thread that cannot start has its share run by the caller. */
     if (rc == VB_OK)

@@ -332,7 +332,15 @@ static int run(ref_state *rs)
     size_t n = rs->n;
     vb_stats *st = vb_ctx_stats(rs->ctx);
     vbx_ia pbc[5][5];
+    /* Progress in quadruples: those with first index a number C(n-a-1, 3). */
+    uint64_t quads = n >= 4 ? (uint64_t)n * (n - 1) / 2 * (n - 2) / 3 * (n - 3) / 4 : 0, done = 0;
+    vb_progress(rs->ctx, "reference", 0, quads);
     for (uint32_t a = 0; a + 3 < n; a++) {
+        if (a > 0) {
+            uint64_t r = n - a;   /* C(r, 3) quadruples began at a - 1 */
+            done += r * (r - 1) / 2 * (r - 2) / 3;
+            vb_progress(rs->ctx, "reference", done, quads);
+        }
         base_rows(rs, a);
         for (uint32_t b = a + 1; b + 2 < n; b++) {
             if (!pair_ok(rs, a, b))
@@ -371,6 +379,7 @@ static int run(ref_state *rs)
             }
         }
     }
+    vb_progress(rs->ctx, "reference", quads, quads);
     return VB_OK;
 }
 
