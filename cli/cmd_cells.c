@@ -1,6 +1,6 @@
 /* `vorball cells IN`: per-atom volume and SAS area of the additively
  * weighted cell inside the probe-expanded ball, and contact areas, as
- * proven enclosures (core/measures/), of one structure or of the frames of
+ * proven enclosures (verify/measures/), of one structure or of the frames of
  * a trajectory (--traj, --frames). Parse, call (vb_cells.h), write. */
 #include <stdlib.h>
 #include <string.h>

@@ -1,6 +1,6 @@
 /* The cell measures in one call, of a set or of a trajectory's frames
  * (vb_cells.h): validation, decimals for binary frames, the frame loop;
- * the method is core/measures/'s. */
+ * the method is verify/measures/'s. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>

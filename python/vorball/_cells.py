@@ -13,7 +13,7 @@ from . import _core
 from ._errors import Diagnostic, emit, misuse, parse
 from ._spheres import SphereInput, as_spheres
 
-# VB_MEASURES_MAX_PATCHES of core/measures/vb_measures.h
+# VB_MEASURES_MAX_PATCHES of verify/measures/vb_measures.h
 MAX_PATCHES = 5000
 
 

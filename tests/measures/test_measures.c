@@ -1,4 +1,4 @@
-/* Cell measures (core/measures/): enclosures against closed forms.
+/* Cell measures (verify/measures/): enclosures against closed forms.
  *  - one ball: 4/3 pi r^3 and 4 pi r^2;
  *  - two equal balls: the cell is the ball cut by the bisector plane (cap
  *    volume, cap area, contact disc), both sides of the contact;

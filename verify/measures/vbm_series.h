@@ -1,5 +1,5 @@
 /* Bivariate Taylor models in interval arithmetic: the remainder-proven
- * quadrature of the cell measures (core/measures/).
+ * quadrature of the cell measures (verify/measures/).
  *
  * A vbm_ser holds the Taylor coefficients c_ij = (d/da)^i (d/db)^j f / (i! j!)
  * of a function f(a, b), i + j <= VBM_ORDER, each as an interval (vbx_ia.h:

@@ -4,7 +4,7 @@
  * cell) and, on request, the contact area of each pair of atoms whose cells
  * share a face inside the expanded balls. Every value is an enclosure
  * lo <= exact <= hi proven by interval arithmetic on enclosures of the exact
- * input decimals (method: core/measures/cell_patches.c).
+ * input decimals (method: verify/measures/cell_patches.c).
  *
  * The union of the constrained cells is the union of the expanded balls (a
  * point of ball j lies in some cell i with |x - ci| - Ri <= |x - cj| - Rj <=
