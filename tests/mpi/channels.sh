@@ -60,7 +60,7 @@ for np in 2 3; do
 done
 # The outputs gathered over every frame run on one process only.
 run 2 "$work/prof.err" mpi 2 "$vorball" channels $popts "$trj" -o "$work/prof.csv" --profile "$work/prof.prof.csv"
-expect_line "$work/prof.err" "E151: --profile, --plot, --fixed-grid and --occupancy run on one process only"
+expect_line "$work/prof.err" "E151: --profile, --plot, --fixed-grid, --occupancy, --html and --atoms run on one process only"
 [ ! -e "$work/prof.csv" ] || fail "a refused channels job left $work/prof.csv"
 [ ! -e "$work/prof.prof.csv" ] || fail "a refused channels job left $work/prof.prof.csv"
 echo "ok: channels of 26 frames on 1, 2 and 3 ranks are one process's output"
