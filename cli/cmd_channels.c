@@ -385,10 +385,13 @@ int vb_cmd_channels(int argc, char **argv)
     if ((rc = vb_world_agree(ctx, rc)) != VB_OK)
         goto done;
     vbc_run_init(&S.run, &A.c, pipe, A.input);
-    if (rank0 && A.c.json)
-        vbc_write_json_begin(out[SINK_TABLE], A.c.traj ? A.c.traj : A.input, A.c.probe, A.c.grid,
-                             vbc_pipe_device_name(pipe));
-    else if (rank0)
+    if (rank0 && A.c.json) {
+        char opts[4096];
+        vb_provenance prov;
+        vb_cli_provenance(&prov, opts, sizeof opts, A.input, 0);
+        vbc_write_json_begin_prov(out[SINK_TABLE], prov.options, A.c.traj ? A.c.traj : A.input,
+                                  A.c.probe, A.c.grid, vbc_pipe_device_name(pipe));
+    } else if (rank0)
         vbc_write_csv_header(out[SINK_TABLE]);
     if (rank0 && out[SINK_STATS])
         vbc_write_stats_header(out[SINK_STATS]);
