@@ -50,6 +50,84 @@ void vb_cli_set_args(int argc, char **argv)
     cli_argv = argv;
 }
 
+/* Options left out of the options line: they change no byte of an output
+ * (backends, thread counts and ranks give the same file; -o is where it
+ * goes). value: 1 when the option takes one. */
+static const struct {
+    const char *name;
+    int value;
+} not_shaping[] = {{"-o", 1},     {"--threads", 1}, {"--device", 1},
+                   {"--stats", 0}, {"--quiet", 0},   {"--progress", 0}};
+
+/* Options that name another output file: kept, the path written FILE, so
+ * that two runs writing to other places give the same header. */
+static const char *const output_paths[] = {
+    "--topology", "--atoms",   "--centerlines", "--centrelines", "--pymol", "--volume",
+    "--occupancy", "--profile", "--stats-file",  "--png",         "--plot",  "--html",
+    "--cgal-out"};
+
+/* Appends s; once the line does not fit, it ends in "..." and stays cut. */
+static void append(char *buf, size_t size, size_t *at, const char *s)
+{
+    size_t n = strlen(s);
+    if (*at >= size)
+        return;
+    if (*at + n + 1 <= size) {
+        memcpy(buf + *at, s, n + 1);
+        *at += n;
+        return;
+    }
+    if (size >= 4)
+        strcpy(buf + size - 4, "...");
+    *at = size;
+}
+
+/* One argument, single-quoted when a shell would split or expand it. */
+static void append_arg(char *buf, size_t size, size_t *at, const char *a)
+{
+    if (*at)
+        append(buf, size, at, " ");
+    if (*a && !a[strcspn(a, " \t\n'\"\\$`*?;&|<>(){}")]) {
+        append(buf, size, at, a);
+        return;
+    }
+    append(buf, size, at, "'");
+    for (const char *p = a; *p; p++) {
+        char c[2] = {*p, 0};
+        append(buf, size, at, *p == '\'' ? "'\\''" : c);
+    }
+    append(buf, size, at, "'");
+}
+
+void vb_cli_provenance(vb_provenance *p, char *buf, size_t size, const char *input,
+                       size_t spheres)
+{
+    p->input = input;
+    p->spheres = spheres;
+    p->options = buf;
+    size_t at = 0;
+    if (size)
+        buf[0] = '\0';
+    for (int i = 1; i < cli_argc; i++) {
+        const char *a = cli_argv[i];
+        int skip = -1;
+        for (size_t k = 0; k < sizeof not_shaping / sizeof *not_shaping; k++)
+            if (strcmp(a, not_shaping[k].name) == 0)
+                skip = not_shaping[k].value;
+        if (skip >= 0) {
+            i += skip;
+            continue;
+        }
+        append_arg(buf, size, &at, a);
+        for (size_t k = 0; k < sizeof output_paths / sizeof *output_paths; k++)
+            if (strcmp(a, output_paths[k]) == 0 && i + 1 < cli_argc) {
+                append_arg(buf, size, &at, "FILE");
+                i++;
+                break;
+            }
+    }
+}
+
 int vb_cli_check_output(vb_ctx *ctx, const char *path)
 {
     struct stat out;

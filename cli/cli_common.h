@@ -5,6 +5,7 @@
 #include <stdio.h>
 
 #include "vb.h"
+#include "vb_build.h"
 #include "vb_parallel.h"
 
 /* Exit codes of the `vorball` command (documented in README and --help):
@@ -44,6 +45,17 @@ int vb_cli_usage_error(const char *cmd, const char *fmt, ...)
 /* Remembers the command line (main does, before the subcommand runs), for
  * vb_cli_check_output. */
 void vb_cli_set_args(int argc, char **argv);
+
+/* The provenance of an output file (vb_build.h, issue 35): *p names the
+ * input and its sphere count, and p->options points into buf, which gets the
+ * command line from the subcommand on, as given, less what by contract does
+ * not change an output's bytes (-o, --threads, --device, --stats, --quiet,
+ * --progress; the same file on every device, thread count and rank, wherever
+ * it is written) and with the paths of other outputs (--topology, --atoms,
+ * --pymol, ...) written as FILE. Arguments with blanks or quotes are quoted
+ * as a shell would read them; a line longer than size is cut with "...". */
+void vb_cli_provenance(vb_provenance *p, char *buf, size_t size, const char *input,
+                       size_t spheres);
 
 /* VB_EMISUSE (message naming both) when `path` exists and is the same file
  * (device and inode, through links) as another argument of the command line:

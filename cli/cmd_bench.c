@@ -28,6 +28,7 @@ static void help(FILE *f)
             "                       does (its set-up then counts in the total); by default\n"
             "                       it is opened once and its set-up time reported apart\n"
             "  --device D           auto, gpu, cpu or ref (as for vertices)\n"
+            "  --proposer P         cover (default) or sampling (as for vertices)\n"
             "  --tol T, --tiles T, --threads N, --all-pairs  as for vertices\n"
             "  --json               JSON array instead of the table\n"
             "  -o FILE              output file (default stdout)\n"

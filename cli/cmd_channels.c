@@ -391,10 +391,13 @@ int vb_cmd_channels(int argc, char **argv)
     /* Progress shares stderr with --stats as the status line does: not then. */
     if (!A.c.stats_stderr)
         vb_cli_progress_attach(ctx);
-    if (rank0 && A.c.json)
-        vbc_write_json_begin(out[SINK_TABLE], A.c.traj ? A.c.traj : A.input, A.c.probe, A.c.grid,
-                             vbc_pipe_device_name(pipe));
-    else if (rank0)
+    if (rank0 && A.c.json) {
+        char opts[4096];
+        vb_provenance prov;
+        vb_cli_provenance(&prov, opts, sizeof opts, A.input, 0);
+        vbc_write_json_begin_prov(out[SINK_TABLE], prov.options, A.c.traj ? A.c.traj : A.input,
+                                  A.c.probe, A.c.grid, vbc_pipe_device_name(pipe));
+    } else if (rank0)
         vbc_write_csv_header(out[SINK_TABLE]);
     if (rank0 && out[SINK_STATS])
         vbc_write_stats_header(out[SINK_STATS]);

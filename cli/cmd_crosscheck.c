@@ -48,8 +48,9 @@ static const char *const usage_head =
     "  invalid     a vorball line whose ids define no point\n"
     "then a '#' summary line and 'identical' or 'different'.\n"
     "\n"
-    "  --with vertices  compute vorball's vertices with the sampling pipeline, as\n"
-    "                   `vorball vertices` does, on the device of --device (default)\n"
+    "  --with vertices  compute vorball's vertices as `vorball vertices` does (the\n"
+    "                   direction cover, or --proposer), on the device of --device\n"
+    "                   (default)\n"
     "  --with reference compute them with `vorball reference` (exact brute force:\n"
     "                   small inputs)\n"
     "  --vertices FILE  read vorball's vertices from FILE instead (tsv, json or\n"
@@ -66,7 +67,8 @@ static const char *const usage_head =
     "  -o FILE          write the report to FILE (default stdout)\n"
     "pipeline options (for --with vertices, as in `vorball vertices`):\n"
     "  --device D       auto (default), gpu, cpu or ref\n"
-    "  --samples S, --tol T, --all-pairs\n";
+    "  --proposer P     cover (default) or sampling\n"
+    "  --samples S, --tol T, --tiles T, --threads N, --all-pairs\n";
 
 static const char *const usage_tail =
     "\n"
@@ -198,10 +200,13 @@ static int run(vb_ctx *ctx, const options *o)
     if (o->cgal_out) {
         vb_vertex_list cl;
         vb_vertex_list_init(&cl);
+        char opts[4096];
+        vb_provenance prov;
+        vb_cli_provenance(&prov, opts, sizeof opts, o->spheres, set->n);
         FILE *f = vb_cli_open_output(ctx, o->cgal_out);
         rc = f ? vb_cgal_to_list(ctx, cgal, &cl) : vb_errcode(ctx);
         if (rc == VB_OK)
-            rc = vb_vertex_write(ctx, f, &cl, VB_VFMT_TSV,
+            rc = vb_vertex_write_prov(ctx, f, &cl, VB_VFMT_TSV, &prov,
                                  o->power ? "CGAL power diagram (Regular_triangulation_3, Epeck)"
                                           : "CGAL Delaunay_triangulation_3 circumcentres, Epeck");
         rc = vb_cli_finish_output(ctx, f, o->cgal_out, rc);

@@ -10,8 +10,8 @@
 #include "vb_vertex_io.h"
 
 static const char *const usage_text =
-    "usage: vorball reference IN [-o FILE] [--output-format tsv|json|voronota] [--stats]\n"
-    "                         [--force] [input options]\n"
+    "usage: vorball reference IN [-o FILE] [--output-format tsv|json|voronota|npz]\n"
+    "                         [--stats] [--force] [input options]\n"
     "\n"
     "Computes every vertex of the additively weighted Voronoi diagram of the\n"
     "spheres in IN ('-' reads stdin) exactly: all quadruples, a proven interval\n"
@@ -21,7 +21,7 @@ static const char *const usage_text =
     "above 500 it refuses (E130, exit 40) unless --force.\n"
     "\n"
     "  -o FILE          write the vertices to FILE (default stdout)\n"
-    "  --output-format F  tsv (default), json or voronota, as for `vorball vertices`\n"
+    "  --output-format F  tsv (default), json, voronota or npz, as for `vorball vertices`\n"
     "                   (--format, as for every command, is the input format)\n"
     "  --stats          print filter and exact-evaluation counts and the time to stderr\n"
     "  --force          run on more than 500 spheres (minutes to hours)\n";
@@ -44,7 +44,8 @@ int vb_cmd_reference(int argc, char **argv)
             out_path = argv[i];
         } else if (strcmp(argv[i], "--output-format") == 0) {
             if (++i >= argc)
-                return vb_cli_usage_error(argv[0], "--output-format needs tsv, json or voronota");
+                return vb_cli_usage_error(argv[0],
+                                          "--output-format needs tsv, json, voronota or npz");
             fmt_name = argv[i];
         } else if (strcmp(argv[i], "--stats") == 0) {
             stats = 1;
@@ -102,7 +103,10 @@ int vb_cmd_reference(int argc, char **argv)
             char comment[256];
             snprintf(comment, sizeof comment, "vorball reference %s: %zu spheres, %zu vertices",
                      in_path, set->n, out.n);
-            rc = vb_vertex_write(ctx, f, &out, fmt, comment);
+            char opts[4096];
+            vb_provenance prov;
+            vb_cli_provenance(&prov, opts, sizeof opts, in_path, set->n);
+            rc = vb_vertex_write_prov(ctx, f, &out, fmt, &prov, comment);
             rc = vb_cli_finish_output(ctx, f, out_path, rc);
         }
     }

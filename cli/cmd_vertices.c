@@ -153,7 +153,7 @@ int vb_cmd_vertices(int argc, char **argv)
     vb_world_loud(ctx, quiet);
     if (per.on) {
         if (rc == VB_OK)
-            rc = vb_cli_vertices_periodic(ctx, set, &per, &po.cfg, outpath,
+            rc = vb_cli_vertices_periodic(ctx, set, &per, &po.cfg, input, outpath,
                                           vfmt == VB_VFMT_JSON, stats);
         code = vb_world_end(ctx, rc);
         vb_spheres_free(set);
@@ -183,8 +183,12 @@ int vb_cmd_vertices(int argc, char **argv)
     }
     if (writer) {
         const char *note = done.certificate;
+        char opts[4096];
+        vb_provenance prov;
+        vb_cli_provenance(&prov, opts, sizeof opts, input, set->n);
         FILE *out = vb_cli_open_output(ctx, outpath);
-        rc = out ? vb_vertex_write(ctx, out, &res.certified, vfmt, note[0] ? note : NULL)
+        rc = out ? vb_vertex_write_prov(ctx, out, &res.certified, vfmt, &prov,
+                                        note[0] ? note : NULL)
                  : vb_errcode(ctx);
         rc = vb_cli_finish_output(ctx, out, outpath, rc);
     }

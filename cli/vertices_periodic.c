@@ -62,8 +62,8 @@ int vb_cli_periodic_box(vb_ctx *ctx, const vb_sphere_set *set, const vb_cli_peri
 }
 
 int vb_cli_vertices_periodic(vb_ctx *ctx, const vb_sphere_set *set, const vb_cli_periodic *p,
-                             const vb_vertices_config *cfg, const char *outpath, int json,
-                             int stats)
+                             const vb_vertices_config *cfg, const char *input,
+                             const char *outpath, int json, int stats)
 {
     vb_box box;
     int rc = vb_cli_periodic_box(ctx, set, p, &box);
@@ -83,8 +83,11 @@ int vb_cli_vertices_periodic(vb_ctx *ctx, const vb_sphere_set *set, const vb_cli
     if (rc == VB_OK) {
         char note[1024];
         vb_periodic_certificate(&res, &box, note, sizeof note);
+        char opts[4096];
+        vb_provenance prov;
+        vb_cli_provenance(&prov, opts, sizeof opts, input, set->n);
         FILE *out = vb_cli_open_output(ctx, outpath);
-        rc = out ? vb_periodic_write(ctx, out, &res.v, json, note) : vb_errcode(ctx);
+        rc = out ? vb_periodic_write_prov(ctx, out, &res.v, json, &prov, note) : vb_errcode(ctx);
         rc = vb_cli_finish_output(ctx, out, outpath, rc);
     }
     vb_periodic_result_free(&res);

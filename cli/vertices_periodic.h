@@ -29,9 +29,10 @@ int vb_cli_periodic_box(vb_ctx *ctx, const vb_sphere_set *set, const vb_cli_peri
 /* The periodic run of the validated set and its file: the box from --box
  * or else from the set (VB_EINPUT_BOX when neither), the run on the
  * default backends, --stats counters on stderr, the vertices to outpath
- * (NULL: stdout; tsv or json). Returns a status. */
+ * (NULL: stdout; tsv or json) with the provenance of `input` in the
+ * header. Returns a status. */
 int vb_cli_vertices_periodic(vb_ctx *ctx, const vb_sphere_set *set, const vb_cli_periodic *p,
-                             const vb_vertices_config *cfg, const char *outpath, int json,
-                             int stats);
+                             const vb_vertices_config *cfg, const char *input,
+                             const char *outpath, int json, int stats);
 
 #endif

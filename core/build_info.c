@@ -2,9 +2,11 @@
  * which CMake rewrites at every build when it changed (core/commit.cmake);
  * the rest from the configuration (VB_BUILD_* definitions). */
 #include <gmp.h>
+#include <stdio.h>
 
 #include "vb_build.h"
 #include "vb_commit.h"
+#include "vb_json.h"
 
 #define VB_STR2(x) #x
 #define VB_STR(x) VB_STR2(x)
@@ -51,4 +53,32 @@ const char *vb_build_options(void)
 const char *vb_build_gmp_version(void)
 {
     return gmp_version;
+}
+
+/* "vorball V (commit C)": the tool line's value, shared by both forms. */
+static void tool_name(char *buf, size_t size)
+{
+    snprintf(buf, size, "vorball %s (commit %s)", vb_build_version(), vb_build_commit());
+}
+
+size_t vb_provenance_text(const vb_provenance *p, char *buf, size_t size)
+{
+    char tool[160];
+    tool_name(tool, sizeof tool);
+    int n = snprintf(buf, size, "tool: %s\ninput: %s, %zu spheres\noptions: %s\n", tool,
+                     p->input ? p->input : "-", p->spheres, p->options ? p->options : "");
+    return n < 0 ? 0 : (size_t)n;
+}
+
+void vb_provenance_write_json(FILE *f, const vb_provenance *p)
+{
+    char tool[160];
+    tool_name(tool, sizeof tool);
+    fputs("\"tool\":", f);
+    vb_json_write_string(f, tool);
+    fputs(",\"input\":", f);
+    vb_json_write_string(f, p->input ? p->input : "-");
+    fprintf(f, ",\"spheres\":%zu,\"options\":", p->spheres);
+    vb_json_write_string(f, p->options ? p->options : "");
+    fputs(",", f);
 }

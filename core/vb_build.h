@@ -4,6 +4,9 @@
 #ifndef VB_BUILD_H
 #define VB_BUILD_H
 
+#include <stddef.h>
+#include <stdio.h>
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -23,6 +26,28 @@ const char *vb_build_options(void);
 
 /* The GMP version the library runs with (gmp_version). */
 const char *vb_build_gmp_version(void);
+
+/* Where an output file came from (issue 35), for the header of the files
+ * that have one: the tool, the input and the options that shaped it. */
+typedef struct vb_provenance {
+    const char *input;   /* the input as named ("-": stdin) */
+    size_t spheres;      /* spheres read from it */
+    const char *options; /* the command line that shapes the output, e.g.
+                          * "vertices --arcs in.xyzr" (may be NULL or "") */
+} vb_provenance;
+
+/* The three header lines, without '#', each ended by '\n':
+ *   tool: vorball 0.1.0 (commit 1a2b3c4)
+ *   input: FILE, N spheres
+ *   options: ...
+ * into buf (truncated to size - 1 and NUL-terminated). Returns the length
+ * the full text needs, as snprintf does. */
+size_t vb_provenance_text(const vb_provenance *p, char *buf, size_t size);
+
+/* The same as JSON members, each followed by ',':
+ *   "tool":"vorball 0.1.0 (commit ..)","input":"FILE","spheres":N,"options":"..",
+ * for a writer to put before its own keys. */
+void vb_provenance_write_json(FILE *f, const vb_provenance *p);
 
 #ifdef __cplusplus
 }

@@ -1,11 +1,14 @@
 /* Reading and writing vertex files.
  *
- * tsv (default): '#' header lines ("# vorball vertices", the caller's comment
- *   one '#' line per line of it, "# ids x y z t status"), then one line per vertex:
+ * tsv (default): '#' header lines ("# vorball vertices", the provenance when
+ *   given: "# tool: vorball V (commit C)", "# input: FILE, N spheres",
+ *   "# options: ..." (vb_build.h), the caller's comment one '#' line per line
+ *   of it, "# ids x y z t status"), then one line per vertex:
  *   ids<TAB>x<TAB>y<TAB>z<TAB>t<TAB>status   (ids sorted, comma-separated, 0-based;
  *   numbers printed with %.17g so the doubles round-trip bit-exactly; status
  *   candidate|certified|rejected, optional on reading)
- * json: {"comment":"..","vertices":[{"ids":[...],"x":..,"y":..,"z":..,"t":..,
+ * json: {"tool":"..","input":"..","spheres":N,"options":"..", (the provenance,
+ *   when given) "comment":"..","vertices":[{"ids":[...],"x":..,"y":..,"z":..,"t":..,
  *   "status":".."}, ...]}, one vertex per line; the reader skips unknown keys.
  * voronota: "q1 q2 q3 q4 x y z r" per line (Voronota's vertices/tangent spheres;
  *   a vertex of degree > 4 appears as several quadruple lines). Our writer
@@ -18,7 +21,8 @@
  *   entry per line; grouping lines into vertices needs exact arithmetic and is
  *   done by `vorball verify`.
  * npz: a NumPy archive of arrays ids, start, xyz, t, status and comment
- *   (vertex_npz.c says what each holds), the same doubles bit for bit; for
+ *   (vertex_npz.c says what each holds; the comment holds the provenance
+ *   lines, then the caller's comment), the same doubles bit for bit; for
  *   NumPy and other tools, not read back by vorball.
  * Non-finite numbers are refused by the reader (VB_EINPUT_NONFINITE). */
 #ifndef VB_VERTEX_IO_H
@@ -27,6 +31,7 @@
 #include <stdio.h>
 
 #include "vb.h"
+#include "vb_build.h"
 #include "vb_vertex.h"
 
 #ifdef __cplusplus
@@ -50,6 +55,12 @@ const char *vb_vertex_status_name(int status);
  * that have one. Returns VB_OK or VB_EIO. */
 int vb_vertex_write(vb_ctx *ctx, FILE *f, const vb_vertex_list *v, vb_vertex_format fmt,
                     const char *comment);
+
+/* As vb_vertex_write with the provenance (may be NULL) in the header:
+ * tsv's '#' lines, json's keys, npz's comment; voronota has no header.
+ * VB_OK, VB_EIO or VB_ENOMEM. */
+int vb_vertex_write_prov(vb_ctx *ctx, FILE *f, const vb_vertex_list *v, vb_vertex_format fmt,
+                         const vb_provenance *prov, const char *comment);
 
 /* Writes the list as a NumPy .npz archive (vertex_npz.c) with `comment`
  * (may be NULL) as its comment array. VB_OK, VB_EIO, VB_ENOMEM, or

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_build.h"
 #include "vb_json.h"
 #include "vb_output.h"
 #include "vb_parallel.h"
@@ -166,18 +167,51 @@ static int write_lines(vb_ctx *ctx, FILE *f, const vb_vertex_list *v, line_fn fn
     return rc == VB_OK ? VB_OK : vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (writing vertices)");
 }
 
-static int write_tsv(vb_ctx *ctx, FILE *f, const vb_vertex_list *v, const char *comment)
+/* The provenance lines, then the comment, as one text (malloc'd; NULL when
+ * both are absent or memory is short, *nomem says which). */
+static char *header_text(const vb_provenance *prov, const char *comment, int *nomem)
+{
+    *nomem = 0;
+    if (!prov && !comment)
+        return NULL;
+    size_t np = prov ? vb_provenance_text(prov, NULL, 0) : 0;
+    size_t nc = comment ? strlen(comment) : 0;
+    char *t = malloc(np + nc + 1);
+    if (!t) {
+        *nomem = 1;
+        return NULL;
+    }
+    if (prov)
+        vb_provenance_text(prov, t, np + 1);
+    memcpy(t + np, comment ? comment : "", nc + 1);
+    return t;
+}
+
+static int write_tsv(vb_ctx *ctx, FILE *f, const vb_vertex_list *v, const vb_provenance *prov,
+                     const char *comment)
 {
     fputs("# vorball vertices\n", f);
+    if (prov) {
+        size_t n = vb_provenance_text(prov, NULL, 0);
+        char *t = malloc(n + 1);
+        if (!t)
+            return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (writing vertices)");
+        vb_provenance_text(prov, t, n + 1);
+        write_comment_lines(f, t);
+        free(t);
+    }
     if (comment)
         write_comment_lines(f, comment);
     fputs("# ids\tx\ty\tz\tt\tstatus\n", f);
     return write_lines(ctx, f, v, tsv_line);
 }
 
-static int write_json(vb_ctx *ctx, FILE *f, const vb_vertex_list *v, const char *comment)
+static int write_json(vb_ctx *ctx, FILE *f, const vb_vertex_list *v, const vb_provenance *prov,
+                      const char *comment)
 {
     fputs("{", f);
+    if (prov)
+        vb_provenance_write_json(f, prov);
     if (comment) {
         fputs("\"comment\":", f);
         vb_json_write_string(f, comment);
@@ -203,12 +237,24 @@ static int write_voronota(vb_ctx *ctx, FILE *f, const vb_vertex_list *v)
 int vb_vertex_write(vb_ctx *ctx, FILE *f, const vb_vertex_list *v, vb_vertex_format fmt,
                     const char *comment)
 {
-    int rc = VB_OK;
+    return vb_vertex_write_prov(ctx, f, v, fmt, NULL, comment);
+}
+
+int vb_vertex_write_prov(vb_ctx *ctx, FILE *f, const vb_vertex_list *v, vb_vertex_format fmt,
+                         const vb_provenance *prov, const char *comment)
+{
+    int rc = VB_OK, nomem = 0;
+    char *text = NULL;
     switch (fmt) {
-    case VB_VFMT_TSV: rc = write_tsv(ctx, f, v, comment); break;
-    case VB_VFMT_JSON: rc = write_json(ctx, f, v, comment); break;
+    case VB_VFMT_TSV: rc = write_tsv(ctx, f, v, prov, comment); break;
+    case VB_VFMT_JSON: rc = write_json(ctx, f, v, prov, comment); break;
     case VB_VFMT_VORONOTA: rc = write_voronota(ctx, f, v); break;
-    case VB_VFMT_NPZ: rc = vb_vertex_write_npz(ctx, f, v, comment); break;
+    case VB_VFMT_NPZ:
+        text = header_text(prov, comment, &nomem);
+        rc = nomem ? vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (writing vertices)")
+                   : vb_vertex_write_npz(ctx, f, v, text);
+        free(text);
+        break;
     default: return vb_error(ctx, VB_EMISUSE, NULL, 0, "unknown vertex format %d", (int)fmt);
     }
     if (rc != VB_OK)

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "vbc_channel.h"
+#include "vb_build.h"
 #include "vb_json.h"
 #include "vb_output.h"
 #include "vbc_pore.h"
@@ -202,7 +203,24 @@ void vbc_write_stats_row(FILE *f, const vbc_frame_info *fi, const vbc_grid *g,
 
 void vbc_write_json_begin(FILE *f, const char *input, double probe, int n, const char *device)
 {
-    fprintf(f, "{\n  \"input\": ");
+    vbc_write_json_begin_prov(f, NULL, input, probe, n, device);
+}
+
+void vbc_write_json_begin_prov(FILE *f, const char *options, const char *input, double probe,
+                               int n, const char *device)
+{
+    fputs("{\n", f);
+    if (options) {
+        char tool[160];
+        snprintf(tool, sizeof tool, "vorball %s (commit %s)", vb_build_version(),
+                 vb_build_commit());
+        fputs("  \"tool\": ", f);
+        vb_json_write_string(f, tool);
+        fputs(",\n  \"options\": ", f);
+        vb_json_write_string(f, options);
+        fputs(",\n", f);
+    }
+    fprintf(f, "  \"input\": ");
     vb_json_write_string(f, input);
     fprintf(f, ",\n  \"probe_A\": %.3f,\n  \"grid\": %d,\n  \"device\": ", probe, n);
     vb_json_write_string(f, device);

@@ -199,6 +199,13 @@ void vbc_write_stats_row(FILE *f, const vbc_frame_info *fi, const vbc_grid *g,
  * for the first), vbc_write_json_end. Each frame object holds its statistics
  * and its channels with centreline points and lining residues. */
 void vbc_write_json_begin(FILE *f, const char *input, double probe, int n, const char *device);
+/* As vbc_write_json_begin, with the provenance first when options is not
+ * NULL (issue 35): "tool" (vorball V (commit C), vb_build.h) and "options"
+ * (the command line that shaped the table); the sphere count is each
+ * frame's "atoms". The CSV table has no comment convention (csv readers take
+ * its first line as the header), so it carries none. */
+void vbc_write_json_begin_prov(FILE *f, const char *options, const char *input, double probe,
+                               int n, const char *device);
 void vbc_write_json_frame(FILE *f, int first, const vbc_frame_info *fi, const vbc_grid *g,
                           const vb_sphere_set *s, const vbc_result *res);
 void vbc_write_json_end(FILE *f);

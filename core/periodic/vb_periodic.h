@@ -21,6 +21,7 @@
 
 #include <stdio.h>
 
+#include "vb_build.h"
 #include "vb_spheres.h"
 #include "vb_vertices.h"
 
@@ -173,6 +174,11 @@ void vb_periodic_certificate(const vb_periodic_result *r, const vb_box *box, cha
  * open writer's. VB_OK, VB_EMISUSE (voronota: it has no images), VB_EIO. */
 int vb_periodic_write(vb_ctx *ctx, FILE *f, const vb_periodic_vertices *v, int json,
                       const char *comment);
+
+/* As vb_periodic_write with the provenance (may be NULL, vb_build.h) first
+ * in the header: tsv '#' lines, json keys. VB_ENOMEM too. */
+int vb_periodic_write_prov(vb_ctx *ctx, FILE *f, const vb_periodic_vertices *v, int json,
+                           const vb_provenance *prov, const char *comment);
 
 #ifdef __cplusplus
 }

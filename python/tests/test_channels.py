@@ -26,6 +26,9 @@ def test_same_table_as_the_command(gramicidin):
     assert gramicidin.csv == out
     j, _ = cli("channels", "--device", "ref", "--grid", 64, "--json", GRAMICIDIN)
     mine, theirs = gramicidin.to_json(), json.loads(j)
+    # The command's provenance (issue 35): its tool and command line.
+    assert theirs.pop("tool").startswith("vorball ")
+    assert theirs.pop("options") == "channels --grid 64 --json " + GRAMICIDIN
     for frame in (mine["frames"][0], theirs["frames"][0]):
         frame.pop("ms")  # timings
     assert mine == theirs

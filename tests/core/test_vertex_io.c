@@ -182,6 +182,51 @@ static void test_format_names(vb_ctx *ctx)
     CHECK_STR(vb_vertex_status_name(VB_VERTEX_REJECTED), "rejected");
 }
 
+/* The provenance (issue 35): tsv '#' lines after the title, json keys
+ * before the comment; both read back to the same vertices (the reader skips
+ * '#' lines and unknown keys, a number among them). */
+static void test_provenance(vb_ctx *ctx)
+{
+    vb_vertex_list v;
+    make_list(&v);
+    vb_provenance prov = {"in \"x\".pdb", 327, "vertices --arcs in.pdb"};
+    char want[512];
+    snprintf(want, sizeof want,
+             "# vorball vertices\n# tool: vorball %s (commit %s)\n# input: in \"x\".pdb, 327 "
+             "spheres\n# options: vertices --arcs in.pdb\n# cert\n# ids\t",
+             vb_build_version(), vb_build_commit());
+    CHECK_INT(vb_provenance_text(&prov, NULL, 0),
+              strlen(want) - strlen("# vorball vertices\n# cert\n# ids\t") - 3 * 2);
+    for (int fmt = VB_VFMT_TSV; fmt <= VB_VFMT_JSON; fmt++) {
+        char *text = NULL;
+        size_t len = 0;
+        FILE *f = open_memstream(&text, &len);
+        CHECK_INT(vb_vertex_write_prov(ctx, f, &v, (vb_vertex_format)fmt, &prov, "cert"), VB_OK);
+        fclose(f);
+        if (fmt == VB_VFMT_TSV) {
+            CHECK(strncmp(text, want, strlen(want)) == 0);
+        } else {
+            char head[512];
+            snprintf(head, sizeof head,
+                     "{\"tool\":\"vorball %s (commit %s)\",\"input\":\"in \\\"x\\\".pdb\","
+                     "\"spheres\":327,\"options\":\"vertices --arcs in.pdb\",\"comment\":\"cert\","
+                     "\"vertices\":[",
+                     vb_build_version(), vb_build_commit());
+            CHECK(strncmp(text, head, strlen(head)) == 0);
+        }
+        vb_vertex_list back;
+        vb_vertex_list_init(&back);
+        vb_vertex_format det;
+        CHECK_INT(vb_vertex_read_buffer(ctx, "mem", text, len, &back, &det, NULL), VB_OK);
+        CHECK_INT(det, fmt);
+        CHECK_INT(back.n, v.n);
+        CHECK(back.n == v.n && same_bits(back.t[1], v.t[1]));
+        vb_vertex_list_free(&back);
+        free(text);
+    }
+    vb_vertex_list_free(&v);
+}
+
 int main(void)
 {
     vb_ctx *ctx;
@@ -191,6 +236,7 @@ int main(void)
     test_round_trip(ctx, VB_VFMT_TSV);
     test_round_trip(ctx, VB_VFMT_JSON);
     test_voronota(ctx);
+    test_provenance(ctx);
     test_errors(ctx);
     test_format_names(ctx);
     vb_close(ctx);

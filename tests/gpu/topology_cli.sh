@@ -25,7 +25,7 @@ inf=$(awk '$1 == "edge" && $3 == -1' "$work/ref.top" | wc -l)
 [ "$inf" -eq 96 ] || fail "expected 96 infinite edge lines, got $inf"
 # Vertex rows as 0/1 bits of their (x, y, z) = 0.5 + bit; a finite edge
 # joins two rows whose bits differ in exactly one axis.
-awk '!/^#/ { print NR - 3, ($2 > 1) * 4 + ($3 > 1) * 2 + ($4 > 1) }' "$work/ref.tsv" \
+awk '!/^#/ { print n++, ($2 > 1) * 4 + ($3 > 1) * 2 + ($4 > 1) }' "$work/ref.tsv" \
     > "$work/bits" || fail "vertex bits"
 pairs=$(awk 'NR == FNR { b[$1] = $2; next }
     $1 == "edge" && $3 != -1 { x = b[$2] - b[$3]; if (x < 0) x = -x
@@ -35,10 +35,10 @@ echo "$pairs" | grep -q bad && fail "edge between non-adjacent centres: $pairs"
 [ "$(echo "$pairs" | wc -l)" -eq 12 ] || fail "expected 12 distinct finite edges: $pairs"
 # Explicit edges (sphere id = 9x + 3y + z): centre (0.5,0.5,0.5) to
 # (1.5,0.5,0.5) along x is surrounded by spheres 9,10,12,13 (x = 1).
-v0=$(awk '$1 == "0,1,3,4,9,10,12,13" { print NR - 3 }' "$work/ref.tsv")
-v4=$(awk '$1 == "9,10,12,13,18,19,21,22" { print NR - 3 }' "$work/ref.tsv")
-v7=$(awk '$1 == "13,14,16,17,22,23,25,26" { print NR - 3 }' "$work/ref.tsv")
-v6=$(awk '$1 == "12,13,15,16,21,22,24,25" { print NR - 3 }' "$work/ref.tsv")
+v0=$(awk '!/^#/ { n++ } $1 == "0,1,3,4,9,10,12,13" { print n - 1 }' "$work/ref.tsv")
+v4=$(awk '!/^#/ { n++ } $1 == "9,10,12,13,18,19,21,22" { print n - 1 }' "$work/ref.tsv")
+v7=$(awk '!/^#/ { n++ } $1 == "13,14,16,17,22,23,25,26" { print n - 1 }' "$work/ref.tsv")
+v6=$(awk '!/^#/ { n++ } $1 == "12,13,15,16,21,22,24,25" { print n - 1 }' "$work/ref.tsv")
 for t in 9,10,12 9,10,13 9,12,13 10,12,13; do
     grep -q "^edge	$v0	$v4	$t\$" "$work/ref.top" || fail "missing edge $v0-$v4 ($t)"
 done
@@ -68,7 +68,7 @@ for c in bcc_lattice:240 hexagonal_ring:32 lattice_subset:185; do
     got=$(grep -c '^edge' "$work/$f.top")
     [ "$got" -eq "$want" ] || fail "$f: $got edge lines, expected $want"
 done
-v41=$(awk '$1 == "9,16,21,23,26,27" { print NR - 3 }' "$work/lattice_subset.tsv")
+v41=$(awk '!/^#/ { n++ } $1 == "9,16,21,23,26,27" { print n - 1 }' "$work/lattice_subset.tsv")
 grep -q "^edge	$v41	-1	9,16,27\$" "$work/lattice_subset.top" ||
     fail "lattice_subset: missing infinite edge of the degree-6 vertex"
 grep -q "	2,7,25\$" "$work/lattice_subset.top" && fail "lattice_subset: false edge 2,7,25"

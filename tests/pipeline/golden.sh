@@ -17,10 +17,20 @@ golden=../golden/$case.tsv
 "$vorball" reference "$case.xyzr" > "$work/reference.tsv" 2> "$work/reference.err"
 rc=$?
 [ $rc -eq 0 ] || { cat "$work/reference.err" >&2; fail "reference exited $rc"; }
-cmp "$work/reference.tsv" "$golden" || {
-    diff "$work/reference.tsv" "$golden" | head -20 >&2
+# Byte for byte, header included, less the provenance lines (the tool line
+# names the commit; goldens hold none, corpus/regenerate.sh drops them), which
+# are checked on their own.
+sans_provenance "$work/reference.tsv" > "$work/reference.body"
+sans_provenance "$golden" > "$work/golden.body"
+cmp "$work/reference.body" "$work/golden.body" || {
+    diff "$work/reference.body" "$work/golden.body" | head -20 >&2
     fail "reference output differs from $golden"
 }
+n_in=$(sed -n "s/^# vorball reference $case\.xyzr: \([0-9]*\) spheres, .*/\1/p" "$golden")
+sed -n 2,4p "$work/reference.tsv" > "$work/provenance.txt"
+expect_line "$work/provenance.txt" "^# tool: vorball [0-9]+\.[0-9]+\.[0-9]+ \(commit [^)]+\)$"
+expect_line "$work/provenance.txt" "^# input: $case\.xyzr, $n_in spheres$"
+expect_line "$work/provenance.txt" "^# options: reference $case\.xyzr$"
 run 0 "$work/verify.txt" "$vorball" verify "$case.xyzr" "$golden" --complete
 expect_line "$work/verify.txt" "^verify: .* 0 not a vertex, 0 wrong coordinates, 0 missing members, 0 duplicate, 0 missed$"
 # exact arc closure: every Voronoi edge of the golden ends at a golden vertex

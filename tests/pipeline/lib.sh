@@ -34,3 +34,11 @@ expect_line() {
 vertex_lines() {
     grep -v '^#' "$1"
 }
+
+# sans_provenance FILE: FILE without the provenance lines of its header
+# ("# tool: ...", "# input: ...", "# options: ..."), for comparisons with a
+# stored file (a golden: the tool line names the commit) or with a run that
+# differs in input or options; every other line, header too, stays.
+sans_provenance() {
+    grep -Ev '^# (tool|input|options): ' "$1"
+}
