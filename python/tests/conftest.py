@@ -2,6 +2,7 @@
 environment every vorball test gets (tests/CMakeLists.txt): program caches
 inside the build tree, never a user's."""
 import os
+import re
 import subprocess
 
 import numpy as np
@@ -34,6 +35,9 @@ def cli(*args, rc=0, stdin=None, provenance=False):
     if not provenance:
         out = "".join(line for line in out.splitlines(keepends=True)
                       if not line.startswith(("# tool: ", "# input: ", "# options: ")))
+        # A vertex JSON file carries the same as its first keys.
+        out = re.sub(r'^\{"tool":"(?:[^"\\]|\\.)*","input":"(?:[^"\\]|\\.)*",'
+                     r'"spheres":\d+,"options":"(?:[^"\\]|\\.)*",', "{", out)
     return out, p.stderr
 
 

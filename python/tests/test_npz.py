@@ -12,7 +12,7 @@ from conftest import cli, corpus, parse_vertices
 def test_npz_equals_tsv(case, tmp_path):
     path = corpus("inputs", case + ".xyzr")
     npz = tmp_path / (case + ".npz")
-    tsv, _ = cli("vertices", "--device", "ref", path)
+    tsv, _ = cli("vertices", "--device", "ref", path, provenance=True)
     cli("vertices", "--device", "ref", "--output-format", "npz", "-o", npz, path)
     ids, xyz, t = parse_vertices(tsv)
     with np.load(npz, allow_pickle=False) as z:
