@@ -3,6 +3,7 @@
 #include "vb_numtext.h"
 #include "vb_diag.h"
 #include "vb_world.h"
+#include "progress.h"
 
 #include <errno.h>
 #include <sys/stat.h>
@@ -19,6 +20,7 @@ int vb_cli_exit_code(int status)
 
 int vb_cli_fail(vb_ctx *ctx, int status)
 {
+    vb_cli_progress_clear(); /* the error starts its own line */
     const char *msg = ctx ? vb_errmsg(ctx) : "";
     fprintf(stderr, "vorball: E%d: %s\n", vb_diag_number(status),
             msg && *msg ? msg : vb_errstr(status));
@@ -64,7 +66,7 @@ static const struct {
 static const char *const output_paths[] = {
     "--topology", "--atoms",   "--centerlines", "--centrelines", "--pymol", "--volume",
     "--occupancy", "--profile", "--stats-file",  "--png",         "--plot",  "--html",
-    "--cgal-out"};
+    "--cgal-out",  "--contacts"};
 
 /* Appends s; once the line does not fit, it ends in "..." and stays cut. */
 static void append(char *buf, size_t size, size_t *at, const char *s)

@@ -10,12 +10,13 @@
 #include "input_options.h"
 #include "progress.h"
 #include "vb_cells.h"
+#include "vb_measures_page.h"
 #include "vb_parallel.h"
 
 static const char *const usage_text =
     "usage: vorball cells IN [-o FILE] [--json] [--contacts FILE] [--probe R] [--tolerance T]\n"
     "                     [--max-patches N] [--threads N] [--traj FILE] [--frames A:B:S]\n"
-    "                     [--stats] [input options]\n"
+    "                     [--html FILE] [--stats] [input options]\n"
     "\n"
     "For every atom: the volume of its additively weighted Voronoi cell inside its\n"
     "expanded ball (radius R + probe) and its SAS area (the part of the expanded\n"
@@ -40,49 +41,108 @@ static const char *const usage_text =
     "  --max-patches N  direction patches per atom before a value is left wider\n"
     "                   than asked (W851; default 5000)\n"
     "  --threads N      worker threads (default: all cores)\n"
+    "  --html FILE      a results page that opens offline in a browser: the molecule\n"
+    "                   with atoms coloured by volume, SAS or contact area (a selector),\n"
+    "                   a frame slider over --traj/--frames, the counts of each frame\n"
     "  --stats          atoms, patches, empty and loose counts and the time on stderr\n";
 
+/* The provenance of the outputs (issue 35): the input, its sphere count
+ * and the command line that shaped them. */
+typedef struct {
+    vb_provenance prov;
+    char options[4096];
+} cells_prov;
+
+static void prov_make(cells_prov *p, const char *input, size_t spheres)
+{
+    vb_cli_provenance(&p->prov, p->options, sizeof p->options, input, spheres);
+}
+
 static int write_file(vb_ctx *ctx, const char *path, const vb_sphere_set *set,
-                      const vb_cell_measures *m, int contacts, int json)
+                      const vb_cell_measures *m, int contacts, int json, const cells_prov *cp)
 {
     FILE *f = vb_cli_open_output(ctx, path);
     if (!f)
         return vb_errcode(ctx);
-    int rc = VB_OK;
-    if (contacts) {
-        vb_cell_measures_write_contacts(f, m);
-    } else if (json) {
-        rc = vb_cell_measures_write_json(ctx, f, set, m, -1, 0);
+    int rc;
+    if (json) {
+        rc = vb_cell_measures_write_json_prov(ctx, f, set, m, -1, 0, &cp->prov);
         fputc('\n', f);
+    } else if ((rc = vb_provenance_write_comments(ctx, f, &cp->prov)) != VB_OK) {
+        /* nothing more: the file is discarded */
+    } else if (contacts) {
+        vb_cell_measures_write_contacts(f, m);
     } else {
         vb_cell_measures_write_atoms(f, set, m);
     }
-    int crc = vb_cli_close_output(ctx, f, path);
-    return rc != VB_OK ? rc : crc;
+    return vb_cli_finish_output(ctx, f, path, rc);
 }
 
-/* The outputs of a run over frames: one table of all frames each. */
+/* Adds a frame's measures to the results page (--html), made on the first
+ * frame; `page` NULL: no page asked. */
+static int page_add(vb_ctx *ctx, vb_page **page, const char *title, const char *label,
+                    const vb_sphere_set *set, const vb_cell_measures *m, int contacts)
+{
+    if (!title)
+        return VB_OK;
+    if (!*page && !(*page = vb_page_new(ctx, title, set)))
+        return vb_errcode(ctx);
+    return vb_cell_measures_page_add(ctx, *page, label, set, m, contacts);
+}
+
+/* The outputs of a run over frames: one table of all frames each, and the
+ * results page. */
 typedef struct {
     vb_ctx *ctx;
     FILE *out, *contacts;
     int json;
     long written;
     size_t atoms, patches, nempty, nloose, ncontacts;
+    const char *title; /* --html: the page's title; NULL: no page */
+    vb_page *page;
+    const char *input;
+    cells_prov prov; /* made on the first frame (its sphere count) */
 } frames_sink;
+
+/* The tables' headers, on the first frame: the provenance, then the
+ * column names (JSON: the array opens; each frame's object carries the
+ * provenance). */
+static int write_headers(frames_sink *S, size_t spheres)
+{
+    prov_make(&S->prov, S->input, spheres);
+    if (S->json) {
+        fputs("[\n", S->out);
+        return VB_OK;
+    }
+    int rc = vb_provenance_write_comments(S->ctx, S->out, &S->prov.prov);
+    if (rc == VB_OK)
+        vb_cell_measures_write_atoms_header(S->out, 1);
+    if (rc == VB_OK && S->contacts)
+        rc = vb_provenance_write_comments(S->ctx, S->contacts, &S->prov.prov);
+    if (rc == VB_OK && S->contacts)
+        vb_cell_measures_write_contacts_header(S->contacts, 1);
+    return rc;
+}
 
 static int write_frame(void *arg, long frame, int model, const vb_sphere_set *set,
                        const vb_cell_measures *m)
 {
     frames_sink *S = arg;
-    int rc = VB_OK;
-    if (S->json) {
+    int rc = S->written ? VB_OK : write_headers(S, set->n);
+    if (rc != VB_OK) {
+        return rc;
+    } else if (S->json) {
         fputs(S->written ? ",\n" : "", S->out);
-        rc = vb_cell_measures_write_json(S->ctx, S->out, set, m, frame, model);
+        rc = vb_cell_measures_write_json_prov(S->ctx, S->out, set, m, frame, model, &S->prov.prov);
     } else {
         vb_cell_measures_write_atom_rows(S->out, set, m, frame);
     }
     if (S->contacts)
         vb_cell_measures_write_contact_rows(S->contacts, m, frame);
+    char label[64];
+    snprintf(label, sizeof label, "frame %ld (model %d)", frame, model);
+    if (rc == VB_OK)
+        rc = page_add(S->ctx, &S->page, S->title, label, set, m, S->contacts != NULL);
     S->written++;
     S->atoms += m->n, S->patches += m->patches, S->nempty += m->nempty;
     S->nloose += m->nloose, S->ncontacts += m->ncontacts;
@@ -93,10 +153,11 @@ static int write_frame(void *arg, long frame, int model, const vb_sphere_set *se
 static int run_frames(vb_ctx *ctx, const char *in_path, const char *traj,
                       const vb_cli_input_opts *in, const vb_frame_range *range,
                       const vb_measure_options *opt, const char *out_path,
-                      const char *contacts_path, int json, int stats)
+                      const char *contacts_path, int json, int stats, const char *title,
+                      const char *html)
 {
     vb_radii_table *radii = NULL;
-    frames_sink S = {ctx, NULL, NULL, json, 0, 0, 0, 0, 0, 0};
+    frames_sink S = {ctx, NULL, NULL, json, 0, 0, 0, 0, 0, 0, title, NULL, in_path, {{0}, ""}};
     int rc = in->radii_path ? vb_radii_load(ctx, in->radii_path, &radii) : VB_OK;
     vb_read_options ro;
     vb_cli_input_read_options(in, radii, &ro);
@@ -104,14 +165,6 @@ static int run_frames(vb_ctx *ctx, const char *in_path, const char *traj,
         rc = vb_errcode(ctx);
     if (rc == VB_OK && contacts_path && !(S.contacts = vb_cli_open_output(ctx, contacts_path)))
         rc = vb_errcode(ctx);
-    if (rc == VB_OK) {
-        if (json)
-            fputs("[\n", S.out);
-        else
-            vb_cell_measures_write_atoms_header(S.out, 1);
-        if (S.contacts)
-            vb_cell_measures_write_contacts_header(S.contacts, 1);
-    }
     long frames = 0;
     double t0 = vb_now();
     if (rc == VB_OK)
@@ -119,9 +172,13 @@ static int run_frames(vb_ctx *ctx, const char *in_path, const char *traj,
     double t1 = vb_now();
     if (rc == VB_OK && json)
         fputs("\n]\n", S.out);
-    int crc = S.contacts ? vb_cli_close_output(ctx, S.contacts, contacts_path) : VB_OK;
-    int orc = S.out ? vb_cli_close_output(ctx, S.out, out_path) : VB_OK;
+    /* A failed run leaves no partial table. */
+    int crc = S.contacts ? vb_cli_finish_output(ctx, S.contacts, contacts_path, rc) : rc;
+    int orc = S.out ? vb_cli_finish_output(ctx, S.out, out_path, rc) : rc;
     rc = rc != VB_OK ? rc : crc != VB_OK ? crc : orc;
+    if (rc == VB_OK && html)
+        rc = vb_page_write(S.page, html);
+    vb_page_free(S.page);
     if (rc == VB_OK && stats)
         fprintf(stderr,
                 "cells: %ld frames, %zu atoms, %zu patches, %zu empty, %zu loose, %zu contacts, "
@@ -135,6 +192,7 @@ static int run_frames(vb_ctx *ctx, const char *in_path, const char *traj,
 int vb_cmd_cells(int argc, char **argv)
 {
     const char *in_path = NULL, *out_path = NULL, *contacts_path = NULL, *traj = NULL;
+    const char *html = NULL;
     int stats = 0, json = 0, frames = 0;
     vb_frame_range range = {0, -1, 1};
     vb_measure_options opt;
@@ -151,7 +209,8 @@ int vb_cmd_cells(int argc, char **argv)
         int has_value = strcmp(a, "-o") == 0 || strcmp(a, "--contacts") == 0 ||
                         strcmp(a, "--probe") == 0 || strcmp(a, "--tolerance") == 0 ||
                         strcmp(a, "--max-patches") == 0 || strcmp(a, "--threads") == 0 ||
-                        strcmp(a, "--traj") == 0 || strcmp(a, "--frames") == 0;
+                        strcmp(a, "--traj") == 0 || strcmp(a, "--frames") == 0 ||
+                        strcmp(a, "--html") == 0;
         if (has_value && i + 1 >= argc)
             return vb_cli_usage_error(argv[0], "%s needs a value", a);
         size_t sz;
@@ -159,6 +218,8 @@ int vb_cmd_cells(int argc, char **argv)
             out_path = argv[++i];
         } else if (strcmp(a, "--contacts") == 0) {
             contacts_path = argv[++i];
+        } else if (strcmp(a, "--html") == 0) {
+            html = argv[++i];
         } else if (strcmp(a, "--probe") == 0) {
             if (vb_cli_parse_double(argv[++i], &opt.probe) != 0)
                 return vb_cli_usage_error(argv[0], "--probe '%s' is not a number", argv[i]);
@@ -218,9 +279,14 @@ int vb_cmd_cells(int argc, char **argv)
     int rc = vb_cli_check_output(ctx, out_path);
     if (rc == VB_OK)
         rc = vb_cli_check_output(ctx, contacts_path);
+    if (rc == VB_OK)
+        rc = vb_cli_check_output(ctx, html);
+    char title[512];
+    snprintf(title, sizeof title, "vorball cells %s%s%s", in_path, traj ? " + " : "",
+             traj ? traj : "");
     if (rc == VB_OK && frames) {
         rc = run_frames(ctx, in_path, traj, &in, &range, &opt, out_path, contacts_path, json,
-                        stats);
+                        stats, html ? title : NULL, html);
         int code = rc == VB_OK ? VB_EXIT_OK : vb_cli_fail(ctx, rc);
         vb_cli_progress_clear();
         vb_close(ctx);
@@ -231,10 +297,19 @@ int vb_cmd_cells(int argc, char **argv)
     if (rc == VB_OK)
         rc = vb_cells_run(ctx, set, &opt, &m);
     double t1 = vb_now();
-    if (rc == VB_OK && contacts_path)
-        rc = write_file(ctx, contacts_path, set, &m, 1, 0);
+    cells_prov cp;
     if (rc == VB_OK)
-        rc = write_file(ctx, out_path, set, &m, 0, json);
+        prov_make(&cp, in_path, set->n);
+    if (rc == VB_OK && contacts_path)
+        rc = write_file(ctx, contacts_path, set, &m, 1, 0, &cp);
+    if (rc == VB_OK)
+        rc = write_file(ctx, out_path, set, &m, 0, json, &cp);
+    vb_page *page = NULL;
+    if (rc == VB_OK && html)
+        rc = page_add(ctx, &page, title, "frame 0", set, &m, contacts_path != NULL);
+    if (rc == VB_OK && html)
+        rc = vb_page_write(page, html);
+    vb_page_free(page);
     if (rc == VB_OK && stats)
         fprintf(stderr,
                 "cells: %zu atoms, %zu patches, %zu empty, %zu loose, %zu contacts, %.3f s\n",

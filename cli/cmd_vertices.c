@@ -11,6 +11,7 @@
 #include "pipeline_options.h"
 #include "progress.h"
 #include "vorball.h"
+#include "vb_vertex_page.h"
 #include "vb_world.h"
 #include "vertex_parts.h"
 #include "vertices_periodic.h"
@@ -51,6 +52,9 @@ static void help(FILE *f)
             "                       certified vertices exactly to its next vertex (arc\n"
             "                       closure); vertices found on the way are certified and\n"
             "                       written, and one more header line gives the counts\n"
+            "  --html FILE          a results page that opens offline in a browser: the\n"
+            "                       spheres and their certified vertices, with the counts\n"
+            "                       (inputs of at most 2000 spheres; over that E133)\n"
             "Under mpirun -np N (a build with VORBALL_WITH_MPI) every rank reads INPUT,\n"
             "the cover's cells are split over the ranks (--proposer sampling runs on\n"
             "rank 0 alone, W830) and rank 0 writes the merged output, byte-identical to\n"
@@ -90,7 +94,7 @@ int vb_cmd_vertices(int argc, char **argv)
 {
     vb_pipeline_opts po;
     vb_pipeline_opts_defaults(&po);
-    const char *outpath = NULL, *input = NULL, *topo_path = NULL;
+    const char *outpath = NULL, *input = NULL, *topo_path = NULL, *html = NULL;
     vb_vertex_format vfmt = VB_VFMT_TSV;
     int stats = 0;
     vb_completion_opts co = {0};
@@ -118,6 +122,8 @@ int vb_cmd_vertices(int argc, char **argv)
         } else if (strcmp(a, "--topology") == 0 && i + 1 < argc) {
             topo_path = argv[++i];
             co.topology = 1;
+        } else if (strcmp(a, "--html") == 0 && i + 1 < argc) {
+            html = argv[++i];
         } else if (strcmp(a, "--stats") == 0) {
             stats = 1;
         } else if (strcmp(a, "--arcs") == 0) {
@@ -136,6 +142,8 @@ int vb_cmd_vertices(int argc, char **argv)
                                          vfmt == VB_VFMT_VORONOTA || vfmt == VB_VFMT_NPZ))
         code = vb_cli_usage_error("vertices", "--periodic runs on one process, without --arcs, "
                                               "--topology and the voronota and npz formats");
+    if (code == VB_EXIT_OK && per.on && html)
+        code = vb_cli_usage_error("vertices", "--html does not run with --periodic");
     vb_completion_plan(&po.cfg, &co);
     if (code == VB_EXIT_OK)
         code = vb_world_check_input("vertices", input);
@@ -149,7 +157,12 @@ int vb_cmd_vertices(int argc, char **argv)
     vb_cli_vertex_totals tot;
     /* Every rank reads the input; rank 0 alone prints its warnings. */
     int quiet = vb_world_quiet(ctx);
-    int rc = vb_cli_load_spheres(ctx, input, &po.in, 4, &set);
+    int rc = vb_cli_check_output(ctx, html);
+    if (rc == VB_OK)
+        rc = vb_cli_load_spheres(ctx, input, &po.in, 4, &set);
+    /* A page too big is refused before the work, as every rank sees. */
+    if (rc == VB_OK && html)
+        rc = vb_vertex_page_check(ctx, set);
     vb_world_loud(ctx, quiet);
     if (per.on) {
         if (rc == VB_OK)
@@ -194,6 +207,11 @@ int vb_cmd_vertices(int argc, char **argv)
     }
     if (writer && rc == VB_OK && topo_path)
         rc = write_topology(ctx, topo_path, &done.topology);
+    if (writer && rc == VB_OK && html) {
+        char title[512];
+        snprintf(title, sizeof title, "vorball vertices %s", input);
+        rc = vb_vertex_page_write(ctx, html, title, set, &res.certified, done.certificate);
+    }
     vb_cli_progress_clear();
     code = vb_world_end(ctx, rc);
     vb_completion_free(&done);

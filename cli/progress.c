@@ -211,10 +211,28 @@ static void on_progress(void *user, const char *stage, uint64_t done, uint64_t t
     pthread_mutex_unlock(&st.lock);
 }
 
+/* The vb_log_fn the CLI installs beside the progress: a warning or info
+ * line erases the progress or status line first (it would otherwise be
+ * printed after the line's text, and the next drawing would erase the
+ * warning's start), then goes out as the library's own text. The line
+ * comes back at its next drawing. */
+static void on_log(void *user, const vb_diag_record *rec)
+{
+    (void)user;
+    pthread_mutex_lock(&st.lock);
+    erase_locked();
+    vb_diag_record_write(stderr, rec);
+    fflush(stderr);
+    st.drawn_t = 0.0; /* redraw at the next report */
+    pthread_mutex_unlock(&st.lock);
+}
+
 void vb_cli_progress_attach(vb_ctx *ctx)
 {
-    if (vb_cli_progress_wanted())
+    if (vb_cli_progress_wanted()) {
         vb_set_progress(ctx, on_progress, NULL);
+        vb_set_log(ctx, on_log, NULL);
+    }
 }
 
 void vb_cli_progress_clear(void)

@@ -25,7 +25,8 @@ void vb_cli_set_quiet(int on);
 int vb_cli_progress_wanted(void);
 
 /* Installs the progress line as ctx's progress callback when it is
- * wanted (vb_cli_progress_wanted); otherwise ctx is left alone. */
+ * wanted (vb_cli_progress_wanted), and a log callback that erases the line
+ * before a warning is printed; otherwise ctx is left alone. */
 void vb_cli_progress_attach(vb_ctx *ctx);
 
 /* Erases the progress line if one is drawn (a stage that failed before its

@@ -3,6 +3,8 @@
  * the rest from the configuration (VB_BUILD_* definitions). */
 #include <gmp.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
 #include "vb_build.h"
 #include "vb_commit.h"
@@ -81,4 +83,22 @@ void vb_provenance_write_json(FILE *f, const vb_provenance *p)
     fprintf(f, ",\"spheres\":%zu,\"options\":", p->spheres);
     vb_json_write_string(f, p->options ? p->options : "");
     fputs(",", f);
+}
+
+int vb_provenance_write_comments(vb_ctx *ctx, FILE *f, const vb_provenance *p)
+{
+    size_t n = vb_provenance_text(p, NULL, 0);
+    char *t = malloc(n + 1);
+    if (!t)
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (writing a table's header)");
+    vb_provenance_text(p, t, n + 1);
+    for (const char *q = t; *q;) {
+        size_t len = strcspn(q, "\n");
+        fprintf(f, "# %.*s\n", (int)len, q);
+        q += len;
+        if (*q == '\n')
+            q++;
+    }
+    free(t);
+    return VB_OK;
 }

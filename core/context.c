@@ -256,6 +256,7 @@ const char *vb_errstr(int code)
     case VB_EINPUT_REFERENCE_SIZE: return "too many spheres for the exact reference";
     case VB_EINPUT_SCALE: return "radii too small for the sampling pipeline";
     case VB_EINPUT_TOL: return "tolerance finer than the sampling pipeline resolves";
+    case VB_EINPUT_PAGE_SIZE: return "too many spheres for a results page of vertices";
     case VB_ENOMEM_ESTIMATE: return "not enough memory for the input";
     default: break;
     }
@@ -303,14 +304,32 @@ static FILE *diag_stream(const vb_ctx *ctx)
     return ctx->cfg.diag ? ctx->cfg.diag : stderr;
 }
 
-/* A record to the log callback, its message formatted from fmt. */
+/* A record, its message formatted from fmt, to the log callback or, without
+ * one, as text to the diagnostic stream. */
 static void log_record(const vb_ctx *ctx, char kind, int num, const char *file, long line,
                        const char *fmt, va_list ap)
 {
     char msg[2048];
     vsnprintf(msg, sizeof msg, fmt, ap);
     vb_diag_record rec = {kind, num, file, file ? line : 0, msg};
-    ctx->log(ctx->log_arg, &rec);
+    if (ctx->log)
+        ctx->log(ctx->log_arg, &rec);
+    else
+        vb_diag_record_write(diag_stream(ctx), &rec);
+}
+
+void vb_diag_record_write(FILE *f, const vb_diag_record *rec)
+{
+    if (rec->kind == 'I')
+        fputs("vorball: ", f);
+    else if (rec->file && rec->line > 0)
+        fprintf(f, "vorball: %c%d: %s:%ld: ", rec->kind, rec->number, rec->file, rec->line);
+    else if (rec->file)
+        fprintf(f, "vorball: %c%d: %s: ", rec->kind, rec->number, rec->file);
+    else
+        fprintf(f, "vorball: %c%d: ", rec->kind, rec->number);
+    fputs(rec->message, f);
+    fputc('\n', f);
 }
 
 int vb_warn(vb_ctx *ctx, int num, const char *file, long line, const char *fmt, ...)
@@ -321,23 +340,9 @@ int vb_warn(vb_ctx *ctx, int num, const char *file, long line, const char *fmt, 
     if (ctx->cfg.verbosity < 1)
         return VB_OK;
     va_list ap;
-    if (ctx->log) {
-        va_start(ap, fmt);
-        log_record(ctx, 'W', num, file, line > 0 ? line : 0, fmt, ap);
-        va_end(ap);
-        return VB_OK;
-    }
-    FILE *f = diag_stream(ctx);
-    if (file && line > 0)
-        fprintf(f, "vorball: W%d: %s:%ld: ", num, file, line);
-    else if (file)
-        fprintf(f, "vorball: W%d: %s: ", num, file);
-    else
-        fprintf(f, "vorball: W%d: ", num);
     va_start(ap, fmt);
-    vfprintf(f, fmt, ap);
+    log_record(ctx, 'W', num, file, line > 0 ? line : 0, fmt, ap);
     va_end(ap);
-    fputc('\n', f);
     return VB_OK;
 }
 
@@ -346,16 +351,7 @@ void vb_info(vb_ctx *ctx, const char *fmt, ...)
     if (vb_ctx_check(ctx) != VB_OK || ctx->cfg.verbosity < 2)
         return;
     va_list ap;
-    if (ctx->log) {
-        va_start(ap, fmt);
-        log_record(ctx, 'I', 0, NULL, 0, fmt, ap);
-        va_end(ap);
-        return;
-    }
-    FILE *f = diag_stream(ctx);
-    fputs("vorball: ", f);
     va_start(ap, fmt);
-    vfprintf(f, fmt, ap);
+    log_record(ctx, 'I', 0, NULL, 0, fmt, ap);
     va_end(ap);
-    fputc('\n', f);
 }

@@ -56,6 +56,7 @@ enum vb_input_error {
     VB_EINPUT_REFERENCE_SIZE = VB_EINPUT | (30 << 8), /* E130 too many spheres for `reference` */
     VB_EINPUT_SCALE      = VB_EINPUT | (31 << 8),/* E131 radii too small for the sampler's doubles */
     VB_EINPUT_TOL        = VB_EINPUT | (32 << 8),/* E132 --tol finer than the sampler's doubles */
+    VB_EINPUT_PAGE_SIZE  = VB_EINPUT | (33 << 8),/* E133 too many spheres for a vertices page */
     VB_EINPUT_BOX_SMALL  = VB_EINPUT | (35 << 8) /* E135 periodic box too small for its atoms */
 };
 
@@ -87,6 +88,13 @@ typedef struct vb_diag_record {
  * may call it at once: a callback that collects must lock). The record
  * and its strings are valid during the call only. */
 typedef void (*vb_log_fn)(void *arg, const vb_diag_record *rec);
+
+/* Writes the record to f as the library's text does without a log
+ * callback: "vorball: W<n>: file:line: message\n" (file and line when
+ * given; "vorball: message\n" for an 'I' line), so that a callback that
+ * only needs to act before the text (the CLI erases its progress line)
+ * prints the same bytes. */
+void vb_diag_record_write(FILE *f, const vb_diag_record *rec);
 
 /* Configuration handed to vb_open. Zero-initialise, then set what you need. */
 typedef struct vb_config {

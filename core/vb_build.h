@@ -7,6 +7,8 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "vb.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -48,6 +50,12 @@ size_t vb_provenance_text(const vb_provenance *p, char *buf, size_t size);
  *   "tool":"vorball 0.1.0 (commit ..)","input":"FILE","spheres":N,"options":"..",
  * for a writer to put before its own keys. */
 void vb_provenance_write_json(FILE *f, const vb_provenance *p);
+
+/* The three lines of vb_provenance_text as comment lines of a table, each
+ * "# " + line + '\n' (a line break inside the input's name starts another
+ * "# " line), for the TSV writers' headers. VB_OK, or VB_ENOMEM (nothing
+ * written; the message in ctx). */
+int vb_provenance_write_comments(vb_ctx *ctx, FILE *f, const vb_provenance *p);
 
 #ifdef __cplusplus
 }

@@ -59,6 +59,7 @@
     X(E, 130, INPUT_REFERENCE_SIZE, 40, "more spheres than `reference` takes without --force")           \
     X(E, 131, INPUT_SCALE, 41, "a radius below 1e-50 of the extent: beyond the sampler's doubles")       \
     X(E, 132, INPUT_TOL, 42, "--tol below 1e-12 of the extent: finer than the sampler resolves")         \
+    X(E, 133, INPUT_PAGE_SIZE, 43, "vertices --html: over 2000 spheres, too many for a results page")      \
     X(E, 135, INPUT_BOX_SMALL, 45, "periodic box too small: its cells reach past 4 box heights")        \
     X(E, 140, MEMORY_ESTIMATE, 44, "not enough memory for the input: refused before the work starts")    \
     X(E, 150, MPI_FAILED, 50, "MPI failed between ranks: the job is aborted")                            \

@@ -191,15 +191,8 @@ static int write_tsv(vb_ctx *ctx, FILE *f, const vb_vertex_list *v, const vb_pro
                      const char *comment)
 {
     fputs("# vorball vertices\n", f);
-    if (prov) {
-        size_t n = vb_provenance_text(prov, NULL, 0);
-        char *t = malloc(n + 1);
-        if (!t)
-            return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (writing vertices)");
-        vb_provenance_text(prov, t, n + 1);
-        write_comment_lines(f, t);
-        free(t);
-    }
+    if (prov && vb_provenance_write_comments(ctx, f, prov) != VB_OK)
+        return VB_ENOMEM;
     if (comment)
         write_comment_lines(f, comment);
     fputs("# ids\tx\ty\tz\tt\tstatus\n", f);

@@ -9,19 +9,6 @@ static const char *row_kind(int kind)
     return kind == VBC_CHANNEL ? "channel" : kind == VBC_PORE ? "pore" : "cavity";
 }
 
-/* The frame's coordinates, 3 per atom (malloc'ed; NULL without memory). */
-static double *frame_xyz(const vb_sphere_set *s)
-{
-    double *xyz = malloc((s->n ? s->n : 1) * 3 * sizeof *xyz);
-    if (xyz)
-        for (size_t i = 0; i < s->n; i++) {
-            xyz[3 * i] = s->x[i];
-            xyz[3 * i + 1] = s->y[i];
-            xyz[3 * i + 2] = s->z[i];
-        }
-    return xyz;
-}
-
 static int add_counts(vb_page *p, int k, const vbc_result *res)
 {
     size_t count[3] = {0, 0, 0}; /* pores, channels, cavities */
@@ -91,13 +78,7 @@ static int add_row(vb_page *p, int k, const vbc_result *res, size_t t)
 
 int vbc_page_add(vb_page *p, const char *label, const vb_sphere_set *s, const vbc_result *res)
 {
-    /* A frame of another atom count (not one of the page's trajectory)
-     * keeps the page's atoms where they are. */
-    double *xyz = s->n == vb_page_atoms(p) ? frame_xyz(s) : NULL;
-    if (!xyz && s->n == vb_page_atoms(p))
-        return VB_ENOMEM;
-    int k, rc = vb_page_frame(p, label, xyz, &k);
-    free(xyz);
+    int k, rc = vb_page_frame_set(p, label, s, &k);
     if (rc != VB_OK || k < 0)
         return rc;
     rc = add_counts(p, k, res);

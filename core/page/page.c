@@ -24,9 +24,7 @@ typedef struct jlist {
 typedef struct page_frame {
     char *label;
     double *xyz; /* NULL: the set's coordinates */
-    jlist paths, profiles, facts;
-    char *values_name;
-    double *values;
+    jlist paths, profiles, facts, measures, points;
 } page_frame;
 
 struct vb_page {
@@ -110,8 +108,8 @@ void vb_page_free(vb_page *p)
         jlist_close(&fr->paths);
         jlist_close(&fr->profiles);
         jlist_close(&fr->facts);
-        free(fr->values_name);
-        free(fr->values);
+        jlist_close(&fr->measures);
+        jlist_close(&fr->points);
     }
     free(p->frames);
     free(p->title);
@@ -163,6 +161,24 @@ int vb_page_frame(vb_page *p, const char *label, const double *xyz, int *index)
     }
     *index = p->nframes++;
     return VB_OK;
+}
+
+int vb_page_frame_set(vb_page *p, const char *label, const vb_sphere_set *s, int *index)
+{
+    *index = -1;
+    if (s->n != p->n)
+        return vb_page_frame(p, label, NULL, index);
+    double *xyz = malloc((s->n ? s->n : 1) * 3 * sizeof *xyz);
+    if (!xyz)
+        return nomem(p);
+    for (size_t i = 0; i < s->n; i++) {
+        xyz[3 * i] = s->x[i];
+        xyz[3 * i + 1] = s->y[i];
+        xyz[3 * i + 2] = s->z[i];
+    }
+    int rc = vb_page_frame(p, label, xyz, index);
+    free(xyz);
+    return rc;
 }
 
 /* The list to append to, opened on first use, with the separating comma
@@ -221,7 +237,7 @@ static void put_coords(FILE *f, size_t n, const double *xyz)
     fputc(']', f);
 }
 
-enum { LIST_PATHS, LIST_PROFILES, LIST_FACTS };
+enum { LIST_PATHS, LIST_PROFILES, LIST_FACTS, LIST_MEASURES, LIST_POINTS };
 
 /* The stream of list `which` of frame `frame`, ready for the next value;
  * NULL with *rc VB_OK for a frame left out of a full page (nothing to do),
@@ -232,7 +248,8 @@ static FILE *list_next(vb_page *p, int frame, int which, int *rc)
     *rc = fr ? VB_ENOMEM : frame == -1 && p->full ? VB_OK : VB_EMISUSE;
     if (!fr)
         return NULL;
-    jlist *l = which == LIST_PATHS ? &fr->paths : which == LIST_PROFILES ? &fr->profiles : &fr->facts;
+    jlist *const lists[] = {&fr->paths, &fr->profiles, &fr->facts, &fr->measures, &fr->points};
+    jlist *l = lists[which];
     return jlist_next(p, l);
 }
 
@@ -290,21 +307,26 @@ int vb_page_fact(vb_page *p, int frame, const char *key, const char *value)
 
 int vb_page_atom_values(vb_page *p, int frame, const char *name, const double *v)
 {
-    page_frame *fr = frame_at(p, frame);
-    if (!fr)
-        return frame == -1 && p->full ? VB_OK : VB_EMISUSE;
-    double *copy = malloc((p->n ? p->n : 1) * sizeof *copy);
-    char *nm = dup_text(name);
-    if (!copy || !nm) {
-        free(copy);
-        free(nm);
-        return nomem(p);
-    }
-    memcpy(copy, v, p->n * sizeof *v);
-    free(fr->values);
-    free(fr->values_name);
-    fr->values = copy;
-    fr->values_name = nm;
+    int rc;
+    FILE *f = list_next(p, frame, LIST_MEASURES, &rc);
+    if (!f)
+        return rc;
+    fputs("{\"name\":", f);
+    vb_json_write_string_html(f, name);
+    fputs(",\"v\":", f);
+    put_array(f, p->n, v, 6);
+    fputc('}', f);
+    return VB_OK;
+}
+
+int vb_page_points(vb_page *p, int frame, const char *name, size_t n, const double *xyz,
+                   const double *radius)
+{
+    int rc;
+    FILE *f = list_next(p, frame, LIST_POINTS, &rc);
+    if (!f)
+        return rc;
+    put_named(f, name, "xyz", n, xyz, 1, radius);
     return VB_OK;
 }
 
@@ -376,16 +398,8 @@ static int put_data(FILE *f, vb_page *p)
         put_list(f, "paths", &fr->paths);
         put_list(f, "profiles", &fr->profiles);
         put_list(f, "facts", &fr->facts);
-        fputs(",\"values\":", f);
-        if (fr->values) {
-            fputs("{\"name\":", f);
-            vb_json_write_string_html(f, fr->values_name);
-            fputs(",\"v\":", f);
-            put_array(f, p->n, fr->values, 6);
-            fputc('}', f);
-        } else {
-            fputs("null", f);
-        }
+        put_list(f, "measures", &fr->measures);
+        put_list(f, "points", &fr->points);
         fputc('}', f);
     }
     fputs("]}", f);

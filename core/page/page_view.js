@@ -1,13 +1,15 @@
 /* vorball results page: draws the data of the JSON script element #vb-data with NGL.
  * Frames: the slider moves the atoms (updatePosition) and redraws the
- * frame's paths, figures, profiles and colours. When the page has drawn
- * frame k, body's data-ready is "k+1" and data-paths, data-atoms and
- * data-facts say what it drew (the page tests read them). */
+ * frame's paths, points, figures, profiles and colours; the measure selector
+ * picks the per-atom measure that colours the atoms. When the page has
+ * drawn frame k, body's data-ready is "k+1" and data-paths, data-atoms,
+ * data-drawn-points, data-measure and data-facts say what it drew (the
+ * page tests read them). */
 (function () {
   "use strict";
   var data = JSON.parse(document.getElementById("vb-data").textContent);
   var body = document.body;
-  var stage = null, comp = null, shapeComp = null, scheme = null;
+  var stage = null, comp = null, shapeComp = null, scheme = null, current = 0;
 
   /* HOLE's colours for a pore radius: too narrow for a water molecule
    * (red), room for one (green), wider (blue). */
@@ -56,13 +58,31 @@
       item("rgb(26,166,51)", NARROW + "–" + WIDE + " Å");
       item("rgb(38,77,217)", "> " + WIDE + " Å");
     }
-    if (fr.values) {
-      var r = range(fr.values.v);
+    var m = measureOf(fr);
+    if (m) {
+      var r = range(m.v);
       lg.appendChild(document.createElement("br"));
-      item("#" + valueColor(r[0], r[0], r[1]).toString(16).padStart(6, "0"), fr.values.name + " " + r[0]);
+      item("#" + valueColor(r[0], r[0], r[1]).toString(16).padStart(6, "0"), m.name + " " + r[0]);
       item("#" + valueColor(r[1], r[0], r[1]).toString(16).padStart(6, "0"), r[1].toString());
     }
+    if (fr.points.length) {
+      lg.appendChild(document.createElement("br"));
+      fr.points.forEach(function (pt, k) { item(POINT_COLORS_CSS[k % POINT_COLORS_CSS.length], pt.name); });
+    }
   }
+
+  /* The measure the selector names (by name, so that frames may list
+   * theirs in any order), or the frame's first; null without any. */
+  function measureOf(fr) {
+    if (!fr.measures.length) return null;
+    var sel = document.getElementById("measure");
+    var name = sel && sel.value;
+    for (var i = 0; i < fr.measures.length; i++) if (fr.measures[i].name === name) return fr.measures[i];
+    return fr.measures[0];
+  }
+
+  var POINT_COLORS = [[1.0, 0.55, 0.0], [0.55, 0.2, 0.7], [0.0, 0.6, 0.6]];
+  var POINT_COLORS_CSS = ["rgb(255,140,0)", "rgb(140,51,179)", "rgb(0,153,153)"];
 
   function range(v) {
     var lo = Infinity, hi = -Infinity;
@@ -117,10 +137,12 @@
     label(345, 12, "radius (Å) — " + fr.profiles.map(function (p) { return p.name; }).join(", "), "end");
   }
 
-  function drawPaths(fr) {
+  /* The frame's paths (tubes coloured by radius) and point sets (small
+   * markers); returns [paths drawn, points drawn]. */
+  function drawShapes(fr) {
     if (shapeComp) { stage.removeComponent(shapeComp); shapeComp = null; }
-    var n = 0;
-    if (!fr.paths.length) return 0;
+    var n = 0, np = 0;
+    if (!fr.paths.length && !fr.points.length) return [0, 0];
     var shape = new NGL.Shape("paths");
     fr.paths.forEach(function (p) {
       for (var i = 0; i < p.r.length; i++) {
@@ -134,15 +156,26 @@
       }
       n++;
     });
+    fr.points.forEach(function (pt, k) {
+      var color = POINT_COLORS[k % POINT_COLORS.length];
+      for (var i = 0; i < pt.r.length; i++) {
+        var c = [pt.xyz[3 * i], pt.xyz[3 * i + 1], pt.xyz[3 * i + 2]];
+        shape.addSphere(c, color, 0.3, pt.name + " " + (i + 1) + (pt.r[i] === null ? "" : " r=" + pt.r[i]));
+        np++;
+      }
+    });
     shapeComp = stage.addComponentFromObject(shape);
     shapeComp.addRepresentation("buffer");
-    return n;
+    return [n, np];
   }
 
   function colourAtoms(fr) {
-    if (!fr.values) return "element";
-    var v = fr.values.v, r = range(v);
-    return NGL.ColormakerRegistry.addScheme(function () {
+    var m = measureOf(fr);
+    if (!m) return "element";
+    var v = m.v, r = range(v);
+    /* NGL 2 spells it ColormakerRegistry, the embedded 0.8 ColorMakerRegistry. */
+    var registry = NGL.ColormakerRegistry || NGL.ColorMakerRegistry;
+    return registry.addScheme(function () {
       this.atomColor = function (atom) { return valueColor(v[atom.index], r[0], r[1]); };
     }, "vorball-values");
   }
@@ -153,7 +186,8 @@
     showFacts(fr);
     showLegend(fr);
     showProfiles(fr);
-    var paths = 0;
+    var drawn = [0, 0];
+    current = k;
     if (stage && comp) {
       var xyz = fr.xyz;
       if (xyz) {
@@ -162,11 +196,14 @@
       }
       scheme = colourAtoms(fr);
       comp.reprList.forEach(function (r) { r.setColor(scheme); });
-      paths = drawPaths(fr);
+      drawn = drawShapes(fr);
       stage.viewer.requestRender();
     }
+    var m = measureOf(fr);
+    body.dataset.measure = m ? m.name : "";
     body.dataset.paths = String(fr.paths.length);
-    body.dataset.drawnPaths = String(paths);
+    body.dataset.drawnPaths = String(drawn[0]);
+    body.dataset.drawnPoints = String(drawn[1]);
     body.dataset.ready = String(k + 1);
   }
 
@@ -178,8 +215,29 @@
     input.addEventListener("input", function () { showFrame(Number(input.value)); });
   }
 
+  /* The measure selector: the names of every frame's measures, shown when
+   * there is one at least; choosing one recolours the frame shown. */
+  function setupMeasures() {
+    var names = [];
+    data.frames.forEach(function (f) {
+      f.measures.forEach(function (m) { if (names.indexOf(m.name) < 0) names.push(m.name); });
+    });
+    body.dataset.measures = JSON.stringify(names);
+    if (!names.length) return;
+    var box = document.getElementById("measures"), sel = document.getElementById("measure");
+    box.className = "shown";
+    names.forEach(function (name) {
+      var o = document.createElement("option");
+      o.value = name; o.textContent = name; sel.appendChild(o);
+    });
+    sel.addEventListener("change", function () { showFrame(current); });
+  }
+
   function start() {
     setupSlider();
+    setupMeasures();
+    if (data.frames.some(function (f) { return f.profiles.length > 0; }))
+      document.getElementById("profiles").className = "shown";
     body.dataset.atoms = String(data.atoms);
     try {
       stage = new NGL.Stage("viewer", { backgroundColor: "white" });
@@ -196,7 +254,7 @@
       var few = data.atoms <= 20000;
       var fr0 = data.frames[0];
       scheme = colourAtoms(fr0);
-      var hasPaths = data.frames.some(function (f) { return f.paths.length > 0; });
+      var hasPaths = data.frames.some(function (f) { return f.paths.length > 0 || f.points.length > 0; });
       if (few) {
         comp.addRepresentation("spacefill", {
           radiusType: "bfactor", radiusScale: 1.0, color: scheme,
@@ -205,11 +263,13 @@
       } else {
         comp.addRepresentation("line", { color: scheme });
       }
-      if (data.annotated) comp.addRepresentation("cartoon", { color: "chainid", opacity: hasPaths ? 0.5 : 1.0 });
+      /* "chainindex": a scheme of NGL 0.8 (embedded) and of NGL 2 alike. */
+      if (data.annotated) comp.addRepresentation("cartoon", { color: "chainindex", opacity: hasPaths ? 0.5 : 1.0 });
       body.dataset.viewAtoms = String(comp.structure.atomCount);
       showFrame(0);
-      /* NGL 2 calls it autoView, earlier builds centerView. */
-      if (stage.autoView) stage.autoView(); else stage.centerView();
+      /* The view fits the molecule, not the shapes: a vertex of a cell on
+       * the hull can lie far out. NGL 2 calls it autoView, 0.8 centerView. */
+      if (comp.autoView) comp.autoView(); else comp.centerView(true);
     }).catch(function (e) {
       text(document.getElementById("error"), "The viewer could not load the molecule: " + e);
       showFrame(0);

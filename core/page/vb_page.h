@@ -1,8 +1,9 @@
 /* The results page: one self-contained HTML file that opens offline in a
  * browser and shows what a command computed — the molecule (with the NGL
  * viewer embedded), channel centrelines coloured by radius, pore profiles,
- * atoms coloured by a per-atom measure, a frame slider for trajectories and
- * a table of the figures of each frame.
+ * atoms coloured by per-atom measures (a selector picks one), point sets
+ * (Voronoi vertices), a frame slider for trajectories and a table of the
+ * figures of each frame.
  *
  * The page is for looking: coordinates and values are written as rounded
  * decimals (3 decimals for coordinates, 6 significant digits for values);
@@ -55,6 +56,11 @@ void vb_page_free(vb_page *p);
 #define VB_PAGE_MAX_NUMBERS 30000000u
 int vb_page_frame(vb_page *p, const char *label, const double *xyz, int *index);
 
+/* vb_page_frame with the coordinates of the sphere set s (a frame of the
+ * page's trajectory); a set of another count (not one of the page's
+ * frames) keeps the page's atoms where they are. Same returns. */
+int vb_page_frame_set(vb_page *p, const char *label, const vb_sphere_set *s, int *index);
+
 /* Adds a path to frame `frame` (an index from vb_page_frame): n points (3
  * doubles each, Å) with the free radius at each point; drawn as a tube of
  * spheres coloured from narrow (red) to wide (blue), named `name` in the
@@ -72,10 +78,19 @@ int vb_page_profile(vb_page *p, int frame, const char *name, size_t n, const dou
  * VB_OK, VB_EMISUSE or VB_ENOMEM. */
 int vb_page_fact(vb_page *p, int frame, const char *key, const char *value);
 
-/* Colours the atoms by a per-atom measure named `name` (e.g. "volume (Å³)"):
- * v holds one value per atom for frame `frame`; atoms without a value (NaN)
- * are grey. VB_OK, VB_EMISUSE or VB_ENOMEM. */
+/* Adds a per-atom measure named `name` (e.g. "volume (Å³)") to frame
+ * `frame`: v holds one value per atom; atoms without a value (NaN) are
+ * grey. A frame may carry several measures: the page colours the atoms by
+ * the one its selector names (the first added, at first). VB_OK,
+ * VB_EMISUSE or VB_ENOMEM. */
 int vb_page_atom_values(vb_page *p, int frame, const char *name, const double *v);
+
+/* Adds a set of n points (3 doubles each, Å) named `name` to frame `frame`,
+ * each with a radius (e.g. the radius of the sphere a Voronoi vertex is the
+ * centre of; NaN: none), drawn as small markers with the radius in their
+ * tooltip. VB_OK, VB_EMISUSE or VB_ENOMEM. */
+int vb_page_points(vb_page *p, int frame, const char *name, size_t n, const double *xyz,
+                   const double *radius);
 
 /* Writes the page to `path` (whole or not at all). VB_OK, VB_EMISUSE
  * (built without the viewer, or a page with no frame and no atoms), VB_EIO

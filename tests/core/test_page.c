@@ -55,6 +55,10 @@ int main(void)
     CHECK_INT(vb_page_fact(p, 0, "channels", "0"), VB_OK);
     double vals[3] = {10.5, NAN, 30};
     CHECK_INT(vb_page_atom_values(p, 0, "volume", vals), VB_OK);
+    double sas[3] = {1, 2, 3}, vx[3] = {0, 0, 0.5}, vr[1] = {1.25};
+    CHECK_INT(vb_page_atom_values(p, 0, "sas", sas), VB_OK);
+    CHECK_INT(vb_page_points(p, 0, "vertices", 1, vx, vr), VB_OK);
+    CHECK_INT(vb_page_points(p, 3, "vertices", 1, vx, vr), VB_EMISUSE);
     /* A frame that does not exist is misuse, not a crash. */
     CHECK_INT(vb_page_fact(p, 2, "k", "v"), VB_EMISUSE);
 
@@ -91,7 +95,8 @@ int main(void)
         CHECK(strstr(data, "\"paths\":[{\"name\":\"channel 1\",\"xyz\":[0.000,0.000,-1.000,0.000,0.000,1.000],\"r\":[0.9,2.5]}]") != NULL);
         CHECK(strstr(data, "\"profiles\":[{\"name\":\"pore\",\"s\":[-1,1],\"r\":[0.9,2.5]}]") != NULL);
         CHECK(strstr(data, "\"facts\":[[\"bottleneck radius (Å)\",\"0.900\"]]") != NULL);
-        CHECK(strstr(data, "\"values\":{\"name\":\"volume\",\"v\":[10.5,null,30]}") != NULL);
+        CHECK(strstr(data, "\"measures\":[{\"name\":\"volume\",\"v\":[10.5,null,30]},{\"name\":\"sas\",\"v\":[1,2,3]}]") != NULL);
+        CHECK(strstr(data, "\"points\":[{\"name\":\"vertices\",\"xyz\":[0.000,0.000,0.500],\"r\":[1.25]}]") != NULL);
         *end = '<';
         /* One page: the data, the viewer and the page's script, nothing
          * fetched from elsewhere. */

@@ -12,12 +12,21 @@ run 0 log "$vorball" cells three.xyzr --tolerance 1e-4 -o atoms.tsv --contacts c
 expect_line atoms.tsv '^id	chain	resname	resseq	atom	volume	volume_lo	volume_hi	sas	sas_lo	sas_hi$'
 expect_line atoms.tsv '^0	\.	\.	\.	\.	42\.08[0-9]*	'
 expect_line atoms.tsv '^2	\.	\.	\.	\.	73\.622176[0-9]*	'
-[ "$(wc -l < atoms.tsv)" -eq 4 ] || fail "atoms.tsv: $(wc -l < atoms.tsv) lines, expected 4"
+# The provenance (issue 35), as vertex files carry it: the tool, the input
+# and its sphere count, the options that shape the table (-o left out, the
+# other output paths written FILE); the same lines head both tables.
+for t in atoms.tsv contacts.tsv; do
+    expect_line $t '^# tool: vorball [0-9][0-9.]* \(commit [^)]*\)$'
+    expect_line $t '^# input: three\.xyzr, 3 spheres$'
+    expect_line $t '^# options: cells three\.xyzr --tolerance 1e-4 --contacts FILE$'
+    [ "$(head -n 3 $t | grep -c '^# ')" -eq 3 ] || fail "$t: the provenance is not its first 3 lines"
+done
+[ "$(grep -vc '^#' atoms.tsv)" -eq 4 ] || fail "atoms.tsv: $(grep -vc '^#' atoms.tsv) lines, expected 4"
 expect_line contacts.tsv '^id1	id2	area	area_lo	area_hi$'
 expect_line contacts.tsv '^0	1	16\.328[0-9]*	'
-[ "$(wc -l < contacts.tsv)" -eq 2 ] || fail "contacts.tsv: expected one contact"
+[ "$(grep -vc '^#' contacts.tsv)" -eq 2 ] || fail "contacts.tsv: expected one contact"
 # every row: lo <= value <= hi
-awk -F'\t' 'NR > 1 && !($7 <= $6 && $6 <= $8 && $10 <= $9 && $9 <= $11) { exit 1 }' atoms.tsv ||
+awk -F'\t' '!/^#/ && $1 != "id" && !($7 <= $6 && $6 <= $8 && $10 <= $9 && $9 <= $11) { exit 1 }' atoms.tsv ||
     fail "a value outside its enclosure"
 
 for case in contained_sphere internally_tangent hexagonal_ring; do
@@ -30,7 +39,7 @@ for case in contained_sphere internally_tangent hexagonal_ring; do
     if [ "$case" = contained_sphere ]; then
         expect_line log1 'W850'
         # an empty cell's row holds zeros
-        awk -F'\t' 'NR > 1 && $6 == 0 && $8 == 0 { found = 1 } END { exit !found }' \
+        awk -F'\t' '!/^#/ && $1 != "id" && $6 == 0 && $8 == 0 { found = 1 } END { exit !found }' \
             "$case.1.tsv" || fail "no empty cell with zero volume"
     fi
 done

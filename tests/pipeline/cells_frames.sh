@@ -9,10 +9,22 @@ vorball=$1 corpus=$2 work=$3
 fresh_dir "$work/cells_frames"
 fast="--tolerance 1e-2 --max-patches 96 --threads 2"
 
+# Each table starts with its provenance (issue 35: tool, input and sphere
+# count, options): checked, then left out, so the checks below read the
+# column names and the rows.
+strip_provenance() {
+    for t in "$@"; do
+        [ "$(head -n 3 "$t" | grep -c '^# \(tool: vorball \|input: .*, [0-9]* spheres$\|options: cells \)')" -eq 3 ] ||
+            fail "$t: no provenance lines first"
+        grep -v '^#' "$t" > "$t.rows" && mv "$t.rows" "$t"
+    done
+}
+
 # Frames 0 and 2 of the 51 models (183 atoms each), contacts too.
 # shellcheck disable=SC2086 # $fast are words
 run 0 log "$vorball" cells "$corpus/data/ngl_md_ascii_trj.pdb" --frames 0:3:2 $fast \
     -o frames.tsv --contacts frames_c.tsv
+strip_provenance frames.tsv frames_c.tsv
 expect_line frames.tsv '^frame	id	chain	resname	resseq	atom	volume	volume_lo	volume_hi	sas	sas_lo	sas_hi$'
 expect_line frames_c.tsv '^frame	id1	id2	area	area_lo	area_hi$'
 [ "$(cut -f1 frames.tsv | tail -n +2 | sort -u | tr '\n' ' ')" = "0 2 " ] ||
@@ -21,6 +33,7 @@ expect_line frames_c.tsv '^frame	id1	id2	area	area_lo	area_hi$'
 # shellcheck disable=SC2086
 run 0 log1 "$vorball" cells "$corpus/data/ngl_md_ascii_trj.pdb" --model 1 $fast \
     -o model1.tsv --contacts model1_c.tsv
+strip_provenance model1.tsv model1_c.tsv
 awk -F'\t' 'NR > 1 && $1 == 0' frames.tsv | cut -f2- > frame0.tsv
 tail -n +2 model1.tsv | cmp -s - frame0.tsv || fail "frame 0's rows differ from --model 1's"
 awk -F'\t' 'NR > 1 && $1 == 0' frames_c.tsv | cut -f2- > frame0_c.tsv
@@ -36,6 +49,7 @@ awk -F'\t' 'NR > 1 && !($8 <= $7 && $7 <= $9 && $11 <= $10 && $10 <= $12) { exit
 # shellcheck disable=SC2086
 run 0 log "$vorball" cells "$corpus/data/ngl_md_ascii_trj.pdb" --traj "$corpus/data/ngl_md_10frames.xtc" \
     --frames 0:2 $fast -o traj.tsv
+strip_provenance traj.tsv
 [ "$(cut -f1 traj.tsv | tail -n +2 | uniq -c | awk '{printf "%s:%s ", $2, $1}')" = "0:183 1:183 " ] ||
     fail "traj.tsv: not frames 0 and 1 of 183 atoms each"
 awk -F'\t' 'NR > 1 && !($8 <= $7 && $7 <= $9 && $8 > 0 && $11 <= $10 && $10 <= $12) { exit 1 }' traj.tsv ||
@@ -53,10 +67,14 @@ awk '/^ATOM/ && substr($0, 23, 4) + 0 <= 3 {
 run 0 log "$vorball" cells three_res.pdb $fast -o three.tsv
 # shellcheck disable=SC2086
 run 0 log "$vorball" cells three_res.pdb $fast --json -o three.json
+strip_provenance three.tsv
 python3 - three.tsv three.json <<'PY' || fail "JSON sums do not match the TSV"
 import json, sys
 rows = [l.rstrip("\n").split("\t") for l in open(sys.argv[1])][1:]
 doc = json.load(open(sys.argv[2]))
+# the provenance first, as in a vertex JSON file
+assert list(doc)[:4] == ["tool", "input", "spheres", "options"], list(doc)
+assert doc["spheres"] == 20 and doc["options"].startswith("cells three_res.pdb "), doc["options"]
 assert len(doc["atoms"]) == len(rows) == 20, len(rows)
 keys = ("volume", "volume_lo", "volume_hi", "sas", "sas_lo", "sas_hi")
 for a, r in zip(doc["atoms"], rows):   # the TSV's digits

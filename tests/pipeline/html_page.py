@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""The results page (`channels --html`) as a user opens it: headless Chromium
+"""The results pages (`channels --html`, `cells --html`, `vertices --html`) as a
+user opens them: headless Chromium
 with every network name unresolvable (the page must open offline) loads the
 page, its script draws the molecule and the channels with the embedded viewer,
 and the page then says what it drew. Checked:
@@ -9,7 +10,13 @@ and the page then says what it drew. Checked:
     (counts of pores/channels/cavities, each row's bottleneck and length);
   - a trajectory's page has one frame per table frame and shows the slider;
   - the screenshot's 3D view is not blank (many colours, a visible share of
-    non-background pixels).
+    non-background pixels);
+  - cells: the counts shown (atoms, contacts) equal the TSVs' rows, the
+    selector offers volume, SAS and contact area and colours by the one
+    chosen, each atom's volume on the page is the TSV's rounded, and a
+    trajectory's page has the slider and one frame per table frame;
+  - vertices: the vertices drawn and the count shown equal the table's
+    lines; over 2000 spheres E133 (exit 43) and no page left.
 Usage: html_page.py VORBALL SOURCE_DIR WORK_DIR"""
 import csv
 import json
@@ -129,21 +136,29 @@ for r in rows:
     check(facts.get(f"{name}: length (Å)") == r["length_A"], f"gramicidin: {name} length = table {r['length_A']}")
 check(re.search(r"<polyline[^>]*points=\"[0-9]", dom) is not None, "gramicidin: the pore's profile is plotted")
 
-shot = os.path.join(work, "gramicidin.png")
-if os.path.exists(shot):
-    os.remove(shot)
-browse(page, "--screenshot=" + shot)
-w, h, bpp, px = png_pixels(shot)
-colours, ink, total = set(), 0, 0
-for y in range(60, h - 20, 2):  # the 3D view: left of the side panel, below the header
-    row = px[y]
-    for x in range(10, int(w * 0.6), 2):
-        c = bytes(row[x * bpp:x * bpp + 3])
-        colours.add(c)
-        total += 1
-        ink += c != b"\xff\xff\xff"
-check(len(colours) >= 50, f"gramicidin: the 3D view has {len(colours)} colours (>= 50)")
-check(ink >= 0.02 * total, f"gramicidin: {100.0 * ink / total:.1f} % of the 3D view drawn (>= 2 %)")
+
+
+def screenshot_drawn(tag, page):
+    """The 3D view of the page's screenshot is drawn: many colours, and a
+    visible share of non-white pixels."""
+    shot = os.path.join(work, tag + ".png")
+    if os.path.exists(shot):
+        os.remove(shot)
+    browse(page, "--screenshot=" + shot)
+    w, h, bpp, px = png_pixels(shot)
+    colours, ink, total = set(), 0, 0
+    for y in range(60, h - 20, 2):  # the 3D view: left of the side panel, below the header
+        row = px[y]
+        for x in range(10, int(w * 0.6), 2):
+            c = bytes(row[x * bpp:x * bpp + 3])
+            colours.add(c)
+            total += 1
+            ink += c != b"\xff\xff\xff"
+    check(len(colours) >= 50, f"{tag}: the 3D view has {len(colours)} colours (>= 50)")
+    check(ink >= 0.02 * total, f"{tag}: {100.0 * ink / total:.1f} % of the 3D view drawn (>= 2 %)")
+
+
+screenshot_drawn("gramicidin", page)
 
 # 2. A trajectory: three models of an MD run read as frames, the slider shown.
 traj = os.path.join(data, "ngl_md_ascii_trj.pdb")
@@ -164,6 +179,108 @@ if os.path.exists(traj):
     check(body_attrs(dom).get("ready") == "1", "trajectory: the page drew frame 1")
 else:
     failures.append("the trajectory " + traj + " is missing")
+
+
+
+def page_data(page):
+    text = open(page, encoding="utf-8").read()
+    blob = re.search(r'<script type="application/json" id="vb-data">(.*?)</script>', text, re.S)
+    return json.loads(blob.group(1))
+
+
+def tsv_rows(path):
+    """The rows of a TSV as dicts, its provenance lines ('#') left out."""
+    lines = [line for line in open(path) if not line.startswith("#")]
+    return list(csv.DictReader(lines, delimiter="\t"))
+
+
+def run_tool(tag, cmd, *args, rc=0):
+    r = subprocess.run([vorball, cmd] + list(args), capture_output=True, text=True)
+    check(r.returncode == rc, f"{tag}: vorball {cmd} exits {r.returncode}, expected {rc} "
+                              f"({r.stderr.strip()[-300:]})")
+    return r
+
+
+# 3. Cells of one structure (model 1 of the MD run, 183 atoms), contacts too.
+FAST = ["--tolerance", "1e-2", "--max-patches", "96", "--threads", "2"]
+# 300 patches: every contact bounded (96 leave some with hi = inf), 7 s on 2 cores
+BOUNDED = ["--tolerance", "1e-2", "--max-patches", "300", "--threads", "2"]
+md = os.path.join(data, "ngl_md_ascii_trj.pdb")
+cells_tsv, cells_c, cells_page = (os.path.join(work, "cells" + e) for e in (".tsv", "_c.tsv", ".html"))
+run_tool("cells", "cells", md, "--model", "1", *BOUNDED, "-o", cells_tsv, "--contacts", cells_c,
+         "--html", cells_page)
+atoms, contacts = tsv_rows(cells_tsv), tsv_rows(cells_c)
+dom = browse(cells_page, "--dump-dom")
+attrs = body_attrs(dom)
+check(attrs.get("ready") == "1", f"cells: the page drew frame 1 (data-ready={attrs.get('ready')})")
+err = re.search(r'<p id="error">([^<]*)</p>', dom)
+check(err is not None and err.group(1) == "", "cells: no error shown on the page")
+check(attrs.get("view-atoms") == str(len(atoms)), f"cells: the viewer read {attrs.get('view-atoms')} atoms "
+                                                  f"of the table's {len(atoms)}")
+facts = dict(json.loads(attrs.get("facts", "[]")))
+check(facts.get("atoms") == str(len(atoms)), f"cells: page shows atoms = {facts.get('atoms')}, TSV {len(atoms)}")
+check(facts.get("contacts") == str(len(contacts)),
+      f"cells: page shows contacts = {facts.get('contacts')}, contacts TSV {len(contacts)}")
+names = json.loads(attrs.get("measures", "[]"))
+check(names == ["volume (Å³)", "SAS area (Å²)", "contact area (Å²)"], f"cells: the selector offers {names}")
+check(attrs.get("measure") == "volume (Å³)", f"cells: coloured by {attrs.get('measure')} at first")
+check('id="measures" class="shown"' in dom, "cells: the measure selector is shown")
+pdata = page_data(cells_page)
+vol = pdata["frames"][0]["measures"][0]["v"]
+check(len(vol) == len(atoms) and all(abs(v - float(a["volume"])) <= 1e-5 * abs(float(a["volume"])) + 1e-9
+                                     for v, a in zip(vol, atoms)),
+      "cells: each atom's volume on the page is the TSV's (6 digits)")
+area = pdata["frames"][0]["measures"][2]["v"]
+sums = [0.0] * len(atoms)
+for c in contacts:
+    sums[int(c["id1"])] += float(c["area"])
+    sums[int(c["id2"])] += float(c["area"])
+check(len(area) == len(sums) and all(a is not None and abs(a - b) <= 1e-5 * b + 1e-9
+                                     for a, b in zip(area, sums)),
+      "cells: each atom's contact area on the page is the sum of its contacts TSV rows")
+screenshot_drawn("cells", cells_page)
+
+# 4. Cells over frames 0, 2 and 4: the slider, one frame per table frame.
+run_tool("cells-frames", "cells", md, "--frames", "0:5:2", *FAST, "-o", cells_tsv, "--html", cells_page)
+rows = tsv_rows(cells_tsv)
+frames = sorted({r["frame"] for r in rows}, key=int)
+pdata = page_data(cells_page)
+check(len(pdata["frames"]) == len(frames) == 3, f"cells-frames: {len(pdata['frames'])} frames on the page, "
+                                                f"{len(frames)} in the table (3)")
+for k, f in enumerate(pdata["frames"]):
+    n = sum(1 for r in rows if r["frame"] == frames[k]) if k < len(frames) else -1
+    shown = dict(f["facts"]).get("atoms")
+    check(shown == str(n), f"cells-frames: frame {k}: atoms = {shown}, the table has {n} rows")
+check(pdata["frames"][0]["xyz"] != pdata["frames"][1]["xyz"], "cells-frames: the atoms move between frames")
+check(pdata["frames"][0]["measures"][0]["v"] != pdata["frames"][1]["measures"][0]["v"],
+      "cells-frames: the volumes change between frames")
+dom = browse(cells_page, "--dump-dom")
+check('id="frames" class="shown"' in dom, "cells-frames: the frame slider is shown")
+check(body_attrs(dom).get("ready") == "1", "cells-frames: the page drew frame 1")
+
+# 5. Vertices of crambin (327 atoms): every certified vertex drawn.
+crambin = os.path.join(data, "1crn.pdb")
+vtsv, vpage = os.path.join(work, "vertices.tsv"), os.path.join(work, "vertices.html")
+run_tool("vertices", "vertices", crambin, "--threads", "2", "-o", vtsv, "--html", vpage)
+nvert = sum(1 for line in open(vtsv) if not line.startswith("#"))
+dom = browse(vpage, "--dump-dom")
+attrs = body_attrs(dom)
+facts = dict(json.loads(attrs.get("facts", "[]")))
+check(attrs.get("ready") == "1", "vertices: the page drew frame 1")
+check(facts.get("vertices") == str(nvert), f"vertices: page shows {facts.get('vertices')}, table has {nvert}")
+check(facts.get("spheres") == "327", f"vertices: page shows {facts.get('spheres')} spheres (327)")
+check(attrs.get("drawn-points") == str(nvert), f"vertices: {attrs.get('drawn-points')} vertices drawn of {nvert}")
+screenshot_drawn("vertices", vpage)
+
+# 6. Over 2000 spheres: E133, exit 43, no page and no table left.
+big = os.path.join(data, "1chb_hole2.pdb")
+bpage, btsv = os.path.join(work, "big.html"), os.path.join(work, "big.tsv")
+for p in (bpage, btsv):
+    if os.path.exists(p):
+        os.remove(p)
+r = run_tool("vertices-big", "vertices", big, "-o", btsv, "--html", bpage, rc=43)
+check("E133" in r.stderr, f"vertices-big: E133 named ({r.stderr.strip()[-200:]})")
+check(not os.path.exists(bpage) and not os.path.exists(btsv), "vertices-big: no page and no table left")
 
 print(f"{len(failures)} failed")
 sys.exit(1 if failures else 0)

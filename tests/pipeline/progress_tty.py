@@ -11,7 +11,9 @@ nothing is drawn; the output file is the same bytes in every case. Checked:
   - `verify --arcs` on the terminal: the arcs stage ends at its total;
   - on a pipe, and with --quiet on the terminal (even with
     VORBALL_PROGRESS=1): no progress line;
-  - the vertex files of the three runs are byte-identical.
+  - the vertex files of the three runs are byte-identical;
+  - a warning printed while the status line is drawn erases it first
+    (`channels`, W808): every warning starts a line of its own.
 Usage: progress_tty.py VORBALL SOURCE_DIR WORK_DIR"""
 import os
 import pty
@@ -134,6 +136,24 @@ rc, raw_a, _ = on_tty(["verify", spheres, tty_out, "--arcs"], VORBALL_PROGRESS="
 if rc != 0:
     failures.append("verify --arcs exited %d: %r" % (rc, raw_a[-400:]))
 check_stages("verify --arcs", drawings(raw_a), ["arcs"])
+
+# 5. A warning while the status line is drawn: `channels` on one frame at
+# grid 256 (the plain-C reference: seconds, so the status line is drawn),
+# whose W808 (no pore) comes at the end of the frame. The line is erased
+# first: the warning starts a line of its own, never after the status text.
+rc, raw_w, secs = on_tty(["channels", os.path.join(source, "corpus", "data", "ngl_md_ascii_trj.pdb"),
+                          "--model", "1", "--grid", "256", "--device", "ref",
+                          "-o", os.path.join(work, "warn.csv")])
+if rc != 0:
+    failures.append("channels on a terminal exited %d: %r" % (rc, raw_w[-400:]))
+at = raw_w.find(b"vorball: W808")
+if at < 0 or b"[1 s]" not in raw_w[:max(at, 0)]:
+    failures.append("channels: no W808 after a drawn status line (%.1f s): %r" % (secs, raw_w[:300]))
+for m in re.finditer(rb"vorball: W\d+", raw_w):
+    before = raw_w[:m.start()]
+    if before and not before.endswith((b"\n", DRAW)):
+        failures.append("a warning printed after the progress text: %r" % raw_w[max(0, m.start() - 60):m.end()])
+print("warning on a terminal: %.1f s, %d warnings" % (secs, len(re.findall(rb"vorball: W\d+", raw_w))))
 
 for f in failures:
     print("FAIL:", f)

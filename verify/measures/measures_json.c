@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_build.h"
 #include "vb_json.h"
 #include "vb_measures.h"
 #include "vbm_text.h"
@@ -50,6 +51,13 @@ static void put_groups(FILE *f, const char *key, const vb_sphere_set *set, const
 int vb_cell_measures_write_json(vb_ctx *ctx, FILE *f, const vb_sphere_set *set,
                                 const vb_cell_measures *m, long frame, int model)
 {
+    return vb_cell_measures_write_json_prov(ctx, f, set, m, frame, model, NULL);
+}
+
+int vb_cell_measures_write_json_prov(vb_ctx *ctx, FILE *f, const vb_sphere_set *set,
+                                     const vb_cell_measures *m, long frame, int model,
+                                     const vb_provenance *prov)
+{
     vb_cell_group *res = NULL, *ch = NULL;
     size_t nres = 0, nch = 0;
     int rc = vb_cell_measures_groups(ctx, set, m, 0, &res, &nres);
@@ -60,6 +68,8 @@ int vb_cell_measures_write_json(vb_ctx *ctx, FILE *f, const vb_sphere_set *set,
         return rc;
     }
     fputs("{", f);
+    if (prov)
+        vb_provenance_write_json(f, prov);
     if (frame >= 0)
         fprintf(f, "\"frame\": %ld, \"model\": %d, ", frame, model);
     fprintf(f, "\"atoms\": [");

@@ -18,6 +18,7 @@
 #include <stdint.h>
 
 #include "vb.h"
+#include "vb_build.h"
 #include "vb_spheres.h"
 
 /* Default relative tolerance of --tolerance (see vb_measure_options). */
@@ -115,5 +116,12 @@ int vb_cell_measures_groups(vb_ctx *ctx, const vb_sphere_set *set, const vb_cell
  * write errors are the stream's. */
 int vb_cell_measures_write_json(vb_ctx *ctx, FILE *f, const vb_sphere_set *set,
                                 const vb_cell_measures *m, long frame, int model);
+
+/* vb_cell_measures_write_json with the provenance members (tool, input,
+ * spheres, options: vb_provenance_write_json) first in the object when
+ * prov is not NULL. Same returns. */
+int vb_cell_measures_write_json_prov(vb_ctx *ctx, FILE *f, const vb_sphere_set *set,
+                                     const vb_cell_measures *m, long frame, int model,
+                                     const vb_provenance *prov);
 
 #endif
