@@ -32,13 +32,10 @@ static int fill(vb_page *p, const vb_sphere_set *set, const vb_vertex_list *v,
     }
     rc = vb_page_points(p, k, "vertices", v->n, xyz, v->t);
     free(xyz);
-    char num[32];
-    snprintf(num, sizeof num, "%zu", set->n);
     if (rc == VB_OK)
-        rc = vb_page_fact(p, k, "spheres", num);
-    snprintf(num, sizeof num, "%zu", v->n);
+        rc = vb_page_fact_count(p, k, "spheres", set->n);
     if (rc == VB_OK)
-        rc = vb_page_fact(p, k, "vertices", num);
+        rc = vb_page_fact_count(p, k, "vertices", v->n);
     if (rc == VB_OK && certificate && certificate[0])
         rc = vb_page_fact(p, k, "certificate", certificate);
     return rc;

@@ -269,15 +269,22 @@ static void put_named(FILE *f, const char *name, const char *ka, size_t n, const
     fputc('}', f);
 }
 
-int vb_page_path(vb_page *p, int frame, const char *name, size_t n, const double *xyz,
-                 const double *radius)
+/* A path or a point set: n points with a radius each, to list `which`. */
+static int add_points(vb_page *p, int frame, int which, const char *name, size_t n,
+                      const double *xyz, const double *radius)
 {
     int rc;
-    FILE *f = list_next(p, frame, LIST_PATHS, &rc);
+    FILE *f = list_next(p, frame, which, &rc);
     if (!f)
         return rc;
     put_named(f, name, "xyz", n, xyz, 1, radius);
     return VB_OK;
+}
+
+int vb_page_path(vb_page *p, int frame, const char *name, size_t n, const double *xyz,
+                 const double *radius)
+{
+    return add_points(p, frame, LIST_PATHS, name, n, xyz, radius);
 }
 
 int vb_page_profile(vb_page *p, int frame, const char *name, size_t n, const double *s,
@@ -305,6 +312,13 @@ int vb_page_fact(vb_page *p, int frame, const char *key, const char *value)
     return VB_OK;
 }
 
+int vb_page_fact_count(vb_page *p, int frame, const char *key, size_t count)
+{
+    char v[32];
+    snprintf(v, sizeof v, "%zu", count);
+    return vb_page_fact(p, frame, key, v);
+}
+
 int vb_page_atom_values(vb_page *p, int frame, const char *name, const double *v)
 {
     int rc;
@@ -322,12 +336,7 @@ int vb_page_atom_values(vb_page *p, int frame, const char *name, const double *v
 int vb_page_points(vb_page *p, int frame, const char *name, size_t n, const double *xyz,
                    const double *radius)
 {
-    int rc;
-    FILE *f = list_next(p, frame, LIST_POINTS, &rc);
-    if (!f)
-        return rc;
-    put_named(f, name, "xyz", n, xyz, 1, radius);
-    return VB_OK;
+    return add_points(p, frame, LIST_POINTS, name, n, xyz, radius);
 }
 
 /* The atoms as PDB ATOM/HETATM records (what NGL reads), with the sphere's

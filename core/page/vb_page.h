@@ -78,6 +78,10 @@ int vb_page_profile(vb_page *p, int frame, const char *name, size_t n, const dou
  * VB_OK, VB_EMISUSE or VB_ENOMEM. */
 int vb_page_fact(vb_page *p, int frame, const char *key, const char *value);
 
+/* vb_page_fact with a count as its value, written as the tables write
+ * counts (decimal digits). Same returns. */
+int vb_page_fact_count(vb_page *p, int frame, const char *key, size_t count);
+
 /* Adds a per-atom measure named `name` (e.g. "volume (Å³)") to frame
  * `frame`: v holds one value per atom; atoms without a value (NaN) are
  * grey. A frame may carry several measures: the page colours the atoms by

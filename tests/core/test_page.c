@@ -53,6 +53,7 @@ int main(void)
     CHECK_INT(vb_page_profile(p, 1, "pore", 2, cs, cr), VB_OK);
     CHECK_INT(vb_page_fact(p, 1, "bottleneck radius (Å)", "0.900"), VB_OK);
     CHECK_INT(vb_page_fact(p, 0, "channels", "0"), VB_OK);
+    CHECK_INT(vb_page_fact_count(p, 0, "atoms", 3), VB_OK);
     double vals[3] = {10.5, NAN, 30};
     CHECK_INT(vb_page_atom_values(p, 0, "volume", vals), VB_OK);
     double sas[3] = {1, 2, 3}, vx[3] = {0, 0, 0.5}, vr[1] = {1.25};
@@ -95,6 +96,7 @@ int main(void)
         CHECK(strstr(data, "\"paths\":[{\"name\":\"channel 1\",\"xyz\":[0.000,0.000,-1.000,0.000,0.000,1.000],\"r\":[0.9,2.5]}]") != NULL);
         CHECK(strstr(data, "\"profiles\":[{\"name\":\"pore\",\"s\":[-1,1],\"r\":[0.9,2.5]}]") != NULL);
         CHECK(strstr(data, "\"facts\":[[\"bottleneck radius (Å)\",\"0.900\"]]") != NULL);
+        CHECK(strstr(data, "\"facts\":[[\"channels\",\"0\"],[\"atoms\",\"3\"]]") != NULL);
         CHECK(strstr(data, "\"measures\":[{\"name\":\"volume\",\"v\":[10.5,null,30]},{\"name\":\"sas\",\"v\":[1,2,3]}]") != NULL);
         CHECK(strstr(data, "\"points\":[{\"name\":\"vertices\",\"xyz\":[0.000,0.000,0.500],\"r\":[1.25]}]") != NULL);
         *end = '<';

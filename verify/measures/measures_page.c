@@ -11,18 +11,13 @@ static int add_facts(vb_page *p, int k, const vb_cell_measures *m, int contacts,
                      double sas)
 {
     char v[64];
-    int rc;
-    snprintf(v, sizeof v, "%zu", m->n);
-    rc = vb_page_fact(p, k, "atoms", v);
-    snprintf(v, sizeof v, "%zu", m->nempty);
+    int rc = vb_page_fact_count(p, k, "atoms", m->n);
     if (rc == VB_OK)
-        rc = vb_page_fact(p, k, "empty cells", v);
-    snprintf(v, sizeof v, "%zu", m->nloose);
+        rc = vb_page_fact_count(p, k, "empty cells", m->nempty);
     if (rc == VB_OK)
-        rc = vb_page_fact(p, k, "atoms with a loose value", v);
-    snprintf(v, sizeof v, "%zu", m->ncontacts);
+        rc = vb_page_fact_count(p, k, "atoms with a loose value", m->nloose);
     if (rc == VB_OK && contacts)
-        rc = vb_page_fact(p, k, "contacts", v);
+        rc = vb_page_fact_count(p, k, "contacts", m->ncontacts);
     snprintf(v, sizeof v, "%.6g", vol);
     if (rc == VB_OK)
         rc = vb_page_fact(p, k, "volume sum (Å³)", v);
