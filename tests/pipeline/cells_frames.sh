@@ -59,6 +59,19 @@ expect_line log 'E7'
 run 21 log "$vorball" cells "$corpus/data/ngl_md_ascii_trj.pdb" --frames 60: -o none.tsv
 expect_line log 'E111'
 
+# JSON over frames: an array whose every object starts with the provenance.
+# shellcheck disable=SC2086
+run 0 log "$vorball" cells "$corpus/data/ngl_md_ascii_trj.pdb" --frames 0:3:2 $fast --json -o frames.json
+python3 - frames.json <<'PY' || fail "frames.json: not one object per frame, each with its provenance"
+import json, sys
+doc = json.load(open(sys.argv[1]))
+assert [f["frame"] for f in doc] == [0, 2], [f["frame"] for f in doc]
+for f in doc:
+    assert list(f)[:6] == ["tool", "input", "spheres", "options", "frame", "model"], list(f)
+    assert f["spheres"] == 183 and f["options"].endswith("--frames 0:3:2 --tolerance 1e-2 "
+                                                         "--max-patches 96 --json"), f["options"]
+PY
+
 # JSON: residues 1-3 of crambin, residue 3 moved to chain B.
 awk '/^ATOM/ && substr($0, 23, 4) + 0 <= 3 {
         if (substr($0, 23, 4) + 0 == 3) $0 = substr($0, 1, 21) "B" substr($0, 23)
