@@ -59,7 +59,8 @@ static int open_proposer(vb_ctx *ctx, const vb_device_layer *layer, vb_device *d
     return p->open(ctx, layer, dev, engine);
 }
 
-vb_device_kind vb_vertices_device(const vb_sphere_set *set, const vb_vertices_config *cfg)
+vb_device_kind vb_vertices_device(const vb_sphere_set *set, const vb_vertices_config *cfg,
+                                  const vb_device_layer *layer)
 {
     if (cfg->device != VB_DEVICE_AUTO || vb_proposer_find(cfg->proposer) != &vb_proposer_cover)
         return cfg->device;
@@ -70,7 +71,9 @@ vb_device_kind vb_vertices_device(const vb_sphere_set *set, const vb_vertices_co
         unsigned long long v = env && *env ? strtoull(env, &end, 10) : 0;
         below = env && *env && end && *end == '\0' && v > 0 ? (size_t)v : VB_HOST_BELOW_DEFAULT;
     }
-    return set->n < below ? VB_DEVICE_REF : VB_DEVICE_AUTO;
+    if (set->n >= below || !layer || !layer->gpu_present || !layer->gpu_present())
+        return VB_DEVICE_AUTO;
+    return VB_DEVICE_REF;
 }
 
 static vb_engine_request request_of(const vb_vertices_config *cfg, const vb_proposer *p)
@@ -412,7 +415,7 @@ int vb_vertices_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertices_con
     if (!p)
         return VB_EMISUSE;
     vb_vertices_config chosen = *cfg;
-    chosen.device = vb_vertices_device(set, cfg);
+    chosen.device = vb_vertices_device(set, cfg, be->devices);
     cfg = &chosen;
     int mrc = vb_vertices_memory_check(ctx, set, cfg, 0);
     if (mrc != VB_OK)
