@@ -120,6 +120,13 @@ static int device_index(vb_ctx *ctx, unsigned *out)
     return VB_OK;
 }
 
+int vbg_runtime_gpu_present(void)
+{
+    cl_platform_id plat;
+    cl_device_id dev;
+    return find_device(CL_DEVICE_TYPE_GPU, 0, &plat, &dev);
+}
+
 int vbg_runtime_open(vb_ctx *ctx, vb_device_kind kind, vbg_runtime **out)
 {
     *out = NULL;

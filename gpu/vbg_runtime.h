@@ -44,6 +44,10 @@ cl_device_id vbg_runtime_device(const vbg_runtime *rt);
 /* "NVIDIA H100 80GB HBM3 (NVIDIA CUDA)" style name, owned by the runtime. */
 const char *vbg_runtime_device_name(const vbg_runtime *rt);
 int vbg_runtime_is_gpu(const vbg_runtime *rt);
+/* 1 when an OpenCL GPU with double precision is there to open (what
+ * vbg_runtime_open(VB_DEVICE_AUTO) would take first), else 0; lists the
+ * platforms and devices only, no context is made. */
+int vbg_runtime_gpu_present(void);
 /* The versions behind the runtime, for provenance: "platform <version>;
  * device <OpenCL version>, driver <version>" (e.g. "OpenCL 3.0 PoCL 3.1 ...;
  * device OpenCL 3.0 PoCL HSTR: ..., driver 3.1"), into buf (always
