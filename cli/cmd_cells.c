@@ -110,12 +110,10 @@ typedef struct {
 static int write_headers(frames_sink *S, size_t spheres)
 {
     prov_make(&S->prov, S->input, spheres);
-    if (S->json) {
+    int rc = VB_OK;
+    if (S->json)
         fputs("[\n", S->out);
-        return VB_OK;
-    }
-    int rc = vb_provenance_write_comments(S->ctx, S->out, &S->prov.prov);
-    if (rc == VB_OK)
+    else if ((rc = vb_provenance_write_comments(S->ctx, S->out, &S->prov.prov)) == VB_OK)
         vb_cell_measures_write_atoms_header(S->out, 1);
     if (rc == VB_OK && S->contacts)
         rc = vb_provenance_write_comments(S->ctx, S->contacts, &S->prov.prov);

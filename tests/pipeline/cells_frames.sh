@@ -61,7 +61,10 @@ expect_line log 'E111'
 
 # JSON over frames: an array whose every object starts with the provenance.
 # shellcheck disable=SC2086
-run 0 log "$vorball" cells "$corpus/data/ngl_md_ascii_trj.pdb" --frames 0:3:2 $fast --json -o frames.json
+run 0 log "$vorball" cells "$corpus/data/ngl_md_ascii_trj.pdb" --frames 0:3:2 $fast --json -o frames.json \
+    --contacts frames_jc.tsv
+strip_provenance frames_jc.tsv
+cmp -s frames_jc.tsv frames_c.tsv || fail "--json changed the contacts table of the frames"
 python3 - frames.json <<'PY' || fail "frames.json: not one object per frame, each with its provenance"
 import json, sys
 doc = json.load(open(sys.argv[1]))
@@ -69,7 +72,7 @@ assert [f["frame"] for f in doc] == [0, 2], [f["frame"] for f in doc]
 for f in doc:
     assert list(f)[:6] == ["tool", "input", "spheres", "options", "frame", "model"], list(f)
     assert f["spheres"] == 183 and f["options"].endswith("--frames 0:3:2 --tolerance 1e-2 "
-                                                         "--max-patches 96 --json"), f["options"]
+                                                         "--max-patches 96 --json --contacts FILE"), f["options"]
 PY
 
 # JSON: residues 1-3 of crambin, residue 3 moved to chain B.
