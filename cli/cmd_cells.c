@@ -279,6 +279,8 @@ int vb_cmd_cells(int argc, char **argv)
         rc = vb_cli_check_output(ctx, contacts_path);
     if (rc == VB_OK)
         rc = vb_cli_check_output(ctx, html);
+    if (rc == VB_OK && html)
+        rc = vb_page_check(ctx, html);
     char title[512];
     snprintf(title, sizeof title, "vorball cells %s%s%s", in_path, traj ? " + " : "",
              traj ? traj : "");

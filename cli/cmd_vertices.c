@@ -11,6 +11,7 @@
 #include "pipeline_options.h"
 #include "progress.h"
 #include "vorball.h"
+#include "vb_page.h"
 #include "vb_vertex_page.h"
 #include "vb_world.h"
 #include "vertex_parts.h"
@@ -159,6 +160,8 @@ int vb_cmd_vertices(int argc, char **argv)
     /* Every rank reads the input; rank 0 alone prints its warnings. */
     int quiet = vb_world_quiet(ctx);
     int rc = vb_cli_check_output(ctx, html);
+    if (rc == VB_OK && html)
+        rc = vb_page_check(ctx, html);
     if (rc == VB_OK)
         rc = vb_cli_load_spheres(ctx, input, &po.in, 4, &set);
     /* A page too big is refused before the work, as every rank sees. */

@@ -44,6 +44,17 @@ int vb_page_viewer_available(void)
     return vbp_viewer_js() != NULL;
 }
 
+int vb_page_check(vb_ctx *ctx, const char *path)
+{
+    if (vbp_viewer_js())
+        return VB_OK;
+    return vb_error(ctx, VB_EMISUSE, NULL, 0,
+                    "%s: this vorball was built without the viewer the results page embeds "
+                    "(NGL): run 'bash .ci/viewer' (or pass -DVORBALL_NGL_JS=/path/ngl.js to "
+                    "cmake) and rebuild",
+                    path);
+}
+
 static char *dup_text(const char *s)
 {
     size_t k = strlen(s ? s : "") + 1;
@@ -433,11 +444,7 @@ int vb_page_write(vb_page *p, const char *path)
 {
     const char *viewer = vbp_viewer_js();
     if (!viewer)
-        return vb_error(p->ctx, VB_EMISUSE, NULL, 0,
-                        "%s: this vorball was built without the viewer the results page embeds "
-                        "(NGL): run 'bash .ci/viewer' (or pass -DVORBALL_NGL_JS=/path/ngl.js to "
-                        "cmake) and rebuild",
-                        path);
+        return vb_page_check(p->ctx, path);
     int first;
     if (p->nframes == 0 && vb_page_frame(p, "frame 0", NULL, &first) != VB_OK)
         return vb_errcode(p->ctx);

@@ -31,6 +31,11 @@ typedef struct vb_page vb_page;
  * it). */
 int vb_page_viewer_available(void);
 
+/* VB_OK when a page can be written to `path` by this build; VB_EMISUSE
+ * with vb_page_write's message (how to get the viewer) in ctx when it was
+ * built without it. Commands ask before their work, not after it. */
+int vb_page_check(vb_ctx *ctx, const char *path);
+
 /* Starts a page titled `title` (e.g. "vorball channels 1grm.pdb") about the
  * sphere set s: its atoms (names, residues, chains and elements where the
  * input has them; spheres of XYZR input are shown as atoms named after

@@ -69,11 +69,15 @@ int main(void)
     snprintf(path, sizeof path, "%s/page.html", dir);
     snprintf(bad, sizeof bad, "%s/missing/page.html", dir);
     if (!vb_page_viewer_available()) {
-        /* Built without NGL: refused with a message saying how to get it. */
+        /* Built without NGL: refused with a message saying how to get it,
+         * before the work (vb_page_check) and when writing. */
+        CHECK_INT(vb_page_check(ctx, path), VB_EMISUSE);
+        CHECK(strstr(vb_errmsg(ctx), ".ci/viewer") != NULL);
         CHECK_INT(vb_page_write(p, path), VB_EMISUSE);
         CHECK(strstr(vb_errmsg(ctx), ".ci/viewer") != NULL);
         CHECK(access(path, F_OK) != 0);
     } else {
+        CHECK_INT(vb_page_check(ctx, path), VB_OK);
         CHECK_INT(vb_page_write(p, path), VB_OK);
         char *html = vb_test_slurp(path);
         CHECK(html != NULL);
