@@ -211,3 +211,79 @@ void vbc_cells_within(const vbc_cells *c, const double p[3], double reach,
             break;
     }
 }
+
+/* The cells at Chebyshev distance `ring` from q0, as visit_ring orders
+ * them, through one callback that may stop the walk: fn returns nonzero to
+ * stop, and then so does this (returning 1). */
+static int walk_ring(const vbc_cells *c, const int q0[3], int ring,
+                     int (*fn)(const vbc_cells *, int32_t, void *), void *user)
+{
+    for (int dz = -ring; dz <= ring; dz++) {
+        int z = q0[2] + dz;
+        if (z < 0 || z >= c->dim[2])
+            continue;
+        for (int dy = -ring; dy <= ring; dy++) {
+            int y = q0[1] + dy;
+            if (y < 0 || y >= c->dim[1])
+                continue;
+            int onshell = abs(dz) == ring || abs(dy) == ring;
+            for (int dx = -ring; dx <= ring; dx += (onshell || ring == 0) ? 1 : 2 * ring) {
+                int x = q0[0] + dx;
+                if (x < 0 || x >= c->dim[0])
+                    continue;
+                size_t q = (size_t)x + (size_t)c->dim[0] * ((size_t)y + (size_t)c->dim[1] * (size_t)z);
+                for (size_t t = c->start[q]; t < c->start[q + 1]; t++)
+                    if (fn(c, c->idx[t], user))
+                        return 1;
+            }
+        }
+    }
+    return 0;
+}
+
+typedef struct {
+    double p[3], reach, low;
+    int32_t found;
+} any_state;
+
+static int any_visit(const vbc_cells *c, int32_t a, void *user)
+{
+    any_state *st = user;
+    double dx = st->p[0] - c->s->x[a], dy = st->p[1] - c->s->y[a], dz = st->p[2] - c->s->z[a];
+    /* The test of within_visit without its shortcut (which lets the same
+     * atoms pass): the same verdict per atom. */
+    double d = sqrt(dx * dx + dy * dy + dz * dz) - c->s->r[a];
+    if (d <= st->reach) {
+        st->found = a;
+        return 1;
+    }
+    st->low = fmin(st->low, d);
+    return 0;
+}
+
+int vbc_cells_any_within(const vbc_cells *c, const double p[3], double reach, int32_t *hint,
+                         double *low)
+{
+    any_state st = {{p[0], p[1], p[2]}, reach, INFINITY, -1};
+    *low = -INFINITY;
+    if (hint && *hint >= 0 && (size_t)*hint < c->s->n && any_visit(c, *hint, &st))
+        return 1;
+    int q0[3] = {cell_coord(c, 0, p[0]), cell_coord(c, 1, p[1]), cell_coord(c, 2, p[2])};
+    for (int ring = 0;; ring++) {
+        if (walk_ring(c, q0, ring, any_visit, &st)) {
+            if (hint)
+                *hint = st.found;
+            return 1;
+        }
+        if (ring_covers_all(c, q0, ring))
+            break;
+        /* Atoms beyond the cells walked have their surface at least this far. */
+        double out = ring_reach(c, p, q0, ring) - c->rmax;
+        if (out > reach) {
+            st.low = fmin(st.low, out);
+            break;
+        }
+    }
+    *low = st.low;
+    return 0;
+}
