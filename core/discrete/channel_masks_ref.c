@@ -1,5 +1,6 @@
 /* The plain-C reference of the mask stage (Algorithm 2, steps 2-7), built from
  * the same per-voxel functions as gpu/channels.cl. */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -54,6 +55,45 @@ static void ray_bounds(const uint8_t *am, int nx, int ny, int nz, int *rb)
         }
 }
 
+/* The voxels of row (j,k) in [i0, i1) whose centres vbc_ball_contains puts
+ * in ball p: none (returns 0), or the run lo..hi (returns 1). They are one
+ * run: along the row dx = (i + 0.5) - x falls and then grows in magnitude,
+ * and each rounded step of the test (the difference, the squares, the
+ * sums) keeps that order, so the ball's float test holds on an interval of
+ * i. The estimate from the square root is only a start: every end is
+ * settled by the test itself, so the run is exactly the voxels the test
+ * takes. */
+static int ball_row(const float *p, int i0, int i1, int j, int k, int *lo, int *hi)
+{
+    if (i0 >= i1)
+        return 0;
+    /* The voxel nearest the centre in the range: the run holds it when the
+     * row meets the ball at all. */
+    int c = (int)floorf(p[0] - 0.5f);
+    c = c < i0 ? i0 : c >= i1 ? i1 - 1 : c;
+    if (c + 1 < i1 && !vbc_ball_contains(p[0], p[1], p[2], p[3], c, j, k))
+        c++;
+    if (!vbc_ball_contains(p[0], p[1], p[2], p[3], c, j, k))
+        return 0;
+    double dy = (double)j + 0.5 - p[1], dz = (double)k + 0.5 - p[2];
+    double rem = (double)p[3] * p[3] - dy * dy - dz * dz;
+    double w = rem > 0.0 ? sqrt(rem) : 0.0;
+    int l = (int)floor(p[0] - 0.5 - w), r = (int)ceil(p[0] - 0.5 + w);
+    l = l < i0 ? i0 : l > c ? c : l;
+    r = r >= i1 ? i1 - 1 : r < c ? c : r;
+    while (l > i0 && vbc_ball_contains(p[0], p[1], p[2], p[3], l - 1, j, k))
+        l--;
+    while (!vbc_ball_contains(p[0], p[1], p[2], p[3], l, j, k))
+        l++;
+    while (r + 1 < i1 && vbc_ball_contains(p[0], p[1], p[2], p[3], r + 1, j, k))
+        r++;
+    while (!vbc_ball_contains(p[0], p[1], p[2], p[3], r, j, k))
+        r--;
+    *lo = l;
+    *hi = r;
+    return 1;
+}
+
 void vbc_masks_ref(const vbc_grid *g, const float *atoms4, size_t natoms, const int32_t *labels,
                    int min_labels, int *rb, uint8_t *flags)
 {
@@ -61,13 +101,15 @@ void vbc_masks_ref(const vbc_grid *g, const float *atoms4, size_t natoms, const 
     memset(flags, 0, vbc_grid_voxels(g));
     for (size_t a = 0; a < natoms; a++) {
         const float *p = atoms4 + 4 * a;
-        int i1 = vbc_box_hi(p[0], p[3], nx), j1 = vbc_box_hi(p[1], p[3], ny);
-        int k1 = vbc_box_hi(p[2], p[3], nz);
+        int i0 = vbc_box_lo(p[0], p[3]), i1 = vbc_box_hi(p[0], p[3], nx);
+        int j1 = vbc_box_hi(p[1], p[3], ny), k1 = vbc_box_hi(p[2], p[3], nz);
         for (int k = vbc_box_lo(p[2], p[3]); k < k1; k++)
-            for (int j = vbc_box_lo(p[1], p[3]); j < j1; j++)
-                for (int i = vbc_box_lo(p[0], p[3]); i < i1; i++)
-                    if (vbc_ball_contains(p[0], p[1], p[2], p[3], i, j, k))
-                        flags[i + (size_t)nx * (j + (size_t)ny * k)] = VBC_F_ATOMIC;
+            for (int j = vbc_box_lo(p[1], p[3]); j < j1; j++) {
+                int lo, hi;
+                if (ball_row(p, i0, i1, j, k, &lo, &hi))
+                    memset(flags + (size_t)nx * (j + (size_t)ny * k) + lo, VBC_F_ATOMIC,
+                           (size_t)(hi - lo + 1));
+            }
     }
     ray_bounds(flags, nx, ny, nz, rb);
     /* The classification reads only the voxel's own flag byte (its atomic
