@@ -12,11 +12,9 @@
  * distance, far below the pixel. */
 #define FREE_EPS 1e-6
 
-int vbc_plane_walled(const vbc_cells *c, const double u[3], const double p[3], double r,
-                     void **scratch, size_t *scratch_len)
+void vbc_plane_basis(const double u[3], double a[3], double b[3])
 {
-    /* The plane's basis a, b (a normal to u, then b = u x a). */
-    double a[3], b[3], t[3] = {1.0, 0.0, 0.0};
+    double t[3] = {1.0, 0.0, 0.0};
     if (fabs(u[0]) > 0.9) {
         t[0] = 0.0;
         t[1] = 1.0;
@@ -30,6 +28,13 @@ int vbc_plane_walled(const vbc_cells *c, const double u[3], const double p[3], d
     b[0] = u[1] * a[2] - u[2] * a[1];
     b[1] = u[2] * a[0] - u[0] * a[2];
     b[2] = u[0] * a[1] - u[1] * a[0];
+}
+
+int vbc_plane_walled(const vbc_cells *c, const double u[3], const double p[3], double r,
+                     void **scratch, size_t *scratch_len)
+{
+    double a[3], b[3];
+    vbc_plane_basis(u, a, b);
     double rr = r > 0.0 ? r : 0.0;
     double reach = fmin(2.0 * rr + VBC_WALL_REACH, VBC_WALL_MAX_REACH);
     int n = (int)ceil(reach / VBC_WALL_PIXEL);

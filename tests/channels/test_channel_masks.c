@@ -314,15 +314,10 @@ static void test_same_as_plain(vb_ctx *ctx)
                 size_t natoms = (size_t)(30 + 70 * rep);
                 vb_sphere_set *s = vb_test_spheres_alloc(natoms, 0);
                 for (size_t i = 0; i < natoms; i++) {
-                    double v[4];
-                    for (int q = 0; q < 4; q++) {
-                        seed = seed * 6364136223846793005ull + 1442695040888963407ull;
-                        v[q] = (double)(seed >> 11) / 9007199254740992.0;
-                    }
-                    s->x[i] = 20.0 * v[0];
-                    s->y[i] = 20.0 * v[1];
-                    s->z[i] = dim == 3 ? 20.0 * v[2] : 0.0;
-                    s->r[i] = 0.9 + 1.5 * v[3];
+                    s->x[i] = 20.0 * synth_uniform(&seed);
+                    s->y[i] = 20.0 * synth_uniform(&seed);
+                    s->z[i] = dim == 3 ? 20.0 * synth_uniform(&seed) : 0.0;
+                    s->r[i] = 0.9 + 1.5 * synth_uniform(&seed);
                 }
                 run r;
                 run_ref(ctx, s, 1.4, n, dim, &r);

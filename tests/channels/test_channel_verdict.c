@@ -176,15 +176,10 @@ static vb_sphere_set *cloud(size_t n, double L, uint64_t seed)
 {
     vb_sphere_set *s = vb_test_spheres_alloc(n, 0);
     for (size_t i = 0; i < n; i++) {
-        double v[4];
-        for (int k = 0; k < 4; k++) {
-            seed = seed * 6364136223846793005ull + 1442695040888963407ull;
-            v[k] = (double)(seed >> 11) / 9007199254740992.0;
-        }
-        s->x[i] = L * v[0];
-        s->y[i] = L * v[1];
-        s->z[i] = L * v[2];
-        s->r[i] = 1.0 + v[3];
+        s->x[i] = L * synth_uniform(&seed);
+        s->y[i] = L * synth_uniform(&seed);
+        s->z[i] = L * synth_uniform(&seed);
+        s->r[i] = 1.0 + synth_uniform(&seed);
     }
     return s;
 }
@@ -206,10 +201,8 @@ static void test_any_within(vb_ctx *ctx)
     int32_t hint = -1;
     for (int k = 0; k < 3000; k++) {
         double p[3];
-        for (int a = 0; a < 3; a++) {
-            seed = seed * 6364136223846793005ull + 1442695040888963407ull;
-            p[a] = -6.0 + 32.0 * (double)(seed >> 11) / 9007199254740992.0;
-        }
+        for (int a = 0; a < 3; a++)
+            p[a] = -6.0 + 32.0 * synth_uniform(&seed);
         double R = reach[k % 3], low = 0.0;
         int hit = 0;
         vbc_cells_within(c, p, R, mark, &hit);
@@ -308,16 +301,8 @@ static void same_walls(vb_ctx *ctx, size_t atoms, int *walled, int *open, int *d
             u[a] /= nu;
         double p[3] = {18.0 + 0.3 * (k % 5), 18.0 - 0.2 * (k % 3), -8.0 + 0.45 * k};
         double r = 0.5 + 0.1 * (k % 11);
-        double a[3], b[3], e[3] = {1.0, 0.0, 0.0};
-        a[0] = u[1] * e[2] - u[2] * e[1];
-        a[1] = u[2] * e[0] - u[0] * e[2];
-        a[2] = u[0] * e[1] - u[1] * e[0];
-        double na = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-        for (int d = 0; d < 3; d++)
-            a[d] /= na;
-        b[0] = u[1] * a[2] - u[2] * a[1];
-        b[1] = u[2] * a[0] - u[0] * a[2];
-        b[2] = u[0] * a[1] - u[1] * a[0];
+        double a[3], b[3];
+        vbc_plane_basis(u, a, b);
         int w = vbc_plane_walled(c, u, p, r, &scratch, &len);
         *differ += w != walled_plain(c, a, b, p, r);
         *walled += w == 1;
