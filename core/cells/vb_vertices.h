@@ -129,7 +129,7 @@ typedef struct vb_vertices_config {
 /* The device kind a run of cfg on set uses: cfg->device, except that
  * VB_DEVICE_AUTO with the cover proposer on fewer spheres than the crossover
  * (cfg->host_below, see there) is VB_DEVICE_REF, no device opened, when the
- * device auto would open is a GPU (layer->gpu_present). Without a GPU, auto
+ * host shows a GPU (layer->gpu_present). Without a GPU, auto
  * stays the CPU device (PoCL), the project's embedded default. The output
  * bytes never depend on it. */
 vb_device_kind vb_vertices_device(const vb_sphere_set *set, const vb_vertices_config *cfg,
