@@ -76,9 +76,9 @@ int vb_cli_vertices_periodic(vb_ctx *ctx, const vb_sphere_set *set, const vb_cli
         fprintf(stderr,
                 "periodic_atoms\t%zu\nperiodic_spheres\t%zu\nperiodic_rho\t%.9g\n"
                 "periodic_reach\t%.9g\nperiodic_vertices\t%zu\nperiodic_translates\t%zu\n"
-                "periodic_beyond_rho\t%zu\n",
+                "periodic_beyond_rho\t%zu\nperiodic_layer_spheres\t%zu\n",
                 res.img.n0, res.img.set->n, res.img.rho, res.img.reach, res.v.n, res.translates,
-                res.beyond_rho);
+                res.beyond_rho, res.img.layer_spheres);
     }
     if (rc == VB_OK) {
         char note[1024];
