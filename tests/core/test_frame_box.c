@@ -10,18 +10,6 @@
 #include "vb_frames.h"
 #include "vb_periodic.h"
 
-static vb_decimal d(const char *s)
-{
-    vb_decimal e;
-    vb_decimal_parse(s, strlen(s), &e, NULL);
-    return e;
-}
-
-static int dec_is(vb_decimal e, const char *s)
-{
-    return vb_decimal_cmp(e, d(s)) == 0;
-}
-
 static void xdr_boxes(void)
 {
     vb_box b;
