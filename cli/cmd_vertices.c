@@ -153,6 +153,16 @@ int vb_cmd_vertices(int argc, char **argv)
         vb_close(ctx);
         return code;
     }
+    if (per.traj || per.frames) {
+        if (vfmt == VB_VFMT_JSON) {
+            vb_close(ctx);
+            return vb_cli_usage_error("vertices", "--traj and --frames write tsv only");
+        }
+        code = vb_world_end(ctx, vb_cli_vertices_periodic_frames(ctx, input, &po.in, &per,
+                                                                 &po.cfg, outpath, stats));
+        vb_close(ctx);
+        return code;
+    }
     vb_sphere_set *set = NULL;
     vb_vertices_result res;
     vb_vertices_result_init(&res);

@@ -23,6 +23,7 @@ typedef struct cov_buf {
 typedef struct cov_tier {
     cov_buf nb, lab, st, q;
     size_t slices;
+    size_t slices_max;       /* the device's share (vbg_cover_open); 0 until a run */
     uint32_t nb_cap, lab_cap, st_cap, q_cap;
 } cov_tier;
 
@@ -126,6 +127,18 @@ static int cov_begin(vb_ctx *ctx, vb_cover_backend *be, const vbq_env *env, size
         rc = upload(ctx, s, &s->rmax, env->rmax, nodes * sizeof(double));
     if (rc == VB_OK)
         rc = upload(ctx, s, &s->ids, env->ids, (size_t)env->m * sizeof(uint32_t));
+    /* GPU memory in proportion to the input (issue #30): a slice covers one
+     * cell at a time, so no tier gets more slices than there are spheres
+     * (whole groups of 64 on the work-item kernel, which keeps the launch a
+     * multiple of its group); the device's share still caps them. On an
+     * H100 a 327-atom run held 1,594 MiB with every slice allocated. */
+    size_t cap = n == 0 ? 1 : s->wg ? n : (n + 63) / 64 * 64;
+    for (int t = 0; t < 2; t++) {
+        cov_tier *ti = &s->tier[t];
+        if (!ti->slices_max)
+            ti->slices_max = ti->slices;
+        ti->slices = ti->slices_max < cap ? ti->slices_max : cap;
+    }
     for (int t = 0; rc == VB_OK && t < 2; t++)
         if (s->tier[t].slices)
             rc = tier_alloc(ctx, s, &s->tier[t]);

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "vb_cells.h"
+#include "vb_frames_each.h"
 
 int vb_cells_frame_decimals(vb_ctx *ctx, vb_sphere_set *set)
 {
@@ -68,36 +69,29 @@ int vb_cells_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_measure_options
     return rc;
 }
 
+typedef struct frames_job {
+    vb_ctx *ctx;
+    const vb_measure_options *opt;
+    vb_cells_frame_fn fn;
+    void *arg;
+} frames_job;
+
+static int measure_frame(void *arg, long index, int model, vb_sphere_set *s)
+{
+    frames_job *J = arg;
+    vb_cell_measures m;
+    int rc = vb_cells_run(J->ctx, s, J->opt, &m);
+    if (rc == VB_OK)
+        rc = J->fn(J->arg, index, model, s, &m);
+    vb_cell_measures_free(&m);
+    return rc;
+}
+
 int vb_cells_run_frames(vb_ctx *ctx, const char *path, const char *traj_path,
                         const vb_read_options *ro, const vb_frame_range *range,
                         const vb_measure_options *opt, vb_cells_frame_fn fn, void *arg,
                         long *selected)
 {
-    vb_frame_source *F = NULL;
-    long index = 0, done = 0;
-    int rc = vb_frame_source_open(ctx, path, traj_path, ro, &F);
-    while (rc == VB_OK && (range->end < 0 || index < range->end)) {
-        vb_sphere_set *s = NULL;
-        int model = 0;
-        rc = vb_frame_source_next(ctx, F, &s, &model);
-        if (rc != VB_OK || !s)
-            break;
-        if (vb_frame_range_has(range, index)) {
-            vb_cell_measures m;
-            rc = vb_cells_run(ctx, s, opt, &m);
-            if (rc == VB_OK)
-                rc = fn(arg, index, model, s, &m);
-            vb_cell_measures_free(&m);
-            done++;
-        }
-        vb_spheres_free(s);
-        index++;
-    }
-    vb_frame_source_close(F);
-    if (selected)
-        *selected = done;
-    if (rc == VB_OK && done == 0)
-        rc = vb_error(ctx, VB_EINPUT_MODEL, traj_path ? traj_path : path, 0,
-                      "no frame selected (--frames / --model)");
-    return rc;
+    frames_job J = {ctx, opt, fn, arg};
+    return vb_frames_each(ctx, path, traj_path, ro, range, measure_frame, &J, selected);
 }

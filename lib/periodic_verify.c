@@ -40,8 +40,12 @@ int vb_periodic_verify_file(vb_ctx *ctx, const vb_sphere_set *set, const vb_box 
     vb_periodic_vertices v;
     memset(&v, 0, sizeof v);
     int rc = vb_periodic_read(ctx, path, &v, &out->line);
-    if (rc == VB_OK)
-        rc = vb_periodic_images_build(ctx, set, box, &img);
+    if (rc == VB_OK) {
+        /* The file's points and radii are judged within tol: the images'
+         * bounds allow for that (vb_periodic_image_opt). */
+        const vb_periodic_image_opt opt = {tol, 0};
+        rc = vb_periodic_images_build_opt(ctx, set, box, &opt, &img);
+    }
     size_t *row = NULL;
     if (rc == VB_OK) {
         out->n = v.n;

@@ -21,7 +21,8 @@
  *     TSV and JSON writers: vb_measures.h);
  *   - verify: judging a vertex file or list exactly (vb_verify_file.h);
  *   - periodic boxes: the periodic diagram and its files (vb_periodic.h),
- *     a periodic vertex file judged (vb_periodic_verify.h);
+ *     a periodic vertex file judged (vb_periodic_verify.h), every frame of a
+ *     trajectory in its own box (vb_periodic_frames.h);
  *   - channels over frames and the discrete Voronoi engines (vbc_frame.h,
  *     vbj_jfa.h through it), their options declared once and the run over
  *     frames (vbc_run.h, vbc_channels_config.h), on the device layer of
@@ -35,6 +36,7 @@
 #include "vb_default.h"
 #include "vb_diag.h"
 #include "vb_frames.h"
+#include "vb_periodic_frames.h"
 #include "vb_periodic_verify.h"
 #include "vb_verify_file.h"
 #include "vb_vertex_io.h"

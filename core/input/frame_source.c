@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "vb_dcd.h"
+#include "vb_periodic.h"
 #include "vb_diag.h"
 #include "vb_xdr.h"
 #include "vbi_input.h"
@@ -224,11 +225,18 @@ static int next_traj(vb_ctx *ctx, vb_frame_source *F, vb_sphere_set **out, int *
     int got, rc;
     const double *cx, *cy, *cz;
     size_t stride;
+    vb_box box;
+    int has_box = 0;
     if (F->dcd) {
-        rc = vb_dcd_next(ctx, F->dcd, F->xyz, F->xyz + na, F->xyz + 2 * na, NULL, &got);
+        double cell[6] = {0, 0, 0, 0, 0, 0};
+        rc = vb_dcd_next(ctx, F->dcd, F->xyz, F->xyz + na, F->xyz + 2 * na, cell, &got);
         cx = F->xyz, cy = F->xyz + na, cz = F->xyz + 2 * na, stride = 1;
+        has_box = rc == VB_OK && got && vb_frame_box_dcd(cell, &box);
     } else {
-        rc = vb_xdr_next(ctx, F->xdr, F->xyz, NULL, &got);
+        vb_xdr_frame fr;
+        memset(&fr, 0, sizeof fr);
+        rc = vb_xdr_next(ctx, F->xdr, F->xyz, &fr, &got);
+        has_box = rc == VB_OK && got && vb_frame_box_xdr(fr.box, fr.is_double, &box);
         for (size_t i = 0; rc == VB_OK && got && i < 3 * na; i++)
             F->xyz[i] *= 10.0;
         cx = F->xyz, cy = F->xyz + 1, cz = F->xyz + 2, stride = 3;
@@ -248,7 +256,12 @@ static int next_traj(vb_ctx *ctx, vb_frame_source *F, vb_sphere_set **out, int *
         if (F->topo->info)
             s->info[i] = F->topo->info[k];
     }
-    if ((rc = check_frame(ctx, F, s)) != VB_OK || (rc = check_frame_duplicates(ctx, F, s)) != VB_OK) {
+    if (has_box && !(s->box = malloc(sizeof *s->box)))
+        rc = vb_error(ctx, VB_ENOMEM, F->dcd_path, 0, "out of memory");
+    else if (has_box)
+        *s->box = box;
+    if (rc != VB_OK || (rc = check_frame(ctx, F, s)) != VB_OK ||
+        (rc = check_frame_duplicates(ctx, F, s)) != VB_OK) {
         vb_spheres_free(s);
         return rc;
     }

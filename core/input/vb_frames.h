@@ -29,11 +29,24 @@ int vb_frame_source_open(vb_ctx *ctx, const char *path, const char *dcd_path,
 
 /* The next frame, checked (caller frees; *out NULL at the end, with VB_OK)
  * and its model number (the MODEL serial, or 1 + the frame index of a
- * DCD). */
+ * DCD). A trajectory frame's box (XTC/TRR box vectors, DCD unit cell) is
+ * the set's box (vb_frame_box_xdr, vb_frame_box_dcd), NULL when the frame
+ * has none; a text frame's is its reader's. */
 int vb_frame_source_next(vb_ctx *ctx, vb_frame_source *src, vb_sphere_set **out, int *model);
 
 /* NULL is allowed. */
 void vb_frame_source_close(vb_frame_source *src);
+
+/* The box of an XTC/TRR frame (frame_box.c): nm (9 numbers, rows a, b, c,
+ * floats widened unless is_double) to exact decimals in Angstrom, each the
+ * shortest decimal that reads back to the stored number. 1 and *out set,
+ * or 0 (no box: zero, flat, out of range). */
+int vb_frame_box_xdr(const double nm[9], int is_double, vb_box *out);
+
+/* The box of a DCD unit cell (A, gamma, B, beta, alpha, C as stored;
+ * angles in degrees, or their cosines when all three lie in [-1, 1]):
+ * 1 and *out set, or 0 (no box). */
+int vb_frame_box_dcd(const double cell[6], vb_box *out);
 
 /* Which frames: index >= first, index < end (end < 0: to the last), every
  * step-th from first (step >= 1), frames counted from 0 (`--frames`). */

@@ -200,8 +200,9 @@ int vb_periodic_to_images(vb_ctx *ctx, const vb_periodic_images *img,
             else
                 ids[j] = hit->sphere;
         }
-        /* images.c: no periodic vertex has t > rho. */
-        if (v->t[a] > img->rho)
+        /* reach.c: no periodic vertex has t above the bound at its point
+         * (less the slack: the file's t and point may be off by it). */
+        if (v->t[a] > vb_periodic_bound_at(img, v->x[a], v->y[a], v->z[a]) - img->slack)
             flags[a] |= VB_PERIODIC_BEYOND;
         if (flags[a] & VB_PERIODIC_BEYOND)
             continue;

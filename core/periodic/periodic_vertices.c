@@ -93,7 +93,7 @@ static int cmp_vertex(const void *pa, const void *pb)
 }
 
 /* Keeps the canonical translates of the run's certified vertices with
- * t <= rho, sorted. */
+ * t at most the bound at their point, sorted. */
 static int keep_canonical(vb_ctx *ctx, vb_periodic_result *res)
 {
     const vb_vertex_list *c = &res->run.certified;
@@ -129,8 +129,9 @@ static int keep_canonical(vb_ctx *ctx, vb_periodic_result *res)
             memcpy(mem[j].s, img->shift[e], sizeof mem[j].s);
         }
         qsort(mem, m, sizeof *mem, cmp_member_q);
-        /* images.c: a vertex with t > rho is no periodic vertex. */
-        if (c->t[k] > img->rho) {
+        /* reach.c: a vertex with t above the bound at its point is no
+         * periodic vertex. */
+        if (c->t[k] > vb_periodic_bound_at(img, c->x[k], c->y[k], c->z[k])) {
             res->beyond_rho++;
             continue;
         }
@@ -186,7 +187,8 @@ int vb_periodic_vertices_run(vb_ctx *ctx, const vb_sphere_set *atoms, const vb_b
                         "periodic boxes need the direction cover (not --proposer %s): its "
                         "completeness is what proves the periodic list complete",
                         cfg->proposer);
-    int rc = vb_periodic_images_build(ctx, atoms, box, &res->img);
+    const vb_periodic_image_opt opt = {0.0, res->full_layer};
+    int rc = vb_periodic_images_build_opt(ctx, atoms, box, &opt, &res->img);
     if (rc != VB_OK)
         return rc;
     vb_vertices_config c = *cfg;
@@ -210,7 +212,7 @@ void vb_periodic_certificate(const vb_periodic_result *r, const vb_box *box, cha
              "complete: %zu certified vertices of the periodic diagram, each once (its canonical "
              "translate), every vertex of the diagram (direction cover of the %zu atoms' cells "
              "among %zu atoms and images, %llu quadruples; every empty sphere has radius <= %.9g, "
-             "images within %.9g of the atoms)",
+             "images within %.9g of the atoms and needed by the per-bin reach)",
              v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], r->v.n, r->img.n0,
              r->img.set ? r->img.set->n : 0, (unsigned long long)r->run.sampler.cover_quads,
              r->img.rho, r->img.reach);

@@ -66,6 +66,8 @@ void vb_box_inverse(const vb_box *box, double inv[9]);
 
 /* ---- images (images.c) --------------------------------------------------- */
 
+struct vbp_bins;
+
 /* The box's atoms and the images that the periodic diagram needs. */
 typedef struct vb_periodic_images {
     vb_sphere_set *set;     /* the atoms first (ids 0 .. n0), then the images; validated */
@@ -75,7 +77,20 @@ typedef struct vb_periodic_images {
     double rho;             /* proven upper bound of every periodic vertex's radius t */
     double reach;           /* images are kept within this distance of an atom (at least) */
     int layers[3];          /* images span shifts -layers[k] .. layers[k] along edge k */
+    size_t layer_spheres;   /* atoms and images of the one global layer (within reach) */
+    double slack;           /* the build's slack (vb_periodic_image_opt) */
+    struct vbp_bins *bins;  /* per-bin bounds (reach.c), NULL for the full layer */
 } vb_periodic_images;
+
+/* How images are built: slack, a distance by which a reader's points and
+ * radii may be off (a verifier's tolerance; 0 for the pipeline); full, 1
+ * to keep the one global layer of images (every image within `reach` of
+ * the atoms) instead of the per-bin reach (reach.c); both give the same
+ * periodic vertices, the full layer only more spheres. */
+typedef struct vb_periodic_image_opt {
+    double slack;
+    int full;
+} vb_periodic_image_opt;
 
 /* Builds the atoms' images for the periodic diagram of `atoms` in `box`
  * (the atoms must have exact decimals; they need not lie in the box), and
@@ -87,6 +102,20 @@ typedef struct vb_periodic_images {
  * vb_periodic_images_free. */
 int vb_periodic_images_build(vb_ctx *ctx, const vb_sphere_set *atoms, const vb_box *box,
                              vb_periodic_images *out);
+
+/* As vb_periodic_images_build with options (opt NULL: slack 0, per-bin
+ * reach). The images kept are those within the global layer that the
+ * per-bin reach needs (reach.c proves both). */
+int vb_periodic_images_build_opt(vb_ctx *ctx, const vb_sphere_set *atoms, const vb_box *box,
+                                 const vb_periodic_image_opt *opt, vb_periodic_images *out);
+
+/* A proven upper bound, plus 2 slack, of the radius of every empty sphere
+ * of the periodic set centred at (x, y, z) or within the bins' growth of
+ * it (the bound of its bin, reach.c; rho without bins). A vertex found
+ * with these images is a periodic vertex exactly when it is certified,
+ * has a member at shift 0, and its radius is at most this bound at its
+ * point (minus the slack for a point read from a file). */
+double vb_periodic_bound_at(const vb_periodic_images *img, double x, double y, double z);
 
 void vb_periodic_images_free(vb_periodic_images *img);
 
@@ -113,6 +142,7 @@ typedef struct vb_periodic_result {
     vb_periodic_images img;
     vb_vertices_result run;      /* the open run on img.set, cells of the atoms only */
     vb_periodic_vertices v;
+    int full_layer;              /* input: 1 builds the full layer (vb_periodic_image_opt) */
     size_t translates;           /* certified vertices of the run that are not canonical */
     size_t beyond_rho;           /* certified vertices of the run with t > rho: not periodic */
 } vb_periodic_result;

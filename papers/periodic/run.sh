@@ -36,7 +36,7 @@ best() {
     printf '%.2f %.2f' "$bw" "$bc"
 }
 
-printf 'input\tatoms\tdevice\topen_s\tperiodic_s\tratio\topen_cpu_s\tperiodic_cpu_s\tcpu_ratio\topen_vertices\tperiodic_vertices\tspheres_with_images\trho\treach\n' \
+printf 'input\tatoms\tdevice\topen_s\tperiodic_s\tratio\topen_cpu_s\tperiodic_cpu_s\tcpu_ratio\topen_vertices\tperiodic_vertices\tspheres_with_images\tfull_layer_spheres\trho\treach\n' \
     > "$out/twocore.tsv"
 for input in water10.gro water14.gro water18.gro adk.gro ngl_frame1.pdb; do
     for device in ref auto; do
@@ -52,10 +52,11 @@ for input in water10.gro water14.gro water18.gro adk.gro ngl_frame1.pdb; do
         stat() { awk -F'\t' -v k="$1" '$1 == k {print $2}' "$work/stats.txt"; }
         nopen=$(grep -vc '^#' "$work/open.tsv")
         nper=$(grep -vc '^#' "$work/periodic.tsv")
-        printf '%s\t%s\t%s\t%s\t%s\t%.2f\t%s\t%s\t%.2f\t%s\t%s\t%s\t%.3f\t%.3f\n' "$input" \
+        printf '%s\t%s\t%s\t%s\t%s\t%.2f\t%s\t%s\t%.2f\t%s\t%s\t%s\t%s\t%.3f\t%.3f\n' "$input" \
             "$(stat periodic_atoms)" $device "$to" "$tp" "$(echo "$tp / $to" | bc -l)" "$co" "$cp" \
             "$(echo "$cp / $co" | bc -l)" "$nopen" "$nper" \
-            "$(stat periodic_spheres)" "$(stat periodic_rho)" "$(stat periodic_reach)" \
+            "$(stat periodic_spheres)" "$(stat periodic_layer_spheres)" "$(stat periodic_rho)" \
+            "$(stat periodic_reach)" \
             >> "$out/twocore.tsv"
         tail -1 "$out/twocore.tsv"
     done

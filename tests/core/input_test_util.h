@@ -97,4 +97,18 @@ static inline const char *temp_file(const char *text)
     return path;
 }
 
+/* The decimal of text s (tests of exact boxes and images). */
+static inline vb_decimal dec_of(const char *s)
+{
+    vb_decimal e;
+    vb_decimal_parse(s, strlen(s), &e, NULL);
+    return e;
+}
+
+/* Whether decimal e equals the number written s, exactly. */
+static inline int dec_is(vb_decimal e, const char *s)
+{
+    return vb_decimal_cmp(e, dec_of(s)) == 0;
+}
+
 #endif

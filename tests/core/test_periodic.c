@@ -4,20 +4,8 @@
 #include <math.h>
 #include <string.h>
 
+#include "input_test_util.h"
 #include "vb_periodic.h"
-#include "vb_test.h"
-
-static vb_decimal d(const char *s)
-{
-    vb_decimal e;
-    vb_decimal_parse(s, strlen(s), &e, NULL);
-    return e;
-}
-
-static int dec_is(vb_decimal e, const char *s)
-{
-    return vb_decimal_cmp(e, d(s)) == 0;
-}
 
 static void boxes(vb_ctx *ctx)
 {

@@ -42,7 +42,9 @@ HELP_SWITCHES = {"-h", "--help"}
 # Per command: aliases the help names once, by their main spelling:
 #   channels --centrelines: the British spelling of --centerlines (the
 #   option table's alias column).
-ALLOW_SOURCE_CMD = {"channels": {"--centrelines"}}
+ALLOW_SOURCE_CMD = {"channels": {"--centrelines"},
+                    # the shared periodic parser takes these for vertices alone
+                    "verify": {"--traj", "--frames"}}
 
 # Words of the help texts that look like options but are not the command's:
 #   -np: `mpirun -np N` in the MPI paragraphs.

@@ -141,3 +141,15 @@ expect_line verify_moved.out "fault_moved.tsv:$first: wrong coordinates"
 expect_line verify_swapped.out "fault_swapped.tsv:$first: not a vertex"
 expect_line verify_duplicate.out "fault_duplicate.tsv:$((first + 271)): duplicate"
 echo "ok: verify --periodic certifies the files and finds planted faults"
+
+# Frames of a trajectory, each in its own box (XTC box vectors per frame):
+# one tsv, a '# frame K' block per frame, the box of MDAnalysis' reading.
+data=$here/../../corpus/data
+run 0 traj.err "$vorball" vertices --water --device ref --traj "$data/ngl_md_10frames.xtc" \
+    --frames 0:2 "$data/ngl_md_ascii_trj.pdb" -o traj.tsv
+[ "$(grep -c '^# frame ' traj.tsv)" -eq 2 ] || fail "--traj --frames 0:2: not 2 frames"
+expect_line traj.tsv '^# periodic: box a = \(56.064 0 0\), b = \(0 56.064 0\), c = \(0 0 56.064\)'
+expect_line traj.tsv '^# periodic: box a = \(56.035 0 0\)'
+run 2 traj_json.err "$vorball" vertices --traj "$data/ngl_md_10frames.xtc" --output-format json \
+    "$data/ngl_md_ascii_trj.pdb" -o traj.json
+echo "ok: vertices --traj: every frame periodic in its own box"

@@ -1,0 +1,256 @@
+/* The per-bin reach: which image spheres can matter for some atom's cell.
+ *
+ * Claim. Let v be a periodic vertex written as a translate with a member
+ * i at shift 0 (the canonical translate has one), point p, radius t. Let
+ * U be any unwrapped bin whose region grown by e = bins.grow contains p
+ * (the bin that p's doubles fall in is one: e covers their error). Then
+ * (a) t <= F[U] (bins.c: F bounds f over U grown by e, and t = f(p));
+ * (b) U is active: dist(c_i, U) <= |c_i - p| + e = t + R_i + e
+ *     <= F[U] + R_i + e;
+ * (c) every sphere j of S touching or entering v's tangent sphere has
+ *     |c_j - p| <= t + R_j, so dist(c_j, U) <= F[U] + Rmax + e: the bin W
+ *     of c_j has dist(W, U) <= F[U] + Rmax + e, and need[W] is set below.
+ * So keeping the images whose bin has need[] set (and within the global
+ * layer of images.c, which holds them by the same argument with the one
+ * bound rho) keeps every sphere that any periodic vertex touches or that
+ * could enter it: completeness as in images.c. Conversely a certified
+ * vertex of the kept set with a member at shift 0 and t <= F[U] for the
+ * bin U that its point falls in is empty in S: (b) and (c) hold for it
+ * with the same steps, so every sphere of S that could enter it was kept.
+ * One with t > F[U] is not empty in S (f(p) <= F[U] < t) and is dropped
+ * (vb_periodic_bound_at).
+ *
+ * Distances between bins are bounded below exactly: two points of bins
+ * whose indices differ by D have fractional difference u with u_k in
+ * [(D_k - 1) / nb_k, (D_k + 1) / nb_k], and the distance |u A| is at
+ * least the minimum of the convex quadratic u A A^T u^T over that box,
+ * found among its KKT points (each coordinate free or at a bound: 27
+ * linear solves, the least feasible value). It depends on D alone: one
+ * table. An atom is taken as any point of its bin. The doubles' error of
+ * these bounds is covered by the margin added to every threshold and a
+ * relative 1e-9 taken off each distance. */
+#include "vbp_bins.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define MAX_BINS ((size_t)1 << 27) /* past this, no reach: the full layer */
+
+/* The table of lower bounds of bin-to-bin distances by index offset. */
+typedef struct dtab {
+    long k[3];   /* offsets -k .. k per edge */
+    double *d;
+} dtab;
+
+/* min of u G u^T over lo <= u <= hi (G symmetric positive definite). */
+static double box_qp(const double G[9], const double lo[3], const double hi[3])
+{
+    double best = INFINITY;
+    for (int pat = 0; pat < 27; pat++) {
+        int st[3] = {pat % 3, pat / 3 % 3, pat / 9}; /* 0 free, 1 lo, 2 hi */
+        double u[3];
+        int fr[3], nf = 0;
+        for (int a = 0; a < 3; a++) {
+            if (st[a] == 0)
+                fr[nf++] = a;
+            else
+                u[a] = st[a] == 1 ? lo[a] : hi[a];
+        }
+        /* G_FF u_F = -G_FX u_X */
+        double M[9], r[3];
+        for (int i = 0; i < nf; i++) {
+            r[i] = 0.0;
+            for (int a = 0; a < 3; a++)
+                if (st[a] != 0)
+                    r[i] -= G[3 * fr[i] + a] * u[a];
+            for (int j = 0; j < nf; j++)
+                M[3 * i + j] = G[3 * fr[i] + fr[j]];
+        }
+        double x[3] = {0, 0, 0};
+        if (nf == 1) {
+            x[0] = r[0] / M[0];
+        } else if (nf == 2) {
+            double det = M[0] * M[4] - M[1] * M[3];
+            x[0] = (r[0] * M[4] - M[1] * r[1]) / det;
+            x[1] = (M[0] * r[1] - M[3] * r[0]) / det;
+        } /* nf == 3: r = 0, x = 0 */
+        int ok = 1;
+        for (int i = 0; i < nf; i++) {
+            int a = fr[i];
+            double tol = 1e-9 * (1.0 + fabs(lo[a]) + fabs(hi[a]));
+            ok &= x[i] >= lo[a] - tol && x[i] <= hi[a] + tol;
+            u[a] = x[i];
+        }
+        if (!ok)
+            continue;
+        double q = 0.0;
+        for (int a = 0; a < 3; a++)
+            for (int c = 0; c < 3; c++)
+                q += u[a] * G[3 * a + c] * u[c];
+        best = fmin(best, q);
+    }
+    return best > 0.0 ? sqrt(best) * (1.0 - 1e-9) : 0.0;
+}
+
+static int dtab_build(const vbp_bins *bn, const vb_box *box, double thr, dtab *t)
+{
+    const double *A = box->v;
+    double G[9];
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++)
+            G[3 * r + c] = A[3 * r] * A[3 * c] + A[3 * r + 1] * A[3 * c + 1] +
+                           A[3 * r + 2] * A[3 * c + 2];
+    size_t n = 1;
+    for (int a = 0; a < 3; a++) {
+        t->k[a] = (long)ceil(thr / bn->h[a] * bn->nb[a]) + 1;
+        n *= (size_t)(2 * t->k[a] + 1);
+    }
+    t->d = malloc(n * sizeof *t->d);
+    if (!t->d)
+        return VB_ENOMEM;
+    long D[3];
+    size_t w = 0;
+    for (D[0] = -t->k[0]; D[0] <= t->k[0]; D[0]++)
+        for (D[1] = -t->k[1]; D[1] <= t->k[1]; D[1]++)
+            for (D[2] = -t->k[2]; D[2] <= t->k[2]; D[2]++) {
+                double lo[3], hi[3];
+                for (int a = 0; a < 3; a++) {
+                    lo[a] = (double)(D[a] - 1) / bn->nb[a];
+                    hi[a] = (double)(D[a] + 1) / bn->nb[a];
+                }
+                t->d[w++] = box_qp(G, lo, hi);
+            }
+    return VB_OK;
+}
+
+static double dtab_at(const dtab *t, const long D[3])
+{
+    return t->d[((size_t)(D[0] + t->k[0]) * (size_t)(2 * t->k[1] + 1) + (size_t)(D[1] + t->k[1])) *
+                    (size_t)(2 * t->k[2] + 1) +
+                (size_t)(D[2] + t->k[2])];
+}
+
+static int wrapi(long q, int n)
+{
+    long r = q % n;
+    return (int)(r < 0 ? r + n : r);
+}
+
+static double bin_F(const vbp_bins *bn, const long b[3])
+{
+    size_t c = ((size_t)wrapi(b[0], bn->nb[0]) * bn->nb[1] + wrapi(b[1], bn->nb[1])) * bn->nb[2] +
+               wrapi(b[2], bn->nb[2]);
+    return bn->F[c];
+}
+
+static size_t at(const vbp_reach *r, const long b[3])
+{
+    return ((size_t)(b[0] - r->lo[0]) * r->n[1] + (size_t)(b[1] - r->lo[1])) * r->n[2] +
+           (size_t)(b[2] - r->lo[2]);
+}
+
+static int inside(const vbp_reach *r, const long b[3])
+{
+    for (int a = 0; a < 3; a++)
+        if (b[a] < r->lo[a] || b[a] >= r->lo[a] + r->n[a])
+            return 0;
+    return 1;
+}
+
+/* For every bin U within the table of bin v (holding an atom of radius up
+ * to R): mark[U] = 1 when dist(v, U) <= F[U] + R + extra (active), or,
+ * with need, when dist(v, U) <= F[v] + R + extra. */
+static void mark_around(const vbp_bins *bn, const dtab *t, vbp_reach *r, uint8_t *mark,
+                        const long v[3], double R, double extra, int need)
+{
+    double thr_v = bin_F(bn, v) + R + extra;
+    long D[3], u[3];
+    for (D[0] = -t->k[0]; D[0] <= t->k[0]; D[0]++)
+        for (D[1] = -t->k[1]; D[1] <= t->k[1]; D[1]++)
+            for (D[2] = -t->k[2]; D[2] <= t->k[2]; D[2]++) {
+                for (int a = 0; a < 3; a++)
+                    u[a] = v[a] + D[a];
+                if (!inside(r, u))
+                    continue;
+                size_t k = at(r, u);
+                if (mark[k])
+                    continue;
+                double thr = need ? thr_v : bin_F(bn, u) + R + extra;
+                if (dtab_at(t, D) <= thr)
+                    mark[k] = 1;
+            }
+}
+
+int vbp_reach_build(const vbp_bins *bn, const vb_box *box, const vb_sphere_set *atoms,
+                    const double klo[3], const double khi[3], double rmax, double margin,
+                    vbp_reach *r)
+{
+    memset(r, 0, sizeof *r);
+    size_t total = 1;
+    for (int a = 0; a < 3; a++) {
+        r->lo[a] = (long)floor(klo[a] * bn->nb[a]);
+        r->n[a] = (long)floor(khi[a] * bn->nb[a]) - r->lo[a] + 1;
+        if ((double)total * (double)r->n[a] > (double)MAX_BINS)
+            return 1;
+        total *= (size_t)r->n[a];
+    }
+    double extra = bn->grow + margin;
+    dtab t;
+    uint8_t *act = calloc(total, 1), *occ = calloc(total, 1);
+    double *occr = calloc(total, sizeof *occr);
+    r->need = calloc(total, 1);
+    int rc = act && occ && occr && r->need ? dtab_build(bn, box, bn->rho + rmax + extra, &t)
+                                           : VB_ENOMEM;
+    if (rc == VB_OK) {
+        /* The bins of the atoms at shift 0, each with its largest radius. */
+        const double *inv = bn->inv;
+        for (size_t i = 0; i < atoms->n; i++) {
+            double f[3];
+            long b[3];
+            for (int a = 0; a < 3; a++) {
+                f[a] = atoms->x[i] * inv[a] + atoms->y[i] * inv[3 + a] + atoms->z[i] * inv[6 + a];
+                b[a] = (long)floor(f[a] * bn->nb[a]);
+            }
+            if (!inside(r, b))
+                continue; /* cannot happen: the range holds the atoms */
+            size_t k = at(r, b);
+            occ[k] = 1;
+            occr[k] = fmax(occr[k], atoms->r[i]);
+        }
+        long u[3];
+        for (int need = 0; need < 2; need++)
+            for (u[0] = r->lo[0]; u[0] < r->lo[0] + r->n[0]; u[0]++)
+                for (u[1] = r->lo[1]; u[1] < r->lo[1] + r->n[1]; u[1]++)
+                    for (u[2] = r->lo[2]; u[2] < r->lo[2] + r->n[2]; u[2]++) {
+                        size_t k = at(r, u);
+                        if (need ? act[k] : occ[k])
+                            mark_around(bn, &t, r, need ? r->need : act, u,
+                                        need ? rmax : occr[k], extra, need);
+                    }
+        free(t.d);
+    }
+    free(act);
+    free(occ);
+    free(occr);
+    if (rc != VB_OK)
+        vbp_reach_free(r);
+    return rc;
+}
+
+int vbp_reach_keeps(const vbp_reach *r, const vbp_bins *bn, const double f[3])
+{
+    long b[3];
+    for (int a = 0; a < 3; a++) {
+        b[a] = (long)floor(f[a] * bn->nb[a]);
+        if (b[a] < r->lo[a] || b[a] >= r->lo[a] + r->n[a])
+            return 0;
+    }
+    return r->need[at(r, b)];
+}
+
+void vbp_reach_free(vbp_reach *r)
+{
+    free(r->need);
+    memset(r, 0, sizeof *r);
+}
