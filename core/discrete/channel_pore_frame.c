@@ -119,15 +119,14 @@ static int sweep_jobs(vb_ctx *ctx, sweep_job *J, int n)
     else
         for (int k = 0; k < n; k++)
             sweep_job_run(&J[k]);
-    for (int k = 0; k < n; k++)
-        if (J[k].rc != VB_OK) {
-            int rc = J[k].rc;
-            for (int j = 0; j < n; j++)
-                vbc_pore_free(&J[j].pore);
-            return vb_error(ctx, rc, NULL, 0, "pore sweep (%s)",
-                            rc == VB_ENOMEM ? "out of memory" : vb_errstr(rc));
-        }
-    return VB_OK;
+    int bad = vb_jobs_first_error(J, sizeof *J, n, offsetof(sweep_job, rc), VB_JOBS_UNORDERED);
+    if (bad < 0)
+        return VB_OK;
+    int rc = J[bad].rc;
+    for (int j = 0; j < n; j++)
+        vbc_pore_free(&J[j].pore);
+    return vb_error(ctx, rc, NULL, 0, "pore sweep (%s)",
+                    rc == VB_ENOMEM ? "out of memory" : vb_errstr(rc));
 }
 
 /* The widest open pore of one subunit replaces the nearly closed central
