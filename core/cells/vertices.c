@@ -3,6 +3,7 @@
  * certification through the certifier table, the intruder-swap repair
  * rounds and the canonical merge. Orchestration only: the geometry lives in
  * the proposer, the certifier and vb_sampler_swap_candidates. */
+#include "vb_array.h"
 #include "vb_vertices.h"
 
 #include "vbv_certify.h"
@@ -166,14 +167,9 @@ static int quads_add(quads *s, const vb_vertex_list *v)
     for (size_t k = 0; k < v->n; k++) {
         if (v->start[k + 1] - v->start[k] != 4)
             continue;
-        if (s->n == s->cap) {
-            size_t nc = s->cap ? 2 * s->cap : 1024;
-            uint32_t *p = realloc(s->q, 4 * nc * sizeof *p);
-            if (!p)
-                return VB_ENOMEM;
-            s->q = p;
-            s->cap = nc;
-        }
+        s->q = vb_array_grow(s->q, &s->cap, s->n + 1, 4 * sizeof *s->q, 1024);
+        if (s->cap < s->n + 1)
+            return VB_ENOMEM;
         memcpy(s->q + 4 * s->n++, v->ids + v->start[k], 4 * sizeof *s->q);
     }
     if (s->n)

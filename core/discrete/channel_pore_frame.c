@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_array.h"
 #include "vb_parallel.h"
 #include "vbc_pore_frame.h"
 
@@ -264,15 +265,9 @@ static void lining_put(int32_t atom, void *user)
     lining_set *L = user;
     if (L->mark[atom])
         return;
-    if (L->n == L->cap) {
-        size_t c = L->cap ? 2 * L->cap : 64;
-        int32_t *w = realloc(L->list, c * sizeof *w);
-        if (!w) {
-            L->failed = 1;
-            return;
-        }
-        L->list = w;
-        L->cap = c;
+    if (VB_ARRAY_FIT(L->list, L->cap, L->n + 1, 64) != VB_OK) {
+        L->failed = 1;
+        return;
     }
     L->mark[atom] = 1;
     L->list[L->n++] = atom;
