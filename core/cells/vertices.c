@@ -356,13 +356,10 @@ static void certifier_start(const vb_certifier_ops *ops, const vb_sphere_set *se
                             const vb_vertices_config *cfg, vbv_cert_open *co,
                             vbv_cert_stream *cs, vbv_cert_stream **csp, vb_ctx *ctx)
 {
-    vbv_cert_open_start(co, ops, set, cfg->sampler.threads);
-    vb_progress_forward(co->tctx, ctx);
+    vbv_cert_open_start(co, ops, set, cfg->sampler.threads, ctx);
     *csp = NULL;
-    if (ops->certify_quads && vbv_cert_stream_init(cs, co) == VB_OK) {
-        vb_progress_forward(cs->tctx, ctx);
+    if (ops->certify_quads && vbv_cert_stream_init(cs, co, ctx) == VB_OK)
         *csp = cs;
-    }
 }
 
 /* A proposal stopped by the stream (its sink failed) carries the stream's
@@ -407,7 +404,7 @@ int vb_vertices_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertices_con
     op.req = request_of(cfg, p);
     op.t_start = t0;
     if (async) {
-        if (vb_open(&op.tctx, NULL) != VB_OK)
+        if (vb_open_worker(&op.tctx, ctx) != VB_OK)
             op.tctx = NULL;
         op.started = vb_jobs_start(&op.job, open_device, &op, sizeof op, 1) == 1;
     } else if ((rc = p->open(ctx, be->devices, NULL, &state)) != VB_OK) {

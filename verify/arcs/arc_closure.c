@@ -447,11 +447,10 @@ static int close_list(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_lis
         tr[i].c = c;
         if (i > 0) {
             tr[i].c = vbx_certifier_worker(c);
-            if (!tr[i].c || vb_open(&tr[i].ctx, NULL) != VB_OK) {
+            if (!tr[i].c || vb_open_worker(&tr[i].ctx, ctx) != VB_OK) {
                 rc = VB_ENOMEM;
                 break;
             }
-            vb_progress_forward(tr[i].ctx, ctx);
         }
         rc = vbx_arcw_init(&tr[i].w, tr[i].ctx, tr[i].c);
         tr[i].have_w = 1;

@@ -117,13 +117,12 @@ static int run_workers(vb_ctx *ctx, vb_certifier *c, worker *ws, unsigned nt)
         ws[i].index = (uint16_t)i;
         ws[i].ctx = NULL;
         ws[i].c = vbx_certifier_worker(c);
-        if (!ws[i].c || vb_open(&ws[i].ctx, NULL) != VB_OK) {
+        if (!ws[i].c || vb_open_worker(&ws[i].ctx, ctx) != VB_OK) {
             vb_certifier_close(ws[i].c);
             ws[i].c = NULL;
             rc = VB_ENOMEM;
             break;
         }
-        vb_progress_forward(ws[i].ctx, ctx);
     }
     /* A thread that cannot start has its share run by the caller. */
     if (rc == VB_OK)

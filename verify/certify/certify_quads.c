@@ -513,9 +513,8 @@ int vb_certify_quads(vb_ctx *ctx, vb_certifier *c, const uint32_t (*quads)[4], s
     ws[0].ctx = ctx;
     for (unsigned i = 1; i < nt && rc == VB_OK; i++) {
         ws[i].c = vbx_certifier_worker(c);
-        if (!ws[i].c || vb_open(&ws[i].ctx, NULL) != VB_OK)
+        if (!ws[i].c || vb_open_worker(&ws[i].ctx, ctx) != VB_OK)
             rc = VB_ENOMEM;
-        vb_progress_forward(ws[i].ctx, ctx);
     }
     /* A thread that cannot start has its share run by the caller. */
     if (rc == VB_OK)
