@@ -3,7 +3,10 @@
  * the rest from the configuration (VB_BUILD_* definitions). */
 #include <gmp.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
+#include "vb.h"
 #include "vb_build.h"
 #include "vb_commit.h"
 #include "vb_json.h"
@@ -68,6 +71,32 @@ size_t vb_provenance_text(const vb_provenance *p, char *buf, size_t size)
     int n = snprintf(buf, size, "tool: %s\ninput: %s, %zu spheres\noptions: %s\n", tool,
                      p->input ? p->input : "-", p->spheres, p->options ? p->options : "");
     return n < 0 ? 0 : (size_t)n;
+}
+
+void vb_comment_lines(FILE *f, const char *prefix, const char *text)
+{
+    for (const char *p = text; p && *p;) {
+        size_t len = strcspn(p, "\n");
+        fprintf(f, "%s%.*s\n", prefix, (int)len, p);
+        p += len;
+        p += *p == '\n';
+    }
+}
+
+int vb_provenance_write_comments(FILE *f, const char *prefix, const vb_provenance *p,
+                                 const char *comment)
+{
+    if (p) {
+        size_t n = vb_provenance_text(p, NULL, 0);
+        char *t = malloc(n + 1);
+        if (!t)
+            return VB_ENOMEM;
+        vb_provenance_text(p, t, n + 1);
+        vb_comment_lines(f, prefix, t);
+        free(t);
+    }
+    vb_comment_lines(f, prefix, comment);
+    return VB_OK;
 }
 
 void vb_provenance_write_json(FILE *f, const vb_provenance *p)

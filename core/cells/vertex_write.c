@@ -39,20 +39,6 @@ const char *vb_vertex_status_name(int status)
     }
 }
 
-/* Comment text may span lines; each becomes its own '#' line so that the
- * reader's "skip lines starting with #" rule holds. */
-static void write_comment_lines(FILE *f, const char *comment)
-{
-    const char *p = comment;
-    while (*p) {
-        size_t len = strcspn(p, "\n");
-        fprintf(f, "# %.*s\n", (int)len, p);
-        p += len;
-        if (*p == '\n')
-            p++;
-    }
-}
-
 /* One vertex as a line of each format (json: the array's element, with the
  * separator before it). */
 typedef void (*line_fn)(FILE *f, const vb_vertex_list *v, size_t k);
@@ -191,17 +177,8 @@ static int write_tsv(vb_ctx *ctx, FILE *f, const vb_vertex_list *v, const vb_pro
                      const char *comment)
 {
     fputs("# vorball vertices\n", f);
-    if (prov) {
-        size_t n = vb_provenance_text(prov, NULL, 0);
-        char *t = malloc(n + 1);
-        if (!t)
-            return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (writing vertices)");
-        vb_provenance_text(prov, t, n + 1);
-        write_comment_lines(f, t);
-        free(t);
-    }
-    if (comment)
-        write_comment_lines(f, comment);
+    if (vb_provenance_write_comments(f, "# ", prov, comment) != VB_OK)
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (writing vertices)");
     fputs("# ids\tx\ty\tz\tt\tstatus\n", f);
     return write_lines(ctx, f, v, tsv_line);
 }
