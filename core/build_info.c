@@ -73,6 +73,18 @@ size_t vb_provenance_text(const vb_provenance *p, char *buf, size_t size)
     return n < 0 ? 0 : (size_t)n;
 }
 
+void vb_provenance_write_json_head(FILE *f, const vb_provenance *p, const char *comment)
+{
+    fputs("{", f);
+    if (p)
+        vb_provenance_write_json(f, p);
+    if (comment) {
+        fputs("\"comment\":", f);
+        vb_json_write_string(f, comment);
+        fputs(",", f);
+    }
+}
+
 void vb_comment_lines(FILE *f, const char *prefix, const char *text)
 {
     for (const char *p = text; p && *p;) {

@@ -49,6 +49,11 @@ size_t vb_provenance_text(const vb_provenance *p, char *buf, size_t size);
  * for a writer to put before its own keys. */
 void vb_provenance_write_json(FILE *f, const vb_provenance *p);
 
+/* The head of a JSON output object: "{", the members of
+ * vb_provenance_write_json (NULL p: none), then "comment":"..." and ','
+ * (NULL comment: none), for a writer to put its own keys after. */
+void vb_provenance_write_json_head(FILE *f, const vb_provenance *p, const char *comment);
+
 /* Writes text as comment lines: each of its lines after prefix, ended by
  * '\n' (NULL or "" text: nothing). */
 void vb_comment_lines(FILE *f, const char *prefix, const char *text);

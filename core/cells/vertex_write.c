@@ -186,14 +186,7 @@ static int write_tsv(vb_ctx *ctx, FILE *f, const vb_vertex_list *v, const vb_pro
 static int write_json(vb_ctx *ctx, FILE *f, const vb_vertex_list *v, const vb_provenance *prov,
                       const char *comment)
 {
-    fputs("{", f);
-    if (prov)
-        vb_provenance_write_json(f, prov);
-    if (comment) {
-        fputs("\"comment\":", f);
-        vb_json_write_string(f, comment);
-        fputs(",", f);
-    }
+    vb_provenance_write_json_head(f, prov, comment);
     fputs("\"vertices\":[", f);
     int rc = write_lines(ctx, f, v, json_item);
     fputs("\n]}\n", f);

@@ -29,14 +29,7 @@ int vb_periodic_write_prov(vb_ctx *ctx, FILE *f, const vb_periodic_vertices *v, 
                            const vb_provenance *prov, const char *comment)
 {
     if (json) {
-        fputs("{", f);
-        if (prov)
-            vb_provenance_write_json(f, prov);
-        if (comment) {
-            fputs("\"comment\":", f);
-            vb_json_write_string(f, comment);
-            fputs(",", f);
-        }
+        vb_provenance_write_json_head(f, prov, comment);
         fputs("\"vertices\":[", f);
         for (size_t k = 0; k < v->n; k++) {
             fputs(k ? ",\n{\"ids\":[" : "\n{\"ids\":[", f);
