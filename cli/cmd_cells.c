@@ -58,6 +58,14 @@ static void prov_make(cells_prov *p, const char *input, size_t spheres)
     vb_cli_provenance(&p->prov, p->options, sizeof p->options, input, spheres);
 }
 
+/* The provenance lines of a table's header ("# tool/# input/# options"). */
+static int prov_comments(vb_ctx *ctx, FILE *f, const vb_provenance *p)
+{
+    if (vb_provenance_write_comments(f, "# ", p, NULL) != VB_OK)
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (writing a table's header)");
+    return VB_OK;
+}
+
 static int write_file(vb_ctx *ctx, const char *path, const vb_sphere_set *set,
                       const vb_cell_measures *m, int contacts, int json, const cells_prov *cp)
 {
@@ -68,7 +76,7 @@ static int write_file(vb_ctx *ctx, const char *path, const vb_sphere_set *set,
     if (json) {
         rc = vb_cell_measures_write_json_prov(ctx, f, set, m, -1, 0, &cp->prov);
         fputc('\n', f);
-    } else if ((rc = vb_provenance_write_comments(ctx, f, &cp->prov)) != VB_OK) {
+    } else if ((rc = prov_comments(ctx, f, &cp->prov)) != VB_OK) {
         /* nothing more: the file is discarded */
     } else if (contacts) {
         vb_cell_measures_write_contacts(f, m);
@@ -113,10 +121,10 @@ static int write_headers(frames_sink *S, size_t spheres)
     int rc = VB_OK;
     if (S->json)
         fputs("[\n", S->out);
-    else if ((rc = vb_provenance_write_comments(S->ctx, S->out, &S->prov.prov)) == VB_OK)
+    else if ((rc = prov_comments(S->ctx, S->out, &S->prov.prov)) == VB_OK)
         vb_cell_measures_write_atoms_header(S->out, 1);
     if (rc == VB_OK && S->contacts)
-        rc = vb_provenance_write_comments(S->ctx, S->contacts, &S->prov.prov);
+        rc = prov_comments(S->ctx, S->contacts, &S->prov.prov);
     if (rc == VB_OK && S->contacts)
         vb_cell_measures_write_contacts_header(S->contacts, 1);
     return rc;

@@ -2,6 +2,7 @@
  * rank's round travels as one message:
  *   frames (u64), then per frame VB_CLI_ROUND_SINKS lengths (u64), then
  *   per frame the bytes of each sink in turn. */
+#include "vb_array.h"
 #include "frame_rounds.h"
 
 #include <stdint.h>
@@ -78,14 +79,10 @@ FILE *vb_cli_rounds_stream(vb_cli_rounds *r, int k)
 
 int vb_cli_rounds_frame_done(vb_ctx *ctx, vb_cli_rounds *r)
 {
-    if (r->nframes == r->cap) {
-        size_t nc = r->cap ? 2 * r->cap : VB_CLI_ROUND_FRAMES;
-        size_t *p = realloc(r->ends, nc * VB_CLI_ROUND_SINKS * sizeof *p);
-        if (!p)
-            return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (frame outputs)");
-        r->ends = p;
-        r->cap = nc;
-    }
+    r->ends = vb_array_grow(r->ends, &r->cap, r->nframes + 1,
+                            VB_CLI_ROUND_SINKS * sizeof *r->ends, VB_CLI_ROUND_FRAMES);
+    if (r->cap < r->nframes + 1)
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (frame outputs)");
     for (int k = 0; k < VB_CLI_ROUND_SINKS; k++) {
         if (fflush(r->f[k]) != 0)
             return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (frame outputs)");

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb.h"
 #include "vb_build.h"
 #include "vb_commit.h"
 #include "vb_json.h"
@@ -72,6 +73,44 @@ size_t vb_provenance_text(const vb_provenance *p, char *buf, size_t size)
     return n < 0 ? 0 : (size_t)n;
 }
 
+void vb_provenance_write_json_head(FILE *f, const vb_provenance *p, const char *comment)
+{
+    fputs("{", f);
+    if (p)
+        vb_provenance_write_json(f, p);
+    if (comment) {
+        fputs("\"comment\":", f);
+        vb_json_write_string(f, comment);
+        fputs(",", f);
+    }
+}
+
+void vb_comment_lines(FILE *f, const char *prefix, const char *text)
+{
+    for (const char *p = text; p && *p;) {
+        size_t len = strcspn(p, "\n");
+        fprintf(f, "%s%.*s\n", prefix, (int)len, p);
+        p += len;
+        p += *p == '\n';
+    }
+}
+
+int vb_provenance_write_comments(FILE *f, const char *prefix, const vb_provenance *p,
+                                 const char *comment)
+{
+    if (p) {
+        size_t n = vb_provenance_text(p, NULL, 0);
+        char *t = malloc(n + 1);
+        if (!t)
+            return VB_ENOMEM;
+        vb_provenance_text(p, t, n + 1);
+        vb_comment_lines(f, prefix, t);
+        free(t);
+    }
+    vb_comment_lines(f, prefix, comment);
+    return VB_OK;
+}
+
 void vb_provenance_write_json(FILE *f, const vb_provenance *p)
 {
     char tool[160];
@@ -83,22 +122,4 @@ void vb_provenance_write_json(FILE *f, const vb_provenance *p)
     fprintf(f, ",\"spheres\":%zu,\"options\":", p->spheres);
     vb_json_write_string(f, p->options ? p->options : "");
     fputs(",", f);
-}
-
-int vb_provenance_write_comments(vb_ctx *ctx, FILE *f, const vb_provenance *p)
-{
-    size_t n = vb_provenance_text(p, NULL, 0);
-    char *t = malloc(n + 1);
-    if (!t)
-        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (writing a table's header)");
-    vb_provenance_text(p, t, n + 1);
-    for (const char *q = t; *q;) {
-        size_t len = strcspn(q, "\n");
-        fprintf(f, "# %.*s\n", (int)len, q);
-        q += len;
-        if (*q == '\n')
-            q++;
-    }
-    free(t);
-    return VB_OK;
 }

@@ -38,7 +38,7 @@ struct vb_ctx {
      * below which a report is not worth a call. */
     vb_progress_fn progress;
     void *progress_user;
-    vb_ctx *progress_to;
+    vb_ctx *progress_to;    /* the owner a worker reports through (vb_progress_forward) */
     pthread_mutex_t progress_lock;
     struct {
         _Atomic(const char *) stage;
@@ -151,6 +151,26 @@ void vb_progress_forward(vb_ctx *worker, vb_ctx *owner)
         worker->progress_to = owner;
 }
 
+int vb_open_worker(vb_ctx **out, vb_ctx *owner)
+{
+    *out = NULL;
+    if (vb_ctx_check(owner) != VB_OK)
+        return VB_EMISUSE;
+    int rc = vb_open(out, &owner->cfg);
+    if (rc == VB_OK)
+        (*out)->progress_to = owner;
+    return rc;
+}
+
+/* The context whose log callback, stream and verbosity speak for ctx: the
+ * last owner up its chain of workers (vb_progress_forward). */
+static vb_ctx *speaker(vb_ctx *ctx)
+{
+    for (int hops = 0; ctx->progress_to && hops < 8; hops++)
+        ctx = ctx->progress_to;
+    return ctx;
+}
+
 static int progress_slot(vb_ctx *ctx, const char *stage)
 {
     for (int k = 0; k < VB_PROGRESS_STAGES; k++)
@@ -166,8 +186,7 @@ void vb_progress(vb_ctx *ctx, const char *stage, uint64_t done, uint64_t total)
 {
     if (vb_ctx_check(ctx) != VB_OK || !stage)
         return;
-    for (int hops = 0; ctx->progress_to && hops < 8; hops++)
-        ctx = ctx->progress_to;
+    ctx = speaker(ctx);
     if (!ctx->progress)
         return;
     /* The fast path, without the lock: a known stage below its next 1/1000. */
@@ -337,21 +356,25 @@ int vb_warn(vb_ctx *ctx, int num, const char *file, long line, const char *fmt, 
     if (vb_ctx_check(ctx) != VB_OK)
         return VB_EMISUSE;
     ctx->stats.warnings++;
-    if (ctx->cfg.verbosity < 1)
+    const vb_ctx *to = speaker(ctx);
+    if (to->cfg.verbosity < 1)
         return VB_OK;
     va_list ap;
     va_start(ap, fmt);
-    log_record(ctx, 'W', num, file, line > 0 ? line : 0, fmt, ap);
+    log_record(to, 'W', num, file, line > 0 ? line : 0, fmt, ap);
     va_end(ap);
     return VB_OK;
 }
 
 void vb_info(vb_ctx *ctx, const char *fmt, ...)
 {
-    if (vb_ctx_check(ctx) != VB_OK || ctx->cfg.verbosity < 2)
+    if (vb_ctx_check(ctx) != VB_OK)
+        return;
+    const vb_ctx *to = speaker(ctx);
+    if (to->cfg.verbosity < 2)
         return;
     va_list ap;
     va_start(ap, fmt);
-    log_record(ctx, 'I', 0, NULL, 0, fmt, ap);
+    log_record(to, 'I', 0, NULL, 0, fmt, ap);
     va_end(ap);
 }

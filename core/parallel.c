@@ -115,6 +115,28 @@ void vb_run_jobs(void *(*fn)(void *), void *jobs, size_t job_size, int n)
     vb_jobs_join(&g);
 }
 
+int vb_jobs_first_error(const void *jobs, size_t job_size, int n, size_t rc_off, size_t at_off)
+{
+    const char *base = jobs;
+    int bad = -1;
+    size_t bad_at = 0;
+    for (int t = 0; t < n; t++) {
+        const char *j = base + (size_t)t * job_size;
+        int rc;
+        memcpy(&rc, j + rc_off, sizeof rc);
+        if (rc == VB_OK)
+            continue;
+        size_t at = 0;
+        if (at_off != VB_JOBS_UNORDERED)
+            memcpy(&at, j + at_off, sizeof at);
+        if (bad < 0 || at < bad_at) {
+            bad = t;
+            bad_at = at;
+        }
+    }
+    return bad;
+}
+
 typedef struct for_job {
     vb_for_fn fn;
     void *ctx;

@@ -85,7 +85,8 @@ typedef struct vb_diag_record {
 
 /* A log callback: called once per warning or info line that the verbosity
  * lets through, on the thread that emitted it (several threads of one run
- * may call it at once: a callback that collects must lock). The record
+ * may call it at once, worker threads included (vb_open_worker): a
+ * callback that collects must lock). The record
  * and its strings are valid during the call only. */
 typedef void (*vb_log_fn)(void *arg, const vb_diag_record *rec);
 
@@ -188,10 +189,20 @@ typedef void (*vb_progress_fn)(void *user, const char *stage, uint64_t done, uin
 int vb_set_progress(vb_ctx *ctx, vb_progress_fn fn, void *user);
 
 /* Makes `worker` (a context a library loop opened for a thread) report
- * its progress through `owner`'s callback and rate limit, so that a
- * callback the caller installed is never lost on a worker context. owner
- * must outlive worker's use; NULL for either does nothing. */
+ * through `owner`: its progress through owner's callback and rate limit,
+ * its warnings and info lines through owner's log callback (or owner's
+ * diagnostic stream) at owner's verbosity, so that nothing a thread says
+ * is lost on a worker context. Its errors and counters stay its own (the
+ * loop hands them on when it joins the thread). owner must outlive
+ * worker's use; NULL for either, or worker == owner, does nothing. */
 void vb_progress_forward(vb_ctx *worker, vb_ctx *owner);
+
+/* Opens a worker context for a library loop's thread: a fresh context
+ * (own error state and counters) that reports through owner as
+ * vb_progress_forward says. owner must outlive it. Returns VB_OK, or
+ * VB_ENOMEM with *out NULL, or VB_EMISUSE with *out NULL when owner is
+ * NULL or closed. Free with vb_close. */
+int vb_open_worker(vb_ctx **out, vb_ctx *owner);
 
 /* Library loops report here: `done` of `total` units of `stage` finished.
  * Cheap when no callback is installed or no new 1/1000 is crossed (one

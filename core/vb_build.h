@@ -51,11 +51,21 @@ size_t vb_provenance_text(const vb_provenance *p, char *buf, size_t size);
  * for a writer to put before its own keys. */
 void vb_provenance_write_json(FILE *f, const vb_provenance *p);
 
-/* The three lines of vb_provenance_text as comment lines of a table, each
- * "# " + line + '\n' (a line break inside the input's name starts another
- * "# " line), for the TSV writers' headers. VB_OK, or VB_ENOMEM (nothing
- * written; the message in ctx). */
-int vb_provenance_write_comments(vb_ctx *ctx, FILE *f, const vb_provenance *p);
+/* The head of a JSON output object: "{", the members of
+ * vb_provenance_write_json (NULL p: none), then "comment":"..." and ','
+ * (NULL comment: none), for a writer to put its own keys after. */
+void vb_provenance_write_json_head(FILE *f, const vb_provenance *p, const char *comment);
+
+/* Writes text as comment lines: each of its lines after prefix, ended by
+ * '\n' (NULL or "" text: nothing). */
+void vb_comment_lines(FILE *f, const char *prefix, const char *text);
+
+/* The header comments of a text output: the provenance lines of p
+ * (vb_provenance_text; NULL p: none), then the comment's lines (NULL:
+ * none), each after prefix ("# " for TSV and CSV headers). Returns VB_OK,
+ * or VB_ENOMEM with nothing written. */
+int vb_provenance_write_comments(FILE *f, const char *prefix, const vb_provenance *p,
+                                 const char *comment);
 
 #ifdef __cplusplus
 }

@@ -45,6 +45,17 @@ void vb_jobs_join(vb_jobs *g);
  * caller runs the first, threads the others (vb_jobs_start, vb_jobs_join). */
 void vb_run_jobs(void *(*fn)(void *), void *jobs, size_t job_size, int n);
 
+/* Marks jobs whose failures carry no item for vb_jobs_first_error. */
+#define VB_JOBS_UNORDERED ((size_t)-1)
+
+/* The first error of n jobs that ran at once, as one thread taking their
+ * items in order would have met it. Job t (at jobs + t * job_size) holds
+ * its status, an int, at byte rc_off; unless at_off is VB_JOBS_UNORDERED it
+ * holds at byte at_off the item (a size_t) where it failed. The failing job
+ * with the earliest item wins, ties (and unordered jobs) to the lower job.
+ * Returns that job's index, or -1 when every job ended VB_OK. */
+int vb_jobs_first_error(const void *jobs, size_t job_size, int n, size_t rc_off, size_t at_off);
+
 /* A parallel for: item i of n goes to thread i mod nthreads (tid is that
  * thread's number, for per-thread scratch); items must be independent.
  * nthreads is clamped to 1..VB_MAX_THREADS. */

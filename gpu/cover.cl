@@ -28,21 +28,8 @@ __kernel void vbq_cover_kernel(__global const double *x, __global const double *
 {
     size_t w = get_global_id(0);
     vbq_env e;
-    e.x = x;
-    e.y = y;
-    e.z = z;
-    e.r = r;
-    e.box = box;
-    e.rmax = rmax;
-    e.ids = ids;
-    e.first = first;
-    e.m = m;
-    e.rmax_all = rmax_all;
-    e.near = near;
-    e.T = T;
-    e.min_level = min_level;
-    e.max_level = max_level;
-    e.enum_max = enum_max;
+    vbq_env_make(&e, x, y, z, r, box, rmax, ids, first, m, rmax_all, near, T, min_level, max_level,
+                 enum_max);
     vbq_arena ar;
     ar.nb = nb + w * (size_t)nb_cap;
     ar.lab = lab + w * (size_t)lab_cap;

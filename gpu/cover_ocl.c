@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_array.h"
 #include "vbg_cover.h"
 
 /* A cell whose quadruples did not fit the output array (cover*.cl). */
@@ -155,16 +156,10 @@ static int set_arg(vb_ctx *ctx, cl_kernel k, cl_uint i, size_t size, const void 
 /* Appends room for n more quadruples to host_q. */
 static int host_q_room(vb_ctx *ctx, cov_state *s, size_t n)
 {
-    if (s->host_nq + n <= s->host_q_cap)
-        return VB_OK;
-    size_t nc = s->host_q_cap ? s->host_q_cap : 4096;
-    while (nc < s->host_nq + n)
-        nc *= 2;
-    uint32_t *h = realloc(s->host_q, 4 * nc * sizeof *h);
-    if (!h)
+    s->host_q = vb_array_grow(s->host_q, &s->host_q_cap, s->host_nq + n, 4 * sizeof *s->host_q,
+                              4096);
+    if (s->host_q_cap < s->host_nq + n)
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (quadruples)");
-    s->host_q = h;
-    s->host_q_cap = nc;
     return VB_OK;
 }
 

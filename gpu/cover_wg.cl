@@ -47,75 +47,17 @@
 #define S_FAR 8
 #define S_N 9
 
-/* The query on the group: passing spheres appended to nb (shared count
- * sh[S_NNB]) and to lab[off + sh[S_LEN] ...]. Every lane calls it; on
- * return sh[S_STATUS] says whether an arena or the node stack ran out. */
-static inline __attribute__((always_inline)) void wg_gather(const vbq_env *e, const vbq_query *q, vbs_u32 i, __global vbq_nb *nb,
-                      uint nb_cap, __global uint *lab, uint lab_cap, uint off,
-                      __local uint *sh, __local uint *nodes)
-{
-    uint lane = get_local_id(0);
-    if (lane == 0u) {
-        sh[S_NS] = e->m ? 1u : 0u;
-        nodes[0] = 1u;
-    }
-    barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
-    for (;;) {
-        uint n = sh[S_NS];
-        if (n == 0u || sh[S_STATUS] != VBQ_OK)
-            break;
-        uint take = n < WG ? n : WG;
-        uint nd = lane < take ? nodes[n - 1u - lane] : 0u;
-        barrier(CLK_LOCAL_MEM_FENCE);
-        if (lane == 0u)
-            sh[S_NS] = n - take;
-        barrier(CLK_LOCAL_MEM_FENCE);
-        if (nd != 0u && vbq_node_pass(e, q, nd)) {
-            if (nd < e->first) {
-                uint k = atomic_add(&sh[S_NS], 2u);
-                if (k + 2u <= WG_NODES) {
-                    nodes[k] = 2u * nd;
-                    nodes[k + 1u] = 2u * nd + 1u;
-                } else {
-                    sh[S_STATUS] = VBQ_OVER_ST;
-                }
-            } else {
-                uint q0 = (nd - e->first) * VBQ_LEAF;
-                for (uint k = q0; k < e->m && k < q0 + VBQ_LEAF; k++) {
-                    uint j = e->ids[k];
-                    vbq_nb rec;
-                    if (j == i || !vbq_sphere_pass(e, q, j, &rec))
-                        continue;
-                    if (q->filter)
-                        atomic_inc(&sh[S_FAR]);
-                    uint idx = atomic_inc(&sh[S_NNB]);
-                    uint pos = atomic_inc(&sh[S_LEN]);
-                    if (idx >= nb_cap)
-                        sh[S_STATUS] = VBQ_OVER_NB;
-                    else if (off + pos >= lab_cap)
-                        sh[S_STATUS] = VBQ_OVER_LAB;
-                    else {
-                        nb[idx] = rec;
-                        lab[off + pos] = idx;
-                    }
-                }
-            }
-        }
-        barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
-    }
-    barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
-}
-
-/* The ring fetch of a patch resolved by its parts (vbq_gather_sub) on the
- * group. */
+/* The tree walk (vbq_walk_node, vbq_walk_sphere) on the group, breadth
+ * first: the lanes take the nodes at the top of the shared stack side by
+ * side. Passing spheres are appended to nb (shared count sh[S_NNB]) and to
+ * lab[off + sh[S_LEN] ...]; those of a ring fetched through parts count as
+ * far. Every lane calls it; on return sh[S_STATUS] says whether an arena or
+ * the node stack ran out. */
 static inline __attribute__((always_inline)) void
-wg_gather_sub(const vbq_env *e, vbs_u32 i, double rq0, double rq1, __local const vbq_sub *sub,
-              __global vbq_nb *nb, uint nb_cap, __global uint *lab, uint lab_cap, uint off,
-              __local uint *sh, __local uint *nodes)
+wg_walk(const vbq_env *e, const vbq_walk *w, __global vbq_nb *nb, uint nb_cap,
+        __global uint *lab, uint lab_cap, uint off, __local uint *sh, __local uint *nodes)
 {
     uint lane = get_local_id(0);
-    const double c[3] = {e->x[i], e->y[i], e->z[i]};
-    double ri = e->r[i];
     if (lane == 0u) {
         sh[S_NS] = e->m ? 1u : 0u;
         nodes[0] = 1u;
@@ -131,7 +73,7 @@ wg_gather_sub(const vbq_env *e, vbs_u32 i, double rq0, double rq1, __local const
         if (lane == 0u)
             sh[S_NS] = n - take;
         barrier(CLK_LOCAL_MEM_FENCE);
-        if (nd != 0u && vbq_node_pass_sub(e, c, ri, rq0, rq1, sub, nd)) {
+        if (nd != 0u && vbq_walk_node(e, w, nd)) {
             if (nd < e->first) {
                 uint k = atomic_add(&sh[S_NS], 2u);
                 if (k + 2u <= WG_NODES) {
@@ -141,13 +83,14 @@ wg_gather_sub(const vbq_env *e, vbs_u32 i, double rq0, double rq1, __local const
                     sh[S_STATUS] = VBQ_OVER_ST;
                 }
             } else {
-                uint q0 = (nd - e->first) * VBQ_LEAF;
-                for (uint k = q0; k < e->m && k < q0 + VBQ_LEAF; k++) {
-                    uint j = e->ids[k];
+                uint k0, k1;
+                vbq_walk_leaf(e, nd, &k0, &k1);
+                for (uint k = k0; k < k1; k++) {
                     vbq_nb rec;
-                    if (j == i || !vbq_sphere_pass_sub(e, c, ri, rq0, rq1, sub, j, &rec))
+                    if (!vbq_walk_sphere(e, w, k, &rec))
                         continue;
-                    atomic_inc(&sh[S_FAR]);
+                    if (w->nsub)
+                        atomic_inc(&sh[S_FAR]);
                     uint idx = atomic_inc(&sh[S_NNB]);
                     uint pos = atomic_inc(&sh[S_LEN]);
                     if (idx >= nb_cap)
@@ -205,21 +148,8 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
     uint lane = get_local_id(0);
     size_t g = get_group_id(0);
     vbq_env e;
-    e.x = x;
-    e.y = y;
-    e.z = z;
-    e.r = r;
-    e.box = box;
-    e.rmax = rmax;
-    e.ids = ids;
-    e.first = first;
-    e.m = m;
-    e.rmax_all = rmax_all;
-    e.near = near;
-    e.T = T;
-    e.min_level = min_level;
-    e.max_level = max_level;
-    e.enum_max = enum_max;
+    vbq_env_make(&e, x, y, z, r, box, rmax, ids, first, m, rmax_all, near, T, min_level, max_level,
+                 enum_max);
     __global vbq_nb *nb = nbs + g * (size_t)nb_cap;
     __global uint *lab = labs + g * (size_t)lab_cap;
     __global uint *qa = qs + g * 4u * (size_t)q_cap;
@@ -255,11 +185,10 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
         }
         barrier(CLK_LOCAL_MEM_FENCE);
         const double ci[3] = {x[i], y[i], z[i]};
-        const double m0[3] = {0.0, 0.0, 0.0}, h0[3] = {1.0, 1.0, 1.0};
         double rq = near + 2.0 * rmax_all;
-        vbq_query qq;
-        vbq_query_make(&e, i, m0, h0, -1.0, -1.0, rq, &qq);
-        wg_gather(&e, &qq, i, nb, nb_cap, lab, lab_cap, 0u, sh, nodes);
+        vbq_walk wk;
+        vbq_walk_make(&e, i, -1.0, rq, 0, 0u, &wk);
+        wg_walk(&e, &wk, nb, nb_cap, lab, lab_cap, 0u, sh, nodes);
         uint len0 = sh[S_LEN];
         double far = sqrt(vbq_box_far2(&e, 1u, ci)) * (1.0 + 1e-9);
         double slack_i = rmax_all - r[i];
@@ -346,14 +275,13 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
                 }
                 for (uint g = 0u; g < VBQ_NSUB; g++) {
                     double v = wg_max(lg[g], red);
-                    if (lane == 0u) {
-                        subs[g].LO = v;
-                        subs[g].sdist = v > 0.0 ? 0.5 / v : (double)INFINITY;
-                    }
+                    if (lane == 0u)
+                        vbq_sub_set_lo(&subs[g], v);
                 }
                 barrier(CLK_LOCAL_MEM_FENCE);
                 evals += (double)(VBQ_NSUB * fr.len);
-                wg_gather_sub(&e, i, fr.rq, rq1, subs, nb, nb_cap, lab, lab_cap, top, sh, nodes);
+                vbq_walk_make(&e, i, fr.rq, rq1, subs, VBQ_NSUB, &wk);
+                wg_walk(&e, &wk, nb, nb_cap, lab, lab_cap, top, sh, nodes);
                 if (lane == 0u && sh[S_STATUS] == VBQ_OK) {
                     uint nlen = sh[S_LEN];
                     fr.off = top;
@@ -437,30 +365,8 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
                     sh[S_STATUS] = VBQ_CLUSTER;
                 act = 0;
             }
-            if (lane == 0u && act >= 2) {
-                o.leaves++;
-                if (act == 3)
-                    o.deep++;
-                if (fr.level > o.maxlev)
-                    o.maxlev = fr.level;
-                for (uint a = 0u; a < keep && o.status == VBQ_OK; a++) {
-                    uint ja = nb[lab[top + a]].id;
-                    if (ja < i)
-                        continue;
-                    for (uint b = a + 1u; b < keep && o.status == VBQ_OK; b++) {
-                        uint jb = nb[lab[top + b]].id;
-                        if (jb < i)
-                            continue;
-                        for (uint d = b + 1u; d < keep && o.status == VBQ_OK; d++) {
-                            uint jd = nb[lab[top + d]].id;
-                            if (jd >= i)
-                                vbq_add_quad(&ar, &o, i, ja, jb, jd);
-                        }
-                    }
-                }
-                if (o.status != VBQ_OK)
-                    sh[S_STATUS] = o.status;
-            }
+            if (lane == 0u && act >= 2 && !vbq_leaf_quads(&ar, &o, i, top, keep, act, fr.level))
+                sh[S_STATUS] = o.status;
             if (lane == 0u && act == 1) {
                 uint nst = sh[S_NST];
                 if (nst + 4u > WG_ST) {

@@ -17,13 +17,13 @@ static void *open_certifier(void *arg)
 }
 
 void vbv_cert_open_start(vbv_cert_open *co, const vb_certifier_ops *ops, const vb_sphere_set *set,
-                         unsigned threads)
+                         unsigned threads, vb_ctx *owner)
 {
     memset(co, 0, sizeof *co);
     co->ops = ops;
     co->set = set;
     co->threads = threads;
-    if (vb_open(&co->tctx, NULL) != VB_OK)
+    if (vb_open_worker(&co->tctx, owner) != VB_OK)
         co->tctx = NULL;
     vb_jobs_start(&co->job, open_certifier, co, sizeof *co, 1);
 }
@@ -62,12 +62,12 @@ void vbv_cert_open_discard(vbv_cert_open *co)
     co->tctx = NULL;
 }
 
-int vbv_cert_stream_init(vbv_cert_stream *cs, vbv_cert_open *co)
+int vbv_cert_stream_init(vbv_cert_stream *cs, vbv_cert_open *co, vb_ctx *owner)
 {
     memset(cs, 0, sizeof *cs);
     cs->co = co;
     cs->ops = co->ops;
-    return vb_open(&cs->tctx, NULL) == VB_OK ? VB_OK : VB_ENOMEM;
+    return vb_open_worker(&cs->tctx, owner) == VB_OK ? VB_OK : VB_ENOMEM;
 }
 
 static void *certify_part(void *arg)

@@ -148,16 +148,20 @@ static void *work(void *arg)
     return NULL;
 }
 
+/* The first worker's error (VB_OK when none failed). */
+static int first_error(const worker *w, int nt)
+{
+    int bad = vb_jobs_first_error(w, sizeof *w, nt, offsetof(worker, rc), VB_JOBS_UNORDERED);
+    return bad < 0 ? VB_OK : w[bad].rc;
+}
+
 /* Covers jb->cells on nt host threads, appending to the workers' lists. */
 static int cover_host(job *jb, worker *w, int nt)
 {
     atomic_store(&jb->next, 0);
     atomic_store(&jb->failed, 0);
     vb_run_jobs(work, w, sizeof *w, nt);
-    for (int t = 0; t < nt; t++)
-        if (w[t].rc != VB_OK)
-            return w[t].rc;
-    return VB_OK;
+    return first_error(w, nt);
 }
 
 /* The device and the host together: the calling thread feeds the backend
@@ -305,9 +309,8 @@ static int cover_hybrid(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w, i
         if (nt > 1)
             vb_jobs_join(g);
     }
-    for (int t = 0; rc == VB_OK && t < nt; t++)
-        if (w[t].rc != VB_OK)
-            rc = w[t].rc;
+    if (rc == VB_OK)
+        rc = first_error(w, nt);
     if (rc == VB_OK)
         rc = drc;
     free(ha);

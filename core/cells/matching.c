@@ -77,7 +77,7 @@ int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
     /* The rounding guard of the tangent test: 1e-9 of the bounding-box
      * diagonal (the default tol is 1e-5 of it). */
     double diag = 1e5 * vb_sampler_default_tol(set);
-    vbs_roots roots = {set, cu->hash, 1e-9 * diag, NULL, 0, {{{NULL, 0, 0}}}, res};
+    vbs_roots roots = {set, cu->hash, 1e-9 * diag, NULL, 0, {{{NULL, 0, 0, {NULL, 0, 0}}}}, res};
     if (rc == VB_OK)
         rc = vbs_tangent_phase(&roots, raw, nthreads);
     res->from_sampling = res->candidates.n;

@@ -1,10 +1,11 @@
 /* The set of sorted quadruples already handled by the tangent phase and
- * the neighbourhood completion (vbs_match.h): partitioned open addressing,
- * so bulk inserts run one table per thread and still give the set and
- * flags of inserting one by one. */
+ * the neighbourhood completion (vbs_match.h): partitioned into tables of
+ * the library's hash (vb_hash.h), so bulk inserts run one table per thread
+ * and still give the set and flags of inserting one by one. */
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_array.h"
 #include "vbs_match.h"
 
 static uint64_t qhash(const uint32_t q[4])
@@ -16,59 +17,57 @@ static uint64_t qhash(const uint32_t q[4])
 }
 
 /* Table of a quadruple with hash h (the multiply leaves the top bits the
- * best mixed), and its first slot in a table of cap entries. */
+ * best mixed), and the hash its table places it by. */
 static unsigned qpart(uint64_t h)
 {
     return (unsigned)(h >> 58);
 }
 
-static size_t qslot(uint64_t h, size_t cap)
+static uint64_t qslot_hash(uint64_t h)
 {
-    return (size_t)(h ^ (h >> 29)) & (cap - 1);
+    return h ^ (h >> 29);
+}
+
+/* A quadruple sought in table t (vb_hash's key). */
+typedef struct qkey {
+    const vbs_qtab *t;
+    const uint32_t *q;
+} qkey;
+
+static int qsame(const void *key, size_t item)
+{
+    const qkey *k = key;
+    return memcmp(k->t->keys[item], k->q, 4 * sizeof *k->q) == 0;
+}
+
+static uint64_t qhash_of(const void *arg, size_t item)
+{
+    const vbs_qtab *t = arg;
+    return qslot_hash(qhash(t->keys[item]));
 }
 
 int vbs_qset_has(const vbs_qset *s, const uint32_t q[4])
 {
     uint64_t hv = qhash(q);
     const vbs_qtab *t = &s->part[qpart(hv)];
-    if (t->cap == 0)
-        return 0;
-    for (size_t h = qslot(hv, t->cap); t->keys[h][0] != 0xffffffffu; h = (h + 1) & (t->cap - 1))
-        if (memcmp(t->keys[h], q, 4 * sizeof *q) == 0)
-            return 1;
-    return 0;
+    qkey k = {t, q};
+    return vb_hash_get(&t->h, qslot_hash(hv), qsame, &k) != SIZE_MAX;
 }
 
 /* Inserts q, whose hash is hv, into its table t; returns 1 if new, 0 if
  * present, -1 on allocation failure. Touches no other table. */
 static int qtab_add(vbs_qtab *t, uint64_t hv, const uint32_t q[4])
 {
-    if (2 * (t->n + 1) > t->cap) {
-        size_t nc = t->cap ? 2 * t->cap : 256;
-        uint32_t (*k)[4] = malloc(nc * sizeof *k);
-        if (!k)
-            return -1;
-        memset(k, 0xff, nc * sizeof *k);
-        for (size_t i = 0; i < t->cap; i++)
-            if (t->keys[i][0] != 0xffffffffu) {
-                size_t h = qslot(qhash(t->keys[i]), nc);
-                while (k[h][0] != 0xffffffffu)
-                    h = (h + 1) & (nc - 1);
-                memcpy(k[h], t->keys[i], sizeof k[h]);
-            }
-        free(t->keys);
-        t->keys = k;
-        t->cap = nc;
-    }
-    size_t h = qslot(hv, t->cap);
-    while (t->keys[h][0] != 0xffffffffu) {
-        if (memcmp(t->keys[h], q, 4 * sizeof *q) == 0)
-            return 0;
-        h = (h + 1) & (t->cap - 1);
-    }
-    memcpy(t->keys[h], q, 4 * sizeof *q);
+    if ((!t->h.cap && vb_hash_fit(&t->h, 1, qhash_of, t) != VB_OK) ||
+        VB_ARRAY_FIT(t->keys, t->cap, t->n + 1, 256) != VB_OK)
+        return -1;
+    qkey k = {t, q};
+    size_t *slot = vb_hash_slot(&t->h, qslot_hash(hv), qsame, &k);
+    if (*slot)
+        return 0;
+    memcpy(t->keys[t->n], q, 4 * sizeof *q);
     t->n++;
-    return 1;
+    return vb_hash_put(&t->h, slot, t->n - 1, qhash_of, t) == VB_OK ? 1 : -1;
 }
 
 int vbs_qset_add(vbs_qset *s, const uint32_t q[4])
@@ -79,8 +78,10 @@ int vbs_qset_add(vbs_qset *s, const uint32_t q[4])
 
 void vbs_qset_free(vbs_qset *s)
 {
-    for (int p = 0; p < VBS_QPARTS; p++)
+    for (int p = 0; p < VBS_QPARTS; p++) {
         free(s->part[p].keys);
+        vb_hash_free(&s->part[p].h);
+    }
     memset(s, 0, sizeof *s);
 }
 

@@ -74,10 +74,8 @@ static int cull_join(cull_async *a)
         return VB_OK;
     a->active = 0;
     vb_jobs_join(&a->jobs);
-    for (int t = 0; t < a->nt; t++)
-        if (a->rc[t] != VB_OK)
-            return a->rc[t];
-    return VB_OK;
+    int bad = vb_jobs_first_error(a->rc, sizeof a->rc[0], a->nt, 0, VB_JOBS_UNORDERED);
+    return bad < 0 ? VB_OK : a->rc[bad];
 }
 
 static int store_add(vbs_bis_store *st, uint32_t i, const vbs_base_data *bd)

@@ -441,14 +441,9 @@ int vb_topology_build(vb_ctx *ctx, const vb_sphere_set *set, const vb_topology_e
                     rc = push(&faces, &nf, &fcap, f, 2);
                 }
                 for (size_t c = b + 1; c < nm && rc == VB_OK; c++) {
-                    if (ntv == cap) {
-                        cap = cap ? 2 * cap : 1024;
-                        tv *p = realloc(recs, cap * sizeof *p);
-                        if (!p) {
-                            rc = VB_ENOMEM;
-                            break;
-                        }
-                        recs = p;
+                    if (VB_ARRAY_FIT(recs, cap, ntv + 1, 1024) != VB_OK) {
+                        rc = VB_ENOMEM;
+                        break;
                     }
                     recs[ntv++] = (tv){{m[a], m[b], m[c]}, (uint32_t)k};
                     uint32_t t[3] = {m[a], m[b], m[c]};

@@ -120,6 +120,36 @@ VBS_FN int vbq_add_quad(const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i, vbs_u32
     return 1;
 }
 
+/* A leaf patch (vbq_decide's act 2, or 3 for a deep one) at `level` with
+ * the surviving labels lab[top .. top + keep): counted, and every
+ * quadruple of i with three owned labels (ids > i) inserted. Returns 0
+ * when q is full. */
+VBS_FN int vbq_leaf_quads(const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i, vbs_u32 top,
+                          vbs_u32 keep, int act, vbs_u32 level)
+{
+    o->leaves++;
+    if (act == 3)
+        o->deep++;
+    if (level > o->maxlev)
+        o->maxlev = level;
+    for (vbs_u32 a = 0u; a < keep; a++) {
+        vbs_u32 ja = ar->nb[ar->lab[top + a]].id;
+        if (ja < i)
+            continue;
+        for (vbs_u32 b = a + 1u; b < keep; b++) {
+            vbs_u32 jb = ar->nb[ar->lab[top + b]].id;
+            if (jb < i)
+                continue;
+            for (vbs_u32 d = b + 1u; d < keep; d++) {
+                vbs_u32 jd = ar->nb[ar->lab[top + d]].id;
+                if (jd >= i && !vbq_add_quad(ar, o, i, ja, jb, jd))
+                    return 0;
+            }
+        }
+    }
+    return 1;
+}
+
 /* Do the owned labels (ids > i) of lab[0 .. keep) look like an exact tie
  * cluster: are their points (a, b) in R^4 on one affine plane as far as the
  * doubles tell (within 8 times the records' error bounds and 1e-12 of the
@@ -274,12 +304,13 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
     o->lab_hw = o->st_hw = o->qoff = 0u;
     double evals = 0.0;
     const double c[3] = {e->x[i], e->y[i], e->z[i]};
-    const double m0[3] = {0.0, 0.0, 0.0}, h0[3] = {1.0, 1.0, 1.0};
     /* Near list: every sphere centred within rq of c_i; so every sphere
      * with e_j <= rq - (R_max - R_i) is in it. */
     double rq = e->near + 2.0 * e->rmax_all;
     vbs_u32 len0 = 0u;
-    if (!vbq_gather(e, ar, o, i, m0, h0, -1.0, -1.0, rq, 0u, &len0))
+    vbq_walk wk;
+    vbq_walk_make(e, i, -1.0, rq, 0, 0u, &wk);
+    if (!vbq_walk_gather(e, ar, o, &wk, 0u, &len0))
         return;
     /* Beyond this distance from c_i there is no centre. */
     double far = VBS_SQRT(vbq_box_far2(e, 1u, c)) * (1.0 + 1e-9);
@@ -339,12 +370,12 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
                     vbq_eval(&rec, sub[g].m, sub[g].h, &lo, &hi);
                     lg = lo > lg ? lo : lg;
                 }
-                sub[g].LO = lg;
-                sub[g].sdist = lg > 0.0 ? 0.5 / lg : (double)INFINITY;
+                vbq_sub_set_lo(&sub[g], lg);
             }
             evals += (double)(VBQ_NSUB * fr.len);
             vbs_u32 nlen = fr.len;
-            if (!vbq_gather_sub(e, ar, o, i, sub, fr.rq, rq1, top, &nlen))
+            vbq_walk_make(e, i, fr.rq, rq1, sub, VBQ_NSUB, &wk);
+            if (!vbq_walk_gather(e, ar, o, &wk, top, &nlen))
                 return;
             fr.off = top;
             fr.len = nlen;
@@ -415,28 +446,8 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
 #endif
         }
         if (act >= 2) {
-            o->leaves++;
-            if (act == 3)
-                o->deep++;
-            if (fr.level > o->maxlev)
-                o->maxlev = fr.level;
-            for (vbs_u32 a = 0u; a < keep; a++) {
-                vbs_u32 ja = ar->nb[ar->lab[top + a]].id;
-                if (ja < i)
-                    continue;
-                for (vbs_u32 b = a + 1u; b < keep; b++) {
-                    vbs_u32 jb = ar->nb[ar->lab[top + b]].id;
-                    if (jb < i)
-                        continue;
-                    for (vbs_u32 d = b + 1u; d < keep; d++) {
-                        vbs_u32 jd = ar->nb[ar->lab[top + d]].id;
-                        if (jd < i)
-                            continue;
-                        if (!vbq_add_quad(ar, o, i, ja, jb, jd))
-                            return;
-                    }
-                }
-            }
+            if (!vbq_leaf_quads(ar, o, i, top, keep, act, fr.level))
+                return;
             continue;
         }
         /* Subdivide: the four children share the surviving list. */

@@ -1,8 +1,8 @@
 /* The direction cover, shared with the kernels (part of vb_cover_shared.h,
  * which includes it after the neighbours and the patches; include that
  * header, never this one): the tuning and statuses of the cover, a cell's
- * environment (the tree of the centres) and arenas, the tree queries, and
- * the neighbours gathered for a patch (rings fetched by sub-patch). */
+ * environment (the tree of the centres) and arenas, the parts of a
+ * fetching patch, and the one tree walk every backend takes (vbq_walk). */
 #ifndef VBQ_GATHER_SHARED_H
 #define VBQ_GATHER_SHARED_H
 
@@ -75,6 +75,32 @@ typedef struct vbq_env {
 #endif
 } vbq_env;
 
+/* An environment from the kernels' arguments (the host's `host` is left
+ * unset: the kernels never decide tie clusters). */
+VBS_FN void vbq_env_make(vbq_env *e, const VBS_GLOBAL double *x, const VBS_GLOBAL double *y,
+                         const VBS_GLOBAL double *z, const VBS_GLOBAL double *r,
+                         const VBS_GLOBAL double *box, const VBS_GLOBAL double *rmax,
+                         const VBS_GLOBAL vbs_u32 *ids, vbs_u32 first, vbs_u32 m,
+                         double rmax_all, double near, vbs_u32 T, vbs_u32 min_level,
+                         vbs_u32 max_level, vbs_u32 enum_max)
+{
+    e->x = x;
+    e->y = y;
+    e->z = z;
+    e->r = r;
+    e->box = box;
+    e->rmax = rmax;
+    e->ids = ids;
+    e->first = first;
+    e->m = m;
+    e->rmax_all = rmax_all;
+    e->near = near;
+    e->T = T;
+    e->min_level = min_level;
+    e->max_level = max_level;
+    e->enum_max = enum_max;
+}
+
 /* Scratch of one cell, fixed capacities. */
 typedef struct vbq_arena {
     VBS_GLOBAL vbq_nb *nb;
@@ -107,103 +133,6 @@ VBS_FN double vbq_box_far2(const vbq_env *e, vbs_u32 nd, const double c[3])
         d2 += f * f;
     }
     return d2;
-}
-
-/* A query of the tree for the spheres centred in (rq0, rq1] from c_i
- * (rq0 < 0: from 0) that can be labels in the patch (m, h) with lower
- * envelope LO (LO < 0: every sphere of the ring, the near list). Where
- * f_j >= LO at u: u.d + delta >= LO N >= 0, so the sphere reaches the
- * half-space u.(x - c_i) >= R_i - R_j; and for LO > 0 the bisector along u
- * is at most s = 1/(2 LO) from c_i, so the tangent sphere there, centre
- * c_i + s u and radius s - R_i, must reach sphere j: |c_i + s u - c_j| <=
- * s - R_i + R_j. A node is pruned when one of these fails for every u of
- * the patch box and every centre of its box (R_j <= its R_max), or when its
- * box lies within rq0 or beyond rq1; the bounds carry a relative margin of
- * 1e-9, far above the rounding errors of these few operations. */
-typedef struct vbq_query {
-    double c[3], ri;
-    double m[3], h[3];
-    double LO, rq0, rq1;
-    double sdist, in2, out2;
-    int filter;
-} vbq_query;
-
-VBS_FN void vbq_query_make(const vbq_env *e, vbs_u32 i, const double m[3], const double h[3],
-                           double LO, double rq0, double rq1, vbq_query *q)
-{
-    q->c[0] = e->x[i];
-    q->c[1] = e->y[i];
-    q->c[2] = e->z[i];
-    q->ri = e->r[i];
-    for (int a = 0; a < 3; a++) {
-        q->m[a] = m[a];
-        q->h[a] = h[a];
-    }
-    q->LO = LO;
-    q->rq0 = rq0;
-    q->rq1 = rq1;
-    q->sdist = LO > 0.0 ? 0.5 / LO : (double)INFINITY;
-    q->filter = LO >= 0.0;
-    q->in2 = rq0 > 0.0 ? rq0 * rq0 * (1.0 - 1e-9) : -1.0;
-    q->out2 = rq1 * rq1 * (1.0 + 1e-9);
-}
-
-/* Can node nd hold a sphere that passes the query? */
-VBS_FN int vbq_node_pass(const vbq_env *e, const vbq_query *q, vbs_u32 nd)
-{
-    const VBS_GLOBAL double *bx = e->box + 6u * nd;
-    double slack = e->rmax[nd] - q->ri;
-    double best = 0.0, mag = 0.0, dmax2 = 0.0, dmin2 = 0.0, bb2 = 0.0;
-    for (int a = 0; a < 3; a++) {
-        double b0 = bx[a] - q->c[a], b1 = bx[3 + a] - q->c[a];
-        double u0 = q->m[a] - q->h[a], u1 = q->m[a] + q->h[a];
-        double p0 = u0 * b0, p1 = u0 * b1, p2 = u1 * b0, p3 = u1 * b1;
-        double mx = p0 > p1 ? p0 : p1;
-        mx = p2 > mx ? p2 : mx;
-        mx = p3 > mx ? p3 : mx;
-        best += mx;
-        mag += VBS_FABS(b0) + VBS_FABS(b1);
-        double f = VBS_FABS(b0) > VBS_FABS(b1) ? VBS_FABS(b0) : VBS_FABS(b1);
-        dmax2 += f * f;
-        double dn = b0 > 0.0 ? b0 : (b1 < 0.0 ? -b1 : 0.0);
-        dmin2 += dn * dn;
-        if (q->sdist < (double)INFINITY) {
-            double t0 = q->sdist * u0, t1 = q->sdist * u1;
-            double gp = b0 > t1 ? b0 - t1 : (t0 > b1 ? t0 - b1 : 0.0);
-            bb2 += gp * gp;
-        }
-    }
-    if (dmax2 < q->in2 || dmin2 > q->out2)
-        return 0;
-    if (q->filter && best + slack < -1e-9 * (mag + VBS_FABS(slack) + 1e-300))
-        return 0;
-    if (q->sdist < (double)INFINITY) {
-        double reach = (q->sdist + slack) * (1.0 + 1e-9) + 1e-9 * (mag + q->sdist);
-        if (reach < 0.0 || bb2 > reach * reach)
-            return 0;
-    }
-    return 1;
-}
-
-/* Does sphere j (not the base) pass the query? Fills its record when so.
- * Spheres within rq0 are in the list or were excluded; those beyond rq1
- * belong to a later ring. A sphere of a ring is kept when its enclosure
- * reaches LO. */
-VBS_FN int vbq_sphere_pass(const vbq_env *e, const vbq_query *q, vbs_u32 j,
-                           vbq_nb *rec)
-{
-    double dx = e->x[j] - q->c[0], dy = e->y[j] - q->c[1], dz = e->z[j] - q->c[2];
-    double d2 = dx * dx + dy * dy + dz * dz;
-    if ((q->rq0 > 0.0 && !(d2 > q->rq0 * q->rq0)) || d2 > q->rq1 * q->rq1)
-        return 0;
-    vbq_nb_make(q->c[0], q->c[1], q->c[2], q->ri, e->x[j], e->y[j], e->z[j], e->r[j], j, rec);
-    if (q->filter) {
-        double lo, hi;
-        vbq_eval(rec, q->m, q->h, &lo, &hi);
-        if (!(hi >= q->LO))
-            return 0;
-    }
-    return 1;
 }
 
 /* ---- ring fetches resolved by sub-patch --------------------------------
@@ -240,31 +169,83 @@ VBS_FN void vbq_sub_box(vbs_u32 f, double u0, double u1, double v0, double v1, v
     vbq_patch_box(f, a0, a1, b0, b1, m, h);
 }
 
-/* Can node nd hold a sphere that is centred in (rq0, rq1] and reaches
- * LO_g in some part g? (vbq_node_pass for each part.) */
-VBS_FN int vbq_node_pass_sub(const vbq_env *e, const double c[3], double ri, double rq0,
-                             double rq1, const VBQ_SQ vbq_sub *sub, vbs_u32 nd)
+/* Part g's lower envelope LO and the reach 1/(2 LO) of its bisectors. */
+VBS_FN void vbq_sub_set_lo(VBQ_SQ vbq_sub *sub, double LO)
+{
+    sub->LO = LO;
+    sub->sdist = LO > 0.0 ? 0.5 / LO : (double)INFINITY;
+}
+
+/* ---- the tree walk --------------------------------------------------------
+ * One walk of the tree serves every backend: the work-item walk below
+ * (vbq_walk_gather, depth first) and the work-group walk of gpu/cover_wg.cl
+ * (breadth first over the lanes) take the same decisions from
+ * vbq_walk_node and vbq_walk_sphere, and differ only in where they keep
+ * the nodes to visit and how they append what passes.
+ *
+ * A walk asks for the spheres centred in (rq0, rq1] from c_i (rq0 < 0:
+ * from 0): all of them (the near list, nsub = 0), or those that can be
+ * labels in some part g of a fetching patch (box m_g, h_g, lower envelope
+ * LO_g). Where f_j >= LO at u: u.d + delta >= LO N >= 0, so the sphere
+ * reaches the half-space u.(x - c_i) >= R_i - R_j; and for LO > 0 the
+ * bisector along u is at most s = 1/(2 LO) from c_i, so the tangent sphere
+ * there, centre c_i + s u and radius s - R_i, must reach sphere j:
+ * |c_i + s u - c_j| <= s - R_i + R_j. A node is pruned when its box lies
+ * within rq0 or beyond rq1, or when for every part one of these fails for
+ * every u of the part's box and every centre of the node's box (R_j <= its
+ * R_max); the bounds carry a relative margin of 1e-9, far above the
+ * rounding errors of these few operations. */
+typedef struct vbq_walk {
+    double c[3], ri;
+    double rq0, rq1;
+    double in2, out2;            /* node boxes: inside rq0, beyond rq1 */
+    const VBQ_SQ vbq_sub *sub;   /* the parts (nsub of them) */
+    vbs_u32 i, nsub;
+} vbq_walk;
+
+/* A walk from base sphere i over the ring (rq0, rq1], through the nsub
+ * parts sub[] (nsub = 0: every sphere of the ring passes; sub unused). */
+VBS_FN void vbq_walk_make(const vbq_env *e, vbs_u32 i, double rq0, double rq1,
+                          const VBQ_SQ vbq_sub *sub, vbs_u32 nsub, vbq_walk *w)
+{
+    w->c[0] = e->x[i];
+    w->c[1] = e->y[i];
+    w->c[2] = e->z[i];
+    w->ri = e->r[i];
+    w->rq0 = rq0;
+    w->rq1 = rq1;
+    w->in2 = rq0 > 0.0 ? rq0 * rq0 * (1.0 - 1e-9) : -1.0;
+    w->out2 = rq1 * rq1 * (1.0 + 1e-9);
+    w->sub = sub;
+    w->i = i;
+    w->nsub = nsub;
+}
+
+/* Can node nd hold a sphere that passes the walk? */
+VBS_FN int vbq_walk_node(const vbq_env *e, const vbq_walk *w, vbs_u32 nd)
 {
     const VBS_GLOBAL double *bx = e->box + 6u * nd;
-    double slack = e->rmax[nd] - ri;
+    double slack = e->rmax[nd] - w->ri;
     double b0[3], b1[3], mag = 0.0, dmax2 = 0.0, dmin2 = 0.0;
     for (int a = 0; a < 3; a++) {
-        b0[a] = bx[a] - c[a];
-        b1[a] = bx[3 + a] - c[a];
+        b0[a] = bx[a] - w->c[a];
+        b1[a] = bx[3 + a] - w->c[a];
         mag += VBS_FABS(b0[a]) + VBS_FABS(b1[a]);
         double f = VBS_FABS(b0[a]) > VBS_FABS(b1[a]) ? VBS_FABS(b0[a]) : VBS_FABS(b1[a]);
         dmax2 += f * f;
         double dn = b0[a] > 0.0 ? b0[a] : (b1[a] < 0.0 ? -b1[a] : 0.0);
         dmin2 += dn * dn;
     }
-    double in2 = rq0 > 0.0 ? rq0 * rq0 * (1.0 - 1e-9) : -1.0, out2 = rq1 * rq1 * (1.0 + 1e-9);
-    if (dmax2 < in2 || dmin2 > out2)
+    if (dmax2 < w->in2 || dmin2 > w->out2)
         return 0;
-    for (vbs_u32 g = 0u; g < VBQ_NSUB; g++) {
+    if (w->nsub == 0u)
+        return 1;
+    for (vbs_u32 g = 0u; g < w->nsub; g++) {
+        const VBQ_SQ vbq_sub *sg = &w->sub[g];
         double best = 0.0, bb2 = 0.0;
-        double sd = sub[g].sdist;
+        double sd = sg->sdist;
         for (int a = 0; a < 3; a++) {
-            double u0 = sub[g].m[a] - sub[g].h[a], u1 = sub[g].m[a] + sub[g].h[a];
+            double u0 = sg->m[a] - sg->h[a], u1 = sg->m[a] + sg->h[a];
             double p0 = u0 * b0[a], p1 = u0 * b1[a], p2 = u1 * b0[a], p3 = u1 * b1[a];
             double mx = p0 > p1 ? p0 : p1;
             mx = p2 > mx ? p2 : mx;
@@ -288,99 +269,66 @@ VBS_FN int vbq_node_pass_sub(const vbq_env *e, const double c[3], double ri, dou
     return 0;
 }
 
-/* Does sphere j (centred in (rq0, rq1] from c) reach LO_g in some part g?
- * Fills its record when so. */
-VBS_FN int vbq_sphere_pass_sub(const vbq_env *e, const double c[3], double ri, double rq0,
-                               double rq1, const VBQ_SQ vbq_sub *sub, vbs_u32 j, vbq_nb *rec)
+/* Does the sphere at tree position k (not the base) pass the walk? Fills
+ * its record when so. Spheres within rq0 are in the list or were excluded;
+ * those beyond rq1 belong to a later ring; with parts, a sphere is kept
+ * when its enclosure reaches LO_g in some part g. */
+VBS_FN int vbq_walk_sphere(const vbq_env *e, const vbq_walk *w, vbs_u32 k, vbq_nb *rec)
 {
-    double dx = e->x[j] - c[0], dy = e->y[j] - c[1], dz = e->z[j] - c[2];
-    double d2 = dx * dx + dy * dy + dz * dz;
-    if ((rq0 > 0.0 && !(d2 > rq0 * rq0)) || d2 > rq1 * rq1)
+    vbs_u32 j = e->ids[k];
+    if (j == w->i)
         return 0;
-    vbq_nb_make(c[0], c[1], c[2], ri, e->x[j], e->y[j], e->z[j], e->r[j], j, rec);
-    for (vbs_u32 g = 0u; g < VBQ_NSUB; g++) {
-        double m[3] = {sub[g].m[0], sub[g].m[1], sub[g].m[2]};
-        double h[3] = {sub[g].h[0], sub[g].h[1], sub[g].h[2]};
+    double dx = e->x[j] - w->c[0], dy = e->y[j] - w->c[1], dz = e->z[j] - w->c[2];
+    double d2 = dx * dx + dy * dy + dz * dz;
+    if ((w->rq0 > 0.0 && !(d2 > w->rq0 * w->rq0)) || d2 > w->rq1 * w->rq1)
+        return 0;
+    vbq_nb_make(w->c[0], w->c[1], w->c[2], w->ri, e->x[j], e->y[j], e->z[j], e->r[j], j, rec);
+    if (w->nsub == 0u)
+        return 1;
+    for (vbs_u32 g = 0u; g < w->nsub; g++) {
+        double m[3] = {w->sub[g].m[0], w->sub[g].m[1], w->sub[g].m[2]};
+        double h[3] = {w->sub[g].h[0], w->sub[g].h[1], w->sub[g].h[2]};
         double lo, hi;
         vbq_eval(rec, m, h, &lo, &hi);
-        if (hi >= sub[g].LO)
+        if (hi >= w->sub[g].LO)
             return 1;
     }
     return 0;
 }
 
-#ifndef VBQ_GROUP_ONLY
-/* The ring fetch on one work-item, resolved by parts: spheres centred in
- * (rq0, rq1] that reach some part's LO_g, appended to nb and to the list at
- * lab[off + *len ...]. Returns 0 when an arena is full. */
-VBS_FN int vbq_gather_sub(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i,
-                          const VBQ_SQ vbq_sub *sub, double rq0, double rq1, vbs_u32 off,
-                          vbs_u32 *len)
+/* The tree positions [*k0, *k1) of leaf node nd's spheres. */
+VBS_FN void vbq_walk_leaf(const vbq_env *e, vbs_u32 nd, vbs_u32 *k0, vbs_u32 *k1)
 {
-    const double c[3] = {e->x[i], e->y[i], e->z[i]};
-    double ri = e->r[i];
-    vbs_u32 stack[VBQ_STACK], ns = 0;
-    if (e->m)
-        stack[ns++] = 1u;
-    while (ns) {
-        vbs_u32 nd = stack[--ns];
-        if (!vbq_node_pass_sub(e, c, ri, rq0, rq1, sub, nd))
-            continue;
-        if (nd < e->first) {
-            stack[ns++] = 2u * nd + 1u;
-            stack[ns++] = 2u * nd;
-            continue;
-        }
-        vbs_u32 q0 = (nd - e->first) * VBQ_LEAF;
-        for (vbs_u32 k = q0; k < e->m && k < q0 + VBQ_LEAF; k++) {
-            vbs_u32 j = e->ids[k];
-            vbq_nb rec;
-            if (j == i || !vbq_sphere_pass_sub(e, c, ri, rq0, rq1, sub, j, &rec))
-                continue;
-            o->far++;
-            if (o->nnb >= ar->nb_cap) {
-                o->status = VBQ_OVER_NB;
-                return 0;
-            }
-            ar->nb[o->nnb++] = rec;
-            if (off + *len >= ar->lab_cap) {
-                o->status = VBQ_OVER_LAB;
-                return 0;
-            }
-            ar->lab[off + (*len)++] = o->nnb - 1u;
-        }
-    }
-    return 1;
+    *k0 = (nd - e->first) * VBQ_LEAF;
+    *k1 = *k0 + VBQ_LEAF < e->m ? *k0 + VBQ_LEAF : e->m;
 }
-#endif
 
-/* The query on one work-item: passing spheres appended to nb and to the
- * list at lab[off + *len ...]. Returns 0 when an arena is full. */
-VBS_FN int vbq_gather(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i,
-                      const double m[3], const double h[3], double LO, double rq0, double rq1,
-                      vbs_u32 off, vbs_u32 *len)
+#ifndef VBQ_GROUP_ONLY
+/* The walk on one work-item, depth first: passing spheres appended to nb
+ * and to the list at lab[off + *len ...]; those of a ring fetched through
+ * parts count as far. Returns 0 when an arena is full. */
+VBS_FN int vbq_walk_gather(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o,
+                           const vbq_walk *w, vbs_u32 off, vbs_u32 *len)
 {
-    vbq_query q;
-    vbq_query_make(e, i, m, h, LO, rq0, rq1, &q);
     vbs_u32 stack[VBQ_STACK], ns = 0;
     if (e->m)
         stack[ns++] = 1u;
     while (ns) {
         vbs_u32 nd = stack[--ns];
-        if (!vbq_node_pass(e, &q, nd))
+        if (!vbq_walk_node(e, w, nd))
             continue;
         if (nd < e->first) {
             stack[ns++] = 2u * nd + 1u;
             stack[ns++] = 2u * nd;
             continue;
         }
-        vbs_u32 q0 = (nd - e->first) * VBQ_LEAF;
-        for (vbs_u32 k = q0; k < e->m && k < q0 + VBQ_LEAF; k++) {
-            vbs_u32 j = e->ids[k];
+        vbs_u32 k0, k1;
+        vbq_walk_leaf(e, nd, &k0, &k1);
+        for (vbs_u32 k = k0; k < k1; k++) {
             vbq_nb rec;
-            if (j == i || !vbq_sphere_pass(e, &q, j, &rec))
+            if (!vbq_walk_sphere(e, w, k, &rec))
                 continue;
-            if (q.filter)
+            if (w->nsub)
                 o->far++;
             if (o->nnb >= ar->nb_cap) {
                 o->status = VBQ_OVER_NB;
@@ -396,5 +344,6 @@ VBS_FN int vbq_gather(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vb
     }
     return 1;
 }
+#endif
 
 #endif

@@ -13,6 +13,7 @@
 #ifndef VBS_MATCH_H
 #define VBS_MATCH_H
 
+#include "vb_hash.h"
 #include "vb_uf.h"
 #include "vbs_internal.h"
 
@@ -100,13 +101,15 @@ int vbs_targeted_search(const vb_sphere_set *set, const vbs_culler *cu, const vb
 
 /* ---- the set of handled quadruples (quad_set.c) ------------------------ */
 
-/* VBS_QPARTS open-addressing tables, a quadruple's table chosen by the top
- * bits of its hash, so that inserts into different tables can run on
- * different threads. Zero-initialised is empty. */
+/* VBS_QPARTS tables (the library's vb_hash over an array of the
+ * quadruples entered), a quadruple's table chosen by the top bits of its
+ * hash, so that inserts into different tables can run on different
+ * threads. Zero-initialised is empty. */
 #define VBS_QPARTS 64
 typedef struct vbs_qtab {
-    uint32_t (*keys)[4];
-    size_t cap, n;
+    uint32_t (*keys)[4]; /* the quadruples entered, in order */
+    size_t cap, n;       /* keys allocated (VB_ARRAY_FIT), held */
+    vb_hash h;           /* items of keys by quadruple */
 } vbs_qtab;
 
 typedef struct vbs_qset {

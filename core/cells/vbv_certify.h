@@ -22,9 +22,10 @@ typedef struct vbv_cert_open {
     int joined;
 } vbv_cert_open;
 
-/* Starts the set-up of ops's certifier for set (threads: its threads). */
+/* Starts the set-up of ops's certifier for set (threads: its threads) on
+ * a thread whose context reports through owner (vb_open_worker). */
 void vbv_cert_open_start(vbv_cert_open *co, const vb_certifier_ops *ops, const vb_sphere_set *set,
-                         unsigned threads);
+                         unsigned threads, vb_ctx *owner);
 
 /* Waits for the set-up: the certifier (the caller closes it), or NULL with
  * *rc the error, its message relayed to ctx. */
@@ -52,8 +53,9 @@ typedef struct vbv_cert_stream {
 } vbv_cert_stream;
 
 /* A stream over the set-up co (which it joins and whose certifier it
- * keeps). VB_OK or VB_ENOMEM. */
-int vbv_cert_stream_init(vbv_cert_stream *cs, vbv_cert_open *co);
+ * keeps), its thread's context reporting through owner (vb_open_worker).
+ * VB_OK or VB_ENOMEM. */
+int vbv_cert_stream_init(vbv_cert_stream *cs, vbv_cert_open *co, vb_ctx *owner);
 
 /* vb_cover_sink: waits for the part in flight, then starts this one (its
  * array taken). Returns the stream's first error (message kept for

@@ -1,4 +1,5 @@
 /* Growable CSR list of vertices and its canonical order. */
+#include "vb_array.h"
 #include "vb_vertex.h"
 
 #include <stdlib.h>
@@ -52,15 +53,7 @@ static int reserve_vertices(vb_vertex_list *v, size_t need)
 
 static int reserve_ids(vb_vertex_list *v, size_t need)
 {
-    if (need <= v->ids_cap)
-        return VB_OK;
-    size_t cap = v->ids_cap ? v->ids_cap : 256;
-    while (cap < need)
-        cap *= 2;
-    if (grow((void **)&v->ids, sizeof *v->ids, cap))
-        return VB_ENOMEM;
-    v->ids_cap = cap;
-    return VB_OK;
+    return VB_ARRAY_FIT(v->ids, v->ids_cap, need, 256);
 }
 
 static int cmp_u32(const void *a, const void *b)

@@ -39,20 +39,6 @@ const char *vb_vertex_status_name(int status)
     }
 }
 
-/* Comment text may span lines; each becomes its own '#' line so that the
- * reader's "skip lines starting with #" rule holds. */
-static void write_comment_lines(FILE *f, const char *comment)
-{
-    const char *p = comment;
-    while (*p) {
-        size_t len = strcspn(p, "\n");
-        fprintf(f, "# %.*s\n", (int)len, p);
-        p += len;
-        if (*p == '\n')
-            p++;
-    }
-}
-
 /* One vertex as a line of each format (json: the array's element, with the
  * separator before it). */
 typedef void (*line_fn)(FILE *f, const vb_vertex_list *v, size_t k);
@@ -191,10 +177,8 @@ static int write_tsv(vb_ctx *ctx, FILE *f, const vb_vertex_list *v, const vb_pro
                      const char *comment)
 {
     fputs("# vorball vertices\n", f);
-    if (prov && vb_provenance_write_comments(ctx, f, prov) != VB_OK)
-        return VB_ENOMEM;
-    if (comment)
-        write_comment_lines(f, comment);
+    if (vb_provenance_write_comments(f, "# ", prov, comment) != VB_OK)
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (writing vertices)");
     fputs("# ids\tx\ty\tz\tt\tstatus\n", f);
     return write_lines(ctx, f, v, tsv_line);
 }
@@ -202,14 +186,7 @@ static int write_tsv(vb_ctx *ctx, FILE *f, const vb_vertex_list *v, const vb_pro
 static int write_json(vb_ctx *ctx, FILE *f, const vb_vertex_list *v, const vb_provenance *prov,
                       const char *comment)
 {
-    fputs("{", f);
-    if (prov)
-        vb_provenance_write_json(f, prov);
-    if (comment) {
-        fputs("\"comment\":", f);
-        vb_json_write_string(f, comment);
-        fputs(",", f);
-    }
+    vb_provenance_write_json_head(f, prov, comment);
     fputs("\"vertices\":[", f);
     int rc = write_lines(ctx, f, v, json_item);
     fputs("\n]}\n", f);

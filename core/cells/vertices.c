@@ -3,6 +3,7 @@
  * certification through the certifier table, the intruder-swap repair
  * rounds and the canonical merge. Orchestration only: the geometry lives in
  * the proposer, the certifier and vb_sampler_swap_candidates. */
+#include "vb_array.h"
 #include "vb_vertices.h"
 
 #include "vbv_certify.h"
@@ -183,14 +184,9 @@ static int quads_add(quads *s, const vb_vertex_list *v)
     for (size_t k = 0; k < v->n; k++) {
         if (v->start[k + 1] - v->start[k] != 4)
             continue;
-        if (s->n == s->cap) {
-            size_t nc = s->cap ? 2 * s->cap : 1024;
-            uint32_t *p = realloc(s->q, 4 * nc * sizeof *p);
-            if (!p)
-                return VB_ENOMEM;
-            s->q = p;
-            s->cap = nc;
-        }
+        s->q = vb_array_grow(s->q, &s->cap, s->n + 1, 4 * sizeof *s->q, 1024);
+        if (s->cap < s->n + 1)
+            return VB_ENOMEM;
         memcpy(s->q + 4 * s->n++, v->ids + v->start[k], 4 * sizeof *s->q);
     }
     if (s->n)
@@ -377,13 +373,10 @@ static void certifier_start(const vb_certifier_ops *ops, const vb_sphere_set *se
                             const vb_vertices_config *cfg, vbv_cert_open *co,
                             vbv_cert_stream *cs, vbv_cert_stream **csp, vb_ctx *ctx)
 {
-    vbv_cert_open_start(co, ops, set, cfg->sampler.threads);
-    vb_progress_forward(co->tctx, ctx);
+    vbv_cert_open_start(co, ops, set, cfg->sampler.threads, ctx);
     *csp = NULL;
-    if (ops->certify_quads && vbv_cert_stream_init(cs, co) == VB_OK) {
-        vb_progress_forward(cs->tctx, ctx);
+    if (ops->certify_quads && vbv_cert_stream_init(cs, co, ctx) == VB_OK)
         *csp = cs;
-    }
 }
 
 /* A proposal stopped by the stream (its sink failed) carries the stream's
@@ -431,7 +424,7 @@ int vb_vertices_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertices_con
     op.req = request_of(cfg, p);
     op.t_start = t0;
     if (async) {
-        if (vb_open(&op.tctx, NULL) != VB_OK)
+        if (vb_open_worker(&op.tctx, ctx) != VB_OK)
             op.tctx = NULL;
         op.started = vb_jobs_start(&op.job, open_device, &op, sizeof op, 1) == 1;
     } else if ((rc = p->open(ctx, be->devices, NULL, &state)) != VB_OK) {

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_array.h"
 #include "vb_parallel.h"
 #include "vbc_graph.h"
 
@@ -28,15 +29,9 @@ static void lining_add(int32_t atom, void *user)
     if (L->mark[atom] == L->stamp)
         return;
     L->mark[atom] = L->stamp;
-    if (L->n == L->cap) {
-        size_t cap = L->cap ? 2 * L->cap : 256;
-        int32_t *p = realloc(L->list, cap * sizeof *p);
-        if (!p) {
-            L->failed = 1;
-            return;
-        }
-        L->list = p;
-        L->cap = cap;
+    if (VB_ARRAY_FIT(L->list, L->cap, L->n + 1, 256) != VB_OK) {
+        L->failed = 1;
+        return;
     }
     L->list[L->n++] = atom;
 }
@@ -53,22 +48,6 @@ static int cmp_channel(const void *a, const void *b)
     if (x->length != y->length)
         return x->length < y->length ? 1 : -1;
     return (x->first_point > y->first_point) - (x->first_point < y->first_point);
-}
-
-/* Grows an array of `size`-byte elements to hold at least `need`. */
-static int grow(void **p, size_t *cap, size_t need, size_t size)
-{
-    if (need <= *cap)
-        return 0;
-    size_t c = *cap ? *cap : 64;
-    while (c < need)
-        c *= 2;
-    void *q = realloc(*p, c * size);
-    if (!q)
-        return -1;
-    *p = q;
-    *cap = c;
-    return 0;
 }
 
 static int cmp_u64(const void *a, const void *b)
@@ -92,7 +71,7 @@ typedef struct {
     size_t nvox;
     uint32_t *sorted;   /* voxel indices, ascending, mouth bit cleared */
     uint8_t *mouth;
-    uint32_t *parent;   /* union-find, then scratch of vbc_channel_ends */
+    vb_uf uf;           /* union-find, then scratch of vbc_channel_ends */
     uint32_t *order;    /* positions grouped by component */
     size_t *cstart;     /* component c holds order[cstart[c] .. cstart[c + 1]) */
     uint32_t *comp;
@@ -110,7 +89,7 @@ static void analysis_free(analysis *W)
 {
     free(W->sorted);
     free(W->mouth);
-    free(W->parent);
+    vb_uf_free(&W->uf);
     free(W->order);
     free(W->cstart);
     free(W->comp);
@@ -137,7 +116,7 @@ static int analysis_alloc(analysis *W, size_t natoms)
     size_t n = W->nvox;
     W->sorted = malloc(n * sizeof *W->sorted);
     W->mouth = malloc(n);
-    W->parent = malloc(n * sizeof *W->parent);
+    int uf_ok = vb_uf_fit(&W->uf, n) == VB_OK;
     W->order = malloc(n * sizeof *W->order);
     W->cstart = malloc((n + 1) * sizeof *W->cstart);
     W->comp = malloc(n * sizeof *W->comp);
@@ -151,7 +130,7 @@ static int analysis_alloc(analysis *W, size_t natoms)
     W->near = malloc(n * sizeof *W->near);
     W->L.mark = calloc(natoms, sizeof(int32_t));
     W->A.clear = W->clear;
-    return W->sorted && W->mouth && W->parent && W->order && W->cstart && W->comp && W->A.dist &&
+    return W->sorted && W->mouth && uf_ok && W->order && W->cstart && W->comp && W->A.dist &&
                    W->A.pred && W->A.heap && W->A.hpos && W->A.rep && W->A.adj_start &&
                    W->clear && W->near && W->L.mark
                ? 0
@@ -192,7 +171,7 @@ static int load_voxels(analysis *W, const uint32_t *vox, const float *vclear)
     for (size_t t = 0; t < nvox; t++) {
         W->mouth[t] = (W->sorted[t] & VBC_MOUTH_BIT) != 0;
         W->sorted[t] &= ~VBC_MOUTH_BIT;
-        W->parent[t] = (uint32_t)t;
+        W->uf.p[t] = (uint32_t)t;
     }
     W->A.v = W->sorted;
     W->A.mouth = W->mouth;
@@ -217,7 +196,7 @@ static int link_voxels(analysis *W)
         uint32_t v = sorted[t];
         int i = (int)(v % (uint32_t)g->nx), j = (int)((v / (uint32_t)g->nx) % (uint32_t)g->ny);
         int k = (int)(v / nxy);
-        if (grow((void **)&A->adj, &adjcap, ne + 26, sizeof *A->adj))
+        if (VB_ARRAY_FIT(A->adj, adjcap, ne + 26, 64) != VB_OK)
             return -1;
         for (int dz = -1; dz <= 1; dz++)
             for (int dy = -1; dy <= 1; dy++) {
@@ -240,7 +219,7 @@ static int link_voxels(analysis *W)
                     /* The step length code rides in the top two bits until the split below. */
                     A->adj[ne++] = (uint32_t)q | ((uint32_t)(abs(dx) + abs(dy) + abs(dz)) << 30);
                     if (q > t)
-                        vbc_uf_union(W->parent, (uint32_t)t, (uint32_t)q);
+                        vb_uf_join(&W->uf, (uint32_t)t, (uint32_t)q);
                 }
             }
     }
@@ -260,20 +239,20 @@ static int link_voxels(analysis *W)
 static void group_components(analysis *W)
 {
     size_t nvox = W->nvox, ncomp = 0;
-    uint32_t *parent = W->parent, *comp = W->comp;
+    uint32_t *comp = W->comp;
     size_t *cstart = W->cstart;
     for (size_t t = 0; t < nvox; t++) {
-        uint32_t r = vbc_uf_find(parent, (uint32_t)t);
+        uint32_t r = vb_uf_root(&W->uf, (uint32_t)t);
         if (r == t)
             comp[t] = (uint32_t)ncomp++;
     }
     memset(cstart, 0, (ncomp + 1) * sizeof *cstart);
     for (size_t t = 0; t < nvox; t++)
-        cstart[comp[vbc_uf_find(parent, (uint32_t)t)] + 1]++;
+        cstart[comp[vb_uf_root(&W->uf, (uint32_t)t)] + 1]++;
     for (size_t c = 0; c < ncomp; c++)
         cstart[c + 1] += cstart[c];
     for (size_t t = 0; t < nvox; t++) {
-        uint32_t c = comp[vbc_uf_find(parent, (uint32_t)t)];
+        uint32_t c = comp[vb_uf_root(&W->uf, (uint32_t)t)];
         W->order[cstart[c]++] = (uint32_t)t;
     }
     for (size_t c = ncomp; c > 0; c--)
@@ -292,7 +271,7 @@ static int trace_path(analysis *W, const uint32_t *mem, size_t m, int kind, int 
     uint32_t a, b;
     *through = 0;
     if (kind == VBC_CHANNEL) {
-        if (vbc_channel_ends(A, W->parent, mem, m, &a, &b, through) != 0)
+        if (vbc_channel_ends(A, &W->uf, mem, m, &a, &b, through) != 0)
             return -1;
     } else {
         /* A cavity spans its extent: double sweep over plain lengths. */
@@ -305,7 +284,7 @@ static int trace_path(analysis *W, const uint32_t *mem, size_t m, int kind, int 
     vbc_sweep(A, mem, m, a, 1);
     *np = 0;
     for (uint32_t q = b; q != UINT32_MAX; q = A->pred[q]) {
-        if (grow((void **)&W->path, &W->pathcap, *np + 1, sizeof *W->path))
+        if (VB_ARRAY_FIT(W->path, W->pathcap, *np + 1, 64) != VB_OK)
             return -1;
         W->path[(*np)++] = q;
     }
@@ -319,7 +298,7 @@ static int trace_path(analysis *W, const uint32_t *mem, size_t m, int kind, int 
 static int channel_points(analysis *W, vbc_result *res, vbc_channel *ch)
 {
     size_t np = ch->npoints, p0 = ch->first_point;
-    if (grow((void **)&res->points, &W->ptcap, p0 + np, sizeof *res->points))
+    if (VB_ARRAY_FIT(res->points, W->ptcap, p0 + np, 64) != VB_OK)
         return -1;
     W->L.stamp++;
     for (size_t t = 0; t < np; t++) {
@@ -399,7 +378,7 @@ static int analyse_component(analysis *W, size_t c, vbc_result *res)
         qsort(W->L.list + l0, W->L.n - l0, sizeof *W->L.list, cmp_i32);
     ch.first_lining = l0;
     ch.nlining = W->L.n - l0;
-    if (grow((void **)&res->channels, &W->chcap, res->nchannels + 1, sizeof *res->channels))
+    if (VB_ARRAY_FIT(res->channels, W->chcap, res->nchannels + 1, 64) != VB_OK)
         return -1;
     res->channels[res->nchannels++] = ch;
     return 0;

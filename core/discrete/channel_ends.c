@@ -57,7 +57,7 @@ static int cmp_by_clear(const void *x, const void *y)
  * union that joins two openings forming a through pair decides, and the
  * clearance at that moment is the best bottleneck any path between them can
  * have. Returns 1 with *a, *b set, 0 when no pair is through, -1 on ENOMEM. */
-static int widest_through(vbc_graph *A, uint32_t *parent, const uint32_t *members, size_t m,
+static int widest_through(vbc_graph *A, vb_uf *uf, const uint32_t *members, size_t m,
                           const uint32_t *reps, size_t k, uint32_t *a, uint32_t *b)
 {
     by_clear *S = malloc(m * sizeof *S);
@@ -89,12 +89,12 @@ static int widest_through(vbc_graph *A, uint32_t *parent, const uint32_t *member
     for (size_t t = 0; t < m && !found; t++) {
         uint32_t u = S[t].pos;
         A->hpos[u] = 1;
-        parent[u] = u;
+        uf->p[u] = u;
         for (size_t e = A->adj_start[u]; e < A->adj_start[u + 1] && !found; e++) {
             uint32_t q = A->adj[e];
             if (!A->hpos[q])
                 continue;
-            uint32_t ru = vbc_uf_find(parent, u), rq = vbc_uf_find(parent, (uint32_t)q);
+            uint32_t ru = vb_uf_root(uf, u), rq = vb_uf_root(uf, (uint32_t)q);
             if (ru == rq)
                 continue;
             uint32_t lu = A->pred[ru], lq = A->pred[rq];
@@ -105,8 +105,7 @@ static int widest_through(vbc_graph *A, uint32_t *parent, const uint32_t *member
                         *b = reps[x < y ? y : x];
                         found = 1;
                     }
-            vbc_uf_union(parent, ru, rq);
-            uint32_t root = vbc_uf_find(parent, ru), lr = A->pred[root], lo = root == ru ? lq : lu;
+            uint32_t root = vb_uf_join(uf, ru, rq), lr = A->pred[root], lo = root == ru ? lq : lu;
             /* Concatenate the opening lists into the surviving root's. */
             if (head[lo] != UINT32_MAX) {
                 if (head[lr] == UINT32_MAX) {
@@ -168,12 +167,12 @@ static int support_atoms(const vb_sphere_set *s, int32_t **out, size_t *count)
  * mouths; *through = 1); failing that the two openings farthest apart, or,
  * with a single opening, the opening and the member farthest along the
  * voxels (a dead-end tunnel). Returns 0, or -1 when out of memory. */
-int vbc_channel_ends(vbc_graph *A, uint32_t *parent, const uint32_t *members, size_t m, uint32_t *a,
+int vbc_channel_ends(vbc_graph *A, vb_uf *uf, const uint32_t *members, size_t m, uint32_t *a,
                         uint32_t *b, int *through)
 {
     *through = 0;
     for (size_t t = 0; t < m; t++) {
-        parent[members[t]] = members[t];
+        uf->p[members[t]] = members[t];
         A->rep[members[t]] = UINT32_MAX;
     }
     for (size_t t = 0; t < m; t++) {
@@ -182,7 +181,7 @@ int vbc_channel_ends(vbc_graph *A, uint32_t *parent, const uint32_t *members, si
             continue;
         for (size_t e = A->adj_start[u]; e < A->adj_start[u + 1]; e++)
             if (A->mouth[A->adj[e]])
-                vbc_uf_union(parent, u, A->adj[e]);
+                vb_uf_join(uf, u, A->adj[e]);
     }
     /* The widest voxel of each opening, kept at the opening's root. */
     size_t k = 0;
@@ -190,7 +189,7 @@ int vbc_channel_ends(vbc_graph *A, uint32_t *parent, const uint32_t *members, si
         uint32_t u = members[t];
         if (!A->mouth[u])
             continue;
-        uint32_t r = vbc_uf_find(parent, u);
+        uint32_t r = vb_uf_root(uf, u);
         if (A->rep[r] == UINT32_MAX) {
             k++;
             A->rep[r] = u;
@@ -211,14 +210,14 @@ int vbc_channel_ends(vbc_graph *A, uint32_t *parent, const uint32_t *members, si
     k = 0;
     for (size_t t = 0; t < m; t++) {
         uint32_t u = members[t];
-        if (A->mouth[u] && parent[u] == u)
+        if (A->mouth[u] && uf->p[u] == u)
             reps[k++] = A->rep[u];
     }
     if (k >= 2 && !A->support && support_atoms(A->s, &A->support, &A->nsupport) != 0) {
         free(reps);
         return -1;
     }
-    int w = k >= 2 ? widest_through(A, parent, members, m, reps, k, a, b) : 0;
+    int w = k >= 2 ? widest_through(A, uf, members, m, reps, k, a, b) : 0;
     if (w < 0) {
         free(reps);
         return -1;

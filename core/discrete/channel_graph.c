@@ -1,29 +1,9 @@
-/* The voxel graph of the channel voxels: union-find, Dijkstra sweeps (plain
+/* The voxel graph of the channel voxels: Dijkstra sweeps (plain
  * lengths, or lengths weighted by 1/clearance^2) and voxel geometry. */
 #include <math.h>
 #include <stdlib.h>
 
 #include "vbc_graph.h"
-
-uint32_t vbc_uf_find(uint32_t *parent, uint32_t a)
-{
-    while (parent[a] != a) {
-        parent[a] = parent[parent[a]];
-        a = parent[a];
-    }
-    return a;
-}
-
-void vbc_uf_union(uint32_t *parent, uint32_t a, uint32_t b)
-{
-    a = vbc_uf_find(parent, a);
-    b = vbc_uf_find(parent, b);
-    /* The smaller root wins so component ids do not depend on visiting order. */
-    if (a < b)
-        parent[b] = a;
-    else if (b < a)
-        parent[a] = b;
-}
 
 static void heap_swap(vbc_graph *A, size_t a, size_t b)
 {

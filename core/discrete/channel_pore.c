@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_array.h"
 #include "vb_parallel.h"
 #include "vbc_pore.h"
 
@@ -251,14 +252,8 @@ static double plane_best(const vbc_cells *c, const double u[3], vbc_outside_fn o
 /* Appends a point; returns -1 when out of memory. */
 static int push(vbc_pore_point **v, size_t *n, size_t *cap, const vbc_pore_point *q)
 {
-    if (*n == *cap) {
-        size_t c = *cap ? 2 * *cap : 256;
-        vbc_pore_point *w = realloc(*v, c * sizeof *w);
-        if (!w)
-            return -1;
-        *v = w;
-        *cap = c;
-    }
+    if (VB_ARRAY_FIT(*v, *cap, *n + 1, 256) != VB_OK)
+        return -1;
     (*v)[(*n)++] = *q;
     return 0;
 }

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_array.h"
 #include "vb_parallel.h"
 #include "vbc_pore_frame.h"
 
@@ -119,15 +120,14 @@ static int sweep_jobs(vb_ctx *ctx, sweep_job *J, int n)
     else
         for (int k = 0; k < n; k++)
             sweep_job_run(&J[k]);
-    for (int k = 0; k < n; k++)
-        if (J[k].rc != VB_OK) {
-            int rc = J[k].rc;
-            for (int j = 0; j < n; j++)
-                vbc_pore_free(&J[j].pore);
-            return vb_error(ctx, rc, NULL, 0, "pore sweep (%s)",
-                            rc == VB_ENOMEM ? "out of memory" : vb_errstr(rc));
-        }
-    return VB_OK;
+    int bad = vb_jobs_first_error(J, sizeof *J, n, offsetof(sweep_job, rc), VB_JOBS_UNORDERED);
+    if (bad < 0)
+        return VB_OK;
+    int rc = J[bad].rc;
+    for (int j = 0; j < n; j++)
+        vbc_pore_free(&J[j].pore);
+    return vb_error(ctx, rc, NULL, 0, "pore sweep (%s)",
+                    rc == VB_ENOMEM ? "out of memory" : vb_errstr(rc));
 }
 
 /* The widest open pore of one subunit replaces the nearly closed central
@@ -265,15 +265,9 @@ static void lining_put(int32_t atom, void *user)
     lining_set *L = user;
     if (L->mark[atom])
         return;
-    if (L->n == L->cap) {
-        size_t c = L->cap ? 2 * L->cap : 64;
-        int32_t *w = realloc(L->list, c * sizeof *w);
-        if (!w) {
-            L->failed = 1;
-            return;
-        }
-        L->list = w;
-        L->cap = c;
+    if (VB_ARRAY_FIT(L->list, L->cap, L->n + 1, 64) != VB_OK) {
+        L->failed = 1;
+        return;
     }
     L->mark[atom] = 1;
     L->list[L->n++] = atom;

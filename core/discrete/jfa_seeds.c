@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_array.h"
 #include "vbj_jfa.h"
 
 static int is_pow2(uint32_t n) { return n >= 2 && (n & (n - 1)) == 0; }
@@ -216,14 +217,10 @@ int vbj_seeds_read(vb_ctx *ctx, const char *path, int dim, uint32_t n, vbj_seeds
                           "expected %d coordinates per seed, found %d", dim, got);
             goto done;
         }
-        if (k == cap) {
-            cap = cap ? 2 * cap : 256;
-            double *np = realloc(pts, cap * 3 * sizeof *np);
-            if (!np) {
-                rc = vb_error(ctx, VB_ENOMEM, path, lineno, "out of memory");
-                goto done;
-            }
-            pts = np;
+        pts = vb_array_grow(pts, &cap, k + 1, 3 * sizeof *pts, 256);
+        if (cap < k + 1) {
+            rc = vb_error(ctx, VB_ENOMEM, path, lineno, "out of memory");
+            goto done;
         }
         memcpy(pts + 3 * k, v, sizeof v);
         k++;

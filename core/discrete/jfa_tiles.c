@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_array.h"
 #include "vb_parallel.h"
 #include "vbj_prep.h"
 #include "vbj_tiles.h"
@@ -114,14 +115,9 @@ typedef struct {
 
 static int push(scratch *w, size_t i, const int32_t r[4])
 {
-    if (i == w->cap) {
-        size_t cap = w->cap ? 2 * w->cap : 256;
-        int32_t *a = realloc(w->surv, cap * 4 * sizeof *a);
-        if (!a)
-            return -1;
-        w->surv = a;
-        w->cap = cap;
-    }
+    w->surv = vb_array_grow(w->surv, &w->cap, i + 1, 4 * sizeof *w->surv, 256);
+    if (w->cap < i + 1)
+        return -1;
     memcpy(w->surv + 4 * i, r, 4 * sizeof *r);
     return 0;
 }

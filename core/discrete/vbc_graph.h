@@ -4,6 +4,7 @@
 #ifndef VBC_GRAPH_H
 #define VBC_GRAPH_H
 
+#include "vb_uf.h"
 #include "vbc_channel.h"
 
 /* Everything the per-component work shares (one frame). */
@@ -26,11 +27,6 @@ typedef struct vbc_graph {
     size_t nsupport;
 } vbc_graph;
 
-/* Union-find over positions; the smaller root wins, so component ids do not
- * depend on visiting order. */
-uint32_t vbc_uf_find(uint32_t *parent, uint32_t a);
-void vbc_uf_union(uint32_t *parent, uint32_t a, uint32_t b);
-
 /* Dijkstra over the 26-connected graph of one component (members[0..m)) from
  * position src; fills dist/pred for the members. Unweighted steps cost their
  * length (voxels), weighted ones length / r^2 with r the smaller clearance of
@@ -44,9 +40,10 @@ uint32_t vbc_farthest(const vbc_graph *A, const uint32_t *members, size_t m);
 void vbc_voxel_centre(const vbc_grid *g, uint32_t v, double p[3]);
 
 /* Ends *a, *b of the centreline of a component with mouths (core/discrete/channel_ends.c);
- * *through = 1 when they lie on opposite faces of the molecule. parent is
- * scratch of one entry per position. Returns 0, or -1 when out of memory. */
-int vbc_channel_ends(vbc_graph *A, uint32_t *parent, const uint32_t *members, size_t m,
+ * *through = 1 when they lie on opposite faces of the molecule. uf is
+ * scratch over every position (its sets are reset for the members).
+ * Returns 0, or -1 when out of memory. */
+int vbc_channel_ends(vbc_graph *A, vb_uf *uf, const uint32_t *members, size_t m,
                      uint32_t *a, uint32_t *b, int *through);
 
 #endif

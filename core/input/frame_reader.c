@@ -2,6 +2,7 @@
  * lines of one MODEL..ENDMDL block are gathered and handed to the format's
  * parser, so a long trajectory never sits in memory whole. mmCIF (rarely a
  * trajectory) is held as text and read model by model; XYZR is one frame. */
+#include "vb_array.h"
 #include "vbi_input.h"
 
 #include <errno.h>
@@ -129,16 +130,8 @@ static int next_physical(vb_frame_reader *rd, const char **s, size_t *n)
 
 static int chunk_add(vb_frame_reader *rd, const char *s, size_t n)
 {
-    if (rd->chunk_len + n > rd->chunk_cap) {
-        size_t cap = rd->chunk_cap ? rd->chunk_cap : 1 << 16;
-        while (cap < rd->chunk_len + n)
-            cap *= 2;
-        char *c = realloc(rd->chunk, cap);
-        if (!c)
-            return -1;
-        rd->chunk = c;
-        rd->chunk_cap = cap;
-    }
+    if (VB_ARRAY_FIT(rd->chunk, rd->chunk_cap, rd->chunk_len + n, (size_t)1 << 16) != VB_OK)
+        return -1;
     memcpy(rd->chunk + rd->chunk_len, s, n);
     rd->chunk_len += n;
     return 0;

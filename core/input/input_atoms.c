@@ -3,6 +3,7 @@
  * and the one-line reports of what was left out (element inference is
  * element_infer.c). */
 #include "vbi_input.h"
+#include "vb_array.h"
 #include "vb_diag.h"
 
 #include <ctype.h>
@@ -195,11 +196,13 @@ void vbi_atom_scan_note_open_model(const vbi_atom_scan *s, long model_line, vbi_
 void vbi_altloc_init(vbi_altloc *a)
 {
     memset(a, 0, sizeof *a);
+    a->last = SIZE_MAX;
 }
 
 void vbi_altloc_free(vbi_altloc *a)
 {
-    free(a->slots);
+    free(a->res);
+    vb_hash_free(&a->h);
     vbi_altloc_init(a);
 }
 
@@ -209,40 +212,34 @@ static int same_residue(const vbi_altloc_res *r, const vb_atom_info *info)
            strcmp(r->chain, info->chain) == 0;
 }
 
-static size_t residue_hash(const vbi_altloc_res *r, size_t mask)
+static uint64_t residue_hash(const char *chain, int32_t resseq, char icode)
 {
     uint64_t h = 1469598103934665603ull;
-    for (const char *c = r->chain; *c; c++)
+    for (const char *c = chain; *c; c++)
         h = (h ^ (unsigned char)*c) * 1099511628211ull;
-    h = (h ^ (uint32_t)r->resseq) * 1099511628211ull;
-    h = (h ^ (unsigned char)r->icode) * 1099511628211ull;
-    return (size_t)(h ^ (h >> 29)) & mask;
+    h = (h ^ (uint32_t)resseq) * 1099511628211ull;
+    h = (h ^ (unsigned char)icode) * 1099511628211ull;
+    return h ^ (h >> 29);
 }
 
-/* The slot of residue r: its own, or the empty one where it belongs. */
-static vbi_altloc_res *residue_slot(vbi_altloc_res *slots, size_t cap, const vbi_altloc_res *r)
+/* vb_hash's callbacks: the residue sought is key (chain cut as kept). */
+typedef struct residue_key {
+    const vbi_altloc *a;
+    const vbi_altloc_res *key;
+} residue_key;
+
+static int residue_same(const void *key, size_t item)
 {
-    size_t i = residue_hash(r, cap - 1);
-    while (slots[i].kept && !(slots[i].resseq == r->resseq && slots[i].icode == r->icode &&
-                              strcmp(slots[i].chain, r->chain) == 0))
-        i = (i + 1) & (cap - 1);
-    return &slots[i];
+    const residue_key *k = key;
+    const vbi_altloc_res *r = &k->a->res[item];
+    return r->resseq == k->key->resseq && r->icode == k->key->icode &&
+           strcmp(r->chain, k->key->chain) == 0;
 }
 
-static int residue_table_grow(vbi_altloc *a)
+static uint64_t residue_hash_of(const void *arg, size_t item)
 {
-    size_t cap = a->cap ? 2 * a->cap : 64;
-    vbi_altloc_res *slots = calloc(cap, sizeof *slots);
-    if (!slots)
-        return -1;
-    for (size_t i = 0; i < a->cap; i++)
-        if (a->slots[i].kept)
-            *residue_slot(slots, cap, &a->slots[i]) = a->slots[i];
-    free(a->slots);
-    a->slots = slots;
-    a->cap = cap;
-    a->last = NULL;
-    return 0;
+    const vbi_altloc_res *r = &((const vbi_altloc *)arg)->res[item];
+    return residue_hash(r->chain, r->resseq, r->icode);
 }
 
 /* The residue of info in the table (a->last), added with info's location
@@ -251,7 +248,7 @@ static int residue_of(vbi_altloc *a, const vb_atom_info *info, double occ)
 {
     /* Lettered atoms of one residue usually come together: the last
      * residue answers most lookups. */
-    if (a->last && same_residue(a->last, info))
+    if (a->last != SIZE_MAX && same_residue(&a->res[a->last], info))
         return 0;
     vbi_altloc_res key;
     memset(&key, 0, sizeof key);
@@ -259,17 +256,21 @@ static int residue_of(vbi_altloc *a, const vb_atom_info *info, double occ)
     key.chain[sizeof key.chain - 1] = '\0';
     key.resseq = info->resseq;
     key.icode = info->icode;
-    if (2 * (a->n + 1) > a->cap && residue_table_grow(a) != 0)
+    if ((!a->h.cap && vb_hash_fit(&a->h, 1, residue_hash_of, a) != VB_OK) ||
+        VB_ARRAY_FIT(a->res, a->cap, a->n + 1, 64) != VB_OK)
         return -1;
-    vbi_altloc_res *r = residue_slot(a->slots, a->cap, &key);
-    if (!r->kept) {
-        key.kept = info->altloc;
-        key.occupancy = occ;
-        *r = key;
-        a->n++;
+    residue_key k = {a, &key};
+    size_t *slot = vb_hash_slot(&a->h, residue_hash(key.chain, key.resseq, key.icode),
+                                residue_same, &k);
+    if (*slot) {
+        a->last = *slot - 1;
+        return 0;
     }
-    a->last = r;
-    return 0;
+    key.kept = info->altloc;
+    key.occupancy = occ;
+    a->res[a->n] = key;
+    a->last = a->n++;
+    return vb_hash_put(&a->h, slot, a->last, residue_hash_of, a) == VB_OK ? 0 : -1;
 }
 
 int vbi_altloc_offer(vbi_altloc *a, const vb_atom_info *info, double occupancy)
@@ -279,9 +280,10 @@ int vbi_altloc_offer(vbi_altloc *a, const vb_atom_info *info, double occupancy)
     if (residue_of(a, info, occupancy) != 0)
         return -1;
     /* Strictly higher: ties go to the location met first. */
-    if (occupancy > a->last->occupancy) {
-        a->last->kept = info->altloc;
-        a->last->occupancy = occupancy;
+    vbi_altloc_res *r = &a->res[a->last];
+    if (occupancy > r->occupancy) {
+        r->kept = info->altloc;
+        r->occupancy = occupancy;
     }
     return 0;
 }
@@ -292,7 +294,7 @@ int vbi_altloc_keeps(vbi_altloc *a, const vb_atom_info *info)
         return 1;
     if (residue_of(a, info, -1) != 0)
         return -1;
-    return info->altloc == a->last->kept;
+    return info->altloc == a->res[a->last].kept;
 }
 
 int vbi_atom_dropped(const vb_read_options *opt, vbi_altloc *alt, const vb_atom_info *info,

@@ -14,6 +14,7 @@
  * atom pattern is letters then wildcards ("C???", "FE??") is the radius of
  * that element, the first such row winning as in HOLE; rows for particular
  * atom or residue names are counted and left out (W736). */
+#include "vb_array.h"
 #include "vbi_input.h"
 #include "vb_diag.h"
 
@@ -173,14 +174,9 @@ int vb_radii_load(vb_ctx *ctx, const char *path, vb_radii_table **out)
                           "extra text after 'ELEMENT RADIUS'");
             break;
         }
-        if (t->n == cap) {
-            cap = cap ? 2 * cap : 32;
-            radius_row *r = realloc(t->rows, cap * sizeof *r);
-            if (!r) {
-                rc = vb_error(ctx, VB_ENOMEM, path, 0, "out of memory");
-                break;
-            }
-            t->rows = r;
+        if (VB_ARRAY_FIT(t->rows, cap, t->n + 1, 32) != VB_OK) {
+            rc = vb_error(ctx, VB_ENOMEM, path, 0, "out of memory");
+            break;
         }
         t->rows[t->n++] = row;
     }

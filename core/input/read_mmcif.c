@@ -2,6 +2,7 @@
  * element from type_symbol, models from pdbx_PDB_model_num, alternate
  * locations from label_alt_id; residue and chain from the auth_* items when
  * present (they match the PDB file), else label_*. */
+#include "vb_array.h"
 #include "vbi_cif.h"
 #include "vbi_input.h"
 #include "vb_diag.h"
@@ -100,14 +101,8 @@ static const char *const axis_names[3] = {"Cartn_x", "Cartn_y", "Cartn_z"};
 static int note_asym(cif_reader *r, const vbi_cif_token *t)
 {
     size_t n = r->b.set->n;
-    if (n > r->asym_cap) {
-        size_t cap = r->asym_cap ? 2 * r->asym_cap : 1024;
-        void *p = realloc(r->asym, cap * sizeof *r->asym);
-        if (!p)
-            return vb_error(r->ctx, VB_ENOMEM, r->name, 0, "out of memory");
-        r->asym = p;
-        r->asym_cap = cap;
-    }
+    if (VB_ARRAY_FIT(r->asym, r->asym_cap, n, 1024) != VB_OK)
+        return vb_error(r->ctx, VB_ENOMEM, r->name, 0, "out of memory");
     int trunc = 0;
     text_cell(r->asym[n - 1], sizeof r->asym[n - 1], t, &trunc);
     return VB_OK;

@@ -14,6 +14,7 @@
 #ifndef VBI_INPUT_H
 #define VBI_INPUT_H
 
+#include "vb_hash.h"
 #include "vb_spheres.h"
 
 /* Default sphere limit (vb_read_options.max_spheres == 0). */
@@ -250,14 +251,15 @@ typedef struct vbi_altloc_res {
     char chain[8];
     int32_t resseq;
     char icode;
-    char kept;        /* 0: empty slot */
+    char kept;        /* the kept location's letter */
     double occupancy; /* of the kept location's most occupied atom offered */
 } vbi_altloc_res;
 
 typedef struct vbi_altloc {
-    vbi_altloc_res *slots; /* residues that had a lettered location (hash table) */
-    size_t cap, n;
-    vbi_altloc_res *last;  /* the residue of the previous lettered atom */
+    vbi_altloc_res *res;   /* residues that had a lettered location, as met */
+    size_t cap, n;         /* res allocated (VB_ARRAY_FIT), held */
+    vb_hash h;             /* items of res by chain, number and insertion code */
+    size_t last;           /* the residue of the previous lettered atom (SIZE_MAX: none) */
 } vbi_altloc;
 
 /* The residue is remembered for the whole file, so a block of location B

@@ -25,28 +25,11 @@ int vb_periodic_write(vb_ctx *ctx, FILE *f, const vb_periodic_vertices *v, int j
 }
 
 /* Comment text, one '#' line per line of it. */
-static void comment_lines(FILE *f, const char *text)
-{
-    for (const char *p = text; p && *p;) {
-        size_t len = strcspn(p, "\n");
-        fprintf(f, "# %.*s\n", (int)len, p);
-        p += len;
-        p += *p == '\n';
-    }
-}
-
 int vb_periodic_write_prov(vb_ctx *ctx, FILE *f, const vb_periodic_vertices *v, int json,
                            const vb_provenance *prov, const char *comment)
 {
     if (json) {
-        fputs("{", f);
-        if (prov)
-            vb_provenance_write_json(f, prov);
-        if (comment) {
-            fputs("\"comment\":", f);
-            vb_json_write_string(f, comment);
-            fputs(",", f);
-        }
+        vb_provenance_write_json_head(f, prov, comment);
         fputs("\"vertices\":[", f);
         for (size_t k = 0; k < v->n; k++) {
             fputs(k ? ",\n{\"ids\":[" : "\n{\"ids\":[", f);
@@ -57,16 +40,8 @@ int vb_periodic_write_prov(vb_ctx *ctx, FILE *f, const vb_periodic_vertices *v, 
         fputs("\n]}\n", f);
     } else {
         fputs("# vorball periodic vertices\n", f);
-        if (prov) {
-            size_t n = vb_provenance_text(prov, NULL, 0);
-            char *t = malloc(n + 1);
-            if (!t)
-                return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (writing vertices)");
-            vb_provenance_text(prov, t, n + 1);
-            comment_lines(f, t);
-            free(t);
-        }
-        comment_lines(f, comment);
+        if (vb_provenance_write_comments(f, "# ", prov, comment) != VB_OK)
+            return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (writing vertices)");
         fputs("# ids\tx\ty\tz\tt\tstatus\n", f);
         for (size_t k = 0; k < v->n; k++) {
             members(f, v, k, 0);

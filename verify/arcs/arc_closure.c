@@ -281,12 +281,9 @@ static int run_phase(closure *cl, vbx_tracer *tr, unsigned nt, const vbx_item *i
         rc = VB_ENOMEM;
     } else {
         vb_run_jobs(vbx_phase_work, jobs, sizeof *jobs, (int)use);
-        /* The first failing vbx_item's error, as one thread would meet it. */
-        unsigned bad = 0;
-        for (unsigned i = 1; i < use; i++)
-            if (tr[i].fail_at < tr[bad].fail_at)
-                bad = i;
-        if (tr[bad].rc != VB_OK) {
+        int bad = vb_jobs_first_error(tr, sizeof *tr, (int)use, offsetof(vbx_tracer, rc),
+                                      offsetof(vbx_tracer, fail_at));
+        if (bad >= 0) {
             rc = tr[bad].rc;
             if (bad != 0)
                 vb_error(cl->ctx, rc, NULL, 0, "%s", vb_errmsg(tr[bad].ctx));
@@ -450,11 +447,10 @@ static int close_list(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_lis
         tr[i].c = c;
         if (i > 0) {
             tr[i].c = vbx_certifier_worker(c);
-            if (!tr[i].c || vb_open(&tr[i].ctx, NULL) != VB_OK) {
+            if (!tr[i].c || vb_open_worker(&tr[i].ctx, ctx) != VB_OK) {
                 rc = VB_ENOMEM;
                 break;
             }
-            vb_progress_forward(tr[i].ctx, ctx);
         }
         rc = vbx_arcw_init(&tr[i].w, tr[i].ctx, tr[i].c);
         tr[i].have_w = 1;

@@ -16,6 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_array.h"
 #include "vb_arc.h"
 #include "vbx_arc.h"
 
@@ -129,14 +130,9 @@ static int hull_edge(fwork *fw, size_t i, size_t j)
 
 static int push_pair(uint32_t **v, size_t *n, size_t *cap, uint32_t a, uint32_t b)
 {
-    if (*n == *cap) {
-        size_t c = *cap ? 2 * *cap : 1024;
-        uint32_t *p = realloc(*v, 2 * c * sizeof *p);
-        if (!p)
-            return VB_ENOMEM;
-        *v = p;
-        *cap = c;
-    }
+    *v = vb_array_grow(*v, cap, *n + 1, 2 * sizeof **v, 1024);
+    if (*cap < *n + 1)
+        return VB_ENOMEM;
     (*v)[2 * *n] = a < b ? a : b;
     (*v)[2 * *n + 1] = a < b ? b : a;
     (*n)++;

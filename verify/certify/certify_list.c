@@ -117,13 +117,12 @@ static int run_workers(vb_ctx *ctx, vb_certifier *c, worker *ws, unsigned nt)
         ws[i].index = (uint16_t)i;
         ws[i].ctx = NULL;
         ws[i].c = vbx_certifier_worker(c);
-        if (!ws[i].c || vb_open(&ws[i].ctx, NULL) != VB_OK) {
+        if (!ws[i].c || vb_open_worker(&ws[i].ctx, ctx) != VB_OK) {
             vb_certifier_close(ws[i].c);
             ws[i].c = NULL;
             rc = VB_ENOMEM;
             break;
         }
-        vb_progress_forward(ws[i].ctx, ctx);
     }
     /* A thread that cannot start has its share run by the caller. */
     if (rc == VB_OK)
@@ -137,16 +136,11 @@ static int run_workers(vb_ctx *ctx, vb_certifier *c, worker *ws, unsigned nt)
     }
     if (rc != VB_OK)
         return vb_error(ctx, rc, NULL, 0, "out of memory (certifier threads)");
-    /* The first failing candidate's error, as one thread would report it. */
-    unsigned bad = 0;
-    for (unsigned i = 1; i < nt; i++)
-        if (ws[i].fail_at < ws[bad].fail_at)
-            bad = i;
-    if (ws[bad].rc != VB_OK && bad != 0)
-        rc = vb_error(ctx, ws[bad].rc, NULL, 0, "%s", vb_errmsg(ws[bad].ctx));
-    else
-        rc = ws[0].rc;
-    return rc;
+    int bad = vb_jobs_first_error(ws, sizeof *ws, (int)nt, offsetof(worker, rc),
+                                  offsetof(worker, fail_at));
+    if (bad > 0)
+        return vb_error(ctx, ws[bad].rc, NULL, 0, "%s", vb_errmsg(ws[bad].ctx));
+    return ws[0].rc;
 }
 
 static void free_workers(worker *ws, unsigned nt)

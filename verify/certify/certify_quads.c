@@ -513,9 +513,8 @@ int vb_certify_quads(vb_ctx *ctx, vb_certifier *c, const uint32_t (*quads)[4], s
     ws[0].ctx = ctx;
     for (unsigned i = 1; i < nt && rc == VB_OK; i++) {
         ws[i].c = vbx_certifier_worker(c);
-        if (!ws[i].c || vb_open(&ws[i].ctx, NULL) != VB_OK)
+        if (!ws[i].c || vb_open_worker(&ws[i].ctx, ctx) != VB_OK)
             rc = VB_ENOMEM;
-        vb_progress_forward(ws[i].ctx, ctx);
     }
     /* A thread that cannot start has its share run by the caller. */
     if (rc == VB_OK)
@@ -534,12 +533,9 @@ int vb_certify_quads(vb_ctx *ctx, vb_certifier *c, const uint32_t (*quads)[4], s
     if (rc != VB_OK) {
         rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (certifier threads)");
     } else {
-        /* The first failing quadruple's error, as one thread would report it. */
-        unsigned bad = 0;
-        for (unsigned i = 1; i < nt; i++)
-            if (ws[i].fail_at < ws[bad].fail_at)
-                bad = i;
-        if (ws[bad].rc != VB_OK && bad != 0)
+        int bad = vb_jobs_first_error(ws, sizeof *ws, (int)nt, offsetof(qworker, rc),
+                                      offsetof(qworker, fail_at));
+        if (bad > 0)
             rc = vb_error(ctx, ws[bad].rc, NULL, 0, "%s", vb_errmsg(ws[bad].ctx));
         else
             rc = ws[0].rc;
