@@ -71,7 +71,7 @@ int vbm_piece(const vbm_atom_in *in, int owner, const vbm_axes *ax, const vbm_se
     vbm_add(&E, &E, &t);
     if (!vbm_recip(&e1, &E))
         return 0;
-    vbm_mul(&e2, &e1, &e1);
+    vbm_square(&e2, &e1);
     vbm_mul(&e3, &e2, &e1);
     vbm_affine(vol, vbx_ia_div(vbx_ia_mul(vbx_ia_sqr(n->N), n->N), vbx_ia_point(24.0)), &e3,
                vbx_ia_point(0.0));
