@@ -181,7 +181,11 @@ static void pair_curve(const vbm_atom_in *in, uint32_t j, uint32_t k, int w, int
     cv->l0 = vbx_ia_mul(vbx_ia_point(sigma), vbx_ia_sub(lj[w], lk[w]));
     cv->la = vbx_ia_sub(lj[p], lk[p]);
     cv->lb = vbx_ia_sub(lj[q], lk[q]);
-    cv->kappa = vbx_ia_sub(vbx_ia_mul(nj->N, nk->delta), vbx_ia_mul(nk->N, nj->delta));
+    /* equal radii (delta exactly 0 for both): kappa exactly 0, the edge's
+     * curve linear (an interval product would widen 0 by a subnormal) */
+    cv->kappa = vbm_ia_is_zero(nj->delta) && vbm_ia_is_zero(nk->delta)
+                    ? vbx_ia_point(0.0)
+                    : vbx_ia_sub(vbx_ia_mul(nj->N, nk->delta), vbx_ia_mul(nk->N, nj->delta));
     cv->pos = (int)j;
     cv->neg = (int)k;
 }

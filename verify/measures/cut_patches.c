@@ -37,19 +37,20 @@ static int root_series(const vbm_curve *cv, vbx_ia A, int eps, int linear, vbm_s
     if (linear) { /* l + lb b = 0 */
         vbm_affine(root, vbx_ia_div(vbx_ia_point(-1.0), cv->lb), &l, vbx_ia_point(0.0));
     } else {
+        /* the discriminant (lb l)^2 - aq (l^2 - kappa^2 (1 + a^2)) is
+         * kappa^2 (l^2 + aq (1 + a^2)): taken in that form, without the
+         * cancelling (lb l)^2 terms that would widen it across 0 */
         vbx_ia k2 = vbx_ia_sqr(cv->kappa), aq = vbx_ia_sub(vbx_ia_sqr(cv->lb), k2);
-        vbm_ser bq, cq;
+        vbx_ia ak = cv->kappa.lo > 0.0 ? cv->kappa : vbx_ia_neg(cv->kappa); /* |kappa|, sign proven */
+        vbm_ser bq;
         vbm_affine(&bq, cv->lb, &l, vbx_ia_point(0.0));
-        vbm_square(&cq, &l);
+        vbm_square(&disc, &l);
         vbm_square(&t, &a);
-        vbm_affine(&t, k2, &t, k2);
-        vbm_sub(&cq, &cq, &t);
-        vbm_square(&disc, &bq);
-        vbm_affine(&t, aq, &cq, vbx_ia_point(0.0));
-        vbm_sub(&disc, &disc, &t);
+        vbm_affine(&t, aq, &t, aq);
+        vbm_add(&disc, &disc, &t);
         if (!vbm_sqrt(&u, &disc))
             return 0;
-        vbm_affine(&u, vbx_ia_point((double)eps), &u, vbx_ia_point(0.0));
+        vbm_affine(&u, vbx_ia_mul(vbx_ia_point((double)eps), ak), &u, vbx_ia_point(0.0));
         vbm_sub(&u, &u, &bq);
         vbm_affine(root, vbx_ia_div(vbx_ia_point(1.0), aq), &u, vbx_ia_point(0.0));
     }

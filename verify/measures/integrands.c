@@ -67,8 +67,10 @@ int vbm_piece(const vbm_atom_in *in, int owner, const vbm_axes *ax, const vbm_se
     vbm_affine(&E, n->d[ax->p], a, vbx_ia_mul(vbx_ia_point(ax->sigma), n->d[ax->w]));
     vbm_affine(&t, n->d[ax->q], b, vbx_ia_point(0.0));
     vbm_add(&E, &E, &t);
-    vbm_affine(&t, n->delta, &s, vbx_ia_point(0.0));
-    vbm_add(&E, &E, &t);
+    if (!vbm_ia_is_zero(n->delta)) { /* equal radii: E linear in a and b */
+        vbm_affine(&t, n->delta, &s, vbx_ia_point(0.0));
+        vbm_add(&E, &E, &t);
+    }
     if (!vbm_recip(&e1, &E))
         return 0;
     vbm_square(&e2, &e1);

@@ -7,6 +7,12 @@
 #include "vbm_cell.h"
 #include "vbm_series.h"
 
+/* a is exactly [0, 0] (a difference of equal radii). */
+static inline int vbm_ia_is_zero(vbx_ia a)
+{
+    return a.lo == 0.0 && a.hi == 0.0;
+}
+
 /* The axes of a face: the direction is sigma e_w + a e_p + b e_q. */
 typedef struct vbm_axes {
     int w, p, q;
