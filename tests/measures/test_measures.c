@@ -3,6 +3,7 @@
  *  - two equal balls: the cell is the ball cut by the bisector plane (cap
  *    volume, cap area, contact disc), both sides of the contact;
  *  - two equal balls on a slanted axis (radii equal as written: a plane);
+ *  - three equal balls on a triangle: congruent cells, a straight edge;
  *  - two and three unequal balls (hyperboloid faces): the volumes add up to
  *    the union's volume and the SAS areas to its area (inclusion-exclusion:
  *    lenses of pairs; the outer balls of the three do not meet);
@@ -131,6 +132,37 @@ static void test_slanted_pair(vb_ctx *ctx)
     vb_cell_measures_free(&m);
 }
 
+/* Three equal balls on an equilateral triangle (side 2 to 15 digits, in a
+ * generic orientation; expanded radius 2.4: the three faces meet in a
+ * Voronoi edge, a line since the radii are equal). The cells are congruent:
+ * their enclosures, to 1e-6, meet pairwise, as do the three contacts', and
+ * no atom is left loose (before kappa's exact 0, every patch on that edge
+ * fell back to min..max). Left out: the triangle in the xy plane, where a
+ * bisector plane through the third centre runs along patch sides (a = 0)
+ * and that atom refines there to the end of its budget. */
+static void test_equal_triple(vb_ctx *ctx)
+{
+    vb_cell_measures m;
+    CHECK_INT(run(ctx,
+                  "0 0 0 1\n1.680782753630657 0.486044557674782 0.968880809518112 1\n"
+                  "0.251797868105846 1.858305293526159 0.695197288307431 1\n",
+                  1e-6, &m),
+              VB_OK);
+    CHECK_INT(m.nloose, 0);
+    for (int i = 0; i < 3; i++) {
+        int j = (i + 1) % 3;
+        CHECK(m.vol_lo[i] <= m.vol_hi[j] && m.vol_lo[j] <= m.vol_hi[i]);
+        CHECK(m.sas_lo[i] <= m.sas_hi[j] && m.sas_lo[j] <= m.sas_hi[i]);
+        CHECK(m.vol_hi[i] - m.vol_lo[i] <= 1e-6 * m.vol_hi[i]);
+    }
+    CHECK_INT(m.ncontacts, 3);
+    for (size_t k = 0; m.ncontacts == 3 && k < 3; k++) {
+        const vb_contact *a = &m.contacts[k], *b = &m.contacts[(k + 1) % 3];
+        CHECK(a->lo <= b->hi && b->lo <= a->hi && a->hi - a->lo <= 1e-6 * a->hi);
+    }
+    vb_cell_measures_free(&m);
+}
+
 static void sums(const vb_cell_measures *m, double *vlo, double *vhi, double *alo, double *ahi)
 {
     *vlo = *vhi = *alo = *ahi = 0.0;
@@ -225,6 +257,7 @@ int main(void)
     test_one_ball(ctx);
     test_two_equal(ctx);
     test_slanted_pair(ctx);
+    test_equal_triple(ctx);
     test_unequal(ctx);
     test_nested_tangent(ctx);
     test_bad_options(ctx);
