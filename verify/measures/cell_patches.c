@@ -145,7 +145,8 @@ int vbm_curve_sign(const vbm_curve *cv, vbx_ia A, vbx_ia B, vbx_ia s)
         return 0;
     for (int c = 0; c < 4; c++) {
         vbx_ia a = vbx_ia_point(c & 1 ? A.hi : A.lo), b = vbx_ia_point(c & 2 ? B.hi : B.lo);
-        vbx_ia sc = vbx_ia_sqrt(vbx_ia_add(vbx_ia_point(1.0), vbx_ia_add(vbx_ia_sqr(a), vbx_ia_sqr(b))));
+        vbx_ia sc =
+            vbx_ia_sqrt(vbx_ia_add(vbx_ia_point(1.0), vbx_ia_add(vbx_ia_sqr(a), vbx_ia_sqr(b))));
         int k = sign_of(curve_at(cv, a, b, sc));
         if (!k || (c && k != sg))
             return 0;

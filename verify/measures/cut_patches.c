@@ -41,7 +41,8 @@ static int root_series(const vbm_curve *cv, vbx_ia A, int eps, int linear, vbm_s
          * kappa^2 (l^2 + aq (1 + a^2)): taken in that form, without the
          * cancelling (lb l)^2 terms that would widen it across 0 */
         vbx_ia k2 = vbx_ia_sqr(cv->kappa), aq = vbx_ia_sub(vbx_ia_sqr(cv->lb), k2);
-        vbx_ia ak = cv->kappa.lo > 0.0 ? cv->kappa : vbx_ia_neg(cv->kappa); /* |kappa|, sign proven */
+        /* |kappa| (its sign is proven before a root is sought) */
+        vbx_ia ak = cv->kappa.lo > 0.0 ? cv->kappa : vbx_ia_neg(cv->kappa);
         vbm_ser bq;
         vbm_affine(&bq, cv->lb, &l, vbx_ia_point(0.0));
         vbm_square(&disc, &l);
