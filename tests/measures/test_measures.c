@@ -2,6 +2,8 @@
  *  - one ball: 4/3 pi r^3 and 4 pi r^2;
  *  - two equal balls: the cell is the ball cut by the bisector plane (cap
  *    volume, cap area, contact disc), both sides of the contact;
+ *  - two equal balls on a slanted axis (radii equal as written: a plane);
+ *  - three equal balls on a triangle: congruent cells, a straight edge;
  *  - two and three unequal balls (hyperboloid faces): the volumes add up to
  *    the union's volume and the SAS areas to its area (inclusion-exclusion:
  *    lenses of pairs; the outer balls of the three do not meet);
@@ -107,6 +109,60 @@ static void test_two_equal(vb_ctx *ctx)
     vb_cell_measures_free(&m);
 }
 
+/* Two equal balls on a slanted axis: the face is a plane (radii equal,
+ * decided exactly from the input, so the difference of radii is 0, not an
+ * interval across 0), cut by the cube faces' directions obliquely. Cap
+ * volume, cap area and the contact disc, to 1e-6, from both sides, and no
+ * atom loose. */
+static void test_slanted_pair(vb_ctx *ctx)
+{
+    vb_cell_measures m;
+    CHECK_INT(run(ctx, "0.1 0.2 -0.3 1.6\n1.0 -0.9 0.4 1.60\n", 1e-6, &m), VB_OK);
+    double r = 3.0, d = sqrt(0.81 + 1.21 + 0.49), h = r - 0.5 * d;
+    double v = 4.0 / 3.0 * PI * r * r * r - cap_volume(r, h);
+    double a = 4.0 * PI * r * r - 2.0 * PI * r * h, c = PI * (r * r - 0.25 * d * d);
+    for (int i = 0; i < 2; i++) {
+        CHECK(encloses(m.vol_lo[i], m.vol_hi[i], v, 1e-6 * v));
+        CHECK(encloses(m.sas_lo[i], m.sas_hi[i], a, 1e-6 * a));
+    }
+    CHECK_INT(m.nloose, 0);
+    CHECK_INT(m.ncontacts, 1);
+    if (m.ncontacts == 1)
+        CHECK(encloses(m.contacts[0].lo, m.contacts[0].hi, c, 1e-6 * c));
+    vb_cell_measures_free(&m);
+}
+
+/* Three equal balls on an equilateral triangle (side 2 to 15 digits, in a
+ * generic orientation; expanded radius 2.4: the three faces meet in a
+ * Voronoi edge, a line since the radii are equal). The cells are congruent:
+ * their enclosures, to 1e-6, meet pairwise, as do the three contacts', and
+ * no atom is left loose (before kappa's exact 0, every patch on that edge
+ * fell back to min..max). Left out: the triangle in the xy plane, where a
+ * bisector plane through the third centre runs along patch sides (a = 0)
+ * and that atom refines there to the end of its budget. */
+static void test_equal_triple(vb_ctx *ctx)
+{
+    vb_cell_measures m;
+    CHECK_INT(run(ctx,
+                  "0 0 0 1\n1.680782753630657 0.486044557674782 0.968880809518112 1\n"
+                  "0.251797868105846 1.858305293526159 0.695197288307431 1\n",
+                  1e-6, &m),
+              VB_OK);
+    CHECK_INT(m.nloose, 0);
+    for (int i = 0; i < 3; i++) {
+        int j = (i + 1) % 3;
+        CHECK(m.vol_lo[i] <= m.vol_hi[j] && m.vol_lo[j] <= m.vol_hi[i]);
+        CHECK(m.sas_lo[i] <= m.sas_hi[j] && m.sas_lo[j] <= m.sas_hi[i]);
+        CHECK(m.vol_hi[i] - m.vol_lo[i] <= 1e-6 * m.vol_hi[i]);
+    }
+    CHECK_INT(m.ncontacts, 3);
+    for (size_t k = 0; m.ncontacts == 3 && k < 3; k++) {
+        const vb_contact *a = &m.contacts[k], *b = &m.contacts[(k + 1) % 3];
+        CHECK(a->lo <= b->hi && b->lo <= a->hi && a->hi - a->lo <= 1e-6 * a->hi);
+    }
+    vb_cell_measures_free(&m);
+}
+
 static void sums(const vb_cell_measures *m, double *vlo, double *vhi, double *alo, double *ahi)
 {
     *vlo = *vhi = *alo = *ahi = 0.0;
@@ -200,6 +256,8 @@ int main(void)
     vb_set_verbosity(ctx, 0);
     test_one_ball(ctx);
     test_two_equal(ctx);
+    test_slanted_pair(ctx);
+    test_equal_triple(ctx);
     test_unequal(ctx);
     test_nested_tangent(ctx);
     test_bad_options(ctx);

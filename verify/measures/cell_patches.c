@@ -111,29 +111,48 @@ static vbx_ia ia_cube(vbx_ia a)
 }
 
 /* Taylor-model integrals over patch P owned by `owner` alone (-1: the
- * ball): volume, SAS and contact area (vbm_piece). */
+ * ball): volume, SAS and contact area (vbm_box_integrate). */
 static int taylor(const vbm_atom_in *in, const patch *P, int owner, vbx_ia *vol, vbx_ia *sas,
                   vbx_ia *con)
 {
     vbm_axes ax;
     face_axes(P->face, &ax.w, &ax.p, &ax.q, &ax.sigma);
-    double ac = 0.5 * (P->a0 + P->a1), bc = 0.5 * (P->b0 + P->b1);
-    double ha = 0.5 * (P->a1 - P->a0), hb = 0.5 * (P->b1 - P->b0);
-    vbm_ser v[2][3];
-    for (int k = 0; k < 2; k++) {
-        vbx_ia A = k ? ia(P->a0, P->a1) : vbx_ia_point(ac);
-        vbx_ia B = k ? ia(P->b0, P->b1) : vbx_ia_point(bc);
-        vbm_ser a, b;
-        vbm_var(&a, A, 0);
-        vbm_var(&b, B, 1);
-        if (!vbm_piece(in, owner, &ax, &a, &b, &v[k][0], &v[k][1], &v[k][2]))
+    return vbm_box_integrate(in, owner, &ax, P->a0, P->a1, P->b0, P->b1, vol, sas, con);
+}
+
+static vbx_ia curve_at(const vbm_curve *cv, vbx_ia A, vbx_ia B, vbx_ia s)
+{
+    return vbx_ia_sub(vbx_ia_add(cv->l0, vbx_ia_add(vbx_ia_mul(cv->la, A), vbx_ia_mul(cv->lb, B))),
+                      vbx_ia_mul(cv->kappa, s));
+}
+
+static int sign_of(vbx_ia x)
+{
+    return x.lo > 0.0 ? 1 : x.hi < 0.0 ? -1 : 0;
+}
+
+int vbm_curve_sign(const vbm_curve *cv, vbx_ia A, vbx_ia B, vbx_ia s)
+{
+    int sg = sign_of(curve_at(cv, A, B, s));
+    if (sg)
+        return sg;
+    /* near the curve the box's interval is too wide: where F is monotone
+     * in a and in b over the box (dF/da = la - kappa a / s, dF/db = lb -
+     * kappa b / s, each of one sign), its extremes are at the corners,
+     * evaluated at points */
+    if (!sign_of(vbx_ia_sub(cv->la, vbx_ia_mul(cv->kappa, vbx_ia_div(A, s)))) ||
+        !sign_of(vbx_ia_sub(cv->lb, vbx_ia_mul(cv->kappa, vbx_ia_div(B, s)))))
+        return 0;
+    for (int c = 0; c < 4; c++) {
+        vbx_ia a = vbx_ia_point(c & 1 ? A.hi : A.lo), b = vbx_ia_point(c & 2 ? B.hi : B.lo);
+        vbx_ia sc =
+            vbx_ia_sqrt(vbx_ia_add(vbx_ia_point(1.0), vbx_ia_add(vbx_ia_sqr(a), vbx_ia_sqr(b))));
+        int k = sign_of(curve_at(cv, a, b, sc));
+        if (!k || (c && k != sg))
             return 0;
+        sg = k;
     }
-    *vol = vbm_integrate(&v[0][0], &v[1][0], ha, hb);
-    *sas = vbm_integrate(&v[0][1], &v[1][1], ha, hb);
-    *con = owner >= 0 && in->contacts ? vbm_integrate(&v[0][2], &v[1][2], ha, hb)
-                                      : vbx_ia_point(0.0);
-    return 1;
+    return sg;
 }
 
 /* The contact integrand per da db over the box: N^2 sqrt(N + 2 delta D) /
@@ -163,7 +182,11 @@ static void pair_curve(const vbm_atom_in *in, uint32_t j, uint32_t k, int w, int
     cv->l0 = vbx_ia_mul(vbx_ia_point(sigma), vbx_ia_sub(lj[w], lk[w]));
     cv->la = vbx_ia_sub(lj[p], lk[p]);
     cv->lb = vbx_ia_sub(lj[q], lk[q]);
-    cv->kappa = vbx_ia_sub(vbx_ia_mul(nj->N, nk->delta), vbx_ia_mul(nk->N, nj->delta));
+    /* equal radii (delta exactly 0 for both): kappa exactly 0, the edge's
+     * curve linear (an interval product would widen 0 by a subnormal) */
+    cv->kappa = vbm_ia_is_zero(nj->delta) && vbm_ia_is_zero(nk->delta)
+                    ? vbx_ia_point(0.0)
+                    : vbx_ia_sub(vbx_ia_mul(nj->N, nk->delta), vbx_ia_mul(nk->N, nj->delta));
     cv->pos = (int)j;
     cv->neg = (int)k;
 }
@@ -235,10 +258,7 @@ static int classify(const vbm_atom_in *in, vbm_scratch *sc, size_t *ncand_used,
                     continue;
                 vbm_curve cv;
                 pair_curve(in, cb[x].j, cb[y].j, w, p, q, sigma, &cv);
-                vbx_ia F = vbx_ia_sub(
-                    vbx_ia_add(cv.l0, vbx_ia_add(vbx_ia_mul(cv.la, A), vbx_ia_mul(cv.lb, B))),
-                    vbx_ia_mul(cv.kappa, s));
-                if (F.hi < 0.0) {
+                if (vbm_curve_sign(&cv, A, B, s) < 0) {
                     drop[x] = 1;
                     break;
                 }

@@ -12,11 +12,19 @@
  * on the branch where l + lb b has kappa's sign (the other branch solves
  * l + lb b = -kappa s): that sign, checked over the whole box, proves the
  * branch is F's root; kappa exactly 0 makes F linear in b. */
+#include <math.h>
+#include <stdlib.h>
+
 #include "vbm_piece.h"
 
 static int ia_sign(vbx_ia a)
 {
     return a.lo > 0.0 ? 1 : a.hi < 0.0 ? -1 : 0;
+}
+
+static vbx_ia ia_hull(vbx_ia a, vbx_ia b)
+{
+    return (vbx_ia){vbx_min(a.lo, b.lo), vbx_max(a.hi, b.hi)};
 }
 
 /* The root b*(a) as a series in a (variable 0) at A. eps picks the branch. */
@@ -29,19 +37,21 @@ static int root_series(const vbm_curve *cv, vbx_ia A, int eps, int linear, vbm_s
     if (linear) { /* l + lb b = 0 */
         vbm_affine(root, vbx_ia_div(vbx_ia_point(-1.0), cv->lb), &l, vbx_ia_point(0.0));
     } else {
+        /* the discriminant (lb l)^2 - aq (l^2 - kappa^2 (1 + a^2)) is
+         * kappa^2 (l^2 + aq (1 + a^2)): taken in that form, without the
+         * cancelling (lb l)^2 terms that would widen it across 0 */
         vbx_ia k2 = vbx_ia_sqr(cv->kappa), aq = vbx_ia_sub(vbx_ia_sqr(cv->lb), k2);
-        vbm_ser bq, cq;
+        /* |kappa| (its sign is proven before a root is sought) */
+        vbx_ia ak = cv->kappa.lo > 0.0 ? cv->kappa : vbx_ia_neg(cv->kappa);
+        vbm_ser bq;
         vbm_affine(&bq, cv->lb, &l, vbx_ia_point(0.0));
-        vbm_square(&cq, &l);
+        vbm_square(&disc, &l);
         vbm_square(&t, &a);
-        vbm_affine(&t, k2, &t, k2);
-        vbm_sub(&cq, &cq, &t);
-        vbm_square(&disc, &bq);
-        vbm_affine(&t, aq, &cq, vbx_ia_point(0.0));
-        vbm_sub(&disc, &disc, &t);
+        vbm_affine(&t, aq, &t, aq);
+        vbm_add(&disc, &disc, &t);
         if (!vbm_sqrt(&u, &disc))
             return 0;
-        vbm_affine(&u, vbx_ia_point((double)eps), &u, vbx_ia_point(0.0));
+        vbm_affine(&u, vbx_ia_mul(vbx_ia_point((double)eps), ak), &u, vbx_ia_point(0.0));
         vbm_sub(&u, &u, &bq);
         vbm_affine(root, vbx_ia_div(vbx_ia_point(1.0), aq), &u, vbx_ia_point(0.0));
     }
@@ -125,19 +135,130 @@ static int cut_one(const vbm_atom_in *in, const vbm_axes *ax, const vbm_curve *c
     return 1;
 }
 
+/* The a in (a0, a1) where the curve meets the side b = bc: roots of
+ * F(a, bc) = 0 squared, (la^2 - kappa^2) a^2 + 2 m la a + m^2 - kappa^2 c
+ * = 0 with m = l0 + lb bc, c = 1 + bc^2, in double at the midpoints of the
+ * coefficients (only where to split: the pieces are proven apart). */
+static int side_roots(const vbm_curve *cv, double bc, double a0, double a1, double *x)
+{
+    double l0 = vbx_ia_mid(cv->l0), la = vbx_ia_mid(cv->la), lb = vbx_ia_mid(cv->lb);
+    double k = vbx_ia_mid(cv->kappa), m = l0 + lb * bc, c = 1.0 + bc * bc;
+    double qa = la * la - k * k, qb = 2.0 * m * la, qc = m * m - k * k * c;
+    double r[2];
+    int n = 0;
+    if (fabs(qa) <= 1e-14 * (la * la + k * k)) {
+        if (qb != 0.0)
+            r[n++] = -qc / qb;
+    } else {
+        double disc = qb * qb - 4.0 * qa * qc;
+        if (disc < 0.0)
+            return 0;
+        double sq = sqrt(disc), t = -0.5 * (qb + (qb < 0.0 ? -sq : sq));
+        if (t != 0.0)
+            r[n++] = qc / t;
+        r[n++] = t / qa;
+    }
+    int m2 = 0;
+    for (int i = 0; i < n; i++)
+        if (r[i] > a0 && r[i] < a1)
+            x[m2++] = r[i];
+    return m2;
+}
+
+static int cmp_double(const void *x, const void *y)
+{
+    double a = *(const double *)x, b = *(const double *)y;
+    return a < b ? -1 : a > b;
+}
+
+/* The sliver [a0, a1] x [b0, b1] around an exit: each point is owned by pos
+ * or neg, so each value lies in area x the hull of both owners' integrand
+ * ranges over the box (SAS and contacts with 0 for the other owner). */
+static int sliver(const vbm_atom_in *in, const vbm_axes *ax, const vbm_curve *cv, double a0,
+                  double a1, double b0, double b1, vbx_ia out[4])
+{
+    vbm_ser a, b, v[3];
+    vbm_var(&a, (vbx_ia){a0, a1}, 0);
+    vbm_var(&b, (vbx_ia){b0, b1}, 1);
+    vbx_ia area = vbx_ia_mul(vbx_ia_sub(vbx_ia_point(a1), vbx_ia_point(a0)),
+                             vbx_ia_sub(vbx_ia_point(b1), vbx_ia_point(b0)));
+    vbx_ia hull[4];
+    for (int side = 0; side < 2; side++) {
+        int owner = side ? cv->neg : cv->pos;
+        if (!vbm_piece(in, owner, ax, &a, &b, &v[0], &v[1], &v[2]))
+            return 0;
+        for (int i = 0; i < 2; i++)
+            hull[i] = side ? ia_hull(hull[i], v[i].c[0]) : v[i].c[0];
+        hull[2 + side] = owner >= 0 && in->contacts ? ia_hull(v[2].c[0], vbx_ia_point(0.0))
+                                                    : vbx_ia_point(0.0);
+    }
+    hull[1] = ia_hull(hull[1], vbx_ia_point(0.0)); /* the owner that is not the ball */
+    for (int i = 0; i < 4; i++)
+        out[i] = vbx_ia_add(out[i], vbx_ia_mul(area, hull[i]));
+    return 1;
+}
+
+/* The curve leaves the patch through a side b = b0 or b = b1: the patch is
+ * cut into strips in a at those exits, with slivers of half-width e around
+ * them; a strip where F has one sign is integrated whole (its owner's
+ * Taylor model), one that the curve crosses by cut_one. */
+static int cut_clipped(const vbm_atom_in *in, const vbm_axes *ax, const vbm_curve *cv, double a0,
+                       double a1, double b0, double b1, vbx_ia out[4])
+{
+    double x[4];
+    int nx = side_roots(cv, b0, a0, a1, x);
+    nx += side_roots(cv, b1, a0, a1, x + nx);
+    if (nx == 0)
+        return 0;
+    qsort(x, (size_t)nx, sizeof *x, cmp_double);
+    double e = 0x1p-24 * (a1 - a0);
+    for (int k = 0; k < 4; k++)
+        out[k] = vbx_ia_point(0.0);
+    double lo = a0;
+    for (int i = 0; i <= nx; i++) {
+        /* the strip [lo, hi], then the sliver [hi, next lo] */
+        double hi = i < nx ? vbx_max(lo, x[i] - e) : a1;
+        double nlo = i < nx ? vbx_min(a1, x[i] + e) : a1;
+        while (i + 1 < nx && x[i + 1] - e <= nlo) /* exits closer than 2 e: one sliver */
+            nlo = vbx_min(a1, x[++i] + e);
+        if (hi > lo) {
+            vbx_ia A = {lo, hi}, B = {b0, b1}, r[4];
+            vbx_ia s = vbx_ia_sqrt(
+                vbx_ia_add(vbx_ia_point(1.0), vbx_ia_add(vbx_ia_sqr(A), vbx_ia_sqr(B))));
+            int sg = vbm_curve_sign(cv, A, B, s);
+            if (sg) {
+                int owner = sg > 0 ? cv->pos : cv->neg;
+                if (!vbm_box_integrate(in, owner, ax, lo, hi, b0, b1, &r[0], &r[1], &r[2]))
+                    return 0;
+                r[3] = r[2];
+                r[sg > 0 ? 3 : 2] = vbx_ia_point(0.0);
+            } else if (!cut_one(in, ax, cv, lo, hi, b0, b1, r)) {
+                return 0;
+            }
+            for (int k = 0; k < 4; k++)
+                out[k] = vbx_ia_add(out[k], r[k]);
+        }
+        if (nlo > hi && !sliver(in, ax, cv, hi, nlo, b0, b1, out))
+            return 0;
+        lo = nlo;
+    }
+    return 1;
+}
+
 int vbm_cut_integrate(const vbm_atom_in *in, const vbm_axes *ax, const vbm_curve *cv, double a0,
                       double a1, double b0, double b1, vbx_ia *vol, vbx_ia *sas, vbx_ia *con_pos,
                       vbx_ia *con_neg)
 {
     vbx_ia out[4];
-    int ok = cut_one(in, ax, cv, a0, a1, b0, b1, out);
-    if (!ok) { /* the curve as a = a*(b): swap the roles of a and b */
-        vbm_axes sw = {ax->w, ax->q, ax->p, ax->sigma};
-        vbm_curve cs = *cv;
-        cs.la = cv->lb;
-        cs.lb = cv->la;
-        ok = cut_one(in, &sw, &cs, b0, b1, a0, a1, out);
-    }
+    /* the curve as a = a*(b): swap the roles of a and b */
+    vbm_axes sw = {ax->w, ax->q, ax->p, ax->sigma};
+    vbm_curve cs = *cv;
+    cs.la = cv->lb;
+    cs.lb = cv->la;
+    int ok = cut_one(in, ax, cv, a0, a1, b0, b1, out) ||
+             cut_one(in, &sw, &cs, b0, b1, a0, a1, out) ||
+             cut_clipped(in, ax, cv, a0, a1, b0, b1, out) ||
+             cut_clipped(in, &sw, &cs, b0, b1, a0, a1, out);
     if (!ok)
         return 0;
     *vol = out[0];

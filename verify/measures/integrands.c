@@ -67,11 +67,13 @@ int vbm_piece(const vbm_atom_in *in, int owner, const vbm_axes *ax, const vbm_se
     vbm_affine(&E, n->d[ax->p], a, vbx_ia_mul(vbx_ia_point(ax->sigma), n->d[ax->w]));
     vbm_affine(&t, n->d[ax->q], b, vbx_ia_point(0.0));
     vbm_add(&E, &E, &t);
-    vbm_affine(&t, n->delta, &s, vbx_ia_point(0.0));
-    vbm_add(&E, &E, &t);
+    if (!vbm_ia_is_zero(n->delta)) { /* equal radii: E linear in a and b */
+        vbm_affine(&t, n->delta, &s, vbx_ia_point(0.0));
+        vbm_add(&E, &E, &t);
+    }
     if (!vbm_recip(&e1, &E))
         return 0;
-    vbm_mul(&e2, &e1, &e1);
+    vbm_square(&e2, &e1);
     vbm_mul(&e3, &e2, &e1);
     vbm_affine(vol, vbx_ia_div(vbx_ia_mul(vbx_ia_sqr(n->N), n->N), vbx_ia_point(24.0)), &e3,
                vbx_ia_point(0.0));
@@ -88,5 +90,27 @@ int vbm_piece(const vbm_atom_in *in, int owner, const vbm_axes *ax, const vbm_se
         return 0;
     vbm_mul(&t, &g, &e3);
     vbm_affine(con, vbx_ia_div(vbx_ia_sqr(n->N), vbx_ia_point(4.0)), &t, vbx_ia_point(0.0));
+    return 1;
+}
+
+int vbm_box_integrate(const vbm_atom_in *in, int owner, const vbm_axes *ax, double a0, double a1,
+                      double b0, double b1, vbx_ia *vol, vbx_ia *sas, vbx_ia *con)
+{
+    double ac = 0.5 * (a0 + a1), bc = 0.5 * (b0 + b1);
+    double ha = 0.5 * (a1 - a0), hb = 0.5 * (b1 - b0);
+    vbm_ser v[2][3];
+    for (int k = 0; k < 2; k++) {
+        vbx_ia A = k ? (vbx_ia){a0, a1} : vbx_ia_point(ac);
+        vbx_ia B = k ? (vbx_ia){b0, b1} : vbx_ia_point(bc);
+        vbm_ser a, b;
+        vbm_var(&a, A, 0);
+        vbm_var(&b, B, 1);
+        if (!vbm_piece(in, owner, ax, &a, &b, &v[k][0], &v[k][1], &v[k][2]))
+            return 0;
+    }
+    *vol = vbm_integrate(&v[0][0], &v[1][0], ha, hb);
+    *sas = vbm_integrate(&v[0][1], &v[1][1], ha, hb);
+    *con = owner >= 0 && in->contacts ? vbm_integrate(&v[0][2], &v[1][2], ha, hb)
+                                      : vbx_ia_point(0.0);
     return 1;
 }

@@ -39,6 +39,35 @@ static vbx_ia widen(double x)
     return r;
 }
 
+/* An enclosure of b - a for exact decimals a, b (their nearest doubles da,
+ * db): exactly 0 when they are equal (equal radii make the face a plane and
+ * the Voronoi edges of equal triples lines: decided here from the input,
+ * not from doubles), else the exact difference rounded to nearest and
+ * widened by one step each way when it fits 18 digits, else the difference
+ * of the widened doubles. */
+static int scale10(int64_t *m, int32_t shift)
+{
+    for (; shift > 0; shift--) {
+        if (*m >= 100000000000000000 || *m <= -100000000000000000)
+            return 0; /* |m| stays below 1e18: the difference fits int64 */
+        *m *= 10;
+    }
+    return 1;
+}
+
+static vbx_ia exact_diff(vb_decimal a, vb_decimal b, double da, double db)
+{
+    if (vb_decimal_cmp(a, b) == 0)
+        return vbx_ia_point(0.0);
+    int32_t e = a.exp10 < b.exp10 ? a.exp10 : b.exp10;
+    int64_t ma = a.mant, mb = b.mant;
+    if (scale10(&ma, a.exp10 - e) && scale10(&mb, b.exp10 - e)) {
+        vb_decimal d = {mb - ma, e};
+        return widen(vb_decimal_double(d));
+    }
+    return vbx_ia_sub(widen(db), widen(da));
+}
+
 /* Exact signs of |cj - ci|^2 - (Rj - Ri)^2 (*sn) and of Rj - Ri (return). */
 static int exact_signs(const vb_sphere_set *s, size_t i, size_t j, int *sn)
 {
@@ -128,8 +157,7 @@ static int neighbours(job *jb, size_t i, int tid, size_t *nnb)
 {
     const vb_sphere_set *s = jb->set;
     const grid *g = jb->g;
-    vbx_ia ci[3] = {widen(s->x[i]), widen(s->y[i]), widen(s->z[i])};
-    vbx_ia Ri = widen(s->r[i]), ri = vbx_ia_add(Ri, jb->probe);
+    vbx_ia ri = vbx_ia_add(widen(s->r[i]), jb->probe);
     long c[3] = {cell_of(g, 0, s->x[i]), cell_of(g, 1, s->y[i]), cell_of(g, 2, s->z[i])};
     size_t m = 0;
     for (long dx = -1; dx <= 1; dx++)
@@ -152,16 +180,16 @@ static int neighbours(job *jb, size_t i, int tid, size_t *nnb)
                     if (j == i || s->contained[j])
                         continue;
                     vbm_nb n;
-                    vbx_ia cj[3] = {widen(s->x[j]), widen(s->y[j]), widen(s->z[j])};
                     vbx_ia Rj = widen(s->r[j]), d2 = vbx_ia_point(0.0);
-                    for (int k = 0; k < 3; k++) {
-                        n.d[k] = vbx_ia_sub(cj[k], ci[k]);
+                    n.d[0] = exact_diff(s->ex[i], s->ex[j], s->x[i], s->x[j]);
+                    n.d[1] = exact_diff(s->ey[i], s->ey[j], s->y[i], s->y[j]);
+                    n.d[2] = exact_diff(s->ez[i], s->ez[j], s->z[i], s->z[j]);
+                    for (int k = 0; k < 3; k++)
                         d2 = vbx_ia_add(d2, vbx_ia_sqr(n.d[k]));
-                    }
                     vbx_ia reach = vbx_ia_sqr(vbx_ia_add(ri, vbx_ia_add(Rj, jb->probe)));
                     if (d2.lo > reach.hi)
                         continue; /* the expanded balls do not meet */
-                    n.delta = vbx_ia_sub(Rj, Ri);
+                    n.delta = exact_diff(s->er[i], s->er[j], s->r[i], s->r[j]);
                     n.N = vbx_ia_sub(d2, vbx_ia_sqr(n.delta));
                     if (!(n.N.lo > 0.0)) {
                         int sn, sd = exact_signs(s, i, j, &sn);

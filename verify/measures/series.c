@@ -58,9 +58,38 @@ void vbm_mul(vbm_ser *r, const vbm_ser *f, const vbm_ser *g)
             r->c[VBM_IDX(d - j, j)] = conv(f, g, d - j, j, -1, -1);
 }
 
+/* sum over (k, l) <= (i, j) of f_kl f_(i-k)(j-l), each pair of mirrored
+ * terms computed once and doubled (exact), the middle one (2k = i, 2l = j)
+ * once; skip_end leaves out the pair {(0, 0), (i, j)} (the square root's
+ * unknown). Half the products of conv(f, f, ...). */
+static vbx_ia conv_sym(const vbm_ser *f, int i, int j, int skip_end)
+{
+    vbx_ia s = vbx_ia_point(0.0), mid = vbx_ia_point(0.0);
+    for (int k = 0; 2 * k <= i; k++)
+        for (int l = 0; l <= j; l++) {
+            int k2 = i - k, l2 = j - l;
+            if (k == k2 && l > l2)
+                break; /* the mirror of a pair already counted */
+            if (skip_end && k == 0 && l == 0)
+                continue;
+            vbx_ia x = f->c[VBM_IDX(k, l)], y = f->c[VBM_IDX(k2, l2)];
+            if ((x.lo == 0.0 && x.hi == 0.0) || (y.lo == 0.0 && y.hi == 0.0))
+                continue;
+            if (k == k2 && l == l2)
+                mid = vbx_ia_sqr(x);
+            else
+                s = vbx_ia_add(s, vbx_ia_mul(x, y));
+        }
+    s.lo *= 2.0; /* exact: a power-of-two scaling */
+    s.hi *= 2.0;
+    return vbx_ia_add(s, mid);
+}
+
 void vbm_square(vbm_ser *r, const vbm_ser *f)
 {
-    vbm_mul(r, f, f);
+    for (int d = 0; d <= VBM_ORDER; d++)
+        for (int j = 0; j <= d; j++)
+            r->c[VBM_IDX(d - j, j)] = conv_sym(f, d - j, j, 0);
     r->c[0] = vbx_ia_sqr(f->c[0]);
 }
 
@@ -94,7 +123,7 @@ int vbm_sqrt(vbm_ser *r, const vbm_ser *f)
         for (int j = 0; j <= d; j++) {
             int i = d - j;
             int ij = VBM_IDX(i, j);
-            vbx_ia s = conv(r, r, i, j, 0, ij);
+            vbx_ia s = conv_sym(r, i, j, 1);
             r->c[ij] = vbx_ia_div(vbx_ia_sub(f->c[ij], s), two_r0);
         }
     return 1;

@@ -7,6 +7,12 @@
 #include "vbm_cell.h"
 #include "vbm_series.h"
 
+/* a is exactly [0, 0] (a difference of equal radii). */
+static inline int vbm_ia_is_zero(vbx_ia a)
+{
+    return a.lo == 0.0 && a.hi == 0.0;
+}
+
 /* The axes of a face: the direction is sigma e_w + a e_p + b e_q. */
 typedef struct vbm_axes {
     int w, p, q;
@@ -32,12 +38,28 @@ typedef struct vbm_curve {
     int pos, neg;
 } vbm_curve;
 
+/* The sign of F over the box A x B (s: an enclosure of sqrt(1 + a^2 + b^2)
+ * there): 1 where F > 0 is proven on all of it (`pos` owns it), -1 where
+ * F < 0 is (`neg` owns it), 0 when unproven (cell_patches.c; the pairwise
+ * test and the cut routes share it). */
+int vbm_curve_sign(const vbm_curve *cv, vbx_ia A, vbx_ia B, vbx_ia s);
+
+/* Taylor-model integrals over the box [a0, a1] x [b0, b1] of face `ax`
+ * owned by `owner` alone (-1: the ball): volume, SAS and contact area
+ * (the latter [0, 0] unless owner >= 0 and in->contacts). Returns 0 when
+ * vbm_piece cannot bound an integrand there. */
+int vbm_box_integrate(const vbm_atom_in *in, int owner, const vbm_axes *ax, double a0, double a1,
+                      double b0, double b1, vbx_ia *vol, vbx_ia *sas, vbx_ia *con);
+
 /* Integrates the patch [a0, a1] x [b0, b1] of face `ax` split by the curve
  * into its two single-owner parts, as the region between an edge and the
  * curve b = b*(a) (or a = a*(b)) mapped onto a box: enclosures of the
  * volume, SAS and contact areas of `pos` and `neg` (0 where they own
- * nothing). Returns 0 when the curve does not cross the patch as one
- * monotone graph (then the caller refines). */
+ * nothing). A curve that leaves through the side it is a graph over (it
+ * clips a corner, or crosses the patch twice) is cut there (cut_clipped):
+ * the strips between its exits are integrated as above or, where F has one
+ * sign, whole, and thin slivers around the exits get min..max bounds.
+ * Returns 0 when no route proves the split (then the caller refines). */
 int vbm_cut_integrate(const vbm_atom_in *in, const vbm_axes *ax, const vbm_curve *cv, double a0,
                       double a1, double b0, double b1, vbx_ia *vol, vbx_ia *sas, vbx_ia *con_pos,
                       vbx_ia *con_neg);
