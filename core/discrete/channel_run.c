@@ -119,6 +119,7 @@ static void keep_pore_axis(vbc_channels_config *A, const vbc_frame *F)
     A->pore.have_axis = A->pore.have_through = 1;
     A->pore.found_source = F->axis.source;
     A->pore.found_chains = F->axis.chains;
+    memcpy(A->pore.found_why, F->axis.why, sizeof A->pore.found_why);
 }
 
 /* The pipeline `repeat` times, the per-run mean timings in o->fi. */
@@ -187,6 +188,9 @@ int vbc_run_frame(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index, 
                 vbc_axis_source_name(ps->rejected_source), ps->buried, VBC_PORE_MIN_BURIED);
     else if (rc == VB_OK && A->pore.enabled && !ps->present && first)
         vb_warn(ctx, VB_W_PORE_NOT_FOUND, r->input, 0, "no pore found along any axis candidate");
+    if (rc == VB_OK && first && ps->present && ps->source != VBC_AXIS_GIVEN)
+        vb_warn(ctx, VB_W_PORE_AXIS_FOUND, r->input, 0, "pore axis (%s): %s",
+                vbc_axis_source_name(ps->source), ps->why);
     if (rc == VB_OK)
         keep_pore_axis(A, &o->F);
     if (rc == VB_OK && A->plot)

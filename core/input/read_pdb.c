@@ -43,6 +43,8 @@ static void residue_fields(const char *line, size_t n, vb_atom_info *info)
     k = column(line, n, 23, 26, &s);
     vbi_parse_int(s, k, &info->resseq);
     info->icode = column_char(line, n, 27);
+    k = column(line, n, 73, 76, &s);
+    vbi_copy_field(info->segid, sizeof info->segid, s, k);
 }
 
 /* Offers every lettered atom of the models read (columns 55-60: its
