@@ -74,8 +74,9 @@ static const vbc_opt_spec table[] = {
     {O_REPEAT, "--repeat", NULL, NULL, VBC_OPT_COUNT, NUM(1, 100000), "N", "1",
      "run every frame N times (timings; outputs written once)", VBC_SECT_MAIN},
     {O_AXIS, "--axis", NULL, "axis", VBC_OPT_VEC3, NONE, "X,Y,Z", NULL,
-     "the pore axis (HOLE's cvect); default: the symmetry axis of the chains, else a through "
-     "channel, else a principal axis", VBC_SECT_PORE},
+     "the pore axis (HOLE's cvect); default: the C_n symmetry axis of the chains (a subunit's "
+     "pore when that is closed), else two stacked chains, else a beta-barrel's axis, else a "
+     "through channel, else a principal axis (W810 says which)", VBC_SECT_PORE},
     {O_THROUGH, "--through", NULL, "through", VBC_OPT_VEC3, NONE, "X,Y,Z", NULL,
      "a point in the pore where the sweep starts (HOLE's cpoint)", VBC_SECT_PORE},
     {O_SAMPLE, "--sample", NULL, "sample", VBC_OPT_REAL, NUM(0.01, 5.0), "S", "0.25",
