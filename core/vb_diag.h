@@ -89,7 +89,6 @@
     X(W, 722, TANGENT_INSIDE, 0, "a sphere touches a larger one from inside: a point or segment cell, kept") \
     X(W, 723, TANGENT_INSIDE_COUNT, 0, "count of spheres touching a larger one from inside")             \
     X(W, 735, MODEL_OPEN_AT_END, 0, "the input ends inside a MODEL (no ENDMDL/END): truncated?")         \
-    X(W, 736, RADII_PARTICULAR, 0, "radius file: HOLE rows for particular atom or residue names left out")   \
     X(W, 750, PROGRAM_CACHE_BAD, 0, "a cached OpenCL program cannot be used: rebuilt from source")       \
     X(W, 751, JFA_DEVICE_FAILED, 0, "OpenCL failed mid-run in jfa: the rest runs on the reference")      \
     X(W, 760, DEVICE_FALLBACK, 0, "no usable OpenCL device: vertices on the reference backend")          \
@@ -126,7 +125,9 @@
     X(W, 740, "vertex file without vertex lines",                                                        \
       "verify refuses such a file: E105 (nothing verified is not a success)")                            \
     X(W, 805, "no usable OpenCL GPU: channels try the CPU device",                                       \
-      "one fallback rule for every command: --device gpu means a GPU, else the reference")
+      "one fallback rule for every command: --device gpu means a GPU, else the reference")             \
+    X(W, 736, "radius file: HOLE rows for particular atom or residue names left out",                    \
+      "HOLE's rows are matched per atom and residue name as HOLE matches them")
 
 
 enum vb_diag {

@@ -36,6 +36,7 @@
 #include "vb_diag.h"
 #include "vb_frames.h"
 #include "vb_periodic_verify.h"
+#include "vb_select.h"
 #include "vb_verify_file.h"
 #include "vb_vertex_io.h"
 #include "vbc_frame.h"

@@ -134,7 +134,7 @@ int vbi_read_psf(vb_ctx *ctx, const char *name, const char *buf, size_t len,
          * and the frame source selects (water, hydrogens) afterwards. */
         vb_decimal e[4] = {{0, 0}, {0, 0}, {0, 0}, {0, 0}};
         double d[4] = {0, 0, 0, 0};
-        rc = vbi_radius_for(ctx, opt, name, it.lineno, info.element, &e[3], &d[3],
+        rc = vbi_radius_for(ctx, opt, name, it.lineno, &info, &e[3], &d[3],
                             &dr.unknown_elements);
         if (rc == VB_OK)
             rc = vbi_builder_push(&b, e, d, &info, it.lineno);

@@ -20,6 +20,10 @@
 
 #include "vb_spheres.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct vb_select vb_select;
 
 /* Parses expr. On success *out owns the selection (free with
@@ -36,5 +40,9 @@ void vb_select_free(vb_select *sel);
  * free with vb_spheres_free; exact decimals, lines, box and flags kept).
  * VB_EINPUT_SELECT when expr is malformed or selects no sphere; VB_ENOMEM. */
 int vb_spheres_select(vb_ctx *ctx, const vb_sphere_set *s, const char *expr, vb_sphere_set **out);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif
