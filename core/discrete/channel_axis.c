@@ -254,3 +254,43 @@ int vbc_axis_from_chains(const vb_sphere_set *s, vbc_axis *out)
     snprintf(out->why, sizeof out->why, "normal of the centroids of %d chains of similar size", k);
     return 1;
 }
+
+int vbc_axis_refit(const vb_sphere_set *s, const vbc_axis *first, vbc_axis *out)
+{
+    int ok = 0;
+    switch (first->source) {
+    case VBC_AXIS_SYMMETRY: ok = vbc_axis_symmetry(s, out); break;
+    case VBC_AXIS_CHAINS: ok = vbc_axis_from_chains(s, out); break;
+    case VBC_AXIS_BARREL: ok = vbc_axis_barrel(s, NULL, out); break;
+    case VBC_AXIS_SUBUNIT: {
+        vbc_axis sym, sub[16];
+        if (vbc_axis_symmetry(s, &sym) || vbc_axis_from_chains(s, &sym)) {
+            int n = vbc_axis_subunits(s, &sym, sub, 16);
+            if (first->chains >= 1 && first->chains <= n) {
+                *out = sub[first->chains - 1];
+                ok = 1;
+            }
+        }
+        break;
+    }
+    case VBC_AXIS_PRINCIPAL: {
+        vbc_axis p[3];
+        vbc_axis_principal(s, p);
+        int best = 0;
+        for (int k = 1; k < 3; k++)
+            if (fabs(p[k].u[0] * first->u[0] + p[k].u[1] * first->u[1] + p[k].u[2] * first->u[2]) >
+                fabs(p[best].u[0] * first->u[0] + p[best].u[1] * first->u[1] + p[best].u[2] * first->u[2]))
+                best = k;
+        *out = p[best];
+        ok = 1;
+        break;
+    }
+    default: break;
+    }
+    if (!ok)
+        return 0;
+    if (out->u[0] * first->u[0] + out->u[1] * first->u[1] + out->u[2] * first->u[2] < 0.0)
+        for (int k = 0; k < 3; k++)
+            out->u[k] = -out->u[k];
+    return 1;
+}

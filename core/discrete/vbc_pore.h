@@ -79,6 +79,13 @@ void vbc_eigen3(const double a[3][3], double w[3], double v[3][3]);
 /* Flips u so that its largest component is positive (a stable orientation). */
 void vbc_axis_orient(double u[3]);
 
+/* The axis of the source that found `first` (its source; for a subunit its
+ * chain's rank, for a principal axis the one nearest first's direction)
+ * fitted again on s (a later frame of a trajectory), oriented along
+ * first's direction. Returns 1 with *out filled; 0 for a source that is
+ * not refitted (given, channel) or that s no longer shows. */
+int vbc_axis_refit(const vb_sphere_set *s, const vbc_axis *first, vbc_axis *out);
+
 /* The C_n symmetry axis (core/discrete/channel_symmetry.c): the largest set
  * of n >= 3 chains with the same C-alpha residue sequence (at least
  * VBC_SYM_MIN_CA of them each), ordered around the normal of their

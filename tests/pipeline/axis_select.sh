@@ -62,4 +62,37 @@ set -- $(pore 1af6_B.json)
 [ "$1" = barrel ] || fail "1af6 chain B: axis from '$1', not its barrel"
 run 0 "$out" "$vorball" channels "$d/1crn.pdb" --device ref -o 1crn.csv
 expect_line "$out" "W808"
+
+# --axis-refit: two models of 1chb, the second turned 16 degrees about x and
+# moved 1.5 A along x. Refitted, the second frame's axis is the first's
+# turned the same way; with --axis fixed (the default) it stays the first's.
+python3 - "$d/1chb_hole2.pdb" chb2.pdb << 'EOF2' || fail "cannot write the turned 1chb"
+import math, sys
+atoms = [l for l in open(sys.argv[1]) if l.startswith(("ATOM", "HETATM"))]
+with open(sys.argv[2], "w") as f:
+    for m, deg in enumerate((0, 16)):
+        c, s = math.cos(math.radians(deg)), math.sin(math.radians(deg))
+        f.write("MODEL     %4d\n" % (m + 1))
+        for l in atoms:
+            x, y, z = float(l[30:38]), float(l[38:46]), float(l[46:54])
+            f.write(l[:30] + "%8.3f%8.3f%8.3f" % (x + 1.5 * m, c * y - s * z, s * y + c * z) + l[54:])
+        f.write("ENDMDL\n")
+    f.write("END\n")
+EOF2
+axes() { # JSON -> the two frames' axes and bottlenecks, and the first's turned by 16 degrees
+    python3 -c "import json, math, sys
+f = json.load(open(sys.argv[1]))['frames']
+a, b = f[0]['pore']['axis'], f[1]['pore']['axis']
+c, s = math.cos(math.radians(16)), math.sin(math.radians(16))
+t = [a[0], c * a[1] - s * a[2], s * a[1] + c * a[2]]
+print(max(abs(x - y) for x, y in zip(b, t)), max(abs(x - y) for x, y in zip(b, a)),
+      f[0]['channels'][0]['bottleneck_A'], f[1]['channels'][0]['bottleneck_A'])" "$1"
+}
+run 0 "$out" "$vorball" channels chb2.pdb --device ref --axis-refit --json -o refit.json
+set -- $(axes refit.json)
+awk -v e="$1" -v r0="$3" -v r1="$4" 'BEGIN { exit !(e < 1e-3 && r0 - r1 < 0.01 && r1 - r0 < 0.01) }' ||
+    fail "--axis-refit: the second frame's axis is $1 off the turned axis (bottlenecks $3, $4)"
+run 0 "$out" "$vorball" channels chb2.pdb --device ref --axis fixed --json -o fixed.json
+set -- $(axes fixed.json)
+awk -v e="$2" 'BEGIN { exit !(e == 0) }' || fail "--axis fixed: the second frame's axis moved"
 exit 0
