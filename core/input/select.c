@@ -210,26 +210,24 @@ static sel_node *parse_factor(parser *P)
     return NULL;
 }
 
-static sel_node *parse_and(parser *P)
+/* or-terms of and-factors: level 0 parses "or" over level 1, level 1
+ * "and" over factors (so and binds tighter). */
+static sel_node *parse_binary(parser *P, int level)
 {
-    sel_node *a = parse_factor(P);
-    while (a && is(P, "and")) {
+    const char *op = level == 0 ? "or" : "and";
+    int kind = level == 0 ? N_OR : N_AND;
+    sel_node *a = level == 0 ? parse_binary(P, 1) : parse_factor(P);
+    while (a && is(P, op)) {
         next(P);
-        sel_node *b = parse_factor(P);
-        a = b ? node(P, N_AND, a, b) : (node_free(a), NULL);
+        sel_node *b = level == 0 ? parse_binary(P, 1) : parse_factor(P);
+        a = b ? node(P, kind, a, b) : (node_free(a), NULL);
     }
     return a;
 }
 
 static sel_node *parse_or(parser *P)
 {
-    sel_node *a = parse_and(P);
-    while (a && is(P, "or")) {
-        next(P);
-        sel_node *b = parse_and(P);
-        a = b ? node(P, N_OR, a, b) : (node_free(a), NULL);
-    }
-    return a;
+    return parse_binary(P, 0);
 }
 
 int vb_select_parse(vb_ctx *ctx, const char *expr, vb_select **out)
@@ -340,44 +338,32 @@ int vb_select_match(const vb_select *sel, const vb_atom_info *a)
     return match(sel->root, a);
 }
 
-int vb_spheres_select(vb_ctx *ctx, const vb_sphere_set *s, const char *expr, vb_sphere_set **out)
+int vb_spheres_subset(vb_ctx *ctx, const vb_sphere_set *s, const uint8_t *keep, vb_sphere_set **out)
 {
     *out = NULL;
-    vb_select *sel;
-    int rc = vb_select_parse(ctx, expr, &sel);
-    if (rc != VB_OK)
-        return rc;
-    size_t keep = 0;
+    size_t n = 0;
     for (size_t i = 0; i < s->n; i++)
-        keep += vb_select_match(sel, s->info ? &s->info[i] : NULL);
-    if (keep == 0) {
-        vb_select_free(sel);
-        return vb_error(ctx, VB_EINPUT_SELECT, s->source, 0,
-                        "--select \"%s\" selects none of the %zu spheres%s", expr, s->n,
-                        s->info ? "" : " (the input has no atom records)");
-    }
+        n += keep[i] != 0;
     vb_sphere_set *t;
-    rc = vb_spheres_new(ctx, s->source, keep, s->info != NULL, &t);
+    int rc = vb_spheres_new(ctx, s->source, n, s->info != NULL, &t);
     int exact = s->ex != NULL;
     if (rc == VB_OK && exact) {
-        t->ex = malloc(keep * sizeof *t->ex);
-        t->ey = malloc(keep * sizeof *t->ey);
-        t->ez = malloc(keep * sizeof *t->ez);
-        t->er = malloc(keep * sizeof *t->er);
+        t->ex = malloc((n ? n : 1) * sizeof *t->ex);
+        t->ey = malloc((n ? n : 1) * sizeof *t->ey);
+        t->ez = malloc((n ? n : 1) * sizeof *t->ez);
+        t->er = malloc((n ? n : 1) * sizeof *t->er);
     }
     if (rc == VB_OK && s->box && (t->box = malloc(sizeof *t->box)))
         *t->box = *s->box;
     if (rc == VB_OK && ((exact && (!t->ex || !t->ey || !t->ez || !t->er)) || (s->box && !t->box))) {
         vb_spheres_free(t);
-        rc = vb_error(ctx, VB_ENOMEM, s->source, 0, "out of memory selecting %zu spheres", keep);
+        rc = vb_error(ctx, VB_ENOMEM, s->source, 0, "out of memory for %zu spheres", n);
     }
-    if (rc != VB_OK) {
-        vb_select_free(sel);
+    if (rc != VB_OK)
         return rc;
-    }
     size_t k = 0;
     for (size_t i = 0; i < s->n; i++) {
-        if (!vb_select_match(sel, s->info ? &s->info[i] : NULL))
+        if (!keep[i])
             continue;
         t->x[k] = s->x[i];
         t->y[k] = s->y[i];
@@ -395,7 +381,32 @@ int vb_spheres_select(vb_ctx *ctx, const vb_sphere_set *s, const char *expr, vb_
         k++;
     }
     t->allows_zero_radius = s->allows_zero_radius;
-    vb_select_free(sel);
     *out = t;
     return VB_OK;
+}
+
+int vb_spheres_select(vb_ctx *ctx, const vb_sphere_set *s, const char *expr, vb_sphere_set **out)
+{
+    *out = NULL;
+    vb_select *sel;
+    int rc = vb_select_parse(ctx, expr, &sel);
+    if (rc != VB_OK)
+        return rc;
+    uint8_t *keep = malloc(s->n ? s->n : 1);
+    if (!keep) {
+        vb_select_free(sel);
+        return vb_error(ctx, VB_ENOMEM, s->source, 0, "out of memory selecting spheres");
+    }
+    size_t n = 0;
+    for (size_t i = 0; i < s->n; i++)
+        n += keep[i] = (uint8_t)vb_select_match(sel, s->info ? &s->info[i] : NULL);
+    vb_select_free(sel);
+    if (n == 0)
+        rc = vb_error(ctx, VB_EINPUT_SELECT, s->source, 0,
+                      "--select \"%s\" selects none of the %zu spheres%s", expr, s->n,
+                      s->info ? "" : " (the input has no atom records)");
+    else
+        rc = vb_spheres_subset(ctx, s, keep, out);
+    free(keep);
+    return rc;
 }

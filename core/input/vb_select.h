@@ -36,6 +36,11 @@ int vb_select_match(const vb_select *sel, const vb_atom_info *a);
 
 void vb_select_free(vb_select *sel);
 
+/* The spheres i of s with keep[i] != 0, in their order, as a new set (*out,
+ * free with vb_spheres_free; exact decimals, lines, atom records and box
+ * kept). VB_ENOMEM. */
+int vb_spheres_subset(vb_ctx *ctx, const vb_sphere_set *s, const uint8_t *keep, vb_sphere_set **out);
+
 /* The spheres of s that expr selects, in their order, as a new set (*out,
  * free with vb_spheres_free; exact decimals, lines, box and flags kept).
  * VB_EINPUT_SELECT when expr is malformed or selects no sphere; VB_ENOMEM. */
