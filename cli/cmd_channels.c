@@ -184,12 +184,16 @@ static int write_stages(vb_ctx *ctx, const ch_args *A, vbc_pipe *pipe, const vb_
  * first frame of the selection (volume, picture). Under MPI the options
  * that need every frame in one process are refused before. */
 static int do_frame(vb_ctx *ctx, ch_args *A, vbc_pipe *pipe, long index, int model, int first,
-                    const vb_sphere_set *s0, sinks *S)
+                    const vb_sphere_set *s0, double t_read, double cpu_read, sinks *S)
 {
     vbc_run_out o;
+    double t_run = vb_now();
     int rc = vbc_run_frame(ctx, &S->run, s0, index, model, first, &o);
     if (rc != VB_OK)
         return rc;
+    o.fi.ms_read = 1e3 * (t_run - t_read); /* the JSON's clocks: from the reading on */
+    o.fi.t_start = t_read;
+    o.fi.cpu_start = cpu_read;
     const vbc_channels_config *c = &A->c;
     const vbc_result *res = &o.F.result;
     FILE *table = vb_cli_rounds_stream(S->rounds, SINK_TABLE);
@@ -242,6 +246,7 @@ static int run_frames(vb_ctx *ctx, ch_args *A, vbc_pipe *pipe, vb_frame_source *
                 break;
             }
             vb_sphere_set *s = NULL;
+            double t_read = vb_now(), cpu_read = vbc_cpu_now();
             int model, quiet = vb_world_quiet(ctx);
             frc = vb_frame_source_next(ctx, F, &s, &model);
             vb_world_loud(ctx, quiet);
@@ -253,7 +258,7 @@ static int run_frames(vb_ctx *ctx, ch_args *A, vbc_pipe *pipe, vb_frame_source *
                               vbc_pipe_device_name(pipe));
             if (index >= A->c.f0 && (index - A->c.f0) % A->c.fstep == 0) {
                 if (vb_cli_rounds_mine(j))
-                    frc = do_frame(ctx, A, pipe, index, model, j == 0, s, S);
+                    frc = do_frame(ctx, A, pipe, index, model, j == 0, s, t_read, cpu_read, S);
                 else if (j == 0 && A->c.pore.enabled && !A->c.pore.have_axis)
                     frc = vbc_run_axis(ctx, &S->run, s, index);
                 j++;

@@ -57,6 +57,9 @@ typedef struct vb_device_layer {
     int (*cover_open)(vb_ctx *ctx, vb_device *dev, struct vb_cover_backend **out);
     int (*jfa_open)(vb_ctx *ctx, vb_device *dev, struct vbj_backend **out);
     int (*channels_open)(vb_ctx *ctx, vb_device *dev, int jfa_variant, struct vbc_engine **out);
+    /* Whether the host shows a GPU (a driver's device node; nothing opened,
+     * no OpenCL call): the hint of --device auto's crossover. */
+    int (*gpu_present)(void);
 } vb_device_layer;
 
 /* Opens the engine of one stage: on the opened device dev, or its plain-C

@@ -25,4 +25,5 @@ const vb_device_layer vbg_device_layer = {
     vbg_cover_open,
     vbg_jfa_open,
     open_channels,
+    vbg_runtime_gpu_present,
 };

@@ -2,6 +2,7 @@
 #include "vbg_runtime.h"
 #include "vb_diag.h"
 
+#include <dirent.h>
 #include <errno.h>
 #include <stdatomic.h>
 #include <stdint.h>
@@ -118,6 +119,21 @@ static int device_index(vb_ctx *ctx, unsigned *out)
                         "VORBALL_DEVICE_INDEX='%s': a device number from 0 to 65535 is wanted", v);
     *out = (unsigned)k;
     return VB_OK;
+}
+
+int vbg_runtime_gpu_present(void)
+{
+    DIR *d = opendir("/dev");
+    if (!d)
+        return 0;
+    int found = 0;
+    for (struct dirent *e; !found && (e = readdir(d));) {
+        const char *n = e->d_name;
+        found = strcmp(n, "kfd") == 0 ||
+                (strncmp(n, "nvidia", 6) == 0 && n[6] >= '0' && n[6] <= '9');
+    }
+    closedir(d);
+    return found;
 }
 
 int vbg_runtime_open(vb_ctx *ctx, vb_device_kind kind, vbg_runtime **out)

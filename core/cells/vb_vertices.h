@@ -112,7 +112,28 @@ typedef struct vb_vertices_config {
     vb_device_kind device;       /* default VB_DEVICE_AUTO (0) */
     const char *proposer;        /* vb_proposers name; NULL: the default */
     vb_sampler_options sampler;  /* sampling options, threads, progress */
+    size_t host_below;           /* VB_DEVICE_AUTO with the cover on fewer spheres than
+                                  * this runs on host threads where the device would
+                                  * be a GPU (vb_vertices_device); 0: the
+                                  * environment's VORBALL_HOST_BELOW, else
+                                  * VB_HOST_BELOW_DEFAULT; 1: always the device */
 } vb_vertices_config;
+
+/* The crossover of `--device auto` on a GPU machine (issue #30): below it
+ * the whole process on host threads beat the GPU's set-up, measured on an
+ * H100 with 16 host cores (papers/gpu-voronoi-cells-of-spheres/results/
+ * crossover_h100.tsv: 10,000 spheres 0.294 s on host threads against
+ * 0.477 s on the GPU; 26,430 spheres 0.648 against 0.647 s). */
+#define VB_HOST_BELOW_DEFAULT 20000
+
+/* The device kind a run of cfg on set uses: cfg->device, except that
+ * VB_DEVICE_AUTO with the cover proposer on fewer spheres than the crossover
+ * (cfg->host_below, see there) is VB_DEVICE_REF, no device opened, when the
+ * host shows a GPU (layer->gpu_present). Without a GPU, auto
+ * stays the CPU device (PoCL), the project's embedded default. The output
+ * bytes never depend on it. */
+vb_device_kind vb_vertices_device(const vb_sphere_set *set, const vb_vertices_config *cfg,
+                                  const vb_device_layer *layer);
 
 typedef struct vb_vertices_result {
     vb_sampler_result sampler;  /* what the proposer found, and its counters */

@@ -59,6 +59,23 @@ static int open_proposer(vb_ctx *ctx, const vb_device_layer *layer, vb_device *d
     return p->open(ctx, layer, dev, engine);
 }
 
+vb_device_kind vb_vertices_device(const vb_sphere_set *set, const vb_vertices_config *cfg,
+                                  const vb_device_layer *layer)
+{
+    if (cfg->device != VB_DEVICE_AUTO || vb_proposer_find(cfg->proposer) != &vb_proposer_cover)
+        return cfg->device;
+    size_t below = cfg->host_below;
+    if (below == 0) {
+        const char *env = getenv("VORBALL_HOST_BELOW");
+        char *end = NULL;
+        unsigned long long v = env && *env ? strtoull(env, &end, 10) : 0;
+        below = env && *env && end && *end == '\0' && v > 0 ? (size_t)v : VB_HOST_BELOW_DEFAULT;
+    }
+    if (set->n >= below || !layer || !layer->gpu_present || !layer->gpu_present())
+        return VB_DEVICE_AUTO;
+    return VB_DEVICE_REF;
+}
+
 static vb_engine_request request_of(const vb_vertices_config *cfg, const vb_proposer *p)
 {
     vb_engine_request req = {cfg->device, open_proposer, (void *)p, VB_W_DEVICE_FALLBACK,
@@ -397,6 +414,9 @@ int vb_vertices_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertices_con
     const vb_proposer *p = proposer_of(ctx, cfg);
     if (!p)
         return VB_EMISUSE;
+    vb_vertices_config chosen = *cfg;
+    chosen.device = vb_vertices_device(set, cfg, be->devices);
+    cfg = &chosen;
     int mrc = vb_vertices_memory_check(ctx, set, cfg, 0);
     if (mrc != VB_OK)
         return mrc;

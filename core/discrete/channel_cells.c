@@ -100,9 +100,11 @@ const vb_sphere_set *vbc_cells_spheres(const vbc_cells *c)
     return c->s;
 }
 
-/* Visits the cells at Chebyshev distance exactly `ring` from cell q0. */
-static void visit_ring(const vbc_cells *c, const int q0[3], int ring,
-                       void (*fn)(const vbc_cells *, int32_t, void *), void *user)
+/* Visits the atoms of the cells at Chebyshev distance exactly `ring` from
+ * cell q0; fn returns nonzero to stop the walk, and then so does this
+ * (returning 1). */
+static int walk_ring(const vbc_cells *c, const int q0[3], int ring,
+                     int (*fn)(const vbc_cells *, int32_t, void *), void *user)
 {
     for (int dz = -ring; dz <= ring; dz++) {
         int z = q0[2] + dz;
@@ -119,10 +121,12 @@ static void visit_ring(const vbc_cells *c, const int q0[3], int ring,
                     continue;
                 size_t q = (size_t)x + (size_t)c->dim[0] * ((size_t)y + (size_t)c->dim[1] * (size_t)z);
                 for (size_t t = c->start[q]; t < c->start[q + 1]; t++)
-                    fn(c, c->idx[t], user);
+                    if (fn(c, c->idx[t], user))
+                        return 1;
             }
         }
     }
+    return 0;
 }
 
 typedef struct {
@@ -130,19 +134,20 @@ typedef struct {
     int32_t atom;
 } nearest_state;
 
-static void nearest_visit(const vbc_cells *c, int32_t a, void *user)
+static int nearest_visit(const vbc_cells *c, int32_t a, void *user)
 {
     nearest_state *st = user;
     double dx = st->p[0] - c->s->x[a], dy = st->p[1] - c->s->y[a], dz = st->p[2] - c->s->z[a];
     double d2 = dx * dx + dy * dy + dz * dz, reach = st->best + c->s->r[a];
     /* Skip the square root when the surface is certainly farther than the best. */
     if (st->atom >= 0 && reach >= 0.0 && d2 > reach * reach * (1.0 + 1e-12))
-        return;
+        return 0;
     double d = sqrt(d2) - c->s->r[a];
     if (st->atom < 0 || d < st->best || (d == st->best && a < st->atom)) {
         st->best = d;
         st->atom = a;
     }
+    return 0;
 }
 
 /* Distance from p to the box of cells within `ring` of q0: atoms farther out
@@ -171,7 +176,7 @@ double vbc_cells_clearance(const vbc_cells *c, const double p[3], int32_t *atom)
     nearest_state st = {{p[0], p[1], p[2]}, 0.0, -1};
     int q0[3] = {cell_coord(c, 0, p[0]), cell_coord(c, 1, p[1]), cell_coord(c, 2, p[2])};
     for (int ring = 0;; ring++) {
-        visit_ring(c, q0, ring, nearest_visit, &st);
+        walk_ring(c, q0, ring, nearest_visit, &st);
         if ((st.atom >= 0 && st.best <= ring_reach(c, p, q0, ring) - c->rmax) ||
             ring_covers_all(c, q0, ring))
             break;
@@ -186,7 +191,7 @@ typedef struct {
     void *user;
 } within_state;
 
-static void within_visit(const vbc_cells *c, int32_t a, void *user)
+static int within_visit(const vbc_cells *c, int32_t a, void *user)
 {
     within_state *st = user;
     double dx = st->p[0] - c->s->x[a], dy = st->p[1] - c->s->y[a], dz = st->p[2] - c->s->z[a];
@@ -195,9 +200,10 @@ static void within_visit(const vbc_cells *c, int32_t a, void *user)
      * margin 1e-12 dwarfs the rounding of the test below for reach >= 0, so
      * the same atoms pass as without this line). */
     if (st->reach >= 0.0 && d2 > lim * lim * (1.0 + 1e-12))
-        return;
+        return 0;
     if (sqrt(d2) - c->s->r[a] <= st->reach)
         st->fn(a, st->user);
+    return 0;
 }
 
 void vbc_cells_within(const vbc_cells *c, const double p[3], double reach,
@@ -206,8 +212,55 @@ void vbc_cells_within(const vbc_cells *c, const double p[3], double reach,
     within_state st = {{p[0], p[1], p[2]}, reach, fn, user};
     int q0[3] = {cell_coord(c, 0, p[0]), cell_coord(c, 1, p[1]), cell_coord(c, 2, p[2])};
     for (int ring = 0;; ring++) {
-        visit_ring(c, q0, ring, within_visit, &st);
+        walk_ring(c, q0, ring, within_visit, &st);
         if (ring_reach(c, p, q0, ring) - c->rmax > reach || ring_covers_all(c, q0, ring))
             break;
     }
+}
+
+typedef struct {
+    double p[3], reach, low;
+    int32_t found;
+} any_state;
+
+static int any_visit(const vbc_cells *c, int32_t a, void *user)
+{
+    any_state *st = user;
+    double dx = st->p[0] - c->s->x[a], dy = st->p[1] - c->s->y[a], dz = st->p[2] - c->s->z[a];
+    /* The test of within_visit without its shortcut (which lets the same
+     * atoms pass): the same verdict per atom. */
+    double d = sqrt(dx * dx + dy * dy + dz * dz) - c->s->r[a];
+    if (d <= st->reach) {
+        st->found = a;
+        return 1;
+    }
+    st->low = fmin(st->low, d);
+    return 0;
+}
+
+int vbc_cells_any_within(const vbc_cells *c, const double p[3], double reach, int32_t *hint,
+                         double *low)
+{
+    any_state st = {{p[0], p[1], p[2]}, reach, INFINITY, -1};
+    *low = -INFINITY;
+    if (hint && *hint >= 0 && (size_t)*hint < c->s->n && any_visit(c, *hint, &st))
+        return 1;
+    int q0[3] = {cell_coord(c, 0, p[0]), cell_coord(c, 1, p[1]), cell_coord(c, 2, p[2])};
+    for (int ring = 0;; ring++) {
+        if (walk_ring(c, q0, ring, any_visit, &st)) {
+            if (hint)
+                *hint = st.found;
+            return 1;
+        }
+        if (ring_covers_all(c, q0, ring))
+            break;
+        /* Atoms beyond the cells walked have their surface at least this far. */
+        double out = ring_reach(c, p, q0, ring) - c->rmax;
+        if (out > reach) {
+            st.low = fmin(st.low, out);
+            break;
+        }
+    }
+    *low = st.low;
+    return 0;
 }

@@ -1,9 +1,18 @@
 /* One frame of the channel analysis: pack, pipe, analyse (vbc_frame.h). */
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "vb_parallel.h"
 #include "vbc_frame.h"
+
+double vbc_cpu_now(void)
+{
+    struct timespec ts;
+    if (clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts) != 0)
+        return 0.0;
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
 
 void vbc_frame_free(vbc_frame *f)
 {
@@ -21,6 +30,7 @@ int vbc_frame_run(vb_ctx *ctx, vbc_pipe *pipe, const vbc_grid *g, const vb_spher
     memset(&f->result, 0, sizeof f->result);
     f->grid = *g;
     f->ms_masks = f->ms_analysis = f->ms_pore = 0.0;
+    memset(&f->pore_ms, 0, sizeof f->pore_ms);
     memset(&f->axis, 0, sizeof f->axis);
     const vbc_pore_request *req = opt->pore && opt->pore->enabled ? opt->pore : NULL;
     if (req)
@@ -41,7 +51,8 @@ int vbc_frame_run(vb_ctx *ctx, vbc_pipe *pipe, const vbc_grid *g, const vb_spher
                                &f->result);
     double t2 = vb_now();
     if (rc == VB_OK)
-        rc = vbc_pore_stage(ctx, g, f->out.flags, s, req, opt->lining_tol, &f->result, &f->axis);
+        rc = vbc_pore_stage(ctx, g, f->out.flags, s, req, opt->lining_tol, &f->result, &f->axis,
+                            &f->pore_ms);
     double t3 = vb_now();
     f->ms_masks = 1e3 * (t1 - t0);
     f->ms_analysis = 1e3 * (t2 - t1);

@@ -1,9 +1,98 @@
 /* The plain-C reference of the mask stage (Algorithm 2, steps 2-7), built from
  * the same per-voxel functions as gpu/channels.cl. */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "vbc_channel.h"
+
+/* The ray bounds of every axis ray (vbc_ray_scan's first and last hit) in
+ * one pass over the atomic mask in memory order: along x, y and z the index
+ * grows with the pass, so the first hit is the first seen and the last the
+ * last seen, as the per-ray scans find them, without their strided reads. */
+static void ray_bounds(const uint8_t *am, int nx, int ny, int nz, int *rb)
+{
+    int *ry = rb + vbc_rb_y(nx, ny, nz), *rz = rb + vbc_rb_z(nx, ny, nz);
+    for (int s = 0; s < ny * nz; s++) {
+        rb[2 * s] = nx;
+        rb[2 * s + 1] = -1;
+    }
+    for (int s = 0; s < nx * nz; s++) {
+        ry[2 * s] = ny;
+        ry[2 * s + 1] = -1;
+    }
+    for (int s = 0; s < nx * ny; s++) {
+        rz[2 * s] = nz;
+        rz[2 * s + 1] = -1;
+    }
+    for (int k = 0; k < nz; k++)
+        for (int j = 0; j < ny; j++) {
+            const uint8_t *row = am + (size_t)nx * ((size_t)j + (size_t)ny * (size_t)k);
+            int *x = rb + 2 * (j + ny * k);
+            for (int i = 0; i < nx; i++) {
+                /* Eight voxels at once where none is atomic. */
+                if ((i & 7) == 0 && i + 8 <= nx) {
+                    uint64_t w;
+                    memcpy(&w, row + i, sizeof w);
+                    if ((w & 0x0101010101010101ull) == 0) {
+                        i += 7;
+                        continue;
+                    }
+                }
+                if (!(row[i] & VBC_F_ATOMIC))
+                    continue;
+                if (x[0] == nx)
+                    x[0] = i;
+                x[1] = i;
+                int *y = ry + 2 * (i + nx * k), *z = rz + 2 * (i + nx * j);
+                if (y[0] == ny)
+                    y[0] = j;
+                y[1] = j;
+                if (z[0] == nz)
+                    z[0] = k;
+                z[1] = k;
+            }
+        }
+}
+
+/* The voxels of row (j,k) in [i0, i1) whose centres vbc_ball_contains puts
+ * in ball p: none (returns 0), or the run lo..hi (returns 1). They are one
+ * run: along the row dx = (i + 0.5) - x falls and then grows in magnitude,
+ * and each rounded step of the test (the difference, the squares, the
+ * sums) keeps that order, so the ball's float test holds on an interval of
+ * i. The estimate from the square root is only a start: every end is
+ * settled by the test itself, so the run is exactly the voxels the test
+ * takes. */
+static int ball_row(const float *p, int i0, int i1, int j, int k, int *lo, int *hi)
+{
+    if (i0 >= i1)
+        return 0;
+    /* The voxel nearest the centre in the range: the run holds it when the
+     * row meets the ball at all. */
+    int c = (int)floorf(p[0] - 0.5f);
+    c = c < i0 ? i0 : c >= i1 ? i1 - 1 : c;
+    if (c + 1 < i1 && !vbc_ball_contains(p[0], p[1], p[2], p[3], c, j, k))
+        c++;
+    if (!vbc_ball_contains(p[0], p[1], p[2], p[3], c, j, k))
+        return 0;
+    double dy = (double)j + 0.5 - p[1], dz = (double)k + 0.5 - p[2];
+    double rem = (double)p[3] * p[3] - dy * dy - dz * dz;
+    double w = rem > 0.0 ? sqrt(rem) : 0.0;
+    int l = (int)floor(p[0] - 0.5 - w), r = (int)ceil(p[0] - 0.5 + w);
+    l = l < i0 ? i0 : l > c ? c : l;
+    r = r >= i1 ? i1 - 1 : r < c ? c : r;
+    while (l > i0 && vbc_ball_contains(p[0], p[1], p[2], p[3], l - 1, j, k))
+        l--;
+    while (!vbc_ball_contains(p[0], p[1], p[2], p[3], l, j, k))
+        l++;
+    while (r + 1 < i1 && vbc_ball_contains(p[0], p[1], p[2], p[3], r + 1, j, k))
+        r++;
+    while (!vbc_ball_contains(p[0], p[1], p[2], p[3], r, j, k))
+        r--;
+    *lo = l;
+    *hi = r;
+    return 1;
+}
 
 void vbc_masks_ref(const vbc_grid *g, const float *atoms4, size_t natoms, const int32_t *labels,
                    int min_labels, int *rb, uint8_t *flags)
@@ -12,30 +101,40 @@ void vbc_masks_ref(const vbc_grid *g, const float *atoms4, size_t natoms, const 
     memset(flags, 0, vbc_grid_voxels(g));
     for (size_t a = 0; a < natoms; a++) {
         const float *p = atoms4 + 4 * a;
-        int i1 = vbc_box_hi(p[0], p[3], nx), j1 = vbc_box_hi(p[1], p[3], ny);
-        int k1 = vbc_box_hi(p[2], p[3], nz);
+        int i0 = vbc_box_lo(p[0], p[3]), i1 = vbc_box_hi(p[0], p[3], nx);
+        int j1 = vbc_box_hi(p[1], p[3], ny), k1 = vbc_box_hi(p[2], p[3], nz);
         for (int k = vbc_box_lo(p[2], p[3]); k < k1; k++)
-            for (int j = vbc_box_lo(p[1], p[3]); j < j1; j++)
-                for (int i = vbc_box_lo(p[0], p[3]); i < i1; i++)
-                    if (vbc_ball_contains(p[0], p[1], p[2], p[3], i, j, k))
-                        flags[i + (size_t)nx * (j + (size_t)ny * k)] = VBC_F_ATOMIC;
+            for (int j = vbc_box_lo(p[1], p[3]); j < j1; j++) {
+                int lo, hi;
+                if (ball_row(p, i0, i1, j, k, &lo, &hi))
+                    memset(flags + (size_t)nx * (j + (size_t)ny * k) + lo, VBC_F_ATOMIC,
+                           (size_t)(hi - lo + 1));
+            }
     }
-    for (int b = 0; b < nz; b++)
-        for (int a = 0; a < ny; a++)
-            vbc_ray_scan(flags, nx, ny, nz, 0, a, b, rb);
-    for (int b = 0; b < nz; b++)
-        for (int a = 0; a < nx; a++)
-            vbc_ray_scan(flags, nx, ny, nz, 1, a, b, rb);
-    for (int b = 0; b < ny; b++)
-        for (int a = 0; a < nx; a++)
-            vbc_ray_scan(flags, nx, ny, nz, 2, a, b, rb);
-    /* The classification reads only the atomic bit of neighbours' flags, which
-     * the pass below never changes, so updating in place is safe. */
+    ray_bounds(flags, nx, ny, nz, rb);
+    /* The classification reads only the voxel's own flag byte (its atomic
+     * bit), so updating in place is safe. A voxel inside the grid whose six
+     * face neighbours share its label is no Voronoi edge, hence no channel:
+     * its byte is the atomic, molecular and interior bits alone (what
+     * vbc_classify gives it), without the label count. */
+    size_t sy = (size_t)nx, sz = (size_t)nx * (size_t)ny;
     for (int k = 0; k < nz; k++)
         for (int j = 0; j < ny; j++)
-            for (int i = 0; i < nx; i++)
-                flags[i + (size_t)nx * (j + (size_t)ny * k)] =
-                    (uint8_t)vbc_classify(labels, flags, rb, nx, ny, nz, min_labels, i, j, k);
+            for (int i = 0; i < nx; i++) {
+                size_t v = (size_t)i + sy * ((size_t)j + (size_t)ny * (size_t)k);
+                if (min_labels > 1 && i > 0 && j > 0 && k > 0 && i + 1 < nx && j + 1 < ny && k + 1 < nz) {
+                    int32_t l = labels[v];
+                    if (labels[v - 1] == l && labels[v + 1] == l && labels[v - sy] == l &&
+                        labels[v + sy] == l && labels[v - sz] == l && labels[v + sz] == l) {
+                        unsigned f = flags[v] & VBC_F_ATOMIC;
+                        if (vbc_molecular(rb, nx, ny, nz, i, j, k))
+                            f |= f ? VBC_F_MOLECULAR : VBC_F_MOLECULAR | VBC_F_INTERIOR;
+                        flags[v] = (uint8_t)f;
+                        continue;
+                    }
+                }
+                flags[v] = (uint8_t)vbc_classify(labels, flags, rb, nx, ny, nz, min_labels, i, j, k);
+            }
 }
 
 int vbc_flags_compact(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, uint32_t **out,

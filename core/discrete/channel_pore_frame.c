@@ -480,24 +480,34 @@ void vbc_refine_bottlenecks(vbc_result *res, const vbc_cells *cells, double h)
 
 int vbc_pore_stage(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const vb_sphere_set *s,
                    const vbc_pore_request *req, double lining_tol, vbc_result *res,
-                   vbc_axis *found)
+                   vbc_axis *found, vbc_pore_ms *ms)
 {
+    vbc_pore_ms t = {0.0, 0.0, 0.0, 0.0, 0.0};
+    double t0 = vb_now();
     vbc_cells *cells = NULL;
     int rc = vbc_cells_build(ctx, s, 3.0, &cells);
     if (rc != VB_OK)
         return rc;
+    double t1 = vb_now();
+    t.cells = 1e3 * (t1 - t0);
     vbc_refine_bottlenecks(res, cells, g->h);
+    t0 = vb_now();
+    t.refine = 1e3 * (t0 - t1);
     if (found)
         memset(found, 0, sizeof *found);
     if (req && req->enabled) {
         vbc_pore p;
         rc = vbc_pore_find(ctx, g, flags, cells, s, res, req, &p);
+        t1 = vb_now();
+        t.sweep = 1e3 * (t1 - t0);
         /* A path along an axis the user gave is reported as it is; a found
          * one only when it is a pore (the verdict, vbc_pore.h). */
         vbc_pore_verdict v = {0, 0.0, 0, 0, 1};
         int judge = !(req->have_axis && !req->found_source);
         if (rc == VB_OK && p.n > 0 && judge && vbc_pore_judge(cells, &p, &v) != 0)
             rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "pore verdict");
+        t0 = vb_now();
+        t.verdict = 1e3 * (t0 - t1);
         if (rc == VB_OK && p.n > 0 && v.is_pore) {
             rc = vbc_result_add_pore(ctx, res, &p, cells, lining_tol);
             if (found)
@@ -513,5 +523,8 @@ int vbc_pore_stage(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const v
     if (rc == VB_OK)
         vbc_rank(res);
     vbc_cells_free(cells);
+    t.lining = 1e3 * (vb_now() - t0);
+    if (ms)
+        *ms = t;
     return rc;
 }

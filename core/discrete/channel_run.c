@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "vb_diag.h"
+#include "vb_parallel.h"
 #include "vbc_run.h"
 
 void vbc_run_init(vbc_run *r, vbc_channels_config *cfg, vbc_pipe *pipe, const char *input)
@@ -171,6 +172,11 @@ static int frame_repeat(vb_ctx *ctx, vbc_run *r, unsigned want, vbc_run_out *o)
         fi->ms_masks += o->F.out.ms_masks;
         fi->ms_analysis += o->F.ms_analysis;
         fi->ms_pore += o->F.ms_pore;
+        fi->ms_cells += o->F.pore_ms.cells;
+        fi->ms_refine += o->F.pore_ms.refine;
+        fi->ms_sweep += o->F.pore_ms.sweep;
+        fi->ms_verdict += o->F.pore_ms.verdict;
+        fi->ms_lining += o->F.pore_ms.lining;
         fi->ms_total += o->F.ms_masks + o->F.ms_analysis + o->F.ms_pore;
         r->sum_masks += o->F.ms_masks;
         r->sum_total += o->F.ms_masks + o->F.ms_analysis + o->F.ms_pore;
@@ -181,6 +187,11 @@ static int frame_repeat(vb_ctx *ctx, vbc_run *r, unsigned want, vbc_run_out *o)
     fi->ms_masks *= inv;
     fi->ms_analysis *= inv;
     fi->ms_pore *= inv;
+    fi->ms_cells *= inv;
+    fi->ms_refine *= inv;
+    fi->ms_sweep *= inv;
+    fi->ms_verdict *= inv;
+    fi->ms_lining *= inv;
     fi->ms_total *= inv;
     fi->channel_voxels = o->F.out.nvoxels;
     return rc;
@@ -203,11 +214,13 @@ int vbc_run_frame(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index, 
 {
     vbc_channels_config *A = r->cfg;
     memset(o, 0, sizeof *o);
+    double t0 = vb_now();
     int rc = frame_prepare(ctx, r, s0, index, o);
     if (rc != VB_OK)
         return rc;
     if (!first)
         refit_pore_axis(A, o->s);
+    double ms_prepare = 1e3 * (vb_now() - t0);
     /* A voxel wider than the probe cannot resolve the necks that matter. */
     if (first && o->g.h > fmax(A->probe, 0.5))
         vb_warn(ctx, VB_W_VOXEL_COARSE, r->input, 0,
@@ -215,8 +228,11 @@ int vbc_run_frame(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index, 
                 "missed (raise --grid)", o->g.h, A->probe);
     int want_volume = A->volume && (strstr(A->volume, "%d") || first);
     unsigned want = r->want | (want_volume || A->occupancy ? VBC_WANT_FLAGS : 0);
-    vbc_frame_info fi = {index, model, o->s->n, 0, 0, 0, 0, 0, 0, 0};
-    o->fi = fi;
+    memset(&o->fi, 0, sizeof o->fi);
+    o->fi.frame = index;
+    o->fi.model = model;
+    o->fi.atoms = o->s->n;
+    o->fi.ms_prepare = ms_prepare;
     rc = frame_repeat(ctx, r, want, o);
     const vbc_pore_summary *ps = &o->F.result.pore;
     if (rc == VB_OK && A->pore.enabled && !ps->present && first && ps->judged)

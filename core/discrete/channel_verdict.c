@@ -7,24 +7,14 @@
 
 #include "vbc_pore.h"
 
-static void mark_hit(int32_t atom, void *user)
-{
-    (void)atom;
-    *(int *)user = 1;
-}
+/* The slack of the free-distance bounds below, A: far above the rounding
+ * of a pixel's position (coordinates below 1e4 A: 1e-11 A) and of a
+ * distance, far below the pixel. */
+#define FREE_EPS 1e-6
 
-/* Scratch of one plane's flood: a square raster of side 2n+1 pixels. */
-typedef struct {
-    uint8_t *state;   /* 0 unseen, 1 queued */
-    int32_t *queue;
-    size_t cap;
-} flood;
-
-int vbc_plane_walled(const vbc_cells *c, const double u[3], const double p[3], double r,
-                     void **scratch, size_t *scratch_len)
+void vbc_plane_basis(const double u[3], double a[3], double b[3])
 {
-    /* The plane's basis a, b (a normal to u, then b = u x a). */
-    double a[3], b[3], t[3] = {1.0, 0.0, 0.0};
+    double t[3] = {1.0, 0.0, 0.0};
     if (fabs(u[0]) > 0.9) {
         t[0] = 0.0;
         t[1] = 1.0;
@@ -38,11 +28,18 @@ int vbc_plane_walled(const vbc_cells *c, const double u[3], const double p[3], d
     b[0] = u[1] * a[2] - u[2] * a[1];
     b[1] = u[2] * a[0] - u[0] * a[2];
     b[2] = u[0] * a[1] - u[1] * a[0];
+}
+
+int vbc_plane_walled(const vbc_cells *c, const double u[3], const double p[3], double r,
+                     void **scratch, size_t *scratch_len)
+{
+    double a[3], b[3];
+    vbc_plane_basis(u, a, b);
     double rr = r > 0.0 ? r : 0.0;
     double reach = fmin(2.0 * rr + VBC_WALL_REACH, VBC_WALL_MAX_REACH);
     int n = (int)ceil(reach / VBC_WALL_PIXEL);
     size_t side = (size_t)(2 * n + 1), npix = side * side;
-    size_t need = npix * (sizeof(uint8_t) + sizeof(int32_t));
+    size_t need = npix * (sizeof(double) + sizeof(int32_t) + sizeof(uint8_t));
     if (*scratch_len < need) {
         void *m = realloc(*scratch, need);
         if (!m)
@@ -50,19 +47,27 @@ int vbc_plane_walled(const vbc_cells *c, const double u[3], const double p[3], d
         *scratch = m;
         *scratch_len = need;
     }
-    int32_t *queue = *scratch;
+    /* Per pixel: a lower bound of its distance to every atom surface (set
+     * when the pixel is queued), the queue, whether it was seen. */
+    double *low = *scratch;
+    int32_t *queue = (int32_t *)(low + npix);
     uint8_t *seen = (uint8_t *)(queue + npix);
     memset(seen, 0, npix);
     size_t head = 0, tail = 0;
-    int32_t start = (int32_t)((size_t)n * side + (size_t)n);
+    int32_t start = (int32_t)((size_t)n * side + (size_t)n), hint = -1;
     queue[tail++] = start;
     seen[start] = 1;
+    low[start] = -INFINITY;
     double edge2 = (double)(n - 1) * (double)(n - 1);
     while (head < tail) {
         int32_t v = queue[head++];
         int i = (int)(v / (int32_t)side) - n, j = (int)(v % (int32_t)side) - n;
         if ((double)i * i + (double)j * j >= edge2)
             return 0; /* a disc of the wall probe got out: not walled */
+        /* A neighbour is one pixel from v: its distance to the atoms is at
+         * least v's less a pixel (the distance moves no faster than the
+         * point), so when that still clears the probe it is free unasked. */
+        double near = low[v] - VBC_WALL_PIXEL - FREE_EPS;
         static const int step[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
         for (int k = 0; k < 4; k++) {
             int ii = i + step[k][0], jj = j + step[k][1];
@@ -71,16 +76,20 @@ int vbc_plane_walled(const vbc_cells *c, const double u[3], const double p[3], d
                 continue;
             seen[w] = 1;
             double x = ii * VBC_WALL_PIXEL, y = jj * VBC_WALL_PIXEL;
+            low[w] = -INFINITY;
             /* Inside the pore's own sphere the way is free; elsewhere a
              * pixel is free when no atom surface comes within the probe. */
             if (x * x + y * y > rr * rr) {
-                double q[3];
-                for (int d = 0; d < 3; d++)
-                    q[d] = p[d] + x * a[d] + y * b[d];
-                int hit = 0;
-                vbc_cells_within(c, q, VBC_WALL_PROBE, mark_hit, &hit);
-                if (hit)
-                    continue;
+                if (near > VBC_WALL_PROBE + FREE_EPS) {
+                    low[w] = near;
+                } else {
+                    double q[3], lw;
+                    for (int d = 0; d < 3; d++)
+                        q[d] = p[d] + x * a[d] + y * b[d];
+                    if (vbc_cells_any_within(c, q, VBC_WALL_PROBE, &hint, &lw))
+                        continue;
+                    low[w] = lw - FREE_EPS;
+                }
             }
             queue[tail++] = w;
         }

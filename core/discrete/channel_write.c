@@ -8,6 +8,7 @@
 #include "vb_build.h"
 #include "vb_json.h"
 #include "vb_output.h"
+#include "vb_parallel.h"
 #include "vbc_pore.h"
 
 static const char *kind_name(int kind)
@@ -227,17 +228,35 @@ void vbc_write_json_begin_prov(FILE *f, const char *options, const char *input, 
     fprintf(f, ",\n  \"frames\": [");
 }
 
+/* A flat JSON object: lead, then "key": value for each space-separated
+ * name of keys and its value (ms, 3 decimals), then '}'. */
+static void json_clock(FILE *f, const char *lead, const char *keys, const double *v)
+{
+    fputs(lead, f);
+    for (size_t k = 0; *keys; k++) {
+        size_t n = strcspn(keys, " ");
+        fprintf(f, "%s\"%.*s\": %.3f", k ? ", " : "", (int)n, keys, v[k]);
+        keys += n + (keys[n] == ' ');
+    }
+    fputc('}', f);
+}
+
 void vbc_write_json_frame(FILE *f, int first, const vbc_frame_info *fi, const vbc_grid *g,
                           const vb_sphere_set *s, const vbc_result *res)
 {
+    double t_write = vb_now();
     double v1 = g->h * g->h * (g->dim == 3 ? g->h : 1.0);
     fprintf(f, "%s\n    {\"frame\": %ld, \"model\": %d, \"atoms\": %zu, \"voxel_A\": %.5f,"
                " \"origin\": [%.4f, %.4f, %.4f], \"channel_voxels\": %zu, \"components\": %zu,"
-               " \"pruned\": %zu,\n     \"ms\": {\"upload\": %.3f, \"jfa\": %.3f, \"masks\": %.3f,"
-               " \"analysis\": %.3f, \"pore\": %.3f, \"total\": %.3f},\n",
+               " \"pruned\": %zu,\n",
             first ? "" : ",", fi->frame, fi->model, fi->atoms, g->h, g->origin[0], g->origin[1],
-            g->origin[2], fi->channel_voxels, res->components, res->pruned, fi->ms_upload,
-            fi->ms_jfa, fi->ms_masks, fi->ms_analysis, fi->ms_pore, fi->ms_total);
+            g->origin[2], fi->channel_voxels, res->components, res->pruned);
+    /* In the order of VBC_JSON_MS_KEYS. */
+    const double ms[] = {fi->ms_read,  fi->ms_prepare, fi->ms_upload, fi->ms_jfa,     fi->ms_masks,
+                         fi->ms_analysis, fi->ms_cells, fi->ms_refine, fi->ms_sweep, fi->ms_verdict,
+                         fi->ms_lining, fi->ms_pore,    fi->ms_total};
+    json_clock(f, "     \"ms\": {", VBC_JSON_MS_KEYS, ms);
+    fputs(",\n", f);
     const vbc_pore_summary *P = &res->pore;
     if (P->present) {
         fprintf(f, "     \"pore\": {\"axis\": [%.5f, %.5f, %.5f], \"start\": [%.3f, %.3f, %.3f],"
@@ -272,7 +291,15 @@ void vbc_write_json_frame(FILE *f, int first, const vbc_frame_info *fi, const vb
             fprintf(f, "%s[%.3f, %.3f, %.3f, %.3f]", u ? ", " : "", p[u].x, p[u].y, p[u].z, p[u].r);
         fprintf(f, "]}");
     }
-    fprintf(f, "]}");
+    fprintf(f, "],\n");
+    /* Last, so that it counts the writing of everything above. */
+    double now = vb_now(), w = 1e3 * (now - t_write);
+    double frame = fi->t_start > 0.0 ? 1e3 * (now - fi->t_start)
+                                     : fi->ms_read + fi->ms_prepare + fi->ms_total + w;
+    const double clock[] = {w, frame, frame > 0.0 ? 1e3 / frame : 0.0,
+                            fi->t_start > 0.0 ? 1e3 * (vbc_cpu_now() - fi->cpu_start) : 0.0};
+    json_clock(f, "     \"clock\": {", VBC_JSON_CLOCK_KEYS, clock);
+    fputc('}', f);
 }
 
 void vbc_write_json_end(FILE *f)

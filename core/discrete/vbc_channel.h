@@ -162,6 +162,18 @@ double vbc_cells_clearance(const vbc_cells *c, const double p[3], int32_t *atom)
 void vbc_cells_within(const vbc_cells *c, const double p[3], double reach,
                       void (*fn)(int32_t atom, void *user), void *user);
 
+/* Whether some sphere's surface is within `reach` of p: the question of
+ * vbc_cells_within (the same per-atom test, so the same answer) that stops
+ * at the first such sphere. hint (may be NULL) names an atom tried first
+ * (-1: none) and gets the one found, so that neighbouring queries start
+ * there. Returns 1 when there is one; else 0 with *low a lower bound of
+ * the distance from p to every sphere surface (> reach; infinite when the
+ * set is all walked and empty of surfaces near), which the caller may use
+ * for points near p (the distance to the nearest surface moves by at most
+ * the distance moved). */
+int vbc_cells_any_within(const vbc_cells *c, const double p[3], double reach, int32_t *hint,
+                         double *low);
+
 /* A copy of s without the atoms whose residue name is one of resnames[0..n)
  * (case-insensitive; a set without atom records keeps every sphere), in
  * *out (free with vb_spheres_free), *dropped the count left out, counts[k]
@@ -180,7 +192,20 @@ typedef struct vbc_frame_info {
     size_t channel_voxels; /* before components */
     double ms_upload, ms_jfa, ms_masks, ms_analysis, ms_total;
     double ms_pore;        /* the pore stage (part of ms_total) */
+    /* The stages around and inside those (per-run means like them; zero
+     * when not measured): reading the frame from its file (once, not per
+     * run), leaving out residues and fitting the grid, and the pore
+     * stage's steps (vbc_pore_ms: their sum is about ms_pore). */
+    double ms_read, ms_prepare;
+    double ms_cells, ms_refine, ms_sweep, ms_verdict, ms_lining;
+    double t_start;        /* vb_now() when the frame's reading began; 0: unknown */
+    double cpu_start;      /* vbc_cpu_now() then (with t_start) */
 } vbc_frame_info;
+
+/* The CPU time of the process (every thread) in seconds: beside the wall
+ * clock in the JSON's "clock", as a loaded machine stretches the wall
+ * clock but not this. */
+double vbc_cpu_now(void);
 
 /* The channel table's columns, one "  name  meaning" line each (static
  * text): `vorball channels --help` and the README print it. */
@@ -198,7 +223,19 @@ void vbc_write_stats_row(FILE *f, const vbc_frame_info *fi, const vbc_grid *g,
 
 /* JSON: vbc_write_json_begin, one vbc_write_json_frame per frame (first = 1
  * for the first), vbc_write_json_end. Each frame object holds its statistics
- * and its channels with centreline points and lining residues. */
+ * and its channels with centreline points and lining residues. Its clocks
+ * are two flat objects (no object inside them, so a reader or a sed can
+ * drop them): "ms" after the statistics, the milliseconds of each stage
+ * (VBC_JSON_MS_KEYS: read, prepare, upload, jfa = the Voronoi labels,
+ * masks, analysis = the channel graph, cells, refine, sweep, verdict,
+ * lining, pore = the last five, total = masks + analysis + pore), and
+ * "clock" closing the frame (VBC_JSON_CLOCK_KEYS: write = this frame's
+ * JSON text, frame = end to end from the start of its reading, or the sum
+ * of the stages when fi->t_start is 0, fps = 1000 / frame, and cpu = the
+ * process's CPU ms over the same span, 0 when fi->t_start is 0). Every
+ * other byte is the same whatever the clocks read. */
+#define VBC_JSON_MS_KEYS "read prepare upload jfa masks analysis cells refine sweep verdict lining pore total"
+#define VBC_JSON_CLOCK_KEYS "write frame fps cpu"
 void vbc_write_json_begin(FILE *f, const char *input, double probe, int n, const char *device);
 /* As vbc_write_json_begin, with the provenance first when options is not
  * NULL (issue 35): "tool" (vorball V (commit C), vb_build.h) and "options"

@@ -18,6 +18,7 @@ typedef struct vbc_frame {
     double ms_masks;        /* packing and the frame pipeline */
     double ms_analysis;     /* components and centrelines */
     double ms_pore;         /* the pore stage (vbc_pore_stage), refinement and ranking */
+    vbc_pore_ms pore_ms;    /* its steps */
     vbc_axis axis;          /* the pore's axis (source VBC_AXIS_NONE without a pore) */
 } vbc_frame;
 

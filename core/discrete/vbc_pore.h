@@ -251,6 +251,10 @@ typedef struct vbc_pore_verdict {
     int is_pore;            /* buried >= VBC_PORE_MIN_BURIED */
 } vbc_pore_verdict;
 
+/* The basis of the verdict's raster in the plane normal to u (unit): a
+ * normal to u (u x x, or u x y when u is near x), then b = u x a. */
+void vbc_plane_basis(const double u[3], double a[3], double b[3]);
+
 /* Whether the sphere of radius r at p, in the plane normal to u (unit), is
  * walled (the rule above). *scratch (realloc'ed, *scratch_len bytes; start
  * with NULL, 0; free it) is reused between calls. Returns 1 walled, 0 not,

@@ -50,12 +50,22 @@ void vbc_refine_bottlenecks(vbc_result *res, const vbc_cells *cells, double h);
  * channels (longest first), cavities (longest first). */
 void vbc_rank(vbc_result *res);
 
+/* Milliseconds of the pore stage's steps (wall clock, vb_now). */
+typedef struct vbc_pore_ms {
+    double cells;   /* the cell list over the frame's spheres */
+    double refine;  /* vbc_refine_bottlenecks of the discrete channels */
+    double sweep;   /* vbc_pore_find: the axis candidates' sweeps */
+    double verdict; /* vbc_pore_judge */
+    double lining;  /* vbc_result_add_pore and vbc_rank */
+} vbc_pore_ms;
+
 /* The whole pore stage of a frame: cells over s, vbc_pore_find,
  * vbc_result_add_pore, vbc_refine_bottlenecks, vbc_rank. When req is NULL
  * or disabled only the refinement and the ranking run. *found (may be NULL)
- * gets the axis used. VB_ENOMEM. */
+ * gets the axis used; *ms (may be NULL) the milliseconds of each step
+ * (zero for a step not run). The clocks change no result. VB_ENOMEM. */
 int vbc_pore_stage(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const vb_sphere_set *s,
                    const vbc_pore_request *req, double lining_tol, vbc_result *res,
-                   vbc_axis *found);
+                   vbc_axis *found, vbc_pore_ms *ms);
 
 #endif

@@ -321,14 +321,16 @@ static PyObject *channels_run(PyObject *self, PyObject *args)
     PyObject *d = NULL;
     if (frame_texts(o.s, &g, &fi, &o.F.result, cfg->probe, cfg->grid, device, &csv, &json) == 0)
         d = Py_BuildValue("{s:O,s:O,s:s,s:n,s:n,s:n,s:{s:i,s:i,s:i,s:d,s:(ddd)},"
-                          "s:{s:d,s:d,s:d,s:d,s:d,s:d}}",
+                          "s:{s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d}}",
                           "csv", csv, "json", json, "device", device, "components",
                           (Py_ssize_t)o.F.result.components, "pruned", (Py_ssize_t)o.F.result.pruned,
                           "channel_voxels", (Py_ssize_t)o.F.out.nvoxels, "grid", "nx", g.nx, "ny",
                           g.ny, "nz", g.nz, "h", g.h, "origin", g.origin[0], g.origin[1],
-                          g.origin[2], "ms", "upload", fi.ms_upload, "jfa", fi.ms_jfa, "masks",
-                          fi.ms_masks, "analysis", fi.ms_analysis, "pore", fi.ms_pore, "total",
-                          fi.ms_total);
+                          g.origin[2], "ms", "prepare", fi.ms_prepare, "upload", fi.ms_upload,
+                          "jfa", fi.ms_jfa, "masks", fi.ms_masks, "analysis", fi.ms_analysis,
+                          "cells", fi.ms_cells, "refine", fi.ms_refine, "sweep", fi.ms_sweep,
+                          "verdict", fi.ms_verdict, "lining", fi.ms_lining, "pore", fi.ms_pore,
+                          "total", fi.ms_total);
     Py_XDECREF(csv);
     Py_XDECREF(json);
     if (d && !result_dict(&o.F.result, d))

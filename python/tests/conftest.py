@@ -15,6 +15,7 @@ CLI = os.path.join(BUILD, "cli", "vorball")
 CORPUS = os.path.join(ROOT, "corpus")
 os.environ.setdefault("XDG_CACHE_HOME", os.path.join(BUILD, "test-cache"))
 os.environ.setdefault("POCL_CACHE_DIR", os.path.join(BUILD, "test-cache", "pocl"))
+os.environ.setdefault("VORBALL_HOST_BELOW", "1")  # auto opens the device, as in tests/CMakeLists.txt
 
 
 def corpus(*parts):

@@ -27,7 +27,11 @@ def test_npz_equals_tsv(case, tmp_path):
         assert (z["status"] == 1).all()  # certified
         header = [l[2:] for l in tsv.splitlines()
                   if l.startswith("# ") and l not in ("# vorball vertices",) and not l.startswith("# ids")]
-        assert str(z["comment"]) == "\n".join(header)
+        # The same header but the options line, which names --output-format npz.
+        comment = str(z["comment"]).split("\n")
+        assert [l for l in comment if not l.startswith("options: ")] == \
+            [l for l in header if not l.startswith("options: ")]
+        assert "options: vertices --output-format npz " in comment[2]
     if case == "degree5_vertex":
         assert max(np.diff(start)) >= 5
 

@@ -57,7 +57,10 @@ class Channels:
                  with its header; the JSON document)
     flags        with flags=True: the (nz, ny, nx) uint8 volume of VBC_F_*
                  bits (vorball.channel_flags())
-    device, ms, warnings, spheres
+    ms           per-stage milliseconds (prepare, upload, jfa, masks, analysis,
+                 cells, refine, sweep, verdict, lining, pore, total: the keys
+                 of the command's JSON "ms" but read)
+    device, warnings, spheres
     """
 
     table: np.ndarray

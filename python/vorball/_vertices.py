@@ -237,7 +237,8 @@ def vertices(xyz: SphereInput, r: Optional[ArrayLike] = None, device: str = "aut
 
     xyz, r: arrays (see vorball.spheres for how each number becomes an
     exact decimal), or a Spheres (vorball.read, a frame), or a file path.
-    device: auto (a GPU, else PoCL on the CPU), gpu, cpu or ref (the
+    device: auto (a GPU, on host threads below 20,000 spheres, where
+    VORBALL_HOST_BELOW puts the crossover; else PoCL on the CPU), gpu, cpu or ref (the
     plain-C reference; same output); a device that cannot be used falls
     back to the reference with warning W760. samples: S x S rays per cube
     face for the sampling proposer; proposer: 'cover' (the default: proves

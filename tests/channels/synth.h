@@ -12,6 +12,13 @@
 #include "vb_test_spheres.h"
 #include "vbc_channel.h"
 
+/* A reproducible uniform number in [0, 1) (a 64-bit LCG on *seed). */
+static inline double synth_uniform(uint64_t *seed)
+{
+    *seed = *seed * 6364136223846793005ull + 1442695040888963407ull;
+    return (double)(*seed >> 11) / 9007199254740992.0;
+}
+
 /* `rings` rings of `per` atoms of radius r on a circle of radius rc around the
  * z axis, rings `dz` apart and staggered by half a step, centred on z = 0.
  * Clearance on the axis: hypot(rc, 0) - r = rc - r at the ring heights. */

@@ -1,6 +1,9 @@
 /* Each stage of the reference mask pipeline (core/discrete/channel_masks_ref.c) on
  * synthetic molecules whose masks are known: one ball, two balls, a cylinder
- * with a pore along z, a closed shell. */
+ * with a pore along z, a closed shell; and (#33) the whole stage against the
+ * plain per-voxel form it replaced (every voxel against every ball's box,
+ * one vbc_ray_scan per ray, vbc_classify everywhere) on random atoms, in 3D
+ * and 2D, byte for byte. */
 #include "synth.h"
 #include "vb_test.h"
 
@@ -268,6 +271,77 @@ static void test_grid_fit_errors(vb_ctx *ctx)
     vb_spheres_free(s);
 }
 
+/* The mask stage as it was written first, from the per-voxel functions alone. */
+static void masks_plain(const vbc_grid *g, const float *atoms4, size_t natoms, const int32_t *labels,
+                        int min_labels, int *rb, uint8_t *flags)
+{
+    int nx = g->nx, ny = g->ny, nz = g->nz;
+    memset(flags, 0, vbc_grid_voxels(g));
+    for (size_t a = 0; a < natoms; a++) {
+        const float *p = atoms4 + 4 * a;
+        for (int k = vbc_box_lo(p[2], p[3]); k < vbc_box_hi(p[2], p[3], nz); k++)
+            for (int j = vbc_box_lo(p[1], p[3]); j < vbc_box_hi(p[1], p[3], ny); j++)
+                for (int i = vbc_box_lo(p[0], p[3]); i < vbc_box_hi(p[0], p[3], nx); i++)
+                    if (vbc_ball_contains(p[0], p[1], p[2], p[3], i, j, k))
+                        flags[vox(g, i, j, k)] = VBC_F_ATOMIC;
+    }
+    for (int b = 0; b < nz; b++)
+        for (int a = 0; a < ny; a++)
+            vbc_ray_scan(flags, nx, ny, nz, 0, a, b, rb);
+    for (int b = 0; b < nz; b++)
+        for (int a = 0; a < nx; a++)
+            vbc_ray_scan(flags, nx, ny, nz, 1, a, b, rb);
+    for (int b = 0; b < ny; b++)
+        for (int a = 0; a < nx; a++)
+            vbc_ray_scan(flags, nx, ny, nz, 2, a, b, rb);
+    for (int k = 0; k < nz; k++)
+        for (int j = 0; j < ny; j++)
+            for (int i = 0; i < nx; i++)
+                flags[vox(g, i, j, k)] =
+                    (uint8_t)vbc_classify(labels, flags, rb, nx, ny, nz, min_labels, i, j, k);
+}
+
+/* Random atoms (radii 0.9 to 2.4 A, probe 1.4 A, some balls past the grid's
+ * edge after the fit as 2D cuts have them) on grids of 16 to 64: the same
+ * flag bytes and ray bounds as masks_plain. */
+static void test_same_as_plain(vb_ctx *ctx)
+{
+    uint64_t seed = 12345;
+    int differ = 0, runs = 0;
+    for (int n = 16; n <= 64; n *= 2)
+        for (int dim = 2; dim <= 3; dim++)
+            for (int rep = 0; rep < 3; rep++) {
+                size_t natoms = (size_t)(30 + 70 * rep);
+                vb_sphere_set *s = vb_test_spheres_alloc(natoms, 0);
+                for (size_t i = 0; i < natoms; i++) {
+                    s->x[i] = 20.0 * synth_uniform(&seed);
+                    s->y[i] = 20.0 * synth_uniform(&seed);
+                    s->z[i] = dim == 3 ? 20.0 * synth_uniform(&seed) : 0.0;
+                    s->r[i] = 0.9 + 1.5 * synth_uniform(&seed);
+                }
+                run r;
+                run_ref(ctx, s, 1.4, n, dim, &r);
+                /* Shift some balls half out of the grid: the rows clip. */
+                for (size_t i = 0; i < natoms; i += 7)
+                    r.atoms[4 * i] = -0.3f * r.atoms[4 * i + 3];
+                size_t nv = vbc_grid_voxels(&r.g), nrb = (size_t)vbc_rb_size(r.g.nx, r.g.ny, r.g.nz);
+                uint8_t *want = malloc(nv);
+                int *rb = malloc(nrb * sizeof *rb);
+                int ml = dim == 3 ? 3 : 2;
+                vbc_masks_ref(&r.g, r.atoms, natoms, r.labels, ml, r.rb, r.flags);
+                masks_plain(&r.g, r.atoms, natoms, r.labels, ml, rb, want);
+                differ += memcmp(want, r.flags, nv) != 0 || memcmp(rb, r.rb, nrb * sizeof *rb) != 0;
+                runs++;
+                CHECK(count_bits(r.flags, nv, VBC_F_ATOMIC) > 0);
+                free(want);
+                free(rb);
+                run_free(&r);
+                vb_spheres_free(s);
+            }
+    CHECK_INT(differ, 0);
+    CHECK_INT(runs, 18);
+}
+
 int main(void)
 {
     vb_ctx *ctx;
@@ -279,6 +353,7 @@ int main(void)
     test_cylinder(ctx);
     test_shell(ctx);
     test_grid_fit_errors(ctx);
+    test_same_as_plain(ctx);
     vb_close(ctx);
     VB_TEST_END();
 }

@@ -3,7 +3,11 @@
  * axis, a ring with every other atom gone with every other atom gone (gaps wider than the wall
  * probe's disc) does not, half a tube (a groove) does not; the buried length
  * of a tube is its walled span, and a tube shorter than VBC_PORE_MIN_BURIED
- * is no pore; a gap of one missing ring is bridged, of two is not. */
+ * is no pore; a gap of one missing ring is bridged, of two is not.
+ * #33: vbc_cells_any_within answers as vbc_cells_within with a true lower
+ * bound of the distance when it finds nothing, and the flood that trusts
+ * those bounds walls the same planes as the plain flood (a copy below, one
+ * query per pixel) in a random cloud of atoms. */
 #include "synth.h"
 #include "vb_test.h"
 #include "vbc_pore.h"
@@ -167,6 +171,161 @@ static void test_buried(vb_ctx *ctx)
     vb_spheres_free(ring);
 }
 
+/* A reproducible cloud: n atoms in a box of side L, radii 1 to 2 A. */
+static vb_sphere_set *cloud(size_t n, double L, uint64_t seed)
+{
+    vb_sphere_set *s = vb_test_spheres_alloc(n, 0);
+    for (size_t i = 0; i < n; i++) {
+        s->x[i] = L * synth_uniform(&seed);
+        s->y[i] = L * synth_uniform(&seed);
+        s->z[i] = L * synth_uniform(&seed);
+        s->r[i] = 1.0 + synth_uniform(&seed);
+    }
+    return s;
+}
+
+static void mark(int32_t atom, void *user)
+{
+    (void)atom;
+    *(int *)user = 1;
+}
+
+static void test_any_within(vb_ctx *ctx)
+{
+    vb_sphere_set *s = cloud(300, 20.0, 7);
+    vbc_cells *c = NULL;
+    CHECK_INT(vbc_cells_build(ctx, s, 3.0, &c), VB_OK);
+    const double reach[3] = {0.3, 1.0, 2.5};
+    uint64_t seed = 99;
+    int hits = 0, misses = 0, bad = 0;
+    int32_t hint = -1;
+    for (int k = 0; k < 3000; k++) {
+        double p[3];
+        for (int a = 0; a < 3; a++)
+            p[a] = -6.0 + 32.0 * synth_uniform(&seed);
+        double R = reach[k % 3], low = 0.0;
+        int hit = 0;
+        vbc_cells_within(c, p, R, mark, &hit);
+        int any = vbc_cells_any_within(c, p, R, k % 2 ? &hint : NULL, &low);
+        bad += any != hit;
+        if (any) {
+            hits++;
+            continue;
+        }
+        misses++;
+        double best = INFINITY;
+        for (size_t i = 0; i < s->n; i++) {
+            double dx = p[0] - s->x[i], dy = p[1] - s->y[i], dz = p[2] - s->z[i];
+            best = fmin(best, sqrt(dx * dx + dy * dy + dz * dz) - s->r[i]);
+        }
+        bad += !(low > R && low <= best);
+    }
+    CHECK_INT(bad, 0);
+    CHECK(hits > 300 && misses > 300);
+    vbc_cells_free(c);
+    vb_spheres_free(s);
+}
+
+/* The flood of vbc_plane_walled as it was before #33: one vbc_cells_within
+ * per pixel outside the pore's sphere. */
+static int walled_plain(const vbc_cells *c, const double a[3], const double b[3],
+                        const double p[3], double r)
+{
+    double rr = r > 0.0 ? r : 0.0;
+    int n = (int)ceil(fmin(2.0 * rr + VBC_WALL_REACH, VBC_WALL_MAX_REACH) / VBC_WALL_PIXEL);
+    size_t side = (size_t)(2 * n + 1);
+    int32_t *queue = malloc(side * side * sizeof *queue);
+    uint8_t *seen = calloc(side * side, 1);
+    size_t head = 0, tail = 0;
+    int walled = 1;
+    queue[tail++] = (int32_t)((size_t)n * side + (size_t)n);
+    seen[queue[0]] = 1;
+    while (head < tail && walled) {
+        int32_t v = queue[head++];
+        int i = (int)(v / (int32_t)side) - n, j = (int)(v % (int32_t)side) - n;
+        if ((double)i * i + (double)j * j >= (double)(n - 1) * (n - 1)) {
+            walled = 0;
+            break;
+        }
+        static const int step[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+        for (int k = 0; k < 4; k++) {
+            int ii = i + step[k][0], jj = j + step[k][1];
+            int32_t w = (int32_t)((size_t)(ii + n) * side + (size_t)(jj + n));
+            if (seen[w])
+                continue;
+            seen[w] = 1;
+            double x = ii * VBC_WALL_PIXEL, y = jj * VBC_WALL_PIXEL;
+            if (x * x + y * y > rr * rr) {
+                double q[3];
+                for (int d = 0; d < 3; d++)
+                    q[d] = p[d] + x * a[d] + y * b[d];
+                int hit = 0;
+                vbc_cells_within(c, q, VBC_WALL_PROBE, mark, &hit);
+                if (hit)
+                    continue;
+            }
+            queue[tail++] = w;
+        }
+    }
+    free(queue);
+    free(seen);
+    return walled;
+}
+
+/* Planes through a dense cloud with a hollow core: the flood with the
+ * distance bounds and the plain flood wall the same ones. */
+static void same_walls(vb_ctx *ctx, size_t atoms, int *walled, int *open, int *differ)
+{
+    vb_sphere_set *s = cloud(atoms, 36.0, 11 + atoms);
+    /* Hollow it: a tube of radius 5 A along z through the middle. */
+    size_t m = 0;
+    for (size_t i = 0; i < s->n; i++) {
+        double dx = s->x[i] - 18.0, dy = s->y[i] - 18.0;
+        if (dx * dx + dy * dy < 25.0)
+            continue;
+        s->x[m] = s->x[i];
+        s->y[m] = s->y[i];
+        s->z[m] = s->z[i];
+        s->r[m++] = s->r[i];
+    }
+    s->n = m;
+    vbc_cells *c = NULL;
+    CHECK_INT(vbc_cells_build(ctx, s, 3.0, &c), VB_OK);
+    void *scratch = NULL;
+    size_t len = 0;
+    for (int k = 0; k < 120; k++) {
+        /* Tilted axes through the tube, planes from below the cloud to above it. */
+        double t = 0.05 * (k % 7), u[3] = {t, 0.5 * t, 1.0};
+        double nu = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+        for (int a = 0; a < 3; a++)
+            u[a] /= nu;
+        double p[3] = {18.0 + 0.3 * (k % 5), 18.0 - 0.2 * (k % 3), -8.0 + 0.45 * k};
+        double r = 0.5 + 0.1 * (k % 11);
+        double a[3], b[3];
+        vbc_plane_basis(u, a, b);
+        int w = vbc_plane_walled(c, u, p, r, &scratch, &len);
+        *differ += w != walled_plain(c, a, b, p, r);
+        *walled += w == 1;
+        *open += w == 0;
+    }
+    free(scratch);
+    vbc_cells_free(c);
+    vb_spheres_free(s);
+}
+
+/* Clouds from sparse (gaps about the wall probe's disc: the verdict turns
+ * on single pixels) to dense. */
+static void test_same_walls(vb_ctx *ctx)
+{
+    int walled = 0, open = 0, differ = 0;
+    for (size_t atoms = 900; atoms <= 4000; atoms += 310)
+        same_walls(ctx, atoms, &walled, &open, &differ);
+    CHECK_INT(differ, 0);
+    CHECK(walled > 100 && open > 100);
+    if (vb_test_failed)
+        fprintf(stderr, "planes walled %d, open %d, differ %d\n", walled, open, differ);
+}
+
 int main(void)
 {
     vb_ctx *ctx;
@@ -176,6 +335,8 @@ int main(void)
     test_walls(ctx);
     test_buried(ctx);
     test_gaps(ctx);
+    test_any_within(ctx);
+    test_same_walls(ctx);
     vb_close(ctx);
     VB_TEST_END();
 }

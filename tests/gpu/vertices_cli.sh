@@ -44,6 +44,38 @@ done
 VORBALL_THREADS=5 "$vorball" vertices --device auto "$work/set.xyzr" > "$work/env.tsv" 2>/dev/null ||
     fail "VORBALL_THREADS run failed"
 cmp -s "$work/ref.tsv" "$work/env.tsv" || fail "VORBALL_THREADS=5 output differs"
+# The crossover of --device auto (VB_HOST_BELOW_DEFAULT, 20,000 spheres):
+# where the host shows a GPU, a small input runs on host threads and opens
+# no device; without a GPU it stays on the CPU device (PoCL). VORBALL_HOST_BELOW=1
+# (the tests' environment) always opens the device, a threshold at the input's
+# size still does and one above it does not where there is a GPU; the same
+# bytes each way.
+backend_of() { grep '^backend' "$1" | cut -f2; }
+spheres=$(grep -vc '^#' "$work/set.xyzr")
+gpu=0   # the hint auto reads: a GPU driver's device node
+ls /dev | grep -q '^kfd$\|^nvidia[0-9]' && gpu=1
+for below in unset 1 "$spheres" $((spheres + 1)); do
+    if [ "$below" = unset ]; then
+        env -u VORBALL_HOST_BELOW "$vorball" vertices --stats "$work/set.xyzr" -o "$work/auto.tsv" \
+            2> "$work/auto.err" || fail "auto run failed"
+        want=device
+        [ $gpu -eq 1 ] && want=ref
+    else
+        VORBALL_HOST_BELOW=$below "$vorball" vertices --stats "$work/set.xyzr" -o "$work/auto.tsv" \
+            2> "$work/auto.err" || fail "auto run (VORBALL_HOST_BELOW=$below) failed"
+        want=device
+        [ "$below" -gt "$spheres" ] && [ $gpu -eq 1 ] && want=ref
+    fi
+    got=$(backend_of "$work/auto.err")
+    if [ "$want" = ref ]; then
+        [ "$got" = ref ] || fail "auto below the crossover ($below) ran on '$got', not host threads"
+        ! grep -q W760 "$work/auto.err" || fail "auto below the crossover warned W760"
+    else # the device, or the reference after W760 where no OpenCL device is usable
+        [ "$got" = opencl ] || grep -q W760 "$work/auto.err" ||
+            fail "auto above the crossover ($below) ran on '$got' without W760"
+    fi
+    cmp -s "$work/ref.tsv" "$work/auto.tsv" || fail "auto ($below) output differs from --device ref"
+done
 # The program binary cache: written on the first OpenCL run, used by the
 # next; a damaged binary falls back to the source build, same bytes. (On
 # PoCL vorball keeps binaries only when VORBALL_PROGRAM_CACHE=1 asks.)

@@ -15,8 +15,8 @@ opts="--grid 32 --frames ::2 --device ref --no-pore"
 untimed() { # the statistics without their timing columns
     cut -d, -f1-12 "$1"
 }
-unms() { # JSON without the per-frame timings
-    sed 's/"ms": {[^}]*}//' "$1"
+unms() { # JSON without the per-frame timings (the "ms" and "clock" objects)
+    sed 's/"ms": {[^}]*}//; s/"clock": {[^}]*}//' "$1"
 }
 run 0 "$work/c.1.err" "$vorball" channels $opts "$trj" -o "$work/c.1.csv" --stats-file "$work/s.1.csv" \
     --centerlines "$work/cl.1.pdb" --volume "$work/v.1.%d.mrc" --png "$work/p.1.png"
