@@ -100,6 +100,13 @@ int vb_cli_input_option(vb_cli_input_opts *o, int argc, char **argv, int *i)
         o->atoms_path = v;
         return 1;
     }
+    if (strcmp(a, "--select") == 0) {
+        const char *v = option_value(argc, argv, i);
+        if (!v)
+            return -1;
+        o->select = v;
+        return 1;
+    }
     return 0;
 }
 
@@ -125,7 +132,11 @@ void vb_cli_input_help(FILE *f)
           "                      does not give (E112; else inferred from atom and residue\n"
           "                      names, W714/W715)\n"
           "  --zero-radius M     radius-0 spheres: error, point (a point site) or drop;\n"
-          "                      default point for PQR (PARSE polar hydrogens), else error\n",
+          "                      default point for PQR (PARSE polar hydrogens), else error\n"
+          "  --select EXPR       keep the atoms EXPR selects: chain, segid, resname, resid\n"
+          "                      (N, a:b), name, element (then values; ? and * wildcards in\n"
+          "                      names), protein, water, all, and, or, not, ( ); E118 when\n"
+          "                      malformed (its position) or nothing is selected\n",
           f);
 }
 
@@ -140,6 +151,7 @@ void vb_cli_input_read_options(const vb_cli_input_opts *o, const vb_radii_table 
     ro->strict_elements = o->strict_elements;
     ro->zero_radius = o->zero_radius;
     ro->assembly = o->assembly;
+    ro->select = o->select;
     ro->radii = radii;
 }
 

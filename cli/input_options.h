@@ -18,6 +18,7 @@ typedef struct vb_cli_input_opts {
     int zero_radius;         /* --zero-radius error|point|drop (enum vb_zero_radius; default auto) */
     int assembly;            /* --assembly N (mmCIF biological assembly; default 0: as written) */
     const char *atoms_path;  /* --atoms FILE: the sphere table (vb_atoms_write), or NULL */
+    const char *select;      /* --select EXPR (core/input/vb_select.h), or NULL */
 } vb_cli_input_opts;
 
 /* Zero-initialising a vb_cli_input_opts gives the defaults; this does it. */

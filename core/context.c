@@ -270,6 +270,7 @@ const char *vb_errstr(int code)
     case VB_EINPUT_TRAJECTORY: return "damaged trajectory";
     case VB_EINPUT_TOPOLOGY: return "trajectory and topology disagree";
     case VB_EINPUT_ASSEMBLY: return "assembly absent or malformed";
+    case VB_EINPUT_SELECT: return "selection malformed or empty";
     case VB_EINPUT_BOX: return "periodic box absent, malformed or flat";
     case VB_EINPUT_BOX_SMALL: return "periodic box too small for its atoms";
     case VB_EINPUT_REFERENCE_SIZE: return "too many spheres for the exact reference";

@@ -51,6 +51,7 @@ enum vb_input_error {
     VB_EINPUT_TRAJECTORY = VB_EINPUT | (15 << 8),/* E115 damaged binary trajectory */
     VB_EINPUT_TOPOLOGY   = VB_EINPUT | (16 << 8),/* E116 trajectory and topology disagree */
     VB_EINPUT_ASSEMBLY   = VB_EINPUT | (17 << 8),/* E117 assembly absent or malformed */
+    VB_EINPUT_SELECT     = VB_EINPUT | (18 << 8),/* E118 --select: bad expression or no atom */
     VB_EINPUT_BOX        = VB_EINPUT | (20 << 8),/* E120 periodic box absent, malformed or flat */
     /* E130-E139: limits of an operation on an input it could otherwise read. */
     VB_EINPUT_REFERENCE_SIZE = VB_EINPUT | (30 << 8), /* E130 too many spheres for `reference` */

@@ -55,6 +55,7 @@
     X(E, 115, INPUT_TRAJECTORY, 25, "XTC, TRR or DCD data damaged")                                      \
     X(E, 116, INPUT_TOPOLOGY, 26, "trajectory and topology disagree (atom count)")                       \
     X(E, 117, INPUT_ASSEMBLY, 27, "--assembly: absent, or its operators malformed")                      \
+    X(E, 118, INPUT_SELECT, 28, "--select: malformed expression (position given) or no atom selected")  \
     X(E, 120, INPUT_BOX, 30, "--periodic: no box (file or --box), or a malformed or flat one")          \
     X(E, 130, INPUT_REFERENCE_SIZE, 40, "more spheres than `reference` takes without --force")           \
     X(E, 131, INPUT_SCALE, 41, "a radius below 1e-50 of the extent: beyond the sampler's doubles")       \
@@ -89,7 +90,6 @@
     X(W, 722, TANGENT_INSIDE, 0, "a sphere touches a larger one from inside: a point or segment cell, kept") \
     X(W, 723, TANGENT_INSIDE_COUNT, 0, "count of spheres touching a larger one from inside")             \
     X(W, 735, MODEL_OPEN_AT_END, 0, "the input ends inside a MODEL (no ENDMDL/END): truncated?")         \
-    X(W, 736, RADII_PARTICULAR, 0, "radius file: HOLE rows for particular atom or residue names left out")   \
     X(W, 750, PROGRAM_CACHE_BAD, 0, "a cached OpenCL program cannot be used: rebuilt from source")       \
     X(W, 751, JFA_DEVICE_FAILED, 0, "OpenCL failed mid-run in jfa: the rest runs on the reference")      \
     X(W, 760, DEVICE_FALLBACK, 0, "no usable OpenCL device: vertices on the reference backend")          \
@@ -114,6 +114,7 @@
     X(W, 807, PLOT_NO_GNUPLOT, 0, "gnuplot not found or failed: plot script kept, no PNG")               \
     X(W, 808, PORE_NOT_FOUND, 0, "no pore: no path crosses the molecule walled by its atoms")            \
     X(W, 809, ATOMS_IGNORED, 0, "atoms left out by --membrane or --ignore (count per name)")             \
+    X(W, 810, PORE_AXIS_FOUND, 0, "note: where the pore's axis came from (symmetry, barrel, ...)")       \
     X(W, 829, PAGE_FULL, 0, "results page full: later frames left out of it (the tables have them)")    \
     X(W, 830, MPI_SAMPLING_RANK0, 0, "--proposer sampling does not split: rank 0 runs it alone")         \
     X(W, 831, MPI_STOPPED, 0, "a rank failed: every rank stopped (the error names the rank)")                   \
@@ -125,7 +126,9 @@
     X(W, 740, "vertex file without vertex lines",                                                        \
       "verify refuses such a file: E105 (nothing verified is not a success)")                            \
     X(W, 805, "no usable OpenCL GPU: channels try the CPU device",                                       \
-      "one fallback rule for every command: --device gpu means a GPU, else the reference")
+      "one fallback rule for every command: --device gpu means a GPU, else the reference")             \
+    X(W, 736, "radius file: HOLE rows for particular atom or residue names left out",                    \
+      "HOLE's rows are matched per atom and residue name as HOLE matches them")
 
 
 enum vb_diag {

@@ -38,6 +38,7 @@
 #include "vb_frames.h"
 #include "vb_periodic_frames.h"
 #include "vb_periodic_verify.h"
+#include "vb_select.h"
 #include "vb_verify_file.h"
 #include "vb_vertex_io.h"
 #include "vbc_frame.h"

@@ -2,6 +2,7 @@
  * chains, or the principal axes of the atoms (vbc_pore.h). */
 #include <math.h>
 #include <stdlib.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "vbc_pore.h"
@@ -14,13 +15,13 @@ const char *vbc_axis_source_name(int source)
     case VBC_AXIS_CHANNEL: return "channel";
     case VBC_AXIS_PRINCIPAL: return "principal";
     case VBC_AXIS_SUBUNIT: return "subunit";
+    case VBC_AXIS_SYMMETRY: return "symmetry";
+    case VBC_AXIS_BARREL: return "barrel";
     default: return "none";
     }
 }
 
-/* Eigenvalues (descending) and unit eigenvectors (columns of v) of the
- * symmetric 3x3 matrix a, by cyclic Jacobi rotations. */
-static void eigen3(const double a_in[3][3], double w[3], double v[3][3])
+void vbc_eigen3(const double a_in[3][3], double w[3], double v[3][3])
 {
     double a[3][3];
     memcpy(a, a_in, sizeof a);
@@ -72,8 +73,7 @@ static void eigen3(const double a_in[3][3], double w[3], double v[3][3])
     memcpy(v, vv, sizeof vv);
 }
 
-/* Flips u so that its largest component is positive (a stable orientation). */
-static void orient(double u[3])
+void vbc_axis_orient(double u[3])
 {
     int k = 0;
     for (int i = 1; i < 3; i++)
@@ -109,15 +109,17 @@ void vbc_axis_principal(const vb_sphere_set *s, vbc_axis out[3])
 {
     double m[3], cov[3][3], w[3], v[3][3];
     covariance(s->n, s->x, s->y, s->z, m, cov);
-    eigen3((const double (*)[3])cov, w, v);
+    vbc_eigen3((const double (*)[3])cov, w, v);
     for (int i = 0; i < 3; i++) {
         memset(&out[i], 0, sizeof out[i]);
         for (int k = 0; k < 3; k++) {
             out[i].u[k] = v[k][i];
             out[i].c[k] = m[k];
         }
-        orient(out[i].u);
+        vbc_axis_orient(out[i].u);
         out[i].source = VBC_AXIS_PRINCIPAL;
+        snprintf(out[i].why, sizeof out[i].why, "principal axis %d of the atom centres (%s variance)",
+                 i + 1, i == 0 ? "largest" : i == 1 ? "middle" : "smallest");
     }
 }
 
@@ -128,9 +130,8 @@ void vbc_axis_principal(const vb_sphere_set *s, vbc_axis out[3])
  * smallest and largest such chain. Returns how many, -1 for more than
  * MAX_CHAINS chains (a large assembly: no single symmetry axis to trust). */
 static int chain_centroids(const vb_sphere_set *s, double *cx, double *cy, double *cz,
-                           size_t *count, size_t *lo_out, size_t *hi_out)
+                           size_t *count, size_t *lo_out, size_t *hi_out, char names[][8])
 {
-    char names[MAX_CHAINS][8];
     int nc = 0;
     for (size_t i = 0; i < s->n; i++) {
         int c = 0;
@@ -157,6 +158,7 @@ static int chain_centroids(const vb_sphere_set *s, double *cx, double *cy, doubl
         cy[k] = cy[c] / (double)count[c];
         cz[k] = cz[c] / (double)count[c];
         count[k] = count[c];
+        memmove(names[k], names[c], 8);
         lo = count[k] < lo ? count[k] : lo;
         hi = count[k] > hi ? count[k] : hi;
         k++;
@@ -170,14 +172,29 @@ int vbc_axis_subunits(const vb_sphere_set *s, const vbc_axis *sym, vbc_axis *out
 {
     double cx[MAX_CHAINS], cy[MAX_CHAINS], cz[MAX_CHAINS];
     size_t count[MAX_CHAINS], lo, hi;
-    if (!s->info || s->n == 0 || sym->source != VBC_AXIS_CHAINS || sym->chains < 3)
+    char names[MAX_CHAINS][8];
+    if (!s->info || s->n == 0 || (sym->source != VBC_AXIS_CHAINS && sym->source != VBC_AXIS_SYMMETRY) ||
+        sym->chains < 3)
         return 0;
-    int k = chain_centroids(s, cx, cy, cz, count, &lo, &hi), n = 0;
+    int k = chain_centroids(s, cx, cy, cz, count, &lo, &hi, names), n = 0;
     for (int c = 0; c < k && n < max; c++, n++) {
+        vbc_axis b;
         out[n] = *sym;
         out[n].c[0] = cx[c];
         out[n].c[1] = cy[c];
         out[n].c[2] = cz[c];
+        snprintf(out[n].why, sizeof out[n].why, "chain %.7s's centroid, parallel to the %.16s axis",
+                 names[c][0] ? names[c] : "_", vbc_axis_source_name(sym->source));
+        /* A subunit that is a barrel (a porin monomer): its own axis, when
+         * it runs along the oligomer's (within 30 degrees). */
+        if (vbc_axis_barrel(s, names[c], &b) &&
+            fabs(b.u[0] * sym->u[0] + b.u[1] * sym->u[1] + b.u[2] * sym->u[2]) > cos(acos(-1.0) / 6.0))
+        {
+            out[n] = b;
+            size_t w = strlen(out[n].why);
+            snprintf(out[n].why + w, sizeof out[n].why - w, ", a subunit on the %s axis",
+                     vbc_axis_source_name(sym->source));
+        }
         out[n].source = VBC_AXIS_SUBUNIT;
         out[n].chains = c + 1;
     }
@@ -188,9 +205,10 @@ int vbc_axis_from_chains(const vb_sphere_set *s, vbc_axis *out)
 {
     double cx[MAX_CHAINS], cy[MAX_CHAINS], cz[MAX_CHAINS];
     size_t count[MAX_CHAINS], lo, hi;
+    char names[MAX_CHAINS][8];
     if (!s->info || s->n == 0)
         return 0;
-    int k = chain_centroids(s, cx, cy, cz, count, &lo, &hi);
+    int k = chain_centroids(s, cx, cy, cz, count, &lo, &hi, names);
     if (k < 2 || (double)hi > 1.25 * (double)lo)
         return 0;
     double m[3], cov[3][3], w[3], v[3][3];
@@ -215,7 +233,9 @@ int vbc_axis_from_chains(const vb_sphere_set *s, vbc_axis *out)
         }
         if (len < 0.4 * (ehi - elo))
             return 0;
-        orient(out->u);
+        vbc_axis_orient(out->u);
+        snprintf(out->why, sizeof out->why, "line through the centroids of 2 stacked chains %s,%s",
+                 names[0][0] ? names[0] : "_", names[1][0] ? names[1] : "_");
         return 1;
     }
     double dmin = INFINITY, dmax = 0.0;
@@ -227,9 +247,50 @@ int vbc_axis_from_chains(const vb_sphere_set *s, vbc_axis *out)
     }
     if (!(dmin > 0.0) || dmax > 1.35 * dmin)
         return 0;
-    eigen3((const double (*)[3])cov, w, v);
+    vbc_eigen3((const double (*)[3])cov, w, v);
     for (int a = 0; a < 3; a++)
         out->u[a] = v[a][2];
-    orient(out->u);
+    vbc_axis_orient(out->u);
+    snprintf(out->why, sizeof out->why, "normal of the centroids of %d chains of similar size", k);
+    return 1;
+}
+
+int vbc_axis_refit(const vb_sphere_set *s, const vbc_axis *first, vbc_axis *out)
+{
+    int ok = 0;
+    switch (first->source) {
+    case VBC_AXIS_SYMMETRY: ok = vbc_axis_symmetry(s, out); break;
+    case VBC_AXIS_CHAINS: ok = vbc_axis_from_chains(s, out); break;
+    case VBC_AXIS_BARREL: ok = vbc_axis_barrel(s, NULL, out); break;
+    case VBC_AXIS_SUBUNIT: {
+        vbc_axis sym, sub[16];
+        if (vbc_axis_symmetry(s, &sym) || vbc_axis_from_chains(s, &sym)) {
+            int n = vbc_axis_subunits(s, &sym, sub, 16);
+            if (first->chains >= 1 && first->chains <= n) {
+                *out = sub[first->chains - 1];
+                ok = 1;
+            }
+        }
+        break;
+    }
+    case VBC_AXIS_PRINCIPAL: {
+        vbc_axis p[3];
+        vbc_axis_principal(s, p);
+        int best = 0;
+        for (int k = 1; k < 3; k++)
+            if (fabs(p[k].u[0] * first->u[0] + p[k].u[1] * first->u[1] + p[k].u[2] * first->u[2]) >
+                fabs(p[best].u[0] * first->u[0] + p[best].u[1] * first->u[1] + p[best].u[2] * first->u[2]))
+                best = k;
+        *out = p[best];
+        ok = 1;
+        break;
+    }
+    default: break;
+    }
+    if (!ok)
+        return 0;
+    if (out->u[0] * first->u[0] + out->u[1] * first->u[1] + out->u[2] * first->u[2] < 0.0)
+        for (int k = 0; k < 3; k++)
+            out->u[k] = -out->u[k];
     return 1;
 }

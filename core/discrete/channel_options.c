@@ -12,7 +12,8 @@ enum vbc_opt_id {
     O_OUT, O_JSON, O_STATS, O_STATS_FILE, O_PROBE, O_GRID, O_FRAMES, O_TRAJ, O_MIN_LENGTH,
     O_MIN_RADIUS, O_LINING_TOL, O_CAVITIES, O_CENTRELINES, O_PYMOL, O_VOLUME, O_VOLUME_MASK,
     O_PNG, O_PNG_NORMAL, O_JFA, O_DEVICE, O_REPEAT, O_AXIS, O_THROUGH, O_SAMPLE, O_END_RADIUS,
-    O_NO_PORE, O_IGNORE, O_MEMBRANE, O_PROFILE, O_PLOT, O_HTML, O_FIXED_GRID, O_OCCUPANCY
+    O_NO_PORE, O_IGNORE, O_MEMBRANE, O_PROFILE, O_PLOT, O_HTML, O_FIXED_GRID, O_OCCUPANCY,
+    O_AXIS_REFIT
 };
 
 #define NUM(a, b) (a), (b), NULL
@@ -73,9 +74,11 @@ static const vbc_opt_spec table[] = {
      "mid-run, that frame and the rest rerun on the reference)", VBC_SECT_MAIN},
     {O_REPEAT, "--repeat", NULL, NULL, VBC_OPT_COUNT, NUM(1, 100000), "N", "1",
      "run every frame N times (timings; outputs written once)", VBC_SECT_MAIN},
-    {O_AXIS, "--axis", NULL, "axis", VBC_OPT_VEC3, NONE, "X,Y,Z", NULL,
-     "the pore axis (HOLE's cvect); default: the symmetry axis of the chains, else a through "
-     "channel, else a principal axis", VBC_SECT_PORE},
+    {O_AXIS, "--axis", NULL, "axis", VBC_OPT_VEC3, NONE, "X,Y,Z|fixed", NULL,
+     "the pore axis (HOLE's cvect); default: the C_n symmetry axis of the chains (a subunit's "
+     "pore when that is closed), else two stacked chains, else a beta-barrel's axis, else a "
+     "through channel, else a principal axis (W810 says which); fixed: later frames sweep the "
+     "first frame's axis (the default; --axis-refit refits it)", VBC_SECT_PORE},
     {O_THROUGH, "--through", NULL, "through", VBC_OPT_VEC3, NONE, "X,Y,Z", NULL,
      "a point in the pore where the sweep starts (HOLE's cpoint)", VBC_SECT_PORE},
     {O_SAMPLE, "--sample", NULL, "sample", VBC_OPT_REAL, NUM(0.01, 5.0), "S", "0.25",
@@ -106,6 +109,10 @@ static const vbc_opt_spec table[] = {
     {O_OCCUPANCY, "--occupancy", NULL, NULL, VBC_OPT_PATH, NONE, "FILE", NULL,
      "per voxel the fraction of frames in which it is in a channel or inside a pore sphere "
      "(.mrc/.map float32 or .vtk; needs --fixed-grid)", VBC_SECT_PORE},
+    {O_AXIS_REFIT, "--axis-refit", NULL, "axis_refit", VBC_OPT_FLAG, NONE, NULL, NULL,
+     "trajectories: refit the axis on every frame from the source the first frame found "
+     "(symmetry, chains, barrel, subunit, principal; the sweep's start moves with it)",
+     VBC_SECT_PORE},
 };
 
 #define NOPT (sizeof table / sizeof table[0])
@@ -281,6 +288,10 @@ int vbc_channels_set(vbc_channels_config *c, const vbc_opt_spec *o, const char *
     double num = 0.0, v3[3] = {0, 0, 0};
     if (o->type != VBC_OPT_FLAG && !v)
         return snprintf(err, errlen, "%s needs a value", o->name), -1;
+    if (o->id == O_AXIS && v && strcmp(v, "fixed") == 0) {
+        c->axis_refit = 0; /* the default, named */
+        return 0;
+    }
     if (typed(o, v, &num, v3, err, errlen) != 0)
         return -1;
     static const unsigned masks[] = {VBC_F_CHANNEL, VBC_F_INTERIOR, VBC_F_MOLECULAR, VBC_F_ATOMIC,
@@ -326,6 +337,7 @@ int vbc_channels_set(vbc_channels_config *c, const vbc_opt_spec *o, const char *
     case O_SAMPLE: c->pore.sweep.step = num; break;
     case O_END_RADIUS: c->pore.sweep.end_radius = num; break;
     case O_NO_PORE: c->pore.enabled = 0; break;
+    case O_AXIS_REFIT: c->axis_refit = 1; break;
     case O_IGNORE:
         return set_names(o->name, v, c->ignore_buf, c->ignore, &c->nignore, err, errlen);
     case O_MEMBRANE:

@@ -111,15 +111,52 @@ static int frame_prepare(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long 
 
 /* Later frames sweep the first frame's pore axis (HOLE's fixed cvect and
  * cpoint): kept in the request once a frame found a pore along a free axis. */
-static void keep_pore_axis(vbc_channels_config *A, const vbc_frame *F)
+static void keep_pore_axis(vbc_channels_config *A, const vbc_frame *F, const vb_sphere_set *s)
 {
     if (!A->pore.enabled || !F->result.pore.present || A->pore.have_axis)
         return;
+    /* --axis-refit: the source refitted on this frame, the base of later frames'. */
+    if (A->axis_refit && !vbc_axis_refit(s, &F->axis, &A->refit0))
+        memset(&A->refit0, 0, sizeof A->refit0);
+    memcpy(A->u0, F->axis.u, sizeof A->u0);
+    memcpy(A->c0, F->axis.c, sizeof A->c0);
     memcpy(A->pore.u, F->axis.u, sizeof A->pore.u);
     memcpy(A->pore.c, F->axis.c, sizeof A->pore.c);
     A->pore.have_axis = A->pore.have_through = 1;
     A->pore.found_source = F->axis.source;
     A->pore.found_chains = F->axis.chains;
+    memcpy(A->pore.found_why, F->axis.why, sizeof A->pore.found_why);
+}
+
+/* --axis-refit: the first frame's axis source fitted again on this frame's
+ * spheres s. The pore axis turns with it and the sweep's start moves by as
+ * much as the refitted axis' point: u = the refit's direction, c = c0 +
+ * (refit.c - refit0.c). From the first frame's values only, so a frame's
+ * axis does not depend on which frames a process ran before it (MPI). */
+static void refit_pore_axis(vbc_channels_config *A, const vb_sphere_set *s)
+{
+    vbc_axis now;
+    if (!A->axis_refit || !A->refit0.source || !vbc_axis_refit(s, &A->refit0, &now))
+        return;
+    /* The chosen direction keeps its angle to the refitted one (a barrel's
+     * pore tilted off its fitted axis): turned by the rotation taking
+     * refit0.u to now.u (Rodrigues). */
+    const double *a = A->refit0.u, *b = now.u;
+    double k[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+    double c = a[0] * b[0] + a[1] * b[1] + a[2] * b[2], u[3];
+    const double *v = A->u0;
+    double kv[3] = {k[1] * v[2] - k[2] * v[1], k[2] * v[0] - k[0] * v[2], k[0] * v[1] - k[1] * v[0]};
+    double kdv = k[0] * v[0] + k[1] * v[1] + k[2] * v[2], n = 0.0;
+    for (int i = 0; i < 3; i++) {
+        u[i] = v[i] * c + kv[i] + k[i] * kdv / (1.0 + c);
+        n += u[i] * u[i];
+    }
+    if (!(c > -0.999) || !(n > 0.0))
+        return;
+    for (int i = 0; i < 3; i++) {
+        A->pore.u[i] = u[i] / sqrt(n);
+        A->pore.c[i] = A->c0[i] + (now.c[i] - A->refit0.c[i]);
+    }
 }
 
 /* The pipeline `repeat` times, the per-run mean timings in o->fi. */
@@ -181,6 +218,8 @@ int vbc_run_frame(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index, 
     int rc = frame_prepare(ctx, r, s0, index, o);
     if (rc != VB_OK)
         return rc;
+    if (!first)
+        refit_pore_axis(A, o->s);
     double ms_prepare = 1e3 * (vb_now() - t0);
     /* A voxel wider than the probe cannot resolve the necks that matter. */
     if (first && o->g.h > fmax(A->probe, 0.5))
@@ -203,8 +242,11 @@ int vbc_run_frame(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index, 
                 vbc_axis_source_name(ps->rejected_source), ps->buried, VBC_PORE_MIN_BURIED);
     else if (rc == VB_OK && A->pore.enabled && !ps->present && first)
         vb_warn(ctx, VB_W_PORE_NOT_FOUND, r->input, 0, "no pore found along any axis candidate");
+    if (rc == VB_OK && first && ps->present && ps->source != VBC_AXIS_GIVEN)
+        vb_warn(ctx, VB_W_PORE_AXIS_FOUND, r->input, 0, "pore axis (%s): %s",
+                vbc_axis_source_name(ps->source), ps->why);
     if (rc == VB_OK)
-        keep_pore_axis(A, &o->F);
+        keep_pore_axis(A, &o->F, o->s);
     if (rc == VB_OK && A->plot)
         rc = series_add(ctx, &r->series, index, &o->F.result);
     if (rc == VB_OK && A->occupancy) {
@@ -262,7 +304,7 @@ int vbc_run_axis(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index)
     if (rc != VB_OK)
         return rc;
     if ((rc = vbc_frame_run(ctx, r->pipe, &o.g, o.s, r->cfg->probe, 0, &r->cfg->opt, &o.F)) == VB_OK)
-        keep_pore_axis(r->cfg, &o.F);
+        keep_pore_axis(r->cfg, &o.F, o.s);
     vbc_frame_free(&o.F);
     vb_spheres_free(o.kept);
     return rc;

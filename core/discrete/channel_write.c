@@ -258,14 +258,17 @@ void vbc_write_json_frame(FILE *f, int first, const vbc_frame_info *fi, const vb
     json_clock(f, "     \"ms\": {", VBC_JSON_MS_KEYS, ms);
     fputs(",\n", f);
     const vbc_pore_summary *P = &res->pore;
-    if (P->present)
+    if (P->present) {
         fprintf(f, "     \"pore\": {\"axis\": [%.5f, %.5f, %.5f], \"start\": [%.3f, %.3f, %.3f],"
-                   " \"axis_from\": \"%s\", \"chains\": %d, \"step_A\": %.4f,"
-                   " \"open_low\": %s, \"open_high\": %s, \"F_per_A\": %.5f,"
-                   " \"g_macro_pS\": %.2f, \"rho_ohm_m\": %.5f},\n",
+                   " \"axis_from\": \"%s\", \"chains\": %d, \"axis_why\": ",
                 P->u[0], P->u[1], P->u[2], P->c[0], P->c[1], P->c[2], vbc_axis_source_name(P->source),
-                P->chains, P->step, P->open_lo ? "true" : "false", P->open_hi ? "true" : "false",
+                P->chains);
+        vb_json_write_string(f, P->why);
+        fprintf(f, ", \"step_A\": %.4f, \"open_low\": %s, \"open_high\": %s, \"F_per_A\": %.5f,"
+                   " \"g_macro_pS\": %.2f, \"rho_ohm_m\": %.5f},\n",
+                P->step, P->open_lo ? "true" : "false", P->open_hi ? "true" : "false",
                 isfinite(P->F) ? P->F : -1.0, isfinite(P->F) ? P->g_macro_pS : 0.0, 1.0 / 12.0);
+    }
     fprintf(f, "     \"channels\": [");
     for (size_t t = 0; t < res->nchannels; t++) {
         const vbc_channel *c = &res->channels[t];

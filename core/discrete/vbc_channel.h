@@ -113,6 +113,7 @@ typedef struct vbc_pore_summary {
     int judged;             /* the verdict ran (a found axis): buried below */
     double buried;          /* A walled along the axis (vbc_pore_judge), also when no pore */
     int rejected_source;    /* no pore: the axis of the path judged (enum vbc_axis_source) */
+    char why[128];          /* how the axis was found, in words (vbc_axis.why) */
 } vbc_pore_summary;
 
 typedef struct vbc_result {

@@ -79,6 +79,9 @@ typedef struct vbc_channels_config {
     vbj_variant variant;
     vb_device_kind device;
     vbc_options opt;      /* its pore points at `pore` (vbc_channels_check) */
+    int axis_refit;       /* --axis-refit: later frames refit the first frame's axis source */
+    vbc_axis refit0;      /* that source refitted on the first frame (vbc_axis_refit) */
+    double u0[3], c0[3];  /* and the first frame's pore axis */
 } vbc_channels_config;
 
 /* The table: *n gets its length. Static. */

@@ -36,7 +36,9 @@ enum vbc_axis_source {
     VBC_AXIS_CHAINS,    /* symmetry of the chains */
     VBC_AXIS_CHANNEL,   /* a through channel of the discrete analysis */
     VBC_AXIS_PRINCIPAL, /* a principal axis of the atom centres */
-    VBC_AXIS_SUBUNIT    /* the chains' symmetry axis moved to one chain's centroid */
+    VBC_AXIS_SUBUNIT,   /* the chains' symmetry axis moved to one chain's centroid (or its barrel) */
+    VBC_AXIS_SYMMETRY,  /* the C_n axis of n >= 3 equal chains, by superposition */
+    VBC_AXIS_BARREL     /* the cylinder of a beta-barrel's strands */
 };
 
 /* The subunit rule above, in A. */
@@ -49,10 +51,77 @@ typedef struct vbc_axis {
     double c[3];   /* where the sweep starts */
     int source;    /* enum vbc_axis_source */
     int chains;    /* chains used (VBC_AXIS_CHAINS); the chain's rank (VBC_AXIS_SUBUNIT) */
+    char why[128];  /* how it was found, in words (the channels JSON's axis_why, note W810) */
 } vbc_axis;
 
+/* The order in which the axis sources are tried when the user gives none
+ * (vbc_pore_find; the first whose sweep is open wins, the symmetry axis in
+ * any case):
+ *   1. symmetry  n >= 3 chains of the same sequence whose C-alpha atoms
+ *                superpose onto their neighbours' by one rotation of 360/n
+ *                degrees about one axis (vbc_axis_symmetry); when its sweep
+ *                is nearly closed, each subunit's own pore (its barrel axis
+ *                when it is a barrel, else the symmetry direction through its
+ *                centroid; the rule below), source subunit;
+ *   2. chains    the centroid rule of vbc_axis_from_chains (two stacked
+ *                chains; three or more of equal size that did not superpose);
+ *   3. barrel    the cylinder fitted to the extended C-alpha atoms of the
+ *                largest chain, when they make a barrel (vbc_axis_barrel);
+ *   4. channel   the widest through channel of the discrete analysis;
+ *   5. principal the three principal axes of the atom centres, the open one
+ *                with the widest constriction.
+ * `axis_why` in the channels JSON and note W810 say which, in words. */
+
+/* Eigenvalues (descending) and unit eigenvectors (columns of v) of the
+ * symmetric 3x3 matrix a, by cyclic Jacobi rotations. */
+void vbc_eigen3(const double a[3][3], double w[3], double v[3][3]);
+
+/* Flips u so that its largest component is positive (a stable orientation). */
+void vbc_axis_orient(double u[3]);
+
+/* The axis of the source that found `first` (its source; for a subunit its
+ * chain's rank, for a principal axis the one nearest first's direction)
+ * fitted again on s (a later frame of a trajectory), oriented along
+ * first's direction. Returns 1 with *out filled; 0 for a source that is
+ * not refitted (given, channel) or that s no longer shows. */
+int vbc_axis_refit(const vb_sphere_set *s, const vbc_axis *first, vbc_axis *out);
+
+/* The C_n symmetry axis (core/discrete/channel_symmetry.c): the largest set
+ * of n >= 3 chains with the same C-alpha residue sequence (at least
+ * VBC_SYM_MIN_CA of them each), ordered around the normal of their
+ * centroids' plane; the axis direction is the one that the displacements of
+ * corresponding C-alpha atoms from each chain to the next are all normal to
+ * (the least eigenvector of their scatter), through the mean of the
+ * chains' centroids. Accepted when rotating each chain by 360/n degrees
+ * about that axis lands on the next with an rms below VBC_SYM_MAX_RMS A.
+ * Returns 1 with *out filled (source SYMMETRY, chains n, why), else 0. */
+int vbc_axis_symmetry(const vb_sphere_set *s, vbc_axis *out);
+#define VBC_SYM_MIN_CA 8
+#define VBC_SYM_MAX_RMS 3.0
+
+/* The axis of a beta-barrel (core/discrete/channel_barrel.c) made by the
+ * chain `chain` of s (NULL: the chain with most C-alpha atoms): its
+ * extended C-alpha atoms (the i-1 to i+1 distance above VBC_BARREL_EXTENDED
+ * A, as in a strand, in runs of VBC_BARREL_MIN_RUN or more: strands, not
+ * turns; at least VBC_BARREL_MIN_CA of them) are fitted by a
+ * cylinder: the direction (a deterministic search over the hemisphere, then
+ * refined) along which their projections lie closest to a circle (algebraic
+ * circle fit; relative rms of the radii below VBC_BARREL_MAX_SPREAD, a
+ * radius of 5-40 A, the atoms around all eight 45-degree sectors). The axis
+ * passes through the circle's centre at the atoms' mean height. Returns 1
+ * with *out filled (source BARREL, why), else 0. */
+int vbc_axis_barrel(const vb_sphere_set *s, const char *chain, vbc_axis *out);
+#define VBC_BARREL_EXTENDED 6.0
+#define VBC_BARREL_MIN_RUN 5
+#define VBC_BARREL_MIN_CA 24
+#define VBC_BARREL_MAX_SPREAD 0.2
+/* The pore of a barrel (channel_pore_frame.c: the fitted axis and a cone
+ * of directions around it, the widest open pore taken). */
+#define VBC_BARREL_CONE 8
+#define VBC_BARREL_TILT 4.0
+
 /* A short name of the axis source ("given", "chains", "channel",
- * "principal", "none"). */
+ * "principal", "subunit", "symmetry", "barrel", "none"). */
 const char *vbc_axis_source_name(int source);
 
 /* The axis from the chains of s (s->info): three or more chains of at

@@ -15,6 +15,7 @@ typedef struct vbc_pore_request {
     double u[3], c[3];
     int found_source;     /* when the axis was found on an earlier frame: its source */
     int found_chains;
+    char found_why[128];  /* and its axis_why */
     vbc_pore_options sweep;
 } vbc_pore_request;
 

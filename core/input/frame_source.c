@@ -2,6 +2,7 @@
  * XTC, TRR) plus its topology (PDB, GRO, mmCIF, PQR, PSF), every frame
  * checked (vb_frames.h). */
 #include "vb_frames.h"
+#include "vb_select.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -28,6 +29,7 @@ struct vb_frame_source {
     long contained_named; /* 1 + the frame whose contained spheres were named (W701) */
     long contained_more;  /* later frames with contained spheres (counted, not named) */
     char contained_src[512]; /* the file they came from, for that count's line */
+    char *select;        /* --select of a text frame source (applied per frame), or NULL */
 };
 
 void vb_frame_source_close(vb_frame_source *F)
@@ -41,6 +43,7 @@ void vb_frame_source_close(vb_frame_source *F)
     free(F->dcd_path);
     free(F->keep);
     free(F->xyz);
+    free(F->select);
     free(F);
 }
 
@@ -52,6 +55,7 @@ static int read_topology(vb_ctx *ctx, const char *path, const vb_read_options *r
     vb_read_options all = *ro;
     all.keep_water = 1;
     all.drop_hydrogens = 0;
+    all.select = NULL;
     char *buf;
     size_t len;
     int rc = vbi_slurp(ctx, path, &buf, &len);
@@ -113,14 +117,23 @@ static int open_traj(vb_ctx *ctx, vb_frame_source *F, const char *path, const ch
     F->xyz = malloc(3 * na * sizeof *F->xyz);
     if (!F->keep || !F->xyz)
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "trajectory frame of %zu atoms", na);
+    vb_select *sel = NULL;
+    if (ro->select && (rc = vb_select_parse(ctx, ro->select, &sel)) != VB_OK)
+        return rc;
     for (size_t i = 0; i < na; i++) {
         const vb_atom_info *a = F->topo->info ? &F->topo->info[i] : NULL;
         if (a && !ro->keep_water && vbi_is_water(a->resname))
             continue;
         if (a && ro->drop_hydrogens && vbi_is_hydrogen(a->element))
             continue;
+        if (sel && !vb_select_match(sel, a))
+            continue;
         F->keep[F->nkeep++] = i;
     }
+    vb_select_free(sel);
+    if (F->nkeep == 0 && ro->select)
+        return vb_error(ctx, VB_EINPUT_SELECT, path, 0, "--select \"%s\" selects none of the %zu atoms",
+                        ro->select, na);
     if (F->nkeep == 0)
         return vb_error(ctx, VB_EINPUT_EMPTY, path, 0, "no atoms left after dropping water");
     return VB_OK;
@@ -135,6 +148,13 @@ int vb_frame_source_open(vb_ctx *ctx, const char *path, const char *dcd_path,
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory");
     int rc = dcd_path ? open_traj(ctx, F, path, dcd_path, ro)
                       : vb_frame_reader_open(ctx, path, ro, &F->rd); /* --model picks one frame */
+    if (rc == VB_OK && !dcd_path && ro->select) {
+        /* Checked now, so a bad expression stops before the first frame. */
+        vb_select *sel = NULL;
+        if ((rc = vb_select_parse(ctx, ro->select, &sel)) == VB_OK && !(F->select = strdup(ro->select)))
+            rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory");
+        vb_select_free(sel);
+    }
     if (rc != VB_OK) {
         vb_frame_source_close(F);
         return rc;
@@ -274,6 +294,12 @@ int vb_frame_source_next(vb_ctx *ctx, vb_frame_source *F, vb_sphere_set **out, i
 {
     *out = NULL;
     int rc = F->rd ? vb_frame_reader_next(ctx, F->rd, out, model) : next_traj(ctx, F, out, model);
+    if (rc == VB_OK && *out && F->select) {
+        vb_sphere_set *t;
+        rc = vb_spheres_select(ctx, *out, F->select, &t);
+        vb_spheres_free(*out);
+        *out = rc == VB_OK ? t : NULL;
+    }
     if (rc == VB_OK && *out && F->rd &&
         (rc = vbi_spheres_validate(ctx, *out, 1, F->contained_named == 0)) != VB_OK) {
         vb_spheres_free(*out);

@@ -9,11 +9,18 @@
  * a warning, or are refused in strict mode.
  *
  * A radius file is "ELEMENT RADIUS" per line, or HOLE's format (its
- * rad/simple.rad, bondi.rad: "VDWR ATOM RES RADIUS" with '?' wildcards,
- * "BOND" and "remark" lines): a VDWR row for every residue ("???") whose
- * atom pattern is letters then wildcards ("C???", "FE??") is the radius of
- * that element, the first such row winning as in HOLE; rows for particular
- * atom or residue names are counted and left out (W736). */
+ * rad/simple.rad, bondi.rad, amberuni.rad: "VDWR ATOM RES RADIUS" with '?'
+ * wildcards, "BOND" and "remark" lines). HOLE's rows are matched as HOLE
+ * matches them (its tsatr.f, LMATCH): the atom name blank-padded to 4
+ * characters against the row's 4-character atom pattern, the residue name
+ * padded to 3 against its residue pattern, '?' matching any character,
+ * case ignored, the first matching row in the file winning ("put specific
+ * records before general", as HOLE's files say). So "VDWR CA   GLY 1.925"
+ * is glycine's C-alpha, "VDWR C??? ??? 1.85" every atom whose name starts
+ * with C. Rows are tried in file order, "ELEMENT RADIUS" rows by element;
+ * an atom no row matches gets the built-in radius of its element (HOLE
+ * would stop). Rows of radius 0 (AMBER's lone pairs "LP??") are skipped:
+ * a sphere needs a radius. */
 #include "vb_array.h"
 #include "vbi_input.h"
 #include "vb_diag.h"
@@ -24,7 +31,9 @@
 #include <strings.h>
 
 typedef struct {
-    char element[4];
+    char element[4]; /* an "ELEMENT RADIUS" row; empty for a HOLE row */
+    char atom[5];    /* a HOLE row: atom pattern, blank-padded, upper case */
+    char res[4];     /* and residue pattern */
     vb_decimal e;
     double d;
 } radius_row;
@@ -57,16 +66,36 @@ static int builtin_lookup(const char *el, vb_decimal *e, double *d)
     return 0;
 }
 
-int vbi_radius_for(vb_ctx *ctx, const vb_read_options *opt, const char *name, long line,
-                   const char *element, vb_decimal *e, double *d, size_t *unknown)
+/* HOLE's LMATCH: the first n characters of pattern p and of the text t
+ * (blank-padded, NUL-ended within n), '?' any character, case ignored. */
+static int hole_match(const char *p, const char *t, size_t n)
 {
+    int ended = 0;
+    for (size_t i = 0; i < n; i++) {
+        char c = ended || !t[i] ? ' ' : t[i];
+        ended |= !t[i];
+        if (p[i] != '?' && toupper((unsigned char)p[i]) != toupper((unsigned char)c))
+            return 0;
+    }
+    return 1;
+}
+
+int vbi_radius_for(vb_ctx *ctx, const vb_read_options *opt, const char *name, long line,
+                   const vb_atom_info *info, vb_decimal *e, double *d, size_t *unknown)
+{
+    const char *element = info->element;
     if (opt->radii)
-        for (size_t k = 0; k < opt->radii->n; k++)
-            if (strcmp(opt->radii->rows[k].element, element) == 0) {
-                *e = opt->radii->rows[k].e;
-                *d = opt->radii->rows[k].d;
+        for (size_t k = 0; k < opt->radii->n; k++) {
+            const radius_row *row = &opt->radii->rows[k];
+            int hit = row->atom[0] ? hole_match(row->atom, info->name, 4) &&
+                                         hole_match(row->res, info->resname, 3)
+                                   : strcmp(row->element, element) == 0;
+            if (hit) {
+                *e = row->e;
+                *d = row->d;
                 return VB_OK;
             }
+        }
     if (builtin_lookup(element, e, d))
         return VB_OK;
     if (opt->strict_elements)
@@ -108,7 +137,7 @@ int vb_radii_load(vb_ctx *ctx, const char *path, vb_radii_table **out)
     if (rc != VB_OK)
         return rc;
     vb_radii_table *t = calloc(1, sizeof *t);
-    size_t cap = 0, particular = 0;
+    size_t cap = 0;
     if (!t) {
         free(buf);
         return vb_error(ctx, VB_ENOMEM, path, 0, "out of memory");
@@ -127,34 +156,35 @@ int vb_radii_load(vb_ctx *ctx, const char *path, vb_radii_table **out)
         int hole = hole_keyword(tok, k);
         if (hole == 1 || hole == 2) /* a remark, or HOLE's bond radius */
             continue;
-        if (hole == 3) {
-            /* VDWR ATOM RES RADIUS: the element's row, or a particular one. */
-            const char *atom, *res;
-            size_t ka = vbi_token(&p, end, &atom), kr = vbi_token(&p, end, &res);
-            size_t letters = 0;
-            while (letters < ka && isalpha((unsigned char)atom[letters]))
-                letters++;
-            int general = ka == 4 && kr == 3 && memcmp(res, "???", 3) == 0 && letters > 0 &&
-                          letters <= 2 && strspn(atom + letters, "?") == ka - letters;
-            /* A zero radius names no element (AMBER's lone pairs, "LP??"). */
-            const char *cur = p, *val;
-            size_t kv = vbi_token(&cur, end, &val);
-            int zero = kv > 0 && strspn(val, "0.") >= kv;
-            if (!general || zero) {
-                particular++;
-                continue;
-            }
-            tok = atom;
-            k = letters;
-        }
         radius_row row;
         memset(&row, 0, sizeof row);
-        if (k >= sizeof row.element) {
+        if (hole == 3) {
+            /* VDWR ATOM RES RADIUS: patterns of 4 and 3 characters. */
+            const char *atom, *res;
+            size_t ka = vbi_token(&p, end, &atom), kr = vbi_token(&p, end, &res);
+            if (ka == 0 || ka > 4 || kr == 0 || kr > 3) {
+                rc = vb_error(ctx, VB_EINPUT_MALFORMED, path, it.lineno,
+                              "expected 'VDWR ATOM RES RADIUS' (patterns of at most 4 and 3 "
+                              "characters)");
+                break;
+            }
+            /* A zero radius is no sphere (AMBER's lone pairs, "LP??"). */
+            const char *cur = p, *val;
+            size_t kv = vbi_token(&cur, end, &val);
+            if (kv > 0 && strspn(val, "0.") >= kv)
+                continue;
+            memset(row.atom, ' ', 4);
+            memset(row.res, ' ', 3);
+            for (size_t c = 0; c < ka; c++)
+                row.atom[c] = (char)toupper((unsigned char)atom[c]);
+            for (size_t c = 0; c < kr; c++)
+                row.res[c] = (char)toupper((unsigned char)res[c]);
+        } else if (k >= sizeof row.element) {
             rc = vb_error(ctx, VB_EINPUT_MALFORMED, path, it.lineno,
                           "'%.*s' is not an element symbol", (int)(k > 20 ? 20 : k), tok);
             break;
         }
-        for (size_t c = 0; c < k; c++)
+        for (size_t c = 0; hole != 3 && c < k; c++)
             row.element[c] = (char)toupper((unsigned char)tok[c]);
         if ((k = vbi_token(&p, end, &tok)) == 0) {
             rc = vb_error(ctx, VB_EINPUT_MALFORMED, path, it.lineno,
@@ -181,10 +211,6 @@ int vb_radii_load(vb_ctx *ctx, const char *path, vb_radii_table **out)
         t->rows[t->n++] = row;
     }
     free(buf);
-    if (rc == VB_OK && particular)
-        vb_warn(ctx, VB_W_RADII_PARTICULAR, path, 0,
-                "%zu HOLE radius rows for particular atom or residue names left out: radii by "
-                "element only", particular);
     if (rc != VB_OK) {
         vb_radii_free(t);
         return rc;

@@ -1,6 +1,7 @@
 /* Entry points of the input layer: the whole input in one buffer
  * (slurp.c), format detection or the forced format, then the reader. */
 #include "vbi_input.h"
+#include "vb_select.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -96,6 +97,12 @@ int vb_spheres_read_buffer(vb_ctx *ctx, const char *name, const char *buf, size_
         }
     }
     free(copy);
+    if (rc == VB_OK && opt->select) {
+        vb_sphere_set *t;
+        rc = vb_spheres_select(ctx, *out, opt->select, &t);
+        vb_spheres_free(*out);
+        *out = rc == VB_OK ? t : NULL;
+    }
     return rc;
 }
 

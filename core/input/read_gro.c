@@ -188,7 +188,7 @@ int vbi_gro_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
         if (how != VBI_INFER_NONE &&
             (rc = vbi_element_inferred(ctx, opt, name, it.lineno, &info, how, dr)) != VB_OK)
             break;
-        rc = vbi_radius_for(ctx, opt, name, it.lineno, info.element, &e[3], &d[3],
+        rc = vbi_radius_for(ctx, opt, name, it.lineno, &info, &e[3], &d[3],
                             &dr->unknown_elements);
         if (rc == VB_OK)
             rc = vbi_builder_push(&b, e, d, &info, it.lineno);

@@ -177,7 +177,7 @@ static int take_row(cif_reader *r, const vbi_cif_token *row, const int *col)
         if (rc != VB_OK)
             return rc;
     }
-    int rc = vbi_radius_for(r->ctx, r->opt, r->name, line, info.element, &e[3], &d[3],
+    int rc = vbi_radius_for(r->ctx, r->opt, r->name, line, &info, &e[3], &d[3],
                             &r->dr->unknown_elements);
     if (rc == VB_OK)
         rc = vbi_builder_push(&r->b, e, d, &info, line);

@@ -43,6 +43,8 @@ static void residue_fields(const char *line, size_t n, vb_atom_info *info)
     k = column(line, n, 23, 26, &s);
     vbi_parse_int(s, k, &info->resseq);
     info->icode = column_char(line, n, 27);
+    k = column(line, n, 73, 76, &s);
+    vbi_copy_field(info->segid, sizeof info->segid, s, k);
 }
 
 /* Offers every lettered atom of the models read (columns 55-60: its
@@ -207,7 +209,7 @@ int vbi_pdb_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
         if (how != VBI_INFER_NONE &&
             (rc = vbi_element_inferred(ctx, opt, name, it.lineno, &info, how, dr)) != VB_OK)
             break;
-        rc = vbi_radius_for(ctx, opt, name, it.lineno, info.element, &e[3], &d[3],
+        rc = vbi_radius_for(ctx, opt, name, it.lineno, &info, &e[3], &d[3],
                             &dr->unknown_elements);
         if (rc == VB_OK)
             rc = vbi_builder_push(&b, e, d, &info, it.lineno);

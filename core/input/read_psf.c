@@ -103,6 +103,7 @@ int vbi_read_psf(vb_ctx *ctx, const char *name, const char *buf, size_t len,
         info.altloc = info.icode = ' ';
         vbi_parse_int(tok[0], tl[0], &info.serial);
         truncated |= vbi_copy_field(info.chain, sizeof info.chain, tok[1], tl[1]);
+        vbi_copy_field(info.segid, sizeof info.segid, tok[1], tl[1]);
         /* A residue number may carry an insertion code ("27A"). */
         size_t digits = 0;
         while (digits < tl[2] && (tok[2][digits] == '-' || (tok[2][digits] >= '0' && tok[2][digits] <= '9')))
@@ -133,7 +134,7 @@ int vbi_read_psf(vb_ctx *ctx, const char *name, const char *buf, size_t len,
          * and the frame source selects (water, hydrogens) afterwards. */
         vb_decimal e[4] = {{0, 0}, {0, 0}, {0, 0}, {0, 0}};
         double d[4] = {0, 0, 0, 0};
-        rc = vbi_radius_for(ctx, opt, name, it.lineno, info.element, &e[3], &d[3],
+        rc = vbi_radius_for(ctx, opt, name, it.lineno, &info, &e[3], &d[3],
                             &dr.unknown_elements);
         if (rc == VB_OK)
             rc = vbi_builder_push(&b, e, d, &info, it.lineno);

@@ -34,6 +34,7 @@ typedef struct vb_atom_info {
     char icode;       /* insertion code or ' ' */
     char altloc;      /* alternate location or ' ' */
     uint8_t hetatm;   /* 1 for HETATM */
+    char segid[8];    /* segment id: PDB columns 73-76, a PSF's segment; else empty */
 } vb_atom_info;
 
 /* A periodic box: the edge vectors a, b, c (rows of ev and v: a = ev[0..2],
@@ -92,6 +93,8 @@ typedef struct vb_read_options {
     int zero_radius;             /* enum vb_zero_radius */
     int assembly;                /* mmCIF: biological assembly N of _pdbx_struct_assembly_gen
                                   * (0 = the asymmetric unit as written) */
+    const char *select;          /* keep only the atoms this expression selects (vb_select.h);
+                                  * NULL: all. Applied after water and hydrogens are dropped */
 } vb_read_options;
 
 /* Parses a format name ("xyzr", "pdb", "pqr", "cif"/"mmcif", "gro", "auto").

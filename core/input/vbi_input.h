@@ -99,11 +99,13 @@ int32_t vbi_pdb_model_serial(const char *line, size_t n);
  * returns 1 if the text had to be truncated. */
 int vbi_copy_field(char *dst, size_t cap, const char *src, size_t len);
 
-/* The radius of an element for PDB/mmCIF: from opt->radii or the built-in
- * table, else the default 1.70 with a warning counted in *unknown (or
+/* The radius of an atom for PDB/mmCIF/GRO/PSF: the first row of opt->radii
+ * that matches it (an element row by info->element, a HOLE row by its atom
+ * and residue names: radii.c), else the built-in table by element, else
+ * the default 1.70 with a warning counted in *unknown (or
  * VB_EINPUT_ELEMENT in strict mode). */
 int vbi_radius_for(vb_ctx *ctx, const vb_read_options *opt, const char *name, long line,
-                   const char *element, vb_decimal *e, double *d, size_t *unknown);
+                   const vb_atom_info *info, vb_decimal *e, double *d, size_t *unknown);
 
 /* Water residue names dropped unless keep_water. */
 int vbi_is_water(const char *resname);

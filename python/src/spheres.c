@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "vb_frames.h"
+#include "vb_select.h"
 
 #define SPHERES_CAPSULE "vorball.spheres"
 #define FRAMES_CAPSULE "vorball.frames"
@@ -506,7 +507,38 @@ static PyObject *frames_close(PyObject *self, PyObject *cap)
     Py_RETURN_NONE;
 }
 
+/* The spheres of a set that an expression selects (vb_spheres_select),
+ * validated as a read set is: (capsule, diagnostics); E118 raised. */
+static PyObject *spheres_select(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *cap;
+    const char *expr;
+    if (!PyArg_ParseTuple(args, "Os", &cap, &expr))
+        return NULL;
+    vb_sphere_set *s = vbpy_spheres_get(cap);
+    if (!s)
+        return NULL;
+    vbpy_call c;
+    if (vbpy_call_open(&c) != 0)
+        return NULL;
+    vb_sphere_set *t = NULL;
+    int rc;
+    Py_BEGIN_ALLOW_THREADS
+    rc = vb_spheres_select(c.ctx, s, expr, &t);
+    if (rc == VB_OK)
+        rc = vb_spheres_validate(c.ctx, t, 1);
+    Py_END_ALLOW_THREADS
+    if (rc != VB_OK) {
+        vb_spheres_free(t);
+        return vbpy_call_fail(&c, rc);
+    }
+    return vbpy_call_return(&c, vbpy_spheres_capsule(t));
+}
+
 PyMethodDef vbpy_spheres_methods[] = {
+    {"spheres_select", spheres_select, METH_VARARGS,
+     "spheres_select(capsule, expr) -> (capsule, diagnostics)"},
     {"spheres_read", spheres_read, METH_VARARGS,
      "spheres_read(path, format, model, water, no_hydrogens, strict, zero_radius, radii, "
      "min_count) -> (capsule, diagnostics)"},

@@ -86,7 +86,8 @@ class Cells:
 
 def cells(xyz: SphereInput, r: Optional[ArrayLike] = None, *, probe: float = 1.4,
           tolerance: float = 1e-6, max_patches: int = MAX_PATCHES, contacts: bool = False,
-          threads: int = 0, zero_radius: str = "auto", verbose: bool = False) -> Cells:
+          threads: int = 0, zero_radius: str = "auto", select: Optional[str] = None,
+          verbose: bool = False) -> Cells:
     """Per-atom volume and SAS area (and contact areas) of the additively
     weighted cells inside the balls of radius R + probe, as `vorball cells`.
 
@@ -94,7 +95,9 @@ def cells(xyz: SphereInput, r: Optional[ArrayLike] = None, *, probe: float = 1.4
     tolerance (relative width asked, in (0, 1)), max_patches (per atom,
     >= 96; past it a value stands wider than asked, W851), contacts (the
     contact areas too), threads (0: all CPUs; the values do not depend on
-    it). Returns a Cells; raises VorballError (E7 for bad options).
+    it). select: only the atoms this expression selects (`--select`,
+    Spheres.select). Returns a Cells; raises VorballError (E7 for bad
+    options, E118 for a bad or empty selection).
     """
     for name, v in (("probe", probe), ("tolerance", tolerance)):
         if not isinstance(v, numbers.Real) or isinstance(v, bool):
@@ -105,7 +108,7 @@ def cells(xyz: SphereInput, r: Optional[ArrayLike] = None, *, probe: float = 1.4
     if not isinstance(threads, numbers.Integral) or isinstance(threads, bool) or \
             not 0 <= threads <= 64:
         raise misuse("threads must be an integer in 0..64, not %r" % (threads,))
-    s, made = as_spheres(xyz, r, min_count=1, zero_radius=zero_radius)
+    s, made = as_spheres(xyz, r, min_count=1, zero_radius=zero_radius, select=select)
     d, diag = _core.cells_run(s._capsule, float(probe), float(tolerance), int(max_patches),
                               bool(contacts), int(threads))
     w = made + parse(diag)

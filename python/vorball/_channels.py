@@ -198,11 +198,11 @@ def run_channels(pipe: Any, first: bool, xyz: SphereInput, r: Optional[ArrayLike
                  grid: Optional[int] = None, probe: Optional[float] = None, *, carry: Any = None,
                  flags: bool = False, zero_radius: str = "auto", verbose: bool = False,
                  progress: Optional[Callable[[str, int, int], Any]] = None,
-                 **options: Any) -> Channels:
+                 select: Optional[str] = None, **options: Any) -> Channels:
     """One frame through an opened channel pipe (vorball.channels, Engine.channels)."""
     kw = _keywords(grid, probe, options)
     s, made = as_spheres(xyz, r, min_count=1, zero_radius=zero_radius, exact=False,
-                         revalidated=False)
+                         revalidated=False, select=select)
     d, diag = _core.channels_run(pipe, s._capsule, kw, carry, int(s.model), int(s.index),
                                  bool(flags), bool(first), progress)
     w = made + parse(diag)
@@ -214,7 +214,7 @@ def channels(xyz: SphereInput, r: Optional[ArrayLike] = None, grid: Optional[int
              probe: Optional[float] = None, *, device: Optional[str] = None,
              jfa: Optional[str] = None, flags: bool = False, zero_radius: str = "auto",
              verbose: bool = False, progress: Optional[Callable[[str, int, int], Any]] = None,
-             **options: Any) -> Channels:
+             select: Optional[str] = None, **options: Any) -> Channels:
     """Channels, cavities and the pore of one set of spheres, as `vorball
     channels` (the same call: the same table, pore included).
 
@@ -229,8 +229,9 @@ def channels(xyz: SphereInput, r: Optional[ArrayLike] = None, grid: Optional[int
     vorball.frames(...): e.channels(f)` (later frames sweep the first
     frame's pore axis, as the command does). progress: a callable,
     progress('frames', 1, 1) once the frame is analysed (the library's
-    progress callback, as for vorball.vertices). Returns Channels; raises
-    VorballError.
+    progress callback, as for vorball.vertices). select: only the atoms
+    this expression selects (`--select`; E118 when bad or empty). Returns
+    Channels; raises VorballError.
 
     Options (vorball.channel_options()):
 %s
@@ -244,7 +245,7 @@ def channels(xyz: SphereInput, r: Optional[ArrayLike] = None, grid: Optional[int
     w = parse(diag)
     emit(w, verbose)
     c = run_channels(pipe, True, xyz, r, flags=flags, zero_radius=zero_radius, verbose=verbose,
-                     progress=progress, **kw)
+                     progress=progress, select=select, **kw)
     c.warnings[:0] = w
     return c
 

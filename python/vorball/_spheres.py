@@ -77,6 +77,18 @@ class Spheres:
     def __len__(self) -> int:
         return self.n
 
+    def select(self, expr: str) -> "Spheres":
+        """The spheres that expr selects, in their order, as a new Spheres
+        (exact decimals kept): the grammar of `--select` (README, Input:
+        chain, segid, resname, resid a:b, name, element, protein, water,
+        and/or/not, parentheses). Raises VorballError E118 for a malformed
+        expression (its position in the message) or an empty selection."""
+        if not isinstance(expr, str):
+            raise misuse("select must be an expression (a str), not %r" % (expr,))
+        cap, diag = _core.spheres_select(self._capsule, expr)
+        s = Spheres(cap, diag, index=self.index, model=self.model)
+        return s
+
     def __repr__(self) -> str:
         return "<vorball.Spheres %d from %r%s>" % (
             self.n, self.source, "" if self.exact else " (doubles only)")
@@ -331,13 +343,26 @@ VALIDATION = frozenset({701, 702})
 
 def as_spheres(xyz: SphereInput, r: Optional[ArrayLike] = None, min_count: int = 1,
                zero_radius: str = "auto", exact: bool = True,
-               revalidated: bool = True) -> Tuple[Spheres, List[Diagnostic]]:
+               revalidated: bool = True, select: Optional[str] = None
+               ) -> Tuple[Spheres, List[Diagnostic]]:
     """A Spheres from what the public calls accept: a Spheres, a path (read),
     or arrays (spheres()). With exact, a set of doubles only (a binary
     trajectory's frame) is rebuilt from its float64 arrays (repr rule).
     Also returns the warnings of making the set here (none for a Spheres
     given as it is), without those of validation when the run repeats
-    them (revalidated): what the command prints before its run, once."""
+    them (revalidated): what the command prints before its run, once.
+    select: keep the spheres this expression selects (Spheres.select)."""
+    if select is not None:
+        # Selected before a trajectory frame is rebuilt from its doubles,
+        # which drops its atom records.
+        made = []
+        if not isinstance(xyz, Spheres):
+            xyz, made = as_spheres(xyz, r, min_count, zero_radius, False, revalidated)
+            r = None
+        t = xyz.select(select)
+        s, more = as_spheres(t, r, min_count, zero_radius, exact, revalidated)
+        return s, made + [w for w in t.warnings
+                          if not (revalidated and w.number in VALIDATION)] + more
     if isinstance(xyz, Spheres):
         if r is not None:
             raise misuse("r is given with a Spheres that has its radii")

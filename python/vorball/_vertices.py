@@ -230,6 +230,7 @@ def vertices(xyz: SphereInput, r: Optional[ArrayLike] = None, device: str = "aut
              samples: int = 30, *, proposer: Optional[str] = None, tol: Optional[float] = None,
              tiles: int = 0, all_pairs: bool = False, threads: int = 0,
              arcs: bool = False, topology: bool = False, zero_radius: str = "auto",
+             select: Optional[str] = None,
              verbose: bool = False, progress: Optional[Callable[[str, int, int], Any]] = None
              ) -> Result:
     """The certified Voronoi vertices of spheres, as `vorball vertices`.
@@ -253,13 +254,15 @@ def vertices(xyz: SphereInput, r: Optional[ArrayLike] = None, device: str = "aut
     total within a stage, total 0 when not known), at most about 1000
     times a stage, from a worker thread; an exception it raises is printed
     as unraisable (sys.unraisablehook) and stops the calls, never the run.
+    select: only the atoms this expression selects (`--select`,
+    Spheres.select; E118 for a bad or empty selection).
     Returns a Result that unpacks as (ids, xyz, t). Raises VorballError.
     Nothing is printed unless verbose.
     """
     opts = _options(samples, tol, tiles, all_pairs, threads)
     if not isinstance(device, str):
         raise misuse("device must be auto, gpu, cpu or ref, not %r" % (device,))
-    s, made = as_spheres(xyz, r, min_count=4, zero_radius=zero_radius)
+    s, made = as_spheres(xyz, r, min_count=4, zero_radius=zero_radius, select=select)
     d, diag = _core.vertices_run(s._capsule, None, device, _proposer(proposer), *opts,
                                  bool(arcs), bool(topology), progress)
     w = made + parse(diag)

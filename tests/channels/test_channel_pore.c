@@ -41,7 +41,7 @@ static int sweep_z(vb_ctx *ctx, const vb_sphere_set *s, double z0, double ds, do
     int rc = vbc_cells_build(ctx, s, 3.0, &cells);
     if (rc != VB_OK)
         return rc;
-    vbc_axis ax = {{0.0, 0.0, 1.0}, {0.0, 0.0, z0}, VBC_AXIS_GIVEN, 0};
+    vbc_axis ax = {{0.0, 0.0, 1.0}, {0.0, 0.0, z0}, VBC_AXIS_GIVEN, 0, ""};
     vbc_pore_options opt = {ds, 0.0, half};
     rc = vbc_pore_sweep(ctx, cells, s, &ax, &opt, NULL, NULL, p);
     vbc_cells_free(cells);

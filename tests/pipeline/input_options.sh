@@ -63,10 +63,13 @@ run 3 "$out" "$vorball" reference /nonexistent/in.xyzr
 expect_line "$out" "/nonexistent/in.xyzr"
 head -3 "$in" > "$work/three.xyzr"
 run 16 "$out" "$vorball" reference "$work/three.xyzr"
-# A radius file in HOLE's format (issue 32): its element rows ("C??? ???")
-# are the element radii, first row winning; remarks and BOND rows are
-# skipped; rows for particular names (and AMBER's zero-radius lone pairs)
-# are left out with W736. The pore is the one the plain file gives.
+# A radius file in HOLE's format (issue 32): rows matched per atom and
+# residue name as HOLE matches them, the first matching row winning;
+# remarks, BOND rows and AMBER's zero-radius lone pairs are skipped. A file
+# whose rows name only first letters (and a GLN row: no GLN in gramicidin)
+# gives the pore the plain element file gives; a row for C-alpha atoms,
+# placed first, gives them its radius (W736, which left such rows out, is
+# retired).
 grm=$corpus/data/1grm_single_hole2.pdb
 cat > "$work/hole.rad" << 'EOF2'
 remark: element radii in HOLE's format
@@ -83,7 +86,12 @@ BOND C??? 0.85
 EOF2
 printf 'C 1.85\nO 1.65\nS 2.00\nN 1.75\nH 1.00\nP 2.10\n' > "$work/plain.radii"
 run 0 "$out" "$vorball" channels --device ref --grid 32 --radii "$work/hole.rad" "$grm" -o "$work/hole.csv"
-expect_line "$out" "W736: .*hole.rad: 2 HOLE radius rows for particular atom or residue names left out"
+grep -q "W736" "$out" && fail "W736 is retired"
 run 0 "$out" "$vorball" channels --device ref --grid 32 --radii "$work/plain.radii" "$grm" -o "$work/plain.csv"
 cmp -s "$work/hole.csv" "$work/plain.csv" || fail "HOLE's radius format gave other radii than the plain file"
+{ echo "VDWR CA   ??? 1.00"; cat "$work/hole.rad"; } > "$work/ca.rad"
+run 0 "$out" "$vorball" vertices --radii "$work/ca.rad" "$grm" --atoms "$work/ca_atoms.tsv" -o "$work/ca.tsv"
+awk -F'\t' '$1 ~ /^[0-9]/ && (($6 == "CA") != ($14 == "1")) { bad = 1 } END { exit bad }' \
+    "$work/ca_atoms.tsv" || fail "the CA row of a HOLE radius file was not matched per atom name"
+[ "$(awk -F'\t' '$6 == "CA"' "$work/ca_atoms.tsv" | wc -l)" -eq 32 ] || fail "gramicidin has 32 CA atoms"
 echo "ok: input options"

@@ -1,0 +1,64 @@
+#!/bin/bash
+# Channels at the defaults beside HOLE 2 with the same radius file (issue 32):
+# vorball finds the axis itself (no --axis); HOLE gets its examples' input
+# (for maltoporin its cvect and cpoint: HOLE's own guess fails on the trimer).
+# Both read HOLE's .rad file as it is (vorball matches its rows per atom and
+# residue name as HOLE does). CPU time (user + sys, /usr/bin/time) of each run.
+#
+# usage: axis_2core.sh HOLE_DIR VORBALL OUTDIR
+#   HOLE_DIR  a HOLE 2 checkout built apart (exe/hole, rad/*.rad; never committed)
+# Writes OUTDIR/axis_2core.tsv: name, radii, HOLE's minimum radius per seed (1 2 3),
+# HOLE's CPU seconds (seed 1), vorball's bottleneck, axis source and CPU seconds.
+set -u
+[ $# -eq 3 ] || { sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
+HD=$1 V=$2 OUT=$3
+here=$(cd "$(dirname "$0")" && pwd)
+data=$here/../../../corpus/data
+mkdir -p "$OUT" && cd "$OUT" || exit 3
+cp "$data/1grm_single_hole2.pdb" 1grm.pdb
+cp "$data/1chb_hole2.pdb" 1chb.pdb
+gzip -dc "$data/1af6_hole2.pdb.gz" > 1af6.pdb
+awk 'substr($0,1,4)=="ATOM" && substr($0,22,1)=="B"; END { print "END" }' 1af6.pdb > 1af6_B.pdb
+
+cpu() { # file written by /usr/bin/time -f '%U %S' -> user + sys
+    tail -1 "$1" | awk '{ printf "%.2f", $1 + $2 }'
+}
+hole_run() { # name pdb rad seed extra-cards...
+    local name=$1 pdb=$2 rad=$3 seed=$4
+    shift 4
+    { printf '%s\n' "coord $pdb" "radius $HD/rad/$rad.rad" "sphpdb ${name}_$rad$seed.sph" "raseed $seed"
+      printf '%s\n' "$@"; } > "${name}_$rad$seed.inp"
+    /usr/bin/time -f '%U %S' -o "${name}_$rad$seed.time" "$HD/exe/hole" < "${name}_$rad$seed.inp" \
+        > "${name}_$rad$seed.out" 2> /dev/null
+    rm -f sr_gseed_tempfile
+    awk '/Minimum radius found/ { print $4 }' "${name}_$rad$seed.out"
+}
+vorball_run() { # name pdb rad options... -> "bottleneck source"
+    local name=$1 pdb=$2 rad=$3
+    shift 3
+    /usr/bin/time -f '%U %S' -o "${name}_$rad.vtime" "$V" channels --device ref \
+        --radii "$HD/rad/$rad.rad" "$@" --json -o "${name}_$rad.json" "$pdb" 2> "${name}_$rad.err"
+    python3 -c "import json,sys; f=json.load(open(sys.argv[1]))['frames'][0]; p=f.get('pore')
+print('%.3f %s' % (f['channels'][0]['bottleneck_A'], p['axis_from']) if p else 'none none')" "${name}_$rad.json"
+}
+printf 'name\tradii\thole_seed1\thole_seed2\thole_seed3\thole_cpu_s\tvorball\taxis\tvorball_cpu_s\n' > axis_2core.tsv
+row() { # name pdb rad "vorball options" hole-cards...
+    local name=$1 pdb=$2 rad=$3 vopt=$4
+    shift 4
+    local h1 h2 h3 v
+    h1=$(hole_run "$name" "$pdb" "$rad" 1 "$@")
+    h2=$(hole_run "$name" "$pdb" "$rad" 2 "$@")
+    h3=$(hole_run "$name" "$pdb" "$rad" 3 "$@")
+    # shellcheck disable=SC2086
+    v=$(vorball_run "$name" "$pdb" "$rad" $vopt)
+    printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$name" "$rad" "$h1" "$h2" "$h3" \
+        "$(cpu "${name}_${rad}1.time")" ${v% *} ${v#* } "$(cpu "${name}_$rad.vtime")" >> axis_2core.tsv
+}
+for rad in simple bondi amberuni; do
+    row 1grm 1grm.pdb $rad "" "endrad 5."
+done
+row 1chb 1chb.pdb simple "" "ignore hoh tip wat"
+row 1af6 1af6.pdb simple "--ignore FRU,GLC,MG" "ignore FRU GLC MG HOH" "cvect 0.0 0.0 1.0" \
+    "cpoint -14.285 47.809 82.707"
+row 1af6_B 1af6_B.pdb simple "" "cvect 0.0 0.0 1.0" "cpoint -14.285 47.809 82.707"
+cat axis_2core.tsv
