@@ -54,6 +54,7 @@ static void arena_free(vbq_arena *a)
     free(a->lab);
     free(a->st);
     free(a->q);
+    free(a->hi);
     memset(a, 0, sizeof *a);
 }
 
@@ -65,11 +66,12 @@ static int arena_make(vbq_arena *a, uint32_t nb, uint32_t lab, uint32_t st, uint
     a->lab = malloc((size_t)lab * sizeof *a->lab);
     a->st = malloc((size_t)st * sizeof *a->st);
     a->q = malloc(4 * (size_t)q * sizeof *a->q);
+    a->hi = malloc((size_t)lab * sizeof *a->hi);
     a->nb_cap = nb;
     a->lab_cap = lab;
     a->st_cap = st;
     a->q_cap = q;
-    return a->nb && a->lab && a->st && a->q ? VB_OK : VB_ENOMEM;
+    return a->nb && a->lab && a->st && a->q && a->hi ? VB_OK : VB_ENOMEM;
 }
 
 /* Arena capacities of the first try on the host; a cell that overflows one

@@ -258,6 +258,33 @@ VBS_FN int vbq_task_child(vbs_u32 task, vbs_u32 level, vbs_u32 k)
 
 #ifndef VBQ_GROUP_ONLY
 
+/* The upper end of label k's enclosure over the patch (m, h): kept by the
+ * patch's first pass on the host (VBQ_HI_KEEP), evaluated again on a
+ * device (no scratch per label there). The same double either way. */
+#ifdef __OPENCL_C_VERSION__
+#define VBQ_HI_KEEP(ar, k, hi) ((void)(hi))
+#else
+#define VBQ_HI_KEEP(ar, k, hi)   \
+    do {                         \
+        if ((ar)->hi)            \
+            (ar)->hi[k] = (hi);  \
+    } while (0)
+#endif
+
+VBS_FN double vbq_hi_again(const vbq_arena *ar, vbs_u32 k, const vbq_nb *rec, const double m[3],
+                           const double h[3])
+{
+#ifndef __OPENCL_C_VERSION__
+    if (ar->hi)
+        return ar->hi[k];
+#endif
+    double lo, hi;
+    vbq_eval(rec, m, h, &lo, &hi);
+    (void)k;
+    (void)ar;
+    return hi;
+}
+
 #ifndef __OPENCL_C_VERSION__
 /* The exact decision of a tie cluster on the host (core/cells/
  * cover_cluster.c): the owned labels ids[0 .. n) of a leaf of cell i.
@@ -345,6 +372,7 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
             double lo, hi;
             vbq_eval(&rec, m, h, &lo, &hi);
             LO = lo > LO ? lo : LO;
+            VBQ_HI_KEEP(ar, k, hi);
         }
         evals += (double)fr.len;
         int closed = vbq_closed(fr.rq, LO, slack_i);
@@ -394,8 +422,7 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
         for (vbs_u32 k = 0u; k < fr.len; k++) {
             vbs_u32 li = ar->lab[fr.off + k];
             vbq_nb rec = ar->nb[li];
-            double lo, hi;
-            vbq_eval(&rec, m, h, &lo, &hi);
+            double hi = vbq_hi_again(ar, k, &rec, m, h);
             if (hi >= LO) {
                 ar->lab[top + keep++] = li;
                 if (rec.id > i)

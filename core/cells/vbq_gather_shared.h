@@ -108,6 +108,10 @@ typedef struct vbq_arena {
     VBS_GLOBAL vbq_frame *st;
     VBS_GLOBAL vbs_u32 *q;      /* 4 per quadruple */
     vbs_u32 nb_cap, lab_cap, st_cap, q_cap;
+#ifndef __OPENCL_C_VERSION__
+    double *hi;  /* host: upper ends of a patch's label enclosures, lab_cap of them
+                    (NULL: evaluated again where needed, as the kernels do) */
+#endif
 } vbq_arena;
 
 /* Squared distance from c to node nd's box (0 inside), and to its farthest
