@@ -34,13 +34,15 @@ static int quiet;
 #define VB_STATUS_DELAY 1.0
 #define VB_STATUS_PERIOD_NS 500000000L
 
+static int forced(void);
+
 static void draw_locked(void)
 {
     if (st.active)
         return; /* the progress line has the terminal */
     double t = vb_now() - st.start;
-    if (t < VB_STATUS_DELAY)
-        return;
+    if (t < VB_STATUS_DELAY && !forced())
+        return; /* VORBALL_PROGRESS=1 draws short runs too, from their start */
     fprintf(stderr, "\r\033[K%s  [%.0f s]", st.label, t);
     fflush(stderr);
     st.shown = 1;
@@ -94,6 +96,8 @@ void vb_cli_status_start(const char *label)
     st.stop = 0;
     st.shown = 0;
     st.running = pthread_create(&st.thread, NULL, ticker, NULL) == 0;
+    if (st.running && forced())
+        draw_locked();
     pthread_mutex_unlock(&st.lock);
 }
 
