@@ -34,7 +34,11 @@ static int quiet;
 #define VB_STATUS_DELAY 1.0
 #define VB_STATUS_PERIOD_NS 500000000L
 
-static int forced(void);
+static int forced(void)
+{
+    const char *force = getenv("VORBALL_PROGRESS");
+    return force && strcmp(force, "1") == 0;
+}
 
 static void draw_locked(void)
 {
@@ -66,12 +70,6 @@ static void *ticker(void *arg)
     }
     pthread_mutex_unlock(&st.lock);
     return NULL;
-}
-
-static int forced(void)
-{
-    const char *force = getenv("VORBALL_PROGRESS");
-    return force && strcmp(force, "1") == 0;
 }
 
 void vb_cli_set_quiet(int on)

@@ -68,9 +68,9 @@ vb_device_kind vb_vertices_device(const vb_sphere_set *set, const vb_vertices_co
     size_t below = cfg->host_below;
     if (below == 0) {
         const char *env = getenv("VORBALL_HOST_BELOW");
-        char *end = NULL;
+        char *end;
         unsigned long long v = env && *env ? strtoull(env, &end, 10) : 0;
-        below = env && *env && end && *end == '\0' && v > 0 ? (size_t)v : VB_HOST_BELOW_DEFAULT;
+        below = v > 0 && *end == '\0' ? (size_t)v : VB_HOST_BELOW_DEFAULT;
     }
     if (set->n >= below || !layer || !layer->gpu_present || !layer->gpu_present())
         return VB_DEVICE_AUTO;
