@@ -20,6 +20,7 @@
 #include "vb_frames.h"
 #include "vb_world.h"
 #include "vbc_page.h"
+#include "vbc_ahead.h"
 #include "vbc_run.h"
 #include "frame_rounds.h"
 
@@ -180,15 +181,22 @@ static int write_stages(vb_ctx *ctx, const ch_args *A, vbc_pipe *pipe, const vb_
     return rc;
 }
 
-/* Runs one frame (vbc_run_frame) and writes its outputs; `first`: it is the
- * first frame of the selection (volume, picture). Under MPI the options
- * that need every frame in one process are refused before. */
+/* Runs one frame (vbc_run_frame; with `front`, the back half of a frame
+ * whose front half the reader ran: vbc_run_back) and writes its outputs;
+ * `first`: it is the first frame of the selection (volume, picture). Under
+ * MPI the options that need every frame in one process are refused before. */
 static int do_frame(vb_ctx *ctx, ch_args *A, vbc_pipe *pipe, long index, int model, int first,
-                    const vb_sphere_set *s0, double t_read, double cpu_read, sinks *S)
+                    const vb_sphere_set *s0, double t_read, double cpu_read, sinks *S,
+                    vbc_run_out *front)
 {
     vbc_run_out o;
     double t_run = vb_now();
-    int rc = vbc_run_frame(ctx, &S->run, s0, index, model, first, &o);
+    int rc;
+    if (front) {
+        o = *front;
+        rc = vbc_run_back(ctx, &S->run, &o);
+    } else
+        rc = vbc_run_frame(ctx, &S->run, s0, index, model, first, &o);
     if (rc != VB_OK)
         return rc;
     o.fi.ms_read = 1e3 * (t_run - t_read); /* the JSON's clocks: from the reading on */
@@ -258,7 +266,7 @@ static int run_frames(vb_ctx *ctx, ch_args *A, vbc_pipe *pipe, vb_frame_source *
                               vbc_pipe_device_name(pipe));
             if (index >= A->c.f0 && (index - A->c.f0) % A->c.fstep == 0) {
                 if (vb_cli_rounds_mine(j))
-                    frc = do_frame(ctx, A, pipe, index, model, j == 0, s, t_read, cpu_read, S);
+                    frc = do_frame(ctx, A, pipe, index, model, j == 0, s, t_read, cpu_read, S, NULL);
                 else if (j == 0 && A->c.pore.enabled && !A->c.pore.have_axis)
                     frc = vbc_run_axis(ctx, &S->run, s, index);
                 j++;
@@ -271,6 +279,43 @@ static int run_frames(vb_ctx *ctx, ch_args *A, vbc_pipe *pipe, vb_frame_source *
         rc = vb_cli_rounds_flush(ctx, S->rounds, frc, j0, j, out);
         j0 = j;
     }
+    *selected = j;
+    return rc;
+}
+
+/* run_frames with the frames in flight (vbc_ahead.h; one process): the
+ * reader thread reads and runs the front half of the next frames while
+ * this thread runs the back half of the current one and writes it; the
+ * same bytes. A frame's "read" clock is the time this thread waited for
+ * the reader. */
+static int run_frames_ahead(vb_ctx *ctx, ch_args *A, vbc_pipe *pipe, vb_frame_source *F,
+                            sinks *S, FILE *out[VB_CLI_ROUND_SINKS], long *selected, int depth)
+{
+    vbc_ahead *ah = NULL;
+    long j = 0, j0 = 0, round = vb_cli_rounds_length();
+    int rc = vbc_ahead_open(ctx, &S->run, F, depth, &ah), end = rc != VB_OK;
+    while (rc == VB_OK && !end) {
+        int frc = VB_OK;
+        while (frc == VB_OK && j < j0 + round) {
+            vbc_ahead_frame f;
+            int have;
+            double t_read = vb_now(), cpu_read = vbc_cpu_now();
+            frc = vbc_ahead_next(ctx, ah, &f, &have);
+            if (frc != VB_OK || !have) {
+                end = 1;
+                break;
+            }
+            vb_cli_status_set("channels: frame %ld (%ld analysed) on %s", f.index,
+                              S->run.frames_done, vbc_pipe_device_name(pipe));
+            frc = do_frame(ctx, A, pipe, f.index, f.o.fi.model, f.j == 0, f.s0, t_read, cpu_read,
+                           S, &f.o);
+            vb_spheres_free(f.s0);
+            j++;
+        }
+        rc = vb_cli_rounds_flush(ctx, S->rounds, frc, j0, j, out);
+        j0 = j;
+    }
+    vbc_ahead_close(ctx, ah);
     *selected = j;
     return rc;
 }
@@ -413,7 +458,13 @@ int vb_cmd_channels(int argc, char **argv)
     /* The status line shares stderr with --stats: the rows would cut it. */
     if (rank0 && !A.c.stats_stderr)
         vb_cli_status_start("channels: reading the first frame");
-    rc = run_frames(ctx, &A, pipe, F, &S, out, &selected);
+    /* Frames in flight on one process; the picture (--png) runs the pipe
+     * on this thread, so it keeps the loop that reads frame by frame. */
+    int depth = vbc_ahead_depth();
+    if (vb_world_size() == 1 && depth > 0 && !A.c.png)
+        rc = run_frames_ahead(ctx, &A, pipe, F, &S, out, &selected, depth);
+    else
+        rc = run_frames(ctx, &A, pipe, F, &S, out, &selected);
     double wall = vb_now() - t0;
     vb_cli_status_stop();
     if (rc == VB_OK && selected == 0)

@@ -22,8 +22,8 @@ void vbc_frame_free(vbc_frame *f)
     memset(f, 0, sizeof *f);
 }
 
-int vbc_frame_run(vb_ctx *ctx, vbc_pipe *pipe, const vbc_grid *g, const vb_sphere_set *s,
-                  double probe, unsigned want, const vbc_options *opt, vbc_frame *f)
+int vbc_frame_masks(vb_ctx *ctx, vbc_pipe *pipe, const vbc_grid *g, const vb_sphere_set *s,
+                    double probe, unsigned want, const vbc_options *opt, vbc_frame *f)
 {
     vbc_frame_out_free(&f->out);
     vbc_result_free(&f->result);
@@ -32,8 +32,7 @@ int vbc_frame_run(vb_ctx *ctx, vbc_pipe *pipe, const vbc_grid *g, const vb_spher
     f->ms_masks = f->ms_analysis = f->ms_pore = 0.0;
     memset(&f->pore_ms, 0, sizeof f->pore_ms);
     memset(&f->axis, 0, sizeof f->axis);
-    const vbc_pore_request *req = opt->pore && opt->pore->enabled ? opt->pore : NULL;
-    if (req)
+    if (opt->pore && opt->pore->enabled)
         want |= VBC_WANT_FLAGS;
     if (f->atoms_cap < s->n) {
         float *a = realloc(f->atoms4, 4 * s->n * sizeof *a);
@@ -45,16 +44,22 @@ int vbc_frame_run(vb_ctx *ctx, vbc_pipe *pipe, const vbc_grid *g, const vb_spher
     double t0 = vb_now();
     vbc_atoms_pack(g, s, probe, f->atoms4);
     int rc = vbc_pipe_frame(ctx, pipe, g, f->atoms4, s->n, probe, want, &f->out);
+    f->ms_masks = 1e3 * (vb_now() - t0);
+    return rc;
+}
+
+int vbc_frame_analyse(vb_ctx *ctx, const vb_sphere_set *s, const vbc_options *opt, vbc_frame *f)
+{
+    const vbc_grid *g = &f->grid;
+    const vbc_pore_request *req = opt->pore && opt->pore->enabled ? opt->pore : NULL;
     double t1 = vb_now();
-    if (rc == VB_OK)
-        rc = vbc_analyse_clear(ctx, g, s, f->out.voxels, f->out.clearance, f->out.nvoxels, opt,
+    int rc = vbc_analyse_clear(ctx, g, s, f->out.voxels, f->out.clearance, f->out.nvoxels, opt,
                                &f->result);
     double t2 = vb_now();
     if (rc == VB_OK)
         rc = vbc_pore_stage(ctx, g, f->out.flags, s, req, opt->lining_tol, &f->result, &f->axis,
                             &f->pore_ms);
     double t3 = vb_now();
-    f->ms_masks = 1e3 * (t1 - t0);
     f->ms_analysis = 1e3 * (t2 - t1);
     f->ms_pore = 1e3 * (t3 - t2);
     if (rc != VB_OK) {
@@ -63,4 +68,15 @@ int vbc_frame_run(vb_ctx *ctx, vbc_pipe *pipe, const vbc_grid *g, const vb_spher
         memset(&f->result, 0, sizeof f->result);
     }
     return rc;
+}
+
+int vbc_frame_run(vb_ctx *ctx, vbc_pipe *pipe, const vbc_grid *g, const vb_sphere_set *s,
+                  double probe, unsigned want, const vbc_options *opt, vbc_frame *f)
+{
+    int rc = vbc_frame_masks(ctx, pipe, g, s, probe, want, opt, f);
+    if (rc != VB_OK) {
+        vbc_frame_out_free(&f->out);
+        return rc;
+    }
+    return vbc_frame_analyse(ctx, s, opt, f);
 }

@@ -54,12 +54,13 @@ static int series_add(vb_ctx *ctx, vbc_series *S, long frame, const vbc_result *
 }
 
 /* The frame's grid: fitted to it, or the fixed grid of the first frame. */
-static int frame_grid(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s, long index, vbc_grid *g)
+static int frame_grid(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s, long index, int first,
+                      vbc_grid *g)
 {
     const vbc_channels_config *A = r->cfg;
     if (!A->fixed_grid)
         return vbc_grid_fit(ctx, s, A->probe, A->grid, 3, g);
-    if (r->frames_done == 0) {
+    if (first) {
         int rc = vbc_grid_fit(ctx, s, A->probe + 5.0, A->grid, 3, &r->fixed);
         if (rc != VB_OK)
             return rc;
@@ -83,7 +84,7 @@ static int frame_grid(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s, long inde
  * holds them when any were left out) and its grid. On failure nothing is
  * held. */
 static int frame_prepare(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index,
-                         vbc_run_out *o)
+                         int first, vbc_run_out *o)
 {
     const vbc_channels_config *A = r->cfg;
     int rc = VB_OK;
@@ -102,7 +103,7 @@ static int frame_prepare(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long 
         r->ignored += dropped;
         o->s = o->kept;
     }
-    if ((rc = frame_grid(ctx, r, o->s, index, &o->g)) != VB_OK) {
+    if ((rc = frame_grid(ctx, r, o->s, index, first, &o->g)) != VB_OK) {
         vb_spheres_free(o->kept);
         o->kept = NULL;
     }
@@ -159,14 +160,18 @@ static void refit_pore_axis(vbc_channels_config *A, const vb_sphere_set *s)
     }
 }
 
-/* The pipeline `repeat` times, the per-run mean timings in o->fi. */
-static int frame_repeat(vb_ctx *ctx, vbc_run *r, unsigned want, vbc_run_out *o)
+/* The pipeline `repeat` times (the first run's masks already made when
+ * o->masked), the per-run mean timings in o->fi. */
+static int frame_repeat(vb_ctx *ctx, vbc_run *r, vbc_run_out *o)
 {
     const vbc_channels_config *A = r->cfg;
     vbc_frame_info *fi = &o->fi;
     int rc = VB_OK;
     for (int k = 0; k < A->repeat && rc == VB_OK; k++) {
-        rc = vbc_frame_run(ctx, r->pipe, &o->g, o->s, A->probe, want, &A->opt, &o->F);
+        if (k > 0 || !o->masked)
+            rc = vbc_frame_masks(ctx, r->pipe, &o->g, o->s, A->probe, o->want, &A->opt, &o->F);
+        if (rc == VB_OK)
+            rc = vbc_frame_analyse(ctx, o->s, &A->opt, &o->F);
         fi->ms_upload += o->F.out.ms_upload;
         fi->ms_jfa += o->F.out.ms_jfa;
         fi->ms_masks += o->F.out.ms_masks;
@@ -209,31 +214,63 @@ void vbc_run_frame_done(vbc_run *r, int first, vbc_run_out *o)
     memset(o, 0, sizeof *o);
 }
 
+int vbc_run_front(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index, int model,
+                  int first, int masks, vbc_run_out *o)
+{
+    const vbc_channels_config *A = r->cfg;
+    memset(o, 0, sizeof *o);
+    double t0 = vb_now();
+    int rc = frame_prepare(ctx, r, s0, index, first, o);
+    if (rc != VB_OK)
+        return rc;
+    int want_volume = A->volume && (strstr(A->volume, "%d") || first);
+    o->want = r->want | (want_volume || A->occupancy ? VBC_WANT_FLAGS : 0);
+    o->fi.frame = index;
+    o->fi.model = model;
+    o->fi.atoms = o->s->n;
+    o->fi.ms_prepare = 1e3 * (vb_now() - t0);
+    o->first = first;
+    if (!masks)
+        return VB_OK;
+    rc = vbc_frame_masks(ctx, r->pipe, &o->g, o->s, A->probe, o->want, &A->opt, &o->F);
+    if (rc != VB_OK) {
+        vbc_run_front_drop(o);
+        return rc;
+    }
+    o->masked = 1;
+    return VB_OK;
+}
+
+/* Drops what a front half holds (a run stopped before its back half). */
+void vbc_run_front_drop(vbc_run_out *o)
+{
+    vbc_frame_free(&o->F);
+    vb_spheres_free(o->kept);
+    memset(o, 0, sizeof *o);
+}
+
 int vbc_run_frame(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index, int model,
                   int first, vbc_run_out *o)
 {
+    int rc = vbc_run_front(ctx, r, s0, index, model, first, 0, o);
+    return rc == VB_OK ? vbc_run_back(ctx, r, o) : rc;
+}
+
+int vbc_run_back(vb_ctx *ctx, vbc_run *r, vbc_run_out *o)
+{
     vbc_channels_config *A = r->cfg;
-    memset(o, 0, sizeof *o);
+    int first = o->first, rc;
+    long index = o->fi.frame;
     double t0 = vb_now();
-    int rc = frame_prepare(ctx, r, s0, index, o);
-    if (rc != VB_OK)
-        return rc;
     if (!first)
         refit_pore_axis(A, o->s);
-    double ms_prepare = 1e3 * (vb_now() - t0);
+    o->fi.ms_prepare += 1e3 * (vb_now() - t0);
     /* A voxel wider than the probe cannot resolve the necks that matter. */
     if (first && o->g.h > fmax(A->probe, 0.5))
         vb_warn(ctx, VB_W_VOXEL_COARSE, r->input, 0,
                 "voxel edge %.2f A is coarser than the probe radius %.2f A: narrow channels may be "
                 "missed (raise --grid)", o->g.h, A->probe);
-    int want_volume = A->volume && (strstr(A->volume, "%d") || first);
-    unsigned want = r->want | (want_volume || A->occupancy ? VBC_WANT_FLAGS : 0);
-    memset(&o->fi, 0, sizeof o->fi);
-    o->fi.frame = index;
-    o->fi.model = model;
-    o->fi.atoms = o->s->n;
-    o->fi.ms_prepare = ms_prepare;
-    rc = frame_repeat(ctx, r, want, o);
+    rc = frame_repeat(ctx, r, o);
     const vbc_pore_summary *ps = &o->F.result.pore;
     if (rc == VB_OK && A->pore.enabled && !ps->present && first && ps->judged)
         vb_warn(ctx, VB_W_PORE_NOT_FOUND, r->input, 0,
@@ -256,9 +293,7 @@ int vbc_run_frame(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index, 
             rc = vbc_occupancy_add(ctx, &o->g, o->F.out.flags, &o->F.result, r->occupancy);
     }
     if (rc != VB_OK) {
-        vbc_frame_free(&o->F);
-        vb_spheres_free(o->kept);
-        memset(o, 0, sizeof *o);
+        vbc_run_front_drop(o);
         return rc;
     }
     r->frames_done++;
@@ -298,7 +333,7 @@ int vbc_run_axis(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index)
     /* Counted by the rank that owns the frame. */
     size_t ignored = r->ignored, left_out[2 * VBC_MAX_NAMES];
     memcpy(left_out, r->left_out, sizeof left_out);
-    int rc = frame_prepare(ctx, r, s0, index, &o);
+    int rc = frame_prepare(ctx, r, s0, index, 1, &o);
     r->ignored = ignored;
     memcpy(r->left_out, left_out, sizeof left_out);
     if (rc != VB_OK)

@@ -34,6 +34,18 @@ void vbc_frame_free(vbc_frame *f);
 int vbc_frame_run(vb_ctx *ctx, vbc_pipe *pipe, const vbc_grid *g, const vb_sphere_set *s,
                   double probe, unsigned want, const vbc_options *opt, vbc_frame *f);
 
+/* vbc_frame_run in two halves, which may run on two threads for two
+ * frames (frames in flight, vbc_ahead.h): vbc_frame_masks packs the
+ * spheres and runs the pipe (f->out, f->ms_masks; the flag volume fetched
+ * when opt->pore asks for the pore stage), vbc_frame_analyse then runs the
+ * analysis and the pore stage on f->out (f->result, f->axis, the other
+ * times). vbc_frame_analyse reads opt->pore when it runs, so the pore axis
+ * an earlier frame found counts. Statuses and what *f holds after a
+ * failure as for vbc_frame_run. */
+int vbc_frame_masks(vb_ctx *ctx, vbc_pipe *pipe, const vbc_grid *g, const vb_sphere_set *s,
+                    double probe, unsigned want, const vbc_options *opt, vbc_frame *f);
+int vbc_frame_analyse(vb_ctx *ctx, const vb_sphere_set *s, const vbc_options *opt, vbc_frame *f);
+
 /* The planar cut of s by the plane through its centroid normal to axis
  * `normal` (0 x, 1 y, 2 z): every sphere the plane crosses becomes a disk
  * of its cross-section radius, in the plane's two other axes (z 0).

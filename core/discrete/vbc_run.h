@@ -40,6 +40,9 @@ typedef struct vbc_run_out {
     vbc_grid g;
     const vb_sphere_set *s;   /* the spheres analysed: the frame's, or `kept` */
     vb_sphere_set *kept;      /* the frame without the --ignore residues, or NULL */
+    unsigned want;            /* VBC_WANT_* of this frame (vbc_run_front) */
+    int first;                /* the first frame of the selection */
+    int masked;               /* F.out holds the first run's masks (vbc_run_front) */
 } vbc_run_out;
 
 /* Starts a run of cfg (checked by vbc_channels_check) on pipe; input is
@@ -57,6 +60,22 @@ void vbc_run_free(vbc_run *r);
  * (an atom leaves the fixed grid), VB_EINPUT_EMPTY, VB_EDEVICE. */
 int vbc_run_frame(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index, int model,
                   int first, vbc_run_out *o);
+
+/* vbc_run_frame in two halves, so that a reader thread can run the front
+ * of frame N+1 while the caller runs the back of frame N (frames in flight,
+ * vbc_ahead.h); the tables are the same bytes as vbc_run_frame's.
+ * vbc_run_front: the spheres left out, the grid and, with `masks`, the
+ * first run's pipe (labels, masks, channel voxels); it touches the run's
+ * counts of atoms left out and its fixed grid (fitted when `first`), and
+ * nothing the back half touches. vbc_run_back, on the caller's thread in
+ * frame order: the axis refit, the analysis, the pore stage, the series,
+ * the occupancy, frames_done. Fronts run in frame order too. Each fills or
+ * finishes *o as vbc_run_frame; on failure *o holds nothing (a front
+ * whose back will not run: vbc_run_front_drop). */
+int vbc_run_front(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index, int model,
+                  int first, int masks, vbc_run_out *o);
+int vbc_run_back(vb_ctx *ctx, vbc_run *r, vbc_run_out *o);
+void vbc_run_front_drop(vbc_run_out *o);
 
 /* After the frame's outputs are written: keeps the first frame's result in
  * r->first, frees the rest of *o. */

@@ -1,0 +1,124 @@
+#!/bin/bash
+# Frames per second of `vorball channels` over a large MD trajectory, end to end
+# with the reading included, with the frames in flight (VORBALL_FRAMES_AHEAD=2, a
+# reader thread) and without (0, the sequential loop), beside HOLE 2 on the same
+# frames in the same session (issue 33, benchmark item 4).
+#
+# usage: mda_fps.sh HOLEBIN VORBALL TOPOLOGY TRAJ GRID DEVICE OUTDIR
+#   HOLEBIN   the hole binary (built apart; radius file HOLE_RAD as in
+#             frames_vs_hole.sh: $(dirname HOLEBIN)/../rad/simple.rad by default)
+#   VORBALL   the vorball binary
+#   TOPOLOGY  the trajectory's topology (GRO, PDB; .gz too), TRAJ its XTC/TRR/DCD,
+#             e.g. MDAnalysis' test files adk_oplsaa.gro + adk_oplsaa.xtc (47,681
+#             atoms, 10 frames) or YiiP_lipids.gro.gz + YiiP_lipids.xtc (43,480
+#             atoms); GPL-2+, keep them out of the repository
+#   GRID      vorball's --grid;  DEVICE its --device (ref, cpu, gpu, auto)
+#   OUTDIR    gets fps.tsv (one row per run: tool, variant, frames, wall, user,
+#             system seconds, frames/s on the wall clock, CPU s per frame),
+#             stages.tsv (vorball's mean ms per frame of each --json clock, per
+#             variant), the tables, and HOLE's per-frame inputs and outputs
+# The atoms: vorball drops water and the membrane (its defaults) and is told
+# --ignore for the ions (IGNORE, default NA+,CL-,NA,CL,K,SOD,CLA,POT); HOLE gets one
+# PDB per frame holding the same atoms, written beforehand (untimed) by
+# MDAnalysis (PYTHON: a python with MDAnalysis; PYTHONDONTWRITEBYTECODE is set).
+# Both tools get HOLE's simple.rad radii (vorball through hole_compare.py radii).
+# HOLE reads one structure per process, so it runs once per frame, as a HOLE user
+# runs a trajectory: "coord, radius, ignore, raseed 1" (frames_vs_hole.sh's plain).
+# Times by GNU /usr/bin/time -v over each whole run. REPEATS (default 1) repeats.
+set -u
+if [ $# -lt 7 ]; then
+    sed -n '2,/^set -u/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'
+    exit 2
+fi
+HOLE=$1 VORBALL=$2 TOP=$3 TRAJ=$4 GRID=$5 DEVICE=$6 OUT=$7
+PYTHON=${PYTHON:-python3} REPEATS=${REPEATS:-1}
+IGNORE=${IGNORE:-NA+,CL-,NA,CL,K,SOD,CLA,POT}
+export PYTHONDONTWRITEBYTECODE=1
+here=$(cd "$(dirname "$0")" && pwd)
+if [ -z "${HOLE_RAD:-}" ]; then
+    HOLE_RAD=$(dirname "$HOLE")/../rad/simple.rad
+    [ -r "$HOLE_RAD" ] || HOLE_RAD=$(dirname "$HOLE")/../share/hole2/rad/simple.rad
+fi
+[ -r "$HOLE_RAD" ] || { echo "mda_fps: no radius file $HOLE_RAD (set HOLE_RAD)" >&2; exit 3; }
+[ -x /usr/bin/time ] || { echo "mda_fps: needs GNU time at /usr/bin/time" >&2; exit 3; }
+mkdir -p "$OUT/frames" || exit 3
+OUT=$(cd "$OUT" && pwd)
+HOLE=$(cd "$(dirname "$HOLE")" && pwd)/$(basename "$HOLE")
+cp "$HOLE_RAD" "$OUT/frames/hole.rad"
+python3 "$here/../hole_compare.py" radii "$HOLE_RAD" "$OUT/vorball.radii" || exit 6
+
+# The membrane names vorball leaves out by default, for HOLE's frames.
+membrane=$("$VORBALL" channels --help | tr -s ' ' '\n' | grep -o 'DUM,POPC[A-Z0-9,]*' | head -1)
+frames=$("$PYTHON" - "$TOP" "$TRAJ" "$OUT/frames" "$IGNORE,$membrane" <<'EOF' || exit 6
+import sys, warnings
+warnings.filterwarnings("ignore")
+import MDAnalysis as mda
+top, traj, dst, drop = sys.argv[1:5]
+water = "SOL HOH WAT TIP3 TIP4 TIP5 SPC T3P T4P H2O DOD"
+names = " ".join(n for n in drop.replace(",", " ").split() if n) + " " + water
+u = mda.Universe(top, traj)
+sel = u.select_atoms("not resname " + names)
+for k, ts in enumerate(u.trajectory):
+    sel.write("%s/f%04d.pdb" % (dst, k))
+print(len(u.trajectory))
+EOF
+)
+[ "${frames:-0}" -gt 0 ] || { echo "mda_fps: no frames read" >&2; exit 6; }
+for f in "$OUT"/frames/f*.pdb; do
+    b=$(basename "$f" .pdb)
+    printf '%s\n' "coord $b.pdb" "radius hole.rad" "ignore hoh tip wat" "raseed 1" > "$OUT/frames/$b.inp"
+done
+
+tsv=$OUT/fps.tsv
+printf 'tool\tvariant\trepeat\tframes\twall_s\tuser_s\tsys_s\tframes_per_s\tcpu_s_per_frame\n' > "$tsv"
+row() { # tool variant repeat timefile
+    python3 - "$@" "$frames" >> "$tsv" <<'EOF'
+import sys
+tool, variant, rep, path, frames = sys.argv[1:6]
+t = {}
+for line in open(path):
+    k, _, v = line.strip().rpartition(": ")
+    t[k] = v
+wall = t["Elapsed (wall clock) time (h:mm:ss or m:ss)"].split(":")
+w = sum(float(x) * 60 ** i for i, x in enumerate(reversed(wall)))
+u, s, n = float(t["User time (seconds)"]), float(t["System time (seconds)"]), int(frames)
+print("\t".join([tool, variant, rep, frames, "%.3f" % w, "%.3f" % u, "%.3f" % s,
+                 "%.2f" % (n / w), "%.4f" % ((u + s) / n)]))
+EOF
+}
+
+for rep in $(seq 1 "$REPEATS"); do
+    for ahead in 0 2; do
+        echo "mda_fps: vorball channels --device $DEVICE --grid $GRID, frames ahead $ahead, repeat $rep" >&2
+        VORBALL_FRAMES_AHEAD=$ahead /usr/bin/time -v -o "$OUT/vorball_a$ahead.$rep.time" \
+            "$VORBALL" --quiet channels --device "$DEVICE" --grid "$GRID" --radii "$OUT/vorball.radii" \
+            --ignore "$IGNORE" --json -o "$OUT/vorball_a$ahead.json" "$TOP" --traj "$TRAJ" \
+            2> "$OUT/vorball_a$ahead.$rep.err" || echo "mda_fps: vorball failed (see $OUT)" >&2
+        row vorball "$DEVICE grid $GRID ahead $ahead" "$rep" "$OUT/vorball_a$ahead.$rep.time"
+    done
+    echo "mda_fps: HOLE, one process per frame ($frames frames), repeat $rep" >&2
+    /usr/bin/time -v -o "$OUT/hole.$rep.time" sh -c '
+        cd "$1" || exit 3
+        for inp in f*.inp; do
+            "$2" < "$inp" > "${inp%.inp}.out" 2> "${inp%.inp}.err" || exit 4
+            rm -f sr_gseed_tempfile
+        done' sh "$OUT/frames" "$HOLE" || echo "mda_fps: HOLE failed ($OUT/frames)" >&2
+    row hole plain "$rep" "$OUT/hole.$rep.time"
+done
+
+# vorball's stages: the mean per frame of every clock, per variant (last repeat).
+python3 - "$OUT" > "$OUT/stages.tsv" <<'EOF'
+import json, os, sys
+out = sys.argv[1]
+head = None
+for ahead in (0, 2):
+    fr = json.load(open(os.path.join(out, "vorball_a%d.json" % ahead)))["frames"]
+    keys = [("ms", k) for k in fr[0]["ms"]] + [("clock", k) for k in fr[0]["clock"]]
+    if head is None:
+        head = keys
+        print("\t".join(["ahead", "frames", "atoms"] + ["%s_%s" % k for k in keys]))
+    print("\t".join([str(ahead), str(len(fr)), str(fr[0].get("atoms", ""))] +
+                    ["%.3f" % (sum(f[a][k] for f in fr) / len(fr)) for a, k in keys]))
+EOF
+column -t -s "$(printf '\t')" "$tsv" >&2 2>/dev/null || cat "$tsv" >&2
+column -t -s "$(printf '\t')" "$OUT/stages.tsv" >&2 2>/dev/null || cat "$OUT/stages.tsv" >&2

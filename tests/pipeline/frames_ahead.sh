@@ -1,0 +1,88 @@
+#!/bin/sh
+# Issue 33: frames in flight. `vorball channels` over the 10-frame XTC of
+# the MD trajectory reads and runs the front half of the next frames on a
+# reader thread (VORBALL_FRAMES_AHEAD frames ahead, 0: the sequential loop):
+# table, statistics, centrelines and the JSON (less its clocks) must be the
+# same bytes as the sequential loop's at every depth, thread count and
+# device (reference and PoCL), the warnings in the same order, a --frames
+# selection the same rows, and a trajectory cut inside a frame the same
+# exit, the same error and no table.
+# usage: frames_ahead.sh VORBALL CORPUS WORKDIR
+vorball=$1 corpus=$2 work=$3
+. "$(dirname "$0")/lib.sh"
+fresh_dir "$work/frames_ahead"
+top="$corpus/data/ngl_md_ascii_trj.pdb" xtc="$corpus/data/ngl_md_10frames.xtc"
+
+# channels NAME DEPTH THREADS ARGS...: one run, its outputs named NAME.*
+# and its stderr without the closing timing line in NAME.err.
+channels() {
+    name=$1 depth=$2 threads=$3
+    shift 3
+    VORBALL_FRAMES_AHEAD=$depth VORBALL_THREADS=$threads run 0 "$name.log" "$vorball" channels \
+        "$top" --traj "$xtc" --grid 64 -o "$name.csv" --centerlines "$name.pdb" \
+        --stats-file "$name.stats" "$@"
+    grep -v '^vorball channels: [0-9]* frame' "$name.log" > "$name.err"
+    # The statistics less their clocks (the ms_ columns).
+    cut -d, -f1-12,18-24 "$name.stats" > "$name.st"
+}
+
+same() {
+    for ext in csv pdb st err; do
+        cmp -s "$1.$ext" "$2.$ext" || { diff "$1.$ext" "$2.$ext" | head -20 >&2; fail "$2.$ext differs from $1.$ext"; }
+    done
+}
+
+channels seq 0 2 --device ref
+# Ten frames of 183 atoms, each with rows in the table.
+[ "$(tail -n +2 seq.stats | wc -l)" -eq 10 ] || fail "seq.stats: $(tail -n +2 seq.stats | wc -l) frames, expected 10"
+[ "$(tail -n +2 seq.stats | cut -d, -f1 | tr '\n' ' ')" = "0 1 2 3 4 5 6 7 8 9 " ] ||
+    fail "seq.stats: frames $(tail -n +2 seq.stats | cut -d, -f1 | tr '\n' ' ')"
+[ "$(tail -n +2 seq.csv | wc -l)" -ge 10 ] || fail "seq.csv: fewer rows than frames"
+for d in 1 2 8; do
+    for t in 1 2; do
+        channels "a${d}t$t" "$d" "$t" --device ref
+        same seq "a${d}t$t"
+    done
+done
+# Unset: the default depth (2) is the reader thread too, same bytes.
+VORBALL_THREADS=2 run 0 def.log "$vorball" channels "$top" --traj "$xtc" --grid 64 --device ref -o def.csv
+cmp -s seq.csv def.csv || fail "default depth: table differs"
+
+# The OpenCL pipe (PoCL) on the reader's thread against the sequential reference.
+channels pocl 2 2 --device cpu
+for ext in csv pdb st; do
+    cmp -s seq.$ext pocl.$ext || fail "PoCL in flight: pocl.$ext differs from the sequential reference"
+done
+
+# A selection: frames 1, 5, 9.
+channels sel0 0 2 --device ref --frames 1:10:4
+channels sel2 2 2 --device ref --frames 1:10:4
+same sel0 sel2
+[ "$(tail -n +2 sel2.stats | cut -d, -f1 | tr '\n' ' ')" = "1 5 9 " ] ||
+    fail "sel2.stats: frames $(tail -n +2 sel2.stats | cut -d, -f1 | tr '\n' ' '), expected 1 5 9"
+
+# JSON, its clocks left out.
+for d in 0 3; do
+    VORBALL_FRAMES_AHEAD=$d run 0 "j$d.log" "$vorball" channels "$top" --traj "$xtc" --grid 64 \
+        --device ref --json -o "j$d.json"
+    grep -v '"ms"\|"clock"\|"device"' "j$d.json" > "j$d.sj"
+done
+[ "$(grep -c '"frame"' j0.sj)" -eq 10 ] || fail "j0.json: $(grep -c '"frame"' j0.sj) frames, expected 10"
+cmp -s j0.sj j3.sj || fail "JSON in flight differs from the sequential JSON"
+
+# A trajectory cut inside its sixth frame: the same failure, no table.
+size=$(wc -c < "$xtc")
+head -c $((size * 55 / 100)) "$xtc" > cut.xtc
+for d in 0 2; do
+    VORBALL_FRAMES_AHEAD=$d "$vorball" channels "$top" --traj cut.xtc --grid 64 --device ref \
+        -o "cut$d.csv" > "cut$d.log" 2>&1
+    echo $? > "cut$d.rc"
+    [ -e "cut$d.csv" ] && fail "cut$d.csv written after a failure"
+    grep -o 'E[0-9][0-9]*' "cut$d.log" | head -1 > "cut$d.e"
+done
+[ "$(cat cut0.rc)" -ne 0 ] || fail "a cut trajectory exited 0"
+cmp -s cut0.rc cut2.rc || fail "cut trajectory: exit $(cat cut2.rc) in flight, $(cat cut0.rc) sequential"
+cmp -s cut0.e cut2.e || fail "cut trajectory: $(cat cut2.e) in flight, $(cat cut0.e) sequential"
+[ -s cut0.e ] || fail "cut trajectory: no numbered error"
+cmp -s cut0.log cut2.log || fail "cut trajectory: stderr in flight differs from the sequential one"
+exit 0
