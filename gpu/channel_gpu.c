@@ -11,9 +11,11 @@ struct vbc_gpu {
     vbj_engine *jfa;
     vbj_variant variant;
     cl_kernel k_atomic, k_rays, k_classify, k_clear;
-    cl_mem atoms, flags, rb, list, count, clear;
-    size_t atoms_cap, voxels_cap, rb_cap, list_cap, clear_cap; /* in elements */
+    cl_kernel k_cc_seed, k_cc_hook, k_cc_jump, k_cc_gather;
+    cl_mem atoms, flags, rb, list, count, clear, cc, comp, changed;
+    size_t atoms_cap, voxels_cap, rb_cap, list_cap, clear_cap, cc_cap, comp_cap; /* elements */
     int device_clearance; /* see vbc_gpu_set_device_clearance */
+    int device_graph;     /* see vbc_gpu_set_device_graph */
 };
 
 int vbc_gpu_open(vb_ctx *ctx, vbg_runtime *rt, vbj_variant variant, vbc_gpu **out)
@@ -41,6 +43,17 @@ int vbc_gpu_open(vb_ctx *ctx, vbg_runtime *rt, vbj_variant variant, vbc_gpu **ou
     if (err == CL_SUCCESS)
         p->k_clear = clCreateKernel(prog, "vbc_clearance", &err);
     if (err == CL_SUCCESS)
+        p->k_cc_seed = clCreateKernel(prog, "vbc_cc_seed", &err);
+    if (err == CL_SUCCESS)
+        p->k_cc_hook = clCreateKernel(prog, "vbc_cc_hook", &err);
+    if (err == CL_SUCCESS)
+        p->k_cc_jump = clCreateKernel(prog, "vbc_cc_jump", &err);
+    if (err == CL_SUCCESS)
+        p->k_cc_gather = clCreateKernel(prog, "vbc_cc_gather", &err);
+    if (err == CL_SUCCESS)
+        p->changed = clCreateBuffer(vbg_runtime_context(rt), CL_MEM_READ_WRITE, sizeof(cl_uint),
+                                    NULL, &err);
+    if (err == CL_SUCCESS)
         p->count = clCreateBuffer(vbg_runtime_context(rt), CL_MEM_READ_WRITE, sizeof(cl_uint), NULL,
                                   &err);
     if ((rc = vbg_check(ctx, err, "channel kernels")) != VB_OK) {
@@ -59,7 +72,12 @@ void vbc_gpu_close(vbc_gpu *p)
     if (p->k_rays) clReleaseKernel(p->k_rays);
     if (p->k_classify) clReleaseKernel(p->k_classify);
     if (p->k_clear) clReleaseKernel(p->k_clear);
-    cl_mem bufs[] = {p->atoms, p->flags, p->rb, p->list, p->count, p->clear};
+    cl_kernel ks[] = {p->k_cc_seed, p->k_cc_hook, p->k_cc_jump, p->k_cc_gather};
+    for (size_t i = 0; i < sizeof ks / sizeof ks[0]; i++)
+        if (ks[i])
+            clReleaseKernel(ks[i]);
+    cl_mem bufs[] = {p->atoms, p->flags, p->rb, p->list, p->count, p->clear, p->cc, p->comp,
+                     p->changed};
     for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; i++)
         if (bufs[i])
             clReleaseMemObject(bufs[i]);
@@ -70,6 +88,21 @@ void vbc_gpu_close(vbc_gpu *p)
 void vbc_gpu_set_device_clearance(vbc_gpu *p, int mode)
 {
     p->device_clearance = mode;
+}
+
+void vbc_gpu_set_device_graph(vbc_gpu *p, int mode)
+{
+    p->device_graph = mode;
+}
+
+/* Whether this frame's components run on the device: VORBALL_DEVICE_GRAPH
+ * (0 never, 1 always) over the mode of vbc_gpu_set_device_graph. */
+static int graph_on_device(const vbc_gpu *p)
+{
+    const char *e = getenv("VORBALL_DEVICE_GRAPH");
+    if (e && (strcmp(e, "0") == 0 || strcmp(e, "1") == 0))
+        return e[0] == '1';
+    return p->device_graph > 0 || (p->device_graph == 0 && vbg_runtime_is_gpu(p->rt));
 }
 
 /* Makes *buf hold at least `need` elements of `size` bytes, growing by half
@@ -146,6 +179,73 @@ static cl_int clearance(vbc_gpu *p, const vbc_grid *g, size_t natoms, double pro
         return CL_OUT_OF_HOST_MEMORY;
     return clEnqueueReadBuffer(q, p->clear, CL_TRUE, 0, (size_t)count * sizeof(cl_float),
                                out->clearance, 0, NULL, NULL);
+}
+
+/* Launches kernel k over n work-items (rounded up to groups of 64). */
+static cl_int launch(vbc_gpu *p, cl_kernel k, size_t n)
+{
+    size_t lsz = 64, gsz = (n + lsz - 1) / lsz * lsz;
+    return clEnqueueNDRangeKernel(vbg_runtime_queue(p->rt), k, 1, NULL, &gsz, &lsz, 0, NULL, NULL);
+}
+
+/* The components of the listed voxels on the device (channels.cl's
+ * vbc_cc_*): per listed voxel, the smallest voxel index of its component,
+ * read back into out->comp. Rounds of hooking and jumping until no label
+ * falls: at most as many as the longest path in a component, and never
+ * more than count + 1 (each round with a change lowers some label). */
+static cl_int components(vbc_gpu *p, const vbc_grid *g, cl_uint count, vbc_frame_out *out)
+{
+    cl_command_queue q = vbg_runtime_queue(p->rt);
+    size_t nv = vbc_grid_voxels(g);
+    cl_int err = ensure(p, &p->cc, &p->cc_cap, nv, sizeof(cl_uint));
+    if (err == CL_SUCCESS)
+        err = ensure(p, &p->comp, &p->comp_cap, count, sizeof(cl_uint));
+    cl_uint off = 0xffffffffu, changed = 1;
+    if (err == CL_SUCCESS)
+        err = clEnqueueFillBuffer(q, p->cc, &off, sizeof off, 0, nv * sizeof(cl_uint), 0, NULL,
+                                  NULL);
+    err |= clSetKernelArg(p->k_cc_seed, 0, sizeof p->list, &p->list);
+    err |= clSetKernelArg(p->k_cc_seed, 1, sizeof count, &count);
+    err |= clSetKernelArg(p->k_cc_seed, 2, sizeof p->cc, &p->cc);
+    cl_int a = 0;
+    err |= clSetKernelArg(p->k_cc_hook, a++, sizeof p->list, &p->list);
+    err |= clSetKernelArg(p->k_cc_hook, a++, sizeof count, &count);
+    err |= clSetKernelArg(p->k_cc_hook, a++, sizeof p->cc, &p->cc);
+    err |= clSetKernelArg(p->k_cc_hook, a++, sizeof g->nx, &g->nx);
+    err |= clSetKernelArg(p->k_cc_hook, a++, sizeof g->ny, &g->ny);
+    err |= clSetKernelArg(p->k_cc_hook, a++, sizeof g->nz, &g->nz);
+    err |= clSetKernelArg(p->k_cc_hook, a++, sizeof p->changed, &p->changed);
+    err |= clSetKernelArg(p->k_cc_jump, 0, sizeof p->list, &p->list);
+    err |= clSetKernelArg(p->k_cc_jump, 1, sizeof count, &count);
+    err |= clSetKernelArg(p->k_cc_jump, 2, sizeof p->cc, &p->cc);
+    err |= clSetKernelArg(p->k_cc_gather, 0, sizeof p->list, &p->list);
+    err |= clSetKernelArg(p->k_cc_gather, 1, sizeof count, &count);
+    err |= clSetKernelArg(p->k_cc_gather, 2, sizeof p->cc, &p->cc);
+    err |= clSetKernelArg(p->k_cc_gather, 3, sizeof p->comp, &p->comp);
+    if (err == CL_SUCCESS)
+        err = launch(p, p->k_cc_seed, count);
+    for (cl_uint round = 0; err == CL_SUCCESS && changed; round++) {
+        if (round > count)
+            return CL_INVALID_VALUE; /* labels that never settle: a broken device */
+        cl_uint zero = 0;
+        err = clEnqueueWriteBuffer(q, p->changed, CL_TRUE, 0, sizeof zero, &zero, 0, NULL, NULL);
+        if (err == CL_SUCCESS)
+            err = launch(p, p->k_cc_hook, count);
+        if (err == CL_SUCCESS)
+            err = launch(p, p->k_cc_jump, count);
+        if (err == CL_SUCCESS)
+            err = clEnqueueReadBuffer(q, p->changed, CL_TRUE, 0, sizeof changed, &changed, 0, NULL,
+                                      NULL);
+    }
+    if (err == CL_SUCCESS)
+        err = launch(p, p->k_cc_gather, count);
+    if (err != CL_SUCCESS)
+        return err;
+    out->comp = malloc((size_t)count * sizeof *out->comp);
+    if (!out->comp)
+        return CL_OUT_OF_HOST_MEMORY;
+    return clEnqueueReadBuffer(q, p->comp, CL_TRUE, 0, (size_t)count * sizeof(cl_uint), out->comp,
+                               0, NULL, NULL);
 }
 
 int vbc_gpu_frame(vb_ctx *ctx, vbc_gpu *p, const vbc_grid *g, const float *atoms4, size_t natoms,
@@ -245,6 +345,8 @@ int vbc_gpu_frame(vb_ctx *ctx, vbc_gpu *p, const vbc_grid *g, const float *atoms
         if (err == CL_SUCCESS && (p->device_clearance > 0 ||
                                   (p->device_clearance == 0 && vbg_runtime_is_gpu(p->rt))))
             err = clearance(p, g, natoms, probe, count, out);
+        if (err == CL_SUCCESS && graph_on_device(p))
+            err = components(p, g, count, out);
     }
     if (err == CL_SUCCESS && (want & VBC_WANT_FLAGS)) {
         out->flags = malloc(nv);

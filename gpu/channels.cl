@@ -88,3 +88,68 @@ __kernel void vbc_clearance(__global const uint *list, uint count, __global cons
     if (gid < count)
         out[gid] = best * h;
 }
+
+/* Connected components of the listed channel voxels (26-connected), each
+ * labelled by its smallest voxel index: the union-find's answer
+ * (core/vb_uf.h, channel_components.c, the plain-C twin), which the host
+ * checks on every edge it links. cc is a grid of labels, UINT_MAX off the
+ * list. Hooking and pointer jumping: every label is a voxel of the same
+ * component no larger than the voxel, labels only fall, so the order in
+ * which work-items race does not change the fixed point, where a component
+ * holds one label, its smallest voxel. */
+__kernel void vbc_cc_seed(__global const uint *list, uint count, __global uint *cc)
+{
+    uint t = get_global_id(0);
+    if (t < count) {
+        uint v = list[t] & ~VBC_MOUTH_BIT;
+        cc[v] = v;
+    }
+}
+
+/* One work-item per listed voxel: the smallest label among its neighbours
+ * hooks its own label's root; *changed set when any label fell. */
+__kernel void vbc_cc_hook(__global const uint *list, uint count, __global volatile uint *cc,
+                          int nx, int ny, int nz, __global volatile uint *changed)
+{
+    uint t = get_global_id(0);
+    if (t >= count)
+        return;
+    uint v = list[t] & ~VBC_MOUTH_BIT;
+    int i = (int)(v % (uint)nx), j = (int)((v / (uint)nx) % (uint)ny);
+    int k = (int)(v / ((uint)nx * (uint)ny));
+    uint mine = cc[v], best = mine;
+    for (int dz = -1; dz <= 1; dz++)
+        for (int dy = -1; dy <= 1; dy++)
+            for (int dx = -1; dx <= 1; dx++) {
+                int ii = i + dx, jj = j + dy, kk = k + dz;
+                if (ii < 0 || jj < 0 || kk < 0 || ii >= nx || jj >= ny || kk >= nz)
+                    continue;
+                best = min(best, cc[ii + nx * (jj + ny * kk)]);
+            }
+    if (best < mine) {
+        atomic_min(&cc[mine], best);
+        atomic_min(&cc[v], best);
+        *changed = 1u;
+    }
+}
+
+/* One work-item per listed voxel: its label replaced by its root's. */
+__kernel void vbc_cc_jump(__global const uint *list, uint count, __global volatile uint *cc)
+{
+    uint t = get_global_id(0);
+    if (t >= count)
+        return;
+    uint v = list[t] & ~VBC_MOUTH_BIT, l = cc[v];
+    for (uint r = cc[l]; r != l; r = cc[l])
+        l = r;
+    cc[v] = l;
+}
+
+/* The label of each listed voxel, in list order. */
+__kernel void vbc_cc_gather(__global const uint *list, uint count, __global const uint *cc,
+                            __global uint *out)
+{
+    uint t = get_global_id(0);
+    if (t < count)
+        out[t] = cc[list[t] & ~VBC_MOUTH_BIT];
+}

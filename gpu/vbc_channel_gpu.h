@@ -24,6 +24,12 @@ int vbc_gpu_frame(vb_ctx *ctx, vbc_gpu *p, const vbc_grid *g, const float *atoms
  * 1 always on the device (tests of the kernel on PoCL), -1 never. */
 void vbc_gpu_set_device_clearance(vbc_gpu *p, int mode);
 
+/* Where the components of the channel voxels are labelled (out->comp):
+ * 0 (default) on the device when it is a GPU, else by the host's
+ * union-find; 1 always on the device (tests of the kernels on PoCL); -1
+ * never. VORBALL_DEVICE_GRAPH=0 or 1 in the environment overrides it. */
+void vbc_gpu_set_device_graph(vbc_gpu *p, int mode);
+
 /* The engine table of vbc_channel_pipe.h on a runtime (borrowed: close it
  * after the engine): what the device layer's channels_open gives. */
 int vbg_channels_open(vb_ctx *ctx, vbg_runtime *rt, vbj_variant variant, vbc_engine **out);

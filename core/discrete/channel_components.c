@@ -79,6 +79,8 @@ typedef struct {
     double *clear;      /* clearance per position (given, or computed per component) */
     int32_t *near;
     int given_clear;    /* the clearances came with the voxels */
+    uint32_t *vcomp;    /* given component labels per position (voxel indices), or NULL */
+    int comp_bad;       /* a given label failed a check: the union-find decides */
     lining_acc L;
     vbc_cells *cells;
     uint32_t *path;
@@ -104,6 +106,7 @@ static void analysis_free(analysis *W)
     free(W->A.adj_len);
     free(W->clear);
     free(W->near);
+    free(W->vcomp);
     free(W->L.mark);
     free(W->L.list);
     free(W->path);
@@ -140,10 +143,13 @@ static int analysis_alloc(analysis *W, size_t natoms)
 /* The voxels in increasing index order (with their given clearances, when
  * vclear is not NULL), the mouth bit split off, each its own union-find
  * root. Returns 0, or -1 when out of memory. */
-static int load_voxels(analysis *W, const uint32_t *vox, const float *vclear)
+static int load_voxels(analysis *W, const uint32_t *vox, const float *vclear,
+                       const uint32_t *comp)
 {
     size_t nvox = W->nvox;
-    if (vclear) {
+    if (comp && !(W->vcomp = malloc(nvox * sizeof *W->vcomp)))
+        return -1;
+    if (vclear || comp) {
         /* Sort (index, original slot) pairs so the clearances follow. */
         uint64_t *key = malloc(nvox * sizeof *key);
         if (!key)
@@ -159,8 +165,12 @@ static int load_voxels(analysis *W, const uint32_t *vox, const float *vclear)
         for (size_t t = 0; t < nvox; t++) {
             size_t from = (size_t)(key[t] & 0xffffffffu);
             W->sorted[t] = vox[from];
-            W->clear[t] = vclear[from];
-            W->near[t] = -1;
+            if (vclear) {
+                W->clear[t] = vclear[from];
+                W->near[t] = -1;
+            }
+            if (comp)
+                W->vcomp[t] = comp[from];
         }
         free(key);
     } else {
@@ -218,8 +228,10 @@ static int link_voxels(analysis *W)
                         continue;
                     /* The step length code rides in the top two bits until the split below. */
                     A->adj[ne++] = (uint32_t)q | ((uint32_t)(abs(dx) + abs(dy) + abs(dz)) << 30);
-                    if (q > t)
+                    if (q > t && !W->vcomp)
                         vb_uf_join(&W->uf, (uint32_t)t, (uint32_t)q);
+                    else if (q > t && W->vcomp[t] != W->vcomp[q])
+                        W->comp_bad = 1;
                 }
             }
     }
@@ -232,6 +244,76 @@ static int link_voxels(analysis *W)
         A->adj[e] &= 0x3fffffffu;
     }
     return 0;
+}
+
+static int cmp_u32_plain(const void *a, const void *b)
+{
+    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+    return (x > y) - (x < y);
+}
+
+static void group_components(analysis *W);
+
+/* Whether every group of group_components is connected: a breadth-first
+ * walk from its first member over the edges (which link_voxels found
+ * within one label) reaches all of it. hpos and heap are scratch here
+ * (the sweeps set them again). */
+static int groups_connected(analysis *W)
+{
+    vbc_graph *A = &W->A;
+    for (size_t t = 0; t < W->nvox; t++)
+        A->hpos[t] = 0;
+    for (size_t c = 0; c < W->ncomp; c++) {
+        size_t m = W->cstart[c + 1] - W->cstart[c], head = 0, n = 0;
+        uint32_t first = W->order[W->cstart[c]];
+        A->heap[n++] = first;
+        A->hpos[first] = 1;
+        while (head < n) {
+            uint32_t u = A->heap[head++];
+            for (size_t e = A->adj_start[u]; e < A->adj_start[u + 1]; e++)
+                if (!A->hpos[A->adj[e]]) {
+                    A->hpos[A->adj[e]] = 1;
+                    A->heap[n++] = A->adj[e];
+                }
+        }
+        if (n != m)
+            return 0;
+    }
+    return 1;
+}
+
+/* The union-find's parents from the given labels (each position hangs
+ * below its label's position), after link_voxels found them equal across
+ * every edge, then grouped. A label that is no listed voxel, is larger
+ * than its voxel or is not its own voxel's label, or a group that is not
+ * connected (one label on two pieces) fails; the union-find is then built
+ * from the edges instead, the host's answer. */
+static void given_components(analysis *W)
+{
+    size_t nvox = W->nvox;
+    for (size_t t = 0; t < nvox && !W->comp_bad; t++) {
+        uint32_t r = W->vcomp[t];
+        const uint32_t *at = bsearch(&r, W->sorted, nvox, sizeof r, cmp_u32_plain);
+        size_t pr = at ? (size_t)(at - W->sorted) : nvox;
+        if (!at || pr > t || W->vcomp[pr] != r)
+            W->comp_bad = 1;
+        else
+            W->uf.p[t] = (uint32_t)pr;
+    }
+    if (!W->comp_bad) {
+        group_components(W);
+        if (groups_connected(W))
+            return;
+        W->comp_bad = 1;
+    }
+    const vbc_graph *A = &W->A;
+    for (size_t t = 0; t < nvox; t++)
+        W->uf.p[t] = (uint32_t)t;
+    for (size_t t = 0; t < nvox; t++)
+        for (size_t e = A->adj_start[t]; e < A->adj_start[t + 1]; e++)
+            if (A->adj[e] > t)
+                vb_uf_join(&W->uf, (uint32_t)t, A->adj[e]);
+    group_components(W);
 }
 
 /* The components of the union-find as CSR over `order`, numbered by their
@@ -387,6 +469,13 @@ static int analyse_component(analysis *W, size_t c, vbc_result *res)
 int vbc_analyse_clear(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, const uint32_t *vox,
                       const float *vclear, size_t nvox, const vbc_options *opt, vbc_result *res)
 {
+    return vbc_analyse_given(ctx, g, s, vox, vclear, NULL, nvox, opt, res);
+}
+
+int vbc_analyse_given(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, const uint32_t *vox,
+                      const float *vclear, const uint32_t *comp, size_t nvox,
+                      const vbc_options *opt, vbc_result *res)
+{
     memset(res, 0, sizeof *res);
     if (nvox == 0)
         return VB_OK;
@@ -400,9 +489,14 @@ int vbc_analyse_clear(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, co
     W.nvox = nvox;
     W.given_clear = vclear != NULL;
     int rc = VB_ENOMEM;
-    if (analysis_alloc(&W, s->n) != 0 || load_voxels(&W, vox, vclear) != 0 || link_voxels(&W) != 0)
+    if (analysis_alloc(&W, s->n) != 0 || load_voxels(&W, vox, vclear, comp) != 0 ||
+        link_voxels(&W) != 0)
         goto done;
-    group_components(&W);
+    if (W.vcomp)
+        given_components(&W);
+    else
+        group_components(&W);
+    res->device_components = W.vcomp && !W.comp_bad;
     res->components = W.ncomp;
     if ((rc = vbc_cells_build(ctx, s, 3.0, &W.cells)) != VB_OK)
         goto done;

@@ -53,8 +53,8 @@ int vbc_frame_analyse(vb_ctx *ctx, const vb_sphere_set *s, const vbc_options *op
     const vbc_grid *g = &f->grid;
     const vbc_pore_request *req = opt->pore && opt->pore->enabled ? opt->pore : NULL;
     double t1 = vb_now();
-    int rc = vbc_analyse_clear(ctx, g, s, f->out.voxels, f->out.clearance, f->out.nvoxels, opt,
-                               &f->result);
+    int rc = vbc_analyse_given(ctx, g, s, f->out.voxels, f->out.clearance, f->out.comp,
+                               f->out.nvoxels, opt, &f->result);
     double t2 = vb_now();
     if (rc == VB_OK)
         rc = vbc_pore_stage(ctx, g, f->out.flags, s, req, opt->lining_tol, &f->result, &f->axis,

@@ -23,6 +23,7 @@ void vbc_frame_out_free(vbc_frame_out *o)
     free(o->flags);
     free(o->labels);
     free(o->clearance);
+    free(o->comp);
     memset(o, 0, sizeof *o);
 }
 

@@ -123,6 +123,7 @@ typedef struct vbc_result {
     int32_t *lining;
     size_t components;      /* connected components before pruning */
     size_t pruned;          /* components removed by the thresholds */
+    int device_components;  /* the components are the device's labels (vbc_analyse_given) */
     vbc_pore_summary pore;  /* when present, channels[0] is the pore (kind VBC_PORE) */
 } vbc_result;
 
@@ -140,6 +141,17 @@ int vbc_analyse(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, const ui
  * reported at centreline points are still computed here in double. */
 int vbc_analyse_clear(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, const uint32_t *vox,
                       const float *clear, size_t nvox, const vbc_options *opt, vbc_result *res);
+
+/* As vbc_analyse_clear (vclear may be NULL) with the components given:
+ * comp (NULL: none) parallel to vox, per voxel the smallest voxel index of
+ * its 26-connected component (the device's labels, vbc_frame_out.comp).
+ * They replace the union-find when the host's checks hold on them (equal
+ * across every edge it links; each label a listed voxel labelled itself,
+ * no larger than the voxels it labels); else the union-find runs. The
+ * result is vbc_analyse's either way. */
+int vbc_analyse_given(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, const uint32_t *vox,
+                      const float *vclear, const uint32_t *comp, size_t nvox,
+                      const vbc_options *opt, vbc_result *res);
 
 void vbc_result_free(vbc_result *res);
 

@@ -29,6 +29,9 @@ typedef struct vbc_frame_out {
     uint32_t *labels;   /* nx*ny*nz, when VBC_WANT_LABELS (else NULL) */
     float *clearance;   /* per listed voxel, Å (GPU devices only; NULL on CPU
                            devices, where the host's cell list is faster) */
+    uint32_t *comp;     /* per listed voxel, the smallest voxel index of its
+                           26-connected component (the device's components,
+                           GPU devices only; NULL: the host's union-find) */
     double ms_upload;   /* atoms to the device */
     double ms_jfa;      /* vbj_run wall time (seed upload, algorithm, fill) */
     double ms_masks;    /* atomic mask, rays, classification, list download */

@@ -12,6 +12,122 @@ static int cmp_u32(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+/* The components of the listed voxels by a flood fill over the dense grid
+ * (26-connected), each labelled by its smallest voxel index: the answer
+ * the device's labels (vbc_cc_* kernels) must give. Returns how many. */
+static size_t flood_labels(const vbc_grid *g, const uint32_t *vox, size_t n, uint32_t *label)
+{
+    size_t nv = vbc_grid_voxels(g), ncomp = 0;
+    uint32_t *grid = malloc(nv * sizeof *grid), *stack = malloc(n * sizeof *stack);
+    uint32_t *sorted = malloc(n * sizeof *sorted);
+    for (size_t v = 0; v < nv; v++)
+        grid[v] = UINT32_MAX - 1; /* off the list */
+    for (size_t t = 0; t < n; t++) {
+        sorted[t] = vox[t] & ~VBC_MOUTH_BIT;
+        grid[sorted[t]] = UINT32_MAX; /* listed, not reached */
+    }
+    qsort(sorted, n, sizeof *sorted, cmp_u32);
+    for (size_t t = 0; t < n; t++) { /* ascending: the first reached is the smallest */
+        uint32_t root = sorted[t];
+        if (grid[root] != UINT32_MAX)
+            continue;
+        ncomp++;
+        size_t top = 0;
+        grid[root] = root;
+        stack[top++] = root;
+        while (top > 0) {
+            uint32_t v = stack[--top];
+            int i = (int)(v % (uint32_t)g->nx), j = (int)((v / (uint32_t)g->nx) % (uint32_t)g->ny);
+            int k = (int)(v / ((uint32_t)g->nx * (uint32_t)g->ny));
+            for (int d = 0; d < 27; d++) {
+                int ii = i + d % 3 - 1, jj = j + (d / 3) % 3 - 1, kk = k + d / 9 - 1;
+                if (ii < 0 || jj < 0 || kk < 0 || ii >= g->nx || jj >= g->ny || kk >= g->nz)
+                    continue;
+                size_t w = (size_t)ii + (size_t)g->nx * ((size_t)jj + (size_t)g->ny * (size_t)kk);
+                if (grid[w] == UINT32_MAX) {
+                    grid[w] = root;
+                    stack[top++] = (uint32_t)w;
+                }
+            }
+        }
+    }
+    for (size_t t = 0; t < n; t++)
+        label[t] = grid[vox[t] & ~VBC_MOUTH_BIT];
+    free(grid);
+    free(stack);
+    free(sorted);
+    return ncomp;
+}
+
+/* The device's component labels (forced on, see main) against the flood
+ * fill; the analysis given them against the one whose union-find finds
+ * them, table values equal; labels spoiled on one voxel are caught by the
+ * host's checks (the union-find decides, the same result). Returns the
+ * number of components. */
+static size_t compare_components(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s,
+                                 vbc_frame_out *fo)
+{
+    CHECK(fo->comp != NULL);
+    if (!fo->comp || fo->nvoxels == 0)
+        return 0;
+    uint32_t *want = malloc(fo->nvoxels * sizeof *want);
+    size_t ncomp = flood_labels(g, fo->voxels, fo->nvoxels, want), bad = 0;
+    for (size_t t = 0; t < fo->nvoxels; t++)
+        bad += want[t] != fo->comp[t];
+    CHECK_INT(bad, 0);
+    vbc_options opt = {2.0, 0.0, 1.0, 1, NULL};
+    vbc_result r0, r1, r2;
+    CHECK_INT(vbc_analyse(ctx, g, s, fo->voxels, fo->nvoxels, &opt, &r0), VB_OK);
+    CHECK_INT(vbc_analyse_given(ctx, g, s, fo->voxels, NULL, fo->comp, fo->nvoxels, &opt, &r1),
+              VB_OK);
+    CHECK_INT(r0.device_components, 0);
+    CHECK_INT(r1.device_components, 1);
+    /* One voxel of the largest label's component given another label. */
+    size_t spoil = 0;
+    for (size_t t = 1; t < fo->nvoxels; t++)
+        if (want[t] != want[0]) {
+            spoil = t;
+            break;
+        }
+    fo->comp[spoil] = want[spoil] == want[0] ? want[spoil] + 1 : want[0];
+    CHECK_INT(vbc_analyse_given(ctx, g, s, fo->voxels, NULL, fo->comp, fo->nvoxels, &opt, &r2),
+              VB_OK);
+    CHECK_INT(r2.device_components, 0);
+    fo->comp[spoil] = want[spoil];
+    const vbc_result *r[2] = {&r1, &r2};
+    for (int k = 0; k < 2; k++) {
+        CHECK_INT(r[k]->components, r0.components);
+        CHECK_INT(r[k]->components, ncomp);
+        CHECK_INT(r[k]->pruned, r0.pruned);
+        CHECK_INT(r[k]->nchannels, r0.nchannels);
+        size_t np = 0, nl = 0, diff = 0;
+        for (size_t c = 0; c < r0.nchannels && r[k]->nchannels == r0.nchannels; c++) {
+            const vbc_channel *a = &r0.channels[c], *b = &r[k]->channels[c];
+            diff += a->kind != b->kind || a->through != b->through || a->voxels != b->voxels ||
+                    a->mouths != b->mouths || a->length != b->length ||
+                    a->bottleneck != b->bottleneck || a->bottleneck_at != b->bottleneck_at ||
+                    a->first_point != b->first_point || a->npoints != b->npoints ||
+                    a->first_lining != b->first_lining || a->nlining != b->nlining;
+            np += a->npoints;
+            nl = a->first_lining + a->nlining > nl ? a->first_lining + a->nlining : nl;
+        }
+        CHECK_INT(diff, 0);
+        for (size_t t = 0; t < np && r[k]->nchannels == r0.nchannels; t++) {
+            const vbc_point *a = &r0.points[t], *b = &r[k]->points[t];
+            diff += a->x != b->x || a->y != b->y || a->z != b->z || a->r != b->r || a->atom != b->atom;
+        }
+        for (size_t t = 0; t < nl && r[k]->nchannels == r0.nchannels; t++)
+            diff += r0.lining[t] != r[k]->lining[t];
+        CHECK_INT(diff, 0);
+        CHECK(r0.nchannels == 0 || np > 0);
+    }
+    vbc_result_free(&r0);
+    vbc_result_free(&r1);
+    vbc_result_free(&r2);
+    free(want);
+    return ncomp;
+}
+
 static void compare(vb_ctx *ctx, vbc_gpu *gp, const vb_sphere_set *s, double probe, int n, int dim)
 {
     vbc_grid g;
@@ -59,6 +175,10 @@ static void compare(vb_ctx *ctx, vbc_gpu *gp, const vb_sphere_set *s, double pro
         far += l >= s->n || d > 1.8;
     }
     CHECK_INT(far, 0);
+    size_t ncomp = compare_components(ctx, &g, s, &fo);
+    fprintf(stderr, "%zu atoms, grid %d^%d: %zu channel voxels in %zu components\n", s->n, n, dim,
+            fo.nvoxels, ncomp);
+    CHECK(ncomp >= 1);
     /* Device clearances (forced on, see main) match the host's cell list to
      * float precision, and the analysis steered by them finds the same
      * channels as the one computing its own. */
@@ -123,6 +243,7 @@ int main(void)
             break;
         }
         vbc_gpu_set_device_clearance(gp, 1);
+        vbc_gpu_set_device_graph(gp, 1);
         compare(ctx, gp, shell, 1.0, 32, 3);
         /* The larger cases once: they test the masks, not the JFA variant. */
         if (t == 0) {

@@ -6,7 +6,8 @@
 # same bytes as the sequential loop's at every depth, thread count and
 # device (reference and PoCL), the warnings in the same order, a --frames
 # selection the same rows, and a trajectory cut inside a frame the same
-# exit, the same error and no table.
+# exit, the same error and no table. The components labelled on the device
+# (PoCL) give the reference's bytes too.
 # usage: frames_ahead.sh VORBALL CORPUS WORKDIR
 vorball=$1 corpus=$2 work=$3
 . "$(dirname "$0")/lib.sh"
@@ -52,6 +53,23 @@ cmp -s seq.csv def.csv || fail "default depth: table differs"
 channels pocl 2 2 --device cpu
 for ext in csv pdb st; do
     cmp -s seq.$ext pocl.$ext || fail "PoCL in flight: pocl.$ext differs from the sequential reference"
+done
+
+# The components labelled on the device (channels.cl's vbc_cc_*, forced on
+# PoCL by VORBALL_DEVICE_GRAPH=1; the host checks them): the same bytes, on the
+# trajectory and on a corpus structure.
+VORBALL_DEVICE_GRAPH=1 channels pocl_cc 2 2 --device cpu
+for ext in csv pdb st; do
+    cmp -s seq.$ext pocl_cc.$ext || fail "device components: pocl_cc.$ext differs from the reference"
+done
+for dg in 0 1; do
+    VORBALL_DEVICE_GRAPH=$dg run 0 "grm$dg.log" "$vorball" channels "$corpus/data/1grm_single_hole2.pdb" \
+        --grid 64 --device cpu -o "grm$dg.csv" --centerlines "grm$dg.pdb"
+done
+run 0 grmref.log "$vorball" channels "$corpus/data/1grm_single_hole2.pdb" --grid 64 --device ref \
+    -o grmref.csv --centerlines grmref.pdb
+for f in grm0 grm1; do
+    cmp -s grmref.csv $f.csv && cmp -s grmref.pdb $f.pdb || fail "1grm: $f differs from the reference"
 done
 
 # A selection: frames 1, 5, 9.

@@ -25,6 +25,8 @@
 # HOLE reads one structure per process, so it runs once per frame, as a HOLE user
 # runs a trajectory: "coord, radius, ignore, raseed 1" (frames_vs_hole.sh's plain).
 # Times by GNU /usr/bin/time -v over each whole run. REPEATS (default 1) repeats.
+# YiiP's zinc sites are dummy atoms (residue ZNM) without a HOLE radius: pass
+# IGNORE=NA+,CL-,ZNM for it.
 set -u
 if [ $# -lt 7 ]; then
     sed -n '2,/^set -u/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'
@@ -48,7 +50,9 @@ cp "$HOLE_RAD" "$OUT/frames/hole.rad"
 python3 "$here/../hole_compare.py" radii "$HOLE_RAD" "$OUT/vorball.radii" || exit 6
 
 # The membrane names vorball leaves out by default, for HOLE's frames.
-membrane=$("$VORBALL" channels --help | tr -s ' ' '\n' | grep -o 'DUM,POPC[A-Z0-9,]*' | head -1)
+membrane=$("$VORBALL" channels --help | tr -d ' \n' | grep -o '(defaultDUM,POPC[A-Z0-9,]*' |
+    sed 's/^(default//' | head -1)
+[ -n "$membrane" ] || { echo "mda_fps: no membrane list in vorball's --help" >&2; exit 6; }
 frames=$("$PYTHON" - "$TOP" "$TRAJ" "$OUT/frames" "$IGNORE,$membrane" <<'EOF' || exit 6
 import sys, warnings
 warnings.filterwarnings("ignore")
