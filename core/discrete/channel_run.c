@@ -54,16 +54,16 @@ static int series_add(vb_ctx *ctx, vbc_series *S, long frame, const vbc_result *
 }
 
 /* The frame's grid: fitted to it, or the fixed grid of the first frame. */
-static int frame_grid(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s, long index, int first,
-                      vbc_grid *g)
+static int frame_grid(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s, long index, vbc_grid *g)
 {
     const vbc_channels_config *A = r->cfg;
     if (!A->fixed_grid)
         return vbc_grid_fit(ctx, s, A->probe, A->grid, 3, g);
-    if (first) {
+    if (!r->fixed_fitted) {
         int rc = vbc_grid_fit(ctx, s, A->probe + 5.0, A->grid, 3, &r->fixed);
         if (rc != VB_OK)
             return rc;
+        r->fixed_fitted = 1;
     }
     *g = r->fixed;
     /* Every atom must stay where the JFA seeds can be placed. */
@@ -84,7 +84,7 @@ static int frame_grid(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s, long inde
  * holds them when any were left out) and its grid. On failure nothing is
  * held. */
 static int frame_prepare(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index,
-                         int first, vbc_run_out *o)
+                         vbc_run_out *o)
 {
     const vbc_channels_config *A = r->cfg;
     int rc = VB_OK;
@@ -103,7 +103,7 @@ static int frame_prepare(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long 
         r->ignored += dropped;
         o->s = o->kept;
     }
-    if ((rc = frame_grid(ctx, r, o->s, index, first, &o->g)) != VB_OK) {
+    if ((rc = frame_grid(ctx, r, o->s, index, &o->g)) != VB_OK) {
         vb_spheres_free(o->kept);
         o->kept = NULL;
     }
@@ -220,7 +220,7 @@ int vbc_run_front(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index, 
     const vbc_channels_config *A = r->cfg;
     memset(o, 0, sizeof *o);
     double t0 = vb_now();
-    int rc = frame_prepare(ctx, r, s0, index, first, o);
+    int rc = frame_prepare(ctx, r, s0, index, o);
     if (rc != VB_OK)
         return rc;
     int want_volume = A->volume && (strstr(A->volume, "%d") || first);
@@ -333,7 +333,7 @@ int vbc_run_axis(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index)
     /* Counted by the rank that owns the frame. */
     size_t ignored = r->ignored, left_out[2 * VBC_MAX_NAMES];
     memcpy(left_out, r->left_out, sizeof left_out);
-    int rc = frame_prepare(ctx, r, s0, index, 1, &o);
+    int rc = frame_prepare(ctx, r, s0, index, &o);
     r->ignored = ignored;
     memcpy(r->left_out, left_out, sizeof left_out);
     if (rc != VB_OK)

@@ -24,7 +24,8 @@ typedef struct vbc_run {
     long frames_done;         /* frames analysed */
     long frames_total;        /* frames to analyse when known (progress), else 0 */
     double sum_total, sum_masks; /* ms over every run of every frame */
-    vbc_grid fixed;           /* --fixed-grid: fitted on the first frame */
+    vbc_grid fixed;           /* --fixed-grid: fitted on the first frame run */
+    int fixed_fitted;         /* `fixed` holds it (the front half's: vbc_run_front) */
     float *occupancy;         /* --occupancy: frames per voxel */
     vbc_result first;         /* the first frame's result (CONECT records, the plot) */
     vbc_series series;        /* the pore's smallest radius per frame (with --plot) */
@@ -66,7 +67,7 @@ int vbc_run_frame(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index, 
  * vbc_ahead.h); the tables are the same bytes as vbc_run_frame's.
  * vbc_run_front: the spheres left out, the grid and, with `masks`, the
  * first run's pipe (labels, masks, channel voxels); it touches the run's
- * counts of atoms left out and its fixed grid (fitted when `first`), and
+ * counts of atoms left out and its fixed grid (fitted on the first front), and
  * nothing the back half touches. vbc_run_back, on the caller's thread in
  * frame order: the axis refit, the analysis, the pore stage, the series,
  * the occupancy, frames_done. Fronts run in frame order too. Each fills or

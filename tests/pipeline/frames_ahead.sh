@@ -72,6 +72,12 @@ for f in grm0 grm1; do
     cmp -s grmref.csv $f.csv && cmp -s grmref.pdb $f.pdb || fail "1grm: $f differs from the reference"
 done
 
+# --fixed-grid: the reader fits the grid on the first frame it runs.
+channels fix0 0 2 --device ref --fixed-grid --frames 2:10:3
+channels fix2 2 2 --device ref --fixed-grid --frames 2:10:3
+same fix0 fix2
+[ "$(tail -n +2 fix2.stats | cut -d, -f4,5 | sort -u | wc -l)" -eq 1 ] || fail "--fixed-grid: the grid changed"
+
 # A selection: frames 1, 5, 9.
 channels sel0 0 2 --device ref --frames 1:10:4
 channels sel2 2 2 --device ref --frames 1:10:4
