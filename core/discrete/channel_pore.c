@@ -169,8 +169,15 @@ double vbc_plane_widest(const vbc_cells *c, const double u[3], double reach, vbc
 {
     double e1[3], e2[3], best[3] = {p[0], p[1], p[2]};
     plane_frame(u, e1, e2);
+    const vb_sphere_set *s = vbc_cells_spheres(c);
     int32_t a;
     double R = vbc_cells_clearance(c, p, &a);
+    /* The nearest atom of the last point queried (0.5 A away, mostly): its
+     * distance, by the very expression vbc_cells_clearance takes the least
+     * of, bounds the clearance at the next point from above, so a point it
+     * puts at or below R cannot win (the strict test below) and needs no
+     * query. The same points win as with every point queried. */
+    active_set hint = {s, {0.0, 0.0, 0.0}, {a}, a >= 0};
     long n = (long)floor(reach / 0.5);
     for (long i = -n; i <= n; i++)
         for (long j = -n; j <= n; j++) {
@@ -182,7 +189,11 @@ double vbc_plane_widest(const vbc_cells *c, const double u[3], double reach, vbc
                 q[k] = p[k] + di * e1[k] + dj * e2[k];
             if (outside && outside(user, q))
                 continue;
+            if (blocked_by(s, &hint, q, R))
+                continue;
             double Rq = vbc_cells_clearance(c, q, &a);
+            hint.id[0] = a;
+            hint.n = a >= 0;
             if (Rq > R) { /* strict: the first of equals (in scan order) stays */
                 R = Rq;
                 memcpy(best, q, sizeof q);
