@@ -109,4 +109,15 @@ cmp -s cut0.rc cut2.rc || fail "cut trajectory: exit $(cat cut2.rc) in flight, $
 cmp -s cut0.e cut2.e || fail "cut trajectory: $(cat cut2.e) in flight, $(cat cut0.e) sequential"
 [ -s cut0.e ] || fail "cut trajectory: no numbered error"
 cmp -s cut0.log cut2.log || fail "cut trajectory: stderr in flight differs from the sequential one"
+
+# The writer fails on the first frame (a volume in no folder) while the
+# reader is frames ahead: the same exit and stderr, no table, no hang.
+for d in 0 8; do
+    VORBALL_FRAMES_AHEAD=$d "$vorball" channels "$top" --traj "$xtc" --grid 32 --device ref \
+        --volume "nofolder/v%d.mrc" -o "vol$d.csv" > "vol$d.log" 2>&1
+    echo $? > "vol$d.rc"
+    [ -e "vol$d.csv" ] && fail "vol$d.csv written after a failure"
+done
+[ "$(cat vol0.rc)" -ne 0 ] || fail "a volume in no folder exited 0"
+cmp -s vol0.rc vol8.rc && cmp -s vol0.log vol8.log || fail "writer failure: in flight differs from sequential"
 exit 0
