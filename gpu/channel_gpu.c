@@ -18,6 +18,14 @@ struct vbc_gpu {
     int device_graph;     /* see vbc_gpu_set_device_graph */
 };
 
+/* The pipe's eight kernels, in the order vbc_gpu_open names them. */
+static void kernels(vbc_gpu *p, cl_kernel *ks[8])
+{
+    cl_kernel *all[8] = {&p->k_atomic,  &p->k_rays,    &p->k_classify, &p->k_clear,
+                         &p->k_cc_seed, &p->k_cc_hook, &p->k_cc_jump,  &p->k_cc_gather};
+    memcpy(ks, all, sizeof all);
+}
+
 int vbc_gpu_open(vb_ctx *ctx, vbg_runtime *rt, vbj_variant variant, vbc_gpu **out)
 {
     *out = NULL;
@@ -34,22 +42,15 @@ int vbc_gpu_open(vb_ctx *ctx, vbg_runtime *rt, vbj_variant variant, vbc_gpu **ou
         vbc_gpu_close(p);
         return rc;
     }
-    cl_int err;
-    p->k_atomic = clCreateKernel(prog, "vbc_atomic_mask", &err);
-    if (err == CL_SUCCESS)
-        p->k_rays = clCreateKernel(prog, "vbc_ray_bounds", &err);
-    if (err == CL_SUCCESS)
-        p->k_classify = clCreateKernel(prog, "vbc_classify_voxels", &err);
-    if (err == CL_SUCCESS)
-        p->k_clear = clCreateKernel(prog, "vbc_clearance", &err);
-    if (err == CL_SUCCESS)
-        p->k_cc_seed = clCreateKernel(prog, "vbc_cc_seed", &err);
-    if (err == CL_SUCCESS)
-        p->k_cc_hook = clCreateKernel(prog, "vbc_cc_hook", &err);
-    if (err == CL_SUCCESS)
-        p->k_cc_jump = clCreateKernel(prog, "vbc_cc_jump", &err);
-    if (err == CL_SUCCESS)
-        p->k_cc_gather = clCreateKernel(prog, "vbc_cc_gather", &err);
+    /* The kernels of channels.cl, in the order of kernels(). */
+    static const char *const names[] = {"vbc_atomic_mask", "vbc_ray_bounds",
+                                        "vbc_classify_voxels", "vbc_clearance", "vbc_cc_seed",
+                                        "vbc_cc_hook", "vbc_cc_jump", "vbc_cc_gather"};
+    cl_kernel *ks[8];
+    kernels(p, ks);
+    cl_int err = CL_SUCCESS;
+    for (size_t i = 0; i < sizeof names / sizeof names[0] && err == CL_SUCCESS; i++)
+        *ks[i] = clCreateKernel(prog, names[i], &err);
     if (err == CL_SUCCESS)
         p->changed = clCreateBuffer(vbg_runtime_context(rt), CL_MEM_READ_WRITE, sizeof(cl_uint),
                                     NULL, &err);
@@ -68,14 +69,11 @@ void vbc_gpu_close(vbc_gpu *p)
 {
     if (!p)
         return;
-    if (p->k_atomic) clReleaseKernel(p->k_atomic);
-    if (p->k_rays) clReleaseKernel(p->k_rays);
-    if (p->k_classify) clReleaseKernel(p->k_classify);
-    if (p->k_clear) clReleaseKernel(p->k_clear);
-    cl_kernel ks[] = {p->k_cc_seed, p->k_cc_hook, p->k_cc_jump, p->k_cc_gather};
-    for (size_t i = 0; i < sizeof ks / sizeof ks[0]; i++)
-        if (ks[i])
-            clReleaseKernel(ks[i]);
+    cl_kernel *ks[8];
+    kernels(p, ks);
+    for (size_t i = 0; i < 8; i++)
+        if (*ks[i])
+            clReleaseKernel(*ks[i]);
     cl_mem bufs[] = {p->atoms, p->flags, p->rb, p->list, p->count, p->clear, p->cc, p->comp,
                      p->changed};
     for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; i++)
