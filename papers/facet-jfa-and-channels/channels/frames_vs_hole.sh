@@ -34,17 +34,8 @@ fi
 HOLE=$1 VORBALL=$2 DEVICE=$3 GRID=$4 REPEATS=$5 OUT=$6
 here=$(cd "$(dirname "$0")" && pwd)
 DATA=${DATA:-$here/../../../corpus/data}
-if [ -z "${HOLE_RAD:-}" ]; then
-    HOLE_RAD=$(dirname "$HOLE")/../rad/simple.rad
-    [ -r "$HOLE_RAD" ] || HOLE_RAD=$(dirname "$HOLE")/../share/hole2/rad/simple.rad
-fi
-[ -r "$HOLE_RAD" ] || { echo "frames_vs_hole: no radius file $HOLE_RAD (set HOLE_RAD)" >&2; exit 3; }
-[ -x /usr/bin/time ] || { echo "frames_vs_hole: needs GNU time at /usr/bin/time" >&2; exit 3; }
-mkdir -p "$OUT" || exit 3
-OUT=$(cd "$OUT" && pwd)
-HOLE=$(cd "$(dirname "$HOLE")" && pwd)/$(basename "$HOLE")
-cp "$HOLE_RAD" "$OUT/hole.rad"
-python3 "$here/../hole_compare.py" radii "$OUT/hole.rad" "$OUT/vorball.radii" || exit 6
+. "$here/hole_setup.sh"
+hole_setup frames_vs_hole
 
 tsv=$OUT/frames_vs_hole.tsv
 printf 'input\tframes\ttool\tvariant\trepeat\twall_s\tuser_s\tsys_s\ts_per_frame\tcpu_s_per_frame\n' > "$tsv"

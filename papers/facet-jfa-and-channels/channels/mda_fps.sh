@@ -37,17 +37,9 @@ PYTHON=${PYTHON:-python3} REPEATS=${REPEATS:-1}
 IGNORE=${IGNORE:-NA+,CL-,NA,CL,K,SOD,CLA,POT}
 export PYTHONDONTWRITEBYTECODE=1
 here=$(cd "$(dirname "$0")" && pwd)
-if [ -z "${HOLE_RAD:-}" ]; then
-    HOLE_RAD=$(dirname "$HOLE")/../rad/simple.rad
-    [ -r "$HOLE_RAD" ] || HOLE_RAD=$(dirname "$HOLE")/../share/hole2/rad/simple.rad
-fi
-[ -r "$HOLE_RAD" ] || { echo "mda_fps: no radius file $HOLE_RAD (set HOLE_RAD)" >&2; exit 3; }
-[ -x /usr/bin/time ] || { echo "mda_fps: needs GNU time at /usr/bin/time" >&2; exit 3; }
-mkdir -p "$OUT/frames" || exit 3
-OUT=$(cd "$OUT" && pwd)
-HOLE=$(cd "$(dirname "$HOLE")" && pwd)/$(basename "$HOLE")
-cp "$HOLE_RAD" "$OUT/frames/hole.rad"
-python3 "$here/../hole_compare.py" radii "$HOLE_RAD" "$OUT/vorball.radii" || exit 6
+. "$here/hole_setup.sh"
+hole_setup mda_fps
+mkdir -p "$OUT/frames" && cp "$OUT/hole.rad" "$OUT/frames/hole.rad" || exit 3
 
 # The membrane names vorball leaves out by default, for HOLE's frames.
 membrane=$("$VORBALL" channels --help | tr -d ' \n' | grep -o '(defaultDUM,POPC[A-Z0-9,]*' |
