@@ -41,19 +41,9 @@ tsv=$OUT/frames_vs_hole.tsv
 printf 'input\tframes\ttool\tvariant\trepeat\twall_s\tuser_s\tsys_s\ts_per_frame\tcpu_s_per_frame\n' > "$tsv"
 
 row() { # input frames tool variant repeat timefile
-    python3 - "$@" >> "$tsv" <<'EOF'
-import sys
-name, frames, tool, variant, rep, path = sys.argv[1:7]
-t = {}
-for line in open(path):
-    k, _, v = line.strip().rpartition(": ")
-    t[k] = v
-wall = t["Elapsed (wall clock) time (h:mm:ss or m:ss)"].split(":")
-w = sum(float(x) * 60 ** i for i, x in enumerate(reversed(wall)))
-u, s, n = float(t["User time (seconds)"]), float(t["System time (seconds)"]), int(frames)
-print("\t".join([name, frames, tool, variant, rep, "%.3f" % w, "%.3f" % u, "%.3f" % s,
-                 "%.4f" % (w / n), "%.4f" % ((u + s) / n)]))
-EOF
+    read -r w u s < <(time_secs "$6")
+    awk -v w="$w" -v u="$u" -v s="$s" -v n="$2" -v head="$1\t$2\t$3\t$4\t$5" 'BEGIN {
+        printf "%s\t%.3f\t%.3f\t%.3f\t%.4f\t%.4f\n", head, w, u, s, w / n, (u + s) / n }' >> "$tsv"
 }
 
 for input in 1chb_hole2.pdb ngl_md_ascii_trj.pdb; do

@@ -1,4 +1,4 @@
-# Sourced by frames_vs_hole.sh and mda_fps.sh (bash): hole_setup NAME checks
+# Sourced by frames_vs_hole.sh and mda_fps.sh (bash). hole_setup NAME checks
 # and fixes what both need before timing HOLE 2 beside vorball. Reads HOLE
 # (the hole binary), OUT (the output folder) and here (the script's folder);
 # HOLE_RAD, when unset, is $(dirname HOLE)/../rad/simple.rad (the source
@@ -19,4 +19,18 @@ hole_setup() {
     HOLE=$(cd "$(dirname "$HOLE")" && pwd)/$(basename "$HOLE")
     cp "$HOLE_RAD" "$OUT/hole.rad" || exit 3
     python3 "$here/../hole_compare.py" radii "$OUT/hole.rad" "$OUT/vorball.radii" || exit 6
+}
+
+# time_secs FILE: "wall user system" seconds of a GNU `/usr/bin/time -v` report.
+time_secs() {
+    python3 - "$1" <<'PY'
+import sys
+t = {}
+for line in open(sys.argv[1]):
+    k, _, v = line.strip().rpartition(": ")
+    t[k] = v
+wall = t["Elapsed (wall clock) time (h:mm:ss or m:ss)"].split(":")
+w = sum(float(x) * 60 ** i for i, x in enumerate(reversed(wall)))
+print(w, float(t["User time (seconds)"]), float(t["System time (seconds)"]))
+PY
 }

@@ -68,19 +68,9 @@ done
 tsv=$OUT/fps.tsv
 printf 'tool\tvariant\trepeat\tframes\twall_s\tuser_s\tsys_s\tframes_per_s\tcpu_s_per_frame\n' > "$tsv"
 row() { # tool variant repeat timefile
-    python3 - "$@" "$frames" >> "$tsv" <<'EOF'
-import sys
-tool, variant, rep, path, frames = sys.argv[1:6]
-t = {}
-for line in open(path):
-    k, _, v = line.strip().rpartition(": ")
-    t[k] = v
-wall = t["Elapsed (wall clock) time (h:mm:ss or m:ss)"].split(":")
-w = sum(float(x) * 60 ** i for i, x in enumerate(reversed(wall)))
-u, s, n = float(t["User time (seconds)"]), float(t["System time (seconds)"]), int(frames)
-print("\t".join([tool, variant, rep, frames, "%.3f" % w, "%.3f" % u, "%.3f" % s,
-                 "%.2f" % (n / w), "%.4f" % ((u + s) / n)]))
-EOF
+    read -r w u s < <(time_secs "$4")
+    awk -v w="$w" -v u="$u" -v s="$s" -v n="$frames" -v head="$1\t$2\t$3\t$frames" 'BEGIN {
+        printf "%s\t%.3f\t%.3f\t%.3f\t%.2f\t%.4f\n", head, w, u, s, n / w, (u + s) / n }' >> "$tsv"
 }
 
 for rep in $(seq 1 "$REPEATS"); do
