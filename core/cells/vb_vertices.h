@@ -130,21 +130,27 @@ void vb_vertices_result_free(vb_vertices_result *r);
 int vb_vertices_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertices_config *cfg,
                     const vb_vertices_backends *be, vb_vertices_result *res);
 
-/* A device and proposer opened once for several runs (bench). */
+/* A device and proposer opened once for several runs (bench, the Python
+ * Engine over a trajectory's frames). */
 typedef struct vb_vertices_engine vb_vertices_engine;
 
-/* Opens the device and the proposer of cfg (synchronously, W760 and the
- * twin when the device cannot be used). Close with vb_vertices_close. */
+/* Prepares an engine for cfg's device and proposer (VB_EMISUSE for an
+ * unknown proposer). Nothing is opened yet: the device is opened at the
+ * first run that needs it (W760 and the twin when it cannot be used), as
+ * `--device auto`'s crossover (vb_vertices_device, with cfg->host_below)
+ * depends on the input; a run the crossover keeps on host threads opens
+ * the twin instead. Close with vb_vertices_close. */
 int vb_vertices_open(vb_ctx *ctx, const vb_vertices_backends *be, const vb_vertices_config *cfg,
                      vb_vertices_engine **out);
 
-/* Seconds vb_vertices_open took. */
+/* Seconds the device's opening took (0 until a run opened it). */
 double vb_vertices_open_seconds(const vb_vertices_engine *e);
 
-/* vb_vertices_run on an opened engine: the same output, without the
- * set-up (t_setup stays 0), the same memory check first (the device
- * already open). A device that fails mid-run is dropped with W762: the
- * run, and later runs on e, use the twin. */
+/* vb_vertices_run on an engine: the same output; the engine's device
+ * (opened here at the first run that needs it) replaces cfg->device, and
+ * its opening is not part of the run (t_setup stays 0, t_total starts
+ * after it). The same memory check first. A device that fails mid-run is
+ * dropped with W762: the run, and later runs on e, use the twin. */
 int vb_vertices_run_on(vb_ctx *ctx, vb_vertices_engine *e, const vb_sphere_set *set,
                        const vb_vertices_config *cfg, vb_vertices_result *res);
 

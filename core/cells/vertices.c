@@ -452,18 +452,24 @@ int vb_vertices_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertices_con
     return rc;
 }
 
+/* The device is opened at the first run that needs it: the crossover of
+ * `--device auto` (vb_vertices_device) depends on the input, which the
+ * engine does not know when it is opened. */
 struct vb_vertices_engine {
     vb_vertices_backends be;
     const vb_proposer *prop;
-    vb_device *dev;   /* NULL on the twin */
-    void *state;
+    vb_device_kind kind;  /* the device asked for at opening */
+    size_t host_below;    /* the opening's crossover (vb_vertices_config) */
+    int opened;           /* the device of kind was opened (or fell back) */
+    vb_device *dev;       /* NULL on the twin */
+    void *state;          /* on dev, or the twin when the device fell back */
+    void *host;           /* the twin of runs kept on host threads (crossover) */
     double t_open;
 };
 
 int vb_vertices_open(vb_ctx *ctx, const vb_vertices_backends *be, const vb_vertices_config *cfg,
                      vb_vertices_engine **out)
 {
-    double t0 = vb_now();
     *out = NULL;
     const vb_proposer *p = proposer_of(ctx, cfg);
     if (!p)
@@ -473,15 +479,8 @@ int vb_vertices_open(vb_ctx *ctx, const vb_vertices_backends *be, const vb_verti
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory");
     e->be = *be;
     e->prop = p;
-    vb_engine_request req = request_of(cfg, p);
-    int rc = vb_device_open_engine(ctx, be->devices, &req, &e->dev, &e->state);
-    if (rc != VB_OK) {
-        free(e);
-        return rc;
-    }
-    if (e->dev)
-        vb_info(ctx, "OpenCL device: %s", be->devices->name(e->dev));
-    e->t_open = vb_now() - t0;
+    e->kind = cfg->device;
+    e->host_below = cfg->host_below;
     *out = e;
     return VB_OK;
 }
@@ -497,24 +496,72 @@ void vb_vertices_close(vb_vertices_engine *e)
         return;
     if (e->state)
         e->prop->close(e->state);
+    if (e->host)
+        e->prop->close(e->host);
     if (e->dev)
         e->be.devices->close(e->dev);
     free(e);
 }
 
+/* The device a run of set on e uses: e's kind, or the host threads where
+ * the crossover keeps the run (vb_vertices_device). */
+static vb_device_kind engine_kind(const vb_vertices_engine *e, const vb_sphere_set *set,
+                                  vb_vertices_config *c)
+{
+    memset(c, 0, sizeof *c);
+    c->device = e->kind;
+    c->proposer = e->prop->name;
+    c->host_below = e->host_below;
+    return vb_vertices_device(set, c, e->be.devices);
+}
+
+/* The state a run on `kind` proposes on, opened when first needed: the
+ * twin when the crossover keeps the run on host threads, else the device
+ * of e's kind (W760 and the twin when it cannot be used). */
+static int engine_state(vb_ctx *ctx, vb_vertices_engine *e, const vb_vertices_config *c,
+                        vb_device_kind kind, void **state)
+{
+    int rc = VB_OK;
+    if (kind == VB_DEVICE_REF && e->kind != VB_DEVICE_REF) {
+        if (!e->host)
+            rc = e->prop->open(ctx, e->be.devices, NULL, &e->host);
+        *state = e->host;
+        return rc;
+    }
+    if (!e->opened) {
+        double t0 = vb_now();
+        vb_engine_request req = request_of(c, e->prop);
+        rc = vb_device_open_engine(ctx, e->be.devices, &req, &e->dev, &e->state);
+        if (rc != VB_OK)
+            return rc;
+        if (e->dev)
+            vb_info(ctx, "OpenCL device: %s", e->be.devices->name(e->dev));
+        e->opened = 1;
+        e->t_open = vb_now() - t0;
+    }
+    *state = e->state;
+    return rc;
+}
+
 int vb_vertices_run_on(vb_ctx *ctx, vb_vertices_engine *e, const vb_sphere_set *set,
                        const vb_vertices_config *cfg, vb_vertices_result *res)
 {
-    double t0 = vb_now();
-    int mrc = vb_vertices_memory_check(ctx, set, cfg, 1);
-    if (mrc != VB_OK)
-        return mrc;
+    vb_vertices_config c, chosen = *cfg;
+    chosen.device = engine_kind(e, set, &c);
+    int rc = vb_vertices_memory_check(ctx, set, &chosen,
+                                      chosen.device == VB_DEVICE_REF || e->opened);
+    void *state = NULL;
+    if (rc == VB_OK)
+        rc = engine_state(ctx, e, &c, chosen.device, &state);
+    if (rc != VB_OK)
+        return rc;
+    double t0 = vb_now(); /* the opening is the engine's, not the run's */
     vbv_cert_open co;
     vbv_cert_stream css, *cs;
     certifier_start(e->be.certifier, set, cfg, &co, &css, &cs, ctx);
     vb_propose_args pa = args_of(cfg, cs);
-    int rc = stream_error(ctx, cs, propose(ctx, e->prop, e->state, NULL, set, &pa, res));
-    if (rc != VB_OK && VB_CATEGORY(rc) == VB_EDEVICE && e->dev) {
+    rc = stream_error(ctx, cs, propose(ctx, e->prop, state, NULL, set, &pa, res));
+    if (rc != VB_OK && VB_CATEGORY(rc) == VB_EDEVICE && e->dev && state == e->state) {
         /* Later runs on e stay on the twin. */
         if (cs)
             vbv_cert_stream_reset(cs);

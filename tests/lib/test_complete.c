@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "vb_test.h"
+#include "vb_test_spheres.h"
 #include "vorball.h"
 
 static void test_plan(void)
@@ -50,13 +51,8 @@ static void keep(void *arg, const vb_diag_record *r)
 
 static vb_sphere_set *lattice(vb_ctx *ctx)
 {
-    const char *src = getenv("VORBALL_SOURCE_DIR");
-    char path[4096];
-    snprintf(path, sizeof path, "%s/corpus/inputs/cubic_lattice.xyzr", src ? src : ".");
-    vb_read_options ro = {0};
-    ro.format = VB_FMT_XYZR;
-    vb_sphere_set *set = NULL;
-    CHECK_INT(vb_spheres_load(ctx, path, &ro, NULL, 4, &set), VB_OK);
+    vb_sphere_set *set = vb_test_corpus_load(ctx, "cubic_lattice");
+    CHECK(set != NULL);
     return set;
 }
 
