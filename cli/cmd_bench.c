@@ -66,11 +66,11 @@ static void row(FILE *f, int json, int first, const char *input, size_t atoms,
                 const vb_vertices_result *r, const vb_cli_vertex_totals *tot, double first_total,
                 double device_setup)
 {
-    const vb_stage_times *t = &r->sampler.times;
+    const vb_stage_times *t = &r->proposal.times;
     if (json) {
         fprintf(f, "%s\n  {\"input\": ", first ? "" : ",");
         vb_json_write_string(f, input);
-        fprintf(f, ", \"atoms\": %zu, \"samples\": %u, \"backend\": ", atoms, r->sampler.samples);
+        fprintf(f, ", \"atoms\": %zu, \"samples\": %u, \"backend\": ", atoms, r->proposal.samples);
         vb_json_write_string(f, r->backend);
         fputs(", \"device\": ", f);
         vb_json_write_string(f, r->device);
@@ -82,12 +82,12 @@ static void row(FILE *f, int json, int first, const char *input, size_t atoms,
                 "\"matching\": %.6f, \"targeted\": %.6f, \"tangent\": %.6f, \"completion\": %.6f, "
                 "\"certification\": %.6f, \"setup\": %.6f, \"setup_wait\": %.6f, \"total\": %.6f, "
                 "\"total_first_run\": %.6f, \"device_setup\": %.6f",
-                r->certified.n, (unsigned long long)r->sampler.first_cell,
-                (unsigned long long)r->sampler.from_sampling, tot->rejected,
-                (unsigned long long)r->sampler.incomplete,
-                (unsigned long long)r->sampler.sampled_vertices,
-                (unsigned long long)r->sampler.vertices_incomplete,
-                (unsigned long long)r->sampler.targeted_found, t->cull, t->upload, t->envelope,
+                r->certified.n, (unsigned long long)r->proposal.first_cell,
+                (unsigned long long)r->proposal.from_sampling, tot->rejected,
+                (unsigned long long)r->proposal.incomplete,
+                (unsigned long long)r->proposal.sampled_vertices,
+                (unsigned long long)r->proposal.vertices_incomplete,
+                (unsigned long long)r->proposal.targeted_found, t->cull, t->upload, t->envelope,
                 t->vertices, t->matching, t->targeted, t->tangent, t->completion, r->t_certify,
                 r->t_setup, r->t_setup_wait, r->t_total,
                 first_total, device_setup);
@@ -103,7 +103,7 @@ static void row(FILE *f, int json, int first, const char *input, size_t atoms,
         else if (first)
             fprintf(f, "# backend %s: %s (opened for every run)\n", r->backend, r->device);
         fprintf(f, "%-18s %6zu %7u %9zu %8.3f %8.3f %9.3f %9.3f %9.3f %9.3f %9.3f\n", input,
-                atoms, r->sampler.samples, r->certified.n, t->cull, t->upload, t->envelope,
+                atoms, r->proposal.samples, r->certified.n, t->cull, t->upload, t->envelope,
                 t->vertices, t->matching, r->t_certify, r->t_total);
     }
 }
@@ -170,7 +170,8 @@ int vb_cmd_bench(int argc, char **argv)
     int rank0 = vb_world_rank() == 0;
     FILE *out = rank0 ? vb_cli_open_output(ctx, outpath) : NULL;
     int rc = rank0 && !out ? vb_errcode(ctx) : VB_OK;
-    int busy = vb_cli_vertices_part(ctx, &po.cfg);
+    vb_cover_options share;
+    int busy = vb_cli_vertices_part(ctx, &po.cfg, &share);
     vb_vertices_engine *dev = NULL;
     if (rc == VB_OK && !cold && busy)
         rc = vb_vertices_open(ctx, vb_default_backends(), &po.cfg, &dev);
@@ -197,7 +198,7 @@ int vb_cmd_bench(int argc, char **argv)
                 vb_vertices_result r;
                 vb_vertices_result_init(&r);
                 vb_cli_vertex_totals tot;
-                po.cfg.sampler.samples = samples[s];
+                po.cfg.propose.samples = samples[s];
                 vb_vertices_config cfg = po.cfg;
                 vb_cli_progress_attach(ctx);
                 /* Split runs start together and end when rank 0 holds the

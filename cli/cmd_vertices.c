@@ -187,7 +187,8 @@ int vb_cmd_vertices(int argc, char **argv)
         vb_close(ctx);
         return code;
     }
-    int busy = vb_cli_vertices_part(ctx, &po.cfg);
+    vb_cover_options share;
+    int busy = vb_cli_vertices_part(ctx, &po.cfg, &share);
     vb_cli_progress_attach(ctx);
     if (rc == VB_OK && busy)
         rc = vb_vertices_run_default(ctx, set, &po.cfg, &res);

@@ -30,7 +30,7 @@ int vb_pipeline_option(const char *cmd, int argc, char **argv, int *i, vb_pipeli
     int used = vb_cli_input_option(&o->in, argc, argv, i);
     if (used != 0)
         return used;
-    vb_sampler_options *so = &o->cfg.sampler;
+    vb_propose_options *so = &o->cfg.propose;
     const char *a = argv[*i];
     int has = *i + 1 < argc;
     if (strcmp(a, "--device") == 0) {

@@ -8,17 +8,18 @@
 #include "vb_parallel.h"
 #include "vb_world.h"
 
-int vb_cli_vertices_part(vb_ctx *ctx, vb_vertices_config *cfg)
+int vb_cli_vertices_part(vb_ctx *ctx, vb_vertices_config *cfg, vb_cover_options *share)
 {
     int rank = vb_world_rank(), size = vb_world_size();
     const vb_proposer *p = vb_proposer_find(cfg->proposer);
-    cfg->sampler.part = 0;
-    cfg->sampler.nparts = 1;
+    memset(share, 0, sizeof *share);
+    cfg->cover = NULL;
     if (size < 2)
         return 1;
     if (p == &vb_proposer_cover) {
-        cfg->sampler.part = (unsigned)rank;
-        cfg->sampler.nparts = (unsigned)size;
+        share->part = (unsigned)rank;
+        share->nparts = (unsigned)size;
+        cfg->cover = share;
         return 1;
     }
     if (rank == 0)
@@ -48,7 +49,7 @@ int vb_cli_vertices_part(vb_ctx *ctx, vb_vertices_config *cfg)
 
 static int sum_counters(vb_ctx *ctx, vb_vertices_result *res, vb_cli_vertex_totals *tot)
 {
-    vb_sampler_result *s = &res->sampler;
+    vb_proposal *s = &res->proposal;
     vb_stats *st = vb_ctx_stats(ctx);
     uint64_t u[64];
     double d[32];
@@ -96,7 +97,7 @@ int vb_cli_vertices_combine(vb_ctx *ctx, vb_vertices_result *res, vb_cli_vertex_
 {
     memset(tot, 0, sizeof *tot);
     tot->rejected = res->rejected.n;
-    tot->candidates = res->sampler.candidates.n;
+    tot->candidates = res->proposal.candidates.n;
     tot->repaired = res->repaired_candidates;
     if (vb_world_size() < 2)
         return VB_OK;

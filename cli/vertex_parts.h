@@ -4,15 +4,17 @@
 #ifndef VB_CLI_VERTEX_PARTS_H
 #define VB_CLI_VERTEX_PARTS_H
 
+#include "vb_cover.h"
 #include "vb_vertices.h"
 
 /* Sets cfg's share of the work for this rank and says whether the rank has
  * any: the direction cover covers part `rank` of `size` of the cells (runs
- * of the cover tree's curve, balanced by count: vb_cover.h), so every rank
- * works; the sampling proposer does not split, so rank 0 runs it whole and
+ * of the cover tree's curve, balanced by count: vb_cover.h), written to
+ * *share (the caller's, alive while cfg is used) with cfg->cover pointed at
+ * it (NULL with one process), so every rank works; the sampling proposer does not split, so rank 0 runs it whole and
  * the others idle (rank 0 warns W830). Returns 1 when this rank runs the
  * pipeline, 0 when it idles. */
-int vb_cli_vertices_part(vb_ctx *ctx, vb_vertices_config *cfg);
+int vb_cli_vertices_part(vb_ctx *ctx, vb_vertices_config *cfg, vb_cover_options *share);
 
 /* What the command reports beside the vertices, as counts over the ranks
  * (the lists themselves stay on their ranks). */

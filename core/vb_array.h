@@ -30,4 +30,16 @@
  * leaves *cap unchanged. */
 void *vb_array_grow(void *arr, size_t *cap, size_t need, size_t elem, size_t first);
 
+/* For a struct of arrays that share one capacity (vb_vertex_list, the
+ * sphere builder): the capacity VB_ARRAY_FIT would choose for `need`
+ * elements from cap (cap itself when it holds need; first, at least 1,
+ * when cap is 0; else cap doubled until it holds need; SIZE_MAX at the
+ * most). Allocates nothing. */
+size_t vb_array_capacity(size_t cap, size_t need, size_t first);
+
+/* Reallocates *arr to n elements of elem bytes (n = 0: left as it is).
+ * VB_OK, or VB_ENOMEM with *arr unchanged (still valid) when there is no
+ * memory or n * elem exceeds SIZE_MAX. */
+int vb_array_resize(void **arr, size_t n, size_t elem);
+
 #endif

@@ -2,8 +2,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "vb_parallel.h"
+#include "channel_math.h"
 #include "jfa_internal.h"
+#include "vb_parallel.h"
 #include "vbc_channel_gpu.h"
 
 struct vbc_gpu {

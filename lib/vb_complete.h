@@ -45,8 +45,8 @@ typedef struct vb_completion {
 
 /* Settles where the topology comes from, before the run: with the sampling
  * proposer and no arcs, from the sampler's evidence (the run keeps it:
- * cfg->sampler.topology = 1); otherwise from arc closure (o->arcs = 1,
- * cfg->sampler.topology = 0). Copies the run's threads into o->threads.
+ * cfg->propose.topology = 1); otherwise from arc closure (o->arcs = 1,
+ * cfg->propose.topology = 0). Copies the run's threads into o->threads.
  * Touches nothing else. */
 void vb_completion_plan(vb_vertices_config *cfg, vb_completion_opts *o);
 

@@ -8,13 +8,13 @@
 
 void vb_completion_plan(vb_vertices_config *cfg, vb_completion_opts *o)
 {
-    o->threads = cfg->sampler.threads;
+    o->threads = cfg->propose.threads;
     if (!o->topology)
         return;
     /* Faces and edges come from arc closure, or with the sampling proposer
      * alone from its evidence (which the sampler then keeps). */
     int sampled = !o->arcs && cfg->proposer && strcmp(cfg->proposer, "sampling") == 0;
-    cfg->sampler.topology = sampled;
+    cfg->propose.topology = sampled;
     if (!sampled)
         o->arcs = 1;
 }
@@ -43,7 +43,7 @@ static int build_topology(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertic
     vb_topology *topo = &out->topology;
     int rc = out->traced
                  ? vb_arc_topology(ctx, set, &res->certified, edges, nedges, &out->arcs, topo)
-                 : vb_topology_build(ctx, set, &res->sampler.topo, &res->certified, topo);
+                 : vb_topology_build(ctx, set, &res->proposal.topo, &res->certified, topo);
     if (rc != VB_OK)
         return rc;
     out->has_topology = 1;
@@ -67,7 +67,7 @@ int vb_vertices_complete(vb_ctx *ctx, const vb_sphere_set *set, vb_vertices_resu
         return vb_error(ctx, VB_EMISUSE, NULL, 0, "vb_vertices_complete: NULL argument");
     /* A cover's refused roots are quadruples that hold no vertex: expected,
      * and no warning. */
-    if (rejected && !res->sampler.complete)
+    if (rejected && !res->proposal.complete)
         vb_warn(ctx, VB_W_CERT_REJECTED, NULL, 0, "the certifier rejected %zu candidate(s)",
                 rejected);
     /* The proposer's line speaks of the list it certified, before tracing. */

@@ -188,7 +188,7 @@ static void tgt_search(void *arg, size_t w, int tid)
 
 
 int vbs_targeted_work(const vbs_clusters *m, const vb_cand_vec *raw, const uint8_t *plaus,
-                      vbs_work **wk, size_t *nwk, size_t *wcap, vb_sampler_result *res)
+                      vbs_work **wk, size_t *nwk, size_t *wcap, vb_proposal *res)
 {
     uint32_t *mem = malloc(4 * (raw->n + 1) * sizeof *mem);
     uint32_t *found = malloc((raw->n + 1) * sizeof *found);
@@ -221,7 +221,7 @@ int vbs_targeted_work(const vbs_clusters *m, const vb_cand_vec *raw, const uint8
 int vbs_targeted_search(const vb_sphere_set *set, const vbs_culler *cu, const vbs_params *params,
                         unsigned depth, int nthreads, const vb_cand_vec *raw,
                         const vbs_clusters *m, vbs_work *wk, size_t nwk, vb_cand_vec *extra,
-                        vb_sampler_result *res)
+                        vb_proposal *res)
 {
     if (nwk == 0)
         return VB_OK;

@@ -20,7 +20,7 @@
  * there); how many of them sampling and 5.5 did not find from all of their
  * spheres. */
 static int tally(const vbs_clusters *m, const vb_cand_vec *raw, const vbs_hash *hash,
-                 double tol, int nthreads, vb_sampler_result *res)
+                 double tol, int nthreads, vb_proposal *res)
 {
     uint32_t *mem = malloc(4 * (raw->n + 1) * sizeof *mem);
     uint32_t *found = malloc((raw->n + 1) * sizeof *found);
@@ -44,7 +44,7 @@ static int tally(const vbs_clusters *m, const vb_cand_vec *raw, const vbs_hash *
 
 int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
               const vbs_params *params, unsigned target_depth, int nthreads,
-              vb_cand_vec *raw, vb_sampler_result *res)
+              vb_cand_vec *raw, vb_proposal *res)
 {
     vbs_clusters m = {set, params->tol, {NULL, 0, 0}, NULL, NULL, NULL, NULL, 0};
     vbs_work *wk = NULL;

@@ -1,13 +1,13 @@
 /* The direction cover (vb_cover.h) behind the proposer table: its OpenCL
  * backend on a device (the device layer's cover_open), or the host's
  * threads. It proposes quadruples whose exact roots hold every vertex, so
- * the result says `complete`; with a sink in the options they go to it
+ * the result says `complete`; with a sink in the arguments they go to it
  * part by part (vb_cover_run_parts), for the certifier to overlap. */
 #include <stdlib.h>
 #include <string.h>
 
 #include "vb_cover.h"
-#include "vb_vertices.h"
+#include "vb_proposer.h"
 
 typedef struct cover_state {
     vb_cover_backend *be;   /* NULL: the host */
@@ -29,23 +29,22 @@ static int cover_open(vb_ctx *ctx, const vb_device_layer *layer, vb_device *dev,
 }
 
 static int cover_run(vb_ctx *ctx, void *state, const vb_proposer_await *aw,
-                     const vb_sphere_set *set, const vb_sampler_options *opt,
-                     vb_sampler_result *res)
+                     const vb_sphere_set *set, const vb_propose_args *args,
+                     vb_proposal *res)
 {
     cover_state *s = state ? state : aw->state(aw->user);
     if (!s)
         return vb_error(ctx, VB_EINTERNAL, NULL, 0, "no cover backend");
     vb_cover_options o;
     memset(&o, 0, sizeof o);
-    o.threads = opt->threads;
-    o.part = opt->part;
-    o.nparts = opt->nparts;
-    o.base_limit = opt->base_limit;
+    if (args->cover)
+        o = *args->cover;
+    o.threads = args->opt.threads;
     vb_quad_list q = {0};
     vb_cover_stats st;
-    int rc = opt->quads_sink
+    int rc = args->quads_sink
                  ? vb_cover_run_parts(ctx, set, &o, s->be, vb_cover_pipeline_parts(),
-                                      opt->quads_sink, opt->quads_user, &st)
+                                      args->quads_sink, args->quads_user, &st)
                  : vb_cover_run(ctx, set, &o, s->be, &q, &st);
     if (rc != VB_OK) {
         vb_quad_list_free(&q);

@@ -2,8 +2,9 @@
  * sampling backend on a device (the device layer's sampler_open) or the
  * plain-C reference backend, run by vb_sampler_run. */
 #include <stdint.h>
+#include <string.h>
 
-#include "vb_vertices.h"
+#include "vb_sampler.h"
 
 static int sampling_open(vb_ctx *ctx, const vb_device_layer *layer, vb_device *dev, void **state)
 {
@@ -26,10 +27,18 @@ static int backend_ready(void *user)
 }
 
 static int sampling_run(vb_ctx *ctx, void *state, const vb_proposer_await *aw,
-                        const vb_sphere_set *set, const vb_sampler_options *opt,
-                        vb_sampler_result *res)
+                        const vb_sphere_set *set, const vb_propose_args *args,
+                        vb_proposal *res)
 {
-    vb_sampler_options o = *opt;
+    const vb_propose_options *p = &args->opt;
+    vb_sampler_options o;
+    memset(&o, 0, sizeof o);
+    o.samples = p->samples;
+    o.tiles = p->tiles;
+    o.tol = p->tol;
+    o.all_pairs = p->all_pairs;
+    o.topology = p->topology;
+    o.threads = p->threads;
     if (!state) {
         o.await_backend = await_backend;
         o.backend_ready = backend_ready;

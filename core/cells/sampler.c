@@ -211,7 +211,7 @@ static unsigned auto_tiles(unsigned S)
 }
 
 int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_options *opt,
-                   vb_sampler_backend *be, vb_sampler_result *res)
+                   vb_sampler_backend *be, vb_proposal *res)
 {
     vb_sampler_options o = *opt;
     if (o.samples == 0)

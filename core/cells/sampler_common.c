@@ -1,8 +1,7 @@
 /* Small pieces every part of the sampling pipeline uses (the driver, the
- * backends, matching): the growable candidate array, the batch-size policy,
- * and the result's set-up and release. */
+ * backends, matching): the growable candidate array and the batch-size
+ * policy. */
 #include <stdlib.h>
-#include <string.h>
 
 #include "vb_array.h"
 #include "vb_sampler.h"
@@ -25,19 +24,4 @@ void vb_cand_vec_free(vb_cand_vec *cv)
 unsigned vb_sampler_batch_rays(int gpu)
 {
     return gpu ? 1u << 25 : 1u << 22;
-}
-
-void vb_sampler_result_init(vb_sampler_result *r)
-{
-    memset(r, 0, sizeof *r);
-    vb_vertex_list_init(&r->candidates);
-}
-
-void vb_sampler_result_free(vb_sampler_result *r)
-{
-    vb_vertex_list_free(&r->candidates);
-    free(r->quads.q);
-    free(r->topo.faces);
-    free(r->topo.triples);
-    vb_sampler_result_init(r);
 }

@@ -12,6 +12,7 @@
 
 #include "vb.h"
 #include "vb_geom_shared.h"
+#include "vb_proposer.h"
 #include "vb_spheres.h"
 #include "vb_vertex.h"
 
@@ -19,14 +20,10 @@
 extern "C" {
 #endif
 
-/* Defaults: S = 30 rays per face side reached 100 % recall on the corpus and
- * the proteins of shared/data (see papers/gpu-voronoi-cells-of-spheres). */
-#define VB_SAMPLER_DEFAULT_SAMPLES 30u
+/* Defaults (the samples' in vb_proposer.h). */
 #define VB_SAMPLER_DEFAULT_DEPTH 4u
 #define VB_SAMPLER_DEFAULT_ITER 40u
 #define VB_SAMPLER_DEFAULT_TARGET_DEPTH 10u
-
-struct vb_quad_list; /* vb_cover.h */
 
 typedef struct vb_sampler_options {
     unsigned samples;        /* S >= 2 (0: default) */
@@ -40,10 +37,6 @@ typedef struct vb_sampler_options {
     unsigned batch_rays;     /* rays per backend batch (0: backend's choice); with
                                 await_backend, of the batches culled before the
                                 backend is known (then at most its choice) */
-    unsigned part, nparts;   /* this process's part of the work (MPI ranks; 0 or 1 part:
-                                all of it); the cover splits its cells, see vb_cover.h */
-    uint32_t base_limit;     /* nonzero: the cover covers only cells < base_limit
-                                (vb_cover_options; periodic images) */
     unsigned threads;        /* host threads (0: VORBALL_THREADS or online CPUs);
                                 the output does not depend on it */
     void (*progress)(void *user, double fraction); /* may be NULL */
@@ -60,13 +53,6 @@ typedef struct vb_sampler_options {
      * culling; the output does not depend on how bases are batched. */
     int (*backend_ready)(void *user);
     void *await_user;
-    /* May be NULL. A proposer of quadruples (the cover) hands them to it
-     * part by part as they are proposed, sorted and unique (the contract
-     * of vb_cover_sink: parts disjoint, the sink may take a part's array),
-     * and leaves res->quads empty; a
-     * sink's error stops the proposer and is returned. */
-    int (*quads_sink)(void *user, struct vb_quad_list *part);
-    void *quads_user;
 } vb_sampler_options;
 
 #define VB_SAMPLER_MAX_AHEAD 8u
@@ -95,14 +81,6 @@ typedef struct vb_cand_vec {
 
 int vb_cand_vec_push(vb_cand_vec *cv, const vbs_cand *c);
 void vb_cand_vec_free(vb_cand_vec *cv);
-
-/* Seconds spent per stage (wall clock; device stages as the backend measures). */
-typedef struct vb_stage_times {
-    double cull, upload, envelope, vertices, matching;
-    /* Parts of matching: targeted search (5.5), tangent spheres of the
-     * sampled quadruples with their swaps, neighbourhood completion. */
-    double targeted, tangent, completion;
-} vb_stage_times;
 
 /* What a backend returns for one batch: candidates appended to cand in any
  * order (the driver sorts them), overflow counts candidates that did not
@@ -139,61 +117,6 @@ int vb_sampler_ref_open(vb_ctx *ctx, vb_sampler_backend **out);
 /* Closes any backend; NULL is allowed. */
 void vb_sampler_backend_close(vb_sampler_backend *be);
 
-/* Topology evidence from the samples (Sec. 4): faces seen (i, j), i < j, and
- * triples (i < j < k) seen as two-colour grid cells of one of their spheres,
- * each sorted and unique. */
-typedef struct vb_topology_evidence {
-    uint32_t *faces;          /* 2 per face */
-    size_t nfaces;
-    uint32_t *triples;        /* 3 per triple */
-    size_t ntriples;
-} vb_topology_evidence;
-
-typedef struct vb_sampler_result {
-    vb_vertex_list candidates;    /* one per (vertex, quadruple), status CANDIDATE */
-    vb_stage_times times;
-    double tol;                   /* tolerance used (world units) */
-    double clip;                  /* clip distance used (world units) */
-    unsigned samples, tiles;
-    uint64_t rays;                /* rays shot in the batches */
-    uint64_t raw_candidates;      /* from the vertex stage */
-    uint64_t overflow;            /* candidates lost to VBS_MAX_CAND (warned) */
-    uint64_t clusters;            /* distinct vertices after matching */
-    uint64_t complete_first;      /* found from all their spheres before 5.5 */
-    uint64_t targeted_searches;   /* (vertex, sphere) searches run */
-    uint64_t targeted_found;      /* of those, successful */
-    uint64_t incomplete;          /* still not found from all their spheres after 5.5 */
-    uint64_t sampled_vertices;    /* clusters with an empty tangent sphere: the vertices
-                                     sampling and 5.5 saw */
-    uint64_t vertices_incomplete; /* of those, not found from all their spheres after 5.5 */
-    uint64_t dropped;             /* tangent spheres (quadruple roots) that were not empty */
-    uint64_t swaps;               /* quadruples tried by swapping in an intruder */
-    uint64_t ring_tries;          /* quadruples tried by the neighbourhood completion */
-    uint64_t first_cell;          /* vertices found from the cell of sphere 0 (Fig. 13): sampled,
-                                     with an empty tangent sphere */
-    uint64_t from_sampling;       /* candidates from the sampled cells (after 5.5 and the
-                                     tangent test), before the neighbourhood completion */
-    uint64_t bisectors;           /* bisectors kept by the culling */
-    vb_topology_evidence topo;    /* filled when options.topology */
-    /* A proposer of quadruples (the direction cover) leaves candidates
-     * empty and these instead: sorted unique sphere quadruples whose exact
-     * roots hold every vertex (certify each root). complete says that the
-     * proposer proves that no vertex is missing. */
-    struct {
-        uint32_t (*q)[4];
-        size_t n, cap;
-    } quads;
-    int complete;
-    uint64_t cover_cells, cover_patches, cover_host_cells; /* the cover's counters */
-    uint64_t cover_quads;         /* quadruples proposed (in quads, or handed to the sink),
-                                     a counter that processes which covered parts of the
-                                     cells can add up */
-    double t_cover_device;        /* seconds in the cover's device batches */
-} vb_sampler_result;
-
-void vb_sampler_result_init(vb_sampler_result *r);
-void vb_sampler_result_free(vb_sampler_result *r);
-
 /* Runs the pipeline up to (not including) certification. set must be
  * validated (contained spheres flagged). be may be NULL when
  * opt->await_backend and opt->batch_rays are set. Returns VB_OK, VB_EMISUSE
@@ -202,7 +125,7 @@ void vb_sampler_result_free(vb_sampler_result *r);
  * (opt->tol below 1e-12 of the extent), VB_ENOMEM or the backend's
  * VB_EDEVICE. */
 int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_options *opt,
-                   vb_sampler_backend *be, vb_sampler_result *res);
+                   vb_sampler_backend *be, vb_proposal *res);
 
 /* Candidates for the four quadruples that swap one of ids[0..3] for
  * `intruder` (a sphere that cuts the tangent sphere of ids, as the exact

@@ -5,7 +5,7 @@
 
 #include <stdio.h>
 
-#include "vb_sampler.h"
+#include "vb_proposer.h"
 #include "vb_vertex.h"
 
 #ifdef __cplusplus

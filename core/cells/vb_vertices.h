@@ -6,8 +6,8 @@
  * The driver (core/cells/vertices.c) takes what it cannot build itself
  * through tables, so core/ never includes gpu/ or verify/ headers:
  *   - the device layer (vb_device.h; gpu/'s vbg_device_layer, or NULL),
- *   - the proposer of candidates (vb_proposer; vb_proposers lists them, the
- *     ray sampling of the seed paper first),
+ *   - the proposer of candidates (vb_proposer.h: its table, the options
+ *     any proposer takes and its result; vb_proposers lists them),
  *   - the certifier (vb_certifier_ops; verify/'s vb_exact_certifier).
  * cli/vb_default.h wires the default tables for callers that want them
  * (the command, a binding): vb_vertices_run_default. */
@@ -17,7 +17,7 @@
 #include <stdio.h>
 
 #include "vb_device.h"
-#include "vb_sampler.h"
+#include "vb_proposer.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -52,56 +52,7 @@ typedef struct vb_certifier_ops {
                          vb_vertex_list *certified, vb_vertex_list *rejected);
 } vb_certifier_ops;
 
-/* ---- proposers ----------------------------------------------------------- */
-
-/* How a proposer obtains its device-side state when the driver opens the
- * device on a thread of its own: state() waits for the opening (or falls
- * back) and returns the state, or NULL with an error in the context;
- * ready() says whether state() would return at once. kind is the device
- * asked for (a hint for sizes chosen before the device is known). */
-typedef struct vb_proposer_await {
-    void *(*state)(void *user);
-    int (*ready)(void *user);
-    void *user;
-    vb_device_kind kind;
-} vb_proposer_await;
-
-/* A proposer of candidate vertices: candidates (ids, approximate point and
- * tangent radius) for the certifier, from which every vertex of the
- * diagram must be reachable by certification and the repair rounds. */
-typedef struct vb_proposer {
-    const char *name;  /* "sampling" */
-    /* Opens the proposer on an opened device of `layer`, or its plain-C
-     * twin when dev is NULL. Called on the opener thread for a device (it
-     * may build programs). VB_OK, VB_ENOMEM, VB_EDEVICE. */
-    int (*open)(vb_ctx *ctx, const vb_device_layer *layer, vb_device *dev, void **state);
-    /* Proposes candidates for the validated set into res (candidates and
-     * the counters it has); state is NULL when `await` must supply it.
-     * VB_OK, VB_EMISUSE, VB_ENOMEM, VB_EDEVICE (the driver then reruns it on
-     * the twin). */
-    int (*run)(vb_ctx *ctx, void *state, const vb_proposer_await *await,
-               const vb_sphere_set *set, const vb_sampler_options *opt, vb_sampler_result *res);
-    const char *(*backend)(const void *state); /* "ref", "opencl" */
-    const char *(*device)(const void *state);  /* human-readable device */
-    void (*close)(void *state);
-} vb_proposer;
-
-/* The ray sampling of the seed paper (vb_sampler_run) as a proposer. */
-extern const vb_proposer vb_proposer_sampling;
-
-/* The direction cover (vb_cover_run): quadruples proven to hold every
- * vertex; the default. */
-extern const vb_proposer vb_proposer_cover;
-
-/* The proposers of the library, NULL-terminated; the first is the default. */
-extern const vb_proposer *const vb_proposers[];
-
-/* The proposer called `name` (NULL: the default), or NULL. */
-const vb_proposer *vb_proposer_find(const char *name);
-
 /* ---- the pipeline -------------------------------------------------------- */
-
-
 
 typedef struct vb_vertices_backends {
     const vb_device_layer *devices;        /* NULL: plain-C twins only */
@@ -111,7 +62,10 @@ typedef struct vb_vertices_backends {
 typedef struct vb_vertices_config {
     vb_device_kind device;       /* default VB_DEVICE_AUTO (0) */
     const char *proposer;        /* vb_proposers name; NULL: the default */
-    vb_sampler_options sampler;  /* sampling options, threads, progress */
+    vb_propose_options propose;  /* what any proposer takes: tolerance, threads, budget */
+    const struct vb_cover_options *cover; /* the cover's own settings (vb_cover.h: the
+                                  * work split over MPI ranks, the periodic base
+                                  * limit), owned by the caller; NULL: its defaults */
     size_t host_below;           /* VB_DEVICE_AUTO with the cover on fewer spheres than
                                   * this runs on host threads where the device would
                                   * be a GPU (vb_vertices_device); 0: the
@@ -136,7 +90,7 @@ vb_device_kind vb_vertices_device(const vb_sphere_set *set, const vb_vertices_co
                                   const vb_device_layer *layer);
 
 typedef struct vb_vertices_result {
-    vb_sampler_result sampler;  /* what the proposer found, and its counters */
+    vb_proposal proposal;       /* what the proposer found, and its counters */
     vb_vertex_list certified;   /* canonical, sorted */
     vb_vertex_list rejected;    /* candidates the certifier refused */
     double t_setup;             /* device opening, on its own thread */
@@ -176,21 +130,27 @@ void vb_vertices_result_free(vb_vertices_result *r);
 int vb_vertices_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertices_config *cfg,
                     const vb_vertices_backends *be, vb_vertices_result *res);
 
-/* A device and proposer opened once for several runs (bench). */
+/* A device and proposer opened once for several runs (bench, the Python
+ * Engine over a trajectory's frames). */
 typedef struct vb_vertices_engine vb_vertices_engine;
 
-/* Opens the device and the proposer of cfg (synchronously, W760 and the
- * twin when the device cannot be used). Close with vb_vertices_close. */
+/* Prepares an engine for cfg's device and proposer (VB_EMISUSE for an
+ * unknown proposer). Nothing is opened yet: the device is opened at the
+ * first run that needs it (W760 and the twin when it cannot be used), as
+ * `--device auto`'s crossover (vb_vertices_device, with cfg->host_below)
+ * depends on the input; a run the crossover keeps on host threads opens
+ * the twin instead. Close with vb_vertices_close. */
 int vb_vertices_open(vb_ctx *ctx, const vb_vertices_backends *be, const vb_vertices_config *cfg,
                      vb_vertices_engine **out);
 
-/* Seconds vb_vertices_open took. */
+/* Seconds the device's opening took (0 until a run opened it). */
 double vb_vertices_open_seconds(const vb_vertices_engine *e);
 
-/* vb_vertices_run on an opened engine: the same output, without the
- * set-up (t_setup stays 0), the same memory check first (the device
- * already open). A device that fails mid-run is dropped with W762: the
- * run, and later runs on e, use the twin. */
+/* vb_vertices_run on an engine: the same output; the engine's device
+ * (opened here at the first run that needs it) replaces cfg->device, and
+ * its opening is not part of the run (t_setup stays 0, t_total starts
+ * after it). The same memory check first. A device that fails mid-run is
+ * dropped with W762: the run, and later runs on e, use the twin. */
 int vb_vertices_run_on(vb_ctx *ctx, vb_vertices_engine *e, const vb_sphere_set *set,
                        const vb_vertices_config *cfg, vb_vertices_result *res);
 

@@ -152,7 +152,7 @@ double vbs_clip_distance(const vb_sphere_set *set);
  * fills res->candidates and the counters. */
 int vbs_match(vb_ctx *ctx, const vb_sphere_set *set, const vbs_culler *cu,
               const vbs_params *params, unsigned target_depth, int nthreads,
-              vb_cand_vec *raw, vb_sampler_result *res);
+              vb_cand_vec *raw, vb_proposal *res);
 
 /* Topology evidence of the bases of a batch. */
 typedef struct vbs_topo_acc {

@@ -89,7 +89,7 @@ typedef struct vbs_work {
  * searches Sec. 5.5 runs for the plausible incomplete ones (appended to
  * *wk, *nwk of *wcap). Counts complete_first and first_cell in res. */
 int vbs_targeted_work(const vbs_clusters *m, const vb_cand_vec *raw, const uint8_t *plaus,
-                      vbs_work **wk, size_t *nwk, size_t *wcap, vb_sampler_result *res);
+                      vbs_work **wk, size_t *nwk, size_t *wcap, vb_proposal *res);
 
 /* Runs the searches wk[0..nwk) (sorted here) in parallel; what they find
  * is appended to extra in search order (seq renumbered), the counters
@@ -97,7 +97,7 @@ int vbs_targeted_work(const vbs_clusters *m, const vb_cand_vec *raw, const uint8
 int vbs_targeted_search(const vb_sphere_set *set, const vbs_culler *cu, const vbs_params *params,
                         unsigned depth, int nthreads, const vb_cand_vec *raw,
                         const vbs_clusters *m, vbs_work *wk, size_t nwk, vb_cand_vec *extra,
-                        vb_sampler_result *res);
+                        vb_proposal *res);
 
 /* ---- the set of handled quadruples (quad_set.c) ------------------------ */
 
@@ -145,7 +145,7 @@ typedef struct vbs_roots {
     uint32_t *qbuf;
     size_t qcap;
     vbs_qset seen;
-    vb_sampler_result *res;
+    vb_proposal *res;
 } vbs_roots;
 
 /* Both tangent spheres (centre, radius) of the spheres q[0..3]

@@ -23,27 +23,18 @@ void vb_vertex_list_free(vb_vertex_list *v)
     vb_vertex_list_init(v);
 }
 
-static int grow(void **p, size_t elem, size_t cap)
-{
-    void *q = realloc(*p, elem * cap);
-    if (!q)
-        return VB_ENOMEM;
-    *p = q;
-    return VB_OK;
-}
-
 static int reserve_vertices(vb_vertex_list *v, size_t need)
 {
     if (need <= v->cap && v->start)
         return VB_OK;
-    size_t cap = v->cap ? v->cap : 64;
-    while (cap < need)
-        cap *= 2;
-    if (grow((void **)&v->start, sizeof *v->start, cap + 1) ||
-        grow((void **)&v->x, sizeof *v->x, cap) || grow((void **)&v->y, sizeof *v->y, cap) ||
-        grow((void **)&v->z, sizeof *v->z, cap) || grow((void **)&v->t, sizeof *v->t, cap) ||
-        grow((void **)&v->dist, sizeof *v->dist, cap) ||
-        grow((void **)&v->status, sizeof *v->status, cap))
+    size_t cap = vb_array_capacity(v->cap, need ? need : 1, 64);
+    if (vb_array_resize((void **)&v->start, cap + 1, sizeof *v->start) ||
+        vb_array_resize((void **)&v->x, cap, sizeof *v->x) ||
+        vb_array_resize((void **)&v->y, cap, sizeof *v->y) ||
+        vb_array_resize((void **)&v->z, cap, sizeof *v->z) ||
+        vb_array_resize((void **)&v->t, cap, sizeof *v->t) ||
+        vb_array_resize((void **)&v->dist, cap, sizeof *v->dist) ||
+        vb_array_resize((void **)&v->status, cap, sizeof *v->status))
         return VB_ENOMEM;
     if (v->cap == 0)
         v->start[0] = 0;

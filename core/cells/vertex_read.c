@@ -138,6 +138,20 @@ static int skippable(const char *s, size_t len)
     return i == len || s[i] == '#';
 }
 
+/* The point of a line: x, y, z and the fourth coordinate (named `fourth`
+ * in messages: t, or voronota's r) from tok[0 .. 3]. VB_OK or the input
+ * error (parse_number). */
+static int parse_point(reader *r, long line, const token *tok, const char *fourth, double p[4])
+{
+    const char *what[4] = {"x", "y", "z", fourth};
+    for (int c = 0; c < 4; c++) {
+        int rc = parse_number(r, line, tok[c].s, tok[c].len, what[c], &p[c]);
+        if (rc)
+            return rc;
+    }
+    return VB_OK;
+}
+
 static int parse_tsv_line(reader *r, long line, const token *tok, size_t n)
 {
     if (n < 5 || n > 6)
@@ -159,12 +173,9 @@ static int parse_tsv_line(reader *r, long line, const token *tok, size_t n)
         b = i + 1;
     }
     double p[4];
-    static const char *what[4] = {"x", "y", "z", "t"};
-    for (int c = 0; c < 4; c++) {
-        int rc = parse_number(r, line, tok[1 + c].s, tok[1 + c].len, what[c], &p[c]);
-        if (rc)
-            return rc;
-    }
+    int rc = parse_point(r, line, tok + 1, "t", p);
+    if (rc)
+        return rc;
     int status = VB_VERTEX_CANDIDATE;
     if (n == 6 && parse_status(tok[5].s, tok[5].len, &status))
         return vb_error(r->ctx, VB_EINPUT_MALFORMED, r->name, line,
@@ -188,29 +199,36 @@ static int parse_voronota_line(reader *r, long line, const token *tok, size_t n)
             return rc;
     }
     double p[4];
-    static const char *what[4] = {"x", "y", "z", "r"};
-    for (int c = 0; c < 4; c++) {
-        int rc = parse_number(r, line, tok[4 + c].s, tok[4 + c].len, what[c], &p[c]);
-        if (rc)
-            return rc;
+    int rc = parse_point(r, line, tok + 4, "r", p);
+    return rc ? rc : push_vertex(r, line, p, VB_VERTEX_CANDIDATE);
+}
+
+/* The fields of the next line from buf[*i] that is neither blank nor a
+ * comment, in tok[0 .. *n); *i moves past it and *line counts the lines
+ * read. 0 at the end of buf. */
+static int next_fields(const char *buf, size_t len, size_t *i, long *line,
+                       token tok[MAX_FIELDS], size_t *n)
+{
+    while (*i < len) {
+        const char *s = buf + *i;
+        const char *nl = memchr(s, '\n', len - *i);
+        size_t l = nl ? (size_t)(nl - s) : len - *i;
+        *i += l + (nl != NULL);
+        ++*line;
+        if (!skippable(s, l)) {
+            *n = split(s, l, tok);
+            return 1;
+        }
     }
-    return push_vertex(r, line, p, VB_VERTEX_CANDIDATE);
+    return 0;
 }
 
 static int parse_lines(reader *r, const char *buf, size_t len, vb_vertex_format fmt)
 {
     long line = 0;
-    size_t i = 0;
-    while (i < len) {
-        const char *s = buf + i;
-        const char *nl = memchr(s, '\n', len - i);
-        size_t l = nl ? (size_t)(nl - s) : len - i;
-        i += l + (nl != NULL);
-        line++;
-        if (skippable(s, l))
-            continue;
-        token tok[MAX_FIELDS];
-        size_t n = split(s, l, tok);
+    size_t i = 0, n;
+    token tok[MAX_FIELDS];
+    while (next_fields(buf, len, &i, &line, tok, &n)) {
         int rc = fmt == VB_VFMT_TSV ? parse_tsv_line(r, line, tok, n)
                                     : parse_voronota_line(r, line, tok, n);
         if (rc)
@@ -466,22 +484,15 @@ static int parse_json(reader *r, const char *buf, size_t len)
  * (whose first field, the id list, always holds commas). */
 static vb_vertex_format detect(const char *buf, size_t len)
 {
-    size_t i = 0;
-    while (i < len) {
-        const char *s = buf + i;
-        const char *nl = memchr(s, '\n', len - i);
-        size_t l = nl ? (size_t)(nl - s) : len - i;
-        i += l + (nl != NULL);
-        if (skippable(s, l))
-            continue;
-        token tok[MAX_FIELDS];
-        size_t n = split(s, l, tok);
-        if (tok[0].s[0] == '{')
-            return VB_VFMT_JSON;
-        if (n == 8 && !memchr(tok[0].s, ',', tok[0].len))
-            return VB_VFMT_VORONOTA;
+    long line = 0;
+    size_t i = 0, n;
+    token tok[MAX_FIELDS];
+    if (!next_fields(buf, len, &i, &line, tok, &n))
         return VB_VFMT_TSV;
-    }
+    if (tok[0].s[0] == '{')
+        return VB_VFMT_JSON;
+    if (n == 8 && !memchr(tok[0].s, ',', tok[0].len))
+        return VB_VFMT_VORONOTA;
     return VB_VFMT_TSV;
 }
 

@@ -16,18 +16,7 @@
 #include "vb_diag.h"
 #include "vb_geom_shared.h"
 #include "vb_parallel.h"
-
-/* The cover first: it proves completeness, and it is the faster of the two
- * on every input measured (papers/gpu-voronoi-cells-of-spheres). */
-const vb_proposer *const vb_proposers[] = {&vb_proposer_cover, &vb_proposer_sampling, NULL};
-
-const vb_proposer *vb_proposer_find(const char *name)
-{
-    for (int i = 0; vb_proposers[i]; i++)
-        if (!name || strcmp(vb_proposers[i]->name, name) == 0)
-            return vb_proposers[i];
-    return NULL;
-}
+#include "vb_sampler.h"
 
 static const vb_proposer *proposer_of(vb_ctx *ctx, const vb_vertices_config *cfg)
 {
@@ -40,14 +29,14 @@ static const vb_proposer *proposer_of(vb_ctx *ctx, const vb_vertices_config *cfg
 void vb_vertices_result_init(vb_vertices_result *r)
 {
     memset(r, 0, sizeof *r);
-    vb_sampler_result_init(&r->sampler);
+    vb_proposal_init(&r->proposal);
     vb_vertex_list_init(&r->certified);
     vb_vertex_list_init(&r->rejected);
 }
 
 void vb_vertices_result_free(vb_vertices_result *r)
 {
-    vb_sampler_result_free(&r->sampler);
+    vb_proposal_free(&r->proposal);
     vb_vertex_list_free(&r->certified);
     vb_vertex_list_free(&r->rejected);
     vb_vertices_result_init(r);
@@ -152,9 +141,9 @@ static void *await_state(void *user)
 
 /* Runs the proposer on state (NULL: through await) and names what ran. */
 static int propose(vb_ctx *ctx, const vb_proposer *p, void *state, const vb_proposer_await *aw,
-                   const vb_sphere_set *set, const vb_vertices_config *cfg, vb_vertices_result *res)
+                   const vb_sphere_set *set, const vb_propose_args *args, vb_vertices_result *res)
 {
-    int rc = p->run(ctx, state, aw, set, &cfg->sampler, &res->sampler);
+    int rc = p->run(ctx, state, aw, set, args, &res->proposal);
     if (!state && aw)
         state = ((opener *)aw->user)->state;
     if (state) {
@@ -215,7 +204,7 @@ static int repair(vb_ctx *ctx, const vb_sphere_set *set, const vb_certifier_ops 
     vb_vertex_list_init(&next);
     vb_vertex_list_init(&ok);
     vb_vertex_list_init(&bad);
-    int rc = quads_add(&seen, &res->sampler.candidates);
+    int rc = quads_add(&seen, &res->proposal.candidates);
     for (size_t k = 0; rc == VB_OK && k < res->rejected.n; k++)
         rc = vb_vertex_list_push(&todo, res->rejected.ids + res->rejected.start[k],
                                  res->rejected.start[k + 1] - res->rejected.start[k],
@@ -267,16 +256,16 @@ static int repair(vb_ctx *ctx, const vb_sphere_set *set, const vb_certifier_ops 
  * warn (W762), close *state and propose again on the twin, left in *state. */
 static int rerun_on_twin(vb_ctx *ctx, const vb_device_layer *layer, vb_device *dev,
                          const vb_proposer *p, void **state, const vb_sphere_set *set,
-                         const vb_vertices_config *cfg, vb_vertices_result *res)
+                         const vb_propose_args *args, vb_vertices_result *res)
 {
     vb_device_failed_warn(ctx, VB_W_DEVICE_FAILED_RERUN, layer->name(dev), vb_errmsg(ctx),
                           "rerunning on the reference backend");
     vb_clear_error(ctx);
     p->close(*state);
     *state = NULL;
-    vb_sampler_result_free(&res->sampler);
+    vb_proposal_free(&res->proposal);
     int rc = p->open(ctx, layer, NULL, state);
-    return rc == VB_OK ? propose(ctx, p, *state, NULL, set, cfg, res) : rc;
+    return rc == VB_OK ? propose(ctx, p, *state, NULL, set, args, res) : rc;
 }
 
 /* Every exact root of each proposed quadruple, certified: the certifier's
@@ -287,7 +276,7 @@ static int rerun_on_twin(vb_ctx *ctx, const vb_device_layer *layer, vb_device *d
 static int certify_quads(vb_ctx *ctx, const vb_certifier_ops *ops, void *cert,
                          const vb_sphere_set *set, vb_vertices_result *res)
 {
-    const vb_sampler_result *sr = &res->sampler;
+    const vb_proposal *sr = &res->proposal;
     if (ops->certify_quads)
         return ops->certify_quads(ctx, cert, (const uint32_t(*)[4])sr->quads.q, sr->quads.n,
                                   &res->certified, &res->rejected);
@@ -337,12 +326,12 @@ static int certify(vb_ctx *ctx, const vb_certifier_ops *ops, vbv_cert_open *co,
         cert = vbv_cert_open_join(ctx, co, &rc);
     }
     /* Quadruples the proposer kept (it streamed none, or had no stream). */
-    if (rc == VB_OK && res->sampler.complete && res->sampler.quads.n)
+    if (rc == VB_OK && res->proposal.complete && res->proposal.quads.n)
         rc = certify_quads(ctx, ops, cert, set, res);
-    else if (rc == VB_OK && !res->sampler.complete)
-        rc = ops->certify_list(ctx, cert, &res->sampler.candidates, &res->certified,
+    else if (rc == VB_OK && !res->proposal.complete)
+        rc = ops->certify_list(ctx, cert, &res->proposal.candidates, &res->certified,
                                &res->rejected);
-    if (rc == VB_OK && !res->sampler.complete)
+    if (rc == VB_OK && !res->proposal.complete)
         rc = repair(ctx, set, ops, cert, res);
     if (cert)
         ops->close(cert);
@@ -355,16 +344,16 @@ static int certify(vb_ctx *ctx, const vb_certifier_ops *ops, vbv_cert_open *co,
     return rc;
 }
 
-/* The configuration the proposer sees: with a stream, the quadruples of a
+/* What the proposer sees of cfg: with a stream, the quadruples of a
  * complete proposer go to it part by part. */
-static vb_vertices_config streamed(const vb_vertices_config *cfg, vbv_cert_stream *cs)
+static vb_propose_args args_of(const vb_vertices_config *cfg, vbv_cert_stream *cs)
 {
-    vb_vertices_config c = *cfg;
+    vb_propose_args a = {cfg->propose, cfg->cover, NULL, NULL};
     if (cs) {
-        c.sampler.quads_sink = vbv_cert_stream_sink;
-        c.sampler.quads_user = cs;
+        a.quads_sink = vbv_cert_stream_sink;
+        a.quads_user = cs;
     }
-    return c;
+    return a;
 }
 
 /* Starts the set-up and, when the certifier judges quadruples, a stream
@@ -373,7 +362,7 @@ static void certifier_start(const vb_certifier_ops *ops, const vb_sphere_set *se
                             const vb_vertices_config *cfg, vbv_cert_open *co,
                             vbv_cert_stream *cs, vbv_cert_stream **csp, vb_ctx *ctx)
 {
-    vbv_cert_open_start(co, ops, set, cfg->sampler.threads, ctx);
+    vbv_cert_open_start(co, ops, set, cfg->propose.threads, ctx);
     *csp = NULL;
     if (ops->certify_quads && vbv_cert_stream_init(cs, co, ctx) == VB_OK)
         *csp = cs;
@@ -433,9 +422,9 @@ int vb_vertices_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertices_con
     vbv_cert_open co;
     vbv_cert_stream css, *cs;
     certifier_start(be->certifier, set, cfg, &co, &css, &cs, ctx);
-    vb_vertices_config pcfg = streamed(cfg, cs);
+    vb_propose_args pa = args_of(cfg, cs);
     vb_proposer_await aw = {await_state, opener_ready, &op, cfg->device};
-    rc = propose(ctx, p, state, async ? &aw : NULL, set, &pcfg, res);
+    rc = propose(ctx, p, state, async ? &aw : NULL, set, &pa, res);
     if (async) {
         opener_join(&op); /* when the proposer failed before it needed the device */
         state = op.state;
@@ -448,7 +437,7 @@ int vb_vertices_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertices_con
     if (rc != VB_OK && VB_CATEGORY(rc) == VB_EDEVICE && dev) {
         if (cs)
             vbv_cert_stream_reset(cs);
-        rc = stream_error(ctx, cs, rerun_on_twin(ctx, be->devices, dev, p, &state, set, &pcfg, res));
+        rc = stream_error(ctx, cs, rerun_on_twin(ctx, be->devices, dev, p, &state, set, &pa, res));
     }
     /* Releasing a GPU context takes tens of milliseconds: after the
      * certification, which does not need it. */
@@ -463,18 +452,24 @@ int vb_vertices_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertices_con
     return rc;
 }
 
+/* The device is opened at the first run that needs it: the crossover of
+ * `--device auto` (vb_vertices_device) depends on the input, which the
+ * engine does not know when it is opened. */
 struct vb_vertices_engine {
     vb_vertices_backends be;
     const vb_proposer *prop;
-    vb_device *dev;   /* NULL on the twin */
-    void *state;
+    vb_device_kind kind;  /* the device asked for at opening */
+    size_t host_below;    /* the opening's crossover (vb_vertices_config) */
+    int opened;           /* the device of kind was opened (or fell back) */
+    vb_device *dev;       /* NULL on the twin */
+    void *state;          /* on dev, or the twin when the device fell back */
+    void *host;           /* the twin of runs kept on host threads (crossover) */
     double t_open;
 };
 
 int vb_vertices_open(vb_ctx *ctx, const vb_vertices_backends *be, const vb_vertices_config *cfg,
                      vb_vertices_engine **out)
 {
-    double t0 = vb_now();
     *out = NULL;
     const vb_proposer *p = proposer_of(ctx, cfg);
     if (!p)
@@ -484,15 +479,8 @@ int vb_vertices_open(vb_ctx *ctx, const vb_vertices_backends *be, const vb_verti
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory");
     e->be = *be;
     e->prop = p;
-    vb_engine_request req = request_of(cfg, p);
-    int rc = vb_device_open_engine(ctx, be->devices, &req, &e->dev, &e->state);
-    if (rc != VB_OK) {
-        free(e);
-        return rc;
-    }
-    if (e->dev)
-        vb_info(ctx, "OpenCL device: %s", be->devices->name(e->dev));
-    e->t_open = vb_now() - t0;
+    e->kind = cfg->device;
+    e->host_below = cfg->host_below;
     *out = e;
     return VB_OK;
 }
@@ -508,29 +496,77 @@ void vb_vertices_close(vb_vertices_engine *e)
         return;
     if (e->state)
         e->prop->close(e->state);
+    if (e->host)
+        e->prop->close(e->host);
     if (e->dev)
         e->be.devices->close(e->dev);
     free(e);
 }
 
+/* The device a run of set on e uses: e's kind, or the host threads where
+ * the crossover keeps the run (vb_vertices_device). */
+static vb_device_kind engine_kind(const vb_vertices_engine *e, const vb_sphere_set *set,
+                                  vb_vertices_config *c)
+{
+    memset(c, 0, sizeof *c);
+    c->device = e->kind;
+    c->proposer = e->prop->name;
+    c->host_below = e->host_below;
+    return vb_vertices_device(set, c, e->be.devices);
+}
+
+/* The state a run on `kind` proposes on, opened when first needed: the
+ * twin when the crossover keeps the run on host threads, else the device
+ * of e's kind (W760 and the twin when it cannot be used). */
+static int engine_state(vb_ctx *ctx, vb_vertices_engine *e, const vb_vertices_config *c,
+                        vb_device_kind kind, void **state)
+{
+    int rc = VB_OK;
+    if (kind == VB_DEVICE_REF && e->kind != VB_DEVICE_REF) {
+        if (!e->host)
+            rc = e->prop->open(ctx, e->be.devices, NULL, &e->host);
+        *state = e->host;
+        return rc;
+    }
+    if (!e->opened) {
+        double t0 = vb_now();
+        vb_engine_request req = request_of(c, e->prop);
+        rc = vb_device_open_engine(ctx, e->be.devices, &req, &e->dev, &e->state);
+        if (rc != VB_OK)
+            return rc;
+        if (e->dev)
+            vb_info(ctx, "OpenCL device: %s", e->be.devices->name(e->dev));
+        e->opened = 1;
+        e->t_open = vb_now() - t0;
+    }
+    *state = e->state;
+    return rc;
+}
+
 int vb_vertices_run_on(vb_ctx *ctx, vb_vertices_engine *e, const vb_sphere_set *set,
                        const vb_vertices_config *cfg, vb_vertices_result *res)
 {
-    double t0 = vb_now();
-    int mrc = vb_vertices_memory_check(ctx, set, cfg, 1);
-    if (mrc != VB_OK)
-        return mrc;
+    vb_vertices_config c, chosen = *cfg;
+    chosen.device = engine_kind(e, set, &c);
+    int rc = vb_vertices_memory_check(ctx, set, &chosen,
+                                      chosen.device == VB_DEVICE_REF || e->opened);
+    void *state = NULL;
+    if (rc == VB_OK)
+        rc = engine_state(ctx, e, &c, chosen.device, &state);
+    if (rc != VB_OK)
+        return rc;
+    double t0 = vb_now(); /* the opening is the engine's, not the run's */
     vbv_cert_open co;
     vbv_cert_stream css, *cs;
     certifier_start(e->be.certifier, set, cfg, &co, &css, &cs, ctx);
-    vb_vertices_config pcfg = streamed(cfg, cs);
-    int rc = stream_error(ctx, cs, propose(ctx, e->prop, e->state, NULL, set, &pcfg, res));
-    if (rc != VB_OK && VB_CATEGORY(rc) == VB_EDEVICE && e->dev) {
+    vb_propose_args pa = args_of(cfg, cs);
+    rc = stream_error(ctx, cs, propose(ctx, e->prop, state, NULL, set, &pa, res));
+    if (rc != VB_OK && VB_CATEGORY(rc) == VB_EDEVICE && e->dev && state == e->state) {
         /* Later runs on e stay on the twin. */
         if (cs)
             vbv_cert_stream_reset(cs);
         rc = stream_error(ctx, cs, rerun_on_twin(ctx, e->be.devices, e->dev, e->prop, &e->state,
-                                                 set, &pcfg, res));
+                                                 set, &pa, res));
         e->be.devices->close(e->dev);
         e->dev = NULL;
     }
@@ -543,7 +579,7 @@ int vb_vertices_run_on(vb_ctx *ctx, vb_vertices_engine *e, const vb_sphere_set *
 
 void vb_vertices_certificate(const vb_vertices_result *r, char *buf, size_t size)
 {
-    const vb_sampler_result *s = &r->sampler;
+    const vb_proposal *s = &r->proposal;
     if (!s->complete) {
         buf[0] = '\0';
         return;

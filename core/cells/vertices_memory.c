@@ -41,6 +41,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "vb_cover.h"
 #include "vb_diag.h"
 #include "vb_memory.h"
 #include "vb_parallel.h"
@@ -68,7 +69,7 @@ void vb_vertices_memory_estimate(const vb_sphere_set *set, const vb_vertices_con
     size_t cells = 0;
     for (size_t i = 0; i < set->n; i++)
         cells += !set->contained || !set->contained[i];
-    unsigned nparts = cfg->sampler.nparts > 1 ? cfg->sampler.nparts : 1;
+    unsigned nparts = cfg->cover && cfg->cover->nparts > 1 ? cfg->cover->nparts : 1;
     const vb_proposer *p = vb_proposer_find(cfg->proposer);
     int cover = p == &vb_proposer_cover;
     /* A rank of nparts certifies its share of the cells; rank 0 merges
@@ -78,7 +79,7 @@ void vb_vertices_memory_estimate(const vb_sphere_set *set, const vb_vertices_con
     if (cover)
         bytes += PER_VERTEX_COVER * v / nparts;
     double resident = bytes, reserved = bytes;
-    reserved += THREAD_RESERVED * (double)vb_threads(cfg->sampler.threads);
+    reserved += THREAD_RESERVED * (double)vb_threads(cfg->propose.threads);
     if (cfg->device != VB_DEVICE_REF && !device_open) {
         resident += DEVICE_RESIDENT;
         reserved += DEVICE_RESERVED;

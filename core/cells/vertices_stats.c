@@ -7,7 +7,7 @@
 
 void vb_vertices_write_stats(vb_ctx *ctx, FILE *f, const vb_vertices_result *r)
 {
-    const vb_sampler_result *s = &r->sampler;
+    const vb_proposal *s = &r->proposal;
     static const vb_stats none;
     const vb_stats *st = vb_ctx_stats(ctx) ? vb_ctx_stats(ctx) : &none;
     fprintf(f,

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "channel_math.h"
 #include "vbc_channel.h"
 
 /* The ray bounds of every axis ray (vbc_ray_scan's first and last hit) in

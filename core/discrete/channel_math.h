@@ -10,21 +10,12 @@
 #define VBC_CHANNEL_MATH_H
 
 #include "vb_cl_compat.h"
+#include "vbc_flags.h"
 
 #define VBC_INLINE VB_SHARED_FN
 #define VBC_GLOBAL VB_GLOBAL
 typedef vb_u8 vbc_u8;
 
-/* Bits of the per-voxel flag byte written by the mask stage. */
-#define VBC_F_ATOMIC 1u   /* inside a ball of radius r_atom + r_solvent (AM) */
-#define VBC_F_MOLECULAR 2u /* between the first and last AM hit of some axis ray (MM) */
-#define VBC_F_EDGE 4u     /* Voronoi edge: enough distinct labels around (VE) */
-#define VBC_F_INTERIOR 8u /* AM xor MM */
-#define VBC_F_CHANNEL 16u /* VE and interior */
-#define VBC_F_MOUTH 32u   /* channel voxel with a face neighbour outside MM */
-
-/* Compacted channel voxels carry the mouth flag in the top bit of the index. */
-#define VBC_MOUTH_BIT 0x80000000u
 
 /* True when the centre of voxel (i,j,k) lies in the closed ball a. */
 VBC_INLINE int vbc_ball_contains(float ax, float ay, float az, float ar, int i, int j, int k)

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "channel_math.h"
 #include "vb_diag.h"
 #include "vb_parallel.h"
 #include "vbc_channel_pipe.h"

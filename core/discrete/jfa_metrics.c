@@ -3,6 +3,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "vb_grid.h"
 #include "vbj_jfa.h"
 
 /* Writes the indices of pixel i's 3^d - 1 neighbours that lie inside the

@@ -12,6 +12,7 @@
 #define VB_GRID_H
 
 #include "vb_cl_compat.h"
+#include "vbj_limits.h"
 
 typedef vb_i32 vbj_i32;
 typedef vb_u32 vbj_u32;
@@ -22,18 +23,6 @@ typedef vb_u64 vbj_u64;
 #define VBJ_I64_MAX VB_I64_MAX
 #define VBJ_U64_MAX VB_U64_MAX
 
-#define VBJ_FIX_BITS 16
-#define VBJ_FIX_ONE 65536
-#define VBJ_FIX_HALF 32768
-/* Largest grid side: keeps |coordinate difference| < 2^30 in 16.16. */
-#define VBJ_MAX_N 16384u
-/* Label of a pixel that has not received any seed yet. */
-#define VBJ_NONE 0xffffffffu
-/* Facet-JFA keeps its "interior" mark in the top bit of a stored label, so
- * seed indices stay below 2^31 - 1. */
-#define VBJ_MARK 0x80000000u
-#define VBJ_LABEL_MASK 0x7fffffffu
-#define VBJ_MAX_SEEDS 0x7ffffffeu
 /* Pixels per work-item of the boundary count (gpu/jfa.cl's jfa_boundary), along
  * the last axis; the host sizes that launch by it. */
 #define VBJ_BND_B 8

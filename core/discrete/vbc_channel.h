@@ -11,9 +11,9 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "channel_math.h"
 #include "vb.h"
 #include "vb_spheres.h"
+#include "vbc_flags.h"
 
 /* A cubic-voxel grid fitted around a molecule. dim 2 means nz == 1 and the
  * z coordinates of the atoms are ignored (the paper's 2D pictures). */

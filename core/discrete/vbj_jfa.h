@@ -23,8 +23,8 @@
 #include <stdint.h>
 
 #include "vb.h"
-#include "vb_grid.h"
 #include "vb_device.h"
+#include "vbj_limits.h"
 
 /* Algorithms. Steps l run n/2, n/4, ..., 1 (gather form: each pixel reads its
  * 3^d - 1 neighbours at distance l). */

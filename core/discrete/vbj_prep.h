@@ -4,6 +4,7 @@
 #ifndef VBJ_PREP_H
 #define VBJ_PREP_H
 
+#include "vb_grid.h"
 #include "vbj_jfa.h"
 
 /* Step lengths of a dense variant on a q^d grid (JFA family only): writes at

@@ -218,3 +218,14 @@ int vb_radii_load(vb_ctx *ctx, const char *path, vb_radii_table **out)
     *out = t;
     return VB_OK;
 }
+
+int vbi_atom_keep(vb_ctx *ctx, const vb_read_options *opt, const char *name, long line,
+                  const vb_atom_info *info, int how, vbi_dropped *dr, vbi_builder *b,
+                  vb_decimal e[4], double d[4])
+{
+    int rc = how != VBI_INFER_NONE ? vbi_element_inferred(ctx, opt, name, line, info, how, dr)
+                                   : VB_OK;
+    if (rc == VB_OK)
+        rc = vbi_radius_for(ctx, opt, name, line, info, &e[3], &d[3], &dr->unknown_elements);
+    return rc == VB_OK ? vbi_builder_push(b, e, d, info, line) : rc;
+}

@@ -185,13 +185,7 @@ int vbi_gro_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
         int how = vbi_infer_element(NULL, info.name, info.resname, VBI_LAYOUT_UNKNOWN, info.element);
         if (vbi_atom_dropped(opt, NULL, &info, dr))
             continue;
-        if (how != VBI_INFER_NONE &&
-            (rc = vbi_element_inferred(ctx, opt, name, it.lineno, &info, how, dr)) != VB_OK)
-            break;
-        rc = vbi_radius_for(ctx, opt, name, it.lineno, &info, &e[3], &d[3],
-                            &dr->unknown_elements);
-        if (rc == VB_OK)
-            rc = vbi_builder_push(&b, e, d, &info, it.lineno);
+        rc = vbi_atom_keep(ctx, opt, name, it.lineno, &info, how, dr, &b, e, d);
     }
     if (rc == VB_OK && !vbi_lines_next(&it, &line, &n))
         rc = vb_error(ctx, VB_EINPUT_MALFORMED, name, it.lineno + 1,

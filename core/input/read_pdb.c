@@ -206,13 +206,7 @@ int vbi_pdb_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
             rc = vb_error(ctx, VB_ENOMEM, name, it.lineno, "out of memory (alternate locations)");
         if (drop)
             continue;
-        if (how != VBI_INFER_NONE &&
-            (rc = vbi_element_inferred(ctx, opt, name, it.lineno, &info, how, dr)) != VB_OK)
-            break;
-        rc = vbi_radius_for(ctx, opt, name, it.lineno, &info, &e[3], &d[3],
-                            &dr->unknown_elements);
-        if (rc == VB_OK)
-            rc = vbi_builder_push(&b, e, d, &info, it.lineno);
+        rc = vbi_atom_keep(ctx, opt, name, it.lineno, &info, how, dr, &b, e, d);
         taken++;
     }
     vbi_altloc_free(&alt);

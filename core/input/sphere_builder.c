@@ -4,6 +4,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_array.h"
+
 void vb_spheres_free(vb_sphere_set *s)
 {
     if (!s)
@@ -66,32 +68,22 @@ int vbi_builder_init(vbi_builder *b, vb_ctx *ctx, const char *name, size_t max, 
     return VB_OK;
 }
 
-/* Grows one array to `cap` elements; keeps the old block on failure. */
-static int grow(void **p, size_t cap, size_t elem)
-{
-    void *q = realloc(*p, cap * elem);
-    if (!q)
-        return -1;
-    *p = q;
-    return 0;
-}
-
 static int builder_grow(vbi_builder *b)
 {
     vb_sphere_set *s = b->set;
-    size_t cap = b->cap ? b->cap * 2 : 256;
+    size_t cap = vb_array_capacity(b->cap, b->cap + 1, 256);
     int bad = 0;
-    bad |= grow((void **)&s->x, cap, sizeof *s->x);
-    bad |= grow((void **)&s->y, cap, sizeof *s->y);
-    bad |= grow((void **)&s->z, cap, sizeof *s->z);
-    bad |= grow((void **)&s->r, cap, sizeof *s->r);
-    bad |= grow((void **)&s->ex, cap, sizeof *s->ex);
-    bad |= grow((void **)&s->ey, cap, sizeof *s->ey);
-    bad |= grow((void **)&s->ez, cap, sizeof *s->ez);
-    bad |= grow((void **)&s->er, cap, sizeof *s->er);
-    bad |= grow((void **)&s->line, cap, sizeof *s->line);
+    bad |= vb_array_resize((void **)&s->x, cap, sizeof *s->x);
+    bad |= vb_array_resize((void **)&s->y, cap, sizeof *s->y);
+    bad |= vb_array_resize((void **)&s->z, cap, sizeof *s->z);
+    bad |= vb_array_resize((void **)&s->r, cap, sizeof *s->r);
+    bad |= vb_array_resize((void **)&s->ex, cap, sizeof *s->ex);
+    bad |= vb_array_resize((void **)&s->ey, cap, sizeof *s->ey);
+    bad |= vb_array_resize((void **)&s->ez, cap, sizeof *s->ez);
+    bad |= vb_array_resize((void **)&s->er, cap, sizeof *s->er);
+    bad |= vb_array_resize((void **)&s->line, cap, sizeof *s->line);
     if (s->info)
-        bad |= grow((void **)&s->info, cap, sizeof *s->info);
+        bad |= vb_array_resize((void **)&s->info, cap, sizeof *s->info);
     if (bad)
         return vb_error(b->ctx, VB_ENOMEM, b->name, 0, "out of memory at %zu spheres", s->n);
     b->cap = cap;

@@ -165,6 +165,14 @@ int vbi_pdb_name_layout(const char *buf, size_t len);
 int vbi_element_inferred(vb_ctx *ctx, const vb_read_options *opt, const char *file, long line,
                          const vb_atom_info *info, int how, vbi_dropped *dr);
 
+/* An atom a reader keeps (PDB, GRO): its inferred element recorded
+ * (vbi_element_inferred, unless how is VBI_INFER_NONE), its radius put in
+ * e[3] and d[3] (vbi_radius_for) and the sphere pushed to b. VB_OK or the
+ * first error. */
+int vbi_atom_keep(vb_ctx *ctx, const vb_read_options *opt, const char *name, long line,
+                  const vb_atom_info *info, int how, vbi_dropped *dr, vbi_builder *b,
+                  vb_decimal e[4], double d[4]);
+
 /* Warning W715: how many atoms had their element inferred, per element. */
 void vbi_report_inferred(vb_ctx *ctx, const char *name, const vbi_dropped *dr);
 

@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_cover.h"
+
 void vb_periodic_result_init(vb_periodic_result *r)
 {
     memset(r, 0, sizeof *r);
@@ -191,11 +193,18 @@ int vb_periodic_vertices_run(vb_ctx *ctx, const vb_sphere_set *atoms, const vb_b
     int rc = vb_periodic_images_build_opt(ctx, atoms, box, &opt, &res->img);
     if (rc != VB_OK)
         return rc;
+    /* The cover covers the atoms' cells alone (the box's atoms come first,
+     * their images after them), within the caller's split if any. */
+    vb_cover_options co;
+    memset(&co, 0, sizeof co);
+    if (cfg->cover)
+        co = *cfg->cover;
+    co.base_limit = (uint32_t)res->img.n0;
     vb_vertices_config c = *cfg;
     c.proposer = vb_proposer_cover.name;
-    c.sampler.base_limit = (uint32_t)res->img.n0;
+    c.cover = &co;
     rc = vb_vertices_run(ctx, res->img.set, &c, be, &res->run);
-    if (rc == VB_OK && !res->run.sampler.complete)
+    if (rc == VB_OK && !res->run.proposal.complete)
         rc = vb_error(ctx, VB_EINTERNAL, NULL, 0, "the cover did not report a complete run");
     return rc == VB_OK ? keep_canonical(ctx, res) : rc;
 }
@@ -214,6 +223,6 @@ void vb_periodic_certificate(const vb_periodic_result *r, const vb_box *box, cha
              "among %zu atoms and images, %llu quadruples; every empty sphere has radius <= %.9g, "
              "images within %.9g of the atoms and needed by the per-bin reach)",
              v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], r->v.n, r->img.n0,
-             r->img.set ? r->img.set->n : 0, (unsigned long long)r->run.sampler.cover_quads,
+             r->img.set ? r->img.set->n : 0, (unsigned long long)r->run.proposal.cover_quads,
              r->img.rho, r->img.reach);
 }

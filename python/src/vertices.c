@@ -126,7 +126,7 @@ static PyObject *topology_dict(const vb_completion *c)
 /* The result of a run as a dict (see python/vorball/_vertices.py). */
 static PyObject *result_dict(vb_ctx *ctx, const vb_vertices_result *r, const vb_completion *c)
 {
-    const vb_sampler_result *s = &r->sampler;
+    const vb_proposal *s = &r->proposal;
     const char *note = c->certificate;
     vbpy_text st;
     if (vbpy_text_open(&st) != 0)
@@ -182,11 +182,11 @@ static PyObject *vertices_run(PyObject *self, PyObject *args)
     vb_vertices_config cfg;
     if (!set || (engine != Py_None && !e) || config(device, proposer, &cfg) != 0)
         return NULL;
-    cfg.sampler.samples = samples;
-    cfg.sampler.tol = tol;
-    cfg.sampler.tiles = tiles;
-    cfg.sampler.all_pairs = all_pairs;
-    cfg.sampler.threads = threads;
+    cfg.propose.samples = samples;
+    cfg.propose.tol = tol;
+    cfg.propose.tiles = tiles;
+    cfg.propose.all_pairs = all_pairs;
+    cfg.propose.threads = threads;
     vbpy_call c;
     if (vbpy_progress_check(progress) != 0 || vbpy_call_open(&c) != 0)
         return NULL;

@@ -1,6 +1,7 @@
 /* Components, classification, centrelines, radii, bottlenecks, lining atoms
  * and pruning (core/discrete/channel_components.c): hand-made voxel sets with known
  * answers, then the synthetic pore and the closed shell end to end. */
+#include "channel_math.h"
 #include "synth.h"
 #include "vb_test.h"
 

@@ -2,6 +2,7 @@
  * reference of the masks fed with the same labels: identical flag bytes and
  * the same channel voxel list, on the synthetic pore and the closed shell, in
  * 3D and in 2D. Runs on whatever device "auto" picks (PoCL in CI). */
+#include "channel_math.h"
 #include "synth.h"
 #include "vb_test.h"
 #include "vbc_channel_gpu.h"

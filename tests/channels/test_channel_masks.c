@@ -4,6 +4,7 @@
  * plain per-voxel form it replaced (every voxel against every ball's box,
  * one vbc_ray_scan per ray, vbc_classify everywhere) on random atoms, in 3D
  * and 2D, byte for byte. */
+#include "channel_math.h"
 #include "synth.h"
 #include "vb_test.h"
 

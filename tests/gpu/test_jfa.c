@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_grid.h"
 #include "vb_test.h"
 #include "vbg_jfa.h"
 

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "vb_test.h"
+#include "vb_sampler.h"
 #include "vb_verify.h"
 #include "vb_vertices.h"
 #include "vbg_runtime.h"
@@ -77,8 +78,8 @@ static int run(vb_ctx *ctx, vb_sphere_set *s, vb_device_kind kind, unsigned samp
     memset(&cfg, 0, sizeof cfg);
     cfg.device = kind;
     cfg.proposer = "sampling"; /* these tests are about the ray sampling */
-    cfg.sampler.samples = samples;
-    cfg.sampler.all_pairs = all_pairs;
+    cfg.propose.samples = samples;
+    cfg.propose.all_pairs = all_pairs;
     vb_vertices_result_init(r);
     return vb_vertices_run(ctx, s, &cfg, &backends, r);
 }
@@ -137,9 +138,9 @@ static void check_cull_ahead(vb_ctx *ctx)
     memset(&o, 0, sizeof o);
     o.samples = 8;
     o.batch_rays = 6u * 8u * 8u * 4u; /* four bases per batch: 15 batches */
-    vb_sampler_result plain, ahead;
-    vb_sampler_result_init(&plain);
-    vb_sampler_result_init(&ahead);
+    vb_proposal plain, ahead;
+    vb_proposal_init(&plain);
+    vb_proposal_init(&ahead);
     CHECK_INT(vb_sampler_run(ctx, s, &o, d.ref, &plain), VB_OK);
     o.await_backend = slow_await;
     o.backend_ready = slow_ready;
@@ -156,12 +157,12 @@ static void check_cull_ahead(vb_ctx *ctx)
     /* A device that never gets ready: the first batch stops growing at
      * VB_SAMPLER_MAX_AHEAD batches. */
     d = (slow_device){d.ref, 0, 1000, 0, 0};
-    vb_sampler_result_free(&ahead);
+    vb_proposal_free(&ahead);
     CHECK_INT(vb_sampler_run(ctx, s, &o, NULL, &ahead), VB_OK);
     CHECK_INT(d.largest, 4 * VB_SAMPLER_MAX_AHEAD);
     CHECK(same_list(&plain.candidates, &ahead.candidates));
-    vb_sampler_result_free(&plain);
-    vb_sampler_result_free(&ahead);
+    vb_proposal_free(&plain);
+    vb_proposal_free(&ahead);
     vb_sampler_backend_close(d.ref);
     vb_spheres_free(s);
 }
@@ -185,13 +186,13 @@ static void check_set(vb_ctx *ctx, const char *name, char *text, int have_cpu)
     CHECK(same_list(&ref, &a.certified));
     /* Culling is conservative: identical envelopes, so identical candidates. */
     CHECK_INT(run(ctx, s, VB_DEVICE_REF, 0, 1, &b), VB_OK);
-    CHECK_INT(b.sampler.raw_candidates, a.sampler.raw_candidates);
-    CHECK(b.sampler.bisectors > a.sampler.bisectors);
+    CHECK_INT(b.proposal.raw_candidates, a.proposal.raw_candidates);
+    CHECK(b.proposal.bisectors > a.proposal.bisectors);
     CHECK(same_list(&a.certified, &b.certified));
     if (have_cpu) {
         CHECK_INT(run(ctx, s, VB_DEVICE_CPU, 0, 0, &c), VB_OK);
         CHECK_STR(c.backend, "opencl");
-        CHECK_INT(c.sampler.raw_candidates, a.sampler.raw_candidates);
+        CHECK_INT(c.proposal.raw_candidates, a.proposal.raw_candidates);
         CHECK(same_list(&a.certified, &c.certified));
         vb_vertices_result_free(&c);
     }
@@ -201,7 +202,7 @@ static void check_set(vb_ctx *ctx, const char *name, char *text, int have_cpu)
     CHECK_INT(run(ctx, s, VB_DEVICE_REF, 6, 0, &b), VB_OK);
     CHECK(same_list(&ref, &b.certified));
     if (strcmp(name, "random") == 0)
-        CHECK(b.sampler.targeted_found > 0);
+        CHECK(b.proposal.targeted_found > 0);
     vb_vertices_result_free(&b);
     vb_vertices_result_free(&a);
     vb_vertex_list_free(&ref);

@@ -8,33 +8,34 @@
 #include <string.h>
 
 #include "vb_test.h"
+#include "vb_test_spheres.h"
 #include "vorball.h"
 
 static void test_plan(void)
 {
     vb_vertices_config cfg = {0};
     vb_completion_opts o = {0};
-    cfg.sampler.threads = 3;
+    cfg.propose.threads = 3;
     o.topology = 1;
     vb_completion_plan(&cfg, &o); /* the cover: exact, from arc closure */
     CHECK_INT(o.arcs, 1);
-    CHECK_INT(cfg.sampler.topology, 0);
+    CHECK_INT(cfg.propose.topology, 0);
     CHECK_INT(o.threads, 3);
     memset(&o, 0, sizeof o);
     cfg.proposer = "sampling";
     o.topology = 1;
     vb_completion_plan(&cfg, &o); /* sampling alone: its evidence */
     CHECK_INT(o.arcs, 0);
-    CHECK_INT(cfg.sampler.topology, 1);
+    CHECK_INT(cfg.propose.topology, 1);
     o.arcs = 1;
     vb_completion_plan(&cfg, &o); /* sampling with arcs: exact */
     CHECK_INT(o.arcs, 1);
-    CHECK_INT(cfg.sampler.topology, 0);
+    CHECK_INT(cfg.propose.topology, 0);
     memset(&o, 0, sizeof o);
-    cfg.sampler.topology = 0;
+    cfg.propose.topology = 0;
     vb_completion_plan(&cfg, &o); /* no topology: nothing changes */
     CHECK_INT(o.arcs, 0);
-    CHECK_INT(cfg.sampler.topology, 0);
+    CHECK_INT(cfg.propose.topology, 0);
 }
 
 typedef struct seen {
@@ -50,13 +51,8 @@ static void keep(void *arg, const vb_diag_record *r)
 
 static vb_sphere_set *lattice(vb_ctx *ctx)
 {
-    const char *src = getenv("VORBALL_SOURCE_DIR");
-    char path[4096];
-    snprintf(path, sizeof path, "%s/corpus/inputs/cubic_lattice.xyzr", src ? src : ".");
-    vb_read_options ro = {0};
-    ro.format = VB_FMT_XYZR;
-    vb_sphere_set *set = NULL;
-    CHECK_INT(vb_spheres_load(ctx, path, &ro, NULL, 4, &set), VB_OK);
+    vb_sphere_set *set = vb_test_corpus_load(ctx, "cubic_lattice");
+    CHECK(set != NULL);
     return set;
 }
 
@@ -104,7 +100,7 @@ static void test_sampled(vb_ctx *ctx, vb_sphere_set *set)
     vb_vertices_result res;
     vb_vertices_result_init(&res);
     CHECK_INT(vb_vertices_run_default(ctx, set, &cfg, &res), VB_OK);
-    CHECK_INT(res.sampler.complete, 0);
+    CHECK_INT(res.proposal.complete, 0);
     seen s = {0};
     int quiet = vb_set_verbosity(ctx, 1); /* the callback gets what verbosity lets through */
     vb_set_log(ctx, keep, &s);

@@ -26,7 +26,7 @@ static char *periodic_bytes(vb_ctx *ctx, const vb_sphere_set *set, const vb_box 
 {
     vb_vertices_config cfg = {0};
     cfg.device = VB_DEVICE_REF;
-    cfg.sampler.threads = 2;
+    cfg.propose.threads = 2;
     vb_periodic_result res;
     vb_periodic_result_init(&res);
     res.full_layer = full;
