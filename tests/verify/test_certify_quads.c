@@ -6,7 +6,8 @@
  * from several quadruples (written once with all members), misuse, and on
  * a random set: output and counters identical for every thread count, the
  * same vertices as vb_certify_list on one candidate per double root, every
- * vertex empty by brute force. The corpus through the cover:
+ * vertex empty by brute force; a jittered crystal (rows past 128 bits,
+ * near-ties) through the double-double stages. The corpus through the cover:
  * test_certify_quads_corpus.c. */
 #include <math.h>
 #include <stdio.h>
@@ -472,6 +473,66 @@ static void test_threads_and_old_way(void)
     vb_spheres_free(s);
 }
 
+/* An fcc block of n^3 cells (a = 3.61, r = 1.28) with every coordinate
+ * moved by m 1e-12, m in [-1000, 1000] from a fixed LCG, written with 12
+ * decimals: nearly cospherical holes and nearly coplanar faces, whose
+ * scaled rows (about 2^42) are past the 128-bit line. */
+static vb_sphere_set *jittered_fcc(unsigned n)
+{
+    static const int off[4][3] = {{0, 0, 0}, {0, 1, 1}, {1, 0, 1}, {1, 1, 0}};
+    size_t count = 4 * (size_t)n * n * n, i = 0;
+    char (*buf)[32] = malloc(4 * count * sizeof *buf);
+    const char **v = malloc(4 * count * sizeof *v);
+    uint64_t x = 10976;
+    for (unsigned a = 0; a < n; a++)
+        for (unsigned b = 0; b < n; b++)
+            for (unsigned c = 0; c < n; c++)
+                for (int k = 0; k < 4; k++, i++) {
+                    unsigned cell[3] = {a, b, c};
+                    for (int d = 0; d < 3; d++) {
+                        x = x * 6364136223846793005ull + 1442695040888963407ull;
+                        long m = (long)((x >> 33) % 2001) - 1000;
+                        /* 1.805 (a / 2) in units of 1e-12, times half-cells. */
+                        long long u = (2LL * cell[d] + off[k][d]) * 1805000000000LL + m;
+                        snprintf(buf[4 * i + d], sizeof buf[0], "%s%lld.%012lld", u < 0 ? "-" : "",
+                                 llabs(u) / 1000000000000LL, llabs(u) % 1000000000000LL);
+                        v[4 * i + d] = buf[4 * i + d];
+                    }
+                    v[4 * i + 3] = "1.28";
+                }
+    vb_sphere_set *s = vt_set(count, v);
+    free(v);
+    free(buf);
+    return s;
+}
+
+/* Rows too wide for 128 bits take the double-double line, and the near-ties
+ * the point's double box cannot place take the double-double power: every
+ * quadruple of a jittered crystal is set up by the filter, and the
+ * vertices are those of the exact certifier. */
+static void test_wide_rows(void)
+{
+    vb_sphere_set *s = jittered_fcc(3);
+    vb_quad_list q = {0};
+    CHECK_INT(near_quads(s, &q), VB_OK);
+    run one;
+    certify(s, (const uint32_t(*)[4])q.q, q.n, 1, &one);
+    CHECK_INT(one.rc, VB_OK);
+    CHECK(one.out.n > 200);
+    CHECK_INT(one.qs.quads, q.n);
+    CHECK_INT(one.qs.quads_exact, 0);
+    CHECK(one.qs.power_signs > 0);
+    CHECK(one.qs.exact_solves * 20 < one.qs.quads);
+    vb_vertex_list old;
+    vb_vertex_list_init(&old);
+    CHECK_INT(old_way(s, &q, &old), VB_OK);
+    CHECK(vt_same_list(&one.out, &old, 0));
+    vb_vertex_list_free(&old);
+    vb_vertex_list_free(&one.out);
+    vb_quad_list_free(&q);
+    vb_spheres_free(s);
+}
+
 int main(void)
 {
     test_hand_made();
@@ -479,5 +540,6 @@ int main(void)
     test_degenerate();
     test_misuse();
     test_threads_and_old_way();
+    test_wide_rows();
     VB_TEST_END();
 }

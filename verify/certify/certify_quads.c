@@ -96,6 +96,30 @@ static vbx_ia distance_excess(const vbx_ia cj[4], const vbx_ia box[4])
 
 enum { ROOT_REFUSED = 0, ROOT_EMPTY = 1, ROOT_OPEN = 2 };
 
+/* The scan's second stage for sphere j, which root R's double box cannot
+ * place: outside when t + R_j < 0 is proven (the distance exceeds t + R_j),
+ * else, once t + R_j > 0 is proven, the sign of the power in double-double
+ * (vbx_qf_power_sign), which is the distance's there. 0: still open. The
+ * radius difference is exact in double below 2^53 and a sum rounded to
+ * nearest keeps its sign (as in vbx_qf_tangent_sign). */
+static int second_stage(qworker *w, const vbx_qline *L, const vbx_qprep *P, vbx_qroot *R,
+                        uint32_t j)
+{
+    const vbx_qdata *qd = &w->c->qd;
+    int64_t rj = qd->z[4 * (size_t)j + 3] - qd->z[4 * (size_t)L->q[0] + 3];
+    if (rj >= ((int64_t)1 << 53) || rj <= -((int64_t)1 << 53))
+        return 0;
+    double r = (double)rj;
+    if (R->s.hi + r < 0.0)
+        return 1;
+    if (!(R->s.lo + r > 0.0))
+        return 0;
+    int sg = qd->ops->power(qd, L, P, R, j);
+    if (sg)
+        w->st.power_signs++;
+    return sg;
+}
+
 /* The filter's verdict on root R of line L (R's s set; its point is
  * computed here once the tangency passes). */
 static int filter_root(qworker *w, const vbx_qline *L, const vbx_qprep *P, vbx_qroot *R)
@@ -143,6 +167,8 @@ static int filter_root(qworker *w, const vbx_qline *L, const vbx_qprep *P, vbx_q
             const vbx_ia *cj = &t->box[4 * s];
             int sg = vbx_probe_inside(&pr, cm, cj[3].lo) ? -1
                                                           : vbx_ia_sign(distance_excess(cj, p));
+            if (sg == 0)
+                sg = second_stage(w, L, P, R, j);
             if (sg > 0)
                 continue;
             if (sg < 0) {
@@ -306,6 +332,7 @@ static void add_qstats(vb_cert_quad_stats *to, const vb_cert_quad_stats *from)
     to->quads_exact += from->quads_exact;
     to->exact_solves += from->exact_solves;
     to->mpfr_rounds += from->mpfr_rounds;
+    to->power_signs += from->power_signs;
 }
 
 /* ---- the merge ------------------------------------------------------------ */

@@ -6,80 +6,6 @@
 #include "vbx_dd.h"
 #include "vbx_quad.h"
 
-/* Row entries (scaled coordinates and radii relative to the base) below
- * 2^28 keep every integer of the line within 128 bits:
- *   |d_k|, |r| < 2^28, so |W| = |d|^2 - r^2 < 3 * 2^56 + 2^56 = 2^58;
- *   2x2 minors of rows 1, 2: < 2 * 2^56 = 2^57 on the columns d, r, and
- *   < 2 * 2^28 * 2^58 = 2^87 with the column W;
- *   v (3x3 minors on d, r): < 3 * 2^28 * 2^57 < 2^87;
- *   U (3x3 minors with W): each term is an entry times a minor, < 2^28 * 2^87
- *   or < 2^58 * 2^57, so |U| < 3 * 2^115 < 2^117; 2D < 2^88.
- * Every product below is formed in 128 bits and fits, and every value is
- * below 2^117 as dd_of needs. */
-#define VBX_QF_ROW_LIMIT ((int64_t)1 << 28)
-
-int vbx_qf_line(const vbx_qdata *z, const uint32_t q[4], vbx_qline *L)
-{
-    if (!z->ok)
-        return 0;
-    const int64_t *cb = &z->z[4 * (size_t)q[0]];
-    int64_t m[3][5];
-    for (int i = 0; i < 3; i++) {
-        const int64_t *cj = &z->z[4 * (size_t)q[i + 1]];
-        /* |z| < 2^62, so the differences fit in 64 bits. */
-        for (int k = 0; k < 4; k++) {
-            m[i][k] = cj[k] - cb[k];
-            if (m[i][k] >= VBX_QF_ROW_LIMIT || m[i][k] <= -VBX_QF_ROW_LIMIT)
-                return 0;
-        }
-        m[i][4] = m[i][0] * m[i][0] + m[i][1] * m[i][1] + m[i][2] * m[i][2] - m[i][3] * m[i][3];
-    }
-    memcpy(L->q, q, sizeof L->q);
-    L->r[0] = 0;
-    for (int i = 0; i < 3; i++)
-        L->r[i + 1] = m[i][3];
-    /* Minors of rows 1 and 2, M[a][b] for columns a < b. */
-    vbx_i128 M[5][5];
-    for (int a = 0; a < 5; a++)
-        for (int b = a + 1; b < 5; b++)
-            M[a][b] = (vbx_i128)m[1][a] * m[2][b] - (vbx_i128)m[1][b] * m[2][a];
-    /* det3 of columns c0 < c1 < c2, expanded along row 0. */
-#define VBX_DET3(c0, c1, c2)                                                            \
-    ((vbx_i128)m[0][c0] * M[c1][c2] - (vbx_i128)m[0][c1] * M[c0][c2] +                  \
-     (vbx_i128)m[0][c2] * M[c0][c1])
-    /* v_k = (-1)^k D_k (the minor without column k); k = 3 is required. */
-    vbx_i128 D3 = VBX_DET3(0, 1, 2);
-    if (D3 == 0)
-        return 0;
-    L->v[0] = VBX_DET3(1, 2, 3);
-    L->v[1] = -VBX_DET3(0, 2, 3);
-    L->v[2] = VBX_DET3(0, 1, 3);
-    L->v[3] = -D3;
-    L->D = D3;
-    /* Cramer with s = 0: column j of the minor (0, 1, 2) replaced by W in
-     * place; moving W to the last column takes 2 - j transpositions. */
-    L->U[0] = VBX_DET3(1, 2, 4);
-    L->U[1] = -VBX_DET3(0, 2, 4);
-    L->U[2] = VBX_DET3(0, 1, 4);
-#undef VBX_DET3
-    return 1;
-}
-
-int vbx_qf_tangent_sign(const vbx_qline *L, vbx_ia s, int i)
-{
-    /* |r_i| < 2^28 is exact in double, and a sum rounded to nearest keeps
-     * its sign (or is 0): fl(lo + r) > 0 proves lo + r > 0. */
-    double r = (double)L->r[i];
-    if (s.lo + r > 0.0)
-        return 1;
-    if (s.hi + r < 0.0)
-        return -1;
-    return 0;
-}
-
-
-/* ---- the correctly rounded coordinates ----------------------------------- */
-
 /* x (|x| < 2^117) as a double-double: x = a 2^64 + b 2^32 + c with
  * |a| < 2^53 and 0 <= b, c < 2^32, each exact in a double, and the scalings
  * exact; two_sum(a 2^64, b 2^32) is exact, and adding c to its low part
@@ -108,6 +34,129 @@ static vbx_dd dd_of64(int64_t x)
     vbx_dd z = {h, (double)(x - (int64_t)h), 0.0};
     return z;
 }
+
+/* The line from rows too large for 128 bits (|entry| < 2^62), in
+ * double-double: every entry is exact as a pair (dd_of64), and each sum and
+ * product adds its error bound to the radius (vbx_dd.h), so v, U and D
+ * enclose the exact minors (those of the 128-bit path). Magnitudes stay
+ * below 2^62 (entries), 2^126 (W), 2^189 (minors with W) and 2^253 (v, U,
+ * D): far inside vbx_dd.h's range. 1, or 0 when D is not proven non-zero. */
+static int line_dd(const int64_t m[3][4], vbx_qline *L)
+{
+    vbx_dd e[3][5];
+    for (int i = 0; i < 3; i++) {
+        for (int k = 0; k < 4; k++)
+            e[i][k] = dd_of64(m[i][k]);
+        vbx_dd w = vbx_dd_add(vbx_dd_mul(e[i][0], e[i][0]), vbx_dd_mul(e[i][1], e[i][1]));
+        w = vbx_dd_add(w, vbx_dd_mul(e[i][2], e[i][2]));
+        e[i][4] = vbx_dd_sub(w, vbx_dd_mul(e[i][3], e[i][3]));
+    }
+    vbx_dd M[5][5];
+    for (int a = 0; a < 5; a++)
+        for (int b = a + 1; b < 5; b++)
+            M[a][b] = vbx_dd_sub(vbx_dd_mul(e[1][a], e[2][b]), vbx_dd_mul(e[1][b], e[2][a]));
+#define VBX_DET3_DD(c0, c1, c2)                                                         \
+    vbx_dd_add(vbx_dd_sub(vbx_dd_mul(e[0][c0], M[c1][c2]), vbx_dd_mul(e[0][c1], M[c0][c2])), \
+               vbx_dd_mul(e[0][c2], M[c0][c1]))
+    L->D = VBX_DET3_DD(0, 1, 2);
+    if (!vbx_dd_sign(L->D))
+        return 0;
+    L->v[0] = VBX_DET3_DD(1, 2, 3);
+    L->v[1] = vbx_dd_neg(VBX_DET3_DD(0, 2, 3));
+    L->v[2] = VBX_DET3_DD(0, 1, 3);
+    L->v[3] = vbx_dd_neg(L->D);
+    L->U[0] = VBX_DET3_DD(1, 2, 4);
+    L->U[1] = vbx_dd_neg(VBX_DET3_DD(0, 2, 4));
+    L->U[2] = VBX_DET3_DD(0, 1, 4);
+#undef VBX_DET3_DD
+    return 1;
+}
+
+/* Row entries (scaled coordinates and radii relative to the base) below
+ * 2^28 keep every integer of the line within 128 bits:
+ *   |d_k|, |r| < 2^28, so |W| = |d|^2 - r^2 < 3 * 2^56 + 2^56 = 2^58;
+ *   2x2 minors of rows 1, 2: < 2 * 2^56 = 2^57 on the columns d, r, and
+ *   < 2 * 2^28 * 2^58 = 2^87 with the column W;
+ *   v (3x3 minors on d, r): < 3 * 2^28 * 2^57 < 2^87;
+ *   U (3x3 minors with W): each term is an entry times a minor, < 2^28 * 2^87
+ *   or < 2^58 * 2^57, so |U| < 3 * 2^115 < 2^117; 2D < 2^88.
+ * Every product below is formed in 128 bits and fits, and every value is
+ * below 2^117 as dd_of needs. */
+#define VBX_QF_ROW_LIMIT ((int64_t)1 << 28)
+
+int vbx_qf_line(const vbx_qdata *z, const uint32_t q[4], vbx_qline *L)
+{
+    if (!z->ok)
+        return 0;
+    const int64_t *cb = &z->z[4 * (size_t)q[0]];
+    int64_t m[3][5];
+    int wide = 0;
+    for (int i = 0; i < 3; i++) {
+        const int64_t *cj = &z->z[4 * (size_t)q[i + 1]];
+        /* |z| < 2^61 (open_qdata), so the differences fit in 62 bits. */
+        for (int k = 0; k < 4; k++) {
+            m[i][k] = cj[k] - cb[k];
+            if (m[i][k] >= VBX_QF_ROW_LIMIT || m[i][k] <= -VBX_QF_ROW_LIMIT)
+                wide = 1;
+        }
+    }
+    memcpy(L->q, q, sizeof L->q);
+    L->r[0] = 0;
+    for (int i = 0; i < 3; i++)
+        L->r[i + 1] = m[i][3];
+    if (wide) {
+        int64_t m4[3][4];
+        for (int i = 0; i < 3; i++)
+            memcpy(m4[i], m[i], sizeof m4[i]);
+        return line_dd((const int64_t(*)[4])m4, L);
+    }
+    for (int i = 0; i < 3; i++)
+        m[i][4] = m[i][0] * m[i][0] + m[i][1] * m[i][1] + m[i][2] * m[i][2] - m[i][3] * m[i][3];
+    /* Minors of rows 1 and 2, M[a][b] for columns a < b. */
+    vbx_i128 M[5][5];
+    for (int a = 0; a < 5; a++)
+        for (int b = a + 1; b < 5; b++)
+            M[a][b] = (vbx_i128)m[1][a] * m[2][b] - (vbx_i128)m[1][b] * m[2][a];
+    /* det3 of columns c0 < c1 < c2, expanded along row 0. */
+#define VBX_DET3(c0, c1, c2)                                                            \
+    ((vbx_i128)m[0][c0] * M[c1][c2] - (vbx_i128)m[0][c1] * M[c0][c2] +                  \
+     (vbx_i128)m[0][c2] * M[c0][c1])
+    /* v_k = (-1)^k D_k (the minor without column k); k = 3 is required. */
+    vbx_i128 D3 = VBX_DET3(0, 1, 2);
+    if (D3 == 0)
+        return 0;
+    L->v[0] = dd_of(VBX_DET3(1, 2, 3));
+    L->v[1] = dd_of(-VBX_DET3(0, 2, 3));
+    L->v[2] = dd_of(VBX_DET3(0, 1, 3));
+    L->v[3] = dd_of(-D3);
+    L->D = dd_of(D3);
+    /* Cramer with s = 0: column j of the minor (0, 1, 2) replaced by W in
+     * place; moving W to the last column takes 2 - j transpositions (the
+     * same signs in line_dd). */
+    L->U[0] = dd_of(VBX_DET3(1, 2, 4));
+    L->U[1] = dd_of(-VBX_DET3(0, 2, 4));
+    L->U[2] = dd_of(VBX_DET3(0, 1, 4));
+#undef VBX_DET3
+    return 1;
+}
+
+int vbx_qf_tangent_sign(const vbx_qline *L, vbx_ia s, int i)
+{
+    /* |r_i| < 2^53 is exact in double, and a sum rounded to nearest keeps
+     * its sign (or is 0): fl(lo + r) > 0 proves lo + r > 0. Larger radius
+     * differences (wide rows) are left to the exact path. */
+    if (L->r[i] >= ((int64_t)1 << 53) || L->r[i] <= -((int64_t)1 << 53))
+        return 0;
+    double r = (double)L->r[i];
+    if (s.lo + r > 0.0)
+        return 1;
+    if (s.hi + r < 0.0)
+        return -1;
+    return 0;
+}
+
+
+/* ---- the correctly rounded coordinates ----------------------------------- */
 
 /* The double nearest to N / Den, if the enclosures decide it: x~ is a
  * guess, and it is the answer when the exact quotient lies strictly
@@ -157,11 +206,9 @@ static vbx_ia ia_of_dd(vbx_dd a)
 int vbx_qf_prep(const vbx_qline *L, vbx_qprep *P)
 {
     vbx_dd *v = P->v, *U = P->U;
-    for (int k = 0; k < 4; k++)
-        v[k] = dd_of(L->v[k]);
-    for (int k = 0; k < 3; k++)
-        U[k] = dd_of(L->U[k]);
-    P->D = dd_of(L->D);
+    memcpy(v, L->v, sizeof P->v);
+    memcpy(U, L->U, sizeof P->U);
+    P->D = L->D;
     /* Lorentz forms; U_3 = 0 leaves three terms in B and C. */
     vbx_dd A = vbx_dd_add(vbx_dd_add(vbx_dd_mul(v[0], v[0]), vbx_dd_mul(v[1], v[1])),
                           vbx_dd_mul(v[2], v[2]));
@@ -201,6 +248,7 @@ void vbx_qf_root(const vbx_qprep *P, int root, vbx_qroot *R)
         R->Qd = P->A;
     }
     R->s = vbx_ia_div(ia_of_dd(R->Pn), ia_of_dd(vbx_dd_scale2(R->Qd, 2.0)));
+    R->have_x = 0;
 }
 
 int vbx_qf_point(const vbx_qdata *z, const vbx_qline *L, const vbx_qprep *P, vbx_qroot *R)
@@ -229,6 +277,42 @@ int vbx_qf_point(const vbx_qdata *z, const vbx_qline *L, const vbx_qprep *P, vbx
     return 1;
 }
 
+int vbx_qf_power_sign(const vbx_qdata *z, const vbx_qline *L, const vbx_qprep *P, vbx_qroot *R,
+                      uint32_t j)
+{
+    /* On the base's cone |q|^2 = s^2, the power is W_j - 2 m_j . u
+     * (tangent_solver.c, vbx_sign_power) with the row m_j = (c_j - c_a,
+     * R_j - R_a) and W_j = |d_j|^2 - r_j^2; with u = X / (2 DQ) it is
+     * (W_j DQ - m_j . X) / DQ. The row is exact (|z| < 2^61, so its
+     * entries are below 2^62: dd_of64); every product and sum adds its
+     * bound to the radius. */
+    if (!R->have_x) {
+        for (int k = 0; k < 3; k++)
+            R->X[k] = vbx_dd_sub(vbx_dd_mul(P->U[k], R->Qd), vbx_dd_mul(R->Pn, P->v[k]));
+        R->X[3] = vbx_dd_neg(vbx_dd_mul(R->Pn, P->v[3])); /* U_3 = 0 */
+        R->DQ = vbx_dd_mul(P->D, R->Qd);
+        R->have_x = 1;
+    }
+    int sq = vbx_dd_sign(R->DQ);
+    if (!sq || !vbx_dd_sane(R->DQ))
+        return 0;
+    const int64_t *cb = &z->z[4 * (size_t)L->q[0]], *cj = &z->z[4 * (size_t)j];
+    vbx_dd m[4];
+    for (int k = 0; k < 4; k++)
+        m[k] = dd_of64(cj[k] - cb[k]);
+    vbx_dd W = vbx_dd_add(vbx_dd_mul(m[0], m[0]), vbx_dd_mul(m[1], m[1]));
+    W = vbx_dd_sub(vbx_dd_add(W, vbx_dd_mul(m[2], m[2])), vbx_dd_mul(m[3], m[3]));
+    vbx_dd E = vbx_dd_mul(W, R->DQ);
+    for (int k = 0; k < 4; k++) {
+        if (!vbx_dd_sane(R->X[k]))
+            return 0;
+        E = vbx_dd_sub(E, vbx_dd_mul(m[k], R->X[k]));
+    }
+    if (!vbx_dd_sane(E))
+        return 0;
+    return vbx_dd_sign(E) * sq;
+}
+
 int vbx_qf_round(const vbx_qroot *R, double out[4])
 {
     for (int k = 0; k < 4; k++)
@@ -238,8 +322,8 @@ int vbx_qf_round(const vbx_qroot *R, double out[4])
 }
 
 #ifndef VBX_DD_USE_FMA
-const vbx_qf_ops vbx_qf_ops_plain = {vbx_qf_line, vbx_qf_prep, vbx_qf_root, vbx_qf_point,
-                                     vbx_qf_round};
+const vbx_qf_ops vbx_qf_ops_plain = {vbx_qf_line, vbx_qf_prep, vbx_qf_root,
+                                     vbx_qf_point, vbx_qf_round, vbx_qf_power_sign};
 
 const vbx_qf_ops *vbx_qf_ops_best(void)
 {
@@ -250,6 +334,6 @@ const vbx_qf_ops *vbx_qf_ops_best(void)
     return &vbx_qf_ops_plain;
 }
 #else
-const vbx_qf_ops vbx_qf_ops_fma = {vbx_qf_line, vbx_qf_prep, vbx_qf_root, vbx_qf_point,
-                                   vbx_qf_round};
+const vbx_qf_ops vbx_qf_ops_fma = {vbx_qf_line, vbx_qf_prep, vbx_qf_root,
+                                   vbx_qf_point, vbx_qf_round, vbx_qf_power_sign};
 #endif

@@ -10,4 +10,5 @@
 #define vbx_qf_point vbx_qf_point_fma
 #define vbx_qf_round vbx_qf_round_fma
 #define vbx_qf_tangent_sign vbx_qf_tangent_sign_fma
+#define vbx_qf_power_sign vbx_qf_power_sign_fma
 #include "quad_filter.c"

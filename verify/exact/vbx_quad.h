@@ -6,9 +6,12 @@
  * q = p - c_a, s = t + R_a in scaled units (input times 10^E), the line
  * u = (U + mu v) / (2 D) and the roots mu = (-B +- sqrt(delta)) / A. When
  * every row entry is below 2^28 (scaled, relative to the base), v, U and D
- * are computed exactly in 128-bit integers; A, B, C, delta, the roots and
- * the coordinates are double-double numbers with a proven radius
- * (vbx_dd.h). They give the double intervals of the decisions (t + R_i and
+ * are computed exactly in 128-bit integers and then enclosed in
+ * double-double; when an entry is larger (many decimals: a jittered
+ * crystal's 12 places put neighbours' rows near 2^42), they are computed in
+ * double-double from the exact 64-bit rows, each with its proven radius. A,
+ * B, C, delta, the roots and the coordinates are double-double numbers with
+ * a proven radius (vbx_dd.h). They give the double intervals of the decisions (t + R_i and
  * the emptiness scan's box) and, by two exact-sign tests at the midpoints
  * around a guess, the correctly rounded coordinates. The exact solver
  * prefers the free unknown s (k = 3) whenever its minor is non-zero; the
@@ -35,11 +38,11 @@ typedef struct vbx_qdata {
     double scale;       /* 10^E (exact) */
 } vbx_qdata;
 
-/* The exact line of a quadruple. */
+/* The line of a quadruple: its rows' radii exactly, v, U and D enclosed. */
 typedef struct vbx_qline {
     uint32_t q[4];
     int64_t r[4];       /* R_i - R_a (r[0] = 0) */
-    vbx_i128 v[4], U[3], D; /* v = kernel (v[3] = -D), U = particular solution (U_3 = 0) */
+    vbx_dd v[4], U[3], D; /* v = kernel (v[3] = -D), U = particular solution (U_3 = 0) */
 } vbx_qline;
 
 enum vbx_qf_status {
@@ -60,11 +63,14 @@ typedef struct vbx_qroot {
     vbx_ia s;           /* t + R_a, scaled */
     vbx_dd N[4], Den[2];/* x, y, z = N[k] / Den[0], t = N[3] / Den[1], input units */
     vbx_ia p[4];        /* enclosures of x, y, z, t (the emptiness scans' box) */
+    int have_x;         /* X and DQ set (vbx_qf_power_sign, on first use) */
+    vbx_dd X[4], DQ;    /* u = X / (2 DQ): X = U Qd - Pn v, DQ = D Qd */
 } vbx_qroot;
 
-/* The exact line of sorted quadruple q: 1 when the rows fit (|entry| < 2^28
- * relative to the base, scaled) and D != 0 (the exact solver's k = 3), 0
- * otherwise (the exact path decides). */
+/* The line of sorted quadruple q: 1 when the rows fit (|entry| < 2^62
+ * relative to the base, scaled) and D is proven non-zero (the exact
+ * solver's k = 3), 0 otherwise (the exact path decides). Exact in 128-bit
+ * integers when every entry is below 2^28, else double-double. */
 int vbx_qf_line(const vbx_qdata *z, const uint32_t q[4], vbx_qline *L);
 
 /* A, B, C, delta and sqrt(delta) of L: enum vbx_qf_status. */
@@ -81,6 +87,17 @@ int vbx_qf_tangent_sign(const vbx_qline *L, vbx_ia s, int i);
  * the range the double-double bounds assume (the exact path decides). */
 int vbx_qf_point(const vbx_qdata *z, const vbx_qline *L, const vbx_qprep *P, vbx_qroot *R);
 
+/* Sign of the power |p - c_j|^2 - (t + R_j)^2 of sphere j at root R, in
+ * double-double: the emptiness scan's second stage, for a sphere whose
+ * distance the point's double box cannot place (nearly on the tangent
+ * sphere: a jittered crystal's near-ties, or a flat face's spheres under a
+ * vertex far away, where p and t are large and |p - c_j| - R_j - t cancels
+ * in doubles). +1 or -1 when proven, 0 when the radius cannot tell or a
+ * value leaves vbx_dd.h's range. Its sign is the distance's only where
+ * t + R_j >= 0 (the caller proves it). Sets R's X and DQ on first use. */
+int vbx_qf_power_sign(const vbx_qdata *z, const vbx_qline *L, const vbx_qprep *P, vbx_qroot *R,
+                      uint32_t j);
+
 /* The correctly rounded x, y, z, t (input units) of a root with its point:
  * 1 when all four are decided (out set), 0 when one is not (a near tie, a
  * value at 0: the caller rounds exactly). */
@@ -94,6 +111,8 @@ struct vbx_qf_ops {
     void (*root)(const vbx_qprep *P, int root, vbx_qroot *R);
     int (*point)(const vbx_qdata *z, const vbx_qline *L, const vbx_qprep *P, vbx_qroot *R);
     int (*round)(const vbx_qroot *R, double out[4]);
+    int (*power)(const vbx_qdata *z, const vbx_qline *L, const vbx_qprep *P, vbx_qroot *R,
+                 uint32_t j);
 };
 extern const vbx_qf_ops vbx_qf_ops_plain;
 #ifdef VBX_QF_HAVE_FMA

@@ -1,0 +1,130 @@
+/* bench_cover_cells: where the direction cover spends its time, by cell.
+ *
+ *   bench_cover_cells INPUT [MARGIN]
+ *
+ * Covers every cell of INPUT on one thread (vbq_cover_cell, the host's
+ * cover) and sums, for the cells whose centre lies within MARGIN (default
+ * 2) of the bounding box of the centres ("boundary") and for the others
+ * ("interior"): thread CPU seconds, patches, label evaluations, neighbour
+ * records, leaves at the deepest level and quadruples. A crystal's flat
+ * faces make its boundary cells the expensive ones (papers/degenerate-input/
+ * README.md). A benchmark, not a test. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "vb_cover.h"
+#include "vb_spheres.h"
+
+static double thread_cpu(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+typedef struct sums {
+    double cells, cpu, patches, evals, nb, deep, quads;
+} sums;
+
+static int arena_make(vbq_arena *a, uint32_t nb, uint32_t lab, uint32_t st, uint32_t q)
+{
+    free(a->nb);
+    free(a->lab);
+    free(a->st);
+    free(a->q);
+    free(a->hi);
+    a->nb = malloc((size_t)nb * sizeof *a->nb);
+    a->lab = malloc((size_t)lab * sizeof *a->lab);
+    a->st = malloc((size_t)st * sizeof *a->st);
+    a->q = malloc(4 * (size_t)q * sizeof *a->q);
+    a->hi = malloc((size_t)lab * sizeof *a->hi);
+    a->nb_cap = nb;
+    a->lab_cap = lab;
+    a->st_cap = st;
+    a->q_cap = q;
+    return a->nb && a->lab && a->st && a->q && a->hi;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        fprintf(stderr, "usage: bench_cover_cells INPUT [MARGIN]\n");
+        return 2;
+    }
+    double margin = argc > 2 ? strtod(argv[2], NULL) : 2.0;
+    vb_ctx *ctx;
+    if (vb_open(&ctx, NULL) != VB_OK)
+        return 1;
+    vb_read_options ro;
+    memset(&ro, 0, sizeof ro);
+    vb_sphere_set *set = NULL;
+    vb_cover_tree *tree = NULL;
+    vbq_env env;
+    vb_cover_options o;
+    memset(&o, 0, sizeof o);
+    o.threads = 1;
+    if (vb_spheres_read_file(ctx, argv[1], &ro, &set) != VB_OK ||
+        vb_spheres_validate(ctx, set, 4) != VB_OK ||
+        vb_cover_prepare(ctx, set, &o, &tree, &env) != VB_OK) {
+        fprintf(stderr, "bench_cover_cells: %s\n", vb_errmsg(ctx));
+        return 1;
+    }
+    double lo[3] = {set->x[0], set->y[0], set->z[0]}, hi[3] = {lo[0], lo[1], lo[2]};
+    for (size_t i = 0; i < set->n; i++) {
+        double c[3] = {set->x[i], set->y[i], set->z[i]};
+        for (int k = 0; k < 3; k++) {
+            lo[k] = c[k] < lo[k] ? c[k] : lo[k];
+            hi[k] = c[k] > hi[k] ? c[k] : hi[k];
+        }
+    }
+    vbq_arena ar;
+    memset(&ar, 0, sizeof ar);
+    uint32_t cap[4] = {1024u, 8192u, 512u, 512u};
+    if (!arena_make(&ar, cap[0], cap[1], cap[2], cap[3]))
+        return 1;
+    sums s[2];
+    memset(s, 0, sizeof s);
+    for (uint32_t i = 0; i < set->n; i++) {
+        if (set->contained[i])
+            continue;
+        double c[3] = {set->x[i], set->y[i], set->z[i]};
+        int b = 0;
+        for (int k = 0; k < 3; k++)
+            b |= c[k] - lo[k] < margin || hi[k] - c[k] < margin;
+        vbq_cell_out out;
+        double t0 = thread_cpu();
+        for (;;) {
+            vbq_cover_cell(&env, &ar, i, VBQ_ALL_ROOTS, &out);
+            if (out.status == VBQ_OK)
+                break;
+            int g = out.status == VBQ_OVER_NB ? 0 : out.status == VBQ_OVER_LAB ? 1
+                    : out.status == VBQ_OVER_ST ? 2 : 3;
+            cap[g] *= 2u;
+            if (cap[g] >= (1u << 30) || !arena_make(&ar, cap[0], cap[1], cap[2], cap[3]))
+                return 1;
+        }
+        s[b].cpu += thread_cpu() - t0;
+        s[b].cells++;
+        s[b].patches += out.patches;
+        s[b].evals += 1000.0 * out.evals_k;
+        s[b].nb += out.nnb;
+        s[b].deep += out.deep;
+        s[b].quads += out.nq;
+    }
+    for (int b = 0; b < 2; b++)
+        printf("%s\t%s\tcells %.0f\tcpu_s %.3f\tpatches %.0f\tevals %.0f\tneighbours %.0f\t"
+               "deep_leaves %.0f\tquadruples %.0f\n",
+               argv[1], b ? "boundary" : "interior", s[b].cells, s[b].cpu, s[b].patches,
+               s[b].evals, s[b].nb, s[b].deep, s[b].quads);
+    free(ar.nb);
+    free(ar.lab);
+    free(ar.st);
+    free(ar.q);
+    free(ar.hi);
+    vb_cover_tree_free(tree);
+    vb_spheres_free(set);
+    vb_close(ctx);
+    return 0;
+}
