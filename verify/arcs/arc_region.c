@@ -188,9 +188,11 @@ static void u_of(const vbx_tframe *f, vbx_ia S, vbx_ia G, vbx_ia u[4])
         u[k] = vbx_ia_add(f->O[k], vbx_ia_add(vbx_ia_mul(S, f->ES[k]), vbx_ia_mul(G, f->EG[k])));
 }
 
+/* Adds sphere j to the candidates once; a sphere inside another never
+ * touches (the searches skip it) and is left out. */
 static int push_cand(vbx_arcw *w, uint32_t j)
 {
-    if (w->mark[j])
+    if (w->mark[j] || (w->set->contained && w->set->contained[j]))
         return VB_OK;
     if (VB_ARRAY_FIT(w->cand, w->cand_cap, w->ncand + 1, 256) != VB_OK)
         return VB_ENOMEM;
