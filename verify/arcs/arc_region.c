@@ -93,14 +93,9 @@ static void branch_at(const vbx_tframe *f, vbx_ia g, vbx_ia *s, vbx_ia *slope)
     *slope = vbx_ia_div(vbx_ia_mul(k2, g), root);
 }
 
-/* The bounded arc of an open branch between two vertices as the apex of
- * its tangent triangle (see the top): one box enclosing the point A where
- * the tangents at the ends meet. 1 when set, 0 when the enclosures cannot
- * order the slopes (then the caller uses the boxes of the arc). */
-static int apex_part(const vbx_tframe *f, const vbx_arc_end *e0, const vbx_arc_end *e1,
-                     vbx_region *rg)
+int vbx_apex_box(const vbx_tframe *f, vbx_ia g0, vbx_ia g1, vbx_part *p)
 {
-    vbx_ia g0 = e0->key.G, g1 = e1->key.G, s0, s1, a, b;
+    vbx_ia s0, s1, a, b;
     if (!(g0.hi < g1.lo) || !(g0.lo > -INFINITY) || !(g1.hi < INFINITY))
         return 0;
     branch_at(f, g0, &s0, &a);
@@ -119,10 +114,19 @@ static int apex_part(const vbx_tframe *f, const vbx_arc_end *e0, const vbx_arc_e
     if (!(ga.lo > -INFINITY) || !(ga.hi < INFINITY) || !(sa.lo > -INFINITY) ||
         !(sa.hi < INFINITY) || !(sa.lo <= sa.hi))
         return 0;
-    vbx_part *p = &rg->p[rg->n++];
     p->kind = VBX_PART_BOX;
     p->S = sa;
     p->G = ga;
+    return 1;
+}
+
+/* The bounded arc between two vertices: its apex alone (see the top). */
+static int apex_part(const vbx_tframe *f, const vbx_arc_end *e0, const vbx_arc_end *e1,
+                     vbx_region *rg)
+{
+    if (!vbx_apex_box(f, e0->key.G, e1->key.G, &rg->p[0]))
+        return 0;
+    rg->n = 1;
     return 1;
 }
 
