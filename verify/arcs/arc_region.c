@@ -5,10 +5,19 @@
  * (u = O + S ES + G EG) every L_j is affine, so L_j < 0 somewhere on a part
  * of the arc only if L_j < 0 somewhere on any convex region that holds that
  * part. The regions used:
- *   - a bounded arc of an open branch, between positions G0 < G1: S on the
- *     branch is Sc + sqrt(k^2 G^2 + cp), monotone on each side of G = 0, so
- *     the arc lies in the box G in [G0, G1], S between the ends' values (and
- *     the branch's Smin when G = 0 lies between them);
+ *   - a bounded arc of an open branch, between vertices v and w at
+ *     positions G0 < G1: S on the branch is Sc + sqrt(k^2 G^2 + cp), a
+ *     strictly convex function of G, so the arc lies below its chord and
+ *     above its tangents at v and w: inside the triangle of v, w and the
+ *     apex A where those tangents meet. v and w are certified vertices, so
+ *     L_j(v) >= 0 and L_j(w) >= 0 for every sphere j (a sphere with L_j < 0
+ *     at a point of the cone cuts that point's tangent ball; contained
+ *     spheres are never candidates); an affine L_j that is also > 0 at A is
+ *     > 0 on the triangle's interior, which holds the open arc. So the
+ *     region is the one point A (a box enclosing it). Where the
+ *     enclosures cannot separate the two slopes: the box G in [G0, G1], S
+ *     between the ends' values (and the branch's Smin when G = 0 lies
+ *     between them), in two parts;
  *   - a tail to infinity, G >= G1 >= 0: the branch lies between its
  *     asymptote S = Sc + k G and the parallel line through the tail's first
  *     point (the gap S - Sc - k G shrinks as G grows), a half-strip: its
@@ -74,6 +83,53 @@ void vbx_tail_from(const vbx_tframe *f, double g, double sgn, vbx_region *rg)
     s->D[1] = vbx_ia_point(sgn);
 }
 
+/* The open branch's S and slope dS/dG at G (an interval of either sign):
+ * S = Sc + sqrt(k^2 G^2 + cp), dS/dG = k^2 G / sqrt(k^2 G^2 + cp). */
+static void branch_at(const vbx_tframe *f, vbx_ia g, vbx_ia *s, vbx_ia *slope)
+{
+    vbx_ia k2 = vbx_ia_sqr(f->k);
+    vbx_ia root = vbx_ia_sqrt(vbx_ia_add(vbx_ia_mul(k2, vbx_ia_sqr(g)), f->cp));
+    *s = vbx_ia_add(f->Sc, root);
+    *slope = vbx_ia_div(vbx_ia_mul(k2, g), root);
+}
+
+int vbx_apex_box(const vbx_tframe *f, vbx_ia g0, vbx_ia g1, vbx_part *p)
+{
+    vbx_ia s0, s1, a, b;
+    if (!(g0.hi < g1.lo) || !(g0.lo > -INFINITY) || !(g1.hi < INFINITY))
+        return 0;
+    branch_at(f, g0, &s0, &a);
+    branch_at(f, g1, &s1, &b);
+    vbx_ia den = vbx_ia_sub(b, a);
+    if (!(den.lo > 0.0) || !(den.hi < INFINITY))
+        return 0;
+    /* S_0 + a (G - G_0) = S_1 + b (G - G_1) at
+     * G_A = ((S_0 - a G_0) - (S_1 - b G_1)) / (b - a); S_A on either tangent */
+    vbx_ia ga = vbx_ia_div(vbx_ia_sub(vbx_ia_sub(s0, vbx_ia_mul(a, g0)),
+                                      vbx_ia_sub(s1, vbx_ia_mul(b, g1))),
+                           den);
+    vbx_ia sa0 = vbx_ia_add(s0, vbx_ia_mul(a, vbx_ia_sub(ga, g0)));
+    vbx_ia sa1 = vbx_ia_add(s1, vbx_ia_mul(b, vbx_ia_sub(ga, g1)));
+    vbx_ia sa = {vbx_max(sa0.lo, sa1.lo), vbx_min(sa0.hi, sa1.hi)};
+    if (!(ga.lo > -INFINITY) || !(ga.hi < INFINITY) || !(sa.lo > -INFINITY) ||
+        !(sa.hi < INFINITY) || !(sa.lo <= sa.hi))
+        return 0;
+    p->kind = VBX_PART_BOX;
+    p->S = sa;
+    p->G = ga;
+    return 1;
+}
+
+/* The bounded arc between two vertices: its apex alone (see the top). */
+static int apex_part(const vbx_tframe *f, const vbx_arc_end *e0, const vbx_arc_end *e1,
+                     vbx_region *rg)
+{
+    if (!vbx_apex_box(f, e0->key.G, e1->key.G, &rg->p[0]))
+        return 0;
+    rg->n = 1;
+    return 1;
+}
+
 void vbx_region_of(const vbx_tframe *f, const vbx_arc_end *e0, const vbx_arc_end *e1,
                    vbx_region *rg)
 {
@@ -111,6 +167,8 @@ void vbx_region_of(const vbx_tframe *f, const vbx_arc_end *e0, const vbx_arc_end
         return;
     }
     if (!e0->inf && !e1->inf) {
+        if (apex_part(f, e0, e1, rg))
+            return;
         /* a bounded arc: thin boxes from e0's G to e1's (piece_parts) */
         if (!(e0->key.G.lo <= e1->key.G.hi) || !(e0->key.G.lo > -INFINITY) ||
             !(e1->key.G.hi < INFINITY)) {
@@ -134,9 +192,11 @@ static void u_of(const vbx_tframe *f, vbx_ia S, vbx_ia G, vbx_ia u[4])
         u[k] = vbx_ia_add(f->O[k], vbx_ia_add(vbx_ia_mul(S, f->ES[k]), vbx_ia_mul(G, f->EG[k])));
 }
 
+/* Adds sphere j to the candidates once; a sphere inside another never
+ * touches (the searches skip it) and is left out. */
 static int push_cand(vbx_arcw *w, uint32_t j)
 {
-    if (w->mark[j])
+    if (w->mark[j] || (w->set->contained && w->set->contained[j]))
         return VB_OK;
     if (VB_ARRAY_FIT(w->cand, w->cand_cap, w->ncand + 1, 256) != VB_OK)
         return VB_ENOMEM;

@@ -333,6 +333,28 @@ static int scan_region(vbx_arcw *w, search *sr, vbx_region *rg)
 
 enum { TAIL_PIECES = 48, TAIL_CAP_MIN = 64, TAIL_STRIP_FROM = 2 };
 
+/* The region of a piece of a tail from position start (an enclosure) to
+ * mirrored position gb (the point P at G = sgn gb): the apex of the
+ * piece's tangent triangle and P (vbx_apex_box). Enough for the search
+ * below: a sphere that L_j > 0 clears at both is > 0 on the piece's open
+ * arc and at P when L_j >= 0 at the piece's start, which holds at the
+ * first piece's start (a certified vertex) and, for every sphere not yet
+ * offered, at each later one (the previous piece's P, cleared there).
+ * 1 when set, 0 when the apex cannot be bounded. */
+static int tail_triangle(const vbx_tframe *f, vbx_ia start, double gb, double sgn,
+                         vbx_region *rg)
+{
+    vbx_ia end = vbx_ia_point(sgn * gb);
+    if (!vbx_apex_box(f, sgn > 0 ? start : end, sgn > 0 ? end : start, &rg->p[0]))
+        return 0;
+    vbx_part *p = &rg->p[1];
+    p->kind = VBX_PART_BOX;
+    p->S = vbx_branch_S(f, vbx_ia_point(gb < 0.0 ? -gb : gb));
+    p->G = end;
+    rg->n = 2;
+    return 1;
+}
+
 /* An open arc from a vertex to infinity (forward: sr->e1 at infinity;
  * backward: sr->e0), searched outwards in pieces of doubling length.
  *
@@ -376,7 +398,8 @@ static int search_tail(vbx_arcw *w, search *sr)
             return 0;
         vbx_region rg;
         memset(&rg, 0, sizeof rg);
-        vbx_piece_parts(f, Sa, ga, gb, sgn, VBX_PIECE_PARTS, &rg);
+        if (!tail_triangle(f, piece ? vbx_ia_point(sgn * ga) : ev->key.G, gb, sgn, &rg))
+            vbx_piece_parts(f, Sa, ga, gb, sgn, VBX_PIECE_PARTS, &rg);
         w->cnt.tail_pieces++;
         int rc = scan_region(w, sr, &rg);
         if (rc != VB_OK)

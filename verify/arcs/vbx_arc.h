@@ -187,7 +187,9 @@ int vbx_local_arcs(vbx_arcw *w, vbx_tframe *f, const uint32_t *m, size_t nm,
 /* ---- the first touching sphere along an arc ------------------------------- */
 
 /* An end of an arc: a vertex on the curve (its key, exact point on demand,
- * members) or an end at infinity. */
+ * members) or an end at infinity. A vertex end must be a certified vertex
+ * (no sphere cuts its tangent ball): the search of a bounded arc relies on
+ * it (arc_region.c). */
 typedef struct vbx_arc_end {
     int inf;                 /* 1: the open branch's end (then nothing else is set) */
     vbx_key key;

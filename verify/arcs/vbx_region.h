@@ -42,6 +42,14 @@ void vbx_piece_parts(const vbx_tframe *f, vbx_ia Sa, double ga, double gb, doubl
  * (g = 0), then the half-strip from max(g, 0) along the asymptote. */
 void vbx_tail_from(const vbx_tframe *f, double g, double sgn, vbx_region *rg);
 
+/* The box of the apex A of the arc of the open branch between positions
+ * G0 < G1 (enclosures g0, g1 of the exact ends): where the tangents at the
+ * two ends meet. The arc lies in the triangle of its ends and A (S is a
+ * strictly convex function of G), so an affine L_j that is >= 0 at both
+ * ends and > 0 at A is > 0 on the open arc. 1 when *p is set, 0 when the
+ * enclosures cannot order the ends or separate their slopes. */
+int vbx_apex_box(const vbx_tframe *f, vbx_ia g0, vbx_ia g1, vbx_part *p);
+
 /* The region of the arc from e0 to e1 (arc_region.c says which). */
 void vbx_region_of(const vbx_tframe *f, const vbx_arc_end *e0, const vbx_arc_end *e1,
                    vbx_region *rg);
