@@ -12,11 +12,12 @@
 #include "vb_cells.h"
 #include "vb_measures_page.h"
 #include "vb_parallel.h"
+#include "vertices_periodic.h"
 
 static const char *const usage_text =
     "usage: vorball cells IN [-o FILE] [--json] [--contacts FILE] [--probe R] [--tolerance T]\n"
     "                     [--max-patches N] [--threads N] [--traj FILE] [--frames A:B:S]\n"
-    "                     [--html FILE] [--stats] [input options]\n"
+    "                     [--html FILE] [--stats] [--periodic] [--box ...] [input options]\n"
     "\n"
     "For every atom: the volume of its additively weighted Voronoi cell inside its\n"
     "expanded ball (radius R + probe) and its SAS area (the part of the expanded\n"
@@ -44,7 +45,13 @@ static const char *const usage_text =
     "  --html FILE      a results page that opens offline in a browser: the molecule\n"
     "                   with atoms coloured by volume, SAS or contact area (a selector),\n"
     "                   a frame slider over --traj/--frames, the counts of each frame\n"
-    "  --stats          atoms, patches, empty and loose counts and the time on stderr\n";
+    "  --stats          atoms, patches, empty and loose counts and the time on stderr\n"
+    "  --periodic       the atoms repeated by the box of the file (GRO's last line, PDB's\n"
+    "                   CRYST1) or --box: each atom once, its cell cut by the images\n"
+    "                   too; contacts across the box name the second atom j@(dx,dy,dz)\n"
+    "                   (atom j moved by dx a + dy b + dz c), each periodic face once\n"
+    "  --box a b c [alpha beta gamma] | --box ax ay az bx by bz cx cy cz\n"
+    "                   the periodic box (implies --periodic), in input units\n";
 
 /* The provenance of the outputs (issue 35): the input, its sphere count
  * and the command line that shaped them. */
@@ -205,6 +212,8 @@ int vb_cmd_cells(int argc, char **argv)
     vb_measure_defaults(&opt);
     vb_cli_input_opts in;
     vb_cli_input_defaults(&in);
+    vb_cli_periodic per;
+    memset(&per, 0, sizeof per);
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         if (vb_cli_is_help(a)) {
@@ -253,7 +262,9 @@ int vb_cmd_cells(int argc, char **argv)
                                           argv[i]);
             frames = 1;
         } else {
-            int used = vb_cli_input_option(&in, argc, argv, &i);
+            int used = vb_cli_periodic_option(argv[0], argc, argv, &i, &per);
+            if (used == 0)
+                used = vb_cli_input_option(&in, argc, argv, &i);
             if (used < 0)
                 return VB_EXIT_USAGE;
             if (used)
@@ -270,6 +281,9 @@ int vb_cmd_cells(int argc, char **argv)
         return vb_cli_usage_error(argv[0], "no input file (use '-' for stdin)");
     if (traj && strcmp(in_path, "-") == 0)
         return vb_cli_usage_error(argv[0], "the trajectory's topology must be a file");
+    if (per.on && frames)
+        return vb_cli_usage_error(argv[0], "--periodic measures one structure (not --traj or "
+                                           "--frames)");
     opt.contacts = contacts_path != NULL;
 
     vb_ctx *ctx;
@@ -302,8 +316,12 @@ int vb_cmd_cells(int argc, char **argv)
     }
     if (rc == VB_OK)
         rc = vb_cli_load_spheres(ctx, in_path, &in, 1, &set);
+    vb_box box;
+    if (rc == VB_OK && per.on)
+        rc = vb_cli_periodic_box(ctx, set, &per, &box);
     if (rc == VB_OK)
-        rc = vb_cells_run(ctx, set, &opt, &m);
+        rc = per.on ? vb_cells_run_periodic(ctx, set, &box, &opt, &m)
+                    : vb_cells_run(ctx, set, &opt, &m);
     double t1 = vb_now();
     cells_prov cp;
     if (rc == VB_OK)

@@ -1,6 +1,7 @@
 /* The cell measures in one call, of a set or of a trajectory's frames
  * (vb_cells.h): validation, decimals for binary frames, the frame loop;
  * the method is verify/measures/'s. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -42,30 +43,73 @@ int vb_cells_frame_decimals(vb_ctx *ctx, vb_sphere_set *set)
     return VB_OK;
 }
 
+/* A validated copy of `set` in *run (its own `contained` marks, and
+ * decimals for a binary frame), or `set` itself when it is both; undone
+ * by run_release. */
+static int run_prepare(vb_ctx *ctx, const vb_sphere_set *set, vb_sphere_set *run)
+{
+    *run = *set;
+    if (set->contained && set->ex)
+        return VB_OK;
+    run->contained = NULL;
+    int rc = VB_OK;
+    if (!set->ex) {
+        run->ex = run->ey = run->ez = run->er = NULL;
+        rc = vb_cells_frame_decimals(ctx, run);
+    }
+    return rc == VB_OK ? vb_spheres_validate(ctx, run, 1) : rc;
+}
+
+static void run_release(const vb_sphere_set *set, vb_sphere_set *run)
+{
+    if (run->contained != set->contained)
+        free(run->contained);
+    if (run->ex != set->ex) {
+        free(run->ex);
+        free(run->ey);
+        free(run->ez);
+        free(run->er);
+    }
+}
+
 int vb_cells_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_measure_options *opt,
                  vb_cell_measures *out)
 {
     memset(out, 0, sizeof *out);
-    if (set->contained && set->ex)
-        return vb_cell_measures_compute(ctx, set, opt, out);
-    vb_sphere_set run = *set;
-    run.contained = NULL;
-    int rc = VB_OK;
-    if (!set->ex) {
-        run.ex = run.ey = run.ez = run.er = NULL;
-        rc = vb_cells_frame_decimals(ctx, &run);
-    }
-    if (rc == VB_OK)
-        rc = vb_spheres_validate(ctx, &run, 1);
+    vb_sphere_set run;
+    int rc = run_prepare(ctx, set, &run);
     if (rc == VB_OK)
         rc = vb_cell_measures_compute(ctx, &run, opt, out);
-    free(run.contained);
-    if (!set->ex && run.ex) {
-        free(run.ex);
-        free(run.ey);
-        free(run.ez);
-        free(run.er);
+    run_release(set, &run);
+    return rc;
+}
+
+int vb_cells_run_periodic(vb_ctx *ctx, const vb_sphere_set *set, const vb_box *box,
+                          const vb_measure_options *opt, vb_cell_measures *out)
+{
+    memset(out, 0, sizeof *out);
+    if (!(opt->probe >= 0.0) || !isfinite(opt->probe))
+        return vb_error(ctx, VB_EMISUSE, NULL, 0, "--probe %g: must be >= 0", opt->probe);
+    vb_sphere_set run;
+    int rc = run_prepare(ctx, set, &run);
+    vb_periodic_images img;
+    memset(&img, 0, sizeof img);
+    if (rc == VB_OK) {
+        /* Two expanded balls meet only within 2 (Rmax + probe); the
+         * relative margin covers the doubles of the sum (the measures test
+         * each pair on exact enclosures afterwards). */
+        double rmax = 0.0;
+        for (size_t i = 0; i < run.n; i++)
+            rmax = run.r[i] > rmax ? run.r[i] : rmax;
+        const vb_periodic_image_opt io = {0.0, 1, 2.0 * (rmax + opt->probe) * (1.0 + 1e-9)};
+        rc = vb_periodic_images_build_opt(ctx, &run, box, &io, &img);
     }
+    if (rc == VB_OK) {
+        const vb_measure_images mi = {img.n0, img.atom, (const int16_t(*)[3])img.shift};
+        rc = vb_cell_measures_compute_images(ctx, img.set, opt, &mi, out);
+    }
+    vb_periodic_images_free(&img);
+    run_release(set, &run);
     return rc;
 }
 

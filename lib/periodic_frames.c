@@ -1,6 +1,10 @@
 /* Periodic vertices frame by frame (vb_periodic_frames.h). */
 #include "vb_periodic_frames.h"
 
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
 #include "vb_cells.h"
 #include "vb_default.h"
 #include "vb_frames_each.h"
@@ -14,6 +18,47 @@ typedef struct job {
     void *arg;
 } job;
 
+/* An XTC (or single-precision TRR) frame stores each coordinate as a float
+ * in nm (XTC: an integer over the precision, 5.202 nm, rounded to float);
+ * read as Angstrom it is ten times that float. Its decimal is the shortest
+ * one that reads back to the float (as the frame's box, frame_box.c), in
+ * Angstrom: 52.02, not the 17 digits of the float's binary value, whose
+ * images would need more than 18 digits beside the box's decimals (E107).
+ * The set's doubles become those decimals' nearest doubles. Frames whose
+ * coordinates are not all ten times a float keep vb_cells_frame_decimals'
+ * decimals of their doubles. VB_OK or VB_ENOMEM. */
+static int float_frame_decimals(vb_ctx *ctx, vb_sphere_set *s)
+{
+    int had = s->ex != NULL;
+    int rc = vb_cells_frame_decimals(ctx, s);
+    double *d[3] = {s->x, s->y, s->z};
+    for (size_t i = 0; rc == VB_OK && !had && i < s->n; i++)
+        for (int k = 0; k < 3; k++)
+            if ((double)(float)(d[k][i] / 10.0) * 10.0 != d[k][i])
+                return VB_OK;
+    vb_decimal *e[3] = {s->ex, s->ey, s->ez};
+    for (size_t i = 0; rc == VB_OK && !had && i < s->n; i++)
+        for (int k = 0; k < 3; k++) {
+            float f = (float)(d[k][i] / 10.0);
+            char tok[32];
+            int len = 0;
+            for (int p = 1; p <= 9; p++) {
+                len = snprintf(tok, sizeof tok, "%.*g", p, (double)f);
+                if ((float)strtod(tok, NULL) == f)
+                    break;
+            }
+            vb_decimal dec;
+            double back;
+            if (vb_decimal_parse(tok, (size_t)len, &dec, &back) != 0)
+                return VB_OK; /* keep the decimals of the doubles */
+            if (dec.mant != 0)
+                dec.exp10 += 1; /* nm to Angstrom, exactly */
+            e[k][i] = dec;
+            d[k][i] = vb_decimal_double(dec);
+        }
+    return rc;
+}
+
 static int one_frame(void *arg, long index, int model, vb_sphere_set *s)
 {
     job *J = arg;
@@ -21,7 +66,7 @@ static int one_frame(void *arg, long index, int model, vb_sphere_set *s)
     if (!b)
         return vb_error(J->ctx, VB_EINPUT_BOX, J->name, 0,
                         "--periodic: frame %ld carries no box: give --box", index);
-    int rc = vb_cells_frame_decimals(J->ctx, s);
+    int rc = float_frame_decimals(J->ctx, s);
     vb_periodic_result res;
     vb_periodic_result_init(&res);
     if (rc == VB_OK)

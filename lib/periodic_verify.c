@@ -43,7 +43,7 @@ int vb_periodic_verify_file(vb_ctx *ctx, const vb_sphere_set *set, const vb_box 
     if (rc == VB_OK) {
         /* The file's points and radii are judged within tol: the images'
          * bounds allow for that (vb_periodic_image_opt). */
-        const vb_periodic_image_opt opt = {tol, 0};
+        const vb_periodic_image_opt opt = {tol, 0, 0.0};
         rc = vb_periodic_images_build_opt(ctx, set, box, &opt, &img);
     }
     size_t *row = NULL;

@@ -9,6 +9,7 @@
 #include "vb.h"
 #include "vb_frames.h"
 #include "vb_measures.h"
+#include "vb_periodic.h"
 
 /* The measures of `set` (as read or built; validated here on a shallow
  * copy when its contained marks are not set: VB_EINPUT_* as
@@ -20,6 +21,18 @@
  * negative probe or a tolerance outside (0, 1)), VB_ENOMEM. */
 int vb_cells_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_measure_options *opt,
                  vb_cell_measures *out);
+
+/* The measures of the atoms of `set` repeated by `box` (issue 34): each
+ * atom once, its cell cut by every atom and image whose expanded ball can
+ * meet its own (all within 2 (Rmax + probe), core/periodic/images.c); out
+ * as vb_cells_run's with out->n = set->n, out->periodic 1 and each
+ * periodic contact once, with the shift of its second atom (vb_contact).
+ * Without a probe limit the volumes of a box the expanded balls cover sum
+ * to the box's volume. Returns vb_cells_run's statuses and those of
+ * vb_periodic_images_build (VB_EINPUT_BOX_SMALL: 2 (Rmax + probe) beyond
+ * 4 box heights; VB_EINPUT_DUPLICATE: two atoms equal modulo the box). */
+int vb_cells_run_periodic(vb_ctx *ctx, const vb_sphere_set *set, const vb_box *box,
+                          const vb_measure_options *opt, vb_cell_measures *out);
 
 /* Gives a set read without decimals (set->ex NULL: a DCD, XTC or TRR
  * frame) the decimals of its doubles (the shortest of 15, 16 or 17

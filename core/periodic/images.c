@@ -120,6 +120,11 @@ static int alloc_set(const vb_sphere_set *atoms, size_t n, vb_sphere_set **out)
     return VB_OK;
 }
 
+static int fill_layer(vb_ctx *ctx, const vb_sphere_set *atoms, const vb_box *box,
+                      const double inv[9], const double h[3], const double lo[3],
+                      const double hi[3], double rmax, double margin,
+                      const vb_periodic_image_opt *opt, vb_periodic_images *out);
+
 double vb_periodic_bound_at(const vb_periodic_images *img, double x, double y, double z)
 {
     const vbp_bins *bn = img->bins;
@@ -169,6 +174,11 @@ int vb_periodic_images_build_opt(vb_ctx *ctx, const vb_sphere_set *atoms, const 
     }
     scale += cmax;
     double margin = 1e-9 * scale;
+    if (opt && opt->reach > 0.0) {
+        /* A caller's reach: every image within it, no bound of t. */
+        out->reach = opt->reach + margin;
+        return fill_layer(ctx, atoms, box, inv, h, lo, hi, rmax, margin, NULL, out);
+    }
     vbp_bins *bn = calloc(1, sizeof *bn);
     int rc = bn ? vbp_bins_build(atoms, box, slack + margin, slack, margin, bn) : VB_ENOMEM;
     if (rc != VB_OK) {
@@ -178,6 +188,20 @@ int vb_periodic_images_build_opt(vb_ctx *ctx, const vb_sphere_set *atoms, const 
     out->bins = bn;
     out->rho = bn->rho;
     out->reach = 2.0 * (out->rho + rmax) + margin;
+    return fill_layer(ctx, atoms, box, inv, h, lo, hi, rmax, margin, opt, out);
+}
+
+/* The images within out->reach of the atoms (fractional ranges lo, hi of
+ * the atoms, heights h), of them those the per-bin reach of out->bins
+ * needs (unless opt->full or no bins), then their decimals; validated. */
+static int fill_layer(vb_ctx *ctx, const vb_sphere_set *atoms, const vb_box *box,
+                      const double inv[9], const double h[3], const double lo[3],
+                      const double hi[3], double rmax, double margin,
+                      const vb_periodic_image_opt *opt, vb_periodic_images *out)
+{
+    size_t n0 = atoms->n;
+    vbp_bins *bn = out->bins;
+    int rc;
     double hmin = fmin(h[0], fmin(h[1], h[2]));
     if (out->reach > MAX_LAYERS * hmin) {
         double rho_msg = out->rho;
@@ -200,12 +224,13 @@ int vb_periodic_images_build_opt(vb_ctx *ctx, const vb_sphere_set *atoms, const 
     }
     vbp_reach reach;
     memset(&reach, 0, sizeof reach);
-    rc = opt && opt->full ? 1 : vbp_reach_build(bn, box, atoms, klo, khi, rmax, margin, &reach);
+    int full = !bn || (opt && opt->full);
+    rc = full ? 1 : vbp_reach_build(bn, box, atoms, klo, khi, rmax, margin, &reach);
     if (rc == VB_ENOMEM) {
         vb_periodic_images_free(out);
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (periodic reach)");
     }
-    if (rc != VB_OK) { /* the full layer: rho alone bounds t */
+    if (rc != VB_OK && bn) { /* the full layer: rho alone bounds t */
         vbp_bins_free(bn);
         free(bn);
         out->bins = NULL;

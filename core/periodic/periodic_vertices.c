@@ -189,7 +189,7 @@ int vb_periodic_vertices_run(vb_ctx *ctx, const vb_sphere_set *atoms, const vb_b
                         "periodic boxes need the direction cover (not --proposer %s): its "
                         "completeness is what proves the periodic list complete",
                         cfg->proposer);
-    const vb_periodic_image_opt opt = {0.0, res->full_layer};
+    const vb_periodic_image_opt opt = {0.0, res->full_layer, 0.0};
     int rc = vb_periodic_images_build_opt(ctx, atoms, box, &opt, &res->img);
     if (rc != VB_OK)
         return rc;

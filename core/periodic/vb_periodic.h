@@ -86,10 +86,13 @@ typedef struct vb_periodic_images {
  * radii may be off (a verifier's tolerance; 0 for the pipeline); full, 1
  * to keep the one global layer of images (every image within `reach` of
  * the atoms) instead of the per-bin reach (reach.c); both give the same
- * periodic vertices, the full layer only more spheres. */
+ * periodic vertices, the full layer only more spheres; reach, a distance
+ * fixed by the caller. */
 typedef struct vb_periodic_image_opt {
     double slack;
     int full;
+    double reach; /* > 0: every image within this distance of an atom instead (the cell
+                   * measures' 2 (Rmax + probe)); no bound rho then (rho 0, no bins) */
 } vb_periodic_image_opt;
 
 /* Builds the atoms' images for the periodic diagram of `atoms` in `box`

@@ -2,7 +2,8 @@
  * MD trajectory (corpus/data/ngl_md_10frames.xtc over its PDB, 183 atoms
  * in a cubic box that changes every frame): every frame runs in its own
  * box, and a frame's result equals the one-set call on that frame's atoms
- * with that box, byte for byte. */
+ * with that box, byte for byte; the frames' coordinates are the shortest
+ * decimals of their floats. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -40,7 +41,14 @@ static int on_frame(void *arg, long frame, int model, const vb_sphere_set *set, 
         s->vertices[frame] = res->v.n;
     }
     CHECK(box->v[0] == box->v[4] && box->v[4] == box->v[8] && box->v[1] == 0.0);
-    CHECK(set->ex != NULL); /* decimals of the frame's doubles */
+    CHECK(set->ex != NULL); /* decimals of the frame's floats */
+    /* An XTC coordinate is a float in nm: its decimal is the shortest that
+     * reads back to the float (at most 9 digits), in Angstrom, and the
+     * set's double is that decimal's (not the 17 digits of the float). */
+    for (size_t i = 0; i < set->n; i++) {
+        CHECK(set->ex[i].mant < 1000000000 && set->ex[i].mant > -1000000000);
+        CHECK(set->x[i] == vb_decimal_double(set->ex[i]));
+    }
     if (frame == 0) {
         s->first = write_bytes(g_ctx, &res->v, &s->first_len);
         vb_read_options ro = {0};

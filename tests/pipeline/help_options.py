@@ -31,7 +31,7 @@ PARSERS = {
     "crosscheck": ["cli/cmd_crosscheck.c", PIPELINE, INPUT],
     "jfa": ["cli/cmd_jfa.c", INPUT],
     "channels": ["cli/cmd_channels.c", "core/discrete/channel_options.c", INPUT],
-    "cells": ["cli/cmd_cells.c", INPUT],
+    "cells": ["cli/cmd_cells.c", INPUT, PERIODIC],
     "bench": ["cli/cmd_bench.c", PIPELINE, INPUT],
     "devices": ["cli/cmd_devices.c"],
 }

@@ -133,6 +133,7 @@ typedef struct job {
     const grid *g;
     vbx_ia probe;
     vb_cell_measures *out;
+    const vb_measure_images *img; /* NULL: the open run */
     vbm_pair **pairs; /* per atom, j as sphere ids, sorted by id */
     size_t *npairs;
     vbm_scratch sc[VB_MAX_THREADS];
@@ -219,7 +220,7 @@ static int neighbours(job *jb, size_t i, int tid, size_t *nnb)
 /* One more atom done (or found empty): the progress, from any thread. */
 static void atom_done(job *jb)
 {
-    vb_progress(jb->ctx, "cells", atomic_fetch_add(&jb->atoms_done, 1) + 1, jb->set->n);
+    vb_progress(jb->ctx, "cells", atomic_fetch_add(&jb->atoms_done, 1) + 1, jb->out->n);
 }
 
 static void measure_atom(job *jb, size_t i, int tid)
@@ -265,9 +266,23 @@ static void one_atom(void *ctx, size_t i, int tid)
     atom_done(jb);
 }
 
-/* The area of (i, j) seen from j, [0, 0] when j proved it absent. */
+/* The area of (i, j) seen from j, [0, 0] when j proved it absent. In a
+ * periodic run j may be an image (atom a moved by s): the other side is
+ * a's pair with i moved by -s (an image within a's reach too, as the
+ * distance is the same). */
 static vbx_ia other_side(const job *jb, size_t j, uint32_t i)
 {
+    const vb_measure_images *im = jb->img;
+    if (im && j >= im->n0) {
+        size_t a = im->atom[j];
+        for (size_t k = 0; k < jb->npairs[a]; k++) {
+            size_t e = jb->pairs[a][k].j;
+            if (im->atom[e] == i && im->shift[e][0] == -im->shift[j][0] &&
+                im->shift[e][1] == -im->shift[j][1] && im->shift[e][2] == -im->shift[j][2])
+                return jb->pairs[a][k].area;
+        }
+        return vbx_ia_point(0.0);
+    }
     size_t lo = 0, hi = jb->npairs[j];
     while (lo < hi) {
         size_t mid = (lo + hi) / 2;
@@ -279,6 +294,25 @@ static vbx_ia other_side(const job *jb, size_t j, uint32_t i)
     if (lo < jb->npairs[j] && jb->pairs[j][lo].j == i)
         return jb->pairs[j][lo].area;
     return vbx_ia_point(0.0);
+}
+
+/* Whether the contact of atom i with sphere j is the one written of its
+ * periodic face: i < j's atom, or j an image of i whose shift is
+ * lexicographically positive (vb_contact). */
+static int written_side(const job *jb, size_t i, uint32_t j, vb_contact *c)
+{
+    const vb_measure_images *im = jb->img;
+    c->i = (uint32_t)i;
+    c->j = j;
+    memset(c->s, 0, sizeof c->s);
+    if (!im || j < im->n0)
+        return i < j;
+    c->j = im->atom[j];
+    memcpy(c->s, im->shift[j], sizeof c->s);
+    if (c->j != i)
+        return i < c->j;
+    int k = c->s[0] ? 0 : c->s[1] ? 1 : 2;
+    return c->s[k] > 0;
 }
 
 /* Meets the two sides of every contact into o->contacts. */
@@ -301,8 +335,10 @@ static int meet_contacts(vb_ctx *ctx, job *jb)
                                 "contact %zu-%u: the enclosures from both sides are disjoint "
                                 "([%.17g, %.17g] and [%.17g, %.17g])",
                                 i, j, a.lo, a.hi, b.lo, b.hi);
-            if (i < j && hi > 0.0) {
-                vb_contact c = {(uint32_t)i, j, lo, hi};
+            vb_contact c;
+            if (written_side(jb, i, j, &c) && hi > 0.0) {
+                c.lo = lo;
+                c.hi = hi;
                 o->contacts[o->ncontacts++] = c;
             }
         }
@@ -363,6 +399,13 @@ static int build_grid(grid *g, const vb_sphere_set *s, double probe)
 int vb_cell_measures_compute(vb_ctx *ctx, const vb_sphere_set *set, const vb_measure_options *opt,
                              vb_cell_measures *out)
 {
+    return vb_cell_measures_compute_images(ctx, set, opt, NULL, out);
+}
+
+int vb_cell_measures_compute_images(vb_ctx *ctx, const vb_sphere_set *set,
+                                    const vb_measure_options *opt, const vb_measure_images *img,
+                                    vb_cell_measures *out)
+{
     memset(out, 0, sizeof *out);
     if (!(opt->probe >= 0.0) || !isfinite(opt->probe))
         return vb_error(ctx, VB_EMISUSE, NULL, 0, "--probe %g: must be >= 0", opt->probe);
@@ -371,8 +414,11 @@ int vb_cell_measures_compute(vb_ctx *ctx, const vb_sphere_set *set, const vb_mea
                         opt->tolerance);
     if (set->n > UINT32_MAX || !set->contained)
         return vb_error(ctx, VB_EMISUSE, set->source, 0, "the sphere set is not validated");
-    size_t n = set->n;
+    if (img && (img->n0 > set->n || !img->atom || !img->shift))
+        return vb_error(ctx, VB_EMISUSE, set->source, 0, "periodic images without their atoms");
+    size_t n = img ? img->n0 : set->n;
     out->n = n;
+    out->periodic = img != NULL;
     out->vol_lo = calloc(n + 1, sizeof(double));
     out->vol_hi = calloc(n + 1, sizeof(double));
     out->sas_lo = calloc(n + 1, sizeof(double));
@@ -394,6 +440,7 @@ int vb_cell_measures_compute(vb_ctx *ctx, const vb_sphere_set *set, const vb_mea
     jb->g = &g;
     jb->probe = opt->probe == 0.0 ? vbx_ia_point(0.0) : widen(opt->probe);
     jb->out = out;
+    jb->img = img;
     jb->ctx = ctx;
     atomic_init(&jb->atoms_done, 0);
     vb_progress(ctx, "cells", 0, n);

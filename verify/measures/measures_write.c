@@ -67,8 +67,12 @@ void vb_cell_measures_write_contact_rows(FILE *f, const vb_cell_measures *m, lon
     for (size_t k = 0; k < m->ncontacts; k++) {
         if (frame >= 0)
             fprintf(f, "%ld\t", frame);
-        fprintf(f, "%u\t%u", m->contacts[k].i, m->contacts[k].j);
-        put_value(f, m->contacts[k].lo, m->contacts[k].hi);
+        const vb_contact *c = &m->contacts[k];
+        if (m->periodic)
+            fprintf(f, "%u\t%u@(%d,%d,%d)", c->i, c->j, c->s[0], c->s[1], c->s[2]);
+        else
+            fprintf(f, "%u\t%u", c->i, c->j);
+        put_value(f, c->lo, c->hi);
         fputc('\n', f);
     }
 }

@@ -39,10 +39,15 @@ typedef struct vb_measure_options {
 } vb_measure_options;
 
 /* The contact of atoms i < j: the intersection of the enclosures computed
- * from i's side and from j's side. */
+ * from i's side and from j's side. In a periodic run (vb_measure_images)
+ * the contact is between atom i and atom j moved by the box shift s (the
+ * notation j@(s0,s1,s2) of vb_periodic.h), each periodic face once: i < j,
+ * or i == j (an atom meeting its own image) with s lexicographically
+ * positive; s is (0,0,0) in open runs. */
 typedef struct vb_contact {
     uint32_t i, j;
     double lo, hi;
+    int16_t s[3];
 } vb_contact;
 
 typedef struct vb_cell_measures {
@@ -56,6 +61,7 @@ typedef struct vb_cell_measures {
     size_t ncontacts;
     size_t patches;                  /* direction patches integrated, all atoms */
     size_t nempty, nloose;
+    int periodic;                    /* 1: a periodic run (contacts carry shifts) */
 } vb_cell_measures;
 
 /* Fills opt with the defaults (probe 1.4, tolerance 1e-6, no contacts). */
@@ -69,6 +75,25 @@ void vb_measure_defaults(vb_measure_options *opt);
 int vb_cell_measures_compute(vb_ctx *ctx, const vb_sphere_set *set, const vb_measure_options *opt,
                              vb_cell_measures *out);
 
+/* The spheres of a periodic run (core/periodic/'s images): spheres
+ * 0 .. n0 of the set are the box's atoms, the others their images; sphere
+ * k is atom[k] moved by shift[k] times the box edges. */
+typedef struct vb_measure_images {
+    size_t n0;
+    const uint32_t *atom;
+    const int16_t (*shift)[3];
+} vb_measure_images;
+
+/* vb_cell_measures_compute for the atoms of a periodic run: the set holds
+ * the atoms and every image within 2 (Rmax + probe) of an atom (so each
+ * atom meets all the expanded balls that can cut its cell); only the n0
+ * atoms are measured (out->n = n0) and each contact is met with its other
+ * side, that of atom j against atom i moved by -s. img NULL: the open
+ * run. Same returns. */
+int vb_cell_measures_compute_images(vb_ctx *ctx, const vb_sphere_set *set,
+                                    const vb_measure_options *opt, const vb_measure_images *img,
+                                    vb_cell_measures *out);
+
 /* Frees what vb_cell_measures_compute allocated (a zeroed struct is fine). */
 void vb_cell_measures_free(vb_cell_measures *m);
 
@@ -79,7 +104,8 @@ void vb_cell_measures_free(vb_cell_measures *m);
  * the proven one). Write errors are the stream's (ferror). */
 void vb_cell_measures_write_atoms(FILE *f, const vb_sphere_set *set, const vb_cell_measures *m);
 
-/* Writes the contacts table: header, then id1 id2 area area_lo area_hi. */
+/* Writes the contacts table: header, then id1 id2 area area_lo area_hi;
+ * in a periodic run (m->periodic) id2 is written j@(dx,dy,dz). */
 void vb_cell_measures_write_contacts(FILE *f, const vb_cell_measures *m);
 
 /* The headers and rows of the two tables apart, for tables of several
