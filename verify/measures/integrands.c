@@ -3,8 +3,7 @@
 
 #include "vbm_piece.h"
 
-/* atan of the ends of x, rounded outward by MPFR (atan is increasing). */
-static vbx_ia ia_atan(vbx_ia x)
+vbx_ia vbm_ia_atan(vbx_ia x)
 {
     mpfr_t t;
     mpfr_init2(t, 53);
@@ -28,7 +27,7 @@ static vbx_ia corner(double a, double b)
 {
     vbx_ia A = vbx_ia_point(a), B = vbx_ia_point(b);
     vbx_ia s = vbx_ia_sqrt(vbx_ia_add(vbx_ia_point(1.0), vbx_ia_add(vbx_ia_sqr(A), vbx_ia_sqr(B))));
-    return ia_atan(vbx_ia_div(vbx_ia_mul(A, B), s));
+    return vbm_ia_atan(vbx_ia_div(vbx_ia_mul(A, B), s));
 }
 
 vbx_ia vbm_solid_angle(double a0, double a1, double b0, double b1)

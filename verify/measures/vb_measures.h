@@ -36,6 +36,8 @@ typedef struct vb_measure_options {
     size_t max_patches; /* per atom (0 = VB_MEASURES_MAX_PATCHES): past it the enclosure
                          * stands as proven, wider than asked, and is counted */
     int threads;        /* 0 = all cores */
+    int patches;        /* nonzero: every atom by direction patches, never in closed form
+                         * (the two methods compared in tests) */
 } vb_measure_options;
 
 /* The contact of atoms i < j: the intersection of the enclosures computed
@@ -54,7 +56,10 @@ typedef struct vb_cell_measures {
     uint8_t *loose;                  /* 1: a value of the atom stayed wider than asked */
     vb_contact *contacts;            /* ncontacts, ordered by (i, j); only pairs whose hi > 0 */
     size_t ncontacts;
-    size_t patches;                  /* direction patches integrated, all atoms */
+    size_t patches;                  /* direction patches integrated, all atoms (an atom in
+                                      * closed form counts its arc pieces) */
+    size_t nclosed;                  /* atoms measured in closed form (vbm_cell_stokes); the
+                                      * others by direction patches */
     size_t nempty, nloose;
 } vb_cell_measures;
 
