@@ -8,7 +8,8 @@
  * (Qc, Qs)). They are sorted by the angles of their midpoints; two ends
  * that come next to each other closer than 3 rad are proven in that order
  * by the sign of their cross product (farther apart the order cannot be
- * wrong: every end is an interval narrower than 1e-9), and every gap
+ * wrong: every gap is wider than 4 times the widest end, an interval of at
+ * most 1e-4 on the unit circle), and every gap
  * between two ends is tested at an exact unit vector inside it against
  * every restricting cap, by interval signs. The gaps inside all caps are
  * the arcs. */
@@ -20,12 +21,12 @@
 
 #define TWO_PI 6.283185307179586
 #define MAX_ARC 2.5      /* longer arcs are split (their frames need |angle| < pi / 2) */
-#define MIN_GAP 1e-9     /* two ends closer than this (rad): undecided */
-#define MAX_END_WIDTH 1e-10
+#define MAX_END_WIDTH 1e-4 /* an end this wide (near-tangent circles): undecided */
 
 typedef struct endpt {
     vbx_ia x, y;
     double ang;
+    int start; /* 1: entering the restricting cap (counterclockwise), 0: leaving it */
 } endpt;
 
 typedef struct restr {
@@ -186,6 +187,8 @@ static int circle_arcs(const vbm_cap *caps, size_t ncap, vbm_capwork *w, size_t 
         vbx_ia cg = vbx_ia_mul(r.Qc, g), sg = vbx_ia_mul(r.Qs, g);
         vbx_ia cr = vbx_ia_mul(r.Qc, rr), sr = vbx_ia_mul(r.Qs, rr);
         endpt *s = &end[ne++], *e = &end[ne++];
+        s->start = 1;
+        e->start = 0;
         s->x = vbx_ia_div(vbx_ia_add(cg, sr), Q2);
         s->y = vbx_ia_div(vbx_ia_sub(sg, cr), Q2);
         e->x = vbx_ia_div(vbx_ia_sub(cg, sr), Q2);
@@ -206,27 +209,41 @@ static int circle_arcs(const vbm_cap *caps, size_t ncap, vbm_capwork *w, size_t 
         return 1;
     }
     qsort(end, ne, sizeof *end, cmp_end);
-    for (size_t k = 0; k < ne; k++) {
+    double wmax = 0.0, widest = 0.0;
+    size_t ref = 0;
+    for (size_t k = 0; k < ne; k++)
+        wmax = vbx_max(wmax, vbx_max(end[k].x.hi - end[k].x.lo, end[k].y.hi - end[k].y.lo));
+    for (size_t k = 0; k < ne; k++) { /* the cyclic order, proven pair by pair */
         const endpt *p = &end[k], *q = &end[(k + 1) % ne];
-        double tq = k + 1 < ne ? q->ang : q->ang + TWO_PI;
-        double gap = tq - p->ang;
-        if (!(gap > MIN_GAP))
+        double gap = (k + 1 < ne ? q->ang : q->ang + TWO_PI) - p->ang;
+        if (!(gap > 4.0 * wmax + 1e-12))
             return 0;
         if (gap < 3.0) {
             vbx_ia cr = vbx_ia_sub(vbx_ia_mul(p->x, q->y), vbx_ia_mul(p->y, q->x));
             if (!(cr.lo > 0.0))
                 return 0;
         }
-        vbx_ia mx, my;
-        vbm_unit_at(0.5 * (p->ang + tq), &mx, &my);
-        int in = 1;
-        for (size_t m = 0; m < nr && in; m++) {
-            int sd = side(&res[m], mx, my);
-            if (sd == 0)
-                return 0;
-            in = sd > 0;
-        }
-        if (in && push_arc(w, (uint32_t)l, p->x, p->y, p->ang, q->x, q->y, tq) < 0)
+        if (gap > widest)
+            widest = gap, ref = k;
+    }
+    /* the caps holding the middle of the widest gap, then one more or one
+     * less at each end passed (a start enters its cap, an end leaves it) */
+    vbx_ia mx, my;
+    vbm_unit_at(end[ref].ang + 0.5 * widest, &mx, &my);
+    size_t inside = 0;
+    for (size_t m = 0; m < nr; m++) {
+        int sd = side(&res[m], mx, my);
+        if (sd == 0)
+            return 0;
+        inside += sd > 0;
+    }
+    for (size_t i = 0; i < ne; i++) {
+        size_t k = (ref + i) % ne;
+        const endpt *p = &end[k], *q = &end[(k + 1) % ne];
+        if (i > 0)
+            inside = p->start ? inside + 1 : inside - 1;
+        double tq = k + 1 < ne ? q->ang : q->ang + TWO_PI;
+        if (inside == nr && push_arc(w, (uint32_t)l, p->x, p->y, p->ang, q->x, q->y, tq) < 0)
             return -1;
     }
     return 1;

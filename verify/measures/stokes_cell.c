@@ -45,13 +45,20 @@ typedef struct arcrec {
     vbx_ia c, s, A0, A1, A2;   /* the circle, and e_j in its frame */
     vbx_ia p[2], q[2];
     double tp, tq;
+    vbx_ia area, vol;          /* the arc's integrals */
 } arcrec;
+
+/* A neighbour whose cap u.e >= ca (sa = sqrt(1 - ca^2)) meets the sphere. */
+typedef struct active {
+    uint32_t j;
+    vbx_ia e[3], ca, sa;
+} active;
 
 typedef struct stokes_work {
     vbm_capwork cw;
     vbm_cap *caps;
     arcrec *rec;
-    uint32_t *act;
+    active *act;
     vbx_ia *D;
     size_t cap_caps, cap_rec, cap_act, cap_D, nrec;
 } stokes_work;
@@ -236,37 +243,38 @@ static int integrate_arc(const vbm_atom_in *in, const stokes_work *w, const arcr
 
 /* The caps of Omega_j: j's own, then those of the other active neighbours
  * that may cut it. Returns the count, 0 when Omega_j is proven empty. */
-static size_t region_caps(const vbm_atom_in *in, stokes_work *w, size_t na, uint32_t j)
+static size_t region_caps(const vbm_atom_in *in, stokes_work *w, size_t na, size_t x)
 {
-    const vbm_nb *nj = &in->nb[j];
+    const active *aj = &w->act[x];
+    const vbm_nb *nj = &in->nb[aj->j];
     vbm_cap *cp = w->caps;
-    size_t nc = 0;
     for (int k = 0; k < 3; k++)
         cp[0].n[k] = nj->d[k];
     cp[0].h = nj->k;
-    nc = 1;
-    vbx_ia e[3];
-    for (int k = 0; k < 3; k++)
-        e[k] = vbx_ia_div(nj->d[k], w->D[j]);
-    vbx_ia ca = vbx_ia_div(nj->k, w->D[j]);
-    vbx_ia sa = ca.lo >= 0.0 ? vbx_ia_sqrt(vbx_ia_sub(vbx_ia_point(1.0), vbx_ia_sqr(ca)))
-                             : vbx_ia_point(1.0);
-    for (size_t x = 0; x < na; x++) {
-        uint32_t k = w->act[x];
-        if (k == j)
+    size_t nc = 1;
+    vbx_ia sa = aj->ca.lo >= 0.0 ? aj->sa : vbx_ia_point(1.0);
+    for (size_t y = 0; y < na; y++) {
+        const active *ak = &w->act[y];
+        if (y == x)
             continue;
-        const vbm_nb *nk = &in->nb[k];
+        /* caps apart (angle between the axes > the sum of the radii): k
+         * owns nothing in j's cap */
+        vbx_ia cs = vbx_ia_sub(vbx_ia_mul(aj->ca, ak->ca), vbx_ia_mul(aj->sa, ak->sa));
+        vbx_ia sn = vbx_ia_add(vbx_ia_mul(aj->sa, ak->ca), vbx_ia_mul(aj->ca, ak->sa));
+        if (sn.lo > 0.0 && dot3(aj->e, ak->e).hi < cs.lo)
+            continue;
+        const vbm_nb *nk = &in->nb[ak->j];
         vbm_cap c;
         for (int i = 0; i < 3; i++)
             c.n[i] = vbx_ia_sub(vbx_ia_mul(nk->N, nj->d[i]), vbx_ia_mul(nj->N, nk->d[i]));
         c.h = vbx_ia_sub(vbx_ia_mul(nj->N, nk->delta), vbx_ia_mul(nk->N, nj->delta));
         /* over j's cap (u.e = z in [ca, 1], |u_perp| <= sa) u.n lies in
          * z (e.n) +- sa |n_perp| */
-        vbx_ia en = dot3(e, c.n);
+        vbx_ia en = dot3(aj->e, c.n);
         vbx_ia perp = vbx_ia_sqrt(vbx_ia_sub(dot3(c.n, c.n), vbx_ia_sqr(en)));
         vbx_ia spread = vbx_ia_mul(sa, perp);
-        double lo = vbx_min(vbx_ia_mul(ca, en).lo, en.lo) - spread.hi;
-        double hi = vbx_max(vbx_ia_mul(ca, en).hi, en.hi) + spread.hi;
+        double lo = vbx_min(vbx_ia_mul(aj->ca, en).lo, en.lo) - spread.hi;
+        double hi = vbx_max(vbx_ia_mul(aj->ca, en).hi, en.hi) + spread.hi;
         if (vbx_pred(lo) > c.h.hi)
             continue; /* all of j's cap is on j's side */
         if (vbx_succ(hi) < c.h.lo)
@@ -274,6 +282,29 @@ static size_t region_caps(const vbm_atom_in *in, stokes_work *w, size_t na, uint
         cp[nc++] = c;
     }
     return nc;
+}
+
+/* A lower bound of |x| for x in a (0 when a holds 0). */
+static double magnitude_lo(vbx_ia a)
+{
+    return a.lo > 0.0 ? a.lo : a.hi < 0.0 ? -a.hi : 0.0;
+}
+
+/* The volume and SAS from the arcs' integrals (in a fixed order: the same
+ * bytes whatever the threads). */
+static void total(const vbm_atom_in *in, const stokes_work *w, vbm_atom_out *out)
+{
+    vbx_ia area = vbx_ia_point(0.0), vol = vbx_ia_point(0.0);
+    for (size_t i = 0; i < w->nrec; i++) {
+        area = vbx_ia_add(area, w->rec[i].area);
+        vol = vbx_ia_add(vol, w->rec[i].vol);
+    }
+    vbx_ia four_pi = {vbx_pred(FOUR_PI), vbx_succ(FOUR_PI)};
+    vbx_ia ball = vbx_ia_sub(four_pi, area); /* the sphere's solid angle */
+    vbx_ia r2 = vbx_ia_sqr(in->r);
+    out->sas = vbx_ia_mul(r2, ball);
+    out->vol = vbx_ia_add(vbx_ia_div(vbx_ia_mul(vbx_ia_mul(r2, in->r), ball), vbx_ia_point(3.0)),
+                          vol);
 }
 
 int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
@@ -301,12 +332,17 @@ int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
             continue;
         if (!(g.lo > 0.0))
             return 0;
-        w->act[na++] = (uint32_t)j;
+        active *a = &w->act[na++];
+        a->j = (uint32_t)j;
+        for (int k = 0; k < 3; k++)
+            a->e[k] = vbx_ia_div(n->d[k], w->D[j]);
+        a->ca = vbx_ia_div(n->k, w->D[j]);
+        a->sa = vbx_ia_sqrt(vbx_ia_sub(vbx_ia_point(1.0), vbx_ia_sqr(a->ca)));
     }
     w->nrec = 0;
     for (size_t x = 0; x < na; x++) {
-        uint32_t j = w->act[x];
-        size_t nc = region_caps(in, w, na, j);
+        uint32_t j = w->act[x].j;
+        size_t nc = region_caps(in, w, na, x);
         if (nc == 0)
             continue;
         int e = vbm_cap_arcs(w->caps, nc, &w->cw);
@@ -314,9 +350,7 @@ int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
             return e;
         if (!grow((void **)&w->rec, &w->cap_rec, w->nrec + w->cw.narc, sizeof *w->rec))
             return -1;
-        vbx_ia ej[3];
-        for (int k = 0; k < 3; k++)
-            ej[k] = vbx_ia_div(in->nb[j].d[k], w->D[j]);
+        const vbx_ia *ej = w->act[x].e;
         for (size_t i = 0; i < w->cw.narc; i++) {
             const vbm_arc *a = &w->cw.arc[i];
             const vbm_circle *C = &w->cw.circ[a->cap];
@@ -334,21 +368,42 @@ int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
             r->tq = a->tq;
         }
     }
-    /* each arc's share of the floors of the targets (cell_patches.c) */
-    double rr = in->r.hi, share = 0.25 * in->tolerance * FLOOR_FRACTION / (double)(w->nrec + 1);
-    double ta = share * FOUR_PI, tv = share * FOUR_PI / 3.0 * rr * rr * rr;
+    /* every arc to a thousand times its share of the floors of the targets
+     * (tolerance * max(|value|, floor), cell_patches.c), then the arcs wider
+     * than their share of the targets of the values found, halved until
+     * they meet it */
+    double rr = in->r.hi, r3 = rr * rr * rr / 3.0;
+    double fv = FLOOR_FRACTION * FOUR_PI * r3, fa = FLOOR_FRACTION * FOUR_PI * rr * rr;
+    double n = (double)(w->nrec + 1);
+    double ta = 1e3 * in->tolerance * vbx_min(0.5 * fa / (rr * rr), 0.25 * fv / r3) / n;
+    double tv = 1e3 * in->tolerance * 0.25 * fv / n;
     sums s = {vbx_ia_point(0.0), vbx_ia_point(0.0), 0, 0};
-    for (size_t i = 0; i < w->nrec; i++)
-        if (!integrate_arc(in, w, &w->rec[i], ta, tv, &s))
+    for (size_t i = 0; i < w->nrec; i++) {
+        sums one = {vbx_ia_point(0.0), vbx_ia_point(0.0), 0, 0};
+        if (!integrate_arc(in, w, &w->rec[i], ta, tv, &one))
             return 0;
-    vbx_ia four_pi = {vbx_pred(FOUR_PI), vbx_succ(FOUR_PI)};
-    vbx_ia ball = vbx_ia_sub(four_pi, s.area); /* the sphere's solid angle */
-    vbx_ia r2 = vbx_ia_sqr(in->r);
-    out->sas = vbx_ia_mul(r2, ball);
-    out->vol = vbx_ia_add(vbx_ia_div(vbx_ia_mul(vbx_ia_mul(r2, in->r), ball), vbx_ia_point(3.0)),
-                          s.vol);
+        w->rec[i].area = one.area;
+        w->rec[i].vol = one.vol;
+        s.pieces += one.pieces;
+    }
+    total(in, w, out);
+    double tgv = in->tolerance * vbx_max(magnitude_lo(out->vol), fv);
+    double tgs = in->tolerance * vbx_max(magnitude_lo(out->sas), fa);
+    ta = vbx_min(0.5 * tgs / (rr * rr), 0.25 * tgv / r3) / n;
+    tv = 0.25 * tgv / n;
+    for (size_t i = 0; i < w->nrec; i++) {
+        arcrec *a = &w->rec[i];
+        if (width(a->area) <= ta && width(a->vol) <= tv)
+            continue;
+        sums one = {vbx_ia_point(0.0), vbx_ia_point(0.0), 0, 0};
+        if (!integrate_arc(in, w, a, ta, tv, &one))
+            return 0;
+        a->area = one.area;
+        a->vol = one.vol;
+        s.pieces += one.pieces;
+    }
+    total(in, w, out);
     out->patches = s.pieces;
-    double fv = FLOOR_FRACTION * FOUR_PI / 3.0 * rr * rr * rr, fa = FLOOR_FRACTION * FOUR_PI * rr * rr;
     double mv = fabs(vbx_ia_mid(out->vol)), ms = fabs(vbx_ia_mid(out->sas));
     out->loose = width(out->vol) > in->tolerance * vbx_max(mv, fv) ||
                  width(out->sas) > in->tolerance * vbx_max(ms, fa);

@@ -15,7 +15,7 @@
 #include "vbx_ia.h"
 
 /* K: the order of the remainder term (even: x^K >= 0). */
-#define VBM1_K 12
+#define VBM1_K 10
 
 typedef struct vbm_s1 {
     vbx_ia c[VBM1_K + 1];
