@@ -74,8 +74,7 @@ int vbm1_sqrt(vbm_s1 *r, const vbm_s1 *f)
     return 1;
 }
 
-/* log of the ends of x (> 0), rounded outward by MPFR (log is increasing). */
-static vbx_ia ia_log(vbx_ia x)
+vbx_ia vbm_ia_log(vbx_ia x)
 {
     mpfr_t t;
     mpfr_init2(t, 53);
@@ -97,7 +96,7 @@ int vbm1_log(vbm_s1 *r, const vbm_s1 *f)
     vbx_ia f0 = f->c[0];
     if (!(f0.lo > 0.0))
         return 0;
-    r->c[0] = ia_log(f0);
+    r->c[0] = vbm_ia_log(f0);
     for (int n = 1; n <= VBM1_K; n++) {
         vbx_ia s = vbx_ia_point(0.0);
         for (int k = 1; k < n; k++)
