@@ -4,7 +4,8 @@
  * cell) and, on request, the contact area of each pair of atoms whose cells
  * share a face inside the expanded balls. Every value is an enclosure
  * lo <= exact <= hi proven by interval arithmetic on enclosures of the exact
- * input decimals (method: verify/measures/cell_patches.c).
+ * input decimals (methods: verify/measures/stokes_cell.c in closed form,
+ * verify/measures/cell_patches.c by patches where the former cannot decide).
  *
  * The union of the constrained cells is the union of the expanded balls (a
  * point of ball j lies in some cell i with |x - ci| - Ri <= |x - cj| - Rj <=
@@ -23,8 +24,9 @@
 
 /* Default relative tolerance of --tolerance (see vb_measure_options). */
 #define VB_MEASURES_TOLERANCE 1e-6
-/* Default patch budget per atom: 1crn (327 atoms) in 140 s on 2 idle
- * cores, every value enclosed but most wider than 1e-6 on proteins (W851). */
+/* Default patch budget per atom of the patch integration (the atoms the
+ * closed forms cannot decide): past it their values stay wider than 1e-6
+ * on proteins (W851). */
 #define VB_MEASURES_MAX_PATCHES 5000
 
 typedef struct vb_measure_options {
