@@ -19,24 +19,8 @@
 #include "vb.h"
 #include "vb_measures.h"
 #include "vb_spheres.h"
+#include "measures_balls.h"
 #include "vb_test.h"
-
-#define PI 3.14159265358979323846
-
-static vb_sphere_set *spheres(vb_ctx *ctx, const char *text)
-{
-    vb_read_options ro;
-    memset(&ro, 0, sizeof ro);
-    ro.format = VB_FMT_XYZR;
-    vb_sphere_set *s = NULL;
-    if (vb_spheres_read_buffer(ctx, "test", text, strlen(text), &ro, &s) != VB_OK)
-        return NULL;
-    if (vb_spheres_validate(ctx, s, 1) != VB_OK) {
-        vb_spheres_free(s);
-        return NULL;
-    }
-    return s;
-}
 
 /* patches: 0 closed forms first, 1 patches only. */
 static int run(vb_ctx *ctx, const char *text, int patches, int threads, vb_cell_measures *m)
@@ -52,37 +36,6 @@ static int run(vb_ctx *ctx, const char *text, int patches, int threads, vb_cell_
     int rc = vb_cell_measures_compute(ctx, s, &o, m);
     vb_spheres_free(s);
     return rc;
-}
-
-/* lo <= x <= hi (x a double closed form, ~1e-13 relative) and hi - lo <= maxw */
-static int encloses(double lo, double hi, double x, double maxw)
-{
-    double slack = 1e-12 * fabs(x);
-    int ok = lo <= x + slack && x - slack <= hi && hi - lo <= maxw;
-    if (!ok)
-        fprintf(stderr, "  [%.15g, %.15g] vs %.15g (width %g, allowed %g)\n", lo, hi, x,
-                hi - lo, maxw);
-    return ok;
-}
-
-static double cap_volume(double r, double h)
-{
-    return PI * h * h * (3.0 * r - h) / 3.0;
-}
-
-static void sums(const vb_cell_measures *m, double *vlo, double *vhi, double *alo, double *ahi)
-{
-    *vlo = *vhi = *alo = *ahi = 0.0;
-    for (size_t i = 0; i < m->n; i++) {
-        *vlo += m->vol_lo[i];
-        *vhi += m->vol_hi[i];
-        *alo += m->sas_lo[i];
-        *ahi += m->sas_hi[i];
-    }
-    *vlo *= 1.0 - 1e-14; /* the double sums are within n ulps of the exact sums */
-    *alo *= 1.0 - 1e-14;
-    *vhi *= 1.0 + 1e-14;
-    *ahi *= 1.0 + 1e-14;
 }
 
 static void test_small(vb_ctx *ctx)
@@ -115,7 +68,8 @@ static void test_small(vb_ctx *ctx)
     CHECK_INT(run(ctx, "0 0 0 1.2\n2.1 0.3 -0.2 1.8\n", 0, 1, &m), VB_OK);
     double r0 = 2.6, r1 = 3.2, d = sqrt(2.1 * 2.1 + 0.09 + 0.04);
     double x = (d * d + r0 * r0 - r1 * r1) / (2.0 * d), h0 = r0 - x, h1 = r1 - (d - x);
-    double a0 = 4.0 * PI * r0 * r0 - 2.0 * PI * r0 * h0, a1 = 4.0 * PI * r1 * r1 - 2.0 * PI * r1 * h1;
+    double a0 = 4.0 * PI * r0 * r0 - 2.0 * PI * r0 * h0;
+    double a1 = 4.0 * PI * r1 * r1 - 2.0 * PI * r1 * h1;
     v = 4.0 / 3.0 * PI * (r0 * r0 * r0 + r1 * r1 * r1) - cap_volume(r0, h0) - cap_volume(r1, h1);
     CHECK_INT(m.nclosed, 2);
     CHECK(encloses(m.sas_lo[0], m.sas_hi[0], a0, 1e-6 * a0));
@@ -125,16 +79,6 @@ static void test_small(vb_ctx *ctx)
     CHECK(encloses(vlo, vhi, v, 1e-6 * v));
     CHECK(encloses(alo, ahi, a0 + a1, 1e-6 * (a0 + a1)));
     vb_cell_measures_free(&m);
-}
-
-/* Union of two balls of radii r1, r2 at distance d (< r1 + r2, no nesting). */
-static void union2(double r1, double r2, double d, double *vol, double *area)
-{
-    double x = (d * d + r1 * r1 - r2 * r2) / (2.0 * d);
-    double h1 = r1 - x, h2 = r2 - (d - x);
-    *vol = 4.0 / 3.0 * PI * (r1 * r1 * r1 + r2 * r2 * r2) - cap_volume(r1, h1) -
-           cap_volume(r2, h2);
-    *area = 4.0 * PI * (r1 * r1 + r2 * r2) - 2.0 * PI * (r1 * h1 + r2 * h2);
 }
 
 static void test_row(vb_ctx *ctx)

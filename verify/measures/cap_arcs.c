@@ -17,19 +17,20 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_array.h"
 #include "vbm_caps.h"
 
 #define TWO_PI 6.283185307179586
 #define MAX_ARC 2.5      /* longer arcs are split (their frames need |angle| < pi / 2) */
 #define MAX_END_WIDTH 1e-4 /* an end this wide (near-tangent circles): undecided */
 
-typedef struct endpt {
+typedef struct vbm_endpt {
     vbx_ia x, y;
     double ang;
     int start; /* 1: entering the restricting cap (counterclockwise), 0: leaving it */
 } endpt;
 
-typedef struct restr {
+typedef struct vbm_restr {
     vbx_ia P, Qc, Qs, h;
 } restr;
 
@@ -83,21 +84,6 @@ int vbm_circle_of(const vbm_cap *cp, vbm_circle *c)
     return 1;
 }
 
-static int grow(void **p, size_t *cap, size_t need, size_t elem)
-{
-    if (need <= *cap)
-        return 1;
-    size_t c = *cap ? *cap : 32;
-    while (c < need)
-        c *= 2;
-    void *q = realloc(*p, c * elem);
-    if (!q)
-        return 0;
-    *p = q;
-    *cap = c;
-    return 1;
-}
-
 void vbm_caps_free(vbm_capwork *w)
 {
     free(w->circ);
@@ -137,7 +123,7 @@ static int push_arc(vbm_capwork *w, uint32_t l, vbx_ia px, vbx_ia py, double tp,
         int e = push_arc(w, l, px, py, tp, mx, my, tm);
         return e < 0 ? e : push_arc(w, l, mx, my, tm, qx, qy, tq);
     }
-    if (!grow((void **)&w->arc, &w->cap_arc, w->narc + 1, sizeof *w->arc))
+    if (VB_ARRAY_FIT(w->arc, w->cap_arc, w->narc + 1, 32) != VB_OK)
         return -1;
     vbm_arc *a = &w->arc[w->narc++];
     a->cap = l;
@@ -252,9 +238,9 @@ static int circle_arcs(const vbm_cap *caps, size_t ncap, vbm_capwork *w, size_t 
 int vbm_cap_arcs(const vbm_cap *caps, size_t ncap, vbm_capwork *w)
 {
     w->narc = 0;
-    if (!grow((void **)&w->circ, &w->cap_circ, ncap, sizeof *w->circ) ||
-        !grow(&w->end, &w->cap_end, 2 * ncap, sizeof(endpt)) ||
-        !grow(&w->res, &w->cap_res, ncap, sizeof(restr)))
+    if (VB_ARRAY_FIT(w->circ, w->cap_circ, ncap, 32) != VB_OK ||
+        VB_ARRAY_FIT(w->end, w->cap_end, 2 * ncap, 64) != VB_OK ||
+        VB_ARRAY_FIT(w->res, w->cap_res, ncap, 32) != VB_OK)
         return -1;
     for (size_t l = 0; l < ncap; l++) {
         if (!vbm_circle_of(&caps[l], &w->circ[l]))

@@ -1,6 +1,5 @@
 /* Univariate Taylor models in interval arithmetic (vbm_series1.h). */
-#include <mpfr.h>
-
+#include "vbm_piece.h"
 #include "vbm_series1.h"
 
 void vbm1_const(vbm_s1 *f, vbx_ia v)
@@ -74,22 +73,6 @@ int vbm1_sqrt(vbm_s1 *r, const vbm_s1 *f)
     return 1;
 }
 
-vbx_ia vbm_ia_log(vbx_ia x)
-{
-    mpfr_t t;
-    mpfr_init2(t, 53);
-    vbx_ia r;
-    mpfr_set_d(t, x.lo, MPFR_RNDN); /* exact: 53 bits */
-    mpfr_log(t, t, MPFR_RNDD);
-    r.lo = mpfr_get_d(t, MPFR_RNDD);
-    mpfr_set_d(t, x.hi, MPFR_RNDN);
-    mpfr_log(t, t, MPFR_RNDU);
-    r.hi = mpfr_get_d(t, MPFR_RNDU);
-    mpfr_clear(t);
-    mpfr_free_cache2(MPFR_FREE_LOCAL_CACHE); /* as integrands.c's atan */
-    return r;
-}
-
 /* f r' = f': n r_n f_0 = n f_n - sum_{k=1..n-1} k r_k f_(n-k) */
 int vbm1_log(vbm_s1 *r, const vbm_s1 *f)
 {
@@ -100,7 +83,8 @@ int vbm1_log(vbm_s1 *r, const vbm_s1 *f)
     for (int n = 1; n <= VBM1_K; n++) {
         vbx_ia s = vbx_ia_point(0.0);
         for (int k = 1; k < n; k++)
-            s = vbx_ia_add(s, vbx_ia_mul(vbx_ia_mul(vbx_ia_point((double)k), r->c[k]), f->c[n - k]));
+            s = vbx_ia_add(s, vbx_ia_mul(vbx_ia_mul(vbx_ia_point((double)k), r->c[k]),
+                                         f->c[n - k]));
         vbx_ia num = vbx_ia_sub(f->c[n], vbx_ia_div(s, vbx_ia_point((double)n)));
         r->c[n] = vbx_ia_div(num, f0);
     }

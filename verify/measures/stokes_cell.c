@@ -35,6 +35,7 @@
 #include <string.h>
 
 #include "vb.h"
+#include "vb_array.h"
 #include "vbm_caps.h"
 #include "vbm_cell.h"
 #include "vbm_piece.h"
@@ -68,21 +69,6 @@ typedef struct stokes_work {
     uint32_t *narcs;   /* per neighbour: its arcs */
     size_t cap_caps, cap_rec, cap_act, cap_D, cap_con, cap_narcs, nrec;
 } stokes_work;
-
-static int grow(void **p, size_t *cap, size_t need, size_t elem)
-{
-    if (need <= *cap)
-        return 1;
-    size_t c = *cap ? *cap : 64;
-    while (c < need)
-        c *= 2;
-    void *q = realloc(*p, c * elem);
-    if (!q)
-        return 0;
-    *p = q;
-    *cap = c;
-    return 1;
-}
 
 void vbm_stokes_free(void *p)
 {
@@ -481,11 +467,11 @@ int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
         return -1;
     stokes_work *w = sc->stokes;
     size_t m = in->nnb;
-    if (!grow((void **)&w->D, &w->cap_D, m + 1, sizeof *w->D) ||
-        !grow((void **)&w->act, &w->cap_act, m + 1, sizeof *w->act) ||
-        !grow((void **)&w->caps, &w->cap_caps, m + 1, sizeof *w->caps) ||
-        !grow((void **)&w->con, &w->cap_con, m + 1, sizeof *w->con) ||
-        !grow((void **)&w->narcs, &w->cap_narcs, m + 1, sizeof *w->narcs))
+    if (VB_ARRAY_FIT(w->D, w->cap_D, m + 1, 64) != VB_OK ||
+        VB_ARRAY_FIT(w->act, w->cap_act, m + 1, 64) != VB_OK ||
+        VB_ARRAY_FIT(w->caps, w->cap_caps, m + 1, 64) != VB_OK ||
+        VB_ARRAY_FIT(w->con, w->cap_con, m + 1, 64) != VB_OK ||
+        VB_ARRAY_FIT(w->narcs, w->cap_narcs, m + 1, 64) != VB_OK)
         return -1;
     /* the neighbours whose caps meet the sphere: k < D */
     size_t na = 0;
@@ -515,7 +501,7 @@ int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
         int e = vbm_cap_arcs(w->caps, nc, &w->cw);
         if (e <= 0)
             return e;
-        if (!grow((void **)&w->rec, &w->cap_rec, w->nrec + w->cw.narc, sizeof *w->rec))
+        if (VB_ARRAY_FIT(w->rec, w->cap_rec, w->nrec + w->cw.narc, 64) != VB_OK)
             return -1;
         const vbx_ia *ej = w->act[x].e;
         for (size_t i = 0; i < w->cw.narc; i++) {
@@ -558,7 +544,8 @@ int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
     out->loose = width(out->vol) > in->tolerance * vbx_max(mv, fv) ||
                  width(out->sas) > in->tolerance * vbx_max(ms, fa);
     for (size_t j = 0; in->contacts && j < in->nnb; j++)
-        if (w->narcs[j] && width(w->con[j]) > in->tolerance * vbx_max(fabs(vbx_ia_mid(w->con[j])), fa))
+        if (w->narcs[j] &&
+            width(w->con[j]) > in->tolerance * vbx_max(fabs(vbx_ia_mid(w->con[j])), fa))
             out->loose = 1;
     if (in->contacts && !pairs(in, w, out))
         return -1;

@@ -37,7 +37,8 @@ typedef struct vbm_arc {
 /* Work space of vbm_cap_arcs (zero-initialise; free with vbm_caps_free). */
 typedef struct vbm_capwork {
     vbm_circle *circ;
-    void *end, *res;
+    struct vbm_endpt *end; /* cap_arcs.c's */
+    struct vbm_restr *res;
     vbm_arc *arc;
     size_t cap_circ, cap_end, cap_res, cap_arc, narc;
 } vbm_capwork;

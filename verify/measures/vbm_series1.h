@@ -44,12 +44,8 @@ int vbm1_recip(vbm_s1 *r, const vbm_s1 *f);
 int vbm1_sqrt(vbm_s1 *r, const vbm_s1 *f);
 
 /* r = log(f) (r must not alias f), the constant term's log rounded outward
- * by MPFR. Returns 0 unless f's constant term is proven > 0. */
+ * by MPFR (vbm_ia_log). Returns 0 unless f's constant term is proven > 0. */
 int vbm1_log(vbm_s1 *r, const vbm_s1 *f);
-
-/* log of the ends of x (x.lo > 0), rounded outward by MPFR (log is
- * increasing). */
-vbx_ia vbm_ia_log(vbx_ia x);
 
 /* An enclosure of the integral of f over [x0, x1]: `centre` holds f's
  * coefficients at xc (x0 <= xc <= x1), `box` their enclosures over
