@@ -194,6 +194,8 @@ typedef struct arcfun {
     vbx_ia cA0, s, sA0s, mcs, A1, A2; /* c A0, s, s^2 A0, -c s, e_j in the rotated frame */
 } arcfun;
 
+/* Returns 1, 2 when the contact's series cannot be bounded near e_j (v[CON]
+ * is then a constant: its bound where `at` ranges), 0 when nothing can. */
 static int integrand(const arcfun *f, vbx_ia at, vbm_s1 *v)
 {
     vbm_s1 T, T2, rec, cs, sn, w, z, num, t, u, opz;
@@ -219,16 +221,23 @@ static int integrand(const arcfun *f, vbx_ia at, vbm_s1 *v)
     vbm1_affine(&t, f->o.D, &z, f->o.delta); /* q = D z + delta */
     if (!vbm1_recip(&u, &t))
         return 0;
+    int rc = 1;
     if (f->o.contacts) { /* C (G1 - G(q)) / (1 - z) times num / (1 + z) */
         vbm_s1 G, omz;
-        if (!g_of(&f->o, &t, &G))
-            return 0;
         vbm1_affine(&omz, vbx_ia_point(-1.0), &z, vbx_ia_point(1.0));
-        if (!vbm1_recip(&cs, &omz))
-            return 0;
-        vbm1_affine(&G, vbx_ia_neg(f->o.C), &G, vbx_ia_mul(f->o.C, f->o.G1));
-        vbm1_mul(&sn, &G, &cs);
-        vbm1_mul(&v[CON], &sn, &v[AREA]);
+        if (g_of(&f->o, &t, &G) && vbm1_recip(&cs, &omz)) {
+            vbm1_affine(&G, vbx_ia_neg(f->o.C), &G, vbx_ia_mul(f->o.C, f->o.G1));
+            vbm1_mul(&sn, &G, &cs);
+            vbm1_mul(&v[CON], &sn, &v[AREA]);
+        } else { /* near e_j: F(z) / (1 - z) = f(xi), xi in [z, 1] */
+            vbx_ia Z = {z.c[0].lo, 1.0};
+            vbx_ia q = vbx_ia_add(vbx_ia_mul(f->o.D, Z), f->o.delta);
+            vbx_ia S = vbx_ia_add(f->o.N, vbx_ia_mul(vbx_ia_add(f->o.delta, f->o.delta), q));
+            vbx_ia fa = vbx_ia_div(vbx_ia_mul(vbx_ia_sqr(f->o.N), vbx_ia_sqrt(S)),
+                                   vbx_ia_mul(vbx_ia_point(4.0), vbx_ia_mul(vbx_ia_sqr(q), q)));
+            vbm1_const(&v[CON], vbx_ia_mul(fa, v[AREA].c[0]));
+            rc = 2;
+        }
     } else
         vbm1_const(&v[CON], vbx_ia_point(0.0));
     vbm1_mul(&t, &u, &u);
@@ -236,7 +245,7 @@ static int integrand(const arcfun *f, vbx_ia at, vbm_s1 *v)
     vbm1_mul(&T, &t, &u);
     vbm1_mul(&t, &T, &v[AREA]);
     vbm1_affine(&v[VOL], f->o.K, &t, vbx_ia_point(0.0));
-    return 1;
+    return rc;
 }
 
 typedef struct sums {
@@ -257,9 +266,11 @@ static int piece(const arcfun *f, double x0, double x1, const double *tg, int de
     double xc = 0.5 * (x0 + x1);
     vbm_s1 c[NV], b[NV];
     vbx_ia box = {x0, x1}, v[NV];
-    int ok = integrand(f, vbx_ia_point(xc), c) && integrand(f, box, b);
+    int rc = integrand(f, vbx_ia_point(xc), c), rb = rc ? integrand(f, box, b) : 0, ok = rc && rb;
     for (int k = 0; ok && k < NV; k++)
         v[k] = vbm1_integrate(&c[k], &b[k], xc, x0, x1);
+    if (ok && (rc == 2 || rb == 2)) /* the contact's bound over the box times its length */
+        v[CON] = vbx_ia_mul(vbx_ia_sub(vbx_ia_point(x1), vbx_ia_point(x0)), b[CON].c[0]);
     if (!ok && !(depth < MAX_DEPTH && xc > x0 && xc < x1))
         return 0;
     /* a piece whose box an interval cannot bound (the contact's 1 / (1 - z)
@@ -281,7 +292,7 @@ static int piece(const arcfun *f, double x0, double x1, const double *tg, int de
 static int end_piece(const arcfun *f, vbx_ia t, double m, sums *out)
 {
     vbm_s1 v[NV];
-    if (!integrand(f, t, v))
+    if (!integrand(f, t, v)) /* 2: v[CON].c[0] a bound as well */
         return 0;
     vbx_ia dt = vbx_ia_sub(vbx_ia_point(m), t);
     for (int k = 0; k < NV; k++)
