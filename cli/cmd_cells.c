@@ -45,7 +45,8 @@ static const char *const usage_text =
     "  --html FILE      a results page that opens offline in a browser: the molecule\n"
     "                   with atoms coloured by volume, SAS or contact area (a selector),\n"
     "                   a frame slider over --traj/--frames, the counts of each frame\n"
-    "  --stats          atoms, patches, empty and loose counts and the time on stderr\n"
+    "  --stats          atoms, patches, empty and loose counts, the time and the atoms\n"
+    "                   measured in closed form on stderr\n"
     "  --periodic       the atoms repeated by the box of the file (GRO's last line, PDB's\n"
     "                   CRYST1) or --box: each atom once, its cell cut by the images\n"
     "                   too; contacts across the box name the second atom j@(dx,dy,dz)\n"
@@ -112,7 +113,7 @@ typedef struct {
     FILE *out, *contacts;
     int json;
     long written;
-    size_t atoms, patches, nempty, nloose, ncontacts;
+    size_t atoms, patches, nempty, nloose, ncontacts, nclosed;
     const char *title; /* --html: the page's title; NULL: no page */
     vb_page *page;
     const char *input;
@@ -158,6 +159,7 @@ static int write_frame(void *arg, long frame, int model, const vb_sphere_set *se
         rc = page_add(S->ctx, &S->page, S->title, label, set, m, S->contacts != NULL);
     S->written++;
     S->atoms += m->n, S->patches += m->patches, S->nempty += m->nempty;
+    S->nclosed += m->nclosed;
     S->nloose += m->nloose, S->ncontacts += m->ncontacts;
     return rc;
 }
@@ -170,7 +172,7 @@ static int run_frames(vb_ctx *ctx, const char *in_path, const char *traj,
                       const char *html)
 {
     vb_radii_table *radii = NULL;
-    frames_sink S = {ctx, NULL, NULL, json, 0, 0, 0, 0, 0, 0, title, NULL, in_path, {{0}, ""}};
+    frames_sink S = {ctx, NULL, NULL, json, 0, 0, 0, 0, 0, 0, 0, title, NULL, in_path, {{0}, ""}};
     int rc = in->radii_path ? vb_radii_load(ctx, in->radii_path, &radii) : VB_OK;
     vb_read_options ro;
     vb_cli_input_read_options(in, radii, &ro);
@@ -195,9 +197,9 @@ static int run_frames(vb_ctx *ctx, const char *in_path, const char *traj,
     if (rc == VB_OK && stats)
         fprintf(stderr,
                 "cells: %ld frames, %zu atoms, %zu patches, %zu empty, %zu loose, %zu contacts, "
-                "%.3f s (%.3f frames/s)\n",
+                "%.3f s (%.3f frames/s), %zu atoms in closed form\n",
                 frames, S.atoms, S.patches, S.nempty, S.nloose, S.ncontacts, t1 - t0,
-                t1 > t0 ? (double)frames / (t1 - t0) : 0.0);
+                t1 > t0 ? (double)frames / (t1 - t0) : 0.0, S.nclosed);
     vb_radii_free(radii);
     return rc;
 }
@@ -338,8 +340,9 @@ int vb_cmd_cells(int argc, char **argv)
     vb_page_free(page);
     if (rc == VB_OK && stats)
         fprintf(stderr,
-                "cells: %zu atoms, %zu patches, %zu empty, %zu loose, %zu contacts, %.3f s\n",
-                m.n, m.patches, m.nempty, m.nloose, m.ncontacts, t1 - t0);
+                "cells: %zu atoms, %zu patches, %zu empty, %zu loose, %zu contacts, %.3f s, "
+                "%zu atoms in closed form\n",
+                m.n, m.patches, m.nempty, m.nloose, m.ncontacts, t1 - t0, m.nclosed);
     int exit_code = rc == VB_OK ? VB_EXIT_OK : vb_cli_fail(ctx, rc);
     vb_cell_measures_free(&m);
     vb_spheres_free(set);

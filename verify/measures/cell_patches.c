@@ -82,6 +82,7 @@ void vbm_scratch_free(vbm_scratch *sc)
     free(sc->pair);
     free(sc->tmp);
     free(sc->sum);
+    vbm_stokes_free(sc->stokes);
     memset(sc, 0, sizeof *sc);
 }
 

@@ -3,23 +3,34 @@
 
 #include "vbm_piece.h"
 
-/* atan of the ends of x, rounded outward by MPFR (atan is increasing). */
-static vbx_ia ia_atan(vbx_ia x)
+/* f of the ends of x for an increasing f, rounded outward by MPFR. */
+static vbx_ia increasing(vbx_ia x, int (*f)(mpfr_ptr, mpfr_srcptr, mpfr_rnd_t))
 {
     mpfr_t t;
     mpfr_init2(t, 53);
     vbx_ia r;
     mpfr_set_d(t, x.lo, MPFR_RNDN); /* exact: 53 bits */
-    mpfr_atan(t, t, MPFR_RNDD);
+    f(t, t, MPFR_RNDD);
     r.lo = mpfr_get_d(t, MPFR_RNDD);
     mpfr_set_d(t, x.hi, MPFR_RNDN);
-    mpfr_atan(t, t, MPFR_RNDU);
+    f(t, t, MPFR_RNDU);
     r.hi = mpfr_get_d(t, MPFR_RNDU);
     mpfr_clear(t);
-    /* atan keeps pi in a per-thread cache that the cells' worker threads
-     * would leave behind when they end (LeakSanitizer in CI): free it. */
+    /* atan keeps pi (log log 2) in a per-thread cache that the cells'
+     * worker threads would leave behind when they end (LeakSanitizer in
+     * CI): free it. */
     mpfr_free_cache2(MPFR_FREE_LOCAL_CACHE);
     return r;
+}
+
+vbx_ia vbm_ia_atan(vbx_ia x)
+{
+    return increasing(x, mpfr_atan);
+}
+
+vbx_ia vbm_ia_log(vbx_ia x)
+{
+    return increasing(x, mpfr_log);
 }
 
 /* The solid angle of [0, a] x [0, b] seen from the centre of the cube face
@@ -28,7 +39,7 @@ static vbx_ia corner(double a, double b)
 {
     vbx_ia A = vbx_ia_point(a), B = vbx_ia_point(b);
     vbx_ia s = vbx_ia_sqrt(vbx_ia_add(vbx_ia_point(1.0), vbx_ia_add(vbx_ia_sqr(A), vbx_ia_sqr(B))));
-    return ia_atan(vbx_ia_div(vbx_ia_mul(A, B), s));
+    return vbm_ia_atan(vbx_ia_div(vbx_ia_mul(A, B), s));
 }
 
 vbx_ia vbm_solid_angle(double a0, double a1, double b0, double b1)

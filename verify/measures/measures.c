@@ -140,6 +140,7 @@ typedef struct job {
     vbm_nb *nb[VB_MAX_THREADS];
     size_t cap_nb[VB_MAX_THREADS];
     size_t patches[VB_MAX_THREADS];
+    size_t stokes[VB_MAX_THREADS]; /* atoms measured by vbm_cell_stokes */
     int failed;
     vb_ctx *ctx;               /* where progress goes */
     atomic_size_t atoms_done;  /* atoms finished, every thread (progress) */
@@ -241,7 +242,13 @@ static void measure_atom(job *jb, size_t i, int tid)
                       jb->opt->max_patches ? jb->opt->max_patches : VB_MEASURES_MAX_PATCHES,
                       jb->opt->contacts};
     vbm_atom_out r;
-    if (vbm_cell_integrate(&in, &jb->sc[tid], &r) != VB_OK) {
+    int st = jb->opt->patches ? 0 : vbm_cell_stokes(&in, &jb->sc[tid], &r);
+    if (st < 0) {
+        jb->failed = VB_ENOMEM;
+        return;
+    }
+    jb->stokes[tid] += st;
+    if (st == 0 && vbm_cell_integrate(&in, &jb->sc[tid], &r) != VB_OK) {
         jb->failed = VB_ENOMEM;
         return;
     }
@@ -451,8 +458,10 @@ int vb_cell_measures_compute_images(vb_ctx *ctx, const vb_sphere_set *set,
                  : vb_error(ctx, VB_EINTERNAL, set->source, 0, "over 65535 neighbours in reach");
         goto done;
     }
-    for (int t = 0; t < VB_MAX_THREADS; t++)
+    for (int t = 0; t < VB_MAX_THREADS; t++) {
         out->patches += jb->patches[t];
+        out->nclosed += jb->stokes[t];
+    }
     for (size_t i = 0; i < n; i++) {
         out->nempty += out->empty[i];
         out->nloose += out->loose[i];

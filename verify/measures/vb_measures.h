@@ -4,7 +4,8 @@
  * cell) and, on request, the contact area of each pair of atoms whose cells
  * share a face inside the expanded balls. Every value is an enclosure
  * lo <= exact <= hi proven by interval arithmetic on enclosures of the exact
- * input decimals (method: verify/measures/cell_patches.c).
+ * input decimals (methods: verify/measures/stokes_cell.c in closed form,
+ * verify/measures/cell_patches.c by patches where the former cannot decide).
  *
  * The union of the constrained cells is the union of the expanded balls (a
  * point of ball j lies in some cell i with |x - ci| - Ri <= |x - cj| - Rj <=
@@ -23,8 +24,9 @@
 
 /* Default relative tolerance of --tolerance (see vb_measure_options). */
 #define VB_MEASURES_TOLERANCE 1e-6
-/* Default patch budget per atom: 1crn (327 atoms) in 140 s on 2 idle
- * cores, every value enclosed but most wider than 1e-6 on proteins (W851). */
+/* Default patch budget per atom of the patch integration (the atoms the
+ * closed forms cannot decide): past it their values stay wider than 1e-6
+ * on proteins (W851). */
 #define VB_MEASURES_MAX_PATCHES 5000
 
 typedef struct vb_measure_options {
@@ -36,6 +38,8 @@ typedef struct vb_measure_options {
     size_t max_patches; /* per atom (0 = VB_MEASURES_MAX_PATCHES): past it the enclosure
                          * stands as proven, wider than asked, and is counted */
     int threads;        /* 0 = all cores */
+    int patches;        /* nonzero: every atom by direction patches, never in closed form
+                         * (the two methods compared in tests) */
 } vb_measure_options;
 
 /* The contact of atoms i < j: the intersection of the enclosures computed
@@ -59,7 +63,10 @@ typedef struct vb_cell_measures {
     uint8_t *loose;                  /* 1: a value of the atom stayed wider than asked */
     vb_contact *contacts;            /* ncontacts, ordered by (i, j); only pairs whose hi > 0 */
     size_t ncontacts;
-    size_t patches;                  /* direction patches integrated, all atoms */
+    size_t patches;                  /* direction patches integrated, all atoms (an atom in
+                                      * closed form counts its arc pieces) */
+    size_t nclosed;                  /* atoms measured in closed form (vbm_cell_stokes); the
+                                      * others by direction patches */
     size_t nempty, nloose;
     int periodic;                    /* 1: a periodic run (contacts carry shifts) */
 } vb_cell_measures;

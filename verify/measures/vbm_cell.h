@@ -46,6 +46,7 @@ typedef struct vbm_atom_out {
  * vbm_scratch_free). */
 typedef struct vbm_scratch {
     void *patch, *heap, *cand, *pair, *tmp, *sum;
+    void *stokes; /* vbm_cell_stokes' work space */
     size_t cap_patch, cap_heap, cap_cand, cap_pair, cap_tmp, cap_sum;
 } vbm_scratch;
 
@@ -55,5 +56,16 @@ typedef struct vbm_scratch {
 int vbm_cell_integrate(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out);
 
 void vbm_scratch_free(vbm_scratch *sc);
+
+/* The volume, SAS area and (in->contacts) contact areas of one atom's
+ * constrained cell in closed form over the boundaries of the regions its
+ * neighbours own (stokes_cell.c), to in->tolerance. Returns 1 with *out
+ * filled as vbm_cell_integrate fills it, 0 when an interval cannot decide
+ * the arrangement or bound an integral (the caller integrates by patches,
+ * vbm_cell_integrate), -1 on ENOMEM. */
+int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out);
+
+/* Frees vbm_cell_stokes' work space (sc->stokes; NULL is fine). */
+void vbm_stokes_free(void *w);
 
 #endif

@@ -31,6 +31,11 @@ int vbm_piece(const vbm_atom_in *in, int owner, const vbm_axes *ax, const vbm_se
  * rounded outward by MPFR). */
 vbx_ia vbm_solid_angle(double a0, double a1, double b0, double b1);
 
+/* atan and log (x.lo > 0) of the ends of x, rounded outward by MPFR (both
+ * are increasing). */
+vbx_ia vbm_ia_atan(vbx_ia x);
+vbx_ia vbm_ia_log(vbx_ia x);
+
 /* A curve F = l0 + la a + lb b - kappa s = 0 across a patch; F > 0 is where
  * owner `pos` owns, F < 0 where `neg` does (-1: the ball). */
 typedef struct vbm_curve {

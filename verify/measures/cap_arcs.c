@@ -1,0 +1,259 @@
+/* The arcs bounding an intersection of spherical caps (vbm_caps.h).
+ *
+ * Per cap l with a proper circle, every other cap m restricts the circle to
+ * an arc (P + Qc cos t + Qs sin t >= h_m, P = c a.n_m, Qc = s e1.n_m,
+ * Qs = s e2.n_m), to all of it or to nothing. The ends of the restricting
+ * arcs are points of the unit circle in closed form (no angle is computed
+ * exactly: cos t = g / Q, sin t = sqrt(Q^2 - g^2) / Q about the direction
+ * (Qc, Qs)). They are sorted by the angles of their midpoints; two ends
+ * that come next to each other closer than 3 rad are proven in that order
+ * by the sign of their cross product (farther apart the order cannot be
+ * wrong: every gap is wider than 4 times the widest end, an interval of at
+ * most 1e-4 on the unit circle), and every gap
+ * between two ends is tested at an exact unit vector inside it against
+ * every restricting cap, by interval signs. The gaps inside all caps are
+ * the arcs. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "vb_array.h"
+#include "vbm_caps.h"
+
+#define TWO_PI 6.283185307179586
+#define MAX_ARC 2.5      /* longer arcs are split (their frames need |angle| < pi / 2) */
+#define MAX_END_WIDTH 1e-4 /* an end this wide (near-tangent circles): undecided */
+
+typedef struct vbm_endpt {
+    vbx_ia x, y;
+    double ang;
+    int start; /* 1: entering the restricting cap (counterclockwise), 0: leaving it */
+} endpt;
+
+typedef struct vbm_restr {
+    vbx_ia P, Qc, Qs, h;
+} restr;
+
+static vbx_ia dot3(const vbx_ia *a, const vbx_ia *b)
+{
+    return vbx_ia_add(vbx_ia_add(vbx_ia_mul(a[0], b[0]), vbx_ia_mul(a[1], b[1])),
+                      vbx_ia_mul(a[2], b[2]));
+}
+
+static void cross3(const vbx_ia *a, const vbx_ia *b, vbx_ia *r)
+{
+    r[0] = vbx_ia_sub(vbx_ia_mul(a[1], b[2]), vbx_ia_mul(a[2], b[1]));
+    r[1] = vbx_ia_sub(vbx_ia_mul(a[2], b[0]), vbx_ia_mul(a[0], b[2]));
+    r[2] = vbx_ia_sub(vbx_ia_mul(a[0], b[1]), vbx_ia_mul(a[1], b[0]));
+}
+
+int vbm_circle_of(const vbm_cap *cp, vbm_circle *c)
+{
+    vbx_ia nn = vbx_ia_sqrt(dot3(cp->n, cp->n));
+    vbx_ia lo = vbx_ia_sub(nn, cp->h), hi = vbx_ia_add(nn, cp->h);
+    if (lo.hi < 0.0) {
+        c->kind = VBM_CAP_NONE;
+        return 1;
+    }
+    if (hi.hi < 0.0) {
+        c->kind = VBM_CAP_ALL;
+        return 1;
+    }
+    if (!(lo.lo > 0.0 && hi.lo > 0.0 && nn.lo > 0.0))
+        return 0;
+    c->kind = VBM_CAP_CIRCLE;
+    for (int k = 0; k < 3; k++)
+        c->a[k] = vbx_ia_div(cp->n[k], nn);
+    c->c = vbx_ia_div(cp->h, nn);
+    c->s = vbx_ia_div(vbx_ia_sqrt(vbx_ia_mul(lo, hi)), nn);
+    /* e1 = a x f / |a x f| with f the axis least along a (chosen on
+     * midpoints: any fixed f gives an exact frame) */
+    int f = 0;
+    for (int k = 1; k < 3; k++)
+        if (fabs(vbx_ia_mid(c->a[k])) < fabs(vbx_ia_mid(c->a[f])))
+            f = k;
+    vbx_ia fv[3] = {vbx_ia_point(0.0), vbx_ia_point(0.0), vbx_ia_point(0.0)}, t[3];
+    fv[f] = vbx_ia_point(1.0);
+    cross3(c->a, fv, t);
+    vbx_ia tn = vbx_ia_sqrt(dot3(t, t));
+    if (!(tn.lo > 0.0))
+        return 0;
+    for (int k = 0; k < 3; k++)
+        c->e1[k] = vbx_ia_div(t[k], tn);
+    cross3(c->a, c->e1, c->e2);
+    return 1;
+}
+
+void vbm_caps_free(vbm_capwork *w)
+{
+    free(w->circ);
+    free(w->end);
+    free(w->res);
+    free(w->arc);
+    memset(w, 0, sizeof *w);
+}
+
+static int cmp_end(const void *a, const void *b)
+{
+    double x = ((const endpt *)a)->ang, y = ((const endpt *)b)->ang;
+    return x < y ? -1 : x > y;
+}
+
+static double angle_of(vbx_ia x, vbx_ia y)
+{
+    double t = atan2(vbx_ia_mid(y), vbx_ia_mid(x));
+    return t < 0.0 ? t + TWO_PI : t;
+}
+
+void vbm_unit_at(double t, vbx_ia *x, vbx_ia *y)
+{
+    vbx_ia cx = vbx_ia_point(cos(t)), sy = vbx_ia_point(sin(t));
+    vbx_ia n = vbx_ia_sqrt(vbx_ia_add(vbx_ia_sqr(cx), vbx_ia_sqr(sy)));
+    *x = vbx_ia_div(cx, n);
+    *y = vbx_ia_div(sy, n);
+}
+
+static int push_arc(vbm_capwork *w, uint32_t l, vbx_ia px, vbx_ia py, double tp, vbx_ia qx,
+                    vbx_ia qy, double tq)
+{
+    if (tq - tp > MAX_ARC) { /* split at the middle */
+        vbx_ia mx, my;
+        double tm = 0.5 * (tp + tq);
+        vbm_unit_at(tm, &mx, &my);
+        int e = push_arc(w, l, px, py, tp, mx, my, tm);
+        return e < 0 ? e : push_arc(w, l, mx, my, tm, qx, qy, tq);
+    }
+    if (VB_ARRAY_FIT(w->arc, w->cap_arc, w->narc + 1, 32) != VB_OK)
+        return -1;
+    vbm_arc *a = &w->arc[w->narc++];
+    a->cap = l;
+    a->p[0] = px;
+    a->p[1] = py;
+    a->q[0] = qx;
+    a->q[1] = qy;
+    a->tp = tp;
+    a->tq = tq;
+    return 0;
+}
+
+/* 1: inside cap m at the unit vector (x, y) of the circle, -1 outside, 0
+ * undecided. */
+static int side(const restr *r, vbx_ia x, vbx_ia y)
+{
+    vbx_ia v = vbx_ia_sub(vbx_ia_add(r->P, vbx_ia_add(vbx_ia_mul(r->Qc, x), vbx_ia_mul(r->Qs, y))),
+                          r->h);
+    return vbx_ia_sign(v);
+}
+
+/* The arcs of circle l. Returns 1, 0 undecided, -1 ENOMEM. */
+static int circle_arcs(const vbm_cap *caps, size_t ncap, vbm_capwork *w, size_t l)
+{
+    const vbm_circle *C = &w->circ[l];
+    endpt *end = w->end;
+    restr *res = w->res;
+    size_t ne = 0, nr = 0;
+    for (size_t m = 0; m < ncap; m++) {
+        if (m == l || w->circ[m].kind == VBM_CAP_ALL)
+            continue;
+        restr r;
+        r.P = vbx_ia_mul(C->c, dot3(C->a, caps[m].n));
+        r.Qc = vbx_ia_mul(C->s, dot3(C->e1, caps[m].n));
+        r.Qs = vbx_ia_mul(C->s, dot3(C->e2, caps[m].n));
+        r.h = caps[m].h;
+        vbx_ia g = vbx_ia_sub(r.h, r.P);
+        vbx_ia Q2 = vbx_ia_add(vbx_ia_sqr(r.Qc), vbx_ia_sqr(r.Qs)), Q = vbx_ia_sqrt(Q2);
+        vbx_ia gm = vbx_ia_sub(Q, g), gp = vbx_ia_add(Q, g);
+        if (gp.hi < 0.0)
+            continue; /* g < -Q: the whole circle lies in cap m */
+        if (gm.hi < 0.0)
+            return 1; /* g > Q: none of it */
+        if (!(gm.lo > 0.0 && gp.lo > 0.0 && Q2.lo > 0.0))
+            return 0;
+        vbx_ia rr = vbx_ia_sqrt(vbx_ia_mul(gm, gp));
+        vbx_ia cg = vbx_ia_mul(r.Qc, g), sg = vbx_ia_mul(r.Qs, g);
+        vbx_ia cr = vbx_ia_mul(r.Qc, rr), sr = vbx_ia_mul(r.Qs, rr);
+        endpt *s = &end[ne++], *e = &end[ne++];
+        s->start = 1;
+        e->start = 0;
+        s->x = vbx_ia_div(vbx_ia_add(cg, sr), Q2);
+        s->y = vbx_ia_div(vbx_ia_sub(sg, cr), Q2);
+        e->x = vbx_ia_div(vbx_ia_sub(cg, sr), Q2);
+        e->y = vbx_ia_div(vbx_ia_add(cr, sg), Q2);
+        for (int k = 0; k < 2; k++) {
+            endpt *p = k ? e : s;
+            if (!(p->x.hi - p->x.lo < MAX_END_WIDTH && p->y.hi - p->y.lo < MAX_END_WIDTH))
+                return 0;
+            p->ang = angle_of(p->x, p->y);
+        }
+        res[nr++] = r;
+    }
+    if (ne == 0) { /* the whole circle: two half circles */
+        vbx_ia one = vbx_ia_point(1.0), zero = vbx_ia_point(0.0), mone = vbx_ia_point(-1.0);
+        if (push_arc(w, (uint32_t)l, one, zero, 0.0, mone, zero, 0.5 * TWO_PI) < 0 ||
+            push_arc(w, (uint32_t)l, mone, zero, 0.5 * TWO_PI, one, zero, TWO_PI) < 0)
+            return -1;
+        return 1;
+    }
+    qsort(end, ne, sizeof *end, cmp_end);
+    double wmax = 0.0, widest = 0.0;
+    size_t ref = 0;
+    for (size_t k = 0; k < ne; k++)
+        wmax = vbx_max(wmax, vbx_max(end[k].x.hi - end[k].x.lo, end[k].y.hi - end[k].y.lo));
+    for (size_t k = 0; k < ne; k++) { /* the cyclic order, proven pair by pair */
+        const endpt *p = &end[k], *q = &end[(k + 1) % ne];
+        double gap = (k + 1 < ne ? q->ang : q->ang + TWO_PI) - p->ang;
+        if (!(gap > 4.0 * wmax + 1e-12))
+            return 0;
+        if (gap < 3.0) {
+            vbx_ia cr = vbx_ia_sub(vbx_ia_mul(p->x, q->y), vbx_ia_mul(p->y, q->x));
+            if (!(cr.lo > 0.0))
+                return 0;
+        }
+        if (gap > widest)
+            widest = gap, ref = k;
+    }
+    /* the caps holding the middle of the widest gap, then one more or one
+     * less at each end passed (a start enters its cap, an end leaves it) */
+    vbx_ia mx, my;
+    vbm_unit_at(end[ref].ang + 0.5 * widest, &mx, &my);
+    size_t inside = 0;
+    for (size_t m = 0; m < nr; m++) {
+        int sd = side(&res[m], mx, my);
+        if (sd == 0)
+            return 0;
+        inside += sd > 0;
+    }
+    for (size_t i = 0; i < ne; i++) {
+        size_t k = (ref + i) % ne;
+        const endpt *p = &end[k], *q = &end[(k + 1) % ne];
+        if (i > 0)
+            inside = p->start ? inside + 1 : inside - 1;
+        double tq = k + 1 < ne ? q->ang : q->ang + TWO_PI;
+        if (inside == nr && push_arc(w, (uint32_t)l, p->x, p->y, p->ang, q->x, q->y, tq) < 0)
+            return -1;
+    }
+    return 1;
+}
+
+int vbm_cap_arcs(const vbm_cap *caps, size_t ncap, vbm_capwork *w)
+{
+    w->narc = 0;
+    if (VB_ARRAY_FIT(w->circ, w->cap_circ, ncap, 32) != VB_OK ||
+        VB_ARRAY_FIT(w->end, w->cap_end, 2 * ncap, 64) != VB_OK ||
+        VB_ARRAY_FIT(w->res, w->cap_res, ncap, 32) != VB_OK)
+        return -1;
+    for (size_t l = 0; l < ncap; l++) {
+        if (!vbm_circle_of(&caps[l], &w->circ[l]))
+            return 0;
+        if (w->circ[l].kind == VBM_CAP_NONE)
+            return 1; /* empty intersection */
+    }
+    for (size_t l = 0; l < ncap; l++) {
+        if (w->circ[l].kind != VBM_CAP_CIRCLE)
+            continue;
+        int e = circle_arcs(caps, ncap, w, l);
+        if (e <= 0)
+            return e;
+    }
+    return 1;
+}

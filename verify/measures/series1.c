@@ -1,0 +1,110 @@
+/* Univariate Taylor models in interval arithmetic (vbm_series1.h). */
+#include "vbm_piece.h"
+#include "vbm_series1.h"
+
+void vbm1_const(vbm_s1 *f, vbx_ia v)
+{
+    for (int k = 0; k <= VBM1_K; k++)
+        f->c[k] = vbx_ia_point(0.0);
+    f->c[0] = v;
+}
+
+void vbm1_var(vbm_s1 *f, vbx_ia at)
+{
+    vbm1_const(f, at);
+    f->c[1] = vbx_ia_point(1.0);
+}
+
+void vbm1_affine(vbm_s1 *r, vbx_ia v, const vbm_s1 *f, vbx_ia w)
+{
+    for (int k = 0; k <= VBM1_K; k++)
+        r->c[k] = vbx_ia_mul(v, f->c[k]);
+    r->c[0] = vbx_ia_add(r->c[0], w);
+}
+
+void vbm1_add(vbm_s1 *r, const vbm_s1 *f, const vbm_s1 *g)
+{
+    for (int k = 0; k <= VBM1_K; k++)
+        r->c[k] = vbx_ia_add(f->c[k], g->c[k]);
+}
+
+void vbm1_sub(vbm_s1 *r, const vbm_s1 *f, const vbm_s1 *g)
+{
+    for (int k = 0; k <= VBM1_K; k++)
+        r->c[k] = vbx_ia_sub(f->c[k], g->c[k]);
+}
+
+/* sum over k in [from, to] of f_k g_(n-k) */
+static vbx_ia conv(const vbm_s1 *f, const vbm_s1 *g, int n, int from, int to)
+{
+    vbx_ia s = vbx_ia_point(0.0);
+    for (int k = from; k <= to; k++)
+        s = vbx_ia_add(s, vbx_ia_mul(f->c[k], g->c[n - k]));
+    return s;
+}
+
+void vbm1_mul(vbm_s1 *r, const vbm_s1 *f, const vbm_s1 *g)
+{
+    for (int n = 0; n <= VBM1_K; n++)
+        r->c[n] = conv(f, g, n, 0, n);
+}
+
+/* f r = 1: r_n = -(sum_{k=1..n} f_k r_(n-k)) / f_0 */
+int vbm1_recip(vbm_s1 *r, const vbm_s1 *f)
+{
+    vbx_ia f0 = f->c[0];
+    if (!(f0.lo > 0.0 || f0.hi < 0.0))
+        return 0;
+    r->c[0] = vbx_ia_div(vbx_ia_point(1.0), f0);
+    for (int n = 1; n <= VBM1_K; n++)
+        r->c[n] = vbx_ia_div(vbx_ia_neg(conv(f, r, n, 1, n)), f0);
+    return 1;
+}
+
+/* r r = f: r_n = (f_n - sum_{k=1..n-1} r_k r_(n-k)) / (2 r_0) */
+int vbm1_sqrt(vbm_s1 *r, const vbm_s1 *f)
+{
+    if (!(f->c[0].lo > 0.0))
+        return 0;
+    r->c[0] = vbx_ia_sqrt(f->c[0]);
+    vbx_ia two_r0 = vbx_ia_add(r->c[0], r->c[0]);
+    for (int n = 1; n <= VBM1_K; n++)
+        r->c[n] = vbx_ia_div(vbx_ia_sub(f->c[n], conv(r, r, n, 1, n - 1)), two_r0);
+    return 1;
+}
+
+/* f r' = f': n r_n f_0 = n f_n - sum_{k=1..n-1} k r_k f_(n-k) */
+int vbm1_log(vbm_s1 *r, const vbm_s1 *f)
+{
+    vbx_ia f0 = f->c[0];
+    if (!(f0.lo > 0.0))
+        return 0;
+    r->c[0] = vbm_ia_log(f0);
+    for (int n = 1; n <= VBM1_K; n++) {
+        vbx_ia s = vbx_ia_point(0.0);
+        for (int k = 1; k < n; k++)
+            s = vbx_ia_add(s, vbx_ia_mul(vbx_ia_mul(vbx_ia_point((double)k), r->c[k]),
+                                         f->c[n - k]));
+        vbx_ia num = vbx_ia_sub(f->c[n], vbx_ia_div(s, vbx_ia_point((double)n)));
+        r->c[n] = vbx_ia_div(num, f0);
+    }
+    return 1;
+}
+
+vbx_ia vbm1_integrate(const vbm_s1 *centre, const vbm_s1 *box, double xc, double x0, double x1)
+{
+    /* integral over [x0 - xc, x1 - xc] of x^n: (b^(n+1) - a^(n+1)) / (n + 1) */
+    vbx_ia a = vbx_ia_sub(vbx_ia_point(x0), vbx_ia_point(xc));
+    vbx_ia b = vbx_ia_sub(vbx_ia_point(x1), vbx_ia_point(xc));
+    vbx_ia pa = a, pb = b, s = vbx_ia_point(0.0);
+    for (int n = 0; n <= VBM1_K; n++) {
+        vbx_ia m = vbx_ia_div(vbx_ia_sub(pb, pa), vbx_ia_point((double)(n + 1)));
+        /* the remainder c_K(xi) x^K: x^K >= 0 (K even), so its integral lies
+         * in the hull of c_K over the box times that of x^K */
+        vbx_ia c = n < VBM1_K ? centre->c[n] : box->c[n];
+        s = vbx_ia_add(s, vbx_ia_mul(c, m));
+        pa = vbx_ia_mul(pa, a);
+        pb = vbx_ia_mul(pb, b);
+    }
+    return s;
+}

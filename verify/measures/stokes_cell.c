@@ -1,0 +1,564 @@
+/* One atom's constrained cell measured over the boundaries of the regions
+ * of directions its neighbours own (vbm_cell_stokes, vbm_cell.h).
+ *
+ * With r = Ri + probe, neighbour j (d = cj - ci, D = |d|, delta, N as in
+ * vbm_nb) owns the directions
+ *   Omega_j = {u.d >= k_j} and, for every other neighbour k whose cap meets
+ *             the sphere, {N_k (u.d_j + delta_j) >= N_j (u.d_k + delta_k)},
+ * an intersection of spherical caps (t_j <= r and t_j <= t_k; where
+ * u.d_k + delta_k <= 0 the second holds by itself), bounded by circle arcs
+ * (vbm_cap_arcs). The ball's sphere owns the rest, so
+ *   SAS = r^2 (4 pi - sum_j |Omega_j|),
+ *   volume = r^3 (4 pi - sum_j |Omega_j|) / 3 + sum_j int_{Omega_j} t_j^3 / 3.
+ * Each integrand f depends on z = u.e (e = d / D) alone, so with
+ * F(z) = int_z^1 f (F(1) = 0: F(z) dphi is smooth at e, and -e lies outside
+ * the cap u.d >= k_j > -D) Stokes' theorem gives
+ *   int_{Omega_j} f domega = sum over the arcs of int F(z) dphi,
+ * phi the azimuth about e, dphi = e.(u x du) / (1 - z^2):
+ *   area:   F = 1 - z,
+ *   volume: F = N^3 (1 - z) (D (1 + z) + 2 delta) / (48 (D z + delta)^2 (D + delta)^2),
+ *   contact (the face's area element t^2 sqrt(N + 2 delta q) / q per
+ *   domega, q = D z + delta = N / (2 t), see cell_patches.c):
+ *           F = N^2 / (4 D) (G(D + delta) - G(q)), G a primitive of
+ *           sqrt(N + 2 delta q) / q^3 in closed form (g_of, a log for
+ *           delta != 0).
+ * On the arcs of j's own cap circle z is constant and dphi the arc's angle
+ * (closed form, atan rounded outward by MPFR); on the others the integral
+ * runs over t = tan(angle / 2) about the arc's middle (|t| < 0.7), the
+ * integrand a rational function of t, enclosed by univariate Taylor models
+ * (vbm_series1.h) on pieces halved until each meets its share of the
+ * tolerance. The arrangement is decided by interval signs; where one
+ * cannot be decided (tangent circles, more than three owners at a point,
+ * symmetric inputs) the caller falls back to the patch integration. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "vb.h"
+#include "vb_array.h"
+#include "vbm_caps.h"
+#include "vbm_cell.h"
+#include "vbm_piece.h"
+#include "vbm_series1.h"
+
+#define FLOOR_FRACTION 1e-3 /* as cell_patches.c */
+#define MAX_DEPTH 20        /* halvings of an arc's parameter range */
+#define FOUR_PI 12.566370614359172
+
+typedef struct arcrec {
+    uint32_t j;
+    int own;                   /* the arc lies on j's cap circle */
+    vbx_ia c, s, A0, A1, A2;   /* the circle, and e_j in its frame */
+    vbx_ia p[2], q[2];
+    double tp, tq;
+    vbx_ia v[3];               /* the arc's integrals: area, volume, contact */
+} arcrec;
+
+/* A neighbour whose cap u.e >= ca (sa = sqrt(1 - ca^2)) meets the sphere. */
+typedef struct active {
+    uint32_t j;
+    vbx_ia e[3], ca, sa;
+} active;
+
+typedef struct stokes_work {
+    vbm_capwork cw;
+    vbm_cap *caps;
+    arcrec *rec;
+    active *act;
+    vbx_ia *D, *con;   /* per neighbour: |d|, the contact */
+    uint32_t *narcs;   /* per neighbour: its arcs */
+    size_t cap_caps, cap_rec, cap_act, cap_D, cap_con, cap_narcs, nrec;
+} stokes_work;
+
+void vbm_stokes_free(void *p)
+{
+    stokes_work *w = p;
+    if (!w)
+        return;
+    vbm_caps_free(&w->cw);
+    free(w->caps);
+    free(w->rec);
+    free(w->act);
+    free(w->D);
+    free(w->con);
+    free(w->narcs);
+    free(w);
+}
+
+static vbx_ia dot3(const vbx_ia *a, const vbx_ia *b)
+{
+    return vbx_ia_add(vbx_ia_add(vbx_ia_mul(a[0], b[0]), vbx_ia_mul(a[1], b[1])),
+                      vbx_ia_mul(a[2], b[2]));
+}
+
+static double width(vbx_ia a)
+{
+    double d = a.hi - a.lo;
+    return d == d ? d : INFINITY;
+}
+
+/* The per-neighbour constants of the integrands. */
+typedef struct owner {
+    vbx_ia D, delta, N, K; /* K = N^3 / (48 (D + delta)^2) */
+    vbx_ia rN, hN, kL, lnd; /* sqrt N, 1 / (2 N), delta^2 / (2 N sqrt N), log (2 |delta|) */
+    vbx_ia C, G1;           /* N^2 / (4 D), G(D + delta) */
+    int contacts;
+} owner;
+
+static int g_of(const owner *o, const vbm_s1 *q, vbm_s1 *G);
+
+static int owner_of(const vbm_nb *n, vbx_ia D, int contacts, owner *o)
+{
+    memset(o, 0, sizeof *o);
+    o->D = D;
+    o->delta = n->delta;
+    o->N = n->N;
+    vbx_ia N3 = vbx_ia_mul(vbx_ia_sqr(n->N), n->N);
+    o->K = vbx_ia_div(N3, vbx_ia_mul(vbx_ia_point(48.0), vbx_ia_sqr(vbx_ia_add(D, n->delta))));
+    o->contacts = contacts;
+    if (!contacts)
+        return 1;
+    o->rN = vbx_ia_sqrt(n->N);
+    o->hN = vbx_ia_div(vbx_ia_point(0.5), n->N);
+    o->kL = vbx_ia_mul(vbx_ia_sqr(n->delta), vbx_ia_div(o->hN, o->rN));
+    if (!vbm_ia_is_zero(n->delta)) {
+        vbx_ia ad = n->delta.lo > 0.0 ? n->delta : vbx_ia_neg(n->delta);
+        if (!(ad.lo > 0.0))
+            return 0;
+        o->lnd = vbm_ia_log(vbx_ia_add(ad, ad));
+    }
+    o->C = vbx_ia_div(vbx_ia_sqr(n->N), vbx_ia_mul(vbx_ia_point(4.0), D));
+    vbm_s1 q, G;
+    vbm1_const(&q, vbx_ia_add(D, n->delta));
+    if (!g_of(o, &q, &G))
+        return 0;
+    o->G1 = G.c[0];
+    return 1;
+}
+
+/* G(q) = -S^(3/2) / (2 N q^2) + delta sqrt(S) / (2 N q)
+ *        - delta^2 / (2 N sqrt N) log |(sqrt S - sqrt N) / (sqrt S + sqrt N)|,
+ * S = N + 2 delta q: a primitive of sqrt(S) / q^3 (the log's argument as
+ * 2 |delta| q / (sqrt S + sqrt N)^2, q > 0; no log term for delta = 0). */
+static int g_of(const owner *o, const vbm_s1 *q, vbm_s1 *G)
+{
+    vbm_s1 S, r, iq, t, u;
+    vbm1_affine(&S, vbx_ia_add(o->delta, o->delta), q, o->N);
+    if (!vbm1_sqrt(&r, &S) || !vbm1_recip(&iq, q))
+        return 0;
+    vbm1_mul(&t, &r, &iq);                      /* sqrt S / q */
+    vbm1_mul(&u, &t, &S);
+    vbm1_mul(G, &u, &iq);                       /* S^(3/2) / q^2 */
+    vbm1_affine(G, vbx_ia_neg(o->hN), G, vbx_ia_point(0.0));
+    vbm1_affine(&u, vbx_ia_mul(o->delta, o->hN), &t, vbx_ia_point(0.0));
+    vbm1_add(G, G, &u);
+    if (vbm_ia_is_zero(o->delta))
+        return 1;
+    vbm_s1 lq, ls;
+    vbm1_affine(&u, vbx_ia_point(1.0), &r, o->rN);
+    if (!vbm1_log(&lq, q) || !vbm1_log(&ls, &u))
+        return 0;
+    vbm1_affine(&u, vbx_ia_point(-2.0), &ls, o->lnd);
+    vbm1_add(&u, &u, &lq);
+    vbm1_affine(&u, vbx_ia_neg(o->kL), &u, vbx_ia_point(0.0));
+    vbm1_add(G, G, &u);
+    return 1;
+}
+
+/* F_vol(z) / (1 - z) = K (D (1 + z) + 2 delta) / (D z + delta)^2 */
+static vbx_ia fvol_over(const owner *o, vbx_ia z)
+{
+    vbx_ia q = vbx_ia_add(vbx_ia_mul(o->D, z), o->delta);
+    vbx_ia t = vbx_ia_add(vbx_ia_mul(o->D, vbx_ia_add(vbx_ia_point(1.0), z)),
+                          vbx_ia_add(o->delta, o->delta));
+    return vbx_ia_div(vbx_ia_mul(o->K, t), vbx_ia_sqr(q));
+}
+
+/* F_con(z) = C (G(D + delta) - G(D z + delta)) at a constant z. */
+static int fcon(const owner *o, vbx_ia z, vbx_ia *F)
+{
+    vbm_s1 q, G;
+    vbm1_const(&q, vbx_ia_add(vbx_ia_mul(o->D, z), o->delta));
+    if (!g_of(o, &q, &G))
+        return 0;
+    *F = vbx_ia_mul(o->C, vbx_ia_sub(o->G1, G.c[0]));
+    return 1;
+}
+
+enum { AREA, VOL, CON, NV }; /* the values integrated along an arc */
+
+/* The integrands along a circle arc in t: F dphi/dt for the area, the
+ * volume and (o.contacts) the contact area. */
+typedef struct arcfun {
+    owner o;
+    vbx_ia cA0, s, sA0s, mcs, A1, A2; /* c A0, s, s^2 A0, -c s, e_j in the rotated frame */
+} arcfun;
+
+/* Returns 1, 2 when the contact's series cannot be bounded near e_j (v[CON]
+ * is then a constant: its bound where `at` ranges), 0 when nothing can. */
+static int integrand(const arcfun *f, vbx_ia at, vbm_s1 *v)
+{
+    vbm_s1 T, T2, rec, cs, sn, w, z, num, t, u, opz;
+    vbm1_var(&T, at);
+    vbm1_mul(&T2, &T, &T);
+    T2.c[0] = vbx_ia_add(T2.c[0], vbx_ia_point(1.0));
+    if (!vbm1_recip(&rec, &T2))
+        return 0;
+    vbm1_affine(&cs, vbx_ia_point(2.0), &rec, vbx_ia_point(-1.0)); /* (1 - T^2) / (1 + T^2) */
+    vbm1_mul(&t, &T, &rec);
+    vbm1_affine(&sn, vbx_ia_point(2.0), &t, vbx_ia_point(0.0)); /* 2 T / (1 + T^2) */
+    vbm1_affine(&w, f->A1, &cs, vbx_ia_point(0.0));
+    vbm1_affine(&t, f->A2, &sn, vbx_ia_point(0.0));
+    vbm1_add(&w, &w, &t);
+    vbm1_affine(&z, f->s, &w, f->cA0);
+    vbm1_affine(&num, f->mcs, &w, f->sA0s);
+    vbm1_mul(&t, &num, &rec);
+    vbm1_affine(&num, vbx_ia_point(2.0), &t, vbx_ia_point(0.0)); /* e.(u x du/dt) */
+    vbm1_affine(&opz, vbx_ia_point(1.0), &z, vbx_ia_point(1.0));
+    if (!vbm1_recip(&u, &opz))
+        return 0;
+    vbm1_mul(&v[AREA], &num, &u); /* (1 - z) dphi = num / (1 + z) */
+    vbm1_affine(&t, f->o.D, &z, f->o.delta); /* q = D z + delta */
+    if (!vbm1_recip(&u, &t))
+        return 0;
+    int rc = 1;
+    if (f->o.contacts) { /* C (G1 - G(q)) / (1 - z) times num / (1 + z) */
+        vbm_s1 G, omz;
+        vbm1_affine(&omz, vbx_ia_point(-1.0), &z, vbx_ia_point(1.0));
+        if (g_of(&f->o, &t, &G) && vbm1_recip(&cs, &omz)) {
+            vbm1_affine(&G, vbx_ia_neg(f->o.C), &G, vbx_ia_mul(f->o.C, f->o.G1));
+            vbm1_mul(&sn, &G, &cs);
+            vbm1_mul(&v[CON], &sn, &v[AREA]);
+        } else { /* near e_j: F(z) / (1 - z) = f(xi), xi in [z, 1] */
+            vbx_ia Z = {z.c[0].lo, 1.0};
+            vbx_ia q = vbx_ia_add(vbx_ia_mul(f->o.D, Z), f->o.delta);
+            vbx_ia S = vbx_ia_add(f->o.N, vbx_ia_mul(vbx_ia_add(f->o.delta, f->o.delta), q));
+            vbx_ia fa = vbx_ia_div(vbx_ia_mul(vbx_ia_sqr(f->o.N), vbx_ia_sqrt(S)),
+                                   vbx_ia_mul(vbx_ia_point(4.0), vbx_ia_mul(vbx_ia_sqr(q), q)));
+            vbm1_const(&v[CON], vbx_ia_mul(fa, v[AREA].c[0]));
+            rc = 2;
+        }
+    } else
+        vbm1_const(&v[CON], vbx_ia_point(0.0));
+    vbm1_mul(&t, &u, &u);
+    vbm1_affine(&u, f->o.D, &opz, vbx_ia_add(f->o.delta, f->o.delta));
+    vbm1_mul(&T, &t, &u);
+    vbm1_mul(&t, &T, &v[AREA]);
+    vbm1_affine(&v[VOL], f->o.K, &t, vbx_ia_point(0.0));
+    return rc;
+}
+
+typedef struct sums {
+    vbx_ia v[NV];
+    size_t pieces;
+} sums;
+
+static int over(const vbx_ia *v, const double *tg)
+{
+    for (int k = 0; k < NV; k++)
+        if (width(v[k]) > tg[k])
+            return 1;
+    return 0;
+}
+
+static int piece(const arcfun *f, double x0, double x1, const double *tg, int depth, sums *out)
+{
+    double xc = 0.5 * (x0 + x1);
+    vbm_s1 c[NV], b[NV];
+    vbx_ia box = {x0, x1}, v[NV];
+    int rc = integrand(f, vbx_ia_point(xc), c), rb = rc ? integrand(f, box, b) : 0, ok = rc && rb;
+    for (int k = 0; ok && k < NV; k++)
+        v[k] = vbm1_integrate(&c[k], &b[k], xc, x0, x1);
+    if (ok && (rc == 2 || rb == 2)) /* the contact's bound over the box times its length */
+        v[CON] = vbx_ia_mul(vbx_ia_sub(vbx_ia_point(x1), vbx_ia_point(x0)), b[CON].c[0]);
+    if (!ok && !(depth < MAX_DEPTH && xc > x0 && xc < x1))
+        return 0;
+    /* a piece whose box an interval cannot bound (the contact's 1 / (1 - z)
+     * where the arc passes near e_j) is halved too */
+    if ((!ok || over(v, tg)) && depth < MAX_DEPTH && xc > x0 && xc < x1) {
+        double half[NV];
+        for (int k = 0; k < NV; k++)
+            half[k] = 0.5 * tg[k];
+        return piece(f, x0, xc, half, depth + 1, out) && piece(f, xc, x1, half, depth + 1, out);
+    }
+    for (int k = 0; k < NV; k++)
+        out->v[k] = vbx_ia_add(out->v[k], v[k]);
+    out->pieces++;
+    return 1;
+}
+
+/* The integral from the exact end t (an interval) to the double m inside
+ * it: (m - t) times the integrand somewhere in t. */
+static int end_piece(const arcfun *f, vbx_ia t, double m, sums *out)
+{
+    vbm_s1 v[NV];
+    if (!integrand(f, t, v)) /* 2: v[CON].c[0] a bound as well */
+        return 0;
+    vbx_ia dt = vbx_ia_sub(vbx_ia_point(m), t);
+    for (int k = 0; k < NV; k++)
+        out->v[k] = vbx_ia_add(out->v[k], vbx_ia_mul(dt, v[k].c[0]));
+    return 1;
+}
+
+/* t = tan(angle / 2) of the unit vector (x, y) rotated by -mid. */
+static vbx_ia half_tan(vbx_ia x, vbx_ia y, vbx_ia cm, vbx_ia sm)
+{
+    vbx_ia xr = vbx_ia_add(vbx_ia_mul(x, cm), vbx_ia_mul(y, sm));
+    vbx_ia yr = vbx_ia_sub(vbx_ia_mul(y, cm), vbx_ia_mul(x, sm));
+    return vbx_ia_div(yr, vbx_ia_add(vbx_ia_point(1.0), xr));
+}
+
+/* The arc's integrals to the widths tg into a->v. Returns 0 when an
+ * interval cannot bound them. */
+static int integrate_arc(const vbm_atom_in *in, const stokes_work *w, arcrec *a, const double *tg,
+                         size_t *pieces)
+{
+    vbx_ia cm, sm;
+    vbm_unit_at(0.5 * (a->tp + a->tq), &cm, &sm);
+    vbx_ia t0 = half_tan(a->p[0], a->p[1], cm, sm), t1 = half_tan(a->q[0], a->q[1], cm, sm);
+    if (!(t1.lo > t0.hi))
+        return 0;
+    sums s = {{vbx_ia_point(0.0), vbx_ia_point(0.0), vbx_ia_point(0.0)}, 0};
+    arcfun f;
+    if (!owner_of(&in->nb[a->j], w->D[a->j], in->contacts, &f.o))
+        return 0;
+    if (a->own) { /* z = c: F(c) times the angle 2 (atan t1 - atan t0) */
+        vbx_ia ang = vbx_ia_sub(vbm_ia_atan(t1), vbm_ia_atan(t0));
+        ang = vbx_ia_add(ang, ang);
+        vbx_ia omz = vbx_ia_sub(vbx_ia_point(1.0), a->c), F = vbx_ia_point(0.0);
+        if (in->contacts && !fcon(&f.o, a->c, &F))
+            return 0;
+        a->v[AREA] = vbx_ia_mul(omz, ang);
+        a->v[VOL] = vbx_ia_mul(vbx_ia_mul(omz, fvol_over(&f.o, a->c)), ang);
+        a->v[CON] = vbx_ia_mul(F, ang);
+        ++*pieces;
+        return 1;
+    }
+    f.cA0 = vbx_ia_mul(a->c, a->A0);
+    f.s = a->s;
+    f.sA0s = vbx_ia_mul(vbx_ia_sqr(a->s), a->A0);
+    f.mcs = vbx_ia_neg(vbx_ia_mul(a->c, a->s));
+    f.A1 = vbx_ia_add(vbx_ia_mul(a->A1, cm), vbx_ia_mul(a->A2, sm));
+    f.A2 = vbx_ia_sub(vbx_ia_mul(a->A2, cm), vbx_ia_mul(a->A1, sm));
+    double m0 = vbx_ia_mid(t0), m1 = vbx_ia_mid(t1);
+    if (!end_piece(&f, t0, m0, &s) || !piece(&f, m0, m1, tg, 0, &s) || !end_piece(&f, t1, m1, &s))
+        return 0;
+    memcpy(a->v, s.v, sizeof a->v);
+    *pieces += s.pieces;
+    return 1;
+}
+
+/* The caps of Omega_j: j's own, then those of the other active neighbours
+ * that may cut it. Returns the count, 0 when Omega_j is proven empty. */
+static size_t region_caps(const vbm_atom_in *in, stokes_work *w, size_t na, size_t x)
+{
+    const active *aj = &w->act[x];
+    const vbm_nb *nj = &in->nb[aj->j];
+    vbm_cap *cp = w->caps;
+    for (int k = 0; k < 3; k++)
+        cp[0].n[k] = nj->d[k];
+    cp[0].h = nj->k;
+    size_t nc = 1;
+    vbx_ia sa = aj->ca.lo >= 0.0 ? aj->sa : vbx_ia_point(1.0);
+    for (size_t y = 0; y < na; y++) {
+        const active *ak = &w->act[y];
+        if (y == x)
+            continue;
+        /* caps apart (angle between the axes > the sum of the radii): k
+         * owns nothing in j's cap */
+        vbx_ia cs = vbx_ia_sub(vbx_ia_mul(aj->ca, ak->ca), vbx_ia_mul(aj->sa, ak->sa));
+        vbx_ia sn = vbx_ia_add(vbx_ia_mul(aj->sa, ak->ca), vbx_ia_mul(aj->ca, ak->sa));
+        if (sn.lo > 0.0 && dot3(aj->e, ak->e).hi < cs.lo)
+            continue;
+        const vbm_nb *nk = &in->nb[ak->j];
+        vbm_cap c;
+        for (int i = 0; i < 3; i++)
+            c.n[i] = vbx_ia_sub(vbx_ia_mul(nk->N, nj->d[i]), vbx_ia_mul(nj->N, nk->d[i]));
+        c.h = vbx_ia_sub(vbx_ia_mul(nj->N, nk->delta), vbx_ia_mul(nk->N, nj->delta));
+        /* over j's cap (u.e = z in [ca, 1], |u_perp| <= sa) u.n lies in
+         * z (e.n) +- sa |n_perp| */
+        vbx_ia en = dot3(aj->e, c.n);
+        vbx_ia perp = vbx_ia_sqrt(vbx_ia_sub(dot3(c.n, c.n), vbx_ia_sqr(en)));
+        vbx_ia spread = vbx_ia_mul(sa, perp);
+        double lo = vbx_min(vbx_ia_mul(aj->ca, en).lo, en.lo) - spread.hi;
+        double hi = vbx_max(vbx_ia_mul(aj->ca, en).hi, en.hi) + spread.hi;
+        if (vbx_pred(lo) > c.h.hi)
+            continue; /* all of j's cap is on j's side */
+        if (vbx_succ(hi) < c.h.lo)
+            return 0; /* none of it */
+        cp[nc++] = c;
+    }
+    return nc;
+}
+
+/* The volume and SAS from the arcs' integrals (in a fixed order: the same
+ * bytes whatever the threads). */
+static void total(const vbm_atom_in *in, const stokes_work *w, vbm_atom_out *out)
+{
+    vbx_ia area = vbx_ia_point(0.0), vol = vbx_ia_point(0.0);
+    for (size_t i = 0; i < w->nrec; i++) {
+        area = vbx_ia_add(area, w->rec[i].v[AREA]);
+        vol = vbx_ia_add(vol, w->rec[i].v[VOL]);
+    }
+    vbx_ia four_pi = {vbx_pred(FOUR_PI), vbx_succ(FOUR_PI)};
+    vbx_ia ball = vbx_ia_sub(four_pi, area); /* the sphere's solid angle */
+    vbx_ia r2 = vbx_ia_sqr(in->r);
+    out->sas = vbx_ia_mul(r2, ball);
+    out->vol = vbx_ia_add(vbx_ia_div(vbx_ia_mul(vbx_ia_mul(r2, in->r), ball), vbx_ia_point(3.0)),
+                          vol);
+}
+
+/* The contact of each neighbour: the sum of its arcs' (w->con, w->narcs). */
+static void contacts(const vbm_atom_in *in, stokes_work *w)
+{
+    for (size_t j = 0; j < in->nnb; j++) {
+        w->con[j] = vbx_ia_point(0.0);
+        w->narcs[j] = 0;
+    }
+    for (size_t i = 0; i < w->nrec; i++) {
+        uint32_t j = w->rec[i].j;
+        w->con[j] = vbx_ia_add(w->con[j], w->rec[i].v[CON]);
+        w->narcs[j]++;
+    }
+}
+
+/* Lower bound of |x| for x in a (0 when a holds 0). */
+static double magnitude_lo(vbx_ia a)
+{
+    return a.lo > 0.0 ? a.lo : a.hi < 0.0 ? -a.hi : 0.0;
+}
+
+/* Integrates every arc (again) whose widths exceed the targets: volume
+ * and SAS shares of tv and ts, each contact's share of tc[j] (or, with
+ * tc NULL, of fa); `scale` multiplies every target. Returns 0 when an
+ * interval cannot bound an arc. */
+static int integrate_arcs(const vbm_atom_in *in, stokes_work *w, double tv, double ts, double fa,
+                          double scale, size_t *pieces)
+{
+    double rr = in->r.hi, r3 = rr * rr * rr / 3.0, n = (double)(w->nrec + 1);
+    double tg[NV];
+    tg[AREA] = scale * vbx_min(0.5 * ts / (rr * rr), 0.25 * tv / r3) / n;
+    tg[VOL] = scale * 0.25 * tv / n;
+    for (size_t i = 0; i < w->nrec; i++) {
+        arcrec *a = &w->rec[i];
+        uint32_t j = a->j;
+        double tc = in->tolerance * vbx_max(scale > 1.0 ? 0.0 : magnitude_lo(w->con[j]), fa);
+        tg[CON] = in->contacts ? scale * 0.5 * tc / (double)(w->narcs[j] + 1) : INFINITY;
+        if (scale <= 1.0 && !over(a->v, tg))
+            continue;
+        if (!integrate_arc(in, w, a, tg, pieces))
+            return 0;
+    }
+    return 1;
+}
+
+/* out->pairs: the contacts with hi > 0. Returns 0 on ENOMEM. */
+static int pairs(const vbm_atom_in *in, const stokes_work *w, vbm_atom_out *out)
+{
+    size_t np = 0;
+    for (size_t j = 0; j < in->nnb; j++)
+        np += w->narcs[j] && w->con[j].hi > 0.0;
+    if (!np)
+        return 1;
+    out->pairs = malloc(np * sizeof *out->pairs);
+    if (!out->pairs)
+        return 0;
+    for (size_t j = 0; j < in->nnb; j++)
+        if (w->narcs[j] && w->con[j].hi > 0.0) {
+            vbm_pair p = {(uint32_t)j, w->con[j]};
+            out->pairs[out->npairs++] = p;
+        }
+    return 1;
+}
+
+int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
+{
+    memset(out, 0, sizeof *out);
+    if (!sc->stokes && !(sc->stokes = calloc(1, sizeof(stokes_work))))
+        return -1;
+    stokes_work *w = sc->stokes;
+    size_t m = in->nnb;
+    if (VB_ARRAY_FIT(w->D, w->cap_D, m + 1, 64) != VB_OK ||
+        VB_ARRAY_FIT(w->act, w->cap_act, m + 1, 64) != VB_OK ||
+        VB_ARRAY_FIT(w->caps, w->cap_caps, m + 1, 64) != VB_OK ||
+        VB_ARRAY_FIT(w->con, w->cap_con, m + 1, 64) != VB_OK ||
+        VB_ARRAY_FIT(w->narcs, w->cap_narcs, m + 1, 64) != VB_OK)
+        return -1;
+    /* the neighbours whose caps meet the sphere: k < D */
+    size_t na = 0;
+    for (size_t j = 0; j < m; j++) {
+        const vbm_nb *n = &in->nb[j];
+        if (!(n->N.lo > 0.0))
+            return 0;
+        w->D[j] = vbx_ia_sqrt(dot3(n->d, n->d));
+        vbx_ia g = vbx_ia_sub(w->D[j], n->k);
+        if (g.hi < 0.0)
+            continue;
+        if (!(g.lo > 0.0))
+            return 0;
+        active *a = &w->act[na++];
+        a->j = (uint32_t)j;
+        for (int k = 0; k < 3; k++)
+            a->e[k] = vbx_ia_div(n->d[k], w->D[j]);
+        a->ca = vbx_ia_div(n->k, w->D[j]);
+        a->sa = vbx_ia_sqrt(vbx_ia_sub(vbx_ia_point(1.0), vbx_ia_sqr(a->ca)));
+    }
+    w->nrec = 0;
+    for (size_t x = 0; x < na; x++) {
+        uint32_t j = w->act[x].j;
+        size_t nc = region_caps(in, w, na, x);
+        if (nc == 0)
+            continue;
+        int e = vbm_cap_arcs(w->caps, nc, &w->cw);
+        if (e <= 0)
+            return e;
+        if (VB_ARRAY_FIT(w->rec, w->cap_rec, w->nrec + w->cw.narc, 64) != VB_OK)
+            return -1;
+        const vbx_ia *ej = w->act[x].e;
+        for (size_t i = 0; i < w->cw.narc; i++) {
+            const vbm_arc *a = &w->cw.arc[i];
+            const vbm_circle *C = &w->cw.circ[a->cap];
+            arcrec *r = &w->rec[w->nrec++];
+            r->j = j;
+            r->own = a->cap == 0;
+            r->c = C->c;
+            r->s = C->s;
+            r->A0 = dot3(ej, C->a);
+            r->A1 = dot3(ej, C->e1);
+            r->A2 = dot3(ej, C->e2);
+            memcpy(r->p, a->p, sizeof r->p);
+            memcpy(r->q, a->q, sizeof r->q);
+            r->tp = a->tp;
+            r->tq = a->tq;
+        }
+    }
+    /* every arc to a thousand times its share of the floors of the targets
+     * (tolerance * max(|value|, floor), cell_patches.c), then the arcs wider
+     * than their share of the targets of the values found, halved until
+     * they meet it */
+    double rr = in->r.hi, r3 = rr * rr * rr / 3.0;
+    double fv = FLOOR_FRACTION * FOUR_PI * r3, fa = FLOOR_FRACTION * FOUR_PI * rr * rr;
+    size_t pieces = 0;
+    contacts(in, w); /* the arc counts */
+    if (!integrate_arcs(in, w, in->tolerance * fv, in->tolerance * fa, fa, 1e3, &pieces))
+        return 0;
+    total(in, w, out);
+    contacts(in, w);
+    double tgv = in->tolerance * vbx_max(magnitude_lo(out->vol), fv);
+    double tgs = in->tolerance * vbx_max(magnitude_lo(out->sas), fa);
+    if (!integrate_arcs(in, w, tgv, tgs, fa, 1.0, &pieces))
+        return 0;
+    total(in, w, out);
+    contacts(in, w);
+    out->patches = pieces;
+    double mv = fabs(vbx_ia_mid(out->vol)), ms = fabs(vbx_ia_mid(out->sas));
+    out->loose = width(out->vol) > in->tolerance * vbx_max(mv, fv) ||
+                 width(out->sas) > in->tolerance * vbx_max(ms, fa);
+    for (size_t j = 0; in->contacts && j < in->nnb; j++)
+        if (w->narcs[j] &&
+            width(w->con[j]) > in->tolerance * vbx_max(fabs(vbx_ia_mid(w->con[j])), fa))
+            out->loose = 1;
+    if (in->contacts && !pairs(in, w, out))
+        return -1;
+    return 1;
+}

@@ -1,0 +1,65 @@
+/* The boundary of an intersection of spherical caps on the unit sphere, as
+ * circle arcs (cap_arcs.c): the regions of directions a neighbour owns in a
+ * constrained cell are such intersections (stokes_cell.c). */
+#ifndef VBM_CAPS_H
+#define VBM_CAPS_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "vbx_ia.h"
+
+/* The cap {u in S^2 : u.n >= h} (n any non-zero vector). */
+typedef struct vbm_cap {
+    vbx_ia n[3], h;
+} vbm_cap;
+
+/* A cap's boundary circle u(t) = c a + s (cos t e1 + sin t e2): a = n / |n|,
+ * e1, e2 a frame with e1 x e2 = a (the cap lies to the left as t grows),
+ * c and s the cosine and sine of its angular radius. The intervals enclose
+ * the exact values of one exact frame. */
+typedef struct vbm_circle {
+    vbx_ia a[3], e1[3], e2[3], c, s;
+    int kind; /* VBM_CAP_CIRCLE, _ALL (h < -|n|: every direction), _NONE (h > |n|) */
+} vbm_circle;
+
+enum { VBM_CAP_CIRCLE = 1, VBM_CAP_ALL = 2, VBM_CAP_NONE = 3 };
+
+/* An arc of circle `cap` from p to q counterclockwise (points of the unit
+ * circle in its frame, as intervals), tp < tq <= tp + 2.6 their angles
+ * (nearest doubles: the arcs' frames only). */
+typedef struct vbm_arc {
+    uint32_t cap;
+    vbx_ia p[2], q[2];
+    double tp, tq;
+} vbm_arc;
+
+/* Work space of vbm_cap_arcs (zero-initialise; free with vbm_caps_free). */
+typedef struct vbm_capwork {
+    vbm_circle *circ;
+    struct vbm_endpt *end; /* cap_arcs.c's */
+    struct vbm_restr *res;
+    vbm_arc *arc;
+    size_t cap_circ, cap_end, cap_res, cap_arc, narc;
+} vbm_capwork;
+
+/* The circle of a cap: kind VBM_CAP_CIRCLE with the frame, _ALL or _NONE;
+ * 0 when the intervals cannot tell (|h| close to |n|). */
+int vbm_circle_of(const vbm_cap *cp, vbm_circle *c);
+
+/* The boundary of the intersection of caps[0..ncap) as arcs in w->arc
+ * (w->narc; none when the intersection is empty or the whole sphere: the
+ * caller tells them apart). Each arc is a piece of one cap's circle lying
+ * in every other cap, oriented with the intersection on its left, so that
+ * Stokes' theorem integrates over the intersection along them. Returns 1,
+ * 0 when an interval cannot decide a step (tangent or coincident circles,
+ * an arc end on a third circle), -1 on ENOMEM. */
+int vbm_cap_arcs(const vbm_cap *caps, size_t ncap, vbm_capwork *w);
+
+void vbm_caps_free(vbm_capwork *w);
+
+/* An exact unit vector (x, y) at about the angle t: (cos t, sin t) in
+ * doubles, normalised in intervals. */
+void vbm_unit_at(double t, vbx_ia *x, vbx_ia *y);
+
+#endif

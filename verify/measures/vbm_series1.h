@@ -1,0 +1,55 @@
+/* Univariate Taylor models in interval arithmetic: the quadrature of the
+ * boundary integrals of the cell measures (stokes_cell.c).
+ *
+ * A vbm_s1 holds the Taylor coefficients c_n = f^(n) / n!, n <= VBM1_K, of a
+ * function f(x), each as an interval (vbx_ia.h: every operation rounded
+ * outward). As in vbm_series.h the recurrences below compute them as
+ * functions of the expansion point, so the same calls give enclosures of
+ * the coefficients at a point or, with the variable's constant term an
+ * interval, at every point of that interval. Taylor's theorem with
+ * Lagrange's remainder gives f(xc + x) = sum_{n<K} c_n(xc) x^n + c_K(xi) x^K
+ * with xi between xc and xc + x; vbm1_integrate integrates both parts. */
+#ifndef VBM_SERIES1_H
+#define VBM_SERIES1_H
+
+#include "vbx_ia.h"
+
+/* K: the order of the remainder term (even: x^K >= 0). */
+#define VBM1_K 10
+
+typedef struct vbm_s1 {
+    vbx_ia c[VBM1_K + 1];
+} vbm_s1;
+
+/* f = v (a constant). */
+void vbm1_const(vbm_s1 *f, vbx_ia v);
+
+/* f = the variable expanded at `at` (a point, or an interval: the box). */
+void vbm1_var(vbm_s1 *f, vbx_ia at);
+
+/* r = v f + w (r may alias f); r = f + g, r = f - g (r may alias f or g). */
+void vbm1_affine(vbm_s1 *r, vbx_ia v, const vbm_s1 *f, vbx_ia w);
+void vbm1_add(vbm_s1 *r, const vbm_s1 *f, const vbm_s1 *g);
+void vbm1_sub(vbm_s1 *r, const vbm_s1 *f, const vbm_s1 *g);
+
+/* r = f g (r must not alias f or g). */
+void vbm1_mul(vbm_s1 *r, const vbm_s1 *f, const vbm_s1 *g);
+
+/* r = 1 / f (r must not alias f). Returns 0 when f's constant term may be
+ * 0 (r unspecified then). */
+int vbm1_recip(vbm_s1 *r, const vbm_s1 *f);
+
+/* r = sqrt(f) (r must not alias f). Returns 0 unless f's constant term is
+ * proven > 0. */
+int vbm1_sqrt(vbm_s1 *r, const vbm_s1 *f);
+
+/* r = log(f) (r must not alias f), the constant term's log rounded outward
+ * by MPFR (vbm_ia_log). Returns 0 unless f's constant term is proven > 0. */
+int vbm1_log(vbm_s1 *r, const vbm_s1 *f);
+
+/* An enclosure of the integral of f over [x0, x1]: `centre` holds f's
+ * coefficients at xc (x0 <= xc <= x1), `box` their enclosures over
+ * [x0, x1]. */
+vbx_ia vbm1_integrate(const vbm_s1 *centre, const vbm_s1 *box, double xc, double x0, double x1);
+
+#endif
