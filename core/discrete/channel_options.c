@@ -69,7 +69,8 @@ static const vbc_opt_spec table[] = {
      "jfa+1, jfa+2, 1+jfa (approximations: a few voxels may take a wrong label)",
      VBC_SECT_MAIN},
     {O_DEVICE, "--device", NULL, "device", VBC_OPT_CHOICE, 0, 0, "auto,gpu,cpu,ref", "D", "auto",
-     "auto (a GPU, else the CPU OpenCL device), gpu, cpu or ref (plain C, same output). If that "
+     "auto (a GPU, else ref: on a host without a GPU the plain C twin costs less CPU than the "
+     "CPU OpenCL device), gpu, cpu (the CPU OpenCL device) or ref (plain C, same output). If that "
      "OpenCL device cannot be used, the reference runs after warning W804 (W806: OpenCL failed "
      "mid-run, that frame and the rest rerun on the reference)", VBC_SECT_MAIN},
     {O_REPEAT, "--repeat", NULL, NULL, VBC_OPT_COUNT, NUM(1, 100000), "N", "1",

@@ -38,7 +38,9 @@ static PyObject *pipe_open(PyObject *self, PyObject *args)
     vbc_pipe *p = NULL;
     int rc;
     Py_BEGIN_ALLOW_THREADS
-    rc = vbc_pipe_open(c.ctx, vb_default_devices(), (vb_device_kind)kind, variant, &p);
+    rc = vbc_pipe_open(c.ctx, vb_default_devices(),
+                       vbc_channels_device((vb_device_kind)kind, vb_default_devices()), variant,
+                       &p);
     Py_END_ALLOW_THREADS
     if (rc != VB_OK)
         return vbpy_call_fail(&c, rc);
