@@ -174,13 +174,34 @@ void vbc_cells_within(const vbc_cells *c, const double p[3], double reach,
 int vbc_cells_any_within(const vbc_cells *c, const double p[3], double reach, int32_t *hint,
                          double *low);
 
+/* The ligands a channel analysis left out, per residue name in the order
+ * met (names past VBC_LIGAND_NAMES are counted in `atoms` only). */
+#define VBC_LIGAND_NAMES 32
+typedef struct vbc_ligands {
+    size_t atoms;
+    size_t n;
+    char name[VBC_LIGAND_NAMES][8];
+    size_t count[VBC_LIGAND_NAMES];
+} vbc_ligands;
+
+/* True when atom a is a ligand by default: a HETATM record (PDB, mmCIF,
+ * PQR; GRO and XYZR have none) whose residue is no polymer residue
+ * (VBC_POLYMER_HETATM: modified and D-amino acids, terminal caps such as
+ * gramicidin's ethanolamine, modified nucleotides) nor of the membrane
+ * (VBC_MEMBRANE_DEFAULT: --membrane decides on those). Sugars, ions,
+ * cofactors, drugs and buffer molecules are ligands; water is dropped
+ * before. */
+int vbc_is_ligand(const vb_atom_info *a);
+
 /* A copy of s without the atoms whose residue name is one of resnames[0..n)
- * (case-insensitive; a set without atom records keeps every sphere), in
- * *out (free with vb_spheres_free), *dropped the count left out, counts[k]
- * (when not NULL) increased by the atoms of name k; no exact decimals (a
- * channel set). VB_EINPUT_EMPTY when nothing is left, VB_ENOMEM. */
+ * (case-insensitive; a set without atom records keeps every sphere), and
+ * without its ligands (vbc_is_ligand) when lig is not NULL, in *out (free
+ * with vb_spheres_free), *dropped the count left out, counts[k] (when not
+ * NULL) increased by the atoms of name k, lig's counts by the ligand atoms
+ * (a name listed in resnames counts there); no exact decimals (a channel
+ * set). VB_EINPUT_EMPTY when nothing is left, VB_ENOMEM. */
 int vbc_spheres_without(vb_ctx *ctx, const vb_sphere_set *s, const char *const *resnames, size_t n,
-                        size_t *counts, vb_sphere_set **out, size_t *dropped);
+                        size_t *counts, vbc_ligands *lig, vb_sphere_set **out, size_t *dropped);
 
 /* Writers (core/discrete/channel_write.c). */
 
