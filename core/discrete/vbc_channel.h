@@ -157,6 +157,18 @@ const vb_sphere_set *vbc_cells_spheres(const vbc_cells *c);
  * and that sphere's index in *atom. */
 double vbc_cells_clearance(const vbc_cells *c, const double p[3], int32_t *atom);
 
+/* vbc_cells_clearance and the question of vbc_cells_within around its
+ * answer in one walk of the cells: *R and *atom as vbc_cells_clearance
+ * gives them, and in near[0..*nnear) with dist[] (|p - c| - r, the
+ * expression vbc_cells_within tests) every sphere whose surface is within
+ * *R + slack of p (slack >= 0), and maybe more, in the order
+ * vbc_cells_within visits them: so vbc_cells_within(c, p, *R + s, fn) for
+ * 0 <= s <= slack calls fn for exactly the near[k] with dist[k] <= *R + s,
+ * in this order. Returns 0, or -1 when more than cap spheres were to be
+ * listed (the list then incomplete: ask vbc_cells_within). */
+int vbc_cells_nearest_near(const vbc_cells *c, const double p[3], double slack, double *R,
+                           int32_t *atom, int32_t *near, double *dist, size_t cap, size_t *nnear);
+
 /* Calls fn(atom, user) for every sphere whose surface is within `reach` of p
  * (|p - c| - r <= reach). */
 void vbc_cells_within(const vbc_cells *c, const double p[3], double reach,
