@@ -111,7 +111,9 @@ typedef struct vbc_pore_summary {
     double F, g_macro_pS;   /* HOLE's geometric factor (1/A) and Gmacro (1 M KCl) */
     int open_lo, open_hi;   /* each end left the molecule */
     int judged;             /* the verdict ran (a found axis): buried below */
-    double buried;          /* A walled along the axis (vbc_pore_judge), also when no pore */
+    double buried;          /* A walled along the axis (vbc_pore_judge), also when no pore;
+                             * for a pore VBC_PORE_MIN_BURIED or a little more (the
+                             * verdict stops there) */
     int rejected_source;    /* no pore: the axis of the path judged (enum vbc_axis_source) */
     char why[128];          /* how the axis was found, in words (vbc_axis.why) */
 } vbc_pore_summary;
