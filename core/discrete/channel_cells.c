@@ -129,6 +129,25 @@ static int walk_ring(const vbc_cells *c, const int q0[3], int ring,
     return 0;
 }
 
+/* Offers sphere a to the nearest-surface search at p (*best, *atom; *atom
+ * -1 before the first): 0 when its surface is certainly beyond *best +
+ * slack (the square root skipped), else 1 with its distance |p - c| - r in
+ * *d, *best and *atom taking it when nearer (ties to the lower index). */
+static inline int nearest_offer(const vbc_cells *c, const double p[3], int32_t a, double slack,
+                                double *best, int32_t *atom, double *d)
+{
+    double dx = p[0] - c->s->x[a], dy = p[1] - c->s->y[a], dz = p[2] - c->s->z[a];
+    double d2 = dx * dx + dy * dy + dz * dz, lim = *best + slack + c->s->r[a];
+    if (*atom >= 0 && lim >= 0.0 && d2 > lim * lim * (1.0 + 1e-12))
+        return 0;
+    *d = sqrt(d2) - c->s->r[a];
+    if (*atom < 0 || *d < *best || (*d == *best && a < *atom)) {
+        *best = *d;
+        *atom = a;
+    }
+    return 1;
+}
+
 typedef struct {
     double p[3], best;
     int32_t atom;
@@ -137,16 +156,8 @@ typedef struct {
 static int nearest_visit(const vbc_cells *c, int32_t a, void *user)
 {
     nearest_state *st = user;
-    double dx = st->p[0] - c->s->x[a], dy = st->p[1] - c->s->y[a], dz = st->p[2] - c->s->z[a];
-    double d2 = dx * dx + dy * dy + dz * dz, reach = st->best + c->s->r[a];
-    /* Skip the square root when the surface is certainly farther than the best. */
-    if (st->atom >= 0 && reach >= 0.0 && d2 > reach * reach * (1.0 + 1e-12))
-        return 0;
-    double d = sqrt(d2) - c->s->r[a];
-    if (st->atom < 0 || d < st->best || (d == st->best && a < st->atom)) {
-        st->best = d;
-        st->atom = a;
-    }
+    double d;
+    nearest_offer(c, st->p, a, 0.0, &st->best, &st->atom, &d);
     return 0;
 }
 
@@ -199,17 +210,9 @@ typedef struct {
 static int near_visit(const vbc_cells *c, int32_t a, void *user)
 {
     near_state *st = user;
-    double dx = st->p[0] - c->s->x[a], dy = st->p[1] - c->s->y[a], dz = st->p[2] - c->s->z[a];
-    double d2 = dx * dx + dy * dy + dz * dz, lim = st->best + st->slack + c->s->r[a];
-    /* Skip the square root when the surface is certainly beyond best + slack
-     * (nearest_visit's shortcut, widened by slack). */
-    if (st->atom >= 0 && lim >= 0.0 && d2 > lim * lim * (1.0 + 1e-12))
+    double d;
+    if (!nearest_offer(c, st->p, a, st->slack, &st->best, &st->atom, &d))
         return 0;
-    double d = sqrt(d2) - c->s->r[a];
-    if (st->atom < 0 || d < st->best || (d == st->best && a < st->atom)) {
-        st->best = d;
-        st->atom = a;
-    }
     if (d <= st->best + st->slack) {
         if (st->n == st->cap) {
             st->full = 1;
