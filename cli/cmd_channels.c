@@ -419,7 +419,9 @@ int vb_cmd_channels(int argc, char **argv)
         rc = vb_radii_load(ctx, A.in.radii_path, &radii);
     vb_world_loud(ctx, quiet);
     if (rc == VB_OK)
-        rc = vbc_pipe_open(ctx, vb_default_devices(), A.c.device, A.c.variant, &pipe);
+        rc = vbc_pipe_open(ctx, vb_default_devices(),
+                           vbc_channels_device(A.c.device, vb_default_devices()), A.c.variant,
+                           &pipe);
     vb_read_options ro;
     vb_cli_input_read_options(&A.in, radii, &ro);
     quiet = vb_world_quiet(ctx);

@@ -129,6 +129,25 @@ static int walk_ring(const vbc_cells *c, const int q0[3], int ring,
     return 0;
 }
 
+/* Offers sphere a to the nearest-surface search at p (*best, *atom; *atom
+ * -1 before the first): 0 when its surface is certainly beyond *best +
+ * slack (the square root skipped), else 1 with its distance |p - c| - r in
+ * *d, *best and *atom taking it when nearer (ties to the lower index). */
+static inline int nearest_offer(const vbc_cells *c, const double p[3], int32_t a, double slack,
+                                double *best, int32_t *atom, double *d)
+{
+    double dx = p[0] - c->s->x[a], dy = p[1] - c->s->y[a], dz = p[2] - c->s->z[a];
+    double d2 = dx * dx + dy * dy + dz * dz, lim = *best + slack + c->s->r[a];
+    if (*atom >= 0 && lim >= 0.0 && d2 > lim * lim * (1.0 + 1e-12))
+        return 0;
+    *d = sqrt(d2) - c->s->r[a];
+    if (*atom < 0 || *d < *best || (*d == *best && a < *atom)) {
+        *best = *d;
+        *atom = a;
+    }
+    return 1;
+}
+
 typedef struct {
     double p[3], best;
     int32_t atom;
@@ -137,16 +156,8 @@ typedef struct {
 static int nearest_visit(const vbc_cells *c, int32_t a, void *user)
 {
     nearest_state *st = user;
-    double dx = st->p[0] - c->s->x[a], dy = st->p[1] - c->s->y[a], dz = st->p[2] - c->s->z[a];
-    double d2 = dx * dx + dy * dy + dz * dz, reach = st->best + c->s->r[a];
-    /* Skip the square root when the surface is certainly farther than the best. */
-    if (st->atom >= 0 && reach >= 0.0 && d2 > reach * reach * (1.0 + 1e-12))
-        return 0;
-    double d = sqrt(d2) - c->s->r[a];
-    if (st->atom < 0 || d < st->best || (d == st->best && a < st->atom)) {
-        st->best = d;
-        st->atom = a;
-    }
+    double d;
+    nearest_offer(c, st->p, a, 0.0, &st->best, &st->atom, &d);
     return 0;
 }
 
@@ -183,6 +194,56 @@ double vbc_cells_clearance(const vbc_cells *c, const double p[3], int32_t *atom)
     }
     *atom = st.atom;
     return st.best;
+}
+
+typedef struct {
+    double p[3], best, slack;
+    int32_t atom;
+    int32_t *near;
+    double *dist;
+    size_t n, cap;
+    int full;
+} near_state;
+
+/* nearest_visit's update, and the list of spheres within best + slack (a
+ * superset of those within the final best + slack, as best only falls). */
+static int near_visit(const vbc_cells *c, int32_t a, void *user)
+{
+    near_state *st = user;
+    double d;
+    if (!nearest_offer(c, st->p, a, st->slack, &st->best, &st->atom, &d))
+        return 0;
+    if (d <= st->best + st->slack) {
+        if (st->n == st->cap) {
+            st->full = 1;
+            return 1;
+        }
+        st->near[st->n] = a;
+        st->dist[st->n++] = d;
+    }
+    return 0;
+}
+
+int vbc_cells_nearest_near(const vbc_cells *c, const double p[3], double slack, double *R,
+                           int32_t *atom, int32_t *near, double *dist, size_t cap, size_t *nnear)
+{
+    near_state st = {{p[0], p[1], p[2]}, 0.0, slack, -1, near, dist, 0, cap, 0};
+    int q0[3] = {cell_coord(c, 0, p[0]), cell_coord(c, 1, p[1]), cell_coord(c, 2, p[2])};
+    /* Until both walks would stop: vbc_cells_clearance's ring (best within
+     * reach) and vbc_cells_within's for reach best + slack (the later). */
+    for (int ring = 0;; ring++) {
+        if (walk_ring(c, q0, ring, near_visit, &st))
+            break;
+        if ((st.atom >= 0 && ring_reach(c, p, q0, ring) - c->rmax > st.best + slack) ||
+            ring_covers_all(c, q0, ring))
+            break;
+    }
+    *nnear = st.n;
+    if (st.full)
+        return -1;
+    *R = st.best;
+    *atom = st.atom;
+    return 0;
 }
 
 typedef struct {

@@ -13,7 +13,7 @@ enum vbc_opt_id {
     O_MIN_RADIUS, O_LINING_TOL, O_CAVITIES, O_CENTRELINES, O_PYMOL, O_VOLUME, O_VOLUME_MASK,
     O_PNG, O_PNG_NORMAL, O_JFA, O_DEVICE, O_REPEAT, O_AXIS, O_THROUGH, O_SAMPLE, O_END_RADIUS,
     O_NO_PORE, O_IGNORE, O_MEMBRANE, O_PROFILE, O_PLOT, O_HTML, O_FIXED_GRID, O_OCCUPANCY,
-    O_AXIS_REFIT
+    O_AXIS_REFIT, O_KEEP_LIGANDS
 };
 
 #define NUM(a, b) (a), (b), NULL
@@ -69,7 +69,8 @@ static const vbc_opt_spec table[] = {
      "jfa+1, jfa+2, 1+jfa (approximations: a few voxels may take a wrong label)",
      VBC_SECT_MAIN},
     {O_DEVICE, "--device", NULL, "device", VBC_OPT_CHOICE, 0, 0, "auto,gpu,cpu,ref", "D", "auto",
-     "auto (a GPU, else the CPU OpenCL device), gpu, cpu or ref (plain C, same output). If that "
+     "auto (a GPU, else ref: on a host without a GPU the plain C twin costs less CPU than the "
+     "CPU OpenCL device), gpu, cpu (the CPU OpenCL device) or ref (plain C, same output). If that "
      "OpenCL device cannot be used, the reference runs after warning W804 (W806: OpenCL failed "
      "mid-run, that frame and the rest rerun on the reference)", VBC_SECT_MAIN},
     {O_REPEAT, "--repeat", NULL, NULL, VBC_OPT_COUNT, NUM(1, 100000), "N", "1",
@@ -112,6 +113,11 @@ static const vbc_opt_spec table[] = {
     {O_AXIS_REFIT, "--axis-refit", NULL, "axis_refit", VBC_OPT_FLAG, NONE, NULL, NULL,
      "trajectories: refit the axis on every frame from the source the first frame found "
      "(symmetry, chains, barrel, subunit, principal; the sweep's start moves with it)",
+     VBC_SECT_PORE},
+    {O_KEEP_LIGANDS, "--keep-ligands", NULL, "keep_ligands", VBC_OPT_FLAG, NONE, NULL, NULL,
+     "keep the ligands: by default HETATM residues that are no polymer residue (sugars, ions, "
+     "cofactors, drugs; not modified or D-amino acids, caps such as ACE, NME, ETA) are left out "
+     "before the axis is chosen, as HOLE's examples ignore them, and W811 names them",
      VBC_SECT_PORE},
 };
 
@@ -338,6 +344,7 @@ int vbc_channels_set(vbc_channels_config *c, const vbc_opt_spec *o, const char *
     case O_END_RADIUS: c->pore.sweep.end_radius = num; break;
     case O_NO_PORE: c->pore.enabled = 0; break;
     case O_AXIS_REFIT: c->axis_refit = 1; break;
+    case O_KEEP_LIGANDS: c->keep_ligands = 1; break;
     case O_IGNORE:
         return set_names(o->name, v, c->ignore_buf, c->ignore, &c->nignore, err, errlen);
     case O_MEMBRANE:

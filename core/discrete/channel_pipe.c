@@ -166,6 +166,13 @@ static int to_reference(vb_ctx *ctx, vbc_pipe *p)
     return vbc_engine_ref_open(ctx, p->variant, &p->engine);
 }
 
+vb_device_kind vbc_channels_device(vb_device_kind kind, const vb_device_layer *layer)
+{
+    if (kind != VB_DEVICE_AUTO || (layer && layer->gpu_present && layer->gpu_present()))
+        return kind;
+    return VB_DEVICE_REF;
+}
+
 int vbc_pipe_open(vb_ctx *ctx, const vb_device_layer *layer, vb_device_kind kind,
                   vbj_variant variant, vbc_pipe **out)
 {

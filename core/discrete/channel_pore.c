@@ -96,6 +96,24 @@ static int blocked_by(const vb_sphere_set *s, const active_set *A, const double 
     return 0;
 }
 
+/* The spheres near the ascent's point: vbc_cells_nearest_near's list. */
+#define NEAR_CAP 128
+typedef struct {
+    int32_t id[NEAR_CAP];
+    double dist[NEAR_CAP];
+    size_t n;
+    int ok; /* complete (else vbc_cells_within answers) */
+} near_list;
+
+/* The clearance at q, and its near list for slack eps. */
+static double clearance_near(const vbc_cells *c, const double q[3], double eps, int32_t *atom,
+                             near_list *L)
+{
+    double R;
+    L->ok = vbc_cells_nearest_near(c, q, eps, &R, atom, L->id, L->dist, NEAR_CAP, &L->n) == 0;
+    return L->ok ? R : vbc_cells_clearance(c, q, atom);
+}
+
 double vbc_plane_maximise(const vbc_cells *c, const double u[3], double travel, double p[3],
                           int32_t *atom)
 {
@@ -103,11 +121,21 @@ double vbc_plane_maximise(const vbc_cells *c, const double u[3], double travel, 
     double e1[3], e2[3], p0[3] = {p[0], p[1], p[2]};
     plane_frame(u, e1, e2);
     int32_t a;
-    double R = vbc_cells_clearance(c, p, &a);
     double eps = 0.1, step = 0.1;
+    /* The near list of p (for eps, which only falls while p stays) answers
+     * each step's vbc_cells_within(p, R + eps) as that would: the same
+     * atoms in the same order, without a second walk of the cells. */
+    near_list here, there;
+    double R = clearance_near(c, p, eps, &a, &here);
     for (int it = 0; it < 400 && eps >= 1e-7; it++) {
         active_set A = {s, {p[0], p[1], p[2]}, {0}, 0};
-        vbc_cells_within(c, p, R + eps, active_add, &A);
+        if (here.ok) {
+            for (size_t k = 0; k < here.n; k++)
+                if (here.dist[k] <= R + eps)
+                    active_add(here.id[k], &A);
+        } else {
+            vbc_cells_within(c, p, R + eps, active_add, &A);
+        }
         double g[MAX_ACTIVE][2];
         int n = 0;
         for (int k = 0; k < A.n; k++) {
@@ -147,11 +175,12 @@ double vbc_plane_maximise(const vbc_cells *c, const double u[3], double travel, 
             if (blocked_by(s, &A, q, R + 1e-13))
                 continue;
             int32_t b;
-            double Rq = vbc_cells_clearance(c, q, &b);
+            double Rq = clearance_near(c, q, eps, &b, &there);
             if (Rq > R + 1e-13) {
                 memcpy(p, q, sizeof q);
                 R = Rq;
                 a = b;
+                here = there;
                 step = fmin(2.0 * t, 1.0);
                 moved = 1;
                 break;

@@ -498,7 +498,10 @@ int vbc_pore_stage(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const v
          * one only when it is a pore (the verdict, vbc_pore.h). */
         vbc_pore_verdict v = {0, 0.0, 0, 0, 1};
         int judge = !(req->have_axis && !req->found_source);
-        if (rc == VB_OK && p.n > 0 && judge && vbc_pore_judge(cells, &p, &v) != 0)
+        /* The verdict alone: a pore's planes past VBC_PORE_MIN_BURIED of
+         * walled run are not flooded (their buried length is never shown). */
+        if (rc == VB_OK && p.n > 0 && judge &&
+            vbc_pore_judge(cells, &p, VBC_PORE_MIN_BURIED, &v) != 0)
             rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "pore verdict");
         t0 = vb_now();
         t.verdict = 1e3 * (t0 - t1);

@@ -90,17 +90,19 @@ static int frame_prepare(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long 
     int rc = VB_OK;
     o->kept = NULL;
     o->s = s0;
-    if (A->nignore || A->nmembrane) {
+    if (A->nignore || A->nmembrane || !A->keep_ligands) {
         const char *names[2 * VBC_MAX_NAMES];
         size_t n = 0, dropped;
         for (size_t k = 0; k < A->nmembrane; k++)
             names[n++] = A->membrane[k];
         for (size_t k = 0; k < A->nignore; k++)
             names[n++] = A->ignore[k];
-        rc = vbc_spheres_without(ctx, s0, names, n, r->left_out, &o->kept, &dropped);
+        size_t lig0 = r->ligands.atoms;
+        rc = vbc_spheres_without(ctx, s0, names, n, r->left_out,
+                                 A->keep_ligands ? NULL : &r->ligands, &o->kept, &dropped);
         if (rc != VB_OK)
             return rc;
-        r->ignored += dropped;
+        r->ignored += dropped - (r->ligands.atoms - lig0);
         o->s = o->kept;
     }
     if ((rc = frame_grid(ctx, r, o->s, index, &o->g)) != VB_OK) {
@@ -305,10 +307,20 @@ int vbc_run_back(vb_ctx *ctx, vbc_run *r, vbc_run_out *o)
 void vbc_run_report_left_out(vb_ctx *ctx, const vbc_run *r)
 {
     const vbc_channels_config *A = r->cfg;
-    if (!r->ignored)
-        return;
     char text[2048];
     size_t o = 0;
+    const vbc_ligands *L = &r->ligands;
+    if (L->atoms) {
+        for (size_t k = 0; k < L->n && o + 32 < sizeof text; k++)
+            o += (size_t)snprintf(text + o, sizeof text - o, "%s%s %zu", k ? ", " : "", L->name[k],
+                                  L->count[k]);
+        vb_warn(ctx, VB_W_LIGANDS_LEFT_OUT, r->input, 0,
+                "%zu ligand atoms left out (HETATM residues of no polymer; --keep-ligands keeps "
+                "them): %s", L->atoms, text);
+        o = 0;
+    }
+    if (!r->ignored)
+        return;
     text[0] = '\0';
     for (int part = 0; part < 2; part++) {
         size_t n = part ? A->nignore : A->nmembrane, base = part ? A->nmembrane : 0, shown = 0;
@@ -332,9 +344,11 @@ int vbc_run_axis(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index)
     memset(&o, 0, sizeof o);
     /* Counted by the rank that owns the frame. */
     size_t ignored = r->ignored, left_out[2 * VBC_MAX_NAMES];
+    vbc_ligands ligands = r->ligands;
     memcpy(left_out, r->left_out, sizeof left_out);
     int rc = frame_prepare(ctx, r, s0, index, &o);
     r->ignored = ignored;
+    r->ligands = ligands;
     memcpy(r->left_out, left_out, sizeof left_out);
     if (rc != VB_OK)
         return rc;

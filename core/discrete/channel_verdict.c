@@ -97,7 +97,7 @@ int vbc_plane_walled(const vbc_cells *c, const double u[3], const double p[3], d
     return 1;
 }
 
-int vbc_pore_judge(const vbc_cells *c, const vbc_pore *p, vbc_pore_verdict *v)
+int vbc_pore_judge(const vbc_cells *c, const vbc_pore *p, double enough, vbc_pore_verdict *v)
 {
     memset(v, 0, sizeof *v);
     void *scratch = NULL;
@@ -127,6 +127,8 @@ int vbc_pore_judge(const vbc_cells *c, const vbc_pore *p, vbc_pore_verdict *v)
             v->buried = span;
             v->run_lo = lo;
             v->run_hi = k;
+            if (v->buried >= enough)
+                break;
         }
     }
     free(scratch);

@@ -111,7 +111,9 @@ typedef struct vbc_pore_summary {
     double F, g_macro_pS;   /* HOLE's geometric factor (1/A) and Gmacro (1 M KCl) */
     int open_lo, open_hi;   /* each end left the molecule */
     int judged;             /* the verdict ran (a found axis): buried below */
-    double buried;          /* A walled along the axis (vbc_pore_judge), also when no pore */
+    double buried;          /* A walled along the axis (vbc_pore_judge), also when no pore;
+                             * for a pore VBC_PORE_MIN_BURIED or a little more (the
+                             * verdict stops there) */
     int rejected_source;    /* no pore: the axis of the path judged (enum vbc_axis_source) */
     char why[128];          /* how the axis was found, in words (vbc_axis.why) */
 } vbc_pore_summary;
@@ -169,6 +171,18 @@ const vb_sphere_set *vbc_cells_spheres(const vbc_cells *c);
  * and that sphere's index in *atom. */
 double vbc_cells_clearance(const vbc_cells *c, const double p[3], int32_t *atom);
 
+/* vbc_cells_clearance and the question of vbc_cells_within around its
+ * answer in one walk of the cells: *R and *atom as vbc_cells_clearance
+ * gives them, and in near[0..*nnear) with dist[] (|p - c| - r, the
+ * expression vbc_cells_within tests) every sphere whose surface is within
+ * *R + slack of p (slack >= 0), and maybe more, in the order
+ * vbc_cells_within visits them: so vbc_cells_within(c, p, *R + s, fn) for
+ * 0 <= s <= slack calls fn for exactly the near[k] with dist[k] <= *R + s,
+ * in this order. Returns 0, or -1 when more than cap spheres were to be
+ * listed (the list then incomplete: ask vbc_cells_within). */
+int vbc_cells_nearest_near(const vbc_cells *c, const double p[3], double slack, double *R,
+                           int32_t *atom, int32_t *near, double *dist, size_t cap, size_t *nnear);
+
 /* Calls fn(atom, user) for every sphere whose surface is within `reach` of p
  * (|p - c| - r <= reach). */
 void vbc_cells_within(const vbc_cells *c, const double p[3], double reach,
@@ -186,13 +200,34 @@ void vbc_cells_within(const vbc_cells *c, const double p[3], double reach,
 int vbc_cells_any_within(const vbc_cells *c, const double p[3], double reach, int32_t *hint,
                          double *low);
 
+/* The ligands a channel analysis left out, per residue name in the order
+ * met (names past VBC_LIGAND_NAMES are counted in `atoms` only). */
+#define VBC_LIGAND_NAMES 32
+typedef struct vbc_ligands {
+    size_t atoms;
+    size_t n;
+    char name[VBC_LIGAND_NAMES][8];
+    size_t count[VBC_LIGAND_NAMES];
+} vbc_ligands;
+
+/* True when atom a is a ligand by default: a HETATM record (PDB, mmCIF,
+ * PQR; GRO and XYZR have none) whose residue is no polymer residue
+ * (VBC_POLYMER_HETATM: modified and D-amino acids, terminal caps such as
+ * gramicidin's ethanolamine, modified nucleotides) nor of the membrane
+ * (VBC_MEMBRANE_DEFAULT: --membrane decides on those). Sugars, ions,
+ * cofactors, drugs and buffer molecules are ligands; water is dropped
+ * before. */
+int vbc_is_ligand(const vb_atom_info *a);
+
 /* A copy of s without the atoms whose residue name is one of resnames[0..n)
- * (case-insensitive; a set without atom records keeps every sphere), in
- * *out (free with vb_spheres_free), *dropped the count left out, counts[k]
- * (when not NULL) increased by the atoms of name k; no exact decimals (a
- * channel set). VB_EINPUT_EMPTY when nothing is left, VB_ENOMEM. */
+ * (case-insensitive; a set without atom records keeps every sphere), and
+ * without its ligands (vbc_is_ligand) when lig is not NULL, in *out (free
+ * with vb_spheres_free), *dropped the count left out, counts[k] (when not
+ * NULL) increased by the atoms of name k, lig's counts by the ligand atoms
+ * (a name listed in resnames counts there); no exact decimals (a channel
+ * set). VB_EINPUT_EMPTY when nothing is left, VB_ENOMEM. */
 int vbc_spheres_without(vb_ctx *ctx, const vb_sphere_set *s, const char *const *resnames, size_t n,
-                        size_t *counts, vb_sphere_set **out, size_t *dropped);
+                        size_t *counts, vbc_ligands *lig, vb_sphere_set **out, size_t *dropped);
 
 /* Writers (core/discrete/channel_write.c). */
 

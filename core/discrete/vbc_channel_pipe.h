@@ -69,6 +69,16 @@ void vbc_engine_close(vbc_engine *e);
 
 typedef struct vbc_pipe vbc_pipe;
 
+/* The device kind the channel pipeline of --device `kind` uses: `kind`,
+ * except that VB_DEVICE_AUTO on a host that shows no GPU (layer NULL or
+ * layer->gpu_present() false; nothing opened, no OpenCL call) is
+ * VB_DEVICE_REF: the plain-C twin on host threads, not the CPU OpenCL
+ * device. On the 2-core build machine PoCL cost 0.46 s of CPU per frame of
+ * 1chb against the twin's 0.27 s, and its set-up 0.2-0.4 s more (issue 32,
+ * papers/facet-jfa-and-channels/channels/axis_2core.md). The output bytes
+ * never depend on it. */
+vb_device_kind vbc_channels_device(vb_device_kind kind, const vb_device_layer *layer);
+
 /* Opens the pipeline for device `kind` with JFA `variant` by the one
  * fallback rule (W804). layer may be NULL (reference only). VB_ENOMEM, or
  * VB_EDEVICE only if even the reference cannot open. */

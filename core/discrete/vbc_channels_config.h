@@ -80,6 +80,7 @@ typedef struct vbc_channels_config {
     vb_device_kind device;
     vbc_options opt;      /* its pore points at `pore` (vbc_channels_check) */
     int axis_refit;       /* --axis-refit: later frames refit the first frame's axis source */
+    int keep_ligands;     /* --keep-ligands: keep HETATM ligands (vbc_is_ligand) */
     vbc_axis refit0;      /* that source refitted on the first frame (vbc_axis_refit) */
     double u0[3], c0[3];  /* and the first frame's pore axis */
 } vbc_channels_config;

@@ -262,8 +262,11 @@ void vbc_plane_basis(const double u[3], double a[3], double b[3]);
 int vbc_plane_walled(const vbc_cells *c, const double u[3], const double p[3], double r,
                      void **scratch, size_t *scratch_len);
 
-/* Judges the pore p (its points, axis) against the atoms of c. Returns 0
- * with *v filled, -1 out of memory. */
-int vbc_pore_judge(const vbc_cells *c, const vbc_pore *p, vbc_pore_verdict *v);
+/* Judges the pore p (its points, axis) against the atoms of c, plane by
+ * plane from the first point; stops once a run's buried length reaches
+ * `enough` (INFINITY: every plane, the longest run; VBC_PORE_MIN_BURIED:
+ * the verdict alone, its planes past that unflooded, buried then that
+ * run's length so far). Returns 0 with *v filled, -1 out of memory. */
+int vbc_pore_judge(const vbc_cells *c, const vbc_pore *p, double enough, vbc_pore_verdict *v);
 
 #endif

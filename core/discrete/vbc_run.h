@@ -31,6 +31,7 @@ typedef struct vbc_run {
     vbc_series series;        /* the pore's smallest radius per frame (with --plot) */
     size_t ignored;           /* atoms left out by --membrane and --ignore, over the frames */
     size_t left_out[2 * VBC_MAX_NAMES]; /* per name: cfg's membrane names, then its ignore names */
+    vbc_ligands ligands;      /* ligands left out (unless --keep-ligands), over the frames */
     unsigned want;            /* VBC_WANT_* the caller wants of every frame besides cfg's */
 } vbc_run;
 
@@ -83,7 +84,8 @@ void vbc_run_front_drop(vbc_run_out *o);
 void vbc_run_frame_done(vbc_run *r, int first, vbc_run_out *o);
 
 /* W809 for the atoms the run left out (nothing when none): the count, and
- * per residue name of the membrane and of --ignore how many. */
+ * per residue name of the membrane and of --ignore how many; W811 for the
+ * ligands left out, per residue name. */
 void vbc_run_report_left_out(vb_ctx *ctx, const vbc_run *r);
 
 /* The pore axis of the first frame without its outputs or counts (under

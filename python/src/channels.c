@@ -38,7 +38,9 @@ static PyObject *pipe_open(PyObject *self, PyObject *args)
     vbc_pipe *p = NULL;
     int rc;
     Py_BEGIN_ALLOW_THREADS
-    rc = vbc_pipe_open(c.ctx, vb_default_devices(), (vb_device_kind)kind, variant, &p);
+    rc = vbc_pipe_open(c.ctx, vb_default_devices(),
+                       vbc_channels_device((vb_device_kind)kind, vb_default_devices()), variant,
+                       &p);
     Py_END_ALLOW_THREADS
     if (rc != VB_OK)
         return vbpy_call_fail(&c, rc);
@@ -135,12 +137,20 @@ static void carry_destroy(PyObject *cap)
 }
 
 /* What an Engine carries from frame to frame: the pore request as the
- * first frame left it (vbc_run keeps the axis it found there). */
+ * first frame left it (vbc_run keeps the axis it found there) and, for
+ * axis_refit, the first frame's refitted source and axis (the command's
+ * run keeps them in its config across frames). */
+typedef struct frame_carry {
+    vbc_pore_request pore;
+    vbc_axis refit0;
+    double u0[3], c0[3];
+} frame_carry;
+
 static PyObject *carry_new(PyObject *self, PyObject *unused)
 {
     (void)self;
     (void)unused;
-    vbc_pore_request *q = calloc(1, sizeof *q);
+    frame_carry *q = calloc(1, sizeof *q);
     if (!q)
         return PyErr_NoMemory();
     PyObject *cap = PyCapsule_New(q, CARRY_CAPSULE, carry_destroy);
@@ -271,7 +281,7 @@ static PyObject *channels_run(PyObject *self, PyObject *args)
         return NULL;
     vbc_pipe *pipe = PyCapsule_GetPointer(pcap, PIPE_CAPSULE);
     vb_sphere_set *s = pipe ? vbpy_spheres_get(scap) : NULL;
-    vbc_pore_request *carry = NULL;
+    frame_carry *carry = NULL;
     if (!s || (ccap != Py_None && !(carry = PyCapsule_GetPointer(ccap, CARRY_CAPSULE))))
         return NULL;
     /* Heap: the configuration is large (its name lists). */
@@ -283,10 +293,13 @@ static PyObject *channels_run(PyObject *self, PyObject *args)
         return NULL;
     }
     /* An engine's later frames sweep the axis its first frame found. */
-    if (carry && carry->have_axis && !cfg->pore.have_axis && !cfg->pore.have_through) {
+    if (carry && carry->pore.have_axis && !cfg->pore.have_axis && !cfg->pore.have_through) {
         vbc_pore_options sweep = cfg->pore.sweep;
         int enabled = cfg->pore.enabled;
-        cfg->pore = *carry;
+        cfg->pore = carry->pore;
+        cfg->refit0 = carry->refit0;
+        memcpy(cfg->u0, carry->u0, sizeof cfg->u0);
+        memcpy(cfg->c0, carry->c0, sizeof cfg->c0);
         cfg->pore.sweep = sweep;
         cfg->pore.enabled = enabled;
     }
@@ -312,8 +325,12 @@ static PyObject *channels_run(PyObject *self, PyObject *args)
         free(cfg);
         return vbpy_call_fail(&c, rc);
     }
-    if (carry && cfg->pore.have_axis)
-        *carry = cfg->pore;
+    if (carry && cfg->pore.have_axis) {
+        carry->pore = cfg->pore;
+        carry->refit0 = cfg->refit0;
+        memcpy(carry->u0, cfg->u0, sizeof carry->u0);
+        memcpy(carry->c0, cfg->c0, sizeof carry->c0);
+    }
     const vbc_grid g = o.g;
     const vbc_frame_info fi = o.fi;
     const char *device = vbc_pipe_device_name(pipe);

@@ -163,3 +163,50 @@ def test_example_script(tmp_path):
     assert all(int(r[2]) > 1000 and r[3] == "1" for r in rows)  # vertices, complete
     first = vorball.channels(next(iter(vorball.frames(TRAJ))), grid=64, device="ref")
     assert float(rows[0][5]) == round(first.table["bottleneck_A"][0], 4)
+
+
+TOXIN = corpus("data", "1chb_hole2.pdb")
+
+
+def _turned_toxin(path):
+    """1chb as two models, the second turned 16 degrees about x and moved
+    1.5 A along x (tests/pipeline/axis_select.sh's file)."""
+    import math
+    atoms = [line for line in open(TOXIN) if line.startswith(("ATOM", "HETATM"))]
+    with open(path, "w") as f:
+        for m, deg in enumerate((0, 16)):
+            c, s = math.cos(math.radians(deg)), math.sin(math.radians(deg))
+            f.write("MODEL     %4d\n" % (m + 1))
+            for line in atoms:
+                x, y, z = float(line[30:38]), float(line[38:46]), float(line[46:54])
+                f.write(line[:30] + "%8.3f%8.3f%8.3f" % (x + 1.5 * m, c * y - s * z, s * y + c * z)
+                        + line[54:])
+            f.write("ENDMDL\n")
+        f.write("END\n")
+
+
+@pytest.mark.parametrize("refit", [True, False])
+def test_frames_with_axis_refit_as_the_command(tmp_path, refit):
+    """Issue 32: the frames of a trajectory through one Engine with
+    axis_refit=True give the rows of `vorball channels --axis-refit` (the
+    second frame's axis refitted on its own atoms: turned 16 degrees with
+    the molecule), and without it the rows of the fixed axis; the two
+    differ, so the keyword is not ignored."""
+    path = str(tmp_path / "chb2.pdb")
+    _turned_toxin(path)
+    args = ["--axis-refit"] if refit else []
+    out, _ = cli("channels", "--device", "ref", "--grid", 64, "--json", *args, path)
+    theirs = json.loads(out)["frames"]
+    rows, mine = [], []
+    with vorball.Engine(device="ref") as eng:
+        for f in vorball.frames(path):
+            ch = eng.channels(f, grid=64, axis_refit=refit)
+            mine.extend(ch.to_json()["frames"])
+            rows.extend(ch.csv.splitlines()[1:])
+    csv_out, _ = cli("channels", "--device", "ref", "--grid", 64, *args, path)
+    assert "\n".join([csv_out.splitlines()[0]] + rows) + "\n" == csv_out
+    for a, b in zip(mine, theirs):
+        assert a["pore"]["axis"] == b["pore"]["axis"]
+    assert len(mine) == len(theirs) == 2
+    turned = theirs[1]["pore"]["axis"] != theirs[0]["pore"]["axis"]
+    assert turned == refit

@@ -115,7 +115,7 @@ static double buried_of(vb_ctx *ctx, const vb_sphere_set *s)
     vbc_pore p;
     pore_on_z(&p, -30.0, 30.0, 4.5);
     vbc_pore_verdict v = {0, -1.0, 0, 0, 0};
-    CHECK_INT(vbc_pore_judge(c, &p, &v), 0);
+    CHECK_INT(vbc_pore_judge(c, &p, INFINITY, &v), 0);
     vbc_pore_free(&p);
     vbc_cells_free(c);
     return v.buried;
@@ -148,7 +148,7 @@ static void test_buried(vb_ctx *ctx)
     vbc_pore p;
     pore_on_z(&p, -30.0, 30.0, 4.5);
     vbc_pore_verdict v;
-    CHECK_INT(vbc_pore_judge(c, &p, &v), 0);
+    CHECK_INT(vbc_pore_judge(c, &p, INFINITY, &v), 0);
     CHECK(v.is_pore);
     /* Walled within the rings' span, not beyond the last atoms. */
     /* Walled within the atoms' span (|z| <= 21) and the probe's reach
@@ -163,7 +163,7 @@ static void test_buried(vb_ctx *ctx)
     vb_sphere_set *ring = synth_cylinder(4, 16, 6.0, 1.5, 2.6);
     CHECK_INT(vbc_cells_build(ctx, ring, 3.0, &c), VB_OK);
     pore_on_z(&p, -20.0, 20.0, 4.5);
-    CHECK_INT(vbc_pore_judge(c, &p, &v), 0);
+    CHECK_INT(vbc_pore_judge(c, &p, INFINITY, &v), 0);
     CHECK(!v.is_pore);
     CHECK(v.buried > 5.0 && v.buried < VBC_PORE_MIN_BURIED);
     vbc_pore_free(&p);

@@ -32,8 +32,9 @@ jfa)
     set -- jfa -n 64 -k 20 -V jfa+1,facet --check --png "$work/j.png" -o /dev/null ;;
 channels)
     outs="c.csv c.pdb"
+    # --device cpu: without a GPU, channels' auto is the reference (no OpenCL).
     set -- channels --grid 32 "$corpus/data/1grm_single_hole2.pdb" -o "$work/c.csv" \
-        --centerlines "$work/c.pdb" ;;
+        --centerlines "$work/c.pdb" --device cpu ;;
 *) fail "unknown command $cmd" ;;
 esac
 

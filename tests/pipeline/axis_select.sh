@@ -4,9 +4,12 @@
 #   by hand; a malformed expression or an empty selection is E118 (exit 28)
 #   naming the position; no output file is left.
 # - the axis: cholera toxin B (1chb) by its C5 symmetry, the maltoporin
-#   trimer (1af6, sugars left out as HOLE's example does) by one subunit's
-#   barrel, one maltoporin chain (--select) by its barrel; W810 names the
-#   source, axis_why in the JSON says it in words; crambin keeps no pore (W808).
+#   trimer (1af6) at plain defaults, its sugars and ions left out as ligands
+#   (W811 names them; the same table as HOLE's example's --ignore FRU,GLC,MG;
+#   --keep-ligands keeps them in the pores: the closed C3 axis) by one
+#   subunit's barrel, one maltoporin chain (--select) by its barrel; W810
+#   names the source, axis_why in the JSON says it in words; gramicidin's
+#   HETATM ethanolamine caps stay (no W811); crambin keeps no pore (W808).
 # usage: axis_select.sh VORBALL CORPUS_DIR WORK_DIR
 vorball=$1 corpus=$2 work=$3/axis_select
 here=$(cd "$(dirname "$0")" && pwd)
@@ -51,11 +54,22 @@ expect_line "$out" "W810: .*pore axis \(symmetry\): C5 symmetry of chains"
 set -- $(pore 1chb.json)
 [ "$1" = symmetry ] || fail "1chb: axis from '$1', not its C5 symmetry"
 awk -v r="$2" 'BEGIN { exit !(r > 3.0 && r < 3.4) }' || fail "1chb: pore $2 A (3.187 A expected)"
-run 0 "$out" "$vorball" channels "$d/1af6_hole2.pdb.gz" --device ref --ignore FRU,GLC,MG --json -o 1af6.json
+run 0 "$out" "$vorball" channels "$d/1af6_hole2.pdb.gz" --device ref --json -o 1af6.json
 expect_line "$out" "W810: .*pore axis \(subunit\): beta-barrel of chain"
+expect_line "$out" "W811: .*73 ligand atoms left out .*: GLC 33, FRU 36, MG 4$"
 set -- $(pore 1af6.json)
 [ "$1" = subunit ] || fail "1af6: axis from '$1', not a subunit"
 awk -v r="$2" 'BEGIN { exit !(r > 1.9 && r < 2.5) }' || fail "1af6: pore $2 A (2.2 A expected)"
+run 0 "$out" "$vorball" channels "$d/1af6_hole2.pdb.gz" --device ref --ignore FRU,GLC,MG -o ign.csv
+run 0 "$out" "$vorball" channels "$d/1af6_hole2.pdb.gz" --device ref -o lig.csv
+cmp -s ign.csv lig.csv || fail "1af6: the ligands left out by default differ from --ignore FRU,GLC,MG"
+run 0 "$out" "$vorball" channels "$d/1af6_hole2.pdb.gz" --device ref --keep-ligands --json -o keep.json
+grep -q "W811" "$out" && fail "--keep-ligands still left ligands out"
+set -- $(pore keep.json)
+[ "$1" = symmetry ] || fail "1af6 --keep-ligands: axis from '$1', not the C3 axis"
+awk -v r="$2" 'BEGIN { exit !(r < 0.5) }' || fail "1af6 --keep-ligands: pore $2 A (the sugars close it)"
+run 0 "$out" "$vorball" channels "$d/1grm_single_hole2.pdb" --device ref -o grm.csv
+grep -q "W811" "$out" && fail "1grm: its ethanolamine caps were taken for ligands"
 run 0 "$out" "$vorball" channels "$d/1af6_hole2.pdb.gz" --device ref --ignore FRU,GLC,MG \
     --select "chain B" --json -o 1af6_B.json
 set -- $(pore 1af6_B.json)

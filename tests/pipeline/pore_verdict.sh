@@ -5,7 +5,8 @@
 # atoms and adenylate kinase (soluble) get none: W808 names the buried
 # length, the command exits 0 and the table has no pore row. A path along an
 # axis the user gives is reported as it is. The membrane (OPM's dummy atoms
-# DUM, lipid and detergent residues) is left out by default with W809.
+# DUM, also as OPM writes them, lipid and detergent residues) is left out by
+# default with W809.
 # usage: pore_verdict.sh VORBALL CORPUS_DIR WORK_DIR
 vorball=$1 corpus=$2 work=$3/pore_verdict
 here=$(cd "$(dirname "$0")" && pwd)
@@ -60,4 +61,22 @@ run 0 "$out" "$vorball" channels --device ref --grid 64 --membrane none mem.pdb 
 cmp -s grm.csv memkept.csv && fail "--membrane none changed nothing"
 run 0 "$out" "$vorball" channels --device ref --grid 64 --membrane POPC mem.pdb -o mempopc.csv
 expect_line "$out" "W809: mem.pdb: 3 atoms left out: membrane \(--membrane none keeps it\): POPC 3"
+# The same as OPM writes its dummy atoms: HETATM, residue DUM numbered as the
+# atom, no chain, no element, the record ending at column 54; a 2 A lattice
+# alternating N and O. They are the membrane (W809), not ligands (no W811).
+grep -v '^END' "$corpus/data/1grm_single_hole2.pdb" > opm.pdb
+awk 'BEGIN { n = 3001
+  for (p = -1; p <= 1; p += 2) for (i = -8; i <= 8; i++) for (j = -8; j <= 8; j++) {
+    printf "HETATM%5d  %-3s DUM  %4d    %8.3f%8.3f%8.3f\n", n, (i + j) % 2 ? "N" : "O", n, 2 * i, 15.2 * p, 2 * j
+    n++ } }' >> opm.pdb
+echo END >> opm.pdb
+[ "$(grep -c ' DUM ' opm.pdb)" = 578 ] || fail "the OPM-style file has $(grep -c ' DUM ' opm.pdb) DUM atoms, not 578"
+run 0 "$out" "$vorball" channels --device ref --grid 64 opm.pdb -o opm.csv
+expect_line "$out" "W809: opm.pdb: 578 atoms left out: membrane \(--membrane none keeps it\): DUM 578"
+! grep -q W811 "$out" || fail "OPM's dummy atoms taken for ligands"
+cut -d, -f1-7 opm.csv | sed -n 2p > got.txt
+cmp -s want.txt got.txt || fail "gramicidin in OPM's dummy atoms: $(cat got.txt), alone: $(cat want.txt)"
+run 0 "$out" "$vorball" channels --device ref --grid 64 --membrane none opm.pdb -o opmkept.csv
+cut -d, -f1-7 opmkept.csv | sed -n 2p > got.txt
+cmp -s want.txt got.txt && fail "--membrane none: OPM's dummy atoms changed nothing"
 echo "pore verdict: ok"

@@ -5,13 +5,16 @@
 # Both read HOLE's .rad file as it is (vorball matches its rows per atom and
 # residue name as HOLE does). CPU time (user + sys, /usr/bin/time) of each run.
 #
-# usage: axis_2core.sh HOLE_DIR VORBALL OUTDIR
+# usage: axis_2core.sh HOLE_DIR VORBALL OUTDIR [YIIP_GRO]
 #   HOLE_DIR  a HOLE 2 checkout built apart (exe/hole, rad/*.rad; never committed)
+#   YIIP_GRO  optional: MDAnalysis' YiiP_lipids.gro.gz (GPL-2+, kept out of the
+#             repository): YiiP in a POPE/POPG bilayer, vorball at the defaults
+#             (the lipids left out, W809) beside HOLE on the same atoms
 # Writes OUTDIR/axis_2core.tsv: name, radii, HOLE's minimum radius per seed (1 2 3),
 # HOLE's CPU seconds (seed 1), vorball's bottleneck, axis source and CPU seconds.
 set -u
-[ $# -eq 3 ] || { sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
-HD=$1 V=$2 OUT=$3
+[ $# -eq 3 ] || [ $# -eq 4 ] || { sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
+HD=$1 V=$2 OUT=$3 YIIP=${4:-}
 here=$(cd "$(dirname "$0")" && pwd)
 data=$here/../../../corpus/data
 mkdir -p "$OUT" && cd "$OUT" || exit 3
@@ -36,7 +39,8 @@ hole_run() { # name pdb rad seed extra-cards...
 vorball_run() { # name pdb rad options... -> "bottleneck source"
     local name=$1 pdb=$2 rad=$3
     shift 3
-    /usr/bin/time -f '%U %S' -o "${name}_$rad.vtime" "$V" channels --device ref \
+    # The defaults: without a GPU, --device auto is the plain-C twin (no OpenCL).
+    /usr/bin/time -f '%U %S' -o "${name}_$rad.vtime" "$V" channels \
         --radii "$HD/rad/$rad.rad" "$@" --json -o "${name}_$rad.json" "$pdb" 2> "${name}_$rad.err"
     python3 -c "import json,sys; f=json.load(open(sys.argv[1]))['frames'][0]; p=f.get('pore')
 print('%.3f %s' % (f['channels'][0]['bottleneck_A'], p['axis_from']) if p else 'none none')" "${name}_$rad.json"
@@ -58,7 +62,25 @@ for rad in simple bondi amberuni; do
     row 1grm 1grm.pdb $rad "" "endrad 5."
 done
 row 1chb 1chb.pdb simple "" "ignore hoh tip wat"
-row 1af6 1af6.pdb simple "--ignore FRU,GLC,MG" "ignore FRU GLC MG HOH" "cvect 0.0 0.0 1.0" \
+# vorball at plain defaults: the sugars and ions are left out as ligands (W811).
+row 1af6 1af6.pdb simple "" "ignore FRU GLC MG HOH" "cvect 0.0 0.0 1.0" \
     "cpoint -14.285 47.809 82.707"
 row 1af6_B 1af6_B.pdb simple "" "cvect 0.0 0.0 1.0" "cpoint -14.285 47.809 82.707"
+if [ -n "$YIIP" ]; then
+    # GRO (nm) to PDB (A) for HOLE; HOLE's simple.rad has no zinc (its
+    # dummy-atom zinc model ZNM), so both leave ZNM out; HOLE guesses its axis.
+    gzip -dcf "$YIIP" | awk 'NR == 2 { last = $1 + 2 } NR > 2 && NR <= last {
+        n++; rn = substr($0, 6, 5); an = substr($0, 11, 5); gsub(/ /, "", rn); gsub(/ /, "", an)
+        printf "ATOM  %5d %-4s %-4s %4d    %8.3f%8.3f%8.3f  1.00  0.00\n", n % 100000,
+            length(an) < 4 ? " " an : an, rn, substr($0, 1, 5) % 10000,
+            substr($0, 21, 8) * 10, substr($0, 29, 8) * 10, substr($0, 37, 8) * 10 }
+        END { print "END" }' > yiip.pdb
+    cp "$YIIP" yiip.gro.gz
+    h1=$(hole_run yiip yiip.pdb simple 1 "ignore POPE POPG SOL ZNM")
+    h2=$(hole_run yiip yiip.pdb simple 2 "ignore POPE POPG SOL ZNM")
+    h3=$(hole_run yiip yiip.pdb simple 3 "ignore POPE POPG SOL ZNM")
+    v=$(vorball_run yiip yiip.gro.gz simple --ignore ZNM)
+    printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' yiip simple "$h1" "$h2" "$h3" \
+        "$(cpu yiip_simple1.time)" ${v% *} ${v#* } "$(cpu yiip_simple.vtime)" >> axis_2core.tsv
+fi
 cat axis_2core.tsv
