@@ -1,4 +1,5 @@
-/* Cell measures for Python (vorball.cells): vb_cells_run on a sphere set,
+/* Cell measures for Python (vorball.cells): vb_cells_run (or
+ * vb_cells_run_periodic in a box, vbpy_box) on a sphere set,
  * the enclosures handed over as bytes and the tables `vorball cells`
  * writes (its TSV writers) as text. */
 #include "vbpy.h"
@@ -6,14 +7,17 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* The contacts as four arrays: id1, id2 (uint32), lo, hi (float64). */
+/* The contacts as four arrays: id1, id2 (uint32), lo, hi (float64), and
+ * in a periodic run shift2 (int16 triples: id2's image shift). */
 static int contact_arrays(const vb_cell_measures *m, PyObject *d)
 {
     size_t n = m->ncontacts, k1 = n ? n : 1;
     uint32_t *i = malloc(k1 * sizeof *i), *j = malloc(k1 * sizeof *j);
     double *lo = malloc(k1 * sizeof *lo), *hi = malloc(k1 * sizeof *hi);
-    int bad = !i || !j || !lo || !hi;
+    int16_t *sh = malloc(3 * k1 * sizeof *sh);
+    int bad = !i || !j || !lo || !hi || !sh;
     for (size_t k = 0; !bad && k < n; k++) {
+        memcpy(sh + 3 * k, m->contacts[k].s, sizeof m->contacts[k].s);
         i[k] = m->contacts[k].i;
         j[k] = m->contacts[k].j;
         lo[k] = m->contacts[k].lo;
@@ -29,6 +33,12 @@ static int contact_arrays(const vb_cell_measures *m, PyObject *d)
         bad = !b || PyDict_SetItemString(d, a[k].key, b) != 0;
         Py_XDECREF(b);
     }
+    if (!bad && m->periodic) {
+        PyObject *b = vbpy_bytes(sh, 3 * n, 2);
+        bad = !b || PyDict_SetItemString(d, "shift2", b) != 0;
+        Py_XDECREF(b);
+    }
+    free(sh);
     free(i);
     free(j);
     free(lo);
@@ -77,12 +87,12 @@ static PyObject *result_dict(const vb_sphere_set *set, const vb_cell_measures *m
 static PyObject *cells_run(PyObject *self, PyObject *args)
 {
     (void)self;
-    PyObject *cap;
+    PyObject *cap, *tokens;
     double probe, tolerance;
     Py_ssize_t max_patches;
-    int contacts, threads;
-    if (!PyArg_ParseTuple(args, "Oddnpi", &cap, &probe, &tolerance, &max_patches, &contacts,
-                          &threads))
+    int contacts, threads, periodic;
+    if (!PyArg_ParseTuple(args, "OddnpipO", &cap, &probe, &tolerance, &max_patches, &contacts,
+                          &threads, &periodic, &tokens))
         return NULL;
     vb_sphere_set *set = vbpy_spheres_get(cap);
     if (!set)
@@ -98,13 +108,21 @@ static PyObject *cells_run(PyObject *self, PyObject *args)
     if (vbpy_call_open(&c) != 0)
         return NULL;
     vb_sphere_set run;
+    memset(&run, 0, sizeof run);
     vb_cell_measures m;
     memset(&m, 0, sizeof m);
-    int rc;
+    vb_box box;
+    int rc = periodic ? vbpy_box(c.ctx, tokens, set, &box) : VB_OK;
+    if (rc < 0) {
+        Py_XDECREF(vbpy_call_done(&c));
+        return NULL;
+    }
     Py_BEGIN_ALLOW_THREADS
-    rc = vbpy_validate(c.ctx, set, 1, &run);
     if (rc == VB_OK)
-        rc = vb_cells_run(c.ctx, &run, &opt, &m);
+        rc = vbpy_validate(c.ctx, set, 1, &run);
+    if (rc == VB_OK)
+        rc = periodic ? vb_cells_run_periodic(c.ctx, &run, &box, &opt, &m)
+                      : vb_cells_run(c.ctx, &run, &opt, &m);
     Py_END_ALLOW_THREADS
     PyObject *d = rc == VB_OK ? result_dict(&run, &m, contacts) : NULL;
     free(run.contained);
@@ -116,5 +134,6 @@ static PyObject *cells_run(PyObject *self, PyObject *args)
 
 PyMethodDef vbpy_cells_methods[] = {
     {"cells_run", cells_run, METH_VARARGS,
-     "cells_run(spheres, probe, tolerance, max_patches, contacts, threads) -> (dict, diagnostics)"},
+     "cells_run(spheres, probe, tolerance, max_patches, contacts, threads, periodic, box_tokens) "
+     "-> (dict, diagnostics)"},
     {NULL, NULL, 0, NULL}};

@@ -118,11 +118,23 @@ int vbpy_device_kind(const char *name, int *kind);
 int vbpy_vertex_list(PyObject *ids, PyObject *start, PyObject *x, PyObject *y, PyObject *z,
                      PyObject *t, int status, vb_vertex_list *out);
 
+/* Fills cfg for the vertex pipeline from device ("auto|gpu|cpu|ref") and
+ * proposer (None or a name). 0, or -1 with an exception set (E7). */
+int vbpy_vertices_config(const char *device, PyObject *proposer, vb_vertices_config *cfg);
+
+/* The periodic box of a call: tokens (None, or a sequence of 3, 6 or 9 str,
+ * as `--box` takes them: vb_box_parse_args) or else the set's own box
+ * (GRO box line, PDB CRYST1). VB_OK, or VB_EINPUT_BOX (E120) reported in
+ * ctx; -1 with a Python exception set when tokens is not a sequence of
+ * str. Call with the GIL. */
+int vbpy_box(vb_ctx *ctx, PyObject *tokens, const vb_sphere_set *set, vb_box *box);
+
 /* The functions of each file, for the module table. */
 extern PyMethodDef vbpy_spheres_methods[];
 extern PyMethodDef vbpy_vertices_methods[];
 extern PyMethodDef vbpy_verify_methods[];
 extern PyMethodDef vbpy_channels_methods[];
 extern PyMethodDef vbpy_cells_methods[];
+extern PyMethodDef vbpy_periodic_methods[];
 
 #endif

@@ -15,8 +15,7 @@ static void engine_destroy(PyObject *cap)
     vb_vertices_close(PyCapsule_GetPointer(cap, ENGINE_CAPSULE));
 }
 
-/* Fills cfg from the Python arguments; -1 with an exception set. */
-static int config(const char *device, PyObject *proposer, vb_vertices_config *cfg)
+int vbpy_vertices_config(const char *device, PyObject *proposer, vb_vertices_config *cfg)
 {
     memset(cfg, 0, sizeof *cfg);
     int kind;
@@ -43,7 +42,7 @@ static PyObject *engine_open(PyObject *self, PyObject *args)
         return NULL;
     vb_vertices_config cfg;
     vbpy_call c;
-    if (config(device, proposer, &cfg) != 0 || vbpy_call_open(&c) != 0)
+    if (vbpy_vertices_config(device, proposer, &cfg) != 0 || vbpy_call_open(&c) != 0)
         return NULL;
     vb_vertices_engine *e = NULL;
     int rc;
@@ -180,7 +179,7 @@ static PyObject *vertices_run(PyObject *self, PyObject *args)
     vb_sphere_set *set = vbpy_spheres_get(cap);
     vb_vertices_engine *e = engine == Py_None ? NULL : PyCapsule_GetPointer(engine, ENGINE_CAPSULE);
     vb_vertices_config cfg;
-    if (!set || (engine != Py_None && !e) || config(device, proposer, &cfg) != 0)
+    if (!set || (engine != Py_None && !e) || vbpy_vertices_config(device, proposer, &cfg) != 0)
         return NULL;
     cfg.propose.samples = samples;
     cfg.propose.tol = tol;

@@ -20,12 +20,14 @@ from ._vertices import Arcs, Certificate, Engine, Result, Topology, vertex_text,
 from ._verify import DUPLICATE, MISSING, NOT_VERTEX, WRONG_COORDS, Report, verify
 from ._channels import Channels, channel_flags, channel_options, channels
 from ._cells import Cells, cells
+from ._periodic import PeriodicResult, periodic_frames
 
 __all__ = ["Arcs", "CatalogueEntry", "Cells", "Certificate", "Channels", "Diagnostic", "DUPLICATE",
-           "Engine", "Frames", "MISSING", "NOT_VERTEX", "Report", "Result", "Spheres", "Topology",
+           "Engine", "Frames", "MISSING", "NOT_VERTEX", "PeriodicResult", "Report", "Result",
+           "Spheres", "Topology",
            "VorballError", "VorballWarning", "WRONG_COORDS", "catalogue", "cells", "channel_flags",
-           "channel_options", "channels", "frames", "read", "spheres", "verify", "vertex_text",
-           "vertices"]
+           "channel_options", "channels", "frames", "periodic_frames", "read", "spheres", "verify",
+           "vertex_text", "vertices"]
 
 try:
     from importlib.metadata import PackageNotFoundError, version as _version

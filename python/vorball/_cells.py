@@ -11,6 +11,7 @@ from numpy.typing import ArrayLike
 
 from . import _core
 from ._errors import Diagnostic, emit, misuse, parse
+from ._periodic import BoxInput, box_tokens
 from ._spheres import SphereInput, as_spheres
 
 # VB_MEASURES_MAX_PATCHES of verify/measures/vb_measures.h
@@ -27,6 +28,8 @@ class Cells:
                                    wider than asked (W851, patch budget spent)
     id1, id2, area, area_lo, area_hi  with contacts: (m,) the contact of each
                                    pair id1 < id2 whose hi > 0, else None
+    shift2                         periodic with contacts: (m, 3) int64, the
+                                   image shift of id2 (id2@(dx,dy,dz)), else None
     patches                        direction patches integrated, all atoms
     to_text(), contacts_text()     the TSVs `vorball cells` writes (-o,
                                    --contacts): the same bytes
@@ -61,6 +64,9 @@ class Cells:
         self.patches = int(d["patches"])
         self._text, self._contacts_text = d["tables"]
         self.id1 = self.id2 = self.area = self.area_lo = self.area_hi = None
+        self.shift2: Optional[np.ndarray] = None
+        if "shift2" in d:
+            self.shift2 = np.frombuffer(d["shift2"], dtype=np.int16).astype(np.int64).reshape(-1, 3)
         if "id1" in d:
             self.id1 = np.frombuffer(d["id1"], dtype=np.uint32).astype(np.int64)
             self.id2 = np.frombuffer(d["id2"], dtype=np.uint32).astype(np.int64)
@@ -87,7 +93,7 @@ class Cells:
 def cells(xyz: SphereInput, r: Optional[ArrayLike] = None, *, probe: float = 1.4,
           tolerance: float = 1e-6, max_patches: int = MAX_PATCHES, contacts: bool = False,
           threads: int = 0, zero_radius: str = "auto", select: Optional[str] = None,
-          verbose: bool = False) -> Cells:
+          periodic: bool = False, box: BoxInput = None, verbose: bool = False) -> Cells:
     """Per-atom volume and SAS area (and contact areas) of the additively
     weighted cells inside the balls of radius R + probe, as `vorball cells`.
 
@@ -96,8 +102,13 @@ def cells(xyz: SphereInput, r: Optional[ArrayLike] = None, *, probe: float = 1.4
     >= 96; past it a value stands wider than asked, W851), contacts (the
     contact areas too), threads (0: all CPUs; the values do not depend on
     it). select: only the atoms this expression selects (`--select`,
-    Spheres.select). Returns a Cells; raises VorballError (E7 for bad
-    options, E118 for a bad or empty selection).
+    Spheres.select). periodic, box: the atoms repeated by the box (`cells
+    --periodic`, `--box`; box as vorball.vertices takes it, the file's box
+    without it): each atom once, its cell cut by the images too; each
+    periodic contact once, its second atom moved by shift2 (dx, dy, dz)
+    times the box edges. Returns a Cells; raises VorballError (E7 for bad
+    options, E118 for a bad or empty selection, E120 for no box or a bad
+    one, E135 for a box too small).
     """
     for name, v in (("probe", probe), ("tolerance", tolerance)):
         if not isinstance(v, numbers.Real) or isinstance(v, bool):
@@ -109,8 +120,9 @@ def cells(xyz: SphereInput, r: Optional[ArrayLike] = None, *, probe: float = 1.4
             not 0 <= threads <= 64:
         raise misuse("threads must be an integer in 0..64, not %r" % (threads,))
     s, made = as_spheres(xyz, r, min_count=1, zero_radius=zero_radius, select=select)
+    per = bool(periodic) or box is not None
     d, diag = _core.cells_run(s._capsule, float(probe), float(tolerance), int(max_patches),
-                              bool(contacts), int(threads))
+                              bool(contacts), int(threads), per, box_tokens(box))
     w = made + parse(diag)
     emit(w, verbose)
     return Cells(d, w)

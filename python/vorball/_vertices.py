@@ -11,6 +11,7 @@ from numpy.typing import ArrayLike
 
 from . import _core
 from ._errors import Diagnostic, emit, misuse, parse
+from ._periodic import BoxInput, PeriodicResult, run_periodic
 from ._channels import Channels, run_channels
 from ._channels import _default as channel_default
 from ._spheres import PathLike, SphereInput, Spheres, as_spheres
@@ -230,9 +231,9 @@ def vertices(xyz: SphereInput, r: Optional[ArrayLike] = None, device: str = "aut
              samples: int = 30, *, proposer: Optional[str] = None, tol: Optional[float] = None,
              tiles: int = 0, all_pairs: bool = False, threads: int = 0,
              arcs: bool = False, topology: bool = False, zero_radius: str = "auto",
-             select: Optional[str] = None,
+             select: Optional[str] = None, periodic: bool = False, box: BoxInput = None,
              verbose: bool = False, progress: Optional[Callable[[str, int, int], Any]] = None
-             ) -> Result:
+             ) -> Union[Result, PeriodicResult]:
     """The certified Voronoi vertices of spheres, as `vorball vertices`.
 
     xyz, r: arrays (see vorball.spheres for how each number becomes an
@@ -256,12 +257,27 @@ def vertices(xyz: SphereInput, r: Optional[ArrayLike] = None, device: str = "aut
     as unraisable (sys.unraisablehook) and stops the calls, never the run.
     select: only the atoms this expression selects (`--select`,
     Spheres.select; E118 for a bad or empty selection).
+    periodic: the periodic diagram of the atoms repeated by the box
+    (`--periodic`): the file's box (GRO's box line, PDB's CRYST1; a
+    frame's own) unless box is given; box (implies periodic, `--box`):
+    (a, b, c), (a, b, c, alpha, beta, gamma) in degrees, or a 3x3 matrix
+    of the edge vectors as rows, in input units; numbers become exact
+    decimals (a float its shortest round-trip decimal; a str verbatim).
+    Returns a PeriodicResult (ids and image shifts of every vertex's
+    members, once per vertex); E120 for no box or a flat or malformed
+    one, E135 for a box too small; not with arcs or topology.
     Returns a Result that unpacks as (ids, xyz, t). Raises VorballError.
     Nothing is printed unless verbose.
     """
     opts = _options(samples, tol, tiles, all_pairs, threads)
     if not isinstance(device, str):
         raise misuse("device must be auto, gpu, cpu or ref, not %r" % (device,))
+    if periodic or box is not None:
+        if arcs or topology:
+            raise misuse("periodic runs without arcs or topology (as the command's --periodic)")
+        s, made = as_spheres(xyz, r, min_count=1, zero_radius=zero_radius, select=select)
+        return run_periodic(s._capsule, box, (device, _proposer(proposer)) + opts + (progress,),
+                            verbose, made)
     s, made = as_spheres(xyz, r, min_count=4, zero_radius=zero_radius, select=select)
     d, diag = _core.vertices_run(s._capsule, None, device, _proposer(proposer), *opts,
                                  bool(arcs), bool(topology), progress)

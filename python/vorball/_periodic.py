@@ -1,0 +1,148 @@
+"""Periodic boxes (issue 34): the box argument as `--box` takes it, the
+periodic vertices of a set (vorball.vertices(..., periodic=True)) and of
+every frame of a trajectory, each in its own box (vorball.periodic_frames).
+The library builds the images, runs the pipeline and writes the text."""
+from __future__ import annotations
+
+import numbers
+import os
+from typing import Any, List, Optional, Sequence, Union
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from . import _core
+from ._errors import Diagnostic, emit, misuse, parse
+from ._spheres import PathLike
+
+BoxInput = Union[Sequence[Any], np.ndarray, None]
+
+
+def _token(v):
+    """One number of a box as the decimal the command would read: str
+    verbatim, integers exactly, floats as their shortest round-trip
+    decimal (0.1 stays '0.1')."""
+    if isinstance(v, str):
+        return v
+    if isinstance(v, (bool, np.bool_)):
+        raise misuse("a box holds numbers, not %r" % (v,))
+    if isinstance(v, numbers.Integral):
+        return str(int(v))
+    if isinstance(v, numbers.Real):
+        return np.format_float_positional(float(v), unique=True, trim="-")
+    raise misuse("a box holds numbers, not %r" % (v,))
+
+
+def box_tokens(box: BoxInput) -> Optional[List[str]]:
+    """The tokens of `--box` for box: None (the file's box), (a, b, c),
+    (a, b, c, alpha, beta, gamma) in degrees, or a 3x3 matrix whose rows
+    are the edge vectors a, b, c. A wrong count or a flat box is the
+    library's to refuse (E120)."""
+    if box is None:
+        return None
+    if isinstance(box, str):
+        raise misuse("box is a sequence of 3, 6 or 9 numbers or a 3x3 matrix, not %r" % (box,))
+    flat = np.asarray(box, dtype=object).reshape(-1)
+    return [_token(v) for v in flat]
+
+
+class PeriodicResult(tuple):
+    """The vertices of a periodic diagram: unpacks as (ids, shifts, xyz, t).
+
+    Each vertex is written once, as its canonical translate (README,
+    'Periodic boxes'): member k is atom ids[k] moved by
+    shifts[k] = (dx, dy, dz) times the box edges a, b, c, the notation
+    `i@(dx,dy,dz)` of the command's files.
+    ids      list of int64 arrays, the members' atom ids of each vertex
+    shifts   list of (k, 3) int64 arrays, the members' image shifts
+    ids_flat, shifts_flat, offsets   the same as flat arrays and m + 1 offsets
+    xyz, t   (m, 3) and (m,) float64: the canonical translate's point, radius
+    box      (3, 3) float64: the edge vectors as rows (nearest doubles)
+    certificate  what the run proves (the file's header lines)
+    atoms, spheres  the box's atoms; atoms and images the run used
+    rho, reach      the proven bound of every vertex's t; the images' reach
+    translates, beyond_rho  run vertices dropped as translates or as t > rho
+    frame, model    for a trajectory's frame (periodic_frames), else None
+    warnings        diagnostics of the call
+    to_text('tsv' or 'json') gives the bytes `vorball vertices --periodic`
+    writes (less its provenance lines)."""
+
+    def __new__(cls, d, warnings: List[Diagnostic], frame: Optional[int] = None,
+                model: Optional[int] = None) -> PeriodicResult:
+        flat = np.frombuffer(d["ids"], dtype=np.uint32).astype(np.int64)
+        sh = np.frombuffer(d["shifts"], dtype=np.int16).astype(np.int64).reshape(-1, 3)
+        start = np.frombuffer(d["start"], dtype=np.int64)
+        cut = start[1:-1] if len(start) > 1 else []
+        ids = np.split(flat, cut) if len(start) > 1 else []
+        shifts = np.split(sh, cut) if len(start) > 1 else []
+        xyz = np.stack([np.frombuffer(d[k], dtype=np.float64) for k in "xyz"], axis=1)
+        t = np.frombuffer(d["t"], dtype=np.float64)
+        self = super().__new__(cls, (ids, shifts, xyz, t))
+        self.ids, self.shifts, self.xyz, self.t = ids, shifts, xyz, t
+        self.ids_flat, self.shifts_flat, self.offsets = flat, sh, start
+        self.box = np.frombuffer(d["box"], dtype=np.float64).reshape(3, 3)
+        self.certificate = d["certificate"]
+        self.atoms, self.spheres = d["atoms"], d["spheres"]
+        self.rho, self.reach = d["rho"], d["reach"]
+        self.translates, self.beyond_rho = d["translates"], d["beyond_rho"]
+        self.frame, self.model = frame, model
+        self.warnings = warnings
+        self._text = {"tsv": d["tsv"], "json": d["json"]}
+        return self
+
+    def to_text(self, format: str = "tsv") -> str:
+        """The periodic vertex file (tsv or json) as the command writes it."""
+        if format not in self._text:
+            raise misuse("a periodic vertex file is tsv or json, not %r" % (format,))
+        return self._text[format]
+
+    def write(self, path: PathLike, format: str = "tsv") -> None:
+        """Writes to_text(format) to path."""
+        text = self.to_text(format)
+        with open(os.fspath(path), "w", encoding="utf-8", newline="") as f:
+            f.write(text)
+
+    def __repr__(self) -> str:
+        return "<vorball.PeriodicResult %d vertices of %d atoms%s>" % (
+            len(self.t), self.atoms, "" if self.frame is None else ", frame %d" % self.frame)
+
+
+def run_periodic(capsule, box: BoxInput, opts, verbose, made) -> PeriodicResult:
+    """vorball.vertices(..., periodic=True) on a set's capsule."""
+    d, diag = _core.periodic_vertices(capsule, box_tokens(box), opts)
+    w = made + parse(diag)
+    emit(w, verbose)
+    return PeriodicResult(d, w)
+
+
+def periodic_frames(path: PathLike, trajectory: Optional[PathLike] = None,
+                    box: BoxInput = None, start: int = 0, stop: Optional[int] = None,
+                    step: int = 1, *, water: bool = False, device: str = "auto",
+                    samples: int = 30,
+                    tol: Optional[float] = None, tiles: int = 0, all_pairs: bool = False,
+                    threads: int = 0, verbose: bool = False, progress: Any = None
+                    ) -> List[PeriodicResult]:
+    """The periodic vertices of every selected frame, as `vorball vertices
+    --periodic [--traj TRAJECTORY] [--frames A:B:S]`: each frame in the box
+    it carries (GRO's box line, an XTC/TRR/DCD frame's box, PDB's CRYST1)
+    or in `box` for all; water: keep water molecules (`--water`). A binary frame's floats become their shortest
+    decimals in Angstrom (README). Returns a list of PeriodicResult with
+    .frame and .model set. Raises VorballError (E120 for a frame without
+    a box and no box given)."""
+    from ._vertices import _options
+    for name, v, lo in (("start", start, 0), ("step", step, 1)):
+        if not isinstance(v, numbers.Integral) or isinstance(v, bool) or v < lo:
+            raise misuse("%s must be an integer >= %d, not %r" % (name, lo, v))
+    if stop is not None and (not isinstance(stop, numbers.Integral) or isinstance(stop, bool)
+                             or stop < 0):
+        raise misuse("stop must be None or an integer >= 0, not %r" % (stop,))
+    if not isinstance(device, str):
+        raise misuse("device must be auto, gpu, cpu or ref, not %r" % (device,))
+    opts = (device, None) + _options(samples, tol, tiles, all_pairs, threads) + (progress,)
+    traj = None if trajectory is None else os.fspath(trajectory)
+    got, diag = _core.periodic_frames(os.fspath(path), traj, box_tokens(box), int(start),
+                                      -1 if stop is None else int(stop), int(step), bool(water),
+                                      opts)
+    w = parse(diag)
+    emit(w, verbose)
+    return [PeriodicResult(d, w, frame, model) for frame, model, d in got]
