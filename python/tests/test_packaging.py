@@ -52,5 +52,7 @@ def test_type_hints_resolve():
         assert "return" in hints, name
         seen += 1
     assert seen >= 20
-    assert typing.get_type_hints(vorball.vertices)["return"] is vorball.Result
+    # a Result, or with periodic=True / box= a PeriodicResult (issue 34)
+    assert typing.get_type_hints(vorball.vertices)["return"] == \
+        typing.Union[vorball.Result, vorball.PeriodicResult]
     assert typing.get_type_hints(vorball.Result)["certificate"] is vorball.Certificate
