@@ -84,16 +84,19 @@ done:
 }
 
 /* Fills cfg from the tuple (device, proposer, samples, tol, tiles,
- * all_pairs, threads, progress); *rest gets progress (borrowed). */
-static int run_config(PyObject *args, vb_vertices_config *cfg, PyObject **rest)
+ * all_pairs, threads, progress) and opens the call *c with that progress
+ * callable (the tuple, an argument, outlives the call). 0, or -1 with an
+ * exception set (nothing open). */
+static int run_open(PyObject *args, vb_vertices_config *cfg, vbpy_call *c)
 {
+    PyObject *progress;
     const char *device;
     PyObject *proposer;
     unsigned samples, tiles, threads;
     double tol;
     int all_pairs;
     if (!PyArg_ParseTuple(args, "sOIdIpIO", &device, &proposer, &samples, &tol, &tiles,
-                          &all_pairs, &threads, rest))
+                          &all_pairs, &threads, &progress))
         return -1;
     if (vbpy_vertices_config(device, proposer, cfg) != 0)
         return -1;
@@ -102,23 +105,23 @@ static int run_config(PyObject *args, vb_vertices_config *cfg, PyObject **rest)
     cfg->propose.tiles = tiles;
     cfg->propose.all_pairs = all_pairs;
     cfg->propose.threads = threads;
+    if (vbpy_progress_check(progress) != 0 || vbpy_call_open(c) != 0)
+        return -1;
+    vbpy_call_progress(c, progress);
     return 0;
 }
 
 static PyObject *periodic_vertices(PyObject *self, PyObject *args)
 {
     (void)self;
-    PyObject *cap, *tokens, *opts, *progress;
+    PyObject *cap, *tokens, *opts;
     if (!PyArg_ParseTuple(args, "OOO!", &cap, &tokens, &PyTuple_Type, &opts))
         return NULL;
     vb_vertices_config cfg;
-    vb_sphere_set *set = vbpy_spheres_get(cap);
-    if (!set || run_config(opts, &cfg, &progress) != 0)
-        return NULL;
     vbpy_call c;
-    if (vbpy_progress_check(progress) != 0 || vbpy_call_open(&c) != 0)
+    vb_sphere_set *set = vbpy_spheres_get(cap);
+    if (!set || run_open(opts, &cfg, &c) != 0)
         return NULL;
-    vbpy_call_progress(&c, progress);
     vb_box box;
     int rc = vbpy_box(c.ctx, tokens, set, &box);
     if (rc < 0) {
@@ -169,19 +172,16 @@ static PyObject *periodic_frames(PyObject *self, PyObject *args)
 {
     (void)self;
     const char *path, *traj;
-    PyObject *tokens, *opts, *progress;
+    PyObject *tokens, *opts;
     long start, stop, step;
     int water;
     if (!PyArg_ParseTuple(args, "szOlllpO!", &path, &traj, &tokens, &start, &stop, &step, &water,
                           &PyTuple_Type, &opts))
         return NULL;
     vb_vertices_config cfg;
-    if (run_config(opts, &cfg, &progress) != 0)
-        return NULL;
     vbpy_call c;
-    if (vbpy_progress_check(progress) != 0 || vbpy_call_open(&c) != 0)
+    if (run_open(opts, &cfg, &c) != 0)
         return NULL;
-    vbpy_call_progress(&c, progress);
     vb_box box;
     int rc = tokens == Py_None ? VB_OK : vbpy_box(c.ctx, tokens, NULL, &box);
     frames_sink S = {c.ctx, PyList_New(0), 0};

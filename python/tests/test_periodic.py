@@ -85,14 +85,14 @@ def test_json_and_box_spellings(tmp_path):
     assert p.read_text() == a.to_text()
 
 
-GRO = """water box cut
+GRO = """three waters, a triclinic box
  6
-    1SOL     OW    1   0.126   0.163   0.112
-    1SOL    HW1    2   0.190   0.094   0.093
-    2SOL     OW    3   0.501   0.410   0.330
-    2SOL    HW1    4   0.580   0.460   0.301
-    3SOL     OW    5   0.300   0.601   0.612
-    3SOL    HW1    6   0.248   0.650   0.550
+    1SOL     OW    1   0.131   0.152   0.120
+    1SOL    HW1    2   0.201   0.088   0.097
+    2SOL     OW    3   0.497   0.423   0.318
+    2SOL    HW1    4   0.571   0.470   0.296
+    3SOL     OW    5   0.289   0.611   0.604
+    3SOL    HW1    6   0.237   0.662   0.541
    0.80000   0.75000   0.70000   0.00000   0.00000   0.10000   0.00000   0.05000  -0.05000
 """
 
