@@ -1,6 +1,7 @@
 /* Periodic boxes for Python (issue 34): the box of a call (`--box`'s
  * tokens or the set's own), vb_periodic_vertices_run on a set, and
- * vb_periodic_run_frames over a trajectory, each frame in its own box; the
+ * vb_periodic_run_frames over a trajectory, each frame in its own box,
+ * vb_periodic_verify_file judging a periodic vertex file; the
  * vertices handed over as arrays (members' ids and image shifts) and as
  * the library writer's text. */
 #include "vbpy.h"
@@ -211,6 +212,65 @@ static PyObject *periodic_frames(PyObject *self, PyObject *args)
     return vbpy_call_return(&c, S.list);
 }
 
+/* vb_periodic_verify_file on a path: (dict of counts and per-line arrays
+ * line (int64), flags (uint8: VB_PERIODIC_*), problems (int32:
+ * VB_VERIFY_*), diagnostics). */
+static PyObject *periodic_verify(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *cap, *tokens, *path;
+    double tol;
+    if (!PyArg_ParseTuple(args, "OO&Od", &cap, PyUnicode_FSConverter, &path, &tokens, &tol))
+        return NULL;
+    vb_sphere_set *set = vbpy_spheres_get(cap);
+    vbpy_call c;
+    if (!set || vbpy_call_open(&c) != 0) {
+        Py_DECREF(path);
+        return NULL;
+    }
+    vb_box box;
+    int rc = vbpy_box(c.ctx, tokens, set, &box);
+    if (rc < 0) {
+        Py_DECREF(path);
+        Py_XDECREF(vbpy_call_done(&c));
+        return NULL;
+    }
+    vb_periodic_judgement j;
+    memset(&j, 0, sizeof j);
+    vb_sphere_set run;
+    memset(&run, 0, sizeof run);
+    const char *p = PyBytes_AS_STRING(path);
+    Py_BEGIN_ALLOW_THREADS
+    if (rc == VB_OK)
+        rc = vbpy_validate(c.ctx, set, 1, &run);
+    if (rc == VB_OK)
+        rc = vb_periodic_verify_file(c.ctx, &run, &box, p, tol, &j);
+    free(run.contained);
+    Py_END_ALLOW_THREADS
+    Py_DECREF(path);
+    PyObject *d = NULL;
+    int64_t *line = rc == VB_OK ? malloc((j.n + 1) * sizeof *line) : NULL;
+    if (rc == VB_OK && !line)
+        PyErr_NoMemory();
+    else if (rc == VB_OK) {
+        for (size_t k = 0; k < j.n; k++)
+            line[k] = j.line[k];
+        d = Py_BuildValue("{s:n,s:n,s:n,s:n,s:n,s:n,s:n,s:n,s:N,s:N,s:N}", "lines",
+                          (Py_ssize_t)j.n, "certified", (Py_ssize_t)j.certified, "not_canonical",
+                          (Py_ssize_t)j.not_canonical, "beyond_reach", (Py_ssize_t)j.beyond,
+                          "not_vertex", (Py_ssize_t)j.not_vertex, "wrong_coordinates",
+                          (Py_ssize_t)j.wrong, "missing_members", (Py_ssize_t)j.missing,
+                          "duplicate", (Py_ssize_t)j.duplicate, "line", vbpy_bytes(line, j.n, 8),
+                          "flags", vbpy_bytes(j.flags, j.n, 1), "problems",
+                          vbpy_bytes(j.problems, j.n, sizeof *j.problems));
+    }
+    free(line);
+    vb_periodic_judgement_free(&j);
+    if (rc != VB_OK)
+        return vbpy_call_fail(&c, rc);
+    return vbpy_call_return(&c, d);
+}
+
 PyMethodDef vbpy_periodic_methods[] = {
     {"periodic_vertices", periodic_vertices, METH_VARARGS,
      "periodic_vertices(spheres, box_tokens, (device, proposer, samples, tol, tiles, "
@@ -219,4 +279,6 @@ PyMethodDef vbpy_periodic_methods[] = {
      "periodic_frames(path, trajectory, box_tokens, start, stop, step, water, (device, proposer, "
      "samples, tol, tiles, all_pairs, threads, progress)) -> ([(frame, model, dict)], "
      "diagnostics)"},
+    {"periodic_verify", periodic_verify, METH_VARARGS,
+     "periodic_verify(spheres, path, box_tokens, tol) -> (dict, diagnostics)"},
     {NULL, NULL, 0, NULL}};

@@ -176,3 +176,41 @@ def test_no_box_is_e120(tmp_path):
         with pytest.raises(vorball.VorballError) as e:
             call()
         assert e.value.number == 120
+
+
+def test_verify_as_the_command(tmp_path):
+    """verify(..., box=) judges a periodic file as `verify --periodic --json`
+    does: a good file certified line by line, a tampered one flagged."""
+    import json
+    path, box = generated("triclinic", tmp_path)
+    res = vorball.vertices(path, device="ref", box=box)
+    good = tmp_path / "good.tsv"
+    res.write(good)
+    rows = res.to_text().splitlines(keepends=True)
+    body = [k for k, line in enumerate(rows) if not line.startswith("#")]
+    f = rows[body[0]].split("\t")
+    f[4] = repr(float(f[4]) + 0.25)                        # a wrong radius
+    rows[body[0]] = "\t".join(f)
+    g = rows[body[1]].split("\t")
+    m = MEMBER.findall(g[0])
+    g[0] = ",".join("%s@(%d,%s,%s)" % (a, int(b) + 1, c, d) for a, b, c, d in m)  # a translate
+    rows[body[1]] = "\t".join(g)
+    bad = tmp_path / "bad.tsv"
+    bad.write_text("".join(rows))
+    for vertices, rc in ((good, 0), (bad, 1), (res, 0)):
+        r = vorball.verify(path, vertices, box=box)
+        assert isinstance(r, vorball.PeriodicReport)
+        if not isinstance(vertices, vorball.PeriodicResult):
+            out, _ = cli("verify", "--periodic", "--box", *box, "--json", path, vertices, rc=rc)
+            want = json.loads(out)
+            assert {k: want[k] for k in r.counts} == r.counts
+            assert want["ok"] == r.ok
+        assert r.counts["lines"] == len(res.t) == len(r.flags) == len(r.problems)
+        assert r.ok == (vertices is not bad)
+    assert r.ok and r.counts["certified"] == len(res.t)
+    r = vorball.verify(path, bad, box=box)
+    assert r.flags[1] & vorball.NOT_CANONICAL and r.problems[0] != 0
+    assert r.line[0] == body[0] + 1
+    with pytest.raises(vorball.VorballError) as e:
+        vorball.verify(path, good, box=(1, 2))
+    assert e.value.number == 120

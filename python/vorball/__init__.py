@@ -20,10 +20,11 @@ from ._vertices import Arcs, Certificate, Engine, Result, Topology, vertex_text,
 from ._verify import DUPLICATE, MISSING, NOT_VERTEX, WRONG_COORDS, Report, verify
 from ._channels import Channels, channel_flags, channel_options, channels
 from ._cells import Cells, cells
-from ._periodic import PeriodicResult, periodic_frames
+from ._periodic import BEYOND_REACH, NOT_CANONICAL, PeriodicReport, PeriodicResult, periodic_frames
 
 __all__ = ["Arcs", "CatalogueEntry", "Cells", "Certificate", "Channels", "Diagnostic", "DUPLICATE",
-           "Engine", "Frames", "MISSING", "NOT_VERTEX", "PeriodicResult", "Report", "Result",
+           "BEYOND_REACH", "Engine", "Frames", "MISSING", "NOT_CANONICAL", "NOT_VERTEX",
+           "PeriodicReport", "PeriodicResult", "Report", "Result",
            "Spheres", "Topology",
            "VorballError", "VorballWarning", "WRONG_COORDS", "catalogue", "cells", "channel_flags",
            "channel_options", "channels", "frames", "periodic_frames", "read", "spheres", "verify",

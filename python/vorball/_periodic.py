@@ -1,11 +1,13 @@
 """Periodic boxes (issue 34): the box argument as `--box` takes it, the
 periodic vertices of a set (vorball.vertices(..., periodic=True)) and of
-every frame of a trajectory, each in its own box (vorball.periodic_frames).
+every frame of a trajectory, each in its own box (vorball.periodic_frames),
+and a periodic vertex file judged (vorball.verify(..., periodic=True)).
 The library builds the images, runs the pipeline and writes the text."""
 from __future__ import annotations
 
 import numbers
 import os
+import tempfile
 from typing import Any, List, Optional, Sequence, Union
 
 import numpy as np
@@ -146,3 +148,56 @@ def periodic_frames(path: PathLike, trajectory: Optional[PathLike] = None,
     w = parse(diag)
     emit(w, verbose)
     return [PeriodicResult(d, w, frame, model) for frame, model, d in got]
+
+
+NOT_CANONICAL, BEYOND_REACH = 1, 2  # PeriodicReport.flags (VB_PERIODIC_* of vb_periodic.h)
+
+
+class PeriodicReport:
+    """A periodic vertex file judged exactly, as `vorball verify --periodic`.
+
+    ok        every line certified
+    counts    dict: lines, certified, not_canonical, beyond_reach,
+              not_vertex, wrong_coordinates, missing_members, duplicate
+              (the keys of the command's --json)
+    line      (m,) int64: each vertex line's line in the file
+    flags     (m,) uint8: NOT_CANONICAL (not its vertex's canonical
+              translate), BEYOND_REACH (beyond the images' proven reach)
+    problems  (m,) int32: the exact verifier's bits (vorball.NOT_VERTEX,
+              WRONG_COORDS, MISSING, DUPLICATE; 0: certified or not judged)
+    """
+
+    def __init__(self, d: Any, warnings: List[Diagnostic]) -> None:
+        self.counts = {k: d[k] for k in ("lines", "certified", "not_canonical", "beyond_reach",
+                                          "not_vertex", "wrong_coordinates", "missing_members",
+                                          "duplicate")}
+        self.ok = self.counts["certified"] == self.counts["lines"]
+        self.line = np.frombuffer(d["line"], dtype=np.int64)
+        self.flags = np.frombuffer(d["flags"], dtype=np.uint8)
+        self.problems = np.frombuffer(d["problems"], dtype=np.int32)
+        self.warnings = warnings
+
+    def __repr__(self) -> str:
+        return "<vorball.PeriodicReport %d of %d lines certified>" % (
+            self.counts["certified"], self.counts["lines"])
+
+
+def verify_periodic(capsule, vertices: Any, box: BoxInput, tol: float, verbose: bool,
+                    made: List[Diagnostic]) -> PeriodicReport:
+    """vorball.verify(..., periodic=True): vertices a periodic vertex file's
+    path or a PeriodicResult (its tsv, written to a temporary file that the
+    library reads)."""
+    tokens = box_tokens(box)
+    if isinstance(vertices, PeriodicResult):
+        with tempfile.TemporaryDirectory(prefix="vorball-") as tmp:
+            path = os.path.join(tmp, "periodic.tsv")
+            vertices.write(path)
+            d, diag = _core.periodic_verify(capsule, path, tokens, float(tol))
+    elif isinstance(vertices, (str, os.PathLike)):
+        d, diag = _core.periodic_verify(capsule, os.fspath(vertices), tokens, float(tol))
+    else:
+        raise misuse("periodic verify judges a periodic vertex file or a PeriodicResult, not %r"
+                     % (type(vertices).__name__,))
+    w = made + parse(diag)
+    emit(w, verbose)
+    return PeriodicReport(d, w)

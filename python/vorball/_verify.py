@@ -11,6 +11,7 @@ from numpy.typing import ArrayLike
 
 from . import _core
 from ._errors import Diagnostic, emit, error, misuse, parse
+from ._periodic import BoxInput, PeriodicReport, verify_periodic
 from ._spheres import PathLike, SphereInput, as_spheres
 from ._vertices import Arcs, Result, _arcs
 
@@ -145,8 +146,9 @@ def _is_vertices(v):
 def verify(xyz: SphereInput, r: Union[ArrayLike, VertexInput, None] = None,
            vertices: Optional[VertexInput] = None, *, tol: float = 1e-6, complete: bool = False,
            arcs: bool = False, threads: int = 0, format: str = "tsv", zero_radius: str = "auto",
-           verbose: bool = False, progress: Optional[Callable[[str, int, int], Any]] = None
-           ) -> Report:
+           periodic: bool = False, box: BoxInput = None, verbose: bool = False,
+           progress: Optional[Callable[[str, int, int], Any]] = None
+           ) -> Union[Report, PeriodicReport]:
     """Judges vertices exactly against the spheres, as `vorball verify`.
 
     xyz, r: the spheres (arrays, a Spheres or a file path; r may be left
@@ -163,8 +165,23 @@ def verify(xyz: SphereInput, r: Union[ArrayLike, VertexInput, None] = None,
     total within a stage, total 0 when not known), at most about 1000
     times a stage, from a worker thread; an exception it raises is printed
     as unraisable (sys.unraisablehook) and stops the calls, never the run.
+    periodic, box: vertices is a periodic vertex file (or a
+    PeriodicResult) judged in the box (`verify --periodic`; box as
+    vorball.vertices takes it, else the file's): each line its vertex's
+    canonical translate, within the images' reach, certified exactly;
+    returns a PeriodicReport (without complete or arcs; E120 for no box or a
+    bad one).
     Returns a Report; raises VorballError (E105 for no vertices).
     """
+    if periodic or box is not None:
+        if complete or arcs:
+            raise misuse("periodic verify judges each line: without complete or arcs")
+        if not isinstance(tol, numbers.Real) or not tol > 0:
+            raise misuse("tol must be > 0, not %r" % (tol,))
+        if vertices is None:
+            r, vertices = None, r
+        s, made = as_spheres(xyz, r, min_count=1, zero_radius=zero_radius)
+        return verify_periodic(s._capsule, vertices, box, tol, verbose, made)
     if vertices is None and r is not None and _is_vertices(r):
         r, vertices = None, r
     if vertices is None:
