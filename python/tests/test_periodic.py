@@ -214,3 +214,19 @@ def test_verify_as_the_command(tmp_path):
     with pytest.raises(vorball.VorballError) as e:
         vorball.verify(path, good, box=(1, 2))
     assert e.value.number == 120
+
+
+def test_xtc_frames_in_their_boxes():
+    """An MD trajectory (183 atoms, XTC): every frame in the box it carries,
+    the bytes of `vertices --periodic --traj --frames`."""
+    from conftest import corpus
+    top, xtc = corpus("data", "ngl_md_ascii_trj.pdb"), corpus("data", "ngl_md_10frames.xtc")
+    out, _ = cli("vertices", "--periodic", "--traj", xtc, "--frames", "0:10:3", "--water",
+                 "--device", "ref", top)
+    got = vorball.periodic_frames(top, xtc, start=0, stop=10, step=3, water=True, device="ref")
+    assert [r.frame for r in got] == [0, 3, 6, 9]
+    head = out[:out.index("# frame ")]
+    assert head + "".join("# frame %d (model %d)\n" % (r.frame, r.model) + r.to_text()
+                          for r in got) == out
+    assert all(r.atoms == 183 and len(r.t) > 0 for r in got)
+    assert len({r.box.tobytes() for r in got}) > 1  # the box changes from frame to frame
