@@ -30,7 +30,7 @@ int vbpy_box(vb_ctx *ctx, PyObject *tokens, const vb_sphere_set *set, vb_box *bo
             Py_DECREF(seq);
             return -1;
         }
-    int rc = vb_box_parse_args(ctx, tok, n > 9 ? 10 : (int)n, box);
+    int rc = vb_box_parse_args(ctx, tok, (int)(n < 1000 ? n : 1000), box); /* > 9: refused */
     Py_DECREF(seq);
     return rc;
 }

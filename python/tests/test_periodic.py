@@ -157,7 +157,8 @@ def test_cells_as_the_command(tmp_path):
     assert vorball.cells(path, contacts=True).shift2 is None
 
 
-@pytest.mark.parametrize("box", [(1, 2), (1, 0, 0, 2, 0, 0, 0, 0, 1), (4, 4, -4),
+@pytest.mark.parametrize("box", [(1, 2), tuple(range(1, 11)), (1, 0, 0, 2, 0, 0, 0, 0, 1),
+                                 (4, 4, -4),
                                  (4, 4, 4, 90, 90, 200), ("4", "x", "4")])
 def test_bad_box_is_e120(box, tmp_path):
     path, _ = generated("fcc", tmp_path)

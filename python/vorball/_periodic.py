@@ -127,8 +127,9 @@ def periodic_frames(path: PathLike, trajectory: Optional[PathLike] = None,
     """The periodic vertices of every selected frame, as `vorball vertices
     --periodic [--traj TRAJECTORY] [--frames A:B:S]`: each frame in the box
     it carries (GRO's box line, an XTC/TRR/DCD frame's box, PDB's CRYST1)
-    or in `box` for all; water: keep water molecules (`--water`). A binary frame's floats become their shortest
-    decimals in Angstrom (README). Returns a list of PeriodicResult with
+    or in `box` for all; water: keep water molecules (`--water`). A
+    binary frame's floats become their shortest decimals in Angstrom
+    (README). Returns a list of PeriodicResult with
     .frame and .model set. Raises VorballError (E120 for a frame without
     a box and no box given)."""
     from ._vertices import _options
