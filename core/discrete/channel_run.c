@@ -97,11 +97,26 @@ static int frame_prepare(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long 
             names[n++] = A->membrane[k];
         for (size_t k = 0; k < A->nignore; k++)
             names[n++] = A->ignore[k];
-        size_t lig0 = r->ligands.atoms;
+        size_t lig0 = r->ligands.atoms, mem0 = 0, mem1 = 0;
+        for (size_t k = 0; k < A->nmembrane; k++)
+            mem0 += r->left_out[k];
         rc = vbc_spheres_without(ctx, s0, names, n, r->left_out,
                                  A->keep_ligands ? NULL : &r->ligands, &o->kept, &dropped);
         if (rc != VB_OK)
             return rc;
+        for (size_t k = 0; k < A->nmembrane; k++)
+            mem1 += r->left_out[k];
+        /* The membrane's normal, the pore's first axis candidate. */
+        o->membrane_out = mem1 > mem0;
+        if (o->membrane_out && A->pore.enabled) {
+            int m = vbc_membrane_normal(s0, A->membrane, A->nmembrane, &o->membrane);
+            if (m < 0) {
+                vb_spheres_free(o->kept);
+                o->kept = NULL;
+                return vb_error(ctx, VB_ENOMEM, NULL, 0, "membrane normal: out of memory");
+            }
+            o->have_membrane = m;
+        }
         r->ignored += dropped - (r->ligands.atoms - lig0);
         o->s = o->kept;
     }
@@ -162,6 +177,20 @@ static void refit_pore_axis(vbc_channels_config *A, const vb_sphere_set *s)
     }
 }
 
+/* The options of A with the frame's membrane normal in the pore request
+ * (a copy in *req) when the frame has one and no axis is fixed. */
+static void membrane_options(const vbc_channels_config *A, const vbc_run_out *o, vbc_options *opt,
+                             vbc_pore_request *req)
+{
+    *opt = A->opt;
+    if (!o->have_membrane || !A->opt.pore || A->opt.pore->have_axis)
+        return;
+    *req = *A->opt.pore;
+    req->have_membrane = 1;
+    req->membrane = o->membrane;
+    opt->pore = req;
+}
+
 /* The pipeline `repeat` times (the first run's masks already made when
  * o->masked), the per-run mean timings in o->fi. */
 static int frame_repeat(vb_ctx *ctx, vbc_run *r, vbc_run_out *o)
@@ -169,11 +198,14 @@ static int frame_repeat(vb_ctx *ctx, vbc_run *r, vbc_run_out *o)
     const vbc_channels_config *A = r->cfg;
     vbc_frame_info *fi = &o->fi;
     int rc = VB_OK;
+    vbc_options opt;
+    vbc_pore_request req;
+    membrane_options(A, o, &opt, &req);
     for (int k = 0; k < A->repeat && rc == VB_OK; k++) {
         if (k > 0 || !o->masked)
             rc = vbc_frame_masks(ctx, r->pipe, &o->g, o->s, A->probe, o->want, &A->opt, &o->F);
         if (rc == VB_OK)
-            rc = vbc_frame_analyse(ctx, o->s, &A->opt, &o->F);
+            rc = vbc_frame_analyse(ctx, o->s, &opt, &o->F);
         fi->ms_upload += o->F.out.ms_upload;
         fi->ms_jfa += o->F.out.ms_jfa;
         fi->ms_masks += o->F.out.ms_masks;
@@ -273,6 +305,11 @@ int vbc_run_back(vb_ctx *ctx, vbc_run *r, vbc_run_out *o)
                 "voxel edge %.2f A is coarser than the probe radius %.2f A: narrow channels may be "
                 "missed (raise --grid)", o->g.h, A->probe);
     rc = frame_repeat(ctx, r, o);
+    if (rc == VB_OK && first && o->membrane_out && !o->have_membrane && A->pore.enabled &&
+        !A->pore.have_axis)
+        vb_warn(ctx, VB_W_MEMBRANE_NOT_FLAT, r->input, 0,
+                "the membrane atoms left out make no flat membrane (vbc_membrane_normal): its normal "
+                "is no axis candidate");
     const vbc_pore_summary *ps = &o->F.result.pore;
     if (rc == VB_OK && A->pore.enabled && !ps->present && first && ps->judged)
         vb_warn(ctx, VB_W_PORE_NOT_FOUND, r->input, 0,
@@ -352,7 +389,10 @@ int vbc_run_axis(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index)
     memcpy(r->left_out, left_out, sizeof left_out);
     if (rc != VB_OK)
         return rc;
-    if ((rc = vbc_frame_run(ctx, r->pipe, &o.g, o.s, r->cfg->probe, 0, &r->cfg->opt, &o.F)) == VB_OK)
+    vbc_options opt;
+    vbc_pore_request req;
+    membrane_options(r->cfg, &o, &opt, &req);
+    if ((rc = vbc_frame_run(ctx, r->pipe, &o.g, o.s, r->cfg->probe, 0, &opt, &o.F)) == VB_OK)
         keep_pore_axis(r->cfg, &o.F, o.s);
     vbc_frame_free(&o.F);
     vb_spheres_free(o.kept);
