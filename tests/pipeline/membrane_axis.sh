@@ -34,9 +34,7 @@ bilayer() {
           printf "ATOM  %5d  %-3s %-4sM%4d    %8.3f%8.3f%8.3f  1.00  0.00           %s\n", n++ % 100000, nm[k], res, r % 10000, u * ax + v * bx + w * nx, u * ay + v * by + w * ny, u * az + v * bz + w * nz, substr(nm[k], 1, 1) } } }'
 }
 # Gramicidin turned: (x, y, z) -> (x, -z, y), its pore along z.
-awk '/^(ATOM|HETATM)/ { x = substr($0, 31, 8); y = substr($0, 39, 8); z = substr($0, 47, 8)
-  printf "%s%8.3f%8.3f%8.3f%s\n", substr($0, 1, 30), x, -z, y, substr($0, 55); next }
-  /^END/ { next } { print }' "$corpus/data/1grm_single_hole2.pdb" > grmz.pdb
+pdb_y_to_z "$corpus/data/1grm_single_hole2.pdb" > grmz.pdb
 { cat grmz.pdb; bilayer P; echo END; } > slab.pdb
 [ "$(grep -c ' P   POP' slab.pdb)" = 882 ] || fail "the bilayer has $(grep -c ' P   POP' slab.pdb) P atoms, not 882"
 

@@ -75,9 +75,7 @@ expect_line "$out" "W809: mem.pdb: 3 atoms left out: membrane \(--membrane none 
 # y)). They are the membrane (W809), not ligands (no W811), and their normal
 # z is the axis: the bottleneck is that of the turned gramicidin alone along
 # the axis given as z.
-awk '/^(ATOM|HETATM)/ { x = substr($0, 31, 8); y = substr($0, 39, 8); z = substr($0, 47, 8)
-  printf "%s%8.3f%8.3f%8.3f%s\n", substr($0, 1, 30), x, -z, y, substr($0, 55); next }
-  /^END/ { next } { print }' "$corpus/data/1grm_single_hole2.pdb" > grmz.pdb
+pdb_y_to_z "$corpus/data/1grm_single_hole2.pdb" > grmz.pdb
 cp grmz.pdb opm.pdb
 awk 'BEGIN { n = 3001
   for (p = -1; p <= 1; p += 2) for (i = -8; i <= 8; i++) for (j = -8; j <= 8; j++) {
