@@ -107,8 +107,9 @@ int vbc_membrane_normal(const vb_sphere_set *s, const char *const *names, size_t
     }
     free(p);
     /* Flat: the leaflets' spread along the normal well below their spread
-     * along the plane. */
-    if (!(bw[2] < VBC_MEMBRANE_FLAT * bw[1]))
+     * along the plane; wide: a patch, not a few lipids bound to a protein. */
+    if (!(bw[2] < VBC_MEMBRANE_FLAT * bw[1]) ||
+        !(bw[1] >= VBC_MEMBRANE_MIN_RMS * VBC_MEMBRANE_MIN_RMS * (double)np))
         return 0;
     memset(out, 0, sizeof *out);
     /* The Jacobi rotations' round-off (1e-17) off the axes' zeros: a

@@ -308,8 +308,8 @@ int vbc_run_back(vb_ctx *ctx, vbc_run *r, vbc_run_out *o)
     if (rc == VB_OK && first && o->membrane_out && !o->have_membrane && A->pore.enabled &&
         !A->pore.have_axis)
         vb_warn(ctx, VB_W_MEMBRANE_NOT_FLAT, r->input, 0,
-                "the membrane atoms left out make no flat membrane (vbc_membrane_normal): its normal "
-                "is no axis candidate");
+                "the membrane atoms left out make no flat, wide membrane (vbc_membrane_normal): its "
+                "normal is no axis candidate");
     const vbc_pore_summary *ps = &o->F.result.pore;
     if (rc == VB_OK && A->pore.enabled && !ps->present && first && ps->judged)
         vb_warn(ctx, VB_W_PORE_NOT_FOUND, r->input, 0,

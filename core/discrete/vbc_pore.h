@@ -141,16 +141,20 @@ int vbc_axis_barrel(const vb_sphere_set *s, const char *chain, vbc_axis *out);
  * planes) through their mean; the least eigenvector of the halves' scatter,
  * each about its own mean, is the normal of that split, and the split whose
  * least eigenvalue is smallest wins. Accepted when that eigenvalue is below
- * VBC_MEMBRANE_FLAT times the middle one (the leaflets are flat). Returns 1
+ * VBC_MEMBRANE_FLAT times the middle one (the leaflets are flat) and the
+ * middle one's rms is VBC_MEMBRANE_MIN_RMS A or more (a membrane patch, not
+ * a few lipids or detergents bound to a protein). Returns 1
  * with out->u (oriented by vbc_axis_orient), source MEMBRANE and why filled
  * (out->c is the caller's to set), 0 when they are not flat or fewer
- * than VBC_MEMBRANE_MIN_ATOMS, -1 out of memory. */
+ * than VBC_MEMBRANE_MIN_ATOMS, -1 out of memory. A lattice of OPM dummy
+ * atoms 32 A wide has an rms of 9.8 A; YiiP's bilayer (MDAnalysis) 28 A. */
 int vbc_membrane_normal(const vb_sphere_set *s, const char *const *names, size_t n, vbc_axis *out);
 #define VBC_MEMBRANE_MIN_ATOMS 3
 /* A symmetry axis (three or more chains) or a barrel axis within this many
  * degrees of the membrane's normal takes its place (vbc_pore_find). */
 #define VBC_MEMBRANE_AGREE 30.0
 #define VBC_MEMBRANE_FLAT 0.25
+#define VBC_MEMBRANE_MIN_RMS 8.0
 
 /* A short name of the axis source ("given", "chains", "channel",
  * "principal", "subunit", "symmetry", "barrel", "membrane", "none"). */

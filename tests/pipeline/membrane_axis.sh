@@ -9,7 +9,8 @@
 # lying in the membrane (its pore along y) has no pore across it (W808);
 # cholera toxin B's C5 axis near the normal takes its place; crambin (soluble) in the bilayer
 # gets no pore along the normal (W808) rather than along a principal axis;
-# three lipid atoms in a line make no membrane (W812).
+# three lipid atoms in a line, nine lipids in a 12 A square make no
+# membrane (W812).
 # usage: membrane_axis.sh VORBALL CORPUS_DIR WORK_DIR
 vorball=$1 corpus=$2 work=$3/membrane_axis
 here=$(cd "$(dirname "$0")" && pwd)
@@ -88,6 +89,15 @@ expect_line "$out" "W808: crn.pdb: no pore: the widest path along the membrane a
     printf 'HETATM%5d  C%-2d POPCL   2    %8.3f%8.3f%8.3f  1.00  0.00           C\n' $((7000 + k)) $k $((25 + k)) 0 25
   done; echo END; } > line.pdb
 run 0 "$out" "$vorball" channels --device ref --grid 64 line.pdb --json -o line.json
-expect_line "$out" "W812: line.pdb: the membrane atoms left out make no flat membrane"
+expect_line "$out" "W812: line.pdb: the membrane atoms left out make no flat, wide membrane"
 grep -q '"axis_from": "membrane"' line.json && fail "three atoms in a line gave a membrane normal"
+# Nine lipids on a 4 A lattice (flat, 3.3 A rms wide) are bound lipids, no
+# membrane patch: W812.
+{ cat grmz.pdb
+  for i in 0 1 2; do for j in 0 1 2; do
+    printf 'ATOM  %5d  P   POPCL%4d    %8.3f%8.3f%8.3f  1.00  0.00           P\n' $((7100 + 3 * i + j)) $((3 * i + j + 1)) $((30 + 4 * i)) $((4 * j)) 20
+  done; done; echo END; } > few.pdb
+run 0 "$out" "$vorball" channels --device ref --grid 64 few.pdb --json -o few.json
+expect_line "$out" "W812: few.pdb"
+grep -q '"axis_from": "membrane"' few.json && fail "nine bound lipids gave a membrane normal"
 echo "membrane axis: ok"
