@@ -127,14 +127,33 @@ static int frame_prepare(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long 
     return rc;
 }
 
+/* The source of `first` fitted again on the frame o (its spheres o->s):
+ * vbc_axis_refit, or the frame's membrane normal through the centroid of
+ * its spheres. Returns 1 with *out filled, else 0. */
+static int refit_source(const vbc_run_out *o, const vbc_axis *first, vbc_axis *out)
+{
+    if (first->source != VBC_AXIS_MEMBRANE)
+        return vbc_axis_refit(o->s, first, out);
+    if (!o->have_membrane)
+        return 0;
+    vbc_axis p[3];
+    vbc_axis_principal(o->s, p);
+    *out = o->membrane;
+    memcpy(out->c, p[0].c, sizeof out->c);
+    if (out->u[0] * first->u[0] + out->u[1] * first->u[1] + out->u[2] * first->u[2] < 0.0)
+        for (int k = 0; k < 3; k++)
+            out->u[k] = -out->u[k];
+    return 1;
+}
+
 /* Later frames sweep the first frame's pore axis (HOLE's fixed cvect and
  * cpoint): kept in the request once a frame found a pore along a free axis. */
-static void keep_pore_axis(vbc_channels_config *A, const vbc_frame *F, const vb_sphere_set *s)
+static void keep_pore_axis(vbc_channels_config *A, const vbc_frame *F, const vbc_run_out *o)
 {
     if (!A->pore.enabled || !F->result.pore.present || A->pore.have_axis)
         return;
     /* --axis-refit: the source refitted on this frame, the base of later frames'. */
-    if (A->axis_refit && !vbc_axis_refit(s, &F->axis, &A->refit0))
+    if (A->axis_refit && !refit_source(o, &F->axis, &A->refit0))
         memset(&A->refit0, 0, sizeof A->refit0);
     memcpy(A->u0, F->axis.u, sizeof A->u0);
     memcpy(A->c0, F->axis.c, sizeof A->c0);
@@ -146,15 +165,15 @@ static void keep_pore_axis(vbc_channels_config *A, const vbc_frame *F, const vb_
     memcpy(A->pore.found_why, F->axis.why, sizeof A->pore.found_why);
 }
 
-/* --axis-refit: the first frame's axis source fitted again on this frame's
- * spheres s. The pore axis turns with it and the sweep's start moves by as
+/* --axis-refit: the first frame's axis source fitted again on the frame o
+ * (refit_source). The pore axis turns with it and the sweep's start moves by as
  * much as the refitted axis' point: u = the refit's direction, c = c0 +
  * (refit.c - refit0.c). From the first frame's values only, so a frame's
  * axis does not depend on which frames a process ran before it (MPI). */
-static void refit_pore_axis(vbc_channels_config *A, const vb_sphere_set *s)
+static void refit_pore_axis(vbc_channels_config *A, const vbc_run_out *o)
 {
     vbc_axis now;
-    if (!A->axis_refit || !A->refit0.source || !vbc_axis_refit(s, &A->refit0, &now))
+    if (!A->axis_refit || !A->refit0.source || !refit_source(o, &A->refit0, &now))
         return;
     /* The chosen direction keeps its angle to the refitted one (a barrel's
      * pore tilted off its fitted axis): turned by the rotation taking
@@ -297,7 +316,7 @@ int vbc_run_back(vb_ctx *ctx, vbc_run *r, vbc_run_out *o)
     long index = o->fi.frame;
     double t0 = vb_now();
     if (!first)
-        refit_pore_axis(A, o->s);
+        refit_pore_axis(A, o);
     o->fi.ms_prepare += 1e3 * (vb_now() - t0);
     /* A voxel wider than the probe cannot resolve the necks that matter. */
     if (first && o->g.h > fmax(A->probe, 0.5))
@@ -322,7 +341,7 @@ int vbc_run_back(vb_ctx *ctx, vbc_run *r, vbc_run_out *o)
         vb_warn(ctx, VB_W_PORE_AXIS_FOUND, r->input, 0, "pore axis (%s): %s",
                 vbc_axis_source_name(ps->source), ps->why);
     if (rc == VB_OK)
-        keep_pore_axis(A, &o->F, o->s);
+        keep_pore_axis(A, &o->F, o);
     if (rc == VB_OK && A->plot)
         rc = series_add(ctx, &r->series, index, &o->F.result);
     if (rc == VB_OK && A->occupancy) {
@@ -393,7 +412,7 @@ int vbc_run_axis(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index)
     vbc_pore_request req;
     membrane_options(r->cfg, &o, &opt, &req);
     if ((rc = vbc_frame_run(ctx, r->pipe, &o.g, o.s, r->cfg->probe, 0, &opt, &o.F)) == VB_OK)
-        keep_pore_axis(r->cfg, &o.F, o.s);
+        keep_pore_axis(r->cfg, &o.F, &o);
     vbc_frame_free(&o.F);
     vb_spheres_free(o.kept);
     return rc;

@@ -5,7 +5,8 @@
 # 80 A wide) around gramicidin A turned so that its pore runs along z. The
 # bilayer is left out (W809), its normal z is the axis (W810 "membrane
 # normal", axis_from membrane) and the bottleneck is gramicidin's alone
-# along z; without P atoms every lipid atom gives the normal; gramicidin
+# along z; --axis-refit follows a tilted bilayer; without P atoms every
+# lipid atom gives the normal; gramicidin
 # lying in the membrane (its pore along y) has no pore across it (W808);
 # cholera toxin B's C5 axis near the normal takes its place; crambin (soluble) in the bilayer
 # gets no pore along the normal (W808) rather than along a principal axis;
@@ -50,6 +51,19 @@ cut -d, -f1-5,7 grmz.csv | sed -n 2p > want.txt
 cut -d, -f1-5,7 slab.csv | sed -n 2p > got.txt
 [ -s want.txt ] || fail "gramicidin along z has no pore row"
 cmp -s want.txt got.txt || fail "gramicidin in the bilayer: $(cat got.txt), alone along z: $(cat want.txt)"
+
+# --axis-refit over two models, the second's bilayer tilted 5 degrees
+# about x: the second frame sweeps that bilayer's normal (the default,
+# --axis fixed, keeps z).
+grep -E '^(ATOM|HETATM)' grmz.pdb > grmz_atoms.pdb
+{ echo "MODEL        1"; cat grmz_atoms.pdb; bilayer P; echo ENDMDL
+  echo "MODEL        2"; cat grmz_atoms.pdb; bilayer P 0 0.0871557 0.9961947; echo ENDMDL; echo END; } > tilt.pdb
+run 0 "$out" "$vorball" channels --device ref --grid 64 --axis-refit tilt.pdb --json -o tilt.json
+grep -o '"axis": [^]]*' tilt.json > got.txt
+printf '"axis": [0.00000, 0.00000, 1.00000\n"axis": [0.00000, 0.08716, 0.99619\n' > want.txt
+cmp -s want.txt got.txt || fail "--axis-refit with a tilted bilayer: $(cat got.txt)"
+run 0 "$out" "$vorball" channels --device ref --grid 64 tilt.pdb --json -o tiltfixed.json
+[ "$(grep -c '"axis": \[0.00000, 0.00000, 1.00000\]' tiltfixed.json)" = 2 ] || fail "--axis fixed did not keep z"
 
 # No head-group P: all the lipid atoms give the normal.
 { cat grmz.pdb; bilayer C1; echo END; } > slabc.pdb
