@@ -116,6 +116,7 @@
     X(W, 809, ATOMS_IGNORED, 0, "atoms left out by --membrane or --ignore (count per name)")             \
     X(W, 810, PORE_AXIS_FOUND, 0, "note: where the pore's axis came from (symmetry, barrel, ...)")       \
     X(W, 811, LIGANDS_LEFT_OUT, 0, "channels: ligands (HETATM, no polymer residue) left out, per name")  \
+    X(W, 812, MEMBRANE_NOT_FLAT, 0, "channels: membrane atoms left out make no flat, wide membrane: no normal axis") \
     X(W, 829, PAGE_FULL, 0, "results page full: later frames left out of it (the tables have them)")    \
     X(W, 830, MPI_SAMPLING_RANK0, 0, "--proposer sampling does not split: rank 0 runs it alone")         \
     X(W, 831, MPI_STOPPED, 0, "a rank failed: every rank stopped (the error names the rank)")                   \

@@ -17,6 +17,7 @@ const char *vbc_axis_source_name(int source)
     case VBC_AXIS_SUBUNIT: return "subunit";
     case VBC_AXIS_SYMMETRY: return "symmetry";
     case VBC_AXIS_BARREL: return "barrel";
+    case VBC_AXIS_MEMBRANE: return "membrane";
     default: return "none";
     }
 }

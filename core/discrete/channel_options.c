@@ -76,7 +76,8 @@ static const vbc_opt_spec table[] = {
     {O_REPEAT, "--repeat", NULL, NULL, VBC_OPT_COUNT, NUM(1, 100000), "N", "1",
      "run every frame N times (timings; outputs written once)", VBC_SECT_MAIN},
     {O_AXIS, "--axis", NULL, "axis", VBC_OPT_VEC3, NONE, "X,Y,Z|fixed", NULL,
-     "the pore axis (HOLE's cvect); default: the C_n symmetry axis of the chains (a subunit's "
+     "the pore axis (HOLE's cvect); default: the membrane's normal when membrane atoms were "
+     "left out, else the C_n symmetry axis of the chains (a subunit's "
      "pore when that is closed), else two stacked chains, else a beta-barrel's axis, else a "
      "through channel, else a principal axis (W810 says which); fixed: later frames sweep the "
      "first frame's axis (the default; --axis-refit refits it)", VBC_SECT_PORE},
@@ -112,7 +113,8 @@ static const vbc_opt_spec table[] = {
      "(.mrc/.map float32 or .vtk; needs --fixed-grid)", VBC_SECT_PORE},
     {O_AXIS_REFIT, "--axis-refit", NULL, "axis_refit", VBC_OPT_FLAG, NONE, NULL, NULL,
      "trajectories: refit the axis on every frame from the source the first frame found "
-     "(symmetry, chains, barrel, subunit, principal; the sweep's start moves with it)",
+     "(membrane, symmetry, chains, barrel, subunit, principal; the sweep's start moves with "
+     "it)",
      VBC_SECT_PORE},
     {O_KEEP_LIGANDS, "--keep-ligands", NULL, "keep_ligands", VBC_OPT_FLAG, NONE, NULL, NULL,
      "keep the ligands: by default HETATM residues that are no polymer residue (sugars, ions, "

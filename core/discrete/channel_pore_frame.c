@@ -218,6 +218,28 @@ static int barrel_pore(vb_ctx *ctx, const vbc_cells *cells, const vb_sphere_set 
     return VB_OK;
 }
 
+/* The membrane's normal (cand[0]) gives way to a symmetry axis (three or
+ * more chains) or a barrel axis within VBC_MEMBRANE_AGREE degrees of it:
+ * the same direction, fitted to the channel itself, with its own pore
+ * search (the subunits, the barrel's cone). Returns the candidates left. */
+static int membrane_defers(vbc_axis *cand, int *force, int nc)
+{
+    for (int k = 1; k < nc; k++) {
+        int fitted = force[k] || cand[k].source == VBC_AXIS_BARREL;
+        double d = fabs(cand[0].u[0] * cand[k].u[0] + cand[0].u[1] * cand[k].u[1] +
+                        cand[0].u[2] * cand[k].u[2]);
+        if (!fitted || d < cos(VBC_MEMBRANE_AGREE * acos(-1.0) / 180.0))
+            continue;
+        size_t w = strlen(cand[k].why);
+        snprintf(cand[k].why + w, sizeof cand[k].why - w, "; %.0f deg off the membrane normal",
+                 acos(fmin(d, 1.0)) * 180.0 / acos(-1.0));
+        memmove(cand, cand + 1, (size_t)(nc - 1) * sizeof *cand);
+        memmove(force, force + 1, (size_t)(nc - 1) * sizeof *force);
+        return nc - 1;
+    }
+    return nc;
+}
+
 int vbc_pore_find(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const vbc_cells *cells,
                   const vb_sphere_set *s, const vbc_result *res, const vbc_pore_request *req,
                   vbc_pore *out)
@@ -246,20 +268,30 @@ int vbc_pore_find(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const vb
         return sweep(ctx, cells, s, &ax, req, &M, out);
     }
     /* Candidates in the order of vbc_pore.h; the first open one wins. */
-    vbc_axis cand[7];
-    int force[7] = {0}, nc = 0;
+    vbc_axis cand[8];
+    int force[8] = {0}, nc = 0;
+    int membrane = req->have_membrane;
+    if (membrane) {
+        cand[nc] = req->membrane;
+        memcpy(cand[nc++].c, centroid, sizeof centroid);
+    }
     if (vbc_axis_symmetry(s, &cand[nc])) {
         force[nc++] = 1;
     } else if (vbc_axis_from_chains(s, &cand[nc])) {
         force[nc] = cand[nc].chains >= 3;
         nc++;
     }
-    if (!(nc && force[0]) && vbc_axis_barrel(s, NULL, &cand[nc]))
+    if (!(nc > membrane && force[membrane]) && vbc_axis_barrel(s, NULL, &cand[nc]))
         nc++;
-    if (channel_axis(res, &cand[nc]))
+    /* Across a membrane no channel or principal axis: the normal stays. */
+    if (!membrane && channel_axis(res, &cand[nc]))
         nc++;
-    vbc_axis_principal(s, &cand[nc]);
-    nc += 3;
+    if (!membrane) {
+        vbc_axis_principal(s, &cand[nc]);
+        nc += 3;
+    }
+    if (membrane)
+        nc = membrane_defers(cand, force, nc);
     if (req->have_through)
         for (int k = 0; k < nc; k++)
             memcpy(cand[k].c, req->c, sizeof req->c);
@@ -267,7 +299,7 @@ int vbc_pore_find(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const vb
     /* Once the loop reaches the principal axes (the last three) it judges
      * all three (no break among them), so they are swept at once. */
     sweep_job J[3];
-    int first_principal = nc - 3, swept = 0;
+    int first_principal = membrane ? nc : nc - 3, swept = 0;
     for (int k = 0; k < nc; k++) {
         vbc_pore p;
         int rc;
@@ -304,7 +336,9 @@ int vbc_pore_find(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const vb
             better = (open_pore(&p) && !open_pore(out)) ||
                      (open_pore(&p) == open_pore(out) && p.pts[p.min_at].r > out->pts[out->min_at].r);
         else
-            better = open_pore(&p) && !open_pore(out);
+            /* A closed membrane normal gives way to the symmetry axis (its subunits). */
+            better = (open_pore(&p) && !open_pore(out)) ||
+                     (force[k] && out->axis.source == VBC_AXIS_MEMBRANE && !open_pore(out));
         if (better) {
             vbc_pore_free(out);
             *out = p;

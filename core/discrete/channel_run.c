@@ -97,11 +97,26 @@ static int frame_prepare(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long 
             names[n++] = A->membrane[k];
         for (size_t k = 0; k < A->nignore; k++)
             names[n++] = A->ignore[k];
-        size_t lig0 = r->ligands.atoms;
+        size_t lig0 = r->ligands.atoms, mem0 = 0, mem1 = 0;
+        for (size_t k = 0; k < A->nmembrane; k++)
+            mem0 += r->left_out[k];
         rc = vbc_spheres_without(ctx, s0, names, n, r->left_out,
                                  A->keep_ligands ? NULL : &r->ligands, &o->kept, &dropped);
         if (rc != VB_OK)
             return rc;
+        for (size_t k = 0; k < A->nmembrane; k++)
+            mem1 += r->left_out[k];
+        /* The membrane's normal, the pore's first axis candidate. */
+        o->membrane_out = mem1 > mem0;
+        if (o->membrane_out && A->pore.enabled) {
+            int m = vbc_membrane_normal(s0, A->membrane, A->nmembrane, &o->membrane);
+            if (m < 0) {
+                vb_spheres_free(o->kept);
+                o->kept = NULL;
+                return vb_error(ctx, VB_ENOMEM, NULL, 0, "membrane normal: out of memory");
+            }
+            o->have_membrane = m;
+        }
         r->ignored += dropped - (r->ligands.atoms - lig0);
         o->s = o->kept;
     }
@@ -112,14 +127,33 @@ static int frame_prepare(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long 
     return rc;
 }
 
+/* The source of `first` fitted again on the frame o (its spheres o->s):
+ * vbc_axis_refit, or the frame's membrane normal through the centroid of
+ * its spheres. Returns 1 with *out filled, else 0. */
+static int refit_source(const vbc_run_out *o, const vbc_axis *first, vbc_axis *out)
+{
+    if (first->source != VBC_AXIS_MEMBRANE)
+        return vbc_axis_refit(o->s, first, out);
+    if (!o->have_membrane)
+        return 0;
+    vbc_axis p[3];
+    vbc_axis_principal(o->s, p);
+    *out = o->membrane;
+    memcpy(out->c, p[0].c, sizeof out->c);
+    if (out->u[0] * first->u[0] + out->u[1] * first->u[1] + out->u[2] * first->u[2] < 0.0)
+        for (int k = 0; k < 3; k++)
+            out->u[k] = -out->u[k];
+    return 1;
+}
+
 /* Later frames sweep the first frame's pore axis (HOLE's fixed cvect and
  * cpoint): kept in the request once a frame found a pore along a free axis. */
-static void keep_pore_axis(vbc_channels_config *A, const vbc_frame *F, const vb_sphere_set *s)
+static void keep_pore_axis(vbc_channels_config *A, const vbc_frame *F, const vbc_run_out *o)
 {
     if (!A->pore.enabled || !F->result.pore.present || A->pore.have_axis)
         return;
     /* --axis-refit: the source refitted on this frame, the base of later frames'. */
-    if (A->axis_refit && !vbc_axis_refit(s, &F->axis, &A->refit0))
+    if (A->axis_refit && !refit_source(o, &F->axis, &A->refit0))
         memset(&A->refit0, 0, sizeof A->refit0);
     memcpy(A->u0, F->axis.u, sizeof A->u0);
     memcpy(A->c0, F->axis.c, sizeof A->c0);
@@ -131,15 +165,15 @@ static void keep_pore_axis(vbc_channels_config *A, const vbc_frame *F, const vb_
     memcpy(A->pore.found_why, F->axis.why, sizeof A->pore.found_why);
 }
 
-/* --axis-refit: the first frame's axis source fitted again on this frame's
- * spheres s. The pore axis turns with it and the sweep's start moves by as
+/* --axis-refit: the first frame's axis source fitted again on the frame o
+ * (refit_source). The pore axis turns with it and the sweep's start moves by as
  * much as the refitted axis' point: u = the refit's direction, c = c0 +
  * (refit.c - refit0.c). From the first frame's values only, so a frame's
  * axis does not depend on which frames a process ran before it (MPI). */
-static void refit_pore_axis(vbc_channels_config *A, const vb_sphere_set *s)
+static void refit_pore_axis(vbc_channels_config *A, const vbc_run_out *o)
 {
     vbc_axis now;
-    if (!A->axis_refit || !A->refit0.source || !vbc_axis_refit(s, &A->refit0, &now))
+    if (!A->axis_refit || !A->refit0.source || !refit_source(o, &A->refit0, &now))
         return;
     /* The chosen direction keeps its angle to the refitted one (a barrel's
      * pore tilted off its fitted axis): turned by the rotation taking
@@ -162,6 +196,20 @@ static void refit_pore_axis(vbc_channels_config *A, const vb_sphere_set *s)
     }
 }
 
+/* The options of A with the frame's membrane normal in the pore request
+ * (a copy in *req) when the frame has one and no axis is fixed. */
+static void membrane_options(const vbc_channels_config *A, const vbc_run_out *o, vbc_options *opt,
+                             vbc_pore_request *req)
+{
+    *opt = A->opt;
+    if (!o->have_membrane || !A->opt.pore || A->opt.pore->have_axis)
+        return;
+    *req = *A->opt.pore;
+    req->have_membrane = 1;
+    req->membrane = o->membrane;
+    opt->pore = req;
+}
+
 /* The pipeline `repeat` times (the first run's masks already made when
  * o->masked), the per-run mean timings in o->fi. */
 static int frame_repeat(vb_ctx *ctx, vbc_run *r, vbc_run_out *o)
@@ -169,11 +217,14 @@ static int frame_repeat(vb_ctx *ctx, vbc_run *r, vbc_run_out *o)
     const vbc_channels_config *A = r->cfg;
     vbc_frame_info *fi = &o->fi;
     int rc = VB_OK;
+    vbc_options opt;
+    vbc_pore_request req;
+    membrane_options(A, o, &opt, &req);
     for (int k = 0; k < A->repeat && rc == VB_OK; k++) {
         if (k > 0 || !o->masked)
             rc = vbc_frame_masks(ctx, r->pipe, &o->g, o->s, A->probe, o->want, &A->opt, &o->F);
         if (rc == VB_OK)
-            rc = vbc_frame_analyse(ctx, o->s, &A->opt, &o->F);
+            rc = vbc_frame_analyse(ctx, o->s, &opt, &o->F);
         fi->ms_upload += o->F.out.ms_upload;
         fi->ms_jfa += o->F.out.ms_jfa;
         fi->ms_masks += o->F.out.ms_masks;
@@ -265,7 +316,7 @@ int vbc_run_back(vb_ctx *ctx, vbc_run *r, vbc_run_out *o)
     long index = o->fi.frame;
     double t0 = vb_now();
     if (!first)
-        refit_pore_axis(A, o->s);
+        refit_pore_axis(A, o);
     o->fi.ms_prepare += 1e3 * (vb_now() - t0);
     /* A voxel wider than the probe cannot resolve the necks that matter. */
     if (first && o->g.h > fmax(A->probe, 0.5))
@@ -273,6 +324,11 @@ int vbc_run_back(vb_ctx *ctx, vbc_run *r, vbc_run_out *o)
                 "voxel edge %.2f A is coarser than the probe radius %.2f A: narrow channels may be "
                 "missed (raise --grid)", o->g.h, A->probe);
     rc = frame_repeat(ctx, r, o);
+    if (rc == VB_OK && first && o->membrane_out && !o->have_membrane && A->pore.enabled &&
+        !A->pore.have_axis)
+        vb_warn(ctx, VB_W_MEMBRANE_NOT_FLAT, r->input, 0,
+                "the membrane atoms left out make no flat, wide membrane (vbc_membrane_normal): its "
+                "normal is no axis candidate");
     const vbc_pore_summary *ps = &o->F.result.pore;
     if (rc == VB_OK && A->pore.enabled && !ps->present && first && ps->judged)
         vb_warn(ctx, VB_W_PORE_NOT_FOUND, r->input, 0,
@@ -285,7 +341,7 @@ int vbc_run_back(vb_ctx *ctx, vbc_run *r, vbc_run_out *o)
         vb_warn(ctx, VB_W_PORE_AXIS_FOUND, r->input, 0, "pore axis (%s): %s",
                 vbc_axis_source_name(ps->source), ps->why);
     if (rc == VB_OK)
-        keep_pore_axis(A, &o->F, o->s);
+        keep_pore_axis(A, &o->F, o);
     if (rc == VB_OK && A->plot)
         rc = series_add(ctx, &r->series, index, &o->F.result);
     if (rc == VB_OK && A->occupancy) {
@@ -352,8 +408,11 @@ int vbc_run_axis(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index)
     memcpy(r->left_out, left_out, sizeof left_out);
     if (rc != VB_OK)
         return rc;
-    if ((rc = vbc_frame_run(ctx, r->pipe, &o.g, o.s, r->cfg->probe, 0, &r->cfg->opt, &o.F)) == VB_OK)
-        keep_pore_axis(r->cfg, &o.F, o.s);
+    vbc_options opt;
+    vbc_pore_request req;
+    membrane_options(r->cfg, &o, &opt, &req);
+    if ((rc = vbc_frame_run(ctx, r->pipe, &o.g, o.s, r->cfg->probe, 0, &opt, &o.F)) == VB_OK)
+        keep_pore_axis(r->cfg, &o.F, &o);
     vbc_frame_free(&o.F);
     vb_spheres_free(o.kept);
     return rc;

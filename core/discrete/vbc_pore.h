@@ -38,7 +38,8 @@ enum vbc_axis_source {
     VBC_AXIS_PRINCIPAL, /* a principal axis of the atom centres */
     VBC_AXIS_SUBUNIT,   /* the chains' symmetry axis moved to one chain's centroid (or its barrel) */
     VBC_AXIS_SYMMETRY,  /* the C_n axis of n >= 3 equal chains, by superposition */
-    VBC_AXIS_BARREL     /* the cylinder of a beta-barrel's strands */
+    VBC_AXIS_BARREL,    /* the cylinder of a beta-barrel's strands */
+    VBC_AXIS_MEMBRANE   /* the normal of the membrane left out (channel_membrane.c) */
 };
 
 /* The subunit rule above, in A. */
@@ -57,6 +58,18 @@ typedef struct vbc_axis {
 /* The order in which the axis sources are tried when the user gives none
  * (vbc_pore_find; the first whose sweep is open wins, the symmetry axis in
  * any case):
+ *   0. membrane  when --membrane left membrane atoms out of the frame, the
+ *                normal of their planes (vbc_membrane_normal), through the
+ *                centroid of the atoms kept; a symmetry axis of three or
+ *                more chains or a barrel axis within VBC_MEMBRANE_AGREE
+ *                degrees of it takes its place (the same direction fitted
+ *                to the channel, with its subunits' or cone's search);
+ *                then only the symmetry, chains and barrel axes follow, an
+ *                open one (a closed normal) or the symmetry axis replacing
+ *                it; no channel or principal axis (a pore across a
+ *                membrane runs along its normal, a closed one stays there:
+ *                the pore is closed; an open path the verdict rejects is
+ *                no pore, W808);
  *   1. symmetry  n >= 3 chains of the same sequence whose C-alpha atoms
  *                superpose onto their neighbours' by one rotation of 360/n
  *                degrees about one axis (vbc_axis_symmetry); when its sweep
@@ -120,8 +133,31 @@ int vbc_axis_barrel(const vb_sphere_set *s, const char *chain, vbc_axis *out);
 #define VBC_BARREL_CONE 8
 #define VBC_BARREL_TILT 4.0
 
+/* The normal of a membrane (core/discrete/channel_membrane.c): the atoms of
+ * s whose residue names are among names (n of them; --membrane's), of them
+ * OPM's dummy atoms (DUM) when there are VBC_MEMBRANE_MIN_ATOMS, else the
+ * lipids' head-group phosphorus (atom name P), else all. Each principal
+ * axis of those atoms splits them in two halves (the leaflets, or OPM's two
+ * planes) through their mean; the least eigenvector of the halves' scatter,
+ * each about its own mean, is the normal of that split, and the split whose
+ * least eigenvalue is smallest wins. Accepted when that eigenvalue is below
+ * VBC_MEMBRANE_FLAT times the middle one (the leaflets are flat) and the
+ * middle one's rms is VBC_MEMBRANE_MIN_RMS A or more (a membrane patch, not
+ * a few lipids or detergents bound to a protein). Returns 1
+ * with out->u (oriented by vbc_axis_orient), source MEMBRANE and why filled
+ * (out->c is the caller's to set), 0 when they are not flat or fewer
+ * than VBC_MEMBRANE_MIN_ATOMS, -1 out of memory. A lattice of OPM dummy
+ * atoms 32 A wide has an rms of 9.8 A; YiiP's bilayer (MDAnalysis) 28 A. */
+int vbc_membrane_normal(const vb_sphere_set *s, const char *const *names, size_t n, vbc_axis *out);
+#define VBC_MEMBRANE_MIN_ATOMS 3
+/* A symmetry axis (three or more chains) or a barrel axis within this many
+ * degrees of the membrane's normal takes its place (vbc_pore_find). */
+#define VBC_MEMBRANE_AGREE 30.0
+#define VBC_MEMBRANE_FLAT 0.25
+#define VBC_MEMBRANE_MIN_RMS 8.0
+
 /* A short name of the axis source ("given", "chains", "channel",
- * "principal", "subunit", "symmetry", "barrel", "none"). */
+ * "principal", "subunit", "symmetry", "barrel", "membrane", "none"). */
 const char *vbc_axis_source_name(int source);
 
 /* The axis from the chains of s (s->info): three or more chains of at

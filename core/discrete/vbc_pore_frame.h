@@ -16,6 +16,8 @@ typedef struct vbc_pore_request {
     int found_source;     /* when the axis was found on an earlier frame: its source */
     int found_chains;
     char found_why[128];  /* and its axis_why */
+    int have_membrane;    /* the frame's membrane normal, the first candidate (set per frame) */
+    vbc_axis membrane;
     vbc_pore_options sweep;
 } vbc_pore_request;
 

@@ -45,6 +45,9 @@ typedef struct vbc_run_out {
     unsigned want;            /* VBC_WANT_* of this frame (vbc_run_front) */
     int first;                /* the first frame of the selection */
     int masked;               /* F.out holds the first run's masks (vbc_run_front) */
+    int membrane_out;         /* membrane atoms (--membrane) were left out of this frame */
+    int have_membrane;        /* and `membrane` is their normal (vbc_membrane_normal) */
+    vbc_axis membrane;
 } vbc_run_out;
 
 /* Starts a run of cfg (checked by vbc_channels_check) on pipe; input is

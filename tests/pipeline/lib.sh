@@ -42,3 +42,11 @@ vertex_lines() {
 sans_provenance() {
     grep -Ev '^# (tool|input|options): ' "$1"
 }
+
+# pdb_y_to_z PDB: the ATOM/HETATM records of PDB turned so that y becomes z
+# ((x, y, z) -> (x, -z, y), a proper rotation), other records kept, END dropped.
+pdb_y_to_z() {
+    awk '/^(ATOM|HETATM)/ { x = substr($0, 31, 8); y = substr($0, 39, 8); z = substr($0, 47, 8)
+      printf "%s%8.3f%8.3f%8.3f%s\n", substr($0, 1, 30), x, -z, y, substr($0, 55); next }
+      /^END/ { next } { print }' "$1"
+}

@@ -9,7 +9,8 @@
 #   HOLE_DIR  a HOLE 2 checkout built apart (exe/hole, rad/*.rad; never committed)
 #   YIIP_GRO  optional: MDAnalysis' YiiP_lipids.gro.gz (GPL-2+, kept out of the
 #             repository): YiiP in a POPE/POPG bilayer, vorball at the defaults
-#             (the lipids left out, W809) beside HOLE on the same atoms
+#             (the lipids left out, W809; the axis their normal) beside HOLE on
+#             the same atoms along vorball's axis (cvect, cpoint), and HOLE's own guess
 # Writes OUTDIR/axis_2core.tsv: name, radii, HOLE's minimum radius per seed (1 2 3),
 # HOLE's CPU seconds (seed 1), vorball's bottleneck, axis source and CPU seconds.
 set -u
@@ -75,12 +76,22 @@ if [ -n "$YIIP" ]; then
             length(an) < 4 ? " " an : an, rn, substr($0, 1, 5) % 10000,
             substr($0, 21, 8) * 10, substr($0, 29, 8) * 10, substr($0, 37, 8) * 10 }
         END { print "END" }' > yiip.pdb
+    # vorball first: its axis (the membrane's normal since axis32c) and
+    # start are HOLE's cvect and cpoint, the same axis for both.
     cp "$YIIP" yiip.gro.gz
-    h1=$(hole_run yiip yiip.pdb simple 1 "ignore POPE POPG SOL ZNM")
-    h2=$(hole_run yiip yiip.pdb simple 2 "ignore POPE POPG SOL ZNM")
-    h3=$(hole_run yiip yiip.pdb simple 3 "ignore POPE POPG SOL ZNM")
     v=$(vorball_run yiip yiip.gro.gz simple --ignore ZNM)
+    cv=$(python3 -c "import json,sys; p=json.load(open(sys.argv[1]))['frames'][0]['pore']
+print('cvect %s %s %s' % tuple(p['axis'])); print('cpoint %s %s %s' % tuple(p['start']))" yiip_simple.json)
+    h1=$(hole_run yiip yiip.pdb simple 1 "ignore POPE POPG SOL ZNM" "$cv")
+    h2=$(hole_run yiip yiip.pdb simple 2 "ignore POPE POPG SOL ZNM" "$cv")
+    h3=$(hole_run yiip yiip.pdb simple 3 "ignore POPE POPG SOL ZNM" "$cv")
     printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' yiip simple "$h1" "$h2" "$h3" \
         "$(cpu yiip_simple1.time)" ${v% *} ${v#* } "$(cpu yiip_simple.vtime)" >> axis_2core.tsv
+    # HOLE's own axis guess (x here), as before.
+    h1=$(hole_run yiipguess yiip.pdb simple 1 "ignore POPE POPG SOL ZNM")
+    h2=$(hole_run yiipguess yiip.pdb simple 2 "ignore POPE POPG SOL ZNM")
+    h3=$(hole_run yiipguess yiip.pdb simple 3 "ignore POPE POPG SOL ZNM")
+    printf '%s\t%s\t%s\t%s\t%s\t%s\t\t\t\n' yiip_hole_guess simple "$h1" "$h2" "$h3" \
+        "$(cpu yiipguess_simple1.time)" >> axis_2core.tsv
 fi
 cat axis_2core.tsv
