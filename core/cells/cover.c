@@ -126,23 +126,37 @@ static int cover_one(worker *w, uint32_t i)
     return quads_append(w, w->ar.q, o.nq);
 }
 
+/* Records a host worker's error rc and flags its job failed (every worker
+ * stops at its next cell). */
+static void worker_fail(worker *w, int rc)
+{
+    w->rc = rc;
+    atomic_store(&w->jb->failed, 1);
+}
+
+/* Gives a host worker its first arena: 1 when ready, 0 when out of memory
+ * (the worker failed, see worker_fail). */
+static int worker_ready(worker *w)
+{
+    if (w->ar.nb || arena_make(&w->ar, VBQ_NB0, VBQ_LAB0, VBQ_ST0, VBQ_Q0) == VB_OK)
+        return 1;
+    worker_fail(w, VB_ENOMEM);
+    return 0;
+}
+
 static void *work(void *arg)
 {
     worker *w = arg;
     job *jb = w->jb;
-    if (!w->ar.nb && arena_make(&w->ar, VBQ_NB0, VBQ_LAB0, VBQ_ST0, VBQ_Q0) != VB_OK) {
-        w->rc = VB_ENOMEM;
-        atomic_store(&jb->failed, 1);
+    if (!worker_ready(w))
         return NULL;
-    }
     for (;;) {
         size_t k = atomic_fetch_add(&jb->next, 1);
         if (k >= jb->ncells || atomic_load(&jb->failed))
             break;
         int rc = cover_one(w, jb->cells[k]);
         if (rc != VB_OK) {
-            w->rc = rc;
-            atomic_store(&jb->failed, 1);
+            worker_fail(w, rc);
             break;
         }
         covered(jb, 1);
@@ -191,11 +205,8 @@ static void *hybrid_host(void *arg)
     worker *w = ha->w;
     share *sh = ha->sh;
     job *jb = w->jb;
-    if (!w->ar.nb && arena_make(&w->ar, VBQ_NB0, VBQ_LAB0, VBQ_ST0, VBQ_Q0) != VB_OK) {
-        w->rc = VB_ENOMEM;
-        atomic_store(&jb->failed, 1);
+    if (!worker_ready(w))
         return NULL;
-    }
     for (;;) {
         pthread_mutex_lock(&sh->mu);
         uint32_t cell = 0;
@@ -218,8 +229,7 @@ static void *hybrid_host(void *arg)
             return NULL;
         int rc = cover_one(w, cell);
         if (rc != VB_OK) {
-            w->rc = rc;
-            atomic_store(&jb->failed, 1);
+            worker_fail(w, rc);
             pthread_mutex_lock(&sh->mu);
             pthread_cond_broadcast(&sh->cv);
             pthread_mutex_unlock(&sh->mu);

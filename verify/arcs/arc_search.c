@@ -312,11 +312,13 @@ static int candidate(vbx_arcw *w, search *sr, uint32_t j)
     return VB_OK;
 }
 
-/* The candidates of region rg offered to the search (see the top). */
-static int scan_region(vbx_arcw *w, search *sr, vbx_region *rg)
+/* Offers the candidates already gathered in w->cand for region rg to the
+ * search (the frame's own spheres, contained ones and those rg's bound
+ * clears are skipped), then clears w->cand; rc is the gather's status: on
+ * an error nothing is offered and rc comes back. */
+static int offer_gathered(vbx_arcw *w, search *sr, vbx_region *rg, int rc)
 {
     vbx_tframe *f = sr->f;
-    int rc = vbx_gather(w, f, rg);
     for (size_t i = 0; rc == VB_OK && i < w->ncand; i++) {
         uint32_t j = w->cand[i];
         if (j == f->t[0] || j == f->t[1] || j == f->t[2] ||
@@ -329,6 +331,12 @@ static int scan_region(vbx_arcw *w, search *sr, vbx_region *rg)
     }
     vbx_clear_cands(w);
     return rc;
+}
+
+/* The candidates of region rg offered to the search (see the top). */
+static int scan_region(vbx_arcw *w, search *sr, vbx_region *rg)
+{
+    return offer_gathered(w, sr, rg, vbx_gather(w, sr->f, rg));
 }
 
 enum { TAIL_PIECES = 48, TAIL_CAP_MIN = 64, TAIL_STRIP_FROM = 2 };
@@ -419,17 +427,7 @@ static int search_tail(vbx_arcw *w, search *sr)
             /* gather_capped left the candidates in w->cand: scan them as
              * scan_region would (gather is not repeated). */
             w->cnt.tail_strips++;
-            for (size_t i = 0; rc == VB_OK && i < w->ncand; i++) {
-                uint32_t j = w->cand[i];
-                if (j == f->t[0] || j == f->t[1] || j == f->t[2] ||
-                    (w->set->contained && w->set->contained[j]))
-                    continue;
-                w->cnt.candidates++;
-                if (vbx_clear_of(w, f, &tail, j))
-                    continue;
-                rc = candidate(w, sr, j);
-            }
-            vbx_clear_cands(w);
+            rc = offer_gathered(w, sr, &tail, VB_OK);
             return rc == VB_OK ? 1 : -rc;
         }
         Sa = vbx_branch_S(f, vbx_ia_point(gb < 0.0 ? -gb : gb));
