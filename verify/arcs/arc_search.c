@@ -493,11 +493,8 @@ int vbx_touch_certify(vbx_arcw *w, vbx_tframe *f, const vbx_touch *tp, double xy
     }
     const vbx_root *root = &c->sol.root[tp->r];
     vbx_ia box[4];
-    int rc = vbx_root_coords(&c->sol, root, xyzt, box);
-    if (rc != VB_OK) {
-        vb_error(w->ctx, rc, NULL, 0, "cannot round an exact vertex to double");
+    if (vbx_cert_round(w->ctx, c, root, xyzt, box) != VB_OK)
         return -1;
-    }
     if (!vbx_cert_defining(w->ctx, c, root, q, 4, box))
         return 0;
     int verdict;

@@ -136,6 +136,15 @@ static vbx_ia distance_excess(const vbx_ia cj[4], const vbx_ia box[4])
     return vbx_ia_sub(vbx_ia_sub(vbx_ia_sqrt(d2), cj[3]), box[3]);
 }
 
+int vbx_cert_round(vb_ctx *ctx, vb_certifier *c, const vbx_root *r, double xyzt[4],
+                   vbx_ia box[4])
+{
+    int rc = vbx_root_coords(&c->sol, r, xyzt, box);
+    if (rc != VB_OK)
+        return vb_error(ctx, rc, NULL, 0, "cannot round an exact vertex to double");
+    return VB_OK;
+}
+
 static int is_solved_row(const vbx_solver *s, uint32_t j)
 {
     return j == s->base || j == s->rows[0] || j == s->rows[1] || j == s->rows[2];
@@ -423,9 +432,9 @@ int vbx_certify_one(vb_ctx *ctx, vb_certifier *c, const uint32_t *ids, size_t ni
     double best_d = 0.0, xyzt[2][4];
     vbx_ia box[2][4];
     for (int r = 0; r < c->sol.nroots; r++) {
-        int rc = vbx_root_coords(&c->sol, &c->sol.root[r], xyzt[r], box[r]);
+        int rc = vbx_cert_round(ctx, c, &c->sol.root[r], xyzt[r], box[r]);
         if (rc != VB_OK)
-            return vb_error(ctx, rc, NULL, 0, "cannot round an exact vertex to double");
+            return rc;
         if (!vbx_cert_defining(ctx, c, &c->sol.root[r], c->ids, m, box[r]))
             continue;
         double dx = xyzt[r][0] - p[0], dy = xyzt[r][1] - p[1], dz = xyzt[r][2] - p[2];

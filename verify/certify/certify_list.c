@@ -173,15 +173,9 @@ static int merge(vb_ctx *ctx, vb_certifier *c, const vb_vertex_list *cand, const
         rc = vbx_cert_key_of(ctx, c, m, o->nm, o->sigma, &key);
         if (rc != VB_OK)
             break;
-        if (key >= nwhere) {
-            size_t old = nwhere;
-            if (VB_ARRAY_FIT(where, nwhere, key + 1, 64) != VB_OK) {
-                rc = VB_ENOMEM;
-                break;
-            }
-            for (size_t i = old; i < nwhere; i++)
-                where[i] = SIZE_MAX;
-        }
+        rc = vbx_where_fit(&where, &nwhere, key);
+        if (rc != VB_OK)
+            break;
         if (where[key] == SIZE_MAX) {
             where[key] = out->n;
             rc = vb_vertex_list_push(out, m, o->nm, o->x, o->y, o->z, o->t, o->dist,

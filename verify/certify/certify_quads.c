@@ -216,9 +216,9 @@ static int exact_quad(qworker *w, size_t k, const int *need)
         const vbx_root *root = &c->sol.root[r];
         double xyzt[4];
         vbx_ia box[4];
-        int rc = vbx_root_coords(&c->sol, root, xyzt, box);
+        int rc = vbx_cert_round(ctx, c, root, xyzt, box);
         if (rc != VB_OK)
-            return vb_error(ctx, rc, NULL, 0, "cannot round an exact vertex to double");
+            return rc;
         if (mode == NEED_ROUND) {
             w->st.roots_round_exact++;
             rc = push_rec(w, k, xyzt, q, 4, root->sigma);
@@ -405,7 +405,7 @@ static int merge(vb_ctx *ctx, vb_certifier *c, const uint32_t (*quads)[4], size_
     vref *four = malloc((total ? total : 1) * sizeof *four);
     vref *more = malloc((total ? total : 1) * sizeof *more);
     size_t nfour = 0, nmore = 0;
-    size_t *where = NULL, nwhere = 0; /* key -> 1 when written in this call */
+    size_t *where = NULL, nwhere = 0; /* key -> 1 when written in this call, else SIZE_MAX */
     int rc = four && more ? VB_OK : VB_ENOMEM;
     for (size_t ch = 0; ch < nch && rc == VB_OK; ch++) {
         uint32_t wi = chunk_worker[ch];
@@ -427,15 +427,10 @@ static int merge(vb_ctx *ctx, vb_certifier *c, const uint32_t (*quads)[4], size_
             rc = vbx_cert_key_of(ctx, c, v.m, v.nm, ws[wi].rec[i].sigma, &key);
             if (rc != VB_OK)
                 break;
-            if (key >= nwhere) {
-                size_t old = nwhere;
-                if (VB_ARRAY_FIT(where, nwhere, key + 1, 64) != VB_OK) {
-                    rc = VB_ENOMEM;
-                    break;
-                }
-                memset(where + old, 0, (nwhere - old) * sizeof *where);
-            }
-            if (where[key]) {
+            rc = vbx_where_fit(&where, &nwhere, key);
+            if (rc != VB_OK)
+                break;
+            if (where[key] != SIZE_MAX) {
                 qs->duplicates++;
                 continue;
             }

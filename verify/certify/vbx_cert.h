@@ -2,6 +2,9 @@
 #ifndef VBX_CERT_H
 #define VBX_CERT_H
 
+#include <stdint.h>
+
+#include "vb_array.h"
 #include "vb_hash.h"
 #include "vb_verify.h"
 #include "vbx_exact.h"
@@ -37,6 +40,12 @@ struct vb_certifier {
     size_t npool, pool_cap;
 };
 
+/* Rounds root r of c->sol to doubles xyzt (x, y, z, t in input units) and
+ * their enclosures box (vbx_root_coords). Returns VB_OK, or the rounding's
+ * error, recorded in ctx ("cannot round an exact vertex to double"). */
+int vbx_cert_round(vb_ctx *ctx, vb_certifier *c, const vbx_root *r, double xyzt[4],
+                   vbx_ia box[4]);
+
 /* Is root r of c->sol a solution of the unsquared system for all of
  * def[0..ndef) (which contain c->sol's base and rows)? Checks outer tangency
  * t + R_i >= 0 of every defining sphere and exact tangency of those beyond
@@ -71,6 +80,22 @@ int vbx_cert_identity(vb_ctx *ctx, vb_certifier *c, const vbx_root *r, int *sigm
  * number. Returns VB_OK or VB_ENOMEM. */
 int vbx_cert_key_of(vb_ctx *ctx, vb_certifier *c, const uint32_t *m, size_t n, int sigma,
                     size_t *key);
+
+/* Makes room for entry `key` in a key -> slot table (where, *nwhere) that
+ * grows with the keys vbx_cert_key_of hands out: the entries it adds hold
+ * SIZE_MAX (no slot yet). Returns VB_OK, or VB_ENOMEM with the table as it
+ * was. */
+static inline int vbx_where_fit(size_t **where, size_t *nwhere, size_t key)
+{
+    if (key < *nwhere)
+        return VB_OK;
+    size_t old = *nwhere;
+    if (VB_ARRAY_FIT(*where, *nwhere, key + 1, 64) != VB_OK)
+        return VB_ENOMEM;
+    for (size_t i = old; i < *nwhere; i++)
+        (*where)[i] = SIZE_MAX;
+    return VB_OK;
+}
 
 /* vb_certify_candidate without the key: everything else of *res, and the
  * canonical root in *sigma when the verdict is VB_CERT_OK. Same returns. */

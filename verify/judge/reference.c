@@ -223,9 +223,9 @@ static int quad_exact(ref_state *rs, const uint32_t quad[4])
         const vbx_root *root = &c->sol.root[r];
         double xyzt[4];
         vbx_ia box[4];
-        int rc = vbx_root_coords(&c->sol, root, xyzt, box);
+        int rc = vbx_cert_round(ctx, c, root, xyzt, box);
         if (rc != VB_OK)
-            return vb_error(ctx, rc, NULL, 0, "cannot round an exact vertex to double");
+            return rc;
         if (!vbx_cert_defining(ctx, c, root, quad, 4, box))
             continue;
         int verdict;
