@@ -164,13 +164,17 @@ void vbi_atom_scan_init(vbi_atom_scan *s, int want)
 {
     vbi_models_init(&s->models, want);
     s->ended = 0;
+    s->model_line = 0;
 }
 
-int vbi_atom_scan_takes(vbi_atom_scan *s, vbi_record rec, int32_t model_serial,
+int vbi_atom_scan_takes(vbi_atom_scan *s, vbi_record rec, int32_t model_serial, long lineno,
                         vbi_dropped *dr)
 {
     switch (rec) {
-    case VBI_REC_MODEL: vbi_models_begin(&s->models, model_serial, dr); return 0;
+    case VBI_REC_MODEL:
+        s->model_line = lineno;
+        vbi_models_begin(&s->models, model_serial, dr);
+        return 0;
     case VBI_REC_ENDMDL: vbi_models_end(&s->models); return 0;
     case VBI_REC_END: s->ended = 1; return 0;
     case VBI_REC_OTHER: return 0;
@@ -187,10 +191,22 @@ int vbi_atom_scan_takes(vbi_atom_scan *s, vbi_record rec, int32_t model_serial,
     return 1;
 }
 
-void vbi_atom_scan_note_open_model(const vbi_atom_scan *s, long model_line, vbi_dropped *dr)
+int vbi_atom_parse_begin(vb_ctx *ctx, const char *name, const vb_read_options *opt,
+                         vbi_builder *b, vbi_atom_scan *scan, vb_sphere_set **out)
 {
-    if (s->models.in_model && s->models.taking && !s->ended && model_line > 0)
-        dr->open_model_line = model_line;
+    *out = NULL;
+    int rc = vbi_builder_init(b, ctx, name, opt->max_spheres, 1);
+    if (rc == VB_OK)
+        vbi_atom_scan_init(scan, opt->model);
+    return rc;
+}
+
+int vbi_atom_parse_end(vbi_builder *b, const vbi_atom_scan *scan, vbi_dropped *dr, int rc,
+                       vb_sphere_set **out)
+{
+    if (scan->models.in_model && scan->models.taking && !scan->ended && scan->model_line > 0)
+        dr->open_model_line = scan->model_line;
+    return vbi_builder_close(b, &scan->models, rc, out);
 }
 
 void vbi_altloc_init(vbi_altloc *a)

@@ -64,7 +64,7 @@ static int altloc_prepass(const char *buf, size_t len, const vb_read_options *op
     while (vbi_lines_next(&it, &line, &n)) {
         vbi_record rec = vbi_record_kind(vbi_pdb_record, line, n);
         int32_t serial = rec == VBI_REC_MODEL ? vbi_pdb_model_serial(line, n) : 0;
-        if (!vbi_atom_scan_takes(&scan, rec, serial, &ignored) || column_char(line, n, 17) == ' ')
+        if (!vbi_atom_scan_takes(&scan, rec, serial, it.lineno, &ignored) || column_char(line, n, 17) == ' ')
             continue;
         vb_atom_info info;
         memset(&info, 0, sizeof info);
@@ -161,13 +161,11 @@ static int cryst1_box(const char *line, size_t n, vb_box *box)
 int vbi_pdb_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, long first_line,
                   const vb_read_options *opt, vbi_dropped *dr, vb_sphere_set **out)
 {
-    *out = NULL;
     vbi_builder b;
-    int rc = vbi_builder_init(&b, ctx, name, opt->max_spheres, 1);
+    vbi_atom_scan scan;
+    int rc = vbi_atom_parse_begin(ctx, name, opt, &b, &scan, out);
     if (rc != VB_OK)
         return rc;
-    vbi_atom_scan scan;
-    vbi_atom_scan_init(&scan, opt->model);
     vbi_altloc alt;
     vbi_altloc_init(&alt);
     if (altloc_prepass(buf, len, opt, &alt) != 0)
@@ -178,7 +176,6 @@ int vbi_pdb_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
     vbi_lines_init(&it, buf, len, first_line);
     const char *line;
     size_t n;
-    long model_line = 0;
     vb_box box;
     int has_box = 0;
     size_t taken = 0;
@@ -190,9 +187,7 @@ int vbi_pdb_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
         vbi_record rec = vbi_record_kind(vbi_pdb_record, line, n);
         int32_t serial = rec == VBI_REC_MODEL ? vbi_pdb_model_serial(line, n) : 0;
         records += rec == VBI_REC_ATOM;
-        if (rec == VBI_REC_MODEL)
-            model_line = it.lineno;
-        if (!vbi_atom_scan_takes(&scan, rec, serial, dr))
+        if (!vbi_atom_scan_takes(&scan, rec, serial, it.lineno, dr))
             continue;
         vb_atom_info info;
         vb_decimal e[4];
@@ -210,11 +205,10 @@ int vbi_pdb_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
         taken++;
     }
     vbi_altloc_free(&alt);
-    vbi_atom_scan_note_open_model(&scan, model_line, dr);
     if (rc == VB_OK && records == 0)
         rc = vb_error(ctx, VB_EINPUT_EMPTY, name, 0,
                       "no atoms: no ATOM or HETATM record in the PDB input");
-    rc = vbi_builder_close(&b, &scan.models, rc, out);
+    rc = vbi_atom_parse_end(&b, &scan, dr, rc, out);
     if (rc == VB_OK && *out && has_box) {
         (*out)->box = malloc(sizeof *(*out)->box);
         if (!(*out)->box) {

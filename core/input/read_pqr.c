@@ -29,19 +29,16 @@ static const char *const value_names[4] = {"x coordinate", "y coordinate", "z co
 int vbi_pqr_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, long first_line,
                   const vb_read_options *opt, vbi_dropped *dr, vb_sphere_set **out)
 {
-    *out = NULL;
     vbi_builder b;
-    int rc = vbi_builder_init(&b, ctx, name, opt->max_spheres, 1);
+    vbi_atom_scan scan;
+    int rc = vbi_atom_parse_begin(ctx, name, opt, &b, &scan, out);
     if (rc != VB_OK)
         return rc;
-    vbi_atom_scan scan;
-    vbi_atom_scan_init(&scan, opt->model);
     const int zero_policy = vbi_zero_radius_policy(opt, VB_FMT_PQR);
     vbi_lines it;
     vbi_lines_init(&it, buf, len, first_line);
     const char *line;
     size_t n;
-    long model_line = 0;
     while (rc == VB_OK && vbi_lines_next(&it, &line, &n)) {
         const char *tok[VBI_PQR_MAX_TOKENS + 1], *p = line;
         size_t tl[VBI_PQR_MAX_TOKENS + 1], k;
@@ -54,9 +51,7 @@ int vbi_pqr_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
         int32_t serial = 0;
         if (rec == VBI_REC_MODEL && nt > 1)
             vbi_parse_int(tok[1], tl[1], &serial);
-        if (rec == VBI_REC_MODEL)
-            model_line = it.lineno;
-        if (!vbi_atom_scan_takes(&scan, rec, serial, dr))
+        if (!vbi_atom_scan_takes(&scan, rec, serial, it.lineno, dr))
             continue;
         if (nt < 10 || nt > VBI_PQR_MAX_TOKENS) {
             rc = vb_error(ctx, VB_EINPUT_MALFORMED, name, it.lineno,
@@ -101,8 +96,7 @@ int vbi_pqr_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
             continue;
         rc = vbi_builder_push(&b, e, d, &info, it.lineno);
     }
-    vbi_atom_scan_note_open_model(&scan, model_line, dr);
-    rc = vbi_builder_close(&b, &scan.models, rc, out);
+    rc = vbi_atom_parse_end(&b, &scan, dr, rc, out);
     if (rc == VB_OK)
         (*out)->allows_zero_radius = zero_policy == VB_ZERO_RADIUS_POINT;
     return rc;

@@ -235,22 +235,30 @@ vbi_record vbi_record_kind(int (*is)(const char *, size_t, const char *), const 
  * model (MODEL/ENDMDL blocks), none after END. */
 typedef struct vbi_atom_scan {
     vbi_models models;
-    int ended; /* an END record was met: what follows is not this entry */
+    int ended;       /* an END record was met: what follows is not this entry */
+    long model_line; /* line of the last MODEL record (0: none yet) */
 } vbi_atom_scan;
 
 void vbi_atom_scan_init(vbi_atom_scan *s, int want);
-/* Feeds one record (model_serial: the serial of a MODEL record, else
- * ignored). Returns 1 for an atom record the reader parses, 0 for any other
- * record (MODEL, ENDMDL and END update the scan; atoms of other models or
- * after END are counted in dr). */
-int vbi_atom_scan_takes(vbi_atom_scan *s, vbi_record rec, int32_t model_serial,
+/* Feeds one record of line lineno (model_serial: the serial of a MODEL
+ * record, else ignored). Returns 1 for an atom record the reader parses, 0
+ * for any other record (MODEL, ENDMDL and END update the scan; atoms of
+ * other models or after END are counted in dr). */
+int vbi_atom_scan_takes(vbi_atom_scan *s, vbi_record rec, int32_t model_serial, long lineno,
                         vbi_dropped *dr);
 
-/* At the end of a parse: when the input ended inside the taken model (no
- * ENDMDL, no END after it), records its MODEL line (model_line) in dr for
- * warning W735. The frame reader clears it for blocks that did not end the
- * input. */
-void vbi_atom_scan_note_open_model(const vbi_atom_scan *s, long model_line, vbi_dropped *dr);
+/* Starts a PDB or PQR reader's pass: *out = NULL, b ready for up to
+ * opt->max_spheres spheres with their atom records (vbi_builder_init), scan
+ * taking opt->model. Returns VB_OK or vbi_builder_init's failure. */
+int vbi_atom_parse_begin(vb_ctx *ctx, const char *name, const vb_read_options *opt,
+                         vbi_builder *b, vbi_atom_scan *scan, vb_sphere_set **out);
+
+/* Ends the pass vbi_atom_parse_begin started: when the input ended inside
+ * the taken model (no ENDMDL, no END after it), records its MODEL line in dr
+ * for warning W735 (the frame reader clears it for blocks that did not end
+ * the input); then vbi_builder_close(b, &scan->models, rc, out). */
+int vbi_atom_parse_end(vbi_builder *b, const vbi_atom_scan *scan, vbi_dropped *dr, int rc,
+                       vb_sphere_set **out);
 
 /* Alternate locations, per residue (chain, resseq, icode): blank is always
  * kept, and of the lettered ones the most occupied, ties to the first met
