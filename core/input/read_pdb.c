@@ -64,7 +64,8 @@ static int altloc_prepass(const char *buf, size_t len, const vb_read_options *op
     while (vbi_lines_next(&it, &line, &n)) {
         vbi_record rec = vbi_record_kind(vbi_pdb_record, line, n);
         int32_t serial = rec == VBI_REC_MODEL ? vbi_pdb_model_serial(line, n) : 0;
-        if (!vbi_atom_scan_takes(&scan, rec, serial, it.lineno, &ignored) || column_char(line, n, 17) == ' ')
+        if (!vbi_atom_scan_takes(&scan, rec, serial, it.lineno, &ignored) ||
+            column_char(line, n, 17) == ' ')
             continue;
         vb_atom_info info;
         memset(&info, 0, sizeof info);
