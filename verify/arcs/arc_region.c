@@ -24,7 +24,18 @@
  *     segment at G1 plus the recession direction D = (k, 1). L_j is >= 0 on
  *     it exactly when it is at the segment's two ends and grad L_j . D >= 0.
  *     A tail starting at G0 < 0 adds the box [G0, 0] x [Smin, S(G0)];
- *   - a closed curve: the box of the whole ellipse.
+ *   - a closed curve, the ellipse G = bx X, S = Sc + ax Y over the unit
+ *     circle X^2 + Y^2 = 1 (an affine image: tangents map to tangents):
+ *     16 exact points u_k of the circle (rational, from t = tan(theta/2)
+ *     in each quadrant and its rotations by 90 degrees, so neighbouring
+ *     quadrants share their end points exactly) cut it into arcs that
+ *     turn by less than 90 degrees; the arc from u_k to u_k+1 lies in the
+ *     triangle of u_k, u_k+1 and the apex A_k = (u_k + u_k+1) / (1 + u_k .
+ *     u_k+1) where their tangents meet (the circle is convex). An affine
+ *     L_j that is > 0 at every u_k and A_k is > 0 on every triangle and so
+ *     on the whole curve, so the region is those 32 points (boxes
+ *     enclosing them). Where an enclosure is not finite: the boxes of 16
+ *     slabs of G covering the whole ellipse.
  * L_j(u) < 0 at a point u of such a box means |c_j - p_u|^2 < (t_u + R_j)^2
  * + Q(u) with p_u = c_a + u_q, t_u = u_s - R_a, so |c_j - p_u| < |t_u| +
  * sqrt(max(Q(u), 0)) + R_j: a tangent-ball query of the certifier's index
@@ -41,7 +52,7 @@
 
 #include "vbx_region.h"
 
-enum { VBX_BOUNDED_PARTS = 2, VBX_ELLIPSE_SLABS = 16 };
+enum { VBX_BOUNDED_PARTS = 2, VBX_ELLIPSE_SLABS = 16, VBX_QUARTER_ARCS = 4 };
 
 static vbx_ia ia_hull(vbx_ia a, vbx_ia b)
 {
@@ -130,6 +141,53 @@ static int apex_part(const vbx_tframe *f, const vbx_arc_end *e0, const vbx_arc_e
     return 1;
 }
 
+/* tan(theta / 2) at theta = i pi / 8 (any increasing doubles from 0 to 1
+ * would do: the points are defined from these values exactly). */
+static const double quarter_t[VBX_QUARTER_ARCS] = {0.0, 0.19891236737965800, 0.41421356237309503,
+                                                  0.66817863791929900};
+
+/* The part enclosing the ellipse's image of circle point (X, Y). */
+static int ellipse_part(const vbx_tframe *f, vbx_ia X, vbx_ia Y, vbx_part *p)
+{
+    p->kind = VBX_PART_BOX;
+    p->G = vbx_ia_mul(f->bx, X);
+    p->S = vbx_ia_add(f->Sc, vbx_ia_mul(f->ax, Y));
+    return p->G.lo > -INFINITY && p->G.hi < INFINITY && p->S.lo > -INFINITY &&
+           p->S.hi < INFINITY && p->G.lo <= p->G.hi && p->S.lo <= p->S.hi;
+}
+
+/* The closed curve's tangent polygon (see the top): 1 when set, 0 when an
+ * enclosure is not finite. */
+static int ellipse_polygon(const vbx_tframe *f, vbx_region *rg)
+{
+    enum { N = 4 * VBX_QUARTER_ARCS };
+    vbx_ia X[N], Y[N], one = vbx_ia_point(1.0);
+    for (int i = 0; i < VBX_QUARTER_ARCS; i++) {
+        vbx_ia t = vbx_ia_point(quarter_t[i]), t2 = vbx_ia_sqr(t), d = vbx_ia_add(one, t2);
+        vbx_ia c = vbx_ia_div(vbx_ia_sub(one, t2), d);
+        vbx_ia s = vbx_ia_div(vbx_ia_mul(vbx_ia_point(2.0), t), d);
+        /* quadrant q: (c, s) turned by q times 90 degrees */
+        for (int q = 0; q < 4; q++) {
+            int k = q * VBX_QUARTER_ARCS + i;
+            X[k] = q == 0 ? c : q == 1 ? vbx_ia_neg(s) : q == 2 ? vbx_ia_neg(c) : s;
+            Y[k] = q == 0 ? s : q == 1 ? c : q == 2 ? vbx_ia_neg(s) : vbx_ia_neg(c);
+        }
+    }
+    rg->n = 0;
+    for (int k = 0; k < N; k++) {
+        int l = (k + 1) % N;
+        vbx_ia den = vbx_ia_add(one, vbx_ia_add(vbx_ia_mul(X[k], X[l]), vbx_ia_mul(Y[k], Y[l])));
+        if (!(den.lo > 0.0))
+            return 0;
+        vbx_ia AX = vbx_ia_div(vbx_ia_add(X[k], X[l]), den);
+        vbx_ia AY = vbx_ia_div(vbx_ia_add(Y[k], Y[l]), den);
+        if (!ellipse_part(f, X[k], Y[k], &rg->p[rg->n++]) ||
+            !ellipse_part(f, AX, AY, &rg->p[rg->n++]))
+            return 0;
+    }
+    return 1;
+}
+
 void vbx_region_of(const vbx_tframe *f, const vbx_arc_end *e0, const vbx_arc_end *e1,
                    vbx_region *rg)
 {
@@ -138,7 +196,10 @@ void vbx_region_of(const vbx_tframe *f, const vbx_arc_end *e0, const vbx_arc_end
         rg->brute = 1;
         return;
     }
+    if (f->kind != VBX_TRI_OPEN && ellipse_polygon(f, rg))
+        return;
     if (f->kind != VBX_TRI_OPEN) {
+        rg->n = 0;
         /* The curve is S = Sc +- ax sqrt(1 - G^2 / bx^2), |G| <= bx: over
          * each slab of G (breakpoints shared by neighbours, so the slabs
          * cover [-bx, bx]) the upper and the lower half lie in the boxes
