@@ -48,7 +48,7 @@ typedef struct worker {
     int rc;
 } worker;
 
-static void arena_free(vbq_arena *a)
+void vbq_arena_free(vbq_arena *a)
 {
     free(a->nb);
     free(a->lab);
@@ -58,10 +58,9 @@ static void arena_free(vbq_arena *a)
     memset(a, 0, sizeof *a);
 }
 
-/* (Re)allocates an arena with the given capacities. */
-static int arena_make(vbq_arena *a, uint32_t nb, uint32_t lab, uint32_t st, uint32_t q)
+int vbq_arena_make(vbq_arena *a, uint32_t nb, uint32_t lab, uint32_t st, uint32_t q)
 {
-    arena_free(a);
+    vbq_arena_free(a);
     a->nb = malloc((size_t)nb * sizeof *a->nb);
     a->lab = malloc((size_t)lab * sizeof *a->lab);
     a->st = malloc((size_t)st * sizeof *a->st);
@@ -118,7 +117,7 @@ static int cover_one(worker *w, uint32_t i)
         if (*grow >= (1u << 30))
             return VB_ENOMEM;
         *grow *= 2u;
-        if (arena_make(&w->ar, nb, lab, st, q) != VB_OK)
+        if (vbq_arena_make(&w->ar, nb, lab, st, q) != VB_OK)
             return VB_ENOMEM;
         w->st.retries++;
     }
@@ -138,7 +137,7 @@ static void worker_fail(worker *w, int rc)
  * (the worker failed, see worker_fail). */
 static int worker_ready(worker *w)
 {
-    if (w->ar.nb || arena_make(&w->ar, VBQ_NB0, VBQ_LAB0, VBQ_ST0, VBQ_Q0) == VB_OK)
+    if (w->ar.nb || vbq_arena_make(&w->ar, VBQ_NB0, VBQ_LAB0, VBQ_ST0, VBQ_Q0) == VB_OK)
         return 1;
     worker_fail(w, VB_ENOMEM);
     return 0;
@@ -499,7 +498,7 @@ int vb_cover_run_parts(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_opt
         vb_progress(ctx, "cover", ncells, ncells);
     for (int t = 0; w && t < nt; t++) {
         stats_sum(&st, &w[t].st);
-        arena_free(&w[t].ar);
+        vbq_arena_free(&w[t].ar);
         free(w[t].q);
     }
     free(w);

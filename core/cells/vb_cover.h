@@ -92,6 +92,14 @@ struct vb_cover_backend {
 /* Closes a backend; NULL is allowed. */
 void vb_cover_backend_close(vb_cover_backend *be);
 
+/* Frees a host cover arena's buffers and zeroes it (safe on a zeroed one). */
+void vbq_arena_free(vbq_arena *a);
+
+/* (Re)allocates a host cover arena with the given capacities (neighbours,
+ * labels, stack, quadruples), freeing what it held; VB_OK or VB_ENOMEM (the
+ * arena then holds what could be allocated and must still be freed). */
+int vbq_arena_make(vbq_arena *a, uint32_t nb, uint32_t lab, uint32_t st, uint32_t q);
+
 /* The shared input of every cell: the tree over the centres and the
  * parameters, in *env (its arrays belong to *tree and to set). For
  * backends and tests that run vbq_cover_cell themselves; vb_cover_run

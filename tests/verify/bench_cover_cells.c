@@ -28,25 +28,6 @@ typedef struct sums {
     double cells, cpu, patches, evals, nb, deep, quads;
 } sums;
 
-static int arena_make(vbq_arena *a, uint32_t nb, uint32_t lab, uint32_t st, uint32_t q)
-{
-    free(a->nb);
-    free(a->lab);
-    free(a->st);
-    free(a->q);
-    free(a->hi);
-    a->nb = malloc((size_t)nb * sizeof *a->nb);
-    a->lab = malloc((size_t)lab * sizeof *a->lab);
-    a->st = malloc((size_t)st * sizeof *a->st);
-    a->q = malloc(4 * (size_t)q * sizeof *a->q);
-    a->hi = malloc((size_t)lab * sizeof *a->hi);
-    a->nb_cap = nb;
-    a->lab_cap = lab;
-    a->st_cap = st;
-    a->q_cap = q;
-    return a->nb && a->lab && a->st && a->q && a->hi;
-}
-
 int main(int argc, char **argv)
 {
     if (argc < 2) {
@@ -82,7 +63,7 @@ int main(int argc, char **argv)
     vbq_arena ar;
     memset(&ar, 0, sizeof ar);
     uint32_t cap[4] = {1024u, 8192u, 512u, 512u};
-    if (!arena_make(&ar, cap[0], cap[1], cap[2], cap[3]))
+    if (vbq_arena_make(&ar, cap[0], cap[1], cap[2], cap[3]) != VB_OK)
         return 1;
     sums s[2];
     memset(s, 0, sizeof s);
@@ -102,7 +83,7 @@ int main(int argc, char **argv)
             int g = out.status == VBQ_OVER_NB ? 0 : out.status == VBQ_OVER_LAB ? 1
                     : out.status == VBQ_OVER_ST ? 2 : 3;
             cap[g] *= 2u;
-            if (cap[g] >= (1u << 30) || !arena_make(&ar, cap[0], cap[1], cap[2], cap[3]))
+            if (cap[g] >= (1u << 30) || vbq_arena_make(&ar, cap[0], cap[1], cap[2], cap[3]) != VB_OK)
                 return 1;
         }
         s[b].cpu += thread_cpu() - t0;
@@ -118,11 +99,7 @@ int main(int argc, char **argv)
                "deep_leaves %.0f\tquadruples %.0f\n",
                argv[1], b ? "boundary" : "interior", s[b].cells, s[b].cpu, s[b].patches,
                s[b].evals, s[b].nb, s[b].deep, s[b].quads);
-    free(ar.nb);
-    free(ar.lab);
-    free(ar.st);
-    free(ar.q);
-    free(ar.hi);
+    vbq_arena_free(&ar);
     vb_cover_tree_free(tree);
     vb_spheres_free(set);
     vb_close(ctx);
