@@ -114,3 +114,21 @@ size_t vb_format_u32(uint32_t v, char out[11])
     out[n] = '\0';
     return n;
 }
+
+size_t vb_format_i32(int32_t v, char out[12])
+{
+    if (v >= 0)
+        return vb_format_u32((uint32_t)v, out);
+    out[0] = '-';
+    return 1 + vb_format_u32((uint32_t)0 - (uint32_t)v, out + 1);
+}
+
+void vb_put_g17(FILE *f, char sep, double x)
+{
+    char b[VB_G17_MAX + 1];
+    size_t n = 0;
+    if (sep)
+        b[n++] = sep;
+    n += vb_format_g17(x, b + n);
+    fwrite(b, 1, n, f);
+}

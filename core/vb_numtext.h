@@ -6,6 +6,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 
 /* Parses all of s as a double (strtod: decimal or hex, "inf" and "nan"
  * too; the caller checks the range). Returns 0 with *out set, or -1 when s
@@ -27,5 +28,12 @@ size_t vb_format_g17(double x, char out[VB_G17_MAX]);
 
 /* Writes v in decimal ("%u"), NUL terminated; returns the length. */
 size_t vb_format_u32(uint32_t v, char out[11]);
+
+/* Writes v in decimal ("%d"), NUL terminated; returns the length. */
+size_t vb_format_i32(int32_t v, char out[12]);
+
+/* Writes sep (unless it is 0) and x as "%.17g" (vb_format_g17) to f; the
+ * caller checks ferror. */
+void vb_put_g17(FILE *f, char sep, double x);
 
 #endif

@@ -55,21 +55,13 @@ static void ids_csv(FILE *f, const vb_vertex_list *v, size_t k)
     }
 }
 
-/* sep and the number as "%.17g" (vb_format_g17: printf's bytes, faster). */
-static void put_number(FILE *f, char sep, double d)
-{
-    char b[VB_G17_MAX + 1];
-    b[0] = sep;
-    fwrite(b, 1, 1 + vb_format_g17(d, b + 1), f);
-}
-
 static void tsv_line(FILE *f, const vb_vertex_list *v, size_t k)
 {
     ids_csv(f, v, k);
-    put_number(f, '\t', v->x[k]);
-    put_number(f, '\t', v->y[k]);
-    put_number(f, '\t', v->z[k]);
-    put_number(f, '\t', v->t[k]);
+    vb_put_g17(f, '\t', v->x[k]);
+    vb_put_g17(f, '\t', v->y[k]);
+    vb_put_g17(f, '\t', v->z[k]);
+    vb_put_g17(f, '\t', v->t[k]);
     putc('\t', f);
     fputs(vb_vertex_status_name(v->status[k]), f);
     putc('\n', f);
@@ -115,10 +107,10 @@ static void voronota_lines(FILE *f, const vb_vertex_list *v, size_t k)
                 putc(' ', f);
             fwrite(b, 1, vb_format_u32(four[a], b), f);
         }
-        put_number(f, ' ', v->x[k]);
-        put_number(f, ' ', v->y[k]);
-        put_number(f, ' ', v->z[k]);
-        put_number(f, ' ', v->t[k]);
+        vb_put_g17(f, ' ', v->x[k]);
+        vb_put_g17(f, ' ', v->y[k]);
+        vb_put_g17(f, ' ', v->z[k]);
+        vb_put_g17(f, ' ', v->t[k]);
         putc('\n', f);
     }
 }
