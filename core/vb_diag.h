@@ -89,6 +89,7 @@
     X(W, 721, ASSEMBLY_CHAINS, 0, "--assembly: chains of the file outside the assembly left out")        \
     X(W, 722, TANGENT_INSIDE, 0, "a sphere touches a larger one from inside: a point or segment cell, kept") \
     X(W, 723, TANGENT_INSIDE_COUNT, 0, "count of spheres touching a larger one from inside")             \
+    X(W, 727, VIRTUAL_SITES_DROPPED, 0, "massless virtual sites of water models left out")                \
     X(W, 735, MODEL_OPEN_AT_END, 0, "the input ends inside a MODEL (no ENDMDL/END): truncated?")         \
     X(W, 750, PROGRAM_CACHE_BAD, 0, "a cached OpenCL program cannot be used: rebuilt from source")       \
     X(W, 751, JFA_DEVICE_FAILED, 0, "OpenCL failed mid-run in jfa: the rest runs on the reference")      \

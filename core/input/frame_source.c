@@ -54,6 +54,7 @@ static int read_topology(vb_ctx *ctx, const char *path, const vb_read_options *r
 {
     vb_read_options all = *ro;
     all.keep_water = 1;
+    all.keep_virtual_sites = 2;
     all.drop_hydrogens = 0;
     all.select = NULL;
     char *buf;
@@ -66,7 +67,7 @@ static int read_topology(vb_ctx *ctx, const char *path, const vb_read_options *r
     } else {
         rc = vb_spheres_read_buffer(ctx, path, buf, len, &all, out);
         if (rc == VB_OK)
-            rc = vb_spheres_validate(ctx, *out, 1);
+            rc = vbi_spheres_validate(ctx, *out, 1, 0); /* each frame names its contained atoms */
     }
     free(buf);
     return rc;
@@ -120,16 +121,26 @@ static int open_traj(vb_ctx *ctx, vb_frame_source *F, const char *path, const ch
     vb_select *sel = NULL;
     if (ro->select && (rc = vb_select_parse(ctx, ro->select, &sel)) != VB_OK)
         return rc;
+    size_t sites = 0;
     for (size_t i = 0; i < na; i++) {
         const vb_atom_info *a = F->topo->info ? &F->topo->info[i] : NULL;
         if (a && !ro->keep_water && vbi_is_water(a->resname))
             continue;
+        if (a && !ro->keep_virtual_sites && vbi_is_virtual_site(a->resname, a->name)) {
+            sites++;
+            continue;
+        }
         if (a && ro->drop_hydrogens && vbi_is_hydrogen(a->element))
             continue;
         if (sel && !vb_select_match(sel, a))
             continue;
         F->keep[F->nkeep++] = i;
     }
+    vb_select_free(sel);
+    if (sites)
+        vb_warn(ctx, VB_W_VIRTUAL_SITES_DROPPED, path, 0,
+                "%zu massless virtual site%s of a water model (MW, OM, EPW, LP1, ...) left out: "
+                "a point charge, not an atom", sites, sites == 1 ? "" : "s");
     vb_select_free(sel);
     if (F->nkeep == 0 && ro->select)
         return vb_error(ctx, VB_EINPUT_SELECT, path, 0, "--select \"%s\" selects none of the %zu atoms",

@@ -13,10 +13,21 @@
 
 int vbi_is_water(const char *resname)
 {
-    static const char *const water[] = {"HOH", "WAT", "DOD", "H2O", "TIP", "TIP3",
-                                        "TIP4", "SOL", "T3P", "T4P", "SPC"};
+    static const char *const water[] = {"HOH", "WAT", "DOD", "H2O", "TIP", "TIP3", "TIP4",
+                                        "TIP5", "SOL", "T3P", "T4P", "T5P", "SPC", "OPC"};
     for (size_t k = 0; k < sizeof water / sizeof water[0]; k++)
         if (strcmp(resname, water[k]) == 0)
+            return 1;
+    return 0;
+}
+
+int vbi_is_virtual_site(const char *resname, const char *name)
+{
+    static const char *const site[] = {"MW", "OM", "EPW", "EP", "EP1", "EP2", "LP1", "LP2", "M"};
+    if (!vbi_is_water(resname))
+        return 0;
+    for (size_t k = 0; k < sizeof site / sizeof site[0]; k++)
+        if (strcmp(name, site[k]) == 0)
             return 1;
     return 0;
 }
@@ -61,6 +72,10 @@ void vbi_report_dropped(vb_ctx *ctx, const char *name, const vbi_dropped *dr)
     if (dr->water)
         vb_warn(ctx, VB_W_WATER_DROPPED, name, 0, "%zu water atom%s dropped (--water keeps them)", dr->water,
                 dr->water == 1 ? "" : "s");
+    if (dr->virtual_sites)
+        vb_warn(ctx, VB_W_VIRTUAL_SITES_DROPPED, name, 0,
+                "%zu massless virtual site%s of a water model (MW, OM, EPW, LP1, ...) left out: "
+                "a point charge, not an atom", dr->virtual_sites, dr->virtual_sites == 1 ? "" : "s");
     if (dr->altloc)
         vb_warn(ctx, VB_W_ALTLOC_DROPPED, name, 0,
                 "%zu atom%s of other alternate locations dropped (first location kept)",
@@ -318,6 +333,10 @@ int vbi_atom_dropped(const vb_read_options *opt, vbi_altloc *alt, const vb_atom_
 {
     if (!opt->keep_water && vbi_is_water(info->resname)) {
         dr->water++;
+        return 1;
+    }
+    if (!opt->keep_virtual_sites && vbi_is_virtual_site(info->resname, info->name)) {
+        dr->virtual_sites++;
         return 1;
     }
     int keep = alt ? vbi_altloc_keeps(alt, info) : 1;

@@ -223,6 +223,11 @@ int vbi_atom_keep(vb_ctx *ctx, const vb_read_options *opt, const char *name, lon
                   const vb_atom_info *info, int how, vbi_dropped *dr, vbi_builder *b,
                   vb_decimal e[4], double d[4])
 {
+    if (opt->keep_virtual_sites == 2 && vbi_is_virtual_site(info->resname, info->name)) {
+        e[3] = (vb_decimal){170, -2}; /* the unknown element's 1.70, never used */
+        d[3] = 1.70;
+        return vbi_builder_push(b, e, d, info, line);
+    }
     int rc = how != VBI_INFER_NONE ? vbi_element_inferred(ctx, opt, name, line, info, how, dr)
                                    : VB_OK;
     if (rc == VB_OK)

@@ -95,6 +95,11 @@ typedef struct vb_read_options {
                                   * (0 = the asymmetric unit as written) */
     const char *select;          /* keep only the atoms this expression selects (vb_select.h);
                                   * NULL: all. Applied after water and hydrogens are dropped */
+    int keep_virtual_sites;      /* water models' massless virtual sites (MW, OM, EPW, LP1, ...):
+                                  * 0 (default) left out with W727 (a point charge is no atom);
+                                  * 1 read as atoms; 2 kept as placeholders (radius 1.70) without
+                                  * element diagnostics (a trajectory's topology, whose atoms
+                                  * must match the frames', is read so and drops them after) */
 } vb_read_options;
 
 /* Parses a format name ("xyzr", "pdb", "pqr", "cif"/"mmcif", "gro", "auto").

@@ -109,6 +109,11 @@ int vbi_radius_for(vb_ctx *ctx, const vb_read_options *opt, const char *name, lo
 
 /* Water residue names dropped unless keep_water. */
 int vbi_is_water(const char *resname);
+
+/* 1 when an atom of a water residue is a water model's massless virtual
+ * site (TIP4P's MW/OM/EPW, TIP5P's LP1/LP2/EP1/EP2): a point charge, no
+ * atom, so no ball (read as one it would swallow its oxygen). */
+int vbi_is_virtual_site(const char *resname, const char *name);
 /* Hydrogen or deuterium element symbol. */
 int vbi_is_hydrogen(const char *element);
 
@@ -125,6 +130,7 @@ typedef struct vbi_dropped {
     size_t after_end;         /* atom records after END */
     size_t zero_dropped;      /* radius-0 spheres left out (--zero-radius drop) */
     size_t zero_points;       /* radius-0 spheres kept as points */
+    size_t virtual_sites;     /* water models' massless sites left out (W727) */
     size_t inferred;          /* atoms whose element was inferred (W714, W715) */
     size_t inferred_alignment;/* of those, two-letter elements from column 13 alone (W716) */
     char inferred_el[VBI_INFERRED_KINDS][4]; /* the inferred elements and their counts */

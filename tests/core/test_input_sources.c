@@ -4,8 +4,11 @@
  * never calcium) and counted, or refused under --strict-elements (E112);
  * GRO coordinates become Angstrom exactly; a PSF or PDB topology with a DCD
  * gives the same frames, a count mismatch is E116; mmCIF biological
- * assemblies are built from their operators (E117 when absent). */
+ * assemblies are built from their operators (E117 when absent); TIP4P's
+ * massless virtual sites (MW) are left out with W727, in a GRO file and
+ * under a trajectory alike. */
 #include "input_test_util.h"
+#include "vb_dcd.h"
 #include "vb_frames.h"
 
 static vb_sphere_set *read_corpus(vb_ctx *ctx, const char *rel, const vb_read_options *o, int want)
@@ -247,6 +250,91 @@ static void test_assembly(vb_ctx *ctx)
     vb_spheres_free(au);
 }
 
+/* Two TIP4P waters (OW HW1 HW2 MW) beside two protein atoms, in GROMACS'
+ * layout (nm). */
+static const char tip4p_gro[] =
+    "tip4p\n"
+    "   10\n"
+    "    1ALA      N    1   0.100   0.100   0.100\n"
+    "    1ALA     CA    2   0.250   0.100   0.100\n"
+    "    2SOL     OW    3   0.600   0.600   0.600\n"
+    "    2SOL    HW1    4   0.660   0.600   0.600\n"
+    "    2SOL    HW2    5   0.580   0.660   0.600\n"
+    "    2SOL     MW    6   0.610   0.610   0.600\n"
+    "    3SOL     OW    7   0.900   0.200   0.300\n"
+    "    3SOL    HW1    8   0.960   0.200   0.300\n"
+    "    3SOL    HW2    9   0.880   0.260   0.300\n"
+    "    3SOL     MW   10   0.910   0.210   0.300\n"
+    "   1.50000   1.50000   1.50000\n";
+
+/* A water model's virtual site is a point charge: read as an atom of the
+ * default radius it swallowed its oxygen (W707, W701). Left out with W727
+ * where water is kept, read with keep_virtual_sites = 1; under a trajectory
+ * the topology keeps its rows (the frames' atoms must match) and the frame
+ * source leaves them out, with W727 and no element warning. */
+static void test_virtual_sites(void)
+{
+    FILE *diag;
+    vb_ctx *ctx = open_ctx(&diag);
+    vb_read_options o;
+    memset(&o, 0, sizeof o);
+    vb_sphere_set *s = NULL;
+    CHECK_INT(read_text(ctx, "w.gro", tip4p_gro, &o, &s), VB_OK);
+    CHECK_INT(s ? s->n : 0, 2); /* water (MW included) dropped */
+    vb_spheres_free(s);
+    o.keep_water = 1;
+    CHECK_INT(read_text(ctx, "w.gro", tip4p_gro, &o, &s), VB_OK);
+    CHECK_INT(s ? s->n : 0, 8);
+    int no_site = 1;
+    for (size_t i = 0; s && i < s->n; i++)
+        no_site &= strcmp(s->info[i].name, "MW") != 0;
+    CHECK(no_site);
+    CHECK(s && s->n == 8 && strcmp(s->info[6].name, "HW1") == 0 && s->line[6] == 10);
+    vb_spheres_free(s);
+    const char *w = diag_text(diag);
+    CHECK(strstr(w, "W727: w.gro: 2 massless virtual sites of a water model") != NULL);
+    CHECK(strstr(w, "W707") == NULL);
+    o.keep_virtual_sites = 1;
+    CHECK_INT(read_text(ctx, "w.gro", tip4p_gro, &o, &s), VB_OK);
+    CHECK_INT(s ? s->n : 0, 10);
+    CHECK(s && s->n == 10 && strcmp(s->info[5].name, "MW") == 0);
+    vb_spheres_free(s);
+    vb_close(ctx);
+
+    /* The same under a 1-frame DCD (Angstrom, the GRO's positions). */
+    ctx = open_ctx(&diag);
+    char top[64], dcd[64];
+    strcpy(top, temp_file(tip4p_gro));
+    char gro[80];
+    snprintf(gro, sizeof gro, "%s.gro", top);
+    CHECK_INT(rename(top, gro), 0);
+    strcpy(dcd, temp_file(""));
+    const double x[10] = {1, 2.5, 6, 6.6, 5.8, 6.1, 9, 9.6, 8.8, 9.1};
+    const double y[10] = {1, 1, 6, 6, 6.6, 6.1, 2, 2, 2.6, 2.1};
+    const double z[10] = {1, 1, 6, 6, 6, 6, 3, 3, 3, 3};
+    vb_dcd_writer *wr = NULL;
+    CHECK_INT(vb_dcd_writer_open(ctx, dcd, 10, 1.0, "tip4p", &wr), VB_OK);
+    CHECK_INT(vb_dcd_writer_frame(ctx, wr, x, y, z), VB_OK);
+    CHECK_INT(vb_dcd_writer_close(ctx, wr), VB_OK);
+    memset(&o, 0, sizeof o);
+    o.keep_water = 1;
+    vb_frame_source *F = NULL;
+    int model = 0;
+    CHECK_INT(vb_frame_source_open(ctx, gro, dcd, &o, &F), VB_OK);
+    CHECK_INT(F ? vb_frame_source_next(ctx, F, &s, &model) : -1, VB_OK);
+    CHECK_INT(s ? s->n : 0, 8);
+    CHECK(s && s->n == 8 && s->x[5] == 9.0 && s->y[4] == 6.599999904632568 &&
+          strcmp(s->info[5].name, "OW") == 0);
+    vb_spheres_free(s);
+    vb_frame_source_close(F);
+    w = diag_text(diag);
+    CHECK(strstr(w, "2 massless virtual sites of a water model") != NULL);
+    CHECK(strstr(w, "W707") == NULL && strstr(w, "W701") == NULL);
+    remove(gro);
+    remove(dcd);
+    vb_close(ctx);
+}
+
 int main(void)
 {
     vb_ctx *ctx = open_ctx(NULL);
@@ -255,6 +343,7 @@ int main(void)
     test_gro(ctx);
     test_psf_dcd(ctx);
     test_assembly(ctx);
+    test_virtual_sites();
     vb_close(ctx);
     VB_TEST_END();
 }
