@@ -14,7 +14,9 @@
  *     convention: where its amino acids start one-letter names in column 13
  *     (CHARMM's "CA  " for the C-alpha) the column says nothing, and only
  *     the halogens CL and BR are read as two letters;
- *  3. else the first letter.
+ *  3. else (no columns, or a file that does not keep them) an atom named
+ *     ZN, MG, FE, MN or CU alone is that metal (ZN in ZNM, FE in HEM);
+ *  4. else the first letter.
  * The caller counts every inference and warns (W714, W715; W716 for case 2
  * when it chose a two-letter element); --strict-elements refuses them. */
 #include "vbi_input.h"
@@ -57,8 +59,14 @@ static const char *const two_letter[] = {
     "AG", "AL", "AR", "AS", "AU", "BA", "BE", "BR", "CA", "CD", "CE", "CL", "CO", "CR", "CS",
     "CU", "FE", "GA", "GD", "GE", "HG", "IR", "KR", "LA", "LI", "MG", "MN", "MO", "NA", "NE",
     "NI", "OS", "PB", "PD", "PT", "RB", "RE", "RH", "RU", "SB", "SE", "SI", "SN", "SR", "TE",
-    "TI", "TL", "XE", "YB",
+    "TI", "TL", "XE", "YB", "ZN",
 };
+
+/* Metals that an atom named as the element alone is, in any residue that
+ * is no amino acid, nucleotide or water (zinc "ZN" in ZNM, iron "FE" in
+ * HEM: no organic atom is named so). Not calcium ("CA" in CAS, a modified
+ * cysteine, is its C-alpha) nor nickel ("NI" may be a nitrogen). */
+static const char *const named_metals[] = {"ZN", "MG", "FE", "MN", "CU"};
 
 static int in_list(const char *s, const char *const *list, size_t n)
 {
@@ -165,7 +173,12 @@ int vbi_infer_element(const char *name4, const char *name, const char *resname, 
         return VBI_INFER_LETTER;
     }
     /* No columns, or columns that do not follow the convention: only the
-     * halogens, whose two letters no other atom name begins with. */
+     * halogens, whose two letters no other atom name begins with, and the
+     * metals no organic atom is named as. */
+    if (in_list(nm, named_metals, sizeof named_metals / sizeof named_metals[0])) {
+        strcpy(element, nm);
+        return VBI_INFER_RESIDUE;
+    }
     if (two && ((a == 'C' && b == 'L') || (a == 'B' && b == 'R')))
         set(element, a, b);
     else

@@ -335,6 +335,39 @@ static void test_virtual_sites(void)
     vb_close(ctx);
 }
 
+/* Elements of metal atoms named as their element in residues that are no
+ * ion of the table (YiiP's ZN in ZNM read as "Z" before, heme's FE in a GRO
+ * as fluorine) and a C-alpha in a modified residue whose name begins with
+ * CA (CAS: carbon, not calcium). */
+static void test_metal_names(void)
+{
+    static const char gro[] =
+        "metals\n"
+        "    4\n"
+        "    1ZNM     ZN    1   0.100   0.100   0.100\n"
+        "    2MGX     MG    2   0.500   0.100   0.100\n"
+        "    3CAS     CA    3   0.900   0.100   0.100\n"
+        "    4HEM     FE    4   1.300   0.100   0.100\n"
+        "   2.00000   2.00000   2.00000\n";
+    FILE *diag;
+    vb_ctx *ctx = open_ctx(&diag);
+    vb_read_options o;
+    memset(&o, 0, sizeof o);
+    vb_sphere_set *s = NULL;
+    CHECK_INT(read_text(ctx, "m.gro", gro, &o, &s), VB_OK);
+    CHECK_INT(s ? s->n : 0, 4);
+    if (s && s->n == 4) {
+        CHECK_STR(s->info[0].element, "ZN");
+        CHECK_STR(s->info[1].element, "MG");
+        CHECK_STR(s->info[2].element, "C");
+        CHECK_STR(s->info[3].element, "FE"); /* was F, fluorine, without columns */
+    }
+    CHECK(strstr(diag_text(diag), "W707") == NULL);
+    CHECK(strstr(diag_text(diag), "W715: m.gro: 4 atoms without an element") != NULL);
+    vb_spheres_free(s);
+    vb_close(ctx);
+}
+
 int main(void)
 {
     vb_ctx *ctx = open_ctx(NULL);
@@ -344,6 +377,7 @@ int main(void)
     test_psf_dcd(ctx);
     test_assembly(ctx);
     test_virtual_sites();
+    test_metal_names();
     vb_close(ctx);
     VB_TEST_END();
 }
