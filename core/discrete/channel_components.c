@@ -3,6 +3,7 @@
  * pruning: the analysis the paper left out (Sec. 4.1). */
 #include <math.h>
 #include <stdlib.h>
+#include <stdatomic.h>
 #include <string.h>
 
 #include "vb_array.h"
@@ -81,11 +82,26 @@ typedef struct {
     int given_clear;    /* the clearances came with the voxels */
     uint32_t *vcomp;    /* given component labels per position (voxel indices), or NULL */
     int comp_bad;       /* a given label failed a check: the union-find decides */
-    lining_acc L;
     vbc_cells *cells;
-    uint32_t *path;
-    size_t pathcap, chcap, ptcap;
 } analysis;
+
+/* One worker thread's scratch: the graph (its own heap; the per-position
+ * arrays are shared, components own disjoint positions), the path and the
+ * lining atoms of the component at hand. */
+typedef struct {
+    vbc_graph A;
+    uint32_t *path;
+    size_t pathcap;
+    lining_acc L;
+} worker;
+
+/* What component c gives, merged into the result in component order. */
+typedef struct {
+    int kept;          /* a channel (else pruned) */
+    vbc_channel ch;    /* first_point and first_lining: set by the merge */
+    vbc_point *pts;    /* ch.npoints */
+    int32_t *lin;      /* ch.nlining, ascending */
+} comp_out;
 
 static void analysis_free(analysis *W)
 {
@@ -107,14 +123,11 @@ static void analysis_free(analysis *W)
     free(W->clear);
     free(W->near);
     free(W->vcomp);
-    free(W->L.mark);
-    free(W->L.list);
-    free(W->path);
     vbc_cells_free(W->cells);
 }
 
 /* The per-position arrays. Returns 0, or -1 when out of memory. */
-static int analysis_alloc(analysis *W, size_t natoms)
+static int analysis_alloc(analysis *W)
 {
     size_t n = W->nvox;
     W->sorted = malloc(n * sizeof *W->sorted);
@@ -131,11 +144,10 @@ static int analysis_alloc(analysis *W, size_t natoms)
     W->A.adj_start = malloc((n + 1) * sizeof *W->A.adj_start);
     W->clear = malloc(n * sizeof *W->clear);
     W->near = malloc(n * sizeof *W->near);
-    W->L.mark = calloc(natoms, sizeof(int32_t));
     W->A.clear = W->clear;
     return W->sorted && W->mouth && uf_ok && W->order && W->cstart && W->comp && W->A.dist &&
                    W->A.pred && W->A.heap && W->A.hpos && W->A.rep && W->A.adj_start &&
-                   W->clear && W->near && W->L.mark
+                   W->clear && W->near
                ? 0
                : -1;
 }
@@ -344,12 +356,12 @@ static void group_components(analysis *W)
 }
 
 /* The ends *a, *b of the centreline of component mem[0..m) and the
- * widest (cheapest) path between them in W->path (b first), *np its
+ * widest (cheapest) path between them in K->path (b first), *np its
  * length. Returns 0, or -1 when out of memory. */
-static int trace_path(analysis *W, const uint32_t *mem, size_t m, int kind, int *through,
-                      size_t *np)
+static int trace_path(analysis *W, worker *K, const uint32_t *mem, size_t m, int kind,
+                      int *through, size_t *np)
 {
-    vbc_graph *A = &W->A;
+    vbc_graph *A = &K->A;
     uint32_t a, b;
     *through = 0;
     if (kind == VBC_CHANNEL) {
@@ -366,26 +378,26 @@ static int trace_path(analysis *W, const uint32_t *mem, size_t m, int kind, int 
     vbc_sweep(A, mem, m, a, 1);
     *np = 0;
     for (uint32_t q = b; q != UINT32_MAX; q = A->pred[q]) {
-        if (VB_ARRAY_FIT(W->path, W->pathcap, *np + 1, 64) != VB_OK)
+        if (VB_ARRAY_FIT(K->path, K->pathcap, *np + 1, 64) != VB_OK)
             return -1;
-        W->path[(*np)++] = q;
+        K->path[(*np)++] = q;
     }
     return 0;
 }
 
-/* The points of channel ch from W->path (ch->npoints of them, from
- * ch->first_point on): voxel centres with their radii, the length, the
- * bottleneck and the lining atoms (appended to W->L). Returns 0, or -1
- * when out of memory. */
-static int channel_points(analysis *W, vbc_result *res, vbc_channel *ch)
+/* The points of channel ch from K->path (ch->npoints of them, into
+ * o->pts): voxel centres with their radii, the length, the bottleneck and
+ * the lining atoms (in K->L). Returns 0, or -1 when out of memory. */
+static int channel_points(analysis *W, worker *K, vbc_channel *ch, comp_out *o)
 {
-    size_t np = ch->npoints, p0 = ch->first_point;
-    if (VB_ARRAY_FIT(res->points, W->ptcap, p0 + np, 64) != VB_OK)
+    size_t np = ch->npoints;
+    if (!(o->pts = malloc((np ? np : 1) * sizeof *o->pts)))
         return -1;
-    W->L.stamp++;
+    K->L.stamp++;
+    K->L.n = 0;
     for (size_t t = 0; t < np; t++) {
-        uint32_t q = W->path[np - 1 - t];
-        vbc_point *pt = &res->points[p0 + t];
+        uint32_t q = K->path[np - 1 - t];
+        vbc_point *pt = &o->pts[t];
         double p[3];
         vbc_voxel_centre(W->g, W->sorted[q], p);
         pt->x = p[0];
@@ -407,63 +419,228 @@ static int channel_points(analysis *W, vbc_result *res, vbc_channel *ch)
             ch->bottleneck = pt->r;
             ch->bottleneck_at = t;
         }
-        vbc_cells_within(W->cells, p, pt->r + W->opt->lining_tol, lining_add, &W->L);
-        if (W->L.failed)
+        vbc_cells_within(W->cells, p, pt->r + W->opt->lining_tol, lining_add, &K->L);
+        if (K->L.failed)
             return -1;
     }
     return 0;
 }
 
-/* Component c: classified, pruned (too small, a cavity not kept, too short
- * or too narrow) or traced and appended to res. Returns 0, or -1 when out
- * of memory. */
-static int analyse_component(analysis *W, size_t c, vbc_result *res)
+/* Whether component c is pruned before any distance is computed: a cavity
+ * not kept, or too small for min_length (a path through m voxels is at
+ * most (m - 1) long diagonals; most components are specks in grooves).
+ * *nm: its mouth voxels. */
+static int pruned_early(const analysis *W, size_t c, size_t *nm)
+{
+    const uint32_t *mem = W->order + W->cstart[c];
+    size_t m = W->cstart[c + 1] - W->cstart[c];
+    *nm = 0;
+    for (size_t t = 0; t < m; t++)
+        *nm += W->mouth[mem[t]];
+    return (*nm == 0 && !W->opt->keep_cavities) ||
+           (double)(m - 1) * 1.7320508075688772 * W->g->h < W->opt->min_length;
+}
+
+/* Component c (not pruned early, nm mouth voxels, its members' clearances
+ * set): traced, then pruned (too short or too narrow) or kept in *o. Touches the per-position arrays
+ * of its own members only, so components run on threads at once. Returns
+ * 0, or -1 when out of memory. */
+static int analyse_component(analysis *W, worker *K, size_t c, size_t nm, comp_out *o)
 {
     const uint32_t *mem = W->order + W->cstart[c];
     size_t m = W->cstart[c + 1] - W->cstart[c];
     const vbc_options *opt = W->opt;
-    size_t nm = 0;
-    for (size_t t = 0; t < m; t++)
-        nm += W->mouth[mem[t]];
     int kind = nm > 0 ? VBC_CHANNEL : VBC_CAVITY;
-    /* A path through m voxels is at most (m - 1) long diagonals: components
-     * too small for min_length are pruned before any distance is computed
-     * (most components are specks in grooves). */
-    if ((kind == VBC_CAVITY && !opt->keep_cavities) ||
-        (double)(m - 1) * 1.7320508075688772 * W->g->h < opt->min_length) {
-        res->pruned++;
-        return 0;
-    }
-    for (size_t t = 0; t < m && !W->given_clear; t++) {
-        double p[3];
-        vbc_voxel_centre(W->g, W->sorted[mem[t]], p);
-        W->clear[mem[t]] = vbc_cells_clearance(W->cells, p, &W->near[mem[t]]);
-    }
     int through;
     size_t np;
-    if (trace_path(W, mem, m, kind, &through, &np) != 0)
+    if (trace_path(W, K, mem, m, kind, &through, &np) != 0)
         return -1;
-    size_t p0 = 0;
-    for (size_t t = 0; t < res->nchannels; t++)
-        p0 += res->channels[t].npoints;
     vbc_channel ch = {kind, kind == VBC_CAVITY ? VBC_WHY_CAVITY : through ? VBC_WHY_THROUGH : VBC_WHY_TUNNEL,
-                      through, m, nm, 0.0, INFINITY, 0, p0, np, 0, 0};
-    size_t l0 = W->L.n;
-    if (channel_points(W, res, &ch) != 0)
+                      through, m, nm, 0.0, INFINITY, 0, 0, np, 0, 0};
+    if (channel_points(W, K, &ch, o) != 0)
         return -1;
-    if (ch.length < opt->min_length || ch.bottleneck < opt->min_radius) {
-        res->pruned++;
-        W->L.n = l0;
+    if (ch.length < opt->min_length || ch.bottleneck < opt->min_radius)
         return 0;
-    }
-    if (W->L.n - l0 > 1)
-        qsort(W->L.list + l0, W->L.n - l0, sizeof *W->L.list, cmp_i32);
-    ch.first_lining = l0;
-    ch.nlining = W->L.n - l0;
-    if (VB_ARRAY_FIT(res->channels, W->chcap, res->nchannels + 1, 64) != VB_OK)
+    if (K->L.n > 1)
+        qsort(K->L.list, K->L.n, sizeof *K->L.list, cmp_i32);
+    ch.nlining = K->L.n;
+    if (!(o->lin = malloc((K->L.n ? K->L.n : 1) * sizeof *o->lin)))
         return -1;
-    res->channels[res->nchannels++] = ch;
+    memcpy(o->lin, K->L.list, K->L.n * sizeof *o->lin);
+    o->ch = ch;
+    o->kept = 1;
     return 0;
+}
+
+/* The clearances of the members of the components traced (when they did
+ * not come with the voxels): one slice of CLEAR_SLICE positions of `order`
+ * per item, so the threads share them evenly whatever the component sizes. */
+#define CLEAR_SLICE 512
+
+typedef struct {
+    analysis *W;
+    const size_t *slice;  /* per slice: its first index into W->order */
+    const size_t *end;    /* per slice: one past its last */
+} clear_job;
+
+static void clear_slice(void *arg, size_t i, int tid)
+{
+    const clear_job *J = arg;
+    analysis *W = J->W;
+    (void)tid;
+    for (size_t k = J->slice[i]; k < J->end[i]; k++) {
+        uint32_t q = W->order[k];
+        double p[3];
+        vbc_voxel_centre(W->g, W->sorted[q], p);
+        W->clear[q] = vbc_cells_clearance(W->cells, p, &W->near[q]);
+    }
+}
+
+/* Slices over the members of the components work[0..nwork) and their
+ * clearances on the threads. Returns 0, or -1 when out of memory. */
+static int clear_members(analysis *W, const uint64_t *work, size_t nwork, int nt)
+{
+    size_t ns = 0;
+    for (size_t i = 0; i < nwork; i++) {
+        size_t c = (size_t)(work[i] & 0xffffffffu);
+        ns += (W->cstart[c + 1] - W->cstart[c] + CLEAR_SLICE - 1) / CLEAR_SLICE;
+    }
+    size_t *slice = malloc((2 * ns + 1) * sizeof *slice);
+    if (!slice)
+        return -1;
+    size_t *end = slice + ns, k = 0;
+    for (size_t i = 0; i < nwork; i++) {
+        size_t c = (size_t)(work[i] & 0xffffffffu);
+        for (size_t lo = W->cstart[c]; lo < W->cstart[c + 1]; lo += CLEAR_SLICE) {
+            slice[k] = lo;
+            end[k++] = lo + CLEAR_SLICE < W->cstart[c + 1] ? lo + CLEAR_SLICE : W->cstart[c + 1];
+        }
+    }
+    clear_job J = {W, slice, end};
+    vb_parallel_for(clear_slice, &J, ns, nt);
+    free(slice);
+    return 0;
+}
+
+/* The components the workers trace: work[0..nwork) (largest first, so the
+ * long ones start early), taken in turn through `next`; the outcome of
+ * each lands in its own slot, so the result is the same for any number of
+ * threads and any interleaving. */
+typedef struct {
+    analysis *W;
+    const uint64_t *work; /* component numbers (low 32 bits) */
+    const size_t *nm;     /* mouth voxels per component */
+    size_t nwork;
+    comp_out *out;        /* per component */
+    _Atomic size_t next;
+    _Atomic int failed;
+} comp_queue;
+
+typedef struct {
+    comp_queue *Q;
+    worker K;
+} comp_job;
+
+static void *comp_worker(void *arg)
+{
+    comp_job *J = arg;
+    comp_queue *Q = J->Q;
+    for (;;) {
+        size_t i = atomic_fetch_add(&Q->next, 1);
+        if (i >= Q->nwork || atomic_load(&Q->failed))
+            return NULL;
+        size_t c = (size_t)(Q->work[i] & 0xffffffffu);
+        if (analyse_component(Q->W, &J->K, c, Q->nm[c], &Q->out[c]) != 0)
+            atomic_store(&Q->failed, 1);
+    }
+}
+
+/* Every component: pruned early, or traced by the worker threads; then
+ * merged into res in component order (points and lining atoms appended as
+ * one thread taking the components in order would have). Returns 0, or -1
+ * when out of memory. */
+static int analyse_components(analysis *W, size_t natoms, vbc_result *res)
+{
+    size_t ncomp = W->ncomp, nwork = 0, chcap = 0, ptcap = 0, lcap = 0, nlin = 0;
+    size_t *nm = malloc((ncomp ? ncomp : 1) * sizeof *nm);
+    uint64_t *work = malloc((ncomp ? ncomp : 1) * sizeof *work);
+    comp_out *out = calloc(ncomp ? ncomp : 1, sizeof *out);
+    comp_job *jobs = NULL;
+    int nt = 0, rc = -1, need_support = 0, ok = 1;
+    comp_queue Q = {W, work, nm, 0, out, 0, 0};
+    if (!nm || !work || !out)
+        goto done;
+    /* Largest first (the key: size complement, then component number), so
+     * no two entries tie. Components number below 2^30. */
+    for (size_t c = 0; c < ncomp; c++)
+        if (!pruned_early(W, c, &nm[c])) {
+            uint64_t m = W->cstart[c + 1] - W->cstart[c];
+            work[nwork++] = ((uint64_t)(UINT32_MAX - (uint32_t)m) << 32) | (uint64_t)c;
+            need_support |= nm[c] >= 2;
+        }
+    /* Read by every worker's vbc_channel_ends: made before they start. */
+    if (need_support && vbc_graph_support(&W->A) != 0)
+        goto done;
+    qsort(work, nwork, sizeof *work, cmp_u64);
+    Q.nwork = nwork;
+    nt = vb_threads(0);
+    if (!W->given_clear && clear_members(W, work, nwork, nt) != 0)
+        goto done;
+    if ((size_t)nt > nwork)
+        nt = nwork ? (int)nwork : 1;
+    if (!(jobs = calloc((size_t)nt, sizeof *jobs)))
+        goto done;
+    for (int t = 0; t < nt; t++) {
+        jobs[t].Q = &Q;
+        jobs[t].K.A = W->A;
+        jobs[t].K.A.heap = t == 0 ? W->A.heap : malloc((W->nvox ? W->nvox : 1) * sizeof *W->A.heap);
+        jobs[t].K.L.mark = calloc(natoms ? natoms : 1, sizeof(int32_t));
+        ok &= jobs[t].K.A.heap && jobs[t].K.L.mark;
+    }
+    if (!ok)
+        goto done;
+    if (nwork)
+        vb_run_jobs(comp_worker, jobs, sizeof *jobs, nt);
+    if (atomic_load(&Q.failed))
+        goto done;
+    size_t p0 = 0;
+    for (size_t c = 0; c < ncomp; c++) {
+        comp_out *o = &out[c];
+        if (!o->kept) {
+            res->pruned++;
+            continue;
+        }
+        o->ch.first_point = p0;
+        o->ch.first_lining = nlin;
+        if (VB_ARRAY_FIT(res->points, ptcap, p0 + o->ch.npoints, 64) != VB_OK ||
+            VB_ARRAY_FIT(res->lining, lcap, nlin + o->ch.nlining + 1, 256) != VB_OK ||
+            VB_ARRAY_FIT(res->channels, chcap, res->nchannels + 1, 64) != VB_OK)
+            goto done;
+        memcpy(res->points + p0, o->pts, o->ch.npoints * sizeof *o->pts);
+        memcpy(res->lining + nlin, o->lin, o->ch.nlining * sizeof *o->lin);
+        p0 += o->ch.npoints;
+        nlin += o->ch.nlining;
+        res->channels[res->nchannels++] = o->ch;
+    }
+    rc = 0;
+done:
+    for (int t = 0; jobs && t < nt; t++) {
+        if (t > 0)
+            free(jobs[t].K.A.heap);
+        /* A worker's graph copy may not own the support (made before they start). */
+        free(jobs[t].K.L.mark);
+        free(jobs[t].K.L.list);
+        free(jobs[t].K.path);
+    }
+    for (size_t c = 0; out && c < ncomp; c++) {
+        free(out[c].pts);
+        free(out[c].lin);
+    }
+    free(jobs);
+    free(out);
+    free(work);
+    free(nm);
+    return rc;
 }
 
 int vbc_analyse_clear(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, const uint32_t *vox,
@@ -489,7 +666,7 @@ int vbc_analyse_given(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, co
     W.nvox = nvox;
     W.given_clear = vclear != NULL;
     int rc = VB_ENOMEM;
-    if (analysis_alloc(&W, s->n) != 0 || load_voxels(&W, vox, vclear, comp) != 0 ||
+    if (analysis_alloc(&W) != 0 || load_voxels(&W, vox, vclear, comp) != 0 ||
         link_voxels(&W) != 0)
         goto done;
     if (W.vcomp)
@@ -501,13 +678,10 @@ int vbc_analyse_given(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, co
     if ((rc = vbc_cells_build(ctx, s, 3.0, &W.cells)) != VB_OK)
         goto done;
     rc = VB_ENOMEM;
-    for (size_t c = 0; c < W.ncomp; c++)
-        if (analyse_component(&W, c, res) != 0)
-            goto done;
+    if (analyse_components(&W, s->n, res) != 0)
+        goto done;
     if (res->nchannels > 1)
         qsort(res->channels, res->nchannels, sizeof *res->channels, cmp_channel);
-    res->lining = W.L.list;
-    W.L.list = NULL;
     rc = VB_OK;
 done:
     if (rc == VB_ENOMEM)
