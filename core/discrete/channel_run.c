@@ -223,8 +223,10 @@ static int frame_repeat(vb_ctx *ctx, vbc_run *r, vbc_run_out *o)
     for (int k = 0; k < A->repeat && rc == VB_OK; k++) {
         if (k > 0 || !o->masked)
             rc = vbc_frame_masks(ctx, r->pipe, &o->g, o->s, A->probe, o->want, &A->opt, &o->F);
+        if (rc == VB_OK && (k > 0 || !o->analysed))
+            rc = vbc_frame_components(ctx, o->s, &opt, &o->F);
         if (rc == VB_OK)
-            rc = vbc_frame_analyse(ctx, o->s, &opt, &o->F);
+            rc = vbc_frame_pore(ctx, o->s, &opt, &o->F);
         fi->ms_upload += o->F.out.ms_upload;
         fi->ms_jfa += o->F.out.ms_jfa;
         fi->ms_masks += o->F.out.ms_masks;
@@ -286,11 +288,15 @@ int vbc_run_front(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index, 
     if (!masks)
         return VB_OK;
     rc = vbc_frame_masks(ctx, r->pipe, &o->g, o->s, A->probe, o->want, &A->opt, &o->F);
+    /* The analysis reads no pore axis (the back half's): it runs here too,
+     * so on the reader's thread it overlaps the pore stage of the frames before. */
+    if (rc == VB_OK)
+        rc = vbc_frame_components(ctx, o->s, &A->opt, &o->F);
     if (rc != VB_OK) {
         vbc_run_front_drop(o);
         return rc;
     }
-    o->masked = 1;
+    o->masked = o->analysed = 1;
     return VB_OK;
 }
 
