@@ -10,12 +10,6 @@
 #include "vb_parallel.h"
 #include "vbc_graph.h"
 
-static int cmp_u32(const void *a, const void *b)
-{
-    uint32_t x = *(const uint32_t *)a & ~VBC_MOUTH_BIT, y = *(const uint32_t *)b & ~VBC_MOUTH_BIT;
-    return (x > y) - (x < y);
-}
-
 typedef struct {
     int32_t *mark; /* per atom: last component stamp that listed it */
     int32_t stamp;
@@ -152,44 +146,58 @@ static int analysis_alloc(analysis *W)
                : -1;
 }
 
+/* Sorts key[0..n) by bits 32 and up (distinct voxel indices below 2^31),
+ * least significant digit first, 11 bits a pass, as many passes as the
+ * largest index needs; tmp holds n keys. Linear where the comparison
+ * sort was n log n, and the one order on any number of threads. */
+#define DIGIT_BITS 11
+
+static void sort_by_index(uint64_t *key, uint64_t *tmp, size_t n)
+{
+    uint64_t top = 0;
+    for (size_t t = 0; t < n; t++)
+        top |= key[t] >> 32;
+    for (int sh = 32; sh < 64 && (top >> (sh - 32)) != 0; sh += DIGIT_BITS) {
+        size_t cnt[(1u << DIGIT_BITS) + 1];
+        memset(cnt, 0, sizeof cnt);
+        for (size_t t = 0; t < n; t++)
+            cnt[((key[t] >> sh) & ((1u << DIGIT_BITS) - 1)) + 1]++;
+        for (size_t d = 0; d < (1u << DIGIT_BITS); d++)
+            cnt[d + 1] += cnt[d];
+        for (size_t t = 0; t < n; t++)
+            tmp[cnt[(key[t] >> sh) & ((1u << DIGIT_BITS) - 1)]++] = key[t];
+        memcpy(key, tmp, n * sizeof *key);
+    }
+}
+
 /* The voxels in increasing index order (with their given clearances, when
- * vclear is not NULL), the mouth bit split off, each its own union-find
- * root. Returns 0, or -1 when out of memory. */
+ * vclear is not NULL, and labels, when comp is not NULL), the mouth bit
+ * split off, each its own union-find root. Returns 0, or -1 when out of
+ * memory. */
 static int load_voxels(analysis *W, const uint32_t *vox, const float *vclear,
                        const uint32_t *comp)
 {
     size_t nvox = W->nvox;
     if (comp && !(W->vcomp = malloc(nvox * sizeof *W->vcomp)))
         return -1;
-    if (vclear || comp) {
-        /* Sort (index, original slot) pairs so the clearances follow. */
-        uint64_t *key = malloc(nvox * sizeof *key);
-        if (!key)
-            return -1;
-        for (size_t t = 0; t < nvox; t++)
-            key[t] = ((uint64_t)(vox[t] & ~VBC_MOUTH_BIT) << 32) | (uint64_t)t;
-        /* Keys are distinct (the slot is in them): one sorted order on any
-         * number of threads. */
-        if (vb_psort(key, nvox, sizeof *key, cmp_u64, vb_threads(0)) != VB_OK) {
-            free(key);
-            return -1;
+    /* (index, original slot) pairs, so the clearances and labels follow. */
+    uint64_t *key = malloc(2 * nvox * sizeof *key);
+    if (!key)
+        return -1;
+    for (size_t t = 0; t < nvox; t++)
+        key[t] = ((uint64_t)(vox[t] & ~VBC_MOUTH_BIT) << 32) | (uint64_t)t;
+    sort_by_index(key, key + nvox, nvox);
+    for (size_t t = 0; t < nvox; t++) {
+        size_t from = (size_t)(key[t] & 0xffffffffu);
+        W->sorted[t] = vox[from];
+        if (vclear) {
+            W->clear[t] = vclear[from];
+            W->near[t] = -1;
         }
-        for (size_t t = 0; t < nvox; t++) {
-            size_t from = (size_t)(key[t] & 0xffffffffu);
-            W->sorted[t] = vox[from];
-            if (vclear) {
-                W->clear[t] = vclear[from];
-                W->near[t] = -1;
-            }
-            if (comp)
-                W->vcomp[t] = comp[from];
-        }
-        free(key);
-    } else {
-        memcpy(W->sorted, vox, nvox * sizeof *W->sorted);
-        if (vb_psort(W->sorted, nvox, sizeof *W->sorted, cmp_u32, vb_threads(0)) != VB_OK)
-            return -1;
+        if (comp)
+            W->vcomp[t] = comp[from];
     }
+    free(key);
     for (size_t t = 0; t < nvox; t++) {
         W->mouth[t] = (W->sorted[t] & VBC_MOUTH_BIT) != 0;
         W->sorted[t] &= ~VBC_MOUTH_BIT;
