@@ -7,7 +7,8 @@
 # device (reference and PoCL), the warnings in the same order, a --frames
 # selection the same rows, and a trajectory cut inside a frame the same
 # exit, the same error and no table. The components labelled on the device
-# (PoCL) give the reference's bytes too.
+# (PoCL) give the reference's bytes too, and with the clearances computed
+# on the device (a GPU's host analysis) on one and two threads.
 # usage: frames_ahead.sh VORBALL CORPUS WORKDIR
 vorball=$1 corpus=$2 work=$3
 . "$(dirname "$0")/lib.sh"
@@ -61,6 +62,15 @@ done
 VORBALL_DEVICE_GRAPH=1 channels pocl_cc 2 2 --device cpu
 for ext in csv pdb st; do
     cmp -s seq.$ext pocl_cc.$ext || fail "device components: pocl_cc.$ext differs from the reference"
+done
+# The clearances computed on the device as well (a GPU's host analysis:
+# given clearances and labels), on one and on two analysis threads.
+for t in 1 2; do
+    VORBALL_DEVICE_GRAPH=1 VORBALL_DEVICE_CLEARANCE=1 channels "pocl_gpuhost$t" 2 "$t" --device cpu
+    for ext in csv pdb st; do
+        cmp -s seq.$ext pocl_gpuhost$t.$ext ||
+            fail "device clearances, $t threads: pocl_gpuhost$t.$ext differs from the reference"
+    done
 done
 for dg in 0 1; do
     VORBALL_DEVICE_GRAPH=$dg run 0 "grm$dg.log" "$vorball" channels "$corpus/data/1grm_single_hole2.pdb" \
