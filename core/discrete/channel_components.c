@@ -208,26 +208,59 @@ static int load_voxels(analysis *W, const uint32_t *vox, const float *vclear,
     return 0;
 }
 
-/* The voxel graph once (26-connectivity) as CSR adjacency with the step
- * length of each edge, its components joined in the union-find. The list is
- * sorted, so the neighbours of voxel v in the row at offset o = dy*nx +
- * dz*nx*ny lie at v + o - 1 .. v + o + 1, and a cursor per row offset only
- * ever moves forward: the whole graph costs a linear merge, no lookups.
- * Returns 0, or -1 when out of memory. */
-static int link_voxels(analysis *W)
+/* One slice [lo, hi) of the voxel list linked (link_voxels): its edges
+ * in adj (slice 0 writes W->A.adj itself), the degree of position t in
+ * W->A.adj_start[t + 1]. */
+typedef struct {
+    analysis *W;
+    size_t lo, hi;
+    uint32_t *adj;
+    size_t ne, cap;
+    int failed, bad;
+} link_job;
+
+/* The first position of the sorted list whose index is at least x. */
+static size_t lower_bound(const uint32_t *sorted, size_t n, int64_t x)
 {
+    size_t lo = 0, hi = n;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if ((int64_t)sorted[mid] < x)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+/* The list is sorted, so the neighbours of voxel v in the row at offset
+ * o = dy*nx + dz*nx*ny lie at v + o - 1 .. v + o + 1, and a cursor per row
+ * offset only ever moves forward: a slice costs a linear merge after one
+ * binary search per row for its start. */
+static void *link_slice(void *arg)
+{
+    link_job *J = arg;
+    analysis *W = J->W;
     const vbc_grid *g = W->g;
-    vbc_graph *A = &W->A;
     const uint32_t *sorted = W->sorted;
-    size_t nvox = W->nvox, nxy = (size_t)g->nx * (size_t)g->ny, adjcap = 0, ne = 0;
-    size_t cursor[9] = {0};
-    for (size_t t = 0; t < nvox; t++) {
-        A->adj_start[t] = ne;
+    size_t nvox = W->nvox, nxy = (size_t)g->nx * (size_t)g->ny;
+    size_t cursor[9];
+    if (J->lo >= J->hi)
+        return NULL;
+    for (int dz = -1; dz <= 1; dz++)
+        for (int dy = -1; dy <= 1; dy++)
+            cursor[(dz + 1) * 3 + dy + 1] =
+                lower_bound(sorted, nvox, (int64_t)sorted[J->lo] + (int64_t)dy * g->nx +
+                                              (int64_t)dz * (int64_t)nxy - 1);
+    for (size_t t = J->lo; t < J->hi; t++) {
+        size_t e0 = J->ne;
         uint32_t v = sorted[t];
         int i = (int)(v % (uint32_t)g->nx), j = (int)((v / (uint32_t)g->nx) % (uint32_t)g->ny);
         int k = (int)(v / nxy);
-        if (VB_ARRAY_FIT(A->adj, adjcap, ne + 26, 64) != VB_OK)
-            return -1;
+        if (VB_ARRAY_FIT(J->adj, J->cap, J->ne + 26, 64) != VB_OK) {
+            J->failed = 1;
+            return NULL;
+        }
         for (int dz = -1; dz <= 1; dz++)
             for (int dy = -1; dy <= 1; dy++) {
                 size_t *cur = &cursor[(dz + 1) * 3 + dy + 1];
@@ -247,15 +280,60 @@ static int link_voxels(analysis *W)
                         (int64_t)sorted[q] != target)
                         continue;
                     /* The step length code rides in the top two bits until the split below. */
-                    A->adj[ne++] = (uint32_t)q | ((uint32_t)(abs(dx) + abs(dy) + abs(dz)) << 30);
-                    if (q > t && !W->vcomp)
-                        vb_uf_join(&W->uf, (uint32_t)t, (uint32_t)q);
-                    else if (q > t && W->vcomp[t] != W->vcomp[q])
-                        W->comp_bad = 1;
+                    J->adj[J->ne++] = (uint32_t)q | ((uint32_t)(abs(dx) + abs(dy) + abs(dz)) << 30);
+                    if (q > t && W->vcomp && W->vcomp[t] != W->vcomp[q])
+                        J->bad = 1;
                 }
             }
+        W->A.adj_start[t + 1] = J->ne - e0;
     }
-    A->adj_start[nvox] = ne;
+    return NULL;
+}
+
+/* The voxel graph once (26-connectivity) as CSR adjacency with the step
+ * length of each edge, on slices of the list over the threads, joined in
+ * slice order (the same arrays on any number of threads); without given
+ * labels its components joined in the union-find (roots are each set's
+ * smallest position, whatever the order of the unions). Returns 0, or -1
+ * when out of memory. */
+static int link_voxels(analysis *W)
+{
+    vbc_graph *A = &W->A;
+    size_t nvox = W->nvox, adjcap = 0;
+    int nt = vb_threads(0), failed = 0;
+    /* Slices of at least 4096 voxels: below, a thread costs more than it saves. */
+    if ((size_t)nt > nvox / 4096)
+        nt = nvox / 4096 > 1 ? (int)(nvox / 4096) : 1;
+    link_job jobs[VB_MAX_THREADS];
+    for (int t = 0; t < nt; t++)
+        jobs[t] = (link_job){W, nvox * (size_t)t / (size_t)nt, nvox * (size_t)(t + 1) / (size_t)nt,
+                             NULL, 0, 0, 0, 0};
+    vb_run_jobs(link_slice, jobs, sizeof *jobs, nt);
+    size_t ne = 0;
+    for (int t = 0; t < nt; t++) {
+        failed |= jobs[t].failed;
+        W->comp_bad |= jobs[t].bad;
+        ne += jobs[t].ne;
+    }
+    if (!failed) {
+        A->adj = jobs[0].adj;
+        adjcap = jobs[0].cap;
+        jobs[0].adj = NULL;
+        failed = VB_ARRAY_FIT(A->adj, adjcap, ne ? ne : 1, 64) != VB_OK;
+    }
+    size_t at = jobs[0].ne;
+    for (int t = 1; t < nt; t++) {
+        if (!failed)
+            memcpy(A->adj + at, jobs[t].adj, jobs[t].ne * sizeof *A->adj);
+        at += jobs[t].ne;
+        free(jobs[t].adj);
+    }
+    free(jobs[0].adj);
+    if (failed)
+        return -1;
+    A->adj_start[0] = 0;
+    for (size_t t = 0; t < nvox; t++)
+        A->adj_start[t + 1] += A->adj_start[t];
     A->adj_len = malloc(ne ? ne : 1);
     if (!A->adj_len)
         return -1;
@@ -263,6 +341,11 @@ static int link_voxels(analysis *W)
         A->adj_len[e] = (uint8_t)(A->adj[e] >> 30);
         A->adj[e] &= 0x3fffffffu;
     }
+    if (!W->vcomp)
+        for (size_t t = 0; t < nvox; t++)
+            for (size_t e = A->adj_start[t]; e < A->adj_start[t + 1]; e++)
+                if (A->adj[e] > t)
+                    vb_uf_join(&W->uf, (uint32_t)t, A->adj[e]);
     return 0;
 }
 
