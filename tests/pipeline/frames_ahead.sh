@@ -82,6 +82,20 @@ for f in grm0 grm1; do
     cmp -s grmref.csv $f.csv && cmp -s grmref.pdb $f.pdb || fail "1grm: $f differs from the reference"
 done
 
+# The analysis on threads (components, their clearances, the voxel graph on
+# slices of at least 4096 voxels): 1chb at grid 128 has about 17,000 channel
+# voxels, so three threads link three slices; the same bytes as one thread.
+for t in 1 3; do
+    VORBALL_THREADS=$t run 0 "chb$t.log" "$vorball" channels "$corpus/data/1chb_hole2.pdb" --grid 128 \
+        --device ref --centerlines "chb$t.pdb" --json -o "chb$t.json"
+    grep -v '"ms"\|"clock"' "chb$t.json" > "chb$t.sj"
+done
+[ "$(grep -o '"channel_voxels": [0-9]*' chb1.json | grep -o '[0-9]*$')" -ge 12288 ] ||
+    fail "1chb grid 128: fewer than 12288 channel voxels, the slices are not exercised"
+for ext in pdb sj; do
+    cmp -s chb1.$ext chb3.$ext || fail "1chb: chb3.$ext (3 threads) differs from chb1.$ext (1 thread)"
+done
+
 # --fixed-grid: the reader fits the grid on the first frame it runs.
 channels fix0 0 2 --device ref --fixed-grid --frames 2:10:3
 channels fix2 2 2 --device ref --fixed-grid --frames 2:10:3
