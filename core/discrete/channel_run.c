@@ -1,5 +1,6 @@
 /* The channel analysis of a sequence of frames (vbc_run.h). */
 #include <math.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -210,8 +211,67 @@ static void membrane_options(const vbc_channels_config *A, const vbc_run_out *o,
     opt->pore = req;
 }
 
+/* A front's pore stage on a thread of its own: the frame (moved out of
+ * the front's vbc_run_out, whose copies travel through the ring of
+ * frames in flight), its options and a worker context. */
+struct vbc_pore_job {
+    vbc_frame F;
+    const vb_sphere_set *s;
+    vbc_options opt;
+    vbc_pore_request req;
+    vb_ctx *w;
+    int rc;
+    vb_jobs th;
+};
+
+static void *pore_job_run(void *arg)
+{
+    vbc_pore_job *J = arg;
+    J->rc = vbc_frame_pore(J->w, J->s, &J->opt, &J->F);
+    return NULL;
+}
+
+/* Starts the pore stage of the front o on a thread when the request is
+ * fixed; else (or when no thread or context can be had) the back half
+ * runs it. The pore stage reads the frame, its spheres and the fixed
+ * request only, so it gives what the back half would. */
+static void pore_job_start(vb_ctx *ctx, vbc_run *r, vbc_run_out *o)
+{
+    if (!atomic_load(&r->pore_fixed))
+        return;
+    vbc_pore_job *J = calloc(1, sizeof *J);
+    if (!J || vb_open_worker(&J->w, ctx) != VB_OK) {
+        free(J);
+        return;
+    }
+    membrane_options(r->cfg, o, &J->opt, &J->req);
+    J->F = o->F;
+    J->s = o->s;
+    memset(&o->F, 0, sizeof o->F);
+    o->pore = J;
+    vb_jobs_start(&J->th, pore_job_run, J, sizeof *J, 1);
+}
+
+/* Waits for o's pore job and takes its frame back, its counters into
+ * ctx's (when not NULL). Returns its status; after a failure the frame
+ * holds nothing (vbc_frame_pore). */
+static int pore_job_join(vb_ctx *ctx, vbc_run_out *o)
+{
+    vbc_pore_job *J = o->pore;
+    vb_jobs_join(&J->th);
+    if (ctx)
+        vb_stats_add(vb_ctx_stats(ctx), vb_ctx_stats(J->w));
+    o->F = J->F;
+    int rc = J->rc;
+    vb_close(J->w);
+    free(J);
+    o->pore = NULL;
+    return rc;
+}
+
 /* The pipeline `repeat` times (the first run's masks already made when
- * o->masked), the per-run mean timings in o->fi. */
+ * o->masked, its analysis when o->analysed, its pore stage running in
+ * o->pore), the per-run mean timings in o->fi. */
 static int frame_repeat(vb_ctx *ctx, vbc_run *r, vbc_run_out *o)
 {
     const vbc_channels_config *A = r->cfg;
@@ -221,11 +281,16 @@ static int frame_repeat(vb_ctx *ctx, vbc_run *r, vbc_run_out *o)
     vbc_pore_request req;
     membrane_options(A, o, &opt, &req);
     for (int k = 0; k < A->repeat && rc == VB_OK; k++) {
+        int pored = 0;
+        /* A failed job (out of memory on its thread) leaves an empty frame:
+         * the whole run again here, whose failure is this context's. */
+        if (k == 0 && o->pore && !(pored = pore_job_join(ctx, o) == VB_OK))
+            o->masked = o->analysed = 0;
         if (k > 0 || !o->masked)
             rc = vbc_frame_masks(ctx, r->pipe, &o->g, o->s, A->probe, o->want, &A->opt, &o->F);
         if (rc == VB_OK && (k > 0 || !o->analysed))
             rc = vbc_frame_components(ctx, o->s, &opt, &o->F);
-        if (rc == VB_OK)
+        if (rc == VB_OK && (k > 0 || !pored))
             rc = vbc_frame_pore(ctx, o->s, &opt, &o->F);
         fi->ms_upload += o->F.out.ms_upload;
         fi->ms_jfa += o->F.out.ms_jfa;
@@ -297,12 +362,15 @@ int vbc_run_front(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index, 
         return rc;
     }
     o->masked = o->analysed = 1;
+    pore_job_start(ctx, r, o);
     return VB_OK;
 }
 
 /* Drops what a front half holds (a run stopped before its back half). */
 void vbc_run_front_drop(vbc_run_out *o)
 {
+    if (o->pore)
+        pore_job_join(NULL, o);
     vbc_frame_free(&o->F);
     vb_spheres_free(o->kept);
     memset(o, 0, sizeof *o);
@@ -348,6 +416,10 @@ int vbc_run_back(vb_ctx *ctx, vbc_run *r, vbc_run_out *o)
                 vbc_axis_source_name(ps->source), ps->why);
     if (rc == VB_OK)
         keep_pore_axis(A, &o->F, o);
+    /* From here on the request stays as it is: later fronts may run their
+     * pore stage (its writes above happen before the flag is seen set). */
+    if (rc == VB_OK && (!A->pore.enabled || (A->pore.have_axis && !A->axis_refit)))
+        atomic_store(&r->pore_fixed, 1);
     if (rc == VB_OK && A->plot)
         rc = series_add(ctx, &r->series, index, &o->F.result);
     if (rc == VB_OK && A->occupancy) {
