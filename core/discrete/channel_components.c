@@ -718,7 +718,7 @@ done:
     for (int t = 0; jobs && t < nt; t++) {
         if (t > 0)
             free(jobs[t].K.A.heap);
-        /* A worker's graph copy may not own the support (made before they start). */
+        /* The graph copies share W->A's support: analysis_free frees it. */
         free(jobs[t].K.L.mark);
         free(jobs[t].K.L.list);
         free(jobs[t].K.path);
