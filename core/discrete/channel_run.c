@@ -252,17 +252,21 @@ static void pore_job_start(vb_ctx *ctx, vbc_run *r, vbc_run_out *o)
     vb_jobs_start(&J->th, pore_job_run, J, sizeof *J, 1);
 }
 
-/* Waits for o's pore job and takes its frame back, its counters into
- * ctx's (when not NULL). Returns its status; after a failure the frame
- * holds nothing (vbc_frame_pore). */
+/* Waits for o's pore job and takes its frame back, its counters and its
+ * error into ctx (when not NULL), as if the stage had run there. Returns
+ * its status; after a failure the frame holds nothing (vbc_frame_pore). */
 static int pore_job_join(vb_ctx *ctx, vbc_run_out *o)
 {
     vbc_pore_job *J = o->pore;
     vb_jobs_join(&J->th);
-    if (ctx)
-        vb_stats_add(vb_ctx_stats(ctx), vb_ctx_stats(J->w));
-    o->F = J->F;
     int rc = J->rc;
+    if (ctx) {
+        vb_stats_add(vb_ctx_stats(ctx), vb_ctx_stats(J->w));
+        vb_diag_record e;
+        if (rc != VB_OK && vb_error_record(J->w, &e) == VB_OK)
+            vb_error(ctx, rc, e.file, e.line, "%s", e.message);
+    }
+    o->F = J->F;
     vb_close(J->w);
     free(J);
     o->pore = NULL;
@@ -281,12 +285,10 @@ static int frame_repeat(vb_ctx *ctx, vbc_run *r, vbc_run_out *o)
     vbc_pore_request req;
     membrane_options(A, o, &opt, &req);
     for (int k = 0; k < A->repeat && rc == VB_OK; k++) {
-        int pored = 0;
-        /* A failed job (out of memory on its thread) leaves an empty frame:
-         * the whole run again here, whose failure is this context's. */
-        if (k == 0 && o->pore && !(pored = pore_job_join(ctx, o) == VB_OK))
-            o->masked = o->analysed = 0;
-        if (k > 0 || !o->masked)
+        int pored = k == 0 && o->pore;
+        if (pored)
+            rc = pore_job_join(ctx, o);
+        if (rc == VB_OK && (k > 0 || !o->masked))
             rc = vbc_frame_masks(ctx, r->pipe, &o->g, o->s, A->probe, o->want, &A->opt, &o->F);
         if (rc == VB_OK && (k > 0 || !o->analysed))
             rc = vbc_frame_components(ctx, o->s, &opt, &o->F);
