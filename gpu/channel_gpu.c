@@ -94,6 +94,18 @@ void vbc_gpu_set_device_graph(vbc_gpu *p, int mode)
     p->device_graph = mode;
 }
 
+/* Whether this frame's clearances are computed on the device:
+ * VORBALL_DEVICE_CLEARANCE (0 never, 1 always) over the mode of
+ * vbc_gpu_set_device_clearance. With 1 a CPU device runs the host analysis
+ * a GPU run does (the clearances given), for its clocks. */
+static int clearance_on_device(const vbc_gpu *p)
+{
+    const char *e = getenv("VORBALL_DEVICE_CLEARANCE");
+    if (e && (strcmp(e, "0") == 0 || strcmp(e, "1") == 0))
+        return e[0] == '1';
+    return p->device_clearance > 0 || (p->device_clearance == 0 && vbg_runtime_is_gpu(p->rt));
+}
+
 /* Whether this frame's components run on the device: VORBALL_DEVICE_GRAPH
  * (0 never, 1 always) over the mode of vbc_gpu_set_device_graph. */
 static int graph_on_device(const vbc_gpu *p)
@@ -341,8 +353,7 @@ int vbc_gpu_frame(vb_ctx *ctx, vbc_gpu *p, const vbc_grid *g, const float *atoms
         out->nvoxels = count;
         /* A GPU does the clearances in a blink; a CPU device is better
          * served by the host's cell list, so it leaves them to the analysis. */
-        if (err == CL_SUCCESS && (p->device_clearance > 0 ||
-                                  (p->device_clearance == 0 && vbg_runtime_is_gpu(p->rt))))
+        if (err == CL_SUCCESS && clearance_on_device(p))
             err = clearance(p, g, natoms, probe, count, out);
         if (err == CL_SUCCESS && graph_on_device(p))
             err = components(p, g, count, out);

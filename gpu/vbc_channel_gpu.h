@@ -21,7 +21,8 @@ int vbc_gpu_frame(vb_ctx *ctx, vbc_gpu *p, const vbc_grid *g, const float *atoms
                   double probe, unsigned want, vbc_frame_out *out);
 
 /* Where clearances are computed: 0 (default) on the device when it is a GPU,
- * 1 always on the device (tests of the kernel on PoCL), -1 never. */
+ * 1 always on the device (tests of the kernel on PoCL), -1 never.
+ * VORBALL_DEVICE_CLEARANCE=0 or 1 in the environment overrides it. */
 void vbc_gpu_set_device_clearance(vbc_gpu *p, int mode);
 
 /* Where the components of the channel voxels are labelled (out->comp):

@@ -3,17 +3,12 @@
  * pruning: the analysis the paper left out (Sec. 4.1). */
 #include <math.h>
 #include <stdlib.h>
+#include <stdatomic.h>
 #include <string.h>
 
 #include "vb_array.h"
 #include "vb_parallel.h"
 #include "vbc_graph.h"
-
-static int cmp_u32(const void *a, const void *b)
-{
-    uint32_t x = *(const uint32_t *)a & ~VBC_MOUTH_BIT, y = *(const uint32_t *)b & ~VBC_MOUTH_BIT;
-    return (x > y) - (x < y);
-}
 
 typedef struct {
     int32_t *mark; /* per atom: last component stamp that listed it */
@@ -81,11 +76,26 @@ typedef struct {
     int given_clear;    /* the clearances came with the voxels */
     uint32_t *vcomp;    /* given component labels per position (voxel indices), or NULL */
     int comp_bad;       /* a given label failed a check: the union-find decides */
-    lining_acc L;
     vbc_cells *cells;
-    uint32_t *path;
-    size_t pathcap, chcap, ptcap;
 } analysis;
+
+/* One worker thread's scratch: the graph (its own heap; the per-position
+ * arrays are shared, components own disjoint positions), the path and the
+ * lining atoms of the component at hand. */
+typedef struct {
+    vbc_graph A;
+    uint32_t *path;
+    size_t pathcap;
+    lining_acc L;
+} worker;
+
+/* What component c gives, merged into the result in component order. */
+typedef struct {
+    int kept;          /* a channel (else pruned) */
+    vbc_channel ch;    /* first_point and first_lining: set by the merge */
+    vbc_point *pts;    /* ch.npoints */
+    int32_t *lin;      /* ch.nlining, ascending */
+} comp_out;
 
 static void analysis_free(analysis *W)
 {
@@ -107,14 +117,11 @@ static void analysis_free(analysis *W)
     free(W->clear);
     free(W->near);
     free(W->vcomp);
-    free(W->L.mark);
-    free(W->L.list);
-    free(W->path);
     vbc_cells_free(W->cells);
 }
 
 /* The per-position arrays. Returns 0, or -1 when out of memory. */
-static int analysis_alloc(analysis *W, size_t natoms)
+static int analysis_alloc(analysis *W)
 {
     size_t n = W->nvox;
     W->sorted = malloc(n * sizeof *W->sorted);
@@ -131,53 +138,66 @@ static int analysis_alloc(analysis *W, size_t natoms)
     W->A.adj_start = malloc((n + 1) * sizeof *W->A.adj_start);
     W->clear = malloc(n * sizeof *W->clear);
     W->near = malloc(n * sizeof *W->near);
-    W->L.mark = calloc(natoms, sizeof(int32_t));
     W->A.clear = W->clear;
     return W->sorted && W->mouth && uf_ok && W->order && W->cstart && W->comp && W->A.dist &&
                    W->A.pred && W->A.heap && W->A.hpos && W->A.rep && W->A.adj_start &&
-                   W->clear && W->near && W->L.mark
+                   W->clear && W->near
                ? 0
                : -1;
 }
 
+/* Sorts key[0..n) by bits 32 and up (distinct voxel indices below 2^31),
+ * least significant digit first, 11 bits a pass, as many passes as the
+ * largest index needs; tmp holds n keys. Linear where the comparison
+ * sort was n log n, and the one order on any number of threads. */
+#define DIGIT_BITS 11
+
+static void sort_by_index(uint64_t *key, uint64_t *tmp, size_t n)
+{
+    uint64_t top = 0;
+    for (size_t t = 0; t < n; t++)
+        top |= key[t] >> 32;
+    for (int sh = 32; sh < 64 && (top >> (sh - 32)) != 0; sh += DIGIT_BITS) {
+        size_t cnt[(1u << DIGIT_BITS) + 1];
+        memset(cnt, 0, sizeof cnt);
+        for (size_t t = 0; t < n; t++)
+            cnt[((key[t] >> sh) & ((1u << DIGIT_BITS) - 1)) + 1]++;
+        for (size_t d = 0; d < (1u << DIGIT_BITS); d++)
+            cnt[d + 1] += cnt[d];
+        for (size_t t = 0; t < n; t++)
+            tmp[cnt[(key[t] >> sh) & ((1u << DIGIT_BITS) - 1)]++] = key[t];
+        memcpy(key, tmp, n * sizeof *key);
+    }
+}
+
 /* The voxels in increasing index order (with their given clearances, when
- * vclear is not NULL), the mouth bit split off, each its own union-find
- * root. Returns 0, or -1 when out of memory. */
+ * vclear is not NULL, and labels, when comp is not NULL), the mouth bit
+ * split off, each its own union-find root. Returns 0, or -1 when out of
+ * memory. */
 static int load_voxels(analysis *W, const uint32_t *vox, const float *vclear,
                        const uint32_t *comp)
 {
     size_t nvox = W->nvox;
     if (comp && !(W->vcomp = malloc(nvox * sizeof *W->vcomp)))
         return -1;
-    if (vclear || comp) {
-        /* Sort (index, original slot) pairs so the clearances follow. */
-        uint64_t *key = malloc(nvox * sizeof *key);
-        if (!key)
-            return -1;
-        for (size_t t = 0; t < nvox; t++)
-            key[t] = ((uint64_t)(vox[t] & ~VBC_MOUTH_BIT) << 32) | (uint64_t)t;
-        /* Keys are distinct (the slot is in them): one sorted order on any
-         * number of threads. */
-        if (vb_psort(key, nvox, sizeof *key, cmp_u64, vb_threads(0)) != VB_OK) {
-            free(key);
-            return -1;
+    /* (index, original slot) pairs, so the clearances and labels follow. */
+    uint64_t *key = malloc(2 * nvox * sizeof *key);
+    if (!key)
+        return -1;
+    for (size_t t = 0; t < nvox; t++)
+        key[t] = ((uint64_t)(vox[t] & ~VBC_MOUTH_BIT) << 32) | (uint64_t)t;
+    sort_by_index(key, key + nvox, nvox);
+    for (size_t t = 0; t < nvox; t++) {
+        size_t from = (size_t)(key[t] & 0xffffffffu);
+        W->sorted[t] = vox[from];
+        if (vclear) {
+            W->clear[t] = vclear[from];
+            W->near[t] = -1;
         }
-        for (size_t t = 0; t < nvox; t++) {
-            size_t from = (size_t)(key[t] & 0xffffffffu);
-            W->sorted[t] = vox[from];
-            if (vclear) {
-                W->clear[t] = vclear[from];
-                W->near[t] = -1;
-            }
-            if (comp)
-                W->vcomp[t] = comp[from];
-        }
-        free(key);
-    } else {
-        memcpy(W->sorted, vox, nvox * sizeof *W->sorted);
-        if (vb_psort(W->sorted, nvox, sizeof *W->sorted, cmp_u32, vb_threads(0)) != VB_OK)
-            return -1;
+        if (comp)
+            W->vcomp[t] = comp[from];
     }
+    free(key);
     for (size_t t = 0; t < nvox; t++) {
         W->mouth[t] = (W->sorted[t] & VBC_MOUTH_BIT) != 0;
         W->sorted[t] &= ~VBC_MOUTH_BIT;
@@ -188,26 +208,59 @@ static int load_voxels(analysis *W, const uint32_t *vox, const float *vclear,
     return 0;
 }
 
-/* The voxel graph once (26-connectivity) as CSR adjacency with the step
- * length of each edge, its components joined in the union-find. The list is
- * sorted, so the neighbours of voxel v in the row at offset o = dy*nx +
- * dz*nx*ny lie at v + o - 1 .. v + o + 1, and a cursor per row offset only
- * ever moves forward: the whole graph costs a linear merge, no lookups.
- * Returns 0, or -1 when out of memory. */
-static int link_voxels(analysis *W)
+/* One slice [lo, hi) of the voxel list linked (link_voxels): its edges
+ * in adj (slice 0 writes W->A.adj itself), the degree of position t in
+ * W->A.adj_start[t + 1]. */
+typedef struct {
+    analysis *W;
+    size_t lo, hi;
+    uint32_t *adj;
+    size_t ne, cap;
+    int failed, bad;
+} link_job;
+
+/* The first position of the sorted list whose index is at least x. */
+static size_t lower_bound(const uint32_t *sorted, size_t n, int64_t x)
 {
+    size_t lo = 0, hi = n;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if ((int64_t)sorted[mid] < x)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+/* The list is sorted, so the neighbours of voxel v in the row at offset
+ * o = dy*nx + dz*nx*ny lie at v + o - 1 .. v + o + 1, and a cursor per row
+ * offset only ever moves forward: a slice costs a linear merge after one
+ * binary search per row for its start. */
+static void *link_slice(void *arg)
+{
+    link_job *J = arg;
+    analysis *W = J->W;
     const vbc_grid *g = W->g;
-    vbc_graph *A = &W->A;
     const uint32_t *sorted = W->sorted;
-    size_t nvox = W->nvox, nxy = (size_t)g->nx * (size_t)g->ny, adjcap = 0, ne = 0;
-    size_t cursor[9] = {0};
-    for (size_t t = 0; t < nvox; t++) {
-        A->adj_start[t] = ne;
+    size_t nvox = W->nvox, nxy = (size_t)g->nx * (size_t)g->ny;
+    size_t cursor[9];
+    if (J->lo >= J->hi)
+        return NULL;
+    for (int dz = -1; dz <= 1; dz++)
+        for (int dy = -1; dy <= 1; dy++)
+            cursor[(dz + 1) * 3 + dy + 1] =
+                lower_bound(sorted, nvox, (int64_t)sorted[J->lo] + (int64_t)dy * g->nx +
+                                              (int64_t)dz * (int64_t)nxy - 1);
+    for (size_t t = J->lo; t < J->hi; t++) {
+        size_t e0 = J->ne;
         uint32_t v = sorted[t];
         int i = (int)(v % (uint32_t)g->nx), j = (int)((v / (uint32_t)g->nx) % (uint32_t)g->ny);
         int k = (int)(v / nxy);
-        if (VB_ARRAY_FIT(A->adj, adjcap, ne + 26, 64) != VB_OK)
-            return -1;
+        if (VB_ARRAY_FIT(J->adj, J->cap, J->ne + 26, 64) != VB_OK) {
+            J->failed = 1;
+            return NULL;
+        }
         for (int dz = -1; dz <= 1; dz++)
             for (int dy = -1; dy <= 1; dy++) {
                 size_t *cur = &cursor[(dz + 1) * 3 + dy + 1];
@@ -227,15 +280,60 @@ static int link_voxels(analysis *W)
                         (int64_t)sorted[q] != target)
                         continue;
                     /* The step length code rides in the top two bits until the split below. */
-                    A->adj[ne++] = (uint32_t)q | ((uint32_t)(abs(dx) + abs(dy) + abs(dz)) << 30);
-                    if (q > t && !W->vcomp)
-                        vb_uf_join(&W->uf, (uint32_t)t, (uint32_t)q);
-                    else if (q > t && W->vcomp[t] != W->vcomp[q])
-                        W->comp_bad = 1;
+                    J->adj[J->ne++] = (uint32_t)q | ((uint32_t)(abs(dx) + abs(dy) + abs(dz)) << 30);
+                    if (q > t && W->vcomp && W->vcomp[t] != W->vcomp[q])
+                        J->bad = 1;
                 }
             }
+        W->A.adj_start[t + 1] = J->ne - e0;
     }
-    A->adj_start[nvox] = ne;
+    return NULL;
+}
+
+/* The voxel graph once (26-connectivity) as CSR adjacency with the step
+ * length of each edge, on slices of the list over the threads, joined in
+ * slice order (the same arrays on any number of threads); without given
+ * labels its components joined in the union-find (roots are each set's
+ * smallest position, whatever the order of the unions). Returns 0, or -1
+ * when out of memory. */
+static int link_voxels(analysis *W)
+{
+    vbc_graph *A = &W->A;
+    size_t nvox = W->nvox, adjcap = 0;
+    int nt = vb_threads(0), failed = 0;
+    /* Slices of at least 4096 voxels: below, a thread costs more than it saves. */
+    if ((size_t)nt > nvox / 4096)
+        nt = nvox / 4096 > 1 ? (int)(nvox / 4096) : 1;
+    link_job jobs[VB_MAX_THREADS];
+    for (int t = 0; t < nt; t++)
+        jobs[t] = (link_job){W, nvox * (size_t)t / (size_t)nt, nvox * (size_t)(t + 1) / (size_t)nt,
+                             NULL, 0, 0, 0, 0};
+    vb_run_jobs(link_slice, jobs, sizeof *jobs, nt);
+    size_t ne = 0;
+    for (int t = 0; t < nt; t++) {
+        failed |= jobs[t].failed;
+        W->comp_bad |= jobs[t].bad;
+        ne += jobs[t].ne;
+    }
+    if (!failed) {
+        A->adj = jobs[0].adj;
+        adjcap = jobs[0].cap;
+        jobs[0].adj = NULL;
+        failed = VB_ARRAY_FIT(A->adj, adjcap, ne ? ne : 1, 64) != VB_OK;
+    }
+    size_t at = jobs[0].ne;
+    for (int t = 1; t < nt; t++) {
+        if (!failed)
+            memcpy(A->adj + at, jobs[t].adj, jobs[t].ne * sizeof *A->adj);
+        at += jobs[t].ne;
+        free(jobs[t].adj);
+    }
+    free(jobs[0].adj);
+    if (failed)
+        return -1;
+    A->adj_start[0] = 0;
+    for (size_t t = 0; t < nvox; t++)
+        A->adj_start[t + 1] += A->adj_start[t];
     A->adj_len = malloc(ne ? ne : 1);
     if (!A->adj_len)
         return -1;
@@ -243,6 +341,11 @@ static int link_voxels(analysis *W)
         A->adj_len[e] = (uint8_t)(A->adj[e] >> 30);
         A->adj[e] &= 0x3fffffffu;
     }
+    if (!W->vcomp)
+        for (size_t t = 0; t < nvox; t++)
+            for (size_t e = A->adj_start[t]; e < A->adj_start[t + 1]; e++)
+                if (A->adj[e] > t)
+                    vb_uf_join(&W->uf, (uint32_t)t, A->adj[e]);
     return 0;
 }
 
@@ -344,12 +447,12 @@ static void group_components(analysis *W)
 }
 
 /* The ends *a, *b of the centreline of component mem[0..m) and the
- * widest (cheapest) path between them in W->path (b first), *np its
+ * widest (cheapest) path between them in K->path (b first), *np its
  * length. Returns 0, or -1 when out of memory. */
-static int trace_path(analysis *W, const uint32_t *mem, size_t m, int kind, int *through,
-                      size_t *np)
+static int trace_path(analysis *W, worker *K, const uint32_t *mem, size_t m, int kind,
+                      int *through, size_t *np)
 {
-    vbc_graph *A = &W->A;
+    vbc_graph *A = &K->A;
     uint32_t a, b;
     *through = 0;
     if (kind == VBC_CHANNEL) {
@@ -366,26 +469,26 @@ static int trace_path(analysis *W, const uint32_t *mem, size_t m, int kind, int 
     vbc_sweep(A, mem, m, a, 1);
     *np = 0;
     for (uint32_t q = b; q != UINT32_MAX; q = A->pred[q]) {
-        if (VB_ARRAY_FIT(W->path, W->pathcap, *np + 1, 64) != VB_OK)
+        if (VB_ARRAY_FIT(K->path, K->pathcap, *np + 1, 64) != VB_OK)
             return -1;
-        W->path[(*np)++] = q;
+        K->path[(*np)++] = q;
     }
     return 0;
 }
 
-/* The points of channel ch from W->path (ch->npoints of them, from
- * ch->first_point on): voxel centres with their radii, the length, the
- * bottleneck and the lining atoms (appended to W->L). Returns 0, or -1
- * when out of memory. */
-static int channel_points(analysis *W, vbc_result *res, vbc_channel *ch)
+/* The points of channel ch from K->path (ch->npoints of them, into
+ * o->pts): voxel centres with their radii, the length, the bottleneck and
+ * the lining atoms (in K->L). Returns 0, or -1 when out of memory. */
+static int channel_points(analysis *W, worker *K, vbc_channel *ch, comp_out *o)
 {
-    size_t np = ch->npoints, p0 = ch->first_point;
-    if (VB_ARRAY_FIT(res->points, W->ptcap, p0 + np, 64) != VB_OK)
+    size_t np = ch->npoints;
+    if (!(o->pts = malloc((np ? np : 1) * sizeof *o->pts)))
         return -1;
-    W->L.stamp++;
+    K->L.stamp++;
+    K->L.n = 0;
     for (size_t t = 0; t < np; t++) {
-        uint32_t q = W->path[np - 1 - t];
-        vbc_point *pt = &res->points[p0 + t];
+        uint32_t q = K->path[np - 1 - t];
+        vbc_point *pt = &o->pts[t];
         double p[3];
         vbc_voxel_centre(W->g, W->sorted[q], p);
         pt->x = p[0];
@@ -407,63 +510,228 @@ static int channel_points(analysis *W, vbc_result *res, vbc_channel *ch)
             ch->bottleneck = pt->r;
             ch->bottleneck_at = t;
         }
-        vbc_cells_within(W->cells, p, pt->r + W->opt->lining_tol, lining_add, &W->L);
-        if (W->L.failed)
+        vbc_cells_within(W->cells, p, pt->r + W->opt->lining_tol, lining_add, &K->L);
+        if (K->L.failed)
             return -1;
     }
     return 0;
 }
 
-/* Component c: classified, pruned (too small, a cavity not kept, too short
- * or too narrow) or traced and appended to res. Returns 0, or -1 when out
- * of memory. */
-static int analyse_component(analysis *W, size_t c, vbc_result *res)
+/* Whether component c is pruned before any distance is computed: a cavity
+ * not kept, or too small for min_length (a path through m voxels is at
+ * most (m - 1) long diagonals; most components are specks in grooves).
+ * *nm: its mouth voxels. */
+static int pruned_early(const analysis *W, size_t c, size_t *nm)
+{
+    const uint32_t *mem = W->order + W->cstart[c];
+    size_t m = W->cstart[c + 1] - W->cstart[c];
+    *nm = 0;
+    for (size_t t = 0; t < m; t++)
+        *nm += W->mouth[mem[t]];
+    return (*nm == 0 && !W->opt->keep_cavities) ||
+           (double)(m - 1) * 1.7320508075688772 * W->g->h < W->opt->min_length;
+}
+
+/* Component c (not pruned early, nm mouth voxels, its members' clearances
+ * set): traced, then pruned (too short or too narrow) or kept in *o. Touches the per-position arrays
+ * of its own members only, so components run on threads at once. Returns
+ * 0, or -1 when out of memory. */
+static int analyse_component(analysis *W, worker *K, size_t c, size_t nm, comp_out *o)
 {
     const uint32_t *mem = W->order + W->cstart[c];
     size_t m = W->cstart[c + 1] - W->cstart[c];
     const vbc_options *opt = W->opt;
-    size_t nm = 0;
-    for (size_t t = 0; t < m; t++)
-        nm += W->mouth[mem[t]];
     int kind = nm > 0 ? VBC_CHANNEL : VBC_CAVITY;
-    /* A path through m voxels is at most (m - 1) long diagonals: components
-     * too small for min_length are pruned before any distance is computed
-     * (most components are specks in grooves). */
-    if ((kind == VBC_CAVITY && !opt->keep_cavities) ||
-        (double)(m - 1) * 1.7320508075688772 * W->g->h < opt->min_length) {
-        res->pruned++;
-        return 0;
-    }
-    for (size_t t = 0; t < m && !W->given_clear; t++) {
-        double p[3];
-        vbc_voxel_centre(W->g, W->sorted[mem[t]], p);
-        W->clear[mem[t]] = vbc_cells_clearance(W->cells, p, &W->near[mem[t]]);
-    }
     int through;
     size_t np;
-    if (trace_path(W, mem, m, kind, &through, &np) != 0)
+    if (trace_path(W, K, mem, m, kind, &through, &np) != 0)
         return -1;
-    size_t p0 = 0;
-    for (size_t t = 0; t < res->nchannels; t++)
-        p0 += res->channels[t].npoints;
     vbc_channel ch = {kind, kind == VBC_CAVITY ? VBC_WHY_CAVITY : through ? VBC_WHY_THROUGH : VBC_WHY_TUNNEL,
-                      through, m, nm, 0.0, INFINITY, 0, p0, np, 0, 0};
-    size_t l0 = W->L.n;
-    if (channel_points(W, res, &ch) != 0)
+                      through, m, nm, 0.0, INFINITY, 0, 0, np, 0, 0};
+    if (channel_points(W, K, &ch, o) != 0)
         return -1;
-    if (ch.length < opt->min_length || ch.bottleneck < opt->min_radius) {
-        res->pruned++;
-        W->L.n = l0;
+    if (ch.length < opt->min_length || ch.bottleneck < opt->min_radius)
         return 0;
-    }
-    if (W->L.n - l0 > 1)
-        qsort(W->L.list + l0, W->L.n - l0, sizeof *W->L.list, cmp_i32);
-    ch.first_lining = l0;
-    ch.nlining = W->L.n - l0;
-    if (VB_ARRAY_FIT(res->channels, W->chcap, res->nchannels + 1, 64) != VB_OK)
+    if (K->L.n > 1)
+        qsort(K->L.list, K->L.n, sizeof *K->L.list, cmp_i32);
+    ch.nlining = K->L.n;
+    if (!(o->lin = malloc((K->L.n ? K->L.n : 1) * sizeof *o->lin)))
         return -1;
-    res->channels[res->nchannels++] = ch;
+    memcpy(o->lin, K->L.list, K->L.n * sizeof *o->lin);
+    o->ch = ch;
+    o->kept = 1;
     return 0;
+}
+
+/* The clearances of the members of the components traced (when they did
+ * not come with the voxels): one slice of CLEAR_SLICE positions of `order`
+ * per item, so the threads share them evenly whatever the component sizes. */
+#define CLEAR_SLICE 512
+
+typedef struct {
+    analysis *W;
+    const size_t *slice;  /* per slice: its first index into W->order */
+    const size_t *end;    /* per slice: one past its last */
+} clear_job;
+
+static void clear_slice(void *arg, size_t i, int tid)
+{
+    const clear_job *J = arg;
+    analysis *W = J->W;
+    (void)tid;
+    for (size_t k = J->slice[i]; k < J->end[i]; k++) {
+        uint32_t q = W->order[k];
+        double p[3];
+        vbc_voxel_centre(W->g, W->sorted[q], p);
+        W->clear[q] = vbc_cells_clearance(W->cells, p, &W->near[q]);
+    }
+}
+
+/* Slices over the members of the components work[0..nwork) and their
+ * clearances on the threads. Returns 0, or -1 when out of memory. */
+static int clear_members(analysis *W, const uint64_t *work, size_t nwork, int nt)
+{
+    size_t ns = 0;
+    for (size_t i = 0; i < nwork; i++) {
+        size_t c = (size_t)(work[i] & 0xffffffffu);
+        ns += (W->cstart[c + 1] - W->cstart[c] + CLEAR_SLICE - 1) / CLEAR_SLICE;
+    }
+    size_t *slice = malloc((2 * ns + 1) * sizeof *slice);
+    if (!slice)
+        return -1;
+    size_t *end = slice + ns, k = 0;
+    for (size_t i = 0; i < nwork; i++) {
+        size_t c = (size_t)(work[i] & 0xffffffffu);
+        for (size_t lo = W->cstart[c]; lo < W->cstart[c + 1]; lo += CLEAR_SLICE) {
+            slice[k] = lo;
+            end[k++] = lo + CLEAR_SLICE < W->cstart[c + 1] ? lo + CLEAR_SLICE : W->cstart[c + 1];
+        }
+    }
+    clear_job J = {W, slice, end};
+    vb_parallel_for(clear_slice, &J, ns, nt);
+    free(slice);
+    return 0;
+}
+
+/* The components the workers trace: work[0..nwork) (largest first, so the
+ * long ones start early), taken in turn through `next`; the outcome of
+ * each lands in its own slot, so the result is the same for any number of
+ * threads and any interleaving. */
+typedef struct {
+    analysis *W;
+    const uint64_t *work; /* component numbers (low 32 bits) */
+    const size_t *nm;     /* mouth voxels per component */
+    size_t nwork;
+    comp_out *out;        /* per component */
+    _Atomic size_t next;
+    _Atomic int failed;
+} comp_queue;
+
+typedef struct {
+    comp_queue *Q;
+    worker K;
+} comp_job;
+
+static void *comp_worker(void *arg)
+{
+    comp_job *J = arg;
+    comp_queue *Q = J->Q;
+    for (;;) {
+        size_t i = atomic_fetch_add(&Q->next, 1);
+        if (i >= Q->nwork || atomic_load(&Q->failed))
+            return NULL;
+        size_t c = (size_t)(Q->work[i] & 0xffffffffu);
+        if (analyse_component(Q->W, &J->K, c, Q->nm[c], &Q->out[c]) != 0)
+            atomic_store(&Q->failed, 1);
+    }
+}
+
+/* Every component: pruned early, or traced by the worker threads; then
+ * merged into res in component order (points and lining atoms appended as
+ * one thread taking the components in order would have). Returns 0, or -1
+ * when out of memory. */
+static int analyse_components(analysis *W, size_t natoms, vbc_result *res)
+{
+    size_t ncomp = W->ncomp, nwork = 0, chcap = 0, ptcap = 0, lcap = 0, nlin = 0;
+    size_t *nm = malloc((ncomp ? ncomp : 1) * sizeof *nm);
+    uint64_t *work = malloc((ncomp ? ncomp : 1) * sizeof *work);
+    comp_out *out = calloc(ncomp ? ncomp : 1, sizeof *out);
+    comp_job *jobs = NULL;
+    int nt = 0, rc = -1, need_support = 0, ok = 1;
+    comp_queue Q = {W, work, nm, 0, out, 0, 0};
+    if (!nm || !work || !out)
+        goto done;
+    /* Largest first (the key: size complement, then component number), so
+     * no two entries tie. Components number below 2^30. */
+    for (size_t c = 0; c < ncomp; c++)
+        if (!pruned_early(W, c, &nm[c])) {
+            uint64_t m = W->cstart[c + 1] - W->cstart[c];
+            work[nwork++] = ((uint64_t)(UINT32_MAX - (uint32_t)m) << 32) | (uint64_t)c;
+            need_support |= nm[c] >= 2;
+        }
+    /* Read by every worker's vbc_channel_ends: made before they start. */
+    if (need_support && vbc_graph_support(&W->A) != 0)
+        goto done;
+    qsort(work, nwork, sizeof *work, cmp_u64);
+    Q.nwork = nwork;
+    nt = vb_threads(0);
+    if (!W->given_clear && clear_members(W, work, nwork, nt) != 0)
+        goto done;
+    if ((size_t)nt > nwork)
+        nt = nwork ? (int)nwork : 1;
+    if (!(jobs = calloc((size_t)nt, sizeof *jobs)))
+        goto done;
+    for (int t = 0; t < nt; t++) {
+        jobs[t].Q = &Q;
+        jobs[t].K.A = W->A;
+        jobs[t].K.A.heap = t == 0 ? W->A.heap : malloc((W->nvox ? W->nvox : 1) * sizeof *W->A.heap);
+        jobs[t].K.L.mark = calloc(natoms ? natoms : 1, sizeof(int32_t));
+        ok &= jobs[t].K.A.heap && jobs[t].K.L.mark;
+    }
+    if (!ok)
+        goto done;
+    if (nwork)
+        vb_run_jobs(comp_worker, jobs, sizeof *jobs, nt);
+    if (atomic_load(&Q.failed))
+        goto done;
+    size_t p0 = 0;
+    for (size_t c = 0; c < ncomp; c++) {
+        comp_out *o = &out[c];
+        if (!o->kept) {
+            res->pruned++;
+            continue;
+        }
+        o->ch.first_point = p0;
+        o->ch.first_lining = nlin;
+        if (VB_ARRAY_FIT(res->points, ptcap, p0 + o->ch.npoints, 64) != VB_OK ||
+            VB_ARRAY_FIT(res->lining, lcap, nlin + o->ch.nlining + 1, 256) != VB_OK ||
+            VB_ARRAY_FIT(res->channels, chcap, res->nchannels + 1, 64) != VB_OK)
+            goto done;
+        memcpy(res->points + p0, o->pts, o->ch.npoints * sizeof *o->pts);
+        memcpy(res->lining + nlin, o->lin, o->ch.nlining * sizeof *o->lin);
+        p0 += o->ch.npoints;
+        nlin += o->ch.nlining;
+        res->channels[res->nchannels++] = o->ch;
+    }
+    rc = 0;
+done:
+    for (int t = 0; jobs && t < nt; t++) {
+        if (t > 0)
+            free(jobs[t].K.A.heap);
+        /* The graph copies share W->A's support: analysis_free frees it. */
+        free(jobs[t].K.L.mark);
+        free(jobs[t].K.L.list);
+        free(jobs[t].K.path);
+    }
+    for (size_t c = 0; out && c < ncomp; c++) {
+        free(out[c].pts);
+        free(out[c].lin);
+    }
+    free(jobs);
+    free(out);
+    free(work);
+    free(nm);
+    return rc;
 }
 
 int vbc_analyse_clear(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, const uint32_t *vox,
@@ -489,7 +757,7 @@ int vbc_analyse_given(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, co
     W.nvox = nvox;
     W.given_clear = vclear != NULL;
     int rc = VB_ENOMEM;
-    if (analysis_alloc(&W, s->n) != 0 || load_voxels(&W, vox, vclear, comp) != 0 ||
+    if (analysis_alloc(&W) != 0 || load_voxels(&W, vox, vclear, comp) != 0 ||
         link_voxels(&W) != 0)
         goto done;
     if (W.vcomp)
@@ -501,13 +769,10 @@ int vbc_analyse_given(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, co
     if ((rc = vbc_cells_build(ctx, s, 3.0, &W.cells)) != VB_OK)
         goto done;
     rc = VB_ENOMEM;
-    for (size_t c = 0; c < W.ncomp; c++)
-        if (analyse_component(&W, c, res) != 0)
-            goto done;
+    if (analyse_components(&W, s->n, res) != 0)
+        goto done;
     if (res->nchannels > 1)
         qsort(res->channels, res->nchannels, sizeof *res->channels, cmp_channel);
-    res->lining = W.L.list;
-    W.L.list = NULL;
     rc = VB_OK;
 done:
     if (rc == VB_ENOMEM)

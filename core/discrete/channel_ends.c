@@ -161,6 +161,11 @@ static int support_atoms(const vb_sphere_set *s, int32_t **out, size_t *count)
     return 0;
 }
 
+int vbc_graph_support(vbc_graph *A)
+{
+    return A->support ? 0 : support_atoms(A->s, &A->support, &A->nsupport);
+}
+
 /* Ends of the centreline of a component with mouths. Mouth voxels that touch
  * each other form one opening, represented by its widest voxel. The line
  * joins the widest pair of openings through the molecule (a pore: its two
@@ -213,7 +218,7 @@ int vbc_channel_ends(vbc_graph *A, vb_uf *uf, const uint32_t *members, size_t m,
         if (A->mouth[u] && uf->p[u] == u)
             reps[k++] = A->rep[u];
     }
-    if (k >= 2 && !A->support && support_atoms(A->s, &A->support, &A->nsupport) != 0) {
+    if (k >= 2 && vbc_graph_support(A) != 0) {
         free(reps);
         return -1;
     }

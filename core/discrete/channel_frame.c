@@ -48,26 +48,41 @@ int vbc_frame_masks(vb_ctx *ctx, vbc_pipe *pipe, const vbc_grid *g, const vb_sph
     return rc;
 }
 
-int vbc_frame_analyse(vb_ctx *ctx, const vb_sphere_set *s, const vbc_options *opt, vbc_frame *f)
+/* Drops what a failed half of the analysis leaves in *f. */
+static int analyse_failed(vbc_frame *f, int rc)
 {
-    const vbc_grid *g = &f->grid;
-    const vbc_pore_request *req = opt->pore && opt->pore->enabled ? opt->pore : NULL;
-    double t1 = vb_now();
-    int rc = vbc_analyse_given(ctx, g, s, f->out.voxels, f->out.clearance, f->out.comp,
-                               f->out.nvoxels, opt, &f->result);
-    double t2 = vb_now();
-    if (rc == VB_OK)
-        rc = vbc_pore_stage(ctx, g, f->out.flags, s, req, opt->lining_tol, &f->result, &f->axis,
-                            &f->pore_ms);
-    double t3 = vb_now();
-    f->ms_analysis = 1e3 * (t2 - t1);
-    f->ms_pore = 1e3 * (t3 - t2);
     if (rc != VB_OK) {
         vbc_frame_out_free(&f->out);
         vbc_result_free(&f->result);
         memset(&f->result, 0, sizeof f->result);
     }
     return rc;
+}
+
+int vbc_frame_components(vb_ctx *ctx, const vb_sphere_set *s, const vbc_options *opt, vbc_frame *f)
+{
+    double t1 = vb_now();
+    int rc = vbc_analyse_given(ctx, &f->grid, s, f->out.voxels, f->out.clearance, f->out.comp,
+                               f->out.nvoxels, opt, &f->result);
+    f->ms_analysis = 1e3 * (vb_now() - t1);
+    return analyse_failed(f, rc);
+}
+
+int vbc_frame_pore(vb_ctx *ctx, const vb_sphere_set *s, const vbc_options *opt, vbc_frame *f)
+{
+    const vbc_pore_request *req = opt->pore && opt->pore->enabled ? opt->pore : NULL;
+    double t2 = vb_now();
+    int rc = vbc_pore_stage(ctx, &f->grid, f->out.flags, s, req, opt->lining_tol, &f->result,
+                            &f->axis, &f->pore_ms);
+    f->ms_pore = 1e3 * (vb_now() - t2);
+    return analyse_failed(f, rc);
+}
+
+int vbc_frame_analyse(vb_ctx *ctx, const vb_sphere_set *s, const vbc_options *opt, vbc_frame *f)
+{
+    f->ms_pore = 0.0;
+    int rc = vbc_frame_components(ctx, s, opt, f);
+    return rc == VB_OK ? vbc_frame_pore(ctx, s, opt, f) : rc;
 }
 
 int vbc_frame_run(vb_ctx *ctx, vbc_pipe *pipe, const vbc_grid *g, const vb_sphere_set *s,

@@ -1,5 +1,6 @@
 /* The channel analysis of a sequence of frames (vbc_run.h). */
 #include <math.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -210,8 +211,71 @@ static void membrane_options(const vbc_channels_config *A, const vbc_run_out *o,
     opt->pore = req;
 }
 
+/* A front's pore stage on a thread of its own: the frame (moved out of
+ * the front's vbc_run_out, whose copies travel through the ring of
+ * frames in flight), its options and a worker context. */
+struct vbc_pore_job {
+    vbc_frame F;
+    const vb_sphere_set *s;
+    vbc_options opt;
+    vbc_pore_request req;
+    vb_ctx *w;
+    int rc;
+    vb_jobs th;
+};
+
+static void *pore_job_run(void *arg)
+{
+    vbc_pore_job *J = arg;
+    J->rc = vbc_frame_pore(J->w, J->s, &J->opt, &J->F);
+    return NULL;
+}
+
+/* Starts the pore stage of the front o on a thread when the request is
+ * fixed; else (or when no thread or context can be had) the back half
+ * runs it. The pore stage reads the frame, its spheres and the fixed
+ * request only, so it gives what the back half would. */
+static void pore_job_start(vb_ctx *ctx, vbc_run *r, vbc_run_out *o)
+{
+    if (!atomic_load(&r->pore_fixed))
+        return;
+    vbc_pore_job *J = calloc(1, sizeof *J);
+    if (!J || vb_open_worker(&J->w, ctx) != VB_OK) {
+        free(J);
+        return;
+    }
+    membrane_options(r->cfg, o, &J->opt, &J->req);
+    J->F = o->F;
+    J->s = o->s;
+    memset(&o->F, 0, sizeof o->F);
+    o->pore = J;
+    vb_jobs_start(&J->th, pore_job_run, J, sizeof *J, 1);
+}
+
+/* Waits for o's pore job and takes its frame back, its counters and its
+ * error into ctx (when not NULL), as if the stage had run there. Returns
+ * its status; after a failure the frame holds nothing (vbc_frame_pore). */
+static int pore_job_join(vb_ctx *ctx, vbc_run_out *o)
+{
+    vbc_pore_job *J = o->pore;
+    vb_jobs_join(&J->th);
+    int rc = J->rc;
+    if (ctx) {
+        vb_stats_add(vb_ctx_stats(ctx), vb_ctx_stats(J->w));
+        vb_diag_record e;
+        if (rc != VB_OK && vb_error_record(J->w, &e) == VB_OK)
+            vb_error(ctx, rc, e.file, e.line, "%s", e.message);
+    }
+    o->F = J->F;
+    vb_close(J->w);
+    free(J);
+    o->pore = NULL;
+    return rc;
+}
+
 /* The pipeline `repeat` times (the first run's masks already made when
- * o->masked), the per-run mean timings in o->fi. */
+ * o->masked, its analysis when o->analysed, its pore stage running in
+ * o->pore), the per-run mean timings in o->fi. */
 static int frame_repeat(vb_ctx *ctx, vbc_run *r, vbc_run_out *o)
 {
     const vbc_channels_config *A = r->cfg;
@@ -221,10 +285,15 @@ static int frame_repeat(vb_ctx *ctx, vbc_run *r, vbc_run_out *o)
     vbc_pore_request req;
     membrane_options(A, o, &opt, &req);
     for (int k = 0; k < A->repeat && rc == VB_OK; k++) {
-        if (k > 0 || !o->masked)
+        int pored = k == 0 && o->pore;
+        if (pored)
+            rc = pore_job_join(ctx, o);
+        if (rc == VB_OK && (k > 0 || !o->masked))
             rc = vbc_frame_masks(ctx, r->pipe, &o->g, o->s, A->probe, o->want, &A->opt, &o->F);
-        if (rc == VB_OK)
-            rc = vbc_frame_analyse(ctx, o->s, &opt, &o->F);
+        if (rc == VB_OK && (k > 0 || !o->analysed))
+            rc = vbc_frame_components(ctx, o->s, &opt, &o->F);
+        if (rc == VB_OK && (k > 0 || !pored))
+            rc = vbc_frame_pore(ctx, o->s, &opt, &o->F);
         fi->ms_upload += o->F.out.ms_upload;
         fi->ms_jfa += o->F.out.ms_jfa;
         fi->ms_masks += o->F.out.ms_masks;
@@ -286,17 +355,24 @@ int vbc_run_front(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index, 
     if (!masks)
         return VB_OK;
     rc = vbc_frame_masks(ctx, r->pipe, &o->g, o->s, A->probe, o->want, &A->opt, &o->F);
+    /* The analysis reads no pore axis (the back half's): it runs here too,
+     * so on the reader's thread it overlaps the pore stage of the frames before. */
+    if (rc == VB_OK)
+        rc = vbc_frame_components(ctx, o->s, &A->opt, &o->F);
     if (rc != VB_OK) {
         vbc_run_front_drop(o);
         return rc;
     }
-    o->masked = 1;
+    o->masked = o->analysed = 1;
+    pore_job_start(ctx, r, o);
     return VB_OK;
 }
 
 /* Drops what a front half holds (a run stopped before its back half). */
 void vbc_run_front_drop(vbc_run_out *o)
 {
+    if (o->pore)
+        pore_job_join(NULL, o);
     vbc_frame_free(&o->F);
     vb_spheres_free(o->kept);
     memset(o, 0, sizeof *o);
@@ -342,6 +418,10 @@ int vbc_run_back(vb_ctx *ctx, vbc_run *r, vbc_run_out *o)
                 vbc_axis_source_name(ps->source), ps->why);
     if (rc == VB_OK)
         keep_pore_axis(A, &o->F, o);
+    /* From here on the request stays as it is: later fronts may run their
+     * pore stage (its writes above happen before the flag is seen set). */
+    if (rc == VB_OK && (!A->pore.enabled || (A->pore.have_axis && !A->axis_refit)))
+        atomic_store(&r->pore_fixed, 1);
     if (rc == VB_OK && A->plot)
         rc = series_add(ctx, &r->series, index, &o->F.result);
     if (rc == VB_OK && A->occupancy) {

@@ -72,9 +72,19 @@ int vbc_spheres_without(vb_ctx *ctx, const vb_sphere_set *s, const char *const *
     if (!keep)
         return vb_error(ctx, VB_ENOMEM, s->source, 0, "out of memory");
     size_t kept = 0;
+    /* The atoms of a residue follow each other: the verdict on the last
+     * (residue name, HETATM) pair is reused while it repeats. */
+    const vb_atom_info *last = NULL;
+    long at = -1;
+    int ligand = 0;
     for (size_t i = 0; i < s->n; i++) {
-        long at = s->info ? listed_at(s->info[i].resname, resnames, n) : -1;
-        int ligand = at < 0 && lig && s->info && vbc_is_ligand(&s->info[i]);
+        const vb_atom_info *a = s->info ? &s->info[i] : NULL;
+        if (a && !(last && last->hetatm == a->hetatm &&
+                   strncmp(last->resname, a->resname, sizeof a->resname) == 0)) {
+            at = listed_at(a->resname, resnames, n);
+            ligand = at < 0 && lig && vbc_is_ligand(a);
+            last = a;
+        }
         kept += keep[i] = at < 0 && !ligand;
         if (at >= 0 && counts)
             counts[at]++;

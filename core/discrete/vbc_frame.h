@@ -46,6 +46,15 @@ int vbc_frame_masks(vb_ctx *ctx, vbc_pipe *pipe, const vbc_grid *g, const vb_sph
                     double probe, unsigned want, const vbc_options *opt, vbc_frame *f);
 int vbc_frame_analyse(vb_ctx *ctx, const vb_sphere_set *s, const vbc_options *opt, vbc_frame *f);
 
+/* vbc_frame_analyse in its two steps: vbc_frame_components, the analysis
+ * of f->out (f->result, f->ms_analysis), which reads opt but not opt->pore,
+ * so it may run on the reader's thread ahead of the frames before (vbc_run_front);
+ * then vbc_frame_pore, the pore stage (f->axis, f->ms_pore, f->pore_ms),
+ * in frame order. Statuses and what *f holds after a failure as for
+ * vbc_frame_run. */
+int vbc_frame_components(vb_ctx *ctx, const vb_sphere_set *s, const vbc_options *opt, vbc_frame *f);
+int vbc_frame_pore(vb_ctx *ctx, const vb_sphere_set *s, const vbc_options *opt, vbc_frame *f);
+
 /* The planar cut of s by the plane through its centroid normal to axis
  * `normal` (0 x, 1 y, 2 z): every sphere the plane crosses becomes a disk
  * of its cross-section radius, in the plane's two other axes (z 0).

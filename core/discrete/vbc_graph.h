@@ -39,6 +39,11 @@ uint32_t vbc_farthest(const vbc_graph *A, const uint32_t *members, size_t m);
 /* Centre of voxel index v in Å. */
 void vbc_voxel_centre(const vbc_grid *g, uint32_t v, double p[3]);
 
+/* The support atoms of A->s in A->support (once: kept while set), which
+ * vbc_channel_ends measures widths over; threads sharing A's support call it
+ * before they start. Returns 0, or -1 when out of memory. */
+int vbc_graph_support(vbc_graph *A);
+
 /* Ends *a, *b of the centreline of a component with mouths (core/discrete/channel_ends.c);
  * *through = 1 when they lie on opposite faces of the molecule. uf is
  * scratch over every position (its sets are reset for the members).

@@ -33,7 +33,11 @@ typedef struct vbc_run {
     size_t left_out[2 * VBC_MAX_NAMES]; /* per name: cfg's membrane names, then its ignore names */
     vbc_ligands ligands;      /* ligands left out (unless --keep-ligands), over the frames */
     unsigned want;            /* VBC_WANT_* the caller wants of every frame besides cfg's */
+    _Atomic int pore_fixed;   /* the pore request will not change again (vbc_run_back sets it):
+                               * a front may start the frame's pore stage on a thread */
 } vbc_run;
+
+typedef struct vbc_pore_job vbc_pore_job; /* a front's pore stage on a thread (channel_run.c) */
 
 /* What one frame gives its writers. */
 typedef struct vbc_run_out {
@@ -45,6 +49,8 @@ typedef struct vbc_run_out {
     unsigned want;            /* VBC_WANT_* of this frame (vbc_run_front) */
     int first;                /* the first frame of the selection */
     int masked;               /* F.out holds the first run's masks (vbc_run_front) */
+    int analysed;             /* and F.result its analysis (vbc_frame_components) */
+    vbc_pore_job *pore;       /* the pore stage running on F (moved there), or NULL */
     int membrane_out;         /* membrane atoms (--membrane) were left out of this frame */
     int have_membrane;        /* and `membrane` is their normal (vbc_membrane_normal) */
     vbc_axis membrane;
@@ -70,10 +76,14 @@ int vbc_run_frame(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index, 
  * of frame N+1 while the caller runs the back of frame N (frames in flight,
  * vbc_ahead.h); the tables are the same bytes as vbc_run_frame's.
  * vbc_run_front: the spheres left out, the grid and, with `masks`, the
- * first run's pipe (labels, masks, channel voxels); it touches the run's
+ * first run's pipe (labels, masks, channel voxels) and its analysis
+ * (components, centrelines: vbc_frame_components), and once the pore
+ * request is fixed (the axis found, not refitted per frame: pore_fixed)
+ * it starts the pore stage on a thread of its own, which the back half
+ * joins (so the pore stages of the frames in flight run at once); it touches the run's
  * counts of atoms left out and its fixed grid (fitted on the first front), and
  * nothing the back half touches. vbc_run_back, on the caller's thread in
- * frame order: the axis refit, the analysis, the pore stage, the series,
+ * frame order: the axis refit, the analysis (unless the front ran it), the pore stage, the series,
  * the occupancy, frames_done. Fronts run in frame order too. Each fills or
  * finishes *o as vbc_run_frame; on failure *o holds nothing (a front
  * whose back will not run: vbc_run_front_drop). */

@@ -7,7 +7,8 @@
 # device (reference and PoCL), the warnings in the same order, a --frames
 # selection the same rows, and a trajectory cut inside a frame the same
 # exit, the same error and no table. The components labelled on the device
-# (PoCL) give the reference's bytes too.
+# (PoCL) give the reference's bytes too, and with the clearances computed
+# on the device (a GPU's host analysis) on one and two threads.
 # usage: frames_ahead.sh VORBALL CORPUS WORKDIR
 vorball=$1 corpus=$2 work=$3
 . "$(dirname "$0")/lib.sh"
@@ -62,6 +63,15 @@ VORBALL_DEVICE_GRAPH=1 channels pocl_cc 2 2 --device cpu
 for ext in csv pdb st; do
     cmp -s seq.$ext pocl_cc.$ext || fail "device components: pocl_cc.$ext differs from the reference"
 done
+# The clearances computed on the device as well (a GPU's host analysis:
+# given clearances and labels), on one and on two analysis threads.
+for t in 1 2; do
+    VORBALL_DEVICE_GRAPH=1 VORBALL_DEVICE_CLEARANCE=1 channels "pocl_gpuhost$t" 2 "$t" --device cpu
+    for ext in csv pdb st; do
+        cmp -s seq.$ext pocl_gpuhost$t.$ext ||
+            fail "device clearances, $t threads: pocl_gpuhost$t.$ext differs from the reference"
+    done
+done
 for dg in 0 1; do
     VORBALL_DEVICE_GRAPH=$dg run 0 "grm$dg.log" "$vorball" channels "$corpus/data/1grm_single_hole2.pdb" \
         --grid 64 --device cpu -o "grm$dg.csv" --centerlines "grm$dg.pdb"
@@ -70,6 +80,20 @@ run 0 grmref.log "$vorball" channels "$corpus/data/1grm_single_hole2.pdb" --grid
     -o grmref.csv --centerlines grmref.pdb
 for f in grm0 grm1; do
     cmp -s grmref.csv $f.csv && cmp -s grmref.pdb $f.pdb || fail "1grm: $f differs from the reference"
+done
+
+# The analysis on threads (components, their clearances, the voxel graph on
+# slices of at least 4096 voxels): 1chb at grid 128 has about 17,000 channel
+# voxels, so three threads link three slices; the same bytes as one thread.
+for t in 1 3; do
+    VORBALL_THREADS=$t run 0 "chb$t.log" "$vorball" channels "$corpus/data/1chb_hole2.pdb" --grid 128 \
+        --device ref --centerlines "chb$t.pdb" --json -o "chb$t.json"
+    grep -v '"ms"\|"clock"' "chb$t.json" > "chb$t.sj"
+done
+[ "$(grep -o '"channel_voxels": [0-9]*' chb1.json | grep -o '[0-9]*$')" -ge 12288 ] ||
+    fail "1chb grid 128: fewer than 12288 channel voxels, the slices are not exercised"
+for ext in pdb sj; do
+    cmp -s chb1.$ext chb3.$ext || fail "1chb: chb3.$ext (3 threads) differs from chb1.$ext (1 thread)"
 done
 
 # --fixed-grid: the reader fits the grid on the first frame it runs.
