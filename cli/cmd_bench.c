@@ -14,7 +14,7 @@
 #include "vb_world.h"
 #include "vertex_parts.h"
 
-static void help(FILE *f)
+void vb_cmd_bench_help(FILE *f)
 {
     fprintf(f,
             "usage: vorball bench [options] INPUT... \n\n"
@@ -127,12 +127,7 @@ int vb_cmd_bench(int argc, char **argv)
     for (int i = 1; i < argc && code == VB_EXIT_OK; i++) {
         const char *a = argv[i];
         int r;
-        if (vb_cli_is_help(a)) {
-            help(stdout);
-            free(inputs);
-            vb_close(ctx);
-            return VB_EXIT_OK;
-        } else if (strcmp(a, "--samples") == 0 && i + 1 < argc) {
+        if (strcmp(a, "--samples") == 0 && i + 1 < argc) {
             if ((nsamples = parse_samples(argv[++i], samples)) < 1)
                 code = vb_cli_usage_error("bench", "--samples needs S or S1,S2,... in 2..4096");
         } else if ((r = vb_pipeline_option("bench", argc, argv, &i, &po, ctx)) != 0) {

@@ -298,15 +298,15 @@ done:
     return ex;
 }
 
+void vb_cmd_crosscheck_help(FILE *f)
+{
+    fputs(usage_head, f);
+    vb_cli_input_help(f);
+    fputs(usage_tail, f);
+}
+
 int vb_cmd_crosscheck(int argc, char **argv)
 {
-    for (int i = 1; i < argc; i++)
-        if (vb_cli_is_help(argv[i])) {
-            fputs(usage_head, stdout);
-            vb_cli_input_help(stdout);
-            fputs(usage_tail, stdout);
-            return VB_EXIT_OK;
-        }
     vb_ctx *ctx = NULL;
     if (vb_open(&ctx, NULL) != VB_OK) {
         fprintf(stderr, "vorball: E%d: out of memory\n", vb_diag_number(VB_ENOMEM));

@@ -7,7 +7,7 @@
 #include "commands.h"
 #include "vbg_runtime.h"
 
-static void help(FILE *f)
+void vb_cmd_devices_help(FILE *f)
 {
     fprintf(f,
             "usage: vorball devices [-o FILE]\n\n"
@@ -21,10 +21,7 @@ int vb_cmd_devices(int argc, char **argv)
 {
     const char *outpath = NULL;
     for (int i = 1; i < argc; i++) {
-        if (vb_cli_is_help(argv[i])) {
-            help(stdout);
-            return VB_EXIT_OK;
-        } else if (strcmp(argv[i], "-o") == 0 && i + 1 < argc) {
+        if (strcmp(argv[i], "-o") == 0 && i + 1 < argc) {
             outpath = argv[++i];
         } else {
             return vb_cli_usage_error("devices", "unexpected argument '%s'", argv[i]);

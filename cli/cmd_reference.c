@@ -26,6 +26,12 @@ static const char *const usage_text =
     "  --stats          print filter and exact-evaluation counts and the time to stderr\n"
     "  --force          run on more than 500 spheres (minutes to hours)\n";
 
+void vb_cmd_reference_help(FILE *f)
+{
+    fputs(usage_text, f);
+    vb_cli_input_help(f);
+}
+
 int vb_cmd_reference(int argc, char **argv)
 {
     const char *in_path = NULL, *out_path = NULL, *fmt_name = "tsv";
@@ -33,11 +39,6 @@ int vb_cmd_reference(int argc, char **argv)
     vb_cli_input_opts in;
     vb_cli_input_defaults(&in);
     for (int i = 1; i < argc; i++) {
-        if (vb_cli_is_help(argv[i])) {
-            fputs(usage_text, stdout);
-            vb_cli_input_help(stdout);
-            return VB_EXIT_OK;
-        }
         if (strcmp(argv[i], "-o") == 0) {
             if (++i >= argc)
                 return vb_cli_usage_error(argv[0], "-o needs a file name");

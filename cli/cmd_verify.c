@@ -169,15 +169,15 @@ static int run(vb_ctx *ctx, const options *o, int *mismatch)
     return rc;
 }
 
+void vb_cmd_verify_help(FILE *f)
+{
+    fputs(usage_text, f);
+    vb_cli_input_help(f);
+    fputs(usage_tail, f);
+}
+
 int vb_cmd_verify(int argc, char **argv)
 {
-    for (int i = 1; i < argc; i++)
-        if (vb_cli_is_help(argv[i])) {
-            fputs(usage_text, stdout);
-            vb_cli_input_help(stdout);
-            fputs(usage_tail, stdout);
-            return VB_EXIT_OK;
-        }
     options o;
     memset(&o, 0, sizeof o);
     vb_cli_input_defaults(&o.in);
