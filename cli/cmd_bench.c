@@ -48,7 +48,7 @@ static int parse_samples(const char *s, unsigned *out)
     while (*s && n < 32) {
         char *end;
         unsigned long v = strtoul(s, &end, 10);
-        if (end == s || v < 2 || v > 4096 || (*end != ',' && *end != '\0'))
+        if (end == s || v < VB_SAMPLES_MIN || v > VB_SAMPLES_MAX || (*end != ',' && *end != '\0'))
             return -1;
         out[n++] = (unsigned)v;
         s = *end ? end + 1 : end;
@@ -129,7 +129,8 @@ int vb_cmd_bench(int argc, char **argv)
         int r;
         if (strcmp(a, "--samples") == 0 && i + 1 < argc) {
             if ((nsamples = parse_samples(argv[++i], samples)) < 1)
-                code = vb_cli_usage_error("bench", "--samples needs S or S1,S2,... in 2..4096");
+                code = vb_cli_usage_error("bench", "--samples needs S or S1,S2,... in %u..%u",
+                                            VB_SAMPLES_MIN, VB_SAMPLES_MAX);
         } else if ((r = vb_pipeline_option("bench", argc, argv, &i, &po, ctx)) != 0) {
             code = r < 0 ? VB_EXIT_USAGE : code;
         } else if (strcmp(a, "--repeat") == 0 && i + 1 < argc) {
