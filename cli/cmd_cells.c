@@ -206,8 +206,7 @@ static int run_frames(vb_ctx *ctx, const char *in_path, const char *traj,
 
 void vb_cmd_cells_help(FILE *f)
 {
-    fputs(usage_text, f);
-    vb_cli_input_help(f);
+    vb_cli_input_help_between(f, usage_text, NULL);
 }
 
 int vb_cmd_cells(int argc, char **argv)

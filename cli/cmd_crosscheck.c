@@ -300,9 +300,7 @@ done:
 
 void vb_cmd_crosscheck_help(FILE *f)
 {
-    fputs(usage_head, f);
-    vb_cli_input_help(f);
-    fputs(usage_tail, f);
+    vb_cli_input_help_between(f, usage_head, usage_tail);
 }
 
 int vb_cmd_crosscheck(int argc, char **argv)

@@ -28,8 +28,7 @@ static const char *const usage_text =
 
 void vb_cmd_reference_help(FILE *f)
 {
-    fputs(usage_text, f);
-    vb_cli_input_help(f);
+    vb_cli_input_help_between(f, usage_text, NULL);
 }
 
 int vb_cmd_reference(int argc, char **argv)

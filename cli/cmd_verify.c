@@ -171,9 +171,7 @@ static int run(vb_ctx *ctx, const options *o, int *mismatch)
 
 void vb_cmd_verify_help(FILE *f)
 {
-    fputs(usage_text, f);
-    vb_cli_input_help(f);
-    fputs(usage_tail, f);
+    vb_cli_input_help_between(f, usage_text, usage_tail);
 }
 
 int vb_cmd_verify(int argc, char **argv)
