@@ -86,14 +86,8 @@ int vb_cmd_reference(int argc, char **argv)
     int exit_code = VB_EXIT_OK;
     double t0 = vb_now();
     rc = vb_cli_load_spheres(ctx, in_path, &in, 4, &set);
-    if (rc == VB_OK && set->n > VB_REFERENCE_MAX_SPHERES && !force)
-        rc = vb_error(ctx, VB_EINPUT_REFERENCE_SIZE, in_path, 0,
-                      "%zu spheres: the exact reference takes at most %d without --force (its "
-                      "time grows as n^2.7 to n^4; `vorball vertices` is the pipeline for "
-                      "large inputs)",
-                      set->n, VB_REFERENCE_MAX_SPHERES);
     if (rc == VB_OK)
-        rc = vb_reference(ctx, set, &out);
+        rc = vb_reference_run(ctx, set, force, in_path, &out);
     double t1 = vb_now();
     if (rc == VB_OK) {
         FILE *f = vb_cli_open_output(ctx, out_path);
