@@ -87,8 +87,9 @@ static int parse_args(int argc, char **argv, options *o)
             o->arcs = 1;
         } else if (strcmp(a, "--threads") == 0) {
             size_t t;
-            if (i + 1 >= argc || vb_cli_parse_size(argv[++i], &t) || t < 1 || t > 64)
-                return vb_cli_usage_error("verify", "--threads needs an integer in 1..64");
+            if (i + 1 >= argc || vb_cli_parse_size(argv[++i], &t) || t < 1 || t > VB_MAX_THREADS)
+                return vb_cli_usage_error("verify", "--threads needs an integer in 1..%d",
+                                          VB_MAX_THREADS);
             o->threads = (unsigned)t;
         } else if (strcmp(a, "--complete") == 0) {
             o->complete = 1;
