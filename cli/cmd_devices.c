@@ -5,7 +5,7 @@
 
 #include "cli_common.h"
 #include "commands.h"
-#include "vbg_runtime.h"
+#include "vb_default.h"
 
 void vb_cmd_devices_help(FILE *f)
 {
@@ -31,17 +31,7 @@ int vb_cmd_devices(int argc, char **argv)
     if (vb_open(&ctx, NULL))
         return vb_cli_fail(NULL, VB_ENOMEM);
     FILE *out = vb_cli_open_output(ctx, outpath);
-    int rc = out ? vbg_list_devices(ctx, out) : vb_errcode(ctx);
-    if (out && rc == VB_OK) {
-        vbg_runtime *rt;
-        if (vbg_runtime_open(ctx, VB_DEVICE_AUTO, &rt) == VB_OK) {
-            fprintf(out, "#auto\t%s\n", vbg_runtime_device_name(rt));
-            vbg_runtime_close(rt);
-        } else {
-            fprintf(out, "#auto\treference backend (%s)\n", vb_errmsg(ctx));
-            vb_clear_error(ctx);
-        }
-    }
+    int rc = out ? vb_devices_write(ctx, out) : vb_errcode(ctx);
     rc = vb_cli_finish_output(ctx, out, outpath, rc);
     int code = rc ? vb_cli_fail(ctx, rc) : VB_EXIT_OK;
     vb_close(ctx);

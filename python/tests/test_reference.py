@@ -1,6 +1,7 @@
-"""vorball.reference: every vertex exactly by brute force, as `vorball
-reference` finds them (the same numbers, bit for bit), and its size policy
-(E130 above 500 spheres unless force) from the library."""
+"""vorball.reference and vorball.devices as the commands: every vertex
+exactly by brute force, as `vorball reference` finds them (the same
+numbers, bit for bit), its size policy (E130 above 500 spheres unless
+force) from the library, and the device table of `vorball devices`."""
 import numpy as np
 import pytest
 import vorball
@@ -26,3 +27,10 @@ def test_reference_size_policy():
     with pytest.raises(vorball.VorballError) as e:
         vorball.reference(xyz, np.full(501, 1.5))
     assert e.value.number == 130
+
+
+def test_devices_as_the_command():
+    out, _ = cli("devices")
+    text = vorball.devices()
+    assert text == out
+    assert text.splitlines()[-1].startswith("#auto\t")

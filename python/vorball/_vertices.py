@@ -256,6 +256,15 @@ def reference(xyz: SphereInput, r: Optional[ArrayLike] = None, *, force: bool = 
     return Reference(d, w, s)
 
 
+def devices(verbose: bool = False) -> str:
+    """The OpenCL platforms and devices, one tab-separated line each, and
+    last '#auto<TAB>' with the device that device='auto' takes: the table
+    `vorball devices` prints."""
+    text, diag = _core.devices()
+    emit(parse(diag), verbose)
+    return text
+
+
 def _options(samples, tol, tiles, all_pairs, threads):
     for name, v, lo in (("samples", samples, 0), ("tiles", tiles, 0), ("threads", threads, 0)):
         if not isinstance(v, numbers.Integral) or isinstance(v, bool) or not lo <= v < 2**31:
