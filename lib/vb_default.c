@@ -37,3 +37,19 @@ int vb_devices_write(vb_ctx *ctx, FILE *f)
     }
     return VB_OK;
 }
+
+void vb_devices_write_auto(vb_ctx *ctx, FILE *f)
+{
+    vbg_runtime *rt = NULL;
+    if (vbg_runtime_open(ctx, VB_DEVICE_AUTO, &rt) == VB_OK) {
+        char v[800];
+        vbg_runtime_versions(rt, v, sizeof v);
+        fprintf(f, "device (--device auto): %s %s (%s)\n", vbg_runtime_is_gpu(rt) ? "GPU" : "CPU",
+                vbg_runtime_device_name(rt), v);
+        vbg_runtime_close(rt);
+    } else {
+        fprintf(f, "device (--device auto): reference backend, no OpenCL device (%s)\n",
+                vb_errmsg(ctx));
+        vb_clear_error(ctx);
+    }
+}

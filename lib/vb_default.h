@@ -33,4 +33,9 @@ int vb_vertices_run_default(vb_ctx *ctx, const vb_sphere_set *set, const vb_vert
  * (ferror, as for any output file). */
 int vb_devices_write(vb_ctx *ctx, FILE *f);
 
+/* The line `vorball --version` gives the device --device auto takes:
+ * "device (--device auto): GPU|CPU NAME (versions)", or the reference
+ * backend and why no OpenCL device, with a newline. Cannot fail. */
+void vb_devices_write_auto(vb_ctx *ctx, FILE *f);
+
 #endif

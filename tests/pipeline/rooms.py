@@ -5,7 +5,8 @@ header's folder, must point to a room below or beside the includer's:
 
     core  <  gpu, verify  <  lib  <  cli, python/src
 
-(gpu and verify do not include each other, nor cli and python/src). Below
+(gpu and verify do not include each other, nor cli and python/src; cli and
+python/src reach the device layer through lib, never a gpu/ header). Below
 the rooms, the wings (core/input, verify/arcs, ...) must form no circle of
 includes other than those listed in KNOWN (each a wing pair whose mutual
 includes are known, with the reason); a new circle, or a known one that has
@@ -94,6 +95,8 @@ def main():
             a, b = room_of(f), room_of(h)
             if a != b and (ROOMS[b] >= ROOMS[a]):
                 bad.append(f"{f} includes {h}: {b} is not below {a}")
+            if ROOMS[a] == 3 and b == "gpu":
+                bad.append(f"{f} includes {h}: {a} reaches gpu through lib only")
             if wing_of(f) != wing_of(h):
                 wings[wing_of(f)].add(wing_of(h))
     circles = sccs(wings)
