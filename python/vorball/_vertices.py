@@ -108,6 +108,15 @@ def _csr(d):
     return flat, start
 
 
+def _vertex_arrays(d):
+    """(ids_flat, offsets, ids, xyz, t) of the library's vertex arrays."""
+    flat, start = _csr(d)
+    ids = np.split(flat, start[1:-1]) if len(start) > 1 else []
+    xyz = np.stack([np.frombuffer(d[k], dtype=np.float64) for k in "xyz"], axis=1) \
+        if len(start) > 1 else np.empty((0, 3))
+    return flat, start, ids, xyz, np.frombuffer(d["t"], dtype=np.float64)
+
+
 class Result(tuple):
     """The certified vertices: unpacks as (ids, xyz, t).
 
@@ -149,11 +158,7 @@ class Result(tuple):
 
     def __new__(cls, d: Dict[str, Any], warnings: List[Diagnostic],
                 spheres: Optional[Spheres]) -> Result:
-        flat, start = _csr(d)
-        ids = np.split(flat, start[1:-1]) if len(start) > 1 else []
-        xyz = np.stack([np.frombuffer(d[k], dtype=np.float64) for k in "xyz"], axis=1) \
-            if len(start) > 1 else np.empty((0, 3))
-        t = np.frombuffer(d["t"], dtype=np.float64)
+        flat, start, ids, xyz, t = _vertex_arrays(d)
         self = super().__new__(cls, (ids, xyz, t))
         self.ids, self.xyz, self.t = ids, xyz, t
         self.ids_flat, self.offsets = flat, start
@@ -219,11 +224,7 @@ class Reference(tuple):
 
     def __new__(cls, d: Dict[str, Any], warnings: List[Diagnostic],
                 spheres: Optional[Spheres]) -> Reference:
-        flat, start = _csr(d)
-        ids = np.split(flat, start[1:-1]) if len(start) > 1 else []
-        xyz = np.stack([np.frombuffer(d[k], dtype=np.float64) for k in "xyz"], axis=1) \
-            if len(start) > 1 else np.empty((0, 3))
-        t = np.frombuffer(d["t"], dtype=np.float64)
+        flat, start, ids, xyz, t = _vertex_arrays(d)
         self = super().__new__(cls, (ids, xyz, t))
         self.ids, self.xyz, self.t = ids, xyz, t
         self.ids_flat, self.offsets = flat, start
