@@ -11,6 +11,7 @@ the rooms, the wings (core/input, verify/arcs, ...) must form no circle of
 includes other than those listed in KNOWN (each a wing pair whose mutual
 includes are known, with the reason); a new circle, or a known one that has
 gone (then drop it from KNOWN), fails. Prints the wing graph's circles.
+No file of the library (core, gpu, verify, lib) is over MAX_LINES lines.
 
 usage: rooms.py SOURCE_DIR
 """
@@ -26,6 +27,8 @@ ROOMS = {"core": 0, "gpu": 1, "verify": 1, "lib": 2, "cli": 3, "python/src": 3}
 # certify owns vb_verify_mpfr_version.
 KNOWN = []
 EXT = (".c", ".h", ".cl", ".cpp", ".hpp")
+# Issue 29's bound on a library file: one job a file, read in one sitting.
+MAX_LINES = 700
 
 
 def room_of(path):
@@ -88,6 +91,8 @@ def main():
     for f in sorted(files):
         with open(os.path.join(src, f), errors="replace") as fh:
             text = fh.read()
+        if ROOMS[room_of(f)] <= 2 and text.count("\n") > MAX_LINES:
+            bad.append(f"{f}: {text.count(chr(10))} lines, over {MAX_LINES}")
         for m in re.finditer(r'^\s*#\s*include\s+"([^"]+)"', text, re.M):
             h = where.get(os.path.basename(m.group(1)))
             if not h:
