@@ -14,7 +14,7 @@
 #include "vb_world.h"
 #include "vertex_parts.h"
 
-static void help(FILE *f)
+void vb_cmd_bench_help(FILE *f)
 {
     fprintf(f,
             "usage: vorball bench [options] INPUT... \n\n"
@@ -48,7 +48,7 @@ static int parse_samples(const char *s, unsigned *out)
     while (*s && n < 32) {
         char *end;
         unsigned long v = strtoul(s, &end, 10);
-        if (end == s || v < 2 || v > 4096 || (*end != ',' && *end != '\0'))
+        if (end == s || v < VB_SAMPLES_MIN || v > VB_SAMPLES_MAX || (*end != ',' && *end != '\0'))
             return -1;
         out[n++] = (unsigned)v;
         s = *end ? end + 1 : end;
@@ -127,14 +127,10 @@ int vb_cmd_bench(int argc, char **argv)
     for (int i = 1; i < argc && code == VB_EXIT_OK; i++) {
         const char *a = argv[i];
         int r;
-        if (vb_cli_is_help(a)) {
-            help(stdout);
-            free(inputs);
-            vb_close(ctx);
-            return VB_EXIT_OK;
-        } else if (strcmp(a, "--samples") == 0 && i + 1 < argc) {
+        if (strcmp(a, "--samples") == 0 && i + 1 < argc) {
             if ((nsamples = parse_samples(argv[++i], samples)) < 1)
-                code = vb_cli_usage_error("bench", "--samples needs S or S1,S2,... in 2..4096");
+                code = vb_cli_usage_error("bench", "--samples needs S or S1,S2,... in %u..%u",
+                                            VB_SAMPLES_MIN, VB_SAMPLES_MAX);
         } else if ((r = vb_pipeline_option("bench", argc, argv, &i, &po, ctx)) != 0) {
             code = r < 0 ? VB_EXIT_USAGE : code;
         } else if (strcmp(a, "--repeat") == 0 && i + 1 < argc) {

@@ -204,6 +204,11 @@ static int run_frames(vb_ctx *ctx, const char *in_path, const char *traj,
     return rc;
 }
 
+void vb_cmd_cells_help(FILE *f)
+{
+    vb_cli_input_help_between(f, usage_text, NULL);
+}
+
 int vb_cmd_cells(int argc, char **argv)
 {
     const char *in_path = NULL, *out_path = NULL, *contacts_path = NULL, *traj = NULL;
@@ -218,11 +223,6 @@ int vb_cmd_cells(int argc, char **argv)
     memset(&per, 0, sizeof per);
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
-        if (vb_cli_is_help(a)) {
-            fputs(usage_text, stdout);
-            vb_cli_input_help(stdout);
-            return VB_EXIT_OK;
-        }
         int has_value = strcmp(a, "-o") == 0 || strcmp(a, "--contacts") == 0 ||
                         strcmp(a, "--probe") == 0 || strcmp(a, "--tolerance") == 0 ||
                         strcmp(a, "--max-patches") == 0 || strcmp(a, "--threads") == 0 ||

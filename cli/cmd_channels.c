@@ -32,7 +32,7 @@ typedef struct {
     vb_cli_input_opts in;
 } ch_args;
 
-static void usage(FILE *f)
+void vb_cmd_channels_help(FILE *f)
 {
     fprintf(f,
             "usage: vorball channels [options] INPUT|-\n"
@@ -86,10 +86,6 @@ static int parse_args(int argc, char **argv, ch_args *A)
             return -1;
         if (r > 0)
             continue;
-        if (vb_cli_is_help(a)) {
-            usage(stdout);
-            return 1;
-        }
         if (a[0] != '-' || strcmp(a, "-") == 0) {
             if (A->input)
                 return vb_cli_usage_error(cmd, "one input only ('%s' and '%s')", A->input, a), -1;
@@ -381,7 +377,7 @@ int vb_cmd_channels(int argc, char **argv)
     ch_args A;
     int pr = parse_args(argc, argv, &A);
     if (pr != 0)
-        return pr > 0 ? VB_EXIT_OK : VB_EXIT_USAGE;
+        return VB_EXIT_USAGE;
     int code = vb_world_check_input(cmd, A.input);
     if (code)
         return code;

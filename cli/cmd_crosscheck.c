@@ -298,15 +298,13 @@ done:
     return ex;
 }
 
+void vb_cmd_crosscheck_help(FILE *f)
+{
+    vb_cli_input_help_between(f, usage_head, usage_tail);
+}
+
 int vb_cmd_crosscheck(int argc, char **argv)
 {
-    for (int i = 1; i < argc; i++)
-        if (vb_cli_is_help(argv[i])) {
-            fputs(usage_head, stdout);
-            vb_cli_input_help(stdout);
-            fputs(usage_tail, stdout);
-            return VB_EXIT_OK;
-        }
     vb_ctx *ctx = NULL;
     if (vb_open(&ctx, NULL) != VB_OK) {
         fprintf(stderr, "vorball: E%d: out of memory\n", vb_diag_number(VB_ENOMEM));

@@ -5,9 +5,9 @@
 
 #include "cli_common.h"
 #include "commands.h"
-#include "vbg_runtime.h"
+#include "vb_default.h"
 
-static void help(FILE *f)
+void vb_cmd_devices_help(FILE *f)
 {
     fprintf(f,
             "usage: vorball devices [-o FILE]\n\n"
@@ -21,10 +21,7 @@ int vb_cmd_devices(int argc, char **argv)
 {
     const char *outpath = NULL;
     for (int i = 1; i < argc; i++) {
-        if (vb_cli_is_help(argv[i])) {
-            help(stdout);
-            return VB_EXIT_OK;
-        } else if (strcmp(argv[i], "-o") == 0 && i + 1 < argc) {
+        if (strcmp(argv[i], "-o") == 0 && i + 1 < argc) {
             outpath = argv[++i];
         } else {
             return vb_cli_usage_error("devices", "unexpected argument '%s'", argv[i]);
@@ -34,17 +31,7 @@ int vb_cmd_devices(int argc, char **argv)
     if (vb_open(&ctx, NULL))
         return vb_cli_fail(NULL, VB_ENOMEM);
     FILE *out = vb_cli_open_output(ctx, outpath);
-    int rc = out ? vbg_list_devices(ctx, out) : vb_errcode(ctx);
-    if (out && rc == VB_OK) {
-        vbg_runtime *rt;
-        if (vbg_runtime_open(ctx, VB_DEVICE_AUTO, &rt) == VB_OK) {
-            fprintf(out, "#auto\t%s\n", vbg_runtime_device_name(rt));
-            vbg_runtime_close(rt);
-        } else {
-            fprintf(out, "#auto\treference backend (%s)\n", vb_errmsg(ctx));
-            vb_clear_error(ctx);
-        }
-    }
+    int rc = out ? vb_devices_write(ctx, out) : vb_errcode(ctx);
     rc = vb_cli_finish_output(ctx, out, outpath, rc);
     int code = rc ? vb_cli_fail(ctx, rc) : VB_EXIT_OK;
     vb_close(ctx);

@@ -13,7 +13,7 @@
 #include "vbj_jfa.h"
 #include "vb_diag.h"
 
-static void help(FILE *f)
+void vb_cmd_jfa_help(FILE *f)
 {
     fprintf(f,
             "usage: vorball jfa [options] [SEEDS|-]\n"
@@ -241,11 +241,6 @@ static int parse_args(vb_ctx *ctx, int argc, char **argv, jfa_args *a, int *exit
         }
         if (r > 0)
             continue;
-        if (vb_cli_is_help(o)) {
-            help(stdout);
-            *exit_code = VB_EXIT_OK;
-            return 0;
-        }
         int flag = strcmp(o, "--check") == 0 || strcmp(o, "--json") == 0;
         if (o[0] == '-' && o[1] && !flag && i + 1 >= argc) {
             *exit_code = vb_cli_usage_error("jfa", "option %s needs a value", o);

@@ -26,6 +26,11 @@ static const char *const usage_text =
     "  --stats          print filter and exact-evaluation counts and the time to stderr\n"
     "  --force          run on more than 500 spheres (minutes to hours)\n";
 
+void vb_cmd_reference_help(FILE *f)
+{
+    vb_cli_input_help_between(f, usage_text, NULL);
+}
+
 int vb_cmd_reference(int argc, char **argv)
 {
     const char *in_path = NULL, *out_path = NULL, *fmt_name = "tsv";
@@ -33,11 +38,6 @@ int vb_cmd_reference(int argc, char **argv)
     vb_cli_input_opts in;
     vb_cli_input_defaults(&in);
     for (int i = 1; i < argc; i++) {
-        if (vb_cli_is_help(argv[i])) {
-            fputs(usage_text, stdout);
-            vb_cli_input_help(stdout);
-            return VB_EXIT_OK;
-        }
         if (strcmp(argv[i], "-o") == 0) {
             if (++i >= argc)
                 return vb_cli_usage_error(argv[0], "-o needs a file name");
@@ -86,14 +86,8 @@ int vb_cmd_reference(int argc, char **argv)
     int exit_code = VB_EXIT_OK;
     double t0 = vb_now();
     rc = vb_cli_load_spheres(ctx, in_path, &in, 4, &set);
-    if (rc == VB_OK && set->n > VB_REFERENCE_MAX_SPHERES && !force)
-        rc = vb_error(ctx, VB_EINPUT_REFERENCE_SIZE, in_path, 0,
-                      "%zu spheres: the exact reference takes at most %d without --force (its "
-                      "time grows as n^2.7 to n^4; `vorball vertices` is the pipeline for "
-                      "large inputs)",
-                      set->n, VB_REFERENCE_MAX_SPHERES);
     if (rc == VB_OK)
-        rc = vb_reference(ctx, set, &out);
+        rc = vb_reference_run(ctx, set, force, in_path, &out);
     double t1 = vb_now();
     if (rc == VB_OK) {
         FILE *f = vb_cli_open_output(ctx, out_path);

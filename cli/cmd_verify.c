@@ -87,8 +87,9 @@ static int parse_args(int argc, char **argv, options *o)
             o->arcs = 1;
         } else if (strcmp(a, "--threads") == 0) {
             size_t t;
-            if (i + 1 >= argc || vb_cli_parse_size(argv[++i], &t) || t < 1 || t > 64)
-                return vb_cli_usage_error("verify", "--threads needs an integer in 1..64");
+            if (i + 1 >= argc || vb_cli_parse_size(argv[++i], &t) || t < 1 || t > VB_MAX_THREADS)
+                return vb_cli_usage_error("verify", "--threads needs an integer in 1..%d",
+                                          VB_MAX_THREADS);
             o->threads = (unsigned)t;
         } else if (strcmp(a, "--complete") == 0) {
             o->complete = 1;
@@ -169,15 +170,13 @@ static int run(vb_ctx *ctx, const options *o, int *mismatch)
     return rc;
 }
 
+void vb_cmd_verify_help(FILE *f)
+{
+    vb_cli_input_help_between(f, usage_text, usage_tail);
+}
+
 int vb_cmd_verify(int argc, char **argv)
 {
-    for (int i = 1; i < argc; i++)
-        if (vb_cli_is_help(argv[i])) {
-            fputs(usage_text, stdout);
-            vb_cli_input_help(stdout);
-            fputs(usage_tail, stdout);
-            return VB_EXIT_OK;
-        }
     options o;
     memset(&o, 0, sizeof o);
     vb_cli_input_defaults(&o.in);

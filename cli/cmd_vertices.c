@@ -17,7 +17,7 @@
 #include "vertex_parts.h"
 #include "vertices_periodic.h"
 
-static void help(FILE *f)
+void vb_cmd_vertices_help(FILE *f)
 {
     fprintf(f,
             "usage: vorball vertices [options] INPUT|-\n\n"
@@ -108,11 +108,7 @@ int vb_cmd_vertices(int argc, char **argv)
     for (int i = 1; i < argc && code == VB_EXIT_OK; i++) {
         const char *a = argv[i];
         int r;
-        if (vb_cli_is_help(a)) {
-            help(stdout);
-            vb_close(ctx);
-            return VB_EXIT_OK;
-        } else if ((r = vb_pipeline_option("vertices", argc, argv, &i, &po, ctx)) != 0) {
+        if ((r = vb_pipeline_option("vertices", argc, argv, &i, &po, ctx)) != 0) {
             code = r < 0 ? VB_EXIT_USAGE : code;
         } else if ((r = vb_cli_periodic_option("vertices", argc, argv, &i, &per)) != 0) {
             code = r < 0 ? VB_EXIT_USAGE : code;

@@ -110,6 +110,14 @@ int vb_cli_input_option(vb_cli_input_opts *o, int argc, char **argv, int *i)
     return 0;
 }
 
+void vb_cli_input_help_between(FILE *f, const char *head, const char *tail)
+{
+    fputs(head, f);
+    vb_cli_input_help(f);
+    if (tail)
+        fputs(tail, f);
+}
+
 void vb_cli_input_help(FILE *f)
 {
     fputs("input options:\n"

@@ -33,6 +33,10 @@ int vb_cli_input_option(vb_cli_input_opts *o, int argc, char **argv, int *i);
 /* Prints the help lines of the input options. */
 void vb_cli_input_help(FILE *f);
 
+/* A command's --help with the input options in the middle: head, the input
+ * options, then tail (NULL: none). */
+void vb_cli_input_help_between(FILE *f, const char *head, const char *tail);
+
 /* Fills read options from the CLI options. radii is the loaded --radii
  * table or NULL. */
 void vb_cli_input_read_options(const vb_cli_input_opts *o, const vb_radii_table *radii,

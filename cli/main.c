@@ -27,37 +27,33 @@ const char *__asan_default_options(void)
 typedef struct {
     const char *name;
     int (*run)(int argc, char **argv);
+    void (*help)(FILE *f);
     const char *summary;
 } command;
 
-/* Subcommands whose build component is absent are compiled with
- * VB_NO_<NAME>; they are left out of the table and named in --help. */
+/* Every command is built, but crosscheck needs CGAL: without it the build
+ * defines VB_NO_CROSSCHECK, leaves it out and --help says why. */
 static const command commands[] = {
-#ifndef VB_NO_VERTICES
-    {"vertices", vb_cmd_vertices, "certified Voronoi vertices of spheres, proven complete (direction cover)"},
-#endif
-#ifndef VB_NO_REFERENCE
-    {"reference", vb_cmd_reference, "all vertices exactly, by brute force (small inputs)"},
-#endif
-#ifndef VB_NO_VERIFY
-    {"verify", vb_cmd_verify, "check a vertex file against the spheres, exactly"},
-#endif
+    {"vertices", vb_cmd_vertices, vb_cmd_vertices_help,
+     "certified Voronoi vertices of spheres, proven complete (direction cover)"},
+    {"reference", vb_cmd_reference, vb_cmd_reference_help,
+     "all vertices exactly, by brute force (small inputs)"},
+    {"verify", vb_cmd_verify, vb_cmd_verify_help,
+     "check a vertex file against the spheres, exactly"},
 #ifndef VB_NO_CROSSCHECK
-    {"crosscheck", vb_cmd_crosscheck, "compare with CGAL on equal-radius input"},
+    {"crosscheck", vb_cmd_crosscheck, vb_cmd_crosscheck_help,
+     "compare with CGAL on equal-radius input"},
 #endif
-#ifndef VB_NO_JFA
-    {"jfa", vb_cmd_jfa, "discrete Voronoi diagrams: JFA variants and Facet-JFA"},
-#endif
-#ifndef VB_NO_CHANNELS
-    {"channels", vb_cmd_channels, "channels and cavities in proteins and trajectories"},
-#endif
-    {"cells", vb_cmd_cells, "per-atom cell volume, SAS and contact areas, as proven enclosures"},
-#ifndef VB_NO_BENCH
-    {"bench", vb_cmd_bench, "per-stage timings of the vertex pipeline"},
-#endif
-#ifndef VB_NO_DEVICES
-    {"devices", vb_cmd_devices, "list OpenCL platforms and devices"},
-#endif
+    {"jfa", vb_cmd_jfa, vb_cmd_jfa_help,
+     "discrete Voronoi diagrams: JFA variants and Facet-JFA"},
+    {"channels", vb_cmd_channels, vb_cmd_channels_help,
+     "channels and cavities in proteins and trajectories"},
+    {"cells", vb_cmd_cells, vb_cmd_cells_help,
+     "per-atom cell volume, SAS and contact areas, as proven enclosures"},
+    {"bench", vb_cmd_bench, vb_cmd_bench_help,
+     "per-stage timings of the vertex pipeline"},
+    {"devices", vb_cmd_devices, vb_cmd_devices_help,
+     "list OpenCL platforms and devices"},
 };
 
 static void usage(FILE *f)
@@ -112,6 +108,12 @@ static int dispatch(int argc, char **argv)
             int code = vb_world_check_command(commands[i].name);
             if (code)
                 return code;
+            /* -h or --help anywhere: the command's help, nothing run. */
+            for (int k = 2; k < argc; k++)
+                if (vb_cli_is_help(argv[k])) {
+                    commands[i].help(stdout);
+                    return VB_EXIT_OK;
+                }
             code = commands[i].run(argc - 1, argv + 1);
             if (code == VB_EXIT_OK || code == VB_EXIT_MISMATCH) {
                 vb_ctx *ctx = NULL;

@@ -1,6 +1,7 @@
 /* The options of the commands that run the vertex pipeline. */
 #include "pipeline_options.h"
 
+#include <limits.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -41,43 +42,29 @@ int vb_pipeline_option(const char *cmd, int argc, char **argv, int *i, vb_pipeli
         (*i)++;
         return 1;
     }
-    if (strcmp(a, "--samples") == 0) {
-        size_t s;
-        if (!has || vb_cli_parse_size(argv[*i + 1], &s) || s < 2 || s > 4096) {
-            vb_cli_usage_error(cmd, "--samples needs an integer in 2..4096");
+    /* The numbers: parsed here, their ranges the library's
+     * (vb_propose_options_check). A value that does not parse (or an
+     * explicit --threads 0) is stored as one the check refuses, so that its
+     * message names the range. */
+    unsigned *count = strcmp(a, "--samples") == 0   ? &so->samples
+                      : strcmp(a, "--tiles") == 0   ? &so->tiles
+                      : strcmp(a, "--threads") == 0 ? &so->threads
+                                                    : NULL;
+    if (count || strcmp(a, "--tol") == 0) {
+        size_t v = 0;
+        double t = 0.0;
+        if (count && (!has || vb_cli_parse_size(argv[*i + 1], &v) || v == 0 || v > UINT_MAX))
+            v = count == &so->samples ? 1u : count == &so->tiles ? 3u : UINT_MAX;
+        if (!count && (!has || vb_cli_parse_double(argv[*i + 1], &t) || !(t > 0.0)))
+            t = -1.0;
+        if (count)
+            *count = (unsigned)v;
+        else
+            so->tol = t;
+        if (vb_propose_options_check(ctx, so) != VB_OK) {
+            vb_cli_usage_error(cmd, "%s", vb_errmsg(ctx));
             return -1;
         }
-        so->samples = (unsigned)s;
-        (*i)++;
-        return 1;
-    }
-    if (strcmp(a, "--tol") == 0) {
-        double t;
-        if (!has || vb_cli_parse_double(argv[*i + 1], &t) || !(t > 0.0)) {
-            vb_cli_usage_error(cmd, "--tol needs a positive number");
-            return -1;
-        }
-        so->tol = t;
-        (*i)++;
-        return 1;
-    }
-    if (strcmp(a, "--tiles") == 0) {
-        size_t t;
-        if (!has || vb_cli_parse_size(argv[*i + 1], &t) || t < 1 || t > 64 || (t & (t - 1))) {
-            vb_cli_usage_error(cmd, "--tiles needs a power of two in 1..64");
-            return -1;
-        }
-        so->tiles = (unsigned)t;
-        (*i)++;
-        return 1;
-    }
-    if (strcmp(a, "--threads") == 0) {
-        size_t t;
-        if (!has || vb_cli_parse_size(argv[*i + 1], &t) || t < 1 || t > 64) {
-            vb_cli_usage_error(cmd, "--threads needs an integer in 1..64");
-            return -1;
-        }
-        so->threads = (unsigned)t;
         (*i)++;
         return 1;
     }

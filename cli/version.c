@@ -5,8 +5,8 @@
 
 #include "cli_common.h"
 #include "vb_build.h"
+#include "vb_default.h"
 #include "vb_verify.h"
-#include "vbg_runtime.h"
 #ifndef VB_NO_CROSSCHECK
 #include "vb_cgal.h"
 #endif
@@ -24,16 +24,7 @@ int vb_cli_version(FILE *f)
     vb_ctx *ctx = NULL;
     if (vb_open(&ctx, NULL) != VB_OK)
         return vb_cli_fail(NULL, VB_ENOMEM);
-    vbg_runtime *rt = NULL;
-    if (vbg_runtime_open(ctx, VB_DEVICE_AUTO, &rt) == VB_OK) {
-        char v[800];
-        vbg_runtime_versions(rt, v, sizeof v);
-        fprintf(f, "device (--device auto): %s %s (%s)\n", vbg_runtime_is_gpu(rt) ? "GPU" : "CPU",
-                vbg_runtime_device_name(rt), v);
-        vbg_runtime_close(rt);
-    } else {
-        fprintf(f, "device (--device auto): reference backend, no OpenCL device (%s)\n", vb_errmsg(ctx));
-    }
+    vb_devices_write_auto(ctx, f);
     vb_close(ctx);
     return VB_EXIT_OK;
 }

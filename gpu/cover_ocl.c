@@ -310,16 +310,10 @@ static int cov_run(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, siz
             n2 += nroot;
     if (rc == VB_OK && n2) {
         if (n2 > s->cap2) {
-            vbq_cell_out *o2 = realloc(s->outs2, n2 * sizeof *o2);
-            if (o2)
-                s->outs2 = o2;
-            uint32_t *c2 = realloc(s->cells2, n2 * sizeof *c2);
-            if (c2)
-                s->cells2 = c2;
-            uint32_t *r2 = realloc(s->roots2, n2 * sizeof *r2);
-            if (r2)
-                s->roots2 = r2;
-            if (!o2 || !c2 || !r2)
+            int bad = vb_array_resize((void **)&s->outs2, n2, sizeof *s->outs2);
+            bad |= vb_array_resize((void **)&s->cells2, n2, sizeof *s->cells2);
+            bad |= vb_array_resize((void **)&s->roots2, n2, sizeof *s->roots2);
+            if (bad)
                 return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
             s->cap2 = n2;
         }

@@ -10,6 +10,8 @@
 #ifndef VB_DEFAULT_H
 #define VB_DEFAULT_H
 
+#include <stdio.h>
+
 #include "vb_vertices.h"
 
 /* The default tables: devices = gpu/'s vbg_device_layer, certifier =
@@ -23,5 +25,17 @@ const vb_device_layer *vb_default_devices(void);
 /* vb_vertices_run with the default backends. */
 int vb_vertices_run_default(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertices_config *cfg,
                             vb_vertices_result *res);
+
+/* The table of `vorball devices`: every OpenCL platform and device, one
+ * tab-separated line each, then "#auto<TAB>" and the device that --device
+ * auto takes (or "reference backend (why)" when none can be used). VB_OK
+ * or vbg_list_devices' error; a failed write is the caller's to find
+ * (ferror, as for any output file). */
+int vb_devices_write(vb_ctx *ctx, FILE *f);
+
+/* The line `vorball --version` gives the device --device auto takes:
+ * "device (--device auto): GPU|CPU NAME (versions)", or the reference
+ * backend and why no OpenCL device, with a newline. Cannot fail. */
+void vb_devices_write_auto(vb_ctx *ctx, FILE *f);
 
 #endif

@@ -332,7 +332,7 @@ static int cover_hybrid(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w, i
     return rc;
 }
 
-static int cmp_quad(const void *pa, const void *pb)
+int vb_quad_cmp(const void *pa, const void *pb)
 {
     const uint32_t *a = pa, *b = pb;
     for (int k = 0; k < 4; k++)
@@ -356,11 +356,11 @@ void vb_cover_backend_close(vb_cover_backend *be)
 /* Sorts l on nt threads and drops repeats. */
 static int canonical(vb_quad_list *l, int nt)
 {
-    int rc = l->n > 1 ? vb_psort(l->q, l->n, sizeof *l->q, cmp_quad, nt) : VB_OK;
+    int rc = l->n > 1 ? vb_psort(l->q, l->n, sizeof *l->q, vb_quad_cmp, nt) : VB_OK;
     if (rc == VB_OK && l->n > 1) {
         size_t k = 1;
         for (size_t a = 1; a < l->n; a++)
-            if (cmp_quad(l->q[a], l->q[k - 1]) != 0)
+            if (vb_quad_cmp(l->q[a], l->q[k - 1]) != 0)
                 memcpy(l->q[k++], l->q[a], sizeof *l->q);
         l->n = k;
     }

@@ -3,6 +3,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_diag.h"
+#include "vb_parallel.h"
 #include "vb_proposer.h"
 
 /* The cover first: it proves completeness, and it is the faster of the two
@@ -15,6 +17,22 @@ const vb_proposer *vb_proposer_find(const char *name)
         if (!name || strcmp(vb_proposers[i]->name, name) == 0)
             return vb_proposers[i];
     return NULL;
+}
+
+int vb_propose_options_check(vb_ctx *ctx, const vb_propose_options *o)
+{
+    if (o->samples && (o->samples < VB_SAMPLES_MIN || o->samples > VB_SAMPLES_MAX))
+        return vb_error(ctx, VB_EMISUSE, NULL, 0, "--samples needs an integer in %u..%u",
+                        VB_SAMPLES_MIN, VB_SAMPLES_MAX);
+    if (o->tiles > VB_TILES_MAX || (o->tiles & (o->tiles - 1u)) != 0)
+        return vb_error(ctx, VB_EMISUSE, NULL, 0, "--tiles needs a power of two in 1..%u",
+                        VB_TILES_MAX);
+    if (o->threads > VB_MAX_THREADS)
+        return vb_error(ctx, VB_EMISUSE, NULL, 0, "--threads needs an integer in 1..%d",
+                        VB_MAX_THREADS);
+    if (!(o->tol >= 0.0))
+        return vb_error(ctx, VB_EMISUSE, NULL, 0, "--tol needs a positive number");
+    return VB_OK;
 }
 
 void vb_proposal_init(vb_proposal *r)

@@ -216,9 +216,9 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
     vb_sampler_options o = *opt;
     if (o.samples == 0)
         o.samples = VB_SAMPLER_DEFAULT_SAMPLES;
-    if (o.samples < 2 || o.samples > 4096)
-        return vb_error(ctx, VB_EMISUSE, NULL, 0, "--samples must be in 2..4096 (got %u)",
-                        o.samples);
+    if (o.samples < VB_SAMPLES_MIN || o.samples > VB_SAMPLES_MAX)
+        return vb_error(ctx, VB_EMISUSE, NULL, 0, "--samples must be in %u..%u (got %u)",
+                        VB_SAMPLES_MIN, VB_SAMPLES_MAX, o.samples);
     if (o.max_depth == 0)
         o.max_depth = VB_SAMPLER_DEFAULT_DEPTH;
     if (o.max_depth > VBS_MAX_DEPTH_LIMIT)
@@ -229,7 +229,7 @@ int vb_sampler_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_sampler_optio
         o.target_depth = VB_SAMPLER_DEFAULT_TARGET_DEPTH;
     if (o.tiles == 0)
         o.tiles = auto_tiles(o.samples);
-    if (o.tiles > 64u || (o.tiles & (o.tiles - 1u)) != 0)
+    if (o.tiles > VB_TILES_MAX || (o.tiles & (o.tiles - 1u)) != 0)
         return vb_error(ctx, VB_EMISUSE, NULL, 0,
                         "culling tiles must be a power of two up to 64 (got %u)", o.tiles);
     int rc = set->n ? check_double_range(ctx, set, o.tol) : VB_OK;

@@ -68,6 +68,10 @@ typedef struct vb_quad_list {
 
 void vb_quad_list_free(vb_quad_list *l);
 
+/* The order of vb_quad_list (qsort/bsearch comparator on uint32_t[4]):
+ * lexicographic on the four ids; <0, 0 or >0. */
+int vb_quad_cmp(const void *pa, const void *pb);
+
 /* A device that covers cells (gpu/cover_ocl.c): the same vbq_cover_cell on
  * the device, with fixed arenas. */
 typedef struct vb_cover_backend vb_cover_backend;

@@ -170,6 +170,18 @@ extern const vb_proposer *const vb_proposers[];
 /* The proposer called `name` (NULL: the default), or NULL. */
 const vb_proposer *vb_proposer_find(const char *name);
 
+/* The ranges of the options, declared once for every caller (the commands'
+ * parsers, the sampler): samples 0 (the default) or VB_SAMPLES_MIN..
+ * VB_SAMPLES_MAX; tiles 0 (from samples) or a power of two up to
+ * VB_TILES_MAX; threads 0 (VORBALL_THREADS or all CPUs) up to
+ * VB_MAX_THREADS; tol > 0, or 0 for its default. Returns VB_OK, or
+ * VB_EMISUSE with a message that names the option as the command spells
+ * it (--samples, --tiles, --threads, --tol) and its range. */
+#define VB_SAMPLES_MIN 2u
+#define VB_SAMPLES_MAX 4096u
+#define VB_TILES_MAX 64u
+int vb_propose_options_check(vb_ctx *ctx, const vb_propose_options *o);
+
 #ifdef __cplusplus
 }
 #endif

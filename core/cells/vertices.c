@@ -4,6 +4,7 @@
  * rounds and the canonical merge. Orchestration only: the geometry lives in
  * the proposer, the certifier and vb_sampler_swap_candidates. */
 #include "vb_array.h"
+#include "vb_cover.h"
 #include "vb_vertices.h"
 
 #include "vbv_certify.h"
@@ -159,15 +160,6 @@ typedef struct quads {
     size_t n, cap;
 } quads;
 
-static int cmp_quad_sorted(const void *pa, const void *pb)
-{
-    const uint32_t *a = pa, *b = pb;
-    for (int k = 0; k < 4; k++)
-        if (a[k] != b[k])
-            return a[k] < b[k] ? -1 : 1;
-    return 0;
-}
-
 static int quads_add(quads *s, const vb_vertex_list *v)
 {
     for (size_t k = 0; k < v->n; k++) {
@@ -179,7 +171,7 @@ static int quads_add(quads *s, const vb_vertex_list *v)
         memcpy(s->q + 4 * s->n++, v->ids + v->start[k], 4 * sizeof *s->q);
     }
     if (s->n)
-        qsort(s->q, s->n, 4 * sizeof *s->q, cmp_quad_sorted);
+        qsort(s->q, s->n, 4 * sizeof *s->q, vb_quad_cmp);
     return VB_OK;
 }
 
@@ -226,7 +218,7 @@ static int repair(vb_ctx *ctx, const vb_sphere_set *set, const vb_certifier_ops 
         /* Keep the swaps not certified before. */
         for (size_t k = 0; rc == VB_OK && k < swaps.n; k++) {
             const uint32_t *q = swaps.ids + swaps.start[k];
-            if (seen.n && bsearch(q, seen.q, seen.n, 4 * sizeof *seen.q, cmp_quad_sorted))
+            if (seen.n && bsearch(q, seen.q, seen.n, 4 * sizeof *seen.q, vb_quad_cmp))
                 continue;
             rc = vb_vertex_list_push(&next, q, 4, swaps.x[k], swaps.y[k], swaps.z[k], swaps.t[k],
                                      0.0, VB_VERTEX_CANDIDATE);

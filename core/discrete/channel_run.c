@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_array.h"
 #include "vb_diag.h"
 #include "vb_parallel.h"
 #include "vbc_run.h"
@@ -32,17 +33,11 @@ static int series_add(vb_ctx *ctx, vbc_series *S, long frame, const vbc_result *
     if (!res->pore.present)
         return VB_OK;
     if (S->n == S->cap) {
-        size_t c = S->cap ? 2 * S->cap : 64;
-        long *f = realloc(S->frame, c * sizeof *f);
-        if (f)
-            S->frame = f;
-        double *rr = realloc(S->rmin, c * sizeof *rr);
-        if (rr)
-            S->rmin = rr;
-        double *z = realloc(S->s, c * sizeof *z);
-        if (z)
-            S->s = z;
-        if (!f || !rr || !z)
+        size_t c = vb_array_capacity(S->cap, S->n + 1, 64);
+        int bad = vb_array_resize((void **)&S->frame, c, sizeof *S->frame);
+        bad |= vb_array_resize((void **)&S->rmin, c, sizeof *S->rmin);
+        bad |= vb_array_resize((void **)&S->s, c, sizeof *S->s);
+        if (bad)
             return vb_error(ctx, VB_ENOMEM, NULL, 0, "pore series");
         S->cap = c;
     }

@@ -12,7 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "vb_periodic.h"
+#include "vb_box.h"
 
 /* The shortest decimal (up to 17 digits) that reads back to v; as_float:
  * to the float v is. 0, or -1 for a number out of range. */

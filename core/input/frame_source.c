@@ -11,7 +11,7 @@
 #include <string.h>
 
 #include "vb_dcd.h"
-#include "vb_periodic.h"
+#include "vb_box.h"
 #include "vb_diag.h"
 #include "vb_xdr.h"
 #include "vbi_input.h"

@@ -10,7 +10,7 @@
  * that decimal. GRO has no element column: elements are inferred from atom
  * and residue names, and counted (W714, W715). */
 #include "vbi_input.h"
-#include "vb_periodic.h"
+#include "vb_box.h"
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -1,7 +1,7 @@
 /* PDB reader: fixed columns of ATOM/HETATM records, MODEL/ENDMDL, alternate
  * locations, water and hydrogens per the read options; radii by element. */
 #include "vbi_input.h"
-#include "vb_periodic.h"
+#include "vb_box.h"
 
 #include <ctype.h>
 #include <stdlib.h>

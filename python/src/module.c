@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_default.h"
 #include "vb_device.h"
 #include "vb_diag.h"
 
@@ -299,7 +300,33 @@ static PyObject *diagnostics(PyObject *self, PyObject *unused)
     return list;
 }
 
+/* The table of `vorball devices` (vb_devices_write) as a str. */
+static PyObject *devices(PyObject *self, PyObject *unused)
+{
+    (void)self;
+    (void)unused;
+    vbpy_call c;
+    vbpy_text t;
+    if (vbpy_call_open(&c) != 0)
+        return NULL;
+    if (vbpy_text_open(&t) != 0) {
+        Py_XDECREF(vbpy_call_done(&c));
+        return NULL;
+    }
+    int rc;
+    Py_BEGIN_ALLOW_THREADS
+    rc = vb_devices_write(c.ctx, t.f);
+    Py_END_ALLOW_THREADS
+    PyObject *text = vbpy_text_take(&t);
+    if (rc != VB_OK) {
+        Py_XDECREF(text);
+        return vbpy_call_fail(&c, rc);
+    }
+    return vbpy_call_return(&c, text);
+}
+
 static PyMethodDef base_methods[] = {
+    {"devices", devices, METH_NOARGS, "devices() -> (str, diagnostics): `vorball devices`"},
     {"_set_error_class", set_error_class, METH_O, "Sets the exception class raised on errors."},
     {"diagnostics", diagnostics, METH_NOARGS,
      "The diagnostics catalogue: (kind, number, name, exit, meaning) tuples."},

@@ -300,7 +300,41 @@ static PyObject *vertex_text(PyObject *self, PyObject *args)
     return s;
 }
 
+/* `vorball reference`: every vertex exactly by brute force (vb_reference_run,
+ * E130 above 500 spheres unless force): the vertex arrays and the count. */
+static PyObject *reference_run(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *cap;
+    int force;
+    if (!PyArg_ParseTuple(args, "Op", &cap, &force))
+        return NULL;
+    vb_sphere_set *set = vbpy_spheres_get(cap);
+    vbpy_call c;
+    if (!set || vbpy_call_open(&c) != 0)
+        return NULL;
+    vb_vertex_list out;
+    vb_vertex_list_init(&out);
+    int rc;
+    vb_sphere_set run;
+    Py_BEGIN_ALLOW_THREADS
+    rc = vbpy_validate(c.ctx, set, 4, &run);
+    if (rc == VB_OK)
+        rc = vb_reference_run(c.ctx, &run, force, set->source, &out);
+    free(run.contained);
+    Py_END_ALLOW_THREADS
+    PyObject *d = rc == VB_OK ? Py_BuildValue("{s:n}", "certified", (Py_ssize_t)out.n) : NULL;
+    if (d && !vertex_arrays(&out, d))
+        Py_CLEAR(d);
+    vb_vertex_list_free(&out);
+    if (rc != VB_OK)
+        return vbpy_call_fail(&c, rc);
+    return vbpy_call_return(&c, d);
+}
+
 PyMethodDef vbpy_vertices_methods[] = {
+    {"reference_run", reference_run, METH_VARARGS,
+     "reference_run(spheres, force) -> (dict, diagnostics)"},
     {"vertices_engine_open", engine_open, METH_VARARGS,
      "vertices_engine_open(device, proposer) -> (capsule, diagnostics)"},
     {"vertices_run", vertices_run, METH_VARARGS,

@@ -16,7 +16,8 @@ VorballWarning (ignored unless a warnings filter shows them).
 """
 from ._errors import CatalogueEntry, Diagnostic, VorballError, VorballWarning, catalogue
 from ._spheres import Frames, Spheres, frames, read, spheres
-from ._vertices import Arcs, Certificate, Engine, Result, Topology, vertex_text, vertices
+from ._vertices import (Arcs, Certificate, Engine, Reference, Result, Topology, devices,
+                        reference, vertex_text, vertices)
 from ._verify import DUPLICATE, MISSING, NOT_VERTEX, WRONG_COORDS, Report, verify
 from ._channels import Channels, channel_flags, channel_options, channels
 from ._cells import Cells, cells
@@ -24,10 +25,11 @@ from ._periodic import BEYOND_REACH, NOT_CANONICAL, PeriodicReport, PeriodicResu
 
 __all__ = ["Arcs", "CatalogueEntry", "Cells", "Certificate", "Channels", "Diagnostic", "DUPLICATE",
            "BEYOND_REACH", "Engine", "Frames", "MISSING", "NOT_CANONICAL", "NOT_VERTEX",
-           "PeriodicReport", "PeriodicResult", "Report", "Result",
+           "PeriodicReport", "PeriodicResult", "Reference", "Report", "Result",
            "Spheres", "Topology",
            "VorballError", "VorballWarning", "WRONG_COORDS", "catalogue", "cells", "channel_flags",
-           "channel_options", "channels", "frames", "periodic_frames", "read", "spheres", "verify",
+           "channel_options", "channels", "devices", "frames", "periodic_frames", "read",
+           "reference", "spheres", "verify",
            "vertex_text", "vertices"]
 
 try:

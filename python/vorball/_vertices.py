@@ -108,6 +108,15 @@ def _csr(d):
     return flat, start
 
 
+def _vertex_arrays(d):
+    """(ids_flat, offsets, ids, xyz, t) of the library's vertex arrays."""
+    flat, start = _csr(d)
+    ids = np.split(flat, start[1:-1]) if len(start) > 1 else []
+    xyz = np.stack([np.frombuffer(d[k], dtype=np.float64) for k in "xyz"], axis=1) \
+        if len(start) > 1 else np.empty((0, 3))
+    return flat, start, ids, xyz, np.frombuffer(d["t"], dtype=np.float64)
+
+
 class Result(tuple):
     """The certified vertices: unpacks as (ids, xyz, t).
 
@@ -149,11 +158,7 @@ class Result(tuple):
 
     def __new__(cls, d: Dict[str, Any], warnings: List[Diagnostic],
                 spheres: Optional[Spheres]) -> Result:
-        flat, start = _csr(d)
-        ids = np.split(flat, start[1:-1]) if len(start) > 1 else []
-        xyz = np.stack([np.frombuffer(d[k], dtype=np.float64) for k in "xyz"], axis=1) \
-            if len(start) > 1 else np.empty((0, 3))
-        t = np.frombuffer(d["t"], dtype=np.float64)
+        flat, start, ids, xyz, t = _vertex_arrays(d)
         self = super().__new__(cls, (ids, xyz, t))
         self.ids, self.xyz, self.t = ids, xyz, t
         self.ids_flat, self.offsets = flat, start
@@ -208,6 +213,57 @@ def vertex_text(ids_flat: ArrayLike, offsets: ArrayLike, xyz: ArrayLike, t: Arra
     cols = [np.ascontiguousarray(xyz[:, k]) for k in range(3)]
     return _core.vertex_text(ids, off, cols[0], cols[1], cols[2],
                              np.ascontiguousarray(t, dtype=np.float64), format, comment)
+
+
+class Reference(tuple):
+    """Every vertex of the diagram, exactly, by brute force (`vorball
+    reference`): unpacks as (ids, xyz, t), with ids_flat and offsets as in
+    Result, warnings (vorball.Diagnostic) and spheres. to_text(format)
+    gives the vertex file (tsv, json or voronota) with the numbers that
+    `vorball reference` writes."""
+
+    def __new__(cls, d: Dict[str, Any], warnings: List[Diagnostic],
+                spheres: Optional[Spheres]) -> Reference:
+        flat, start, ids, xyz, t = _vertex_arrays(d)
+        self = super().__new__(cls, (ids, xyz, t))
+        self.ids, self.xyz, self.t = ids, xyz, t
+        self.ids_flat, self.offsets = flat, start
+        self.warnings, self.spheres = warnings, spheres
+        return self
+
+    def __repr__(self) -> str:
+        return "<vorball.Reference %d exact vertices>" % len(self.t)
+
+    def to_text(self, format: str = "tsv") -> str:
+        """The vertex file of these vertices in format (tsv, json, voronota)."""
+        n = len(self.spheres) if self.spheres is not None else 0
+        return vertex_text(self.ids_flat, self.offsets, self.xyz, self.t, format,
+                           "vorball.reference: %d spheres, %d vertices" % (n, len(self.t)))
+
+
+def reference(xyz: SphereInput, r: Optional[ArrayLike] = None, *, force: bool = False,
+              zero_radius: str = "auto", select: Optional[str] = None,
+              verbose: bool = False) -> Reference:
+    """Every Voronoi vertex of the spheres exactly, from all quadruples
+    (`vorball reference`: the oracle for small inputs; its cost grows as
+    n^4). xyz, r, zero_radius and select as for vorball.vertices. Above 500
+    spheres it raises VorballError E130 unless force (`--force`). Returns a
+    Reference that unpacks as (ids, xyz, t). Nothing is printed unless
+    verbose."""
+    s, made = as_spheres(xyz, r, min_count=4, zero_radius=zero_radius, select=select)
+    d, diag = _core.reference_run(s._capsule, bool(force))
+    w = made + parse(diag)
+    emit(w, verbose)
+    return Reference(d, w, s)
+
+
+def devices(verbose: bool = False) -> str:
+    """The OpenCL platforms and devices, one tab-separated line each, and
+    last '#auto<TAB>' with the device that device='auto' takes: the table
+    `vorball devices` prints."""
+    text, diag = _core.devices()
+    emit(parse(diag), verbose)
+    return text
 
 
 def _options(samples, tol, tiles, all_pairs, threads):

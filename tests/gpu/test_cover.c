@@ -14,15 +14,6 @@
 #include "vbg_cover.h"
 #include "vbg_runtime.h"
 
-static int cmp_quad(const void *pa, const void *pb)
-{
-    const uint32_t *a = pa, *b = pb;
-    for (int k = 0; k < 4; k++)
-        if (a[k] != b[k])
-            return a[k] < b[k] ? -1 : 1;
-    return 0;
-}
-
 static int same(const vb_quad_list *a, const vb_quad_list *b)
 {
     return a->n == b->n && (a->n == 0 || memcmp(a->q, b->q, a->n * sizeof *a->q) == 0);
@@ -35,7 +26,7 @@ static void check_canonical(const vb_quad_list *l)
         const uint32_t *q = l->q[k];
         if (!(q[0] < q[1] && q[1] < q[2] && q[2] < q[3]))
             ok = 0;
-        if (k > 0 && cmp_quad(l->q[k - 1], q) >= 0)
+        if (k > 0 && vb_quad_cmp(l->q[k - 1], q) >= 0)
             ok = 0;
     }
     CHECK(ok);
@@ -92,7 +83,7 @@ static int parts_cover(vb_ctx *ctx, const vb_sphere_set *s, unsigned parts, vb_q
     CHECK(j.disjoint);
     CHECK_INT(st.quads, j.all.n);
     if (j.all.n)
-        qsort(j.all.q, j.all.n, sizeof *j.all.q, cmp_quad);
+        qsort(j.all.q, j.all.n, sizeof *j.all.q, vb_quad_cmp);
     *out = j.all;
     return rc;
 }
@@ -154,7 +145,7 @@ static int emulated(vb_ctx *ctx, const vb_sphere_set *s, vb_quad_list *out, size
         else {
             memcpy(out->q, qout, (size_t)nq * sizeof *out->q);
             out->n = out->cap = nq;
-            qsort(out->q, nq, sizeof *out->q, cmp_quad);
+            qsort(out->q, nq, sizeof *out->q, vb_quad_cmp);
         }
     }
     free(roots);

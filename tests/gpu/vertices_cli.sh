@@ -106,6 +106,18 @@ grep -q '"certification":' "$work/bench.json" || fail "bench json lacks stage ti
 "$vorball" bench --device ref "$work/set.xyzr" | grep -q '^set.xyzr .* 60 ' || fail "bench table row"
 "$vorball" vertices --samples 1 "$work/set.xyzr" > /dev/null 2>&1
 [ $? -eq 2 ] || fail "--samples 1 must be a usage error"
+# The ranges are the library's (vb_propose_options_check): the message
+# names each option's range, and a value inside it runs.
+for bad in "--samples 4097:2..4096" "--tiles 3:power of two in 1..64" "--threads 65:1..64" \
+           "--tol 0:positive"; do
+    opt=${bad%%:*} why=${bad#*:}
+    # shellcheck disable=SC2086
+    msg=$("$vorball" vertices $opt "$work/set.xyzr" 2>&1 > /dev/null)
+    [ $? -eq 2 ] || fail "$opt must be a usage error"
+    case $msg in *E7:*"$why"*) ;; *) fail "$opt: no E7 naming '$why' in: $msg" ;; esac
+done
+"$vorball" vertices --device ref --samples 4096 --tiles 64 --threads 64 "$work/set.xyzr" > /dev/null ||
+    fail "the ranges' ends must run"
 "$vorball" vertices --device tpu "$work/set.xyzr" > /dev/null 2>&1
 [ $? -eq 2 ] || fail "--device tpu must be a usage error"
 echo "ok: $n vertices, $fin finite + $inf infinite edges"

@@ -296,15 +296,6 @@ static vb_sphere_set *random_set(size_t n)
     return s;
 }
 
-static int cmp_quad(const void *pa, const void *pb)
-{
-    const uint32_t *x = pa, *y = pb;
-    for (int k = 0; k < 4; k++)
-        if (x[k] != y[k])
-            return x[k] < y[k] ? -1 : 1;
-    return 0;
-}
-
 /* Proposer-independent quadruples: each sphere with three of its 9 nearest
  * neighbours, sorted, repeats dropped (the cover has its own test). */
 static int near_quads(vb_sphere_set *s, vb_quad_list *q)
@@ -351,10 +342,10 @@ static int near_quads(vb_sphere_set *s, vb_quad_list *q)
                     memcpy(q->q[q->n++], v, sizeof v);
                 }
     }
-    qsort(q->q, q->n, sizeof *q->q, cmp_quad);
+    qsort(q->q, q->n, sizeof *q->q, vb_quad_cmp);
     size_t w = q->n ? 1 : 0;
     for (size_t k = 1; k < q->n; k++)
-        if (cmp_quad(q->q[k], q->q[w - 1]) != 0)
+        if (vb_quad_cmp(q->q[k], q->q[w - 1]) != 0)
             memcpy(q->q[w++], q->q[k], sizeof *q->q);
     q->n = w;
     q->cap = cap;

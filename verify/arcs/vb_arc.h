@@ -24,7 +24,7 @@
 #include <stdio.h>
 
 #include "vb_topology.h"
-#include "vb_verify_file.h"
+#include "vb_verify.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -73,12 +73,6 @@ int vb_arc_report_complete(const vb_arc_report *r);
 
 void vb_arc_report_free(vb_arc_report *r);
 
-/* Arc closure of a judged vertex file: the exact vertices of its certified
- * lines (one per exact vertex, so a Voronota group counts once) through
- * vb_arc_close. Same returns as vb_arc_close. */
-int vb_verify_arcs(vb_ctx *ctx, const vb_sphere_set *set, const vb_verify_report *judged,
-                   unsigned threads, vb_arc_report *out);
-
 /* Closes the certified list `list` of a pipeline run in place: vb_arc_close
  * on it, then the vertices found on the way (certified exactly) appended
  * and the list sorted canonically again. *out keeps the counts and the
@@ -119,15 +113,6 @@ void vb_arc_write_stats(FILE *f, const vb_arc_report *r);
 /* The certificate as text: one "NAME: missing vertex IDS at X Y Z t T" line
  * per added vertex, then "NAME: arcs: ..." with the counts. VB_OK or VB_EIO. */
 int vb_arc_write_text(vb_ctx *ctx, FILE *f, const char *name, const vb_arc_report *r);
-
-/* The verify report as JSON (vb_verify_write_json) with a member "arcs":
- * {"vertices", "half_arcs", "closed", "infinite", "loops", "undecided",
- * "added", "components", "complete", "missing": [{"ids", "x", "y", "z",
- * "t"}, ...]}; "ok" is false also when the closure is not complete.
- * VB_OK, VB_ENOMEM or VB_EIO. */
-int vb_verify_write_json_arcs(vb_ctx *ctx, FILE *f, const char *spheres_name, const char *name,
-                              const vb_sphere_set *set, const vb_verify_report *judged,
-                              const vb_arc_report *r);
 
 #ifdef __cplusplus
 }

@@ -480,3 +480,9 @@ int vb_certify_candidate(vb_ctx *ctx, vb_certifier *c, const uint32_t *ids, size
         return rc;
     return vbx_cert_key_of(ctx, c, c->members, c->nmembers, sigma, &res->key);
 }
+
+/* The MPFR the certifier's exact numbers run on (vb_verify.h). */
+const char *vb_verify_mpfr_version(void)
+{
+    return mpfr_get_version();
+}

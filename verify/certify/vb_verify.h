@@ -141,6 +141,12 @@ uint64_t vb_certifier_slow_rounds(const vb_certifier *c);
  * touch; see verify/judge/reference.c). Returns VB_OK, VB_ENOMEM, VB_EPREC. */
 int vb_reference(vb_ctx *ctx, const vb_sphere_set *set, vb_vertex_list *out);
 
+/* vb_reference as `vorball reference` and Python's vorball.reference run it:
+ * above VB_REFERENCE_MAX_SPHERES spheres it refuses (VB_EINPUT_REFERENCE_SIZE,
+ * E130, naming `name`) unless force. Same returns as vb_reference. */
+int vb_reference_run(vb_ctx *ctx, const vb_sphere_set *set, int force, const char *name,
+                     vb_vertex_list *out);
+
 /* The exact certifier behind the certifier table of the vertex pipeline
  * (vb_vertices.h): vb_certifier_open / vb_certify_list (no distance limit)
  * / vb_certify_candidate. */

@@ -4,7 +4,6 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "vb_verify.h"
 #include "vbx_exact.h"
 
 /* Largest exponent spread accepted: 10^(2 * 340) integers are still cheap
@@ -412,9 +411,4 @@ int vbx_round(const mpz_t num, const mpz_t b, const mpz_t D, const mpz_t den, do
     if (slow)
         ++*slow;
     return vbx_round_mpfr(num, b, D, den, out, lo, hi);
-}
-
-const char *vb_verify_mpfr_version(void)
-{
-    return mpfr_get_version();
 }

@@ -416,3 +416,15 @@ int vb_reference(vb_ctx *ctx, const vb_sphere_set *set, vb_vertex_list *out)
     vb_certifier_close(c);
     return rc;
 }
+
+int vb_reference_run(vb_ctx *ctx, const vb_sphere_set *set, int force, const char *name,
+                     vb_vertex_list *out)
+{
+    if (set->n > VB_REFERENCE_MAX_SPHERES && !force)
+        return vb_error(ctx, VB_EINPUT_REFERENCE_SIZE, name, 0,
+                        "%zu spheres: the exact reference takes at most %d without --force (its "
+                        "time grows as n^2.7 to n^4; `vorball vertices` is the pipeline for "
+                        "large inputs)",
+                        set->n, VB_REFERENCE_MAX_SPHERES);
+    return vb_reference(ctx, set, out);
+}

@@ -16,6 +16,7 @@
 
 #include <stdio.h>
 
+#include "vb_arc.h"
 #include "vb_verify.h"
 #include "vb_vertex_io.h"
 
@@ -103,6 +104,21 @@ int vb_verify_write_json_more(vb_ctx *ctx, FILE *f, const char *spheres_name, co
                               const vb_sphere_set *set, const vb_verify_report *r,
                               const char *key, void (*more)(FILE *, const void *),
                               const void *arg, int more_ok);
+
+/* Arc closure of a judged vertex file: the exact vertices of its certified
+ * lines (one per exact vertex, so a Voronota group counts once) through
+ * vb_arc_close. Same returns as vb_arc_close. */
+int vb_verify_arcs(vb_ctx *ctx, const vb_sphere_set *set, const vb_verify_report *judged,
+                   unsigned threads, vb_arc_report *out);
+
+/* The verify report as JSON (vb_verify_write_json) with a member "arcs":
+ * {"vertices", "half_arcs", "closed", "infinite", "loops", "undecided",
+ * "added", "components", "complete", "missing": [{"ids", "x", "y", "z",
+ * "t"}, ...]}; "ok" is false also when the closure is not complete.
+ * VB_OK, VB_ENOMEM or VB_EIO. */
+int vb_verify_write_json_arcs(vb_ctx *ctx, FILE *f, const char *spheres_name, const char *name,
+                              const vb_sphere_set *set, const vb_verify_report *judged,
+                              const vb_arc_report *r);
 
 #ifdef __cplusplus
 }

@@ -4,7 +4,7 @@
 
 #include "vb_json.h"
 
-#include "vb_arc.h"
+#include "vb_verify_file.h"
 
 int vb_verify_arcs(vb_ctx *ctx, const vb_sphere_set *set, const vb_verify_report *judged,
                    unsigned threads, vb_arc_report *out)

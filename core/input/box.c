@@ -1,5 +1,5 @@
 /* Periodic boxes from vectors, from lengths and angles, and from --box. */
-#include "vb_periodic.h"
+#include "vb_box.h"
 
 #include <gmp.h>
 #include <math.h>
