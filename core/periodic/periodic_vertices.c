@@ -200,6 +200,11 @@ int vb_periodic_vertices_run(vb_ctx *ctx, const vb_sphere_set *atoms, const vb_b
     if (cfg->cover)
         co = *cfg->cover;
     co.base_limit = (uint32_t)res->img.n0;
+    /* Only vertices with t <= rho can be periodic (images.c): the cover
+     * need not find the others (vbq_floor), which spares the ring fetches
+     * of cells that open into vacuum. The full layer (a reference) seeks
+     * every vertex. */
+    co.tmax = res->full_layer ? 0.0 : res->img.rho;
     vb_vertices_config c = *cfg;
     c.proposer = vb_proposer_cover.name;
     c.cover = &co;

@@ -145,7 +145,9 @@ typedef struct vb_periodic_result {
     vb_periodic_images img;
     vb_vertices_result run;      /* the open run on img.set, cells of the atoms only */
     vb_periodic_vertices v;
-    int full_layer;              /* input: 1 builds the full layer (vb_periodic_image_opt) */
+    int full_layer;              /* input: 1 builds the full layer (vb_periodic_image_opt)
+                                  * and has the cover seek every vertex, not only those
+                                  * with t <= rho (vb_cover_options.tmax): a reference */
     size_t translates;           /* certified vertices of the run that are not canonical */
     size_t beyond_rho;           /* certified vertices of the run with t > rho: not periodic */
 } vb_periodic_result;
