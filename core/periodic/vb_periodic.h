@@ -169,6 +169,13 @@ int vb_periodic_vertices_run(vb_ctx *ctx, const vb_sphere_set *atoms, const vb_b
                              const vb_vertices_config *cfg, const vb_vertices_backends *be,
                              vb_periodic_result *res);
 
+/* vb_periodic_vertices_run on an engine opened once (vb_vertices_open: the
+ * Python Engine over a trajectory's frames): the same vertices, bytes and
+ * errors; the engine's device replaces cfg->device (vb_vertices_run_on). */
+int vb_periodic_vertices_run_on(vb_ctx *ctx, vb_vertices_engine *e, const vb_sphere_set *atoms,
+                                const vb_box *box, const vb_vertices_config *cfg,
+                                vb_periodic_result *res);
+
 /* Whether the sorted member list found[0 .. m) is its vertex's canonical
  * translate (see above): among the translates that put a member of the
  * smallest id at shift 0, the lexicographically smallest list. scratch
