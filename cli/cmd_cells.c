@@ -12,6 +12,7 @@
 #include "vb_cells.h"
 #include "vb_measures_page.h"
 #include "vb_parallel.h"
+#include "vb_periodic_frames.h"
 #include "vertices_periodic.h"
 
 static const char *const usage_text =
@@ -50,7 +51,8 @@ static const char *const usage_text =
     "  --periodic       the atoms repeated by the box of the file (GRO's last line, PDB's\n"
     "                   CRYST1) or --box: each atom once, its cell cut by the images\n"
     "                   too; contacts across the box name the second atom j@(dx,dy,dz)\n"
-    "                   (atom j moved by dx a + dy b + dz c), each periodic face once\n"
+    "                   (atom j moved by dx a + dy b + dz c), each periodic face once;\n"
+    "                   with --traj/--frames each frame in the box it carries (or --box's)\n"
     "  --box a b c [alpha beta gamma] | --box ax ay az bx by bz cx cy cz\n"
     "                   the periodic box (implies --periodic), in input units\n";
 
@@ -167,7 +169,8 @@ static int write_frame(void *arg, long frame, int model, const vb_sphere_set *se
 /* `cells` over the frames of IN (or of --traj): the tables of every frame. */
 static int run_frames(vb_ctx *ctx, const char *in_path, const char *traj,
                       const vb_cli_input_opts *in, const vb_frame_range *range,
-                      const vb_measure_options *opt, const char *out_path,
+                      const vb_cli_periodic *per, const vb_measure_options *opt,
+                      const char *out_path,
                       const char *contacts_path, int json, int stats, const char *title,
                       const char *html)
 {
@@ -182,7 +185,14 @@ static int run_frames(vb_ctx *ctx, const char *in_path, const char *traj,
         rc = vb_errcode(ctx);
     long frames = 0;
     double t0 = vb_now();
-    if (rc == VB_OK)
+    /* --periodic: each frame in its own box, or --box's for all. */
+    vb_box box;
+    if (rc == VB_OK && per->on && per->nbox)
+        rc = vb_box_parse_args(ctx, per->box, per->nbox, &box);
+    if (rc == VB_OK && per->on)
+        rc = vb_cells_run_frames_periodic(ctx, in_path, traj, &ro, range,
+                                          per->nbox ? &box : NULL, opt, write_frame, &S, &frames);
+    else if (rc == VB_OK)
         rc = vb_cells_run_frames(ctx, in_path, traj, &ro, range, opt, write_frame, &S, &frames);
     double t1 = vb_now();
     if (rc == VB_OK && json)
@@ -283,9 +293,6 @@ int vb_cmd_cells(int argc, char **argv)
         return vb_cli_usage_error(argv[0], "no input file (use '-' for stdin)");
     if (traj && strcmp(in_path, "-") == 0)
         return vb_cli_usage_error(argv[0], "the trajectory's topology must be a file");
-    if (per.on && frames)
-        return vb_cli_usage_error(argv[0], "--periodic measures one structure (not --traj or "
-                                           "--frames)");
     opt.contacts = contacts_path != NULL;
 
     vb_ctx *ctx;
@@ -309,7 +316,7 @@ int vb_cmd_cells(int argc, char **argv)
     snprintf(title, sizeof title, "vorball cells %s%s%s", in_path, traj ? " + " : "",
              traj ? traj : "");
     if (rc == VB_OK && frames) {
-        rc = run_frames(ctx, in_path, traj, &in, &range, &opt, out_path, contacts_path, json,
+        rc = run_frames(ctx, in_path, traj, &in, &range, &per, &opt, out_path, contacts_path, json,
                         stats, html ? title : NULL, html);
         int code = rc == VB_OK ? VB_EXIT_OK : vb_cli_fail(ctx, rc);
         vb_cli_progress_clear();

@@ -16,7 +16,8 @@ __kernel void vbq_cover_kernel(__global const double *x, __global const double *
                                __global const double *z, __global const double *r,
                                __global const double *box, __global const double *rmax,
                                __global const uint *ids, const uint first, const uint m,
-                               const double rmax_all, const double near, const uint T,
+                               const double rmax_all, const double near, const double tmax,
+                               const uint T,
                                const uint min_level, const uint max_level, const uint enum_max,
                                __global const uint *cells, __global const uint *roots,
                                const uint ncells,
@@ -28,8 +29,8 @@ __kernel void vbq_cover_kernel(__global const double *x, __global const double *
 {
     size_t w = get_global_id(0);
     vbq_env e;
-    vbq_env_make(&e, x, y, z, r, box, rmax, ids, first, m, rmax_all, near, T, min_level, max_level,
-                 enum_max);
+    vbq_env_make(&e, x, y, z, r, box, rmax, ids, first, m, rmax_all, near, tmax, T, min_level,
+                 max_level, enum_max);
     vbq_arena ar;
     ar.nb = nb + w * (size_t)nb_cap;
     ar.lab = lab + w * (size_t)lab_cap;

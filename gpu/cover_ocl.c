@@ -206,6 +206,7 @@ static int run_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *cell
              set_arg(ctx, k, a++, sizeof(cl_uint), &e->m) ||
              set_arg(ctx, k, a++, sizeof(cl_double), &e->rmax_all) ||
              set_arg(ctx, k, a++, sizeof(cl_double), &e->near) ||
+             set_arg(ctx, k, a++, sizeof(cl_double), &e->tmax) ||
              set_arg(ctx, k, a++, sizeof(cl_uint), &e->T) ||
              set_arg(ctx, k, a++, sizeof(cl_uint), &e->min_level) ||
              set_arg(ctx, k, a++, sizeof(cl_uint), &e->max_level) ||

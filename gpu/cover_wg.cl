@@ -129,7 +129,8 @@ __kernel __attribute__((reqd_work_group_size(WG, 1, 1)))
 void vbq_cover_wg(__global const double *x, __global const double *y, __global const double *z,
                   __global const double *r, __global const double *box,
                   __global const double *rmax, __global const uint *ids, const uint first,
-                  const uint m, const double rmax_all, const double near, const uint T,
+                  const uint m, const double rmax_all, const double near, const double tmax,
+                  const uint T,
                   const uint min_level, const uint max_level, const uint enum_max,
                   __global const uint *cells, __global const uint *roots, const uint ncells,
                   __global vbq_nb *nbs,
@@ -148,8 +149,8 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
     uint lane = get_local_id(0);
     size_t g = get_group_id(0);
     vbq_env e;
-    vbq_env_make(&e, x, y, z, r, box, rmax, ids, first, m, rmax_all, near, T, min_level, max_level,
-                 enum_max);
+    vbq_env_make(&e, x, y, z, r, box, rmax, ids, first, m, rmax_all, near, tmax, T, min_level,
+                 max_level, enum_max);
     __global vbq_nb *nb = nbs + g * (size_t)nb_cap;
     __global uint *lab = labs + g * (size_t)lab_cap;
     __global uint *qa = qs + g * 4u * (size_t)q_cap;
@@ -191,7 +192,7 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
         wg_walk(&e, &wk, nb, nb_cap, lab, lab_cap, 0u, sh, nodes);
         uint len0 = sh[S_LEN];
         double far = sqrt(vbq_box_far2(&e, 1u, ci)) * (1.0 + 1e-9);
-        double slack_i = rmax_all - r[i];
+        double slack_i = rmax_all - r[i], floor_i = vbq_floor(&e, i);
         uint nroot = 6u * T * T;
         if (nroot > WG_ST && lane == 0u)
             sh[S_STATUS] = VBQ_OVER_ST;
@@ -226,7 +227,7 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
             double u0, u1, v0, v1, mm[3], hh[3];
             vbq_patch_square(T, fr.level, fr.iu, fr.iv, &u0, &u1, &v0, &v1);
             vbq_patch_box(fr.f, u0, u1, v0, v1, mm, hh);
-            double lmax = 0.0;
+            double lmax = floor_i;
             for (uint k = lane; k < fr.len; k += WG) {
                 vbq_nb rec = nb[lab[fr.off + k]];
                 double lo, hi;
@@ -253,7 +254,7 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
                  * reduction per part. */
                 double lg[VBQ_NSUB];
                 for (uint g = 0u; g < VBQ_NSUB; g++)
-                    lg[g] = 0.0;
+                    lg[g] = floor_i;
                 for (uint g = lane; g < VBQ_NSUB; g += WG) {
                     double sm[3], sh3[3];
                     vbq_sub_box(fr.f, u0, u1, v0, v1, g, sm, sh3);

@@ -13,8 +13,10 @@ typedef struct job {
     vb_ctx *ctx;
     const char *name;
     const vb_box *box;
-    const vb_vertices_config *cfg;
+    const vb_vertices_config *cfg;    /* vertices */
     vb_periodic_frame_fn fn;
+    const vb_measure_options *opt;    /* or cells */
+    vb_cells_frame_fn cells_fn;
     void *arg;
 } job;
 
@@ -59,18 +61,27 @@ static int float_frame_decimals(vb_ctx *ctx, vb_sphere_set *s)
     return rc;
 }
 
+/* The frame's box (*b: the job's or the frame's) and its decimals: VB_OK,
+ * VB_EINPUT_BOX naming the frame without a box, VB_ENOMEM. */
+static int frame_ready(job *J, long index, vb_sphere_set *s, const vb_box **b)
+{
+    *b = J->box ? J->box : s->box;
+    if (!*b)
+        return vb_error(J->ctx, VB_EINPUT_BOX, J->name, 0,
+                        "--periodic: frame %ld carries no box: give --box", index);
+    return float_frame_decimals(J->ctx, s);
+}
+
 static int one_frame(void *arg, long index, int model, vb_sphere_set *s)
 {
     job *J = arg;
-    const vb_box *b = J->box ? J->box : s->box;
-    if (!b)
-        return vb_error(J->ctx, VB_EINPUT_BOX, J->name, 0,
-                        "--periodic: frame %ld carries no box: give --box", index);
-    int rc = float_frame_decimals(J->ctx, s);
+    const vb_box *b;
+    int rc = frame_ready(J, index, s, &b);
+    if (rc != VB_OK)
+        return rc;
     vb_periodic_result res;
     vb_periodic_result_init(&res);
-    if (rc == VB_OK)
-        rc = vb_periodic_vertices_run(J->ctx, s, b, J->cfg, vb_default_backends(), &res);
+    rc = vb_periodic_vertices_run(J->ctx, s, b, J->cfg, vb_default_backends(), &res);
     if (rc == VB_OK)
         rc = J->fn(J->arg, index, model, s, b, &res);
     vb_periodic_result_free(&res);
@@ -82,6 +93,30 @@ int vb_periodic_run_frames(vb_ctx *ctx, const char *path, const char *traj_path,
                            const vb_box *box, const vb_vertices_config *cfg,
                            vb_periodic_frame_fn fn, void *arg, long *selected)
 {
-    job J = {ctx, traj_path ? traj_path : path, box, cfg, fn, arg};
+    job J = {ctx, traj_path ? traj_path : path, box, cfg, fn, NULL, NULL, arg};
     return vb_frames_each(ctx, path, traj_path, ro, range, one_frame, &J, selected);
+}
+
+static int cells_frame(void *arg, long index, int model, vb_sphere_set *s)
+{
+    job *J = arg;
+    const vb_box *b;
+    int rc = frame_ready(J, index, s, &b);
+    if (rc != VB_OK)
+        return rc;
+    vb_cell_measures m;
+    rc = vb_cells_run_periodic(J->ctx, s, b, J->opt, &m);
+    if (rc == VB_OK)
+        rc = J->cells_fn(J->arg, index, model, s, &m);
+    vb_cell_measures_free(&m);
+    return rc;
+}
+
+int vb_cells_run_frames_periodic(vb_ctx *ctx, const char *path, const char *traj_path,
+                                 const vb_read_options *ro, const vb_frame_range *range,
+                                 const vb_box *box, const vb_measure_options *opt,
+                                 vb_cells_frame_fn fn, void *arg, long *selected)
+{
+    job J = {ctx, traj_path ? traj_path : path, box, NULL, NULL, opt, fn, arg};
+    return vb_frames_each(ctx, path, traj_path, ro, range, cells_frame, &J, selected);
 }

@@ -6,6 +6,7 @@
 #define VB_PERIODIC_FRAMES_H
 
 #include "vb.h"
+#include "vb_cells.h"
 #include "vb_frames.h"
 #include "vb_periodic.h"
 
@@ -27,5 +28,17 @@ int vb_periodic_run_frames(vb_ctx *ctx, const char *path, const char *traj_path,
                            const vb_read_options *ro, const vb_frame_range *range,
                            const vb_box *box, const vb_vertices_config *cfg,
                            vb_periodic_frame_fn fn, void *arg, long *selected);
+
+/* The periodic cell measures (vb_cells_run_periodic, opt) of the selected
+ * frames, as vb_periodic_run_frames selects them and gives each its box
+ * (box, or each frame's own) and its decimals, each handed to fn
+ * (vb_cells.h) in frame order. *selected (may be NULL) gets the frames
+ * measured. VB_EINPUT_BOX naming the frame when it has no box and box is
+ * NULL, VB_EINPUT_MODEL when no frame is selected; the readers',
+ * vb_cells_run_periodic's and fn's statuses otherwise. */
+int vb_cells_run_frames_periodic(vb_ctx *ctx, const char *path, const char *traj_path,
+                                 const vb_read_options *ro, const vb_frame_range *range,
+                                 const vb_box *box, const vb_measure_options *opt,
+                                 vb_cells_frame_fn fn, void *arg, long *selected);
 
 #endif

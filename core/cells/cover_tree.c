@@ -214,6 +214,7 @@ int vb_cover_prepare(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_optio
     e->first = (uint32_t)g->first;
     e->m = (uint32_t)g->m;
     e->rmax_all = g->rmax_all;
+    e->tmax = o.tmax > 0.0 ? o.tmax : (double)INFINITY;
     e->host = set;
     *tree = t;
     return VB_OK;

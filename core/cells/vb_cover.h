@@ -42,6 +42,10 @@ typedef struct vb_cover_options {
      * other spheres stay neighbours). Periodic boxes put the box's atoms
      * first and their images after them (core/periodic/). */
     uint32_t base_limit;
+    /* > 0: only vertices of tangent radius <= tmax are sought (the cover
+     * stays complete for them; vbq_floor); 0: every vertex. Periodic boxes
+     * pass their proven bound rho. */
+    double tmax;
 } vb_cover_options;
 
 typedef struct vb_cover_stats {

@@ -24,7 +24,11 @@
  * max(0, max_k lo_k). Every vertex of the cell in a direction of P therefore
  * has its three neighbours among the labels that survive that test, and the
  * quadruples of i with three surviving labels, solved exactly, hold every
- * vertex of the cell in P. The patches of the cover tile the sphere of
+ * vertex of the cell in P. With a bound tmax of the tangent radius of the
+ * vertices sought (periodic boxes), the floor 0 becomes 1 / (2 (tmax +
+ * R_i)) (vbq_floor): a vertex with t <= tmax lies at s <= tmax + R_i, so
+ * its labels reach that floor, and the cover is complete for those
+ * vertices. The patches of the cover tile the sphere of
  * directions, so the union over the patches holds every vertex of the cell.
  * The decisions made here only ever drop a label whose exclusion is proven
  * by the enclosures; nothing that is uncertain is decided.

@@ -17,6 +17,19 @@ VBS_FN int vbq_closed(double rq, double LO, double slack_i)
     return rq == (double)INFINITY || (LO > 0.0 && ecert > 0.0 && 1.0 / ecert < LO * (1.0 - 1e-9));
 }
 
+/* The floor of cell i's envelope: 0 ("infinity") when every vertex is
+ * sought; with a bound tmax of the tangent radius, a vertex of the cell at
+ * distance s = t + R_i <= tmax + R_i along u has f = 1 / (2 s) >= 1 / (2
+ * (tmax + R_i)), so the three labels that meet there have hi >= this
+ * floor, and a patch whose labels all stay below it holds no vertex sought
+ * (the periodic pipeline drops the others: t above the bound is no
+ * periodic vertex). Rounded down by a relative 1e-9, far above the few
+ * roundings of R_i's double and this quotient. */
+VBS_FN double vbq_floor(const vbq_env *e, vbs_u32 i)
+{
+    return e->tmax < (double)INFINITY ? 0.5 / (e->tmax + e->r[i]) * (1.0 - 1e-9) : 0.0;
+}
+
 /* The outer radius of the next ring a patch fetches: out to the reach LO
  * asks for, at most twice the present radius (LO grows with what is
  * found); infinite once it passes the farthest centre. */
@@ -353,7 +366,7 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
      * above top. A frame's list lies below the lists of every frame pushed
      * after it, so popping a frame frees everything above its list. */
     vbs_u32 top = len0;
-    double slack_i = e->rmax_all - e->r[i];
+    double slack_i = e->rmax_all - e->r[i], floor_i = vbq_floor(e, i);
     while (nst > 0u) {
         o->st_hw = nst > o->st_hw ? nst : o->st_hw;
         o->lab_hw = top > o->lab_hw ? top : o->lab_hw;
@@ -365,8 +378,8 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
         vbq_patch_box(fr.f, u0, u1, v0, v1, m, h);
         o->patches++;
         /* LO: the envelope is at least max(0, lo_k) everywhere in P (0 is
-         * "infinity", the floor of the envelope). */
-        double LO = 0.0;
+         * "infinity", the floor of the envelope; vbq_floor with a bound). */
+        double LO = floor_i;
         for (vbs_u32 k = 0u; k < fr.len; k++) {
             vbq_nb rec = ar->nb[ar->lab[fr.off + k]];
             double lo, hi;
@@ -391,7 +404,7 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
             vbq_sub sub[VBQ_NSUB];
             for (vbs_u32 g = 0u; g < VBQ_NSUB; g++) {
                 vbq_sub_box(fr.f, u0, u1, v0, v1, g, sub[g].m, sub[g].h);
-                double lg = 0.0;
+                double lg = floor_i;
                 for (vbs_u32 k = 0u; k < fr.len; k++) {
                     vbq_nb rec = ar->nb[ar->lab[fr.off + k]];
                     double lo, hi;

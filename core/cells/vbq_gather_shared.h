@@ -69,6 +69,8 @@ typedef struct vbq_env {
     vbs_u32 first, m;
     double rmax_all;   /* largest radius of the tree's spheres */
     double near;       /* first guess of a near list's radius, beyond 2 rmax_all */
+    double tmax;       /* only vertices of tangent radius <= tmax are sought (periodic
+                          boxes' proven bound); INFINITY: every vertex */
     vbs_u32 T, min_level, max_level, enum_max;
 #ifndef __OPENCL_C_VERSION__
     const void *host;  /* the host's exact input for vbq_host_cluster (NULL: none) */
@@ -81,8 +83,8 @@ VBS_FN void vbq_env_make(vbq_env *e, const VBS_GLOBAL double *x, const VBS_GLOBA
                          const VBS_GLOBAL double *z, const VBS_GLOBAL double *r,
                          const VBS_GLOBAL double *box, const VBS_GLOBAL double *rmax,
                          const VBS_GLOBAL vbs_u32 *ids, vbs_u32 first, vbs_u32 m,
-                         double rmax_all, double near, vbs_u32 T, vbs_u32 min_level,
-                         vbs_u32 max_level, vbs_u32 enum_max)
+                         double rmax_all, double near, double tmax, vbs_u32 T,
+                         vbs_u32 min_level, vbs_u32 max_level, vbs_u32 enum_max)
 {
     e->x = x;
     e->y = y;
@@ -95,6 +97,7 @@ VBS_FN void vbq_env_make(vbq_env *e, const VBS_GLOBAL double *x, const VBS_GLOBA
     e->m = m;
     e->rmax_all = rmax_all;
     e->near = near;
+    e->tmax = tmax;
     e->T = T;
     e->min_level = min_level;
     e->max_level = max_level;

@@ -33,6 +33,9 @@ struct vb_frame_reader {
     char *chunk;           /* the block being gathered */
     size_t chunk_len, chunk_cap;
     int seen_model;        /* a MODEL record was met in the stream */
+    vb_box box;            /* the last CRYST1 between models (trajectories as PDB
+                            * write one before each MODEL): the next block's box */
+    int has_box, block_box;
     int frames;            /* frames returned */
     int done;
     vbi_dropped dr;
@@ -286,15 +289,21 @@ static int gather_block(vb_ctx *ctx, vb_frame_reader *rd, long *first, int *seri
              * any model. */
             rd->dr.other_models += loose_atoms;
             rd->chunk_len = 0;
+            rd->block_box = rd->has_box;
+            rd->has_box = 0;
             rd->seen_model = in_block = 1;
             *first = rd->lineno;
             *serial = vbi_pdb_model_serial(s, n);
         } else if (rd->seen_model && !in_block) {
+            if (vbi_pdb_record(s, n, "CRYST1"))
+                rd->has_box = vbi_pdb_cryst1_box(s, n, &rd->box);
             if (is_atom_line(s, n))
                 rd->dr.other_models++;
             continue;
         } else if (!rd->seen_model) {
             loose_atoms += is_atom_line(s, n);
+            if (vbi_pdb_record(s, n, "CRYST1"))
+                rd->has_box = vbi_pdb_cryst1_box(s, n, &rd->box);
         }
         if (*first == 0) {
             *first = rd->lineno;
@@ -380,6 +389,13 @@ int vb_frame_reader_next(vb_ctx *ctx, vb_frame_reader *rd, vb_sphere_set **out,
                                      &rd->dr, out)
                      : vbi_pdb_parse(ctx, rd->name, rd->chunk, rd->chunk_len, first, &one,
                                      &rd->dr, out);
+            /* A CRYST1 before the block's MODEL is its box. */
+            if (rc == VB_OK && *out && !(*out)->box && rd->block_box) {
+                if (!((*out)->box = malloc(sizeof *(*out)->box)))
+                    rc = vb_error(ctx, VB_ENOMEM, rd->name, 0, "out of memory");
+                else
+                    *(*out)->box = rd->box;
+            }
             if (rc != VB_OK)
                 return rc;
             /* A block closed by the next MODEL lacks ENDMDL, yet it is whole. */

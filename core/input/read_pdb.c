@@ -137,7 +137,7 @@ static int parse_atom_line(vb_ctx *ctx, const char *name, long lineno, const cha
 /* The box of a CRYST1 record (a b c in columns 7-33, alpha beta gamma in
  * 34-54): 1 and *box set when it gives one. The unit cube 1 1 1 is the
  * convention for "no crystal" (NMR models) and gives none. */
-static int cryst1_box(const char *line, size_t n, vb_box *box)
+int vbi_pdb_cryst1_box(const char *line, size_t n, vb_box *box)
 {
     static const int col[7] = {6, 15, 24, 33, 40, 47, 54};
     vb_decimal d[6];
@@ -184,7 +184,7 @@ int vbi_pdb_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
         /* The box of the model read: the last CRYST1 before its first atom
          * (trajectories as PDB write one per model). */
         if (taken == 0 && vbi_pdb_record(line, n, "CRYST1"))
-            has_box = cryst1_box(line, n, &box);
+            has_box = vbi_pdb_cryst1_box(line, n, &box);
         vbi_record rec = vbi_record_kind(vbi_pdb_record, line, n);
         int32_t serial = rec == VBI_REC_MODEL ? vbi_pdb_model_serial(line, n) : 0;
         records += rec == VBI_REC_ATOM;

@@ -370,6 +370,10 @@ int vbi_detect_error(vb_ctx *ctx, const char *name, int rc);
 /* Per-format readers over a whole buffer. */
 int vbi_read_xyzr(vb_ctx *ctx, const char *name, const char *buf, size_t len,
                   const vb_read_options *opt, vb_sphere_set **out);
+/* The box of a PDB CRYST1 line (a b c alpha beta gamma): 1 and *box set
+ * when it gives one (the unit cube 1 1 1 of NMR models gives none), 0
+ * otherwise. */
+int vbi_pdb_cryst1_box(const char *line, size_t n, vb_box *box);
 /* The PDB reader on part of a file: lines are numbered from first_line, and
  * what it leaves out is added to *dr instead of being reported. */
 int vbi_pdb_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, long first_line,

@@ -53,8 +53,11 @@ static int wrap(int q, int n, int *off)
 }
 
 /* min over the atoms' images in the bins within `rad` of bin b of
- * |g - y| - R (INFINITY when none). */
-static double near_bound(const job *jb, const double g[3], const int b[3], int rad)
+ * |g - y| - R (INFINITY when none), or, once it is at most `enough`, a
+ * value at most `enough` that is at least that minimum (the caller keeps
+ * a maximum above `enough`: it cannot change). */
+static double near_bound(const job *jb, const double g[3], const int b[3], int rad,
+                         double enough)
 {
     const double *A = jb->box->v;
     const int *nb = jb->bn->nb;
@@ -76,6 +79,8 @@ static double near_bound(const job *jb, const double g[3], const int b[3], int r
                     double dz = u[0] * A[2] + u[1] * A[5] + u[2] * A[8] - g[2];
                     double v = sqrt(dx * dx + dy * dy + dz * dz) - jb->s->r[i];
                     best = v < best ? v : best;
+                    if (best <= enough)
+                        return best;
                 }
             }
     return best;
@@ -216,7 +221,11 @@ static void bound_row(void *arg, size_t row, int tid)
                         u[a] = (b[a] + (ii[a] + 0.5) / jb->sub[a]) / bn->nb[a];
                     for (int a = 0; a < 3; a++)
                         g[a] = u[0] * A[a] + u[1] * A[3 + a] + u[2] * A[6 + a];
-                    double v = fmin(near_bound(jb, g, b, 1), cand_bound(jb, g, b));
+                    /* A sub-cell whose bound falls to mx cannot raise it:
+                     * the scan of the near images stops there. */
+                    double v = cand_bound(jb, g, b);
+                    if (v > mx)
+                        v = fmin(v, near_bound(jb, g, b, 1, mx));
                     mx = v > mx ? v : mx;
                 }
         bn->F[row * (size_t)bn->nb[2] + (size_t)b[2]] = mx;

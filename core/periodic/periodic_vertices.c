@@ -180,9 +180,11 @@ static int keep_canonical(vb_ctx *ctx, vb_periodic_result *res)
     return rc == VB_OK ? VB_OK : vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (periodic vertices)");
 }
 
-int vb_periodic_vertices_run(vb_ctx *ctx, const vb_sphere_set *atoms, const vb_box *box,
-                             const vb_vertices_config *cfg, const vb_vertices_backends *be,
-                             vb_periodic_result *res)
+/* vb_periodic_vertices_run on the backends be, or on the engine e when
+ * not NULL. */
+static int periodic_run(vb_ctx *ctx, const vb_sphere_set *atoms, const vb_box *box,
+                        const vb_vertices_config *cfg, const vb_vertices_backends *be,
+                        vb_vertices_engine *e, vb_periodic_result *res)
 {
     if (cfg->proposer && strcmp(cfg->proposer, vb_proposer_cover.name) != 0)
         return vb_error(ctx, VB_EMISUSE, NULL, 0,
@@ -200,13 +202,33 @@ int vb_periodic_vertices_run(vb_ctx *ctx, const vb_sphere_set *atoms, const vb_b
     if (cfg->cover)
         co = *cfg->cover;
     co.base_limit = (uint32_t)res->img.n0;
+    /* Only vertices with t <= rho can be periodic (images.c): the cover
+     * need not find the others (vbq_floor), which spares the ring fetches
+     * of cells that open into vacuum. The full layer (a reference) seeks
+     * every vertex. */
+    co.tmax = res->full_layer ? 0.0 : res->img.rho;
     vb_vertices_config c = *cfg;
     c.proposer = vb_proposer_cover.name;
     c.cover = &co;
-    rc = vb_vertices_run(ctx, res->img.set, &c, be, &res->run);
+    rc = e ? vb_vertices_run_on(ctx, e, res->img.set, &c, &res->run)
+           : vb_vertices_run(ctx, res->img.set, &c, be, &res->run);
     if (rc == VB_OK && !res->run.proposal.complete)
         rc = vb_error(ctx, VB_EINTERNAL, NULL, 0, "the cover did not report a complete run");
     return rc == VB_OK ? keep_canonical(ctx, res) : rc;
+}
+
+int vb_periodic_vertices_run(vb_ctx *ctx, const vb_sphere_set *atoms, const vb_box *box,
+                             const vb_vertices_config *cfg, const vb_vertices_backends *be,
+                             vb_periodic_result *res)
+{
+    return periodic_run(ctx, atoms, box, cfg, be, NULL, res);
+}
+
+int vb_periodic_vertices_run_on(vb_ctx *ctx, vb_vertices_engine *e, const vb_sphere_set *atoms,
+                                const vb_box *box, const vb_vertices_config *cfg,
+                                vb_periodic_result *res)
+{
+    return periodic_run(ctx, atoms, box, cfg, NULL, e, res);
 }
 
 void vb_periodic_certificate(const vb_periodic_result *r, const vb_box *box, char *buf,

@@ -37,11 +37,30 @@
 
 #define MAX_BINS ((size_t)1 << 27) /* past this, no reach: the full layer */
 
-/* The table of lower bounds of bin-to-bin distances by index offset. */
+/* The table of lower bounds of bin-to-bin distances by index offset, and
+ * the offsets in increasing order of that bound (a scan stops at the
+ * first bound above its threshold). */
+typedef struct doff {
+    double d;
+    long D[3];
+} doff;
+
 typedef struct dtab {
     long k[3];   /* offsets -k .. k per edge */
-    double *d;
+    doff *by_d;  /* every offset, bound ascending */
+    size_t n;
 } dtab;
+
+static int cmp_doff(const void *pa, const void *pb)
+{
+    const doff *a = pa, *b = pb;
+    if (a->d != b->d)
+        return a->d < b->d ? -1 : 1;
+    for (int k = 0; k < 3; k++)
+        if (a->D[k] != b->D[k])
+            return a->D[k] < b->D[k] ? -1 : 1;
+    return 0;
+}
 
 /* min of u G u^T over lo <= u <= hi (G symmetric positive definite). */
 static double box_qp(const double G[9], const double lo[3], const double hi[3])
@@ -49,7 +68,7 @@ static double box_qp(const double G[9], const double lo[3], const double hi[3])
     double best = INFINITY;
     for (int pat = 0; pat < 27; pat++) {
         int st[3] = {pat % 3, pat / 3 % 3, pat / 9}; /* 0 free, 1 lo, 2 hi */
-        double u[3];
+        double u[3] = {0.0, 0.0, 0.0};
         int fr[3], nf = 0;
         for (int a = 0; a < 3; a++) {
             if (st[a] == 0)
@@ -106,8 +125,9 @@ static int dtab_build(const vbp_bins *bn, const vb_box *box, double thr, dtab *t
         t->k[a] = (long)ceil(thr / bn->h[a] * bn->nb[a]) + 1;
         n *= (size_t)(2 * t->k[a] + 1);
     }
-    t->d = malloc(n * sizeof *t->d);
-    if (!t->d)
+    t->by_d = malloc(n * sizeof *t->by_d);
+    t->n = n;
+    if (!t->by_d)
         return VB_ENOMEM;
     long D[3];
     size_t w = 0;
@@ -119,16 +139,10 @@ static int dtab_build(const vbp_bins *bn, const vb_box *box, double thr, dtab *t
                     lo[a] = (double)(D[a] - 1) / bn->nb[a];
                     hi[a] = (double)(D[a] + 1) / bn->nb[a];
                 }
-                t->d[w++] = box_qp(G, lo, hi);
+                t->by_d[w++] = (doff){box_qp(G, lo, hi), {D[0], D[1], D[2]}};
             }
+    qsort(t->by_d, n, sizeof *t->by_d, cmp_doff);
     return VB_OK;
-}
-
-static double dtab_at(const dtab *t, const long D[3])
-{
-    return t->d[((size_t)(D[0] + t->k[0]) * (size_t)(2 * t->k[1] + 1) + (size_t)(D[1] + t->k[1])) *
-                    (size_t)(2 * t->k[2] + 1) +
-                (size_t)(D[2] + t->k[2])];
 }
 
 static int wrapi(long q, int n)
@@ -160,26 +174,27 @@ static int inside(const vbp_reach *r, const long b[3])
 
 /* For every bin U within the table of bin v (holding an atom of radius up
  * to R): mark[U] = 1 when dist(v, U) <= F[U] + R + extra (active), or,
- * with need, when dist(v, U) <= F[v] + R + extra. */
+ * with need, when dist(v, U) <= F[v] + R + extra. The offsets come in
+ * increasing order of their bound, so the scan stops at the first beyond
+ * the largest threshold (F[v] with need, rho without). */
 static void mark_around(const vbp_bins *bn, const dtab *t, vbp_reach *r, uint8_t *mark,
                         const long v[3], double R, double extra, int need)
 {
-    double thr_v = bin_F(bn, v) + R + extra;
-    long D[3], u[3];
-    for (D[0] = -t->k[0]; D[0] <= t->k[0]; D[0]++)
-        for (D[1] = -t->k[1]; D[1] <= t->k[1]; D[1]++)
-            for (D[2] = -t->k[2]; D[2] <= t->k[2]; D[2]++) {
-                for (int a = 0; a < 3; a++)
-                    u[a] = v[a] + D[a];
-                if (!inside(r, u))
-                    continue;
-                size_t k = at(r, u);
-                if (mark[k])
-                    continue;
-                double thr = need ? thr_v : bin_F(bn, u) + R + extra;
-                if (dtab_at(t, D) <= thr)
-                    mark[k] = 1;
-            }
+    double thr_v = bin_F(bn, v) + R + extra, stop = need ? thr_v : bn->rho + R + extra;
+    long u[3];
+    for (size_t q = 0; q < t->n && t->by_d[q].d <= stop; q++) {
+        const long *D = t->by_d[q].D;
+        for (int a = 0; a < 3; a++)
+            u[a] = v[a] + D[a];
+        if (!inside(r, u))
+            continue;
+        size_t k = at(r, u);
+        if (mark[k])
+            continue;
+        double thr = need ? thr_v : bin_F(bn, u) + R + extra;
+        if (t->by_d[q].d <= thr)
+            mark[k] = 1;
+    }
 }
 
 int vbp_reach_build(const vbp_bins *bn, const vb_box *box, const vb_sphere_set *atoms,
@@ -228,7 +243,7 @@ int vbp_reach_build(const vbp_bins *bn, const vb_box *box, const vb_sphere_set *
                             mark_around(bn, &t, r, need ? r->need : act, u,
                                         need ? rmax : occr[k], extra, need);
                     }
-        free(t.d);
+        free(t.by_d);
     }
     free(act);
     free(occ);

@@ -113,7 +113,9 @@ typedef struct vb_periodic_result {
     vb_periodic_images img;
     vb_vertices_result run;      /* the open run on img.set, cells of the atoms only */
     vb_periodic_vertices v;
-    int full_layer;              /* input: 1 builds the full layer (vb_periodic_image_opt) */
+    int full_layer;              /* input: 1 builds the full layer (vb_periodic_image_opt)
+                                  * and has the cover seek every vertex, not only those
+                                  * with t <= rho (vb_cover_options.tmax): a reference */
     size_t translates;           /* certified vertices of the run that are not canonical */
     size_t beyond_rho;           /* certified vertices of the run with t > rho: not periodic */
 } vb_periodic_result;
@@ -134,6 +136,13 @@ void vb_periodic_result_free(vb_periodic_result *r);
 int vb_periodic_vertices_run(vb_ctx *ctx, const vb_sphere_set *atoms, const vb_box *box,
                              const vb_vertices_config *cfg, const vb_vertices_backends *be,
                              vb_periodic_result *res);
+
+/* vb_periodic_vertices_run on an engine opened once (vb_vertices_open: the
+ * Python Engine over a trajectory's frames): the same vertices, bytes and
+ * errors; the engine's device replaces cfg->device (vb_vertices_run_on). */
+int vb_periodic_vertices_run_on(vb_ctx *ctx, vb_vertices_engine *e, const vb_sphere_set *atoms,
+                                const vb_box *box, const vb_vertices_config *cfg,
+                                vb_periodic_result *res);
 
 /* Whether the sorted member list found[0 .. m) is its vertex's canonical
  * translate (see above): among the translates that put a member of the

@@ -115,13 +115,14 @@ static int run_open(PyObject *args, vb_vertices_config *cfg, vbpy_call *c)
 static PyObject *periodic_vertices(PyObject *self, PyObject *args)
 {
     (void)self;
-    PyObject *cap, *tokens, *opts;
-    if (!PyArg_ParseTuple(args, "OOO!", &cap, &tokens, &PyTuple_Type, &opts))
+    PyObject *cap, *engine, *tokens, *opts;
+    if (!PyArg_ParseTuple(args, "OOOO!", &cap, &engine, &tokens, &PyTuple_Type, &opts))
         return NULL;
     vb_vertices_config cfg;
     vbpy_call c;
+    vb_vertices_engine *e;
     vb_sphere_set *set = vbpy_spheres_get(cap);
-    if (!set || run_open(opts, &cfg, &c) != 0)
+    if (!set || vbpy_engine_get(engine, &e) != 0 || run_open(opts, &cfg, &c) != 0)
         return NULL;
     vb_box box;
     int rc = vbpy_box(c.ctx, tokens, set, &box);
@@ -137,7 +138,8 @@ static PyObject *periodic_vertices(PyObject *self, PyObject *args)
     if (rc == VB_OK)
         rc = vbpy_validate(c.ctx, set, 1, &run);
     if (rc == VB_OK)
-        rc = vb_periodic_vertices_run(c.ctx, &run, &box, &cfg, vb_default_backends(), &res);
+        rc = e ? vb_periodic_vertices_run_on(c.ctx, e, &run, &box, &cfg, &res)
+               : vb_periodic_vertices_run(c.ctx, &run, &box, &cfg, vb_default_backends(), &res);
     free(run.contained);
     Py_END_ALLOW_THREADS
     PyObject *d = rc == VB_OK ? result_dict(c.ctx, &res, &box) : NULL;
@@ -273,7 +275,7 @@ static PyObject *periodic_verify(PyObject *self, PyObject *args)
 
 PyMethodDef vbpy_periodic_methods[] = {
     {"periodic_vertices", periodic_vertices, METH_VARARGS,
-     "periodic_vertices(spheres, box_tokens, (device, proposer, samples, tol, tiles, "
+     "periodic_vertices(spheres, engine, box_tokens, (device, proposer, samples, tol, tiles, "
      "all_pairs, threads, progress)) -> (dict, diagnostics)"},
     {"periodic_frames", periodic_frames, METH_VARARGS,
      "periodic_frames(path, trajectory, box_tokens, start, stop, step, water, (device, proposer, "

@@ -121,6 +121,9 @@ int vbpy_vertex_list(PyObject *ids, PyObject *start, PyObject *x, PyObject *y, P
 /* Fills cfg for the vertex pipeline from device ("auto|gpu|cpu|ref") and
  * proposer (None or a name). 0, or -1 with an exception set (E7). */
 int vbpy_vertices_config(const char *device, PyObject *proposer, vb_vertices_config *cfg);
+/* The engine of an Engine's capsule (python/src/vertices.c), *out NULL for
+ * None: 0, or -1 with an exception for anything else. */
+int vbpy_engine_get(PyObject *o, vb_vertices_engine **out);
 
 /* The periodic box of a call: tokens (None, or a sequence of 3, 6 or 9 str,
  * as `--box` takes them: vb_box_parse_args) or else the set's own box

@@ -15,6 +15,15 @@ static void engine_destroy(PyObject *cap)
     vb_vertices_close(PyCapsule_GetPointer(cap, ENGINE_CAPSULE));
 }
 
+int vbpy_engine_get(PyObject *o, vb_vertices_engine **out)
+{
+    *out = NULL;
+    if (o == Py_None)
+        return 0;
+    *out = PyCapsule_GetPointer(o, ENGINE_CAPSULE);
+    return *out ? 0 : -1;
+}
+
 int vbpy_vertices_config(const char *device, PyObject *proposer, vb_vertices_config *cfg)
 {
     memset(cfg, 0, sizeof *cfg);

@@ -129,6 +129,35 @@ def test_frames_each_in_its_box(tmp_path):
     assert got[1].box[0, 0] == 9.0
 
 
+def test_engine_periodic_as_the_command(tmp_path):
+    """An Engine (its device opened once) runs each GRO frame in the box
+    the frame carries: the command's `--frames` bytes frame by frame, the
+    same as vorball.vertices; an open run on the same engine between
+    them changes nothing."""
+    second = GRO.replace("0.80000   0.75000   0.70000", "0.90000   0.80000   0.75000")
+    gro = tmp_path / "two.gro"
+    gro.write_text(GRO + second)
+    out, _ = cli("vertices", "--periodic", "--frames", "0:2:1", "--water", "--device", "ref", gro)
+    head = out[:out.index("# frame ")]
+    with vorball.Engine(device="ref") as eng:
+        got = []
+        for k, f in enumerate(vorball.frames(gro, water=True)):
+            got.append(eng.vertices(f, periodic=True))
+            assert isinstance(got[-1], vorball.PeriodicResult)
+            assert got[-1].to_text() == vorball.vertices(f, device="ref", periodic=True).to_text()
+            if k == 0:
+                opened = eng.vertices(f)  # the open diagram, same engine
+                assert not isinstance(opened, vorball.PeriodicResult) and len(opened.t) > 0
+        boxed = eng.vertices(f, box=(9, 8, 7.5))
+        with pytest.raises(vorball.VorballError):
+            eng.vertices(f, periodic=True, arcs=True)
+    text = head + "".join("# frame %d (model %d)\n" % (k, k + 1) + r.to_text()
+                          for k, r in enumerate(got))
+    assert text == out
+    assert got[1].box[0, 0] == 9.0 and got[0].box[0, 0] == 8.0
+    assert np.array_equal(boxed.box, np.diag([9.0, 8.0, 7.5]))
+
+
 def contact_rows(text):
     rows = [line.split("\t") for line in text.splitlines() if line and not line.startswith("#")]
     return rows[1:] if rows and not rows[0][0].isdigit() else rows

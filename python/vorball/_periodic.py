@@ -109,9 +109,10 @@ class PeriodicResult(tuple):
             len(self.t), self.atoms, "" if self.frame is None else ", frame %d" % self.frame)
 
 
-def run_periodic(capsule, box: BoxInput, opts, verbose, made) -> PeriodicResult:
-    """vorball.vertices(..., periodic=True) on a set's capsule."""
-    d, diag = _core.periodic_vertices(capsule, box_tokens(box), opts)
+def run_periodic(capsule, box: BoxInput, opts, verbose, made, engine=None) -> PeriodicResult:
+    """vorball.vertices(..., periodic=True) on a set's capsule (on an
+    Engine's capsule when given: Engine.vertices(..., periodic=True))."""
+    d, diag = _core.periodic_vertices(capsule, engine, box_tokens(box), opts)
     w = made + parse(diag)
     emit(w, verbose)
     return PeriodicResult(d, w)

@@ -377,11 +377,27 @@ class Engine:
     def vertices(self, xyz: SphereInput, r: Optional[ArrayLike] = None, samples: int = 30, *,
                  tol: Optional[float] = None, tiles: int = 0, all_pairs: bool = False,
                  threads: int = 0, arcs: bool = False, topology: bool = False,
-                 zero_radius: str = "auto", verbose: Optional[bool] = None,
-                 progress: Optional[Callable[[str, int, int], Any]] = None) -> Result:
-        """vorball.vertices on this engine's device and proposer."""
+                 zero_radius: str = "auto", periodic: bool = False, box: BoxInput = None,
+                 verbose: Optional[bool] = None,
+                 progress: Optional[Callable[[str, int, int], Any]] = None
+                 ) -> Union[Result, PeriodicResult]:
+        """vorball.vertices on this engine's device and proposer; periodic
+        and box as there (a PeriodicResult, the same bytes: the frames of a
+        trajectory each in its own box, the device opened once)."""
         verbose = self.verbose if verbose is None else verbose
         opts = _options(samples, tol, tiles, all_pairs, threads)
+        if periodic or box is not None:
+            if arcs or topology:
+                raise misuse("periodic runs without arcs or topology (as the command's "
+                             "--periodic)")
+            s, made = as_spheres(xyz, r, min_count=1, zero_radius=zero_radius)
+            with self._lock:
+                if self._vertices is None:
+                    self._vertices = self._open(_core.vertices_engine_open, self.device,
+                                                self.proposer)
+                return run_periodic(s._capsule, box,
+                                    (self.device, self.proposer) + opts + (progress,),
+                                    verbose, made, self._vertices)
         s, made = as_spheres(xyz, r, min_count=4, zero_radius=zero_radius)
         with self._lock:
             if self._vertices is None:

@@ -51,7 +51,7 @@ static void *lane_main(void *p)
     emu_lane = a->lane;
     const vbq_env *e = a->e;
     vbq_cover_wg(e->x, e->y, e->z, e->r, e->box, e->rmax, e->ids, e->first, e->m, e->rmax_all,
-                 e->near, e->T, e->min_level, e->max_level, e->enum_max, a->cells, a->roots,
+                 e->near, e->tmax, e->T, e->min_level, e->max_level, e->enum_max, a->cells, a->roots,
                  a->ncells, a->nb, a->lab, a->st, a->q, EMU_NB, EMU_LAB, 1, EMU_Q, a->outs,
                  a->qout, a->qout_cap, a->counters);
     return NULL;

@@ -153,3 +153,23 @@ expect_line traj.tsv '^# periodic: box a = \(56.035 0 0\)'
 run 2 traj_json.err "$vorball" vertices --traj "$data/ngl_md_10frames.xtc" --output-format json \
     "$data/ngl_md_ascii_trj.pdb" -o traj.json
 echo "ok: vertices --traj: every frame periodic in its own box"
+
+# Cell measures frame by frame, periodic (each model in the CRYST1 written
+# before its MODEL): one table with a frame column; the volumes of a probe
+# that covers each box sum to that box's volume.
+awk 'BEGIN {
+    for (k = 0; k < 3; k++) {
+        e = 5 + 0.5 * k
+        printf "CRYST1%9.3f%9.3f%9.3f  90.00  90.00  90.00 P 1           1\n", e, e, e
+        printf "MODEL     %4d\n", k + 1
+        printf "ATOM      1  C   GLY A   1    %8.3f%8.3f%8.3f  1.00  0.00           C\n", 1 + 0.1 * k, 1.25, 0.5
+        printf "ATOM      2  C   GLY A   1    %8.3f%8.3f%8.3f  1.00  0.00           C\n", 3.5, 2.75 - 0.2 * k, 3 + 0.1 * k
+        print "ENDMDL"
+    } }' > models.pdb
+run 0 cells_frames.err "$vorball" cells --periodic --frames 0:3:1 --probe 4 --max-patches 4000 \
+    models.pdb -o cells_frames.tsv
+awk -F'\t' '!/^#/ && $1 != "frame" { v[$1] += $7 }
+    END { exit !(length(v) == 3 && v[0] > 124.7 && v[0] < 125.3 && v[1] > 166.1 && v[1] < 166.7 &&
+                 v[2] > 215.7 && v[2] < 216.3) }' cells_frames.tsv ||
+    fail "cells --periodic --frames: the frames' volumes are not their boxes' 125, 166.375, 216"
+echo "ok: cells --periodic --frames: every frame in its own box"
