@@ -192,12 +192,53 @@ enum { AREA, VOL, CON, NV }; /* the values integrated along an arc */
 typedef struct arcfun {
     owner o;
     vbx_ia cA0, s, sA0s, mcs, A1, A2; /* c A0, s, s^2 A0, -c s, e_j in the rotated frame */
+    /* the area's and the volume's integrands as quotients of polynomials
+     * in t (rational_of) */
+    vbx_ia an[3], ad[5], vn[5], vd[7];
 } arcfun;
+
+/* With E = 1 + t^2, cos = (1 - t^2) / E and sin = 2 t / E, so
+ *   z = Pz / E, 1 + z = Po / E, q = D z + delta = Pq / E,
+ *   e.(u x du/dt) = 2 Pn / E^2 (Pz, Po, Pq, Pn quadratics in t), and
+ *   area integrand   (1 - z) dphi/dt = 2 Pn / (E Po),
+ *   volume integrand K (D (1 + z) + 2 delta) / q^2 times that
+ *                    = 2 K Pn (D Po + 2 delta E) / (Pq^2 Po). */
+static void rational_of(arcfun *f)
+{
+    const owner *o = &f->o;
+    vbx_ia sA1 = vbx_ia_mul(f->s, f->A1), sA2 = vbx_ia_mul(f->s, f->A2);
+    vbx_ia mA1 = vbx_ia_mul(f->mcs, f->A1), mA2 = vbx_ia_mul(f->mcs, f->A2);
+    vbx_ia one = vbx_ia_point(1.0), two = vbx_ia_point(2.0), dd = vbx_ia_add(o->delta, o->delta);
+    vbx_ia E[3] = {one, vbx_ia_point(0.0), one};
+    vbx_ia Pz[3] = {vbx_ia_add(sA1, f->cA0), vbx_ia_mul(two, sA2), vbx_ia_sub(f->cA0, sA1)};
+    vbx_ia Pn[3] = {vbx_ia_add(mA1, f->sA0s), vbx_ia_mul(two, mA2), vbx_ia_sub(f->sA0s, mA1)};
+    vbx_ia Po[3], Pq[3], Pv[3], Pq2[5], t[5];
+    for (int k = 0; k < 3; k++) {
+        Po[k] = vbx_ia_add(E[k], Pz[k]);
+        Pq[k] = vbx_ia_add(vbx_ia_mul(o->D, Pz[k]), vbx_ia_mul(o->delta, E[k]));
+        Pv[k] = vbx_ia_add(vbx_ia_mul(o->D, Po[k]), vbx_ia_mul(dd, E[k]));
+        f->an[k] = vbx_ia_mul(two, Pn[k]);
+    }
+    vbm1_poly_mul(f->ad, E, 2, Po, 2);
+    vbm1_poly_mul(t, Pn, 2, Pv, 2);
+    vbx_ia k2 = vbx_ia_mul(two, o->K);
+    for (int k = 0; k < 5; k++)
+        f->vn[k] = vbx_ia_mul(k2, t[k]);
+    vbm1_poly_mul(Pq2, Pq, 2, Pq, 2);
+    vbm1_poly_mul(f->vd, Pq2, 4, Po, 2);
+}
 
 /* Returns 1, 2 when the contact's series cannot be bounded near e_j (v[CON]
  * is then a constant: its bound where `at` ranges), 0 when nothing can. */
 static int integrand(const arcfun *f, vbx_ia at, vbm_s1 *v)
 {
+    if (!f->o.contacts) { /* the quotients of polynomials (rational_of) */
+        if (!vbm1_rational(&v[AREA], f->an, 2, f->ad, 4, at) ||
+            !vbm1_rational(&v[VOL], f->vn, 4, f->vd, 6, at))
+            return 0;
+        vbm1_const(&v[CON], vbx_ia_point(0.0));
+        return 1;
+    }
     vbm_s1 T, T2, rec, cs, sn, w, z, num, t, u, opz;
     vbm1_var(&T, at);
     vbm1_mul(&T2, &T, &T);
@@ -340,6 +381,7 @@ static int integrate_arc(const vbm_atom_in *in, const stokes_work *w, arcrec *a,
     f.mcs = vbx_ia_neg(vbx_ia_mul(a->c, a->s));
     f.A1 = vbx_ia_add(vbx_ia_mul(a->A1, cm), vbx_ia_mul(a->A2, sm));
     f.A2 = vbx_ia_sub(vbx_ia_mul(a->A2, cm), vbx_ia_mul(a->A1, sm));
+    rational_of(&f);
     double m0 = vbx_ia_mid(t0), m1 = vbx_ia_mid(t1);
     if (!end_piece(&f, t0, m0, &s) || !piece(&f, m0, m1, tg, 0, &s) || !end_piece(&f, t1, m1, &s))
         return 0;

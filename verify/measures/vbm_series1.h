@@ -52,4 +52,20 @@ int vbm1_log(vbm_s1 *r, const vbm_s1 *f);
  * [x0, x1]. */
 vbx_ia vbm1_integrate(const vbm_s1 *centre, const vbm_s1 *box, double xc, double x0, double x1);
 
+/* Polynomials in one variable with interval coefficients, p[k] the
+ * coefficient of x^k, degree at most VBM1_POLY (series_rat.c). */
+#define VBM1_POLY 8
+
+/* r = f g, of degrees df and dg (df + dg <= VBM1_POLY; r must not alias
+ * f or g): every coefficient an enclosure of the exact product's. */
+void vbm1_poly_mul(vbx_ia *r, const vbx_ia *f, int df, const vbx_ia *g, int dg);
+
+/* The Taylor coefficients at `at` (a point, or an interval: the box) of
+ * the rational function num(x) / den(x), degrees dn and dd <= VBM1_POLY:
+ * both polynomials moved to `at` by Horner's scheme in intervals, then
+ * r_n = (num_n - sum_{k=1..dd} den_k r_(n-k)) / den_0, a constant number
+ * of interval operations per coefficient where vbm1_recip and vbm1_mul
+ * take n. Returns 0 when den(at) may be 0 (r unspecified then). */
+int vbm1_rational(vbm_s1 *r, const vbx_ia *num, int dn, const vbx_ia *den, int dd, vbx_ia at);
+
 #endif
