@@ -24,10 +24,13 @@
 #define MAX_ARC 2.5      /* longer arcs are split (their frames need |angle| < pi / 2) */
 #define MAX_END_WIDTH 1e-4 /* an end this wide (near-tangent circles): undecided */
 
+enum { DONE = 1, ON_BOUNDARY = 2, QUEUED = 4 }; /* vbm_capwork.state */
+
 typedef struct vbm_endpt {
     vbx_ia x, y;
     double ang;
-    int start; /* 1: entering the restricting cap (counterclockwise), 0: leaving it */
+    int start;    /* 1: entering the restricting cap (counterclockwise), 0: leaving it */
+    uint32_t cap; /* the restricting cap */
 } endpt;
 
 typedef struct vbm_restr {
@@ -90,6 +93,10 @@ void vbm_caps_free(vbm_capwork *w)
     free(w->end);
     free(w->res);
     free(w->arc);
+    free(w->sorted);
+    free(w->sel);
+    free(w->queue);
+    free(w->state);
     memset(w, 0, sizeof *w);
 }
 
@@ -113,24 +120,25 @@ void vbm_unit_at(double t, vbx_ia *x, vbx_ia *y)
     *y = vbx_ia_div(sy, n);
 }
 
-static int push_arc(vbm_capwork *w, uint32_t l, vbx_ia px, vbx_ia py, double tp, vbx_ia qx,
-                    vbx_ia qy, double tq)
+static int push_arc(vbm_capwork *w, uint32_t l, const endpt *p, const endpt *q, double tq)
 {
+    double tp = p->ang;
     if (tq - tp > MAX_ARC) { /* split at the middle */
-        vbx_ia mx, my;
-        double tm = 0.5 * (tp + tq);
-        vbm_unit_at(tm, &mx, &my);
-        int e = push_arc(w, l, px, py, tp, mx, my, tm);
-        return e < 0 ? e : push_arc(w, l, mx, my, tm, qx, qy, tq);
+        endpt m = {vbx_ia_point(0.0), vbx_ia_point(0.0), 0.5 * (tp + tq), 0, VBM_NO_CAP};
+        vbm_unit_at(m.ang, &m.x, &m.y);
+        int e = push_arc(w, l, p, &m, m.ang);
+        return e < 0 ? e : push_arc(w, l, &m, q, tq);
     }
     if (VB_ARRAY_FIT(w->arc, w->cap_arc, w->narc + 1, 32) != VB_OK)
         return -1;
     vbm_arc *a = &w->arc[w->narc++];
     a->cap = l;
-    a->p[0] = px;
-    a->p[1] = py;
-    a->q[0] = qx;
-    a->q[1] = qy;
+    a->pcap = p->cap;
+    a->qcap = q->cap;
+    a->p[0] = p->x;
+    a->p[1] = p->y;
+    a->q[0] = q->x;
+    a->q[1] = q->y;
     a->tp = tp;
     a->tq = tq;
     return 0;
@@ -145,14 +153,18 @@ static int side(const restr *r, vbx_ia x, vbx_ia y)
     return vbx_ia_sign(v);
 }
 
-/* The arcs of circle l. Returns 1, 0 undecided, -1 ENOMEM. */
-static int circle_arcs(const vbm_cap *caps, size_t ncap, vbm_capwork *w, size_t l)
+/* The arcs of circle l inside the caps sel[0..nsel) (l itself skipped).
+ * With `test`, nothing is pushed: returns 2 when some arc exists. Returns
+ * 1 (done, or no arc), 0 undecided, -1 ENOMEM. */
+static int circle_arcs(const vbm_cap *caps, const uint32_t *sel, size_t nsel, vbm_capwork *w,
+                       size_t l, int test)
 {
     const vbm_circle *C = &w->circ[l];
     endpt *end = w->end;
     restr *res = w->res;
     size_t ne = 0, nr = 0;
-    for (size_t m = 0; m < ncap; m++) {
+    for (size_t i = 0; i < nsel; i++) {
+        size_t m = sel[i];
         if (m == l || w->circ[m].kind == VBM_CAP_ALL)
             continue;
         restr r;
@@ -175,6 +187,7 @@ static int circle_arcs(const vbm_cap *caps, size_t ncap, vbm_capwork *w, size_t 
         endpt *s = &end[ne++], *e = &end[ne++];
         s->start = 1;
         e->start = 0;
+        s->cap = e->cap = (uint32_t)m;
         s->x = vbx_ia_div(vbx_ia_add(cg, sr), Q2);
         s->y = vbx_ia_div(vbx_ia_sub(sg, cr), Q2);
         e->x = vbx_ia_div(vbx_ia_sub(cg, sr), Q2);
@@ -188,9 +201,11 @@ static int circle_arcs(const vbm_cap *caps, size_t ncap, vbm_capwork *w, size_t 
         res[nr++] = r;
     }
     if (ne == 0) { /* the whole circle: two half circles */
-        vbx_ia one = vbx_ia_point(1.0), zero = vbx_ia_point(0.0), mone = vbx_ia_point(-1.0);
-        if (push_arc(w, (uint32_t)l, one, zero, 0.0, mone, zero, 0.5 * TWO_PI) < 0 ||
-            push_arc(w, (uint32_t)l, mone, zero, 0.5 * TWO_PI, one, zero, TWO_PI) < 0)
+        if (test)
+            return 2;
+        endpt a = {vbx_ia_point(1.0), vbx_ia_point(0.0), 0.0, 0, VBM_NO_CAP};
+        endpt b = {vbx_ia_point(-1.0), vbx_ia_point(0.0), 0.5 * TWO_PI, 0, VBM_NO_CAP};
+        if (push_arc(w, (uint32_t)l, &a, &b, b.ang) < 0 || push_arc(w, (uint32_t)l, &b, &a, TWO_PI) < 0)
             return -1;
         return 1;
     }
@@ -229,10 +244,104 @@ static int circle_arcs(const vbm_cap *caps, size_t ncap, vbm_capwork *w, size_t 
         if (i > 0)
             inside = p->start ? inside + 1 : inside - 1;
         double tq = k + 1 < ne ? q->ang : q->ang + TWO_PI;
-        if (inside == nr && push_arc(w, (uint32_t)l, p->x, p->y, p->ang, q->x, q->y, tq) < 0)
+        if (inside == nr && test)
+            return 2;
+        if (inside == nr && push_arc(w, (uint32_t)l, p, q, tq) < 0)
             return -1;
     }
     return 1;
+}
+
+/* Queues cap m's circle (once). */
+static void enqueue(vbm_capwork *w, uint32_t m, size_t *nq)
+{
+    if (m != VBM_NO_CAP && !(w->state[m] & (DONE | QUEUED))) {
+        w->state[m] |= QUEUED;
+        w->queue[(*nq)++] = m;
+    }
+}
+
+/* The arcs back in the order of their circles (each circle's arcs stay in
+ * the order found): the same list whatever order the circles were done in. */
+static int order_arcs(vbm_capwork *w, size_t ncap)
+{
+    if (VB_ARRAY_FIT(w->sorted, w->cap_sorted, w->narc + 1, 32) != VB_OK ||
+        VB_ARRAY_FIT(w->sel, w->cap_sel, ncap + 1, 32) != VB_OK)
+        return -1;
+    uint32_t *at = w->sel; /* first slot of each circle's arcs */
+    memset(at, 0, (ncap + 1) * sizeof *at);
+    for (size_t i = 0; i < w->narc; i++)
+        at[w->arc[i].cap + 1]++;
+    for (size_t l = 0; l < ncap; l++)
+        at[l + 1] += at[l];
+    for (size_t i = 0; i < w->narc; i++)
+        w->sorted[at[w->arc[i].cap]++] = w->arc[i];
+    vbm_arc *t = w->arc;
+    size_t c = w->cap_arc;
+    w->arc = w->sorted;
+    w->cap_arc = w->cap_sorted;
+    w->sorted = t;
+    w->cap_sorted = c;
+    return 1;
+}
+
+#define NLIKELY 4 /* caps tried first: those cutting most of cap 0 */
+
+/* How far cap m's circle keeps from cap 0's axis (the angle between the
+ * axes less m's angular radius, on midpoints): the larger, the more of cap
+ * 0 it cuts off. Only an order of trial, decided nothing. */
+static double cut_score(const vbm_capwork *w, size_t m)
+{
+    const vbm_circle *a = &w->circ[0], *b = &w->circ[m];
+    double d = 0.0;
+    for (int k = 0; k < 3; k++)
+        d += vbx_ia_mid(a->a[k]) * vbx_ia_mid(b->a[k]);
+    double c = vbx_ia_mid(b->c);
+    d = d > 1.0 ? 1.0 : d < -1.0 ? -1.0 : d;
+    c = c > 1.0 ? 1.0 : c < -1.0 ? -1.0 : c;
+    return acos(d) - acos(c);
+}
+
+/* The intersection of cap 0 with the NLIKELY caps that cut most of it: no
+ * arc on any of their circles inside the others proves it (and so the
+ * intersection of every cap) empty: returns 2. Otherwise queues the
+ * circles with an arc there (likely on the boundary) and returns 1; 0
+ * undecided, -1 ENOMEM. */
+static int likely_boundary(const vbm_cap *caps, size_t ncap, vbm_capwork *w, size_t *nq)
+{
+    if (w->circ[0].kind != VBM_CAP_CIRCLE || ncap <= 2)
+        return 1;
+    uint32_t s[NLIKELY + 1];
+    double sc[NLIKELY + 1];
+    size_t ns = 0;
+    for (size_t m = 1; m < ncap; m++) { /* the NLIKELY best, by insertion */
+        if (w->circ[m].kind != VBM_CAP_CIRCLE)
+            continue;
+        double x = cut_score(w, m);
+        size_t k = ns < NLIKELY ? ns++ : NLIKELY;
+        for (; k > 0 && sc[k - 1] < x; k--) {
+            if (k < NLIKELY) {
+                sc[k] = sc[k - 1];
+                s[k] = s[k - 1];
+            }
+        }
+        if (k < NLIKELY) {
+            sc[k] = x;
+            s[k] = (uint32_t)m;
+        }
+    }
+    s[ns++] = 0;
+    int empty = 1;
+    for (size_t i = 0; i < ns; i++) {
+        int e = circle_arcs(caps, s, ns, w, s[i], 1);
+        if (e < 0)
+            return e;
+        if (e != 1) {
+            empty = 0;
+            enqueue(w, s[i], nq);
+        }
+    }
+    return empty ? 2 : 1;
 }
 
 int vbm_cap_arcs(const vbm_cap *caps, size_t ncap, vbm_capwork *w)
@@ -240,7 +349,10 @@ int vbm_cap_arcs(const vbm_cap *caps, size_t ncap, vbm_capwork *w)
     w->narc = 0;
     if (VB_ARRAY_FIT(w->circ, w->cap_circ, ncap, 32) != VB_OK ||
         VB_ARRAY_FIT(w->end, w->cap_end, 2 * ncap, 64) != VB_OK ||
-        VB_ARRAY_FIT(w->res, w->cap_res, ncap, 32) != VB_OK)
+        VB_ARRAY_FIT(w->res, w->cap_res, ncap, 32) != VB_OK ||
+        VB_ARRAY_FIT(w->sel, w->cap_sel, ncap + 1, 32) != VB_OK ||
+        VB_ARRAY_FIT(w->queue, w->cap_queue, ncap + 1, 32) != VB_OK ||
+        VB_ARRAY_FIT(w->state, w->cap_state, ncap + 1, 32) != VB_OK)
         return -1;
     for (size_t l = 0; l < ncap; l++) {
         if (!vbm_circle_of(&caps[l], &w->circ[l]))
@@ -248,12 +360,63 @@ int vbm_cap_arcs(const vbm_cap *caps, size_t ncap, vbm_capwork *w)
         if (w->circ[l].kind == VBM_CAP_NONE)
             return 1; /* empty intersection */
     }
-    for (size_t l = 0; l < ncap; l++) {
+    /* The circles along the boundary first (cap 0's, then those whose caps
+     * end an arc found), each inside every cap; then every other circle is
+     * tried against the boundary's caps alone (and cap 0): no arc inside
+     * those proves none inside them all (more caps only remove arcs), and
+     * only a circle with an arc there is done against every cap. The arcs
+     * are those of doing each circle against every cap. */
+    uint32_t *sel = w->sel, *queue = w->queue;
+    memset(w->state, 0, ncap);
+    size_t nb = 0, nq = 0, head = 0, next = 0;
+    enqueue(w, 0, &nq);
+    int e = likely_boundary(caps, ncap, w, &nq);
+    if (e <= 0)
+        return e;
+    if (e == 2)
+        return 1; /* empty */
+    for (;;) {
+        size_t l;
+        int from_queue = head < nq;
+        if (from_queue)
+            l = queue[head++];
+        else {
+            while (next < ncap && (w->state[next] & DONE))
+                next++;
+            if (next == ncap)
+                break;
+            l = next;
+        }
+        w->state[l] |= DONE;
         if (w->circ[l].kind != VBM_CAP_CIRCLE)
             continue;
-        int e = circle_arcs(caps, ncap, w, l);
+        if (!from_queue && nb > 0) {
+            size_t ns = 0;
+            if (!(w->state[0] & ON_BOUNDARY))
+                sel[ns++] = 0;
+            for (size_t m = 0; m < ncap; m++) /* in cap order: the same decisions each time */
+                if (w->state[m] & ON_BOUNDARY)
+                    sel[ns++] = (uint32_t)m;
+            e = circle_arcs(caps, sel, ns, w, l, 1);
+            if (e < 0)
+                return e;
+            if (e == 1)
+                continue; /* no arc even inside the boundary's caps */
+        }
+        for (size_t m = 0; m < ncap; m++)
+            sel[m] = (uint32_t)m;
+        size_t first = w->narc;
+        e = circle_arcs(caps, sel, ncap, w, l, 0);
         if (e <= 0)
             return e;
+        if (w->narc > first && !(w->state[l] & ON_BOUNDARY)) {
+            w->state[l] |= ON_BOUNDARY;
+            nb++;
+        }
+        for (size_t i = first; i < w->narc; i++) {
+            enqueue(w, w->arc[i].pcap, &nq);
+            enqueue(w, w->arc[i].qcap, &nq);
+        }
     }
-    return 1;
+    return order_arcs(w, ncap);
 }
