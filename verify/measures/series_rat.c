@@ -28,15 +28,30 @@ static void shift(vbx_ia *q, const vbx_ia *p, int d, vbx_ia at)
     }
 }
 
-int vbm1_rational(vbm_s1 *r, const vbx_ia *num, int dn, const vbx_ia *den, int dd, vbx_ia at)
+/* p(at) alone: Horner's scheme. */
+static vbx_ia value(const vbx_ia *p, int d, vbx_ia at)
+{
+    vbx_ia v = p[d];
+    for (int k = d - 1; k >= 0; k--)
+        v = vbx_ia_add(vbx_ia_mul(at, v), p[k]);
+    return v;
+}
+
+int vbm1_rational(vbm_s1 *r, const vbx_ia *num, int dn, const vbx_ia *den, int dd, vbx_ia at,
+                  int kmax)
 {
     vbx_ia a[VBM1_POLY + 1], b[VBM1_POLY + 1];
-    shift(a, num, dn, at);
-    shift(b, den, dd, at);
+    if (kmax == 0) {
+        a[0] = value(num, dn, at);
+        b[0] = value(den, dd, at);
+    } else {
+        shift(a, num, dn, at);
+        shift(b, den, dd, at);
+    }
     vbx_ia b0 = b[0];
     if (!(b0.lo > 0.0 || b0.hi < 0.0))
         return 0;
-    for (int n = 0; n <= VBM1_K; n++) {
+    for (int n = 0; n <= kmax; n++) {
         vbx_ia s = n <= dn ? a[n] : vbx_ia_point(0.0);
         for (int k = 1; k <= dd && k <= n; k++)
             s = vbx_ia_sub(s, vbx_ia_mul(b[k], r->c[n - k]));

@@ -228,13 +228,15 @@ static void rational_of(arcfun *f)
     vbm1_poly_mul(f->vd, Pq2, 4, Po, 2);
 }
 
-/* Returns 1, 2 when the contact's series cannot be bounded near e_j (v[CON]
- * is then a constant: its bound where `at` ranges), 0 when nothing can. */
-static int integrand(const arcfun *f, vbx_ia at, vbm_s1 *v)
+/* The series of the integrands at `at` (without contacts only their
+ * coefficients up to kmax are set). Returns 1, 2 when the contact's series
+ * cannot be bounded near e_j (v[CON] is then a constant: its bound where
+ * `at` ranges), 0 when nothing can. */
+static int integrand(const arcfun *f, vbx_ia at, vbm_s1 *v, int kmax)
 {
     if (!f->o.contacts) { /* the quotients of polynomials (rational_of) */
-        if (!vbm1_rational(&v[AREA], f->an, 2, f->ad, 4, at) ||
-            !vbm1_rational(&v[VOL], f->vn, 4, f->vd, 6, at))
+        if (!vbm1_rational(&v[AREA], f->an, 2, f->ad, 4, at, kmax) ||
+            !vbm1_rational(&v[VOL], f->vn, 4, f->vd, 6, at, kmax))
             return 0;
         vbm1_const(&v[CON], vbx_ia_point(0.0));
         return 1;
@@ -307,7 +309,8 @@ static int piece(const arcfun *f, double x0, double x1, const double *tg, int de
     double xc = 0.5 * (x0 + x1);
     vbm_s1 c[NV], b[NV];
     vbx_ia box = {x0, x1}, v[NV];
-    int rc = integrand(f, vbx_ia_point(xc), c), rb = rc ? integrand(f, box, b) : 0, ok = rc && rb;
+    int rc = integrand(f, vbx_ia_point(xc), c, VBM1_K), rb = rc ? integrand(f, box, b, VBM1_K) : 0;
+    int ok = rc && rb;
     for (int k = 0; ok && k < NV; k++)
         v[k] = vbm1_integrate(&c[k], &b[k], xc, x0, x1);
     if (ok && (rc == 2 || rb == 2)) /* the contact's bound over the box times its length */
@@ -333,7 +336,7 @@ static int piece(const arcfun *f, double x0, double x1, const double *tg, int de
 static int end_piece(const arcfun *f, vbx_ia t, double m, sums *out)
 {
     vbm_s1 v[NV];
-    if (!integrand(f, t, v)) /* 2: v[CON].c[0] a bound as well */
+    if (!integrand(f, t, v, 0)) /* 2: v[CON].c[0] a bound as well */
         return 0;
     vbx_ia dt = vbx_ia_sub(vbx_ia_point(m), t);
     for (int k = 0; k < NV; k++)
