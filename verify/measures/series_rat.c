@@ -57,5 +57,7 @@ int vbm1_rational(vbm_s1 *r, const vbx_ia *num, int dn, const vbx_ia *den, int d
             s = vbx_ia_sub(s, vbx_ia_mul(b[k], r->c[n - k]));
         r->c[n] = vbx_ia_div(s, b0);
     }
+    for (int n = kmax + 1; n <= VBM1_K; n++)
+        r->c[n] = vbx_ia_point(0.0);
     return 1;
 }

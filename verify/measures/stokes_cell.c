@@ -195,6 +195,7 @@ typedef struct arcfun {
     /* the area's and the volume's integrands as quotients of polynomials
      * in t (rational_of) */
     vbx_ia an[3], ad[5], vn[5], vd[7];
+    vbx_ia Pz[3], Pq[3], Emz[3]; /* z = Pz / E, q = Pq / E, 1 - z = Emz / E */
 } arcfun;
 
 /* With E = 1 + t^2, cos = (1 - t^2) / E and sin = 2 t / E, so
@@ -218,6 +219,9 @@ static void rational_of(arcfun *f)
         Pq[k] = vbx_ia_add(vbx_ia_mul(o->D, Pz[k]), vbx_ia_mul(o->delta, E[k]));
         Pv[k] = vbx_ia_add(vbx_ia_mul(o->D, Po[k]), vbx_ia_mul(dd, E[k]));
         f->an[k] = vbx_ia_mul(two, Pn[k]);
+        f->Pz[k] = Pz[k];
+        f->Pq[k] = Pq[k];
+        f->Emz[k] = vbx_ia_sub(E[k], Pz[k]);
     }
     vbm1_poly_mul(f->ad, E, 2, Po, 2);
     vbm1_poly_mul(t, Pn, 2, Pv, 2);
@@ -228,67 +232,40 @@ static void rational_of(arcfun *f)
     vbm1_poly_mul(f->vd, Pq2, 4, Po, 2);
 }
 
-/* The series of the integrands at `at` (without contacts only their
- * coefficients up to kmax are set). Returns 1, 2 when the contact's series
- * cannot be bounded near e_j (v[CON] is then a constant: its bound where
- * `at` ranges), 0 when nothing can. */
+/* The series of the integrands at `at`, coefficients up to kmax (the
+ * others 0). Returns 1, 2 when the contact's series cannot be bounded near
+ * e_j (v[CON] is then a constant: its bound where `at` ranges), 0 when
+ * nothing can. */
 static int integrand(const arcfun *f, vbx_ia at, vbm_s1 *v, int kmax)
 {
-    if (!f->o.contacts) { /* the quotients of polynomials (rational_of) */
-        if (!vbm1_rational(&v[AREA], f->an, 2, f->ad, 4, at, kmax) ||
-            !vbm1_rational(&v[VOL], f->vn, 4, f->vd, 6, at, kmax))
-            return 0;
-        vbm1_const(&v[CON], vbx_ia_point(0.0));
+    if (!vbm1_rational(&v[AREA], f->an, 2, f->ad, 4, at, kmax) ||
+        !vbm1_rational(&v[VOL], f->vn, 4, f->vd, 6, at, kmax))
+        return 0;
+    vbm1_const(&v[CON], vbx_ia_point(0.0));
+    if (!f->o.contacts)
+        return 1;
+    /* C (G1 - G(q)) / (1 - z) times the area's integrand, q = Pq / E and
+     * 1 / (1 - z) = E / (E - Pz) */
+    static const vbx_ia E[3] = {{1.0, 1.0}, {0.0, 0.0}, {1.0, 1.0}};
+    vbm_s1 q, G, iomz, t;
+    if (vbm1_rational(&q, f->Pq, 2, E, 2, at, kmax) && g_of(&f->o, &q, &G) &&
+        vbm1_rational(&iomz, E, 2, f->Emz, 2, at, kmax)) {
+        vbm1_affine(&G, vbx_ia_neg(f->o.C), &G, vbx_ia_mul(f->o.C, f->o.G1));
+        vbm1_mul(&t, &G, &iomz);
+        vbm1_mul(&v[CON], &t, &v[AREA]);
         return 1;
     }
-    vbm_s1 T, T2, rec, cs, sn, w, z, num, t, u, opz;
-    vbm1_var(&T, at);
-    vbm1_mul(&T2, &T, &T);
-    T2.c[0] = vbx_ia_add(T2.c[0], vbx_ia_point(1.0));
-    if (!vbm1_recip(&rec, &T2))
+    /* near e_j: F(z) / (1 - z) = f(xi), xi in [z, 1] */
+    vbm_s1 z;
+    if (!vbm1_rational(&z, f->Pz, 2, E, 2, at, 0))
         return 0;
-    vbm1_affine(&cs, vbx_ia_point(2.0), &rec, vbx_ia_point(-1.0)); /* (1 - T^2) / (1 + T^2) */
-    vbm1_mul(&t, &T, &rec);
-    vbm1_affine(&sn, vbx_ia_point(2.0), &t, vbx_ia_point(0.0)); /* 2 T / (1 + T^2) */
-    vbm1_affine(&w, f->A1, &cs, vbx_ia_point(0.0));
-    vbm1_affine(&t, f->A2, &sn, vbx_ia_point(0.0));
-    vbm1_add(&w, &w, &t);
-    vbm1_affine(&z, f->s, &w, f->cA0);
-    vbm1_affine(&num, f->mcs, &w, f->sA0s);
-    vbm1_mul(&t, &num, &rec);
-    vbm1_affine(&num, vbx_ia_point(2.0), &t, vbx_ia_point(0.0)); /* e.(u x du/dt) */
-    vbm1_affine(&opz, vbx_ia_point(1.0), &z, vbx_ia_point(1.0));
-    if (!vbm1_recip(&u, &opz))
-        return 0;
-    vbm1_mul(&v[AREA], &num, &u); /* (1 - z) dphi = num / (1 + z) */
-    vbm1_affine(&t, f->o.D, &z, f->o.delta); /* q = D z + delta */
-    if (!vbm1_recip(&u, &t))
-        return 0;
-    int rc = 1;
-    if (f->o.contacts) { /* C (G1 - G(q)) / (1 - z) times num / (1 + z) */
-        vbm_s1 G, omz;
-        vbm1_affine(&omz, vbx_ia_point(-1.0), &z, vbx_ia_point(1.0));
-        if (g_of(&f->o, &t, &G) && vbm1_recip(&cs, &omz)) {
-            vbm1_affine(&G, vbx_ia_neg(f->o.C), &G, vbx_ia_mul(f->o.C, f->o.G1));
-            vbm1_mul(&sn, &G, &cs);
-            vbm1_mul(&v[CON], &sn, &v[AREA]);
-        } else { /* near e_j: F(z) / (1 - z) = f(xi), xi in [z, 1] */
-            vbx_ia Z = {z.c[0].lo, 1.0};
-            vbx_ia q = vbx_ia_add(vbx_ia_mul(f->o.D, Z), f->o.delta);
-            vbx_ia S = vbx_ia_add(f->o.N, vbx_ia_mul(vbx_ia_add(f->o.delta, f->o.delta), q));
-            vbx_ia fa = vbx_ia_div(vbx_ia_mul(vbx_ia_sqr(f->o.N), vbx_ia_sqrt(S)),
-                                   vbx_ia_mul(vbx_ia_point(4.0), vbx_ia_mul(vbx_ia_sqr(q), q)));
-            vbm1_const(&v[CON], vbx_ia_mul(fa, v[AREA].c[0]));
-            rc = 2;
-        }
-    } else
-        vbm1_const(&v[CON], vbx_ia_point(0.0));
-    vbm1_mul(&t, &u, &u);
-    vbm1_affine(&u, f->o.D, &opz, vbx_ia_add(f->o.delta, f->o.delta));
-    vbm1_mul(&T, &t, &u);
-    vbm1_mul(&t, &T, &v[AREA]);
-    vbm1_affine(&v[VOL], f->o.K, &t, vbx_ia_point(0.0));
-    return rc;
+    vbx_ia Z = {z.c[0].lo, 1.0};
+    vbx_ia qz = vbx_ia_add(vbx_ia_mul(f->o.D, Z), f->o.delta);
+    vbx_ia S = vbx_ia_add(f->o.N, vbx_ia_mul(vbx_ia_add(f->o.delta, f->o.delta), qz));
+    vbx_ia fa = vbx_ia_div(vbx_ia_mul(vbx_ia_sqr(f->o.N), vbx_ia_sqrt(S)),
+                           vbx_ia_mul(vbx_ia_point(4.0), vbx_ia_mul(vbx_ia_sqr(qz), qz)));
+    vbm1_const(&v[CON], vbx_ia_mul(fa, v[AREA].c[0]));
+    return 2;
 }
 
 typedef struct sums {

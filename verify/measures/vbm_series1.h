@@ -60,8 +60,8 @@ vbx_ia vbm1_integrate(const vbm_s1 *centre, const vbm_s1 *box, double xc, double
  * f or g): every coefficient an enclosure of the exact product's. */
 void vbm1_poly_mul(vbx_ia *r, const vbx_ia *f, int df, const vbx_ia *g, int dg);
 
-/* The Taylor coefficients c_0 .. c_kmax (kmax <= VBM1_K; the others left
- * as they are) at `at` (a point, or an interval: the box) of the rational
+/* The Taylor coefficients c_0 .. c_kmax (kmax <= VBM1_K; the others
+ * set to 0) at `at` (a point, or an interval: the box) of the rational
  * function num(x) / den(x), degrees dn and dd <= VBM1_POLY:
  * both polynomials moved to `at` by Horner's scheme in intervals, then
  * r_n = (num_n - sum_{k=1..dd} den_k r_(n-k)) / den_0, a constant number
