@@ -16,11 +16,12 @@ static vbx_ia increasing(vbx_ia x, int (*f)(mpfr_ptr, mpfr_srcptr, mpfr_rnd_t))
     f(t, t, MPFR_RNDU);
     r.hi = mpfr_get_d(t, MPFR_RNDU);
     mpfr_clear(t);
-    /* atan keeps pi (log log 2) in a per-thread cache that the cells'
-     * worker threads would leave behind when they end (LeakSanitizer in
-     * CI): free it. */
-    mpfr_free_cache2(MPFR_FREE_LOCAL_CACHE);
     return r;
+}
+
+void vbm_ia_release(void)
+{
+    mpfr_free_cache2(MPFR_FREE_LOCAL_CACHE);
 }
 
 vbx_ia vbm_ia_atan(vbx_ia x)
