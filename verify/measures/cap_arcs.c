@@ -24,7 +24,7 @@
 #define MAX_ARC 2.5      /* longer arcs are split (their frames need |angle| < pi / 2) */
 #define MAX_END_WIDTH 1e-4 /* an end this wide (near-tangent circles): undecided */
 
-enum { DONE = 1, ON_BOUNDARY = 2, QUEUED = 4 }; /* vbm_capwork.state */
+enum { DONE = 1, ON_BOUNDARY = 2, QUEUED = 4, LIKELY = 8 }; /* vbm_capwork.state */
 
 typedef struct vbm_endpt {
     vbx_ia x, y;
@@ -144,6 +144,18 @@ static int push_arc(vbm_capwork *w, uint32_t l, const endpt *p, const endpt *q, 
     return 0;
 }
 
+/* The restriction of circle C by a cap: inside it where P + Qc x + Qs y >= h
+ * at the unit vector (x, y) of C's frame. */
+static restr restrict_by(const vbm_circle *C, const vbm_cap *cap)
+{
+    restr r;
+    r.P = vbx_ia_mul(C->c, dot3(C->a, cap->n));
+    r.Qc = vbx_ia_mul(C->s, dot3(C->e1, cap->n));
+    r.Qs = vbx_ia_mul(C->s, dot3(C->e2, cap->n));
+    r.h = cap->h;
+    return r;
+}
+
 /* 1: inside cap m at the unit vector (x, y) of the circle, -1 outside, 0
  * undecided. */
 static int side(const restr *r, vbx_ia x, vbx_ia y)
@@ -167,11 +179,7 @@ static int circle_arcs(const vbm_cap *caps, const uint32_t *sel, size_t nsel, vb
         size_t m = sel[i];
         if (m == l || w->circ[m].kind == VBM_CAP_ALL)
             continue;
-        restr r;
-        r.P = vbx_ia_mul(C->c, dot3(C->a, caps[m].n));
-        r.Qc = vbx_ia_mul(C->s, dot3(C->e1, caps[m].n));
-        r.Qs = vbx_ia_mul(C->s, dot3(C->e2, caps[m].n));
-        r.h = caps[m].h;
+        restr r = restrict_by(C, &caps[m]);
         vbx_ia g = vbx_ia_sub(r.h, r.P);
         vbx_ia Q2 = vbx_ia_add(vbx_ia_sqr(r.Qc), vbx_ia_sqr(r.Qs)), Q = vbx_ia_sqrt(Q2);
         vbx_ia gm = vbx_ia_sub(Q, g), gp = vbx_ia_add(Q, g);
@@ -330,6 +338,8 @@ static int likely_boundary(const vbm_cap *caps, size_t ncap, vbm_capwork *w, siz
             s[k] = (uint32_t)m;
         }
     }
+    for (size_t i = 0; i < ns; i++)
+        w->state[s[i]] |= LIKELY;
     s[ns++] = 0;
     int empty = 1;
     for (size_t i = 0; i < ns; i++) {
@@ -342,6 +352,61 @@ static int likely_boundary(const vbm_cap *caps, size_t ncap, vbm_capwork *w, siz
         }
     }
     return empty ? 2 : 1;
+}
+
+/* Whether every cap outside the subset (cap 0, the likely and the boundary
+ * caps) holds the arcs w->arc[first..narc) of circle l, all shorter than
+ * pi: P + Qc cos t + Qs sin t - h is P - h + Q cos(t - phi), whose one
+ * minimum on the circle lies at the direction -(Qc, Qs); on an arc not
+ * holding that direction its minimum is at an end. So a cap holding the
+ * whole circle, or both ends of each arc with the direction proven
+ * outside it, holds the arcs. 0: not proven. */
+static int arcs_inside(const vbm_cap *caps, size_t ncap, const vbm_capwork *w, size_t l,
+                       size_t first)
+{
+    const vbm_circle *C = &w->circ[l];
+    for (size_t m = 1; m < ncap; m++) {
+        if (m == l || w->circ[m].kind == VBM_CAP_ALL || (w->state[m] & (ON_BOUNDARY | LIKELY)))
+            continue;
+        restr r = restrict_by(C, &caps[m]);
+        vbx_ia g = vbx_ia_sub(r.h, r.P);
+        vbx_ia Q = vbx_ia_sqrt(vbx_ia_add(vbx_ia_sqr(r.Qc), vbx_ia_sqr(r.Qs)));
+        if (vbx_ia_add(Q, g).hi < 0.0)
+            continue; /* the whole circle */
+        vbx_ia dx = vbx_ia_neg(r.Qc), dy = vbx_ia_neg(r.Qs);
+        for (size_t i = first; i < w->narc; i++) {
+            const vbm_arc *a = &w->arc[i];
+            if (side(&r, a->p[0], a->p[1]) <= 0 || side(&r, a->q[0], a->q[1]) <= 0)
+                return 0;
+            vbx_ia c0 = vbx_ia_sub(vbx_ia_mul(a->p[0], dy), vbx_ia_mul(a->p[1], dx));
+            vbx_ia c1 = vbx_ia_sub(vbx_ia_mul(dx, a->q[1]), vbx_ia_mul(dy, a->q[0]));
+            if (!(c0.hi < 0.0 || c1.hi < 0.0))
+                return 0;
+        }
+    }
+    return 1;
+}
+
+/* The arcs of circle l: inside the subset of caps first, then, unless the
+ * other caps are proven to hold them (arcs_inside), against every cap. */
+static int circle_all(const vbm_cap *caps, size_t ncap, vbm_capwork *w, size_t l)
+{
+    uint32_t *sel = w->sel;
+    size_t ns = 0, first = w->narc;
+    for (size_t m = 0; m < ncap; m++)
+        if (m == 0 || (w->state[m] & (ON_BOUNDARY | LIKELY)))
+            sel[ns++] = (uint32_t)m;
+    if (ns < ncap) {
+        int e = circle_arcs(caps, sel, ns, w, l, 0);
+        if (e < 0)
+            return e;
+        if (e == 1 && (w->narc == first || arcs_inside(caps, ncap, w, l, first)))
+            return 1; /* none inside the subset, or all of them inside every cap */
+        w->narc = first;
+    }
+    for (size_t m = 0; m < ncap; m++)
+        sel[m] = (uint32_t)m;
+    return circle_arcs(caps, sel, ncap, w, l, 0);
 }
 
 int vbm_cap_arcs(const vbm_cap *caps, size_t ncap, vbm_capwork *w)
@@ -403,10 +468,8 @@ int vbm_cap_arcs(const vbm_cap *caps, size_t ncap, vbm_capwork *w)
             if (e == 1)
                 continue; /* no arc even inside the boundary's caps */
         }
-        for (size_t m = 0; m < ncap; m++)
-            sel[m] = (uint32_t)m;
         size_t first = w->narc;
-        e = circle_arcs(caps, sel, ncap, w, l, 0);
+        e = circle_all(caps, ncap, w, l);
         if (e <= 0)
             return e;
         if (w->narc > first && !(w->state[l] & ON_BOUNDARY)) {
