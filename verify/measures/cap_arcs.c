@@ -100,10 +100,18 @@ void vbm_caps_free(vbm_capwork *w)
     memset(w, 0, sizeof *w);
 }
 
-static int cmp_end(const void *a, const void *b)
+/* Insertion sort of the ends by angle: stable, as the merge sort of
+ * glibc's qsort was (the same order), and cheaper on the few ends of one
+ * circle. */
+static void sort_ends(endpt *end, size_t ne)
 {
-    double x = ((const endpt *)a)->ang, y = ((const endpt *)b)->ang;
-    return x < y ? -1 : x > y;
+    for (size_t i = 1; i < ne; i++) {
+        endpt x = end[i];
+        size_t k = i;
+        for (; k > 0 && end[k - 1].ang > x.ang; k--)
+            end[k] = end[k - 1];
+        end[k] = x;
+    }
 }
 
 static double angle_of(vbx_ia x, vbx_ia y)
@@ -217,7 +225,7 @@ static int circle_arcs(const vbm_cap *caps, const uint32_t *sel, size_t nsel, vb
             return -1;
         return 1;
     }
-    qsort(end, ne, sizeof *end, cmp_end);
+    sort_ends(end, ne);
     double wmax = 0.0, widest = 0.0;
     size_t ref = 0;
     for (size_t k = 0; k < ne; k++)
