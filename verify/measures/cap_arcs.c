@@ -368,9 +368,10 @@ static int likely_boundary(const vbm_cap *caps, size_t ncap, vbm_capwork *w, siz
  * minimum on the circle lies at the direction -(Qc, Qs); on an arc not
  * holding that direction its minimum is at an end. So a cap holding the
  * whole circle, or both ends of each arc with the direction proven
- * outside it, holds the arcs. 0: not proven. */
-static int arcs_inside(const vbm_cap *caps, size_t ncap, const vbm_capwork *w, size_t l,
-                       size_t first)
+ * outside it, holds the arcs. Returns 0 when proven, else 1 + the first
+ * cap not proven to hold them. */
+static size_t arcs_inside(const vbm_cap *caps, size_t ncap, const vbm_capwork *w, size_t l,
+                          size_t first)
 {
     const vbm_circle *C = &w->circ[l];
     for (size_t m = 1; m < ncap; m++) {
@@ -385,33 +386,45 @@ static int arcs_inside(const vbm_cap *caps, size_t ncap, const vbm_capwork *w, s
         for (size_t i = first; i < w->narc; i++) {
             const vbm_arc *a = &w->arc[i];
             if (side(&r, a->p[0], a->p[1]) <= 0 || side(&r, a->q[0], a->q[1]) <= 0)
-                return 0;
+                return m + 1;
             vbx_ia c0 = vbx_ia_sub(vbx_ia_mul(a->p[0], dy), vbx_ia_mul(a->p[1], dx));
             vbx_ia c1 = vbx_ia_sub(vbx_ia_mul(dx, a->q[1]), vbx_ia_mul(dy, a->q[0]));
             if (!(c0.hi < 0.0 || c1.hi < 0.0))
-                return 0;
+                return m + 1;
         }
     }
-    return 1;
+    return 0;
 }
 
+#define RETRIES 3 /* caps added to a circle's subset before it is done against all */
+
 /* The arcs of circle l: inside the subset of caps first, then, unless the
- * other caps are proven to hold them (arcs_inside), against every cap. */
+ * other caps are proven to hold them (arcs_inside; a cap that is not joins
+ * the subset and the circle is done again, RETRIES times), against every
+ * cap. */
 static int circle_all(const vbm_cap *caps, size_t ncap, vbm_capwork *w, size_t l)
 {
     uint32_t *sel = w->sel;
-    size_t ns = 0, first = w->narc;
-    for (size_t m = 0; m < ncap; m++)
-        if (m == 0 || (w->state[m] & (ON_BOUNDARY | LIKELY)))
-            sel[ns++] = (uint32_t)m;
-    if (ns < ncap) {
+    size_t first = w->narc;
+    for (int t = 0; t <= RETRIES; t++) {
+        size_t ns = 0;
+        for (size_t m = 0; m < ncap; m++)
+            if (m == 0 || (w->state[m] & (ON_BOUNDARY | LIKELY)))
+                sel[ns++] = (uint32_t)m;
+        if (ns >= ncap)
+            break;
         int e = circle_arcs(caps, sel, ns, w, l, 0);
         if (e < 0)
             return e;
-        if (e == 1 && (w->narc == first || arcs_inside(caps, ncap, w, l, first)))
+        if (e == 0)
+            break;
+        size_t bad = w->narc == first ? 0 : arcs_inside(caps, ncap, w, l, first);
+        if (bad == 0)
             return 1; /* none inside the subset, or all of them inside every cap */
         w->narc = first;
+        w->state[bad - 1] |= LIKELY;
     }
+    w->narc = first;
     for (size_t m = 0; m < ncap; m++)
         sel[m] = (uint32_t)m;
     return circle_arcs(caps, sel, ncap, w, l, 0);
