@@ -288,9 +288,12 @@ static int piece(const arcfun *f, double x0, double x1, const double *tg, int de
     vbx_ia box = {x0, x1}, v[NV];
     int rc = integrand(f, vbx_ia_point(xc), c, VBM1_K), rb = rc ? integrand(f, box, b, VBM1_K) : 0;
     int ok = rc && rb;
+    vbx_ia mom[VBM1_K + 1];
+    if (ok)
+        vbm1_moments(xc, x0, x1, mom);
     for (int k = 0; ok && k < NV; k++) /* the contact's series is 0 without contacts */
         v[k] = k == CON && !f->o.contacts ? vbx_ia_point(0.0)
-                                          : vbm1_integrate(&c[k], &b[k], xc, x0, x1);
+                                          : vbm1_integrate_m(&c[k], &b[k], mom);
     if (ok && (rc == 2 || rb == 2)) /* the contact's bound over the box times its length */
         v[CON] = vbx_ia_mul(vbx_ia_sub(vbx_ia_point(x1), vbx_ia_point(x0)), b[CON].c[0]);
     if (!ok && !(depth < MAX_DEPTH && xc > x0 && xc < x1))
