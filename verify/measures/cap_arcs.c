@@ -35,6 +35,8 @@ typedef struct vbm_endpt {
 
 typedef struct vbm_restr {
     vbx_ia P, Qc, Qs, h;
+    vbx_ia g, Q2, gm, gp; /* h - P, Qc^2 + Qs^2, Q - g, Q + g (circle_arcs) */
+    uint32_t cap;
 } restr;
 
 static vbx_ia dot3(const vbx_ia *a, const vbx_ia *b)
@@ -183,38 +185,49 @@ static int circle_arcs(const vbm_cap *caps, const uint32_t *sel, size_t nsel, vb
     endpt *end = w->end;
     restr *res = w->res;
     size_t ne = 0, nr = 0;
+    int undecided = 0;
+    /* every cap first: one that leaves none of the circle ends the work
+     * before any cut is computed */
     for (size_t i = 0; i < nsel; i++) {
         size_t m = sel[i];
         if (m == l || w->circ[m].kind == VBM_CAP_ALL)
             continue;
         restr r = restrict_by(C, &caps[m]);
-        vbx_ia g = vbx_ia_sub(r.h, r.P);
-        vbx_ia Q2 = vbx_ia_add(vbx_ia_sqr(r.Qc), vbx_ia_sqr(r.Qs)), Q = vbx_ia_sqrt(Q2);
-        vbx_ia gm = vbx_ia_sub(Q, g), gp = vbx_ia_add(Q, g);
-        if (gp.hi < 0.0)
+        r.g = vbx_ia_sub(r.h, r.P);
+        r.Q2 = vbx_ia_add(vbx_ia_sqr(r.Qc), vbx_ia_sqr(r.Qs));
+        vbx_ia Q = vbx_ia_sqrt(r.Q2);
+        r.gm = vbx_ia_sub(Q, r.g);
+        r.gp = vbx_ia_add(Q, r.g);
+        r.cap = (uint32_t)m;
+        if (r.gp.hi < 0.0)
             continue; /* g < -Q: the whole circle lies in cap m */
-        if (gm.hi < 0.0)
+        if (r.gm.hi < 0.0)
             return 1; /* g > Q: none of it */
-        if (!(gm.lo > 0.0 && gp.lo > 0.0 && Q2.lo > 0.0))
-            return 0;
-        vbx_ia rr = vbx_ia_sqrt(vbx_ia_mul(gm, gp));
-        vbx_ia cg = vbx_ia_mul(r.Qc, g), sg = vbx_ia_mul(r.Qs, g);
-        vbx_ia cr = vbx_ia_mul(r.Qc, rr), sr = vbx_ia_mul(r.Qs, rr);
+        if (!(r.gm.lo > 0.0 && r.gp.lo > 0.0 && r.Q2.lo > 0.0))
+            undecided = 1;
+        res[nr++] = r;
+    }
+    if (undecided)
+        return 0;
+    for (size_t i = 0; i < nr; i++) {
+        const restr *r = &res[i];
+        vbx_ia rr = vbx_ia_sqrt(vbx_ia_mul(r->gm, r->gp));
+        vbx_ia cg = vbx_ia_mul(r->Qc, r->g), sg = vbx_ia_mul(r->Qs, r->g);
+        vbx_ia cr = vbx_ia_mul(r->Qc, rr), sr = vbx_ia_mul(r->Qs, rr);
         endpt *s = &end[ne++], *e = &end[ne++];
         s->start = 1;
         e->start = 0;
-        s->cap = e->cap = (uint32_t)m;
-        s->x = vbx_ia_div(vbx_ia_add(cg, sr), Q2);
-        s->y = vbx_ia_div(vbx_ia_sub(sg, cr), Q2);
-        e->x = vbx_ia_div(vbx_ia_sub(cg, sr), Q2);
-        e->y = vbx_ia_div(vbx_ia_add(cr, sg), Q2);
+        s->cap = e->cap = r->cap;
+        s->x = vbx_ia_div(vbx_ia_add(cg, sr), r->Q2);
+        s->y = vbx_ia_div(vbx_ia_sub(sg, cr), r->Q2);
+        e->x = vbx_ia_div(vbx_ia_sub(cg, sr), r->Q2);
+        e->y = vbx_ia_div(vbx_ia_add(cr, sg), r->Q2);
         for (int k = 0; k < 2; k++) {
             endpt *p = k ? e : s;
             if (!(p->x.hi - p->x.lo < MAX_END_WIDTH && p->y.hi - p->y.lo < MAX_END_WIDTH))
                 return 0;
             p->ang = angle_of(p->x, p->y);
         }
-        res[nr++] = r;
     }
     if (ne == 0) { /* the whole circle: two half circles */
         if (test)
