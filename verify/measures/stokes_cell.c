@@ -558,7 +558,7 @@ int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
             r->tq = a->tq;
         }
     }
-    /* every arc to a thousand times its share of the floors of the targets
+    /* every arc to a hundred times its share of the floors of the targets
      * (tolerance * max(|value|, floor), cell_patches.c), then the arcs wider
      * than their share of the targets of the values found, halved until
      * they meet it */
@@ -566,7 +566,7 @@ int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
     double fv = FLOOR_FRACTION * FOUR_PI * r3, fa = FLOOR_FRACTION * FOUR_PI * rr * rr;
     size_t pieces = 0;
     contacts(in, w); /* the arc counts */
-    if (!integrate_arcs(in, w, in->tolerance * fv, in->tolerance * fa, fa, 1e3, &pieces))
+    if (!integrate_arcs(in, w, in->tolerance * fv, in->tolerance * fa, fa, 100, &pieces))
         return 0;
     total(in, w, out);
     contacts(in, w);
