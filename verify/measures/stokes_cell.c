@@ -195,7 +195,10 @@ typedef struct arcfun {
     /* the area's and the volume's integrands as quotients of polynomials
      * in t (rational_of) */
     vbx_ia an[3], ad[5], vn[5], vd[7];
-    vbx_ia Pz[3], Pq[3], Emz[3]; /* z = Pz / E, q = Pq / E, 1 - z = Emz / E */
+    vbx_ia Pz[3], Pq[3];          /* z = Pz / E, q = Pq / E */
+    /* the contact's (contact_of): S = SN / E, the algebraic part of G(q)
+     * sqrt(S) Rn / Rd, the area's integrand over 1 - z an / cd */
+    vbx_ia SN[3], Rn[5], Rd[5], cd[5];
 } arcfun;
 
 /* With E = 1 + t^2, cos = (1 - t^2) / E and sin = 2 t / E, so
@@ -221,7 +224,6 @@ static void rational_of(arcfun *f)
         f->an[k] = vbx_ia_mul(two, Pn[k]);
         f->Pz[k] = Pz[k];
         f->Pq[k] = Pq[k];
-        f->Emz[k] = vbx_ia_sub(E[k], Pz[k]);
     }
     vbm1_poly_mul(f->ad, E, 2, Po, 2);
     vbm1_poly_mul(t, Pn, 2, Pv, 2);
@@ -230,6 +232,54 @@ static void rational_of(arcfun *f)
         f->vn[k] = vbx_ia_mul(k2, t[k]);
     vbm1_poly_mul(Pq2, Pq, 2, Pq, 2);
     vbm1_poly_mul(f->vd, Pq2, 4, Po, 2);
+    if (!o->contacts)
+        return;
+    /* S = N + 2 delta q = (N E + 2 delta Pq) / E; the algebraic part of
+     * G(q), -S^(3/2) / (2 N q^2) + delta sqrt(S) / (2 N q), is sqrt(S) times
+     * (delta q - S) / (2 N q^2) = -(N E + delta Pq) E / (2 N Pq^2); and
+     * 1 / (1 - z) = E / (E - Pz), so the area's integrand over 1 - z is
+     * 2 Pn / (Po (E - Pz)) */
+    vbx_ia W[3], Emz[3];
+    for (int k = 0; k < 3; k++) {
+        f->SN[k] = vbx_ia_add(vbx_ia_mul(o->N, E[k]), vbx_ia_mul(dd, Pq[k]));
+        W[k] = vbx_ia_neg(vbx_ia_add(vbx_ia_mul(o->N, E[k]), vbx_ia_mul(o->delta, Pq[k])));
+        Emz[k] = vbx_ia_sub(E[k], Pz[k]);
+    }
+    vbm1_poly_mul(f->Rn, W, 2, E, 2);
+    vbx_ia twoN = vbx_ia_add(o->N, o->N);
+    for (int k = 0; k < 5; k++)
+        f->Rd[k] = vbx_ia_mul(twoN, Pq2[k]);
+    vbm1_poly_mul(f->cd, Po, 2, Emz, 2);
+}
+
+/* The contact's integrand C (G1 - G(q)) / (1 - z) times the area's, G as
+ * g_of's but its algebraic part one root times a rational function.
+ * Returns 0 when a series cannot be bounded (the caller bounds it near
+ * e_j). */
+static int contact_of(const arcfun *f, vbx_ia at, int kmax, vbm_s1 *con)
+{
+    static const vbx_ia E[3] = {{1.0, 1.0}, {0.0, 0.0}, {1.0, 1.0}};
+    const owner *o = &f->o;
+    vbm_s1 S, r, R, G, u, a;
+    if (!vbm1_rational(&S, f->SN, 2, E, 2, at, kmax) || !vbm1_sqrt(&r, &S) ||
+        !vbm1_rational(&R, f->Rn, 4, f->Rd, 4, at, kmax) ||
+        !vbm1_rational(&a, f->an, 2, f->cd, 4, at, kmax))
+        return 0;
+    vbm1_mul(&G, &r, &R);
+    if (!vbm_ia_is_zero(o->delta)) { /* - delta^2 / (2 N sqrt N) log(2 |delta| q / (sqrt S + sqrt N)^2) */
+        vbm_s1 q, lq, ls;
+        vbm1_affine(&u, vbx_ia_point(1.0), &r, o->rN);
+        if (!vbm1_rational(&q, f->Pq, 2, E, 2, at, kmax) || !vbm1_log(&lq, &q) ||
+            !vbm1_log(&ls, &u))
+            return 0;
+        vbm1_affine(&u, vbx_ia_point(-2.0), &ls, o->lnd);
+        vbm1_add(&u, &u, &lq);
+        vbm1_affine(&u, vbx_ia_neg(o->kL), &u, vbx_ia_point(0.0));
+        vbm1_add(&G, &G, &u);
+    }
+    vbm1_affine(&G, vbx_ia_neg(o->C), &G, vbx_ia_mul(o->C, o->G1));
+    vbm1_mul(con, &G, &a);
+    return 1;
 }
 
 /* The series of the integrands at `at`, coefficients up to kmax (the
@@ -244,18 +294,10 @@ static int integrand(const arcfun *f, vbx_ia at, vbm_s1 *v, int kmax)
     vbm1_const(&v[CON], vbx_ia_point(0.0));
     if (!f->o.contacts)
         return 1;
-    /* C (G1 - G(q)) / (1 - z) times the area's integrand, q = Pq / E and
-     * 1 / (1 - z) = E / (E - Pz) */
-    static const vbx_ia E[3] = {{1.0, 1.0}, {0.0, 0.0}, {1.0, 1.0}};
-    vbm_s1 q, G, iomz, t;
-    if (vbm1_rational(&q, f->Pq, 2, E, 2, at, kmax) && g_of(&f->o, &q, &G) &&
-        vbm1_rational(&iomz, E, 2, f->Emz, 2, at, kmax)) {
-        vbm1_affine(&G, vbx_ia_neg(f->o.C), &G, vbx_ia_mul(f->o.C, f->o.G1));
-        vbm1_mul(&t, &G, &iomz);
-        vbm1_mul(&v[CON], &t, &v[AREA]);
+    if (contact_of(f, at, kmax, &v[CON]))
         return 1;
-    }
     /* near e_j: F(z) / (1 - z) = f(xi), xi in [z, 1] */
+    static const vbx_ia E[3] = {{1.0, 1.0}, {0.0, 0.0}, {1.0, 1.0}};
     vbm_s1 z;
     if (!vbm1_rational(&z, f->Pz, 2, E, 2, at, 0))
         return 0;
