@@ -334,8 +334,9 @@ static double cut_score(const vbm_capwork *w, size_t m)
 /* The intersection of cap 0 with the NLIKELY caps that cut most of it: no
  * arc on any of their circles inside the others proves it (and so the
  * intersection of every cap) empty: returns 2. Otherwise queues the
- * circles with an arc there (likely on the boundary) and returns 1; 0
- * undecided, -1 ENOMEM. */
+ * circles with an arc there (likely on the boundary), marks done those
+ * without (none inside all caps either) and returns 1; 0 undecided, -1
+ * ENOMEM. */
 static int likely_boundary(const vbm_cap *caps, size_t ncap, vbm_capwork *w, size_t *nq)
 {
     if (w->circ[0].kind != VBM_CAP_CIRCLE || ncap <= 2)
@@ -370,7 +371,8 @@ static int likely_boundary(const vbm_cap *caps, size_t ncap, vbm_capwork *w, siz
         if (e != 1) {
             empty = 0;
             enqueue(w, s[i], nq);
-        }
+        } else if (s[i] != 0)
+            w->state[s[i]] |= DONE; /* no arc inside these caps: none at all */
     }
     return empty ? 2 : 1;
 }
