@@ -12,7 +12,15 @@
  * most 1e-4 on the unit circle), and every gap
  * between two ends is tested at an exact unit vector inside it against
  * every restricting cap, by interval signs. The gaps inside all caps are
- * the arcs. */
+ * the arcs.
+ *
+ * Doing that for every circle against every cap costs caps^2 restrictions
+ * per intersection, where only a few circles bound it (on proteins ~3 of
+ * ~21). So the arcs are found against subsets of the caps and proven for
+ * the rest (vbm_cap_arcs): fewer caps only add arcs, so a circle without
+ * an arc inside a subset has none; and an arc inside a subset lies inside
+ * another cap when that cap holds both its ends and not the one minimum of
+ * the cap's function on the circle (arcs_inside). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>

@@ -25,9 +25,11 @@
  * On the arcs of j's own cap circle z is constant and dphi the arc's angle
  * (closed form, atan rounded outward by MPFR); on the others the integral
  * runs over t = tan(angle / 2) about the arc's middle (|t| < 0.7), the
- * integrand a rational function of t, enclosed by univariate Taylor models
- * (vbm_series1.h) on pieces halved until each meets its share of the
- * tolerance. The arrangement is decided by interval signs; where one
+ * integrand a rational function of t (the area's and volume's quotients of
+ * polynomials, the contact's a root and logs of such quotients: their
+ * Taylor coefficients by linear recurrences, vbm1_rational), enclosed by
+ * univariate Taylor models (vbm_series1.h) on pieces halved until each
+ * meets its share of the tolerance. The arrangement is decided by interval signs; where one
  * cannot be decided (tangent circles, more than three owners at a point,
  * symmetric inputs) the caller falls back to the patch integration. */
 #include <math.h>
