@@ -12,7 +12,15 @@
  * most 1e-4 on the unit circle), and every gap
  * between two ends is tested at an exact unit vector inside it against
  * every restricting cap, by interval signs. The gaps inside all caps are
- * the arcs. */
+ * the arcs.
+ *
+ * Doing that for every circle against every cap costs caps^2 restrictions
+ * per intersection, where only a few circles bound it (on proteins ~3 of
+ * ~21). So the arcs are found against subsets of the caps and proven for
+ * the rest (vbm_cap_arcs): fewer caps only add arcs, so a circle without
+ * an arc inside a subset has none; and an arc inside a subset lies inside
+ * another cap when that cap holds both its ends and not the one minimum of
+ * the cap's function on the circle (arcs_inside). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -24,14 +32,19 @@
 #define MAX_ARC 2.5      /* longer arcs are split (their frames need |angle| < pi / 2) */
 #define MAX_END_WIDTH 1e-4 /* an end this wide (near-tangent circles): undecided */
 
+enum { DONE = 1, ON_BOUNDARY = 2, QUEUED = 4, LIKELY = 8 }; /* vbm_capwork.state */
+
 typedef struct vbm_endpt {
     vbx_ia x, y;
     double ang;
-    int start; /* 1: entering the restricting cap (counterclockwise), 0: leaving it */
+    int start;    /* 1: entering the restricting cap (counterclockwise), 0: leaving it */
+    uint32_t cap; /* the restricting cap */
 } endpt;
 
 typedef struct vbm_restr {
     vbx_ia P, Qc, Qs, h;
+    vbx_ia g, Q2, gm, gp; /* h - P, Qc^2 + Qs^2, Q - g, Q + g (circle_arcs) */
+    uint32_t cap;
 } restr;
 
 static vbx_ia dot3(const vbx_ia *a, const vbx_ia *b)
@@ -90,13 +103,25 @@ void vbm_caps_free(vbm_capwork *w)
     free(w->end);
     free(w->res);
     free(w->arc);
+    free(w->sorted);
+    free(w->sel);
+    free(w->queue);
+    free(w->state);
     memset(w, 0, sizeof *w);
 }
 
-static int cmp_end(const void *a, const void *b)
+/* Insertion sort of the ends by angle: stable, as the merge sort of
+ * glibc's qsort was (the same order), and cheaper on the few ends of one
+ * circle. */
+static void sort_ends(endpt *end, size_t ne)
 {
-    double x = ((const endpt *)a)->ang, y = ((const endpt *)b)->ang;
-    return x < y ? -1 : x > y;
+    for (size_t i = 1; i < ne; i++) {
+        endpt x = end[i];
+        size_t k = i;
+        for (; k > 0 && end[k - 1].ang > x.ang; k--)
+            end[k] = end[k - 1];
+        end[k] = x;
+    }
 }
 
 static double angle_of(vbx_ia x, vbx_ia y)
@@ -113,27 +138,40 @@ void vbm_unit_at(double t, vbx_ia *x, vbx_ia *y)
     *y = vbx_ia_div(sy, n);
 }
 
-static int push_arc(vbm_capwork *w, uint32_t l, vbx_ia px, vbx_ia py, double tp, vbx_ia qx,
-                    vbx_ia qy, double tq)
+static int push_arc(vbm_capwork *w, uint32_t l, const endpt *p, const endpt *q, double tq)
 {
+    double tp = p->ang;
     if (tq - tp > MAX_ARC) { /* split at the middle */
-        vbx_ia mx, my;
-        double tm = 0.5 * (tp + tq);
-        vbm_unit_at(tm, &mx, &my);
-        int e = push_arc(w, l, px, py, tp, mx, my, tm);
-        return e < 0 ? e : push_arc(w, l, mx, my, tm, qx, qy, tq);
+        endpt m = {vbx_ia_point(0.0), vbx_ia_point(0.0), 0.5 * (tp + tq), 0, VBM_NO_CAP};
+        vbm_unit_at(m.ang, &m.x, &m.y);
+        int e = push_arc(w, l, p, &m, m.ang);
+        return e < 0 ? e : push_arc(w, l, &m, q, tq);
     }
     if (VB_ARRAY_FIT(w->arc, w->cap_arc, w->narc + 1, 32) != VB_OK)
         return -1;
     vbm_arc *a = &w->arc[w->narc++];
     a->cap = l;
-    a->p[0] = px;
-    a->p[1] = py;
-    a->q[0] = qx;
-    a->q[1] = qy;
+    a->pcap = p->cap;
+    a->qcap = q->cap;
+    a->p[0] = p->x;
+    a->p[1] = p->y;
+    a->q[0] = q->x;
+    a->q[1] = q->y;
     a->tp = tp;
     a->tq = tq;
     return 0;
+}
+
+/* The restriction of circle C by a cap: inside it where P + Qc x + Qs y >= h
+ * at the unit vector (x, y) of C's frame. */
+static restr restrict_by(const vbm_circle *C, const vbm_cap *cap)
+{
+    restr r;
+    r.P = vbx_ia_mul(C->c, dot3(C->a, cap->n));
+    r.Qc = vbx_ia_mul(C->s, dot3(C->e1, cap->n));
+    r.Qs = vbx_ia_mul(C->s, dot3(C->e2, cap->n));
+    r.h = cap->h;
+    return r;
 }
 
 /* 1: inside cap m at the unit vector (x, y) of the circle, -1 outside, 0
@@ -145,56 +183,70 @@ static int side(const restr *r, vbx_ia x, vbx_ia y)
     return vbx_ia_sign(v);
 }
 
-/* The arcs of circle l. Returns 1, 0 undecided, -1 ENOMEM. */
-static int circle_arcs(const vbm_cap *caps, size_t ncap, vbm_capwork *w, size_t l)
+/* The arcs of circle l inside the caps sel[0..nsel) (l itself skipped).
+ * With `test`, nothing is pushed: returns 2 when some arc exists. Returns
+ * 1 (done, or no arc), 0 undecided, -1 ENOMEM. */
+static int circle_arcs(const vbm_cap *caps, const uint32_t *sel, size_t nsel, vbm_capwork *w,
+                       size_t l, int test)
 {
     const vbm_circle *C = &w->circ[l];
     endpt *end = w->end;
     restr *res = w->res;
     size_t ne = 0, nr = 0;
-    for (size_t m = 0; m < ncap; m++) {
+    int undecided = 0;
+    /* every cap first: one that leaves none of the circle ends the work
+     * before any cut is computed */
+    for (size_t i = 0; i < nsel; i++) {
+        size_t m = sel[i];
         if (m == l || w->circ[m].kind == VBM_CAP_ALL)
             continue;
-        restr r;
-        r.P = vbx_ia_mul(C->c, dot3(C->a, caps[m].n));
-        r.Qc = vbx_ia_mul(C->s, dot3(C->e1, caps[m].n));
-        r.Qs = vbx_ia_mul(C->s, dot3(C->e2, caps[m].n));
-        r.h = caps[m].h;
-        vbx_ia g = vbx_ia_sub(r.h, r.P);
-        vbx_ia Q2 = vbx_ia_add(vbx_ia_sqr(r.Qc), vbx_ia_sqr(r.Qs)), Q = vbx_ia_sqrt(Q2);
-        vbx_ia gm = vbx_ia_sub(Q, g), gp = vbx_ia_add(Q, g);
-        if (gp.hi < 0.0)
+        restr r = restrict_by(C, &caps[m]);
+        r.g = vbx_ia_sub(r.h, r.P);
+        r.Q2 = vbx_ia_add(vbx_ia_sqr(r.Qc), vbx_ia_sqr(r.Qs));
+        vbx_ia Q = vbx_ia_sqrt(r.Q2);
+        r.gm = vbx_ia_sub(Q, r.g);
+        r.gp = vbx_ia_add(Q, r.g);
+        r.cap = (uint32_t)m;
+        if (r.gp.hi < 0.0)
             continue; /* g < -Q: the whole circle lies in cap m */
-        if (gm.hi < 0.0)
+        if (r.gm.hi < 0.0)
             return 1; /* g > Q: none of it */
-        if (!(gm.lo > 0.0 && gp.lo > 0.0 && Q2.lo > 0.0))
-            return 0;
-        vbx_ia rr = vbx_ia_sqrt(vbx_ia_mul(gm, gp));
-        vbx_ia cg = vbx_ia_mul(r.Qc, g), sg = vbx_ia_mul(r.Qs, g);
-        vbx_ia cr = vbx_ia_mul(r.Qc, rr), sr = vbx_ia_mul(r.Qs, rr);
+        if (!(r.gm.lo > 0.0 && r.gp.lo > 0.0 && r.Q2.lo > 0.0))
+            undecided = 1;
+        res[nr++] = r;
+    }
+    if (undecided)
+        return 0;
+    for (size_t i = 0; i < nr; i++) {
+        const restr *r = &res[i];
+        vbx_ia rr = vbx_ia_sqrt(vbx_ia_mul(r->gm, r->gp));
+        vbx_ia cg = vbx_ia_mul(r->Qc, r->g), sg = vbx_ia_mul(r->Qs, r->g);
+        vbx_ia cr = vbx_ia_mul(r->Qc, rr), sr = vbx_ia_mul(r->Qs, rr);
         endpt *s = &end[ne++], *e = &end[ne++];
         s->start = 1;
         e->start = 0;
-        s->x = vbx_ia_div(vbx_ia_add(cg, sr), Q2);
-        s->y = vbx_ia_div(vbx_ia_sub(sg, cr), Q2);
-        e->x = vbx_ia_div(vbx_ia_sub(cg, sr), Q2);
-        e->y = vbx_ia_div(vbx_ia_add(cr, sg), Q2);
+        s->cap = e->cap = r->cap;
+        s->x = vbx_ia_div(vbx_ia_add(cg, sr), r->Q2);
+        s->y = vbx_ia_div(vbx_ia_sub(sg, cr), r->Q2);
+        e->x = vbx_ia_div(vbx_ia_sub(cg, sr), r->Q2);
+        e->y = vbx_ia_div(vbx_ia_add(cr, sg), r->Q2);
         for (int k = 0; k < 2; k++) {
             endpt *p = k ? e : s;
             if (!(p->x.hi - p->x.lo < MAX_END_WIDTH && p->y.hi - p->y.lo < MAX_END_WIDTH))
                 return 0;
             p->ang = angle_of(p->x, p->y);
         }
-        res[nr++] = r;
     }
     if (ne == 0) { /* the whole circle: two half circles */
-        vbx_ia one = vbx_ia_point(1.0), zero = vbx_ia_point(0.0), mone = vbx_ia_point(-1.0);
-        if (push_arc(w, (uint32_t)l, one, zero, 0.0, mone, zero, 0.5 * TWO_PI) < 0 ||
-            push_arc(w, (uint32_t)l, mone, zero, 0.5 * TWO_PI, one, zero, TWO_PI) < 0)
+        if (test)
+            return 2;
+        endpt a = {vbx_ia_point(1.0), vbx_ia_point(0.0), 0.0, 0, VBM_NO_CAP};
+        endpt b = {vbx_ia_point(-1.0), vbx_ia_point(0.0), 0.5 * TWO_PI, 0, VBM_NO_CAP};
+        if (push_arc(w, (uint32_t)l, &a, &b, b.ang) < 0 || push_arc(w, (uint32_t)l, &b, &a, TWO_PI) < 0)
             return -1;
         return 1;
     }
-    qsort(end, ne, sizeof *end, cmp_end);
+    sort_ends(end, ne);
     double wmax = 0.0, widest = 0.0;
     size_t ref = 0;
     for (size_t k = 0; k < ne; k++)
@@ -229,10 +281,176 @@ static int circle_arcs(const vbm_cap *caps, size_t ncap, vbm_capwork *w, size_t 
         if (i > 0)
             inside = p->start ? inside + 1 : inside - 1;
         double tq = k + 1 < ne ? q->ang : q->ang + TWO_PI;
-        if (inside == nr && push_arc(w, (uint32_t)l, p->x, p->y, p->ang, q->x, q->y, tq) < 0)
+        if (inside == nr && test)
+            return 2;
+        if (inside == nr && push_arc(w, (uint32_t)l, p, q, tq) < 0)
             return -1;
     }
     return 1;
+}
+
+/* Queues cap m's circle (once). */
+static void enqueue(vbm_capwork *w, uint32_t m, size_t *nq)
+{
+    if (m != VBM_NO_CAP && !(w->state[m] & (DONE | QUEUED))) {
+        w->state[m] |= QUEUED;
+        w->queue[(*nq)++] = m;
+    }
+}
+
+/* The arcs back in the order of their circles (each circle's arcs stay in
+ * the order found): the same list whatever order the circles were done in. */
+static int order_arcs(vbm_capwork *w, size_t ncap)
+{
+    if (VB_ARRAY_FIT(w->sorted, w->cap_sorted, w->narc + 1, 32) != VB_OK ||
+        VB_ARRAY_FIT(w->sel, w->cap_sel, ncap + 1, 32) != VB_OK)
+        return -1;
+    uint32_t *at = w->sel; /* first slot of each circle's arcs */
+    memset(at, 0, (ncap + 1) * sizeof *at);
+    for (size_t i = 0; i < w->narc; i++)
+        at[w->arc[i].cap + 1]++;
+    for (size_t l = 0; l < ncap; l++)
+        at[l + 1] += at[l];
+    for (size_t i = 0; i < w->narc; i++)
+        w->sorted[at[w->arc[i].cap]++] = w->arc[i];
+    vbm_arc *t = w->arc;
+    size_t c = w->cap_arc;
+    w->arc = w->sorted;
+    w->cap_arc = w->cap_sorted;
+    w->sorted = t;
+    w->cap_sorted = c;
+    return 1;
+}
+
+#define NLIKELY 4 /* caps tried first: those cutting most of cap 0 */
+
+/* How far cap m's circle keeps from cap 0's axis (the angle between the
+ * axes less m's angular radius, on midpoints): the larger, the more of cap
+ * 0 it cuts off. Only an order of trial, decided nothing. */
+static double cut_score(const vbm_capwork *w, size_t m)
+{
+    const vbm_circle *a = &w->circ[0], *b = &w->circ[m];
+    double d = 0.0;
+    for (int k = 0; k < 3; k++)
+        d += vbx_ia_mid(a->a[k]) * vbx_ia_mid(b->a[k]);
+    double c = vbx_ia_mid(b->c);
+    d = d > 1.0 ? 1.0 : d < -1.0 ? -1.0 : d;
+    c = c > 1.0 ? 1.0 : c < -1.0 ? -1.0 : c;
+    return acos(d) - acos(c);
+}
+
+/* The intersection of cap 0 with the NLIKELY caps that cut most of it: no
+ * arc on any of their circles inside the others proves it (and so the
+ * intersection of every cap) empty: returns 2. Otherwise queues the
+ * circles with an arc there (likely on the boundary), marks done those
+ * without (none inside all caps either) and returns 1; 0 undecided, -1
+ * ENOMEM. */
+static int likely_boundary(const vbm_cap *caps, size_t ncap, vbm_capwork *w, size_t *nq)
+{
+    if (w->circ[0].kind != VBM_CAP_CIRCLE || ncap <= 2)
+        return 1;
+    uint32_t s[NLIKELY + 1];
+    double sc[NLIKELY + 1];
+    size_t ns = 0;
+    for (size_t m = 1; m < ncap; m++) { /* the NLIKELY best, by insertion */
+        if (w->circ[m].kind != VBM_CAP_CIRCLE)
+            continue;
+        double x = cut_score(w, m);
+        size_t k = ns < NLIKELY ? ns++ : NLIKELY;
+        for (; k > 0 && sc[k - 1] < x; k--) {
+            if (k < NLIKELY) {
+                sc[k] = sc[k - 1];
+                s[k] = s[k - 1];
+            }
+        }
+        if (k < NLIKELY) {
+            sc[k] = x;
+            s[k] = (uint32_t)m;
+        }
+    }
+    for (size_t i = 0; i < ns; i++)
+        w->state[s[i]] |= LIKELY;
+    s[ns++] = 0;
+    int empty = 1;
+    for (size_t i = 0; i < ns; i++) {
+        int e = circle_arcs(caps, s, ns, w, s[i], 1);
+        if (e < 0)
+            return e;
+        if (e != 1) {
+            empty = 0;
+            enqueue(w, s[i], nq);
+        } else if (s[i] != 0)
+            w->state[s[i]] |= DONE; /* no arc inside these caps: none at all */
+    }
+    return empty ? 2 : 1;
+}
+
+/* Whether every cap outside the subset (cap 0, the likely and the boundary
+ * caps) holds the arcs w->arc[first..narc) of circle l, all shorter than
+ * pi: P + Qc cos t + Qs sin t - h is P - h + Q cos(t - phi), whose one
+ * minimum on the circle lies at the direction -(Qc, Qs); on an arc not
+ * holding that direction its minimum is at an end. So a cap holding the
+ * whole circle, or both ends of each arc with the direction proven
+ * outside it, holds the arcs. Returns 0 when proven, else 1 + the first
+ * cap not proven to hold them. */
+static size_t arcs_inside(const vbm_cap *caps, size_t ncap, const vbm_capwork *w, size_t l,
+                          size_t first)
+{
+    const vbm_circle *C = &w->circ[l];
+    for (size_t m = 1; m < ncap; m++) {
+        if (m == l || w->circ[m].kind == VBM_CAP_ALL || (w->state[m] & (ON_BOUNDARY | LIKELY)))
+            continue;
+        restr r = restrict_by(C, &caps[m]);
+        vbx_ia g = vbx_ia_sub(r.h, r.P);
+        vbx_ia Q = vbx_ia_sqrt(vbx_ia_add(vbx_ia_sqr(r.Qc), vbx_ia_sqr(r.Qs)));
+        if (vbx_ia_add(Q, g).hi < 0.0)
+            continue; /* the whole circle */
+        vbx_ia dx = vbx_ia_neg(r.Qc), dy = vbx_ia_neg(r.Qs);
+        for (size_t i = first; i < w->narc; i++) {
+            const vbm_arc *a = &w->arc[i];
+            if (side(&r, a->p[0], a->p[1]) <= 0 || side(&r, a->q[0], a->q[1]) <= 0)
+                return m + 1;
+            vbx_ia c0 = vbx_ia_sub(vbx_ia_mul(a->p[0], dy), vbx_ia_mul(a->p[1], dx));
+            vbx_ia c1 = vbx_ia_sub(vbx_ia_mul(dx, a->q[1]), vbx_ia_mul(dy, a->q[0]));
+            if (!(c0.hi < 0.0 || c1.hi < 0.0))
+                return m + 1;
+        }
+    }
+    return 0;
+}
+
+#define RETRIES 3 /* caps added to a circle's subset before it is done against all */
+
+/* The arcs of circle l: inside the subset of caps first, then, unless the
+ * other caps are proven to hold them (arcs_inside; a cap that is not joins
+ * the subset and the circle is done again, RETRIES times), against every
+ * cap. */
+static int circle_all(const vbm_cap *caps, size_t ncap, vbm_capwork *w, size_t l)
+{
+    uint32_t *sel = w->sel;
+    size_t first = w->narc;
+    for (int t = 0; t <= RETRIES; t++) {
+        size_t ns = 0;
+        for (size_t m = 0; m < ncap; m++)
+            if (m == 0 || (w->state[m] & (ON_BOUNDARY | LIKELY)))
+                sel[ns++] = (uint32_t)m;
+        if (ns >= ncap)
+            break;
+        int e = circle_arcs(caps, sel, ns, w, l, 0);
+        if (e < 0)
+            return e;
+        if (e == 0)
+            break;
+        size_t bad = w->narc == first ? 0 : arcs_inside(caps, ncap, w, l, first);
+        if (bad == 0)
+            return 1; /* none inside the subset, or all of them inside every cap */
+        w->narc = first;
+        w->state[bad - 1] |= LIKELY;
+    }
+    w->narc = first;
+    for (size_t m = 0; m < ncap; m++)
+        sel[m] = (uint32_t)m;
+    return circle_arcs(caps, sel, ncap, w, l, 0);
 }
 
 int vbm_cap_arcs(const vbm_cap *caps, size_t ncap, vbm_capwork *w)
@@ -240,7 +458,10 @@ int vbm_cap_arcs(const vbm_cap *caps, size_t ncap, vbm_capwork *w)
     w->narc = 0;
     if (VB_ARRAY_FIT(w->circ, w->cap_circ, ncap, 32) != VB_OK ||
         VB_ARRAY_FIT(w->end, w->cap_end, 2 * ncap, 64) != VB_OK ||
-        VB_ARRAY_FIT(w->res, w->cap_res, ncap, 32) != VB_OK)
+        VB_ARRAY_FIT(w->res, w->cap_res, ncap, 32) != VB_OK ||
+        VB_ARRAY_FIT(w->sel, w->cap_sel, ncap + 1, 32) != VB_OK ||
+        VB_ARRAY_FIT(w->queue, w->cap_queue, ncap + 1, 32) != VB_OK ||
+        VB_ARRAY_FIT(w->state, w->cap_state, ncap + 1, 32) != VB_OK)
         return -1;
     for (size_t l = 0; l < ncap; l++) {
         if (!vbm_circle_of(&caps[l], &w->circ[l]))
@@ -248,12 +469,61 @@ int vbm_cap_arcs(const vbm_cap *caps, size_t ncap, vbm_capwork *w)
         if (w->circ[l].kind == VBM_CAP_NONE)
             return 1; /* empty intersection */
     }
-    for (size_t l = 0; l < ncap; l++) {
+    /* The circles along the boundary first (cap 0's, then those whose caps
+     * end an arc found), each inside every cap; then every other circle is
+     * tried against the boundary's caps alone (and cap 0): no arc inside
+     * those proves none inside them all (more caps only remove arcs), and
+     * only a circle with an arc there is done against every cap. The arcs
+     * are those of doing each circle against every cap. */
+    uint32_t *sel = w->sel, *queue = w->queue;
+    memset(w->state, 0, ncap);
+    size_t nb = 0, nq = 0, head = 0, next = 0;
+    enqueue(w, 0, &nq);
+    int e = likely_boundary(caps, ncap, w, &nq);
+    if (e <= 0)
+        return e;
+    if (e == 2)
+        return 1; /* empty */
+    for (;;) {
+        size_t l;
+        int from_queue = head < nq;
+        if (from_queue)
+            l = queue[head++];
+        else {
+            while (next < ncap && (w->state[next] & DONE))
+                next++;
+            if (next == ncap)
+                break;
+            l = next;
+        }
+        w->state[l] |= DONE;
         if (w->circ[l].kind != VBM_CAP_CIRCLE)
             continue;
-        int e = circle_arcs(caps, ncap, w, l);
+        if (!from_queue && nb > 0) {
+            size_t ns = 0;
+            if (!(w->state[0] & ON_BOUNDARY))
+                sel[ns++] = 0;
+            for (size_t m = 0; m < ncap; m++) /* in cap order: the same decisions each time */
+                if (w->state[m] & ON_BOUNDARY)
+                    sel[ns++] = (uint32_t)m;
+            e = circle_arcs(caps, sel, ns, w, l, 1);
+            if (e < 0)
+                return e;
+            if (e == 1)
+                continue; /* no arc even inside the boundary's caps */
+        }
+        size_t first = w->narc;
+        e = circle_all(caps, ncap, w, l);
         if (e <= 0)
             return e;
+        if (w->narc > first && !(w->state[l] & ON_BOUNDARY)) {
+            w->state[l] |= ON_BOUNDARY;
+            nb++;
+        }
+        for (size_t i = first; i < w->narc; i++) {
+            enqueue(w, w->arc[i].pcap, &nq);
+            enqueue(w, w->arc[i].qcap, &nq);
+        }
     }
-    return 1;
+    return order_arcs(w, ncap);
 }

@@ -11,6 +11,7 @@
 #include "vb_measures.h"
 #include "vb_parallel.h"
 #include "vbm_cell.h"
+#include "vbm_piece.h"
 
 void vb_measure_defaults(vb_measure_options *opt)
 {
@@ -270,6 +271,7 @@ static void one_atom(void *ctx, size_t i, int tid)
 {
     job *jb = ctx;
     measure_atom(jb, i, tid);
+    vbm_ia_release();
     atom_done(jb);
 }
 

@@ -91,20 +91,27 @@ int vbm1_log(vbm_s1 *r, const vbm_s1 *f)
     return 1;
 }
 
-vbx_ia vbm1_integrate(const vbm_s1 *centre, const vbm_s1 *box, double xc, double x0, double x1)
+void vbm1_moments(double xc, double x0, double x1, vbx_ia *m)
 {
     /* integral over [x0 - xc, x1 - xc] of x^n: (b^(n+1) - a^(n+1)) / (n + 1) */
     vbx_ia a = vbx_ia_sub(vbx_ia_point(x0), vbx_ia_point(xc));
     vbx_ia b = vbx_ia_sub(vbx_ia_point(x1), vbx_ia_point(xc));
-    vbx_ia pa = a, pb = b, s = vbx_ia_point(0.0);
+    vbx_ia pa = a, pb = b;
     for (int n = 0; n <= VBM1_K; n++) {
-        vbx_ia m = vbx_ia_div(vbx_ia_sub(pb, pa), vbx_ia_point((double)(n + 1)));
+        m[n] = vbx_ia_div(vbx_ia_sub(pb, pa), vbx_ia_point((double)(n + 1)));
+        pa = vbx_ia_mul(pa, a);
+        pb = vbx_ia_mul(pb, b);
+    }
+}
+
+vbx_ia vbm1_integrate_m(const vbm_s1 *centre, const vbm_s1 *box, const vbx_ia *m)
+{
+    vbx_ia s = vbx_ia_point(0.0);
+    for (int n = 0; n <= VBM1_K; n++) {
         /* the remainder c_K(xi) x^K: x^K >= 0 (K even), so its integral lies
          * in the hull of c_K over the box times that of x^K */
         vbx_ia c = n < VBM1_K ? centre->c[n] : box->c[n];
-        s = vbx_ia_add(s, vbx_ia_mul(c, m));
-        pa = vbx_ia_mul(pa, a);
-        pb = vbx_ia_mul(pb, b);
+        s = vbx_ia_add(s, vbx_ia_mul(c, m[n]));
     }
     return s;
 }

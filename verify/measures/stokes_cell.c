@@ -25,9 +25,11 @@
  * On the arcs of j's own cap circle z is constant and dphi the arc's angle
  * (closed form, atan rounded outward by MPFR); on the others the integral
  * runs over t = tan(angle / 2) about the arc's middle (|t| < 0.7), the
- * integrand a rational function of t, enclosed by univariate Taylor models
- * (vbm_series1.h) on pieces halved until each meets its share of the
- * tolerance. The arrangement is decided by interval signs; where one
+ * integrand a rational function of t (the area's and volume's quotients of
+ * polynomials, the contact's a root and logs of such quotients: their
+ * Taylor coefficients by linear recurrences, vbm1_rational), enclosed by
+ * univariate Taylor models (vbm_series1.h) on pieces halved until each
+ * meets its share of the tolerance. The arrangement is decided by interval signs; where one
  * cannot be decided (tangent circles, more than three owners at a point,
  * symmetric inputs) the caller falls back to the patch integration. */
 #include <math.h>
@@ -192,60 +194,122 @@ enum { AREA, VOL, CON, NV }; /* the values integrated along an arc */
 typedef struct arcfun {
     owner o;
     vbx_ia cA0, s, sA0s, mcs, A1, A2; /* c A0, s, s^2 A0, -c s, e_j in the rotated frame */
+    /* the area's and the volume's integrands as quotients of polynomials
+     * in t (rational_of) */
+    vbx_ia an[3], ad[5], vn[5], vd[7];
+    vbx_ia Pz[3], Pq[3];          /* z = Pz / E, q = Pq / E */
+    /* the contact's (contact_of): S = SN / E, the algebraic part of G(q)
+     * sqrt(S) Rn / Rd, the area's integrand over 1 - z an / cd */
+    vbx_ia SN[3], Rn[5], Rd[5], cd[5];
 } arcfun;
 
-/* Returns 1, 2 when the contact's series cannot be bounded near e_j (v[CON]
- * is then a constant: its bound where `at` ranges), 0 when nothing can. */
-static int integrand(const arcfun *f, vbx_ia at, vbm_s1 *v)
+/* With E = 1 + t^2, cos = (1 - t^2) / E and sin = 2 t / E, so
+ *   z = Pz / E, 1 + z = Po / E, q = D z + delta = Pq / E,
+ *   e.(u x du/dt) = 2 Pn / E^2 (Pz, Po, Pq, Pn quadratics in t), and
+ *   area integrand   (1 - z) dphi/dt = 2 Pn / (E Po),
+ *   volume integrand K (D (1 + z) + 2 delta) / q^2 times that
+ *                    = 2 K Pn (D Po + 2 delta E) / (Pq^2 Po). */
+static void rational_of(arcfun *f)
 {
-    vbm_s1 T, T2, rec, cs, sn, w, z, num, t, u, opz;
-    vbm1_var(&T, at);
-    vbm1_mul(&T2, &T, &T);
-    T2.c[0] = vbx_ia_add(T2.c[0], vbx_ia_point(1.0));
-    if (!vbm1_recip(&rec, &T2))
+    const owner *o = &f->o;
+    vbx_ia sA1 = vbx_ia_mul(f->s, f->A1), sA2 = vbx_ia_mul(f->s, f->A2);
+    vbx_ia mA1 = vbx_ia_mul(f->mcs, f->A1), mA2 = vbx_ia_mul(f->mcs, f->A2);
+    vbx_ia one = vbx_ia_point(1.0), two = vbx_ia_point(2.0), dd = vbx_ia_add(o->delta, o->delta);
+    vbx_ia E[3] = {one, vbx_ia_point(0.0), one};
+    vbx_ia Pz[3] = {vbx_ia_add(sA1, f->cA0), vbx_ia_mul(two, sA2), vbx_ia_sub(f->cA0, sA1)};
+    vbx_ia Pn[3] = {vbx_ia_add(mA1, f->sA0s), vbx_ia_mul(two, mA2), vbx_ia_sub(f->sA0s, mA1)};
+    vbx_ia Po[3], Pq[3], Pv[3], Pq2[5], t[5];
+    for (int k = 0; k < 3; k++) {
+        Po[k] = vbx_ia_add(E[k], Pz[k]);
+        Pq[k] = vbx_ia_add(vbx_ia_mul(o->D, Pz[k]), vbx_ia_mul(o->delta, E[k]));
+        Pv[k] = vbx_ia_add(vbx_ia_mul(o->D, Po[k]), vbx_ia_mul(dd, E[k]));
+        f->an[k] = vbx_ia_mul(two, Pn[k]);
+        f->Pz[k] = Pz[k];
+        f->Pq[k] = Pq[k];
+    }
+    vbm1_poly_mul(f->ad, E, 2, Po, 2);
+    vbm1_poly_mul(t, Pn, 2, Pv, 2);
+    vbx_ia k2 = vbx_ia_mul(two, o->K);
+    for (int k = 0; k < 5; k++)
+        f->vn[k] = vbx_ia_mul(k2, t[k]);
+    vbm1_poly_mul(Pq2, Pq, 2, Pq, 2);
+    vbm1_poly_mul(f->vd, Pq2, 4, Po, 2);
+    if (!o->contacts)
+        return;
+    /* S = N + 2 delta q = (N E + 2 delta Pq) / E; the algebraic part of
+     * G(q), -S^(3/2) / (2 N q^2) + delta sqrt(S) / (2 N q), is sqrt(S) times
+     * (delta q - S) / (2 N q^2) = -(N E + delta Pq) E / (2 N Pq^2); and
+     * 1 / (1 - z) = E / (E - Pz), so the area's integrand over 1 - z is
+     * 2 Pn / (Po (E - Pz)) */
+    vbx_ia W[3], Emz[3];
+    for (int k = 0; k < 3; k++) {
+        f->SN[k] = vbx_ia_add(vbx_ia_mul(o->N, E[k]), vbx_ia_mul(dd, Pq[k]));
+        W[k] = vbx_ia_neg(vbx_ia_add(vbx_ia_mul(o->N, E[k]), vbx_ia_mul(o->delta, Pq[k])));
+        Emz[k] = vbx_ia_sub(E[k], Pz[k]);
+    }
+    vbm1_poly_mul(f->Rn, W, 2, E, 2);
+    vbx_ia twoN = vbx_ia_add(o->N, o->N);
+    for (int k = 0; k < 5; k++)
+        f->Rd[k] = vbx_ia_mul(twoN, Pq2[k]);
+    vbm1_poly_mul(f->cd, Po, 2, Emz, 2);
+}
+
+/* The contact's integrand C (G1 - G(q)) / (1 - z) times the area's, G as
+ * g_of's but its algebraic part one root times a rational function.
+ * Returns 0 when a series cannot be bounded (the caller bounds it near
+ * e_j). */
+static int contact_of(const arcfun *f, vbx_ia at, int kmax, vbm_s1 *con)
+{
+    static const vbx_ia E[3] = {{1.0, 1.0}, {0.0, 0.0}, {1.0, 1.0}};
+    const owner *o = &f->o;
+    vbm_s1 S, r, R, G, u, a;
+    if (!vbm1_rational(&S, f->SN, 2, E, 2, at, kmax) || !vbm1_sqrt(&r, &S) ||
+        !vbm1_rational(&R, f->Rn, 4, f->Rd, 4, at, kmax) ||
+        !vbm1_rational(&a, f->an, 2, f->cd, 4, at, kmax))
         return 0;
-    vbm1_affine(&cs, vbx_ia_point(2.0), &rec, vbx_ia_point(-1.0)); /* (1 - T^2) / (1 + T^2) */
-    vbm1_mul(&t, &T, &rec);
-    vbm1_affine(&sn, vbx_ia_point(2.0), &t, vbx_ia_point(0.0)); /* 2 T / (1 + T^2) */
-    vbm1_affine(&w, f->A1, &cs, vbx_ia_point(0.0));
-    vbm1_affine(&t, f->A2, &sn, vbx_ia_point(0.0));
-    vbm1_add(&w, &w, &t);
-    vbm1_affine(&z, f->s, &w, f->cA0);
-    vbm1_affine(&num, f->mcs, &w, f->sA0s);
-    vbm1_mul(&t, &num, &rec);
-    vbm1_affine(&num, vbx_ia_point(2.0), &t, vbx_ia_point(0.0)); /* e.(u x du/dt) */
-    vbm1_affine(&opz, vbx_ia_point(1.0), &z, vbx_ia_point(1.0));
-    if (!vbm1_recip(&u, &opz))
+    vbm1_mul(&G, &r, &R);
+    if (!vbm_ia_is_zero(o->delta)) { /* - delta^2 / (2 N sqrt N) log(2 |delta| q / (sqrt S + sqrt N)^2) */
+        vbm_s1 q, lq, ls;
+        vbm1_affine(&u, vbx_ia_point(1.0), &r, o->rN);
+        if (!vbm1_rational(&q, f->Pq, 2, E, 2, at, kmax) || !vbm1_log(&lq, &q) ||
+            !vbm1_log(&ls, &u))
+            return 0;
+        vbm1_affine(&u, vbx_ia_point(-2.0), &ls, o->lnd);
+        vbm1_add(&u, &u, &lq);
+        vbm1_affine(&u, vbx_ia_neg(o->kL), &u, vbx_ia_point(0.0));
+        vbm1_add(&G, &G, &u);
+    }
+    vbm1_affine(&G, vbx_ia_neg(o->C), &G, vbx_ia_mul(o->C, o->G1));
+    vbm1_mul(con, &G, &a);
+    return 1;
+}
+
+/* The series of the integrands at `at`, coefficients up to kmax (the
+ * others 0). Returns 1, 2 when the contact's series cannot be bounded near
+ * e_j (v[CON] is then a constant: its bound where `at` ranges), 0 when
+ * nothing can. */
+static int integrand(const arcfun *f, vbx_ia at, vbm_s1 *v, int kmax)
+{
+    if (!vbm1_rational(&v[AREA], f->an, 2, f->ad, 4, at, kmax) ||
+        !vbm1_rational(&v[VOL], f->vn, 4, f->vd, 6, at, kmax))
         return 0;
-    vbm1_mul(&v[AREA], &num, &u); /* (1 - z) dphi = num / (1 + z) */
-    vbm1_affine(&t, f->o.D, &z, f->o.delta); /* q = D z + delta */
-    if (!vbm1_recip(&u, &t))
+    vbm1_const(&v[CON], vbx_ia_point(0.0));
+    if (!f->o.contacts)
+        return 1;
+    if (contact_of(f, at, kmax, &v[CON]))
+        return 1;
+    /* near e_j: F(z) / (1 - z) = f(xi), xi in [z, 1] */
+    static const vbx_ia E[3] = {{1.0, 1.0}, {0.0, 0.0}, {1.0, 1.0}};
+    vbm_s1 z;
+    if (!vbm1_rational(&z, f->Pz, 2, E, 2, at, 0))
         return 0;
-    int rc = 1;
-    if (f->o.contacts) { /* C (G1 - G(q)) / (1 - z) times num / (1 + z) */
-        vbm_s1 G, omz;
-        vbm1_affine(&omz, vbx_ia_point(-1.0), &z, vbx_ia_point(1.0));
-        if (g_of(&f->o, &t, &G) && vbm1_recip(&cs, &omz)) {
-            vbm1_affine(&G, vbx_ia_neg(f->o.C), &G, vbx_ia_mul(f->o.C, f->o.G1));
-            vbm1_mul(&sn, &G, &cs);
-            vbm1_mul(&v[CON], &sn, &v[AREA]);
-        } else { /* near e_j: F(z) / (1 - z) = f(xi), xi in [z, 1] */
-            vbx_ia Z = {z.c[0].lo, 1.0};
-            vbx_ia q = vbx_ia_add(vbx_ia_mul(f->o.D, Z), f->o.delta);
-            vbx_ia S = vbx_ia_add(f->o.N, vbx_ia_mul(vbx_ia_add(f->o.delta, f->o.delta), q));
-            vbx_ia fa = vbx_ia_div(vbx_ia_mul(vbx_ia_sqr(f->o.N), vbx_ia_sqrt(S)),
-                                   vbx_ia_mul(vbx_ia_point(4.0), vbx_ia_mul(vbx_ia_sqr(q), q)));
-            vbm1_const(&v[CON], vbx_ia_mul(fa, v[AREA].c[0]));
-            rc = 2;
-        }
-    } else
-        vbm1_const(&v[CON], vbx_ia_point(0.0));
-    vbm1_mul(&t, &u, &u);
-    vbm1_affine(&u, f->o.D, &opz, vbx_ia_add(f->o.delta, f->o.delta));
-    vbm1_mul(&T, &t, &u);
-    vbm1_mul(&t, &T, &v[AREA]);
-    vbm1_affine(&v[VOL], f->o.K, &t, vbx_ia_point(0.0));
-    return rc;
+    vbx_ia Z = {z.c[0].lo, 1.0};
+    vbx_ia qz = vbx_ia_add(vbx_ia_mul(f->o.D, Z), f->o.delta);
+    vbx_ia S = vbx_ia_add(f->o.N, vbx_ia_mul(vbx_ia_add(f->o.delta, f->o.delta), qz));
+    vbx_ia fa = vbx_ia_div(vbx_ia_mul(vbx_ia_sqr(f->o.N), vbx_ia_sqrt(S)),
+                           vbx_ia_mul(vbx_ia_point(4.0), vbx_ia_mul(vbx_ia_sqr(qz), qz)));
+    vbm1_const(&v[CON], vbx_ia_mul(fa, v[AREA].c[0]));
+    return 2;
 }
 
 typedef struct sums {
@@ -266,9 +330,14 @@ static int piece(const arcfun *f, double x0, double x1, const double *tg, int de
     double xc = 0.5 * (x0 + x1);
     vbm_s1 c[NV], b[NV];
     vbx_ia box = {x0, x1}, v[NV];
-    int rc = integrand(f, vbx_ia_point(xc), c), rb = rc ? integrand(f, box, b) : 0, ok = rc && rb;
-    for (int k = 0; ok && k < NV; k++)
-        v[k] = vbm1_integrate(&c[k], &b[k], xc, x0, x1);
+    int rc = integrand(f, vbx_ia_point(xc), c, VBM1_K), rb = rc ? integrand(f, box, b, VBM1_K) : 0;
+    int ok = rc && rb;
+    vbx_ia mom[VBM1_K + 1];
+    if (ok)
+        vbm1_moments(xc, x0, x1, mom);
+    for (int k = 0; ok && k < NV; k++) /* the contact's series is 0 without contacts */
+        v[k] = k == CON && !f->o.contacts ? vbx_ia_point(0.0)
+                                          : vbm1_integrate_m(&c[k], &b[k], mom);
     if (ok && (rc == 2 || rb == 2)) /* the contact's bound over the box times its length */
         v[CON] = vbx_ia_mul(vbx_ia_sub(vbx_ia_point(x1), vbx_ia_point(x0)), b[CON].c[0]);
     if (!ok && !(depth < MAX_DEPTH && xc > x0 && xc < x1))
@@ -292,7 +361,7 @@ static int piece(const arcfun *f, double x0, double x1, const double *tg, int de
 static int end_piece(const arcfun *f, vbx_ia t, double m, sums *out)
 {
     vbm_s1 v[NV];
-    if (!integrand(f, t, v)) /* 2: v[CON].c[0] a bound as well */
+    if (!integrand(f, t, v, 0)) /* 2: v[CON].c[0] a bound as well */
         return 0;
     vbx_ia dt = vbx_ia_sub(vbx_ia_point(m), t);
     for (int k = 0; k < NV; k++)
@@ -340,6 +409,7 @@ static int integrate_arc(const vbm_atom_in *in, const stokes_work *w, arcrec *a,
     f.mcs = vbx_ia_neg(vbx_ia_mul(a->c, a->s));
     f.A1 = vbx_ia_add(vbx_ia_mul(a->A1, cm), vbx_ia_mul(a->A2, sm));
     f.A2 = vbx_ia_sub(vbx_ia_mul(a->A2, cm), vbx_ia_mul(a->A1, sm));
+    rational_of(&f);
     double m0 = vbx_ia_mid(t0), m1 = vbx_ia_mid(t1);
     if (!end_piece(&f, t0, m0, &s) || !piece(&f, m0, m1, tg, 0, &s) || !end_piece(&f, t1, m1, &s))
         return 0;
@@ -532,7 +602,7 @@ int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
             r->tq = a->tq;
         }
     }
-    /* every arc to a thousand times its share of the floors of the targets
+    /* every arc to a hundred times its share of the floors of the targets
      * (tolerance * max(|value|, floor), cell_patches.c), then the arcs wider
      * than their share of the targets of the values found, halved until
      * they meet it */
@@ -540,7 +610,7 @@ int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
     double fv = FLOOR_FRACTION * FOUR_PI * r3, fa = FLOOR_FRACTION * FOUR_PI * rr * rr;
     size_t pieces = 0;
     contacts(in, w); /* the arc counts */
-    if (!integrate_arcs(in, w, in->tolerance * fv, in->tolerance * fa, fa, 1e3, &pieces))
+    if (!integrate_arcs(in, w, in->tolerance * fv, in->tolerance * fa, fa, 100, &pieces))
         return 0;
     total(in, w, out);
     contacts(in, w);

@@ -30,17 +30,23 @@ enum { VBM_CAP_CIRCLE = 1, VBM_CAP_ALL = 2, VBM_CAP_NONE = 3 };
  * (nearest doubles: the arcs' frames only). */
 typedef struct vbm_arc {
     uint32_t cap;
+    uint32_t pcap, qcap; /* the caps whose circles end the arc at p and q
+                          * (VBM_NO_CAP: a split of a longer arc, or none) */
     vbx_ia p[2], q[2];
     double tp, tq;
 } vbm_arc;
+
+#define VBM_NO_CAP UINT32_MAX
 
 /* Work space of vbm_cap_arcs (zero-initialise; free with vbm_caps_free). */
 typedef struct vbm_capwork {
     vbm_circle *circ;
     struct vbm_endpt *end; /* cap_arcs.c's */
     struct vbm_restr *res;
-    vbm_arc *arc;
-    size_t cap_circ, cap_end, cap_res, cap_arc, narc;
+    vbm_arc *arc, *sorted;
+    uint32_t *sel, *queue;  /* caps restricting a circle; circles to do next */
+    uint8_t *state;         /* per cap: done, on the boundary, queued */
+    size_t cap_circ, cap_end, cap_res, cap_arc, narc, cap_sorted, cap_sel, cap_queue, cap_state;
 } vbm_capwork;
 
 /* The circle of a cap: kind VBM_CAP_CIRCLE with the frame, _ALL or _NONE;

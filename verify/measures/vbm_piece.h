@@ -36,6 +36,12 @@ vbx_ia vbm_solid_angle(double a0, double a1, double b0, double b1);
 vbx_ia vbm_ia_atan(vbx_ia x);
 vbx_ia vbm_ia_log(vbx_ia x);
 
+/* Frees the calling thread's MPFR constant cache: atan keeps pi (log, log
+ * 2) there, and a worker thread that ends with it leaves it behind
+ * (LeakSanitizer in CI). Called once per atom, not per call: rebuilding pi
+ * at every atan was most of an arc's closed form. */
+void vbm_ia_release(void);
+
 /* A curve F = l0 + la a + lb b - kappa s = 0 across a patch; F > 0 is where
  * owner `pos` owns, F < 0 where `neg` does (-1: the ball). */
 typedef struct vbm_curve {

@@ -8,7 +8,7 @@
  * the coefficients at a point or, with the variable's constant term an
  * interval, at every point of that interval. Taylor's theorem with
  * Lagrange's remainder gives f(xc + x) = sum_{n<K} c_n(xc) x^n + c_K(xi) x^K
- * with xi between xc and xc + x; vbm1_integrate integrates both parts. */
+ * with xi between xc and xc + x; vbm1_integrate_m integrates both parts. */
 #ifndef VBM_SERIES1_H
 #define VBM_SERIES1_H
 
@@ -47,9 +47,30 @@ int vbm1_sqrt(vbm_s1 *r, const vbm_s1 *f);
  * by MPFR (vbm_ia_log). Returns 0 unless f's constant term is proven > 0. */
 int vbm1_log(vbm_s1 *r, const vbm_s1 *f);
 
-/* An enclosure of the integral of f over [x0, x1]: `centre` holds f's
- * coefficients at xc (x0 <= xc <= x1), `box` their enclosures over
- * [x0, x1]. */
-vbx_ia vbm1_integrate(const vbm_s1 *centre, const vbm_s1 *box, double xc, double x0, double x1);
+/* An enclosure of the integral of f over [x0, x1] in two steps, for
+ * several functions over one interval: m[0..VBM1_K] the enclosures of the
+ * integrals of (x - xc)^n over [x0, x1] (vbm1_moments), then the integral
+ * from them, `centre` holding f's coefficients at xc (x0 <= xc <= x1) and
+ * `box` their enclosures over [x0, x1]. */
+void vbm1_moments(double xc, double x0, double x1, vbx_ia *m);
+vbx_ia vbm1_integrate_m(const vbm_s1 *centre, const vbm_s1 *box, const vbx_ia *m);
+
+/* Polynomials in one variable with interval coefficients, p[k] the
+ * coefficient of x^k, degree at most VBM1_POLY (series_rat.c). */
+#define VBM1_POLY 8
+
+/* r = f g, of degrees df and dg (df + dg <= VBM1_POLY; r must not alias
+ * f or g): every coefficient an enclosure of the exact product's. */
+void vbm1_poly_mul(vbx_ia *r, const vbx_ia *f, int df, const vbx_ia *g, int dg);
+
+/* The Taylor coefficients c_0 .. c_kmax (kmax <= VBM1_K; the others
+ * set to 0) at `at` (a point, or an interval: the box) of the rational
+ * function num(x) / den(x), degrees dn and dd <= VBM1_POLY:
+ * both polynomials moved to `at` by Horner's scheme in intervals, then
+ * r_n = (num_n - sum_{k=1..dd} den_k r_(n-k)) / den_0, a constant number
+ * of interval operations per coefficient where vbm1_recip and vbm1_mul
+ * take n. Returns 0 when den(at) may be 0 (r unspecified then). */
+int vbm1_rational(vbm_s1 *r, const vbx_ia *num, int dn, const vbx_ia *den, int dd, vbx_ia at,
+                  int kmax);
 
 #endif

@@ -1,0 +1,63 @@
+/* Rational functions of one variable as Taylor models (vbm_series1.h): the
+ * integrands along a circle arc are quotients of low-degree polynomials in
+ * t = tan(angle / 2) (stokes_cell.c), so their coefficients follow from a
+ * linear recurrence instead of series products and reciprocals. */
+#include "vbm_series1.h"
+
+void vbm1_poly_mul(vbx_ia *r, const vbx_ia *f, int df, const vbx_ia *g, int dg)
+{
+    for (int n = 0; n <= df + dg; n++) {
+        vbx_ia s = vbx_ia_point(0.0);
+        for (int k = n > dg ? n - dg : 0; k <= df && k <= n; k++)
+            s = vbx_ia_add(s, vbx_ia_mul(f[k], g[n - k]));
+        r[n] = s;
+    }
+}
+
+/* q(x) = p(at + x): Horner's scheme on the series of at + x, each step
+ * r <- r (at + x) + p_k (synthetic division), exact in interval terms. */
+static void shift(vbx_ia *q, const vbx_ia *p, int d, vbx_ia at)
+{
+    for (int n = 0; n <= d; n++)
+        q[n] = vbx_ia_point(0.0);
+    q[0] = p[d];
+    for (int k = d - 1; k >= 0; k--) {
+        for (int n = d - k; n >= 1; n--)
+            q[n] = vbx_ia_add(vbx_ia_mul(at, q[n]), q[n - 1]);
+        q[0] = vbx_ia_add(vbx_ia_mul(at, q[0]), p[k]);
+    }
+}
+
+/* p(at) alone: Horner's scheme. */
+static vbx_ia value(const vbx_ia *p, int d, vbx_ia at)
+{
+    vbx_ia v = p[d];
+    for (int k = d - 1; k >= 0; k--)
+        v = vbx_ia_add(vbx_ia_mul(at, v), p[k]);
+    return v;
+}
+
+int vbm1_rational(vbm_s1 *r, const vbx_ia *num, int dn, const vbx_ia *den, int dd, vbx_ia at,
+                  int kmax)
+{
+    vbx_ia a[VBM1_POLY + 1], b[VBM1_POLY + 1];
+    if (kmax == 0) {
+        a[0] = value(num, dn, at);
+        b[0] = value(den, dd, at);
+    } else {
+        shift(a, num, dn, at);
+        shift(b, den, dd, at);
+    }
+    vbx_ia b0 = b[0];
+    if (!(b0.lo > 0.0 || b0.hi < 0.0))
+        return 0;
+    for (int n = 0; n <= kmax; n++) {
+        vbx_ia s = n <= dn ? a[n] : vbx_ia_point(0.0);
+        for (int k = 1; k <= dd && k <= n; k++)
+            s = vbx_ia_sub(s, vbx_ia_mul(b[k], r->c[n - k]));
+        r->c[n] = vbx_ia_div(s, b0);
+    }
+    for (int n = kmax + 1; n <= VBM1_K; n++)
+        r->c[n] = vbx_ia_point(0.0);
+    return 1;
+}
