@@ -105,13 +105,37 @@ typedef struct {
     int ok; /* complete (else vbc_cells_within answers) */
 } near_list;
 
-/* The clearance at q, and its near list for slack eps. */
-static double clearance_near(const vbc_cells *c, const double q[3], double eps, int32_t *atom,
-                             near_list *L)
+/* The spheres near a point c0 of the ascent, for queries close to it: the
+ * near list of c0 for slack LOCAL_SLACK holds, for any q within
+ * (LOCAL_SLACK - eps) / 2 of c0, q's nearest sphere and every sphere within
+ * its distance + eps of q (vbc_cells_nearest_among), so the ascent's
+ * queries, steps of a fraction of an A, mostly need no walk of the cells. */
+#define LOCAL_SLACK 1.1
+#define LOCAL_CAP 512
+typedef struct {
+    double c0[3];
+    int32_t id[LOCAL_CAP];
+    double dist[LOCAL_CAP];
+    size_t n;
+    int ok;
+} local_set;
+
+/* The clearance at q, and its near list for slack eps (eps <= 0.1). */
+static double clearance_near(const vbc_cells *c, const double q[3], double eps, int32_t hint,
+                             int32_t *atom, near_list *L, local_set *S)
 {
-    double R;
-    L->ok = vbc_cells_nearest_near(c, q, eps, &R, atom, L->id, L->dist, NEAR_CAP, &L->n) == 0;
-    return L->ok ? R : vbc_cells_clearance(c, q, atom);
+    double R, half = 0.5 * (LOCAL_SLACK - eps) - 1e-6;
+    double w[3] = {q[0] - S->c0[0], q[1] - S->c0[1], q[2] - S->c0[2]};
+    if (!S->ok || w[0] * w[0] + w[1] * w[1] + w[2] * w[2] > half * half) {
+        S->ok = vbc_cells_nearest_near(c, q, LOCAL_SLACK, hint, &R, atom, S->id, S->dist, LOCAL_CAP,
+                                       &S->n) == 0;
+        memcpy(S->c0, q, sizeof S->c0);
+    }
+    L->ok = S->ok && vbc_cells_nearest_among(c, S->id, S->n, q, eps, &R, atom, L->id, L->dist,
+                                             NEAR_CAP, &L->n) == 0;
+    if (!L->ok)
+        L->ok = vbc_cells_nearest_near(c, q, eps, hint, &R, atom, L->id, L->dist, NEAR_CAP, &L->n) == 0;
+    return L->ok ? R : vbc_cells_clearance_from(c, q, hint, atom);
 }
 
 double vbc_plane_maximise(const vbc_cells *c, const double u[3], double travel, double p[3],
@@ -126,7 +150,9 @@ double vbc_plane_maximise(const vbc_cells *c, const double u[3], double travel, 
      * each step's vbc_cells_within(p, R + eps) as that would: the same
      * atoms in the same order, without a second walk of the cells. */
     near_list here, there;
-    double R = clearance_near(c, p, eps, &a, &here);
+    local_set S;
+    S.ok = 0;
+    double R = clearance_near(c, p, eps, -1, &a, &here, &S);
     for (int it = 0; it < 400 && eps >= 1e-7; it++) {
         active_set A = {s, {p[0], p[1], p[2]}, {0}, 0};
         if (here.ok) {
@@ -175,7 +201,7 @@ double vbc_plane_maximise(const vbc_cells *c, const double u[3], double travel, 
             if (blocked_by(s, &A, q, R + 1e-13))
                 continue;
             int32_t b;
-            double Rq = clearance_near(c, q, eps, &b, &there);
+            double Rq = clearance_near(c, q, eps, a, &b, &there, &S);
             if (Rq > R + 1e-13) {
                 memcpy(p, q, sizeof q);
                 R = Rq;
@@ -220,7 +246,7 @@ double vbc_plane_widest(const vbc_cells *c, const double u[3], double reach, vbc
                 continue;
             if (blocked_by(s, &hint, q, R))
                 continue;
-            double Rq = vbc_cells_clearance(c, q, &a);
+            double Rq = vbc_cells_clearance_from(c, q, hint.n ? hint.id[0] : -1, &a);
             hint.id[0] = a;
             hint.n = a >= 0;
             if (Rq > R) { /* strict: the first of equals (in scan order) stays */
