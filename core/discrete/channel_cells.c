@@ -228,13 +228,19 @@ static int nearest_visit(const vbc_cells *c, int32_t a, void *user)
 }
 
 /* Distance from p to the box of cells within `ring` of q0: atoms farther out
- * have centres at least this far away. */
+ * have centres at least this far away. A side of the box at or past the
+ * grid's last cell has no atom beyond it (cell_coord clamps into the last
+ * cells, which the walk has then met), so it bounds nothing: a point
+ * outside the grid (a raster pixel, a lattice point beyond the molecule)
+ * stops as soon as the atoms near it are walked. */
 static double ring_reach(const vbc_cells *c, const double p[3], const int q0[3], int ring)
 {
     double m = INFINITY;
     for (int a = 0; a < 3; a++) {
-        double lo = c->lo[a] + (q0[a] - ring) * c->cell, hi = c->lo[a] + (q0[a] + ring + 1) * c->cell;
-        m = fmin(m, fmin(p[a] - lo, hi - p[a]));
+        if (q0[a] - ring > 0)
+            m = fmin(m, p[a] - (c->lo[a] + (q0[a] - ring) * c->cell));
+        if (q0[a] + ring < c->dim[a] - 1)
+            m = fmin(m, c->lo[a] + (q0[a] + ring + 1) * c->cell - p[a]);
     }
     return m;
 }
