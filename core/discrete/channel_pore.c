@@ -1,6 +1,7 @@
 /* The HOLE-style pore sweep (vbc_pore.h): the largest empty sphere in each
  * plane normal to the axis, found by a deterministic max-min ascent. */
 #include <math.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -335,6 +336,8 @@ typedef struct {
     vbc_outside_fn outside;
     void *user;
     double half, sign;
+    double floor;           /* give up at a radius at or below this */
+    atomic_int *given_up;   /* shared by the two sides */
     vbc_pore_point *pts;
     size_t n, cap;
     int open, failed;
@@ -348,9 +351,15 @@ static void *sweep_side_run(void *arg)
     int32_t atom;
     S->open = S->outside && S->outside(S->user, p);
     for (long k = 1; !S->open && k * S->opt->step <= S->half; k++) {
+        if (atomic_load(S->given_up))
+            break;
         for (int i = 0; i < 3; i++)
             p[i] += S->sign * S->opt->step * u[i];
         double r = plane_best(S->c, u, S->outside, S->user, p, &atom);
+        if (r <= S->floor) {
+            atomic_store(S->given_up, 1);
+            break;
+        }
         vbc_pore_point q = {dot3(p, u), p[0], p[1], p[2], r, atom};
         if (push(&S->pts, &S->n, &S->cap, &q) != 0) {
             S->failed = 1;
@@ -366,6 +375,13 @@ static void *sweep_side_run(void *arg)
 
 int vbc_pore_sweep(vb_ctx *ctx, const vbc_cells *c, const vb_sphere_set *s, const vbc_axis *ax,
                    const vbc_pore_options *opt, vbc_outside_fn outside, void *user, vbc_pore *out)
+{
+    return vbc_pore_sweep_above(ctx, c, s, ax, opt, outside, user, -INFINITY, out);
+}
+
+int vbc_pore_sweep_above(vb_ctx *ctx, const vbc_cells *c, const vb_sphere_set *s,
+                         const vbc_axis *ax, const vbc_pore_options *opt, vbc_outside_fn outside,
+                         void *user, double floor, vbc_pore *out)
 {
     memset(out, 0, sizeof *out);
     double un = sqrt(dot3(ax->u, ax->u));
@@ -391,11 +407,17 @@ int vbc_pore_sweep(vb_ctx *ctx, const vbc_cells *c, const vb_sphere_set *s, cons
     int32_t atom;
     double r0 = plane_best(c, u, outside, user, start, &atom);
     vbc_pore_point q0 = {dot3(start, u), start[0], start[1], start[2], r0, atom};
+    if (r0 <= floor) { /* given up: no wider than floor */
+        memset(out, 0, sizeof *out);
+        return VB_OK;
+    }
     int rc = VB_OK;
+    atomic_int given_up;
+    atomic_init(&given_up, 0);
     sweep_side side[2];
     for (int dir = 0; dir < 2; dir++)
         side[dir] = (sweep_side){c, u, start, opt, outside, user, half, dir == 0 ? 1.0 : -1.0,
-                                 NULL, 0, 0, 0, 0};
+                                 floor, &given_up, NULL, 0, 0, 0, 0};
     if (vb_threads(0) > 1)
         vb_run_jobs(sweep_side_run, side, sizeof *side, 2);
     else
@@ -403,6 +425,12 @@ int vbc_pore_sweep(vb_ctx *ctx, const vbc_cells *c, const vb_sphere_set *s, cons
             sweep_side_run(&side[dir]);
     if (side[0].failed || side[1].failed)
         rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "pore profile");
+    if (rc == VB_OK && atomic_load(&given_up)) {
+        free(side[0].pts);
+        free(side[1].pts);
+        memset(out, 0, sizeof *out);
+        return VB_OK;
+    }
     out->open_hi = side[0].open;
     out->open_lo = side[1].open;
     vbc_pore_point *sidep[2] = {side[0].pts, side[1].pts};

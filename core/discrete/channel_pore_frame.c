@@ -37,6 +37,15 @@ static int sweep(vb_ctx *ctx, const vbc_cells *cells, const vb_sphere_set *s, co
     return vbc_pore_sweep(ctx, cells, s, ax, &req->sweep, M->flags ? outside_mask : NULL, M, out);
 }
 
+/* sweep for a pore wider than floor only (vbc_pore_sweep_above). */
+static int sweep_above(vb_ctx *ctx, const vbc_cells *cells, const vb_sphere_set *s,
+                       const vbc_axis *ax, const vbc_pore_request *req, mask_view *M, double floor,
+                       vbc_pore *out)
+{
+    return vbc_pore_sweep_above(ctx, cells, s, ax, &req->sweep, M->flags ? outside_mask : NULL, M,
+                                floor, out);
+}
+
 static int open_pore(const vbc_pore *p)
 {
     /* More than the start: a start outside the molecule is no pore. */
@@ -83,6 +92,7 @@ typedef struct {
     const vbc_pore_request *req;
     mask_view *M;
     int widest_first; /* a subunit: first its widest place near the centroid */
+    double floor;     /* only a pore wider than this is wanted (vbc_pore_sweep_above) */
     vbc_pore pore;
     int rc;
 } sweep_job;
@@ -98,6 +108,7 @@ static void sweep_job_set(sweep_job *J, const vbc_cells *cells, const vb_sphere_
     J->req = req;
     J->M = M;
     J->widest_first = widest_first;
+    J->floor = -INFINITY;
     J->rc = VB_OK;
 }
 
@@ -109,7 +120,7 @@ static void *sweep_job_run(void *arg)
         vbc_plane_widest(J->cells, J->ax.u, VBC_SUBUNIT_REACH, J->M->flags ? outside_mask : NULL,
                          J->M, J->ax.c, &atom);
     }
-    J->rc = sweep(NULL, J->cells, J->s, &J->ax, J->req, J->M, &J->pore);
+    J->rc = sweep_above(NULL, J->cells, J->s, &J->ax, J->req, J->M, J->floor, &J->pore);
     return NULL;
 }
 
@@ -142,16 +153,17 @@ static int subunit_pore(vb_ctx *ctx, const vbc_cells *cells, const vb_sphere_set
     int n = vbc_axis_subunits(s, &out->axis, sub, 16);
     double need = fmax(VBC_SUBUNIT_MIN_RADIUS, 2.0 * out->pts[out->min_at].r);
     /* Each subunit from its widest place near its centroid, in the
-     * centroid's plane; all of them are judged. */
+     * centroid's plane; all of them are judged, one after the other, each
+     * sweep giving up where it cannot beat `need` (it would not be taken). */
     sweep_job J[16];
-    for (int k = 0; k < n; k++)
-        sweep_job_set(&J[k], cells, s, &sub[k], req, M, 1);
-    int rc = sweep_jobs(ctx, J, n);
-    if (rc != VB_OK) {
-        vbc_pore_free(out);
-        return rc;
-    }
     for (int k = 0; k < n; k++) {
+        sweep_job_set(&J[k], cells, s, &sub[k], req, M, 1);
+        J[k].floor = need;
+        int rc = sweep_jobs(ctx, &J[k], 1);
+        if (rc != VB_OK) {
+            vbc_pore_free(out);
+            return rc;
+        }
         vbc_pore *p = &J[k].pore;
         double r = p->n ? p->pts[p->min_at].r : 0.0;
         if (open_pore(p) && r > need) {
@@ -178,6 +190,7 @@ static int barrel_pore(vb_ctx *ctx, const vbc_cells *cells, const vb_sphere_set 
 {
     sweep_job J[1 + VBC_BARREL_CONE];
     double e1[3], e2[3], t = VBC_BARREL_TILT * acos(-1.0) / 180.0;
+    int best = 0;
     /* A basis of the plane normal to the axis, as vbc_axis_barrel's. */
     double a[3] = {0.0, 0.0, 0.0};
     a[fabs(ax->u[0]) < 0.6 ? 0 : fabs(ax->u[1]) < 0.6 ? 1 : 2] = 1.0;
@@ -202,18 +215,25 @@ static int barrel_pore(vb_ctx *ctx, const vbc_cells *cells, const vb_sphere_set 
                      VBC_BARREL_TILT);
         }
         sweep_job_set(&J[j], cells, s, &b, req, M, 1);
-    }
-    int rc = sweep_jobs(ctx, J, 1 + VBC_BARREL_CONE), best = 0;
-    if (rc != VB_OK)
-        return rc;
-    for (int j = 1; j <= VBC_BARREL_CONE; j++) {
-        const vbc_pore *p = &J[j].pore, *q = &J[best].pore;
-        if (open_pore(p) && (!open_pore(q) || p->pts[p->min_at].r > q->pts[q->min_at].r))
+        /* One after the other: once the best so far is open, a direction
+         * gives up where it cannot be wider (it would not be taken). */
+        const vbc_pore *q = &J[best].pore;
+        if (j > 0 && open_pore(q))
+            J[j].floor = q->pts[q->min_at].r;
+        int rc = sweep_jobs(ctx, &J[j], 1);
+        if (rc != VB_OK) {
+            for (int k = 0; k < j; k++)
+                vbc_pore_free(&J[k].pore);
+            return rc;
+        }
+        const vbc_pore *p = &J[j].pore;
+        if (j > 0 && open_pore(p) && (!open_pore(q) || p->pts[p->min_at].r > q->pts[q->min_at].r)) {
+            vbc_pore_free(&J[best].pore);
             best = j;
-    }
-    for (int j = 0; j <= VBC_BARREL_CONE; j++)
-        if (j != best)
+        } else if (j > 0) {
             vbc_pore_free(&J[j].pore);
+        }
+    }
     *out = J[best].pore;
     return VB_OK;
 }

@@ -246,6 +246,15 @@ double vbc_plane_widest(const vbc_cells *c, const double u[3], double reach, vbc
 int vbc_pore_sweep(vb_ctx *ctx, const vbc_cells *c, const vb_sphere_set *s, const vbc_axis *ax,
                    const vbc_pore_options *opt, vbc_outside_fn outside, void *user, vbc_pore *out);
 
+/* vbc_pore_sweep for a caller that only wants a pore wider than floor (the
+ * best of several candidates so far): it gives up as soon as a plane's
+ * radius is at or below floor, such a pore's bottleneck being no wider,
+ * and then returns VB_OK with out->n == 0 (nothing to free). floor
+ * -INFINITY: vbc_pore_sweep. */
+int vbc_pore_sweep_above(vb_ctx *ctx, const vbc_cells *c, const vb_sphere_set *s,
+                         const vbc_axis *ax, const vbc_pore_options *opt, vbc_outside_fn outside,
+                         void *user, double floor, vbc_pore *out);
+
 /* HOLE's macroscopic conductance of a profile (Smart et al. 1996: the pore
  * as a stack of slabs of electrolyte of resistivity rho, G^-1 = rho sum
  * ds / A(s)): F = sum over the points of ds / (pi r^2), each point the
