@@ -111,6 +111,11 @@ int vbc_axis_refit(const vb_sphere_set *s, const vbc_axis *first, vbc_axis *out)
 int vbc_axis_symmetry(const vb_sphere_set *s, vbc_axis *out);
 #define VBC_SYM_MIN_CA 8
 #define VBC_SYM_MAX_RMS 3.0
+/* Chains resolved over different stretches still count as one protein
+ * when this share of the longer one's C-alpha atoms match the other's by
+ * residue number and name; the fit then uses the residues all of them hold
+ * (a tetrameric channel whose subunits miss different loop residues). */
+#define VBC_SYM_MIN_SHARED 0.75
 
 /* The axis of a beta-barrel (core/discrete/channel_barrel.c) made by the
  * chain `chain` of s (NULL: the chain with most C-alpha atoms): its
