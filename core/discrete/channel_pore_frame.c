@@ -166,8 +166,21 @@ static int subunit_pore(vb_ctx *ctx, const vbc_cells *cells, const vb_sphere_set
         }
         vbc_pore *p = &J[k].pore;
         double r = p->n ? p->pts[p->min_at].r : 0.0;
-        if (open_pore(p) && r > need) {
+        /* Only a pore by the verdict replaces the central one: a path
+         * beside a tetrameric channel's closed gate (through a voltage
+         * sensor's crevice, along the outside) is none, and the closed
+         * gate stays the pore. */
+        vbc_pore_verdict v = {0, 0.0, 0, 0, 0};
+        if (open_pore(p) && r > need && vbc_pore_judge(cells, p, VBC_PORE_MIN_BURIED, &v) != 0) {
+            vbc_pore_free(p);
             vbc_pore_free(out);
+            return vb_error(ctx, VB_ENOMEM, NULL, 0, "pore verdict");
+        }
+        if (open_pore(p) && r > need && v.is_pore) {
+            vbc_pore_free(out);
+            p->judged = 1; /* the stage's verdict, not taken twice */
+            p->is_pore = v.is_pore;
+            p->buried = v.buried;
             *out = *p;
             need = r;
         } else {
@@ -554,9 +567,13 @@ int vbc_pore_stage(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const v
         int judge = !(req->have_axis && !req->found_source);
         /* The verdict alone: a pore's planes past VBC_PORE_MIN_BURIED of
          * walled run are not flooded (their buried length is never shown). */
-        if (rc == VB_OK && p.n > 0 && judge &&
-            vbc_pore_judge(cells, &p, VBC_PORE_MIN_BURIED, &v) != 0)
+        if (rc == VB_OK && p.n > 0 && judge && p.judged) {
+            v.is_pore = p.is_pore;
+            v.buried = p.buried;
+        } else if (rc == VB_OK && p.n > 0 && judge &&
+                   vbc_pore_judge(cells, &p, VBC_PORE_MIN_BURIED, &v) != 0) {
             rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "pore verdict");
+        }
         t0 = vb_now();
         t.verdict = 1e3 * (t0 - t1);
         if (rc == VB_OK && p.n > 0 && v.is_pore) {

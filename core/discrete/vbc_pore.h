@@ -22,9 +22,11 @@
  * the symmetry axis of three or more chains is nearly closed (below
  * VBC_SUBUNIT_CENTRAL_MAX) and a sweep parallel to it through one chain's
  * centroid is open at both ends and clearly wider (above
- * VBC_SUBUNIT_MIN_RADIUS and twice the central radius), that subunit's
- * pore is the pore (a porin trimer; a closed gate on the axis of a
- * tetrameric channel stays the pore, its subunits hold no open pore). */
+ * VBC_SUBUNIT_MIN_RADIUS and twice the central radius) and a pore by the
+ * verdict below, that subunit's pore is the pore (a porin trimer; a closed
+ * gate on the axis of a tetrameric channel stays the pore, its subunits
+ * hold no open pore: a path through a voltage sensor's crevice or along
+ * the outside is walled too little to count). */
 #ifndef VBC_PORE_H
 #define VBC_PORE_H
 
@@ -213,6 +215,9 @@ typedef struct vbc_pore {
     int open_lo, open_hi;  /* that end left the molecule (else: end radius, length) */
     double F;              /* sum ds / (pi r^2) over the points, 1/A (HOLE's geometric factor) */
     double g_macro_pS;     /* 100 / (rho F) with rho = 1/12 ohm m (1 M KCl): HOLE's Gmacro */
+    int judged;            /* the verdict (enough VBC_PORE_MIN_BURIED) was taken already: */
+    int is_pore;           /* its is_pore */
+    double buried;         /* and buried */
 } vbc_pore;
 
 /* HOLE's resistivity of 1 M KCl, ohm m. */
