@@ -234,6 +234,11 @@ double vbc_plane_widest(const vbc_cells *c, const double u[3], double reach, vbc
      * puts at or below R cannot win (the strict test below) and needs no
      * query. The same points win as with every point queried. */
     active_set hint = {s, {0.0, 0.0, 0.0}, {a}, a >= 0};
+    /* The nearest atoms of the last RECENT points queried: each bounds the
+     * clearance from above as the last one does. */
+    enum { RECENT = 8 };
+    int32_t last = a;
+    int put = hint.n;
     long n = (long)floor(reach / 0.5);
     for (long i = -n; i <= n; i++)
         for (long j = -n; j <= n; j++) {
@@ -247,9 +252,18 @@ double vbc_plane_widest(const vbc_cells *c, const double u[3], double reach, vbc
                 continue;
             if (blocked_by(s, &hint, q, R))
                 continue;
-            double Rq = vbc_cells_clearance_from(c, q, hint.n ? hint.id[0] : -1, &a);
-            hint.id[0] = a;
-            hint.n = a >= 0;
+            double Rq = vbc_cells_clearance_from(c, q, last, &a);
+            last = a;
+            if (a >= 0) {
+                int k = 0;
+                while (k < hint.n && hint.id[k] != a)
+                    k++;
+                if (k == hint.n) { /* a new one takes the oldest place */
+                    hint.id[put % RECENT] = a;
+                    put++;
+                    hint.n = put < RECENT ? put : RECENT;
+                }
+            }
             if (Rq > R) { /* strict: the first of equals (in scan order) stays */
                 R = Rq;
                 memcpy(best, q, sizeof q);
