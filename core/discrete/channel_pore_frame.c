@@ -143,49 +143,91 @@ static int sweep_jobs(vb_ctx *ctx, sweep_job *J, int n)
                     rc == VB_ENOMEM ? "out of memory" : vb_errstr(rc));
 }
 
-/* The widest open pore of one subunit replaces the nearly closed central
- * one *out when it is clearly wider (the rule in vbc_pore.h); ties go to
- * the earlier chain. */
-static int subunit_pore(vb_ctx *ctx, const vbc_cells *cells, const vb_sphere_set *s,
-                        const vbc_pore_request *req, mask_view *M, vbc_pore *out)
+/* The subunits' search: the widest open path of sub[0..n) wider than
+ * need (ties to the earlier chain) in *best (*have), each sweep giving up
+ * where it cannot beat the need so far (it would not be taken); with
+ * judge_each, only a path that is a pore by the verdict counts (its
+ * verdict kept in *best). Returns VB_OK or the first failure, reported. */
+static int subunit_search(vb_ctx *ctx, const vbc_cells *cells, const vb_sphere_set *s,
+                          const vbc_pore_request *req, mask_view *M, const vbc_axis *sub, int n,
+                          double need, int judge_each, vbc_pore *best, int *have)
 {
-    vbc_axis sub[16];
-    int n = vbc_axis_subunits(s, &out->axis, sub, 16);
-    double need = fmax(VBC_SUBUNIT_MIN_RADIUS, 2.0 * out->pts[out->min_at].r);
-    /* Each subunit from its widest place near its centroid, in the
-     * centroid's plane; all of them are judged, one after the other, each
-     * sweep giving up where it cannot beat `need` (it would not be taken). */
-    sweep_job J[16];
+    *have = 0;
     for (int k = 0; k < n; k++) {
-        sweep_job_set(&J[k], cells, s, &sub[k], req, M, 1);
-        J[k].floor = need;
-        int rc = sweep_jobs(ctx, &J[k], 1);
+        sweep_job J;
+        sweep_job_set(&J, cells, s, &sub[k], req, M, 1);
+        J.floor = need;
+        int rc = sweep_jobs(ctx, &J, 1);
+        vbc_pore *p = &J.pore;
+        double r = rc == VB_OK && p->n ? p->pts[p->min_at].r : 0.0;
+        vbc_pore_verdict v = {0, 0.0, 0, 0, 1};
+        if (rc == VB_OK && judge_each && open_pore(p) && r > need &&
+            vbc_pore_judge(cells, p, VBC_PORE_MIN_BURIED, &v) != 0)
+            rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "pore verdict");
         if (rc != VB_OK) {
-            vbc_pore_free(out);
+            vbc_pore_free(p);
+            if (*have)
+                vbc_pore_free(best);
+            *have = 0;
             return rc;
         }
-        vbc_pore *p = &J[k].pore;
-        double r = p->n ? p->pts[p->min_at].r : 0.0;
-        /* Only a pore by the verdict replaces the central one: a path
-         * beside a tetrameric channel's closed gate (through a voltage
-         * sensor's crevice, along the outside) is none, and the closed
-         * gate stays the pore. */
-        vbc_pore_verdict v = {0, 0.0, 0, 0, 0};
-        if (open_pore(p) && r > need && vbc_pore_judge(cells, p, VBC_PORE_MIN_BURIED, &v) != 0) {
-            vbc_pore_free(p);
-            vbc_pore_free(out);
-            return vb_error(ctx, VB_ENOMEM, NULL, 0, "pore verdict");
-        }
         if (open_pore(p) && r > need && v.is_pore) {
-            vbc_pore_free(out);
-            p->judged = 1; /* the stage's verdict, not taken twice */
-            p->is_pore = v.is_pore;
-            p->buried = v.buried;
-            *out = *p;
+            if (*have)
+                vbc_pore_free(best);
+            *best = *p;
+            best->judged = judge_each;
+            best->is_pore = v.is_pore;
+            best->buried = v.buried;
+            *have = 1;
             need = r;
         } else {
             vbc_pore_free(p);
         }
+    }
+    return VB_OK;
+}
+
+/* The widest open pore of one subunit replaces the nearly closed central
+ * one *out when it is clearly wider and a pore by the verdict (the rule in
+ * vbc_pore.h; a path beside a tetrameric channel's closed gate, through a
+ * voltage sensor's crevice or along the outside, is none, and the closed
+ * gate stays the pore); ties go to the earlier chain. The search runs
+ * without the verdict first and judges its winner: when that is a pore it
+ * is also the widest path that is one (the answer of judging each), else
+ * the search runs again judging each path. */
+static int subunit_pore(vb_ctx *ctx, const vbc_cells *cells, const vb_sphere_set *s,
+                        const vbc_pore_request *req, mask_view *M, vbc_pore *out)
+{
+    vbc_axis sub[16];
+    int n = vbc_axis_subunits(s, &out->axis, sub, 16), have;
+    double need = fmax(VBC_SUBUNIT_MIN_RADIUS, 2.0 * out->pts[out->min_at].r);
+    vbc_pore best;
+    for (int judge_each = 0; judge_each < 2; judge_each++) {
+        int rc = subunit_search(ctx, cells, s, req, M, sub, n, need, judge_each, &best, &have);
+        if (rc != VB_OK) {
+            vbc_pore_free(out);
+            return rc;
+        }
+        if (!have)
+            return VB_OK;
+        if (!judge_each) {
+            vbc_pore_verdict v;
+            if (vbc_pore_judge(cells, &best, VBC_PORE_MIN_BURIED, &v) != 0) {
+                vbc_pore_free(&best);
+                vbc_pore_free(out);
+                return vb_error(ctx, VB_ENOMEM, NULL, 0, "pore verdict");
+            }
+            best.judged = 1; /* the stage's verdict, not taken twice */
+            best.is_pore = v.is_pore;
+            best.buried = v.buried;
+            if (!v.is_pore) {
+                vbc_pore_free(&best);
+                continue;
+            }
+        }
+        vbc_pore_free(out);
+        *out = best;
+        return VB_OK;
     }
     return VB_OK;
 }
