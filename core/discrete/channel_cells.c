@@ -2,6 +2,7 @@
  * nearest atom surface) of centreline points and the atoms lining them. */
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "vbc_channel.h"
 
@@ -100,19 +101,46 @@ const vb_sphere_set *vbc_cells_spheres(const vbc_cells *c)
     return c->s;
 }
 
+/* A lower bound of the distance from p to the atoms of the cells whose
+ * index along axis a is k (their slab): the gap to the slab, the outer
+ * slabs unbounded outwards (cell_coord clamps into them), less a margin far
+ * above the rounding of an atom's cell (coordinates below 1e4 A: 1e-11 A). */
+static double slab_gap(const vbc_cells *c, int a, int k, double x)
+{
+    double lo = c->lo[a] + k * c->cell, hi = lo + c->cell, g = 0.0;
+    if (k > 0 && x < lo)
+        g = lo - x;
+    else if (k < c->dim[a] - 1 && x > hi)
+        g = x - hi;
+    return g > 1e-6 ? g - 1e-6 : 0.0;
+}
+
 /* Visits the atoms of the cells at Chebyshev distance exactly `ring` from
  * cell q0; fn returns nonzero to stop the walk, and then so does this
- * (returning 1). */
+ * (returning 1). With p and lim2 (else NULL) a cell whose squared gap to
+ * p exceeds *lim2 (read afresh before each cell: fn may lower it) is
+ * skipped: the caller sets *lim2 so that fn would turn down every atom of
+ * such a cell without a change to its state, so the walk answers as a full
+ * one. */
 static int walk_ring(const vbc_cells *c, const int q0[3], int ring,
-                     int (*fn)(const vbc_cells *, int32_t, void *), void *user)
+                     int (*fn)(const vbc_cells *, int32_t, void *), void *user, const double *p,
+                     const double *lim2)
 {
     for (int dz = -ring; dz <= ring; dz++) {
         int z = q0[2] + dz;
         if (z < 0 || z >= c->dim[2])
             continue;
+        double gz = lim2 ? slab_gap(c, 2, z, p[2]) : 0.0;
+        gz *= gz;
+        if (lim2 && gz > *lim2) /* the whole slab: its cells' gaps are no less */
+            continue;
         for (int dy = -ring; dy <= ring; dy++) {
             int y = q0[1] + dy;
             if (y < 0 || y >= c->dim[1])
+                continue;
+            double gy = lim2 ? slab_gap(c, 1, y, p[1]) : 0.0;
+            gy = gz + gy * gy;
+            if (lim2 && gy > *lim2)
                 continue;
             int onshell = abs(dz) == ring || abs(dy) == ring;
             for (int dx = -ring; dx <= ring; dx += (onshell || ring == 0) ? 1 : 2 * ring) {
@@ -120,6 +148,13 @@ static int walk_ring(const vbc_cells *c, const int q0[3], int ring,
                 if (x < 0 || x >= c->dim[0])
                     continue;
                 size_t q = (size_t)x + (size_t)c->dim[0] * ((size_t)y + (size_t)c->dim[1] * (size_t)z);
+                if (c->start[q] == c->start[q + 1])
+                    continue;
+                if (lim2) {
+                    double gx = slab_gap(c, 0, x, p[0]);
+                    if (gy + gx * gx > *lim2)
+                        continue;
+                }
                 for (size_t t = c->start[q]; t < c->start[q + 1]; t++)
                     if (fn(c, c->idx[t], user))
                         return 1;
@@ -149,26 +184,63 @@ static inline int nearest_offer(const vbc_cells *c, const double p[3], int32_t a
 }
 
 typedef struct {
-    double p[3], best;
+    double p[3], best, slack, lim2;
     int32_t atom;
+    int32_t *near; /* the list of vbc_cells_nearest_near (NULL: none) */
+    double *dist;
+    size_t n, cap;
+    int full;
 } nearest_state;
 
+/* The squared gap beyond which a cell's atoms are all turned down by
+ * nearest_offer (their centres farther than best + slack + rmax, with a
+ * relative margin far above nearest_offer's 1e-12 and the rounding of a
+ * squared distance); infinite before the first atom or while that bound is
+ * negative (nearest_offer then takes every atom's square root). An atom so
+ * far changes neither *best, *atom nor the list: its distance exceeds best
+ * + slack. */
+static void nearest_bound(const vbc_cells *c, nearest_state *st)
+{
+    double L = st->best + st->slack + c->rmax;
+    st->lim2 = st->atom >= 0 && L >= 0.0 ? L * L * (1.0 + 1e-9) : INFINITY;
+}
+
+/* nearest_offer, and the list of spheres within best + slack (a superset
+ * of those within the final best + slack, as best only falls). */
 static int nearest_visit(const vbc_cells *c, int32_t a, void *user)
 {
     nearest_state *st = user;
-    double d;
-    nearest_offer(c, st->p, a, 0.0, &st->best, &st->atom, &d);
+    double d, was = st->best;
+    int32_t had = st->atom;
+    if (!nearest_offer(c, st->p, a, st->slack, &st->best, &st->atom, &d))
+        return 0;
+    if (st->atom != had || st->best != was)
+        nearest_bound(c, st);
+    if (st->near && d <= st->best + st->slack) {
+        if (st->n == st->cap) {
+            st->full = 1;
+            return 1;
+        }
+        st->near[st->n] = a;
+        st->dist[st->n++] = d;
+    }
     return 0;
 }
 
 /* Distance from p to the box of cells within `ring` of q0: atoms farther out
- * have centres at least this far away. */
+ * have centres at least this far away. A side of the box at or past the
+ * grid's last cell has no atom beyond it (cell_coord clamps into the last
+ * cells, which the walk has then met), so it bounds nothing: a point
+ * outside the grid (a raster pixel, a lattice point beyond the molecule)
+ * stops as soon as the atoms near it are walked. */
 static double ring_reach(const vbc_cells *c, const double p[3], const int q0[3], int ring)
 {
     double m = INFINITY;
     for (int a = 0; a < 3; a++) {
-        double lo = c->lo[a] + (q0[a] - ring) * c->cell, hi = c->lo[a] + (q0[a] + ring + 1) * c->cell;
-        m = fmin(m, fmin(p[a] - lo, hi - p[a]));
+        if (q0[a] - ring > 0)
+            m = fmin(m, p[a] - (c->lo[a] + (q0[a] - ring) * c->cell));
+        if (q0[a] + ring < c->dim[a] - 1)
+            m = fmin(m, c->lo[a] + (q0[a] + ring + 1) * c->cell - p[a]);
     }
     return m;
 }
@@ -182,12 +254,29 @@ static int ring_covers_all(const vbc_cells *c, const int q0[3], int ring)
     return 1;
 }
 
-double vbc_cells_clearance(const vbc_cells *c, const double p[3], int32_t *atom)
+/* The state at p started from the hint atom (when one): its distance by
+ * nearest_offer's expression. The least (distance, index) over the atoms
+ * is the answer whatever the order they are offered in, and the hint is
+ * offered again where the walk meets it (no change then but its place in
+ * the list), so a hint changes what is walked, not the answer. */
+static void nearest_start(const vbc_cells *c, nearest_state *st, int32_t hint)
 {
-    nearest_state st = {{p[0], p[1], p[2]}, 0.0, -1};
+    if (hint >= 0 && (size_t)hint < c->s->n) {
+        double dx = st->p[0] - c->s->x[hint], dy = st->p[1] - c->s->y[hint],
+               dz = st->p[2] - c->s->z[hint];
+        st->best = sqrt(dx * dx + dy * dy + dz * dz) - c->s->r[hint];
+        st->atom = hint;
+    }
+    nearest_bound(c, st);
+}
+
+double vbc_cells_clearance_from(const vbc_cells *c, const double p[3], int32_t hint, int32_t *atom)
+{
+    nearest_state st = {{p[0], p[1], p[2]}, 0.0, 0.0, INFINITY, -1, NULL, NULL, 0, 0, 0};
+    nearest_start(c, &st, hint);
     int q0[3] = {cell_coord(c, 0, p[0]), cell_coord(c, 1, p[1]), cell_coord(c, 2, p[2])};
     for (int ring = 0;; ring++) {
-        walk_ring(c, q0, ring, nearest_visit, &st);
+        walk_ring(c, q0, ring, nearest_visit, &st, p, &st.lim2);
         if ((st.atom >= 0 && st.best <= ring_reach(c, p, q0, ring) - c->rmax) ||
             ring_covers_all(c, q0, ring))
             break;
@@ -196,43 +285,22 @@ double vbc_cells_clearance(const vbc_cells *c, const double p[3], int32_t *atom)
     return st.best;
 }
 
-typedef struct {
-    double p[3], best, slack;
-    int32_t atom;
-    int32_t *near;
-    double *dist;
-    size_t n, cap;
-    int full;
-} near_state;
-
-/* nearest_visit's update, and the list of spheres within best + slack (a
- * superset of those within the final best + slack, as best only falls). */
-static int near_visit(const vbc_cells *c, int32_t a, void *user)
+double vbc_cells_clearance(const vbc_cells *c, const double p[3], int32_t *atom)
 {
-    near_state *st = user;
-    double d;
-    if (!nearest_offer(c, st->p, a, st->slack, &st->best, &st->atom, &d))
-        return 0;
-    if (d <= st->best + st->slack) {
-        if (st->n == st->cap) {
-            st->full = 1;
-            return 1;
-        }
-        st->near[st->n] = a;
-        st->dist[st->n++] = d;
-    }
-    return 0;
+    return vbc_cells_clearance_from(c, p, -1, atom);
 }
 
-int vbc_cells_nearest_near(const vbc_cells *c, const double p[3], double slack, double *R,
-                           int32_t *atom, int32_t *near, double *dist, size_t cap, size_t *nnear)
+int vbc_cells_nearest_near(const vbc_cells *c, const double p[3], double slack, int32_t hint,
+                           double *R, int32_t *atom, int32_t *near, double *dist, size_t cap,
+                           size_t *nnear)
 {
-    near_state st = {{p[0], p[1], p[2]}, 0.0, slack, -1, near, dist, 0, cap, 0};
+    nearest_state st = {{p[0], p[1], p[2]}, 0.0, slack, INFINITY, -1, near, dist, 0, cap, 0};
+    nearest_start(c, &st, hint);
     int q0[3] = {cell_coord(c, 0, p[0]), cell_coord(c, 1, p[1]), cell_coord(c, 2, p[2])};
     /* Until both walks would stop: vbc_cells_clearance's ring (best within
      * reach) and vbc_cells_within's for reach best + slack (the later). */
     for (int ring = 0;; ring++) {
-        if (walk_ring(c, q0, ring, near_visit, &st))
+        if (walk_ring(c, q0, ring, nearest_visit, &st, p, &st.lim2))
             break;
         if ((st.atom >= 0 && ring_reach(c, p, q0, ring) - c->rmax > st.best + slack) ||
             ring_covers_all(c, q0, ring))
@@ -243,6 +311,79 @@ int vbc_cells_nearest_near(const vbc_cells *c, const double p[3], double slack, 
         return -1;
     *R = st.best;
     *atom = st.atom;
+    return 0;
+}
+
+/* Where the walk from cell q0 meets atom a: its ring, then the cell's dz,
+ * dy, dx (walk_ring's loops), then the atom's index (a cell lists its atoms
+ * by index: vbc_cells_build fills them in order). */
+static void walk_key(const vbc_cells *c, const int q0[3], int32_t a, long key[5])
+{
+    int d[3] = {cell_coord(c, 0, c->s->x[a]) - q0[0], cell_coord(c, 1, c->s->y[a]) - q0[1],
+                cell_coord(c, 2, c->s->z[a]) - q0[2]};
+    int ring = abs(d[0]) > abs(d[1]) ? abs(d[0]) : abs(d[1]);
+    ring = abs(d[2]) > ring ? abs(d[2]) : ring;
+    key[0] = ring;
+    key[1] = d[2];
+    key[2] = d[1];
+    key[3] = d[0];
+    key[4] = a;
+}
+
+static int key_less(const long a[5], const long b[5])
+{
+    for (int k = 0; k < 5; k++)
+        if (a[k] != b[k])
+            return a[k] < b[k];
+    return 0;
+}
+
+int vbc_cells_nearest_among(const vbc_cells *c, const int32_t *ids, size_t n, const double p[3],
+                            double slack, double *R, int32_t *atom, int32_t *near, double *dist,
+                            size_t cap, size_t *nnear)
+{
+    double best = INFINITY;
+    int32_t b = -1;
+    /* nearest_offer's distance expression, the least (distance, index). */
+    for (size_t k = 0; k < n; k++) {
+        int32_t a = ids[k];
+        double dx = p[0] - c->s->x[a], dy = p[1] - c->s->y[a], dz = p[2] - c->s->z[a];
+        double d = sqrt(dx * dx + dy * dy + dz * dz) - c->s->r[a];
+        if (b < 0 || d < best || (d == best && a < b)) {
+            best = d;
+            b = a;
+        }
+    }
+    *nnear = 0;
+    if (b < 0)
+        return -1;
+    int q0[3] = {cell_coord(c, 0, p[0]), cell_coord(c, 1, p[1]), cell_coord(c, 2, p[2])};
+    long keys[64][5];
+    size_t m = 0;
+    for (size_t k = 0; k < n; k++) {
+        int32_t a = ids[k];
+        double dx = p[0] - c->s->x[a], dy = p[1] - c->s->y[a], dz = p[2] - c->s->z[a];
+        double d = sqrt(dx * dx + dy * dy + dz * dz) - c->s->r[a];
+        if (!(d <= best + slack))
+            continue;
+        if (m == cap || m == 64)
+            return -1;
+        long key[5];
+        walk_key(c, q0, a, key);
+        /* Insertion in walk order (the lists are short). */
+        size_t t = m++;
+        for (; t > 0 && key_less(key, keys[t - 1]); t--) {
+            memcpy(keys[t], keys[t - 1], sizeof key);
+            near[t] = near[t - 1];
+            dist[t] = dist[t - 1];
+        }
+        memcpy(keys[t], key, sizeof key);
+        near[t] = a;
+        dist[t] = d;
+    }
+    *nnear = m;
+    *R = best;
+    *atom = b;
     return 0;
 }
 
@@ -273,7 +414,7 @@ void vbc_cells_within(const vbc_cells *c, const double p[3], double reach,
     within_state st = {{p[0], p[1], p[2]}, reach, fn, user};
     int q0[3] = {cell_coord(c, 0, p[0]), cell_coord(c, 1, p[1]), cell_coord(c, 2, p[2])};
     for (int ring = 0;; ring++) {
-        walk_ring(c, q0, ring, within_visit, &st);
+        walk_ring(c, q0, ring, within_visit, &st, NULL, NULL);
         if (ring_reach(c, p, q0, ring) - c->rmax > reach || ring_covers_all(c, q0, ring))
             break;
     }
@@ -308,7 +449,7 @@ int vbc_cells_any_within(const vbc_cells *c, const double p[3], double reach, in
         return 1;
     int q0[3] = {cell_coord(c, 0, p[0]), cell_coord(c, 1, p[1]), cell_coord(c, 2, p[2])};
     for (int ring = 0;; ring++) {
-        if (walk_ring(c, q0, ring, any_visit, &st)) {
+        if (walk_ring(c, q0, ring, any_visit, &st, NULL, NULL)) {
             if (hint)
                 *hint = st.found;
             return 1;

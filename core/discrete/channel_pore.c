@@ -1,6 +1,7 @@
 /* The HOLE-style pore sweep (vbc_pore.h): the largest empty sphere in each
  * plane normal to the axis, found by a deterministic max-min ascent. */
 #include <math.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -105,13 +106,37 @@ typedef struct {
     int ok; /* complete (else vbc_cells_within answers) */
 } near_list;
 
-/* The clearance at q, and its near list for slack eps. */
-static double clearance_near(const vbc_cells *c, const double q[3], double eps, int32_t *atom,
-                             near_list *L)
+/* The spheres near a point c0 of the ascent, for queries close to it: the
+ * near list of c0 for slack LOCAL_SLACK holds, for any q within
+ * (LOCAL_SLACK - eps) / 2 of c0, q's nearest sphere and every sphere within
+ * its distance + eps of q (vbc_cells_nearest_among), so the ascent's
+ * queries, steps of a fraction of an A, mostly need no walk of the cells. */
+#define LOCAL_SLACK 1.1
+#define LOCAL_CAP 512
+typedef struct {
+    double c0[3];
+    int32_t id[LOCAL_CAP];
+    double dist[LOCAL_CAP];
+    size_t n;
+    int ok;
+} local_set;
+
+/* The clearance at q, and its near list for slack eps (eps <= 0.1). */
+static double clearance_near(const vbc_cells *c, const double q[3], double eps, int32_t hint,
+                             int32_t *atom, near_list *L, local_set *S)
 {
-    double R;
-    L->ok = vbc_cells_nearest_near(c, q, eps, &R, atom, L->id, L->dist, NEAR_CAP, &L->n) == 0;
-    return L->ok ? R : vbc_cells_clearance(c, q, atom);
+    double R, half = 0.5 * (LOCAL_SLACK - eps) - 1e-6;
+    double w[3] = {q[0] - S->c0[0], q[1] - S->c0[1], q[2] - S->c0[2]};
+    if (!S->ok || w[0] * w[0] + w[1] * w[1] + w[2] * w[2] > half * half) {
+        S->ok = vbc_cells_nearest_near(c, q, LOCAL_SLACK, hint, &R, atom, S->id, S->dist, LOCAL_CAP,
+                                       &S->n) == 0;
+        memcpy(S->c0, q, sizeof S->c0);
+    }
+    L->ok = S->ok && vbc_cells_nearest_among(c, S->id, S->n, q, eps, &R, atom, L->id, L->dist,
+                                             NEAR_CAP, &L->n) == 0;
+    if (!L->ok)
+        L->ok = vbc_cells_nearest_near(c, q, eps, hint, &R, atom, L->id, L->dist, NEAR_CAP, &L->n) == 0;
+    return L->ok ? R : vbc_cells_clearance_from(c, q, hint, atom);
 }
 
 double vbc_plane_maximise(const vbc_cells *c, const double u[3], double travel, double p[3],
@@ -126,7 +151,9 @@ double vbc_plane_maximise(const vbc_cells *c, const double u[3], double travel, 
      * each step's vbc_cells_within(p, R + eps) as that would: the same
      * atoms in the same order, without a second walk of the cells. */
     near_list here, there;
-    double R = clearance_near(c, p, eps, &a, &here);
+    local_set S;
+    S.ok = 0;
+    double R = clearance_near(c, p, eps, -1, &a, &here, &S);
     for (int it = 0; it < 400 && eps >= 1e-7; it++) {
         active_set A = {s, {p[0], p[1], p[2]}, {0}, 0};
         if (here.ok) {
@@ -175,7 +202,7 @@ double vbc_plane_maximise(const vbc_cells *c, const double u[3], double travel, 
             if (blocked_by(s, &A, q, R + 1e-13))
                 continue;
             int32_t b;
-            double Rq = clearance_near(c, q, eps, &b, &there);
+            double Rq = clearance_near(c, q, eps, a, &b, &there, &S);
             if (Rq > R + 1e-13) {
                 memcpy(p, q, sizeof q);
                 R = Rq;
@@ -207,6 +234,11 @@ double vbc_plane_widest(const vbc_cells *c, const double u[3], double reach, vbc
      * puts at or below R cannot win (the strict test below) and needs no
      * query. The same points win as with every point queried. */
     active_set hint = {s, {0.0, 0.0, 0.0}, {a}, a >= 0};
+    /* The nearest atoms of the last RECENT points queried: each bounds the
+     * clearance from above as the last one does. */
+    enum { RECENT = 8 };
+    int32_t last = a;
+    int put = hint.n;
     long n = (long)floor(reach / 0.5);
     for (long i = -n; i <= n; i++)
         for (long j = -n; j <= n; j++) {
@@ -220,9 +252,18 @@ double vbc_plane_widest(const vbc_cells *c, const double u[3], double reach, vbc
                 continue;
             if (blocked_by(s, &hint, q, R))
                 continue;
-            double Rq = vbc_cells_clearance(c, q, &a);
-            hint.id[0] = a;
-            hint.n = a >= 0;
+            double Rq = vbc_cells_clearance_from(c, q, last, &a);
+            last = a;
+            if (a >= 0) {
+                int k = 0;
+                while (k < hint.n && hint.id[k] != a)
+                    k++;
+                if (k == hint.n) { /* a new one takes the oldest place */
+                    hint.id[put % RECENT] = a;
+                    put++;
+                    hint.n = put < RECENT ? put : RECENT;
+                }
+            }
             if (Rq > R) { /* strict: the first of equals (in scan order) stays */
                 R = Rq;
                 memcpy(best, q, sizeof q);
@@ -309,6 +350,8 @@ typedef struct {
     vbc_outside_fn outside;
     void *user;
     double half, sign;
+    double floor;           /* give up at a radius at or below this */
+    atomic_int *given_up;   /* shared by the two sides */
     vbc_pore_point *pts;
     size_t n, cap;
     int open, failed;
@@ -322,9 +365,15 @@ static void *sweep_side_run(void *arg)
     int32_t atom;
     S->open = S->outside && S->outside(S->user, p);
     for (long k = 1; !S->open && k * S->opt->step <= S->half; k++) {
+        if (atomic_load(S->given_up))
+            break;
         for (int i = 0; i < 3; i++)
             p[i] += S->sign * S->opt->step * u[i];
         double r = plane_best(S->c, u, S->outside, S->user, p, &atom);
+        if (r <= S->floor) {
+            atomic_store(S->given_up, 1);
+            break;
+        }
         vbc_pore_point q = {dot3(p, u), p[0], p[1], p[2], r, atom};
         if (push(&S->pts, &S->n, &S->cap, &q) != 0) {
             S->failed = 1;
@@ -340,6 +389,13 @@ static void *sweep_side_run(void *arg)
 
 int vbc_pore_sweep(vb_ctx *ctx, const vbc_cells *c, const vb_sphere_set *s, const vbc_axis *ax,
                    const vbc_pore_options *opt, vbc_outside_fn outside, void *user, vbc_pore *out)
+{
+    return vbc_pore_sweep_above(ctx, c, s, ax, opt, outside, user, -INFINITY, out);
+}
+
+int vbc_pore_sweep_above(vb_ctx *ctx, const vbc_cells *c, const vb_sphere_set *s,
+                         const vbc_axis *ax, const vbc_pore_options *opt, vbc_outside_fn outside,
+                         void *user, double floor, vbc_pore *out)
 {
     memset(out, 0, sizeof *out);
     double un = sqrt(dot3(ax->u, ax->u));
@@ -365,11 +421,17 @@ int vbc_pore_sweep(vb_ctx *ctx, const vbc_cells *c, const vb_sphere_set *s, cons
     int32_t atom;
     double r0 = plane_best(c, u, outside, user, start, &atom);
     vbc_pore_point q0 = {dot3(start, u), start[0], start[1], start[2], r0, atom};
+    if (r0 <= floor) { /* given up: no wider than floor */
+        memset(out, 0, sizeof *out);
+        return VB_OK;
+    }
     int rc = VB_OK;
+    atomic_int given_up;
+    atomic_init(&given_up, 0);
     sweep_side side[2];
     for (int dir = 0; dir < 2; dir++)
         side[dir] = (sweep_side){c, u, start, opt, outside, user, half, dir == 0 ? 1.0 : -1.0,
-                                 NULL, 0, 0, 0, 0};
+                                 floor, &given_up, NULL, 0, 0, 0, 0};
     if (vb_threads(0) > 1)
         vb_run_jobs(sweep_side_run, side, sizeof *side, 2);
     else
@@ -377,6 +439,12 @@ int vbc_pore_sweep(vb_ctx *ctx, const vbc_cells *c, const vb_sphere_set *s, cons
             sweep_side_run(&side[dir]);
     if (side[0].failed || side[1].failed)
         rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "pore profile");
+    if (rc == VB_OK && atomic_load(&given_up)) {
+        free(side[0].pts);
+        free(side[1].pts);
+        memset(out, 0, sizeof *out);
+        return VB_OK;
+    }
     out->open_hi = side[0].open;
     out->open_lo = side[1].open;
     vbc_pore_point *sidep[2] = {side[0].pts, side[1].pts};

@@ -37,6 +37,15 @@ static int sweep(vb_ctx *ctx, const vbc_cells *cells, const vb_sphere_set *s, co
     return vbc_pore_sweep(ctx, cells, s, ax, &req->sweep, M->flags ? outside_mask : NULL, M, out);
 }
 
+/* sweep for a pore wider than floor only (vbc_pore_sweep_above). */
+static int sweep_above(vb_ctx *ctx, const vbc_cells *cells, const vb_sphere_set *s,
+                       const vbc_axis *ax, const vbc_pore_request *req, mask_view *M, double floor,
+                       vbc_pore *out)
+{
+    return vbc_pore_sweep_above(ctx, cells, s, ax, &req->sweep, M->flags ? outside_mask : NULL, M,
+                                floor, out);
+}
+
 static int open_pore(const vbc_pore *p)
 {
     /* More than the start: a start outside the molecule is no pore. */
@@ -83,6 +92,7 @@ typedef struct {
     const vbc_pore_request *req;
     mask_view *M;
     int widest_first; /* a subunit: first its widest place near the centroid */
+    double floor;     /* only a pore wider than this is wanted (vbc_pore_sweep_above) */
     vbc_pore pore;
     int rc;
 } sweep_job;
@@ -98,6 +108,7 @@ static void sweep_job_set(sweep_job *J, const vbc_cells *cells, const vb_sphere_
     J->req = req;
     J->M = M;
     J->widest_first = widest_first;
+    J->floor = -INFINITY;
     J->rc = VB_OK;
 }
 
@@ -109,7 +120,7 @@ static void *sweep_job_run(void *arg)
         vbc_plane_widest(J->cells, J->ax.u, VBC_SUBUNIT_REACH, J->M->flags ? outside_mask : NULL,
                          J->M, J->ax.c, &atom);
     }
-    J->rc = sweep(NULL, J->cells, J->s, &J->ax, J->req, J->M, &J->pore);
+    J->rc = sweep_above(NULL, J->cells, J->s, &J->ax, J->req, J->M, J->floor, &J->pore);
     return NULL;
 }
 
@@ -132,35 +143,91 @@ static int sweep_jobs(vb_ctx *ctx, sweep_job *J, int n)
                     rc == VB_ENOMEM ? "out of memory" : vb_errstr(rc));
 }
 
-/* The widest open pore of one subunit replaces the nearly closed central
- * one *out when it is clearly wider (the rule in vbc_pore.h); ties go to
- * the earlier chain. */
-static int subunit_pore(vb_ctx *ctx, const vbc_cells *cells, const vb_sphere_set *s,
-                        const vbc_pore_request *req, mask_view *M, vbc_pore *out)
+/* The subunits' search: the widest open path of sub[0..n) wider than
+ * need (ties to the earlier chain) in *best (*have), each sweep giving up
+ * where it cannot beat the need so far (it would not be taken); with
+ * judge_each, only a path that is a pore by the verdict counts (its
+ * verdict kept in *best). Returns VB_OK or the first failure, reported. */
+static int subunit_search(vb_ctx *ctx, const vbc_cells *cells, const vb_sphere_set *s,
+                          const vbc_pore_request *req, mask_view *M, const vbc_axis *sub, int n,
+                          double need, int judge_each, vbc_pore *best, int *have)
 {
-    vbc_axis sub[16];
-    int n = vbc_axis_subunits(s, &out->axis, sub, 16);
-    double need = fmax(VBC_SUBUNIT_MIN_RADIUS, 2.0 * out->pts[out->min_at].r);
-    /* Each subunit from its widest place near its centroid, in the
-     * centroid's plane; all of them are judged. */
-    sweep_job J[16];
-    for (int k = 0; k < n; k++)
-        sweep_job_set(&J[k], cells, s, &sub[k], req, M, 1);
-    int rc = sweep_jobs(ctx, J, n);
-    if (rc != VB_OK) {
-        vbc_pore_free(out);
-        return rc;
-    }
+    *have = 0;
     for (int k = 0; k < n; k++) {
-        vbc_pore *p = &J[k].pore;
-        double r = p->n ? p->pts[p->min_at].r : 0.0;
-        if (open_pore(p) && r > need) {
-            vbc_pore_free(out);
-            *out = *p;
+        sweep_job J;
+        sweep_job_set(&J, cells, s, &sub[k], req, M, 1);
+        J.floor = need;
+        int rc = sweep_jobs(ctx, &J, 1);
+        vbc_pore *p = &J.pore;
+        double r = rc == VB_OK && p->n ? p->pts[p->min_at].r : 0.0;
+        vbc_pore_verdict v = {0, 0.0, 0, 0, 1};
+        if (rc == VB_OK && judge_each && open_pore(p) && r > need &&
+            vbc_pore_judge(cells, p, VBC_PORE_MIN_BURIED, &v) != 0)
+            rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "pore verdict");
+        if (rc != VB_OK) {
+            vbc_pore_free(p);
+            if (*have)
+                vbc_pore_free(best);
+            *have = 0;
+            return rc;
+        }
+        if (open_pore(p) && r > need && v.is_pore) {
+            if (*have)
+                vbc_pore_free(best);
+            *best = *p;
+            best->judged = judge_each;
+            best->is_pore = v.is_pore;
+            best->buried = v.buried;
+            *have = 1;
             need = r;
         } else {
             vbc_pore_free(p);
         }
+    }
+    return VB_OK;
+}
+
+/* The widest open pore of one subunit replaces the nearly closed central
+ * one *out when it is clearly wider and a pore by the verdict (the rule in
+ * vbc_pore.h; a path beside a tetrameric channel's closed gate, through a
+ * voltage sensor's crevice or along the outside, is none, and the closed
+ * gate stays the pore); ties go to the earlier chain. The search runs
+ * without the verdict first and judges its winner: when that is a pore it
+ * is also the widest path that is one (the answer of judging each), else
+ * the search runs again judging each path. */
+static int subunit_pore(vb_ctx *ctx, const vbc_cells *cells, const vb_sphere_set *s,
+                        const vbc_pore_request *req, mask_view *M, vbc_pore *out)
+{
+    vbc_axis sub[16];
+    int n = vbc_axis_subunits(s, &out->axis, sub, 16), have;
+    double need = fmax(VBC_SUBUNIT_MIN_RADIUS, 2.0 * out->pts[out->min_at].r);
+    vbc_pore best;
+    for (int judge_each = 0; judge_each < 2; judge_each++) {
+        int rc = subunit_search(ctx, cells, s, req, M, sub, n, need, judge_each, &best, &have);
+        if (rc != VB_OK) {
+            vbc_pore_free(out);
+            return rc;
+        }
+        if (!have)
+            return VB_OK;
+        if (!judge_each) {
+            vbc_pore_verdict v;
+            if (vbc_pore_judge(cells, &best, VBC_PORE_MIN_BURIED, &v) != 0) {
+                vbc_pore_free(&best);
+                vbc_pore_free(out);
+                return vb_error(ctx, VB_ENOMEM, NULL, 0, "pore verdict");
+            }
+            best.judged = 1; /* the stage's verdict, not taken twice */
+            best.is_pore = v.is_pore;
+            best.buried = v.buried;
+            if (!v.is_pore) {
+                vbc_pore_free(&best);
+                continue;
+            }
+        }
+        vbc_pore_free(out);
+        *out = best;
+        return VB_OK;
     }
     return VB_OK;
 }
@@ -178,6 +245,7 @@ static int barrel_pore(vb_ctx *ctx, const vbc_cells *cells, const vb_sphere_set 
 {
     sweep_job J[1 + VBC_BARREL_CONE];
     double e1[3], e2[3], t = VBC_BARREL_TILT * acos(-1.0) / 180.0;
+    int best = 0;
     /* A basis of the plane normal to the axis, as vbc_axis_barrel's. */
     double a[3] = {0.0, 0.0, 0.0};
     a[fabs(ax->u[0]) < 0.6 ? 0 : fabs(ax->u[1]) < 0.6 ? 1 : 2] = 1.0;
@@ -202,18 +270,25 @@ static int barrel_pore(vb_ctx *ctx, const vbc_cells *cells, const vb_sphere_set 
                      VBC_BARREL_TILT);
         }
         sweep_job_set(&J[j], cells, s, &b, req, M, 1);
-    }
-    int rc = sweep_jobs(ctx, J, 1 + VBC_BARREL_CONE), best = 0;
-    if (rc != VB_OK)
-        return rc;
-    for (int j = 1; j <= VBC_BARREL_CONE; j++) {
-        const vbc_pore *p = &J[j].pore, *q = &J[best].pore;
-        if (open_pore(p) && (!open_pore(q) || p->pts[p->min_at].r > q->pts[q->min_at].r))
+        /* One after the other: once the best so far is open, a direction
+         * gives up where it cannot be wider (it would not be taken). */
+        const vbc_pore *q = &J[best].pore;
+        if (j > 0 && open_pore(q))
+            J[j].floor = q->pts[q->min_at].r;
+        int rc = sweep_jobs(ctx, &J[j], 1);
+        if (rc != VB_OK) {
+            for (int k = 0; k < j; k++)
+                vbc_pore_free(&J[k].pore);
+            return rc;
+        }
+        const vbc_pore *p = &J[j].pore;
+        if (j > 0 && open_pore(p) && (!open_pore(q) || p->pts[p->min_at].r > q->pts[q->min_at].r)) {
+            vbc_pore_free(&J[best].pore);
             best = j;
-    }
-    for (int j = 0; j <= VBC_BARREL_CONE; j++)
-        if (j != best)
+        } else if (j > 0) {
             vbc_pore_free(&J[j].pore);
+        }
+    }
     *out = J[best].pore;
     return VB_OK;
 }
@@ -534,9 +609,13 @@ int vbc_pore_stage(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const v
         int judge = !(req->have_axis && !req->found_source);
         /* The verdict alone: a pore's planes past VBC_PORE_MIN_BURIED of
          * walled run are not flooded (their buried length is never shown). */
-        if (rc == VB_OK && p.n > 0 && judge &&
-            vbc_pore_judge(cells, &p, VBC_PORE_MIN_BURIED, &v) != 0)
+        if (rc == VB_OK && p.n > 0 && judge && p.judged) {
+            v.is_pore = p.is_pore;
+            v.buried = p.buried;
+        } else if (rc == VB_OK && p.n > 0 && judge &&
+                   vbc_pore_judge(cells, &p, VBC_PORE_MIN_BURIED, &v) != 0) {
             rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "pore verdict");
+        }
         t0 = vb_now();
         t.verdict = 1e3 * (t0 - t1);
         if (rc == VB_OK && p.n > 0 && v.is_pore) {

@@ -167,16 +167,119 @@ static int fit(const vb_sphere_set *s, sym_chain **g, int n, vbc_axis *out)
     return 0;
 }
 
+/* Whether the C-alpha atoms of chain x are in increasing residue order
+ * (number, then insertion code): the merge below needs it. */
+static int increasing(const vb_sphere_set *s, const sym_chain *x)
+{
+    for (size_t i = 1; i < x->nca; i++) {
+        const vb_atom_info *p = &s->info[x->ca[i - 1]], *q = &s->info[x->ca[i]];
+        if (q->resseq < p->resseq || (q->resseq == p->resseq && q->icode <= p->icode))
+            return 0;
+    }
+    return 1;
+}
+
+static int res_cmp(const vb_atom_info *p, const vb_atom_info *q)
+{
+    if (p->resseq != q->resseq)
+        return p->resseq < q->resseq ? -1 : 1;
+    return (p->icode > q->icode) - (p->icode < q->icode);
+}
+
+/* How many C-alpha atoms of x find one in y with the same residue number,
+ * insertion code and name (both increasing); in at[i] (when not NULL) the
+ * index into y of x's i-th match, or SIZE_MAX. */
+static size_t matches(const vb_sphere_set *s, const sym_chain *x, const sym_chain *y, size_t *at)
+{
+    size_t n = 0, j = 0;
+    for (size_t i = 0; i < x->nca; i++) {
+        const vb_atom_info *p = &s->info[x->ca[i]];
+        while (j < y->nca && res_cmp(&s->info[y->ca[j]], p) < 0)
+            j++;
+        int hit = j < y->nca && res_cmp(&s->info[y->ca[j]], p) == 0 &&
+                  strcmp(s->info[y->ca[j]].resname, p->resname) == 0;
+        if (at)
+            at[i] = hit ? j : SIZE_MAX;
+        n += (size_t)hit;
+    }
+    return n;
+}
+
+/* Chains of one protein: the same C-alpha sequence (the same count and
+ * residue names in order), or, for chains resolved over different
+ * stretches (a tetrameric channel's loops missing in some subunits), both
+ * in increasing residue order with at least VBC_SYM_MIN_SHARED of the
+ * longer one's C-alpha atoms matched by number and name. */
+static int same_protein(const vb_sphere_set *s, const sym_chain *x, const sym_chain *y)
+{
+    if (x->nca == y->nca && x->seq == y->seq)
+        return 1;
+    if (!increasing(s, x) || !increasing(s, y))
+        return 0;
+    size_t big = x->nca > y->nca ? x->nca : y->nca;
+    return (double)matches(s, x, y, NULL) >= VBC_SYM_MIN_SHARED * (double)big;
+}
+
+/* Restricts the chains g[0..n) to the residues all of them hold (when
+ * they are not all the same sequence): each chain's C-alpha list becomes
+ * those residues in g[0]'s order (written over idx2, s->n entries), its
+ * centroid theirs. Returns the residues kept. */
+static size_t common_residues(const vb_sphere_set *s, sym_chain **g, int n, size_t *idx2,
+                              size_t *at)
+{
+    int same = 1;
+    for (int c = 1; c < n; c++)
+        same &= g[c]->nca == g[0]->nca && g[c]->seq == g[0]->seq;
+    if (same)
+        return g[0]->nca;
+    size_t na = g[0]->nca;
+    uint8_t *keep = (uint8_t *)(at + na); /* the caller's room: na more */
+    memset(keep, 1, na);
+    for (int c = 1; c < n; c++) {
+        matches(s, g[0], g[c], at);
+        for (size_t i = 0; i < na; i++)
+            keep[i] &= at[i] != SIZE_MAX;
+    }
+    size_t m = 0;
+    for (size_t i = 0; i < na; i++)
+        m += keep[i];
+    for (int c = 0; c < n; c++) {
+        size_t *list = idx2 + (size_t)c * m, k = 0;
+        if (c > 0)
+            matches(s, g[0], g[c], at);
+        for (size_t i = 0; i < na; i++)
+            if (keep[i])
+                list[k++] = c > 0 ? g[c]->ca[at[i]] : g[0]->ca[i];
+    }
+    for (int c = 0; c < n; c++) {
+        g[c]->ca = idx2 + (size_t)c * m;
+        g[c]->nca = m;
+        double mm[3] = {0.0, 0.0, 0.0};
+        for (size_t i = 0; i < m; i++) {
+            mm[0] += s->x[g[c]->ca[i]];
+            mm[1] += s->y[g[c]->ca[i]];
+            mm[2] += s->z[g[c]->ca[i]];
+        }
+        for (int k = 0; k < 3; k++)
+            g[c]->m[k] = m ? mm[k] / (double)m : 0.0;
+    }
+    return m;
+}
+
 int vbc_axis_symmetry(const vb_sphere_set *s, vbc_axis *out)
 {
     if (!s->info || s->n == 0)
         return 0;
     sym_chain ch[SYM_MAX_CHAINS];
-    size_t *idx = malloc(s->n * sizeof *idx);
+    /* idx: the chains' C-alpha lists; then the common residues' lists (at
+     * most s->n in all: each chain keeps at most its own), and the merge's
+     * room (2 s->n). */
+    size_t *idx = malloc(4 * s->n * sizeof *idx);
     if (!idx)
         return 0;
     int nc = collect(s, ch, idx), found = 0;
-    /* The largest group of equal chains first; ties to the earlier chain. */
+    /* The largest group of chains of one protein first; ties to the
+     * earlier chain. */
     int done[SYM_MAX_CHAINS] = {0};
     sym_chain *best[SYM_MAX_CHAINS];
     int nbest = 0;
@@ -186,7 +289,7 @@ int vbc_axis_symmetry(const vb_sphere_set *s, vbc_axis *out)
         sym_chain *grp[SYM_MAX_CHAINS];
         int n = 0;
         for (int d = c; d < nc; d++)
-            if (!done[d] && ch[d].nca == ch[c].nca && ch[d].seq == ch[c].seq) {
+            if (!done[d] && ch[d].nca >= VBC_SYM_MIN_CA && same_protein(s, &ch[c], &ch[d])) {
                 done[d] = 1;
                 grp[n++] = &ch[d];
             }
@@ -195,7 +298,7 @@ int vbc_axis_symmetry(const vb_sphere_set *s, vbc_axis *out)
             memcpy(best, grp, (size_t)n * sizeof *grp);
         }
     }
-    if (nbest >= 3)
+    if (nbest >= 3 && common_residues(s, best, nbest, idx + s->n, idx + 2 * s->n) >= VBC_SYM_MIN_CA)
         found = fit(s, best, nbest, out);
     free(idx);
     return found;

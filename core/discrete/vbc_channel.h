@@ -171,6 +171,11 @@ const vb_sphere_set *vbc_cells_spheres(const vbc_cells *c);
  * and that sphere's index in *atom. */
 double vbc_cells_clearance(const vbc_cells *c, const double p[3], int32_t *atom);
 
+/* vbc_cells_clearance, the walk started from the atom hint (-1: none; a
+ * near atom, such as the last query's nearest, saves most of the walk):
+ * the same answer for any hint. */
+double vbc_cells_clearance_from(const vbc_cells *c, const double p[3], int32_t hint, int32_t *atom);
+
 /* vbc_cells_clearance and the question of vbc_cells_within around its
  * answer in one walk of the cells: *R and *atom as vbc_cells_clearance
  * gives them, and in near[0..*nnear) with dist[] (|p - c| - r, the
@@ -178,10 +183,23 @@ double vbc_cells_clearance(const vbc_cells *c, const double p[3], int32_t *atom)
  * *R + slack of p (slack >= 0), and maybe more, in the order
  * vbc_cells_within visits them: so vbc_cells_within(c, p, *R + s, fn) for
  * 0 <= s <= slack calls fn for exactly the near[k] with dist[k] <= *R + s,
- * in this order. Returns 0, or -1 when more than cap spheres were to be
- * listed (the list then incomplete: ask vbc_cells_within). */
-int vbc_cells_nearest_near(const vbc_cells *c, const double p[3], double slack, double *R,
-                           int32_t *atom, int32_t *near, double *dist, size_t cap, size_t *nnear);
+ * in this order. hint as vbc_cells_clearance_from's (the same answer for
+ * any). Returns 0, or -1 when more than cap spheres were to be listed (the
+ * list then incomplete: ask vbc_cells_within). */
+int vbc_cells_nearest_near(const vbc_cells *c, const double p[3], double slack, int32_t hint,
+                           double *R, int32_t *atom, int32_t *near, double *dist, size_t cap,
+                           size_t *nnear);
+
+/* vbc_cells_nearest_near's answer at p for slack, taken from the spheres
+ * ids[0..n) alone: the caller vouches that they hold p's nearest sphere
+ * and every sphere whose surface is within its distance + slack of p (as
+ * vbc_cells_nearest_near's list at a point p0 for slack w does for a p
+ * within (w - slack) / 2 of p0). The list holds exactly the spheres within
+ * *R + slack, in the walk's order. Returns 0, or -1 when n is 0 or more
+ * than cap (or 64) spheres were to be listed (ask vbc_cells_nearest_near). */
+int vbc_cells_nearest_among(const vbc_cells *c, const int32_t *ids, size_t n, const double p[3],
+                            double slack, double *R, int32_t *atom, int32_t *near, double *dist,
+                            size_t cap, size_t *nnear);
 
 /* Calls fn(atom, user) for every sphere whose surface is within `reach` of p
  * (|p - c| - r <= reach). */

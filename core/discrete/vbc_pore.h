@@ -22,9 +22,11 @@
  * the symmetry axis of three or more chains is nearly closed (below
  * VBC_SUBUNIT_CENTRAL_MAX) and a sweep parallel to it through one chain's
  * centroid is open at both ends and clearly wider (above
- * VBC_SUBUNIT_MIN_RADIUS and twice the central radius), that subunit's
- * pore is the pore (a porin trimer; a closed gate on the axis of a
- * tetrameric channel stays the pore, its subunits hold no open pore). */
+ * VBC_SUBUNIT_MIN_RADIUS and twice the central radius) and a pore by the
+ * verdict below, that subunit's pore is the pore (a porin trimer; a closed
+ * gate on the axis of a tetrameric channel stays the pore, its subunits
+ * hold no open pore: a path through a voltage sensor's crevice or along
+ * the outside is walled too little to count). */
 #ifndef VBC_PORE_H
 #define VBC_PORE_H
 
@@ -111,6 +113,11 @@ int vbc_axis_refit(const vb_sphere_set *s, const vbc_axis *first, vbc_axis *out)
 int vbc_axis_symmetry(const vb_sphere_set *s, vbc_axis *out);
 #define VBC_SYM_MIN_CA 8
 #define VBC_SYM_MAX_RMS 3.0
+/* Chains resolved over different stretches still count as one protein
+ * when this share of the longer one's C-alpha atoms match the other's by
+ * residue number and name; the fit then uses the residues all of them hold
+ * (a tetrameric channel whose subunits miss different loop residues). */
+#define VBC_SYM_MIN_SHARED 0.75
 
 /* The axis of a beta-barrel (core/discrete/channel_barrel.c) made by the
  * chain `chain` of s (NULL: the chain with most C-alpha atoms): its
@@ -208,6 +215,9 @@ typedef struct vbc_pore {
     int open_lo, open_hi;  /* that end left the molecule (else: end radius, length) */
     double F;              /* sum ds / (pi r^2) over the points, 1/A (HOLE's geometric factor) */
     double g_macro_pS;     /* 100 / (rho F) with rho = 1/12 ohm m (1 M KCl): HOLE's Gmacro */
+    int judged;            /* the verdict (enough VBC_PORE_MIN_BURIED) was taken already: */
+    int is_pore;           /* its is_pore */
+    double buried;         /* and buried */
 } vbc_pore;
 
 /* HOLE's resistivity of 1 M KCl, ohm m. */
@@ -245,6 +255,15 @@ double vbc_plane_widest(const vbc_cells *c, const double u[3], double reach, vbc
  * VB_ENOMEM, VB_EMISUSE for a bad axis or step. */
 int vbc_pore_sweep(vb_ctx *ctx, const vbc_cells *c, const vb_sphere_set *s, const vbc_axis *ax,
                    const vbc_pore_options *opt, vbc_outside_fn outside, void *user, vbc_pore *out);
+
+/* vbc_pore_sweep for a caller that only wants a pore wider than floor (the
+ * best of several candidates so far): it gives up as soon as a plane's
+ * radius is at or below floor, such a pore's bottleneck being no wider,
+ * and then returns VB_OK with out->n == 0 (nothing to free). floor
+ * -INFINITY: vbc_pore_sweep. */
+int vbc_pore_sweep_above(vb_ctx *ctx, const vbc_cells *c, const vb_sphere_set *s,
+                         const vbc_axis *ax, const vbc_pore_options *opt, vbc_outside_fn outside,
+                         void *user, double floor, vbc_pore *out);
 
 /* HOLE's macroscopic conductance of a profile (Smart et al. 1996: the pore
  * as a stack of slabs of electrolyte of resistivity rho, G^-1 = rho sum

@@ -239,6 +239,95 @@ static void test_subunit_pore(vb_ctx *ctx)
     vb_spheres_free(s);
 }
 
+/* The cell list's nearest-atom walks (pruned by the nearest bound, started
+ * from a hint, the ring's box open past the grid) against brute force on a
+ * random cloud, with points inside and far outside it: the same distance
+ * (the same expression, so to the bit), the same atom (ties to the lower
+ * index), and the near lists of vbc_cells_nearest_near and
+ * vbc_cells_nearest_among in vbc_cells_within's order. */
+typedef struct {
+    int32_t id[512];
+    size_t n;
+} visit_list;
+
+static void visit_put(int32_t atom, void *user)
+{
+    visit_list *L = user;
+    if (L->n < 512)
+        L->id[L->n++] = atom;
+}
+
+static void test_cells_walks(vb_ctx *ctx)
+{
+    const size_t n = 1500;
+    vb_sphere_set *s = vb_test_spheres_alloc(n, 0);
+    uint64_t st = 12345;
+#define RND() ((double)((st = st * 6364136223846793005ull + 1442695040888963407ull) >> 11) / 9007199254740992.0)
+    for (size_t i = 0; i < n; i++) {
+        s->x[i] = 40.0 * RND();
+        s->y[i] = 30.0 * RND();
+        s->z[i] = 35.0 * RND();
+        s->r[i] = 1.2 + 0.8 * RND();
+    }
+    vbc_cells *c = NULL;
+    CHECK_INT(vbc_cells_build(ctx, s, 3.0, &c), VB_OK);
+    int bad = 0;
+    for (int t = 0; t < 400; t++) {
+        /* Some points well outside the cloud (the verdict's pixels). */
+        double f = t % 4 == 0 ? 3.0 : 1.0;
+        double p[3] = {f * (50.0 * RND() - 5.0), f * (40.0 * RND() - 5.0), f * (45.0 * RND() - 5.0)};
+        double best = INFINITY;
+        int32_t ba = -1;
+        for (size_t i = 0; i < n; i++) {
+            double dx = p[0] - s->x[i], dy = p[1] - s->y[i], dz = p[2] - s->z[i];
+            double d = sqrt(dx * dx + dy * dy + dz * dz) - s->r[i];
+            if (d < best) {
+                best = d;
+                ba = (int32_t)i;
+            }
+        }
+        int32_t a, hint = (int32_t)(RND() * (double)n);
+        bad += vbc_cells_clearance(c, p, &a) != best || a != ba;
+        bad += vbc_cells_clearance_from(c, p, hint, &a) != best || a != ba;
+        double R, lo;
+        int32_t near[512];
+        double dist[512];
+        size_t nn;
+        bad += vbc_cells_nearest_near(c, p, 0.1, hint, &R, &a, near, dist, 512, &nn) != 0 ||
+               R != best || a != ba;
+        visit_list W = {{0}, 0};
+        vbc_cells_within(c, p, best + 0.1, visit_put, &W);
+        size_t k = 0;
+        for (size_t j = 0; j < nn; j++)
+            if (dist[j] <= best + 0.1)
+                bad += k >= W.n || near[j] != W.id[k++];
+        bad += k != W.n;
+        /* From a list taken 0.4 A away with slack 1.1 (valid within 0.5). */
+        double p0[3] = {p[0] + 0.4 * 0.6, p[1] - 0.4 * 0.8, p[2]};
+        int32_t ids[512];
+        double d0[512];
+        size_t n0;
+        if (vbc_cells_nearest_near(c, p0, 1.1, -1, &R, &a, ids, d0, 512, &n0) == 0) {
+            bad += vbc_cells_nearest_among(c, ids, n0, p, 0.1, &R, &a, near, dist, 512, &nn) != 0 ||
+                   R != best || a != ba || nn != W.n;
+            for (size_t j = 0; j < nn && j < W.n; j++)
+                bad += near[j] != W.id[j];
+        }
+        int any = 0;
+        for (size_t i = 0; i < n && !any; i++) {
+            double dx = p[0] - s->x[i], dy = p[1] - s->y[i], dz = p[2] - s->z[i];
+            any = sqrt(dx * dx + dy * dy + dz * dz) - s->r[i] <= 1.0;
+        }
+        int32_t h = -1;
+        int got = vbc_cells_any_within(c, p, 1.0, &h, &lo);
+        bad += got != any || (!got && !(lo <= best + 1e-9));
+    }
+#undef RND
+    CHECK_INT(bad, 0);
+    vbc_cells_free(c);
+    vb_spheres_free(s);
+}
+
 int main(void)
 {
     vb_ctx *ctx;
@@ -249,6 +338,7 @@ int main(void)
     test_closed_gate(ctx);
     test_subunit_pore(ctx);
     test_conductance();
+    test_cells_walks(ctx);
     vb_close(ctx);
     VB_TEST_END();
 }
