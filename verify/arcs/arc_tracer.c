@@ -44,13 +44,15 @@ static int arrive(vbx_tracer *tr, vbx_tframe *f, const vbx_touch *tp, int dir)
     return push_event(tr, VBX_EV_CLOSED, f->t, dir, tr->c->members, tr->c->nmembers, p);
 }
 
-/* The forward arc of an open branch from vertex k (end ev) when the list
- * holds a vertex u of the same triple ahead of it: the open arc between
- * them is searched (a bounded region, far smaller than the tail's). Returns
+/* The forward arc of a triple's curve from vertex k (end ev) when the list
+ * holds another vertex u of the same triple: u is the nearest one ahead
+ * (on a closed curve, the nearest after the wrap when none is ahead
+ * before it), and the open arc between them is searched (a bounded
+ * region, far smaller than a tail's or the whole closed curve's). Returns
  * 2 with *to = u when no sphere touches inside (then the arc ends at u,
  * which the list holds, certified), 1 when one does (*tp, the first), 0
  * when there is no such u or positions cannot be told by the filter (the
- * caller searches the tail), or -status. */
+ * caller searches the tail or the whole curve), or -status. */
 static int forward_to_known(vbx_tracer *tr, const vb_vertex_list *all, vbx_tframe *f,
                             vbx_arc_end *ev, size_t k, vbx_touch *tp, size_t *to)
 {
@@ -59,8 +61,11 @@ static int forward_to_known(vbx_tracer *tr, const vb_vertex_list *all, vbx_tfram
     size_t lo, hi;
     vbx_tmap_range(tr->map, f->t, &lo, &hi);
     vbx_arcw *w = &tr->w;
-    size_t best = SIZE_MAX;
-    vbx_key kbest;
+    int closed = f->kind != VBX_TRI_OPEN;
+    /* [0]: the nearest ahead of ev; [1] (closed): the first of the curve
+     * behind ev, where the arc ends after the wrap when nothing is ahead */
+    size_t bests[2] = {SIZE_MAX, SIZE_MAX};
+    vbx_key kbests[2];
     for (size_t i = lo; i < hi; i++) {
         size_t u = tr->map->e[i].k;
         if (u == k)
@@ -74,20 +79,24 @@ static int forward_to_known(vbx_tracer *tr, const vb_vertex_list *all, vbx_tfram
         int c = vbx_pos_cmp(w, f, &ev->key, NULL, &ku, NULL);
         if (c == 2)
             return 0;
-        if (c >= 0)
+        if (c >= 0 && !closed)
             continue;
-        if (best != SIZE_MAX) {
-            int c2 = vbx_pos_cmp(w, f, &ku, NULL, &kbest, NULL);
+        int side = c > 0;
+        if (bests[side] != SIZE_MAX) {
+            int c2 = vbx_pos_cmp(w, f, &ku, NULL, &kbests[side], NULL);
             if (c2 == 2 || c2 == 0)
                 return 0;
             if (c2 > 0)
                 continue;
         }
-        best = u;
-        kbest = ku;
+        bests[side] = u;
+        kbests[side] = ku;
     }
+    int side = bests[0] == SIZE_MAX;
+    size_t best = bests[side];
     if (best == SIZE_MAX)
         return 0;
+    vbx_key kbest = kbests[side];
     double pu[4];
     vbx_vertex_point(all, best, pu);
     vbx_xpt xu;
@@ -176,7 +185,7 @@ static int trace_triple(vbx_tracer *tr, const vb_vertex_list *lst, size_t k, con
         }
         tp.found = 0;
         tp.have = 0;
-        if (dir == 0 && open) {
+        if (dir == 0) {
             size_t to;
             int sc = forward_to_known(tr, lst, &f, &ev, k, &tp, &to);
             if (sc < 0) {
