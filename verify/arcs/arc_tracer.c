@@ -2,8 +2,10 @@
  * one triple traced to their ends, as events, on one thread each. */
 #include <stdint.h>
 #include <string.h>
+#include <time.h>
 
 #include "vb_array.h"
+#include "vb_parallel.h"
 
 #include "vbx_closure.h"
 
@@ -14,6 +16,7 @@ static int push_event(vbx_tracer *t, int kind, const uint32_t tri[3], int dir, c
         return VB_ENOMEM;
     vbx_hev *e = &t->ev[t->nev++];
     e->kind = kind;
+    e->to = SIZE_MAX;
     e->dir = dir;
     memcpy(e->t, tri, sizeof e->t);
     e->nm = (uint32_t)nm;
@@ -29,8 +32,10 @@ static int push_event(vbx_tracer *t, int kind, const uint32_t tri[3], int dir, c
     return VB_OK;
 }
 
-/* The next vertex of arc tp of triple frame f, certified, as an event. */
-static int arrive(vbx_tracer *tr, vbx_tframe *f, const vbx_touch *tp, int dir)
+/* The next vertex of arc tp of triple frame f, certified, as an event
+ * (with its index when the round's map of list lst holds it). */
+static int arrive(vbx_tracer *tr, const vb_vertex_list *lst, vbx_tframe *f, const vbx_touch *tp,
+                  int dir)
 {
     double p[4];
     int ok = vbx_touch_certify(&tr->w, f, tp, p);
@@ -41,7 +46,11 @@ static int arrive(vbx_tracer *tr, vbx_tframe *f, const vbx_touch *tp, int dir)
          * there; the local test and the search disagree (degenerate). */
         return push_event(tr, VBX_EV_UNDECIDED, f->t, dir, NULL, 0, NULL);
     }
-    return push_event(tr, VBX_EV_CLOSED, f->t, dir, tr->c->members, tr->c->nmembers, p);
+    int rc = push_event(tr, VBX_EV_CLOSED, f->t, dir, tr->c->members, tr->c->nmembers, p);
+    if (rc == VB_OK && tr->map)
+        tr->ev[tr->nev - 1].to =
+            vbx_tmap_find(tr->map, lst, f->t, tr->c->members, tr->c->nmembers, p);
+    return rc;
 }
 
 /* The forward arc of a triple's curve from vertex k (end ev) when the list
@@ -197,10 +206,12 @@ static int trace_triple(vbx_tracer *tr, const vb_vertex_list *lst, size_t k, con
                 vbx_vertex_point(lst, to, pu);
                 size_t s0 = lst->start[to];
                 rc = push_event(tr, VBX_EV_CLOSED, t, 0, lst->ids + s0, lst->start[to + 1] - s0, pu);
+                if (rc == VB_OK)
+                    tr->ev[tr->nev - 1].to = to;
                 continue;
             }
             if (sc == 1) {
-                rc = arrive(tr, &f, &tp, dir);
+                rc = arrive(tr, lst, &f, &tp, dir);
                 continue;
             }
             tp.found = 0;
@@ -220,7 +231,7 @@ static int trace_triple(vbx_tracer *tr, const vb_vertex_list *lst, size_t k, con
             rc = push_event(tr, open ? VBX_EV_INF : VBX_EV_LOOP, t, dir, NULL, 0, NULL);
             continue;
         }
-        rc = arrive(tr, &f, &tp, dir);
+        rc = arrive(tr, lst, &f, &tp, dir);
     }
 done:
     vbx_xpt_clear(&tp.x);
@@ -250,6 +261,19 @@ static int trace_item(vbx_tracer *tr, const vb_vertex_list *all, const vbx_item 
     return rc;
 }
 
+/* CPU seconds of the calling thread (wall seconds where the system has no
+ * thread clock): what a tracer spends, apart from time the machine gives
+ * to other work. */
+static double thread_cpu(void)
+{
+#ifdef CLOCK_THREAD_CPUTIME_ID
+    struct timespec ts;
+    if (clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts) == 0)
+        return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+#endif
+    return vb_now();
+}
+
 /* A thread of a phase: chunks of items in turn; each vbx_item's events are a
  * function of that vbx_item alone (the worker keeps no state from one arc to
  * the next beyond its counters), so which thread traced it does not
@@ -259,6 +283,7 @@ void *vbx_phase_work(void *arg)
     vbx_rjob *j = arg;
     vbx_tphase *ph = j->ph;
     vbx_tracer *tr = &ph->tr[j->index];
+    double t0 = thread_cpu();
     for (;;) {
         size_t c0 = atomic_fetch_add(&ph->next, VBX_RCHUNK);
         if (c0 >= ph->n || tr->rc != VB_OK)
@@ -279,5 +304,6 @@ void *vbx_phase_work(void *arg)
             vb_progress(ph->progress, "arcs", ph->base + atomic_fetch_add(&ph->done, c1 - c0) +
                                                   (c1 - c0), ph->total);
     }
+    tr->busy += thread_cpu() - t0;
     return NULL;
 }
