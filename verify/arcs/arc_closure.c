@@ -515,6 +515,7 @@ static int close_list(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_lis
         }
         rc = vbx_arcw_init(&tr[i].w, tr[i].ctx, tr[i].c);
         tr[i].have_w = 1;
+        vbx_tracer_scratch(&tr[i], 1);
     }
     for (size_t k = 0; rc == VB_OK && k < in->n; k++) {
         size_t s = in->start[k];
@@ -553,6 +554,7 @@ static int close_list(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_lis
     for (unsigned i = 0; tr && i < nt; i++) {
         if (tr[i].have_w)
             vbx_arcw_free(&tr[i].w);
+        vbx_tracer_scratch(&tr[i], 0);
         free(tr[i].ev);
         free(tr[i].pool);
         if (i > 0) {

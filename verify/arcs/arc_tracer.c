@@ -108,20 +108,18 @@ static int forward_to_known(vbx_tracer *tr, const vb_vertex_list *all, vbx_tfram
     vbx_key kbest = kbests[side];
     double pu[4];
     vbx_vertex_point(all, best, pu);
-    vbx_xpt xu;
-    vbx_xpt_init(&xu);
+    vbx_xpt *xu = &tr->xu;
     int have = 0;
     vbx_arc_end eu = {0};
     eu.key = kbest;
     eu.m = all->ids + all->start[best];
     eu.nm = all->start[best + 1] - all->start[best];
     eu.xyzt = pu;
-    eu.x = &xu;
+    eu.x = xu;
     eu.have = &have;
     tp->found = 0;
     tp->have = 0;
     int rc = vbx_arc_search(w, f, ev, &eu, tp, NULL);
-    vbx_xpt_clear(&xu);
     if (rc == VB_EDEGENERATE)
         return 0;
     if (rc != VB_OK)
@@ -140,24 +138,22 @@ static int trace_triple(vbx_tracer *tr, const vb_vertex_list *lst, size_t k, con
                         int all)
 {
     vbx_arcw *w = &tr->w;
-    vbx_tframe f;
-    vbx_tframe_init(&f);
-    int rc = vbx_tframe_setup(w, &f, t);
-    if (rc != VB_OK) {
-        vbx_tframe_clear(&f);
+    /* the tracer's frame and points, reused (set before they are read) */
+    vbx_tframe *f = &tr->f;
+    vbx_tframe_reset(f);
+    int rc = vbx_tframe_setup_local(w, f, t);
+    if (rc != VB_OK)
         return rc;
-    }
-    vbx_xpt x;
-    vbx_xpt_init(&x);
+    vbx_xpt *x = &tr->x;
     int have = 0, fwd = 0, bwd = 0;
     uint64_t extra = 0;
-    vbx_touch tp;
-    memset(&tp, 0, sizeof tp);
-    vbx_xpt_init(&tp.x);
-    if (f.kind == VBX_TRI_NONE) {
+    vbx_touch *tp = &tr->tp;
+    tp->found = 0;
+    tp->have = 0;
+    if (f->kind == VBX_TRI_NONE) {
         goto done;
     }
-    rc = vbx_local_arcs(w, &f, m, nm, p, box, &x, &have, &fwd, &bwd, &extra);
+    rc = vbx_local_arcs(w, f, m, nm, p, box, x, &have, &fwd, &bwd, &extra);
     if (rc == VB_EDEGENERATE) {
         rc = all ? push_event(tr, VBX_EV_UNDECIDED, t, 0, NULL, 0, NULL) : VB_OK;
         goto done;
@@ -180,11 +176,13 @@ static int trace_triple(vbx_tracer *tr, const vb_vertex_list *lst, size_t k, con
     ev.m = m;
     ev.nm = nm;
     ev.xyzt = p;
-    ev.x = &x;
+    ev.x = x;
     ev.have = &have;
-    vbx_key_of_box(w, &f, box, &ev.key);
+    vbx_key_of_box(w, f, box, &ev.key);
     einf.inf = 1;
-    int open = f.kind == VBX_TRI_OPEN;
+    int open = f->kind == VBX_TRI_OPEN;
+    if (all ? fwd : bwd)
+        vbx_tframe_plane(f); /* a search follows */
     for (int dir = 0; dir < 2 && rc == VB_OK; dir++) {
         if (!(dir == 0 ? fwd : bwd) || (dir == 0 && !all))
             continue;
@@ -192,11 +190,11 @@ static int trace_triple(vbx_tracer *tr, const vb_vertex_list *lst, size_t k, con
             rc = push_event(tr, VBX_EV_PENDING, t, 1, NULL, 0, NULL);
             continue;
         }
-        tp.found = 0;
-        tp.have = 0;
+        tp->found = 0;
+        tp->have = 0;
         if (dir == 0) {
             size_t to;
-            int sc = forward_to_known(tr, lst, &f, &ev, k, &tp, &to);
+            int sc = forward_to_known(tr, lst, f, &ev, k, tp, &to);
             if (sc < 0) {
                 rc = -sc;
                 break;
@@ -211,33 +209,48 @@ static int trace_triple(vbx_tracer *tr, const vb_vertex_list *lst, size_t k, con
                 continue;
             }
             if (sc == 1) {
-                rc = arrive(tr, lst, &f, &tp, dir);
+                rc = arrive(tr, lst, f, tp, dir);
                 continue;
             }
-            tp.found = 0;
-            tp.have = 0;
+            tp->found = 0;
+            tp->have = 0;
         }
         if (dir == 0)
-            rc = vbx_arc_search(w, &f, &ev, open ? &einf : &ev, &tp, NULL);
+            rc = vbx_arc_search(w, f, &ev, open ? &einf : &ev, tp, NULL);
         else
-            rc = vbx_arc_search(w, &f, open ? &einf : &ev, &ev, NULL, &tp);
+            rc = vbx_arc_search(w, f, open ? &einf : &ev, &ev, NULL, tp);
         if (rc == VB_EDEGENERATE) {
             rc = push_event(tr, VBX_EV_UNDECIDED, t, dir, NULL, 0, NULL);
             continue;
         }
         if (rc != VB_OK)
             break;
-        if (!tp.found) {
+        if (!tp->found) {
             rc = push_event(tr, open ? VBX_EV_INF : VBX_EV_LOOP, t, dir, NULL, 0, NULL);
             continue;
         }
-        rc = arrive(tr, lst, &f, &tp, dir);
+        rc = arrive(tr, lst, f, tp, dir);
     }
 done:
-    vbx_xpt_clear(&tp.x);
-    vbx_xpt_clear(&x);
-    vbx_tframe_clear(&f);
     return rc;
+}
+
+void vbx_tracer_scratch(vbx_tracer *t, int on)
+{
+    if (on && !t->have_scratch) {
+        vbx_tframe_init(&t->f);
+        vbx_xpt_init(&t->x);
+        vbx_xpt_init(&t->xu);
+        memset(&t->tp, 0, sizeof t->tp);
+        vbx_xpt_init(&t->tp.x);
+        t->have_scratch = 1;
+    } else if (!on && t->have_scratch) {
+        vbx_tframe_clear(&t->f);
+        vbx_xpt_clear(&t->x);
+        vbx_xpt_clear(&t->xu);
+        vbx_xpt_clear(&t->tp.x);
+        t->have_scratch = 0;
+    }
 }
 
 /* One vbx_item, as events of vbx_tracer tr. */

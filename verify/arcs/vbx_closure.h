@@ -90,7 +90,15 @@ typedef struct vbx_tracer {
     int rc;
     size_t fail_at; /* the first item (in the phase) whose tracing failed */
     double busy;    /* CPU seconds spent in phases (vbx_phase_work), summed */
+    /* scratch of one triple's tracing, initialised once (vbx_tracer_scratch) */
+    vbx_tframe f;
+    vbx_xpt x, xu;
+    vbx_touch tp;
+    int have_scratch;
 } vbx_tracer;
+
+/* Initialises (on) or clears (!on) tracer t's scratch. */
+void vbx_tracer_scratch(vbx_tracer *t, int on);
 
 /* An item of a phase: every triple of vertex k (forward arcs traced,
  * backward ones left pending), or the backward arc of triple t alone. */
