@@ -67,6 +67,16 @@ static void rand_decimal(char *buf, size_t len, gmp_randstate_t rs, long range, 
     snprintf(buf, len, "%s%ld.%0*ld", neg ? "-" : "", a / p, dec, a % p);
 }
 
+/* The set of n spheres from decimal strings v, a context and its exact
+ * data (free with vbx_data_free, vb_close, vb_spheres_free). */
+static vb_sphere_set *data_of(size_t n, const char *const *v, vb_ctx **ctx, vbx_data *d)
+{
+    vb_sphere_set *s = vt_set(n, v);
+    CHECK_INT(vb_open(ctx, NULL), VB_OK);
+    CHECK_INT(vbx_data_init(*ctx, d, s), VB_OK);
+    return s;
+}
+
 /* Roots of the tangent solver on random protein-like spheres: the
  * coordinates of vbx_root_coords (fast path first) equal MPFR's bit for bit. */
 static void test_random_vertices(void)
@@ -84,11 +94,9 @@ static void test_random_vertices(void)
         for (int k = 0; k < 4; k++)
             v[4 * i + k] = str[4 * i + k];
     }
-    vb_sphere_set *s = vt_set(N, v);
     vb_ctx *ctx;
-    CHECK_INT(vb_open(&ctx, NULL), VB_OK);
     vbx_data d;
-    CHECK_INT(vbx_data_init(ctx, &d, s), VB_OK);
+    vb_sphere_set *s = data_of(N, v, &ctx, &d);
     vbx_solver sol;
     vbx_solver_init(&sol, &d);
     mpz_t num, den;
@@ -274,11 +282,9 @@ static void test_data_enclosures(void)
         v[0] = "0.5";
         v[1] = "-0.25";
         v[2] = "0";
-        vb_sphere_set *s = vt_set(N, v);
         vb_ctx *ctx;
-        CHECK_INT(vb_open(&ctx, NULL), VB_OK);
         vbx_data d;
-        CHECK_INT(vbx_data_init(ctx, &d, s), VB_OK);
+        vb_sphere_set *s = data_of(N, v, &ctx, &d);
         mpq_t q;
         mpfr_t f;
         mpq_init(q);
