@@ -67,6 +67,16 @@ static void rand_decimal(char *buf, size_t len, gmp_randstate_t rs, long range, 
     snprintf(buf, len, "%s%ld.%0*ld", neg ? "-" : "", a / p, dec, a % p);
 }
 
+/* The set of n spheres from decimal strings v, a context and its exact
+ * data (free with vbx_data_free, vb_close, vb_spheres_free). */
+static vb_sphere_set *data_of(size_t n, const char *const *v, vb_ctx **ctx, vbx_data *d)
+{
+    vb_sphere_set *s = vt_set(n, v);
+    CHECK_INT(vb_open(ctx, NULL), VB_OK);
+    CHECK_INT(vbx_data_init(*ctx, d, s), VB_OK);
+    return s;
+}
+
 /* Roots of the tangent solver on random protein-like spheres: the
  * coordinates of vbx_root_coords (fast path first) equal MPFR's bit for bit. */
 static void test_random_vertices(void)
@@ -84,11 +94,9 @@ static void test_random_vertices(void)
         for (int k = 0; k < 4; k++)
             v[4 * i + k] = str[4 * i + k];
     }
-    vb_sphere_set *s = vt_set(N, v);
     vb_ctx *ctx;
-    CHECK_INT(vb_open(&ctx, NULL), VB_OK);
     vbx_data d;
-    CHECK_INT(vbx_data_init(ctx, &d, s), VB_OK);
+    vb_sphere_set *s = data_of(N, v, &ctx, &d);
     vbx_solver sol;
     vbx_solver_init(&sol, &d);
     mpz_t num, den;
@@ -240,8 +248,76 @@ static void test_cancellation(void)
     }
 }
 
+/* The sphere data's enclosures (vbx_data_init: a double path for numbers
+ * below 2^53, MPFR beyond) against MPFR at 53 bits directly: the nearest
+ * double and the two directed ones, bit for bit, on random decimals of 0
+ * to 6 digits after the point (numerators below 2^53: the double path) and
+ * on a set with 30-digit decimals (every numerator past 2^53: MPFR), with
+ * values that are exact doubles (0.5, -0.25, 0) among them. */
+static void test_data_enclosures(void)
+{
+    gmp_randstate_t rs;
+    gmp_randinit_default(rs);
+    gmp_randseed_ui(rs, 30);
+    enum { N = 400 };
+    static char str[4 * N][48];
+    const char *v[4 * N];
+    for (int pass = 0; pass < 2; pass++) {
+        for (int i = 0; i < 4 * N; i++) {
+            int dec = pass ? (i % 7 == 0 ? 30 : 1) : i % 7;
+            long range = 2000000;
+            if (dec > 15) {
+                snprintf(str[i], sizeof str[i], "%s0.%030lu", i % 2 ? "-" : "",
+                         (unsigned long)gmp_urandomm_ui(rs, 1000000000ul));
+            } else {
+                rand_decimal(str[i], sizeof str[i], rs, range, dec, -range / 2);
+                if (dec == 0)
+                    snprintf(str[i], sizeof str[i], "%ld",
+                             (long)gmp_urandomm_ui(rs, 2000000) - 1000000);
+            }
+            if (i % 4 == 3 && str[i][0] == '-')
+                memmove(str[i], str[i] + 1, strlen(str[i]));
+            v[i] = str[i];
+        }
+        v[0] = "0.5";
+        v[1] = "-0.25";
+        v[2] = "0";
+        vb_ctx *ctx;
+        vbx_data d;
+        vb_sphere_set *s = data_of(N, v, &ctx, &d);
+        mpq_t q;
+        mpfr_t f;
+        mpq_init(q);
+        mpfr_init2(f, 53);
+        int differ = 0, exact = 0;
+        for (size_t i = 0; i < 4 * (size_t)N; i++) {
+            mpq_set_num(q, d.c[i]);
+            mpq_set_den(q, d.scale);
+            mpq_canonicalize(q);
+            mpfr_set_q(f, q, MPFR_RNDD);
+            double lo = mpfr_get_d(f, MPFR_RNDD);
+            mpfr_set_q(f, q, MPFR_RNDU);
+            double hi = mpfr_get_d(f, MPFR_RNDU);
+            mpfr_set_q(f, q, MPFR_RNDN);
+            double m = mpfr_get_d(f, MPFR_RNDN);
+            differ += !same_bits(lo, d.box[i].lo) || !same_bits(hi, d.box[i].hi) ||
+                      !same_bits(m, d.near[i]);
+            exact += lo == hi;
+        }
+        CHECK_INT(differ, 0);
+        CHECK(exact >= 3);
+        mpfr_clear(f);
+        mpq_clear(q);
+        vbx_data_free(&d);
+        vb_close(ctx);
+        vb_spheres_free(s);
+    }
+    gmp_randclear(rs);
+}
+
 int main(void)
 {
+    test_data_enclosures();
     test_cancellation();
     test_random_elements();
     test_random_vertices();

@@ -129,6 +129,9 @@ static int ahas(const aset *a, size_t to, const uint32_t t[3])
 
 /* ---- the closure --------------------------------------------------------- */
 
+/* Vertices of at most this many members keep their arrivals as bits. */
+enum { MASK_MEMBERS = 6 };
+
 /* A traced edge (vb_arc_close_edges), oriented forward along its curve:
  * from its start to its end (vertex indices of closure.all), with the kind
  * of half arc that recorded it. */
@@ -146,14 +149,59 @@ typedef struct closure {
     size_t ned, ed_cap;
     int want_edges;
     vb_vertex_list all; /* input + added, in tracing order */
-    vb_hash tab;        /* the vertices of all */
+    vb_hash tab;        /* the vertices added to all (the input's are found through
+                           the map: vbx_tmap_find) */
     vb_uf comp;         /* components of the vertex-edge graph */
-    aset arrived;       /* (vertex, triple) reached by a forward arc */
+    aset arrived;       /* (vertex, triple) reached by a forward arc (vertices of more
+                           than MASK_MEMBERS members) */
+    uint32_t *amask;    /* ... per vertex of fewer: a bit per triple of its members */
+    size_t amask_cap;
     vbx_tmap map;       /* the triples of the list */
     vbx_item *pend;     /* backward arcs left pending in this round */
     size_t npend, pend_cap;
     vb_arc_report *r;
 } closure;
+
+/* The bit of triple t among the triples of vertex k's members (sorted, t
+ * a triple of them): the combinatorial rank C(c, 3) + C(b, 2) + a of its
+ * positions a < b < c; -1 when k has more than MASK_MEMBERS members. */
+static int triple_bit(const vb_vertex_list *all, size_t k, const uint32_t t[3])
+{
+    size_t s = all->start[k], nm = all->start[k + 1] - s;
+    if (nm > MASK_MEMBERS)
+        return -1;
+    int pos[3], n = 0;
+    for (size_t i = 0; i < nm && n < 3; i++)
+        if (all->ids[s + i] == t[n])
+            pos[n++] = (int)i;
+    if (n < 3)
+        return -1; /* not a triple of k: cannot be, kept in the set */
+    return pos[2] * (pos[2] - 1) * (pos[2] - 2) / 6 + pos[1] * (pos[1] - 1) / 2 + pos[0];
+}
+
+/* Records that a forward arc of triple t arrived at vertex to. */
+static int arrival_put(closure *cl, size_t to, const uint32_t t[3])
+{
+    int b = triple_bit(&cl->all, to, t);
+    if (b < 0)
+        return aput(&cl->arrived, to, t);
+    if (to >= cl->amask_cap) {
+        size_t old = cl->amask_cap;
+        if (VB_ARRAY_FIT(cl->amask, cl->amask_cap, to + 1, 1024) != VB_OK)
+            return VB_ENOMEM;
+        memset(cl->amask + old, 0, (cl->amask_cap - old) * sizeof *cl->amask);
+    }
+    cl->amask[to] |= 1u << b;
+    return VB_OK;
+}
+
+static int arrival_has(const closure *cl, size_t k, const uint32_t t[3])
+{
+    int b = triple_bit(&cl->all, k, t);
+    if (b < 0)
+        return cl->arrived.tab.cap && ahas(&cl->arrived, k, t);
+    return k < cl->amask_cap && (cl->amask[k] >> b & 1);
+}
 
 static int push_item(vbx_item **v, size_t *n, size_t *cap, size_t k, const uint32_t t[3], int all)
 {
@@ -211,11 +259,15 @@ static int merge_events(closure *cl, vbx_tracer *tr, size_t e0, size_t n, size_t
             continue;
         }
         const uint32_t *m = tr->pool + e->moff;
-        size_t *s = vslot(&cl->tab, &cl->all, m, e->nm, e->p);
-        size_t to;
-        if (*s) {
+        size_t to = e->to, *s = NULL;
+        if (to == SIZE_MAX) {
+            if (!cl->tab.cap && vb_hash_fit(&cl->tab, 0, vhash_of, &cl->all) != VB_OK)
+                return VB_ENOMEM;
+            s = vslot(&cl->tab, &cl->all, m, e->nm, e->p);
+        }
+        if (s && *s) {
             to = *s - 1;
-        } else {
+        } else if (s) {
             to = cl->all.n;
             int rc = vb_vertex_list_push(&cl->all, m, e->nm, e->p[0], e->p[1], e->p[2], e->p[3],
                                          0, VB_VERTEX_CERTIFIED);
@@ -228,7 +280,7 @@ static int merge_events(closure *cl, vbx_tracer *tr, size_t e0, size_t n, size_t
                 return VB_ENOMEM;
         }
         r->closed++;
-        if (e->dir == 0 && aput(&cl->arrived, to, e->t) != VB_OK)
+        if (e->dir == 0 && arrival_put(cl, to, e->t) != VB_OK)
             return VB_ENOMEM;
         /* a backward arc from k that ends at `to` is the edge that leaves
          * `to` forward */
@@ -280,7 +332,9 @@ static int run_phase(closure *cl, vbx_tracer *tr, unsigned nt, const vbx_item *i
     if (!ph.first || !ph.count || !ph.who) {
         rc = VB_ENOMEM;
     } else {
+        double t0 = vb_now();
         vb_run_jobs(vbx_phase_work, jobs, sizeof *jobs, (int)use);
+        cl->r->trace_s += vb_now() - t0;
         int bad = vb_jobs_first_error(tr, sizeof *tr, (int)use, offsetof(vbx_tracer, rc),
                                       offsetof(vbx_tracer, fail_at));
         if (bad >= 0) {
@@ -289,8 +343,10 @@ static int run_phase(closure *cl, vbx_tracer *tr, unsigned nt, const vbx_item *i
                 vb_error(cl->ctx, rc, NULL, 0, "%s", vb_errmsg(tr[bad].ctx));
         }
     }
+    double t1 = vb_now();
     for (size_t i = 0; rc == VB_OK && i < n; i++)
         rc = merge_events(cl, &tr[ph.who[i]], ph.first[i], ph.count[i], it[i].k);
+    cl->r->merge_s += vb_now() - t1;
     free(ph.first);
     free(ph.count);
     free(ph.who);
@@ -315,9 +371,13 @@ static int run_rounds(closure *cl, vbx_tracer *tr, unsigned nt)
     while (rc == VB_OK && lo < cl->all.n) {
         size_t hi = cl->all.n, nit = 0, nback = 0;
         /* the map is read by every thread of the round: built before it */
-        const vbx_tmap *map = vbx_tmap_update(&cl->map, &cl->all, nt) == VB_OK ? &cl->map : NULL;
+        double t0 = vb_now();
+        rc = vbx_tmap_update(&cl->map, &cl->all, nt);
+        cl->r->map_s += vb_now() - t0;
+        if (rc != VB_OK)
+            break;
         for (unsigned i = 0; i < nt; i++)
-            tr[i].map = map;
+            tr[i].map = &cl->map;
         static const uint32_t none[3] = {0, 0, 0};
         for (size_t k = lo; rc == VB_OK && k < hi; k++)
             rc = push_item(&it, &nit, &it_cap, k, none, 1);
@@ -326,7 +386,7 @@ static int run_rounds(closure *cl, vbx_tracer *tr, unsigned nt)
             rc = run_phase(cl, tr, nt, it, nit, lo, hi);
         for (size_t i = 0; rc == VB_OK && i < cl->npend; i++) {
             const vbx_item *pi = &cl->pend[i];
-            if (ahas(&cl->arrived, pi->k, pi->t)) {
+            if (arrival_has(cl, pi->k, pi->t)) {
                 cl->r->half_arcs++;
                 cl->r->closed++;
             } else {
@@ -435,6 +495,7 @@ static int close_list(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_lis
         *nedges = 0;
     }
     vb_vertex_list_init(&cl.all);
+    double t0 = vb_now();
     unsigned nt = (unsigned)vb_threads(threads);
     size_t most = in->n / 64 + 1;
     if (nt > most)
@@ -454,6 +515,7 @@ static int close_list(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_lis
         }
         rc = vbx_arcw_init(&tr[i].w, tr[i].ctx, tr[i].c);
         tr[i].have_w = 1;
+        vbx_tracer_scratch(&tr[i], 1);
     }
     for (size_t k = 0; rc == VB_OK && k < in->n; k++) {
         size_t s = in->start[k];
@@ -461,20 +523,14 @@ static int close_list(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_lis
                                  in->z[k], in->t[k], 0, VB_VERTEX_CERTIFIED);
     }
     if (rc == VB_OK)
-        rc = vb_hash_fit(&cl.tab, cl.all.n, vhash_of, &cl.all);
-    for (size_t k = 0; rc == VB_OK && k < cl.all.n; k++) {
-        double p[4];
-        vbx_vertex_point(&cl.all, k, p);
-        size_t s = cl.all.start[k];
-        size_t *slot = vslot(&cl.tab, &cl.all, cl.all.ids + s, cl.all.start[k + 1] - s, p);
-        rc = vb_hash_put(&cl.tab, slot, k, vhash_of, &cl.all);
-    }
-    if (rc == VB_OK)
         rc = vb_uf_fit(&cl.comp, cl.all.n);
+    out->threads = nt;
+    out->setup_s = vb_now() - t0;
     if (rc == VB_OK) {
         vb_progress(ctx, "arcs", 0, cl.all.n);
         rc = run_rounds(&cl, tr, nt);
     }
+    double t1 = vb_now();
     if (rc == VB_OK) {
         out->vertices = cl.all.n;
         for (size_t k = 0; k < cl.all.n; k++)
@@ -487,7 +543,10 @@ static int close_list(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_lis
             rc = vb_vertex_list_sort_perm(&out->added, where);
         if (rc == VB_OK && edges)
             rc = emit_edges(&cl, in->n, where, edges, nedges);
+        for (unsigned i = 0; i < nt; i++)
+            out->busy_s += tr[i].busy;
     }
+    out->finish_s = vb_now() - t1;
     free(where);
     free(cl.ed);
     if (rc == VB_ENOMEM && vb_errcode(ctx) != VB_ENOMEM)
@@ -495,6 +554,7 @@ static int close_list(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_lis
     for (unsigned i = 0; tr && i < nt; i++) {
         if (tr[i].have_w)
             vbx_arcw_free(&tr[i].w);
+        vbx_tracer_scratch(&tr[i], 0);
         free(tr[i].ev);
         free(tr[i].pool);
         if (i > 0) {
@@ -510,8 +570,10 @@ static int close_list(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_lis
     vb_uf_free(&cl.comp);
     vb_hash_free(&cl.arrived.tab);
     free(cl.arrived.k);
+    free(cl.amask);
     free(cl.pend);
     free(cl.map.e);
+    free(cl.map.off);
     return rc;
 }
 

@@ -1,6 +1,7 @@
 /* The trisector of a triple as a conic (vbx_arc.h): its kind, its
  * coordinates G and S, and positions of points on it (the exact points of
  * vertices and roots, and the local test at a vertex: arc_local.c). */
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -22,6 +23,11 @@ void vbx_tframe_init(vbx_tframe *f)
         mpz_init(f->rb[k]);
         mpz_init(f->rc[k]);
     }
+}
+
+void vbx_tframe_reset(vbx_tframe *f)
+{
+    memset(f, 0, offsetof(vbx_tframe, gz));
 }
 
 void vbx_tframe_clear(vbx_tframe *f)
@@ -317,6 +323,22 @@ static int tangent_pair_points(vbx_arcw *w, const vbx_tframe *f, int collinear_p
 
 int vbx_tframe_setup(vbx_arcw *w, vbx_tframe *f, const uint32_t t[3])
 {
+    int rc = vbx_tframe_setup_local(w, f, t);
+    vbx_tframe_plane(f);
+    return rc;
+}
+
+void vbx_tframe_plane(vbx_tframe *f)
+{
+    if (f->plane || f->kind == VBX_TRI_NONE)
+        return;
+    filter_frame(f, f->n);
+    f->plane = 1;
+}
+
+int vbx_tframe_setup_local(vbx_arcw *w, vbx_tframe *f, const uint32_t t[3])
+{
+    f->plane = 0;
     f->exact = 0;
     f->ok = 0;
     f->parabola = 0;
@@ -372,7 +394,8 @@ int vbx_tframe_setup(vbx_arcw *w, vbx_tframe *f, const uint32_t t[3])
         f->gf[3] = zero;
         f->sf[3] = vbx_ia_point(1.0);
     }
-    filter_frame(f, n);
+    for (int k = 0; k < 3; k++)
+        f->n[k] = n[k];
     return VB_OK;
 }
 

@@ -81,9 +81,12 @@ void vb_arc_write_stats(FILE *f, const vb_arc_report *r)
             "arc_half_arcs\t%zu\narc_closed\t%zu\narc_infinite\t%zu\narc_loops\t%zu\n"
             "arc_undecided\t%zu\narc_added\t%zu\narc_components\t%zu\n"
             "arc_filter_calls\t%llu\narc_filter_failures\t%llu\narc_exact_evals\t%llu\n"
-            "arc_candidates\t%llu\narc_s\t%.3f\n",
+            "arc_candidates\t%llu\narc_s\t%.3f\narc_threads\t%u\narc_setup_s\t%.3f\n"
+            "arc_map_s\t%.3f\narc_trace_s\t%.3f\narc_busy_s\t%.3f\narc_merge_s\t%.3f\n"
+            "arc_finish_s\t%.3f\n",
             r->half_arcs, r->closed, r->infinite, r->loops, r->undecided, r->added.n,
             r->components, (unsigned long long)r->filter_calls,
             (unsigned long long)r->filter_failures, (unsigned long long)r->exact_evals,
-            (unsigned long long)r->candidates, r->seconds);
+            (unsigned long long)r->candidates, r->seconds, r->threads, r->setup_s, r->map_s,
+            r->trace_s, r->busy_s, r->merge_s, r->finish_s);
 }

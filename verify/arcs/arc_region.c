@@ -35,7 +35,12 @@
  *     L_j that is > 0 at every u_k and A_k is > 0 on every triangle and so
  *     on the whole curve, so the region is those 32 points (boxes
  *     enclosing them). Where an enclosure is not finite: the boxes of 16
- *     slabs of G covering the whole ellipse.
+ *     slabs of G covering the whole ellipse;
+ *   - a bounded arc of a closed curve between vertices v and w that
+ *     provably turns by less than 180 degrees: like a bounded arc of an
+ *     open branch, it lies in the triangle of v, w and the apex where their
+ *     tangents meet, so the region is that one point (ellipse_apex); an
+ *     arc that may turn further gets the whole curve's region above.
  * L_j(u) < 0 at a point u of such a box means |c_j - p_u|^2 < (t_u + R_j)^2
  * + Q(u) with p_u = c_a + u_q, t_u = u_s - R_a, so |c_j - p_u| < |t_u| +
  * sqrt(max(Q(u), 0)) + R_j: a tangent-ball query of the certifier's index
@@ -188,6 +193,34 @@ static int ellipse_polygon(const vbx_tframe *f, vbx_region *rg)
     return 1;
 }
 
+/* The bounded arc of a closed curve from end e0 forward to end e1, when it
+ * provably turns by less than 180 degrees: its apex alone (1), else 0. On
+ * the unit circle (X, Y) = (G / bx, (S - Sc) / ax) the curve runs
+ * counter-clockwise in (Y, X) (forward: from the largest S through G > 0),
+ * so the forward arc from u0 to u1 turns by phi with sin phi = Y0 X1 -
+ * X0 Y1; phi < 180 degrees when that is > 0, and then the tangents at u0
+ * and u1 meet at (u0 + u1) / (1 + u0 . u1), the apex of the triangle that
+ * holds the arc (the curve is convex; the affine image keeps tangents and
+ * triangles). The ends are enclosures of the exact points, so these
+ * enclose the exact apex. */
+static int ellipse_apex(const vbx_tframe *f, const vbx_arc_end *e0, const vbx_arc_end *e1,
+                        vbx_region *rg)
+{
+    vbx_ia X0 = vbx_ia_div(e0->key.G, f->bx), Y0 = vbx_ia_div(vbx_ia_sub(e0->key.S, f->Sc), f->ax);
+    vbx_ia X1 = vbx_ia_div(e1->key.G, f->bx), Y1 = vbx_ia_div(vbx_ia_sub(e1->key.S, f->Sc), f->ax);
+    vbx_ia turn = vbx_ia_sub(vbx_ia_mul(Y0, X1), vbx_ia_mul(X0, Y1));
+    if (!(turn.lo > 0.0))
+        return 0;
+    vbx_ia den = vbx_ia_add(vbx_ia_point(1.0), vbx_ia_add(vbx_ia_mul(X0, X1), vbx_ia_mul(Y0, Y1)));
+    if (!(den.lo > 0.0))
+        return 0;
+    vbx_ia AX = vbx_ia_div(vbx_ia_add(X0, X1), den), AY = vbx_ia_div(vbx_ia_add(Y0, Y1), den);
+    if (!ellipse_part(f, AX, AY, &rg->p[0]))
+        return 0;
+    rg->n = 1;
+    return 1;
+}
+
 void vbx_region_of(const vbx_tframe *f, const vbx_arc_end *e0, const vbx_arc_end *e1,
                    vbx_region *rg)
 {
@@ -196,6 +229,8 @@ void vbx_region_of(const vbx_tframe *f, const vbx_arc_end *e0, const vbx_arc_end
         rg->brute = 1;
         return;
     }
+    if (f->kind != VBX_TRI_OPEN && e0 != e1 && !e0->inf && !e1->inf && ellipse_apex(f, e0, e1, rg))
+        return;
     if (f->kind != VBX_TRI_OPEN && ellipse_polygon(f, rg))
         return;
     if (f->kind != VBX_TRI_OPEN) {

@@ -2,8 +2,10 @@
  * one triple traced to their ends, as events, on one thread each. */
 #include <stdint.h>
 #include <string.h>
+#include <time.h>
 
 #include "vb_array.h"
+#include "vb_parallel.h"
 
 #include "vbx_closure.h"
 
@@ -14,6 +16,7 @@ static int push_event(vbx_tracer *t, int kind, const uint32_t tri[3], int dir, c
         return VB_ENOMEM;
     vbx_hev *e = &t->ev[t->nev++];
     e->kind = kind;
+    e->to = SIZE_MAX;
     e->dir = dir;
     memcpy(e->t, tri, sizeof e->t);
     e->nm = (uint32_t)nm;
@@ -29,8 +32,10 @@ static int push_event(vbx_tracer *t, int kind, const uint32_t tri[3], int dir, c
     return VB_OK;
 }
 
-/* The next vertex of arc tp of triple frame f, certified, as an event. */
-static int arrive(vbx_tracer *tr, vbx_tframe *f, const vbx_touch *tp, int dir)
+/* The next vertex of arc tp of triple frame f, certified, as an event
+ * (with its index when the round's map of list lst holds it). */
+static int arrive(vbx_tracer *tr, const vb_vertex_list *lst, vbx_tframe *f, const vbx_touch *tp,
+                  int dir)
 {
     double p[4];
     int ok = vbx_touch_certify(&tr->w, f, tp, p);
@@ -41,16 +46,22 @@ static int arrive(vbx_tracer *tr, vbx_tframe *f, const vbx_touch *tp, int dir)
          * there; the local test and the search disagree (degenerate). */
         return push_event(tr, VBX_EV_UNDECIDED, f->t, dir, NULL, 0, NULL);
     }
-    return push_event(tr, VBX_EV_CLOSED, f->t, dir, tr->c->members, tr->c->nmembers, p);
+    int rc = push_event(tr, VBX_EV_CLOSED, f->t, dir, tr->c->members, tr->c->nmembers, p);
+    if (rc == VB_OK && tr->map)
+        tr->ev[tr->nev - 1].to =
+            vbx_tmap_find(tr->map, lst, f->t, tr->c->members, tr->c->nmembers, p);
+    return rc;
 }
 
-/* The forward arc of an open branch from vertex k (end ev) when the list
- * holds a vertex u of the same triple ahead of it: the open arc between
- * them is searched (a bounded region, far smaller than the tail's). Returns
+/* The forward arc of a triple's curve from vertex k (end ev) when the list
+ * holds another vertex u of the same triple: u is the nearest one ahead
+ * (on a closed curve, the nearest after the wrap when none is ahead
+ * before it), and the open arc between them is searched (a bounded
+ * region, far smaller than a tail's or the whole closed curve's). Returns
  * 2 with *to = u when no sphere touches inside (then the arc ends at u,
  * which the list holds, certified), 1 when one does (*tp, the first), 0
  * when there is no such u or positions cannot be told by the filter (the
- * caller searches the tail), or -status. */
+ * caller searches the tail or the whole curve), or -status. */
 static int forward_to_known(vbx_tracer *tr, const vb_vertex_list *all, vbx_tframe *f,
                             vbx_arc_end *ev, size_t k, vbx_touch *tp, size_t *to)
 {
@@ -59,8 +70,11 @@ static int forward_to_known(vbx_tracer *tr, const vb_vertex_list *all, vbx_tfram
     size_t lo, hi;
     vbx_tmap_range(tr->map, f->t, &lo, &hi);
     vbx_arcw *w = &tr->w;
-    size_t best = SIZE_MAX;
-    vbx_key kbest;
+    int closed = f->kind != VBX_TRI_OPEN;
+    /* [0]: the nearest ahead of ev; [1] (closed): the first of the curve
+     * behind ev, where the arc ends after the wrap when nothing is ahead */
+    size_t bests[2] = {SIZE_MAX, SIZE_MAX};
+    vbx_key kbests[2];
     for (size_t i = lo; i < hi; i++) {
         size_t u = tr->map->e[i].k;
         if (u == k)
@@ -74,36 +88,38 @@ static int forward_to_known(vbx_tracer *tr, const vb_vertex_list *all, vbx_tfram
         int c = vbx_pos_cmp(w, f, &ev->key, NULL, &ku, NULL);
         if (c == 2)
             return 0;
-        if (c >= 0)
+        if (c >= 0 && !closed)
             continue;
-        if (best != SIZE_MAX) {
-            int c2 = vbx_pos_cmp(w, f, &ku, NULL, &kbest, NULL);
+        int side = c > 0;
+        if (bests[side] != SIZE_MAX) {
+            int c2 = vbx_pos_cmp(w, f, &ku, NULL, &kbests[side], NULL);
             if (c2 == 2 || c2 == 0)
                 return 0;
             if (c2 > 0)
                 continue;
         }
-        best = u;
-        kbest = ku;
+        bests[side] = u;
+        kbests[side] = ku;
     }
+    int side = bests[0] == SIZE_MAX;
+    size_t best = bests[side];
     if (best == SIZE_MAX)
         return 0;
+    vbx_key kbest = kbests[side];
     double pu[4];
     vbx_vertex_point(all, best, pu);
-    vbx_xpt xu;
-    vbx_xpt_init(&xu);
+    vbx_xpt *xu = &tr->xu;
     int have = 0;
     vbx_arc_end eu = {0};
     eu.key = kbest;
     eu.m = all->ids + all->start[best];
     eu.nm = all->start[best + 1] - all->start[best];
     eu.xyzt = pu;
-    eu.x = &xu;
+    eu.x = xu;
     eu.have = &have;
     tp->found = 0;
     tp->have = 0;
     int rc = vbx_arc_search(w, f, ev, &eu, tp, NULL);
-    vbx_xpt_clear(&xu);
     if (rc == VB_EDEGENERATE)
         return 0;
     if (rc != VB_OK)
@@ -122,24 +138,22 @@ static int trace_triple(vbx_tracer *tr, const vb_vertex_list *lst, size_t k, con
                         int all)
 {
     vbx_arcw *w = &tr->w;
-    vbx_tframe f;
-    vbx_tframe_init(&f);
-    int rc = vbx_tframe_setup(w, &f, t);
-    if (rc != VB_OK) {
-        vbx_tframe_clear(&f);
+    /* the tracer's frame and points, reused (set before they are read) */
+    vbx_tframe *f = &tr->f;
+    vbx_tframe_reset(f);
+    int rc = vbx_tframe_setup_local(w, f, t);
+    if (rc != VB_OK)
         return rc;
-    }
-    vbx_xpt x;
-    vbx_xpt_init(&x);
+    vbx_xpt *x = &tr->x;
     int have = 0, fwd = 0, bwd = 0;
     uint64_t extra = 0;
-    vbx_touch tp;
-    memset(&tp, 0, sizeof tp);
-    vbx_xpt_init(&tp.x);
-    if (f.kind == VBX_TRI_NONE) {
+    vbx_touch *tp = &tr->tp;
+    tp->found = 0;
+    tp->have = 0;
+    if (f->kind == VBX_TRI_NONE) {
         goto done;
     }
-    rc = vbx_local_arcs(w, &f, m, nm, p, box, &x, &have, &fwd, &bwd, &extra);
+    rc = vbx_local_arcs(w, f, m, nm, p, box, x, &have, &fwd, &bwd, &extra);
     if (rc == VB_EDEGENERATE) {
         rc = all ? push_event(tr, VBX_EV_UNDECIDED, t, 0, NULL, 0, NULL) : VB_OK;
         goto done;
@@ -162,11 +176,13 @@ static int trace_triple(vbx_tracer *tr, const vb_vertex_list *lst, size_t k, con
     ev.m = m;
     ev.nm = nm;
     ev.xyzt = p;
-    ev.x = &x;
+    ev.x = x;
     ev.have = &have;
-    vbx_key_of_box(w, &f, box, &ev.key);
+    vbx_key_of_box(w, f, box, &ev.key);
     einf.inf = 1;
-    int open = f.kind == VBX_TRI_OPEN;
+    int open = f->kind == VBX_TRI_OPEN;
+    if (all ? fwd : bwd)
+        vbx_tframe_plane(f); /* a search follows */
     for (int dir = 0; dir < 2 && rc == VB_OK; dir++) {
         if (!(dir == 0 ? fwd : bwd) || (dir == 0 && !all))
             continue;
@@ -174,11 +190,11 @@ static int trace_triple(vbx_tracer *tr, const vb_vertex_list *lst, size_t k, con
             rc = push_event(tr, VBX_EV_PENDING, t, 1, NULL, 0, NULL);
             continue;
         }
-        tp.found = 0;
-        tp.have = 0;
-        if (dir == 0 && open) {
+        tp->found = 0;
+        tp->have = 0;
+        if (dir == 0) {
             size_t to;
-            int sc = forward_to_known(tr, lst, &f, &ev, k, &tp, &to);
+            int sc = forward_to_known(tr, lst, f, &ev, k, tp, &to);
             if (sc < 0) {
                 rc = -sc;
                 break;
@@ -188,36 +204,53 @@ static int trace_triple(vbx_tracer *tr, const vb_vertex_list *lst, size_t k, con
                 vbx_vertex_point(lst, to, pu);
                 size_t s0 = lst->start[to];
                 rc = push_event(tr, VBX_EV_CLOSED, t, 0, lst->ids + s0, lst->start[to + 1] - s0, pu);
+                if (rc == VB_OK)
+                    tr->ev[tr->nev - 1].to = to;
                 continue;
             }
             if (sc == 1) {
-                rc = arrive(tr, &f, &tp, dir);
+                rc = arrive(tr, lst, f, tp, dir);
                 continue;
             }
-            tp.found = 0;
-            tp.have = 0;
+            tp->found = 0;
+            tp->have = 0;
         }
         if (dir == 0)
-            rc = vbx_arc_search(w, &f, &ev, open ? &einf : &ev, &tp, NULL);
+            rc = vbx_arc_search(w, f, &ev, open ? &einf : &ev, tp, NULL);
         else
-            rc = vbx_arc_search(w, &f, open ? &einf : &ev, &ev, NULL, &tp);
+            rc = vbx_arc_search(w, f, open ? &einf : &ev, &ev, NULL, tp);
         if (rc == VB_EDEGENERATE) {
             rc = push_event(tr, VBX_EV_UNDECIDED, t, dir, NULL, 0, NULL);
             continue;
         }
         if (rc != VB_OK)
             break;
-        if (!tp.found) {
+        if (!tp->found) {
             rc = push_event(tr, open ? VBX_EV_INF : VBX_EV_LOOP, t, dir, NULL, 0, NULL);
             continue;
         }
-        rc = arrive(tr, &f, &tp, dir);
+        rc = arrive(tr, lst, f, tp, dir);
     }
 done:
-    vbx_xpt_clear(&tp.x);
-    vbx_xpt_clear(&x);
-    vbx_tframe_clear(&f);
     return rc;
+}
+
+void vbx_tracer_scratch(vbx_tracer *t, int on)
+{
+    if (on && !t->have_scratch) {
+        vbx_tframe_init(&t->f);
+        vbx_xpt_init(&t->x);
+        vbx_xpt_init(&t->xu);
+        memset(&t->tp, 0, sizeof t->tp);
+        vbx_xpt_init(&t->tp.x);
+        t->have_scratch = 1;
+    } else if (!on && t->have_scratch) {
+        vbx_tframe_clear(&t->f);
+        vbx_xpt_clear(&t->x);
+        vbx_xpt_clear(&t->xu);
+        vbx_xpt_clear(&t->tp.x);
+        t->have_scratch = 0;
+    }
 }
 
 /* One vbx_item, as events of vbx_tracer tr. */
@@ -241,6 +274,19 @@ static int trace_item(vbx_tracer *tr, const vb_vertex_list *all, const vbx_item 
     return rc;
 }
 
+/* CPU seconds of the calling thread (wall seconds where the system has no
+ * thread clock): what a tracer spends, apart from time the machine gives
+ * to other work. */
+static double thread_cpu(void)
+{
+#ifdef CLOCK_THREAD_CPUTIME_ID
+    struct timespec ts;
+    if (clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts) == 0)
+        return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+#endif
+    return vb_now();
+}
+
 /* A thread of a phase: chunks of items in turn; each vbx_item's events are a
  * function of that vbx_item alone (the worker keeps no state from one arc to
  * the next beyond its counters), so which thread traced it does not
@@ -250,6 +296,7 @@ void *vbx_phase_work(void *arg)
     vbx_rjob *j = arg;
     vbx_tphase *ph = j->ph;
     vbx_tracer *tr = &ph->tr[j->index];
+    double t0 = thread_cpu();
     for (;;) {
         size_t c0 = atomic_fetch_add(&ph->next, VBX_RCHUNK);
         if (c0 >= ph->n || tr->rc != VB_OK)
@@ -270,5 +317,6 @@ void *vbx_phase_work(void *arg)
             vb_progress(ph->progress, "arcs", ph->base + atomic_fetch_add(&ph->done, c1 - c0) +
                                                   (c1 - c0), ph->total);
     }
+    tr->busy += thread_cpu() - t0;
     return NULL;
 }

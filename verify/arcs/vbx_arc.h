@@ -92,6 +92,8 @@ typedef struct vbx_tframe {
     vbx_ia mb[4], mc[4], Wb, Wc;
     vbx_ia gf[4], sf[4];
     vbx_ia minor[6];       /* 2x2 minors of (m_b, m_c): columns 01 02 03 12 13 23 */
+    vbx_ia n[3];           /* d_b x d_c, for the plane's frame */
+    int plane;             /* the filter frame below is set (vbx_tframe_plane) */
     /* filter frame of the plane, u = O + S ES + G EG (ok: usable) */
     int ok;
     vbx_ia O[4], ES[4], EG[4];
@@ -136,7 +138,17 @@ void vbx_arcw_free(vbx_arcw *w);
  * VB_OK or VB_ENOMEM; t must be released with vbx_tframe_clear. */
 void vbx_tframe_init(vbx_tframe *f);
 void vbx_tframe_clear(vbx_tframe *f);
+/* Makes an initialised frame fresh for another triple: every field but the
+ * exact integers zeroed, as vbx_tframe_init leaves them (those are written
+ * before they are read: f->exact and the kind's set-up say when). */
+void vbx_tframe_reset(vbx_tframe *f);
 int vbx_tframe_setup(vbx_arcw *w, vbx_tframe *f, const uint32_t t[3]);
+/* vbx_tframe_setup without the filter frame of the plane (ok, O, ES, EG
+ * and the conic's data): enough for positions (vbx_key_of_box,
+ * vbx_pos_cmp) and the local test; vbx_tframe_plane completes it before
+ * any search (idempotent). */
+int vbx_tframe_setup_local(vbx_arcw *w, vbx_tframe *f, const uint32_t t[3]);
+void vbx_tframe_plane(vbx_tframe *f);
 /* The exact functionals and minors (idempotent). */
 void vbx_tframe_exact(vbx_arcw *w, vbx_tframe *f);
 

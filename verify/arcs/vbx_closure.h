@@ -32,6 +32,8 @@ typedef struct vbx_tmap {
     vbx_tent *e;
     size_t n, cap;
     size_t done; /* vertices entered */
+    size_t *off; /* entries of first sphere i: [off[i], off[i + 1]), i < noff */
+    size_t noff;
 } vbx_tmap;
 
 /* Enters the vertices [m->done, all->n) and sorts again (on nt threads, the
@@ -43,6 +45,12 @@ int vbx_tmap_update(vbx_tmap *m, const vb_vertex_list *all, unsigned nt);
 
 /* The entries of triple t: [*lo, *hi). */
 void vbx_tmap_range(const vbx_tmap *m, const uint32_t t[3], size_t *lo, size_t *hi);
+
+/* The vertex of the map's list all that holds triple t and has members
+ * ids[0..nm) and rounded point p (compared exactly, as the closure's table
+ * does), or SIZE_MAX when the map has none. */
+size_t vbx_tmap_find(const vbx_tmap *m, const vb_vertex_list *all, const uint32_t t[3],
+                     const uint32_t *ids, size_t nm, const double p[4]);
 
 /* ---- tracing (arc_tracer.c) ---------------------------------------------- */
 
@@ -59,6 +67,8 @@ enum {
 
 typedef struct vbx_hev {
     double p[4];
+    size_t to;   /* VBX_EV_CLOSED: the end's index in the list when the tracer
+                    found it there (vbx_tmap_find), else SIZE_MAX */
     size_t moff;
     uint32_t nm;
     uint32_t t[3];
@@ -79,7 +89,16 @@ typedef struct vbx_tracer {
     size_t npool, pool_cap;
     int rc;
     size_t fail_at; /* the first item (in the phase) whose tracing failed */
+    double busy;    /* CPU seconds spent in phases (vbx_phase_work), summed */
+    /* scratch of one triple's tracing, initialised once (vbx_tracer_scratch) */
+    vbx_tframe f;
+    vbx_xpt x, xu;
+    vbx_touch tp;
+    int have_scratch;
 } vbx_tracer;
+
+/* Initialises (on) or clears (!on) tracer t's scratch. */
+void vbx_tracer_scratch(vbx_tracer *t, int on);
 
 /* An item of a phase: every triple of vertex k (forward arcs traced,
  * backward ones left pending), or the backward arc of triple t alone. */

@@ -20,10 +20,32 @@ static const vb_decimal *decimal_of(const vb_sphere_set *set, size_t i, int k)
     }
 }
 
+/* enclose_q where num and den are doubles exactly (|num|, den < 2^53, the
+ * usual input decimals): the IEEE quotient q = RN(num / den) is the nearest
+ * double, and its remainder q den - num is a double (the remainder of a
+ * correctly rounded division is representable), so fma gives it exactly;
+ * its sign says on which side of the exact value q lies, and the other
+ * side is the neighbouring double. The same three doubles as the MPFR
+ * path. 1 when done, 0 when the numbers are too large. */
+static int enclose_small(const mpz_t num, const mpz_t den, vbx_ia *r, double *nearest)
+{
+    if (mpz_sizeinbase(num, 2) > 53 || mpz_sizeinbase(den, 2) > 53)
+        return 0;
+    double n = mpz_get_d(num), d = mpz_get_d(den);
+    double q = n / d, rem = fma(q, d, -n);
+    *nearest = q;
+    r->lo = rem > 0.0 ? nextafter(q, -INFINITY) : q;
+    r->hi = rem < 0.0 ? nextafter(q, INFINITY) : q;
+    return 1;
+}
+
 /* Encloses the rational num / den (den > 0) in doubles. RNDD/RNDU at 64 bits
  * then a directed conversion to double keep each side on its side. */
 static vbx_ia enclose_q(const mpz_t num, const mpz_t den, double *nearest)
 {
+    vbx_ia fast;
+    if (enclose_small(num, den, &fast, nearest))
+        return fast;
     mpq_t q;
     mpfr_t f;
     mpq_init(q);
