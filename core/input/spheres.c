@@ -5,6 +5,7 @@
 #include "vb_decimal_mpz.h"
 #include "vb_diag.h"
 #include "vbi_input.h"
+#include "vb_parallel.h"
 
 #include <float.h>
 #include <gmp.h>
@@ -89,7 +90,11 @@ static int check_duplicates(vb_ctx *ctx, const vb_sphere_set *s)
         sphere_values(s, i, k[i].v);
         k[i].idx = i;
     }
-    qsort(k, s->n, sizeof *k, dup_key_cmp);
+    /* A total order (ties by index): one result on any number of threads. */
+    if (vb_psort(k, s->n, sizeof *k, dup_key_cmp, vb_threads(0)) != VB_OK) {
+        free(k);
+        return vb_error(ctx, VB_ENOMEM, s->source, 0, "out of memory");
+    }
     /* Of all identical pairs, name the one met first when reading the file
      * top down: the later sphere with the smallest index. */
     size_t first = SIZE_MAX, second = SIZE_MAX;
