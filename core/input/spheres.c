@@ -316,7 +316,7 @@ static void warn_nested(vb_ctx *ctx, const vb_sphere_set *s, const size_t *by, i
  * spheres j (each testing the spheres i in the grid cells within its pad,
  * pad_box) that skips an i once it is found inside: i is tested against
  * the j whose cells hold i's cell, in increasing j, up to the first that
- * holds it. Done per i (contain_one) it is the same tests in the same
+ * holds it. Done per i (contain_cell) it is the same tests in the same
  * order for each i, so the same marks and counts on any number of threads. */
 typedef struct contain_job {
     const vb_sphere_set *s;
@@ -331,12 +331,6 @@ typedef struct contain_job {
     nest_count *count;    /* per thread */
 } contain_job;
 
-static int cmp_size(const void *a, const void *b)
-{
-    size_t x = *(const size_t *)a, y = *(const size_t *)b;
-    return (x > y) - (x < y);
-}
-
 /* The cells of sphere j's search: its centre padded by the rounding of
  * the doubles against their decimals, so no centre within Rj is missed;
  * the predicate itself decides exactly. */
@@ -350,15 +344,20 @@ static void pad_box(const vb_sphere_set *s, const center_grid *g, size_t j, size
     }
 }
 
-static void contain_one(void *ctx, size_t i, int tid)
+/* The spheres i of grid cell `cell` (contain_job): the j whose boxes hold
+ * the cell, gathered once and put in increasing order, then each i's
+ * tests in that order. */
+static void contain_cell(void *ctx, size_t cell, int tid)
 {
     const contain_job *jb = ctx;
     const vb_sphere_set *s = jb->s;
     const center_grid *g = jb->g;
-    const double c[3] = {s->x[i], s->y[i], s->z[i]};
-    size_t ci[3], lo[3], hi[3];
+    if (g->start[cell] == g->start[cell + 1])
+        return;
+    const size_t ci[3] = {cell % g->dim[0], cell / g->dim[0] % g->dim[1],
+                          cell / (g->dim[0] * g->dim[1])};
+    size_t lo[3], hi[3];
     for (int k = 0; k < 3; k++) {
-        ci[k] = cell_coord(c[k], g->min[k], g->h, g->dim[k]);
         lo[k] = ci[k] > jb->span[k] ? ci[k] - jb->span[k] : 0;
         hi[k] = ci[k] + jb->span[k] < g->dim[k] ? ci[k] + jb->span[k] : g->dim[k] - 1;
     }
@@ -367,8 +366,8 @@ static void contain_one(void *ctx, size_t i, int tid)
     for (size_t cz = lo[2]; cz <= hi[2]; cz++)
         for (size_t cy = lo[1]; cy <= hi[1]; cy++)
             for (size_t cx = lo[0]; cx <= hi[0]; cx++) {
-                size_t cell = (cz * g->dim[1] + cy) * g->dim[0] + cx;
-                for (size_t t = g->start[cell]; t < g->start[cell + 1]; t++) {
+                size_t other = (cz * g->dim[1] + cy) * g->dim[0] + cx;
+                for (size_t t = g->start[other]; t < g->start[other + 1]; t++) {
                     size_t j = g->items[t];
                     const size_t *b = jb->box[j];
                     if (!(b[0] <= ci[0] && ci[0] <= b[3] && b[1] <= ci[1] && ci[1] <= b[4] &&
@@ -384,23 +383,30 @@ static void contain_one(void *ctx, size_t i, int tid)
                         cd->j = p;
                         cd->cap = cap;
                     }
-                    cd->j[nc++] = j;
+                    /* In increasing order as they come (few per cell). */
+                    size_t q = nc++;
+                    for (; q > 0 && cd->j[q - 1] > j; q--)
+                        cd->j[q] = cd->j[q - 1];
+                    cd->j[q] = j;
                 }
             }
-    qsort(cd->j, nc, sizeof *cd->j, cmp_size);
-    for (size_t q = 0; q < nc; q++) {
-        size_t j = cd->j[q];
-        /* Equal radii would need equal centres: a duplicate, refused
-         * before we get here. */
-        if (vb_decimal_cmp(s->er[i], s->er[j]) >= 0)
-            continue;
-        int nest = nesting(jb->count + tid, s, i, j);
-        if (nest == NEST_INSIDE) {
-            jb->by[i] = j;
-            break;
+    for (size_t t = g->start[cell]; t < g->start[cell + 1]; t++) {
+        size_t i = g->items[t];
+        for (size_t q = 0; q < nc; q++) {
+            size_t j = cd->j[q];
+            /* Equal radii would need equal centres: a duplicate, refused
+             * before we get here. A smaller double radius has a smaller
+             * decimal (rounding keeps the order). */
+            if (s->r[j] < s->r[i] || vb_decimal_cmp(s->er[i], s->er[j]) >= 0)
+                continue;
+            int nest = nesting(jb->count + tid, s, i, j);
+            if (nest == NEST_INSIDE) {
+                jb->by[i] = j;
+                break;
+            }
+            if (nest == NEST_TANGENT && jb->touch[i] == SIZE_MAX)
+                jb->touch[i] = j;
         }
-        if (nest == NEST_TANGENT && jb->touch[i] == SIZE_MAX)
-            jb->touch[i] = j;
     }
 }
 
@@ -409,7 +415,7 @@ static void contain_one(void *ctx, size_t i, int tid)
  * touches a larger one from inside is not contained: its cell is a point or
  * a segment that can end at a Voronoi vertex (W722, W723). Decided exactly:
  * a sphere strictly inside any sphere is contained, whatever it touches.
- * Each sphere is searched on its own (contain_one) on the host threads. */
+ * The cells of the grid are searched on the host threads (contain_cell). */
 static int find_contained(vb_ctx *ctx, vb_sphere_set *s, int warn)
 {
     center_grid g;
@@ -444,7 +450,7 @@ static int find_contained(vb_ctx *ctx, vb_sphere_set *s, int warn)
             jb.span[k] = d > jb.span[k] ? d : jb.span[k];
         }
     }
-    vb_parallel_for(contain_one, &jb, s->n, nt);
+    vb_parallel_for(contain_cell, &jb, g.dim[0] * g.dim[1] * g.dim[2], nt);
     int nomem = 0;
     vb_stats *st = vb_ctx_stats(ctx);
     for (int t = 0; t < nt; t++) {

@@ -338,16 +338,8 @@ static int fill_layer(vb_ctx *ctx, const vb_sphere_set *atoms, const vb_box *box
      * threads, placed by the prefix sums of the counts in item order, the
      * order one thread would take). */
     int nt = vb_threads(0);
-    layer_job jb;
-    memset(&jb, 0, sizeof jb);
-    jb.atoms = atoms;
-    jb.inv = inv;
-    jb.klo = klo;
-    jb.khi = khi;
-    jb.bn = bn;
-    jb.reach = &reach;
-    for (int a = 0; a < 3; a++)
-        jb.L[a] = L[a];
+    layer_job jb = {.atoms = atoms, .inv = inv, .klo = klo, .khi = khi, .bn = bn,
+                    .reach = &reach, .L = {L[0], L[1], L[2]}};
     jb.nchunk = (n0 + LAYER_CHUNK - 1) / LAYER_CHUNK;
     size_t nshift = (size_t)(2 * L[0] + 1) * (size_t)(2 * L[1] + 1) * (size_t)(2 * L[2] + 1);
     size_t items = nshift * jb.nchunk;
