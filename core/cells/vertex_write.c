@@ -13,7 +13,7 @@
 #include "vb_json.h"
 #include "vb_numtext.h"
 #include "vb_output.h"
-#include "vb_parallel.h"
+#include "vb_write_lines.h"
 
 int vb_vertex_format_parse(vb_ctx *ctx, const char *name, vb_vertex_format *out)
 {
@@ -115,66 +115,25 @@ static void voronota_lines(FILE *f, const vb_vertex_list *v, size_t k)
     }
 }
 
-/* Formatting 17 digits is most of the cost of writing: blocks of vertices
- * are formatted on the threads (vb_threads(0)) into memory, a round of them
- * at a time, and written in order, so the bytes are those of one thread. */
-#define WRITE_BLOCK 4096u
-
-typedef struct blocks {
+/* A line_fn and its list, for vb_write_lines (blocks formatted on the
+ * threads, written in order). */
+typedef struct list_lines {
     const vb_vertex_list *v;
     line_fn fn;
-    size_t k0;
-    char **buf;
-    size_t *len;
-} blocks;
+} list_lines;
 
-static void format_block(void *arg, size_t i, int tid)
+static void list_line(FILE *f, const void *arg, size_t k)
 {
-    (void)tid;
-    blocks *b = arg;
-    FILE *m = open_memstream(&b->buf[i], &b->len[i]);
-    if (!m) {
-        b->buf[i] = NULL;
-        return;
-    }
-    size_t k0 = b->k0 + i * WRITE_BLOCK, k1 = k0 + WRITE_BLOCK;
-    for (size_t k = k0; k < k1 && k < b->v->n; k++)
-        b->fn(m, b->v, k);
-    if (fclose(m) != 0) {
-        free(b->buf[i]);
-        b->buf[i] = NULL;
-    }
+    const list_lines *l = arg;
+    l->fn(f, l->v, k);
 }
 
 static int write_lines(vb_ctx *ctx, FILE *f, const vb_vertex_list *v, line_fn fn)
 {
-    int nt = vb_threads(0);
-    if (nt == 1 || v->n <= WRITE_BLOCK) {
-        for (size_t k = 0; k < v->n; k++)
-            fn(f, v, k);
-        return VB_OK;
-    }
-    size_t round = 4u * (size_t)nt;
-    char **buf = calloc(round, sizeof *buf);
-    size_t *len = calloc(round, sizeof *len);
-    int rc = buf && len ? VB_OK : VB_ENOMEM;
-    for (size_t k0 = 0; rc == VB_OK && k0 < v->n; k0 += round * WRITE_BLOCK) {
-        size_t nb = (v->n - k0 + WRITE_BLOCK - 1) / WRITE_BLOCK;
-        nb = nb < round ? nb : round;
-        blocks b = {v, fn, k0, buf, len};
-        vb_parallel_for(format_block, &b, nb, nt);
-        for (size_t i = 0; i < nb; i++) {
-            if (!buf[i])
-                rc = VB_ENOMEM;
-            else if (rc == VB_OK)
-                fwrite(buf[i], 1, len[i], f);
-            free(buf[i]);
-            buf[i] = NULL;
-        }
-    }
-    free(buf);
-    free(len);
-    return rc == VB_OK ? VB_OK : vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (writing vertices)");
+    const list_lines l = {v, fn};
+    return vb_write_lines(f, v->n, list_line, &l) == VB_OK
+               ? VB_OK
+               : vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (writing vertices)");
 }
 
 /* The provenance lines, then the comment, as one text (malloc'd; NULL when

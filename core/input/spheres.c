@@ -5,6 +5,7 @@
 #include "vb_decimal_mpz.h"
 #include "vb_diag.h"
 #include "vbi_input.h"
+#include "vb_parallel.h"
 
 #include <float.h>
 #include <gmp.h>
@@ -89,7 +90,11 @@ static int check_duplicates(vb_ctx *ctx, const vb_sphere_set *s)
         sphere_values(s, i, k[i].v);
         k[i].idx = i;
     }
-    qsort(k, s->n, sizeof *k, dup_key_cmp);
+    /* A total order (ties by index): one result on any number of threads. */
+    if (vb_psort(k, s->n, sizeof *k, dup_key_cmp, vb_threads(0)) != VB_OK) {
+        free(k);
+        return vb_error(ctx, VB_ENOMEM, s->source, 0, "out of memory");
+    }
     /* Of all identical pairs, name the one met first when reading the file
      * top down: the later sphere with the smallest index. */
     size_t first = SIZE_MAX, second = SIZE_MAX;
@@ -157,10 +162,14 @@ static int contained_exact(const vb_sphere_set *s, size_t i, size_t j)
  * |e^ - e| <= 8.2 u S (+ underflow, a few 2^-1074); we take 16 u S + 1e-290. */
 enum { NEST_APART = 0, NEST_INSIDE = 1, NEST_TANGENT = 2 };
 
-static int nesting(vb_ctx *ctx, const vb_sphere_set *s, size_t i, size_t j)
+/* The counts of nesting's evaluations (a thread's, added to the stats). */
+typedef struct nest_count {
+    uint64_t calls, failures;
+} nest_count;
+
+static int nesting(nest_count *st, const vb_sphere_set *s, size_t i, size_t j)
 {
-    vb_stats *st = vb_ctx_stats(ctx);
-    st->filter_calls++;
+    st->calls++;
     double dx = s->x[i] - s->x[j], dy = s->y[i] - s->y[j], dz = s->z[i] - s->z[j];
     double dr = s->r[j] - s->r[i];
     double e = dr * dr - (dx * dx + dy * dy + dz * dz);
@@ -171,8 +180,7 @@ static int nesting(vb_ctx *ctx, const vb_sphere_set *s, size_t i, size_t j)
         return NEST_INSIDE;
     if (e < -bound)
         return NEST_APART;
-    st->filter_failures++;
-    st->exact_evals++;
+    st->failures++;
     int sg = contained_exact(s, i, j);
     return sg > 0 ? NEST_INSIDE : sg == 0 ? NEST_TANGENT : NEST_APART;
 }
@@ -304,55 +312,164 @@ static void warn_nested(vb_ctx *ctx, const vb_sphere_set *s, const size_t *by, i
     }
 }
 
+/* The search of find_contained. Its order is that of a scan over the
+ * spheres j (each testing the spheres i in the grid cells within its pad,
+ * pad_box) that skips an i once it is found inside: i is tested against
+ * the j whose cells hold i's cell, in increasing j, up to the first that
+ * holds it. Done per i (contain_cell) it is the same tests in the same
+ * order for each i, so the same marks and counts on any number of threads. */
+typedef struct contain_job {
+    const vb_sphere_set *s;
+    const center_grid *g;
+    size_t (*box)[6];     /* per sphere j: its cells' lo[3], hi[3] */
+    size_t span[3];       /* most cells from a j's own cell to an end of its box */
+    size_t *by, *touch;
+    struct cand {
+        size_t *j, cap;
+        int nomem;
+    } *cand;              /* per thread: the candidates of its sphere i */
+    nest_count *count;    /* per thread */
+} contain_job;
+
+/* The cells of sphere j's search: its centre padded by the rounding of
+ * the doubles against their decimals, so no centre within Rj is missed;
+ * the predicate itself decides exactly. */
+static void pad_box(const vb_sphere_set *s, const center_grid *g, size_t j, size_t box[6])
+{
+    const double c[3] = {s->x[j], s->y[j], s->z[j]};
+    for (int k = 0; k < 3; k++) {
+        double pad = s->r[j] + 1e-9 * (2 * fabs(c[k]) + 2 * s->r[j]) + 1e-300;
+        box[k] = cell_coord(c[k] - pad, g->min[k], g->h, g->dim[k]);
+        box[3 + k] = cell_coord(c[k] + pad, g->min[k], g->h, g->dim[k]);
+    }
+}
+
+/* The spheres i of grid cell `cell` (contain_job): the j whose boxes hold
+ * the cell, gathered once and put in increasing order, then each i's
+ * tests in that order. */
+static void contain_cell(void *ctx, size_t cell, int tid)
+{
+    const contain_job *jb = ctx;
+    const vb_sphere_set *s = jb->s;
+    const center_grid *g = jb->g;
+    if (g->start[cell] == g->start[cell + 1])
+        return;
+    const size_t ci[3] = {cell % g->dim[0], cell / g->dim[0] % g->dim[1],
+                          cell / (g->dim[0] * g->dim[1])};
+    size_t lo[3], hi[3];
+    for (int k = 0; k < 3; k++) {
+        lo[k] = ci[k] > jb->span[k] ? ci[k] - jb->span[k] : 0;
+        hi[k] = ci[k] + jb->span[k] < g->dim[k] ? ci[k] + jb->span[k] : g->dim[k] - 1;
+    }
+    struct cand *cd = jb->cand + tid;
+    size_t nc = 0;
+    for (size_t cz = lo[2]; cz <= hi[2]; cz++)
+        for (size_t cy = lo[1]; cy <= hi[1]; cy++)
+            for (size_t cx = lo[0]; cx <= hi[0]; cx++) {
+                size_t other = (cz * g->dim[1] + cy) * g->dim[0] + cx;
+                for (size_t t = g->start[other]; t < g->start[other + 1]; t++) {
+                    size_t j = g->items[t];
+                    const size_t *b = jb->box[j];
+                    if (!(b[0] <= ci[0] && ci[0] <= b[3] && b[1] <= ci[1] && ci[1] <= b[4] &&
+                          b[2] <= ci[2] && ci[2] <= b[5]))
+                        continue;
+                    if (nc == cd->cap) {
+                        size_t cap = cd->cap ? 2 * cd->cap : 256;
+                        size_t *p = realloc(cd->j, cap * sizeof *p);
+                        if (!p) {
+                            cd->nomem = 1;
+                            return;
+                        }
+                        cd->j = p;
+                        cd->cap = cap;
+                    }
+                    /* In increasing order as they come (few per cell). */
+                    size_t q = nc++;
+                    for (; q > 0 && cd->j[q - 1] > j; q--)
+                        cd->j[q] = cd->j[q - 1];
+                    cd->j[q] = j;
+                }
+            }
+    for (size_t t = g->start[cell]; t < g->start[cell + 1]; t++) {
+        size_t i = g->items[t];
+        for (size_t q = 0; q < nc; q++) {
+            size_t j = cd->j[q];
+            /* Equal radii would need equal centres: a duplicate, refused
+             * before we get here. A smaller double radius has a smaller
+             * decimal (rounding keeps the order). */
+            if (s->r[j] < s->r[i] || vb_decimal_cmp(s->er[i], s->er[j]) >= 0)
+                continue;
+            int nest = nesting(jb->count + tid, s, i, j);
+            if (nest == NEST_INSIDE) {
+                jb->by[i] = j;
+                break;
+            }
+            if (nest == NEST_TANGENT && jb->touch[i] == SIZE_MAX)
+                jb->touch[i] = j;
+        }
+    }
+}
+
 /* Marks contained spheres (strictly inside another: empty cell) and, when
  * warn, warns W701 (each, up to a limit) and W702 (the total). A sphere that only
  * touches a larger one from inside is not contained: its cell is a point or
  * a segment that can end at a Voronoi vertex (W722, W723). Decided exactly:
- * a sphere strictly inside any sphere is contained, whatever it touches. */
+ * a sphere strictly inside any sphere is contained, whatever it touches.
+ * The cells of the grid are searched on the host threads (contain_cell). */
 static int find_contained(vb_ctx *ctx, vb_sphere_set *s, int warn)
 {
     center_grid g;
     memset(&g, 0, sizeof g);
-    size_t *by = malloc(s->n * sizeof *by);
-    size_t *touch = malloc(s->n * sizeof *touch);
-    if (!by || !touch || grid_build(&g, s) != 0) {
-        free(by);
-        free(touch);
+    int nt = vb_threads(0);
+    contain_job jb;
+    memset(&jb, 0, sizeof jb);
+    jb.s = s;
+    jb.g = &g;
+    jb.by = malloc(s->n * sizeof *jb.by);
+    jb.touch = malloc(s->n * sizeof *jb.touch);
+    jb.box = malloc(s->n * sizeof *jb.box);
+    jb.cand = calloc((size_t)nt, sizeof *jb.cand);
+    jb.count = calloc((size_t)nt, sizeof *jb.count);
+    if (!jb.by || !jb.touch || !jb.box || !jb.cand || !jb.count || grid_build(&g, s) != 0) {
+        free(jb.by);
+        free(jb.touch);
+        free(jb.box);
+        free(jb.cand);
+        free(jb.count);
         grid_free(&g);
         return vb_error(ctx, VB_ENOMEM, s->source, 0, "out of memory");
     }
-    for (size_t i = 0; i < s->n; i++)
-        by[i] = touch[i] = SIZE_MAX;
     for (size_t j = 0; j < s->n; j++) {
-        const double c[3] = {s->x[j], s->y[j], s->z[j]};
-        size_t lo[3], hi[3];
+        jb.by[j] = jb.touch[j] = SIZE_MAX;
+        pad_box(s, &g, j, jb.box[j]);
         for (int k = 0; k < 3; k++) {
-            /* Padding covers the rounding of the doubles against their
-             * decimals, so no centre within Rj is missed; the predicate
-             * itself decides exactly. */
-            double pad = s->r[j] + 1e-9 * (2 * fabs(c[k]) + 2 * s->r[j]) + 1e-300;
-            lo[k] = cell_coord(c[k] - pad, g.min[k], g.h, g.dim[k]);
-            hi[k] = cell_coord(c[k] + pad, g.min[k], g.h, g.dim[k]);
+            size_t cj = cell_coord(k == 0 ? s->x[j] : k == 1 ? s->y[j] : s->z[j], g.min[k], g.h,
+                                   g.dim[k]);
+            size_t d = cj - jb.box[j][k] > jb.box[j][3 + k] - cj ? cj - jb.box[j][k]
+                                                                 : jb.box[j][3 + k] - cj;
+            jb.span[k] = d > jb.span[k] ? d : jb.span[k];
         }
-        for (size_t cz = lo[2]; cz <= hi[2]; cz++)
-            for (size_t cy = lo[1]; cy <= hi[1]; cy++)
-                for (size_t cx = lo[0]; cx <= hi[0]; cx++) {
-                    size_t cell = (cz * g.dim[1] + cy) * g.dim[0] + cx;
-                    for (size_t t = g.start[cell]; t < g.start[cell + 1]; t++) {
-                        size_t i = g.items[t];
-                        /* Equal radii would need equal centres: a duplicate,
-                         * refused before we get here. */
-                        if (by[i] != SIZE_MAX || vb_decimal_cmp(s->er[i], s->er[j]) >= 0)
-                            continue;
-                        int nest = nesting(ctx, s, i, j);
-                        if (nest == NEST_INSIDE)
-                            by[i] = j;
-                        else if (nest == NEST_TANGENT && touch[i] == SIZE_MAX)
-                            touch[i] = j;
-                    }
-                }
+    }
+    vb_parallel_for(contain_cell, &jb, g.dim[0] * g.dim[1] * g.dim[2], nt);
+    int nomem = 0;
+    vb_stats *st = vb_ctx_stats(ctx);
+    for (int t = 0; t < nt; t++) {
+        nomem |= jb.cand[t].nomem;
+        free(jb.cand[t].j);
+        st->filter_calls += jb.count[t].calls;
+        st->filter_failures += jb.count[t].failures;
+        st->exact_evals += jb.count[t].failures;
     }
     grid_free(&g);
+    size_t *by = jb.by, *touch = jb.touch;
+    free(jb.box);
+    free(jb.cand);
+    free(jb.count);
+    if (nomem) {
+        free(by);
+        free(touch);
+        return vb_error(ctx, VB_ENOMEM, s->source, 0, "out of memory");
+    }
     for (size_t i = 0; i < s->n; i++) {
         if (by[i] != SIZE_MAX) {
             s->contained[i] = 1;

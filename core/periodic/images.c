@@ -41,6 +41,7 @@
 
 #include "vbi_input.h"
 #include "vbp_bins.h"
+#include "vb_parallel.h"
 
 #define MAX_LAYERS 4.0 /* reach past this many box heights: E135 */
 
@@ -194,6 +195,103 @@ int vb_periodic_images_build_opt(vb_ctx *ctx, const vb_sphere_set *atoms, const 
 /* The images within out->reach of the atoms (fractional ranges lo, hi of
  * the atoms, heights h), of them those the per-bin reach of out->bins
  * needs (unless opt->full or no bins), then their decimals; validated. */
+#define LAYER_CHUNK 8192 /* atoms of one item of the layer's count and fill */
+
+/* The layer's items: item q is shift q / nchunk (s0, s1, s2 from -L
+ * upwards, s2 fastest; shift 0 adds nothing) and the atoms of chunk
+ * q % nchunk. Without out: counts into kept[q] and layer[q]; with out:
+ * writes the kept images from index kept[q] on. */
+typedef struct layer_job {
+    const vb_sphere_set *atoms;
+    const double *inv, *klo, *khi;
+    const vbp_bins *bn;
+    const vbp_reach *reach;
+    int L[3];
+    size_t nchunk;
+    size_t *kept, *layer;
+    vb_periodic_images *out;
+} layer_job;
+
+static void layer_item(void *ctx, size_t q, int tid)
+{
+    (void)tid;
+    const layer_job *jb = ctx;
+    const vb_sphere_set *atoms = jb->atoms;
+    const double *inv = jb->inv;
+    size_t sq = q / jb->nchunk, i0 = q % jb->nchunk * LAYER_CHUNK;
+    size_t i1 = i0 + LAYER_CHUNK < atoms->n ? i0 + LAYER_CHUNK : atoms->n;
+    size_t n1 = (size_t)(2 * jb->L[1] + 1), n2 = (size_t)(2 * jb->L[2] + 1);
+    const int sh[3] = {(int)(sq / (n1 * n2)) - jb->L[0], (int)(sq / n2 % n1) - jb->L[1],
+                       (int)(sq % n2) - jb->L[2]};
+    if (sh[0] == 0 && sh[1] == 0 && sh[2] == 0)
+        return;
+    size_t w = jb->out ? jb->kept[q] : 0, lay = 0;
+    for (size_t i = i0; i < i1; i++) {
+        int in = 1;
+        double f[3];
+        for (int a = 0; a < 3 && in; a++) {
+            f[a] = atoms->x[i] * inv[a] + atoms->y[i] * inv[3 + a] + atoms->z[i] * inv[6 + a] +
+                   sh[a];
+            in = f[a] >= jb->klo[a] && f[a] <= jb->khi[a];
+        }
+        if (!in)
+            continue;
+        lay++;
+        if (jb->reach->need && !vbp_reach_keeps(jb->reach, jb->bn, f))
+            continue;
+        if (jb->out) {
+            jb->out->atom[w] = (uint32_t)i;
+            for (int a = 0; a < 3; a++)
+                jb->out->shift[w][a] = (int16_t)sh[a];
+        }
+        w++;
+    }
+    if (!jb->out) {
+        jb->kept[q] = w;
+        jb->layer[q] = lay;
+    }
+}
+
+/* The decimals and doubles of spheres [q LAYER_CHUNK, ...) of the set;
+ * bad[q]: the first whose image is beyond 18 digits, or SIZE_MAX. */
+typedef struct dec_job {
+    const vb_sphere_set *atoms;
+    vb_periodic_images *out;
+    vb_decimal v[3][3]; /* the box's edge vectors' x, y, z components */
+    size_t total;
+    size_t *bad;
+} dec_job;
+
+static void dec_chunk(void *ctx, size_t q, int tid)
+{
+    (void)tid;
+    const dec_job *dj = ctx;
+    const vb_sphere_set *atoms = dj->atoms;
+    vb_periodic_images *out = dj->out;
+    vb_sphere_set *s = out->set;
+    size_t k1 = (q + 1) * LAYER_CHUNK < dj->total ? (q + 1) * LAYER_CHUNK : dj->total;
+    dj->bad[q] = SIZE_MAX;
+    for (size_t k = q * LAYER_CHUNK; k < k1; k++) {
+        uint32_t i = out->atom[k];
+        const int sh[3] = {out->shift[k][0], out->shift[k][1], out->shift[k][2]};
+        if (dec_image(atoms->ex[i], sh, dj->v[0], &s->ex[k]) != VB_OK ||
+            dec_image(atoms->ey[i], sh, dj->v[1], &s->ey[k]) != VB_OK ||
+            dec_image(atoms->ez[i], sh, dj->v[2], &s->ez[k]) != VB_OK) {
+            dj->bad[q] = k;
+            return;
+        }
+        int same = k < out->n0;
+        s->x[k] = same ? atoms->x[i] : vb_decimal_double(s->ex[k]);
+        s->y[k] = same ? atoms->y[i] : vb_decimal_double(s->ey[k]);
+        s->z[k] = same ? atoms->z[i] : vb_decimal_double(s->ez[k]);
+        s->r[k] = atoms->r[i];
+        s->er[k] = atoms->er[i];
+        s->line[k] = atoms->line ? atoms->line[i] : 0;
+        if (s->info)
+            s->info[k] = atoms->info[i];
+    }
+}
+
 static int fill_layer(vb_ctx *ctx, const vb_sphere_set *atoms, const vb_box *box,
                       const double inv[9], const double h[3], const double lo[3],
                       const double hi[3], double rmax, double margin,
@@ -235,83 +333,84 @@ static int fill_layer(vb_ctx *ctx, const vb_sphere_set *atoms, const vb_box *box
         free(bn);
         out->bins = NULL;
     }
-    /* Count, then fill: atoms first, then the images shift by shift. */
-    size_t total = n0, layer = n0;
-    for (int pass = 0; pass < 2; pass++) {
-        size_t w = n0;
-        for (int s0 = -L[0]; s0 <= L[0]; s0++)
-            for (int s1 = -L[1]; s1 <= L[1]; s1++)
-                for (int s2 = -L[2]; s2 <= L[2]; s2++) {
-                    if (s0 == 0 && s1 == 0 && s2 == 0)
-                        continue;
-                    const int sh[3] = {s0, s1, s2};
-                    for (size_t i = 0; i < n0; i++) {
-                        int in = 1;
-                        double f[3];
-                        for (int a = 0; a < 3 && in; a++) {
-                            f[a] = atoms->x[i] * inv[a] + atoms->y[i] * inv[3 + a] +
-                                   atoms->z[i] * inv[6 + a] + sh[a];
-                            in = f[a] >= klo[a] && f[a] <= khi[a];
-                        }
-                        if (!in)
-                            continue;
-                        layer += pass == 0;
-                        if (reach.need && !vbp_reach_keeps(&reach, bn, f))
-                            continue;
-                        if (pass == 1) {
-                            out->atom[w] = (uint32_t)i;
-                            for (int a = 0; a < 3; a++)
-                                out->shift[w][a] = (int16_t)sh[a];
-                        }
-                        w++;
-                    }
-                }
-        if (pass == 0) {
-            total = w;
-            out->layer_spheres = layer;
-            if (total > (size_t)UINT32_MAX - 2) {
-                vbp_reach_free(&reach);
-                vb_periodic_images_free(out);
-                return vb_error(ctx, VB_EINPUT_TOOLARGE, atoms->source, 0,
-                                "%zu spheres with the periodic images", total);
-            }
-            out->atom = malloc(total * sizeof *out->atom);
-            out->shift = calloc(total, sizeof *out->shift);
-            if (!out->atom || !out->shift || alloc_set(atoms, total, &out->set) != VB_OK) {
-                vbp_reach_free(&reach);
-                vb_periodic_images_free(out);
-                return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (%zu periodic spheres)",
-                                total);
-            }
-            for (size_t i = 0; i < n0; i++)
-                out->atom[i] = (uint32_t)i;
-        }
+    /* Count, then fill: atoms first, then the images shift by shift, each
+     * shift's atoms in chunks of LAYER_CHUNK (layer_job: counted on the
+     * threads, placed by the prefix sums of the counts in item order, the
+     * order one thread would take). */
+    int nt = vb_threads(0);
+    layer_job jb = {.atoms = atoms, .inv = inv, .klo = klo, .khi = khi, .bn = bn,
+                    .reach = &reach, .L = {L[0], L[1], L[2]}};
+    jb.nchunk = (n0 + LAYER_CHUNK - 1) / LAYER_CHUNK;
+    size_t nshift = (size_t)(2 * L[0] + 1) * (size_t)(2 * L[1] + 1) * (size_t)(2 * L[2] + 1);
+    size_t items = nshift * jb.nchunk;
+    jb.kept = calloc(items + 1, sizeof *jb.kept);
+    jb.layer = calloc(items, sizeof *jb.layer);
+    if (!jb.kept || !jb.layer) {
+        free(jb.kept);
+        free(jb.layer);
+        vbp_reach_free(&reach);
+        vb_periodic_images_free(out);
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (periodic images)");
     }
+    vb_parallel_for(layer_item, &jb, items, nt);
+    size_t total = n0, layer = n0;
+    for (size_t q = 0; q < items; q++) {
+        size_t c = jb.kept[q];
+        jb.kept[q] = total;
+        total += c;
+        layer += jb.layer[q];
+    }
+    jb.kept[items] = total;
+    out->layer_spheres = layer;
+    if (total > (size_t)UINT32_MAX - 2) {
+        free(jb.kept);
+        free(jb.layer);
+        vbp_reach_free(&reach);
+        vb_periodic_images_free(out);
+        return vb_error(ctx, VB_EINPUT_TOOLARGE, atoms->source, 0,
+                        "%zu spheres with the periodic images", total);
+    }
+    out->atom = malloc(total * sizeof *out->atom);
+    out->shift = calloc(total, sizeof *out->shift);
+    if (!out->atom || !out->shift || alloc_set(atoms, total, &out->set) != VB_OK) {
+        free(jb.kept);
+        free(jb.layer);
+        vbp_reach_free(&reach);
+        vb_periodic_images_free(out);
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (%zu periodic spheres)", total);
+    }
+    for (size_t i = 0; i < n0; i++)
+        out->atom[i] = (uint32_t)i;
+    jb.out = out;
+    vb_parallel_for(layer_item, &jb, items, nt);
+    free(jb.kept);
+    free(jb.layer);
     vbp_reach_free(&reach);
     out->n0 = n0;
     vb_sphere_set *s = out->set;
-    const vb_decimal ax[3] = {box->ev[0], box->ev[3], box->ev[6]};
-    const vb_decimal ay[3] = {box->ev[1], box->ev[4], box->ev[7]};
-    const vb_decimal az[3] = {box->ev[2], box->ev[5], box->ev[8]};
-    for (size_t k = 0; k < total; k++) {
-        uint32_t i = out->atom[k];
-        const int sh[3] = {out->shift[k][0], out->shift[k][1], out->shift[k][2]};
-        if (dec_image(atoms->ex[i], sh, ax, &s->ex[k]) != VB_OK ||
-            dec_image(atoms->ey[i], sh, ay, &s->ey[k]) != VB_OK ||
-            dec_image(atoms->ez[i], sh, az, &s->ez[k]) != VB_OK) {
-            vb_periodic_images_free(out);
-            return vb_error(ctx, VB_EINPUT_MAGNITUDE, atoms->source, atoms->line ? atoms->line[i] : 0,
-                            "an image of atom %u has a coordinate beyond 18 digits", (unsigned)i);
-        }
-        int same = k < n0;
-        s->x[k] = same ? atoms->x[i] : vb_decimal_double(s->ex[k]);
-        s->y[k] = same ? atoms->y[i] : vb_decimal_double(s->ey[k]);
-        s->z[k] = same ? atoms->z[i] : vb_decimal_double(s->ez[k]);
-        s->r[k] = atoms->r[i];
-        s->er[k] = atoms->er[i];
-        s->line[k] = atoms->line ? atoms->line[i] : 0;
-        if (s->info)
-            s->info[k] = atoms->info[i];
+    dec_job dj = {atoms,
+                  out,
+                  {{box->ev[0], box->ev[3], box->ev[6]},
+                   {box->ev[1], box->ev[4], box->ev[7]},
+                   {box->ev[2], box->ev[5], box->ev[8]}},
+                  total,
+                  NULL};
+    size_t nck = (total + LAYER_CHUNK - 1) / LAYER_CHUNK;
+    dj.bad = malloc(nck * sizeof *dj.bad);
+    if (!dj.bad) {
+        vb_periodic_images_free(out);
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (periodic images)");
+    }
+    vb_parallel_for(dec_chunk, &dj, nck, nt);
+    size_t bad = SIZE_MAX;
+    for (size_t q = 0; q < nck && bad == SIZE_MAX; q++)
+        bad = dj.bad[q];
+    free(dj.bad);
+    if (bad != SIZE_MAX) {
+        uint32_t i = out->atom[bad];
+        vb_periodic_images_free(out);
+        return vb_error(ctx, VB_EINPUT_MAGNITUDE, atoms->source, atoms->line ? atoms->line[i] : 0,
+                        "an image of atom %u has a coordinate beyond 18 digits", (unsigned)i);
     }
     /* The atoms' own validation warned of contained atoms (W701) once;
      * their images repeat them, silently. */

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "vb_cover.h"
+#include "vb_parallel.h"
 
 void vb_periodic_result_init(vb_periodic_result *r)
 {
@@ -94,9 +95,48 @@ static int cmp_vertex(const void *pa, const void *pb)
     return 0;
 }
 
+/* What became of certified vertex k (keep_canonical). */
+enum { ROW_KEPT = 0, ROW_BEYOND = 1, ROW_TRANSLATE = 2 };
+
+typedef struct canon_job {
+    const vb_vertex_list *c;
+    const vb_periodic_images *img;
+    vb_periodic_member *m;       /* c->nids members, vertex k's at c->start[k] */
+    vb_periodic_member *scratch; /* 2 * widest per thread */
+    size_t widest;
+    uint8_t *fate;
+} canon_job;
+
+/* Vertex k alone: its members as atom@shift, sorted, and its fate. */
+static void canon_one(void *ctx, size_t k, int tid)
+{
+    const canon_job *jb = ctx;
+    const vb_vertex_list *c = jb->c;
+    const vb_periodic_images *img = jb->img;
+    size_t m = c->start[k + 1] - c->start[k];
+    vb_periodic_member *mem = jb->m + c->start[k];
+    for (size_t j = 0; j < m; j++) {
+        uint32_t e = c->ids[c->start[k] + j];
+        mem[j].id = img->atom[e];
+        memcpy(mem[j].s, img->shift[e], sizeof mem[j].s);
+    }
+    qsort(mem, m, sizeof *mem, cmp_member_q);
+    /* reach.c: a vertex with t above the bound at its point is no
+     * periodic vertex. */
+    if (c->t[k] > vb_periodic_bound_at(img, c->x[k], c->y[k], c->z[k]))
+        jb->fate[k] = ROW_BEYOND;
+    else if (!vb_periodic_is_canonical(mem, m, jb->scratch + 2 * jb->widest * (size_t)tid))
+        jb->fate[k] = ROW_TRANSLATE;
+    else
+        jb->fate[k] = ROW_KEPT;
+}
+
 /* Keeps the canonical translates of the run's certified vertices with
- * t at most the bound at their point, sorted. */
-static int keep_canonical(vb_ctx *ctx, vb_periodic_result *res)
+ * t at most the bound at their point, sorted. Each vertex is decided on
+ * its own (canon_one, on nt threads), then the kept ones are compacted in
+ * order and sorted by a total order of their contents (vb_psort): the
+ * same rows whatever nt is. */
+static int keep_canonical(vb_ctx *ctx, vb_periodic_result *res, int nt)
 {
     const vb_vertex_list *c = &res->run.certified;
     const vb_periodic_images *img = &res->img;
@@ -112,35 +152,31 @@ static int keep_canonical(vb_ctx *ctx, vb_periodic_result *res)
     all.y = malloc(nmax * sizeof *all.y);
     all.z = malloc(nmax * sizeof *all.z);
     all.t = malloc(nmax * sizeof *all.t);
-    vb_periodic_member *scratch = malloc(2 * widest * sizeof *scratch);
+    vb_periodic_member *scratch = malloc(2 * widest * (size_t)nt * sizeof *scratch);
+    vb_periodic_member *mem = malloc(idmax * sizeof *mem);
+    uint8_t *fate = malloc(nmax);
     row *order = malloc(nmax * sizeof *order);
-    if (!all.start || !all.m || !all.x || !all.y || !all.z || !all.t || !scratch || !order) {
+    if (!all.start || !all.m || !all.x || !all.y || !all.z || !all.t || !scratch || !mem ||
+        !fate || !order) {
         vb_periodic_vertices_free(&all);
         free(scratch);
+        free(mem);
+        free(fate);
         free(order);
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (periodic vertices)");
     }
+    canon_job jb = {c, img, mem, scratch, widest, fate};
+    vb_parallel_for(canon_one, &jb, c->n, nt);
     all.start[0] = 0;
     size_t w = 0, used = 0;
     for (size_t k = 0; k < c->n; k++) {
+        if (fate[k] != ROW_KEPT) {
+            res->beyond_rho += fate[k] == ROW_BEYOND;
+            res->translates += fate[k] == ROW_TRANSLATE;
+            continue;
+        }
         size_t m = c->start[k + 1] - c->start[k];
-        vb_periodic_member *mem = all.m + used;
-        for (size_t j = 0; j < m; j++) {
-            uint32_t e = c->ids[c->start[k] + j];
-            mem[j].id = img->atom[e];
-            memcpy(mem[j].s, img->shift[e], sizeof mem[j].s);
-        }
-        qsort(mem, m, sizeof *mem, cmp_member_q);
-        /* reach.c: a vertex with t above the bound at its point is no
-         * periodic vertex. */
-        if (c->t[k] > vb_periodic_bound_at(img, c->x[k], c->y[k], c->z[k])) {
-            res->beyond_rho++;
-            continue;
-        }
-        if (!vb_periodic_is_canonical(mem, m, scratch)) {
-            res->translates++;
-            continue;
-        }
+        memcpy(all.m + used, mem + c->start[k], m * sizeof *mem);
         all.x[w] = c->x[k];
         all.y[w] = c->y[k];
         all.z[w] = c->z[k];
@@ -148,10 +184,12 @@ static int keep_canonical(vb_ctx *ctx, vb_periodic_result *res)
         used += m;
         all.start[++w] = used;
     }
+    free(mem);
+    free(fate);
     all.n = w;
     for (size_t k = 0; k < w; k++)
         order[k] = (row){&all, k};
-    qsort(order, w, sizeof *order, cmp_vertex);
+    int rc = vb_psort(order, w, sizeof *order, cmp_vertex, nt);
     /* The sorted copy. */
     vb_periodic_vertices *v = &res->v;
     v->n = w;
@@ -161,7 +199,8 @@ static int keep_canonical(vb_ctx *ctx, vb_periodic_result *res)
     v->y = malloc(nmax * sizeof *v->y);
     v->z = malloc(nmax * sizeof *v->z);
     v->t = malloc(nmax * sizeof *v->t);
-    int rc = v->start && v->m && v->x && v->y && v->z && v->t ? VB_OK : VB_ENOMEM;
+    if (rc == VB_OK)
+        rc = v->start && v->m && v->x && v->y && v->z && v->t ? VB_OK : VB_ENOMEM;
     if (rc == VB_OK) {
         v->start[0] = 0;
         for (size_t k = 0; k < w; k++) {
@@ -214,7 +253,7 @@ static int periodic_run(vb_ctx *ctx, const vb_sphere_set *atoms, const vb_box *b
            : vb_vertices_run(ctx, res->img.set, &c, be, &res->run);
     if (rc == VB_OK && !res->run.proposal.complete)
         rc = vb_error(ctx, VB_EINTERNAL, NULL, 0, "the cover did not report a complete run");
-    return rc == VB_OK ? keep_canonical(ctx, res) : rc;
+    return rc == VB_OK ? keep_canonical(ctx, res, vb_threads(cfg->propose.threads)) : rc;
 }
 
 int vb_periodic_vertices_run(vb_ctx *ctx, const vb_sphere_set *atoms, const vb_box *box,

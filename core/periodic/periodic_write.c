@@ -9,6 +9,7 @@
 #include "vb_json.h"
 #include "vb_numtext.h"
 #include "vb_output.h"
+#include "vb_write_lines.h"
 
 static void members(FILE *f, const vb_periodic_vertices *v, size_t k, int quoted)
 {
@@ -39,41 +40,55 @@ int vb_periodic_write(vb_ctx *ctx, FILE *f, const vb_periodic_vertices *v, int j
     return vb_periodic_write_prov(ctx, f, v, json, NULL, comment);
 }
 
-/* Comment text, one '#' line per line of it. */
+/* Vertex k as a JSON item (after a comma unless it is the first). */
+static void json_item(FILE *f, const void *arg, size_t k)
+{
+    const vb_periodic_vertices *v = arg;
+    fputs(k ? ",\n{\"ids\":[" : "\n{\"ids\":[", f);
+    members(f, v, k, 1);
+    fputs("],\"x\":", f);
+    vb_put_g17(f, 0, v->x[k]);
+    fputs(",\"y\":", f);
+    vb_put_g17(f, 0, v->y[k]);
+    fputs(",\"z\":", f);
+    vb_put_g17(f, 0, v->z[k]);
+    fputs(",\"t\":", f);
+    vb_put_g17(f, 0, v->t[k]);
+    fputs(",\"status\":\"certified\"}", f);
+}
+
+/* Vertex k as a TSV line. */
+static void tsv_line(FILE *f, const void *arg, size_t k)
+{
+    const vb_periodic_vertices *v = arg;
+    members(f, v, k, 0);
+    vb_put_g17(f, '\t', v->x[k]);
+    vb_put_g17(f, '\t', v->y[k]);
+    vb_put_g17(f, '\t', v->z[k]);
+    vb_put_g17(f, '\t', v->t[k]);
+    fputs("\tcertified\n", f);
+}
+
+/* Comment text, one '#' line per line of it. The rows are formatted on
+ * the threads (vb_write_lines), written in order. */
 int vb_periodic_write_prov(vb_ctx *ctx, FILE *f, const vb_periodic_vertices *v, int json,
                            const vb_provenance *prov, const char *comment)
 {
+    int rc;
     if (json) {
         vb_provenance_write_json_head(f, prov, comment);
         fputs("\"vertices\":[", f);
-        for (size_t k = 0; k < v->n; k++) {
-            fputs(k ? ",\n{\"ids\":[" : "\n{\"ids\":[", f);
-            members(f, v, k, 1);
-            fputs("],\"x\":", f);
-            vb_put_g17(f, 0, v->x[k]);
-            fputs(",\"y\":", f);
-            vb_put_g17(f, 0, v->y[k]);
-            fputs(",\"z\":", f);
-            vb_put_g17(f, 0, v->z[k]);
-            fputs(",\"t\":", f);
-            vb_put_g17(f, 0, v->t[k]);
-            fputs(",\"status\":\"certified\"}", f);
-        }
+        rc = vb_write_lines(f, v->n, json_item, v);
         fputs("\n]}\n", f);
     } else {
         fputs("# vorball periodic vertices\n", f);
         if (vb_provenance_write_comments(f, "# ", prov, comment) != VB_OK)
             return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (writing vertices)");
         fputs("# ids\tx\ty\tz\tt\tstatus\n", f);
-        for (size_t k = 0; k < v->n; k++) {
-            members(f, v, k, 0);
-            vb_put_g17(f, '\t', v->x[k]);
-            vb_put_g17(f, '\t', v->y[k]);
-            vb_put_g17(f, '\t', v->z[k]);
-            vb_put_g17(f, '\t', v->t[k]);
-            fputs("\tcertified\n", f);
-        }
+        rc = vb_write_lines(f, v->n, tsv_line, v);
     }
+    if (rc != VB_OK)
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (writing vertices)");
     if (ferror(f)) {
         const char *name = f == stdout ? "<stdout>" : vb_output_name(f);
         return vb_error(ctx, VB_EIO, name, 0, "writing periodic vertices failed");

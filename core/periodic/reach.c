@@ -30,6 +30,7 @@
  * these bounds is covered by the margin added to every threshold and a
  * relative 1e-9 taken off each distance. */
 #include "vbp_bins.h"
+#include "vb_parallel.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -112,6 +113,33 @@ static double box_qp(const double G[9], const double lo[3], const double hi[3])
     return best > 0.0 ? sqrt(best) * (1.0 - 1e-9) : 0.0;
 }
 
+typedef struct dtab_job {
+    const vbp_bins *bn;
+    dtab *t;
+    const double *G;
+} dtab_job;
+
+/* The table's entries with D[0] = i - k[0], in the order of the offsets
+ * (sorted by their bound after). */
+static void dtab_slab(void *ctx, size_t i, int tid)
+{
+    (void)tid;
+    const dtab_job *jb = ctx;
+    const dtab *t = jb->t;
+    const vbp_bins *bn = jb->bn;
+    long D[3] = {(long)i - t->k[0], 0, 0};
+    size_t w = i * (size_t)(2 * t->k[1] + 1) * (size_t)(2 * t->k[2] + 1);
+    for (D[1] = -t->k[1]; D[1] <= t->k[1]; D[1]++)
+        for (D[2] = -t->k[2]; D[2] <= t->k[2]; D[2]++) {
+            double lo[3], hi[3];
+            for (int a = 0; a < 3; a++) {
+                lo[a] = (double)(D[a] - 1) / bn->nb[a];
+                hi[a] = (double)(D[a] + 1) / bn->nb[a];
+            }
+            t->by_d[w++] = (doff){box_qp(jb->G, lo, hi), {D[0], D[1], D[2]}};
+        }
+}
+
 static int dtab_build(const vbp_bins *bn, const vb_box *box, double thr, dtab *t)
 {
     const double *A = box->v;
@@ -129,18 +157,8 @@ static int dtab_build(const vbp_bins *bn, const vb_box *box, double thr, dtab *t
     t->n = n;
     if (!t->by_d)
         return VB_ENOMEM;
-    long D[3];
-    size_t w = 0;
-    for (D[0] = -t->k[0]; D[0] <= t->k[0]; D[0]++)
-        for (D[1] = -t->k[1]; D[1] <= t->k[1]; D[1]++)
-            for (D[2] = -t->k[2]; D[2] <= t->k[2]; D[2]++) {
-                double lo[3], hi[3];
-                for (int a = 0; a < 3; a++) {
-                    lo[a] = (double)(D[a] - 1) / bn->nb[a];
-                    hi[a] = (double)(D[a] + 1) / bn->nb[a];
-                }
-                t->by_d[w++] = (doff){box_qp(G, lo, hi), {D[0], D[1], D[2]}};
-            }
+    dtab_job jb = {bn, t, G};
+    vb_parallel_for(dtab_slab, &jb, (size_t)(2 * t->k[0] + 1), vb_threads(0));
     qsort(t->by_d, n, sizeof *t->by_d, cmp_doff);
     return VB_OK;
 }
@@ -176,7 +194,10 @@ static int inside(const vbp_reach *r, const long b[3])
  * to R): mark[U] = 1 when dist(v, U) <= F[U] + R + extra (active), or,
  * with need, when dist(v, U) <= F[v] + R + extra. The offsets come in
  * increasing order of their bound, so the scan stops at the first beyond
- * the largest threshold (F[v] with need, rho without). */
+ * the largest threshold (F[v] with need, rho without). Several threads may
+ * mark at once: a mark only ever goes from 0 to 1 (relaxed atomic bytes),
+ * so the marks after a pass are the OR of every bin's, in any order, and
+ * the test skipped for a marked bin could only have marked it again. */
 static void mark_around(const vbp_bins *bn, const dtab *t, vbp_reach *r, uint8_t *mark,
                         const long v[3], double R, double extra, int need)
 {
@@ -189,11 +210,38 @@ static void mark_around(const vbp_bins *bn, const dtab *t, vbp_reach *r, uint8_t
         if (!inside(r, u))
             continue;
         size_t k = at(r, u);
-        if (mark[k])
+        if (__atomic_load_n(&mark[k], __ATOMIC_RELAXED))
             continue;
         double thr = need ? thr_v : bin_F(bn, u) + R + extra;
         if (t->by_d[q].d <= thr)
-            mark[k] = 1;
+            __atomic_store_n(&mark[k], 1, __ATOMIC_RELAXED);
+    }
+}
+
+typedef struct mark_job {
+    const vbp_bins *bn;
+    const dtab *t;
+    vbp_reach *r;
+    const uint8_t *occ;
+    const double *occr;
+    uint8_t *act;
+    double rmax, extra;
+    int need; /* 0: mark act around occupied bins; 1: need around active ones */
+} mark_job;
+
+/* One row of bins (u[0], u[1]) of a pass of vbp_reach_build. */
+static void mark_row(void *ctx, size_t row, int tid)
+{
+    (void)tid;
+    const mark_job *jb = ctx;
+    vbp_reach *r = jb->r;
+    long u[3] = {r->lo[0] + (long)(row / (size_t)r->n[1]), r->lo[1] + (long)(row % (size_t)r->n[1]),
+                 0};
+    for (u[2] = r->lo[2]; u[2] < r->lo[2] + r->n[2]; u[2]++) {
+        size_t k = at(r, u);
+        if (jb->need ? jb->act[k] : jb->occ[k])
+            mark_around(jb->bn, jb->t, r, jb->need ? r->need : jb->act, u,
+                        jb->need ? jb->rmax : jb->occr[k], jb->extra, jb->need);
     }
 }
 
@@ -233,16 +281,10 @@ int vbp_reach_build(const vbp_bins *bn, const vb_box *box, const vb_sphere_set *
             occ[k] = 1;
             occr[k] = fmax(occr[k], atoms->r[i]);
         }
-        long u[3];
-        for (int need = 0; need < 2; need++)
-            for (u[0] = r->lo[0]; u[0] < r->lo[0] + r->n[0]; u[0]++)
-                for (u[1] = r->lo[1]; u[1] < r->lo[1] + r->n[1]; u[1]++)
-                    for (u[2] = r->lo[2]; u[2] < r->lo[2] + r->n[2]; u[2]++) {
-                        size_t k = at(r, u);
-                        if (need ? act[k] : occ[k])
-                            mark_around(bn, &t, r, need ? r->need : act, u,
-                                        need ? rmax : occr[k], extra, need);
-                    }
+        mark_job jb = {bn, &t, r, occ, occr, act, rmax, extra, 0};
+        size_t rows = (size_t)r->n[0] * (size_t)r->n[1];
+        for (jb.need = 0; jb.need < 2; jb.need++)
+            vb_parallel_for(mark_row, &jb, rows, vb_threads(0));
         free(t.by_d);
     }
     free(act);
