@@ -338,6 +338,8 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
             while (keep > VBQ_DOM_MAX && owned >= 3u && ch.round < VBQ_CHAMP_ROUNDS) {
                 vbq_champ_make(nb, lab + top, keep, mm, hh, &ch);
                 ch.round++;
+                /* every lane has read the list before any marks it */
+                barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
                 if (ch.n < 2u)
                     break;
                 for (uint a = lane; a < keep; a += WG) {
