@@ -340,7 +340,7 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
                 ch.round++;
                 /* every lane has read the list before any marks it */
                 barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
-                if (ch.n < 2u)
+                if (!vbq_combo_go(&ch, LO))
                     break;
                 for (uint a = lane; a < keep; a += WG) {
                     vbq_nb nj = nb[lab[top + a]];

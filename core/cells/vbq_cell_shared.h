@@ -449,7 +449,7 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
         while (keep > VBQ_DOM_MAX && owned >= 3u && ch.round < VBQ_CHAMP_ROUNDS) {
             vbq_champ_make(ar->nb, ar->lab + top, keep, m, h, &ch);
             ch.round++;
-            if (ch.n < 2u)
+            if (!vbq_combo_go(&ch, LO))
                 break;
             vbs_u32 w = 0u;
             owned = 0u;

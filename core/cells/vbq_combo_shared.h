@@ -40,6 +40,7 @@
 #define VBQ_CHAMP_ROUNDS 4u
 #define VBQ_COMBO_CLAMP 1e-6
 #define VBQ_CURVE_REL 1e-3
+#define VBQ_COMBO_FLAT 1e-3
 /* Patches with more surviving labels than VBQ_DOM_MAX try combinations. */
 
 typedef struct vbq_champ {
@@ -166,6 +167,15 @@ VBS_FN int vbq_combo_beaten(const vbq_champ *c, const vbq_nb *nj, const double m
 VBS_FN vbs_u32 vbq_combo_due(const vbq_frame *fr, int closed, vbs_u32 keep, vbs_u32 owned)
 {
     return closed && owned >= 3u && keep > VBQ_DOM_MAX && !(fr->combo && keep == fr->len) ? 1u : 0u;
+}
+
+/* Are the champions worth a round: two at least, and LO below
+ * VBQ_COMBO_FLAT of the best champion's upper end (the labels nearly tie
+ * at a point of the patch, where LO stays tiny; elsewhere hi_j < LO has
+ * already dropped what combinations would). Speed only. */
+VBS_FN int vbq_combo_go(const vbq_champ *c, double LO)
+{
+    return c->n >= 2u && LO < VBQ_COMBO_FLAT * c->hi[0];
 }
 
 /* Do the owned labels (ids > i) of lab[0 .. keep) tie along a curve as far
