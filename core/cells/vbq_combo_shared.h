@@ -196,6 +196,9 @@ VBS_FN int vbq_near_line(const VBS_GLOBAL vbq_nb *nb, const VBS_GLOBAL vbs_u32 *
     double p0[4] = {0.0, 0.0, 0.0, 0.0};
     for (vbs_u32 a = 0u; a < keep; a++) {
         vbq_nb r = nb[lab[a]];
+        /* a nested neighbour (infinite error) never separates */
+        if (r.id > i && !(r.err < (double)INFINITY))
+            return 1;
         if (r.id > i && r.id < id0) {
             id0 = r.id;
             p0[0] = r.ax;
