@@ -362,8 +362,12 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
                     sh[S_OWNED] = ow;
                 }
                 barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
+                /* a round that beat nothing ends them (as on the host) */
+                int beat = sh[S_LEN] < keep;
                 keep = sh[S_LEN];
                 owned = sh[S_OWNED];
+                if (!beat)
+                    break;
             }
             if (closed && owned >= 3u && keep <= VBQ_DOM_MAX) {
                 for (uint a = lane; a < keep; a += WG) {

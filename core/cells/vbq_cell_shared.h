@@ -462,7 +462,11 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
                 }
             }
             evals += 2.0 * (double)keep;
+            /* a round that beat nothing ends them (exact ties: none can) */
+            int beat = w < keep;
             keep = w;
+            if (!beat)
+                break;
         }
         /* Pairwise dominance: where f_k - f_j > 0 all over P, j is nowhere
          * the largest in P. Few labels only (it is quadratic). */
