@@ -5,7 +5,7 @@
 # Each face ball's face layer nearly ties with infinity along the outward
 # normal; the cover subdivided that point to level 30 and more and
 # enumerated stalled patches there: 37,843 quadruples at bd283ff for 2,818
-# vertices, 5,712 with combination dominance (core/cells/vbq_combo_shared.h).
+# vertices, 5,694 with combination dominance (core/cells/vbq_combo_shared.h).
 # Asserts the vertices (count and checksum, the same at bd283ff), PoCL = the
 # reference, and at most 3 quadruples per vertex.
 # usage: degenerate_near.sh VORBALL WORK_DIR
