@@ -27,7 +27,10 @@
  * projected off the patch centre m, span j's with non-negative weights of
  * least total; mu takes what is left of 1. A far label of a jittered face
  * is then beaten once the weighted jitter of the near ones (plus mu LO)
- * exceeds its own, which on a random face is most of them.
+ * exceeds its own, which on a random face is most of them. Up to
+ * VBQ_CHAMP_ROUNDS rounds take the next VBQ_CHAMP labels by hi as champions
+ * (farther labels beaten by mid-distance pairs); a round that beats nothing
+ * ends them (exact ties, where no combination wins strictly).
  *
  * The result depends on the set of surviving labels only (champions are
  * ordered by hi, then id), never on their order, so the work-group kernel,
