@@ -32,7 +32,7 @@
 #ifndef WG_SHARED
 #define WG_SHARED __local
 #endif
-#define WG_ST 96u
+#define WG_ST 192u /* frames: 3 per level to VB_COVER_MAX_LEVEL 48, and the roots */
 #define WG_NODES 1024u
 
 /* Shared scalars of a group (indices into sh[]). */
@@ -327,6 +327,49 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
             barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
             evals += (double)fr.len;
             uint keep = sh[S_LEN], owned = sh[S_OWNED];
+            /* Combination dominance (vbq_combo_shared.h): every lane makes
+             * the same champions, each tests its labels and marks the
+             * beaten ones (top bit: labels index nb, far below 2^31), lane 0
+             * compacts. */
+            uint tried = vbq_combo_due(&fr, closed, keep, owned);
+            uint list_tried = tried || (fr.combo && keep == fr.len);
+            vbq_champ ch;
+            ch.round = tried ? 0u : VBQ_CHAMP_ROUNDS;
+            ch.n = 0u;
+            while (keep > VBQ_DOM_MAX && owned >= 3u && ch.round < VBQ_CHAMP_ROUNDS) {
+                vbq_champ_make(nb, lab + top, keep, mm, hh, &ch);
+                ch.round++;
+                /* every lane has read the list before any marks it */
+                barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
+                if (!vbq_combo_go(&ch, LO))
+                    break;
+                for (uint a = lane; a < keep; a += WG) {
+                    vbq_nb nj = nb[lab[top + a]];
+                    if (vbq_combo_beaten(&ch, &nj, mm, hh, LO))
+                        lab[top + a] |= 0x80000000u;
+                }
+                barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
+                evals += 2.0 * (double)keep;
+                if (lane == 0u) {
+                    uint w = 0u, ow = 0u;
+                    for (uint a = 0u; a < keep; a++)
+                        if (!(lab[top + a] & 0x80000000u)) {
+                            uint li = lab[top + a];
+                            lab[top + w++] = li;
+                            if (nb[li].id > i)
+                                ow++;
+                        }
+                    sh[S_LEN] = w;
+                    sh[S_OWNED] = ow;
+                }
+                barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
+                /* a round that beat nothing ends them (as on the host) */
+                int beat = sh[S_LEN] < keep;
+                keep = sh[S_LEN];
+                owned = sh[S_OWNED];
+                if (!beat)
+                    break;
+            }
             if (closed && owned >= 3u && keep <= VBQ_DOM_MAX) {
                 for (uint a = lane; a < keep; a += WG) {
                     vbq_nb nj = nb[lab[top + a]];
@@ -359,7 +402,7 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
                 keep = sh[S_LEN];
                 owned = sh[S_OWNED];
             }
-            int act = closed ? vbq_decide(&e, &fr, keep, owned) : 1;
+            int act = closed ? vbq_decide(&e, &fr, nb, lab + top, i, keep, owned) : 1;
             /* a tie cluster: the host decides it (vbq_cover_cell) */
             if (act != 0 && vbq_tie_cluster(nb, lab + top, keep, owned, i, act, closed)) {
                 if (lane == 0u)
@@ -377,9 +420,9 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
                     for (uint k = 0u; k < 4u; k++) {
                         if (!vbq_task_child(rt, fr.level, k))
                             continue;
-                        vbq_frame ch;
-                        vbq_child(&fr, k, top, keep, &ch);
-                        stk[nst + nc++] = ch;
+                        vbq_frame cf;
+                        vbq_child(&fr, k, top, keep, list_tried, &cf);
+                        stk[nst + nc++] = cf;
                     }
                     sh[S_NST] = nst + nc;
                     sh[S_TOP] = top + keep;

@@ -48,12 +48,17 @@ VBS_FN double vbq_ring_radius(double rq, double LO, double slack_i, double far)
  * once VBQ_STALL levels in a row excluded nothing, more levels would only
  * multiply the patches, so the patch enumerates (a larger patch only adds
  * quadruples whose roots the certifier refutes). */
-VBS_FN int vbq_decide(const vbq_env *e, const vbq_frame *fr, vbs_u32 keep, vbs_u32 owned)
+VBS_FN int vbq_decide(const vbq_env *e, const vbq_frame *fr, const VBS_GLOBAL vbq_nb *nb,
+                      const VBS_GLOBAL vbs_u32 *lab, vbs_u32 i, vbs_u32 keep, vbs_u32 owned)
 {
     if (owned < 3u)
         return 0;
     int stalled = keep == fr->len && fr->stall + 1u >= VBQ_STALL;
-    int deep = fr->level + 1u >= e->max_level || (stalled && owned <= VBQ_STALL_ENUM);
+    /* Past VBQ_CLUSTER_OWNED owned labels only labels tied along a curve
+     * stall (vbq_near_line): near-ties at a point separate deeper. */
+    stalled = stalled && owned <= VBQ_STALL_ENUM &&
+              (owned <= VBQ_CLUSTER_OWNED || vbq_near_line(nb, lab, keep, i));
+    int deep = fr->level + 1u >= e->max_level || stalled;
     if (deep)
         return 3;
     if (fr->level >= e->min_level && owned <= e->enum_max)
@@ -73,13 +78,15 @@ VBS_FN vbq_frame vbq_root(vbs_u32 T, vbs_u32 k, vbs_u32 len0, double rq, double 
     fr.off = 0u;
     fr.len = len0;
     fr.stall = 0u;
-    fr.pad = 0u;
+    fr.combo = 0u;
     fr.rq = rq >= far ? (double)INFINITY : rq;
     return fr;
 }
 
-/* The four children of a subdivided patch, sharing its surviving list. */
-VBS_FN void vbq_child(const vbq_frame *fr, vbs_u32 k, vbs_u32 off, vbs_u32 keep, vbq_frame *ch)
+/* The four children of a subdivided patch, sharing its surviving list
+ * (combo: the patch tried combinations on it, vbq_combo_due). */
+VBS_FN void vbq_child(const vbq_frame *fr, vbs_u32 k, vbs_u32 off, vbs_u32 keep, vbs_u32 combo,
+                      vbq_frame *ch)
 {
     ch->f = fr->f;
     ch->level = fr->level + 1u;
@@ -88,7 +95,7 @@ VBS_FN void vbq_child(const vbq_frame *fr, vbs_u32 k, vbs_u32 off, vbs_u32 keep,
     ch->off = off;
     ch->len = keep;
     ch->stall = keep == fr->len ? fr->stall + 1u : 0u;
-    ch->pad = 0u;
+    ch->combo = combo;
     ch->rq = fr->rq;
 }
 
@@ -443,6 +450,37 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
             }
         }
         evals += (double)fr.len;
+        /* Combination dominance (vbq_combo_shared.h): many labels that
+         * nearly tie at a point of P. */
+        vbq_champ ch;
+        ch.round = 0u;
+        ch.n = 0u;
+        vbs_u32 ch_tried = vbq_combo_due(&fr, closed, keep, owned);
+        vbs_u32 list_tried = ch_tried || (fr.combo && keep == fr.len);
+        if (!ch_tried)
+            ch.round = VBQ_CHAMP_ROUNDS;
+        while (keep > VBQ_DOM_MAX && owned >= 3u && ch.round < VBQ_CHAMP_ROUNDS) {
+            vbq_champ_make(ar->nb, ar->lab + top, keep, m, h, &ch);
+            ch.round++;
+            if (!vbq_combo_go(&ch, LO))
+                break;
+            vbs_u32 w = 0u;
+            owned = 0u;
+            for (vbs_u32 a = 0u; a < keep; a++) {
+                vbq_nb nj = ar->nb[ar->lab[top + a]];
+                if (!vbq_combo_beaten(&ch, &nj, m, h, LO)) {
+                    ar->lab[top + w++] = ar->lab[top + a];
+                    if (nj.id > i)
+                        owned++;
+                }
+            }
+            evals += 2.0 * (double)keep;
+            /* a round that beat nothing ends them (exact ties: none can) */
+            int beat = w < keep;
+            keep = w;
+            if (!beat)
+                break;
+        }
         /* Pairwise dominance: where f_k - f_j > 0 all over P, j is nowhere
          * the largest in P. Few labels only (it is quadratic). */
         if (closed && owned >= 3u && keep <= VBQ_DOM_MAX) {
@@ -468,7 +506,7 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
             }
             keep = w;
         }
-        int act = closed ? vbq_decide(e, &fr, keep, owned) : 1;
+        int act = closed ? vbq_decide(e, &fr, ar->nb, ar->lab + top, i, keep, owned) : 1;
         if (act == 0)
             continue;
         if (vbq_tie_cluster(ar->nb, ar->lab + top, keep, owned, i, act, closed)) {
@@ -501,7 +539,7 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
             if (!vbq_task_child(root, fr.level, k))
                 continue;
             vbq_frame ch;
-            vbq_child(&fr, k, off, keep, &ch);
+            vbq_child(&fr, k, off, keep, list_tried, &ch);
             ar->st[nst++] = ch;
         }
     }

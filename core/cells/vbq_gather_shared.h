@@ -41,7 +41,7 @@ typedef struct vbq_frame {
     vbs_u64 iu, iv;    /* 64 bits: near-ties need levels past 31 */
     vbs_u32 off, len;  /* labels in lab[off .. off + len): indices into nb */
     vbs_u32 stall;     /* consecutive levels that excluded no label */
-    vbs_u32 pad;
+    vbs_u32 combo;     /* 1: the parent tried combinations on this list */
     double rq;         /* every sphere centred within rq of c_i is in the list or was
                           excluded by an ancestor (INFINITY: every sphere) */
 } vbq_frame;

@@ -1,0 +1,244 @@
+/* The direction cover, shared with the kernels (part of vb_cover_shared.h,
+ * which includes it before vbq_cell_shared.h; include that header, never
+ * this one): combination dominance, the exclusion that decides a near-flat
+ * label cluster without deep subdivision.
+ *
+ * Why it is needed. On a crystal's flat face jittered by 1e-9, the face
+ * sphere's whole face layer nearly ties with infinity along the outward
+ * normal: every f_j is ~1e-10 there and grows with slope |a_j| away from
+ * it, so the test hi_j >= LO keeps all of them until the patch is ~1e-10
+ * wide (level 30 and more), one chain of patches per such point, each
+ * evaluating the whole layer. Pairwise dominance cannot help: no single
+ * label lies above another over a patch that holds the near-tie point.
+ *
+ * The argument. Let E(u) = max(0, max_k f_k(u)) be the envelope; E >= LO
+ * all over the patch P (LO = max(0, lo_k), lo_k enclosing f_k from below).
+ * Take labels k, l and doubles lk, ll, mu >= 0 with lk + ll + mu <= 1. As
+ * E >= max(f_k, f_l, LO) >= 0, a weighted sum with weights of total at
+ * most 1 lies below it: lk f_k + ll f_l + mu LO <= E. So if
+ *     lk f_k(u) + ll f_l(u) + mu LO - f_j(u) > 0   for every u in P,
+ * then f_j < E all over P, j is nowhere the largest (ties included), and
+ * dropping it keeps every vertex of the cell in P, as hi_j < LO does. The
+ * weights are only a certificate: any choice is sound, and the enclosure
+ * (vbq_eval_diff of a record that holds the weighted sum, its error bound
+ * widened by the roundings of building it) decides. The weights are chosen
+ * so that the gradient of the sum cancels j's across the patch: the two
+ * "champions" (the VBQ_CHAMP labels with the largest hi) whose gradients,
+ * projected off the patch centre m, span j's with non-negative weights of
+ * least total; mu takes what is left of 1. A far label of a jittered face
+ * is then beaten once the weighted jitter of the near ones (plus mu LO)
+ * exceeds its own, which on a random face is most of them. Up to
+ * VBQ_CHAMP_ROUNDS rounds take the next VBQ_CHAMP labels by hi as champions
+ * (farther labels beaten by mid-distance pairs); a round that beats nothing
+ * ends them (exact ties, where no combination wins strictly).
+ *
+ * The result depends on the set of surviving labels only (champions are
+ * ordered by hi, then id), never on their order, so the work-group kernel,
+ * which lists them in any order, makes the same decisions. */
+#ifndef VBQ_COMBO_SHARED_H
+#define VBQ_COMBO_SHARED_H
+
+/* Champions of a patch (tuning: speed only, every value is sound). */
+#define VBQ_CHAMP 6u
+#define VBQ_CHAMP_ROUNDS 4u
+#define VBQ_COMBO_CLAMP 1e-6
+#define VBQ_CURVE_REL 1e-3
+#define VBQ_COMBO_FLAT 1e-3
+/* Patches with more surviving labels than VBQ_DOM_MAX try combinations. */
+
+typedef struct vbq_champ {
+    vbq_nb rec[VBQ_CHAMP];
+    double hi[VBQ_CHAMP];
+    double w[VBQ_CHAMP][3]; /* a_c x m: det(x, a_c, m) = x . w_c */
+    vbs_u32 n;
+    vbs_u32 round; /* 0 before the first vbq_champ_make; the caller counts */
+} vbq_champ;
+
+/* The champions of the labels lab[0 .. keep) over the patch (m, h): the
+ * VBQ_CHAMP with the largest upper ends hi (vbq_eval), ties to the smaller
+ * id; labels with an infinite error bound are never champions. */
+VBS_FN void vbq_champ_make(const VBS_GLOBAL vbq_nb *nb, const VBS_GLOBAL vbs_u32 *lab,
+                           vbs_u32 keep, const double m[3], const double h[3], vbq_champ *c)
+{
+    /* Round 0 or the band after the previous round's last champion. */
+    int after = c->round > 0u && c->n > 0u;
+    double ahi = after ? c->hi[c->n - 1u] : 0.0;
+    vbs_u32 aid = after ? c->rec[c->n - 1u].id : 0u;
+    if (c->round > 0u && !after)
+        return;
+    c->n = 0u;
+    for (vbs_u32 a = 0u; a < keep; a++) {
+        vbq_nb r = nb[lab[a]];
+        if (!(r.err < (double)INFINITY))
+            continue;
+        double lo, hi;
+        vbq_eval(&r, m, h, &lo, &hi);
+        if (after && (hi > ahi || (hi == ahi && r.id <= aid)))
+            continue;
+        vbs_u32 p = c->n;
+        while (p > 0u && (c->hi[p - 1u] < hi || (c->hi[p - 1u] == hi && c->rec[p - 1u].id > r.id)))
+            p--;
+        if (p >= VBQ_CHAMP)
+            continue;
+        vbs_u32 last = c->n < VBQ_CHAMP ? c->n : VBQ_CHAMP - 1u;
+        for (vbs_u32 q = last; q > p; q--) {
+            c->rec[q] = c->rec[q - 1u];
+            c->hi[q] = c->hi[q - 1u];
+        }
+        c->rec[p] = r;
+        c->hi[p] = hi;
+        if (c->n < VBQ_CHAMP)
+            c->n++;
+    }
+    for (vbs_u32 q = 0u; q < c->n; q++) {
+        const vbq_nb *r = &c->rec[q];
+        c->w[q][0] = r->ay * m[2] - r->az * m[1];
+        c->w[q][1] = r->az * m[0] - r->ax * m[2];
+        c->w[q][2] = r->ax * m[1] - r->ay * m[0];
+    }
+}
+
+/* Is label nj beaten all over the patch (m, h) by a weighted sum of two
+ * champions and LO (the argument at the top of this file)? 1 only when the
+ * enclosure proves it. */
+VBS_FN int vbq_combo_beaten(const vbq_champ *c, const vbq_nb *nj, const double m[3],
+                            const double h[3], double LO)
+{
+    if (!(nj->err < (double)INFINITY))
+        return 0;
+    double p[VBQ_CHAMP];
+    for (vbs_u32 q = 0u; q < c->n; q++) {
+        if (c->rec[q].id == nj->id)
+            return 0;
+        p[q] = (nj->ax * c->w[q][0] + nj->ay * c->w[q][1]) + nj->az * c->w[q][2];
+    }
+    /* a_j = lk a_k + ll a_l off m: lk = det(a_j, a_l, m) / det(a_k, a_l, m),
+     * ll = det(a_k, a_j, m) / det(a_k, a_l, m). */
+    double best = 2.0, bk = 0.0, bl = 0.0;
+    vbs_u32 kk = 0u, kl = 0u;
+    for (vbs_u32 k = 0u; k < c->n; k++)
+        for (vbs_u32 l = k + 1u; l < c->n; l++) {
+            const vbq_nb *rk = &c->rec[k];
+            double D = (rk->ax * c->w[l][0] + rk->ay * c->w[l][1]) + rk->az * c->w[l][2];
+            if (D == 0.0)
+                continue;
+            double lk = p[l] / D, ll = -p[k] / D;
+            /* j on the ray of one champion (a lattice row) solves with a
+             * weight that is zero up to the jitter: clamp it. */
+            double tol = VBQ_COMBO_CLAMP * (VBS_FABS(lk) + VBS_FABS(ll));
+            lk = lk < 0.0 && lk >= -tol ? 0.0 : lk;
+            ll = ll < 0.0 && ll >= -tol ? 0.0 : ll;
+            if (lk >= 0.0 && ll >= 0.0 && lk + ll < best) {
+                best = lk + ll;
+                bk = lk;
+                bl = ll;
+                kk = k;
+                kl = l;
+            }
+        }
+    /* lk + ll <= s (1 + u) <= s + 1.2e-16 for s = fl(lk + ll) <= 1; mu is
+     * below 1 - s by more than that (two roundings of at most 1.2e-16). */
+    if (!(best <= 1.0 - 4e-16))
+        return 0;
+    double mu = (1.0 - best) - 4e-16;
+    mu = mu > 0.0 ? mu : 0.0;
+    const vbq_nb *rk = &c->rec[kk], *rl = &c->rec[kl];
+    vbq_nb s;
+    s.ax = bk * rk->ax + bl * rl->ax;
+    s.ay = bk * rk->ay + bl * rl->ay;
+    s.az = bk * rk->az + bl * rl->az;
+    s.b = (bk * rk->b + bl * rl->b) + mu * LO;
+    s.id = nj->id;
+    s.pad = 0u;
+    /* Each coefficient is two or three products and their sums: within 4u
+     * of the sum of its terms' magnitudes; the weighted exact records
+     * differ from the doubles by bk err_k + bl err_l. 1 + 1e-14 covers the
+     * roundings of this bound's own non-negative terms. */
+    double mag = (bk * (((VBS_FABS(rk->ax) + VBS_FABS(rk->ay)) + VBS_FABS(rk->az)) + VBS_FABS(rk->b)) +
+                  bl * (((VBS_FABS(rl->ax) + VBS_FABS(rl->ay)) + VBS_FABS(rl->az)) + VBS_FABS(rl->b))) +
+                 mu * LO;
+    s.err = ((bk * rk->err + bl * rl->err) + 4.0 * VBQ_U * mag) * (1.0 + 1e-14) + VBQ_TINY;
+    double dl, dh;
+    vbq_eval_diff(&s, nj, m, h, &dl, &dh);
+    return dl > 0.0;
+}
+
+/* Does a patch try combinations: closed, at least three owned labels and
+ * more than VBQ_DOM_MAX labels, unless its parent tried them on the same
+ * list (the first pass excluded nothing since): the same champions over a
+ * smaller patch would mostly fail again (speed only). */
+VBS_FN vbs_u32 vbq_combo_due(const vbq_frame *fr, int closed, vbs_u32 keep, vbs_u32 owned)
+{
+    return closed && owned >= 3u && keep > VBQ_DOM_MAX && !(fr->combo && keep == fr->len) ? 1u : 0u;
+}
+
+/* Are the champions worth a round: two at least, and LO below
+ * VBQ_COMBO_FLAT of the best champion's upper end (the labels nearly tie
+ * at a point of the patch, where LO stays tiny; elsewhere hi_j < LO has
+ * already dropped what combinations would). Speed only. */
+VBS_FN int vbq_combo_go(const vbq_champ *c, double LO)
+{
+    return c->n >= 2u && LO < VBQ_COMBO_FLAT * c->hi[0];
+}
+
+/* Do the owned labels (ids > i) of lab[0 .. keep) tie along a curve as far
+ * as the doubles tell: are their points p_j = (a_j, b_j) in R^4 within
+ * VBQ_CURVE_REL of their spread from one line (affine rank <= 1)? Labels
+ * that tie along a curve never separate, and subdividing them multiplies
+ * the patches along it; labels whose points span a plane or more tie at
+ * isolated points at most (a near-flat face cluster: its points lie near
+ * the plane of the face), where subdividing goes down one chain of patches
+ * and separates them unless they tie exactly. Only a speed decision (both
+ * ways are complete). Independent of the order of the labels: the line
+ * runs from the smallest id to the point farthest from it (ties to the
+ * smaller id). */
+VBS_FN int vbq_near_line(const VBS_GLOBAL vbq_nb *nb, const VBS_GLOBAL vbs_u32 *lab,
+                         vbs_u32 keep, vbs_u32 i)
+{
+    vbs_u32 id0 = 0xffffffffu;
+    double p0[4] = {0.0, 0.0, 0.0, 0.0};
+    for (vbs_u32 a = 0u; a < keep; a++) {
+        vbq_nb r = nb[lab[a]];
+        /* a nested neighbour (infinite error) never separates */
+        if (r.id > i && !(r.err < (double)INFINITY))
+            return 1;
+        if (r.id > i && r.id < id0) {
+            id0 = r.id;
+            p0[0] = r.ax;
+            p0[1] = r.ay;
+            p0[2] = r.az;
+            p0[3] = r.b;
+        }
+    }
+    double best = -1.0, v[4] = {0.0, 0.0, 0.0, 0.0};
+    vbs_u32 bid = 0xffffffffu;
+    for (vbs_u32 a = 0u; a < keep; a++) {
+        vbq_nb r = nb[lab[a]];
+        if (r.id <= i)
+            continue;
+        double w[4] = {r.ax - p0[0], r.ay - p0[1], r.az - p0[2], r.b - p0[3]};
+        double d2 = ((w[0] * w[0] + w[1] * w[1]) + w[2] * w[2]) + w[3] * w[3];
+        if (d2 > best || (d2 == best && r.id < bid)) {
+            best = d2;
+            bid = r.id;
+            for (int k = 0; k < 4; k++)
+                v[k] = w[k];
+        }
+    }
+    if (!(best > 0.0))
+        return 1;
+    double far = 0.0;
+    for (vbs_u32 a = 0u; a < keep; a++) {
+        vbq_nb r = nb[lab[a]];
+        if (r.id <= i)
+            continue;
+        double w[4] = {r.ax - p0[0], r.ay - p0[1], r.az - p0[2], r.b - p0[3]};
+        double c = (((w[0] * v[0] + w[1] * v[1]) + w[2] * v[2]) + w[3] * v[3]) / best, d2 = 0.0;
+        for (int k = 0; k < 4; k++)
+            d2 += (w[k] - c * v[k]) * (w[k] - c * v[k]);
+        far = d2 > far ? d2 : far;
+    }
+    return !(far > VBQ_CURVE_REL * VBQ_CURVE_REL * best);
+}
+
+#endif
