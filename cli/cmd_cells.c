@@ -2,6 +2,7 @@
  * weighted cell inside the probe-expanded ball, and contact areas, as
  * proven enclosures (verify/measures/), of one structure or of the frames of
  * a trajectory (--traj, --frames). Parse, call (vb_cells.h), write. */
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -254,12 +255,15 @@ int vb_cmd_cells(int argc, char **argv)
             if (vb_cli_parse_double(argv[++i], &opt.tolerance) != 0)
                 return vb_cli_usage_error(argv[0], "--tolerance '%s' is not a number", argv[i]);
         } else if (strcmp(a, "--max-patches") == 0) {
-            if (vb_cli_parse_size(argv[++i], &opt.max_patches) != 0 || opt.max_patches < 96)
-                return vb_cli_usage_error(argv[0], "--max-patches needs an integer >= 96");
+            /* The ranges are the library's (vb_measure_options_check, after
+             * the loop): a value that does not parse is stored as one the
+             * check refuses, so that its message names the range. */
+            if (vb_cli_parse_size(argv[++i], &opt.max_patches) != 0 || opt.max_patches == 0)
+                opt.max_patches = 1;
         } else if (strcmp(a, "--threads") == 0) {
-            if (vb_cli_parse_size(argv[++i], &sz) != 0 || sz < 1 || sz > VB_MAX_THREADS)
-                return vb_cli_usage_error(argv[0], "--threads needs 1..%d", VB_MAX_THREADS);
-            opt.threads = (int)sz;
+            opt.threads = vb_cli_parse_size(argv[++i], &sz) != 0 || sz == 0 || sz > INT_MAX
+                              ? -1
+                              : (int)sz;
         } else if (strcmp(a, "--stats") == 0) {
             stats = 1;
         } else if (strcmp(a, "--json") == 0) {
@@ -299,6 +303,11 @@ int vb_cmd_cells(int argc, char **argv)
     if (vb_open(&ctx, NULL) != VB_OK) {
         fprintf(stderr, "vorball: E%d: out of memory\n", vb_diag_number(VB_ENOMEM));
         return VB_EXIT_NOMEM;
+    }
+    if (vb_measure_options_check(ctx, &opt) != VB_OK) {
+        vb_cli_usage_error(argv[0], "%s", vb_errmsg(ctx));
+        vb_close(ctx);
+        return VB_EXIT_USAGE;
     }
     vb_cli_progress_attach(ctx);
     vb_sphere_set *set = NULL;

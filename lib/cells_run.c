@@ -1,7 +1,6 @@
 /* The cell measures in one call, of a set or of a trajectory's frames
  * (vb_cells.h): validation, decimals for binary frames, the frame loop;
  * the method is verify/measures/'s. */
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -88,10 +87,11 @@ int vb_cells_run_periodic(vb_ctx *ctx, const vb_sphere_set *set, const vb_box *b
                           const vb_measure_options *opt, vb_cell_measures *out)
 {
     memset(out, 0, sizeof *out);
-    if (!(opt->probe >= 0.0) || !isfinite(opt->probe))
-        return vb_error(ctx, VB_EMISUSE, NULL, 0, "--probe %g: must be >= 0", opt->probe);
+    int rc = vb_measure_options_check(ctx, opt);
+    if (rc != VB_OK)
+        return rc;
     vb_sphere_set run;
-    int rc = run_prepare(ctx, set, &run);
+    rc = run_prepare(ctx, set, &run);
     vb_periodic_images img;
     memset(&img, 0, sizeof img);
     if (rc == VB_OK) {

@@ -4,6 +4,7 @@
  * writes (its TSV writers) as text. */
 #include "vbpy.h"
 
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -89,9 +90,9 @@ static PyObject *cells_run(PyObject *self, PyObject *args)
     (void)self;
     PyObject *cap, *tokens;
     double probe, tolerance;
-    Py_ssize_t max_patches;
-    int contacts, threads, periodic;
-    if (!PyArg_ParseTuple(args, "OddnpipO", &cap, &probe, &tolerance, &max_patches, &contacts,
+    Py_ssize_t max_patches, threads;
+    int contacts, periodic;
+    if (!PyArg_ParseTuple(args, "OddnpnpO", &cap, &probe, &tolerance, &max_patches, &contacts,
                           &threads, &periodic, &tokens))
         return NULL;
     vb_sphere_set *set = vbpy_spheres_get(cap);
@@ -101,12 +102,16 @@ static PyObject *cells_run(PyObject *self, PyObject *args)
     vb_measure_defaults(&opt);
     opt.probe = probe;
     opt.tolerance = tolerance;
-    opt.max_patches = max_patches > 0 ? (size_t)max_patches : 0;
+    /* The ranges are the library's (vb_measure_options_check): a value
+     * out of the fields' types is stored as one the check refuses. */
+    opt.max_patches = max_patches > 0 ? (size_t)max_patches : 1;
     opt.contacts = contacts;
-    opt.threads = threads;
+    opt.threads = threads >= 0 && threads <= INT_MAX ? (int)threads : -1;
     vbpy_call c;
     if (vbpy_call_open(&c) != 0)
         return NULL;
+    if (vb_measure_options_check(c.ctx, &opt) != VB_OK)
+        return vbpy_call_fail(&c, VB_EMISUSE);
     vb_sphere_set run;
     memset(&run, 0, sizeof run);
     vb_cell_measures m;

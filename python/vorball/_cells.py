@@ -113,12 +113,11 @@ def cells(xyz: SphereInput, r: Optional[ArrayLike] = None, *, probe: float = 1.4
     for name, v in (("probe", probe), ("tolerance", tolerance)):
         if not isinstance(v, numbers.Real) or isinstance(v, bool):
             raise misuse("%s must be a number, not %r" % (name, v))
-    if not isinstance(max_patches, numbers.Integral) or isinstance(max_patches, bool) or \
-            max_patches < 96:
-        raise misuse("max_patches must be an integer >= 96, not %r" % (max_patches,))
-    if not isinstance(threads, numbers.Integral) or isinstance(threads, bool) or \
-            not 0 <= threads <= 64:
-        raise misuse("threads must be an integer in 0..64, not %r" % (threads,))
+    # The ranges are the library's (vb_measure_options_check): the
+    # command's messages and numbers.
+    for name, v in (("max_patches", max_patches), ("threads", threads)):
+        if not isinstance(v, numbers.Integral) or isinstance(v, bool):
+            raise misuse("%s must be an integer, not %r" % (name, v))
     s, made = as_spheres(xyz, r, min_count=1, zero_radius=zero_radius, select=select)
     per = bool(periodic) or box is not None
     d, diag = _core.cells_run(s._capsule, float(probe), float(tolerance), int(max_patches),

@@ -15,6 +15,7 @@
 
 #include "vb.h"
 #include "vb_measures.h"
+#include "vb_parallel.h"
 #include "vb_spheres.h"
 #include "measures_balls.h"
 #include "vb_test.h"
@@ -186,7 +187,65 @@ static void test_bad_options(vb_ctx *ctx)
     CHECK_INT(vb_cell_measures_compute(ctx, s, &o, &m), VB_EMISUSE);
     o.tolerance = 0.0;
     CHECK_INT(vb_cell_measures_compute(ctx, s, &o, &m), VB_EMISUSE);
+    vb_measure_defaults(&o);
+    o.max_patches = 95;
+    CHECK_INT(vb_cell_measures_compute(ctx, s, &o, &m), VB_EMISUSE);
+    CHECK(strcmp(vb_errmsg(ctx), "--max-patches needs an integer >= 96") == 0);
     vb_spheres_free(s);
+}
+
+/* The options' ranges at their edges (vb_measure_options_check, the
+ * check of `vorball cells` and vorball.cells). */
+static void test_options_check(vb_ctx *ctx)
+{
+    vb_measure_options o;
+    vb_measure_defaults(&o);
+    CHECK_INT(vb_measure_options_check(ctx, &o), VB_OK);
+    o.probe = 0.0;
+    CHECK_INT(vb_measure_options_check(ctx, &o), VB_OK);
+    o.probe = -0.0;
+    CHECK_INT(vb_measure_options_check(ctx, &o), VB_OK);
+    o.probe = -1e-300;
+    CHECK_INT(vb_measure_options_check(ctx, &o), VB_EMISUSE);
+    CHECK(strstr(vb_errmsg(ctx), "--probe") != NULL);
+    o.probe = HUGE_VAL;
+    CHECK_INT(vb_measure_options_check(ctx, &o), VB_EMISUSE);
+    o.probe = NAN;
+    CHECK_INT(vb_measure_options_check(ctx, &o), VB_EMISUSE);
+    vb_measure_defaults(&o);
+    o.tolerance = 0x1p-1074;
+    CHECK_INT(vb_measure_options_check(ctx, &o), VB_OK);
+    o.tolerance = nextafter(1.0, 0.0);
+    CHECK_INT(vb_measure_options_check(ctx, &o), VB_OK);
+    o.tolerance = 1.0;
+    CHECK_INT(vb_measure_options_check(ctx, &o), VB_EMISUSE);
+    CHECK(strcmp(vb_errmsg(ctx), "--tolerance 1: must lie in (0, 1)") == 0);
+    o.tolerance = 0.0;
+    CHECK_INT(vb_measure_options_check(ctx, &o), VB_EMISUSE);
+    o.tolerance = NAN;
+    CHECK_INT(vb_measure_options_check(ctx, &o), VB_EMISUSE);
+    vb_measure_defaults(&o);
+    size_t patches[] = {0, 96, 97, 1000000};
+    for (size_t k = 0; k < sizeof patches / sizeof *patches; k++) {
+        o.max_patches = patches[k];
+        CHECK_INT(vb_measure_options_check(ctx, &o), VB_OK);
+    }
+    o.max_patches = 95;
+    CHECK_INT(vb_measure_options_check(ctx, &o), VB_EMISUSE);
+    o.max_patches = 1;
+    CHECK_INT(vb_measure_options_check(ctx, &o), VB_EMISUSE);
+    CHECK(strcmp(vb_errmsg(ctx), "--max-patches needs an integer >= 96") == 0);
+    vb_measure_defaults(&o);
+    int threads[] = {0, 1, VB_MAX_THREADS};
+    for (size_t k = 0; k < sizeof threads / sizeof *threads; k++) {
+        o.threads = threads[k];
+        CHECK_INT(vb_measure_options_check(ctx, &o), VB_OK);
+    }
+    o.threads = VB_MAX_THREADS + 1;
+    CHECK_INT(vb_measure_options_check(ctx, &o), VB_EMISUSE);
+    o.threads = -1;
+    CHECK_INT(vb_measure_options_check(ctx, &o), VB_EMISUSE);
+    CHECK(strcmp(vb_errmsg(ctx), "--threads needs 1..64") == 0);
 }
 
 int main(void)
@@ -195,6 +254,7 @@ int main(void)
     if (vb_open(&ctx, NULL) != VB_OK)
         return 1;
     vb_set_verbosity(ctx, 0);
+    test_options_check(ctx);
     test_one_ball(ctx);
     test_two_equal(ctx);
     test_slanted_pair(ctx);

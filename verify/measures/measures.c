@@ -2,6 +2,7 @@
  * one integration per atom (cell_patches.c) on a thread of its own, and the
  * two sides of every contact met. */
 #include <gmp.h>
+#include <math.h>
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
@@ -18,6 +19,21 @@ void vb_measure_defaults(vb_measure_options *opt)
     memset(opt, 0, sizeof *opt);
     opt->probe = 1.4;
     opt->tolerance = VB_MEASURES_TOLERANCE;
+}
+
+int vb_measure_options_check(vb_ctx *ctx, const vb_measure_options *opt)
+{
+    if (!(opt->probe >= 0.0) || !isfinite(opt->probe))
+        return vb_error(ctx, VB_EMISUSE, NULL, 0, "--probe %g: must be >= 0", opt->probe);
+    if (!(opt->tolerance > 0.0 && opt->tolerance < 1.0))
+        return vb_error(ctx, VB_EMISUSE, NULL, 0, "--tolerance %g: must lie in (0, 1)",
+                        opt->tolerance);
+    if (opt->max_patches && opt->max_patches < VB_MEASURES_MIN_PATCHES)
+        return vb_error(ctx, VB_EMISUSE, NULL, 0, "--max-patches needs an integer >= %d",
+                        VB_MEASURES_MIN_PATCHES);
+    if (opt->threads < 0 || opt->threads > VB_MAX_THREADS)
+        return vb_error(ctx, VB_EMISUSE, NULL, 0, "--threads needs 1..%d", VB_MAX_THREADS);
+    return VB_OK;
 }
 
 void vb_cell_measures_free(vb_cell_measures *m)
@@ -416,11 +432,9 @@ int vb_cell_measures_compute_images(vb_ctx *ctx, const vb_sphere_set *set,
                                     vb_cell_measures *out)
 {
     memset(out, 0, sizeof *out);
-    if (!(opt->probe >= 0.0) || !isfinite(opt->probe))
-        return vb_error(ctx, VB_EMISUSE, NULL, 0, "--probe %g: must be >= 0", opt->probe);
-    if (!(opt->tolerance > 0.0 && opt->tolerance < 1.0))
-        return vb_error(ctx, VB_EMISUSE, NULL, 0, "--tolerance %g: must lie in (0, 1)",
-                        opt->tolerance);
+    int bad = vb_measure_options_check(ctx, opt);
+    if (bad != VB_OK)
+        return bad;
     if (set->n > UINT32_MAX || !set->contained)
         return vb_error(ctx, VB_EMISUSE, set->source, 0, "the sphere set is not validated");
     if (img && (img->n0 > set->n || !img->atom || !img->shift))

@@ -28,6 +28,8 @@
  * closed forms cannot decide): past it their values stay wider than 1e-6
  * on proteins (W851). */
 #define VB_MEASURES_MAX_PATCHES 5000
+/* The smallest patch budget per atom that may be asked (--max-patches). */
+#define VB_MEASURES_MIN_PATCHES 96
 
 typedef struct vb_measure_options {
     double probe;       /* >= 0, added to every radius (nearest double of the decimal;
@@ -35,9 +37,10 @@ typedef struct vb_measure_options {
     double tolerance;   /* in (0, 1): each value is refined until hi - lo <= tolerance *
                          * max(|value|, 1e-3 * the expanded ball's volume or sphere area) */
     int contacts;       /* nonzero: contact areas too */
-    size_t max_patches; /* per atom (0 = VB_MEASURES_MAX_PATCHES): past it the enclosure
-                         * stands as proven, wider than asked, and is counted */
-    int threads;        /* 0 = all cores */
+    size_t max_patches; /* per atom, 0 (= VB_MEASURES_MAX_PATCHES) or >= VB_MEASURES_MIN_PATCHES:
+                         * past it the enclosure stands as proven, wider than asked,
+                         * and is counted */
+    int threads;        /* 0 = all cores, else 1..VB_MAX_THREADS */
     int patches;        /* nonzero: every atom by direction patches, never in closed form
                          * (the two methods compared in tests) */
 } vb_measure_options;
@@ -73,6 +76,13 @@ typedef struct vb_cell_measures {
 
 /* Fills opt with the defaults (probe 1.4, tolerance 1e-6, no contacts). */
 void vb_measure_defaults(vb_measure_options *opt);
+
+/* The options' ranges, the one check of the command and the bindings:
+ * probe >= 0 and finite, tolerance in (0, 1), max_patches 0 or >=
+ * VB_MEASURES_MIN_PATCHES, threads in 0..VB_MAX_THREADS. Returns VB_OK, or
+ * VB_EMISUSE with the option's range in ctx's message (the first refused,
+ * in that order). vb_cell_measures_compute calls it. */
+int vb_measure_options_check(vb_ctx *ctx, const vb_measure_options *opt);
 
 /* Computes the measures of every sphere of `set` (validated: its
  * `contained` marks set). On VB_OK *out owns arrays (free with
