@@ -1,6 +1,7 @@
 /* Shared input options of the subcommands. */
 #include "input_options.h"
 
+#include <limits.h>
 #include <string.h>
 
 #include "cli_common.h"
@@ -62,29 +63,27 @@ int vb_cli_input_option(vb_cli_input_opts *o, int argc, char **argv, int *i)
         vb_cli_usage_error(argv[0], "--zero-radius takes error, point or drop, not '%s'", v);
         return -1;
     }
-    if (strcmp(a, "--model") == 0) {
+    int *number = strcmp(a, "--model") == 0 ? &o->model : strcmp(a, "--assembly") == 0 ? &o->assembly
+                                                                                     : NULL;
+    if (number) {
+        /* The ranges are the library's (vb_read_options_check): 0 and a
+         * value that does not parse are stored as one it refuses. */
         const char *v = option_value(argc, argv, i);
         size_t n;
         if (!v)
             return -1;
-        if (vb_cli_parse_size(v, &n) != 0 || n < 1 || n > 999999999) {
-            vb_cli_usage_error(argv[0], "--model needs a model number >= 1, not '%s'", v);
+        *number = vb_cli_parse_size(v, &n) != 0 || n == 0 || n > INT_MAX ? -1 : (int)n;
+        vb_read_options ro = {.model = o->model, .assembly = o->assembly};
+        vb_ctx *ctx;
+        if (vb_open(&ctx, NULL) != VB_OK) {
+            vb_cli_fail(NULL, VB_ENOMEM);
             return -1;
         }
-        o->model = (int)n;
-        return 1;
-    }
-    if (strcmp(a, "--assembly") == 0) {
-        const char *v = option_value(argc, argv, i);
-        size_t n;
-        if (!v)
-            return -1;
-        if (vb_cli_parse_size(v, &n) != 0 || n < 1 || n > 999999) {
-            vb_cli_usage_error(argv[0], "--assembly needs an assembly number >= 1, not '%s'", v);
-            return -1;
-        }
-        o->assembly = (int)n;
-        return 1;
+        int rc = vb_read_options_check(ctx, &ro);
+        if (rc != VB_OK)
+            vb_cli_usage_error(argv[0], "%s, not '%s'", vb_errmsg(ctx), v);
+        vb_close(ctx);
+        return rc == VB_OK ? 1 : -1;
     }
     if (strcmp(a, "--radii") == 0) {
         const char *v = option_value(argc, argv, i);

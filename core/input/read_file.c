@@ -23,6 +23,15 @@ int vb_format_parse(vb_ctx *ctx, const char *name, vb_format *out)
                     "unknown format '%s' (auto, xyzr, balls, pdb, pqr, cif, mmcif, gro)", name);
 }
 
+int vb_read_options_check(vb_ctx *ctx, const vb_read_options *o)
+{
+    if (o->model < 0 || o->model > VB_MODEL_MAX)
+        return vb_error(ctx, VB_EMISUSE, NULL, 0, "--model needs a model number >= 1");
+    if (o->assembly < 0 || o->assembly > VB_ASSEMBLY_MAX)
+        return vb_error(ctx, VB_EMISUSE, NULL, 0, "--assembly needs an assembly number >= 1");
+    return VB_OK;
+}
+
 int vbi_detect_error(vb_ctx *ctx, const char *name, int rc)
 {
     if (rc == VB_EINPUT_EMPTY)

@@ -102,6 +102,17 @@ typedef struct vb_read_options {
                                   * must match the frames', is read so and drops them after) */
 } vb_read_options;
 
+/* The largest --model and --assembly numbers asked. */
+#define VB_MODEL_MAX 999999999
+#define VB_ASSEMBLY_MAX 999999
+
+/* The read options' ranges, the one check of the commands and the
+ * bindings: model 0 (the first) or 1..VB_MODEL_MAX, assembly 0 (the
+ * asymmetric unit) or 1..VB_ASSEMBLY_MAX. Returns VB_OK, or VB_EMISUSE with
+ * ctx's message naming the range ("--model needs a model number >= 1";
+ * the caller adds the value as it was given). */
+int vb_read_options_check(vb_ctx *ctx, const vb_read_options *o);
+
 /* Parses a format name ("xyzr", "pdb", "pqr", "cif"/"mmcif", "gro", "auto").
  * Returns VB_OK or VB_EMISUSE. */
 int vb_format_parse(vb_ctx *ctx, const char *name, vb_format *out);

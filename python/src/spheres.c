@@ -4,6 +4,7 @@
  * frames of trajectories. */
 #include "vbpy.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdlib.h>
@@ -36,17 +37,20 @@ vb_sphere_set *vbpy_spheres_get(PyObject *capsule)
 /* The read options of the Python keywords, as the CLI's input options
  * fill them (cli/input_options.c): format by name, model, water,
  * hydrogens, strict elements, zero radius. VB_OK or VB_EMISUSE in ctx. */
-static int read_options(vb_ctx *ctx, const char *format, int model, int keep_water,
+static int read_options(vb_ctx *ctx, const char *format, Py_ssize_t model, int keep_water,
                         int drop_hydrogens, int strict_elements, int zero_radius,
                         vb_read_options *ro)
 {
     memset(ro, 0, sizeof *ro);
-    ro->model = model;
+    /* The range is the library's (vb_read_options_check): a model out of
+     * the field's type is stored as one it refuses. */
+    ro->model = model >= 0 && model <= INT_MAX ? (int)model : -1;
     ro->keep_water = keep_water;
     ro->drop_hydrogens = drop_hydrogens;
     ro->strict_elements = strict_elements;
     ro->zero_radius = zero_radius;
-    return vb_format_parse(ctx, format, &ro->format);
+    int rc = vb_read_options_check(ctx, ro);
+    return rc == VB_OK ? vb_format_parse(ctx, format, &ro->format) : rc;
 }
 
 static PyObject *spheres_read(PyObject *self, PyObject *args)
@@ -54,9 +58,9 @@ static PyObject *spheres_read(PyObject *self, PyObject *args)
     (void)self;
     PyObject *path = NULL, *radii = NULL;
     const char *format;
-    int model, water, noh, strict, zero;
-    Py_ssize_t min_count;
-    if (!PyArg_ParseTuple(args, "O&siiiiiO&n", PyUnicode_FSConverter, &path, &format, &model,
+    int water, noh, strict, zero;
+    Py_ssize_t model, min_count;
+    if (!PyArg_ParseTuple(args, "O&sniiiiO&n", PyUnicode_FSConverter, &path, &format, &model,
                           &water, &noh, &strict, &zero, PyUnicode_FSConverter, &radii,
                           &min_count))
         return NULL;
@@ -427,8 +431,9 @@ static PyObject *frames_open(PyObject *self, PyObject *args)
     (void)self;
     PyObject *path = NULL, *traj = NULL, *radii = NULL;
     const char *format;
-    int model, water, noh, strict, zero;
-    if (!PyArg_ParseTuple(args, "O&O&siiiiiO&", PyUnicode_FSConverter, &path,
+    int water, noh, strict, zero;
+    Py_ssize_t model;
+    if (!PyArg_ParseTuple(args, "O&O&sniiiiO&", PyUnicode_FSConverter, &path,
                           PyUnicode_FSConverter, &traj, &format, &model, &water, &noh, &strict,
                           &zero, PyUnicode_FSConverter, &radii))
         return NULL;

@@ -136,10 +136,15 @@ SphereInput = Union[Spheres, PathLike, ArrayLike]
 def _read_args(format, model, water, hydrogens, strict_elements, radii, zero_radius):
     if not isinstance(format, str):
         raise misuse("format must be a name (auto, xyzr, pdb, pqr, cif, ...), not %r" % (format,))
+    # The range is the library's (vb_read_options_check), whose 0 is
+    # "the first model": None asks for it, an explicit 0 is refused as the
+    # command refuses it.
     if model is None:
         model = 0
-    elif not isinstance(model, numbers.Integral) or isinstance(model, bool) or not 1 <= model < 10**9:
+    elif not isinstance(model, numbers.Integral) or isinstance(model, bool):
         raise misuse("model must be a model number >= 1, not %r" % (model,))
+    else:
+        model = int(model) or -1
     radii = "" if radii is None else os.fspath(radii)
     return (format, int(model), int(bool(water)), int(not hydrogens), int(bool(strict_elements)),
             _zero_radius(zero_radius), radii)

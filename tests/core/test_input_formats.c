@@ -328,6 +328,39 @@ static void test_detect(void)
     vb_close(ctx);
 }
 
+/* The read options' ranges at their edges (vb_read_options_check, the
+ * check of --model, --assembly and vorball.read's model). */
+static void test_read_options_check(void)
+{
+    vb_ctx *ctx = open_ctx(NULL);
+    vb_read_options o;
+    memset(&o, 0, sizeof o);
+    int ok[] = {0, 1, VB_MODEL_MAX};
+    for (size_t k = 0; k < sizeof ok / sizeof *ok; k++) {
+        o.model = ok[k];
+        CHECK_INT(vb_read_options_check(ctx, &o), VB_OK);
+    }
+    o.model = VB_MODEL_MAX + 1;
+    CHECK_INT(vb_read_options_check(ctx, &o), VB_EMISUSE);
+    o.model = -1;
+    CHECK_INT(vb_read_options_check(ctx, &o), VB_EMISUSE);
+    CHECK(strcmp(vb_errmsg(ctx), "--model needs a model number >= 1") == 0);
+    CHECK_INT(VB_MODEL_MAX, 999999999);
+    o.model = 0;
+    int okay[] = {0, 1, VB_ASSEMBLY_MAX};
+    for (size_t k = 0; k < sizeof okay / sizeof *okay; k++) {
+        o.assembly = okay[k];
+        CHECK_INT(vb_read_options_check(ctx, &o), VB_OK);
+    }
+    o.assembly = VB_ASSEMBLY_MAX + 1;
+    CHECK_INT(vb_read_options_check(ctx, &o), VB_EMISUSE);
+    o.assembly = -1;
+    CHECK_INT(vb_read_options_check(ctx, &o), VB_EMISUSE);
+    CHECK(strcmp(vb_errmsg(ctx), "--assembly needs an assembly number >= 1") == 0);
+    CHECK_INT(VB_ASSEMBLY_MAX, 999999);
+    vb_close(ctx);
+}
+
 static void test_radii_file(void)
 {
     vb_ctx *ctx = open_ctx(NULL);
@@ -573,6 +606,7 @@ int main(void)
     test_pqr();
     test_mmcif();
     test_detect();
+    test_read_options_check();
     test_radii_file();
     test_frames_inline();
     test_real_files();
