@@ -63,8 +63,9 @@ int vb_cli_input_option(vb_cli_input_opts *o, int argc, char **argv, int *i)
         vb_cli_usage_error(argv[0], "--zero-radius takes error, point or drop, not '%s'", v);
         return -1;
     }
-    int *number = strcmp(a, "--model") == 0 ? &o->model : strcmp(a, "--assembly") == 0 ? &o->assembly
-                                                                                     : NULL;
+    int *number = strcmp(a, "--model") == 0      ? &o->model
+                  : strcmp(a, "--assembly") == 0 ? &o->assembly
+                                                 : NULL;
     if (number) {
         /* The ranges are the library's (vb_read_options_check): 0 and a
          * value that does not parse are stored as one it refuses. */

@@ -53,6 +53,18 @@ static int read_options(vb_ctx *ctx, const char *format, Py_ssize_t model, int k
     return rc == VB_OK ? vb_format_parse(ctx, format, &ro->format) : rc;
 }
 
+/* A converter ("O&") of the model number: any Python int, one out of the
+ * C field's type stored as -1 (refused by vb_read_options_check). */
+static int model_arg(PyObject *o, void *out)
+{
+    int overflow = 0;
+    long long v = PyLong_AsLongLongAndOverflow(o, &overflow);
+    if (v == -1 && PyErr_Occurred())
+        return 0;
+    *(Py_ssize_t *)out = overflow || v < 0 || v > INT_MAX ? -1 : (Py_ssize_t)v;
+    return 1;
+}
+
 static PyObject *spheres_read(PyObject *self, PyObject *args)
 {
     (void)self;
@@ -60,8 +72,8 @@ static PyObject *spheres_read(PyObject *self, PyObject *args)
     const char *format;
     int water, noh, strict, zero;
     Py_ssize_t model, min_count;
-    if (!PyArg_ParseTuple(args, "O&sniiiiO&n", PyUnicode_FSConverter, &path, &format, &model,
-                          &water, &noh, &strict, &zero, PyUnicode_FSConverter, &radii,
+    if (!PyArg_ParseTuple(args, "O&sO&iiiiO&n", PyUnicode_FSConverter, &path, &format, model_arg,
+                          &model, &water, &noh, &strict, &zero, PyUnicode_FSConverter, &radii,
                           &min_count))
         return NULL;
     vbpy_call c;
@@ -433,9 +445,9 @@ static PyObject *frames_open(PyObject *self, PyObject *args)
     const char *format;
     int water, noh, strict, zero;
     Py_ssize_t model;
-    if (!PyArg_ParseTuple(args, "O&O&sniiiiO&", PyUnicode_FSConverter, &path,
-                          PyUnicode_FSConverter, &traj, &format, &model, &water, &noh, &strict,
-                          &zero, PyUnicode_FSConverter, &radii))
+    if (!PyArg_ParseTuple(args, "O&O&sO&iiiiO&", PyUnicode_FSConverter, &path,
+                          PyUnicode_FSConverter, &traj, &format, model_arg, &model, &water, &noh,
+                          &strict, &zero, PyUnicode_FSConverter, &radii))
         return NULL;
     frames *f = calloc(1, sizeof *f);
     vbpy_call c;
