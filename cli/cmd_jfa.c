@@ -218,15 +218,24 @@ typedef struct {
     vb_cli_input_opts io;
 } jfa_args;
 
+/* The field of the setup a numeric option sets, or NULL (--margin, a
+ * double, is parsed beside them). */
+static uint64_t *setup_number(vbj_setup *s, const char *o)
+{
+    return strcmp(o, "-d") == 0 || strcmp(o, "--dim") == 0     ? &s->dim
+           : strcmp(o, "-n") == 0 || strcmp(o, "--size") == 0  ? &s->n
+           : strcmp(o, "-k") == 0 || strcmp(o, "--seeds") == 0 ? &s->k
+           : strcmp(o, "-m") == 0                              ? &s->m
+           : strcmp(o, "--fuse-cells") == 0                    ? &s->fuse_cells
+           : strcmp(o, "--repeat") == 0                        ? &s->repeat
+                                                               : NULL;
+}
+
 static int parse_args(vb_ctx *ctx, int argc, char **argv, jfa_args *a, int *exit_code)
 {
     memset(a, 0, sizeof *a);
-    a->dim = 2;
-    a->n = 512;
-    a->k = 100;
+    vbj_setup set = {.dim = 2, .n = 512, .k = 100, .margin = 2.0, .repeat = 1};
     a->rng = 1;
-    a->margin = 2.0;
-    a->repeat = 1;
     a->device = "auto";
     a->vl.nv = 1;
     a->vl.v[0] = VBJ_JFA1;
@@ -247,29 +256,31 @@ static int parse_args(vb_ctx *ctx, int argc, char **argv, jfa_args *a, int *exit
             return 0;
         }
         size_t sz;
-        double dv;
+        uint64_t *num = NULL;
         if (strcmp(o, "--check") == 0)
             a->check = 1;
         else if (strcmp(o, "--json") == 0)
             a->json = 1;
-        else if (strcmp(o, "-d") == 0 || strcmp(o, "--dim") == 0) {
-            if (vb_cli_parse_size(argv[++i], &sz) || (sz != 2 && sz != 3)) {
-                *exit_code = vb_cli_usage_error("jfa", "--dim must be 2 or 3");
+        else if ((num = setup_number(&set, o)) != NULL || strcmp(o, "--margin") == 0) {
+            /* The ranges are the library's (vbj_setup_check): a value that
+             * does not parse, and an explicit 0 where 0 means "not given",
+             * are stored as one the check refuses. */
+            const char *v = argv[++i];
+            if (num) {
+                if (vb_cli_parse_size(v, &sz))
+                    sz = num == &set.k ? 0 : SIZE_MAX;
+                else if (sz == 0 && (num == &set.m || num == &set.fuse_cells))
+                    sz = SIZE_MAX;
+                *num = sz;
+            } else if (vb_cli_parse_double(v, &set.margin))
+                set.margin = -1.0;
+            if (vbj_setup_check(ctx, &set) != VB_OK) {
+                *exit_code = num == &set.dim ? vb_cli_usage_error("jfa", "%s", vb_errmsg(ctx))
+                                             : vb_cli_usage_error("jfa", "%s '%s'",
+                                                                  vb_errmsg(ctx), v);
                 return 0;
             }
-            a->dim = (int)sz;
-            a->dim_given = 1;
-        } else if (strcmp(o, "-n") == 0 || strcmp(o, "--size") == 0) {
-            if (vb_cli_parse_size(argv[++i], &sz) || sz > VBJ_MAX_N) {
-                *exit_code = vb_cli_usage_error("jfa", "bad --size '%s'", argv[i]);
-                return 0;
-            }
-            a->n = (uint32_t)sz;
-        } else if (strcmp(o, "-k") == 0 || strcmp(o, "--seeds") == 0) {
-            if (vb_cli_parse_size(argv[++i], &a->k) || a->k == 0) {
-                *exit_code = vb_cli_usage_error("jfa", "bad --seeds '%s'", argv[i]);
-                return 0;
-            }
+            a->dim_given |= num == &set.dim;
         } else if (strcmp(o, "--dist") == 0) {
             if (vbj_distribution_parse(ctx, argv[++i], &a->dist)) {
                 *exit_code = vb_cli_usage_error("jfa", "%s", vb_errmsg(ctx));
@@ -283,38 +294,14 @@ static int parse_args(vb_ctx *ctx, int argc, char **argv, jfa_args *a, int *exit
             a->rng = sz;
         } else if (strcmp(o, "--protein") == 0)
             a->protein = argv[++i];
-        else if (strcmp(o, "--margin") == 0) {
-            if (vb_cli_parse_double(argv[++i], &dv) || !(dv >= 0)) {
-                *exit_code = vb_cli_usage_error("jfa", "bad --margin '%s'", argv[i]);
-                return 0;
-            }
-            a->margin = dv;
-        } else if (strcmp(o, "-V") == 0 || strcmp(o, "--variant") == 0) {
+        else if (strcmp(o, "-V") == 0 || strcmp(o, "--variant") == 0) {
             if (parse_variants(ctx, argv[++i], &a->vl)) {
                 *exit_code = vb_cli_usage_error("jfa", "%s", vb_errmsg(ctx));
                 return 0;
             }
-        } else if (strcmp(o, "-m") == 0) {
-            if (vb_cli_parse_size(argv[++i], &sz) || sz == 0 || sz > VBJ_MAX_N) {
-                *exit_code = vb_cli_usage_error("jfa", "bad -m '%s'", argv[i]);
-                return 0;
-            }
-            a->m = (uint32_t)sz;
-        } else if (strcmp(o, "--fuse-cells") == 0) {
-            if (vb_cli_parse_size(argv[++i], &sz) || sz == 0 || sz > UINT32_MAX) {
-                *exit_code = vb_cli_usage_error("jfa", "bad --fuse-cells '%s'", argv[i]);
-                return 0;
-            }
-            a->fuse_cells = (uint32_t)sz;
         } else if (strcmp(o, "--device") == 0)
             a->device = argv[++i];
-        else if (strcmp(o, "--repeat") == 0) {
-            if (vb_cli_parse_size(argv[++i], &sz) || sz == 0 || sz > 100000) {
-                *exit_code = vb_cli_usage_error("jfa", "bad --repeat '%s'", argv[i]);
-                return 0;
-            }
-            a->repeat = (int)sz;
-        } else if (strcmp(o, "--png") == 0)
+        else if (strcmp(o, "--png") == 0)
             a->png = argv[++i];
         else if (strcmp(o, "--slice") == 0)
             a->slices = argv[++i];
@@ -329,6 +316,13 @@ static int parse_args(vb_ctx *ctx, int argc, char **argv, jfa_args *a, int *exit
         } else
             a->seeds_path = o;
     }
+    a->dim = (int)set.dim;
+    a->n = (uint32_t)set.n;
+    a->k = (size_t)set.k;
+    a->margin = set.margin;
+    a->m = (uint32_t)set.m;
+    a->fuse_cells = (uint32_t)set.fuse_cells;
+    a->repeat = (int)set.repeat;
     if (a->protein) {
         if (a->seeds_path) {
             *exit_code = vb_cli_usage_error("jfa", "give either SEEDS or --protein");

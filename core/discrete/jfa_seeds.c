@@ -11,6 +11,19 @@
 
 static int is_pow2(uint32_t n) { return n >= 2 && (n & (n - 1)) == 0; }
 
+int vbj_setup_check(vb_ctx *ctx, const vbj_setup *s)
+{
+    const char *bad = s->dim != 2 && s->dim != 3    ? "--dim must be 2 or 3"
+                      : s->n > VBJ_MAX_N            ? "bad --size"
+                      : s->k == 0                   ? "bad --seeds"
+                      : !(s->margin >= 0.0)         ? "bad --margin"
+                      : s->m > VBJ_MAX_N            ? "bad -m"
+                      : s->fuse_cells > UINT32_MAX  ? "bad --fuse-cells"
+                      : s->repeat == 0 || s->repeat > 100000 ? "bad --repeat"
+                                                    : NULL;
+    return bad ? vb_error(ctx, VB_EMISUSE, NULL, 0, "%s", bad) : VB_OK;
+}
+
 int vbj_seeds_alloc(vb_ctx *ctx, int dim, uint32_t n, size_t k, vbj_seeds *out)
 {
     memset(out, 0, sizeof *out);

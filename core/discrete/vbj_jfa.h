@@ -121,6 +121,25 @@ enum {
                              edge (3D; a vertex in 2D), >= 4 near a vertex (3D) */
 };
 
+/* The numbers a `vorball jfa` run is set up with, as given (0 where not
+ * given, except as noted). */
+typedef struct vbj_setup {
+    uint64_t dim;        /* 2 or 3 */
+    uint64_t n;          /* grid side, <= VBJ_MAX_N (a power of two: vbj_seeds_* check it) */
+    uint64_t k;          /* seeds generated, >= 1 */
+    double margin;       /* world units around a protein's atoms, >= 0 */
+    uint64_t m;          /* Facet-JFA start resolution: 0 (not given) or 1..VBJ_MAX_N */
+    uint64_t fuse_cells; /* 0 (not given) or 1..UINT32_MAX (vbj_options.fuse_cells) */
+    uint64_t repeat;     /* timed runs, 1..100000 */
+} vbj_setup;
+
+/* The setup's ranges, the one check of the command: VB_OK, or VB_EMISUSE
+ * with ctx's message naming the first option refused, in the order of the
+ * fields ("--dim must be 2 or 3", else "bad --size", "bad --seeds",
+ * "bad --margin", "bad -m", "bad --fuse-cells", "bad --repeat": the caller
+ * adds the value as it was given). */
+int vbj_setup_check(vb_ctx *ctx, const vbj_setup *s);
+
 typedef struct vbj_options {
     vbj_variant variant;
     uint32_t m;    /* Facet-JFA start resolution; 0 = smallest without seed collisions */

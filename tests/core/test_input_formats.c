@@ -328,36 +328,37 @@ static void test_detect(void)
     vb_close(ctx);
 }
 
+/* One number of the read options set to v, checked: VB_OK, or VB_EMISUSE
+ * with message `msg`. */
+static void read_edge(vb_ctx *ctx, int assembly, int v, const char *msg)
+{
+    vb_read_options o;
+    memset(&o, 0, sizeof o);
+    *(assembly ? &o.assembly : &o.model) = v;
+    CHECK_INT(vb_read_options_check(ctx, &o), msg ? VB_EMISUSE : VB_OK);
+    if (msg)
+        CHECK(strcmp(vb_errmsg(ctx), msg) == 0);
+}
+
 /* The read options' ranges at their edges (vb_read_options_check, the
  * check of --model, --assembly and vorball.read's model). */
 static void test_read_options_check(void)
 {
     vb_ctx *ctx = open_ctx(NULL);
-    vb_read_options o;
-    memset(&o, 0, sizeof o);
-    int ok[] = {0, 1, VB_MODEL_MAX};
-    for (size_t k = 0; k < sizeof ok / sizeof *ok; k++) {
-        o.model = ok[k];
-        CHECK_INT(vb_read_options_check(ctx, &o), VB_OK);
-    }
-    o.model = VB_MODEL_MAX + 1;
-    CHECK_INT(vb_read_options_check(ctx, &o), VB_EMISUSE);
-    o.model = -1;
-    CHECK_INT(vb_read_options_check(ctx, &o), VB_EMISUSE);
-    CHECK(strcmp(vb_errmsg(ctx), "--model needs a model number >= 1") == 0);
+    const char *model = "--model needs a model number >= 1";
+    const char *assembly = "--assembly needs an assembly number >= 1";
     CHECK_INT(VB_MODEL_MAX, 999999999);
-    o.model = 0;
-    int okay[] = {0, 1, VB_ASSEMBLY_MAX};
-    for (size_t k = 0; k < sizeof okay / sizeof *okay; k++) {
-        o.assembly = okay[k];
-        CHECK_INT(vb_read_options_check(ctx, &o), VB_OK);
-    }
-    o.assembly = VB_ASSEMBLY_MAX + 1;
-    CHECK_INT(vb_read_options_check(ctx, &o), VB_EMISUSE);
-    o.assembly = -1;
-    CHECK_INT(vb_read_options_check(ctx, &o), VB_EMISUSE);
-    CHECK(strcmp(vb_errmsg(ctx), "--assembly needs an assembly number >= 1") == 0);
     CHECK_INT(VB_ASSEMBLY_MAX, 999999);
+    read_edge(ctx, 0, 0, NULL);
+    read_edge(ctx, 0, 1, NULL);
+    read_edge(ctx, 0, VB_MODEL_MAX, NULL);
+    read_edge(ctx, 0, VB_MODEL_MAX + 1, model);
+    read_edge(ctx, 0, -1, model);
+    read_edge(ctx, 1, 0, NULL);
+    read_edge(ctx, 1, 1, NULL);
+    read_edge(ctx, 1, VB_ASSEMBLY_MAX, NULL);
+    read_edge(ctx, 1, VB_ASSEMBLY_MAX + 1, assembly);
+    read_edge(ctx, 1, -1, assembly);
     vb_close(ctx);
 }
 
