@@ -125,6 +125,27 @@ static inline __attribute__((always_inline)) double wg_max(double v, __local dou
     return r;
 }
 
+/* Lane 0's compaction after a dominance pass: the labels lab[0..keep) the
+ * pass did not drop (with use_dom, dom[a] == 0; else the label's top bit
+ * clear) moved to the front in order, their count and owned count (ids
+ * above i) into sh[S_LEN] and sh[S_OWNED]. */
+static inline __attribute__((always_inline)) void
+wg_keep_undropped(__global uint *lab, uint keep, int use_dom, __local const uint *dom,
+                  __global const vbq_nb *nb, uint i, __local uint *sh)
+{
+    uint w = 0u, ow = 0u;
+    for (uint a = 0u; a < keep; a++) {
+        uint li = lab[a];
+        if (use_dom ? dom[a] != 0u : (li & 0x80000000u) != 0u)
+            continue;
+        lab[w++] = li;
+        if (nb[li].id > i)
+            ow++;
+    }
+    sh[S_LEN] = w;
+    sh[S_OWNED] = ow;
+}
+
 __kernel __attribute__((reqd_work_group_size(WG, 1, 1)))
 void vbq_cover_wg(__global const double *x, __global const double *y, __global const double *z,
                   __global const double *r, __global const double *box,
@@ -350,18 +371,8 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
                 }
                 barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
                 evals += 2.0 * (double)keep;
-                if (lane == 0u) {
-                    uint w = 0u, ow = 0u;
-                    for (uint a = 0u; a < keep; a++)
-                        if (!(lab[top + a] & 0x80000000u)) {
-                            uint li = lab[top + a];
-                            lab[top + w++] = li;
-                            if (nb[li].id > i)
-                                ow++;
-                        }
-                    sh[S_LEN] = w;
-                    sh[S_OWNED] = ow;
-                }
+                if (lane == 0u)
+                    wg_keep_undropped(lab + top, keep, 0, dom, nb, i, sh);
                 barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
                 /* a round that beat nothing ends them (as on the host) */
                 int beat = sh[S_LEN] < keep;
@@ -386,18 +397,8 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
                 }
                 barrier(CLK_LOCAL_MEM_FENCE);
                 evals += (double)(keep * (keep - 1u));
-                if (lane == 0u) {
-                    uint w = 0u, ow = 0u;
-                    for (uint a = 0u; a < keep; a++)
-                        if (!dom[a]) {
-                            uint li = lab[top + a];
-                            lab[top + w++] = li;
-                            if (nb[li].id > i)
-                                ow++;
-                        }
-                    sh[S_LEN] = w;
-                    sh[S_OWNED] = ow;
-                }
+                if (lane == 0u)
+                    wg_keep_undropped(lab + top, keep, 1, dom, nb, i, sh);
                 barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
                 keep = sh[S_LEN];
                 owned = sh[S_OWNED];
