@@ -137,10 +137,9 @@ static int open_traj(vb_ctx *ctx, vb_frame_source *F, const char *path, const ch
         F->keep[F->nkeep++] = i;
     }
     vb_select_free(sel);
-    if (sites)
-        vb_warn(ctx, VB_W_VIRTUAL_SITES_DROPPED, path, 0,
-                "%zu massless virtual site%s of a water model (MW, OM, EPW, LP1, ...) left out: "
-                "a point charge, not an atom", sites, sites == 1 ? "" : "s");
+    vbi_dropped dr = {0};
+    dr.virtual_sites = sites;
+    vbi_report_dropped(ctx, path, &dr); /* W727, as a reader says it */
     vb_select_free(sel);
     if (F->nkeep == 0 && ro->select)
         return vb_error(ctx, VB_EINPUT_SELECT, path, 0, "--select \"%s\" selects none of the %zu atoms",
