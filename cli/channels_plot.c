@@ -41,24 +41,33 @@ static void gp_string(FILE *f, const char *s)
 
 /* The gnuplot script drawing res's pore profile (and the series) into
  * `output`. */
-static void write_script(FILE *f, const char *output, const char *title, const vbc_result *res,
-                         const vbc_series *series)
+static void write_script(FILE *f, const char *output, const char *title, const vb_channels *ch)
 {
-    const vbc_channel *c = &res->channels[0];
-    const vbc_point *p = res->points + c->first_point;
-    const double *u = res->pore.u;
-    int multi = series && series->n > 1;
+    const vb_channels_result *res = vb_channels_first(ch);
+    vb_channel_row c;
+    vb_channel_point p;
+    double u[3];
+    vb_channels_result_row(res, 0, &c);
+    vb_channels_result_pore(res, u);
+    size_t nseries = vb_channels_series(ch, 0, NULL, NULL, NULL);
+    int multi = nseries > 1;
     fprintf(f, "# vorball channels --plot: the pore's radius profile (HOLE's colours: red\n"
                "# below 1.15 A, too tight for a water molecule; green up to 2.30 A, one\n"
                "# water; blue above). Rerun with: gnuplot THIS_FILE\n");
     fprintf(f, "$profile << EOD\n# s_A radius_A\n");
-    for (size_t k = 0; k < c->npoints; k++)
-        fprintf(f, "%.4f %.4f\n", p[k].x * u[0] + p[k].y * u[1] + p[k].z * u[2], p[k].r);
+    for (size_t k = 0; k < c.npoints; k++) {
+        vb_channels_result_point(res, c.first_point + k, &p);
+        fprintf(f, "%.4f %.4f\n", p.x * u[0] + p.y * u[1] + p.z * u[2], p.r);
+    }
     fprintf(f, "EOD\n");
     if (multi) {
         fprintf(f, "$series << EOD\n# frame rmin_A s_A\n");
-        for (size_t k = 0; k < series->n; k++)
-            fprintf(f, "%ld %.4f %.4f\n", series->frame[k], series->rmin[k], series->s[k]);
+        for (size_t k = 0; k < nseries; k++) {
+            long frame;
+            double rmin, s;
+            vb_channels_series(ch, k, &frame, &rmin, &s);
+            fprintf(f, "%ld %.4f %.4f\n", frame, rmin, s);
+        }
         fprintf(f, "EOD\n");
     }
     fprintf(f, "set terminal pngcairo size %d,600 font ',11'\nset output ", multi ? 1400 : 800);
@@ -106,10 +115,11 @@ static int copy_into_output(vb_ctx *ctx, const char *from, const char *to)
     return vb_cli_finish_output(ctx, out, to, bad ? vb_error(ctx, VB_EIO, from, 0, "read failed") : VB_OK);
 }
 
-int vb_channels_plot(vb_ctx *ctx, const char *png, const char *title, const vbc_result *res,
-                     const vbc_series *series)
+int vb_cli_channels_plot(vb_ctx *ctx, const char *png, const char *title, const vb_channels *ch)
 {
-    if (!res->pore.present || res->nchannels == 0 || res->channels[0].kind != VBC_PORE)
+    const vb_channels_result *res = vb_channels_first(ch);
+    double u[3];
+    if (!res || !vb_channels_result_pore(res, u))
         return vb_warn(ctx, VB_W_PORE_NOT_FOUND, png, 0, "no pore in the first frame: nothing to plot"), VB_OK;
     char script[4200], run[4200], tmp[4200];
     if (snprintf(script, sizeof script, "%s.gp", png) >= (int)sizeof script ||
@@ -123,14 +133,14 @@ int vb_channels_plot(vb_ctx *ctx, const char *png, const char *title, const vbc_
     FILE *f = vb_cli_open_output(ctx, script);
     if (!f)
         return vb_errcode(ctx);
-    write_script(f, png, title, res, series);
+    write_script(f, png, title, ch);
     int rc = vb_cli_close_output(ctx, f, script);
     if (rc != VB_OK)
         return rc;
     FILE *r = fopen(run, "w");
     if (!r)
         return vb_error(ctx, VB_EIO, run, 0, "cannot write the plot script gnuplot runs");
-    write_script(r, tmp, title, res, series);
+    write_script(r, tmp, title, ch);
     if (fclose(r) != 0) {
         remove(run);
         return vb_error(ctx, VB_EIO, run, 0, "cannot write the plot script gnuplot runs");

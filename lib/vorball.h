@@ -23,15 +23,17 @@
  *   - periodic boxes: the periodic diagram and its files (vb_periodic.h),
  *     a periodic vertex file judged (vb_periodic_verify.h), every frame of a
  *     trajectory in its own box (vb_periodic_frames.h);
- *   - channels over frames and the discrete Voronoi engines (vbc_frame.h,
- *     vbj_jfa.h through it), their options declared once and the run over
- *     frames (vbc_run.h, vbc_channels_config.h), on the device layer of
- *     vb_default_devices. */
+ *   - channels and cavities, one frame or every frame of a source, behind
+ *     one handle (vb_channels.h): the options declared once (the table the
+ *     command parses and Python reads), the engine on the device layer of
+ *     vb_default_devices, results through accessors, the command's
+ *     writers. */
 #ifndef VORBALL_H
 #define VORBALL_H
 
 #include "vb.h"
 #include "vb_cells.h"
+#include "vb_channels.h"
 #include "vb_complete.h"
 #include "vb_default.h"
 #include "vb_diag.h"
@@ -41,7 +43,5 @@
 #include "vb_select.h"
 #include "vb_verify_file.h"
 #include "vb_vertex_io.h"
-#include "vbc_frame.h"
-#include "vbc_run.h"
 
 #endif

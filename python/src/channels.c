@@ -1,21 +1,21 @@
-/* The channel analysis for Python: a pipe opened once (device by the one
- * fallback rule), one frame at a time through vbc_frame_run, the result
- * handed back as arrays and as the table and JSON the command writes. */
+/* The channel analysis for Python: a channels handle (vb_channels.h) opened
+ * once (device by the one fallback rule), one frame at a time through
+ * vb_channels_run, the result handed back as arrays and as the table and
+ * JSON the command writes. */
 #include "vbpy.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "vb_default.h"
+#include "vb_channels.h"
 #include "vb_diag.h"
-#include "vbc_run.h"
 
 #define PIPE_CAPSULE "vorball.channel_pipe"
 
 static void pipe_destroy(PyObject *cap)
 {
-    vbc_pipe_close(PyCapsule_GetPointer(cap, PIPE_CAPSULE));
+    vb_channels_free(PyCapsule_GetPointer(cap, PIPE_CAPSULE));
 }
 
 static PyObject *pipe_open(PyObject *self, PyObject *args)
@@ -25,36 +25,40 @@ static PyObject *pipe_open(PyObject *self, PyObject *args)
     if (!PyArg_ParseTuple(args, "ss", &device, &jfa))
         return NULL;
     int kind;
-    vbj_variant variant;
+    char err[512];
     if (vbpy_device_kind(device, &kind) != 0)
         return NULL;
-    if (vbj_variant_parse(NULL, jfa, &variant) != VB_OK || variant == VBJ_FACET_FULL ||
-        variant == VBJ_EXACT_BOUNDARY)
-        return vbpy_raise(VB_EMISUSE,
-                          "jfa must be exact, facet, jfa, jfa+1, jfa+2 or 1+jfa, not '%s'", jfa);
+    vb_channels *p = NULL;
+    if (vb_channels_new(NULL, &p) != VB_OK)
+        return PyErr_NoMemory();
+    /* The engine's options through the library's table (its checks). */
+    if (vb_channels_set(p, "device", device, err, sizeof err) != 0 ||
+        vb_channels_set(p, "jfa", jfa, err, sizeof err) != 0) {
+        vb_channels_free(p);
+        return vbpy_raise(VB_EMISUSE, "%s", err);
+    }
     vbpy_call c;
-    if (vbpy_call_open(&c) != 0)
+    if (vbpy_call_open(&c) != 0) {
+        vb_channels_free(p);
         return NULL;
-    vbc_pipe *p = NULL;
+    }
     int rc;
     Py_BEGIN_ALLOW_THREADS
-    rc = vbc_pipe_open(c.ctx, vb_default_devices(),
-                       vbc_channels_device((vb_device_kind)kind, vb_default_devices()), variant,
-                       &p);
+    rc = vb_channels_open(c.ctx, p);
     Py_END_ALLOW_THREADS
-    if (rc != VB_OK)
+    if (rc != VB_OK) {
+        vb_channels_free(p);
         return vbpy_call_fail(&c, rc);
+    }
     PyObject *cap = PyCapsule_New(p, PIPE_CAPSULE, pipe_destroy);
     if (!cap)
-        vbc_pipe_close(p);
+        vb_channels_free(p);
     return vbpy_call_return(&c, cap);
 }
 
-/* The command's table (CSV header and rows) and JSON document for this
- * one frame, through the library's writers. */
-static int frame_texts(const vb_sphere_set *s, const vbc_grid *g, const vbc_frame_info *fi,
-                       const vbc_result *res, double probe, int n, const char *device,
-                       PyObject **csv, PyObject **json)
+/* The command's table (CSV header and rows) and JSON document for the
+ * handle's last frame, through the library's writers. */
+static int frame_texts(const vb_channels *ch, PyObject **csv, PyObject **json)
 {
     vbpy_text a, b;
     if (vbpy_text_open(&a) != 0)
@@ -63,11 +67,8 @@ static int frame_texts(const vb_sphere_set *s, const vbc_grid *g, const vbc_fram
         Py_XDECREF(vbpy_text_take(&a));
         return -1;
     }
-    vbc_write_csv_header(a.f);
-    vbc_write_csv_rows(a.f, fi, g, s, res);
-    vbc_write_json_begin(b.f, s->source ? s->source : "", probe, n, device);
-    vbc_write_json_frame(b.f, 1, fi, g, s, res);
-    vbc_write_json_end(b.f);
+    vb_channels_write_frame_csv(ch, a.f);
+    vb_channels_write_frame_json(ch, b.f);
     *csv = vbpy_text_take(&a);
     *json = vbpy_text_take(&b);
     return *csv && *json ? 0 : -1;
@@ -75,31 +76,28 @@ static int frame_texts(const vb_sphere_set *s, const vbc_grid *g, const vbc_fram
 
 /* The analysis as arrays: channels (a list of tuples), points (x y z r
  * float64, 4 per point), point atoms (int32), lining atoms (int32). */
-static PyObject *result_dict(const vbc_result *res, PyObject *d)
+static PyObject *result_dict(const vb_channels_result *res, PyObject *d)
 {
-    PyObject *list = PyList_New((Py_ssize_t)res->nchannels);
+    size_t rows = vb_channels_result_rows(res);
+    PyObject *list = PyList_New((Py_ssize_t)rows);
     if (!list)
         return NULL;
-    size_t np = 0;
-    for (size_t t = 0; t < res->nchannels; t++) {
-        const vbc_channel *c = &res->channels[t];
-        np = c->first_point + c->npoints > np ? c->first_point + c->npoints : np;
-        PyObject *row = Py_BuildValue("(iinnddnnnnn)", c->kind, c->through, (Py_ssize_t)c->voxels,
-                                      (Py_ssize_t)c->mouths, c->length, c->bottleneck,
-                                      (Py_ssize_t)c->bottleneck_at, (Py_ssize_t)c->first_point,
-                                      (Py_ssize_t)c->npoints, (Py_ssize_t)c->first_lining,
-                                      (Py_ssize_t)c->nlining);
+    for (size_t t = 0; t < rows; t++) {
+        vb_channel_row c;
+        vb_channels_result_row(res, t, &c);
+        PyObject *row = Py_BuildValue("(iinnddnnnnn)", c.kind, c.through, (Py_ssize_t)c.voxels,
+                                      (Py_ssize_t)c.mouths, c.length, c.bottleneck,
+                                      (Py_ssize_t)c.bottleneck_at, (Py_ssize_t)c.first_point,
+                                      (Py_ssize_t)c.npoints, (Py_ssize_t)c.first_lining,
+                                      (Py_ssize_t)c.nlining);
         if (!row) {
             Py_DECREF(list);
             return NULL;
         }
         PyList_SET_ITEM(list, (Py_ssize_t)t, row);
     }
-    size_t nl = 0;
-    for (size_t t = 0; t < res->nchannels; t++) {
-        const vbc_channel *c = &res->channels[t];
-        nl = c->first_lining + c->nlining > nl ? c->first_lining + c->nlining : nl;
-    }
+    size_t np = vb_channels_result_points(res), nl;
+    const int32_t *lining = vb_channels_result_lining(res, &nl);
     double *p = malloc((np ? np : 1) * 4 * sizeof *p);
     int32_t *atom = malloc((np ? np : 1) * sizeof *atom);
     if (!p || !atom) {
@@ -109,15 +107,16 @@ static PyObject *result_dict(const vbc_result *res, PyObject *d)
         return PyErr_NoMemory();
     }
     for (size_t k = 0; k < np; k++) {
-        const vbc_point *q = &res->points[k];
-        p[4 * k] = q->x;
-        p[4 * k + 1] = q->y;
-        p[4 * k + 2] = q->z;
-        p[4 * k + 3] = q->r;
-        atom[k] = q->atom;
+        vb_channel_point q;
+        vb_channels_result_point(res, k, &q);
+        p[4 * k] = q.x;
+        p[4 * k + 1] = q.y;
+        p[4 * k + 2] = q.z;
+        p[4 * k + 3] = q.r;
+        atom[k] = q.atom;
     }
     PyObject *v[4] = {list, vbpy_bytes(p, 4 * np, 8), vbpy_bytes(atom, np, 4),
-                      vbpy_bytes(res->lining, nl, 4)};
+                      vbpy_bytes(lining, nl, 4)};
     free(p);
     free(atom);
     static const char *const keys[4] = {"channels", "points", "point_atoms", "lining"};
@@ -129,48 +128,28 @@ static PyObject *result_dict(const vbc_result *res, PyObject *d)
     return bad ? NULL : d;
 }
 
-#define CARRY_CAPSULE "vorball.channel_carry"
-
-static void carry_destroy(PyObject *cap)
-{
-    free(PyCapsule_GetPointer(cap, CARRY_CAPSULE));
-}
-
-/* What an Engine carries from frame to frame: the pore request as the
- * first frame left it (vbc_run keeps the axis it found there) and, for
- * axis_refit, the first frame's refitted source and axis (the command's
- * run keeps them in its config across frames). */
-typedef struct frame_carry {
-    vbc_pore_request pore;
-    vbc_axis refit0;
-    double u0[3], c0[3];
-} frame_carry;
-
+/* What an Engine carries from frame to frame (the pore axis its first
+ * frame found) is kept by its handle (VB_CHANNELS_CARRY_AXIS): the carry
+ * is a token that asks for it. */
 static PyObject *carry_new(PyObject *self, PyObject *unused)
 {
     (void)self;
     (void)unused;
-    frame_carry *q = calloc(1, sizeof *q);
-    if (!q)
-        return PyErr_NoMemory();
-    PyObject *cap = PyCapsule_New(q, CARRY_CAPSULE, carry_destroy);
-    if (!cap)
-        free(q);
-    return cap;
+    Py_RETURN_TRUE;
 }
 
-/* The text of Python value v for option o (vbc_channels_set parses it): a
+/* The text of Python value v for option o (vb_channels_set parses it): a
  * number with 17 digits (the same double back), integers, names, X,Y,Z.
  * Returns 0, or -1 with a Python error set. */
-static int option_text(const vbc_opt_spec *o, PyObject *v, char *out, size_t len)
+static int option_text(const vb_channels_option *o, PyObject *v, char *out, size_t len)
 {
     const char *key = o->py;
     int is_bool = PyBool_Check(v);
     switch (o->type) {
-    case VBC_OPT_FLAG:
+    case VB_CHOPT_FLAG:
         snprintf(out, len, "%d", PyObject_IsTrue(v) == 1);
         return 0;
-    case VBC_OPT_REAL: {
+    case VB_CHOPT_REAL: {
         double d = is_bool ? NAN : PyFloat_AsDouble(v);
         if (is_bool || (d == -1.0 && PyErr_Occurred())) {
             PyErr_Clear();
@@ -180,8 +159,8 @@ static int option_text(const vbc_opt_spec *o, PyObject *v, char *out, size_t len
         snprintf(out, len, "%.17g", d);
         return 0;
     }
-    case VBC_OPT_COUNT:
-    case VBC_OPT_POW2: {
+    case VB_CHOPT_COUNT:
+    case VB_CHOPT_POW2: {
         if (is_bool || !PyLong_Check(v)) {
             vbpy_raise(VB_EMISUSE, "%s must be an integer, not a %s", key, Py_TYPE(v)->tp_name);
             return -1;
@@ -194,14 +173,14 @@ static int option_text(const vbc_opt_spec *o, PyObject *v, char *out, size_t len
         snprintf(out, len, "%lld", n);
         return 0;
     }
-    case VBC_OPT_CHOICE:
+    case VB_CHOPT_CHOICE:
         if (!PyUnicode_Check(v)) {
             vbpy_raise(VB_EMISUSE, "%s must be a name, not a %s", key, Py_TYPE(v)->tp_name);
             return -1;
         }
         snprintf(out, len, "%s", PyUnicode_AsUTF8(v));
         return 0;
-    case VBC_OPT_VEC3: {
+    case VB_CHOPT_VEC3: {
         double x[3];
         if (!PySequence_Check(v) || PyUnicode_Check(v) || PySequence_Size(v) != 3) {
             PyErr_Clear();
@@ -221,7 +200,7 @@ static int option_text(const vbc_opt_spec *o, PyObject *v, char *out, size_t len
         snprintf(out, len, "%.17g,%.17g,%.17g", x[0], x[1], x[2]);
         return 0;
     }
-    case VBC_OPT_NAMES:
+    case VB_CHOPT_NAMES:
         if (!PyUnicode_Check(v)) {
             vbpy_raise(VB_EMISUSE, "%s must be comma-separated residue names, not a %s", key,
                        Py_TYPE(v)->tp_name);
@@ -235,35 +214,36 @@ static int option_text(const vbc_opt_spec *o, PyObject *v, char *out, size_t len
     }
 }
 
-/* The configuration from the keyword dict: the library's defaults, then
- * each keyword checked and set through the option table. Returns 0, or -1
- * with a Python error set. */
-static int config_from(PyObject *kw, vbc_channels_config *cfg)
+/* The handle's options from the keyword dict: the library's defaults,
+ * then each keyword checked and set through the option table. Returns 0,
+ * or -1 with a Python error set. */
+static int config_from(PyObject *kw, vb_channels *ch)
 {
-    vbc_channels_defaults(cfg);
+    vb_channels_reset(ch);
     char err[512], text[1024];
     PyObject *key, *v;
     Py_ssize_t pos = 0;
     while (PyDict_Next(kw, &pos, &key, &v)) {
         const char *name = PyUnicode_Check(key) ? PyUnicode_AsUTF8(key) : NULL;
-        const vbc_opt_spec *o = name ? vbc_channels_option_py(name) : NULL;
-        if (!o) {
+        vb_channels_option o;
+        /* Python's keywords only: a name starting with '-' is none. */
+        if (!name || name[0] == '-' || vb_channels_option_find(name, &o) != 0) {
             vbpy_raise(VB_EMISUSE, "unknown channels option %s", name ? name : "?");
             return -1;
         }
         if (v == Py_None)
             continue; /* the library's default */
-        if (option_text(o, v, text, sizeof text) != 0)
+        if (option_text(&o, v, text, sizeof text) != 0)
             return -1;
-        if (o->type == VBC_OPT_FLAG && text[0] == '0')
+        if (o.type == VB_CHOPT_FLAG && text[0] == '0')
             continue;
         /* Python's keywords by their names in messages. */
-        if (vbc_channels_set(cfg, o, o->type == VBC_OPT_FLAG ? NULL : text, err, sizeof err) != 0) {
+        if (vb_channels_set(ch, name, text, err, sizeof err) != 0) {
             vbpy_raise(VB_EMISUSE, "%s (%s)", err, name);
             return -1;
         }
     }
-    if (vbc_channels_check(cfg, err, sizeof err) != 0) {
+    if (vb_channels_check(ch, err, sizeof err) != 0) {
         vbpy_raise(VB_EMISUSE, "%s", err);
         return -1;
     }
@@ -279,88 +259,52 @@ static PyObject *channels_run(PyObject *self, PyObject *args)
     if (!PyArg_ParseTuple(args, "OOO!OilppO", &pcap, &scap, &PyDict_Type, &kw, &ccap, &model,
                           &frame, &want_flags, &first, &progress))
         return NULL;
-    vbc_pipe *pipe = PyCapsule_GetPointer(pcap, PIPE_CAPSULE);
-    vb_sphere_set *s = pipe ? vbpy_spheres_get(scap) : NULL;
-    frame_carry *carry = NULL;
-    if (!s || (ccap != Py_None && !(carry = PyCapsule_GetPointer(ccap, CARRY_CAPSULE))))
+    vb_channels *ch = PyCapsule_GetPointer(pcap, PIPE_CAPSULE);
+    vb_sphere_set *s = ch ? vbpy_spheres_get(scap) : NULL;
+    if (!s || config_from(kw, ch) != 0)
         return NULL;
-    /* Heap: the configuration is large (its name lists). */
-    vbc_channels_config *cfg = malloc(sizeof *cfg);
-    if (!cfg)
-        return PyErr_NoMemory();
-    if (config_from(kw, cfg) != 0) {
-        free(cfg);
-        return NULL;
-    }
-    /* An engine's later frames sweep the axis its first frame found. */
-    if (carry && carry->pore.have_axis && !cfg->pore.have_axis && !cfg->pore.have_through) {
-        vbc_pore_options sweep = cfg->pore.sweep;
-        int enabled = cfg->pore.enabled;
-        cfg->pore = carry->pore;
-        cfg->refit0 = carry->refit0;
-        memcpy(cfg->u0, carry->u0, sizeof cfg->u0);
-        memcpy(cfg->c0, carry->c0, sizeof cfg->c0);
-        cfg->pore.sweep = sweep;
-        cfg->pore.enabled = enabled;
-    }
     vbpy_call c;
-    if (vbpy_progress_check(progress) != 0 || vbpy_call_open(&c) != 0) {
-        free(cfg);
+    if (vbpy_progress_check(progress) != 0 || vbpy_call_open(&c) != 0)
         return NULL;
-    }
     vbpy_call_progress(&c, progress);
-    vbc_run run;
-    vbc_run_out o;
+    unsigned flags = (want_flags ? VB_CHANNELS_KEEP_FLAGS : 0) |
+                     (ccap != Py_None ? VB_CHANNELS_CARRY_AXIS : 0);
     int rc;
-    vbc_run_init(&run, cfg, pipe, s->source);
-    run.want = want_flags ? VBC_WANT_FLAGS : 0;
-    run.frames_total = 1; /* one frame a call: progress ("frames", 1, 1) */
     Py_BEGIN_ALLOW_THREADS
-    rc = vbc_run_frame(c.ctx, &run, s, frame, model, first, &o);
+    rc = vb_channels_run(c.ctx, ch, s, frame, model, first, flags);
     Py_END_ALLOW_THREADS
-    if (rc == VB_OK)
-        vbc_run_report_left_out(c.ctx, &run);
-    if (rc != VB_OK) {
-        vbc_run_free(&run);
-        free(cfg);
+    if (rc != VB_OK)
         return vbpy_call_fail(&c, rc);
-    }
-    if (carry && cfg->pore.have_axis) {
-        carry->pore = cfg->pore;
-        carry->refit0 = cfg->refit0;
-        memcpy(carry->u0, cfg->u0, sizeof carry->u0);
-        memcpy(carry->c0, cfg->c0, sizeof carry->c0);
-    }
-    const vbc_grid g = o.g;
-    const vbc_frame_info fi = o.fi;
-    const char *device = vbc_pipe_device_name(pipe);
+    vb_channels_frame f;
+    vb_channels_frame_get(ch, &f);
+    const char *device = vb_channels_device_name(ch);
     PyObject *csv = NULL, *json = NULL;
     PyObject *d = NULL;
-    if (frame_texts(o.s, &g, &fi, &o.F.result, cfg->probe, cfg->grid, device, &csv, &json) == 0)
+    if (frame_texts(ch, &csv, &json) == 0)
         d = Py_BuildValue("{s:O,s:O,s:s,s:n,s:n,s:n,s:{s:i,s:i,s:i,s:d,s:(ddd)},"
                           "s:{s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d}}",
                           "csv", csv, "json", json, "device", device, "components",
-                          (Py_ssize_t)o.F.result.components, "pruned", (Py_ssize_t)o.F.result.pruned,
-                          "channel_voxels", (Py_ssize_t)o.F.out.nvoxels, "grid", "nx", g.nx, "ny",
-                          g.ny, "nz", g.nz, "h", g.h, "origin", g.origin[0], g.origin[1],
-                          g.origin[2], "ms", "prepare", fi.ms_prepare, "upload", fi.ms_upload,
-                          "jfa", fi.ms_jfa, "masks", fi.ms_masks, "analysis", fi.ms_analysis,
-                          "cells", fi.ms_cells, "refine", fi.ms_refine, "sweep", fi.ms_sweep,
-                          "verdict", fi.ms_verdict, "lining", fi.ms_lining, "pore", fi.ms_pore,
-                          "total", fi.ms_total);
+                          (Py_ssize_t)f.components, "pruned", (Py_ssize_t)f.pruned,
+                          "channel_voxels", (Py_ssize_t)f.channel_voxels, "grid", "nx", f.nx,
+                          "ny", f.ny, "nz", f.nz, "h", f.h, "origin", f.origin[0], f.origin[1],
+                          f.origin[2], "ms", "prepare", f.ms_prepare, "upload", f.ms_upload,
+                          "jfa", f.ms_jfa, "masks", f.ms_masks, "analysis", f.ms_analysis,
+                          "cells", f.ms_cells, "refine", f.ms_refine, "sweep", f.ms_sweep,
+                          "verdict", f.ms_verdict, "lining", f.ms_lining, "pore", f.ms_pore,
+                          "total", f.ms_total);
     Py_XDECREF(csv);
     Py_XDECREF(json);
-    if (d && !result_dict(&o.F.result, d))
+    if (d && !result_dict(vb_channels_last(ch), d))
         Py_CLEAR(d);
+    size_t nflags;
+    const uint8_t *fl = vb_channels_flags(ch, &nflags);
     if (d && want_flags) {
-        PyObject *fl = vbpy_bytes(o.F.out.flags, vbc_grid_voxels(&g), 1);
-        if (!fl || PyDict_SetItemString(d, "flags", fl) != 0)
+        PyObject *b = vbpy_bytes(fl, nflags, 1);
+        if (!b || PyDict_SetItemString(d, "flags", b) != 0)
             Py_CLEAR(d);
-        Py_XDECREF(fl);
+        Py_XDECREF(b);
     }
-    vbc_run_frame_done(&run, 0, &o);
-    vbc_run_free(&run);
-    free(cfg);
+    vb_channels_done(ch); /* an engine keeps no frame between calls */
     return vbpy_call_return(&c, d);
 }
 
@@ -372,15 +316,14 @@ static PyObject *option_table(PyObject *self, PyObject *unused)
     (void)unused;
     static const char *const types[] = {"flag", "real", "count", "pow2", "path",
                                         "choice", "vec3", "frames", "names"};
-    size_t n;
-    const vbc_opt_spec *t = vbc_channels_options(&n);
     PyObject *d = PyDict_New();
-    for (size_t k = 0; d && k < n; k++) {
-        if (!t[k].py)
+    vb_channels_option o;
+    for (size_t k = 0; d && vb_channels_option_at(k, &o) == 0; k++) {
+        if (!o.py)
             continue;
-        PyObject *row = Py_BuildValue("(sddzzs)", types[t[k].type], t[k].min, t[k].max, t[k].def,
-                                      t[k].choices, t[k].help);
-        if (!row || PyDict_SetItemString(d, t[k].py, row) != 0)
+        PyObject *row = Py_BuildValue("(sddzzs)", types[o.type], o.min, o.max, o.def, o.choices,
+                                      o.help);
+        if (!row || PyDict_SetItemString(d, o.py, row) != 0)
             Py_CLEAR(d);
         Py_XDECREF(row);
     }
@@ -391,9 +334,10 @@ static PyObject *flag_bits(PyObject *self, PyObject *unused)
 {
     (void)self;
     (void)unused;
-    return Py_BuildValue("{s:I,s:I,s:I,s:I,s:I,s:I}", "atomic", VBC_F_ATOMIC, "molecular",
-                         VBC_F_MOLECULAR, "edge", VBC_F_EDGE, "interior", VBC_F_INTERIOR,
-                         "channel", VBC_F_CHANNEL, "mouth", VBC_F_MOUTH);
+    return Py_BuildValue("{s:I,s:I,s:I,s:I,s:I,s:I}", "atomic", VB_CHANNEL_F_ATOMIC, "molecular",
+                         VB_CHANNEL_F_MOLECULAR, "edge", VB_CHANNEL_F_EDGE, "interior",
+                         VB_CHANNEL_F_INTERIOR, "channel", VB_CHANNEL_F_CHANNEL, "mouth",
+                         VB_CHANNEL_F_MOUTH);
 }
 
 PyMethodDef vbpy_channels_methods[] = {
@@ -403,8 +347,8 @@ PyMethodDef vbpy_channels_methods[] = {
      "channels_run(pipe, spheres, options, carry, model, frame, want_flags, first) -> "
      "(dict, diagnostics): options by their Python keywords (channel_options())"},
     {"channels_carry", carry_new, METH_NOARGS,
-     "channels_carry() -> capsule: what an engine carries between frames (the pore axis)"},
+     "channels_carry() -> token: an engine's frames carry the pore axis (kept by the handle)"},
     {"channel_options", option_table, METH_NOARGS,
      "channel_options() -> {keyword: (type, min, max, default, choices, help)}"},
-    {"channel_flag_bits", flag_bits, METH_NOARGS, "The VBC_F_* bits of the flag volume."},
+    {"channel_flag_bits", flag_bits, METH_NOARGS, "The VB_CHANNEL_F_* bits of the flag volume."},
     {NULL, NULL, 0, NULL}};

@@ -1,0 +1,344 @@
+/* The channels handle over every frame of a source (vb_channels.h): the
+ * frame loop of `vorball channels` (read, select, run, write each frame;
+ * frames in flight on a reader thread, vbc_ahead.h, or dealt to processes
+ * in rounds through the caller's hooks), the heads and the tails of its
+ * outputs. */
+#include <limits.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "channels_handle.h"
+#include "vb_diag.h"
+#include "vb_output.h"
+#include "vb_parallel.h"
+#include "vbc_ahead.h"
+#include "vbc_page.h"
+
+static FILE *frame_stream(const vb_channels_io *io, int k)
+{
+    return io->stream ? io->stream(io->user, k) : io->sink[k];
+}
+
+static int check_output(vb_ctx *ctx, const vb_channels_io *io, const char *path)
+{
+    return io->check_output ? io->check_output(ctx, path) : VB_OK;
+}
+
+static FILE *open_output(vb_ctx *ctx, const vb_channels_io *io, const char *path)
+{
+    return io->open_output ? io->open_output(ctx, path) : vb_output_open(ctx, path);
+}
+
+static int close_output(vb_ctx *ctx, const vb_channels_io *io, FILE *f, const char *path)
+{
+    return io->close_output ? io->close_output(ctx, f, path) : vb_output_commit(ctx, f);
+}
+
+void vb_channels_write_head(const vb_channels *ch, const vb_channels_io *io, const char *options)
+{
+    const vbc_channels_config *c = &ch->cfg;
+    FILE *table = io->sink[VB_CHANNELS_SINK_TABLE], *stats = io->sink[VB_CHANNELS_SINK_STATS];
+    if (table && c->json)
+        vbc_write_json_begin_prov(table, options, c->traj ? c->traj : io->input, c->probe, c->grid,
+                                  vb_channels_device_name(ch));
+    else if (table)
+        vbc_write_csv_header(table);
+    if (stats)
+        vbc_write_stats_header(stats);
+    if (io->profile)
+        vbc_write_profile_header(io->profile);
+}
+
+/* The per-frame volume name: '%d' replaced by the frame index. */
+static int volume_name(const char *pattern, long frame, char *buf, size_t len)
+{
+    const char *p = strstr(pattern, "%d");
+    if (!p)
+        return snprintf(buf, len, "%s", pattern) < (int)len ? 0 : -1;
+    int n = snprintf(buf, len, "%.*s%ld%s", (int)(p - pattern), pattern, frame, p + 2);
+    return n >= 0 && n < (int)len ? 0 : -1;
+}
+
+/* Adds the frame to the results page (--html), made on the first frame. */
+static int page_frame(vb_ctx *ctx, vb_channels *ch, const vb_channels_io *io,
+                      const vb_sphere_set *s, long index, int model, const vbc_result *res)
+{
+    const vbc_channels_config *c = &ch->cfg;
+    char label[64];
+    if (!ch->page) {
+        char title[512];
+        snprintf(title, sizeof title, "vorball channels %s%s%s", io->input, c->traj ? " + " : "",
+                 c->traj ? c->traj : "");
+        if (!(ch->page = vb_page_new(ctx, title, s)))
+            return vb_errcode(ctx);
+    }
+    snprintf(label, sizeof label, "frame %ld (model %d)", index, model);
+    return vbc_page_add(ch->page, label, s, res);
+}
+
+/* The first frame as PDB beside the PyMOL script (vbc_pymol_needs_frame0). */
+static int write_frame0(vb_ctx *ctx, const vb_channels_io *io, const char *path,
+                        const vb_sphere_set *s)
+{
+    FILE *f = open_output(ctx, io, path);
+    if (!f)
+        return vb_errcode(ctx);
+    vbc_write_molecule_pdb(f, s);
+    return close_output(ctx, io, f, path);
+}
+
+/* The eight pipeline stages of the first frame (--png), kept in the
+ * handle for the caller to write. */
+static int make_stages(vb_ctx *ctx, vb_channels *ch, const vb_sphere_set *s)
+{
+    const vbc_channels_config *c = &ch->cfg;
+    vbc_options o = c->opt;
+    o.pore = NULL;
+    vbc_image_free(&ch->stages);
+    memset(&ch->stages, 0, sizeof ch->stages);
+    return vbc_stages_render(ctx, ch->pipe, s, c->probe, c->grid, c->png_axis, &o, &ch->stages);
+}
+
+/* Runs one frame (vbc_run_frame; with `front`, the back half of a frame
+ * whose front half the reader ran: vbc_run_back) and writes its outputs;
+ * `first`: it is the first frame of the selection (volume, picture). */
+static int do_frame(vb_ctx *ctx, vb_channels *ch, const vb_channels_io *io, long index,
+                    int model, int first, const vb_sphere_set *s0, double t_read,
+                    double cpu_read, vbc_run_out *front)
+{
+    vbc_run_out o;
+    double t_run = vb_now();
+    int rc;
+    if (front) {
+        o = *front;
+        rc = vbc_run_back(ctx, &ch->run, &o);
+    } else
+        rc = vbc_run_frame(ctx, &ch->run, s0, index, model, first, &o);
+    if (rc != VB_OK)
+        return rc;
+    o.fi.ms_read = 1e3 * (t_run - t_read); /* the JSON's clocks: from the reading on */
+    o.fi.t_start = t_read;
+    o.fi.cpu_start = cpu_read;
+    const vbc_channels_config *c = &ch->cfg;
+    const vbc_result *res = &o.F.result;
+    FILE *table = frame_stream(io, VB_CHANNELS_SINK_TABLE), *f;
+    if (table && c->json)
+        vbc_write_json_frame(table, first, &o.fi, &o.g, o.s, res);
+    else if (table)
+        vbc_write_csv_rows(table, &o.fi, &o.g, o.s, res);
+    if ((c->stats || c->stats_stderr) && (f = frame_stream(io, VB_CHANNELS_SINK_STATS)))
+        vbc_write_stats_row(f, &o.fi, &o.g, res);
+    if (c->centrelines && (f = frame_stream(io, VB_CHANNELS_SINK_CENTRELINES)))
+        vbc_write_centrelines_pdb(f, model, res);
+    rc = io->frame_done ? io->frame_done(ctx, io->user) : VB_OK;
+    if (rc == VB_OK && io->profile)
+        vbc_write_profile_rows(io->profile, &o.fi, o.s, res);
+    if (rc == VB_OK && c->html)
+        rc = page_frame(ctx, ch, io, o.s, index, model, res);
+    if (rc == VB_OK && first && io->first_frame)
+        rc = io->first_frame(ctx, io->user, s0, o.s);
+    if (rc == VB_OK && c->volume && (strstr(c->volume, "%d") || first)) {
+        char name[4096];
+        if (volume_name(c->volume, index, name, sizeof name) != 0)
+            rc = vb_error(ctx, VB_EMISUSE, NULL, 0, "volume file name too long");
+        else if ((rc = check_output(ctx, io, name)) == VB_OK)
+            rc = vbc_write_volume(ctx, name, &o.g, o.F.out.flags, c->volume_bit);
+    }
+    if (rc == VB_OK && c->png && first)
+        rc = make_stages(ctx, ch, o.s);
+    if (rc == VB_OK && first && ch->frame0[0])
+        rc = write_frame0(ctx, io, ch->frame0, s0);
+    vbc_run_frame_done(&ch->run, first, &o);
+    return rc;
+}
+
+/* The end of a round: the status every process agrees on. */
+static int round_end(vb_ctx *ctx, const vb_channels_io *io, int rc, long j0, long j1)
+{
+    return io->round_end ? io->round_end(ctx, io->user, rc, j0, j1) : rc;
+}
+
+static void status(const vb_channels *ch, const vb_channels_io *io, long index)
+{
+    if (io->status)
+        io->status(io->user, index, ch->run.frames_done, vb_channels_device_name(ch));
+}
+
+/* The frames of F in rounds: every process reads every frame, runs the
+ * selected ones that are its own, and the round's end writes them in
+ * frame order. *selected gets the frames selected. */
+static int run_rounds(vb_ctx *ctx, vb_channels *ch, vb_frame_source *F, const vb_channels_io *io,
+                      long *selected)
+{
+    const vbc_channels_config *c = &ch->cfg;
+    long index = 0, j = 0, j0 = 0, round = io->round_end && io->round > 0 ? io->round : LONG_MAX;
+    int rc = VB_OK, end = 0;
+    while (rc == VB_OK && !end) {
+        int frc = VB_OK;
+        while (frc == VB_OK && j - j0 < round) {
+            if (c->f1 >= 0 && index >= c->f1) {
+                end = 1;
+                break;
+            }
+            vb_sphere_set *s = NULL;
+            double t_read = vb_now(), cpu_read = vbc_cpu_now();
+            int model, quiet = io->quiet_read ? vb_set_verbosity(ctx, 0) : -1;
+            frc = vb_frame_source_next(ctx, F, &s, &model);
+            if (quiet >= 0)
+                vb_set_verbosity(ctx, quiet);
+            if (frc != VB_OK || !s) {
+                end = 1;
+                break;
+            }
+            status(ch, io, index);
+            if (index >= c->f0 && (index - c->f0) % c->fstep == 0) {
+                if (!io->mine || io->mine(io->user, j))
+                    frc = do_frame(ctx, ch, io, index, model, j == 0, s, t_read, cpu_read, NULL);
+                else if (j == 0 && c->pore.enabled && !c->pore.have_axis)
+                    frc = vbc_run_axis(ctx, &ch->run, s, index);
+                j++;
+            }
+            vb_spheres_free(s);
+            index++;
+        }
+        /* A process that failed comes here at once; the others at the end
+         * of the round: the same collective, so every one stops together. */
+        rc = round_end(ctx, io, frc, j0, j);
+        j0 = j;
+    }
+    *selected = j;
+    return rc;
+}
+
+/* run_rounds with the frames in flight (vbc_ahead.h; one process): the
+ * reader thread reads and runs the front half of the next frames while
+ * this thread runs the back half of the current one and writes it; the
+ * same bytes. A frame's "read" clock is the time this thread waited for
+ * the reader. */
+static int run_ahead(vb_ctx *ctx, vb_channels *ch, vb_frame_source *F, const vb_channels_io *io,
+                     long *selected, int depth)
+{
+    vbc_ahead *ah = NULL;
+    long j = 0, j0 = 0, round = io->round_end && io->round > 0 ? io->round : LONG_MAX;
+    int rc = vbc_ahead_open(ctx, &ch->run, F, depth, &ah), end = rc != VB_OK;
+    while (rc == VB_OK && !end) {
+        int frc = VB_OK;
+        while (frc == VB_OK && j - j0 < round) {
+            vbc_ahead_frame f;
+            int have;
+            double t_read = vb_now(), cpu_read = vbc_cpu_now();
+            frc = vbc_ahead_next(ctx, ah, &f, &have);
+            if (frc != VB_OK || !have) {
+                end = 1;
+                break;
+            }
+            status(ch, io, f.index);
+            frc = do_frame(ctx, ch, io, f.index, f.o.fi.model, f.j == 0, f.s0, t_read, cpu_read,
+                           &f.o);
+            vb_spheres_free(f.s0);
+            j++;
+        }
+        rc = round_end(ctx, io, frc, j0, j);
+        j0 = j;
+    }
+    vbc_ahead_close(ctx, ah);
+    *selected = j;
+    return rc;
+}
+
+int vb_channels_run_frames(vb_ctx *ctx, vb_channels *ch, vb_frame_source *F,
+                           const vb_channels_io *io, long *selected)
+{
+    vbc_channels_config *c = &ch->cfg;
+    *selected = 0;
+    vb_channels_drop_run(ch);
+    if (!ch->pipe)
+        return vb_error(ctx, VB_EMISUSE, NULL, 0, "channels: no engine (vb_channels_open)");
+    ch->frame0[0] = '\0';
+    if (c->pymol && vbc_pymol_needs_frame0(io->input, c->traj) &&
+        snprintf(ch->frame0, sizeof ch->frame0, "%s.frame0.pdb", c->pymol) >= (int)sizeof ch->frame0)
+        ch->frame0[0] = '\0'; /* a name too long for a file anyway: the input is named */
+    vbc_run_init(&ch->run, c, ch->pipe, io->input);
+    ch->run_live = 1;
+    /* --frames a:b:step with an end: the number of frames is known. */
+    if (c->f1 > c->f0 && c->fstep > 0)
+        ch->run.frames_total = (c->f1 - c->f0 + c->fstep - 1) / c->fstep;
+    /* Frames in flight on one process; the picture (--png) runs the pipe
+     * on this thread, so it keeps the loop that reads frame by frame. */
+    int depth = vbc_ahead_depth(), rc;
+    if (!io->mine && depth > 0 && !c->png)
+        rc = run_ahead(ctx, ch, F, io, selected, depth);
+    else
+        rc = run_rounds(ctx, ch, F, io, selected);
+    if (rc == VB_OK && *selected == 0)
+        /* Of a trajectory, the frames are the trajectory's (a DCD cut
+         * inside its first frame has none): name it, not the topology. */
+        rc = vb_error(ctx, VB_EINPUT_MODEL, c->traj ? c->traj : io->input, 0,
+                      c->traj ? "no whole frame selected from the trajectory (--frames / --model)"
+                              : "no frame selected (--frames / --model)");
+    return rc;
+}
+
+int vb_channels_finish(vb_ctx *ctx, vb_channels *ch, const vb_channels_io *io, int writer,
+                       long selected)
+{
+    const vbc_channels_config *c = &ch->cfg;
+    int rc = VB_OK;
+    if (writer && c->volume && !strstr(c->volume, "%d") && selected > 1)
+        vb_warn(ctx, VB_W_VOLUME_FIRST_FRAME, c->volume, 0, "volume holds the first of %ld frames "
+                "('%%d' in the name writes one per frame)", selected);
+    vbc_run_report_left_out(ctx, &ch->run);
+    FILE *table = io->sink[VB_CHANNELS_SINK_TABLE], *cl = io->sink[VB_CHANNELS_SINK_CENTRELINES];
+    if (writer && c->json && table)
+        vbc_write_json_end(table);
+    if (writer && cl)
+        vbc_write_centrelines_conect(cl, &ch->run.first);
+    if (writer && c->pymol) {
+        FILE *pml = open_output(ctx, io, c->pymol);
+        if (!pml)
+            return vb_errcode(ctx);
+        vbc_write_pymol(pml, c->pymol, ch->frame0[0] ? ch->frame0 : io->input, c->centrelines,
+                        c->traj);
+        rc = close_output(ctx, io, pml, c->pymol);
+    }
+    if (rc == VB_OK && c->occupancy)
+        rc = vbc_write_volume_f32(ctx, c->occupancy, &ch->run.fixed, ch->run.occupancy,
+                                  1.0 / (double)ch->run.frames_done);
+    if (rc == VB_OK && c->html)
+        rc = vb_page_write(ch->page, c->html);
+    return rc;
+}
+
+void vb_channels_totals_get(const vb_channels *ch, vb_channels_totals *t)
+{
+    t->frames = ch->run_live ? ch->run.frames_done : 0;
+    t->repeat = ch->cfg.repeat;
+    t->ms_total = ch->run_live ? ch->run.sum_total : 0;
+    t->ms_masks = ch->run_live ? ch->run.sum_masks : 0;
+}
+
+int vb_channels_stages(const vb_channels *ch, uint32_t *w, uint32_t *h, const uint8_t **rgb)
+{
+    if (!ch->stages.rgb)
+        return -1;
+    *w = ch->stages.w;
+    *h = ch->stages.h;
+    *rgb = ch->stages.rgb;
+    return 0;
+}
+
+size_t vb_channels_series(const vb_channels *ch, size_t k, long *frame, double *rmin, double *s)
+{
+    const vbc_series *S = &ch->run.series;
+    if (!ch->run_live)
+        return 0;
+    if (k < S->n) {
+        if (frame)
+            *frame = S->frame[k];
+        if (rmin)
+            *rmin = S->rmin[k];
+        if (s)
+            *s = S->s[k];
+    }
+    return S->n;
+}
