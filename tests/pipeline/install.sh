@@ -4,7 +4,9 @@
 # compiled against the installed headers with the flags of the installed
 # vorball.pc (pkg-config), linked to the installed libvorball.so only, run
 # on a corpus case: it must certify the golden number of vertices and
-# verify all of them in memory.
+# verify all of them in memory. A second client runs channels through the
+# public handle alone (vb_channels.h), one frame and every frame of a
+# trajectory: its tables must be the command's bytes.
 # usage: install.sh BUILD_DIR CC CORPUS WORK_DIR [EXTRA_CFLAGS]
 build=$1 cc=$2 corpus=$3 work=$4/install extra=$5
 . "$(dirname "$0")/lib.sh"
@@ -32,6 +34,11 @@ for f in "$inc"/*.h; do
     case " $reached " in *" $(basename "$f") "*) ;;
         *) fail "$(basename "$f") is installed but vorball.h does not include it" ;; esac
 done
+# The analysis's internals (core/discrete's vbc_*, vbj_*) are not installed:
+# channels are reached through vb_channels.h.
+for f in "$inc"/vbc_*.h "$inc"/vbj_*.h; do
+    [ -e "$f" ] && fail "$(basename "$f") is installed: an internal header of the channel analysis"
+done
 cflags=$(PKG_CONFIG_PATH=$(dirname "$pc") pkg-config --cflags vorball) || fail "pkg-config --cflags"
 libs=$(PKG_CONFIG_PATH=$(dirname "$pc") pkg-config --libs vorball) || fail "pkg-config --libs"
 # shellcheck disable=SC2086 # the flags are words
@@ -46,4 +53,23 @@ n=$(vertex_lines "$corpus/golden/$case.tsv" | wc -l)
     fail "client printed '$(cat "$work/out.txt")', expected '$n $n' (golden $case)"
 # Nothing but the library's own dependencies: the client needs no static archive.
 ldd "$work/client" | grep -q "$libdir/libvorball.so" || fail "client not linked to the installed libvorball"
-echo "ok: installed libvorball certified and verified $n vertices of $case"
+# Channels through the installed public handle: the command's tables.
+# shellcheck disable=SC2086 # the flags are words
+"$cc" -std=c11 -Wall -Wextra -Werror $extra $cflags "$(dirname "$0")/install_channels.c" $libs \
+    -Wl,-rpath,"$libdir" -o "$work/channels" > "$work/cc2.log" 2>&1 ||
+    { cat "$work/cc2.log" >&2; fail "the channels client does not compile against the installed headers"; }
+one=$corpus/data/1grm_single_hole2.pdb top=$corpus/data/ngl_md_ascii_trj.pdb xtc=$corpus/data/ngl_md_10frames.xtc
+"$work/channels" one "$one" > "$work/one.csv" 2> "$work/one.err" ||
+    { cat "$work/one.err" >&2; fail "channels client (one frame) failed"; }
+"$build/cli/vorball" channels "$one" --grid 64 --device ref -o "$work/one_cmd.csv" 2> /dev/null ||
+    fail "vorball channels (one frame) failed"
+cmp -s "$work/one.csv" "$work/one_cmd.csv" || fail "channels client: one frame's table differs from the command's"
+[ "$(cat "$work/one.err")" = "rows $(($(wc -l < "$work/one_cmd.csv") - 1))" ] ||
+    fail "channels client: '$(cat "$work/one.err")' for $(($(wc -l < "$work/one_cmd.csv") - 1)) rows"
+"$work/channels" frames "$top" "$xtc" > "$work/frames.csv" 2> "$work/frames.err" ||
+    { cat "$work/frames.err" >&2; fail "channels client (frames) failed"; }
+"$build/cli/vorball" channels "$top" --traj "$xtc" --grid 64 --device ref -o "$work/frames_cmd.csv" 2> /dev/null ||
+    fail "vorball channels (frames) failed"
+cmp -s "$work/frames.csv" "$work/frames_cmd.csv" || fail "channels client: the trajectory's table differs from the command's"
+[ "$(cat "$work/frames.err")" = "frames 10" ] || fail "channels client: '$(cat "$work/frames.err")', expected 'frames 10'"
+echo "ok: installed libvorball certified and verified $n vertices of $case; channels as the command"
