@@ -34,9 +34,9 @@ for f in "$inc"/*.h; do
     case " $reached " in *" $(basename "$f") "*) ;;
         *) fail "$(basename "$f") is installed but vorball.h does not include it" ;; esac
 done
-# The analysis's internals (core/discrete's vbc_*, vbj_*) are not installed:
-# channels are reached through vb_channels.h.
-for f in "$inc"/vbc_*.h "$inc"/vbj_*.h; do
+# The channel analysis's internals (core/discrete's vbc_*) are not
+# installed: channels are reached through vb_channels.h.
+for f in "$inc"/vbc_*.h; do
     [ -e "$f" ] && fail "$(basename "$f") is installed: an internal header of the channel analysis"
 done
 cflags=$(PKG_CONFIG_PATH=$(dirname "$pc") pkg-config --cflags vorball) || fail "pkg-config --cflags"
