@@ -99,7 +99,7 @@ static int parse_args(int argc, char **argv, ch_args *A)
         if (vb_channels_option_find(a, &o) != 0)
             return vb_cli_usage_error(cmd, "unknown option '%s' (see --help)", a), -1;
         const char *v = NULL;
-        if (o.type != VB_CHOPT_FLAG) {
+        if (o.type != VB_OPT_FLAG) {
             if (i + 1 >= argc)
                 return vb_cli_usage_error(cmd, "%s needs a value", a), -1;
             v = argv[++i];

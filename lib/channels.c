@@ -7,9 +7,6 @@
 #include "channels_handle.h"
 #include "vb_default.h"
 
-_Static_assert((int)VB_CHOPT_FLAG == (int)VBC_OPT_FLAG && (int)VB_CHOPT_NAMES == (int)VBC_OPT_NAMES &&
-                   (int)VB_CHOPT_CHOICE == (int)VBC_OPT_CHOICE,
-               "vb_channels_opt_type follows vbc_opt_type");
 _Static_assert((int)VB_CHANNELS_HELP_MAIN == (int)VBC_SECT_MAIN &&
                    (int)VB_CHANNELS_HELP_PORE == (int)VBC_SECT_PORE,
                "vb_channels_help_section follows vbc_opt_section");
@@ -17,21 +14,6 @@ _Static_assert(VB_CHANNEL_F_ATOMIC == VBC_F_ATOMIC && VB_CHANNEL_F_MOLECULAR == 
                    VB_CHANNEL_F_EDGE == VBC_F_EDGE && VB_CHANNEL_F_INTERIOR == VBC_F_INTERIOR &&
                    VB_CHANNEL_F_CHANNEL == VBC_F_CHANNEL && VB_CHANNEL_F_MOUTH == VBC_F_MOUTH,
                "VB_CHANNEL_F_* are the VBC_F_* bits");
-
-static void option_copy(const vbc_opt_spec *s, vb_channels_option *o)
-{
-    o->name = s->name;
-    o->alias = s->alias;
-    o->py = s->py;
-    o->type = s->type;
-    o->min = s->min;
-    o->max = s->max;
-    o->choices = s->choices;
-    o->value = s->value;
-    o->def = s->def;
-    o->help = s->help;
-    o->section = s->section;
-}
 
 size_t vb_channels_option_count(void)
 {
@@ -46,7 +28,7 @@ int vb_channels_option_at(size_t k, vb_channels_option *o)
     const vbc_opt_spec *t = vbc_channels_options(&n);
     if (k >= n)
         return -1;
-    option_copy(&t[k], o);
+    *o = t[k];
     return 0;
 }
 
@@ -63,7 +45,7 @@ int vb_channels_option_find(const char *name, vb_channels_option *o)
     const vbc_opt_spec *s = spec_of(name);
     if (!s)
         return -1;
-    option_copy(s, o);
+    *o = *s;
     return 0;
 }
 
@@ -118,7 +100,7 @@ int vb_channels_set(vb_channels *ch, const char *name, const char *value, char *
         snprintf(err, errlen, "unknown channels option '%s'", name ? name : "");
         return -1;
     }
-    return vbc_channels_set(&ch->cfg, o, o->type == VBC_OPT_FLAG ? NULL : value, err, errlen);
+    return vbc_channels_set(&ch->cfg, o, o->type == VB_OPT_FLAG ? NULL : value, err, errlen);
 }
 
 int vb_channels_check(vb_channels *ch, char *err, size_t errlen)

@@ -22,38 +22,17 @@
 
 #include "vb.h"
 #include "vb_frames.h"
+#include "vb_option.h"
 
 /* ---- The option table (each option declared once: name, type, range,
  * default, help) ---- */
 
-/* An option's value type (the same order as the library's table). */
-enum vb_channels_opt_type {
-    VB_CHOPT_FLAG,   /* no value: present sets it */
-    VB_CHOPT_REAL,   /* a number in [min, max] */
-    VB_CHOPT_COUNT,  /* an integer in [min, max] */
-    VB_CHOPT_POW2,   /* a power of two in [min, max] */
-    VB_CHOPT_PATH,   /* a file name */
-    VB_CHOPT_CHOICE, /* one of the words in `choices` (comma-separated) */
-    VB_CHOPT_VEC3,   /* X,Y,Z */
-    VB_CHOPT_FRAMES, /* A:B:S, each part optional */
-    VB_CHOPT_NAMES   /* NAME,NAME,... */
-};
-
 /* Where --help lists an option (vb_channels_help). */
 enum vb_channels_help_section { VB_CHANNELS_HELP_MAIN, VB_CHANNELS_HELP_PORE };
 
-typedef struct vb_channels_option {
-    const char *name;     /* "--probe" */
-    const char *alias;    /* a second spelling, or NULL */
-    const char *py;       /* the Python keyword, or NULL (an output of the command) */
-    int type;             /* enum vb_channels_opt_type */
-    double min, max;      /* REAL, COUNT, POW2 */
-    const char *choices;  /* CHOICE: the words, comma-separated */
-    const char *value;    /* the value's name in --help */
-    const char *def;      /* the default as text, or NULL */
-    const char *help;     /* one paragraph */
-    int section;          /* enum vb_channels_help_section */
-} vb_channels_option;
+/* A row of the table: spellings, type (enum vb_opt_type), range, choices,
+ * default, help, section (enum vb_channels_help_section). */
+typedef vb_option vb_channels_option;
 
 /* The number of options in the table. */
 size_t vb_channels_option_count(void);

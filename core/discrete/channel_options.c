@@ -20,103 +20,103 @@ enum vbc_opt_id {
 #define NONE 0, 0, NULL
 
 static const vbc_opt_spec table[] = {
-    {O_OUT, "-o", NULL, NULL, VBC_OPT_PATH, NONE, "FILE", NULL,
+    {O_OUT, "-o", NULL, NULL, VB_OPT_PATH, NONE, "FILE", NULL,
      "channel table (CSV; default stdout); columns below", VBC_SECT_MAIN},
-    {O_JSON, "--json", NULL, NULL, VBC_OPT_FLAG, NONE, NULL, NULL,
+    {O_JSON, "--json", NULL, NULL, VB_OPT_FLAG, NONE, NULL, NULL,
      "the table as JSON, with centrelines", VBC_SECT_MAIN},
-    {O_STATS, "--stats", NULL, NULL, VBC_OPT_FLAG, NONE, NULL, NULL,
+    {O_STATS, "--stats", NULL, NULL, VB_OPT_FLAG, NONE, NULL, NULL,
      "per-frame statistics (CSV: counts and timings) on stderr", VBC_SECT_MAIN},
-    {O_STATS_FILE, "--stats-file", NULL, NULL, VBC_OPT_PATH, NONE, "FILE", NULL,
+    {O_STATS_FILE, "--stats-file", NULL, NULL, VB_OPT_PATH, NONE, "FILE", NULL,
      "the same statistics to FILE", VBC_SECT_MAIN},
-    {O_PROBE, "--probe", NULL, "probe", VBC_OPT_REAL, NUM(0.0, 20.0), "R", "1.4",
+    {O_PROBE, "--probe", NULL, "probe", VB_OPT_REAL, NUM(0.0, 20.0), "R", "1.4",
      "solvent radius in A", VBC_SECT_MAIN},
-    {O_GRID, "--grid", NULL, "grid", VBC_OPT_POW2, NUM(16, 1024), "N", "128",
+    {O_GRID, "--grid", NULL, "grid", VB_OPT_POW2, NUM(16, 1024), "N", "128",
      "grid side, a power of two", VBC_SECT_MAIN},
-    {O_FRAMES, "--frames", NULL, NULL, VBC_OPT_FRAMES, NONE, "A:B:S", NULL,
+    {O_FRAMES, "--frames", NULL, NULL, VB_OPT_FRAMES, NONE, "A:B:S", NULL,
      "frames A, A+S, ... before B (from 0, B excluded; parts optional)", VBC_SECT_MAIN},
-    {O_TRAJ, "--traj", "--dcd", NULL, VBC_OPT_PATH, NONE, "FILE", NULL,
+    {O_TRAJ, "--traj", "--dcd", NULL, VB_OPT_PATH, NONE, "FILE", NULL,
      "coordinates from a DCD, XTC or TRR trajectory (INPUT = its topology; told apart by magic "
      "number); --dcd is the same", VBC_SECT_MAIN},
-    {O_MIN_LENGTH, "--min-length", NULL, "min_length", VBC_OPT_REAL, NUM(0.0, 1e4), "L", "5",
+    {O_MIN_LENGTH, "--min-length", NULL, "min_length", VB_OPT_REAL, NUM(0.0, 1e4), "L", "5",
      "prune centrelines shorter than L A", VBC_SECT_MAIN},
-    {O_MIN_RADIUS, "--min-radius", NULL, "min_radius", VBC_OPT_REAL, NUM(0.0, 1e4), "R", "0",
+    {O_MIN_RADIUS, "--min-radius", NULL, "min_radius", VB_OPT_REAL, NUM(0.0, 1e4), "R", "0",
      "prune channels whose bottleneck is below R A", VBC_SECT_MAIN},
-    {O_LINING_TOL, "--lining-tol", NULL, "lining_tol", VBC_OPT_REAL, NUM(0.0, 1e4), "T", "1",
+    {O_LINING_TOL, "--lining-tol", NULL, "lining_tol", VB_OPT_REAL, NUM(0.0, 1e4), "T", "1",
      "an atom lines a point when its surface is within radius + T A", VBC_SECT_MAIN},
-    {O_CAVITIES, "--cavities", NULL, "cavities", VBC_OPT_FLAG, NONE, NULL, NULL,
+    {O_CAVITIES, "--cavities", NULL, "cavities", VB_OPT_FLAG, NONE, NULL, NULL,
      "report cavities too (components that do not reach the surface)", VBC_SECT_MAIN},
-    {O_CENTRELINES, "--centerlines", "--centrelines", NULL, VBC_OPT_PATH, NONE, "FILE", NULL,
+    {O_CENTRELINES, "--centerlines", "--centrelines", NULL, VB_OPT_PATH, NONE, "FILE", NULL,
      "centrelines as PDB pseudo-atoms, radius in the B-factor", VBC_SECT_MAIN},
-    {O_PYMOL, "--pymol", NULL, NULL, VBC_OPT_PATH, NONE, "FILE", NULL,
+    {O_PYMOL, "--pymol", NULL, NULL, VB_OPT_PATH, NONE, "FILE", NULL,
      "PyMOL script drawing them (needs --centerlines) over the molecule and its trajectory "
      "(load_traj); where PyMOL cannot read the input's coordinates (a PSF, GRO, compressed or "
      "XYZR file) the first frame is written beside it as FILE.frame0.pdb", VBC_SECT_MAIN},
-    {O_VOLUME, "--volume", NULL, NULL, VBC_OPT_PATH, NONE, "FILE", NULL,
+    {O_VOLUME, "--volume", NULL, NULL, VB_OPT_PATH, NONE, "FILE", NULL,
      "mask volume, .mrc/.map (MRC) or .vtk; '%d' in the name writes one per frame, else the "
      "first frame only", VBC_SECT_MAIN},
-    {O_VOLUME_MASK, "--volume-mask", NULL, NULL, VBC_OPT_CHOICE, 0, 0,
+    {O_VOLUME_MASK, "--volume-mask", NULL, NULL, VB_OPT_CHOICE, 0, 0,
      "channel,interior,molecular,atomic,edge", "M", "channel",
      "the mask --volume writes: channel, interior, molecular, atomic or edge",
      VBC_SECT_MAIN},
-    {O_PNG, "--png", NULL, NULL, VBC_OPT_PATH, NONE, "FILE", NULL,
+    {O_PNG, "--png", NULL, NULL, VB_OPT_PATH, NONE, "FILE", NULL,
      "the 2D pipeline stages (paper Fig. 5) on the slice through the centroid of the first "
      "frame", VBC_SECT_MAIN},
-    {O_PNG_NORMAL, "--png-normal", NULL, NULL, VBC_OPT_CHOICE, 0, 0, "x,y,z", "x|y|z", "x",
+    {O_PNG_NORMAL, "--png-normal", NULL, NULL, VB_OPT_CHOICE, 0, 0, "x,y,z", "x|y|z", "x",
      "normal of that slice (x: the slice holds the z axis)", VBC_SECT_MAIN},
-    {O_JFA, "--jfa", NULL, "jfa", VBC_OPT_CHOICE, 0, 0, "exact,facet,jfa,jfa+1,jfa+2,1+jfa",
+    {O_JFA, "--jfa", NULL, "jfa", VB_OPT_CHOICE, 0, 0, "exact,facet,jfa,jfa+1,jfa+2,1+jfa",
      "VARIANT", "exact",
      "exact (the exact diagram by tiles, the fastest engine too), facet (Facet-JFA), jfa, "
      "jfa+1, jfa+2, 1+jfa (approximations: a few voxels may take a wrong label)",
      VBC_SECT_MAIN},
-    {O_DEVICE, "--device", NULL, "device", VBC_OPT_CHOICE, 0, 0, "auto,gpu,cpu,ref", "D", "auto",
+    {O_DEVICE, "--device", NULL, "device", VB_OPT_CHOICE, 0, 0, "auto,gpu,cpu,ref", "D", "auto",
      "auto (a GPU, else ref: on a host without a GPU the plain C twin costs less CPU than the "
      "CPU OpenCL device), gpu, cpu (the CPU OpenCL device) or ref (plain C, same output). If that "
      "OpenCL device cannot be used, the reference runs after warning W804 (W806: OpenCL failed "
      "mid-run, that frame and the rest rerun on the reference)", VBC_SECT_MAIN},
-    {O_REPEAT, "--repeat", NULL, NULL, VBC_OPT_COUNT, NUM(1, 100000), "N", "1",
+    {O_REPEAT, "--repeat", NULL, NULL, VB_OPT_COUNT, NUM(1, 100000), "N", "1",
      "run every frame N times (timings; outputs written once)", VBC_SECT_MAIN},
-    {O_AXIS, "--axis", NULL, "axis", VBC_OPT_VEC3, NONE, "X,Y,Z|fixed", NULL,
+    {O_AXIS, "--axis", NULL, "axis", VB_OPT_VEC3, NONE, "X,Y,Z|fixed", NULL,
      "the pore axis (HOLE's cvect); default: the membrane's normal when membrane atoms were "
      "left out, else the C_n symmetry axis of the chains (a subunit's "
      "pore when that is closed), else two stacked chains, else a beta-barrel's axis, else a "
      "through channel, else a principal axis (W810 says which); fixed: later frames sweep the "
      "first frame's axis (the default; --axis-refit refits it)", VBC_SECT_PORE},
-    {O_THROUGH, "--through", NULL, "through", VBC_OPT_VEC3, NONE, "X,Y,Z", NULL,
+    {O_THROUGH, "--through", NULL, "through", VB_OPT_VEC3, NONE, "X,Y,Z", NULL,
      "a point in the pore where the sweep starts (HOLE's cpoint)", VBC_SECT_PORE},
-    {O_SAMPLE, "--sample", NULL, "sample", VBC_OPT_REAL, NUM(0.01, 5.0), "S", "0.25",
+    {O_SAMPLE, "--sample", NULL, "sample", VB_OPT_REAL, NUM(0.01, 5.0), "S", "0.25",
      "A between planes (HOLE's sample)", VBC_SECT_PORE},
-    {O_END_RADIUS, "--end-radius", NULL, "end_radius", VBC_OPT_REAL, NUM(0.0, 1e3), "R", NULL,
+    {O_END_RADIUS, "--end-radius", NULL, "end_radius", VB_OPT_REAL, NUM(0.0, 1e3), "R", NULL,
      "end a side where the radius exceeds R A (HOLE's endrad; default: none, the molecular "
      "surface ends it)", VBC_SECT_PORE},
-    {O_NO_PORE, "--no-pore", NULL, "no_pore", VBC_OPT_FLAG, NONE, NULL, NULL,
+    {O_NO_PORE, "--no-pore", NULL, "no_pore", VB_OPT_FLAG, NONE, NULL, NULL,
      "channels only, no pore sweep", VBC_SECT_PORE},
-    {O_IGNORE, "--ignore", NULL, "ignore", VBC_OPT_NAMES, NONE, "RES,...", NULL,
+    {O_IGNORE, "--ignore", NULL, "ignore", VB_OPT_NAMES, NONE, "RES,...", NULL,
      "leave out atoms of these residue names (ligands, ions, ...)", VBC_SECT_PORE},
-    {O_MEMBRANE, "--membrane", NULL, "membrane", VBC_OPT_NAMES, NONE, "RES,...|none",
+    {O_MEMBRANE, "--membrane", NULL, "membrane", VB_OPT_NAMES, NONE, "RES,...|none",
      VBC_MEMBRANE_DEFAULT,
      "leave out the membrane: atoms of these residue names (membrane dummy atoms, lipids, "
      "detergents; W809 counts them by name); none keeps every atom", VBC_SECT_PORE},
-    {O_PROFILE, "--profile", NULL, NULL, VBC_OPT_PATH, NONE, "FILE", NULL,
+    {O_PROFILE, "--profile", NULL, NULL, VB_OPT_PATH, NONE, "FILE", NULL,
      "radius profile of every channel and frame (CSV: axial s, arc length, point, radius, "
      "nearest and touching atoms)", VBC_SECT_PORE},
-    {O_PLOT, "--plot", NULL, NULL, VBC_OPT_PATH, NONE, "FILE.png", NULL,
+    {O_PLOT, "--plot", NULL, NULL, VB_OPT_PATH, NONE, "FILE.png", NULL,
      "the pore's radius profile (first frame; with several frames also its smallest radius per "
      "frame) drawn by gnuplot from FILE.png.gp (kept; W807 without gnuplot)", VBC_SECT_PORE},
-    {O_HTML, "--html", NULL, NULL, VBC_OPT_PATH, NONE, "FILE", NULL,
+    {O_HTML, "--html", NULL, NULL, VB_OPT_PATH, NONE, "FILE", NULL,
      "a results page that opens offline in a browser: the molecule, channels coloured by radius, "
      "the pore's profile, the figures of each frame and a frame slider", VBC_SECT_PORE},
-    {O_FIXED_GRID, "--fixed-grid", NULL, NULL, VBC_OPT_FLAG, NONE, NULL, NULL,
+    {O_FIXED_GRID, "--fixed-grid", NULL, NULL, VB_OPT_FLAG, NONE, NULL, NULL,
      "one grid for every frame, fitted to the first with 5 A to spare (E1 when an atom leaves "
      "it), so volumes add up", VBC_SECT_PORE},
-    {O_OCCUPANCY, "--occupancy", NULL, NULL, VBC_OPT_PATH, NONE, "FILE", NULL,
+    {O_OCCUPANCY, "--occupancy", NULL, NULL, VB_OPT_PATH, NONE, "FILE", NULL,
      "per voxel the fraction of frames in which it is in a channel or inside a pore sphere "
      "(.mrc/.map float32 or .vtk; needs --fixed-grid)", VBC_SECT_PORE},
-    {O_AXIS_REFIT, "--axis-refit", NULL, "axis_refit", VBC_OPT_FLAG, NONE, NULL, NULL,
+    {O_AXIS_REFIT, "--axis-refit", NULL, "axis_refit", VB_OPT_FLAG, NONE, NULL, NULL,
      "trajectories: refit the axis on every frame from the source the first frame found "
      "(membrane, symmetry, chains, barrel, subunit, principal; the sweep's start moves with "
      "it)",
      VBC_SECT_PORE},
-    {O_KEEP_LIGANDS, "--keep-ligands", NULL, "keep_ligands", VBC_OPT_FLAG, NONE, NULL, NULL,
+    {O_KEEP_LIGANDS, "--keep-ligands", NULL, "keep_ligands", VB_OPT_FLAG, NONE, NULL, NULL,
      "keep the ligands: by default HETATM residues that are no polymer residue (sugars, ions, "
      "cofactors, drugs; not modified or D-amino acids, caps such as ACE, NME, ETA) are left out "
      "before the axis is chosen, as HOLE's examples ignore them, and W811 names them",
@@ -236,24 +236,24 @@ static int typed(const vbc_opt_spec *o, const char *v, double *num, double v3[3]
 {
     char r[64];
     switch (o->type) {
-    case VBC_OPT_FLAG:
-    case VBC_OPT_PATH:
-    case VBC_OPT_NAMES:
+    case VB_OPT_FLAG:
+    case VB_OPT_PATH:
+    case VB_OPT_NAMES:
         return 0;
-    case VBC_OPT_REAL:
+    case VB_OPT_REAL:
         fmt_range(o, r, sizeof r);
         if (vb_parse_double(v, num) != 0 || !(*num >= o->min && *num <= o->max))
             return snprintf(err, errlen, "%s needs a number in %s (A), not '%s'", o->name, r, v), -1;
         return 0;
-    case VBC_OPT_COUNT:
-    case VBC_OPT_POW2:
+    case VB_OPT_COUNT:
+    case VB_OPT_POW2:
         fmt_range(o, r, sizeof r);
         if (whole_count(v, num) != 0 || !(*num >= o->min && *num <= o->max) ||
-            (o->type == VBC_OPT_POW2 && ((unsigned long)*num & ((unsigned long)*num - 1))))
+            (o->type == VB_OPT_POW2 && ((unsigned long)*num & ((unsigned long)*num - 1))))
             return snprintf(err, errlen, "%s needs %s in %s, not '%s'", o->name,
-                            o->type == VBC_OPT_POW2 ? "a power of two" : "an integer", r, v), -1;
+                            o->type == VB_OPT_POW2 ? "a power of two" : "an integer", r, v), -1;
         return 0;
-    case VBC_OPT_CHOICE: {
+    case VB_OPT_CHOICE: {
         *num = choice_index(o->choices, v);
         if (*num < 0) {
             char w[160];
@@ -262,7 +262,7 @@ static int typed(const vbc_opt_spec *o, const char *v, double *num, double v3[3]
         }
         return 0;
     }
-    case VBC_OPT_VEC3:
+    case VB_OPT_VEC3:
         if (parse_vec3(v, v3) != 0)
             return snprintf(err, errlen, "%s needs X,Y,Z (three numbers), not '%s'", o->name, v), -1;
         return 0;
@@ -294,7 +294,7 @@ int vbc_channels_set(vbc_channels_config *c, const vbc_opt_spec *o, const char *
                      size_t errlen)
 {
     double num = 0.0, v3[3] = {0, 0, 0};
-    if (o->type != VBC_OPT_FLAG && !v)
+    if (o->type != VB_OPT_FLAG && !v)
         return snprintf(err, errlen, "%s needs a value", o->name), -1;
     if (o->id == O_AXIS && v && strcmp(v, "fixed") == 0) {
         c->axis_refit = 0; /* the default, named */
@@ -454,7 +454,7 @@ void vbc_channels_help(FILE *f, int section)
             continue;
         char head[64], text[1024], range[64] = "";
         snprintf(head, sizeof head, "  %s%s%s", o->name, o->value ? " " : "", o->value ? o->value : "");
-        if (o->type == VBC_OPT_REAL || o->type == VBC_OPT_COUNT || o->type == VBC_OPT_POW2)
+        if (o->type == VB_OPT_REAL || o->type == VB_OPT_COUNT || o->type == VB_OPT_POW2)
             snprintf(range, sizeof range, " %g..%g", o->min, o->max);
         if (o->def)
             snprintf(text, sizeof text, "%s (%s%s%sdefault %s)", o->help, range[0] ? "range" : "",

@@ -11,37 +11,16 @@
 #include <stdio.h>
 
 #include "vb_device.h"
+#include "vb_option.h"
 #include "vbc_pore_frame.h"
 #include "vbj_jfa.h"
 
-enum vbc_opt_type {
-    VBC_OPT_FLAG,   /* no value: present sets it */
-    VBC_OPT_REAL,   /* a number in [min, max] */
-    VBC_OPT_COUNT,  /* an integer in [min, max] */
-    VBC_OPT_POW2,   /* a power of two in [min, max] */
-    VBC_OPT_PATH,   /* a file name */
-    VBC_OPT_CHOICE, /* one of the words in `choices` (comma-separated) */
-    VBC_OPT_VEC3,   /* X,Y,Z: three numbers of magnitude at most 1e6 */
-    VBC_OPT_FRAMES, /* A:B:S, each part optional */
-    VBC_OPT_NAMES   /* NAME,NAME,...: at most VBC_MAX_NAMES names */
-};
-
-/* Where --help lists an option. */
+/* Where --help lists an option (vb_option.section). */
 enum vbc_opt_section { VBC_SECT_MAIN, VBC_SECT_PORE };
 
-typedef struct vbc_opt_spec {
-    int id;               /* enum vbc_opt_id (channel_options.c) */
-    const char *name;     /* "--probe" */
-    const char *alias;    /* a second spelling ("--centrelines"), or NULL */
-    const char *py;       /* the Python keyword, or NULL (the command's outputs) */
-    int type;             /* enum vbc_opt_type */
-    double min, max;      /* REAL, COUNT, POW2 */
-    const char *choices;  /* CHOICE: the words, comma-separated */
-    const char *value;    /* the value's name in --help ("R", "FILE") */
-    const char *def;      /* the default as text (NULL: none, the flag unset) */
-    const char *help;     /* one paragraph; --help wraps it */
-    int section;          /* enum vbc_opt_section */
-} vbc_opt_spec;
+/* A row of the table (vb_option.h; its id an enum vbc_opt_id of
+ * channel_options.c; NAMES: at most VBC_MAX_NAMES names). */
+typedef vb_option vbc_opt_spec;
 
 #define VBC_MAX_NAMES 64
 

@@ -146,10 +146,10 @@ static int option_text(const vb_channels_option *o, PyObject *v, char *out, size
     const char *key = o->py;
     int is_bool = PyBool_Check(v);
     switch (o->type) {
-    case VB_CHOPT_FLAG:
+    case VB_OPT_FLAG:
         snprintf(out, len, "%d", PyObject_IsTrue(v) == 1);
         return 0;
-    case VB_CHOPT_REAL: {
+    case VB_OPT_REAL: {
         double d = is_bool ? NAN : PyFloat_AsDouble(v);
         if (is_bool || (d == -1.0 && PyErr_Occurred())) {
             PyErr_Clear();
@@ -159,8 +159,8 @@ static int option_text(const vb_channels_option *o, PyObject *v, char *out, size
         snprintf(out, len, "%.17g", d);
         return 0;
     }
-    case VB_CHOPT_COUNT:
-    case VB_CHOPT_POW2: {
+    case VB_OPT_COUNT:
+    case VB_OPT_POW2: {
         if (is_bool || !PyLong_Check(v)) {
             vbpy_raise(VB_EMISUSE, "%s must be an integer, not a %s", key, Py_TYPE(v)->tp_name);
             return -1;
@@ -173,14 +173,14 @@ static int option_text(const vb_channels_option *o, PyObject *v, char *out, size
         snprintf(out, len, "%lld", n);
         return 0;
     }
-    case VB_CHOPT_CHOICE:
+    case VB_OPT_CHOICE:
         if (!PyUnicode_Check(v)) {
             vbpy_raise(VB_EMISUSE, "%s must be a name, not a %s", key, Py_TYPE(v)->tp_name);
             return -1;
         }
         snprintf(out, len, "%s", PyUnicode_AsUTF8(v));
         return 0;
-    case VB_CHOPT_VEC3: {
+    case VB_OPT_VEC3: {
         double x[3];
         if (!PySequence_Check(v) || PyUnicode_Check(v) || PySequence_Size(v) != 3) {
             PyErr_Clear();
@@ -200,7 +200,7 @@ static int option_text(const vb_channels_option *o, PyObject *v, char *out, size
         snprintf(out, len, "%.17g,%.17g,%.17g", x[0], x[1], x[2]);
         return 0;
     }
-    case VB_CHOPT_NAMES:
+    case VB_OPT_NAMES:
         if (!PyUnicode_Check(v)) {
             vbpy_raise(VB_EMISUSE, "%s must be comma-separated residue names, not a %s", key,
                        Py_TYPE(v)->tp_name);
@@ -235,7 +235,7 @@ static int config_from(PyObject *kw, vb_channels *ch)
             continue; /* the library's default */
         if (option_text(&o, v, text, sizeof text) != 0)
             return -1;
-        if (o.type == VB_CHOPT_FLAG && text[0] == '0')
+        if (o.type == VB_OPT_FLAG && text[0] == '0')
             continue;
         /* Python's keywords by their names in messages. */
         if (vb_channels_set(ch, name, text, err, sizeof err) != 0) {
