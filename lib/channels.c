@@ -201,6 +201,7 @@ int vb_channels_run(vb_ctx *ctx, vb_channels *ch, const vb_sphere_set *s, long i
         return rc;
     }
     ch->have_out = 1;
+    ch->keep_flags = (flags & VB_CHANNELS_KEEP_FLAGS) != 0;
     ch->s0 = s;
     if (flags & VB_CHANNELS_CARRY_AXIS)
         carry_keep(ch);
@@ -247,7 +248,7 @@ int vb_channels_frame_get(const vb_channels *ch, vb_channels_frame *f)
 const uint8_t *vb_channels_flags(const vb_channels *ch, size_t *n)
 {
     *n = 0;
-    if (!ch->have_out || !ch->out.F.out.flags)
+    if (!ch->have_out || !ch->keep_flags || !ch->out.F.out.flags)
         return NULL;
     *n = vbc_grid_voxels(&ch->out.g);
     return ch->out.F.out.flags;

@@ -16,6 +16,7 @@ struct vb_channels {
     vbc_run_out out;          /* the last single frame (vb_channels_run) */
     const vb_sphere_set *s0;  /* its spheres as given */
     int have_out;
+    int keep_flags;           /* it was asked to keep its flag volume */
     /* The pore axis an engine's first frame found (VB_CHANNELS_CARRY_AXIS). */
     int have_carry;
     vbc_pore_request carry_pore;
