@@ -1,13 +1,13 @@
 /* `vorball channels`: channels and cavities of a molecule or of every frame
  * of a trajectory (multi-model PDB/PQR/mmCIF/GRO, or a DCD, XTC or TRR with
- * its topology),
- * by the discrete-Voronoi pipeline of the Facet-JFA paper (Sec. 4) on
- * OpenCL or its C reference, with components, centrelines, bottlenecks and
- * lining residues. */
-#include <math.h>
+ * its topology), by the discrete-Voronoi pipeline of the Facet-JFA paper
+ * (Sec. 4) on OpenCL or its C reference, with components, centrelines,
+ * bottlenecks and lining residues. The command parses its line into the
+ * library's channels handle (lib/vb_channels.h), opens its outputs, deals
+ * frames to MPI ranks through the hooks of the library's run over frames
+ * (vb_channels_run_frames), and writes the closing line and the pictures. */
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "cli_common.h"
 #include "commands.h"
