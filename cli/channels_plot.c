@@ -46,9 +46,10 @@ static void write_script(FILE *f, const char *output, const char *title, const v
     const vb_channels_result *res = vb_channels_first(ch);
     vb_channel_row c;
     vb_channel_point p;
-    double u[3];
+    vb_channels_pore pore;
     vb_channels_result_row(res, 0, &c);
-    vb_channels_result_pore(res, u);
+    vb_channels_result_pore(res, &pore);
+    const double *u = pore.u;
     size_t nseries = vb_channels_series(ch, 0, NULL, NULL, NULL);
     int multi = nseries > 1;
     fprintf(f, "# vorball channels --plot: the pore's radius profile (HOLE's colours: red\n"
@@ -118,8 +119,8 @@ static int copy_into_output(vb_ctx *ctx, const char *from, const char *to)
 int vb_cli_channels_plot(vb_ctx *ctx, const char *png, const char *title, const vb_channels *ch)
 {
     const vb_channels_result *res = vb_channels_first(ch);
-    double u[3];
-    if (!res || !vb_channels_result_pore(res, u))
+    vb_channels_pore pore;
+    if (!res || !vb_channels_result_pore(res, &pore))
         return vb_warn(ctx, VB_W_PORE_NOT_FOUND, png, 0, "no pore in the first frame: nothing to plot"), VB_OK;
     char script[4200], run[4200], tmp[4200];
     if (snprintf(script, sizeof script, "%s.gp", png) >= (int)sizeof script ||

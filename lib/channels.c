@@ -273,6 +273,14 @@ void vb_channels_write_frame_json(const vb_channels *ch, FILE *f)
     vbc_write_json_end(f);
 }
 
+void vb_channels_write_frame_profile(const vb_channels *ch, FILE *f)
+{
+    if (!ch->have_out)
+        return;
+    vbc_write_profile_header(f);
+    vbc_write_profile_rows(f, &ch->out.fi, ch->out.s, &ch->out.F.result);
+}
+
 const vb_channels_result *vb_channels_last(const vb_channels *ch)
 {
     return ch->have_out ? &ch->out.F.result : NULL;
@@ -340,10 +348,18 @@ const int32_t *vb_channels_result_lining(const vb_channels_result *r, size_t *n)
     return r->lining;
 }
 
-int vb_channels_result_pore(const vb_channels_result *r, double u[3])
+int vb_channels_result_pore(const vb_channels_result *r, vb_channels_pore *p)
 {
-    if (!r->pore.present || r->nchannels == 0 || r->channels[0].kind != VBC_PORE)
-        return 0;
-    memcpy(u, r->pore.u, 3 * sizeof *u);
-    return 1;
+    const vbc_pore_summary *q = &r->pore;
+    memcpy(p->u, q->u, sizeof p->u);
+    memcpy(p->c, q->c, sizeof p->c);
+    p->step = q->step;
+    p->F = q->F;
+    p->g_macro_pS = q->g_macro_pS;
+    p->open_lo = q->open_lo;
+    p->open_hi = q->open_hi;
+    p->judged = q->judged;
+    p->buried = q->buried;
+    p->why = q->why;
+    return q->present && r->nchannels > 0 && r->channels[0].kind == VBC_PORE;
 }

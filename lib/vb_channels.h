@@ -155,6 +155,11 @@ enum {
 void vb_channels_write_frame_csv(const vb_channels *ch, FILE *f);
 void vb_channels_write_frame_json(const vb_channels *ch, FILE *f);
 
+/* The last run's radius profile as `--profile` writes it for this frame
+ * alone: the header, then per point of every row its axial and arc
+ * coordinates, position, radius, nearest atom and bounding atoms. */
+void vb_channels_write_frame_profile(const vb_channels *ch, FILE *f);
+
 /* ---- A frame's rows ---- */
 
 /* A frame's analysis (opaque; read through the accessors below). */
@@ -198,8 +203,21 @@ int vb_channels_result_point(const vb_channels_result *r, size_t k, vb_channel_p
  * gets their count. */
 const int32_t *vb_channels_result_lining(const vb_channels_result *r, size_t *n);
 
-/* 1 when the frame has a pore (row 0), with its axis direction in u; else 0. */
-int vb_channels_result_pore(const vb_channels_result *r, double u[3]);
+/* The frame's pore as the table's pore columns and the JSON describe it. */
+typedef struct vb_channels_pore {
+    double u[3], c[3];     /* the axis: direction (unit) and the sweep's start, Å */
+    double step;           /* Å between planes */
+    double F, g_macro_pS;  /* HOLE's geometric factor (1/Å) and its conductance estimate
+                            * (pS, 1 M KCl) */
+    int open_lo, open_hi;  /* the openings: each end of the sweep left the molecule */
+    int judged;            /* the verdict ran on a found axis: `buried` below */
+    double buried;         /* Å walled along the axis (also when there is no pore) */
+    const char *why;       /* how the axis was found, in words ("" when none) */
+} vb_channels_pore;
+
+/* 1 when the frame has a pore (row 0), else 0; *p filled either way (the
+ * verdict's figures stand without a pore). */
+int vb_channels_result_pore(const vb_channels_result *r, vb_channels_pore *p);
 
 /* ---- Every frame of a source ---- */
 

@@ -56,22 +56,42 @@ static PyObject *pipe_open(PyObject *self, PyObject *args)
     return vbpy_call_return(&c, cap);
 }
 
-/* The command's table (CSV header and rows) and JSON document for the
- * handle's last frame, through the library's writers. */
-static int frame_texts(const vb_channels *ch, PyObject **csv, PyObject **json)
+/* The command's texts for the handle's last frame, through the library's
+ * writers: its table (CSV header and rows), JSON document and --profile
+ * rows. 0, or -1 with a Python error set (*out holds nothing then). */
+static int frame_texts(const vb_channels *ch, PyObject *out[3])
 {
-    vbpy_text a, b;
-    if (vbpy_text_open(&a) != 0)
-        return -1;
-    if (vbpy_text_open(&b) != 0) {
-        Py_XDECREF(vbpy_text_take(&a));
-        return -1;
+    static void (*const write[3])(const vb_channels *, FILE *) = {
+        vb_channels_write_frame_csv, vb_channels_write_frame_json,
+        vb_channels_write_frame_profile};
+    for (int k = 0; k < 3; k++) {
+        vbpy_text a;
+        out[k] = NULL;
+        if (vbpy_text_open(&a) == 0) {
+            write[k](ch, a.f);
+            out[k] = vbpy_text_take(&a);
+        }
+        if (!out[k]) {
+            for (int j = 0; j < k; j++)
+                Py_CLEAR(out[j]);
+            return -1;
+        }
     }
-    vb_channels_write_frame_csv(ch, a.f);
-    vb_channels_write_frame_json(ch, b.f);
-    *csv = vbpy_text_take(&a);
-    *json = vbpy_text_take(&b);
-    return *csv && *json ? 0 : -1;
+    return 0;
+}
+
+/* The frame's pore: axis, openings, HOLE's conductance estimate, the
+ * verdict's walled length; None without a pore. */
+static PyObject *pore_dict(const vb_channels_result *res)
+{
+    vb_channels_pore p;
+    if (!vb_channels_result_pore(res, &p))
+        Py_RETURN_NONE;
+    return Py_BuildValue("{s:(ddd),s:(ddd),s:d,s:d,s:d,s:O,s:O,s:d,s:s}", "axis", p.u[0], p.u[1],
+                         p.u[2], "start", p.c[0], p.c[1], p.c[2], "step", p.step, "F", p.F,
+                         "g_macro_pS", p.g_macro_pS, "open_lo", p.open_lo ? Py_True : Py_False,
+                         "open_hi", p.open_hi ? Py_True : Py_False, "buried", p.buried, "why",
+                         p.why);
 }
 
 /* The analysis as arrays: channels (a list of tuples), points (x y z r
@@ -278,12 +298,15 @@ static PyObject *channels_run(PyObject *self, PyObject *args)
     vb_channels_frame f;
     vb_channels_frame_get(ch, &f);
     const char *device = vb_channels_device_name(ch);
-    PyObject *csv = NULL, *json = NULL;
-    PyObject *d = NULL;
-    if (frame_texts(ch, &csv, &json) == 0)
-        d = Py_BuildValue("{s:O,s:O,s:s,s:n,s:n,s:n,s:{s:i,s:i,s:i,s:d,s:(ddd)},"
+    PyObject *text[3], *pore = NULL, *d = NULL;
+    int texts = frame_texts(ch, text) == 0;
+    if (texts)
+        pore = pore_dict(vb_channels_last(ch));
+    if (pore)
+        d = Py_BuildValue("{s:O,s:O,s:O,s:O,s:s,s:n,s:n,s:n,s:{s:i,s:i,s:i,s:d,s:(ddd)},"
                           "s:{s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d}}",
-                          "csv", csv, "json", json, "device", device, "components",
+                          "csv", text[0], "json", text[1], "profile", text[2], "pore", pore,
+                          "device", device, "components",
                           (Py_ssize_t)f.components, "pruned", (Py_ssize_t)f.pruned,
                           "channel_voxels", (Py_ssize_t)f.channel_voxels, "grid", "nx", f.nx,
                           "ny", f.ny, "nz", f.nz, "h", f.h, "origin", f.origin[0], f.origin[1],
@@ -292,8 +315,9 @@ static PyObject *channels_run(PyObject *self, PyObject *args)
                           "cells", f.ms_cells, "refine", f.ms_refine, "sweep", f.ms_sweep,
                           "verdict", f.ms_verdict, "lining", f.ms_lining, "pore", f.ms_pore,
                           "total", f.ms_total);
-    Py_XDECREF(csv);
-    Py_XDECREF(json);
+    for (int k = 0; texts && k < 3; k++)
+        Py_DECREF(text[k]);
+    Py_XDECREF(pore);
     if (d && !result_dict(vb_channels_last(ch), d))
         Py_CLEAR(d);
     size_t nflags;

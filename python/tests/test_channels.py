@@ -51,6 +51,24 @@ def test_same_table_as_the_command(gramicidin):
     assert no_pore.csv == out and "pore" not in no_pore.table["kind"]
 
 
+def test_profile_and_pore_as_the_command(gramicidin, tmp_path):
+    """The frame's --profile rows and pore (axis, openings, conductance)
+    through the library's handle: the command's profile file byte for
+    byte, the pore's figures those of the command's JSON."""
+    prof = tmp_path / "p.csv"
+    cli("channels", "--device", "ref", "--grid", 64, "--profile", prof, GRAMICIDIN)
+    assert gramicidin.profile_csv == prof.read_text()
+    assert gramicidin.profile_csv.count("\n") == 1 + sum(len(c) for c in gramicidin.centrelines)
+    p = gramicidin.pore
+    assert p is not None and p["open_lo"] and p["open_hi"]
+    assert abs(sum(x * x for x in p["axis"]) - 1.0) < 1e-12
+    row = gramicidin.table[0]
+    assert row["kind"] == "pore"
+    assert "%.1f" % p["g_macro_pS"] == row["g_macro_pS"]  # the column as written (%.1f)
+    none = vorball.channels(vorball.read(GRAMICIDIN), grid=64, device="ref", no_pore=True)
+    assert none.pore is None
+
+
 def test_pore_at_the_defaults_as_the_command():
     """Gramicidin at every default (grid 128, probe 1.4, the pore sweep):
     1.337 A in the table of `vorball channels` and of vorball.channels

@@ -55,6 +55,15 @@ class Channels:
     components, pruned, channel_voxels   counts before pruning
     csv, json    what `vorball channels` writes for this frame (the CSV
                  with its header; the JSON document)
+    profile_csv  what its --profile writes for this frame: per point of
+                 every row the axial and arc coordinates, position, radius,
+                 nearest and bounding atoms
+    pore         the frame's pore, or None: axis (unit vector), start (Å),
+                 step (Å between planes), F (HOLE's geometric factor, 1/Å),
+                 g_macro_pS (its conductance estimate, 1 M KCl), open_lo /
+                 open_hi (the openings: each end left the molecule),
+                 buried (Å walled along the axis), why (how the axis was
+                 found)
     flags        with flags=True: the (nz, ny, nx) uint8 volume of VBC_F_*
                  bits (vorball.channel_flags())
     ms           per-stage milliseconds (prepare, upload, jfa, masks, analysis,
@@ -72,6 +81,8 @@ class Channels:
     channel_voxels: int
     csv: str
     json: str
+    profile_csv: str
+    pore: Optional[Dict[str, Any]]
     flags: Optional[np.ndarray]
     device: str
     ms: Dict[str, float]
@@ -85,6 +96,7 @@ class Channels:
         self.spheres, self.warnings = spheres, warnings
         self.frame, self.model = frame, model
         self.csv, self.json = d["csv"], d["json"]
+        self.profile_csv, self.pore = d["profile"], d["pore"]
         self.device, self.ms = d["device"], dict(d["ms"])
         self.components, self.pruned = d["components"], d["pruned"]
         self.channel_voxels = d["channel_voxels"]

@@ -107,11 +107,15 @@ static void one_frame(vb_ctx *ctx, const vb_sphere_set *s)
     }
     CHECK_INT(vb_channels_result_row(res, rows, &row), -1);
     CHECK_INT(vb_channels_result_point(res, np, &p), -1);
-    double u[3];
+    vb_channels_pore pore;
     vb_channels_result_row(res, 0, &row);
-    CHECK_INT(vb_channels_result_pore(res, u), row.kind == 2);
-    if (row.kind == 2)
-        CHECK_NEAR(u[0] * u[0] + u[1] * u[1] + u[2] * u[2], 1.0, 1e-9);
+    /* Gramicidin's pore is row 0, open at both ends. */
+    CHECK_INT(row.kind, 2);
+    CHECK_INT(vb_channels_result_pore(res, &pore), 1);
+    CHECK(pore.why != NULL);
+    CHECK_NEAR(pore.u[0] * pore.u[0] + pore.u[1] * pore.u[1] + pore.u[2] * pore.u[2], 1.0, 1e-9);
+    CHECK(pore.step > 0 && pore.F > 0 && pore.g_macro_pS > 0);
+    CHECK(pore.open_lo && pore.open_hi);
     /* The flag volume: its channel voxels are the frame's count. */
     size_t nflags, channel = 0;
     const uint8_t *flags = vb_channels_flags(ch, &nflags);
@@ -128,6 +132,20 @@ static void one_frame(vb_ctx *ctx, const vb_sphere_set *s)
     for (size_t k = 0; k < len; k++)
         lines += buf[k] == '\n';
     CHECK_INT(lines, rows + 1);
+    free(buf);
+    /* The profile: a header and one line per point of every row. */
+    m = open_memstream(&buf, &len);
+    vb_channels_write_frame_profile(ch, m);
+    fclose(m);
+    lines = 0;
+    for (size_t k = 0; k < len; k++)
+        lines += buf[k] == '\n';
+    size_t points = 0;
+    for (size_t k = 0; k < rows; k++) {
+        vb_channels_result_row(res, k, &row);
+        points += row.npoints;
+    }
+    CHECK_INT(lines, points + 1);
     free(buf);
     /* Done: the results go, the engine stays for the next frame. */
     vb_channels_done(ch);
