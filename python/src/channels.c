@@ -234,12 +234,10 @@ static int option_text(const vb_channels_option *o, PyObject *v, char *out, size
     }
 }
 
-/* The handle's options from the keyword dict: the library's defaults,
- * then each keyword checked and set through the option table. Returns 0,
- * or -1 with a Python error set. */
-static int config_from(PyObject *kw, vb_channels *ch)
+/* Sets the keywords of dict kw on the handle through the option table
+ * (None: the library's default). Returns 0, or -1 with a Python error set. */
+static int set_keywords(PyObject *kw, vb_channels *ch)
 {
-    vb_channels_reset(ch);
     char err[512], text[1024];
     PyObject *key, *v;
     Py_ssize_t pos = 0;
@@ -263,11 +261,26 @@ static int config_from(PyObject *kw, vb_channels *ch)
             return -1;
         }
     }
-    if (vb_channels_check(ch, err, sizeof err) != 0) {
-        vbpy_raise(VB_EMISUSE, "%s", err);
-        return -1;
-    }
     return 0;
+}
+
+/* The rules between the options, once all are set. 0, or -1 with a Python
+ * error set. */
+static int check(vb_channels *ch)
+{
+    char err[512];
+    if (vb_channels_check(ch, err, sizeof err) == 0)
+        return 0;
+    vbpy_raise(VB_EMISUSE, "%s", err);
+    return -1;
+}
+
+/* The handle's options from the keyword dict: the library's defaults,
+ * then each keyword checked and set. 0, or -1 with a Python error set. */
+static int config_from(PyObject *kw, vb_channels *ch)
+{
+    vb_channels_reset(ch);
+    return set_keywords(kw, ch) != 0 ? -1 : check(ch);
 }
 
 static PyObject *channels_run(PyObject *self, PyObject *args)
@@ -332,6 +345,160 @@ static PyObject *channels_run(PyObject *self, PyObject *args)
     return vbpy_call_return(&c, d);
 }
 
+/* The command's own options (outputs, --frames, --traj, --repeat) from a
+ * dict of its spellings: a str value, or True for a flag. Values must
+ * outlive the run (the dict's strings do). 0, or -1 with a Python error. */
+static int set_outputs(PyObject *outs, vb_channels *ch)
+{
+    char err[512];
+    PyObject *key, *v;
+    Py_ssize_t pos = 0;
+    while (PyDict_Next(outs, &pos, &key, &v)) {
+        const char *name = PyUnicode_Check(key) ? PyUnicode_AsUTF8(key) : NULL;
+        const char *value = PyUnicode_Check(v) ? PyUnicode_AsUTF8(v) : NULL;
+        if (!name || (!value && v != Py_True)) {
+            vbpy_raise(VB_EMISUSE, "channels output %s: a str or True", name ? name : "?");
+            return -1;
+        }
+        if (vb_channels_set(ch, name, value, err, sizeof err) != 0) {
+            vbpy_raise(VB_EMISUSE, "%s", err);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+enum { TEXT_TABLE, TEXT_STATS, TEXT_CL, TEXT_PROFILE, TEXTS };
+
+/* What a run over frames gives Python besides its texts: the selection,
+ * totals, the pore series, the first frame's stage picture. */
+static PyObject *frames_dict(const vb_channels *ch, long selected, PyObject *text[TEXTS])
+{
+    vb_channels_totals tot;
+    vb_channels_totals_get(ch, &tot);
+    size_t n = vb_channels_series(ch, 0, NULL, NULL, NULL);
+    PyObject *series = PyList_New((Py_ssize_t)n);
+    for (size_t k = 0; series && k < n; k++) {
+        long frame;
+        double rmin, s;
+        vb_channels_series(ch, k, &frame, &rmin, &s);
+        PyObject *row = Py_BuildValue("(ldd)", frame, rmin, s);
+        if (!row)
+            Py_CLEAR(series);
+        else
+            PyList_SET_ITEM(series, (Py_ssize_t)k, row);
+    }
+    uint32_t w, h;
+    const uint8_t *rgb;
+    PyObject *stages = vb_channels_stages(ch, &w, &h, &rgb) == 0
+                           ? Py_BuildValue("(IIy#)", w, h, (const char *)rgb,
+                                           (Py_ssize_t)w * h * 3)
+                           : Py_NewRef(Py_None);
+    PyObject *d = NULL;
+    if (series && stages)
+        d = Py_BuildValue("{s:O,s:O,s:O,s:O,s:l,s:l,s:i,s:d,s:d,s:s,s:O,s:O}", "table",
+                          text[TEXT_TABLE], "stats", text[TEXT_STATS], "centrelines",
+                          text[TEXT_CL], "profile", text[TEXT_PROFILE], "selected", selected,
+                          "analysed", tot.frames, "repeat", tot.repeat, "ms_total", tot.ms_total,
+                          "ms_masks", tot.ms_masks, "device", vb_channels_device_name(ch),
+                          "series", series, "stages", stages);
+    Py_XDECREF(series);
+    Py_XDECREF(stages);
+    return d;
+}
+
+/* Every frame of an opened vorball.Frames through the library's run over
+ * frames (vb_channels_run_frames), as `vorball channels` runs a trajectory:
+ * the texts of its table, statistics, centrelines and profile (None when
+ * not asked), its files (volumes, occupancy, page, PyMOL script) written
+ * by the library. */
+static PyObject *channels_frames(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *fcap, *kw, *outs, *progress;
+    const char *input, *device, *jfa;
+    int want[TEXTS];
+    if (!PyArg_ParseTuple(args, "OsO!O!sspppO", &fcap, &input, &PyDict_Type, &kw, &PyDict_Type,
+                          &outs, &device, &jfa, &want[TEXT_STATS], &want[TEXT_CL],
+                          &want[TEXT_PROFILE], &progress))
+        return NULL;
+    want[TEXT_TABLE] = 1;
+    vb_frame_source *F = vbpy_frames_source(fcap);
+    if (!F || vbpy_progress_check(progress) != 0)
+        return NULL;
+    vb_channels *ch = NULL;
+    char err[512];
+    if (vb_channels_new(NULL, &ch) != VB_OK)
+        return PyErr_NoMemory();
+    if (set_keywords(kw, ch) != 0 || set_outputs(outs, ch) != 0)
+        goto fail;
+    if (vb_channels_set(ch, "device", device, err, sizeof err) != 0 ||
+        vb_channels_set(ch, "jfa", jfa, err, sizeof err) != 0) {
+        vbpy_raise(VB_EMISUSE, "%s", err);
+        goto fail;
+    }
+    if (check(ch) != 0)
+        goto fail;
+    vbpy_text tx[TEXTS];
+    PyObject *text[TEXTS];
+    vb_channels_io io;
+    memset(&io, 0, sizeof io);
+    io.input = input;
+    int k = 0;
+    for (; k < TEXTS; k++)
+        if (want[k] && vbpy_text_open(&tx[k]) != 0)
+            break;
+    if (k < TEXTS) {
+        while (k-- > 0)
+            if (want[k])
+                Py_XDECREF(vbpy_text_take(&tx[k]));
+        goto fail;
+    }
+    for (k = 0; k < VB_CHANNELS_SINKS; k++)
+        io.sink[k] = want[k] ? tx[k].f : NULL;
+    io.profile = want[TEXT_PROFILE] ? tx[TEXT_PROFILE].f : NULL;
+    vbpy_call c;
+    if (vbpy_call_open(&c) != 0) {
+        for (k = 0; k < TEXTS; k++)
+            if (want[k])
+                Py_XDECREF(vbpy_text_take(&tx[k]));
+        goto fail;
+    }
+    vbpy_call_progress(&c, progress);
+    long selected = 0;
+    int rc;
+    Py_BEGIN_ALLOW_THREADS
+    rc = vb_channels_open(c.ctx, ch);
+    if (rc == VB_OK) {
+        vb_channels_write_head(ch, &io, NULL);
+        rc = vb_channels_run_frames(c.ctx, ch, F, &io, &selected);
+    }
+    if (rc == VB_OK)
+        rc = vb_channels_finish(c.ctx, ch, &io, 1, selected);
+    Py_END_ALLOW_THREADS
+    int bad = 0;
+    for (k = 0; k < TEXTS; k++) {
+        text[k] = want[k] ? vbpy_text_take(&tx[k]) : Py_NewRef(Py_None);
+        bad = bad || !text[k];
+    }
+    PyObject *d = NULL;
+    if (rc != VB_OK) {
+        for (k = 0; k < TEXTS; k++)
+            Py_XDECREF(text[k]);
+        vb_channels_free(ch);
+        return vbpy_call_fail(&c, rc);
+    }
+    if (!bad)
+        d = frames_dict(ch, selected, text);
+    for (k = 0; k < TEXTS; k++)
+        Py_XDECREF(text[k]);
+    vb_channels_free(ch);
+    return vbpy_call_return(&c, d);
+fail:
+    vb_channels_free(ch);
+    return NULL;
+}
+
 /* The option table as Python sees it: per keyword (type, min, max,
  * default text or None, choices or None, help). */
 static PyObject *option_table(PyObject *self, PyObject *unused)
@@ -372,6 +539,10 @@ PyMethodDef vbpy_channels_methods[] = {
      "(dict, diagnostics): options by their Python keywords (channel_options())"},
     {"channels_carry", carry_new, METH_NOARGS,
      "channels_carry() -> token: an engine's frames carry the pore axis (kept by the handle)"},
+    {"channels_frames", channels_frames, METH_VARARGS,
+     "channels_frames(frames, input, options, outputs, device, jfa, stats, centrelines, "
+     "profile, progress) -> (dict, diagnostics): every frame through the library's run over "
+     "frames; outputs by the command's spellings"},
     {"channel_options", option_table, METH_NOARGS,
      "channel_options() -> {keyword: (type, min, max, default, choices, help)}"},
     {"channel_flag_bits", flag_bits, METH_NOARGS, "The VB_CHANNEL_F_* bits of the flag volume."},

@@ -438,6 +438,14 @@ static void frames_destroy(PyObject *cap)
     free(f);
 }
 
+vb_frame_source *vbpy_frames_source(PyObject *capsule)
+{
+    frames *f = PyCapsule_GetPointer(capsule, FRAMES_CAPSULE);
+    if (f && !f->src)
+        PyErr_SetString(PyExc_ValueError, "the frames are closed");
+    return f ? f->src : NULL;
+}
+
 static PyObject *frames_open(PyObject *self, PyObject *args)
 {
     (void)self;

@@ -82,6 +82,10 @@ PyObject *vbpy_call_return(vbpy_call *c, PyObject *value);
 /* A bytes object holding a copy of n items of size bytes each at p. */
 PyObject *vbpy_bytes(const void *p, size_t n, size_t size);
 
+/* The frame source of a vorball.Frames capsule, or NULL with an exception
+ * (not a Frames capsule, or closed). Borrowed. */
+vb_frame_source *vbpy_frames_source(PyObject *capsule);
+
 /* The text a writer leaves in a memory stream: open, write through f,
  * then vbpy_text_take. */
 typedef struct vbpy_text {

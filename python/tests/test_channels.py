@@ -228,3 +228,50 @@ def test_frames_with_axis_refit_as_the_command(tmp_path, refit):
     assert len(mine) == len(theirs) == 2
     turned = theirs[1]["pore"]["axis"] != theirs[0]["pore"]["axis"]
     assert turned == refit
+
+
+def test_frames_as_the_command(tmp_path):
+    """Every frame through the library's run over frames
+    (vorball.channels_frames): the command's table, statistics (less their
+    clocks), centrelines, profile, per-frame volumes, occupancy and JSON
+    (less its provenance and clocks) on the XTC, frames 1:9:2."""
+    xtc = corpus("data", "ngl_md_10frames.xtc")
+    sel = ["--grid", 64, "--device", "ref", "--traj", xtc, "--frames", "1:9:2"]
+    cli("channels", *sel, "-o", tmp_path / "c.csv", "--stats-file", tmp_path / "c.stats",
+        "--centerlines", tmp_path / "c.pdb", "--profile", tmp_path / "c.prof",
+        "--volume", tmp_path / "c%d.mrc", "--fixed-grid", "--occupancy", tmp_path / "c.occ.mrc",
+        TRAJ)
+    r = vorball.channels_frames(TRAJ, xtc, grid=64, device="ref", start=1, stop=9, step=2,
+                                stats=True, centerlines=tmp_path / "p.pdb", profile=True,
+                                volume=tmp_path / "p%d.mrc", fixed_grid=True,
+                                occupancy=tmp_path / "p.occ.mrc")
+    assert r.selected == r.analysed == 4
+    assert set(r.series["frame"]) <= {1, 3, 5, 7}  # the frames with a pore
+    assert r.text == (tmp_path / "c.csv").read_text()
+    untimed = lambda text: [",".join(row.split(",")[:12]) for row in text.splitlines()]
+    assert untimed(r.stats_csv) == untimed((tmp_path / "c.stats").read_text())
+    assert r.centrelines_pdb == (tmp_path / "c.pdb").read_text() == (tmp_path / "p.pdb").read_text()
+    assert r.profile_csv == (tmp_path / "c.prof").read_text()
+    for name in ["%d.mrc" % k for k in (1, 3, 5, 7)] + [".occ.mrc"]:
+        assert (tmp_path / ("p" + name)).read_bytes() == (tmp_path / ("c" + name)).read_bytes()
+    j, _ = cli("channels", *sel, "--json", TRAJ)
+    mine, theirs = json.loads(vorball.channels_frames(
+        TRAJ, xtc, grid=64, device="ref", start=1, stop=9, step=2, json=True).text), json.loads(j)
+    theirs.pop("tool"), theirs.pop("options")
+    for doc in (mine, theirs):
+        for frame in doc["frames"]:
+            frame.pop("ms"), frame.pop("clock")
+    assert mine == theirs
+    with pytest.raises(vorball.VorballError, match="--fixed-grid"):
+        vorball.channels_frames(TRAJ, xtc, grid=64, device="ref", occupancy=tmp_path / "x.mrc")
+    assert not (tmp_path / "x.mrc").exists()
+    # One structure: its pore in the series, the stage picture of --png.
+    cli("channels", "--grid", 64, "--device", "ref", "--png", tmp_path / "g.png", "-o",
+        tmp_path / "g.csv", GRAMICIDIN)
+    g = vorball.channels_frames(GRAMICIDIN, grid=64, device="ref", png=True)
+    assert g.text == (tmp_path / "g.csv").read_text()
+    bottleneck = float(g.text.splitlines()[1].split(",")[6])
+    assert len(g.series) == 1 and "%.3f" % g.series["rmin"][0] == "%.3f" % bottleneck
+    ihdr = (tmp_path / "g.png").read_bytes()[16:24]
+    w, h = int.from_bytes(ihdr[:4], "big"), int.from_bytes(ihdr[4:], "big")
+    assert g.stages.shape == (h, w, 3) and g.stages.any()

@@ -37,3 +37,9 @@ try:
     __version__ = _version("vorball")
 except (ImportError, PackageNotFoundError):  # an in-place build
     __version__ = "unknown"
+
+# Every frame of a source through the library's run over frames (the
+# command's outputs of a trajectory).
+from ._channels import ChannelFrames, channels_frames  # noqa: E402
+
+__all__ += ["ChannelFrames", "channels_frames"]

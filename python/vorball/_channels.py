@@ -263,3 +263,110 @@ def channels(xyz: SphereInput, r: Optional[ArrayLike] = None, grid: Optional[int
 
 
 channels.__doc__ = (channels.__doc__ or "") % _options_doc()
+
+
+class ChannelFrames:
+    """Every frame of a source through the library's run over frames
+    (vorball.channels_frames): what `vorball channels` writes for a
+    trajectory.
+
+    text          the table of every frame as the command writes it: CSV
+                  (with its header) or, with json=True, the JSON document
+                  (without the command line's provenance)
+    stats_csv     the per-frame statistics rows (stats=True), else None
+    centrelines_pdb   the centrelines of every frame, one MODEL each, with
+                  the first frame's CONECT records (centerlines=), else None
+    profile_csv   the radius profile of every row of every frame
+                  (profile=True), else None
+    selected      frames selected; analysed: frames run here
+    series        structured array (frame, rmin, s): the pore's smallest
+                  radius per frame and where along the axis
+    stages        with png=True: the first frame's eight-panel picture as a
+                  (h, w, 3) uint8 array (what --png encodes), else None
+    ms_per_run, masks_ms_per_run   mean milliseconds of a frame's run and
+                  of its device stages (the command's closing line)
+    device, warnings
+    """
+
+    def __init__(self, d: Dict[str, Any], warnings: List[Diagnostic]) -> None:
+        self.text = d["table"]
+        self.stats_csv, self.centrelines_pdb = d["stats"], d["centrelines"]
+        self.profile_csv = d["profile"]
+        self.selected, self.analysed, self.device = d["selected"], d["analysed"], d["device"]
+        runs = max(1, d["analysed"] * d["repeat"])
+        self.ms_per_run, self.masks_ms_per_run = d["ms_total"] / runs, d["ms_masks"] / runs
+        self.series = np.array(d["series"], dtype=[("frame", "i8"), ("rmin", "f8"), ("s", "f8")])
+        if d["stages"] is None:
+            self.stages = None
+        else:
+            w, h, rgb = d["stages"]
+            self.stages = np.frombuffer(rgb, dtype=np.uint8).reshape(h, w, 3)
+        self.warnings = warnings
+
+    def __repr__(self) -> str:
+        return "<vorball.ChannelFrames: %d frame(s) on %s>" % (self.selected, self.device)
+
+
+# The command's options that are files or the run's own (no Python keyword
+# in the library's table): Python name -> its spelling.
+_FILES = {"pymol": "--pymol", "volume": "--volume", "volume_mask": "--volume-mask",
+          "html": "--html", "occupancy": "--occupancy", "png_normal": "--png-normal",
+          "repeat": "--repeat"}
+
+
+def channels_frames(path: Any, trajectory: Any = None, *, start: int = 0,
+                    stop: Optional[int] = None, step: int = 1, grid: Optional[int] = None,
+                    probe: Optional[float] = None, device: Optional[str] = None,
+                    jfa: Optional[str] = None, json: bool = False, stats: bool = False,
+                    centerlines: Any = None, profile: bool = False, fixed_grid: bool = False,
+                    png: bool = False, read: Optional[Dict[str, Any]] = None,
+                    verbose: bool = False,
+                    progress: Optional[Callable[[str, int, int], Any]] = None,
+                    **options: Any) -> ChannelFrames:
+    """Channels of every frame of `path` (with `trajectory`: of that DCD, XTC
+    or TRR over `path` as its topology), as `vorball channels` runs them:
+    the library's run over frames (frames in flight, the pore axis of the
+    first frame swept on the later ones), the same table, statistics,
+    centrelines and profile (as text) and the same files: pymol=PATH
+    (needs centerlines=PATH), volume=PATH ('%d' for one per frame),
+    volume_mask=, html=PATH, occupancy=PATH (needs fixed_grid=True),
+    repeat=N. start/stop/step select frames as --frames A:B:S; read= the
+    keywords of vorball.frames (model, water, hydrogens, radii, ...);
+    grid, probe, device, jfa and **options as vorball.channels. The
+    centrelines file is written when the run succeeded. Returns
+    ChannelFrames; raises VorballError.
+    """
+    import os
+    from ._spheres import Frames
+    device = _default("device") if device is None else device
+    jfa = _default("jfa") if jfa is None else jfa
+    if not isinstance(device, str) or not isinstance(jfa, str):
+        raise misuse("device and jfa are names")
+    files = {name: options.pop(name) for name in list(options) if name in _FILES}
+    kw = _keywords(grid, probe, options)
+    outs: Dict[str, Any] = {}
+    for name, v in files.items():
+        if v is not None:
+            outs[_FILES[name]] = os.fspath(v) if name != "repeat" else str(v)
+    for flag, on in (("--json", json), ("--stats", stats), ("--fixed-grid", fixed_grid)):
+        if on:
+            outs[flag] = True
+    if centerlines is not None:
+        outs["--centerlines"] = os.fspath(centerlines)
+    if png:
+        outs["--png"] = "stages.png"  # the picture comes back as pixels
+    if not options.get("no_pore"):
+        outs["--plot"] = "series.png"  # the pore series comes back (the plot is the command's)
+    with Frames(path, trajectory, verbose=verbose, **(read or {})) as src:
+        outs["--frames"] = "%d:%s:%d" % (start, "" if stop is None else stop, step)
+        if trajectory is not None:
+            outs["--traj"] = os.fspath(trajectory)
+        d, diag = _core.channels_frames(src._capsule, os.fspath(path), kw, outs, device, jfa,
+                                        bool(stats), centerlines is not None, bool(profile),
+                                        progress)
+        w = src.warnings + parse(diag)
+    emit(w[len(src.warnings):], verbose)
+    if centerlines is not None:
+        with open(centerlines, "w", encoding="utf-8") as f:
+            f.write(d["centrelines"])
+    return ChannelFrames(d, w)
