@@ -26,7 +26,10 @@
  *   - channels over frames and the discrete Voronoi engines (vbc_frame.h,
  *     vbj_jfa.h through it), their options declared once and the run over
  *     frames (vbc_run.h, vbc_channels_config.h), on the device layer of
- *     vb_default_devices. */
+ *     vb_default_devices;
+ *   - a `vorball jfa` run whole: seeds from their source, the timed
+ *     variants checked against the exact diagram, the figures and the
+ *     picture (vbj_runs.h). */
 #ifndef VORBALL_H
 #define VORBALL_H
 
@@ -43,5 +46,6 @@
 #include "vb_vertex_io.h"
 #include "vbc_frame.h"
 #include "vbc_run.h"
+#include "vbj_runs.h"
 
 #endif

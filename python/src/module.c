@@ -362,7 +362,7 @@ PyMODINIT_FUNC PyInit__core(void)
     if (add_methods(m, base_methods) || add_methods(m, vbpy_spheres_methods) ||
         add_methods(m, vbpy_vertices_methods) || add_methods(m, vbpy_verify_methods) ||
         add_methods(m, vbpy_channels_methods) || add_methods(m, vbpy_cells_methods) ||
-        add_methods(m, vbpy_periodic_methods) ||
+        add_methods(m, vbpy_periodic_methods) || add_methods(m, vbpy_jfa_methods) ||
         PyModule_AddIntConstant(m, "ZERO_RADIUS_AUTO", VB_ZERO_RADIUS_AUTO) ||
         PyModule_AddIntConstant(m, "ZERO_RADIUS_ERROR", VB_ZERO_RADIUS_ERROR) ||
         PyModule_AddIntConstant(m, "ZERO_RADIUS_POINT", VB_ZERO_RADIUS_POINT) ||

@@ -139,5 +139,6 @@ extern PyMethodDef vbpy_verify_methods[];
 extern PyMethodDef vbpy_channels_methods[];
 extern PyMethodDef vbpy_cells_methods[];
 extern PyMethodDef vbpy_periodic_methods[];
+extern PyMethodDef vbpy_jfa_methods[];
 
 #endif

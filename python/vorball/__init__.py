@@ -21,14 +21,15 @@ from ._vertices import (Arcs, Certificate, Engine, Reference, Result, Topology, 
 from ._verify import DUPLICATE, MISSING, NOT_VERTEX, WRONG_COORDS, Report, verify
 from ._channels import Channels, channel_flags, channel_options, channels
 from ._cells import Cells, cells
+from ._jfa import Jfa, JfaRun, jfa
 from ._periodic import BEYOND_REACH, NOT_CANONICAL, PeriodicReport, PeriodicResult, periodic_frames
 
 __all__ = ["Arcs", "CatalogueEntry", "Cells", "Certificate", "Channels", "Diagnostic", "DUPLICATE",
-           "BEYOND_REACH", "Engine", "Frames", "MISSING", "NOT_CANONICAL", "NOT_VERTEX",
+           "BEYOND_REACH", "Engine", "Frames", "Jfa", "JfaRun", "MISSING", "NOT_CANONICAL", "NOT_VERTEX",
            "PeriodicReport", "PeriodicResult", "Reference", "Report", "Result",
            "Spheres", "Topology",
            "VorballError", "VorballWarning", "WRONG_COORDS", "catalogue", "cells", "channel_flags",
-           "channel_options", "channels", "devices", "frames", "periodic_frames", "read",
+           "channel_options", "channels", "devices", "frames", "jfa", "periodic_frames", "read",
            "reference", "spheres", "verify",
            "vertex_text", "vertices"]
 
