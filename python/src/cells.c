@@ -1,7 +1,8 @@
 /* Cell measures for Python (vorball.cells): vb_cells_run (or
  * vb_cells_run_periodic in a box, vbpy_box) on a sphere set,
- * the enclosures handed over as bytes and the tables `vorball cells`
- * writes (its TSV writers) as text. */
+ * the enclosures handed over as bytes, the tables `vorball cells`
+ * writes (its TSV writers) as text, the counts of its --stats and its
+ * results page (vb_cells_page_write, --html). */
 #include "vbpy.h"
 
 #include <limits.h>
@@ -74,11 +75,12 @@ static PyObject *tables(const vb_sphere_set *set, const vb_cell_measures *m, int
 static PyObject *result_dict(const vb_sphere_set *set, const vb_cell_measures *m, int contacts)
 {
     PyObject *d = Py_BuildValue(
-        "{s:N,s:N,s:N,s:N,s:N,s:N,s:n,s:n,s:n,s:N}", "volume_lo", vbpy_bytes(m->vol_lo, m->n, 8),
+        "{s:N,s:N,s:N,s:N,s:N,s:N,s:n,s:n,s:n,s:n,s:n,s:N}", "volume_lo", vbpy_bytes(m->vol_lo, m->n, 8),
         "volume_hi", vbpy_bytes(m->vol_hi, m->n, 8), "sas_lo", vbpy_bytes(m->sas_lo, m->n, 8),
         "sas_hi", vbpy_bytes(m->sas_hi, m->n, 8), "empty", vbpy_bytes(m->empty, m->n, 1),
         "loose", vbpy_bytes(m->loose, m->n, 1), "patches", (Py_ssize_t)m->patches, "nempty",
-        (Py_ssize_t)m->nempty, "nloose", (Py_ssize_t)m->nloose, "tables",
+        (Py_ssize_t)m->nempty, "nloose", (Py_ssize_t)m->nloose, "ncontacts",
+        (Py_ssize_t)m->ncontacts, "nclosed", (Py_ssize_t)m->nclosed, "tables",
         tables(set, m, contacts));
     if (d && contacts && contact_arrays(m, d) != 0)
         Py_CLEAR(d);
@@ -88,13 +90,16 @@ static PyObject *result_dict(const vb_sphere_set *set, const vb_cell_measures *m
 static PyObject *cells_run(PyObject *self, PyObject *args)
 {
     (void)self;
-    PyObject *cap, *tokens;
+    PyObject *cap, *tokens, *html = NULL;
+    const char *title;
     double probe, tolerance;
     Py_ssize_t max_patches, threads;
     int contacts, periodic;
-    if (!PyArg_ParseTuple(args, "OddnpnpO", &cap, &probe, &tolerance, &max_patches, &contacts,
-                          &threads, &periodic, &tokens))
+    if (!PyArg_ParseTuple(args, "OddnpnpOO&z", &cap, &probe, &tolerance, &max_patches, &contacts,
+                          &threads, &periodic, &tokens, PyUnicode_FSConverter, &html, &title))
         return NULL;
+    /* html: b"" for no page */
+    const char *page = PyBytes_AS_STRING(html);
     vb_sphere_set *set = vbpy_spheres_get(cap);
     if (!set)
         return NULL;
@@ -119,6 +124,7 @@ static PyObject *cells_run(PyObject *self, PyObject *args)
     vb_box box;
     int rc = periodic ? vbpy_box(c.ctx, tokens, set, &box) : VB_OK;
     if (rc < 0) {
+        Py_DECREF(html);
         Py_XDECREF(vbpy_call_done(&c));
         return NULL;
     }
@@ -128,7 +134,11 @@ static PyObject *cells_run(PyObject *self, PyObject *args)
     if (rc == VB_OK)
         rc = periodic ? vb_cells_run_periodic(c.ctx, &run, &box, &opt, &m)
                       : vb_cells_run(c.ctx, &run, &opt, &m);
+    if (rc == VB_OK && *page)
+        rc = vb_cells_page_write(c.ctx, page, title ? title : "vorball cells", &run, &m,
+                                 contacts);
     Py_END_ALLOW_THREADS
+    Py_DECREF(html);
     PyObject *d = rc == VB_OK ? result_dict(&run, &m, contacts) : NULL;
     free(run.contained);
     vb_cell_measures_free(&m);
@@ -139,6 +149,6 @@ static PyObject *cells_run(PyObject *self, PyObject *args)
 
 PyMethodDef vbpy_cells_methods[] = {
     {"cells_run", cells_run, METH_VARARGS,
-     "cells_run(spheres, probe, tolerance, max_patches, contacts, threads, periodic, box_tokens) "
-     "-> (dict, diagnostics)"},
+     "cells_run(spheres, probe, tolerance, max_patches, contacts, threads, periodic, box_tokens, "
+     "html, title) -> (dict, diagnostics)"},
     {NULL, NULL, 0, NULL}};

@@ -66,6 +66,16 @@ static PyObject *engine_open(PyObject *self, PyObject *args)
     return vbpy_call_return(&c, cap);
 }
 
+/* The seconds the engine took to open (`vorball bench`'s device set-up). */
+static PyObject *engine_seconds(PyObject *self, PyObject *cap)
+{
+    (void)self;
+    vb_vertices_engine *e;
+    if (vbpy_engine_get(cap, &e) != 0)
+        return NULL;
+    return PyFloat_FromDouble(e ? vb_vertices_open_seconds(e) : 0.0);
+}
+
 static PyObject *vertex_arrays(const vb_vertex_list *v, PyObject *d)
 {
     int64_t *start = malloc((v->n + 1) * sizeof *start);
@@ -332,7 +342,16 @@ static PyObject *reference_run(PyObject *self, PyObject *args)
         rc = vb_reference_run(c.ctx, &run, force, set->source, &out);
     free(run.contained);
     Py_END_ALLOW_THREADS
-    PyObject *d = rc == VB_OK ? Py_BuildValue("{s:n}", "certified", (Py_ssize_t)out.n) : NULL;
+    /* The counts `vorball reference --stats` prints (vb_ctx_stats). */
+    const vb_stats *st = vb_ctx_stats(c.ctx);
+    PyObject *d = rc == VB_OK ? Py_BuildValue("{s:n,s:{s:K,s:K,s:K,s:K,s:K}}", "certified",
+                                              (Py_ssize_t)out.n, "stats", "quadruples",
+                                              (unsigned long long)st->candidates, "refuted",
+                                              (unsigned long long)st->rejected, "filter_calls",
+                                              (unsigned long long)st->filter_calls, "undecided",
+                                              (unsigned long long)st->filter_failures,
+                                              "exact_evals", (unsigned long long)st->exact_evals)
+                              : NULL;
     if (d && !vertex_arrays(&out, d))
         Py_CLEAR(d);
     vb_vertex_list_free(&out);
@@ -346,6 +365,8 @@ PyMethodDef vbpy_vertices_methods[] = {
      "reference_run(spheres, force) -> (dict, diagnostics)"},
     {"vertices_engine_open", engine_open, METH_VARARGS,
      "vertices_engine_open(device, proposer) -> (capsule, diagnostics)"},
+    {"vertices_engine_seconds", engine_seconds, METH_O,
+     "vertices_engine_seconds(capsule) -> float: the seconds opening took"},
     {"vertices_run", vertices_run, METH_VARARGS,
      "vertices_run(spheres, engine, device, proposer, samples, tol, tiles, all_pairs, threads, "
      "arcs, topology) -> (dict, diagnostics)"},

@@ -104,3 +104,25 @@ def test_bad_options(kw, number):
     with pytest.raises(vorball.VorballError) as e:
         vorball.cells(corpus("inputs", "hexagonal_ring.xyzr"), **kw)
     assert e.value.number == number
+
+
+def test_stats_and_page_as_the_command(tmp_path):
+    """--stats' counts and the --html page (the library's page writer: the
+    same bytes) of one structure."""
+    path = corpus("inputs", "hexagonal_ring.xyzr")
+    page = tmp_path / "cmd.html"
+    _, err = cli("cells", path, *FAST_ARGS, "--contacts", tmp_path / "c.tsv", "--stats",
+                 "--html", page)
+    mine = tmp_path / "py.html"
+    c = vorball.cells(path, contacts=True, html=mine, title="vorball cells %s" % path, **FAST)
+    assert mine.read_bytes() == page.read_bytes()
+    line = [x for x in err.splitlines() if x.startswith("cells: ")][0]
+    s = c.stats
+    want = ("cells: %d atoms, %d patches, %d empty, %d loose, %d contacts, "
+            % (s["atoms"], s["patches"], s["empty"], s["loose"], s["contacts"]))
+    assert line.startswith(want) and line.endswith(", %d atoms in closed form" % s["closed"])
+    assert s["atoms"] == len(c) > 0 and s["contacts"] == len(c.id1) and s["seconds"] > 0
+    # The default title is the command's for a file given by its path.
+    other = tmp_path / "default.html"
+    vorball.cells(path, contacts=True, html=other, **FAST)
+    assert other.read_bytes() == page.read_bytes()

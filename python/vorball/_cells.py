@@ -4,7 +4,9 @@ areas, as proven enclosures."""
 from __future__ import annotations
 
 import numbers
-from typing import Any, Dict, List, Optional
+import os
+import time
+from typing import Any, Dict, List, Optional, Union
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -12,7 +14,7 @@ from numpy.typing import ArrayLike
 from . import _core
 from ._errors import Diagnostic, emit, misuse, parse
 from ._periodic import BoxInput, box_tokens
-from ._spheres import SphereInput, as_spheres
+from ._spheres import PathLike, SphereInput, as_spheres
 
 # VB_MEASURES_MAX_PATCHES of verify/measures/vb_measures.h
 MAX_PATCHES = 5000
@@ -31,6 +33,10 @@ class Cells:
     shift2                         periodic with contacts: (m, 3) int64, the
                                    image shift of id2 (id2@(dx,dy,dz)), else None
     patches                        direction patches integrated, all atoms
+    stats                          the counts `vorball cells --stats` prints:
+                                   atoms, patches, empty, loose, contacts,
+                                   closed (atoms measured in closed form),
+                                   seconds (this call's wall clock)
     to_text(), contacts_text()     the TSVs `vorball cells` writes (-o,
                                    --contacts): the same bytes
     """
@@ -49,9 +55,11 @@ class Cells:
     area_lo: Optional[np.ndarray]
     area_hi: Optional[np.ndarray]
     patches: int
+    stats: Dict[str, Union[int, float]]
     warnings: List[Diagnostic]
 
-    def __init__(self, d: Dict[str, Any], warnings: List[Diagnostic]) -> None:
+    def __init__(self, d: Dict[str, Any], warnings: List[Diagnostic],
+                 seconds: float = 0.0) -> None:
         self.warnings = warnings
         f64 = lambda k: np.frombuffer(d[k], dtype=np.float64)  # noqa: E731
         self.volume_lo, self.volume_hi = f64("volume_lo"), f64("volume_hi")
@@ -62,6 +70,10 @@ class Cells:
         self.empty = np.frombuffer(d["empty"], dtype=np.uint8).astype(bool)
         self.loose = np.frombuffer(d["loose"], dtype=np.uint8).astype(bool)
         self.patches = int(d["patches"])
+        self.stats = {"atoms": len(self.volume_lo), "patches": self.patches,
+                      "empty": int(d["nempty"]), "loose": int(d["nloose"]),
+                      "contacts": int(d["ncontacts"]), "closed": int(d["nclosed"]),
+                      "seconds": seconds}
         self._text, self._contacts_text = d["tables"]
         self.id1 = self.id2 = self.area = self.area_lo = self.area_hi = None
         self.shift2: Optional[np.ndarray] = None
@@ -93,7 +105,8 @@ class Cells:
 def cells(xyz: SphereInput, r: Optional[ArrayLike] = None, *, probe: float = 1.4,
           tolerance: float = 1e-6, max_patches: int = MAX_PATCHES, contacts: bool = False,
           threads: int = 0, zero_radius: str = "auto", select: Optional[str] = None,
-          periodic: bool = False, box: BoxInput = None, verbose: bool = False) -> Cells:
+          periodic: bool = False, box: BoxInput = None, html: Optional[PathLike] = None,
+          title: Optional[str] = None, verbose: bool = False) -> Cells:
     """Per-atom volume and SAS area (and contact areas) of the additively
     weighted cells inside the balls of radius R + probe, as `vorball cells`.
 
@@ -106,7 +119,10 @@ def cells(xyz: SphereInput, r: Optional[ArrayLike] = None, *, probe: float = 1.4
     --periodic`, `--box`; box as vorball.vertices takes it, the file's box
     without it): each atom once, its cell cut by the images too; each
     periodic contact once, its second atom moved by shift2 (dx, dy, dz)
-    times the box edges. Returns a Cells; raises VorballError (E7 for bad
+    times the box edges. html: write the results page of `--html` there
+    (the molecule coloured by volume, SAS or contact area; titled title,
+    by default "vorball cells " and the spheres' source, as the command
+    titles it). Returns a Cells; raises VorballError (E7 for bad
     options, E118 for a bad or empty selection, E120 for no box or a bad
     one, E135 for a box too small).
     """
@@ -120,8 +136,13 @@ def cells(xyz: SphereInput, r: Optional[ArrayLike] = None, *, probe: float = 1.4
             raise misuse("%s must be an integer, not %r" % (name, v))
     s, made = as_spheres(xyz, r, min_count=1, zero_radius=zero_radius, select=select)
     per = bool(periodic) or box is not None
+    page = "" if html is None else os.fspath(html)
+    if title is None:
+        title = "vorball cells %s" % s.source
+    t0 = time.perf_counter()
     d, diag = _core.cells_run(s._capsule, float(probe), float(tolerance), int(max_patches),
-                              bool(contacts), int(threads), per, box_tokens(box))
+                              bool(contacts), int(threads), per, box_tokens(box), page, str(title))
+    seconds = time.perf_counter() - t0
     w = made + parse(diag)
     emit(w, verbose)
-    return Cells(d, w)
+    return Cells(d, w, seconds)

@@ -4,6 +4,7 @@ from __future__ import annotations
 import numbers
 import os
 import threading
+import time
 from typing import Any, Callable, Dict, List, NamedTuple, Optional, Union
 
 import numpy as np
@@ -220,7 +221,9 @@ class Reference(tuple):
     reference`): unpacks as (ids, xyz, t), with ids_flat and offsets as in
     Result, warnings (vorball.Diagnostic) and spheres. to_text(format)
     gives the vertex file (tsv, json or voronota) with the numbers that
-    `vorball reference` writes."""
+    `vorball reference` writes. stats: the counts of `--stats`
+    (quadruples, refuted by the filter, filter_calls, undecided,
+    exact_evals) and seconds (this call's wall clock)."""
 
     def __new__(cls, d: Dict[str, Any], warnings: List[Diagnostic],
                 spheres: Optional[Spheres]) -> Reference:
@@ -229,6 +232,7 @@ class Reference(tuple):
         self.ids, self.xyz, self.t = ids, xyz, t
         self.ids_flat, self.offsets = flat, start
         self.warnings, self.spheres = warnings, spheres
+        self.stats = dict(d["stats"])
         return self
 
     def __repr__(self) -> str:
@@ -251,7 +255,9 @@ def reference(xyz: SphereInput, r: Optional[ArrayLike] = None, *, force: bool = 
     Reference that unpacks as (ids, xyz, t). Nothing is printed unless
     verbose."""
     s, made = as_spheres(xyz, r, min_count=4, zero_radius=zero_radius, select=select)
+    t0 = time.perf_counter()
     d, diag = _core.reference_run(s._capsule, bool(force))
+    d["stats"]["seconds"] = time.perf_counter() - t0
     w = made + parse(diag)
     emit(w, verbose)
     return Reference(d, w, s)
@@ -373,6 +379,15 @@ class Engine:
         emit(w, self.verbose)
         self.warnings.extend(w)
         return cap
+
+    @property
+    def setup_seconds(self) -> Optional[float]:
+        """The seconds opening the vertex pipeline's device took (`vorball
+        bench`'s device_setup), or None before the first vertices run."""
+        with self._lock:
+            if self._vertices is None:
+                return None
+            return _core.vertices_engine_seconds(self._vertices)
 
     def vertices(self, xyz: SphereInput, r: Optional[ArrayLike] = None, samples: int = 30, *,
                  tol: Optional[float] = None, tiles: int = 0, all_pairs: bool = False,
