@@ -50,13 +50,21 @@ static int contact_arrays(const vb_cell_measures *m, PyObject *d)
     return bad ? -1 : 0;
 }
 
-/* The TSV tables as `vorball cells` writes them: (atoms, contacts or
- * None). NULL with an exception. */
-static PyObject *tables(const vb_sphere_set *set, const vb_cell_measures *m, int contacts)
+/* The tables as `vorball cells` writes them: (atoms TSV, contacts TSV
+ * or None, the --json document). NULL with an exception. */
+static PyObject *tables(vb_ctx *ctx, const vb_sphere_set *set, const vb_cell_measures *m,
+                        int contacts)
 {
-    vbpy_text a, c;
-    if (vbpy_text_open(&a) != 0)
+    vbpy_text a, c, j;
+    if (vbpy_text_open(&j) != 0)
         return NULL;
+    int rc = vb_cell_measures_write_json(ctx, j.f, set, m, -1, 0);
+    fputc('\n', j.f);
+    PyObject *jt = vbpy_text_take(&j);
+    if (!jt || rc != VB_OK || vbpy_text_open(&a) != 0) {
+        Py_XDECREF(jt);
+        return rc != VB_OK ? PyErr_NoMemory() : NULL;
+    }
     vb_cell_measures_write_atoms(a.f, set, m);
     PyObject *at = vbpy_text_take(&a), *ct = NULL;
     if (at && contacts && vbpy_text_open(&c) == 0) {
@@ -67,12 +75,14 @@ static PyObject *tables(const vb_sphere_set *set, const vb_cell_measures *m, int
     }
     if (!ct) {
         Py_XDECREF(at);
+        Py_DECREF(jt);
         return NULL;
     }
-    return Py_BuildValue("(NN)", at, ct);
+    return Py_BuildValue("(NNN)", at, ct, jt);
 }
 
-static PyObject *result_dict(const vb_sphere_set *set, const vb_cell_measures *m, int contacts)
+static PyObject *result_dict(vb_ctx *ctx, const vb_sphere_set *set, const vb_cell_measures *m,
+                             int contacts)
 {
     PyObject *d = Py_BuildValue(
         "{s:N,s:N,s:N,s:N,s:N,s:N,s:n,s:n,s:n,s:n,s:n,s:N}", "volume_lo", vbpy_bytes(m->vol_lo, m->n, 8),
@@ -81,7 +91,7 @@ static PyObject *result_dict(const vb_sphere_set *set, const vb_cell_measures *m
         "loose", vbpy_bytes(m->loose, m->n, 1), "patches", (Py_ssize_t)m->patches, "nempty",
         (Py_ssize_t)m->nempty, "nloose", (Py_ssize_t)m->nloose, "ncontacts",
         (Py_ssize_t)m->ncontacts, "nclosed", (Py_ssize_t)m->nclosed, "tables",
-        tables(set, m, contacts));
+        tables(ctx, set, m, contacts));
     if (d && contacts && contact_arrays(m, d) != 0)
         Py_CLEAR(d);
     return d;
@@ -139,7 +149,7 @@ static PyObject *cells_run(PyObject *self, PyObject *args)
                                  contacts);
     Py_END_ALLOW_THREADS
     Py_DECREF(html);
-    PyObject *d = rc == VB_OK ? result_dict(&run, &m, contacts) : NULL;
+    PyObject *d = rc == VB_OK ? result_dict(c.ctx, &run, &m, contacts) : NULL;
     free(run.contained);
     vb_cell_measures_free(&m);
     if (rc != VB_OK)

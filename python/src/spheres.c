@@ -525,6 +525,28 @@ static PyObject *frames_close(PyObject *self, PyObject *cap)
     Py_RETURN_NONE;
 }
 
+/* The sphere table of `--atoms FILE` (vb_atoms_write) as a str. */
+static PyObject *spheres_atoms_text(PyObject *self, PyObject *cap)
+{
+    (void)self;
+    vb_sphere_set *set = vbpy_spheres_get(cap);
+    vbpy_call c;
+    vbpy_text t;
+    if (!set || vbpy_call_open(&c) != 0)
+        return NULL;
+    if (vbpy_text_open(&t) != 0) {
+        Py_XDECREF(vbpy_call_done(&c));
+        return NULL;
+    }
+    int rc = vb_atoms_write(c.ctx, t.f, set);
+    PyObject *text = vbpy_text_take(&t);
+    if (rc != VB_OK) {
+        Py_XDECREF(text);
+        return vbpy_call_fail(&c, rc);
+    }
+    return vbpy_call_return(&c, text);
+}
+
 /* The spheres of a set that an expression selects (vb_spheres_select),
  * validated as a read set is: (capsule, diagnostics); E118 raised. */
 static PyObject *spheres_select(PyObject *self, PyObject *args)
@@ -566,6 +588,8 @@ PyMethodDef vbpy_spheres_methods[] = {
     {"spheres_info", spheres_info, METH_O, "The arrays of a set as bytes, in a dict."},
     {"spheres_decimals", spheres_decimals, METH_O, "(mantissas, exponents) or None."},
     {"spheres_atoms", spheres_atoms, METH_O, "(bytes, itemsize, offsets) or None."},
+    {"spheres_atoms_text", spheres_atoms_text, METH_O,
+     "(the sphere table of --atoms, diagnostics)"},
     {"frames_open", frames_open, METH_VARARGS,
      "frames_open(path, trajectory, format, model, assembly, water, no_hydrogens, strict, zero_radius, "
      "radii) -> (capsule, diagnostics)"},

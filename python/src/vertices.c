@@ -319,6 +319,41 @@ static PyObject *vertex_text(PyObject *self, PyObject *args)
     return s;
 }
 
+/* `vorball vertices --html`: the results page of certified vertices
+ * (vb_vertex_page_write: E133 past its size, E7 without the viewer). */
+static PyObject *vertex_page(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *cap, *ids, *start, *x, *y, *z, *t, *path;
+    const char *certificate, *title;
+    if (!PyArg_ParseTuple(args, "OOOOOOOzO&s", &cap, &ids, &start, &x, &y, &z, &t, &certificate,
+                          PyUnicode_FSConverter, &path, &title))
+        return NULL;
+    vb_sphere_set *set = vbpy_spheres_get(cap);
+    vb_vertex_list v;
+    vbpy_call c;
+    if (!set || vbpy_vertex_list(ids, start, x, y, z, t, VB_VERTEX_CERTIFIED, &v) != 0) {
+        Py_DECREF(path);
+        return NULL;
+    }
+    if (vbpy_call_open(&c) != 0) {
+        vb_vertex_list_free(&v);
+        Py_DECREF(path);
+        return NULL;
+    }
+    int rc;
+    Py_BEGIN_ALLOW_THREADS
+    rc = vb_vertex_page_check(c.ctx, set);
+    if (rc == VB_OK)
+        rc = vb_vertex_page_write(c.ctx, PyBytes_AS_STRING(path), title, set, &v, certificate);
+    Py_END_ALLOW_THREADS
+    vb_vertex_list_free(&v);
+    Py_DECREF(path);
+    if (rc != VB_OK)
+        return vbpy_call_fail(&c, rc);
+    return vbpy_call_return(&c, Py_NewRef(Py_None));
+}
+
 /* `vorball reference`: every vertex exactly by brute force (vb_reference_run,
  * E130 above 500 spheres unless force): the vertex arrays and the count. */
 static PyObject *reference_run(PyObject *self, PyObject *args)
@@ -370,6 +405,9 @@ PyMethodDef vbpy_vertices_methods[] = {
     {"vertices_run", vertices_run, METH_VARARGS,
      "vertices_run(spheres, engine, device, proposer, samples, tol, tiles, all_pairs, threads, "
      "arcs, topology) -> (dict, diagnostics)"},
+    {"vertex_page", vertex_page, METH_VARARGS,
+     "vertex_page(spheres, ids, start, x, y, z, t, certificate, path, title) -> (None, "
+     "diagnostics)"},
     {"vertex_text", vertex_text, METH_VARARGS,
      "vertex_text(ids, start, x, y, z, t, format, comment) -> str (the library's writer)"},
     {NULL, NULL, 0, NULL}};

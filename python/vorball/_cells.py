@@ -3,6 +3,7 @@ additively weighted cells inside the probe-expanded balls, and contact
 areas, as proven enclosures."""
 from __future__ import annotations
 
+import json as _json
 import numbers
 import os
 import time
@@ -39,6 +40,9 @@ class Cells:
                                    seconds (this call's wall clock)
     to_text(), contacts_text()     the TSVs `vorball cells` writes (-o,
                                    --contacts): the same bytes
+    json, to_json()                the --json document (per-atom rows and,
+                                   for atom records, per-residue and
+                                   per-chain sums), as text and as objects
     """
 
     volume: np.ndarray
@@ -55,6 +59,7 @@ class Cells:
     area_lo: Optional[np.ndarray]
     area_hi: Optional[np.ndarray]
     patches: int
+    json: str
     stats: Dict[str, Union[int, float]]
     warnings: List[Diagnostic]
 
@@ -74,7 +79,7 @@ class Cells:
                       "empty": int(d["nempty"]), "loose": int(d["nloose"]),
                       "contacts": int(d["ncontacts"]), "closed": int(d["nclosed"]),
                       "seconds": seconds}
-        self._text, self._contacts_text = d["tables"]
+        self._text, self._contacts_text, self.json = d["tables"]
         self.id1 = self.id2 = self.area = self.area_lo = self.area_hi = None
         self.shift2: Optional[np.ndarray] = None
         if "shift2" in d:
@@ -88,6 +93,10 @@ class Cells:
     def to_text(self) -> str:
         """The per-atom TSV, as `vorball cells -o` writes it."""
         return self._text
+
+    def to_json(self) -> Any:
+        """The --json document as Python objects."""
+        return _json.loads(self.json)
 
     def contacts_text(self) -> Optional[str]:
         """The contacts TSV, as `--contacts` writes it (None without contacts)."""

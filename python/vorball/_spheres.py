@@ -89,6 +89,14 @@ class Spheres:
         s = Spheres(cap, diag, index=self.index, model=self.model)
         return s
 
+    def atoms_text(self) -> str:
+        """The sphere table the commands' `--atoms FILE` writes: what each
+        0-based id stands for (chain, residue, number, atom name, element,
+        source line, the exact x y z r used), TSV."""
+        text, diag = _core.spheres_atoms_text(self._capsule)
+        emit(parse(diag), False)
+        return text
+
     def __repr__(self) -> str:
         return "<vorball.Spheres %d from %r%s>" % (
             self.n, self.source, "" if self.exact else " (doubles only)")

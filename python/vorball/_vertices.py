@@ -197,6 +197,24 @@ class Result(tuple):
         with open(os.fspath(path), "w", encoding="utf-8", newline="") as f:
             f.write(text)
 
+    def write_html(self, path: PathLike, title: Optional[str] = None) -> None:
+        """Writes the results page of `vorball vertices --html` to path: the
+        spheres and these vertices as markers, with the certificate line;
+        titled title (default "vorball vertices " and the spheres' source,
+        as the command titles it). Raises VorballError E133 past the page's
+        size (2,000 spheres)."""
+        if self.spheres is None:
+            raise misuse("the result holds no spheres (unpickled): no page")
+        if title is None:
+            title = "vorball vertices %s" % self.spheres.source
+        cols = [np.ascontiguousarray(self.xyz[:, k]) for k in range(3)]
+        _, diag = _core.vertex_page(self.spheres._capsule,
+                                    np.ascontiguousarray(self.ids_flat, dtype=np.uint32),
+                                    np.ascontiguousarray(self.offsets, dtype=np.int64),
+                                    cols[0], cols[1], cols[2], self.t, self.certificate.text,
+                                    os.fspath(path), str(title))
+        emit(parse(diag), False)
+
 
 def _restore(fields, state):
     r = tuple.__new__(Result, fields)
