@@ -292,8 +292,8 @@ static PyObject *vertex_text(PyObject *self, PyObject *args)
         return NULL;
     vb_vertex_format fmt;
     if (vb_vertex_format_parse(NULL, format, &fmt) != VB_OK)
-        return vbpy_raise(VB_EMISUSE, "vertex format must be tsv, json or voronota, not '%s'",
-                          format);
+        return vbpy_raise(VB_EMISUSE,
+                          "vertex format must be tsv, json, voronota or npz, not '%s'", format);
     vb_vertex_list v;
     if (vbpy_vertex_list(ids, start, x, y, z, t, VB_VERTEX_CERTIFIED, &v) != 0)
         return NULL;
@@ -310,7 +310,14 @@ static PyObject *vertex_text(PyObject *self, PyObject *args)
     }
     int rc = vb_vertex_write(c.ctx, out.f, &v, fmt, note && *note ? note : NULL);
     vb_vertex_list_free(&v);
-    PyObject *s = vbpy_text_take(&out);
+    PyObject *s;
+    if (fmt == VB_VFMT_NPZ) { /* a binary archive: bytes */
+        fclose(out.f);
+        s = PyBytes_FromStringAndSize(out.buf ? out.buf : "", (Py_ssize_t)out.len);
+        free(out.buf);
+    } else {
+        s = vbpy_text_take(&out);
+    }
     if (rc != VB_OK) {
         Py_XDECREF(s);
         return vbpy_call_fail(&c, rc);
@@ -409,5 +416,6 @@ PyMethodDef vbpy_vertices_methods[] = {
      "vertex_page(spheres, ids, start, x, y, z, t, certificate, path, title) -> (None, "
      "diagnostics)"},
     {"vertex_text", vertex_text, METH_VARARGS,
-     "vertex_text(ids, start, x, y, z, t, format, comment) -> str (the library's writer)"},
+     "vertex_text(ids, start, x, y, z, t, format, comment) -> str (bytes for npz: the "
+     "library's writer)"},
     {NULL, NULL, 0, NULL}};

@@ -188,14 +188,23 @@ class Result(tuple):
     def to_text(self, format: str = "tsv") -> str:
         """The vertex file `vorball vertices --output-format F` writes (tsv,
         json or voronota), byte for byte, certificate line included."""
+        if format == "npz":
+            raise misuse("npz is a binary archive: to_bytes('npz') or write(path, 'npz')")
+        return vertex_text(self.ids_flat, self.offsets, self.xyz, self.t, format,
+                           self.certificate.text)
+
+    def to_bytes(self, format: str = "npz") -> bytes:
+        """The vertex file as bytes: npz (`--output-format npz`, a NumPy
+        archive that np.load reads without pickle), or a text format's UTF-8."""
+        if format != "npz":
+            return self.to_text(format).encode("utf-8")
         return vertex_text(self.ids_flat, self.offsets, self.xyz, self.t, format,
                            self.certificate.text)
 
     def write(self, path: PathLike, format: str = "tsv") -> None:
-        """Writes to_text(format) to path."""
-        text = self.to_text(format)
-        with open(os.fspath(path), "w", encoding="utf-8", newline="") as f:
-            f.write(text)
+        """Writes the vertex file in format (tsv, json, voronota, npz) to path."""
+        with open(os.fspath(path), "wb") as f:
+            f.write(self.to_bytes(format))
 
     def write_html(self, path: PathLike, title: Optional[str] = None) -> None:
         """Writes the results page of `vorball vertices --html` to path: the
@@ -224,7 +233,7 @@ def _restore(fields, state):
 
 
 def vertex_text(ids_flat: ArrayLike, offsets: ArrayLike, xyz: ArrayLike, t: ArrayLike,
-                format: str = "tsv", comment: Optional[str] = None) -> str:
+                format: str = "tsv", comment: Optional[str] = None) -> Union[str, bytes]:
     """The library's vertex writer over CSR arrays (see Result.to_text)."""
     ids = np.ascontiguousarray(ids_flat, dtype=np.uint32)
     off = np.ascontiguousarray(offsets, dtype=np.int64)
