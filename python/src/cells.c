@@ -97,6 +97,20 @@ static PyObject *result_dict(vb_ctx *ctx, const vb_sphere_set *set, const vb_cel
     return d;
 }
 
+/* The measure options of the call's numbers; the ranges are the
+ * library's (vb_measure_options_check, by the caller): a value out of
+ * the fields' types is stored as one the check refuses. */
+static void measure_options(double probe, double tolerance, Py_ssize_t max_patches, int contacts,
+                            Py_ssize_t threads, vb_measure_options *opt)
+{
+    vb_measure_defaults(opt);
+    opt->probe = probe;
+    opt->tolerance = tolerance;
+    opt->max_patches = max_patches > 0 ? (size_t)max_patches : 1;
+    opt->contacts = contacts;
+    opt->threads = threads >= 0 && threads <= INT_MAX ? (int)threads : -1;
+}
+
 static PyObject *cells_run(PyObject *self, PyObject *args)
 {
     (void)self;
@@ -108,25 +122,20 @@ static PyObject *cells_run(PyObject *self, PyObject *args)
     if (!PyArg_ParseTuple(args, "OddnpnpOO&z", &cap, &probe, &tolerance, &max_patches, &contacts,
                           &threads, &periodic, &tokens, PyUnicode_FSConverter, &html, &title))
         return NULL;
+    vb_sphere_set *set = vbpy_spheres_get(cap);
+    vb_measure_options opt;
+    measure_options(probe, tolerance, max_patches, contacts, threads, &opt);
+    vbpy_call c;
+    if (!set || vbpy_call_open(&c) != 0) {
+        Py_DECREF(html);
+        return NULL;
+    }
+    if (vb_measure_options_check(c.ctx, &opt) != VB_OK) {
+        Py_DECREF(html);
+        return vbpy_call_fail(&c, VB_EMISUSE);
+    }
     /* html: b"" for no page */
     const char *page = PyBytes_AS_STRING(html);
-    vb_sphere_set *set = vbpy_spheres_get(cap);
-    if (!set)
-        return NULL;
-    vb_measure_options opt;
-    vb_measure_defaults(&opt);
-    opt.probe = probe;
-    opt.tolerance = tolerance;
-    /* The ranges are the library's (vb_measure_options_check): a value
-     * out of the fields' types is stored as one the check refuses. */
-    opt.max_patches = max_patches > 0 ? (size_t)max_patches : 1;
-    opt.contacts = contacts;
-    opt.threads = threads >= 0 && threads <= INT_MAX ? (int)threads : -1;
-    vbpy_call c;
-    if (vbpy_call_open(&c) != 0)
-        return NULL;
-    if (vb_measure_options_check(c.ctx, &opt) != VB_OK)
-        return vbpy_call_fail(&c, VB_EMISUSE);
     vb_sphere_set run;
     memset(&run, 0, sizeof run);
     vb_cell_measures m;
@@ -157,8 +166,88 @@ static PyObject *cells_run(PyObject *self, PyObject *args)
     return vbpy_call_return(&c, d);
 }
 
+typedef struct frames_sink {
+    vb_ctx *ctx;
+    PyObject *list;
+    int contacts;
+    int failed; /* a Python exception is set */
+} frames_sink;
+
+/* Each frame's measures appended as (frame, model, dict), with the GIL. */
+static int keep_frame(void *arg, long frame, int model, const vb_sphere_set *set,
+                      const vb_cell_measures *m)
+{
+    frames_sink *S = arg;
+    PyGILState_STATE g = PyGILState_Ensure();
+    PyObject *d = result_dict(S->ctx, set, m, S->contacts);
+    PyObject *item = d ? Py_BuildValue("(liN)", frame, model, d) : NULL;
+    int bad = !item || PyList_Append(S->list, item) != 0;
+    Py_XDECREF(item);
+    S->failed |= bad;
+    PyGILState_Release(g);
+    return bad ? VB_ENOMEM : VB_OK;
+}
+
+/* `vorball cells --traj/--frames` (vb_cells_run_frames, or
+ * vb_cells_run_frames_periodic): [(frame, model, dict)]. */
+static PyObject *cells_frames(PyObject *self, PyObject *args)
+{
+    (void)self;
+    const char *path, *traj;
+    PyObject *tokens;
+    long start, stop, step;
+    int water, contacts, periodic;
+    double probe, tolerance;
+    Py_ssize_t max_patches, threads;
+    if (!PyArg_ParseTuple(args, "szlllp(ddnpn)pO", &path, &traj, &start, &stop, &step, &water,
+                          &probe, &tolerance, &max_patches, &contacts, &threads, &periodic,
+                          &tokens))
+        return NULL;
+    vb_measure_options opt;
+    measure_options(probe, tolerance, max_patches, contacts, threads, &opt);
+    vbpy_call c;
+    if (vbpy_call_open(&c) != 0)
+        return NULL;
+    if (vb_measure_options_check(c.ctx, &opt) != VB_OK)
+        return vbpy_call_fail(&c, VB_EMISUSE);
+    vb_box box;
+    int given = periodic && tokens != Py_None;
+    int rc = given ? vbpy_box(c.ctx, tokens, NULL, &box) : VB_OK;
+    frames_sink S = {c.ctx, PyList_New(0), contacts, 0};
+    if (rc < 0 || !S.list) {
+        Py_XDECREF(S.list);
+        Py_XDECREF(vbpy_call_done(&c));
+        return NULL;
+    }
+    vb_read_options ro; /* the command's defaults: format by content, every model */
+    memset(&ro, 0, sizeof ro);
+    ro.keep_water = water;
+    vb_frame_range range = {start, stop, step};
+    Py_BEGIN_ALLOW_THREADS
+    if (rc == VB_OK)
+        rc = periodic ? vb_cells_run_frames_periodic(c.ctx, path, traj, &ro, &range,
+                                                     given ? &box : NULL, &opt, keep_frame, &S,
+                                                     NULL)
+                      : vb_cells_run_frames(c.ctx, path, traj, &ro, &range, &opt, keep_frame, &S,
+                                            NULL);
+    Py_END_ALLOW_THREADS
+    if (S.failed) {
+        Py_DECREF(S.list);
+        Py_XDECREF(vbpy_call_done(&c));
+        return NULL;
+    }
+    if (rc != VB_OK) {
+        Py_DECREF(S.list);
+        return vbpy_call_fail(&c, rc);
+    }
+    return vbpy_call_return(&c, S.list);
+}
+
 PyMethodDef vbpy_cells_methods[] = {
     {"cells_run", cells_run, METH_VARARGS,
      "cells_run(spheres, probe, tolerance, max_patches, contacts, threads, periodic, box_tokens, "
      "html, title) -> (dict, diagnostics)"},
+    {"cells_frames", cells_frames, METH_VARARGS,
+     "cells_frames(path, trajectory, start, stop, step, water, (probe, tolerance, max_patches, "
+     "contacts, threads), periodic, box_tokens) -> ([(frame, model, dict)], diagnostics)"},
     {NULL, NULL, 0, NULL}};

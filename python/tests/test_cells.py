@@ -126,3 +126,22 @@ def test_stats_and_page_as_the_command(tmp_path):
     other = tmp_path / "default.html"
     vorball.cells(path, contacts=True, html=other, **FAST)
     assert other.read_bytes() == page.read_bytes()
+
+
+def test_frames_as_the_command(tmp_path):
+    """cells_frames is `cells --traj --frames`: the same rows (less the
+    frame column) for each frame of an XTC over its PDB topology."""
+    top, xtc = corpus("data", "ngl_md_ascii_trj.pdb"), corpus("data", "ngl_md_10frames.xtc")
+    out, contacts = tmp_path / "a.tsv", tmp_path / "c.tsv"
+    cli("cells", top, "--traj", xtc, "--frames", "1:4:2", *FAST_ARGS, "-o", out,
+        "--contacts", contacts)
+    got = vorball.cells_frames(top, xtc, start=1, stop=4, step=2, contacts=True, **FAST)
+    assert [c.frame for c in got] == [1, 3]
+    for table, text in ((out, lambda c: c.to_text()), (contacts, lambda c: c.contacts_text())):
+        want = [r for r in tsv(strip_provenance(table.read_text()))]
+        mine = [[str(c.frame)] + r for c in got for r in tsv(strip_provenance(text(c)))]
+        assert mine == want and len(mine) > 0
+    with pytest.raises(vorball.VorballError) as e:
+        vorball.cells_frames(top, xtc, start=20)
+    _, err = cli("cells", top, "--traj", xtc, "--frames", "20:", rc=e.value.exit_status)
+    assert "E%d" % e.value.number in err

@@ -34,6 +34,8 @@ class Cells:
     shift2                         periodic with contacts: (m, 3) int64, the
                                    image shift of id2 (id2@(dx,dy,dz)), else None
     patches                        direction patches integrated, all atoms
+    frame, model                   of cells_frames: the frame's index (from
+                                   0) and model number
     stats                          the counts `vorball cells --stats` prints:
                                    atoms, patches, empty, loose, contacts,
                                    closed (atoms measured in closed form),
@@ -64,8 +66,9 @@ class Cells:
     warnings: List[Diagnostic]
 
     def __init__(self, d: Dict[str, Any], warnings: List[Diagnostic],
-                 seconds: float = 0.0) -> None:
+                 seconds: float = 0.0, frame: int = 0, model: int = 1) -> None:
         self.warnings = warnings
+        self.frame, self.model = frame, model
         f64 = lambda k: np.frombuffer(d[k], dtype=np.float64)  # noqa: E731
         self.volume_lo, self.volume_hi = f64("volume_lo"), f64("volume_hi")
         self.sas_lo, self.sas_hi = f64("sas_lo"), f64("sas_hi")
@@ -111,6 +114,17 @@ class Cells:
             "" if self.id1 is None else ", %d contacts" % len(self.id1))
 
 
+def _numbers(probe, tolerance, max_patches, threads):
+    """The options' types; their ranges are the library's
+    (vb_measure_options_check): the command's messages and numbers."""
+    for name, v in (("probe", probe), ("tolerance", tolerance)):
+        if not isinstance(v, numbers.Real) or isinstance(v, bool):
+            raise misuse("%s must be a number, not %r" % (name, v))
+    for name, v in (("max_patches", max_patches), ("threads", threads)):
+        if not isinstance(v, numbers.Integral) or isinstance(v, bool):
+            raise misuse("%s must be an integer, not %r" % (name, v))
+
+
 def cells(xyz: SphereInput, r: Optional[ArrayLike] = None, *, probe: float = 1.4,
           tolerance: float = 1e-6, max_patches: int = MAX_PATCHES, contacts: bool = False,
           threads: int = 0, zero_radius: str = "auto", select: Optional[str] = None,
@@ -135,14 +149,7 @@ def cells(xyz: SphereInput, r: Optional[ArrayLike] = None, *, probe: float = 1.4
     options, E118 for a bad or empty selection, E120 for no box or a bad
     one, E135 for a box too small).
     """
-    for name, v in (("probe", probe), ("tolerance", tolerance)):
-        if not isinstance(v, numbers.Real) or isinstance(v, bool):
-            raise misuse("%s must be a number, not %r" % (name, v))
-    # The ranges are the library's (vb_measure_options_check): the
-    # command's messages and numbers.
-    for name, v in (("max_patches", max_patches), ("threads", threads)):
-        if not isinstance(v, numbers.Integral) or isinstance(v, bool):
-            raise misuse("%s must be an integer, not %r" % (name, v))
+    _numbers(probe, tolerance, max_patches, threads)
     s, made = as_spheres(xyz, r, min_count=1, zero_radius=zero_radius, select=select)
     per = bool(periodic) or box is not None
     page = "" if html is None else os.fspath(html)
@@ -155,3 +162,38 @@ def cells(xyz: SphereInput, r: Optional[ArrayLike] = None, *, probe: float = 1.4
     w = made + parse(diag)
     emit(w, verbose)
     return Cells(d, w, seconds)
+
+
+def cells_frames(path: PathLike, trajectory: Optional[PathLike] = None, start: int = 0,
+                 stop: Optional[int] = None, step: int = 1, *, water: bool = False,
+                 probe: float = 1.4, tolerance: float = 1e-6, max_patches: int = MAX_PATCHES,
+                 contacts: bool = False, threads: int = 0, periodic: bool = False,
+                 box: BoxInput = None, verbose: bool = False) -> List[Cells]:
+    """The measures of every selected frame, as `vorball cells PATH
+    [--traj TRAJECTORY] [--frames A:B:S]` (vb_cells_run_frames): the models
+    of path, or the frames of a DCD/XTC/TRR trajectory over path as its
+    topology; a binary frame's floats become their shortest decimals, as
+    the command reads them. water keeps water (`--water`); the options as
+    vorball.cells; periodic/box: each frame in the box it carries, or box
+    for all (`--periodic`, `--box`). Returns a Cells per frame with .frame
+    and .model (each table as `-o` writes it for one frame, less the
+    command's `frame` column)."""
+    for name, v, lo in (("start", start, 0), ("step", step, 1)):
+        if not isinstance(v, numbers.Integral) or isinstance(v, bool) or v < lo:
+            raise misuse("%s must be an integer >= %d, not %r" % (name, lo, v))
+    if stop is not None and (not isinstance(stop, numbers.Integral) or isinstance(stop, bool)
+                             or stop < 0):
+        raise misuse("stop must be None or an integer >= 0, not %r" % (stop,))
+    _numbers(probe, tolerance, max_patches, threads)
+    traj = None if trajectory is None else os.fspath(trajectory)
+    per = bool(periodic) or box is not None
+    t0 = time.perf_counter()
+    got, diag = _core.cells_frames(os.fspath(path), traj, int(start),
+                                   -1 if stop is None else int(stop), int(step), bool(water),
+                                   (float(probe), float(tolerance), int(max_patches),
+                                    bool(contacts), int(threads)), per, box_tokens(box))
+    seconds = time.perf_counter() - t0
+    w = parse(diag)
+    emit(w, verbose)
+    return [Cells(d, w, seconds, frame, model) for frame, model, d in got]
+
