@@ -167,10 +167,8 @@ static PyObject *cells_run(PyObject *self, PyObject *args)
 }
 
 typedef struct frames_sink {
-    vb_ctx *ctx;
-    PyObject *list;
+    vbpy_frames f;
     int contacts;
-    int failed; /* a Python exception is set */
 } frames_sink;
 
 /* Each frame's measures appended as (frame, model, dict), with the GIL. */
@@ -179,13 +177,9 @@ static int keep_frame(void *arg, long frame, int model, const vb_sphere_set *set
 {
     frames_sink *S = arg;
     PyGILState_STATE g = PyGILState_Ensure();
-    PyObject *d = result_dict(S->ctx, set, m, S->contacts);
-    PyObject *item = d ? Py_BuildValue("(liN)", frame, model, d) : NULL;
-    int bad = !item || PyList_Append(S->list, item) != 0;
-    Py_XDECREF(item);
-    S->failed |= bad;
+    int rc = vbpy_frames_append(&S->f, frame, model, result_dict(S->f.ctx, set, m, S->contacts));
     PyGILState_Release(g);
-    return bad ? VB_ENOMEM : VB_OK;
+    return rc;
 }
 
 /* `vorball cells --traj/--frames` (vb_cells_run_frames, or
@@ -212,16 +206,11 @@ static PyObject *cells_frames(PyObject *self, PyObject *args)
         return vbpy_call_fail(&c, VB_EMISUSE);
     vb_box box;
     int given = periodic && tokens != Py_None;
-    int rc = given ? vbpy_box(c.ctx, tokens, NULL, &box) : VB_OK;
-    frames_sink S = {c.ctx, PyList_New(0), contacts, 0};
-    if (rc < 0 || !S.list) {
-        Py_XDECREF(S.list);
-        Py_XDECREF(vbpy_call_done(&c));
+    frames_sink S = {{0}, contacts};
+    vb_read_options ro;
+    int rc = vbpy_frames_open(&c, &S.f, given ? tokens : Py_None, water, &box, &ro);
+    if (rc < 0)
         return NULL;
-    }
-    vb_read_options ro; /* the command's defaults: format by content, every model */
-    memset(&ro, 0, sizeof ro);
-    ro.keep_water = water;
     vb_frame_range range = {start, stop, step};
     Py_BEGIN_ALLOW_THREADS
     if (rc == VB_OK)
@@ -231,16 +220,7 @@ static PyObject *cells_frames(PyObject *self, PyObject *args)
                       : vb_cells_run_frames(c.ctx, path, traj, &ro, &range, &opt, keep_frame, &S,
                                             NULL);
     Py_END_ALLOW_THREADS
-    if (S.failed) {
-        Py_DECREF(S.list);
-        Py_XDECREF(vbpy_call_done(&c));
-        return NULL;
-    }
-    if (rc != VB_OK) {
-        Py_DECREF(S.list);
-        return vbpy_call_fail(&c, rc);
-    }
-    return vbpy_call_return(&c, S.list);
+    return vbpy_frames_return(&c, &S.f, rc);
 }
 
 PyMethodDef vbpy_cells_methods[] = {

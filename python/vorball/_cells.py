@@ -15,7 +15,7 @@ from numpy.typing import ArrayLike
 from . import _core
 from ._errors import Diagnostic, emit, misuse, parse
 from ._periodic import BoxInput, box_tokens
-from ._spheres import PathLike, SphereInput, as_spheres
+from ._spheres import PathLike, SphereInput, as_spheres, frame_range
 
 # VB_MEASURES_MAX_PATCHES of verify/measures/vb_measures.h
 MAX_PATCHES = 5000
@@ -178,18 +178,12 @@ def cells_frames(path: PathLike, trajectory: Optional[PathLike] = None, start: i
     for all (`--periodic`, `--box`). Returns a Cells per frame with .frame
     and .model (each table as `-o` writes it for one frame, less the
     command's `frame` column)."""
-    for name, v, lo in (("start", start, 0), ("step", step, 1)):
-        if not isinstance(v, numbers.Integral) or isinstance(v, bool) or v < lo:
-            raise misuse("%s must be an integer >= %d, not %r" % (name, lo, v))
-    if stop is not None and (not isinstance(stop, numbers.Integral) or isinstance(stop, bool)
-                             or stop < 0):
-        raise misuse("stop must be None or an integer >= 0, not %r" % (stop,))
+    rng = frame_range(start, stop, step)
     _numbers(probe, tolerance, max_patches, threads)
     traj = None if trajectory is None else os.fspath(trajectory)
     per = bool(periodic) or box is not None
     t0 = time.perf_counter()
-    got, diag = _core.cells_frames(os.fspath(path), traj, int(start),
-                                   -1 if stop is None else int(stop), int(step), bool(water),
+    got, diag = _core.cells_frames(os.fspath(path), traj, *rng, bool(water),
                                    (float(probe), float(tolerance), int(max_patches),
                                     bool(contacts), int(threads)), per, box_tokens(box))
     seconds = time.perf_counter() - t0

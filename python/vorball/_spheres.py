@@ -189,6 +189,19 @@ def read(path: PathLike, format: str = "auto", model: Optional[int] = None, wate
     return s
 
 
+def frame_range(start: int, stop: Optional[int], step: int) -> Tuple[int, int, int]:
+    """(start, stop or -1, step) for the library's frame range (`--frames
+    A:B:S`) of the calls over frames; VorballError E7 for values that
+    are not one."""
+    for name, v, lo in (("start", start, 0), ("step", step, 1)):
+        if not isinstance(v, numbers.Integral) or isinstance(v, bool) or v < lo:
+            raise misuse("%s must be an integer >= %d, not %r" % (name, lo, v))
+    if stop is not None and (not isinstance(stop, numbers.Integral) or isinstance(stop, bool)
+                             or stop < 0):
+        raise misuse("stop must be None or an integer >= 0, not %r" % (stop,))
+    return int(start), -1 if stop is None else int(stop), int(step)
+
+
 class Frames:
     """The frames of a molecule, one in memory at a time: the models of a
     multi-model PDB/PQR/mmCIF/XYZR file, or with `trajectory` the frames of
