@@ -113,8 +113,9 @@ PyObject *vbpy_arcs_dict(const vb_arc_report *a)
 }
 
 /* The faces and edges as bytes (faces: uint32 pairs; edges: int64 vertex
- * rows, -1 for infinity, and uint32 sphere triples), or None. */
-static PyObject *topology_dict(const vb_completion *c)
+ * rows, -1 for infinity, and uint32 sphere triples) and the file of
+ * `--topology FILE` as text (vb_topology_write), or None. */
+static PyObject *topology_dict(vb_ctx *ctx, const vb_completion *c)
 {
     const vb_topology *t = &c->topology;
     if (!c->has_topology)
@@ -130,12 +131,23 @@ static PyObject *topology_dict(const vb_completion *c)
         memcpy(v + 2 * k, t->edges[k].v, sizeof t->edges[k].v);
         memcpy(sp + 3 * k, t->edges[k].spheres, sizeof t->edges[k].spheres);
     }
-    PyObject *d = Py_BuildValue("{s:N,s:N,s:N,s:O,s:n,s:n}", "faces",
+    vbpy_text txt;
+    if (vbpy_text_open(&txt) != 0) {
+        free(v);
+        free(sp);
+        return NULL;
+    }
+    int rc = vb_topology_write(ctx, txt.f, t);
+    PyObject *text = vbpy_text_take(&txt);
+    if (rc != VB_OK && text)
+        Py_SETREF(text, PyErr_NoMemory());
+    PyObject *d = !text ? NULL : Py_BuildValue("{s:N,s:N,s:N,s:O,s:n,s:n,s:N}", "faces",
                                 vbpy_bytes(t->faces, 2 * t->nfaces, 4), "edges",
                                 vbpy_bytes(v, 2 * t->nedges, 8), "edge_spheres",
                                 vbpy_bytes(sp, 3 * t->nedges, 4), "exact",
                                 t->exact ? Py_True : Py_False, "unresolved",
-                                (Py_ssize_t)t->unresolved, "sampled", (Py_ssize_t)t->sampled);
+                                (Py_ssize_t)t->unresolved, "sampled", (Py_ssize_t)t->sampled,
+                                "text", text);
     free(v);
     free(sp);
     return d;
@@ -171,7 +183,7 @@ static PyObject *result_dict(vb_ctx *ctx, const vb_vertices_result *r, const vb_
     if (!d)
         return NULL;
     PyObject *arcs = c->traced ? vbpy_arcs_dict(&c->arcs) : Py_NewRef(Py_None);
-    PyObject *topo = arcs ? topology_dict(c) : NULL;
+    PyObject *topo = arcs ? topology_dict(ctx, c) : NULL;
     int bad = !topo || PyDict_SetItemString(d, "arcs", arcs) != 0 ||
               PyDict_SetItemString(d, "topology", topo) != 0;
     Py_XDECREF(arcs);

@@ -129,7 +129,8 @@ class Result(tuple):
     certificate  a Certificate (complete, counts; its text holds the
              '# arcs:' line too when arcs were traced)
     arcs     an Arcs (arc closure's counts) when asked for, else None
-    topology a Topology (faces and edges) when asked for, else None
+    topology a Topology (faces and edges) when asked for, else None;
+             topology_text() the --topology file
     stats    the counters `vorball vertices --stats` prints, as a dict
     times    seconds per stage (setup, certify, total, cull, ...)
     backend, device   what ran ('opencl' or 'ref', and the device name)
@@ -167,6 +168,7 @@ class Result(tuple):
                                        d["rejected"], d["quadruples"], d["cover_cells"],
                                        d["cover_patches"], d["cover_host_cells"])
         self.arcs, self.topology = _arcs(d["arcs"]), _topology(d["topology"])
+        self._topology_text = None if d["topology"] is None else d["topology"]["text"]
         self.stats = _stats(d["stats"])
         self.times = dict(d["times"])
         self.backend, self.device = d["backend"], d["device"]
@@ -200,6 +202,11 @@ class Result(tuple):
             return self.to_text(format).encode("utf-8")
         return vertex_text(self.ids_flat, self.offsets, self.xyz, self.t, format,
                            self.certificate.text)
+
+    def topology_text(self) -> Optional[str]:
+        """The file `vorball vertices --topology FILE` writes (faces and
+        edges), or None without topology=True."""
+        return self._topology_text
 
     def write(self, path: PathLike, format: str = "tsv") -> None:
         """Writes the vertex file in format (tsv, json, voronota, npz) to path."""
