@@ -14,7 +14,7 @@
  *     vb_vertices_run_default) and with its completion -- arc closure,
  *     faces and edges, the certificate -- in one call (vb_complete.h:
  *     vb_vertices_run_complete); vertex files read and written
- *     (vb_vertex_io.h);
+ *     (vb_vertex_io.h) and shown on a results page (vb_vertex_page.h);
  *   - cell measures: per-atom volume and SAS area and contact areas as
  *     proven enclosures, of a set or of a trajectory's frames, in one call
  *     (vb_cells.h: vb_cells_run, vb_cells_run_frames; the result and its
@@ -27,7 +27,11 @@
  *     one handle (vb_channels.h): the options declared once (the table the
  *     command parses and Python reads), the engine on the device layer of
  *     vb_default_devices, results through accessors, the command's
- *     writers. */
+ *     writers;
+ *   - a `vorball jfa` run whole: seeds from their source, the timed
+ *     variants checked against the exact diagram, the figures and the
+ *     picture (vbj_runs.h, the discrete Voronoi engine vbj_jfa.h through
+ *     it). */
 #ifndef VORBALL_H
 #define VORBALL_H
 
@@ -43,5 +47,7 @@
 #include "vb_select.h"
 #include "vb_verify_file.h"
 #include "vb_vertex_io.h"
+#include "vb_vertex_page.h"
+#include "vbj_runs.h"
 
 #endif
