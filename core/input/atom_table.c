@@ -2,6 +2,7 @@
  * vertex, cell or contact file stands for. */
 #include <stdio.h>
 
+#include "vb_numtext.h"
 #include "vb_output.h"
 #include "vb_spheres.h"
 
@@ -11,6 +12,16 @@ static const char *field(const char *s)
     return s && s[0] && !(s[0] == ' ' && !s[1]) ? s : ".";
 }
 
+/* Coordinate i as written (its exact decimal), or the double as %.17g in a
+ * set without decimals (a trajectory's frame, a channel analysis's copy). */
+static void coordinate(const vb_decimal *e, const double *d, size_t i, char out[48])
+{
+    if (e)
+        vb_decimal_format(e[i], out, 48);
+    else
+        vb_format_g17(d[i], out);
+}
+
 int vb_atoms_write(vb_ctx *ctx, FILE *f, const vb_sphere_set *s)
 {
     fprintf(f, "# vorball atoms: %s, %zu spheres\n", s->source ? s->source : "-", s->n);
@@ -18,10 +29,10 @@ int vb_atoms_write(vb_ctx *ctx, FILE *f, const vb_sphere_set *s)
     for (size_t i = 0; i < s->n; i++) {
         const vb_atom_info *a = s->info ? &s->info[i] : NULL;
         char x[48], y[48], z[48], r[48], icode[2] = {0, 0}, altloc[2] = {0, 0};
-        vb_decimal_format(s->ex[i], x, sizeof x);
-        vb_decimal_format(s->ey[i], y, sizeof y);
-        vb_decimal_format(s->ez[i], z, sizeof z);
-        vb_decimal_format(s->er[i], r, sizeof r);
+        coordinate(s->ex, s->x, i, x);
+        coordinate(s->ey, s->y, i, y);
+        coordinate(s->ez, s->z, i, z);
+        coordinate(s->er, s->r, i, r);
         fprintf(f, "%zu\t", i);
         if (a) {
             icode[0] = a->icode;

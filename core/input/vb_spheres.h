@@ -196,7 +196,9 @@ double vb_decimal_double(vb_decimal d);
  * resseq, icode, atom, element, altloc, serial ('.' for each where the
  * input has no atom records or the field is blank), the 1-based source
  * line, and x, y, z, r as the exact decimals the library computed with
- * (the radius from the radii table for PDB/mmCIF/GRO). VB_OK or VB_EIO. */
+ * (the radius from the radii table for PDB/mmCIF/GRO), or as the doubles
+ * (%.17g) in a set without decimals (a trajectory's frame, a channel
+ * analysis's copy). VB_OK or VB_EIO. */
 int vb_atoms_write(vb_ctx *ctx, FILE *f, const vb_sphere_set *s);
 
 /* Writes d as its exact decimal: digits with a point where the exponent

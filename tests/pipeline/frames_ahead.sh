@@ -46,6 +46,12 @@ for d in 1 2 8; do
         same seq "a${d}t$t"
     done
 done
+# --atoms of a trajectory: the first frame's atoms as analysed, 183 rows,
+# its coordinates the XTC's doubles (a frame has no decimals; it crashed).
+VORBALL_THREADS=2 run 0 atoms.log "$vorball" channels "$top" --traj "$xtc" --grid 64 --device ref \
+    -o atoms.csv --atoms atoms.tsv --frames 0:2
+[ "$(grep -c '^[0-9]' atoms.tsv)" -eq 183 ] || fail "atoms.tsv: $(grep -c '^[0-9]' atoms.tsv) rows, expected 183"
+grep -q '^0	.	ILE	348	.	N	N	.	1	6	32.02000' atoms.tsv || fail "atoms.tsv: atom 0 is not the XTC's N"
 # Unset: the default depth (2) is the reader thread too, same bytes.
 VORBALL_THREADS=2 run 0 def.log "$vorball" channels "$top" --traj "$xtc" --grid 64 --device ref -o def.csv
 cmp -s seq.csv def.csv || fail "default depth: table differs"
