@@ -30,8 +30,10 @@ typedef struct job {
     size_t base, all;       /* cells of earlier parts, and of every part */
     atomic_size_t covered;  /* cells of this part covered so far */
     size_t batch;           /* cells per device batch (0: the backend's) */
-    vb_cover_sink sink;     /* non-NULL: each device batch's quadruples go to it at once */
+    vb_cover_sink sink;     /* non-NULL: each device batch's quadruples go to it at once, */
     void *user;
+    size_t flush;           /* and a host worker's once it holds this many */
+    int host_back;          /* 0: host threads cover only the cells a device left */
 } job;
 
 /* n more cells covered: the progress of the whole cover, from any thread. */
@@ -235,7 +237,7 @@ static void *hybrid_host(void *arg)
             if (sh->lhead < sh->nleft) {
                 cell = sh->left[sh->lhead++];
                 have = 1;
-            } else if (sh->front < sh->back) {
+            } else if (sh->front < sh->back && jb->host_back) {
                 cell = jb->cells[--sh->back];
                 have = 1;
             } else if (sh->done) {
@@ -248,6 +250,17 @@ static void *hybrid_host(void *arg)
         if (!have)
             return NULL;
         int rc = cover_one(w, cell);
+        if (rc == VB_OK)
+            covered(jb, 1);
+        /* Streamed: a host worker's cells go to the sink as the device's
+         * batches do, so that what the host covers is not all certified
+         * after the cover. */
+        if (rc == VB_OK && jb->sink && w->ql.n >= jb->flush) {
+            w->st.quads += w->ql.n;
+            w->st.stream_parts++;
+            rc = jb->sink(jb->user, &w->ql);
+            w->ql.n = 0; /* the sink took the array, or keeps nothing of it */
+        }
         if (rc != VB_OK) {
             worker_fail(w, rc);
             pthread_mutex_lock(&sh->mu);
@@ -255,7 +268,6 @@ static void *hybrid_host(void *arg)
             pthread_mutex_unlock(&sh->mu);
             return NULL;
         }
-        covered(jb, 1);
     }
 }
 
@@ -263,7 +275,7 @@ static void *hybrid_host(void *arg)
  * everything on the host again). */
 static int hybrid_device(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w0, share *sh)
 {
-    size_t batch = jb->batch ? jb->batch : be->batch_cells ? be->batch_cells : 65536;
+    size_t batch = jb->batch;
     vbq_cell_out *outs = malloc(batch * sizeof *outs);
     if (!outs)
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
@@ -307,7 +319,7 @@ static int hybrid_device(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w0,
          * each is unique, so the chunk is too; the sink sorts it. */
         if (rc == VB_OK && chunk.n) {
             w0->st.quads += chunk.n;
-            w0->st.batch_parts++;
+            w0->st.stream_parts++;
             rc = jb->sink(jb->user, &chunk);
         }
         vb_quad_list_free(&chunk);
@@ -330,6 +342,9 @@ static int cover_hybrid(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w, i
     }
     pthread_cond_init(&sh.cv, NULL);
     atomic_store(&jb->failed, 0);
+    if (!jb->batch)
+        jb->batch = be->batch_cells ? be->batch_cells : 65536;
+    jb->flush = 8 * jb->batch; /* about a batch's worth of quadruples (~10 a cell) */
     hybrid_arg *ha = calloc((size_t)nt, sizeof *ha);
     vb_jobs *g = calloc(1, sizeof *g);
     int rc = ha && g ? VB_OK : VB_ENOMEM;
@@ -436,7 +451,7 @@ static void stats_sum(vb_cover_stats *st, const vb_cover_stats *ws)
     st->max_level_leaves += ws->max_level_leaves;
     st->retries += ws->retries;
     st->quads += ws->quads;
-    st->batch_parts += ws->batch_parts;
+    st->stream_parts += ws->stream_parts;
     st->host_cells += ws->host_cells;
     st->t_device += ws->t_device;
     st->t_host += ws->t_host;
@@ -519,6 +534,8 @@ int vb_cover_run_parts(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_opt
     for (int t = 0; rc == VB_OK && t < nt; t++)
         w[t].jb = &jb;
     jb.batch = vb_cover_batch_cells(&o);
+    const char *hb = getenv("VORBALL_COVER_HOST_BACK");
+    jb.host_back = !(be && hb && strcmp(hb, "0") == 0);
     if (o.stream_batches) {
         jb.sink = sink;
         jb.user = user;

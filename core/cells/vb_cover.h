@@ -52,8 +52,9 @@ typedef struct vb_cover_options {
     /* Nonzero (vb_cover_run_parts with a backend): each device batch's
      * quadruples go to the sink as a part of their own as soon as they are
      * read back, so that the sink (the certifier) works while the device
-     * covers the next batch; the cells the host covered follow as each
-     * run's last part. */
+     * covers the next batch; a host thread's go to it whenever it holds
+     * about a batch's worth (8 quadruples a cell), the rest as each run's
+     * last part. The sink is then called from several threads at once. */
     int stream_batches;
 } vb_cover_options;
 
@@ -68,7 +69,7 @@ typedef struct vb_cover_stats {
     uint64_t quads;          /* distinct quadruples proposed */
     uint64_t retries;        /* cells covered again with a larger arena */
     uint64_t host_cells;     /* cells a device left to the host */
-    uint64_t batch_parts;    /* device batches streamed to the sink (stream_batches) */
+    uint64_t stream_parts;   /* parts streamed to the sink during a run (stream_batches) */
     double t_device;         /* seconds in the device's batches (wall) */
     double t_host;           /* seconds of the whole cover (wall) */
     unsigned max_level_seen;
