@@ -144,7 +144,7 @@ static void *stream_thread(void *arg)
             break;
         vb_quad_list part = cs->queue[cs->qhead];
         memset(&cs->queue[cs->qhead++], 0, sizeof part);
-        int ok = cs->rc == VB_OK;
+        int ok = cs->rc == VB_OK && !cs->drop;
         cs->busy = ok;
         cs->t_busy_since = vb_now();
         pthread_mutex_unlock(&cs->mu);
@@ -259,6 +259,11 @@ int vbv_cert_stream_finish(vb_ctx *ctx, vbv_cert_stream *cs, vb_vertex_list *out
 
 void *vbv_cert_stream_free(vbv_cert_stream *cs)
 {
+    if (cs->started > 0) { /* after a failure: what is queued is dropped */
+        pthread_mutex_lock(&cs->mu);
+        cs->drop = 1;
+        pthread_mutex_unlock(&cs->mu);
+    }
     stream_wait(cs, 1);
     if (cs->co)
         vbv_cert_open_discard(cs->co);

@@ -60,6 +60,7 @@ typedef struct vbv_cert_stream {
     vb_jobs job;
     int started;             /* 0: no lock yet, -1: no thread, 1: running, 2: runs when joined */
     int closing, busy, rc;
+    int drop;                /* 1: the queued parts are dropped, not certified */
     size_t certified_parts;  /* parts certified */
     double t_work;           /* seconds the certifying thread worked */
     double t_busy_since;     /* when the part in work started */
@@ -86,8 +87,9 @@ void vbv_cert_stream_reset(vbv_cert_stream *cs);
  * message is relayed to ctx. VB_OK or the error. */
 int vbv_cert_stream_finish(vb_ctx *ctx, vbv_cert_stream *cs, vb_vertex_list *out);
 
-/* Frees the stream and hands back its certifier (NULL if the set-up
- * failed) for the caller to close. */
+/* Frees the stream (parts still queued are dropped, not certified) and
+ * hands back its certifier (NULL if the set-up failed) for the caller to
+ * close. */
 void *vbv_cert_stream_free(vbv_cert_stream *cs);
 
 #endif
