@@ -79,24 +79,39 @@ int vbv_cert_stream_init(vbv_cert_stream *cs, vbv_cert_open *co, vb_ctx *owner)
     return vb_open_worker(&cs->tctx, owner) == VB_OK ? VB_OK : VB_ENOMEM;
 }
 
-/* Merges the certified parts into one list (the stream's thread, when 64
- * are held). VB_OK or VB_ENOMEM. */
-static int fold_parts(vbv_cert_stream *cs)
+/* Merges the last k certified parts into one list. VB_OK or VB_ENOMEM. */
+static int fold_parts(vbv_cert_stream *cs, size_t k)
 {
     vb_vertex_list all;
     vb_vertex_list_init(&all);
-    size_t dropped = 0;
-    int rc = vb_vertex_list_merge(&all, cs->parts, cs->nparts, &dropped);
+    size_t dropped = 0, first = cs->nparts - k;
+    int rc = vb_vertex_list_merge(&all, cs->parts + first, k, &dropped);
     if (rc != VB_OK) {
         vb_vertex_list_free(&all);
         return rc;
     }
-    for (size_t k = 0; k < cs->nparts; k++)
-        vb_vertex_list_free(&cs->parts[k]);
-    cs->parts[0] = all;
-    cs->nparts = 1;
+    for (size_t p = first; p < cs->nparts; p++)
+        vb_vertex_list_free(&cs->parts[p]);
+    cs->parts[first] = all;
+    cs->nparts = first + 1;
     cs->dropped += dropped;
     return VB_OK;
+}
+
+/* Keeps the certified lists few while the cover runs, so that little is
+ * left to merge after it: the newest two are merged while the older is at
+ * most twice the newer (sizes then halve down the list: about log2 of the
+ * parts are held, and each vertex is copied about log2 times in all), and
+ * never more than 64 are held (vb_vertex_list_merge's bound). */
+static int fold_recent(vbv_cert_stream *cs)
+{
+    int rc = VB_OK;
+    while (rc == VB_OK && cs->nparts >= 2 &&
+           cs->parts[cs->nparts - 2].n <= 2 * cs->parts[cs->nparts - 1].n)
+        rc = fold_parts(cs, 2);
+    if (rc == VB_OK && cs->nparts == 64)
+        rc = fold_parts(cs, 64);
+    return rc;
 }
 
 /* One queued part: sorted, certified, its vertices kept. */
@@ -109,13 +124,12 @@ static int certify_one(vbv_cert_stream *cs, vb_quad_list *part)
         rc = cs->ops->certify_quads(cs->tctx, cs->cert, (const uint32_t(*)[4])part->q, part->n, &v,
                                     NULL);
     /* The parts are the thread's alone until it is idle (stream_wait). */
-    if (rc == VB_OK && cs->nparts == 64)
-        rc = fold_parts(cs);
     if (rc == VB_OK && VB_ARRAY_FIT(cs->parts, cs->cap, cs->nparts + 1, 8) != VB_OK)
         rc = VB_ENOMEM;
     if (rc == VB_OK) {
         cs->parts[cs->nparts++] = v;
         cs->certified_parts++;
+        rc = fold_recent(cs);
     } else {
         vb_vertex_list_free(&v);
     }
@@ -251,7 +265,13 @@ int vbv_cert_stream_finish(vb_ctx *ctx, vbv_cert_stream *cs, vb_vertex_list *out
      * its members, which parts may split: certified in two parts, it is
      * the same entry twice, written once (and counted once). */
     size_t dropped = 0;
-    rc = vb_vertex_list_merge(out, cs->parts, cs->nparts, &dropped);
+    if (cs->nparts == 1 && out->n == 0) { /* one list: handed over as it is */
+        vb_vertex_list_free(out);
+        *out = cs->parts[0];
+        vb_vertex_list_init(&cs->parts[0]);
+    } else {
+        rc = vb_vertex_list_merge(out, cs->parts, cs->nparts, &dropped);
+    }
     vb_ctx_stats(ctx)->certified -= dropped + cs->dropped;
     drop_parts(cs);
     return rc == VB_OK ? VB_OK : vb_error(ctx, rc, NULL, 0, "out of memory (certified vertices)");

@@ -54,7 +54,7 @@ typedef struct vbv_cert_stream {
     pthread_cond_t cv;
     vb_quad_list *queue;     /* parts waiting, [qhead, qn) */
     size_t qhead, qn, qcap;
-    vb_vertex_list *parts;   /* certified vertices, one sorted list per part (at most 64) */
+    vb_vertex_list *parts;   /* certified vertices, sorted lists (parts merged as they come) */
     size_t nparts, cap;
     size_t dropped;          /* repeats dropped when parts were merged early */
     vb_jobs job;

@@ -4,9 +4,10 @@
  * each part shuffled (a streamed device batch comes unsorted) and the parts
  * handed over in a random order, certified on 1, 2 and 3 threads, give the
  * vertices of one vb_certify_quads over the whole sorted list, entry for
- * entry; more than 64 parts (merged early) too, and the certified counter
- * counts each vertex once (a degree-8 vertex of the cubic lattice is
- * certified in several parts). A stream that gets no part gives nothing. */
+ * entry; more than 64 parts (merged as they come) too, and the certified
+ * counter counts each vertex once (a degree-8 vertex of the cubic lattice
+ * is certified in several parts). A stream that gets no part gives
+ * nothing. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -153,7 +154,7 @@ static void one(const char *path)
             CHECK_INT(certified, ref.n);
             CHECK(nparts >= 1 && nparts <= cuts[c]);
             /* 150 parts of 250 quadruples or more (each input here):
-             * past 64, so the stream merged early (fold_parts). */
+             * more than 64 certified, merged as they came (fold_recent). */
             if (cuts[c] == 150 && q.n >= 250)
                 CHECK(nparts > 64);
             if (!same_list(&ref, &v))
