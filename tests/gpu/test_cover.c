@@ -160,20 +160,36 @@ static int emulated(vb_ctx *ctx, const vb_sphere_set *s, vb_quad_list *out, size
     return rc;
 }
 
-/* The work-item kernel on the OpenCL CPU device; with small first-tier
- * arenas the cells overflow and run again as root-patch tasks. */
-static int device_cover(vb_ctx *ctx, const vb_sphere_set *s, int split, size_t clusters,
-                        vb_quad_list *out)
+/* The OpenCL CPU device's cover backend; with `split`, small first-tier
+ * arenas, so that cells overflow and run again as root-patch tasks (undone
+ * by device_close). */
+static int device_open(vb_ctx *ctx, int split, vbg_runtime **rt, vb_cover_backend **be)
 {
     if (split) {
         setenv("VORBALL_COVER_NB", "48", 1);
         setenv("VORBALL_COVER_TIER2", "64", 1);
     }
-    vbg_runtime *rt = NULL;
-    vb_cover_backend *be = NULL;
-    int rc = vbg_runtime_open(ctx, VB_DEVICE_CPU, &rt);
-    if (rc == VB_OK)
-        rc = vbg_cover_open(ctx, rt, &be);
+    *rt = NULL;
+    *be = NULL;
+    int rc = vbg_runtime_open(ctx, VB_DEVICE_CPU, rt);
+    return rc == VB_OK ? vbg_cover_open(ctx, *rt, be) : rc;
+}
+
+static void device_close(vbg_runtime *rt, vb_cover_backend *be)
+{
+    vb_cover_backend_close(be);
+    vbg_runtime_close(rt);
+    unsetenv("VORBALL_COVER_NB");
+    unsetenv("VORBALL_COVER_TIER2");
+}
+
+/* The work-item kernel on the OpenCL CPU device (device_open's split). */
+static int device_cover(vb_ctx *ctx, const vb_sphere_set *s, int split, size_t clusters,
+                        vb_quad_list *out)
+{
+    vbg_runtime *rt;
+    vb_cover_backend *be;
+    int rc = device_open(ctx, split, &rt, &be);
     vb_cover_options o;
     memset(&o, 0, sizeof o);
     o.threads = 1; /* the device does every cell: nothing left for the host */
@@ -183,29 +199,20 @@ static int device_cover(vb_ctx *ctx, const vb_sphere_set *s, int split, size_t c
     /* only tie clusters go to the host (decided exactly there) */
     if (rc == VB_OK && split)
         CHECK_INT(st.host_cells, clusters);
-    vb_cover_backend_close(be);
-    vbg_runtime_close(rt);
-    unsetenv("VORBALL_COVER_NB");
-    unsetenv("VORBALL_COVER_TIER2");
+    device_close(rt, be);
     return rc;
 }
 
 /* The device's batches streamed (stream_batches, issue 30): batches of 5
  * cells on 2 threads (the host's cells flushed every 40 quadruples), with
- * `split` as in device_cover (a cell's root-patch tasks repeat some
+ * `split` as in device_open (a cell's root-patch tasks repeat some
  * quadruples). Every part is unique, a cell's quadruples lie in one part,
  * and the parts joined are the whole list. */
 static int streamed_cover(vb_ctx *ctx, const vb_sphere_set *s, int split, vb_quad_list *out)
 {
-    if (split) {
-        setenv("VORBALL_COVER_NB", "48", 1);
-        setenv("VORBALL_COVER_TIER2", "64", 1);
-    }
-    vbg_runtime *rt = NULL;
-    vb_cover_backend *be = NULL;
-    int rc = vbg_runtime_open(ctx, VB_DEVICE_CPU, &rt);
-    if (rc == VB_OK)
-        rc = vbg_cover_open(ctx, rt, &be);
+    vbg_runtime *rt;
+    vb_cover_backend *be;
+    int rc = device_open(ctx, split, &rt, &be);
     joined j = {{0}, 0, 1};
     vb_cover_options o;
     memset(&o, 0, sizeof o);
@@ -226,10 +233,7 @@ static int streamed_cover(vb_ctx *ctx, const vb_sphere_set *s, int split, vb_qua
     if (j.all.n)
         qsort(j.all.q, j.all.n, sizeof *j.all.q, vb_quad_cmp);
     *out = j.all;
-    vb_cover_backend_close(be);
-    vbg_runtime_close(rt);
-    unsetenv("VORBALL_COVER_NB");
-    unsetenv("VORBALL_COVER_TIER2");
+    device_close(rt, be);
     return rc;
 }
 

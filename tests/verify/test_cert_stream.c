@@ -17,20 +17,7 @@
 #include "vb_verify.h"
 #include "vb_vertices.h"
 #include "vbv_certify.h"
-
-static int same_list(const vb_vertex_list *a, const vb_vertex_list *b)
-{
-    if (a->n != b->n || a->nids != b->nids)
-        return 0;
-    if (a->n == 0)
-        return 1;
-    return memcmp(a->start, b->start, (a->n + 1) * sizeof *a->start) == 0 &&
-           memcmp(a->ids, b->ids, a->nids * sizeof *a->ids) == 0 &&
-           memcmp(a->x, b->x, a->n * sizeof *a->x) == 0 &&
-           memcmp(a->y, b->y, a->n * sizeof *a->y) == 0 &&
-           memcmp(a->z, b->z, a->n * sizeof *a->z) == 0 &&
-           memcmp(a->t, b->t, a->n * sizeof *a->t) == 0;
-}
+#include "vt_lists.h"
 
 static uint64_t rnd_state = 88172645463325252ull;
 static size_t rnd(size_t n)
@@ -122,18 +109,21 @@ static int streamed(const vb_sphere_set *s, const vb_quad_list *q, size_t parts,
     return rc;
 }
 
-static void one(const char *path)
+/* The spheres of path (NULL, a failed check, when they cannot be read). */
+static vb_sphere_set *load(vb_ctx *ctx, const char *path)
 {
-    vb_ctx *ctx;
-    if (vb_open(&ctx, NULL) != VB_OK)
-        return;
     vb_read_options ro;
     memset(&ro, 0, sizeof ro);
     vb_sphere_set *s = NULL;
+    CHECK_INT(vb_spheres_load(ctx, path, &ro, NULL, 4, &s), VB_OK);
+    return s;
+}
+
+static void one(vb_ctx *ctx, const char *path)
+{
+    vb_sphere_set *s = load(ctx, path);
     vb_quad_list q = {0};
-    int rc = vb_spheres_load(ctx, path, &ro, NULL, 4, &s);
-    if (rc == VB_OK)
-        rc = vb_cover_run(ctx, s, NULL, NULL, &q, NULL);
+    int rc = s ? vb_cover_run(ctx, s, NULL, NULL, &q, NULL) : VB_EINPUT;
     CHECK_INT(rc, VB_OK);
     vb_vertex_list ref;
     vb_vertex_list_init(&ref);
@@ -150,14 +140,14 @@ static void one(const char *path)
             uint64_t certified = 0;
             size_t nparts = 0;
             CHECK_INT(streamed(s, &q, cuts[c], threads, &v, &certified, &nparts), VB_OK);
-            CHECK(same_list(&ref, &v));
+            CHECK(vt_same_list(&ref, &v, 0));
             CHECK_INT(certified, ref.n);
             CHECK(nparts >= 1 && nparts <= cuts[c]);
             /* 150 parts of 250 quadruples or more (each input here):
              * more than 64 certified, merged as they came (fold_recent). */
             if (cuts[c] == 150 && q.n >= 250)
                 CHECK(nparts > 64);
-            if (!same_list(&ref, &v))
+            if (!vt_same_list(&ref, &v, 0))
                 fprintf(stderr, "%s: %zu parts, %u threads: %zu vertices, whole %zu\n", path,
                         cuts[c], threads, v.n, ref.n);
             vb_vertex_list_free(&v);
@@ -165,19 +155,12 @@ static void one(const char *path)
     vb_vertex_list_free(&ref);
     vb_quad_list_free(&q);
     vb_spheres_free(s);
-    vb_close(ctx);
 }
 
 /* A stream that gets no part: no vertex, no error, no part counted. */
-static void empty(const char *path)
+static void empty(vb_ctx *ctx, const char *path)
 {
-    vb_ctx *ctx;
-    if (vb_open(&ctx, NULL) != VB_OK)
-        return;
-    vb_read_options ro;
-    memset(&ro, 0, sizeof ro);
-    vb_sphere_set *s = NULL;
-    CHECK_INT(vb_spheres_load(ctx, path, &ro, NULL, 4, &s), VB_OK);
+    vb_sphere_set *s = load(ctx, path);
     if (s) {
         vb_quad_list q = {0};
         vb_vertex_list v;
@@ -191,7 +174,6 @@ static void empty(const char *path)
         vb_vertex_list_free(&v);
     }
     vb_spheres_free(s);
-    vb_close(ctx);
 }
 
 int main(void)
@@ -204,12 +186,16 @@ int main(void)
     const char *cases[] = {"corpus/inputs/cubic_lattice.xyzr",
                            "corpus/inputs/jittered_lattice.xyzr",
                            "corpus/inputs/crambin_fragment.xyzr"};
+    vb_ctx *ctx;
+    if (vb_open(&ctx, NULL) != VB_OK)
+        return 1;
     char path[4096];
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         snprintf(path, sizeof path, "%s/%s", src, cases[k]);
-        one(path);
+        one(ctx, path);
     }
     snprintf(path, sizeof path, "%s/%s", src, cases[0]);
-    empty(path);
+    empty(ctx, path);
+    vb_close(ctx);
     VB_TEST_END();
 }
