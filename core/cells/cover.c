@@ -85,21 +85,33 @@ int vbq_arena_make(vbq_arena *a, uint32_t nb, uint32_t lab, uint32_t st, uint32_
 #define VBQ_Q0 512u
 
 
-/* One cell's n quadruples made unique (a device's root-patch tasks may
- * repeat some); returns how many are left. Already increasing: unchanged. */
-static size_t cell_unique(uint32_t (*q)[4], size_t n)
+/* The length of q's strictly increasing prefix (n: q is canonical). */
+static size_t sorted_run(const uint32_t (*q)[4], size_t n)
 {
     size_t k = 1;
     while (k < n && vb_quad_cmp(q[k - 1], q[k]) < 0)
         k++;
-    if (k >= n)
-        return n;
-    qsort(q, n, sizeof *q, vb_quad_cmp);
-    k = 1;
+    return n ? k : 0;
+}
+
+/* Drops the repeats of sorted q; returns how many are left. */
+static size_t drop_repeats(uint32_t (*q)[4], size_t n)
+{
+    size_t k = n ? 1 : 0;
     for (size_t a = 1; a < n; a++)
         if (vb_quad_cmp(q[a], q[k - 1]) != 0)
             memcpy(q[k++], q[a], sizeof *q);
     return k;
+}
+
+/* One cell's n quadruples made unique (a device's root-patch tasks may
+ * repeat some); returns how many are left. Already increasing: unchanged. */
+static size_t cell_unique(uint32_t (*q)[4], size_t n)
+{
+    if (sorted_run((const uint32_t(*)[4])q, n) == n)
+        return n;
+    qsort(q, n, sizeof *q, vb_quad_cmp);
+    return drop_repeats(q, n);
 }
 
 /* Appends n quadruples to l. VB_OK or VB_ENOMEM. */
@@ -404,14 +416,11 @@ void vb_cover_backend_close(vb_cover_backend *be)
 
 int vb_quad_list_canonical(vb_quad_list *l, int nt)
 {
-    int rc = l->n > 1 ? vb_psort(l->q, l->n, sizeof *l->q, vb_quad_cmp, nt) : VB_OK;
-    if (rc == VB_OK && l->n > 1) {
-        size_t k = 1;
-        for (size_t a = 1; a < l->n; a++)
-            if (vb_quad_cmp(l->q[a], l->q[k - 1]) != 0)
-                memcpy(l->q[k++], l->q[a], sizeof *l->q);
-        l->n = k;
-    }
+    if (sorted_run((const uint32_t(*)[4])l->q, l->n) == l->n)
+        return VB_OK; /* a part the cover sorted already */
+    int rc = vb_psort(l->q, l->n, sizeof *l->q, vb_quad_cmp, nt);
+    if (rc == VB_OK)
+        l->n = drop_repeats(l->q, l->n);
     return rc;
 }
 
