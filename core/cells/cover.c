@@ -84,7 +84,6 @@ int vbq_arena_make(vbq_arena *a, uint32_t nb, uint32_t lab, uint32_t st, uint32_
 #define VBQ_ST0 512u
 #define VBQ_Q0 512u
 
-
 /* The length of q's strictly increasing prefix (n: q is canonical). */
 static size_t sorted_run(const uint32_t (*q)[4], size_t n)
 {
