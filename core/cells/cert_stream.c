@@ -240,6 +240,7 @@ void vbv_cert_stream_reset(vbv_cert_stream *cs)
 {
     stream_wait(cs, 0);
     drop_parts(cs);
+    cs->certified_parts = 0; /* the thread is idle: the count is the next run's */
 }
 
 int vbv_cert_stream_finish(vb_ctx *ctx, vbv_cert_stream *cs, vb_vertex_list *out)
