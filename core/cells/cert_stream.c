@@ -1,7 +1,8 @@
 /* The certifier's set-up beside the proposer, and certification part by
- * part beside the cover (vbv_certify.h). The vertices do not depend on how
- * the quadruples were cut into parts: the parts' sorted lists are merged
- * and a vertex certified in two parts written once. */
+ * part beside the cover (vbv_certify.h): a queue of parts that one thread
+ * certifies in turn. The vertices do not depend on how the quadruples were
+ * cut into parts or in what order they came: the parts' sorted lists are
+ * merged and a vertex certified in two parts written once. */
 #include "vbv_certify.h"
 
 #include <stdlib.h>
@@ -67,47 +68,164 @@ int vbv_cert_stream_init(vbv_cert_stream *cs, vbv_cert_open *co, vb_ctx *owner)
     memset(cs, 0, sizeof *cs);
     cs->co = co;
     cs->ops = co->ops;
+    cs->threads = vb_threads(co->threads);
+    if (pthread_mutex_init(&cs->mu, NULL))
+        return VB_ENOMEM;
+    if (pthread_cond_init(&cs->cv, NULL)) {
+        pthread_mutex_destroy(&cs->mu);
+        return VB_ENOMEM;
+    }
+    cs->started = -1; /* the lock and condition are made */
     return vb_open_worker(&cs->tctx, owner) == VB_OK ? VB_OK : VB_ENOMEM;
 }
 
-static void *certify_part(void *arg)
+/* Merges the last k certified parts into one list. VB_OK or VB_ENOMEM. */
+static int fold_parts(vbv_cert_stream *cs, size_t k)
 {
-    vbv_cert_stream *cs = arg;
-    double t0 = vb_now();
-    if (cs->co) {
-        cs->cert = vbv_cert_open_join(cs->tctx, cs->co, &cs->rc);
-        cs->co = NULL;
+    vb_vertex_list all;
+    vb_vertex_list_init(&all);
+    size_t dropped = 0, first = cs->nparts - k;
+    int rc = vb_vertex_list_merge(&all, cs->parts + first, k, &dropped);
+    if (rc != VB_OK) {
+        vb_vertex_list_free(&all);
+        return rc;
     }
-    if (cs->rc == VB_OK)
-        cs->rc = cs->ops->certify_quads(cs->tctx, cs->cert, (const uint32_t(*)[4])cs->cur.q,
-                                        cs->cur.n, &cs->parts[cs->nparts - 1], NULL);
-    cs->t_work += vb_now() - t0;
-    return NULL;
+    for (size_t p = first; p < cs->nparts; p++)
+        vb_vertex_list_free(&cs->parts[p]);
+    cs->parts[first] = all;
+    cs->nparts = first + 1;
+    cs->dropped += dropped;
+    return VB_OK;
 }
 
-static int stream_wait(vbv_cert_stream *cs)
+/* Keeps the certified lists few while the cover runs, so that little is
+ * left to merge after it: the newest two are merged while the older is at
+ * most twice the newer (sizes then halve down the list: about log2 of the
+ * parts are held, and each vertex is copied about log2 times in all), and
+ * never more than 64 are held (vb_vertex_list_merge's bound). */
+static int fold_recent(vbv_cert_stream *cs)
 {
-    if (cs->busy)
-        vb_jobs_join(&cs->job);
-    cs->busy = 0;
-    vb_quad_list_free(&cs->cur);
-    return cs->rc;
+    int rc = VB_OK;
+    while (rc == VB_OK && cs->nparts >= 2 &&
+           cs->parts[cs->nparts - 2].n <= 2 * cs->parts[cs->nparts - 1].n)
+        rc = fold_parts(cs, 2);
+    if (rc == VB_OK && cs->nparts == 64)
+        rc = fold_parts(cs, 64);
+    return rc;
+}
+
+/* One queued part: sorted, certified, its vertices kept. */
+static int certify_one(vbv_cert_stream *cs, vb_quad_list *part)
+{
+    int rc = vb_quad_list_canonical(part, cs->threads);
+    vb_vertex_list v;
+    vb_vertex_list_init(&v);
+    if (rc == VB_OK)
+        rc = cs->ops->certify_quads(cs->tctx, cs->cert, (const uint32_t(*)[4])part->q, part->n, &v,
+                                    NULL);
+    /* The parts are the thread's alone until it is idle (stream_wait). */
+    if (rc == VB_OK && VB_ARRAY_FIT(cs->parts, cs->cap, cs->nparts + 1, 8) != VB_OK)
+        rc = VB_ENOMEM;
+    if (rc == VB_OK) {
+        cs->parts[cs->nparts++] = v;
+        cs->certified_parts++;
+        rc = fold_recent(cs);
+    } else {
+        vb_vertex_list_free(&v);
+    }
+    if (rc == VB_ENOMEM)
+        vb_error(cs->tctx, VB_ENOMEM, NULL, 0, "out of memory (certifier)");
+    return rc;
+}
+
+/* The stream's thread: the set-up joined, then the queued parts in turn
+ * until the stream closes (after a failure it only drops them). */
+static void *stream_thread(void *arg)
+{
+    vbv_cert_stream *cs = arg;
+    int rc = VB_OK;
+    if (cs->co) {
+        cs->cert = vbv_cert_open_join(cs->tctx, cs->co, &rc);
+        cs->co = NULL;
+    }
+    pthread_mutex_lock(&cs->mu);
+    if (rc != VB_OK && cs->rc == VB_OK)
+        cs->rc = rc;
+    for (;;) {
+        while (cs->qhead == cs->qn && !cs->closing)
+            pthread_cond_wait(&cs->cv, &cs->mu);
+        if (cs->qhead == cs->qn)
+            break;
+        vb_quad_list part = cs->queue[cs->qhead];
+        memset(&cs->queue[cs->qhead++], 0, sizeof part);
+        int ok = cs->rc == VB_OK && !cs->drop;
+        cs->busy = ok;
+        cs->t_busy_since = vb_now();
+        pthread_mutex_unlock(&cs->mu);
+        rc = ok ? certify_one(cs, &part) : VB_OK;
+        vb_quad_list_free(&part);
+        pthread_mutex_lock(&cs->mu);
+        if (ok)
+            cs->t_work += vb_now() - cs->t_busy_since;
+        if (rc != VB_OK && cs->rc == VB_OK)
+            cs->rc = rc;
+        cs->busy = 0;
+        pthread_cond_broadcast(&cs->cv);
+    }
+    pthread_mutex_unlock(&cs->mu);
+    return NULL;
 }
 
 int vbv_cert_stream_sink(void *user, vb_quad_list *part)
 {
     vbv_cert_stream *cs = user;
-    int rc = stream_wait(cs);
-    if (rc != VB_OK)
-        return rc;
-    if (VB_ARRAY_FIT(cs->parts, cs->cap, cs->nparts + 1, 8) != VB_OK)
-        return cs->rc = vb_error(cs->tctx, VB_ENOMEM, NULL, 0, "out of memory (certifier)");
-    vb_vertex_list_init(&cs->parts[cs->nparts++]);
-    cs->cur = *part;
-    memset(part, 0, sizeof *part);
-    vb_jobs_start(&cs->job, certify_part, cs, sizeof *cs, 1);
-    cs->busy = 1;
-    return VB_OK;
+    pthread_mutex_lock(&cs->mu);
+    int rc = cs->rc;
+    if (rc == VB_OK && cs->qhead == cs->qn)
+        cs->qhead = cs->qn = 0; /* the queue is empty: its room is reused */
+    if (rc == VB_OK && VB_ARRAY_FIT(cs->queue, cs->qcap, cs->qn + 1, 8) != VB_OK)
+        rc = VB_ENOMEM;
+    if (rc == VB_OK) {
+        cs->queue[cs->qn++] = *part;
+        memset(part, 0, sizeof *part);
+        pthread_cond_broadcast(&cs->cv);
+    }
+    int start = rc == VB_OK && cs->started == -1;
+    if (start)
+        cs->started = 1;
+    pthread_mutex_unlock(&cs->mu);
+    /* A thread that cannot start certifies the queue when joined. */
+    if (start && vb_jobs_start(&cs->job, stream_thread, cs, sizeof *cs, 1) != 1) {
+        pthread_mutex_lock(&cs->mu);
+        cs->started = 2;
+        pthread_mutex_unlock(&cs->mu);
+    }
+    return rc;
+}
+
+/* Waits until the queue is empty and the thread idle; then, when `close`
+ * (or when the thread never started), stops the thread and joins it.
+ * Returns the stream's status. */
+static int stream_wait(vbv_cert_stream *cs, int close)
+{
+    if (cs->started == 0)
+        return cs->rc;
+    pthread_mutex_lock(&cs->mu);
+    while (cs->started == 1 && (cs->qhead < cs->qn || cs->busy))
+        pthread_cond_wait(&cs->cv, &cs->mu);
+    int join = cs->started == 2 || (close && cs->started == 1);
+    if (join) {
+        cs->closing = 1;
+        pthread_cond_broadcast(&cs->cv);
+    }
+    int rc = cs->rc;
+    pthread_mutex_unlock(&cs->mu);
+    if (join) {
+        vb_jobs_join(&cs->job);
+        cs->started = -1;
+        cs->closing = 0;
+    }
+    return rc;
 }
 
 static void drop_parts(vbv_cert_stream *cs)
@@ -115,17 +233,24 @@ static void drop_parts(vbv_cert_stream *cs)
     for (size_t k = 0; k < cs->nparts; k++)
         vb_vertex_list_free(&cs->parts[k]);
     cs->nparts = 0;
+    cs->dropped = 0;
 }
 
 void vbv_cert_stream_reset(vbv_cert_stream *cs)
 {
-    stream_wait(cs);
+    stream_wait(cs, 0);
     drop_parts(cs);
+    cs->certified_parts = 0; /* the thread is idle: the count is the next run's */
 }
 
 int vbv_cert_stream_finish(vb_ctx *ctx, vbv_cert_stream *cs, vb_vertex_list *out)
 {
-    int rc = stream_wait(cs);
+    if (cs->started > 0) {
+        pthread_mutex_lock(&cs->mu);
+        cs->t_overlap = cs->t_work + (cs->busy ? vb_now() - cs->t_busy_since : 0.0);
+        pthread_mutex_unlock(&cs->mu);
+    }
+    int rc = stream_wait(cs, 1);
     if (cs->co) { /* no part came: the set-up is still to be joined */
         int orc;
         cs->cert = vbv_cert_open_join(cs->tctx, cs->co, &orc);
@@ -141,19 +266,37 @@ int vbv_cert_stream_finish(vb_ctx *ctx, vbv_cert_stream *cs, vb_vertex_list *out
      * its members, which parts may split: certified in two parts, it is
      * the same entry twice, written once (and counted once). */
     size_t dropped = 0;
-    rc = vb_vertex_list_merge(out, cs->parts, cs->nparts, &dropped);
-    vb_ctx_stats(ctx)->certified -= dropped;
+    if (cs->nparts == 1 && out->n == 0) { /* one list: handed over as it is */
+        vb_vertex_list_free(out);
+        *out = cs->parts[0];
+        vb_vertex_list_init(&cs->parts[0]);
+    } else {
+        rc = vb_vertex_list_merge(out, cs->parts, cs->nparts, &dropped);
+    }
+    vb_ctx_stats(ctx)->certified -= dropped + cs->dropped;
     drop_parts(cs);
     return rc == VB_OK ? VB_OK : vb_error(ctx, rc, NULL, 0, "out of memory (certified vertices)");
 }
 
 void *vbv_cert_stream_free(vbv_cert_stream *cs)
 {
-    stream_wait(cs);
+    if (cs->started > 0) { /* after a failure: what is queued is dropped */
+        pthread_mutex_lock(&cs->mu);
+        cs->drop = 1;
+        pthread_mutex_unlock(&cs->mu);
+    }
+    stream_wait(cs, 1);
     if (cs->co)
         vbv_cert_open_discard(cs->co);
     drop_parts(cs);
     free(cs->parts);
+    for (size_t k = cs->qhead; k < cs->qn; k++)
+        vb_quad_list_free(&cs->queue[k]);
+    free(cs->queue);
+    if (cs->started == -1) {
+        pthread_mutex_destroy(&cs->mu);
+        pthread_cond_destroy(&cs->cv);
+    }
     vb_close(cs->tctx);
     void *cert = cs->cert;
     memset(cs, 0, sizeof *cs);

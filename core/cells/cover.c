@@ -29,6 +29,11 @@ typedef struct job {
     vb_ctx *ctx;            /* where progress goes (vb_progress) */
     size_t base, all;       /* cells of earlier parts, and of every part */
     atomic_size_t covered;  /* cells of this part covered so far */
+    size_t batch;           /* cells per device batch (0: the backend's) */
+    vb_cover_sink sink;     /* non-NULL: each device batch's quadruples go to it at once, */
+    void *user;
+    size_t flush;           /* and a host worker's once it holds this many */
+    int host_back;          /* 0: host threads cover only the cells a device left */
 } job;
 
 /* n more cells covered: the progress of the whole cover, from any thread. */
@@ -42,8 +47,7 @@ static void covered(job *jb, size_t n)
 typedef struct worker {
     job *jb;
     vbq_arena ar;
-    uint32_t (*q)[4];
-    size_t nq, q_cap;
+    vb_quad_list ql;        /* its quadruples */
     vb_cover_stats st;
     int rc;
 } worker;
@@ -80,14 +84,44 @@ int vbq_arena_make(vbq_arena *a, uint32_t nb, uint32_t lab, uint32_t st, uint32_
 #define VBQ_ST0 512u
 #define VBQ_Q0 512u
 
-static int quads_append(worker *w, const uint32_t *q, size_t n)
+/* The length of q's strictly increasing prefix (n: q is canonical). */
+static size_t sorted_run(const uint32_t (*q)[4], size_t n)
+{
+    size_t k = 1;
+    while (k < n && vb_quad_cmp(q[k - 1], q[k]) < 0)
+        k++;
+    return n ? k : 0;
+}
+
+/* Drops the repeats of sorted q; returns how many are left. */
+static size_t drop_repeats(uint32_t (*q)[4], size_t n)
+{
+    size_t k = n ? 1 : 0;
+    for (size_t a = 1; a < n; a++)
+        if (vb_quad_cmp(q[a], q[k - 1]) != 0)
+            memcpy(q[k++], q[a], sizeof *q);
+    return k;
+}
+
+/* One cell's n quadruples made unique (a device's root-patch tasks may
+ * repeat some); returns how many are left. Already increasing: unchanged. */
+static size_t cell_unique(uint32_t (*q)[4], size_t n)
+{
+    if (sorted_run((const uint32_t(*)[4])q, n) == n)
+        return n;
+    qsort(q, n, sizeof *q, vb_quad_cmp);
+    return drop_repeats(q, n);
+}
+
+/* Appends n quadruples to l. VB_OK or VB_ENOMEM. */
+static int list_append(vb_quad_list *l, const uint32_t *q, size_t n)
 {
     if (n == 0)
         return VB_OK;
-    if (VB_ARRAY_FIT(w->q, w->q_cap, w->nq + n, 4096) != VB_OK)
+    if (VB_ARRAY_FIT(l->q, l->cap, l->n + n, 4096) != VB_OK)
         return VB_ENOMEM;
-    memcpy(w->q + w->nq, q, n * sizeof *w->q);
-    w->nq += n;
+    memcpy(l->q + l->n, q, n * sizeof *l->q);
+    l->n += n;
     return VB_OK;
 }
 
@@ -122,7 +156,7 @@ static int cover_one(worker *w, uint32_t i)
         w->st.retries++;
     }
     stats_add(&w->st, &o);
-    return quads_append(w, w->ar.q, o.nq);
+    return list_append(&w->ql, w->ar.q, o.nq);
 }
 
 /* Records a host worker's error rc and flags its job failed (every worker
@@ -214,7 +248,7 @@ static void *hybrid_host(void *arg)
             if (sh->lhead < sh->nleft) {
                 cell = sh->left[sh->lhead++];
                 have = 1;
-            } else if (sh->front < sh->back) {
+            } else if (sh->front < sh->back && jb->host_back) {
                 cell = jb->cells[--sh->back];
                 have = 1;
             } else if (sh->done) {
@@ -227,6 +261,17 @@ static void *hybrid_host(void *arg)
         if (!have)
             return NULL;
         int rc = cover_one(w, cell);
+        if (rc == VB_OK)
+            covered(jb, 1);
+        /* Streamed: a host worker's cells go to the sink as the device's
+         * batches do, so that what the host covers is not all certified
+         * after the cover. */
+        if (rc == VB_OK && jb->sink && w->ql.n >= jb->flush) {
+            w->st.quads += w->ql.n;
+            w->st.stream_parts++;
+            rc = jb->sink(jb->user, &w->ql);
+            w->ql.n = 0; /* the sink took the array, or keeps nothing of it */
+        }
         if (rc != VB_OK) {
             worker_fail(w, rc);
             pthread_mutex_lock(&sh->mu);
@@ -234,7 +279,6 @@ static void *hybrid_host(void *arg)
             pthread_mutex_unlock(&sh->mu);
             return NULL;
         }
-        covered(jb, 1);
     }
 }
 
@@ -242,7 +286,7 @@ static void *hybrid_host(void *arg)
  * everything on the host again). */
 static int hybrid_device(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w0, share *sh)
 {
-    size_t batch = be->batch_cells ? be->batch_cells : 65536;
+    size_t batch = jb->batch;
     vbq_cell_out *outs = malloc(batch * sizeof *outs);
     if (!outs)
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
@@ -261,14 +305,19 @@ static int hybrid_device(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w0,
         if (rc != VB_OK)
             break;
         size_t nl = 0;
+        vb_quad_list chunk = {0};
         for (size_t k = 0; rc == VB_OK && k < n; k++) {
             if (outs[k].status != VBQ_OK) {
                 outs[nl++].qoff = jb->cells[b0 + k]; /* reuse the slot for the cell id */
                 continue;
             }
             stats_add(&w0->st, &outs[k]);
-            if (quads_append(w0, quads + 4 * (size_t)outs[k].qoff, outs[k].nq) != VB_OK)
+            const uint32_t *cq = quads + 4 * (size_t)outs[k].qoff;
+            size_t c0 = chunk.n;
+            if (list_append(jb->sink ? &chunk : &w0->ql, cq, outs[k].nq) != VB_OK)
                 rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
+            else if (jb->sink)
+                chunk.n = c0 + cell_unique(chunk.q + c0, chunk.n - c0);
         }
         pthread_mutex_lock(&sh->mu);
         for (size_t k = 0; k < nl; k++)
@@ -277,6 +326,14 @@ static int hybrid_device(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w0,
         pthread_mutex_unlock(&sh->mu);
         w0->st.host_cells += nl;
         covered(jb, n - nl);
+        /* Streamed: the batch's cells are disjoint from every other's and
+         * each is unique, so the chunk is too; the sink sorts it. */
+        if (rc == VB_OK && chunk.n) {
+            w0->st.quads += chunk.n;
+            w0->st.stream_parts++;
+            rc = jb->sink(jb->user, &chunk);
+        }
+        vb_quad_list_free(&chunk);
     }
     free(outs);
     return rc;
@@ -296,6 +353,9 @@ static int cover_hybrid(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w, i
     }
     pthread_cond_init(&sh.cv, NULL);
     atomic_store(&jb->failed, 0);
+    if (!jb->batch)
+        jb->batch = be->batch_cells ? be->batch_cells : 65536;
+    jb->flush = 8 * jb->batch; /* about a batch's worth of quadruples (~10 a cell) */
     hybrid_arg *ha = calloc((size_t)nt, sizeof *ha);
     vb_jobs *g = calloc(1, sizeof *g);
     int rc = ha && g ? VB_OK : VB_ENOMEM;
@@ -353,17 +413,13 @@ void vb_cover_backend_close(vb_cover_backend *be)
         be->close(be);
 }
 
-/* Sorts l on nt threads and drops repeats. */
-static int canonical(vb_quad_list *l, int nt)
+int vb_quad_list_canonical(vb_quad_list *l, int nt)
 {
-    int rc = l->n > 1 ? vb_psort(l->q, l->n, sizeof *l->q, vb_quad_cmp, nt) : VB_OK;
-    if (rc == VB_OK && l->n > 1) {
-        size_t k = 1;
-        for (size_t a = 1; a < l->n; a++)
-            if (vb_quad_cmp(l->q[a], l->q[k - 1]) != 0)
-                memcpy(l->q[k++], l->q[a], sizeof *l->q);
-        l->n = k;
-    }
+    if (sorted_run((const uint32_t(*)[4])l->q, l->n) == l->n)
+        return VB_OK; /* a part the cover sorted already */
+    int rc = vb_psort(l->q, l->n, sizeof *l->q, vb_quad_cmp, nt);
+    if (rc == VB_OK)
+        l->n = drop_repeats(l->q, l->n);
     return rc;
 }
 
@@ -375,7 +431,7 @@ static int gather(worker *w, int nt, vb_quad_list *out)
 {
     size_t total = out->n, n0 = out->n;
     for (int t = 0; t < nt; t++)
-        total += w[t].nq;
+        total += w[t].ql.n;
     if (total > out->cap) {
         void *p = realloc(out->q, total * sizeof *out->q);
         if (!p)
@@ -384,12 +440,12 @@ static int gather(worker *w, int nt, vb_quad_list *out)
         out->cap = total;
     }
     for (int t = 0; t < nt; t++) {
-        if (w[t].nq)
-            memcpy(out->q + out->n, w[t].q, w[t].nq * sizeof *out->q);
-        out->n += w[t].nq;
-        w[t].nq = 0;
+        if (w[t].ql.n)
+            memcpy(out->q + out->n, w[t].ql.q, w[t].ql.n * sizeof *out->q);
+        out->n += w[t].ql.n;
+        w[t].ql.n = 0;
     }
-    return out->n > n0 ? canonical(out, nt) : VB_OK;
+    return out->n > n0 ? vb_quad_list_canonical(out, nt) : VB_OK;
 }
 
 static void stats_sum(vb_cover_stats *st, const vb_cover_stats *ws)
@@ -402,11 +458,27 @@ static void stats_sum(vb_cover_stats *st, const vb_cover_stats *ws)
     st->leaves += ws->leaves;
     st->max_level_leaves += ws->max_level_leaves;
     st->retries += ws->retries;
+    st->quads += ws->quads;
+    st->stream_parts += ws->stream_parts;
     st->host_cells += ws->host_cells;
     st->t_device += ws->t_device;
     st->t_host += ws->t_host;
     if (ws->max_level_seen > st->max_level_seen)
         st->max_level_seen = ws->max_level_seen;
+}
+
+size_t vb_cover_batch_cells(const vb_cover_options *opt)
+{
+    if (opt && opt->batch_cells)
+        return opt->batch_cells;
+    const char *e = getenv("VORBALL_COVER_BATCH");
+    if (e && *e) {
+        char *end;
+        unsigned long long v = strtoull(e, &end, 10);
+        if (*end == '\0' && v >= 1 && v <= (1ull << 30))
+            return (size_t)v;
+    }
+    return 0;
 }
 
 unsigned vb_cover_pipeline_parts(void)
@@ -469,6 +541,13 @@ int vb_cover_run_parts(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_opt
     int rc = w ? VB_OK : VB_ENOMEM;
     for (int t = 0; rc == VB_OK && t < nt; t++)
         w[t].jb = &jb;
+    jb.batch = vb_cover_batch_cells(&o);
+    const char *hb = getenv("VORBALL_COVER_HOST_BACK");
+    jb.host_back = !(be && hb && strcmp(hb, "0") == 0);
+    if (o.stream_batches) {
+        jb.sink = sink;
+        jb.user = user;
+    }
     vb_cover_stats st;
     memset(&st, 0, sizeof st);
     for (unsigned p = 0; rc == VB_OK && p < parts; p++) {
@@ -490,7 +569,7 @@ int vb_cover_run_parts(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_opt
         if (rc == VB_OK)
             rc = gather(w, nt, &part);
         st.quads += part.n;
-        if (rc == VB_OK)
+        if (rc == VB_OK && (part.n || !o.stream_batches))
             rc = sink(user, &part);
         vb_quad_list_free(&part);
     }
@@ -499,7 +578,7 @@ int vb_cover_run_parts(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_opt
     for (int t = 0; w && t < nt; t++) {
         stats_sum(&st, &w[t].st);
         vbq_arena_free(&w[t].ar);
-        free(w[t].q);
+        vb_quad_list_free(&w[t].ql);
     }
     free(w);
     free(kept);
@@ -537,9 +616,11 @@ int vb_cover_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *
                  vb_cover_backend *be, vb_quad_list *out, vb_cover_stats *stats)
 {
     size_t n0 = out->n;
-    int rc = vb_cover_run_parts(ctx, set, opt, be, 1, append_part, out, stats);
+    vb_cover_options o = opt ? *opt : (vb_cover_options){0};
+    o.stream_batches = 0; /* one sorted part */
+    int rc = vb_cover_run_parts(ctx, set, &o, be, 1, append_part, out, stats);
     /* Appended to earlier quadruples: the whole list made canonical again. */
-    if (rc == VB_OK && n0 > 0 && canonical(out, vb_threads(opt ? opt->threads : 0)) != VB_OK)
+    if (rc == VB_OK && n0 > 0 && vb_quad_list_canonical(out, vb_threads(o.threads)) != VB_OK)
         rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
     return rc;
 }

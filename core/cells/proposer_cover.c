@@ -2,7 +2,8 @@
  * backend on a device (the device layer's cover_open), or the host's
  * threads. It proposes quadruples whose exact roots hold every vertex, so
  * the result says `complete`; with a sink in the arguments they go to it
- * part by part (vb_cover_run_parts), for the certifier to overlap. */
+ * part by part (vb_cover_run_parts), a device's batches each as a part of
+ * its own, for the certifier to overlap. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -40,6 +41,11 @@ static int cover_run(vb_ctx *ctx, void *state, const vb_proposer_await *aw,
     if (args->cover)
         o = *args->cover;
     o.threads = args->opt.threads;
+    /* Each device batch to the sink as soon as it is read back (the
+     * certifier overlaps the device); VORBALL_COVER_STREAM=0 keeps them for
+     * the part's end (measurements). */
+    const char *sb = getenv("VORBALL_COVER_STREAM");
+    o.stream_batches = args->quads_sink && !(sb && strcmp(sb, "0") == 0);
     vb_quad_list q = {0};
     vb_cover_stats st;
     int rc = args->quads_sink

@@ -46,6 +46,16 @@ typedef struct vb_cover_options {
      * stays complete for them; vbq_floor); 0: every vertex. Periodic boxes
      * pass their proven bound rho. */
     double tmax;
+    /* Cells per device batch (0: vb_cover_batch_cells's default). Only
+     * speed depends on it; tests force many batches with a small one. */
+    size_t batch_cells;
+    /* Nonzero (vb_cover_run_parts with a backend): each device batch's
+     * quadruples go to the sink as a part of their own as soon as they are
+     * read back, so that the sink (the certifier) works while the device
+     * covers the next batch; a host thread's go to it whenever it holds
+     * about a batch's worth (8 quadruples a cell), the rest as each run's
+     * last part. The sink is then called from several threads at once. */
+    int stream_batches;
 } vb_cover_options;
 
 typedef struct vb_cover_stats {
@@ -59,6 +69,7 @@ typedef struct vb_cover_stats {
     uint64_t quads;          /* distinct quadruples proposed */
     uint64_t retries;        /* cells covered again with a larger arena */
     uint64_t host_cells;     /* cells a device left to the host */
+    uint64_t stream_parts;   /* parts streamed to the sink during a run (stream_batches) */
     double t_device;         /* seconds in the device's batches (wall) */
     double t_host;           /* seconds of the whole cover (wall) */
     unsigned max_level_seen;
@@ -128,13 +139,24 @@ void vb_cover_tree_free(vb_cover_tree *tree);
 int vb_cover_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *opt,
                  vb_cover_backend *be, vb_quad_list *out, vb_cover_stats *stats);
 
-/* A consumer of the cover's quadruples, part by part: part is sorted and
- * unique, and the sink may take its array (leaving *part zeroed). Parts
- * are disjoint (a quadruple is proposed by the cell of its smallest id),
- * but a vertex of degree > 4 is the root of quadruples of several of its
- * members' cells, which may lie in different parts. Returns VB_OK or an
- * error that stops the cover (returned by vb_cover_run_parts). */
+/* Sorts l on nt threads (vb_quad_cmp) and drops repeats. VB_OK or
+ * VB_ENOMEM. */
+int vb_quad_list_canonical(vb_quad_list *l, int nt);
+
+/* A consumer of the cover's quadruples, part by part: part is unique,
+ * sorted unless it is a streamed device batch (stream_batches; the sink
+ * sorts it, vb_quad_list_canonical), and the sink may take its array
+ * (leaving *part zeroed). Parts are disjoint (a quadruple is proposed by
+ * the cell of its smallest id), but a vertex of degree > 4 is the root of
+ * quadruples of several of its members' cells, which may lie in different
+ * parts. Returns VB_OK or an error that stops the cover (returned by
+ * vb_cover_run_parts). */
 typedef int (*vb_cover_sink)(void *user, vb_quad_list *part);
+
+/* Cells per device batch: opt->batch_cells when nonzero, else
+ * VORBALL_COVER_BATCH (1 to 2^30) when set, else 0 (the backend's own:
+ * 2^18 on a GPU, 2^14 on a CPU device). */
+size_t vb_cover_batch_cells(const vb_cover_options *opt);
 
 /* Parts for a pipelined run: VORBALL_COVER_PARTS (1-64)
  * when set, else 1. Only speed depends on it. One part is the default

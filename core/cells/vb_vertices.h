@@ -95,7 +95,9 @@ typedef struct vb_vertices_result {
     vb_vertex_list rejected;    /* candidates the certifier refused */
     double t_setup;             /* device opening, on its own thread */
     double t_setup_wait;        /* of that, the time the proposer waited for it */
-    double t_certify, t_total;
+    double t_certify, t_total;  /* t_certify: after the proposer returned */
+    double t_certify_overlap;   /* seconds the certifier worked while the proposer ran */
+    size_t certify_parts;       /* parts of quadruples certified one by one (a stream) */
     double max_dist;            /* largest candidate-to-exact distance certified */
     size_t repaired_candidates; /* intruder-swap candidates certified (see repair) */
     char backend[16];

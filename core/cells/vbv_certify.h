@@ -6,6 +6,8 @@
 #ifndef VBV_CERTIFY_H
 #define VBV_CERTIFY_H
 
+#include <pthread.h>
+
 #include "vb_cover.h"
 #include "vb_parallel.h"
 #include "vb_vertices.h"
@@ -36,20 +38,33 @@ void *vbv_cert_open_join(vb_ctx *ctx, vbv_cert_open *co, int *rc);
 void vbv_cert_open_discard(vbv_cert_open *co);
 
 /* Certification of quadruples part by part: each part handed to
- * vbv_cert_stream_sink (a vb_cover_sink) is certified (ops->certify_quads)
- * on a thread of its own while the proposer goes on; one part at a time is
- * in flight, so memory holds two parts of quadruples at most. */
+ * vbv_cert_stream_sink (a vb_cover_sink) is queued and returns at once; one
+ * thread of the stream certifies the queued parts in turn
+ * (ops->certify_quads, with the certifier's threads) while the proposer
+ * goes on. Which part is certified when changes no vertex: the parts'
+ * sorted lists are merged at the end (vb_vertex_list_merge). Memory holds
+ * the queued parts' quadruples. */
 typedef struct vbv_cert_stream {
-    vbv_cert_open *co;       /* the set-up, joined by the first part */
+    vbv_cert_open *co;       /* the set-up, joined by the stream's thread */
     const vb_certifier_ops *ops;
     void *cert;
     vb_ctx *tctx;            /* the certifying thread's messages and counters */
-    vb_quad_list cur;        /* the part in flight */
-    vb_vertex_list *parts;   /* certified vertices, one sorted list per part */
+    int threads;             /* for sorting a part (vb_quad_list_canonical) */
+    pthread_mutex_t mu;
+    pthread_cond_t cv;
+    vb_quad_list *queue;     /* parts waiting, [qhead, qn) */
+    size_t qhead, qn, qcap;
+    vb_vertex_list *parts;   /* certified vertices, sorted lists (parts merged as they come) */
     size_t nparts, cap;
+    size_t dropped;          /* repeats dropped when parts were merged early */
     vb_jobs job;
-    int busy, rc;
+    int started;             /* 0: no lock yet, -1: no thread, 1: running, 2: runs when joined */
+    int closing, busy, rc;
+    int drop;                /* 1: the queued parts are dropped, not certified */
+    size_t certified_parts;  /* parts certified */
     double t_work;           /* seconds the certifying thread worked */
+    double t_busy_since;     /* when the part in work started */
+    double t_overlap;        /* of t_work, seconds before vbv_cert_stream_finish */
 } vbv_cert_stream;
 
 /* A stream over the set-up co (which it joins and whose certifier it
@@ -57,22 +72,24 @@ typedef struct vbv_cert_stream {
  * VB_OK or VB_ENOMEM. */
 int vbv_cert_stream_init(vbv_cert_stream *cs, vbv_cert_open *co, vb_ctx *owner);
 
-/* vb_cover_sink: waits for the part in flight, then starts this one (its
- * array taken). Returns the stream's first error (message kept for
- * vbv_cert_stream_finish). */
+/* vb_cover_sink: queues the part (its array taken) and returns; the
+ * stream's thread starts with the first part. Returns the stream's first
+ * error (message kept for vbv_cert_stream_finish), or VB_ENOMEM. */
 int vbv_cert_stream_sink(void *user, vb_quad_list *part);
 
-/* Waits for the part in flight and drops every certified part (the
+/* Waits until every queued part is certified and drops them all (the
  * certifier stays): the proposal starts over (a device failed). */
 void vbv_cert_stream_reset(vbv_cert_stream *cs);
 
-/* Waits for the last part, adds the thread's counters to ctx, and appends
- * the parts' vertices to out in canonical order (a merge). On an error its
+/* Notes the certifying thread's work so far as overlap (t_overlap), waits
+ * for the queued parts, adds the thread's counters to ctx, and appends the
+ * parts' vertices to out in canonical order (a merge). On an error its
  * message is relayed to ctx. VB_OK or the error. */
 int vbv_cert_stream_finish(vb_ctx *ctx, vbv_cert_stream *cs, vb_vertex_list *out);
 
-/* Frees the stream and hands back its certifier (NULL if the set-up
- * failed) for the caller to close. */
+/* Frees the stream (parts still queued are dropped, not certified) and
+ * hands back its certifier (NULL if the set-up failed) for the caller to
+ * close. */
 void *vbv_cert_stream_free(vbv_cert_stream *cs);
 
 #endif

@@ -313,6 +313,8 @@ static int certify(vb_ctx *ctx, const vb_certifier_ops *ops, vbv_cert_open *co,
     void *cert = NULL;
     if (cs) {
         rc = vbv_cert_stream_finish(ctx, cs, &res->certified);
+        res->t_certify_overlap = cs->t_overlap;
+        res->certify_parts = cs->certified_parts;
         cert = vbv_cert_stream_free(cs);
     } else {
         cert = vbv_cert_open_join(ctx, co, &rc);

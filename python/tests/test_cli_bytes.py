@@ -72,10 +72,12 @@ def test_stats_are_the_commands():
     res = vorball.vertices(path, device="ref", proposer="sampling")
     want = dict(line.split("\t", 1) for line in err.splitlines() if "\t" in line)
     got = {k: str(v) for k, v in res.stats.items()}
-    # The numbers parse to the same values (str of a parsed float may differ in form).
+    # The numbers parse to the same values (str of a parsed float may differ in form);
+    # the seconds (keys ending in _s) differ run to run: only their presence counts.
     assert want.keys() == got.keys()
     for k, v in want.items():
-        assert str(vorball._vertices._number(v)) == got[k], k
+        if not k.endswith("_s"):
+            assert str(vorball._vertices._number(v)) == got[k], k
     assert res.stats["certified_vertices"] == len(res.t)
     assert not res.certificate.complete and res.certificate.text == ""
 

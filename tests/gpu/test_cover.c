@@ -1,8 +1,9 @@
 /* The direction cover (core/cells/vb_cover.h) gives the same quadruples on
  * every path: host threads (1 and 3), the work-item kernel on the OpenCL CPU
  * device (PoCL), the same with small first-tier arenas so that cells move to
- * the second tier as root-patch tasks, and the GPU's group kernel run on
- * host threads (cover_wg_emu.c). Every quadruple is sorted, owned by its
+ * the second tier as root-patch tasks, both with the device's batches
+ * streamed part by part, and the GPU's group kernel run on host threads
+ * (cover_wg_emu.c). Every quadruple is sorted, owned by its
  * smallest id, and the list is sorted and unique. */
 #include <stdio.h>
 #include <stdlib.h>
@@ -51,6 +52,10 @@ static int join_part(void *user, vb_quad_list *part)
 {
     joined *j = user;
     j->parts++;
+    /* A streamed device batch comes unsorted (the sink sorts it): sorted
+     * here, it must still have no repeat. */
+    if (part->n > 1)
+        qsort(part->q, part->n, sizeof *part->q, vb_quad_cmp);
     check_canonical(part);
     /* Disjoint from the parts before: no smallest id seen before. */
     for (size_t k = 0; k < part->n; k++)
@@ -155,20 +160,36 @@ static int emulated(vb_ctx *ctx, const vb_sphere_set *s, vb_quad_list *out, size
     return rc;
 }
 
-/* The work-item kernel on the OpenCL CPU device; with small first-tier
- * arenas the cells overflow and run again as root-patch tasks. */
-static int device_cover(vb_ctx *ctx, const vb_sphere_set *s, int split, size_t clusters,
-                        vb_quad_list *out)
+/* The OpenCL CPU device's cover backend; with `split`, small first-tier
+ * arenas, so that cells overflow and run again as root-patch tasks (undone
+ * by device_close). */
+static int device_open(vb_ctx *ctx, int split, vbg_runtime **rt, vb_cover_backend **be)
 {
     if (split) {
         setenv("VORBALL_COVER_NB", "48", 1);
         setenv("VORBALL_COVER_TIER2", "64", 1);
     }
-    vbg_runtime *rt = NULL;
-    vb_cover_backend *be = NULL;
-    int rc = vbg_runtime_open(ctx, VB_DEVICE_CPU, &rt);
-    if (rc == VB_OK)
-        rc = vbg_cover_open(ctx, rt, &be);
+    *rt = NULL;
+    *be = NULL;
+    int rc = vbg_runtime_open(ctx, VB_DEVICE_CPU, rt);
+    return rc == VB_OK ? vbg_cover_open(ctx, *rt, be) : rc;
+}
+
+static void device_close(vbg_runtime *rt, vb_cover_backend *be)
+{
+    vb_cover_backend_close(be);
+    vbg_runtime_close(rt);
+    unsetenv("VORBALL_COVER_NB");
+    unsetenv("VORBALL_COVER_TIER2");
+}
+
+/* The work-item kernel on the OpenCL CPU device (device_open's split). */
+static int device_cover(vb_ctx *ctx, const vb_sphere_set *s, int split, size_t clusters,
+                        vb_quad_list *out)
+{
+    vbg_runtime *rt;
+    vb_cover_backend *be;
+    int rc = device_open(ctx, split, &rt, &be);
     vb_cover_options o;
     memset(&o, 0, sizeof o);
     o.threads = 1; /* the device does every cell: nothing left for the host */
@@ -178,10 +199,41 @@ static int device_cover(vb_ctx *ctx, const vb_sphere_set *s, int split, size_t c
     /* only tie clusters go to the host (decided exactly there) */
     if (rc == VB_OK && split)
         CHECK_INT(st.host_cells, clusters);
-    vb_cover_backend_close(be);
-    vbg_runtime_close(rt);
-    unsetenv("VORBALL_COVER_NB");
-    unsetenv("VORBALL_COVER_TIER2");
+    device_close(rt, be);
+    return rc;
+}
+
+/* The device's batches streamed (stream_batches, issue 30): batches of 5
+ * cells on 2 threads (the host's cells flushed every 40 quadruples), with
+ * `split` as in device_open (a cell's root-patch tasks repeat some
+ * quadruples). Every part is unique, a cell's quadruples lie in one part,
+ * and the parts joined are the whole list. */
+static int streamed_cover(vb_ctx *ctx, const vb_sphere_set *s, int split, vb_quad_list *out)
+{
+    vbg_runtime *rt;
+    vb_cover_backend *be;
+    int rc = device_open(ctx, split, &rt, &be);
+    joined j = {{0}, 0, 1};
+    vb_cover_options o;
+    memset(&o, 0, sizeof o);
+    o.threads = 2;
+    o.batch_cells = 5;
+    o.stream_batches = 1;
+    vb_cover_stats st;
+    if (rc == VB_OK)
+        rc = vb_cover_run_parts(ctx, s, &o, be, 1, join_part, &j, &st);
+    if (rc == VB_OK) {
+        CHECK(j.disjoint);
+        /* A first batch of 5 and the cells after it: 2 parts at least. */
+        if (st.cells >= 20)
+            CHECK(j.parts > 1);
+        CHECK_INT(st.quads, j.all.n);
+        CHECK(st.stream_parts + 1 >= j.parts && st.stream_parts <= j.parts);
+    }
+    if (j.all.n)
+        qsort(j.all.q, j.all.n, sizeof *j.all.q, vb_quad_cmp);
+    *out = j.all;
+    device_close(rt, be);
     return rc;
 }
 
@@ -194,7 +246,7 @@ static void one(vb_ctx *ctx, const char *path, int have_device, int emulate)
     CHECK_INT(rc, VB_OK);
     if (rc != VB_OK)
         return;
-    vb_quad_list a = {0}, b = {0}, c = {0}, d = {0}, e = {0};
+    vb_quad_list a = {0}, b = {0}, c = {0}, d = {0}, e = {0}, f = {0}, g = {0};
     CHECK_INT(host_cover(ctx, s, 1, &a), VB_OK);
     CHECK(a.n > 0);
     check_canonical(&a);
@@ -219,6 +271,10 @@ static void one(vb_ctx *ctx, const char *path, int have_device, int emulate)
         CHECK(same(&a, &d));
         CHECK_INT(device_cover(ctx, s, 1, clusters, &e), VB_OK);
         CHECK(same(&a, &e));
+        CHECK_INT(streamed_cover(ctx, s, 0, &f), VB_OK);
+        CHECK(same(&a, &f));
+        CHECK_INT(streamed_cover(ctx, s, 1, &g), VB_OK);
+        CHECK(same(&a, &g));
     }
     if ((emulate && !same(&a, &c)) || (have_device && (!same(&a, &d) || !same(&a, &e))))
         fprintf(stderr, "%s: host %zu, emulated group kernel %zu, device %zu, split %zu\n",
@@ -228,6 +284,8 @@ static void one(vb_ctx *ctx, const char *path, int have_device, int emulate)
     vb_quad_list_free(&c);
     vb_quad_list_free(&d);
     vb_quad_list_free(&e);
+    vb_quad_list_free(&f);
+    vb_quad_list_free(&g);
     vb_spheres_free(s);
 }
 
