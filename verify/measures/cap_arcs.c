@@ -20,7 +20,10 @@
  * the rest (vbm_cap_arcs): fewer caps only add arcs, so a circle without
  * an arc inside a subset has none; and an arc inside a subset lies inside
  * another cap when that cap holds both its ends and not the one minimum of
- * the cap's function on the circle (arcs_inside). */
+ * the cap's function on the circle (arcs_inside). Circles the caller has
+ * already solved (the bisector circles two regions of one atom share,
+ * stokes_cell.c) come given: their arcs are taken as found and only the
+ * others are searched. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -453,7 +456,34 @@ static int circle_all(const vbm_cap *caps, size_t ncap, vbm_capwork *w, size_t l
     return circle_arcs(caps, sel, ncap, w, l, 0);
 }
 
-int vbm_cap_arcs(const vbm_cap *caps, size_t ncap, vbm_capwork *w)
+/* The given arcs of the known circles first in w->arc, each known circle
+ * done (on the boundary when it has an arc), the caps ending its arcs
+ * queued. Returns the boundary circles so marked, or SIZE_MAX on ENOMEM. */
+static size_t take_given(size_t ncap, const uint8_t *known, const vbm_arc *given, size_t ngiven,
+                         vbm_capwork *w, size_t *nq)
+{
+    size_t nb = 0;
+    for (size_t m = 0; known && m < ncap; m++)
+        if (known[m])
+            w->state[m] |= DONE;
+    if (VB_ARRAY_FIT(w->arc, w->cap_arc, ngiven + 1, 32) != VB_OK)
+        return SIZE_MAX;
+    for (size_t i = 0; i < ngiven; i++) {
+        w->arc[w->narc++] = given[i];
+        if (!(w->state[given[i].cap] & ON_BOUNDARY)) {
+            w->state[given[i].cap] |= ON_BOUNDARY;
+            nb++;
+        }
+    }
+    for (size_t i = 0; i < ngiven; i++) {
+        enqueue(w, given[i].pcap, nq);
+        enqueue(w, given[i].qcap, nq);
+    }
+    return nb;
+}
+
+int vbm_cap_arcs(const vbm_cap *caps, size_t ncap, const uint8_t *known, const vbm_arc *given,
+                 size_t ngiven, vbm_capwork *w)
 {
     w->narc = 0;
     if (VB_ARRAY_FIT(w->circ, w->cap_circ, ncap, 32) != VB_OK ||
@@ -477,9 +507,13 @@ int vbm_cap_arcs(const vbm_cap *caps, size_t ncap, vbm_capwork *w)
      * are those of doing each circle against every cap. */
     uint32_t *sel = w->sel, *queue = w->queue;
     memset(w->state, 0, ncap);
-    size_t nb = 0, nq = 0, head = 0, next = 0;
+    size_t nq = 0, head = 0, next = 0;
     enqueue(w, 0, &nq);
-    int e = likely_boundary(caps, ncap, w, &nq);
+    size_t nb = take_given(ncap, known, given, ngiven, w, &nq);
+    if (nb == SIZE_MAX)
+        return -1;
+    /* with an arc given the intersection is not empty: no trial of it */
+    int e = ngiven ? 1 : likely_boundary(caps, ncap, w, &nq);
     if (e <= 0)
         return e;
     if (e == 2)

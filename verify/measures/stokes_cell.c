@@ -42,6 +42,7 @@
 #include "vbm_cell.h"
 #include "vbm_piece.h"
 #include "vbm_series1.h"
+#include "vbm_share.h"
 
 #define FLOOR_FRACTION 1e-3 /* as cell_patches.c */
 #define MAX_DEPTH 20        /* halvings of an arc's parameter range */
@@ -64,12 +65,14 @@ typedef struct active {
 
 typedef struct stokes_work {
     vbm_capwork cw;
+    vbm_share share;   /* the bisector arcs two regions share */
     vbm_cap *caps;
+    uint32_t *capact;  /* per cap of a region: its active neighbour */
     arcrec *rec;
     active *act;
     vbx_ia *D, *con;   /* per neighbour: |d|, the contact */
     uint32_t *narcs;   /* per neighbour: its arcs */
-    size_t cap_caps, cap_rec, cap_act, cap_D, cap_con, cap_narcs, nrec;
+    size_t cap_caps, cap_capact, cap_rec, cap_act, cap_D, cap_con, cap_narcs, nrec;
 } stokes_work;
 
 void vbm_stokes_free(void *p)
@@ -78,7 +81,9 @@ void vbm_stokes_free(void *p)
     if (!w)
         return;
     vbm_caps_free(&w->cw);
+    vbm_share_free(&w->share);
     free(w->caps);
+    free(w->capact);
     free(w->rec);
     free(w->act);
     free(w->D);
@@ -428,6 +433,7 @@ static size_t region_caps(const vbm_atom_in *in, stokes_work *w, size_t na, size
     for (int k = 0; k < 3; k++)
         cp[0].n[k] = nj->d[k];
     cp[0].h = nj->k;
+    w->capact[0] = (uint32_t)x;
     size_t nc = 1;
     vbx_ia sa = aj->ca.lo >= 0.0 ? aj->sa : vbx_ia_point(1.0);
     for (size_t y = 0; y < na; y++) {
@@ -456,6 +462,7 @@ static size_t region_caps(const vbm_atom_in *in, stokes_work *w, size_t na, size
             continue; /* all of j's cap is on j's side */
         if (vbx_succ(hi) < c.h.lo)
             return 0; /* none of it */
+        w->capact[nc] = (uint32_t)y;
         cp[nc++] = c;
     }
     return nc;
@@ -551,6 +558,7 @@ int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
     if (VB_ARRAY_FIT(w->D, w->cap_D, m + 1, 64) != VB_OK ||
         VB_ARRAY_FIT(w->act, w->cap_act, m + 1, 64) != VB_OK ||
         VB_ARRAY_FIT(w->caps, w->cap_caps, m + 1, 64) != VB_OK ||
+        VB_ARRAY_FIT(w->capact, w->cap_capact, m + 1, 64) != VB_OK ||
         VB_ARRAY_FIT(w->con, w->cap_con, m + 1, 64) != VB_OK ||
         VB_ARRAY_FIT(w->narcs, w->cap_narcs, m + 1, 64) != VB_OK)
         return -1;
@@ -573,15 +581,26 @@ int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
         a->ca = vbx_ia_div(n->k, w->D[j]);
         a->sa = vbx_ia_sqrt(vbx_ia_sub(vbx_ia_point(1.0), vbx_ia_sqr(a->ca)));
     }
+    /* the regions in order, each bisector circle's arcs found for the
+     * first of its two regions and given to the second (vbm_share.h) */
     w->nrec = 0;
+    vbm_share_reset(&w->share);
     for (size_t x = 0; x < na; x++) {
         uint32_t j = w->act[x].j;
         size_t nc = region_caps(in, w, na, x);
-        if (nc == 0)
+        if (nc == 0) {
+            if (vbm_share_pending(&w->share, (uint32_t)x))
+                return 0; /* arcs of a region proven empty: leave it to the patches */
             continue;
-        int e = vbm_cap_arcs(w->caps, nc, &w->cw);
+        }
+        int e = vbm_share_given(&w->share, (uint32_t)x, w->capact, nc, na);
         if (e <= 0)
             return e;
+        e = vbm_cap_arcs(w->caps, nc, w->share.known, w->share.given, w->share.ngiven, &w->cw);
+        if (e <= 0)
+            return e;
+        if (vbm_share_keep(&w->share, (uint32_t)x, w->capact, w->cw.arc, w->cw.narc) < 0)
+            return -1;
         if (VB_ARRAY_FIT(w->rec, w->cap_rec, w->nrec + w->cw.narc, 64) != VB_OK)
             return -1;
         const vbx_ia *ej = w->act[x].e;
