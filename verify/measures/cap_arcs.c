@@ -394,12 +394,13 @@ static int likely_boundary(const vbm_cap *caps, size_t ncap, vbm_capwork *w, siz
  * minimum on the circle lies at the direction -(Qc, Qs); on an arc not
  * holding that direction its minimum is at an end. So a cap holding the
  * whole circle, or both ends of each arc with the direction proven
- * outside it, holds the arcs. Returns 0 when proven, else 1 + the first
- * cap not proven to hold them. */
-static size_t arcs_inside(const vbm_cap *caps, size_t ncap, const vbm_capwork *w, size_t l,
+ * outside it, holds the arcs. Every cap not proven to hold them is marked
+ * likely (it joins the subset); returns how many were. */
+static size_t arcs_inside(const vbm_cap *caps, size_t ncap, vbm_capwork *w, size_t l,
                           size_t first)
 {
     const vbm_circle *C = &w->circ[l];
+    size_t bad = 0;
     for (size_t m = 1; m < ncap; m++) {
         if (m == l || w->circ[m].kind == VBM_CAP_ALL || (w->state[m] & (ON_BOUNDARY | LIKELY)))
             continue;
@@ -411,44 +412,42 @@ static size_t arcs_inside(const vbm_cap *caps, size_t ncap, const vbm_capwork *w
         vbx_ia dx = vbx_ia_neg(r.Qc), dy = vbx_ia_neg(r.Qs);
         for (size_t i = first; i < w->narc; i++) {
             const vbm_arc *a = &w->arc[i];
-            if (side(&r, a->p[0], a->p[1]) <= 0 || side(&r, a->q[0], a->q[1]) <= 0)
-                return m + 1;
             vbx_ia c0 = vbx_ia_sub(vbx_ia_mul(a->p[0], dy), vbx_ia_mul(a->p[1], dx));
             vbx_ia c1 = vbx_ia_sub(vbx_ia_mul(dx, a->q[1]), vbx_ia_mul(dy, a->q[0]));
-            if (!(c0.hi < 0.0 || c1.hi < 0.0))
-                return m + 1;
+            if (side(&r, a->p[0], a->p[1]) <= 0 || side(&r, a->q[0], a->q[1]) <= 0 ||
+                !(c0.hi < 0.0 || c1.hi < 0.0)) {
+                w->state[m] |= LIKELY;
+                bad++;
+                break;
+            }
         }
     }
-    return 0;
+    return bad;
 }
 
-#define RETRIES 3 /* caps added to a circle's subset before it is done against all */
-
-/* The arcs of circle l: inside the subset of caps first, then, unless the
- * other caps are proven to hold them (arcs_inside; a cap that is not joins
- * the subset and the circle is done again, RETRIES times), against every
- * cap. */
+/* The arcs of circle l: inside the subset of caps first (cap 0, the
+ * boundary's and the likely ones), then, unless every other cap is proven
+ * to hold them (arcs_inside), inside the subset with the caps not proven
+ * added. Those arcs are the arcs inside every cap: each lies in the first
+ * arcs (more caps only remove points), which every cap left out holds.
+ * Where the intervals cannot decide inside a subset, against every cap. */
 static int circle_all(const vbm_cap *caps, size_t ncap, vbm_capwork *w, size_t l)
 {
     uint32_t *sel = w->sel;
     size_t first = w->narc;
-    for (int t = 0; t <= RETRIES; t++) {
+    for (int t = 0; t < 2; t++) {
         size_t ns = 0;
         for (size_t m = 0; m < ncap; m++)
             if (m == 0 || (w->state[m] & (ON_BOUNDARY | LIKELY)))
                 sel[ns++] = (uint32_t)m;
-        if (ns >= ncap)
-            break;
         int e = circle_arcs(caps, sel, ns, w, l, 0);
-        if (e < 0)
+        if (e < 0 || (e > 0 && (t == 1 || ns >= ncap)))
             return e;
         if (e == 0)
-            break;
-        size_t bad = w->narc == first ? 0 : arcs_inside(caps, ncap, w, l, first);
-        if (bad == 0)
+            break; /* undecided: every cap, of which one may exclude the circle */
+        if (w->narc == first || arcs_inside(caps, ncap, w, l, first) == 0)
             return 1; /* none inside the subset, or all of them inside every cap */
         w->narc = first;
-        w->state[bad - 1] |= LIKELY;
     }
     w->narc = first;
     for (size_t m = 0; m < ncap; m++)
