@@ -206,6 +206,7 @@ typedef struct arcfun {
     /* the contact's (contact_of): S = SN / E, the algebraic part of G(q)
      * sqrt(S) Rn / Rd, the area's integrand over 1 - z an / cd */
     vbx_ia SN[3], Rn[5], Rd[5], cd[5];
+    int want; /* the values integrated now: bits 1 << AREA, VOL, CON */
 } arcfun;
 
 /* With E = 1 + t^2, cos = (1 - t^2) / E and sin = 2 t / E, so
@@ -289,17 +290,22 @@ static int contact_of(const arcfun *f, vbx_ia at, int kmax, vbm_s1 *con)
     return 1;
 }
 
-/* The series of the integrands at `at`, coefficients up to kmax (the
- * others 0). Returns 1, 2 when the contact's series cannot be bounded near
- * e_j (v[CON] is then a constant: its bound where `at` ranges), 0 when
- * nothing can. */
+/* The series of the integrands f->want at `at`, coefficients up to kmax
+ * (the others 0, and the values not wanted 0). Returns 1, 2 when the
+ * contact's series cannot be bounded near e_j (v[CON] is then a constant:
+ * its bound where `at` ranges), 0 when nothing can. */
 static int integrand(const arcfun *f, vbx_ia at, vbm_s1 *v, int kmax)
 {
-    if (!vbm1_rational(&v[AREA], f->an, 2, f->ad, 4, at, kmax) ||
-        !vbm1_rational(&v[VOL], f->vn, 4, f->vd, 6, at, kmax))
+    int av = f->want & (1 << AREA | 1 << VOL);
+    if (av && (!vbm1_rational(&v[AREA], f->an, 2, f->ad, 4, at, kmax) ||
+               !vbm1_rational(&v[VOL], f->vn, 4, f->vd, 6, at, kmax)))
         return 0;
+    if (!av) {
+        vbm1_const(&v[AREA], vbx_ia_point(0.0));
+        vbm1_const(&v[VOL], vbx_ia_point(0.0));
+    }
     vbm1_const(&v[CON], vbx_ia_point(0.0));
-    if (!f->o.contacts)
+    if (!f->o.contacts || !(f->want & 1 << CON))
         return 1;
     if (contact_of(f, at, kmax, &v[CON]))
         return 1;
@@ -313,7 +319,10 @@ static int integrand(const arcfun *f, vbx_ia at, vbm_s1 *v, int kmax)
     vbx_ia S = vbx_ia_add(f->o.N, vbx_ia_mul(vbx_ia_add(f->o.delta, f->o.delta), qz));
     vbx_ia fa = vbx_ia_div(vbx_ia_mul(vbx_ia_sqr(f->o.N), vbx_ia_sqrt(S)),
                            vbx_ia_mul(vbx_ia_point(4.0), vbx_ia_mul(vbx_ia_sqr(qz), qz)));
-    vbm1_const(&v[CON], vbx_ia_mul(fa, v[AREA].c[0]));
+    vbm_s1 area; /* the area's integrand here, whether wanted or not */
+    if (!vbm1_rational(&area, f->an, 2, f->ad, 4, at, 0))
+        return 0;
+    vbm1_const(&v[CON], vbx_ia_mul(fa, area.c[0]));
     return 2;
 }
 
@@ -368,16 +377,18 @@ static int piece(const arcfun *f, double x0, double x1, const double *tg, int de
     return 1;
 }
 
-/* [x0, x1] halved d times, each part by piece. */
-static int descend(const arcfun *f, double x0, double x1, const double *tg, int d, sums *out)
+/* [x0, x1] (at depth `depth`) halved d times, each part by piece. */
+static int descend(const arcfun *f, double x0, double x1, const double *tg, int d, int depth,
+                   sums *out)
 {
     double xc = 0.5 * (x0 + x1);
     if (d == 0 || !(xc > x0 && xc < x1))
-        return piece(f, x0, x1, tg, 0, out, NULL, 0);
+        return piece(f, x0, x1, tg, depth, out, NULL, 0);
     double half[NV];
     for (int k = 0; k < NV; k++)
         half[k] = 0.5 * tg[k];
-    return descend(f, x0, xc, half, d - 1, out) && descend(f, xc, x1, half, d - 1, out);
+    return descend(f, x0, xc, half, d - 1, depth + 1, out) &&
+           descend(f, xc, x1, half, d - 1, depth + 1, out);
 }
 
 #define PLAN_MAX 3 /* halvings planned before any piece is tried */
@@ -410,7 +421,7 @@ static int planned(const arcfun *f, double x0, double x1, const double *tg, sums
     }
     if (d == 0)
         return piece(f, x0, x1, tg, 0, out, rc ? c : NULL, rc);
-    return descend(f, x0, x1, tg, d, out);
+    return descend(f, x0, x1, tg, d, 0, out);
 }
 
 /* The integral from the exact end t (an interval) to the double m inside
@@ -468,7 +479,17 @@ static int integrate_arc(const vbm_atom_in *in, const stokes_work *w, arcrec *a,
     f.A2 = vbx_ia_sub(vbx_ia_mul(a->A2, cm), vbx_ia_mul(a->A1, sm));
     rational_of(&f);
     double m0 = vbx_ia_mid(t0), m1 = vbx_ia_mid(t1);
-    if (!end_piece(&f, t0, m0, &s) || !planned(&f, m0, m1, tg, &s) || !end_piece(&f, t1, m1, &s))
+    f.want = 1 << AREA | 1 << VOL | 1 << CON;
+    if (!end_piece(&f, t0, m0, &s) || !end_piece(&f, t1, m1, &s))
+        return 0;
+    /* the area and volume on their pieces, the contact on its own (it needs
+     * more): neither evaluated where only the other falls short */
+    double ta[NV] = {tg[AREA], tg[VOL], INFINITY}, tc[NV] = {INFINITY, INFINITY, tg[CON]};
+    f.want = 1 << AREA | 1 << VOL;
+    if (!planned(&f, m0, m1, ta, &s))
+        return 0;
+    f.want = 1 << CON;
+    if (in->contacts && !planned(&f, m0, m1, tc, &s))
         return 0;
     memcpy(a->v, s.v, sizeof a->v);
     *pieces += s.pieces;
