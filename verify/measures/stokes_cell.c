@@ -621,6 +621,32 @@ static int pairs(const vbm_atom_in *in, const stokes_work *w, vbm_atom_out *out)
     return 1;
 }
 
+/* Whether active a comes before b: the smaller cap first (cos of its
+ * angular radius larger, on midpoints), then the lower neighbour index. */
+static int act_before(const active *a, const active *b)
+{
+    double x = vbx_ia_mid(a->ca), y = vbx_ia_mid(b->ca);
+    return x != y ? x > y : a->j < b->j;
+}
+
+/* The regions bounded smallest cap first (insertion sort: a fixed order
+ * whatever the threads). Small caps are the ones most often proven empty
+ * (likely_boundary, cheaply), and an empty region's circles are then known
+ * to hold no arc for every region after it (vbm_share.h): fewer circles
+ * searched there. Only the order of work and of the sums changes (1crn,
+ * 1 thread: 0.49 s of CPU; neighbour order 0.52 s, largest cap first
+ * 0.56 s). */
+static void sort_active(active *act, size_t na)
+{
+    for (size_t i = 1; i < na; i++) {
+        active t = act[i];
+        size_t k = i;
+        for (; k > 0 && act_before(&t, &act[k - 1]); k--)
+            act[k] = act[k - 1];
+        act[k] = t;
+    }
+}
+
 int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
 {
     memset(out, 0, sizeof *out);
@@ -654,6 +680,7 @@ int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
         a->ca = vbx_ia_div(n->k, w->D[j]);
         a->sa = vbx_ia_sqrt(vbx_ia_sub(vbx_ia_point(1.0), vbx_ia_sqr(a->ca)));
     }
+    sort_active(w->act, na);
     /* the regions in order, each bisector circle's arcs found for the
      * first of its two regions and given to the second (vbm_share.h) */
     w->nrec = 0;
