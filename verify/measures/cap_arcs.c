@@ -35,7 +35,22 @@
 #define MAX_ARC 2.5      /* longer arcs are split (their frames need |angle| < pi / 2) */
 #define MAX_END_WIDTH 1e-4 /* an end this wide (near-tangent circles): undecided */
 
-enum { DONE = 1, ON_BOUNDARY = 2, QUEUED = 4, LIKELY = 8 }; /* vbm_capwork.state */
+enum { DONE = 1, ON_BOUNDARY = 2, QUEUED = 4, LIKELY = 8, FRAMED = 16 }; /* vbm_capwork.state */
+
+static int circle_frame(vbm_circle *c);
+
+/* Circle l's frame, made when first needed: most circles of a region only
+ * restrict others (their caps) and never have a point of theirs computed.
+ * Returns 0 when it cannot be made. */
+static int framed(vbm_capwork *w, size_t l)
+{
+    if (w->state[l] & FRAMED)
+        return 1;
+    if (!circle_frame(&w->circ[l]))
+        return 0;
+    w->state[l] |= FRAMED;
+    return 1;
+}
 
 typedef struct vbm_endpt {
     vbx_ia x, y;
@@ -63,7 +78,8 @@ static void cross3(const vbx_ia *a, const vbx_ia *b, vbx_ia *r)
     r[2] = vbx_ia_sub(vbx_ia_mul(a[0], b[1]), vbx_ia_mul(a[1], b[0]));
 }
 
-int vbm_circle_of(const vbm_cap *cp, vbm_circle *c)
+/* vbm_circle_of without the frame (kind, a, c and s). */
+static int circle_axis(const vbm_cap *cp, vbm_circle *c)
 {
     vbx_ia nn = vbx_ia_sqrt(dot3(cp->n, cp->n));
     vbx_ia lo = vbx_ia_sub(nn, cp->h), hi = vbx_ia_add(nn, cp->h);
@@ -82,6 +98,13 @@ int vbm_circle_of(const vbm_cap *cp, vbm_circle *c)
         c->a[k] = vbx_ia_div(cp->n[k], nn);
     c->c = vbx_ia_div(cp->h, nn);
     c->s = vbx_ia_div(vbx_ia_sqrt(vbx_ia_mul(lo, hi)), nn);
+    return 1;
+}
+
+/* The frame e1, e2 of a circle whose axis is set. Returns 0 when the
+ * intervals cannot normalise it. */
+static int circle_frame(vbm_circle *c)
+{
     /* e1 = a x f / |a x f| with f the axis least along a (chosen on
      * midpoints: any fixed f gives an exact frame) */
     int f = 0;
@@ -98,6 +121,11 @@ int vbm_circle_of(const vbm_cap *cp, vbm_circle *c)
         c->e1[k] = vbx_ia_div(t[k], tn);
     cross3(c->a, c->e1, c->e2);
     return 1;
+}
+
+int vbm_circle_of(const vbm_cap *cp, vbm_circle *c)
+{
+    return circle_axis(cp, c) && (c->kind != VBM_CAP_CIRCLE || circle_frame(c));
 }
 
 void vbm_caps_free(vbm_capwork *w)
@@ -192,6 +220,8 @@ static int side(const restr *r, vbx_ia x, vbx_ia y)
 static int circle_arcs(const vbm_cap *caps, const uint32_t *sel, size_t nsel, vbm_capwork *w,
                        size_t l, int test)
 {
+    if (!framed(w, l))
+        return 0;
     const vbm_circle *C = &w->circ[l];
     endpt *end = w->end;
     restr *res = w->res;
@@ -457,7 +487,8 @@ static int circle_all(const vbm_cap *caps, size_t ncap, vbm_capwork *w, size_t l
 
 /* The given arcs of the known circles first in w->arc, each known circle
  * done (on the boundary when it has an arc), the caps ending its arcs
- * queued. Returns the boundary circles so marked, or SIZE_MAX on ENOMEM. */
+ * queued, its frame made. Returns the boundary circles so marked, SIZE_MAX
+ * on ENOMEM, SIZE_MAX - 1 when a frame cannot be made. */
 static size_t take_given(size_t ncap, const uint8_t *known, const vbm_arc *given, size_t ngiven,
                          vbm_capwork *w, size_t *nq)
 {
@@ -468,6 +499,8 @@ static size_t take_given(size_t ncap, const uint8_t *known, const vbm_arc *given
     if (VB_ARRAY_FIT(w->arc, w->cap_arc, ngiven + 1, 32) != VB_OK)
         return SIZE_MAX;
     for (size_t i = 0; i < ngiven; i++) {
+        if (!framed(w, given[i].cap))
+            return SIZE_MAX - 1;
         w->arc[w->narc++] = given[i];
         if (!(w->state[given[i].cap] & ON_BOUNDARY)) {
             w->state[given[i].cap] |= ON_BOUNDARY;
@@ -493,8 +526,8 @@ int vbm_cap_arcs(const vbm_cap *caps, size_t ncap, const uint8_t *known, const v
         VB_ARRAY_FIT(w->state, w->cap_state, ncap + 1, 32) != VB_OK)
         return -1;
     for (size_t l = 0; l < ncap; l++) {
-        if (!vbm_circle_of(&caps[l], &w->circ[l]))
-            return 0;
+        if (!circle_axis(&caps[l], &w->circ[l]))
+            return 0; /* frames are made when needed (framed) */
         if (w->circ[l].kind == VBM_CAP_NONE)
             return 1; /* empty intersection */
     }
@@ -509,8 +542,8 @@ int vbm_cap_arcs(const vbm_cap *caps, size_t ncap, const uint8_t *known, const v
     size_t nq = 0, head = 0, next = 0;
     enqueue(w, 0, &nq);
     size_t nb = take_given(ncap, known, given, ngiven, w, &nq);
-    if (nb == SIZE_MAX)
-        return -1;
+    if (nb >= SIZE_MAX - 1)
+        return nb == SIZE_MAX ? -1 : 0;
     /* with an arc given the intersection is not empty: no trial of it */
     int e = ngiven ? 1 : likely_boundary(caps, ncap, w, &nq);
     if (e <= 0)
