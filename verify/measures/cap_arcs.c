@@ -20,7 +20,10 @@
  * the rest (vbm_cap_arcs): fewer caps only add arcs, so a circle without
  * an arc inside a subset has none; and an arc inside a subset lies inside
  * another cap when that cap holds both its ends and not the one minimum of
- * the cap's function on the circle (arcs_inside). */
+ * the cap's function on the circle (arcs_inside). Circles the caller has
+ * already solved (the bisector circles two regions of one atom share,
+ * stokes_cell.c) come given: their arcs are taken as found and only the
+ * others are searched. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -32,7 +35,22 @@
 #define MAX_ARC 2.5      /* longer arcs are split (their frames need |angle| < pi / 2) */
 #define MAX_END_WIDTH 1e-4 /* an end this wide (near-tangent circles): undecided */
 
-enum { DONE = 1, ON_BOUNDARY = 2, QUEUED = 4, LIKELY = 8 }; /* vbm_capwork.state */
+enum { DONE = 1, ON_BOUNDARY = 2, QUEUED = 4, LIKELY = 8, FRAMED = 16 }; /* vbm_capwork.state */
+
+static int circle_frame(vbm_circle *c);
+
+/* Circle l's frame, made when first needed: most circles of a region only
+ * restrict others (their caps) and never have a point of theirs computed.
+ * Returns 0 when it cannot be made. */
+static int framed(vbm_capwork *w, size_t l)
+{
+    if (w->state[l] & FRAMED)
+        return 1;
+    if (!circle_frame(&w->circ[l]))
+        return 0;
+    w->state[l] |= FRAMED;
+    return 1;
+}
 
 typedef struct vbm_endpt {
     vbx_ia x, y;
@@ -60,7 +78,8 @@ static void cross3(const vbx_ia *a, const vbx_ia *b, vbx_ia *r)
     r[2] = vbx_ia_sub(vbx_ia_mul(a[0], b[1]), vbx_ia_mul(a[1], b[0]));
 }
 
-int vbm_circle_of(const vbm_cap *cp, vbm_circle *c)
+/* vbm_circle_of without the frame (kind, a, c and s). */
+static int circle_axis(const vbm_cap *cp, vbm_circle *c)
 {
     vbx_ia nn = vbx_ia_sqrt(dot3(cp->n, cp->n));
     vbx_ia lo = vbx_ia_sub(nn, cp->h), hi = vbx_ia_add(nn, cp->h);
@@ -79,6 +98,13 @@ int vbm_circle_of(const vbm_cap *cp, vbm_circle *c)
         c->a[k] = vbx_ia_div(cp->n[k], nn);
     c->c = vbx_ia_div(cp->h, nn);
     c->s = vbx_ia_div(vbx_ia_sqrt(vbx_ia_mul(lo, hi)), nn);
+    return 1;
+}
+
+/* The frame e1, e2 of a circle whose axis is set. Returns 0 when the
+ * intervals cannot normalise it. */
+static int circle_frame(vbm_circle *c)
+{
     /* e1 = a x f / |a x f| with f the axis least along a (chosen on
      * midpoints: any fixed f gives an exact frame) */
     int f = 0;
@@ -95,6 +121,11 @@ int vbm_circle_of(const vbm_cap *cp, vbm_circle *c)
         c->e1[k] = vbx_ia_div(t[k], tn);
     cross3(c->a, c->e1, c->e2);
     return 1;
+}
+
+int vbm_circle_of(const vbm_cap *cp, vbm_circle *c)
+{
+    return circle_axis(cp, c) && (c->kind != VBM_CAP_CIRCLE || circle_frame(c));
 }
 
 void vbm_caps_free(vbm_capwork *w)
@@ -189,6 +220,8 @@ static int side(const restr *r, vbx_ia x, vbx_ia y)
 static int circle_arcs(const vbm_cap *caps, const uint32_t *sel, size_t nsel, vbm_capwork *w,
                        size_t l, int test)
 {
+    if (!framed(w, l))
+        return 0;
     const vbm_circle *C = &w->circ[l];
     endpt *end = w->end;
     restr *res = w->res;
@@ -391,12 +424,13 @@ static int likely_boundary(const vbm_cap *caps, size_t ncap, vbm_capwork *w, siz
  * minimum on the circle lies at the direction -(Qc, Qs); on an arc not
  * holding that direction its minimum is at an end. So a cap holding the
  * whole circle, or both ends of each arc with the direction proven
- * outside it, holds the arcs. Returns 0 when proven, else 1 + the first
- * cap not proven to hold them. */
-static size_t arcs_inside(const vbm_cap *caps, size_t ncap, const vbm_capwork *w, size_t l,
+ * outside it, holds the arcs. Every cap not proven to hold them is marked
+ * likely (it joins the subset); returns how many were. */
+static size_t arcs_inside(const vbm_cap *caps, size_t ncap, vbm_capwork *w, size_t l,
                           size_t first)
 {
     const vbm_circle *C = &w->circ[l];
+    size_t bad = 0;
     for (size_t m = 1; m < ncap; m++) {
         if (m == l || w->circ[m].kind == VBM_CAP_ALL || (w->state[m] & (ON_BOUNDARY | LIKELY)))
             continue;
@@ -408,44 +442,42 @@ static size_t arcs_inside(const vbm_cap *caps, size_t ncap, const vbm_capwork *w
         vbx_ia dx = vbx_ia_neg(r.Qc), dy = vbx_ia_neg(r.Qs);
         for (size_t i = first; i < w->narc; i++) {
             const vbm_arc *a = &w->arc[i];
-            if (side(&r, a->p[0], a->p[1]) <= 0 || side(&r, a->q[0], a->q[1]) <= 0)
-                return m + 1;
             vbx_ia c0 = vbx_ia_sub(vbx_ia_mul(a->p[0], dy), vbx_ia_mul(a->p[1], dx));
             vbx_ia c1 = vbx_ia_sub(vbx_ia_mul(dx, a->q[1]), vbx_ia_mul(dy, a->q[0]));
-            if (!(c0.hi < 0.0 || c1.hi < 0.0))
-                return m + 1;
+            if (side(&r, a->p[0], a->p[1]) <= 0 || side(&r, a->q[0], a->q[1]) <= 0 ||
+                !(c0.hi < 0.0 || c1.hi < 0.0)) {
+                w->state[m] |= LIKELY;
+                bad++;
+                break;
+            }
         }
     }
-    return 0;
+    return bad;
 }
 
-#define RETRIES 3 /* caps added to a circle's subset before it is done against all */
-
-/* The arcs of circle l: inside the subset of caps first, then, unless the
- * other caps are proven to hold them (arcs_inside; a cap that is not joins
- * the subset and the circle is done again, RETRIES times), against every
- * cap. */
+/* The arcs of circle l: inside the subset of caps first (cap 0, the
+ * boundary's and the likely ones), then, unless every other cap is proven
+ * to hold them (arcs_inside), inside the subset with the caps not proven
+ * added. Those arcs are the arcs inside every cap: each lies in the first
+ * arcs (more caps only remove points), which every cap left out holds.
+ * Where the intervals cannot decide inside a subset, against every cap. */
 static int circle_all(const vbm_cap *caps, size_t ncap, vbm_capwork *w, size_t l)
 {
     uint32_t *sel = w->sel;
     size_t first = w->narc;
-    for (int t = 0; t <= RETRIES; t++) {
+    for (int t = 0; t < 2; t++) {
         size_t ns = 0;
         for (size_t m = 0; m < ncap; m++)
             if (m == 0 || (w->state[m] & (ON_BOUNDARY | LIKELY)))
                 sel[ns++] = (uint32_t)m;
-        if (ns >= ncap)
-            break;
         int e = circle_arcs(caps, sel, ns, w, l, 0);
-        if (e < 0)
+        if (e < 0 || (e > 0 && (t == 1 || ns >= ncap)))
             return e;
         if (e == 0)
-            break;
-        size_t bad = w->narc == first ? 0 : arcs_inside(caps, ncap, w, l, first);
-        if (bad == 0)
+            break; /* undecided: every cap, of which one may exclude the circle */
+        if (w->narc == first || arcs_inside(caps, ncap, w, l, first) == 0)
             return 1; /* none inside the subset, or all of them inside every cap */
         w->narc = first;
-        w->state[bad - 1] |= LIKELY;
     }
     w->narc = first;
     for (size_t m = 0; m < ncap; m++)
@@ -453,7 +485,37 @@ static int circle_all(const vbm_cap *caps, size_t ncap, vbm_capwork *w, size_t l
     return circle_arcs(caps, sel, ncap, w, l, 0);
 }
 
-int vbm_cap_arcs(const vbm_cap *caps, size_t ncap, vbm_capwork *w)
+/* The given arcs of the known circles first in w->arc, each known circle
+ * done (on the boundary when it has an arc), the caps ending its arcs
+ * queued, its frame made. Returns the boundary circles so marked, SIZE_MAX
+ * on ENOMEM, SIZE_MAX - 1 when a frame cannot be made. */
+static size_t take_given(size_t ncap, const uint8_t *known, const vbm_arc *given, size_t ngiven,
+                         vbm_capwork *w, size_t *nq)
+{
+    size_t nb = 0;
+    for (size_t m = 0; known && m < ncap; m++)
+        if (known[m])
+            w->state[m] |= DONE;
+    if (VB_ARRAY_FIT(w->arc, w->cap_arc, ngiven + 1, 32) != VB_OK)
+        return SIZE_MAX;
+    for (size_t i = 0; i < ngiven; i++) {
+        if (!framed(w, given[i].cap))
+            return SIZE_MAX - 1;
+        w->arc[w->narc++] = given[i];
+        if (!(w->state[given[i].cap] & ON_BOUNDARY)) {
+            w->state[given[i].cap] |= ON_BOUNDARY;
+            nb++;
+        }
+    }
+    for (size_t i = 0; i < ngiven; i++) {
+        enqueue(w, given[i].pcap, nq);
+        enqueue(w, given[i].qcap, nq);
+    }
+    return nb;
+}
+
+int vbm_cap_arcs(const vbm_cap *caps, size_t ncap, const uint8_t *known, const vbm_arc *given,
+                 size_t ngiven, vbm_capwork *w)
 {
     w->narc = 0;
     if (VB_ARRAY_FIT(w->circ, w->cap_circ, ncap, 32) != VB_OK ||
@@ -464,8 +526,8 @@ int vbm_cap_arcs(const vbm_cap *caps, size_t ncap, vbm_capwork *w)
         VB_ARRAY_FIT(w->state, w->cap_state, ncap + 1, 32) != VB_OK)
         return -1;
     for (size_t l = 0; l < ncap; l++) {
-        if (!vbm_circle_of(&caps[l], &w->circ[l]))
-            return 0;
+        if (!circle_axis(&caps[l], &w->circ[l]))
+            return 0; /* frames are made when needed (framed) */
         if (w->circ[l].kind == VBM_CAP_NONE)
             return 1; /* empty intersection */
     }
@@ -477,9 +539,13 @@ int vbm_cap_arcs(const vbm_cap *caps, size_t ncap, vbm_capwork *w)
      * are those of doing each circle against every cap. */
     uint32_t *sel = w->sel, *queue = w->queue;
     memset(w->state, 0, ncap);
-    size_t nb = 0, nq = 0, head = 0, next = 0;
+    size_t nq = 0, head = 0, next = 0;
     enqueue(w, 0, &nq);
-    int e = likely_boundary(caps, ncap, w, &nq);
+    size_t nb = take_given(ncap, known, given, ngiven, w, &nq);
+    if (nb >= SIZE_MAX - 1)
+        return nb == SIZE_MAX ? -1 : 0;
+    /* with an arc given the intersection is not empty: no trial of it */
+    int e = ngiven ? 1 : likely_boundary(caps, ncap, w, &nq);
     if (e <= 0)
         return e;
     if (e == 2)

@@ -51,11 +51,14 @@ int vbm1_rational(vbm_s1 *r, const vbx_ia *num, int dn, const vbx_ia *den, int d
     vbx_ia b0 = b[0];
     if (!(b0.lo > 0.0 || b0.hi < 0.0))
         return 0;
+    /* times an enclosure of 1 / b0 (one division, not one per coefficient:
+     * s / b0 lies in s [1 / b0]) */
+    vbx_ia ib0 = vbx_ia_div(vbx_ia_point(1.0), b0);
     for (int n = 0; n <= kmax; n++) {
         vbx_ia s = n <= dn ? a[n] : vbx_ia_point(0.0);
         for (int k = 1; k <= dd && k <= n; k++)
             s = vbx_ia_sub(s, vbx_ia_mul(b[k], r->c[n - k]));
-        r->c[n] = vbx_ia_div(s, b0);
+        r->c[n] = vbx_ia_mul(s, ib0);
     }
     for (int n = kmax + 1; n <= VBM1_K; n++)
         r->c[n] = vbx_ia_point(0.0);

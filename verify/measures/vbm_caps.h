@@ -57,10 +57,16 @@ int vbm_circle_of(const vbm_cap *cp, vbm_circle *c);
  * (w->narc; none when the intersection is empty or the whole sphere: the
  * caller tells them apart). Each arc is a piece of one cap's circle lying
  * in every other cap, oriented with the intersection on its left, so that
- * Stokes' theorem integrates over the intersection along them. Returns 1,
- * 0 when an interval cannot decide a step (tangent or coincident circles,
- * an arc end on a third circle), -1 on ENOMEM. */
-int vbm_cap_arcs(const vbm_cap *caps, size_t ncap, vbm_capwork *w);
+ * Stokes' theorem integrates over the intersection along them. Circles
+ * already solved are given: known[m] != 0 (known may be NULL) says circle
+ * m's arcs are exactly those of given[0..ngiven) with cap m (none when no
+ * such arc; their pcap and qcap indices into caps too, or VBM_NO_CAP), and
+ * only the other circles are searched, the given arcs bounding their
+ * search as found ones do. Cap 0 is never known. Returns 1, 0 when an
+ * interval cannot decide a step (tangent or coincident circles, an arc end
+ * on a third circle), -1 on ENOMEM. */
+int vbm_cap_arcs(const vbm_cap *caps, size_t ncap, const uint8_t *known, const vbm_arc *given,
+                 size_t ngiven, vbm_capwork *w);
 
 void vbm_caps_free(vbm_capwork *w);
 
