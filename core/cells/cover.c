@@ -247,6 +247,7 @@ static int hybrid_device(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w0,
     if (!outs)
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
     int rc = be->begin(ctx, be, &jb->env, jb->set->n);
+    uint64_t handed0 = be->handed_cells;
     while (rc == VB_OK && !atomic_load(&jb->failed)) {
         pthread_mutex_lock(&sh->mu);
         size_t b0 = sh->front, n = sh->back - sh->front < batch ? sh->back - sh->front : batch;
@@ -278,6 +279,7 @@ static int hybrid_device(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w0,
         w0->st.host_cells += nl;
         covered(jb, n - nl);
     }
+    w0->st.handed_cells += be->handed_cells - handed0;
     free(outs);
     return rc;
 }
@@ -403,6 +405,7 @@ static void stats_sum(vb_cover_stats *st, const vb_cover_stats *ws)
     st->max_level_leaves += ws->max_level_leaves;
     st->retries += ws->retries;
     st->host_cells += ws->host_cells;
+    st->handed_cells += ws->handed_cells;
     st->t_device += ws->t_device;
     st->t_host += ws->t_host;
     if (ws->max_level_seen > st->max_level_seen)

@@ -8,7 +8,10 @@
  * ("interior"): thread CPU seconds, patches, label evaluations, neighbour
  * records, leaves at the deepest level and quadruples. A crystal's flat
  * faces make its boundary cells the expensive ones (papers/degenerate-input/
- * README.md). A benchmark, not a test. */
+ * README.md). A last line gives the spread of patches per cell (median,
+ * 99th and 99.9th percentiles, largest, cells over 1024/2048/4096 and their
+ * share of all patches): the GPU group kernel's step budget
+ * (gpu/cover_ocl.c) is set from it. A benchmark, not a test. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -22,6 +25,12 @@ static double thread_cpu(void)
     struct timespec ts;
     clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static int cmp_u32(const void *a, const void *b)
+{
+    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+    return x < y ? -1 : x > y;
 }
 
 typedef struct sums {
@@ -67,6 +76,9 @@ int main(int argc, char **argv)
         return 1;
     sums s[2];
     memset(s, 0, sizeof s);
+    uint32_t *per = calloc(set->n ? set->n : 1, sizeof *per), np = 0;
+    if (!per)
+        return 1;
     for (uint32_t i = 0; i < set->n; i++) {
         if (set->contained[i])
             continue;
@@ -89,6 +101,7 @@ int main(int argc, char **argv)
         s[b].cpu += thread_cpu() - t0;
         s[b].cells++;
         s[b].patches += out.patches;
+        per[np++] = out.patches;
         s[b].evals += 1000.0 * out.evals_k;
         s[b].nb += out.nnb;
         s[b].deep += out.deep;
@@ -99,6 +112,23 @@ int main(int argc, char **argv)
                "deep_leaves %.0f\tquadruples %.0f\n",
                argv[1], b ? "boundary" : "interior", s[b].cells, s[b].cpu, s[b].patches,
                s[b].evals, s[b].nb, s[b].deep, s[b].quads);
+    qsort(per, np, sizeof *per, cmp_u32);
+    double over[3] = {0, 0, 0}, over_p[3] = {0, 0, 0}, all = 0;
+    for (uint32_t k = 0; k < np; k++) {
+        all += per[k];
+        for (int g = 0; g < 3; g++)
+            if (per[k] > (1024u << g)) {
+                over[g]++;
+                over_p[g] += per[k];
+            }
+    }
+    if (np)
+        printf("%s\tpatches per cell\tmedian %u\tp99 %u\tp99.9 %u\tmax %u\t"
+               "over 1024/2048/4096 %.0f/%.0f/%.0f cells, %.1f/%.1f/%.1f %% of patches\n",
+               argv[1], per[np / 2], per[np * 99 / 100], per[(size_t)np * 999 / 1000], per[np - 1],
+               over[0], over[1], over[2], 100 * over_p[0] / all, 100 * over_p[1] / all,
+               100 * over_p[2] / all);
+    free(per);
     vbq_arena_free(&ar);
     vb_cover_tree_free(tree);
     vb_spheres_free(set);
