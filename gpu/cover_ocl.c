@@ -72,9 +72,15 @@ typedef struct cov_state {
 #define COV_BIG_Q 4096u
 #define COV_WG 32u
 /* The group kernel's step budget per cell (VORBALL_COVER_BUDGET overrides;
- * 0: none). Measured on the host's cover (tests/verify/bench_cover_cells,
- * papers/degenerate-input/README.md): see there for the per-cell step
- * counts this default sits above. */
+ * 0: none). A group walks a cell's patches one after the other, so a launch
+ * lasts as long as its longest cell: on an H100 about 45 us a step (fcc
+ * 10,976 jittered: 4.71 s for its longest cell's 106,804 patches; the random
+ * twin: 0.07 s for 1,508). Patches per cell on the host's cover
+ * (tests/verify/bench_cover_cells): the random twin's largest is 1,508,
+ * 3pqr's 99th percentile 1,264 (13 of its cells pass 2,048), the jittered
+ * crystal's 99th 1,112 but 60 cells past 2,048 hold 19 % of its patches.
+ * 2,048 hands off none of the twin's cells and caps the group launch near
+ * 0.1 s; the cells past it run side by side as 24 T^2 tasks each. */
 #define COV_BUDGET 2048u
 
 static void release(cov_buf *b)
@@ -469,10 +475,14 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
     t1->lab_cap = COV_BIG_LAB;
     t1->st_cap = COV_ST;
     t1->q_cap = COV_BIG_Q;
-    th->nb_cap = COV_NB;
-    th->lab_cap = COV_LAB;
+    /* The hand-off tier's work-items get the group kernel's first-tier
+     * arenas: a task of a cell past the budget then fits (fcc 10,976
+     * jittered, simulated on the host: all 5,760 tasks of its 60 cells fit
+     * them; with the work-item kernel's own arenas 66 of them ran out). */
+    th->nb_cap = COV_WG_NB;
+    th->lab_cap = COV_WG_LAB;
     th->st_cap = COV_ST;
-    th->q_cap = COV_Q;
+    th->q_cap = COV_WG_Q;
     /* Output room per task: about 10 quadruples per cell on proteins; the
      * second tier's cells are the large ones. */
     t0->qper = th->qper = 24u;
