@@ -543,7 +543,9 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
          * GPU, within a sixteenth of the memory, in groups of 64. */
         size_t wh = (size_t)units * 512, fith = (size_t)(mem / 16) / tier_bytes(th);
         wh = wh < fith ? wh : fith;
-        th->slices_max = wh >= 64 ? wh / 64 * 64 : 64;
+        th->slices_max = wh >= 64 ? wh / 64 * 64 : wh;
+        if (th->slices_max == 0)
+            t0->budget = 0; /* no room for it: no hand-off */
     }
     /* Test knobs: VORBALL_COVER_NB shrinks the first tier's records (so that
      * cells overflow), VORBALL_COVER_TIER2 sets the second tier's slices
