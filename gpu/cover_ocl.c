@@ -490,10 +490,14 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
     int rc = s->wg ? kernel_get(ctx, rt, "cover_wg.cl", "vbq_cover_wg", &s->k)
                    : kernel_get(ctx, rt, "cover.cl", "vbq_cover_kernel", &s->k);
     /* The group kernel's budget, and the work-item kernel that takes the
-     * cells past it (VORBALL_COVER_BUDGET: steps, 0 for none). */
-    const char *kb = getenv("VORBALL_COVER_BUDGET");
+     * cells past it (VORBALL_COVER_BUDGET: steps, 0 for none). With
+     * VORBALL_COVER_HANDOFF=host the cells past it go to the host threads
+     * instead, as cells that ran out of arenas do (a measurement: which of
+     * the two finishes first depends on the device and the host). */
+    const char *kb = getenv("VORBALL_COVER_BUDGET"), *kh = getenv("VORBALL_COVER_HANDOFF");
     uint32_t budget = kb && *kb ? (uint32_t)strtoul(kb, NULL, 10) : COV_BUDGET;
-    if (rc == VB_OK && s->wg && budget)
+    int to_host = kh && strcmp(kh, "host") == 0;
+    if (rc == VB_OK && s->wg && budget && !to_host)
         rc = kernel_get(ctx, rt, "cover.cl", "vbq_cover_kernel", &s->k_item);
     t0->k = t1->k = s->k;
     t0->wg = t1->wg = s->wg;
@@ -544,7 +548,7 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
         size_t wh = (size_t)units * 512, fith = (size_t)(mem / 16) / tier_bytes(th);
         wh = wh < fith ? wh : fith;
         th->slices_max = wh >= 64 ? wh / 64 * 64 : wh;
-        if (th->slices_max == 0)
+        if (th->slices_max == 0 && !to_host)
             t0->budget = 0; /* no room for it: no hand-off */
     }
     /* Test knobs: VORBALL_COVER_NB shrinks the first tier's records (so that
