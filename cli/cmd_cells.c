@@ -348,12 +348,8 @@ int vb_cmd_cells(int argc, char **argv)
         rc = write_file(ctx, contacts_path, set, &m, 1, 0, &cp);
     if (rc == VB_OK)
         rc = write_file(ctx, out_path, set, &m, 0, json, &cp);
-    vb_page *page = NULL;
     if (rc == VB_OK && html)
-        rc = page_add(ctx, &page, title, "frame 0", set, &m, contacts_path != NULL);
-    if (rc == VB_OK && html)
-        rc = vb_page_write(page, html);
-    vb_page_free(page);
+        rc = vb_cells_page_write(ctx, html, title, set, &m, contacts_path != NULL);
     if (rc == VB_OK && stats)
         fprintf(stderr,
                 "cells: %zu atoms, %zu patches, %zu empty, %zu loose, %zu contacts, %.3f s, "

@@ -1,6 +1,5 @@
 /* `vorball jfa`: discrete Voronoi diagrams on [n]^d grids by the JFA variants
  * and Facet-JFA, checked against the exact diagram, timed, pictured. */
-#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -8,9 +7,8 @@
 #include "commands.h"
 #include "input_options.h"
 #include "jfa_png.h"
-#include "vb_json.h"
 #include "vb_default.h"
-#include "vbj_jfa.h"
+#include "vbj_runs.h"
 #include "vb_diag.h"
 
 void vb_cmd_jfa_help(FILE *f)
@@ -67,153 +65,10 @@ void vb_cmd_jfa_help(FILE *f)
 }
 
 typedef struct {
-    vbj_variant v[8];
-    int nv;
-} variant_list;
-
-static int parse_variants(vb_ctx *ctx, const char *s, variant_list *out)
-{
-    out->nv = 0;
-    char buf[256];
-    snprintf(buf, sizeof buf, "%s", s);
-    for (char *tok = strtok(buf, ","); tok; tok = strtok(NULL, ",")) {
-        int all = strcmp(tok, "all") == 0;
-        int need = all ? VBJ_FACET + 2 : 1;
-        if (out->nv + need > 8)
-            return vb_error(ctx, VB_EMISUSE, NULL, 0, "too many variants");
-        if (all) {
-            for (int i = 0; i <= VBJ_FACET; i++)
-                out->v[out->nv++] = (vbj_variant)i;
-            out->v[out->nv++] = VBJ_EXACT;
-            continue;
-        }
-        int rc = vbj_variant_parse(ctx, tok, &out->v[out->nv]);
-        if (rc)
-            return rc;
-        out->nv++;
-    }
-    return out->nv ? VB_OK : vb_error(ctx, VB_EMISUSE, NULL, 0, "no variant given");
-}
-
-/* Seeds from a protein's atom centres, fitted into an [n]^3 grid. */
-static int protein_seeds(vb_ctx *ctx, const char *path, const vb_cli_input_opts *io, uint32_t n,
-                         double margin, vbj_seeds *s)
-{
-    /* Only the centres make seeds, but the input is checked as every
-     * command checks it (radii, duplicates, magnitudes: the same numbered
-     * errors); PQR's radius-0 points are legal. */
-    vb_sphere_set *set = NULL;
-    int rc = vb_cli_load_spheres(ctx, path, io, 1, &set);
-    if (rc)
-        return rc;
-    vbj_grid_fit fit;
-    rc = vbj_fit_grid(ctx, set->x, set->y, set->z, set->n, n, margin, &fit);
-    if (!rc)
-        rc = vbj_seeds_from_world(ctx, &fit, set->x, set->y, set->z, set->n, s);
-    if (!rc)
-        vb_info(ctx, "protein %s: %zu atoms, pitch %.4f A, origin (%.3f, %.3f, %.3f)", path,
-                set->n, fit.pitch, fit.origin[0], fit.origin[1], fit.origin[2]);
-    vb_spheres_free(set);
-    return rc;
-}
-
-static int write_png(vb_ctx *ctx, const char *path, const vbj_seeds *s, const uint32_t *labels,
-                     const uint32_t *slices, int nslices)
-{
-    uint32_t n = s->n, w = n * (uint32_t)nslices;
-    uint8_t *rgb = malloc((size_t)w * n * 3);
-    if (!rgb)
-        return vb_error(ctx, VB_ENOMEM, path, 0, "picture: out of memory");
-    for (int i = 0; i < nslices; i++)
-        vb_jfa_render_slice(s->dim, n, labels, s->dim == 3 ? slices[i] : 0, rgb + (size_t)i * n * 3,
-                            (size_t)w * 3);
-    int rc = vb_png_write_rgb(ctx, path, w, n, rgb);
-    free(rgb);
-    return rc;
-}
-
-typedef struct {
-    vbj_variant v;
-    vbj_result r;      /* last run */
-    double mean_ms, min_ms, mean_gpu_ms;
-    int checked;
-    vbj_metrics m;
-} run_figures;
-
-static void print_json(FILE *f, const char *device, const vbj_seeds *s, const char *source,
-                       const run_figures *runs, int nruns, int repeat, double exact_ms)
-{
-    fprintf(f, "{\"device\": ");
-    vb_json_write_string(f, device);
-    fprintf(f, ", \"dim\": %d, \"n\": %u, \"seeds\": %zu, \"source\": ", s->dim, s->n, s->k);
-    vb_json_write_string(f, source);
-    fprintf(f, ", \"repeat\": %d", repeat);
-    if (exact_ms >= 0)
-        fprintf(f, ", \"exact_ms\": %.4f", exact_ms);
-    fprintf(f, ",\n \"runs\": [");
-    for (int i = 0; i < nruns; i++) {
-        const run_figures *x = &runs[i];
-        const vbj_counts *c = &x->r.counts;
-        fprintf(f,
-                "%s\n  {\"variant\": \"%s\", \"time_ms\": %.4f, \"time_ms_min\": %.4f, "
-                "\"gpu_ms\": %.4f, \"fill_ms\": %.4f, \"prep_transfer_ms\": %.4f, \"prep_ms\": %.4f, "
-                "\"steps\": %u, "
-                "\"pixels_processed\": %llu, \"threads\": %llu, \"m\": %u, \"boundary\": %llu, "
-                "\"collisions\": %u",
-                i ? "," : "", vbj_variant_name(x->v), x->mean_ms, x->min_ms, x->mean_gpu_ms,
-                x->r.ms_fill,
-                x->r.ms_transfer, x->r.ms_prep, c->steps, (unsigned long long)c->step_pixels,
-                (unsigned long long)c->threads, c->m, (unsigned long long)c->boundary,
-                c->collisions);
-        if (VBJ_IS_EXACT(x->v))
-            fprintf(f,
-                    ", \"tiles\": %llu, \"tiles_uniform\": %llu, \"candidates\": %llu, "
-                    "\"survivors\": %llu, \"evals\": %llu, \"exact_voxels\": %llu, "
-                    "\"tiles_chunked\": %llu, \"visited\": %llu",
-                    (unsigned long long)c->tiles, (unsigned long long)c->tiles_uniform,
-                    (unsigned long long)c->candidates, (unsigned long long)c->survivors,
-                    (unsigned long long)c->evals, (unsigned long long)c->exact_voxels,
-                    (unsigned long long)c->tiles_chunked, (unsigned long long)c->visited);
-        if (x->checked)
-            fprintf(f,
-                    ", \"wrong\": %zu, \"differ\": %zu, \"wrong_rate\": %.8g, \"max_err\": %.6g, "
-                    "\"mean_err\": %.6g, \"boundary_exact\": %zu, \"boundary_found\": %zu, "
-                    "\"boundary_missed\": %zu, \"boundary_extra\": %zu",
-                    x->m.wrong, x->m.differ, x->m.wrong_rate, x->m.max_err, x->m.mean_err,
-                    x->m.boundary_exact, x->m.boundary_found, x->m.boundary_missed,
-                    x->m.boundary_extra);
-        fprintf(f, "}");
-    }
-    fprintf(f, "\n]}\n");
-}
-
-static void print_text(FILE *f, const char *device, const vbj_seeds *s, const char *source,
-                       const run_figures *runs, int nruns)
-{
-    fprintf(f, "# device: %s\n# grid: %u^%d, %zu seeds (%s)\n", device, s->n, s->dim, s->k,
-            source);
-    fprintf(f, "%-14s %10s %10s %14s %6s %12s %12s %12s %10s\n", "variant", "ms", "ms_min",
-            "pixels", "m", "boundary", "wrong", "wrong_rate", "max_err");
-    for (int i = 0; i < nruns; i++) {
-        const run_figures *x = &runs[i];
-        fprintf(f, "%-14s %10.3f %10.3f %14llu %6u %12llu", vbj_variant_name(x->v), x->mean_ms,
-                x->min_ms, (unsigned long long)x->r.counts.step_pixels, x->r.counts.m,
-                (unsigned long long)x->r.counts.boundary);
-        if (x->checked)
-            fprintf(f, " %12zu %12.3e %10.4f\n", x->m.wrong, x->m.wrong_rate, x->m.max_err);
-        else
-            fprintf(f, " %12s %12s %10s\n", "-", "-", "-");
-    }
-}
-
-typedef struct {
-    int dim, dim_given, check, json, repeat;
-    uint32_t n, m, fuse_cells;
-    size_t k;
-    uint64_t rng;
-    double margin;
+    int dim_given, check, json, nv;
+    vbj_setup set;
     vbj_distribution dist;
-    variant_list vl;
+    vbj_variant v[VBJ_MAX_VARIANTS];
     const char *seeds_path, *protein, *png, *out, *slices, *device;
     vb_cli_input_opts io;
 } jfa_args;
@@ -234,11 +89,10 @@ static uint64_t *setup_number(vbj_setup *s, const char *o)
 static int parse_args(vb_ctx *ctx, int argc, char **argv, jfa_args *a, int *exit_code)
 {
     memset(a, 0, sizeof *a);
-    vbj_setup set = {.dim = 2, .n = 512, .k = 100, .margin = 2.0, .repeat = 1};
-    a->rng = 1;
+    vbj_setup_defaults(&a->set);
+    vbj_setup set = a->set;
     a->device = "auto";
-    a->vl.nv = 1;
-    a->vl.v[0] = VBJ_JFA1;
+    vbj_variants_parse(ctx, VBJ_VARIANTS_DEFAULT, a->v, &a->nv);
     vb_cli_input_defaults(&a->io);
     *exit_code = -1;
     for (int i = 1; i < argc; i++) {
@@ -291,11 +145,11 @@ static int parse_args(vb_ctx *ctx, int argc, char **argv, jfa_args *a, int *exit
                 *exit_code = vb_cli_usage_error("jfa", "bad --rng '%s'", argv[i]);
                 return 0;
             }
-            a->rng = sz;
+            set.rng = sz;
         } else if (strcmp(o, "--protein") == 0)
             a->protein = argv[++i];
         else if (strcmp(o, "-V") == 0 || strcmp(o, "--variant") == 0) {
-            if (parse_variants(ctx, argv[++i], &a->vl)) {
+            if (vbj_variants_parse(ctx, argv[++i], a->v, &a->nv)) {
                 *exit_code = vb_cli_usage_error("jfa", "%s", vb_errmsg(ctx));
                 return 0;
             }
@@ -316,43 +170,40 @@ static int parse_args(vb_ctx *ctx, int argc, char **argv, jfa_args *a, int *exit
         } else
             a->seeds_path = o;
     }
-    a->dim = (int)set.dim;
-    a->n = (uint32_t)set.n;
-    a->k = (size_t)set.k;
-    a->margin = set.margin;
-    a->m = (uint32_t)set.m;
-    a->fuse_cells = (uint32_t)set.fuse_cells;
-    a->repeat = (int)set.repeat;
     if (a->protein) {
         if (a->seeds_path) {
             *exit_code = vb_cli_usage_error("jfa", "give either SEEDS or --protein");
             return 0;
         }
-        if (a->dim_given && a->dim != 3) {
+        if (a->dim_given && set.dim != 3) {
             *exit_code = vb_cli_usage_error("jfa", "--protein needs --dim 3");
             return 0;
         }
-        a->dim = 3;
+        set.dim = 3;
     }
+    a->set = set;
     return 1;
 }
 
-static int parse_slices(const jfa_args *a, uint32_t *sl, int *ns)
+/* --slice Z[,Z..] into the setup (3D only; else the picture is the
+ * diagram or slice n/2): a value that does not parse is stored as one
+ * vbj_setup_check refuses. */
+static void parse_slices(const char *text, vbj_setup *set)
 {
-    *ns = 1;
-    sl[0] = a->n / 2;
-    if (a->dim != 3 || !a->slices)
-        return 0;
     char buf[256];
-    snprintf(buf, sizeof buf, "%s", a->slices);
-    *ns = 0;
-    for (char *t = strtok(buf, ","); t; t = strtok(NULL, ",")) {
+    snprintf(buf, sizeof buf, "%s", text);
+    set->nslices = 0;
+    char *save = NULL;
+    for (char *t = strtok_r(buf, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
         size_t z;
-        if (*ns == 16 || vb_cli_parse_size(t, &z) || z >= a->n)
-            return -1;
-        sl[(*ns)++] = (uint32_t)z;
+        if (set->nslices == VBJ_MAX_SLICES) {
+            set->nslices++; /* one too many */
+            return;
+        }
+        set->slice[set->nslices++] = vb_cli_parse_size(t, &z) ? UINT64_MAX : z;
     }
-    return *ns ? 0 : -1;
+    if (set->nslices == 0)
+        set->slice[set->nslices++] = UINT64_MAX;
 }
 
 int vb_cmd_jfa(int argc, char **argv)
@@ -366,11 +217,12 @@ int vb_cmd_jfa(int argc, char **argv)
         vb_close(ctx);
         return ec;
     }
-    uint32_t slices[16];
-    int nslices;
-    if (parse_slices(&a, slices, &nslices)) {
-        vb_close(ctx);
-        return vb_cli_usage_error("jfa", "bad --slice '%s' (z values below n)", a.slices);
+    if (a.set.dim == 3 && a.slices) {
+        parse_slices(a.slices, &a.set);
+        if (vbj_setup_check(ctx, &a.set) != VB_OK) {
+            vb_close(ctx);
+            return vb_cli_usage_error("jfa", "bad --slice '%s' (z values below n)", a.slices);
+        }
     }
     vb_device_kind kind;
     int rc = vb_device_kind_parse(ctx, a.device, &kind);
@@ -380,99 +232,45 @@ int vb_cmd_jfa(int argc, char **argv)
         return ec;
     }
 
+    /* Only the centres make seeds, but a protein is checked as every
+     * command checks its input (radii, duplicates, magnitudes: the same
+     * numbered errors); PQR's radius-0 points are legal. */
+    vb_sphere_set *set = NULL;
+    if (a.protein)
+        rc = vb_cli_load_spheres(ctx, a.protein, &a.io, 1, &set);
+    vbj_seed_source src = {set, a.protein, NULL, 0, a.seeds_path, a.dist};
     vbj_seeds s = {0};
     char source[512];
-    if (a.protein) {
-        rc = protein_seeds(ctx, a.protein, &a.io, a.n, a.margin, &s);
-        snprintf(source, sizeof source, "protein %s", a.protein);
-    } else if (a.seeds_path) {
-        rc = vbj_seeds_read(ctx, a.seeds_path, a.dim, a.n, &s);
-        snprintf(source, sizeof source, "file %s", a.seeds_path);
-    } else {
-        rc = vbj_seeds_generate(ctx, a.dim, a.n, a.k, a.dist, a.rng, &s);
-        snprintf(source, sizeof source, "%s, rng %llu", vbj_distribution_name(a.dist),
-                 (unsigned long long)a.rng);
-    }
+    if (!rc)
+        rc = vbj_seeds_make(ctx, &a.set, &src, &s, source, sizeof source);
+    vb_spheres_free(set);
     vbj_backend *e = NULL;
     vb_device *dev = NULL;
     if (!rc)
         rc = vbj_backend_open(ctx, vb_default_devices(), kind, &dev, &e);
-    run_figures runs[8];
-    memset(runs, 0, sizeof runs);
-    uint32_t *exact = NULL;
-    double exact_ms = -1;
-    if (!rc && a.check) {
-        exact = malloc((size_t)s.n * s.n * (s.dim == 3 ? s.n : 1) * sizeof *exact);
-        if (!exact)
-            rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "exact labels: out of memory");
-        else {
-            double t0 = vb_now();
-            rc = vbj_exact(ctx, e, &s, exact);
-            exact_ms = (vb_now() - t0) * 1e3;
-        }
-    }
-    int warned_collision = 0, warned_m = 0;
-    for (int i = 0; !rc && i < a.vl.nv; i++) {
-        run_figures *x = &runs[i];
-        x->v = a.vl.v[i];
-        vbj_options o = {x->v, a.m, VBJ_WANT_LABELS, a.fuse_cells};
-        double sum = 0, mn = 0, gpu = 0;
-        /* Timed runs follow an untimed one that allocates the device buffers. */
-        if (a.repeat > 1 && !(rc = vbj_run(ctx, e, &s, &o, &x->r)))
-            vbj_result_free(&x->r);
-        for (int t = 0; !rc && t < a.repeat; t++) {
-            vbj_result_free(&x->r);
-            rc = vbj_run(ctx, e, &s, &o, &x->r);
-            sum += x->r.ms_kernel;
-            gpu += x->r.ms_gpu;
-            mn = t == 0 || x->r.ms_kernel < mn ? x->r.ms_kernel : mn;
-        }
-        if (rc)
-            break;
-        x->mean_ms = sum / a.repeat;
-        x->mean_gpu_ms = gpu / a.repeat;
-        x->min_ms = mn;
-        if (x->r.counts.collisions && !warned_collision) {
-            vb_warn(ctx, VB_W_JFA_SEEDS_LOST, NULL, 0,
-                    "%u seed(s) share their start pixel with a nearer seed and cannot own "
-                    "any pixel",
-                    x->r.counts.collisions);
-            warned_collision = 1;
-        }
-        if ((x->v == VBJ_FACET || x->v == VBJ_FACET_FULL) && x->r.counts.m == s.n && s.n > 1 &&
-            !warned_m) {
-            vb_warn(ctx, VB_W_FACET_START_FINE, NULL, 0,
-                    "Facet-JFA starts at m = n = %u (seeds too close): it does the work of "
-                    "JFA and more",
-                    s.n);
-            warned_m = 1;
-        }
-        if (exact) {
-            rc = vbj_compare(ctx, &s, x->r.labels, exact, &x->m);
-            x->checked = 1;
-        }
-    }
+    vbj_runs runs;
+    memset(&runs, 0, sizeof runs);
+    if (!rc)
+        rc = vbj_runs_run(ctx, e, &s, &a.set, a.v, a.nv, a.check, &runs);
     if (!rc && a.png) {
-        int last = a.vl.nv - 1;
-        rc = write_png(ctx, a.png, &s, runs[last].r.labels, slices, nslices);
+        uint8_t *rgb = NULL;
+        uint32_t w = 0;
+        rc = vbj_picture(ctx, &s, runs.run[runs.n - 1].r.labels, &a.set, &rgb, &w);
+        if (!rc)
+            rc = vb_png_write_rgb(ctx, a.png, w, s.n, rgb);
+        free(rgb);
     }
     if (!rc) {
         FILE *f = vb_cli_open_output(ctx, a.out);
         if (!f)
             rc = vb_errcode(ctx);
         else {
-            const char *device = e->device;
-            if (a.json)
-                print_json(f, device, &s, source, runs, a.vl.nv, a.repeat, exact_ms);
-            else
-                print_text(f, device, &s, source, runs, a.vl.nv);
+            vbj_runs_write(f, &runs, &s, source, a.json);
             rc = vb_cli_close_output(ctx, f, a.out);
         }
     }
     ec = rc ? vb_cli_fail(ctx, rc) : VB_EXIT_OK;
-    for (int i = 0; i < 8; i++)
-        vbj_result_free(&runs[i].r);
-    free(exact);
+    vbj_runs_free(&runs);
     vbj_backend_close(e);
     if (dev)
         vb_default_devices()->close(dev);

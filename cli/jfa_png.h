@@ -10,10 +10,4 @@
  * at the top) to `path`. VB_EIO when the file cannot be written. */
 int vb_png_write_rgb(vb_ctx *ctx, const char *path, uint32_t w, uint32_t h, const uint8_t *rgb);
 
-/* Renders one z-slice of a label grid into rgb (n x n, y up): each region
- * gets a colour derived from its label, boundary pixels (a neighbour in the
- * slice, or across z when dim == 3, has another label) are black. */
-void vb_jfa_render_slice(int dim, uint32_t n, const uint32_t *labels, uint32_t z, uint8_t *rgb,
-                         size_t row_stride);
-
 #endif

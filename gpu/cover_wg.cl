@@ -345,11 +345,13 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
                 sh[S_OWNED] = 0u;
             }
             barrier(CLK_LOCAL_MEM_FENCE);
+            double hm = -(double)INFINITY; /* this lane's largest hi (vbq_combo_may_go) */
             for (uint k = lane; k < fr.len; k += WG) {
                 uint li = lab[fr.off + k];
                 vbq_nb rec = nb[li];
                 double lo, hi;
                 vbq_eval(&rec, mm, hh, &lo, &hi);
+                hm = hi > hm ? hi : hm;
                 if (hi >= LO) {
                     uint pos = atomic_inc(&sh[S_LEN]);
                     lab[top + pos] = li;
@@ -368,6 +370,9 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
             uint list_tried = tried || (fr.combo && keep == fr.len);
             vbq_champ ch;
             ch.round = tried ? 0u : VBQ_CHAMP_ROUNDS;
+            /* tried is the same on every lane (fr, keep, owned are shared) */
+            if (tried && !vbq_combo_may_go(LO, wg_max(hm, red)))
+                ch.round = VBQ_CHAMP_ROUNDS;
             ch.n = 0u;
             while (keep > VBQ_DOM_MAX && owned >= 3u && ch.round < VBQ_CHAMP_ROUNDS) {
                 vbq_champ_make(nb, lab + top, keep, mm, hh, &ch);

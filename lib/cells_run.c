@@ -7,6 +7,7 @@
 
 #include "vb_cells.h"
 #include "vb_frames_each.h"
+#include "vb_measures_page.h"
 
 int vb_cells_frame_decimals(vb_ctx *ctx, vb_sphere_set *set)
 {
@@ -138,4 +139,19 @@ int vb_cells_run_frames(vb_ctx *ctx, const char *path, const char *traj_path,
 {
     frames_job J = {ctx, opt, fn, arg};
     return vb_frames_each(ctx, path, traj_path, ro, range, measure_frame, &J, selected);
+}
+
+int vb_cells_page_write(vb_ctx *ctx, const char *path, const char *title,
+                        const vb_sphere_set *set, const vb_cell_measures *m, int contacts)
+{
+    int rc = vb_page_check(ctx, path);
+    vb_page *page = rc == VB_OK ? vb_page_new(ctx, title, set) : NULL;
+    if (rc == VB_OK && !page)
+        rc = vb_errcode(ctx);
+    if (rc == VB_OK)
+        rc = vb_cell_measures_page_add(ctx, page, "frame 0", set, m, contacts);
+    if (rc == VB_OK)
+        rc = vb_page_write(page, path);
+    vb_page_free(page);
+    return rc;
 }

@@ -57,4 +57,13 @@ int vb_cells_run_frames(vb_ctx *ctx, const char *path, const char *traj_path,
                         const vb_measure_options *opt, vb_cells_frame_fn fn, void *arg,
                         long *selected);
 
+/* The results page of one structure's measures (`vorball cells --html`
+ * without frames): titled `title`, the molecule with its atoms coloured
+ * by volume, SAS or (with contacts) contact area, as one frame labelled
+ * "frame 0", written to path. VB_OK; VB_EMISUSE when this build has no
+ * viewer (the message says how to get it); the page's size and I/O
+ * errors. Nothing is left at path on failure. */
+int vb_cells_page_write(vb_ctx *ctx, const char *path, const char *title,
+                        const vb_sphere_set *set, const vb_cell_measures *m, int contacts);
+
 #endif

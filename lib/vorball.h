@@ -14,7 +14,7 @@
  *     vb_vertices_run_default) and with its completion -- arc closure,
  *     faces and edges, the certificate -- in one call (vb_complete.h:
  *     vb_vertices_run_complete); vertex files read and written
- *     (vb_vertex_io.h);
+ *     (vb_vertex_io.h) and shown on a results page (vb_vertex_page.h);
  *   - cell measures: per-atom volume and SAS area and contact areas as
  *     proven enclosures, of a set or of a trajectory's frames, in one call
  *     (vb_cells.h: vb_cells_run, vb_cells_run_frames; the result and its
@@ -26,7 +26,10 @@
  *   - channels over frames and the discrete Voronoi engines (vbc_frame.h,
  *     vbj_jfa.h through it), their options declared once and the run over
  *     frames (vbc_run.h, vbc_channels_config.h), on the device layer of
- *     vb_default_devices. */
+ *     vb_default_devices;
+ *   - a `vorball jfa` run whole: seeds from their source, the timed
+ *     variants checked against the exact diagram, the figures and the
+ *     picture (vbj_runs.h). */
 #ifndef VORBALL_H
 #define VORBALL_H
 
@@ -41,7 +44,9 @@
 #include "vb_select.h"
 #include "vb_verify_file.h"
 #include "vb_vertex_io.h"
+#include "vb_vertex_page.h"
 #include "vbc_frame.h"
 #include "vbc_run.h"
+#include "vbj_runs.h"
 
 #endif

@@ -439,10 +439,12 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
             return;
         }
         vbs_u32 keep = 0u, owned = 0u;
+        double hm = -(double)INFINITY; /* every label's hi at most (vbq_combo_may_go) */
         for (vbs_u32 k = 0u; k < fr.len; k++) {
             vbs_u32 li = ar->lab[fr.off + k];
             vbq_nb rec = ar->nb[li];
             double hi = vbq_hi_again(ar, k, &rec, m, h);
+            hm = hi > hm ? hi : hm;
             if (hi >= LO) {
                 ar->lab[top + keep++] = li;
                 if (rec.id > i)
@@ -457,7 +459,7 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
         ch.n = 0u;
         vbs_u32 ch_tried = vbq_combo_due(&fr, closed, keep, owned);
         vbs_u32 list_tried = ch_tried || (fr.combo && keep == fr.len);
-        if (!ch_tried)
+        if (!ch_tried || !vbq_combo_may_go(LO, hm))
             ch.round = VBQ_CHAMP_ROUNDS;
         while (keep > VBQ_DOM_MAX && owned >= 3u && ch.round < VBQ_CHAMP_ROUNDS) {
             vbq_champ_make(ar->nb, ar->lab + top, keep, m, h, &ch);

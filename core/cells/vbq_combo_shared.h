@@ -172,6 +172,19 @@ VBS_FN vbs_u32 vbq_combo_due(const vbq_frame *fr, int closed, vbs_u32 keep, vbs_
     return closed && owned >= 3u && keep > VBQ_DOM_MAX && !(fr->combo && keep == fr->len) ? 1u : 0u;
 }
 
+/* May the champions' first round go at all, tested before they are made?
+ * hm is at least every label's upper end hi over the patch, so at least
+ * the best champion's hi[0] (the same vbq_eval over the same box; rounding
+ * is monotone, so fl(VBQ_COMBO_FLAT hi[0]) <= fl(VBQ_COMBO_FLAT hm)): where
+ * LO >= VBQ_COMBO_FLAT hm, vbq_combo_go fails whatever the champions, and
+ * skipping vbq_champ_make gives the same labels. In general position LO
+ * is far from tiny and this skips the champions' pass over the list (the
+ * group kernel made them on every lane). Speed only. */
+VBS_FN int vbq_combo_may_go(double LO, double hm)
+{
+    return LO < VBQ_COMBO_FLAT * hm;
+}
+
 /* Are the champions worth a round: two at least, and LO below
  * VBQ_COMBO_FLAT of the best champion's upper end (the labels nearly tie
  * at a point of the patch, where LO stays tiny; elsewhere hi_j < LO has

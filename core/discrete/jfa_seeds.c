@@ -11,6 +11,28 @@
 
 static int is_pow2(uint32_t n) { return n >= 2 && (n & (n - 1)) == 0; }
 
+void vbj_setup_defaults(vbj_setup *s)
+{
+    memset(s, 0, sizeof *s);
+    s->dim = 2;
+    s->n = 512;
+    s->k = 100;
+    s->margin = 2.0;
+    s->repeat = 1;
+    s->rng = 1;
+}
+
+/* Nonzero when a slice is refused: too many, or one not below n. */
+static int bad_slices(const vbj_setup *s)
+{
+    if (s->nslices > VBJ_MAX_SLICES)
+        return 1;
+    for (uint32_t i = 0; i < s->nslices; i++)
+        if (s->slice[i] >= s->n)
+            return 1;
+    return 0;
+}
+
 int vbj_setup_check(vb_ctx *ctx, const vbj_setup *s)
 {
     const char *bad = s->dim != 2 && s->dim != 3    ? "--dim must be 2 or 3"
@@ -20,6 +42,7 @@ int vbj_setup_check(vb_ctx *ctx, const vbj_setup *s)
                       : s->m > VBJ_MAX_N            ? "bad -m"
                       : s->fuse_cells > UINT32_MAX  ? "bad --fuse-cells"
                       : s->repeat == 0 || s->repeat > 100000 ? "bad --repeat"
+                      : bad_slices(s)               ? "bad --slice"
                                                     : NULL;
     return bad ? vb_error(ctx, VB_EMISUSE, NULL, 0, "%s", bad) : VB_OK;
 }

@@ -131,13 +131,20 @@ typedef struct vbj_setup {
     uint64_t m;          /* Facet-JFA start resolution: 0 (not given) or 1..VBJ_MAX_N */
     uint64_t fuse_cells; /* 0 (not given) or 1..UINT32_MAX (vbj_options.fuse_cells) */
     uint64_t repeat;     /* timed runs, 1..100000 */
+    uint64_t rng;        /* generator seed (any) */
+    uint32_t nslices;    /* 3D picture slices given, 0..VBJ_MAX_SLICES (0: n/2) */
+    uint64_t slice[VBJ_MAX_SLICES]; /* each below n */
 } vbj_setup;
+
+/* The command's defaults: dim 2, n 512, k 100, margin 2, repeat 1, rng 1,
+ * the rest 0 (not given). */
+void vbj_setup_defaults(vbj_setup *s);
 
 /* The setup's ranges, the one check of the command: VB_OK, or VB_EMISUSE
  * with ctx's message naming the first option refused, in the order of the
  * fields ("--dim must be 2 or 3", else "bad --size", "bad --seeds",
- * "bad --margin", "bad -m", "bad --fuse-cells", "bad --repeat": the caller
- * adds the value as it was given). */
+ * "bad --margin", "bad -m", "bad --fuse-cells", "bad --repeat",
+ * "bad --slice": the caller adds the value as it was given). */
 int vbj_setup_check(vb_ctx *ctx, const vbj_setup *s);
 
 typedef struct vbj_options {

@@ -18,5 +18,7 @@
 #define VBJ_MARK 0x80000000u
 #define VBJ_LABEL_MASK 0x7fffffffu
 #define VBJ_MAX_SEEDS 0x7ffffffeu
+/* Most z-slices of a 3D picture (vorball jfa --slice). */
+#define VBJ_MAX_SLICES 16
 
 #endif

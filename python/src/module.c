@@ -221,6 +221,45 @@ PyObject *vbpy_call_return(vbpy_call *c, PyObject *value)
     return t;
 }
 
+int vbpy_frames_open(vbpy_call *c, vbpy_frames *S, PyObject *tokens, int water, vb_box *box,
+                     vb_read_options *ro)
+{
+    int rc = tokens == Py_None ? VB_OK : vbpy_box(c->ctx, tokens, NULL, box);
+    S->ctx = c->ctx;
+    S->failed = 0;
+    S->list = rc < 0 ? NULL : PyList_New(0);
+    if (!S->list) {
+        Py_XDECREF(vbpy_call_done(c));
+        return -1;
+    }
+    memset(ro, 0, sizeof *ro);
+    ro->keep_water = water;
+    return rc;
+}
+
+int vbpy_frames_append(vbpy_frames *S, long frame, int model, PyObject *d)
+{
+    PyObject *item = d ? Py_BuildValue("(liN)", frame, model, d) : NULL;
+    int bad = !item || PyList_Append(S->list, item) != 0;
+    Py_XDECREF(item);
+    S->failed |= bad;
+    return bad ? VB_ENOMEM : VB_OK;
+}
+
+PyObject *vbpy_frames_return(vbpy_call *c, vbpy_frames *S, int rc)
+{
+    if (S->failed) {
+        Py_DECREF(S->list);
+        Py_XDECREF(vbpy_call_done(c));
+        return NULL;
+    }
+    if (rc != VB_OK) {
+        Py_DECREF(S->list);
+        return vbpy_call_fail(c, rc);
+    }
+    return vbpy_call_return(c, S->list);
+}
+
 PyObject *vbpy_bytes(const void *p, size_t n, size_t size)
 {
     if (n == 0 || !p)
@@ -362,7 +401,7 @@ PyMODINIT_FUNC PyInit__core(void)
     if (add_methods(m, base_methods) || add_methods(m, vbpy_spheres_methods) ||
         add_methods(m, vbpy_vertices_methods) || add_methods(m, vbpy_verify_methods) ||
         add_methods(m, vbpy_channels_methods) || add_methods(m, vbpy_cells_methods) ||
-        add_methods(m, vbpy_periodic_methods) ||
+        add_methods(m, vbpy_periodic_methods) || add_methods(m, vbpy_jfa_methods) ||
         PyModule_AddIntConstant(m, "ZERO_RADIUS_AUTO", VB_ZERO_RADIUS_AUTO) ||
         PyModule_AddIntConstant(m, "ZERO_RADIUS_ERROR", VB_ZERO_RADIUS_ERROR) ||
         PyModule_AddIntConstant(m, "ZERO_RADIUS_POINT", VB_ZERO_RADIUS_POINT) ||

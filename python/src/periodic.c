@@ -149,26 +149,16 @@ static PyObject *periodic_vertices(PyObject *self, PyObject *args)
     return vbpy_call_return(&c, d);
 }
 
-typedef struct frames_sink {
-    vb_ctx *ctx;
-    PyObject *list;
-    int failed; /* a Python exception is set */
-} frames_sink;
-
 /* Each frame's result appended as (frame, model, dict), with the GIL. */
 static int keep_frame(void *arg, long frame, int model, const vb_sphere_set *set,
                       const vb_box *box, const vb_periodic_result *res)
 {
-    frames_sink *S = arg;
+    vbpy_frames *S = arg;
     (void)set;
     PyGILState_STATE g = PyGILState_Ensure();
-    PyObject *d = result_dict(S->ctx, res, box);
-    PyObject *item = d ? Py_BuildValue("(liN)", frame, model, d) : NULL;
-    int bad = !item || PyList_Append(S->list, item) != 0;
-    Py_XDECREF(item);
-    S->failed |= bad;
+    int rc = vbpy_frames_append(S, frame, model, result_dict(S->ctx, res, box));
     PyGILState_Release(g);
-    return bad ? VB_ENOMEM : VB_OK;
+    return rc;
 }
 
 static PyObject *periodic_frames(PyObject *self, PyObject *args)
@@ -186,32 +176,18 @@ static PyObject *periodic_frames(PyObject *self, PyObject *args)
     if (run_open(opts, &cfg, &c) != 0)
         return NULL;
     vb_box box;
-    int rc = tokens == Py_None ? VB_OK : vbpy_box(c.ctx, tokens, NULL, &box);
-    frames_sink S = {c.ctx, PyList_New(0), 0};
-    if (rc < 0 || !S.list) {
-        Py_XDECREF(S.list);
-        Py_XDECREF(vbpy_call_done(&c));
+    vbpy_frames S;
+    vb_read_options ro;
+    int rc = vbpy_frames_open(&c, &S, tokens, water, &box, &ro);
+    if (rc < 0)
         return NULL;
-    }
-    vb_read_options ro; /* the command's defaults: format by content, every model */
-    memset(&ro, 0, sizeof ro);
-    ro.keep_water = water;
     vb_frame_range range = {start, stop, step};
     Py_BEGIN_ALLOW_THREADS
     if (rc == VB_OK)
         rc = vb_periodic_run_frames(c.ctx, path, traj, &ro, &range,
                                     tokens == Py_None ? NULL : &box, &cfg, keep_frame, &S, NULL);
     Py_END_ALLOW_THREADS
-    if (S.failed) {
-        Py_DECREF(S.list);
-        Py_XDECREF(vbpy_call_done(&c));
-        return NULL;
-    }
-    if (rc != VB_OK) {
-        Py_DECREF(S.list);
-        return vbpy_call_fail(&c, rc);
-    }
-    return vbpy_call_return(&c, S.list);
+    return vbpy_frames_return(&c, &S, rc);
 }
 
 /* vb_periodic_verify_file on a path: (dict of counts and per-line arrays

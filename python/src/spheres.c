@@ -35,16 +35,17 @@ vb_sphere_set *vbpy_spheres_get(PyObject *capsule)
 }
 
 /* The read options of the Python keywords, as the CLI's input options
- * fill them (cli/input_options.c): format by name, model, water,
+ * fill them (cli/input_options.c): format by name, model, assembly, water,
  * hydrogens, strict elements, zero radius. VB_OK or VB_EMISUSE in ctx. */
-static int read_options(vb_ctx *ctx, const char *format, Py_ssize_t model, int keep_water,
-                        int drop_hydrogens, int strict_elements, int zero_radius,
+static int read_options(vb_ctx *ctx, const char *format, Py_ssize_t model, Py_ssize_t assembly,
+                        int keep_water, int drop_hydrogens, int strict_elements, int zero_radius,
                         vb_read_options *ro)
 {
     memset(ro, 0, sizeof *ro);
-    /* The range is the library's (vb_read_options_check): a model out of
-     * the field's type is stored as one it refuses. */
+    /* The ranges are the library's (vb_read_options_check): a number out
+     * of the field's type is stored as one it refuses. */
     ro->model = model >= 0 && model <= INT_MAX ? (int)model : -1;
+    ro->assembly = assembly >= 0 && assembly <= INT_MAX ? (int)assembly : -1;
     ro->keep_water = keep_water;
     ro->drop_hydrogens = drop_hydrogens;
     ro->strict_elements = strict_elements;
@@ -53,7 +54,7 @@ static int read_options(vb_ctx *ctx, const char *format, Py_ssize_t model, int k
     return rc == VB_OK ? vb_format_parse(ctx, format, &ro->format) : rc;
 }
 
-/* A converter ("O&") of the model number: any Python int, one out of the
+/* A converter ("O&") of the model or assembly number: any Python int, one out of the
  * C field's type stored as -1 (refused by vb_read_options_check). */
 static int model_arg(PyObject *o, void *out)
 {
@@ -71,10 +72,10 @@ static PyObject *spheres_read(PyObject *self, PyObject *args)
     PyObject *path = NULL, *radii = NULL;
     const char *format;
     int water, noh, strict, zero;
-    Py_ssize_t model, min_count;
-    if (!PyArg_ParseTuple(args, "O&sO&iiiiO&n", PyUnicode_FSConverter, &path, &format, model_arg,
-                          &model, &water, &noh, &strict, &zero, PyUnicode_FSConverter, &radii,
-                          &min_count))
+    Py_ssize_t model, assembly, min_count;
+    if (!PyArg_ParseTuple(args, "O&sO&O&iiiiO&n", PyUnicode_FSConverter, &path, &format, model_arg,
+                          &model, model_arg, &assembly, &water, &noh, &strict, &zero,
+                          PyUnicode_FSConverter, &radii, &min_count))
         return NULL;
     vbpy_call c;
     if (vbpy_call_open(&c) != 0) {
@@ -85,7 +86,7 @@ static PyObject *spheres_read(PyObject *self, PyObject *args)
     vb_read_options ro;
     vb_sphere_set *set = NULL;
     const char *rp = PyBytes_AS_STRING(radii);
-    int rc = read_options(c.ctx, format, model, water, noh, strict, zero, &ro);
+    int rc = read_options(c.ctx, format, model, assembly, water, noh, strict, zero, &ro);
     if (rc == VB_OK) {
         const char *p = PyBytes_AS_STRING(path);
         Py_BEGIN_ALLOW_THREADS
@@ -444,10 +445,10 @@ static PyObject *frames_open(PyObject *self, PyObject *args)
     PyObject *path = NULL, *traj = NULL, *radii = NULL;
     const char *format;
     int water, noh, strict, zero;
-    Py_ssize_t model;
-    if (!PyArg_ParseTuple(args, "O&O&sO&iiiiO&", PyUnicode_FSConverter, &path,
-                          PyUnicode_FSConverter, &traj, &format, model_arg, &model, &water, &noh,
-                          &strict, &zero, PyUnicode_FSConverter, &radii))
+    Py_ssize_t model, assembly;
+    if (!PyArg_ParseTuple(args, "O&O&sO&O&iiiiO&", PyUnicode_FSConverter, &path,
+                          PyUnicode_FSConverter, &traj, &format, model_arg, &model, model_arg,
+                          &assembly, &water, &noh, &strict, &zero, PyUnicode_FSConverter, &radii))
         return NULL;
     frames *f = calloc(1, sizeof *f);
     vbpy_call c;
@@ -460,7 +461,7 @@ static PyObject *frames_open(PyObject *self, PyObject *args)
     }
     vb_read_options ro;
     const char *rp = PyBytes_AS_STRING(radii), *tp = PyBytes_AS_STRING(traj);
-    int rc = read_options(c.ctx, format, model, water, noh, strict, zero, &ro);
+    int rc = read_options(c.ctx, format, model, assembly, water, noh, strict, zero, &ro);
     if (rc == VB_OK) {
         const char *p = PyBytes_AS_STRING(path);
         Py_BEGIN_ALLOW_THREADS
@@ -524,6 +525,28 @@ static PyObject *frames_close(PyObject *self, PyObject *cap)
     Py_RETURN_NONE;
 }
 
+/* The sphere table of `--atoms FILE` (vb_atoms_write) as a str. */
+static PyObject *spheres_atoms_text(PyObject *self, PyObject *cap)
+{
+    (void)self;
+    vb_sphere_set *set = vbpy_spheres_get(cap);
+    vbpy_call c;
+    vbpy_text t;
+    if (!set || vbpy_call_open(&c) != 0)
+        return NULL;
+    if (vbpy_text_open(&t) != 0) {
+        Py_XDECREF(vbpy_call_done(&c));
+        return NULL;
+    }
+    int rc = vb_atoms_write(c.ctx, t.f, set);
+    PyObject *text = vbpy_text_take(&t);
+    if (rc != VB_OK) {
+        Py_XDECREF(text);
+        return vbpy_call_fail(&c, rc);
+    }
+    return vbpy_call_return(&c, text);
+}
+
 /* The spheres of a set that an expression selects (vb_spheres_select),
  * validated as a read set is: (capsule, diagnostics); E118 raised. */
 static PyObject *spheres_select(PyObject *self, PyObject *args)
@@ -557,7 +580,7 @@ PyMethodDef vbpy_spheres_methods[] = {
     {"spheres_select", spheres_select, METH_VARARGS,
      "spheres_select(capsule, expr) -> (capsule, diagnostics)"},
     {"spheres_read", spheres_read, METH_VARARGS,
-     "spheres_read(path, format, model, water, no_hydrogens, strict, zero_radius, radii, "
+     "spheres_read(path, format, model, assembly, water, no_hydrogens, strict, zero_radius, radii, "
      "min_count) -> (capsule, diagnostics)"},
     {"spheres_from_columns", spheres_from_columns, METH_VARARGS,
      "spheres_from_columns(name, ((kind, column) x 4), min_count, zero_radius) -> "
@@ -565,8 +588,10 @@ PyMethodDef vbpy_spheres_methods[] = {
     {"spheres_info", spheres_info, METH_O, "The arrays of a set as bytes, in a dict."},
     {"spheres_decimals", spheres_decimals, METH_O, "(mantissas, exponents) or None."},
     {"spheres_atoms", spheres_atoms, METH_O, "(bytes, itemsize, offsets) or None."},
+    {"spheres_atoms_text", spheres_atoms_text, METH_O,
+     "(the sphere table of --atoms, diagnostics)"},
     {"frames_open", frames_open, METH_VARARGS,
-     "frames_open(path, trajectory, format, model, water, no_hydrogens, strict, zero_radius, "
+     "frames_open(path, trajectory, format, model, assembly, water, no_hydrogens, strict, zero_radius, "
      "radii) -> (capsule, diagnostics)"},
     {"frames_next", frames_next, METH_O, "((spheres, model) or None, diagnostics)"},
     {"frames_close", frames_close, METH_O, "Closes the frame source."},

@@ -132,6 +132,30 @@ int vbpy_engine_get(PyObject *o, vb_vertices_engine **out);
  * str. Call with the GIL. */
 int vbpy_box(vb_ctx *ctx, PyObject *tokens, const vb_sphere_set *set, vb_box *box);
 
+/* The results of a run over frames: (frame, model, dict) tuples in a list,
+ * appended by the run's per-frame callback. */
+typedef struct vbpy_frames {
+    vb_ctx *ctx;
+    PyObject *list;
+    int failed; /* a Python exception is set */
+} vbpy_frames;
+
+/* The start of a call over frames: S's list made on c's context, the box
+ * of tokens parsed (None: none), ro the command's defaults (format by
+ * content, every model) with water. VB_OK, or the box's status (the run
+ * is skipped and vbpy_frames_return reports it); -1 with a Python
+ * exception set and the call closed. */
+int vbpy_frames_open(vbpy_call *c, vbpy_frames *S, PyObject *tokens, int water, vb_box *box,
+                     vb_read_options *ro);
+
+/* Appends (frame, model, d), d stolen (NULL: its exception is set). Call
+ * with the GIL. VB_OK, or VB_ENOMEM with failed set (the run stops). */
+int vbpy_frames_append(vbpy_frames *S, long frame, int model, PyObject *d);
+
+/* The end of a call over frames with status rc: (list, diagnostics), or
+ * the Python exception, or VorballError; the list and the call released. */
+PyObject *vbpy_frames_return(vbpy_call *c, vbpy_frames *S, int rc);
+
 /* The functions of each file, for the module table. */
 extern PyMethodDef vbpy_spheres_methods[];
 extern PyMethodDef vbpy_vertices_methods[];
@@ -139,5 +163,6 @@ extern PyMethodDef vbpy_verify_methods[];
 extern PyMethodDef vbpy_channels_methods[];
 extern PyMethodDef vbpy_cells_methods[];
 extern PyMethodDef vbpy_periodic_methods[];
+extern PyMethodDef vbpy_jfa_methods[];
 
 #endif

@@ -66,6 +66,16 @@ static PyObject *engine_open(PyObject *self, PyObject *args)
     return vbpy_call_return(&c, cap);
 }
 
+/* The seconds the engine took to open (`vorball bench`'s device set-up). */
+static PyObject *engine_seconds(PyObject *self, PyObject *cap)
+{
+    (void)self;
+    vb_vertices_engine *e;
+    if (vbpy_engine_get(cap, &e) != 0)
+        return NULL;
+    return PyFloat_FromDouble(e ? vb_vertices_open_seconds(e) : 0.0);
+}
+
 static PyObject *vertex_arrays(const vb_vertex_list *v, PyObject *d)
 {
     int64_t *start = malloc((v->n + 1) * sizeof *start);
@@ -103,8 +113,9 @@ PyObject *vbpy_arcs_dict(const vb_arc_report *a)
 }
 
 /* The faces and edges as bytes (faces: uint32 pairs; edges: int64 vertex
- * rows, -1 for infinity, and uint32 sphere triples), or None. */
-static PyObject *topology_dict(const vb_completion *c)
+ * rows, -1 for infinity, and uint32 sphere triples) and the file of
+ * `--topology FILE` as text (vb_topology_write), or None. */
+static PyObject *topology_dict(vb_ctx *ctx, const vb_completion *c)
 {
     const vb_topology *t = &c->topology;
     if (!c->has_topology)
@@ -120,12 +131,23 @@ static PyObject *topology_dict(const vb_completion *c)
         memcpy(v + 2 * k, t->edges[k].v, sizeof t->edges[k].v);
         memcpy(sp + 3 * k, t->edges[k].spheres, sizeof t->edges[k].spheres);
     }
-    PyObject *d = Py_BuildValue("{s:N,s:N,s:N,s:O,s:n,s:n}", "faces",
+    vbpy_text txt;
+    if (vbpy_text_open(&txt) != 0) {
+        free(v);
+        free(sp);
+        return NULL;
+    }
+    int rc = vb_topology_write(ctx, txt.f, t);
+    PyObject *text = vbpy_text_take(&txt);
+    if (rc != VB_OK && text)
+        Py_SETREF(text, PyErr_NoMemory());
+    PyObject *d = !text ? NULL : Py_BuildValue("{s:N,s:N,s:N,s:O,s:n,s:n,s:N}", "faces",
                                 vbpy_bytes(t->faces, 2 * t->nfaces, 4), "edges",
                                 vbpy_bytes(v, 2 * t->nedges, 8), "edge_spheres",
                                 vbpy_bytes(sp, 3 * t->nedges, 4), "exact",
                                 t->exact ? Py_True : Py_False, "unresolved",
-                                (Py_ssize_t)t->unresolved, "sampled", (Py_ssize_t)t->sampled);
+                                (Py_ssize_t)t->unresolved, "sampled", (Py_ssize_t)t->sampled,
+                                "text", text);
     free(v);
     free(sp);
     return d;
@@ -161,7 +183,7 @@ static PyObject *result_dict(vb_ctx *ctx, const vb_vertices_result *r, const vb_
     if (!d)
         return NULL;
     PyObject *arcs = c->traced ? vbpy_arcs_dict(&c->arcs) : Py_NewRef(Py_None);
-    PyObject *topo = arcs ? topology_dict(c) : NULL;
+    PyObject *topo = arcs ? topology_dict(ctx, c) : NULL;
     int bad = !topo || PyDict_SetItemString(d, "arcs", arcs) != 0 ||
               PyDict_SetItemString(d, "topology", topo) != 0;
     Py_XDECREF(arcs);
@@ -282,8 +304,8 @@ static PyObject *vertex_text(PyObject *self, PyObject *args)
         return NULL;
     vb_vertex_format fmt;
     if (vb_vertex_format_parse(NULL, format, &fmt) != VB_OK)
-        return vbpy_raise(VB_EMISUSE, "vertex format must be tsv, json or voronota, not '%s'",
-                          format);
+        return vbpy_raise(VB_EMISUSE,
+                          "vertex format must be tsv, json, voronota or npz, not '%s'", format);
     vb_vertex_list v;
     if (vbpy_vertex_list(ids, start, x, y, z, t, VB_VERTEX_CERTIFIED, &v) != 0)
         return NULL;
@@ -300,13 +322,55 @@ static PyObject *vertex_text(PyObject *self, PyObject *args)
     }
     int rc = vb_vertex_write(c.ctx, out.f, &v, fmt, note && *note ? note : NULL);
     vb_vertex_list_free(&v);
-    PyObject *s = vbpy_text_take(&out);
+    PyObject *s;
+    if (fmt == VB_VFMT_NPZ) { /* a binary archive: bytes */
+        fclose(out.f);
+        s = PyBytes_FromStringAndSize(out.buf ? out.buf : "", (Py_ssize_t)out.len);
+        free(out.buf);
+    } else {
+        s = vbpy_text_take(&out);
+    }
     if (rc != VB_OK) {
         Py_XDECREF(s);
         return vbpy_call_fail(&c, rc);
     }
     Py_XDECREF(vbpy_call_done(&c));
     return s;
+}
+
+/* `vorball vertices --html`: the results page of certified vertices
+ * (vb_vertex_page_write: E133 past its size, E7 without the viewer). */
+static PyObject *vertex_page(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *cap, *ids, *start, *x, *y, *z, *t, *path;
+    const char *certificate, *title;
+    if (!PyArg_ParseTuple(args, "OOOOOOOzO&s", &cap, &ids, &start, &x, &y, &z, &t, &certificate,
+                          PyUnicode_FSConverter, &path, &title))
+        return NULL;
+    vb_sphere_set *set = vbpy_spheres_get(cap);
+    vb_vertex_list v;
+    vbpy_call c;
+    if (!set || vbpy_vertex_list(ids, start, x, y, z, t, VB_VERTEX_CERTIFIED, &v) != 0) {
+        Py_DECREF(path);
+        return NULL;
+    }
+    if (vbpy_call_open(&c) != 0) {
+        vb_vertex_list_free(&v);
+        Py_DECREF(path);
+        return NULL;
+    }
+    int rc;
+    Py_BEGIN_ALLOW_THREADS
+    rc = vb_vertex_page_check(c.ctx, set);
+    if (rc == VB_OK)
+        rc = vb_vertex_page_write(c.ctx, PyBytes_AS_STRING(path), title, set, &v, certificate);
+    Py_END_ALLOW_THREADS
+    vb_vertex_list_free(&v);
+    Py_DECREF(path);
+    if (rc != VB_OK)
+        return vbpy_call_fail(&c, rc);
+    return vbpy_call_return(&c, Py_NewRef(Py_None));
 }
 
 /* `vorball reference`: every vertex exactly by brute force (vb_reference_run,
@@ -332,7 +396,16 @@ static PyObject *reference_run(PyObject *self, PyObject *args)
         rc = vb_reference_run(c.ctx, &run, force, set->source, &out);
     free(run.contained);
     Py_END_ALLOW_THREADS
-    PyObject *d = rc == VB_OK ? Py_BuildValue("{s:n}", "certified", (Py_ssize_t)out.n) : NULL;
+    /* The counts `vorball reference --stats` prints (vb_ctx_stats). */
+    const vb_stats *st = vb_ctx_stats(c.ctx);
+    PyObject *d = rc == VB_OK ? Py_BuildValue("{s:n,s:{s:K,s:K,s:K,s:K,s:K}}", "certified",
+                                              (Py_ssize_t)out.n, "stats", "quadruples",
+                                              (unsigned long long)st->candidates, "refuted",
+                                              (unsigned long long)st->rejected, "filter_calls",
+                                              (unsigned long long)st->filter_calls, "undecided",
+                                              (unsigned long long)st->filter_failures,
+                                              "exact_evals", (unsigned long long)st->exact_evals)
+                              : NULL;
     if (d && !vertex_arrays(&out, d))
         Py_CLEAR(d);
     vb_vertex_list_free(&out);
@@ -346,9 +419,15 @@ PyMethodDef vbpy_vertices_methods[] = {
      "reference_run(spheres, force) -> (dict, diagnostics)"},
     {"vertices_engine_open", engine_open, METH_VARARGS,
      "vertices_engine_open(device, proposer) -> (capsule, diagnostics)"},
+    {"vertices_engine_seconds", engine_seconds, METH_O,
+     "vertices_engine_seconds(capsule) -> float: the seconds opening took"},
     {"vertices_run", vertices_run, METH_VARARGS,
      "vertices_run(spheres, engine, device, proposer, samples, tol, tiles, all_pairs, threads, "
      "arcs, topology) -> (dict, diagnostics)"},
+    {"vertex_page", vertex_page, METH_VARARGS,
+     "vertex_page(spheres, ids, start, x, y, z, t, certificate, path, title) -> (None, "
+     "diagnostics)"},
     {"vertex_text", vertex_text, METH_VARARGS,
-     "vertex_text(ids, start, x, y, z, t, format, comment) -> str (the library's writer)"},
+     "vertex_text(ids, start, x, y, z, t, format, comment) -> str (bytes for npz: the "
+     "library's writer)"},
     {NULL, NULL, 0, NULL}};

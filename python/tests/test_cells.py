@@ -104,3 +104,44 @@ def test_bad_options(kw, number):
     with pytest.raises(vorball.VorballError) as e:
         vorball.cells(corpus("inputs", "hexagonal_ring.xyzr"), **kw)
     assert e.value.number == number
+
+
+def test_stats_and_page_as_the_command(tmp_path):
+    """--stats' counts and the --html page (the library's page writer: the
+    same bytes) of one structure."""
+    path = corpus("inputs", "hexagonal_ring.xyzr")
+    page = tmp_path / "cmd.html"
+    _, err = cli("cells", path, *FAST_ARGS, "--contacts", tmp_path / "c.tsv", "--stats",
+                 "--html", page)
+    mine = tmp_path / "py.html"
+    c = vorball.cells(path, contacts=True, html=mine, title="vorball cells %s" % path, **FAST)
+    assert mine.read_bytes() == page.read_bytes()
+    line = [x for x in err.splitlines() if x.startswith("cells: ")][0]
+    s = c.stats
+    want = ("cells: %d atoms, %d patches, %d empty, %d loose, %d contacts, "
+            % (s["atoms"], s["patches"], s["empty"], s["loose"], s["contacts"]))
+    assert line.startswith(want) and line.endswith(", %d atoms in closed form" % s["closed"])
+    assert s["atoms"] == len(c) > 0 and s["contacts"] == len(c.id1) and s["seconds"] > 0
+    # The default title is the command's for a file given by its path.
+    other = tmp_path / "default.html"
+    vorball.cells(path, contacts=True, html=other, **FAST)
+    assert other.read_bytes() == page.read_bytes()
+
+
+def test_frames_as_the_command(tmp_path):
+    """cells_frames is `cells --traj --frames`: the same rows (less the
+    frame column) for each frame of an XTC over its PDB topology."""
+    top, xtc = corpus("data", "ngl_md_ascii_trj.pdb"), corpus("data", "ngl_md_10frames.xtc")
+    out, contacts = tmp_path / "a.tsv", tmp_path / "c.tsv"
+    cli("cells", top, "--traj", xtc, "--frames", "1:4:2", *FAST_ARGS, "-o", out,
+        "--contacts", contacts)
+    got = vorball.cells_frames(top, xtc, start=1, stop=4, step=2, contacts=True, **FAST)
+    assert [c.frame for c in got] == [1, 3]
+    for table, text in ((out, lambda c: c.to_text()), (contacts, lambda c: c.contacts_text())):
+        want = [r for r in tsv(strip_provenance(table.read_text()))]
+        mine = [[str(c.frame)] + r for c in got for r in tsv(strip_provenance(text(c)))]
+        assert mine == want and len(mine) > 0
+    with pytest.raises(vorball.VorballError) as e:
+        vorball.cells_frames(top, xtc, start=20)
+    _, err = cli("cells", top, "--traj", xtc, "--frames", "20:", rc=e.value.exit_status)
+    assert "E%d" % e.value.number in err

@@ -47,6 +47,7 @@ def test_arcs_and_topology_as_the_command(case, tmp_path):
     assert a.complete and a.added == 0 and a.vertices == len(res.t)
     assert a.half_arcs == a.closed + a.infinite + a.loops
     faces, edges, spheres = read_topology(topo)
+    assert res.topology_text() == topo.read_text()  # the library's writer, the same bytes
     t = res.topology
     assert t.exact and t.unresolved == 0
     assert np.array_equal(t.faces, faces) and np.array_equal(t.edges, edges)

@@ -42,3 +42,23 @@ def test_npz_is_not_read_back(tmp_path):
     cli("vertices", "--device", "ref", "--output-format", "npz", "-o", npz, path)
     _, err = cli("verify", path, npz, rc=19)
     assert "E109" in err and "np.load" in err
+
+
+def test_npz_from_python(tmp_path):
+    """Result.write(path, 'npz') is the command's archive: the same arrays,
+    the comment the certificate (the command's adds its provenance)."""
+    import vorball
+    path = corpus("inputs", "degree5_vertex.xyzr")
+    npz = tmp_path / "cmd.npz"
+    cli("vertices", "--device", "ref", "--output-format", "npz", "-o", npz, path)
+    r = vorball.vertices(path, device="ref")
+    mine = tmp_path / "py.npz"
+    r.write(mine, "npz")
+    assert mine.read_bytes() == r.to_bytes("npz")
+    with np.load(npz, allow_pickle=False) as a, np.load(mine, allow_pickle=False) as b:
+        assert sorted(a.files) == sorted(b.files)
+        for k in ("ids", "start", "xyz", "t", "status"):
+            assert a[k].dtype == b[k].dtype and np.array_equal(a[k], b[k])
+        assert str(b["comment"]) in str(a["comment"])
+    with pytest.raises(vorball.VorballError):
+        r.to_text("npz")

@@ -170,3 +170,49 @@ def test_gro_count_must_match_the_atom_lines(tmp_path):
     assert e.value.number == 101 and str(p) + ":6:" in e.value.message
     p.write_text("t\n6\n" + atoms + "   1.0 1.0 1.0\n")
     assert len(vorball.read(p)) == 6
+
+
+def two_copy_assembly(tmp_path):
+    """1crn.cif with assembly 1 built by two operators: the identity and a
+    move by 40 Angstrom along x."""
+    text = open(corpus("data", "1crn.cif")).read()
+    head, rest = text.split("_pdbx_struct_assembly_gen.assembly_id", 1)
+    tail = rest.split("# \n", 2)[2]
+    ops = ("loop_\n_pdbx_struct_oper_list.id\n_pdbx_struct_oper_list.type\n" +
+           "".join("_pdbx_struct_oper_list.%s\n" % k for k in (
+               "matrix[1][1]", "matrix[1][2]", "matrix[1][3]", "vector[1]",
+               "matrix[2][1]", "matrix[2][2]", "matrix[2][3]", "vector[2]",
+               "matrix[3][1]", "matrix[3][2]", "matrix[3][3]", "vector[3]")) +
+           "1 'identity operation' 1 0 0 0 0 1 0 0 0 0 1 0\n"
+           "2 'translation' 1 0 0 40.0 0 1 0 0 0 0 1 0\n# \n")
+    path = tmp_path / "two.cif"
+    path.write_text(head + "_pdbx_struct_assembly_gen.assembly_id 1\n"
+                    "_pdbx_struct_assembly_gen.oper_expression '1,2'\n"
+                    "_pdbx_struct_assembly_gen.asym_id_list A\n# \n" + ops + tail)
+    return path
+
+
+def test_assembly_as_the_command(tmp_path):
+    path = two_copy_assembly(tmp_path)
+    one = vorball.read(path)
+    two = vorball.read(path, assembly=1)
+    assert len(two) == 2 * len(one)
+    assert np.array_equal(two.xyz[:len(one)], one.xyz)
+    assert np.array_equal(two.decimals[len(one):, 0] - two.decimals[:len(one), 0],
+                          np.full(len(one), 40))
+    # The command's sphere table (--atoms) of --assembly 1: the same exact numbers.
+    atoms = tmp_path / "atoms.tsv"
+    cli("jfa", "--protein", path, "--assembly", "1", "--atoms", atoms, "-n", "2", "-V", "jfa",
+        "--device", "ref")
+    rows = [line.split("\t") for line in atoms.read_text().splitlines()
+            if line and not line.startswith(("#", "id\t"))]
+    assert len(rows) == len(two)
+    xyz = np.array([[float(v) for v in r[-4:-1]] for r in rows])
+    assert np.array_equal(xyz, two.xyz)
+    # Frames take it too; the ranges are the library's, with the command's words.
+    assert len(next(iter(vorball.frames(path, assembly=1)))) == len(two)
+    _, err = cli("jfa", "--protein", path, "--assembly", "0", rc=2)
+    for bad in (0, 10 ** 7, 10 ** 30):
+        with pytest.raises(vorball.VorballError) as e:
+            vorball.read(path, assembly=bad)
+        assert e.value.number == 7 and e.value.message in err

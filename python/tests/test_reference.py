@@ -2,6 +2,8 @@
 exactly by brute force, as `vorball reference` finds them (the same
 numbers, bit for bit), its size policy (E130 above 500 spheres unless
 force) from the library, and the device table of `vorball devices`."""
+import json
+
 import numpy as np
 import pytest
 import vorball
@@ -34,3 +36,34 @@ def test_devices_as_the_command():
     text = vorball.devices()
     assert text == out
     assert text.splitlines()[-1].startswith("#auto\t")
+
+
+def test_reference_stats_as_the_command():
+    path = corpus("inputs", "bcc_lattice.xyzr")
+    _, err = cli("reference", path, "--stats")
+    s = vorball.reference(path).stats
+    assert ("quadruples: %d, refuted by the filter %d\n" % (s["quadruples"], s["refuted"])) in err
+    assert ("filter: %d calls, %d undecided" % (s["filter_calls"], s["undecided"])) in err
+    assert ("exact evaluations %d\n" % s["exact_evals"]) in err
+    assert s["quadruples"] > 0 and s["filter_calls"] > 0 and s["seconds"] > 0
+
+
+def test_bench_figures_from_an_engine():
+    """`vorball bench`'s row from the calls: an Engine opened once (its
+    set-up apart, as bench's default), a run's counts and stage times."""
+    path = corpus("inputs", "crambin_fragment.xyzr")
+    out, _ = cli("bench", path, "--device", "ref", "--json")
+    row = json.loads(out)[0]
+    with vorball.Engine(device="ref") as e:
+        assert e.setup_seconds is None
+        r = e.vertices(path)
+        assert e.setup_seconds is not None and e.setup_seconds >= 0
+    assert len(r.t) == row["vertices"] and len(r.spheres) == row["atoms"]
+    assert (r.backend, r.device) == (row["backend"], row["device"])
+    stages = {"cull": "cull", "upload": "upload", "envelope": "envelope",
+              "vertices_s": "vertices", "matching": "matching", "targeted": "targeted",
+              "tangent": "tangent", "completion": "completion", "certification": "certify",
+              "setup": "setup", "setup_wait": "setup_wait", "total": "total"}
+    for key, mine in stages.items():
+        assert key in row and r.times[mine] >= 0
+    assert r.times["total"] > 0

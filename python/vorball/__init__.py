@@ -20,17 +20,17 @@ from ._vertices import (Arcs, Certificate, Engine, Reference, Result, Topology, 
                         reference, vertex_text, vertices)
 from ._verify import DUPLICATE, MISSING, NOT_VERTEX, WRONG_COORDS, Report, verify
 from ._channels import Channels, channel_flags, channel_options, channels
-from ._cells import Cells, cells
+from ._cells import Cells, cells, cells_frames
+from ._jfa import Jfa, JfaRun, jfa
 from ._periodic import BEYOND_REACH, NOT_CANONICAL, PeriodicReport, PeriodicResult, periodic_frames
 
-__all__ = ["Arcs", "CatalogueEntry", "Cells", "Certificate", "Channels", "Diagnostic", "DUPLICATE",
-           "BEYOND_REACH", "Engine", "Frames", "MISSING", "NOT_CANONICAL", "NOT_VERTEX",
-           "PeriodicReport", "PeriodicResult", "Reference", "Report", "Result",
-           "Spheres", "Topology",
-           "VorballError", "VorballWarning", "WRONG_COORDS", "catalogue", "cells", "channel_flags",
-           "channel_options", "channels", "devices", "frames", "periodic_frames", "read",
-           "reference", "spheres", "verify",
-           "vertex_text", "vertices"]
+__all__ = ["Arcs", "BEYOND_REACH", "catalogue", "CatalogueEntry", "Cells", "cells", "cells_frames",
+           "Certificate", "channel_flags", "channel_options", "Channels", "channels", "devices",
+           "Diagnostic", "DUPLICATE", "Engine", "Frames", "frames", "Jfa", "jfa", "JfaRun",
+           "MISSING", "NOT_CANONICAL", "NOT_VERTEX", "periodic_frames", "PeriodicReport",
+           "PeriodicResult", "read", "Reference", "reference", "Report", "Result", "Spheres",
+           "spheres", "Topology", "verify", "vertex_text", "vertices", "VorballError",
+           "VorballWarning", "WRONG_COORDS"]
 
 try:
     from importlib.metadata import PackageNotFoundError, version as _version

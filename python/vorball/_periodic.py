@@ -15,7 +15,7 @@ from numpy.typing import ArrayLike
 
 from . import _core
 from ._errors import Diagnostic, emit, misuse, parse
-from ._spheres import PathLike
+from ._spheres import PathLike, frame_range
 
 BoxInput = Union[Sequence[Any], np.ndarray, None]
 
@@ -134,18 +134,12 @@ def periodic_frames(path: PathLike, trajectory: Optional[PathLike] = None,
     .frame and .model set. Raises VorballError (E120 for a frame without
     a box and no box given)."""
     from ._vertices import _options
-    for name, v, lo in (("start", start, 0), ("step", step, 1)):
-        if not isinstance(v, numbers.Integral) or isinstance(v, bool) or v < lo:
-            raise misuse("%s must be an integer >= %d, not %r" % (name, lo, v))
-    if stop is not None and (not isinstance(stop, numbers.Integral) or isinstance(stop, bool)
-                             or stop < 0):
-        raise misuse("stop must be None or an integer >= 0, not %r" % (stop,))
+    rng = frame_range(start, stop, step)
     if not isinstance(device, str):
         raise misuse("device must be auto, gpu, cpu or ref, not %r" % (device,))
     opts = (device, None) + _options(samples, tol, tiles, all_pairs, threads) + (progress,)
     traj = None if trajectory is None else os.fspath(trajectory)
-    got, diag = _core.periodic_frames(os.fspath(path), traj, box_tokens(box), int(start),
-                                      -1 if stop is None else int(stop), int(step), bool(water),
+    got, diag = _core.periodic_frames(os.fspath(path), traj, box_tokens(box), *rng, bool(water),
                                       opts)
     w = parse(diag)
     emit(w, verbose)

@@ -89,6 +89,14 @@ class Spheres:
         s = Spheres(cap, diag, index=self.index, model=self.model)
         return s
 
+    def atoms_text(self) -> str:
+        """The sphere table the commands' `--atoms FILE` writes: what each
+        0-based id stands for (chain, residue, number, atom name, element,
+        source line, the exact x y z r used), TSV."""
+        text, diag = _core.spheres_atoms_text(self._capsule)
+        emit(parse(diag), False)
+        return text
+
     def __repr__(self) -> str:
         return "<vorball.Spheres %d from %r%s>" % (
             self.n, self.source, "" if self.exact else " (doubles only)")
@@ -133,31 +141,37 @@ class Spheres:
 SphereInput = Union[Spheres, PathLike, ArrayLike]
 
 
-def _read_args(format, model, water, hydrogens, strict_elements, radii, zero_radius):
+def _number_arg(name, v):
+    # The ranges are the library's (vb_read_options_check), whose 0 is
+    # "not given": None asks for that, an explicit 0 is refused as the
+    # command refuses it.
+    if v is None:
+        return 0
+    if not isinstance(v, numbers.Integral) or isinstance(v, bool):
+        raise misuse("%s must be a %s number >= 1, not %r" % (name, name, v))
+    return int(v) or -1
+
+
+def _read_args(format, model, assembly, water, hydrogens, strict_elements, radii, zero_radius):
     if not isinstance(format, str):
         raise misuse("format must be a name (auto, xyzr, pdb, pqr, cif, ...), not %r" % (format,))
-    # The range is the library's (vb_read_options_check), whose 0 is
-    # "the first model": None asks for it, an explicit 0 is refused as the
-    # command refuses it.
-    if model is None:
-        model = 0
-    elif not isinstance(model, numbers.Integral) or isinstance(model, bool):
-        raise misuse("model must be a model number >= 1, not %r" % (model,))
-    else:
-        model = int(model) or -1
     radii = "" if radii is None else os.fspath(radii)
-    return (format, int(model), int(bool(water)), int(not hydrogens), int(bool(strict_elements)),
+    return (format, _number_arg("model", model), _number_arg("assembly", assembly),
+            int(bool(water)), int(not hydrogens), int(bool(strict_elements)),
             _zero_radius(zero_radius), radii)
 
 
 def read(path: PathLike, format: str = "auto", model: Optional[int] = None, water: bool = False,
          hydrogens: bool = True, strict_elements: bool = False, radii: Optional[PathLike] = None,
-         zero_radius: str = "auto", verbose: Optional[bool] = False) -> Spheres:
+         zero_radius: str = "auto", verbose: Optional[bool] = False,
+         assembly: Optional[int] = None) -> Spheres:
     """Reads the spheres of a file as every `vorball` command does.
 
     path is any format the command reads (detected by content, or named by
     `format`: xyzr, pdb, pqr, cif|mmcif, and what later versions add).
-    model picks a model of a multi-model file (default: the first); water
+    model picks a model of a multi-model file (default: the first);
+    assembly (mmCIF, `--assembly N`) builds biological assembly N, its
+    copies moved by the operators exactly; water
     keeps water; hydrogens=False drops H/D; strict_elements makes an
     unknown element an error (E108) instead of radius 1.70; radii names a
     radii file ('ELEMENT RADIUS' lines); zero_radius is auto (points in
@@ -166,12 +180,26 @@ def read(path: PathLike, format: str = "auto", model: Optional[int] = None, wate
     validate it. Returns a Spheres; raises VorballError (E1xx with
     file:line). Warnings are in .warnings, printed only when verbose.
     """
-    fmt, mdl, water, noh, strict, zero, radii = _read_args(format, model, water, hydrogens,
-                                                           strict_elements, radii, zero_radius)
-    cap, diag = _core.spheres_read(os.fspath(path), fmt, mdl, water, noh, strict, zero, radii, 1)
+    args = _read_args(format, model, assembly, water, hydrogens, strict_elements, radii,
+                      zero_radius)
+    mdl = args[1]
+    cap, diag = _core.spheres_read(os.fspath(path), *args, 1)
     s = Spheres(cap, diag, model=mdl or 1)
     emit(s.warnings, verbose)
     return s
+
+
+def frame_range(start: int, stop: Optional[int], step: int) -> Tuple[int, int, int]:
+    """(start, stop or -1, step) for the library's frame range (`--frames
+    A:B:S`) of the calls over frames; VorballError E7 for values that
+    are not one."""
+    for name, v, lo in (("start", start, 0), ("step", step, 1)):
+        if not isinstance(v, numbers.Integral) or isinstance(v, bool) or v < lo:
+            raise misuse("%s must be an integer >= %d, not %r" % (name, lo, v))
+    if stop is not None and (not isinstance(stop, numbers.Integral) or isinstance(stop, bool)
+                             or stop < 0):
+        raise misuse("stop must be None or an integer >= 0, not %r" % (stop,))
+    return int(start), -1 if stop is None else int(stop), int(step)
 
 
 class Frames:
@@ -188,7 +216,8 @@ class Frames:
                  stop: Optional[int] = None, step: int = 1, format: str = "auto",
                  model: Optional[int] = None, water: bool = False, hydrogens: bool = True,
                  strict_elements: bool = False, radii: Optional[PathLike] = None,
-                 zero_radius: str = "auto", verbose: bool = False) -> None:
+                 zero_radius: str = "auto", verbose: bool = False,
+                 assembly: Optional[int] = None) -> None:
         for name, v in (("start", start), ("step", step)):
             if not isinstance(v, numbers.Integral) or v < (1 if name == "step" else 0):
                 raise misuse("%s must be an integer >= %d, not %r" % (name, name == "step", v))
@@ -196,7 +225,8 @@ class Frames:
             raise misuse("stop must be an integer > start, not %r" % (stop,))
         self.start, self.stop, self.step = int(start), stop, int(step)
         self.verbose = verbose
-        args = _read_args(format, model, water, hydrogens, strict_elements, radii, zero_radius)
+        args = _read_args(format, model, assembly, water, hydrogens, strict_elements, radii,
+                          zero_radius)
         traj = "" if trajectory is None else os.fspath(trajectory)
         self._capsule, diag = _core.frames_open(os.fspath(path), traj, *args)
         self.warnings = parse(diag)

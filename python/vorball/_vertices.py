@@ -4,6 +4,7 @@ from __future__ import annotations
 import numbers
 import os
 import threading
+import time
 from typing import Any, Callable, Dict, List, NamedTuple, Optional, Union
 
 import numpy as np
@@ -128,7 +129,8 @@ class Result(tuple):
     certificate  a Certificate (complete, counts; its text holds the
              '# arcs:' line too when arcs were traced)
     arcs     an Arcs (arc closure's counts) when asked for, else None
-    topology a Topology (faces and edges) when asked for, else None
+    topology a Topology (faces and edges) when asked for, else None;
+             topology_text() the --topology file
     stats    the counters `vorball vertices --stats` prints, as a dict
     times    seconds per stage (setup, certify, total, cull, ...)
     backend, device   what ran ('opencl' or 'ref', and the device name)
@@ -166,6 +168,7 @@ class Result(tuple):
                                        d["rejected"], d["quadruples"], d["cover_cells"],
                                        d["cover_patches"], d["cover_host_cells"])
         self.arcs, self.topology = _arcs(d["arcs"]), _topology(d["topology"])
+        self._topology_text = None if d["topology"] is None else d["topology"]["text"]
         self.stats = _stats(d["stats"])
         self.times = dict(d["times"])
         self.backend, self.device = d["backend"], d["device"]
@@ -187,14 +190,46 @@ class Result(tuple):
     def to_text(self, format: str = "tsv") -> str:
         """The vertex file `vorball vertices --output-format F` writes (tsv,
         json or voronota), byte for byte, certificate line included."""
+        if format == "npz":
+            raise misuse("npz is a binary archive: to_bytes('npz') or write(path, 'npz')")
         return vertex_text(self.ids_flat, self.offsets, self.xyz, self.t, format,
                            self.certificate.text)
 
+    def to_bytes(self, format: str = "npz") -> bytes:
+        """The vertex file as bytes: npz (`--output-format npz`, a NumPy
+        archive that np.load reads without pickle), or a text format's UTF-8."""
+        if format != "npz":
+            return self.to_text(format).encode("utf-8")
+        return vertex_text(self.ids_flat, self.offsets, self.xyz, self.t, format,
+                           self.certificate.text)
+
+    def topology_text(self) -> Optional[str]:
+        """The file `vorball vertices --topology FILE` writes (faces and
+        edges), or None without topology=True."""
+        return self._topology_text
+
     def write(self, path: PathLike, format: str = "tsv") -> None:
-        """Writes to_text(format) to path."""
-        text = self.to_text(format)
-        with open(os.fspath(path), "w", encoding="utf-8", newline="") as f:
-            f.write(text)
+        """Writes the vertex file in format (tsv, json, voronota, npz) to path."""
+        with open(os.fspath(path), "wb") as f:
+            f.write(self.to_bytes(format))
+
+    def write_html(self, path: PathLike, title: Optional[str] = None) -> None:
+        """Writes the results page of `vorball vertices --html` to path: the
+        spheres and these vertices as markers, with the certificate line;
+        titled title (default "vorball vertices " and the spheres' source,
+        as the command titles it). Raises VorballError E133 past the page's
+        size (2,000 spheres)."""
+        if self.spheres is None:
+            raise misuse("the result holds no spheres (unpickled): no page")
+        if title is None:
+            title = "vorball vertices %s" % self.spheres.source
+        cols = [np.ascontiguousarray(self.xyz[:, k]) for k in range(3)]
+        _, diag = _core.vertex_page(self.spheres._capsule,
+                                    np.ascontiguousarray(self.ids_flat, dtype=np.uint32),
+                                    np.ascontiguousarray(self.offsets, dtype=np.int64),
+                                    cols[0], cols[1], cols[2], self.t, self.certificate.text,
+                                    os.fspath(path), str(title))
+        emit(parse(diag), False)
 
 
 def _restore(fields, state):
@@ -205,7 +240,7 @@ def _restore(fields, state):
 
 
 def vertex_text(ids_flat: ArrayLike, offsets: ArrayLike, xyz: ArrayLike, t: ArrayLike,
-                format: str = "tsv", comment: Optional[str] = None) -> str:
+                format: str = "tsv", comment: Optional[str] = None) -> Union[str, bytes]:
     """The library's vertex writer over CSR arrays (see Result.to_text)."""
     ids = np.ascontiguousarray(ids_flat, dtype=np.uint32)
     off = np.ascontiguousarray(offsets, dtype=np.int64)
@@ -220,7 +255,9 @@ class Reference(tuple):
     reference`): unpacks as (ids, xyz, t), with ids_flat and offsets as in
     Result, warnings (vorball.Diagnostic) and spheres. to_text(format)
     gives the vertex file (tsv, json or voronota) with the numbers that
-    `vorball reference` writes."""
+    `vorball reference` writes. stats: the counts of `--stats`
+    (quadruples, refuted by the filter, filter_calls, undecided,
+    exact_evals) and seconds (this call's wall clock)."""
 
     def __new__(cls, d: Dict[str, Any], warnings: List[Diagnostic],
                 spheres: Optional[Spheres]) -> Reference:
@@ -229,6 +266,7 @@ class Reference(tuple):
         self.ids, self.xyz, self.t = ids, xyz, t
         self.ids_flat, self.offsets = flat, start
         self.warnings, self.spheres = warnings, spheres
+        self.stats = dict(d["stats"])
         return self
 
     def __repr__(self) -> str:
@@ -251,7 +289,9 @@ def reference(xyz: SphereInput, r: Optional[ArrayLike] = None, *, force: bool = 
     Reference that unpacks as (ids, xyz, t). Nothing is printed unless
     verbose."""
     s, made = as_spheres(xyz, r, min_count=4, zero_radius=zero_radius, select=select)
+    t0 = time.perf_counter()
     d, diag = _core.reference_run(s._capsule, bool(force))
+    d["stats"]["seconds"] = time.perf_counter() - t0
     w = made + parse(diag)
     emit(w, verbose)
     return Reference(d, w, s)
@@ -373,6 +413,15 @@ class Engine:
         emit(w, self.verbose)
         self.warnings.extend(w)
         return cap
+
+    @property
+    def setup_seconds(self) -> Optional[float]:
+        """The seconds opening the vertex pipeline's device took (`vorball
+        bench`'s device_setup), or None before the first vertices run."""
+        with self._lock:
+            if self._vertices is None:
+                return None
+            return _core.vertices_engine_seconds(self._vertices)
 
     def vertices(self, xyz: SphereInput, r: Optional[ArrayLike] = None, samples: int = 30, *,
                  tol: Optional[float] = None, tiles: int = 0, all_pairs: bool = False,

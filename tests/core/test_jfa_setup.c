@@ -1,6 +1,6 @@
 /* The ranges of a `vorball jfa` setup (vbj_setup_check) at their edges:
  * each field accepted at its bounds, refused one past them, with the
- * message the command prints. */
+ * message the command prints; the defaults (vbj_setup_defaults). */
 #include <math.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -12,8 +12,28 @@
 
 static vbj_setup defaults(void)
 {
-    vbj_setup s = {.dim = 2, .n = 512, .k = 100, .margin = 2.0, .repeat = 1};
+    vbj_setup s;
+    vbj_setup_defaults(&s);
     return s;
+}
+
+/* The 3D picture's slices: each below n, at most VBJ_MAX_SLICES. */
+static void slices(vb_ctx *ctx)
+{
+    vbj_setup s = defaults();
+    s.dim = 3;
+    s.n = 32;
+    s.nslices = VBJ_MAX_SLICES;
+    for (uint32_t i = 0; i < VBJ_MAX_SLICES; i++)
+        s.slice[i] = i == 0 ? 31 : i;
+    CHECK_INT(vbj_setup_check(ctx, &s), VB_OK);
+    s.slice[0] = 32;
+    CHECK_INT(vbj_setup_check(ctx, &s), VB_EMISUSE);
+    CHECK(strcmp(vb_errmsg(ctx), "bad --slice") == 0);
+    s.slice[0] = 0;
+    s.nslices = VBJ_MAX_SLICES + 1;
+    CHECK_INT(vbj_setup_check(ctx, &s), VB_EMISUSE);
+    CHECK(strcmp(vb_errmsg(ctx), "bad --slice") == 0);
 }
 
 /* Field at `off` set to v: VB_OK, or VB_EMISUSE with message `msg`. */
@@ -33,6 +53,10 @@ int main(void)
         return 1;
     vbj_setup s = defaults();
     CHECK_INT(vbj_setup_check(ctx, &s), VB_OK);
+    /* The command's defaults. */
+    CHECK(s.dim == 2 && s.n == 512 && s.k == 100 && s.margin == 2.0 && s.repeat == 1 &&
+          s.rng == 1 && s.m == 0 && s.fuse_cells == 0 && s.nslices == 0);
+    slices(ctx);
     size_t dim = offsetof(vbj_setup, dim), n = offsetof(vbj_setup, n);
     size_t k = offsetof(vbj_setup, k), m = offsetof(vbj_setup, m);
     size_t fuse = offsetof(vbj_setup, fuse_cells), rep = offsetof(vbj_setup, repeat);
