@@ -2,8 +2,10 @@
  * CPU devices; gpu/cover_wg.cl: a work-group per cell, for GPUs): the shared
  * input uploaded once per run, arena slices sized from the device's memory,
  * launches per batch of cells, read-back of the per-cell results and the
- * quadruples. A batch runs in two tiers: many small slices first, then the
- * cells that ran out of them again on a few large slices; what still does
+ * quadruples. A batch runs in tiers: many small slices first; on a GPU the
+ * cells that passed the group kernel's step budget then run again as
+ * root-patch tasks on the work-item kernel (the hand-off tier); the cells
+ * that ran out of their slices again on a few large slices; what still does
  * not fit is left to the host. Every error path reports VB_EDEVICE; the
  * caller falls back to the host. */
 #include <stdlib.h>
@@ -11,6 +13,7 @@
 
 #include "vb_array.h"
 #include "vbg_cover.h"
+#include "vbg_cover_tasks.h"
 
 /* A cell whose quadruples did not fit the output array (cover*.cl). */
 #define COV_OVER_OUT 5u
@@ -23,18 +26,28 @@ typedef struct cov_buf {
 /* Arena slices of one tier: `slices` of them (work-items, or work-groups). */
 typedef struct cov_tier {
     cov_buf nb, lab, st, q;
+    cl_kernel k;             /* its kernel (cov_state's) */
+    int wg;                  /* 1: k is the group kernel, a work-group of COV_WG per slice */
+    uint32_t budget;         /* the group kernel's step budget per cell (0: none) */
+    uint32_t qper;           /* output room per task, in quadruples */
     size_t slices;
     size_t slices_max;       /* the device's share (vbg_cover_open); 0 until a run */
     uint32_t nb_cap, lab_cap, st_cap, q_cap;
 } cov_tier;
 
+/* The tiers: first launch, large slices, and the hand-off tier (the
+ * work-item kernel beside the group kernel: slices made on first use). */
+#define COV_FIRST 0
+#define COV_BIG 1
+#define COV_HAND 2
+
 typedef struct cov_state {
     vbg_runtime *rt;
-    cl_kernel k;
+    cl_kernel k, k_item;     /* k_item: the work-item kernel beside the group kernel */
     int wg;                  /* 1: one work-group of 32 per cell (cover_wg.cl) */
     cov_buf x, y, z, r, box, rmax, ids;
     cov_buf cells, roots, outs, qout, counters;
-    cov_tier tier[2];
+    cov_tier tier[3];
     size_t qout_cap;         /* quadruples the output array holds */
     uint32_t *host_q;        /* read-back of the quadruples of a batch */
     size_t host_q_cap, host_nq;
@@ -58,6 +71,17 @@ typedef struct cov_state {
 #define COV_BIG_LAB 262144u
 #define COV_BIG_Q 4096u
 #define COV_WG 32u
+/* The group kernel's step budget per cell (VORBALL_COVER_BUDGET overrides;
+ * 0: none). A group walks a cell's patches one after the other, so a launch
+ * lasts as long as its longest cell: on an H100 about 45 us a step (fcc
+ * 10,976 jittered: 4.71 s for its longest cell's 106,804 patches; the random
+ * twin: 0.07 s for 1,508). Patches per cell on the host's cover
+ * (tests/verify/bench_cover_cells): the random twin's largest is 1,508,
+ * 3pqr's 99th percentile 1,264 (13 of its cells pass 2,048), the jittered
+ * crystal's 99th 1,112 but 60 cells past 2,048 hold 19 % of its patches.
+ * 2,048 hands off none of the twin's cells and caps the group launch near
+ * 0.1 s; the cells past it run side by side as 24 T^2 tasks each. */
+#define COV_BUDGET 2048u
 
 static void release(cov_buf *b)
 {
@@ -103,7 +127,7 @@ static int tier_alloc(vb_ctx *ctx, cov_state *s, cov_tier *t)
     if (rc == VB_OK)
         rc = ensure(ctx, s, &t->lab, w * t->lab_cap * sizeof(uint32_t), CL_MEM_READ_WRITE);
     if (rc == VB_OK)
-        rc = ensure(ctx, s, &t->st, (s->wg ? 1 : w) * t->st_cap * sizeof(vbq_frame),
+        rc = ensure(ctx, s, &t->st, (t->wg ? 1 : w) * t->st_cap * sizeof(vbq_frame),
                     CL_MEM_READ_WRITE);
     if (rc == VB_OK)
         rc = ensure(ctx, s, &t->q, w * 4 * t->q_cap * sizeof(uint32_t), CL_MEM_READ_WRITE);
@@ -133,9 +157,9 @@ static int cov_begin(vb_ctx *ctx, vb_cover_backend *be, const vbq_env *env, size
      * (whole groups of 64 on the work-item kernel, which keeps the launch a
      * multiple of its group); the device's share still caps them. On an
      * H100 a 327-atom run held 1,594 MiB with every slice allocated. */
-    size_t cap = n == 0 ? 1 : s->wg ? n : (n + 63) / 64 * 64;
     for (int t = 0; t < 2; t++) {
         cov_tier *ti = &s->tier[t];
+        size_t cap = n == 0 ? 1 : ti->wg ? n : (n + 63) / 64 * 64;
         if (!ti->slices_max)
             ti->slices_max = ti->slices;
         ti->slices = ti->slices_max < cap ? ti->slices_max : cap;
@@ -170,10 +194,9 @@ static int run_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *cell
                     const uint32_t *roots, size_t ncells, vbq_cell_out *out)
 {
     cl_command_queue q = vbg_runtime_queue(s->rt);
-    /* About 10 quadruples per cell on proteins: room for 24 (more on the
-     * second tier, whose cells are the large ones); cells beyond it are
-     * marked and covered on the host. */
-    size_t want = (t == &s->tier[0] ? 24 : 256) * ncells;
+    /* About 10 quadruples per cell on proteins: room for t->qper per task;
+     * cells beyond it are marked and covered again (cov_run). */
+    size_t want = (size_t)t->qper * ncells;
     if (want > s->qout_cap)
         s->qout_cap = want;
     int rc = upload(ctx, s, &s->cells, cells, ncells * sizeof(uint32_t));
@@ -193,7 +216,7 @@ static int run_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *cell
     cl_uint nc = (cl_uint)ncells, qcap = (cl_uint)s->qout_cap;
     cl_uint nbc = t->nb_cap, labc = t->lab_cap, stc = t->st_cap, qc = t->q_cap;
     cl_uint a = 0;
-    cl_kernel k = s->k;
+    cl_kernel k = t->k;
     if (rc == VB_OK)
         rc = set_arg(ctx, k, a++, sizeof(cl_mem), &s->x.mem) ||
              set_arg(ctx, k, a++, sizeof(cl_mem), &s->y.mem) ||
@@ -225,11 +248,12 @@ static int run_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *cell
              set_arg(ctx, k, a++, sizeof(cl_mem), &s->outs.mem) ||
              set_arg(ctx, k, a++, sizeof(cl_mem), &s->qout.mem) ||
              set_arg(ctx, k, a++, sizeof(cl_uint), &qcap) ||
-             set_arg(ctx, k, a++, sizeof(cl_mem), &s->counters.mem)
+             set_arg(ctx, k, a++, sizeof(cl_mem), &s->counters.mem) ||
+             (t->wg && set_arg(ctx, k, a++, sizeof(cl_uint), &t->budget))
                  ? VB_EDEVICE
                  : VB_OK;
     size_t local, global;
-    if (s->wg) {
+    if (t->wg) {
         local = COV_WG;
         global = (t->slices < ncells ? t->slices : ncells) * COV_WG;
     } else {
@@ -279,7 +303,57 @@ static int run_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *cell
  * tie cluster (VBQ_CLUSTER) goes to the host, which decides it exactly. */
 static int retry_on_device(uint32_t status)
 {
-    return status != VBQ_OK && status != VBQ_CLUSTER;
+    return status != VBQ_OK && status != VBQ_CLUSTER && status != VBQ_BUDGET;
+}
+
+/* A cell past the group kernel's step budget. */
+static int handed_off(uint32_t status)
+{
+    return status == VBQ_BUDGET;
+}
+
+/* The cells of out[0 .. ncells) that pick takes, once more on tier t as
+ * root-patch tasks (vbg_cover_tasks.h): a costly cell then runs on many
+ * slices at once instead of lengthening the batch. Each such out[c] gets
+ * the joined result (its quadruples at the end of host_q), or the status of
+ * a task that failed. *picked: the count of such cells. */
+static int run_tasks(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *cells,
+                     size_t ncells, vbq_cell_out *out, vbg_task_pick pick, size_t *picked)
+{
+    size_t per = vbg_tasks_per_cell(s->env.T), n2 = 0;
+    *picked = 0;
+    for (size_t c = 0; c < ncells; c++)
+        if (pick(out[c].status))
+            n2 += per;
+    if (n2 == 0)
+        return VB_OK;
+    if (n2 > s->cap2) {
+        int bad = vb_array_resize((void **)&s->outs2, n2, sizeof *s->outs2);
+        bad |= vb_array_resize((void **)&s->cells2, n2, sizeof *s->cells2);
+        bad |= vb_array_resize((void **)&s->roots2, n2, sizeof *s->roots2);
+        if (bad)
+            return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
+        s->cap2 = n2;
+    }
+    vbg_tasks_make(cells, out, ncells, pick, per, s->cells2, s->roots2);
+    int rc = run_tier(ctx, s, t, s->cells2, s->roots2, n2, s->outs2);
+    if (rc == VB_OK)
+        rc = host_q_room(ctx, s, vbg_tasks_quads(s->outs2, n2));
+    if (rc == VB_OK)
+        *picked = vbg_tasks_join(s->outs2, out, ncells, pick, per, s->host_q, &s->host_nq);
+    return rc;
+}
+
+/* The hand-off tier's slices for `tasks` tasks (whole groups of 64 within
+ * its share), allocated on first use. */
+static int hand_slices(vb_ctx *ctx, cov_state *s, size_t tasks)
+{
+    cov_tier *t = &s->tier[COV_HAND];
+    size_t w = (tasks + 63) / 64 * 64;
+    w = w < t->slices_max ? w : t->slices_max;
+    if (w > t->slices)
+        t->slices = w;
+    return tier_alloc(ctx, s, t);
 }
 
 static int cov_run(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, size_t ncells,
@@ -301,73 +375,21 @@ static int cov_run(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, siz
     }
     for (size_t c = 0; c < ncells; c++)
         s->hroots[c] = VBQ_ALL_ROOTS;
-    int rc = run_tier(ctx, s, &s->tier[0], cells, s->hroots, ncells, out);
-    /* The cells that ran out of a small slice, once more on large ones, as
-     * one task per child of a root patch: a costly exposed cell then runs on
-     * many groups at once instead of lengthening the batch. */
-    size_t nroot = 24u * (size_t)s->env.T * s->env.T, n2 = 0;
-    for (size_t c = 0; rc == VB_OK && s->tier[1].slices && c < ncells; c++)
-        if (retry_on_device(out[c].status))
-            n2 += nroot;
-    if (rc == VB_OK && n2) {
-        if (n2 > s->cap2) {
-            int bad = vb_array_resize((void **)&s->outs2, n2, sizeof *s->outs2);
-            bad |= vb_array_resize((void **)&s->cells2, n2, sizeof *s->cells2);
-            bad |= vb_array_resize((void **)&s->roots2, n2, sizeof *s->roots2);
-            if (bad)
-                return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
-            s->cap2 = n2;
-        }
-        size_t j = 0;
-        for (size_t c = 0; c < ncells; c++)
-            if (retry_on_device(out[c].status))
-                for (size_t r = 0; r < nroot; r++, j++) {
-                    s->cells2[j] = cells[c];
-                    s->roots2[j] = VBQ_TASK((uint32_t)(r / 4), (uint32_t)(r % 4) + 1u);
-                }
-        rc = run_tier(ctx, s, &s->tier[1], s->cells2, s->roots2, n2, s->outs2);
-        /* A cell whose tasks all finished gets their quadruples, one after
-         * the other at the end of host_q (repeats between tasks are dropped
-         * by the driver). */
-        j = 0;
-        for (size_t c = 0; rc == VB_OK && c < ncells; c++) {
-            if (retry_on_device(out[c].status)) {
-                const vbq_cell_out *t = s->outs2 + j;
-                j += nroot;
-                vbq_cell_out sum = t[0];
-                size_t nq = 0;
-                for (size_t r = 0; r < nroot; r++) {
-                    if (t[r].status != VBQ_OK)
-                        sum.status = t[r].status;
-                    nq += t[r].nq;
-                }
-                if (sum.status != VBQ_OK) {
-                    out[c].status = sum.status;
-                    continue;
-                }
-                rc = host_q_room(ctx, s, nq);
-                if (rc != VB_OK)
-                    break;
-                sum.qoff = (uint32_t)s->host_nq;
-                sum.nq = (uint32_t)nq;
-                for (size_t r = 1; r < nroot; r++) {
-                    sum.nnb += t[r].nnb;
-                    sum.far += t[r].far;
-                    sum.patches += t[r].patches;
-                    sum.evals_k += t[r].evals_k;
-                    sum.leaves += t[r].leaves;
-                    sum.deep += t[r].deep;
-                    sum.maxlev = t[r].maxlev > sum.maxlev ? t[r].maxlev : sum.maxlev;
-                }
-                for (size_t r = 0; r < nroot; r++) {
-                    memmove(s->host_q + 4 * s->host_nq, s->host_q + 4 * (size_t)t[r].qoff,
-                            4 * (size_t)t[r].nq * sizeof *s->host_q);
-                    s->host_nq += t[r].nq;
-                }
-                out[c] = sum;
-            }
-        }
-    }
+    int rc = run_tier(ctx, s, &s->tier[COV_FIRST], cells, s->hroots, ncells, out);
+    /* The cells past the group kernel's budget, on the work-item kernel;
+     * those of them whose tasks ran out of arenas go on to the large
+     * slices with the rest. */
+    size_t handed = 0, nh = 0;
+    for (size_t c = 0; rc == VB_OK && s->tier[COV_HAND].k && c < ncells; c++)
+        nh += handed_off(out[c].status);
+    if (nh)
+        rc = hand_slices(ctx, s, nh * vbg_tasks_per_cell(s->env.T));
+    if (rc == VB_OK && nh)
+        rc = run_tasks(ctx, s, &s->tier[COV_HAND], cells, ncells, out, handed_off, &handed);
+    be->handed_cells += handed;
+    size_t retried = 0;
+    if (rc == VB_OK && s->tier[COV_BIG].slices)
+        rc = run_tasks(ctx, s, &s->tier[COV_BIG], cells, ncells, out, retry_on_device, &retried);
     if (rc == VB_OK)
         *quads = s->host_q;
     return rc;
@@ -384,7 +406,7 @@ static void cov_close(vb_cover_backend *be)
                           &s->qout, &s->counters};
         for (size_t k = 0; k < sizeof all / sizeof all[0]; k++)
             release(all[k]);
-        for (int t = 0; t < 2; t++) {
+        for (int t = 0; t < 3; t++) {
             release(&s->tier[t].nb);
             release(&s->tier[t].lab);
             release(&s->tier[t].st);
@@ -392,6 +414,8 @@ static void cov_close(vb_cover_backend *be)
         }
         if (s->k)
             clReleaseKernel(s->k);
+        if (s->k_item)
+            clReleaseKernel(s->k_item);
         free(s->host_q);
         free(s->outs2);
         free(s->cells2);
@@ -402,10 +426,24 @@ static void cov_close(vb_cover_backend *be)
     free(be);
 }
 
-static size_t tier_bytes(const cov_state *s, const cov_tier *t)
+static size_t tier_bytes(const cov_tier *t)
 {
     return (size_t)t->nb_cap * sizeof(vbq_nb) + (size_t)t->lab_cap * 4 +
-           (s->wg ? 0 : (size_t)t->st_cap * sizeof(vbq_frame)) + (size_t)t->q_cap * 16;
+           (t->wg ? 0 : (size_t)t->st_cap * sizeof(vbq_frame)) + (size_t)t->q_cap * 16;
+}
+
+/* A kernel of the program built from `file`. */
+static int kernel_get(vb_ctx *ctx, vbg_runtime *rt, const char *file, const char *name,
+                      cl_kernel *k)
+{
+    cl_program prog;
+    int rc = vbg_program_get(ctx, rt, file, NULL, &prog);
+    cl_int err = CL_SUCCESS;
+    if (rc == VB_OK) {
+        *k = clCreateKernel(prog, name, &err);
+        rc = vbg_check(ctx, err, name);
+    }
+    return rc;
 }
 
 int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
@@ -428,7 +466,7 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
     const char *kn = getenv("VORBALL_COVER_KERNEL");
     s->wg = kn && strcmp(kn, "group") == 0 ? 1 : kn && strcmp(kn, "item") == 0 ? 0
                                                 : vbg_runtime_is_gpu(rt);
-    cov_tier *t0 = &s->tier[0], *t1 = &s->tier[1];
+    cov_tier *t0 = &s->tier[COV_FIRST], *t1 = &s->tier[COV_BIG], *th = &s->tier[COV_HAND];
     t0->nb_cap = s->wg ? COV_WG_NB : COV_NB;
     t0->lab_cap = s->wg ? COV_WG_LAB : COV_LAB;
     t0->st_cap = COV_ST;
@@ -437,14 +475,34 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
     t1->lab_cap = COV_BIG_LAB;
     t1->st_cap = COV_ST;
     t1->q_cap = COV_BIG_Q;
-    cl_program prog;
-    int rc = vbg_program_get(ctx, rt, s->wg ? "cover_wg.cl" : "cover.cl", NULL, &prog);
-    cl_int err = CL_SUCCESS;
-    const char *kname = s->wg ? "vbq_cover_wg" : "vbq_cover_kernel";
-    if (rc == VB_OK) {
-        s->k = clCreateKernel(prog, kname, &err);
-        rc = vbg_check(ctx, err, kname);
-    }
+    /* The hand-off tier's work-items get the group kernel's first-tier
+     * arenas: a task of a cell past the budget then fits (fcc 10,976
+     * jittered, simulated on the host: all 5,760 tasks of its 60 cells fit
+     * them; with the work-item kernel's own arenas 66 of them ran out). */
+    th->nb_cap = COV_WG_NB;
+    th->lab_cap = COV_WG_LAB;
+    th->st_cap = COV_ST;
+    th->q_cap = COV_WG_Q;
+    /* Output room per task: about 10 quadruples per cell on proteins; the
+     * second tier's cells are the large ones. */
+    t0->qper = th->qper = 24u;
+    t1->qper = 256u;
+    int rc = s->wg ? kernel_get(ctx, rt, "cover_wg.cl", "vbq_cover_wg", &s->k)
+                   : kernel_get(ctx, rt, "cover.cl", "vbq_cover_kernel", &s->k);
+    /* The group kernel's budget, and the work-item kernel that takes the
+     * cells past it (VORBALL_COVER_BUDGET: steps, 0 for none). With
+     * VORBALL_COVER_HANDOFF=host the cells past it go to the host threads
+     * instead, as cells that ran out of arenas do (a measurement: which of
+     * the two finishes first depends on the device and the host). */
+    const char *kb = getenv("VORBALL_COVER_BUDGET"), *kh = getenv("VORBALL_COVER_HANDOFF");
+    uint32_t budget = kb && *kb ? (uint32_t)strtoul(kb, NULL, 10) : COV_BUDGET;
+    int to_host = kh && strcmp(kh, "host") == 0;
+    if (rc == VB_OK && s->wg && budget && !to_host)
+        rc = kernel_get(ctx, rt, "cover.cl", "vbq_cover_kernel", &s->k_item);
+    t0->k = t1->k = s->k;
+    t0->wg = t1->wg = s->wg;
+    t0->budget = s->wg ? budget : 0u;
+    th->k = s->k_item;
     cl_device_id dev = vbg_runtime_device(rt);
     cl_ulong mem = 0;
     cl_uint units = 1;
@@ -469,7 +527,7 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
     size_t want = s->wg ? (size_t)units * 16
                         : (vbg_runtime_is_gpu(rt) ? (size_t)units * 512 : (size_t)units * 64);
     size_t room = vbg_runtime_is_gpu(rt) ? (size_t)(mem / 8) : vbg_runtime_memory_budget(rt);
-    size_t fit = room / tier_bytes(s, t0);
+    size_t fit = room / tier_bytes(t0);
     want = want < fit ? want : fit;
     /* Work-items come in groups of 64 (cov_run), fewer only when the room
      * holds fewer slices (a small device budget): then one group of them. */
@@ -483,8 +541,15 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
         want = (size_t)atol(ws);
     t0->slices = want;
     if (s->wg) {
-        size_t w2 = (size_t)units * 4, fit2 = (size_t)(mem / 16) / tier_bytes(s, t1);
+        size_t w2 = (size_t)units * 4, fit2 = (size_t)(mem / 16) / tier_bytes(t1);
         t1->slices = w2 < fit2 ? w2 : fit2;
+        /* The hand-off tier: work-items as for the work-item kernel on a
+         * GPU, within a sixteenth of the memory, in groups of 64. */
+        size_t wh = (size_t)units * 512, fith = (size_t)(mem / 16) / tier_bytes(th);
+        wh = wh < fith ? wh : fith;
+        th->slices_max = wh >= 64 ? wh / 64 * 64 : wh;
+        if (th->slices_max == 0 && !to_host)
+            t0->budget = 0; /* no room for it: no hand-off */
     }
     /* Test knobs: VORBALL_COVER_NB shrinks the first tier's records (so that
      * cells overflow), VORBALL_COVER_TIER2 sets the second tier's slices

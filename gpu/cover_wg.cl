@@ -158,7 +158,7 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
                   __global uint *labs, __global vbq_frame *unused_st, __global uint *qs,
                   const uint nb_cap, const uint lab_cap, const uint st_cap, const uint q_cap,
                   __global vbq_cell_out *outs, __global uint *qout, const uint qout_cap,
-                  __global uint *counters)
+                  __global uint *counters, const uint budget)
 {
     WG_SHARED vbq_frame stk[WG_ST];
     WG_SHARED uint nodes[WG_NODES];
@@ -226,12 +226,24 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
             sh[S_TOP] = len0;
         }
         barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
+        /* Steps (patches popped) of this cell: the same count in every lane,
+         * so that all of them leave together when it passes the budget. */
+        uint steps = 0u;
         for (;;) {
             /* Every lane reads the condition before lane 0 pops. */
             int go = sh[S_STATUS] == VBQ_OK && sh[S_NST] > 0u;
             barrier(CLK_LOCAL_MEM_FENCE);
             if (!go)
                 break;
+            /* A long chain of levels walked one patch at a time idles the
+             * chip: past the budget (0: none) the cell is left, none of it
+             * kept, to the work-item kernel (VBQ_BUDGET, cover_ocl.c). */
+            if (budget != 0u && ++steps > budget) {
+                if (lane == 0u)
+                    sh[S_STATUS] = VBQ_BUDGET;
+                barrier(CLK_LOCAL_MEM_FENCE);
+                break;
+            }
             if (lane == 0u) {
                 uint nst = sh[S_NST], top = sh[S_TOP];
                 o.st_hw = nst > o.st_hw ? nst : o.st_hw;

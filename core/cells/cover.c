@@ -291,6 +291,7 @@ static int hybrid_device(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w0,
     if (!outs)
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
     int rc = be->begin(ctx, be, &jb->env, jb->set->n);
+    uint64_t handed0 = be->handed_cells;
     while (rc == VB_OK && !atomic_load(&jb->failed)) {
         pthread_mutex_lock(&sh->mu);
         size_t b0 = sh->front, n = sh->back - sh->front < batch ? sh->back - sh->front : batch;
@@ -335,6 +336,7 @@ static int hybrid_device(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w0,
         }
         vb_quad_list_free(&chunk);
     }
+    w0->st.handed_cells += be->handed_cells - handed0;
     free(outs);
     return rc;
 }
@@ -461,6 +463,7 @@ static void stats_sum(vb_cover_stats *st, const vb_cover_stats *ws)
     st->quads += ws->quads;
     st->stream_parts += ws->stream_parts;
     st->host_cells += ws->host_cells;
+    st->handed_cells += ws->handed_cells;
     st->t_device += ws->t_device;
     st->t_host += ws->t_host;
     if (ws->max_level_seen > st->max_level_seen)

@@ -70,6 +70,8 @@ typedef struct vb_cover_stats {
     uint64_t retries;        /* cells covered again with a larger arena */
     uint64_t host_cells;     /* cells a device left to the host */
     uint64_t stream_parts;   /* parts streamed to the sink during a run (stream_batches) */
+    uint64_t handed_cells;   /* cells a device's group kernel handed to its work-item
+                                kernel (the step budget, gpu/cover_ocl.c) */
     double t_device;         /* seconds in the device's batches (wall) */
     double t_host;           /* seconds of the whole cover (wall) */
     unsigned max_level_seen;
@@ -94,6 +96,8 @@ struct vb_cover_backend {
     const char *name;        /* "opencl" */
     char device[160];        /* human-readable device */
     size_t batch_cells;      /* cells per run call */
+    uint64_t handed_cells;   /* cells the runs' group kernel left, past its step budget,
+                                to the device's work-item kernel (a running count) */
     void *state;
     /* Uploads the input shared by every cell (env's arrays, n spheres) for
      * the runs that follow. VB_OK, VB_ENOMEM or VB_EDEVICE (message in ctx). */

@@ -114,6 +114,8 @@ typedef struct vb_proposal {
     } quads;
     int complete;
     uint64_t cover_cells, cover_patches, cover_host_cells; /* the cover's counters */
+    uint64_t cover_handed_cells;  /* cells the GPU's group kernel handed to its work-item
+                                     kernel (past the step budget) */
     uint64_t cover_quads;         /* quadruples proposed (in quads, or handed to the sink),
                                      a counter that processes which covered parts of the
                                      cells can add up */

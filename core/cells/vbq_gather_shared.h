@@ -28,6 +28,11 @@
  * (vbq_tie_cluster): the cell is covered again on the host, which decides
  * such patches exactly (vbq_host_cluster). */
 #define VBQ_CLUSTER 6u
+/* A cell that took more steps (patches popped) than the group kernel's
+ * budget (gpu/cover_wg.cl): nothing of it is kept, and the driver covers it
+ * again on the work-item kernel as root-patch tasks (gpu/cover_ocl.c). Only
+ * the group kernel returns it. */
+#define VBQ_BUDGET 7u
 
 /* A closed patch to enumerate or subdivide with more owned labels than this
  * that look flat is a tie cluster, decided exactly before any of its

@@ -34,9 +34,10 @@ void vb_vertices_write_stats(vb_ctx *ctx, FILE *f, const vb_vertices_result *r)
             (unsigned long long)st->exact_evals);
     /* The cover's counters (zero for the sampling proposer). */
     fprintf(f, "cover_cells\t%llu\ncover_patches\t%llu\ncover_host_cells\t%llu\n"
-               "cover_quadruples\t%llu\n",
+               "cover_handed_cells\t%llu\ncover_quadruples\t%llu\n",
             (unsigned long long)s->cover_cells, (unsigned long long)s->cover_patches,
-            (unsigned long long)s->cover_host_cells, (unsigned long long)s->cover_quads);
+            (unsigned long long)s->cover_host_cells, (unsigned long long)s->cover_handed_cells,
+            (unsigned long long)s->cover_quads);
     /* The certification beside the proposer (timings: they vary run to
      * run): parts certified while the cover went on, the seconds of that
      * overlap, and the seconds certification took after the proposer. */

@@ -38,7 +38,7 @@ typedef struct lane_arg {
     unsigned lane;
     const vbq_env *e;
     const uint32_t *cells, *roots;
-    uint32_t ncells;
+    uint32_t ncells, budget;
     vbq_nb *nb;
     uint32_t *lab, *q, *qout, *counters, qout_cap;
     vbq_frame *st;
@@ -53,13 +53,13 @@ static void *lane_main(void *p)
     vbq_cover_wg(e->x, e->y, e->z, e->r, e->box, e->rmax, e->ids, e->first, e->m, e->rmax_all,
                  e->near, e->tmax, e->T, e->min_level, e->max_level, e->enum_max, a->cells, a->roots,
                  a->ncells, a->nb, a->lab, a->st, a->q, EMU_NB, EMU_LAB, 1, EMU_Q, a->outs,
-                 a->qout, a->qout_cap, a->counters);
+                 a->qout, a->qout_cap, a->counters, a->budget);
     return NULL;
 }
 
 int vb_cover_wg_emulate(const vbq_env *e, const uint32_t *cells, const uint32_t *roots,
-                        uint32_t ncells, vbq_cell_out *outs, uint32_t *qout, uint32_t qout_cap,
-                        uint32_t *nquads)
+                        uint32_t ncells, uint32_t budget, vbq_cell_out *outs, uint32_t *qout,
+                        uint32_t qout_cap, uint32_t *nquads)
 {
     vbq_nb *nb = malloc((size_t)EMU_NB * sizeof *nb);
     uint32_t *lab = malloc((size_t)EMU_LAB * sizeof *lab);
@@ -71,7 +71,8 @@ int vb_cover_wg_emulate(const vbq_env *e, const uint32_t *cells, const uint32_t 
     lane_arg a[WG];
     int started = 0;
     for (unsigned l = 0; rc == 0 && l < WG; l++) {
-        a[l] = (lane_arg){l, e, cells, roots, ncells, nb, lab, q, qout, counters, qout_cap, st, outs};
+        a[l] = (lane_arg){l,    e,    cells, roots, ncells,   budget, nb,
+                          lab,  q,    qout,  counters, qout_cap, st,  outs};
         if (pthread_create(&th[l], NULL, lane_main, &a[l]) != 0) {
             rc = -1; /* a barrier of WG cannot complete: abandon (test fails) */
             break;

@@ -9,11 +9,11 @@
 #define EMU_Q 512u
 
 /* Runs vbq_cover_wg as one work-group over the tasks (cells[k], roots[k]),
- * k < ncells: outs[k] per task, quadruples in qout (4 per quadruple, at
- * most qout_cap), *nquads of them. 0, or -1 when the threads could not be
- * made. */
+ * k < ncells, with the step budget `budget` per cell (0: none): outs[k] per
+ * task, quadruples in qout (4 per quadruple, at most qout_cap), *nquads of
+ * them. 0, or -1 when the threads could not be made. */
 int vb_cover_wg_emulate(const vbq_env *e, const uint32_t *cells, const uint32_t *roots,
-                        uint32_t ncells, vbq_cell_out *outs, uint32_t *qout, uint32_t qout_cap,
-                        uint32_t *nquads);
+                        uint32_t ncells, uint32_t budget, vbq_cell_out *outs, uint32_t *qout,
+                        uint32_t qout_cap, uint32_t *nquads);
 
 #endif

@@ -3,7 +3,9 @@
  * device (PoCL), the same with small first-tier arenas so that cells move to
  * the second tier as root-patch tasks, both with the device's batches
  * streamed part by part, and the GPU's group kernel run on host threads
- * (cover_wg_emu.c). Every quadruple is sorted, owned by its
+ * (cover_wg_emu.c), without a step budget and with a tiny one that hands
+ * most cells off as root-patch tasks to the work-item kernel's code. Every
+ * quadruple is sorted, owned by its
  * smallest id, and the list is sorted and unique. */
 #include <stdio.h>
 #include <stdlib.h>
@@ -13,6 +15,7 @@
 #include "vb_cover.h"
 #include "vb_test.h"
 #include "vbg_cover.h"
+#include "vbg_cover_tasks.h"
 #include "vbg_runtime.h"
 
 static int same(const vb_quad_list *a, const vb_quad_list *b)
@@ -93,10 +96,54 @@ static int parts_cover(vb_ctx *ctx, const vb_sphere_set *s, unsigned parts, vb_q
     return rc;
 }
 
-/* The group kernel on host threads, over every cell; a cell it leaves to
- * the host as a tie cluster (VBQ_CLUSTER) is covered on the host, as the
- * driver does, and counted in *clusters. */
-static int emulated(vb_ctx *ctx, const vb_sphere_set *s, vb_quad_list *out, size_t *clusters)
+static int is_budget(uint32_t status)
+{
+    return status == VBQ_BUDGET;
+}
+
+/* The hand-off of the cells past the group kernel's budget, as the driver
+ * makes it (gpu/cover_ocl.c, vbg_cover_tasks.h): each cell's root-patch
+ * tasks covered by vbq_cover_cell (the work-item kernel's body) in ar, and
+ * joined. *nq grows by the quadruples joined; returns the cells handed. */
+static size_t hand_off(const vbq_env *env, vbq_arena *ar, vbq_cell_out *outs, uint32_t n,
+                       uint32_t *qout, uint32_t cap, uint32_t *nq)
+{
+    size_t per = vbg_tasks_per_cell(env->T), nh = 0;
+    for (uint32_t k = 0; k < n; k++)
+        nh += is_budget(outs[k].status);
+    uint32_t *c2 = malloc((nh * per + 1) * sizeof *c2), *r2 = malloc((nh * per + 1) * sizeof *r2);
+    vbq_cell_out *t = malloc((nh * per + 1) * sizeof *t);
+    size_t nt = c2 && r2 && t ? vbg_tasks_make(env->ids, outs, n, is_budget, per, c2, r2) : 0;
+    CHECK_INT(nt, nh * per);
+    size_t q = *nq;
+    for (size_t j = 0; j < nt; j++) {
+        vbq_cover_cell(env, ar, c2[j], r2[j], &t[j]);
+        t[j].qoff = (uint32_t)q;
+        if (t[j].status == VBQ_OK && q + t[j].nq <= cap) {
+            memcpy(qout + 4 * q, ar->q, 4 * (size_t)t[j].nq * sizeof *qout);
+            q += t[j].nq;
+        } else if (t[j].status == VBQ_OK) {
+            t[j].status = VBQ_OVER_Q; /* the test's output is full: fails below */
+        }
+    }
+    size_t picked = 0;
+    if (q + vbg_tasks_quads(t, nt) <= cap)
+        picked = vbg_tasks_join(t, outs, n, is_budget, per, qout, &q);
+    CHECK_INT(picked, nh);
+    *nq = (uint32_t)q;
+    free(c2);
+    free(r2);
+    free(t);
+    return picked;
+}
+
+/* The group kernel on host threads, over every cell, with the step budget
+ * `budget` (0: none); the cells past it are handed off (hand_off) and
+ * counted in *handed; a cell left to the host as a tie cluster
+ * (VBQ_CLUSTER) is covered on the host, as the driver does, and counted in
+ * *clusters. */
+static int emulated(vb_ctx *ctx, const vb_sphere_set *s, uint32_t budget, vb_quad_list *out,
+                    size_t *clusters, size_t *handed)
 {
     vb_cover_tree *tree;
     vbq_env env;
@@ -110,9 +157,11 @@ static int emulated(vb_ctx *ctx, const vb_sphere_set *s, vb_quad_list *out, size
     for (uint32_t k = 0; roots && k < n; k++)
         roots[k] = VBQ_ALL_ROOTS;
     rc = roots && outs && qout ? VB_OK : VB_ENOMEM;
-    if (rc == VB_OK && vb_cover_wg_emulate(&env, env.ids, roots, n, outs, qout, cap, &nq) != 0)
+    if (rc == VB_OK &&
+        vb_cover_wg_emulate(&env, env.ids, roots, n, budget, outs, qout, cap, &nq) != 0)
         rc = VB_EINTERNAL;
     *clusters = 0;
+    *handed = 0;
     vbq_arena ar = {0};
     ar.nb_cap = 1u << 14;
     ar.lab_cap = 1u << 20;
@@ -124,6 +173,8 @@ static int emulated(vb_ctx *ctx, const vb_sphere_set *s, vb_quad_list *out, size
     ar.q = malloc(4 * (size_t)ar.q_cap * sizeof *ar.q);
     if (!ar.nb || !ar.lab || !ar.st || !ar.q)
         rc = VB_ENOMEM;
+    if (rc == VB_OK)
+        *handed = hand_off(&env, &ar, outs, n, qout, cap, &nq);
     for (uint32_t k = 0; rc == VB_OK && k < n; k++) {
         if (outs[k].status == VBQ_CLUSTER) {
             vbq_cell_out o;
@@ -149,8 +200,13 @@ static int emulated(vb_ctx *ctx, const vb_sphere_set *s, vb_quad_list *out, size
             rc = VB_ENOMEM;
         else {
             memcpy(out->q, qout, (size_t)nq * sizeof *out->q);
-            out->n = out->cap = nq;
             qsort(out->q, nq, sizeof *out->q, vb_quad_cmp);
+            /* repeats between a handed cell's tasks go, as in the driver */
+            size_t u = 0;
+            for (size_t k = 0; k < nq; k++)
+                if (u == 0 || vb_quad_cmp(out->q[u - 1], out->q[k]) != 0)
+                    memmove(out->q[u++], out->q[k], sizeof *out->q);
+            out->n = out->cap = u;
         }
     }
     free(roots);
@@ -260,11 +316,22 @@ static void one(vb_ctx *ctx, const char *path, int have_device, int emulate)
     vb_quad_list_free(&b);
     CHECK_INT(parts_cover(ctx, s, 5, &b), VB_OK);
     CHECK(same(&a, &b));
-    /* A barrier per step on threads: the smaller inputs only. */
-    size_t clusters = 0;
+    /* A barrier per step on threads: the smaller inputs only. Without a
+     * budget no cell is handed off; with a budget of 3 steps every cell
+     * that needs more is, and the quadruples stay the same. */
+    size_t clusters = 0, handed = 0, clusters3 = 0;
     if (emulate) {
-        CHECK_INT(emulated(ctx, s, &c, &clusters), VB_OK);
+        CHECK_INT(emulated(ctx, s, 0, &c, &clusters, &handed), VB_OK);
         CHECK(same(&a, &c));
+        CHECK_INT(handed, 0);
+        vb_quad_list h = {0};
+        CHECK_INT(emulated(ctx, s, 3, &h, &clusters3, &handed), VB_OK);
+        CHECK(handed > 0);
+        CHECK(same(&a, &h));
+        if (!same(&a, &h))
+            fprintf(stderr, "%s: host %zu, emulated group kernel with budget 3 %zu (%zu handed)\n",
+                    path, a.n, h.n, handed);
+        vb_quad_list_free(&h);
     }
     if (have_device) {
         CHECK_INT(device_cover(ctx, s, 0, clusters, &d), VB_OK);

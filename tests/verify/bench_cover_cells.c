@@ -1,6 +1,6 @@
 /* bench_cover_cells: where the direction cover spends its time, by cell.
  *
- *   bench_cover_cells INPUT [MARGIN]
+ *   bench_cover_cells INPUT [MARGIN [BUDGET NB LAB Q]]
  *
  * Covers every cell of INPUT on one thread (vbq_cover_cell, the host's
  * cover) and sums, for the cells whose centre lies within MARGIN (default
@@ -8,7 +8,17 @@
  * ("interior"): thread CPU seconds, patches, label evaluations, neighbour
  * records, leaves at the deepest level and quadruples. A crystal's flat
  * faces make its boundary cells the expensive ones (papers/degenerate-input/
- * README.md). A benchmark, not a test. */
+ * README.md). A last line gives the spread of patches per cell (median,
+ * 99th and 99.9th percentiles, largest, cells over 1024/2048/4096 and their
+ * share of all patches): the GPU group kernel's step budget
+ * (gpu/cover_ocl.c) is set from it. With BUDGET, the GPU's hand-off
+ * simulated: each cell of more than BUDGET patches is covered again as its
+ * 24 T^2 root-patch tasks in arenas of NB records, LAB labels and Q
+ * quadruples without the host's scratch (as the work-item kernel does),
+ * and a line gives the cells handed, the tasks, the largest task's patches
+ * (the longest work-item of the hand-off launch) and the tasks that ran out
+ * of each arena (tie clusters are decided on the host here, where a device
+ * leaves them to the host). A benchmark, not a test. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -24,14 +34,44 @@ static double thread_cpu(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+static int cmp_u32(const void *a, const void *b)
+{
+    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+    return x < y ? -1 : x > y;
+}
+
 typedef struct sums {
     double cells, cpu, patches, evals, nb, deep, quads;
 } sums;
 
+/* The hand-off simulated (BUDGET NB LAB Q). */
+typedef struct handoff {
+    uint32_t budget;
+    vbq_arena ar;              /* the work-item's arenas, no scratch */
+    size_t cells, tasks, failed_cells, status[8];
+    uint32_t largest_cell, largest_task;
+} handoff;
+
+static void handoff_cell(const vbq_env *env, handoff *h, uint32_t i, uint32_t patches)
+{
+    h->cells++;
+    h->largest_cell = patches > h->largest_cell ? patches : h->largest_cell;
+    int bad = 0;
+    for (uint32_t r = 0; r < 24u * env->T * env->T; r++) {
+        vbq_cell_out t;
+        vbq_cover_cell(env, &h->ar, i, VBQ_TASK(r / 4u, r % 4u + 1u), &t);
+        h->tasks++;
+        h->status[t.status & 7u]++;
+        bad |= t.status != VBQ_OK;
+        h->largest_task = t.patches > h->largest_task ? t.patches : h->largest_task;
+    }
+    h->failed_cells += (size_t)bad;
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 2) {
-        fprintf(stderr, "usage: bench_cover_cells INPUT [MARGIN]\n");
+        fprintf(stderr, "usage: bench_cover_cells INPUT [MARGIN [BUDGET NB LAB Q]]\n");
         return 2;
     }
     double margin = argc > 2 ? strtod(argv[2], NULL) : 2.0;
@@ -65,8 +105,23 @@ int main(int argc, char **argv)
     uint32_t cap[4] = {1024u, 8192u, 512u, 512u};
     if (vbq_arena_make(&ar, cap[0], cap[1], cap[2], cap[3]) != VB_OK)
         return 1;
+    handoff h;
+    memset(&h, 0, sizeof h);
+    double *scratch = NULL;
+    if (argc > 6) {
+        h.budget = (uint32_t)strtoul(argv[3], NULL, 10);
+        if (vbq_arena_make(&h.ar, (uint32_t)strtoul(argv[4], NULL, 10),
+                           (uint32_t)strtoul(argv[5], NULL, 10), 256u,
+                           (uint32_t)strtoul(argv[6], NULL, 10)) != VB_OK)
+            return 1;
+        scratch = h.ar.hi;
+        h.ar.hi = NULL; /* a device keeps no upper ends per label */
+    }
     sums s[2];
     memset(s, 0, sizeof s);
+    uint32_t *per = calloc(set->n ? set->n : 1, sizeof *per), np = 0;
+    if (!per)
+        return 1;
     for (uint32_t i = 0; i < set->n; i++) {
         if (set->contained[i])
             continue;
@@ -89,16 +144,45 @@ int main(int argc, char **argv)
         s[b].cpu += thread_cpu() - t0;
         s[b].cells++;
         s[b].patches += out.patches;
+        per[np++] = out.patches;
         s[b].evals += 1000.0 * out.evals_k;
         s[b].nb += out.nnb;
         s[b].deep += out.deep;
         s[b].quads += out.nq;
+        if (h.budget && out.patches > h.budget)
+            handoff_cell(&env, &h, i, out.patches);
     }
     for (int b = 0; b < 2; b++)
         printf("%s\t%s\tcells %.0f\tcpu_s %.3f\tpatches %.0f\tevals %.0f\tneighbours %.0f\t"
                "deep_leaves %.0f\tquadruples %.0f\n",
                argv[1], b ? "boundary" : "interior", s[b].cells, s[b].cpu, s[b].patches,
                s[b].evals, s[b].nb, s[b].deep, s[b].quads);
+    qsort(per, np, sizeof *per, cmp_u32);
+    double over[3] = {0, 0, 0}, over_p[3] = {0, 0, 0}, all = 0;
+    for (uint32_t k = 0; k < np; k++) {
+        all += per[k];
+        for (int g = 0; g < 3; g++)
+            if (per[k] > (1024u << g)) {
+                over[g]++;
+                over_p[g] += per[k];
+            }
+    }
+    if (np)
+        printf("%s\tpatches per cell\tmedian %u\tp99 %u\tp99.9 %u\tmax %u\t"
+               "over 1024/2048/4096 %.0f/%.0f/%.0f cells, %.1f/%.1f/%.1f %% of patches\n",
+               argv[1], per[np / 2], per[np * 99 / 100], per[(size_t)np * 999 / 1000], per[np - 1],
+               over[0], over[1], over[2], 100 * over_p[0] / all, 100 * over_p[1] / all,
+               100 * over_p[2] / all);
+    if (h.budget) {
+        printf("%s\thand-off\tbudget %u\tarenas %s/%s/%s\thanded %zu cells (largest %u patches)\t"
+               "%zu tasks, largest %u patches\tran out: nb %zu, lab %zu, st %zu, q %zu (%zu cells)\n",
+               argv[1], h.budget, argv[4], argv[5], argv[6], h.cells, h.largest_cell, h.tasks,
+               h.largest_task, h.status[VBQ_OVER_NB], h.status[VBQ_OVER_LAB],
+               h.status[VBQ_OVER_ST], h.status[VBQ_OVER_Q], h.failed_cells);
+        h.ar.hi = scratch;
+        vbq_arena_free(&h.ar);
+    }
+    free(per);
     vbq_arena_free(&ar);
     vb_cover_tree_free(tree);
     vb_spheres_free(set);

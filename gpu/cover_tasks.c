@@ -1,0 +1,71 @@
+/* Root-patch tasks of the direction cover (vbg_cover_tasks.h). */
+#include "vbg_cover_tasks.h"
+
+#include <string.h>
+
+size_t vbg_tasks_per_cell(uint32_t T)
+{
+    return 24u * (size_t)T * T;
+}
+
+size_t vbg_tasks_make(const uint32_t *cells, const vbq_cell_out *out, size_t ncells,
+                      vbg_task_pick pick, size_t per, uint32_t *cells2, uint32_t *roots2)
+{
+    size_t j = 0;
+    for (size_t c = 0; c < ncells; c++)
+        if (pick(out[c].status))
+            for (size_t r = 0; r < per; r++, j++) {
+                cells2[j] = cells[c];
+                roots2[j] = VBQ_TASK((uint32_t)(r / 4), (uint32_t)(r % 4) + 1u);
+            }
+    return j;
+}
+
+size_t vbg_tasks_quads(const vbq_cell_out *t, size_t ntasks)
+{
+    size_t n = 0;
+    for (size_t j = 0; j < ntasks; j++)
+        if (t[j].status == VBQ_OK)
+            n += t[j].nq;
+    return n;
+}
+
+size_t vbg_tasks_join(const vbq_cell_out *t, vbq_cell_out *out, size_t ncells, vbg_task_pick pick,
+                      size_t per, uint32_t *q, size_t *nq)
+{
+    size_t picked = 0;
+    for (size_t c = 0; c < ncells; c++) {
+        if (!pick(out[c].status))
+            continue;
+        const vbq_cell_out *tc = t + per * picked++;
+        vbq_cell_out sum = tc[0];
+        size_t n = 0;
+        for (size_t r = 0; r < per; r++) {
+            if (tc[r].status != VBQ_OK)
+                sum.status = tc[r].status;
+            n += tc[r].nq;
+        }
+        if (sum.status != VBQ_OK) {
+            out[c].status = sum.status;
+            continue;
+        }
+        sum.qoff = (uint32_t)*nq;
+        sum.nq = (uint32_t)n;
+        for (size_t r = 1; r < per; r++) {
+            sum.nnb += tc[r].nnb;
+            sum.far += tc[r].far;
+            sum.patches += tc[r].patches;
+            sum.evals_k += tc[r].evals_k;
+            sum.leaves += tc[r].leaves;
+            sum.deep += tc[r].deep;
+            sum.maxlev = tc[r].maxlev > sum.maxlev ? tc[r].maxlev : sum.maxlev;
+        }
+        /* the sources lie below *nq, the copies from it on: no overlap */
+        for (size_t r = 0; r < per; r++) {
+            memcpy(q + 4 * *nq, q + 4 * (size_t)tc[r].qoff, 4 * (size_t)tc[r].nq * sizeof *q);
+            *nq += tc[r].nq;
+        }
+        out[c] = sum;
+    }
+    return picked;
+}

@@ -1,0 +1,44 @@
+/* A cell covered again as root-patch tasks (gpu/cover_tasks.c): the split
+ * that the OpenCL driver uses for the cells its first launch left (arenas
+ * run out, or the group kernel's step budget passed) and the join of the
+ * tasks' results back into one result per cell. Plain C, no OpenCL: the
+ * group kernel's emulation in tests/gpu uses the same two steps. */
+#ifndef VBG_COVER_TASKS_H
+#define VBG_COVER_TASKS_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "vb_cover_shared.h"
+
+/* Which cells a pass takes: 1 for a status to cover again. */
+typedef int (*vbg_task_pick)(uint32_t status);
+
+/* Tasks per cell with T root squares per face side: one per child of each
+ * of the 6 T^2 root patches, 24 T^2 (VBQ_TASK). */
+size_t vbg_tasks_per_cell(uint32_t T);
+
+/* Writes the tasks of every cell k < ncells whose out[k].status pick
+ * takes, in cell order, per tasks each: cells2[j] = cells[k], roots2[j] =
+ * VBQ_TASK(root, child). cells2 and roots2 hold per * (the cells picked);
+ * returns the count of tasks written. */
+size_t vbg_tasks_make(const uint32_t *cells, const vbq_cell_out *out, size_t ncells,
+                      vbg_task_pick pick, size_t per, uint32_t *cells2, uint32_t *roots2);
+
+/* Quadruples the tasks' results t[0 .. ntasks) hold in all: room that
+ * vbg_tasks_join may append. */
+size_t vbg_tasks_quads(const vbq_cell_out *t, size_t ntasks);
+
+/* Joins the results t of the tasks vbg_tasks_make wrote for out (same
+ * ncells, pick, per, and out unchanged since): each picked cell gets the
+ * status of its last task that failed, else VBQ_OK with the tasks'
+ * counters summed (maxlev their largest) and their quadruples, read from
+ * q + 4 t[j].qoff, copied one task after the other to q + 4 *nq (its qoff;
+ * *nq grows by their count). q must have room for vbg_tasks_quads(t, ...)
+ * more quadruples past *nq, and every t[j].qoff + t[j].nq <= *nq on entry.
+ * Repeats between tasks are kept (the cover's driver drops them). Returns
+ * the count of cells picked. */
+size_t vbg_tasks_join(const vbq_cell_out *t, vbq_cell_out *out, size_t ncells, vbg_task_pick pick,
+                      size_t per, uint32_t *q, size_t *nq);
+
+#endif
