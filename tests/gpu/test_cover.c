@@ -7,6 +7,7 @@
  * most cells off as root-patch tasks to the work-item kernel's code. Every
  * quadruple is sorted, owned by its
  * smallest id, and the list is sorted and unique. */
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -49,11 +50,22 @@ typedef struct joined {
     vb_quad_list all;
     size_t parts;
     int disjoint;
+    pthread_mutex_t mu; /* a streamed run calls the sink from several threads */
 } joined;
+
+static int join_part_locked(joined *j, vb_quad_list *part);
 
 static int join_part(void *user, vb_quad_list *part)
 {
     joined *j = user;
+    pthread_mutex_lock(&j->mu);
+    int rc = join_part_locked(j, part);
+    pthread_mutex_unlock(&j->mu);
+    return rc;
+}
+
+static int join_part_locked(joined *j, vb_quad_list *part)
+{
     j->parts++;
     /* A streamed device batch comes unsorted (the sink sorts it): sorted
      * here, it must still have no repeat. */
@@ -81,7 +93,7 @@ static int join_part(void *user, vb_quad_list *part)
 
 static int parts_cover(vb_ctx *ctx, const vb_sphere_set *s, unsigned parts, vb_quad_list *out)
 {
-    joined j = {{0}, 0, 1};
+    joined j = {{0}, 0, 1, PTHREAD_MUTEX_INITIALIZER};
     vb_cover_options o;
     memset(&o, 0, sizeof o);
     o.threads = 2;
@@ -269,7 +281,7 @@ static int streamed_cover(vb_ctx *ctx, const vb_sphere_set *s, int split, vb_qua
     vbg_runtime *rt;
     vb_cover_backend *be;
     int rc = device_open(ctx, split, &rt, &be);
-    joined j = {{0}, 0, 1};
+    joined j = {{0}, 0, 1, PTHREAD_MUTEX_INITIALIZER};
     vb_cover_options o;
     memset(&o, 0, sizeof o);
     o.threads = 2;
