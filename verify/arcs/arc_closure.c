@@ -228,36 +228,114 @@ static int push_tedge(closure *cl, size_t from, size_t to, const uint32_t t[3], 
     return VB_OK;
 }
 
-/* The events of vbx_item k's vertex (vbx_tracer tr, events [e0, e0 + n)) into the
- * counts, the list of vertices, the components and the arrivals, in event
- * order; pending arcs to cl->pend. */
-static int merge_events(closure *cl, vbx_tracer *tr, size_t e0, size_t n, size_t k)
+/* ---- merging a phase's events --------------------------------------------- */
+
+/* A run of the merge: items (or pending arcs) [i0, i1) on one thread; its
+ * counts, edges and pending arcs, and the items with an event left to the
+ * ordered pass (late_event). */
+typedef struct mrun {
+    closure *cl;
+    const vbx_tphase *ph;
+    size_t i0, i1;
+    size_t half_arcs, closed, infinite, loops, undecided;
+    tedge *ed;
+    size_t ned, ed_cap;
+    vbx_item *pend;
+    size_t npend, pend_cap;
+    size_t *late;
+    size_t nlate, late_cap;
+    int rc;
+} mrun;
+
+static int run_tedge(mrun *m, size_t from, size_t to, const uint32_t t[3], int kind)
+{
+    if (!m->cl->want_edges)
+        return VB_OK;
+    if (VB_ARRAY_FIT(m->ed, m->ed_cap, m->ned + 1, 1024) != VB_OK)
+        return VB_ENOMEM;
+    tedge *e = &m->ed[m->ned++];
+    e->from = from;
+    e->to = to;
+    memcpy(e->t, t, sizeof e->t);
+    e->kind = kind;
+    return VB_OK;
+}
+
+/* A closed half arc whose end the tracer did not find in the round's map
+ * (a vertex not listed at the round's start: new, or added in this
+ * round), or a forward one arriving at a vertex of more than MASK_MEMBERS
+ * members (the arrivals' hash set): merged by the ordered pass alone, so
+ * vertices are added in event order. */
+static int late_event(const closure *cl, const vbx_hev *e)
+{
+    return e->kind == VBX_EV_CLOSED &&
+           (e->to == SIZE_MAX || (e->dir == 0 && triple_bit(&cl->all, e->to, e->t) < 0));
+}
+
+/* The events of run r's items but the late ones: counts, edges, arrivals
+ * (bits set atomically: an OR) and components (vb_uf_join_shared), all
+ * free of order; pending arcs kept in item order (vb_for_fn). */
+static void merge_run(void *arg, size_t r, int tid)
+{
+    (void)tid;
+    mrun *m = (mrun *)arg + r;
+    closure *cl = m->cl;
+    const vbx_tphase *ph = m->ph;
+    for (size_t i = m->i0; i < m->i1 && m->rc == VB_OK; i++) {
+        const vbx_tracer *tr = &ph->tr[ph->who[i]];
+        size_t k = ph->it[i].k;
+        int late = 0, rc = VB_OK;
+        for (size_t q = ph->first[i]; rc == VB_OK && q < ph->first[i] + ph->count[i]; q++) {
+            const vbx_hev *e = &tr->ev[q];
+            if (e->kind == VBX_EV_PENDING) {
+                rc = push_item(&m->pend, &m->npend, &m->pend_cap, k, e->t, 0);
+                continue;
+            }
+            if (late_event(cl, e)) {
+                late = 1;
+                continue;
+            }
+            m->half_arcs++;
+            if (e->kind == VBX_EV_INF) {
+                m->infinite++;
+                rc = run_tedge(m, k, SIZE_MAX, e->t, TE_INF);
+            } else if (e->kind == VBX_EV_LOOP) {
+                m->loops++;
+                rc = run_tedge(m, k, k, e->t, TE_LOOP);
+            } else if (e->kind == VBX_EV_UNDECIDED) {
+                m->undecided++;
+            } else {
+                size_t to = e->to;
+                m->closed++;
+                if (e->dir == 0)
+                    __atomic_fetch_or(&cl->amask[to], 1u << triple_bit(&cl->all, to, e->t),
+                                      __ATOMIC_RELAXED);
+                /* a backward arc from k that ends at `to` is the edge that
+                 * leaves `to` forward */
+                rc = run_tedge(m, e->dir == 0 ? k : to, e->dir == 0 ? to : k, e->t,
+                               e->dir == 0 ? TE_FWD : TE_BWD);
+                vb_uf_join_shared(&cl->comp, (uint32_t)k, (uint32_t)to);
+            }
+        }
+        if (rc == VB_OK && late)
+            rc = VB_ARRAY_FIT(m->late, m->late_cap, m->nlate + 1, 64);
+        if (rc == VB_OK && late)
+            m->late[m->nlate++] = i;
+        m->rc = rc;
+    }
+}
+
+/* The late events of item k's vertex (tracer tr, events [e0, e0 + n)), in
+ * event order: the end looked up among the added vertices and added when
+ * new, then counted, its arrival, edge and component recorded. */
+static int merge_late(closure *cl, const vbx_tracer *tr, size_t e0, size_t n, size_t k)
 {
     vb_arc_report *r = cl->r;
     for (size_t i = e0; i < e0 + n; i++) {
         const vbx_hev *e = &tr->ev[i];
-        if (e->kind == VBX_EV_PENDING) {
-            if (push_item(&cl->pend, &cl->npend, &cl->pend_cap, k, e->t, 0) != VB_OK)
-                return VB_ENOMEM;
+        if (!late_event(cl, e))
             continue;
-        }
         r->half_arcs++;
-        if (e->kind == VBX_EV_INF) {
-            r->infinite++;
-            if (push_tedge(cl, k, SIZE_MAX, e->t, TE_INF) != VB_OK)
-                return VB_ENOMEM;
-            continue;
-        }
-        if (e->kind == VBX_EV_LOOP) {
-            r->loops++;
-            if (push_tedge(cl, k, k, e->t, TE_LOOP) != VB_OK)
-                return VB_ENOMEM;
-            continue;
-        }
-        if (e->kind == VBX_EV_UNDECIDED) {
-            r->undecided++;
-            continue;
-        }
         const uint32_t *m = tr->pool + e->moff;
         size_t to = e->to, *s = NULL;
         if (to == SIZE_MAX) {
@@ -282,8 +360,6 @@ static int merge_events(closure *cl, vbx_tracer *tr, size_t e0, size_t n, size_t
         r->closed++;
         if (e->dir == 0 && arrival_put(cl, to, e->t) != VB_OK)
             return VB_ENOMEM;
-        /* a backward arc from k that ends at `to` is the edge that leaves
-         * `to` forward */
         if (push_tedge(cl, e->dir == 0 ? k : to, e->dir == 0 ? to : k, e->t,
                        e->dir == 0 ? TE_FWD : TE_BWD) != VB_OK)
             return VB_ENOMEM;
@@ -292,6 +368,141 @@ static int merge_events(closure *cl, vbx_tracer *tr, size_t e0, size_t n, size_t
         vb_uf_join(&cl->comp, (uint32_t)k, (uint32_t)to);
     }
     return VB_OK;
+}
+
+/* Runs over [0, n) in nr contiguous ranges. */
+static void cut_runs(mrun *runs, unsigned nr, closure *cl, const vbx_tphase *ph, size_t n)
+{
+    for (unsigned r = 0; r < nr; r++) {
+        memset(&runs[r], 0, sizeof runs[r]);
+        runs[r].cl = cl;
+        runs[r].ph = ph;
+        runs[r].i0 = n * r / nr;
+        runs[r].i1 = n * (r + 1) / nr;
+    }
+}
+
+/* Run r's counts into the report, its edges to the closure's; frees the
+ * run. VB_OK or VB_ENOMEM. */
+static int fold_run(closure *cl, mrun *m)
+{
+    vb_arc_report *r = cl->r;
+    r->half_arcs += m->half_arcs;
+    r->closed += m->closed;
+    r->infinite += m->infinite;
+    r->loops += m->loops;
+    r->undecided += m->undecided;
+    int rc = m->rc;
+    if (rc == VB_OK && m->ned) {
+        rc = VB_ARRAY_FIT(cl->ed, cl->ed_cap, cl->ned + m->ned, 1024);
+        if (rc == VB_OK) {
+            memcpy(cl->ed + cl->ned, m->ed, m->ned * sizeof *m->ed);
+            cl->ned += m->ned;
+        }
+    }
+    free(m->ed);
+    m->ed = NULL;
+    return rc;
+}
+
+/* The events of the phase's n items merged: in parallel runs for all that
+ * is free of order, then the late events in item order; the pending arcs
+ * to cl->pend in item order. The counts, the vertices added (and their
+ * order), the arrivals, components and edges are those of merging every
+ * event one by one in item order. */
+static int merge_phase(closure *cl, const vbx_tphase *ph, unsigned nt)
+{
+    size_t n = ph->n;
+    unsigned nr = nt;
+    if (nr > (n + 255) / 256)
+        nr = (unsigned)((n + 255) / 256);
+    if (nr < 1)
+        nr = 1;
+    /* the arrivals' bits and the components of every vertex listed now */
+    if (cl->all.n > cl->amask_cap) {
+        size_t old = cl->amask_cap;
+        if (VB_ARRAY_FIT(cl->amask, cl->amask_cap, cl->all.n, 1024) != VB_OK)
+            return VB_ENOMEM;
+        memset(cl->amask + old, 0, (cl->amask_cap - old) * sizeof *cl->amask);
+    }
+    if (vb_uf_fit(&cl->comp, cl->all.n) != VB_OK)
+        return VB_ENOMEM;
+    mrun runs[VB_MAX_THREADS];
+    cut_runs(runs, nr, cl, ph, n);
+    vb_parallel_for(merge_run, runs, nr, (int)nr);
+    int rc = VB_OK;
+    for (unsigned r = 0; r < nr; r++) {
+        int frc = fold_run(cl, &runs[r]);
+        if (rc == VB_OK)
+            rc = frc;
+        if (rc == VB_OK && runs[r].npend &&
+            VB_ARRAY_FIT(cl->pend, cl->pend_cap, cl->npend + runs[r].npend, 256) != VB_OK)
+            rc = VB_ENOMEM;
+        if (rc == VB_OK && runs[r].npend) {
+            memcpy(cl->pend + cl->npend, runs[r].pend, runs[r].npend * sizeof *runs[r].pend);
+            cl->npend += runs[r].npend;
+        }
+        for (size_t q = 0; rc == VB_OK && q < runs[r].nlate; q++) {
+            size_t i = runs[r].late[q];
+            rc = merge_late(cl, &ph->tr[ph->who[i]], ph->first[i], ph->count[i], ph->it[i].k);
+        }
+    }
+    for (unsigned r = 0; r < nr; r++) {
+        free(runs[r].ed);
+        free(runs[r].pend);
+        free(runs[r].late);
+    }
+    return rc;
+}
+
+/* Pending arcs [i0, i1) of cl->pend: those whose triple arrived at their
+ * vertex counted closed, the others kept (in order) to be traced
+ * (vb_for_fn). */
+static void resolve_run(void *arg, size_t r, int tid)
+{
+    (void)tid;
+    mrun *m = (mrun *)arg + r;
+    const closure *cl = m->cl;
+    for (size_t i = m->i0; i < m->i1 && m->rc == VB_OK; i++) {
+        const vbx_item *pi = &cl->pend[i];
+        if (arrival_has(cl, pi->k, pi->t))
+            m->closed++;
+        else
+            m->rc = push_item(&m->pend, &m->npend, &m->pend_cap, pi->k, pi->t, 0);
+    }
+}
+
+/* The pending backward arcs of a round: each either the reverse of a
+ * forward arc that arrived at its vertex with its triple (counted closed)
+ * or an item of *back, in the order of cl->pend, on nt threads. */
+static int resolve_pending(closure *cl, unsigned nt, vbx_item **back, size_t *nback,
+                           size_t *back_cap)
+{
+    unsigned nr = nt;
+    if (nr > (cl->npend + 1023) / 1024)
+        nr = (unsigned)((cl->npend + 1023) / 1024);
+    if (nr < 1)
+        nr = 1;
+    mrun runs[VB_MAX_THREADS];
+    cut_runs(runs, nr, cl, NULL, cl->npend);
+    vb_parallel_for(resolve_run, runs, nr, (int)nr);
+    int rc = VB_OK;
+    *nback = 0;
+    for (unsigned r = 0; r < nr; r++) {
+        if (rc == VB_OK)
+            rc = runs[r].rc;
+        cl->r->half_arcs += runs[r].closed;
+        cl->r->closed += runs[r].closed;
+        if (rc == VB_OK && runs[r].npend &&
+            VB_ARRAY_FIT(*back, *back_cap, *nback + runs[r].npend, 256) != VB_OK)
+            rc = VB_ENOMEM;
+        if (rc == VB_OK && runs[r].npend) {
+            memcpy(*back + *nback, runs[r].pend, runs[r].npend * sizeof *runs[r].pend);
+            *nback += runs[r].npend;
+        }
+        free(runs[r].pend);
+    }
+    return rc;
 }
 
 /* Runs the n items on the tracers and merges their events in vbx_item order. */
@@ -344,8 +555,8 @@ static int run_phase(closure *cl, vbx_tracer *tr, unsigned nt, const vbx_item *i
         }
     }
     double t1 = vb_now();
-    for (size_t i = 0; rc == VB_OK && i < n; i++)
-        rc = merge_events(cl, &tr[ph.who[i]], ph.first[i], ph.count[i], it[i].k);
+    if (rc == VB_OK)
+        rc = merge_phase(cl, &ph, nt);
     cl->r->merge_s += vb_now() - t1;
     free(ph.first);
     free(ph.count);
@@ -384,15 +595,10 @@ static int run_rounds(closure *cl, vbx_tracer *tr, unsigned nt)
         cl->npend = 0;
         if (rc == VB_OK)
             rc = run_phase(cl, tr, nt, it, nit, lo, hi);
-        for (size_t i = 0; rc == VB_OK && i < cl->npend; i++) {
-            const vbx_item *pi = &cl->pend[i];
-            if (arrival_has(cl, pi->k, pi->t)) {
-                cl->r->half_arcs++;
-                cl->r->closed++;
-            } else {
-                rc = push_item(&back, &nback, &back_cap, pi->k, pi->t, 0);
-            }
-        }
+        double t1 = vb_now();
+        if (rc == VB_OK)
+            rc = resolve_pending(cl, nt, &back, &nback, &back_cap);
+        cl->r->merge_s += vb_now() - t1;
         if (rc == VB_OK)
             rc = run_phase(cl, tr, nt, back, nback, 0, 0);
         lo = hi;
@@ -478,9 +684,11 @@ static int emit_edges(closure *cl, size_t nin, const size_t *where_added,
     return VB_OK;
 }
 
-static int close_list(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_list *in,
-                      unsigned threads, vb_arc_report *out, vb_topology_edge **edges,
-                      size_t *nedges)
+/* The closure of list in on set; cert: an open certifier of set to borrow
+ * (left open), or NULL to open one. */
+static int close_list(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier *cert,
+                      const vb_vertex_list *in, unsigned threads, vb_arc_report *out,
+                      vb_topology_edge **edges, size_t *nedges)
 {
     memset(out, 0, sizeof *out);
     vb_vertex_list_init(&out->added);
@@ -501,8 +709,8 @@ static int close_list(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_lis
     if (nt > most)
         nt = (unsigned)most;
     vbx_tracer *tr = calloc(nt, sizeof *tr);
-    vb_certifier *c = NULL;
-    int rc = tr ? vb_certifier_open(ctx, set, &c) : VB_ENOMEM;
+    vb_certifier *c = cert;
+    int rc = !tr ? VB_ENOMEM : c ? VB_OK : vb_certifier_open(ctx, set, &c);
     for (unsigned i = 0; rc == VB_OK && i < nt; i++) {
         tr[i].ctx = ctx;
         tr[i].c = c;
@@ -517,11 +725,8 @@ static int close_list(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_lis
         tr[i].have_w = 1;
         vbx_tracer_scratch(&tr[i], 1);
     }
-    for (size_t k = 0; rc == VB_OK && k < in->n; k++) {
-        size_t s = in->start[k];
-        rc = vb_vertex_list_push(&cl.all, in->ids + s, in->start[k + 1] - s, in->x[k], in->y[k],
-                                 in->z[k], in->t[k], 0, VB_VERTEX_CERTIFIED);
-    }
+    if (rc == VB_OK)
+        rc = vb_vertex_list_append(&cl.all, in); /* the tracers read points and members */
     if (rc == VB_OK)
         rc = vb_uf_fit(&cl.comp, cl.all.n);
     out->threads = nt;
@@ -563,7 +768,8 @@ static int close_list(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_lis
                 vb_close(tr[i].ctx);
         }
     }
-    vb_certifier_close(c);
+    if (c != cert)
+        vb_certifier_close(c);
     free(tr);
     vb_vertex_list_free(&cl.all);
     vb_hash_free(&cl.tab);
@@ -580,14 +786,14 @@ static int close_list(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_lis
 int vb_arc_close(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_list *in,
                  unsigned threads, vb_arc_report *out)
 {
-    return close_list(ctx, set, in, threads, out, NULL, NULL);
+    return close_list(ctx, set, NULL, in, threads, out, NULL, NULL);
 }
 
-int vb_arc_close_edges(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_list *in,
-                       unsigned threads, vb_arc_report *out, vb_topology_edge **edges,
-                       size_t *nedges)
+int vb_arc_close_edges(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier *cert,
+                       const vb_vertex_list *in, unsigned threads, vb_arc_report *out,
+                       vb_topology_edge **edges, size_t *nedges)
 {
-    return close_list(ctx, set, in, threads, out, edges, nedges);
+    return close_list(ctx, set, cert, in, threads, out, edges, nedges);
 }
 
 int vb_arc_report_complete(const vb_arc_report *r)

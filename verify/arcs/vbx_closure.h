@@ -31,13 +31,12 @@ typedef struct vbx_tent {
 typedef struct vbx_tmap {
     vbx_tent *e;
     size_t n, cap;
-    size_t done; /* vertices entered */
     size_t *off; /* entries of first sphere i: [off[i], off[i + 1]), i < noff */
     size_t noff;
 } vbx_tmap;
 
-/* Enters the vertices [m->done, all->n) and sorts again (on nt threads, the
- * same array on any number). VB_OK, VB_ENOMEM (the map is then emptied). A
+/* Builds the map of every vertex of all anew (on nt threads, the same
+ * array on any number). VB_OK, VB_ENOMEM (the map is then emptied). A
  * map that lacks vertices costs searches, never a wrong end: the bounded
  * search of the tracer proves its end whichever listed vertex it is given
  * (a nearer vertex is found inside). */
