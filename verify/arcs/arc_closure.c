@@ -157,8 +157,6 @@ typedef struct closure {
     uint32_t *amask;    /* ... per vertex of fewer: a bit per triple of its members */
     size_t amask_cap;
     vbx_tmap map;       /* the triples of the list */
-    vbx_item *pend;     /* backward arcs left pending in this round */
-    size_t npend, pend_cap;
     vb_arc_report *r;
 } closure;
 
@@ -405,12 +403,13 @@ static int fold_run(closure *cl, mrun *m)
     return rc;
 }
 
-/* The events of the phase's n items merged: in parallel runs for all that
- * is free of order, then the late events in item order; the pending arcs
- * to cl->pend in item order. The counts, the vertices added (and their
- * order), the arrivals, components and edges are those of merging every
- * event one by one in item order. */
-static int merge_phase(closure *cl, const vbx_tphase *ph, unsigned nt)
+/* The events of the phase's n items merged: in *nr parallel runs (runs[],
+ * VB_MAX_THREADS of them) for all that is free of order, then the late
+ * events in item order; the pending arcs stay in the runs' lists (run
+ * order then list order is item order: free them with free_runs). The
+ * counts, the vertices added (and their order), the arrivals, components
+ * and edges are those of merging every event one by one in item order. */
+static int merge_phase(closure *cl, const vbx_tphase *ph, unsigned nt, mrun *runs, unsigned *nrp)
 {
     size_t n = ph->n;
     unsigned nr = nt;
@@ -427,88 +426,79 @@ static int merge_phase(closure *cl, const vbx_tphase *ph, unsigned nt)
     }
     if (vb_uf_fit(&cl->comp, cl->all.n) != VB_OK)
         return VB_ENOMEM;
-    mrun runs[VB_MAX_THREADS];
     cut_runs(runs, nr, cl, ph, n);
+    *nrp = nr;
     vb_parallel_for(merge_run, runs, nr, (int)nr);
     int rc = VB_OK;
     for (unsigned r = 0; r < nr; r++) {
         int frc = fold_run(cl, &runs[r]);
         if (rc == VB_OK)
             rc = frc;
-        if (rc == VB_OK && runs[r].npend &&
-            VB_ARRAY_FIT(cl->pend, cl->pend_cap, cl->npend + runs[r].npend, 256) != VB_OK)
-            rc = VB_ENOMEM;
-        if (rc == VB_OK && runs[r].npend) {
-            memcpy(cl->pend + cl->npend, runs[r].pend, runs[r].npend * sizeof *runs[r].pend);
-            cl->npend += runs[r].npend;
-        }
         for (size_t q = 0; rc == VB_OK && q < runs[r].nlate; q++) {
             size_t i = runs[r].late[q];
             rc = merge_late(cl, &ph->tr[ph->who[i]], ph->first[i], ph->count[i], ph->it[i].k);
         }
+        free(runs[r].late);
+        runs[r].late = NULL;
     }
+    return rc;
+}
+
+static void free_runs(mrun *runs, unsigned nr)
+{
     for (unsigned r = 0; r < nr; r++) {
         free(runs[r].ed);
         free(runs[r].pend);
         free(runs[r].late);
     }
-    return rc;
 }
 
-/* Pending arcs [i0, i1) of cl->pend: those whose triple arrived at their
- * vertex counted closed, the others kept (in order) to be traced
- * (vb_for_fn). */
+/* Run r's pending arcs: those whose triple arrived at their vertex counted
+ * closed, the others kept in order, in place (vb_for_fn). */
 static void resolve_run(void *arg, size_t r, int tid)
 {
     (void)tid;
     mrun *m = (mrun *)arg + r;
     const closure *cl = m->cl;
-    for (size_t i = m->i0; i < m->i1 && m->rc == VB_OK; i++) {
-        const vbx_item *pi = &cl->pend[i];
+    size_t keep = 0;
+    m->closed = 0;
+    for (size_t i = 0; i < m->npend; i++) {
+        const vbx_item *pi = &m->pend[i];
         if (arrival_has(cl, pi->k, pi->t))
             m->closed++;
         else
-            m->rc = push_item(&m->pend, &m->npend, &m->pend_cap, pi->k, pi->t, 0);
+            m->pend[keep++] = *pi;
     }
+    m->npend = keep;
 }
 
-/* The pending backward arcs of a round: each either the reverse of a
- * forward arc that arrived at its vertex with its triple (counted closed)
- * or an item of *back, in the order of cl->pend, on nt threads. */
-static int resolve_pending(closure *cl, unsigned nt, vbx_item **back, size_t *nback,
+/* The pending backward arcs of a round (in the runs of its forward phase):
+ * each either the reverse of a forward arc that arrived at its vertex with
+ * its triple (counted closed) or an item of *back, in item order, the runs
+ * in parallel. */
+static int resolve_pending(closure *cl, mrun *runs, unsigned nr, vbx_item **back, size_t *nback,
                            size_t *back_cap)
 {
-    unsigned nr = nt;
-    if (nr > (cl->npend + 1023) / 1024)
-        nr = (unsigned)((cl->npend + 1023) / 1024);
-    if (nr < 1)
-        nr = 1;
-    mrun runs[VB_MAX_THREADS];
-    cut_runs(runs, nr, cl, NULL, cl->npend);
     vb_parallel_for(resolve_run, runs, nr, (int)nr);
-    int rc = VB_OK;
     *nback = 0;
     for (unsigned r = 0; r < nr; r++) {
-        if (rc == VB_OK)
-            rc = runs[r].rc;
         cl->r->half_arcs += runs[r].closed;
         cl->r->closed += runs[r].closed;
-        if (rc == VB_OK && runs[r].npend &&
+        if (runs[r].npend &&
             VB_ARRAY_FIT(*back, *back_cap, *nback + runs[r].npend, 256) != VB_OK)
-            rc = VB_ENOMEM;
-        if (rc == VB_OK && runs[r].npend) {
+            return VB_ENOMEM;
+        if (runs[r].npend)
             memcpy(*back + *nback, runs[r].pend, runs[r].npend * sizeof *runs[r].pend);
-            *nback += runs[r].npend;
-        }
-        free(runs[r].pend);
+        *nback += runs[r].npend;
     }
-    return rc;
+    return VB_OK;
 }
 
 /* Runs the n items on the tracers and merges their events in vbx_item order. */
 static int run_phase(closure *cl, vbx_tracer *tr, unsigned nt, const vbx_item *it, size_t n,
-                     size_t base, size_t total)
+                     size_t base, size_t total, mrun *runs, unsigned *nr)
 {
+    *nr = 0;
     if (!n)
         return VB_OK;
     vbx_tphase ph;
@@ -556,7 +546,7 @@ static int run_phase(closure *cl, vbx_tracer *tr, unsigned nt, const vbx_item *i
     }
     double t1 = vb_now();
     if (rc == VB_OK)
-        rc = merge_phase(cl, &ph, nt);
+        rc = merge_phase(cl, &ph, nt, runs, nr);
     cl->r->merge_s += vb_now() - t1;
     free(ph.first);
     free(ph.count);
@@ -589,18 +579,23 @@ static int run_rounds(closure *cl, vbx_tracer *tr, unsigned nt)
             break;
         for (unsigned i = 0; i < nt; i++)
             tr[i].map = &cl->map;
-        static const uint32_t none[3] = {0, 0, 0};
-        for (size_t k = lo; rc == VB_OK && k < hi; k++)
-            rc = push_item(&it, &nit, &it_cap, k, none, 1);
-        cl->npend = 0;
-        if (rc == VB_OK)
-            rc = run_phase(cl, tr, nt, it, nit, lo, hi);
+        if (VB_ARRAY_FIT(it, it_cap, hi - lo, 256) != VB_OK) {
+            rc = VB_ENOMEM;
+            break;
+        }
+        for (size_t k = lo; k < hi; k++)
+            it[nit++] = (vbx_item){k, {0, 0, 0}, 1};
+        mrun runs[VB_MAX_THREADS];
+        unsigned nr = 0;
+        rc = run_phase(cl, tr, nt, it, nit, lo, hi, runs, &nr);
         double t1 = vb_now();
         if (rc == VB_OK)
-            rc = resolve_pending(cl, nt, &back, &nback, &back_cap);
+            rc = resolve_pending(cl, runs, nr, &back, &nback, &back_cap);
+        free_runs(runs, nr);
         cl->r->merge_s += vb_now() - t1;
         if (rc == VB_OK)
-            rc = run_phase(cl, tr, nt, back, nback, 0, 0);
+            rc = run_phase(cl, tr, nt, back, nback, 0, 0, runs, &nr);
+        free_runs(runs, nr);
         lo = hi;
     }
     if (rc == VB_OK)
@@ -643,11 +638,12 @@ static int tedge_cmp(const void *pa, const void *pb)
  * vertices leave them forward from different starts and stay two. Both
  * half arcs of a closed loop record it: kept once. The half arcs to
  * infinity of a vertex and triple, one each way, are two edges. */
-static int emit_edges(closure *cl, size_t nin, const size_t *where_added,
+static int emit_edges(closure *cl, size_t nin, const size_t *where_added, unsigned nt,
                       vb_topology_edge **edges, size_t *nedges)
 {
-    if (cl->ned)
-        qsort(cl->ed, cl->ned, sizeof *cl->ed, tedge_cmp);
+    /* tedge_cmp is a total order: the one sorted array on any nt */
+    if (vb_psort(cl->ed, cl->ned, sizeof *cl->ed, tedge_cmp, (int)nt) != VB_OK)
+        return VB_ENOMEM;
     vb_topology_edge *o = malloc((cl->ned ? cl->ned : 1) * sizeof *o);
     if (!o)
         return VB_ENOMEM;
@@ -738,8 +734,8 @@ static int close_list(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier *cert,
     double t1 = vb_now();
     if (rc == VB_OK) {
         out->vertices = cl.all.n;
-        for (size_t k = 0; k < cl.all.n; k++)
-            out->components += vb_uf_root(&cl.comp, (uint32_t)k) == k;
+        for (size_t k = 0; k < cl.all.n; k++) /* a root is its own parent */
+            out->components += cl.comp.p[k] == k;
         for (unsigned i = 0; i < nt; i++)
             add_counters(out, &tr[i].w.cnt);
         if (edges && !(where = malloc((out->added.n ? out->added.n : 1) * sizeof *where)))
@@ -747,7 +743,7 @@ static int close_list(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier *cert,
         if (rc == VB_OK)
             rc = vb_vertex_list_sort_perm(&out->added, where);
         if (rc == VB_OK && edges)
-            rc = emit_edges(&cl, in->n, where, edges, nedges);
+            rc = emit_edges(&cl, in->n, where, nt, edges, nedges);
         for (unsigned i = 0; i < nt; i++)
             out->busy_s += tr[i].busy;
     }
@@ -777,7 +773,6 @@ static int close_list(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier *cert,
     vb_hash_free(&cl.arrived.tab);
     free(cl.arrived.k);
     free(cl.amask);
-    free(cl.pend);
     free(cl.map.e);
     free(cl.map.off);
     return rc;

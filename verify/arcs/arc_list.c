@@ -44,8 +44,11 @@ int vb_arc_complete_list_edges(vb_ctx *ctx, const vb_sphere_set *set, vb_certifi
             e->v[1] = s;
         }
     }
-    if (rc == VB_OK && edges && *nedges)
-        qsort(*edges, *nedges, sizeof **edges, edge_cmp);
+    /* edge_cmp orders by every field: the one sorted array on any number
+     * of threads */
+    if (rc == VB_OK && edges && *nedges &&
+        vb_psort(*edges, *nedges, sizeof **edges, edge_cmp, vb_threads(threads)) != VB_OK)
+        rc = VB_ENOMEM;
     free(where);
     if (rc != VB_OK && edges) {
         free(*edges);
