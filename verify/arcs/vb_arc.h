@@ -41,10 +41,12 @@ typedef struct vb_arc_report {
     vb_vertex_list added;   /* certified vertices found by tracing, not in the input (sorted) */
     uint64_t filter_calls, filter_failures, exact_evals, candidates;
     double seconds;         /* vb_arc_complete_list: wall time of the closure */
-    /* wall seconds of the closure's phases: the list's table (setup), the
-     * triples' map of each round (map), the tracing (trace: parallel; busy:
-     * the tracers' summed CPU seconds inside it), merging the events in order
-     * (merge: one thread) and components, sorting and edges (finish) */
+    /* wall seconds of the closure's phases: the list's copy, the tracers
+     * and the certifier unless one is lent (setup), the triples' map of each
+     * round (map: parallel), the tracing (trace: parallel; busy: the
+     * tracers' summed CPU seconds inside it), merging the events and
+     * resolving the pending arcs (merge: parallel, vertices added in order
+     * on one thread) and components, sorting and edges (finish) */
     double setup_s, map_s, trace_s, busy_s, merge_s, finish_s;
     unsigned threads;       /* tracers used */
 } vb_arc_report;
