@@ -1,12 +1,17 @@
-/* Internals of the closure loop (arc_closure.c) and its tracers
- * (arc_tracer.c): the vertices of each triple, what one half arc found, a
- * thread's tracer and the phases of a round. */
+/* Internals of the closure loop (arc_closure.c), its tracers
+ * (arc_tracer.c) and its merge (arc_merge.c): the vertices of each triple,
+ * what one half arc found, a thread's tracer, the phases of a round and the
+ * closure's state. */
 #ifndef VBX_CLOSURE_H
 #define VBX_CLOSURE_H
 
 #include <stdatomic.h>
 
+#include "vb_hash.h"
+#include "vb_uf.h"
 #include "vb_vertex.h"
+
+#include "vb_arc.h"
 #include "vbx_arc.h"
 
 /* The rounded point (x, y, z, t) of vertex k of a list. */
@@ -137,5 +142,89 @@ typedef struct vbx_rjob {
  * (the tracer's rc and fail_at). Each item's events are a function of that
  * item alone, so which thread traced it does not matter. */
 void *vbx_phase_work(void *arg);
+
+/* ---- the closure's state (arc_closure.c) and its merge (arc_merge.c) ----- */
+
+/* Arrivals: (vertex, triple) pairs reached by a forward arc. */
+typedef struct vbx_akey {
+    size_t to;
+    uint32_t t[3];
+} vbx_akey;
+
+/* The pairs in order of arrival and the table of them. */
+typedef struct vbx_aset {
+    vbx_akey *k;
+    size_t n, cap;
+    vb_hash tab;
+} vbx_aset;
+
+/* Vertices of at most this many members keep their arrivals as bits. */
+enum { VBX_MASK_MEMBERS = 6 };
+
+/* A traced edge (vb_arc_close_edges), oriented forward along its curve:
+ * from its start to its end (vertex indices of closure.all), with the kind
+ * of half arc that recorded it. */
+enum { VBX_TE_FWD = 0, VBX_TE_BWD = 1, VBX_TE_INF = 2, VBX_TE_LOOP = 3 };
+
+typedef struct vbx_tedge {
+    size_t from, to; /* to: SIZE_MAX for infinity */
+    uint32_t t[3];
+    int kind;
+} vbx_tedge;
+
+/* The closure of one list: what the rounds built so far. */
+typedef struct vbx_closure {
+    vb_ctx *ctx;
+    vbx_tedge *ed;      /* NULL unless edges are wanted */
+    size_t ned, ed_cap;
+    int want_edges;
+    vb_vertex_list all; /* input + added, in tracing order */
+    vb_hash tab;        /* the vertices added to all (the input's are found through
+                           the map: vbx_tmap_find) */
+    vb_uf comp;         /* components of the vertex-edge graph */
+    vbx_aset arrived;   /* (vertex, triple) reached by a forward arc (vertices of more
+                           than VBX_MASK_MEMBERS members) */
+    uint32_t *amask;    /* ... per vertex of fewer: a bit per triple of its members */
+    size_t amask_cap;
+    vbx_tmap map;       /* the triples of the list */
+    vb_arc_report *r;
+} vbx_closure;
+
+/* A run of the merge: items (or pending arcs) [i0, i1) on one thread; its
+ * counts, edges and pending arcs, and the items with an event left to the
+ * ordered pass (late_event). */
+typedef struct vbx_mrun {
+    vbx_closure *cl;
+    const vbx_tphase *ph;
+    size_t i0, i1;
+    size_t half_arcs, closed, infinite, loops, undecided;
+    vbx_tedge *ed;
+    size_t ned, ed_cap;
+    vbx_item *pend;
+    size_t npend, pend_cap;
+    size_t *late;
+    size_t nlate, late_cap;
+    int rc;
+} vbx_mrun;
+
+/* The events of the phase's n items merged: in *nr parallel runs (runs[],
+ * VB_MAX_THREADS of them) for all that is free of order, then the late
+ * events in item order; the pending arcs stay in the runs' lists (run
+ * order then list order is item order: free them with vbx_free_runs). The
+ * counts, the vertices added (and their order), the arrivals, components
+ * and edges are those of merging every event one by one in item order.
+ * VB_OK or VB_ENOMEM. */
+int vbx_merge_phase(vbx_closure *cl, const vbx_tphase *ph, unsigned nt, vbx_mrun *runs,
+                    unsigned *nr);
+
+/* The pending backward arcs of a round (in the runs of its forward phase):
+ * each either the reverse of a forward arc that arrived at its vertex with
+ * its triple (counted closed) or an item of *back, in item order, the runs
+ * in parallel. VB_OK or VB_ENOMEM. */
+int vbx_resolve_pending(vbx_closure *cl, vbx_mrun *runs, unsigned nr, vbx_item **back,
+                        size_t *nback, size_t *back_cap);
+
+/* Frees what runs[0 .. nr) hold. */
+void vbx_free_runs(vbx_mrun *runs, unsigned nr);
 
 #endif
