@@ -240,8 +240,7 @@ static int close_list(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier *cert,
         tr[i].have_w = 1;
         vbx_tracer_scratch(&tr[i], 1);
     }
-    if (rc == VB_OK)
-        rc = vb_vertex_list_append(&cl.all, in); /* the tracers read points and members */
+    cl.all = *in; /* lent: copied only when a vertex is added (vbx_closure_own) */
     if (rc == VB_OK)
         rc = vb_uf_fit(&cl.comp, cl.all.n);
     out->threads = nt;
@@ -286,7 +285,8 @@ static int close_list(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier *cert,
     if (c != cert)
         vb_certifier_close(c);
     free(tr);
-    vb_vertex_list_free(&cl.all);
+    if (cl.all_owned)
+        vb_vertex_list_free(&cl.all);
     vb_hash_free(&cl.tab);
     vb_uf_free(&cl.comp);
     vb_hash_free(&cl.arrived.tab);

@@ -262,6 +262,21 @@ static void merge_run(void *arg, size_t r, int tid)
     }
 }
 
+int vbx_closure_own(vbx_closure *cl)
+{
+    if (cl->all_owned)
+        return VB_OK;
+    vb_vertex_list copy;
+    vb_vertex_list_init(&copy);
+    if (vb_vertex_list_append(&copy, &cl->all) != VB_OK) {
+        vb_vertex_list_free(&copy);
+        return VB_ENOMEM;
+    }
+    cl->all = copy;
+    cl->all_owned = 1;
+    return VB_OK;
+}
+
 /* The late events of item k's vertex (tracer tr, events [e0, e0 + n)), in
  * event order: the end looked up among the added vertices and added when
  * new, then counted, its arrival, edge and component recorded. */
@@ -284,7 +299,9 @@ static int merge_late(vbx_closure *cl, const vbx_tracer *tr, size_t e0, size_t n
             to = *s - 1;
         } else if (s) {
             to = cl->all.n;
-            int rc = vb_vertex_list_push(&cl->all, m, e->nm, e->p[0], e->p[1], e->p[2], e->p[3],
+            int rc = vbx_closure_own(cl);
+            if (rc == VB_OK)
+                rc = vb_vertex_list_push(&cl->all, m, e->nm, e->p[0], e->p[1], e->p[2], e->p[3],
                                          0, VB_VERTEX_CERTIFIED);
             if (rc == VB_OK)
                 rc = vb_vertex_list_push(&r->added, m, e->nm, e->p[0], e->p[1], e->p[2], e->p[3],

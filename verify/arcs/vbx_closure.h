@@ -178,7 +178,10 @@ typedef struct vbx_closure {
     vbx_tedge *ed;      /* NULL unless edges are wanted */
     size_t ned, ed_cap;
     int want_edges;
-    vb_vertex_list all; /* input + added, in tracing order */
+    vb_vertex_list all; /* input + added, in tracing order: the input's arrays
+                           themselves until a vertex is added (all_owned 0), a copy
+                           from then on (vbx_closure_own) */
+    int all_owned;
     vb_hash tab;        /* the vertices added to all (the input's are found through
                            the map: vbx_tmap_find) */
     vb_uf comp;         /* components of the vertex-edge graph */
@@ -189,6 +192,10 @@ typedef struct vbx_closure {
     vbx_tmap map;       /* the triples of the list */
     vb_arc_report *r;
 } vbx_closure;
+
+/* Makes cl->all a list of the closure's own (a copy of the input it was
+ * lent) before a vertex is added to it. VB_OK or VB_ENOMEM. */
+int vbx_closure_own(vbx_closure *cl);
 
 /* A run of the merge: items (or pending arcs) [i0, i1) on one thread; its
  * counts, edges and pending arcs, and the items with an event left to the
