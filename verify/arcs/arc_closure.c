@@ -15,7 +15,7 @@
 
 /* Runs the n items on the tracers and merges their events in vbx_item order. */
 static int run_phase(vbx_closure *cl, vbx_tracer *tr, unsigned nt, const vbx_item *it, size_t n,
-                     size_t base, size_t total, vbx_mrun *runs, unsigned *nr)
+                     size_t base, size_t span, size_t total, vbx_mrun *runs, unsigned *nr)
 {
     *nr = 0;
     if (!n)
@@ -33,6 +33,7 @@ static int run_phase(vbx_closure *cl, vbx_tracer *tr, unsigned nt, const vbx_ite
     atomic_init(&ph.done, 0);
     ph.progress = total ? cl->ctx : NULL;
     ph.base = base;
+    ph.span = span;
     ph.total = total;
     int rc = VB_OK;
     vbx_rjob jobs[VB_MAX_THREADS];
@@ -98,22 +99,29 @@ static int run_rounds(vbx_closure *cl, vbx_tracer *tr, unsigned nt)
             break;
         for (unsigned i = 0; i < nt; i++)
             tr[i].map = &cl->map;
-        if (VB_ARRAY_FIT(it, it_cap, hi - lo, 256) != VB_OK) {
+        /* The first round (the whole map) by triple, each triple's frame
+         * set up once for all its vertices; the next rounds (vertices found
+         * new) by vertex. */
+        if (lo == 0) {
+            rc = vbx_tmap_items(&cl->map, nt, &it, &nit, &it_cap);
+        } else if (VB_ARRAY_FIT(it, it_cap, hi - lo, 256) != VB_OK) {
             rc = VB_ENOMEM;
-            break;
+        } else {
+            for (size_t k = lo; k < hi; k++)
+                it[nit++] = (vbx_item){k, {0, 0, 0}, 0, VBX_IT_VERTEX};
         }
-        for (size_t k = lo; k < hi; k++)
-            it[nit++] = (vbx_item){k, {0, 0, 0}, 1};
+        if (rc != VB_OK)
+            break;
         vbx_mrun runs[VB_MAX_THREADS];
         unsigned nr = 0;
-        rc = run_phase(cl, tr, nt, it, nit, lo, hi, runs, &nr);
+        rc = run_phase(cl, tr, nt, it, nit, lo, hi - lo, hi, runs, &nr);
         double t1 = vb_now();
         if (rc == VB_OK)
             rc = vbx_resolve_pending(cl, runs, nr, &back, &nback, &back_cap);
         vbx_free_runs(runs, nr);
         cl->r->merge_s += vb_now() - t1;
         if (rc == VB_OK)
-            rc = run_phase(cl, tr, nt, back, nback, 0, 0, runs, &nr);
+            rc = run_phase(cl, tr, nt, back, nback, 0, 0, 0, runs, &nr);
         vbx_free_runs(runs, nr);
         lo = hi;
     }

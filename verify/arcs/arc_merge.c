@@ -163,6 +163,7 @@ static int push_item(vbx_item **v, size_t *n, size_t *cap, size_t k, const uint3
     vbx_item *it = &(*v)[(*n)++];
     it->k = k;
     memcpy(it->t, t, sizeof it->t);
+    it->n = 0;
     it->all = all;
     return VB_OK;
 }
@@ -220,12 +221,12 @@ static void merge_run(void *arg, size_t r, int tid)
     const vbx_tphase *ph = m->ph;
     for (size_t i = m->i0; i < m->i1 && m->rc == VB_OK; i++) {
         const vbx_tracer *tr = &ph->tr[ph->who[i]];
-        size_t k = ph->it[i].k;
         int late = 0, rc = VB_OK;
         for (size_t q = ph->first[i]; rc == VB_OK && q < ph->first[i] + ph->count[i]; q++) {
             const vbx_hev *e = &tr->ev[q];
+            size_t k = e->from;
             if (e->kind == VBX_EV_PENDING) {
-                rc = push_item(&m->pend, &m->npend, &m->pend_cap, k, e->t, 0);
+                rc = push_item(&m->pend, &m->npend, &m->pend_cap, k, e->t, VBX_IT_BACK);
                 continue;
             }
             if (late_event(cl, e)) {
@@ -277,16 +278,17 @@ int vbx_closure_own(vbx_closure *cl)
     return VB_OK;
 }
 
-/* The late events of item k's vertex (tracer tr, events [e0, e0 + n)), in
- * event order: the end looked up among the added vertices and added when
+/* The late events of an item (tracer tr, events [e0, e0 + n)), in event
+ * order: the end looked up among the added vertices and added when
  * new, then counted, its arrival, edge and component recorded. */
-static int merge_late(vbx_closure *cl, const vbx_tracer *tr, size_t e0, size_t n, size_t k)
+static int merge_late(vbx_closure *cl, const vbx_tracer *tr, size_t e0, size_t n)
 {
     vb_arc_report *r = cl->r;
     for (size_t i = e0; i < e0 + n; i++) {
         const vbx_hev *e = &tr->ev[i];
         if (!late_event(cl, e))
             continue;
+        size_t k = e->from;
         r->half_arcs++;
         const uint32_t *m = tr->pool + e->moff;
         size_t to = e->to, *s = NULL;
@@ -387,7 +389,7 @@ int vbx_merge_phase(vbx_closure *cl, const vbx_tphase *ph, unsigned nt, vbx_mrun
             rc = frc;
         for (size_t q = 0; rc == VB_OK && q < runs[r].nlate; q++) {
             size_t i = runs[r].late[q];
-            rc = merge_late(cl, &ph->tr[ph->who[i]], ph->first[i], ph->count[i], ph->it[i].k);
+            rc = merge_late(cl, &ph->tr[ph->who[i]], ph->first[i], ph->count[i]);
         }
         free(runs[r].late);
         runs[r].late = NULL;

@@ -3,6 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_array.h"
 #include "vb_parallel.h"
 
 #include "vbx_closure.h"
@@ -151,6 +152,73 @@ int vbx_tmap_update(vbx_tmap *m, const vb_vertex_list *all, unsigned nt)
     m->e = out;
     m->n = n;
     m->cap = n ? n : 1;
+    return VB_OK;
+}
+
+/* Items of the map: entries cut into runs, each run's triples that start
+ * in it (a triple starts at its first entry) counted, then written at the
+ * run's offset. */
+typedef struct titems {
+    const vbx_tmap *m;
+    size_t nrun;
+    size_t *cnt; /* per run: triples starting in it, then their first item */
+    vbx_item *it;
+} titems;
+
+static int starts_triple(const vbx_tmap *m, size_t i)
+{
+    return i == 0 || memcmp(m->e[i].t, m->e[i - 1].t, sizeof m->e[i].t) != 0;
+}
+
+static void count_triples(void *arg, size_t r, int tid)
+{
+    (void)tid;
+    titems *x = arg;
+    size_t i0 = x->m->n * r / x->nrun, i1 = x->m->n * (r + 1) / x->nrun, c = 0;
+    for (size_t i = i0; i < i1; i++)
+        c += (size_t)starts_triple(x->m, i);
+    x->cnt[r] = c;
+}
+
+static void write_triples(void *arg, size_t r, int tid)
+{
+    (void)tid;
+    titems *x = arg;
+    const vbx_tmap *m = x->m;
+    size_t i0 = m->n * r / x->nrun, i1 = m->n * (r + 1) / x->nrun, o = x->cnt[r];
+    for (size_t i = i0; i < i1; i++) {
+        if (!starts_triple(m, i))
+            continue;
+        size_t j = i + 1;
+        while (j < m->n && memcmp(m->e[j].t, m->e[i].t, sizeof m->e[i].t) == 0)
+            j++;
+        vbx_item *it = &x->it[o++];
+        it->k = i;
+        memcpy(it->t, m->e[i].t, sizeof it->t);
+        it->n = (uint32_t)(j - i);
+        it->all = VBX_IT_TRIPLE;
+    }
+}
+
+int vbx_tmap_items(const vbx_tmap *m, unsigned nt, vbx_item **it, size_t *n, size_t *cap)
+{
+    size_t nrun = nt ? nt : 1;
+    size_t cnt[VB_MAX_THREADS];
+    if (nrun > VB_MAX_THREADS)
+        nrun = VB_MAX_THREADS;
+    titems x = {m, nrun, cnt, NULL};
+    vb_parallel_for(count_triples, &x, nrun, (int)nt);
+    size_t total = 0;
+    for (size_t r = 0; r < nrun; r++) {
+        size_t c = cnt[r];
+        cnt[r] = total;
+        total += c;
+    }
+    if (VB_ARRAY_FIT(*it, *cap, total ? total : 1, 256) != VB_OK)
+        return VB_ENOMEM;
+    x.it = *it;
+    vb_parallel_for(write_triples, &x, nrun, (int)nt);
+    *n = total;
     return VB_OK;
 }
 

@@ -71,6 +71,7 @@ enum {
 
 typedef struct vbx_hev {
     double p[4];
+    size_t from; /* the vertex the half arc leaves */
     size_t to;   /* VBX_EV_CLOSED: the end's index in the list when the tracer
                     found it there (vbx_tmap_find), else SIZE_MAX */
     size_t moff;
@@ -99,18 +100,31 @@ typedef struct vbx_tracer {
     vbx_xpt x, xu;
     vbx_touch tp;
     int have_scratch;
+    size_t from; /* the vertex being traced (vbx_hev.from) */
 } vbx_tracer;
 
 /* Initialises (on) or clears (!on) tracer t's scratch. */
 void vbx_tracer_scratch(vbx_tracer *t, int on);
 
-/* An item of a phase: every triple of vertex k (forward arcs traced,
- * backward ones left pending), or the backward arc of triple t alone. */
+/* An item of a phase: every triple of vertex k (all = VBX_IT_VERTEX:
+ * forward arcs traced, backward ones left pending), the backward arc of
+ * triple t at vertex k alone (VBX_IT_BACK), or a triple of the round's map
+ * at every vertex that holds it (VBX_IT_TRIPLE: its n entries from map
+ * entry k on, in map order; as VBX_IT_VERTEX for that triple at each, the
+ * triple's frame set up once). */
+enum { VBX_IT_BACK = 0, VBX_IT_VERTEX = 1, VBX_IT_TRIPLE = 2 };
+
 typedef struct vbx_item {
     size_t k;
     uint32_t t[3];
+    uint32_t n;
     int all;
 } vbx_item;
+
+/* The items of the round's map m: one VBX_IT_TRIPLE per triple, in map
+ * order (found on nt threads) into *it (*n of them, *cap allocated). VB_OK
+ * or VB_ENOMEM. */
+int vbx_tmap_items(const vbx_tmap *m, unsigned nt, vbx_item **it, size_t *n, size_t *cap);
 
 /* A phase: items taken in chunks by the tracers; each item's events stay
  * in the tracer that traced it (who, first, count). */
@@ -123,8 +137,9 @@ typedef struct vbx_tphase {
     uint32_t *count;    /* ... number of events */
     uint16_t *who;      /* ... the tracer that holds them */
     atomic_size_t next; /* next chunk */
-    vb_ctx *progress;   /* NULL, or where "arcs" progress goes: base + items */
-    size_t base, total; /* done of total (vb_progress) */
+    vb_ctx *progress;   /* NULL, or where "arcs" progress goes: base + span *
+                           items done / n */
+    size_t base, span, total; /* of total (vb_progress) */
     atomic_size_t done; /* items traced so far */
 } vbx_tphase;
 
