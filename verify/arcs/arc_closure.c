@@ -75,7 +75,8 @@ static int run_phase(vbx_closure *cl, vbx_tracer *tr, unsigned nt, const vbx_ite
 }
 
 /* Rounds: every vertex not yet traced has its forward arcs traced (in
- * parallel), the events merged in vertex order; then each backward arc is
+ * parallel; the first round triple by triple, the next ones vertex by
+ * vertex), the events merged in item order; then each backward arc is
  * either the reverse of a forward arc already traced that arrived at its
  * vertex with its triple (the forward search proved the open arc between
  * the two vertices free of touching spheres, so the backward search would
@@ -119,6 +120,7 @@ static int run_rounds(vbx_closure *cl, vbx_tracer *tr, unsigned nt)
         if (rc == VB_OK)
             rc = vbx_resolve_pending(cl, runs, nr, &back, &nback, &back_cap);
         vbx_free_runs(runs, nr);
+        nr = 0;
         cl->r->merge_s += vb_now() - t1;
         if (rc == VB_OK)
             rc = run_phase(cl, tr, nt, back, nback, 0, 0, 0, runs, &nr);

@@ -403,6 +403,11 @@ void vbx_free_runs(vbx_mrun *runs, unsigned nr)
         free(runs[r].ed);
         free(runs[r].pend);
         free(runs[r].late);
+        runs[r].ed = NULL;
+        runs[r].pend = NULL;
+        runs[r].late = NULL;
+        runs[r].ned = runs[r].npend = runs[r].nlate = 0;
+        runs[r].ed_cap = runs[r].pend_cap = runs[r].late_cap = 0;
     }
 }
 

@@ -246,7 +246,8 @@ int vbx_merge_phase(vbx_closure *cl, const vbx_tphase *ph, unsigned nt, vbx_mrun
 int vbx_resolve_pending(vbx_closure *cl, vbx_mrun *runs, unsigned nr, vbx_item **back,
                         size_t *nback, size_t *back_cap);
 
-/* Frees what runs[0 .. nr) hold. */
+/* Frees what runs[0 .. nr) hold; they hold nothing then (a second call
+ * frees nothing). */
 void vbx_free_runs(vbx_mrun *runs, unsigned nr);
 
 #endif
