@@ -168,13 +168,16 @@ static int push_item(vbx_item **v, size_t *n, size_t *cap, size_t k, const uint3
     return VB_OK;
 }
 
-static int push_tedge(vbx_closure *cl, size_t from, size_t to, const uint32_t t[3], int kind)
+/* Appends the edge (from, to, t, kind) to the array (*ed, *n, *cap) when
+ * edges are wanted. VB_OK or VB_ENOMEM. */
+static int add_tedge(int want, vbx_tedge **ed, size_t *n, size_t *cap, size_t from, size_t to,
+                     const uint32_t t[3], int kind)
 {
-    if (!cl->want_edges)
+    if (!want)
         return VB_OK;
-    if (VB_ARRAY_FIT(cl->ed, cl->ed_cap, cl->ned + 1, 1024) != VB_OK)
+    if (VB_ARRAY_FIT(*ed, *cap, *n + 1, 1024) != VB_OK)
         return VB_ENOMEM;
-    vbx_tedge *e = &cl->ed[cl->ned++];
+    vbx_tedge *e = &(*ed)[(*n)++];
     e->from = from;
     e->to = to;
     memcpy(e->t, t, sizeof e->t);
@@ -182,21 +185,16 @@ static int push_tedge(vbx_closure *cl, size_t from, size_t to, const uint32_t t[
     return VB_OK;
 }
 
-/* ---- merging a phase's events --------------------------------------------- */
+static int push_tedge(vbx_closure *cl, size_t from, size_t to, const uint32_t t[3], int kind)
+{
+    return add_tedge(cl->want_edges, &cl->ed, &cl->ned, &cl->ed_cap, from, to, t, kind);
+}
 
+/* ---- merging a phase's events --------------------------------------------- */
 
 static int run_tedge(vbx_mrun *m, size_t from, size_t to, const uint32_t t[3], int kind)
 {
-    if (!m->cl->want_edges)
-        return VB_OK;
-    if (VB_ARRAY_FIT(m->ed, m->ed_cap, m->ned + 1, 1024) != VB_OK)
-        return VB_ENOMEM;
-    vbx_tedge *e = &m->ed[m->ned++];
-    e->from = from;
-    e->to = to;
-    memcpy(e->t, t, sizeof e->t);
-    e->kind = kind;
-    return VB_OK;
+    return add_tedge(m->cl->want_edges, &m->ed, &m->ned, &m->ed_cap, from, to, t, kind);
 }
 
 /* A closed half arc whose end the tracer did not find in the round's map

@@ -55,40 +55,20 @@ typedef struct tbuild {
     vbx_tent *out;
 } tbuild;
 
-static void chunk_of(const tbuild *b, size_t c, size_t *k0, size_t *k1)
+/* Run c of the build: its counts (fill 0: C(nm - 1 - a, 2) triples of
+ * vertex k start with its a-th member), or its entries at its cursors in
+ * vertex order (fill 1). */
+static void build_run(const tbuild *b, size_t c, int fill)
 {
-    *k0 = b->all->n * c / b->nchunk;
-    *k1 = b->all->n * (c + 1) / b->nchunk;
-}
-
-/* Run c's counts: C(nm - 1 - a, 2) triples of vertex k start with its a-th
- * member. */
-static void count_run(void *arg, size_t c, int tid)
-{
-    (void)tid;
-    const tbuild *b = arg;
     const vb_vertex_list *all = b->all;
-    size_t *h = b->hist + c * b->top, k0, k1;
-    chunk_of(b, c, &k0, &k1);
-    for (size_t k = k0; k < k1; k++) {
-        size_t s = all->start[k], nm = all->start[k + 1] - s;
-        for (size_t a = 0; a + 2 < nm; a++)
-            h[all->ids[s + a]] += (nm - 1 - a) * (nm - 2 - a) / 2;
-    }
-}
-
-/* Run c's entries at its cursors, in vertex order. */
-static void fill_run(void *arg, size_t c, int tid)
-{
-    (void)tid;
-    const tbuild *b = arg;
-    const vb_vertex_list *all = b->all;
-    size_t *h = b->hist + c * b->top, k0, k1;
-    chunk_of(b, c, &k0, &k1);
+    size_t *h = b->hist + c * b->top;
+    size_t k0 = all->n * c / b->nchunk, k1 = all->n * (c + 1) / b->nchunk;
     for (size_t k = k0; k < k1; k++) {
         size_t s = all->start[k], nm = all->start[k + 1] - s;
         const uint32_t *id = all->ids + s;
-        for (size_t a = 0; a < nm; a++)
+        for (size_t a = 0; a + 2 < nm && !fill; a++)
+            h[id[a]] += (nm - 1 - a) * (nm - 2 - a) / 2;
+        for (size_t a = 0; a < nm && fill; a++)
             for (size_t bb = a + 1; bb < nm; bb++)
                 for (size_t cc = bb + 1; cc < nm; cc++) {
                     vbx_tent *e = &b->out[h[id[a]]++];
@@ -98,6 +78,18 @@ static void fill_run(void *arg, size_t c, int tid)
                     e->k = (uint32_t)k;
                 }
     }
+}
+
+static void count_run(void *arg, size_t c, int tid)
+{
+    (void)tid;
+    build_run(arg, c, 0);
+}
+
+static void fill_run(void *arg, size_t c, int tid)
+{
+    (void)tid;
+    build_run(arg, c, 1);
 }
 
 /* Every triple of every vertex of all, bucketed by first sphere (counting
