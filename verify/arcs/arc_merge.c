@@ -232,6 +232,10 @@ static void merge_run(void *arg, size_t r, int tid)
                 continue;
             }
             m->half_arcs++;
+            if (e->kind == VBX_EV_REVERSED) {
+                m->closed++;
+                continue;
+            }
             if (e->kind == VBX_EV_INF) {
                 m->infinite++;
                 rc = run_tedge(m, k, SIZE_MAX, e->t, VBX_TE_INF);

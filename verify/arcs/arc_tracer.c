@@ -270,11 +270,16 @@ void vbx_tracer_scratch(vbx_tracer *t, int on)
 }
 
 /* A VBX_IT_TRIPLE item: the triple's frame once, then its arcs at each
- * vertex of the map that holds it. */
+ * vertex of the map that holds it. Every forward arc of the triple that
+ * ends at a listed vertex is among this item's events (the map holds all
+ * the round's vertices of the triple, and such an end is found in it), so
+ * a backward arc is settled here when one of them reached its vertex:
+ * what run_rounds' arrivals would settle, without the pending record. */
 static int trace_group(vbx_tracer *tr, const vb_vertex_list *all, const vbx_item *it)
 {
     const vbx_tent *e = tr->map->e + it->k;
     vbx_tframe *f;
+    size_t e0 = tr->nev;
     int rc = frame_of(tr, e->t, &f);
     for (uint32_t i = 0; rc == VB_OK && i < it->n; i++) {
         size_t k = e[i].k, s = all->start[k];
@@ -283,6 +288,18 @@ static int trace_group(vbx_tracer *tr, const vb_vertex_list *all, const vbx_item
         vbx_ia box[4];
         vbx_box_of_rounded(p, box);
         rc = trace_at(tr, all, k, all->ids + s, all->start[k + 1] - s, p, box, f, e->t, 1);
+    }
+    for (size_t a = e0; rc == VB_OK && a < tr->nev; a++) {
+        vbx_hev *pa = &tr->ev[a];
+        if (pa->kind != VBX_EV_PENDING)
+            continue;
+        for (size_t b = e0; b < tr->nev; b++) {
+            const vbx_hev *fb = &tr->ev[b];
+            if (fb->kind == VBX_EV_CLOSED && fb->dir == 0 && fb->to == pa->from) {
+                pa->kind = VBX_EV_REVERSED;
+                break;
+            }
+        }
     }
     return rc;
 }

@@ -60,13 +60,17 @@ size_t vbx_tmap_find(const vbx_tmap *m, const vb_vertex_list *all, const uint32_
 
 /* What one half arc found: its end, and for a vertex its members (in the
  * worker's pool) and rounded point; VBX_EV_PENDING: a backward arc left for
- * later (see run_rounds in arc_closure.c). */
+ * later (see run_rounds in arc_closure.c); VBX_EV_REVERSED: a backward arc
+ * that is the reverse of a forward arc of its triple traced to its vertex
+ * in the same item (closed without a search, as run_rounds closes a
+ * pending one that such an arc reached). */
 enum {
     VBX_EV_CLOSED = 0,
     VBX_EV_INF = 1,
     VBX_EV_LOOP = 2,
     VBX_EV_UNDECIDED = 3,
-    VBX_EV_PENDING = 4
+    VBX_EV_PENDING = 4,
+    VBX_EV_REVERSED = 5
 };
 
 typedef struct vbx_hev {
