@@ -54,6 +54,42 @@ static inline uint32_t vb_uf_join(vb_uf *u, uint32_t a, uint32_t b)
     return b;
 }
 
+/* The root of element i while other threads may join (vb_uf_join_shared):
+ * parents read atomically, the path halved by compare-and-swap (a parent
+ * only ever moves to an ancestor, a smaller element). */
+static inline uint32_t vb_uf_root_shared(vb_uf *u, uint32_t i)
+{
+    for (;;) {
+        uint32_t p = __atomic_load_n(&u->p[i], __ATOMIC_ACQUIRE);
+        if (p == i)
+            return i;
+        uint32_t g = __atomic_load_n(&u->p[p], __ATOMIC_ACQUIRE);
+        if (g != p)
+            __atomic_compare_exchange_n(&u->p[i], &p, g, 0, __ATOMIC_RELEASE, __ATOMIC_RELAXED);
+        i = g;
+    }
+}
+
+/* vb_uf_join for threads that join at once (nothing but this and
+ * vb_uf_root_shared on u until they are done): the larger root is hung
+ * below the smaller only while it is still a root (compare-and-swap), else
+ * the roots are found again. Once the threads are done the sets, each
+ * named by its smallest element, are those of the same joins made one by
+ * one in any order. */
+static inline void vb_uf_join_shared(vb_uf *u, uint32_t a, uint32_t b)
+{
+    for (;;) {
+        a = vb_uf_root_shared(u, a);
+        b = vb_uf_root_shared(u, b);
+        if (a == b)
+            return;
+        uint32_t lo = a < b ? a : b, hi = a < b ? b : a, expect = hi;
+        if (__atomic_compare_exchange_n(&u->p[hi], &expect, lo, 0, __ATOMIC_ACQ_REL,
+                                        __ATOMIC_ACQUIRE))
+            return;
+    }
+}
+
 /* Frees the parents; the structure holds no element again. */
 void vb_uf_free(vb_uf *u);
 

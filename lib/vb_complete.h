@@ -46,8 +46,9 @@ typedef struct vb_completion {
 /* Settles where the topology comes from, before the run: with the sampling
  * proposer and no arcs, from the sampler's evidence (the run keeps it:
  * cfg->propose.topology = 1); otherwise from arc closure (o->arcs = 1,
- * cfg->propose.topology = 0). Copies the run's threads into o->threads.
- * Touches nothing else. */
+ * cfg->propose.topology = 0). Copies the run's threads into o->threads, and
+ * sets cfg->keep_certifier = o->arcs (the closure borrows the run's
+ * certifier: vb_vertices_complete). Touches nothing else. */
 void vb_completion_plan(vb_vertices_config *cfg, vb_completion_opts *o);
 
 void vb_completion_init(vb_completion *c);
@@ -59,7 +60,9 @@ void vb_completion_free(vb_completion *c);
  * candidates refused (res->rejected.n in one process; the total over the
  * processes of a split run), writes the certificate, then with o->arcs
  * closes res->certified in place (vb_arc_complete_list: vertices found on
- * the way are certified, added and the list sorted again; W766 when a half
+ * the way are certified, added and the list sorted again; it traces with
+ * res->cert when the run kept the exact certifier of this set, which is
+ * then closed; W766 when a half
  * arc stays undecided), and with o->topology builds the faces and edges
  * (W765 for what could not be decided). Fills *out (vb_completion_free,
  * also on error). VB_OK, VB_ENOMEM, VB_EMISUSE, or arc closure's errors

@@ -9,14 +9,17 @@
 void vb_completion_plan(vb_vertices_config *cfg, vb_completion_opts *o)
 {
     o->threads = cfg->propose.threads;
-    if (!o->topology)
-        return;
-    /* Faces and edges come from arc closure, or with the sampling proposer
-     * alone from its evidence (which the sampler then keeps). */
-    int sampled = !o->arcs && cfg->proposer && strcmp(cfg->proposer, "sampling") == 0;
-    cfg->propose.topology = sampled;
-    if (!sampled)
-        o->arcs = 1;
+    if (o->topology) {
+        /* Faces and edges come from arc closure, or with the sampling
+         * proposer alone from its evidence (which the sampler then keeps). */
+        int sampled = !o->arcs && cfg->proposer && strcmp(cfg->proposer, "sampling") == 0;
+        cfg->propose.topology = sampled;
+        if (!sampled)
+            o->arcs = 1;
+    }
+    /* Arc closure borrows the run's certifier instead of building another
+     * on the same set (vb_vertices_complete). */
+    cfg->keep_certifier = o->arcs;
 }
 
 void vb_completion_init(vb_completion *c)
@@ -59,6 +62,27 @@ static int build_topology(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertic
     return VB_OK;
 }
 
+/* The run's certifier when it kept the exact one of this very set
+ * (vb_vertices_config.keep_certifier), else NULL: arc closure opens its own.
+ * What the closure takes from it is the exact input and the spatial index,
+ * a function of the set alone; the run's verdicts stay in res. */
+static vb_certifier *kept_certifier(const vb_sphere_set *set, const vb_vertices_result *res)
+{
+    return res->cert && res->cert_ops == &vb_exact_certifier && res->cert_set == set
+               ? res->cert
+               : NULL;
+}
+
+/* The kept certifier closed once the closure is done with it. */
+static void release_certifier(vb_vertices_result *res)
+{
+    if (res->cert && res->cert_ops)
+        res->cert_ops->close(res->cert);
+    res->cert = NULL;
+    res->cert_ops = NULL;
+    res->cert_set = NULL;
+}
+
 int vb_vertices_complete(vb_ctx *ctx, const vb_sphere_set *set, vb_vertices_result *res,
                          size_t rejected, const vb_completion_opts *o, vb_completion *out)
 {
@@ -77,8 +101,10 @@ int vb_vertices_complete(vb_ctx *ctx, const vb_sphere_set *set, vb_vertices_resu
     vb_topology_edge *edges = NULL;
     size_t nedges = 0;
     if (o->arcs) {
-        int rc = vb_arc_complete_list_edges(ctx, set, &res->certified, o->threads, &out->arcs,
-                                            o->topology ? &edges : NULL, &nedges);
+        int rc = vb_arc_complete_list_edges(ctx, set, kept_certifier(set, res), &res->certified,
+                                            o->threads, &out->arcs, o->topology ? &edges : NULL,
+                                            &nedges);
+        release_certifier(res);
         if (rc != VB_OK)
             return rc;
         out->traced = 1;

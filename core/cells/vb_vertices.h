@@ -71,6 +71,10 @@ typedef struct vb_vertices_config {
                                   * be a GPU (vb_vertices_device); 0: the
                                   * environment's VORBALL_HOST_BELOW, else
                                   * VB_HOST_BELOW_DEFAULT; 1: always the device */
+    int keep_certifier;          /* 1: a successful run leaves its certifier open in
+                                  * the result (cert, cert_ops) for a later stage on
+                                  * the same set (arc closure: vb_completion_plan
+                                  * sets it); vb_vertices_result_free closes it */
 } vb_vertices_config;
 
 /* The crossover of `--device auto` on a GPU machine (issue #30): below it
@@ -102,6 +106,10 @@ typedef struct vb_vertices_result {
     size_t repaired_candidates; /* intruder-swap candidates certified (see repair) */
     char backend[16];
     char device[160];
+    void *cert;                 /* with cfg->keep_certifier: the run's certifier, still
+                                 * open (its exact data and index of the run's set), */
+    const vb_certifier_ops *cert_ops; /* ... and its table; NULL otherwise */
+    const vb_sphere_set *cert_set;    /* ... the set it was built on */
 } vb_vertices_result;
 
 /* What a result proves, as one line for an output file's header (empty

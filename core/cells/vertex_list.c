@@ -163,11 +163,22 @@ int vb_vertex_list_append(vb_vertex_list *dst, const vb_vertex_list *src)
 {
     if (reserve_vertices(dst, dst->n + src->n) || reserve_ids(dst, dst->nids + src->nids))
         return VB_ENOMEM;
+    if (!src->n)
+        return VB_OK;
+    /* A list's vertices hold their ids sorted (vb_vertex_list_push): the
+     * arrays are copied as they are, the offsets moved. */
+    size_t n = dst->n, s0 = src->start[0], nids = src->start[src->n] - s0;
+    memcpy(dst->ids + dst->nids, src->ids + s0, nids * sizeof *dst->ids);
     for (size_t k = 0; k < src->n; k++)
-        if (vb_vertex_list_push(dst, src->ids + src->start[k], src->start[k + 1] - src->start[k],
-                                src->x[k], src->y[k], src->z[k], src->t[k], src->dist[k],
-                                src->status[k]))
-            return VB_ENOMEM;
+        dst->start[n + k + 1] = dst->nids + (src->start[k + 1] - s0);
+    memcpy(dst->x + n, src->x, src->n * sizeof *dst->x);
+    memcpy(dst->y + n, src->y, src->n * sizeof *dst->y);
+    memcpy(dst->z + n, src->z, src->n * sizeof *dst->z);
+    memcpy(dst->t + n, src->t, src->n * sizeof *dst->t);
+    memcpy(dst->dist + n, src->dist, src->n * sizeof *dst->dist);
+    memcpy(dst->status + n, src->status, src->n * sizeof *dst->status);
+    dst->n += src->n;
+    dst->nids += nids;
     return VB_OK;
 }
 

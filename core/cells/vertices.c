@@ -37,6 +37,8 @@ void vb_vertices_result_init(vb_vertices_result *r)
 
 void vb_vertices_result_free(vb_vertices_result *r)
 {
+    if (r->cert && r->cert_ops)
+        r->cert_ops->close(r->cert);
     vb_proposal_free(&r->proposal);
     vb_vertex_list_free(&r->certified);
     vb_vertex_list_free(&r->rejected);
@@ -305,7 +307,7 @@ static int certify_quads(vb_ctx *ctx, const vb_certifier_ops *ops, void *cert,
  * vertices are then merged), else the set-up's (started before the
  * proposer). */
 static int certify(vb_ctx *ctx, const vb_certifier_ops *ops, vbv_cert_open *co,
-                   vbv_cert_stream *cs, const vb_sphere_set *set, double t0,
+                   vbv_cert_stream *cs, const vb_sphere_set *set, int keep, double t0,
                    vb_vertices_result *res)
 {
     double t1 = vb_now();
@@ -327,8 +329,14 @@ static int certify(vb_ctx *ctx, const vb_certifier_ops *ops, vbv_cert_open *co,
                                &res->rejected);
     if (rc == VB_OK && !res->proposal.complete)
         rc = repair(ctx, set, ops, cert, res);
-    if (cert)
+    if (cert && rc == VB_OK && keep && !res->cert) {
+        /* kept for a later stage on the same set (cfg->keep_certifier) */
+        res->cert = cert;
+        res->cert_ops = ops;
+        res->cert_set = set;
+    } else if (cert) {
         ops->close(cert);
+    }
     for (size_t k = 0; rc == VB_OK && k < res->certified.n; k++)
         if (res->certified.dist[k] > res->max_dist)
             res->max_dist = res->certified.dist[k];
@@ -436,7 +444,7 @@ int vb_vertices_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertices_con
     /* Releasing a GPU context takes tens of milliseconds: after the
      * certification, which does not need it. */
     if (rc == VB_OK)
-        rc = certify(ctx, be->certifier, &co, cs, set, t0, res);
+        rc = certify(ctx, be->certifier, &co, cs, set, cfg->keep_certifier, t0, res);
     else
         certifier_discard(be->certifier, &co, cs);
     if (state)
@@ -568,7 +576,7 @@ int vb_vertices_run_on(vb_ctx *ctx, vb_vertices_engine *e, const vb_sphere_set *
         certifier_discard(e->be.certifier, &co, cs);
         return rc;
     }
-    return certify(ctx, e->be.certifier, &co, cs, set, t0, res);
+    return certify(ctx, e->be.certifier, &co, cs, set, cfg->keep_certifier, t0, res);
 }
 
 void vb_vertices_certificate(const vb_vertices_result *r, char *buf, size_t size)

@@ -3,12 +3,14 @@
  * hash table against a brute-force search over 20,000 keys with collisions
  * forced by a weak hash (lookups, later equal items winning, growth), and
  * the union-find's roots (smallest element of each set) against sets
- * merged by relabelling. */
+ * merged by relabelling, and the same joins made by four threads at once
+ * (vb_uf_join_shared) giving the same roots. */
 #include <stdint.h>
 #include <stdlib.h>
 
 #include "vb_array.h"
 #include "vb_hash.h"
+#include "vb_parallel.h"
 #include "vb_test.h"
 #include "vb_uf.h"
 
@@ -177,10 +179,55 @@ static void test_uf(void)
     CHECK_INT(u.n, 0);
 }
 
+/* Thread tid's share of the joins (every 4th pair from tid on). */
+typedef struct shared_joins {
+    vb_uf *u;
+    const uint32_t (*pairs)[2];
+    size_t n;
+} shared_joins;
+
+static void join_share(void *arg, size_t tid, int t)
+{
+    (void)t;
+    const shared_joins *j = arg;
+    for (size_t i = tid; i < j->n; i += 4)
+        vb_uf_join_shared(j->u, j->pairs[i][0], j->pairs[i][1]);
+}
+
+static void test_uf_shared(void)
+{
+    enum { N = 20000, J = 15000 };
+    uint32_t(*pairs)[2] = malloc(J * sizeof *pairs);
+    uint64_t s = 7;
+    for (size_t i = 0; i < J; i++) {
+        s = s * 6364136223846793005ull + 1442695040888963407ull;
+        pairs[i][0] = (uint32_t)(s >> 33) % N;
+        pairs[i][1] = (uint32_t)(s >> 13) % N;
+    }
+    vb_uf one = {0}, four = {0};
+    CHECK_INT(vb_uf_fit(&one, N), VB_OK);
+    CHECK_INT(vb_uf_fit(&four, N), VB_OK);
+    for (size_t i = 0; i < J; i++)
+        vb_uf_join(&one, pairs[i][0], pairs[i][1]);
+    shared_joins j = {&four, (const uint32_t(*)[2])pairs, J};
+    vb_parallel_for(join_share, &j, 4, 4);
+    size_t bad = 0, roots = 0;
+    for (uint32_t i = 0; i < N; i++) {
+        bad += vb_uf_root(&four, i) != vb_uf_root(&one, i);
+        roots += four.p[i] == i;
+    }
+    CHECK_INT(bad, 0);
+    CHECK(roots > 1 && roots < N);
+    vb_uf_free(&one);
+    vb_uf_free(&four);
+    free(pairs);
+}
+
 int main(void)
 {
     test_array();
     test_hash();
     test_uf();
+    test_uf_shared();
     VB_TEST_END();
 }

@@ -8,7 +8,9 @@
  * vb_arc_complete_list restores the removed vertex in place. The traced
  * edges (vb_arc_complete_list_edges): one per finite edge (closed half arcs
  * / 2), one per half arc to infinity, each triple among its ends' members,
- * the same array on 1 and 3 threads, and the same edges with their rows in
+ * the same array on 1 and 3 threads (the 3- and a 2-thread run tracing with
+ * a certifier lent to the closure, as the pipeline lends its own), and the
+ * same edges with their rows in
  * the final list when the closure starts from the golden less a vertex or
  * from its first vertex alone (the vertices added on the way, sorted in). */
 #include <stdio.h>
@@ -58,14 +60,15 @@ static int has_id(const vb_vertex_list *v, int64_t row, uint32_t id)
 }
 
 /* The closed list and edges of the golden's vertices [from, to) less drop,
- * on `threads` threads: *out the closed list, *e its edges. */
-static void closed_edges(vb_ctx *ctx, const vb_sphere_set *s, const vb_vertex_list *g,
-                         size_t from, size_t to, size_t drop, unsigned threads,
-                         vb_vertex_list *out, vb_topology_edge **e, size_t *ne,
-                         vb_arc_report *r)
+ * on `threads` threads, tracing with cert (NULL: the closure's own): *out
+ * the closed list, *e its edges. */
+static void closed_edges(vb_ctx *ctx, const vb_sphere_set *s, vb_certifier *cert,
+                         const vb_vertex_list *g, size_t from, size_t to, size_t drop,
+                         unsigned threads, vb_vertex_list *out, vb_topology_edge **e,
+                         size_t *ne, vb_arc_report *r)
 {
     subset(g, out, from, to, drop);
-    int rc = vb_arc_complete_list_edges(ctx, s, out, threads, r, e, ne);
+    int rc = vb_arc_complete_list_edges(ctx, s, cert, out, threads, r, e, ne);
     CHECK_INT(rc, VB_OK);
 }
 
@@ -76,10 +79,27 @@ static void edges_case(vb_ctx *ctx, const vb_sphere_set *s, const vb_vertex_list
     vb_topology_edge *e1 = NULL, *e3 = NULL;
     size_t n1 = 0, n3 = 0;
     vb_arc_report r1, r3;
-    closed_edges(ctx, s, g, 0, g->n, (size_t)-1, 1, &l1, &e1, &n1, &r1);
-    closed_edges(ctx, s, g, 0, g->n, (size_t)-1, 3, &l3, &e3, &n3, &r3);
+    /* the 3-thread run borrows a certifier opened here (as the pipeline's
+     * is lent): the same counts and edges, and it stays open */
+    vb_certifier *cert = NULL;
+    CHECK_INT(vb_certifier_open(ctx, s, &cert), VB_OK);
+    closed_edges(ctx, s, NULL, g, 0, g->n, (size_t)-1, 1, &l1, &e1, &n1, &r1);
+    closed_edges(ctx, s, cert, g, 0, g->n, (size_t)-1, 3, &l3, &e3, &n3, &r3);
     CHECK_INT(n3, n1);
     CHECK(n1 == n3 && same_edges(e1, e3, n1));
+    CHECK_INT(r3.half_arcs, r1.half_arcs);
+    CHECK_INT(r3.closed, r1.closed);
+    CHECK_INT(r3.components, r1.components);
+    vb_vertex_list again;
+    vb_topology_edge *ea = NULL;
+    size_t na = 0;
+    vb_arc_report ra;
+    closed_edges(ctx, s, cert, g, 0, g->n, (size_t)-1, 2, &again, &ea, &na, &ra);
+    CHECK(na == n1 && same_edges(ea, e1, n1));
+    free(ea);
+    vb_arc_report_free(&ra);
+    vb_vertex_list_free(&again);
+    vb_certifier_close(cert);
     size_t fin = 0, inf = 0;
     for (size_t k = 0; k < n1; k++) {
         const vb_topology_edge *e = &e1[k];
@@ -105,9 +125,9 @@ static void edges_case(vb_ctx *ctx, const vb_sphere_set *s, const vb_vertex_list
         size_t nc = 0;
         vb_arc_report rc;
         if (start == 0)
-            closed_edges(ctx, s, g, 0, g->n, g->n / 2, 2, &lc, &ec, &nc, &rc);
+            closed_edges(ctx, s, NULL, g, 0, g->n, g->n / 2, 2, &lc, &ec, &nc, &rc);
         else
-            closed_edges(ctx, s, g, 0, 1, (size_t)-1, 2, &lc, &ec, &nc, &rc);
+            closed_edges(ctx, s, NULL, g, 0, 1, (size_t)-1, 2, &lc, &ec, &nc, &rc);
         CHECK_INT(lc.n, g->n);
         CHECK(rc.added.n > 0);
         CHECK_INT(nc, n1);

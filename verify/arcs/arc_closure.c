@@ -1,6 +1,7 @@
 /* Arc closure (vb_arc.h): the tracing loop over the vertices in rounds,
- * the lookup of the next vertex of each arc, the components and the counts
- * of the certificate, and the edges (the tracers: arc_tracer.c). */
+ * the counts of the certificate and the edges (the tracers: arc_tracer.c;
+ * the merge of their events, the added vertices and the arrivals:
+ * arc_merge.c). */
 #include <stdlib.h>
 #include <string.h>
 
@@ -12,292 +13,11 @@
 #include "vb_arc.h"
 #include "vbx_closure.h"
 
-/* ---- the set of known vertices: members + rounded point -> index -------- */
-
-/* A vertex sought: members m (nm of them) and rounded point p, against the
- * vertices of list v. */
-typedef struct vkey {
-    const vb_vertex_list *v;
-    const uint32_t *m;
-    size_t nm;
-    const double *p;
-} vkey;
-
-static uint64_t vhash(const uint32_t *m, size_t nm, const double p[4])
-{
-    uint64_t h = nm;
-    for (size_t i = 0; i < nm; i++)
-        h = vb_hash_mix(h, m[i]);
-    for (int k = 0; k < 4; k++) {
-        uint64_t b;
-        double x = p[k] == 0 ? 0.0 : p[k];
-        memcpy(&b, &x, sizeof b);
-        h = vb_hash_mix(h, b);
-    }
-    return h;
-}
-
-static int vsame(const void *key, size_t k)
-{
-    const vkey *q = key;
-    const vb_vertex_list *v = q->v;
-    size_t s = v->start[k], n = v->start[k + 1] - s;
-    return n == q->nm && memcmp(v->ids + s, q->m, q->nm * sizeof *q->m) == 0 &&
-           v->x[k] == q->p[0] && v->y[k] == q->p[1] && v->z[k] == q->p[2] && v->t[k] == q->p[3];
-}
-
-/* The hash of vertex k of the list arg (vb_hash_of_fn). */
-static uint64_t vhash_of(const void *arg, size_t k)
-{
-    const vb_vertex_list *v = arg;
-    double p[4];
-    vbx_vertex_point(v, k, p);
-    size_t s = v->start[k];
-    return vhash(v->ids + s, v->start[k + 1] - s, p);
-}
-
-/* The slot of the vertex of members m and rounded point p in the table of
- * the closure's list (vb_hash_slot). */
-static size_t *vslot(vb_hash *tab, const vb_vertex_list *all, const uint32_t *m, size_t nm,
-                     const double p[4])
-{
-    vkey q = {all, m, nm, p};
-    return vb_hash_slot(tab, vhash(m, nm, p), vsame, &q);
-}
-
-/* ---- arrivals: (vertex, triple) pairs reached by a forward arc ---------- */
-
-typedef struct akey {
-    size_t to;
-    uint32_t t[3];
-} akey;
-
-/* The pairs in order of arrival and the table of them. */
-typedef struct aset {
-    akey *k;
-    size_t n, cap;
-    vb_hash tab;
-} aset;
-
-static uint64_t ahash(const akey *k)
-{
-    return vb_hash_mix(vb_hash_mix(vb_hash_mix(vb_hash_mix(0, k->to), k->t[0]), k->t[1]),
-                       k->t[2]);
-}
-
-/* A pair sought in set a. */
-typedef struct asame_arg {
-    const aset *a;
-    const akey *q;
-} asame_arg;
-
-static int asame(const void *key, size_t i)
-{
-    const asame_arg *x = key;
-    const akey *e = &x->a->k[i];
-    return e->to == x->q->to && e->t[0] == x->q->t[0] && e->t[1] == x->q->t[1] &&
-           e->t[2] == x->q->t[2];
-}
-
-static uint64_t ahash_of(const void *arg, size_t i)
-{
-    const aset *a = arg;
-    return ahash(&a->k[i]);
-}
-
-static int aput(aset *a, size_t to, const uint32_t t[3])
-{
-    akey q = {to, {t[0], t[1], t[2]}};
-    asame_arg x = {a, &q};
-    if (!a->tab.cap && vb_hash_fit(&a->tab, 0, ahash_of, a) != VB_OK)
-        return VB_ENOMEM;
-    size_t *s = vb_hash_slot(&a->tab, ahash(&q), asame, &x);
-    if (*s)
-        return VB_OK;
-    if (VB_ARRAY_FIT(a->k, a->cap, a->n + 1, 1024) != VB_OK)
-        return VB_ENOMEM;
-    a->k[a->n] = q;
-    return vb_hash_put(&a->tab, s, a->n++, ahash_of, a);
-}
-
-static int ahas(const aset *a, size_t to, const uint32_t t[3])
-{
-    akey q = {to, {t[0], t[1], t[2]}};
-    asame_arg x = {a, &q};
-    return vb_hash_get(&a->tab, ahash(&q), asame, &x) != SIZE_MAX;
-}
-
-/* ---- the closure --------------------------------------------------------- */
-
-/* Vertices of at most this many members keep their arrivals as bits. */
-enum { MASK_MEMBERS = 6 };
-
-/* A traced edge (vb_arc_close_edges), oriented forward along its curve:
- * from its start to its end (vertex indices of closure.all), with the kind
- * of half arc that recorded it. */
-enum { TE_FWD = 0, TE_BWD = 1, TE_INF = 2, TE_LOOP = 3 };
-
-typedef struct tedge {
-    size_t from, to; /* to: SIZE_MAX for infinity */
-    uint32_t t[3];
-    int kind;
-} tedge;
-
-typedef struct closure {
-    vb_ctx *ctx;
-    tedge *ed;          /* NULL unless edges are wanted */
-    size_t ned, ed_cap;
-    int want_edges;
-    vb_vertex_list all; /* input + added, in tracing order */
-    vb_hash tab;        /* the vertices added to all (the input's are found through
-                           the map: vbx_tmap_find) */
-    vb_uf comp;         /* components of the vertex-edge graph */
-    aset arrived;       /* (vertex, triple) reached by a forward arc (vertices of more
-                           than MASK_MEMBERS members) */
-    uint32_t *amask;    /* ... per vertex of fewer: a bit per triple of its members */
-    size_t amask_cap;
-    vbx_tmap map;       /* the triples of the list */
-    vbx_item *pend;     /* backward arcs left pending in this round */
-    size_t npend, pend_cap;
-    vb_arc_report *r;
-} closure;
-
-/* The bit of triple t among the triples of vertex k's members (sorted, t
- * a triple of them): the combinatorial rank C(c, 3) + C(b, 2) + a of its
- * positions a < b < c; -1 when k has more than MASK_MEMBERS members. */
-static int triple_bit(const vb_vertex_list *all, size_t k, const uint32_t t[3])
-{
-    size_t s = all->start[k], nm = all->start[k + 1] - s;
-    if (nm > MASK_MEMBERS)
-        return -1;
-    int pos[3], n = 0;
-    for (size_t i = 0; i < nm && n < 3; i++)
-        if (all->ids[s + i] == t[n])
-            pos[n++] = (int)i;
-    if (n < 3)
-        return -1; /* not a triple of k: cannot be, kept in the set */
-    return pos[2] * (pos[2] - 1) * (pos[2] - 2) / 6 + pos[1] * (pos[1] - 1) / 2 + pos[0];
-}
-
-/* Records that a forward arc of triple t arrived at vertex to. */
-static int arrival_put(closure *cl, size_t to, const uint32_t t[3])
-{
-    int b = triple_bit(&cl->all, to, t);
-    if (b < 0)
-        return aput(&cl->arrived, to, t);
-    if (to >= cl->amask_cap) {
-        size_t old = cl->amask_cap;
-        if (VB_ARRAY_FIT(cl->amask, cl->amask_cap, to + 1, 1024) != VB_OK)
-            return VB_ENOMEM;
-        memset(cl->amask + old, 0, (cl->amask_cap - old) * sizeof *cl->amask);
-    }
-    cl->amask[to] |= 1u << b;
-    return VB_OK;
-}
-
-static int arrival_has(const closure *cl, size_t k, const uint32_t t[3])
-{
-    int b = triple_bit(&cl->all, k, t);
-    if (b < 0)
-        return cl->arrived.tab.cap && ahas(&cl->arrived, k, t);
-    return k < cl->amask_cap && (cl->amask[k] >> b & 1);
-}
-
-static int push_item(vbx_item **v, size_t *n, size_t *cap, size_t k, const uint32_t t[3], int all)
-{
-    if (VB_ARRAY_FIT(*v, *cap, *n + 1, 256) != VB_OK)
-        return VB_ENOMEM;
-    vbx_item *it = &(*v)[(*n)++];
-    it->k = k;
-    memcpy(it->t, t, sizeof it->t);
-    it->all = all;
-    return VB_OK;
-}
-
-static int push_tedge(closure *cl, size_t from, size_t to, const uint32_t t[3], int kind)
-{
-    if (!cl->want_edges)
-        return VB_OK;
-    if (VB_ARRAY_FIT(cl->ed, cl->ed_cap, cl->ned + 1, 1024) != VB_OK)
-        return VB_ENOMEM;
-    tedge *e = &cl->ed[cl->ned++];
-    e->from = from;
-    e->to = to;
-    memcpy(e->t, t, sizeof e->t);
-    e->kind = kind;
-    return VB_OK;
-}
-
-/* The events of vbx_item k's vertex (vbx_tracer tr, events [e0, e0 + n)) into the
- * counts, the list of vertices, the components and the arrivals, in event
- * order; pending arcs to cl->pend. */
-static int merge_events(closure *cl, vbx_tracer *tr, size_t e0, size_t n, size_t k)
-{
-    vb_arc_report *r = cl->r;
-    for (size_t i = e0; i < e0 + n; i++) {
-        const vbx_hev *e = &tr->ev[i];
-        if (e->kind == VBX_EV_PENDING) {
-            if (push_item(&cl->pend, &cl->npend, &cl->pend_cap, k, e->t, 0) != VB_OK)
-                return VB_ENOMEM;
-            continue;
-        }
-        r->half_arcs++;
-        if (e->kind == VBX_EV_INF) {
-            r->infinite++;
-            if (push_tedge(cl, k, SIZE_MAX, e->t, TE_INF) != VB_OK)
-                return VB_ENOMEM;
-            continue;
-        }
-        if (e->kind == VBX_EV_LOOP) {
-            r->loops++;
-            if (push_tedge(cl, k, k, e->t, TE_LOOP) != VB_OK)
-                return VB_ENOMEM;
-            continue;
-        }
-        if (e->kind == VBX_EV_UNDECIDED) {
-            r->undecided++;
-            continue;
-        }
-        const uint32_t *m = tr->pool + e->moff;
-        size_t to = e->to, *s = NULL;
-        if (to == SIZE_MAX) {
-            if (!cl->tab.cap && vb_hash_fit(&cl->tab, 0, vhash_of, &cl->all) != VB_OK)
-                return VB_ENOMEM;
-            s = vslot(&cl->tab, &cl->all, m, e->nm, e->p);
-        }
-        if (s && *s) {
-            to = *s - 1;
-        } else if (s) {
-            to = cl->all.n;
-            int rc = vb_vertex_list_push(&cl->all, m, e->nm, e->p[0], e->p[1], e->p[2], e->p[3],
-                                         0, VB_VERTEX_CERTIFIED);
-            if (rc == VB_OK)
-                rc = vb_vertex_list_push(&r->added, m, e->nm, e->p[0], e->p[1], e->p[2], e->p[3],
-                                         0, VB_VERTEX_CERTIFIED);
-            if (rc != VB_OK)
-                return rc;
-            if (vb_hash_put(&cl->tab, s, to, vhash_of, &cl->all) != VB_OK)
-                return VB_ENOMEM;
-        }
-        r->closed++;
-        if (e->dir == 0 && arrival_put(cl, to, e->t) != VB_OK)
-            return VB_ENOMEM;
-        /* a backward arc from k that ends at `to` is the edge that leaves
-         * `to` forward */
-        if (push_tedge(cl, e->dir == 0 ? k : to, e->dir == 0 ? to : k, e->t,
-                       e->dir == 0 ? TE_FWD : TE_BWD) != VB_OK)
-            return VB_ENOMEM;
-        if (vb_uf_fit(&cl->comp, cl->all.n) != VB_OK)
-            return VB_ENOMEM;
-        vb_uf_join(&cl->comp, (uint32_t)k, (uint32_t)to);
-    }
-    return VB_OK;
-}
-
 /* Runs the n items on the tracers and merges their events in vbx_item order. */
-static int run_phase(closure *cl, vbx_tracer *tr, unsigned nt, const vbx_item *it, size_t n,
-                     size_t base, size_t total)
+static int run_phase(vbx_closure *cl, vbx_tracer *tr, unsigned nt, const vbx_item *it, size_t n,
+                     size_t base, size_t span, size_t total, vbx_mrun *runs, unsigned *nr)
 {
+    *nr = 0;
     if (!n)
         return VB_OK;
     vbx_tphase ph;
@@ -313,6 +33,7 @@ static int run_phase(closure *cl, vbx_tracer *tr, unsigned nt, const vbx_item *i
     atomic_init(&ph.done, 0);
     ph.progress = total ? cl->ctx : NULL;
     ph.base = base;
+    ph.span = span;
     ph.total = total;
     int rc = VB_OK;
     vbx_rjob jobs[VB_MAX_THREADS];
@@ -344,8 +65,8 @@ static int run_phase(closure *cl, vbx_tracer *tr, unsigned nt, const vbx_item *i
         }
     }
     double t1 = vb_now();
-    for (size_t i = 0; rc == VB_OK && i < n; i++)
-        rc = merge_events(cl, &tr[ph.who[i]], ph.first[i], ph.count[i], it[i].k);
+    if (rc == VB_OK)
+        rc = vbx_merge_phase(cl, &ph, nt, runs, nr);
     cl->r->merge_s += vb_now() - t1;
     free(ph.first);
     free(ph.count);
@@ -354,7 +75,8 @@ static int run_phase(closure *cl, vbx_tracer *tr, unsigned nt, const vbx_item *i
 }
 
 /* Rounds: every vertex not yet traced has its forward arcs traced (in
- * parallel), the events merged in vertex order; then each backward arc is
+ * parallel; the first round triple by triple, the next ones vertex by
+ * vertex), the events merged in item order; then each backward arc is
  * either the reverse of a forward arc already traced that arrived at its
  * vertex with its triple (the forward search proved the open arc between
  * the two vertices free of touching spheres, so the backward search would
@@ -362,7 +84,7 @@ static int run_phase(closure *cl, vbx_tracer *tr, unsigned nt, const vbx_item *i
  * itself, in a second parallel phase. Vertices found new go to the end of
  * the list and make the next round. The list, the counts and the added
  * vertices are therefore the same on any number of threads. */
-static int run_rounds(closure *cl, vbx_tracer *tr, unsigned nt)
+static int run_rounds(vbx_closure *cl, vbx_tracer *tr, unsigned nt)
 {
     size_t lo = 0;
     int rc = VB_OK;
@@ -378,23 +100,31 @@ static int run_rounds(closure *cl, vbx_tracer *tr, unsigned nt)
             break;
         for (unsigned i = 0; i < nt; i++)
             tr[i].map = &cl->map;
-        static const uint32_t none[3] = {0, 0, 0};
-        for (size_t k = lo; rc == VB_OK && k < hi; k++)
-            rc = push_item(&it, &nit, &it_cap, k, none, 1);
-        cl->npend = 0;
-        if (rc == VB_OK)
-            rc = run_phase(cl, tr, nt, it, nit, lo, hi);
-        for (size_t i = 0; rc == VB_OK && i < cl->npend; i++) {
-            const vbx_item *pi = &cl->pend[i];
-            if (arrival_has(cl, pi->k, pi->t)) {
-                cl->r->half_arcs++;
-                cl->r->closed++;
-            } else {
-                rc = push_item(&back, &nback, &back_cap, pi->k, pi->t, 0);
-            }
+        /* The first round (the whole map) by triple, each triple's frame
+         * set up once for all its vertices; the next rounds (vertices found
+         * new) by vertex. */
+        if (lo == 0) {
+            rc = vbx_tmap_items(&cl->map, nt, &it, &nit, &it_cap);
+        } else if (VB_ARRAY_FIT(it, it_cap, hi - lo, 256) != VB_OK) {
+            rc = VB_ENOMEM;
+        } else {
+            for (size_t k = lo; k < hi; k++)
+                it[nit++] = (vbx_item){k, {0, 0, 0}, 0, VBX_IT_VERTEX};
         }
+        if (rc != VB_OK)
+            break;
+        vbx_mrun runs[VB_MAX_THREADS];
+        unsigned nr = 0;
+        rc = run_phase(cl, tr, nt, it, nit, lo, hi - lo, hi, runs, &nr);
+        double t1 = vb_now();
         if (rc == VB_OK)
-            rc = run_phase(cl, tr, nt, back, nback, 0, 0);
+            rc = vbx_resolve_pending(cl, runs, nr, &back, &nback, &back_cap);
+        vbx_free_runs(runs, nr);
+        nr = 0;
+        cl->r->merge_s += vb_now() - t1;
+        if (rc == VB_OK)
+            rc = run_phase(cl, tr, nt, back, nback, 0, 0, 0, runs, &nr);
+        vbx_free_runs(runs, nr);
         lo = hi;
     }
     if (rc == VB_OK)
@@ -416,7 +146,7 @@ static void add_counters(vb_arc_report *r, const vbx_arc_counters *c)
 
 static int tedge_cmp(const void *pa, const void *pb)
 {
-    const tedge *a = pa, *b = pb;
+    const vbx_tedge *a = pa, *b = pb;
     if (a->from != b->from)
         return a->from < b->from ? -1 : 1;
     for (int i = 0; i < 3; i++)
@@ -437,11 +167,12 @@ static int tedge_cmp(const void *pa, const void *pb)
  * vertices leave them forward from different starts and stay two. Both
  * half arcs of a closed loop record it: kept once. The half arcs to
  * infinity of a vertex and triple, one each way, are two edges. */
-static int emit_edges(closure *cl, size_t nin, const size_t *where_added,
+static int emit_edges(vbx_closure *cl, size_t nin, const size_t *where_added, unsigned nt,
                       vb_topology_edge **edges, size_t *nedges)
 {
-    if (cl->ned)
-        qsort(cl->ed, cl->ned, sizeof *cl->ed, tedge_cmp);
+    /* tedge_cmp is a total order: the one sorted array on any nt */
+    if (vb_psort(cl->ed, cl->ned, sizeof *cl->ed, tedge_cmp, (int)nt) != VB_OK)
+        return VB_ENOMEM;
     vb_topology_edge *o = malloc((cl->ned ? cl->ned : 1) * sizeof *o);
     if (!o)
         return VB_ENOMEM;
@@ -454,13 +185,13 @@ static int emit_edges(closure *cl, size_t nin, const size_t *where_added,
         size_t fwd_to = SIZE_MAX;
         int have_fwd = 0, have_loop = 0;
         for (size_t i = g; i < h; i++) {
-            const tedge *e = &cl->ed[i];
-            if (e->kind == TE_FWD) {
+            const vbx_tedge *e = &cl->ed[i];
+            if (e->kind == VBX_TE_FWD) {
                 have_fwd = 1;
                 fwd_to = e->to;
-            } else if (e->kind == TE_BWD && have_fwd && e->to == fwd_to) {
+            } else if (e->kind == VBX_TE_BWD && have_fwd && e->to == fwd_to) {
                 continue;
-            } else if (e->kind == TE_LOOP) {
+            } else if (e->kind == VBX_TE_LOOP) {
                 if (have_loop)
                     continue;
                 have_loop = 1;
@@ -478,13 +209,15 @@ static int emit_edges(closure *cl, size_t nin, const size_t *where_added,
     return VB_OK;
 }
 
-static int close_list(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_list *in,
-                      unsigned threads, vb_arc_report *out, vb_topology_edge **edges,
-                      size_t *nedges)
+/* The closure of list in on set; cert: an open certifier of set to borrow
+ * (left open), or NULL to open one. */
+static int close_list(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier *cert,
+                      const vb_vertex_list *in, unsigned threads, vb_arc_report *out,
+                      vb_topology_edge **edges, size_t *nedges)
 {
     memset(out, 0, sizeof *out);
     vb_vertex_list_init(&out->added);
-    closure cl;
+    vbx_closure cl;
     memset(&cl, 0, sizeof cl);
     cl.ctx = ctx;
     cl.r = out;
@@ -501,8 +234,8 @@ static int close_list(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_lis
     if (nt > most)
         nt = (unsigned)most;
     vbx_tracer *tr = calloc(nt, sizeof *tr);
-    vb_certifier *c = NULL;
-    int rc = tr ? vb_certifier_open(ctx, set, &c) : VB_ENOMEM;
+    vb_certifier *c = cert;
+    int rc = !tr ? VB_ENOMEM : c ? VB_OK : vb_certifier_open(ctx, set, &c);
     for (unsigned i = 0; rc == VB_OK && i < nt; i++) {
         tr[i].ctx = ctx;
         tr[i].c = c;
@@ -517,11 +250,7 @@ static int close_list(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_lis
         tr[i].have_w = 1;
         vbx_tracer_scratch(&tr[i], 1);
     }
-    for (size_t k = 0; rc == VB_OK && k < in->n; k++) {
-        size_t s = in->start[k];
-        rc = vb_vertex_list_push(&cl.all, in->ids + s, in->start[k + 1] - s, in->x[k], in->y[k],
-                                 in->z[k], in->t[k], 0, VB_VERTEX_CERTIFIED);
-    }
+    cl.all = *in; /* lent: copied only when a vertex is added (vbx_closure_own) */
     if (rc == VB_OK)
         rc = vb_uf_fit(&cl.comp, cl.all.n);
     out->threads = nt;
@@ -533,8 +262,8 @@ static int close_list(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_lis
     double t1 = vb_now();
     if (rc == VB_OK) {
         out->vertices = cl.all.n;
-        for (size_t k = 0; k < cl.all.n; k++)
-            out->components += vb_uf_root(&cl.comp, (uint32_t)k) == k;
+        for (size_t k = 0; k < cl.all.n; k++) /* a root is its own parent */
+            out->components += cl.comp.p[k] == k;
         for (unsigned i = 0; i < nt; i++)
             add_counters(out, &tr[i].w.cnt);
         if (edges && !(where = malloc((out->added.n ? out->added.n : 1) * sizeof *where)))
@@ -542,7 +271,7 @@ static int close_list(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_lis
         if (rc == VB_OK)
             rc = vb_vertex_list_sort_perm(&out->added, where);
         if (rc == VB_OK && edges)
-            rc = emit_edges(&cl, in->n, where, edges, nedges);
+            rc = emit_edges(&cl, in->n, where, nt, edges, nedges);
         for (unsigned i = 0; i < nt; i++)
             out->busy_s += tr[i].busy;
     }
@@ -563,15 +292,16 @@ static int close_list(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_lis
                 vb_close(tr[i].ctx);
         }
     }
-    vb_certifier_close(c);
+    if (c != cert)
+        vb_certifier_close(c);
     free(tr);
-    vb_vertex_list_free(&cl.all);
+    if (cl.all_owned)
+        vb_vertex_list_free(&cl.all);
     vb_hash_free(&cl.tab);
     vb_uf_free(&cl.comp);
     vb_hash_free(&cl.arrived.tab);
     free(cl.arrived.k);
     free(cl.amask);
-    free(cl.pend);
     free(cl.map.e);
     free(cl.map.off);
     return rc;
@@ -580,14 +310,14 @@ static int close_list(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_lis
 int vb_arc_close(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_list *in,
                  unsigned threads, vb_arc_report *out)
 {
-    return close_list(ctx, set, in, threads, out, NULL, NULL);
+    return close_list(ctx, set, NULL, in, threads, out, NULL, NULL);
 }
 
-int vb_arc_close_edges(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_list *in,
-                       unsigned threads, vb_arc_report *out, vb_topology_edge **edges,
-                       size_t *nedges)
+int vb_arc_close_edges(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier *cert,
+                       const vb_vertex_list *in, unsigned threads, vb_arc_report *out,
+                       vb_topology_edge **edges, size_t *nedges)
 {
-    return close_list(ctx, set, in, threads, out, edges, nedges);
+    return close_list(ctx, set, cert, in, threads, out, edges, nedges);
 }
 
 int vb_arc_report_complete(const vb_arc_report *r)

@@ -18,13 +18,13 @@ static int edge_cmp(const void *pa, const void *pb)
     return 0;
 }
 
-int vb_arc_complete_list_edges(vb_ctx *ctx, const vb_sphere_set *set, vb_vertex_list *list,
-                               unsigned threads, vb_arc_report *out, vb_topology_edge **edges,
-                               size_t *nedges)
+int vb_arc_complete_list_edges(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier *cert,
+                               vb_vertex_list *list, unsigned threads, vb_arc_report *out,
+                               vb_topology_edge **edges, size_t *nedges)
 {
     double t0 = vb_now();
     size_t *where = NULL;
-    int rc = vb_arc_close_edges(ctx, set, list, threads, out, edges, nedges);
+    int rc = vb_arc_close_edges(ctx, set, cert, list, threads, out, edges, nedges);
     const vb_vertex_list *a = &out->added;
     for (size_t k = 0; rc == VB_OK && k < a->n; k++)
         rc = vb_vertex_list_push(list, a->ids + a->start[k], a->start[k + 1] - a->start[k],
@@ -44,8 +44,11 @@ int vb_arc_complete_list_edges(vb_ctx *ctx, const vb_sphere_set *set, vb_vertex_
             e->v[1] = s;
         }
     }
-    if (rc == VB_OK && edges && *nedges)
-        qsort(*edges, *nedges, sizeof **edges, edge_cmp);
+    /* edge_cmp orders by every field: the one sorted array on any number
+     * of threads */
+    if (rc == VB_OK && edges && *nedges &&
+        vb_psort(*edges, *nedges, sizeof **edges, edge_cmp, vb_threads(threads)) != VB_OK)
+        rc = VB_ENOMEM;
     free(where);
     if (rc != VB_OK && edges) {
         free(*edges);
@@ -61,7 +64,7 @@ int vb_arc_complete_list_edges(vb_ctx *ctx, const vb_sphere_set *set, vb_vertex_
 int vb_arc_complete_list(vb_ctx *ctx, const vb_sphere_set *set, vb_vertex_list *list,
                          unsigned threads, vb_arc_report *out)
 {
-    return vb_arc_complete_list_edges(ctx, set, list, threads, out, NULL, NULL);
+    return vb_arc_complete_list_edges(ctx, set, NULL, list, threads, out, NULL, NULL);
 }
 
 void vb_arc_certificate(const vb_arc_report *r, char *buf, size_t size)

@@ -16,6 +16,7 @@ static int push_event(vbx_tracer *t, int kind, const uint32_t tri[3], int dir, c
         return VB_ENOMEM;
     vbx_hev *e = &t->ev[t->nev++];
     e->kind = kind;
+    e->from = t->from;
     e->to = SIZE_MAX;
     e->dir = dir;
     memcpy(e->t, tri, sizeof e->t);
@@ -130,20 +131,17 @@ static int forward_to_known(vbx_tracer *tr, const vb_vertex_list *all, vbx_tfram
     return 2;
 }
 
-/* The arcs of triple t at a vertex (members m, rounded point p): with all,
- * the forward arc traced and the backward one pending; else the backward
- * arc traced. */
-static int trace_triple(vbx_tracer *tr, const vb_vertex_list *lst, size_t k, const uint32_t *m,
-                        size_t nm, const double p[4], const vbx_ia box[4], const uint32_t t[3],
-                        int all)
+/* The arcs of triple t (frame f, set up) at vertex k (members m, rounded
+ * point p): with all, the forward arc traced and the backward one pending;
+ * else the backward arc traced. */
+static int trace_at(vbx_tracer *tr, const vb_vertex_list *lst, size_t k, const uint32_t *m,
+                    size_t nm, const double p[4], const vbx_ia box[4], vbx_tframe *f,
+                    const uint32_t t[3], int all)
 {
     vbx_arcw *w = &tr->w;
-    /* the tracer's frame and points, reused (set before they are read) */
-    vbx_tframe *f = &tr->f;
-    vbx_tframe_reset(f);
-    int rc = vbx_tframe_setup_local(w, f, t);
-    if (rc != VB_OK)
-        return rc;
+    int rc = VB_OK;
+    tr->from = k;
+    /* the tracer's points, reused (set before they are read) */
     vbx_xpt *x = &tr->x;
     int have = 0, fwd = 0, bwd = 0;
     uint64_t extra = 0;
@@ -193,7 +191,7 @@ static int trace_triple(vbx_tracer *tr, const vb_vertex_list *lst, size_t k, con
         tp->found = 0;
         tp->have = 0;
         if (dir == 0) {
-            size_t to;
+            size_t to = SIZE_MAX;
             int sc = forward_to_known(tr, lst, f, &ev, k, tp, &to);
             if (sc < 0) {
                 rc = -sc;
@@ -235,6 +233,24 @@ done:
     return rc;
 }
 
+/* The tracer's frame set up for triple t. */
+static int frame_of(vbx_tracer *tr, const uint32_t t[3], vbx_tframe **f)
+{
+    *f = &tr->f;
+    vbx_tframe_reset(*f);
+    return vbx_tframe_setup_local(&tr->w, *f, t);
+}
+
+/* The arcs of triple t at vertex k (trace_at), its frame set up first. */
+static int trace_triple(vbx_tracer *tr, const vb_vertex_list *lst, size_t k, const uint32_t *m,
+                        size_t nm, const double p[4], const vbx_ia box[4], const uint32_t t[3],
+                        int all)
+{
+    vbx_tframe *f;
+    int rc = frame_of(tr, t, &f);
+    return rc == VB_OK ? trace_at(tr, lst, k, m, nm, p, box, f, t, all) : rc;
+}
+
 void vbx_tracer_scratch(vbx_tracer *t, int on)
 {
     if (on && !t->have_scratch) {
@@ -253,16 +269,53 @@ void vbx_tracer_scratch(vbx_tracer *t, int on)
     }
 }
 
+/* A VBX_IT_TRIPLE item: the triple's frame once, then its arcs at each
+ * vertex of the map that holds it. Every forward arc of the triple that
+ * ends at a listed vertex is among this item's events (the map holds all
+ * the round's vertices of the triple, and such an end is found in it), so
+ * a backward arc is settled here when one of them reached its vertex:
+ * what run_rounds' arrivals would settle, without the pending record. */
+static int trace_group(vbx_tracer *tr, const vb_vertex_list *all, const vbx_item *it)
+{
+    const vbx_tent *e = tr->map->e + it->k;
+    vbx_tframe *f;
+    size_t e0 = tr->nev;
+    int rc = frame_of(tr, e->t, &f);
+    for (uint32_t i = 0; rc == VB_OK && i < it->n; i++) {
+        size_t k = e[i].k, s = all->start[k];
+        double p[4];
+        vbx_vertex_point(all, k, p);
+        vbx_ia box[4];
+        vbx_box_of_rounded(p, box);
+        rc = trace_at(tr, all, k, all->ids + s, all->start[k + 1] - s, p, box, f, e->t, 1);
+    }
+    for (size_t a = e0; rc == VB_OK && a < tr->nev; a++) {
+        vbx_hev *pa = &tr->ev[a];
+        if (pa->kind != VBX_EV_PENDING)
+            continue;
+        for (size_t b = e0; b < tr->nev; b++) {
+            const vbx_hev *fb = &tr->ev[b];
+            if (fb->kind == VBX_EV_CLOSED && fb->dir == 0 && fb->to == pa->from) {
+                pa->kind = VBX_EV_REVERSED;
+                break;
+            }
+        }
+    }
+    return rc;
+}
+
 /* One vbx_item, as events of vbx_tracer tr. */
 static int trace_item(vbx_tracer *tr, const vb_vertex_list *all, const vbx_item *it)
 {
+    if (it->all == VBX_IT_TRIPLE)
+        return trace_group(tr, all, it);
     size_t k = it->k, s = all->start[k], nm = all->start[k + 1] - s;
     const uint32_t *m = all->ids + s;
     double p[4];
     vbx_vertex_point(all, k, p);
     vbx_ia box[4];
     vbx_box_of_rounded(p, box);
-    if (!it->all)
+    if (it->all == VBX_IT_BACK)
         return trace_triple(tr, all, k, m, nm, p, box, it->t, 0);
     int rc = VB_OK;
     for (size_t a = 0; a < nm && rc == VB_OK; a++)
@@ -313,9 +366,10 @@ void *vbx_phase_work(void *arg)
                 break;
             }
         }
-        if (ph->progress)
-            vb_progress(ph->progress, "arcs", ph->base + atomic_fetch_add(&ph->done, c1 - c0) +
-                                                  (c1 - c0), ph->total);
+        if (ph->progress) {
+            size_t d = atomic_fetch_add(&ph->done, c1 - c0) + (c1 - c0);
+            vb_progress(ph->progress, "arcs", ph->base + ph->span * d / ph->n, ph->total);
+        }
     }
     tr->busy += thread_cpu() - t0;
     return NULL;

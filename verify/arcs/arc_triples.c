@@ -45,32 +45,96 @@ static void sort_bucket(void *arg, size_t i, int tid)
     }
 }
 
-/* Sorts the n entries by tent_cmp: a counting pass by first sphere (in
- * entry order), then each sphere's bucket on its own, on nt threads.
- * tent_cmp is a total order, so the array is the one sorted array. VB_OK,
- * VB_ENOMEM (entries unchanged). */
-static int sort_entries(vbx_tmap *m, unsigned nt)
+/* The map's build: the vertices cut into nchunk runs; hist[c * top + i]
+ * counts the entries of run c with first sphere i, then is run c's write
+ * cursor in bucket i. */
+typedef struct tbuild {
+    const vb_vertex_list *all;
+    size_t nchunk, top;
+    size_t *hist;
+    vbx_tent *out;
+} tbuild;
+
+/* Run c of the build: its counts (fill 0: C(nm - 1 - a, 2) triples of
+ * vertex k start with its a-th member), or its entries at its cursors in
+ * vertex order (fill 1). */
+static void build_run(const tbuild *b, size_t c, int fill)
 {
-    size_t n = m->n, top = 0;
-    for (size_t i = 0; i < n; i++)
-        if (m->e[i].t[0] >= top)
-            top = (size_t)m->e[i].t[0] + 1;
+    const vb_vertex_list *all = b->all;
+    size_t *h = b->hist + c * b->top;
+    size_t k0 = all->n * c / b->nchunk, k1 = all->n * (c + 1) / b->nchunk;
+    for (size_t k = k0; k < k1; k++) {
+        size_t s = all->start[k], nm = all->start[k + 1] - s;
+        const uint32_t *id = all->ids + s;
+        for (size_t a = 0; a + 2 < nm && !fill; a++)
+            h[id[a]] += (nm - 1 - a) * (nm - 2 - a) / 2;
+        for (size_t a = 0; a < nm && fill; a++)
+            for (size_t bb = a + 1; bb < nm; bb++)
+                for (size_t cc = bb + 1; cc < nm; cc++) {
+                    vbx_tent *e = &b->out[h[id[a]]++];
+                    e->t[0] = id[a];
+                    e->t[1] = id[bb];
+                    e->t[2] = id[cc];
+                    e->k = (uint32_t)k;
+                }
+    }
+}
+
+static void count_run(void *arg, size_t c, int tid)
+{
+    (void)tid;
+    build_run(arg, c, 0);
+}
+
+static void fill_run(void *arg, size_t c, int tid)
+{
+    (void)tid;
+    build_run(arg, c, 1);
+}
+
+/* Every triple of every vertex of all, bucketed by first sphere (counting
+ * runs in parallel, then each run filling its own cursors), each bucket
+ * then sorted on its own: tent_cmp is a total order, so the array is the
+ * one sorted array on any number of threads. */
+int vbx_tmap_update(vbx_tmap *m, const vb_vertex_list *all, unsigned nt)
+{
+    size_t top = 0, n = 0;
+    for (size_t k = 0; k < all->n; k++) {
+        size_t s = all->start[k], nm = all->start[k + 1] - s;
+        if (nm && all->ids[s + nm - 1] >= top)
+            top = (size_t)all->ids[s + nm - 1] + 1;
+        n += nm * (nm - 1) * (nm - 2) / 6;
+    }
+    /* runs: one per thread, fewer where the counts would outweigh the
+     * entries (nchunk * top <= n) */
+    size_t nchunk = nt ? nt : 1;
+    if (top && nchunk > n / top)
+        nchunk = n / top ? n / top : 1;
     size_t *off = calloc(top + 1, sizeof *off);
+    size_t *hist = calloc(nchunk * (top ? top : 1), sizeof *hist);
     vbx_tent *out = malloc((n ? n : 1) * sizeof *out);
-    if (!off || !out) {
+    if (!off || !hist || !out) {
         free(off);
+        free(hist);
         free(out);
+        m->n = 0;
+        m->noff = 0;
         return VB_ENOMEM;
     }
-    for (size_t i = 0; i < n; i++)
-        off[m->e[i].t[0] + 1]++;
-    for (size_t b = 0; b < top; b++)
-        off[b + 1] += off[b];
-    for (size_t i = 0; i < n; i++)
-        out[off[m->e[i].t[0]]++] = m->e[i];
-    for (size_t b = top; b > 0; b--)
-        off[b] = off[b - 1];
-    off[0] = 0;
+    tbuild b = {all, nchunk, top, hist, out};
+    vb_parallel_for(count_run, &b, nchunk, (int)nt);
+    size_t at = 0;
+    for (size_t i = 0; i < top; i++) {
+        off[i] = at;
+        for (size_t c = 0; c < nchunk; c++) {
+            size_t h = hist[c * top + i];
+            hist[c * top + i] = at;
+            at += h;
+        }
+    }
+    off[top] = at;
+    vb_parallel_for(fill_run, &b, nchunk, (int)nt);
+    free(hist);
     tbuckets tb = {out, off};
     vb_parallel_for(sort_bucket, &tb, top, (int)nt);
     free(m->off);
@@ -78,34 +142,75 @@ static int sort_entries(vbx_tmap *m, unsigned nt)
     m->noff = top;
     free(m->e);
     m->e = out;
+    m->n = n;
     m->cap = n ? n : 1;
     return VB_OK;
 }
 
-int vbx_tmap_update(vbx_tmap *m, const vb_vertex_list *all, unsigned nt)
+/* Items of the map: entries cut into runs, each run's triples that start
+ * in it (a triple starts at its first entry) counted, then written at the
+ * run's offset. */
+typedef struct titems {
+    const vbx_tmap *m;
+    size_t nrun;
+    size_t *cnt; /* per run: triples starting in it, then their first item */
+    vbx_item *it;
+} titems;
+
+static int starts_triple(const vbx_tmap *m, size_t i)
 {
-    for (size_t k = m->done; k < all->n; k++) {
-        size_t s = all->start[k], nm = all->start[k + 1] - s;
-        const uint32_t *id = all->ids + s;
-        for (size_t a = 0; a < nm; a++)
-            for (size_t b = a + 1; b < nm; b++)
-                for (size_t c = b + 1; c < nm; c++) {
-                    if (VB_ARRAY_FIT(m->e, m->cap, m->n + 1, 4096) != VB_OK) {
-                        m->n = 0;
-                        return VB_ENOMEM;
-                    }
-                    vbx_tent *e = &m->e[m->n++];
-                    e->t[0] = id[a];
-                    e->t[1] = id[b];
-                    e->t[2] = id[c];
-                    e->k = (uint32_t)k;
-                }
+    return i == 0 || memcmp(m->e[i].t, m->e[i - 1].t, sizeof m->e[i].t) != 0;
+}
+
+static void count_triples(void *arg, size_t r, int tid)
+{
+    (void)tid;
+    titems *x = arg;
+    size_t i0 = x->m->n * r / x->nrun, i1 = x->m->n * (r + 1) / x->nrun, c = 0;
+    for (size_t i = i0; i < i1; i++)
+        c += (size_t)starts_triple(x->m, i);
+    x->cnt[r] = c;
+}
+
+static void write_triples(void *arg, size_t r, int tid)
+{
+    (void)tid;
+    titems *x = arg;
+    const vbx_tmap *m = x->m;
+    size_t i0 = m->n * r / x->nrun, i1 = m->n * (r + 1) / x->nrun, o = x->cnt[r];
+    for (size_t i = i0; i < i1; i++) {
+        if (!starts_triple(m, i))
+            continue;
+        size_t j = i + 1;
+        while (j < m->n && memcmp(m->e[j].t, m->e[i].t, sizeof m->e[i].t) == 0)
+            j++;
+        vbx_item *it = &x->it[o++];
+        it->k = i;
+        memcpy(it->t, m->e[i].t, sizeof it->t);
+        it->n = (uint32_t)(j - i);
+        it->all = VBX_IT_TRIPLE;
     }
-    m->done = all->n;
-    if (sort_entries(m, nt) != VB_OK) {
-        m->n = 0;
+}
+
+int vbx_tmap_items(const vbx_tmap *m, unsigned nt, vbx_item **it, size_t *n, size_t *cap)
+{
+    size_t nrun = nt ? nt : 1;
+    size_t cnt[VB_MAX_THREADS];
+    if (nrun > VB_MAX_THREADS)
+        nrun = VB_MAX_THREADS;
+    titems x = {m, nrun, cnt, NULL};
+    vb_parallel_for(count_triples, &x, nrun, (int)nt);
+    size_t total = 0;
+    for (size_t r = 0; r < nrun; r++) {
+        size_t c = cnt[r];
+        cnt[r] = total;
+        total += c;
+    }
+    if (VB_ARRAY_FIT(*it, *cap, total ? total : 1, 256) != VB_OK)
         return VB_ENOMEM;
-    }
+    x.it = *it;
+    vb_parallel_for(write_triples, &x, nrun, (int)nt);
+    *n = total;
     return VB_OK;
 }
 

@@ -41,10 +41,12 @@ typedef struct vb_arc_report {
     vb_vertex_list added;   /* certified vertices found by tracing, not in the input (sorted) */
     uint64_t filter_calls, filter_failures, exact_evals, candidates;
     double seconds;         /* vb_arc_complete_list: wall time of the closure */
-    /* wall seconds of the closure's phases: the list's table (setup), the
-     * triples' map of each round (map), the tracing (trace: parallel; busy:
-     * the tracers' summed CPU seconds inside it), merging the events in order
-     * (merge: one thread) and components, sorting and edges (finish) */
+    /* wall seconds of the closure's phases: the list's copy, the tracers
+     * and the certifier unless one is lent (setup), the triples' map of each
+     * round (map: parallel), the tracing (trace: parallel; busy: the
+     * tracers' summed CPU seconds inside it), merging the events and
+     * resolving the pending arcs (merge: parallel, vertices added in order
+     * on one thread) and components, sorting and edges (finish) */
     double setup_s, map_s, trace_s, busy_s, merge_s, finish_s;
     unsigned threads;       /* tracers used */
 } vb_arc_report;
@@ -61,7 +63,11 @@ typedef struct vb_arc_report {
 int vb_arc_close(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_list *in,
                  unsigned threads, vb_arc_report *out);
 
-/* vb_arc_close, and every Voronoi edge it traced once into *edges
+/* vb_arc_close, tracing with cert when it is not NULL (an open certifier of
+ * set, e.g. the vertex pipeline's: borrowed, left open; the closure takes
+ * only its exact input and spatial index, which depend on set alone, and
+ * its scratch, never a verdict of the run that opened it), and every
+ * Voronoi edge it traced once into *edges
  * (*nedges of them; malloc'd, free() it; NULL on error): its triple (the
  * three smallest ids where more spheres share the curve), v[0] its start
  * and v[1] its end in the curve's forward direction, as rows of `in` and
@@ -70,9 +76,9 @@ int vb_arc_close(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_list *in
  * order (by start, triple, kind of record, end) is the same on any number
  * of threads. A half arc left undecided records nothing, so the edges are all
  * of the diagram's at the traced vertices exactly when r->undecided == 0. */
-int vb_arc_close_edges(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_list *in,
-                       unsigned threads, vb_arc_report *out, vb_topology_edge **edges,
-                       size_t *nedges);
+int vb_arc_close_edges(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier *cert,
+                       const vb_vertex_list *in, unsigned threads, vb_arc_report *out,
+                       vb_topology_edge **edges, size_t *nedges);
 
 /* 1 when every arc was traced and no vertex was added. */
 int vb_arc_report_complete(const vb_arc_report *r);
@@ -89,10 +95,11 @@ int vb_arc_complete_list(vb_ctx *ctx, const vb_sphere_set *set, vb_vertex_list *
 
 /* vb_arc_complete_list that also gives the traced edges (vb_arc_close_edges)
  * with their ends as rows of the closed, sorted list; finite edges with
- * v[0] < v[1], all sorted by (triple, v[0], v[1]). Same returns. */
-int vb_arc_complete_list_edges(vb_ctx *ctx, const vb_sphere_set *set, vb_vertex_list *list,
-                               unsigned threads, vb_arc_report *out, vb_topology_edge **edges,
-                               size_t *nedges);
+ * v[0] < v[1], all sorted by (triple, v[0], v[1]); cert as in
+ * vb_arc_close_edges (NULL: its own). Same returns. */
+int vb_arc_complete_list_edges(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier *cert,
+                               vb_vertex_list *list, unsigned threads, vb_arc_report *out,
+                               vb_topology_edge **edges, size_t *nedges);
 
 /* The exact topology of a closed list (`vorball vertices --topology`):
  * edges the traced arcs (from vb_arc_complete_list_edges on `list`; the

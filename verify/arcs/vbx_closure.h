@@ -1,12 +1,17 @@
-/* Internals of the closure loop (arc_closure.c) and its tracers
- * (arc_tracer.c): the vertices of each triple, what one half arc found, a
- * thread's tracer and the phases of a round. */
+/* Internals of the closure loop (arc_closure.c), its tracers
+ * (arc_tracer.c) and its merge (arc_merge.c): the vertices of each triple,
+ * what one half arc found, a thread's tracer, the phases of a round and the
+ * closure's state. */
 #ifndef VBX_CLOSURE_H
 #define VBX_CLOSURE_H
 
 #include <stdatomic.h>
 
+#include "vb_hash.h"
+#include "vb_uf.h"
 #include "vb_vertex.h"
+
+#include "vb_arc.h"
 #include "vbx_arc.h"
 
 /* The rounded point (x, y, z, t) of vertex k of a list. */
@@ -31,13 +36,12 @@ typedef struct vbx_tent {
 typedef struct vbx_tmap {
     vbx_tent *e;
     size_t n, cap;
-    size_t done; /* vertices entered */
     size_t *off; /* entries of first sphere i: [off[i], off[i + 1]), i < noff */
     size_t noff;
 } vbx_tmap;
 
-/* Enters the vertices [m->done, all->n) and sorts again (on nt threads, the
- * same array on any number). VB_OK, VB_ENOMEM (the map is then emptied). A
+/* Builds the map of every vertex of all anew (on nt threads, the same
+ * array on any number). VB_OK, VB_ENOMEM (the map is then emptied). A
  * map that lacks vertices costs searches, never a wrong end: the bounded
  * search of the tracer proves its end whichever listed vertex it is given
  * (a nearer vertex is found inside). */
@@ -56,17 +60,22 @@ size_t vbx_tmap_find(const vbx_tmap *m, const vb_vertex_list *all, const uint32_
 
 /* What one half arc found: its end, and for a vertex its members (in the
  * worker's pool) and rounded point; VBX_EV_PENDING: a backward arc left for
- * later (see run_rounds in arc_closure.c). */
+ * later (see run_rounds in arc_closure.c); VBX_EV_REVERSED: a backward arc
+ * that is the reverse of a forward arc of its triple traced to its vertex
+ * in the same item (closed without a search, as run_rounds closes a
+ * pending one that such an arc reached). */
 enum {
     VBX_EV_CLOSED = 0,
     VBX_EV_INF = 1,
     VBX_EV_LOOP = 2,
     VBX_EV_UNDECIDED = 3,
-    VBX_EV_PENDING = 4
+    VBX_EV_PENDING = 4,
+    VBX_EV_REVERSED = 5
 };
 
 typedef struct vbx_hev {
     double p[4];
+    size_t from; /* the vertex the half arc leaves */
     size_t to;   /* VBX_EV_CLOSED: the end's index in the list when the tracer
                     found it there (vbx_tmap_find), else SIZE_MAX */
     size_t moff;
@@ -95,18 +104,31 @@ typedef struct vbx_tracer {
     vbx_xpt x, xu;
     vbx_touch tp;
     int have_scratch;
+    size_t from; /* the vertex being traced (vbx_hev.from) */
 } vbx_tracer;
 
 /* Initialises (on) or clears (!on) tracer t's scratch. */
 void vbx_tracer_scratch(vbx_tracer *t, int on);
 
-/* An item of a phase: every triple of vertex k (forward arcs traced,
- * backward ones left pending), or the backward arc of triple t alone. */
+/* An item of a phase: every triple of vertex k (all = VBX_IT_VERTEX:
+ * forward arcs traced, backward ones left pending), the backward arc of
+ * triple t at vertex k alone (VBX_IT_BACK), or a triple of the round's map
+ * at every vertex that holds it (VBX_IT_TRIPLE: its n entries from map
+ * entry k on, in map order; as VBX_IT_VERTEX for that triple at each, the
+ * triple's frame set up once). */
+enum { VBX_IT_BACK = 0, VBX_IT_VERTEX = 1, VBX_IT_TRIPLE = 2 };
+
 typedef struct vbx_item {
     size_t k;
     uint32_t t[3];
+    uint32_t n;
     int all;
 } vbx_item;
+
+/* The items of the round's map m: one VBX_IT_TRIPLE per triple, in map
+ * order (found on nt threads) into *it (*n of them, *cap allocated). VB_OK
+ * or VB_ENOMEM. */
+int vbx_tmap_items(const vbx_tmap *m, unsigned nt, vbx_item **it, size_t *n, size_t *cap);
 
 /* A phase: items taken in chunks by the tracers; each item's events stay
  * in the tracer that traced it (who, first, count). */
@@ -119,8 +141,9 @@ typedef struct vbx_tphase {
     uint32_t *count;    /* ... number of events */
     uint16_t *who;      /* ... the tracer that holds them */
     atomic_size_t next; /* next chunk */
-    vb_ctx *progress;   /* NULL, or where "arcs" progress goes: base + items */
-    size_t base, total; /* done of total (vb_progress) */
+    vb_ctx *progress;   /* NULL, or where "arcs" progress goes: base + span *
+                           items done / n */
+    size_t base, span, total; /* of total (vb_progress) */
     atomic_size_t done; /* items traced so far */
 } vbx_tphase;
 
@@ -138,5 +161,97 @@ typedef struct vbx_rjob {
  * (the tracer's rc and fail_at). Each item's events are a function of that
  * item alone, so which thread traced it does not matter. */
 void *vbx_phase_work(void *arg);
+
+/* ---- the closure's state (arc_closure.c) and its merge (arc_merge.c) ----- */
+
+/* Arrivals: (vertex, triple) pairs reached by a forward arc. */
+typedef struct vbx_akey {
+    size_t to;
+    uint32_t t[3];
+} vbx_akey;
+
+/* The pairs in order of arrival and the table of them. */
+typedef struct vbx_aset {
+    vbx_akey *k;
+    size_t n, cap;
+    vb_hash tab;
+} vbx_aset;
+
+/* Vertices of at most this many members keep their arrivals as bits. */
+enum { VBX_MASK_MEMBERS = 6 };
+
+/* A traced edge (vb_arc_close_edges), oriented forward along its curve:
+ * from its start to its end (vertex indices of closure.all), with the kind
+ * of half arc that recorded it. */
+enum { VBX_TE_FWD = 0, VBX_TE_BWD = 1, VBX_TE_INF = 2, VBX_TE_LOOP = 3 };
+
+typedef struct vbx_tedge {
+    size_t from, to; /* to: SIZE_MAX for infinity */
+    uint32_t t[3];
+    int kind;
+} vbx_tedge;
+
+/* The closure of one list: what the rounds built so far. */
+typedef struct vbx_closure {
+    vb_ctx *ctx;
+    vbx_tedge *ed;      /* NULL unless edges are wanted */
+    size_t ned, ed_cap;
+    int want_edges;
+    vb_vertex_list all; /* input + added, in tracing order: the input's arrays
+                           themselves until a vertex is added (all_owned 0), a copy
+                           from then on (vbx_closure_own) */
+    int all_owned;
+    vb_hash tab;        /* the vertices added to all (the input's are found through
+                           the map: vbx_tmap_find) */
+    vb_uf comp;         /* components of the vertex-edge graph */
+    vbx_aset arrived;   /* (vertex, triple) reached by a forward arc (vertices of more
+                           than VBX_MASK_MEMBERS members) */
+    uint32_t *amask;    /* ... per vertex of fewer: a bit per triple of its members */
+    size_t amask_cap;
+    vbx_tmap map;       /* the triples of the list */
+    vb_arc_report *r;
+} vbx_closure;
+
+/* Makes cl->all a list of the closure's own (a copy of the input it was
+ * lent) before a vertex is added to it. VB_OK or VB_ENOMEM. */
+int vbx_closure_own(vbx_closure *cl);
+
+/* A run of the merge: items (or pending arcs) [i0, i1) on one thread; its
+ * counts, edges and pending arcs, and the items with an event left to the
+ * ordered pass (late_event). */
+typedef struct vbx_mrun {
+    vbx_closure *cl;
+    const vbx_tphase *ph;
+    size_t i0, i1;
+    size_t half_arcs, closed, infinite, loops, undecided;
+    vbx_tedge *ed;
+    size_t ned, ed_cap;
+    vbx_item *pend;
+    size_t npend, pend_cap;
+    size_t *late;
+    size_t nlate, late_cap;
+    int rc;
+} vbx_mrun;
+
+/* The events of the phase's n items merged: in *nr parallel runs (runs[],
+ * VB_MAX_THREADS of them) for all that is free of order, then the late
+ * events in item order; the pending arcs stay in the runs' lists (run
+ * order then list order is item order: free them with vbx_free_runs). The
+ * counts, the vertices added (and their order), the arrivals, components
+ * and edges are those of merging every event one by one in item order.
+ * VB_OK or VB_ENOMEM. */
+int vbx_merge_phase(vbx_closure *cl, const vbx_tphase *ph, unsigned nt, vbx_mrun *runs,
+                    unsigned *nr);
+
+/* The pending backward arcs of a round (in the runs of its forward phase):
+ * each either the reverse of a forward arc that arrived at its vertex with
+ * its triple (counted closed) or an item of *back, in item order, the runs
+ * in parallel. VB_OK or VB_ENOMEM. */
+int vbx_resolve_pending(vbx_closure *cl, vbx_mrun *runs, unsigned nr, vbx_item **back,
+                        size_t *nback, size_t *back_cap);
+
+/* Frees what runs[0 .. nr) hold; they hold nothing then (a second call
+ * frees nothing). */
+void vbx_free_runs(vbx_mrun *runs, unsigned nr);
 
 #endif
