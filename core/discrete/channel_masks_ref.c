@@ -95,8 +95,9 @@ static int ball_row(const float *p, int i0, int i1, int j, int k, int *lo, int *
     return 1;
 }
 
-void vbc_masks_ref(const vbc_grid *g, const float *atoms4, size_t natoms, const int32_t *labels,
-                   int min_labels, int *rb, uint8_t *flags)
+/* The atomic mask (flags cleared first) and the ray bounds. */
+static void atomic_mask(const vbc_grid *g, const float *atoms4, size_t natoms, int *rb,
+                        uint8_t *flags)
 {
     int nx = g->nx, ny = g->ny, nz = g->nz;
     memset(flags, 0, vbc_grid_voxels(g));
@@ -113,29 +114,106 @@ void vbc_masks_ref(const vbc_grid *g, const float *atoms4, size_t natoms, const 
             }
     }
     ray_bounds(flags, nx, ny, nz, rb);
-    /* The classification reads only the voxel's own flag byte (its atomic
-     * bit), so updating in place is safe. A voxel inside the grid whose six
-     * face neighbours share its label is no Voronoi edge, hence no channel:
-     * its byte is the atomic, molecular and interior bits alone (what
-     * vbc_classify gives it), without the label count. */
+}
+
+/* The classification of voxel v = (i,j,k) from its flag byte's atomic bit,
+ * the ray bounds and the labels (vbc_classify's byte). */
+static unsigned classify(const vbc_grid *g, const int32_t *labels, const uint8_t *flags,
+                         const int *rb, int min_labels, int i, int j, int k, size_t v)
+{
+    int nx = g->nx, ny = g->ny, nz = g->nz;
     size_t sy = (size_t)nx, sz = (size_t)nx * (size_t)ny;
+    /* A voxel inside the grid whose six face neighbours share its label is
+     * no Voronoi edge, hence no channel: its byte is the atomic, molecular
+     * and interior bits alone (what vbc_classify gives it), without the
+     * label count. */
+    if (min_labels > 1 && i > 0 && j > 0 && k > 0 && i + 1 < nx && j + 1 < ny && k + 1 < nz) {
+        int32_t l = labels[v];
+        if (labels[v - 1] == l && labels[v + 1] == l && labels[v - sy] == l && labels[v + sy] == l &&
+            labels[v - sz] == l && labels[v + sz] == l) {
+            unsigned f = flags[v] & VBC_F_ATOMIC;
+            if (vbc_molecular(rb, nx, ny, nz, i, j, k))
+                f |= f ? VBC_F_MOLECULAR : VBC_F_MOLECULAR | VBC_F_INTERIOR;
+            return f;
+        }
+    }
+    return vbc_classify(labels, flags, rb, nx, ny, nz, min_labels, i, j, k);
+}
+
+void vbc_masks_ref(const vbc_grid *g, const float *atoms4, size_t natoms, const int32_t *labels,
+                   int min_labels, int *rb, uint8_t *flags)
+{
+    int nx = g->nx, ny = g->ny, nz = g->nz;
+    atomic_mask(g, atoms4, natoms, rb, flags);
+    /* The classification reads only the voxel's own flag byte (its atomic
+     * bit), so updating in place is safe. */
+    size_t v = 0;
     for (int k = 0; k < nz; k++)
         for (int j = 0; j < ny; j++)
+            for (int i = 0; i < nx; i++, v++)
+                flags[v] = (uint8_t)classify(g, labels, flags, rb, min_labels, i, j, k, v);
+}
+
+void vbc_masks_shape(const vbc_grid *g, const float *atoms4, size_t natoms, int *rb, uint8_t *flags)
+{
+    int nx = g->nx, ny = g->ny, nz = g->nz;
+    atomic_mask(g, atoms4, natoms, rb, flags);
+    const int *ry = rb + vbc_rb_y(nx, ny, nz), *rz = rb + vbc_rb_z(nx, ny, nz);
+    /* vbc_molecular row by row: the x ray is the row's, the y and z rays
+     * run along the row with i. */
+    for (int k = 0; k < nz; k++)
+        for (int j = 0; j < ny; j++) {
+            uint8_t *row = flags + (size_t)nx * ((size_t)j + (size_t)ny * (size_t)k);
+            const int *xb = rb + 2 * (j + ny * k), *yb = ry + 2 * nx * k, *zb = rz + 2 * nx * j;
             for (int i = 0; i < nx; i++) {
-                size_t v = (size_t)i + sy * ((size_t)j + (size_t)ny * (size_t)k);
-                if (min_labels > 1 && i > 0 && j > 0 && k > 0 && i + 1 < nx && j + 1 < ny && k + 1 < nz) {
-                    int32_t l = labels[v];
-                    if (labels[v - 1] == l && labels[v + 1] == l && labels[v - sy] == l &&
-                        labels[v + sy] == l && labels[v - sz] == l && labels[v + sz] == l) {
-                        unsigned f = flags[v] & VBC_F_ATOMIC;
-                        if (vbc_molecular(rb, nx, ny, nz, i, j, k))
-                            f |= f ? VBC_F_MOLECULAR : VBC_F_MOLECULAR | VBC_F_INTERIOR;
-                        flags[v] = (uint8_t)f;
-                        continue;
-                    }
-                }
-                flags[v] = (uint8_t)vbc_classify(labels, flags, rb, nx, ny, nz, min_labels, i, j, k);
+                unsigned a = row[i];
+                int m = (xb[0] <= i && i <= xb[1]) || (yb[2 * i] <= j && j <= yb[2 * i + 1]) ||
+                        (zb[2 * i] <= k && k <= zb[2 * i + 1]);
+                row[i] = (uint8_t)(m ? (a ? VBC_F_ATOMIC | VBC_F_MOLECULAR : VBC_F_MOLECULAR | VBC_F_INTERIOR)
+                                     : a);
             }
+        }
+}
+
+size_t vbc_masks_need(const vbc_grid *g, const uint8_t *flags, uint8_t *need)
+{
+    int nx = g->nx, ny = g->ny, nz = g->nz;
+    size_t sy = (size_t)nx, sz = (size_t)nx * (size_t)ny, nv = vbc_grid_voxels(g), m = 0;
+    memset(need, 0, nv);
+    size_t v = 0;
+    for (int k = 0; k < nz; k++)
+        for (int j = 0; j < ny; j++)
+            for (int i = 0; i < nx; i++, v++) {
+                if (!(flags[v] & VBC_F_INTERIOR))
+                    continue;
+                m++;
+                need[v] = 1;
+                if (i > 0)
+                    need[v - 1] = 1;
+                if (i + 1 < nx)
+                    need[v + 1] = 1;
+                if (j > 0)
+                    need[v - sy] = 1;
+                if (j + 1 < ny)
+                    need[v + sy] = 1;
+                if (k > 0)
+                    need[v - sz] = 1;
+                if (k + 1 < nz)
+                    need[v + sz] = 1;
+            }
+    return m;
+}
+
+void vbc_masks_edges(const vbc_grid *g, const int32_t *labels, int min_labels, const int *rb,
+                     uint8_t *flags)
+{
+    int nx = g->nx, ny = g->ny, nz = g->nz;
+    size_t v = 0;
+    for (int k = 0; k < nz; k++)
+        for (int j = 0; j < ny; j++)
+            for (int i = 0; i < nx; i++, v++)
+                if (flags[v] & VBC_F_INTERIOR)
+                    flags[v] = (uint8_t)classify(g, labels, flags, rb, min_labels, i, j, k, v);
 }
 
 int vbc_flags_compact(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, uint32_t **out,

@@ -110,6 +110,7 @@ typedef struct {
     const vbj_tiles_prep *p;
     uint32_t n, dim, T; /* T tiles per axis */
     uint32_t *labels;
+    const uint8_t *need; /* per voxel, nonzero where a label is wanted; NULL: all */
     scratch th[VB_MAX_THREADS];
 } job;
 
@@ -173,6 +174,25 @@ static void bound_pass(const vbj_tiles_prep *p, vbj_xt_box box, const int32_t *c
     }
 }
 
+/* Nonzero when one of the m bytes at b is. */
+static int any_byte(const uint8_t *b, uint32_t m)
+{
+    for (uint32_t i = 0; i < m; i++)
+        if (b[i])
+            return 1;
+    return 0;
+}
+
+/* Nonzero when the tile whose first voxel is `first` holds a wanted voxel. */
+static int tile_needed(const uint8_t *need, size_t first, uint32_t n, uint32_t S, uint32_t sz)
+{
+    for (uint32_t z = 0; z < sz; z++)
+        for (uint32_t y = 0; y < S; y++)
+            if (any_byte(need + first + ((size_t)z * n + y) * n, S))
+                return 1;
+    return 0;
+}
+
 static void tile(void *arg, size_t t, int tid)
 {
     job *J = arg;
@@ -181,6 +201,14 @@ static void tile(void *arg, size_t t, int tid)
     uint32_t dim = J->dim, T = J->T, S = 1u << p->ts;
     uint32_t tc[3] = {(uint32_t)(t % T), (uint32_t)(t / T % T),
                       dim == 3 ? (uint32_t)(t / ((size_t)T * T)) : 0};
+    uint32_t n = J->n, sz = dim == 3 ? S : 1;
+    size_t first = ((size_t)(tc[2] << p->ts) * n + (tc[1] << p->ts)) * n + (tc[0] << p->ts);
+    if (J->need && !tile_needed(J->need, first, n, S, sz)) {
+        for (uint32_t z = 0; z < sz; z++)
+            for (uint32_t y = 0; y < S; y++)
+                memset(J->labels + first + ((size_t)z * n + y) * n, 0xff, S * sizeof *J->labels);
+        return;
+    }
     vbj_xt_box box = vbj_xt_tile_box(tc[0], tc[1], tc[2], p->ts, dim);
     int32_t cen[3];
     for (int a = 0; a < 3; a++)
@@ -254,12 +282,16 @@ static void tile(void *arg, size_t t, int tid)
         for (size_t i = 0; i < ns; i++)
             ex[i] = (float)w->surv[4 * i];
 
-    /* Every voxel of the tile. */
-    uint32_t n = J->n, sz = dim == 3 ? S : 1;
+    /* Every voxel of the tile (every wanted one). */
     for (uint32_t z = 0; z < sz; z++)
         for (uint32_t y = 0; y < S; y++) {
-            uint32_t *row = J->labels + ((size_t)((tc[2] << p->ts) + z) * n + (tc[1] << p->ts) + y) * n +
-                            (tc[0] << p->ts);
+            size_t r0 = first + ((size_t)z * n + y) * n;
+            uint32_t *row = J->labels + r0;
+            const uint8_t *want = J->need ? J->need + r0 : NULL;
+            if (want && !any_byte(want, S)) {
+                memset(row, 0xff, S * sizeof *row);
+                continue;
+            }
             if (ns > 1 && !far)
                 for (size_t i = 0; i < ns; i++) {
                     const int32_t *e = w->surv + 4 * i;
@@ -267,6 +299,10 @@ static void tile(void *arg, size_t t, int tid)
                                        (float)((int32_t)z * VBJ_FIX_ONE) - (float)e[2]);
                 }
             for (uint32_t x = 0; x < S; x++) {
+                if (want && !want[x]) {
+                    row[x] = VBJ_NONE;
+                    continue;
+                }
                 if (ns == 1) {
                     row[x] = cs;
                     continue;
@@ -292,7 +328,8 @@ static void tile(void *arg, size_t t, int tid)
         }
 }
 
-int vbj_tiles_ref_run(vb_ctx *ctx, const vbj_seeds *s, const vbj_tiles_prep *p, vbj_result *out)
+int vbj_tiles_ref_run(vb_ctx *ctx, const vbj_seeds *s, const vbj_tiles_prep *p, const uint8_t *need,
+                      vbj_result *out)
 {
     job *J = calloc(1, sizeof *J);
     out->labels = malloc(out->pixels * sizeof *out->labels);
@@ -305,6 +342,7 @@ int vbj_tiles_ref_run(vb_ctx *ctx, const vbj_seeds *s, const vbj_tiles_prep *p, 
     J->dim = (uint32_t)s->dim;
     J->T = s->n >> p->ts;
     J->labels = out->labels;
+    J->need = need;
     size_t tiles = (size_t)J->T * J->T * (s->dim == 3 ? J->T : 1);
     int nt = vb_threads(0);
     vb_parallel_for(tile, J, tiles, nt);

@@ -313,7 +313,7 @@ static PyObject *channels_run(PyObject *self, PyObject *args)
     vbc_run_out o;
     int rc;
     vbc_run_init(&run, cfg, pipe, s->source);
-    run.want = want_flags ? VBC_WANT_FLAGS : 0;
+    run.want = want_flags ? VBC_WANT_FLAGS | VBC_WANT_EDGES : 0; /* every bit of every voxel */
     run.frames_total = 1; /* one frame a call: progress ("frames", 1, 1) */
     Py_BEGIN_ALLOW_THREADS
     rc = vbc_run_frame(c.ctx, &run, s, frame, model, first, &o);

@@ -3,10 +3,13 @@
  * with a pore along z, a closed shell; and (#33) the whole stage against the
  * plain per-voxel form it replaced (every voxel against every ball's box,
  * one vbc_ray_scan per ray, vbc_classify everywhere) on random atoms, in 3D
- * and 2D, byte for byte. */
+ * and 2D, byte for byte; and (chan41) the mask stage that reads labels
+ * only around the interior, its exact labels and the reference engine that
+ * runs it, against the whole stage. */
 #include "channel_math.h"
 #include "synth.h"
 #include "vb_test.h"
+#include "vbc_channel_pipe.h"
 
 static size_t count_bits(const uint8_t *f, size_t n, unsigned bit)
 {
@@ -343,6 +346,147 @@ static void test_same_as_plain(vb_ctx *ctx)
     CHECK_INT(runs, 18);
 }
 
+/* Random molecules as test_same_as_plain's: vbc_masks_shape, vbc_masks_need
+ * and vbc_masks_edges, with every label that need leaves out spoiled, give
+ * vbc_masks_ref's bytes less the edge bit of voxels that are not interior,
+ * and the ray bounds. */
+static void test_interior_only(vb_ctx *ctx)
+{
+    uint64_t seed = 777;
+    int differ = 0, runs = 0;
+    size_t interior = 0, needed = 0, voxels = 0;
+    for (int n = 16; n <= 64; n *= 2)
+        for (int dim = 2; dim <= 3; dim++)
+            for (int rep = 0; rep < 3; rep++) {
+                size_t natoms = (size_t)(40 + 80 * rep);
+                vb_sphere_set *s = vb_test_spheres_alloc(natoms, 0);
+                for (size_t i = 0; i < natoms; i++) {
+                    s->x[i] = 20.0 * synth_uniform(&seed);
+                    s->y[i] = 20.0 * synth_uniform(&seed);
+                    s->z[i] = dim == 3 ? 20.0 * synth_uniform(&seed) : 0.0;
+                    s->r[i] = 0.9 + 1.5 * synth_uniform(&seed);
+                }
+                run r;
+                run_ref(ctx, s, 1.4, n, dim, &r);
+                size_t nv = vbc_grid_voxels(&r.g), nrb = (size_t)vbc_rb_size(r.g.nx, r.g.ny, r.g.nz);
+                uint8_t *f = malloc(nv), *need = malloc(nv);
+                int *rb = malloc(nrb * sizeof *rb);
+                int32_t *lab = malloc(nv * sizeof *lab);
+                vbc_masks_shape(&r.g, r.atoms, natoms, rb, f);
+                size_t m = vbc_masks_need(&r.g, f, need);
+                for (size_t v = 0; v < nv; v++) {
+                    lab[v] = need[v] ? r.labels[v] : (int32_t)(v % 5) - 9;
+                    needed += need[v] != 0;
+                    r.flags[v] &= (r.flags[v] & VBC_F_INTERIOR) ? 0xffu : (unsigned)~VBC_F_EDGE;
+                }
+                vbc_masks_edges(&r.g, lab, dim == 3 ? 3 : 2, rb, f);
+                differ += memcmp(f, r.flags, nv) != 0 || memcmp(rb, r.rb, nrb * sizeof *rb) != 0;
+                CHECK_INT(m, count_bits(r.flags, nv, VBC_F_INTERIOR));
+                interior += m;
+                voxels += nv;
+                runs++;
+                free(f);
+                free(need);
+                free(rb);
+                free(lab);
+                run_free(&r);
+                vb_spheres_free(s);
+            }
+    CHECK_INT(differ, 0);
+    CHECK_INT(runs, 18);
+    /* Not vacuous: interior voxels exist, and fewer labels are read. */
+    CHECK(interior > 100);
+    CHECK(needed > interior && needed < voxels / 2);
+}
+
+/* vbj_ref_exact_need: the exact labels of the wanted voxels (random masks,
+ * one with a single voxel, one with none), VBJ_NONE elsewhere. */
+static void test_exact_need(vb_ctx *ctx)
+{
+    vbj_backend *be = NULL;
+    CHECK_INT(vbj_ref_open(ctx, &be), VB_OK);
+    uint64_t seed = 99;
+    for (int dim = 2; dim <= 3; dim++)
+        for (int rep = 0; rep < 3; rep++) {
+            uint32_t n = dim == 3 ? 32 : 128;
+            vbj_seeds sd;
+            CHECK_INT(vbj_seeds_alloc(ctx, dim, n, 60, &sd), VB_OK);
+            for (size_t i = 0; i < 60; i++) {
+                double x = (n - 1) * synth_uniform(&seed), y = (n - 1) * synth_uniform(&seed);
+                double z = dim == 3 ? (n - 1) * synth_uniform(&seed) : 0.0;
+                CHECK_INT(vbj_seed_set(ctx, &sd, i, x, y, z), VB_OK);
+            }
+            vbj_options o = {VBJ_EXACT, 0, VBJ_WANT_LABELS, 0};
+            vbj_result full, part;
+            CHECK_INT(vbj_run(ctx, be, &sd, &o, &full), VB_OK);
+            uint8_t *need = calloc(full.pixels, 1);
+            if (rep == 0)
+                for (size_t v = 0; v < full.pixels; v++)
+                    need[v] = synth_uniform(&seed) < 0.05;
+            else if (rep == 1)
+                need[full.pixels / 3] = 1;
+            CHECK_INT(vbj_ref_exact_need(ctx, &sd, need, &part), VB_OK);
+            size_t bad = 0, wanted = 0;
+            for (size_t v = 0; v < full.pixels; v++) {
+                wanted += need[v] != 0;
+                bad += part.labels[v] != (need[v] ? full.labels[v] : VBJ_NONE);
+            }
+            CHECK_INT(bad, 0);
+            CHECK(rep == 2 ? wanted == 0 : wanted > 0);
+            CHECK(rep == 2 ? part.counts.tiles_uniform + part.counts.survivors == 0
+                           : part.counts.survivors > 0);
+            free(need);
+            vbj_result_free(&full);
+            vbj_result_free(&part);
+            vbj_seeds_free(&sd);
+        }
+    vbj_backend_close(be);
+}
+
+/* The reference engine without VBC_WANT_EDGES (the interior-only stage)
+ * against the same engine asked for labels (the whole stage): the same
+ * channel voxel list, and the same flags but the edge bit of voxels that
+ * are not interior. */
+static void test_engine_interior(vb_ctx *ctx)
+{
+    vbc_engine *e = NULL;
+    CHECK_INT(vbc_engine_ref_open(ctx, VBJ_EXACT, &e), VB_OK);
+    uint64_t seed = 4242;
+    size_t channels = 0;
+    for (int rep = 0; rep < 4; rep++) {
+        vb_sphere_set *s = rep == 0 ? synth_cylinder(6, 10, 4.0, 1.6, 1.5) : vb_test_spheres_alloc(150, 0);
+        for (size_t i = 0; rep > 0 && i < s->n; i++) {
+            s->x[i] = 25.0 * synth_uniform(&seed);
+            s->y[i] = 25.0 * synth_uniform(&seed);
+            s->z[i] = 25.0 * synth_uniform(&seed);
+            s->r[i] = 1.2 + 0.8 * synth_uniform(&seed);
+        }
+        vbc_grid g;
+        CHECK_INT(vbc_grid_fit(ctx, s, 1.4, 64, 3, &g), VB_OK);
+        float *atoms = malloc(4 * s->n * sizeof *atoms);
+        vbc_atoms_pack(&g, s, 1.4, atoms);
+        vbc_frame_out a, b;
+        CHECK_INT(e->frame(ctx, e, &g, atoms, s->n, 1.4, VBC_WANT_FLAGS | VBC_WANT_LABELS, &a), VB_OK);
+        CHECK_INT(e->frame(ctx, e, &g, atoms, s->n, 1.4, VBC_WANT_FLAGS, &b), VB_OK);
+        CHECK(b.labels == NULL);
+        CHECK_INT(a.nvoxels, b.nvoxels);
+        CHECK(a.nvoxels == b.nvoxels && memcmp(a.voxels, b.voxels, a.nvoxels * sizeof *a.voxels) == 0);
+        size_t nv = vbc_grid_voxels(&g), bad = 0;
+        for (size_t v = 0; v < nv; v++) {
+            unsigned want = a.flags[v] & ((a.flags[v] & VBC_F_INTERIOR) ? 0xffu : (unsigned)~VBC_F_EDGE);
+            bad += b.flags[v] != want;
+        }
+        CHECK_INT(bad, 0);
+        channels += a.nvoxels;
+        vbc_frame_out_free(&a);
+        vbc_frame_out_free(&b);
+        free(atoms);
+        vb_spheres_free(s);
+    }
+    CHECK(channels > 0);
+    vbc_engine_close(e);
+}
+
 int main(void)
 {
     vb_ctx *ctx;
@@ -355,6 +499,9 @@ int main(void)
     test_shell(ctx);
     test_grid_fit_errors(ctx);
     test_same_as_plain(ctx);
+    test_interior_only(ctx);
+    test_exact_need(ctx);
+    test_engine_interior(ctx);
     vb_close(ctx);
     VB_TEST_END();
 }
