@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "channel_math.h"
+#include "vb_array.h"
 #include "vb_diag.h"
 #include "vb_parallel.h"
 #include "vbc_channel_pipe.h"
@@ -70,22 +71,36 @@ static int ref_frame_interior(vb_ctx *ctx, const vbc_grid *g, const float *atoms
                               const vbj_seeds *seeds, uint8_t *flags, int *rb, vbc_frame_out *out)
 {
     double t1 = 1e3 * vb_now();
-    vbc_masks_shape(g, atoms4, natoms, rb, flags);
-    uint8_t *need = malloc(vbc_grid_voxels(g));
-    if (!need)
-        return vb_error(ctx, VB_ENOMEM, NULL, 0, "channel masks of %zu voxels", vbc_grid_voxels(g));
-    vbc_masks_need(g, flags, need);
+    uint32_t *list = NULL;
+    size_t n = 0;
+    int rc = vbc_masks_shape(ctx, g, atoms4, natoms, rb, flags, &list, &n);
+    uint8_t *need = rc == VB_OK ? malloc(vbc_grid_voxels(g)) : NULL;
+    if (rc == VB_OK && !need)
+        rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "channel masks of %zu voxels", vbc_grid_voxels(g));
+    if (rc != VB_OK) {
+        free(list);
+        return rc;
+    }
+    vbc_masks_need(g, list, n, need);
     double t2 = 1e3 * vb_now();
     vbj_result jr;
-    int rc = vbj_ref_exact_need(ctx, seeds, need, &jr);
+    rc = vbj_ref_exact_need(ctx, seeds, need, &jr);
     free(need);
     double t3 = 1e3 * vb_now();
     out->ms_jfa = t3 - t2;
     if (rc == VB_OK) {
         out->jfa = jr.counts;
-        vbc_masks_edges(g, (const int32_t *)jr.labels, g->dim == 3 ? 3 : 2, rb, flags);
-        rc = vbc_flags_compact(ctx, g, flags, &out->voxels, &out->nvoxels);
+        n = vbc_masks_edges(g, (const int32_t *)jr.labels, g->dim == 3 ? 3 : 2, rb, list, n, flags);
+        /* A shrink that fails leaves the longer block, as good. */
+        if (n)
+            (void)vb_array_resize((void **)&list, n, sizeof *list);
+        out->voxels = n ? list : NULL;
+        out->nvoxels = n;
+        if (!n)
+            free(list);
+        list = NULL;
     }
+    free(list);
     out->ms_masks = t2 - t1 + (1e3 * vb_now() - t3);
     vbj_result_free(&jr);
     return rc;

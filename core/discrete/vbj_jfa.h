@@ -224,8 +224,9 @@ struct vbj_backend {
 /* The exact labels (VBJ_EXACT's, on the plain-C twin, on host threads) of
  * the voxels that `need` marks (one byte per pixel, x fastest, nonzero =
  * wanted), into out (zeroed first; dim, n, pixels set; free with
- * vbj_result_free): every other pixel is VBJ_NONE, and tiles without a
- * wanted pixel are skipped, so their work counts are left out. A pixel's
+ * vbj_result_free): every other pixel's entry is unspecified (never
+ * written), and tiles without a wanted pixel are skipped, so their work
+ * counts are left out. A pixel's
  * exact label never depends on another's: the wanted ones are those of
  * vbj_run's VBJ_EXACT. What a caller that reads few labels runs instead
  * (the channel reference engine, vbc_channel_pipe.h). VB_ENOMEM. */

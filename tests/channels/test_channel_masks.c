@@ -349,12 +349,13 @@ static void test_same_as_plain(vb_ctx *ctx)
 /* Random molecules as test_same_as_plain's: vbc_masks_shape, vbc_masks_need
  * and vbc_masks_edges, with every label that need leaves out spoiled, give
  * vbc_masks_ref's bytes less the edge bit of voxels that are not interior,
- * and the ray bounds. */
+ * the ray bounds, the interior in index order and vbc_flags_compact's
+ * channel voxel list. */
 static void test_interior_only(vb_ctx *ctx)
 {
     uint64_t seed = 777;
     int differ = 0, runs = 0;
-    size_t interior = 0, needed = 0, voxels = 0;
+    size_t interior = 0, needed = 0, voxels = 0, channels = 0;
     for (int n = 16; n <= 64; n *= 2)
         for (int dim = 2; dim <= 3; dim++)
             for (int rep = 0; rep < 3; rep++) {
@@ -372,35 +373,45 @@ static void test_interior_only(vb_ctx *ctx)
                 uint8_t *f = malloc(nv), *need = malloc(nv);
                 int *rb = malloc(nrb * sizeof *rb);
                 int32_t *lab = malloc(nv * sizeof *lab);
-                vbc_masks_shape(&r.g, r.atoms, natoms, rb, f);
-                size_t m = vbc_masks_need(&r.g, f, need);
+                uint32_t *list = NULL, *want = NULL;
+                size_t m = 0, nwant = 0, t = 0;
+                CHECK_INT(vbc_masks_shape(ctx, &r.g, r.atoms, natoms, rb, f, &list, &m), VB_OK);
+                vbc_masks_need(&r.g, list, m, need);
                 for (size_t v = 0; v < nv; v++) {
                     lab[v] = need[v] ? r.labels[v] : (int32_t)(v % 5) - 9;
                     needed += need[v] != 0;
+                    /* The list: the interior voxels, in order. */
+                    if (r.flags[v] & VBC_F_INTERIOR)
+                        differ += t >= m || list[t++] != v;
                     r.flags[v] &= (r.flags[v] & VBC_F_INTERIOR) ? 0xffu : (unsigned)~VBC_F_EDGE;
                 }
-                vbc_masks_edges(&r.g, lab, dim == 3 ? 3 : 2, rb, f);
+                differ += t != m;
+                size_t c = vbc_masks_edges(&r.g, lab, dim == 3 ? 3 : 2, rb, list, m, f);
+                CHECK_INT(vbc_flags_compact(ctx, &r.g, r.flags, &want, &nwant), VB_OK);
+                differ += c != nwant || (c && memcmp(list, want, c * sizeof *list) != 0);
                 differ += memcmp(f, r.flags, nv) != 0 || memcmp(rb, r.rb, nrb * sizeof *rb) != 0;
-                CHECK_INT(m, count_bits(r.flags, nv, VBC_F_INTERIOR));
                 interior += m;
+                channels += c;
                 voxels += nv;
                 runs++;
                 free(f);
                 free(need);
                 free(rb);
                 free(lab);
+                free(list);
+                free(want);
                 run_free(&r);
                 vb_spheres_free(s);
             }
     CHECK_INT(differ, 0);
     CHECK_INT(runs, 18);
-    /* Not vacuous: interior voxels exist, and fewer labels are read. */
-    CHECK(interior > 100);
+    /* Not vacuous: interior and channel voxels exist, and fewer labels are read. */
+    CHECK(interior > 100 && channels > 10);
     CHECK(needed > interior && needed < voxels / 2);
 }
 
 /* vbj_ref_exact_need: the exact labels of the wanted voxels (random masks,
- * one with a single voxel, one with none), VBJ_NONE elsewhere. */
+ * one with a single voxel, one with none: no work then). */
 static void test_exact_need(vb_ctx *ctx)
 {
     vbj_backend *be = NULL;
@@ -429,7 +440,7 @@ static void test_exact_need(vb_ctx *ctx)
             size_t bad = 0, wanted = 0;
             for (size_t v = 0; v < full.pixels; v++) {
                 wanted += need[v] != 0;
-                bad += part.labels[v] != (need[v] ? full.labels[v] : VBJ_NONE);
+                bad += need[v] && part.labels[v] != full.labels[v];
             }
             CHECK_INT(bad, 0);
             CHECK(rep == 2 ? wanted == 0 : wanted > 0);
