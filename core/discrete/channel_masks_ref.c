@@ -71,16 +71,29 @@ static int ball_row(const float *p, int i0, int i1, int j, int k, int *lo, int *
 {
     if (i0 >= i1)
         return 0;
+    /* Exact in double (floats, and voxel centres below 2^24): the
+     * distances of the float test before its roundings, which move a
+     * squared distance by less than 6 units of 2^-24 relative (three
+     * nonnegative terms, each rounded at most three times; R^2 once). So
+     * a row whose squared distance exceeds R^2 (1 + 1e-5) + 1e-5 holds no
+     * voxel of the ball, and a voxel within R^2 (1 - 1e-5) - 1e-5 is in
+     * it: the test need not run there. */
+    double dy = (double)j + 0.5 - p[1], dz = (double)k + 0.5 - p[2], r2 = (double)p[3] * p[3];
+    double yz = dy * dy + dz * dz;
+    if (yz > r2 * (1.0 + 1e-5) + 1e-5)
+        return 0;
     /* The voxel nearest the centre in the range: the run holds it when the
      * row meets the ball at all. */
     int c = (int)floorf(p[0] - 0.5f);
     c = c < i0 ? i0 : c >= i1 ? i1 - 1 : c;
-    if (c + 1 < i1 && !vbc_ball_contains(p[0], p[1], p[2], p[3], c, j, k))
-        c++;
-    if (!vbc_ball_contains(p[0], p[1], p[2], p[3], c, j, k))
-        return 0;
-    double dy = (double)j + 0.5 - p[1], dz = (double)k + 0.5 - p[2];
-    double rem = (double)p[3] * p[3] - dy * dy - dz * dz;
+    double dc = (double)c + 0.5 - p[0];
+    if (dc * dc + yz >= r2 * (1.0 - 1e-5) - 1e-5) {
+        if (c + 1 < i1 && !vbc_ball_contains(p[0], p[1], p[2], p[3], c, j, k))
+            c++;
+        if (!vbc_ball_contains(p[0], p[1], p[2], p[3], c, j, k))
+            return 0;
+    }
+    double rem = r2 - dy * dy - dz * dz;
     double w = rem > 0.0 ? sqrt(rem) : 0.0;
     int l = (int)floor(p[0] - 0.5 - w), r = (int)ceil(p[0] - 0.5 + w);
     l = l < i0 ? i0 : l > c ? c : l;
