@@ -305,6 +305,20 @@ static void masks_plain(const vbc_grid *g, const float *atoms4, size_t natoms, c
                     (uint8_t)vbc_classify(labels, flags, rb, nx, ny, nz, min_labels, i, j, k);
 }
 
+/* n atoms uniform in [0, span)^dim (z 0 in 2D), radii r0 + [0, dr). */
+static vb_sphere_set *random_atoms(uint64_t *seed, size_t n, int dim, double span, double r0,
+                                   double dr)
+{
+    vb_sphere_set *s = vb_test_spheres_alloc(n, 0);
+    for (size_t i = 0; i < n; i++) {
+        s->x[i] = span * synth_uniform(seed);
+        s->y[i] = span * synth_uniform(seed);
+        s->z[i] = dim == 3 ? span * synth_uniform(seed) : 0.0;
+        s->r[i] = r0 + dr * synth_uniform(seed);
+    }
+    return s;
+}
+
 /* Random atoms (radii 0.9 to 2.4 A, probe 1.4 A, some balls past the grid's
  * edge after the fit as 2D cuts have them) on grids of 16 to 64: the same
  * flag bytes and ray bounds as masks_plain. */
@@ -316,13 +330,7 @@ static void test_same_as_plain(vb_ctx *ctx)
         for (int dim = 2; dim <= 3; dim++)
             for (int rep = 0; rep < 3; rep++) {
                 size_t natoms = (size_t)(30 + 70 * rep);
-                vb_sphere_set *s = vb_test_spheres_alloc(natoms, 0);
-                for (size_t i = 0; i < natoms; i++) {
-                    s->x[i] = 20.0 * synth_uniform(&seed);
-                    s->y[i] = 20.0 * synth_uniform(&seed);
-                    s->z[i] = dim == 3 ? 20.0 * synth_uniform(&seed) : 0.0;
-                    s->r[i] = 0.9 + 1.5 * synth_uniform(&seed);
-                }
+                vb_sphere_set *s = random_atoms(&seed, natoms, dim, 20.0, 0.9, 1.5);
                 run r;
                 run_ref(ctx, s, 1.4, n, dim, &r);
                 /* Shift some balls half out of the grid: the rows clip. */
@@ -360,13 +368,7 @@ static void test_interior_only(vb_ctx *ctx)
         for (int dim = 2; dim <= 3; dim++)
             for (int rep = 0; rep < 3; rep++) {
                 size_t natoms = (size_t)(40 + 80 * rep);
-                vb_sphere_set *s = vb_test_spheres_alloc(natoms, 0);
-                for (size_t i = 0; i < natoms; i++) {
-                    s->x[i] = 20.0 * synth_uniform(&seed);
-                    s->y[i] = 20.0 * synth_uniform(&seed);
-                    s->z[i] = dim == 3 ? 20.0 * synth_uniform(&seed) : 0.0;
-                    s->r[i] = 0.9 + 1.5 * synth_uniform(&seed);
-                }
+                vb_sphere_set *s = random_atoms(&seed, natoms, dim, 20.0, 0.9, 1.5);
                 run r;
                 run_ref(ctx, s, 1.4, n, dim, &r);
                 size_t nv = vbc_grid_voxels(&r.g), nrb = (size_t)vbc_rb_size(r.g.nx, r.g.ny, r.g.nz);
@@ -465,13 +467,8 @@ static void test_engine_interior(vb_ctx *ctx)
     uint64_t seed = 4242;
     size_t channels = 0;
     for (int rep = 0; rep < 4; rep++) {
-        vb_sphere_set *s = rep == 0 ? synth_cylinder(6, 10, 4.0, 1.6, 1.5) : vb_test_spheres_alloc(150, 0);
-        for (size_t i = 0; rep > 0 && i < s->n; i++) {
-            s->x[i] = 25.0 * synth_uniform(&seed);
-            s->y[i] = 25.0 * synth_uniform(&seed);
-            s->z[i] = 25.0 * synth_uniform(&seed);
-            s->r[i] = 1.2 + 0.8 * synth_uniform(&seed);
-        }
+        vb_sphere_set *s = rep == 0 ? synth_cylinder(6, 10, 4.0, 1.6, 1.5)
+                                    : random_atoms(&seed, 150, 3, 25.0, 1.2, 0.8);
         vbc_grid g;
         CHECK_INT(vbc_grid_fit(ctx, s, 1.4, 64, 3, &g), VB_OK);
         float *atoms = malloc(4 * s->n * sizeof *atoms);
