@@ -187,41 +187,82 @@ void vbc_masks_ref(const vbc_grid *g, const float *atoms4, size_t natoms, const 
                 flags[v] = (uint8_t)classify(g, labels, flags, rb, min_labels, i, j, k, v);
 }
 
+/* The interior voxels of row `row` (bytes base + i0 .. base + i1) appended
+ * to (*list, *cap, *m) in order. 0, or -1 when out of memory. */
+static int list_interior(const uint8_t *row, size_t base, int i0, int i1, uint32_t **list,
+                         size_t *cap, size_t *m)
+{
+    for (int i = i0; i < i1; i++) {
+        /* Eight voxels at once where none is interior. */
+        if (((i - i0) & 7) == 0 && i + 8 <= i1) {
+            uint64_t w;
+            memcpy(&w, row + i, sizeof w);
+            if ((w & 0x0808080808080808ull) == 0) {
+                i += 7;
+                continue;
+            }
+        }
+        if (!(row[i] & VBC_F_INTERIOR))
+            continue;
+        if (VB_ARRAY_FIT(*list, *cap, *m + 1, 4096) != VB_OK)
+            return -1;
+        (*list)[(*m)++] = (uint32_t)(base + (size_t)i);
+    }
+    return 0;
+}
+
 int vbc_masks_shape(vb_ctx *ctx, const vbc_grid *g, const float *atoms4, size_t natoms, int *rb,
                     uint8_t *flags, uint32_t **interior, size_t *ninterior)
 {
     int nx = g->nx, ny = g->ny, nz = g->nz, bx[6];
     uint32_t *list = NULL;
-    size_t m = 0, cap = 0;
+    size_t m = 0, cap = 0, ny2 = (size_t)nx * (size_t)nz, nz2 = (size_t)nx * (size_t)ny;
     *interior = NULL;
     *ninterior = 0;
+    /* The y and z rays' first and last hits apart (the loop below reads
+     * them along i without rb's interleaving, so it runs without branches). */
+    int *yf = malloc(2 * (ny2 + nz2) * sizeof *yf);
+    if (!yf)
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "ray bounds of %d x %d x %d", nx, ny, nz);
+    int *yl = yf + ny2, *zf = yl + ny2, *zl = zf + nz2;
     atomic_mask(g, atoms4, natoms, rb, flags, bx);
     const int *ry = rb + vbc_rb_y(nx, ny, nz), *rz = rb + vbc_rb_z(nx, ny, nz);
+    for (size_t t = 0; t < ny2; t++) {
+        yf[t] = ry[2 * t];
+        yl[t] = ry[2 * t + 1];
+    }
+    for (size_t t = 0; t < nz2; t++) {
+        zf[t] = rz[2 * t];
+        zl[t] = rz[2 * t + 1];
+    }
     /* vbc_molecular row by row in the box (outside it nothing is): the x
      * ray is the row's, the y and z rays run along the row with i. */
-    for (int k = bx[4]; k < bx[5]; k++)
+    int rc = VB_OK;
+    for (int k = bx[4]; k < bx[5] && rc == VB_OK; k++)
         for (int j = bx[2]; j < bx[3]; j++) {
             size_t base = (size_t)nx * ((size_t)j + (size_t)ny * (size_t)k);
             uint8_t *row = flags + base;
-            const int *xb = rb + 2 * (j + ny * k), *yb = ry + 2 * nx * k, *zb = rz + 2 * nx * j;
+            const int *xb = rb + 2 * (j + ny * k);
+            const int *yfk = yf + (size_t)nx * (size_t)k, *ylk = yl + (size_t)nx * (size_t)k;
+            const int *zfj = zf + (size_t)nx * (size_t)j, *zlj = zl + (size_t)nx * (size_t)j;
+            int xf = xb[0], xl = xb[1];
             for (int i = bx[0]; i < bx[1]; i++) {
                 unsigned a = row[i];
-                int in = (xb[0] <= i && i <= xb[1]) || (yb[2 * i] <= j && j <= yb[2 * i + 1]) ||
-                         (zb[2 * i] <= k && k <= zb[2 * i + 1]);
-                if (!in)
-                    continue;
-                if (a) {
-                    row[i] = VBC_F_ATOMIC | VBC_F_MOLECULAR;
-                    continue;
-                }
-                row[i] = VBC_F_MOLECULAR | VBC_F_INTERIOR;
-                if (VB_ARRAY_FIT(list, cap, m + 1, 4096) != VB_OK) {
-                    free(list);
-                    return vb_error(ctx, VB_ENOMEM, NULL, 0, "interior voxels (%zu)", m + 1);
-                }
-                list[m++] = (uint32_t)(base + (size_t)i);
+                int in = ((xf <= i) & (i <= xl)) | ((yfk[i] <= j) & (j <= ylk[i])) |
+                         ((zfj[i] <= k) & (k <= zlj[i]));
+                unsigned f = a ? VBC_F_ATOMIC | VBC_F_MOLECULAR : VBC_F_MOLECULAR | VBC_F_INTERIOR;
+                row[i] = (uint8_t)(in ? f : a);
+            }
+            if (list_interior(row, base, bx[0], bx[1], &list, &cap, &m) != 0) {
+                rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "interior voxels (%zu)", m + 1);
+                break;
             }
         }
+    free(yf);
+    if (rc != VB_OK) {
+        free(list);
+        return rc;
+    }
     *interior = list;
     *ninterior = m;
     return VB_OK;
