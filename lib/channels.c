@@ -191,7 +191,7 @@ int vb_channels_run(vb_ctx *ctx, vb_channels *ch, const vb_sphere_set *s, long i
     carry_apply(ch);
     vbc_run_init(&ch->run, &ch->cfg, ch->pipe, s->source);
     ch->run_live = 1;
-    ch->run.want = flags & VB_CHANNELS_KEEP_FLAGS ? VBC_WANT_FLAGS : 0;
+    ch->run.want = flags & VB_CHANNELS_KEEP_FLAGS ? VBC_WANT_FLAGS | VBC_WANT_EDGES : 0; /* every bit of every voxel */
     ch->run.frames_total = 1; /* one frame a call: progress ("frames", 1, 1) */
     int rc = vbc_run_frame(ctx, &ch->run, s, index, model, first, &ch->out);
     if (rc == VB_OK)

@@ -19,6 +19,13 @@ typedef struct {
     int failed;
 } lining_acc;
 
+/* The cell side of the analysis' cell list (A). Its two queries answer
+ * whatever the walk's order: clearances are the least (distance, index),
+ * lining atoms a sorted set. 5 A walks fewer cells per channel voxel than
+ * 3 A (the pore stage's, whose ascent reads the walk's order): 1af6 0.25 ->
+ * 0.23 s of CPU, adk_oplsaa 0.80 -> 0.74 s for 10 frames (one thread). */
+#define VBC_ANALYSIS_CELL 5.0
+
 static void lining_add(int32_t atom, void *user)
 {
     lining_acc *L = user;
@@ -396,7 +403,7 @@ int vbc_analyse_given(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, co
         vbc_components_group(&W);
     res->device_components = W.vcomp && !W.comp_bad;
     res->components = W.ncomp;
-    if ((rc = vbc_cells_build(ctx, s, 3.0, &W.cells)) != VB_OK)
+    if ((rc = vbc_cells_build(ctx, s, VBC_ANALYSIS_CELL, &W.cells)) != VB_OK)
         goto done;
     rc = VB_ENOMEM;
     if (analyse_components(&W, s->n, res) != 0)

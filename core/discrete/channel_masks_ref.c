@@ -5,13 +5,16 @@
 #include <string.h>
 
 #include "channel_math.h"
+#include "vb_array.h"
 #include "vbc_channel.h"
 
 /* The ray bounds of every axis ray (vbc_ray_scan's first and last hit) in
  * one pass over the atomic mask in memory order: along x, y and z the index
  * grows with the pass, so the first hit is the first seen and the last the
- * last seen, as the per-ray scans find them, without their strided reads. */
-static void ray_bounds(const uint8_t *am, int nx, int ny, int nz, int *rb)
+ * last seen, as the per-ray scans find them, without their strided reads.
+ * Only the box bx (i0, i1, j0, j1, k0, k1, half open) is read: no voxel
+ * outside it is atomic. */
+static void ray_bounds(const uint8_t *am, int nx, int ny, int nz, const int *bx, int *rb)
 {
     int *ry = rb + vbc_rb_y(nx, ny, nz), *rz = rb + vbc_rb_z(nx, ny, nz);
     for (int s = 0; s < ny * nz; s++) {
@@ -26,13 +29,13 @@ static void ray_bounds(const uint8_t *am, int nx, int ny, int nz, int *rb)
         rz[2 * s] = nz;
         rz[2 * s + 1] = -1;
     }
-    for (int k = 0; k < nz; k++)
-        for (int j = 0; j < ny; j++) {
+    for (int k = bx[4]; k < bx[5]; k++)
+        for (int j = bx[2]; j < bx[3]; j++) {
             const uint8_t *row = am + (size_t)nx * ((size_t)j + (size_t)ny * (size_t)k);
             int *x = rb + 2 * (j + ny * k);
-            for (int i = 0; i < nx; i++) {
+            for (int i = bx[0]; i < bx[1]; i++) {
                 /* Eight voxels at once where none is atomic. */
-                if ((i & 7) == 0 && i + 8 <= nx) {
+                if (i + 8 <= bx[1]) {
                     uint64_t w;
                     memcpy(&w, row + i, sizeof w);
                     if ((w & 0x0101010101010101ull) == 0) {
@@ -68,16 +71,29 @@ static int ball_row(const float *p, int i0, int i1, int j, int k, int *lo, int *
 {
     if (i0 >= i1)
         return 0;
+    /* Exact in double (floats, and voxel centres below 2^24): the
+     * distances of the float test before its roundings, which move a
+     * squared distance by less than 6 units of 2^-24 relative (three
+     * nonnegative terms, each rounded at most three times; R^2 once). So
+     * a row whose squared distance exceeds R^2 (1 + 1e-5) + 1e-5 holds no
+     * voxel of the ball, and a voxel within R^2 (1 - 1e-5) - 1e-5 is in
+     * it: the test need not run there. */
+    double dy = (double)j + 0.5 - p[1], dz = (double)k + 0.5 - p[2], r2 = (double)p[3] * p[3];
+    double yz = dy * dy + dz * dz;
+    if (yz > r2 * (1.0 + 1e-5) + 1e-5)
+        return 0;
     /* The voxel nearest the centre in the range: the run holds it when the
      * row meets the ball at all. */
     int c = (int)floorf(p[0] - 0.5f);
     c = c < i0 ? i0 : c >= i1 ? i1 - 1 : c;
-    if (c + 1 < i1 && !vbc_ball_contains(p[0], p[1], p[2], p[3], c, j, k))
-        c++;
-    if (!vbc_ball_contains(p[0], p[1], p[2], p[3], c, j, k))
-        return 0;
-    double dy = (double)j + 0.5 - p[1], dz = (double)k + 0.5 - p[2];
-    double rem = (double)p[3] * p[3] - dy * dy - dz * dz;
+    double dc = (double)c + 0.5 - p[0];
+    if (dc * dc + yz >= r2 * (1.0 - 1e-5) - 1e-5) {
+        if (c + 1 < i1 && !vbc_ball_contains(p[0], p[1], p[2], p[3], c, j, k))
+            c++;
+        if (!vbc_ball_contains(p[0], p[1], p[2], p[3], c, j, k))
+            return 0;
+    }
+    double rem = r2 - dy * dy - dz * dz;
     double w = rem > 0.0 ? sqrt(rem) : 0.0;
     int l = (int)floor(p[0] - 0.5 - w), r = (int)ceil(p[0] - 0.5 + w);
     l = l < i0 ? i0 : l > c ? c : l;
@@ -95,47 +111,200 @@ static int ball_row(const float *p, int i0, int i1, int j, int k, int *lo, int *
     return 1;
 }
 
-void vbc_masks_ref(const vbc_grid *g, const float *atoms4, size_t natoms, const int32_t *labels,
-                   int min_labels, int *rb, uint8_t *flags)
+/* The atomic mask (flags cleared first), the ray bounds, and in bx the box
+ * (i0, i1, j0, j1, k0, k1, half open) of the balls' voxel boxes: no voxel
+ * outside it is atomic, so none is molecular either (a ray's hits and the
+ * voxels between them lie in it). */
+static void atomic_mask(const vbc_grid *g, const float *atoms4, size_t natoms, int *rb,
+                        uint8_t *flags, int *bx)
 {
     int nx = g->nx, ny = g->ny, nz = g->nz;
     memset(flags, 0, vbc_grid_voxels(g));
+    bx[0] = nx;
+    bx[2] = ny;
+    bx[4] = nz;
+    bx[1] = bx[3] = bx[5] = 0;
     for (size_t a = 0; a < natoms; a++) {
         const float *p = atoms4 + 4 * a;
         int i0 = vbc_box_lo(p[0], p[3]), i1 = vbc_box_hi(p[0], p[3], nx);
-        int j1 = vbc_box_hi(p[1], p[3], ny), k1 = vbc_box_hi(p[2], p[3], nz);
-        for (int k = vbc_box_lo(p[2], p[3]); k < k1; k++)
-            for (int j = vbc_box_lo(p[1], p[3]); j < j1; j++) {
+        int j0 = vbc_box_lo(p[1], p[3]), j1 = vbc_box_hi(p[1], p[3], ny);
+        int k0 = vbc_box_lo(p[2], p[3]), k1 = vbc_box_hi(p[2], p[3], nz);
+        if (i0 < i1 && j0 < j1 && k0 < k1) {
+            int lo[3] = {i0, j0, k0}, hi[3] = {i1, j1, k1};
+            for (int d = 0; d < 3; d++) {
+                bx[2 * d] = lo[d] < bx[2 * d] ? lo[d] : bx[2 * d];
+                bx[2 * d + 1] = hi[d] > bx[2 * d + 1] ? hi[d] : bx[2 * d + 1];
+            }
+        }
+        for (int k = k0; k < k1; k++)
+            for (int j = j0; j < j1; j++) {
                 int lo, hi;
                 if (ball_row(p, i0, i1, j, k, &lo, &hi))
                     memset(flags + (size_t)nx * (j + (size_t)ny * k) + lo, VBC_F_ATOMIC,
                            (size_t)(hi - lo + 1));
             }
     }
-    ray_bounds(flags, nx, ny, nz, rb);
-    /* The classification reads only the voxel's own flag byte (its atomic
-     * bit), so updating in place is safe. A voxel inside the grid whose six
-     * face neighbours share its label is no Voronoi edge, hence no channel:
-     * its byte is the atomic, molecular and interior bits alone (what
-     * vbc_classify gives it), without the label count. */
+    if (bx[0] >= bx[1] || bx[2] >= bx[3] || bx[4] >= bx[5])
+        bx[0] = bx[1] = bx[2] = bx[3] = bx[4] = bx[5] = 0;
+    ray_bounds(flags, nx, ny, nz, bx, rb);
+}
+
+/* The classification of voxel v = (i,j,k) from its flag byte's atomic bit,
+ * the ray bounds and the labels (vbc_classify's byte). */
+static unsigned classify(const vbc_grid *g, const int32_t *labels, const uint8_t *flags,
+                         const int *rb, int min_labels, int i, int j, int k, size_t v)
+{
+    int nx = g->nx, ny = g->ny, nz = g->nz;
     size_t sy = (size_t)nx, sz = (size_t)nx * (size_t)ny;
+    /* A voxel inside the grid whose six face neighbours share its label is
+     * no Voronoi edge, hence no channel: its byte is the atomic, molecular
+     * and interior bits alone (what vbc_classify gives it), without the
+     * label count. */
+    if (min_labels > 1 && i > 0 && j > 0 && k > 0 && i + 1 < nx && j + 1 < ny && k + 1 < nz) {
+        int32_t l = labels[v];
+        if (labels[v - 1] == l && labels[v + 1] == l && labels[v - sy] == l && labels[v + sy] == l &&
+            labels[v - sz] == l && labels[v + sz] == l) {
+            unsigned f = flags[v] & VBC_F_ATOMIC;
+            if (vbc_molecular(rb, nx, ny, nz, i, j, k))
+                f |= f ? VBC_F_MOLECULAR : VBC_F_MOLECULAR | VBC_F_INTERIOR;
+            return f;
+        }
+    }
+    return vbc_classify(labels, flags, rb, nx, ny, nz, min_labels, i, j, k);
+}
+
+void vbc_masks_ref(const vbc_grid *g, const float *atoms4, size_t natoms, const int32_t *labels,
+                   int min_labels, int *rb, uint8_t *flags)
+{
+    int nx = g->nx, ny = g->ny, nz = g->nz, bx[6];
+    atomic_mask(g, atoms4, natoms, rb, flags, bx);
+    /* The classification reads only the voxel's own flag byte (its atomic
+     * bit), so updating in place is safe. */
+    size_t v = 0;
     for (int k = 0; k < nz; k++)
         for (int j = 0; j < ny; j++)
-            for (int i = 0; i < nx; i++) {
-                size_t v = (size_t)i + sy * ((size_t)j + (size_t)ny * (size_t)k);
-                if (min_labels > 1 && i > 0 && j > 0 && k > 0 && i + 1 < nx && j + 1 < ny && k + 1 < nz) {
-                    int32_t l = labels[v];
-                    if (labels[v - 1] == l && labels[v + 1] == l && labels[v - sy] == l &&
-                        labels[v + sy] == l && labels[v - sz] == l && labels[v + sz] == l) {
-                        unsigned f = flags[v] & VBC_F_ATOMIC;
-                        if (vbc_molecular(rb, nx, ny, nz, i, j, k))
-                            f |= f ? VBC_F_MOLECULAR : VBC_F_MOLECULAR | VBC_F_INTERIOR;
-                        flags[v] = (uint8_t)f;
-                        continue;
-                    }
-                }
-                flags[v] = (uint8_t)vbc_classify(labels, flags, rb, nx, ny, nz, min_labels, i, j, k);
+            for (int i = 0; i < nx; i++, v++)
+                flags[v] = (uint8_t)classify(g, labels, flags, rb, min_labels, i, j, k, v);
+}
+
+/* The interior voxels of row `row` (bytes base + i0 .. base + i1) appended
+ * to (*list, *cap, *m) in order. 0, or -1 when out of memory. */
+static int list_interior(const uint8_t *row, size_t base, int i0, int i1, uint32_t **list,
+                         size_t *cap, size_t *m)
+{
+    for (int i = i0; i < i1; i++) {
+        /* Eight voxels at once where none is interior. */
+        if (((i - i0) & 7) == 0 && i + 8 <= i1) {
+            uint64_t w;
+            memcpy(&w, row + i, sizeof w);
+            if ((w & 0x0808080808080808ull) == 0) {
+                i += 7;
+                continue;
             }
+        }
+        if (!(row[i] & VBC_F_INTERIOR))
+            continue;
+        if (VB_ARRAY_FIT(*list, *cap, *m + 1, 4096) != VB_OK)
+            return -1;
+        (*list)[(*m)++] = (uint32_t)(base + (size_t)i);
+    }
+    return 0;
+}
+
+int vbc_masks_shape(vb_ctx *ctx, const vbc_grid *g, const float *atoms4, size_t natoms, int *rb,
+                    uint8_t *flags, uint32_t **interior, size_t *ninterior)
+{
+    int nx = g->nx, ny = g->ny, nz = g->nz, bx[6];
+    uint32_t *list = NULL;
+    size_t m = 0, cap = 0, ny2 = (size_t)nx * (size_t)nz, nz2 = (size_t)nx * (size_t)ny;
+    *interior = NULL;
+    *ninterior = 0;
+    /* The y and z rays' first and last hits apart (the loop below reads
+     * them along i without rb's interleaving, so it runs without branches). */
+    int *yf = malloc(2 * (ny2 + nz2) * sizeof *yf);
+    if (!yf)
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "ray bounds of %d x %d x %d", nx, ny, nz);
+    int *yl = yf + ny2, *zf = yl + ny2, *zl = zf + nz2;
+    atomic_mask(g, atoms4, natoms, rb, flags, bx);
+    const int *ry = rb + vbc_rb_y(nx, ny, nz), *rz = rb + vbc_rb_z(nx, ny, nz);
+    for (size_t t = 0; t < ny2; t++) {
+        yf[t] = ry[2 * t];
+        yl[t] = ry[2 * t + 1];
+    }
+    for (size_t t = 0; t < nz2; t++) {
+        zf[t] = rz[2 * t];
+        zl[t] = rz[2 * t + 1];
+    }
+    /* vbc_molecular row by row in the box (outside it nothing is): the x
+     * ray is the row's, the y and z rays run along the row with i. */
+    int rc = VB_OK;
+    for (int k = bx[4]; k < bx[5] && rc == VB_OK; k++)
+        for (int j = bx[2]; j < bx[3]; j++) {
+            size_t base = (size_t)nx * ((size_t)j + (size_t)ny * (size_t)k);
+            uint8_t *row = flags + base;
+            const int *xb = rb + 2 * (j + ny * k);
+            const int *yfk = yf + (size_t)nx * (size_t)k, *ylk = yl + (size_t)nx * (size_t)k;
+            const int *zfj = zf + (size_t)nx * (size_t)j, *zlj = zl + (size_t)nx * (size_t)j;
+            int xf = xb[0], xl = xb[1];
+            for (int i = bx[0]; i < bx[1]; i++) {
+                unsigned a = row[i];
+                int in = ((xf <= i) & (i <= xl)) | ((yfk[i] <= j) & (j <= ylk[i])) |
+                         ((zfj[i] <= k) & (k <= zlj[i]));
+                unsigned f = a ? VBC_F_ATOMIC | VBC_F_MOLECULAR : VBC_F_MOLECULAR | VBC_F_INTERIOR;
+                row[i] = (uint8_t)(in ? f : a);
+            }
+            if (list_interior(row, base, bx[0], bx[1], &list, &cap, &m) != 0) {
+                rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "interior voxels (%zu)", m + 1);
+                break;
+            }
+        }
+    free(yf);
+    if (rc != VB_OK) {
+        free(list);
+        return rc;
+    }
+    *interior = list;
+    *ninterior = m;
+    return VB_OK;
+}
+
+void vbc_masks_need(const vbc_grid *g, const uint32_t *interior, size_t n, uint8_t *need)
+{
+    int nx = g->nx, ny = g->ny, nz = g->nz;
+    size_t sy = (size_t)nx, sz = (size_t)nx * (size_t)ny;
+    memset(need, 0, vbc_grid_voxels(g));
+    for (size_t t = 0; t < n; t++) {
+        size_t v = interior[t];
+        int i = (int)(v % sy), j = (int)(v / sy % (size_t)ny), k = (int)(v / sz);
+        need[v] = 1;
+        if (i > 0)
+            need[v - 1] = 1;
+        if (i + 1 < nx)
+            need[v + 1] = 1;
+        if (j > 0)
+            need[v - sy] = 1;
+        if (j + 1 < ny)
+            need[v + sy] = 1;
+        if (k > 0)
+            need[v - sz] = 1;
+        if (k + 1 < nz)
+            need[v + sz] = 1;
+    }
+}
+
+size_t vbc_masks_edges(const vbc_grid *g, const int32_t *labels, int min_labels, const int *rb,
+                       uint32_t *interior, size_t n, uint8_t *flags)
+{
+    size_t sy = (size_t)g->nx, sz = (size_t)g->nx * (size_t)g->ny, m = 0;
+    for (size_t t = 0; t < n; t++) {
+        size_t v = interior[t];
+        int i = (int)(v % sy), j = (int)(v / sy % (size_t)g->ny), k = (int)(v / sz);
+        unsigned f = classify(g, labels, flags, rb, min_labels, i, j, k, v);
+        flags[v] = (uint8_t)f;
+        if (f & VBC_F_CHANNEL)
+            interior[m++] = (uint32_t)v | ((f & VBC_F_MOUTH) ? VBC_MOUTH_BIT : 0u);
+    }
+    return m;
 }
 
 int vbc_flags_compact(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, uint32_t **out,

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "channel_math.h"
+#include "vb_array.h"
 #include "vb_diag.h"
 #include "vb_parallel.h"
 #include "vbc_channel_pipe.h"
@@ -60,6 +61,51 @@ typedef struct ref_state {
     vbj_backend *jfa;
 } ref_state;
 
+/* The reference frame when no caller reads the labels or the edge bit of
+ * voxels that are not interior (vbc_channel_pipe.h): the masks first, then
+ * the exact labels of the voxels that the interior's classification reads
+ * only (vbc_masks_need), then that classification. The channel voxels are
+ * those of the whole run: the labels read are the same, and a voxel that is
+ * not interior is no channel whatever its labels. */
+static int ref_frame_interior(vb_ctx *ctx, const vbc_grid *g, const float *atoms4, size_t natoms,
+                              const vbj_seeds *seeds, uint8_t *flags, int *rb, vbc_frame_out *out)
+{
+    double t1 = 1e3 * vb_now();
+    uint32_t *list = NULL;
+    size_t n = 0;
+    int rc = vbc_masks_shape(ctx, g, atoms4, natoms, rb, flags, &list, &n);
+    uint8_t *need = rc == VB_OK ? malloc(vbc_grid_voxels(g)) : NULL;
+    if (rc == VB_OK && !need)
+        rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "channel masks of %zu voxels", vbc_grid_voxels(g));
+    if (rc != VB_OK) {
+        free(list);
+        return rc;
+    }
+    vbc_masks_need(g, list, n, need);
+    double t2 = 1e3 * vb_now();
+    vbj_result jr;
+    rc = vbj_ref_exact_need(ctx, seeds, need, &jr);
+    free(need);
+    double t3 = 1e3 * vb_now();
+    out->ms_jfa = t3 - t2;
+    if (rc == VB_OK) {
+        out->jfa = jr.counts;
+        n = vbc_masks_edges(g, (const int32_t *)jr.labels, g->dim == 3 ? 3 : 2, rb, list, n, flags);
+        /* A shrink that fails leaves the longer block, as good. */
+        if (n)
+            (void)vb_array_resize((void **)&list, n, sizeof *list);
+        out->voxels = n ? list : NULL;
+        out->nvoxels = n;
+        if (!n)
+            free(list);
+        list = NULL;
+    }
+    free(list);
+    out->ms_masks = t2 - t1 + (1e3 * vb_now() - t3);
+    vbj_result_free(&jr);
+    return rc;
+}
+
 /* The reference frame: JFA labels in C, the masks of channel_masks_ref.c
  * (bit for bit those of gpu/channels.cl), the voxel list in index order. */
 static int ref_frame(vb_ctx *ctx, vbc_engine *e, const vbc_grid *g, const float *atoms4,
@@ -79,23 +125,28 @@ static int ref_frame(vb_ctx *ctx, vbc_engine *e, const vbc_grid *g, const float 
         return rc;
     double t1 = 1e3 * vb_now();
     out->ms_upload = t1 - t0;
-    vbj_options jo = {st->variant, 0, VBJ_WANT_LABELS, 0};
-    if ((rc = vbj_run(ctx, st->jfa, &seeds, &jo, &jr)) != VB_OK)
-        goto done;
-    double t2 = 1e3 * vb_now();
-    out->ms_jfa = t2 - t1;
-    out->jfa = jr.counts;
     flags = malloc(vbc_grid_voxels(g));
     rb = malloc((size_t)vbc_rb_size(g->nx, g->ny, g->nz) * sizeof *rb);
     if (!flags || !rb) {
         rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "channel masks of %zu voxels", vbc_grid_voxels(g));
         goto done;
     }
-    /* Seed indices are below VBJ_MAX_SEEDS, so the int32 view is lossless. */
-    vbc_masks_ref(g, atoms4, natoms, (const int32_t *)jr.labels, g->dim == 3 ? 3 : 2, rb, flags);
-    if ((rc = vbc_flags_compact(ctx, g, flags, &out->voxels, &out->nvoxels)) != VB_OK)
+    if (VBJ_IS_EXACT(st->variant) && !(want & (VBC_WANT_LABELS | VBC_WANT_EDGES))) {
+        rc = ref_frame_interior(ctx, g, atoms4, natoms, &seeds, flags, rb, out);
+    } else {
+        vbj_options jo = {st->variant, 0, VBJ_WANT_LABELS, 0};
+        if ((rc = vbj_run(ctx, st->jfa, &seeds, &jo, &jr)) != VB_OK)
+            goto done;
+        double t2 = 1e3 * vb_now();
+        out->ms_jfa = t2 - t1;
+        out->jfa = jr.counts;
+        /* Seed indices are below VBJ_MAX_SEEDS, so the int32 view is lossless. */
+        vbc_masks_ref(g, atoms4, natoms, (const int32_t *)jr.labels, g->dim == 3 ? 3 : 2, rb, flags);
+        rc = vbc_flags_compact(ctx, g, flags, &out->voxels, &out->nvoxels);
+        out->ms_masks = 1e3 * vb_now() - t2;
+    }
+    if (rc != VB_OK)
         goto done;
-    out->ms_masks = 1e3 * vb_now() - t2;
     if (want & VBC_WANT_FLAGS) {
         out->flags = flags;
         flags = NULL;

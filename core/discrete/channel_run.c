@@ -341,7 +341,8 @@ int vbc_run_front(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index, 
     if (rc != VB_OK)
         return rc;
     int want_volume = A->volume && (strstr(A->volume, "%d") || first);
-    o->want = r->want | (want_volume || A->occupancy ? VBC_WANT_FLAGS : 0);
+    o->want = r->want | (want_volume || A->occupancy ? VBC_WANT_FLAGS : 0) |
+              (want_volume && (A->volume_bit & VBC_F_EDGE) ? VBC_WANT_EDGES : 0);
     o->fi.frame = index;
     o->fi.model = model;
     o->fi.atoms = o->s->n;

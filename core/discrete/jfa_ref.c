@@ -222,13 +222,30 @@ static int exact_tiles(vb_ctx *ctx, const vbj_seeds *s, const vbj_options *opt, 
     if (rc)
         return rc;
     double t1 = 1e3 * vb_now();
-    rc = vbj_tiles_ref_run(ctx, s, &p, out);
+    rc = vbj_tiles_ref_run(ctx, s, &p, NULL, out);
     if (!rc && opt->variant == VBJ_EXACT_BOUNDARY)
         out->counts.boundary = vbj_boundary_count(s->dim, s->n, out->labels);
     out->ms_kernel = 1e3 * vb_now() - t1;
     out->ms_transfer = t1 - t0;
     out->ms_prep = t1 - t0;
     vbj_tiles_prep_free(&p);
+    return rc;
+}
+
+int vbj_ref_exact_need(vb_ctx *ctx, const vbj_seeds *s, const uint8_t *need, vbj_result *out)
+{
+    memset(out, 0, sizeof *out);
+    out->dim = s->dim;
+    out->n = s->n;
+    out->pixels = (size_t)s->n * s->n * (s->dim == 3 ? s->n : 1);
+    vbj_tiles_prep p;
+    int rc = vbj_tiles_prep_build(ctx, s, &p);
+    if (rc)
+        return rc;
+    rc = vbj_tiles_ref_run(ctx, s, &p, need, out);
+    vbj_tiles_prep_free(&p);
+    if (rc)
+        vbj_result_free(out);
     return rc;
 }
 

@@ -110,6 +110,7 @@ typedef struct {
     const vbj_tiles_prep *p;
     uint32_t n, dim, T; /* T tiles per axis */
     uint32_t *labels;
+    const uint8_t *need; /* per voxel, nonzero where a label is wanted; NULL: all */
     scratch th[VB_MAX_THREADS];
 } job;
 
@@ -173,6 +174,51 @@ static void bound_pass(const vbj_tiles_prep *p, vbj_xt_box box, const int32_t *c
     }
 }
 
+/* Nonzero when one of the m bytes at b is. */
+static int any_byte(const uint8_t *b, uint32_t m)
+{
+    uint32_t i = 0;
+    for (uint64_t w; i + 8 <= m; i += 8) {
+        memcpy(&w, b + i, sizeof w);
+        if (w)
+            return 1;
+    }
+    for (; i < m; i++)
+        if (b[i])
+            return 1;
+    return 0;
+}
+
+/* The box of the wanted voxels of the tile whose first voxel is `first`:
+ * 0 when it has none, else 1 with their least and greatest offsets per
+ * axis in lo and hi (0 in z in 2D). */
+static int need_box(const uint8_t *need, size_t first, uint32_t n, uint32_t S, uint32_t sz,
+                    uint32_t lo[3], uint32_t hi[3])
+{
+    int any = 0;
+    for (int a = 0; a < 3; a++) {
+        lo[a] = S;
+        hi[a] = 0;
+    }
+    for (uint32_t z = 0; z < sz; z++)
+        for (uint32_t y = 0; y < S; y++) {
+            const uint8_t *row = need + first + ((size_t)z * n + y) * n;
+            if (!any_byte(row, S))
+                continue;
+            for (uint32_t x = 0; x < S; x++)
+                if (row[x]) {
+                    lo[0] = x < lo[0] ? x : lo[0];
+                    hi[0] = x > hi[0] ? x : hi[0];
+                }
+            lo[1] = y < lo[1] ? y : lo[1];
+            hi[1] = y > hi[1] ? y : hi[1];
+            lo[2] = any ? lo[2] : z;
+            hi[2] = z;
+            any = 1;
+        }
+    return any;
+}
+
 static void tile(void *arg, size_t t, int tid)
 {
     job *J = arg;
@@ -181,10 +227,28 @@ static void tile(void *arg, size_t t, int tid)
     uint32_t dim = J->dim, T = J->T, S = 1u << p->ts;
     uint32_t tc[3] = {(uint32_t)(t % T), (uint32_t)(t / T % T),
                       dim == 3 ? (uint32_t)(t / ((size_t)T * T)) : 0};
-    vbj_xt_box box = vbj_xt_tile_box(tc[0], tc[1], tc[2], p->ts, dim);
+    uint32_t n = J->n, sz = dim == 3 ? S : 1;
+    size_t first = ((size_t)(tc[2] << p->ts) * n + (tc[1] << p->ts)) * n + (tc[0] << p->ts);
+    /* tb, the tile's box, places the survivors; box, the searches and
+     * tests: the tile's, or with a need mask the box of its wanted voxels
+     * (inside the tile, so inside bucket b0: every bound of vbj_tiles.h
+     * holds for it, and the owner of each of its voxels survives). */
+    vbj_xt_box tb = vbj_xt_tile_box(tc[0], tc[1], tc[2], p->ts, dim), box = tb;
     int32_t cen[3];
     for (int a = 0; a < 3; a++)
         cen[a] = a < (int)dim ? box.lo[a] + (int32_t)(S / 2) * VBJ_FIX_ONE : 0;
+    if (J->need) {
+        uint32_t lo[3], hi[3];
+        if (!need_box(J->need, first, n, S, sz, lo, hi))
+            return;
+        /* cen: a voxel centre of the box, so its owner c is a candidate
+         * (|cen - c| <= U) and survives. */
+        for (int a = 0; a < (int)dim; a++) {
+            box.lo[a] = tb.lo[a] + (int32_t)lo[a] * VBJ_FIX_ONE;
+            box.hi[a] = tb.lo[a] + (int32_t)hi[a] * VBJ_FIX_ONE;
+            cen[a] = tb.lo[a] + (int32_t)((lo[a] + hi[a] + 1) / 2) * VBJ_FIX_ONE;
+        }
+    }
     int32_t g = (int32_t)p->g, b0[3];
     for (int a = 0; a < 3; a++)
         b0[a] = a < (int)dim ? (int32_t)((tc[a] << p->ts) >> p->bs) : 0;
@@ -226,7 +290,7 @@ static void tile(void *arg, size_t t, int tid)
             w->cnt[VBJ_XT_C_CAND]++;
             if (v != cs && vbj_xt_dominated(box, c[0], c[1], c[2], cs, e[0], e[1], e[2], v, dim))
                 continue;
-            int32_t r[4] = {e[0] - box.lo[0], e[1] - box.lo[1], e[2] - box.lo[2], (int32_t)v};
+            int32_t r[4] = {e[0] - tb.lo[0], e[1] - tb.lo[1], e[2] - tb.lo[2], (int32_t)v};
             far |= !vbj_xt_float_ok(r[0], r[1], r[2]);
             if (push(w, ns++, r)) {
                 w->failed = 1;
@@ -254,12 +318,14 @@ static void tile(void *arg, size_t t, int tid)
         for (size_t i = 0; i < ns; i++)
             ex[i] = (float)w->surv[4 * i];
 
-    /* Every voxel of the tile. */
-    uint32_t n = J->n, sz = dim == 3 ? S : 1;
+    /* Every voxel of the tile (every wanted one). */
     for (uint32_t z = 0; z < sz; z++)
         for (uint32_t y = 0; y < S; y++) {
-            uint32_t *row = J->labels + ((size_t)((tc[2] << p->ts) + z) * n + (tc[1] << p->ts) + y) * n +
-                            (tc[0] << p->ts);
+            size_t r0 = first + ((size_t)z * n + y) * n;
+            uint32_t *row = J->labels + r0;
+            const uint8_t *want = J->need ? J->need + r0 : NULL;
+            if (want && !any_byte(want, S))
+                continue;
             if (ns > 1 && !far)
                 for (size_t i = 0; i < ns; i++) {
                     const int32_t *e = w->surv + 4 * i;
@@ -267,6 +333,8 @@ static void tile(void *arg, size_t t, int tid)
                                        (float)((int32_t)z * VBJ_FIX_ONE) - (float)e[2]);
                 }
             for (uint32_t x = 0; x < S; x++) {
+                if (want && !want[x])
+                    continue;
                 if (ns == 1) {
                     row[x] = cs;
                     continue;
@@ -292,7 +360,8 @@ static void tile(void *arg, size_t t, int tid)
         }
 }
 
-int vbj_tiles_ref_run(vb_ctx *ctx, const vbj_seeds *s, const vbj_tiles_prep *p, vbj_result *out)
+int vbj_tiles_ref_run(vb_ctx *ctx, const vbj_seeds *s, const vbj_tiles_prep *p, const uint8_t *need,
+                      vbj_result *out)
 {
     job *J = calloc(1, sizeof *J);
     out->labels = malloc(out->pixels * sizeof *out->labels);
@@ -305,6 +374,7 @@ int vbj_tiles_ref_run(vb_ctx *ctx, const vbj_seeds *s, const vbj_tiles_prep *p, 
     J->dim = (uint32_t)s->dim;
     J->T = s->n >> p->ts;
     J->labels = out->labels;
+    J->need = need;
     size_t tiles = (size_t)J->T * J->T * (s->dim == 3 ? J->T : 1);
     int nt = vb_threads(0);
     vb_parallel_for(tile, J, tiles, nt);

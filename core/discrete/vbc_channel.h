@@ -49,6 +49,27 @@ void vbc_atoms_pack(const vbc_grid *g, const vb_sphere_set *s, double probe, flo
 void vbc_masks_ref(const vbc_grid *g, const float *atoms4, size_t natoms, const int32_t *labels,
                    int min_labels, int *rb, uint8_t *flags);
 
+/* The mask stage in three steps, for a caller that reads few labels (the
+ * reference engine without VBC_WANT_EDGES, vbc_channel_pipe.h).
+ * vbc_masks_shape writes the atomic, molecular and interior bits of every
+ * voxel (vbc_classify's, the labels aside) and the ray bounds rb, and
+ * lists the interior voxels in increasing index order (*interior
+ * malloc'ed, NULL when none; VB_ENOMEM). vbc_masks_need marks in need (one
+ * byte per voxel, cleared first) the voxels whose labels the
+ * classification of those voxels reads: each and its face neighbours
+ * inside the grid. vbc_masks_edges then gives each listed voxel its whole
+ * vbc_classify byte from labels that are right on the needed voxels, and
+ * rewrites the list's head with the channel voxels among them, in order,
+ * the mouth flag in VBC_MOUTH_BIT (vbc_flags_compact's list); it returns
+ * their number. The flags are vbc_masks_ref's bytes except the edge bit of
+ * voxels that are not interior, which stays clear: channel, mouth,
+ * interior, molecular and atomic bits are all the same. */
+int vbc_masks_shape(vb_ctx *ctx, const vbc_grid *g, const float *atoms4, size_t natoms, int *rb,
+                    uint8_t *flags, uint32_t **interior, size_t *ninterior);
+void vbc_masks_need(const vbc_grid *g, const uint32_t *interior, size_t n, uint8_t *need);
+size_t vbc_masks_edges(const vbc_grid *g, const int32_t *labels, int min_labels, const int *rb,
+                       uint32_t *interior, size_t n, uint8_t *flags);
+
 /* Lists the channel voxels of a flag volume in increasing index order, the
  * mouth flag in VBC_MOUTH_BIT. *out is malloc'ed (NULL when none). */
 int vbc_flags_compact(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, uint32_t **out,

@@ -19,7 +19,14 @@
 /* What a frame run returns besides the voxel list. */
 enum {
     VBC_WANT_FLAGS = 1, /* the flag volume (VBC_F_* per voxel) on the host */
-    VBC_WANT_LABELS = 2 /* the Voronoi labels on the host */
+    VBC_WANT_LABELS = 2, /* the Voronoi labels on the host */
+    /* The edge bit of every voxel in the flags. Without it (and without
+     * VBC_WANT_LABELS) the reference engine of an exact variant computes
+     * labels only where the interior's classification reads them
+     * (vbc_masks_need) and leaves the edge bit clear on voxels that are
+     * not interior; every other bit, and so the channel voxels, are the
+     * same (vbc_masks_shape). */
+    VBC_WANT_EDGES = 4
 };
 
 typedef struct vbc_frame_out {

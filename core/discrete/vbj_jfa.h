@@ -228,6 +228,17 @@ struct vbj_backend {
     void (*close)(vbj_backend *be);
 };
 
+/* The exact labels (VBJ_EXACT's, on the plain-C twin, on host threads) of
+ * the voxels that `need` marks (one byte per pixel, x fastest, nonzero =
+ * wanted), into out (zeroed first; dim, n, pixels set; free with
+ * vbj_result_free): every other pixel's entry is unspecified (never
+ * written), and tiles without a wanted pixel are skipped, so their work
+ * counts are left out. A pixel's
+ * exact label never depends on another's: the wanted ones are those of
+ * vbj_run's VBJ_EXACT. What a caller that reads few labels runs instead
+ * (the channel reference engine, vbc_channel_pipe.h). VB_ENOMEM. */
+int vbj_ref_exact_need(vb_ctx *ctx, const vbj_seeds *s, const uint8_t *need, vbj_result *out);
+
 /* Opens the plain-C reference backend. Close with vbj_backend_close. */
 int vbj_ref_open(vb_ctx *ctx, vbj_backend **out);
 

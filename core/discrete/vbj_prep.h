@@ -53,8 +53,16 @@ void vbj_tiles_prep_free(vbj_tiles_prep *p);
 
 /* The plain-C twin of the tiled engine: the exact labels of every voxel
  * into out->labels (allocated; out->pixels set by the caller) and the work
- * counts. VB_ENOMEM. */
-int vbj_tiles_ref_run(vb_ctx *ctx, const vbj_seeds *s, const vbj_tiles_prep *p, vbj_result *out);
+ * counts. need NULL, or one byte per voxel (x fastest): then only the
+ * voxels whose byte is nonzero get their label (every other entry is left
+ * as malloc gave it), and a tile without such a voxel is skipped whole
+ * (its counts too); a tile's searches and tests then run on the box of its
+ * wanted voxels, which vbj_tiles.h's bounds allow for any box inside the
+ * tile. A voxel's exact label never depends on the others', so the wanted
+ * ones are those of the full run. VB_ENOMEM. */
+int vbj_tiles_ref_run(vb_ctx *ctx, const vbj_seeds *s, const vbj_tiles_prep *p, const uint8_t *need,
+                      vbj_result *out);
+
 
 /* The counts of a tiled run from its counters (VBJ_XT_C_*, summed over
  * tiles): the exact-engine fields of c, steps = 1, step_pixels = voxels of

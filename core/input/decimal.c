@@ -36,6 +36,24 @@ static int is_nonfinite_word(const char *t, size_t n)
     return 0;
 }
 
+/* mant x 10^exp10 correctly rounded without strtod, where that is one
+ * rounding (Clinger's fast path): |mant| <= 2^53 is an exact double, and
+ * so is 10^k for k <= 22 (5^22 < 2^53), so the product or quotient of the
+ * two is rounded once, to nearest as strtod rounds; 1 and *out, else 0
+ * (the caller asks strtod). mant 0 is left to the caller (the sign of a
+ * zero is the text's). */
+static int fast_double(int64_t mant, int32_t exp10, double *out)
+{
+    static const double p10[23] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                   1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                   1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+    const int64_t lim = (int64_t)1 << 53;
+    if (mant == 0 || mant > lim || mant < -lim || exp10 > 22 || exp10 < -22)
+        return 0;
+    *out = exp10 >= 0 ? (double)mant * p10[exp10] : (double)mant / p10[-exp10];
+    return 1;
+}
+
 int vb_decimal_parse(const char *tok, size_t len, vb_decimal *out, double *d)
 {
     if (len == 0)
@@ -107,7 +125,7 @@ int vb_decimal_parse(const char *tok, size_t len, vb_decimal *out, double *d)
     }
     out->mant = neg ? -m : m;
     out->exp10 = (int32_t)exp;
-    if (d) {
+    if (d && !fast_double(out->mant, out->exp10, d)) {
         char buf[VBI_MAX_TOKEN + 1];
         memcpy(buf, tok, len);
         buf[len] = '\0';
@@ -171,6 +189,9 @@ void vb_decimal_to_mpz(mpz_t z, vb_decimal d, int32_t emin, mpz_t tmp)
 
 double vb_decimal_double(vb_decimal d)
 {
+    double v;
+    if (fast_double(d.mant, d.exp10, &v))
+        return v;
     char buf[48];
     snprintf(buf, sizeof buf, "%lldE%d", (long long)d.mant, (int)d.exp10);
     return strtod(buf, NULL);

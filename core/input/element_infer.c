@@ -23,6 +23,7 @@
 #include "vb_diag.h"
 
 #include <ctype.h>
+#include <stdint.h>
 #include <string.h>
 
 /* Residues whose atoms are all H, C, N, O, S, P: amino acids (with the
@@ -184,6 +185,32 @@ int vbi_infer_element(const char *name4, const char *name, const char *resname, 
     else
         set(element, a, '\0');
     return VBI_INFER_LETTER;
+}
+
+int vbi_infer_element_memo(vbi_infer_memo *m, const char *name, const char *resname,
+                           char element[4])
+{
+    size_t ln = strlen(name), lr = strlen(resname);
+    if (ln >= sizeof m->e[0].name || lr >= sizeof m->e[0].resname)
+        return vbi_infer_element(NULL, name, resname, VBI_LAYOUT_UNKNOWN, element);
+    uint32_t h = 2166136261u; /* FNV-1a over both names */
+    for (size_t k = 0; k <= ln; k++)
+        h = (h ^ (unsigned char)name[k]) * 16777619u;
+    for (size_t k = 0; k < lr; k++)
+        h = (h ^ (unsigned char)resname[k]) * 16777619u;
+    size_t slot = h % (sizeof m->e / sizeof m->e[0]);
+    if (m->e[slot].used && strcmp(m->e[slot].name, name) == 0 &&
+        strcmp(m->e[slot].resname, resname) == 0) {
+        memcpy(element, m->e[slot].element, 4);
+        return m->e[slot].how;
+    }
+    int how = vbi_infer_element(NULL, name, resname, VBI_LAYOUT_UNKNOWN, element);
+    memcpy(m->e[slot].name, name, ln + 1);
+    memcpy(m->e[slot].resname, resname, lr + 1);
+    memcpy(m->e[slot].element, element, 4);
+    m->e[slot].how = how;
+    m->e[slot].used = 1;
+    return how;
 }
 
 int vbi_pdb_name_layout(const char *buf, size_t len)

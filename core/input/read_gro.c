@@ -57,9 +57,7 @@ int vbi_decimal_times_ten(vb_decimal *e, double *d)
         return VB_OK;
     }
     e->exp10++;
-    char buf[48];
-    snprintf(buf, sizeof buf, "%lldE%d", (long long)e->mant, (int)e->exp10);
-    *d = strtod(buf, NULL);
+    *d = vb_decimal_double(*e);
     return VB_OK;
 }
 
@@ -163,6 +161,8 @@ int vbi_gro_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
     int rc = vbi_builder_init(&b, ctx, name, opt->max_spheres, 1);
     if (rc != VB_OK)
         return rc;
+    vbi_infer_memo memo_store, *memo = &memo_store;
+    memset(memo, 0, sizeof *memo);
     for (int32_t i = 0; i < count && rc == VB_OK; i++) {
         if (!vbi_lines_next(&it, &line, &n)) {
             rc = vb_error(ctx, VB_EINPUT_MALFORMED, name, it.lineno,
@@ -182,7 +182,7 @@ int vbi_gro_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
         double d[4];
         if ((rc = parse_atom(ctx, name, it.lineno, line, n, &info, e, d)) != VB_OK)
             break;
-        int how = vbi_infer_element(NULL, info.name, info.resname, VBI_LAYOUT_UNKNOWN, info.element);
+        int how = vbi_infer_element_memo(memo, info.name, info.resname, info.element);
         if (vbi_atom_dropped(opt, NULL, &info, dr))
             continue;
         rc = vbi_atom_keep(ctx, opt, name, it.lineno, &info, how, dr, &b, e, d);

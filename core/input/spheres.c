@@ -317,17 +317,17 @@ static void warn_nested(vb_ctx *ctx, const vb_sphere_set *s, const size_t *by, i
  * pad_box) that skips an i once it is found inside: i is tested against
  * the j whose cells hold i's cell, in increasing j, up to the first that
  * holds it. Done per i (contain_cell) it is the same tests in the same
- * order for each i, so the same marks and counts on any number of threads. */
+ * order for each i, so the same marks and counts on any number of threads.
+ * The j of a cell are listed once beforehand (contain_all), each j entered
+ * into the cells of its box in increasing j. */
 typedef struct contain_job {
     const vb_sphere_set *s;
     const center_grid *g;
-    size_t (*box)[6];     /* per sphere j: its cells' lo[3], hi[3] */
-    size_t span[3];       /* most cells from a j's own cell to an end of its box */
+    size_t *cstart;       /* per grid cell c: its j are entries cstart[c] .. cstart[c + 1] */
+    size_t *cj, base, c0; /* the entries of the cells of a run from c0 on, the first
+                             (cstart[c0]) at cj[0] */
+    size_t *fill;         /* per cell: the next entry to fill */
     size_t *by, *touch;
-    struct cand {
-        size_t *j, cap;
-        int nomem;
-    } *cand;              /* per thread: the candidates of its sphere i */
     nest_count *count;    /* per thread */
 } contain_job;
 
@@ -344,56 +344,20 @@ static void pad_box(const vb_sphere_set *s, const center_grid *g, size_t j, size
     }
 }
 
-/* The spheres i of grid cell `cell` (contain_job): the j whose boxes hold
- * the cell, gathered once and put in increasing order, then each i's
- * tests in that order. */
-static void contain_cell(void *ctx, size_t cell, int tid)
+/* The spheres i of grid cell `cell` (contain_job), each tested against the
+ * cell's j in increasing order. */
+static void contain_cell(void *ctx, size_t k, int tid)
 {
     const contain_job *jb = ctx;
     const vb_sphere_set *s = jb->s;
     const center_grid *g = jb->g;
-    if (g->start[cell] == g->start[cell + 1])
-        return;
-    const size_t ci[3] = {cell % g->dim[0], cell / g->dim[0] % g->dim[1],
-                          cell / (g->dim[0] * g->dim[1])};
-    size_t lo[3], hi[3];
-    for (int k = 0; k < 3; k++) {
-        lo[k] = ci[k] > jb->span[k] ? ci[k] - jb->span[k] : 0;
-        hi[k] = ci[k] + jb->span[k] < g->dim[k] ? ci[k] + jb->span[k] : g->dim[k] - 1;
-    }
-    struct cand *cd = jb->cand + tid;
-    size_t nc = 0;
-    for (size_t cz = lo[2]; cz <= hi[2]; cz++)
-        for (size_t cy = lo[1]; cy <= hi[1]; cy++)
-            for (size_t cx = lo[0]; cx <= hi[0]; cx++) {
-                size_t other = (cz * g->dim[1] + cy) * g->dim[0] + cx;
-                for (size_t t = g->start[other]; t < g->start[other + 1]; t++) {
-                    size_t j = g->items[t];
-                    const size_t *b = jb->box[j];
-                    if (!(b[0] <= ci[0] && ci[0] <= b[3] && b[1] <= ci[1] && ci[1] <= b[4] &&
-                          b[2] <= ci[2] && ci[2] <= b[5]))
-                        continue;
-                    if (nc == cd->cap) {
-                        size_t cap = cd->cap ? 2 * cd->cap : 256;
-                        size_t *p = realloc(cd->j, cap * sizeof *p);
-                        if (!p) {
-                            cd->nomem = 1;
-                            return;
-                        }
-                        cd->j = p;
-                        cd->cap = cap;
-                    }
-                    /* In increasing order as they come (few per cell). */
-                    size_t q = nc++;
-                    for (; q > 0 && cd->j[q - 1] > j; q--)
-                        cd->j[q] = cd->j[q - 1];
-                    cd->j[q] = j;
-                }
-            }
+    size_t cell = jb->c0 + k;
+    const size_t *cj = jb->cj + (jb->cstart[cell] - jb->base);
+    size_t nc = jb->cstart[cell + 1] - jb->cstart[cell];
     for (size_t t = g->start[cell]; t < g->start[cell + 1]; t++) {
         size_t i = g->items[t];
         for (size_t q = 0; q < nc; q++) {
-            size_t j = cd->j[q];
+            size_t j = cj[q];
             /* Equal radii would need equal centres: a duplicate, refused
              * before we get here. A smaller double radius has a smaller
              * decimal (rounding keeps the order). */
@@ -408,6 +372,85 @@ static void contain_cell(void *ctx, size_t cell, int tid)
                 jb->touch[i] = j;
         }
     }
+}
+
+/* Most candidate entries listed at a time (32 MB): more cells are done in
+ * runs of consecutive cells, each listed by its own pass over the boxes. */
+#define CAND_CHUNK ((size_t)4 << 20)
+
+/* Calls fn(jb, j, c) for every sphere j, in increasing j, and every cell c
+ * in [c0, c1) of j's box that holds a sphere. */
+static void each_box_cell(contain_job *jb, size_t (*box)[6], size_t c0, size_t c1,
+                          void (*fn)(contain_job *, size_t, size_t))
+{
+    const center_grid *g = jb->g;
+    for (size_t j = 0; j < jb->s->n; j++) {
+        const size_t *b = box[j];
+        for (size_t cz = b[2]; cz <= b[5]; cz++)
+            for (size_t cy = b[1]; cy <= b[4]; cy++) {
+                size_t r = (cz * g->dim[1] + cy) * g->dim[0];
+                if (r + b[3] < c0 || r + b[0] >= c1)
+                    continue;
+                for (size_t cx = b[0]; cx <= b[3]; cx++) {
+                    size_t c = r + cx;
+                    if (c >= c0 && c < c1 && g->start[c] != g->start[c + 1])
+                        fn(jb, j, c);
+                }
+            }
+    }
+}
+
+static void count_j(contain_job *jb, size_t j, size_t c)
+{
+    (void)j;
+    jb->cstart[c + 1]++;
+}
+
+static void fill_j(contain_job *jb, size_t j, size_t c)
+{
+    jb->cj[jb->fill[c]++] = j;
+}
+
+/* Every cell's spheres against the j whose box holds the cell, listed in
+ * increasing j (jb->cstart counts, then jb->cj filled in j order), in runs
+ * of cells of at most CAND_CHUNK entries (a cell alone may exceed it).
+ * 0, or -1 when out of memory. */
+static int contain_all(contain_job *jb, int nt)
+{
+    const vb_sphere_set *s = jb->s;
+    const center_grid *g = jb->g;
+    size_t total = g->dim[0] * g->dim[1] * g->dim[2];
+    size_t (*box)[6] = malloc(s->n * sizeof *box);
+    jb->cstart = calloc(total + 1, sizeof *jb->cstart);
+    jb->fill = malloc((total + 1) * sizeof *jb->fill);
+    int rc = box && jb->cstart && jb->fill ? 0 : -1;
+    for (size_t j = 0; rc == 0 && j < s->n; j++)
+        pad_box(s, g, j, box[j]);
+    if (rc == 0)
+        each_box_cell(jb, box, 0, total, count_j);
+    for (size_t c = 0; rc == 0 && c < total; c++)
+        jb->cstart[c + 1] += jb->cstart[c];
+    for (size_t c0 = 0, c1; rc == 0 && c0 < total; c0 = c1) {
+        for (c1 = c0 + 1; c1 < total && jb->cstart[c1 + 1] - jb->cstart[c0] <= CAND_CHUNK; c1++)
+            ;
+        free(jb->cj);
+        if (!(jb->cj = malloc((jb->cstart[c1] - jb->cstart[c0] + 1) * sizeof *jb->cj))) {
+            rc = -1;
+            break;
+        }
+        /* cj holds the run's entries from cstart[c0] on. */
+        jb->base = jb->cstart[c0];
+        for (size_t c = c0; c < c1; c++)
+            jb->fill[c] = jb->cstart[c] - jb->base;
+        each_box_cell(jb, box, c0, c1, fill_j);
+        jb->c0 = c0;
+        vb_parallel_for(contain_cell, jb, c1 - c0, nt);
+    }
+    free(box);
+    free(jb->cstart);
+    free(jb->fill);
+    free(jb->cj);
+    return rc;
 }
 
 /* Marks contained spheres (strictly inside another: empty cell) and, when
@@ -427,49 +470,25 @@ static int find_contained(vb_ctx *ctx, vb_sphere_set *s, int warn)
     jb.g = &g;
     jb.by = malloc(s->n * sizeof *jb.by);
     jb.touch = malloc(s->n * sizeof *jb.touch);
-    jb.box = malloc(s->n * sizeof *jb.box);
-    jb.cand = calloc((size_t)nt, sizeof *jb.cand);
     jb.count = calloc((size_t)nt, sizeof *jb.count);
-    if (!jb.by || !jb.touch || !jb.box || !jb.cand || !jb.count || grid_build(&g, s) != 0) {
+    for (size_t j = 0; jb.by && jb.touch && j < s->n; j++)
+        jb.by[j] = jb.touch[j] = SIZE_MAX;
+    if (!jb.by || !jb.touch || !jb.count || grid_build(&g, s) != 0 || contain_all(&jb, nt) != 0) {
         free(jb.by);
         free(jb.touch);
-        free(jb.box);
-        free(jb.cand);
         free(jb.count);
         grid_free(&g);
         return vb_error(ctx, VB_ENOMEM, s->source, 0, "out of memory");
     }
-    for (size_t j = 0; j < s->n; j++) {
-        jb.by[j] = jb.touch[j] = SIZE_MAX;
-        pad_box(s, &g, j, jb.box[j]);
-        for (int k = 0; k < 3; k++) {
-            size_t cj = cell_coord(k == 0 ? s->x[j] : k == 1 ? s->y[j] : s->z[j], g.min[k], g.h,
-                                   g.dim[k]);
-            size_t d = cj - jb.box[j][k] > jb.box[j][3 + k] - cj ? cj - jb.box[j][k]
-                                                                 : jb.box[j][3 + k] - cj;
-            jb.span[k] = d > jb.span[k] ? d : jb.span[k];
-        }
-    }
-    vb_parallel_for(contain_cell, &jb, g.dim[0] * g.dim[1] * g.dim[2], nt);
-    int nomem = 0;
     vb_stats *st = vb_ctx_stats(ctx);
     for (int t = 0; t < nt; t++) {
-        nomem |= jb.cand[t].nomem;
-        free(jb.cand[t].j);
         st->filter_calls += jb.count[t].calls;
         st->filter_failures += jb.count[t].failures;
         st->exact_evals += jb.count[t].failures;
     }
     grid_free(&g);
     size_t *by = jb.by, *touch = jb.touch;
-    free(jb.box);
-    free(jb.cand);
     free(jb.count);
-    if (nomem) {
-        free(by);
-        free(touch);
-        return vb_error(ctx, VB_ENOMEM, s->source, 0, "out of memory");
-    }
     for (size_t i = 0; i < s->n; i++) {
         if (by[i] != SIZE_MAX) {
             s->contained[i] = 1;

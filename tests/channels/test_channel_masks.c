@@ -3,10 +3,13 @@
  * with a pore along z, a closed shell; and (#33) the whole stage against the
  * plain per-voxel form it replaced (every voxel against every ball's box,
  * one vbc_ray_scan per ray, vbc_classify everywhere) on random atoms, in 3D
- * and 2D, byte for byte. */
+ * and 2D, byte for byte; and (chan41) the mask stage that reads labels
+ * only around the interior, its exact labels and the reference engine that
+ * runs it, against the whole stage. */
 #include "channel_math.h"
 #include "synth.h"
 #include "vb_test.h"
+#include "vbc_channel_pipe.h"
 
 static size_t count_bits(const uint8_t *f, size_t n, unsigned bit)
 {
@@ -302,6 +305,20 @@ static void masks_plain(const vbc_grid *g, const float *atoms4, size_t natoms, c
                     (uint8_t)vbc_classify(labels, flags, rb, nx, ny, nz, min_labels, i, j, k);
 }
 
+/* n atoms uniform in [0, span)^dim (z 0 in 2D), radii r0 + [0, dr). */
+static vb_sphere_set *random_atoms(uint64_t *seed, size_t n, int dim, double span, double r0,
+                                   double dr)
+{
+    vb_sphere_set *s = vb_test_spheres_alloc(n, 0);
+    for (size_t i = 0; i < n; i++) {
+        s->x[i] = span * synth_uniform(seed);
+        s->y[i] = span * synth_uniform(seed);
+        s->z[i] = dim == 3 ? span * synth_uniform(seed) : 0.0;
+        s->r[i] = r0 + dr * synth_uniform(seed);
+    }
+    return s;
+}
+
 /* Random atoms (radii 0.9 to 2.4 A, probe 1.4 A, some balls past the grid's
  * edge after the fit as 2D cuts have them) on grids of 16 to 64: the same
  * flag bytes and ray bounds as masks_plain. */
@@ -313,13 +330,7 @@ static void test_same_as_plain(vb_ctx *ctx)
         for (int dim = 2; dim <= 3; dim++)
             for (int rep = 0; rep < 3; rep++) {
                 size_t natoms = (size_t)(30 + 70 * rep);
-                vb_sphere_set *s = vb_test_spheres_alloc(natoms, 0);
-                for (size_t i = 0; i < natoms; i++) {
-                    s->x[i] = 20.0 * synth_uniform(&seed);
-                    s->y[i] = 20.0 * synth_uniform(&seed);
-                    s->z[i] = dim == 3 ? 20.0 * synth_uniform(&seed) : 0.0;
-                    s->r[i] = 0.9 + 1.5 * synth_uniform(&seed);
-                }
+                vb_sphere_set *s = random_atoms(&seed, natoms, dim, 20.0, 0.9, 1.5);
                 run r;
                 run_ref(ctx, s, 1.4, n, dim, &r);
                 /* Shift some balls half out of the grid: the rows clip. */
@@ -343,6 +354,152 @@ static void test_same_as_plain(vb_ctx *ctx)
     CHECK_INT(runs, 18);
 }
 
+/* Random molecules as test_same_as_plain's: vbc_masks_shape, vbc_masks_need
+ * and vbc_masks_edges, with every label that need leaves out spoiled, give
+ * vbc_masks_ref's bytes less the edge bit of voxels that are not interior,
+ * the ray bounds, the interior in index order and vbc_flags_compact's
+ * channel voxel list. */
+static void test_interior_only(vb_ctx *ctx)
+{
+    uint64_t seed = 777;
+    int differ = 0, runs = 0;
+    size_t interior = 0, needed = 0, voxels = 0, channels = 0;
+    for (int n = 16; n <= 64; n *= 2)
+        for (int dim = 2; dim <= 3; dim++)
+            for (int rep = 0; rep < 3; rep++) {
+                size_t natoms = (size_t)(40 + 80 * rep);
+                vb_sphere_set *s = random_atoms(&seed, natoms, dim, 20.0, 0.9, 1.5);
+                run r;
+                run_ref(ctx, s, 1.4, n, dim, &r);
+                /* Some balls half out of the grid (rows and the box clip),
+                 * the whole stage again on them. */
+                for (size_t i = 3; i < natoms; i += 11)
+                    r.atoms[4 * i + 1] = (float)r.g.ny + 0.4f * r.atoms[4 * i + 3];
+                vbc_masks_ref(&r.g, r.atoms, natoms, r.labels, dim == 3 ? 3 : 2, r.rb, r.flags);
+                size_t nv = vbc_grid_voxels(&r.g), nrb = (size_t)vbc_rb_size(r.g.nx, r.g.ny, r.g.nz);
+                uint8_t *f = malloc(nv), *need = malloc(nv);
+                int *rb = malloc(nrb * sizeof *rb);
+                int32_t *lab = malloc(nv * sizeof *lab);
+                uint32_t *list = NULL, *want = NULL;
+                size_t m = 0, nwant = 0, t = 0;
+                CHECK_INT(vbc_masks_shape(ctx, &r.g, r.atoms, natoms, rb, f, &list, &m), VB_OK);
+                vbc_masks_need(&r.g, list, m, need);
+                for (size_t v = 0; v < nv; v++) {
+                    lab[v] = need[v] ? r.labels[v] : (int32_t)(v % 5) - 9;
+                    needed += need[v] != 0;
+                    /* The list: the interior voxels, in order. */
+                    if (r.flags[v] & VBC_F_INTERIOR)
+                        differ += t >= m || list[t++] != v;
+                    r.flags[v] &= (r.flags[v] & VBC_F_INTERIOR) ? 0xffu : (unsigned)~VBC_F_EDGE;
+                }
+                differ += t != m;
+                size_t c = vbc_masks_edges(&r.g, lab, dim == 3 ? 3 : 2, rb, list, m, f);
+                CHECK_INT(vbc_flags_compact(ctx, &r.g, r.flags, &want, &nwant), VB_OK);
+                differ += c != nwant || (c && memcmp(list, want, c * sizeof *list) != 0);
+                differ += memcmp(f, r.flags, nv) != 0 || memcmp(rb, r.rb, nrb * sizeof *rb) != 0;
+                interior += m;
+                channels += c;
+                voxels += nv;
+                runs++;
+                free(f);
+                free(need);
+                free(rb);
+                free(lab);
+                free(list);
+                free(want);
+                run_free(&r);
+                vb_spheres_free(s);
+            }
+    CHECK_INT(differ, 0);
+    CHECK_INT(runs, 18);
+    /* Not vacuous: interior and channel voxels exist, and fewer labels are read. */
+    CHECK(interior > 100 && channels > 10);
+    CHECK(needed > interior && needed < voxels / 2);
+}
+
+/* vbj_ref_exact_need: the exact labels of the wanted voxels (random masks,
+ * one with a single voxel, one with none: no work then). */
+static void test_exact_need(vb_ctx *ctx)
+{
+    vbj_backend *be = NULL;
+    CHECK_INT(vbj_ref_open(ctx, &be), VB_OK);
+    uint64_t seed = 99;
+    for (int dim = 2; dim <= 3; dim++)
+        for (int rep = 0; rep < 3; rep++) {
+            uint32_t n = dim == 3 ? 32 : 128;
+            vbj_seeds sd;
+            CHECK_INT(vbj_seeds_alloc(ctx, dim, n, 60, &sd), VB_OK);
+            for (size_t i = 0; i < 60; i++) {
+                double x = (n - 1) * synth_uniform(&seed), y = (n - 1) * synth_uniform(&seed);
+                double z = dim == 3 ? (n - 1) * synth_uniform(&seed) : 0.0;
+                CHECK_INT(vbj_seed_set(ctx, &sd, i, x, y, z), VB_OK);
+            }
+            vbj_options o = {VBJ_EXACT, 0, VBJ_WANT_LABELS, 0};
+            vbj_result full, part;
+            CHECK_INT(vbj_run(ctx, be, &sd, &o, &full), VB_OK);
+            uint8_t *need = calloc(full.pixels, 1);
+            if (rep == 0)
+                for (size_t v = 0; v < full.pixels; v++)
+                    need[v] = synth_uniform(&seed) < 0.05;
+            else if (rep == 1)
+                need[full.pixels / 3] = 1;
+            CHECK_INT(vbj_ref_exact_need(ctx, &sd, need, &part), VB_OK);
+            size_t bad = 0, wanted = 0;
+            for (size_t v = 0; v < full.pixels; v++) {
+                wanted += need[v] != 0;
+                bad += need[v] && part.labels[v] != full.labels[v];
+            }
+            CHECK_INT(bad, 0);
+            CHECK(rep == 2 ? wanted == 0 : wanted > 0);
+            CHECK(rep == 2 ? part.counts.tiles_uniform + part.counts.survivors == 0
+                           : part.counts.survivors > 0);
+            free(need);
+            vbj_result_free(&full);
+            vbj_result_free(&part);
+            vbj_seeds_free(&sd);
+        }
+    vbj_backend_close(be);
+}
+
+/* The reference engine without VBC_WANT_EDGES (the interior-only stage)
+ * against the same engine asked for labels (the whole stage): the same
+ * channel voxel list, and the same flags but the edge bit of voxels that
+ * are not interior. */
+static void test_engine_interior(vb_ctx *ctx)
+{
+    vbc_engine *e = NULL;
+    CHECK_INT(vbc_engine_ref_open(ctx, VBJ_EXACT, &e), VB_OK);
+    uint64_t seed = 4242;
+    size_t channels = 0;
+    for (int rep = 0; rep < 4; rep++) {
+        vb_sphere_set *s = rep == 0 ? synth_cylinder(6, 10, 4.0, 1.6, 1.5)
+                                    : random_atoms(&seed, 150, 3, 25.0, 1.2, 0.8);
+        vbc_grid g;
+        CHECK_INT(vbc_grid_fit(ctx, s, 1.4, 64, 3, &g), VB_OK);
+        float *atoms = malloc(4 * s->n * sizeof *atoms);
+        vbc_atoms_pack(&g, s, 1.4, atoms);
+        vbc_frame_out a, b;
+        CHECK_INT(e->frame(ctx, e, &g, atoms, s->n, 1.4, VBC_WANT_FLAGS | VBC_WANT_LABELS, &a), VB_OK);
+        CHECK_INT(e->frame(ctx, e, &g, atoms, s->n, 1.4, VBC_WANT_FLAGS, &b), VB_OK);
+        CHECK(b.labels == NULL);
+        CHECK_INT(a.nvoxels, b.nvoxels);
+        CHECK(a.nvoxels == b.nvoxels && memcmp(a.voxels, b.voxels, a.nvoxels * sizeof *a.voxels) == 0);
+        size_t nv = vbc_grid_voxels(&g), bad = 0;
+        for (size_t v = 0; v < nv; v++) {
+            unsigned want = a.flags[v] & ((a.flags[v] & VBC_F_INTERIOR) ? 0xffu : (unsigned)~VBC_F_EDGE);
+            bad += b.flags[v] != want;
+        }
+        CHECK_INT(bad, 0);
+        channels += a.nvoxels;
+        vbc_frame_out_free(&a);
+        vbc_frame_out_free(&b);
+        free(atoms);
+        vb_spheres_free(s);
+    }
+    CHECK(channels > 0);
+    vbc_engine_close(e);
+}
+
 int main(void)
 {
     vb_ctx *ctx;
@@ -355,6 +512,9 @@ int main(void)
     test_shell(ctx);
     test_grid_fit_errors(ctx);
     test_same_as_plain(ctx);
+    test_interior_only(ctx);
+    test_exact_need(ctx);
+    test_engine_interior(ctx);
     vb_close(ctx);
     VB_TEST_END();
 }

@@ -10,6 +10,7 @@
 #include "input_test_util.h"
 #include "vb_dcd.h"
 #include "vb_frames.h"
+#include "vbi_input.h"
 
 static vb_sphere_set *read_corpus(vb_ctx *ctx, const char *rel, const vb_read_options *o, int want)
 {
@@ -368,9 +369,37 @@ static void test_metal_names(void)
     vb_close(ctx);
 }
 
+/* vbi_infer_element_memo answers as vbi_infer_element without columns, for
+ * 120 pairs met in turn many times (more pairs than slots: slots shared and
+ * overwritten), ions, metals, water and lipids among them. */
+static void test_infer_memo(void)
+{
+    static const char *const names[] = {"OW", "HW1", "HW2", "MW", "CA", "ZN", "NA", "CL", "FE",
+                                        "C1", "P", "O11", "1HG2", "SE", "MG", "N", "OC1", "K"};
+    static const char *const res[] = {"SOL", "ALA", "ZN", "NA+", "CLA", "HEM", "POPE",
+                                      "MSE", "MG", "LYS", "K", "CAS"};
+    vbi_infer_memo *m = calloc(1, sizeof *m);
+    size_t bad = 0, hits = 0;
+    uint32_t x = 12345;
+    for (int t = 0; t < 20000; t++) {
+        x = x * 1103515245u + 12345u;
+        const char *nm = names[(x >> 8) % 18], *rn = res[(x >> 16) % 12];
+        char a[4], b[4];
+        int ha = vbi_infer_element_memo(m, nm, rn, a);
+        int hb = vbi_infer_element(NULL, nm, rn, VBI_LAYOUT_UNKNOWN, b);
+        bad += ha != hb || strcmp(a, b) != 0;
+    }
+    for (size_t k = 0; k < sizeof m->e / sizeof m->e[0]; k++)
+        hits += m->e[k].used;
+    CHECK_INT(bad, 0);
+    CHECK(hits > 40);
+    free(m);
+}
+
 int main(void)
 {
     vb_ctx *ctx = open_ctx(NULL);
+    test_infer_memo();
     test_compressed(ctx);
     test_inferred_elements();
     test_gro(ctx);

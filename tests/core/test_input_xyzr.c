@@ -2,6 +2,8 @@
  * validation (every error class by code and line, exact containment) and the
  * CLI input options. */
 #include <float.h>
+#include <math.h>
+#include <stdio.h>
 
 #include "vb_spheres.h"
 #include "input_test_util.h"
@@ -51,6 +53,49 @@ static void test_decimal(void)
     CHECK_INT(vb_decimal_cmp((vb_decimal){-11, -2}, (vb_decimal){-1, -1}), -1);
     CHECK_INT(vb_decimal_cmp((vb_decimal){1, 1}, (vb_decimal){999, -2}), 1);
     CHECK_INT(vb_decimal_cmp((vb_decimal){0, 0}, (vb_decimal){-1, -300}), 1);
+}
+
+/* vb_decimal_double and vb_decimal_parse's double (a fast path for short
+ * mantissas and small exponents, strtod past it) against strtod of the
+ * same value, bit for bit: random mantissas of 1 to 18 digits, exponents
+ * -30 to 30 (both sides of the fast path's 2^53 and 10^22 edges), and the
+ * edges themselves. */
+static void test_decimal_double(void)
+{
+    uint64_t x = 88172645463325252ull;
+    size_t bad = 0, fast = 0;
+    for (int t = 0; t < 200000; t++) {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        int digits = 1 + (int)(x % 18);
+        int64_t m = (int64_t)((x >> 8) % 1000000000000000000ull);
+        for (int k = digits; k < 18; k++)
+            m /= 10;
+        if (t % 3 == 0)
+            m = -m;
+        int32_t e10 = (int32_t)((x >> 40) % 61) - 30;
+        if (t < 8) { /* the edges: 2^53 and 2^53 + 1, 10^+-22 and 10^+-23 */
+            m = (int64_t)((1ull << 53) + (uint64_t)(t & 1));
+            e10 = (t & 2 ? 1 : -1) * (22 + (t >> 2));
+        }
+        char buf[64];
+        snprintf(buf, sizeof buf, "%lldE%d", (long long)m, (int)e10);
+        double want = strtod(buf, NULL), got = vb_decimal_double((vb_decimal){m, e10});
+        vb_decimal e;
+        double d = 0.0;
+        int rc = vb_decimal_parse(buf, strlen(buf), &e, &d);
+        bad += memcmp(&want, &got, sizeof want) != 0;
+        bad += rc == VB_OK && memcmp(&want, &d, sizeof want) != 0;
+        fast += m != 0 && e10 >= -22 && e10 <= 22 && (m < 0 ? -m : m) <= (int64_t)1 << 53;
+    }
+    CHECK_INT(bad, 0);
+    CHECK(fast > 50000);
+    /* A zero keeps its text's sign. */
+    vb_decimal e;
+    double d = 1.0;
+    CHECK_INT(vb_decimal_parse("-0.00", 5, &e, &d), VB_OK);
+    CHECK(d == 0.0 && signbit(d));
 }
 
 static void test_xyzr(void)
@@ -289,6 +334,7 @@ static void test_load(void)
 int main(void)
 {
     test_decimal();
+    test_decimal_double();
     test_xyzr();
     test_errors();
     test_contained();
