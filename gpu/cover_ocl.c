@@ -489,14 +489,18 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
     t1->qper = 256u;
     int rc = s->wg ? kernel_get(ctx, rt, "cover_wg.cl", "vbq_cover_wg", &s->k)
                    : kernel_get(ctx, rt, "cover.cl", "vbq_cover_kernel", &s->k);
-    /* The group kernel's budget, and the work-item kernel that takes the
-     * cells past it (VORBALL_COVER_BUDGET: steps, 0 for none). With
-     * VORBALL_COVER_HANDOFF=host the cells past it go to the host threads
-     * instead, as cells that ran out of arenas do (a measurement: which of
-     * the two finishes first depends on the device and the host). */
+    /* The group kernel's budget (VORBALL_COVER_BUDGET: steps, 0 for none):
+     * the cells past it go to the host threads, as cells that ran out of
+     * arenas do, beside the device's next batch; with
+     * VORBALL_COVER_HANDOFF=item to a second launch of the work-item kernel
+     * on the device instead. Measured on an H100 with 16 host threads
+     * (bench, best of 3): fcc 10,976 jittered by 1e-9, cover 0.38 s to the
+     * host against 3.96 s to the work-item kernel (4.72 s with no budget);
+     * the capsid and its 2x2x2 tiling 0.267 / 1.250 s against 0.297 /
+     * 1.344 s (papers/degenerate-input/results/h100_stop41.txt). */
     const char *kb = getenv("VORBALL_COVER_BUDGET"), *kh = getenv("VORBALL_COVER_HANDOFF");
     uint32_t budget = kb && *kb ? (uint32_t)strtoul(kb, NULL, 10) : COV_BUDGET;
-    int to_host = kh && strcmp(kh, "host") == 0;
+    int to_host = !(kh && strcmp(kh, "item") == 0);
     if (rc == VB_OK && s->wg && budget && !to_host)
         rc = kernel_get(ctx, rt, "cover.cl", "vbq_cover_kernel", &s->k_item);
     t0->k = t1->k = s->k;
