@@ -52,7 +52,7 @@ void vb_jfa_free(vb_jfa *j);
  * are checked at once by the library's ranges, the variants and the
  * distribution by their names; --slice and --device wait for
  * vb_jfa_check. Paths are kept by pointer. 0, or -1 with the message in
- * err ("bad --size '100'") and VB_EMISUSE recorded in the context. */
+ * err ("bad --size '32768'") and VB_EMISUSE recorded in the context. */
 int vb_jfa_set(vb_jfa *j, const char *name, const char *value, char *err, size_t errlen);
 
 /* The seeds' source, at most one (else generated from --seeds, --dist and

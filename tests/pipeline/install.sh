@@ -86,5 +86,5 @@ untimed() { sed -E 's/"(time_ms|time_ms_min|gpu_ms|fill_ms|prep_transfer_ms|prep
 [ "$(untimed "$work/jfa.json")" = "$(untimed "$work/jfa_cmd.json")" ] ||
     fail "jfa client: the JSON differs from the command's (times aside)"
 [ "$(cat "$work/jfa.err")" = "runs 6 wrong 0
-bad --size '100'" ] || fail "jfa client: '$(cat "$work/jfa.err")'"
+bad --size '32768'" ] || fail "jfa client: '$(cat "$work/jfa.err")'"
 echo "ok: installed libvorball certified and verified $n vertices of $case; channels as the command"

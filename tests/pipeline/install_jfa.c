@@ -36,8 +36,8 @@ int main(void)
     if (rc == VB_OK) {
         vb_jfa_write(j, stdout, 1);
         fprintf(stderr, "runs %d wrong %zu\n", info.runs, last.wrong);
-        if (vb_jfa_set(j, "size", "100", err, sizeof err) == 0)
-            rc = vb_error(ctx, VB_EMISUSE, NULL, 0, "size 100 accepted");
+        if (vb_jfa_set(j, "size", "32768", err, sizeof err) == 0)
+            rc = vb_error(ctx, VB_EMISUSE, NULL, 0, "size 32768 accepted");
         else
             fprintf(stderr, "%s\n", err);
     }
