@@ -2,6 +2,7 @@
  * jfa`'s options (spellings, type, range, default, the Python keyword),
  * setting one by name with the library's one check of the numbers
  * (vbj_setup_check), and the rules between options. */
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -13,38 +14,55 @@ enum {
     O_DEVICE, O_CHECK, O_REPEAT, O_JSON, O_PNG, O_SLICE, O_OUT
 };
 
-/* The ranges are those vbj_setup_check enforces. */
+/* The ranges are those vbj_setup_check enforces; help is --help's text
+ * (lines broken where --help breaks them). */
 static const vb_option OPTIONS[] = {
-    {O_DIM, "--dim", "-d", "dim", VB_OPT_COUNT, 2, 3, NULL, "2|3", "2", "grid dimension", 0},
+    {O_DIM, "--dim", "-d", "dim", VB_OPT_COUNT, 2, 3, NULL, "2|3", "2",
+     "grid dimension (default 2; 3 with --protein)", 0},
     {O_SIZE, "--size", "-n", "size", VB_OPT_POW2, 2, 16384, NULL, "N", "512",
-     "grid side, a power of two", 0},
+     "grid side, a power of two (default 512)", 0},
     {O_SEEDS, "--seeds", "-k", "k", VB_OPT_COUNT, 1, 2147483646.0, NULL, "K", "100",
-     "generate K seeds", 0},
+     "generate K seeds (default 100)", 0},
     {O_DIST, "--dist", NULL, "dist", VB_OPT_CHOICE, 0, 0, "uniform,clustered,shell", "D",
-     "uniform", "distribution of generated seeds", 0},
+     "uniform", "uniform|clustered|shell (default uniform)", 0},
     {O_RNG, "--rng", NULL, "rng", VB_OPT_COUNT, 0, 18446744073709551615.0, NULL, "S", "1",
-     "generator seed", 0},
+     "generator seed (default 1)", 0},
     {O_PROTEIN, "--protein", NULL, NULL, VB_OPT_PATH, 0, 0, NULL, "FILE", NULL,
-     "seeds at the atom centres of FILE fitted into an [n]^3 grid", 0},
+     "seeds at the atom centres of FILE (PDB, mmCIF, PQR, XYZR)\n"
+     "fitted into an [n]^3 grid", 0},
     {O_MARGIN, "--margin", NULL, "margin", VB_OPT_REAL, 0, 1e300, NULL, "A", "2",
-     "protein: margin around the atoms in Angstrom", 0},
+     "protein: margin around the atoms in Angstrom (default 2)", 0},
     {O_VARIANT, "--variant", "-V", "variant", VB_OPT_NAMES, 1, VBJ_MAX_VARIANTS,
      "jfa,jfa+1,jfa+2,1+jfa,facet,facet-full,exact,exact-boundary,all", "V[,V..]",
-     VBJ_VARIANTS_DEFAULT, "the variants run, in order", 0},
+     VBJ_VARIANTS_DEFAULT,
+     "jfa|jfa+1|jfa+2|1+jfa|facet|facet-full|exact|\n"
+     "exact-boundary|all (default jfa+1; all: the first five\n"
+     "and exact). exact: the exact diagram by tiles (complete\n"
+     "seed lists per tile, exact decisions); exact-boundary:\n"
+     "the same and its boundary pixels counted", 0},
     {O_M, "-m", NULL, "m", VB_OPT_COUNT, 1, 16384, NULL, "M", NULL,
-     "Facet-JFA start resolution (default: smallest without seed collisions)", 0},
+     "Facet-JFA start resolution (default: smallest without\n"
+     "seed collisions)", 0},
     {O_FUSE, "--fuse-cells", NULL, "fuse_cells", VB_OPT_COUNT, 1, 4294967295.0, NULL, "C",
-     NULL, "Facet-JFA on OpenCL: levels of at most C cells in one launch", 0},
+     NULL,
+     "Facet-JFA on OpenCL: the coarse JFA and the levels of at\n"
+     "most C cells run in one launch (default 4096 in 2D,\n"
+     "1024 in 3D; 1: one launch per phase, as the paper)", 0},
     {O_DEVICE, "--device", NULL, "device", VB_OPT_CHOICE, 0, 0, "auto,gpu,cpu,ref", "D", "auto",
-     "the device", 0},
+     "auto|gpu|cpu|ref (default auto: GPU, else PoCL, else ref)", 0},
     {O_CHECK, "--check", NULL, "check", VB_OPT_FLAG, 0, 0, NULL, NULL, NULL,
-     "compare with the exact diagram", 0},
+     "compare with the exact diagram (wrong pixels, distance\n"
+     "errors, boundary pixels)", 0},
     {O_REPEAT, "--repeat", NULL, "repeat", VB_OPT_COUNT, 1, 100000, NULL, "R", "1",
-     "timed runs of each variant after one warm-up run", 0},
+     "run each variant R times after one warm-up run; times\n"
+     "are mean and minimum\n"
+     "(time: wall clock of the algorithm on the device; gpu:\n"
+     "the summed execution of its commands)", 0},
     {O_JSON, "--json", NULL, NULL, VB_OPT_FLAG, 0, 0, NULL, NULL, NULL,
      "print the figures as JSON", 0},
     {O_PNG, "--png", NULL, NULL, VB_OPT_PATH, 0, 0, NULL, "FILE", NULL,
-     "picture of the last variant's labels", 0},
+     "picture: 2D diagram coloured by label, boundaries black;\n"
+     "3D: the slices of --slice side by side", 0},
     {O_SLICE, "--slice", NULL, NULL, VB_OPT_NAMES, 1, VBJ_MAX_SLICES, NULL, "Z[,Z..]", NULL,
      "3D slices for --png (default n/2)", 0},
     {O_OUT, "-o", NULL, NULL, VB_OPT_PATH, 0, 0, NULL, "FILE", NULL,
@@ -84,6 +102,26 @@ int vb_jfa_option_find(const char *name, vb_option *o)
         return -1;
     *o = *r;
     return 0;
+}
+
+void vb_jfa_help(FILE *f)
+{
+    for (size_t k = 0; k < NOPTIONS; k++) {
+        const vb_option *o = &OPTIONS[k];
+        char left[64];
+        int n = o->name[1] != '-'  ? snprintf(left, sizeof left, "%s", o->name)
+                : o->alias         ? snprintf(left, sizeof left, "%s, %s", o->alias, o->name)
+                                   : snprintf(left, sizeof left, "    %s", o->name);
+        if (o->value)
+            snprintf(left + n, sizeof left - (size_t)n, " %s", o->value);
+        fprintf(f, "  %-22s ", left);
+        for (const char *h = o->help; *h; h++) {
+            fputc(*h, f);
+            if (*h == '\n')
+                fprintf(f, "%25s", "");
+        }
+        fputc('\n', f);
+    }
 }
 
 int vb_jfa_new(vb_ctx *ctx, vb_jfa **out)

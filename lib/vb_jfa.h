@@ -36,6 +36,10 @@ int vb_jfa_option_at(size_t k, vb_option *o);
  * when there is none. */
 int vb_jfa_option_find(const char *name, vb_option *o);
 
+/* The options as --help lists them: one "  -n, --size N  meaning" entry
+ * each, the meaning's lines aligned at column 25. */
+void vb_jfa_help(FILE *f);
+
 /* ---- The handle ---- */
 
 typedef struct vb_jfa vb_jfa;
