@@ -61,7 +61,7 @@ int vb_jfa_set(vb_jfa *j, const char *name, const char *value, char *err, size_t
 
 /* The seeds' source, at most one (else generated from --seeds, --dist and
  * --rng): a seed file ('x y' or 'x y z' per line, pixels); npoints rows
- * of dim pixel coordinates (copied); atom centres of s fitted into an
+ * of dim pixel coordinates (copied; --dim set first); atom centres of s fitted into an
  * [n]^3 grid (kept by pointer until vb_jfa_run; `name` its file, for the
  * source line). VB_OK, VB_ENOMEM. */
 int vb_jfa_source_file(vb_jfa *j, const char *path);
@@ -83,8 +83,9 @@ typedef struct vb_jfa_request {
 
 void vb_jfa_request_get(const vb_jfa *j, vb_jfa_request *r);
 
-/* Makes the seeds, opens the engine on the checked device (the reference
- * with W781 when OpenCL has none), runs every variant `repeat` times
+/* Makes the seeds, opens the engine on the checked device at the first
+ * run (the reference with W781 when OpenCL has none; later runs of the
+ * handle keep it), runs every variant `repeat` times
  * (timed) and with --check compares it with the exact diagram. Warnings
  * W780, W782, W751. VB_OK, or the seeds' readers' and the engine's errors
  * (the results of a failed run are not kept). */
