@@ -28,10 +28,11 @@
  *     command parses and Python reads), the engine on the device layer of
  *     vb_default_devices, results through accessors, the command's
  *     writers;
- *   - a `vorball jfa` run whole: seeds from their source, the timed
- *     variants checked against the exact diagram, the figures and the
- *     picture (vbj_runs.h, the discrete Voronoi engine vbj_jfa.h through
- *     it). */
+ *   - a `vorball jfa` run whole behind one handle (vb_jfa.h): the options
+ *     declared once (the table the command parses and Python reads), seeds
+ *     from their source, the timed variants checked against the exact
+ *     diagram, the figures through accessors and writers, the picture; the
+ *     discrete Voronoi engine (core/discrete's vbj_*) is not installed. */
 #ifndef VORBALL_H
 #define VORBALL_H
 
@@ -47,7 +48,7 @@
 #include "vb_select.h"
 #include "vb_verify_file.h"
 #include "vb_vertex_io.h"
+#include "vb_jfa.h"
 #include "vb_vertex_page.h"
-#include "vbj_runs.h"
 
 #endif

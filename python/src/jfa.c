@@ -1,129 +1,128 @@
-/* `vorball jfa` for Python (vorball.jfa): the setup checked by the
- * library's one check (vbj_setup_check), the seeds made, the variants run
- * and the figures written by the library's calls of the command
- * (vbj_runs.h); the label grids handed over as bytes, and the picture of
- * one (vbj_picture, `--png`'s pixels). */
+/* `vorball jfa` for Python (vorball.jfa): the call's keywords set on the
+ * library's jfa handle by name (lib/vb_jfa.h: its option table and its one
+ * check, the command's words in its messages), the seeds' source given,
+ * the variants run; the figures read through the handle's accessors and
+ * written by its writers, the label grids handed over as bytes, and the
+ * picture of one (`--png`'s pixels). */
 #include "vbpy.h"
 
 #include <stdlib.h>
 #include <string.h>
 
-/* A number of the setup from a Python int: a negative or oversized one
- * is stored as `refused`, a value vbj_setup_check refuses (as the command
- * stores a number it cannot parse). 0, or -1 with TypeError set. */
-static int to_u64(const char *key, PyObject *v, uint64_t refused, uint64_t *field)
+/* A Python int as the command line would give it (decimal text); 0, or -1
+ * with TypeError set. */
+static int int_text(const char *key, PyObject *v, char *buf, size_t len)
 {
     if (!PyLong_Check(v) || PyBool_Check(v)) {
         PyErr_Format(PyExc_TypeError, "%s must be an int", key);
         return -1;
     }
-    int overflow = 0;
-    long long x = PyLong_AsLongLongAndOverflow(v, &overflow);
-    if (x == -1 && PyErr_Occurred())
-        return -1;
-    *field = overflow || x < 0 ? refused : (uint64_t)x;
-    return 0;
+    PyObject *s = PyObject_Str(v);
+    const char *t = s ? PyUnicode_AsUTF8(s) : NULL;
+    if (t)
+        snprintf(buf, len, "%s", t);
+    Py_XDECREF(s);
+    return t ? 0 : -1;
 }
 
-/* The setup from the dict of the call's numbers (None or absent: the
- * library's default; slices a sequence); 0 or -1 with an exception set. */
-static int setup_from(PyObject *d, vbj_setup *set)
+/* Sets option `opt` of j to `text`: 0, or -1 with VorballError (E7, the
+ * command's message) raised and the call closed. */
+static int set_or_fail(vbpy_call *c, vb_jfa *j, const char *opt, const char *text)
 {
-    vbj_setup_defaults(set);
-    /* zero: the value stored for an explicit 0 where 0 means "not given" */
-    const struct {
-        const char *key;
-        uint64_t *field, refused, zero;
-    } f[] = {{"dim", &set->dim, UINT64_MAX, 0},
-             {"n", &set->n, UINT64_MAX, 0},
-             {"k", &set->k, 0, 0},
-             {"m", &set->m, UINT64_MAX, UINT64_MAX},
-             {"fuse_cells", &set->fuse_cells, UINT64_MAX, UINT64_MAX},
-             {"repeat", &set->repeat, UINT64_MAX, 0},
-             {"rng", &set->rng, UINT64_MAX, 0}};
-    for (size_t k = 0; k < sizeof f / sizeof f[0]; k++) {
-        PyObject *v = PyDict_GetItemString(d, f[k].key);
+    char err[512];
+    if (vb_jfa_set(j, opt, text, err, sizeof err) == 0)
+        return 0;
+    vb_jfa_free(j);
+    vbpy_call_fail(c, VB_EMISUSE);
+    return -1;
+}
+
+/* The call's numbers (None or absent: the library's default) onto the
+ * handle, in the order of the library's check. 0, or -1 with an exception
+ * raised and the call closed. */
+static int numbers_set(vbpy_call *c, vb_jfa *j, PyObject *d)
+{
+    static const char *const key[][2] = {{"dim", "--dim"},     {"n", "--size"},
+                                         {"k", "--seeds"},     {"margin", "--margin"},
+                                         {"m", "-m"},          {"fuse_cells", "--fuse-cells"},
+                                         {"repeat", "--repeat"}, {"rng", "--rng"}};
+    for (size_t k = 0; k < sizeof key / sizeof key[0]; k++) {
+        PyObject *v = PyDict_GetItemString(d, key[k][0]);
         if (!v || v == Py_None)
             continue;
-        if (to_u64(f[k].key, v, f[k].refused, f[k].field) != 0)
+        char text[64];
+        if (strcmp(key[k][0], "margin") == 0) {
+            double x = PyFloat_AsDouble(v);
+            if (x == -1.0 && PyErr_Occurred())
+                goto fail;
+            snprintf(text, sizeof text, "%.17g", x);
+        } else if (int_text(key[k][0], v, text, sizeof text) != 0)
+            goto fail;
+        if (set_or_fail(c, j, key[k][1], text) != 0)
             return -1;
-        if (*f[k].field == 0)
-            *f[k].field = f[k].zero;
     }
-    PyObject *margin = PyDict_GetItemString(d, "margin");
-    if (margin && margin != Py_None) {
-        set->margin = PyFloat_AsDouble(margin);
-        if (set->margin == -1.0 && PyErr_Occurred())
-            return -1;
-    }
-    PyObject *sl = PyDict_GetItemString(d, "slices");
-    if (!sl || sl == Py_None)
-        return 0;
-    PyObject *seq = PySequence_Fast(sl, "slices must be a sequence of ints");
-    if (!seq)
-        return -1;
-    Py_ssize_t ns = PySequence_Fast_GET_SIZE(seq);
-    set->nslices = ns > VBJ_MAX_SLICES ? VBJ_MAX_SLICES + 1 : (uint32_t)(ns ? ns : 1);
-    set->slice[0] = UINT64_MAX; /* none given: refused, as an empty --slice */
-    int rc = 0;
-    for (Py_ssize_t i = 0; rc == 0 && i < ns && i < VBJ_MAX_SLICES; i++)
-        rc = to_u64("slices", PySequence_Fast_GET_ITEM(seq, i), UINT64_MAX, &set->slice[i]);
-    Py_DECREF(seq);
-    return rc;
+    return 0;
+fail:
+    vb_jfa_free(j);
+    Py_XDECREF(vbpy_call_done(c));
+    return -1;
 }
 
 /* One variant's figures as a dict; NULL with an exception. */
-static PyObject *figures_dict(const vbj_figures *x)
+static PyObject *figures_dict(const vb_jfa_figures *x)
 {
-    const vbj_counts *c = &x->r.counts;
     PyObject *m = Py_NewRef(Py_None);
     if (x->checked) {
         Py_DECREF(m);
-        m = Py_BuildValue("{s:n,s:n,s:d,s:d,s:d,s:n,s:n,s:n,s:n}", "wrong", (Py_ssize_t)x->m.wrong,
-                          "differ", (Py_ssize_t)x->m.differ, "wrong_rate", x->m.wrong_rate,
-                          "max_err", x->m.max_err, "mean_err", x->m.mean_err, "boundary_exact",
-                          (Py_ssize_t)x->m.boundary_exact, "boundary_found",
-                          (Py_ssize_t)x->m.boundary_found, "boundary_missed",
-                          (Py_ssize_t)x->m.boundary_missed, "boundary_extra",
-                          (Py_ssize_t)x->m.boundary_extra);
+        m = Py_BuildValue("{s:n,s:n,s:d,s:d,s:d,s:n,s:n,s:n,s:n}", "wrong", (Py_ssize_t)x->wrong,
+                          "differ", (Py_ssize_t)x->differ, "wrong_rate", x->wrong_rate,
+                          "max_err", x->max_err, "mean_err", x->mean_err, "boundary_exact",
+                          (Py_ssize_t)x->boundary_exact, "boundary_found",
+                          (Py_ssize_t)x->boundary_found, "boundary_missed",
+                          (Py_ssize_t)x->boundary_missed, "boundary_extra",
+                          (Py_ssize_t)x->boundary_extra);
         if (!m)
             return NULL;
     }
     PyObject *counts = Py_BuildValue(
-        "{s:I,s:K,s:K,s:I,s:K,s:I,s:K,s:K,s:K,s:K,s:K,s:K,s:K,s:K}", "steps", c->steps,
-        "pixels_processed", (unsigned long long)c->step_pixels, "threads",
-        (unsigned long long)c->threads, "m", c->m, "boundary", (unsigned long long)c->boundary,
-        "collisions", c->collisions, "tiles", (unsigned long long)c->tiles, "tiles_uniform",
-        (unsigned long long)c->tiles_uniform, "candidates", (unsigned long long)c->candidates,
-        "survivors", (unsigned long long)c->survivors, "evals", (unsigned long long)c->evals,
-        "exact_voxels", (unsigned long long)c->exact_voxels, "tiles_chunked",
-        (unsigned long long)c->tiles_chunked, "visited", (unsigned long long)c->visited);
+        "{s:I,s:K,s:K,s:I,s:K,s:I,s:K,s:K,s:K,s:K,s:K,s:K,s:K,s:K}", "steps", x->steps,
+        "pixels_processed", (unsigned long long)x->pixels_processed, "threads",
+        (unsigned long long)x->threads, "m", x->m, "boundary", (unsigned long long)x->boundary,
+        "collisions", x->collisions, "tiles", (unsigned long long)x->tiles, "tiles_uniform",
+        (unsigned long long)x->tiles_uniform, "candidates", (unsigned long long)x->candidates,
+        "survivors", (unsigned long long)x->survivors, "evals", (unsigned long long)x->evals,
+        "exact_voxels", (unsigned long long)x->exact_voxels, "tiles_chunked",
+        (unsigned long long)x->tiles_chunked, "visited", (unsigned long long)x->visited);
     if (!counts) {
         Py_DECREF(m);
         return NULL;
     }
-    return Py_BuildValue("{s:s,s:d,s:d,s:d,s:d,s:d,s:d,s:N,s:N,s:N}", "variant",
-                         vbj_variant_name(x->v), "time_ms", x->mean_ms, "time_ms_min", x->min_ms,
-                         "gpu_ms", x->mean_gpu_ms, "fill_ms", x->r.ms_fill, "prep_transfer_ms",
-                         x->r.ms_transfer, "prep_ms", x->r.ms_prep, "counts", counts, "metrics",
-                         m, "labels", vbpy_bytes(x->r.labels, x->r.pixels, sizeof *x->r.labels));
+    return Py_BuildValue("{s:s,s:d,s:d,s:d,s:d,s:d,s:d,s:N,s:N,s:N}", "variant", x->variant,
+                         "time_ms", x->time_ms, "time_ms_min", x->time_ms_min, "gpu_ms",
+                         x->gpu_ms, "fill_ms", x->fill_ms, "prep_transfer_ms",
+                         x->prep_transfer_ms, "prep_ms", x->prep_ms, "counts", counts, "metrics",
+                         m, "labels", vbpy_bytes(x->labels, x->pixels, sizeof *x->labels));
 }
 
 /* The figures written by the library, json or the table. */
-static PyObject *figures_text(const vbj_runs *r, const vbj_seeds *s, const char *source, int json)
+static PyObject *figures_text(const vb_jfa *j, int json)
 {
     vbpy_text t;
     if (vbpy_text_open(&t) != 0)
         return NULL;
-    vbj_runs_write(t.f, r, s, source, json);
+    vb_jfa_write(j, t.f, json);
     return vbpy_text_take(&t);
 }
 
-static PyObject *result_dict(const vbj_runs *r, const vbj_seeds *s, const char *source)
+static PyObject *result_dict(const vb_jfa *j)
 {
-    PyObject *runs = PyList_New(r->n);
-    for (int i = 0; runs && i < r->n; i++) {
-        PyObject *one = figures_dict(&r->run[i]);
+    vb_jfa_info in;
+    vb_jfa_info_get(j, &in);
+    PyObject *runs = PyList_New(in.runs);
+    for (int i = 0; runs && i < in.runs; i++) {
+        vb_jfa_figures x;
+        vb_jfa_figures_get(j, i, &x);
+        PyObject *one = figures_dict(&x);
         if (!one)
             Py_CLEAR(runs);
         else
@@ -131,30 +130,31 @@ static PyObject *result_dict(const vbj_runs *r, const vbj_seeds *s, const char *
     }
     if (!runs)
         return NULL;
-    PyObject *exact_ms = r->exact_ms >= 0 ? PyFloat_FromDouble(r->exact_ms) : Py_NewRef(Py_None);
-    return Py_BuildValue("{s:s,s:i,s:I,s:n,s:s,s:i,s:N,s:N,s:N,s:N}", "device", r->device, "dim",
-                         s->dim, "n", s->n, "seeds", (Py_ssize_t)s->k, "source", source, "repeat",
-                         r->repeat, "exact_ms", exact_ms, "runs", runs, "text",
-                         figures_text(r, s, source, 0), "json", figures_text(r, s, source, 1));
+    PyObject *exact_ms = in.exact_ms >= 0 ? PyFloat_FromDouble(in.exact_ms) : Py_NewRef(Py_None);
+    return Py_BuildValue("{s:s,s:i,s:I,s:n,s:s,s:i,s:N,s:N,s:N,s:N}", "device", in.device, "dim",
+                         in.dim, "n", in.n, "seeds", (Py_ssize_t)in.seeds, "source", in.source,
+                         "repeat", in.repeat, "exact_ms", exact_ms, "runs", runs, "text",
+                         figures_text(j, 0), "json", figures_text(j, 1));
 }
 
-/* A (k, dim) float64 buffer of points, or None. 0, or -1 with an exception. */
-static int points_get(PyObject *o, int dim, Py_buffer *b, vbj_seed_source *src)
+/* A (k, dim) float64 buffer of points onto the handle, or None. 0, or -1
+ * with an exception. */
+static int points_give(PyObject *o, int dim, vb_jfa *j)
 {
     if (o == Py_None)
         return 0;
-    if (PyObject_GetBuffer(o, b, PyBUF_C_CONTIGUOUS | PyBUF_FORMAT) != 0)
+    Py_buffer b;
+    if (PyObject_GetBuffer(o, &b, PyBUF_C_CONTIGUOUS | PyBUF_FORMAT) != 0)
         return -1;
-    if (b->itemsize != 8 || !b->format || strcmp(b->format, "d") != 0 ||
-        b->len % (8 * dim) != 0) {
-        PyBuffer_Release(b);
-        b->obj = NULL;
+    int bad = b.itemsize != 8 || !b.format || strcmp(b.format, "d") != 0 ||
+              b.len % (8 * dim) != 0;
+    int rc = bad ? -1 : vb_jfa_source_points(j, b.buf, (size_t)b.len / (8 * (size_t)dim));
+    PyBuffer_Release(&b);
+    if (bad)
         PyErr_SetString(PyExc_ValueError, "points: a C-contiguous float64 (k, dim) array");
-        return -1;
-    }
-    src->points = b->buf;
-    src->npoints = (size_t)b->len / (8 * (size_t)dim);
-    return 0;
+    else if (rc)
+        PyErr_NoMemory();
+    return bad || rc ? -1 : 0;
 }
 
 static PyObject *jfa_run(PyObject *self, PyObject *args)
@@ -168,56 +168,67 @@ static PyObject *jfa_run(PyObject *self, PyObject *args)
         return NULL;
     if (!PyDict_Check(numbers))
         return PyErr_Format(PyExc_TypeError, "numbers must be a dict");
-    vbj_setup set;
-    if (setup_from(numbers, &set) != 0)
+    const vb_sphere_set *sph = NULL;
+    if (spheres != Py_None && !(sph = vbpy_spheres_get(spheres)))
         return NULL;
-    vbj_seed_source src = {NULL, name, NULL, 0, path, VBJ_DIST_UNIFORM};
-    if (spheres != Py_None && !(src.spheres = vbpy_spheres_get(spheres)))
-        return NULL;
+    PyObject *dv = PyDict_GetItemString(numbers, "dim");
+    int dim = dv && PyLong_Check(dv) && PyLong_AsLong(dv) == 3 ? 3 : 2;
     vbpy_call c;
     if (vbpy_call_open(&c) != 0)
         return NULL;
-    vbj_variant v[VBJ_MAX_VARIANTS];
-    int nv = 0;
-    vb_device_kind kind;
-    int rc = vbj_setup_check(c.ctx, &set);
-    if (rc == VB_OK)
-        rc = vbj_variants_parse(c.ctx, variant ? variant : VBJ_VARIANTS_DEFAULT, v, &nv);
-    if (rc == VB_OK && dist)
-        rc = vbj_distribution_parse(c.ctx, dist, &src.dist);
-    if (rc == VB_OK)
-        rc = vb_device_kind_parse(c.ctx, device, &kind);
-    if (rc != VB_OK)
-        return vbpy_call_fail(&c, rc);
-    Py_buffer b = {0};
-    if (points_get(points, (int)set.dim, &b, &src) != 0) {
+    vb_jfa *j;
+    if (vb_jfa_new(c.ctx, &j) != VB_OK) {
+        vb_jfa_free(j);
+        return vbpy_call_fail(&c, VB_ENOMEM);
+    }
+    if (numbers_set(&c, j, numbers) != 0 ||
+        (variant && set_or_fail(&c, j, "variant", variant) != 0) ||
+        (dist && set_or_fail(&c, j, "dist", dist) != 0) ||
+        set_or_fail(&c, j, "device", device) != 0 ||
+        (check && set_or_fail(&c, j, "check", NULL) != 0))
+        return NULL;
+    char err[512];
+    if (sph)
+        vb_jfa_source_spheres(j, sph, name);
+    if (path)
+        vb_jfa_source_file(j, path);
+    if (vb_jfa_check(j, err, sizeof err) != 0) {
+        vb_jfa_free(j);
+        return vbpy_call_fail(&c, VB_EMISUSE);
+    }
+    if (points_give(points, dim, j) != 0) {
+        vb_jfa_free(j);
         Py_XDECREF(vbpy_call_done(&c));
         return NULL;
     }
-    vbj_seeds s = {0};
-    char source[512];
-    vbj_backend *e = NULL;
-    vb_device *dev = NULL;
-    vbj_runs runs;
-    memset(&runs, 0, sizeof runs);
+    int rc;
     Py_BEGIN_ALLOW_THREADS
-    rc = vbj_seeds_make(c.ctx, &set, &src, &s, source, sizeof source);
-    if (rc == VB_OK)
-        rc = vbj_backend_open(c.ctx, vb_default_devices(), kind, &dev, &e);
-    if (rc == VB_OK)
-        rc = vbj_runs_run(c.ctx, e, &s, &set, v, nv, check, &runs);
+    rc = vb_jfa_run(c.ctx, j);
     Py_END_ALLOW_THREADS
-    if (b.obj)
-        PyBuffer_Release(&b);
-    PyObject *d = rc == VB_OK ? result_dict(&runs, &s, source) : NULL;
-    vbj_runs_free(&runs);
-    vbj_backend_close(e);
-    if (dev)
-        vb_default_devices()->close(dev);
-    vbj_seeds_free(&s);
+    PyObject *d = rc == VB_OK ? result_dict(j) : NULL;
+    vb_jfa_free(j);
     if (rc != VB_OK)
         return vbpy_call_fail(&c, rc);
     return vbpy_call_return(&c, d);
+}
+
+/* --slice's text from a sequence of ints; 0, or -1 with an exception. */
+static int slices_text(PyObject *sl, char *buf, size_t len)
+{
+    PyObject *seq = PySequence_Fast(sl, "slices must be a sequence of ints");
+    if (!seq)
+        return -1;
+    buf[0] = 0;
+    int rc = 0;
+    for (Py_ssize_t i = 0; rc == 0 && i < PySequence_Fast_GET_SIZE(seq); i++) {
+        char one[64];
+        size_t at = strlen(buf);
+        rc = int_text("slices", PySequence_Fast_GET_ITEM(seq, i), one, sizeof one);
+        if (rc == 0)
+            snprintf(buf + at, len - at, "%s%s", i ? "," : "", one);
+    }
+    Py_DECREF(seq);
+    return rc;
 }
 
 /* The picture of a label grid (`vorball jfa --png`'s pixels) as bytes of
@@ -231,11 +242,9 @@ static PyObject *jfa_picture(PyObject *self, PyObject *args)
     PyObject *slices;
     if (!PyArg_ParseTuple(args, "y*iIO", &labels, &dim, &n, &slices))
         return NULL;
-    PyObject *numbers = Py_BuildValue("{s:i,s:I,s:O}", "dim", dim, "n", n, "slices", slices);
-    vbj_setup set;
-    int bad = !numbers || setup_from(numbers, &set) != 0;
-    Py_XDECREF(numbers);
+    char sl[256], dtext[16], ntext[16];
     size_t pixels = (size_t)n * n * (dim == 3 ? n : 1);
+    int bad = slices != Py_None && slices_text(slices, sl, sizeof sl) != 0;
     if (!bad && (size_t)labels.len != pixels * sizeof(uint32_t)) {
         PyErr_SetString(PyExc_ValueError, "labels: n^dim uint32 values");
         bad = 1;
@@ -245,12 +254,21 @@ static PyObject *jfa_picture(PyObject *self, PyObject *args)
         PyBuffer_Release(&labels);
         return NULL;
     }
-    vbj_seeds s = {.dim = dim, .n = n};
+    snprintf(dtext, sizeof dtext, "%d", dim);
+    snprintf(ntext, sizeof ntext, "%u", n);
+    vb_jfa *j = NULL;
+    char err[512];
     uint8_t *rgb = NULL;
     uint32_t w = 0;
-    int rc = vbj_setup_check(c.ctx, &set);
+    int rc = vb_jfa_new(c.ctx, &j);
+    if (rc == VB_OK && (vb_jfa_set(j, "dim", dtext, err, sizeof err) != 0 ||
+                        vb_jfa_set(j, "size", ntext, err, sizeof err) != 0 ||
+                        (slices != Py_None && vb_jfa_set(j, "--slice", sl, err, sizeof err)) ||
+                        vb_jfa_check(j, err, sizeof err) != 0))
+        rc = VB_EMISUSE;
     if (rc == VB_OK)
-        rc = vbj_picture(c.ctx, &s, labels.buf, &set, &rgb, &w);
+        rc = vb_jfa_picture(c.ctx, j, labels.buf, &rgb, &w);
+    vb_jfa_free(j);
     PyBuffer_Release(&labels);
     PyObject *out = rc == VB_OK ? Py_BuildValue("(NI)", vbpy_bytes(rgb, (size_t)w * n, 3), w)
                                 : NULL;

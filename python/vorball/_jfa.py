@@ -114,9 +114,9 @@ def jfa(seeds: Any = None, *, protein: Optional[SphereInput] = None, dim: Option
     with margin (Angstrom). dim (-d), size (-n, a power of two), variant
     (-V: 'jfa+1', 'facet,exact', 'all', ...), m, fuse_cells, repeat,
     device (auto|gpu|cpu|ref) and check (--check) as the command's options;
-    None: the library's default. Ranges are the library's
-    (vbj_setup_check): a bad value raises VorballError E7 with the
-    command's words. Returns a Jfa; warnings W780, W781, W782, W751 as the
+    None: the library's default. Each is set by name on the library's
+    jfa handle (vb_jfa.h, its ranges): a bad value raises VorballError
+    E7 with the command's words. Returns a Jfa; warnings W780, W781, W782, W751 as the
     command's, in .warnings (printed with verbose).
     """
     numbers = {"dim": dim, "n": size, "k": k, "m": m, "fuse_cells": fuse_cells,

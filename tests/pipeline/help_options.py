@@ -20,7 +20,7 @@ import sys
 # (cmd_*.c and the shared parsers it calls: vb_pipeline_option in
 # pipeline_options.c, vb_cli_input_option in input_options.c,
 # vb_cli_periodic_option in vertices_periodic.c, the channels table in
-# channel_options.c).
+# channel_options.c, the jfa table in lib/jfa_options.c).
 INPUT = "cli/input_options.c"
 PIPELINE = "cli/pipeline_options.c"
 PERIODIC = "cli/vertices_periodic.c"
@@ -29,7 +29,7 @@ PARSERS = {
     "reference": ["cli/cmd_reference.c", INPUT],
     "verify": ["cli/cmd_verify.c", INPUT, PERIODIC],
     "crosscheck": ["cli/cmd_crosscheck.c", PIPELINE, INPUT],
-    "jfa": ["cli/cmd_jfa.c", INPUT],
+    "jfa": ["cli/cmd_jfa.c", "lib/jfa_options.c", INPUT],
     "channels": ["cli/cmd_channels.c", "core/discrete/channel_options.c", INPUT],
     "cells": ["cli/cmd_cells.c", INPUT, PERIODIC],
     "bench": ["cli/cmd_bench.c", PIPELINE, INPUT],

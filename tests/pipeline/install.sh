@@ -6,7 +6,8 @@
 # on a corpus case: it must certify the golden number of vertices and
 # verify all of them in memory. A second client runs channels through the
 # public handle alone (vb_channels.h), one frame and every frame of a
-# trajectory: its tables must be the command's bytes.
+# trajectory: its tables must be the command's bytes. A third runs `vorball
+# jfa` through vb_jfa.h alone: its JSON must be the command's but the times.
 # usage: install.sh BUILD_DIR CC CORPUS WORK_DIR [EXTRA_CFLAGS]
 build=$1 cc=$2 corpus=$3 work=$4/install extra=$5
 . "$(dirname "$0")/lib.sh"
@@ -34,10 +35,11 @@ for f in "$inc"/*.h; do
     case " $reached " in *" $(basename "$f") "*) ;;
         *) fail "$(basename "$f") is installed but vorball.h does not include it" ;; esac
 done
-# The channel analysis's internals (core/discrete's vbc_*) are not
-# installed: channels are reached through vb_channels.h.
-for f in "$inc"/vbc_*.h; do
-    [ -e "$f" ] && fail "$(basename "$f") is installed: an internal header of the channel analysis"
+# The channel analysis's and the discrete Voronoi engine's internals
+# (core/discrete's vbc_* and vbj_*) are not installed: channels and jfa
+# runs are reached through vb_channels.h and vb_jfa.h.
+for f in "$inc"/vbc_*.h "$inc"/vbj_*.h; do
+    [ -e "$f" ] && fail "$(basename "$f") is installed: an internal header of core/discrete"
 done
 cflags=$(PKG_CONFIG_PATH=$(dirname "$pc") pkg-config --cflags vorball) || fail "pkg-config --cflags"
 libs=$(PKG_CONFIG_PATH=$(dirname "$pc") pkg-config --libs vorball) || fail "pkg-config --libs"
@@ -72,4 +74,17 @@ cmp -s "$work/one.csv" "$work/one_cmd.csv" || fail "channels client: one frame's
     fail "vorball channels (frames) failed"
 cmp -s "$work/frames.csv" "$work/frames_cmd.csv" || fail "channels client: the trajectory's table differs from the command's"
 [ "$(cat "$work/frames.err")" = "frames 10" ] || fail "channels client: '$(cat "$work/frames.err")', expected 'frames 10'"
+# jfa through the installed public handle: the command's JSON but the times.
+# shellcheck disable=SC2086 # the flags are words
+"$cc" -std=c11 -Wall -Wextra -Werror $extra $cflags "$(dirname "$0")/install_jfa.c" $libs \
+    -Wl,-rpath,"$libdir" -o "$work/jfa" > "$work/cc3.log" 2>&1 ||
+    { cat "$work/cc3.log" >&2; fail "the jfa client does not compile against the installed headers"; }
+untimed() { sed -E 's/"(time_ms|time_ms_min|gpu_ms|fill_ms|prep_transfer_ms|prep_ms|exact_ms)": [0-9.e+-]+/"\1": T/g' "$1"; }
+"$work/jfa" > "$work/jfa.json" 2> "$work/jfa.err" || { cat "$work/jfa.err" >&2; fail "jfa client failed"; }
+"$build/cli/vorball" jfa -n 64 -k 50 --device ref -V all --check --json -o "$work/jfa_cmd.json" 2> /dev/null ||
+    fail "vorball jfa failed"
+[ "$(untimed "$work/jfa.json")" = "$(untimed "$work/jfa_cmd.json")" ] ||
+    fail "jfa client: the JSON differs from the command's (times aside)"
+[ "$(cat "$work/jfa.err")" = "runs 6 wrong 0
+bad --size '32768'" ] || fail "jfa client: '$(cat "$work/jfa.err")'"
 echo "ok: installed libvorball certified and verified $n vertices of $case; channels as the command"
