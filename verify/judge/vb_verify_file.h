@@ -61,7 +61,8 @@ typedef struct vb_verify_report {
     int complete;
     /* The certifier that judged the lines, of the set cert_set, kept open
      * so that vb_verify_arcs traces with it instead of building another
-     * (closed by vb_verify_report_free). NULL when judging never opened one. */
+     * (closed by vb_verify_report_free), its keys forgotten
+     * (vb_certifier_forget_keys). NULL when judging never opened one. */
     vb_certifier *cert;
     const vb_sphere_set *cert_set;
 } vb_verify_report;

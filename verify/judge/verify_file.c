@@ -284,7 +284,9 @@ static int judge_report(vb_ctx *ctx, const vb_sphere_set *set, const char *name,
     if (rc == VB_OK)
         tally(v, out->judged, out->missed.n, sorted, nsorted, &out->counts);
     free(sorted);
-    /* Kept for vb_verify_arcs; closed by vb_verify_report_free. */
+    /* Kept for vb_verify_arcs (closed by vb_verify_report_free); the keys
+     * have been used by now (judge_groups, find_missed). */
+    vb_certifier_forget_keys(cert);
     out->cert = cert;
     out->cert_set = cert ? set : NULL;
     return rc;
