@@ -1,6 +1,7 @@
 /* The next long double up and down (nextafterl(x, +-inf)) without a libm
  * call: the outward step of the certifier's 64-bit rounding path
- * (exact_numbers.c), where glibc's nextafterl took 6 % of `verify --arcs`.
+ * (exact_numbers.c), where glibc's nextafterl took 6.8 % of the CPU of
+ * `verify --arcs` on 4yvs (26,430 balls).
  *
  * Proof for the x87 80-bit extended format (LDBL_MANT_DIG 64, exponent
  * range of IEEE binary64x; the format of x86 and x86-64 long double): a
