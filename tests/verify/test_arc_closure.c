@@ -12,13 +12,16 @@
  * a certifier lent to the closure, as the pipeline lends its own), and the
  * same edges with their rows in
  * the final list when the closure starts from the golden less a vertex or
- * from its first vertex alone (the vertices added on the way, sorted in). */
+ * from its first vertex alone (the vertices added on the way, sorted in).
+ * vb_verify_arcs on a judged list traces with the judge's certifier (kept
+ * in the report) and reports what vb_arc_close with its own one does. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "vb_arc.h"
 #include "vb_test.h"
+#include "vb_verify_file.h"
 #include "vb_vertex_io.h"
 #include "vt_corpus.h"
 
@@ -49,6 +52,38 @@ static int same_edges(const vb_topology_edge *a, const vb_topology_edge *b, size
             memcmp(a[k].spheres, b[k].spheres, sizeof a[k].spheres) != 0)
             return 0;
     return 1;
+}
+
+/* The list cut judged (vb_verify_list) keeps its certifier for the set s,
+ * and the closure of the judged report on 2 threads (tracing with it) is
+ * the closure of cut with a certifier of its own, counters and added
+ * vertices included. */
+static void judged_lends(vb_ctx *ctx, const vb_sphere_set *s, const vb_vertex_list *cut)
+{
+    vb_verify_report rep;
+    vb_arc_report own, lent;
+    int rc = vb_verify_list(ctx, s, "cut", cut, VB_VFMT_TSV, 1e-6, 0, &rep);
+    CHECK_INT(rc, VB_OK);
+    CHECK(rep.cert != NULL && rep.cert_set == s);
+    CHECK_INT(rep.counts.certified, cut->n);
+    rc = vb_arc_close(ctx, s, cut, 2, &own);
+    CHECK_INT(rc, VB_OK);
+    rc = vb_verify_arcs(ctx, s, &rep, 2, &lent);
+    CHECK_INT(rc, VB_OK);
+    CHECK_INT(lent.vertices, own.vertices);
+    CHECK_INT(lent.half_arcs, own.half_arcs);
+    CHECK_INT(lent.closed, own.closed);
+    CHECK_INT(lent.infinite, own.infinite);
+    CHECK_INT(lent.components, own.components);
+    CHECK_INT(lent.added.n, own.added.n);
+    CHECK(lent.filter_calls == own.filter_calls && lent.exact_evals == own.exact_evals);
+    CHECK(lent.candidates == own.candidates);
+    for (size_t k = 0; k < own.added.n && k < lent.added.n; k++)
+        CHECK(same_vertex(&lent.added, k, &own.added, k));
+    vb_arc_report_free(&own);
+    vb_arc_report_free(&lent);
+    vb_verify_report_free(&rep);
+    CHECK(rep.cert == NULL);
 }
 
 static int has_id(const vb_vertex_list *v, int64_t row, uint32_t id)
@@ -221,6 +256,7 @@ static void one_case(const char *name, const char *in, const char *gold)
         }
         for (unsigned t = 0; t < 3; t++)
             vb_arc_report_free(&rt[t]);
+        judged_lends(ctx, s, &cut);
         rc = vb_arc_complete_list(ctx, s, &cut, 2, &r);
         CHECK_INT(rc, VB_OK);
         CHECK_INT(r.added.n, 1);

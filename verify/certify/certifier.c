@@ -114,6 +114,18 @@ void vb_certifier_close(vb_certifier *c)
     free(c);
 }
 
+void vb_certifier_forget_keys(vb_certifier *c)
+{
+    if (!c)
+        return;
+    free(c->keys);
+    vb_hash_free(&c->keytab);
+    free(c->pool);
+    c->keys = NULL;
+    c->pool = NULL;
+    c->nkeys = c->keys_cap = c->npool = c->pool_cap = 0;
+}
+
 int vbx_cert_tangent_sign(vb_ctx *ctx, vb_certifier *c, const vbx_root *r, uint32_t j,
                           const vbx_ia box[4])
 {

@@ -32,6 +32,12 @@ int vb_certifier_open(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier **out)
 
 void vb_certifier_close(vb_certifier *c);
 
+/* Frees the identities c has handed out (the keys of vb_cert_result) when a
+ * caller keeps c open for other work, e.g. arc closure after judging a file
+ * (their memory grows with the vertices judged). Keys handed out later
+ * start again from 0, so they do not compare with earlier ones. NULL: no-op. */
+void vb_certifier_forget_keys(vb_certifier *c);
+
 enum vb_cert_verdict {
     VB_CERT_OK = 0,          /* certified vertex */
     VB_CERT_NO_SOLUTION = 1, /* the defining spheres have no common (outer) tangent sphere */

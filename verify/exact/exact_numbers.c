@@ -5,6 +5,7 @@
 #include <stdlib.h>
 
 #include "vbx_exact.h"
+#include "vbx_ldstep.h"
 
 /* Largest exponent spread accepted: 10^(2 * 340) integers are still cheap
  * for GMP, and the input readers already refuse |exp10| > 340. */
@@ -34,8 +35,8 @@ static int enclose_small(const mpz_t num, const mpz_t den, vbx_ia *r, double *ne
     double n = mpz_get_d(num), d = mpz_get_d(den);
     double q = n / d, rem = fma(q, d, -n);
     *nearest = q;
-    r->lo = rem > 0.0 ? nextafter(q, -INFINITY) : q;
-    r->hi = rem < 0.0 ? nextafter(q, INFINITY) : q;
+    r->lo = rem > 0.0 ? vbx_pred(q) : q;
+    r->hi = rem < 0.0 ? vbx_succ(q) : q;
     return 1;
 }
 
@@ -240,16 +241,17 @@ int vbx_round_mpfr(const mpz_t num, const mpz_t b, const mpz_t D, const mpz_t de
 /* Error bound: the argument of vbx_ia.h, in long double. Each +, *, /, sqrt
  * of long doubles returns the nearest long double r of the exact result x
  * (IEEE round-to-nearest; on x87 the default 64-bit precision control), so
- * nextafterl(r, -inf) <= x <= nextafterl(r, +inf). Moving every computed
- * end one step outward keeps each interval an enclosure, op by op. */
+ * pred(r) <= x <= succ(r). Moving every computed end one step outward keeps
+ * each interval an enclosure, op by op. The steps are vbx_ldstep.h's, the
+ * values of nextafterl without its call (proof there). */
 static long double ld_down(long double x)
 {
-    return nextafterl(x, -INFINITY);
+    return vbx_ld_pred(x);
 }
 
 static long double ld_up(long double x)
 {
-    return nextafterl(x, INFINITY);
+    return vbx_ld_succ(x);
 }
 
 /* 2^(64 k): the scales of the integers the certifier meets (a few hundred
@@ -361,8 +363,8 @@ static int ld_finish(const vbx_round_common *rc, long double vl, long double vh,
         !(fabsl(vh) <= LDBL_MAX))
         return 0;
     *out = rl;
-    *lo = (long double)rl > vl ? nextafter(rl, -INFINITY) : rl;
-    *hi = (long double)rh < vh ? nextafter(rh, INFINITY) : rh;
+    *lo = (long double)rl > vl ? vbx_pred(rl) : rl;
+    *hi = (long double)rh < vh ? vbx_succ(rh) : rh;
     return 1;
 }
 #endif

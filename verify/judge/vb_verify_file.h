@@ -59,12 +59,19 @@ typedef struct vb_verify_report {
     vb_verify_counts counts;
     double tol;
     int complete;
+    /* The certifier that judged the lines, of the set cert_set, kept open
+     * so that vb_verify_arcs traces with it instead of building another
+     * (closed by vb_verify_report_free), its keys forgotten
+     * (vb_certifier_forget_keys). NULL when judging never opened one. */
+    vb_certifier *cert;
+    const vb_sphere_set *cert_set;
 } vb_verify_report;
 
 /* Reads the vertex file `path` ("-" = stdin) and judges every line against
  * the validated set with distance tolerance tol > 0; with complete, also
  * runs the exact reference (brute force: small inputs) for missed
- * vertices. Fills *out (free with vb_verify_report_free, also on error).
+ * vertices. Fills *out (free with vb_verify_report_free, also on error;
+ * out->cert stays open until then).
  * Returns VB_OK when the judging ran (whatever it found: see
  * vb_verify_report_ok), VB_EINPUT_EMPTY for a file without vertex lines
  * (nothing to verify is not a success), the reader's errors (file:line),
@@ -107,7 +114,10 @@ int vb_verify_write_json_more(vb_ctx *ctx, FILE *f, const char *spheres_name, co
 
 /* Arc closure of a judged vertex file: the exact vertices of its certified
  * lines (one per exact vertex, so a Voronota group counts once) through
- * vb_arc_close. Same returns as vb_arc_close. */
+ * vb_arc_close, tracing with judged->cert when it is the certifier of this
+ * very set (its exact input and spatial index depend on the set alone; the
+ * judge's verdicts stay in the report), else with one of its own. Same
+ * returns as vb_arc_close. */
 int vb_verify_arcs(vb_ctx *ctx, const vb_sphere_set *set, const vb_verify_report *judged,
                    unsigned threads, vb_arc_report *out);
 

@@ -29,7 +29,8 @@ int vb_verify_arcs(vb_ctx *ctx, const vb_sphere_set *set, const vb_verify_report
     }
     free(seen);
     if (rc == VB_OK)
-        rc = vb_arc_close(ctx, set, &in, threads, out);
+        rc = vb_arc_close_edges(ctx, set, judged->cert_set == set ? judged->cert : NULL, &in,
+                                threads, out, NULL, NULL);
     else
         vb_arc_report_free(out);
     vb_vertex_list_free(&in);

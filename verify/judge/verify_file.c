@@ -284,7 +284,11 @@ static int judge_report(vb_ctx *ctx, const vb_sphere_set *set, const char *name,
     if (rc == VB_OK)
         tally(v, out->judged, out->missed.n, sorted, nsorted, &out->counts);
     free(sorted);
-    vb_certifier_close(cert);
+    /* Kept for vb_verify_arcs (closed by vb_verify_report_free); the keys
+     * have been used by now (judge_groups, find_missed). */
+    vb_certifier_forget_keys(cert);
+    out->cert = cert;
+    out->cert_set = cert ? set : NULL;
     return rc;
 }
 
@@ -327,5 +331,6 @@ void vb_verify_report_free(vb_verify_report *r)
     free(r->lines);
     vb_vertex_list_free(&r->vertices);
     vb_vertex_list_free(&r->missed);
+    vb_certifier_close(r->cert);
     memset(r, 0, sizeof *r);
 }
