@@ -326,11 +326,13 @@ static int lattice_best(const vbc_cells *c, const double u[3], double reach, vbc
      * with it) lies within R(q) + |q - p| <= R + 2 reach of p, and a sphere
      * listed farther than R(q) + |q - p| from p is farther than R(q) from
      * q: near_min's answer is vbc_cells_clearance's (the least distance,
-     * then index, by the same expression). A list over its cap: the cells
-     * answer. */
+     * then index, by the same expression). A list over its cap, or a
+     * lattice wider than the planes' (a subunit's start, whose list would
+     * fill the cap): the cells answer. */
     lattice_near L;
     double R;
-    L.ok = vbc_cells_nearest_near(c, p, 2.0 * reach + 0.1, -1, &R, &a, L.id, L.dist, LATTICE_CAP,
+    L.ok = reach <= VBC_PLANE_LOOK &&
+           vbc_cells_nearest_near(c, p, 2.0 * reach + 0.1, -1, &R, &a, L.id, L.dist, LATTICE_CAP,
                                   &L.n) == 0;
     if (L.ok)
         near_sort(&L);
