@@ -139,8 +139,11 @@ static double clearance_near(const vbc_cells *c, const double q[3], double eps, 
     return L->ok ? R : vbc_cells_clearance_from(c, q, hint, atom);
 }
 
-double vbc_plane_maximise(const vbc_cells *c, const double u[3], double travel, double p[3],
-                          int32_t *atom)
+/* vbc_plane_maximise, and in *went the largest squared distance from the
+ * start of a point it tried (the one it compares with travel^2): a run
+ * with any travel >= sqrt(*went) takes the very same steps. */
+static double ascend(const vbc_cells *c, const double u[3], double travel, double p[3],
+                     int32_t *atom, double *went)
 {
     const vb_sphere_set *s = vbc_cells_spheres(c);
     double e1[3], e2[3], p0[3] = {p[0], p[1], p[2]};
@@ -190,11 +193,10 @@ double vbc_plane_maximise(const vbc_cells *c, const double u[3], double travel, 
         int moved = 0;
         for (double t = fmin(step, fmax(eps, 1e-7)); t >= 1e-8; t *= 0.5) {
             double q[3] = {p[0] + t * d[0], p[1] + t * d[1], p[2] + t * d[2]};
-            if (travel > 0.0) {
-                double w[3] = {q[0] - p0[0], q[1] - p0[1], q[2] - p0[2]};
-                if (dot3(w, w) > travel * travel)
-                    continue;
-            }
+            double w[3] = {q[0] - p0[0], q[1] - p0[1], q[2] - p0[2]}, ww = dot3(w, w);
+            *went = fmax(*went, ww);
+            if (travel > 0.0 && ww > travel * travel)
+                continue;
             /* The clearance at q is at most any one atom's distance, taken
              * by the very expression vbc_cells_clearance takes the least of:
              * an active atom within R + 1e-13 of q decides "no step" as the
@@ -220,14 +222,124 @@ double vbc_plane_maximise(const vbc_cells *c, const double u[3], double travel, 
     return R;
 }
 
+double vbc_plane_maximise(const vbc_cells *c, const double u[3], double travel, double p[3],
+                          int32_t *atom)
+{
+    double went = 0.0;
+    return ascend(c, u, travel, p, atom, &went);
+}
+
+/* The lattice search of vbc_plane_widest: moves p to the widest lattice
+ * point (p itself when none is wider), returns its clearance with the
+ * nearest atom in *atom, and 1 when p moved. */
+static int lattice_best(const vbc_cells *c, const double u[3], double reach, vbc_outside_fn outside,
+                        void *user, double p[3], double *Rbest, int32_t *atom);
+
+/* The rest of vbc_plane_widest from the lattice's best point p (moved or
+ * not by the lattice, its clearance R): the ascent within reach, kept when
+ * it stays inside. */
+static double widest_ascent(const vbc_cells *c, const double u[3], double reach,
+                            vbc_outside_fn outside, void *user, double p[3], double R,
+                            int32_t *atom)
+{
+    int32_t a;
+    double q[3] = {p[0], p[1], p[2]}, went = 0.0;
+    double Rq = ascend(c, u, reach, q, &a, &went);
+    if (!outside || !outside(user, q)) {
+        memcpy(p, q, sizeof q);
+        R = Rq;
+    } else {
+        R = vbc_cells_clearance(c, p, &a); /* the ascent left the molecule: the lattice's best */
+    }
+    *atom = a;
+    return R;
+}
+
 double vbc_plane_widest(const vbc_cells *c, const double u[3], double reach, vbc_outside_fn outside,
                         void *user, double p[3], int32_t *atom)
+{
+    double R;
+    lattice_best(c, u, reach, outside, user, p, &R, atom);
+    return widest_ascent(c, u, reach, outside, user, p, R, atom);
+}
+
+/* The spheres near the lattice's centre (lattice_best), by increasing
+ * distance. */
+#define LATTICE_CAP 512
+typedef struct {
+    int32_t id[LATTICE_CAP];
+    double dist[LATTICE_CAP];
+    size_t n;
+    int ok;
+} lattice_near;
+
+static void near_sort(lattice_near *L)
+{
+    for (size_t k = 1; k < L->n; k++) {
+        int32_t id = L->id[k];
+        double d = L->dist[k];
+        size_t t = k;
+        for (; t > 0 && L->dist[t - 1] > d; t--) {
+            L->id[t] = L->id[t - 1];
+            L->dist[t] = L->dist[t - 1];
+        }
+        L->id[t] = id;
+        L->dist[t] = d;
+    }
+}
+
+/* The clearance at q, off the list of its centre p (|q - p| <= off, to
+ * within rounding): the least distance |q - c| - r, then the lower index,
+ * over the listed spheres; a sphere whose distance from p exceeds the
+ * best so far by more than off (and a margin far above the roundings) is
+ * farther from q than it, as are the rest of the list. */
+static double near_min(const vb_sphere_set *s, const lattice_near *L, const double q[3], double off,
+                       int32_t *atom)
+{
+    double best = INFINITY;
+    int32_t b = -1;
+    off += 1e-9;
+    for (size_t k = 0; k < L->n; k++) {
+        if (L->dist[k] - off > best)
+            break;
+        int32_t i = L->id[k];
+        double dx = q[0] - s->x[i], dy = q[1] - s->y[i], dz = q[2] - s->z[i];
+        double d = sqrt(dx * dx + dy * dy + dz * dz) - s->r[i];
+        if (b < 0 || d < best || (d == best && i < b)) {
+            best = d;
+            b = i;
+        }
+    }
+    *atom = b;
+    return best;
+}
+
+static int lattice_best(const vbc_cells *c, const double u[3], double reach, vbc_outside_fn outside,
+                        void *user, double p[3], double *Rbest, int32_t *atom)
 {
     double e1[3], e2[3], best[3] = {p[0], p[1], p[2]};
     plane_frame(u, e1, e2);
     const vb_sphere_set *s = vbc_cells_spheres(c);
-    int32_t a;
-    double R = vbc_cells_clearance(c, p, &a);
+    int32_t a, best_atom;
+    /* The spheres within R + 2 reach + 0.1 of p, nearest first: a lattice
+     * point q is within reach of p, so its nearest sphere (and any tied
+     * with it) lies within R(q) + |q - p| <= R + 2 reach of p, and a sphere
+     * listed farther than R(q) + |q - p| from p is farther than R(q) from
+     * q: near_min's answer is vbc_cells_clearance's (the least distance,
+     * then index, by the same expression). A list over its cap, or a
+     * lattice wider than the planes' (a subunit's start, whose list would
+     * fill the cap): the cells answer. */
+    lattice_near L;
+    double R;
+    L.ok = reach <= VBC_PLANE_LOOK &&
+           vbc_cells_nearest_near(c, p, 2.0 * reach + 0.1, -1, &R, &a, L.id, L.dist, LATTICE_CAP,
+                                  &L.n) == 0;
+    if (L.ok)
+        near_sort(&L);
+    else
+        R = vbc_cells_clearance(c, p, &a);
+    int moved = 0;
+    best_atom = a;
     /* The nearest atom of the last point queried (0.5 A away, mostly): its
      * distance, by the very expression vbc_cells_clearance takes the least
      * of, bounds the clearance at the next point from above, so a point it
@@ -252,7 +364,8 @@ double vbc_plane_widest(const vbc_cells *c, const double u[3], double reach, vbc
                 continue;
             if (blocked_by(s, &hint, q, R))
                 continue;
-            double Rq = vbc_cells_clearance_from(c, q, last, &a);
+            double Rq = L.ok ? near_min(s, &L, q, sqrt(di * di + dj * dj), &a)
+                             : vbc_cells_clearance_from(c, q, last, &a);
             last = a;
             if (a >= 0) {
                 int k = 0;
@@ -266,20 +379,15 @@ double vbc_plane_widest(const vbc_cells *c, const double u[3], double reach, vbc
             }
             if (Rq > R) { /* strict: the first of equals (in scan order) stays */
                 R = Rq;
+                best_atom = a;
+                moved = 1;
                 memcpy(best, q, sizeof q);
             }
         }
     memcpy(p, best, sizeof best);
-    double q[3] = {p[0], p[1], p[2]};
-    double Rq = vbc_plane_maximise(c, u, reach, q, &a);
-    if (!outside || !outside(user, q)) {
-        memcpy(p, q, sizeof q);
-        R = Rq;
-    } else {
-        R = vbc_cells_clearance(c, p, &a); /* the ascent left the molecule: the lattice's best */
-    }
-    *atom = a;
-    return R;
+    *Rbest = R;
+    *atom = best_atom;
+    return moved;
 }
 
 void vbc_pore_free(vbc_pore *p)
@@ -318,10 +426,17 @@ void vbc_pore_conductance(vbc_pore *p, double rho)
 static double plane_best(const vbc_cells *c, const double u[3], vbc_outside_fn outside, void *user,
                          double p[3], int32_t *atom)
 {
-    double q[3] = {p[0], p[1], p[2]};
+    double q[3] = {p[0], p[1], p[2]}, went = 0.0, rq;
     int32_t b;
-    double r = vbc_plane_maximise(c, u, 0.0, p, atom);
-    double rq = vbc_plane_widest(c, u, VBC_PLANE_LOOK, outside, user, q, &b);
+    double r = ascend(c, u, 0.0, p, atom, &went);
+    /* When no lattice point beats the start and the plain ascent tried no
+     * point farther than VBC_PLANE_LOOK from it, the lattice's ascent (from
+     * the same start, within that reach) would take the very same steps to
+     * the same r: not wider, so the plain ascent stands. */
+    if (!lattice_best(c, u, VBC_PLANE_LOOK, outside, user, q, &rq, &b) &&
+        went <= VBC_PLANE_LOOK * VBC_PLANE_LOOK)
+        return r;
+    rq = widest_ascent(c, u, VBC_PLANE_LOOK, outside, user, q, rq, &b);
     if (rq > r + 1e-9 && !(outside && outside(user, q))) {
         memcpy(p, q, sizeof q);
         *atom = b;

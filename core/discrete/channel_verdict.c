@@ -48,19 +48,26 @@ int vbc_plane_walled(const vbc_cells *c, const double u[3], const double p[3], d
         *scratch_len = need;
     }
     /* Per pixel: a lower bound of its distance to every atom surface (set
-     * when the pixel is queued), the queue, whether it was seen. */
+     * when the pixel is stacked), the stack, whether it was seen. */
     double *low = *scratch;
-    int32_t *queue = (int32_t *)(low + npix);
-    uint8_t *seen = (uint8_t *)(queue + npix);
+    int32_t *stack = (int32_t *)(low + npix);
+    uint8_t *seen = (uint8_t *)(stack + npix);
     memset(seen, 0, npix);
-    size_t head = 0, tail = 0;
+    size_t top = 0;
     int32_t start = (int32_t)((size_t)n * side + (size_t)n), hint = -1;
-    queue[tail++] = start;
+    stack[top++] = start;
     seen[start] = 1;
     low[start] = -INFINITY;
     double edge2 = (double)(n - 1) * (double)(n - 1);
-    while (head < tail) {
-        int32_t v = queue[head++];
+    /* Whether the free pixels connected to the sphere reach the edge does
+     * not depend on the order they are visited in (a pixel's freedom is
+     * its own: the bound below only spares the query whose answer it
+     * proves), so the search goes depth first, the outward step last
+     * pushed (first taken): an open plane is left in about n steps instead
+     * of the breadth-first disc of ~2 n^2 pixels; a walled one visits the
+     * same free region either way. */
+    while (top > 0) {
+        int32_t v = stack[--top];
         int i = (int)(v / (int32_t)side) - n, j = (int)(v % (int32_t)side) - n;
         if ((double)i * i + (double)j * j >= edge2)
             return 0; /* a disc of the wall probe got out: not walled */
@@ -68,7 +75,20 @@ int vbc_plane_walled(const vbc_cells *c, const double u[3], const double p[3], d
          * least v's less a pixel (the distance moves no faster than the
          * point), so when that still clears the probe it is free unasked. */
         double near = low[v] - VBC_WALL_PIXEL - FREE_EPS;
-        static const int step[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+        /* The four steps, the outward one (along the larger of |i|, |j|,
+         * away from the centre) last; then the other of that axis first. */
+        int si = i >= 0 ? 1 : -1, sj = j >= 0 ? 1 : -1, step[4][2];
+        if (abs(i) >= abs(j)) {
+            step[0][0] = -si, step[0][1] = 0;
+            step[1][0] = 0, step[1][1] = -sj;
+            step[2][0] = 0, step[2][1] = sj;
+            step[3][0] = si, step[3][1] = 0;
+        } else {
+            step[0][0] = 0, step[0][1] = -sj;
+            step[1][0] = -si, step[1][1] = 0;
+            step[2][0] = si, step[2][1] = 0;
+            step[3][0] = 0, step[3][1] = sj;
+        }
         for (int k = 0; k < 4; k++) {
             int ii = i + step[k][0], jj = j + step[k][1];
             int32_t w = (int32_t)((size_t)(ii + n) * side + (size_t)(jj + n));
@@ -91,7 +111,7 @@ int vbc_plane_walled(const vbc_cells *c, const double u[3], const double p[3], d
                     low[w] = lw - FREE_EPS;
                 }
             }
-            queue[tail++] = w;
+            stack[top++] = w;
         }
     }
     return 1;
