@@ -32,17 +32,6 @@
 #ifndef WG_SHARED
 #define WG_SHARED __local
 #endif
-/* Combination dominance (vbq_combo_shared.h) in the group kernel: off.
- * It is a speed decision only (the same vertices either way), and with the
- * cells past the step budget handed to the host threads the group kernel no
- * longer meets the near-degenerate chains it was for. Measured on an H100
- * (bench, best of 3, one machine start): capsid cover 0.270 s with it and
- * 0.229 s without, 2x2x2 tiling 1.273 / 1.261 s, fcc 10,976 jittered 0.449 /
- * 0.429 s. WG_COMBO 1 in a copy loaded through VORBALL_KERNEL_DIR builds
- * it back in. */
-#ifndef WG_COMBO
-#define WG_COMBO 0
-#endif
 #define WG_ST 192u /* frames: 3 per level to VB_COVER_MAX_LEVEL 48, and the roots */
 #define WG_NODES 1024u
 
@@ -382,10 +371,10 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
             vbq_champ ch;
             ch.round = tried ? 0u : VBQ_CHAMP_ROUNDS;
             /* tried is the same on every lane (fr, keep, owned are shared) */
-            if (!WG_COMBO || (tried && !vbq_combo_may_go(LO, wg_max(hm, red))))
+            if (tried && !vbq_combo_may_go(LO, wg_max(hm, red)))
                 ch.round = VBQ_CHAMP_ROUNDS;
             ch.n = 0u;
-            while (WG_COMBO && keep > VBQ_DOM_MAX && owned >= 3u && ch.round < VBQ_CHAMP_ROUNDS) {
+            while (keep > VBQ_DOM_MAX && owned >= 3u && ch.round < VBQ_CHAMP_ROUNDS) {
                 vbq_champ_make(nb, lab + top, keep, mm, hh, &ch);
                 ch.round++;
                 /* every lane has read the list before any marks it */
