@@ -53,17 +53,6 @@ typedef struct joined {
     pthread_mutex_t mu; /* a streamed run calls the sink from several threads */
 } joined;
 
-static int join_part_locked(joined *j, vb_quad_list *part);
-
-static int join_part(void *user, vb_quad_list *part)
-{
-    joined *j = user;
-    pthread_mutex_lock(&j->mu);
-    int rc = join_part_locked(j, part);
-    pthread_mutex_unlock(&j->mu);
-    return rc;
-}
-
 static int join_part_locked(joined *j, vb_quad_list *part)
 {
     j->parts++;
@@ -89,6 +78,15 @@ static int join_part_locked(joined *j, vb_quad_list *part)
     j->all.n += part->n;
     j->all.cap = j->all.n;
     return VB_OK;
+}
+
+static int join_part(void *user, vb_quad_list *part)
+{
+    joined *j = user;
+    pthread_mutex_lock(&j->mu);
+    int rc = join_part_locked(j, part);
+    pthread_mutex_unlock(&j->mu);
+    return rc;
 }
 
 static int parts_cover(vb_ctx *ctx, const vb_sphere_set *s, unsigned parts, vb_quad_list *out)
