@@ -30,7 +30,8 @@ void vb_cmd_bench_help(FILE *f)
             "  --device D           auto, gpu, cpu or ref (as for vertices)\n"
             "  --proposer P         cover (default) or sampling (as for vertices)\n"
             "  --tol T, --tiles T, --threads N, --all-pairs  as for vertices\n"
-            "  --json               JSON array instead of the table\n"
+            "  --json               JSON array instead of the table (it adds device_bytes_peak,\n"
+            "                       the device buffers a run held at once)\n"
             "  -o FILE              output file (default stdout)\n"
             "A progress bar goes to stderr when it is a terminal and a run is slow.\n"
             "Under mpirun -np N each run is split over the ranks as `vertices` splits it:\n"
@@ -82,7 +83,7 @@ static void row(FILE *f, int json, int first, const char *input, size_t atoms,
                 "\"matching\": %.6f, \"targeted\": %.6f, \"tangent\": %.6f, \"completion\": %.6f, "
                 "\"certification\": %.6f, \"setup\": %.6f, \"setup_wait\": %.6f, \"total\": %.6f, "
                 "\"total_first_run\": %.6f, \"device_setup\": %.6f, "
-                "\"certify_overlap\": %.6f, \"certify_parts\": %zu",
+                "\"certify_overlap\": %.6f, \"certify_parts\": %zu, \"device_bytes_peak\": %llu",
                 r->certified.n, (unsigned long long)r->proposal.first_cell,
                 (unsigned long long)r->proposal.from_sampling, tot->rejected,
                 (unsigned long long)r->proposal.incomplete,
@@ -91,7 +92,8 @@ static void row(FILE *f, int json, int first, const char *input, size_t atoms,
                 (unsigned long long)r->proposal.targeted_found, t->cull, t->upload, t->envelope,
                 t->vertices, t->matching, t->targeted, t->tangent, t->completion, r->t_certify,
                 r->t_setup, r->t_setup_wait, r->t_total,
-                first_total, device_setup, r->t_certify_overlap, r->certify_parts);
+                first_total, device_setup, r->t_certify_overlap, r->certify_parts,
+                (unsigned long long)r->proposal.device_bytes_peak);
         if (vb_world_size() > 1)
             fprintf(f, ", \"ranks\": %d, \"combine\": %.6f, \"merged_repeats\": %zu}",
                     vb_world_size(), tot->t_combine, tot->repeats);
