@@ -23,7 +23,7 @@
  *              + 16 qper C (quadruples, qper 24 on the first tier, 256 on the
  *              large one), at most 1/8 of the budget left after the input:
  *              a batch larger than that runs in several launches;
- *   large tier S1 slices of 7.4 MiB, made on the first cell that needs them,
+ *   large tier S1 slices of 2.6 MiB, made on the first cell that needs them,
  *              S1 = min(the device's occupancy, the tasks waiting, the rest of
  *              the budget / P1) (half of it with the hand-off tier beside);
  *              with no room the cells go to the host threads.
@@ -80,7 +80,14 @@ typedef struct cov_state {
 
 /* Arena capacities. The first tier fits almost every cell of the proteins
  * and the capsid measured; the second takes the exposed cells whose ring
- * fetches hold thousands of spheres (up to ~10^5 records on the capsid). */
+ * fetches hold thousands of spheres, as root-patch tasks, each of which
+ * fetches only its patch's. Measured on the host (tests/verify/
+ * bench_cover_cells, every cell's 96 tasks): neighbour records per cell on
+ * the 26,430-atom capsid median 96, p99 4,493, max 50,546 (117 cells past
+ * 8,192), per task at most 20,483 (all 2,537,280 tasks fit 32,768; 2 ran
+ * out of 16,384); 3pqr per cell max 12,396, per task 2,303. The large
+ * tier's 131,072 records (7.1 MiB a slice with its labels) became 32,768
+ * (2.6 MiB); its labels stay (the group kernel walks breadth-first). */
 #define COV_NB 2048u
 #define COV_LAB 8192u
 #define COV_ST 256u
@@ -88,7 +95,7 @@ typedef struct cov_state {
 #define COV_WG_NB 8192u
 #define COV_WG_LAB 32768u
 #define COV_WG_Q 512u
-#define COV_BIG_NB 131072u
+#define COV_BIG_NB 32768u
 #define COV_BIG_LAB 262144u
 #define COV_BIG_Q 4096u
 #define COV_WG 32u
@@ -673,12 +680,17 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
          * GPU, in groups of 64. */
         th->want = (size_t)units * 512;
     }
-    /* Test knobs: VORBALL_COVER_NB shrinks the first tier's records (so that
-     * cells overflow), VORBALL_COVER_TIER2 sets the second tier's slices
-     * (also on CPU devices, to test the split into root-patch tasks). */
+    /* Test knobs: VORBALL_COVER_NB and VORBALL_COVER_LAB set the first
+     * tier's records and labels (so that cells overflow; or smaller slices
+     * for measurements of memory against speed), VORBALL_COVER_TIER2 the
+     * second tier's slices (also on CPU devices, to test the split into
+     * root-patch tasks). */
     const char *knb = getenv("VORBALL_COVER_NB"), *kt2 = getenv("VORBALL_COVER_TIER2");
+    const char *klab = getenv("VORBALL_COVER_LAB");
     if (knb && atol(knb) > 0)
         t0->nb_cap = (uint32_t)atol(knb);
+    if (klab && atol(klab) > 0)
+        t0->lab_cap = (uint32_t)atol(klab);
     if (kt2 && atol(kt2) >= 0)
         t1->want = (size_t)atol(kt2);
     be->name = "opencl";
