@@ -195,7 +195,8 @@ static int budget_split(vb_ctx *ctx, cov_state *s, size_t n, size_t input)
      * keeps the launch a multiple of its group). On an H100 a 327-atom run
      * held 1,594 MiB with every slice allocated. */
     size_t cap = n == 0 ? 1 : t0->wg ? n : (n + 63) / 64 * 64;
-    size_t fit = (avail / 4 * 3 - tier_fixed(t0)) / tier_bytes(t0);
+    size_t share = avail / 4 * 3;
+    size_t fit = share > tier_fixed(t0) ? (share - tier_fixed(t0)) / tier_bytes(t0) : 0;
     size_t w = t0->want < cap ? t0->want : cap;
     w = w < fit ? w : fit;
     if (!t0->wg && w >= 64)
@@ -205,6 +206,13 @@ static int budget_split(vb_ctx *ctx, cov_state *s, size_t n, size_t input)
     s->launch_room = avail / 8 > task_bytes(t0) ? avail / 8 : task_bytes(t0);
     s->tier_room = avail - used > s->launch_room ? avail - used - s->launch_room : 0;
     return VB_OK;
+}
+
+/* Bytes the large tier, or the hand-off tier, may hold: the budget's rest,
+ * halved when both may be made. */
+static size_t tier_share(const cov_state *s)
+{
+    return s->tier_room / (s->tier[COV_HAND].k && s->tier[COV_BIG].want ? 2 : 1);
 }
 
 static void tier_release(cov_state *s, cov_tier *t)
@@ -226,7 +234,7 @@ static void trim(cov_state *s, size_t n)
     for (int k = COV_BIG; k <= COV_HAND; k++) {
         cov_tier *t = &s->tier[k];
         if (t->slices > n * vbg_tasks_per_cell(s->env.T) ||
-            tier_fixed(t) + t->slices * tier_bytes(t) > s->tier_room / (s->k_item ? 2 : 1)) {
+            tier_fixed(t) + t->slices * tier_bytes(t) > tier_share(s)) {
             tier_release(s, t);
             t->slices = 0;
         }
@@ -482,7 +490,7 @@ static int run_tasks(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *cel
  * when none fits: the cells then go to the host. */
 static int tier_grow(vb_ctx *ctx, cov_state *s, cov_tier *t, size_t tasks)
 {
-    size_t room = s->tier_room / (s->tier[COV_HAND].k && s->tier[COV_BIG].want ? 2 : 1);
+    size_t room = tier_share(s);
     size_t fit = room > tier_fixed(t) ? (room - tier_fixed(t)) / tier_bytes(t) : 0;
     size_t w = t->wg ? tasks : (tasks + 63) / 64 * 64;
     w = w < t->want ? w : t->want;
