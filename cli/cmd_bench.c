@@ -20,7 +20,8 @@ void vb_cmd_bench_help(FILE *f)
             "usage: vorball bench [options] INPUT... \n\n"
             "Runs the certified vertex pipeline on each input and prints, per input and\n"
             "sample count: atoms, samples, certified vertices, per-stage seconds (cull,\n"
-            "upload, envelope, vertices, matching, certification) and the total.\n\n"
+            "upload, envelope, vertices, matching, certification), the total and the MiB\n"
+            "of device buffers held at once (dev_MiB, 0 on host threads).\n\n"
             "  --samples S[,S...]   sample counts to run (default %u)\n"
             "  --repeat N           runs per configuration; the fastest total is kept (1);\n"
             "                       JSON also gives the first run's total (cold caches)\n"
@@ -105,9 +106,10 @@ static void row(FILE *f, int json, int first, const char *input, size_t atoms,
                     device_setup);
         else if (first)
             fprintf(f, "# backend %s: %s (opened for every run)\n", r->backend, r->device);
-        fprintf(f, "%-18s %6zu %7u %9zu %8.3f %8.3f %9.3f %9.3f %9.3f %9.3f %9.3f\n", input,
-                atoms, r->proposal.samples, r->certified.n, t->cull, t->upload, t->envelope,
-                t->vertices, t->matching, r->t_certify, r->t_total);
+        fprintf(f, "%-18s %6zu %7u %9zu %8.3f %8.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.1f\n",
+                input, atoms, r->proposal.samples, r->certified.n, t->cull, t->upload,
+                t->envelope, t->vertices, t->matching, r->t_certify, r->t_total,
+                (double)r->proposal.device_bytes_peak / 1048576.0);
     }
 }
 
@@ -178,9 +180,9 @@ int vb_cmd_bench(int argc, char **argv)
     if (rc == VB_OK && rank0 && json)
         fputs("[", out);
     else if (rc == VB_OK && rank0)
-        fprintf(out, "%-18s %6s %7s %9s %8s %8s %9s %9s %9s %9s %9s\n", "input", "atoms",
+        fprintf(out, "%-18s %6s %7s %9s %8s %8s %9s %9s %9s %9s %9s %9s\n", "input", "atoms",
                 "samples", "vertices", "cull", "upload", "envelope", "vertices", "matching",
-                "certify", "total");
+                "certify", "total", "dev_MiB");
     int first = 1;
     for (int k = 0; k < ninputs && rc == VB_OK; k++) {
         vb_sphere_set *set = NULL;
