@@ -76,6 +76,7 @@ typedef struct cov_state {
     size_t budget;           /* device bytes the cover may hold (vbg_runtime_memory_budget) */
     size_t launch_room;      /* bytes of one launch's task, result and quadruple buffers */
     size_t tier_room;        /* bytes left for the large tier (and the hand-off tier) */
+    size_t last_n;           /* spheres of the last run begun (trim) */
 } cov_state;
 
 /* Arena capacities. The first tier fits almost every cell of the proteins
@@ -224,22 +225,25 @@ static void tier_release(cov_state *s, cov_tier *t)
 }
 
 /* Releases what an earlier run on this backend made larger than this run
- * (of n spheres, its budget split) may hold, so that the meter's peak,
- * started again here, is this run's. */
+ * (of n spheres, its budget split) may hold, and, for an input of another
+ * size, the large tiers and launch buffers an earlier run made: the meter's
+ * peak, started again here, is then this run's alone, while repeated runs
+ * of one input (bench --repeat) keep their buffers. */
 static void trim(cov_state *s, size_t n)
 {
     cov_tier *t0 = &s->tier[COV_FIRST];
+    int other = n != s->last_n;
+    s->last_n = n;
     if (t0->nb.size > t0->slices * t0->nb_cap * sizeof(vbq_nb))
         tier_release(s, t0);
     for (int k = COV_BIG; k <= COV_HAND; k++) {
         cov_tier *t = &s->tier[k];
-        if (t->slices > n * vbg_tasks_per_cell(s->env.T) ||
-            tier_fixed(t) + t->slices * tier_bytes(t) > tier_share(s)) {
+        if (other || tier_fixed(t) + t->slices * tier_bytes(t) > tier_share(s)) {
             tier_release(s, t);
             t->slices = 0;
         }
     }
-    if (s->cells.size + s->roots.size + s->outs.size + s->qout.size > s->launch_room) {
+    if (other || s->cells.size + s->roots.size + s->outs.size + s->qout.size > s->launch_room) {
         release(s, &s->cells);
         release(s, &s->roots);
         release(s, &s->outs);
