@@ -324,16 +324,17 @@ static int launch_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *c
         s->qout_cap = want;
     size_t c4 = ncells * sizeof(uint32_t), c48 = ncells * sizeof(vbq_cell_out);
     size_t held = (s->cells.size > c4 ? s->cells.size : c4) +
-                  (s->roots.size > c4 ? s->roots.size : c4) + (s->outs.size > c48 ? s->outs.size : c48);
-    size_t room = s->launch_room > held ? (s->launch_room - held) / 16 : 1;
-    size_t qcap_z = s->qout_cap < room ? s->qout_cap : room ? room : 1;
+                  (s->roots.size > c4 ? s->roots.size : c4) +
+                  (s->outs.size > c48 ? s->outs.size : c48);
+    size_t room = s->launch_room > held + 16 ? (s->launch_room - held) / 16 : 1;
+    size_t qroom = s->qout_cap < room ? s->qout_cap : room;
     int rc = upload(ctx, s, &s->cells, cells, ncells * sizeof(uint32_t));
     if (rc == VB_OK)
         rc = upload(ctx, s, &s->roots, roots, ncells * sizeof(uint32_t));
     if (rc == VB_OK)
         rc = ensure(ctx, s, &s->outs, ncells * sizeof(vbq_cell_out), CL_MEM_READ_WRITE);
     if (rc == VB_OK)
-        rc = ensure(ctx, s, &s->qout, 4 * qcap_z * sizeof(uint32_t), CL_MEM_READ_WRITE);
+        rc = ensure(ctx, s, &s->qout, 4 * qroom * sizeof(uint32_t), CL_MEM_READ_WRITE);
     cl_uint zero[2] = {0, 0};
     if (rc == VB_OK)
         rc = vbg_check(ctx,
@@ -341,7 +342,7 @@ static int launch_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *c
                                             NULL, NULL),
                        "clEnqueueWriteBuffer");
     const vbq_env *e = &s->env;
-    cl_uint nc = (cl_uint)ncells, qcap = (cl_uint)qcap_z;
+    cl_uint nc = (cl_uint)ncells, qcap = (cl_uint)qroom;
     cl_uint nbc = t->nb_cap, labc = t->lab_cap, stc = t->st_cap, qc = t->q_cap;
     cl_uint a = 0;
     cl_kernel k = t->k;
@@ -405,7 +406,7 @@ static int launch_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *c
                        clEnqueueReadBuffer(q, s->counters.mem, CL_TRUE, 0, sizeof counters,
                                            counters, 0, NULL, NULL),
                        "read counters");
-    size_t nq = counters[1] < qcap_z ? counters[1] : qcap_z;
+    size_t nq = counters[1] < qroom ? counters[1] : qroom;
     if (rc == VB_OK)
         rc = host_q_room(ctx, s, nq);
     if (rc == VB_OK && nq)
@@ -422,7 +423,7 @@ static int launch_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *c
             out[c].qoff += (uint32_t)s->host_nq;
     s->host_nq += nq;
     /* The next batch gets room for what this one needed. */
-    if (counters[1] > qcap_z)
+    if (counters[1] > qroom)
         s->qout_cap = counters[1] + counters[1] / 4;
     return VB_OK;
 }
