@@ -3,7 +3,16 @@
  * include launch overhead. Every host-to-device write is blocking: a batch
  * that fails part way returns with nothing queued that still reads host
  * memory its caller is about to free (a queued upload of freed batch
- * buffers crashed `vertices` when a later call failed). */
+ * buffers crashed `vertices` when a later call failed).
+ *
+ * Device buffers (each made 1/4 larger than asked, kept and grown between
+ * batches, counted by a meter: vbg_buffer.h, --stats device_bytes_peak), for
+ * a part of B bases with S samples a side: the bases, their bisectors and
+ * tile lists (part_bytes), the ray colours 4 x 6 S^2 B, the parameters, and
+ * the candidates (sizeof(vbs_cand) each, first 2^16, grown to what a part
+ * found): the inputs of a part within half the device layer's budget (a
+ * part over it is halved), the candidates within the other half (a part
+ * that finds more is halved and run again). */
 #include <stdlib.h>
 #include <string.h>
 
