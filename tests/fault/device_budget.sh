@@ -10,7 +10,8 @@
 # budget; cells forced out of the first tier (VORBALL_COVER_NB=64) in batches
 # of 100 cells go, as root-patch tasks in launches that the budget splits, to
 # the large tier made on demand within 16 MiB, and to the host within 1 MiB
-# (no room for a large slice): same bytes as --device ref either way. A budget
+# (no room for a large slice): same bytes as --device ref either way; bench's
+# runs each report their own peak. A budget
 # that cannot hold the input stops with E142 (exit 46) and writes no file.
 # usage: device_budget.sh VORBALL SHIM CORPUS_DIR WORK_DIR [peak]
 vorball=$1 shim=$2 corpus=$3 work=$4/device_budget
@@ -62,6 +63,18 @@ for mib in 16 1; do
     echo "forced overflow, budget $mib MiB: device_bytes_peak $peak, cells on the host $host"
 done
 [ "$host_16" -lt "$host_1" ] || fail "the large tier took no cell at 16 MiB ($host_16 against $host_1)"
+# bench keeps the device open: a run of another input starts without the
+# buffers of the one before, so its device_bytes_peak is its own (the device
+# takes every cell, VORBALL_COVER_HOST_BACK=0, so that the launches repeat).
+peak_of() {
+    VORBALL_COVER_HOST_BACK=0 VORBALL_COVER_NB=64 VORBALL_COVER_TIER2=64 \
+        "$vorball" bench --json "$@" 2> /dev/null |
+        sed -n 's/.*"input": "1crn.pdb".*"device_bytes_peak": \([0-9]*\).*/\1/p'
+}
+alone=$(peak_of "$in") after=$(peak_of "$corpus/data/1crn_apbs.pqr" "$in")
+[ -n "$alone" ] && [ "$alone" = "$after" ] ||
+    fail "1crn's device_bytes_peak in bench: '$alone' alone, '$after' after 1crn_apbs"
+echo "bench: 1crn's device_bytes_peak $alone alone and after 1crn_apbs"
 awk 'BEGIN { srand(7); for (i = 0; i < 40000; i++)
     printf "%.3f %.3f %.3f 1.5\n", rand() * 120, rand() * 120, rand() * 120 }' > "$work/big.xyzr"
 rm -f "$work/big.tsv"
