@@ -120,6 +120,8 @@ typedef struct vb_proposal {
                                      a counter that processes which covered parts of the
                                      cells can add up */
     double t_cover_device;        /* seconds in the cover's device batches */
+    uint64_t device_bytes_peak;   /* the most bytes of device buffers the proposer's
+                                     backend held at once (0 on host threads) */
 } vb_proposal;
 
 /* Zeroes r (an empty candidate list). */
