@@ -30,6 +30,9 @@ void vbc_analysis_free(analysis *W)
     free(W->clear);
     free(W->near);
     free(W->vcomp);
+    free(W->end_a);
+    free(W->end_b);
+    free(W->end_through);
     vbc_cells_free(W->cells);
 }
 
