@@ -117,9 +117,7 @@ static int graph_on_device(const vbc_gpu *p)
     return p->device_graph > 0 || (p->device_graph == 0 && vbg_runtime_is_gpu(p->rt));
 }
 
-/* Makes *buf hold at least `need` elements of `size` bytes, growing by half
- * again to amortise trajectories whose sizes creep up. */
-static cl_int ensure(vbc_gpu *p, cl_mem *buf, size_t *cap, size_t need, size_t size)
+cl_int vbc_gpu_buffer_fit(vbg_runtime *rt, cl_mem *buf, size_t *cap, size_t need, size_t size)
 {
     if (*buf && *cap >= need)
         return CL_SUCCESS;
@@ -127,11 +125,16 @@ static cl_int ensure(vbc_gpu *p, cl_mem *buf, size_t *cap, size_t need, size_t s
         clReleaseMemObject(*buf);
     size_t c = need + need / 2 + 16;
     cl_int err;
-    *buf = clCreateBuffer(vbg_runtime_context(p->rt), CL_MEM_READ_WRITE, c * size, NULL, &err);
+    *buf = clCreateBuffer(vbg_runtime_context(rt), CL_MEM_READ_WRITE, c * size, NULL, &err);
     *cap = err == CL_SUCCESS ? c : 0;
     if (err != CL_SUCCESS)
         *buf = NULL;
     return err;
+}
+
+static cl_int ensure(vbc_gpu *p, cl_mem *buf, size_t *cap, size_t need, size_t size)
+{
+    return vbc_gpu_buffer_fit(p->rt, buf, cap, need, size);
 }
 
 /* The classification pass: resets the counter, launches, reads the count. */

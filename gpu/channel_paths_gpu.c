@@ -25,18 +25,10 @@ struct vbc_paths_gpu {
 
 static cl_int grow(vbc_paths_gpu *P, cl_mem *buf, size_t *cap, size_t need, size_t size, int *fresh)
 {
-    if (*buf && *cap >= need)
-        return CL_SUCCESS;
-    if (*buf)
-        clReleaseMemObject(*buf);
-    size_t c = need + need / 2 + 16;
-    cl_int err;
-    *buf = clCreateBuffer(vbg_runtime_context(P->rt), CL_MEM_READ_WRITE, c * size, NULL, &err);
-    *cap = err == CL_SUCCESS ? c : 0;
-    if (err != CL_SUCCESS)
-        *buf = NULL;
-    if (fresh)
-        *fresh = 1;
+    size_t before = *buf ? *cap : 0;
+    cl_int err = vbc_gpu_buffer_fit(P->rt, buf, cap, need, size);
+    if (fresh) /* a new buffer always has another (larger) capacity */
+        *fresh = *cap != before;
     return err;
 }
 
