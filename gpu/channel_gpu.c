@@ -420,8 +420,10 @@ int vbg_channels_open(vb_ctx *ctx, vbg_runtime *rt, vbj_variant variant, vbc_eng
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "channel pipeline");
     }
     int rc = vbc_gpu_open(ctx, rt, variant, &st->gpu);
-    /* The sweep kernels are built only for runs that ask for them. */
-    if (rc == VB_OK && vbc_paths_wanted())
+    /* The sweep kernels are built only for runs that ask for them (on a CPU
+     * device only when forced: the twin costs it less). */
+    int paths = vbc_paths_mode();
+    if (rc == VB_OK && (paths == 2 || (paths == 1 && vbg_runtime_is_gpu(rt))))
         rc = vbc_paths_gpu_open(ctx, rt, &st->paths);
     if (rc != VB_OK) {
         vbc_gpu_close(st->gpu);

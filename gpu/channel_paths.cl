@@ -1,8 +1,8 @@
 /* The channel graph's batch sweeps on the device (core/discrete/vbc_paths.h;
  * the plain-C twin is core/discrete/channel_paths.c): Jacobi rounds of
  * relaxation over the listed channel voxels, one work-item per voxel
- * pulling from its 26 neighbours (found through a grid map of positions),
- * until a round improves none; then the predecessor rule. Each round reads
+ * pulling from those of its 26 neighbours (found through a grid map of
+ * positions) that fell in the round before, until a round lowers none; then the predecessor rule. Each round reads
  * one distance buffer and writes the other, so no work-item reads what
  * another writes in the same round, and the fixed point, which is unique,
  * is the twin's and Dijkstra's bit for bit (the step arithmetic is
@@ -22,26 +22,36 @@ __kernel void vbc_paths_map(__global const uint *v, uint n, __global uint *map, 
         map[v[t]] = set ? t : VBC_NONE;
 }
 
-/* Both distance buffers: infinity, then 0 at the sources. */
-__kernel void vbc_paths_init(uint n, __global double *d0, __global double *d1)
+/* Both distance buffers: infinity, then 0 at the sources; the stamps
+ * (the round that last lowered each distance) none, then 0 at the sources. */
+__kernel void vbc_paths_init(uint n, __global double *d0, __global double *d1, __global uint *s0,
+                             __global uint *s1)
 {
     uint t = get_global_id(0);
-    if (t < n)
+    if (t < n) {
         d0[t] = d1[t] = INFINITY;
+        s0[t] = s1[t] = VBC_NONE;
+    }
 }
 
 __kernel void vbc_paths_seed(__global const uint *src, uint nsrc, __global double *d0,
-                             __global double *d1)
+                             __global double *d1, __global uint *s0, __global uint *s1)
 {
     uint i = get_global_id(0);
-    if (i < nsrc)
+    if (i < nsrc) {
         d0[src[i]] = d1[src[i]] = 0.0;
+        s0[src[i]] = s1[src[i]] = 0u;
+    }
 }
 
-/* One round: dout[t] = min(din[t], din[u] + step(u, t) over neighbours u). */
+/* Round r (from 1): dout[t] = min(din[t], din[u] + step(u, t)) over the
+ * neighbours u lowered in round r - 1 (sin[u] == r - 1): the others gave
+ * their value to t already, in the round after they last fell, and a
+ * distance only falls. sout[t] = r when t fell, else sin[t]. */
 __kernel void vbc_paths_round(__global const uint *v, uint n, __global const uint *map,
                               __global const double *clear, int nx, int ny, int nz, int weighted,
                               __global const double *din, __global double *dout,
+                              __global const uint *sin, __global uint *sout, uint r,
                               __global volatile uint *changed)
 {
     uint t = get_global_id(0);
@@ -59,16 +69,14 @@ __kernel void vbc_paths_round(__global const uint *v, uint n, __global const uin
                     kk >= nz)
                     continue;
                 uint u = map[ii + nx * (jj + ny * kk)];
-                if (u == VBC_NONE)
+                if (u == VBC_NONE || sin[u] != r - 1u)
                     continue;
-                double du = din[u];
-                if (du == INFINITY)
-                    continue;
-                double nd = du + vbc_path_step(abs(dx) + abs(dy) + abs(dz), clear[u], ct, weighted);
+                double nd = din[u] + vbc_path_step(abs(dx) + abs(dy) + abs(dz), clear[u], ct, weighted);
                 if (nd < best)
                     best = nd;
             }
     dout[t] = best;
+    sout[t] = best < old ? r : sin[t];
     if (best < old)
         *changed = 1u;
 }

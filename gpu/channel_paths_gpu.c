@@ -17,8 +17,8 @@ struct vbc_paths_gpu {
     vbg_runtime *rt;
     pthread_mutex_t lock;
     cl_kernel k_map, k_init, k_seed, k_round, k_pred;
-    cl_mem map, v, clear, d0, d1, pred, src, changed;
-    size_t map_cap, v_cap, clear_cap, d0_cap, d1_cap, pred_cap, src_cap; /* elements */
+    cl_mem map, v, clear, d0, d1, s0, s1, pred, src, changed;
+    size_t map_cap, v_cap, clear_cap, d0_cap, d1_cap, s0_cap, s1_cap, pred_cap, src_cap; /* elements */
     cl_uint n;
     int nx, ny, nz;
 };
@@ -67,6 +67,10 @@ static cl_int upload(vbc_paths_gpu *P, const vbc_paths_graph *G)
         err = grow(P, &P->d0, &P->d0_cap, G->n, sizeof(cl_double), NULL);
     if (err == CL_SUCCESS)
         err = grow(P, &P->d1, &P->d1_cap, G->n, sizeof(cl_double), NULL);
+    if (err == CL_SUCCESS)
+        err = grow(P, &P->s0, &P->s0_cap, G->n, sizeof(cl_uint), NULL);
+    if (err == CL_SUCCESS)
+        err = grow(P, &P->s1, &P->s1_cap, G->n, sizeof(cl_uint), NULL);
     if (err == CL_SUCCESS)
         err = grow(P, &P->pred, &P->pred_cap, G->n, sizeof(cl_uint), NULL);
     P->n = (cl_uint)G->n;
@@ -135,17 +139,21 @@ static cl_int run_batch(vbc_paths_gpu *P, vbc_paths_batch *b)
     err |= clSetKernelArg(P->k_init, 0, sizeof P->n, &P->n);
     err |= clSetKernelArg(P->k_init, 1, sizeof P->d0, &P->d0);
     err |= clSetKernelArg(P->k_init, 2, sizeof P->d1, &P->d1);
+    err |= clSetKernelArg(P->k_init, 3, sizeof P->s0, &P->s0);
+    err |= clSetKernelArg(P->k_init, 4, sizeof P->s1, &P->s1);
     err |= clSetKernelArg(P->k_seed, 0, sizeof P->src, &P->src);
     err |= clSetKernelArg(P->k_seed, 1, sizeof nsrc, &nsrc);
     err |= clSetKernelArg(P->k_seed, 2, sizeof P->d0, &P->d0);
     err |= clSetKernelArg(P->k_seed, 3, sizeof P->d1, &P->d1);
+    err |= clSetKernelArg(P->k_seed, 4, sizeof P->s0, &P->s0);
+    err |= clSetKernelArg(P->k_seed, 5, sizeof P->s1, &P->s1);
     err |= graph_args(P, P->k_round, weighted);
-    err |= clSetKernelArg(P->k_round, 10, sizeof P->changed, &P->changed);
+    err |= clSetKernelArg(P->k_round, 13, sizeof P->changed, &P->changed);
     if (err == CL_SUCCESS)
         err = launch(P, P->k_init, P->n);
     if (err == CL_SUCCESS)
         err = launch(P, P->k_seed, nsrc);
-    cl_mem in = P->d0, out = P->d1;
+    cl_mem in = P->d0, out = P->d1, sin = P->s0, sout = P->s1;
     cl_uint changed = 1;
     size_t rounds = 0;
     while (err == CL_SUCCESS && changed) {
@@ -153,14 +161,21 @@ static cl_int run_batch(vbc_paths_gpu *P, vbc_paths_batch *b)
             return CL_INVALID_VALUE; /* distances that never settle: a broken device */
         cl_uint zero = 0;
         err = clEnqueueFillBuffer(q, P->changed, &zero, sizeof zero, 0, sizeof zero, 0, NULL, NULL);
-        for (int r = 0; r < ROUNDS_PER_CHECK && err == CL_SUCCESS; r++, rounds++) {
+        for (int r = 0; r < ROUNDS_PER_CHECK && err == CL_SUCCESS; r++) {
+            cl_uint round = (cl_uint)++rounds;
             err = clSetKernelArg(P->k_round, 8, sizeof in, &in);
             err |= clSetKernelArg(P->k_round, 9, sizeof out, &out);
+            err |= clSetKernelArg(P->k_round, 10, sizeof sin, &sin);
+            err |= clSetKernelArg(P->k_round, 11, sizeof sout, &sout);
+            err |= clSetKernelArg(P->k_round, 12, sizeof round, &round);
             if (err == CL_SUCCESS)
                 err = launch(P, P->k_round, P->n);
             cl_mem t = in;
             in = out;
             out = t;
+            t = sin;
+            sin = sout;
+            sout = t;
         }
         if (err == CL_SUCCESS)
             err = clEnqueueReadBuffer(q, P->changed, CL_TRUE, 0, sizeof changed, &changed, 0, NULL,
@@ -235,8 +250,8 @@ void vbc_paths_gpu_close(vbc_paths_gpu *P)
     for (size_t i = 0; i < 5; i++)
         if (ks[i])
             clReleaseKernel(ks[i]);
-    cl_mem bufs[] = {P->map, P->v, P->clear, P->d0, P->d1, P->pred, P->src, P->changed};
-    for (size_t i = 0; i < 8; i++)
+    cl_mem bufs[] = {P->map, P->v, P->clear, P->d0, P->d1, P->s0, P->s1, P->pred, P->src, P->changed};
+    for (size_t i = 0; i < 10; i++)
         if (bufs[i])
             clReleaseMemObject(bufs[i]);
     pthread_mutex_destroy(&P->lock);

@@ -65,7 +65,7 @@ int vbc_frame_components(vb_ctx *ctx, const vb_sphere_set *s, const vbc_options 
 {
     double t1 = vb_now();
     /* VORBALL_DEVICE_PATHS: the sweeps as batches on the pipe's engine. */
-    const vbc_paths_engine *paths = f->pipe && vbc_paths_wanted() ? vbc_pipe_paths(f->pipe) : NULL;
+    const vbc_paths_engine *paths = f->pipe && vbc_paths_mode() ? vbc_pipe_paths(f->pipe) : NULL;
     int rc = vbc_analyse_paths(ctx, &f->grid, s, f->out.voxels, f->out.clearance, f->out.comp,
                                f->out.nvoxels, opt, paths, &f->result);
     f->ms_analysis = 1e3 * (vb_now() - t1);

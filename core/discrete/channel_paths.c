@@ -99,8 +99,8 @@ const vbc_paths_engine *vbc_paths_engine_ref(void)
     return &ref;
 }
 
-int vbc_paths_wanted(void)
+int vbc_paths_mode(void)
 {
     const char *e = getenv("VORBALL_DEVICE_PATHS");
-    return e && strcmp(e, "1") == 0;
+    return e && (strcmp(e, "1") == 0 || strcmp(e, "2") == 0) ? e[0] - '0' : 0;
 }

@@ -84,10 +84,13 @@ int vbc_analyse_paths(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, co
                       const float *vclear, const uint32_t *comp, size_t nvox,
                       const vbc_options *opt, const vbc_paths_engine *paths, vbc_result *res);
 
-/* Whether the analysis runs its sweeps as batches on the pipe's engine
- * (the device with OpenCL, else the twin): VORBALL_DEVICE_PATHS = 1; unset
- * or 0, the per-component Dijkstra on host threads (the default). The
- * bytes of every table are the same either way. */
-int vbc_paths_wanted(void);
+/* How the analysis runs its sweeps, from VORBALL_DEVICE_PATHS: 0 (unset,
+ * or anything else) the per-component Dijkstra on host threads (the
+ * default); 1 as batches, on the kernels when the pipe's device is a GPU,
+ * else on the twin (a CPU device gains nothing from them: PoCL spent about
+ * 1 ms of CPU per round launch, 0.3 s a frame of adk_oplsaa); 2 as batches
+ * on the kernels of any OpenCL device (tests of the kernels on PoCL). The
+ * bytes of every table are the same whichever runs. */
+int vbc_paths_mode(void);
 
 #endif

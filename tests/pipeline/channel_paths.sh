@@ -1,9 +1,9 @@
 #!/bin/sh
-# Issue 33: the channel graph's sweeps as batches (VORBALL_DEVICE_PATHS=1,
+# Issue 33: the channel graph's sweeps as batches (VORBALL_DEVICE_PATHS=1 or 2,
 # core/discrete/vbc_paths.h) give the bytes of the per-component Dijkstra:
 # table, centrelines, profile and the JSON less its clocks, on the twin
 # (--device ref) at one and two threads, sequential and in flight, and on
-# the kernels (PoCL, with the device's components and clearances: a GPU's
+# the kernels (PoCL forced by 2, with the device's components and clearances: a GPU's
 # host analysis), over the 10-frame MD trajectory, 1chb at grid 128 and
 # crambin, both with their cavities (the cavities' two plain waves).
 # usage: channel_paths.sh VORBALL CORPUS WORKDIR
@@ -49,7 +49,7 @@ for input in traj chb crn; do
         timed "${input}_twin$1$2"
     done
     # shellcheck disable=SC2086
-    VORBALL_DEVICE_GRAPH=1 VORBALL_DEVICE_CLEARANCE=1 case_run "${input}_pocl" 1 2 2 --device cpu $args
+    VORBALL_DEVICE_GRAPH=1 VORBALL_DEVICE_CLEARANCE=1 case_run "${input}_pocl" 2 2 2 --device cpu $args
     same "${input}_dij" "${input}_pocl"
     timed "${input}_pocl"
 done
