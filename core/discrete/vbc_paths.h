@@ -67,8 +67,10 @@ typedef struct vbc_paths_engine {
 } vbc_paths_engine;
 
 /* The plain-C twin: b's distances by rounds over a frontier (the voxels
- * improved in the round before) until none improves, then the
- * predecessors by the rule. Returns 0, or -1 when out of memory. */
+ * improved in the round before) until none improves, one component per
+ * task on the VORBALL_THREADS threads, then the predecessors by the rule
+ * on slices of positions. b->rounds: the most rounds a thread ran
+ * (statistics). Returns 0, or -1 when out of memory. */
 int vbc_paths_sweep_ref(const vbc_paths_graph *G, vbc_paths_batch *b);
 
 /* The engine of --device ref: every batch on the twin (begin, sweep, end
