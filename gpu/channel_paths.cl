@@ -45,13 +45,13 @@ __kernel void vbc_paths_seed(__global const uint *src, uint nsrc, __global doubl
 }
 
 /* Round r (from 1): dout[t] = min(din[t], din[u] + step(u, t)) over the
- * neighbours u lowered in round r - 1 (sin[u] == r - 1): the others gave
+ * neighbours u lowered in round r - 1 (sprev[u] == r - 1): the others gave
  * their value to t already, in the round after they last fell, and a
- * distance only falls. sout[t] = r when t fell, else sin[t]. */
+ * distance only falls. snext[t] = r when t fell, else sprev[t]. */
 __kernel void vbc_paths_round(__global const uint *v, uint n, __global const uint *map,
                               __global const double *clear, int nx, int ny, int nz, int weighted,
                               __global const double *din, __global double *dout,
-                              __global const uint *sin, __global uint *sout, uint r,
+                              __global const uint *sprev, __global uint *snext, uint r,
                               __global volatile uint *changed)
 {
     uint t = get_global_id(0);
@@ -69,14 +69,14 @@ __kernel void vbc_paths_round(__global const uint *v, uint n, __global const uin
                     kk >= nz)
                     continue;
                 uint u = map[ii + nx * (jj + ny * kk)];
-                if (u == VBC_NONE || sin[u] != r - 1u)
+                if (u == VBC_NONE || sprev[u] != r - 1u)
                     continue;
                 double nd = din[u] + vbc_path_step(abs(dx) + abs(dy) + abs(dz), clear[u], ct, weighted);
                 if (nd < best)
                     best = nd;
             }
     dout[t] = best;
-    sout[t] = best < old ? r : sin[t];
+    snext[t] = best < old ? r : sprev[t];
     if (best < old)
         *changed = 1u;
 }

@@ -153,7 +153,7 @@ static cl_int run_batch(vbc_paths_gpu *P, vbc_paths_batch *b)
         err = launch(P, P->k_init, P->n);
     if (err == CL_SUCCESS)
         err = launch(P, P->k_seed, nsrc);
-    cl_mem in = P->d0, out = P->d1, sin = P->s0, sout = P->s1;
+    cl_mem in = P->d0, out = P->d1, sprev = P->s0, snext = P->s1;
     cl_uint changed = 1;
     size_t rounds = 0;
     while (err == CL_SUCCESS && changed) {
@@ -165,17 +165,17 @@ static cl_int run_batch(vbc_paths_gpu *P, vbc_paths_batch *b)
             cl_uint round = (cl_uint)++rounds;
             err = clSetKernelArg(P->k_round, 8, sizeof in, &in);
             err |= clSetKernelArg(P->k_round, 9, sizeof out, &out);
-            err |= clSetKernelArg(P->k_round, 10, sizeof sin, &sin);
-            err |= clSetKernelArg(P->k_round, 11, sizeof sout, &sout);
+            err |= clSetKernelArg(P->k_round, 10, sizeof sprev, &sprev);
+            err |= clSetKernelArg(P->k_round, 11, sizeof snext, &snext);
             err |= clSetKernelArg(P->k_round, 12, sizeof round, &round);
             if (err == CL_SUCCESS)
                 err = launch(P, P->k_round, P->n);
             cl_mem t = in;
             in = out;
             out = t;
-            t = sin;
-            sin = sout;
-            sout = t;
+            t = sprev;
+            sprev = snext;
+            snext = t;
         }
         if (err == CL_SUCCESS)
             err = clEnqueueReadBuffer(q, P->changed, CL_TRUE, 0, sizeof changed, &changed, 0, NULL,
