@@ -66,7 +66,7 @@ int vbc_paths_trace(analysis *W, const uint64_t *work, size_t nwork, const size_
     vbc_paths_graph G = {W->g,          W->sorted,   W->nvox,      W->clear,
                          W->A.adj_start, W->A.adj,   W->A.adj_len};
     int rc = atomic_load(&J.failed) ? -1 : 0;
-    int on_device = rc == 0 && W->paths->begin(W->paths->user, &G) == VB_OK;
+    int on_device = rc == 0 && nwork > 0 && W->paths->begin(W->paths->user, &G) == VB_OK;
     for (int wave = 1; wave <= 3 && rc == 0; wave++) {
         size_t ns = 0;
         for (size_t i = 0; i < nwork; i++) {
