@@ -10,6 +10,7 @@
 #include <stdatomic.h>
 #include <stdlib.h>
 
+#include "channel_paths_math.h"
 #include "vb_parallel.h"
 #include "vbc_paths.h"
 #include "vbc_voxels.h"
@@ -37,13 +38,37 @@ static void ends_one(void *arg, size_t i, int tid)
     W->end_through[c] = (uint8_t)through;
 }
 
-/* One batch on the engine, or on the twin when it has none or fails. */
+/* Whether the batches are sure to give Dijkstra's bytes on this frame
+ * (vbc_paths.h): every folded cost d must grow by every step s, which holds
+ * while d < 2^52 s. Steps are at least 1 / R^2 (R the largest clearance,
+ * at least the 0.05 floor; plain steps at least 1) and at most
+ * sqrt(3) / 0.05^2 < 693, so every d is below 693 n for n voxels. A frame
+ * past the bound (R^2 n > 1.4e12, e.g. 100 A clearances with 10^8 voxels)
+ * runs its sweeps one component at a time. */
+static int batches_exact(const analysis *W)
+{
+    double R = VBC_PATH_MIN_CLEAR;
+    for (size_t t = 0; t < W->nvox; t++)
+        R = W->clear[t] > R ? W->clear[t] : R;
+    double R2 = R * R > 1.0 ? R * R : 1.0;
+    return 693.0 * (double)W->nvox * R2 < 4503599627370496.0; /* 2^52 */
+}
+
+/* One batch on the engine, or on the twin when it has none or fails; one
+ * Dijkstra per component (c[i] the component of src[i]) when the batches
+ * are not sure to match it. */
 static int sweep(analysis *W, const vbc_paths_graph *G, int on_device, const uint32_t *src,
-                 size_t nsrc, int weighted)
+                 const uint32_t *comp, size_t nsrc, int weighted, int exact)
 {
     vbc_paths_batch b = {src, nsrc, weighted, W->A.dist, W->A.pred, 0};
     if (nsrc == 0)
         return 0;
+    if (!exact) {
+        for (size_t i = 0; i < nsrc; i++)
+            vbc_sweep(&W->A, W->order + W->cstart[comp[i]], W->cstart[comp[i] + 1] - W->cstart[comp[i]],
+                      src[i], weighted);
+        return 0;
+    }
     if (on_device && W->paths->sweep && W->paths->sweep(W->paths->user, G, &b) == VB_OK)
         return 0;
     return vbc_paths_sweep_ref(G, &b);
@@ -53,7 +78,7 @@ int vbc_paths_trace(analysis *W, const uint64_t *work, size_t nwork, const size_
 {
     double t0 = vb_now();
     size_t nc = W->ncomp ? W->ncomp : 1;
-    uint32_t *src = malloc((nwork ? nwork : 1) * sizeof *src);
+    uint32_t *src = malloc(2 * (nwork ? nwork : 1) * sizeof *src), *comp = src + nwork;
     W->end_a = malloc(nc * sizeof *W->end_a);
     W->end_b = malloc(nc * sizeof *W->end_b);
     W->end_through = malloc(nc);
@@ -65,20 +90,21 @@ int vbc_paths_trace(analysis *W, const uint64_t *work, size_t nwork, const size_
     vb_parallel_for(ends_one, &J, nwork, nt);
     vbc_paths_graph G = {W->g,          W->sorted,   W->nvox,      W->clear,
                          W->A.adj_start, W->A.adj,   W->A.adj_len};
-    int rc = atomic_load(&J.failed) ? -1 : 0;
-    int on_device = rc == 0 && nwork > 0 && W->paths->begin(W->paths->user, &G) == VB_OK;
+    int rc = atomic_load(&J.failed) ? -1 : 0, exact = batches_exact(W);
+    int on_device = rc == 0 && exact && nwork > 0 && W->paths->begin(W->paths->user, &G) == VB_OK;
     for (int wave = 1; wave <= 3 && rc == 0; wave++) {
         size_t ns = 0;
         for (size_t i = 0; i < nwork; i++) {
             size_t c = (size_t)(work[i] & 0xffffffffu);
             const uint32_t *mem = W->order + W->cstart[c];
+            comp[ns] = (uint32_t)c;
             if (wave == 1 && nm[c] == 0)
                 src[ns++] = mem[0];
             else if ((wave == 1 && nm[c] > 0 && W->end_b[c] == UINT32_MAX) ||
                      (wave == 2 && nm[c] == 0) || wave == 3)
                 src[ns++] = W->end_a[c];
         }
-        rc = sweep(W, &G, on_device, src, ns, wave == 3);
+        rc = sweep(W, &G, on_device, src, comp, ns, wave == 3, exact);
         for (size_t i = 0; i < nwork && rc == 0 && wave < 3; i++) {
             size_t c = (size_t)(work[i] & 0xffffffffu);
             const uint32_t *mem = W->order + W->cstart[c];

@@ -6,8 +6,10 @@
  *
  * Why a batch gives vbc_sweep's bytes. Path costs are folded from the
  * source, d' = fl(d + step), with every step > 0; fl(d + step) is
- * nondecreasing in d and, while d < 2^52 * step (distances here stay
- * below 10^8 and steps above 10^-3), larger than d. Under those two
+ * nondecreasing in d and, while d < 2^52 * step, larger than d (the
+ * analysis checks this bound per frame: steps are at least 1 / R^2 for R
+ * the largest clearance, distances below 693 per voxel; a frame past it,
+ * R^2 n > 1.4e12, sweeps one component at a time, channel_waves.c). Under those two
  * properties Dijkstra and any relaxation run to its fixed point give the
  * same distance per voxel: the least folded cost over all paths (each
  * value ever held is some path's cost; Dijkstra settles in increasing
