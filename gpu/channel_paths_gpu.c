@@ -59,20 +59,14 @@ static cl_int upload(vbc_paths_gpu *P, const vbc_paths_graph *G)
         err = clEnqueueFillBuffer(q, P->map, &none, sizeof none, 0, P->map_cap * sizeof(cl_uint), 0,
                                   NULL, NULL);
     }
-    if (err == CL_SUCCESS)
-        err = grow(P, &P->v, &P->v_cap, G->n, sizeof(cl_uint), NULL);
-    if (err == CL_SUCCESS)
-        err = grow(P, &P->clear, &P->clear_cap, G->n, sizeof(cl_double), NULL);
-    if (err == CL_SUCCESS)
-        err = grow(P, &P->d0, &P->d0_cap, G->n, sizeof(cl_double), NULL);
-    if (err == CL_SUCCESS)
-        err = grow(P, &P->d1, &P->d1_cap, G->n, sizeof(cl_double), NULL);
-    if (err == CL_SUCCESS)
-        err = grow(P, &P->s0, &P->s0_cap, G->n, sizeof(cl_uint), NULL);
-    if (err == CL_SUCCESS)
-        err = grow(P, &P->s1, &P->s1_cap, G->n, sizeof(cl_uint), NULL);
-    if (err == CL_SUCCESS)
-        err = grow(P, &P->pred, &P->pred_cap, G->n, sizeof(cl_uint), NULL);
+    /* The per-position buffers: voxels, clearances, two distances, two
+     * stamps, predecessors. */
+    cl_mem *bufs[] = {&P->v, &P->clear, &P->d0, &P->d1, &P->s0, &P->s1, &P->pred};
+    size_t *caps[] = {&P->v_cap, &P->clear_cap, &P->d0_cap, &P->d1_cap, &P->s0_cap, &P->s1_cap,
+                      &P->pred_cap};
+    for (int i = 0; i < 7 && err == CL_SUCCESS; i++)
+        err = grow(P, bufs[i], caps[i], G->n, i >= 1 && i <= 3 ? sizeof(cl_double) : sizeof(cl_uint),
+                   NULL);
     P->n = (cl_uint)G->n;
     P->nx = G->g->nx;
     P->ny = G->g->ny;
