@@ -5,7 +5,8 @@
  * whose clearances take a few values, so that ties are everywhere (and the
  * test counts them); then whole analyses with the batches on the twin and
  * on the device against the per-component analysis, cavities kept (also
- * with one clearance past the batches' exactness bound). */
+ * with one clearance past the batches' exactness bound), and engines whose
+ * device fails at begin or at every batch (the twin takes over). */
 #include <math.h>
 #include <string.h>
 
@@ -180,6 +181,27 @@ static size_t analysis_case(vb_ctx *ctx, uint64_t *seed, const vbc_paths_engine 
     return traced;
 }
 
+/* Fault injection: an engine whose device fails at begin, or at every
+ * batch; the analysis runs those batches on the twin, the same result. */
+static int fault_begin(void *user, const vbc_paths_graph *G)
+{
+    (void)G;
+    return *(int *)user == 0 ? VB_EDEVICE : VB_OK;
+}
+
+static int fault_sweep(void *user, const vbc_paths_graph *G, vbc_paths_batch *b)
+{
+    (void)user;
+    (void)G;
+    memset(b->pred, 0, G->n * sizeof *b->pred); /* spoilt output: must not be used */
+    return VB_EDEVICE;
+}
+
+static void fault_end(void *user)
+{
+    (*(int *)user)++;
+}
+
 int main(void)
 {
     vb_ctx *ctx;
@@ -209,6 +231,12 @@ int main(void)
         traced += analysis_case(ctx, &seed, E, 16, t < 3 ? 0.12 : 0.3, 1 + 2 * (t % 3), t >= 6);
     fprintf(stderr, "analyses: %zu channels and cavities traced\n", traced);
     CHECK(traced > 20);
+    for (int mode = 0; mode < 2; mode++) {
+        int ends = mode; /* 0: begin fails; 1: begin works, every batch fails */
+        vbc_paths_engine F = {&ends, fault_begin, fault_sweep, fault_end};
+        CHECK(analysis_case(ctx, &seed, &F, 16, 0.2, 3, 0) > 0);
+        CHECK_INT(ends, mode ? 2 : 0); /* end called once after a begin that worked */
+    }
     vbc_paths_gpu_close(P);
     vbg_runtime_close(rt);
     vb_close(ctx);
