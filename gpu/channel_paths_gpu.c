@@ -8,9 +8,11 @@
 #include "vbc_channel_gpu.h"
 #include "vbc_paths.h"
 
-/* Rounds between two reads of the `changed` flag: rounds after the fixed
- * point change nothing, so this only trades idle rounds for fewer waits. */
-#define ROUNDS_PER_CHECK 8
+/* Rounds between two reads of the `changed` flag: 8, doubling up to 32
+ * (frame 0 of adk_oplsaa: 24 and 144 rounds). Rounds after the fixed point
+ * change nothing, so this only trades idle rounds for fewer waits. */
+#define ROUNDS_FIRST_CHECK 8
+#define ROUNDS_PER_CHECK 32
 
 struct vbc_paths_gpu {
     vbc_paths_engine engine;
@@ -150,12 +152,13 @@ static cl_int run_batch(vbc_paths_gpu *P, vbc_paths_batch *b)
     cl_mem in = P->d0, out = P->d1, sprev = P->s0, snext = P->s1;
     cl_uint changed = 1;
     size_t rounds = 0;
+    int group = ROUNDS_FIRST_CHECK;
     while (err == CL_SUCCESS && changed) {
         if (rounds > (size_t)P->n + ROUNDS_PER_CHECK)
             return CL_INVALID_VALUE; /* distances that never settle: a broken device */
         cl_uint zero = 0;
         err = clEnqueueFillBuffer(q, P->changed, &zero, sizeof zero, 0, sizeof zero, 0, NULL, NULL);
-        for (int r = 0; r < ROUNDS_PER_CHECK && err == CL_SUCCESS; r++) {
+        for (int r = 0; r < group && err == CL_SUCCESS; r++) {
             cl_uint round = (cl_uint)++rounds;
             err = clSetKernelArg(P->k_round, 8, sizeof in, &in);
             err |= clSetKernelArg(P->k_round, 9, sizeof out, &out);
@@ -174,6 +177,7 @@ static cl_int run_batch(vbc_paths_gpu *P, vbc_paths_batch *b)
         if (err == CL_SUCCESS)
             err = clEnqueueReadBuffer(q, P->changed, CL_TRUE, 0, sizeof changed, &changed, 0, NULL,
                                       NULL);
+        group = 2 * group < ROUNDS_PER_CHECK ? 2 * group : ROUNDS_PER_CHECK;
     }
     b->rounds = rounds;
     /* `in` holds the last round's distances: the fixed point. */
