@@ -45,11 +45,15 @@ static void ends_one(void *arg, size_t i, int tid)
  * sqrt(3) / 0.05^2 < 693, so every d is below 693 n for n voxels. A frame
  * past the bound (R^2 n > 1.4e12, e.g. 100 A clearances with 10^8 voxels)
  * runs its sweeps one component at a time. */
-static int batches_exact(const analysis *W)
+static int batches_exact(const analysis *W, const uint64_t *work, size_t nwork)
 {
     double R = VBC_PATH_MIN_CLEAR;
-    for (size_t t = 0; t < W->nvox; t++)
-        R = W->clear[t] > R ? W->clear[t] : R;
+    /* The components traced: the others' clearances were never computed. */
+    for (size_t i = 0; i < nwork; i++) {
+        size_t c = (size_t)(work[i] & 0xffffffffu);
+        for (size_t k = W->cstart[c]; k < W->cstart[c + 1]; k++)
+            R = W->clear[W->order[k]] > R ? W->clear[W->order[k]] : R;
+    }
     double R2 = R * R > 1.0 ? R * R : 1.0;
     return 693.0 * (double)W->nvox * R2 < 4503599627370496.0; /* 2^52 */
 }
@@ -90,7 +94,7 @@ int vbc_paths_trace(analysis *W, const uint64_t *work, size_t nwork, const size_
     vb_parallel_for(ends_one, &J, nwork, nt);
     vbc_paths_graph G = {W->g,          W->sorted,   W->nvox,      W->clear,
                          W->A.adj_start, W->A.adj,   W->A.adj_len};
-    int rc = atomic_load(&J.failed) ? -1 : 0, exact = batches_exact(W);
+    int rc = atomic_load(&J.failed) ? -1 : 0, exact = batches_exact(W, work, nwork);
     int on_device = rc == 0 && exact && nwork > 0 && W->paths->begin(W->paths->user, &G) == VB_OK;
     for (int wave = 1; wave <= 3 && rc == 0; wave++) {
         size_t ns = 0;
