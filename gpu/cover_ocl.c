@@ -9,108 +9,15 @@
  * not fit is left to the host. Every error path reports VB_EDEVICE; the
  * caller falls back to the host.
  *
- * Device memory (issue #30) stays within the device layer's budget
- * (vbg_runtime_memory_budget; VORBALL_DEVICE_MEMORY_MIB sets it), counted
- * by a meter (vbg_buffer.h, --stats device_bytes_peak):
- *   input      32 n + 56 * 2 first + 4 m + 8 bytes (centres, radii, the
- *              tree's boxes and radii, its ids, the counters), held for the run;
- *   first tier S0 slices of P0 bytes, P0 = 48 NB + 4 LAB + 16 Q (+ 48 ST on
- *              the work-item kernel; the group kernel keeps one stack of
- *              48 ST), NB/LAB/ST/Q the tier's capacities below: 144 KiB a
- *              work-item, 520 KiB a group; S0 = min(the device's occupancy,
- *              n, 3/4 of the budget left after the input / P0);
- *   launches   per launch of C tasks: 4 C (cells) + 4 C (roots) + 48 C (results)
- *              + 16 qper C (quadruples, qper 24 on the first tier, 256 on the
- *              large one), at most 1/8 of the budget left after the input:
- *              a batch larger than that runs in several launches;
- *   large tier S1 slices of 2.6 MiB, made on the first cell that needs them,
- *              S1 = min(the device's occupancy, the tasks waiting, the rest of
- *              the budget / P1) (half of it with the hand-off tier beside);
- *              with no room the cells go to the host threads.
- * A budget that cannot hold the input, one first-tier slice and one task's
- * launch stops the run at once with E142, saying how much is needed. */
+ * Device memory within a budget: vbg_cover_state.h. */
 #include <stdlib.h>
 #include <string.h>
 
 #include "vb_array.h"
 #include "vbg_buffer.h"
 #include "vbg_cover.h"
+#include "vbg_cover_state.h"
 #include "vbg_cover_tasks.h"
-
-/* A cell whose quadruples did not fit the output array (cover*.cl). */
-#define COV_OVER_OUT 5u
-
-/* Arena slices of one tier: `slices` of them (work-items, or work-groups). */
-typedef struct cov_tier {
-    vbg_buf nb, lab, st, q;
-    cl_kernel k;             /* its kernel (cov_state's) */
-    int wg;                  /* 1: k is the group kernel, a work-group of COV_WG per slice */
-    uint32_t budget;         /* the group kernel's step budget per cell (0: none) */
-    uint32_t qper;           /* output room per task, in quadruples */
-    size_t slices;           /* slices made (0: none yet) */
-    size_t want;             /* slices that keep the device busy (vbg_cover_open) */
-    uint32_t nb_cap, lab_cap, st_cap, q_cap;
-} cov_tier;
-
-/* The tiers: first launch, large slices, and the hand-off tier (the
- * work-item kernel beside the group kernel: slices made on first use). */
-#define COV_FIRST 0
-#define COV_BIG 1
-#define COV_HAND 2
-
-typedef struct cov_state {
-    vbg_runtime *rt;
-    cl_kernel k, k_item;     /* k_item: the work-item kernel beside the group kernel */
-    int wg;                  /* 1: one work-group of 32 per cell (cover_wg.cl) */
-    vbg_buf x, y, z, r, box, rmax, ids;
-    vbg_buf cells, roots, outs, qout, counters;
-    cov_tier tier[3];
-    size_t qout_cap;         /* quadruples the output array holds */
-    uint32_t *host_q;        /* read-back of the quadruples of a batch */
-    size_t host_q_cap, host_nq;
-    vbq_cell_out *outs2;     /* results of the second tier, a task per root patch */
-    uint32_t *cells2, *roots2, *hroots;
-    size_t cap2, hroots_cap;
-    vbq_env env;             /* scalars of the uploaded input */
-    vbg_meter meter;         /* device bytes held now and at most */
-    size_t budget;           /* device bytes the cover may hold (vbg_runtime_memory_budget) */
-    size_t launch_room;      /* bytes of one launch's task, result and quadruple buffers */
-    size_t tier_room;        /* bytes left for the large tier (and the hand-off tier) */
-    size_t last_n;           /* spheres of the last run begun (trim) */
-} cov_state;
-
-/* Arena capacities. The first tier fits almost every cell of the proteins
- * and the capsid measured; the second takes the exposed cells whose ring
- * fetches hold thousands of spheres, as root-patch tasks, each of which
- * fetches only its patch's. Measured on the host (tests/verify/
- * bench_cover_cells, every cell's 96 tasks): neighbour records per cell on
- * the 26,430-atom capsid median 96, p99 4,493, max 50,546 (117 cells past
- * 8,192), per task at most 20,483 (all 2,537,280 tasks fit 32,768; 2 ran
- * out of 16,384); 3pqr per cell max 12,396, per task 2,303. The large
- * tier's 131,072 records (7.1 MiB a slice with its labels) became 32,768
- * (2.6 MiB); its labels stay (the group kernel walks breadth-first). */
-#define COV_NB 2048u
-#define COV_LAB 8192u
-#define COV_ST 256u
-#define COV_Q 256u
-#define COV_WG_NB 8192u
-#define COV_WG_LAB 32768u
-#define COV_WG_Q 512u
-#define COV_BIG_NB 32768u
-#define COV_BIG_LAB 262144u
-#define COV_BIG_Q 4096u
-#define COV_WG 32u
-/* The group kernel's step budget per cell (VORBALL_COVER_BUDGET overrides;
- * 0: none). A group walks a cell's patches one after the other, so a launch
- * lasts as long as its longest cell: on an H100 about 45 us a step (fcc
- * 10,976 jittered: 4.71 s for its longest cell's 106,804 patches; the random
- * twin: 0.07 s for 1,508). Patches per cell on the host's cover
- * (tests/verify/bench_cover_cells): the random twin's largest is 1,508,
- * 3pqr's 99th percentile 1,264 (13 of its cells pass 2,048), the jittered
- * crystal's 99th 1,112 but 60 cells past 2,048 hold 19 % of its patches.
- * 2,048 hands off none of the twin's cells and caps the group launch near
- * 0.1 s; the cells past it run side by side as 24 T^2 tasks each. */
-#define COV_BUDGET 2048u
 
 static void release(cov_state *s, vbg_buf *b)
 {
