@@ -406,6 +406,7 @@ int vb_quad_cmp(const void *pa, const void *pb)
 void vb_quad_list_free(vb_quad_list *l)
 {
     free(l->q);
+    free(l->verdict);
     memset(l, 0, sizeof *l);
 }
 
