@@ -463,10 +463,11 @@ static int cov_judge(vb_ctx *ctx, vb_cover_backend *be, const vb_cert_filter *f,
 /* Opens the certification filter beside the cover (its program is built
  * here, on the opening thread, as the runtime's program cache requires);
  * a failure is kept for cov_judge to report (W767), and the cover goes on.
- * Not with VORBALL_DEVICE_CERT=0. */
+ * On a GPU, or any device with VORBALL_DEVICE_CERT=1 (vb_cert_filter_mode). */
 static void judge_open(vb_ctx *ctx, vb_cover_backend *be, cov_state *s)
 {
-    if (!vb_cert_filter_enabled())
+    int mode = vb_cert_filter_mode();
+    if (!(mode == 1 || (mode < 0 && vbg_runtime_is_gpu(s->rt))))
         return;
     vb_ctx *tctx = NULL;
     if (vb_open_worker(&tctx, ctx) != VB_OK)

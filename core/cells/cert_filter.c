@@ -10,10 +10,10 @@
 
 #include "vb_parallel.h"
 
-int vb_cert_filter_enabled(void)
+int vb_cert_filter_mode(void)
 {
     const char *e = getenv("VORBALL_DEVICE_CERT");
-    return !(e && strcmp(e, "0") == 0);
+    return e && strcmp(e, "0") == 0 ? 0 : e && strcmp(e, "1") == 0 ? 1 : -1;
 }
 
 void vb_cert_filter_free(vb_cert_filter *f)

@@ -91,13 +91,15 @@ static int judge_sink(void *user, vb_quad_list *part)
     return rc == VB_OK ? j->sink(j->user, part) : rc;
 }
 
-/* Sets up j for the run (VORBALL_DEVICE_CERT=0: *on = 0, nothing judged). */
+/* Sets up j for the run: *on = 1 with VORBALL_DEVICE_CERT=1, or unset
+ * with a device that has the filter (a GPU); else nothing is judged. */
 static int judging_open(vb_ctx *ctx, judging *j, cover_state *s, const vb_sphere_set *set,
                         const vb_propose_args *args, int *on)
 {
     memset(j, 0, sizeof *j);
     *on = 0;
-    if (!vb_cert_filter_enabled())
+    int mode = vb_cert_filter_mode();
+    if (!(mode == 1 || (mode < 0 && s->be && s->be->judge)))
         return VB_OK;
     int rc = vb_cert_filter_build(ctx, set, &j->f);
     if (rc != VB_OK || !j->f.ok) {

@@ -27,10 +27,13 @@ typedef struct vb_cert_filter {
     uint32_t *cell_ids;    /* n sphere ids, by cell, increasing in each */
 } vb_cert_filter;
 
-/* Whether the proposer judges its quadruples before certification:
- * VORBALL_DEVICE_CERT=0 turns it off (old and new timed side by side),
- * anything else or unset leaves it on. */
-int vb_cert_filter_enabled(void);
+/* Whether quadruples are judged before certification, from
+ * VORBALL_DEVICE_CERT: 1 on every backend (the twin on host threads for
+ * ref), 0 nowhere (old and new timed side by side), unset (or anything
+ * else) on GPUs only: on the 2-core machine the twin and PoCL's kernel
+ * cost more CPU than the host's own filter saves (README, "Certification
+ * filter"). 1, 0, or -1 for unset. */
+int vb_cert_filter_mode(void);
 
 /* Builds f from set's exact decimals (scale 10^E with E the most decimal
  * places; the grid's cell side about twice the mean radius, at most 32

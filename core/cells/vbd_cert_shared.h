@@ -221,6 +221,17 @@ VB_SHARED_FN vb_u32 vbd_cell(double x, double o, double inv, vb_u32 n)
     return (vb_u32)f;
 }
 
+/* The i-th index of [lo, hi] counted from m outward (m, m - 1, m + 1,
+ * m - 2, ...; m clamped into the range), or -1 for an i that falls
+ * outside: i = 0 .. 2 (hi - lo) visits every index once. */
+VB_SHARED_FN vb_i64 vbd_around(vb_u32 lo, vb_u32 hi, vb_u32 m, vb_u32 i)
+{
+    vb_i64 c = (vb_i64)(m < lo ? lo : m > hi ? hi : m);
+    vb_i64 d = (vb_i64)((i + 1u) / 2u);
+    vb_i64 x = (i & 1u) ? c - d : c + d;
+    return x < (vb_i64)lo || x > (vb_i64)hi ? -1 : x;
+}
+
 /* 3x3 determinant of columns c0, c1, c2 of e, expanded along row 0 with the
  * minors M of rows 1 and 2 (M[a * 5 + b], a < b). */
 VB_SHARED_FN vbd_ia vbd_det3(const vbd_ia *e, const vbd_ia *M, int c0, int c1, int c2)
@@ -367,27 +378,45 @@ VB_SHARED_FN vb_u32 vbd_root(VB_GLOBAL const vb_i64 *z, VB_GLOBAL const vb_u32 *
     }
     if (cells > VBD_MAX_CELLS)
         return VBD_OPEN;
-    for (vb_u32 cz = c0[2]; cz <= c1[2]; cz++)
-        for (vb_u32 cy = c0[1]; cy <= c1[1]; cy++) {
-            vb_u64 row = ((vb_u64)cz * g->ny + cy) * g->nx;
+    /* Slabs and rows from the centre's outward (an intruder, which ends the
+     * scan, is usually near): the same cells, in another order. */
+    vb_u32 mz = vbd_cell(vbd_add(vbd_ia_int(za[2]), p[2]).lo, o[2], g->inv, nn[2]);
+    vb_u32 my = vbd_cell(vbd_add(vbd_ia_int(za[1]), p[1]).lo, o[1], g->inv, nn[1]);
+    for (vb_u32 iz = 0; iz < 2u * (c1[2] - c0[2]) + 1u; iz++) {
+        vb_i64 cz = vbd_around(c0[2], c1[2], mz, iz);
+        if (cz < 0)
+            continue;
+        for (vb_u32 iy = 0; iy < 2u * (c1[1] - c0[1]) + 1u; iy++) {
+            vb_i64 cy = vbd_around(c0[1], c1[1], my, iy);
+            if (cy < 0)
+                continue;
+            vb_u64 row = ((vb_u64)cz * g->ny + (vb_u64)cy) * g->nx;
             vb_u32 j0 = cell_start[row + c0[0]], j1 = cell_start[row + c1[0] + 1u];
             for (vb_u32 t = j0; t < j1; t++) {
                 vb_u32 j = cell_ids[t];
                 if (j == q0 || j == q1 || j == q2 || j == q3)
                     continue;
                 VB_GLOBAL const vb_i64 *zj = z + 4 * (vb_u64)j;
-                vbd_ia d2 = vbd_sqr(vbd_sub(p[0], vbd_ia_int(zj[0] - za[0])));
-                d2 = vbd_add(d2, vbd_sqr(vbd_sub(p[1], vbd_ia_int(zj[1] - za[1]))));
-                d2 = vbd_add(d2, vbd_sqr(vbd_sub(p[2], vbd_ia_int(zj[2] - za[2]))));
                 vbd_ia w = vbd_add(s, vbd_ia_int(zj[3] - za[3]));
-                /* outside: |p - c_j| > t + R_j; inside: < with t + R_j > 0 */
-                if (w.hi < 0.0 || d2.lo > vbd_succ(w.hi * w.hi))
+                if (w.hi < 0.0)
+                    continue; /* t + R_j < 0: outside */
+                vbd_ia e[3];
+                double lo2 = 0.0;
+                for (int k = 0; k < 3; k++) {
+                    e[k] = vbd_sub(p[k], vbd_ia_int(zj[k] - za[k]));
+                    lo2 = vbd_pred(lo2 + vbd_sqr(e[k]).lo);
+                }
+                /* outside: |p - c_j| > t + R_j */
+                if (lo2 > vbd_succ(w.hi * w.hi))
                     continue;
+                /* inside: |p - c_j| < t + R_j with t + R_j > 0 */
+                vbd_ia d2 = vbd_add(vbd_add(vbd_sqr(e[0]), vbd_sqr(e[1])), vbd_sqr(e[2]));
                 if (w.lo > 0.0 && d2.hi < vbd_pred(w.lo * w.lo))
                     return VBD_NOT;
                 open = 1;
             }
         }
+    }
     return open ? VBD_OPEN : VBD_VERTEX;
 }
 
