@@ -318,6 +318,72 @@ VB_SHARED_FN int vbd_line_make(VB_GLOBAL const vb_i64 *z, vb_u32 a, vb_u32 b, vb
     return 1;
 }
 
+/* The emptiness test of one sphere in plain doubles, one error bound for
+ * the whole expression (the intervals' outward steps cost more than the
+ * rest of the scan). With the box P (exact p_k in [P_k.lo, P_k.hi]) and
+ * [S.lo, S.hi] (exact s), and d_k, r the sphere's row (exact doubles:
+ * every |z_j - z_a| < 2^53, else VBD_FAST_NONE):
+ *   outside when fl(S.hi + r) < 0, or when
+ *     q = fl(l_0^2 + l_1^2 + l_2^2) > fl(fl(w~^2) (1 + 2^-46) + 2^-1000),
+ *     l_k = max(fl(P_k.lo - d_k), fl(d_k - P_k.hi), 0), w~ = fl(S.hi + r) >= 0;
+ *   inside when w' = fl(S.lo + r) > 0 and
+ *     q' = fl(m_0^2 + m_1^2 + m_2^2) < fl(fl(w'^2) (1 - 2^-46) - 2^-1000),
+ *     m_k = max(fl(P_k.hi - d_k), fl(d_k - P_k.lo)).
+ * Proof (u = 2^-53). A difference or sum of two doubles is x (1 + e),
+ * |e| <= u, also below 2^-1022 (where it is exact), and keeps its sign;
+ * a product or a sum of non-negative terms that lands below 2^-1022 is off
+ * by at most 2^-1075 absolutely. Outside: |e_k| >= L_k = max(P_k.lo - d_k,
+ * d_k - P_k.hi, 0) >= l_k / (1 + u), so |p - c_j|^2 >= sum L_k^2 >=
+ * (q - 2^-1072) / (1 + u)^5, and t + R_j <= W = S.hi + r <= w~ / (1 - u),
+ * W^2 <= (fl(w~^2) + 2^-1075) / (1 - u)^3; the right side computed is at
+ * least fl(w~^2) (1 + 2^-46)(1 - u)^2 + 2^-1001 >= fl(w~^2) (1 + 2^-47) +
+ * 2^-1001, which exceeds (fl(w~^2) + 2^-1075)(1 + u)^5 / (1 - u)^3 +
+ * 2^-1072 since (1 + u)^5 / (1 - u)^3 < 1 + 2^-49; so q above it proves
+ * |p - c_j| > t + R_j. Inside, in the mirror image: |e_k| <= m_k / (1 - u),
+ * |p - c_j|^2 <= (q' + 2^-1072) / (1 - u)^5, t + R_j >= S.lo + r >=
+ * w' / (1 + u) > 0, and the right side computed is at most fl(w'^2)
+ * (1 - 2^-47) - 2^-1001, below (fl(w'^2) - 2^-1075)(1 - u)^5 / (1 + u)^3 -
+ * 2^-1072; so q' below it proves |p - c_j| < t + R_j with t + R_j > 0.
+ * Overflow to inf only makes a comparison fail (or holds the exact claim:
+ * q = inf means sum l_k^2 > DBL_MAX while fl(w~^2) (1 + 2^-46) is finite),
+ * and NaN fails every comparison. */
+#define VBD_FAST_NONE 0
+#define VBD_FAST_OUT 1
+#define VBD_FAST_IN 2
+#define VBD_FAST_OPEN 3
+
+VB_SHARED_FN int vbd_scan_fast(const vbd_ia *p, vbd_ia s, VB_GLOBAL const vb_i64 *zj,
+                               VB_GLOBAL const vb_i64 *za)
+{
+    const vb_i64 lim = (vb_i64)1 << 53;
+    vb_i64 dk[4];
+    for (int k = 0; k < 4; k++) {
+        dk[k] = zj[k] - za[k];
+        if (dk[k] >= lim || dk[k] <= -lim)
+            return VBD_FAST_NONE;
+    }
+    double r = (double)dk[3], wh = s.hi + r;
+    if (wh < 0.0)
+        return VBD_FAST_OUT;
+    double q = 0.0, q2 = 0.0;
+    for (int k = 0; k < 3; k++) {
+        double d = (double)dk[k];
+        double l = vbd_max(vbd_max(p[k].lo - d, d - p[k].hi), 0.0);
+        q = q + l * l;
+    }
+    if (q > wh * wh * (1.0 + 0x1p-46) + 0x1p-1000)
+        return VBD_FAST_OUT;
+    double wl = s.lo + r;
+    if (!(wl > 0.0))
+        return VBD_FAST_OPEN;
+    for (int k = 0; k < 3; k++) {
+        double d = (double)dk[k];
+        double m = vbd_max(p[k].hi - d, d - p[k].lo);
+        q2 = q2 + m * m;
+    }
+    return q2 < wl * wl * (1.0 - 0x1p-46) - 0x1p-1000 ? VBD_FAST_IN : VBD_FAST_OPEN;
+}
+
 /* The verdict of root r (0: sigma = +1) of a line with two roots. */
 VB_SHARED_FN vb_u32 vbd_root(VB_GLOBAL const vb_i64 *z, VB_GLOBAL const vb_u32 *cell_start,
                              VB_GLOBAL const vb_u32 *cell_ids, const vbd_grid *g, vb_u32 q0,
@@ -397,6 +463,15 @@ VB_SHARED_FN vb_u32 vbd_root(VB_GLOBAL const vb_i64 *z, VB_GLOBAL const vb_u32 *
                 if (j == q0 || j == q1 || j == q2 || j == q3)
                     continue;
                 VB_GLOBAL const vb_i64 *zj = z + 4 * (vb_u64)j;
+                int fast = vbd_scan_fast(p, s, zj, za);
+                if (fast == VBD_FAST_OUT)
+                    continue;
+                if (fast == VBD_FAST_IN)
+                    return VBD_NOT;
+                if (fast == VBD_FAST_OPEN) {
+                    open = 1;
+                    continue;
+                }
                 vbd_ia w = vbd_add(s, vbd_ia_int(zj[3] - za[3]));
                 if (w.hi < 0.0)
                     continue; /* t + R_j < 0: outside */
