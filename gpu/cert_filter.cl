@@ -8,7 +8,8 @@
 #include "vbd_cert_shared.h"
 
 __kernel void vbd_judge_kernel(__global const long *z, __global const uint *cell_start,
-                               __global const uint *cell_ids, const double ox, const double oy,
+                               __global const uint *cell_ids, __global const long *cell_z,
+                               const double ox, const double oy,
                                const double oz, const double inv, const uint nx, const uint ny,
                                const uint nz, const long rmax, __global const uint *quads,
                                const uint n, __global uchar *verdict)
@@ -26,5 +27,5 @@ __kernel void vbd_judge_kernel(__global const long *z, __global const uint *cell
     g.nz = nz;
     g.rmax = rmax;
     __global const uint *q = quads + 4 * k;
-    verdict[k] = (uchar)vbd_judge(z, cell_start, cell_ids, &g, q[0], q[1], q[2], q[3]);
+    verdict[k] = (uchar)vbd_judge(z, cell_start, cell_ids, cell_z, &g, q[0], q[1], q[2], q[3]);
 }

@@ -21,6 +21,7 @@ void vb_cert_filter_free(vb_cert_filter *f)
     free(f->z);
     free(f->cell_start);
     free(f->cell_ids);
+    free(f->cell_z);
     memset(f, 0, sizeof *f);
 }
 
@@ -110,8 +111,9 @@ static int build_grid(vb_cert_filter *f)
     f->g.rmax = rmax;
     f->cell_start = calloc(f->ncells + 1, sizeof *f->cell_start);
     f->cell_ids = malloc(n * sizeof *f->cell_ids);
+    f->cell_z = malloc(4 * n * sizeof *f->cell_z);
     uint32_t *key = malloc(n * sizeof *key);
-    if (!f->cell_start || !f->cell_ids || !key) {
+    if (!f->cell_start || !f->cell_ids || !f->cell_z || !key) {
         free(key);
         return -1;
     }
@@ -131,8 +133,11 @@ static int build_grid(vb_cert_filter *f)
         return -1;
     }
     memcpy(pos, f->cell_start, f->ncells * sizeof *pos);
-    for (size_t i = 0; i < n; i++)
-        f->cell_ids[pos[key[i]]++] = (uint32_t)i;
+    for (size_t i = 0; i < n; i++) {
+        uint32_t t = pos[key[i]]++;
+        f->cell_ids[t] = (uint32_t)i;
+        memcpy(&f->cell_z[4 * (size_t)t], &f->z[4 * i], 4 * sizeof *f->z);
+    }
     free(pos);
     free(key);
     return 0;
@@ -181,8 +186,8 @@ static void judge_chunk(void *arg, size_t c, int tid)
     size_t k1 = (c + 1) * JUDGE_CHUNK < j->n ? (c + 1) * JUDGE_CHUNK : j->n;
     for (size_t k = c * JUDGE_CHUNK; k < k1; k++) {
         const uint32_t *q = j->q[k];
-        j->verdict[k] = (uint8_t)vbd_judge(f->z, f->cell_start, f->cell_ids, &f->g, q[0], q[1],
-                                           q[2], q[3]);
+        j->verdict[k] = (uint8_t)vbd_judge(f->z, f->cell_start, f->cell_ids, f->cell_z, &f->g,
+                                           q[0], q[1], q[2], q[3]);
     }
 }
 

@@ -240,6 +240,13 @@ VB_SHARED_FN vbd_ia vbd_det3(const vbd_ia *e, const vbd_ia *M, int c0, int c1, i
     return vbd_add(t, vbd_mul(e[c2], M[c0 * 5 + c1]));
 }
 
+/* det3 in 64-bit integers of row r0 and the minors Mi (the caller proves
+ * that no product or sum overflows). */
+VB_SHARED_FN vb_i64 vbd_det3i(const vb_i64 *r0, const vb_i64 *Mi, int c0, int c1, int c2)
+{
+    return r0[c0] * Mi[c1 * 5 + c2] - r0[c1] * Mi[c0 * 5 + c2] + r0[c2] * Mi[c0 * 5 + c1];
+}
+
 /* The line and the quadratic of a quadruple. */
 typedef struct vbd_line {
     vbd_ia v[3], U[3], D, A, B, C, sq;
@@ -258,12 +265,14 @@ VB_SHARED_FN int vbd_line_make(VB_GLOBAL const vb_i64 *z, vb_u32 a, vb_u32 b, vb
     ids[0] = b;
     ids[1] = c;
     ids[2] = d;
-    int small = 1;
+    int small = 1, tiny = 1;
     for (int i = 0; i < 3; i++)
         for (int k = 0; k < 4; k++) {
             m[i][k] = z[4 * (vb_u64)ids[i] + k] - z[4 * (vb_u64)a + k];
             if (m[i][k] >= ((vb_i64)1 << 30) || m[i][k] <= -((vb_i64)1 << 30))
                 small = 0;
+            if (m[i][k] >= ((vb_i64)1 << 20) || m[i][k] <= -((vb_i64)1 << 20))
+                tiny = 0;
         }
     L->r[0] = 0;
     for (int i = 0; i < 3; i++)
@@ -272,7 +281,7 @@ VB_SHARED_FN int vbd_line_make(VB_GLOBAL const vb_i64 *z, vb_u32 a, vb_u32 b, vb
      * W (< 2^62) and the 2x2 minors of the entries (< 2^61) are exact in 64
      * bits. */
     vbd_ia e[15], M[25];
-    for (int i = 0; i < 3; i++) {
+    for (int i = 0; !tiny && i < 3; i++) {
         for (int k = 0; k < 4; k++)
             e[i * 5 + k] = vbd_ia_int(m[i][k]);
         if (small) {
@@ -284,19 +293,45 @@ VB_SHARED_FN int vbd_line_make(VB_GLOBAL const vb_i64 *z, vb_u32 a, vb_u32 b, vb
             e[i * 5 + 4] = vbd_sub(w, vbd_sqr(e[i * 5 + 3]));
         }
     }
-    for (int p = 0; p < 5; p++)
-        for (int s = p + 1; s < 5; s++) {
-            if (small && s < 4)
-                M[p * 5 + s] = vbd_ia_int(m[1][p] * m[2][s] - m[1][s] * m[2][p]);
+    for (int p = 0; !tiny && p < 5; p++)
+        for (int c = p + 1; c < 5; c++) {
+            if (small && c < 4)
+                M[p * 5 + c] = vbd_ia_int(m[1][p] * m[2][c] - m[1][c] * m[2][p]);
             else
-                M[p * 5 + s] = vbd_sub(vbd_mul(e[5 + p], e[10 + s]), vbd_mul(e[5 + s], e[10 + p]));
+                M[p * 5 + c] = vbd_sub(vbd_mul(e[5 + p], e[10 + c]), vbd_mul(e[5 + c], e[10 + p]));
         }
-    L->D = vbd_det3(e, M, 0, 1, 2);
-    if (!vbd_sign(L->D))
-        return 0;
-    L->v[0] = vbd_det3(e, M, 1, 2, 3);
-    L->v[1] = vbd_neg(vbd_det3(e, M, 0, 2, 3));
-    L->v[2] = vbd_det3(e, M, 0, 1, 3);
+    if (tiny) {
+        /* Entries below 2^20: the minors of the entries (< 2^41), D and v
+         * (three terms below 2^61), W (< 2^42) and the minors with W (two
+         * terms below 2^62) are exact in 64 bits; only U's last products
+         * are intervals. */
+        vb_i64 Mi[25], Wv[3];
+        for (int i = 0; i < 3; i++)
+            Wv[i] = m[i][0] * m[i][0] + m[i][1] * m[i][1] + m[i][2] * m[i][2] - m[i][3] * m[i][3];
+        for (int p = 0; p < 4; p++) {
+            for (int c = p + 1; c < 4; c++) {
+                Mi[p * 5 + c] = m[1][p] * m[2][c] - m[1][c] * m[2][p];
+                M[p * 5 + c] = vbd_ia_int(Mi[p * 5 + c]);
+            }
+            M[p * 5 + 4] = vbd_ia_int(m[1][p] * Wv[2] - Wv[1] * m[2][p]);
+        }
+        L->D = vbd_ia_int(vbd_det3i(m[0], Mi, 0, 1, 2));
+        if (!vbd_sign(L->D))
+            return 0;
+        L->v[0] = vbd_ia_int(vbd_det3i(m[0], Mi, 1, 2, 3));
+        L->v[1] = vbd_ia_int(-vbd_det3i(m[0], Mi, 0, 2, 3));
+        L->v[2] = vbd_ia_int(vbd_det3i(m[0], Mi, 0, 1, 3));
+        for (int k = 0; k < 4; k++)
+            e[k] = vbd_ia_int(m[0][k]);
+        e[4] = vbd_ia_int(Wv[0]);
+    } else {
+        L->D = vbd_det3(e, M, 0, 1, 2);
+        if (!vbd_sign(L->D))
+            return 0;
+        L->v[0] = vbd_det3(e, M, 1, 2, 3);
+        L->v[1] = vbd_neg(vbd_det3(e, M, 0, 2, 3));
+        L->v[2] = vbd_det3(e, M, 0, 1, 3);
+    }
     L->U[0] = vbd_det3(e, M, 1, 2, 4);
     L->U[1] = vbd_neg(vbd_det3(e, M, 0, 2, 4));
     L->U[2] = vbd_det3(e, M, 0, 1, 4);
@@ -386,7 +421,8 @@ VB_SHARED_FN int vbd_scan_fast(const vbd_ia *p, vbd_ia s, VB_GLOBAL const vb_i64
 
 /* The verdict of root r (0: sigma = +1) of a line with two roots. */
 VB_SHARED_FN vb_u32 vbd_root(VB_GLOBAL const vb_i64 *z, VB_GLOBAL const vb_u32 *cell_start,
-                             VB_GLOBAL const vb_u32 *cell_ids, const vbd_grid *g, vb_u32 q0,
+                             VB_GLOBAL const vb_u32 *cell_ids, VB_GLOBAL const vb_i64 *cell_z,
+                             const vbd_grid *g, vb_u32 q0,
                              vb_u32 q1, vb_u32 q2, vb_u32 q3, const vbd_line *L, int r)
 {
     /* mu = -Pn / Qd: (B - sigma sq) / A, or, where B has the sign sigma and
@@ -462,7 +498,7 @@ VB_SHARED_FN vb_u32 vbd_root(VB_GLOBAL const vb_i64 *z, VB_GLOBAL const vb_u32 *
                 vb_u32 j = cell_ids[t];
                 if (j == q0 || j == q1 || j == q2 || j == q3)
                     continue;
-                VB_GLOBAL const vb_i64 *zj = z + 4 * (vb_u64)j;
+                VB_GLOBAL const vb_i64 *zj = cell_z + 4 * (vb_u64)t;
                 int fast = vbd_scan_fast(p, s, zj, za);
                 if (fast == VBD_FAST_OUT)
                     continue;
@@ -495,10 +531,12 @@ VB_SHARED_FN vb_u32 vbd_root(VB_GLOBAL const vb_i64 *z, VB_GLOBAL const vb_u32 *
     return open ? VBD_OPEN : VBD_VERTEX;
 }
 
-/* The verdicts of quadruple q0 < q1 < q2 < q3 (VBD_ROOT(v, r) for root r). */
+/* The verdicts of quadruple q0 < q1 < q2 < q3 (VBD_ROOT(v, r) for root r):
+ * z the spheres' scaled values by id, the grid's cells cell_start, their
+ * spheres' ids cell_ids and values cell_z in cell order. */
 VB_SHARED_FN vb_u32 vbd_judge(VB_GLOBAL const vb_i64 *z, VB_GLOBAL const vb_u32 *cell_start,
-                              VB_GLOBAL const vb_u32 *cell_ids, const vbd_grid *g, vb_u32 q0,
-                              vb_u32 q1, vb_u32 q2, vb_u32 q3)
+                              VB_GLOBAL const vb_u32 *cell_ids, VB_GLOBAL const vb_i64 *cell_z,
+                              const vbd_grid *g, vb_u32 q0, vb_u32 q1, vb_u32 q2, vb_u32 q3)
 {
     vbd_line L;
     int k = vbd_line_make(z, q0, q1, q2, q3, &L);
@@ -506,8 +544,8 @@ VB_SHARED_FN vb_u32 vbd_judge(VB_GLOBAL const vb_i64 *z, VB_GLOBAL const vb_u32 
         return VBD_NOT | (VBD_NOT << 2);
     if (k == 0)
         return VBD_OPEN;
-    return vbd_root(z, cell_start, cell_ids, g, q0, q1, q2, q3, &L, 0) |
-           (vbd_root(z, cell_start, cell_ids, g, q0, q1, q2, q3, &L, 1) << 2);
+    return vbd_root(z, cell_start, cell_ids, cell_z, g, q0, q1, q2, q3, &L, 0) |
+           (vbd_root(z, cell_start, cell_ids, cell_z, g, q0, q1, q2, q3, &L, 1) << 2);
 }
 
 #endif
