@@ -68,7 +68,8 @@ static uint32_t axis_cells(double o, double hi, double inv)
 }
 
 /* The grid: side about twice the mean radius, widened until there are at
- * most 32 cells a sphere. Keys by vbd_cell, the kernel's own function. */
+ * most 32 cells a sphere (and fewer than 2^31: 32-bit keys). Keys by
+ * vbd_cell, the kernel's own function. */
 static int build_grid(vb_cert_filter *f)
 {
     size_t n = f->n;
@@ -95,7 +96,7 @@ static int build_grid(vb_cert_filter *f)
             nc[k] = axis_cells(lo[k], hi[k], inv);
             cells *= nc[k];
         }
-        if (cells <= 32 * (uint64_t)n + 64) {
+        if (cells <= 32 * (uint64_t)n + 64 && cells < ((uint64_t)1 << 31)) {
             f->ncells = (size_t)cells;
             f->g.inv = inv;
             break;
