@@ -20,7 +20,8 @@ void vb_cmd_bench_help(FILE *f)
             "usage: vorball bench [options] INPUT... \n\n"
             "Runs the certified vertex pipeline on each input and prints, per input and\n"
             "sample count: atoms, samples, certified vertices, per-stage seconds (cull,\n"
-            "upload, envelope, vertices, matching, certification) and the total.\n\n"
+            "upload, envelope, vertices, matching, certification), the total and the MiB\n"
+            "of device buffers held at once (dev_MiB, 0 on host threads).\n\n"
             "  --samples S[,S...]   sample counts to run (default %u)\n"
             "  --repeat N           runs per configuration; the fastest total is kept (1);\n"
             "                       JSON also gives the first run's total (cold caches)\n"
@@ -30,7 +31,8 @@ void vb_cmd_bench_help(FILE *f)
             "  --device D           auto, gpu, cpu or ref (as for vertices)\n"
             "  --proposer P         cover (default) or sampling (as for vertices)\n"
             "  --tol T, --tiles T, --threads N, --all-pairs  as for vertices\n"
-            "  --json               JSON array instead of the table\n"
+            "  --json               JSON array instead of the table (it adds device_bytes_peak,\n"
+            "                       the device buffers a run held at once)\n"
             "  -o FILE              output file (default stdout)\n"
             "A progress bar goes to stderr when it is a terminal and a run is slow.\n"
             "Under mpirun -np N each run is split over the ranks as `vertices` splits it:\n"
@@ -82,7 +84,8 @@ static void row(FILE *f, int json, int first, const char *input, size_t atoms,
                 "\"matching\": %.6f, \"targeted\": %.6f, \"tangent\": %.6f, \"completion\": %.6f, "
                 "\"certification\": %.6f, \"setup\": %.6f, \"setup_wait\": %.6f, \"total\": %.6f, "
                 "\"total_first_run\": %.6f, \"device_setup\": %.6f, "
-                "\"certify_overlap\": %.6f, \"certify_parts\": %zu, \"cert_filter\": %.6f",
+                "\"certify_overlap\": %.6f, \"certify_parts\": %zu, \"device_bytes_peak\": %llu, "
+                "\"cert_filter\": %.6f",
                 r->certified.n, (unsigned long long)r->proposal.first_cell,
                 (unsigned long long)r->proposal.from_sampling, tot->rejected,
                 (unsigned long long)r->proposal.incomplete,
@@ -92,7 +95,7 @@ static void row(FILE *f, int json, int first, const char *input, size_t atoms,
                 t->vertices, t->matching, t->targeted, t->tangent, t->completion, r->t_certify,
                 r->t_setup, r->t_setup_wait, r->t_total,
                 first_total, device_setup, r->t_certify_overlap, r->certify_parts,
-                r->proposal.t_cert_filter);
+                (unsigned long long)r->proposal.device_bytes_peak, r->proposal.t_cert_filter);
         if (vb_world_size() > 1)
             fprintf(f, ", \"ranks\": %d, \"combine\": %.6f, \"merged_repeats\": %zu}",
                     vb_world_size(), tot->t_combine, tot->repeats);
@@ -104,9 +107,10 @@ static void row(FILE *f, int json, int first, const char *input, size_t atoms,
                     device_setup);
         else if (first)
             fprintf(f, "# backend %s: %s (opened for every run)\n", r->backend, r->device);
-        fprintf(f, "%-18s %6zu %7u %9zu %8.3f %8.3f %9.3f %9.3f %9.3f %9.3f %9.3f\n", input,
-                atoms, r->proposal.samples, r->certified.n, t->cull, t->upload, t->envelope,
-                t->vertices, t->matching, r->t_certify, r->t_total);
+        fprintf(f, "%-18s %6zu %7u %9zu %8.3f %8.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.1f\n",
+                input, atoms, r->proposal.samples, r->certified.n, t->cull, t->upload,
+                t->envelope, t->vertices, t->matching, r->t_certify, r->t_total,
+                (double)r->proposal.device_bytes_peak / 1048576.0);
     }
 }
 
@@ -177,9 +181,9 @@ int vb_cmd_bench(int argc, char **argv)
     if (rc == VB_OK && rank0 && json)
         fputs("[", out);
     else if (rc == VB_OK && rank0)
-        fprintf(out, "%-18s %6s %7s %9s %8s %8s %9s %9s %9s %9s %9s\n", "input", "atoms",
+        fprintf(out, "%-18s %6s %7s %9s %8s %8s %9s %9s %9s %9s %9s %9s\n", "input", "atoms",
                 "samples", "vertices", "cull", "upload", "envelope", "vertices", "matching",
-                "certify", "total");
+                "certify", "total", "dev_MiB");
     int first = 1;
     for (int k = 0; k < ninputs && rc == VB_OK; k++) {
         vb_sphere_set *set = NULL;

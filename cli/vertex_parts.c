@@ -45,8 +45,8 @@ int vb_cli_vertices_part(vb_ctx *ctx, vb_vertices_config *cfg, vb_cover_options 
 #define MAXED(X)                                                                                   \
     X(s->times.cull) X(s->times.upload) X(s->times.envelope) X(s->times.vertices)                 \
     X(s->times.matching) X(s->times.targeted) X(s->times.tangent) X(s->times.completion)          \
-    X(s->t_cover_device) X(s->t_cert_filter) X(res->t_setup) X(res->t_setup_wait) X(res->t_certify) X(res->t_total)   \
-    X(res->t_certify_overlap)                                                                      \
+    X(s->t_cover_device) X(s->t_cert_filter) X(res->t_setup) X(res->t_setup_wait)                \
+    X(res->t_certify) X(res->t_total) X(res->t_certify_overlap) X(s->device_bytes_peak)           \
     X(res->max_dist)
 
 static int sum_counters(vb_ctx *ctx, vb_vertices_result *res, vb_cli_vertex_totals *tot)

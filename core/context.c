@@ -281,6 +281,7 @@ const char *vb_errstr(int code)
     case VB_EINPUT_TOL: return "tolerance finer than the sampling pipeline resolves";
     case VB_EINPUT_PAGE_SIZE: return "too many spheres for a results page of vertices";
     case VB_ENOMEM_ESTIMATE: return "not enough memory for the input";
+    case VB_ENOMEM_DEVICE: return "device memory budget too small for the input";
     default: break;
     }
     switch (VB_CATEGORY(code)) {

@@ -64,7 +64,8 @@ enum vb_input_error {
 /* Extended codes of resource limits (E140-E149): category | (detail << 8),
  * numbered 100 + detail as the input codes are. */
 enum vb_limit_error {
-    VB_ENOMEM_ESTIMATE = VB_ENOMEM | (40 << 8) /* E140 the estimated need exceeds the room */
+    VB_ENOMEM_ESTIMATE = VB_ENOMEM | (40 << 8), /* E140 the estimated need exceeds the room */
+    VB_ENOMEM_DEVICE = VB_ENOMEM | (42 << 8)    /* E142 the device budget cannot hold the input */
 };
 
 #define VB_CATEGORY(code) ((code) & 0xff)

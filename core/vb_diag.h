@@ -63,6 +63,7 @@
     X(E, 133, INPUT_PAGE_SIZE, 43, "vertices --html: over 2000 spheres, too many for a results page")      \
     X(E, 135, INPUT_BOX_SMALL, 45, "periodic box too small: its cells reach past 4 box heights")        \
     X(E, 140, MEMORY_ESTIMATE, 44, "not enough memory for the input: refused before the work starts")    \
+    X(E, 142, DEVICE_MEMORY, 46, "device memory budget too small for the input: says how much")          \
     X(E, 150, MPI_FAILED, 50, "MPI failed between ranks: the job is aborted")                            \
     X(E, 151, MPI_COMMAND, 2, "the command runs on one process only, not on several MPI ranks")          \
     X(E, 152, MPI_STDIN, 2, "under MPI every rank reads the input: give a file, not stdin")              \

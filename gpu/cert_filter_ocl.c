@@ -1,6 +1,8 @@
 /* The certification filter on OpenCL (vbg_judge.h). */
 #include "vbg_judge.h"
 
+#include "vbg_buffer.h"
+
 #include <stdlib.h>
 #include <string.h>
 
@@ -8,10 +10,10 @@ struct vbg_judge {
     vbg_runtime *rt;
     cl_command_queue queue;
     cl_kernel k;
-    cl_mem z, start, ids, cz; /* the filter of `serial` */
+    vbg_meter meter;          /* its buffers' bytes (vbg_judge_bytes_peak) */
+    vbg_buf z, start, ids, cz; /* the filter of `serial` */
     uint64_t serial;
-    cl_mem quads, verdict;  /* room for cap quadruples */
-    size_t cap;
+    vbg_buf quads, verdict;   /* room for their sizes' quadruples */
 };
 
 int vbg_judge_open(vb_ctx *ctx, vbg_runtime *rt, vbg_judge **out)
@@ -40,23 +42,18 @@ int vbg_judge_open(vb_ctx *ctx, vbg_runtime *rt, vbg_judge **out)
     return VB_OK;
 }
 
-static void release(cl_mem *m)
+size_t vbg_judge_bytes_peak(const vbg_judge *j)
 {
-    if (*m)
-        clReleaseMemObject(*m);
-    *m = NULL;
+    return j ? j->meter.peak : 0;
 }
 
 void vbg_judge_close(vbg_judge *j)
 {
     if (!j)
         return;
-    release(&j->z);
-    release(&j->start);
-    release(&j->ids);
-    release(&j->cz);
-    release(&j->quads);
-    release(&j->verdict);
+    vbg_buf *all[] = {&j->z, &j->start, &j->ids, &j->cz, &j->quads, &j->verdict};
+    for (size_t k = 0; k < sizeof all / sizeof all[0]; k++)
+        vbg_buf_release(&j->meter, all[k]);
     if (j->k)
         clReleaseKernel(j->k);
     if (j->queue)
@@ -64,33 +61,15 @@ void vbg_judge_close(vbg_judge *j)
     free(j);
 }
 
-/* A read-only buffer holding a copy of host bytes p[0 .. size). */
-static int upload(vb_ctx *ctx, vbg_judge *j, cl_mem *m, const void *p, size_t size)
+/* b made to hold host bytes p[0 .. size) (a new filter's arrays). */
+static int upload(vb_ctx *ctx, vbg_judge *j, vbg_buf *b, const void *p, size_t size)
 {
-    cl_int err;
-    release(m);
-    *m = clCreateBuffer(vbg_runtime_context(j->rt), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-                        size ? size : 1, (void *)p, &err);
-    return vbg_check(ctx, err, "clCreateBuffer (certification filter)");
-}
-
-static int fit(vb_ctx *ctx, vbg_judge *j, size_t n)
-{
-    if (n <= j->cap)
-        return VB_OK;
-    release(&j->quads);
-    release(&j->verdict);
-    j->cap = 0;
-    cl_int err;
-    cl_context c = vbg_runtime_context(j->rt);
-    j->quads = clCreateBuffer(c, CL_MEM_READ_ONLY, n * 16, NULL, &err);
-    int rc = vbg_check(ctx, err, "clCreateBuffer (quadruples)");
-    if (rc == VB_OK) {
-        j->verdict = clCreateBuffer(c, CL_MEM_WRITE_ONLY, n, NULL, &err);
-        rc = vbg_check(ctx, err, "clCreateBuffer (verdicts)");
-    }
-    if (rc == VB_OK)
-        j->cap = n;
+    vbg_buf_release(&j->meter, b);
+    int rc = vbg_buf_ensure(ctx, j->rt, &j->meter, b, size, CL_MEM_READ_ONLY);
+    if (rc == VB_OK && size)
+        rc = vbg_check(ctx, clEnqueueWriteBuffer(j->queue, b->mem, CL_TRUE, 0, size, p, 0, NULL,
+                                                 NULL),
+                       "clEnqueueWriteBuffer (certification filter)");
     return rc;
 }
 
@@ -115,18 +94,21 @@ int vbg_judge_run(vb_ctx *ctx, vbg_judge *j, const vb_cert_filter *f, const uint
             return rc;
         j->serial = f->serial;
     }
-    rc = fit(ctx, j, n);
+    rc = vbg_buf_ensure(ctx, j->rt, &j->meter, &j->quads, n * 16, CL_MEM_READ_ONLY);
+    if (rc == VB_OK)
+        rc = vbg_buf_ensure(ctx, j->rt, &j->meter, &j->verdict, n, CL_MEM_WRITE_ONLY);
     if (rc != VB_OK)
         return rc;
-    cl_int err = clEnqueueWriteBuffer(j->queue, j->quads, CL_FALSE, 0, n * 16, q, 0, NULL, NULL);
+    cl_int err = clEnqueueWriteBuffer(j->queue, j->quads.mem, CL_FALSE, 0, n * 16, q, 0, NULL,
+                                      NULL);
     cl_uint nn = (cl_uint)n;
     cl_long rmax = f->g.rmax;
     cl_kernel k = j->k;
     int a = 0;
-    err |= clSetKernelArg(k, a++, sizeof(cl_mem), &j->z);
-    err |= clSetKernelArg(k, a++, sizeof(cl_mem), &j->start);
-    err |= clSetKernelArg(k, a++, sizeof(cl_mem), &j->ids);
-    err |= clSetKernelArg(k, a++, sizeof(cl_mem), &j->cz);
+    err |= clSetKernelArg(k, a++, sizeof(cl_mem), &j->z.mem);
+    err |= clSetKernelArg(k, a++, sizeof(cl_mem), &j->start.mem);
+    err |= clSetKernelArg(k, a++, sizeof(cl_mem), &j->ids.mem);
+    err |= clSetKernelArg(k, a++, sizeof(cl_mem), &j->cz.mem);
     err |= clSetKernelArg(k, a++, sizeof(double), &f->g.ox);
     err |= clSetKernelArg(k, a++, sizeof(double), &f->g.oy);
     err |= clSetKernelArg(k, a++, sizeof(double), &f->g.oz);
@@ -135,9 +117,9 @@ int vbg_judge_run(vb_ctx *ctx, vbg_judge *j, const vb_cert_filter *f, const uint
     err |= clSetKernelArg(k, a++, sizeof(cl_uint), &f->g.ny);
     err |= clSetKernelArg(k, a++, sizeof(cl_uint), &f->g.nz);
     err |= clSetKernelArg(k, a++, sizeof(cl_long), &rmax);
-    err |= clSetKernelArg(k, a++, sizeof(cl_mem), &j->quads);
+    err |= clSetKernelArg(k, a++, sizeof(cl_mem), &j->quads.mem);
     err |= clSetKernelArg(k, a++, sizeof(cl_uint), &nn);
-    err |= clSetKernelArg(k, a++, sizeof(cl_mem), &j->verdict);
+    err |= clSetKernelArg(k, a++, sizeof(cl_mem), &j->verdict.mem);
     rc = vbg_check(ctx, err, "certification filter arguments");
     /* Groups of 64 named, not left to the runtime: PoCL compiles a kernel
      * for each group size, which it would otherwise choose by n (1.3 s of
@@ -148,7 +130,7 @@ int vbg_judge_run(vb_ctx *ctx, vbg_judge *j, const vb_cert_filter *f, const uint
                                                    NULL),
                        "vbd_judge_kernel");
     if (rc == VB_OK)
-        rc = vbg_check(ctx, clEnqueueReadBuffer(j->queue, j->verdict, CL_TRUE, 0, n, verdict, 0,
+        rc = vbg_check(ctx, clEnqueueReadBuffer(j->queue, j->verdict.mem, CL_TRUE, 0, n, verdict, 0,
                                                 NULL, NULL),
                        "clEnqueueReadBuffer (verdicts)");
     return rc;

@@ -7,11 +7,33 @@
  * root-patch tasks on the work-item kernel (the hand-off tier); the cells
  * that ran out of their slices again on a few large slices; what still does
  * not fit is left to the host. Every error path reports VB_EDEVICE; the
- * caller falls back to the host. */
+ * caller falls back to the host.
+ *
+ * Device memory (issue #30) stays within the device layer's budget
+ * (vbg_runtime_memory_budget; VORBALL_DEVICE_MEMORY_MIB sets it), counted
+ * by a meter (vbg_buffer.h, --stats device_bytes_peak):
+ *   input      32 n + 56 * 2 first + 4 m + 8 bytes (centres, radii, the
+ *              tree's boxes and radii, its ids, the counters), held for the run;
+ *   first tier S0 slices of P0 bytes, P0 = 48 NB + 4 LAB + 16 Q (+ 48 ST on
+ *              the work-item kernel; the group kernel keeps one stack of
+ *              48 ST), NB/LAB/ST/Q the tier's capacities below: 144 KiB a
+ *              work-item, 520 KiB a group; S0 = min(the device's occupancy,
+ *              n, 3/4 of the budget left after the input / P0);
+ *   launches   per launch of C tasks: 4 C (cells) + 4 C (roots) + 48 C (results)
+ *              + 16 qper C (quadruples, qper 24 on the first tier, 256 on the
+ *              large one), at most 1/8 of the budget left after the input:
+ *              a batch larger than that runs in several launches;
+ *   large tier S1 slices of 2.6 MiB, made on the first cell that needs them,
+ *              S1 = min(the device's occupancy, the tasks waiting, the rest of
+ *              the budget / P1) (half of it with the hand-off tier beside);
+ *              with no room the cells go to the host threads.
+ * A budget that cannot hold the input, one first-tier slice and one task's
+ * launch stops the run at once with E142, saying how much is needed. */
 #include <stdlib.h>
 #include <string.h>
 
 #include "vb_array.h"
+#include "vbg_buffer.h"
 #include "vbg_cover.h"
 #include "vbg_cover_tasks.h"
 #include "vbg_judge.h"
@@ -19,20 +41,15 @@
 /* A cell whose quadruples did not fit the output array (cover*.cl). */
 #define COV_OVER_OUT 5u
 
-typedef struct cov_buf {
-    cl_mem mem;
-    size_t size;
-} cov_buf;
-
 /* Arena slices of one tier: `slices` of them (work-items, or work-groups). */
 typedef struct cov_tier {
-    cov_buf nb, lab, st, q;
+    vbg_buf nb, lab, st, q;
     cl_kernel k;             /* its kernel (cov_state's) */
     int wg;                  /* 1: k is the group kernel, a work-group of COV_WG per slice */
     uint32_t budget;         /* the group kernel's step budget per cell (0: none) */
     uint32_t qper;           /* output room per task, in quadruples */
-    size_t slices;
-    size_t slices_max;       /* the device's share (vbg_cover_open); 0 until a run */
+    size_t slices;           /* slices made (0: none yet) */
+    size_t want;             /* slices that keep the device busy (vbg_cover_open) */
     uint32_t nb_cap, lab_cap, st_cap, q_cap;
 } cov_tier;
 
@@ -46,8 +63,8 @@ typedef struct cov_state {
     vbg_runtime *rt;
     cl_kernel k, k_item;     /* k_item: the work-item kernel beside the group kernel */
     int wg;                  /* 1: one work-group of 32 per cell (cover_wg.cl) */
-    cov_buf x, y, z, r, box, rmax, ids;
-    cov_buf cells, roots, outs, qout, counters;
+    vbg_buf x, y, z, r, box, rmax, ids;
+    vbg_buf cells, roots, outs, qout, counters;
     cov_tier tier[3];
     size_t qout_cap;         /* quadruples the output array holds */
     uint32_t *host_q;        /* read-back of the quadruples of a batch */
@@ -56,13 +73,25 @@ typedef struct cov_state {
     uint32_t *cells2, *roots2, *hroots;
     size_t cap2, hroots_cap;
     vbq_env env;             /* scalars of the uploaded input */
+    vbg_meter meter;         /* device bytes held now and at most */
+    size_t budget;           /* device bytes the cover may hold (vbg_runtime_memory_budget) */
+    size_t launch_room;      /* bytes of one launch's task, result and quadruple buffers */
+    size_t tier_room;        /* bytes left for the large tier (and the hand-off tier) */
+    size_t last_n;           /* spheres of the last run begun (trim) */
     vbg_judge *judge;        /* the certification filter (NULL: see judge_err) */
     char judge_err[256];     /* why it could not be opened */
 } cov_state;
 
 /* Arena capacities. The first tier fits almost every cell of the proteins
  * and the capsid measured; the second takes the exposed cells whose ring
- * fetches hold thousands of spheres (up to ~10^5 records on the capsid). */
+ * fetches hold thousands of spheres, as root-patch tasks, each of which
+ * fetches only its patch's. Measured on the host (tests/verify/
+ * bench_cover_cells, every cell's 96 tasks): neighbour records per cell on
+ * the 26,430-atom capsid median 96, p99 4,493, max 50,546 (117 cells past
+ * 8,192), per task at most 20,483 (all 2,537,280 tasks fit 32,768; 2 ran
+ * out of 16,384); 3pqr per cell max 12,396, per task 2,303. The large
+ * tier's 131,072 records (7.1 MiB a slice with its labels) became 32,768
+ * (2.6 MiB); its labels stay (the group kernel walks breadth-first). */
 #define COV_NB 2048u
 #define COV_LAB 8192u
 #define COV_ST 256u
@@ -70,7 +99,7 @@ typedef struct cov_state {
 #define COV_WG_NB 8192u
 #define COV_WG_LAB 32768u
 #define COV_WG_Q 512u
-#define COV_BIG_NB 131072u
+#define COV_BIG_NB 32768u
 #define COV_BIG_LAB 262144u
 #define COV_BIG_Q 4096u
 #define COV_WG 32u
@@ -86,33 +115,19 @@ typedef struct cov_state {
  * 0.1 s; the cells past it run side by side as 24 T^2 tasks each. */
 #define COV_BUDGET 2048u
 
-static void release(cov_buf *b)
+static void release(cov_state *s, vbg_buf *b)
 {
-    if (b->mem)
-        clReleaseMemObject(b->mem);
-    b->mem = NULL;
-    b->size = 0;
+    vbg_buf_release(&s->meter, b);
 }
 
 /* Makes b hold at least `need` bytes (its contents are lost when it grows). */
-static int ensure(vb_ctx *ctx, cov_state *s, cov_buf *b, size_t need, cl_mem_flags flags)
+static int ensure(vb_ctx *ctx, cov_state *s, vbg_buf *b, size_t need, cl_mem_flags flags)
 {
-    if (need == 0)
-        need = 16;
-    if (b->mem && b->size >= need)
-        return VB_OK;
-    release(b);
-    cl_int err;
-    b->mem = clCreateBuffer(vbg_runtime_context(s->rt), flags, need, NULL, &err);
-    if (err != CL_SUCCESS || !b->mem) {
-        b->mem = NULL;
-        return vbg_check(ctx, err != CL_SUCCESS ? err : CL_OUT_OF_RESOURCES, "clCreateBuffer");
-    }
-    b->size = need;
-    return VB_OK;
+    return vbg_buf_ensure(ctx, s->rt, &s->meter, b, need, flags);
 }
 
-static int upload(vb_ctx *ctx, cov_state *s, cov_buf *b, const void *src, size_t bytes)
+/* Copies bytes of src into b (grown when too small). */
+static int upload(vb_ctx *ctx, cov_state *s, vbg_buf *b, const void *src, size_t bytes)
 {
     int rc = ensure(ctx, s, b, bytes, CL_MEM_READ_ONLY);
     if (rc != VB_OK || bytes == 0)
@@ -121,6 +136,27 @@ static int upload(vb_ctx *ctx, cov_state *s, cov_buf *b, const void *src, size_t
                      clEnqueueWriteBuffer(vbg_runtime_queue(s->rt), b->mem, CL_TRUE, 0, bytes,
                                           src, 0, NULL, NULL),
                      "clEnqueueWriteBuffer");
+}
+
+/* Bytes of one slice of tier t (its share of the frame stack on the
+ * work-item kernel; the group kernel's one stack is tier_fixed). */
+static size_t tier_bytes(const cov_tier *t)
+{
+    return (size_t)t->nb_cap * sizeof(vbq_nb) + (size_t)t->lab_cap * 4 +
+           (t->wg ? 0 : (size_t)t->st_cap * sizeof(vbq_frame)) + (size_t)t->q_cap * 16;
+}
+
+/* Bytes of tier t that do not grow with its slices. */
+static size_t tier_fixed(const cov_tier *t)
+{
+    return t->wg ? (size_t)t->st_cap * sizeof(vbq_frame) : 0;
+}
+
+/* Bytes of one task of a launch on tier t: its cell, root and result, and
+ * its room for quadruples. */
+static size_t task_bytes(const cov_tier *t)
+{
+    return 2 * sizeof(uint32_t) + sizeof(vbq_cell_out) + (size_t)t->qper * 16;
 }
 
 static int tier_alloc(vb_ctx *ctx, cov_state *s, cov_tier *t)
@@ -137,41 +173,127 @@ static int tier_alloc(vb_ctx *ctx, cov_state *s, cov_tier *t)
     return rc;
 }
 
+static double mib(size_t bytes)
+{
+    return (double)bytes / (1024.0 * 1024.0);
+}
+
+/* Splits the budget left after the input (module comment): the first
+ * tier's slices, the launch buffers' room, the rest for the large tiers.
+ * E142 when it cannot hold one slice and one task. */
+static int budget_split(vb_ctx *ctx, cov_state *s, size_t n, size_t input)
+{
+    cov_tier *t0 = &s->tier[COV_FIRST];
+    size_t least = input + tier_fixed(t0) + tier_bytes(t0) + task_bytes(t0);
+    if (s->budget < least)
+        return vb_error(ctx, VB_ENOMEM_DEVICE, NULL, 0,
+                        "the cover of %zu spheres needs at least %.1f MiB of device memory "
+                        "(input %.1f MiB, one arena slice %.1f MiB, one task's launch %zu bytes); "
+                        "its budget is %.1f MiB (VORBALL_DEVICE_MEMORY_MIB sets it; "
+                        "--device ref needs none)",
+                        n, mib(least), mib(input), mib(tier_fixed(t0) + tier_bytes(t0)),
+                        task_bytes(t0), mib(s->budget));
+    size_t avail = s->budget - input;
+    /* A slice covers one cell at a time, so no tier gets more slices than
+     * there are spheres (whole groups of 64 on the work-item kernel, which
+     * keeps the launch a multiple of its group). On an H100 a 327-atom run
+     * held 1,594 MiB with every slice allocated. */
+    size_t cap = n == 0 ? 1 : t0->wg ? n : (n + 63) / 64 * 64;
+    size_t share = avail / 4 * 3;
+    size_t fit = share > tier_fixed(t0) ? (share - tier_fixed(t0)) / tier_bytes(t0) : 0;
+    size_t w = t0->want < cap ? t0->want : cap;
+    w = w < fit ? w : fit;
+    if (!t0->wg && w >= 64)
+        w = w / 64 * 64;
+    t0->slices = w ? w : 1;
+    size_t used = tier_fixed(t0) + t0->slices * tier_bytes(t0);
+    s->launch_room = avail / 8 > task_bytes(t0) ? avail / 8 : task_bytes(t0);
+    s->tier_room = avail - used > s->launch_room ? avail - used - s->launch_room : 0;
+    return VB_OK;
+}
+
+/* Bytes the large tier, or the hand-off tier, may hold: the budget's rest,
+ * halved when both may be made. */
+static size_t tier_share(const cov_state *s)
+{
+    return s->tier_room / (s->tier[COV_HAND].k && s->tier[COV_BIG].want ? 2 : 1);
+}
+
+static void tier_release(cov_state *s, cov_tier *t)
+{
+    release(s, &t->nb);
+    release(s, &t->lab);
+    release(s, &t->st);
+    release(s, &t->q);
+}
+
+/* Releases what an earlier run on this backend made larger than this run
+ * (of n spheres, its budget split) may hold, and, for an input of another
+ * size, the large tiers and launch buffers an earlier run made: the meter's
+ * peak, started again here, is then this run's alone, while repeated runs
+ * of one input (bench --repeat) keep their buffers. */
+static void trim(cov_state *s, size_t n)
+{
+    cov_tier *t0 = &s->tier[COV_FIRST];
+    int other = n != s->last_n;
+    s->last_n = n;
+    if (t0->nb.size > t0->slices * t0->nb_cap * sizeof(vbq_nb))
+        tier_release(s, t0);
+    for (int k = COV_BIG; k <= COV_HAND; k++) {
+        cov_tier *t = &s->tier[k];
+        if (other || tier_fixed(t) + t->slices * tier_bytes(t) > tier_share(s)) {
+            tier_release(s, t);
+            t->slices = 0;
+        }
+    }
+    if (other || s->cells.size + s->roots.size + s->outs.size + s->qout.size > s->launch_room) {
+        release(s, &s->cells);
+        release(s, &s->roots);
+        release(s, &s->outs);
+        release(s, &s->qout);
+        s->qout_cap = 0;
+    }
+    s->meter.peak = s->meter.live;
+}
+
+/* upload into a buffer of exactly `bytes` (16 for none): a larger one of
+ * an earlier run is released first. */
+static int upload_exact(vb_ctx *ctx, cov_state *s, vbg_buf *b, const void *src, size_t bytes)
+{
+    if (b->size > (bytes ? bytes : 16))
+        release(s, b);
+    return upload(ctx, s, b, src, bytes);
+}
+
 static int cov_begin(vb_ctx *ctx, vb_cover_backend *be, const vbq_env *env, size_t n)
 {
     cov_state *s = be->state;
     s->env = *env;
     size_t nodes = 2 * (size_t)env->first;
-    int rc = upload(ctx, s, &s->x, env->x, n * sizeof(double));
+    size_t input = 4 * n * sizeof(double) + 7 * nodes * sizeof(double) +
+                   (size_t)env->m * sizeof(uint32_t) + 2 * sizeof(cl_uint);
+    int rc = budget_split(ctx, s, n, input);
     if (rc == VB_OK)
-        rc = upload(ctx, s, &s->y, env->y, n * sizeof(double));
+        trim(s, n);
     if (rc == VB_OK)
-        rc = upload(ctx, s, &s->z, env->z, n * sizeof(double));
+        rc = upload_exact(ctx, s, &s->x, env->x, n * sizeof(double));
     if (rc == VB_OK)
-        rc = upload(ctx, s, &s->r, env->r, n * sizeof(double));
+        rc = upload_exact(ctx, s, &s->y, env->y, n * sizeof(double));
     if (rc == VB_OK)
-        rc = upload(ctx, s, &s->box, env->box, 6 * nodes * sizeof(double));
+        rc = upload_exact(ctx, s, &s->z, env->z, n * sizeof(double));
     if (rc == VB_OK)
-        rc = upload(ctx, s, &s->rmax, env->rmax, nodes * sizeof(double));
+        rc = upload_exact(ctx, s, &s->r, env->r, n * sizeof(double));
     if (rc == VB_OK)
-        rc = upload(ctx, s, &s->ids, env->ids, (size_t)env->m * sizeof(uint32_t));
-    /* GPU memory in proportion to the input (issue #30): a slice covers one
-     * cell at a time, so no tier gets more slices than there are spheres
-     * (whole groups of 64 on the work-item kernel, which keeps the launch a
-     * multiple of its group); the device's share still caps them. On an
-     * H100 a 327-atom run held 1,594 MiB with every slice allocated. */
-    for (int t = 0; t < 2; t++) {
-        cov_tier *ti = &s->tier[t];
-        size_t cap = n == 0 ? 1 : ti->wg ? n : (n + 63) / 64 * 64;
-        if (!ti->slices_max)
-            ti->slices_max = ti->slices;
-        ti->slices = ti->slices_max < cap ? ti->slices_max : cap;
-    }
-    for (int t = 0; rc == VB_OK && t < 2; t++)
-        if (s->tier[t].slices)
-            rc = tier_alloc(ctx, s, &s->tier[t]);
+        rc = upload_exact(ctx, s, &s->box, env->box, 6 * nodes * sizeof(double));
+    if (rc == VB_OK)
+        rc = upload_exact(ctx, s, &s->rmax, env->rmax, nodes * sizeof(double));
+    if (rc == VB_OK)
+        rc = upload_exact(ctx, s, &s->ids, env->ids, (size_t)env->m * sizeof(uint32_t));
     if (rc == VB_OK)
         rc = ensure(ctx, s, &s->counters, 2 * sizeof(cl_uint), CL_MEM_READ_WRITE);
+    if (rc == VB_OK)
+        rc = tier_alloc(ctx, s, &s->tier[COV_FIRST]);
+    be->device_bytes_peak = s->meter.peak;
     return rc;
 }
 
@@ -192,23 +314,30 @@ static int host_q_room(vb_ctx *ctx, cov_state *s, size_t n)
 
 /* One launch of tier t over the tasks (cells[k], roots[k]) for k <
  * ncells: out[k] and the quadruples appended to host_q (out[k].qoff made
- * relative to host_q). */
-static int run_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *cells,
-                    const uint32_t *roots, size_t ncells, vbq_cell_out *out)
+ * relative to host_q). ncells * task_bytes(t) fits the launch room. */
+static int launch_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *cells,
+                       const uint32_t *roots, size_t ncells, vbq_cell_out *out)
 {
     cl_command_queue q = vbg_runtime_queue(s->rt);
-    /* About 10 quadruples per cell on proteins: room for t->qper per task;
+    /* About 10 quadruples per cell on proteins: room for t->qper per task,
+     * more when an earlier launch needed it and the launch room holds it;
      * cells beyond it are marked and covered again (cov_run). */
     size_t want = (size_t)t->qper * ncells;
     if (want > s->qout_cap)
         s->qout_cap = want;
+    size_t c4 = ncells * sizeof(uint32_t), c48 = ncells * sizeof(vbq_cell_out);
+    size_t held = (s->cells.size > c4 ? s->cells.size : c4) +
+                  (s->roots.size > c4 ? s->roots.size : c4) +
+                  (s->outs.size > c48 ? s->outs.size : c48);
+    size_t room = s->launch_room > held + 16 ? (s->launch_room - held) / 16 : 1;
+    size_t qroom = s->qout_cap < room ? s->qout_cap : room;
     int rc = upload(ctx, s, &s->cells, cells, ncells * sizeof(uint32_t));
     if (rc == VB_OK)
         rc = upload(ctx, s, &s->roots, roots, ncells * sizeof(uint32_t));
     if (rc == VB_OK)
         rc = ensure(ctx, s, &s->outs, ncells * sizeof(vbq_cell_out), CL_MEM_READ_WRITE);
     if (rc == VB_OK)
-        rc = ensure(ctx, s, &s->qout, 4 * s->qout_cap * sizeof(uint32_t), CL_MEM_READ_WRITE);
+        rc = ensure(ctx, s, &s->qout, 4 * qroom * sizeof(uint32_t), CL_MEM_READ_WRITE);
     cl_uint zero[2] = {0, 0};
     if (rc == VB_OK)
         rc = vbg_check(ctx,
@@ -216,7 +345,7 @@ static int run_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *cell
                                             NULL, NULL),
                        "clEnqueueWriteBuffer");
     const vbq_env *e = &s->env;
-    cl_uint nc = (cl_uint)ncells, qcap = (cl_uint)s->qout_cap;
+    cl_uint nc = (cl_uint)ncells, qcap = (cl_uint)qroom;
     cl_uint nbc = t->nb_cap, labc = t->lab_cap, stc = t->st_cap, qc = t->q_cap;
     cl_uint a = 0;
     cl_kernel k = t->k;
@@ -280,7 +409,7 @@ static int run_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *cell
                        clEnqueueReadBuffer(q, s->counters.mem, CL_TRUE, 0, sizeof counters,
                                            counters, 0, NULL, NULL),
                        "read counters");
-    size_t nq = counters[1] < s->qout_cap ? counters[1] : s->qout_cap;
+    size_t nq = counters[1] < qroom ? counters[1] : qroom;
     if (rc == VB_OK)
         rc = host_q_room(ctx, s, nq);
     if (rc == VB_OK && nq)
@@ -297,9 +426,24 @@ static int run_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *cell
             out[c].qoff += (uint32_t)s->host_nq;
     s->host_nq += nq;
     /* The next batch gets room for what this one needed. */
-    if (counters[1] > s->qout_cap)
+    if (counters[1] > qroom)
         s->qout_cap = counters[1] + counters[1] / 4;
     return VB_OK;
+}
+
+/* Tier t over the tasks (cells[k], roots[k]) for k < ncells, in as many
+ * launches as the launch room needs (launch_tier). */
+static int run_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *cells,
+                    const uint32_t *roots, size_t ncells, vbq_cell_out *out)
+{
+    size_t chunk = s->launch_room / task_bytes(t);
+    chunk = chunk ? chunk : 1;
+    int rc = VB_OK;
+    for (size_t k0 = 0; rc == VB_OK && k0 < ncells; k0 += chunk) {
+        size_t nk = ncells - k0 < chunk ? ncells - k0 : chunk;
+        rc = launch_tier(ctx, s, t, cells + k0, roots + k0, nk, out + k0);
+    }
+    return rc;
 }
 
 /* A cell that ran out of a small slice is tried again on large ones; a
@@ -347,16 +491,33 @@ static int run_tasks(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *cel
     return rc;
 }
 
-/* The hand-off tier's slices for `tasks` tasks (whole groups of 64 within
- * its share), allocated on first use. */
-static int hand_slices(vb_ctx *ctx, cov_state *s, size_t tasks)
+/* Tier t (the large or the hand-off tier) with slices for `tasks` tasks,
+ * made on first use: at most the device's occupancy and what its share of
+ * the budget's rest holds (half of it when both tiers may be made), in
+ * whole groups of 64 on the work-item kernel. Returns VB_OK with no slices
+ * when none fits: the cells then go to the host. */
+static int tier_grow(vb_ctx *ctx, cov_state *s, cov_tier *t, size_t tasks)
 {
-    cov_tier *t = &s->tier[COV_HAND];
-    size_t w = (tasks + 63) / 64 * 64;
-    w = w < t->slices_max ? w : t->slices_max;
-    if (w > t->slices)
-        t->slices = w;
+    size_t room = tier_share(s);
+    size_t fit = room > tier_fixed(t) ? (room - tier_fixed(t)) / tier_bytes(t) : 0;
+    size_t w = t->wg ? tasks : (tasks + 63) / 64 * 64;
+    w = w < t->want ? w : t->want;
+    w = w < fit ? w : fit;
+    if (!t->wg && w >= 64)
+        w = w / 64 * 64;
+    if (w <= t->slices)
+        return VB_OK;
+    t->slices = w;
     return tier_alloc(ctx, s, t);
+}
+
+/* Cells of out[0 .. ncells) that pick takes. */
+static size_t count_picked(const vbq_cell_out *out, size_t ncells, vbg_task_pick pick)
+{
+    size_t n = 0;
+    for (size_t c = 0; c < ncells; c++)
+        n += pick(out[c].status) != 0;
+    return n;
 }
 
 static int cov_run(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, size_t ncells,
@@ -382,17 +543,21 @@ static int cov_run(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, siz
     /* The cells past the group kernel's budget, on the work-item kernel;
      * those of them whose tasks ran out of arenas go on to the large
      * slices with the rest. */
-    size_t handed = 0, nh = 0;
-    for (size_t c = 0; rc == VB_OK && s->tier[COV_HAND].k && c < ncells; c++)
-        nh += handed_off(out[c].status);
+    size_t per = vbg_tasks_per_cell(s->env.T), handed = 0, retried = 0;
+    cov_tier *th = &s->tier[COV_HAND], *t1 = &s->tier[COV_BIG];
+    size_t nh = rc == VB_OK && th->k ? count_picked(out, ncells, handed_off) : 0;
     if (nh)
-        rc = hand_slices(ctx, s, nh * vbg_tasks_per_cell(s->env.T));
-    if (rc == VB_OK && nh)
-        rc = run_tasks(ctx, s, &s->tier[COV_HAND], cells, ncells, out, handed_off, &handed);
+        rc = tier_grow(ctx, s, th, nh * per);
+    if (rc == VB_OK && nh && th->slices)
+        rc = run_tasks(ctx, s, th, cells, ncells, out, handed_off, &handed);
     be->handed_cells += handed;
-    size_t retried = 0;
-    if (rc == VB_OK && s->tier[COV_BIG].slices)
-        rc = run_tasks(ctx, s, &s->tier[COV_BIG], cells, ncells, out, retry_on_device, &retried);
+    size_t n1 = rc == VB_OK && t1->want ? count_picked(out, ncells, retry_on_device) : 0;
+    if (n1)
+        rc = tier_grow(ctx, s, t1, n1 * per);
+    if (rc == VB_OK && n1 && t1->slices)
+        rc = run_tasks(ctx, s, t1, cells, ncells, out, retry_on_device, &retried);
+    if (s->meter.peak > be->device_bytes_peak)
+        be->device_bytes_peak = s->meter.peak;
     if (rc == VB_OK)
         *quads = s->host_q;
     return rc;
@@ -404,17 +569,13 @@ static void cov_close(vb_cover_backend *be)
         return;
     cov_state *s = be->state;
     if (s) {
-        cov_buf *all[] = {&s->x,    &s->y,     &s->z,     &s->r,    &s->box,
+        vbg_buf *all[] = {&s->x,    &s->y,     &s->z,     &s->r,    &s->box,
                           &s->rmax, &s->ids,   &s->cells, &s->roots, &s->outs,
                           &s->qout, &s->counters};
         for (size_t k = 0; k < sizeof all / sizeof all[0]; k++)
-            release(all[k]);
-        for (int t = 0; t < 3; t++) {
-            release(&s->tier[t].nb);
-            release(&s->tier[t].lab);
-            release(&s->tier[t].st);
-            release(&s->tier[t].q);
-        }
+            release(s, all[k]);
+        for (int t = 0; t < 3; t++)
+            tier_release(s, &s->tier[t]);
         if (s->k)
             clReleaseKernel(s->k);
         if (s->k_item)
@@ -428,12 +589,6 @@ static void cov_close(vb_cover_backend *be)
         free(s);
     }
     free(be);
-}
-
-static size_t tier_bytes(const cov_tier *t)
-{
-    return (size_t)t->nb_cap * sizeof(vbq_nb) + (size_t)t->lab_cap * 4 +
-           (t->wg ? 0 : (size_t)t->st_cap * sizeof(vbq_frame)) + (size_t)t->q_cap * 16;
 }
 
 /* A kernel of the program built from `file`. */
@@ -457,7 +612,9 @@ static int cov_judge(vb_ctx *ctx, vb_cover_backend *be, const vb_cert_filter *f,
     cov_state *s = be->state;
     if (!s->judge)
         return vb_error(ctx, VB_EDEVICE, NULL, 0, "%s", s->judge_err);
-    return vbg_judge_run(ctx, s->judge, f, q, n, verdict);
+    int rc = vbg_judge_run(ctx, s->judge, f, q, n, verdict);
+    be->judge_bytes_peak = vbg_judge_bytes_peak(s->judge);
+    return rc;
 }
 
 /* Opens the certification filter beside the cover (its program is built
@@ -539,62 +696,50 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
     t0->wg = t1->wg = s->wg;
     t0->budget = s->wg ? budget : 0u;
     th->k = s->k_item;
-    cl_device_id dev = vbg_runtime_device(rt);
-    cl_ulong mem = 0;
     cl_uint units = 1;
     if (rc == VB_OK)
         rc = vbg_check(ctx,
-                       clGetDeviceInfo(dev, CL_DEVICE_GLOBAL_MEM_SIZE, sizeof mem, &mem, NULL),
-                       "clGetDeviceInfo");
-    if (rc == VB_OK)
-        rc = vbg_check(ctx,
-                       clGetDeviceInfo(dev, CL_DEVICE_MAX_COMPUTE_UNITS, sizeof units, &units,
-                                       NULL),
+                       clGetDeviceInfo(vbg_runtime_device(rt), CL_DEVICE_MAX_COMPUTE_UNITS,
+                                       sizeof units, &units, NULL),
                        "clGetDeviceInfo");
     if (rc != VB_OK) {
         cov_close(be);
         return rc;
     }
-    /* Slices: as many as keep the device busy, the first tier within an
-     * eighth of its memory and the second within a sixteenth; a CPU device
-     * gets no second tier (its cells are as cheap on the host). A CPU
-     * device's "global memory" is all of host RAM: there the first tier
-     * stays within the device layer's budget (vbg_runtime_memory_budget). */
+    /* Slices wanted: as many as keep the device busy; each run makes as
+     * many of them as its cells use and its budget holds (budget_split,
+     * tier_grow). A CPU device gets no large tier (its cells are as cheap
+     * on the host). */
+    s->budget = vbg_runtime_memory_budget(rt);
     size_t want = s->wg ? (size_t)units * 16
                         : (vbg_runtime_is_gpu(rt) ? (size_t)units * 512 : (size_t)units * 64);
-    size_t room = vbg_runtime_is_gpu(rt) ? (size_t)(mem / 8) : vbg_runtime_memory_budget(rt);
-    size_t fit = room / tier_bytes(t0);
-    want = want < fit ? want : fit;
-    /* Work-items come in groups of 64 (cov_run), fewer only when the room
-     * holds fewer slices (a small device budget): then one group of them. */
+    /* Work-items come in groups of 64 (cov_run). */
     if (!s->wg && want >= 64)
         want = want / 64 * 64;
-    if (want < 1)
-        want = 1;
     /* VORBALL_COVER_SLICES overrides the count (measurements). */
     const char *ws = getenv("VORBALL_COVER_SLICES");
     if (ws && atol(ws) > 0)
         want = (size_t)atol(ws);
-    t0->slices = want;
+    t0->want = want;
     if (s->wg) {
-        size_t w2 = (size_t)units * 4, fit2 = (size_t)(mem / 16) / tier_bytes(t1);
-        t1->slices = w2 < fit2 ? w2 : fit2;
+        t1->want = (size_t)units * 4;
         /* The hand-off tier: work-items as for the work-item kernel on a
-         * GPU, within a sixteenth of the memory, in groups of 64. */
-        size_t wh = (size_t)units * 512, fith = (size_t)(mem / 16) / tier_bytes(th);
-        wh = wh < fith ? wh : fith;
-        th->slices_max = wh >= 64 ? wh / 64 * 64 : wh;
-        if (th->slices_max == 0 && !to_host)
-            t0->budget = 0; /* no room for it: no hand-off */
+         * GPU, in groups of 64. */
+        th->want = (size_t)units * 512;
     }
-    /* Test knobs: VORBALL_COVER_NB shrinks the first tier's records (so that
-     * cells overflow), VORBALL_COVER_TIER2 sets the second tier's slices
-     * (also on CPU devices, to test the split into root-patch tasks). */
+    /* Test knobs: VORBALL_COVER_NB and VORBALL_COVER_LAB set the first
+     * tier's records and labels (so that cells overflow; or smaller slices
+     * for measurements of memory against speed), VORBALL_COVER_TIER2 the
+     * second tier's slices (also on CPU devices, to test the split into
+     * root-patch tasks). */
     const char *knb = getenv("VORBALL_COVER_NB"), *kt2 = getenv("VORBALL_COVER_TIER2");
+    const char *klab = getenv("VORBALL_COVER_LAB");
     if (knb && atol(knb) > 0)
         t0->nb_cap = (uint32_t)atol(knb);
+    if (klab && atol(klab) > 0)
+        t0->lab_cap = (uint32_t)atol(klab);
     if (kt2 && atol(kt2) >= 0)
-        t1->slices = (size_t)atol(kt2);
+        t1->want = (size_t)atol(kt2);
     be->name = "opencl";
     snprintf(be->device, sizeof be->device, "%s", vbg_runtime_device_name(rt));
     be->batch_cells = vbg_runtime_is_gpu(rt) ? 1u << 18 : 1u << 14;

@@ -8,6 +8,11 @@
 #define VBQ_SQ __local
 #endif
 #define VBQ_GROUP_ONLY
+/* Combination dominance's champions: one set per group in local memory,
+ * made by lane 0, read by every lane (not 488 private bytes per lane). */
+#ifndef VBQ_CH
+#define VBQ_CH __local
+#endif
 #include "vb_cover_shared.h"
 
 /* A cell whose quadruples did not fit the output array. */
@@ -166,6 +171,7 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
     WG_SHARED uint sh[S_N];
     WG_SHARED uint dom[VBQ_DOM_MAX];
     WG_SHARED vbq_frame cur;
+    WG_SHARED vbq_champ chs;
     WG_SHARED vbq_sub subs[VBQ_NSUB];
     uint lane = get_local_id(0);
     size_t g = get_group_id(0);
@@ -362,28 +368,36 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
             barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
             evals += (double)fr.len;
             uint keep = sh[S_LEN], owned = sh[S_OWNED];
-            /* Combination dominance (vbq_combo_shared.h): every lane makes
-             * the same champions, each tests its labels and marks the
-             * beaten ones (top bit: labels index nb, far below 2^31), lane 0
-             * compacts. */
+            /* Combination dominance (vbq_combo_shared.h): lane 0 makes the
+             * champions in local memory, every lane tests its labels and
+             * marks the beaten ones (top bit: labels index nb, far below
+             * 2^31), lane 0 compacts. */
             uint tried = vbq_combo_due(&fr, closed, keep, owned);
             uint list_tried = tried || (fr.combo && keep == fr.len);
-            vbq_champ ch;
-            ch.round = tried ? 0u : VBQ_CHAMP_ROUNDS;
+            uint round = tried ? 0u : VBQ_CHAMP_ROUNDS;
             /* tried is the same on every lane (fr, keep, owned are shared) */
             if (tried && !vbq_combo_may_go(LO, wg_max(hm, red)))
-                ch.round = VBQ_CHAMP_ROUNDS;
-            ch.n = 0u;
-            while (keep > VBQ_DOM_MAX && owned >= 3u && ch.round < VBQ_CHAMP_ROUNDS) {
-                vbq_champ_make(nb, lab + top, keep, mm, hh, &ch);
-                ch.round++;
-                /* every lane has read the list before any marks it */
+                round = VBQ_CHAMP_ROUNDS;
+            /* every lane has left the last round's champions (barriers
+             * since); only lane 0 writes them */
+            if (lane == 0u) {
+                chs.round = 0u;
+                chs.n = 0u;
+            }
+            while (keep > VBQ_DOM_MAX && owned >= 3u && round < VBQ_CHAMP_ROUNDS) {
+                if (lane == 0u) {
+                    vbq_champ_make(nb, lab + top, keep, mm, hh, &chs);
+                    chs.round++;
+                }
+                round++;
+                /* the champions are made and lane 0 has read the list
+                 * before any lane marks it */
                 barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
-                if (!vbq_combo_go(&ch, LO))
+                if (!vbq_combo_go(&chs, LO))
                     break;
                 for (uint a = lane; a < keep; a += WG) {
                     vbq_nb nj = nb[lab[top + a]];
-                    if (vbq_combo_beaten(&ch, &nj, mm, hh, LO))
+                    if (vbq_combo_beaten(&chs, &nj, mm, hh, LO))
                         lab[top + a] |= 0x80000000u;
                 }
                 barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);

@@ -3,48 +3,47 @@
  * include launch overhead. Every host-to-device write is blocking: a batch
  * that fails part way returns with nothing queued that still reads host
  * memory its caller is about to free (a queued upload of freed batch
- * buffers crashed `vertices` when a later call failed). */
+ * buffers crashed `vertices` when a later call failed).
+ *
+ * Device buffers (each made 1/4 larger than asked, kept and grown between
+ * batches, counted by a meter: vbg_buffer.h, --stats device_bytes_peak), for
+ * a part of B bases with S samples a side: the bases, their bisectors and
+ * tile lists (part_bytes), the ray colours 4 x 6 S^2 B, the parameters, and
+ * the candidates (sizeof(vbs_cand) each, first 2^16, grown to what a part
+ * found): the inputs of a part within half the device layer's budget (a
+ * part over it is halved), the candidates within the other half (a part
+ * that finds more is halved and run again). */
 #include <stdlib.h>
 #include <string.h>
 
 #include "vb_parallel.h"
+#include "vbg_buffer.h"
 #include "vbg_sampler.h"
-
-typedef struct ocl_buf {
-    cl_mem mem;
-    size_t size;
-} ocl_buf;
 
 typedef struct ocl_state {
     vbg_runtime *rt;
     cl_kernel env, vert;
-    ocl_buf bases, bis, off, idx, colours, params, cand, counters;
+    vbg_buf bases, bis, off, idx, colours, params, cand, counters;
     vbs_cand *host_cand;
     size_t host_cap;
     size_t cand_cap;          /* candidate slots on the device */
     size_t budget;            /* device bytes a batch may hold (vbg_runtime_memory_budget) */
+    vbg_meter meter;          /* device bytes held now and at most */
 } ocl_state;
 
 /* A part of a batch whose candidates would not fit the budget: split it. */
 #define OCL_SPLIT (-1)
 
-/* Makes sure buffer b holds `need` bytes (keeps the old one when it does). */
-static int ensure(vb_ctx *ctx, ocl_state *st, ocl_buf *b, size_t need, cl_mem_flags flags)
+/* Makes sure buffer b holds `need` bytes (keeps the old one when it does;
+ * a new one gets a quarter of slack). */
+static int ensure(vb_ctx *ctx, ocl_state *st, vbg_buf *b, size_t need, cl_mem_flags flags)
 {
-    if (need == 0)
-        need = 16;
     if (b->mem && b->size >= need)
         return VB_OK;
-    if (b->mem)
-        clReleaseMemObject(b->mem);
-    size_t sz = need + need / 4;
-    cl_int err;
-    b->mem = clCreateBuffer(vbg_runtime_context(st->rt), flags, sz, NULL, &err);
-    b->size = b->mem ? sz : 0;
-    return vbg_check(ctx, err, "clCreateBuffer");
+    return vbg_buf_ensure(ctx, st->rt, &st->meter, b, need + need / 4, flags);
 }
 
-static int buf_write(vb_ctx *ctx, ocl_state *st, ocl_buf *b, const void *src, size_t n)
+static int buf_write(vb_ctx *ctx, ocl_state *st, vbg_buf *b, const void *src, size_t n)
 {
     if (ensure(ctx, st, b, n, CL_MEM_READ_ONLY))
         return VB_EDEVICE;
@@ -260,28 +259,24 @@ static int run_range(vb_ctx *ctx, vb_sampler_backend *be, const vb_sampler_batch
 static int ocl_run_batch(vb_ctx *ctx, vb_sampler_backend *be, const vb_sampler_batch *b,
                          vb_sampler_batch_out *out)
 {
-    return b->nbases ? run_range(ctx, be, b, 0, b->nbases, out) : VB_OK;
-}
-
-static void release(ocl_buf *b)
-{
-    if (b->mem)
-        clReleaseMemObject(b->mem);
-    b->mem = NULL;
+    ocl_state *st = be->state;
+    int rc = b->nbases ? run_range(ctx, be, b, 0, b->nbases, out) : VB_OK;
+    be->device_bytes_peak = st->meter.peak;
+    return rc;
 }
 
 static void ocl_close(vb_sampler_backend *be)
 {
     ocl_state *st = be->state;
     if (st) {
-        release(&st->bases);
-        release(&st->bis);
-        release(&st->off);
-        release(&st->idx);
-        release(&st->colours);
-        release(&st->params);
-        release(&st->cand);
-        release(&st->counters);
+        vbg_buf_release(&st->meter, &st->bases);
+        vbg_buf_release(&st->meter, &st->bis);
+        vbg_buf_release(&st->meter, &st->off);
+        vbg_buf_release(&st->meter, &st->idx);
+        vbg_buf_release(&st->meter, &st->colours);
+        vbg_buf_release(&st->meter, &st->params);
+        vbg_buf_release(&st->meter, &st->cand);
+        vbg_buf_release(&st->meter, &st->counters);
         if (st->env)
             clReleaseKernel(st->env);
         if (st->vert)

@@ -14,6 +14,9 @@ typedef struct vbg_judge vbg_judge;
  * reason (the build log) in ctx. Close with vbg_judge_close. */
 int vbg_judge_open(vb_ctx *ctx, vbg_runtime *rt, vbg_judge **out);
 
+/* The most bytes of device buffers the judge held at once (0 for NULL). */
+size_t vbg_judge_bytes_peak(const vbg_judge *j);
+
 /* Frees the judge and its device buffers; NULL is allowed. */
 void vbg_judge_close(vbg_judge *j);
 

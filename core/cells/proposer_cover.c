@@ -181,6 +181,9 @@ static int cover_run(vb_ctx *ctx, void *state, const vb_proposer_await *aw,
     res->cover_host_cells = st.host_cells;
     res->cover_handed_cells = st.handed_cells;
     res->t_cover_device = st.t_device;
+    /* The filter's buffers beside the cover's: at most their sum at once. */
+    res->device_bytes_peak =
+        s->be ? s->be->device_bytes_peak + (on ? s->be->judge_bytes_peak : 0) : 0;
     res->times.envelope += st.t_host;
     return VB_OK;
 }

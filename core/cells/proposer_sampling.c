@@ -48,7 +48,12 @@ static int sampling_run(vb_ctx *ctx, void *state, const vb_proposer_await *aw,
         if (!o.batch_rays)
             o.batch_rays = vb_sampler_batch_rays(aw->kind != VB_DEVICE_CPU);
     }
-    return vb_sampler_run(ctx, set, &o, state, res);
+    int rc = vb_sampler_run(ctx, set, &o, state, res);
+    const vb_sampler_backend *be = state                       ? state
+                                   : backend_ready((void *)aw) ? await_backend((void *)aw)
+                                                               : NULL;
+    res->device_bytes_peak = rc == VB_OK && be ? be->device_bytes_peak : 0;
+    return rc;
 }
 
 static const char *sampling_backend(const void *state)

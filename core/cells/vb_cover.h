@@ -104,6 +104,10 @@ struct vb_cover_backend {
     size_t batch_cells;      /* cells per run call */
     uint64_t handed_cells;   /* cells the runs' group kernel left, past its step budget,
                                 to the device's work-item kernel (a running count) */
+    uint64_t device_bytes_peak; /* the most bytes of device buffers the last run (begin
+                                   and its runs) held at once */
+    uint64_t judge_bytes_peak;  /* the same for the certification filter's buffers (judge;
+                                   written by the judge's calls only) */
     void *state;
     /* Uploads the input shared by every cell (env's arrays, n spheres) for
      * the runs that follow. VB_OK, VB_ENOMEM or VB_EDEVICE (message in ctx). */

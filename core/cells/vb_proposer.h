@@ -124,6 +124,8 @@ typedef struct vb_proposal {
     double t_cover_device;        /* seconds in the cover's device batches */
     double t_cert_filter;         /* seconds judging the quadruples (vb_cert_filter.h),
                                      summed over the parts */
+    uint64_t device_bytes_peak;   /* the most bytes of device buffers the proposer's
+                                     backend held at once (0 on host threads) */
 } vb_proposal;
 
 /* Zeroes r (an empty candidate list). */

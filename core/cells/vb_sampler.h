@@ -97,6 +97,7 @@ struct vb_sampler_backend {
     const char *name;        /* "ref", "opencl" */
     char device[160];        /* human-readable device */
     unsigned batch_rays;     /* preferred rays per batch */
+    uint64_t device_bytes_peak; /* the most bytes of device buffers held at once so far */
     void *state;
     /* Runs envelope (Sec. 3.3) and vertices (Sec. 4-5) for one batch.
      * Returns VB_OK, VB_ENOMEM or VB_EDEVICE (message in ctx). */

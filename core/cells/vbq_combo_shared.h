@@ -46,6 +46,11 @@
 #define VBQ_COMBO_FLAT 1e-3
 /* Patches with more surviving labels than VBQ_DOM_MAX try combinations. */
 
+/* The address space of the champions the group kernel keeps in local memory
+ * (one set per group, made by lane 0); private elsewhere. */
+#ifndef VBQ_CH
+#define VBQ_CH
+#endif
 typedef struct vbq_champ {
     vbq_nb rec[VBQ_CHAMP];
     double hi[VBQ_CHAMP];
@@ -58,7 +63,7 @@ typedef struct vbq_champ {
  * VBQ_CHAMP with the largest upper ends hi (vbq_eval), ties to the smaller
  * id; labels with an infinite error bound are never champions. */
 VBS_FN void vbq_champ_make(const VBS_GLOBAL vbq_nb *nb, const VBS_GLOBAL vbs_u32 *lab,
-                           vbs_u32 keep, const double m[3], const double h[3], vbq_champ *c)
+                           vbs_u32 keep, const double m[3], const double h[3], VBQ_CH vbq_champ *c)
 {
     /* Round 0 or the band after the previous round's last champion. */
     int after = c->round > 0u && c->n > 0u;
@@ -91,7 +96,7 @@ VBS_FN void vbq_champ_make(const VBS_GLOBAL vbq_nb *nb, const VBS_GLOBAL vbs_u32
             c->n++;
     }
     for (vbs_u32 q = 0u; q < c->n; q++) {
-        const vbq_nb *r = &c->rec[q];
+        const VBQ_CH vbq_nb *r = &c->rec[q];
         c->w[q][0] = r->ay * m[2] - r->az * m[1];
         c->w[q][1] = r->az * m[0] - r->ax * m[2];
         c->w[q][2] = r->ax * m[1] - r->ay * m[0];
@@ -101,7 +106,7 @@ VBS_FN void vbq_champ_make(const VBS_GLOBAL vbq_nb *nb, const VBS_GLOBAL vbs_u32
 /* Is label nj beaten all over the patch (m, h) by a weighted sum of two
  * champions and LO (the argument at the top of this file)? 1 only when the
  * enclosure proves it. */
-VBS_FN int vbq_combo_beaten(const vbq_champ *c, const vbq_nb *nj, const double m[3],
+VBS_FN int vbq_combo_beaten(const VBQ_CH vbq_champ *c, const vbq_nb *nj, const double m[3],
                             const double h[3], double LO)
 {
     if (!(nj->err < (double)INFINITY))
@@ -118,7 +123,7 @@ VBS_FN int vbq_combo_beaten(const vbq_champ *c, const vbq_nb *nj, const double m
     vbs_u32 kk = 0u, kl = 0u;
     for (vbs_u32 k = 0u; k < c->n; k++)
         for (vbs_u32 l = k + 1u; l < c->n; l++) {
-            const vbq_nb *rk = &c->rec[k];
+            const VBQ_CH vbq_nb *rk = &c->rec[k];
             double D = (rk->ax * c->w[l][0] + rk->ay * c->w[l][1]) + rk->az * c->w[l][2];
             if (D == 0.0)
                 continue;
@@ -142,7 +147,7 @@ VBS_FN int vbq_combo_beaten(const vbq_champ *c, const vbq_nb *nj, const double m
         return 0;
     double mu = (1.0 - best) - 4e-16;
     mu = mu > 0.0 ? mu : 0.0;
-    const vbq_nb *rk = &c->rec[kk], *rl = &c->rec[kl];
+    const VBQ_CH vbq_nb *rk = &c->rec[kk], *rl = &c->rec[kl];
     vbq_nb s;
     s.ax = bk * rk->ax + bl * rl->ax;
     s.ay = bk * rk->ay + bl * rl->ay;
@@ -189,7 +194,7 @@ VBS_FN int vbq_combo_may_go(double LO, double hm)
  * VBQ_COMBO_FLAT of the best champion's upper end (the labels nearly tie
  * at a point of the patch, where LO stays tiny; elsewhere hi_j < LO has
  * already dropped what combinations would). Speed only. */
-VBS_FN int vbq_combo_go(const vbq_champ *c, double LO)
+VBS_FN int vbq_combo_go(const VBQ_CH vbq_champ *c, double LO)
 {
     return c->n >= 2u && LO < VBQ_COMBO_FLAT * c->hi[0];
 }

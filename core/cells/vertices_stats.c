@@ -38,6 +38,9 @@ void vb_vertices_write_stats(vb_ctx *ctx, FILE *f, const vb_vertices_result *r)
             (unsigned long long)s->cover_cells, (unsigned long long)s->cover_patches,
             (unsigned long long)s->cover_host_cells, (unsigned long long)s->cover_handed_cells,
             (unsigned long long)s->cover_quads);
+    /* The device buffers the proposer held at once (vbg_buffer.h; 0 on the
+     * host), without what the OpenCL driver keeps for itself. */
+    fprintf(f, "device_bytes_peak\t%llu\n", (unsigned long long)s->device_bytes_peak);
     /* The certification beside the proposer (timings: they vary run to
      * run): parts certified while the cover went on, the seconds of that
      * overlap, and the seconds certification took after the proposer. */

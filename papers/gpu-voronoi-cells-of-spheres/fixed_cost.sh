@@ -7,7 +7,9 @@
 # usage: fixed_cost.sh VORBALL OUTDIR REPEAT PROTEIN [INPUT...]
 # OUTDIR/fixed_cost.tsv: input, device, best and median wall seconds, the
 # backend --stats names; OUTDIR/gpu_memory.tsv: input, atoms, peak MiB used
-# by the process on the GPU (0 when nvidia-smi saw none).
+# by the process on the GPU (0 when nvidia-smi saw none) and the MiB of device
+# buffers vorball counted (--stats device_bytes_peak; without the driver's own
+# context). VORBALL_DEVICE_MEMORY_MIB in the environment caps the budget.
 set -u
 [ $# -ge 4 ] || { sed -n '2,/^set -u/p' "$0" | sed '$d;s/^# \{0,1\}//'; exit 2; }
 vorball=$1 out=$2 repeat=$3 protein=$4
@@ -31,9 +33,10 @@ for dev in auto gpu ref; do
         '{v[NR] = $1} END {printf "%s\t%s\t%.4f\t%.4f\t%s\n", f, d, v[1], v[int((NR + 1) / 2)], b}' \
         >> "$out/fixed_cost.tsv"
 done
-printf 'input\tatoms\tpeak_gpu_mib\n' > "$out/gpu_memory.tsv"
+printf 'input\tatoms\tpeak_gpu_mib\tdevice_bytes_peak_mib\n' > "$out/gpu_memory.tsv"
 for in in "$protein" "$@"; do
-    "$vorball" vertices --quiet --device gpu --atoms "$out/mem.atoms" "$in" -o "$out/mem.tsv" 2> /dev/null &
+    "$vorball" vertices --quiet --stats --device gpu --atoms "$out/mem.atoms" "$in" \
+        -o "$out/mem.tsv" 2> "$out/mem.err" &
     pid=$!
     peak=0
     while kill -0 "$pid" 2> /dev/null; do
@@ -44,7 +47,8 @@ for in in "$protein" "$@"; do
     done
     wait "$pid"
     atoms=$(sed -n 's/^# vorball atoms: .*, \([0-9]*\) spheres$/\1/p' "$out/mem.atoms")
-    printf '%s\t%s\t%s\n' "$(basename "$in")" "$atoms" "$peak" >> "$out/gpu_memory.tsv"
+    counted=$(awk -F'\t' '$1 == "device_bytes_peak" {printf "%.1f", $2 / 1048576}' "$out/mem.err")
+    printf '%s\t%s\t%s\t%s\n' "$(basename "$in")" "$atoms" "$peak" "$counted" >> "$out/gpu_memory.tsv"
 done
-rm -f "$out/times" "$out/mem.tsv" "$out/mem.atoms" "$out"/*.err
+rm -f "$out/times" "$out/mem.tsv" "$out/mem.atoms" "$out/mem.err" "$out"/*.err
 cat "$out/fixed_cost.tsv" "$out/gpu_memory.tsv"

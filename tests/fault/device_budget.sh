@@ -6,6 +6,13 @@
 # clCreateBuffer. With "peak" as 5th argument (label long): on 3pqr (5352
 # atoms) the default device (PoCL) peaks within 1.2 times the resident memory
 # of --device cpu (it took 1.5 times: batches sized for a GPU).
+# The cover's buffers (issue 30): --stats device_bytes_peak stays within the
+# budget; cells forced out of the first tier (VORBALL_COVER_NB=64) in batches
+# of 100 cells go, as root-patch tasks in launches that the budget splits, to
+# the large tier made on demand within 16 MiB, and to the host within 1 MiB
+# (no room for a large slice): same bytes as --device ref either way; bench's
+# runs each report their own peak. A budget
+# that cannot hold the input stops with E142 (exit 46) and writes no file.
 # usage: device_budget.sh VORBALL SHIM CORPUS_DIR WORK_DIR [peak]
 vorball=$1 shim=$2 corpus=$3 work=$4/device_budget
 here=$(cd "$(dirname "$0")" && pwd)
@@ -41,4 +48,40 @@ for mib in 1 4; do
     [ "$max" -le $((mib << 20)) ] || fail "a device buffer of $max bytes, budget $mib MiB"
     echo "budget $mib MiB: largest device buffer $max bytes"
 done
+stat() { awk -F'\t' -v k="$1" '$1 == k { print $2 }' "$2"; }
+for mib in 16 1; do
+    rm -f "$work/o.tsv"
+    VORBALL_DEVICE_MEMORY_MIB=$mib VORBALL_COVER_NB=64 VORBALL_COVER_TIER2=64 VORBALL_COVER_BATCH=100 \
+        "$vorball" vertices --stats "$in" -o "$work/o.tsv" > "$work/o.err" 2>&1 ||
+        { cat "$work/o.err" >&2; fail "the forced overflow with $mib MiB failed"; }
+    grep -Eq 'W7[0-9]{2}' "$work/o.err" && { cat "$work/o.err" >&2; fail "a warning at $mib MiB"; }
+    cmp -s "$work/o.tsv" "$work/ref.tsv" || fail "the forced overflow at $mib MiB changed the vertices"
+    peak=$(stat device_bytes_peak "$work/o.err") host=$(stat cover_host_cells "$work/o.err")
+    [ -n "$peak" ] && [ "$peak" -gt 0 ] && [ "$peak" -le $((mib << 20)) ] ||
+        fail "device_bytes_peak '$peak' at a budget of $mib MiB"
+    eval "host_$mib=$host"
+    echo "forced overflow, budget $mib MiB: device_bytes_peak $peak, cells on the host $host"
+done
+[ "$host_16" -lt "$host_1" ] || fail "the large tier took no cell at 16 MiB ($host_16 against $host_1)"
+# bench keeps the device open: a run of another input starts without the
+# buffers of the one before, so its device_bytes_peak is its own (the device
+# takes every cell, VORBALL_COVER_HOST_BACK=0, so that the launches repeat).
+peak_of() {
+    VORBALL_COVER_HOST_BACK=0 VORBALL_COVER_NB=64 VORBALL_COVER_TIER2=64 \
+        "$vorball" bench --json "$@" 2> /dev/null |
+        sed -n 's/.*"input": "1crn.pdb".*"device_bytes_peak": \([0-9]*\).*/\1/p'
+}
+alone=$(peak_of "$in") after=$(peak_of "$corpus/data/1crn_apbs.pqr" "$in")
+[ -n "$alone" ] && [ "$alone" = "$after" ] ||
+    fail "1crn's device_bytes_peak in bench: '$alone' alone, '$after' after 1crn_apbs"
+echo "bench: 1crn's device_bytes_peak $alone alone and after 1crn_apbs"
+awk 'BEGIN { srand(7); for (i = 0; i < 40000; i++)
+    printf "%.3f %.3f %.3f 1.5\n", rand() * 120, rand() * 120, rand() * 120 }' > "$work/big.xyzr"
+rm -f "$work/big.tsv"
+VORBALL_DEVICE_MEMORY_MIB=1 "$vorball" vertices "$work/big.xyzr" -o "$work/big.tsv" \
+    > "$work/big.err" 2>&1
+code=$?
+[ "$code" -eq 46 ] && grep -q 'E142: the cover of 40000 spheres needs at least' "$work/big.err" ||
+    { cat "$work/big.err" >&2; fail "a budget below the input exited $code, not E142"; }
+[ -e "$work/big.tsv" ] && fail "E142 left an output file"
 echo "ok: device buffers within the budget"

@@ -388,11 +388,12 @@ int main(void)
                            "corpus/inputs/contained_sphere.xyzr",
                            "corpus/inputs/bisectors_no_meet.xyzr",
                            "corpus/inputs/jittered_lattice.xyzr",
+                           "corpus/inputs/jittered_fcc.xyzr",
                            "corpus/inputs/crambin_fragment.xyzr"};
     char path[4096];
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         snprintf(path, sizeof path, "%s/%s", src, cases[k]);
-        one(ctx, path, have_device, k < 6);
+        one(ctx, path, have_device, k < 7); /* jittered_fcc: combination dominance */
     }
     vb_close(ctx);
     VB_TEST_END();

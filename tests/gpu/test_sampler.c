@@ -104,7 +104,7 @@ static int slow_run(vb_ctx *ctx, vb_sampler_backend *be, const vb_sampler_batch 
     return slow_of->ref->run_batch(ctx, slow_of->ref, b, out);
 }
 
-static vb_sampler_backend slow_be = {"slow", "slow", 0, NULL, slow_run, NULL};
+static vb_sampler_backend slow_be = {"slow", "slow", 0, 0, NULL, slow_run, NULL};
 
 static vb_sampler_backend *slow_await(void *user)
 {

@@ -104,6 +104,13 @@ fcc_hull_ties)
     # octahedral holes (degree 6) inside, ties of five on the flat hull
     awk_check '{ d[n]++ } END { exit !(d[4] == 39 && d[5] == 12 && d[6] == 4 && NR == 55) }' \
         "39 vertices of degree 4, 12 of degree 5, 4 of degree 6 expected" ;;
+jittered_fcc)
+    # every degree-6 octahedral hole (t = a/2 - r = 0.525) splits into four
+    # simple vertices 1e-9 apart: where combination dominance acts
+    awk_check 'n != 4 { bad++ } { k = sprintf("%.4f %.4f %.4f", $2, $3, $4); c[k]++; t[k] = $5 }
+               END { for (k in c) if (c[k] == 4 && t[k] > 0.5249 && t[k] < 0.5251) four++
+                     exit !(bad == 0 && four == 32 && NR == 518) }' \
+        "518 vertices of degree 4, 32 octahedral holes split four ways, expected" ;;
 near_cospherical)
     # twelve balls within 1e-6 of tangent to one sphere: simple vertices crowded at its centre
     awk_check 'n == 4 { dx = $2 - 1.5; dy = $3 + 2; dz = $4 - 0.5; dt = $5 - 8

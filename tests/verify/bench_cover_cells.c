@@ -50,6 +50,7 @@ typedef struct handoff {
     vbq_arena ar;              /* the work-item's arenas, no scratch */
     size_t cells, tasks, failed_cells, status[8];
     uint32_t largest_cell, largest_task;
+    uint32_t task_nnb, task_lab; /* the largest task's records: neighbours, labels */
 } handoff;
 
 static void handoff_cell(const vbq_env *env, handoff *h, uint32_t i, uint32_t patches)
@@ -64,8 +65,30 @@ static void handoff_cell(const vbq_env *env, handoff *h, uint32_t i, uint32_t pa
         h->status[t.status & 7u]++;
         bad |= t.status != VBQ_OK;
         h->largest_task = t.patches > h->largest_task ? t.patches : h->largest_task;
+        if (t.status == VBQ_OK) {
+            h->task_nnb = t.nnb > h->task_nnb ? t.nnb : h->task_nnb;
+            h->task_lab = t.lab_hw > h->task_lab ? t.lab_hw : h->task_lab;
+        }
     }
     h->failed_cells += (size_t)bad;
+}
+
+/* Prints the spread of one per-cell record count (sorts v): median,
+ * 99th and 99.9th percentiles, largest, cells over 2048 and over 8192 (the
+ * GPU arenas' sizes, gpu/cover_ocl.c). */
+static void spread(const char *input, const char *what, uint32_t *v, uint32_t n)
+{
+    if (!n)
+        return;
+    qsort(v, n, sizeof *v, cmp_u32);
+    uint32_t o2 = 0, o8 = 0;
+    for (uint32_t k = 0; k < n; k++) {
+        o2 += v[k] > 2048u;
+        o8 += v[k] > 8192u;
+    }
+    printf("%s\t%s per cell\tmedian %u\tp99 %u\tp99.9 %u\tmax %u\tover 2048/8192 %u/%u cells\n",
+           input, what, v[n / 2], v[(size_t)n * 99 / 100], v[(size_t)n * 999 / 1000], v[n - 1], o2,
+           o8);
 }
 
 int main(int argc, char **argv)
@@ -120,7 +143,9 @@ int main(int argc, char **argv)
     sums s[2];
     memset(s, 0, sizeof s);
     uint32_t *per = calloc(set->n ? set->n : 1, sizeof *per), np = 0;
-    if (!per)
+    uint32_t *nnb = calloc(set->n ? set->n : 1, sizeof *nnb);
+    uint32_t *lab = calloc(set->n ? set->n : 1, sizeof *lab);
+    if (!per || !nnb || !lab)
         return 1;
     for (uint32_t i = 0; i < set->n; i++) {
         if (set->contained[i])
@@ -144,6 +169,8 @@ int main(int argc, char **argv)
         s[b].cpu += thread_cpu() - t0;
         s[b].cells++;
         s[b].patches += out.patches;
+        nnb[np] = out.nnb;
+        lab[np] = out.lab_hw;
         per[np++] = out.patches;
         s[b].evals += 1000.0 * out.evals_k;
         s[b].nb += out.nnb;
@@ -173,7 +200,13 @@ int main(int argc, char **argv)
                argv[1], per[np / 2], per[np * 99 / 100], per[(size_t)np * 999 / 1000], per[np - 1],
                over[0], over[1], over[2], 100 * over_p[0] / all, 100 * over_p[1] / all,
                100 * over_p[2] / all);
+    /* The records a cell holds (neighbours, label high-water mark): what
+     * the device's arena slices are sized from. */
+    spread(argv[1], "neighbour records", nnb, np);
+    spread(argv[1], "labels (high water)", lab, np);
     if (h.budget) {
+        printf("%s\thand-off\tlargest task: %u neighbour records, %u labels\n", argv[1],
+               h.task_nnb, h.task_lab);
         printf("%s\thand-off\tbudget %u\tarenas %s/%s/%s\thanded %zu cells (largest %u patches)\t"
                "%zu tasks, largest %u patches\tran out: nb %zu, lab %zu, st %zu, q %zu (%zu cells)\n",
                argv[1], h.budget, argv[4], argv[5], argv[6], h.cells, h.largest_cell, h.tasks,
@@ -183,6 +216,8 @@ int main(int argc, char **argv)
         vbq_arena_free(&h.ar);
     }
     free(per);
+    free(nnb);
+    free(lab);
     vbq_arena_free(&ar);
     vb_cover_tree_free(tree);
     vb_spheres_free(set);
