@@ -3,6 +3,7 @@
 
 #include "vbg_buffer.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -134,4 +135,52 @@ int vbg_judge_run(vb_ctx *ctx, vbg_judge *j, const vb_cert_filter *f, const uint
                                                 NULL, NULL),
                        "clEnqueueReadBuffer (verdicts)");
     return rc;
+}
+
+/* What a cover backend holds of its judge. */
+typedef struct judge_slot {
+    vbg_judge *j;   /* NULL: err says why */
+    char err[256];
+} judge_slot;
+
+static int cover_judge(vb_ctx *ctx, vb_cover_backend *be, const vb_cert_filter *f,
+                       const uint32_t (*q)[4], size_t n, uint8_t *verdict)
+{
+    judge_slot *js = be->judge_state;
+    if (!js->j)
+        return vb_error(ctx, VB_EDEVICE, NULL, 0, "%s", js->err);
+    int rc = vbg_judge_run(ctx, js->j, f, q, n, verdict);
+    be->judge_bytes_peak = vbg_judge_bytes_peak(js->j);
+    return rc;
+}
+
+/* vb_cover_backend.judge_close. */
+static void judge_detach(vb_cover_backend *be)
+{
+    judge_slot *js = be->judge_state;
+    if (js)
+        vbg_judge_close(js->j);
+    free(js);
+    be->judge_state = NULL;
+    be->judge = NULL;
+    be->judge_close = NULL;
+}
+
+void vbg_judge_attach(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend *be)
+{
+    int mode = vb_cert_filter_mode();
+    if (!(mode == 1 || (mode < 0 && vbg_runtime_is_gpu(rt))))
+        return;
+    judge_slot *js = calloc(1, sizeof *js);
+    vb_ctx *tctx = NULL;
+    if (!js || vb_open_worker(&tctx, ctx) != VB_OK) {
+        free(js);
+        return;
+    }
+    if (vbg_judge_open(tctx, rt, &js->j) != VB_OK)
+        snprintf(js->err, sizeof js->err, "%s", vb_errmsg(tctx));
+    vb_close(tctx);
+    be->judge_state = js;
+    be->judge = cover_judge;
+    be->judge_close = judge_detach;
 }

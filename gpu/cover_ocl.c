@@ -36,7 +36,6 @@
 #include "vbg_buffer.h"
 #include "vbg_cover.h"
 #include "vbg_cover_tasks.h"
-#include "vbg_judge.h"
 
 /* A cell whose quadruples did not fit the output array (cover*.cl). */
 #define COV_OVER_OUT 5u
@@ -78,8 +77,6 @@ typedef struct cov_state {
     size_t launch_room;      /* bytes of one launch's task, result and quadruple buffers */
     size_t tier_room;        /* bytes left for the large tier (and the hand-off tier) */
     size_t last_n;           /* spheres of the last run begun (trim) */
-    vbg_judge *judge;        /* the certification filter (NULL: see judge_err) */
-    char judge_err[256];     /* why it could not be opened */
 } cov_state;
 
 /* Arena capacities. The first tier fits almost every cell of the proteins
@@ -585,7 +582,6 @@ static void cov_close(vb_cover_backend *be)
         free(s->cells2);
         free(s->roots2);
         free(s->hroots);
-        vbg_judge_close(s->judge);
         free(s);
     }
     free(be);
@@ -603,36 +599,6 @@ static int kernel_get(vb_ctx *ctx, vbg_runtime *rt, const char *file, const char
         rc = vbg_check(ctx, err, name);
     }
     return rc;
-}
-
-/* vb_cover_backend.judge: the certification filter on this device. */
-static int cov_judge(vb_ctx *ctx, vb_cover_backend *be, const vb_cert_filter *f,
-                     const uint32_t (*q)[4], size_t n, uint8_t *verdict)
-{
-    cov_state *s = be->state;
-    if (!s->judge)
-        return vb_error(ctx, VB_EDEVICE, NULL, 0, "%s", s->judge_err);
-    int rc = vbg_judge_run(ctx, s->judge, f, q, n, verdict);
-    be->judge_bytes_peak = vbg_judge_bytes_peak(s->judge);
-    return rc;
-}
-
-/* Opens the certification filter beside the cover (its program is built
- * here, on the opening thread, as the runtime's program cache requires);
- * a failure is kept for cov_judge to report (W767), and the cover goes on.
- * On a GPU, or any device with VORBALL_DEVICE_CERT=1 (vb_cert_filter_mode). */
-static void judge_open(vb_ctx *ctx, vb_cover_backend *be, cov_state *s)
-{
-    int mode = vb_cert_filter_mode();
-    if (!(mode == 1 || (mode < 0 && vbg_runtime_is_gpu(s->rt))))
-        return;
-    vb_ctx *tctx = NULL;
-    if (vb_open_worker(&tctx, ctx) != VB_OK)
-        return;
-    if (vbg_judge_open(tctx, s->rt, &s->judge) != VB_OK)
-        snprintf(s->judge_err, sizeof s->judge_err, "%s", vb_errmsg(tctx));
-    vb_close(tctx);
-    be->judge = cov_judge;
 }
 
 int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
@@ -745,7 +711,6 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
     be->batch_cells = vbg_runtime_is_gpu(rt) ? 1u << 18 : 1u << 14;
     be->begin = cov_begin;
     be->run = cov_run;
-    judge_open(ctx, be, s);
     *out = be;
     return VB_OK;
 }

@@ -5,6 +5,7 @@
 #define VBG_JUDGE_H
 
 #include "vb_cert_filter.h"
+#include "vb_cover.h"
 #include "vbg_runtime.h"
 
 typedef struct vbg_judge vbg_judge;
@@ -25,5 +26,13 @@ void vbg_judge_close(vbg_judge *j);
  * Blocks until the verdicts are read back. VB_OK, VB_ENOMEM, VB_EDEVICE. */
 int vbg_judge_run(vb_ctx *ctx, vbg_judge *j, const vb_cert_filter *f, const uint32_t (*q)[4],
                   size_t n, uint8_t *verdict);
+
+/* Gives the cover backend be its judge (vb_cover_backend.judge, freed by
+ * vb_cover_backend_close through judge_close) on rt's device: on a GPU, or
+ * on any device with VORBALL_DEVICE_CERT=1 (vb_cert_filter_mode). Its
+ * program is built here, on the thread that opens the cover, as the
+ * runtime's program cache requires; a failure is kept and reported by each
+ * judge call (W767 from the proposer), and the cover goes on. Never fails. */
+void vbg_judge_attach(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend *be);
 
 #endif

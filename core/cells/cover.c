@@ -412,6 +412,8 @@ void vb_quad_list_free(vb_quad_list *l)
 
 void vb_cover_backend_close(vb_cover_backend *be)
 {
+    if (be && be->judge_close)
+        be->judge_close(be);
     if (be && be->close)
         be->close(be);
 }

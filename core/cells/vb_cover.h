@@ -127,6 +127,9 @@ struct vb_cover_backend {
      * VB_ENOMEM or VB_EDEVICE (verdict then undefined). */
     int (*judge)(vb_ctx *ctx, vb_cover_backend *be, const struct vb_cert_filter *f,
                  const uint32_t (*q)[4], size_t n, uint8_t *verdict);
+    void *judge_state;       /* the judge's own (gpu/cert_filter_ocl.c) */
+    void (*judge_close)(vb_cover_backend *be); /* NULL, or frees judge_state
+                                                  (vb_cover_backend_close) */
 };
 
 /* Closes a backend; NULL is allowed. */
