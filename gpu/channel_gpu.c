@@ -6,6 +6,7 @@
 #include "jfa_internal.h"
 #include "vb_parallel.h"
 #include "vbc_channel_gpu.h"
+#include "vbc_paths.h"
 
 struct vbc_gpu {
     vbg_runtime *rt;
@@ -116,9 +117,7 @@ static int graph_on_device(const vbc_gpu *p)
     return p->device_graph > 0 || (p->device_graph == 0 && vbg_runtime_is_gpu(p->rt));
 }
 
-/* Makes *buf hold at least `need` elements of `size` bytes, growing by half
- * again to amortise trajectories whose sizes creep up. */
-static cl_int ensure(vbc_gpu *p, cl_mem *buf, size_t *cap, size_t need, size_t size)
+cl_int vbc_gpu_buffer_fit(vbg_runtime *rt, cl_mem *buf, size_t *cap, size_t need, size_t size)
 {
     if (*buf && *cap >= need)
         return CL_SUCCESS;
@@ -126,11 +125,16 @@ static cl_int ensure(vbc_gpu *p, cl_mem *buf, size_t *cap, size_t need, size_t s
         clReleaseMemObject(*buf);
     size_t c = need + need / 2 + 16;
     cl_int err;
-    *buf = clCreateBuffer(vbg_runtime_context(p->rt), CL_MEM_READ_WRITE, c * size, NULL, &err);
+    *buf = clCreateBuffer(vbg_runtime_context(rt), CL_MEM_READ_WRITE, c * size, NULL, &err);
     *cap = err == CL_SUCCESS ? c : 0;
     if (err != CL_SUCCESS)
         *buf = NULL;
     return err;
+}
+
+static cl_int ensure(vbc_gpu *p, cl_mem *buf, size_t *cap, size_t need, size_t size)
+{
+    return vbc_gpu_buffer_fit(p->rt, buf, cap, need, size);
 }
 
 /* The classification pass: resets the counter, launches, reads the count. */
@@ -383,15 +387,25 @@ done:
 
 /* ---- the engine table (vbc_channel_pipe.h) ---- */
 
+/* The engine's state: the pipeline, and the batch sweeps when asked for. */
+typedef struct {
+    vbc_gpu *gpu;
+    vbc_paths_gpu *paths;
+} engine_state;
+
 static int engine_frame(vb_ctx *ctx, vbc_engine *e, const vbc_grid *g, const float *atoms4,
                         size_t natoms, double probe, unsigned want, vbc_frame_out *out)
 {
-    return vbc_gpu_frame(ctx, e->state, g, atoms4, natoms, probe, want, out);
+    return vbc_gpu_frame(ctx, ((engine_state *)e->state)->gpu, g, atoms4, natoms, probe, want, out);
 }
+
 
 static void engine_close(vbc_engine *e)
 {
-    vbc_gpu_close(e->state);
+    engine_state *st = e->state;
+    vbc_gpu_close(st->gpu);
+    vbc_paths_gpu_close(st->paths);
+    free(st);
     free(e);
 }
 
@@ -399,15 +413,26 @@ int vbg_channels_open(vb_ctx *ctx, vbg_runtime *rt, vbj_variant variant, vbc_eng
 {
     *out = NULL;
     vbc_engine *e = calloc(1, sizeof *e);
-    if (!e)
+    engine_state *st = calloc(1, sizeof *st);
+    if (!e || !st) {
+        free(e);
+        free(st);
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "channel pipeline");
-    vbc_gpu *gp = NULL;
-    int rc = vbc_gpu_open(ctx, rt, variant, &gp);
+    }
+    int rc = vbc_gpu_open(ctx, rt, variant, &st->gpu);
+    /* The sweep kernels are built only for runs that ask for them (on a CPU
+     * device only when forced: the twin costs it less). */
+    int paths = vbc_paths_mode();
+    if (rc == VB_OK && (paths == 2 || (paths == 1 && vbg_runtime_is_gpu(rt))))
+        rc = vbc_paths_gpu_open(ctx, rt, &st->paths);
     if (rc != VB_OK) {
+        vbc_gpu_close(st->gpu);
+        free(st);
         free(e);
         return rc;
     }
-    e->state = gp;
+    e->state = st;
+    e->paths = vbc_paths_gpu_engine(st->paths);
     e->name = "opencl";
     snprintf(e->device, sizeof e->device, "%s", vbg_runtime_device_name(rt));
     e->frame = engine_frame;

@@ -31,6 +31,21 @@ void vbc_gpu_set_device_clearance(vbc_gpu *p, int mode);
  * never. VORBALL_DEVICE_GRAPH=0 or 1 in the environment overrides it. */
 void vbc_gpu_set_device_graph(vbc_gpu *p, int mode);
 
+/* Makes *buf (NULL: none yet) hold at least `need` elements of `size`
+ * bytes on rt's context, *cap its elements, growing by half again to
+ * amortise trajectories whose sizes creep up (the contents are lost when
+ * it grows). CL_SUCCESS or the OpenCL error (*buf NULL, *cap 0). */
+cl_int vbc_gpu_buffer_fit(vbg_runtime *rt, cl_mem *buf, size_t *cap, size_t need, size_t size);
+
+/* The channel analysis's batch sweeps (core/discrete/vbc_paths.h) on a
+ * runtime (borrowed): gpu/channel_paths.cl. vbc_paths_gpu_engine gives
+ * its engine table (NULL for NULL); one lock serves frames from several
+ * threads. VB_EDEVICE / VB_ENOMEM. */
+typedef struct vbc_paths_gpu vbc_paths_gpu;
+int vbc_paths_gpu_open(vb_ctx *ctx, vbg_runtime *rt, vbc_paths_gpu **out);
+const struct vbc_paths_engine *vbc_paths_gpu_engine(const vbc_paths_gpu *P);
+void vbc_paths_gpu_close(vbc_paths_gpu *P);
+
 /* The engine table of vbc_channel_pipe.h on a runtime (borrowed: close it
  * after the engine): what the device layer's channels_open gives. */
 int vbg_channels_open(vb_ctx *ctx, vbg_runtime *rt, vbj_variant variant, vbc_engine **out);

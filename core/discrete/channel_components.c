@@ -9,6 +9,7 @@
 #include "vb_array.h"
 #include "vb_parallel.h"
 #include "vbc_graph.h"
+#include "vbc_paths.h"
 #include "vbc_voxels.h"
 
 typedef struct {
@@ -86,13 +87,19 @@ typedef struct {
 /* The ends *a, *b of the centreline of component mem[0..m) and the
  * widest (cheapest) path between them in K->path (b first), *np its
  * length. Returns 0, or -1 when out of memory. */
-static int trace_path(analysis *W, worker *K, const uint32_t *mem, size_t m, int kind,
-                      int *through, size_t *np)
+static int trace_path(analysis *W, worker *K, size_t c, int kind, int *through, size_t *np)
 {
     vbc_graph *A = &K->A;
+    const uint32_t *mem = W->order + W->cstart[c];
+    size_t m = W->cstart[c + 1] - W->cstart[c];
     uint32_t a, b;
     *through = 0;
-    if (kind == VBC_CHANNEL) {
+    if (W->paths) {
+        /* vbc_paths_trace swept every component: its ends, A->pred set. */
+        a = W->end_a[c];
+        b = W->end_b[c];
+        *through = W->end_through[c];
+    } else if (kind == VBC_CHANNEL) {
         if (vbc_channel_ends(A, &W->uf, mem, m, &a, &b, through) != 0)
             return -1;
     } else {
@@ -103,7 +110,8 @@ static int trace_path(analysis *W, worker *K, const uint32_t *mem, size_t m, int
         b = vbc_farthest(A, mem, m);
     }
     /* The centreline: the cheapest (widest) way from a to b. */
-    vbc_sweep(A, mem, m, a, 1);
+    if (!W->paths)
+        vbc_sweep(A, mem, m, a, 1);
     *np = 0;
     for (uint32_t q = b; q != UINT32_MAX; q = A->pred[q]) {
         if (VB_ARRAY_FIT(K->path, K->pathcap, *np + 1, 64) != VB_OK)
@@ -175,13 +183,12 @@ static int pruned_early(const analysis *W, size_t c, size_t *nm)
  * 0, or -1 when out of memory. */
 static int analyse_component(analysis *W, worker *K, size_t c, size_t nm, comp_out *o)
 {
-    const uint32_t *mem = W->order + W->cstart[c];
     size_t m = W->cstart[c + 1] - W->cstart[c];
     const vbc_options *opt = W->opt;
     int kind = nm > 0 ? VBC_CHANNEL : VBC_CAVITY;
     int through;
     size_t np;
-    if (trace_path(W, K, mem, m, kind, &through, &np) != 0)
+    if (trace_path(W, K, c, kind, &through, &np) != 0)
         return -1;
     vbc_channel ch = {kind, kind == VBC_CAVITY ? VBC_WHY_CAVITY : through ? VBC_WHY_THROUGH : VBC_WHY_TUNNEL,
                       through, m, nm, 0.0, INFINITY, 0, 0, np, 0, 0};
@@ -314,6 +321,8 @@ static int analyse_components(analysis *W, size_t natoms, vbc_result *res)
     nt = vb_threads(0);
     if (!W->given_clear && clear_members(W, work, nwork, nt) != 0)
         goto done;
+    if (W->paths && vbc_paths_trace(W, work, nwork, nm, nt) != 0)
+        goto done;
     if ((size_t)nt > nwork)
         nt = nwork ? (int)nwork : 1;
     if (!(jobs = calloc((size_t)nt, sizeof *jobs)))
@@ -381,6 +390,13 @@ int vbc_analyse_given(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, co
                       const float *vclear, const uint32_t *comp, size_t nvox,
                       const vbc_options *opt, vbc_result *res)
 {
+    return vbc_analyse_paths(ctx, g, s, vox, vclear, comp, nvox, opt, NULL, res);
+}
+
+int vbc_analyse_paths(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, const uint32_t *vox,
+                      const float *vclear, const uint32_t *comp, size_t nvox,
+                      const vbc_options *opt, const vbc_paths_engine *paths, vbc_result *res)
+{
     memset(res, 0, sizeof *res);
     if (nvox == 0)
         return VB_OK;
@@ -393,6 +409,7 @@ int vbc_analyse_given(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, co
     W.opt = opt;
     W.nvox = nvox;
     W.given_clear = vclear != NULL;
+    W.paths = paths;
     int rc = VB_ENOMEM;
     if (vbc_analysis_alloc(&W) != 0 || vbc_voxels_load(&W, vox, vclear, comp) != 0 ||
         vbc_voxels_link(&W) != 0)
@@ -408,6 +425,7 @@ int vbc_analyse_given(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, co
     rc = VB_ENOMEM;
     if (analyse_components(&W, s->n, res) != 0)
         goto done;
+    res->ms_graph = W.ms_graph;
     if (res->nchannels > 1)
         qsort(res->channels, res->nchannels, sizeof *res->channels, cmp_channel);
     rc = VB_OK;

@@ -166,14 +166,11 @@ int vbc_graph_support(vbc_graph *A)
     return A->support ? 0 : support_atoms(A->s, &A->support, &A->nsupport);
 }
 
-/* Ends of the centreline of a component with mouths. Mouth voxels that touch
- * each other form one opening, represented by its widest voxel. The line
- * joins the widest pair of openings through the molecule (a pore: its two
- * mouths; *through = 1); failing that the two openings farthest apart, or,
- * with a single opening, the opening and the member farthest along the
- * voxels (a dead-end tunnel). Returns 0, or -1 when out of memory. */
-int vbc_channel_ends(vbc_graph *A, vb_uf *uf, const uint32_t *members, size_t m, uint32_t *a,
-                        uint32_t *b, int *through)
+/* vbc_channel_ends without its sweep: *b is UINT32_MAX when the member
+ * farthest from *a along the voxels (plain lengths) ends the line.
+ * Returns 0, or -1 when out of memory. */
+int vbc_channel_openings(vbc_graph *A, vb_uf *uf, const uint32_t *members, size_t m, uint32_t *a,
+                         uint32_t *b, int *through)
 {
     *through = 0;
     for (size_t t = 0; t < m; t++) {
@@ -204,9 +201,8 @@ int vbc_channel_ends(vbc_graph *A, vb_uf *uf, const uint32_t *members, size_t m,
     }
     if (k == 0) {
         /* No mouth: callers send cavities elsewhere; span the component anyway. */
-        vbc_sweep(A, members, m, members[0], 0);
         *a = members[0];
-        *b = vbc_farthest(A, members, m);
+        *b = UINT32_MAX;
         return 0;
     }
     uint32_t *reps = malloc(k * sizeof *reps);
@@ -251,11 +247,25 @@ int vbc_channel_ends(vbc_graph *A, vb_uf *uf, const uint32_t *members, size_t m,
         }
     }
     free(reps);
-    if (bb == UINT32_MAX) {
-        vbc_sweep(A, members, m, ba, 0);
-        bb = vbc_farthest(A, members, m);
-    }
     *a = ba;
     *b = bb;
+    return 0;
+}
+
+/* Ends of the centreline of a component with mouths. Mouth voxels that touch
+ * each other form one opening, represented by its widest voxel. The line
+ * joins the widest pair of openings through the molecule (a pore: its two
+ * mouths; *through = 1); failing that the two openings farthest apart, or,
+ * with a single opening, the opening and the member farthest along the
+ * voxels (a dead-end tunnel). Returns 0, or -1 when out of memory. */
+int vbc_channel_ends(vbc_graph *A, vb_uf *uf, const uint32_t *members, size_t m, uint32_t *a,
+                     uint32_t *b, int *through)
+{
+    if (vbc_channel_openings(A, uf, members, m, a, b, through) != 0)
+        return -1;
+    if (*b == UINT32_MAX) {
+        vbc_sweep(A, members, m, *a, 0);
+        *b = vbc_farthest(A, members, m);
+    }
     return 0;
 }

@@ -5,6 +5,7 @@
 
 #include "vb_parallel.h"
 #include "vbc_frame.h"
+#include "vbc_paths.h"
 
 double vbc_cpu_now(void)
 {
@@ -29,6 +30,7 @@ int vbc_frame_masks(vb_ctx *ctx, vbc_pipe *pipe, const vbc_grid *g, const vb_sph
     vbc_result_free(&f->result);
     memset(&f->result, 0, sizeof f->result);
     f->grid = *g;
+    f->pipe = pipe;
     f->ms_masks = f->ms_analysis = f->ms_pore = 0.0;
     memset(&f->pore_ms, 0, sizeof f->pore_ms);
     memset(&f->axis, 0, sizeof f->axis);
@@ -62,8 +64,10 @@ static int analyse_failed(vbc_frame *f, int rc)
 int vbc_frame_components(vb_ctx *ctx, const vb_sphere_set *s, const vbc_options *opt, vbc_frame *f)
 {
     double t1 = vb_now();
-    int rc = vbc_analyse_given(ctx, &f->grid, s, f->out.voxels, f->out.clearance, f->out.comp,
-                               f->out.nvoxels, opt, &f->result);
+    /* VORBALL_DEVICE_PATHS: the sweeps as batches on the pipe's engine. */
+    const vbc_paths_engine *paths = f->pipe && vbc_paths_mode() ? vbc_pipe_paths(f->pipe) : NULL;
+    int rc = vbc_analyse_paths(ctx, &f->grid, s, f->out.voxels, f->out.clearance, f->out.comp,
+                               f->out.nvoxels, opt, paths, &f->result);
     f->ms_analysis = 1e3 * (vb_now() - t1);
     return analyse_failed(f, rc);
 }

@@ -3,6 +3,7 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "channel_paths_math.h"
 #include "vbc_graph.h"
 
 static void heap_swap(vbc_graph *A, size_t a, size_t b)
@@ -43,18 +44,14 @@ static void heap_down(vbc_graph *A, size_t i)
     }
 }
 
-/* Smallest clearance used in the path cost, so a voxel touching an atom still
- * has a finite (if huge) cost. */
-#define MIN_CLEAR 0.05
-
 /* Dijkstra over the 26-connected voxel graph of one component (members[0..m))
- * from list position src; fills dist/pred for the members. Unweighted steps
- * cost their length; weighted ones length / r^2 with r the smaller clearance
- * of the two voxels, so the cheapest path keeps to the widest way through
- * (the cost CAVER-style tools minimise). */
+ * from list position src; fills dist/pred for the members. Steps cost
+ * vbc_path_step (channel_paths_math.h): their length, or weighted that
+ * length / r^2 with r the smaller clearance of the two voxels, so the
+ * cheapest path keeps to the widest way through (the cost CAVER-style tools
+ * minimise). */
 void vbc_sweep(vbc_graph *A, const uint32_t *members, size_t m, uint32_t src, int weighted)
 {
-    static const double w[4] = {0.0, 1.0, 1.4142135623730951, 1.7320508075688772};
     for (size_t t = 0; t < m; t++) {
         A->dist[members[t]] = INFINITY;
         A->pred[members[t]] = UINT32_MAX;
@@ -74,12 +71,7 @@ void vbc_sweep(vbc_graph *A, const uint32_t *members, size_t m, uint32_t src, in
             uint32_t q = A->adj[e];
             if (A->hpos[q] == UINT32_MAX - 1)
                 continue;
-            double step = w[A->adj_len[e]];
-            if (weighted) {
-                double r = fmax(fmin(A->clear[u], A->clear[q]), MIN_CLEAR);
-                step /= r * r;
-            }
-            double nd = A->dist[u] + step;
+            double nd = A->dist[u] + vbc_path_step(A->adj_len[e], A->clear[u], A->clear[q], weighted);
             if (nd < A->dist[q]) {
                 A->dist[q] = nd;
                 A->pred[q] = u;

@@ -9,6 +9,7 @@
 #include "vb_diag.h"
 #include "vb_parallel.h"
 #include "vbc_channel_pipe.h"
+#include "vbc_paths.h"
 
 struct vbc_pipe {
     vbj_variant variant;
@@ -259,6 +260,11 @@ void vbc_pipe_close(vbc_pipe *p)
 const char *vbc_pipe_device_name(const vbc_pipe *p)
 {
     return p->engine->device;
+}
+
+const struct vbc_paths_engine *vbc_pipe_paths(const vbc_pipe *p)
+{
+    return p->engine && p->engine->paths ? p->engine->paths : vbc_paths_engine_ref();
 }
 
 int vbc_pipe_is_ref(const vbc_pipe *p)

@@ -293,6 +293,7 @@ static int frame_repeat(vb_ctx *ctx, vbc_run *r, vbc_run_out *o)
         fi->ms_jfa += o->F.out.ms_jfa;
         fi->ms_masks += o->F.out.ms_masks;
         fi->ms_analysis += o->F.ms_analysis;
+        fi->ms_graph += o->F.result.ms_graph;
         fi->ms_pore += o->F.ms_pore;
         fi->ms_cells += o->F.pore_ms.cells;
         fi->ms_refine += o->F.pore_ms.refine;
@@ -308,6 +309,7 @@ static int frame_repeat(vb_ctx *ctx, vbc_run *r, vbc_run_out *o)
     fi->ms_jfa *= inv;
     fi->ms_masks *= inv;
     fi->ms_analysis *= inv;
+    fi->ms_graph *= inv;
     fi->ms_pore *= inv;
     fi->ms_cells *= inv;
     fi->ms_refine *= inv;

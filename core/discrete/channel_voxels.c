@@ -30,6 +30,9 @@ void vbc_analysis_free(analysis *W)
     free(W->clear);
     free(W->near);
     free(W->vcomp);
+    free(W->end_a);
+    free(W->end_b);
+    free(W->end_through);
     vbc_cells_free(W->cells);
 }
 
@@ -49,7 +52,7 @@ int vbc_analysis_alloc(analysis *W)
     W->A.hpos = malloc(n * sizeof *W->A.hpos);
     W->A.rep = malloc(n * sizeof *W->A.rep);
     W->A.adj_start = malloc((n + 1) * sizeof *W->A.adj_start);
-    W->clear = malloc(n * sizeof *W->clear);
+    W->clear = calloc(n ? n : 1, sizeof *W->clear); /* zero where never computed (uploaded whole) */
     W->near = malloc(n * sizeof *W->near);
     W->A.clear = W->clear;
     return W->sorted && W->mouth && uf_ok && W->order && W->cstart && W->comp && W->A.dist &&

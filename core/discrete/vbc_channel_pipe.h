@@ -67,6 +67,9 @@ struct vbc_engine {
     int (*frame)(vb_ctx *ctx, vbc_engine *e, const vbc_grid *g, const float *atoms4,
                  size_t natoms, double probe, unsigned want, vbc_frame_out *out);
     void (*close)(vbc_engine *e);
+    /* The engine of the analysis's batch sweeps (vbc_paths.h) on this
+     * device; NULL: the twin's. */
+    const struct vbc_paths_engine *paths;
 };
 
 /* Opens the plain-C reference engine for a JFA variant. */
@@ -99,6 +102,10 @@ void vbc_pipe_close(vbc_pipe *p);
  * every later frame. out->clearance is NULL on the reference. */
 int vbc_pipe_frame(vb_ctx *ctx, vbc_pipe *p, const vbc_grid *g, const float *atoms4, size_t natoms,
                    double probe, unsigned want, vbc_frame_out *out);
+
+/* The engine that runs the analysis's batch sweeps for the device running
+ * the frames now: the OpenCL engine's, else the twin's (vbc_paths.h). */
+const struct vbc_paths_engine *vbc_pipe_paths(const vbc_pipe *p);
 
 /* The device running the frames now: the OpenCL name or "reference (C)". */
 const char *vbc_pipe_device_name(const vbc_pipe *p);

@@ -20,6 +20,7 @@ typedef struct vbc_frame {
     double ms_pore;         /* the pore stage (vbc_pore_stage), refinement and ranking */
     vbc_pore_ms pore_ms;    /* its steps */
     vbc_axis axis;          /* the pore's axis (source VBC_AXIS_NONE without a pore) */
+    vbc_pipe *pipe;         /* the pipe of the last vbc_frame_masks (its paths engine) */
 } vbc_frame;
 
 /* Zero-initialised is empty; vbc_frame_free releases. */

@@ -51,4 +51,11 @@ int vbc_graph_support(vbc_graph *A);
 int vbc_channel_ends(vbc_graph *A, vb_uf *uf, const uint32_t *members, size_t m,
                      uint32_t *a, uint32_t *b, int *through);
 
+/* vbc_channel_ends without its one sweep: *b is UINT32_MAX when the member
+ * farthest from *a along the voxels (plain lengths, vbc_farthest's ties)
+ * ends the line; the caller sweeps (vbc_paths.h batches them). Returns 0,
+ * or -1 when out of memory. */
+int vbc_channel_openings(vbc_graph *A, vb_uf *uf, const uint32_t *members, size_t m,
+                         uint32_t *a, uint32_t *b, int *through);
+
 #endif

@@ -31,6 +31,13 @@ typedef struct {
     uint32_t *vcomp;    /* given component labels per position (voxel indices), or NULL */
     int comp_bad;       /* a given label failed a check: the union-find decides */
     vbc_cells *cells;
+    /* The batch path (vbc_paths_trace): per component its line's ends and
+     * through flag, the predecessors of the weighted sweeps from the
+     * first end in A.pred; NULL on the per-component path. */
+    const struct vbc_paths_engine *paths;
+    uint32_t *end_a, *end_b;
+    uint8_t *end_through;
+    double ms_graph;    /* the batch path's wall time (ends and sweeps), ms */
 } analysis;
 
 /* Frees what vbc_analysis_alloc and the stages allocated (W's arrays and the
@@ -59,5 +66,14 @@ void vbc_components_given(analysis *W);
 /* The components of the union-find as CSR over W->order, numbered by their
  * lowest voxel. */
 void vbc_components_group(analysis *W);
+
+/* The ends and sweeps of the components work[0..nwork) (low 32 bits: the
+ * component; nm[c] its mouth voxels, 0 for a cavity) as batches on
+ * W->paths (vbc_paths.h), nt threads for the openings: per component c
+ * W->end_a[c], W->end_b[c], W->end_through[c] and, along W->A.pred from
+ * end_b, the centreline, as vbc_channel_ends, vbc_sweep and vbc_farthest
+ * give them one component at a time (channel_components.c's trace_path).
+ * Returns 0, or -1 when out of memory. */
+int vbc_paths_trace(analysis *W, const uint64_t *work, size_t nwork, const size_t *nm, int nt);
 
 #endif
