@@ -46,7 +46,8 @@ typedef struct judging {
     vb_cover_sink sink;      /* where judged parts go (NULL: the run's list) */
     void *user;
     vb_ctx *dctx;            /* the device judge's messages (under mu) */
-    pthread_mutex_t mu;      /* one device call at a time; t, failed */
+    pthread_mutex_t mu;      /* one device call at a time; failed */
+    pthread_mutex_t tmu;     /* t (host threads add to it while the device judges) */
     atomic_int callers;      /* lists being judged now (their threads share the CPUs) */
     double t;                /* seconds judging, summed over the lists */
     int failed;              /* the device judge failed: the twin from then on */
@@ -74,12 +75,13 @@ static int judge_list(judging *j, vb_quad_list *l)
     }
     if (!done) {
         int busy = atomic_fetch_add(&j->callers, 1) + 1;
-        vb_cert_filter_judge(&j->f, q, l->n, l->verdict, (unsigned)(nt / busy > 0 ? nt / busy : 1));
+        vb_cert_filter_judge(&j->f, q, l->n, l->verdict,
+                             (unsigned)(nt / busy > 0 ? nt / busy : 1));
         atomic_fetch_sub(&j->callers, 1);
     }
-    pthread_mutex_lock(&j->mu);
+    pthread_mutex_lock(&j->tmu);
     j->t += vb_now() - t0;
-    pthread_mutex_unlock(&j->mu);
+    pthread_mutex_unlock(&j->tmu);
     return VB_OK;
 }
 
@@ -113,6 +115,7 @@ static int judging_open(vb_ctx *ctx, judging *j, cover_state *s, const vb_sphere
     if (s->be && s->be->judge && vb_open_worker(&j->dctx, ctx) != VB_OK)
         j->dctx = NULL;
     pthread_mutex_init(&j->mu, NULL);
+    pthread_mutex_init(&j->tmu, NULL);
     atomic_init(&j->callers, 0);
     *on = 1;
     return VB_OK;
@@ -129,6 +132,7 @@ static void judging_close(vb_ctx *ctx, judging *j, vb_proposal *res)
     res->t_cert_filter += j->t;
     vb_close(j->dctx);
     pthread_mutex_destroy(&j->mu);
+    pthread_mutex_destroy(&j->tmu);
     vb_cert_filter_free(&j->f);
 }
 
@@ -156,10 +160,12 @@ static int cover_run(vb_ctx *ctx, void *state, const vb_proposer_await *aw,
     int rc = judging_open(ctx, &j, s, set, args, &on);
     if (rc != VB_OK)
         return rc;
-    if (args->quads_sink)
-        rc = vb_cover_run_parts(ctx, set, &o, s->be, vb_cover_pipeline_parts(),
-                                on ? judge_sink : args->quads_sink, on ? (void *)&j : args->quads_user,
+    if (args->quads_sink && on)
+        rc = vb_cover_run_parts(ctx, set, &o, s->be, vb_cover_pipeline_parts(), judge_sink, &j,
                                 &st);
+    else if (args->quads_sink)
+        rc = vb_cover_run_parts(ctx, set, &o, s->be, vb_cover_pipeline_parts(), args->quads_sink,
+                                args->quads_user, &st);
     else
         rc = vb_cover_run(ctx, set, &o, s->be, &q, &st);
     if (rc == VB_OK && on && !args->quads_sink)

@@ -25,7 +25,7 @@ typedef struct vb_cert_filter {
     size_t ncells;         /* nx ny nz */
     uint32_t *cell_start;  /* ncells + 1: the spheres of cell c are cell_ids[cell_start[c] ..] */
     uint32_t *cell_ids;    /* n sphere ids, by cell, increasing in each */
-    int64_t *cell_z;       /* 4n: z of cell_ids' spheres in their order (the scans read it in turn) */
+    int64_t *cell_z;       /* 4n: z of cell_ids' spheres, in that order (read in turn) */
 } vb_cert_filter;
 
 /* Whether quadruples are judged before certification, from
