@@ -292,18 +292,25 @@ static int contact_near(const arcfun *f, vbx_ia at, int kmax, double yhi, vbm_s1
     return 1;
 }
 
-static int integrand(const arcfun *f, vbx_ia at, vbm_s1 *v, int kmax)
+/* ... of the values `want` (bits 1 << AREA, VOL, CON); with `keep` (at a
+ * point, kmax VBM1_K) the area's and the volume's moved polynomials in
+ * keep[0] and keep[1], for their remainders (vbm1_rational_rest). */
+static int integrand(const arcfun *f, int want, vbx_ia at, vbm_s1 *v, int kmax, vbm1_rat *keep)
 {
-    int av = f->want & (1 << AREA | 1 << VOL);
-    if (av && (!vbm1_rational(&v[AREA], f->an, 2, f->ad, 4, at, kmax) ||
-               !vbm1_rational(&v[VOL], f->vn, 4, f->vd, 6, at, kmax)))
+    int av = want & (1 << AREA | 1 << VOL);
+    if (av && keep &&
+        (!vbm1_rational_keep(&v[AREA], f->an, 2, f->ad, 4, at, &keep[0]) ||
+         !vbm1_rational_keep(&v[VOL], f->vn, 4, f->vd, 6, at, &keep[1])))
+        return 0;
+    if (av && !keep && (!vbm1_rational(&v[AREA], f->an, 2, f->ad, 4, at, kmax) ||
+                        !vbm1_rational(&v[VOL], f->vn, 4, f->vd, 6, at, kmax)))
         return 0;
     if (!av) {
         vbm1_const(&v[AREA], vbx_ia_point(0.0));
         vbm1_const(&v[VOL], vbx_ia_point(0.0));
     }
     vbm1_const(&v[CON], vbx_ia_point(0.0));
-    if (!f->o.contacts || !(f->want & 1 << CON))
+    if (!f->o.contacts || !(want & 1 << CON))
         return 1;
     if (contact_of(f, at, kmax, &v[CON]))
         return 1;
@@ -339,13 +346,18 @@ int vbm_arc_over(const vbx_ia *v, const double *tg)
 
 /* The integrals over [x0, x1] to the widths tg (halved where they fall
  * short), added to *out; `pre` (NULL: none) the integrand's series at the
- * middle already, rpre what integrand returned for it. */
+ * middle already, rpre what integrand returned for it, prek its kept
+ * polynomials. The area's and the volume's remainders over the piece come
+ * from the middle's series (vbm1_rational_rest), the contact's from its
+ * series over the piece. */
 static int piece(const arcfun *f, double x0, double x1, const double *tg, int depth, sums *out,
-                 const vbm_s1 *pre, int rpre)
+                 const vbm_s1 *pre, int rpre, const vbm1_rat *prek)
 {
     double xc = 0.5 * (x0 + x1);
     vbm_s1 cs[NV], b[NV];
+    vbm1_rat kc[2];
     const vbm_s1 *c = pre ? pre : cs;
+    const vbm1_rat *kp = pre ? prek : kc;
     vbx_ia box = {x0, x1}, v[NV], rem = vbx_ia_point(0.0);
     vbx_ia len = vbx_ia_sub(vbx_ia_point(x1), vbx_ia_point(x0));
     int near = 0, rc, rb;
@@ -372,8 +384,14 @@ static int piece(const arcfun *f, double x0, double x1, const double *tg, int de
     if (near)
         rc = rb = 1;
     else {
-        rc = pre ? rpre : integrand(f, vbx_ia_point(xc), cs, VBM1_K);
-        rb = rc ? integrand(f, box, b, VBM1_K) : 0;
+        int av = f->want & (1 << AREA | 1 << VOL);
+        rc = pre ? rpre : integrand(f, f->want, vbx_ia_point(xc), cs, VBM1_K, kc);
+        rb = rc ? integrand(f, f->want & 1 << CON, box, b, VBM1_K, NULL) : 0;
+        vbx_ia x = {vbx_ia_sub(vbx_ia_point(x0), vbx_ia_point(xc)).lo,
+                    vbx_ia_sub(vbx_ia_point(x1), vbx_ia_point(xc)).hi};
+        for (int k = AREA; rb && av && k <= VOL; k++)
+            if (!vbm1_rational_rest(&kp[k - AREA], &c[k], x, &b[k].c[VBM1_K]))
+                rb = 0;
     }
     int ok = rc && rb;
     vbx_ia mom[VBM1_K + 1];
@@ -394,8 +412,8 @@ static int piece(const arcfun *f, double x0, double x1, const double *tg, int de
         double half[NV];
         for (int k = 0; k < NV; k++)
             half[k] = 0.5 * tg[k];
-        return piece(f, x0, xc, half, depth + 1, out, NULL, 0) &&
-               piece(f, xc, x1, half, depth + 1, out, NULL, 0);
+        return piece(f, x0, xc, half, depth + 1, out, NULL, 0, NULL) &&
+               piece(f, xc, x1, half, depth + 1, out, NULL, 0, NULL);
     }
     for (int k = 0; k < NV; k++)
         out->v[k] = vbx_ia_add(out->v[k], v[k]);
@@ -409,7 +427,7 @@ static int descend(const arcfun *f, double x0, double x1, const double *tg, int 
 {
     double xc = 0.5 * (x0 + x1);
     if (d == 0 || !(xc > x0 && xc < x1))
-        return piece(f, x0, x1, tg, depth, out, NULL, 0);
+        return piece(f, x0, x1, tg, depth, out, NULL, 0, NULL);
     double half[NV];
     for (int k = 0; k < NV; k++)
         half[k] = 0.5 * tg[k];
@@ -418,24 +436,28 @@ static int descend(const arcfun *f, double x0, double x1, const double *tg, int 
 }
 
 #define PLAN_MAX 3 /* halvings planned before any piece is tried */
-/* 1crn, 1 thread: factors 2, 8, 64, 512 gave 54633, 54633, 54521, 54654
- * pieces and 0.56, 0.56, 0.55, 0.53 s of CPU (piece alone: 0.60 s) */
-#define PLAN_FACTOR 512.0
+/* With the remainder over the piece from the coefficient's recurrence in
+ * intervals, 512 (1crn, 1 thread: 54654 pieces). With the area's and the
+ * volume's from the middle's series (vbm1_rational_rest), 0.1, 1, 8, 64,
+ * 512 gave 31909, 32392, 35228, 40134, 48032 pieces and 2.96, 2.93, 2.98,
+ * 3.09, 3.26 G instructions (callgrind; main 3.98 G). */
+#define PLAN_FACTOR 1.0
 
 /* Integrates [x0, x1] as piece does, but first halved as often as the
  * middle's series says it will need: each piece's share of tg against
  * PLAN_FACTOR |c_K| 2 h^(K+1) / (K + 1), the size of the remainder term on
- * a piece of half-width h (the remainder's width comes from c_K over the
- * whole piece, where it varies and the intervals overestimate it: far
- * wider than at the middle). The halves piece would try anyway, without
+ * a piece of half-width h (the contact's remainder comes from c_K over the
+ * whole piece, where it varies and the intervals overestimate it: wider
+ * than at the middle). The halves piece would try anyway, without
  * the wider pieces it would try and drop first. Only where the pieces
  * start is chosen so; each is still proven by its own Taylor model and
  * halved further where it falls short. */
 static int planned(const arcfun *f, double x0, double x1, const double *tg, sums *out)
 {
     vbm_s1 c[NV];
+    vbm1_rat kc[2];
     double xc = 0.5 * (x0 + x1), h = 0.5 * (x1 - x0);
-    int rc = integrand(f, vbx_ia_point(xc), c, VBM1_K), d = 0;
+    int rc = integrand(f, f->want, vbx_ia_point(xc), c, VBM1_K, kc), d = 0;
     double hk = 2.0 / (VBM1_K + 1) * h;
     for (int n = 0; n < VBM1_K; n++)
         hk *= h;
@@ -446,7 +468,7 @@ static int planned(const arcfun *f, double x0, double x1, const double *tg, sums
             d = e + 1 > d ? e + 1 : d;
     }
     if (d == 0)
-        return piece(f, x0, x1, tg, 0, out, rc ? c : NULL, rc);
+        return piece(f, x0, x1, tg, 0, out, rc ? c : NULL, rc, kc);
     return descend(f, x0, x1, tg, d, 0, out);
 }
 
@@ -455,7 +477,7 @@ static int planned(const arcfun *f, double x0, double x1, const double *tg, sums
 static int end_piece(const arcfun *f, vbx_ia t, double m, sums *out)
 {
     vbm_s1 v[NV];
-    if (!integrand(f, t, v, 0)) /* 2: v[CON].c[0] a bound as well */
+    if (!integrand(f, f->want, t, v, 0, NULL)) /* 2: v[CON].c[0] a bound as well */
         return 0;
     vbx_ia dt = vbx_ia_sub(vbx_ia_point(m), t);
     for (int k = 0; k < NV; k++)
@@ -472,7 +494,7 @@ static vbx_ia half_tan(vbx_ia x, vbx_ia y, vbx_ia cm, vbx_ia sm)
 }
 
 int vbm_arc_integrate(const vbm_atom_in *in, vbx_ia D, vbm_arcrec *a, const double *tg,
-                      size_t *pieces)
+                      int again, size_t *pieces)
 {
     vbx_ia cm, sm;
     vbm_unit_at(0.5 * (a->tp + a->tq), &cm, &sm);
@@ -503,18 +525,30 @@ int vbm_arc_integrate(const vbm_atom_in *in, vbx_ia D, vbm_arcrec *a, const doub
     f.A2 = vbx_ia_sub(vbx_ia_mul(a->A2, cm), vbx_ia_mul(a->A1, sm));
     rational_of(&f);
     double m0 = vbx_ia_mid(t0), m1 = vbx_ia_mid(t1);
-    f.want = 1 << AREA | 1 << VOL | 1 << CON;
+    /* again: the values already within their targets stay (1crn
+     * --contacts, 1 thread: the second pass integrated ~2800 arcs again,
+     * mostly for a contact target the first pass could not know, and
+     * redid their area and volume too) */
+    int av = !again || width(a->v[AREA]) > tg[AREA] || width(a->v[VOL]) > tg[VOL];
+    int con = in->contacts && (!again || width(a->v[CON]) > tg[CON]);
+    f.want = (av ? 1 << AREA | 1 << VOL : 0) | (con ? 1 << CON : 0);
     if (!end_piece(&f, t0, m0, &s) || !end_piece(&f, t1, m1, &s))
         return 0;
     /* the area and volume on their pieces, the contact on its own (it needs
      * more): neither evaluated where only the other falls short */
     double ta[NV] = {tg[AREA], tg[VOL], INFINITY}, tc[NV] = {INFINITY, INFINITY, tg[CON]};
     f.want = 1 << AREA | 1 << VOL;
-    if (!planned(&f, m0, m1, ta, &s))
+    if (av && !planned(&f, m0, m1, ta, &s))
         return 0;
     f.want = 1 << CON;
-    if (in->contacts && !planned(&f, m0, m1, tc, &s))
+    if (con && !planned(&f, m0, m1, tc, &s))
         return 0;
+    if (!av) {
+        s.v[AREA] = a->v[AREA];
+        s.v[VOL] = a->v[VOL];
+    }
+    if (!con && in->contacts)
+        s.v[CON] = a->v[CON];
     memcpy(a->v, s.v, sizeof a->v);
     *pieces += s.pieces;
     return 1;

@@ -72,6 +72,18 @@ vbx_ia vbm_ia_log(vbx_ia x)
 {
     if (!(x.lo > 0.0 && x.hi < INFINITY))
         return increasing(x, mpfr_log);
+    /* a narrow x (the series' constant terms at a point): one log, at the
+     * middle m, and the mean value theorem, log lo >= log m - (m - lo) / lo
+     * and log hi <= log m + (hi - m) / m (1 / t decreasing), each bound
+     * rounded outward; wider than the two logs by about ((hi - lo) / lo)^2,
+     * at half the cost (1crn --contacts, 1 thread: log_of was 9 %) */
+    double m = 0.5 * x.lo + 0.5 * x.hi;
+    if (x.hi - x.lo <= 1e-3 * x.lo && m >= x.lo && m <= x.hi) {
+        vbx_ia l = log_of(m);
+        double d1 = vbx_succ(vbx_succ(m - x.lo) / x.lo), d2 = vbx_succ(vbx_succ(x.hi - m) / m);
+        vbx_ia r = {vbx_pred(l.lo - d1), vbx_succ(l.hi + d2)};
+        return r;
+    }
     vbx_ia r = {log_of(x.lo).lo, log_of(x.hi).hi};
     return r;
 }

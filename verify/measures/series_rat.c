@@ -4,6 +4,10 @@
  * linear recurrence instead of series products and reciprocals. */
 #include "vbm_series1.h"
 
+/* vbm1_rational_rest: the numerator's degree below K, so that A has no
+ * term of x^K or above */
+_Static_assert(VBM1_POLY < VBM1_K, "vbm1_rational_rest needs deg num < VBM1_K");
+
 void vbm1_poly_mul(vbx_ia *r, const vbx_ia *f, int df, const vbx_ia *g, int dg)
 {
     for (int n = 0; n <= df + dg; n++) {
@@ -37,10 +41,48 @@ static vbx_ia value(const vbx_ia *p, int d, vbx_ia at)
     return v;
 }
 
+static int rational(vbm_s1 *r, const vbx_ia *num, int dn, const vbx_ia *den, int dd, vbx_ia at,
+                    int kmax, vbx_ia *a, vbx_ia *b);
+
 int vbm1_rational(vbm_s1 *r, const vbx_ia *num, int dn, const vbx_ia *den, int dd, vbx_ia at,
                   int kmax)
 {
     vbx_ia a[VBM1_POLY + 1], b[VBM1_POLY + 1];
+    return rational(r, num, dn, den, dd, at, kmax, a, b);
+}
+
+int vbm1_rational_keep(vbm_s1 *r, const vbx_ia *num, int dn, const vbx_ia *den, int dd,
+                       vbx_ia at, vbm1_rat *keep)
+{
+    keep->dd = dd;
+    return rational(r, num, dn, den, dd, at, VBM1_K, keep->a, keep->b);
+}
+
+int vbm1_rational_rest(const vbm1_rat *keep, const vbm_s1 *r, vbx_ia x, vbx_ia *g)
+{
+    int dd = keep->dd;
+    const vbx_ia *b = keep->b;
+    vbx_ia m[VBM1_POLY + 1];
+    for (int j = 0; j < dd; j++) {
+        vbx_ia s = vbx_ia_point(0.0);
+        for (int k = j + 1; k <= dd; k++)
+            s = vbx_ia_add(s, vbx_ia_mul(b[k], r->c[VBM1_K + j - k]));
+        m[j] = vbx_ia_neg(s);
+    }
+    vbx_ia M = vbx_ia_point(0.0), B = b[dd];
+    for (int j = dd - 1; j >= 0; j--) {
+        M = vbx_ia_add(vbx_ia_mul(x, M), m[j]);
+        B = vbx_ia_add(vbx_ia_mul(x, B), b[j]);
+    }
+    if (!(B.lo > 0.0 || B.hi < 0.0))
+        return 0;
+    *g = vbx_ia_div(M, B);
+    return 1;
+}
+
+static int rational(vbm_s1 *r, const vbx_ia *num, int dn, const vbx_ia *den, int dd, vbx_ia at,
+                    int kmax, vbx_ia *a, vbx_ia *b)
+{
     if (kmax == 0) {
         a[0] = value(num, dn, at);
         b[0] = value(den, dd, at);

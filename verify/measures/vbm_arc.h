@@ -23,10 +23,13 @@ typedef struct vbm_arcrec {
 
 /* The integrals of the arc (solid angle's, volume's and, with
  * in->contacts, the contact's: F dphi along it) into a->v, each to the
- * width tg[VBM_AREA..VBM_CON]; D encloses |d_j|. Adds the Taylor-model
- * pieces used to *pieces. Returns 0 when an interval cannot bound them. */
+ * width tg[VBM_AREA..VBM_CON]; D encloses |d_j|. With `again`, a->v holds
+ * the arc's enclosures from an earlier call: the area and volume are kept
+ * when both meet their targets, the contact when it does (only the others
+ * are integrated again). Adds the Taylor-model pieces used to *pieces.
+ * Returns 0 when an interval cannot bound them. */
 int vbm_arc_integrate(const vbm_atom_in *in, vbx_ia D, vbm_arcrec *a, const double *tg,
-                      size_t *pieces);
+                      int again, size_t *pieces);
 
 /* Whether some width of v[0..VBM_NV) exceeds its target in tg (a NaN
  * bound counts as infinitely wide). */

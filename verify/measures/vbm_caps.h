@@ -42,11 +42,13 @@ typedef struct vbm_arc {
 typedef struct vbm_capwork {
     vbm_circle *circ;
     struct vbm_endpt *end; /* cap_arcs.c's */
+    const struct vbm_endpt **ord; /* the ends in the order of their angles */
     struct vbm_restr *res;
     vbm_arc *arc, *sorted;
     uint32_t *sel, *queue;  /* caps restricting a circle; circles to do next */
     uint8_t *state;         /* per cap: done, on the boundary, queued */
-    size_t cap_circ, cap_end, cap_res, cap_arc, narc, cap_sorted, cap_sel, cap_queue, cap_state;
+    size_t nres; /* restrictions made by the last circle_arcs */
+    size_t cap_circ, cap_end, cap_ord, cap_res, cap_arc, narc, cap_sorted, cap_sel, cap_queue, cap_state;
 } vbm_capwork;
 
 /* The circle of a cap: kind VBM_CAP_CIRCLE with the frame, _ALL or _NONE;

@@ -73,4 +73,28 @@ void vbm1_poly_mul(vbx_ia *r, const vbx_ia *f, int df, const vbx_ia *g, int dg);
 int vbm1_rational(vbm_s1 *r, const vbx_ia *num, int dn, const vbx_ia *den, int dd, vbx_ia at,
                   int kmax);
 
+/* num and den moved to a point xc (vbm1_rational's first step), kept for
+ * vbm1_rational_rest. */
+typedef struct vbm1_rat {
+    vbx_ia a[VBM1_POLY + 1], b[VBM1_POLY + 1];
+    int dd;
+} vbm1_rat;
+
+/* vbm1_rational at the point `at` with kmax = VBM1_K, keeping the moved
+ * polynomials in *keep. */
+int vbm1_rational_keep(vbm_s1 *r, const vbx_ia *num, int dn, const vbx_ia *den, int dd,
+                       vbx_ia at, vbm1_rat *keep);
+
+/* The remainder of the Taylor polynomial of f = num / den at the point xc
+ * (r from vbm1_rational_keep, which left *keep): with A, B the polynomials
+ * moved to xc, f(xc + x) = sum_{n<K} r_n x^n + x^K M(x) / B(x) exactly,
+ * M(x) = sum_{j<dd} m_j x^j, m_j = -sum_{k=j+1..dd} b_k r_(K+j-k) (the
+ * coefficients of x^n, n < K, in A - B sum r_n x^n vanish by the
+ * recurrence, and deg A < K). *g: an enclosure of M(x) / B(x) over x in
+ * `x` (the piece less xc), so that the remainder's integral over the piece
+ * lies in *g times that of x^K (x^K >= 0): in place of the K-th
+ * coefficient over the piece, whose recurrence in intervals widens with
+ * every order. Returns 0 when B may vanish over `x`. */
+int vbm1_rational_rest(const vbm1_rat *keep, const vbm_s1 *r, vbx_ia x, vbx_ia *g);
+
 #endif
