@@ -84,7 +84,8 @@ static void row(FILE *f, int json, int first, const char *input, size_t atoms,
                 "\"matching\": %.6f, \"targeted\": %.6f, \"tangent\": %.6f, \"completion\": %.6f, "
                 "\"certification\": %.6f, \"setup\": %.6f, \"setup_wait\": %.6f, \"total\": %.6f, "
                 "\"total_first_run\": %.6f, \"device_setup\": %.6f, "
-                "\"certify_overlap\": %.6f, \"certify_parts\": %zu, \"device_bytes_peak\": %llu",
+                "\"certify_overlap\": %.6f, \"certify_parts\": %zu, \"device_bytes_peak\": %llu, "
+                "\"cert_filter\": %.6f",
                 r->certified.n, (unsigned long long)r->proposal.first_cell,
                 (unsigned long long)r->proposal.from_sampling, tot->rejected,
                 (unsigned long long)r->proposal.incomplete,
@@ -94,7 +95,7 @@ static void row(FILE *f, int json, int first, const char *input, size_t atoms,
                 t->vertices, t->matching, t->targeted, t->tangent, t->completion, r->t_certify,
                 r->t_setup, r->t_setup_wait, r->t_total,
                 first_total, device_setup, r->t_certify_overlap, r->certify_parts,
-                (unsigned long long)r->proposal.device_bytes_peak);
+                (unsigned long long)r->proposal.device_bytes_peak, r->proposal.t_cert_filter);
         if (vb_world_size() > 1)
             fprintf(f, ", \"ranks\": %d, \"combine\": %.6f, \"merged_repeats\": %zu}",
                     vb_world_size(), tot->t_combine, tot->repeats);

@@ -38,14 +38,15 @@ int vb_cli_vertices_part(vb_ctx *ctx, vb_vertices_config *cfg, vb_cover_options 
     X(s->from_sampling) X(s->bisectors) X(s->cover_cells) X(s->cover_patches)                     \
     X(s->cover_host_cells) X(s->cover_handed_cells) X(s->cover_quads) X(st->filter_calls)         \
     X(st->filter_failures) X(st->exact_evals) X(st->candidates) X(st->certified)                  \
-    X(st->rejected) X(tot->rejected) X(tot->candidates) X(tot->repaired)
+    X(st->rejected) X(st->judged_vertex) X(st->judged_not) X(st->judged_open)                     \
+    X(tot->rejected) X(tot->candidates) X(tot->repaired)
 
 /* The times whose maximum over the ranks is the job's. */
 #define MAXED(X)                                                                                   \
     X(s->times.cull) X(s->times.upload) X(s->times.envelope) X(s->times.vertices)                 \
     X(s->times.matching) X(s->times.targeted) X(s->times.tangent) X(s->times.completion)          \
-    X(s->t_cover_device) X(res->t_setup) X(res->t_setup_wait) X(res->t_certify) X(res->t_total)   \
-    X(res->t_certify_overlap) X(s->device_bytes_peak)                                              \
+    X(s->t_cover_device) X(s->t_cert_filter) X(res->t_setup) X(res->t_setup_wait)                \
+    X(res->t_certify) X(res->t_total) X(res->t_certify_overlap) X(s->device_bytes_peak)           \
     X(res->max_dist)
 
 static int sum_counters(vb_ctx *ctx, vb_vertices_result *res, vb_cli_vertex_totals *tot)

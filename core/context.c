@@ -226,6 +226,9 @@ void vb_stats_add(vb_stats *to, const vb_stats *from)
     to->certified += from->certified;
     to->rejected += from->rejected;
     to->warnings += from->warnings;
+    to->judged_vertex += from->judged_vertex;
+    to->judged_not += from->judged_not;
+    to->judged_open += from->judged_open;
 }
 
 int vb_diag_number(int code)

@@ -114,6 +114,11 @@ typedef struct vb_stats {
     uint64_t certified;        /* canonical vertices certified */
     uint64_t rejected;         /* candidates the certifier refused */
     uint64_t warnings;         /* warnings emitted */
+    /* Roots of proposed quadruples by the certification filter's verdict
+     * (core/cells/vbd_cert_shared.h, on the device or its host twin):
+     * proven vertices, proven not vertices, and left open (sent to the
+     * host's filter and exact stage). */
+    uint64_t judged_vertex, judged_not, judged_open;
 } vb_stats;
 
 typedef struct vb_ctx vb_ctx;

@@ -100,6 +100,7 @@
     X(W, 763, CERT_REJECTED, 0, "the certifier rejected candidates")                                     \
     X(W, 765, TOPO_UNPAIRED, 0, "trisector edges that could not be paired, or vertex faces not decided") \
     X(W, 766, ARCS_UNDECIDED, 0, "arcs that could not be traced exactly: the list is not proven closed") \
+    X(W, 767, CERT_FILTER_DEVICE, 0, "certification filter failed on the device: judged on the host")      \
     X(W, 780, JFA_SEEDS_LOST, 0, "seeds share their start pixel with a nearer seed")                     \
     X(W, 781, JFA_DEVICE_FALLBACK, 0, "no usable OpenCL device: jfa on the reference backend")           \
     X(W, 782, FACET_START_FINE, 0, "Facet-JFA cannot start coarser than n")                              \

@@ -10,6 +10,15 @@
 
 #include "vb_array.h"
 
+int vbv_certify_quads(vb_ctx *ctx, const vb_certifier_ops *ops, void *cert,
+                      const vb_quad_list *l, vb_vertex_list *certified, vb_vertex_list *rejected)
+{
+    const uint32_t(*q)[4] = (const uint32_t(*)[4])l->q;
+    if (l->verdict && ops->certify_quads_judged)
+        return ops->certify_quads_judged(ctx, cert, q, l->verdict, l->n, certified);
+    return ops->certify_quads(ctx, cert, q, l->n, certified, rejected);
+}
+
 static void *open_certifier(void *arg)
 {
     vbv_cert_open *co = arg;
@@ -121,8 +130,7 @@ static int certify_one(vbv_cert_stream *cs, vb_quad_list *part)
     vb_vertex_list v;
     vb_vertex_list_init(&v);
     if (rc == VB_OK)
-        rc = cs->ops->certify_quads(cs->tctx, cs->cert, (const uint32_t(*)[4])part->q, part->n, &v,
-                                    NULL);
+        rc = vbv_certify_quads(cs->tctx, cs->ops, cs->cert, part, &v, NULL);
     /* The parts are the thread's alone until it is idle (stream_wait). */
     if (rc == VB_OK && VB_ARRAY_FIT(cs->parts, cs->cap, cs->nparts + 1, 8) != VB_OK)
         rc = VB_ENOMEM;

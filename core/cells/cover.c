@@ -406,11 +406,14 @@ int vb_quad_cmp(const void *pa, const void *pb)
 void vb_quad_list_free(vb_quad_list *l)
 {
     free(l->q);
+    free(l->verdict);
     memset(l, 0, sizeof *l);
 }
 
 void vb_cover_backend_close(vb_cover_backend *be)
 {
+    if (be && be->judge_close)
+        be->judge_close(be);
     if (be && be->close)
         be->close(be);
 }

@@ -4,10 +4,15 @@
  * the result says `complete`; with a sink in the arguments they go to it
  * part by part (vb_cover_run_parts), a device's batches each as a part of
  * its own, for the certifier to overlap. */
+#include <pthread.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_cert_filter.h"
 #include "vb_cover.h"
+#include "vb_diag.h"
+#include "vb_parallel.h"
 #include "vb_proposer.h"
 
 typedef struct cover_state {
@@ -29,6 +34,108 @@ static int cover_open(vb_ctx *ctx, const vb_device_layer *layer, vb_device *dev,
     return VB_OK;
 }
 
+/* The certification filter between the cover and the certifier: each list
+ * of quadruples (a streamed part, or the whole run's) is made canonical
+ * and judged, on the device when the backend has the filter, else (or
+ * while another part holds the device, or after the device failed) by the
+ * twin on host threads; the verdicts travel with the list. */
+typedef struct judging {
+    cover_state *s;
+    vb_cert_filter f;
+    unsigned threads;        /* all of the run's host threads */
+    vb_cover_sink sink;      /* where judged parts go (NULL: the run's list) */
+    void *user;
+    vb_ctx *dctx;            /* the device judge's messages (under mu) */
+    pthread_mutex_t mu;      /* one device call at a time; failed */
+    pthread_mutex_t tmu;     /* t (host threads add to it while the device judges) */
+    atomic_int callers;      /* lists being judged now (their threads share the CPUs) */
+    double t;                /* seconds judging, summed over the lists */
+    int failed;              /* the device judge failed: the twin from then on */
+} judging;
+
+static int judge_list(judging *j, vb_quad_list *l)
+{
+    int nt = vb_threads(j->threads);
+    int rc = vb_quad_list_canonical(l, nt);
+    if (rc != VB_OK || l->n == 0)
+        return rc;
+    double t0 = vb_now();
+    l->verdict = malloc(l->n);
+    if (!l->verdict)
+        return VB_OK; /* unjudged: the certifier does it all */
+    const uint32_t(*q)[4] = (const uint32_t(*)[4])l->q;
+    vb_cover_backend *be = j->s->be;
+    int done = 0;
+    if (be && be->judge && j->dctx && pthread_mutex_trylock(&j->mu) == 0) {
+        if (!j->failed) {
+            done = be->judge(j->dctx, be, &j->f, q, l->n, l->verdict) == VB_OK;
+            j->failed = !done;
+        }
+        pthread_mutex_unlock(&j->mu);
+    }
+    if (!done) {
+        int busy = atomic_fetch_add(&j->callers, 1) + 1;
+        vb_cert_filter_judge(&j->f, q, l->n, l->verdict,
+                             (unsigned)(nt / busy > 0 ? nt / busy : 1));
+        atomic_fetch_sub(&j->callers, 1);
+    }
+    pthread_mutex_lock(&j->tmu);
+    j->t += vb_now() - t0;
+    pthread_mutex_unlock(&j->tmu);
+    return VB_OK;
+}
+
+/* vb_cover_sink: the part judged, then handed on. */
+static int judge_sink(void *user, vb_quad_list *part)
+{
+    judging *j = user;
+    int rc = judge_list(j, part);
+    return rc == VB_OK ? j->sink(j->user, part) : rc;
+}
+
+/* Sets up j for the run: *on = 1 with VORBALL_DEVICE_CERT=1, or unset
+ * with a device that has the filter (a GPU); else nothing is judged. */
+static int judging_open(vb_ctx *ctx, judging *j, cover_state *s, const vb_sphere_set *set,
+                        const vb_propose_args *args, int *on)
+{
+    memset(j, 0, sizeof *j);
+    *on = 0;
+    int mode = vb_cert_filter_mode();
+    if (!(mode == 1 || (mode < 0 && s->be && s->be->judge)))
+        return VB_OK;
+    int rc = vb_cert_filter_build(ctx, set, &j->f);
+    if (rc != VB_OK || !j->f.ok) {
+        vb_cert_filter_free(&j->f);
+        return rc;
+    }
+    j->s = s;
+    j->threads = args->opt.threads;
+    j->sink = args->quads_sink;
+    j->user = args->quads_user;
+    if (s->be && s->be->judge && vb_open_worker(&j->dctx, ctx) != VB_OK)
+        j->dctx = NULL;
+    pthread_mutex_init(&j->mu, NULL);
+    pthread_mutex_init(&j->tmu, NULL);
+    atomic_init(&j->callers, 0);
+    *on = 1;
+    return VB_OK;
+}
+
+/* W767 when the device's filter failed (the twin judged instead). */
+static void judging_close(vb_ctx *ctx, judging *j, vb_proposal *res)
+{
+    if (j->failed && j->dctx)
+        vb_warn(ctx, VB_W_CERT_FILTER_DEVICE, NULL, 0,
+                "the certification filter failed on the device (%s): quadruples judged on "
+                "host threads",
+                vb_errmsg(j->dctx));
+    res->t_cert_filter += j->t;
+    vb_close(j->dctx);
+    pthread_mutex_destroy(&j->mu);
+    pthread_mutex_destroy(&j->tmu);
+    vb_cert_filter_free(&j->f);
+}
+
 static int cover_run(vb_ctx *ctx, void *state, const vb_proposer_await *aw,
                      const vb_sphere_set *set, const vb_propose_args *args,
                      vb_proposal *res)
@@ -48,10 +155,23 @@ static int cover_run(vb_ctx *ctx, void *state, const vb_proposer_await *aw,
     o.stream_batches = args->quads_sink && !(sb && strcmp(sb, "0") == 0);
     vb_quad_list q = {0};
     vb_cover_stats st;
-    int rc = args->quads_sink
-                 ? vb_cover_run_parts(ctx, set, &o, s->be, vb_cover_pipeline_parts(),
-                                      args->quads_sink, args->quads_user, &st)
-                 : vb_cover_run(ctx, set, &o, s->be, &q, &st);
+    judging j;
+    int on;
+    int rc = judging_open(ctx, &j, s, set, args, &on);
+    if (rc != VB_OK)
+        return rc;
+    if (args->quads_sink && on)
+        rc = vb_cover_run_parts(ctx, set, &o, s->be, vb_cover_pipeline_parts(), judge_sink, &j,
+                                &st);
+    else if (args->quads_sink)
+        rc = vb_cover_run_parts(ctx, set, &o, s->be, vb_cover_pipeline_parts(), args->quads_sink,
+                                args->quads_user, &st);
+    else
+        rc = vb_cover_run(ctx, set, &o, s->be, &q, &st);
+    if (rc == VB_OK && on && !args->quads_sink)
+        rc = judge_list(&j, &q);
+    if (on)
+        judging_close(ctx, &j, res);
     if (rc != VB_OK) {
         vb_quad_list_free(&q);
         return rc;
@@ -59,6 +179,7 @@ static int cover_run(vb_ctx *ctx, void *state, const vb_proposer_await *aw,
     res->quads.q = q.q;
     res->quads.n = q.n;
     res->quads.cap = q.cap;
+    res->quads.verdict = q.verdict;
     res->complete = 1;
     res->cover_cells = st.cells;
     res->cover_quads = st.quads;
@@ -66,7 +187,9 @@ static int cover_run(vb_ctx *ctx, void *state, const vb_proposer_await *aw,
     res->cover_host_cells = st.host_cells;
     res->cover_handed_cells = st.handed_cells;
     res->t_cover_device = st.t_device;
-    res->device_bytes_peak = s->be ? s->be->device_bytes_peak : 0;
+    /* The filter's buffers beside the cover's: at most their sum at once. */
+    res->device_bytes_peak =
+        s->be ? s->be->device_bytes_peak + (on ? s->be->judge_bytes_peak : 0) : 0;
     res->times.envelope += st.t_host;
     return VB_OK;
 }

@@ -45,6 +45,7 @@ void vb_proposal_free(vb_proposal *r)
 {
     vb_vertex_list_free(&r->candidates);
     free(r->quads.q);
+    free(r->quads.verdict);
     free(r->topo.faces);
     free(r->topo.triples);
     vb_proposal_init(r);

@@ -16,6 +16,8 @@
 #include "vb_cover_shared.h"
 #include "vb_spheres.h"
 
+struct vb_cert_filter; /* vb_cert_filter.h */
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -77,10 +79,14 @@ typedef struct vb_cover_stats {
     unsigned max_level_seen;
 } vb_cover_stats;
 
-/* Quadruples, 4 sorted ids each, sorted lexicographically, no repeats. */
+/* Quadruples, 4 sorted ids each, sorted lexicographically, no repeats.
+ * verdict, when not NULL, holds n verdicts of the certification filter
+ * (vbd_cert_shared.h: VBD_ROOT(verdict[k], r) for root r of q[k]), and the
+ * list is then sorted and unique. */
 typedef struct vb_quad_list {
     uint32_t (*q)[4];
     size_t n, cap;
+    uint8_t *verdict;
 } vb_quad_list;
 
 void vb_quad_list_free(vb_quad_list *l);
@@ -100,6 +106,8 @@ struct vb_cover_backend {
                                 to the device's work-item kernel (a running count) */
     uint64_t device_bytes_peak; /* the most bytes of device buffers the last run (begin
                                    and its runs) held at once */
+    uint64_t judge_bytes_peak;  /* the same for the certification filter's buffers (judge;
+                                   written by the judge's calls only) */
     void *state;
     /* Uploads the input shared by every cell (env's arrays, n spheres) for
      * the runs that follow. VB_OK, VB_ENOMEM or VB_EDEVICE (message in ctx). */
@@ -112,6 +120,16 @@ struct vb_cover_backend {
     int (*run)(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, size_t ncells,
                vbq_cell_out *out, const uint32_t **quads);
     void (*close)(vb_cover_backend *be);
+    /* May be NULL (none on this device). The certification filter of
+     * vbd_cert_shared.h on the device: verdict[k] for quadruples q[0 .. n)
+     * over f's spheres (uploaded when f->serial is new). Safe to call from
+     * one thread while another runs the cover (its own queue). VB_OK,
+     * VB_ENOMEM or VB_EDEVICE (verdict then undefined). */
+    int (*judge)(vb_ctx *ctx, vb_cover_backend *be, const struct vb_cert_filter *f,
+                 const uint32_t (*q)[4], size_t n, uint8_t *verdict);
+    void *judge_state;       /* the judge's own (gpu/cert_filter_ocl.c) */
+    void (*judge_close)(vb_cover_backend *be); /* NULL, or frees judge_state
+                                                  (vb_cover_backend_close) */
 };
 
 /* Closes a backend; NULL is allowed. */

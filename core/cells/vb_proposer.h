@@ -111,6 +111,8 @@ typedef struct vb_proposal {
     struct {
         uint32_t (*q)[4];
         size_t n, cap;
+        uint8_t *verdict;         /* NULL, or the certification filter's verdicts
+                                     (vb_quad_list.verdict) */
     } quads;
     int complete;
     uint64_t cover_cells, cover_patches, cover_host_cells; /* the cover's counters */
@@ -120,6 +122,8 @@ typedef struct vb_proposal {
                                      a counter that processes which covered parts of the
                                      cells can add up */
     double t_cover_device;        /* seconds in the cover's device batches */
+    double t_cert_filter;         /* seconds judging the quadruples (vb_cert_filter.h),
+                                     summed over the parts */
     uint64_t device_bytes_peak;   /* the most bytes of device buffers the proposer's
                                      backend held at once (0 on host threads) */
 } vb_proposal;

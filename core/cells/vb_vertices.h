@@ -50,6 +50,12 @@ typedef struct vb_certifier_ops {
      * certifies one candidate per double root. */
     int (*certify_quads)(vb_ctx *ctx, void *cert, const uint32_t (*quads)[4], size_t n,
                          vb_vertex_list *certified, vb_vertex_list *rejected);
+    /* May be NULL. certify_quads with the certification filter's verdicts
+     * (vb_quad_list.verdict, one per quadruple): roots proven vertices or
+     * not vertices are not judged again. The same vertices as
+     * certify_quads. */
+    int (*certify_quads_judged)(vb_ctx *ctx, void *cert, const uint32_t (*quads)[4],
+                                const uint8_t *verdict, size_t n, vb_vertex_list *certified);
 } vb_certifier_ops;
 
 /* ---- the pipeline -------------------------------------------------------- */

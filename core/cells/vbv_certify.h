@@ -12,6 +12,12 @@
 #include "vb_parallel.h"
 #include "vb_vertices.h"
 
+/* ops->certify_quads of list l, or ops->certify_quads_judged when l
+ * carries the certification filter's verdicts and ops has it (the same
+ * vertices either way). Its returns. */
+int vbv_certify_quads(vb_ctx *ctx, const vb_certifier_ops *ops, void *cert,
+                      const vb_quad_list *l, vb_vertex_list *certified, vb_vertex_list *rejected);
+
 /* The set-up: ops->open on its own thread, with its own context. */
 typedef struct vbv_cert_open {
     const vb_certifier_ops *ops;

@@ -271,9 +271,10 @@ static int certify_quads(vb_ctx *ctx, const vb_certifier_ops *ops, void *cert,
                          const vb_sphere_set *set, vb_vertices_result *res)
 {
     const vb_proposal *sr = &res->proposal;
-    if (ops->certify_quads)
-        return ops->certify_quads(ctx, cert, (const uint32_t(*)[4])sr->quads.q, sr->quads.n,
-                                  &res->certified, &res->rejected);
+    if (ops->certify_quads) {
+        vb_quad_list l = {sr->quads.q, sr->quads.n, sr->quads.cap, sr->quads.verdict};
+        return vbv_certify_quads(ctx, ops, cert, &l, &res->certified, &res->rejected);
+    }
     vb_vertex_list cand;
     vb_vertex_list_init(&cand);
     int rc = VB_OK;

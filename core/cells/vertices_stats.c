@@ -46,4 +46,11 @@ void vb_vertices_write_stats(vb_ctx *ctx, FILE *f, const vb_vertices_result *r)
      * overlap, and the seconds certification took after the proposer. */
     fprintf(f, "certify_parts\t%zu\ncertify_overlap_s\t%.6f\ncertify_after_s\t%.6f\n",
             r->certify_parts, r->t_certify_overlap, r->t_certify);
+    /* The certification filter before the certifier (vb_cert_filter.h):
+     * roots it decided (vertex, not a vertex), roots it sent to the host's
+     * exact stage, and its seconds (wall, summed over the parts; zero
+     * counters when VORBALL_DEVICE_CERT=0). */
+    fprintf(f, "judged_vertex\t%llu\njudged_not\t%llu\njudged_open\t%llu\njudge_s\t%.6f\n",
+            (unsigned long long)st->judged_vertex, (unsigned long long)st->judged_not,
+            (unsigned long long)st->judged_open, s->t_cert_filter);
 }

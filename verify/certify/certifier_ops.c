@@ -43,10 +43,16 @@ static int ops_quads(vb_ctx *ctx, void *cert, const uint32_t (*quads)[4], size_t
     return vb_certify_quads(ctx, cert, quads, n, certified, NULL);
 }
 
+static int ops_quads_judged(vb_ctx *ctx, void *cert, const uint32_t (*quads)[4],
+                            const uint8_t *verdict, size_t n, vb_vertex_list *certified)
+{
+    return vb_certify_quads_judged(ctx, cert, quads, verdict, n, certified, NULL);
+}
+
 static void ops_close(void *cert)
 {
     vb_certifier_close(cert);
 }
 
-const vb_certifier_ops vb_exact_certifier = {"exact", ops_open, ops_list, ops_intruder,
-                                             ops_close, ops_quads};
+const vb_certifier_ops vb_exact_certifier = {"exact",   ops_open,  ops_list,        ops_intruder,
+                                             ops_close, ops_quads, ops_quads_judged};

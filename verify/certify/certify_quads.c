@@ -30,6 +30,7 @@
 
 #include "vb_array.h"
 #include "vb_parallel.h"
+#include "vbd_cert_shared.h"
 #include "vbx_cert.h"
 
 #define QCHUNK 64
@@ -48,6 +49,7 @@ typedef struct qworker {
     vb_certifier *c;
     vb_ctx *ctx;
     const uint32_t (*quads)[4];
+    const uint8_t *verdict;  /* NULL, or the certification filter's verdicts */
     size_t n;
     atomic_size_t *next;
     atomic_size_t *judged;   /* quadruples judged by every worker (progress) */
@@ -243,6 +245,29 @@ static int exact_quad(qworker *w, size_t k, const int *need)
     return VB_OK;
 }
 
+/* Root r of a prepared line proven a vertex by the certification filter:
+ * only its coordinates, rounded (NEED_ROUND when double-double cannot). */
+static int judged_root(qworker *w, size_t k, const vbx_qline *L, const vbx_qprep *P, int r,
+                       int *need)
+{
+    const vbx_qf_ops *ops = w->c->qd.ops;
+    vbx_qroot R;
+    ops->root(P, r, &R);
+    double xyzt[4];
+    if (ops->point(&w->c->qd, L, P, &R) && ops->round(&R, xyzt)) {
+        w->st.roots_fast++;
+        return push_rec(w, k, xyzt, w->quads[k], 4, r ? -1 : 1);
+    }
+    *need = NEED_ROUND;
+    return VB_OK;
+}
+
+/* What the exact path does for a root with verdict v. */
+static int need_of(unsigned v)
+{
+    return v == VBD_VERTEX ? NEED_ROUND : v == VBD_NOT ? NEED_NOTHING : NEED_ALL;
+}
+
 static int judge_quad(qworker *w, size_t k)
 {
     vb_certifier *c = w->c;
@@ -252,14 +277,40 @@ static int judge_quad(qworker *w, size_t k)
     uint64_t solves0 = w->st.exact_solves;
     st->candidates++;
     w->st.quads++;
+    unsigned v[2] = {VBD_OPEN, VBD_OPEN};
+    if (w->verdict) {
+        v[0] = VBD_ROOT(w->verdict[k], 0);
+        v[1] = VBD_ROOT(w->verdict[k], 1);
+        for (int r = 0; r < 2; r++) {
+            w->st.judged_vertex += v[r] == VBD_VERTEX;
+            w->st.judged_not += v[r] == VBD_NOT;
+            w->st.judged_open += v[r] == VBD_OPEN;
+        }
+    }
     vbx_qline L;
     vbx_qprep P;
     int fs = VBX_QF_EXACT, rc = VB_OK;
+    if (v[0] == VBD_NOT && v[1] == VBD_NOT) {
+        st->rejected++;
+        w->st.rejected_fast++;
+        return VB_OK;
+    }
     st->filter_calls++;
     const vbx_qf_ops *ops = c->qd.ops;
     if (ops->line(&c->qd, q, &L))
         fs = ops->prep(&L, &P);
-    if (fs == VBX_QF_NONE) {
+    if (fs != VBX_QF_TWO && (v[0] != VBD_OPEN || v[1] != VBD_OPEN)) {
+        /* The verdicts proved two distinct roots (D, A != 0, delta > 0). */
+        if (fs == VBX_QF_NONE)
+            return vb_error(w->ctx, VB_EINTERNAL, NULL, 0,
+                            "the certification filter and the certifier's filter disagree on "
+                            "quadruple %u %u %u %u",
+                            q[0], q[1], q[2], q[3]);
+        st->filter_failures++;
+        w->st.quads_exact++;
+        int need[2] = {need_of(v[0]), need_of(v[1])};
+        rc = exact_quad(w, k, need);
+    } else if (fs == VBX_QF_NONE) {
         w->st.no_root++;
     } else if (fs == VBX_QF_EXACT) {
         st->filter_failures++;
@@ -268,12 +319,18 @@ static int judge_quad(qworker *w, size_t k)
     } else {
         int need[2] = {NEED_NOTHING, NEED_NOTHING};
         for (int r = 0; r < 2 && rc == VB_OK; r++) {
+            if (v[r] == VBD_NOT)
+                continue;
+            if (v[r] == VBD_VERTEX) {
+                rc = judged_root(w, k, &L, &P, r, &need[r]);
+                continue;
+            }
             vbx_qroot R;
             ops->root(&P, r, &R);
-            int v = filter_root(w, &L, &P, &R);
-            if (v == ROOT_OPEN) {
+            int fv = filter_root(w, &L, &P, &R);
+            if (fv == ROOT_OPEN) {
                 need[r] = NEED_ALL;
-            } else if (v == ROOT_EMPTY) {
+            } else if (fv == ROOT_EMPTY) {
                 double xyzt[4];
                 if (ops->round(&R, xyzt)) {
                     w->st.roots_fast++;
@@ -333,6 +390,9 @@ static void add_qstats(vb_cert_quad_stats *to, const vb_cert_quad_stats *from)
     to->exact_solves += from->exact_solves;
     to->mpfr_rounds += from->mpfr_rounds;
     to->power_signs += from->power_signs;
+    to->judged_vertex += from->judged_vertex;
+    to->judged_not += from->judged_not;
+    to->judged_open += from->judged_open;
 }
 
 /* ---- the merge ------------------------------------------------------------ */
@@ -491,6 +551,13 @@ static int check_quads(vb_ctx *ctx, const vb_certifier *c, const uint32_t (*quad
 int vb_certify_quads(vb_ctx *ctx, vb_certifier *c, const uint32_t (*quads)[4], size_t n,
                      vb_vertex_list *out, vb_cert_quad_stats *stats)
 {
+    return vb_certify_quads_judged(ctx, c, quads, NULL, n, out, stats);
+}
+
+int vb_certify_quads_judged(vb_ctx *ctx, vb_certifier *c, const uint32_t (*quads)[4],
+                            const uint8_t *verdict, size_t n, vb_vertex_list *out,
+                            vb_cert_quad_stats *stats)
+{
     vb_cert_quad_stats qs;
     memset(&qs, 0, sizeof qs);
     int rc = check_quads(ctx, c, quads, n);
@@ -521,6 +588,7 @@ int vb_certify_quads(vb_ctx *ctx, vb_certifier *c, const uint32_t (*quads)[4], s
     uint64_t slow0 = c->sol.slow_rounds;
     for (unsigned i = 0; i < nt; i++) {
         ws[i].quads = quads;
+        ws[i].verdict = verdict;
         ws[i].n = n;
         ws[i].next = &next;
         ws[i].judged = &judged;
@@ -552,6 +620,10 @@ int vb_certify_quads(vb_ctx *ctx, vb_certifier *c, const uint32_t (*quads)[4], s
         }
         add_qstats(&qs, &ws[i].st);
     }
+    vb_stats *cst = vb_ctx_stats(ctx);
+    cst->judged_vertex += qs.judged_vertex;
+    cst->judged_not += qs.judged_not;
+    cst->judged_open += qs.judged_open;
     if (rc != VB_OK) {
         rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (certifier threads)");
     } else {

@@ -99,6 +99,9 @@ typedef struct vb_cert_quad_stats {
     uint64_t vertices;          /* distinct vertices appended to out */
     uint64_t duplicates;        /* certified roots of degree > 4 already written by another quadruple */
     uint64_t power_signs;       /* scan signs the double box left open, decided in double-double */
+    uint64_t judged_vertex;     /* roots the certification filter proved vertices (verdicts) */
+    uint64_t judged_not;        /* roots it proved not vertices */
+    uint64_t judged_open;       /* roots it left to this certifier's filter and exact stage */
 } vb_cert_quad_stats;
 
 /* Certifies every exact root of every quadruple: quads[k] holds 4 sphere ids
@@ -119,6 +122,20 @@ typedef struct vb_cert_quad_stats {
  * or VB_EINTERNAL (message in ctx). */
 int vb_certify_quads(vb_ctx *ctx, vb_certifier *c, const uint32_t (*quads)[4], size_t n,
                      vb_vertex_list *out, vb_cert_quad_stats *stats);
+
+/* vb_certify_quads with the verdicts of the certification filter
+ * (core/cells/vbd_cert_shared.h; verdict may be NULL: none): a root judged
+ * VBD_VERTEX is certified without its emptiness scan (its coordinates are
+ * still rounded here, exactly where double-double cannot), a root judged
+ * VBD_NOT is not looked at, a quadruple with both roots VBD_NOT not even
+ * set up; open roots are judged as vb_certify_quads judges them. The same
+ * output as vb_certify_quads for verdicts that are true, which the filter
+ * proves. A verdict this certifier's own proven filter contradicts (two
+ * roots judged where it proves none) is VB_EINTERNAL. Counts the verdicts
+ * (judged_*) in *stats. Same returns. */
+int vb_certify_quads_judged(vb_ctx *ctx, vb_certifier *c, const uint32_t (*quads)[4],
+                            const uint8_t *verdict, size_t n, vb_vertex_list *out,
+                            vb_cert_quad_stats *stats);
 
 /* Threads for vb_certify_list and vb_certify_quads: 0 (the default) takes
  * the environment variable VORBALL_THREADS when it is a positive integer,
