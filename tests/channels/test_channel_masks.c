@@ -333,9 +333,15 @@ static void test_same_as_plain(vb_ctx *ctx)
                 vb_sphere_set *s = random_atoms(&seed, natoms, dim, 20.0, 0.9, 1.5);
                 run r;
                 run_ref(ctx, s, 1.4, n, dim, &r);
-                /* Shift some balls half out of the grid: the rows clip. */
+                /* Shift some balls half out of the grid: the rows clip,
+                 * and in y and z the row nearest the centre is the box's
+                 * first or last (ball_mark walks out from it). */
                 for (size_t i = 0; i < natoms; i += 7)
                     r.atoms[4 * i] = -0.3f * r.atoms[4 * i + 3];
+                for (size_t i = 3; i < natoms; i += 11)
+                    r.atoms[4 * i + 1] = (float)r.g.ny + 0.4f * r.atoms[4 * i + 3];
+                for (size_t i = 5; i < natoms && dim == 3; i += 13)
+                    r.atoms[4 * i + 2] = -0.6f * r.atoms[4 * i + 3];
                 size_t nv = vbc_grid_voxels(&r.g), nrb = (size_t)vbc_rb_size(r.g.nx, r.g.ny, r.g.nz);
                 uint8_t *want = malloc(nv);
                 int *rb = malloc(nrb * sizeof *rb);
