@@ -18,31 +18,34 @@
  * no voxel of the row is atomic). Only the box bx (i0, i1, j0, j1, k0, k1,
  * half open) is read: no voxel outside it is atomic. */
 static void ray_bounds(const uint8_t *am, int nx, int ny, int nz, const int *bx, int *rb,
-                       int *restrict yf, int *restrict yl, int *restrict zf, int *restrict zl)
+                       int16_t *restrict yf, int16_t *restrict yl, int16_t *restrict zf,
+                       int16_t *restrict zl)
 {
     size_t ny2 = (size_t)nx * (size_t)nz, nz2 = (size_t)nx * (size_t)ny;
     for (size_t t = 0; t < ny2; t++) {
-        yf[t] = ny;
+        yf[t] = (int16_t)ny;
         yl[t] = -1;
     }
     for (size_t t = 0; t < nz2; t++) {
-        zf[t] = nz;
+        zf[t] = (int16_t)nz;
         zl[t] = -1;
     }
     for (int k = bx[4]; k < bx[5]; k++) {
-        int *restrict yfk = yf + (size_t)nx * (size_t)k, *restrict ylk = yl + (size_t)nx * (size_t)k;
+        int16_t *restrict yfk = yf + (size_t)nx * (size_t)k, *restrict ylk = yl + (size_t)nx * (size_t)k;
+        int16_t k16 = (int16_t)k, nz16 = (int16_t)nz;
         for (int j = bx[2]; j < bx[3]; j++) {
             const uint8_t *restrict row = am + (size_t)nx * ((size_t)j + (size_t)ny * (size_t)k);
             int f = rb[2 * (j + ny * k)], l = rb[2 * (j + ny * k) + 1];
-            int *restrict zfj = zf + (size_t)nx * (size_t)j, *restrict zlj = zl + (size_t)nx * (size_t)j;
+            int16_t *restrict zfj = zf + (size_t)nx * (size_t)j, *restrict zlj = zl + (size_t)nx * (size_t)j;
+            int16_t j16 = (int16_t)j, ny16 = (int16_t)ny;
             /* m: all ones on an atomic voxel, else 0 (vectorised). */
             for (int i = f; i <= l; i++) {
-                int m = -(int)(row[i] & VBC_F_ATOMIC);
-                int jf = (j & m) | (ny & ~m), kf = (k & m) | (nz & ~m);
+                int16_t m = (int16_t)-(row[i] & VBC_F_ATOMIC);
+                int16_t jf = (int16_t)((j16 & m) | (ny16 & ~m)), kf = (int16_t)((k16 & m) | (nz16 & ~m));
                 yfk[i] = jf < yfk[i] ? jf : yfk[i];
-                ylk[i] = (j & m) | (ylk[i] & ~m);
+                ylk[i] = (int16_t)((j16 & m) | (ylk[i] & ~m));
                 zfj[i] = kf < zfj[i] ? kf : zfj[i];
-                zlj[i] = (k & m) | (zlj[i] & ~m);
+                zlj[i] = (int16_t)((k16 & m) | (zlj[i] & ~m));
             }
         }
     }
@@ -225,7 +228,8 @@ static void atomic_mask(const vbc_grid *g, const float *atoms4, size_t natoms, u
         bx[0] = bx[1] = bx[2] = bx[3] = bx[4] = bx[5] = 0;
 }
 
-/* The ints of ray_bounds' y and z rays apart (yf, yl, zf, zl in a row). */
+/* The int16s of ray_bounds' y and z rays apart (yf, yl, zf, zl in a row;
+ * a channel grid's side is at most 1024, vbc_grid_fit). */
 static size_t planar_size(int nx, int ny, int nz)
 {
     return 2 * ((size_t)nx * (size_t)nz + (size_t)nx * (size_t)ny);
@@ -260,9 +264,9 @@ void vbc_masks_ref(const vbc_grid *g, const float *atoms4, size_t natoms, const 
 {
     int nx = g->nx, ny = g->ny, nz = g->nz, bx[6];
     atomic_mask(g, atoms4, natoms, flags, bx, rb);
-    int *yf = malloc(planar_size(nx, ny, nz) * sizeof *yf);
+    int16_t *yf = malloc(planar_size(nx, ny, nz) * sizeof *yf);
     if (yf) {
-        int *yl = yf + (size_t)nx * nz, *zf = yl + (size_t)nx * nz, *zl = zf + (size_t)nx * ny;
+        int16_t *yl = yf + (size_t)nx * nz, *zf = yl + (size_t)nx * nz, *zl = zf + (size_t)nx * ny;
         ray_bounds(flags, nx, ny, nz, bx, rb, yf, yl, zf, zl);
         free(yf);
     } else { /* no room for the pass: ray by ray */
@@ -324,30 +328,36 @@ int vbc_masks_shape(vb_ctx *ctx, const vbc_grid *g, const float *atoms4, size_t 
     *ninterior = 0;
     /* The y and z rays' first and last hits apart (ray_bounds leaves them:
      * the loop below reads them along i, so it runs without branches). */
-    int *yf = malloc(planar_size(nx, ny, nz) * sizeof *yf);
+    int16_t *yf = malloc(planar_size(nx, ny, nz) * sizeof *yf);
     if (!yf)
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "ray bounds of %d x %d x %d", nx, ny, nz);
-    int *yl = yf + ny2, *zf = yl + ny2, *zl = zf + nz2;
+    int16_t *yl = yf + ny2, *zf = yl + ny2, *zl = zf + nz2;
     atomic_mask(g, atoms4, natoms, flags, bx, rb);
     ray_bounds(flags, nx, ny, nz, bx, rb, yf, yl, zf, zl);
     /* vbc_molecular row by row in the box (outside it nothing is): the x
-     * ray is the row's, the y and z rays run along the row with i. */
+     * ray is the row's, the y and z rays run along the row with i. Between
+     * the x ray's hits [xf, xl] every voxel is molecular; outside them none
+     * is atomic, and one is molecular (and then interior) when its y or z
+     * ray holds it. */
     int rc = VB_OK;
     for (int k = bx[4]; k < bx[5] && rc == VB_OK; k++)
         for (int j = bx[2]; j < bx[3]; j++) {
             size_t base = (size_t)nx * ((size_t)j + (size_t)ny * (size_t)k);
-            uint8_t *row = flags + base;
+            uint8_t *restrict row = flags + base;
             const int *xb = rb + 2 * (j + ny * k);
-            const int *yfk = yf + (size_t)nx * (size_t)k, *ylk = yl + (size_t)nx * (size_t)k;
-            const int *zfj = zf + (size_t)nx * (size_t)j, *zlj = zl + (size_t)nx * (size_t)j;
-            int xf = xb[0], xl = xb[1];
-            for (int i = bx[0]; i < bx[1]; i++) {
-                unsigned a = row[i];
-                int in = ((xf <= i) & (i <= xl)) | ((yfk[i] <= j) & (j <= ylk[i])) |
-                         ((zfj[i] <= k) & (k <= zlj[i]));
-                unsigned f = a ? VBC_F_ATOMIC | VBC_F_MOLECULAR : VBC_F_MOLECULAR | VBC_F_INTERIOR;
-                row[i] = (uint8_t)(in ? f : a);
-            }
+            const int16_t *restrict yfk = yf + (size_t)nx * (size_t)k, *restrict ylk = yl + (size_t)nx * (size_t)k;
+            const int16_t *restrict zfj = zf + (size_t)nx * (size_t)j, *restrict zlj = zl + (size_t)nx * (size_t)j;
+            int16_t j16 = (int16_t)j, k16 = (int16_t)k;
+            int e1 = xb[0] < bx[0] ? bx[0] : xb[0] > bx[1] ? bx[1] : xb[0];
+            int e2 = xb[1] + 1 < e1 ? e1 : xb[1] + 1 > bx[1] ? bx[1] : xb[1] + 1;
+            for (int part = 0; part < 2; part++)
+                for (int i = part ? e2 : bx[0], end = part ? bx[1] : e1; i < end; i++) {
+                    int in = ((yfk[i] <= j16) & (j16 <= ylk[i])) | ((zfj[i] <= k16) & (k16 <= zlj[i]));
+                    row[i] = (uint8_t)(in ? VBC_F_MOLECULAR | VBC_F_INTERIOR : 0u);
+                }
+            for (int i = e1; i < e2; i++)
+                row[i] = (uint8_t)(row[i] ? VBC_F_ATOMIC | VBC_F_MOLECULAR
+                                          : VBC_F_MOLECULAR | VBC_F_INTERIOR);
             if (list_interior(row, base, bx[0], bx[1], &list, &cap, &m) != 0) {
                 rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "interior voxels (%zu)", m + 1);
                 break;
@@ -363,14 +373,51 @@ int vbc_masks_shape(vb_ctx *ctx, const vbc_grid *g, const float *atoms4, size_t 
     return VB_OK;
 }
 
+/* The coordinates of voxel v of an nx x ny x nz grid: by shifts when the
+ * sides are powers of two (as the channel grids are), else by division. */
+typedef struct {
+    size_t sy, sz;
+    int ny, lx, ly; /* lx, ly: log2 of nx and ny, -1 when no power of two */
+} voxel_coords;
+
+static int log2_exact(int n)
+{
+    int l = 0;
+    while ((1 << l) < n)
+        l++;
+    return (1 << l) == n ? l : -1;
+}
+
+static voxel_coords coords_of(const vbc_grid *g)
+{
+    voxel_coords c = {(size_t)g->nx, (size_t)g->nx * (size_t)g->ny, g->ny, log2_exact(g->nx),
+                      log2_exact(g->ny)};
+    return c;
+}
+
+static void coords_at(const voxel_coords *c, size_t v, int *i, int *j, int *k)
+{
+    if (c->lx >= 0 && c->ly >= 0) {
+        *i = (int)(v & (c->sy - 1));
+        *j = (int)((v >> c->lx) & (size_t)(c->ny - 1));
+        *k = (int)(v >> (c->lx + c->ly));
+    } else {
+        *i = (int)(v % c->sy);
+        *j = (int)(v / c->sy % (size_t)c->ny);
+        *k = (int)(v / c->sz);
+    }
+}
+
 void vbc_masks_need(const vbc_grid *g, const uint32_t *interior, size_t n, uint8_t *need)
 {
+    voxel_coords vc = coords_of(g);
     int nx = g->nx, ny = g->ny, nz = g->nz;
     size_t sy = (size_t)nx, sz = (size_t)nx * (size_t)ny;
     memset(need, 0, vbc_grid_voxels(g));
     for (size_t t = 0; t < n; t++) {
         size_t v = interior[t];
-        int i = (int)(v % sy), j = (int)(v / sy % (size_t)ny), k = (int)(v / sz);
+        int i, j, k;
+        coords_at(&vc, v, &i, &j, &k);
         need[v] = 1;
         if (i > 0)
             need[v - 1] = 1;
@@ -390,10 +437,12 @@ void vbc_masks_need(const vbc_grid *g, const uint32_t *interior, size_t n, uint8
 size_t vbc_masks_edges(const vbc_grid *g, const int32_t *labels, int min_labels, const int *rb,
                        uint32_t *interior, size_t n, uint8_t *flags)
 {
-    size_t sy = (size_t)g->nx, sz = (size_t)g->nx * (size_t)g->ny, m = 0;
+    voxel_coords vc = coords_of(g);
+    size_t m = 0;
     for (size_t t = 0; t < n; t++) {
         size_t v = interior[t];
-        int i = (int)(v % sy), j = (int)(v / sy % (size_t)g->ny), k = (int)(v / sz);
+        int i, j, k;
+        coords_at(&vc, v, &i, &j, &k);
         unsigned f = classify(g, labels, flags, rb, min_labels, i, j, k, v);
         flags[v] = (uint8_t)f;
         if (f & VBC_F_CHANNEL)
