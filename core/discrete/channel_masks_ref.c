@@ -259,6 +259,19 @@ static unsigned classify(const vbc_grid *g, const int32_t *labels, const uint8_t
     return vbc_classify(labels, flags, rb, nx, ny, nz, min_labels, i, j, k);
 }
 
+void vbc_ray_bounds_plain(const uint8_t *am, int nx, int ny, int nz, int *rb)
+{
+    for (int b = 0; b < nz; b++)
+        for (int a = 0; a < ny; a++)
+            vbc_ray_scan(am, nx, ny, nz, 0, a, b, rb);
+    for (int b = 0; b < nz; b++)
+        for (int a = 0; a < nx; a++)
+            vbc_ray_scan(am, nx, ny, nz, 1, a, b, rb);
+    for (int b = 0; b < ny; b++)
+        for (int a = 0; a < nx; a++)
+            vbc_ray_scan(am, nx, ny, nz, 2, a, b, rb);
+}
+
 void vbc_masks_ref(const vbc_grid *g, const float *atoms4, size_t natoms, const int32_t *labels,
                    int min_labels, int *rb, uint8_t *flags)
 {
@@ -270,15 +283,7 @@ void vbc_masks_ref(const vbc_grid *g, const float *atoms4, size_t natoms, const 
         ray_bounds(flags, nx, ny, nz, bx, rb, yf, yl, zf, zl);
         free(yf);
     } else { /* no room for the pass: ray by ray */
-        for (int b = 0; b < nz; b++)
-            for (int a = 0; a < ny; a++)
-                vbc_ray_scan(flags, nx, ny, nz, 0, a, b, rb);
-        for (int b = 0; b < nz; b++)
-            for (int a = 0; a < nx; a++)
-                vbc_ray_scan(flags, nx, ny, nz, 1, a, b, rb);
-        for (int b = 0; b < ny; b++)
-            for (int a = 0; a < nx; a++)
-                vbc_ray_scan(flags, nx, ny, nz, 2, a, b, rb);
+        vbc_ray_bounds_plain(flags, nx, ny, nz, rb);
     }
     /* The classification reads only the voxel's own flag byte (its atomic
      * bit), so updating in place is safe. */

@@ -42,6 +42,10 @@ static inline size_t vbc_grid_voxels(const vbc_grid *g)
  * its centre at i + 0.5) and (r + probe) / h. In 2D z is 0.5 (the slice). */
 void vbc_atoms_pack(const vbc_grid *g, const vb_sphere_set *s, double probe, float *out4);
 
+/* The ray bounds (rb, vbc_rb_size ints) of the atomic bits of am, ray by
+ * ray with vbc_ray_scan: the definition the faster passes must match. */
+void vbc_ray_bounds_plain(const uint8_t *am, int nx, int ny, int nz, int *rb);
+
 /* The plain-C reference of the mask stage: from the packed atoms and a label
  * grid (nx*ny*nz ints, x fastest) writes the flag byte (VBC_F_*) of every
  * voxel into flags. min_labels: 3 in 3D, 2 in 2D. rb is scratch of

@@ -289,15 +289,7 @@ static void masks_plain(const vbc_grid *g, const float *atoms4, size_t natoms, c
                     if (vbc_ball_contains(p[0], p[1], p[2], p[3], i, j, k))
                         flags[vox(g, i, j, k)] = VBC_F_ATOMIC;
     }
-    for (int b = 0; b < nz; b++)
-        for (int a = 0; a < ny; a++)
-            vbc_ray_scan(flags, nx, ny, nz, 0, a, b, rb);
-    for (int b = 0; b < nz; b++)
-        for (int a = 0; a < nx; a++)
-            vbc_ray_scan(flags, nx, ny, nz, 1, a, b, rb);
-    for (int b = 0; b < ny; b++)
-        for (int a = 0; a < nx; a++)
-            vbc_ray_scan(flags, nx, ny, nz, 2, a, b, rb);
+    vbc_ray_bounds_plain(flags, nx, ny, nz, rb);
     for (int k = 0; k < nz; k++)
         for (int j = 0; j < ny; j++)
             for (int i = 0; i < nx; i++)
