@@ -439,16 +439,54 @@ void vbc_masks_need(const vbc_grid *g, const uint32_t *interior, size_t n, uint8
     }
 }
 
+/* vbc_classify's byte of the interior voxel v = (i,j,k) of flags from
+ * vbc_masks_shape: molecular and interior; the edge bit from the labels
+ * as vbc_classify counts them (a voxel inside the grid whose six face
+ * neighbours share its label has one); for a channel the mouth bit from
+ * its face neighbours' molecular bits in flags, which are vbc_molecular's
+ * answers: vbc_masks_shape wrote them in the box of the balls, and outside
+ * it, as off the grid, no voxel is molecular. */
+static unsigned classify_interior(const vbc_grid *g, const int32_t *labels, const uint8_t *flags,
+                                  int min_labels, int i, int j, int k, size_t v)
+{
+    int nx = g->nx, ny = g->ny, nz = g->nz;
+    size_t sy = (size_t)nx, sz = (size_t)nx * (size_t)ny;
+    unsigned f = VBC_F_MOLECULAR | VBC_F_INTERIOR;
+    int32_t l0 = labels[v];
+    if (min_labels > 1 && i > 0 && j > 0 && k > 0 && i + 1 < nx && j + 1 < ny && k + 1 < nz &&
+        labels[v - 1] == l0 && labels[v + 1] == l0 && labels[v - sy] == l0 && labels[v + sy] == l0 &&
+        labels[v - sz] == l0 && labels[v + sz] == l0)
+        return f;
+    int l[7], m = 0;
+    l[m++] = l0;
+    if (i > 0) l[m++] = labels[v - 1];
+    if (i + 1 < nx) l[m++] = labels[v + 1];
+    if (j > 0) l[m++] = labels[v - sy];
+    if (j + 1 < ny) l[m++] = labels[v + sy];
+    if (k > 0) l[m++] = labels[v - sz];
+    if (k + 1 < nz) l[m++] = labels[v + sz];
+    if (vbc_distinct(l, m) < min_labels)
+        return f;
+    f |= VBC_F_EDGE | VBC_F_CHANNEL;
+    if (i == 0 || !(flags[v - 1] & VBC_F_MOLECULAR) || i + 1 == nx || !(flags[v + 1] & VBC_F_MOLECULAR) ||
+        j == 0 || !(flags[v - sy] & VBC_F_MOLECULAR) || j + 1 == ny ||
+        !(flags[v + sy] & VBC_F_MOLECULAR) || k == 0 || !(flags[v - sz] & VBC_F_MOLECULAR) ||
+        k + 1 == nz || !(flags[v + sz] & VBC_F_MOLECULAR))
+        f |= VBC_F_MOUTH;
+    return f;
+}
+
 size_t vbc_masks_edges(const vbc_grid *g, const int32_t *labels, int min_labels, const int *rb,
                        uint32_t *interior, size_t n, uint8_t *flags)
 {
     voxel_coords vc = coords_of(g);
     size_t m = 0;
+    (void)rb; /* the flags hold the molecular bits it would give */
     for (size_t t = 0; t < n; t++) {
         size_t v = interior[t];
         int i, j, k;
         coords_at(&vc, v, &i, &j, &k);
-        unsigned f = classify(g, labels, flags, rb, min_labels, i, j, k, v);
+        unsigned f = classify_interior(g, labels, flags, min_labels, i, j, k, v);
         flags[v] = (uint8_t)f;
         if (f & VBC_F_CHANNEL)
             interior[m++] = (uint32_t)v | ((f & VBC_F_MOUTH) ? VBC_MOUTH_BIT : 0u);

@@ -62,7 +62,8 @@ void vbc_masks_ref(const vbc_grid *g, const float *atoms4, size_t natoms, const 
  * byte per voxel, cleared first) the voxels whose labels the
  * classification of those voxels reads: each and its face neighbours
  * inside the grid. vbc_masks_edges then gives each listed voxel its whole
- * vbc_classify byte from labels that are right on the needed voxels, and
+ * vbc_classify byte from labels that are right on the needed voxels (the
+ * molecular bits of vbc_masks_shape's flags, not rb, give the mouths), and
  * rewrites the list's head with the channel voxels among them, in order,
  * the mouth flag in VBC_MOUTH_BIT (vbc_flags_compact's list); it returns
  * their number. The flags are vbc_masks_ref's bytes except the edge bit of
