@@ -68,20 +68,14 @@ static int solve3(double a[3][3], double b[3], double x[3])
     return 1;
 }
 
-/* The circle closest to the projections of the n points p (xyz triples,
- * relative to their mean) on the plane normal to u (Kasa's algebraic fit:
- * x^2 + y^2 + D x + E y + F = 0 in least squares). spread INFINITY when
- * degenerate or when the points leave a 45-degree sector of the circle
- * empty (a sheet, not a barrel), and also when the spread is not below
- * `beat` (the sectors then go unchecked: the caller keeps only a fit that
- * beats its best, so it takes the same fits; the search spent 8% of the
- * maltoporin trimer's CPU on their atan2 before, issue 32). */
-static circle_fit circle_along(const double *p, size_t n, const double u[3], double beat)
+/* The normal equations of Kasa's algebraic fit (x^2 + y^2 + D x + E y + F
+ * = 0 in least squares) of the n points p (xyz triples) projected on the
+ * plane (e1, e2), summed in point order. */
+static void normal_sums(const double *p, size_t n, const double e1[3], const double e2[3],
+                        double a[3][3], double b[3])
 {
-    circle_fit f = {INFINITY, 0.0, {0.0, 0.0}};
-    double e1[3], e2[3];
-    plane_basis(u, e1, e2);
-    double a[3][3] = {{0.0}}, b[3] = {0.0, 0.0, 0.0}, x[3];
+    memset(a, 0, 9 * sizeof **a);
+    memset(b, 0, 3 * sizeof *b);
     for (size_t i = 0; i < n; i++) {
         const double *q = p + 3 * i;
         double X = q[0] * e1[0] + q[1] * e1[1] + q[2] * e1[2];
@@ -93,6 +87,60 @@ static circle_fit circle_along(const double *p, size_t n, const double u[3], dou
             b[r] += row[r] * rhs;
         }
     }
+}
+
+/* normal_sums of two planes at once: with GNU C vectors each plane is a
+ * lane that takes normal_sums' operations in its order (IEEE double, no
+ * contraction; a product by 1.0 is exact either way), so the same sums. */
+static void normal_sums2(const double *p, size_t n, const double e1[2][3], const double e2[2][3],
+                         double a[2][3][3], double b[2][3])
+{
+#if defined(__GNUC__)
+    typedef double v2 __attribute__((vector_size(16)));
+    v2 A[3][3], B[3], E1[3], E2[3];
+    for (int r = 0; r < 3; r++) {
+        B[r] = (v2){0.0, 0.0};
+        E1[r] = (v2){e1[0][r], e1[1][r]};
+        E2[r] = (v2){e2[0][r], e2[1][r]};
+        for (int c = 0; c < 3; c++)
+            A[r][c] = (v2){0.0, 0.0};
+    }
+    for (size_t i = 0; i < n; i++) {
+        const double *q = p + 3 * i;
+        v2 X = q[0] * E1[0] + q[1] * E1[1] + q[2] * E1[2];
+        v2 Y = q[0] * E2[0] + q[1] * E2[1] + q[2] * E2[2];
+        v2 row[3] = {X, Y, {1.0, 1.0}}, rhs = -(X * X + Y * Y);
+        for (int r = 0; r < 3; r++) {
+            for (int c = 0; c < 3; c++)
+                A[r][c] += row[r] * row[c];
+            B[r] += row[r] * rhs;
+        }
+    }
+    for (int l = 0; l < 2; l++)
+        for (int r = 0; r < 3; r++) {
+            b[l][r] = B[r][l];
+            for (int c = 0; c < 3; c++)
+                a[l][r][c] = A[r][c][l];
+        }
+#else
+    for (int l = 0; l < 2; l++)
+        normal_sums(p, n, e1[l], e2[l], a[l], b[l]);
+#endif
+}
+
+/* The circle closest to the projections of the n points p (xyz triples,
+ * relative to their mean) on the plane (e1, e2) normal to a direction,
+ * from its normal sums a, b (normal_sums). spread INFINITY when
+ * degenerate or when the points leave a 45-degree sector of the circle
+ * empty (a sheet, not a barrel), and also when the spread is not below
+ * `beat` (the sectors then go unchecked: the caller keeps only a fit that
+ * beats its best, so it takes the same fits; the search spent 8% of the
+ * maltoporin trimer's CPU on their atan2 before, issue 32). */
+static circle_fit circle_finish(const double *p, size_t n, const double e1[3], const double e2[3],
+                                double a[3][3], double b[3], double beat)
+{
+    circle_fit f = {INFINITY, 0.0, {0.0, 0.0}};
+    double x[3];
     if (!solve3(a, b, x))
         return f;
     double cx = -x[0] / 2.0, cy = -x[1] / 2.0;
@@ -126,6 +174,27 @@ static circle_fit circle_along(const double *p, size_t n, const double u[3], dou
     f.centre[0] = cx;
     f.centre[1] = cy;
     return f;
+}
+
+/* The fit along u (circle_finish of the plane normal to it). */
+static circle_fit circle_along(const double *p, size_t n, const double u[3], double beat)
+{
+    double e1[3], e2[3], a[3][3], b[3];
+    plane_basis(u, e1, e2);
+    normal_sums(p, n, e1, e2, a, b);
+    return circle_finish(p, n, e1, e2, a, b, beat);
+}
+
+/* circle_along of two directions with one beat: their sums side by side. */
+static void circle_along2(const double *p, size_t n, const double u[2][3], double beat,
+                          circle_fit f[2])
+{
+    double e1[2][3], e2[2][3], a[2][3][3], b[2][3];
+    for (int l = 0; l < 2; l++)
+        plane_basis(u[l], e1[l], e2[l]);
+    normal_sums2(p, n, (const double (*)[3])e1, (const double (*)[3])e2, a, b);
+    for (int l = 0; l < 2; l++)
+        f[l] = circle_finish(p, n, e1[l], e2[l], a[l], b[l], beat);
 }
 
 /* The chain with most C-alpha atoms, written to name; 0 when none. */
@@ -243,14 +312,27 @@ int vbc_axis_barrel(const vb_sphere_set *s, const char *chain, vbc_axis *out)
     double best[3] = {0.0, 0.0, 1.0};
     circle_fit bf = {INFINITY, 0.0, {0.0, 0.0}};
     const size_t m = 2400;
-    for (size_t i = 0; i < m; i++) {
-        double u[3];
-        lattice_direction(i, m, u);
-        circle_fit f = circle_along(p, n, u, bf.spread);
-        if (f.spread < bf.spread) {
-            bf = f;
-            memcpy(best, u, sizeof best);
+    /* Two directions at a time, judged in order. The second's fit is
+     * made with the best spread before the first's: a beat only spares
+     * the sectors of a fit no better than it, and the test below turns
+     * down every fit not better than the best at its turn, so the same
+     * fits win as one at a time. */
+    for (size_t i = 0; i < m; i += 2) {
+        double u[2][3];
+        circle_fit f[2];
+        int two = i + 1 < m;
+        lattice_direction(i, m, u[0]);
+        if (two) {
+            lattice_direction(i + 1, m, u[1]);
+            circle_along2(p, n, (const double (*)[3])u, bf.spread, f);
+        } else {
+            f[0] = circle_along(p, n, u[0], bf.spread);
         }
+        for (int l = 0; l <= two; l++)
+            if (f[l].spread < bf.spread) {
+                bf = f[l];
+                memcpy(best, u[l], sizeof best);
+            }
     }
     for (double step = 0.05; step > 2e-5 && isfinite(bf.spread); step *= 0.5) {
         int moved = 1;

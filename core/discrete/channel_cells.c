@@ -344,11 +344,24 @@ int vbc_cells_nearest_among(const vbc_cells *c, const int32_t *ids, size_t n, co
 {
     double best = INFINITY;
     int32_t b = -1;
-    /* nearest_offer's distance expression, the least (distance, index). */
+    /* nearest_offer's distance expression and its shortcut (a sphere
+     * certainly beyond best + slack is neither the nearest nor listed),
+     * the least (distance, index); the distances kept for the list (up to
+     * AMONG_KEPT spheres, else computed again by the same expression). */
+    enum { AMONG_KEPT = 512 };
+    double kept[AMONG_KEPT];
+    int keep = n <= AMONG_KEPT;
     for (size_t k = 0; k < n; k++) {
         int32_t a = ids[k];
         double dx = p[0] - c->s->x[a], dy = p[1] - c->s->y[a], dz = p[2] - c->s->z[a];
-        double d = sqrt(dx * dx + dy * dy + dz * dz) - c->s->r[a];
+        double d2 = dx * dx + dy * dy + dz * dz, lim = best + slack + c->s->r[a];
+        if (keep && b >= 0 && lim >= 0.0 && d2 > lim * lim * (1.0 + 1e-12)) {
+            kept[k] = INFINITY;
+            continue;
+        }
+        double d = sqrt(d2) - c->s->r[a];
+        if (keep)
+            kept[k] = d;
         if (b < 0 || d < best || (d == best && a < b)) {
             best = d;
             b = a;
@@ -362,8 +375,13 @@ int vbc_cells_nearest_among(const vbc_cells *c, const int32_t *ids, size_t n, co
     size_t m = 0;
     for (size_t k = 0; k < n; k++) {
         int32_t a = ids[k];
-        double dx = p[0] - c->s->x[a], dy = p[1] - c->s->y[a], dz = p[2] - c->s->z[a];
-        double d = sqrt(dx * dx + dy * dy + dz * dz) - c->s->r[a];
+        double d;
+        if (keep) {
+            d = kept[k];
+        } else {
+            double dx = p[0] - c->s->x[a], dy = p[1] - c->s->y[a], dz = p[2] - c->s->z[a];
+            d = sqrt(dx * dx + dy * dy + dz * dz) - c->s->r[a];
+        }
         if (!(d <= best + slack))
             continue;
         if (m == cap || m == 64)

@@ -111,6 +111,7 @@ typedef struct {
     uint32_t n, dim, T; /* T tiles per axis */
     uint32_t *labels;
     const uint8_t *need; /* per voxel, nonzero where a label is wanted; NULL: all */
+    uint8_t *boxes;      /* need_boxes' answer per tile (NULL: need_box asks) */
     scratch th[VB_MAX_THREADS];
 } job;
 
@@ -219,6 +220,106 @@ static int need_box(const uint8_t *need, size_t first, uint32_t n, uint32_t S, u
     return any;
 }
 
+/* need_box's answer for every tile in one pass over need in memory order,
+ * eight voxels at a time (a tile's side is a multiple of eight, so an
+ * aligned word lies in one tile): per tile lo[0..2] then hi[0..2], lo[0] =
+ * 0xff when it has none. The least and greatest offsets per axis over the
+ * wanted voxels do not depend on the order they are met in. The side S
+ * must be 8 or 16, the grid n a multiple of it. */
+static void need_boxes(const uint8_t *need, uint32_t n, uint32_t dim, uint32_t ts, uint8_t *boxes)
+{
+    uint32_t S = 1u << ts, T = n >> ts, nz = dim == 3 ? n : 1;
+    size_t tiles = (size_t)T * T * (dim == 3 ? T : 1);
+    for (size_t t = 0; t < tiles; t++) {
+        uint8_t *b = boxes + 6 * t;
+        b[0] = b[1] = b[2] = 0xff;
+        b[3] = b[4] = b[5] = 0;
+    }
+    for (uint32_t z = 0; z < nz; z++)
+        for (uint32_t y = 0; y < n; y++) {
+            const uint8_t *row = need + ((size_t)z * n + y) * n;
+            size_t trow = (size_t)T * ((y >> ts) + (size_t)T * (z >> ts));
+            uint8_t oy = (uint8_t)(y & (S - 1)), oz = (uint8_t)(z & (S - 1));
+            for (uint32_t x0 = 0; x0 < n; x0 += 8) {
+                uint64_t w, q[4];
+                /* Four words at once where none wants a label. */
+                if (x0 % 32 == 0 && x0 + 32 <= n) {
+                    memcpy(q, row + x0, sizeof q);
+                    if (!(q[0] | q[1] | q[2] | q[3])) {
+                        x0 += 24;
+                        continue;
+                    }
+                }
+                memcpy(&w, row + x0, sizeof w);
+                if (!w)
+                    continue;
+                int first = 0, last = 7;
+                while (!row[x0 + (uint32_t)first])
+                    first++;
+                while (!row[x0 + (uint32_t)last])
+                    last--;
+                uint8_t *b = boxes + 6 * (trow + (x0 >> ts)), ox = (uint8_t)(x0 & (S - 1));
+                uint8_t lo = (uint8_t)(ox + first), hi = (uint8_t)(ox + last);
+                if (b[0] == 0xff) { /* the tile's first: y and z grow from here */
+                    b[0] = lo;
+                    b[1] = oy;
+                    b[2] = oz;
+                }
+                b[0] = lo < b[0] ? lo : b[0];
+                b[3] = hi > b[3] ? hi : b[3];
+                b[1] = oy < b[1] ? oy : b[1];
+                b[4] = oy > b[4] ? oy : b[4];
+                b[5] = oz > b[5] ? oz : b[5];
+            }
+        }
+}
+
+/* The filter's state (d1, d2, b of vbj_xt_offer) of the eight voxels x0
+ * .. x0 + 7 of a row over the ns survivors (their x in ex, the row's yz
+ * in yzs): for each voxel the very operations of one voxel's loop, in its
+ * order, so the same states. The voxels are independent lanes: with GNU C
+ * vectors, four at a time (IEEE single lanes, no contraction: each lane
+ * rounds as the scalar does; the selects are vbj_xt_offer's, by masks). */
+static void offer_block(const float *ex, const float *yzs, const int32_t *surv, size_t ns,
+                        uint32_t x0, float d1[8], float d2[8], uint32_t b[8])
+{
+#if defined(__GNUC__)
+    typedef float vf __attribute__((vector_size(16)));
+    typedef int32_t vi __attribute__((vector_size(16)));
+    for (int h = 0; h < 8; h += 4) {
+        vf fx, e1 = {INFINITY, INFINITY, INFINITY, INFINITY}, e2 = e1;
+        vi bv = {(int32_t)VBJ_NONE, (int32_t)VBJ_NONE, (int32_t)VBJ_NONE, (int32_t)VBJ_NONE};
+        for (int l = 0; l < 4; l++)
+            fx[l] = (float)((int32_t)(x0 + (uint32_t)(h + l)) * VBJ_FIX_ONE);
+        for (size_t i = 0; i < ns; i++) {
+            vf dx = fx - ex[i], d = dx * dx + yzs[i];
+            vi lt = d < e1, v = (vi){0, 0, 0, 0} + surv[4 * i + 3];
+            vf hi = (vf)((lt & (vi)e1) | (~lt & (vi)d));
+            vi lo2 = hi < e2;
+            e2 = (vf)((lo2 & (vi)hi) | (~lo2 & (vi)e2));
+            bv = (lt & v) | (~lt & bv);
+            e1 = (vf)((lt & (vi)d) | (~lt & (vi)e1));
+        }
+        for (int l = 0; l < 4; l++) {
+            d1[h + l] = e1[l];
+            d2[h + l] = e2[l];
+            b[h + l] = (uint32_t)bv[l];
+        }
+    }
+#else
+    float fx[8];
+    for (int l = 0; l < 8; l++) {
+        fx[l] = (float)((int32_t)(x0 + (uint32_t)l) * VBJ_FIX_ONE);
+        d1[l] = d2[l] = INFINITY;
+        b[l] = VBJ_NONE;
+    }
+    for (size_t i = 0; i < ns; i++)
+        for (int l = 0; l < 8; l++)
+            vbj_xt_offer(vbj_xt_dist(fx[l] - ex[i], yzs[i]), (uint32_t)surv[4 * i + 3], &d1[l],
+                         &d2[l], &b[l]);
+#endif
+}
+
 static void tile(void *arg, size_t t, int tid)
 {
     job *J = arg;
@@ -239,8 +340,17 @@ static void tile(void *arg, size_t t, int tid)
         cen[a] = a < (int)dim ? box.lo[a] + (int32_t)(S / 2) * VBJ_FIX_ONE : 0;
     if (J->need) {
         uint32_t lo[3], hi[3];
-        if (!need_box(J->need, first, n, S, sz, lo, hi))
+        if (J->boxes) {
+            const uint8_t *b = J->boxes + 6 * t;
+            if (b[0] == 0xff)
+                return;
+            for (int a = 0; a < 3; a++) {
+                lo[a] = b[a];
+                hi[a] = b[3 + a];
+            }
+        } else if (!need_box(J->need, first, n, S, sz, lo, hi)) {
             return;
+        }
         /* cen: a voxel centre of the box, so its owner c is a candidate
          * (|cen - c| <= U) and survives. */
         for (int a = 0; a < (int)dim; a++) {
@@ -332,7 +442,18 @@ static void tile(void *arg, size_t t, int tid)
                     yzs[i] = vbj_xt_yz((float)((int32_t)y * VBJ_FIX_ONE) - (float)e[1],
                                        (float)((int32_t)z * VBJ_FIX_ONE) - (float)e[2]);
                 }
+            /* The filter eight voxels at a time where the side allows. */
+            int block = ns > 1 && !far && S % 8 == 0;
+            float bd1[8], bd2[8];
+            uint32_t bb[8];
             for (uint32_t x = 0; x < S; x++) {
+                if (block && x % 8 == 0) {
+                    if (want && !any_byte(want + x, 8)) {
+                        x += 7;
+                        continue;
+                    }
+                    offer_block(ex, yzs, w->surv, ns, x, bd1, bd2, bb);
+                }
                 if (want && !want[x])
                     continue;
                 if (ns == 1) {
@@ -345,9 +466,15 @@ static void tile(void *arg, size_t t, int tid)
                 int decided = 0;
                 if (!far) {
                     float d1 = INFINITY, d2 = INFINITY, fx = (float)vx;
-                    for (size_t i = 0; i < ns; i++)
-                        vbj_xt_offer(vbj_xt_dist(fx - ex[i], yzs[i]), (uint32_t)w->surv[4 * i + 3],
-                                     &d1, &d2, &b);
+                    if (block) {
+                        d1 = bd1[x % 8];
+                        d2 = bd2[x % 8];
+                        b = bb[x % 8];
+                    } else {
+                        for (size_t i = 0; i < ns; i++)
+                            vbj_xt_offer(vbj_xt_dist(fx - ex[i], yzs[i]),
+                                         (uint32_t)w->surv[4 * i + 3], &d1, &d2, &b);
+                    }
                     w->cnt[VBJ_XT_C_EVALS] += ns;
                     decided = vbj_xt_decided(d1, d2);
                 }
@@ -376,8 +503,15 @@ int vbj_tiles_ref_run(vb_ctx *ctx, const vbj_seeds *s, const vbj_tiles_prep *p, 
     J->labels = out->labels;
     J->need = need;
     size_t tiles = (size_t)J->T * J->T * (s->dim == 3 ? J->T : 1);
+    uint32_t S = 1u << p->ts;
+    /* Without room for the boxes each tile finds its own (need_box). */
+    if (need && (S == 8 || S == 16) && s->n % S == 0)
+        J->boxes = malloc(6 * tiles);
+    if (J->boxes)
+        need_boxes(need, s->n, J->dim, p->ts, J->boxes);
     int nt = vb_threads(0);
     vb_parallel_for(tile, J, tiles, nt);
+    free(J->boxes);
     int rc = VB_OK;
     uint64_t cnt[VBJ_XT_NC] = {0};
     for (int t = 0; t < VB_MAX_THREADS; t++) {

@@ -42,6 +42,10 @@ static inline size_t vbc_grid_voxels(const vbc_grid *g)
  * its centre at i + 0.5) and (r + probe) / h. In 2D z is 0.5 (the slice). */
 void vbc_atoms_pack(const vbc_grid *g, const vb_sphere_set *s, double probe, float *out4);
 
+/* The ray bounds (rb, vbc_rb_size ints) of the atomic bits of am, ray by
+ * ray with vbc_ray_scan: the definition the faster passes must match. */
+void vbc_ray_bounds_plain(const uint8_t *am, int nx, int ny, int nz, int *rb);
+
 /* The plain-C reference of the mask stage: from the packed atoms and a label
  * grid (nx*ny*nz ints, x fastest) writes the flag byte (VBC_F_*) of every
  * voxel into flags. min_labels: 3 in 3D, 2 in 2D. rb is scratch of
@@ -58,7 +62,8 @@ void vbc_masks_ref(const vbc_grid *g, const float *atoms4, size_t natoms, const 
  * byte per voxel, cleared first) the voxels whose labels the
  * classification of those voxels reads: each and its face neighbours
  * inside the grid. vbc_masks_edges then gives each listed voxel its whole
- * vbc_classify byte from labels that are right on the needed voxels, and
+ * vbc_classify byte from labels that are right on the needed voxels (the
+ * molecular bits of vbc_masks_shape's flags, not rb, give the mouths), and
  * rewrites the list's head with the channel voxels among them, in order,
  * the mouth flag in VBC_MOUTH_BIT (vbc_flags_compact's list); it returns
  * their number. The flags are vbc_masks_ref's bytes except the edge bit of

@@ -289,15 +289,7 @@ static void masks_plain(const vbc_grid *g, const float *atoms4, size_t natoms, c
                     if (vbc_ball_contains(p[0], p[1], p[2], p[3], i, j, k))
                         flags[vox(g, i, j, k)] = VBC_F_ATOMIC;
     }
-    for (int b = 0; b < nz; b++)
-        for (int a = 0; a < ny; a++)
-            vbc_ray_scan(flags, nx, ny, nz, 0, a, b, rb);
-    for (int b = 0; b < nz; b++)
-        for (int a = 0; a < nx; a++)
-            vbc_ray_scan(flags, nx, ny, nz, 1, a, b, rb);
-    for (int b = 0; b < ny; b++)
-        for (int a = 0; a < nx; a++)
-            vbc_ray_scan(flags, nx, ny, nz, 2, a, b, rb);
+    vbc_ray_bounds_plain(flags, nx, ny, nz, rb);
     for (int k = 0; k < nz; k++)
         for (int j = 0; j < ny; j++)
             for (int i = 0; i < nx; i++)
@@ -333,9 +325,15 @@ static void test_same_as_plain(vb_ctx *ctx)
                 vb_sphere_set *s = random_atoms(&seed, natoms, dim, 20.0, 0.9, 1.5);
                 run r;
                 run_ref(ctx, s, 1.4, n, dim, &r);
-                /* Shift some balls half out of the grid: the rows clip. */
+                /* Shift some balls half out of the grid: the rows clip,
+                 * and in y and z the row nearest the centre is the box's
+                 * first or last (ball_mark walks out from it). */
                 for (size_t i = 0; i < natoms; i += 7)
                     r.atoms[4 * i] = -0.3f * r.atoms[4 * i + 3];
+                for (size_t i = 3; i < natoms; i += 11)
+                    r.atoms[4 * i + 1] = (float)r.g.ny + 0.4f * r.atoms[4 * i + 3];
+                for (size_t i = 5; i < natoms && dim == 3; i += 13)
+                    r.atoms[4 * i + 2] = -0.6f * r.atoms[4 * i + 3];
                 size_t nv = vbc_grid_voxels(&r.g), nrb = (size_t)vbc_rb_size(r.g.nx, r.g.ny, r.g.nz);
                 uint8_t *want = malloc(nv);
                 int *rb = malloc(nrb * sizeof *rb);
