@@ -84,7 +84,8 @@ VBS_FN vbq_frame vbq_root(vbs_u32 T, vbs_u32 k, vbs_u32 len0, double rq, double 
 }
 
 /* The four children of a subdivided patch, sharing its surviving list
- * (combo: the patch tried combinations on it, vbq_combo_due). */
+ * (combo: VBQ_FR_COMBO when the patch tried combinations on it,
+ * vbq_combo_due; VBQ_FR_NOTFLAT when it found it no tie cluster). */
 VBS_FN void vbq_child(const vbq_frame *fr, vbs_u32 k, vbs_u32 off, vbs_u32 keep, vbs_u32 combo,
                       vbq_frame *ch)
 {
@@ -458,7 +459,7 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
         ch.round = 0u;
         ch.n = 0u;
         vbs_u32 ch_tried = vbq_combo_due(&fr, closed, keep, owned);
-        vbs_u32 list_tried = ch_tried || (fr.combo && keep == fr.len);
+        vbs_u32 list_tried = ch_tried || ((fr.combo & VBQ_FR_COMBO) && keep == fr.len);
         if (!ch_tried || !vbq_combo_may_go(LO, hm))
             ch.round = VBQ_CHAMP_ROUNDS;
         while (keep > VBQ_DOM_MAX && owned >= 3u && ch.round < VBQ_CHAMP_ROUNDS) {
@@ -511,7 +512,15 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
         int act = closed ? vbq_decide(e, &fr, ar->nb, ar->lab + top, i, keep, owned) : 1;
         if (act == 0)
             continue;
-        if (vbq_tie_cluster(ar->nb, ar->lab + top, keep, owned, i, act, closed)) {
+        /* A stalled chain (a near-tie at a point: a jittered face's layer at
+         * its normal) keeps one list for many levels; whether it looks flat
+         * depends on the list alone (in order), so a child that excluded
+         * nothing reuses its parent's answer (speed only: the same
+         * decision). */
+        vbs_u32 same = keep == fr.len && (fr.combo & VBQ_FR_NOTFLAT);
+        int cluster = !same && vbq_tie_cluster(ar->nb, ar->lab + top, keep, owned, i, act, closed);
+        vbs_u32 notflat = !cluster && (same || (owned > VBQ_CLUSTER_OWNED && closed)) ? VBQ_FR_NOTFLAT : 0u;
+        if (cluster) {
 #ifdef __OPENCL_C_VERSION__
             o->status = VBQ_CLUSTER;
             return;
@@ -541,7 +550,7 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
             if (!vbq_task_child(root, fr.level, k))
                 continue;
             vbq_frame ch;
-            vbq_child(&fr, k, off, keep, list_tried, &ch);
+            vbq_child(&fr, k, off, keep, (list_tried ? VBQ_FR_COMBO : 0u) | notflat, &ch);
             ar->st[nst++] = ch;
         }
     }

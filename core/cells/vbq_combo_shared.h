@@ -169,7 +169,8 @@ VBS_FN int vbq_combo_beaten(const vbq_champ *c, const vbq_nb *nj, const double m
  * smaller patch would mostly fail again (speed only). */
 VBS_FN vbs_u32 vbq_combo_due(const vbq_frame *fr, int closed, vbs_u32 keep, vbs_u32 owned)
 {
-    return closed && owned >= 3u && keep > VBQ_DOM_MAX && !(fr->combo && keep == fr->len) ? 1u : 0u;
+    return closed && owned >= 3u && keep > VBQ_DOM_MAX &&
+                   !((fr->combo & VBQ_FR_COMBO) && keep == fr->len) ? 1u : 0u;
 }
 
 /* May the champions' first round go at all, tested before they are made?

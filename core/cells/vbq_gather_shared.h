@@ -40,13 +40,19 @@
  * both ways are complete). */
 #define VBQ_CLUSTER_OWNED 5u
 
+/* The bits of a frame's combo field. */
+#define VBQ_FR_COMBO 1u
+#define VBQ_FR_NOTFLAT 2u
+
 /* A patch waiting in the depth-first stack. */
 typedef struct vbq_frame {
     vbs_u32 f, level;
     vbs_u64 iu, iv;    /* 64 bits: near-ties need levels past 31 */
     vbs_u32 off, len;  /* labels in lab[off .. off + len): indices into nb */
     vbs_u32 stall;     /* consecutive levels that excluded no label */
-    vbs_u32 combo;     /* 1: the parent tried combinations on this list */
+    vbs_u32 combo;     /* bit 0 (VBQ_FR_COMBO): the parent tried combinations on this
+                          list; bit 1 (VBQ_FR_NOTFLAT): the parent found it no tie
+                          cluster (vbq_looks_flat 0) */
     double rq;         /* every sphere centred within rq of c_i is in the list or was
                           excluded by an ancestor (INFINITY: every sphere) */
 } vbq_frame;

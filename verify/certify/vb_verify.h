@@ -98,7 +98,9 @@ typedef struct vb_cert_quad_stats {
     uint64_t mpfr_rounds;       /* coordinates that MPFR rounded */
     uint64_t vertices;          /* distinct vertices appended to out */
     uint64_t duplicates;        /* certified roots of degree > 4 already written by another quadruple */
-    uint64_t power_signs;       /* scan signs the double box left open, decided in double-double */
+    uint64_t power_signs;       /* scan signs the double box left open, decided by the power
+                                   (double intervals, then double-double) */
+    uint64_t power_signs_dd;    /* ... of which the double intervals left open */
 } vb_cert_quad_stats;
 
 /* Certifies every exact root of every quadruple: quads[k] holds 4 sphere ids
