@@ -373,7 +373,7 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
              * marks the beaten ones (top bit: labels index nb, far below
              * 2^31), lane 0 compacts. */
             uint tried = vbq_combo_due(&fr, closed, keep, owned);
-            uint list_tried = tried || (fr.combo && keep == fr.len);
+            uint list_tried = tried || ((fr.combo & VBQ_FR_COMBO) && keep == fr.len);
             uint round = tried ? 0u : VBQ_CHAMP_ROUNDS;
             /* tried is the same on every lane (fr, keep, owned are shared) */
             if (tried && !vbq_combo_may_go(LO, wg_max(hm, red)))

@@ -32,10 +32,22 @@ VBS_FN double vbq_floor(const vbq_env *e, vbs_u32 i)
 
 /* The outer radius of the next ring a patch fetches: out to the reach LO
  * asks for, at most twice the present radius (LO grows with what is
- * found); infinite once it passes the farthest centre. */
+ * found); infinite once it passes the farthest centre. A positive LO whose
+ * reach already passes the farthest centre fetches every sphere at once:
+ * such a LO is a near-tie with infinity (a jittered crystal's face layer
+ * along its normal, LO ~ 1e-10), which the spheres found on the way do not
+ * raise, so the doubling rings only walked the tree and evaluated the
+ * growing list again (fcc 10,976 jittered: 4 rings per patch at the
+ * normal). LO = 0 (the cell open there) keeps doubling: there a ring often
+ * closes the cell and the patch (the random twin). Any radius is sound
+ * (the list holds every sphere within it that can reach LO); the lists,
+ * and so a few quadruples, differ from doubling's (the same on every
+ * backend: README, degenerate input), never the vertices. */
 VBS_FN double vbq_ring_radius(double rq, double LO, double slack_i, double far)
 {
     double want = LO > 0.0 ? (1.0 / LO) * (1.0 + 1e-8) + slack_i + 1e-9 * rq : (double)INFINITY;
+    if (LO > 0.0 && want >= far)
+        return (double)INFINITY;
     double rq1 = want < 2.0 * rq ? want : 2.0 * rq;
     return rq1 >= far ? (double)INFINITY : rq1;
 }
@@ -84,7 +96,8 @@ VBS_FN vbq_frame vbq_root(vbs_u32 T, vbs_u32 k, vbs_u32 len0, double rq, double 
 }
 
 /* The four children of a subdivided patch, sharing its surviving list
- * (combo: the patch tried combinations on it, vbq_combo_due). */
+ * (combo: VBQ_FR_COMBO when the patch tried combinations on it,
+ * vbq_combo_due; VBQ_FR_NOTFLAT when it found it no tie cluster). */
 VBS_FN void vbq_child(const vbq_frame *fr, vbs_u32 k, vbs_u32 off, vbs_u32 keep, vbs_u32 combo,
                       vbq_frame *ch)
 {
@@ -458,7 +471,7 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
         ch.round = 0u;
         ch.n = 0u;
         vbs_u32 ch_tried = vbq_combo_due(&fr, closed, keep, owned);
-        vbs_u32 list_tried = ch_tried || (fr.combo && keep == fr.len);
+        vbs_u32 list_tried = ch_tried || ((fr.combo & VBQ_FR_COMBO) && keep == fr.len);
         if (!ch_tried || !vbq_combo_may_go(LO, hm))
             ch.round = VBQ_CHAMP_ROUNDS;
         while (keep > VBQ_DOM_MAX && owned >= 3u && ch.round < VBQ_CHAMP_ROUNDS) {
@@ -511,7 +524,15 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
         int act = closed ? vbq_decide(e, &fr, ar->nb, ar->lab + top, i, keep, owned) : 1;
         if (act == 0)
             continue;
-        if (vbq_tie_cluster(ar->nb, ar->lab + top, keep, owned, i, act, closed)) {
+        /* A stalled chain (a near-tie at a point: a jittered face's layer at
+         * its normal) keeps one list for many levels; whether it looks flat
+         * depends on the list alone (in order), so a child that excluded
+         * nothing reuses its parent's answer (speed only: the same
+         * decision). */
+        vbs_u32 same = keep == fr.len && (fr.combo & VBQ_FR_NOTFLAT);
+        int cluster = !same && vbq_tie_cluster(ar->nb, ar->lab + top, keep, owned, i, act, closed);
+        vbs_u32 notflat = !cluster && (same || (owned > VBQ_CLUSTER_OWNED && closed)) ? VBQ_FR_NOTFLAT : 0u;
+        if (cluster) {
 #ifdef __OPENCL_C_VERSION__
             o->status = VBQ_CLUSTER;
             return;
@@ -541,7 +562,7 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
             if (!vbq_task_child(root, fr.level, k))
                 continue;
             vbq_frame ch;
-            vbq_child(&fr, k, off, keep, list_tried, &ch);
+            vbq_child(&fr, k, off, keep, (list_tried ? VBQ_FR_COMBO : 0u) | notflat, &ch);
             ar->st[nst++] = ch;
         }
     }

@@ -127,6 +127,16 @@ VBS_FN int vbq_combo_beaten(const VBQ_CH vbq_champ *c, const vbq_nb *nj, const d
             double D = (rk->ax * c->w[l][0] + rk->ay * c->w[l][1]) + rk->az * c->w[l][2];
             if (D == 0.0)
                 continue;
+            /* A weight whose sign is negative and whose size is above
+             * 1e-5 of the other's is below minus the clamp's tolerance
+             * (at most 1e-6 (1 + 1e5) of it, plus a few roundings) once
+             * divided, and the pair fails: skipped before the divisions
+             * (speed only; a quotient above 1e-290 is normal, so keeps the
+             * sign). Most pairs fail so. */
+            double sl = D > 0.0 ? p[l] : -p[l], sk = D > 0.0 ? -p[k] : p[k];
+            double al = VBS_FABS(p[l]), ak = VBS_FABS(p[k]), fl = 1e-290 * VBS_FABS(D);
+            if ((sl < 0.0 && al > 1e-5 * ak && al > fl) || (sk < 0.0 && ak > 1e-5 * al && ak > fl))
+                continue;
             double lk = p[l] / D, ll = -p[k] / D;
             /* j on the ray of one champion (a lattice row) solves with a
              * weight that is zero up to the jitter: clamp it. */
@@ -174,7 +184,8 @@ VBS_FN int vbq_combo_beaten(const VBQ_CH vbq_champ *c, const vbq_nb *nj, const d
  * smaller patch would mostly fail again (speed only). */
 VBS_FN vbs_u32 vbq_combo_due(const vbq_frame *fr, int closed, vbs_u32 keep, vbs_u32 owned)
 {
-    return closed && owned >= 3u && keep > VBQ_DOM_MAX && !(fr->combo && keep == fr->len) ? 1u : 0u;
+    return closed && owned >= 3u && keep > VBQ_DOM_MAX &&
+                   !((fr->combo & VBQ_FR_COMBO) && keep == fr->len) ? 1u : 0u;
 }
 
 /* May the champions' first round go at all, tested before they are made?

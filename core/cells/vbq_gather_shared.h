@@ -40,13 +40,19 @@
  * both ways are complete). */
 #define VBQ_CLUSTER_OWNED 5u
 
+/* The bits of a frame's combo field. */
+#define VBQ_FR_COMBO 1u
+#define VBQ_FR_NOTFLAT 2u
+
 /* A patch waiting in the depth-first stack. */
 typedef struct vbq_frame {
     vbs_u32 f, level;
     vbs_u64 iu, iv;    /* 64 bits: near-ties need levels past 31 */
     vbs_u32 off, len;  /* labels in lab[off .. off + len): indices into nb */
     vbs_u32 stall;     /* consecutive levels that excluded no label */
-    vbs_u32 combo;     /* 1: the parent tried combinations on this list */
+    vbs_u32 combo;     /* bit 0 (VBQ_FR_COMBO): the parent tried combinations on this
+                          list; bit 1 (VBQ_FR_NOTFLAT): the parent found it no tie
+                          cluster (vbq_looks_flat 0) */
     double rq;         /* every sphere centred within rq of c_i is in the list or was
                           excluded by an ancestor (INFINITY: every sphere) */
 } vbq_frame;
@@ -213,6 +219,7 @@ typedef struct vbq_walk {
     double in2, out2;            /* node boxes: inside rq0, beyond rq1 */
     const VBQ_SQ vbq_sub *sub;   /* the parts (nsub of them) */
     vbs_u32 i, nsub;
+    vbs_u32 ord[VBQ_NSUB];       /* the parts by increasing LO (ties by index) */
 } vbq_walk;
 
 /* A walk from base sphere i over the ring (rq0, rq1], through the nsub
@@ -231,6 +238,17 @@ VBS_FN void vbq_walk_make(const vbq_env *e, vbs_u32 i, double rq0, double rq1,
     w->sub = sub;
     w->i = i;
     w->nsub = nsub;
+    /* A sphere or node passes when it passes some part: the part with the
+     * lowest LO passes the most, so it is asked first (speed only: the
+     * same answers). */
+    for (vbs_u32 g = 0u; g < nsub; g++) {
+        vbs_u32 p = g;
+        while (p > 0u && sub[w->ord[p - 1u]].LO > sub[g].LO) {
+            w->ord[p] = w->ord[p - 1u];
+            p--;
+        }
+        w->ord[p] = g;
+    }
 }
 
 /* Can node nd hold a sphere that passes the walk? */
@@ -252,8 +270,8 @@ VBS_FN int vbq_walk_node(const vbq_env *e, const vbq_walk *w, vbs_u32 nd)
         return 0;
     if (w->nsub == 0u)
         return 1;
-    for (vbs_u32 g = 0u; g < w->nsub; g++) {
-        const VBQ_SQ vbq_sub *sg = &w->sub[g];
+    for (vbs_u32 q = 0u; q < w->nsub; q++) {
+        const VBQ_SQ vbq_sub *sg = &w->sub[w->ord[q]];
         double best = 0.0, bb2 = 0.0;
         double sd = sg->sdist;
         for (int a = 0; a < 3; a++) {
@@ -297,7 +315,8 @@ VBS_FN int vbq_walk_sphere(const vbq_env *e, const vbq_walk *w, vbs_u32 k, vbq_n
     vbq_nb_make(w->c[0], w->c[1], w->c[2], w->ri, e->x[j], e->y[j], e->z[j], e->r[j], j, rec);
     if (w->nsub == 0u)
         return 1;
-    for (vbs_u32 g = 0u; g < w->nsub; g++) {
+    for (vbs_u32 q = 0u; q < w->nsub; q++) {
+        vbs_u32 g = w->ord[q];
         double m[3] = {w->sub[g].m[0], w->sub[g].m[1], w->sub[g].m[2]};
         double h[3] = {w->sub[g].h[0], w->sub[g].h[1], w->sub[g].h[2]};
         double lo, hi;

@@ -166,11 +166,11 @@ int main(int argc, char **argv)
                pct(qs.roots_fast, qs.roots_fast + qs.roots_round_exact),
                (unsigned long long)qs.roots_round_exact, (unsigned long long)qs.roots_exact);
         printf("  GMP solves %llu (%.2f%% of quads), MPFR roundings %llu, duplicates %llu, "
-               "scan signs in double-double %llu; "
+               "scan signs by the power %llu (double-double %llu); "
                "ctx: filter_calls %llu filter_failures %llu exact_evals %llu\n",
                (unsigned long long)qs.exact_solves, pct(qs.exact_solves, qs.quads),
                (unsigned long long)qs.mpfr_rounds, (unsigned long long)qs.duplicates,
-               (unsigned long long)qs.power_signs,
+               (unsigned long long)qs.power_signs, (unsigned long long)qs.power_signs_dd,
                (unsigned long long)(st->filter_calls - before.filter_calls),
                (unsigned long long)(st->filter_failures - before.filter_failures),
                (unsigned long long)(st->exact_evals - before.exact_evals));

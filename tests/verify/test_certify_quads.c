@@ -498,7 +498,8 @@ static vb_sphere_set *jittered_fcc(unsigned n)
 }
 
 /* Rows too wide for 128 bits take the double-double line, and the near-ties
- * the point's double box cannot place take the double-double power: every
+ * the point's double box cannot place take the power (its affine form in
+ * double intervals decides most, double-double the rest): every
  * quadruple of a jittered crystal is set up by the filter, and the
  * vertices are those of the exact certifier. */
 static void test_wide_rows(void)
@@ -513,6 +514,7 @@ static void test_wide_rows(void)
     CHECK_INT(one.qs.quads, q.n);
     CHECK_INT(one.qs.quads_exact, 0);
     CHECK(one.qs.power_signs > 0);
+    CHECK(one.qs.power_signs_dd < one.qs.power_signs);
     CHECK(one.qs.exact_solves * 20 < one.qs.quads);
     vb_vertex_list old;
     vb_vertex_list_init(&old);

@@ -98,12 +98,49 @@ static vbx_ia distance_excess(const vbx_ia cj[4], const vbx_ia box[4])
 
 enum { ROOT_REFUSED = 0, ROOT_EMPTY = 1, ROOT_OPEN = 2 };
 
+/* An enclosure of the int64 x (|x| < 2^62): exact below 2^53, else the
+ * two doubles around its rounding to nearest. */
+static vbx_ia ia_of_i64(int64_t x)
+{
+    double d = (double)x;
+    if ((int64_t)d == x)
+        return vbx_ia_point(d);
+    vbx_ia r = {vbx_pred(d), vbx_succ(d)};
+    return r;
+}
+
+/* The power of sphere j at root R in double intervals, from R's box. In
+ * scaled units, with q = p - c_a and s = t + R_a for the base a = q[0],
+ * m = (c_j - c_a, R_j - R_a) and W = |c_j - c_a|^2 - (R_j - R_a)^2:
+ *   |q - m_xyz|^2 - (s + m_r)^2 = (|q|^2 - s^2) + W - 2 (q . m_xyz + s m_r),
+ * and |q| = s exactly at the root (the vertex touches a), so the power is
+ * the affine W - 2 (q . m_xyz + s m_r). Evaluated over the enclosures of q
+ * (R->p times the exact 10^E, minus c_a) and s (R->s), it encloses the
+ * exact power; its sign is the distance's where t + R_j > 0. Far roots (a
+ * jittered crystal's face: t ~ 10^10 against an excess ~ 10^-8) leave the
+ * distance's box open, while this affine form has no such cancellation and
+ * decides them without double-double. 0: still open. */
+static int power_sign_ia(const vbx_qdata *qd, const vbx_qline *L, const vbx_qroot *R, uint32_t j)
+{
+    const int64_t *cb = &qd->z[4 * (size_t)L->q[0]], *cj = &qd->z[4 * (size_t)j];
+    vbx_ia sc = vbx_ia_point(qd->scale), W = vbx_ia_point(0.0), mq = vbx_ia_point(0.0);
+    for (int k = 0; k < 4; k++) {
+        vbx_ia m = ia_of_i64(cj[k] - cb[k]);
+        vbx_ia m2 = vbx_ia_sqr(m);
+        W = k < 3 ? vbx_ia_add(W, m2) : vbx_ia_sub(W, m2);
+        vbx_ia q = k < 3 ? vbx_ia_sub(vbx_ia_mul(R->p[k], sc), ia_of_i64(cb[k])) : R->s;
+        mq = vbx_ia_add(mq, vbx_ia_mul(q, m));
+    }
+    return vbx_ia_sign(vbx_ia_sub(W, vbx_ia_add(mq, mq)));
+}
+
 /* The scan's second stage for sphere j, which root R's double box cannot
  * place: outside when t + R_j < 0 is proven (the distance exceeds t + R_j),
- * else, once t + R_j > 0 is proven, the sign of the power in double-double
- * (vbx_qf_power_sign), which is the distance's there. 0: still open. The
- * radius difference is exact in double below 2^53 and a sum rounded to
- * nearest keeps its sign (as in vbx_qf_tangent_sign). */
+ * else, once t + R_j > 0 is proven, the sign of the power, which is the
+ * distance's there: in double intervals first (power_sign_ia), then in
+ * double-double (vbx_qf_power_sign). 0: still open. The radius difference
+ * is exact in double below 2^53 and a sum rounded to nearest keeps its sign
+ * (as in vbx_qf_tangent_sign). */
 static int second_stage(qworker *w, const vbx_qline *L, const vbx_qprep *P, vbx_qroot *R,
                         uint32_t j)
 {
@@ -116,7 +153,12 @@ static int second_stage(qworker *w, const vbx_qline *L, const vbx_qprep *P, vbx_
         return 1;
     if (!(R->s.lo + r > 0.0))
         return 0;
-    int sg = qd->ops->power(qd, L, P, R, j);
+    int sg = power_sign_ia(qd, L, R, j);
+    if (!sg) {
+        sg = qd->ops->power(qd, L, P, R, j);
+        if (sg)
+            w->st.power_signs_dd++;
+    }
     if (sg)
         w->st.power_signs++;
     return sg;
@@ -390,6 +432,7 @@ static void add_qstats(vb_cert_quad_stats *to, const vb_cert_quad_stats *from)
     to->exact_solves += from->exact_solves;
     to->mpfr_rounds += from->mpfr_rounds;
     to->power_signs += from->power_signs;
+    to->power_signs_dd += from->power_signs_dd;
     to->judged_vertex += from->judged_vertex;
     to->judged_not += from->judged_not;
     to->judged_open += from->judged_open;

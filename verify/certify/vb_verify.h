@@ -98,7 +98,9 @@ typedef struct vb_cert_quad_stats {
     uint64_t mpfr_rounds;       /* coordinates that MPFR rounded */
     uint64_t vertices;          /* distinct vertices appended to out */
     uint64_t duplicates;        /* certified roots of degree > 4 already written by another quadruple */
-    uint64_t power_signs;       /* scan signs the double box left open, decided in double-double */
+    uint64_t power_signs;       /* scan signs the double box left open, decided by the power
+                                   (double intervals, then double-double) */
+    uint64_t power_signs_dd;    /* ... of which the double intervals left open */
     uint64_t judged_vertex;     /* roots the certification filter proved vertices (verdicts) */
     uint64_t judged_not;        /* roots it proved not vertices */
     uint64_t judged_open;       /* roots it left to this certifier's filter and exact stage */
