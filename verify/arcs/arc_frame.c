@@ -351,8 +351,10 @@ int vbx_tframe_setup_local(vbx_arcw *w, vbx_tframe *f, const uint32_t t[3])
         int p = vbx_minor_cols[k][0], q = vbx_minor_cols[k][1];
         f->minor[k] = vbx_ia_sub(vbx_ia_mul(f->mb[p], f->mc[q]), vbx_ia_mul(f->mb[q], f->mc[p]));
     }
-    vbx_ia n[3];
-    vbx_ia_cross(f->mb, f->mc, n);
+    /* n = d_b x d_c: three of the minors (columns 12, 02, 01), the very
+     * operations vbx_ia_cross does (a negated difference is the difference
+     * the other way round, bit for bit: pred(z) = -succ(-z)) */
+    vbx_ia n[3] = {f->minor[3], vbx_ia_neg(f->minor[1]), f->minor[0]};
     int collinear_possible = !vbx_ia_sign(n[0]) && !vbx_ia_sign(n[1]) && !vbx_ia_sign(n[2]);
     int kind = -1, parabola = 0, axis = 0;
     w->cnt.filter_calls++;

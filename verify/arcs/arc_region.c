@@ -342,10 +342,22 @@ static int query_box(vbx_arcw *w, const vbx_tframe *f, vbx_ia S, vbx_ia G)
     const vbx_sindex *ix = &w->c->t;
     vbx_walk walk;
     vbx_walk_init(&walk, ix, p);
+    /* The first, cheap test of each slot: the probe (the slot's compact
+     * copy, vbx_probe_outside) proves |q - c_j| > rad + R_j over the box,
+     * by a margin of a relative 2^-41 at least, so the gap from the box to
+     * the centre's enclosure squared, d2 below, exceeds (rad + R_j)^2 (1 +
+     * 2^-40) up to a few roundings; and (rad + R_j)^2 >= (|t| + R_j)^2 + Q+
+     * (both of rad's forms above), so the sharper test would skip the
+     * slot too. The candidates are the slots the sharper test keeps,
+     * whichever first test runs (vbx_outside_sphere on the slot's
+     * enclosures was the other, at twice the memory and four times the
+     * operations). */
+    vbx_probe pr;
+    vbx_probe_init(&pr, ix, p);
     size_t s0, s1;
     while (vbx_walk_next(&walk, &s0, &s1))
         for (size_t s = s0; s < s1; s++) {
-            if (vbx_outside_sphere(&ix->box[4 * s], p))
+            if (vbx_probe_outside(&pr, &ix->mid[4 * s]))
                 continue;
             /* the sharper form of the same bound: |c_j - p_u|^2 < (|t| +
              * R_j)^2 + Q+ (gap: the distance from the centre's enclosure
