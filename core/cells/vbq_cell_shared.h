@@ -32,22 +32,10 @@ VBS_FN double vbq_floor(const vbq_env *e, vbs_u32 i)
 
 /* The outer radius of the next ring a patch fetches: out to the reach LO
  * asks for, at most twice the present radius (LO grows with what is
- * found); infinite once it passes the farthest centre. A positive LO whose
- * reach already passes the farthest centre fetches every sphere at once:
- * such a LO is a near-tie with infinity (a jittered crystal's face layer
- * along its normal, LO ~ 1e-10), which the spheres found on the way do not
- * raise, so the doubling rings only walked the tree and evaluated the
- * growing list again (fcc 10,976 jittered: 4 rings per patch at the
- * normal). LO = 0 (the cell open there) keeps doubling: there a ring often
- * closes the cell and the patch (the random twin). Any radius is sound
- * (the list holds every sphere within it that can reach LO); the lists,
- * and so a few quadruples, differ from doubling's (the same on every
- * backend: README, degenerate input), never the vertices. */
+ * found); infinite once it passes the farthest centre. */
 VBS_FN double vbq_ring_radius(double rq, double LO, double slack_i, double far)
 {
     double want = LO > 0.0 ? (1.0 / LO) * (1.0 + 1e-8) + slack_i + 1e-9 * rq : (double)INFINITY;
-    if (LO > 0.0 && want >= far)
-        return (double)INFINITY;
     double rq1 = want < 2.0 * rq ? want : 2.0 * rq;
     return rq1 >= far ? (double)INFINITY : rq1;
 }
