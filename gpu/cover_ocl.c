@@ -613,6 +613,10 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
         t0->lab_cap = (uint32_t)atol(klab);
     if (kt2 && atol(kt2) >= 0)
         t1->want = (size_t)atol(kt2);
+    /* VORBALL_COVER_BIG_NB: the large tier's records per slice (measurements). */
+    const char *kbn = getenv("VORBALL_COVER_BIG_NB");
+    if (kbn && atol(kbn) > 0)
+        t1->nb_cap = (uint32_t)atol(kbn);
     be->name = "opencl";
     snprintf(be->device, sizeof be->device, "%s", vbg_runtime_device_name(rt));
     be->batch_cells = vbg_runtime_is_gpu(rt) ? 1u << 18 : 1u << 14;
