@@ -136,6 +136,10 @@ static void *await_state(void *user)
         vb_error(op->ctx, op->rc, NULL, 0, "%s", op->tctx ? vb_errmsg(op->tctx) : "out of memory");
         return NULL;
     }
+    /* Asked again after the fallback (a proposer reading its backend's
+     * figures at the end): the same host state, warned once. */
+    if (op->state)
+        return op->state;
     vb_device_fallback_warn(op->ctx, &op->req, vb_errmsg(op->tctx));
     if (op->prop->open(op->ctx, op->layer, NULL, &op->state) != VB_OK)
         op->state = NULL;
