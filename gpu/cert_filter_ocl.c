@@ -134,6 +134,11 @@ int vbg_judge_run(vb_ctx *ctx, vbg_judge *j, const vb_cert_filter *f, const uint
         rc = vbg_check(ctx, clEnqueueReadBuffer(j->queue, j->verdict.mem, CL_TRUE, 0, n, verdict, 0,
                                                 NULL, NULL),
                        "clEnqueueReadBuffer (verdicts)");
+    /* On an error the quadruples' write (non-blocking, from q) may still be
+     * pending: wait for it, so that nothing reads q once the caller has
+     * judged the list on the host and freed it. */
+    if (rc != VB_OK)
+        clFinish(j->queue);
     return rc;
 }
 
