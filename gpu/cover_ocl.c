@@ -216,6 +216,23 @@ static int host_q_room(vb_ctx *ctx, cov_state *s, size_t n)
     return VB_OK;
 }
 
+/* The kernel's run time of one launch of tier t (event profiling; the
+ * queue is made with it) into the tier's clocks (vbg_cover_state.h); a
+ * device that gives no times adds none. */
+static void tier_clock(cov_state *s, const cov_tier *t, cl_event done, size_t ntasks)
+{
+    cl_ulong a = 0, b = 0;
+    size_t i = (size_t)(t - s->tier);
+    s->launches[i]++;
+    s->tasks[i] += ntasks;
+    if (clGetEventProfilingInfo(done, CL_PROFILING_COMMAND_START, sizeof a, &a, NULL) ==
+            CL_SUCCESS &&
+        clGetEventProfilingInfo(done, CL_PROFILING_COMMAND_END, sizeof b, &b, NULL) ==
+            CL_SUCCESS &&
+        b > a)
+        s->kernel_s[i] += (double)(b - a) * 1e-9;
+}
+
 /* One launch of tier t over the tasks (cells[k], roots[k]) for k <
  * ncells: out[k] and the quadruples appended to host_q (out[k].qoff made
  * relative to host_q). ncells * task_bytes(t) fits the launch room. */
@@ -299,14 +316,21 @@ static int launch_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *c
         if (global > t->slices)
             global = t->slices; /* a multiple of local by construction */
     }
+    cl_event done = NULL;
     if (rc == VB_OK)
-        rc = vbg_check(ctx, clEnqueueNDRangeKernel(q, k, 1, NULL, &global, &local, 0, NULL, NULL),
+        rc = vbg_check(ctx,
+                       clEnqueueNDRangeKernel(q, k, 1, NULL, &global, &local, 0, NULL, &done),
                        "cover kernel");
     if (rc == VB_OK)
         rc = vbg_check(ctx,
                        clEnqueueReadBuffer(q, s->outs.mem, CL_TRUE, 0,
                                            ncells * sizeof(vbq_cell_out), out, 0, NULL, NULL),
                        "cover kernel");
+    if (done) {
+        if (rc == VB_OK)
+            tier_clock(s, t, done, ncells);
+        clReleaseEvent(done);
+    }
     cl_uint counters[2] = {0, 0};
     if (rc == VB_OK)
         rc = vbg_check(ctx,
@@ -462,6 +486,11 @@ static int cov_run(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, siz
         rc = run_tasks(ctx, s, t1, cells, ncells, out, retry_on_device, &retried);
     if (s->meter.peak > be->device_bytes_peak)
         be->device_bytes_peak = s->meter.peak;
+    for (int i = 0; i < 3; i++) {
+        be->kernel_s[i] = s->kernel_s[i];
+        be->launches[i] = s->launches[i];
+        be->tasks[i] = s->tasks[i];
+    }
     if (rc == VB_OK)
         *quads = s->host_q;
     return rc;

@@ -67,6 +67,11 @@ typedef struct cov_state {
     size_t launch_room;      /* bytes of one launch's task, result and quadruple buffers */
     size_t tier_room;        /* bytes left for the large tier (and the hand-off tier) */
     size_t last_n;           /* spheres of the last run begun (trim) */
+    /* Per tier (COV_FIRST, COV_BIG, COV_HAND), running since open: the
+     * seconds its kernels ran on the device (event profiling, not the
+     * transfers), its launches and its tasks (--stats cover_kernel_*). */
+    double kernel_s[3];
+    uint64_t launches[3], tasks[3];
 } cov_state;
 
 /* Arena capacities. The first tier fits almost every cell of the proteins

@@ -38,6 +38,18 @@ void vb_vertices_write_stats(vb_ctx *ctx, FILE *f, const vb_vertices_result *r)
             (unsigned long long)s->cover_cells, (unsigned long long)s->cover_patches,
             (unsigned long long)s->cover_host_cells, (unsigned long long)s->cover_handed_cells,
             (unsigned long long)s->cover_quads);
+    /* The cover's device time (timings: they vary run to run): its
+     * batches' wall seconds, then per tier (first launch, large slices,
+     * hand-off) the seconds its kernels ran on the device, launches and
+     * tasks; the rest of cover_device_s is transfers and host work between
+     * launches. */
+    fprintf(f, "cover_device_s\t%.6f\n", s->t_cover_device);
+    static const char *const tier[3] = {"first", "large", "handoff"};
+    for (int i = 0; i < 3; i++)
+        fprintf(f, "cover_kernel_%s_s\t%.6f\ncover_launches_%s\t%llu\ncover_tasks_%s\t%llu\n",
+                tier[i], s->cover_kernel_s[i], tier[i],
+                (unsigned long long)s->cover_launches[i], tier[i],
+                (unsigned long long)s->cover_tasks[i]);
     /* The device buffers the proposer held at once (vbg_buffer.h; 0 on the
      * host), without what the OpenCL driver keeps for itself. */
     fprintf(f, "device_bytes_peak\t%llu\n", (unsigned long long)s->device_bytes_peak);
