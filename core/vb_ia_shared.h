@@ -200,6 +200,43 @@ VB_SHARED_FN vb_ia vb_ia_div(vb_ia a, vb_ia b)
                       vb_succ(vb_fmax(vb_fmax(q1, q2), vb_fmax(q3, q4))));
 }
 
+/* sum_k a_k b_k over k < n (1 <= n <= VB_IA_DOT_MAX) with one error bound
+ * for the whole expression instead of a step outward per operation (the
+ * steps were most of the arc trace's instructions).
+ * Proof (u = 2^-53, round to nearest). For each k the exact products of
+ * the four corners span a_k b_k; their least L_k and greatest H_k are
+ * rounded to l_k = min fl(corner) = fl(L_k) and h_k = fl(H_k) (rounding
+ * is monotone), so |l_k - L_k| <= u |l_k| + 2^-1075 (the second term for
+ * an underflowing product), likewise h_k. With M = sum_k max(|l_k|,
+ * |h_k|), each of the n - 1 additions of lo = fl(...fl(l_0 + l_1)... +
+ * l_{n-1}) errs by at most u times its partial sum, at most u (1 + u)^n M
+ * (sums are exact below 2^-1022); so |lo - sum L_k| <= n u (1 + u)^n M +
+ * n 2^-1075, likewise hi. The computed m~ of M (non-negative terms) is
+ * >= M / (1 + u)^(n-1), and e = fl(m~ (n + 1) u) + 2^-1020 >= (n + 1) u
+ * (1 - u) m~ + 2^-1020 exceeds n u (1 + u)^(2n-1) m~ + n 2^-1075 for
+ * n <= 8 (the product's underflow, below 2^-1075, too). So [lo - e,
+ * hi + e] encloses the sum, and one step each way covers the rounding of
+ * those two operations. An infinite corner makes m~ and e infinite and the
+ * interval unbounded; NaN corners (0 * inf) are dropped or kept as
+ * vb_ia_mul's are: "cannot tell" either way. */
+#define VB_IA_DOT_MAX 8
+
+VB_SHARED_FN vb_ia vb_ia_dot(const vb_ia *a, const vb_ia *b, int n)
+{
+    double lo = 0.0, hi = 0.0, mag = 0.0;
+    for (int k = 0; k < n; k++) {
+        double p1 = a[k].lo * b[k].lo, p2 = a[k].lo * b[k].hi;
+        double p3 = a[k].hi * b[k].lo, p4 = a[k].hi * b[k].hi;
+        double l = vb_fmin(vb_fmin(p1, p2), vb_fmin(p3, p4));
+        double h = vb_fmax(vb_fmax(p1, p2), vb_fmax(p3, p4));
+        lo += l;
+        hi += h;
+        mag += vb_fmax(l < 0.0 ? -l : l, h < 0.0 ? -h : h);
+    }
+    double e = mag * ((double)(n + 1) * 0x1p-53) + 0x1p-1020;
+    return vb_ia_make(vb_pred(lo - e), vb_succ(hi + e));
+}
+
 /* Square root of the non-negative part of a (negative values clamp to 0:
  * callers only use it where the exact argument is known to be >= 0); a NaN
  * upper bound propagates. */

@@ -14,6 +14,7 @@ typedef vb_ia vbx_ia;
 #define vbx_pred vb_pred
 #define vbx_min vb_fmin
 #define vbx_max vb_fmax
+#define vbx_ia_make vb_ia_make
 #define vbx_ia_point vb_ia_point
 #define vbx_ia_add vb_ia_add
 #define vbx_ia_sub vb_ia_sub
