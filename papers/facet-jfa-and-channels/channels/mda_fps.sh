@@ -45,8 +45,14 @@ IGNORE=${IGNORE:-NA+,CL-,NA,CL,K,SOD,CLA,POT}
 export PYTHONDONTWRITEBYTECODE=1
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/hole_setup.sh"
-hole_setup mda_fps
-mkdir -p "$OUT/frames" && cp "$OUT/hole.rad" "$OUT/frames/hole.rad" || exit 3
+if [ "$NOHOLE" = 1 ] && [ -z "${HOLE_RAD:-}" ] && [ ! -r "$(dirname "$HOLE")/../rad/simple.rad" ] &&
+    [ ! -r "$(dirname "$HOLE")/../share/hole2/rad/simple.rad" ]; then
+    # No HOLE here (a GPU host): the repository's copy of its simple.rad radii.
+    mkdir -p "$OUT" && OUT=$(cd "$OUT" && pwd) && cp "$here/hole_simple.radii" "$OUT/vorball.radii" || exit 3
+else
+    hole_setup mda_fps
+    mkdir -p "$OUT/frames" && cp "$OUT/hole.rad" "$OUT/frames/hole.rad" || exit 3
+fi
 
 # The membrane names vorball leaves out by default, for HOLE's frames.
 if [ "$NOHOLE" = 1 ]; then
