@@ -53,7 +53,8 @@ static void heap_down(vbc_graph *A, size_t i)
  * the widest way through (the cost CAVER-style tools minimise). The
  * definition of vbc_sweep's bytes; radix_sweep gives them faster where
  * every step grows the cost. */
-static void heap_sweep(vbc_graph *A, const uint32_t *members, size_t m, uint32_t src, int weighted)
+static void heap_sweep(vbc_graph *A, const uint32_t *members, size_t m, uint32_t src, int weighted,
+                       uint32_t target)
 {
     for (size_t t = 0; t < m; t++) {
         A->dist[members[t]] = INFINITY;
@@ -69,6 +70,8 @@ static void heap_sweep(vbc_graph *A, const uint32_t *members, size_t m, uint32_t
         heap_swap(A, 0, A->heapn - 1);
         A->heapn--;
         A->hpos[u] = UINT32_MAX - 1; /* settled */
+        if (u == target)
+            return;
         heap_down(A, 0);
         for (size_t e = A->adj_start[u]; e < A->adj_start[u + 1]; e++) {
             uint32_t q = A->adj[e];
@@ -172,7 +175,8 @@ static uint32_t rh_pop(vbc_graph *A, radix_heap *H)
  * that reaches it. Returns 1, or 0 when a step did not grow a cost (a
  * clearance past 2^26 of the floor, or a path cost near 2^52 steps): the
  * caller sweeps on the binary heap instead. */
-static int radix_sweep(vbc_graph *A, const uint32_t *members, size_t m, uint32_t src, int weighted)
+static int radix_sweep(vbc_graph *A, const uint32_t *members, size_t m, uint32_t src, int weighted,
+                       uint32_t target)
 {
     radix_heap H;
     for (int b = 0; b < RH_BUCKETS; b++)
@@ -188,6 +192,8 @@ static int radix_sweep(vbc_graph *A, const uint32_t *members, size_t m, uint32_t
     for (uint32_t u; (u = rh_pop(A, &H)) != RH_OUT;) {
         double du = A->dist[u];
         A->hpos[u] = RH_DONE;
+        if (u == target)
+            return 1;
         for (size_t e = A->adj_start[u]; e < A->adj_start[u + 1]; e++) {
             uint32_t q = A->adj[e];
             uint32_t hq = A->hpos[q];
@@ -212,11 +218,27 @@ static int radix_sweep(vbc_graph *A, const uint32_t *members, size_t m, uint32_t
 }
 
 /* Dijkstra from src over component members[0..m) (vbc_graph.h): the radix
- * heap's sweep, or the binary heap's where it cannot vouch for the bytes. */
+ * heap's sweep, or the binary heap's where it cannot vouch for the bytes;
+ * both stop once target is settled (UINT32_MAX: never). */
+static void sweep_until(vbc_graph *A, const uint32_t *members, size_t m, uint32_t src, int weighted,
+                        uint32_t target)
+{
+    if (!radix_sweep(A, members, m, src, weighted, target))
+        heap_sweep(A, members, m, src, weighted, target);
+}
+
 void vbc_sweep(vbc_graph *A, const uint32_t *members, size_t m, uint32_t src, int weighted)
 {
-    if (!radix_sweep(A, members, m, src, weighted))
-        heap_sweep(A, members, m, src, weighted);
+    sweep_until(A, members, m, src, weighted, UINT32_MAX);
+}
+
+/* vbc_sweep stopped once target is settled: every voxel settled before it
+ * (its path's among them) has its final distance and predecessor, for a
+ * voxel's predecessor never changes after it settles. */
+void vbc_sweep_to(vbc_graph *A, const uint32_t *members, size_t m, uint32_t src, int weighted,
+                  uint32_t target)
+{
+    sweep_until(A, members, m, src, weighted, target);
 }
 
 /* The member farthest from the last sweep's source (ties to the lowest position). */

@@ -39,6 +39,13 @@ typedef struct vbc_graph {
  * heap where a step fails to grow a cost (channel_graph.c). */
 void vbc_sweep(vbc_graph *A, const uint32_t *members, size_t m, uint32_t src, int weighted);
 
+/* vbc_sweep until target (a member) is settled: the distances and
+ * predecessors along the path from target back to src are vbc_sweep's,
+ * the other members' are scratch. For the centreline, which reads that
+ * path only. */
+void vbc_sweep_to(vbc_graph *A, const uint32_t *members, size_t m, uint32_t src, int weighted,
+                  uint32_t target);
+
 /* The member farthest from the last sweep's source (ties to the lowest position). */
 uint32_t vbc_farthest(const vbc_graph *A, const uint32_t *members, size_t m);
 

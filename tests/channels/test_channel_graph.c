@@ -5,7 +5,7 @@
  * one voxel thin), the radix heap's sweep against an O(m^2) Dijkstra that
  * settles in (distance, position) order (distance bits and predecessors,
  * tied clearances everywhere, and a clearance so large that steps vanish:
- * the binary heap's fallback), and the radix sort against qsort. */
+ * the binary heap's fallback; stopped at a target: its path), and the radix sort against qsort. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -117,7 +117,7 @@ static void sweep_case(uint64_t *seed, int n, double p, int levels, int huge)
     double *dist = malloc((W.nvox + 1) * sizeof *dist);
     uint32_t *pred = malloc((W.nvox + 1) * sizeof *pred);
     uint8_t *done = malloc(W.nvox + 1);
-    size_t bad = 0;
+    size_t bad = 0, paths = 0;
     for (int weighted = 0; weighted <= 1; weighted++)
         for (size_t c = 0; c < W.ncomp; c++) {
             size_t m = W.cstart[c + 1] - W.cstart[c];
@@ -128,8 +128,16 @@ static void sweep_case(uint64_t *seed, int n, double p, int levels, int huge)
             for (size_t t = 0; t < m; t++)
                 bad += memcmp(&dist[mem[t]], &W.A.dist[mem[t]], sizeof(double)) != 0 ||
                        pred[mem[t]] != W.A.pred[mem[t]];
+            /* Stopped at a target: its path back to src is the same. */
+            uint32_t to = mem[(size_t)(synth_uniform(seed) * (double)m) % m];
+            vbc_sweep_to(&W.A, mem, m, src, weighted, to);
+            for (uint32_t q = to; q != UINT32_MAX; q = pred[q]) {
+                bad += memcmp(&dist[q], &W.A.dist[q], sizeof(double)) != 0 || pred[q] != W.A.pred[q];
+                paths++;
+            }
         }
     CHECK_INT(bad, 0);
+    CHECK(paths > 2 * W.ncomp); /* two sweeps a component: some paths leave their source */
     free(dist);
     free(pred);
     free(done);
