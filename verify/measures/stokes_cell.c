@@ -194,7 +194,8 @@ static int integrate_arcs(const vbm_atom_in *in, stokes_work *w, double tv, doub
         uint32_t j = a->j;
         double tc = in->tolerance * vbx_max(scale > 1.0 ? 0.0 : magnitude_lo(w->con[j]), fa);
         double cs = scale > 1.0 ? CON_FIRST_SCALE : scale;
-        tg[CON] = in->contacts ? cs * 0.5 * tc / (double)(w->narcs[j] + 1) : INFINITY;
+        tg[CON] = in->contacts && in->nb[j].con ? cs * 0.5 * tc / (double)(w->narcs[j] + 1)
+                                                : INFINITY;
         if (scale <= 1.0 && !vbm_arc_over(a->v, tg))
             continue;
         if (!vbm_arc_integrate(in, w->D[j], a, tg, scale <= 1.0, pieces))
@@ -208,14 +209,14 @@ static int pairs(const vbm_atom_in *in, const stokes_work *w, vbm_atom_out *out)
 {
     size_t np = 0;
     for (size_t j = 0; j < in->nnb; j++)
-        np += w->narcs[j] && w->con[j].hi > 0.0;
+        np += in->nb[j].con && w->narcs[j] && w->con[j].hi > 0.0;
     if (!np)
         return 1;
     out->pairs = malloc(np * sizeof *out->pairs);
     if (!out->pairs)
         return 0;
     for (size_t j = 0; j < in->nnb; j++)
-        if (w->narcs[j] && w->con[j].hi > 0.0) {
+        if (in->nb[j].con && w->narcs[j] && w->con[j].hi > 0.0) {
             vbm_pair p = {(uint32_t)j, w->con[j]};
             out->pairs[out->npairs++] = p;
         }
@@ -345,7 +346,7 @@ int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
     out->loose = width(out->vol) > in->tolerance * vbx_max(mv, fv) ||
                  width(out->sas) > in->tolerance * vbx_max(ms, fa);
     for (size_t j = 0; in->contacts && j < in->nnb; j++)
-        if (w->narcs[j] &&
+        if (in->nb[j].con && w->narcs[j] &&
             width(w->con[j]) > in->tolerance * vbx_max(fabs(vbx_ia_mid(w->con[j])), fa))
             out->loose = 1;
     if (in->contacts && !pairs(in, w, out))
