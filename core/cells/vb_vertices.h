@@ -128,7 +128,9 @@ void vb_vertices_certificate(const vb_vertices_result *r, char *buf, size_t size
 /* Writes the counters of a finished run r to f, one "name<TAB>value" line
  * each (backend, device, the proposer's counters, certified and rejected
  * counts, and the context's filter counters: filter_calls, filter_failures,
- * exact_evals), as `vorball vertices --stats` prints them. No timings. */
+ * exact_evals), as `vorball vertices --stats` prints them, and the run's
+ * seconds (certify_overlap_s, certify_after_s, judge_s, setup_s,
+ * setup_wait_s, run_s), which vary run to run. */
 void vb_vertices_write_stats(vb_ctx *ctx, FILE *f, const vb_vertices_result *r);
 
 void vb_vertices_result_init(vb_vertices_result *r);
