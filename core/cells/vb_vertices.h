@@ -129,8 +129,9 @@ void vb_vertices_certificate(const vb_vertices_result *r, char *buf, size_t size
 /* Appends the counters of a finished run r to fs (vb_stat_field.h):
  * backend, device, the proposer's counters, certified and rejected counts,
  * the context's filter counters (filter_calls, filter_failures,
- * exact_evals), the cover's, device_bytes_peak, certify_*, judged_* and
- * judge_s: every line `vorball vertices --stats` prints, in its order. */
+ * exact_evals), the cover's, device_bytes_peak, certify_*, judged_*,
+ * judge_s and the run's seconds (setup_s, setup_wait_s, run_s, which vary
+ * run to run): every line `vorball vertices --stats` prints, in its order. */
 void vb_vertices_stats(vb_ctx *ctx, const vb_vertices_result *r, vb_stat_fields *fs);
 
 /* Writes vb_vertices_stats' table to f, one "name<TAB>value" line each. */
