@@ -190,7 +190,7 @@ static int cover_run(vb_ctx *ctx, void *state, const vb_proposer_await *aw,
     res->cover_host_cells = st.host_cells;
     res->cover_handed_cells = st.handed_cells;
     res->t_cover_device = st.t_device;
-    for (int i = 0; i < 3 && s->be; i++) {
+    for (int i = 0; i < 4 && s->be; i++) {
         res->cover_kernel_s[i] = s->be->kernel_s[i] - before.kernel_s[i];
         res->cover_launches[i] = s->be->launches[i] - before.launches[i];
         res->cover_tasks[i] = s->be->tasks[i] - before.tasks[i];
