@@ -144,39 +144,28 @@ static int support_atoms(const vb_sphere_set *s, int32_t **out, size_t *count)
     int32_t *list = malloc(2 * SUPPORT_DIRS * sizeof *list);
     if (!list)
         return -1;
-    double ux[SUPPORT_DIRS], uy[SUPPORT_DIRS], uz[SUPPORT_DIRS];
-    double vlo[SUPPORT_DIRS], vhi[SUPPORT_DIRS];
-    int32_t lo[SUPPORT_DIRS], hi[SUPPORT_DIRS];
+    size_t n = 0;
     for (int d = 0; d < SUPPORT_DIRS; d++) {
         double z = 1.0 - (2.0 * d + 1.0) / SUPPORT_DIRS, r = sqrt(1.0 - z * z);
-        ux[d] = r * cos(2.39996322972865332 * d);
-        uy[d] = r * sin(2.39996322972865332 * d);
-        uz[d] = z;
-        vlo[d] = INFINITY;
-        vhi[d] = -INFINITY;
-        lo[d] = hi[d] = 0;
-    }
-    /* Atoms outside, directions inside: the directions are independent
-     * lanes (selects, no branch), and each direction still meets the atoms
-     * in index order with strict comparisons, so its first extreme atom
-     * wins as before. */
-    for (size_t i = 0; i < s->n; i++) {
-        double x = s->x[i], y = s->y[i], zz = s->z[i], r = s->r[i];
-        for (int d = 0; d < SUPPORT_DIRS; d++) {
-            double c = x * ux[d] + y * uy[d] + zz * uz[d];
-            int below = c - r < vlo[d], above = c + r > vhi[d];
-            vlo[d] = below ? c - r : vlo[d];
-            lo[d] = below ? (int32_t)i : lo[d];
-            vhi[d] = above ? c + r : vhi[d];
-            hi[d] = above ? (int32_t)i : hi[d];
+        double u[3] = {r * cos(2.39996322972865332 * d), r * sin(2.39996322972865332 * d), z};
+        int32_t lo = 0, hi = 0;
+        double vlo = INFINITY, vhi = -INFINITY;
+        for (size_t i = 0; i < s->n; i++) {
+            double c = s->x[i] * u[0] + s->y[i] * u[1] + s->z[i] * u[2];
+            if (c - s->r[i] < vlo) {
+                vlo = c - s->r[i];
+                lo = (int32_t)i;
+            }
+            if (c + s->r[i] > vhi) {
+                vhi = c + s->r[i];
+                hi = (int32_t)i;
+            }
         }
-    }
-    for (int d = 0; d < SUPPORT_DIRS; d++) {
-        list[2 * d] = lo[d];
-        list[2 * d + 1] = hi[d];
+        list[n++] = lo;
+        list[n++] = hi;
     }
     *out = list;
-    *count = 2 * SUPPORT_DIRS;
+    *count = n;
     return 0;
 }
 
