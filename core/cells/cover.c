@@ -142,7 +142,7 @@ static int cover_one(worker *w, uint32_t i)
 {
     vbq_cell_out o;
     for (;;) {
-        vbq_cover_cell(&w->jb->env, &w->ar, i, VBQ_ALL_ROOTS, &o);
+        vb_cover_cell_host(&w->jb->env, &w->ar, i, VBQ_ALL_ROOTS, &o);
         if (o.status == VBQ_OK)
             break;
         uint32_t nb = w->ar.nb_cap, lab = w->ar.lab_cap, st = w->ar.st_cap, q = w->ar.q_cap;
