@@ -190,8 +190,29 @@ VB_SHARED_FN vb_ia vb_ia_sqr(vb_ia a)
     return vb_ia_make(lo, vb_succ(mx * mx));
 }
 
-/* Quotient; a denominator interval containing 0 gives [-inf, +inf]. */
+/* Quotient; a denominator interval containing 0 gives [-inf, +inf].
+ * With the denominator's sign known, the least and greatest of the four
+ * corner quotients are known too, so two divisions suffice: for b > 0,
+ * x / y grows with x, so the least is at x = a.lo (over y: b.hi when
+ * a.lo >= 0, else b.lo) and the greatest at x = a.hi (b.lo when a.hi >= 0,
+ * else b.hi); for b < 0 it falls with x, mirrored. Rounding to nearest is
+ * monotone, so the rounded corner picked is the least (greatest) of the
+ * four rounded ones: the bounds are vb_ia_div4's, bit for bit, wherever no
+ * corner is NaN (test_exact compares them). */
 VB_SHARED_FN vb_ia vb_ia_div(vb_ia a, vb_ia b)
+{
+    if (b.lo > 0.0)
+        return vb_ia_make(vb_pred(a.lo / (a.lo >= 0.0 ? b.hi : b.lo)),
+                          vb_succ(a.hi / (a.hi >= 0.0 ? b.lo : b.hi)));
+    if (b.hi < 0.0)
+        return vb_ia_make(vb_pred(a.hi / (a.hi >= 0.0 ? b.hi : b.lo)),
+                          vb_succ(a.lo / (a.lo >= 0.0 ? b.lo : b.hi)));
+    return vb_ia_make(-VB_IA_INF, VB_IA_INF);
+}
+
+/* The quotient from all four corners (the reference vb_ia_div is checked
+ * against). */
+VB_SHARED_FN vb_ia vb_ia_div4(vb_ia a, vb_ia b)
 {
     if (!(b.lo > 0.0 || b.hi < 0.0))
         return vb_ia_make(-VB_IA_INF, VB_IA_INF);

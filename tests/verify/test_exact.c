@@ -163,8 +163,58 @@ static void test_succ_paths(void)
     CHECK_INT((int)bad, 0);
 }
 
+/* vb_ia_div (two divisions, picked by the signs) gives vb_ia_div4's
+ * bounds (all four corners) bit for bit wherever no corner is NaN: on
+ * every pair of intervals drawn from special values (zeros of both signs,
+ * subnormals, DBL_MAX, infinities) and on 10^6 random ones. */
+static int div_differs(vbx_ia a, vbx_ia b)
+{
+    double c[4] = {a.lo / b.lo, a.lo / b.hi, a.hi / b.lo, a.hi / b.hi};
+    for (int i = 0; i < 4; i++)
+        if (c[i] != c[i])
+            return 0;
+    vb_ia q = vb_ia_div(a, b), r = vb_ia_div4(a, b);
+    return !same_bits(q.lo, r.lo) || !same_bits(q.hi, r.hi);
+}
+
+static void test_div_paths(void)
+{
+    const double sp[] = {0.0, -0.0, 4.9406564584124654e-324, -4.9406564584124654e-324, 1.0, -1.0,
+                         3.0, -0.1, DBL_MAX, -DBL_MAX, INFINITY, -INFINITY, 0x1p-1000, -0x1p600};
+    const size_t n = sizeof sp / sizeof sp[0];
+    size_t bad = 0, tried = 0;
+    for (size_t i = 0; i < n; i++)
+        for (size_t j = 0; j < n; j++)
+            for (size_t k = 0; k < n; k++)
+                for (size_t l = 0; l < n; l++) {
+                    if (!(sp[i] <= sp[j]) || !(sp[k] <= sp[l]))
+                        continue;
+                    vbx_ia a = {sp[i], sp[j]}, b = {sp[k], sp[l]};
+                    bad += (size_t)div_differs(a, b);
+                    tried++;
+                }
+    uint64_t s = 0x2545f4914f6cdd1du;
+    for (int i = 0; i < 1000000; i++) {
+        double v[4];
+        for (int m = 0; m < 4; m++) {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            /* signed values over many binades, some exactly 0 */
+            v[m] = (s & 15) == 0 ? 0.0 : ldexp((double)(s >> 11) * 0x1p-53 - 0.5, (int)(s % 200) - 100);
+        }
+        vbx_ia a = {vbx_min(v[0], v[1]), vbx_max(v[0], v[1])};
+        vbx_ia b = {vbx_min(v[2], v[3]), vbx_max(v[2], v[3])};
+        bad += (size_t)div_differs(a, b);
+        tried++;
+    }
+    CHECK(tried > 1000000);
+    CHECK_INT((int)bad, 0);
+}
+
 int main(void)
 {
+    test_div_paths();
     test_qsqrt_sign();
     test_round();
     test_intervals();

@@ -171,7 +171,7 @@ static void filter_frame(vbx_tframe *f, const vbx_ia n[3])
         }
         f->O[3] = os;
         f->ES[3] = f->EG[3] = zero;
-        vbx_ia f0 = vbx_ia_sub(vbx_ia_dot3(f->O, f->O), vbx_ia_sqr(os));
+        vbx_ia f0 = vbx_ia_lorentz(f->O);
         vbx_ia rho = vbx_ia_neg(f0);
         if (!(rho.lo > 0.0))
             return;
@@ -191,8 +191,9 @@ static void filter_frame(vbx_tframe *f, const vbx_ia n[3])
     vbx_ia a1 = vbx_ia_div(vbx_ia_det2(bc, cc, rb, rc), nn);
     vbx_ia b1 = vbx_ia_div(vbx_ia_det2(bc, bb, rc, rb), nn);
     for (int k = 0; k < 3; k++) {
-        f->O[k] = vbx_ia_add(vbx_ia_mul(a0, db[k]), vbx_ia_mul(b0, dc[k]));
-        f->ES[k] = vbx_ia_add(vbx_ia_mul(a1, db[k]), vbx_ia_mul(b1, dc[k]));
+        vbx_ia y[2] = {db[k], dc[k]}, x0[2] = {a0, b0}, x1[2] = {a1, b1};
+        f->O[k] = vb_ia_dot(x0, y, 2);
+        f->ES[k] = vb_ia_dot(x1, y, 2);
         f->EG[k] = vbx_ia_div(n[k], nn);
     }
     f->O[3] = zero;

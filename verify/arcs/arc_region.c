@@ -181,7 +181,8 @@ static int ellipse_polygon(const vbx_tframe *f, vbx_region *rg)
     rg->n = 0;
     for (int k = 0; k < N; k++) {
         int l = (k + 1) % N;
-        vbx_ia den = vbx_ia_add(one, vbx_ia_add(vbx_ia_mul(X[k], X[l]), vbx_ia_mul(Y[k], Y[l])));
+        vbx_ia xs[3] = {X[k], Y[k], one}, ys[3] = {X[l], Y[l], one};
+        vbx_ia den = vb_ia_dot(xs, ys, 3);
         if (!(den.lo > 0.0))
             return 0;
         vbx_ia AX = vbx_ia_div(vbx_ia_add(X[k], X[l]), den);
@@ -208,10 +209,13 @@ static int ellipse_apex(const vbx_tframe *f, const vbx_arc_end *e0, const vbx_ar
 {
     vbx_ia X0 = vbx_ia_div(e0->key.G, f->bx), Y0 = vbx_ia_div(vbx_ia_sub(e0->key.S, f->Sc), f->ax);
     vbx_ia X1 = vbx_ia_div(e1->key.G, f->bx), Y1 = vbx_ia_div(vbx_ia_sub(e1->key.S, f->Sc), f->ax);
-    vbx_ia turn = vbx_ia_sub(vbx_ia_mul(Y0, X1), vbx_ia_mul(X0, Y1));
+    vbx_ia one = vbx_ia_point(1.0);
+    vbx_ia xt[2] = {Y0, vbx_ia_neg(X0)}, yt[2] = {X1, Y1};
+    vbx_ia turn = vb_ia_dot(xt, yt, 2);
     if (!(turn.lo > 0.0))
         return 0;
-    vbx_ia den = vbx_ia_add(vbx_ia_point(1.0), vbx_ia_add(vbx_ia_mul(X0, X1), vbx_ia_mul(Y0, Y1)));
+    vbx_ia xs[3] = {X0, Y0, one}, ys[3] = {X1, Y1, one};
+    vbx_ia den = vb_ia_dot(xs, ys, 3);
     if (!(den.lo > 0.0))
         return 0;
     vbx_ia AX = vbx_ia_div(vbx_ia_add(X0, X1), den), AY = vbx_ia_div(vbx_ia_add(Y0, Y1), den);
@@ -401,8 +405,10 @@ static double half_hi(const vbx_ia *ba, const vbx_ia D[4], const double lo[3], c
 static int query_half_capped(vbx_arcw *w, const vbx_tframe *f, const vbx_ia Ddir[2], size_t cap)
 {
     vbx_ia D[4];
-    for (int k = 0; k < 4; k++)
-        D[k] = vbx_ia_add(vbx_ia_mul(Ddir[0], f->ES[k]), vbx_ia_mul(Ddir[1], f->EG[k]));
+    for (int k = 0; k < 4; k++) {
+        vbx_ia y[2] = {f->ES[k], f->EG[k]};
+        D[k] = vb_ia_dot(Ddir, y, 2);
+    }
     const vbx_ia *ba = &w->c->d.box[4 * (size_t)f->t[0]];
     const vbx_sindex *ix = &w->c->t;
     if (!ix->n)
