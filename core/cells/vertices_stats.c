@@ -38,6 +38,12 @@ void vb_vertices_write_stats(vb_ctx *ctx, FILE *f, const vb_vertices_result *r)
             (unsigned long long)s->cover_cells, (unsigned long long)s->cover_patches,
             (unsigned long long)s->cover_host_cells, (unsigned long long)s->cover_handed_cells,
             (unsigned long long)s->cover_quads);
+    /* The neighbour records the cover built (every sphere a cell's tree
+     * walks kept), in all and the most for one cell: a hull cell whose
+     * rings fetch the whole input shows in the second. */
+    fprintf(f, "cover_neighbours\t%llu\ncover_max_cell_neighbours\t%llu\n",
+            (unsigned long long)s->cover_neighbours,
+            (unsigned long long)s->cover_max_cell_neighbours);
     /* The device buffers the proposer held at once (vbg_buffer.h; 0 on the
      * host), without what the OpenCL driver keeps for itself. */
     fprintf(f, "device_bytes_peak\t%llu\n", (unsigned long long)s->device_bytes_peak);
