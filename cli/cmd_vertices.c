@@ -12,6 +12,7 @@
 #include "progress.h"
 #include "vorball.h"
 #include "vb_page.h"
+#include "vb_stage_clock.h"
 #include "vb_vertex_page.h"
 #include "vb_world.h"
 #include "vertex_parts.h"
@@ -159,6 +160,9 @@ int vb_cmd_vertices(int argc, char **argv)
         vb_close(ctx);
         return code;
     }
+    /* The whole process by stage (--stats, after the output is freed). */
+    vb_stage_clock clk;
+    vb_stage_clock_start(&clk);
     vb_sphere_set *set = NULL;
     vb_vertices_result res;
     vb_vertices_result_init(&res);
@@ -169,7 +173,7 @@ int vb_cmd_vertices(int argc, char **argv)
     if (rc == VB_OK && html)
         rc = vb_page_check(ctx, html);
     if (rc == VB_OK)
-        rc = vb_cli_load_spheres(ctx, input, &po.in, 4, &set);
+        rc = vb_cli_load_spheres_clocked(ctx, input, &po.in, 4, &set, &clk);
     /* A page too big is refused before the work, as every rank sees. */
     if (rc == VB_OK && html)
         rc = vb_vertex_page_check(ctx, set);
@@ -193,6 +197,7 @@ int vb_cmd_vertices(int argc, char **argv)
     rc = vb_world_agree(ctx, rc);
     if (rc == VB_OK)
         rc = vb_world_agree(ctx, vb_cli_vertices_combine(ctx, &res, &tot));
+    vb_stage_lap(&clk, VB_STAGE_RUN);
     int writer = rc == VB_OK && vb_world_rank() == 0;
     if (writer && stats)
         print_stats(ctx, &res, &tot);
@@ -205,6 +210,8 @@ int vb_cmd_vertices(int argc, char **argv)
         rc = vb_vertices_complete(ctx, set, &res, tot.rejected, &co, &done);
         writer = rc == VB_OK;
     }
+    vb_stage_lap(&clk, VB_STAGE_COMPLETE);
+    int timed = writer && stats;
     if (writer) {
         const char *note = done.certificate;
         char opts[4096];
@@ -224,10 +231,14 @@ int vb_cmd_vertices(int argc, char **argv)
         rc = vb_vertex_page_write(ctx, html, title, set, &res.certified, done.certificate);
     }
     vb_cli_progress_clear();
+    vb_stage_lap(&clk, VB_STAGE_WRITE);
     code = vb_world_end(ctx, rc);
     vb_completion_free(&done);
     vb_vertices_result_free(&res);
     vb_spheres_free(set);
     vb_close(ctx);
+    vb_stage_lap(&clk, VB_STAGE_FREE);
+    if (timed && code == VB_EXIT_OK)
+        vb_stage_clock_write(stderr, &clk);
     return code;
 }

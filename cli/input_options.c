@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "cli_common.h"
+#include "vb_stage_clock.h"
 #include "vb_world.h"
 
 void vb_cli_input_defaults(vb_cli_input_opts *o)
@@ -166,9 +167,15 @@ void vb_cli_input_read_options(const vb_cli_input_opts *o, const vb_radii_table 
 int vb_cli_load_spheres(vb_ctx *ctx, const char *path, const vb_cli_input_opts *o,
                         size_t min_count, vb_sphere_set **out)
 {
+    return vb_cli_load_spheres_clocked(ctx, path, o, min_count, out, NULL);
+}
+
+int vb_cli_load_spheres_clocked(vb_ctx *ctx, const char *path, const vb_cli_input_opts *o,
+                                size_t min_count, vb_sphere_set **out, vb_stage_clock *clk)
+{
     vb_read_options ro;
     vb_cli_input_read_options(o, NULL, &ro);
-    int rc = vb_spheres_load(ctx, path, &ro, o->radii_path, min_count, out);
+    int rc = vb_spheres_load_clocked(ctx, path, &ro, o->radii_path, min_count, out, clk);
     /* The table of what was read, written by the process that writes the
      * outputs (rank 0 under MPI). */
     if (rc == VB_OK && o->atoms_path && vb_world_rank() == 0)

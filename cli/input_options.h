@@ -49,6 +49,13 @@ void vb_cli_input_read_options(const vb_cli_input_opts *o, const vb_radii_table 
 int vb_cli_load_spheres(vb_ctx *ctx, const char *path, const vb_cli_input_opts *o,
                         size_t min_count, vb_sphere_set **out);
 
+/* vb_cli_load_spheres with the reading and the checks timed on clk (may be
+ * NULL; vb_spheres_load_clocked). */
+struct vb_stage_clock;
+int vb_cli_load_spheres_clocked(vb_ctx *ctx, const char *path, const vb_cli_input_opts *o,
+                                size_t min_count, vb_sphere_set **out,
+                                struct vb_stage_clock *clk);
+
 /* Writes the sphere table of s (--atoms) to path (vb_atoms_write). */
 int vb_cli_write_atoms(vb_ctx *ctx, const char *path, const vb_sphere_set *s);
 

@@ -39,6 +39,25 @@ static uint64_t scaled(uint64_t m, int e, int s)
     return (uint64_t)d;
 }
 
+/* 10^j as the nearest double, j = -4 .. 17 (P10[j + 4]): exact for j >= 0;
+ * only a first guess of the exponent depends on them. */
+static const double P10[22] = {1e-4, 1e-3, 1e-2, 1e-1, 1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,
+                               1e7,  1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16, 1e17};
+
+/* "00" .. "99": two digits at a time. */
+static const char PAIRS[201] = "00010203040506070809101112131415161718192021222324252627282930313233"
+                               "34353637383940414243444546474849505152535455565758596061626364656667"
+                               "6869707172737475767778798081828384858687888990919293949596979899";
+
+/* The 8 decimal digits of v < 10^8, zero-padded, to d[0 .. 8). */
+static void digits8(uint32_t v, char *d)
+{
+    for (int i = 6; i >= 0; i -= 2) {
+        memcpy(d + i, PAIRS + 2 * (v % 100u), 2);
+        v /= 100u;
+    }
+}
+
 size_t vb_format_g17(double x, char out[VB_G17_MAX])
 {
     double a = fabs(x);
@@ -47,13 +66,20 @@ size_t vb_format_g17(double x, char out[VB_G17_MAX])
      * exact range of scaled(): printf does those. */
     if (!(a >= 0x1p-60 && a < 0x1p56))
         return (size_t)snprintf(out, VB_G17_MAX, "%.17g", x);
-    int k;
-    double f = frexp(a, &k); /* a = f 2^k, f in [0.5, 1) */
-    uint64_t m = (uint64_t)ldexp(f, 53);
-    int e = k - 53;
-    /* X = floor(log10 a), checked below: the 17 digits D must lie in
-     * [10^16, 10^17) (a carry to 10^17 moves X up). */
-    int X = (int)floor(log10(a));
+    /* a is normal: a = m 2^e with m = 2^52 + the stored fraction. */
+    uint64_t bits;
+    memcpy(&bits, &a, sizeof bits);
+    int be = (int)(bits >> 52); /* the sign bit of a is 0 */
+    uint64_t m = (bits & ((1ull << 52) - 1)) | (1ull << 52);
+    int e = be - 1075;
+    /* X = floor(log10 a), guessed and checked below: the 17 digits D must
+     * lie in [10^16, 10^17) (a carry to 10^17 moves X up). With
+     * 2^(k-1) <= a < 2^k (k = e + 53), X is floor((k-1) log10 2) or one
+     * more; 78913 / 2^18 is log10 2 closely enough for |k| < 1000 (the
+     * offset 64 keeps the shift's operand positive: a floor). */
+    int X = (((e + 52) * 78913 + (64 << 18)) >> 18) - 64;
+    if (X + 1 >= -4 && X + 1 <= 17 && a >= P10[X + 5])
+        X++;
     uint64_t D = 0;
     for (int tries = 0; tries < 4; tries++) {
         if (X < -4 || X > 16)
@@ -69,10 +95,10 @@ size_t vb_format_g17(double x, char out[VB_G17_MAX])
     if (D < D16 || D >= D17)
         return (size_t)snprintf(out, VB_G17_MAX, "%.17g", x);
     char dig[17];
-    for (int i = 16; i >= 0; i--) {
-        dig[i] = (char)('0' + D % 10u);
-        D /= 10u;
-    }
+    uint64_t hi = D / 100000000u; /* < 10^9 */
+    dig[0] = (char)('0' + hi / 100000000u);
+    digits8((uint32_t)(hi % 100000000u), dig + 1);
+    digits8((uint32_t)(D % 100000000u), dig + 9);
     /* Precision 16 - X after the point, trailing zeros dropped (and the
      * point with them). */
     int last = 16;
@@ -121,14 +147,4 @@ size_t vb_format_i32(int32_t v, char out[12])
         return vb_format_u32((uint32_t)v, out);
     out[0] = '-';
     return 1 + vb_format_u32((uint32_t)0 - (uint32_t)v, out + 1);
-}
-
-void vb_put_g17(FILE *f, char sep, double x)
-{
-    char b[VB_G17_MAX + 1];
-    size_t n = 0;
-    if (sep)
-        b[n++] = sep;
-    n += vb_format_g17(x, b + n);
-    fwrite(b, 1, n, f);
 }

@@ -32,8 +32,4 @@ size_t vb_format_u32(uint32_t v, char out[11]);
 /* Writes v in decimal ("%d"), NUL terminated; returns the length. */
 size_t vb_format_i32(int32_t v, char out[12]);
 
-/* Writes sep (unless it is 0) and x as "%.17g" (vb_format_g17) to f; the
- * caller checks ferror. */
-void vb_put_g17(FILE *f, char sep, double x);
-
 #endif

@@ -1,67 +1,157 @@
 /* vb_write_lines: formatting 17 digits is most of the cost of writing a
- * vertex file, so blocks of items are formatted on the threads. */
+ * vertex file, so blocks of items are formatted on the threads into plain
+ * memory (vb_text: no stdio call per number), and the round formatted
+ * before is written to the file by the caller's thread meanwhile. */
 #include "vb_write_lines.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 #include "vb.h"
+#include "vb_numtext.h"
 #include "vb_parallel.h"
 
 #define WRITE_BLOCK 4096u
 
-typedef struct blocks {
+int vb_text_grow(vb_text *t, size_t need)
+{
+    if (t->nomem)
+        return -1;
+    size_t cap = t->cap ? t->cap : 4096;
+    while (cap - t->n < need)
+        cap *= 2;
+    char *p = realloc(t->p, cap);
+    if (!p) {
+        t->nomem = 1;
+        return -1;
+    }
+    t->p = p;
+    t->cap = cap;
+    return 0;
+}
+
+void vb_text_put(vb_text *t, const char *s, size_t n)
+{
+    char *d = vb_text_room(t, n);
+    if (!d)
+        return;
+    memcpy(d, s, n);
+    t->n += n;
+}
+
+void vb_text_u32(vb_text *t, char sep, uint32_t v)
+{
+    char *d = vb_text_room(t, 12);
+    if (!d)
+        return;
+    size_t n = 0;
+    if (sep)
+        d[n++] = sep;
+    n += vb_format_u32(v, d + n);
+    t->n += n;
+}
+
+void vb_text_g17(vb_text *t, char sep, double x)
+{
+    char *d = vb_text_room(t, VB_G17_MAX + 1);
+    if (!d)
+        return;
+    size_t n = 0;
+    if (sep)
+        d[n++] = sep;
+    n += vb_format_g17(x, d + n);
+    t->n += n;
+}
+
+/* One round: blocks 0 .. nb-1 of items from k0 formatted into text[0 ..
+ * nb), and, as one more item, the round before (prev[0 .. nprev)) written
+ * to f. */
+typedef struct round {
     vb_line_fn fn;
     const void *arg;
-    size_t n, k0;
-    char **buf;
-    size_t *len;
-} blocks;
+    size_t n, k0, nb;
+    vb_text *text;
+    FILE *f;
+    vb_text *prev;
+    size_t nprev;
+} round;
 
-static void format_block(void *ctx, size_t i, int tid)
+static void write_texts(FILE *f, vb_text *t, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        if (t[i].n)
+            fwrite(t[i].p, 1, t[i].n, f);
+}
+
+static void round_item(void *ctx, size_t i, int tid)
 {
     (void)tid;
-    blocks *b = ctx;
-    FILE *m = open_memstream(&b->buf[i], &b->len[i]);
-    if (!m) {
-        b->buf[i] = NULL;
+    round *r = ctx;
+    if (i == r->nb) {
+        write_texts(r->f, r->prev, r->nprev);
         return;
     }
-    size_t k0 = b->k0 + i * WRITE_BLOCK, k1 = k0 + WRITE_BLOCK;
-    for (size_t k = k0; k < k1 && k < b->n; k++)
-        b->fn(m, b->arg, k);
-    if (fclose(m) != 0) {
-        free(b->buf[i]);
-        b->buf[i] = NULL;
-    }
+    vb_text *t = r->text + i;
+    t->n = 0;
+    size_t k0 = r->k0 + i * WRITE_BLOCK, k1 = k0 + WRITE_BLOCK;
+    for (size_t k = k0; k < k1 && k < r->n; k++)
+        r->fn(t, r->arg, k);
+}
+
+static int any_nomem(const vb_text *t, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        if (t[i].nomem)
+            return 1;
+    return 0;
 }
 
 int vb_write_lines(FILE *f, size_t n, vb_line_fn fn, const void *arg)
 {
     int nt = vb_threads(0);
     if (nt == 1 || n <= WRITE_BLOCK) {
-        for (size_t k = 0; k < n; k++)
-            fn(f, arg, k);
-        return VB_OK;
-    }
-    size_t round = 4u * (size_t)nt;
-    char **buf = calloc(round, sizeof *buf);
-    size_t *len = calloc(round, sizeof *len);
-    int rc = buf && len ? VB_OK : VB_ENOMEM;
-    for (size_t k0 = 0; rc == VB_OK && k0 < n; k0 += round * WRITE_BLOCK) {
-        size_t nb = (n - k0 + WRITE_BLOCK - 1) / WRITE_BLOCK;
-        nb = nb < round ? nb : round;
-        blocks b = {fn, arg, n, k0, buf, len};
-        vb_parallel_for(format_block, &b, nb, nt);
-        for (size_t i = 0; i < nb; i++) {
-            if (!buf[i])
+        /* One block of text at a time, written as it fills. */
+        vb_text t = {0};
+        int rc = VB_OK;
+        for (size_t k = 0; k < n && rc == VB_OK; k++) {
+            fn(&t, arg, k);
+            if (t.nomem)
                 rc = VB_ENOMEM;
-            else if (rc == VB_OK)
-                fwrite(buf[i], 1, len[i], f);
-            free(buf[i]);
-            buf[i] = NULL;
+            else if (t.n >= 65536 || k + 1 == n) {
+                fwrite(t.p, 1, t.n, f);
+                t.n = 0;
+            }
         }
+        free(t.p);
+        return rc;
     }
-    free(buf);
-    free(len);
+    /* Two sets of a round's texts: one formatted while the other is
+     * written. */
+    size_t per = 4u * (size_t)nt;
+    vb_text *text = calloc(2 * per, sizeof *text);
+    if (!text)
+        return VB_ENOMEM;
+    int rc = VB_OK, cur = 0;
+    size_t nprev = 0;
+    for (size_t k0 = 0; rc == VB_OK && (k0 < n || nprev); k0 += per * WRITE_BLOCK) {
+        size_t nb = k0 < n ? (n - k0 + WRITE_BLOCK - 1) / WRITE_BLOCK : 0;
+        nb = nb < per ? nb : per;
+        round r = {fn, arg, n, k0, nb, text + (size_t)cur * per, f,
+                   text + (size_t)(1 - cur) * per, nprev};
+        vb_parallel_for(round_item, &r, nb + (nprev ? 1 : 0), nt);
+        if (any_nomem(r.text, nb)) {
+            /* What came before the short block is written. */
+            size_t i = 0;
+            while (!r.text[i].nomem)
+                i++;
+            write_texts(f, r.text, i);
+            rc = VB_ENOMEM;
+        }
+        nprev = nb;
+        cur = 1 - cur;
+    }
+    for (size_t i = 0; i < 2 * per; i++)
+        free(text[i].p);
+    free(text);
     return rc;
 }

@@ -42,76 +42,84 @@ const char *vb_vertex_status_name(int status)
 }
 
 /* One vertex as a line of each format (json: the array's element, with the
- * separator before it). */
-typedef void (*line_fn)(FILE *f, const vb_vertex_list *v, size_t k);
+ * separator before it), appended to a text (vb_write_lines). */
+typedef void (*line_fn)(vb_text *t, const vb_vertex_list *v, size_t k);
 
-static void ids_csv(FILE *f, const vb_vertex_list *v, size_t k)
+static void ids_csv(vb_text *t, const vb_vertex_list *v, size_t k)
 {
-    char b[12];
-    for (size_t i = v->start[k]; i < v->start[k + 1]; i++) {
-        if (i != v->start[k])
-            putc(',', f);
-        fwrite(b, 1, vb_format_u32(v->ids[i], b), f);
-    }
+    for (size_t i = v->start[k]; i < v->start[k + 1]; i++)
+        vb_text_u32(t, i != v->start[k] ? ',' : 0, v->ids[i]);
 }
 
-static void tsv_line(FILE *f, const vb_vertex_list *v, size_t k)
+static void put_status(vb_text *t, char sep, int status, char end)
 {
-    ids_csv(f, v, k);
-    vb_put_g17(f, '\t', v->x[k]);
-    vb_put_g17(f, '\t', v->y[k]);
-    vb_put_g17(f, '\t', v->z[k]);
-    vb_put_g17(f, '\t', v->t[k]);
-    putc('\t', f);
-    fputs(vb_vertex_status_name(v->status[k]), f);
-    putc('\n', f);
+    const char *name = vb_vertex_status_name(status);
+    size_t n = strlen(name);
+    char *d = vb_text_room(t, n + 2);
+    if (!d)
+        return;
+    d[0] = sep;
+    memcpy(d + 1, name, n);
+    d[n + 1] = end;
+    t->n += n + 2;
+}
+
+static void tsv_line(vb_text *t, const vb_vertex_list *v, size_t k)
+{
+    ids_csv(t, v, k);
+    vb_text_g17(t, '\t', v->x[k]);
+    vb_text_g17(t, '\t', v->y[k]);
+    vb_text_g17(t, '\t', v->z[k]);
+    vb_text_g17(t, '\t', v->t[k]);
+    put_status(t, '\t', v->status[k], '\n');
 }
 
 /* JSON has no NaN or Inf: a non-finite value (only possible in a candidate
- * list) is written as null, which the reader refuses with a line number. */
-static void json_number(FILE *f, const char *key, double d)
+ * list) is written as null, which the reader refuses with a line number.
+ * key is the text before the value (",\"x\":"). */
+static void json_number(vb_text *t, const char *key, double d)
 {
-    char b[VB_G17_MAX];
-    if (isfinite(d)) {
-        fprintf(f, ",\"%s\":", key);
-        fwrite(b, 1, vb_format_g17(d, b), f);
-    } else
-        fprintf(f, ",\"%s\":null", key);
+    vb_text_put(t, key, strlen(key));
+    if (isfinite(d))
+        vb_text_g17(t, 0, d);
+    else
+        vb_text_put(t, "null", 4);
 }
 
-static void json_item(FILE *f, const vb_vertex_list *v, size_t k)
+static void json_item(vb_text *t, const vb_vertex_list *v, size_t k)
 {
-    fputs(k ? ",\n{\"ids\":[" : "\n{\"ids\":[", f);
-    ids_csv(f, v, k);
-    fputs("]", f);
-    json_number(f, "x", v->x[k]);
-    json_number(f, "y", v->y[k]);
-    json_number(f, "z", v->z[k]);
-    json_number(f, "t", v->t[k]);
-    fprintf(f, ",\"status\":\"%s\"}", vb_vertex_status_name(v->status[k]));
+    if (k)
+        vb_text_put(t, ",\n{\"ids\":[", 10);
+    else
+        vb_text_put(t, "\n{\"ids\":[", 9);
+    ids_csv(t, v, k);
+    vb_text_put(t, "]", 1);
+    json_number(t, ",\"x\":", v->x[k]);
+    json_number(t, ",\"y\":", v->y[k]);
+    json_number(t, ",\"z\":", v->z[k]);
+    json_number(t, ",\"t\":", v->t[k]);
+    vb_text_put(t, ",\"status\":", 10);
+    put_status(t, '"', v->status[k], '"');
+    vb_text_put(t, "}", 1);
 }
 
 /* Voronota lists one tangent sphere per quadruple. A vertex with k > 4
  * members is written as the k - 3 quadruples made of its three smallest ids
  * and each further id: together they name every member, and at least one of
  * them determines the point on its own (see vb_vertex_io.h). */
-static void voronota_lines(FILE *f, const vb_vertex_list *v, size_t k)
+static void voronota_lines(vb_text *t, const vb_vertex_list *v, size_t k)
 {
     const uint32_t *id = v->ids + v->start[k];
     size_t m = v->start[k + 1] - v->start[k];
-    char b[12];
     for (size_t j = 3; j < m; j++) {
         const uint32_t four[4] = {id[0], id[1], id[2], id[j]};
-        for (int a = 0; a < 4; a++) {
-            if (a)
-                putc(' ', f);
-            fwrite(b, 1, vb_format_u32(four[a], b), f);
-        }
-        vb_put_g17(f, ' ', v->x[k]);
-        vb_put_g17(f, ' ', v->y[k]);
-        vb_put_g17(f, ' ', v->z[k]);
-        vb_put_g17(f, ' ', v->t[k]);
-        putc('\n', f);
+        for (int a = 0; a < 4; a++)
+            vb_text_u32(t, a ? ' ' : 0, four[a]);
+        vb_text_g17(t, ' ', v->x[k]);
+        vb_text_g17(t, ' ', v->y[k]);
+        vb_text_g17(t, ' ', v->z[k]);
+        vb_text_g17(t, ' ', v->t[k]);
+        vb_text_put(t, "\n", 1);
     }
 }
 
@@ -122,10 +130,10 @@ typedef struct list_lines {
     line_fn fn;
 } list_lines;
 
-static void list_line(FILE *f, const void *arg, size_t k)
+static void list_line(vb_text *t, const void *arg, size_t k)
 {
     const list_lines *l = arg;
-    l->fn(f, l->v, k);
+    l->fn(t, l->v, k);
 }
 
 static int write_lines(vb_ctx *ctx, FILE *f, const vb_vertex_list *v, line_fn fn)

@@ -151,6 +151,15 @@ int vb_spheres_new(vb_ctx *ctx, const char *name, size_t n, int with_info, vb_sp
 int vb_spheres_load(vb_ctx *ctx, const char *path, const vb_read_options *ro,
                     const char *radii_path, size_t min_count, vb_sphere_set **out);
 
+struct vb_stage_clock; /* vb_stage_clock.h */
+
+/* vb_spheres_load with its two stages timed on clk (may be NULL): the
+ * reading as VB_STAGE_READ, the checks as VB_STAGE_VALIDATE
+ * (vb_stage_clock.h; the stage before them ends at the call). */
+int vb_spheres_load_clocked(vb_ctx *ctx, const char *path, const vb_read_options *ro,
+                            const char *radii_path, size_t min_count, vb_sphere_set **out,
+                            struct vb_stage_clock *clk);
+
 /* Frees a set; NULL is allowed. */
 void vb_spheres_free(vb_sphere_set *set);
 

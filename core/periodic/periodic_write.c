@@ -1,5 +1,5 @@
 /* Writers of periodic vertex files: the open files' layout (vertex_write.c)
- * with members written i@(dx,dy,dz). Numbers as %.17g (vb_put_g17: printf's
+ * with members written i@(dx,dy,dz). Numbers as %.17g (vb_text_g17: printf's
  * bytes, faster), so every double reads back bit-exactly. */
 #include "vb_periodic.h"
 
@@ -11,11 +11,13 @@
 #include "vb_output.h"
 #include "vb_write_lines.h"
 
-static void members(FILE *f, const vb_periodic_vertices *v, size_t k, int quoted)
+static void members(vb_text *t, const vb_periodic_vertices *v, size_t k, int quoted)
 {
     for (size_t j = v->start[k]; j < v->start[k + 1]; j++) {
         const vb_periodic_member *m = v->m + j;
-        char b[64];
+        char *b = vb_text_room(t, 64);
+        if (!b)
+            return;
         size_t n = 0;
         if (j != v->start[k])
             b[n++] = ',';
@@ -30,7 +32,7 @@ static void members(FILE *f, const vb_periodic_vertices *v, size_t k, int quoted
         b[n++] = ')';
         if (quoted)
             b[n++] = '"';
-        fwrite(b, 1, n, f);
+        t->n += n;
     }
 }
 
@@ -40,33 +42,38 @@ int vb_periodic_write(vb_ctx *ctx, FILE *f, const vb_periodic_vertices *v, int j
     return vb_periodic_write_prov(ctx, f, v, json, NULL, comment);
 }
 
+static void put(vb_text *t, const char *s)
+{
+    vb_text_put(t, s, strlen(s));
+}
+
 /* Vertex k as a JSON item (after a comma unless it is the first). */
-static void json_item(FILE *f, const void *arg, size_t k)
+static void json_item(vb_text *t, const void *arg, size_t k)
 {
     const vb_periodic_vertices *v = arg;
-    fputs(k ? ",\n{\"ids\":[" : "\n{\"ids\":[", f);
-    members(f, v, k, 1);
-    fputs("],\"x\":", f);
-    vb_put_g17(f, 0, v->x[k]);
-    fputs(",\"y\":", f);
-    vb_put_g17(f, 0, v->y[k]);
-    fputs(",\"z\":", f);
-    vb_put_g17(f, 0, v->z[k]);
-    fputs(",\"t\":", f);
-    vb_put_g17(f, 0, v->t[k]);
-    fputs(",\"status\":\"certified\"}", f);
+    put(t, k ? ",\n{\"ids\":[" : "\n{\"ids\":[");
+    members(t, v, k, 1);
+    put(t, "],\"x\":");
+    vb_text_g17(t, 0, v->x[k]);
+    put(t, ",\"y\":");
+    vb_text_g17(t, 0, v->y[k]);
+    put(t, ",\"z\":");
+    vb_text_g17(t, 0, v->z[k]);
+    put(t, ",\"t\":");
+    vb_text_g17(t, 0, v->t[k]);
+    put(t, ",\"status\":\"certified\"}");
 }
 
 /* Vertex k as a TSV line. */
-static void tsv_line(FILE *f, const void *arg, size_t k)
+static void tsv_line(vb_text *t, const void *arg, size_t k)
 {
     const vb_periodic_vertices *v = arg;
-    members(f, v, k, 0);
-    vb_put_g17(f, '\t', v->x[k]);
-    vb_put_g17(f, '\t', v->y[k]);
-    vb_put_g17(f, '\t', v->z[k]);
-    vb_put_g17(f, '\t', v->t[k]);
-    fputs("\tcertified\n", f);
+    members(t, v, k, 0);
+    vb_text_g17(t, '\t', v->x[k]);
+    vb_text_g17(t, '\t', v->y[k]);
+    vb_text_g17(t, '\t', v->z[k]);
+    vb_text_g17(t, '\t', v->t[k]);
+    put(t, "\tcertified\n");
 }
 
 /* Comment text, one '#' line per line of it. The rows are formatted on

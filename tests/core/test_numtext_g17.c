@@ -69,6 +69,15 @@ int main(void)
         same(w);
         same(-w);
     }
+    /* Every binade of the fixed-notation path (2^-60 .. 2^56), its ends and
+     * random values in it: the exponent is guessed from the binade, then
+     * checked. */
+    for (int e = -61; e <= 57; e++) {
+        same(ldexp(1.0, e));
+        same(nextafter(ldexp(1.0, e), 0.0));
+        for (int k = 0; k < 3000; k++)
+            same(ldexp(1.0 + (double)(next() >> 12) * 0x1p-52, e));
+    }
     /* Random bit patterns over the whole range. */
     for (int k = 0; k < 300000; k++) {
         uint64_t b = next();

@@ -1,0 +1,44 @@
+/* Wall and CPU seconds by stage of the whole process (vb_stage_clock.h). */
+#include "vb_stage_clock.h"
+
+#include <string.h>
+#include <time.h>
+
+#include "vb_parallel.h"
+
+static const char *const stage_name[VB_STAGE_N] = {"read", "validate", "run",
+                                                   "complete", "write", "free"};
+
+double vb_cpu_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+void vb_stage_clock_start(vb_stage_clock *c)
+{
+    memset(c, 0, sizeof *c);
+    c->wall_start = c->wall0 = vb_now();
+    c->cpu_start = c->cpu0 = vb_cpu_now();
+}
+
+void vb_stage_lap(vb_stage_clock *c, vb_stage s)
+{
+    if (!c)
+        return;
+    double w = vb_now(), u = vb_cpu_now();
+    c->wall[s] += w - c->wall0;
+    c->cpu[s] += u - c->cpu0;
+    c->wall0 = w;
+    c->cpu0 = u;
+}
+
+void vb_stage_clock_write(FILE *f, const vb_stage_clock *c)
+{
+    for (int s = 0; s < VB_STAGE_N; s++)
+        fprintf(f, "process_%s_s\t%.6f\nprocess_%s_cpu_s\t%.6f\n", stage_name[s], c->wall[s],
+                stage_name[s], c->cpu[s]);
+    fprintf(f, "process_total_s\t%.6f\nprocess_total_cpu_s\t%.6f\n", c->wall0 - c->wall_start,
+            c->cpu0 - c->cpu_start);
+}
