@@ -59,6 +59,8 @@ void vbq_arena_free(vbq_arena *a)
     free(a->st);
     free(a->q);
     free(a->hi);
+    free(a->memo);
+    free(a->memo_tag);
     memset(a, 0, sizeof *a);
 }
 
@@ -70,11 +72,14 @@ int vbq_arena_make(vbq_arena *a, uint32_t nb, uint32_t lab, uint32_t st, uint32_
     a->st = malloc((size_t)st * sizeof *a->st);
     a->q = malloc(4 * (size_t)q * sizeof *a->q);
     a->hi = malloc((size_t)lab * sizeof *a->hi);
+    a->memo = malloc(VBQ_MEMO * sizeof *a->memo);
+    a->memo_tag = calloc(2u * VBQ_MEMO, sizeof *a->memo_tag);
     a->nb_cap = nb;
     a->lab_cap = lab;
     a->st_cap = st;
     a->q_cap = q;
-    return a->nb && a->lab && a->st && a->q && a->hi ? VB_OK : VB_ENOMEM;
+    return a->nb && a->lab && a->st && a->q && a->hi && a->memo && a->memo_tag ? VB_OK
+                                                                              : VB_ENOMEM;
 }
 
 /* Arena capacities of the first try on the host; a cell that overflows one
@@ -144,7 +149,7 @@ static int cover_one(worker *w, uint32_t i)
 {
     vbq_cell_out o;
     for (;;) {
-        vbq_cover_cell(&w->jb->env, &w->ar, i, VBQ_ALL_ROOTS, &o);
+        vb_cover_cell_host(&w->jb->env, &w->ar, i, VBQ_ALL_ROOTS, &o);
         if (o.status == VBQ_OK)
             break;
         uint32_t nb = w->ar.nb_cap, lab = w->ar.lab_cap, st = w->ar.st_cap, q = w->ar.q_cap;

@@ -153,6 +153,12 @@ void vbq_arena_free(vbq_arena *a);
  * arena then holds what could be allocated and must still be freed). */
 int vbq_arena_make(vbq_arena *a, uint32_t nb, uint32_t lab, uint32_t st, uint32_t q);
 
+/* vbq_cover_cell on the host, in the widest build this CPU runs
+ * (core/cells/cover_cell.c: AVX2 where the CPU has it); the same output as
+ * vbq_cover_cell on every CPU. */
+void vb_cover_cell_host(const vbq_env *e, const vbq_arena *ar, uint32_t i, uint32_t root,
+                        vbq_cell_out *o);
+
 /* The shared input of every cell: the tree over the centres and the
  * parameters, in *env (its arrays belong to *tree and to set). For
  * backends and tests that run vbq_cover_cell themselves; vb_cover_run

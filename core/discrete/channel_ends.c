@@ -93,14 +93,14 @@ static int widest_through(vbc_graph *A, vb_uf *uf, const uint32_t *members, size
     /* A total order (ties by position): the same on any number of threads. */
     kruskal_order(A, members, m, key, S);
     for (size_t t = 0; t < m && !found; t++) {
-        uint32_t u = S[t];
+        uint32_t u = S[t], ru = u; /* u's root, kept through its unions */
         A->hpos[u] = 1;
         uf->p[u] = u;
         for (size_t e = A->adj_start[u]; e < A->adj_start[u + 1] && !found; e++) {
             uint32_t q = A->adj[e];
             if (!A->hpos[q])
                 continue;
-            uint32_t ru = vb_uf_root(uf, u), rq = vb_uf_root(uf, (uint32_t)q);
+            uint32_t rq = vb_uf_root(uf, (uint32_t)q);
             if (ru == rq)
                 continue;
             uint32_t lu = A->pred[ru], lq = A->pred[rq];
@@ -112,6 +112,7 @@ static int widest_through(vbc_graph *A, vb_uf *uf, const uint32_t *members, size
                         found = 1;
                     }
             uint32_t root = vb_uf_join(uf, ru, rq), lr = A->pred[root], lo = root == ru ? lq : lu;
+            ru = root;
             /* Concatenate the opening lists into the surviving root's. */
             if (head[lo] != UINT32_MAX) {
                 if (head[lr] == UINT32_MAX) {
