@@ -575,8 +575,9 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
                                                 : vbg_runtime_is_gpu(rt);
     cov_tier *t0 = &s->tier[COV_FIRST], *t1 = &s->tier[COV_BIG], *th = &s->tier[COV_HAND];
     cov_tier *t3 = &s->tier[COV_HUGE];
-    t0->nb_cap = s->wg ? COV_WG_NB : COV_NB;
-    t0->lab_cap = s->wg ? COV_WG_LAB : COV_LAB;
+    int cpu = !vbg_runtime_is_gpu(rt);
+    t0->nb_cap = s->wg ? COV_WG_NB : cpu ? COV_CPU_NB : COV_NB;
+    t0->lab_cap = s->wg ? COV_WG_LAB : cpu ? COV_CPU_LAB : COV_LAB;
     t0->st_cap = COV_ST;
     t0->q_cap = s->wg ? COV_WG_Q : COV_Q;
     t1->nb_cap = COV_BIG_NB;

@@ -9,7 +9,8 @@
  *   first tier S0 slices of P0 bytes, P0 = 48 NB + 4 LAB + 16 Q (+ 48 ST on
  *              the work-item kernel; the group kernel keeps one stack of
  *              48 ST), NB/LAB/ST/Q the tier's capacities below: 144 KiB a
- *              work-item, 520 KiB a group; S0 = min(the device's occupancy,
+ *              work-item (272 KiB on a CPU device), 520 KiB a group;
+ *              S0 = min(the device's occupancy,
  *              n, 3/4 of the budget left after the input / P0);
  *   launches   per launch of C tasks: 4 C (cells) + 4 C (roots) + 48 C (results)
  *              + 16 qper C (quadruples, qper 24 on the first tier, 256 on the
@@ -94,6 +95,15 @@ typedef struct cov_state {
 #define COV_LAB 8192u
 #define COV_ST 256u
 #define COV_Q 256u
+/* A CPU device's work-items (PoCL): it has no large tier, so a cell past
+ * the first tier's arenas is covered again on the host after the device's
+ * work on it is lost. fcc 10,976 jittered (stop 43, 2-core, PoCL CPU s,
+ * ref 5.3-5.5): 2,048 / 8,192 records / labels left 2,114 of its 10,976
+ * cells (its face cells, 1,849 out of records) to the host, 8.45 s;
+ * 4,096 / 16,384: 191 cells, 7.00 s; 8,192 / 32,768: 42 cells, 6.68 s at
+ * twice the memory (a slice 528 KiB against 272 KiB). */
+#define COV_CPU_NB 4096u
+#define COV_CPU_LAB 16384u
 #define COV_WG_NB 8192u
 #define COV_WG_LAB 32768u
 #define COV_WG_Q 512u

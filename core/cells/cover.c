@@ -135,6 +135,8 @@ static void stats_add(vb_cover_stats *st, const vbq_cell_out *o)
     st->cells++;
     st->neighbours += o->nnb;
     st->far_neighbours += o->far;
+    if (o->nnb > st->max_cell_neighbours)
+        st->max_cell_neighbours = o->nnb;
     st->patches += o->patches;
     st->evals += 1000u * (uint64_t)o->evals_k;
     st->leaves += o->leaves;
@@ -463,6 +465,8 @@ static void stats_sum(vb_cover_stats *st, const vb_cover_stats *ws)
     st->cells += ws->cells;
     st->neighbours += ws->neighbours;
     st->far_neighbours += ws->far_neighbours;
+    if (ws->max_cell_neighbours > st->max_cell_neighbours)
+        st->max_cell_neighbours = ws->max_cell_neighbours;
     st->patches += ws->patches;
     st->evals += ws->evals;
     st->leaves += ws->leaves;

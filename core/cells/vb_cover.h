@@ -64,6 +64,10 @@ typedef struct vb_cover_stats {
     uint64_t cells;          /* base spheres covered */
     uint64_t neighbours;     /* neighbour records built */
     uint64_t far_neighbours; /* of those, beyond the near radius (hull patches) */
+    uint64_t max_cell_neighbours; /* the most records one cell built (a hull cell's ring
+                                     fetches: tests/pipeline/hull_fetch.sh bounds it); a
+                                     cell a device split into root-patch tasks counts
+                                     their sum (each task fetches its own lists) */
     uint64_t patches;        /* patches evaluated */
     uint64_t evals;          /* label enclosures evaluated */
     uint64_t leaves;         /* patches that enumerated quadruples */

@@ -116,6 +116,8 @@ typedef struct vb_proposal {
     } quads;
     int complete;
     uint64_t cover_cells, cover_patches, cover_host_cells; /* the cover's counters */
+    uint64_t cover_neighbours;    /* neighbour records the cover built, all cells */
+    uint64_t cover_max_cell_neighbours; /* the most that one cell built */
     uint64_t cover_handed_cells;  /* cells the GPU's group kernel handed to its work-item
                                      kernel (past the step budget) */
     uint64_t cover_quads;         /* quadruples proposed (in quads, or handed to the sink),

@@ -43,6 +43,11 @@ void vb_vertices_stats(vb_ctx *ctx, const vb_vertices_result *r, vb_stat_fields 
     vb_stat_uint(fs, "cover_host_cells", s->cover_host_cells);
     vb_stat_uint(fs, "cover_handed_cells", s->cover_handed_cells);
     vb_stat_uint(fs, "cover_quadruples", s->cover_quads);
+    /* The neighbour records the cover built (every sphere a cell's tree
+     * walks kept), in all and the most for one cell: a hull cell whose
+     * rings fetch the whole input shows in the second. */
+    vb_stat_uint(fs, "cover_neighbours", s->cover_neighbours);
+    vb_stat_uint(fs, "cover_max_cell_neighbours", s->cover_max_cell_neighbours);
     /* The cover's device time (timings: they vary run to run): its
      * batches' wall seconds, then per tier (first launch, large slices,
      * hand-off) the seconds its kernels ran on the device, launches and
