@@ -204,10 +204,11 @@ static double magnitude_lo(vbx_ia a)
 }
 
 /* Integrates every arc (again) whose widths exceed the targets: volume
- * and SAS shares of tv and ts, each contact's share of tc[j] (or, with
- * tc NULL, of fa); `scale` multiplies every target. Returns 0 when an
- * interval cannot bound an arc. */
-static int integrate_arcs(const vbm_atom_in *in, stokes_work *w, double tv, double ts, double fa,
+ * and SAS shares of tv and ts, each contact's share of its target
+ * (tolerance times the larger of its value, in the second pass, and its
+ * floor, vbm_contact_floor); `scale` multiplies every target. Returns 0
+ * when an interval cannot bound an arc. */
+static int integrate_arcs(const vbm_atom_in *in, stokes_work *w, double tv, double ts,
                           double scale, size_t *pieces)
 {
     double rr = in->r.hi, r3 = rr * rr * rr / 3.0, n = (double)(w->nrec + 1);
@@ -217,7 +218,8 @@ static int integrate_arcs(const vbm_atom_in *in, stokes_work *w, double tv, doub
     for (size_t i = 0; i < w->nrec; i++) {
         arcrec *a = &w->rec[i];
         uint32_t j = a->j;
-        double tc = in->tolerance * vbx_max(scale > 1.0 ? 0.0 : magnitude_lo(w->con[j]), fa);
+        double tc = in->tolerance * vbx_max(scale > 1.0 ? 0.0 : magnitude_lo(w->con[j]),
+                                            vbm_contact_floor(in, j));
         double cs = scale > 1.0 ? CON_FIRST_SCALE : scale;
         tg[CON] = in->contacts && in->nb[j].con ? cs * 0.5 * tc / (double)(w->narcs[j] + 1)
                                                 : INFINITY;
@@ -360,13 +362,13 @@ int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
     double fv = FLOOR_FRACTION * FOUR_PI * r3, fa = FLOOR_FRACTION * FOUR_PI * rr * rr;
     size_t pieces = 0;
     contacts(in, w); /* the arc counts */
-    if (!integrate_arcs(in, w, in->tolerance * fv, in->tolerance * fa, fa, 100, &pieces))
+    if (!integrate_arcs(in, w, in->tolerance * fv, in->tolerance * fa, 100, &pieces))
         return 0;
     total(in, w, out);
     contacts(in, w);
     double tgv = in->tolerance * vbx_max(magnitude_lo(out->vol), fv);
     double tgs = in->tolerance * vbx_max(magnitude_lo(out->sas), fa);
-    if (!integrate_arcs(in, w, tgv, tgs, fa, 1.0, &pieces))
+    if (!integrate_arcs(in, w, tgv, tgs, 1.0, &pieces))
         return 0;
     total(in, w, out);
     contacts(in, w);
@@ -376,7 +378,8 @@ int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
                  width(out->sas) > in->tolerance * vbx_max(ms, fa);
     for (size_t j = 0; in->contacts && j < in->nnb; j++)
         if (in->nb[j].con && w->narcs[j] &&
-            width(w->con[j]) > in->tolerance * vbx_max(fabs(vbx_ia_mid(w->con[j])), fa))
+            width(w->con[j]) >
+                in->tolerance * vbx_max(fabs(vbx_ia_mid(w->con[j])), vbm_contact_floor(in, j)))
             out->loose = 1;
     if (in->contacts && !pairs(in, w, out))
         return -1;
