@@ -456,7 +456,8 @@ static int arc_bound(const vbm_circle *C, const vbm_arc *a, vbx_ia *M, double *c
     vbx_ia c2 = vbx_ia_sqr(C->c), s2 = vbx_ia_sqr(C->s);
     vbx_ia dp = vbx_ia_add(vbx_ia_mul(mx, a->p[0]), vbx_ia_mul(my, a->p[1]));
     vbx_ia dq = vbx_ia_add(vbx_ia_mul(mx, a->q[0]), vbx_ia_mul(my, a->q[1]));
-    double lo = vbx_min(vbx_ia_add(c2, vbx_ia_mul(s2, dp)).lo, vbx_ia_add(c2, vbx_ia_mul(s2, dq)).lo);
+    double lo = vbx_min(vbx_ia_add(c2, vbx_ia_mul(s2, dp)).lo,
+                        vbx_ia_add(c2, vbx_ia_mul(s2, dq)).lo);
     for (int k = 0; k < 3; k++)
         M[k] = vbx_ia_add(vbx_ia_mul(C->c, C->a[k]),
                           vbx_ia_mul(C->s, vbx_ia_add(vbx_ia_mul(mx, C->e1[k]),
