@@ -352,6 +352,8 @@ int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
             memcpy(r->q, a->q, sizeof r->q);
             r->tp = a->tp;
             r->tq = a->tq;
+            for (int k = 0; k < NV; k++) /* contacts() counts arcs before any is integrated */
+                r->v[k] = vbx_ia_point(0.0);
         }
     }
     /* every arc to a hundred times its share of the floors of the targets
