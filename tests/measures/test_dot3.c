@@ -5,11 +5,12 @@
  * convolutions read it), magnitudes from 2^-1074 to 2^1000, points and
  * wide intervals, mixed signs, the exact dot product (MPFR, 4300 bits:
  * every product and sum of doubles exact) of the intervals' corners that
- * give the least and the greatest value lies in the enclosure; the enclosure is no more than 8 ulps of the sum of the
- * products' magnitudes wider than the operation-by-operation one
- * (vbm_dot3_slow); infinite ends give what vbm_dot3_slow gives. A bound
- * made without the rounding margin (the bare rounded sums) misses on some
- * of the triples: the margin is needed. */
+ * give the least and the greatest value lies in the enclosure; no
+ * enclosure is wider than the operation-by-operation one (vbm_dotn_slow)
+ * by more than m + 1 ulps of the products' magnitudes summed; infinite
+ * ends give what vbm_dot3_slow gives. A bound made without the rounding
+ * margin (the bare rounded sums) misses on some of the vectors: the
+ * margin is needed. */
 #include <math.h>
 #include <mpfr.h>
 #include <stdint.h>

@@ -153,9 +153,9 @@ typedef struct arcfun {
      * in t (rational_of) */
     vbx_ia an[3], ad[5], vn[5], vd[7];
     vbx_ia Pz[3], Pq[3];          /* z = Pz / E, q = Pq / E */
-    /* the contact's (contact_of): S = SN / E, the algebraic part of G(q)
-     * sqrt(S) Rn / Rd, the area's integrand over 1 - z an / cd */
-    vbx_ia SN[3], Rn[5], Rd[5], cd[5], Emz[3]; /* ... and 1 - z = Emz / E */
+    /* the contact's (contact_of): S = N + 2 delta q, the algebraic part
+     * of G(q) sqrt(S) Rn / Rd, the area's integrand over 1 - z an / cd */
+    vbx_ia Rn[5], Rd[5], cd[5], Emz[3]; /* ... and 1 - z = Emz / E */
     int want; /* the values integrated now: bits 1 << AREA, VOL, CON */
 } arcfun;
 
@@ -199,7 +199,6 @@ static void rational_of(arcfun *f)
      * 2 Pn / (Po (E - Pz)) */
     vbx_ia W[3], Emz[3];
     for (int k = 0; k < 3; k++) {
-        f->SN[k] = vbx_ia_add(vbx_ia_mul(o->N, E[k]), vbx_ia_mul(dd, Pq[k]));
         W[k] = vbx_ia_neg(vbx_ia_add(vbx_ia_mul(o->N, E[k]), vbx_ia_mul(o->delta, Pq[k])));
         Emz[k] = vbx_ia_sub(E[k], Pz[k]);
         f->Emz[k] = Emz[k];
@@ -219,17 +218,24 @@ static int contact_of(const arcfun *f, vbx_ia at, int kmax, vbm_s1 *con)
 {
     static const vbx_ia E[3] = {{1.0, 1.0}, {0.0, 0.0}, {1.0, 1.0}};
     const owner *o = &f->o;
-    vbm_s1 S, r, R, G, u, a;
-    if (!vbm1_rational(&S, f->SN, 2, E, 2, at, kmax) || !vbm1_sqrt(&r, &S) ||
-        !vbm1_rational(&R, f->Rn, 4, f->Rd, 4, at, kmax) ||
+    vbm_s1 S, r, R, G, u, a, q;
+    /* S = N + 2 delta q from q's series (one affine map where SN / E took a
+     * second rational recurrence; S = N exactly for delta = 0) */
+    int dz = vbm_ia_is_zero(o->delta);
+    if (dz)
+        vbm1_const(&S, o->N);
+    else if (vbm1_rational(&q, f->Pq, 2, E, 2, at, kmax))
+        vbm1_affine(&S, vbx_ia_add(o->delta, o->delta), &q, o->N);
+    else
+        return 0;
+    if (!vbm1_sqrt(&r, &S) || !vbm1_rational(&R, f->Rn, 4, f->Rd, 4, at, kmax) ||
         !vbm1_rational(&a, f->an, 2, f->cd, 4, at, kmax))
         return 0;
     vbm1_mul(&G, &r, &R);
-    if (!vbm_ia_is_zero(o->delta)) { /* - delta^2 / (2 N sqrt N) log(2 |delta| q / (sqrt S + sqrt N)^2) */
-        vbm_s1 q, lq, ls;
+    if (!dz) { /* - delta^2 / (2 N sqrt N) log(2 |delta| q / (sqrt S + sqrt N)^2) */
+        vbm_s1 lq, ls;
         vbm1_affine(&u, vbx_ia_point(1.0), &r, o->rN);
-        if (!vbm1_rational(&q, f->Pq, 2, E, 2, at, kmax) || !vbm1_log(&lq, &q) ||
-            !vbm1_log(&ls, &u))
+        if (!vbm1_log(&lq, &q) || !vbm1_log(&ls, &u))
             return 0;
         vbm1_affine(&u, vbx_ia_point(-2.0), &ls, o->lnd);
         vbm1_add(&u, &u, &lq);

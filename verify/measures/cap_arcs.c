@@ -440,13 +440,71 @@ static int likely_boundary(const vbm_cap *caps, size_t ncap, vbm_capwork *w, siz
  * BAD (it joins the subset for circle l, not for the circles after it:
  * 3pqr, 1 thread, 5.45 -> 5.23 s of CPU against marking them likely for
  * the rest of the region); returns how many were. */
+#define NBOUND 8 /* arcs of one circle given bounding caps (more: none) */
+
+/* A cap around an arc of circle C (c, s its cosine and sine, the arc from
+ * angle tp to tq <= tp + 2.6 and its ends p, q): its centre *M, the point
+ * of C at the angle (tp + tq) / 2, and the cosine of its angular radius
+ * rho, *cr: every point u(t) of the arc has u(t).M = c^2 + s^2 cos(t - tm)
+ * with |t - tm| at most the larger of the ends' (< pi), so u(t).M is at
+ * least the smaller of p.M and q.M. Returns 0 when that lower bound is not
+ * proven > -1 (rho >= pi: no use). */
+static int arc_bound(const vbm_circle *C, const vbm_arc *a, vbx_ia *M, double *cr)
+{
+    vbx_ia mx, my;
+    vbm_unit_at(0.5 * (a->tp + a->tq), &mx, &my);
+    vbx_ia c2 = vbx_ia_sqr(C->c), s2 = vbx_ia_sqr(C->s);
+    vbx_ia dp = vbx_ia_add(vbx_ia_mul(mx, a->p[0]), vbx_ia_mul(my, a->p[1]));
+    vbx_ia dq = vbx_ia_add(vbx_ia_mul(mx, a->q[0]), vbx_ia_mul(my, a->q[1]));
+    double lo = vbx_min(vbx_ia_add(c2, vbx_ia_mul(s2, dp)).lo,
+                        vbx_ia_add(c2, vbx_ia_mul(s2, dq)).lo);
+    for (int k = 0; k < 3; k++)
+        M[k] = vbx_ia_add(vbx_ia_mul(C->c, C->a[k]),
+                          vbx_ia_mul(C->s, vbx_ia_add(vbx_ia_mul(mx, C->e1[k]),
+                                                      vbx_ia_mul(my, C->e2[k]))));
+    *cr = lo;
+    return lo > -1.0;
+}
+
+/* Whether cap m holds the cap of centre M and angular radius rho (cos rho
+ * >= cr): angle(M, a_m) + rho < alpha_m, alpha_m m's angular radius. That
+ * asks alpha_m - rho in [0, pi] (cos alpha_m = c_m < cr proves rho <
+ * alpha_m; both are at most pi) and then cos angle(M, a_m) = M.a_m >
+ * cos(alpha_m - rho) = c_m cos rho + s_m sin rho (s_m, sin rho >= 0),
+ * whose right side is bounded over every cos rho in [cr, 1] in intervals. */
+static int cap_holds(const vbm_circle *cm, const vbx_ia *M, double cr)
+{
+    vbx_ia cosr = {cr, 1.0};
+    if (!(cm->c.hi < cr))
+        return 0;
+    vbx_ia sinr = vbx_ia_sqrt(vbx_ia_sub(vbx_ia_point(1.0), vbx_ia_sqr(cosr)));
+    vbx_ia rhs = vbx_ia_add(vbx_ia_mul(cm->c, cosr), vbx_ia_mul(cm->s, sinr));
+    return vbm_dot3(M, cm->a).lo > rhs.hi;
+}
+
 static size_t arcs_inside(const vbm_cap *caps, size_t ncap, vbm_capwork *w, size_t l,
                           size_t first)
 {
     const vbm_circle *C = &w->circ[l];
-    size_t bad = 0;
+    size_t bad = 0, nbound = w->narc - first;
+    /* first a cheap sufficient test: cap m holds a cap around each arc
+     * (one dot product per arc, where the test below restricts the circle
+     * by cap m and checks both ends: 3pqr, 1 thread, 4.78 -> 4.55 s of
+     * CPU) */
+    vbx_ia M[NBOUND][3];
+    double cr[NBOUND];
+    if (nbound > NBOUND)
+        nbound = 0;
+    for (size_t i = 0; i < nbound; i++)
+        if (!arc_bound(C, &w->arc[first + i], M[i], &cr[i]))
+            nbound = 0;
     for (size_t m = 1; m < ncap; m++) {
         if (m == l || w->circ[m].kind == VBM_CAP_ALL || (w->state[m] & (ON_BOUNDARY | LIKELY | BAD)))
+            continue;
+        size_t held = 0;
+        while (held < nbound && cap_holds(&w->circ[m], M[held], cr[held]))
+            held++;
+        if (nbound && held == nbound)
             continue;
         restr r = restrict_by(C, &caps[m]);
         vbx_ia g = vbx_ia_sub(r.h, r.P);

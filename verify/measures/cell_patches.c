@@ -460,7 +460,7 @@ static size_t retarget(const vbm_atom_in *in, vbm_scratch *sc, size_t np, target
      * around those faces narrow the volume as well, and on a budget
      * (test_cells_periodic's one atom) leaving them out widened it 5x */
     for (size_t j = 0; j < in->nnb; j++)
-        tg->pair[j] = target_of(in->tolerance, sum[j], fa);
+        tg->pair[j] = target_of(in->tolerance, sum[j], vbm_contact_floor(in, j));
     patch *pt = sc->patch;
     uint32_t *h = sc->heap;
     size_t nh = 0;
@@ -591,7 +591,7 @@ int vbm_cell_integrate(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out
         for (size_t j = 0; j < nnb; j++) {
             if (!(in->nb[j].con && sum[j].hi > 0.0))
                 continue;
-            if (width(sum[j]) > target_of(in->tolerance, sum[j], fa))
+            if (width(sum[j]) > target_of(in->tolerance, sum[j], vbm_contact_floor(in, j)))
                 out->loose = 1;
             out->pairs[out->npairs].j = (uint32_t)j;
             out->pairs[out->npairs].area = sum[j];

@@ -56,8 +56,17 @@ typedef struct active {
     vbx_ia e[3], ca, sa;
 } active;
 
+/* The bisector cap of two active neighbours y < z, kept for both regions
+ * (region_caps): n = N_z d_y - N_y d_z, h = N_y delta_z - N_z delta_y
+ * (y's cap against z; z's is exactly its negation) and n.n. */
+typedef struct paircap {
+    vbx_ia n[3], h, nn;
+    uint8_t state; /* 0: not made yet, 1: the two caps apart, 2: made */
+} paircap;
+
 typedef struct stokes_work {
     vbm_capwork cw;
+    paircap *pair;     /* na x na, [min * na + max] */
     vbm_share share;   /* the bisector arcs two regions share */
     vbm_cap *caps;
     uint32_t *capact;  /* per cap of a region: its active neighbour */
@@ -65,7 +74,7 @@ typedef struct stokes_work {
     active *act;
     vbx_ia *D, *con;   /* per neighbour: |d|, the contact */
     uint32_t *narcs;   /* per neighbour: its arcs */
-    size_t cap_caps, cap_capact, cap_rec, cap_act, cap_D, cap_con, cap_narcs, nrec;
+    size_t cap_caps, cap_capact, cap_rec, cap_act, cap_D, cap_con, cap_narcs, cap_pair, nrec;
 } stokes_work;
 
 void vbm_stokes_free(void *p)
@@ -76,6 +85,7 @@ void vbm_stokes_free(void *p)
     vbm_caps_free(&w->cw);
     vbm_share_free(&w->share);
     free(w->caps);
+    free(w->pair);
     free(w->capact);
     free(w->rec);
     free(w->act);
@@ -92,6 +102,28 @@ static double width(vbx_ia a)
     return d == d ? d : INFINITY;
 }
 
+/* The bisector cap of active neighbours y < z for both their regions: the
+ * caps apart (the angle between the axes beyond the sum of the radii: the
+ * test is symmetric), state 1; else n, h and n.n, state 2. The same
+ * interval operations either region made before, once (negating an
+ * interval difference is exact: z's cap is y's negated bit for bit). */
+static void pair_cap(const vbm_atom_in *in, const stokes_work *w, size_t y, size_t z, paircap *pc)
+{
+    const active *ay = &w->act[y], *az = &w->act[z];
+    vbx_ia cs = vbx_ia_sub(vbx_ia_mul(ay->ca, az->ca), vbx_ia_mul(ay->sa, az->sa));
+    vbx_ia sn = vbx_ia_add(vbx_ia_mul(ay->sa, az->ca), vbx_ia_mul(ay->ca, az->sa));
+    if (sn.lo > 0.0 && vbm_dot3(ay->e, az->e).hi < cs.lo) {
+        pc->state = 1;
+        return;
+    }
+    const vbm_nb *ny = &in->nb[ay->j], *nz = &in->nb[az->j];
+    for (int i = 0; i < 3; i++)
+        pc->n[i] = vbx_ia_sub(vbx_ia_mul(nz->N, ny->d[i]), vbx_ia_mul(ny->N, nz->d[i]));
+    pc->h = vbx_ia_sub(vbx_ia_mul(ny->N, nz->delta), vbx_ia_mul(nz->N, ny->delta));
+    pc->nn = vbm_dot3(pc->n, pc->n);
+    pc->state = 2;
+}
+
 /* The caps of Omega_j: j's own, then those of the other active neighbours
  * that may cut it. Returns the count, 0 when Omega_j is proven empty. */
 static size_t region_caps(const vbm_atom_in *in, stokes_work *w, size_t na, size_t x)
@@ -106,24 +138,21 @@ static size_t region_caps(const vbm_atom_in *in, stokes_work *w, size_t na, size
     size_t nc = 1;
     vbx_ia sa = aj->ca.lo >= 0.0 ? aj->sa : vbx_ia_point(1.0);
     for (size_t y = 0; y < na; y++) {
-        const active *ak = &w->act[y];
         if (y == x)
             continue;
-        /* caps apart (angle between the axes > the sum of the radii): k
-         * owns nothing in j's cap */
-        vbx_ia cs = vbx_ia_sub(vbx_ia_mul(aj->ca, ak->ca), vbx_ia_mul(aj->sa, ak->sa));
-        vbx_ia sn = vbx_ia_add(vbx_ia_mul(aj->sa, ak->ca), vbx_ia_mul(aj->ca, ak->sa));
-        if (sn.lo > 0.0 && vbm_dot3(aj->e, ak->e).hi < cs.lo)
-            continue;
-        const vbm_nb *nk = &in->nb[ak->j];
-        vbm_cap c;
+        paircap *pc = &w->pair[x < y ? x * na + y : y * na + x];
+        if (pc->state == 0)
+            pair_cap(in, w, x < y ? x : y, x < y ? y : x, pc);
+        if (pc->state == 1)
+            continue; /* caps apart: k owns nothing in j's cap */
+        vbm_cap c; /* j's cap against k: the pair's, negated when j comes second */
         for (int i = 0; i < 3; i++)
-            c.n[i] = vbx_ia_sub(vbx_ia_mul(nk->N, nj->d[i]), vbx_ia_mul(nj->N, nk->d[i]));
-        c.h = vbx_ia_sub(vbx_ia_mul(nj->N, nk->delta), vbx_ia_mul(nk->N, nj->delta));
+            c.n[i] = x < y ? pc->n[i] : vbx_ia_neg(pc->n[i]);
+        c.h = x < y ? pc->h : vbx_ia_neg(pc->h);
         /* over j's cap (u.e = z in [ca, 1], |u_perp| <= sa) u.n lies in
          * z (e.n) +- sa |n_perp| */
         vbx_ia en = vbm_dot3(aj->e, c.n);
-        vbx_ia perp = vbx_ia_sqrt(vbx_ia_sub(vbm_dot3(c.n, c.n), vbx_ia_sqr(en)));
+        vbx_ia perp = vbx_ia_sqrt(vbx_ia_sub(pc->nn, vbx_ia_sqr(en)));
         vbx_ia spread = vbx_ia_mul(sa, perp);
         double lo = vbx_min(vbx_ia_mul(aj->ca, en).lo, en.lo) - spread.hi;
         double hi = vbx_max(vbx_ia_mul(aj->ca, en).hi, en.hi) + spread.hi;
@@ -175,10 +204,11 @@ static double magnitude_lo(vbx_ia a)
 }
 
 /* Integrates every arc (again) whose widths exceed the targets: volume
- * and SAS shares of tv and ts, each contact's share of tc[j] (or, with
- * tc NULL, of fa); `scale` multiplies every target. Returns 0 when an
- * interval cannot bound an arc. */
-static int integrate_arcs(const vbm_atom_in *in, stokes_work *w, double tv, double ts, double fa,
+ * and SAS shares of tv and ts, each contact's share of its target
+ * (tolerance times the larger of its value, in the second pass, and its
+ * floor, vbm_contact_floor); `scale` multiplies every target. Returns 0
+ * when an interval cannot bound an arc. */
+static int integrate_arcs(const vbm_atom_in *in, stokes_work *w, double tv, double ts,
                           double scale, size_t *pieces)
 {
     double rr = in->r.hi, r3 = rr * rr * rr / 3.0, n = (double)(w->nrec + 1);
@@ -188,7 +218,8 @@ static int integrate_arcs(const vbm_atom_in *in, stokes_work *w, double tv, doub
     for (size_t i = 0; i < w->nrec; i++) {
         arcrec *a = &w->rec[i];
         uint32_t j = a->j;
-        double tc = in->tolerance * vbx_max(scale > 1.0 ? 0.0 : magnitude_lo(w->con[j]), fa);
+        double tc = in->tolerance * vbx_max(scale > 1.0 ? 0.0 : magnitude_lo(w->con[j]),
+                                            vbm_contact_floor(in, j));
         double cs = scale > 1.0 ? CON_FIRST_SCALE : scale;
         tg[CON] = in->contacts && in->nb[j].con ? cs * 0.5 * tc / (double)(w->narcs[j] + 1)
                                                 : INFINITY;
@@ -279,6 +310,10 @@ int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
         a->sa = vbx_ia_sqrt(vbx_ia_sub(vbx_ia_point(1.0), vbx_ia_sqr(a->ca)));
     }
     sort_active(w->act, na);
+    if (VB_ARRAY_FIT(w->pair, w->cap_pair, na * na + 1, 64) != VB_OK)
+        return -1;
+    for (size_t k = 0; k < na * na; k++)
+        w->pair[k].state = 0;
     /* the regions in order, each bisector circle's arcs found for the
      * first of its two regions and given to the second (vbm_share.h) */
     w->nrec = 0;
@@ -317,6 +352,8 @@ int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
             memcpy(r->q, a->q, sizeof r->q);
             r->tp = a->tp;
             r->tq = a->tq;
+            for (int k = 0; k < NV; k++) /* contacts() counts arcs before any is integrated */
+                r->v[k] = vbx_ia_point(0.0);
         }
     }
     /* every arc to a hundred times its share of the floors of the targets
@@ -327,13 +364,13 @@ int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
     double fv = FLOOR_FRACTION * FOUR_PI * r3, fa = FLOOR_FRACTION * FOUR_PI * rr * rr;
     size_t pieces = 0;
     contacts(in, w); /* the arc counts */
-    if (!integrate_arcs(in, w, in->tolerance * fv, in->tolerance * fa, fa, 100, &pieces))
+    if (!integrate_arcs(in, w, in->tolerance * fv, in->tolerance * fa, 100, &pieces))
         return 0;
     total(in, w, out);
     contacts(in, w);
     double tgv = in->tolerance * vbx_max(magnitude_lo(out->vol), fv);
     double tgs = in->tolerance * vbx_max(magnitude_lo(out->sas), fa);
-    if (!integrate_arcs(in, w, tgv, tgs, fa, 1.0, &pieces))
+    if (!integrate_arcs(in, w, tgv, tgs, 1.0, &pieces))
         return 0;
     total(in, w, out);
     contacts(in, w);
@@ -343,7 +380,8 @@ int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
                  width(out->sas) > in->tolerance * vbx_max(ms, fa);
     for (size_t j = 0; in->contacts && j < in->nnb; j++)
         if (in->nb[j].con && w->narcs[j] &&
-            width(w->con[j]) > in->tolerance * vbx_max(fabs(vbx_ia_mid(w->con[j])), fa))
+            width(w->con[j]) >
+                in->tolerance * vbx_max(fabs(vbx_ia_mid(w->con[j])), vbm_contact_floor(in, j)))
             out->loose = 1;
     if (in->contacts && !pairs(in, w, out))
         return -1;

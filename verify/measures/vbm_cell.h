@@ -45,6 +45,17 @@ typedef struct vbm_atom_out {
     int loose;            /* a value is wider than the tolerance asks */
 } vbm_atom_out;
 
+/* The floor of neighbour j's contact target (tolerance * max(|area|,
+ * floor)): 1e-3 of the area of the smaller expanded sphere of the face's two
+ * atoms, so that the one side that integrates a contact asks what the
+ * stricter side would (when both were integrated and met, the meet was as
+ * narrow as that side's). A target, not an enclosure: plain doubles. */
+static inline double vbm_contact_floor(const vbm_atom_in *in, size_t j)
+{
+    double r = in->r.hi, rj = r + in->nb[j].delta.hi, m = rj < r ? rj : r;
+    return m > 0.0 ? 1e-3 * 12.566370614359172 * m * m : 0.0;
+}
+
 /* Per-thread scratch of vbm_cell_integrate (zero-initialise; free with
  * vbm_scratch_free). */
 typedef struct vbm_scratch {
