@@ -183,9 +183,10 @@ static int report(vb_ctx *ctx, const ch_args *A, double wall)
     vb_info(ctx, "channels: %ld frames on %s in %.3f s", (long)frames, device, wall);
     if (vb_world_size() < 2)
         fprintf(stderr, "vorball channels: %ld frame(s), %ld run(s) on %s: %.3f ms/run "
-                        "(%.1f FPS), of which GPU stages %.3f ms (%.1f FPS)\n",
+                        "(%.1f FPS), of which GPU stages %.3f ms (%.1f FPS); %.1f frames/s in all "
+                        "(%.3f s wall, reading included)\n",
                 (long)frames, runs, device, sum[0] / runs, 1e3 * runs / sum[0], sum[1] / runs,
-                1e3 * runs / sum[1]);
+                1e3 * runs / sum[1], frames / wall, wall);
     else
         fprintf(stderr, "vorball channels: %ld frame(s), %ld run(s) on %d ranks (rank 0: %s): "
                         "%.3f ms/run, of which GPU stages %.3f ms; %.1f frames/s in all "

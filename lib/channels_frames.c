@@ -234,7 +234,7 @@ static int flight_fit(vb_ctx *ctx, flight *S, const vbc_ahead_frame *f)
     int width;
     size_t per = vbc_flight_frame_bytes(&f->o, f->s0);
     int rc = vbc_flight_fit(ctx, S->width, S->width_given, S->budget, per,
-                            S->depth > 0 ? S->depth + 1 : 0, &width);
+                            S->depth > 0 ? 2 * S->depth + 1 : 0, &width);
     if (rc == VB_OK)
         vbc_flight_shrink(S->fl, width);
     S->fitted = 1;

@@ -190,8 +190,7 @@ int vbc_flight_pop(vb_ctx *ctx, vbc_flight *w, vbc_ahead_frame *f)
         vbc_run_front_drop(&J->f.o);
         vb_spheres_free(J->f.s0);
     }
-    J->f.held = NULL;
-    job_free(w, J);
+    job_free(w, J); /* and the emptied lists */
     return rc;
 }
 

@@ -1,11 +1,15 @@
 /* Frames in flight (issue 33): a reader thread reads the frames of a
  * trajectory, keeps the selected ones and runs their front half
  * (vbc_run_front: residues left out, grid, the pipe's labels, masks and
- * channel voxels) up to `depth` frames ahead, while the caller runs the
- * back half (vbc_run_back: analysis, pore stage) of the frame before and
- * writes it. Frames come out in frame order, each as vbc_run_frame would
+ * channel voxels) up to `depth` frames ahead, while the caller analyses
+ * the frames before (vbc_flight.h; with VBC_FRONT_ANALYSE the reader
+ * does), runs their back half (vbc_run_back) and writes them. Frames come out in frame order, each as vbc_run_frame would
  * have made it, so the tables are the same bytes as the sequential loop's
  * on any depth and any number of threads.
+ *
+ * With depth > 0 the reading itself runs on a second thread (the fetcher),
+ * up to depth frames ahead of the front, so that reading and the device's
+ * part of the frames overlap too.
  *
  * What the reader's thread says (warnings, info lines, its error) is held
  * with its frame (vbc_held.h) and the caller says it on its context when it

@@ -39,7 +39,8 @@ size_t vbc_flight_budget(int *given);
 size_t vbc_flight_frame_bytes(const vbc_run_out *o, const vb_sphere_set *s0);
 
 /* The width that fits `budget` bytes with frames of `per` bytes when
- * `ahead` more are held by the reader (its ring and its hands: depth + 1):
+ * `ahead` more are held by the reader (its ring, its fetcher's ring of
+ * frames as read, counted as whole frames, and its hands: 2 depth + 1):
  * min(width, budget / per - ahead). A given width that does not fit, or no
  * width of 1 that fits, is E127 (VB_EINPUT_FRAMES_MEMORY), saying the bytes
  * per frame and the budget; *out is the width. */

@@ -10,7 +10,8 @@
 # signal, no sanitizer report (the sanitizer tree: leaks of every failure
 # path), and no output file left behind.
 # usage: alloc_cli.sh VORBALL_ALLOCFAULT SOURCE_DIR WORK_DIR
-#          vertices|vertices_arcs|vertices_threads|vertices_periodic|verify_arcs|channels|jfa
+#          vertices|vertices_arcs|vertices_threads|vertices_periodic|verify_arcs|channels|
+#          channels_frames|jfa
 #          [STRIDE]
 vorball=$1 src=$2 cmd=$4 work=$3/alloc_$4 stride=${5:-1}
 corpus=$src/corpus
@@ -47,6 +48,14 @@ channels)
     outs="c.csv c.pdb"
     set -- channels --grid 32 "$corpus/data/1grm_single_hole2.pdb" --device ref -o c.csv \
         --centerlines c.pdb ;;
+channels_frames)
+    # Frames in flight (issue 33): the fetcher, the reader, 3 frames in
+    # analysis on threads of their own (the count varies by a few from run
+    # to run), their held lines.
+    export VORBALL_FRAMES_IN_FLIGHT=3 VORBALL_FRAMES_AHEAD=2
+    outs="c.csv c.pdb"
+    set -- channels --grid 32 "$corpus/data/ngl_md_ascii_trj.pdb" --traj "$corpus/data/ngl_md_10frames.xtc" \
+        --frames 0:4 --device ref -o c.csv --centerlines c.pdb ;;
 jfa)
     outs="j.png"
     set -- jfa -n 64 -k 20 -V jfa+1,facet --check --device ref --png j.png -o /dev/null ;;

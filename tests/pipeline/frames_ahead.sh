@@ -14,6 +14,9 @@ vorball=$1 corpus=$2 work=$3
 . "$(dirname "$0")/lib.sh"
 fresh_dir "$work/frames_ahead"
 top="$corpus/data/ngl_md_ascii_trj.pdb" xtc="$corpus/data/ngl_md_10frames.xtc"
+# One frame in analysis at a time, so that depth 0 is the sequential loop
+# on any machine (frames_inflight.sh runs the wider windows).
+export VORBALL_FRAMES_IN_FLIGHT=1
 
 # channels NAME DEPTH THREADS ARGS...: one run, its outputs named NAME.*
 # and its stderr without the closing timing line in NAME.err.
