@@ -65,6 +65,8 @@ typedef struct vb_vertices_backends {
     const vb_certifier_ops *certifier;
 } vb_vertices_backends;
 
+typedef struct vb_vertices_early vb_vertices_early; /* vb_vertices_open_early */
+
 typedef struct vb_vertices_config {
     vb_device_kind device;       /* default VB_DEVICE_AUTO (0) */
     const char *proposer;        /* vb_proposers name; NULL: the default */
@@ -77,6 +79,9 @@ typedef struct vb_vertices_config {
                                   * be a GPU (vb_vertices_device); 0: the
                                   * environment's VORBALL_HOST_BELOW, else
                                   * VB_HOST_BELOW_DEFAULT; 1: always the device */
+    vb_vertices_early *early;    /* a device opening started ahead of the run
+                                  * (vb_vertices_open_early), or NULL: the run
+                                  * takes it when it is the device it uses */
     int keep_certifier;          /* 1: a successful run leaves its certifier open in
                                   * the result (cert, cert_ops) for a later stage on
                                   * the same set (arc closure: vb_completion_plan
@@ -92,12 +97,37 @@ typedef struct vb_vertices_config {
 
 /* The device kind a run of cfg on set uses: cfg->device, except that
  * VB_DEVICE_AUTO with the cover proposer on fewer spheres than the crossover
- * (cfg->host_below, see there) is VB_DEVICE_REF, no device opened, when the
- * host shows a GPU (layer->gpu_present). Without a GPU, auto
- * stays the CPU device (PoCL), the project's embedded default. The output
- * bytes never depend on it. */
+ * (cfg->host_below, see there) is VB_DEVICE_REF, no device opened, whether
+ * or not the host shows a GPU: without one, auto's device is PoCL, which
+ * the host threads beat at every size measured (the 2-core machine, 327 to
+ * 26,430 spheres, results/process_stop43.md; the H100's 16 cores up to
+ * 211,440, results/crossover_h100.tsv). layer is not read. The output bytes
+ * never depend on it. */
 vb_device_kind vb_vertices_device(const vb_sphere_set *set, const vb_vertices_config *cfg,
                                   const vb_device_layer *layer);
+
+/* The device a run of cfg would use on n spheres (vb_vertices_device on a
+ * count, before the set is read). */
+vb_device_kind vb_vertices_device_for(size_t n, const vb_vertices_config *cfg,
+                                      const vb_device_layer *layer);
+
+/* Starts opening, on its own thread, the device that a run of cfg with the
+ * backends be would use on at least n_hint spheres (vb_vertices_device_for;
+ * 0: unknown), so that the device set-up (context, program build or cache
+ * load) overlaps the reading of the input (issue #30's fixed cost). *out is
+ * NULL when that is the host's twin (nothing to open) or when the opening
+ * cannot start; otherwise hand it to vb_vertices_run through cfg->early,
+ * on the same ctx. A run that uses another device (the count was below
+ * the hint's crossover) first waits for this opening and closes it. Free
+ * with vb_vertices_early_free after the run, or instead of it. VB_OK, or
+ * VB_ENOMEM. */
+int vb_vertices_open_early(vb_ctx *ctx, const vb_vertices_backends *be,
+                           const vb_vertices_config *cfg, size_t n_hint,
+                           vb_vertices_early **out);
+
+/* Waits for an opening no run took and closes what it opened; frees e.
+ * NULL is allowed. */
+void vb_vertices_early_free(vb_vertices_early *e);
 
 typedef struct vb_vertices_result {
     vb_proposal proposal;       /* what the proposer found, and its counters */
@@ -106,6 +136,8 @@ typedef struct vb_vertices_result {
     double t_setup;             /* device opening, on its own thread */
     double t_setup_wait;        /* of that, the time the proposer waited for it */
     double t_certify, t_total;  /* t_certify: after the proposer returned */
+    double t_propose;           /* the proposer's call, its wait for the set-up included */
+    double t_release;           /* closing the proposer's state and the device, after t_total */
     double t_certify_overlap;   /* seconds the certifier worked while the proposer ran */
     size_t certify_parts;       /* parts of quadruples certified one by one (a stream) */
     double max_dist;            /* largest candidate-to-exact distance certified */
@@ -130,7 +162,7 @@ void vb_vertices_certificate(const vb_vertices_result *r, char *buf, size_t size
  * counts, and the context's filter counters: filter_calls, filter_failures,
  * exact_evals), as `vorball vertices --stats` prints them, and the run's
  * seconds (certify_overlap_s, certify_after_s, judge_s, setup_s,
- * setup_wait_s, run_s), which vary run to run. */
+ * setup_wait_s, propose_s, run_s, release_s), which vary run to run. */
 void vb_vertices_write_stats(vb_ctx *ctx, FILE *f, const vb_vertices_result *r);
 
 void vb_vertices_result_init(vb_vertices_result *r);
