@@ -217,7 +217,8 @@ void vb_vertices_early_free(vb_vertices_early *e)
 
 /* The opener of a run on `kind`: cfg->early's when it opens that device on
  * the same layer (then taken), else local, started now (an early one for
- * another device is dropped first). */
+ * another device goes on beside the run: vb_vertices_early_free waits for
+ * it). */
 static opener *opener_of(vb_ctx *ctx, const vb_vertices_config *cfg, const vb_device_layer *layer,
                          const vb_proposer *p, opener *local)
 {
@@ -226,10 +227,6 @@ static opener *opener_of(vb_ctx *ctx, const vb_vertices_config *cfg, const vb_de
         e->taken = 1;
         e->op.ctx = ctx;
         return &e->op;
-    }
-    if (e && !e->taken) {
-        opener_drop(&e->op);
-        e->taken = 1;
     }
     opener_start(local, ctx, layer, p, request_of(cfg, p));
     return local;
@@ -503,16 +500,10 @@ int vb_vertices_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertices_con
     int rc = VB_OK, async = cfg->device != VB_DEVICE_REF;
     opener local, *op = NULL;
     memset(&local, 0, sizeof local);
-    if (async) {
+    if (async)
         op = opener_of(ctx, cfg, be->devices, p, &local);
-    } else {
-        if (cfg->early && !cfg->early->taken) {
-            opener_drop(&cfg->early->op);
-            cfg->early->taken = 1;
-        }
-        if ((rc = p->open(ctx, be->devices, NULL, &state)) != VB_OK)
-            return rc;
-    }
+    else if ((rc = p->open(ctx, be->devices, NULL, &state)) != VB_OK)
+        return rc;
     vbv_cert_open co;
     vbv_cert_stream css, *cs;
     certifier_start(be->certifier, set, cfg, &co, &css, &cs, ctx);

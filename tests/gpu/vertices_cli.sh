@@ -73,6 +73,26 @@ for below in unset 1 "$spheres" $((spheres + 1)); do
     fi
     cmp -s "$work/ref.tsv" "$work/auto.tsv" || fail "auto ($below) output differs from --device ref"
 done
+# The device opened ahead while the input is read (vb_vertices_open_early):
+# a file whose size promises more than the crossover opens it; one that
+# holds fewer spheres after all (comment lines) runs on host threads while
+# that opening finishes beside it, and one that holds what it promised takes
+# the opened device; the same bytes each way.
+{ awk 'BEGIN { for (i = 0; i < 22000; i++) printf "# %s\n", sprintf("%0197d", 0) }'
+  cat "$work/set.xyzr"; } > "$work/padded.xyzr"
+env -u VORBALL_HOST_BELOW "$vorball" vertices --stats "$work/padded.xyzr" -o "$work/padded.tsv" \
+    2> "$work/padded.err" || fail "padded run failed"
+[ "$(backend_of "$work/padded.err")" = ref ] || fail "padded input (60 spheres) left host threads"
+grep -v '^# \(input\|options\)' "$work/padded.tsv" > "$work/padded.cmp"
+grep -v '^# \(input\|options\)' "$work/ref.tsv" > "$work/ref.cmp"
+cmp -s "$work/ref.cmp" "$work/padded.cmp" || fail "padded input's output differs from --device ref"
+VORBALL_HOST_BELOW=1 "$vorball" vertices --stats "$work/padded.xyzr" -o "$work/padded.tsv" \
+    2> "$work/padded.err" || fail "padded run (device) failed"
+got=$(backend_of "$work/padded.err")
+[ "$got" = opencl ] || grep -q W760 "$work/padded.err" ||
+    fail "padded input with VORBALL_HOST_BELOW=1 ran on '$got' without W760"
+grep -v '^# \(input\|options\)' "$work/padded.tsv" > "$work/padded.cmp"
+cmp -s "$work/ref.cmp" "$work/padded.cmp" || fail "padded input on the device differs from --device ref"
 # The program binary cache: written on the first OpenCL run, used by the
 # next; a damaged binary falls back to the source build, same bytes. (On
 # PoCL vorball keeps binaries only when VORBALL_PROGRAM_CACHE=1 asks.)
