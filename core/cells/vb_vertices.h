@@ -120,7 +120,9 @@ vb_device_kind vb_vertices_device_for(size_t n, const vb_vertices_config *cfg,
  * on the same ctx. A run that uses another device (the count was below
  * the hint's crossover) leaves this opening going on beside it. Free with
  * vb_vertices_early_free after the run, or instead of it (it waits for an
- * opening no run took). VORBALL_DEVICE_EARLY=0 in the environment leaves
+ * opening no run took). A run that took it leaves its device to close on
+ * a thread of its own while the caller completes and writes;
+ * vb_vertices_early_free waits for that too. VORBALL_DEVICE_EARLY=0 in the environment leaves
  * the opening to the run (*out NULL), for timings. VB_OK, or VB_ENOMEM. */
 int vb_vertices_open_early(vb_ctx *ctx, const vb_vertices_backends *be,
                            const vb_vertices_config *cfg, size_t n_hint,

@@ -178,11 +178,33 @@ static void opener_drop(opener *op)
     vb_close(op->tctx);
 }
 
+/* What a run opened, closed on a thread of its own while the caller goes on
+ * (completes and writes): releasing a GPU context takes tens of ms. */
+typedef struct closer {
+    const vb_proposer *p;
+    void *state;
+    const vb_device_layer *layer;
+    vb_device *dev;
+} closer;
+
+static void *close_run(void *arg)
+{
+    closer *c = arg;
+    if (c->state)
+        c->p->close(c->state);
+    if (c->dev)
+        c->layer->close(c->dev);
+    return NULL;
+}
+
 struct vb_vertices_early {
     opener op;
     vb_device_kind kind;             /* the device it opens */
     const vb_device_layer *layer;
     int taken;                       /* a run consumed op */
+    closer cl;                       /* what that run opened, ... */
+    vb_jobs closing;                 /* ... closed on this thread */
+    int closing_started;
 };
 
 int vb_vertices_open_early(vb_ctx *ctx, const vb_vertices_backends *be,
@@ -211,6 +233,8 @@ void vb_vertices_early_free(vb_vertices_early *e)
 {
     if (!e)
         return;
+    if (e->closing_started)
+        vb_jobs_join(&e->closing);
     if (!e->taken)
         opener_drop(&e->op);
     free(e);
@@ -535,10 +559,17 @@ int vb_vertices_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertices_con
     else
         certifier_discard(be->certifier, &co, cs);
     double tr = vb_now();
-    if (state)
-        p->close(state);
-    if (dev)
-        be->devices->close(dev);
+    closer cl = {p, state, be->devices, dev};
+    vb_vertices_early *e = cfg->early;
+    if (e && op == &e->op && !e->closing_started) {
+        /* Closed beside what the caller does next; vb_vertices_early_free
+         * waits for it. */
+        e->cl = cl;
+        vb_jobs_start(&e->closing, close_run, &e->cl, sizeof e->cl, 1);
+        e->closing_started = 1;
+    } else {
+        close_run(&cl);
+    }
     res->t_release = vb_now() - tr;
     return rc;
 }
