@@ -93,6 +93,20 @@ got=$(backend_of "$work/padded.err")
     fail "padded input with VORBALL_HOST_BELOW=1 ran on '$got' without W760"
 grep -v '^# \(input\|options\)' "$work/padded.tsv" > "$work/padded.cmp"
 cmp -s "$work/ref.cmp" "$work/padded.cmp" || fail "padded input on the device differs from --device ref"
+# --stats ends with the whole process by stage (vb_stage_clock.h): every
+# stage once, wall and CPU, the stages adding up to the totals (laps of one
+# clock), the run's stage holding the run's own clock.
+"$vorball" vertices --stats --device ref "$work/set.xyzr" -o "$work/st.tsv" 2> "$work/st.err" ||
+    fail "--stats run failed"
+awk -F'\t' '
+    /^process_(read|validate|run|complete|write|free)_s\t/ { w += $2; nw++ }
+    /^process_(read|validate|run|complete|write|free)_cpu_s\t/ { c += $2; nc++ }
+    $1 == "process_total_s" { tw = $2 } $1 == "process_total_cpu_s" { tc = $2 }
+    $1 == "process_run_s" { pr = $2 } $1 == "run_s" { r = $2 }
+    END { d = w - tw; e = c - tc
+          exit !(nw == 6 && nc == 6 && tw > 0 && d < 1e-5 && d > -1e-5 && e < 1e-5 && e > -1e-5 &&
+                 r > 0 && pr >= r) }' "$work/st.err" ||
+    fail "--stats process stages do not add up: $(grep '^process_\|^run_s' "$work/st.err" | tr '\n' ' ')"
 # The program binary cache: written on the first OpenCL run, used by the
 # next; a damaged binary falls back to the source build, same bytes. (On
 # PoCL vorball keeps binaries only when VORBALL_PROGRAM_CACHE=1 asks.)
