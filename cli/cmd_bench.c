@@ -96,6 +96,14 @@ static void row(FILE *f, int json, int first, const char *input, size_t atoms,
                 r->t_setup, r->t_setup_wait, r->t_total,
                 first_total, device_setup, r->t_certify_overlap, r->certify_parts,
                 (unsigned long long)r->proposal.device_bytes_peak, r->proposal.t_cert_filter);
+        const vb_proposal *p = &r->proposal;
+        fprintf(f,
+                ", \"cover_device\": %.6f, \"cover_kernel\": [%.6f, %.6f, %.6f, %.6f], "
+                "\"cover_launches\": [%llu, %llu, %llu, %llu]",
+                p->t_cover_device, p->cover_kernel_s[0], p->cover_kernel_s[1], p->cover_kernel_s[2],
+                p->cover_kernel_s[3], (unsigned long long)p->cover_launches[0],
+                (unsigned long long)p->cover_launches[1], (unsigned long long)p->cover_launches[2],
+                (unsigned long long)p->cover_launches[3]);
         if (vb_world_size() > 1)
             fprintf(f, ", \"ranks\": %d, \"combine\": %.6f, \"merged_repeats\": %zu}",
                     vb_world_size(), tot->t_combine, tot->repeats);

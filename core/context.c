@@ -275,6 +275,7 @@ const char *vb_errstr(int code)
     case VB_EINPUT_ASSEMBLY: return "assembly absent or malformed";
     case VB_EINPUT_SELECT: return "selection malformed or empty";
     case VB_EINPUT_BOX: return "periodic box absent, malformed or flat";
+    case VB_EINPUT_FRAMES_MEMORY: return "frames in flight over their memory budget";
     case VB_EINPUT_BOX_SMALL: return "periodic box too small for its atoms";
     case VB_EINPUT_REFERENCE_SIZE: return "too many spheres for the exact reference";
     case VB_EINPUT_SCALE: return "radii too small for the sampling pipeline";

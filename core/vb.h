@@ -53,6 +53,7 @@ enum vb_input_error {
     VB_EINPUT_ASSEMBLY   = VB_EINPUT | (17 << 8),/* E117 assembly absent or malformed */
     VB_EINPUT_SELECT     = VB_EINPUT | (18 << 8),/* E118 --select: bad expression or no atom */
     VB_EINPUT_BOX        = VB_EINPUT | (20 << 8),/* E120 periodic box absent, malformed or flat */
+    VB_EINPUT_FRAMES_MEMORY = VB_EINPUT | (27 << 8),/* E127 frames in flight over their memory budget */
     /* E130-E139: limits of an operation on an input it could otherwise read. */
     VB_EINPUT_REFERENCE_SIZE = VB_EINPUT | (30 << 8), /* E130 too many spheres for `reference` */
     VB_EINPUT_SCALE      = VB_EINPUT | (31 << 8),/* E131 radii too small for the sampler's doubles */

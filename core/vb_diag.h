@@ -57,6 +57,7 @@
     X(E, 117, INPUT_ASSEMBLY, 27, "--assembly: absent, or its operators malformed")                      \
     X(E, 118, INPUT_SELECT, 28, "--select: malformed expression (position given) or no atom selected")  \
     X(E, 120, INPUT_BOX, 30, "--periodic: no box (file or --box), or a malformed or flat one")          \
+    X(E, 127, INPUT_FRAMES_MEMORY, 37, "channels: frames in flight over VORBALL_FRAMES_MEMORY: says MiB a frame") \
     X(E, 130, INPUT_REFERENCE_SIZE, 40, "more spheres than `reference` takes without --force")           \
     X(E, 131, INPUT_SCALE, 41, "a radius below 1e-50 of the extent: beyond the sampler's doubles")       \
     X(E, 132, INPUT_TOL, 42, "--tol below 1e-12 of the extent: finer than the sampler resolves")         \

@@ -143,7 +143,7 @@ static void trim(cov_state *s, size_t n)
     s->last_n = n;
     if (t0->nb.size > t0->slices * t0->nb_cap * sizeof(vbq_nb))
         tier_release(s, t0);
-    for (int k = COV_BIG; k <= COV_HAND; k++) {
+    for (int k = COV_BIG; k < COV_TIERS; k++) {
         cov_tier *t = &s->tier[k];
         if (other || tier_fixed(t) + t->slices * tier_bytes(t) > tier_share(s)) {
             tier_release(s, t);
@@ -214,6 +214,23 @@ static int host_q_room(vb_ctx *ctx, cov_state *s, size_t n)
     if (s->host_q_cap < s->host_nq + n)
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (quadruples)");
     return VB_OK;
+}
+
+/* The kernel's run time of one launch of tier t (event profiling; the
+ * queue is made with it) into the tier's clocks (vbg_cover_state.h); a
+ * device that gives no times adds none. */
+static void tier_clock(cov_state *s, const cov_tier *t, cl_event done, size_t ntasks)
+{
+    cl_ulong a = 0, b = 0;
+    size_t i = (size_t)(t - s->tier);
+    s->launches[i]++;
+    s->tasks[i] += ntasks;
+    if (clGetEventProfilingInfo(done, CL_PROFILING_COMMAND_START, sizeof a, &a, NULL) ==
+            CL_SUCCESS &&
+        clGetEventProfilingInfo(done, CL_PROFILING_COMMAND_END, sizeof b, &b, NULL) ==
+            CL_SUCCESS &&
+        b > a)
+        s->kernel_s[i] += (double)(b - a) * 1e-9;
 }
 
 /* One launch of tier t over the tasks (cells[k], roots[k]) for k <
@@ -299,14 +316,21 @@ static int launch_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *c
         if (global > t->slices)
             global = t->slices; /* a multiple of local by construction */
     }
+    cl_event done = NULL;
     if (rc == VB_OK)
-        rc = vbg_check(ctx, clEnqueueNDRangeKernel(q, k, 1, NULL, &global, &local, 0, NULL, NULL),
+        rc = vbg_check(ctx,
+                       clEnqueueNDRangeKernel(q, k, 1, NULL, &global, &local, 0, NULL, &done),
                        "cover kernel");
     if (rc == VB_OK)
         rc = vbg_check(ctx,
                        clEnqueueReadBuffer(q, s->outs.mem, CL_TRUE, 0,
                                            ncells * sizeof(vbq_cell_out), out, 0, NULL, NULL),
                        "cover kernel");
+    if (done) {
+        if (rc == VB_OK)
+            tier_clock(s, t, done, ncells);
+        clReleaseEvent(done);
+    }
     cl_uint counters[2] = {0, 0};
     if (rc == VB_OK)
         rc = vbg_check(ctx,
@@ -460,8 +484,29 @@ static int cov_run(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, siz
         rc = tier_grow(ctx, s, t1, n1 * per);
     if (rc == VB_OK && n1 && t1->slices)
         rc = run_tasks(ctx, s, t1, cells, ncells, out, retry_on_device, &retried);
+    /* The cells whose tasks ran out of the large slices, again on huge ones,
+     * made in the large tier's place and released after (the two are never
+     * held at once, and the next batch starts without them). */
+    cov_tier *t3 = &s->tier[COV_HUGE];
+    size_t n3 = rc == VB_OK && n1 && t3->want ? count_picked(out, ncells, retry_on_device) : 0;
+    if (n3) {
+        tier_release(s, t1);
+        t1->slices = 0;
+        rc = tier_grow(ctx, s, t3, n3 * per);
+    }
+    if (rc == VB_OK && n3 && t3->slices)
+        rc = run_tasks(ctx, s, t3, cells, ncells, out, retry_on_device, &retried);
+    if (n3) {
+        tier_release(s, t3);
+        t3->slices = 0;
+    }
     if (s->meter.peak > be->device_bytes_peak)
         be->device_bytes_peak = s->meter.peak;
+    for (int i = 0; i < COV_TIERS; i++) {
+        be->kernel_s[i] = s->kernel_s[i];
+        be->launches[i] = s->launches[i];
+        be->tasks[i] = s->tasks[i];
+    }
     if (rc == VB_OK)
         *quads = s->host_q;
     return rc;
@@ -478,7 +523,7 @@ static void cov_close(vb_cover_backend *be)
                           &s->qout, &s->counters};
         for (size_t k = 0; k < sizeof all / sizeof all[0]; k++)
             release(s, all[k]);
-        for (int t = 0; t < 3; t++)
+        for (int t = 0; t < COV_TIERS; t++)
             tier_release(s, &s->tier[t]);
         if (s->k)
             clReleaseKernel(s->k);
@@ -529,6 +574,7 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
     s->wg = kn && strcmp(kn, "group") == 0 ? 1 : kn && strcmp(kn, "item") == 0 ? 0
                                                 : vbg_runtime_is_gpu(rt);
     cov_tier *t0 = &s->tier[COV_FIRST], *t1 = &s->tier[COV_BIG], *th = &s->tier[COV_HAND];
+    cov_tier *t3 = &s->tier[COV_HUGE];
     t0->nb_cap = s->wg ? COV_WG_NB : COV_NB;
     t0->lab_cap = s->wg ? COV_WG_LAB : COV_LAB;
     t0->st_cap = COV_ST;
@@ -537,6 +583,10 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
     t1->lab_cap = COV_BIG_LAB;
     t1->st_cap = COV_ST;
     t1->q_cap = COV_BIG_Q;
+    t3->nb_cap = COV_HUGE_NB;
+    t3->lab_cap = COV_BIG_LAB;
+    t3->st_cap = COV_ST;
+    t3->q_cap = COV_BIG_Q;
     /* The hand-off tier's work-items get the group kernel's first-tier
      * arenas: a task of a cell past the budget then fits (fcc 10,976
      * jittered, simulated on the host: all 5,760 tasks of its 60 cells fit
@@ -548,7 +598,7 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
     /* Output room per task: about 10 quadruples per cell on proteins; the
      * second tier's cells are the large ones. */
     t0->qper = th->qper = 24u;
-    t1->qper = 256u;
+    t1->qper = t3->qper = 256u;
     int rc = s->wg ? kernel_get(ctx, rt, "cover_wg.cl", "vbq_cover_wg", &s->k)
                    : kernel_get(ctx, rt, "cover.cl", "vbq_cover_kernel", &s->k);
     /* The group kernel's budget (VORBALL_COVER_BUDGET: steps, 0 for none):
@@ -565,8 +615,8 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
     int to_host = !(kh && strcmp(kh, "item") == 0);
     if (rc == VB_OK && s->wg && budget && !to_host)
         rc = kernel_get(ctx, rt, "cover.cl", "vbq_cover_kernel", &s->k_item);
-    t0->k = t1->k = s->k;
-    t0->wg = t1->wg = s->wg;
+    t0->k = t1->k = t3->k = s->k;
+    t0->wg = t1->wg = t3->wg = s->wg;
     t0->budget = s->wg ? budget : 0u;
     th->k = s->k_item;
     cl_uint units = 1;
@@ -596,6 +646,7 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
     t0->want = want;
     if (s->wg) {
         t1->want = (size_t)units * 4;
+        t3->want = (size_t)units * 2;
         /* The hand-off tier: work-items as for the work-item kernel on a
          * GPU, in groups of 64. */
         th->want = (size_t)units * 512;
@@ -613,10 +664,17 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
         t0->lab_cap = (uint32_t)atol(klab);
     if (kt2 && atol(kt2) >= 0)
         t1->want = (size_t)atol(kt2);
-    /* VORBALL_COVER_BIG_NB: the large tier's records per slice (measurements). */
-    const char *kbn = getenv("VORBALL_COVER_BIG_NB");
+    /* VORBALL_COVER_BIG_NB and VORBALL_COVER_HUGE_NB: the large and huge
+     * tiers' records per slice; VORBALL_COVER_TIER3 the huge tier's slices
+     * (also on CPU devices, for tests; 0: none). Measurements and tests. */
+    const char *kbn = getenv("VORBALL_COVER_BIG_NB"), *khn = getenv("VORBALL_COVER_HUGE_NB");
+    const char *kt3 = getenv("VORBALL_COVER_TIER3");
     if (kbn && atol(kbn) > 0)
         t1->nb_cap = (uint32_t)atol(kbn);
+    if (khn && atol(khn) > 0)
+        t3->nb_cap = (uint32_t)atol(khn);
+    if (kt3 && atol(kt3) >= 0)
+        t3->want = (size_t)atol(kt3);
     be->name = "opencl";
     snprintf(be->device, sizeof be->device, "%s", vbg_runtime_device_name(rt));
     be->batch_cells = vbg_runtime_is_gpu(rt) ? 1u << 18 : 1u << 14;

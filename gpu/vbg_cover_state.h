@@ -18,7 +18,11 @@
  *   large tier S1 slices of 2.6 MiB, made on the first cell that needs them,
  *              S1 = min(the device's occupancy, the tasks waiting, the rest of
  *              the budget / P1) (half of it with the hand-off tier beside);
- *              with no room the cells go to the host threads.
+ *              with no room the cells go to the host threads;
+ *   huge tier  S3 slices of 7.1 MiB for the large tier's tasks that ran out of
+ *              its records, made in the large tier's place (released first,
+ *              and released after the batch), S3 = min(the device's compute
+ *              units x 2, the tasks waiting, the rest of the budget / P3).
  * A budget that cannot hold the input, one first-tier slice and one task's
  * launch stops the run at once with E142, saying how much is needed. */
 #ifndef VBG_COVER_STATE_H
@@ -47,6 +51,8 @@ typedef struct cov_tier {
 #define COV_FIRST 0
 #define COV_BIG 1
 #define COV_HAND 2
+#define COV_HUGE 3
+#define COV_TIERS 4
 
 typedef struct cov_state {
     vbg_runtime *rt;
@@ -54,7 +60,7 @@ typedef struct cov_state {
     int wg;                  /* 1: one work-group of 32 per cell (cover_wg.cl) */
     vbg_buf x, y, z, r, box, rmax, ids;
     vbg_buf cells, roots, outs, qout, counters;
-    cov_tier tier[3];
+    cov_tier tier[COV_TIERS];
     size_t qout_cap;         /* quadruples the output array holds */
     uint32_t *host_q;        /* read-back of the quadruples of a batch */
     size_t host_q_cap, host_nq;
@@ -67,6 +73,11 @@ typedef struct cov_state {
     size_t launch_room;      /* bytes of one launch's task, result and quadruple buffers */
     size_t tier_room;        /* bytes left for the large tier (and the hand-off tier) */
     size_t last_n;           /* spheres of the last run begun (trim) */
+    /* Per tier (COV_FIRST, COV_BIG, COV_HAND, COV_HUGE), running since
+     * open: the seconds its kernels ran on the device (event profiling, not
+     * the transfers), its launches and its tasks (--stats cover_kernel_*). */
+    double kernel_s[COV_TIERS];
+    uint64_t launches[COV_TIERS], tasks[COV_TIERS];
 } cov_state;
 
 /* Arena capacities. The first tier fits almost every cell of the proteins
@@ -89,6 +100,12 @@ typedef struct cov_state {
 #define COV_BIG_NB 32768u
 #define COV_BIG_LAB 262144u
 #define COV_BIG_Q 4096u
+/* The huge tier: the large tier's tasks that ran out of its records, again
+ * with four times as many (the large tier's capacity before stop 42: 7.1 MiB
+ * a slice with its labels). On an H100 (stop 43, the 211,440-atom tiling)
+ * the 32,768-record large tier left 1,834 cells to the host threads and
+ * 131,072 records 1,458: cover and certification 2.41 s against 1.77 s. */
+#define COV_HUGE_NB 131072u
 #define COV_WG 32u
 /* The group kernel's step budget per cell (VORBALL_COVER_BUDGET overrides;
  * 0: none). A group walks a cell's patches one after the other, so a launch

@@ -11,8 +11,9 @@
 #include "vb_diag.h"
 #include "vb_output.h"
 #include "vb_parallel.h"
-#include "vbc_ahead.h"
+#include "vbc_flight.h"
 #include "vbc_page.h"
+#include "vbc_paths.h"
 
 static FILE *frame_stream(const vb_channels_io *io, int k)
 {
@@ -101,10 +102,11 @@ static int make_stages(vb_ctx *ctx, vb_channels *ch, const vb_sphere_set *s)
 
 /* Runs one frame (vbc_run_frame; with `front`, the back half of a frame
  * whose front half the reader ran: vbc_run_back) and writes its outputs;
- * `first`: it is the first frame of the selection (volume, picture). */
+ * `first`: it is the first frame of the selection (volume, picture).
+ * ms_read: the frame's reading (negative: from t_read to now). */
 static int do_frame(vb_ctx *ctx, vb_channels *ch, const vb_channels_io *io, long index,
                     int model, int first, const vb_sphere_set *s0, double t_read,
-                    double cpu_read, vbc_run_out *front)
+                    double cpu_read, double ms_read, vbc_run_out *front)
 {
     vbc_run_out o;
     double t_run = vb_now();
@@ -116,7 +118,7 @@ static int do_frame(vb_ctx *ctx, vb_channels *ch, const vb_channels_io *io, long
         rc = vbc_run_frame(ctx, &ch->run, s0, index, model, first, &o);
     if (rc != VB_OK)
         return rc;
-    o.fi.ms_read = 1e3 * (t_run - t_read); /* the JSON's clocks: from the reading on */
+    o.fi.ms_read = ms_read >= 0.0 ? ms_read : 1e3 * (t_run - t_read); /* the JSON's clocks */
     o.fi.t_start = t_read;
     o.fi.cpu_start = cpu_read;
     const vbc_channels_config *c = &ch->cfg;
@@ -193,7 +195,8 @@ static int run_rounds(vb_ctx *ctx, vb_channels *ch, vb_frame_source *F, const vb
             status(ch, io, index);
             if (index >= c->f0 && (index - c->f0) % c->fstep == 0) {
                 if (!io->mine || io->mine(io->user, j))
-                    frc = do_frame(ctx, ch, io, index, model, j == 0, s, t_read, cpu_read, NULL);
+                    frc = do_frame(ctx, ch, io, index, model, j == 0, s, t_read, cpu_read, -1.0,
+                                   NULL);
                 else if (j == 0 && c->pore.enabled && !c->pore.have_axis)
                     frc = vbc_run_axis(ctx, &ch->run, s, index);
                 j++;
@@ -210,38 +213,110 @@ static int run_rounds(vb_ctx *ctx, vb_channels *ch, vb_frame_source *F, const vb
     return rc;
 }
 
-/* run_rounds with the frames in flight (vbc_ahead.h; one process): the
- * reader thread reads and runs the front half of the next frames while
- * this thread runs the back half of the current one and writes it; the
- * same bytes. A frame's "read" clock is the time this thread waited for
- * the reader. */
-static int run_ahead(vb_ctx *ctx, vb_channels *ch, vb_frame_source *F, const vb_channels_io *io,
-                     long *selected, int depth)
+/* The frames in flight on one process: the reader (vbc_ahead.h: a thread
+ * `depth` frames ahead, or with depth 0 this thread) reads the frames and
+ * runs their front half (the pipe), the window (vbc_flight.h) analyses up
+ * to its width of them at once, and this thread takes the oldest out, runs
+ * its back half and writes it: the bytes and the lines of run_rounds. */
+typedef struct flight {
+    vbc_ahead *ah;
+    vbc_flight *fl;
+    int depth, width, width_given, fitted;
+    size_t budget;
+    int end, tail_rc;       /* the reader's end met, its status */
+    vbc_held *tail;         /* and what it said after the last frame */
+} flight;
+
+/* The window's width fitted to the memory budget on the first frame f
+ * (vbc_flight_fit): E127 when even the width asked for does not fit. */
+static int flight_fit(vb_ctx *ctx, flight *S, const vbc_ahead_frame *f)
 {
-    vbc_ahead *ah = NULL;
+    int width;
+    size_t per = vbc_flight_frame_bytes(&f->o, f->s0);
+    int rc = vbc_flight_fit(ctx, S->width, S->width_given, S->budget, per,
+                            S->depth > 0 ? S->depth + 1 : 0, &width);
+    if (rc == VB_OK)
+        vbc_flight_shrink(S->fl, width);
+    S->fitted = 1;
+    return rc;
+}
+
+/* The next frame to write into *f (*have = 1): the window filled from the
+ * reader while it has room, then its oldest frame out. At the end *have = 0,
+ * after the reader's last lines and its failure are said. */
+static int flight_next(vb_ctx *ctx, vb_channels *ch, const vb_channels_io *io, flight *S,
+                       vbc_ahead_frame *f, int *have)
+{
+    *have = 0;
+    while (!S->end && vbc_flight_room(S->fl)) {
+        vbc_ahead_frame g;
+        int got, rc = vbc_ahead_next(S->ah, &g, &got);
+        if (!got) {
+            S->end = 1;
+            S->tail = g.held;
+            S->tail_rc = rc;
+            break;
+        }
+        if (!S->fitted && (rc = flight_fit(ctx, S, &g)) != VB_OK) {
+            vbc_held_free(g.held);
+            vbc_run_front_drop(&g.o);
+            vb_spheres_free(g.s0);
+            return rc;
+        }
+        status(ch, io, g.index);
+        if ((rc = vbc_flight_push(ctx, S->fl, &g)) != VB_OK)
+            return rc;
+    }
+    if (vbc_flight_count(S->fl) > 0) {
+        int rc = vbc_flight_pop(ctx, S->fl, f);
+        *have = rc == VB_OK;
+        return rc;
+    }
+    int rc = vbc_held_replay(ctx, S->tail, S->tail_rc);
+    vbc_held_free(S->tail);
+    S->tail = NULL;
+    return rc;
+}
+
+static int run_flight(vb_ctx *ctx, vb_channels *ch, vb_frame_source *F, const vb_channels_io *io,
+                      long *selected, int depth)
+{
+    flight S;
+    memset(&S, 0, sizeof S);
+    S.depth = depth;
+    S.width = vbc_flight_width(&S.width_given);
+    int budget_given;
+    S.budget = vbc_flight_budget(&budget_given);
+    /* VORBALL_DEVICE_PATHS runs the analysis on the pipe's engine: it stays
+     * with the pipe, on the reader. */
+    int front = vbc_paths_mode() ? VBC_FRONT_ANALYSE : VBC_FRONT_MASKS;
     long j = 0, j0 = 0, round = io->round_end && io->round > 0 ? io->round : LONG_MAX;
-    int rc = vbc_ahead_open(ctx, &ch->run, F, depth, &ah), end = rc != VB_OK;
+    int rc = vbc_ahead_open(ctx, &ch->run, F, depth, front, &S.ah);
+    if (rc == VB_OK)
+        rc = vbc_flight_open(ctx, &ch->run, S.width, &S.fl);
+    int end = rc != VB_OK;
     while (rc == VB_OK && !end) {
         int frc = VB_OK;
         while (frc == VB_OK && j - j0 < round) {
             vbc_ahead_frame f;
             int have;
-            double t_read = vb_now(), cpu_read = vbc_cpu_now();
-            frc = vbc_ahead_next(ctx, ah, &f, &have);
+            frc = flight_next(ctx, ch, io, &S, &f, &have);
             if (frc != VB_OK || !have) {
                 end = 1;
                 break;
             }
-            status(ch, io, f.index);
-            frc = do_frame(ctx, ch, io, f.index, f.o.fi.model, f.j == 0, f.s0, t_read, cpu_read,
-                           &f.o);
+            frc = do_frame(ctx, ch, io, f.index, f.o.fi.model, f.j == 0, f.s0, f.t_read,
+                           f.cpu_read, f.ms_read, &f.o);
             vb_spheres_free(f.s0);
             j++;
         }
         rc = round_end(ctx, io, frc, j0, j);
         j0 = j;
     }
-    vbc_ahead_close(ctx, ah);
+    /* The reader first: it may be running a front on the pipe. */
+    vbc_ahead_close(ctx, S.ah);
+    vbc_flight_close(ctx, S.fl);
+    vbc_held_free(S.tail);
     *selected = j;
     return rc;
 }
@@ -263,11 +338,14 @@ int vb_channels_run_frames(vb_ctx *ctx, vb_channels *ch, vb_frame_source *F,
     /* --frames a:b:step with an end: the number of frames is known. */
     if (c->f1 > c->f0 && c->fstep > 0)
         ch->run.frames_total = (c->f1 - c->f0 + c->fstep - 1) / c->fstep;
+    ch->t_frames = vb_now();
+    ch->cpu_frames = vbc_cpu_now();
     /* Frames in flight on one process; the picture (--png) runs the pipe
-     * on this thread, so it keeps the loop that reads frame by frame. */
-    int depth = vbc_ahead_depth(), rc;
-    if (!io->mine && depth > 0 && !c->png)
-        rc = run_ahead(ctx, ch, F, io, selected, depth);
+     * on this thread, so it keeps the loop that reads frame by frame, as
+     * does one frame at a time without a reader thread (the reference). */
+    int depth = vbc_ahead_depth(), given, rc;
+    if (!io->mine && !c->png && (depth > 0 || vbc_flight_width(&given) > 1))
+        rc = run_flight(ctx, ch, F, io, selected, depth);
     else
         rc = run_rounds(ctx, ch, F, io, selected);
     if (rc == VB_OK && *selected == 0)
@@ -290,7 +368,8 @@ int vb_channels_finish(vb_ctx *ctx, vb_channels *ch, const vb_channels_io *io, i
     vbc_run_report_left_out(ctx, &ch->run);
     FILE *table = io->sink[VB_CHANNELS_SINK_TABLE], *cl = io->sink[VB_CHANNELS_SINK_CENTRELINES];
     if (writer && c->json && table)
-        vbc_write_json_end(table);
+        vbc_write_json_end_clock(table, selected, 1e3 * (vb_now() - ch->t_frames),
+                                 1e3 * (vbc_cpu_now() - ch->cpu_frames));
     if (writer && cl)
         vbc_write_centrelines_conect(cl, &ch->run.first);
     if (writer && c->pymol) {

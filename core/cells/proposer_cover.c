@@ -160,6 +160,9 @@ static int cover_run(vb_ctx *ctx, void *state, const vb_proposer_await *aw,
     int rc = judging_open(ctx, &j, s, set, args, &on);
     if (rc != VB_OK)
         return rc;
+    /* The device's clocks run since it opened (bench reuses it): this
+     * run's share is the difference. */
+    vb_cover_backend before = s->be ? *s->be : (vb_cover_backend){0};
     if (args->quads_sink && on)
         rc = vb_cover_run_parts(ctx, set, &o, s->be, vb_cover_pipeline_parts(), judge_sink, &j,
                                 &st);
@@ -187,6 +190,11 @@ static int cover_run(vb_ctx *ctx, void *state, const vb_proposer_await *aw,
     res->cover_host_cells = st.host_cells;
     res->cover_handed_cells = st.handed_cells;
     res->t_cover_device = st.t_device;
+    for (int i = 0; i < 4 && s->be; i++) {
+        res->cover_kernel_s[i] = s->be->kernel_s[i] - before.kernel_s[i];
+        res->cover_launches[i] = s->be->launches[i] - before.launches[i];
+        res->cover_tasks[i] = s->be->tasks[i] - before.tasks[i];
+    }
     /* The filter's buffers beside the cover's: at most their sum at once. */
     res->device_bytes_peak =
         s->be ? s->be->device_bytes_peak + (on ? s->be->judge_bytes_peak : 0) : 0;

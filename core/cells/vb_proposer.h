@@ -122,6 +122,12 @@ typedef struct vb_proposal {
                                      a counter that processes which covered parts of the
                                      cells can add up */
     double t_cover_device;        /* seconds in the cover's device batches */
+    /* Per tier of the device's arenas (first launch, large slices, the group
+     * kernel's hand-off, huge slices; vb_cover_backend): seconds its kernels
+     * ran on the device, its launches and tasks, in this run (0 on host
+     * threads). */
+    double cover_kernel_s[4];
+    uint64_t cover_launches[4], cover_tasks[4];
     double t_cert_filter;         /* seconds judging the quadruples (vb_cert_filter.h),
                                      summed over the parts */
     uint64_t device_bytes_peak;   /* the most bytes of device buffers the proposer's

@@ -18,6 +18,7 @@
 
 #include "vb_device.h"
 #include "vb_proposer.h"
+#include "vb_stat_field.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -160,12 +161,15 @@ typedef struct vb_vertices_result {
  * input alone, never on the device or the thread count. */
 void vb_vertices_certificate(const vb_vertices_result *r, char *buf, size_t size);
 
-/* Writes the counters of a finished run r to f, one "name<TAB>value" line
- * each (backend, device, the proposer's counters, certified and rejected
- * counts, and the context's filter counters: filter_calls, filter_failures,
- * exact_evals), as `vorball vertices --stats` prints them, and the run's
- * seconds (certify_overlap_s, certify_after_s, judge_s, setup_s,
- * setup_wait_s, propose_s, run_s, release_s), which vary run to run. */
+/* Appends the counters of a finished run r to fs (vb_stat_field.h):
+ * backend, device, the proposer's counters, certified and rejected counts,
+ * the context's filter counters (filter_calls, filter_failures,
+ * exact_evals), the cover's, device_bytes_peak, certify_*, judged_*,
+ * judge_s and the run's seconds (setup_s, setup_wait_s, propose_s, run_s,
+ * release_s, which vary run to run): every line `vorball vertices --stats` prints, in its order. */
+void vb_vertices_stats(vb_ctx *ctx, const vb_vertices_result *r, vb_stat_fields *fs);
+
+/* Writes vb_vertices_stats' table to f, one "name<TAB>value" line each. */
 void vb_vertices_write_stats(vb_ctx *ctx, FILE *f, const vb_vertices_result *r);
 
 void vb_vertices_result_init(vb_vertices_result *r);

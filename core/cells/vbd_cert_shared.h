@@ -24,11 +24,11 @@
  * Error bound (the proof the verdicts rest on). Every quantity is an
  * interval [lo, hi] of doubles that contains the exact value; each
  * operation is evaluated in round-to-nearest and its bounds are then moved
- * one double outward (vbd_pred, vbd_succ). IEEE 754 binary64 returns, for
+ * one double outward (vb_pred, vb_succ). IEEE 754 binary64 returns, for
  * an exact result x of +, -, *, / or sqrt on doubles, the double r nearest
  * to x; the gap between r and its neighbour on x's side is at least twice
  * |x - r|, so pred(r) <= x <= succ(r) (also for subnormal results and at
- * overflow, where pred(+inf) = DBL_MAX); see verify/exact/vbx_ia.h, whose
+ * overflow, where pred(+inf) = DBL_MAX); see core/vb_ia_shared.h, whose
  * argument this is. OpenCL C (1.2, section 7.4) requires exactly this
  * correct rounding of double +, -, *, / and sqrt, and conversion of a long
  * to double rounds to nearest; the kernel is built without fast-math or
@@ -56,17 +56,7 @@
 #ifndef VBD_CERT_SHARED_H
 #define VBD_CERT_SHARED_H
 
-#include "vb_cl_compat.h"
-
-#ifdef __OPENCL_C_VERSION__
-#pragma OPENCL EXTENSION cl_khr_fp64 : enable
-#pragma OPENCL FP_CONTRACT OFF
-#define VBD_INF INFINITY
-#else
-#include <math.h>
-#include <string.h>
-#define VBD_INF HUGE_VAL
-#endif
+#include "vb_ia_shared.h"
 
 /* Per-root verdicts, two bits each: root 0 in bits 0-1, root 1 in 2-3. */
 #define VBD_OPEN 0u
@@ -77,10 +67,6 @@
 /* Cells one root may scan before it is left open. */
 #define VBD_MAX_CELLS 4096
 
-typedef struct vbd_ia {
-    double lo, hi;
-} vbd_ia;
-
 /* The grid of the spheres' scaled centres (cert_filter.c builds it). */
 typedef struct vbd_grid {
     double ox, oy, oz; /* corner (scaled units) */
@@ -88,127 +74,6 @@ typedef struct vbd_grid {
     vb_u32 nx, ny, nz;
     vb_i64 rmax;       /* largest scaled radius */
 } vbd_grid;
-
-VB_SHARED_FN vb_i64 vbd_bits(double x)
-{
-#ifdef __OPENCL_C_VERSION__
-    return as_long(x);
-#else
-    vb_i64 b;
-    memcpy(&b, &x, sizeof b);
-    return b;
-#endif
-}
-
-VB_SHARED_FN double vbd_double(vb_i64 b)
-{
-#ifdef __OPENCL_C_VERSION__
-    return as_double(b);
-#else
-    double x;
-    memcpy(&x, &b, sizeof x);
-    return x;
-#endif
-}
-
-/* Next double towards +inf (x itself for +inf and NaN): the bit pattern of
- * a finite non-zero x moves one unit up in magnitude when x > 0, down when
- * x < 0 (-DBL_MAX from -inf; +inf from DBL_MAX). */
-VB_SHARED_FN double vbd_succ(double x)
-{
-    if (x != x || x == VBD_INF)
-        return x;
-    if (x == 0.0)
-        return 4.9406564584124654e-324;
-    return vbd_double(vbd_bits(x) + (x > 0.0 ? 1 : -1));
-}
-
-VB_SHARED_FN double vbd_pred(double x)
-{
-    return -vbd_succ(-x);
-}
-
-VB_SHARED_FN vbd_ia vbd_ia_make(double lo, double hi)
-{
-    vbd_ia r;
-    r.lo = lo;
-    r.hi = hi;
-    return r;
-}
-
-/* An integer |v| < 2^63: exact below 2^53, else [pred, succ] of its
- * nearest double. */
-VB_SHARED_FN vbd_ia vbd_ia_int(vb_i64 v)
-{
-    double d = (double)v;
-    if (v < ((vb_i64)1 << 53) && v > -((vb_i64)1 << 53))
-        return vbd_ia_make(d, d);
-    return vbd_ia_make(vbd_pred(d), vbd_succ(d));
-}
-
-VB_SHARED_FN vbd_ia vbd_add(vbd_ia a, vbd_ia b)
-{
-    return vbd_ia_make(vbd_pred(a.lo + b.lo), vbd_succ(a.hi + b.hi));
-}
-
-VB_SHARED_FN vbd_ia vbd_sub(vbd_ia a, vbd_ia b)
-{
-    return vbd_ia_make(vbd_pred(a.lo - b.hi), vbd_succ(a.hi - b.lo));
-}
-
-VB_SHARED_FN vbd_ia vbd_neg(vbd_ia a)
-{
-    return vbd_ia_make(-a.hi, -a.lo);
-}
-
-/* Minimum and maximum; a NaN corner is dropped or kept, and either way the
- * caller's sign test answers "open" (a NaN corner needs 0 * inf, whose
- * partner corner is infinite). */
-VB_SHARED_FN double vbd_min(double a, double b)
-{
-    return a < b ? a : b;
-}
-
-VB_SHARED_FN double vbd_max(double a, double b)
-{
-    return a > b ? a : b;
-}
-
-VB_SHARED_FN vbd_ia vbd_mul(vbd_ia a, vbd_ia b)
-{
-    double p1 = a.lo * b.lo, p2 = a.lo * b.hi, p3 = a.hi * b.lo, p4 = a.hi * b.hi;
-    return vbd_ia_make(vbd_pred(vbd_min(vbd_min(p1, p2), vbd_min(p3, p4))),
-                       vbd_succ(vbd_max(vbd_max(p1, p2), vbd_max(p3, p4))));
-}
-
-VB_SHARED_FN vbd_ia vbd_sqr(vbd_ia a)
-{
-    double l = a.lo < 0.0 ? -a.lo : a.lo, h = a.hi < 0.0 ? -a.hi : a.hi;
-    double mx = vbd_max(l, h), mn = vbd_min(l, h);
-    double lo = a.lo <= 0.0 && a.hi >= 0.0 ? 0.0 : vbd_max(vbd_pred(mn * mn), 0.0);
-    return vbd_ia_make(lo, vbd_succ(mx * mx));
-}
-
-/* Quotient; b must exclude 0 (else [-inf, inf]: every sign open). */
-VB_SHARED_FN vbd_ia vbd_div(vbd_ia a, vbd_ia b)
-{
-    if (!(b.lo > 0.0 || b.hi < 0.0))
-        return vbd_ia_make(-VBD_INF, VBD_INF);
-    double q1 = a.lo / b.lo, q2 = a.lo / b.hi, q3 = a.hi / b.lo, q4 = a.hi / b.hi;
-    return vbd_ia_make(vbd_pred(vbd_min(vbd_min(q1, q2), vbd_min(q3, q4))),
-                       vbd_succ(vbd_max(vbd_max(q1, q2), vbd_max(q3, q4))));
-}
-
-/* Square root of an interval proven positive (a.lo > 0). */
-VB_SHARED_FN vbd_ia vbd_sqrt(vbd_ia a)
-{
-    return vbd_ia_make(vbd_max(vbd_pred(sqrt(a.lo)), 0.0), vbd_succ(sqrt(a.hi)));
-}
-
-VB_SHARED_FN int vbd_sign(vbd_ia a)
-{
-    return a.lo > 0.0 ? 1 : a.hi < 0.0 ? -1 : 0;
-}
 
 /* The grid key of a coordinate along an axis of n cells (monotone in x). */
 VB_SHARED_FN vb_u32 vbd_cell(double x, double o, double inv, vb_u32 n)
@@ -234,10 +99,10 @@ VB_SHARED_FN vb_i64 vbd_around(vb_u32 lo, vb_u32 hi, vb_u32 m, vb_u32 i)
 
 /* 3x3 determinant of columns c0, c1, c2 of e, expanded along row 0 with the
  * minors M of rows 1 and 2 (M[a * 5 + b], a < b). */
-VB_SHARED_FN vbd_ia vbd_det3(const vbd_ia *e, const vbd_ia *M, int c0, int c1, int c2)
+VB_SHARED_FN vb_ia vbd_det3(const vb_ia *e, const vb_ia *M, int c0, int c1, int c2)
 {
-    vbd_ia t = vbd_sub(vbd_mul(e[c0], M[c1 * 5 + c2]), vbd_mul(e[c1], M[c0 * 5 + c2]));
-    return vbd_add(t, vbd_mul(e[c2], M[c0 * 5 + c1]));
+    vb_ia t = vb_ia_sub(vb_ia_mul(e[c0], M[c1 * 5 + c2]), vb_ia_mul(e[c1], M[c0 * 5 + c2]));
+    return vb_ia_add(t, vb_ia_mul(e[c2], M[c0 * 5 + c1]));
 }
 
 /* det3 in 64-bit integers of row r0 and the minors Mi (the caller proves
@@ -249,7 +114,7 @@ VB_SHARED_FN vb_i64 vbd_det3i(const vb_i64 *r0, const vb_i64 *Mi, int c0, int c1
 
 /* The line and the quadratic of a quadruple. */
 typedef struct vbd_line {
-    vbd_ia v[3], U[3], D, A, B, C, sq;
+    vb_ia v[3], U[3], D, A, B, C, sq;
     vb_i64 r[4]; /* R_i - R_a (r[0] = 0) */
 } vbd_line;
 
@@ -280,25 +145,25 @@ VB_SHARED_FN int vbd_line_make(VB_GLOBAL const vb_i64 *z, vb_u32 a, vb_u32 b, vb
     /* Rows e[i * 5 + k]: the four entries and W = |d|^2 - r^2. Below 2^30
      * W (< 2^62) and the 2x2 minors of the entries (< 2^61) are exact in 64
      * bits. */
-    vbd_ia e[15], M[25];
+    vb_ia e[15], M[25];
     for (int i = 0; !tiny && i < 3; i++) {
         for (int k = 0; k < 4; k++)
-            e[i * 5 + k] = vbd_ia_int(m[i][k]);
+            e[i * 5 + k] = vb_ia_int(m[i][k]);
         if (small) {
-            e[i * 5 + 4] = vbd_ia_int(m[i][0] * m[i][0] + m[i][1] * m[i][1] +
+            e[i * 5 + 4] = vb_ia_int(m[i][0] * m[i][0] + m[i][1] * m[i][1] +
                                       m[i][2] * m[i][2] - m[i][3] * m[i][3]);
         } else {
-            vbd_ia w = vbd_add(vbd_sqr(e[i * 5]), vbd_sqr(e[i * 5 + 1]));
-            w = vbd_add(w, vbd_sqr(e[i * 5 + 2]));
-            e[i * 5 + 4] = vbd_sub(w, vbd_sqr(e[i * 5 + 3]));
+            vb_ia w = vb_ia_add(vb_ia_sqr(e[i * 5]), vb_ia_sqr(e[i * 5 + 1]));
+            w = vb_ia_add(w, vb_ia_sqr(e[i * 5 + 2]));
+            e[i * 5 + 4] = vb_ia_sub(w, vb_ia_sqr(e[i * 5 + 3]));
         }
     }
     for (int p = 0; !tiny && p < 5; p++)
         for (int c = p + 1; c < 5; c++) {
             if (small && c < 4)
-                M[p * 5 + c] = vbd_ia_int(m[1][p] * m[2][c] - m[1][c] * m[2][p]);
+                M[p * 5 + c] = vb_ia_int(m[1][p] * m[2][c] - m[1][c] * m[2][p]);
             else
-                M[p * 5 + c] = vbd_sub(vbd_mul(e[5 + p], e[10 + c]), vbd_mul(e[5 + c], e[10 + p]));
+                M[p * 5 + c] = vb_ia_sub(vb_ia_mul(e[5 + p], e[10 + c]), vb_ia_mul(e[5 + c], e[10 + p]));
         }
     if (tiny) {
         /* Entries below 2^20: the minors of the entries (< 2^41), D and v
@@ -311,45 +176,45 @@ VB_SHARED_FN int vbd_line_make(VB_GLOBAL const vb_i64 *z, vb_u32 a, vb_u32 b, vb
         for (int p = 0; p < 4; p++) {
             for (int c = p + 1; c < 4; c++) {
                 Mi[p * 5 + c] = m[1][p] * m[2][c] - m[1][c] * m[2][p];
-                M[p * 5 + c] = vbd_ia_int(Mi[p * 5 + c]);
+                M[p * 5 + c] = vb_ia_int(Mi[p * 5 + c]);
             }
-            M[p * 5 + 4] = vbd_ia_int(m[1][p] * Wv[2] - Wv[1] * m[2][p]);
+            M[p * 5 + 4] = vb_ia_int(m[1][p] * Wv[2] - Wv[1] * m[2][p]);
         }
-        L->D = vbd_ia_int(vbd_det3i(m[0], Mi, 0, 1, 2));
-        if (!vbd_sign(L->D))
+        L->D = vb_ia_int(vbd_det3i(m[0], Mi, 0, 1, 2));
+        if (!vb_ia_sign(L->D))
             return 0;
-        L->v[0] = vbd_ia_int(vbd_det3i(m[0], Mi, 1, 2, 3));
-        L->v[1] = vbd_ia_int(-vbd_det3i(m[0], Mi, 0, 2, 3));
-        L->v[2] = vbd_ia_int(vbd_det3i(m[0], Mi, 0, 1, 3));
+        L->v[0] = vb_ia_int(vbd_det3i(m[0], Mi, 1, 2, 3));
+        L->v[1] = vb_ia_int(-vbd_det3i(m[0], Mi, 0, 2, 3));
+        L->v[2] = vb_ia_int(vbd_det3i(m[0], Mi, 0, 1, 3));
         for (int k = 0; k < 4; k++)
-            e[k] = vbd_ia_int(m[0][k]);
-        e[4] = vbd_ia_int(Wv[0]);
+            e[k] = vb_ia_int(m[0][k]);
+        e[4] = vb_ia_int(Wv[0]);
     } else {
         L->D = vbd_det3(e, M, 0, 1, 2);
-        if (!vbd_sign(L->D))
+        if (!vb_ia_sign(L->D))
             return 0;
         L->v[0] = vbd_det3(e, M, 1, 2, 3);
-        L->v[1] = vbd_neg(vbd_det3(e, M, 0, 2, 3));
+        L->v[1] = vb_ia_neg(vbd_det3(e, M, 0, 2, 3));
         L->v[2] = vbd_det3(e, M, 0, 1, 3);
     }
     L->U[0] = vbd_det3(e, M, 1, 2, 4);
-    L->U[1] = vbd_neg(vbd_det3(e, M, 0, 2, 4));
+    L->U[1] = vb_ia_neg(vbd_det3(e, M, 0, 2, 4));
     L->U[2] = vbd_det3(e, M, 0, 1, 4);
     /* Lorentz forms with v_3 = -D and U_3 = 0. */
-    vbd_ia A = vbd_add(vbd_add(vbd_sqr(L->v[0]), vbd_sqr(L->v[1])), vbd_sqr(L->v[2]));
-    L->A = vbd_sub(A, vbd_sqr(L->D));
-    L->B = vbd_add(vbd_add(vbd_mul(L->U[0], L->v[0]), vbd_mul(L->U[1], L->v[1])),
-                   vbd_mul(L->U[2], L->v[2]));
-    L->C = vbd_add(vbd_add(vbd_sqr(L->U[0]), vbd_sqr(L->U[1])), vbd_sqr(L->U[2]));
-    if (!vbd_sign(L->A))
+    vb_ia A = vb_ia_add(vb_ia_add(vb_ia_sqr(L->v[0]), vb_ia_sqr(L->v[1])), vb_ia_sqr(L->v[2]));
+    L->A = vb_ia_sub(A, vb_ia_sqr(L->D));
+    L->B = vb_ia_add(vb_ia_add(vb_ia_mul(L->U[0], L->v[0]), vb_ia_mul(L->U[1], L->v[1])),
+                   vb_ia_mul(L->U[2], L->v[2]));
+    L->C = vb_ia_add(vb_ia_add(vb_ia_sqr(L->U[0]), vb_ia_sqr(L->U[1])), vb_ia_sqr(L->U[2]));
+    if (!vb_ia_sign(L->A))
         return 0;
-    vbd_ia delta = vbd_sub(vbd_sqr(L->B), vbd_mul(L->A, L->C));
-    int sd = vbd_sign(delta);
+    vb_ia delta = vb_ia_sub(vb_ia_sqr(L->B), vb_ia_mul(L->A, L->C));
+    int sd = vb_ia_sign(delta);
     if (sd < 0)
         return -1;
     if (sd == 0)
         return 0;
-    L->sq = vbd_sqrt(delta);
+    L->sq = vb_ia_sqrt(delta);
     return 1;
 }
 
@@ -387,7 +252,7 @@ VB_SHARED_FN int vbd_line_make(VB_GLOBAL const vb_i64 *z, vb_u32 a, vb_u32 b, vb
 #define VBD_FAST_IN 2
 #define VBD_FAST_OPEN 3
 
-VB_SHARED_FN int vbd_scan_fast(const vbd_ia *p, vbd_ia s, VB_GLOBAL const vb_i64 *zj,
+VB_SHARED_FN int vbd_scan_fast(const vb_ia *p, vb_ia s, VB_GLOBAL const vb_i64 *zj,
                                VB_GLOBAL const vb_i64 *za)
 {
     const vb_i64 lim = (vb_i64)1 << 53;
@@ -403,7 +268,7 @@ VB_SHARED_FN int vbd_scan_fast(const vbd_ia *p, vbd_ia s, VB_GLOBAL const vb_i64
     double q = 0.0, q2 = 0.0;
     for (int k = 0; k < 3; k++) {
         double d = (double)dk[k];
-        double l = vbd_max(vbd_max(p[k].lo - d, d - p[k].hi), 0.0);
+        double l = vb_fmax(vb_fmax(p[k].lo - d, d - p[k].hi), 0.0);
         q = q + l * l;
     }
     if (q > wh * wh * (1.0 + 0x1p-46) + 0x1p-1000)
@@ -413,7 +278,7 @@ VB_SHARED_FN int vbd_scan_fast(const vbd_ia *p, vbd_ia s, VB_GLOBAL const vb_i64
         return VBD_FAST_OPEN;
     for (int k = 0; k < 3; k++) {
         double d = (double)dk[k];
-        double m = vbd_max(p[k].hi - d, d - p[k].lo);
+        double m = vb_fmax(p[k].hi - d, d - p[k].lo);
         q2 = q2 + m * m;
     }
     return q2 < wl * wl * (1.0 - 0x1p-46) - 0x1p-1000 ? VBD_FAST_IN : VBD_FAST_OPEN;
@@ -428,25 +293,25 @@ VB_SHARED_FN vb_u32 vbd_root(VB_GLOBAL const vb_i64 *z, VB_GLOBAL const vb_u32 *
     /* mu = -Pn / Qd: (B - sigma sq) / A, or, where B has the sign sigma and
      * that difference would cancel, C / (B + sigma sq) (the roots'
      * product is C / A). s = t + R_a = -mu / 2. */
-    vbd_ia sq = r ? vbd_neg(L->sq) : L->sq, Pn, Qd;
+    vb_ia sq = r ? vb_ia_neg(L->sq) : L->sq, Pn, Qd;
     int sigma = r ? -1 : 1;
-    if (vbd_sign(L->B) == sigma) {
+    if (vb_ia_sign(L->B) == sigma) {
         Pn = L->C;
-        Qd = vbd_add(L->B, sq);
+        Qd = vb_ia_add(L->B, sq);
     } else {
-        Pn = vbd_sub(L->B, sq);
+        Pn = vb_ia_sub(L->B, sq);
         Qd = L->A;
     }
-    if (!vbd_sign(Qd))
+    if (!vb_ia_sign(Qd))
         return VBD_OPEN;
-    vbd_ia mu = vbd_neg(vbd_div(Pn, Qd));
-    vbd_ia s = vbd_div(Pn, vbd_add(Qd, Qd));
-    vbd_ia D2 = vbd_add(L->D, L->D), p[3];
+    vb_ia mu = vb_ia_neg(vb_ia_div(Pn, Qd));
+    vb_ia s = vb_ia_div(Pn, vb_ia_add(Qd, Qd));
+    vb_ia D2 = vb_ia_add(L->D, L->D), p[3];
     for (int k = 0; k < 3; k++)
-        p[k] = vbd_div(vbd_add(L->U[k], vbd_mul(mu, L->v[k])), D2);
+        p[k] = vb_ia_div(vb_ia_add(L->U[k], vb_ia_mul(mu, L->v[k])), D2);
     int open = 0;
     for (int i = 0; i < 4; i++) {
-        vbd_ia w = vbd_add(s, vbd_ia_int(L->r[i]));
+        vb_ia w = vb_ia_add(s, vb_ia_int(L->r[i]));
         if (w.hi < 0.0)
             return VBD_NOT;
         if (!(w.lo > 0.0))
@@ -454,8 +319,8 @@ VB_SHARED_FN vb_u32 vbd_root(VB_GLOBAL const vb_i64 *z, VB_GLOBAL const vb_u32 *
     }
     /* The box of centres that may touch the tangent ball. */
     VB_GLOBAL const vb_i64 *za = z + 4 * (vb_u64)q0;
-    double rad = vbd_add(s, vbd_ia_int(g->rmax - za[3])).hi;
-    if (!(rad < VBD_INF) || rad != rad)
+    double rad = vb_ia_add(s, vb_ia_int(g->rmax - za[3])).hi;
+    if (!(rad < VB_IA_INF) || rad != rad)
         return VBD_OPEN;
     if (rad < 0.0)
         return open ? VBD_OPEN : VBD_VERTEX; /* t + R_j < 0 for every j */
@@ -470,9 +335,9 @@ VB_SHARED_FN vb_u32 vbd_root(VB_GLOBAL const vb_i64 *z, VB_GLOBAL const vb_u32 *
     nn[2] = g->nz;
     vb_u64 cells = 1;
     for (int k = 0; k < 3; k++) {
-        vbd_ia ck = vbd_add(vbd_ia_int(za[k]), p[k]);
-        double lo = vbd_pred(ck.lo - rad), hi = vbd_succ(ck.hi + rad);
-        if (!(lo > -VBD_INF && hi < VBD_INF))
+        vb_ia ck = vb_ia_add(vb_ia_int(za[k]), p[k]);
+        double lo = vb_pred(ck.lo - rad), hi = vb_succ(ck.hi + rad);
+        if (!(lo > -VB_IA_INF && hi < VB_IA_INF))
             return VBD_OPEN;
         c0[k] = vbd_cell(lo, o[k], g->inv, nn[k]);
         c1[k] = vbd_cell(hi, o[k], g->inv, nn[k]);
@@ -482,8 +347,8 @@ VB_SHARED_FN vb_u32 vbd_root(VB_GLOBAL const vb_i64 *z, VB_GLOBAL const vb_u32 *
         return VBD_OPEN;
     /* Slabs and rows from the centre's outward (an intruder, which ends the
      * scan, is usually near): the same cells, in another order. */
-    vb_u32 mz = vbd_cell(vbd_add(vbd_ia_int(za[2]), p[2]).lo, o[2], g->inv, nn[2]);
-    vb_u32 my = vbd_cell(vbd_add(vbd_ia_int(za[1]), p[1]).lo, o[1], g->inv, nn[1]);
+    vb_u32 mz = vbd_cell(vb_ia_add(vb_ia_int(za[2]), p[2]).lo, o[2], g->inv, nn[2]);
+    vb_u32 my = vbd_cell(vb_ia_add(vb_ia_int(za[1]), p[1]).lo, o[1], g->inv, nn[1]);
     for (vb_u32 iz = 0; iz < 2u * (c1[2] - c0[2]) + 1u; iz++) {
         vb_i64 cz = vbd_around(c0[2], c1[2], mz, iz);
         if (cz < 0)
@@ -508,21 +373,21 @@ VB_SHARED_FN vb_u32 vbd_root(VB_GLOBAL const vb_i64 *z, VB_GLOBAL const vb_u32 *
                     open = 1;
                     continue;
                 }
-                vbd_ia w = vbd_add(s, vbd_ia_int(zj[3] - za[3]));
+                vb_ia w = vb_ia_add(s, vb_ia_int(zj[3] - za[3]));
                 if (w.hi < 0.0)
                     continue; /* t + R_j < 0: outside */
-                vbd_ia e[3];
+                vb_ia e[3];
                 double lo2 = 0.0;
                 for (int k = 0; k < 3; k++) {
-                    e[k] = vbd_sub(p[k], vbd_ia_int(zj[k] - za[k]));
-                    lo2 = vbd_pred(lo2 + vbd_sqr(e[k]).lo);
+                    e[k] = vb_ia_sub(p[k], vb_ia_int(zj[k] - za[k]));
+                    lo2 = vb_pred(lo2 + vb_ia_sqr(e[k]).lo);
                 }
                 /* outside: |p - c_j| > t + R_j */
-                if (lo2 > vbd_succ(w.hi * w.hi))
+                if (lo2 > vb_succ(w.hi * w.hi))
                     continue;
                 /* inside: |p - c_j| < t + R_j with t + R_j > 0 */
-                vbd_ia d2 = vbd_add(vbd_add(vbd_sqr(e[0]), vbd_sqr(e[1])), vbd_sqr(e[2]));
-                if (w.lo > 0.0 && d2.hi < vbd_pred(w.lo * w.lo))
+                vb_ia d2 = vb_ia_add(vb_ia_add(vb_ia_sqr(e[0]), vb_ia_sqr(e[1])), vb_ia_sqr(e[2]));
+                if (w.lo > 0.0 && d2.hi < vb_pred(w.lo * w.lo))
                     return VBD_NOT;
                 open = 1;
             }

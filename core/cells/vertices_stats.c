@@ -1,62 +1,96 @@
-/* The vertex pipeline's counters as `vorball vertices --stats` prints them
- * (vb_vertices_write_stats): one "name<TAB>value" line each, for the
- * command and the bindings alike. */
-#include <stdio.h>
-
+/* The vertex pipeline's counters as `vorball vertices --stats` prints them:
+ * one table (vb_vertices_stats) that the command prints and the bindings
+ * read as typed values. */
 #include "vb_vertices.h"
 
-void vb_vertices_write_stats(vb_ctx *ctx, FILE *f, const vb_vertices_result *r)
+void vb_vertices_stats(vb_ctx *ctx, const vb_vertices_result *r, vb_stat_fields *fs)
 {
     const vb_proposal *s = &r->proposal;
     static const vb_stats none;
     const vb_stats *st = vb_ctx_stats(ctx) ? vb_ctx_stats(ctx) : &none;
-    fprintf(f,
-            "backend\t%s\ndevice\t%s\nsamples\t%u\ntiles\t%u\ntol\t%.6g\nclip\t%.6g\n"
-            "rays\t%llu\nbisectors\t%llu\nraw_candidates\t%llu\nvertices_matched\t%llu\n"
-            "complete_first_pass\t%llu\ntargeted_searches\t%llu\ntargeted_found\t%llu\n"
-            "incomplete_after_search\t%llu\nsampled_vertices\t%llu\n"
-            "vertices_incomplete\t%llu\ndropped_tangent_test\t%llu\nfrom_sampling\t%llu\n"
-            "swaps\t%llu\nring_tries\t%llu\nfirst_cell\t%llu\ncandidates_certified\t%llu\n"
-            "certifier_rejected\t%zu\nrepair_candidates\t%zu\ncertified_vertices\t%zu\n"
-            "max_candidate_distance\t%.3g\n"
-            "filter_calls\t%llu\nfilter_failures\t%llu\nexact_evals\t%llu\n",
-            r->backend, r->device, s->samples, s->tiles, s->tol, s->clip,
-            (unsigned long long)s->rays, (unsigned long long)s->bisectors,
-            (unsigned long long)s->raw_candidates, (unsigned long long)s->clusters,
-            (unsigned long long)s->complete_first, (unsigned long long)s->targeted_searches,
-            (unsigned long long)s->targeted_found, (unsigned long long)s->incomplete,
-            (unsigned long long)s->sampled_vertices, (unsigned long long)s->vertices_incomplete,
-            (unsigned long long)s->dropped, (unsigned long long)s->from_sampling,
-            (unsigned long long)s->swaps, (unsigned long long)s->ring_tries,
-            (unsigned long long)s->first_cell, (unsigned long long)s->candidates.n,
-            r->rejected.n, r->repaired_candidates, r->certified.n, r->max_dist,
-            (unsigned long long)st->filter_calls, (unsigned long long)st->filter_failures,
-            (unsigned long long)st->exact_evals);
+    vb_stat_text(fs, "backend", r->backend);
+    vb_stat_text(fs, "device", r->device);
+    vb_stat_uint(fs, "samples", s->samples);
+    vb_stat_uint(fs, "tiles", s->tiles);
+    vb_stat_real(fs, "tol", "%.6g", s->tol);
+    vb_stat_real(fs, "clip", "%.6g", s->clip);
+    vb_stat_uint(fs, "rays", s->rays);
+    vb_stat_uint(fs, "bisectors", s->bisectors);
+    vb_stat_uint(fs, "raw_candidates", s->raw_candidates);
+    vb_stat_uint(fs, "vertices_matched", s->clusters);
+    vb_stat_uint(fs, "complete_first_pass", s->complete_first);
+    vb_stat_uint(fs, "targeted_searches", s->targeted_searches);
+    vb_stat_uint(fs, "targeted_found", s->targeted_found);
+    vb_stat_uint(fs, "incomplete_after_search", s->incomplete);
+    vb_stat_uint(fs, "sampled_vertices", s->sampled_vertices);
+    vb_stat_uint(fs, "vertices_incomplete", s->vertices_incomplete);
+    vb_stat_uint(fs, "dropped_tangent_test", s->dropped);
+    vb_stat_uint(fs, "from_sampling", s->from_sampling);
+    vb_stat_uint(fs, "swaps", s->swaps);
+    vb_stat_uint(fs, "ring_tries", s->ring_tries);
+    vb_stat_uint(fs, "first_cell", s->first_cell);
+    vb_stat_uint(fs, "candidates_certified", s->candidates.n);
+    vb_stat_uint(fs, "certifier_rejected", r->rejected.n);
+    vb_stat_uint(fs, "repair_candidates", r->repaired_candidates);
+    vb_stat_uint(fs, "certified_vertices", r->certified.n);
+    vb_stat_real(fs, "max_candidate_distance", "%.3g", r->max_dist);
+    vb_stat_uint(fs, "filter_calls", st->filter_calls);
+    vb_stat_uint(fs, "filter_failures", st->filter_failures);
+    vb_stat_uint(fs, "exact_evals", st->exact_evals);
     /* The cover's counters (zero for the sampling proposer). */
-    fprintf(f, "cover_cells\t%llu\ncover_patches\t%llu\ncover_host_cells\t%llu\n"
-               "cover_handed_cells\t%llu\ncover_quadruples\t%llu\n",
-            (unsigned long long)s->cover_cells, (unsigned long long)s->cover_patches,
-            (unsigned long long)s->cover_host_cells, (unsigned long long)s->cover_handed_cells,
-            (unsigned long long)s->cover_quads);
+    vb_stat_uint(fs, "cover_cells", s->cover_cells);
+    vb_stat_uint(fs, "cover_patches", s->cover_patches);
+    vb_stat_uint(fs, "cover_host_cells", s->cover_host_cells);
+    vb_stat_uint(fs, "cover_handed_cells", s->cover_handed_cells);
+    vb_stat_uint(fs, "cover_quadruples", s->cover_quads);
+    /* The cover's device time (timings: they vary run to run): its
+     * batches' wall seconds, then per tier (first launch, large slices,
+     * hand-off) the seconds its kernels ran on the device, launches and
+     * tasks; the rest of cover_device_s is transfers and host work between
+     * launches. */
+    vb_stat_real(fs, "cover_device_s", "%.6f", s->t_cover_device);
+    static const char *const tier[4][3] = {
+        {"cover_kernel_first_s", "cover_launches_first", "cover_tasks_first"},
+        {"cover_kernel_large_s", "cover_launches_large", "cover_tasks_large"},
+        {"cover_kernel_handoff_s", "cover_launches_handoff", "cover_tasks_handoff"},
+        {"cover_kernel_huge_s", "cover_launches_huge", "cover_tasks_huge"}};
+    for (int i = 0; i < 4; i++) {
+        vb_stat_real(fs, tier[i][0], "%.6f", s->cover_kernel_s[i]);
+        vb_stat_uint(fs, tier[i][1], s->cover_launches[i]);
+        vb_stat_uint(fs, tier[i][2], s->cover_tasks[i]);
+    }
     /* The device buffers the proposer held at once (vbg_buffer.h; 0 on the
      * host), without what the OpenCL driver keeps for itself. */
-    fprintf(f, "device_bytes_peak\t%llu\n", (unsigned long long)s->device_bytes_peak);
+    vb_stat_uint(fs, "device_bytes_peak", s->device_bytes_peak);
     /* The certification beside the proposer (timings: they vary run to
      * run): parts certified while the cover went on, the seconds of that
      * overlap, and the seconds certification took after the proposer. */
-    fprintf(f, "certify_parts\t%zu\ncertify_overlap_s\t%.6f\ncertify_after_s\t%.6f\n",
-            r->certify_parts, r->t_certify_overlap, r->t_certify);
+    vb_stat_uint(fs, "certify_parts", r->certify_parts);
+    vb_stat_real(fs, "certify_overlap_s", "%.6f", r->t_certify_overlap);
+    vb_stat_real(fs, "certify_after_s", "%.6f", r->t_certify);
     /* The run's own clock (wall seconds): the device set-up on its thread,
      * the time the proposer waited for it, the proposer's call (that wait
      * included), the whole run up to the certified list (set-up, proposer,
      * certification), then closing the device. */
-    fprintf(f, "setup_s\t%.6f\nsetup_wait_s\t%.6f\npropose_s\t%.6f\nrun_s\t%.6f\nrelease_s\t%.6f\n",
-            r->t_setup, r->t_setup_wait, r->t_propose, r->t_total, r->t_release);
+    vb_stat_real(fs, "setup_s", "%.6f", r->t_setup);
+    vb_stat_real(fs, "setup_wait_s", "%.6f", r->t_setup_wait);
+    vb_stat_real(fs, "propose_s", "%.6f", r->t_propose);
+    vb_stat_real(fs, "run_s", "%.6f", r->t_total);
+    vb_stat_real(fs, "release_s", "%.6f", r->t_release);
     /* The certification filter before the certifier (vb_cert_filter.h):
      * roots it decided (vertex, not a vertex), roots it sent to the host's
      * exact stage, and its seconds (wall, summed over the parts; zero
      * counters when VORBALL_DEVICE_CERT=0). */
-    fprintf(f, "judged_vertex\t%llu\njudged_not\t%llu\njudged_open\t%llu\njudge_s\t%.6f\n",
-            (unsigned long long)st->judged_vertex, (unsigned long long)st->judged_not,
-            (unsigned long long)st->judged_open, s->t_cert_filter);
+    vb_stat_uint(fs, "judged_vertex", st->judged_vertex);
+    vb_stat_uint(fs, "judged_not", st->judged_not);
+    vb_stat_uint(fs, "judged_open", st->judged_open);
+    vb_stat_real(fs, "judge_s", "%.6f", s->t_cert_filter);
+}
+
+void vb_vertices_write_stats(vb_ctx *ctx, FILE *f, const vb_vertices_result *r)
+{
+    vb_stat_fields fs;
+    fs.n = 0;
+    vb_vertices_stats(ctx, r, &fs);
+    vb_stat_fields_write(f, &fs, 0);
 }

@@ -109,9 +109,10 @@ static int trace_path(analysis *W, worker *K, size_t c, int kind, int *through, 
         vbc_sweep(A, mem, m, a, 0);
         b = vbc_farthest(A, mem, m);
     }
-    /* The centreline: the cheapest (widest) way from a to b. */
+    /* The centreline: the cheapest (widest) way from a to b (the sweep
+     * stops at b: only b's path is read). */
     if (!W->paths)
-        vbc_sweep(A, mem, m, a, 1);
+        vbc_sweep_to(A, mem, m, a, 1, b);
     *np = 0;
     for (uint32_t q = b; q != UINT32_MAX; q = A->pred[q]) {
         if (VB_ARRAY_FIT(K->path, K->pathcap, *np + 1, 64) != VB_OK)

@@ -3,8 +3,8 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "vb_parallel.h"
 #include "vbc_graph.h"
+#include "vbc_radix.h"
 
 /* A pair of openings counts as "through" the molecule when they are at
  * least this fraction of the molecule's width apart along the line joining
@@ -12,17 +12,24 @@
  * vestibule or of one groove. */
 #define THROUGH_RATIO 0.6
 
-/* Width of the molecule along unit vector u, from its support atoms. */
-static double width_along(const vbc_graph *A, const double u[3])
+/* Whether the molecule is wider along unit vector u than d / THROUGH_RATIO,
+ * i.e. whether THROUGH_RATIO * width > d for its width from the support
+ * atoms. The width only grows atom by atom (and the product with it), so
+ * the walk stops at the first atom that settles it: the same answer as
+ * the whole width's, at a fraction of the atoms for most pairs. */
+static int wider_than(const vbc_graph *A, const double u[3], double d)
 {
     double lo = INFINITY, hi = -INFINITY;
     for (size_t t = 0; t < A->nsupport; t++) {
         int32_t i = A->support[t];
         double c = A->s->x[i] * u[0] + A->s->y[i] * u[1] + A->s->z[i] * u[2];
-        lo = fmin(lo, c - A->s->r[i]);
-        hi = fmax(hi, c + A->s->r[i]);
+        /* fmin/fmax on finite values, without their libm calls. */
+        lo = c - A->s->r[i] < lo ? c - A->s->r[i] : lo;
+        hi = c + A->s->r[i] > hi ? c + A->s->r[i] : hi;
+        if (THROUGH_RATIO * (hi - lo) > d)
+            return 1;
     }
-    return hi - lo;
+    return 0;
 }
 
 static int through_pair(const vbc_graph *A, uint32_t ra, uint32_t rb)
@@ -36,20 +43,23 @@ static int through_pair(const vbc_graph *A, uint32_t ra, uint32_t rb)
         return 0;
     for (int k = 0; k < 3; k++)
         u[k] = (pb[k] - pa[k]) / d;
-    return d >= THROUGH_RATIO * width_along(A, u);
+    return !wider_than(A, u, d);
 }
 
-typedef struct {
-    double c;
-    uint32_t pos;
-} by_clear;
-
-static int cmp_by_clear(const void *x, const void *y)
+/* The members in Kruskal's order, (clearance descending, position
+ * ascending), into order[0..m): a radix sort on the clearance's bits over
+ * members (ascending positions), so ties keep their positions' order.
+ * key holds 2 m keys and order 2 m positions (the second halves scratch).
+ * Clearances are never NaN (distances to atoms; given ones are finite
+ * floats). */
+static void kruskal_order(const vbc_graph *A, const uint32_t *members, size_t m, uint64_t *key,
+                          uint32_t *order)
 {
-    const by_clear *a = x, *b = y;
-    if (a->c != b->c)
-        return a->c < b->c ? 1 : -1;
-    return (a->pos > b->pos) - (a->pos < b->pos);
+    for (size_t t = 0; t < m; t++) {
+        key[t] = vbc_radix_desc(A->clear[members[t]]);
+        order[t] = members[t];
+    }
+    vbc_radix_sort(key, order, key + m, order + m, m, 0);
 }
 
 /* The widest pair of openings that lies through the molecule: voxels enter by
@@ -60,18 +70,17 @@ static int cmp_by_clear(const void *x, const void *y)
 static int widest_through(vbc_graph *A, vb_uf *uf, const uint32_t *members, size_t m,
                           const uint32_t *reps, size_t k, uint32_t *a, uint32_t *b)
 {
-    by_clear *S = malloc(m * sizeof *S);
+    uint64_t *key = malloc(2 * m * sizeof *key);
+    uint32_t *S = malloc(2 * m * sizeof *S);
     uint32_t *head = malloc(m * sizeof *head), *tail = malloc(m * sizeof *tail);
     uint32_t *next = malloc(k * sizeof *next);
     int found = 0;
-    if (!S || !head || !tail || !next) {
+    if (!key || !S || !head || !tail || !next) {
         found = -1;
         goto out;
     }
     /* Positions are global; index the scratch by order in `members` via pred. */
     for (size_t t = 0; t < m; t++) {
-        S[t].c = A->clear[members[t]];
-        S[t].pos = members[t];
         A->pred[members[t]] = (uint32_t)t;   /* local index */
         A->hpos[members[t]] = 0;             /* not yet added */
         head[t] = tail[t] = UINT32_MAX;
@@ -82,12 +91,9 @@ static int widest_through(vbc_graph *A, vb_uf *uf, const uint32_t *members, size
         next[r] = UINT32_MAX;
     }
     /* A total order (ties by position): the same on any number of threads. */
-    if (vb_psort(S, m, sizeof *S, cmp_by_clear, vb_threads(0)) != VB_OK) {
-        found = -1;
-        goto out;
-    }
+    kruskal_order(A, members, m, key, S);
     for (size_t t = 0; t < m && !found; t++) {
-        uint32_t u = S[t].pos;
+        uint32_t u = S[t];
         A->hpos[u] = 1;
         uf->p[u] = u;
         for (size_t e = A->adj_start[u]; e < A->adj_start[u + 1] && !found; e++) {
@@ -119,6 +125,7 @@ static int widest_through(vbc_graph *A, vb_uf *uf, const uint32_t *members, size
         }
     }
 out:
+    free(key);
     free(S);
     free(head);
     free(tail);

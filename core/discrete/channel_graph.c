@@ -2,6 +2,7 @@
  * lengths, or lengths weighted by 1/clearance^2) and voxel geometry. */
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "channel_paths_math.h"
 #include "vbc_graph.h"
@@ -45,12 +46,15 @@ static void heap_down(vbc_graph *A, size_t i)
 }
 
 /* Dijkstra over the 26-connected voxel graph of one component (members[0..m))
- * from list position src; fills dist/pred for the members. Steps cost
- * vbc_path_step (channel_paths_math.h): their length, or weighted that
- * length / r^2 with r the smaller clearance of the two voxels, so the
- * cheapest path keeps to the widest way through (the cost CAVER-style tools
- * minimise). */
-void vbc_sweep(vbc_graph *A, const uint32_t *members, size_t m, uint32_t src, int weighted)
+ * from list position src on a binary heap in (distance, position) order;
+ * fills dist/pred for the members. Steps cost vbc_path_step
+ * (channel_paths_math.h): their length, or weighted that length / r^2 with
+ * r the smaller clearance of the two voxels, so the cheapest path keeps to
+ * the widest way through (the cost CAVER-style tools minimise). The
+ * definition of vbc_sweep's bytes; radix_sweep gives them faster where
+ * every step grows the cost. */
+static void heap_sweep(vbc_graph *A, const uint32_t *members, size_t m, uint32_t src, int weighted,
+                       uint32_t target)
 {
     for (size_t t = 0; t < m; t++) {
         A->dist[members[t]] = INFINITY;
@@ -66,6 +70,8 @@ void vbc_sweep(vbc_graph *A, const uint32_t *members, size_t m, uint32_t src, in
         heap_swap(A, 0, A->heapn - 1);
         A->heapn--;
         A->hpos[u] = UINT32_MAX - 1; /* settled */
+        if (u == target)
+            return;
         heap_down(A, 0);
         for (size_t e = A->adj_start[u]; e < A->adj_start[u + 1]; e++) {
             uint32_t q = A->adj[e];
@@ -83,6 +89,156 @@ void vbc_sweep(vbc_graph *A, const uint32_t *members, size_t m, uint32_t src, in
             }
         }
     }
+}
+
+/* The radix heap's states in hpos (positions are below 2^30): */
+#define RH_OUT UINT32_MAX           /* never queued */
+#define RH_DONE (UINT32_MAX - 1)    /* settled */
+#define RH_HEAD 0x80000000u         /* | b: first of bucket b; else the previous entry */
+#define RH_BUCKETS 65
+
+static uint64_t key_of(double d)
+{
+    uint64_t k;
+    memcpy(&k, &d, sizeof k);
+    return k; /* d >= 0: the bits order as the values */
+}
+
+/* The bucket of key k while the last key taken is `last` (k >= last): 0
+ * for k == last, else one past the highest bit where they differ. */
+static int bucket_of(uint64_t k, uint64_t last)
+{
+    return k == last ? 0 : 64 - __builtin_clzll(k ^ last);
+}
+
+typedef struct {
+    uint32_t first[RH_BUCKETS];
+    uint64_t last;
+} radix_heap;
+
+static void rh_push(vbc_graph *A, radix_heap *H, uint32_t q)
+{
+    int b = bucket_of(key_of(A->dist[q]), H->last);
+    uint32_t f = H->first[b];
+    A->heap[q] = f; /* next, by position */
+    if (f != RH_OUT)
+        A->hpos[f] = q;
+    A->hpos[q] = RH_HEAD | (uint32_t)b;
+    H->first[b] = q;
+}
+
+static void rh_unlink(vbc_graph *A, radix_heap *H, uint32_t q)
+{
+    uint32_t p = A->hpos[q], nx = A->heap[q];
+    if (p & RH_HEAD)
+        H->first[p & ~RH_HEAD] = nx;
+    else
+        A->heap[p] = nx;
+    if (nx != RH_OUT)
+        A->hpos[nx] = p;
+}
+
+/* The entry of least distance (any of a tie), or RH_OUT when empty. */
+static uint32_t rh_pop(vbc_graph *A, radix_heap *H)
+{
+    if (H->first[0] == RH_OUT) {
+        int b = 1;
+        while (b < RH_BUCKETS && H->first[b] == RH_OUT)
+            b++;
+        if (b == RH_BUCKETS)
+            return RH_OUT;
+        uint64_t lo = UINT64_MAX;
+        for (uint32_t q = H->first[b]; q != RH_OUT; q = A->heap[q])
+            lo = key_of(A->dist[q]) < lo ? key_of(A->dist[q]) : lo;
+        /* Every key of bucket b shares its bits above b - 1 with the old
+         * last and differs from lo below: each moves to a lower bucket. */
+        H->last = lo;
+        uint32_t q = H->first[b];
+        H->first[b] = RH_OUT;
+        while (q != RH_OUT) {
+            uint32_t nx = A->heap[q];
+            rh_push(A, H, q);
+            q = nx;
+        }
+    }
+    uint32_t u = H->first[0];
+    rh_unlink(A, H, u);
+    return u;
+}
+
+/* Dijkstra on a radix heap over the bits of the distances (they come out
+ * nondecreasing), ties taken in any order and pred[q] kept by
+ * vbc_path_pred_before: the smallest (distance, position) among the
+ * neighbours that reach q at its distance, the voxel heap_sweep settles
+ * first among them (vbc_paths.h). That holds while every step taken grows
+ * the cost, fl(d + step) > d: then no voxel settles at the distance of one
+ * that reaches it. Returns 1, or 0 when a step did not grow a cost (a
+ * clearance past 2^26 of the floor, or a path cost near 2^52 steps): the
+ * caller sweeps on the binary heap instead. */
+static int radix_sweep(vbc_graph *A, const uint32_t *members, size_t m, uint32_t src, int weighted,
+                       uint32_t target)
+{
+    radix_heap H;
+    for (int b = 0; b < RH_BUCKETS; b++)
+        H.first[b] = RH_OUT;
+    H.last = 0;
+    for (size_t t = 0; t < m; t++) {
+        A->dist[members[t]] = INFINITY;
+        A->pred[members[t]] = UINT32_MAX;
+        A->hpos[members[t]] = RH_OUT;
+    }
+    A->dist[src] = 0.0;
+    rh_push(A, &H, src);
+    for (uint32_t u; (u = rh_pop(A, &H)) != RH_OUT;) {
+        double du = A->dist[u];
+        A->hpos[u] = RH_DONE;
+        if (u == target)
+            return 1;
+        for (size_t e = A->adj_start[u]; e < A->adj_start[u + 1]; e++) {
+            uint32_t q = A->adj[e];
+            uint32_t hq = A->hpos[q];
+            if (hq == RH_DONE)
+                continue;
+            double nd = du + vbc_path_step(A->adj_len[e], A->clear[u], A->clear[q], weighted);
+            if (!(nd > du))
+                return 0;
+            if (nd < A->dist[q]) {
+                A->dist[q] = nd;
+                A->pred[q] = u;
+                if (hq != RH_OUT)
+                    rh_unlink(A, &H, q);
+                rh_push(A, &H, q);
+            } else if (nd == A->dist[q] &&
+                       vbc_path_pred_before(du, u, A->dist[A->pred[q]], A->pred[q])) {
+                A->pred[q] = u;
+            }
+        }
+    }
+    return 1;
+}
+
+/* Dijkstra from src over component members[0..m) (vbc_graph.h): the radix
+ * heap's sweep, or the binary heap's where it cannot vouch for the bytes;
+ * both stop once target is settled (UINT32_MAX: never). */
+static void sweep_until(vbc_graph *A, const uint32_t *members, size_t m, uint32_t src, int weighted,
+                        uint32_t target)
+{
+    if (!radix_sweep(A, members, m, src, weighted, target))
+        heap_sweep(A, members, m, src, weighted, target);
+}
+
+void vbc_sweep(vbc_graph *A, const uint32_t *members, size_t m, uint32_t src, int weighted)
+{
+    sweep_until(A, members, m, src, weighted, UINT32_MAX);
+}
+
+/* vbc_sweep stopped once target is settled: every voxel settled before it
+ * (its path's among them) has its final distance and predecessor, for a
+ * voxel's predecessor never changes after it settles. */
+void vbc_sweep_to(vbc_graph *A, const uint32_t *members, size_t m, uint32_t src, int weighted,
+                  uint32_t target)
+{
+    sweep_until(A, members, m, src, weighted, target);
 }
 
 /* The member farthest from the last sweep's source (ties to the lowest position). */

@@ -25,7 +25,14 @@ VB_SHARED_FN double vbc_path_step(int len, double cu, double cq, int weighted)
 {
     double step = len == 1 ? 1.0 : len == 2 ? 1.4142135623730951 : 1.7320508075688772;
     if (weighted) {
-        double r = fmax(fmin(cu, cq), VBC_PATH_MIN_CLEAR);
+        /* fmax(fmin(cu, cq), VBC_PATH_MIN_CLEAR) written as comparisons:
+         * the same r for every input, NaN included (fmin takes the other
+         * operand, fmax the floor; of two equal zeros the sign is lost in
+         * the floor), but without the libm calls that C compilers must
+         * emit for fmin/fmax when NaN and signed zeros are honoured (perf:
+         * most of a sweep's own time on the host). */
+        double lo = cu < cq || cq != cq ? cu : cq;
+        double r = lo > VBC_PATH_MIN_CLEAR ? lo : VBC_PATH_MIN_CLEAR;
         step /= r * r;
     }
     return step;

@@ -268,6 +268,19 @@ static int pore_job_join(vb_ctx *ctx, vbc_run_out *o)
     return rc;
 }
 
+/* Test knob: VORBALL_TEST_FAIL_FRAME=N fails the analysis of frame N (E6,
+ * "failure injected"), where the sequential loop and the frames in
+ * analysis at once both run it, so that their failures can be compared. */
+static int analysis_fault(vb_ctx *ctx, long index)
+{
+    const char *e = getenv("VORBALL_TEST_FAIL_FRAME");
+    char *end;
+    if (!e || !*e || strtol(e, &end, 10) != index || *end)
+        return VB_OK;
+    return vb_error(ctx, VB_EINTERNAL, NULL, 0,
+                    "failure injected in the analysis of frame %ld (VORBALL_TEST_FAIL_FRAME)", index);
+}
+
 /* The pipeline `repeat` times (the first run's masks already made when
  * o->masked, its analysis when o->analysed, its pore stage running in
  * o->pore), the per-run mean timings in o->fi. */
@@ -280,11 +293,13 @@ static int frame_repeat(vb_ctx *ctx, vbc_run *r, vbc_run_out *o)
     vbc_pore_request req;
     membrane_options(A, o, &opt, &req);
     for (int k = 0; k < A->repeat && rc == VB_OK; k++) {
-        int pored = k == 0 && o->pore;
-        if (pored)
+        int pored = k == 0 && (o->pore || o->pored);
+        if (k == 0 && o->pore)
             rc = pore_job_join(ctx, o);
         if (rc == VB_OK && (k > 0 || !o->masked))
             rc = vbc_frame_masks(ctx, r->pipe, &o->g, o->s, A->probe, o->want, &A->opt, &o->F);
+        if (rc == VB_OK && k == 0 && !o->analysed)
+            rc = analysis_fault(ctx, o->fi.frame);
         if (rc == VB_OK && (k > 0 || !o->analysed))
             rc = vbc_frame_components(ctx, o->s, &opt, &o->F);
         if (rc == VB_OK && (k > 0 || !pored))
@@ -334,7 +349,7 @@ void vbc_run_frame_done(vbc_run *r, int first, vbc_run_out *o)
 }
 
 int vbc_run_front(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index, int model,
-                  int first, int masks, vbc_run_out *o)
+                  int first, int mode, vbc_run_out *o)
 {
     const vbc_channels_config *A = r->cfg;
     memset(o, 0, sizeof *o);
@@ -350,20 +365,44 @@ int vbc_run_front(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index, 
     o->fi.atoms = o->s->n;
     o->fi.ms_prepare = 1e3 * (vb_now() - t0);
     o->first = first;
-    if (!masks)
+    if (mode == VBC_FRONT_PREPARE)
         return VB_OK;
     rc = vbc_frame_masks(ctx, r->pipe, &o->g, o->s, A->probe, o->want, &A->opt, &o->F);
     /* The analysis reads no pore axis (the back half's): it runs here too,
      * so on the reader's thread it overlaps the pore stage of the frames before. */
-    if (rc == VB_OK)
+    if (rc == VB_OK && mode == VBC_FRONT_ANALYSE)
         rc = vbc_frame_components(ctx, o->s, &A->opt, &o->F);
     if (rc != VB_OK) {
         vbc_run_front_drop(o);
         return rc;
     }
-    o->masked = o->analysed = 1;
-    pore_job_start(ctx, r, o);
+    o->masked = 1;
+    if (mode == VBC_FRONT_ANALYSE) {
+        o->analysed = 1;
+        pore_job_start(ctx, r, o);
+    }
     return VB_OK;
+}
+
+int vbc_run_analyse(vb_ctx *ctx, vbc_run *r, vbc_run_out *o)
+{
+    int rc = VB_OK;
+    if (!o->masked)
+        return VB_OK;
+    if (!o->analysed) {
+        if ((rc = analysis_fault(ctx, o->fi.frame)) != VB_OK ||
+            (rc = vbc_frame_components(ctx, o->s, &r->cfg->opt, &o->F)) != VB_OK)
+            return rc;
+        o->analysed = 1;
+    }
+    if (!o->pore && !o->pored && atomic_load(&r->pore_fixed)) {
+        vbc_options opt;
+        vbc_pore_request req;
+        membrane_options(r->cfg, o, &opt, &req);
+        if ((rc = vbc_frame_pore(ctx, o->s, &opt, &o->F)) == VB_OK)
+            o->pored = 1;
+    }
+    return rc;
 }
 
 /* Drops what a front half holds (a run stopped before its back half). */

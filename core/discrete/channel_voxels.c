@@ -8,6 +8,7 @@
 
 #include "vb_array.h"
 #include "vb_parallel.h"
+#include "vbc_radix.h"
 #include "vbc_voxels.h"
 
 void vbc_analysis_free(analysis *W)
@@ -62,30 +63,6 @@ int vbc_analysis_alloc(analysis *W)
                : -1;
 }
 
-/* Sorts key[0..n) by bits 32 and up (distinct voxel indices below 2^31),
- * least significant digit first, 11 bits a pass, as many passes as the
- * largest index needs; tmp holds n keys. Linear where the comparison
- * sort was n log n, and the one order on any number of threads. */
-#define DIGIT_BITS 11
-
-static void sort_by_index(uint64_t *key, uint64_t *tmp, size_t n)
-{
-    uint64_t top = 0;
-    for (size_t t = 0; t < n; t++)
-        top |= key[t] >> 32;
-    for (int sh = 32; sh < 64 && (top >> (sh - 32)) != 0; sh += DIGIT_BITS) {
-        size_t cnt[(1u << DIGIT_BITS) + 1];
-        memset(cnt, 0, sizeof cnt);
-        for (size_t t = 0; t < n; t++)
-            cnt[((key[t] >> sh) & ((1u << DIGIT_BITS) - 1)) + 1]++;
-        for (size_t d = 0; d < (1u << DIGIT_BITS); d++)
-            cnt[d + 1] += cnt[d];
-        for (size_t t = 0; t < n; t++)
-            tmp[cnt[(key[t] >> sh) & ((1u << DIGIT_BITS) - 1)]++] = key[t];
-        memcpy(key, tmp, n * sizeof *key);
-    }
-}
-
 /* The voxels in increasing index order (with their given clearances, when
  * vclear is not NULL, and labels, when comp is not NULL), the mouth bit
  * split off, each its own union-find root. Returns 0, or -1 when out of
@@ -102,7 +79,7 @@ int vbc_voxels_load(analysis *W, const uint32_t *vox, const float *vclear,
         return -1;
     for (size_t t = 0; t < nvox; t++)
         key[t] = ((uint64_t)(vox[t] & ~VBC_MOUTH_BIT) << 32) | (uint64_t)t;
-    sort_by_index(key, key + nvox, nvox);
+    vbc_radix_sort(key, NULL, key + nvox, NULL, nvox, 32);
     for (size_t t = 0; t < nvox; t++) {
         size_t from = (size_t)(key[t] & 0xffffffffu);
         W->sorted[t] = vox[from];
@@ -125,13 +102,14 @@ int vbc_voxels_load(analysis *W, const uint32_t *vox, const float *vclear,
 }
 
 /* One slice [lo, hi) of the voxel list linked (vbc_voxels_link): its edges
- * in adj (slice 0 writes W->A.adj itself), the degree of position t in
- * W->A.adj_start[t + 1]. */
+ * in adj and their step length codes in len (slice 0's become W->A's),
+ * the degree of position t in W->A.adj_start[t + 1]. */
 typedef struct {
     analysis *W;
     size_t lo, hi;
     uint32_t *adj;
-    size_t ne, cap;
+    uint8_t *len;
+    size_t ne, cap, lcap;
     int failed, bad;
 } link_job;
 
@@ -149,60 +127,112 @@ static size_t lower_bound(const uint32_t *sorted, size_t n, int64_t x)
     return lo;
 }
 
-/* The list is sorted, so the neighbours of voxel v in the row at offset
- * o = dy*nx + dz*nx*ny lie at v + o - 1 .. v + o + 1, and a cursor per row
- * offset only ever moves forward: a slice costs a linear merge after one
- * binary search per row for its start. */
+#define NO_VOXEL UINT32_MAX
+
+/* Three z-planes of the grid, each (nx + 2) (ny + 2) entries with a border
+ * of one, that hold the list position of every listed voxel of their
+ * slab and NO_VOXEL elsewhere: slab s in plane (s + 1) % 3, so slabs k - 1,
+ * k, k + 1 sit side by side while slab k links, and a plane is refilled as
+ * the slab below leaves. Neighbours are then 26 loads at fixed offsets. */
+typedef struct {
+    uint32_t *plane[3];
+    size_t row;                  /* nx + 2 */
+} slab_planes;
+
+/* Voxels of slab k of the list: positions [*a, *b). */
+static void slab_range(const analysis *W, int64_t k, size_t *a, size_t *b)
+{
+    size_t nxy = (size_t)W->g->nx * (size_t)W->g->ny;
+    *a = lower_bound(W->sorted, W->nvox, k * (int64_t)nxy);
+    *b = lower_bound(W->sorted, W->nvox, (k + 1) * (int64_t)nxy);
+}
+
+/* Writes the positions of slab k into its plane (set) or clears them. */
+static void slab_mark(const analysis *W, slab_planes *P, int64_t k, int set)
+{
+    if (k < 0 || k >= W->g->nz)
+        return;
+    size_t a, b, nx = (size_t)W->g->nx, nxy = nx * (size_t)W->g->ny;
+    uint32_t *pl = P->plane[(k + 1) % 3];
+    slab_range(W, k, &a, &b);
+    for (size_t t = a; t < b; t++) {
+        size_t in = W->sorted[t] - (size_t)k * nxy;
+        pl[(in % nx + 1) + (in / nx + 1) * P->row] = set ? (uint32_t)t : NO_VOXEL;
+    }
+}
+
+/* The 26 neighbours of slice [lo, hi) by direct loads from the planes, in
+ * increasing position order (dz, dy, dx), written unconditionally and
+ * kept where a voxel is there; room for 26 more edges is made once a
+ * slab. */
 static void *link_slice(void *arg)
 {
     link_job *J = arg;
     analysis *W = J->W;
     const vbc_grid *g = W->g;
     const uint32_t *sorted = W->sorted;
-    size_t nvox = W->nvox, nxy = (size_t)g->nx * (size_t)g->ny;
-    size_t cursor[9];
+    size_t nx = (size_t)g->nx, nxy = nx * (size_t)g->ny;
     if (J->lo >= J->hi)
         return NULL;
+    slab_planes P;
+    P.row = nx + 2;
+    size_t psize = P.row * ((size_t)g->ny + 2);
+    uint32_t *mem = malloc(3 * psize * sizeof *mem);
+    if (!mem) {
+        J->failed = 1;
+        return NULL;
+    }
+    memset(mem, 0xff, 3 * psize * sizeof *mem); /* NO_VOXEL */
+    for (int p = 0; p < 3; p++)
+        P.plane[p] = mem + (size_t)p * psize;
+    ptrdiff_t off[26];
+    uint8_t len[26], dzp[26];
+    int n = 0;
     for (int dz = -1; dz <= 1; dz++)
         for (int dy = -1; dy <= 1; dy++)
-            cursor[(dz + 1) * 3 + dy + 1] =
-                lower_bound(sorted, nvox, (int64_t)sorted[J->lo] + (int64_t)dy * g->nx +
-                                              (int64_t)dz * (int64_t)nxy - 1);
-    for (size_t t = J->lo; t < J->hi; t++) {
-        size_t e0 = J->ne;
-        uint32_t v = sorted[t];
-        int i = (int)(v % (uint32_t)g->nx), j = (int)((v / (uint32_t)g->nx) % (uint32_t)g->ny);
-        int k = (int)(v / nxy);
-        if (VB_ARRAY_FIT(J->adj, J->cap, J->ne + 26, 64) != VB_OK) {
-            J->failed = 1;
-            return NULL;
-        }
-        for (int dz = -1; dz <= 1; dz++)
-            for (int dy = -1; dy <= 1; dy++) {
-                size_t *cur = &cursor[(dz + 1) * 3 + dy + 1];
-                int jj = j + dy, kk = k + dz;
-                int64_t base = (int64_t)v + (int64_t)dy * g->nx + (int64_t)dz * (int64_t)nxy;
-                while (*cur < nvox && (int64_t)sorted[*cur] < base - 1)
-                    (*cur)++;
-                if (jj < 0 || kk < 0 || jj >= g->ny || kk >= g->nz)
-                    continue;
-                size_t q = *cur;
-                for (int dx = -1; dx <= 1; dx++) {
-                    int ii = i + dx;
-                    int64_t target = base + dx;
-                    while (q < nvox && (int64_t)sorted[q] < target)
-                        q++;
-                    if ((dx | dy | dz) == 0 || ii < 0 || ii >= g->nx || q >= nvox ||
-                        (int64_t)sorted[q] != target)
-                        continue;
-                    /* The step length code rides in the top two bits until the split below. */
-                    J->adj[J->ne++] = (uint32_t)q | ((uint32_t)(abs(dx) + abs(dy) + abs(dz)) << 30);
-                    if (q > t && W->vcomp && W->vcomp[t] != W->vcomp[q])
-                        J->bad = 1;
+            for (int dx = -1; dx <= 1; dx++)
+                if (dx | dy | dz) {
+                    off[n] = (ptrdiff_t)dy * (ptrdiff_t)P.row + dx;
+                    len[n] = (uint8_t)(abs(dx) + abs(dy) + abs(dz));
+                    dzp[n++] = (uint8_t)(dz + 1);
                 }
+    int64_t k0 = (int64_t)(sorted[J->lo] / nxy), k1 = (int64_t)(sorted[J->hi - 1] / nxy);
+    slab_mark(W, &P, k0 - 1, 1);
+    slab_mark(W, &P, k0, 1);
+    size_t t = J->lo;
+    for (int64_t k = k0; k <= k1; k++) {
+        slab_mark(W, &P, k - 2, 0);
+        slab_mark(W, &P, k + 1, 1);
+        const uint32_t *pz[3] = {P.plane[k % 3], P.plane[(k + 1) % 3], P.plane[(k + 2) % 3]};
+        size_t a, b;
+        slab_range(W, k, &a, &b);
+        if (b > J->hi)
+            b = J->hi;
+        if (VB_ARRAY_FIT(J->adj, J->cap, J->ne + 26 * (b - t), 64) != VB_OK ||
+            VB_ARRAY_FIT(J->len, J->lcap, J->ne + 26 * (b - t), 64) != VB_OK) {
+            J->failed = 1;
+            break;
+        }
+        uint32_t *adj = J->adj;
+        uint8_t *el = J->len;
+        for (; t < b; t++) {
+            size_t e0 = J->ne, ne = J->ne, in = sorted[t] - (size_t)k * nxy;
+            ptrdiff_t c = (ptrdiff_t)((in % nx + 1) + (in / nx + 1) * P.row);
+            for (int e = 0; e < 26; e++) {
+                uint32_t q = pz[dzp[e]][c + off[e]];
+                adj[ne] = q;
+                el[ne] = len[e];
+                ne += q != NO_VOXEL;
             }
-        W->A.adj_start[t + 1] = J->ne - e0;
+            if (W->vcomp)
+                for (size_t e = e0; e < ne; e++)
+                    if (adj[e] > t && W->vcomp[t] != W->vcomp[adj[e]])
+                        J->bad = 1;
+            J->ne = ne;
+            W->A.adj_start[t + 1] = ne - e0;
+        }
     }
+    free(mem);
     return NULL;
 }
 
@@ -215,7 +245,7 @@ static void *link_slice(void *arg)
 int vbc_voxels_link(analysis *W)
 {
     vbc_graph *A = &W->A;
-    size_t nvox = W->nvox, adjcap = 0;
+    size_t nvox = W->nvox, adjcap = 0, lencap = 0;
     int nt = vb_threads(0), failed = 0;
     /* Slices of at least 4096 voxels: below, a thread costs more than it saves. */
     if ((size_t)nt > nvox / 4096)
@@ -223,7 +253,7 @@ int vbc_voxels_link(analysis *W)
     link_job jobs[VB_MAX_THREADS];
     for (int t = 0; t < nt; t++)
         jobs[t] = (link_job){W, nvox * (size_t)t / (size_t)nt, nvox * (size_t)(t + 1) / (size_t)nt,
-                             NULL, 0, 0, 0, 0};
+                             NULL, NULL, 0, 0, 0, 0, 0};
     vb_run_jobs(link_slice, jobs, sizeof *jobs, nt);
     size_t ne = 0;
     for (int t = 0; t < nt; t++) {
@@ -233,30 +263,31 @@ int vbc_voxels_link(analysis *W)
     }
     if (!failed) {
         A->adj = jobs[0].adj;
+        A->adj_len = jobs[0].len;
         adjcap = jobs[0].cap;
+        lencap = jobs[0].lcap;
         jobs[0].adj = NULL;
-        failed = VB_ARRAY_FIT(A->adj, adjcap, ne ? ne : 1, 64) != VB_OK;
+        jobs[0].len = NULL;
+        failed = VB_ARRAY_FIT(A->adj, adjcap, ne ? ne : 1, 64) != VB_OK ||
+                 VB_ARRAY_FIT(A->adj_len, lencap, ne ? ne : 1, 64) != VB_OK;
     }
     size_t at = jobs[0].ne;
     for (int t = 1; t < nt; t++) {
-        if (!failed)
+        if (!failed) {
             memcpy(A->adj + at, jobs[t].adj, jobs[t].ne * sizeof *A->adj);
+            memcpy(A->adj_len + at, jobs[t].len, jobs[t].ne);
+        }
         at += jobs[t].ne;
         free(jobs[t].adj);
+        free(jobs[t].len);
     }
     free(jobs[0].adj);
+    free(jobs[0].len);
     if (failed)
         return -1;
     A->adj_start[0] = 0;
     for (size_t t = 0; t < nvox; t++)
         A->adj_start[t + 1] += A->adj_start[t];
-    A->adj_len = malloc(ne ? ne : 1);
-    if (!A->adj_len)
-        return -1;
-    for (size_t e = 0; e < ne; e++) {
-        A->adj_len[e] = (uint8_t)(A->adj[e] >> 30);
-        A->adj[e] &= 0x3fffffffu;
-    }
     if (!W->vcomp)
         for (size_t t = 0; t < nvox; t++)
             for (size_t e = A->adj_start[t]; e < A->adj_start[t + 1]; e++)

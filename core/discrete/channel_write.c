@@ -307,6 +307,15 @@ void vbc_write_json_end(FILE *f)
     fprintf(f, "\n  ]\n}\n");
 }
 
+void vbc_write_json_end_clock(FILE *f, long frames, double wall_ms, double cpu_ms)
+{
+    const double clock[] = {(double)frames, wall_ms, wall_ms > 0.0 ? 1e3 * (double)frames / wall_ms : 0.0,
+                            cpu_ms, frames > 0 ? cpu_ms / (double)frames : 0.0};
+    fputs("\n  ],\n", f);
+    json_clock(f, "  \"clock\": {", VBC_JSON_RUN_CLOCK_KEYS, clock);
+    fputs("\n}\n", f);
+}
+
 /* Atom name of point u of a residue: "Q" (HOLE's letter for its sphere
  * centres) and three base-36 digits (unique for 46,656 points), so every
  * point has its own name in the residue as strict PDB readers demand. The

@@ -340,6 +340,14 @@ void vbc_write_json_begin_prov(FILE *f, const char *options, const char *input, 
                                int n, const char *device);
 void vbc_write_json_frame(FILE *f, int first, const vbc_frame_info *fi, const vbc_grid *g,
                           const vb_sphere_set *s, const vbc_result *res);
+/* The end of a run's JSON with its clock over every frame: after the
+ * frames, "clock" (VBC_JSON_RUN_CLOCK_KEYS: frames, wall = ms from the
+ * first frame's reading to the end of the last one's writing, fps = frames
+ * per second on that clock (the whole run, reading included), cpu = the
+ * process's CPU ms over it, cpu_per_frame). On one line, so that a filter
+ * of "clock" lines drops it. */
+#define VBC_JSON_RUN_CLOCK_KEYS "frames wall fps cpu cpu_per_frame"
+void vbc_write_json_end_clock(FILE *f, long frames, double wall_ms, double cpu_ms);
 void vbc_write_json_end(FILE *f);
 
 /* Centrelines as PDB pseudo-atoms (one MODEL per frame): one residue per

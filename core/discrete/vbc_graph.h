@@ -14,9 +14,11 @@ typedef struct vbc_graph {
     const uint8_t *mouth;
     double *dist;       /* Dijkstra distances (voxel units), per position */
     uint32_t *pred;
-    uint32_t *heap;     /* binary heap of positions keyed by dist */
+    uint32_t *heap;     /* binary heap of positions keyed by dist, or per
+                           position the next in its radix heap bucket */
     size_t heapn;
-    uint32_t *hpos;     /* position of each list entry in the heap, or UINT32_MAX */
+    uint32_t *hpos;     /* position of each list entry in the heap (or the
+                           radix heap's link back), or UINT32_MAX */
     const double *clear; /* clearance (Å) per position, for the weighted sweep */
     uint32_t *rep;      /* per opening root: its widest mouth voxel */
     size_t *adj_start;  /* CSR adjacency: neighbours of position u are */
@@ -30,8 +32,19 @@ typedef struct vbc_graph {
 /* Dijkstra over the 26-connected graph of one component (members[0..m)) from
  * position src; fills dist/pred for the members. Unweighted steps cost their
  * length (voxels), weighted ones length / r^2 with r the smaller clearance of
- * the two voxels, so the cheapest path keeps to the widest way through. */
+ * the two voxels, so the cheapest path keeps to the widest way through.
+ * pred[q]: of q's neighbours that reach it at its distance, the smallest
+ * (distance, position), the first a (distance, position) ordered Dijkstra
+ * settles; the sweep runs on a radix heap and falls back to such a binary
+ * heap where a step fails to grow a cost (channel_graph.c). */
 void vbc_sweep(vbc_graph *A, const uint32_t *members, size_t m, uint32_t src, int weighted);
+
+/* vbc_sweep until target (a member) is settled: the distances and
+ * predecessors along the path from target back to src are vbc_sweep's,
+ * the other members' are scratch. For the centreline, which reads that
+ * path only. */
+void vbc_sweep_to(vbc_graph *A, const uint32_t *members, size_t m, uint32_t src, int weighted,
+                  uint32_t target);
 
 /* The member farthest from the last sweep's source (ties to the lowest position). */
 uint32_t vbc_farthest(const vbc_graph *A, const uint32_t *members, size_t m);

@@ -51,6 +51,7 @@ typedef struct vbc_run_out {
     int masked;               /* F.out holds the first run's masks (vbc_run_front) */
     int analysed;             /* and F.result its analysis (vbc_frame_components) */
     vbc_pore_job *pore;       /* the pore stage running on F (moved there), or NULL */
+    int pored;                /* F.result holds the first run's pore stage (vbc_run_analyse) */
     int membrane_out;         /* membrane atoms (--membrane) were left out of this frame */
     int have_membrane;        /* and `membrane` is their normal (vbc_membrane_normal) */
     vbc_axis membrane;
@@ -72,25 +73,40 @@ void vbc_run_free(vbc_run *r);
 int vbc_run_frame(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index, int model,
                   int first, vbc_run_out *o);
 
+/* vbc_run_front's modes: the spheres left out and the grid only; and the
+ * first run's pipe (labels, masks, channel voxels), the analysis left to
+ * vbc_run_analyse (on any thread); and the analysis too, with the pore
+ * stage started on a thread once the pore request is fixed. */
+enum { VBC_FRONT_PREPARE = 0, VBC_FRONT_MASKS = 1, VBC_FRONT_ANALYSE = 2 };
+
 /* vbc_run_frame in two halves, so that a reader thread can run the front
  * of frame N+1 while the caller runs the back of frame N (frames in flight,
  * vbc_ahead.h); the tables are the same bytes as vbc_run_frame's.
- * vbc_run_front: the spheres left out, the grid and, with `masks`, the
- * first run's pipe (labels, masks, channel voxels) and its analysis
- * (components, centrelines: vbc_frame_components), and once the pore
- * request is fixed (the axis found, not refitted per frame: pore_fixed)
- * it starts the pore stage on a thread of its own, which the back half
- * joins (so the pore stages of the frames in flight run at once); it touches the run's
- * counts of atoms left out and its fixed grid (fitted on the first front), and
- * nothing the back half touches. vbc_run_back, on the caller's thread in
- * frame order: the axis refit, the analysis (unless the front ran it), the pore stage, the series,
- * the occupancy, frames_done. Fronts run in frame order too. Each fills or
- * finishes *o as vbc_run_frame; on failure *o holds nothing (a front
- * whose back will not run: vbc_run_front_drop). */
+ * vbc_run_front: the spheres left out, the grid and, by `mode` (above), the
+ * first run's pipe and its analysis (components, centrelines:
+ * vbc_frame_components), and once the pore request is fixed (the axis
+ * found, not refitted per frame: pore_fixed) it starts the pore stage on a
+ * thread of its own, which the back half joins (so the pore stages of the
+ * frames in flight run at once); it touches the run's counts of atoms left
+ * out and its fixed grid (fitted on the first front), and nothing the back
+ * half touches. vbc_run_back, on the caller's thread in frame order: the
+ * axis refit, the analysis (unless the front or vbc_run_analyse ran it),
+ * the pore stage (unless run already), the series, the occupancy,
+ * frames_done. Fronts run in frame order too. Each fills or finishes *o as
+ * vbc_run_frame; on failure *o holds nothing (a front whose back will not
+ * run: vbc_run_front_drop). */
 int vbc_run_front(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index, int model,
-                  int first, int masks, vbc_run_out *o);
+                  int first, int mode, vbc_run_out *o);
 int vbc_run_back(vb_ctx *ctx, vbc_run *r, vbc_run_out *o);
 void vbc_run_front_drop(vbc_run_out *o);
+
+/* Between a VBC_FRONT_MASKS front and its back, on any thread (frames in
+ * analysis at once, vbc_flight.h): the first run's analysis and, when the
+ * pore request is fixed (pore_fixed), its pore stage; they read the frame,
+ * its spheres and the fixed request only, so they give what the back half
+ * would. Touches nothing of r but reads. VB_OK, or the analysis' failure
+ * (then o->F holds no result; vbc_run_front_drop o). */
+int vbc_run_analyse(vb_ctx *ctx, vbc_run *r, vbc_run_out *o);
 
 /* After the frame's outputs are written: keeps the first frame's result in
  * r->first, frees the rest of *o. */

@@ -153,18 +153,39 @@ static PyObject *topology_dict(vb_ctx *ctx, const vb_completion *c)
     return d;
 }
 
+/* The --stats table (vb_stat_field.h) as a dict of its typed values:
+ * int, float (full precision, not the printed digits) or str. */
+static PyObject *stats_dict(const vb_stat_fields *fs)
+{
+    PyObject *d = PyDict_New();
+    for (size_t i = 0; d && i < fs->n; i++) {
+        const vb_stat_field *e = &fs->f[i];
+        PyObject *v = e->kind == VB_STAT_UINT   ? PyLong_FromUnsignedLongLong(e->u)
+                      : e->kind == VB_STAT_REAL ? PyFloat_FromDouble(e->x)
+                                                : PyUnicode_FromString(e->s ? e->s : "");
+        if (!v || PyDict_SetItemString(d, e->name, v) != 0)
+            Py_CLEAR(d);
+        Py_XDECREF(v);
+    }
+    return d;
+}
+
 /* The result of a run as a dict (see python/vorball/_vertices.py). */
 static PyObject *result_dict(vb_ctx *ctx, const vb_vertices_result *r, const vb_completion *c)
 {
     const vb_proposal *s = &r->proposal;
     const char *note = c->certificate;
-    vbpy_text st;
-    if (vbpy_text_open(&st) != 0)
-        return NULL;
-    vb_vertices_write_stats(ctx, st.f, r);
+    vb_stat_fields *fs = malloc(sizeof *fs);
+    if (!fs)
+        return PyErr_NoMemory();
+    fs->n = 0;
+    vb_vertices_stats(ctx, r, fs);
     if (c->traced)
-        vb_arc_write_stats(st.f, &c->arcs);
-    PyObject *stats = vbpy_text_take(&st);
+        vb_arc_stats(&c->arcs, fs);
+    PyObject *stats = stats_dict(fs);
+    free(fs);
+    if (!stats)
+        return NULL;
     const vb_stage_times *tm = &s->times;
     PyObject *d = Py_BuildValue(
         "{s:N,s:s,s:O,s:n,s:n,s:K,s:K,s:K,s:K,s:s,s:s,s:d,s:n,"

@@ -41,6 +41,7 @@ def test_same_table_as_the_command(gramicidin):
     # The command's provenance (issue 35): its tool and command line.
     assert theirs.pop("tool").startswith("vorball ")
     assert theirs.pop("options") == "channels --grid 64 --json " + GRAMICIDIN
+    assert theirs.pop("clock")["frames"] == 1  # the run's clock (the command's run over frames)
     for frame in (mine["frames"][0], theirs["frames"][0]):
         frame.pop("ms")  # timings
         frame.pop("clock")
@@ -259,6 +260,7 @@ def test_frames_as_the_command(tmp_path):
         TRAJ, xtc, grid=64, device="ref", start=1, stop=9, step=2, json=True).text), json.loads(j)
     theirs.pop("tool"), theirs.pop("options")
     for doc in (mine, theirs):
+        assert doc.pop("clock")["frames"] == 4  # the run's clock: frames 1, 3, 5, 7
         for frame in doc["frames"]:
             frame.pop("ms"), frame.pop("clock")
     assert mine == theirs

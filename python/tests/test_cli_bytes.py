@@ -66,23 +66,83 @@ def test_crambin_float32_like_mdanalysis_same_bytes():
     assert res.to_text() == out
 
 
+VARYING = {"device_bytes_peak", "certify_parts", "cover_host_cells", "cover_handed_cells"}
+
+
+def _printed(v):
+    """A --stats line's value as the command prints it, parsed."""
+    for conv in (int, float):
+        try:
+            return conv(v)
+        except ValueError:
+            pass
+    return v
+
+
+def _same_stats(err, stats):
+    """Every line of the command's --stats is in the package's dict, with
+    the same type and value: integers and texts equal, reals equal to the
+    printed digits (%.3f, %.6f, %.6g, %.3g); seconds (keys ending in _s)
+    and what a device's timing decides (its buffers' peak, the parts
+    certified during the cover, the cells it handed to the host) vary run
+    to run: only their type and sign count."""
+    # The command's own process clock (process_*_s: reading, writing the
+    # file, freeing) has no counterpart in a call that writes no file.
+    want = dict(line.split("\t", 1) for line in err.splitlines()
+                if "\t" in line and not line.startswith("process_"))
+    assert list(want) == list(stats)
+    for k, v in want.items():
+        got, printed = stats[k], _printed(v)
+        assert type(got) is type(printed) or isinstance(got, float), k
+        if k.endswith("_s"):
+            assert isinstance(got, float) and got >= 0.0, k
+        elif k in VARYING:
+            assert isinstance(got, int) and got >= 0, k
+        elif isinstance(got, float):
+            assert got == pytest.approx(printed, rel=5e-3, abs=5e-7), k
+        else:
+            assert got == printed, k
+
+
 def test_stats_are_the_commands():
     path = corpus("inputs", "crambin_fragment.xyzr")
     _, err = cli("vertices", "--device", "ref", "--proposer", "sampling", "--stats", path)
     res = vorball.vertices(path, device="ref", proposer="sampling")
-    # The command's own process clock (process_*_s: reading, writing the file,
-    # freeing) has no counterpart in a call that writes no file.
-    want = dict(line.split("\t", 1) for line in err.splitlines()
-                if "\t" in line and not line.startswith("process_"))
-    got = {k: str(v) for k, v in res.stats.items()}
-    # The numbers parse to the same values (str of a parsed float may differ in form);
-    # the seconds (keys ending in _s) differ run to run: only their presence counts.
-    assert want.keys() == got.keys()
-    for k, v in want.items():
-        if not k.endswith("_s"):
-            assert str(vorball._vertices._number(v)) == got[k], k
+    _same_stats(err, res.stats)
     assert res.stats["certified_vertices"] == len(res.t)
     assert not res.certificate.complete and res.certificate.text == ""
+
+
+def test_stats_every_field_of_the_cover(monkeypatch):
+    """The cover's run on the OpenCL CPU device with arcs and the
+    certification filter (VORBALL_DEVICE_CERT=1, for the command and the
+    package alike): every field the command's --stats prints
+    (device_bytes_peak, certify_*, judged_*, judge_s, arc_*), typed, from
+    the library's table."""
+    monkeypatch.setenv("VORBALL_DEVICE_CERT", "1")
+    path = corpus("inputs", "crambin_fragment.xyzr")
+    _, err = cli("vertices", "--device", "cpu", "--arcs", "--stats", path)
+    res = vorball.vertices(path, device="cpu", arcs=True)
+    _same_stats(err, res.stats)
+    s = res.stats
+    for k in ("device_bytes_peak", "certify_parts", "judged_vertex", "judged_not",
+              "judged_open", "cover_quadruples", "arc_half_arcs", "arc_threads"):
+        assert isinstance(s[k], int), k
+    for k in ("certify_overlap_s", "certify_after_s", "judge_s", "arc_s", "arc_trace_s"):
+        assert isinstance(s[k], float), k
+    assert s["certified_vertices"] == len(res.t) == res.certificate.certified
+    assert s["cover_quadruples"] == res.certificate.quadruples > 0
+    assert s["arc_half_arcs"] == res.arcs.half_arcs > 0
+    assert s["arc_closed"] + s["arc_infinite"] + s["arc_loops"] == s["arc_half_arcs"]
+    # the filter judged two roots of every proposed quadruple, and the
+    # vertices it proved are among the certified ones
+    judged = s["judged_vertex"] + s["judged_not"] + s["judged_open"]
+    assert judged == 2 * s["cover_quadruples"]
+    assert 0 < s["judged_vertex"] <= s["certified_vertices"]
+    if s["backend"] == "opencl":
+        assert s["device_bytes_peak"] > 0  # the device held its buffers
+    else:  # no OpenCL CPU device here: the reference ran (W760)
+        assert s["device_bytes_peak"] == 0
 
 
 def test_sampling_and_cover_same_vertices():

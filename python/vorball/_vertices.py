@@ -86,23 +86,6 @@ def _topology(d):
                     d["sampled"])
 
 
-def _number(text):
-    for conv in (int, float):
-        try:
-            return conv(text)
-        except ValueError:
-            pass
-    return text
-
-
-def _stats(text):
-    out = {}
-    for line in text.splitlines():
-        key, _, value = line.partition("\t")
-        out[key] = _number(value)
-    return out
-
-
 def _csr(d):
     flat = np.frombuffer(d["ids"], dtype=np.uint32).astype(np.int64)
     start = np.frombuffer(d["start"], dtype=np.int64)
@@ -131,7 +114,10 @@ class Result(tuple):
     arcs     an Arcs (arc closure's counts) when asked for, else None
     topology a Topology (faces and edges) when asked for, else None;
              topology_text() the --topology file
-    stats    the counters `vorball vertices --stats` prints, as a dict
+    stats    every counter `vorball vertices --stats` prints (with arcs,
+             its arc_* lines too), as a dict of int, float (the library's
+             value, not the printed digits) and str, from the library's
+             one table of them (vb_vertices_stats, vb_arc_stats)
     times    seconds per stage (setup, certify, total, cull, ...)
     backend, device   what ran ('opencl' or 'ref', and the device name)
     warnings the warnings (vorball.Diagnostic) of reading the file or arrays
@@ -169,7 +155,7 @@ class Result(tuple):
                                        d["cover_patches"], d["cover_host_cells"])
         self.arcs, self.topology = _arcs(d["arcs"]), _topology(d["topology"])
         self._topology_text = None if d["topology"] is None else d["topology"]["text"]
-        self.stats = _stats(d["stats"])
+        self.stats = dict(d["stats"])
         self.times = dict(d["times"])
         self.backend, self.device = d["backend"], d["device"]
         self.max_distance = d["max_distance"]

@@ -63,6 +63,23 @@ for mib in 16 1; do
     echo "forced overflow, budget $mib MiB: device_bytes_peak $peak, cells on the host $host"
 done
 [ "$host_16" -lt "$host_1" ] || fail "the large tier took no cell at 16 MiB ($host_16 against $host_1)"
+# The huge tier (gpu/vbg_cover_state.h): the large tier's tasks that ran out
+# of its records run again on slices with more, made in its place; forced
+# here with tiny large slices (the device takes every cell, so that the
+# counts are the device's alone). Same bytes; the huge slices take cells the
+# large ones could not, so fewer go to the host.
+for t3 in 0 64; do
+    rm -f "$work/h.tsv"
+    VORBALL_COVER_HOST_BACK=0 VORBALL_COVER_NB=48 VORBALL_COVER_TIER2=64 VORBALL_COVER_BIG_NB=96 \
+        VORBALL_COVER_TIER3=$t3 VORBALL_COVER_HUGE_NB=4096 \
+        "$vorball" vertices --stats "$in" -o "$work/h.tsv" > "$work/h.err" 2>&1 ||
+        { cat "$work/h.err" >&2; fail "the forced huge tier ($t3 slices) failed"; }
+    cmp -s "$work/h.tsv" "$work/ref.tsv" || fail "the huge tier ($t3 slices) changed the vertices"
+    eval "huge_$t3=$(stat cover_launches_huge "$work/h.err") hosted_$t3=$(stat cover_host_cells "$work/h.err")"
+done
+[ "$huge_0" = 0 ] && [ "$huge_64" -ge 1 ] && [ "$hosted_64" -lt "$hosted_0" ] ||
+    fail "huge tier: launches $huge_0 / $huge_64, cells on the host $hosted_0 / $hosted_64"
+echo "huge tier: cells on the host $hosted_0 without it, $hosted_64 with it ($huge_64 launches)"
 # bench keeps the device open: a run of another input starts without the
 # buffers of the one before, so its device_bytes_peak is its own (the device
 # takes every cell, VORBALL_COVER_HOST_BACK=0, so that the launches repeat).

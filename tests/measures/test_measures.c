@@ -8,6 +8,9 @@
  *    the union's volume and the SAS areas to its area (inclusion-exclusion:
  *    lenses of pairs; the outer balls of the three do not meet);
  *  - nested, internally tangent and externally tangent balls;
+ *  - contacts from one side (the default) against both sides met
+ *    (contacts_both), in closed form and by patches: the same pairs, each
+ *    met enclosure inside the one-sided one, both within the tolerance;
  *  - bad options. */
 #include <math.h>
 #include <stdlib.h>
@@ -20,7 +23,8 @@
 #include "measures_balls.h"
 #include "vb_test.h"
 
-static int run(vb_ctx *ctx, const char *text, double tol, vb_cell_measures *m)
+static int run_both(vb_ctx *ctx, const char *text, double tol, int both, int patches,
+                    vb_cell_measures *m)
 {
     vb_sphere_set *s = spheres(ctx, text);
     if (!s)
@@ -28,12 +32,19 @@ static int run(vb_ctx *ctx, const char *text, double tol, vb_cell_measures *m)
     vb_measure_options o;
     vb_measure_defaults(&o);
     o.tolerance = tol;
+    o.contacts_both = both;
+    o.patches = patches;
     o.contacts = 1;
     o.threads = 2;
     o.max_patches = 200000; /* the closed forms are asked to 1e-6 */
     int rc = vb_cell_measures_compute(ctx, s, &o, m);
     vb_spheres_free(s);
     return rc;
+}
+
+static int run(vb_ctx *ctx, const char *text, double tol, vb_cell_measures *m)
+{
+    return run_both(ctx, text, tol, 0, 0, m);
 }
 
 static void test_one_ball(vb_ctx *ctx)
@@ -174,6 +185,35 @@ static void test_nested_tangent(vb_ctx *ctx)
     vb_cell_measures_free(&m);
 }
 
+/* Six unequal balls in a cluster (every pair's expanded balls meet, some
+ * faces cut by others): each contact from the side that writes it (i < j)
+ * against both sides integrated and met (a disjoint pair would fail the
+ * run with VB_EINTERNAL), in closed form and by patches. */
+static void test_one_side(vb_ctx *ctx)
+{
+    static const char *six = "0 0 0 1.7\n2.9 0.4 -0.3 1.5\n0.6 3.1 0.2 1.8\n"
+                             "-0.4 0.5 2.8 1.6\n2.2 2.6 2.1 1.9\n-2.5 1.3 -1.1 1.4\n";
+    for (int patches = 0; patches < 2; patches++) {
+        double tol = patches ? 1e-3 : 1e-6;
+        vb_cell_measures one, both;
+        CHECK_INT(run_both(ctx, six, tol, 0, patches, &one), VB_OK);
+        CHECK_INT(run_both(ctx, six, tol, 1, patches, &both), VB_OK);
+        CHECK(one.ncontacts >= 10);
+        CHECK_INT(one.ncontacts, both.ncontacts);
+        for (size_t k = 0; k < one.ncontacts && k < both.ncontacts; k++) {
+            const vb_contact *a = &one.contacts[k], *b = &both.contacts[k];
+            CHECK(a->i == b->i && a->j == b->j && a->i < a->j);
+            CHECK(a->lo <= b->lo && b->hi <= a->hi); /* the meet lies in either side */
+            CHECK(a->hi - a->lo <= tol * a->hi || patches); /* patches: a budget */
+        }
+        for (size_t i = 0; i < 6; i++) /* the atoms' values do not depend on it */
+            CHECK(one.vol_lo[i] <= both.vol_hi[i] && both.vol_lo[i] <= one.vol_hi[i] &&
+                  one.sas_lo[i] <= both.sas_hi[i] && both.sas_lo[i] <= one.sas_hi[i]);
+        vb_cell_measures_free(&one);
+        vb_cell_measures_free(&both);
+    }
+}
+
 static void test_bad_options(vb_ctx *ctx)
 {
     vb_sphere_set *s = spheres(ctx, "0 0 0 1\n");
@@ -261,6 +301,7 @@ int main(void)
     test_equal_triple(ctx);
     test_unequal(ctx);
     test_nested_tangent(ctx);
+    test_one_side(ctx);
     test_bad_options(ctx);
     vb_close(ctx);
     VB_TEST_END();

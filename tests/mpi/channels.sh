@@ -45,6 +45,15 @@ for np in 2 3; do
     unms "$work/j.$np.json" > "$work/j.$np.cut"
     same_bytes "JSON on $np ranks" "$work/j.1.cut" "$work/j.$np.cut"
 done
+# Frames in analysis at once (VORBALL_FRAMES_IN_FLIGHT, issue 33) on one
+# process, and asked of 2 ranks (each runs its frames one at a time): the
+# bytes of the run above.
+VORBALL_FRAMES_IN_FLIGHT=4 VORBALL_FRAMES_AHEAD=0 run 0 "$work/c.w4.err" "$vorball" channels $opts "$trj" \
+    -o "$work/c.w4.csv"
+same_bytes "table with 4 frames in flight" "$work/c.1.csv" "$work/c.w4.csv"
+VORBALL_FRAMES_IN_FLIGHT=4 run 0 "$work/c.w4np2.err" mpi 2 "$vorball" channels $opts "$trj" \
+    -o "$work/c.w4np2.csv"
+same_bytes "table with 4 frames in flight asked of 2 ranks" "$work/c.1.csv" "$work/c.w4np2.csv"
 # The pore (default): later frames sweep the first frame's axis, which every
 # rank finds itself; the table is one process's.
 popts="--grid 32 --frames ::2 --device ref"

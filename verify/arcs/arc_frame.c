@@ -156,12 +156,12 @@ static void filter_frame(vbx_tframe *f, const vbx_ia n[3])
         for (int k = 0; k < 3; k++)
             e2[k] = f->gf[k];
         vbx_ia beta = vbx_ia_dot3(db, db), gamma = vbx_ia_dot3(dc, db);
-        vbx_ia del2 = vbx_ia_sub(vbx_ia_mul(beta, rc), vbx_ia_mul(gamma, rb));
+        vbx_ia del2 = vbx_ia_det2(beta, gamma, rb, rc);
         if (!vbx_ia_sign(del2))
             return;
         vbx_ia two_del = vbx_ia_scale(del2, 2.0);
-        vbx_ia zq = vbx_ia_div(vbx_ia_sub(vbx_ia_mul(f->Wb, rc), vbx_ia_mul(rb, f->Wc)), two_del);
-        vbx_ia os = vbx_ia_div(vbx_ia_sub(vbx_ia_mul(beta, f->Wc), vbx_ia_mul(gamma, f->Wb)),
+        vbx_ia zq = vbx_ia_div(vbx_ia_det2(f->Wb, rb, f->Wc, rc), two_del);
+        vbx_ia os = vbx_ia_div(vbx_ia_det2(beta, gamma, f->Wb, f->Wc),
                                two_del);
         vbx_ia n1 = vbx_ia_dot3(e1, e1), n2 = vbx_ia_dot3(e2, e2);
         for (int k = 0; k < 3; k++) {
@@ -186,10 +186,10 @@ static void filter_frame(vbx_tframe *f, const vbx_ia n[3])
         return;
     vbx_ia bb = vbx_ia_dot3(db, db), bc = vbx_ia_dot3(db, dc), cc = vbx_ia_dot3(dc, dc);
     /* q = [d_b d_c] adj(Gamma) rhs / |n|^2 for rhs (W_b/2, W_c/2) and (-r_b, -r_c). */
-    vbx_ia a0 = vbx_ia_div(vbx_ia_sub(vbx_ia_mul(cc, half_wb), vbx_ia_mul(bc, half_wc)), nn);
-    vbx_ia b0 = vbx_ia_div(vbx_ia_sub(vbx_ia_mul(bb, half_wc), vbx_ia_mul(bc, half_wb)), nn);
-    vbx_ia a1 = vbx_ia_div(vbx_ia_sub(vbx_ia_mul(bc, rc), vbx_ia_mul(cc, rb)), nn);
-    vbx_ia b1 = vbx_ia_div(vbx_ia_sub(vbx_ia_mul(bc, rb), vbx_ia_mul(bb, rc)), nn);
+    vbx_ia a0 = vbx_ia_div(vbx_ia_det2(cc, bc, half_wc, half_wb), nn);
+    vbx_ia b0 = vbx_ia_div(vbx_ia_det2(bb, bc, half_wb, half_wc), nn);
+    vbx_ia a1 = vbx_ia_div(vbx_ia_det2(bc, cc, rb, rc), nn);
+    vbx_ia b1 = vbx_ia_div(vbx_ia_det2(bc, bb, rc, rb), nn);
     for (int k = 0; k < 3; k++) {
         f->O[k] = vbx_ia_add(vbx_ia_mul(a0, db[k]), vbx_ia_mul(b0, dc[k]));
         f->ES[k] = vbx_ia_add(vbx_ia_mul(a1, db[k]), vbx_ia_mul(b1, dc[k]));
@@ -245,7 +245,7 @@ static int tangent_pair_points(vbx_arcw *w, const vbx_tframe *f, int collinear_p
 {
     vbx_ia mbc[4];
     vbx_ia_row(w, f->t[1], f->t[2], mbc);
-    vbx_ia Wbc = vbx_ia_sub(vbx_ia_dot3(mbc, mbc), vbx_ia_sqr(mbc[3]));
+    vbx_ia Wbc = vbx_ia_lorentz(mbc);
     w->cnt.filter_calls++;
     if (vbx_ia_sign(f->Wb) > 0 && vbx_ia_sign(f->Wc) > 0 && vbx_ia_sign(Wbc) > 0)
         return 0;
@@ -345,11 +345,11 @@ int vbx_tframe_setup_local(vbx_arcw *w, vbx_tframe *f, const uint32_t t[3])
     memcpy(f->t, t, sizeof f->t);
     vbx_ia_row(w, t[0], t[1], f->mb);
     vbx_ia_row(w, t[0], t[2], f->mc);
-    f->Wb = vbx_ia_sub(vbx_ia_dot3(f->mb, f->mb), vbx_ia_sqr(f->mb[3]));
-    f->Wc = vbx_ia_sub(vbx_ia_dot3(f->mc, f->mc), vbx_ia_sqr(f->mc[3]));
+    f->Wb = vbx_ia_lorentz(f->mb);
+    f->Wc = vbx_ia_lorentz(f->mc);
     for (int k = 0; k < 6; k++) {
         int p = vbx_minor_cols[k][0], q = vbx_minor_cols[k][1];
-        f->minor[k] = vbx_ia_sub(vbx_ia_mul(f->mb[p], f->mc[q]), vbx_ia_mul(f->mb[q], f->mc[p]));
+        f->minor[k] = vbx_ia_det2(f->mb[p], f->mb[q], f->mc[p], f->mc[q]);
     }
     /* n = d_b x d_c: three of the minors (columns 12, 02, 01), the very
      * operations vbx_ia_cross does (a negated difference is the difference
@@ -361,8 +361,10 @@ int vbx_tframe_setup_local(vbx_arcw *w, vbx_tframe *f, const uint32_t t[3])
     if (!collinear_possible) {
         vbx_ia v[3];
         for (int k = 0; k < 3; k++)
-            v[k] = vbx_ia_sub(vbx_ia_mul(f->mb[3], f->mc[k]), vbx_ia_mul(f->mc[3], f->mb[k]));
-        int s = vbx_ia_sign(vbx_ia_sub(vbx_ia_dot3(n, n), vbx_ia_dot3(v, v)));
+            v[k] = vbx_ia_det2(f->mb[3], f->mc[3], f->mb[k], f->mc[k]);
+        vbx_ia x[6] = {n[0], n[1], n[2], vbx_ia_neg(v[0]), vbx_ia_neg(v[1]), vbx_ia_neg(v[2])};
+        vbx_ia y[6] = {n[0], n[1], n[2], v[0], v[1], v[2]};
+        int s = vbx_ia_sign(vb_ia_dot(x, y, 6));
         if (s)
             kind = s > 0 ? VBX_TRI_OPEN : VBX_TRI_CLOSED;
     }

@@ -78,18 +78,33 @@ void vb_arc_certificate(const vb_arc_report *r, char *buf, size_t size)
              r->components);
 }
 
+void vb_arc_stats(const vb_arc_report *r, vb_stat_fields *fs)
+{
+    vb_stat_uint(fs, "arc_half_arcs", r->half_arcs);
+    vb_stat_uint(fs, "arc_closed", r->closed);
+    vb_stat_uint(fs, "arc_infinite", r->infinite);
+    vb_stat_uint(fs, "arc_loops", r->loops);
+    vb_stat_uint(fs, "arc_undecided", r->undecided);
+    vb_stat_uint(fs, "arc_added", r->added.n);
+    vb_stat_uint(fs, "arc_components", r->components);
+    vb_stat_uint(fs, "arc_filter_calls", r->filter_calls);
+    vb_stat_uint(fs, "arc_filter_failures", r->filter_failures);
+    vb_stat_uint(fs, "arc_exact_evals", r->exact_evals);
+    vb_stat_uint(fs, "arc_candidates", r->candidates);
+    vb_stat_real(fs, "arc_s", "%.3f", r->seconds);
+    vb_stat_uint(fs, "arc_threads", r->threads);
+    vb_stat_real(fs, "arc_setup_s", "%.3f", r->setup_s);
+    vb_stat_real(fs, "arc_map_s", "%.3f", r->map_s);
+    vb_stat_real(fs, "arc_trace_s", "%.3f", r->trace_s);
+    vb_stat_real(fs, "arc_busy_s", "%.3f", r->busy_s);
+    vb_stat_real(fs, "arc_merge_s", "%.3f", r->merge_s);
+    vb_stat_real(fs, "arc_finish_s", "%.3f", r->finish_s);
+}
+
 void vb_arc_write_stats(FILE *f, const vb_arc_report *r)
 {
-    fprintf(f,
-            "arc_half_arcs\t%zu\narc_closed\t%zu\narc_infinite\t%zu\narc_loops\t%zu\n"
-            "arc_undecided\t%zu\narc_added\t%zu\narc_components\t%zu\n"
-            "arc_filter_calls\t%llu\narc_filter_failures\t%llu\narc_exact_evals\t%llu\n"
-            "arc_candidates\t%llu\narc_s\t%.3f\narc_threads\t%u\narc_setup_s\t%.3f\n"
-            "arc_map_s\t%.3f\narc_trace_s\t%.3f\narc_busy_s\t%.3f\narc_merge_s\t%.3f\n"
-            "arc_finish_s\t%.3f\n",
-            r->half_arcs, r->closed, r->infinite, r->loops, r->undecided, r->added.n,
-            r->components, (unsigned long long)r->filter_calls,
-            (unsigned long long)r->filter_failures, (unsigned long long)r->exact_evals,
-            (unsigned long long)r->candidates, r->seconds, r->threads, r->setup_s, r->map_s,
-            r->trace_s, r->busy_s, r->merge_s, r->finish_s);
+    vb_stat_fields fs;
+    fs.n = 0;
+    vb_arc_stats(r, &fs);
+    vb_stat_fields_write(f, &fs, 0);
 }

@@ -284,8 +284,11 @@ void vbx_region_of(const vbx_tframe *f, const vbx_arc_end *e0, const vbx_arc_end
 /* u = O + S ES + G EG over intervals. */
 static void u_of(const vbx_tframe *f, vbx_ia S, vbx_ia G, vbx_ia u[4])
 {
-    for (int k = 0; k < 4; k++)
-        u[k] = vbx_ia_add(f->O[k], vbx_ia_add(vbx_ia_mul(S, f->ES[k]), vbx_ia_mul(G, f->EG[k])));
+    vbx_ia x[3] = {S, G, vbx_ia_point(1.0)};
+    for (int k = 0; k < 4; k++) {
+        vbx_ia y[3] = {f->ES[k], f->EG[k], f->O[k]};
+        u[k] = vb_ia_dot(x, y, 3);
+    }
 }
 
 /* Adds sphere j to the candidates once; a sphere inside another never
@@ -311,9 +314,8 @@ static int query_box(vbx_arcw *w, const vbx_tframe *f, vbx_ia S, vbx_ia G)
     for (int k = 0; k < 3; k++)
         p[k] = vbx_ia_add(ba[k], u[k]);
     vbx_ia t = vbx_ia_sub(u[3], ba[3]);
-    vbx_ia Q = vbx_ia_sub(vbx_ia_add(vbx_ia_add(vbx_ia_sqr(u[0]), vbx_ia_sqr(u[1])),
-                                     vbx_ia_sqr(u[2])),
-                          vbx_ia_sqr(u[3]));
+    vbx_ia un[4] = {u[0], u[1], u[2], vbx_ia_neg(u[3])};
+    vbx_ia Q = vb_ia_dot(un, u, 4);
     if (f->kind == VBX_TRI_OPEN) {
         /* The same Q in the conic's form (vbx_tframe.mq): each of S and G
          * appears once, so the enclosure is tight where the sum of squares
@@ -365,11 +367,16 @@ static int query_box(vbx_arcw *w, const vbx_tframe *f, vbx_ia S, vbx_ia G)
             const vbx_ia *cj = &ix->box[4 * s];
             double clo[3] = {cj[0].lo, cj[1].lo, cj[2].lo}, chi[3] = {cj[0].hi, cj[1].hi, cj[2].hi};
             /* (vbx_outside_box: d2 >= |q - c|^2 (1 + u)^-5 above 2^-900,
-             * and fl(d2 (1 - 2^-50)) stays below that) */
+             * and fl(d2 (1 - 2^-50)) stays below that.) The right side in
+             * one bound: at >= 0, R_j >= 0 (E103) and Qp >= 0, so rhs = fl(fl(fl(at +
+             * R_j)^2) + Qp) >= ((at + R_j)^2 + Qp) / (1 + u)^4, and
+             * fl(rhs (1 + 2^-50)) >= rhs (1 + 2^-50)(1 - u) exceeds
+             * (1 + u)^4 rhs; the term 2^-1000 covers underflow (absolute
+             * errors below 2^-1074 each). */
             double d2 = vbx_gap2(clo, chi, pb);
-            vbx_ia tr = vbx_ia_add(vbx_ia_point(at), vbx_ia_point(cj[3].hi));
-            vbx_ia rhs = vbx_ia_add(vbx_ia_sqr(tr), vbx_ia_point(Qp));
-            if (d2 >= 0x1p-900 && d2 <= DBL_MAX && d2 * (1.0 - 0x1p-50) > rhs.hi)
+            double tr = at + cj[3].hi, rhs = tr * tr + Qp;
+            if (d2 >= 0x1p-900 && d2 <= DBL_MAX &&
+                d2 * (1.0 - 0x1p-50) > rhs * (1.0 + 0x1p-50) + 0x1p-1000)
                 continue;
             if (push_cand(w, ix->ids[s]) != VB_OK)
                 return -1;
@@ -474,31 +481,30 @@ int vbx_clear_of(const vbx_arcw *w, const vbx_tframe *f, const vbx_region *rg, u
     if (rg->brute)
         return 0;
     const vbx_ia *ba = &w->c->d.box[4 * (size_t)f->t[0]], *bj = &w->c->d.box[4 * (size_t)j];
-    vbx_ia m[4];
+    /* L_j = W_j - 2 m_j . u with u = O + S ES + G EG: the coefficients
+     * of S and G, and the rest l0 = W_j - 2 m_j . O, each one dot product
+     * (vb_ia_dot); scaling by -2 is exact. */
+    vbx_ia m[4], x[8], y[8];
     for (int k = 0; k < 4; k++)
         m[k] = vbx_ia_sub(bj[k], ba[k]);
-    vbx_ia W = vbx_ia_sub(vbx_ia_add(vbx_ia_add(vbx_ia_sqr(m[0]), vbx_ia_sqr(m[1])),
-                                     vbx_ia_sqr(m[2])),
-                          vbx_ia_sqr(m[3]));
-    vbx_ia mES = vbx_ia_point(0.0), mEG = mES, mO = mES;
+    vbx_ia lS = vb_ia_dot(m, f->ES, 4), lG = vb_ia_dot(m, f->EG, 4);
+    lS = vbx_ia_make(-2.0 * lS.hi, -2.0 * lS.lo);
+    lG = vbx_ia_make(-2.0 * lG.hi, -2.0 * lG.lo);
     for (int k = 0; k < 4; k++) {
-        mES = vbx_ia_add(mES, vbx_ia_mul(m[k], f->ES[k]));
-        mEG = vbx_ia_add(mEG, vbx_ia_mul(m[k], f->EG[k]));
-        mO = vbx_ia_add(mO, vbx_ia_mul(m[k], f->O[k]));
+        x[k] = k < 3 ? m[k] : vbx_ia_neg(m[k]);
+        y[k] = m[k];
+        x[4 + k] = m[k];
+        y[4 + k] = vbx_ia_make(-2.0 * f->O[k].hi, -2.0 * f->O[k].lo);
     }
-    vbx_ia two = vbx_ia_point(-2.0);
-    vbx_ia lS = vbx_ia_mul(two, mES), lG = vbx_ia_mul(two, mEG);
-    vbx_ia l0 = vbx_ia_add(W, vbx_ia_mul(two, mO));
+    vbx_ia l0 = vb_ia_dot(x, y, 8);
+    vbx_ia c[3] = {lS, lG, l0};
     for (int i = 0; i < rg->n; i++) {
         const vbx_part *p = &rg->p[i];
-        vbx_ia L = vbx_ia_add(vbx_ia_add(vbx_ia_mul(lS, p->S), vbx_ia_mul(lG, p->G)), l0);
-        if (!(L.lo > 0.0))
+        vbx_ia v[3] = {p->S, p->G, vbx_ia_point(1.0)};
+        if (!(vb_ia_dot(c, v, 3).lo > 0.0))
             return 0;
-        if (p->kind == VBX_PART_STRIP) {
-            vbx_ia dL = vbx_ia_add(vbx_ia_mul(lS, p->D[0]), vbx_ia_mul(lG, p->D[1]));
-            if (!(dL.lo >= 0.0))
-                return 0;
-        }
+        if (p->kind == VBX_PART_STRIP && !(vb_ia_dot(c, p->D, 2).lo >= 0.0))
+            return 0;
     }
     return 1;
 }

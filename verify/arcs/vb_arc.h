@@ -23,6 +23,7 @@
 
 #include <stdio.h>
 
+#include "vb_stat_field.h"
 #include "vb_topology.h"
 #include "vb_verify.h"
 
@@ -119,8 +120,12 @@ int vb_arc_topology(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_list 
 /* The certificate as one header line ("arcs: ...", no newline) into buf. */
 void vb_arc_certificate(const vb_arc_report *r, char *buf, size_t size);
 
-/* The counts and the tracing predicates' filter/exact counters, one
- * "name<TAB>value" line each (vorball vertices --arcs --stats). */
+/* Appends the counts, the tracing predicates' filter/exact counters and
+ * the stage's seconds to fs (vb_stat_field.h), as the lines `vorball
+ * vertices --arcs --stats` prints. */
+void vb_arc_stats(const vb_arc_report *r, vb_stat_fields *fs);
+
+/* Writes vb_arc_stats' table to f, one "name<TAB>value" line each. */
 void vb_arc_write_stats(FILE *f, const vb_arc_report *r);
 
 /* The certificate as text: one "NAME: missing vertex IDS at X Y Z t T" line

@@ -22,23 +22,38 @@ static inline int vbx_minor_at(int p, int q)
 
 /* ---- in intervals ---------------------------------------------------------- */
 
+/* Dot products, cross product: one error bound per expression
+ * (vb_ia_dot, core/vb_ia_shared.h), not a step per operation. */
 static inline vbx_ia vbx_ia_dot3(const vbx_ia *a, const vbx_ia *b)
 {
-    vbx_ia r = vbx_ia_mul(a[0], b[0]);
-    r = vbx_ia_add(r, vbx_ia_mul(a[1], b[1]));
-    return vbx_ia_add(r, vbx_ia_mul(a[2], b[2]));
+    return vb_ia_dot(a, b, 3);
 }
 
 static inline vbx_ia vbx_ia_dot4(const vbx_ia *a, const vbx_ia *b)
 {
-    return vbx_ia_add(vbx_ia_dot3(a, b), vbx_ia_mul(a[3], b[3]));
+    return vb_ia_dot(a, b, 4);
+}
+
+/* |m_0..2|^2 - m_3^2, one dot product. */
+static inline vbx_ia vbx_ia_lorentz(const vbx_ia m[4])
+{
+    vbx_ia x[4] = {m[0], m[1], m[2], vbx_ia_neg(m[3])};
+    return vb_ia_dot(x, m, 4);
+}
+
+/* a_i b_j - a_j b_i as the dot product of (a_i, -a_j) and (b_j, b_i)
+ * (negation is exact). */
+static inline vbx_ia vbx_ia_det2(vbx_ia ai, vbx_ia aj, vbx_ia bi, vbx_ia bj)
+{
+    vbx_ia x[2] = {ai, vbx_ia_neg(aj)}, y[2] = {bj, bi};
+    return vb_ia_dot(x, y, 2);
 }
 
 static inline void vbx_ia_cross(const vbx_ia *a, const vbx_ia *b, vbx_ia *r)
 {
-    r[0] = vbx_ia_sub(vbx_ia_mul(a[1], b[2]), vbx_ia_mul(a[2], b[1]));
-    r[1] = vbx_ia_sub(vbx_ia_mul(a[2], b[0]), vbx_ia_mul(a[0], b[2]));
-    r[2] = vbx_ia_sub(vbx_ia_mul(a[0], b[1]), vbx_ia_mul(a[1], b[0]));
+    r[0] = vbx_ia_det2(a[1], a[2], b[1], b[2]);
+    r[1] = vbx_ia_det2(a[2], a[0], b[2], b[0]);
+    r[2] = vbx_ia_det2(a[0], a[1], b[0], b[1]);
 }
 
 static inline vbx_ia vbx_ia_scale(vbx_ia a, double s)
@@ -53,9 +68,10 @@ static inline void vbx_ia_tau(const vbx_ia minor[6], const vbx_ia l[4], vbx_ia t
 {
     for (int i = 0; i < 4; i++) {
         const int *c = vbx_other_cols[i];
-        vbx_ia t = vbx_ia_mul(l[c[0]], minor[vbx_minor_at(c[1], c[2])]);
-        t = vbx_ia_sub(t, vbx_ia_mul(l[c[1]], minor[vbx_minor_at(c[0], c[2])]));
-        t = vbx_ia_add(t, vbx_ia_mul(l[c[2]], minor[vbx_minor_at(c[0], c[1])]));
+        vbx_ia x[3] = {l[c[0]], vbx_ia_neg(l[c[1]]), l[c[2]]};
+        vbx_ia y[3] = {minor[vbx_minor_at(c[1], c[2])], minor[vbx_minor_at(c[0], c[2])],
+                       minor[vbx_minor_at(c[0], c[1])]};
+        vbx_ia t = vb_ia_dot(x, y, 3);
         tau[i] = (i & 1) ? vbx_ia_neg(t) : t;
     }
 }

@@ -493,6 +493,21 @@ static vbx_ia half_tan(vbx_ia x, vbx_ia y, vbx_ia cm, vbx_ia sm)
     return vbx_ia_div(yr, vbx_ia_add(vbx_ia_point(1.0), xr));
 }
 
+/* 2 (atan t1 - atan t0), the angle of an arc from t0 to t1 (t =
+ * tan(angle / 2) about its middle): where 1 + t0 t1 > 0 is proven (|t| <
+ * 0.73 on arcs shorter than 2.6 rad, so always there) it is
+ * 2 atan((t1 - t0) / (1 + t0 t1)), one MPFR atan where the difference took
+ * two (1crn, 1 thread: they were 5 % of the CPU). */
+static vbx_ia own_angle(vbx_ia t0, vbx_ia t1)
+{
+    vbx_ia den = vbx_ia_add(vbx_ia_point(1.0), vbx_ia_mul(t0, t1)), ang;
+    if (den.lo > 0.0)
+        ang = vbm_ia_atan(vbx_ia_div(vbx_ia_sub(t1, t0), den));
+    else
+        ang = vbx_ia_sub(vbm_ia_atan(t1), vbm_ia_atan(t0));
+    return vbx_ia_add(ang, ang);
+}
+
 int vbm_arc_integrate(const vbm_atom_in *in, vbx_ia D, vbm_arcrec *a, const double *tg,
                       int again, size_t *pieces)
 {
@@ -503,13 +518,13 @@ int vbm_arc_integrate(const vbm_atom_in *in, vbx_ia D, vbm_arcrec *a, const doub
         return 0;
     sums s = {{vbx_ia_point(0.0), vbx_ia_point(0.0), vbx_ia_point(0.0)}, 0};
     arcfun f;
-    if (!owner_of(&in->nb[a->j], D, in->contacts, &f.o))
+    int wantc = in->contacts && in->nb[a->j].con; /* else the face's other atom integrates it */
+    if (!owner_of(&in->nb[a->j], D, wantc, &f.o))
         return 0;
     if (a->own) { /* z = c: F(c) times the angle 2 (atan t1 - atan t0) */
-        vbx_ia ang = vbx_ia_sub(vbm_ia_atan(t1), vbm_ia_atan(t0));
-        ang = vbx_ia_add(ang, ang);
+        vbx_ia ang = own_angle(t0, t1);
         vbx_ia omz = vbx_ia_sub(vbx_ia_point(1.0), a->c), F = vbx_ia_point(0.0);
-        if (in->contacts && !fcon(&f.o, a->c, &F))
+        if (wantc && !fcon(&f.o, a->c, &F))
             return 0;
         a->v[AREA] = vbx_ia_mul(omz, ang);
         a->v[VOL] = vbx_ia_mul(vbx_ia_mul(omz, fvol_over(&f.o, a->c)), ang);
@@ -530,7 +545,7 @@ int vbm_arc_integrate(const vbm_atom_in *in, vbx_ia D, vbm_arcrec *a, const doub
      * mostly for a contact target the first pass could not know, and
      * redid their area and volume too) */
     int av = !again || width(a->v[AREA]) > tg[AREA] || width(a->v[VOL]) > tg[VOL];
-    int con = in->contacts && (!again || width(a->v[CON]) > tg[CON]);
+    int con = wantc && (!again || width(a->v[CON]) > tg[CON]);
     f.want = (av ? 1 << AREA | 1 << VOL : 0) | (con ? 1 << CON : 0);
     if (!end_piece(&f, t0, m0, &s) || !end_piece(&f, t1, m1, &s))
         return 0;
@@ -547,7 +562,7 @@ int vbm_arc_integrate(const vbm_atom_in *in, vbx_ia D, vbm_arcrec *a, const doub
         s.v[AREA] = a->v[AREA];
         s.v[VOL] = a->v[VOL];
     }
-    if (!con && in->contacts)
+    if (!con && wantc)
         s.v[CON] = a->v[CON];
     memcpy(a->v, s.v, sizeof a->v);
     *pieces += s.pieces;

@@ -30,6 +30,7 @@
 
 #include "vb_array.h"
 #include "vbm_caps.h"
+#include "vbm_dot.h"
 
 #define TWO_PI 6.283185307179586
 #define MAX_ARC 2.5      /* longer arcs are split (their frames need |angle| < pi / 2) */
@@ -67,11 +68,6 @@ typedef struct vbm_restr {
     uint32_t cap;
 } restr;
 
-static vbx_ia dot3(const vbx_ia *a, const vbx_ia *b)
-{
-    return vbx_ia_add(vbx_ia_add(vbx_ia_mul(a[0], b[0]), vbx_ia_mul(a[1], b[1])),
-                      vbx_ia_mul(a[2], b[2]));
-}
 
 static void cross3(const vbx_ia *a, const vbx_ia *b, vbx_ia *r)
 {
@@ -83,7 +79,7 @@ static void cross3(const vbx_ia *a, const vbx_ia *b, vbx_ia *r)
 /* vbm_circle_of without the frame (kind, a, c and s). */
 static int circle_axis(const vbm_cap *cp, vbm_circle *c)
 {
-    vbx_ia nn = vbx_ia_sqrt(dot3(cp->n, cp->n));
+    vbx_ia nn = vbx_ia_sqrt(vbm_dot3(cp->n, cp->n));
     vbx_ia lo = vbx_ia_sub(nn, cp->h), hi = vbx_ia_add(nn, cp->h);
     if (lo.hi < 0.0) {
         c->kind = VBM_CAP_NONE;
@@ -96,10 +92,14 @@ static int circle_axis(const vbm_cap *cp, vbm_circle *c)
     if (!(lo.lo > 0.0 && hi.lo > 0.0 && nn.lo > 0.0))
         return 0;
     c->kind = VBM_CAP_CIRCLE;
+    /* times one enclosure of 1 / |n| (it holds the exact reciprocal, so
+     * each product holds the exact quotient): one division where five took
+     * twenty */
+    vbx_ia inn = vbx_ia_div(vbx_ia_point(1.0), nn);
     for (int k = 0; k < 3; k++)
-        c->a[k] = vbx_ia_div(cp->n[k], nn);
-    c->c = vbx_ia_div(cp->h, nn);
-    c->s = vbx_ia_div(vbx_ia_sqrt(vbx_ia_mul(lo, hi)), nn);
+        c->a[k] = vbx_ia_mul(cp->n[k], inn);
+    c->c = vbx_ia_mul(cp->h, inn);
+    c->s = vbx_ia_mul(vbx_ia_sqrt(vbx_ia_mul(lo, hi)), inn);
     return 1;
 }
 
@@ -116,7 +116,7 @@ static int circle_frame(vbm_circle *c)
     vbx_ia fv[3] = {vbx_ia_point(0.0), vbx_ia_point(0.0), vbx_ia_point(0.0)}, t[3];
     fv[f] = vbx_ia_point(1.0);
     cross3(c->a, fv, t);
-    vbx_ia tn = vbx_ia_sqrt(dot3(t, t));
+    vbx_ia tn = vbx_ia_sqrt(vbm_dot3(t, t));
     if (!(tn.lo > 0.0))
         return 0;
     for (int k = 0; k < 3; k++)
@@ -202,9 +202,9 @@ static int push_arc(vbm_capwork *w, uint32_t l, const endpt *p, const endpt *q, 
 static restr restrict_by(const vbm_circle *C, const vbm_cap *cap)
 {
     restr r;
-    r.P = vbx_ia_mul(C->c, dot3(C->a, cap->n));
-    r.Qc = vbx_ia_mul(C->s, dot3(C->e1, cap->n));
-    r.Qs = vbx_ia_mul(C->s, dot3(C->e2, cap->n));
+    r.P = vbx_ia_mul(C->c, vbm_dot3(C->a, cap->n));
+    r.Qc = vbx_ia_mul(C->s, vbm_dot3(C->e1, cap->n));
+    r.Qs = vbx_ia_mul(C->s, vbm_dot3(C->e2, cap->n));
     r.h = cap->h;
     return r;
 }
@@ -261,16 +261,19 @@ static int circle_arcs(const vbm_cap *caps, const uint32_t *sel, size_t nsel, vb
     for (size_t i = keep; i < nr; i++) {
         const restr *r = &res[i];
         vbx_ia rr = vbx_ia_sqrt(vbx_ia_mul(r->gm, r->gp));
-        vbx_ia cg = vbx_ia_mul(r->Qc, r->g), sg = vbx_ia_mul(r->Qs, r->g);
-        vbx_ia cr = vbx_ia_mul(r->Qc, rr), sr = vbx_ia_mul(r->Qs, rr);
+        /* g and rr over Q^2 first (one division, Q2 > 0 proven above) */
+        vbx_ia iq = vbx_ia_div(vbx_ia_point(1.0), r->Q2);
+        vbx_ia gq = vbx_ia_mul(r->g, iq), rq = vbx_ia_mul(rr, iq);
+        vbx_ia cg = vbx_ia_mul(r->Qc, gq), sg = vbx_ia_mul(r->Qs, gq);
+        vbx_ia cr = vbx_ia_mul(r->Qc, rq), sr = vbx_ia_mul(r->Qs, rq);
         endpt *s = &end[ne++], *e = &end[ne++];
         s->start = 1;
         e->start = 0;
         s->cap = e->cap = r->cap;
-        s->x = vbx_ia_div(vbx_ia_add(cg, sr), r->Q2);
-        s->y = vbx_ia_div(vbx_ia_sub(sg, cr), r->Q2);
-        e->x = vbx_ia_div(vbx_ia_sub(cg, sr), r->Q2);
-        e->y = vbx_ia_div(vbx_ia_add(cr, sg), r->Q2);
+        s->x = vbx_ia_add(cg, sr);
+        s->y = vbx_ia_sub(sg, cr);
+        e->x = vbx_ia_sub(cg, sr);
+        e->y = vbx_ia_add(cr, sg);
         for (int k = 0; k < 2; k++) {
             endpt *p = k ? e : s;
             if (!(p->x.hi - p->x.lo < MAX_END_WIDTH && p->y.hi - p->y.lo < MAX_END_WIDTH))

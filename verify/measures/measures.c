@@ -169,6 +169,17 @@ static int cmp_pair(const void *a, const void *b)
     return x < y ? -1 : x > y;
 }
 
+static int written_side(const job *jb, size_t i, uint32_t j, vb_contact *c);
+
+/* Whether atom i integrates its contact with sphere j: the side that
+ * writes it (written_side), or both sides with contacts_both. */
+static uint8_t wants_contact(const job *jb, size_t i, size_t j)
+{
+    vb_contact c;
+    return (uint8_t)(jb->opt->contacts &&
+                     (jb->opt->contacts_both || written_side(jb, i, (uint32_t)j, &c)));
+}
+
 /* Collects atom i's neighbours within reach. Returns 0 on a full answer,
  * 1 when the cell is empty (a larger sphere touches i from inside), -1 on
  * ENOMEM. */
@@ -220,6 +231,7 @@ static int neighbours(job *jb, size_t i, int tid, size_t *nnb)
                     }
                     n.k = vbx_ia_sub(vbx_ia_div(n.N, vbx_ia_add(ri, ri)), n.delta);
                     n.id = (uint32_t)j;
+                    n.con = wants_contact(jb, i, j);
                     if (m >= jb->cap_nb[tid]) {
                         size_t cap = jb->cap_nb[tid] ? 2 * jb->cap_nb[tid] : 256;
                         vbm_nb *p = realloc(jb->nb[tid], cap * sizeof *p);
@@ -340,7 +352,9 @@ static int written_side(const job *jb, size_t i, uint32_t j, vb_contact *c)
     return c->s[k] > 0;
 }
 
-/* Meets the two sides of every contact into o->contacts. */
+/* Every contact into o->contacts from the side that writes it, met with
+ * the other side's with contacts_both (the other side did not integrate it
+ * otherwise: its list lacks it). */
 static int meet_contacts(vb_ctx *ctx, job *jb)
 {
     vb_cell_measures *o = jb->out;
@@ -353,7 +367,8 @@ static int meet_contacts(vb_ctx *ctx, job *jb)
     for (size_t i = 0; i < o->n; i++)
         for (size_t k = 0; k < jb->npairs[i]; k++) {
             uint32_t j = jb->pairs[i][k].j;
-            vbx_ia a = jb->pairs[i][k].area, b = other_side(jb, j, (uint32_t)i);
+            vbx_ia a = jb->pairs[i][k].area;
+            vbx_ia b = jb->opt->contacts_both ? other_side(jb, j, (uint32_t)i) : a;
             double lo = vbx_max(vbx_max(a.lo, b.lo), 0.0), hi = vbx_min(a.hi, b.hi);
             if (lo > hi)
                 return vb_error(ctx, VB_EINTERNAL, jb->set->source, 0,

@@ -1,4 +1,5 @@
 /* Univariate Taylor models in interval arithmetic (vbm_series1.h). */
+#include "vbm_dot.h"
 #include "vbm_piece.h"
 #include "vbm_series1.h"
 
@@ -34,13 +35,14 @@ void vbm1_sub(vbm_s1 *r, const vbm_s1 *f, const vbm_s1 *g)
         r->c[k] = vbx_ia_sub(f->c[k], g->c[k]);
 }
 
-/* sum over k in [from, to] of f_k g_(n-k) */
+_Static_assert(VBM1_K + 1 <= VBM_DOT_MAX, "the convolutions' terms within vbm_dotn's proof");
+
+/* sum over k in [from, to] of f_k g_(n-k), one rounding bound per end
+ * (vbm_dotn: 1crn --contacts, 1 thread, the per-operation roundings of
+ * these sums were most of vbm1_mul, the run's largest function) */
 static vbx_ia conv(const vbm_s1 *f, const vbm_s1 *g, int n, int from, int to)
 {
-    vbx_ia s = vbx_ia_point(0.0);
-    for (int k = from; k <= to; k++)
-        s = vbx_ia_add(s, vbx_ia_mul(f->c[k], g->c[n - k]));
-    return s;
+    return vbm_dotn(&f->c[from], 1, &g->c[n - from], -1, to - from + 1);
 }
 
 void vbm1_mul(vbm_s1 *r, const vbm_s1 *f, const vbm_s1 *g)
@@ -107,9 +109,7 @@ int vbm1_log(vbm_s1 *r, const vbm_s1 *f)
     r->c[0] = vbm_ia_log(f0);
     vbx_ia if0 = vbx_ia_div(vbx_ia_point(1.0), f0);
     for (int n = 1; n <= VBM1_K; n++) {
-        vbx_ia s = vbx_ia_point(0.0);
-        for (int k = 1; k < n; k++)
-            s = vbx_ia_add(s, vbx_ia_mul(kr[k], f->c[n - k]));
+        vbx_ia s = vbm_dotn(&kr[1], 1, &f->c[n - 1], -1, n - 1);
         vbx_ia num = vbx_ia_sub(f->c[n], vbx_ia_mul(s, inv_int(n)));
         r->c[n] = vbx_ia_mul(num, if0);
         kr[n] = vbx_ia_mul(vbx_ia_point((double)n), r->c[n]);
@@ -132,12 +132,7 @@ void vbm1_moments(double xc, double x0, double x1, vbx_ia *m)
 
 vbx_ia vbm1_integrate_m(const vbm_s1 *centre, const vbm_s1 *box, const vbx_ia *m)
 {
-    vbx_ia s = vbx_ia_point(0.0);
-    for (int n = 0; n <= VBM1_K; n++) {
-        /* the remainder c_K(xi) x^K: x^K >= 0 (K even), so its integral lies
-         * in the hull of c_K over the box times that of x^K */
-        vbx_ia c = n < VBM1_K ? centre->c[n] : box->c[n];
-        s = vbx_ia_add(s, vbx_ia_mul(c, m[n]));
-    }
-    return s;
+    /* the remainder c_K(xi) x^K: x^K >= 0 (K even), so its integral lies
+     * in the hull of c_K over the box times that of x^K */
+    return vbx_ia_add(vbm_dotn(centre->c, 1, m, 1, VBM1_K), vbx_ia_mul(box->c[VBM1_K], m[VBM1_K]));
 }

@@ -2,19 +2,19 @@
  * integrands along a circle arc are quotients of low-degree polynomials in
  * t = tan(angle / 2) (stokes_cell.c), so their coefficients follow from a
  * linear recurrence instead of series products and reciprocals. */
+#include "vbm_dot.h"
 #include "vbm_series1.h"
 
 /* vbm1_rational_rest: the numerator's degree below K, so that A has no
  * term of x^K or above */
 _Static_assert(VBM1_POLY < VBM1_K, "vbm1_rational_rest needs deg num < VBM1_K");
+_Static_assert(VBM1_POLY + 1 <= VBM_DOT_MAX, "the sums within vbm_dotn's proof");
 
 void vbm1_poly_mul(vbx_ia *r, const vbx_ia *f, int df, const vbx_ia *g, int dg)
 {
     for (int n = 0; n <= df + dg; n++) {
-        vbx_ia s = vbx_ia_point(0.0);
-        for (int k = n > dg ? n - dg : 0; k <= df && k <= n; k++)
-            s = vbx_ia_add(s, vbx_ia_mul(f[k], g[n - k]));
-        r[n] = s;
+        int k0 = n > dg ? n - dg : 0, k1 = n < df ? n : df;
+        r[n] = vbm_dotn(&f[k0], 1, &g[n - k0], -1, k1 - k0 + 1);
     }
 }
 
@@ -63,12 +63,8 @@ int vbm1_rational_rest(const vbm1_rat *keep, const vbm_s1 *r, vbx_ia x, vbx_ia *
     int dd = keep->dd;
     const vbx_ia *b = keep->b;
     vbx_ia m[VBM1_POLY + 1];
-    for (int j = 0; j < dd; j++) {
-        vbx_ia s = vbx_ia_point(0.0);
-        for (int k = j + 1; k <= dd; k++)
-            s = vbx_ia_add(s, vbx_ia_mul(b[k], r->c[VBM1_K + j - k]));
-        m[j] = vbx_ia_neg(s);
-    }
+    for (int j = 0; j < dd; j++)
+        m[j] = vbx_ia_neg(vbm_dotn(&b[j + 1], 1, &r->c[VBM1_K - 1], -1, dd - j));
     vbx_ia M = vbx_ia_point(0.0), B = b[dd];
     for (int j = dd - 1; j >= 0; j--) {
         M = vbx_ia_add(vbx_ia_mul(x, M), m[j]);
@@ -96,10 +92,9 @@ static int rational(vbm_s1 *r, const vbx_ia *num, int dn, const vbx_ia *den, int
     /* times an enclosure of 1 / b0 (one division, not one per coefficient:
      * s / b0 lies in s [1 / b0]) */
     vbx_ia ib0 = vbx_ia_div(vbx_ia_point(1.0), b0);
-    for (int n = 0; n <= kmax; n++) {
-        vbx_ia s = n <= dn ? a[n] : vbx_ia_point(0.0);
-        for (int k = 1; k <= dd && k <= n; k++)
-            s = vbx_ia_sub(s, vbx_ia_mul(b[k], r->c[n - k]));
+    for (int n = 0; n <= kmax; n++) { /* the sum with one rounding bound per end (vbm_dotn) */
+        vbx_ia s = n ? vbm_dotn(&b[1], 1, &r->c[n - 1], -1, n < dd ? n : dd) : vbx_ia_point(0.0);
+        s = n <= dn ? vbx_ia_sub(a[n], s) : vbx_ia_neg(s);
         r->c[n] = vbx_ia_mul(s, ib0);
     }
     for (int n = kmax + 1; n <= VBM1_K; n++)

@@ -34,6 +34,7 @@
 #include "vb_array.h"
 #include "vbm_arc.h"
 #include "vbm_caps.h"
+#include "vbm_dot.h"
 #include "vbm_cell.h"
 #include "vbm_share.h"
 
@@ -84,11 +85,6 @@ void vbm_stokes_free(void *p)
     free(w);
 }
 
-static vbx_ia dot3(const vbx_ia *a, const vbx_ia *b)
-{
-    return vbx_ia_add(vbx_ia_add(vbx_ia_mul(a[0], b[0]), vbx_ia_mul(a[1], b[1])),
-                      vbx_ia_mul(a[2], b[2]));
-}
 
 static double width(vbx_ia a)
 {
@@ -117,7 +113,7 @@ static size_t region_caps(const vbm_atom_in *in, stokes_work *w, size_t na, size
          * owns nothing in j's cap */
         vbx_ia cs = vbx_ia_sub(vbx_ia_mul(aj->ca, ak->ca), vbx_ia_mul(aj->sa, ak->sa));
         vbx_ia sn = vbx_ia_add(vbx_ia_mul(aj->sa, ak->ca), vbx_ia_mul(aj->ca, ak->sa));
-        if (sn.lo > 0.0 && dot3(aj->e, ak->e).hi < cs.lo)
+        if (sn.lo > 0.0 && vbm_dot3(aj->e, ak->e).hi < cs.lo)
             continue;
         const vbm_nb *nk = &in->nb[ak->j];
         vbm_cap c;
@@ -126,8 +122,8 @@ static size_t region_caps(const vbm_atom_in *in, stokes_work *w, size_t na, size
         c.h = vbx_ia_sub(vbx_ia_mul(nj->N, nk->delta), vbx_ia_mul(nk->N, nj->delta));
         /* over j's cap (u.e = z in [ca, 1], |u_perp| <= sa) u.n lies in
          * z (e.n) +- sa |n_perp| */
-        vbx_ia en = dot3(aj->e, c.n);
-        vbx_ia perp = vbx_ia_sqrt(vbx_ia_sub(dot3(c.n, c.n), vbx_ia_sqr(en)));
+        vbx_ia en = vbm_dot3(aj->e, c.n);
+        vbx_ia perp = vbx_ia_sqrt(vbx_ia_sub(vbm_dot3(c.n, c.n), vbx_ia_sqr(en)));
         vbx_ia spread = vbx_ia_mul(sa, perp);
         double lo = vbx_min(vbx_ia_mul(aj->ca, en).lo, en.lo) - spread.hi;
         double hi = vbx_max(vbx_ia_mul(aj->ca, en).hi, en.hi) + spread.hi;
@@ -194,7 +190,8 @@ static int integrate_arcs(const vbm_atom_in *in, stokes_work *w, double tv, doub
         uint32_t j = a->j;
         double tc = in->tolerance * vbx_max(scale > 1.0 ? 0.0 : magnitude_lo(w->con[j]), fa);
         double cs = scale > 1.0 ? CON_FIRST_SCALE : scale;
-        tg[CON] = in->contacts ? cs * 0.5 * tc / (double)(w->narcs[j] + 1) : INFINITY;
+        tg[CON] = in->contacts && in->nb[j].con ? cs * 0.5 * tc / (double)(w->narcs[j] + 1)
+                                                : INFINITY;
         if (scale <= 1.0 && !vbm_arc_over(a->v, tg))
             continue;
         if (!vbm_arc_integrate(in, w->D[j], a, tg, scale <= 1.0, pieces))
@@ -208,14 +205,14 @@ static int pairs(const vbm_atom_in *in, const stokes_work *w, vbm_atom_out *out)
 {
     size_t np = 0;
     for (size_t j = 0; j < in->nnb; j++)
-        np += w->narcs[j] && w->con[j].hi > 0.0;
+        np += in->nb[j].con && w->narcs[j] && w->con[j].hi > 0.0;
     if (!np)
         return 1;
     out->pairs = malloc(np * sizeof *out->pairs);
     if (!out->pairs)
         return 0;
     for (size_t j = 0; j < in->nnb; j++)
-        if (w->narcs[j] && w->con[j].hi > 0.0) {
+        if (in->nb[j].con && w->narcs[j] && w->con[j].hi > 0.0) {
             vbm_pair p = {(uint32_t)j, w->con[j]};
             out->pairs[out->npairs++] = p;
         }
@@ -268,7 +265,7 @@ int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
         const vbm_nb *n = &in->nb[j];
         if (!(n->N.lo > 0.0))
             return 0;
-        w->D[j] = vbx_ia_sqrt(dot3(n->d, n->d));
+        w->D[j] = vbx_ia_sqrt(vbm_dot3(n->d, n->d));
         vbx_ia g = vbx_ia_sub(w->D[j], n->k);
         if (g.hi < 0.0)
             continue;
@@ -313,9 +310,9 @@ int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
             r->own = a->cap == 0;
             r->c = C->c;
             r->s = C->s;
-            r->A0 = dot3(ej, C->a);
-            r->A1 = dot3(ej, C->e1);
-            r->A2 = dot3(ej, C->e2);
+            r->A0 = vbm_dot3(ej, C->a);
+            r->A1 = vbm_dot3(ej, C->e1);
+            r->A2 = vbm_dot3(ej, C->e2);
             memcpy(r->p, a->p, sizeof r->p);
             memcpy(r->q, a->q, sizeof r->q);
             r->tp = a->tp;
@@ -345,7 +342,7 @@ int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
     out->loose = width(out->vol) > in->tolerance * vbx_max(mv, fv) ||
                  width(out->sas) > in->tolerance * vbx_max(ms, fa);
     for (size_t j = 0; in->contacts && j < in->nnb; j++)
-        if (w->narcs[j] &&
+        if (in->nb[j].con && w->narcs[j] &&
             width(w->con[j]) > in->tolerance * vbx_max(fabs(vbx_ia_mid(w->con[j])), fa))
             out->loose = 1;
     if (in->contacts && !pairs(in, w, out))

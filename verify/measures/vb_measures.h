@@ -43,10 +43,13 @@ typedef struct vb_measure_options {
     int threads;        /* 0 = all cores, else 1..VB_MAX_THREADS */
     int patches;        /* nonzero: every atom by direction patches, never in closed form
                          * (the two methods compared in tests) */
+    int contacts_both;  /* nonzero (tests): each contact integrated from both atoms' sides
+                         * and the two enclosures met (disjoint: VB_EINTERNAL); 0: from the
+                         * side that writes it alone (vb_contact), half the work */
 } vb_measure_options;
 
-/* The contact of atoms i < j: the intersection of the enclosures computed
- * from i's side and from j's side. In a periodic run (vb_measure_images)
+/* The contact of atoms i < j: the enclosure computed from i's side (with
+ * contacts_both, met with the one from j's side). In a periodic run (vb_measure_images)
  * the contact is between atom i and atom j moved by the box shift s (the
  * notation j@(s0,s1,s2) of vb_periodic.h), each periodic face once: i < j,
  * or i == j (an atom meeting its own image) with s lexicographically

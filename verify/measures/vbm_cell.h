@@ -18,6 +18,8 @@
 typedef struct vbm_nb {
     vbx_ia d[3], delta, N, k;
     uint32_t id;
+    uint8_t con; /* its contact area is wanted from this atom (vbm_atom_in.contacts
+                  * set; the other atom of the face may integrate it instead) */
 } vbm_nb;
 
 typedef struct vbm_pair {
@@ -31,12 +33,13 @@ typedef struct vbm_atom_in {
     size_t nnb;           /* < 65536 */
     double tolerance;     /* relative, see vb_measure_options */
     size_t max_patches;
-    int contacts;
+    int contacts;         /* some nb[j].con is set: contact areas wanted */
 } vbm_atom_in;
 
 typedef struct vbm_atom_out {
     vbx_ia vol, sas;
-    vbm_pair *pairs;      /* npairs contact enclosures with hi > 0 (malloc'd; caller frees) */
+    vbm_pair *pairs;      /* npairs contact enclosures with hi > 0, of the neighbours with
+                           * con set (malloc'd; caller frees) */
     size_t npairs;
     size_t patches;
     int loose;            /* a value is wider than the tolerance asks */

@@ -1,0 +1,217 @@
+/* The channel analysis's voxel graph (core/discrete/channel_voxels.c,
+ * channel_graph.c, channel_radix.c) against definitions written plainly
+ * here: the 26-connected CSR adjacency against every neighbour looked up
+ * by binary search (order, step codes, degrees; 1 and 3 threads, grids
+ * one voxel thin), the radix heap's sweep against an O(m^2) Dijkstra that
+ * settles in (distance, position) order (distance bits and predecessors,
+ * tied clearances everywhere, and a clearance so large that steps vanish:
+ * the binary heap's fallback; stopped at a target: its path), and the radix sort against qsort. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "channel_paths_math.h"
+#include "synth.h"
+#include "vb_test.h"
+#include "vbc_radix.h"
+#include "vbc_voxels.h"
+
+/* A random voxel set of g (each voxel present with probability p), loaded
+ * and linked into W. */
+static void random_graph(uint64_t *seed, const vbc_grid *g, double p, analysis *W)
+{
+    size_t nv = vbc_grid_voxels(g), n = 0;
+    uint32_t *vox = malloc((nv ? nv : 1) * sizeof *vox);
+    for (size_t v = nv; v-- > 0;) /* descending: the load sorts */
+        if (synth_uniform(seed) < p)
+            vox[n++] = (uint32_t)v;
+    memset(W, 0, sizeof *W);
+    W->A.g = W->g = g;
+    W->nvox = n;
+    CHECK(vbc_analysis_alloc(W) == 0 && vbc_voxels_load(W, vox, NULL, NULL) == 0 &&
+          vbc_voxels_link(W) == 0);
+    free(vox);
+}
+
+static int cmp_u32(const void *a, const void *b)
+{
+    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+    return (x > y) - (x < y);
+}
+
+/* Edges of W that differ from the neighbours found by binary search. */
+static size_t csr_mismatches(const analysis *W)
+{
+    const vbc_grid *g = W->g;
+    size_t bad = 0;
+    for (size_t t = 0; t < W->nvox; t++) {
+        uint32_t v = W->sorted[t];
+        int i = (int)(v % (uint32_t)g->nx), j = (int)(v / (uint32_t)g->nx % (uint32_t)g->ny);
+        int k = (int)(v / ((uint32_t)g->nx * (uint32_t)g->ny));
+        size_t e = W->A.adj_start[t];
+        for (int dz = -1; dz <= 1; dz++)
+            for (int dy = -1; dy <= 1; dy++)
+                for (int dx = -1; dx <= 1; dx++) {
+                    if (!(dx | dy | dz) || i + dx < 0 || i + dx >= g->nx || j + dy < 0 ||
+                        j + dy >= g->ny || k + dz < 0 || k + dz >= g->nz)
+                        continue;
+                    uint32_t w = (uint32_t)((i + dx) + g->nx * ((j + dy) + g->ny * (k + dz)));
+                    const uint32_t *at = bsearch(&w, W->sorted, W->nvox, sizeof w, cmp_u32);
+                    if (!at)
+                        continue;
+                    bad += e >= W->A.adj_start[t + 1] || W->A.adj[e] != (uint32_t)(at - W->sorted) ||
+                           W->A.adj_len[e] != abs(dx) + abs(dy) + abs(dz);
+                    e++;
+                }
+        bad += e != W->A.adj_start[t + 1];
+    }
+    return bad;
+}
+
+/* Dijkstra by definition over component mem[0..m): settle the unsettled
+ * member of least (distance, position), relax its neighbours strictly. */
+static void plain_dijkstra(const analysis *W, const uint32_t *mem, size_t m, uint32_t src, int weighted,
+                           double *dist, uint32_t *pred, uint8_t *done)
+{
+    for (size_t t = 0; t < m; t++) {
+        dist[mem[t]] = INFINITY;
+        pred[mem[t]] = UINT32_MAX;
+        done[mem[t]] = 0;
+    }
+    dist[src] = 0.0;
+    for (;;) {
+        uint32_t u = UINT32_MAX;
+        for (size_t t = 0; t < m; t++)
+            if (!done[mem[t]] && dist[mem[t]] < INFINITY &&
+                (u == UINT32_MAX || vbc_path_pred_before(dist[mem[t]], mem[t], dist[u], u)))
+                u = mem[t];
+        if (u == UINT32_MAX)
+            return;
+        done[u] = 1;
+        for (size_t e = W->A.adj_start[u]; e < W->A.adj_start[u + 1]; e++) {
+            uint32_t q = W->A.adj[e];
+            double nd = dist[u] + vbc_path_step(W->A.adj_len[e], W->clear[u], W->clear[q], weighted);
+            if (!done[q] && nd < dist[q]) {
+                dist[q] = nd;
+                pred[q] = u;
+            }
+        }
+    }
+}
+
+/* Sweeps of every component of a random set from a random member, plain
+ * and weighted, against plain_dijkstra. Clearances: `levels` values (ties),
+ * or uniform doubles when levels is 0; huge puts 1e30 on one voxel. */
+static void sweep_case(uint64_t *seed, int n, double p, int levels, int huge)
+{
+    static const double lv[4] = {1.0, 0.5, 0.05, 0.02};
+    vbc_grid g = {n, n - 2, n - 4, 3, {0.0, 0.0, 0.0}, 1.0};
+    analysis W;
+    random_graph(seed, &g, p, &W);
+    vbc_components_group(&W);
+    for (size_t t = 0; t < W.nvox; t++)
+        W.clear[t] = levels ? lv[(int)(synth_uniform(seed) * levels) % levels]
+                            : 0.01 + 3.0 * synth_uniform(seed);
+    if (huge && W.nvox)
+        W.clear[W.nvox / 2] = 1e30;
+    double *dist = malloc((W.nvox + 1) * sizeof *dist);
+    uint32_t *pred = malloc((W.nvox + 1) * sizeof *pred);
+    uint8_t *done = malloc(W.nvox + 1);
+    size_t bad = 0, paths = 0;
+    for (int weighted = 0; weighted <= 1; weighted++)
+        for (size_t c = 0; c < W.ncomp; c++) {
+            size_t m = W.cstart[c + 1] - W.cstart[c];
+            const uint32_t *mem = W.order + W.cstart[c];
+            uint32_t src = mem[(size_t)(synth_uniform(seed) * (double)m) % m];
+            vbc_sweep(&W.A, mem, m, src, weighted);
+            plain_dijkstra(&W, mem, m, src, weighted, dist, pred, done);
+            for (size_t t = 0; t < m; t++)
+                bad += memcmp(&dist[mem[t]], &W.A.dist[mem[t]], sizeof(double)) != 0 ||
+                       pred[mem[t]] != W.A.pred[mem[t]];
+            /* Stopped at a target: its path back to src is the same. */
+            uint32_t to = mem[(size_t)(synth_uniform(seed) * (double)m) % m];
+            vbc_sweep_to(&W.A, mem, m, src, weighted, to);
+            for (uint32_t q = to; q != UINT32_MAX; q = pred[q]) {
+                bad += memcmp(&dist[q], &W.A.dist[q], sizeof(double)) != 0 || pred[q] != W.A.pred[q];
+                paths++;
+            }
+        }
+    CHECK_INT(bad, 0);
+    CHECK(paths > 2 * W.ncomp); /* two sweeps a component: some paths leave their source */
+    free(dist);
+    free(pred);
+    free(done);
+    vbc_analysis_free(&W);
+}
+
+typedef struct {
+    double c;
+    uint32_t pos;
+} by_clear;
+
+static int cmp_by_clear(const void *x, const void *y)
+{
+    const by_clear *a = x, *b = y;
+    if (a->c != b->c)
+        return a->c < b->c ? 1 : -1;
+    return (a->pos > b->pos) - (a->pos < b->pos);
+}
+
+/* vbc_radix_desc keys sorted with positions (ascending on entry) against
+ * qsort by (value descending, position ascending). */
+static void radix_case(uint64_t *seed, size_t n)
+{
+    static const double odd[6] = {0.0, -0.0, 1.5, -2.25, 1e-300, INFINITY};
+    uint64_t *key = malloc(2 * n * sizeof *key);
+    uint32_t *val = malloc(2 * n * sizeof *val);
+    by_clear *S = malloc(n * sizeof *S);
+    for (size_t t = 0; t < n; t++) {
+        double u = synth_uniform(seed);
+        S[t].c = u < 0.3 ? odd[(size_t)(u * 20.0) % 6] : u < 0.6 ? (double)(float)(u * 7.0 - 3.0) : u;
+        S[t].pos = (uint32_t)(3 * t + 1);
+        key[t] = vbc_radix_desc(S[t].c);
+        val[t] = S[t].pos;
+    }
+    vbc_radix_sort(key, val, key + n, val + n, n, 0);
+    qsort(S, n, sizeof *S, cmp_by_clear);
+    size_t bad = 0;
+    for (size_t t = 0; t < n; t++)
+        bad += val[t] != S[t].pos;
+    CHECK_INT(bad, 0);
+    free(key);
+    free(val);
+    free(S);
+}
+
+int main(void)
+{
+    uint64_t seed = 20261206;
+    static const int dims[5][3] = {{9, 7, 5}, {1, 6, 6}, {6, 1, 6}, {6, 6, 1}, {17, 13, 11}};
+    for (int threads = 1; threads <= 3; threads += 2) {
+        setenv("VORBALL_THREADS", threads == 1 ? "1" : "3", 1);
+        for (int d = 0; d < 5; d++)
+            for (int r = 0; r < 3; r++) {
+                vbc_grid g = {dims[d][0], dims[d][1], dims[d][2], 3, {0.0, 0.0, 0.0}, 1.0};
+                analysis W;
+                random_graph(&seed, &g, 0.2 + 0.3 * r, &W);
+                CHECK_INT(csr_mismatches(&W), 0);
+                vbc_analysis_free(&W);
+            }
+    }
+    /* Big enough for several link slices (4096 voxels each) on 3 threads. */
+    vbc_grid big = {48, 40, 36, 3, {0.0, 0.0, 0.0}, 1.0};
+    analysis W;
+    random_graph(&seed, &big, 0.5, &W);
+    CHECK(W.nvox > 3 * 4096);
+    CHECK_INT(csr_mismatches(&W), 0);
+    vbc_analysis_free(&W);
+    for (int r = 0; r < 4; r++) {
+        sweep_case(&seed, 14, 0.45, 4, 0);
+        sweep_case(&seed, 14, 0.55, 2, 0);
+        sweep_case(&seed, 12, 0.5, 0, 0);
+        sweep_case(&seed, 12, 0.6, 4, 1);
+    }
+    radix_case(&seed, 1);
+    radix_case(&seed, 5000);
+    VB_TEST_END();
+}
