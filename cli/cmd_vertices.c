@@ -172,6 +172,13 @@ int vb_cmd_vertices(int argc, char **argv)
     int rc = vb_cli_check_output(ctx, html);
     if (rc == VB_OK && html)
         rc = vb_page_check(ctx, html);
+    /* The device opens on its own thread while the input is read, where
+     * the file's size says the run will use one (vb_vertices_open_early). */
+    vb_vertices_early *early = NULL;
+    if (rc == VB_OK && !per.on)
+        rc = vb_vertices_open_early(ctx, vb_default_backends(), &po.cfg,
+                                    vb_spheres_count_hint(input), &early);
+    po.cfg.early = early;
     if (rc == VB_OK)
         rc = vb_cli_load_spheres_clocked(ctx, input, &po.in, 4, &set, &clk);
     /* A page too big is refused before the work, as every rank sees. */
@@ -179,6 +186,7 @@ int vb_cmd_vertices(int argc, char **argv)
         rc = vb_vertex_page_check(ctx, set);
     vb_world_loud(ctx, quiet);
     if (per.on) {
+        vb_vertices_early_free(early);
         if (rc == VB_OK)
             rc = vb_cli_vertices_periodic(ctx, set, &per, &po.cfg, input, outpath,
                                           vfmt == VB_VFMT_JSON, stats);
@@ -234,6 +242,7 @@ int vb_cmd_vertices(int argc, char **argv)
     vb_stage_lap(&clk, VB_STAGE_WRITE);
     code = vb_world_end(ctx, rc);
     vb_completion_free(&done);
+    vb_vertices_early_free(early);
     vb_vertices_result_free(&res);
     vb_spheres_free(set);
     vb_close(ctx);

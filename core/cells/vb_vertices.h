@@ -66,6 +66,8 @@ typedef struct vb_vertices_backends {
     const vb_certifier_ops *certifier;
 } vb_vertices_backends;
 
+typedef struct vb_vertices_early vb_vertices_early; /* vb_vertices_open_early */
+
 typedef struct vb_vertices_config {
     vb_device_kind device;       /* default VB_DEVICE_AUTO (0) */
     const char *proposer;        /* vb_proposers name; NULL: the default */
@@ -78,6 +80,9 @@ typedef struct vb_vertices_config {
                                   * be a GPU (vb_vertices_device); 0: the
                                   * environment's VORBALL_HOST_BELOW, else
                                   * VB_HOST_BELOW_DEFAULT; 1: always the device */
+    vb_vertices_early *early;    /* a device opening started ahead of the run
+                                  * (vb_vertices_open_early), or NULL: the run
+                                  * takes it when it is the device it uses */
     int keep_certifier;          /* 1: a successful run leaves its certifier open in
                                   * the result (cert, cert_ops) for a later stage on
                                   * the same set (arc closure: vb_completion_plan
@@ -94,11 +99,39 @@ typedef struct vb_vertices_config {
 /* The device kind a run of cfg on set uses: cfg->device, except that
  * VB_DEVICE_AUTO with the cover proposer on fewer spheres than the crossover
  * (cfg->host_below, see there) is VB_DEVICE_REF, no device opened, when the
- * host shows a GPU (layer->gpu_present). Without a GPU, auto
- * stays the CPU device (PoCL), the project's embedded default. The output
- * bytes never depend on it. */
+ * host shows a GPU (layer->gpu_present). Without a GPU, auto stays the CPU
+ * device (PoCL), the project's embedded default, although the host threads
+ * took less CPU than PoCL at every size measured there (the 2-core machine,
+ * 327 to 26,430 spheres, results/process_stop43.md). The output bytes never
+ * depend on it. */
 vb_device_kind vb_vertices_device(const vb_sphere_set *set, const vb_vertices_config *cfg,
                                   const vb_device_layer *layer);
+
+/* The device a run of cfg would use on n spheres (vb_vertices_device on a
+ * count, before the set is read). */
+vb_device_kind vb_vertices_device_for(size_t n, const vb_vertices_config *cfg,
+                                      const vb_device_layer *layer);
+
+/* Starts opening, on its own thread, the device that a run of cfg with the
+ * backends be would use on at least n_hint spheres (vb_vertices_device_for;
+ * 0: unknown), so that the device set-up (context, program build or cache
+ * load) overlaps the reading of the input (issue #30's fixed cost). *out is
+ * NULL when that is the host's twin (nothing to open) or when the opening
+ * cannot start; otherwise hand it to vb_vertices_run through cfg->early,
+ * on the same ctx. A run that uses another device (the count was below
+ * the hint's crossover) leaves this opening going on beside it. Free with
+ * vb_vertices_early_free after the run, or instead of it (it waits for an
+ * opening no run took). A run that took it leaves its device to close on
+ * a thread of its own while the caller completes and writes;
+ * vb_vertices_early_free waits for that too. VORBALL_DEVICE_EARLY=0 in the environment leaves
+ * the opening to the run (*out NULL), for timings. VB_OK, or VB_ENOMEM. */
+int vb_vertices_open_early(vb_ctx *ctx, const vb_vertices_backends *be,
+                           const vb_vertices_config *cfg, size_t n_hint,
+                           vb_vertices_early **out);
+
+/* Waits for an opening no run took and closes what it opened; frees e.
+ * NULL is allowed. */
+void vb_vertices_early_free(vb_vertices_early *e);
 
 typedef struct vb_vertices_result {
     vb_proposal proposal;       /* what the proposer found, and its counters */
@@ -107,6 +140,8 @@ typedef struct vb_vertices_result {
     double t_setup;             /* device opening, on its own thread */
     double t_setup_wait;        /* of that, the time the proposer waited for it */
     double t_certify, t_total;  /* t_certify: after the proposer returned */
+    double t_propose;           /* the proposer's call, its wait for the set-up included */
+    double t_release;           /* closing the proposer's state and the device, after t_total */
     double t_certify_overlap;   /* seconds the certifier worked while the proposer ran */
     size_t certify_parts;       /* parts of quadruples certified one by one (a stream) */
     double max_dist;            /* largest candidate-to-exact distance certified */
@@ -130,8 +165,8 @@ void vb_vertices_certificate(const vb_vertices_result *r, char *buf, size_t size
  * backend, device, the proposer's counters, certified and rejected counts,
  * the context's filter counters (filter_calls, filter_failures,
  * exact_evals), the cover's, device_bytes_peak, certify_*, judged_*,
- * judge_s and the run's seconds (setup_s, setup_wait_s, run_s, which vary
- * run to run): every line `vorball vertices --stats` prints, in its order. */
+ * judge_s and the run's seconds (setup_s, setup_wait_s, propose_s, run_s,
+ * release_s, which vary run to run): every line `vorball vertices --stats` prints, in its order. */
 void vb_vertices_stats(vb_ctx *ctx, const vb_vertices_result *r, vb_stat_fields *fs);
 
 /* Writes vb_vertices_stats' table to f, one "name<TAB>value" line each. */

@@ -55,6 +55,12 @@ static int open_proposer(vb_ctx *ctx, const vb_device_layer *layer, vb_device *d
 vb_device_kind vb_vertices_device(const vb_sphere_set *set, const vb_vertices_config *cfg,
                                   const vb_device_layer *layer)
 {
+    return vb_vertices_device_for(set->n, cfg, layer);
+}
+
+vb_device_kind vb_vertices_device_for(size_t n, const vb_vertices_config *cfg,
+                                      const vb_device_layer *layer)
+{
     if (cfg->device != VB_DEVICE_AUTO || vb_proposer_find(cfg->proposer) != &vb_proposer_cover)
         return cfg->device;
     size_t below = cfg->host_below;
@@ -64,7 +70,10 @@ vb_device_kind vb_vertices_device(const vb_sphere_set *set, const vb_vertices_co
         unsigned long long v = env && *env ? strtoull(env, &end, 10) : 0;
         below = v > 0 && *end == '\0' ? (size_t)v : VB_HOST_BELOW_DEFAULT;
     }
-    if (set->n >= below || !layer || !layer->gpu_present || !layer->gpu_present())
+    /* Without a GPU auto stays the CPU device (PoCL), the project's embedded
+     * default (STYLE.md), although the host threads took less CPU there at
+     * every size measured (results/process_stop43.md). */
+    if (n >= below || !layer || !layer->gpu_present || !layer->gpu_present())
         return VB_DEVICE_AUTO;
     return VB_DEVICE_REF;
 }
@@ -144,6 +153,110 @@ static void *await_state(void *user)
     if (op->prop->open(op->ctx, op->layer, NULL, &op->state) != VB_OK)
         op->state = NULL;
     return op->state;
+}
+
+/* Starts the opener's thread for the device of req (op zeroed before). */
+static void opener_start(opener *op, vb_ctx *ctx, const vb_device_layer *layer,
+                         const vb_proposer *p, vb_engine_request req)
+{
+    op->ctx = ctx;
+    op->layer = layer;
+    op->prop = p;
+    op->req = req;
+    op->t_start = vb_now();
+    if (vb_open_worker(&op->tctx, ctx) != VB_OK)
+        op->tctx = NULL;
+    op->started = vb_jobs_start(&op->job, open_device, op, sizeof *op, 1) == 1;
+}
+
+/* An opener that no run consumed: waited for, and what it opened closed. */
+static void opener_drop(opener *op)
+{
+    opener_join(op);
+    if (op->state)
+        op->prop->close(op->state);
+    if (op->rc == VB_OK && op->dev)
+        op->layer->close(op->dev);
+    vb_close(op->tctx);
+}
+
+/* What a run opened, closed on a thread of its own while the caller goes on
+ * (completes and writes): releasing a GPU context takes tens of ms. */
+typedef struct closer {
+    const vb_proposer *p;
+    void *state;
+    const vb_device_layer *layer;
+    vb_device *dev;
+} closer;
+
+static void *close_run(void *arg)
+{
+    closer *c = arg;
+    if (c->state)
+        c->p->close(c->state);
+    if (c->dev)
+        c->layer->close(c->dev);
+    return NULL;
+}
+
+struct vb_vertices_early {
+    opener op;
+    vb_device_kind kind;             /* the device it opens */
+    const vb_device_layer *layer;
+    int taken;                       /* a run consumed op */
+    closer cl;                       /* what that run opened, ... */
+    vb_jobs closing;                 /* ... closed on this thread */
+    int closing_started;
+};
+
+int vb_vertices_open_early(vb_ctx *ctx, const vb_vertices_backends *be,
+                           const vb_vertices_config *cfg, size_t n_hint,
+                           vb_vertices_early **out)
+{
+    *out = NULL;
+    const vb_proposer *p = vb_proposer_find(cfg->proposer);
+    vb_device_kind kind = vb_vertices_device_for(n_hint, cfg, be->devices);
+    const char *env = getenv("VORBALL_DEVICE_EARLY"); /* "0": opened by the run, for timings */
+    if (!p || kind == VB_DEVICE_REF || (env && strcmp(env, "0") == 0))
+        return VB_OK;
+    vb_vertices_early *e = calloc(1, sizeof *e);
+    if (!e)
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory");
+    vb_vertices_config c = *cfg;
+    c.device = kind;
+    e->kind = kind;
+    e->layer = be->devices;
+    opener_start(&e->op, ctx, be->devices, p, request_of(&c, p));
+    *out = e;
+    return VB_OK;
+}
+
+void vb_vertices_early_free(vb_vertices_early *e)
+{
+    if (!e)
+        return;
+    if (e->closing_started)
+        vb_jobs_join(&e->closing);
+    if (!e->taken)
+        opener_drop(&e->op);
+    free(e);
+}
+
+/* The opener of a run on `kind`: cfg->early's when it opens that device on
+ * the same layer (then taken), else local, started now (an early one for
+ * another device goes on beside the run: vb_vertices_early_free waits for
+ * it). */
+static opener *opener_of(vb_ctx *ctx, const vb_vertices_config *cfg, const vb_device_layer *layer,
+                         const vb_proposer *p, opener *local)
+{
+    vb_vertices_early *e = cfg->early;
+    if (e && !e->taken && e->kind == cfg->device && e->layer == layer && e->op.prop == p) {
+        e->taken = 1;
+        e->op.ctx = ctx;
+        return &e->op;
+    }
+    opener_start(local, ctx, layer, p, request_of(cfg, p));
+    return local;
 }
 
 /* Runs the proposer on state (NULL: through await) and names what ran. */
@@ -412,33 +525,28 @@ int vb_vertices_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertices_con
     void *state = NULL;
     vb_device *dev = NULL;
     int rc = VB_OK, async = cfg->device != VB_DEVICE_REF;
-    opener op;
-    memset(&op, 0, sizeof op);
-    op.ctx = ctx;
-    op.layer = be->devices;
-    op.prop = p;
-    op.req = request_of(cfg, p);
-    op.t_start = t0;
-    if (async) {
-        if (vb_open_worker(&op.tctx, ctx) != VB_OK)
-            op.tctx = NULL;
-        op.started = vb_jobs_start(&op.job, open_device, &op, sizeof op, 1) == 1;
-    } else if ((rc = p->open(ctx, be->devices, NULL, &state)) != VB_OK) {
+    opener local, *op = NULL;
+    memset(&local, 0, sizeof local);
+    if (async)
+        op = opener_of(ctx, cfg, be->devices, p, &local);
+    else if ((rc = p->open(ctx, be->devices, NULL, &state)) != VB_OK)
         return rc;
-    }
     vbv_cert_open co;
     vbv_cert_stream css, *cs;
     certifier_start(be->certifier, set, cfg, &co, &css, &cs, ctx);
     vb_propose_args pa = args_of(cfg, cs);
-    vb_proposer_await aw = {await_state, opener_ready, &op, cfg->device};
+    vb_proposer_await aw = {await_state, opener_ready, op, cfg->device};
+    double tp = vb_now();
     rc = propose(ctx, p, state, async ? &aw : NULL, set, &pa, res);
+    res->t_propose = vb_now() - tp;
     if (async) {
-        opener_join(&op); /* when the proposer failed before it needed the device */
-        state = op.state;
-        dev = op.rc == VB_OK ? op.dev : NULL;
-        vb_close(op.tctx);
-        res->t_setup = op.t_setup;
-        res->t_setup_wait = op.t_wait;
+        opener_join(op); /* when the proposer failed before it needed the device */
+        state = op->state;
+        dev = op->rc == VB_OK ? op->dev : NULL;
+        vb_close(op->tctx);
+        op->tctx = NULL;
+        res->t_setup = op->t_setup;
+        res->t_setup_wait = op->t_wait;
     }
     rc = stream_error(ctx, cs, rc);
     if (rc != VB_OK && VB_CATEGORY(rc) == VB_EDEVICE && dev) {
@@ -452,10 +560,19 @@ int vb_vertices_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertices_con
         rc = certify(ctx, be->certifier, &co, cs, set, cfg->keep_certifier, t0, res);
     else
         certifier_discard(be->certifier, &co, cs);
-    if (state)
-        p->close(state);
-    if (dev)
-        be->devices->close(dev);
+    double tr = vb_now();
+    closer cl = {p, state, be->devices, dev};
+    vb_vertices_early *e = cfg->early;
+    if (e && op == &e->op && !e->closing_started) {
+        /* Closed beside what the caller does next; vb_vertices_early_free
+         * waits for it. */
+        e->cl = cl;
+        vb_jobs_start(&e->closing, close_run, &e->cl, sizeof e->cl, 1);
+        e->closing_started = 1;
+    } else {
+        close_run(&cl);
+    }
+    res->t_release = vb_now() - tr;
     return rc;
 }
 
@@ -567,7 +684,9 @@ int vb_vertices_run_on(vb_ctx *ctx, vb_vertices_engine *e, const vb_sphere_set *
     vbv_cert_stream css, *cs;
     certifier_start(e->be.certifier, set, cfg, &co, &css, &cs, ctx);
     vb_propose_args pa = args_of(cfg, cs);
+    double tp = vb_now();
     rc = stream_error(ctx, cs, propose(ctx, e->prop, state, NULL, set, &pa, res));
+    res->t_propose = vb_now() - tp;
     if (rc != VB_OK && VB_CATEGORY(rc) == VB_EDEVICE && e->dev && state == e->state) {
         /* Later runs on e stay on the twin. */
         if (cs)

@@ -74,11 +74,14 @@ void vb_vertices_stats(vb_ctx *ctx, const vb_vertices_result *r, vb_stat_fields 
     vb_stat_real(fs, "certify_overlap_s", "%.6f", r->t_certify_overlap);
     vb_stat_real(fs, "certify_after_s", "%.6f", r->t_certify);
     /* The run's own clock (wall seconds): the device set-up on its thread,
-     * the time the proposer waited for it, and the whole run (set-up,
-     * proposer, certification). */
+     * the time the proposer waited for it, the proposer's call (that wait
+     * included), the whole run up to the certified list (set-up, proposer,
+     * certification), then closing the device. */
     vb_stat_real(fs, "setup_s", "%.6f", r->t_setup);
     vb_stat_real(fs, "setup_wait_s", "%.6f", r->t_setup_wait);
+    vb_stat_real(fs, "propose_s", "%.6f", r->t_propose);
     vb_stat_real(fs, "run_s", "%.6f", r->t_total);
+    vb_stat_real(fs, "release_s", "%.6f", r->t_release);
     /* The certification filter before the certifier (vb_cert_filter.h):
      * roots it decided (vertex, not a vertex), roots it sent to the host's
      * exact stage, and its seconds (wall, summed over the parts; zero

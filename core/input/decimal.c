@@ -21,6 +21,9 @@ static int is_nonfinite_word(const char *t, size_t n)
         t++;
         n--;
     }
+    /* Every word starts with n or i: a digit or a point is no word. */
+    if (n == 0 || ((t[0] | 0x20) != 'n' && (t[0] | 0x20) != 'i'))
+        return 0;
     static const char *const words[] = {"nan", "inf", "infinity"};
     for (size_t w = 0; w < 3; w++) {
         size_t k = strlen(words[w]);

@@ -36,20 +36,25 @@ static int check_values(vb_ctx *ctx, const vb_sphere_set *s)
             return vb_error(ctx, VB_EINPUT_RADIUS, src, s->line[i],
                             "radius %.17g is not positive%s", s->r[i],
                             s->er[i].mant == 0 ? " (--zero-radius point|drop accepts it)" : "");
+        /* The doubles filter: each is the decimal rounded once (to nearest),
+         * so one well inside a limit has its decimal inside it too. */
+        const double d[3] = {s->x[i], s->y[i], s->z[i]};
         for (int k = 0; k < 3; k++)
-            if (vb_decimal_cmp(dec_abs(c[k]), coord_limit) > 0)
+            if (!(fabs(d[k]) < 0.999e9) && vb_decimal_cmp(dec_abs(c[k]), coord_limit) > 0)
                 return vb_error(ctx, VB_EINPUT_MAGNITUDE, src, s->line[i],
                                 "coordinate %.17g exceeds 1e9 in magnitude",
                                 k == 0 ? s->x[i] : k == 1 ? s->y[i] : s->z[i]);
-        if (vb_decimal_cmp(s->er[i], radius_limit) > 0)
+        if (!(s->r[i] < 0.999e6) && vb_decimal_cmp(s->er[i], radius_limit) > 0)
             return vb_error(ctx, VB_EINPUT_MAGNITUDE, src, s->line[i],
                             "radius %.17g exceeds 1e6", s->r[i]);
     }
     return VB_OK;
 }
 
+/* A sphere by its doubles: identical decimals round to identical doubles,
+ * so identical spheres sit in one run of equal keys once sorted. */
 typedef struct {
-    vb_decimal v[4];
+    double v[4];
     size_t idx;
 } dup_key;
 
@@ -69,8 +74,15 @@ static int same_sphere_cmp(const vb_decimal a[4], const vb_decimal b[4])
 static int dup_key_cmp(const void *pa, const void *pb)
 {
     const dup_key *a = pa, *b = pb;
-    int c = same_sphere_cmp(a->v, b->v);
-    return c ? c : (a->idx > b->idx) - (a->idx < b->idx);
+    for (int k = 0; k < 4; k++)
+        if (a->v[k] != b->v[k])
+            return (a->v[k] > b->v[k]) - (a->v[k] < b->v[k]);
+    return (a->idx > b->idx) - (a->idx < b->idx);
+}
+
+static int same_key(const dup_key *a, const dup_key *b)
+{
+    return a->v[0] == b->v[0] && a->v[1] == b->v[1] && a->v[2] == b->v[2] && a->v[3] == b->v[3];
 }
 
 static void sphere_values(const vb_sphere_set *s, size_t i, vb_decimal v[4])
@@ -87,8 +99,7 @@ static int check_duplicates(vb_ctx *ctx, const vb_sphere_set *s)
     if (!k)
         return vb_error(ctx, VB_ENOMEM, s->source, 0, "out of memory");
     for (size_t i = 0; i < s->n; i++) {
-        sphere_values(s, i, k[i].v);
-        k[i].idx = i;
+        k[i] = (dup_key){{s->x[i], s->y[i], s->z[i], s->r[i]}, i};
     }
     /* A total order (ties by index): one result on any number of threads. */
     if (vb_psort(k, s->n, sizeof *k, dup_key_cmp, vb_threads(0)) != VB_OK) {
@@ -96,13 +107,25 @@ static int check_duplicates(vb_ctx *ctx, const vb_sphere_set *s)
         return vb_error(ctx, VB_ENOMEM, s->source, 0, "out of memory");
     }
     /* Of all identical pairs, name the one met first when reading the file
-     * top down: the later sphere with the smallest index. */
+     * top down: the later sphere with the smallest index. A run of equal
+     * doubles (by index) is compared on the decimals; runs are short. */
     size_t first = SIZE_MAX, second = SIZE_MAX;
-    for (size_t i = 1; i < s->n; i++)
-        if (same_sphere_cmp(k[i - 1].v, k[i].v) == 0 && k[i].idx < second) {
-            first = k[i - 1].idx;
-            second = k[i].idx;
+    for (size_t r0 = 0, r1; r0 < s->n; r0 = r1) {
+        for (r1 = r0 + 1; r1 < s->n && same_key(&k[r0], &k[r1]); r1++)
+            ;
+        for (size_t j = r0 + 1; j < r1; j++) {
+            vb_decimal vj[4];
+            sphere_values(s, k[j].idx, vj);
+            for (size_t i = r0; i < j && k[j].idx < second; i++) {
+                vb_decimal vi[4];
+                sphere_values(s, k[i].idx, vi);
+                if (same_sphere_cmp(vi, vj) == 0) {
+                    first = k[i].idx;
+                    second = k[j].idx;
+                }
+            }
         }
+    }
     free(k);
     if (second == SIZE_MAX)
         return VB_OK;

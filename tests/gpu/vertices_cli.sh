@@ -76,6 +76,47 @@ for below in unset 1 "$spheres" $((spheres + 1)); do
     fi
     cmp -s "$work/ref.tsv" "$work/auto.tsv" || fail "auto ($below) output differs from --device ref"
 done
+# The device opened ahead while the input is read (vb_vertices_open_early):
+# a file whose size promises more than the crossover opens it; one that
+# holds fewer spheres after all (comment lines) runs on host threads where
+# there is a GPU (without one, on the opened CPU device) while that opening
+# finishes beside it, and one that holds what it promised takes
+# the opened device; the same bytes each way.
+{ awk 'BEGIN { for (i = 0; i < 22000; i++) printf "# %s\n", sprintf("%0197d", 0) }'
+  cat "$work/set.xyzr"; } > "$work/padded.xyzr"
+env -u VORBALL_HOST_BELOW "$vorball" vertices --stats "$work/padded.xyzr" -o "$work/padded.tsv" \
+    2> "$work/padded.err" || fail "padded run failed"
+got=$(backend_of "$work/padded.err")
+if [ $gpu -eq 1 ]; then
+    [ "$got" = ref ] || fail "padded input (60 spheres) left host threads"
+else # without a GPU auto stays the CPU device, opened ahead or not
+    [ "$got" = opencl ] || grep -q W760 "$work/padded.err" ||
+        fail "padded input without a GPU ran on '$got' without W760"
+fi
+grep -v '^# \(input\|options\)' "$work/padded.tsv" > "$work/padded.cmp"
+grep -v '^# \(input\|options\)' "$work/ref.tsv" > "$work/ref.cmp"
+cmp -s "$work/ref.cmp" "$work/padded.cmp" || fail "padded input's output differs from --device ref"
+VORBALL_HOST_BELOW=1 "$vorball" vertices --stats "$work/padded.xyzr" -o "$work/padded.tsv" \
+    2> "$work/padded.err" || fail "padded run (device) failed"
+got=$(backend_of "$work/padded.err")
+[ "$got" = opencl ] || grep -q W760 "$work/padded.err" ||
+    fail "padded input with VORBALL_HOST_BELOW=1 ran on '$got' without W760"
+grep -v '^# \(input\|options\)' "$work/padded.tsv" > "$work/padded.cmp"
+cmp -s "$work/ref.cmp" "$work/padded.cmp" || fail "padded input on the device differs from --device ref"
+# --stats ends with the whole process by stage (vb_stage_clock.h): every
+# stage once, wall and CPU, the stages adding up to the totals (laps of one
+# clock), the run's stage holding the run's own clock.
+"$vorball" vertices --stats --device ref "$work/set.xyzr" -o "$work/st.tsv" 2> "$work/st.err" ||
+    fail "--stats run failed"
+awk -F'\t' '
+    /^process_(read|validate|run|complete|write|free)_s\t/ { w += $2; nw++ }
+    /^process_(read|validate|run|complete|write|free)_cpu_s\t/ { c += $2; nc++ }
+    $1 == "process_total_s" { tw = $2 } $1 == "process_total_cpu_s" { tc = $2 }
+    $1 == "process_run_s" { pr = $2 } $1 == "run_s" { r = $2 }
+    END { d = w - tw; e = c - tc
+          exit !(nw == 6 && nc == 6 && tw > 0 && d < 1e-5 && d > -1e-5 && e < 1e-5 && e > -1e-5 &&
+                 r > 0 && pr >= r) }' "$work/st.err" ||
+    fail "--stats process stages do not add up: $(grep '^process_\|^run_s' "$work/st.err" | tr '\n' ' ')"
 # The program binary cache: written on the first OpenCL run, used by the
 # next; a damaged binary falls back to the source build, same bytes. (On
 # PoCL vorball keeps binaries only when VORBALL_PROGRAM_CACHE=1 asks.)
