@@ -23,7 +23,7 @@
  *   huge tier  S3 slices of 7.1 MiB for the large tier's tasks that ran out of
  *              its records, made in the large tier's place (released first,
  *              and released after the batch), S3 = min(the device's compute
- *              units x 2, the tasks waiting, the rest of the budget / P3).
+ *              units x 4, the tasks waiting, the rest of the budget / P3).
  * A budget that cannot hold the input, one first-tier slice and one task's
  * launch stops the run at once with E142, saying how much is needed. */
 #ifndef VBG_COVER_STATE_H
@@ -114,7 +114,9 @@ typedef struct cov_state {
  * with four times as many (the large tier's capacity before stop 42: 7.1 MiB
  * a slice with its labels). On an H100 (stop 43, the 211,440-atom tiling)
  * the 32,768-record large tier left 1,834 cells to the host threads and
- * 131,072 records 1,458: cover and certification 2.41 s against 1.77 s. */
+ * 131,072 records 1,458: cover and certification 2.41 s against 1.77 s
+ * (run B); with the huge tier 1.76 s, 1.87 s without it (run C), while the
+ * capsid, whose tasks all fit 32,768, keeps 2.5 GB of buffers. */
 #define COV_HUGE_NB 131072u
 #define COV_WG 32u
 /* The group kernel's step budget per cell (VORBALL_COVER_BUDGET overrides;
