@@ -12,6 +12,16 @@
 #include "vb_parallel.h"
 #include "vb_vertices.h"
 
+/* The repair rounds after certifying a sampling proposer's candidates:
+ * each of res->rejected whose tangent sphere a sphere cuts (ops->intruder)
+ * gives the quadruples with that intruder swapped in
+ * (vb_sampler_swap_candidates), those not certified before are certified
+ * with cert, and the new vertices merged into res->certified (canonical);
+ * up to 4 rounds, res->repaired_candidates counting them. VB_OK, VB_ENOMEM
+ * (message in ctx) or the certifier's error. */
+int vbv_vertices_repair(vb_ctx *ctx, const vb_sphere_set *set, const vb_certifier_ops *ops,
+                        void *cert, vb_vertices_result *res);
+
 /* ops->certify_quads of list l, or ops->certify_quads_judged when l
  * carries the certification filter's verdicts and ops has it (the same
  * vertices either way). Its returns. */
