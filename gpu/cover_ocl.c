@@ -392,6 +392,49 @@ static int handed_off(uint32_t status)
  * slices at once instead of lengthening the batch. Each such out[c] gets
  * the joined result (its quadruples at the end of host_q), or the status of
  * a task that failed. *picked: the count of such cells. */
+static int tier_grow(vb_ctx *ctx, cov_state *s, cov_tier *t, size_t tasks);
+
+/* The tasks of outs2[0 .. n2) that ran out of tier t's arenas, again on the
+ * huge tier (vbg_cover_state.h): made in t's place (released first) and
+ * released after, so the two are never held at once and the next batch
+ * starts without them. Each such outs2[j] gets its task's new result (its
+ * quadruples appended to host_q); the other tasks keep theirs. */
+static int retry_huge(vb_ctx *ctx, cov_state *s, cov_tier *t, size_t n2)
+{
+    cov_tier *h = &s->tier[COV_HUGE];
+    size_t n3 = 0;
+    for (size_t j = 0; j < n2; j++)
+        n3 += retry_on_device(s->outs2[j].status);
+    if (n3 == 0 || h->want == 0)
+        return VB_OK;
+    uint32_t *cells3 = malloc(n3 * sizeof *cells3), *roots3 = malloc(n3 * sizeof *roots3);
+    vbq_cell_out *outs3 = malloc(n3 * sizeof *outs3);
+    int rc = cells3 && roots3 && outs3 ? VB_OK
+                                       : vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
+    for (size_t j = 0, k = 0; rc == VB_OK && j < n2; j++)
+        if (retry_on_device(s->outs2[j].status)) {
+            cells3[k] = s->cells2[j];
+            roots3[k++] = s->roots2[j];
+        }
+    if (rc == VB_OK) {
+        tier_release(s, t);
+        t->slices = 0;
+        rc = tier_grow(ctx, s, h, n3);
+    }
+    if (rc == VB_OK && h->slices)
+        rc = run_tier(ctx, s, h, cells3, roots3, n3, outs3);
+    if (rc == VB_OK && h->slices)
+        for (size_t j = 0, k = 0; j < n2; j++)
+            if (retry_on_device(s->outs2[j].status))
+                s->outs2[j] = outs3[k++];
+    tier_release(s, h);
+    h->slices = 0;
+    free(cells3);
+    free(roots3);
+    free(outs3);
+    return rc;
+}
+
 static int run_tasks(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *cells,
                      size_t ncells, vbq_cell_out *out, vbg_task_pick pick, size_t *picked)
 {
@@ -412,6 +455,8 @@ static int run_tasks(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *cel
     }
     vbg_tasks_make(cells, out, ncells, pick, per, s->cells2, s->roots2);
     int rc = run_tier(ctx, s, t, s->cells2, s->roots2, n2, s->outs2);
+    if (rc == VB_OK && t == &s->tier[COV_BIG])
+        rc = retry_huge(ctx, s, t, n2);
     if (rc == VB_OK)
         rc = host_q_room(ctx, s, vbg_tasks_quads(s->outs2, n2));
     if (rc == VB_OK)
@@ -484,22 +529,6 @@ static int cov_run(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, siz
         rc = tier_grow(ctx, s, t1, n1 * per);
     if (rc == VB_OK && n1 && t1->slices)
         rc = run_tasks(ctx, s, t1, cells, ncells, out, retry_on_device, &retried);
-    /* The cells whose tasks ran out of the large slices, again on huge ones,
-     * made in the large tier's place and released after (the two are never
-     * held at once, and the next batch starts without them). */
-    cov_tier *t3 = &s->tier[COV_HUGE];
-    size_t n3 = rc == VB_OK && n1 && t3->want ? count_picked(out, ncells, retry_on_device) : 0;
-    if (n3) {
-        tier_release(s, t1);
-        t1->slices = 0;
-        rc = tier_grow(ctx, s, t3, n3 * per);
-    }
-    if (rc == VB_OK && n3 && t3->slices)
-        rc = run_tasks(ctx, s, t3, cells, ncells, out, retry_on_device, &retried);
-    if (n3) {
-        tier_release(s, t3);
-        t3->slices = 0;
-    }
     if (s->meter.peak > be->device_bytes_peak)
         be->device_bytes_peak = s->meter.peak;
     for (int i = 0; i < COV_TIERS; i++) {
@@ -654,30 +683,7 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
          * GPU, in groups of 64. */
         th->want = (size_t)units * 512;
     }
-    /* Test knobs: VORBALL_COVER_NB and VORBALL_COVER_LAB set the first
-     * tier's records and labels (so that cells overflow; or smaller slices
-     * for measurements of memory against speed), VORBALL_COVER_TIER2 the
-     * second tier's slices (also on CPU devices, to test the split into
-     * root-patch tasks). */
-    const char *knb = getenv("VORBALL_COVER_NB"), *kt2 = getenv("VORBALL_COVER_TIER2");
-    const char *klab = getenv("VORBALL_COVER_LAB");
-    if (knb && atol(knb) > 0)
-        t0->nb_cap = (uint32_t)atol(knb);
-    if (klab && atol(klab) > 0)
-        t0->lab_cap = (uint32_t)atol(klab);
-    if (kt2 && atol(kt2) >= 0)
-        t1->want = (size_t)atol(kt2);
-    /* VORBALL_COVER_BIG_NB and VORBALL_COVER_HUGE_NB: the large and huge
-     * tiers' records per slice; VORBALL_COVER_TIER3 the huge tier's slices
-     * (also on CPU devices, for tests; 0: none). Measurements and tests. */
-    const char *kbn = getenv("VORBALL_COVER_BIG_NB"), *khn = getenv("VORBALL_COVER_HUGE_NB");
-    const char *kt3 = getenv("VORBALL_COVER_TIER3");
-    if (kbn && atol(kbn) > 0)
-        t1->nb_cap = (uint32_t)atol(kbn);
-    if (khn && atol(khn) > 0)
-        t3->nb_cap = (uint32_t)atol(khn);
-    if (kt3 && atol(kt3) >= 0)
-        t3->want = (size_t)atol(kt3);
+    vbg_cover_knobs(s);
     be->name = "opencl";
     snprintf(be->device, sizeof be->device, "%s", vbg_runtime_device_name(rt));
     be->batch_cells = vbg_runtime_is_gpu(rt) ? 1u << 18 : 1u << 14;

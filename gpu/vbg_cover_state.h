@@ -21,7 +21,8 @@
  *              the budget / P1) (half of it with the hand-off tier beside);
  *              with no room the cells go to the host threads;
  *   huge tier  S3 slices of 7.1 MiB for the large tier's tasks that ran out of
- *              its records, made in the large tier's place (released first,
+ *              its records (those tasks only, not their cells' others), made
+ *              in the large tier's place (released first,
  *              and released after the batch), S3 = min(the device's compute
  *              units x 4, the tasks waiting, the rest of the budget / P3).
  * A budget that cannot hold the input, one first-tier slice and one task's
@@ -130,5 +131,10 @@ typedef struct cov_state {
  * 2,048 hands off none of the twin's cells and caps the group launch near
  * 0.1 s; the cells past it run side by side as 24 T^2 tasks each. */
 #define COV_BUDGET 2048u
+
+/* Applies the environment's test and measurement knobs to s's tiers
+ * (gpu/cover_knobs.c: VORBALL_COVER_NB, _LAB, _TIER2, _TIER3, _BIG_NB,
+ * _HUGE_NB), after vbg_cover_open set their defaults. */
+void vbg_cover_knobs(cov_state *s);
 
 #endif

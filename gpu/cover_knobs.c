@@ -1,0 +1,41 @@
+/* The cover backend's knobs for tests and measurements (vbg_cover_state.h):
+ * environment variables that change its arenas' capacities and slices. The
+ * output never depends on them; what runs where does. */
+#include <stdlib.h>
+
+#include "vbg_cover_state.h"
+
+/* A positive (or, with zero_ok, non-negative) count from the environment
+ * variable `name`, else -1. */
+static long knob(const char *name, int zero_ok)
+{
+    const char *v = getenv(name);
+    long n = v ? atol(v) : -1;
+    return v && (n > 0 || (zero_ok && n == 0)) ? n : -1;
+}
+
+void vbg_cover_knobs(cov_state *s)
+{
+    cov_tier *t0 = &s->tier[COV_FIRST], *t1 = &s->tier[COV_BIG], *t3 = &s->tier[COV_HUGE];
+    long v;
+    /* VORBALL_COVER_NB and VORBALL_COVER_LAB: the first tier's records and
+     * labels (so that cells overflow; or smaller slices for measurements of
+     * memory against speed). */
+    if ((v = knob("VORBALL_COVER_NB", 0)) > 0)
+        t0->nb_cap = (uint32_t)v;
+    if ((v = knob("VORBALL_COVER_LAB", 0)) > 0)
+        t0->lab_cap = (uint32_t)v;
+    /* VORBALL_COVER_TIER2 and VORBALL_COVER_TIER3: the large and huge tiers'
+     * slices, also on CPU devices (to test the split into root-patch tasks
+     * and the huge tier's retry; 0: none). */
+    if ((v = knob("VORBALL_COVER_TIER2", 1)) >= 0)
+        t1->want = (size_t)v;
+    if ((v = knob("VORBALL_COVER_TIER3", 1)) >= 0)
+        t3->want = (size_t)v;
+    /* VORBALL_COVER_BIG_NB and VORBALL_COVER_HUGE_NB: the large and huge
+     * tiers' records per slice. */
+    if ((v = knob("VORBALL_COVER_BIG_NB", 0)) > 0)
+        t1->nb_cap = (uint32_t)v;
+    if ((v = knob("VORBALL_COVER_HUGE_NB", 0)) > 0)
+        t3->nb_cap = (uint32_t)v;
+}
