@@ -100,10 +100,10 @@ static void row(FILE *f, int json, int first, const char *input, size_t atoms,
         fprintf(f,
                 ", \"cover_device\": %.6f, \"cover_kernel\": [%.6f, %.6f, %.6f, %.6f], "
                 "\"cover_launches\": [%llu, %llu, %llu, %llu]",
-                p->t_cover_device, p->cover_kernel_s[0], p->cover_kernel_s[1], p->cover_kernel_s[2],
-                p->cover_kernel_s[3], (unsigned long long)p->cover_launches[0],
-                (unsigned long long)p->cover_launches[1], (unsigned long long)p->cover_launches[2],
-                (unsigned long long)p->cover_launches[3]);
+                p->t_cover_device, p->cover_clocks.kernel_s[0], p->cover_clocks.kernel_s[1], p->cover_clocks.kernel_s[2],
+                p->cover_clocks.kernel_s[3], (unsigned long long)p->cover_clocks.launches[0],
+                (unsigned long long)p->cover_clocks.launches[1], (unsigned long long)p->cover_clocks.launches[2],
+                (unsigned long long)p->cover_clocks.launches[3]);
         if (vb_world_size() > 1)
             fprintf(f, ", \"ranks\": %d, \"combine\": %.6f, \"merged_repeats\": %zu}",
                     vb_world_size(), tot->t_combine, tot->repeats);

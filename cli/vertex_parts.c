@@ -39,9 +39,9 @@ int vb_cli_vertices_part(vb_ctx *ctx, vb_vertices_config *cfg, vb_cover_options 
     X(s->cover_host_cells) X(s->cover_handed_cells) X(s->cover_quads) X(s->cover_neighbours)      \
     X(st->filter_calls) X(st->filter_failures) X(st->exact_evals) X(st->candidates)               \
     X(st->certified) X(st->rejected) X(st->judged_vertex) X(st->judged_not) X(st->judged_open)    \
-    X(tot->rejected) X(tot->candidates) X(tot->repaired) X(s->cover_launches[0])                 \
-    X(s->cover_launches[1]) X(s->cover_launches[2]) X(s->cover_launches[3])                       \
-    X(s->cover_tasks[0]) X(s->cover_tasks[1]) X(s->cover_tasks[2]) X(s->cover_tasks[3])
+    X(tot->rejected) X(tot->candidates) X(tot->repaired) X(s->cover_clocks.launches[0])                 \
+    X(s->cover_clocks.launches[1]) X(s->cover_clocks.launches[2]) X(s->cover_clocks.launches[3])                       \
+    X(s->cover_clocks.tasks[0]) X(s->cover_clocks.tasks[1]) X(s->cover_clocks.tasks[2]) X(s->cover_clocks.tasks[3])
 
 /* The times whose maximum over the ranks is the job's. */
 #define MAXED(X)                                                                                   \
@@ -49,8 +49,8 @@ int vb_cli_vertices_part(vb_ctx *ctx, vb_vertices_config *cfg, vb_cover_options 
     X(s->times.matching) X(s->times.targeted) X(s->times.tangent) X(s->times.completion)          \
     X(s->t_cover_device) X(s->t_cert_filter) X(res->t_setup) X(res->t_setup_wait)                \
     X(res->t_certify) X(res->t_total) X(res->t_certify_overlap) X(s->device_bytes_peak)           \
-    X(s->cover_max_cell_neighbours) X(res->max_dist) X(s->cover_kernel_s[0])                     \
-    X(s->cover_kernel_s[1]) X(s->cover_kernel_s[2]) X(s->cover_kernel_s[3])
+    X(s->cover_max_cell_neighbours) X(res->max_dist) X(s->cover_clocks.kernel_s[0])                     \
+    X(s->cover_clocks.kernel_s[1]) X(s->cover_clocks.kernel_s[2]) X(s->cover_clocks.kernel_s[3])
 
 static int sum_counters(vb_ctx *ctx, vb_vertices_result *res, vb_cli_vertex_totals *tot)
 {

@@ -221,16 +221,10 @@ static int host_q_room(vb_ctx *ctx, cov_state *s, size_t n)
  * device that gives no times adds none. */
 static void tier_clock(cov_state *s, const cov_tier *t, cl_event done, size_t ntasks)
 {
-    cl_ulong a = 0, b = 0;
     size_t i = (size_t)(t - s->tier);
-    s->launches[i]++;
-    s->tasks[i] += ntasks;
-    if (clGetEventProfilingInfo(done, CL_PROFILING_COMMAND_START, sizeof a, &a, NULL) ==
-            CL_SUCCESS &&
-        clGetEventProfilingInfo(done, CL_PROFILING_COMMAND_END, sizeof b, &b, NULL) ==
-            CL_SUCCESS &&
-        b > a)
-        s->kernel_s[i] += (double)(b - a) * 1e-9;
+    s->clocks->launches[i]++;
+    s->clocks->tasks[i] += ntasks;
+    s->clocks->kernel_s[i] += vbg_event_seconds(done);
 }
 
 /* One launch of tier t over the tasks (cells[k], roots[k]) for k <
@@ -531,11 +525,6 @@ static int cov_run(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, siz
         rc = run_tasks(ctx, s, t1, cells, ncells, out, retry_on_device, &retried);
     if (s->meter.peak > be->device_bytes_peak)
         be->device_bytes_peak = s->meter.peak;
-    for (int i = 0; i < COV_TIERS; i++) {
-        be->kernel_s[i] = s->kernel_s[i];
-        be->launches[i] = s->launches[i];
-        be->tasks[i] = s->tasks[i];
-    }
     if (rc == VB_OK)
         *quads = s->host_q;
     return rc;
@@ -594,6 +583,7 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
     }
     be->state = s;
     be->close = cov_close;
+    s->clocks = &be->clocks;
     s->rt = rt;
     /* GPUs run a group per cell; a CPU device (PoCL) a work-item per cell,
      * which its compiler turns into plain loops (its work-group compiler

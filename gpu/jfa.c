@@ -88,22 +88,16 @@ void vbj_cl_record(vbj_engine *e)
 
 double vbj_cl_recorded_ms(vbj_engine *e)
 {
-    double ns = 0;
+    double s = 0;
     for (int i = 0; i < e->nevents; i++) {
-        cl_ulong a = 0, b = 0;
         if (!e->events[i])
             continue;
-        if (clGetEventProfilingInfo(e->events[i], CL_PROFILING_COMMAND_START, sizeof a, &a,
-                                    NULL) == CL_SUCCESS &&
-            clGetEventProfilingInfo(e->events[i], CL_PROFILING_COMMAND_END, sizeof b, &b,
-                                    NULL) == CL_SUCCESS &&
-            b > a)
-            ns += (double)(b - a);
+        s += vbg_event_seconds(e->events[i]);
         clReleaseEvent(e->events[i]);
     }
     e->nevents = 0;
     e->recording = 0;
-    return ns * 1e-6;
+    return s * 1e3;
 }
 
 int vbj_clbuf_reserve(vb_ctx *ctx, vbj_engine *e, vbj_clbuf *b, size_t bytes)

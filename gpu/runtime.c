@@ -242,6 +242,16 @@ cl_device_id vbg_runtime_device(const vbg_runtime *rt) { return rt->device; }
 const char *vbg_runtime_device_name(const vbg_runtime *rt) { return rt->name; }
 int vbg_runtime_is_gpu(const vbg_runtime *rt) { return rt->is_gpu; }
 
+double vbg_event_seconds(cl_event e)
+{
+    cl_ulong a = 0, b = 0;
+    if (clGetEventProfilingInfo(e, CL_PROFILING_COMMAND_START, sizeof a, &a, NULL) == CL_SUCCESS &&
+        clGetEventProfilingInfo(e, CL_PROFILING_COMMAND_END, sizeof b, &b, NULL) == CL_SUCCESS &&
+        b > a)
+        return (double)(b - a) * 1e-9;
+    return 0.0;
+}
+
 void vbg_runtime_versions(const vbg_runtime *rt, char *buf, size_t len)
 {
     char pv[256] = "?", dv[256] = "?", drv[256] = "?";

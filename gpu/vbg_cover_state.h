@@ -54,7 +54,7 @@ typedef struct cov_tier {
 #define COV_BIG 1
 #define COV_HAND 2
 #define COV_HUGE 3
-#define COV_TIERS 4
+#define COV_TIERS VB_COVER_TIERS
 
 typedef struct cov_state {
     vbg_runtime *rt;
@@ -75,11 +75,7 @@ typedef struct cov_state {
     size_t launch_room;      /* bytes of one launch's task, result and quadruple buffers */
     size_t tier_room;        /* bytes left for the large tier (and the hand-off tier) */
     size_t last_n;           /* spheres of the last run begun (trim) */
-    /* Per tier (COV_FIRST, COV_BIG, COV_HAND, COV_HUGE), running since
-     * open: the seconds its kernels ran on the device (event profiling, not
-     * the transfers), its launches and its tasks (--stats cover_kernel_*). */
-    double kernel_s[COV_TIERS];
-    uint64_t launches[COV_TIERS], tasks[COV_TIERS];
+    vb_cover_clocks *clocks; /* the backend's, per tier (indexed by COV_*) */
 } cov_state;
 
 /* Arena capacities. The first tier fits almost every cell of the proteins

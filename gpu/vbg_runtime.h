@@ -44,6 +44,11 @@ cl_device_id vbg_runtime_device(const vbg_runtime *rt);
 /* "NVIDIA H100 80GB HBM3 (NVIDIA CUDA)" style name, owned by the runtime. */
 const char *vbg_runtime_device_name(const vbg_runtime *rt);
 int vbg_runtime_is_gpu(const vbg_runtime *rt);
+
+/* Seconds a finished command ran on the device, from its profiling event
+ * (the runtime's queues have profiling on); 0 when the device gives no
+ * times. */
+double vbg_event_seconds(cl_event e);
 /* 1 when the host shows a GPU driver's device node (/dev/nvidiaN, AMD's
  * /dev/kfd), else 0: a hint for --device auto's crossover, which changes
  * speed, never bytes. Listing the OpenCL platforms instead took 0.2 s on the

@@ -162,7 +162,9 @@ static int cover_run(vb_ctx *ctx, void *state, const vb_proposer_await *aw,
         return rc;
     /* The device's clocks run since it opened (bench reuses it): this
      * run's share is the difference. */
-    vb_cover_backend before = s->be ? *s->be : (vb_cover_backend){0};
+    vb_cover_clocks before = {0};
+    if (s->be)
+        before = s->be->clocks;
     if (args->quads_sink && on)
         rc = vb_cover_run_parts(ctx, set, &o, s->be, vb_cover_pipeline_parts(), judge_sink, &j,
                                 &st);
@@ -192,10 +194,11 @@ static int cover_run(vb_ctx *ctx, void *state, const vb_proposer_await *aw,
     res->cover_neighbours = st.neighbours;
     res->cover_max_cell_neighbours = st.max_cell_neighbours;
     res->t_cover_device = st.t_device;
-    for (int i = 0; i < 4 && s->be; i++) {
-        res->cover_kernel_s[i] = s->be->kernel_s[i] - before.kernel_s[i];
-        res->cover_launches[i] = s->be->launches[i] - before.launches[i];
-        res->cover_tasks[i] = s->be->tasks[i] - before.tasks[i];
+    for (int i = 0; i < VB_COVER_TIERS && s->be; i++) {
+        const vb_cover_clocks *now = &s->be->clocks;
+        res->cover_clocks.kernel_s[i] = now->kernel_s[i] - before.kernel_s[i];
+        res->cover_clocks.launches[i] = now->launches[i] - before.launches[i];
+        res->cover_clocks.tasks[i] = now->tasks[i] - before.tasks[i];
     }
     /* The filter's buffers beside the cover's: at most their sum at once. */
     res->device_bytes_peak =

@@ -14,6 +14,7 @@
 
 #include "vb.h"
 #include "vb_cover_shared.h"
+#include "vb_proposer.h" /* vb_cover_clocks */
 #include "vb_spheres.h"
 
 struct vb_cert_filter; /* vb_cert_filter.h */
@@ -112,12 +113,7 @@ struct vb_cover_backend {
                                    and its runs) held at once */
     uint64_t judge_bytes_peak;  /* the same for the certification filter's buffers (judge;
                                    written by the judge's calls only) */
-    /* Per tier of the device's arenas (first launch, large slices, the group
-     * kernel's hand-off, huge slices), running counts since open: seconds
-     * its kernels ran on the device (profiling events; transfers and host
-     * work excluded), launches, and tasks (cells or root-patch tasks). */
-    double kernel_s[4];
-    uint64_t launches[4], tasks[4];
+    vb_cover_clocks clocks;     /* running counts since open */
     void *state;
     /* Uploads the input shared by every cell (env's arrays, n spheres) for
      * the runs that follow. VB_OK, VB_ENOMEM or VB_EDEVICE (message in ctx). */

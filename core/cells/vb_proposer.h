@@ -17,6 +17,18 @@
 extern "C" {
 #endif
 
+/* A device's arena tiers (gpu/vbg_cover_state.h): the first launch, the
+ * large slices, the group kernel's hand-off, the huge slices. */
+#define VB_COVER_TIERS 4
+
+/* Per tier of a device's arenas: seconds its kernels ran on the device
+ * (profiling events; transfers and host work excluded), its launches and
+ * its tasks (cells, or root-patch tasks). */
+typedef struct vb_cover_clocks {
+    double kernel_s[VB_COVER_TIERS];
+    uint64_t launches[VB_COVER_TIERS], tasks[VB_COVER_TIERS];
+} vb_cover_clocks;
+
 struct vb_quad_list;     /* vb_cover.h */
 struct vb_cover_options; /* vb_cover.h: the cover's own settings */
 
@@ -124,12 +136,8 @@ typedef struct vb_proposal {
                                      a counter that processes which covered parts of the
                                      cells can add up */
     double t_cover_device;        /* seconds in the cover's device batches */
-    /* Per tier of the device's arenas (first launch, large slices, the group
-     * kernel's hand-off, huge slices; vb_cover_backend): seconds its kernels
-     * ran on the device, its launches and tasks, in this run (0 on host
-     * threads). */
-    double cover_kernel_s[4];
-    uint64_t cover_launches[4], cover_tasks[4];
+    vb_cover_clocks cover_clocks; /* the device's tiers in this run (vb_cover.h; 0 on
+                                     host threads) */
     double t_cert_filter;         /* seconds judging the quadruples (vb_cert_filter.h),
                                      summed over the parts */
     uint64_t device_bytes_peak;   /* the most bytes of device buffers the proposer's

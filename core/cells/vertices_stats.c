@@ -50,19 +50,19 @@ void vb_vertices_stats(vb_ctx *ctx, const vb_vertices_result *r, vb_stat_fields 
     vb_stat_uint(fs, "cover_max_cell_neighbours", s->cover_max_cell_neighbours);
     /* The cover's device time (timings: they vary run to run): its
      * batches' wall seconds, then per tier (first launch, large slices,
-     * hand-off) the seconds its kernels ran on the device, launches and
+     * hand-off, huge slices) the seconds its kernels ran on the device, launches and
      * tasks; the rest of cover_device_s is transfers and host work between
      * launches. */
     vb_stat_real(fs, "cover_device_s", "%.6f", s->t_cover_device);
-    static const char *const tier[4][3] = {
+    static const char *const tier[VB_COVER_TIERS][3] = {
         {"cover_kernel_first_s", "cover_launches_first", "cover_tasks_first"},
         {"cover_kernel_large_s", "cover_launches_large", "cover_tasks_large"},
         {"cover_kernel_handoff_s", "cover_launches_handoff", "cover_tasks_handoff"},
         {"cover_kernel_huge_s", "cover_launches_huge", "cover_tasks_huge"}};
-    for (int i = 0; i < 4; i++) {
-        vb_stat_real(fs, tier[i][0], "%.6f", s->cover_kernel_s[i]);
-        vb_stat_uint(fs, tier[i][1], s->cover_launches[i]);
-        vb_stat_uint(fs, tier[i][2], s->cover_tasks[i]);
+    for (int i = 0; i < VB_COVER_TIERS; i++) {
+        vb_stat_real(fs, tier[i][0], "%.6f", s->cover_clocks.kernel_s[i]);
+        vb_stat_uint(fs, tier[i][1], s->cover_clocks.launches[i]);
+        vb_stat_uint(fs, tier[i][2], s->cover_clocks.tasks[i]);
     }
     /* The device buffers the proposer held at once (vbg_buffer.h; 0 on the
      * host), without what the OpenCL driver keeps for itself. */
