@@ -151,12 +151,15 @@ int vb_spheres_new(vb_ctx *ctx, const char *name, size_t n, int with_info, vb_sp
 int vb_spheres_load(vb_ctx *ctx, const char *path, const vb_read_options *ro,
                     const char *radii_path, size_t min_count, vb_sphere_set **out);
 
-/* A guess, before reading, of how many spheres the file at path holds: its
- * bytes over VB_BYTES_PER_SPHERE_MAX (no text format spends more on an
- * atom's line, so this is meant as a lower bound; comments and other records
- * can break it). 0 for stdin ("-"), a compressed file (gzip, bzip2: by their
- * magic bytes) or one that cannot be opened. For opening a device ahead of
- * the reading (vb_vertices_open_early). */
+/* A guess, before reading, of how many spheres the file at path holds: for
+ * XYZR (one sphere a line, the format decided on the first 4 KiB as the
+ * reader decides it) its bytes over the longest line there; for the other
+ * text formats its bytes over VB_BYTES_PER_SPHERE_MAX (no text format spends
+ * more on an atom's line). Meant as a lower bound; comments, records that
+ * are not atoms and dropped waters can break it. 0 for stdin ("-"), a
+ * compressed file (gzip, bzip2: by their magic bytes) or one that cannot be
+ * opened. For opening a device ahead of the reading
+ * (vb_vertices_open_early). */
 #define VB_BYTES_PER_SPHERE_MAX 200
 size_t vb_spheres_count_hint(const char *path);
 

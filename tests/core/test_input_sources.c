@@ -7,6 +7,8 @@
  * assemblies are built from their operators (E117 when absent); TIP4P's
  * massless virtual sites (MW) are left out with W727, in a GRO file and
  * under a trajectory alike. */
+#include <sys/stat.h>
+
 #include "input_test_util.h"
 #include "vb_dcd.h"
 #include "vb_frames.h"
@@ -396,10 +398,34 @@ static void test_infer_memo(void)
     free(m);
 }
 
+/* vb_spheres_count_hint: an XYZR file's bytes over its longest head line
+ * (the spheres, when every line is as long), another text format's bytes
+ * over VB_BYTES_PER_SPHERE_MAX, 0 for compressed files and stdin. */
+static void test_count_hint(void)
+{
+    char path[] = "/tmp/vb_hint_XXXXXX";
+    int fd = mkstemp(path);
+    FILE *out = fdopen(fd, "wb");
+    fputs("# 3000 balls\n", out); /* shorter than a sphere's line */
+    for (int i = 0; i < 3000; i++)
+        fprintf(out, "%6.3f %6.3f %6.3f 1.70\n", 10.0 + i % 9, 20.0 + i % 7, 30.0 + i % 5);
+    fclose(out);
+    CHECK_INT(vb_spheres_count_hint(path), 3000);
+    remove(path);
+    struct stat st;
+    CHECK(stat(corpus_path("data/1crn.pdb"), &st) == 0);
+    CHECK_INT(vb_spheres_count_hint(corpus_path("data/1crn.pdb")),
+              (size_t)st.st_size / VB_BYTES_PER_SPHERE_MAX);
+    CHECK_INT(vb_spheres_count_hint(corpus_path("data/1crn.pdb.gz")), 0);
+    CHECK_INT(vb_spheres_count_hint("-"), 0);
+    CHECK_INT(vb_spheres_count_hint("/nonexistent/vb_hint"), 0);
+}
+
 int main(void)
 {
     vb_ctx *ctx = open_ctx(NULL);
     test_infer_memo();
+    test_count_hint();
     test_compressed(ctx);
     test_inferred_elements();
     test_gro(ctx);
