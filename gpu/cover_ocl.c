@@ -666,9 +666,13 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
     t0->want = want;
     if (s->wg) {
         t1->want = (size_t)units * 4;
-        /* Measured on an H100 (stop 43, run C, the 211,440-atom tiling): 4x
-         * the compute units 1.76 s of cover and certification, 2x 1.84 s. */
-        t3->want = (size_t)units * 4;
+        /* Measured on an H100 (the 211,440-atom tiling): when the tier
+         * reran whole cells (stop 43, run C) 4x the compute units gave 1.76 s
+         * of cover and certification, 2x 1.84 s; rerunning only the tasks
+         * that ran out (864 of them), 2x and 4x both take 0.25 s of huge-tier
+         * kernel and 1.29 s of device cover, and 2x holds 4.0 GB of device
+         * buffers at the peak against 6.0 GB (stop 44, run A). */
+        t3->want = (size_t)units * 2;
         /* The hand-off tier: work-items as for the work-item kernel on a
          * GPU, in groups of 64. */
         th->want = (size_t)units * 512;

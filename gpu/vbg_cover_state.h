@@ -24,7 +24,7 @@
  *              its records (those tasks only, not their cells' others), made
  *              in the large tier's place (released first,
  *              and released after the batch), S3 = min(the device's compute
- *              units x 4, the tasks waiting, the rest of the budget / P3).
+ *              units x 2, the tasks waiting, the rest of the budget / P3).
  * A budget that cannot hold the input, one first-tier slice and one task's
  * launch stops the run at once with E142, saying how much is needed. */
 #ifndef VBG_COVER_STATE_H
