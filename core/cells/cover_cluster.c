@@ -30,12 +30,15 @@
  * The test is exact: p_j lifted to (p_j, 1) is a multiple of the integer
  * vector V_j = (D_j, Delta_j, N_j) of the decimals scaled to a common
  * exponent, so the affine rank of the points is the linear rank of the V_j
- * minus one, found by fraction-free elimination in GMP integers. */
+ * minus one, found exactly: in checked 128-bit integers where the numbers
+ * fit (cluster_small.c), else by fraction-free elimination in GMP integers
+ * (below). Both find the same rank and the same first independent labels. */
 #include <gmp.h>
 #include <stdlib.h>
 
 #include "vb_cover_shared.h"
 #include "vb_decimal_mpz.h"
+#include "vbq_cluster.h"
 
 /* Rows of at most 4 integer 5-vectors in echelon form (fraction-free):
  * row r has its first non-zero entry in column piv[r], zero below it in
@@ -106,20 +109,23 @@ static int ech_add(echelon *E, mpz_t v[5], vbs_u32 id)
     return 1;
 }
 
-int vbq_host_cluster(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i,
-                     const vbs_u32 *ids, vbs_u32 n)
+int32_t vbq_cluster_emin(const vb_sphere_set *s, uint32_t i, const uint32_t *ids, uint32_t n)
 {
-    const vb_sphere_set *s = e->host;
-    if (!s || !s->ex || n < 3)
-        return 0;
     int32_t emin = s->ex[i].exp10;
     const vb_decimal *col[4] = {s->ex, s->ey, s->ez, s->er};
-    for (vbs_u32 k = 0; k <= n; k++) {
-        vbs_u32 j = k < n ? ids[k] : i;
+    for (uint32_t k = 0; k <= n; k++) {
+        uint32_t j = k < n ? ids[k] : i;
         for (int a = 0; a < 4; a++)
             if (col[a][j].exp10 < emin)
                 emin = col[a][j].exp10;
     }
+    return emin;
+}
+
+void vbq_cluster_gmp(const vb_sphere_set *s, uint32_t i, const uint32_t *ids, uint32_t n,
+                     int32_t emin, vbq_cluster_ans *ans)
+{
+    const vb_decimal *col[4] = {s->ex, s->ey, s->ez, s->er};
     echelon E;
     ech_init(&E);
     mpz_t v[5], ci[4], t;
@@ -131,8 +137,8 @@ int vbq_host_cluster(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs
     for (int a = 0; a < 4; a++)
         vb_decimal_to_mpz(ci[a], col[a][i], emin, t);
     int decided = 1;
-    for (vbs_u32 k = 0; k < n && decided; k++) {
-        vbs_u32 j = ids[k];
+    for (uint32_t k = 0; k < n && decided; k++) {
+        uint32_t j = ids[k];
         for (int a = 0; a < 4; a++) {
             vb_decimal_to_mpz(v[a], col[a][j], emin, t);
             mpz_sub(v[a], v[a], ci[a]);
@@ -149,14 +155,29 @@ int vbq_host_cluster(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs
         if (ech_add(&E, v, j) && E.n > 3)
             decided = 0; /* affine rank >= 3 */
     }
-    int rc = decided;
-    if (decided && E.n == 3 && !vbq_add_quad(ar, o, i, E.id[0], E.id[1], E.id[2]))
-        rc = -1;
+    ans->decided = decided;
+    ans->nbasis = E.n < 3 ? E.n : 3;
+    for (int r = 0; r < ans->nbasis; r++)
+        ans->id[r] = E.id[r];
     for (int c = 0; c < 5; c++)
         mpz_clear(v[c]);
     for (int a = 0; a < 4; a++)
         mpz_clear(ci[a]);
     mpz_clear(t);
     ech_clear(&E);
-    return rc;
+}
+
+int vbq_host_cluster(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i,
+                     const vbs_u32 *ids, vbs_u32 n)
+{
+    const vb_sphere_set *s = e->host;
+    if (!s || !s->ex || n < 3)
+        return 0;
+    int32_t emin = vbq_cluster_emin(s, i, ids, n);
+    vbq_cluster_ans a;
+    if (!vbq_cluster_small(s, i, ids, n, emin, &a))
+        vbq_cluster_gmp(s, i, ids, n, emin, &a);
+    if (a.decided && a.nbasis == 3 && !vbq_add_quad(ar, o, i, a.id[0], a.id[1], a.id[2]))
+        return -1;
+    return a.decided;
 }

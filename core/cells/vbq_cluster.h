@@ -1,0 +1,39 @@
+/* The exact rank test behind a tie cluster's decision (cover_cluster.c),
+ * in two exact arithmetics that give the same answer: 128-bit integers
+ * with every operation checked for overflow (cluster_small.c), and GMP
+ * (cover_cluster.c), which takes what the first cannot hold. Internal to
+ * core/cells; the tests compare the two. */
+#ifndef VBQ_CLUSTER_H
+#define VBQ_CLUSTER_H
+
+#include <stdint.h>
+
+#include "vb_spheres.h"
+
+/* What the test found for base i and labels ids[0 .. n): decided = 0 when
+ * the labels' vectors V_j = (D_j, Delta_j, N_j) have linear rank >= 4 or
+ * some N_j <= 0 (the leaf is enumerated), else 1 with nbasis = their rank
+ * (<= 3) and id[0 .. nbasis) the first labels, in list order, that are
+ * independent of those before them. */
+typedef struct vbq_cluster_ans {
+    int decided;
+    int nbasis;
+    uint32_t id[3];
+} vbq_cluster_ans;
+
+/* The smallest exponent of the decimals of sphere i and spheres ids[0 ..
+ * n): the common scale of the integer vectors. */
+int32_t vbq_cluster_emin(const vb_sphere_set *s, uint32_t i, const uint32_t *ids, uint32_t n);
+
+/* The test in checked 128-bit integers, the decimals scaled to 10^emin.
+ * Returns 1 with *a filled, or 0 when a number would not fit (nothing
+ * decided: ask vbq_cluster_gmp). No allocation. */
+int vbq_cluster_small(const vb_sphere_set *s, uint32_t i, const uint32_t *ids, uint32_t n,
+                      int32_t emin, vbq_cluster_ans *a);
+
+/* The same test in GMP integers (fraction-free elimination); always
+ * answers. Allocates only GMP temporaries, freed before it returns. */
+void vbq_cluster_gmp(const vb_sphere_set *s, uint32_t i, const uint32_t *ids, uint32_t n,
+                     int32_t emin, vbq_cluster_ans *a);
+
+#endif
