@@ -108,6 +108,14 @@ static int get_mixed(bit_reader *b, int nbits, const uint32_t sizes[3], uint32_t
                 return -1;
             x |= (uint64_t)v << sh;
         }
+        if (x <= UINT32_MAX) { /* a 32-bit division is the cheaper */
+            uint32_t y = (uint32_t)x;
+            out[2] = y % sizes[2];
+            y /= sizes[2];
+            out[1] = y % sizes[1];
+            out[0] = y / sizes[1];
+            return 0;
+        }
         out[2] = (uint32_t)(x % sizes[2]);
         x /= sizes[2];
         out[1] = (uint32_t)(x % sizes[1]);

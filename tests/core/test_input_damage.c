@@ -514,6 +514,49 @@ static void test_traj_duplicates(void)
     vb_close(ctx);
 }
 
+/* Issue 33: the duplicate check of a trajectory frame goes by a hash, not a
+ * sort: of three copies of one sphere (-0 and 0 one number, as a text
+ * frame's decimals compare) the smallest later atom is named beside the
+ * earliest copy, also when a later pair (atoms 5, 6) comes first in
+ * coordinate order. */
+static void test_traj_duplicates_three(void)
+{
+    vb_ctx *ctx = open_ctx(NULL);
+    char top[80], dcd[64];
+    strcpy(top, temp_file("0 0 0 1\n3 0 0 1\n0 3 0 1\n0 0 3 1\n5 5 5 1\n-4 0 0 1\n7 7 7 1\n"));
+    strcpy(dcd, temp_file(""));
+    const size_t na = 7;
+    const double x0[7] = {0, 3, 0, 0, 5, -4, 7}, y0[7] = {0, 0, 3, 0, 5, 0, 7},
+                 z0[7] = {0, 0, 0, 3, 5, 0, 7};
+    /* Frame 1: atoms 4 and 7 move onto atom 2 (one with -0), atom 6 onto 5. */
+    const double x1[7] = {0, 3, 0, 3, -4, -4, 3}, y1[7] = {0, 0, 3, -0.0, 0, 0, 0},
+                 z1[7] = {0, 0, 0, 0, 0, 0, -0.0};
+    vb_dcd_writer *w = NULL;
+    CHECK_INT(vb_dcd_writer_open(ctx, dcd, na, 1.0, "dup3", &w), VB_OK);
+    CHECK_INT(vb_dcd_writer_frame(ctx, w, x0, y0, z0), VB_OK);
+    CHECK_INT(vb_dcd_writer_frame(ctx, w, x1, y1, z1), VB_OK);
+    CHECK_INT(vb_dcd_writer_close(ctx, w), VB_OK);
+    vb_read_options o;
+    memset(&o, 0, sizeof o);
+    vb_frame_source *F = NULL;
+    vb_sphere_set *s = NULL;
+    int model = 0;
+    CHECK_INT(vb_frame_source_open(ctx, top, dcd, &o, &F), VB_OK);
+    CHECK_INT(vb_frame_source_next(ctx, F, &s, &model), VB_OK);
+    CHECK_INT(s ? s->n : 0, 7);
+    vb_spheres_free(s);
+    s = NULL;
+    char want[200];
+    snprintf(want, sizeof want, "%s: frame 1: atom 4 (topology line 4) is identical to atom 2 "
+             "(topology line 2)", dcd);
+    CHECK_ERROR(ctx, vb_frame_source_next(ctx, F, &s, &model), VB_EINPUT_DUPLICATE, want);
+    CHECK(s == NULL);
+    vb_frame_source_close(F);
+    remove(top);
+    remove(dcd);
+    vb_close(ctx);
+}
+
 /* Issue 28, item 9: of a residue's alternate locations the most occupied
  * is kept (A 0.44 against B 0.56: B; the first, A, was kept), ties to the
  * first met; without occupancies the first. */
@@ -605,6 +648,7 @@ int main(void)
     test_altloc_occupancy();
     test_gro_count();
     test_traj_duplicates();
+    test_traj_duplicates_three();
     test_contained_once();
     VB_TEST_END();
 }
