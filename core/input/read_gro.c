@@ -182,7 +182,8 @@ int vbi_gro_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
         double d[4];
         if ((rc = parse_atom(ctx, name, it.lineno, line, n, &info, e, d)) != VB_OK)
             break;
-        int how = vbi_infer_element_memo(memo, info.name, info.resname, info.element);
+        int how = vbi_infer_element_memo(memo, NULL, info.name, info.resname,
+                                         VBI_LAYOUT_UNKNOWN, info.element);
         if (vbi_atom_dropped(opt, NULL, &info, dr))
             continue;
         rc = vbi_atom_keep(ctx, opt, name, it.lineno, &info, how, dr, &b, e, d);
