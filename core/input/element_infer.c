@@ -191,7 +191,7 @@ int vbi_infer_element_memo(vbi_infer_memo *m, const char *name4, const char *nam
                            const char *resname, int layout, char element[4])
 {
     size_t ln = strlen(name), lr = strlen(resname), l4 = name4 ? strlen(name4) : 0;
-    if (ln >= sizeof m->e[0].name || lr >= sizeof m->e[0].resname || l4 >= sizeof m->e[0].name4 ||
+    if (!m || ln >= sizeof m->e[0].name || lr >= sizeof m->e[0].resname || l4 >= sizeof m->e[0].name4 ||
         (name4 && l4 == 0))
         return vbi_infer_element(name4, name, resname, layout, element);
     uint32_t h = 2166136261u; /* FNV-1a over the names and the layout */

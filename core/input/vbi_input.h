@@ -168,12 +168,13 @@ typedef struct vbi_infer_memo {
     struct {
         char name4[5], name[8], resname[8], element[4];
         int layout, how, used;
-    } e[64];
+    } e[512]; /* a protein's residues hold a few hundred keys */
 } vbi_infer_memo;
 
 /* vbi_infer_element(name4, name, resname, layout, element) (name4 NULL or
  * its four columns), answered from m when it holds the key (the same
- * answer: the function reads nothing else). */
+ * answer: the function reads nothing else). m may be NULL (a memo that
+ * could not be allocated): the function answers. */
 int vbi_infer_element_memo(vbi_infer_memo *m, const char *name4, const char *name,
                            const char *resname, int layout, char element[4]);
 
