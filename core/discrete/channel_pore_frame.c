@@ -551,6 +551,8 @@ nomem:
     return vb_error(ctx, VB_ENOMEM, NULL, 0, "pore of %zu points", p->n);
 }
 
+#define REFINE_PER_THREAD 8
+
 /* One channel of vbc_refine_bottlenecks (vb_for_fn over the channels: each
  * moves only its own points). */
 static void refine_channel(void *ctx, size_t t, int tid)
@@ -594,10 +596,14 @@ static void refine_channel(void *ctx, size_t t, int tid)
 void vbc_refine_bottlenecks(vbc_result *res, const vbc_cells *cells, double h)
 {
     refine_view R = {res, cells, h};
+    /* A channel takes tens of microseconds, about a thread's start and
+     * join: each thread gets REFINE_PER_THREAD channels at least. */
+    size_t most = res->nchannels / REFINE_PER_THREAD;
     int nt = vb_threads(0);
-    if (nt > 1 && res->nchannels > 1)
-        vb_parallel_for(refine_channel, &R, res->nchannels,
-                        res->nchannels < (size_t)nt ? (int)res->nchannels : nt);
+    if ((size_t)nt > most)
+        nt = (int)most;
+    if (nt > 1)
+        vb_parallel_for(refine_channel, &R, res->nchannels, nt);
     else
         for (size_t t = 0; t < res->nchannels; t++)
             refine_channel(&R, t, 0);

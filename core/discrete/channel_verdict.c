@@ -141,14 +141,20 @@ static void judge_plane(void *ctx, size_t i, int tid)
 }
 
 /* Planes flooded at once per thread before the run is scanned: the scan
- * may stop early (enough), so a block is what the threads share, a few
- * planes each, not the whole pore. */
-#define JUDGE_PLANES_PER_THREAD 4
+ * may stop early (enough), so a block is what the threads share, not the
+ * whole pore; a thread costs a start and a join (tens of microseconds,
+ * milliseconds on a loaded machine) against a few to tens of microseconds
+ * a plane, so each takes this many at least, and a pore of fewer planes
+ * is judged on fewer threads (on one: plane by plane, as it stops). */
+#define JUDGE_PLANES_PER_THREAD 32
 
 int vbc_pore_judge(const vbc_cells *c, const vbc_pore *p, double enough, vbc_pore_verdict *v)
 {
     memset(v, 0, sizeof *v);
+    size_t most = p->n / JUDGE_PLANES_PER_THREAD;
     int nt = vb_threads(0);
+    if ((size_t)nt > most)
+        nt = most > 1 ? (int)most : 1;
     size_t block = nt > 1 ? (size_t)nt * JUDGE_PLANES_PER_THREAD : 1;
     int8_t *walled = malloc(block);
     judge_block B = {c, p, 0, walled, {NULL}, {0}};
@@ -158,7 +164,8 @@ int vbc_pore_judge(const vbc_cells *c, const vbc_pore *p, double enough, vbc_por
         size_t m = p->n - k0 < block ? p->n - k0 : block;
         B.k0 = k0;
         if (m > 1)
-            vb_parallel_for(judge_plane, &B, m, nt < (int)m ? nt : (int)m);
+            vb_parallel_for(judge_plane, &B, m, (int)((m + JUDGE_PLANES_PER_THREAD - 1) /
+                                                      JUDGE_PLANES_PER_THREAD));
         else
             judge_plane(&B, 0, 0);
         for (size_t i = 0; i < m; i++) {

@@ -321,9 +321,9 @@ int vbc_plane_walled(const vbc_cells *c, const double u[3], const double p[3], d
  * plane from the first point; stops once a run's buried length reaches
  * `enough` (INFINITY: every plane, the longest run; VBC_PORE_MIN_BURIED:
  * the verdict alone, its planes past that unflooded, buried then that
- * run's length so far). The planes are flooded on vb_threads threads, a
- * few per thread at a time, and scanned in order: the same verdict on any
- * number of threads. Returns 0 with *v filled, -1 out of memory. */
+ * run's length so far). The planes are flooded on up to vb_threads
+ * threads, at least 32 a thread at a time, and scanned in order: the same
+ * verdict on any number of threads. Returns 0 with *v filled, -1 out of memory. */
 int vbc_pore_judge(const vbc_cells *c, const vbc_pore *p, double enough, vbc_pore_verdict *v);
 
 #endif
