@@ -596,12 +596,7 @@ static void refine_channel(void *ctx, size_t t, int tid)
 void vbc_refine_bottlenecks(vbc_result *res, const vbc_cells *cells, double h)
 {
     refine_view R = {res, cells, h};
-    /* A channel takes tens of microseconds, about a thread's start and
-     * join: each thread gets REFINE_PER_THREAD channels at least. */
-    size_t most = res->nchannels / REFINE_PER_THREAD;
-    int nt = vb_threads(0);
-    if ((size_t)nt > most)
-        nt = (int)most;
+    int nt = vbc_pore_threads(res->nchannels, REFINE_PER_THREAD);
     if (nt > 1)
         vb_parallel_for(refine_channel, &R, res->nchannels, nt);
     else

@@ -118,6 +118,15 @@ int vbc_plane_walled(const vbc_cells *c, const double u[3], const double p[3], d
     return 1;
 }
 
+int vbc_pore_threads(size_t items, size_t per)
+{
+    int nt = vb_threads(0);
+    size_t most = items / (per ? per : 1);
+    if (nt < VBC_PORE_MIN_THREADS || most < 2)
+        return 1;
+    return (size_t)nt > most ? (int)most : nt;
+}
+
 /* The planes [k0, k0 + n) of a pore flooded at once: plane k0 + i on
  * thread i mod nt, each thread with its own scratch; walled[i] gets
  * vbc_plane_walled's answer (a plane's answer is its own, so the verdict
@@ -151,10 +160,7 @@ static void judge_plane(void *ctx, size_t i, int tid)
 int vbc_pore_judge(const vbc_cells *c, const vbc_pore *p, double enough, vbc_pore_verdict *v)
 {
     memset(v, 0, sizeof *v);
-    size_t most = p->n / JUDGE_PLANES_PER_THREAD;
-    int nt = vb_threads(0);
-    if ((size_t)nt > most)
-        nt = most > 1 ? (int)most : 1;
+    int nt = vbc_pore_threads(p->n, JUDGE_PLANES_PER_THREAD);
     size_t block = nt > 1 ? (size_t)nt * JUDGE_PLANES_PER_THREAD : 1;
     int8_t *walled = malloc(block);
     judge_block B = {c, p, 0, walled, {NULL}, {0}};
