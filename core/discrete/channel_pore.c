@@ -141,13 +141,9 @@ static double clearance_near(const vbc_cells *c, const double q[3], double eps, 
 
 /* vbc_plane_maximise, and in *went the largest squared distance from the
  * start of a point it tried (the one it compares with travel^2): a run
- * with any travel >= sqrt(*went) takes the very same steps. seed (may be
- * NULL) is a near list of the start already made (plane_best's, from the
- * lattice's list): clearance_near's answers do not depend on which valid
- * list it reads (vbc_cells_nearest_among's list is in the walk's order,
- * its nearest the least (distance, index)), so the same steps are taken. */
+ * with any travel >= sqrt(*went) takes the very same steps. */
 static double ascend(const vbc_cells *c, const double u[3], double travel, double p[3],
-                     int32_t *atom, double *went, local_set *seed)
+                     int32_t *atom, double *went)
 {
     const vb_sphere_set *s = vbc_cells_spheres(c);
     double e1[3], e2[3], p0[3] = {p[0], p[1], p[2]};
@@ -158,10 +154,9 @@ static double ascend(const vbc_cells *c, const double u[3], double travel, doubl
      * each step's vbc_cells_within(p, R + eps) as that would: the same
      * atoms in the same order, without a second walk of the cells. */
     near_list here, there;
-    local_set own, *S = seed ? seed : &own;
-    if (!seed)
-        own.ok = 0;
-    double R = clearance_near(c, p, eps, -1, &a, &here, S);
+    local_set S;
+    S.ok = 0;
+    double R = clearance_near(c, p, eps, -1, &a, &here, &S);
     for (int it = 0; it < 400 && eps >= 1e-7; it++) {
         active_set A = {s, {p[0], p[1], p[2]}, {0}, 0};
         if (here.ok) {
@@ -209,7 +204,7 @@ static double ascend(const vbc_cells *c, const double u[3], double travel, doubl
             if (blocked_by(s, &A, q, R + 1e-13))
                 continue;
             int32_t b;
-            double Rq = clearance_near(c, q, eps, a, &b, &there, S);
+            double Rq = clearance_near(c, q, eps, a, &b, &there, &S);
             if (Rq > R + 1e-13) {
                 memcpy(p, q, sizeof q);
                 R = Rq;
@@ -231,29 +226,14 @@ double vbc_plane_maximise(const vbc_cells *c, const double u[3], double travel, 
                           int32_t *atom)
 {
     double went = 0.0;
-    return ascend(c, u, travel, p, atom, &went, NULL);
+    return ascend(c, u, travel, p, atom, &went);
 }
-
-/* The spheres near the lattice's centre (lattice_best), by increasing
- * distance once sorted, with the clearance R and nearest atom a of the
- * centre. */
-#define LATTICE_CAP 512
-typedef struct {
-    int32_t id[LATTICE_CAP];
-    double dist[LATTICE_CAP];
-    size_t n;
-    int ok;
-    double R;
-    int32_t a;
-} lattice_near;
 
 /* The lattice search of vbc_plane_widest: moves p to the widest lattice
  * point (p itself when none is wider), returns its clearance with the
- * nearest atom in *atom, and 1 when p moved. pre (may be NULL) is
- * lattice_fetch's answer at p for this reach, unsorted (it is sorted
- * here). */
+ * nearest atom in *atom, and 1 when p moved. */
 static int lattice_best(const vbc_cells *c, const double u[3], double reach, vbc_outside_fn outside,
-                        void *user, double p[3], double *Rbest, int32_t *atom, lattice_near *pre);
+                        void *user, double p[3], double *Rbest, int32_t *atom);
 
 /* The rest of vbc_plane_widest from the lattice's best point p (moved or
  * not by the lattice, its clearance R): the ascent within reach, kept when
@@ -264,7 +244,7 @@ static double widest_ascent(const vbc_cells *c, const double u[3], double reach,
 {
     int32_t a;
     double q[3] = {p[0], p[1], p[2]}, went = 0.0;
-    double Rq = ascend(c, u, reach, q, &a, &went, NULL);
+    double Rq = ascend(c, u, reach, q, &a, &went);
     if (!outside || !outside(user, q)) {
         memcpy(p, q, sizeof q);
         R = Rq;
@@ -279,10 +259,19 @@ double vbc_plane_widest(const vbc_cells *c, const double u[3], double reach, vbc
                         void *user, double p[3], int32_t *atom)
 {
     double R;
-    lattice_best(c, u, reach, outside, user, p, &R, atom, NULL);
+    lattice_best(c, u, reach, outside, user, p, &R, atom);
     return widest_ascent(c, u, reach, outside, user, p, R, atom);
 }
 
+/* The spheres near the lattice's centre (lattice_best), by increasing
+ * distance. */
+#define LATTICE_CAP 512
+typedef struct {
+    int32_t id[LATTICE_CAP];
+    double dist[LATTICE_CAP];
+    size_t n;
+    int ok;
+} lattice_near;
 
 static void near_sort(lattice_near *L)
 {
@@ -325,11 +314,13 @@ static double near_min(const vb_sphere_set *s, const lattice_near *L, const doub
     return best;
 }
 
-/* The spheres near p for a lattice of this reach (lattice_best's list,
- * unsorted: in the walk's order) into *L, with p's clearance and nearest
- * atom. */
-static void lattice_fetch(const vbc_cells *c, double reach, const double p[3], lattice_near *L)
+static int lattice_best(const vbc_cells *c, const double u[3], double reach, vbc_outside_fn outside,
+                        void *user, double p[3], double *Rbest, int32_t *atom)
 {
+    double e1[3], e2[3], best[3] = {p[0], p[1], p[2]};
+    plane_frame(u, e1, e2);
+    const vb_sphere_set *s = vbc_cells_spheres(c);
+    int32_t a, best_atom;
     /* The spheres within R + 2 reach + 0.1 of p, nearest first: a lattice
      * point q is within reach of p, so its nearest sphere (and any tied
      * with it) lies within R(q) + |q - p| <= R + 2 reach of p, and a sphere
@@ -338,27 +329,15 @@ static void lattice_fetch(const vbc_cells *c, double reach, const double p[3], l
      * then index, by the same expression). A list over its cap, or a
      * lattice wider than the planes' (a subunit's start, whose list would
      * fill the cap): the cells answer. */
-    L->ok = reach <= VBC_PLANE_LOOK &&
-            vbc_cells_nearest_near(c, p, 2.0 * reach + 0.1, -1, &L->R, &L->a, L->id, L->dist,
-                                   LATTICE_CAP, &L->n) == 0;
-    if (!L->ok)
-        L->R = vbc_cells_clearance(c, p, &L->a);
-}
-
-static int lattice_best(const vbc_cells *c, const double u[3], double reach, vbc_outside_fn outside,
-                        void *user, double p[3], double *Rbest, int32_t *atom, lattice_near *pre)
-{
-    double e1[3], e2[3], best[3] = {p[0], p[1], p[2]};
-    plane_frame(u, e1, e2);
-    const vb_sphere_set *s = vbc_cells_spheres(c);
-    int32_t best_atom;
-    lattice_near own, *L = pre ? pre : &own;
-    if (!pre)
-        lattice_fetch(c, reach, p, &own);
-    if (L->ok)
-        near_sort(L);
-    double R = L->R;
-    int32_t a = L->a;
+    lattice_near L;
+    double R;
+    L.ok = reach <= VBC_PLANE_LOOK &&
+           vbc_cells_nearest_near(c, p, 2.0 * reach + 0.1, -1, &R, &a, L.id, L.dist, LATTICE_CAP,
+                                  &L.n) == 0;
+    if (L.ok)
+        near_sort(&L);
+    else
+        R = vbc_cells_clearance(c, p, &a);
     int moved = 0;
     best_atom = a;
     /* The nearest atom of the last point queried (0.5 A away, mostly): its
@@ -385,7 +364,7 @@ static int lattice_best(const vbc_cells *c, const double u[3], double reach, vbc
                 continue;
             if (blocked_by(s, &hint, q, R))
                 continue;
-            double Rq = L->ok ? near_min(s, L, q, sqrt(di * di + dj * dj), &a)
+            double Rq = L.ok ? near_min(s, &L, q, sqrt(di * di + dj * dj), &a)
                              : vbc_cells_clearance_from(c, q, last, &a);
             last = a;
             if (a >= 0) {
@@ -449,27 +428,12 @@ static double plane_best(const vbc_cells *c, const double u[3], vbc_outside_fn o
 {
     double q[3] = {p[0], p[1], p[2]}, went = 0.0, rq;
     int32_t b;
-    /* One walk of the cells for both searches from p: the lattice's list
-     * (slack 2 VBC_PLANE_LOOK + 0.1) holds every sphere within p's
-     * clearance + LOCAL_SLACK, the ascent's local set at p (a valid one:
-     * its answers are the same, see ascend). */
-    lattice_near L;
-    local_set S;
-    lattice_fetch(c, VBC_PLANE_LOOK, p, &L);
-    S.ok = L.ok;
-    S.n = 0;
-    memcpy(S.c0, p, sizeof S.c0);
-    for (size_t k = 0; S.ok && k < L.n; k++)
-        if (L.dist[k] <= L.R + LOCAL_SLACK) {
-            S.id[S.n] = L.id[k];
-            S.dist[S.n++] = L.dist[k];
-        }
-    double r = ascend(c, u, 0.0, p, atom, &went, &S);
+    double r = ascend(c, u, 0.0, p, atom, &went);
     /* When no lattice point beats the start and the plain ascent tried no
      * point farther than VBC_PLANE_LOOK from it, the lattice's ascent (from
      * the same start, within that reach) would take the very same steps to
      * the same r: not wider, so the plain ascent stands. */
-    if (!lattice_best(c, u, VBC_PLANE_LOOK, outside, user, q, &rq, &b, &L) &&
+    if (!lattice_best(c, u, VBC_PLANE_LOOK, outside, user, q, &rq, &b) &&
         went <= VBC_PLANE_LOOK * VBC_PLANE_LOOK)
         return r;
     rq = widest_ascent(c, u, VBC_PLANE_LOOK, outside, user, q, rq, &b);
