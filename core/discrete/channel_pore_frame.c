@@ -14,6 +14,13 @@ typedef struct {
     const uint8_t *flags;
 } mask_view;
 
+/* What vbc_refine_bottlenecks' channels share. */
+typedef struct {
+    vbc_result *res;
+    const vbc_cells *cells;
+    double h;
+} refine_view;
+
 /* Outside the molecule: off the grid or in a voxel without the molecular bit. */
 static int outside_mask(void *user, const double p[3])
 {
@@ -544,41 +551,57 @@ nomem:
     return vb_error(ctx, VB_ENOMEM, NULL, 0, "pore of %zu points", p->n);
 }
 
+#define REFINE_PER_THREAD 8
+
+/* One channel of vbc_refine_bottlenecks (vb_for_fn over the channels: each
+ * moves only its own points). */
+static void refine_channel(void *ctx, size_t t, int tid)
+{
+    (void)tid;
+    const refine_view *R = ctx;
+    vbc_result *res = R->res;
+    vbc_channel *c = &res->channels[t];
+    if (c->kind == VBC_PORE || c->npoints < 2)
+        return;
+    vbc_point *p = res->points + c->first_point;
+    size_t b = c->bottleneck_at;
+    size_t lo = b >= 2 ? b - 2 : 0, hi = b + 2 < c->npoints ? b + 2 : c->npoints - 1;
+    for (size_t k = lo; k <= hi; k++) {
+        const vbc_point *a = &p[k > 0 ? k - 1 : k], *z = &p[k + 1 < c->npoints ? k + 1 : k];
+        double u[3] = {z->x - a->x, z->y - a->y, z->z - a->z};
+        double n = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+        if (!(n > 0.0))
+            continue;
+        for (int i = 0; i < 3; i++)
+            u[i] /= n;
+        double q[3] = {p[k].x, p[k].y, p[k].z};
+        int32_t atom;
+        double r = vbc_plane_maximise(R->cells, u, R->h, q, &atom);
+        if (r > p[k].r) {
+            p[k] = (vbc_point){q[0], q[1], q[2], r, atom};
+        }
+    }
+    /* length_A is the length of the centreline as written (the moved
+     * points' polyline), not the voxel path's: the pruning by
+     * --min-length saw the latter. */
+    c->length = path_length(p, c->npoints);
+    c->bottleneck = INFINITY;
+    for (size_t k = 0; k < c->npoints; k++)
+        if (p[k].r < c->bottleneck) {
+            c->bottleneck = p[k].r;
+            c->bottleneck_at = k;
+        }
+}
+
 void vbc_refine_bottlenecks(vbc_result *res, const vbc_cells *cells, double h)
 {
-    for (size_t t = 0; t < res->nchannels; t++) {
-        vbc_channel *c = &res->channels[t];
-        if (c->kind == VBC_PORE || c->npoints < 2)
-            continue;
-        vbc_point *p = res->points + c->first_point;
-        size_t b = c->bottleneck_at;
-        size_t lo = b >= 2 ? b - 2 : 0, hi = b + 2 < c->npoints ? b + 2 : c->npoints - 1;
-        for (size_t k = lo; k <= hi; k++) {
-            const vbc_point *a = &p[k > 0 ? k - 1 : k], *z = &p[k + 1 < c->npoints ? k + 1 : k];
-            double u[3] = {z->x - a->x, z->y - a->y, z->z - a->z};
-            double n = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
-            if (!(n > 0.0))
-                continue;
-            for (int i = 0; i < 3; i++)
-                u[i] /= n;
-            double q[3] = {p[k].x, p[k].y, p[k].z};
-            int32_t atom;
-            double r = vbc_plane_maximise(cells, u, h, q, &atom);
-            if (r > p[k].r) {
-                p[k] = (vbc_point){q[0], q[1], q[2], r, atom};
-            }
-        }
-        /* length_A is the length of the centreline as written (the moved
-         * points' polyline), not the voxel path's: the pruning by
-         * --min-length saw the latter. */
-        c->length = path_length(p, c->npoints);
-        c->bottleneck = INFINITY;
-        for (size_t k = 0; k < c->npoints; k++)
-            if (p[k].r < c->bottleneck) {
-                c->bottleneck = p[k].r;
-                c->bottleneck_at = k;
-            }
-    }
+    refine_view R = {res, cells, h};
+    int nt = vbc_pore_threads(res->nchannels, REFINE_PER_THREAD);
+    if (nt > 1)
+        vb_parallel_for(refine_channel, &R, res->nchannels, nt);
+    else
+        for (size_t t = 0; t < res->nchannels; t++)
+            refine_channel(&R, t, 0);
 }
 
 int vbc_pore_stage(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const vb_sphere_set *s,

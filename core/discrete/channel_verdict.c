@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_parallel.h"
 #include "vbc_pore.h"
 
 /* The slack of the free-distance bounds below, A: far above the rounding
@@ -117,41 +118,100 @@ int vbc_plane_walled(const vbc_cells *c, const double u[3], const double p[3], d
     return 1;
 }
 
+int vbc_pore_threads(size_t items, size_t per)
+{
+    int nt = vb_threads(0);
+    size_t most = items / (per ? per : 1);
+    if (nt < VBC_PORE_MIN_THREADS || most < 2)
+        return 1;
+    return (size_t)nt > most ? (int)most : nt;
+}
+
+/* The planes [k0, k0 + n) of a pore flooded at once: plane k0 + i on
+ * thread i mod nt, each thread with its own scratch; walled[i] gets
+ * vbc_plane_walled's answer (a plane's answer is its own, so the verdict
+ * scanning them in order is the one-plane-at-a-time verdict). */
+typedef struct {
+    const vbc_cells *c;
+    const vbc_pore *p;
+    size_t k0;
+    int8_t *walled;
+    void *scratch[VB_MAX_THREADS];
+    size_t len[VB_MAX_THREADS];
+} judge_block;
+
+static void judge_plane(void *ctx, size_t i, int tid)
+{
+    judge_block *B = ctx;
+    const vbc_pore_point *q = &B->p->pts[B->k0 + i];
+    double at[3] = {q->x, q->y, q->z};
+    B->walled[i] = (int8_t)vbc_plane_walled(B->c, B->p->axis.u, at, q->r, &B->scratch[tid],
+                                            &B->len[tid]);
+}
+
+/* Planes flooded at once per thread before the run is scanned: the scan
+ * may stop early (enough), so a block is what the threads share, not the
+ * whole pore; a thread costs a start and a join (tens of microseconds,
+ * milliseconds on a loaded machine) against a few to tens of microseconds
+ * a plane, so each takes this many at least, and a pore of fewer planes
+ * is judged on fewer threads (on one: plane by plane, as it stops). */
+#define JUDGE_PLANES_PER_THREAD 32
+
 int vbc_pore_judge(const vbc_cells *c, const vbc_pore *p, double enough, vbc_pore_verdict *v)
 {
     memset(v, 0, sizeof *v);
-    void *scratch = NULL;
-    size_t len = 0, lo = 0, last = 0;
-    int in_run = 0, have = 0;
-    for (size_t k = 0; k < p->n; k++) {
-        const vbc_pore_point *q = &p->pts[k];
-        double at[3] = {q->x, q->y, q->z};
-        int w = vbc_plane_walled(c, p->axis.u, at, q->r, &scratch, &len);
-        if (w < 0) {
-            free(scratch);
-            return -1;
-        }
-        v->walled += (size_t)w;
-        if (!w)
-            continue;
-        /* A walled plane extends the run unless the open gap before it
-         * is longer than VBC_WALL_GAP. */
-        if (!in_run || q->s - p->pts[last].s > VBC_WALL_GAP + 1e-9) {
-            in_run = 1;
-            lo = k;
-        }
-        last = k;
-        double span = q->s - p->pts[lo].s;
-        if (!have || span > v->buried) {
-            have = 1;
-            v->buried = span;
-            v->run_lo = lo;
-            v->run_hi = k;
-            if (v->buried >= enough)
+    int nt = vbc_pore_threads(p->n, JUDGE_PLANES_PER_THREAD);
+    size_t block = nt > 1 ? (size_t)nt * JUDGE_PLANES_PER_THREAD : 1;
+    int8_t *walled = malloc(block);
+    judge_block B = {c, p, 0, walled, {NULL}, {0}};
+    size_t lo = 0, last = 0;
+    int in_run = 0, have = 0, rc = walled ? 0 : -1, done = 0;
+    for (size_t k0 = 0; rc == 0 && !done && k0 < p->n; k0 += block) {
+        size_t m = p->n - k0 < block ? p->n - k0 : block;
+        B.k0 = k0;
+        if (m > 1)
+            vb_parallel_for(judge_plane, &B, m, (int)((m + JUDGE_PLANES_PER_THREAD - 1) /
+                                                      JUDGE_PLANES_PER_THREAD));
+        else
+            judge_plane(&B, 0, 0);
+        for (size_t i = 0; i < m; i++) {
+            size_t k = k0 + i;
+            int w = walled[i];
+            if (w < 0) {
+                rc = -1;
                 break;
+            }
+            v->walled += (size_t)w;
+            if (!w)
+                continue;
+            /* A walled plane extends the run unless the open gap before
+             * it is longer than VBC_WALL_GAP. */
+            const vbc_pore_point *q = &p->pts[k];
+            if (!in_run || q->s - p->pts[last].s > VBC_WALL_GAP + 1e-9) {
+                in_run = 1;
+                lo = k;
+            }
+            last = k;
+            double span = q->s - p->pts[lo].s;
+            if (!have || span > v->buried) {
+                have = 1;
+                v->buried = span;
+                v->run_lo = lo;
+                v->run_hi = k;
+                if (v->buried >= enough) {
+                    done = 1;
+                    break;
+                }
+            }
         }
     }
-    free(scratch);
+    for (int t = 0; t < VB_MAX_THREADS; t++)
+        free(B.scratch[t]);
+    free(walled);
+    if (rc != 0) {
+        memset(v, 0, sizeof *v);
+        return -1;
+    }
     v->is_pore = v->buried >= VBC_PORE_MIN_BURIED;
     return 0;
 }

@@ -317,11 +317,22 @@ void vbc_plane_basis(const double u[3], double a[3], double b[3]);
 int vbc_plane_walled(const vbc_cells *c, const double u[3], const double p[3], double r,
                      void **scratch, size_t *scratch_len);
 
+/* Threads for `items` independent pieces of a pore step, `per` a thread
+ * at least (a thread's start and join cost tens of microseconds, about
+ * what a plane or a channel does): vb_threads, at most items / per, and 1
+ * on fewer than VBC_PORE_MIN_THREADS (on the 2-core machine, loaded by
+ * other work, the starts cost milliseconds: adk_oplsaa's verdict 1.7 ->
+ * 6.6 ms a frame on 2 threads). */
+int vbc_pore_threads(size_t items, size_t per);
+#define VBC_PORE_MIN_THREADS 4
+
 /* Judges the pore p (its points, axis) against the atoms of c, plane by
  * plane from the first point; stops once a run's buried length reaches
  * `enough` (INFINITY: every plane, the longest run; VBC_PORE_MIN_BURIED:
  * the verdict alone, its planes past that unflooded, buried then that
- * run's length so far). Returns 0 with *v filled, -1 out of memory. */
+ * run's length so far). The planes are flooded on vbc_pore_threads(n, 32)
+ * threads, 32 a thread at a time, and scanned in order: the same verdict on
+ * any number of threads. Returns 0 with *v filled, -1 out of memory. */
 int vbc_pore_judge(const vbc_cells *c, const vbc_pore *p, double enough, vbc_pore_verdict *v);
 
 #endif

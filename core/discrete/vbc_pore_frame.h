@@ -43,7 +43,9 @@ int vbc_result_add_pore(vb_ctx *ctx, vbc_result *res, const vbc_pore *p, const v
 /* Moves each discrete channel's points within two of its bottleneck off the
  * voxel centre to the widest place in the plane normal to the centreline
  * there (at most one voxel edge h away), then recomputes the bottleneck and
- * the length (that of the polyline through the points as they now are). */
+ * the length (that of the polyline through the points as they now are).
+ * The channels go to vbc_pore_threads(channels, 8) threads (each moves its
+ * own points only). */
 void vbc_refine_bottlenecks(vbc_result *res, const vbc_cells *cells, double h);
 
 /* Orders the table and gives each entry its reason (enum vbc_why): the pore

@@ -98,6 +98,30 @@ static int get_mixed(bit_reader *b, int nbits, const uint32_t sizes[3], uint32_t
     uint32_t v;
     if (nbits > 8 * 16)
         return -1;
+    if (nbits <= 64) {
+        /* The same number in one 64-bit word (every run of small atoms and
+         * most large ones): two divisions instead of two per byte, the
+         * same remainders and the quotient's low 32 bits as below. */
+        uint64_t x = 0;
+        for (int sh = 0; nbits > 0; sh += 8, nbits -= 8) {
+            if (get_bits(b, nbits < 8 ? nbits : 8, &v) != 0)
+                return -1;
+            x |= (uint64_t)v << sh;
+        }
+        if (x <= UINT32_MAX) { /* a 32-bit division is the cheaper */
+            uint32_t y = (uint32_t)x;
+            out[2] = y % sizes[2];
+            y /= sizes[2];
+            out[1] = y % sizes[1];
+            out[0] = y / sizes[1];
+            return 0;
+        }
+        out[2] = (uint32_t)(x % sizes[2]);
+        x /= sizes[2];
+        out[1] = (uint32_t)(x % sizes[1]);
+        out[0] = (uint32_t)(x / sizes[1]);
+        return 0;
+    }
     while (nbits > 8) {
         if (get_bits(b, 8, &v) != 0)
             return -1;

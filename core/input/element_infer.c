@@ -187,27 +187,33 @@ int vbi_infer_element(const char *name4, const char *name, const char *resname, 
     return VBI_INFER_LETTER;
 }
 
-int vbi_infer_element_memo(vbi_infer_memo *m, const char *name, const char *resname,
-                           char element[4])
+int vbi_infer_element_memo(vbi_infer_memo *m, const char *name4, const char *name,
+                           const char *resname, int layout, char element[4])
 {
-    size_t ln = strlen(name), lr = strlen(resname);
-    if (ln >= sizeof m->e[0].name || lr >= sizeof m->e[0].resname)
-        return vbi_infer_element(NULL, name, resname, VBI_LAYOUT_UNKNOWN, element);
-    uint32_t h = 2166136261u; /* FNV-1a over both names */
+    size_t ln = strlen(name), lr = strlen(resname), l4 = name4 ? strlen(name4) : 0;
+    if (!m || ln >= sizeof m->e[0].name || lr >= sizeof m->e[0].resname || l4 >= sizeof m->e[0].name4 ||
+        (name4 && l4 == 0))
+        return vbi_infer_element(name4, name, resname, layout, element);
+    uint32_t h = 2166136261u; /* FNV-1a over the names and the layout */
     for (size_t k = 0; k <= ln; k++)
         h = (h ^ (unsigned char)name[k]) * 16777619u;
     for (size_t k = 0; k < lr; k++)
         h = (h ^ (unsigned char)resname[k]) * 16777619u;
+    for (size_t k = 0; k < l4; k++)
+        h = (h ^ (unsigned char)name4[k]) * 16777619u;
+    h = (h ^ (uint32_t)(layout + 1)) * 16777619u;
     size_t slot = h % (sizeof m->e / sizeof m->e[0]);
-    if (m->e[slot].used && strcmp(m->e[slot].name, name) == 0 &&
-        strcmp(m->e[slot].resname, resname) == 0) {
+    if (m->e[slot].used && m->e[slot].layout == layout && strcmp(m->e[slot].name, name) == 0 &&
+        strcmp(m->e[slot].resname, resname) == 0 && strcmp(m->e[slot].name4, name4 ? name4 : "") == 0) {
         memcpy(element, m->e[slot].element, 4);
         return m->e[slot].how;
     }
-    int how = vbi_infer_element(NULL, name, resname, VBI_LAYOUT_UNKNOWN, element);
+    int how = vbi_infer_element(name4, name, resname, layout, element);
     memcpy(m->e[slot].name, name, ln + 1);
     memcpy(m->e[slot].resname, resname, lr + 1);
+    memcpy(m->e[slot].name4, name4 ? name4 : "", l4 + 1);
     memcpy(m->e[slot].element, element, 4);
+    m->e[slot].layout = layout;
     m->e[slot].how = how;
     m->e[slot].used = 1;
     return how;

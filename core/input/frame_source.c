@@ -13,6 +13,7 @@
 #include "vb_dcd.h"
 #include "vb_box.h"
 #include "vb_diag.h"
+#include "vb_hash.h"
 #include "vb_xdr.h"
 #include "vbi_input.h"
 
@@ -195,50 +196,70 @@ static int check_frame(vb_ctx *ctx, const vb_frame_source *F, const vb_sphere_se
     return VB_OK;
 }
 
+/* A sphere of the frame as a key of the duplicate check: -0 and 0 are one
+ * number (x + 0.0 is +0 for both), as the decimals of a text frame compare;
+ * the coordinates are finite (check_frame). */
 typedef struct {
+    const vb_sphere_set *s;
     double v[4];
-    size_t idx;
 } frame_key;
 
-/* Order by x, y, z, r as numbers (-0 equals 0, as the decimals of a text
- * frame compare), then by index. */
-static int frame_key_cmp(const void *pa, const void *pb)
+static uint64_t frame_key_hash(const double v[4])
 {
-    const frame_key *a = pa, *b = pb;
-    for (int k = 0; k < 4; k++)
-        if (a->v[k] != b->v[k])
-            return a->v[k] < b->v[k] ? -1 : 1;
-    return (a->idx > b->idx) - (a->idx < b->idx);
+    uint64_t h = 0;
+    for (int k = 0; k < 4; k++) {
+        double x = v[k] + 0.0;
+        uint64_t b;
+        memcpy(&b, &x, sizeof b);
+        h = vb_hash_mix(h, b);
+    }
+    /* The table takes the low bits: fold the high ones in (a coordinate
+     * widened from a float has its low 29 bits zero, which the mixing's
+     * product leaves in the low bits of h). */
+    return h ^ (h >> 29) ^ (h >> 47);
+}
+
+static int frame_key_same(const void *key, size_t item)
+{
+    const frame_key *K = key;
+    const vb_sphere_set *s = K->s;
+    return s->x[item] == K->v[0] && s->y[item] == K->v[1] && s->z[item] == K->v[2] &&
+           s->r[item] == K->v[3];
+}
+
+static uint64_t frame_item_hash(const void *arg, size_t item)
+{
+    const vb_sphere_set *s = arg;
+    const double v[4] = {s->x[item], s->y[item], s->z[item], s->r[item]};
+    return frame_key_hash(v);
 }
 
 /* E104 when two atoms of a trajectory frame are the same sphere, as
  * vb_spheres_validate says of a text frame (a GRO or PDB model): the pair
- * with the smallest later atom is named. */
+ * with the smallest later atom is named, with the earliest copy of it.
+ * One pass in atom order through a hash of the spheres seen: the first
+ * atom found already there is that later atom, the one there its earliest
+ * copy. */
 static int check_frame_duplicates(vb_ctx *ctx, const vb_frame_source *F, const vb_sphere_set *s)
 {
-    frame_key *k = malloc(s->n * sizeof *k);
-    if (!k)
+    vb_hash h = {NULL, 0, 0};
+    if (vb_hash_fit(&h, s->n, frame_item_hash, s) != VB_OK)
         return vb_error(ctx, VB_ENOMEM, F->dcd_path, 0, "out of memory");
-    for (size_t i = 0; i < s->n; i++)
-        k[i] = (frame_key){{s->x[i], s->y[i], s->z[i], s->r[i]}, i};
-    qsort(k, s->n, sizeof *k, frame_key_cmp);
     size_t first = SIZE_MAX, second = SIZE_MAX;
-    for (size_t i = 1; i < s->n; i++)
-        if (k[i - 1].v[0] == k[i].v[0] && k[i - 1].v[1] == k[i].v[1] &&
-            k[i - 1].v[2] == k[i].v[2] && k[i - 1].v[3] == k[i].v[3] && k[i].idx < second) {
-            second = k[i].idx;
-            first = k[i - 1].idx;
-        }
-    free(k);
-    if (second == SIZE_MAX)
-        return VB_OK;
-    /* Several copies: the earliest copy of the same sphere is the partner. */
-    for (size_t i = 0; i < first; i++)
-        if (s->x[i] == s->x[second] && s->y[i] == s->y[second] && s->z[i] == s->z[second] &&
-            s->r[i] == s->r[second]) {
-            first = i;
+    for (size_t i = 0; i < s->n; i++) {
+        frame_key K = {s, {s->x[i], s->y[i], s->z[i], s->r[i]}};
+        size_t *slot = vb_hash_slot(&h, frame_key_hash(K.v), frame_key_same, &K);
+        if (*slot) {
+            first = *slot - 1;
+            second = i;
             break;
         }
+        /* Room for s->n items was made: no growth, no failure here. */
+        (void)vb_hash_put(&h, slot, i, frame_item_hash, s);
+    }
+    vb_hash_free(&h);
+    if (second == SIZE_MAX)
+        return VB_OK;
     size_t a = F->keep[first], b = F->keep[second];
     return vb_error(ctx, VB_EINPUT_DUPLICATE, F->dcd_path, 0,
                     "frame %ld: atom %zu (topology line %ld) is identical to atom %zu (topology "

@@ -29,6 +29,7 @@ typedef struct {
     const char *buf;
     size_t len;
     int layout; /* -1 until needed, then a VBI_LAYOUT_* */
+    vbi_infer_memo *memo; /* elements inferred from the names (NULL: none) */
 } pdb_text;
 
 /* The residue of an atom line and its alternate location (columns 17,
@@ -129,7 +130,8 @@ static int parse_atom_line(vb_ctx *ctx, const char *name, long lineno, const cha
     } else {
         if (text->layout < 0)
             text->layout = vbi_pdb_name_layout(text->buf, text->len);
-        *how = vbi_infer_element(name4, info->name, info->resname, text->layout, info->element);
+        *how = vbi_infer_element_memo(text->memo, name4, info->name, info->resname, text->layout,
+                                      info->element);
     }
     return VB_OK;
 }
@@ -171,7 +173,12 @@ int vbi_pdb_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
     vbi_altloc_init(&alt);
     if (altloc_prepass(buf, len, opt, &alt) != 0)
         rc = vb_error(ctx, VB_ENOMEM, name, 0, "out of memory (alternate locations)");
-    pdb_text text = {buf, len, -1};
+    pdb_text text;
+    memset(&text, 0, sizeof text);
+    text.buf = buf;
+    text.len = len;
+    text.layout = -1;
+    text.memo = calloc(1, sizeof *text.memo); /* without it, slower, the same answers */
     size_t records = 0; /* ATOM/HETATM records met, read or not */
     vbi_lines it;
     vbi_lines_init(&it, buf, len, first_line);
@@ -206,6 +213,7 @@ int vbi_pdb_parse(vb_ctx *ctx, const char *name, const char *buf, size_t len, lo
         taken++;
     }
     vbi_altloc_free(&alt);
+    free(text.memo);
     if (rc == VB_OK && records == 0)
         rc = vb_error(ctx, VB_EINPUT_EMPTY, name, 0,
                       "no atoms: no ATOM or HETATM record in the PDB input");

@@ -158,23 +158,25 @@ int vbi_plain_residue(const char *resname);
 int vbi_infer_element(const char *name4, const char *name, const char *resname, int layout,
                       char element[4]);
 
-/* The answers of vbi_infer_element for files without name columns (name4
- * NULL, VBI_LAYOUT_UNKNOWN: GRO, PSF, mmCIF, PQR), which depend on the atom
- * and residue names alone, kept for the names met last: a trajectory's
- * topology repeats a few pairs (a water's three atoms) tens of thousands
- * of times. Zero it before the first use. */
+/* The answers of vbi_infer_element kept for the names met last: a
+ * trajectory's topology repeats a few pairs (a water's three atoms) tens of
+ * thousands of times, and a protein's PDB file its residues' atoms. The key
+ * is everything the function reads: the four name columns (PDB; "" for
+ * files without them: GRO, PSF, mmCIF, PQR), the atom and residue names
+ * and the layout. Zero it before the first use. */
 typedef struct vbi_infer_memo {
     struct {
-        char name[8], resname[8], element[4];
-        int how, used;
-    } e[64];
+        char name4[5], name[8], resname[8], element[4];
+        int layout, how, used;
+    } e[512]; /* a protein's residues hold a few hundred keys */
 } vbi_infer_memo;
 
-/* vbi_infer_element(NULL, name, resname, VBI_LAYOUT_UNKNOWN, element),
- * answered from m when it holds the pair (the same answer: the function
- * reads nothing else). */
-int vbi_infer_element_memo(vbi_infer_memo *m, const char *name, const char *resname,
-                           char element[4]);
+/* vbi_infer_element(name4, name, resname, layout, element) (name4 NULL or
+ * its four columns), answered from m when it holds the key (the same
+ * answer: the function reads nothing else). m may be NULL (a memo that
+ * could not be allocated): the function answers. */
+int vbi_infer_element_memo(vbi_infer_memo *m, const char *name4, const char *name,
+                           const char *resname, int layout, char element[4]);
 
 /* Whether the amino acids and nucleotides of a PDB text start one-letter
  * names in column 14 (VBI_LAYOUT_PDB, the convention) or 13

@@ -7,7 +7,8 @@
  * #33: vbc_cells_any_within answers as vbc_cells_within with a true lower
  * bound of the distance when it finds nothing, and the flood that trusts
  * those bounds walls the same planes as the plain flood (a copy below, one
- * query per pixel) in a random cloud of atoms. */
+ * query per pixel) in a random cloud of atoms; the verdict is the same on
+ * 1 and 5 threads. */
 #include "synth.h"
 #include "vb_test.h"
 #include "vbc_pore.h"
@@ -326,6 +327,54 @@ static void test_same_walls(vb_ctx *ctx)
         fprintf(stderr, "planes walled %d, open %d, differ %d\n", walled, open, differ);
 }
 
+/* The verdict is the same on 1 and 5 threads (planes flooded in blocks,
+ * scanned in order): a tube judged to the end and stopped at
+ * VBC_PORE_MIN_BURIED, and a line through a random cloud (walled and open
+ * planes mixed), every field of the verdict. */
+static void same_verdict(const vbc_cells *c, const vbc_pore *p, double enough, int *differ)
+{
+    vbc_pore_verdict v[2];
+    const char *th[2] = {"1", "5"};
+    for (int k = 0; k < 2; k++) {
+        setenv("VORBALL_THREADS", th[k], 1);
+        CHECK_INT(vbc_pore_judge(c, p, enough, &v[k]), 0);
+    }
+    unsetenv("VORBALL_THREADS");
+    *differ += v[0].walled != v[1].walled || v[0].buried != v[1].buried ||
+               v[0].run_lo != v[1].run_lo || v[0].run_hi != v[1].run_hi ||
+               v[0].is_pore != v[1].is_pore;
+}
+
+static void test_threads(vb_ctx *ctx)
+{
+    int differ = 0;
+    vb_sphere_set *tube = synth_cylinder(16, 16, 6.0, 1.5, 2.6);
+    vbc_cells *c = NULL;
+    CHECK_INT(vbc_cells_build(ctx, tube, 3.0, &c), VB_OK);
+    vbc_pore p;
+    pore_on_z(&p, -30.0, 30.0, 4.5);
+    CHECK(p.n > 5 * 32); /* enough planes for 5 threads */
+    same_verdict(c, &p, INFINITY, &differ);
+    same_verdict(c, &p, VBC_PORE_MIN_BURIED, &differ);
+    vbc_pore_free(&p);
+    vbc_cells_free(c);
+    vb_spheres_free(tube);
+    vb_sphere_set *s = cloud(3000, 40.0, 77);
+    CHECK_INT(vbc_cells_build(ctx, s, 3.0, &c), VB_OK);
+    pore_on_z(&p, -5.0, 45.0, 0.5);
+    for (size_t k = 0; k < p.n; k++)
+        p.pts[k].x = p.pts[k].y = 20.0;
+    vbc_pore_verdict v;
+    CHECK_INT(vbc_pore_judge(c, &p, INFINITY, &v), 0);
+    CHECK(v.walled > 10 && v.walled + 10 < p.n); /* both kinds of plane */
+    same_verdict(c, &p, INFINITY, &differ);
+    same_verdict(c, &p, 2.0, &differ);
+    vbc_pore_free(&p);
+    vbc_cells_free(c);
+    vb_spheres_free(s);
+    CHECK_INT(differ, 0);
+}
+
 int main(void)
 {
     vb_ctx *ctx;
@@ -337,6 +386,7 @@ int main(void)
     test_gaps(ctx);
     test_any_within(ctx);
     test_same_walls(ctx);
+    test_threads(ctx);
     vb_close(ctx);
     VB_TEST_END();
 }

@@ -474,19 +474,17 @@ static void test_gro_count(void)
     vb_close(ctx);
 }
 
-/* Issue 28, item 8: two atoms of a trajectory frame at the same place with
- * the same radius are E104, as in a GRO or PDB frame (they were accepted),
- * naming the trajectory, the frame and both atoms. */
-static void test_traj_duplicates(void)
+/* A topology of na spheres (top, radius 1 each at frame 0's places) and a
+ * two-frame DCD: frame 0 is read, frame 1 is E104 naming atom b as
+ * identical to atom a. */
+static void check_traj_duplicate(const char *top_text, size_t na, const double *x0,
+                                 const double *y0, const double *z0, const double *x1,
+                                 const double *y1, const double *z1, int b, int a)
 {
     vb_ctx *ctx = open_ctx(NULL);
     char top[64], dcd[64];
-    strcpy(top, temp_file("0 0 0 1\n3 0 0 1\n0 3 0 1\n0 0 3 1\n5 5 5 1\n"));
+    strcpy(top, temp_file(top_text));
     strcpy(dcd, temp_file(""));
-    const size_t na = 5;
-    const double x0[5] = {0, 3, 0, 0, 5}, y0[5] = {0, 0, 3, 0, 5}, z0[5] = {0, 0, 0, 3, 5};
-    /* Frame 1: atom 4 moves onto atom 2 (same radius: the same sphere). */
-    const double x1[5] = {0, 3, 0, 3, 5}, y1[5] = {0, 0, 3, 0, 5}, z1[5] = {0, 0, 0, 0, 5};
     vb_dcd_writer *w = NULL;
     CHECK_INT(vb_dcd_writer_open(ctx, dcd, na, 1.0, "dup", &w), VB_OK);
     CHECK_INT(vb_dcd_writer_frame(ctx, w, x0, y0, z0), VB_OK);
@@ -499,19 +497,47 @@ static void test_traj_duplicates(void)
     int model = 0;
     CHECK_INT(vb_frame_source_open(ctx, top, dcd, &o, &F), VB_OK);
     CHECK_INT(vb_frame_source_next(ctx, F, &s, &model), VB_OK);
-    CHECK_INT(s ? s->n : 0, 5);
-    CHECK(s && s->x[3] == 0.0 && s->z[3] == 3.0);
+    CHECK_INT(s ? s->n : 0, (long)na);
+    CHECK(s && s->x[3] == x0[3] && s->z[3] == z0[3]);
     vb_spheres_free(s);
     s = NULL;
     char want[200];
-    snprintf(want, sizeof want, "%s: frame 1: atom 4 (topology line 4) is identical to atom 2 "
-             "(topology line 2)", dcd);
+    snprintf(want, sizeof want, "%s: frame 1: atom %d (topology line %d) is identical to atom %d "
+             "(topology line %d)", dcd, b, b, a, a);
     CHECK_ERROR(ctx, vb_frame_source_next(ctx, F, &s, &model), VB_EINPUT_DUPLICATE, want);
     CHECK(s == NULL);
     vb_frame_source_close(F);
     remove(top);
     remove(dcd);
     vb_close(ctx);
+}
+
+/* Issue 28, item 8: two atoms of a trajectory frame at the same place with
+ * the same radius are E104, as in a GRO or PDB frame (they were accepted),
+ * naming the trajectory, the frame and both atoms. */
+static void test_traj_duplicates(void)
+{
+    const double x0[5] = {0, 3, 0, 0, 5}, y0[5] = {0, 0, 3, 0, 5}, z0[5] = {0, 0, 0, 3, 5};
+    /* Frame 1: atom 4 moves onto atom 2 (same radius: the same sphere). */
+    const double x1[5] = {0, 3, 0, 3, 5}, y1[5] = {0, 0, 3, 0, 5}, z1[5] = {0, 0, 0, 0, 5};
+    check_traj_duplicate("0 0 0 1\n3 0 0 1\n0 3 0 1\n0 0 3 1\n5 5 5 1\n", 5, x0, y0, z0, x1, y1,
+                         z1, 4, 2);
+}
+
+/* Issue 33: the duplicate check of a trajectory frame goes by a hash, not a
+ * sort: of three copies of one sphere (-0 and 0 one number, as a text
+ * frame's decimals compare) the smallest later atom is named beside the
+ * earliest copy, also when a later pair (atoms 5, 6) comes first in
+ * coordinate order. */
+static void test_traj_duplicates_three(void)
+{
+    const double x0[7] = {0, 3, 0, 0, 5, -4, 7}, y0[7] = {0, 0, 3, 0, 5, 0, 7},
+                 z0[7] = {0, 0, 0, 3, 5, 0, 7};
+    /* Frame 1: atoms 4 and 7 move onto atom 2 (one with -0), atom 6 onto 5. */
+    const double x1[7] = {0, 3, 0, 3, -4, -4, 3}, y1[7] = {0, 0, 3, -0.0, 0, 0, 0},
+                 z1[7] = {0, 0, 0, 0, 0, 0, -0.0};
+    check_traj_duplicate("0 0 0 1\n3 0 0 1\n0 3 0 1\n0 0 3 1\n5 5 5 1\n-4 0 0 1\n7 7 7 1\n", 7,
+                         x0, y0, z0, x1, y1, z1, 4, 2);
 }
 
 /* Issue 28, item 9: of a residue's alternate locations the most occupied
@@ -605,6 +631,7 @@ int main(void)
     test_altloc_occupancy();
     test_gro_count();
     test_traj_duplicates();
+    test_traj_duplicates_three();
     test_contained_once();
     VB_TEST_END();
 }

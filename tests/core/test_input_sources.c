@@ -371,9 +371,11 @@ static void test_metal_names(void)
     vb_close(ctx);
 }
 
-/* vbi_infer_element_memo answers as vbi_infer_element without columns, for
- * 120 pairs met in turn many times (more pairs than slots: slots shared and
- * overwritten), ions, metals, water and lipids among them. */
+/* vbi_infer_element_memo answers as vbi_infer_element, without columns and
+ * with PDB name columns under each layout (their hydrogens' four-column
+ * names, left- and right-justified metals), for the keys met in turn many
+ * times (more keys than slots: slots shared and overwritten), ions, metals,
+ * water and lipids among them. */
 static void test_infer_memo(void)
 {
     static const char *const names[] = {"OW", "HW1", "HW2", "MW", "CA", "ZN", "NA", "CL", "FE",
@@ -387,10 +389,23 @@ static void test_infer_memo(void)
         x = x * 1103515245u + 12345u;
         const char *nm = names[(x >> 8) % 18], *rn = res[(x >> 16) % 12];
         char a[4], b[4];
-        int ha = vbi_infer_element_memo(m, nm, rn, a);
-        int hb = vbi_infer_element(NULL, nm, rn, VBI_LAYOUT_UNKNOWN, b);
+        /* Without columns; with columns: the name where it starts (column
+         * 13 or 14), or as four columns, under the file's layout. */
+        const char *n4 = NULL;
+        char cols[5];
+        int lay = VBI_LAYOUT_UNKNOWN, how4 = (int)((x >> 24) % 4);
+        if (how4 > 0) {
+            snprintf(cols, sizeof cols, how4 == 1 ? " %-3.3s" : "%-4.4s", nm);
+            n4 = cols;
+            lay = (int)((x >> 4) % 3); /* VBI_LAYOUT_UNKNOWN, _PDB, _LEFT */
+        }
+        int ha = vbi_infer_element_memo(m, n4, nm, rn, lay, a);
+        int hb = vbi_infer_element(n4, nm, rn, lay, b);
         bad += ha != hb || strcmp(a, b) != 0;
+        hits += ha == VBI_INFER_ALIGNMENT;
     }
+    CHECK(hits > 100); /* two-letter elements by the columns (FE, ZN, CL) */
+    hits = 0;
     for (size_t k = 0; k < sizeof m->e / sizeof m->e[0]; k++)
         hits += m->e[k].used;
     CHECK_INT(bad, 0);
