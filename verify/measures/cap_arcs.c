@@ -38,7 +38,7 @@
 
 /* vbm_capwork.state; BAD: a cap not proven to hold the arcs of the circle
  * now done (arcs_inside), for that circle only */
-enum { DONE = 1, ON_BOUNDARY = 2, QUEUED = 4, LIKELY = 8, FRAMED = 16, BAD = 32 };
+enum { DONE = 1, ON_BOUNDARY = 2, QUEUED = 4, LIKELY = 8, FRAMED = 16, BAD = 32, HELD = 64 };
 
 static int circle_frame(vbm_circle *c);
 
@@ -141,6 +141,7 @@ void vbm_caps_free(vbm_capwork *w)
     free(w->sel);
     free(w->queue);
     free(w->state);
+    free(w->bnd);
     memset(w, 0, sizeof *w);
 }
 
@@ -384,18 +385,21 @@ static double cut_score(const vbm_capwork *w, size_t m)
     return acos(d) - acos(c);
 }
 
-/* The intersection of cap 0 with the NLIKELY caps that cut most of it: no
- * arc on any of their circles inside the others proves it (and so the
- * intersection of every cap) empty: returns 2. Otherwise queues the
- * circles with an arc there (likely on the boundary), marks done those
- * without (none inside all caps either) and returns 1; 0 undecided, -1
- * ENOMEM. */
-static int likely_boundary(const vbm_cap *caps, size_t ncap, vbm_capwork *w, size_t *nq)
+/* The intersection S of cap 0 with the NLIKELY caps that cut most of it:
+ * no arc on any of their circles inside the others proves it (and so the
+ * intersection of every cap) empty: returns 2. Otherwise leaves S's arcs
+ * in w->arc from the count it had (*whole = 1 when they are all there, for
+ * bound_prune), queues the circles with an arc there (likely on the
+ * boundary) or undecided, marks done those without (none inside all caps
+ * either) and returns 1; -1 on ENOMEM. */
+static int likely_boundary(const vbm_cap *caps, size_t ncap, vbm_capwork *w, size_t *nq,
+                           int *whole)
 {
+    *whole = 0;
     if (w->circ[0].kind != VBM_CAP_CIRCLE || ncap <= 2)
         return 1;
-    uint32_t s[NLIKELY + 1];
-    double sc[NLIKELY + 1];
+    uint32_t s[NLIKELY + 1] = {0};
+    double sc[NLIKELY + 1] = {0.0};
     size_t ns = 0;
     for (size_t m = 1; m < ncap; m++) { /* the NLIKELY best, by insertion */
         if (w->circ[m].kind != VBM_CAP_CIRCLE)
@@ -417,11 +421,15 @@ static int likely_boundary(const vbm_cap *caps, size_t ncap, vbm_capwork *w, siz
         w->state[s[i]] |= LIKELY;
     s[ns++] = 0;
     int empty = 1;
+    *whole = 1;
     for (size_t i = 0; i < ns; i++) {
-        int e = circle_arcs(caps, s, ns, w, s[i], 1, 0);
+        size_t before = w->narc;
+        int e = circle_arcs(caps, s, ns, w, s[i], 0, 0);
         if (e < 0)
             return e;
-        if (e != 1) {
+        if (e == 0) /* undecided: maybe arcs, and S's are not all known */
+            *whole = 0;
+        if (e == 0 || w->narc > before) {
             empty = 0;
             enqueue(w, s[i], nq);
         } else if (s[i] != 0)
@@ -482,6 +490,70 @@ static int cap_holds(const vbm_circle *cm, const vbx_ia *M, double cr)
     return vbm_dot3(M, cm->a).lo > rhs.hi;
 }
 
+/* Rejects the caps that cannot touch the intersection: with S (cap 0 and
+ * the likely caps, likely_boundary) bounded by the arcs w->arc[first..narc),
+ * a cap B = {u : u.M >= cr} holding every arc (each arc's bounding cap,
+ * arc_bound, lies within angle theta_i + rho_i < pi of M) and not -a_0 (which
+ * S misses: it lies outside cap 0) holds S: the part of S outside B would
+ * be open and closed in B's complement, a connected set holding -a_0 but
+ * not all in S, so it is empty. Every other cap holding B in its interior
+ * (cap_holds) holds the intersection, which S contains, away from its
+ * circle: that cap changes nothing and its circle bounds nothing, so it is
+ * marked done and HELD (no circle of it is searched, no arc checked
+ * against it). The incremental diagram's proven rejection of neighbours
+ * that cannot touch a region, with S as the region so far. */
+static void bound_prune(vbm_capwork *w, size_t ncap, size_t first)
+{
+    size_t n = w->narc - first;
+    if (n == 0 || w->circ[0].kind != VBM_CAP_CIRCLE)
+        return;
+    if (VB_ARRAY_FIT(w->bnd, w->cap_bnd, 4 * n, 32) != VB_OK)
+        return; /* no prune: the search below does without it */
+    vbx_ia *Mi = w->bnd;
+    double *cri = (double *)(void *)(Mi + 3 * n), c[3] = {0.0, 0.0, 0.0};
+    for (size_t i = 0; i < n; i++) {
+        const vbm_arc *a = &w->arc[first + i];
+        if (!arc_bound(&w->circ[a->cap], a, Mi + 3 * i, &cri[i]))
+            return;
+        for (int k = 0; k < 3; k++)
+            c[k] += vbx_ia_mid(Mi[3 * i + k]);
+    }
+    /* the centre: the arcs' middles' mean, normalised in intervals (the
+     * exact unit vector c / |c|) */
+    vbx_ia cv[3] = {vbx_ia_point(c[0]), vbx_ia_point(c[1]), vbx_ia_point(c[2])}, M[3];
+    vbx_ia cn = vbx_ia_sqrt(vbm_dot3(cv, cv));
+    if (!(cn.lo > 0.0))
+        return;
+    vbx_ia icn = vbx_ia_div(vbx_ia_point(1.0), cn);
+    for (int k = 0; k < 3; k++)
+        M[k] = vbx_ia_mul(cv[k], icn);
+    double cr = 1.0;
+    for (size_t i = 0; i < n; i++) {
+        /* cos theta_i >= cl, cos rho_i >= cri[i]; theta_i + rho_i < pi when
+         * cl > -cri[i], and then u.M >= cos(theta_i + rho_i) >= cl cri[i] -
+         * sqrt(1 - cl^2) sqrt(1 - cri[i]^2) on the arc */
+        double cl = vbm_dot3(M, Mi + 3 * i).lo;
+        cl = cl > 1.0 ? 1.0 : cl;
+        vbx_ia cli = vbx_ia_point(cl), ri = vbx_ia_point(cri[i]);
+        if (!(vbx_ia_add(cli, ri).lo > 0.0))
+            return;
+        vbx_ia one = vbx_ia_point(1.0);
+        vbx_ia sl = vbx_ia_sqrt(vbx_ia_sub(one, vbx_ia_sqr(cli)));
+        vbx_ia sr = vbx_ia_sqrt(vbx_ia_sub(one, vbx_ia_sqr(ri)));
+        double lo = vbx_ia_sub(vbx_ia_mul(cli, ri), vbx_ia_mul(sl, sr)).lo;
+        if (!(lo > -1.0))
+            return;
+        cr = vbx_min(cr, lo);
+    }
+    if (!(vbm_dot3(w->circ[0].a, M).lo > -cr))
+        return; /* -a_0 not proven outside B */
+    for (size_t m = 1; m < ncap; m++)
+        if (w->circ[m].kind == VBM_CAP_CIRCLE && !(w->state[m] & (ON_BOUNDARY | LIKELY)) &&
+            cap_holds(&w->circ[m], M, cr)) {
+            w->state[m] |= DONE | HELD;
+        }
+}
+
 static size_t arcs_inside(const vbm_cap *caps, size_t ncap, vbm_capwork *w, size_t l,
                           size_t first)
 {
@@ -499,7 +571,7 @@ static size_t arcs_inside(const vbm_cap *caps, size_t ncap, vbm_capwork *w, size
         if (!arc_bound(C, &w->arc[first + i], M[i], &cr[i]))
             nbound = 0;
     for (size_t m = 1; m < ncap; m++) {
-        if (m == l || w->circ[m].kind == VBM_CAP_ALL || (w->state[m] & (ON_BOUNDARY | LIKELY | BAD)))
+        if (m == l || w->circ[m].kind == VBM_CAP_ALL || (w->state[m] & (ON_BOUNDARY | LIKELY | BAD | HELD)))
             continue;
         size_t held = 0;
         while (held < nbound && cap_holds(&w->circ[m], M[held], cr[held]))
@@ -623,11 +695,16 @@ int vbm_cap_arcs(const vbm_cap *caps, size_t ncap, const uint8_t *known, const v
     if (nb >= SIZE_MAX - 1)
         return nb == SIZE_MAX ? -1 : 0;
     /* with an arc given the intersection is not empty: no trial of it */
-    int e = ngiven ? 1 : likely_boundary(caps, ncap, w, &nq);
-    if (e <= 0)
+    size_t trial = w->narc;
+    int whole;
+    int e = likely_boundary(caps, ncap, w, &nq, &whole);
+    if (e < 0)
         return e;
-    if (e == 2)
-        return 1; /* empty */
+    if (e == 2) /* empty; with an arc given, a contradiction: to the patches */
+        return ngiven ? 0 : 1;
+    if (whole)
+        bound_prune(w, ncap, trial);
+    w->narc = trial; /* S's arcs: found again inside every cap */
     for (;;) {
         size_t l;
         int from_queue = head < nq;

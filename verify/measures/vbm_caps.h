@@ -47,8 +47,9 @@ typedef struct vbm_capwork {
     vbm_arc *arc, *sorted;
     uint32_t *sel, *queue;  /* caps restricting a circle; circles to do next */
     uint8_t *state;         /* per cap: done, on the boundary, queued */
+    vbx_ia *bnd;            /* bound_prune's arc caps */
     size_t nres; /* restrictions made by the last circle_arcs */
-    size_t cap_circ, cap_end, cap_ord, cap_res, cap_arc, narc, cap_sorted, cap_sel, cap_queue, cap_state;
+    size_t cap_circ, cap_end, cap_ord, cap_res, cap_arc, narc, cap_sorted, cap_sel, cap_queue, cap_state, cap_bnd;
 } vbm_capwork;
 
 /* The circle of a cap: kind VBM_CAP_CIRCLE with the frame, _ALL or _NONE;
