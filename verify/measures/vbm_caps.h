@@ -53,8 +53,33 @@ typedef struct vbm_capwork {
 } vbm_capwork;
 
 /* The circle of a cap: kind VBM_CAP_CIRCLE with the frame, _ALL or _NONE;
- * 0 when the intervals cannot tell (|h| close to |n|). */
+ * 0 when the intervals cannot tell (|h| close to |n|). (cap_geom.c, as
+ * the rest up to vbm_caps_free) */
 int vbm_circle_of(const vbm_cap *cp, vbm_circle *c);
+
+/* vbm_circle_of without the frame (kind, a, c and s). */
+int vbm_circle_axis(const vbm_cap *cp, vbm_circle *c);
+
+/* The frame e1, e2 of a circle whose axis is set. Returns 0 when the
+ * intervals cannot normalise it. */
+int vbm_circle_frame(vbm_circle *c);
+
+/* A cap around arc a of circle C: its centre M (enclosing an exact unit
+ * vector) and a lower bound *cr of the cosine of its angular radius.
+ * Returns 0 when *cr is not proven > -1. */
+int vbm_arc_bound(const vbm_circle *C, const vbm_arc *a, vbx_ia *M, double *cr);
+
+/* Whether the cap of circle cm holds the cap {u : u.M >= cr} in its
+ * interior (M enclosing an exact unit vector). */
+int vbm_cap_holds(const vbm_circle *cm, const vbx_ia *M, double cr);
+
+/* A cap {u : u.M >= *cr} (M enclosing an exact unit vector) holding the
+ * arcs arc[0..n) (circles circ) and not the unit vector `out`: it holds
+ * every closed set of directions whose boundary lies on those arcs and
+ * which misses `out`. tmp: 4 n intervals of work space. Returns 0 when it
+ * cannot be proven. */
+int vbm_arcs_cap(const vbm_circle *circ, const vbm_arc *arc, size_t n, const vbx_ia *out,
+                 vbx_ia *tmp, vbx_ia *M, double *cr);
 
 /* The boundary of the intersection of caps[0..ncap) as arcs in w->arc
  * (w->narc; none when the intersection is empty or the whole sphere: the
