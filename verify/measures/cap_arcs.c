@@ -79,6 +79,9 @@ void vbm_caps_free(vbm_capwork *w)
     free(w->queue);
     free(w->state);
     free(w->bnd);
+    free(w->rc);
+    free(w->rslot);
+    free(w->rix);
     memset(w, 0, sizeof *w);
 }
 
@@ -148,6 +151,77 @@ static int side(const restr *r, vbx_ia x, vbx_ia y)
     return vbx_ia_sign(v);
 }
 
+/* A restriction of circle l by cap m, kept for the intersection being
+ * bounded (vbm_capwork.rc): the trial, both passes of a circle and the
+ * tests of arcs against caps outside its subset ask for the same ones
+ * (1crn: 262,891 made for 209,081 distinct). */
+typedef struct vbm_rcache {
+    restr r;
+    endpt s, e;
+    uint32_t l;
+    uint8_t kind, ends; /* R_*; s and e made */
+} rcache;
+
+enum { R_WHOLE = 1, R_NONE, R_UNDECIDED, R_CUT };
+
+/* Circle l's restriction by cap m: its index in w->rc, made once per
+ * vbm_cap_arcs call (w->rslot[l * w->nslot + m] names it when it matches);
+ * UINT32_MAX on ENOMEM. */
+static uint32_t restriction(const vbm_cap *caps, vbm_capwork *w, size_t l, size_t m)
+{
+    uint32_t *slot = &w->rslot[l * w->nslot + m];
+    if (*slot < w->nrc && w->rc[*slot].l == l && w->rc[*slot].r.cap == m)
+        return *slot;
+    if (VB_ARRAY_FIT(w->rc, w->cap_rc, w->nrc + 1, 64) != VB_OK)
+        return UINT32_MAX;
+    rcache *c = &w->rc[w->nrc];
+    restr r = restrict_by(&w->circ[l], &caps[m]);
+    r.g = vbx_ia_sub(r.h, r.P);
+    r.Q2 = vbx_ia_add(vbx_ia_sqr(r.Qc), vbx_ia_sqr(r.Qs));
+    vbx_ia Q = vbx_ia_sqrt(r.Q2);
+    r.gm = vbx_ia_sub(Q, r.g);
+    r.gp = vbx_ia_add(Q, r.g);
+    r.cap = (uint32_t)m;
+    c->r = r;
+    c->l = (uint32_t)l;
+    c->ends = 0;
+    c->kind = r.gp.hi < 0.0   ? R_WHOLE
+              : r.gm.hi < 0.0 ? R_NONE
+              : !(r.gm.lo > 0.0 && r.gp.lo > 0.0 && r.Q2.lo > 0.0) ? R_UNDECIDED
+                                                                    : R_CUT;
+    *slot = (uint32_t)w->nrc;
+    return (uint32_t)w->nrc++;
+}
+
+/* The ends of a restriction cutting its circle (c->s entering the cap,
+ * c->e leaving it), kept with it. Returns 0 when one is too wide. */
+static int make_ends(rcache *c)
+{
+    const restr *r = &c->r;
+    vbx_ia rr = vbx_ia_sqrt(vbx_ia_mul(r->gm, r->gp));
+    /* g and rr over Q^2 first (one division, Q2 > 0 proven) */
+    vbx_ia iq = vbx_ia_div(vbx_ia_point(1.0), r->Q2);
+    vbx_ia gq = vbx_ia_mul(r->g, iq), rq = vbx_ia_mul(rr, iq);
+    vbx_ia cg = vbx_ia_mul(r->Qc, gq), sg = vbx_ia_mul(r->Qs, gq);
+    vbx_ia cr = vbx_ia_mul(r->Qc, rq), sr = vbx_ia_mul(r->Qs, rq);
+    endpt *s = &c->s, *e = &c->e;
+    s->start = 1;
+    e->start = 0;
+    s->cap = e->cap = r->cap;
+    s->x = vbx_ia_add(cg, sr);
+    s->y = vbx_ia_sub(sg, cr);
+    e->x = vbx_ia_sub(cg, sr);
+    e->y = vbx_ia_add(cr, sg);
+    for (int k = 0; k < 2; k++) {
+        endpt *p = k ? e : s;
+        if (!(p->x.hi - p->x.lo < MAX_END_WIDTH && p->y.hi - p->y.lo < MAX_END_WIDTH))
+            return 0;
+        p->ang = angle_of(p->x, p->y);
+    }
+    c->ends = 1;
+    return 1;
+}
+
 /* The arcs of circle l inside the caps sel[0..nsel) (l itself skipped)
  * and, with keep > 0, inside the caps of the last call on circle l too:
  * its first `keep` restrictions and their ends (w->res, w->end; w->nres
@@ -159,7 +233,6 @@ static int circle_arcs(const vbm_cap *caps, const uint32_t *sel, size_t nsel, vb
 {
     if (!framed(w, l))
         return 0;
-    const vbm_circle *C = &w->circ[l];
     endpt *end = w->end;
     restr *res = w->res;
     size_t ne = 2 * keep, nr = keep;
@@ -170,46 +243,28 @@ static int circle_arcs(const vbm_cap *caps, const uint32_t *sel, size_t nsel, vb
         size_t m = sel[i];
         if (m == l || w->circ[m].kind == VBM_CAP_ALL)
             continue;
-        restr r = restrict_by(C, &caps[m]);
-        r.g = vbx_ia_sub(r.h, r.P);
-        r.Q2 = vbx_ia_add(vbx_ia_sqr(r.Qc), vbx_ia_sqr(r.Qs));
-        vbx_ia Q = vbx_ia_sqrt(r.Q2);
-        r.gm = vbx_ia_sub(Q, r.g);
-        r.gp = vbx_ia_add(Q, r.g);
-        r.cap = (uint32_t)m;
-        if (r.gp.hi < 0.0)
+        uint32_t x = restriction(caps, w, l, m);
+        if (x == UINT32_MAX)
+            return -1;
+        const rcache *c = &w->rc[x];
+        if (c->kind == R_WHOLE)
             continue; /* g < -Q: the whole circle lies in cap m */
-        if (r.gm.hi < 0.0)
+        if (c->kind == R_NONE)
             return 1; /* g > Q: none of it */
-        if (!(r.gm.lo > 0.0 && r.gp.lo > 0.0 && r.Q2.lo > 0.0))
+        if (c->kind == R_UNDECIDED)
             undecided = 1;
-        res[nr++] = r;
+        w->rix[nr] = x;
+        res[nr++] = c->r;
     }
     if (undecided)
         return 0;
     w->nres = nr;
     for (size_t i = keep; i < nr; i++) {
-        const restr *r = &res[i];
-        vbx_ia rr = vbx_ia_sqrt(vbx_ia_mul(r->gm, r->gp));
-        /* g and rr over Q^2 first (one division, Q2 > 0 proven above) */
-        vbx_ia iq = vbx_ia_div(vbx_ia_point(1.0), r->Q2);
-        vbx_ia gq = vbx_ia_mul(r->g, iq), rq = vbx_ia_mul(rr, iq);
-        vbx_ia cg = vbx_ia_mul(r->Qc, gq), sg = vbx_ia_mul(r->Qs, gq);
-        vbx_ia cr = vbx_ia_mul(r->Qc, rq), sr = vbx_ia_mul(r->Qs, rq);
-        endpt *s = &end[ne++], *e = &end[ne++];
-        s->start = 1;
-        e->start = 0;
-        s->cap = e->cap = r->cap;
-        s->x = vbx_ia_add(cg, sr);
-        s->y = vbx_ia_sub(sg, cr);
-        e->x = vbx_ia_sub(cg, sr);
-        e->y = vbx_ia_add(cr, sg);
-        for (int k = 0; k < 2; k++) {
-            endpt *p = k ? e : s;
-            if (!(p->x.hi - p->x.lo < MAX_END_WIDTH && p->y.hi - p->y.lo < MAX_END_WIDTH))
-                return 0;
-            p->ang = angle_of(p->x, p->y);
-        }
+        rcache *c = &w->rc[w->rix[i]];
+        if (!c->ends && !make_ends(c))
+            return 0;
+        end[ne++] = c->s;
+        end[ne++] = c->e;
     }
     if (ne == 0) { /* the whole circle: two half circles */
         if (test)
@@ -429,17 +484,16 @@ static size_t arcs_inside(const vbm_cap *caps, size_t ncap, vbm_capwork *w, size
             held++;
         if (nbound && held == nbound)
             continue;
-        restr r = restrict_by(C, &caps[m]);
-        vbx_ia g = vbx_ia_sub(r.h, r.P);
-        vbx_ia Q = vbx_ia_sqrt(vbx_ia_add(vbx_ia_sqr(r.Qc), vbx_ia_sqr(r.Qs)));
-        if (vbx_ia_add(Q, g).hi < 0.0)
+        uint32_t x = restriction(caps, w, l, m); /* ENOMEM: BAD, and circle_arcs tells */
+        if (x != UINT32_MAX && w->rc[x].r.gp.hi < 0.0)
             continue; /* the whole circle */
-        vbx_ia dx = vbx_ia_neg(r.Qc), dy = vbx_ia_neg(r.Qs);
+        const restr *r = x != UINT32_MAX ? &w->rc[x].r : NULL;
+        vbx_ia dx = r ? vbx_ia_neg(r->Qc) : vbx_ia_point(0.0), dy = r ? vbx_ia_neg(r->Qs) : dx;
         for (size_t i = first; i < w->narc; i++) {
             const vbm_arc *a = &w->arc[i];
             vbx_ia c0 = vbx_ia_sub(vbx_ia_mul(a->p[0], dy), vbx_ia_mul(a->p[1], dx));
             vbx_ia c1 = vbx_ia_sub(vbx_ia_mul(dx, a->q[1]), vbx_ia_mul(dy, a->q[0]));
-            if (side(&r, a->p[0], a->p[1]) <= 0 || side(&r, a->q[0], a->q[1]) <= 0 ||
+            if (!r || side(r, a->p[0], a->p[1]) <= 0 || side(r, a->q[0], a->q[1]) <= 0 ||
                 !(c0.hi < 0.0 || c1.hi < 0.0)) {
                 w->state[m] |= BAD;
                 bad++;
@@ -524,8 +578,16 @@ int vbm_cap_arcs(const vbm_cap *caps, size_t ncap, const uint8_t *known, const v
         VB_ARRAY_FIT(w->res, w->cap_res, ncap, 32) != VB_OK ||
         VB_ARRAY_FIT(w->sel, w->cap_sel, ncap + 1, 32) != VB_OK ||
         VB_ARRAY_FIT(w->queue, w->cap_queue, ncap + 1, 32) != VB_OK ||
-        VB_ARRAY_FIT(w->state, w->cap_state, ncap + 1, 32) != VB_OK)
+        VB_ARRAY_FIT(w->state, w->cap_state, ncap + 1, 32) != VB_OK ||
+        VB_ARRAY_FIT(w->rix, w->cap_rix, ncap + 1, 32) != VB_OK)
         return -1;
+    size_t had = w->cap_rslot;
+    if (VB_ARRAY_FIT(w->rslot, w->cap_rslot, ncap * ncap + 1, 256) != VB_OK)
+        return -1;
+    if (w->cap_rslot != had) /* restriction() reads a slot before it is set */
+        memset(w->rslot, 0, w->cap_rslot * sizeof *w->rslot);
+    w->nslot = ncap;
+    w->nrc = 0;
     for (size_t l = 0; l < ncap; l++) {
         if (!vbm_circle_axis(&caps[l], &w->circ[l]))
             return 0; /* frames are made when needed (framed) */

@@ -48,6 +48,9 @@ typedef struct vbm_capwork {
     uint32_t *sel, *queue;  /* caps restricting a circle; circles to do next */
     uint8_t *state;         /* per cap: done, on the boundary, queued */
     vbx_ia *bnd;            /* bound_prune's arc caps */
+    struct vbm_rcache *rc;  /* the restrictions made (cap_arcs.c's) */
+    uint32_t *rslot, *rix;  /* per circle and cap: its restriction; per restriction of a circle */
+    size_t nrc, nslot, cap_rc, cap_rslot, cap_rix;
     size_t nres; /* restrictions made by the last circle_arcs */
     size_t cap_circ, cap_end, cap_ord, cap_res, cap_arc, narc, cap_sorted, cap_sel, cap_queue, cap_state, cap_bnd;
 } vbm_capwork;
