@@ -3,10 +3,11 @@
  * built from an intersection's boundary arcs must hold the whole
  * intersection (not only its arcs: the proof goes through a point outside
  * it), and vbm_cap_holds must say a cap holds B only when it does. Here, on
- * 3000 random intersections of 2-13 caps (some wider than a hemisphere, so
- * with holes and several pieces; cap 0 from cos 0.9 to -0.95): 4000 random directions each, every one
- * inside all caps (by a margin, in doubles) must lie in B, and every one in
- * B must lie in each cap said to hold B. The bound must also be proven on
+ * 3000 random intersections of 2-13 caps (cap 0's cosine of radius from 0.9
+ * to -0.95, the others' up to wider than a hemisphere: holes and several
+ * pieces): 4000 random directions each, every one inside all caps (by a
+ * margin, in doubles) must lie in B, and every one in B must lie in each
+ * cap said to hold B. The bound must also be proven on
  * most non-empty intersections and reject caps (no vacuous pass). */
 #include <math.h>
 #include <stdint.h>

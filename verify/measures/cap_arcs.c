@@ -354,9 +354,12 @@ static int order_arcs(vbm_capwork *w, size_t ncap)
 
 #define NLIKELY 4 /* caps tried first: those cutting most of cap 0 */
 
-/* How far cap m's circle keeps from cap 0's axis (the angle between the
- * axes less m's angular radius, on midpoints): the larger, the more of cap
- * 0 it cuts off. Only an order of trial, decided nothing. */
+/* How far cap m's circle keeps from cap 0's axis, theta - alpha (theta
+ * the angle between the axes, alpha m's angular radius, on midpoints):
+ * the larger, the more of cap 0 it cuts off. Only an order of trial,
+ * decides nothing: a pseudo-angle increasing with theta - alpha over
+ * [-pi, pi] from its cosine and sine (two square roots where two acos
+ * were 1.7 % of 3pqr's CPU). */
 static double cut_score(const vbm_capwork *w, size_t m)
 {
     const vbm_circle *a = &w->circ[0], *b = &w->circ[m];
@@ -366,7 +369,9 @@ static double cut_score(const vbm_capwork *w, size_t m)
     double c = vbx_ia_mid(b->c);
     d = d > 1.0 ? 1.0 : d < -1.0 ? -1.0 : d;
     c = c > 1.0 ? 1.0 : c < -1.0 ? -1.0 : c;
-    return acos(d) - acos(c);
+    double sd = sqrt(1.0 - d * d), sc = sqrt(1.0 - c * c);
+    double cs = d * c + sd * sc, sn = sd * c - d * sc;
+    return sn >= 0.0 ? 1.0 - cs : cs - 1.0;
 }
 
 /* The intersection S of cap 0 with the NLIKELY caps that cut most of it:

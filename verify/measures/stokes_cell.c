@@ -136,7 +136,7 @@ static size_t region_caps(const vbm_atom_in *in, stokes_work *w, size_t na, size
     cp[0].h = nj->k;
     w->capact[0] = (uint32_t)x;
     size_t nc = 1;
-    vbx_ia sa = aj->ca.lo >= 0.0 ? aj->sa : vbx_ia_point(1.0);
+    vbx_ia sa = aj->ca.lo >= 0.0 ? aj->sa : vbx_ia_point(1.0), sa2 = vbx_ia_sqr(sa);
     for (size_t y = 0; y < na; y++) {
         if (y == x)
             continue;
@@ -150,15 +150,16 @@ static size_t region_caps(const vbm_atom_in *in, stokes_work *w, size_t na, size
             c.n[i] = x < y ? pc->n[i] : vbx_ia_neg(pc->n[i]);
         c.h = x < y ? pc->h : vbx_ia_neg(pc->h);
         /* over j's cap (u.e = z in [ca, 1], |u_perp| <= sa) u.n lies in
-         * z (e.n) +- sa |n_perp| */
-        vbx_ia en = vbm_dot3(aj->e, c.n);
-        vbx_ia perp = vbx_ia_sqrt(vbx_ia_sub(pc->nn, vbx_ia_sqr(en)));
-        vbx_ia spread = vbx_ia_mul(sa, perp);
-        double lo = vbx_min(vbx_ia_mul(aj->ca, en).lo, en.lo) - spread.hi;
-        double hi = vbx_max(vbx_ia_mul(aj->ca, en).hi, en.hi) + spread.hi;
-        if (vbx_pred(lo) > c.h.hi)
+         * z (e.n) +- sa |n_perp|: all of it on j's side when min z (e.n) -
+         * h > sa |n_perp|, none when h - max z (e.n) is; compared squared
+         * (sa^2 (n.n - (e.n)^2) against the gap's square: no root) */
+        vbx_ia en = vbm_dot3(aj->e, c.n), zen = vbx_ia_mul(aj->ca, en);
+        double s2 = vbx_ia_mul(sa2, vbx_ia_sub(pc->nn, vbx_ia_sqr(en))).hi;
+        double lo = vbx_ia_sub(vbx_ia_point(vbx_min(zen.lo, en.lo)), c.h).lo;
+        if (lo > 0.0 && vbx_ia_sqr(vbx_ia_point(lo)).lo > s2)
             continue; /* all of j's cap is on j's side */
-        if (vbx_succ(hi) < c.h.lo)
+        double hi = vbx_ia_sub(c.h, vbx_ia_point(vbx_max(zen.hi, en.hi))).lo;
+        if (hi > 0.0 && vbx_ia_sqr(vbx_ia_point(hi)).lo > s2)
             return 0; /* none of it */
         w->capact[nc] = (uint32_t)y;
         cp[nc++] = c;
