@@ -81,7 +81,7 @@ int main(void)
         for (size_t m = 1; m < nc + 4; m++)
             make_cap(&seed, v, 1.5 * rnd(&seed), 0.95 - 1.5 * rnd(&seed), &caps[m], n[m],
                      &h[m]);
-        if (vbm_cap_arcs(caps, nc, NULL, NULL, 0, &w) != 1 || w.narc == 0 || w.narc > 256 ||
+        if (vbm_cap_arcs(caps, NULL, nc, NULL, NULL, 0, &w) != 1 || w.narc == 0 || w.narc > 256 ||
             w.circ[0].kind != VBM_CAP_CIRCLE)
             continue;
         nonempty++;

@@ -573,8 +573,8 @@ static size_t take_given(size_t ncap, const uint8_t *known, const vbm_arc *given
     return nb;
 }
 
-int vbm_cap_arcs(const vbm_cap *caps, size_t ncap, const uint8_t *known, const vbm_arc *given,
-                 size_t ngiven, vbm_capwork *w)
+int vbm_cap_arcs(const vbm_cap *caps, const vbm_circle *axes, size_t ncap, const uint8_t *known,
+                 const vbm_arc *given, size_t ngiven, vbm_capwork *w)
 {
     w->narc = 0;
     if (VB_ARRAY_FIT(w->circ, w->cap_circ, ncap, 32) != VB_OK ||
@@ -594,7 +594,9 @@ int vbm_cap_arcs(const vbm_cap *caps, size_t ncap, const uint8_t *known, const v
     w->nslot = ncap;
     w->nrc = 0;
     for (size_t l = 0; l < ncap; l++) {
-        if (!vbm_circle_axis(&caps[l], &w->circ[l]))
+        if (axes)
+            w->circ[l] = axes[l];
+        if (axes ? axes[l].kind == 0 : !vbm_circle_axis(&caps[l], &w->circ[l]))
             return 0; /* frames are made when needed (framed) */
         if (w->circ[l].kind == VBM_CAP_NONE)
             return 1; /* empty intersection */

@@ -61,7 +61,8 @@ typedef struct active {
  * (y's cap against z; z's is exactly its negation) and n.n. */
 typedef struct paircap {
     vbx_ia n[3], h, nn;
-    uint8_t state; /* 0: not made yet, 1: the two caps apart, 2: made */
+    vbm_circle axis; /* y's cap's circle, no frame (kind 0: undecided) */
+    uint8_t state;   /* 0: not made yet, 1: the two caps apart, 2: made, 3: and its axis */
 } paircap;
 
 typedef struct stokes_work {
@@ -69,12 +70,13 @@ typedef struct stokes_work {
     paircap *pair;     /* na x na, [min * na + max] */
     vbm_share share;   /* the bisector arcs two regions share */
     vbm_cap *caps;
+    vbm_circle *axes;  /* per cap of a region: its circle, no frame (the pair's) */
     uint32_t *capact;  /* per cap of a region: its active neighbour */
     arcrec *rec;
     active *act;
     vbx_ia *D, *con;   /* per neighbour: |d|, the contact */
     uint32_t *narcs;   /* per neighbour: its arcs */
-    size_t cap_caps, cap_capact, cap_rec, cap_act, cap_D, cap_con, cap_narcs, cap_pair, nrec;
+    size_t cap_caps, cap_axes, cap_capact, cap_rec, cap_act, cap_D, cap_con, cap_narcs, cap_pair, nrec;
 } stokes_work;
 
 void vbm_stokes_free(void *p)
@@ -85,6 +87,7 @@ void vbm_stokes_free(void *p)
     vbm_caps_free(&w->cw);
     vbm_share_free(&w->share);
     free(w->caps);
+    free(w->axes);
     free(w->pair);
     free(w->capact);
     free(w->rec);
@@ -122,6 +125,19 @@ static void pair_cap(const vbm_atom_in *in, const stokes_work *w, size_t y, size
     pc->h = vbx_ia_sub(vbx_ia_mul(ny->N, nz->delta), vbx_ia_mul(nz->N, ny->delta));
     pc->nn = vbm_dot3(pc->n, pc->n);
     pc->state = 2;
+}
+
+/* The circle of z's cap against y from y's (pair_cap's) exactly: the cap
+ * (-n, -h) has |n| the same, n.n - h^2's factors swapped, so its axis and
+ * cosine are negated bit for bit, its sine the same, and ALL and NONE
+ * swap (test_share_arcs checks the frames that follow). */
+static void axis_negated(const vbm_circle *a, vbm_circle *b)
+{
+    for (int k = 0; k < 3; k++)
+        b->a[k] = vbx_ia_neg(a->a[k]);
+    b->c = vbx_ia_neg(a->c);
+    b->s = a->s;
+    b->kind = a->kind == VBM_CAP_ALL ? VBM_CAP_NONE : a->kind == VBM_CAP_NONE ? VBM_CAP_ALL : a->kind;
 }
 
 /* The caps of Omega_j: j's own, then those of the other active neighbours
@@ -162,8 +178,20 @@ static size_t region_caps(const vbm_atom_in *in, stokes_work *w, size_t na, size
         if (hi > 0.0 && vbx_ia_sqr(vbx_ia_point(hi)).lo > s2)
             return 0; /* none of it */
         w->capact[nc] = (uint32_t)y;
+        if (pc->state == 2) { /* its circle, made for the first region that keeps it */
+            vbm_cap cy = {{pc->n[0], pc->n[1], pc->n[2]}, pc->h};
+            if (!vbm_circle_axis(&cy, &pc->axis))
+                pc->axis.kind = 0;
+            pc->state = 3;
+        }
+        if (x < y)
+            w->axes[nc] = pc->axis;
+        else
+            axis_negated(&pc->axis, &w->axes[nc]);
         cp[nc++] = c;
     }
+    if (!vbm_circle_axis(&cp[0], &w->axes[0]))
+        w->axes[0].kind = 0;
     return nc;
 }
 
@@ -287,6 +315,7 @@ int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
     if (VB_ARRAY_FIT(w->D, w->cap_D, m + 1, 64) != VB_OK ||
         VB_ARRAY_FIT(w->act, w->cap_act, m + 1, 64) != VB_OK ||
         VB_ARRAY_FIT(w->caps, w->cap_caps, m + 1, 64) != VB_OK ||
+        VB_ARRAY_FIT(w->axes, w->cap_axes, m + 1, 64) != VB_OK ||
         VB_ARRAY_FIT(w->capact, w->cap_capact, m + 1, 64) != VB_OK ||
         VB_ARRAY_FIT(w->con, w->cap_con, m + 1, 64) != VB_OK ||
         VB_ARRAY_FIT(w->narcs, w->cap_narcs, m + 1, 64) != VB_OK)
@@ -330,7 +359,7 @@ int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
         int e = vbm_share_given(&w->share, (uint32_t)x, w->capact, nc, na);
         if (e <= 0)
             return e;
-        e = vbm_cap_arcs(w->caps, nc, w->share.known, w->share.given, w->share.ngiven, &w->cw);
+        e = vbm_cap_arcs(w->caps, w->axes, nc, w->share.known, w->share.given, w->share.ngiven, &w->cw);
         if (e <= 0)
             return e;
         if (vbm_share_keep(&w->share, (uint32_t)x, w->capact, w->cw.arc, w->cw.narc) < 0)

@@ -95,9 +95,11 @@ int vbm_arcs_cap(const vbm_circle *circ, const vbm_arc *arc, size_t n, const vbx
  * only the other circles are searched, the given arcs bounding their
  * search as found ones do. Cap 0 is never known. Returns 1, 0 when an
  * interval cannot decide a step (tangent or coincident circles, an arc end
- * on a third circle), -1 on ENOMEM. */
-int vbm_cap_arcs(const vbm_cap *caps, size_t ncap, const uint8_t *known, const vbm_arc *given,
-                 size_t ngiven, vbm_capwork *w);
+ * on a third circle), -1 on ENOMEM. axes (may be NULL) gives each cap's
+ * circle without its frame as vbm_circle_axis makes it (kind 0: it could
+ * not), where the caller has them already. */
+int vbm_cap_arcs(const vbm_cap *caps, const vbm_circle *axes, size_t ncap, const uint8_t *known,
+                 const vbm_arc *given, size_t ngiven, vbm_capwork *w);
 
 void vbm_caps_free(vbm_capwork *w);
 
