@@ -70,9 +70,7 @@ typedef struct vbm_restr {
 void vbm_caps_free(vbm_capwork *w)
 {
     free(w->circ);
-    free(w->end);
     free(w->ord);
-    free(w->res);
     free(w->arc);
     free(w->sorted);
     free(w->sel);
@@ -85,19 +83,16 @@ void vbm_caps_free(vbm_capwork *w)
     memset(w, 0, sizeof *w);
 }
 
-/* Insertion sort of the ends by angle into ord: stable, as the merge sort
- * of glibc's qsort was (the same order), and cheaper on the few ends of one
- * circle; pointers move, not the 48-byte ends (3pqr, 1 thread: the moves
- * were ~7 % of circle_arcs, itself 38 % of the CPU). */
-static void sort_ends(const endpt *end, size_t ne, const endpt **ord)
+/* End x into ord[0..i), sorted by angle: an insertion sort as the ends
+ * come, stable as the merge sort of glibc's qsort was (the same order), and
+ * cheaper on the few ends of one circle; pointers to the ends where their
+ * restrictions keep them move, the ends are not copied. */
+static void sort_in(const endpt **ord, size_t i, const endpt *x)
 {
-    for (size_t i = 0; i < ne; i++) {
-        const endpt *x = &end[i];
-        size_t k = i;
-        for (; k > 0 && ord[k - 1]->ang > x->ang; k--)
-            ord[k] = ord[k - 1];
-        ord[k] = x;
-    }
+    size_t k = i;
+    for (; k > 0 && ord[k - 1]->ang > x->ang; k--)
+        ord[k] = ord[k - 1];
+    ord[k] = x;
 }
 
 static double angle_of(vbx_ia x, vbx_ia y)
@@ -224,7 +219,7 @@ static int make_ends(rcache *c)
 
 /* The arcs of circle l inside the caps sel[0..nsel) (l itself skipped)
  * and, with keep > 0, inside the caps of the last call on circle l too:
- * its first `keep` restrictions and their ends (w->res, w->end; w->nres
+ * its first `keep` restrictions and their ends (w->rix, w->end; w->nres
  * says how many it made) are taken as they are. With `test`, nothing is
  * pushed: returns 2 when some arc exists. Returns 1 (done, or no arc), 0
  * undecided, -1 ENOMEM. */
@@ -233,9 +228,7 @@ static int circle_arcs(const vbm_cap *caps, const uint32_t *sel, size_t nsel, vb
 {
     if (!framed(w, l))
         return 0;
-    endpt *end = w->end;
-    restr *res = w->res;
-    size_t ne = 2 * keep, nr = keep;
+    size_t nr = keep;
     int undecided = 0;
     /* every cap first: one that leaves none of the circle ends the work
      * before any cut is computed */
@@ -253,18 +246,20 @@ static int circle_arcs(const vbm_cap *caps, const uint32_t *sel, size_t nsel, vb
             return 1; /* g > Q: none of it */
         if (c->kind == R_UNDECIDED)
             undecided = 1;
-        w->rix[nr] = x;
-        res[nr++] = c->r;
+        w->rix[nr++] = x;
     }
     if (undecided)
         return 0;
     w->nres = nr;
-    for (size_t i = keep; i < nr; i++) {
+    /* the ends where the restrictions keep them (w->rc does not move now) */
+    const endpt **ord = w->ord;
+    size_t ne = 0;
+    for (size_t i = 0; i < nr; i++) {
         rcache *c = &w->rc[w->rix[i]];
         if (!c->ends && !make_ends(c))
             return 0;
-        end[ne++] = c->s;
-        end[ne++] = c->e;
+        sort_in(ord, ne++, &c->s);
+        sort_in(ord, ne++, &c->e);
     }
     if (ne == 0) { /* the whole circle: two half circles */
         if (test)
@@ -275,12 +270,10 @@ static int circle_arcs(const vbm_cap *caps, const uint32_t *sel, size_t nsel, vb
             return -1;
         return 1;
     }
-    const endpt **ord = w->ord;
-    sort_ends(end, ne, ord);
     double wmax = 0.0, widest = 0.0;
     size_t ref = 0;
     for (size_t k = 0; k < ne; k++)
-        wmax = vbx_max(wmax, vbx_max(end[k].x.hi - end[k].x.lo, end[k].y.hi - end[k].y.lo));
+        wmax = vbx_max(wmax, vbx_max(ord[k]->x.hi - ord[k]->x.lo, ord[k]->y.hi - ord[k]->y.lo));
     for (size_t k = 0; k < ne; k++) { /* the cyclic order, proven pair by pair */
         const endpt *p = ord[k], *q = ord[(k + 1) % ne];
         double gap = (k + 1 < ne ? q->ang : q->ang + TWO_PI) - p->ang;
@@ -300,7 +293,7 @@ static int circle_arcs(const vbm_cap *caps, const uint32_t *sel, size_t nsel, vb
     vbm_unit_at(ord[ref]->ang + 0.5 * widest, &mx, &my);
     size_t inside = 0;
     for (size_t m = 0; m < nr; m++) {
-        int sd = side(&res[m], mx, my);
+        int sd = side(&w->rc[w->rix[m]].r, mx, my);
         if (sd == 0)
             return 0;
         inside += sd > 0;
@@ -578,9 +571,7 @@ int vbm_cap_arcs(const vbm_cap *caps, const vbm_circle *axes, size_t ncap, const
 {
     w->narc = 0;
     if (VB_ARRAY_FIT(w->circ, w->cap_circ, ncap, 32) != VB_OK ||
-        VB_ARRAY_FIT(w->end, w->cap_end, 2 * ncap, 64) != VB_OK ||
         VB_ARRAY_FIT(w->ord, w->cap_ord, 2 * ncap, 64) != VB_OK ||
-        VB_ARRAY_FIT(w->res, w->cap_res, ncap, 32) != VB_OK ||
         VB_ARRAY_FIT(w->sel, w->cap_sel, ncap + 1, 32) != VB_OK ||
         VB_ARRAY_FIT(w->queue, w->cap_queue, ncap + 1, 32) != VB_OK ||
         VB_ARRAY_FIT(w->state, w->cap_state, ncap + 1, 32) != VB_OK ||

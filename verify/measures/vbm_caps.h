@@ -41,9 +41,7 @@ typedef struct vbm_arc {
 /* Work space of vbm_cap_arcs (zero-initialise; free with vbm_caps_free). */
 typedef struct vbm_capwork {
     vbm_circle *circ;
-    struct vbm_endpt *end; /* cap_arcs.c's */
-    const struct vbm_endpt **ord; /* the ends in the order of their angles */
-    struct vbm_restr *res;
+    const struct vbm_endpt **ord; /* the ends in the order of their angles (cap_arcs.c's) */
     vbm_arc *arc, *sorted;
     uint32_t *sel, *queue;  /* caps restricting a circle; circles to do next */
     uint8_t *state;         /* per cap: done, on the boundary, queued */
@@ -52,7 +50,7 @@ typedef struct vbm_capwork {
     uint32_t *rslot, *rix;  /* per circle and cap: its restriction; per restriction of a circle */
     size_t nrc, nslot, cap_rc, cap_rslot, cap_rix;
     size_t nres; /* restrictions made by the last circle_arcs */
-    size_t cap_circ, cap_end, cap_ord, cap_res, cap_arc, narc, cap_sorted, cap_sel, cap_queue, cap_state, cap_bnd;
+    size_t cap_circ, cap_ord, cap_arc, narc, cap_sorted, cap_sel, cap_queue, cap_state, cap_bnd;
 } vbm_capwork;
 
 /* The circle of a cap: kind VBM_CAP_CIRCLE with the frame, _ALL or _NONE;
