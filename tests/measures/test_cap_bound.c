@@ -99,7 +99,7 @@ int main(void)
         for (size_t m = 0; m < nc + 4; m++) {
             holds[m] = 0;
             if (vbm_circle_of(&caps[m], &extra[m]) && extra[m].kind == VBM_CAP_CIRCLE)
-                holds[m] = vbm_cap_holds(&extra[m], M, cr);
+                holds[m] = vbm_cap_holds(&extra[m], M, cr, vbm_cap_sine(cr));
             held += (size_t)holds[m];
             tries++;
         }

@@ -452,9 +452,10 @@ static void bound_prune(vbm_capwork *w, size_t ncap, size_t first)
         VB_ARRAY_FIT(w->bnd, w->cap_bnd, 4 * (w->narc - first) + 1, 32) != VB_OK ||
         !vbm_arcs_cap(w->circ, w->arc + first, w->narc - first, P, w->bnd, M, &cr))
         return; /* no prune: the search does without it */
+    vbx_ia sr = vbm_cap_sine(cr);
     for (size_t m = 1; m < ncap; m++)
         if (w->circ[m].kind == VBM_CAP_CIRCLE && !(w->state[m] & (ON_BOUNDARY | LIKELY)) &&
-            vbm_cap_holds(&w->circ[m], M, cr))
+            vbm_cap_holds(&w->circ[m], M, cr, sr))
             w->state[m] |= DONE | HELD;
 }
 
@@ -467,18 +468,21 @@ static size_t arcs_inside(const vbm_cap *caps, size_t ncap, vbm_capwork *w, size
      * (one dot product per arc, where the test below restricts the circle
      * by cap m and checks both ends: 3pqr, 1 thread, 4.78 -> 4.55 s of
      * CPU) */
-    vbx_ia M[NBOUND][3];
+    vbx_ia M[NBOUND][3], sr[NBOUND];
     double cr[NBOUND];
     if (nbound > NBOUND)
         nbound = 0;
-    for (size_t i = 0; i < nbound; i++)
+    for (size_t i = 0; i < nbound; i++) {
         if (!vbm_arc_bound(C, &w->arc[first + i], M[i], &cr[i]))
             nbound = 0;
+        else
+            sr[i] = vbm_cap_sine(cr[i]);
+    }
     for (size_t m = 1; m < ncap; m++) {
         if (m == l || w->circ[m].kind == VBM_CAP_ALL || (w->state[m] & (ON_BOUNDARY | LIKELY | BAD | HELD)))
             continue;
         size_t held = 0;
-        while (held < nbound && vbm_cap_holds(&w->circ[m], M[held], cr[held]))
+        while (held < nbound && vbm_cap_holds(&w->circ[m], M[held], cr[held], sr[held]))
             held++;
         if (nbound && held == nbound)
             continue;

@@ -103,13 +103,19 @@ int vbm_arc_bound(const vbm_circle *C, const vbm_arc *a, vbx_ia *M, double *cr)
  * asks alpha_m - rho in [0, pi] (cos alpha_m = c_m < cr proves rho <
  * alpha_m; both are at most pi) and then cos angle(M, a_m) = M.a_m >
  * cos(alpha_m - rho) = c_m cos rho + s_m sin rho (s_m, sin rho >= 0),
- * whose right side is bounded over every cos rho in [cr, 1] in intervals. */
-int vbm_cap_holds(const vbm_circle *cm, const vbx_ia *M, double cr)
+ * whose right side is bounded over every cos rho in [cr, 1] in intervals
+ * (sinr = vbm_cap_sine(cr), made once per cap B). */
+vbx_ia vbm_cap_sine(double cr)
+{
+    vbx_ia cosr = {cr, 1.0};
+    return vbx_ia_sqrt(vbx_ia_sub(vbx_ia_point(1.0), vbx_ia_sqr(cosr)));
+}
+
+int vbm_cap_holds(const vbm_circle *cm, const vbx_ia *M, double cr, vbx_ia sinr)
 {
     vbx_ia cosr = {cr, 1.0};
     if (!(cm->c.hi < cr))
         return 0;
-    vbx_ia sinr = vbx_ia_sqrt(vbx_ia_sub(vbx_ia_point(1.0), vbx_ia_sqr(cosr)));
     vbx_ia rhs = vbx_ia_add(vbx_ia_mul(cm->c, cosr), vbx_ia_mul(cm->s, sinr));
     return vbm_dot3(M, cm->a).lo > rhs.hi;
 }

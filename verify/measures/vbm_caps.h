@@ -70,9 +70,12 @@ int vbm_circle_frame(vbm_circle *c);
  * Returns 0 when *cr is not proven > -1. */
 int vbm_arc_bound(const vbm_circle *C, const vbm_arc *a, vbx_ia *M, double *cr);
 
+/* The sines of the angular radii rho with cos rho in [cr, 1]. */
+vbx_ia vbm_cap_sine(double cr);
+
 /* Whether the cap of circle cm holds the cap {u : u.M >= cr} in its
- * interior (M enclosing an exact unit vector). */
-int vbm_cap_holds(const vbm_circle *cm, const vbx_ia *M, double cr);
+ * interior (M enclosing an exact unit vector; sinr = vbm_cap_sine(cr)). */
+int vbm_cap_holds(const vbm_circle *cm, const vbx_ia *M, double cr, vbx_ia sinr);
 
 /* A cap {u : u.M >= *cr} (M enclosing an exact unit vector) holding the
  * arcs arc[0..n) (circles circ) and not the unit vector `out`: it holds
