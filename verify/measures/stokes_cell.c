@@ -62,12 +62,12 @@ typedef struct active {
 typedef struct paircap {
     vbx_ia n[3], h, nn;
     vbm_circle axis; /* y's cap's circle, no frame (kind 0: undecided) */
-    uint8_t state;   /* 0: not made yet, 1: the two caps apart, 2: made, 3: and its axis */
 } paircap;
 
 typedef struct stokes_work {
     vbm_capwork cw;
     paircap *pair;     /* na x na, [min * na + max] */
+    uint8_t *pstate;   /* per pair: 0 not made yet, 1 the two caps apart, 2 made, 3 and its axis */
     vbm_share share;   /* the bisector arcs two regions share */
     vbm_cap *caps;
     vbm_circle *axes;  /* per cap of a region: its circle, no frame (the pair's) */
@@ -76,7 +76,7 @@ typedef struct stokes_work {
     active *act;
     vbx_ia *D, *con;   /* per neighbour: |d|, the contact */
     uint32_t *narcs;   /* per neighbour: its arcs */
-    size_t cap_caps, cap_axes, cap_capact, cap_rec, cap_act, cap_D, cap_con, cap_narcs, cap_pair, nrec;
+    size_t cap_pstate, cap_caps, cap_axes, cap_capact, cap_rec, cap_act, cap_D, cap_con, cap_narcs, cap_pair, nrec;
 } stokes_work;
 
 void vbm_stokes_free(void *p)
@@ -89,6 +89,7 @@ void vbm_stokes_free(void *p)
     free(w->caps);
     free(w->axes);
     free(w->pair);
+    free(w->pstate);
     free(w->capact);
     free(w->rec);
     free(w->act);
@@ -107,16 +108,17 @@ static double width(vbx_ia a)
 
 /* The bisector cap of active neighbours y < z for both their regions: the
  * caps apart (the angle between the axes beyond the sum of the radii: the
- * test is symmetric), state 1; else n, h and n.n, state 2. The same
+ * test is symmetric), *state 1; else n, h and n.n, *state 2. The same
  * interval operations either region made before, once (negating an
  * interval difference is exact: z's cap is y's negated bit for bit). */
-static void pair_cap(const vbm_atom_in *in, const stokes_work *w, size_t y, size_t z, paircap *pc)
+static void pair_cap(const vbm_atom_in *in, const stokes_work *w, size_t y, size_t z, paircap *pc,
+                     uint8_t *state)
 {
     const active *ay = &w->act[y], *az = &w->act[z];
     vbx_ia cs = vbx_ia_sub(vbx_ia_mul(ay->ca, az->ca), vbx_ia_mul(ay->sa, az->sa));
     vbx_ia sn = vbx_ia_add(vbx_ia_mul(ay->sa, az->ca), vbx_ia_mul(ay->ca, az->sa));
     if (sn.lo > 0.0 && vbm_dot3(ay->e, az->e).hi < cs.lo) {
-        pc->state = 1;
+        *state = 1;
         return;
     }
     const vbm_nb *ny = &in->nb[ay->j], *nz = &in->nb[az->j];
@@ -124,7 +126,7 @@ static void pair_cap(const vbm_atom_in *in, const stokes_work *w, size_t y, size
         pc->n[i] = vbx_ia_sub(vbx_ia_mul(nz->N, ny->d[i]), vbx_ia_mul(ny->N, nz->d[i]));
     pc->h = vbx_ia_sub(vbx_ia_mul(ny->N, nz->delta), vbx_ia_mul(nz->N, ny->delta));
     pc->nn = vbm_dot3(pc->n, pc->n);
-    pc->state = 2;
+    *state = 2;
 }
 
 /* The circle of z's cap against y from y's (pair_cap's) exactly: the cap
@@ -156,10 +158,12 @@ static size_t region_caps(const vbm_atom_in *in, stokes_work *w, size_t na, size
     for (size_t y = 0; y < na; y++) {
         if (y == x)
             continue;
-        paircap *pc = &w->pair[x < y ? x * na + y : y * na + x];
-        if (pc->state == 0)
-            pair_cap(in, w, x < y ? x : y, x < y ? y : x, pc);
-        if (pc->state == 1)
+        size_t pk = x < y ? x * na + y : y * na + x;
+        paircap *pc = &w->pair[pk];
+        uint8_t *st = &w->pstate[pk];
+        if (*st == 0)
+            pair_cap(in, w, x < y ? x : y, x < y ? y : x, pc, st);
+        if (*st == 1)
             continue; /* caps apart: k owns nothing in j's cap */
         vbm_cap c; /* j's cap against k: the pair's, negated when j comes second */
         for (int i = 0; i < 3; i++)
@@ -178,11 +182,11 @@ static size_t region_caps(const vbm_atom_in *in, stokes_work *w, size_t na, size
         if (hi > 0.0 && vbx_ia_sqr(vbx_ia_point(hi)).lo > s2)
             return 0; /* none of it */
         w->capact[nc] = (uint32_t)y;
-        if (pc->state == 2) { /* its circle, made for the first region that keeps it */
+        if (*st == 2) { /* its circle, made for the first region that keeps it */
             vbm_cap cy = {{pc->n[0], pc->n[1], pc->n[2]}, pc->h};
             if (!vbm_circle_axis(&cy, &pc->axis))
                 pc->axis.kind = 0;
-            pc->state = 3;
+            *st = 3;
         }
         if (x < y)
             w->axes[nc] = pc->axis;
@@ -340,10 +344,10 @@ int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
         a->sa = vbx_ia_sqrt(vbx_ia_sub(vbx_ia_point(1.0), vbx_ia_sqr(a->ca)));
     }
     sort_active(w->act, na);
-    if (VB_ARRAY_FIT(w->pair, w->cap_pair, na * na + 1, 64) != VB_OK)
+    if (VB_ARRAY_FIT(w->pair, w->cap_pair, na * na + 1, 64) != VB_OK ||
+        VB_ARRAY_FIT(w->pstate, w->cap_pstate, na * na + 1, 64) != VB_OK)
         return -1;
-    for (size_t k = 0; k < na * na; k++)
-        w->pair[k].state = 0;
+    memset(w->pstate, 0, na * na);
     /* the regions in order, each bisector circle's arcs found for the
      * first of its two regions and given to the second (vbm_share.h) */
     w->nrec = 0;
