@@ -38,19 +38,15 @@
 
 /* vbm_capwork.state; BAD: a cap not proven to hold the arcs of the circle
  * now done (arcs_inside), for that circle only */
-enum { DONE = 1, ON_BOUNDARY = 2, QUEUED = 4, LIKELY = 8, FRAMED = 16, BAD = 32, HELD = 64 };
+enum { DONE = 1, ON_BOUNDARY = 2, QUEUED = 4, LIKELY = 8, BAD = 32, HELD = 64 };
 
 /* Circle l's frame, made when first needed: most circles of a region only
- * restrict others (their caps) and never have a point of theirs computed.
- * Returns 0 when it cannot be made. */
+ * restrict others (their caps) and never have a point of theirs computed
+ * (or the caller gave it, vbm_cap_arcs' axes). Returns 0 when it cannot be
+ * made. */
 static int framed(vbm_capwork *w, size_t l)
 {
-    if (w->state[l] & FRAMED)
-        return 1;
-    if (!vbm_circle_frame(&w->circ[l]))
-        return 0;
-    w->state[l] |= FRAMED;
-    return 1;
+    return w->circ[l].framed || vbm_circle_frame(&w->circ[l]);
 }
 
 typedef struct vbm_endpt {
@@ -588,6 +584,7 @@ int vbm_cap_arcs(const vbm_cap *caps, const vbm_circle *axes, size_t ncap, const
         memset(w->rslot, 0, w->cap_rslot * sizeof *w->rslot);
     w->nslot = ncap;
     w->nrc = 0;
+    w->ncirc = 0;
     for (size_t l = 0; l < ncap; l++) {
         if (axes)
             w->circ[l] = axes[l];
@@ -596,6 +593,7 @@ int vbm_cap_arcs(const vbm_cap *caps, const vbm_circle *axes, size_t ncap, const
         if (w->circ[l].kind == VBM_CAP_NONE)
             return 1; /* empty intersection */
     }
+    w->ncirc = ncap;
     /* The circles along the boundary first (cap 0's, then those whose caps
      * end an arc found), each inside every cap; then every other circle is
      * tried against the boundary's caps alone (and cap 0): no arc inside

@@ -15,6 +15,7 @@ static void cross3(const vbx_ia *a, const vbx_ia *b, vbx_ia *r)
 /* vbm_circle_of without the frame (kind, a, c and s). */
 int vbm_circle_axis(const vbm_cap *cp, vbm_circle *c)
 {
+    c->framed = 0;
     vbx_ia nn = vbx_ia_sqrt(vbm_dot3(cp->n, cp->n));
     vbx_ia lo = vbx_ia_sub(nn, cp->h), hi = vbx_ia_add(nn, cp->h);
     if (lo.hi < 0.0) {
@@ -58,6 +59,7 @@ int vbm_circle_frame(vbm_circle *c)
     for (int k = 0; k < 3; k++)
         c->e1[k] = vbx_ia_div(t[k], tn);
     cross3(c->a, c->e1, c->e2);
+    c->framed = 1;
     return 1;
 }
 

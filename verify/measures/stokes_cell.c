@@ -61,7 +61,7 @@ typedef struct active {
  * (y's cap against z; z's is exactly its negation) and n.n. */
 typedef struct paircap {
     vbx_ia n[3], h, nn;
-    vbm_circle axis; /* y's cap's circle, no frame (kind 0: undecided) */
+    vbm_circle axis; /* y's cap's circle, framed once a region framed it (kind 0: undecided) */
 } paircap;
 
 typedef struct stokes_work {
@@ -129,17 +129,37 @@ static void pair_cap(const vbm_atom_in *in, const stokes_work *w, size_t y, size
     *state = 2;
 }
 
-/* The circle of z's cap against y from y's (pair_cap's) exactly: the cap
- * (-n, -h) has |n| the same, n.n - h^2's factors swapped, so its axis and
- * cosine are negated bit for bit, its sine the same, and ALL and NONE
- * swap (test_share_arcs checks the frames that follow). */
-static void axis_negated(const vbm_circle *a, vbm_circle *b)
+/* The circle of the complementary cap (-n, -h) exactly: |n| is the same
+ * and n.n - h^2's factors swap, so its axis and cosine are negated bit for
+ * bit, its sine the same, ALL and NONE swap, and its frame (made from the
+ * negated axis) is (-e1, e2) (test_share_arcs checks it on 2000 caps). */
+static void circle_negated(const vbm_circle *a, vbm_circle *b)
 {
-    for (int k = 0; k < 3; k++)
+    for (int k = 0; k < 3; k++) {
         b->a[k] = vbx_ia_neg(a->a[k]);
+        b->e1[k] = vbx_ia_neg(a->e1[k]);
+        b->e2[k] = a->e2[k];
+    }
     b->c = vbx_ia_neg(a->c);
     b->s = a->s;
     b->kind = a->kind == VBM_CAP_ALL ? VBM_CAP_NONE : a->kind == VBM_CAP_NONE ? VBM_CAP_ALL : a->kind;
+    b->framed = a->framed;
+}
+
+/* The frames region x's search made (w->cw.circ) kept with their pairs for
+ * the other region of each (nc caps, w->capact). */
+static void keep_frames(stokes_work *w, size_t na, size_t x, size_t nc)
+{
+    for (size_t c = 1; c < nc && c < w->cw.ncirc; c++) {
+        size_t y = w->capact[c], pk = x < y ? x * na + y : y * na + x;
+        paircap *pc = &w->pair[pk];
+        if (w->pstate[pk] != 3 || pc->axis.framed || !w->cw.circ[c].framed)
+            continue;
+        if (x < y)
+            pc->axis = w->cw.circ[c];
+        else
+            circle_negated(&w->cw.circ[c], &pc->axis);
+    }
 }
 
 /* The caps of Omega_j: j's own, then those of the other active neighbours
@@ -191,7 +211,7 @@ static size_t region_caps(const vbm_atom_in *in, stokes_work *w, size_t na, size
         if (x < y)
             w->axes[nc] = pc->axis;
         else
-            axis_negated(&pc->axis, &w->axes[nc]);
+            circle_negated(&pc->axis, &w->axes[nc]);
         cp[nc++] = c;
     }
     if (!vbm_circle_axis(&cp[0], &w->axes[0]))
@@ -366,6 +386,7 @@ int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
         e = vbm_cap_arcs(w->caps, w->axes, nc, w->share.known, w->share.given, w->share.ngiven, &w->cw);
         if (e <= 0)
             return e;
+        keep_frames(w, na, x, nc);
         if (vbm_share_keep(&w->share, (uint32_t)x, w->capact, w->cw.arc, w->cw.narc) < 0)
             return -1;
         if (VB_ARRAY_FIT(w->rec, w->cap_rec, w->nrec + w->cw.narc, 64) != VB_OK)

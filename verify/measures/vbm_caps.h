@@ -21,6 +21,7 @@ typedef struct vbm_cap {
 typedef struct vbm_circle {
     vbx_ia a[3], e1[3], e2[3], c, s;
     int kind; /* VBM_CAP_CIRCLE, _ALL (h < -|n|: every direction), _NONE (h > |n|) */
+    int framed; /* e1 and e2 made (vbm_circle_frame) */
 } vbm_circle;
 
 enum { VBM_CAP_CIRCLE = 1, VBM_CAP_ALL = 2, VBM_CAP_NONE = 3 };
@@ -50,6 +51,7 @@ typedef struct vbm_capwork {
     uint32_t *rslot, *rix;  /* per circle and cap: its restriction; per restriction of a circle */
     size_t nrc, nslot, cap_rc, cap_rslot, cap_rix;
     size_t nres; /* restrictions made by the last circle_arcs */
+    size_t ncirc; /* circ[0..ncirc) are the last vbm_cap_arcs call's circles */
     size_t cap_circ, cap_ord, cap_arc, narc, cap_sorted, cap_sel, cap_queue, cap_state, cap_bnd;
 } vbm_capwork;
 
@@ -58,11 +60,11 @@ typedef struct vbm_capwork {
  * the rest up to vbm_caps_free) */
 int vbm_circle_of(const vbm_cap *cp, vbm_circle *c);
 
-/* vbm_circle_of without the frame (kind, a, c and s). */
+/* vbm_circle_of without the frame (kind, a, c and s; framed 0). */
 int vbm_circle_axis(const vbm_cap *cp, vbm_circle *c);
 
-/* The frame e1, e2 of a circle whose axis is set. Returns 0 when the
- * intervals cannot normalise it. */
+/* The frame e1, e2 of a circle whose axis is set (framed 1). Returns 0
+ * when the intervals cannot normalise it. */
 int vbm_circle_frame(vbm_circle *c);
 
 /* A cap around arc a of circle C: its centre M (enclosing an exact unit
@@ -97,8 +99,9 @@ int vbm_arcs_cap(const vbm_circle *circ, const vbm_arc *arc, size_t n, const vbx
  * search as found ones do. Cap 0 is never known. Returns 1, 0 when an
  * interval cannot decide a step (tangent or coincident circles, an arc end
  * on a third circle), -1 on ENOMEM. axes (may be NULL) gives each cap's
- * circle without its frame as vbm_circle_axis makes it (kind 0: it could
- * not), where the caller has them already. */
+ * circle as vbm_circle_axis makes it (kind 0: it could not), with its frame
+ * where framed, when the caller has them already; w->circ[l] has circle
+ * l afterwards, framed where the search made the frame. */
 int vbm_cap_arcs(const vbm_cap *caps, const vbm_circle *axes, size_t ncap, const uint8_t *known,
                  const vbm_arc *given, size_t ngiven, vbm_capwork *w);
 
