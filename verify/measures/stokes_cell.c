@@ -61,20 +61,22 @@ typedef struct active {
  * (y's cap against z; z's is exactly its negation) and n.n. */
 typedef struct paircap {
     vbx_ia n[3], h, nn;
-    uint8_t state; /* 0: not made yet, 1: the two caps apart, 2: made */
+    vbm_circle axis; /* y's cap's circle, framed once a region framed it (kind 0: undecided) */
 } paircap;
 
 typedef struct stokes_work {
     vbm_capwork cw;
     paircap *pair;     /* na x na, [min * na + max] */
+    uint8_t *pstate;   /* per pair: 0 not made yet, 1 the two caps apart, 2 made, 3 and its axis */
     vbm_share share;   /* the bisector arcs two regions share */
     vbm_cap *caps;
+    vbm_circle *axes;  /* per cap of a region: its circle, no frame (the pair's) */
     uint32_t *capact;  /* per cap of a region: its active neighbour */
     arcrec *rec;
     active *act;
     vbx_ia *D, *con;   /* per neighbour: |d|, the contact */
     uint32_t *narcs;   /* per neighbour: its arcs */
-    size_t cap_caps, cap_capact, cap_rec, cap_act, cap_D, cap_con, cap_narcs, cap_pair, nrec;
+    size_t cap_pstate, cap_caps, cap_axes, cap_capact, cap_rec, cap_act, cap_D, cap_con, cap_narcs, cap_pair, nrec;
 } stokes_work;
 
 void vbm_stokes_free(void *p)
@@ -85,7 +87,9 @@ void vbm_stokes_free(void *p)
     vbm_caps_free(&w->cw);
     vbm_share_free(&w->share);
     free(w->caps);
+    free(w->axes);
     free(w->pair);
+    free(w->pstate);
     free(w->capact);
     free(w->rec);
     free(w->act);
@@ -104,16 +108,17 @@ static double width(vbx_ia a)
 
 /* The bisector cap of active neighbours y < z for both their regions: the
  * caps apart (the angle between the axes beyond the sum of the radii: the
- * test is symmetric), state 1; else n, h and n.n, state 2. The same
+ * test is symmetric), *state 1; else n, h and n.n, *state 2. The same
  * interval operations either region made before, once (negating an
  * interval difference is exact: z's cap is y's negated bit for bit). */
-static void pair_cap(const vbm_atom_in *in, const stokes_work *w, size_t y, size_t z, paircap *pc)
+static void pair_cap(const vbm_atom_in *in, const stokes_work *w, size_t y, size_t z, paircap *pc,
+                     uint8_t *state)
 {
     const active *ay = &w->act[y], *az = &w->act[z];
     vbx_ia cs = vbx_ia_sub(vbx_ia_mul(ay->ca, az->ca), vbx_ia_mul(ay->sa, az->sa));
     vbx_ia sn = vbx_ia_add(vbx_ia_mul(ay->sa, az->ca), vbx_ia_mul(ay->ca, az->sa));
     if (sn.lo > 0.0 && vbm_dot3(ay->e, az->e).hi < cs.lo) {
-        pc->state = 1;
+        *state = 1;
         return;
     }
     const vbm_nb *ny = &in->nb[ay->j], *nz = &in->nb[az->j];
@@ -121,7 +126,40 @@ static void pair_cap(const vbm_atom_in *in, const stokes_work *w, size_t y, size
         pc->n[i] = vbx_ia_sub(vbx_ia_mul(nz->N, ny->d[i]), vbx_ia_mul(ny->N, nz->d[i]));
     pc->h = vbx_ia_sub(vbx_ia_mul(ny->N, nz->delta), vbx_ia_mul(nz->N, ny->delta));
     pc->nn = vbm_dot3(pc->n, pc->n);
-    pc->state = 2;
+    *state = 2;
+}
+
+/* The circle of the complementary cap (-n, -h) exactly: |n| is the same
+ * and n.n - h^2's factors swap, so its axis and cosine are negated bit for
+ * bit, its sine the same, ALL and NONE swap, and its frame (made from the
+ * negated axis) is (-e1, e2) (test_share_arcs checks it on 2000 caps). */
+static void circle_negated(const vbm_circle *a, vbm_circle *b)
+{
+    for (int k = 0; k < 3; k++) {
+        b->a[k] = vbx_ia_neg(a->a[k]);
+        b->e1[k] = vbx_ia_neg(a->e1[k]);
+        b->e2[k] = a->e2[k];
+    }
+    b->c = vbx_ia_neg(a->c);
+    b->s = a->s;
+    b->kind = a->kind == VBM_CAP_ALL ? VBM_CAP_NONE : a->kind == VBM_CAP_NONE ? VBM_CAP_ALL : a->kind;
+    b->framed = a->framed;
+}
+
+/* The frames region x's search made (w->cw.circ) kept with their pairs for
+ * the other region of each (nc caps, w->capact). */
+static void keep_frames(stokes_work *w, size_t na, size_t x, size_t nc)
+{
+    for (size_t c = 1; c < nc && c < w->cw.ncirc; c++) {
+        size_t y = w->capact[c], pk = x < y ? x * na + y : y * na + x;
+        paircap *pc = &w->pair[pk];
+        if (w->pstate[pk] != 3 || pc->axis.framed || !w->cw.circ[c].framed)
+            continue;
+        if (x < y)
+            pc->axis = w->cw.circ[c];
+        else
+            circle_negated(&w->cw.circ[c], &pc->axis);
+    }
 }
 
 /* The caps of Omega_j: j's own, then those of the other active neighbours
@@ -136,33 +174,48 @@ static size_t region_caps(const vbm_atom_in *in, stokes_work *w, size_t na, size
     cp[0].h = nj->k;
     w->capact[0] = (uint32_t)x;
     size_t nc = 1;
-    vbx_ia sa = aj->ca.lo >= 0.0 ? aj->sa : vbx_ia_point(1.0);
+    vbx_ia sa = aj->ca.lo >= 0.0 ? aj->sa : vbx_ia_point(1.0), sa2 = vbx_ia_sqr(sa);
     for (size_t y = 0; y < na; y++) {
         if (y == x)
             continue;
-        paircap *pc = &w->pair[x < y ? x * na + y : y * na + x];
-        if (pc->state == 0)
-            pair_cap(in, w, x < y ? x : y, x < y ? y : x, pc);
-        if (pc->state == 1)
+        size_t pk = x < y ? x * na + y : y * na + x;
+        paircap *pc = &w->pair[pk];
+        uint8_t *st = &w->pstate[pk];
+        if (*st == 0)
+            pair_cap(in, w, x < y ? x : y, x < y ? y : x, pc, st);
+        if (*st == 1)
             continue; /* caps apart: k owns nothing in j's cap */
         vbm_cap c; /* j's cap against k: the pair's, negated when j comes second */
         for (int i = 0; i < 3; i++)
             c.n[i] = x < y ? pc->n[i] : vbx_ia_neg(pc->n[i]);
         c.h = x < y ? pc->h : vbx_ia_neg(pc->h);
         /* over j's cap (u.e = z in [ca, 1], |u_perp| <= sa) u.n lies in
-         * z (e.n) +- sa |n_perp| */
-        vbx_ia en = vbm_dot3(aj->e, c.n);
-        vbx_ia perp = vbx_ia_sqrt(vbx_ia_sub(pc->nn, vbx_ia_sqr(en)));
-        vbx_ia spread = vbx_ia_mul(sa, perp);
-        double lo = vbx_min(vbx_ia_mul(aj->ca, en).lo, en.lo) - spread.hi;
-        double hi = vbx_max(vbx_ia_mul(aj->ca, en).hi, en.hi) + spread.hi;
-        if (vbx_pred(lo) > c.h.hi)
+         * z (e.n) +- sa |n_perp|: all of it on j's side when min z (e.n) -
+         * h > sa |n_perp|, none when h - max z (e.n) is; compared squared
+         * (sa^2 (n.n - (e.n)^2) against the gap's square: no root) */
+        vbx_ia en = vbm_dot3(aj->e, c.n), zen = vbx_ia_mul(aj->ca, en);
+        double s2 = vbx_ia_mul(sa2, vbx_ia_sub(pc->nn, vbx_ia_sqr(en))).hi;
+        double lo = vbx_ia_sub(vbx_ia_point(vbx_min(zen.lo, en.lo)), c.h).lo;
+        if (lo > 0.0 && vbx_ia_sqr(vbx_ia_point(lo)).lo > s2)
             continue; /* all of j's cap is on j's side */
-        if (vbx_succ(hi) < c.h.lo)
+        double hi = vbx_ia_sub(c.h, vbx_ia_point(vbx_max(zen.hi, en.hi))).lo;
+        if (hi > 0.0 && vbx_ia_sqr(vbx_ia_point(hi)).lo > s2)
             return 0; /* none of it */
         w->capact[nc] = (uint32_t)y;
+        if (*st == 2) { /* its circle, made for the first region that keeps it */
+            vbm_cap cy = {{pc->n[0], pc->n[1], pc->n[2]}, pc->h};
+            if (!vbm_circle_axis(&cy, &pc->axis))
+                pc->axis.kind = 0;
+            *st = 3;
+        }
+        if (x < y)
+            w->axes[nc] = pc->axis;
+        else
+            circle_negated(&pc->axis, &w->axes[nc]);
         cp[nc++] = c;
     }
+    if (!vbm_circle_axis(&cp[0], &w->axes[0]))
+        w->axes[0].kind = 0;
     return nc;
 }
 
@@ -286,6 +339,7 @@ int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
     if (VB_ARRAY_FIT(w->D, w->cap_D, m + 1, 64) != VB_OK ||
         VB_ARRAY_FIT(w->act, w->cap_act, m + 1, 64) != VB_OK ||
         VB_ARRAY_FIT(w->caps, w->cap_caps, m + 1, 64) != VB_OK ||
+        VB_ARRAY_FIT(w->axes, w->cap_axes, m + 1, 64) != VB_OK ||
         VB_ARRAY_FIT(w->capact, w->cap_capact, m + 1, 64) != VB_OK ||
         VB_ARRAY_FIT(w->con, w->cap_con, m + 1, 64) != VB_OK ||
         VB_ARRAY_FIT(w->narcs, w->cap_narcs, m + 1, 64) != VB_OK)
@@ -310,10 +364,10 @@ int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
         a->sa = vbx_ia_sqrt(vbx_ia_sub(vbx_ia_point(1.0), vbx_ia_sqr(a->ca)));
     }
     sort_active(w->act, na);
-    if (VB_ARRAY_FIT(w->pair, w->cap_pair, na * na + 1, 64) != VB_OK)
+    if (VB_ARRAY_FIT(w->pair, w->cap_pair, na * na + 1, 64) != VB_OK ||
+        VB_ARRAY_FIT(w->pstate, w->cap_pstate, na * na + 1, 64) != VB_OK)
         return -1;
-    for (size_t k = 0; k < na * na; k++)
-        w->pair[k].state = 0;
+    memset(w->pstate, 0, na * na);
     /* the regions in order, each bisector circle's arcs found for the
      * first of its two regions and given to the second (vbm_share.h) */
     w->nrec = 0;
@@ -329,9 +383,10 @@ int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
         int e = vbm_share_given(&w->share, (uint32_t)x, w->capact, nc, na);
         if (e <= 0)
             return e;
-        e = vbm_cap_arcs(w->caps, nc, w->share.known, w->share.given, w->share.ngiven, &w->cw);
+        e = vbm_cap_arcs(w->caps, w->axes, nc, w->share.known, w->share.given, w->share.ngiven, &w->cw);
         if (e <= 0)
             return e;
+        keep_frames(w, na, x, nc);
         if (vbm_share_keep(&w->share, (uint32_t)x, w->capact, w->cw.arc, w->cw.narc) < 0)
             return -1;
         if (VB_ARRAY_FIT(w->rec, w->cap_rec, w->nrec + w->cw.narc, 64) != VB_OK)

@@ -21,6 +21,7 @@ typedef struct vbm_cap {
 typedef struct vbm_circle {
     vbx_ia a[3], e1[3], e2[3], c, s;
     int kind; /* VBM_CAP_CIRCLE, _ALL (h < -|n|: every direction), _NONE (h > |n|) */
+    int framed; /* e1 and e2 made (vbm_circle_frame) */
 } vbm_circle;
 
 enum { VBM_CAP_CIRCLE = 1, VBM_CAP_ALL = 2, VBM_CAP_NONE = 3 };
@@ -41,19 +42,50 @@ typedef struct vbm_arc {
 /* Work space of vbm_cap_arcs (zero-initialise; free with vbm_caps_free). */
 typedef struct vbm_capwork {
     vbm_circle *circ;
-    struct vbm_endpt *end; /* cap_arcs.c's */
-    const struct vbm_endpt **ord; /* the ends in the order of their angles */
-    struct vbm_restr *res;
+    const struct vbm_endpt **ord; /* the ends in the order of their angles (cap_arcs.c's) */
     vbm_arc *arc, *sorted;
     uint32_t *sel, *queue;  /* caps restricting a circle; circles to do next */
     uint8_t *state;         /* per cap: done, on the boundary, queued */
+    vbx_ia *bnd;            /* bound_prune's arc caps */
+    struct vbm_rcache *rc;  /* the restrictions made (cap_arcs.c's) */
+    uint32_t *rslot, *rix;  /* per circle and cap: its restriction; per restriction of a circle */
+    size_t nrc, nslot, cap_rc, cap_rslot, cap_rix;
     size_t nres; /* restrictions made by the last circle_arcs */
-    size_t cap_circ, cap_end, cap_ord, cap_res, cap_arc, narc, cap_sorted, cap_sel, cap_queue, cap_state;
+    size_t ncirc; /* circ[0..ncirc) are the last vbm_cap_arcs call's circles */
+    size_t cap_circ, cap_ord, cap_arc, narc, cap_sorted, cap_sel, cap_queue, cap_state, cap_bnd;
 } vbm_capwork;
 
 /* The circle of a cap: kind VBM_CAP_CIRCLE with the frame, _ALL or _NONE;
- * 0 when the intervals cannot tell (|h| close to |n|). */
+ * 0 when the intervals cannot tell (|h| close to |n|). (cap_geom.c, as
+ * the rest up to vbm_caps_free) */
 int vbm_circle_of(const vbm_cap *cp, vbm_circle *c);
+
+/* vbm_circle_of without the frame (kind, a, c and s; framed 0). */
+int vbm_circle_axis(const vbm_cap *cp, vbm_circle *c);
+
+/* The frame e1, e2 of a circle whose axis is set (framed 1). Returns 0
+ * when the intervals cannot normalise it. */
+int vbm_circle_frame(vbm_circle *c);
+
+/* A cap around arc a of circle C: its centre M (enclosing an exact unit
+ * vector) and a lower bound *cr of the cosine of its angular radius.
+ * Returns 0 when *cr is not proven > -1. */
+int vbm_arc_bound(const vbm_circle *C, const vbm_arc *a, vbx_ia *M, double *cr);
+
+/* The sines of the angular radii rho with cos rho in [cr, 1]. */
+vbx_ia vbm_cap_sine(double cr);
+
+/* Whether the cap of circle cm holds the cap {u : u.M >= cr} in its
+ * interior (M enclosing an exact unit vector; sinr = vbm_cap_sine(cr)). */
+int vbm_cap_holds(const vbm_circle *cm, const vbx_ia *M, double cr, vbx_ia sinr);
+
+/* A cap {u : u.M >= *cr} (M enclosing an exact unit vector) holding the
+ * arcs arc[0..n) (circles circ) and not the unit vector `out`: it holds
+ * every closed set of directions whose boundary lies on those arcs and
+ * which misses `out`. tmp: 4 n intervals of work space. Returns 0 when it
+ * cannot be proven. */
+int vbm_arcs_cap(const vbm_circle *circ, const vbm_arc *arc, size_t n, const vbx_ia *out,
+                 vbx_ia *tmp, vbx_ia *M, double *cr);
 
 /* The boundary of the intersection of caps[0..ncap) as arcs in w->arc
  * (w->narc; none when the intersection is empty or the whole sphere: the
@@ -66,9 +98,12 @@ int vbm_circle_of(const vbm_cap *cp, vbm_circle *c);
  * only the other circles are searched, the given arcs bounding their
  * search as found ones do. Cap 0 is never known. Returns 1, 0 when an
  * interval cannot decide a step (tangent or coincident circles, an arc end
- * on a third circle), -1 on ENOMEM. */
-int vbm_cap_arcs(const vbm_cap *caps, size_t ncap, const uint8_t *known, const vbm_arc *given,
-                 size_t ngiven, vbm_capwork *w);
+ * on a third circle), -1 on ENOMEM. axes (may be NULL) gives each cap's
+ * circle as vbm_circle_axis makes it (kind 0: it could not), with its frame
+ * where framed, when the caller has them already; w->circ[l] has circle
+ * l afterwards, framed where the search made the frame. */
+int vbm_cap_arcs(const vbm_cap *caps, const vbm_circle *axes, size_t ncap, const uint8_t *known,
+                 const vbm_arc *given, size_t ngiven, vbm_capwork *w);
 
 void vbm_caps_free(vbm_capwork *w);
 
