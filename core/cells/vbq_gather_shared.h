@@ -262,6 +262,9 @@ typedef struct vbq_walk {
      * (vbq_walk_make) from part g's box and sdist: the ends of the box on
      * each axis, sdist times them, sdist. */
     vbq_v4 pu0[3], pu1[3], pt0[3], pt1[3], psd;
+    /* ... and for vbq_walk_parts4: the centre of its box, its magnitude,
+     * the box's half-widths, LO. */
+    vbq_v4 pm[3], pam[3], ph[3], plo;
 #endif
 } vbq_walk;
 
@@ -323,7 +326,11 @@ VBS_FN void vbq_walk_make(const vbq_env *e, vbs_u32 i, double rq0, double rq1,
             w->pu1[a][g] = u1;
             w->pt0[a][g] = sd < (double)INFINITY ? sd * u0 : 0.0;
             w->pt1[a][g] = sd < (double)INFINITY ? sd * u1 : 0.0;
+            w->pm[a][g] = sub[g].m[a];
+            w->pam[a][g] = VBS_FABS(sub[g].m[a]);
+            w->ph[a][g] = sub[g].h[a];
         }
+        w->plo[g] = sub[g].LO;
     }
 #endif
 }
@@ -441,10 +448,39 @@ VBS_FN int vbq_walk_ring(const vbq_env *e, const vbq_walk *w, vbs_u32 k, vbs_u32
 
 /* Does a sphere of the ring with record rec pass the walk's parts? With
  * parts, it is kept when its enclosure reaches LO_g in some part g. */
+#ifdef VBQ_WALK_V4
+/* vbq_walk_parts on the host: vbq_eval of the record over the four parts
+ * in the lanes of one pass, each lane the same operations in the same
+ * order as vbq_eval for its part; kept when some lane's upper end reaches
+ * its part's LO. */
+static inline int vbq_walk_parts4(const vbq_walk *w, const vbq_nb *rec)
+{
+    const vbq_m4 mag = {0x7fffffffffffffffLL, 0x7fffffffffffffffLL, 0x7fffffffffffffffLL,
+                        0x7fffffffffffffffLL};
+    double aax = VBS_FABS(rec->ax), aay = VBS_FABS(rec->ay), aaz = VBS_FABS(rec->az);
+    double ab = VBS_FABS(rec->b);
+    vbq_v4 ax = {rec->ax, rec->ax, rec->ax, rec->ax}, ay = {rec->ay, rec->ay, rec->ay, rec->ay};
+    vbq_v4 az = {rec->az, rec->az, rec->az, rec->az}, b = {rec->b, rec->b, rec->b, rec->b};
+    vbq_v4 aax4 = {aax, aax, aax, aax}, aay4 = {aay, aay, aay, aay}, aaz4 = {aaz, aaz, aaz, aaz};
+    vbq_v4 ab4 = {ab, ab, ab, ab}, err = {rec->err, rec->err, rec->err, rec->err};
+    vbq_v4 F = ((ax * w->pm[0] + ay * w->pm[1]) + az * w->pm[2]) + b;
+    vbq_v4 G = ((aax4 * w->pam[0] + aay4 * w->pam[1]) + aaz4 * w->pam[2]) + ab4;
+    vbq_v4 aF = (vbq_v4)((vbq_m4)F & mag);
+    vbq_v4 R = (((aax4 * w->ph[0] + aay4 * w->ph[1]) + aaz4 * w->ph[2]) + err) + VBQ_C * (G + aF);
+    R = R * (1.0 + VBQ_C) + VBQ_TINY;
+    vbq_m4 keep = F + R >= w->plo;
+    return (keep[0] | keep[1] | keep[2] | keep[3]) != 0;
+}
+#endif
+
 VBS_FN int vbq_walk_parts(const vbq_walk *w, const vbq_nb *rec)
 {
     if (w->nsub == 0u)
         return 1;
+#ifdef VBQ_WALK_V4
+    if (w->nsub == VBQ_NSUB)
+        return vbq_walk_parts4(w, rec);
+#endif
     for (vbs_u32 q = 0u; q < w->nsub; q++) {
         vbs_u32 g = w->ord[q];
         double m[3] = {w->sub[g].m[0], w->sub[g].m[1], w->sub[g].m[2]};
