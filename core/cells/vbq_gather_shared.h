@@ -229,25 +229,49 @@ VBS_FN void vbq_sub_set_lo(VBQ_SQ vbq_sub *sub, double LO)
  * every u of the part's box and every centre of the node's box (R_j <= its
  * R_max); the bounds carry a relative margin of 1e-9, far above the
  * rounding errors of these few operations. */
-/* The host's node test over four parts in one pass (vbq_walk_node4):
- * GCC's and Clang's vectors, where __attribute__ is not defined away (the
- * group kernel's emulator, tests/gpu/cover_wg_emu.c, compiles the
- * kernels' code as C and takes the scalar loop). */
-#if !defined(__OPENCL_C_VERSION__) && VBQ_NSUB == 4 && defined(__GNUC__) && \
-    !defined(__attribute__)
+/* The node and sphere tests over the four parts in one pass
+ * (vbq_walk_node4, vbq_walk_parts4) instead of one part after the other:
+ * on the host with GCC's and Clang's vectors (AVX2 in cover_cell_avx2.c,
+ * two SSE2 halves in the plain build), where __attribute__ is not defined
+ * away (the group kernel's emulator, tests/gpu/cover_wg_emu.c, compiles
+ * the kernels' code as C and takes the scalar loops); in OpenCL with
+ * double4 where the build defines VBQ_WALK_V4_CL (the work-item kernel on
+ * CPU devices, gpu/cover_ocl.c; a GPU lane would do four parts' work).
+ * Lane g computes what the scalar code computes for part g, operation by
+ * operation (no contraction on either side), and a node or sphere passes
+ * when some lane passes: the same answers. */
+#if VBQ_NSUB == 4 && (defined(__OPENCL_C_VERSION__) ? defined(VBQ_WALK_V4_CL)              \
+                                                   : defined(__GNUC__) && !defined(__attribute__))
 #define VBQ_WALK_V4 1
-#endif
-
-#ifdef VBQ_WALK_V4
-/* Four doubles side by side (GCC and Clang vectors; AVX2 in
- * cover_cell_avx2.c, two SSE2 halves in the plain build): lane g computes
- * what the scalar code computes for part g, operation by operation. */
+#ifdef __OPENCL_C_VERSION__
+typedef double4 vbq_v4;
+typedef long4 vbq_m4;
+#define VBQ_V4(a, b, c, d) ((double4)((a), (b), (c), (d)))
+#define VBQ_AS_V4(m) as_double4(m)
+#define VBQ_AS_M4(x) as_long4(x)
+#define VBQ_M4_ANY(m) any(m)
+#define VBQ_M4_ALL(m) all(m)
+#else
 typedef double vbq_v4 __attribute__((vector_size(32)));
 typedef long long vbq_m4 __attribute__((vector_size(32)));
-
+#define VBQ_V4(a, b, c, d) ((vbq_v4){(a), (b), (c), (d)})
+#define VBQ_AS_V4(m) ((vbq_v4)(m))
+#define VBQ_AS_M4(x) ((vbq_m4)(x))
+#define VBQ_M4_ANY(m) (((m)[0] | (m)[1] | (m)[2] | (m)[3]) != 0)
+#define VBQ_M4_ALL(m) (((m)[0] & (m)[1] & (m)[2] & (m)[3]) != 0)
+#endif
+#define VBQ_V4_ALL(x) VBQ_V4((x), (x), (x), (x))
 /* x where m is set, else y (a lane's mask: all ones or all zeros; a macro,
- * as a function returning a vector would change the ABI between builds). */
-#define VBQ_V4_PICK(m, x, y) ((vbq_v4)(((vbq_m4)(x) & (m)) | ((vbq_m4)(y) & ~(m))))
+ * as a host function returning a vector would change the ABI between
+ * builds). */
+#define VBQ_V4_PICK(m, x, y) VBQ_AS_V4((VBQ_AS_M4(x) & (m)) | (VBQ_AS_M4(y) & ~(m)))
+/* |x|: the sign bits cleared. */
+#define VBQ_V4_ABS(x) VBQ_AS_V4(VBQ_AS_M4(x) & VBQ_V4M_ALL(0x7fffffffffffffffLL))
+#ifdef __OPENCL_C_VERSION__
+#define VBQ_V4M_ALL(k) ((long4)(k))
+#else
+#define VBQ_V4M_ALL(k) ((vbq_m4){(k), (k), (k), (k)})
+#endif
 #endif
 
 typedef struct vbq_walk {
@@ -258,7 +282,7 @@ typedef struct vbq_walk {
     vbs_u32 i, nsub;
     vbs_u32 ord[VBQ_NSUB];       /* the parts by increasing LO (ties by index) */
 #ifdef VBQ_WALK_V4
-    /* Host: the parts side by side for vbq_walk_node4, made once per walk
+    /* The parts side by side for vbq_walk_node4, made once per walk
      * (vbq_walk_make) from part g's box and sdist: the ends of the box on
      * each axis, sdist times them, sdist. */
     vbq_v4 pu0[3], pu1[3], pt0[3], pt1[3], psd;
@@ -317,20 +341,28 @@ VBS_FN void vbq_walk_make(const vbq_env *e, vbs_u32 i, double rq0, double rq1,
         w->ord[p] = g;
     }
 #ifdef VBQ_WALK_V4
-    for (vbs_u32 g = 0u; g < nsub; g++) {
-        double sd = sub[g].sdist;
-        w->psd[g] = sd;
-        for (int a = 0; a < 3; a++) {
-            double u0 = sub[g].m[a] - sub[g].h[a], u1 = sub[g].m[a] + sub[g].h[a];
-            w->pu0[a][g] = u0;
-            w->pu1[a][g] = u1;
-            w->pt0[a][g] = sd < (double)INFINITY ? sd * u0 : 0.0;
-            w->pt1[a][g] = sd < (double)INFINITY ? sd * u1 : 0.0;
-            w->pm[a][g] = sub[g].m[a];
-            w->pam[a][g] = VBS_FABS(sub[g].m[a]);
-            w->ph[a][g] = sub[g].h[a];
+    if (nsub == VBQ_NSUB) {
+        double u0[3][4], u1[3][4], t0[3][4], t1[3][4], sd[4];
+        for (vbs_u32 g = 0u; g < 4u; g++) {
+            sd[g] = sub[g].sdist;
+            for (int a = 0; a < 3; a++) {
+                u0[a][g] = sub[g].m[a] - sub[g].h[a];
+                u1[a][g] = sub[g].m[a] + sub[g].h[a];
+                t0[a][g] = sd[g] < (double)INFINITY ? sd[g] * u0[a][g] : 0.0;
+                t1[a][g] = sd[g] < (double)INFINITY ? sd[g] * u1[a][g] : 0.0;
+            }
         }
-        w->plo[g] = sub[g].LO;
+        for (int a = 0; a < 3; a++) {
+            w->pu0[a] = VBQ_V4(u0[a][0], u0[a][1], u0[a][2], u0[a][3]);
+            w->pu1[a] = VBQ_V4(u1[a][0], u1[a][1], u1[a][2], u1[a][3]);
+            w->pt0[a] = VBQ_V4(t0[a][0], t0[a][1], t0[a][2], t0[a][3]);
+            w->pt1[a] = VBQ_V4(t1[a][0], t1[a][1], t1[a][2], t1[a][3]);
+            w->pm[a] = VBQ_V4(sub[0].m[a], sub[1].m[a], sub[2].m[a], sub[3].m[a]);
+            w->ph[a] = VBQ_V4(sub[0].h[a], sub[1].h[a], sub[2].h[a], sub[3].h[a]);
+            w->pam[a] = VBQ_V4_ABS(w->pm[a]);
+        }
+        w->psd = VBQ_V4(sd[0], sd[1], sd[2], sd[3]);
+        w->plo = VBQ_V4(sub[0].LO, sub[1].LO, sub[2].LO, sub[3].LO);
     }
 #endif
 }
@@ -342,13 +374,12 @@ VBS_FN void vbq_walk_make(const vbq_env *e, vbs_u32 i, double rq0, double rq1,
  * same operations in the same order, -ffp-contract=off), and the node
  * passes when some lane passes: the same answer, whatever the order the
  * loop asks the parts in. */
-static inline int vbq_walk_node4(const vbq_walk *w, const double b0[3], const double b1[3],
-                                 double slack, double mag)
+VBS_FN int vbq_walk_node4(const vbq_walk *w, const double b0[3], const double b1[3],
+                          double slack, double mag)
 {
-    vbq_v4 best = {0.0, 0.0, 0.0, 0.0}, bb2 = {0.0, 0.0, 0.0, 0.0};
-    vbq_v4 zero = {0.0, 0.0, 0.0, 0.0};
+    vbq_v4 zero = VBQ_V4_ALL(0.0), best = zero, bb2 = zero;
     for (int a = 0; a < 3; a++) {
-        vbq_v4 c0 = {b0[a], b0[a], b0[a], b0[a]}, c1 = {b1[a], b1[a], b1[a], b1[a]};
+        vbq_v4 c0 = VBQ_V4_ALL(b0[a]), c1 = VBQ_V4_ALL(b1[a]);
         vbq_v4 p0 = w->pu0[a] * c0, p1 = w->pu0[a] * c1, p2 = w->pu1[a] * c0,
                p3 = w->pu1[a] * c1;
         vbq_v4 mx = VBQ_V4_PICK(p0 > p1, p0, p1);
@@ -360,11 +391,13 @@ static inline int vbq_walk_node4(const vbq_walk *w, const double b0[3], const do
         bb2 += gp * gp;
     }
     double lim = -1e-9 * (mag + VBS_FABS(slack) + 1e-300);
-    vbq_v4 s4 = {slack, slack, slack, slack}, m4 = {mag, mag, mag, mag};
-    vbq_v4 l4 = {lim, lim, lim, lim}, inf = {INFINITY, INFINITY, INFINITY, INFINITY};
+    vbq_v4 s4 = VBQ_V4_ALL(slack), m4 = VBQ_V4_ALL(mag), inf = VBQ_V4_ALL((double)INFINITY);
     vbq_v4 reach = (w->psd + s4) * (1.0 + 1e-9) + 1e-9 * (m4 + w->psd);
-    vbq_m4 fail = (best + s4 < l4) | ((w->psd < inf) & ((reach < zero) | (bb2 > reach * reach)));
-    return !(fail[0] & fail[1] & fail[2] & fail[3]);
+    /* The scalar loop's own comparisons (a NaN of an unbounded walk fails
+     * each of them alike). */
+    vbq_m4 fail = (best + s4 < VBQ_V4_ALL(lim)) |
+                  ((w->psd < inf) & ((reach < zero) | (bb2 > reach * reach)));
+    return !VBQ_M4_ALL(fail);
 }
 #endif
 
@@ -453,23 +486,17 @@ VBS_FN int vbq_walk_ring(const vbq_env *e, const vbq_walk *w, vbs_u32 k, vbs_u32
  * in the lanes of one pass, each lane the same operations in the same
  * order as vbq_eval for its part; kept when some lane's upper end reaches
  * its part's LO. */
-static inline int vbq_walk_parts4(const vbq_walk *w, const vbq_nb *rec)
+VBS_FN int vbq_walk_parts4(const vbq_walk *w, const vbq_nb *rec)
 {
-    const vbq_m4 mag = {0x7fffffffffffffffLL, 0x7fffffffffffffffLL, 0x7fffffffffffffffLL,
-                        0x7fffffffffffffffLL};
-    double aax = VBS_FABS(rec->ax), aay = VBS_FABS(rec->ay), aaz = VBS_FABS(rec->az);
-    double ab = VBS_FABS(rec->b);
-    vbq_v4 ax = {rec->ax, rec->ax, rec->ax, rec->ax}, ay = {rec->ay, rec->ay, rec->ay, rec->ay};
-    vbq_v4 az = {rec->az, rec->az, rec->az, rec->az}, b = {rec->b, rec->b, rec->b, rec->b};
-    vbq_v4 aax4 = {aax, aax, aax, aax}, aay4 = {aay, aay, aay, aay}, aaz4 = {aaz, aaz, aaz, aaz};
-    vbq_v4 ab4 = {ab, ab, ab, ab}, err = {rec->err, rec->err, rec->err, rec->err};
+    vbq_v4 ax = VBQ_V4_ALL(rec->ax), ay = VBQ_V4_ALL(rec->ay), az = VBQ_V4_ALL(rec->az);
+    vbq_v4 aax = VBQ_V4_ABS(ax), aay = VBQ_V4_ABS(ay), aaz = VBQ_V4_ABS(az);
+    vbq_v4 b = VBQ_V4_ALL(rec->b), err = VBQ_V4_ALL(rec->err);
     vbq_v4 F = ((ax * w->pm[0] + ay * w->pm[1]) + az * w->pm[2]) + b;
-    vbq_v4 G = ((aax4 * w->pam[0] + aay4 * w->pam[1]) + aaz4 * w->pam[2]) + ab4;
-    vbq_v4 aF = (vbq_v4)((vbq_m4)F & mag);
-    vbq_v4 R = (((aax4 * w->ph[0] + aay4 * w->ph[1]) + aaz4 * w->ph[2]) + err) + VBQ_C * (G + aF);
+    vbq_v4 G = ((aax * w->pam[0] + aay * w->pam[1]) + aaz * w->pam[2]) + VBQ_V4_ABS(b);
+    vbq_v4 R = (((aax * w->ph[0] + aay * w->ph[1]) + aaz * w->ph[2]) + err) +
+               VBQ_C * (G + VBQ_V4_ABS(F));
     R = R * (1.0 + VBQ_C) + VBQ_TINY;
-    vbq_m4 keep = F + R >= w->plo;
-    return (keep[0] | keep[1] | keep[2] | keep[3]) != 0;
+    return VBQ_M4_ANY(F + R >= w->plo);
 }
 #endif
 
