@@ -557,12 +557,13 @@ static void cov_close(vb_cover_backend *be)
     free(be);
 }
 
-/* A kernel of the program built from `file`. */
-static int kernel_get(vb_ctx *ctx, vbg_runtime *rt, const char *file, const char *name,
-                      cl_kernel *k)
+/* A kernel of the program built from `file` with the build options opts
+ * (NULL: none). */
+static int kernel_get(vb_ctx *ctx, vbg_runtime *rt, const char *file, const char *opts,
+                      const char *name, cl_kernel *k)
 {
     cl_program prog;
-    int rc = vbg_program_get(ctx, rt, file, NULL, &prog);
+    int rc = vbg_program_get(ctx, rt, file, opts, &prog);
     cl_int err = CL_SUCCESS;
     if (rc == VB_OK) {
         *k = clCreateKernel(prog, name, &err);
@@ -619,8 +620,14 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
      * second tier's cells are the large ones. */
     t0->qper = th->qper = 24u;
     t1->qper = t3->qper = 256u;
-    int rc = s->wg ? kernel_get(ctx, rt, "cover_wg.cl", "vbq_cover_wg", &s->k)
-                   : kernel_get(ctx, rt, "cover.cl", "vbq_cover_kernel", &s->k);
+    /* A CPU device's work-items test the four parts of a fetch side by
+     * side (VBQ_WALK_V4_CL, core/cells/vbq_gather_shared.h: the same
+     * answers). 2-core machine, PoCL on one thread, 4yvs first 14,070:
+     * see papers/gpu-voronoi-cells-of-spheres/results/
+     * cpu_vs_voronota_stop44.md. */
+    int rc = s->wg ? kernel_get(ctx, rt, "cover_wg.cl", NULL, "vbq_cover_wg", &s->k)
+                   : kernel_get(ctx, rt, "cover.cl", cpu ? "-DVBQ_WALK_V4_CL" : NULL,
+                                "vbq_cover_kernel", &s->k);
     /* The group kernel's budget (VORBALL_COVER_BUDGET: steps, 0 for none):
      * the cells past it go to the host threads, as cells that ran out of
      * arenas do, beside the device's next batch; with
@@ -634,7 +641,7 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
     uint32_t budget = kb && *kb ? (uint32_t)strtoul(kb, NULL, 10) : COV_BUDGET;
     int to_host = !(kh && strcmp(kh, "item") == 0);
     if (rc == VB_OK && s->wg && budget && !to_host)
-        rc = kernel_get(ctx, rt, "cover.cl", "vbq_cover_kernel", &s->k_item);
+        rc = kernel_get(ctx, rt, "cover.cl", NULL, "vbq_cover_kernel", &s->k_item);
     t0->k = t1->k = t3->k = s->k;
     t0->wg = t1->wg = t3->wg = s->wg;
     t0->budget = s->wg ? budget : 0u;

@@ -22,6 +22,8 @@ typedef struct bvh {
     double *box;       /* 6 per node: lo xyz, hi xyz (empty: lo > hi) */
     double *rmax;      /* per node */
     double rmax_all;
+    double *node8;     /* the host walk's copies (vbq_env): box and rmax, 8 per node */
+    double *kxyzr;     /* x, y, z, r of ids[k], 4 per position k */
 } bvh;
 
 static void bvh_free(bvh *t)
@@ -29,6 +31,36 @@ static void bvh_free(bvh *t)
     free(t->ids);
     free(t->box);
     free(t->rmax);
+    free(t->node8);
+    free(t->kxyzr);
+}
+
+/* The host walk's copies of t's nodes and spheres (vbq_env's node8 and
+ * kxyzr: the same doubles, each node in one 64-byte line and each
+ * position's sphere in 32 contiguous bytes instead of scattered over five
+ * and four arrays). */
+static int bvh_pack(const vb_sphere_set *s, bvh *t)
+{
+    size_t nodes = 2 * t->first;
+    t->node8 = aligned_alloc(64, nodes * 8 * sizeof *t->node8);
+    size_t kd = (4 * t->m + 7) / 8 * 8 + 8; /* whole 64-byte lines, at least one */
+    t->kxyzr = aligned_alloc(64, kd * sizeof *t->kxyzr);
+    if (!t->node8 || !t->kxyzr)
+        return VB_ENOMEM;
+    for (size_t nd = 0; nd < nodes; nd++) {
+        memcpy(t->node8 + 8 * nd, t->box + 6 * nd, 6 * sizeof *t->box);
+        t->node8[8 * nd + 6] = t->rmax[nd];
+        t->node8[8 * nd + 7] = 0.0;
+    }
+    for (size_t k = 0; k < t->m; k++) {
+        uint32_t i = t->ids[k];
+        double *p = t->kxyzr + 4 * k;
+        p[0] = s->x[i];
+        p[1] = s->y[i];
+        p[2] = s->z[i];
+        p[3] = s->r[i];
+    }
+    return VB_OK;
 }
 
 typedef struct mkey {
@@ -197,7 +229,8 @@ int vb_cover_prepare(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_optio
     if (set->n > UINT32_MAX - 1)
         return vb_error(ctx, VB_EINPUT_TOOLARGE, NULL, 0, "more than 2^32 - 2 spheres");
     vb_cover_tree *t = calloc(1, sizeof *t);
-    if (!t || bvh_build(set, &t->g) != VB_OK || near_radius(&t->g, &e->near) != 0) {
+    if (!t || bvh_build(set, &t->g) != VB_OK || bvh_pack(set, &t->g) != VB_OK ||
+        near_radius(&t->g, &e->near) != 0) {
         if (t)
             bvh_free(&t->g);
         free(t);
@@ -216,6 +249,8 @@ int vb_cover_prepare(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_optio
     e->rmax_all = g->rmax_all;
     e->tmax = o.tmax > 0.0 ? o.tmax : (double)INFINITY;
     e->host = set;
+    e->node8 = g->node8;
+    e->kxyzr = g->kxyzr;
     *tree = t;
     return VB_OK;
 }

@@ -85,6 +85,11 @@ typedef struct vbq_env {
     vbs_u32 T, min_level, max_level, enum_max;
 #ifndef __OPENCL_C_VERSION__
     const void *host;  /* the host's exact input for vbq_host_cluster (NULL: none) */
+    /* Host copies of the same doubles laid out for the walk's reads (NULL:
+     * none; the walk then reads the arrays above, as the kernels do):
+     * node8 8 per node (box lo xyz, hi xyz, rmax, 0), one cache line each;
+     * kxyzr 4 per tree position k (x, y, z, r of sphere ids[k]). */
+    const double *node8, *kxyzr;
 #endif
 } vbq_env;
 
@@ -113,6 +118,9 @@ VBS_FN void vbq_env_make(vbq_env *e, const VBS_GLOBAL double *x, const VBS_GLOBA
     e->min_level = min_level;
     e->max_level = max_level;
     e->enum_max = enum_max;
+#ifndef __OPENCL_C_VERSION__
+    e->node8 = e->kxyzr = 0; /* the kernels' arrays only (the group kernel's emulator) */
+#endif
 }
 
 /* Scratch of one cell, fixed capacities. */
@@ -221,6 +229,51 @@ VBS_FN void vbq_sub_set_lo(VBQ_SQ vbq_sub *sub, double LO)
  * every u of the part's box and every centre of the node's box (R_j <= its
  * R_max); the bounds carry a relative margin of 1e-9, far above the
  * rounding errors of these few operations. */
+/* The node and sphere tests over the four parts in one pass
+ * (vbq_walk_node4, vbq_walk_parts4) instead of one part after the other:
+ * on the host with GCC's and Clang's vectors (AVX2 in cover_cell_avx2.c,
+ * two SSE2 halves in the plain build), where __attribute__ is not defined
+ * away (the group kernel's emulator, tests/gpu/cover_wg_emu.c, compiles
+ * the kernels' code as C and takes the scalar loops); in OpenCL with
+ * double4 where the build defines VBQ_WALK_V4_CL (the work-item kernel on
+ * CPU devices, gpu/cover_ocl.c; a GPU lane would do four parts' work).
+ * Lane g computes what the scalar code computes for part g, operation by
+ * operation (no contraction on either side), and a node or sphere passes
+ * when some lane passes: the same answers. */
+#if VBQ_NSUB == 4 && (defined(__OPENCL_C_VERSION__) ? defined(VBQ_WALK_V4_CL)              \
+                                                   : defined(__GNUC__) && !defined(__attribute__))
+#define VBQ_WALK_V4 1
+#ifdef __OPENCL_C_VERSION__
+typedef double4 vbq_v4;
+typedef long4 vbq_m4;
+#define VBQ_V4(a, b, c, d) ((double4)((a), (b), (c), (d)))
+#define VBQ_AS_V4(m) as_double4(m)
+#define VBQ_AS_M4(x) as_long4(x)
+#define VBQ_M4_ANY(m) any(m)
+#define VBQ_M4_ALL(m) all(m)
+#else
+typedef double vbq_v4 __attribute__((vector_size(32)));
+typedef long long vbq_m4 __attribute__((vector_size(32)));
+#define VBQ_V4(a, b, c, d) ((vbq_v4){(a), (b), (c), (d)})
+#define VBQ_AS_V4(m) ((vbq_v4)(m))
+#define VBQ_AS_M4(x) ((vbq_m4)(x))
+#define VBQ_M4_ANY(m) (((m)[0] | (m)[1] | (m)[2] | (m)[3]) != 0)
+#define VBQ_M4_ALL(m) (((m)[0] & (m)[1] & (m)[2] & (m)[3]) != 0)
+#endif
+#define VBQ_V4_ALL(x) VBQ_V4((x), (x), (x), (x))
+/* x where m is set, else y (a lane's mask: all ones or all zeros; a macro,
+ * as a host function returning a vector would change the ABI between
+ * builds). */
+#define VBQ_V4_PICK(m, x, y) VBQ_AS_V4((VBQ_AS_M4(x) & (m)) | (VBQ_AS_M4(y) & ~(m)))
+/* |x|: the sign bits cleared. */
+#define VBQ_V4_ABS(x) VBQ_AS_V4(VBQ_AS_M4(x) & VBQ_V4M_ALL(0x7fffffffffffffffLL))
+#ifdef __OPENCL_C_VERSION__
+#define VBQ_V4M_ALL(k) ((long4)(k))
+#else
+#define VBQ_V4M_ALL(k) ((vbq_m4){(k), (k), (k), (k)})
+#endif
+#endif
+
 typedef struct vbq_walk {
     double c[3], ri;
     double rq0, rq1;
@@ -228,7 +281,37 @@ typedef struct vbq_walk {
     const VBQ_SQ vbq_sub *sub;   /* the parts (nsub of them) */
     vbs_u32 i, nsub;
     vbs_u32 ord[VBQ_NSUB];       /* the parts by increasing LO (ties by index) */
+#ifdef VBQ_WALK_V4
+    /* The parts side by side for vbq_walk_node4, made once per walk
+     * (vbq_walk_make) from part g's box and sdist: the ends of the box on
+     * each axis, sdist times them, sdist. */
+    vbq_v4 pu0[3], pu1[3], pt0[3], pt1[3], psd;
+    /* ... and for vbq_walk_parts4: the centre of its box, its magnitude,
+     * the box's half-widths, LO. */
+    vbq_v4 pm[3], pam[3], ph[3], plo;
+#endif
 } vbq_walk;
+
+
+VBS_FN void vbq_walk_axis(const vbq_walk *w, vbs_u32 q, int a, double sd, double *u0,
+                          double *u1, double *t0, double *t1)
+{
+#ifndef __OPENCL_C_VERSION__
+    (void)sd;
+    *u0 = w->pu0[q][a];
+    *u1 = w->pu1[q][a];
+    *t0 = w->pt0[q][a];
+    *t1 = w->pt1[q][a];
+#else
+    const VBQ_SQ vbq_sub *sg = &w->sub[w->ord[q]];
+    *u0 = sg->m[a] - sg->h[a];
+    *u1 = sg->m[a] + sg->h[a];
+    if (sd < (double)INFINITY) {
+        *t0 = sd * *u0;
+        *t1 = sd * *u1;
+    }
+#endif
+}
 
 /* A walk from base sphere i over the ring (rq0, rq1], through the nsub
  * parts sub[] (nsub = 0: every sphere of the ring passes; sub unused). */
@@ -257,13 +340,77 @@ VBS_FN void vbq_walk_make(const vbq_env *e, vbs_u32 i, double rq0, double rq1,
         }
         w->ord[p] = g;
     }
+#ifdef VBQ_WALK_V4
+    if (nsub == VBQ_NSUB) {
+        double u0[3][4], u1[3][4], t0[3][4], t1[3][4], sd[4];
+        for (vbs_u32 g = 0u; g < 4u; g++) {
+            sd[g] = sub[g].sdist;
+            for (int a = 0; a < 3; a++) {
+                u0[a][g] = sub[g].m[a] - sub[g].h[a];
+                u1[a][g] = sub[g].m[a] + sub[g].h[a];
+                t0[a][g] = sd[g] < (double)INFINITY ? sd[g] * u0[a][g] : 0.0;
+                t1[a][g] = sd[g] < (double)INFINITY ? sd[g] * u1[a][g] : 0.0;
+            }
+        }
+        for (int a = 0; a < 3; a++) {
+            w->pu0[a] = VBQ_V4(u0[a][0], u0[a][1], u0[a][2], u0[a][3]);
+            w->pu1[a] = VBQ_V4(u1[a][0], u1[a][1], u1[a][2], u1[a][3]);
+            w->pt0[a] = VBQ_V4(t0[a][0], t0[a][1], t0[a][2], t0[a][3]);
+            w->pt1[a] = VBQ_V4(t1[a][0], t1[a][1], t1[a][2], t1[a][3]);
+            w->pm[a] = VBQ_V4(sub[0].m[a], sub[1].m[a], sub[2].m[a], sub[3].m[a]);
+            w->ph[a] = VBQ_V4(sub[0].h[a], sub[1].h[a], sub[2].h[a], sub[3].h[a]);
+            w->pam[a] = VBQ_V4_ABS(w->pm[a]);
+        }
+        w->psd = VBQ_V4(sd[0], sd[1], sd[2], sd[3]);
+        w->plo = VBQ_V4(sub[0].LO, sub[1].LO, sub[2].LO, sub[3].LO);
+    }
+#endif
 }
+
+#ifdef VBQ_WALK_V4
+/* The parts' half of vbq_walk_node on the host: the four parts in the
+ * lanes of one pass instead of one after the other, with no branch per
+ * part. Each lane rounds exactly as the loop below does for its part (the
+ * same operations in the same order, -ffp-contract=off), and the node
+ * passes when some lane passes: the same answer, whatever the order the
+ * loop asks the parts in. */
+VBS_FN int vbq_walk_node4(const vbq_walk *w, const double b0[3], const double b1[3],
+                          double slack, double mag)
+{
+    vbq_v4 zero = VBQ_V4_ALL(0.0), best = zero, bb2 = zero;
+    for (int a = 0; a < 3; a++) {
+        vbq_v4 c0 = VBQ_V4_ALL(b0[a]), c1 = VBQ_V4_ALL(b1[a]);
+        vbq_v4 p0 = w->pu0[a] * c0, p1 = w->pu0[a] * c1, p2 = w->pu1[a] * c0,
+               p3 = w->pu1[a] * c1;
+        vbq_v4 mx = VBQ_V4_PICK(p0 > p1, p0, p1);
+        mx = VBQ_V4_PICK(p2 > mx, p2, mx);
+        mx = VBQ_V4_PICK(p3 > mx, p3, mx);
+        best += mx;
+        vbq_v4 gp = VBQ_V4_PICK(c0 > w->pt1[a], c0 - w->pt1[a],
+                                VBQ_V4_PICK(w->pt0[a] > c1, w->pt0[a] - c1, zero));
+        bb2 += gp * gp;
+    }
+    double lim = -1e-9 * (mag + VBS_FABS(slack) + 1e-300);
+    vbq_v4 s4 = VBQ_V4_ALL(slack), m4 = VBQ_V4_ALL(mag), inf = VBQ_V4_ALL((double)INFINITY);
+    vbq_v4 reach = (w->psd + s4) * (1.0 + 1e-9) + 1e-9 * (m4 + w->psd);
+    /* The scalar loop's own comparisons (a NaN of an unbounded walk fails
+     * each of them alike). */
+    vbq_m4 fail = (best + s4 < VBQ_V4_ALL(lim)) |
+                  ((w->psd < inf) & ((reach < zero) | (bb2 > reach * reach)));
+    return !VBQ_M4_ALL(fail);
+}
+#endif
 
 /* Can node nd hold a sphere that passes the walk? */
 VBS_FN int vbq_walk_node(const vbq_env *e, const vbq_walk *w, vbs_u32 nd)
 {
+#ifndef __OPENCL_C_VERSION__
+    const double *bx = e->node8 ? e->node8 + 8u * nd : e->box + 6u * nd;
+    double slack = (e->node8 ? bx[6] : e->rmax[nd]) - w->ri;
+#else
     const VBS_GLOBAL double *bx = e->box + 6u * nd;
     double slack = e->rmax[nd] - w->ri;
+#endif
     double b0[3], b1[3], mag = 0.0, dmax2 = 0.0, dmin2 = 0.0;
     for (int a = 0; a < 3; a++) {
         b0[a] = bx[a] - w->c[a];
@@ -278,6 +425,10 @@ VBS_FN int vbq_walk_node(const vbq_env *e, const vbq_walk *w, vbs_u32 nd)
         return 0;
     if (w->nsub == 0u)
         return 1;
+#ifdef VBQ_WALK_V4
+    if (w->nsub == VBQ_NSUB)
+        return vbq_walk_node4(w, b0, b1, slack, mag);
+#endif
     for (vbs_u32 q = 0u; q < w->nsub; q++) {
         const VBQ_SQ vbq_sub *sg = &w->sub[w->ord[q]];
         double best = 0.0, bb2 = 0.0;
@@ -315,6 +466,14 @@ VBS_FN int vbq_walk_ring(const vbq_env *e, const vbq_walk *w, vbs_u32 k, vbs_u32
     *j = e->ids[k];
     if (*j == w->i)
         return 0;
+#ifndef __OPENCL_C_VERSION__
+    if (e->kxyzr) {
+        const double *p = e->kxyzr + 4u * k;
+        double dx = p[0] - w->c[0], dy = p[1] - w->c[1], dz = p[2] - w->c[2];
+        double d2 = dx * dx + dy * dy + dz * dz;
+        return !((w->rq0 > 0.0 && !(d2 > w->rq0 * w->rq0)) || d2 > w->rq1 * w->rq1);
+    }
+#endif
     double dx = e->x[*j] - w->c[0], dy = e->y[*j] - w->c[1], dz = e->z[*j] - w->c[2];
     double d2 = dx * dx + dy * dy + dz * dz;
     return !((w->rq0 > 0.0 && !(d2 > w->rq0 * w->rq0)) || d2 > w->rq1 * w->rq1);
@@ -322,10 +481,33 @@ VBS_FN int vbq_walk_ring(const vbq_env *e, const vbq_walk *w, vbs_u32 k, vbs_u32
 
 /* Does a sphere of the ring with record rec pass the walk's parts? With
  * parts, it is kept when its enclosure reaches LO_g in some part g. */
+#ifdef VBQ_WALK_V4
+/* vbq_walk_parts on the host: vbq_eval of the record over the four parts
+ * in the lanes of one pass, each lane the same operations in the same
+ * order as vbq_eval for its part; kept when some lane's upper end reaches
+ * its part's LO. */
+VBS_FN int vbq_walk_parts4(const vbq_walk *w, const vbq_nb *rec)
+{
+    vbq_v4 ax = VBQ_V4_ALL(rec->ax), ay = VBQ_V4_ALL(rec->ay), az = VBQ_V4_ALL(rec->az);
+    vbq_v4 aax = VBQ_V4_ABS(ax), aay = VBQ_V4_ABS(ay), aaz = VBQ_V4_ABS(az);
+    vbq_v4 b = VBQ_V4_ALL(rec->b), err = VBQ_V4_ALL(rec->err);
+    vbq_v4 F = ((ax * w->pm[0] + ay * w->pm[1]) + az * w->pm[2]) + b;
+    vbq_v4 G = ((aax * w->pam[0] + aay * w->pam[1]) + aaz * w->pam[2]) + VBQ_V4_ABS(b);
+    vbq_v4 R = (((aax * w->ph[0] + aay * w->ph[1]) + aaz * w->ph[2]) + err) +
+               VBQ_C * (G + VBQ_V4_ABS(F));
+    R = R * (1.0 + VBQ_C) + VBQ_TINY;
+    return VBQ_M4_ANY(F + R >= w->plo);
+}
+#endif
+
 VBS_FN int vbq_walk_parts(const vbq_walk *w, const vbq_nb *rec)
 {
     if (w->nsub == 0u)
         return 1;
+#ifdef VBQ_WALK_V4
+    if (w->nsub == VBQ_NSUB)
+        return vbq_walk_parts4(w, rec);
+#endif
     for (vbs_u32 q = 0u; q < w->nsub; q++) {
         vbs_u32 g = w->ord[q];
         double m[3] = {w->sub[g].m[0], w->sub[g].m[1], w->sub[g].m[2]};
@@ -365,6 +547,12 @@ static inline int vbq_walk_sphere_memo(const vbq_env *e, const vbq_arena *ar,
     vbs_u32 *tag = ar->memo_tag + 2u * s;
     if (tag[0] == k && tag[1] == w->i + 1u) {
         *rec = ar->memo[s];
+    } else if (e->kxyzr) {
+        const double *p = e->kxyzr + 4u * k;
+        vbq_nb_make(w->c[0], w->c[1], w->c[2], w->ri, p[0], p[1], p[2], p[3], j, rec);
+        ar->memo[s] = *rec;
+        tag[0] = k;
+        tag[1] = w->i + 1u;
     } else {
         vbq_nb_make(w->c[0], w->c[1], w->c[2], w->ri, e->x[j], e->y[j], e->z[j], e->r[j], j,
                     rec);

@@ -18,8 +18,11 @@
 #                             cover, certification and the rest by function
 # OUTDIR/runs.tsv: one row per run (input, round, tool, device, cpu_s,
 # user_s, sys_s, wall_s, max_rss_kib, vertices, quadruples,
-# certify_after_s); OUTDIR/summary.tsv: per input, tool and device the
-# median and range of cpu_s and the ratio to Voronota's median; the vertex
+# certify_after_s, load1, and vorball's CPU seconds per process stage from
+# --stats: read, validate, run (cover and certification), complete,
+# write); OUTDIR/summary.tsv: per input, tool and device the
+# median and range of cpu_s, the ratio to Voronota's median and the
+# stages' medians; the vertex
 # files of every vorball binary and device are compared byte for byte
 # (provenance lines aside: '# tool' and '# options') and the verdict is
 # the last column; OUTDIR/perf_split.tsv with PERF=1. The machine's load
@@ -36,7 +39,10 @@ VORBALLS=${VORBALLS:-"vorball=$here/../../build/cli/vorball"}
 DEVICES=${DEVICES:-"ref cpu"}
 mkdir -p "$OUT" || exit 3
 runs=$OUT/runs.tsv
-printf 'input\tround\ttool\tdevice\tcpu_s\tuser_s\tsys_s\twall_s\tmax_rss_kib\tvertices\tquadruples\tcertify_after_s\tload1\n' > "$runs"
+stages="read validate run complete write"
+printf 'input\tround\ttool\tdevice\tcpu_s\tuser_s\tsys_s\twall_s\tmax_rss_kib\tvertices\tquadruples\tcertify_after_s\tload1' > "$runs"
+for st in $stages; do printf '\t%s_cpu_s' "$st" >> "$runs"; done
+echo >> "$runs"
 
 # timed RUNFILE -- CMD...: /usr/bin/time -v of CMD, its fields printed tab-separated
 timed() {
@@ -61,10 +67,14 @@ for in in "$@"; do
                 t=$(POCL_MAX_PTHREAD_COUNT=1 POCL_CPU_MAX_CU_COUNT=1 timed "$base.time" -- \
                     "$bin" vertices --device "$dev" --threads 1 --stats -o "$base.tsv" "$in" \
                     2> "$base.stats")
-                printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$name" "$r" "$tool" "$dev" "$t" \
+                printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s' "$name" "$r" "$tool" "$dev" "$t" \
                     "$(stat_of "$base.stats" certified_vertices)" \
                     "$(stat_of "$base.stats" cover_quadruples)" \
                     "$(stat_of "$base.stats" certify_after_s)" "$load" >> "$runs"
+                for st in $stages; do
+                    printf '\t%s' "$(stat_of "$base.stats" "process_${st}_cpu_s")" >> "$runs"
+                done
+                echo >> "$runs"
             done
         done
         if [ "$VORONOTA" != - ]; then
@@ -94,7 +104,11 @@ out = sys.argv[2]
 by = {}
 for r in rows:
     by.setdefault((r[0], r[2], r[3]), []).append(float(r[4]))
-print("input\ttool\tdevice\truns\tcpu_s_median\tcpu_s_min\tcpu_s_max\tratio_to_voronota\tload1\tidentity")
+head = open(sys.argv[1]).readline().rstrip("\n").split("\t")
+stage_cols = [k for k, h in enumerate(head) if h.endswith("_cpu_s")]
+print("\t".join(["input", "tool", "device", "runs", "cpu_s_median", "cpu_s_min", "cpu_s_max",
+                 "ratio_to_voronota", "load1", "identity"] +
+                [head[k] + "_median" for k in stage_cols]))
 for (inp, tool, dev), v in by.items():
     vor = by.get((inp, "voronota", "1 thread"))
     ratio = "%.3f" % (statistics.median(v) / statistics.median(vor)) if vor else "-"
@@ -103,7 +117,10 @@ for (inp, tool, dev), v in by.items():
     print("\t".join([inp, tool, dev, str(len(v)), "%.2f" % statistics.median(v),
                      "%.2f" % min(v), "%.2f" % max(v), ratio,
                      "%.1f-%.1f" % (min(loads), max(loads)),
-                     ident if tool != "voronota" else "-"]))
+                     ident if tool != "voronota" else "-"] +
+                    ["%.3f" % statistics.median(float(r[k]) for r in rows
+                                                if (r[0], r[2], r[3]) == (inp, tool, dev))
+                     if tool != "voronota" else "-" for k in stage_cols]))
 EOF
 cat "$OUT/summary.tsv"
 

@@ -119,7 +119,8 @@ awk -F'\t' '
     fail "--stats process stages do not add up: $(grep '^process_\|^run_s' "$work/st.err" | tr '\n' ' ')"
 # The program binary cache: written on the first OpenCL run, used by the
 # next; a damaged binary falls back to the source build, same bytes. (On
-# PoCL vorball keeps binaries only when VORBALL_PROGRAM_CACHE=1 asks.)
+# PoCL vorball keeps binaries other than cover.cl's only when
+# VORBALL_PROGRAM_CACHE=1 asks.)
 if "$vorball" devices 2>/dev/null | grep -q 'CPU'; then
     rm -rf "$work/cache"
     for k in 1 2 3; do
