@@ -144,6 +144,19 @@ typedef struct env_ctx {
     vbs_u32 exact_calls;
 } env_ctx;
 
+/* fn (mpz_init or mpz_clear) on every integer of the context but the rows. */
+static void env_ctx_each(env_ctx *c, void (*fn)(mpz_ptr))
+{
+    for (int a = 0; a < 4; a++) {
+        fn(c->X.q[a]);
+        fn(c->C[a]);
+    }
+    for (int a = 0; a < 6; a++)
+        fn(c->m2[a]);
+    fn(c->X.t);
+    fn(c->acc);
+}
+
 /* The cofactors of rows j, k, l along the first row of det4[R0; j; k; l]:
  * C_x = (-1)^x det3(the three rows without column x), each det3 expanded
  * along row j over the 2x2 minors of rows k, l. */
@@ -370,14 +383,7 @@ int vbq_envelope_decide(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, 
     qs[4][av] = -1.0;
     qs[4][ax] = v1 * sgn;
     env_ctx c = {.s = s, .i = i, .n = keep, .L = L};
-    for (int a = 0; a < 4; a++)
-        mpz_init(c.X.q[a]);
-    mpz_init(c.X.t);
-    mpz_init(c.acc);
-    for (int a = 0; a < 4; a++)
-        mpz_init(c.C[a]);
-    for (int a = 0; a < 6; a++)
-        mpz_init(c.m2[a]);
+    env_ctx_each(&c, mpz_init);
     int rc = 1;
     vbs_u32 last = 0;
     for (vbs_u32 a = 0; a < no && rc == 1; a++)
@@ -393,19 +399,15 @@ int vbq_envelope_decide(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, 
     if (exact_calls)
         *exact_calls = c.exact_calls;
     env_exact_free(&c.X);
-    for (int a = 0; a < 4; a++)
-        mpz_clear(c.X.q[a]);
-    mpz_clear(c.X.t);
-    mpz_clear(c.acc);
-    for (int a = 0; a < 4; a++)
-        mpz_clear(c.C[a]);
-    for (int a = 0; a < 6; a++)
-        mpz_clear(c.m2[a]);
+    env_ctx_each(&c, mpz_clear);
     return rc;
 }
 
 int vbq_host_envelope(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i,
-                      const vbq_frame *fr, vbs_u32 top, vbs_u32 keep)
+                      const vbq_frame *fr, vbs_u32 top, vbs_u32 keep, vbs_u32 owned,
+                      int closed)
 {
+    if (!vbq_envelope_due(e, fr, ar->nb, ar->lab + top, keep, owned, 1, closed))
+        return 0;
     return vbq_envelope_decide(e, ar, o, i, fr, top, keep, NULL);
 }

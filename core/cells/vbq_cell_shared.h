@@ -344,13 +344,17 @@ int vbq_host_cluster(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs
                      const vbs_u32 *ids, vbs_u32 n);
 
 /* The exact decision of a stalled near-tie chain on the host (core/cells/
- * cover_envelope.c; vbq_envelope_due says when): adds the quadruples of
- * cell i's vertices in the directions of patch fr, whose surviving labels
- * are lab[top .. top + keep), and returns 1; returns 0 when it cannot
- * decide (no exact input, radii that differ as decimals: the patch is
- * subdivided as before), -1 when an arena ran out (o->status set). */
+ * cover_envelope.c) where vbq_envelope_due says so (owned of the keep
+ * surviving labels lab[top .. top + keep) above i, closed, act 1): adds the
+ * quadruples of cell i's vertices in the directions of patch fr and returns
+ * 1; returns 0 when it is not due or cannot decide (no exact input, radii
+ * that differ as decimals: the patch is subdivided as before), -1 when an
+ * arena ran out (o->status set). Out of line and on a copy of the frame:
+ * with the loop's own frame's address taken, the loop kept it in memory and
+ * EXTREMESET's Polysized set took 5 % more CPU, the decision never acting. */
 int vbq_host_envelope(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i,
-                      const vbq_frame *fr, vbs_u32 top, vbs_u32 keep);
+                      const vbq_frame *fr, vbs_u32 top, vbs_u32 keep, vbs_u32 owned,
+                      int closed);
 
 /* vbq_host_envelope that also counts the exact signs it took in
  * *exact_calls (NULL: not counted; the tests compare it). */
@@ -576,14 +580,18 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
             }
 #endif
         }
-        /* A stalled near-tie chain: its envelope decided exactly at once
-         * (on the host; a kernel hands the cell to the host). */
-        if (!cluster && vbq_envelope_due(e, &fr, ar->nb, ar->lab + top, keep, owned, act, closed)) {
+        /* A stalled near-tie chain (vbq_envelope_due; its first tests
+         * here, the rest out of this loop): its envelope decided exactly at
+         * once, on the host (a kernel hands the cell to the host). */
+        if (!cluster && act == 1 && keep == fr.len && owned > VBQ_CLUSTER_OWNED) {
 #ifdef __OPENCL_C_VERSION__
-            o->status = VBQ_CLUSTER;
-            return;
+            if (vbq_envelope_due(e, &fr, ar->nb, ar->lab + top, keep, owned, act, closed)) {
+                o->status = VBQ_CLUSTER;
+                return;
+            }
 #else
-            int he = vbq_host_envelope(e, ar, o, i, &fr, top, keep);
+            vbq_frame fc = fr; /* a copy: fr's address never escapes the loop */
+            int he = vbq_host_envelope(e, ar, o, i, &fc, top, keep, owned, closed);
             if (he < 0)
                 return;
             if (he > 0) {
