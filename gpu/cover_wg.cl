@@ -441,6 +441,12 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
                     sh[S_STATUS] = VBQ_CLUSTER;
                 act = 0;
             }
+            /* a stalled near-tie chain: the host decides it (vbq_envelope_due) */
+            if (vbq_envelope_due(&e, &fr, nb, lab + top, keep, owned, act, closed)) {
+                if (lane == 0u)
+                    sh[S_STATUS] = VBQ_CLUSTER;
+                act = 0;
+            }
             if (lane == 0u && act >= 2 && !vbq_leaf_quads(&ar, &o, i, top, keep, act, fr.level))
                 sh[S_STATUS] = o.status;
             if (lane == 0u && act == 1) {

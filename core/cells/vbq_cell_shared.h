@@ -258,6 +258,34 @@ VBS_FN int vbq_tie_cluster(const VBS_GLOBAL vbq_nb *nb, const VBS_GLOBAL vbs_u32
     return vbq_looks_flat(nb, lab, keep, i);
 }
 
+/* Is a closed patch that would subdivide (act 1) a stalled near-tie chain
+ * whose ownership the host decides exactly (vbq_host_envelope,
+ * core/cells/cover_envelope.c): its list excluded nothing for
+ * VBQ_ENV_STALL levels, it has more than VBQ_CLUSTER_OWNED (fewer enumerate
+ * cheaply once stalled) and at most VBQ_ENV_OWNED owned labels, at most
+ * VBQ_ENV_KEEP in all,
+ * every label's record has b exactly 0 and a finite error (spheres of the
+ * base's radius in doubles; the host checks the decimals) and every vertex
+ * is sought (no tangent-radius floor). The same answer on every backend:
+ * the kernels hand such a cell to the host (status VBQ_CLUSTER, like a tie
+ * cluster) rather than decide it, so every backend writes the host's
+ * quadruples for it. */
+VBS_FN int vbq_envelope_due(const vbq_env *e, const vbq_frame *fr, const VBS_GLOBAL vbq_nb *nb,
+                            const VBS_GLOBAL vbs_u32 *lab, vbs_u32 keep, vbs_u32 owned, int act,
+                            int closed)
+{
+    if (!closed || act != 1 || owned <= VBQ_CLUSTER_OWNED || owned > VBQ_ENV_OWNED ||
+        keep > VBQ_ENV_KEEP || keep != fr->len || fr->stall + 1u < VBQ_ENV_STALL ||
+        e->tmax < (double)INFINITY)
+        return 0;
+    for (vbs_u32 a = 0u; a < keep; a++) {
+        vbq_nb r = nb[lab[a]];
+        if (r.b != 0.0 || !(r.err < (double)INFINITY))
+            return 0;
+    }
+    return 1;
+}
+
 /* The root patches of a task: all of them (VBQ_ALL_ROOTS), or root r
  * alone (task (r << 3)), or child c (0..3) of root r alone (task (r << 3) |
  * (c + 1)): the root's own evaluation is the same in every task, and only
@@ -314,6 +342,24 @@ VBS_FN double vbq_hi_again(const vbq_arena *ar, vbs_u32 k, const vbq_nb *rec, co
  * out (o->status set). */
 int vbq_host_cluster(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i,
                      const vbs_u32 *ids, vbs_u32 n);
+
+/* The exact decision of a stalled near-tie chain on the host (core/cells/
+ * cover_envelope.c) where vbq_envelope_due says so (owned of the keep
+ * surviving labels lab[top .. top + keep) above i, closed, act 1): adds the
+ * quadruples of cell i's vertices in the directions of patch fr and returns
+ * 1; returns 0 when it is not due or cannot decide (no exact input, radii
+ * that differ as decimals: the patch is subdivided as before), -1 when an
+ * arena ran out (o->status set). Out of line and on a copy of the frame:
+ * with the loop's own frame's address taken, the loop kept it in memory and
+ * EXTREMESET's Polysized set took 5 % more CPU, the decision never acting. */
+int vbq_host_envelope(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i,
+                      const vbq_frame *fr, vbs_u32 top, vbs_u32 keep, vbs_u32 owned,
+                      int closed);
+
+/* vbq_host_envelope that also counts the exact signs it took in
+ * *exact_calls (NULL: not counted; the tests compare it). */
+int vbq_envelope_decide(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i,
+                        const vbq_frame *fr, vbs_u32 top, vbs_u32 keep, vbs_u32 *exact_calls);
 
 /* vbq_host_cluster over the owned labels of the surviving list
  * lab[top .. top + keep) (their ids copied above it). */
@@ -529,6 +575,26 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
             if (hc < 0)
                 return;
             if (hc > 0) {
+                o->leaves++;
+                continue;
+            }
+#endif
+        }
+        /* A stalled near-tie chain (vbq_envelope_due; its first tests
+         * here, the rest out of this loop): its envelope decided exactly at
+         * once, on the host (a kernel hands the cell to the host). */
+        if (!cluster && act == 1 && keep == fr.len && owned > VBQ_CLUSTER_OWNED) {
+#ifdef __OPENCL_C_VERSION__
+            if (vbq_envelope_due(e, &fr, ar->nb, ar->lab + top, keep, owned, act, closed)) {
+                o->status = VBQ_CLUSTER;
+                return;
+            }
+#else
+            vbq_frame fc = fr; /* a copy: fr's address never escapes the loop */
+            int he = vbq_host_envelope(e, ar, o, i, &fc, top, keep, owned, closed);
+            if (he < 0)
+                return;
+            if (he > 0) {
                 o->leaves++;
                 continue;
             }

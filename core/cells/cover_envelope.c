@@ -1,0 +1,413 @@
+/* The exact decision of a stalled near-tie chain (vbq_host_envelope,
+ * vb_cover_shared.h): a closed patch of cell i whose surviving labels stopped
+ * separating (a jittered crystal's face ball: ~30 labels tie with infinity
+ * at its outward normal to 1e-10 and would separate only ~22 levels down).
+ * Instead of subdividing, the patch's vertices are decided from the exact
+ * input, and the chain ends.
+ *
+ * What it covers: every label of the patch has the base's radius (the
+ * decimals are compared; b = 0 in every record) and every vertex is sought
+ * (no tangent-radius floor). Anything else returns 0 and the patch is
+ * subdivided as before.
+ *
+ * Why it is exact and complete. With equal radii f_j(u) = a_j . u, a_j =
+ * d_j / |d_j|^2 (vb_cover_shared.h). The patch is closed: every sphere
+ * outside its list L, and every label its ancestors dropped, is strictly
+ * below the envelope at every direction of the patch, so there the
+ * envelope is max(0, max_{j in L} a_j . u) and it is attained only by
+ * labels of L or by 0 ("infinity"). A vertex of cell i with smallest member
+ * i in a direction W of the patch is a point where labels of L tie at the
+ * largest value, which is > 0; the tied labels' points a_t span an affine
+ * plane at least (else they tie along a great circle and W is no isolated
+ * point), so three of them, j, k, l, all owned (ids > i), are affinely
+ * independent, and W is parallel to Y = (a_k - a_j) x (a_l - a_j) != 0;
+ * the quadruple (i, j, k, l) solves to W and the certifier finds every
+ * other member. So it suffices to write, for every owned triple, the
+ * quadruple exactly when its tie direction on the patch's face is a vertex
+ * of the envelope there:
+ *   W = sigma Y with sigma = sign(n . Y) != 0 (n the face's axis; the face
+ *       is w = n + s e_u + t e_v, so W is on the face's cone iff n . W > 0),
+ *   (s, t) = (e_u . Y, e_v . Y) / (n . Y) in [u0, u1] x [v0, v1]:
+ *       sigma Q . Y >= 0 for Q = e_u - u0 n, u1 n - e_u, e_v - v0 n,
+ *       v1 n - e_v,
+ *   a_j . W > 0 (the value is positive: not a vertex at infinity), and
+ *   no label m of L beats them: sigma (a_m - a_j) . Y <= 0.
+ * Every test is the sign of a triple product det[X; a_k - a_j; a_l - a_j]
+ * with X a dyadic vector Q or a difference a_m - a_j (a_j itself for the
+ * value). Dropping every triple that fails a test drops only triples whose
+ * tie point is off the patch or under the envelope; a triple that passes
+ * is a vertex of the envelope in the patch, and may also be written by the
+ * patch next to it (the cell's list is unique). What subdivision would have
+ * written on the way down is a superset of these (its leaves keep every
+ * label that may be largest in them); the certifier refutes the others,
+ * so the vertices written are the same, and fewer quadruples reach it.
+ *
+ * The signs: a filter first. The records hold a~ with |a~ - a|_1 <= err
+ * (vbq_nb_make). A row X~ = fl(a~_m - a~_j) is within eX = err_m + err_j +
+ * 1.01 u |X~|_1 of X in L1 (each component rounds once, relative u); a Q
+ * row is exact (components 0, +-1, +-u0: dyadic). For |det(A, B, C)| <=
+ * |A|_1 |B|_1 |C|_1, multilinearity gives |det(X, Y, Z) - det(X~, Y~, Z~)|
+ * <= (nX + eX)(nY + eY)(nZ + eZ) - nX nY nZ (n the L1 norms of the
+ * computed rows), and computing det(X~, Y~, Z~) as X~ . (Y~ x Z~) errs by
+ * at most 5.01 u sum |x y z| <= 5.01 u nX nY nZ (cross product gamma_2,
+ * dot gamma_3). The bound below takes 8 u and a factor 1 + 1e-12 for its
+ * own roundings (a dozen, of non-negative terms). A sign is taken when
+ * |det~| exceeds the bound; otherwise the exact sign: det[X; a_k - a_j;
+ * a_l - a_j] = -det4[(x0, X'); (1, a_j); (1, a_k); (1, a_l)] with X = X'
+ * (x0 = 0) or X = a_m - a_j (x0 = 1, X' = a_m), and scaling rows and
+ * columns by positive numbers keeps the sign: a label's row is (N_j, D_j)
+ * with D_j the integer differences of the decimals scaled to a common
+ * exponent and N_j = |D_j|^2 > 0, infinity's is (1, 0, 0, 0) and a Q row is
+ * (0, 2^p Q), integers in GMP. */
+#include <gmp.h>
+#include <math.h>
+#include <stdlib.h>
+
+#include "vb_cover_shared.h"
+#include "vb_decimal_mpz.h"
+
+/* One label of the patch in doubles, and its exact integer row (made when
+ * the first exact sign is asked). */
+typedef struct env_lab {
+    double a[3], err;
+    vbs_u32 id;
+} env_lab;
+
+typedef struct env_exact {
+    int made;
+    vbs_u32 n;
+    mpz_t (*row)[4]; /* n + 1 rows: the labels', then infinity's */
+    mpz_t q[4], t;
+} env_exact;
+
+/* The integer rows (N_j, D_j) of the labels of the patch (see the top). */
+static int env_exact_make(env_exact *X, const vb_sphere_set *s, vbs_u32 i, const env_lab *L,
+                          vbs_u32 n)
+{
+    const vb_decimal *col[3] = {s->ex, s->ey, s->ez};
+    int32_t emin = s->ex[i].exp10;
+    for (vbs_u32 k = 0; k <= n; k++) {
+        vbs_u32 j = k < n ? L[k].id : i;
+        for (int a = 0; a < 3; a++)
+            if (col[a][j].exp10 < emin)
+                emin = col[a][j].exp10;
+    }
+    X->row = malloc((size_t)(n + 1) * sizeof *X->row);
+    if (!X->row)
+        return 0;
+    X->n = n;
+    mpz_t ci[3];
+    for (int a = 0; a < 3; a++)
+        mpz_init(ci[a]);
+    for (int a = 0; a < 3; a++)
+        vb_decimal_to_mpz(ci[a], col[a][i], emin, X->t);
+    for (vbs_u32 k = 0; k <= n; k++) {
+        for (int c = 0; c < 4; c++)
+            mpz_init(X->row[k][c]);
+        if (k == n) {
+            mpz_set_ui(X->row[k][0], 1);
+            continue;
+        }
+        for (int a = 0; a < 3; a++) {
+            vb_decimal_to_mpz(X->row[k][a + 1], col[a][L[k].id], emin, X->t);
+            mpz_sub(X->row[k][a + 1], X->row[k][a + 1], ci[a]);
+            mpz_addmul(X->row[k][0], X->row[k][a + 1], X->row[k][a + 1]);
+        }
+    }
+    for (int a = 0; a < 3; a++)
+        mpz_clear(ci[a]);
+    X->made = 1;
+    return 1;
+}
+
+static void env_exact_free(env_exact *X)
+{
+    if (!X->made)
+        return;
+    for (vbs_u32 k = 0; k <= X->n; k++)
+        for (int c = 0; c < 4; c++)
+            mpz_clear(X->row[k][c]);
+    free(X->row);
+}
+
+/* The decision of one patch, and the exact data of the triple at hand:
+ * the cofactors C of the rows of j, k, l (det4[R0; j; k; l] = R0 . C) and
+ * their doubles (made at the triple's first exact sign). */
+typedef struct env_ctx {
+    const vb_sphere_set *s;
+    vbs_u32 i, n;
+    env_lab *L;
+    env_exact X;
+    int tri_made;
+    mpz_t C[4], m2[6], acc;
+    double c[4];
+    vbs_u32 exact_calls;
+} env_ctx;
+
+/* fn (mpz_init or mpz_clear) on every integer of the context but the rows. */
+static void env_ctx_each(env_ctx *c, void (*fn)(mpz_ptr))
+{
+    for (int a = 0; a < 4; a++) {
+        fn(c->X.q[a]);
+        fn(c->C[a]);
+    }
+    for (int a = 0; a < 6; a++)
+        fn(c->m2[a]);
+    fn(c->X.t);
+    fn(c->acc);
+}
+
+/* The cofactors of rows j, k, l along the first row of det4[R0; j; k; l]:
+ * C_x = (-1)^x det3(the three rows without column x), each det3 expanded
+ * along row j over the 2x2 minors of rows k, l. */
+static void env_tri_make(env_ctx *c, vbs_u32 j, vbs_u32 k, vbs_u32 l)
+{
+    /* m2 index of the column pair (a, b), a < b */
+    static const int mi[4][4] = {{-1, 0, 1, 2}, {0, -1, 3, 4}, {1, 3, -1, 5}, {2, 4, 5, -1}};
+    static const int pr[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+    static const int cols[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+    mpz_t *rk = c->X.row[k], *rl = c->X.row[l], *rj = c->X.row[j];
+    for (int p = 0; p < 6; p++) {
+        mpz_mul(c->m2[p], rk[pr[p][0]], rl[pr[p][1]]);
+        mpz_submul(c->m2[p], rk[pr[p][1]], rl[pr[p][0]]);
+    }
+    for (int x = 0; x < 4; x++) {
+        int a = cols[x][0], b = cols[x][1], d = cols[x][2];
+        mpz_mul(c->C[x], rj[a], c->m2[mi[b][d]]);
+        mpz_submul(c->C[x], rj[b], c->m2[mi[a][d]]);
+        mpz_addmul(c->C[x], rj[d], c->m2[mi[a][b]]);
+        if (x & 1)
+            mpz_neg(c->C[x], c->C[x]);
+        c->c[x] = mpz_get_d(c->C[x]);
+    }
+    c->tri_made = 1;
+}
+
+/* The exact sign of det[X; a_k - a_j; a_l - a_j] with X = a_m - a_j (m a
+ * label, or n for infinity: a = 0) when q is NULL, else X = q (exact
+ * doubles): -sign(R0 . C) (see the top). First in doubles: the factors are
+ * within 2u relative of the integers (mpz_get_d truncates; q is exact, and
+ * the positive scale 2^p of its row is left out), the four products and
+ * their sum add at most 4.01u, so 16u of the sum of the magnitudes is
+ * ample; then in integers. Returns 2 when it cannot be decided (no
+ * memory). */
+static int env_sign_exact(env_ctx *c, const double *q, vbs_u32 m, vbs_u32 j, vbs_u32 k, vbs_u32 l)
+{
+    c->exact_calls++;
+    if (!c->X.made && !env_exact_make(&c->X, c->s, c->i, c->L, c->n))
+        return 2;
+    if (!c->tri_made)
+        env_tri_make(c, j, k, l);
+    double r[4];
+    if (q) {
+        r[0] = 0.0;
+        for (int a = 0; a < 3; a++)
+            r[a + 1] = q[a];
+    } else {
+        for (int a = 0; a < 4; a++)
+            r[a] = mpz_get_d(c->X.row[m][a]);
+    }
+    double v = 0.0, g = 0.0;
+    for (int a = 0; a < 4; a++) {
+        v += r[a] * c->c[a];
+        g += fabs(r[a] * c->c[a]);
+    }
+    double b = 16.0 * VBQ_U * g * (1.0 + 1e-12) + VBQ_TINY;
+    if (isfinite(g) && (v > b || v < -b))
+        return v > b ? -1 : 1;
+    mpz_t *r0;
+    if (q) {
+        /* 2^p q in integers: a non-zero component is M 2^(ex - 53) with
+         * M = f 2^53 an integer (frexp), so p = max(53 - ex) makes every
+         * component an integer (they are 0, +-1 and +-u0). */
+        int ex[3], p = 0;
+        double f[3];
+        for (int a = 0; a < 3; a++) {
+            f[a] = frexp(q[a], &ex[a]);
+            if (q[a] != 0.0 && 53 - ex[a] > p)
+                p = 53 - ex[a];
+        }
+        for (int a = 0; a < 3; a++) {
+            mpz_set_d(c->X.q[a + 1], ldexp(f[a], 53));
+            if (q[a] != 0.0)
+                mpz_mul_2exp(c->X.q[a + 1], c->X.q[a + 1], (mp_bitcnt_t)(ex[a] - 53 + p));
+        }
+        mpz_set_ui(c->X.q[0], 0);
+        r0 = c->X.q;
+    } else {
+        r0 = c->X.row[m];
+    }
+    mpz_mul(c->acc, r0[0], c->C[0]);
+    for (int a = 1; a < 4; a++)
+        mpz_addmul(c->acc, r0[a], c->C[a]);
+    return -mpz_sgn(c->acc);
+}
+
+/* The filtered sign of X~ . Y (Y = dk~ x dl~) against its bound (see the
+ * top): nX, eX the L1 norm and error of X~; pyz = (nY + eY)(nZ + eZ), nyz =
+ * nY nZ, and eyz = pyz - nyz written as its non-negative terms. 0: not
+ * decided. */
+static int env_sign_filter(const double x[3], double nX, double eX, const double y[3], double pyz,
+                           double nyz, double eyz)
+{
+    double v = (x[0] * y[0] + x[1] * y[1]) + x[2] * y[2];
+    double b = (eX * pyz + nX * eyz + 8.0 * VBQ_U * nX * nyz) * (1.0 + 1e-12) + VBQ_TINY;
+    return v > b ? 1 : (v < -b ? -1 : 0);
+}
+
+static double env_n1(const double x[3])
+{
+    return (fabs(x[0]) + fabs(x[1])) + fabs(x[2]);
+}
+
+/* Is owned triple (j, k, l) a vertex of the envelope on the patch? 1 yes,
+ * 0 no, 2 undecided (out of memory). *last is the label that beat the last
+ * triple (tried first). */
+static int env_triple(env_ctx *c, vbs_u32 j, vbs_u32 k, vbs_u32 l, const double qs[5][3],
+                      vbs_u32 *last)
+{
+    const env_lab *L = c->L;
+    c->tri_made = 0;
+    double dk[3], dl[3], y[3];
+    for (int a = 0; a < 3; a++) {
+        dk[a] = L[k].a[a] - L[j].a[a];
+        dl[a] = L[l].a[a] - L[j].a[a];
+    }
+    y[0] = dk[1] * dl[2] - dk[2] * dl[1];
+    y[1] = dk[2] * dl[0] - dk[0] * dl[2];
+    y[2] = dk[0] * dl[1] - dk[1] * dl[0];
+    double nY = env_n1(dk), nZ = env_n1(dl);
+    double eY = (L[j].err + L[k].err) + 1.01 * VBQ_U * nY;
+    double eZ = (L[j].err + L[l].err) + 1.01 * VBQ_U * nZ;
+    double nyz = nY * nZ, eyz = (eY * nZ + nY * eZ) + eY * eZ, pyz = nyz + eyz;
+    /* sigma: the face's side of Y (qs[0] is n) */
+    int sg = env_sign_filter(qs[0], 1.0, 0.0, y, pyz, nyz, eyz);
+    if (!sg)
+        sg = env_sign_exact(c, qs[0], 0u, j, k, l);
+    if (sg == 2)
+        return 2;
+    if (sg == 0)
+        return 0;
+    /* the square: sigma Q . Y >= 0 for its four sides */
+    for (int e = 1; e < 5; e++) {
+        int v = env_sign_filter(qs[e], env_n1(qs[e]), 0.0, y, pyz, nyz, eyz);
+        if (!v)
+            v = env_sign_exact(c, qs[e], 0u, j, k, l);
+        if (v == 2)
+            return 2;
+        if (sg * v < 0)
+            return 0;
+    }
+    /* positive value: sigma a_j . Y > 0 */
+    double nJ = env_n1(L[j].a);
+    int pv = env_sign_filter(L[j].a, nJ, L[j].err, y, pyz, nyz, eyz);
+    if (!pv) {
+        int v = env_sign_exact(c, 0, c->n, j, k, l); /* det[-a_j; ..] */
+        pv = v == 2 ? 2 : -v;
+    }
+    if (pv == 2)
+        return 2;
+    if (sg * pv <= 0)
+        return 0;
+    /* no label beats them: sigma (a_m - a_j) . Y <= 0, the last beater first */
+    for (vbs_u32 t = 0; t <= c->n; t++) {
+        vbs_u32 m = t == 0 ? *last : t - 1u;
+        if (t > 0 && m == *last)
+            continue;
+        if (m >= c->n || m == j || m == k || m == l)
+            continue;
+        double x[3];
+        for (int a = 0; a < 3; a++)
+            x[a] = L[m].a[a] - L[j].a[a];
+        double nX = env_n1(x);
+        double eX = (L[m].err + L[j].err) + 1.01 * VBQ_U * nX;
+        int v = env_sign_filter(x, nX, eX, y, pyz, nyz, eyz);
+        if (!v)
+            v = env_sign_exact(c, 0, m, j, k, l);
+        if (v == 2)
+            return 2;
+        if (sg * v > 0) {
+            *last = m;
+            return 0;
+        }
+    }
+    return 1;
+}
+
+/* Equal decimals (values, whatever their exponents). */
+static int env_dec_equal(vb_decimal p, vb_decimal q)
+{
+    while (p.mant != 0 && p.mant % 10 == 0) {
+        p.mant /= 10;
+        p.exp10++;
+    }
+    while (q.mant != 0 && q.mant % 10 == 0) {
+        q.mant /= 10;
+        q.exp10++;
+    }
+    return p.mant == q.mant && (p.mant == 0 || p.exp10 == q.exp10);
+}
+
+int vbq_envelope_decide(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i,
+                        const vbq_frame *fr, vbs_u32 top, vbs_u32 keep, vbs_u32 *exact_calls)
+{
+    const vb_sphere_set *s = e->host;
+    if (!s || !s->ex || keep > VBQ_ENV_KEEP)
+        return 0;
+    env_lab L[VBQ_ENV_KEEP];
+    vbs_u32 own[VBQ_ENV_KEEP], no = 0;
+    for (vbs_u32 k = 0; k < keep; k++) {
+        vbq_nb r = ar->nb[ar->lab[top + k]];
+        if (!env_dec_equal(s->er[r.id], s->er[i]) || r.b != 0.0 || !(r.err < (double)INFINITY))
+            return 0;
+        L[k].a[0] = r.ax;
+        L[k].a[1] = r.ay;
+        L[k].a[2] = r.az;
+        L[k].err = r.err;
+        L[k].id = r.id;
+        if (r.id > i)
+            own[no++] = k;
+    }
+    /* the face and the square's sides as rows Q (see the top) */
+    double u0, u1, v0, v1, qs[5][3] = {{0}};
+    vbq_patch_square(e->T, fr->level, fr->iu, fr->iv, &u0, &u1, &v0, &v1);
+    vbs_u32 ax = fr->f / 2u, au = (ax + 1u) % 3u, av = (ax + 2u) % 3u;
+    double sgn = (fr->f & 1u) ? -1.0 : 1.0;
+    qs[0][ax] = sgn;
+    qs[1][au] = 1.0;
+    qs[1][ax] = -u0 * sgn;
+    qs[2][au] = -1.0;
+    qs[2][ax] = u1 * sgn;
+    qs[3][av] = 1.0;
+    qs[3][ax] = -v0 * sgn;
+    qs[4][av] = -1.0;
+    qs[4][ax] = v1 * sgn;
+    env_ctx c = {.s = s, .i = i, .n = keep, .L = L};
+    env_ctx_each(&c, mpz_init);
+    int rc = 1;
+    vbs_u32 last = 0;
+    for (vbs_u32 a = 0; a < no && rc == 1; a++)
+        for (vbs_u32 b = a + 1; b < no && rc == 1; b++)
+            for (vbs_u32 d = b + 1; d < no && rc == 1; d++) {
+                int v = env_triple(&c, own[a], own[b], own[d], (const double(*)[3])qs, &last);
+                if (v == 2)
+                    rc = 0;
+                else if (v == 1 &&
+                         !vbq_add_quad(ar, o, i, L[own[a]].id, L[own[b]].id, L[own[d]].id))
+                    rc = -1;
+            }
+    if (exact_calls)
+        *exact_calls = c.exact_calls;
+    env_exact_free(&c.X);
+    env_ctx_each(&c, mpz_clear);
+    return rc;
+}
+
+int vbq_host_envelope(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i,
+                      const vbq_frame *fr, vbs_u32 top, vbs_u32 keep, vbs_u32 owned,
+                      int closed)
+{
+    if (!vbq_envelope_due(e, fr, ar->nb, ar->lab + top, keep, owned, 1, closed))
+        return 0;
+    return vbq_envelope_decide(e, ar, o, i, fr, top, keep, NULL);
+}
