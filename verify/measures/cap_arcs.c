@@ -23,7 +23,10 @@
  * the cap's function on the circle (arcs_inside). Circles the caller has
  * already solved (the bisector circles two regions of one atom share,
  * stokes_cell.c) come given: their arcs are taken as found and only the
- * others are searched. */
+ * others are searched. Before the search, the caps proven to hold a cap
+ * around the trial intersection (cap 0 and the caps cutting most of it)
+ * are rejected: they cannot touch the intersection (bound_prune). Each
+ * restriction is made once per intersection and kept (restriction()). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
