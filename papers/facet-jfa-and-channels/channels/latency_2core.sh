@@ -35,7 +35,7 @@ for c in ${CASES:-adk128 adk256 1chb128 1chb256 yiip128 yiip256}; do
         L=${lv%%=*} V=${lv#*=}
         echo "latency_2core: $c $L" >&2
         VORBALL_THREADS=1 /usr/bin/time -v -o "$O/$c.$L.time" perf record -q -F 4000 \
-            --call-graph dwarf,16384 -o "$O/p.data" "$V" --quiet channels --device "${DEV:-ref}" \
+            --call-graph dwarf,32768 -o "$O/p.data" "$V" --quiet channels --device "${DEV:-ref}" \
             --grid "$GRID" --json -o "$O/p.json" "${ARGS[@]}" 2> /dev/null
         perf script -i "$O/p.data" 2> /dev/null > "$O/p.txt"
         python3 "$here/latency_stages.py" "$O/p.txt" 0.25 "$RUNS" "$FRAMES" > "$O/$c.$L.stages"

@@ -2,7 +2,7 @@
 """CPU ms per frame of every host stage of `vorball channels` (issue 33), from
 `perf script` of a cpu-clock recording with DWARF call graphs:
 
-    perf record -F 4000 --call-graph dwarf,16384 -o p.data vorball channels ... --repeat R
+    perf record -F 4000 --call-graph dwarf,32768 -o p.data vorball channels ... --repeat R
     perf script -i p.data > p.txt
     latency_stages.py p.txt 0.25 RUNS FRAMES     (0.25: the sample period in ms at 4000 Hz)
 
