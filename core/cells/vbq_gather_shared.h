@@ -401,34 +401,12 @@ VBS_FN int vbq_walk_node4(const vbq_walk *w, const double b0[3], const double b1
 }
 #endif
 
-/* Can node nd hold a sphere that passes the walk? */
-VBS_FN int vbq_walk_node(const vbq_env *e, const vbq_walk *w, vbs_u32 nd)
+/* The parts' half of the node test, one part after the other (the parts
+ * by increasing LO): box offsets b0, b1 of the node from c_i on each axis,
+ * slack = its R_max - R_i, mag = the sum of the offsets' magnitudes. */
+VBS_FN int vbq_walk_node1(const vbq_walk *w, const double b0[3], const double b1[3],
+                          double slack, double mag)
 {
-#ifndef __OPENCL_C_VERSION__
-    const double *bx = e->node8 ? e->node8 + 8u * nd : e->box + 6u * nd;
-    double slack = (e->node8 ? bx[6] : e->rmax[nd]) - w->ri;
-#else
-    const VBS_GLOBAL double *bx = e->box + 6u * nd;
-    double slack = e->rmax[nd] - w->ri;
-#endif
-    double b0[3], b1[3], mag = 0.0, dmax2 = 0.0, dmin2 = 0.0;
-    for (int a = 0; a < 3; a++) {
-        b0[a] = bx[a] - w->c[a];
-        b1[a] = bx[3 + a] - w->c[a];
-        mag += VBS_FABS(b0[a]) + VBS_FABS(b1[a]);
-        double f = VBS_FABS(b0[a]) > VBS_FABS(b1[a]) ? VBS_FABS(b0[a]) : VBS_FABS(b1[a]);
-        dmax2 += f * f;
-        double dn = b0[a] > 0.0 ? b0[a] : (b1[a] < 0.0 ? -b1[a] : 0.0);
-        dmin2 += dn * dn;
-    }
-    if (dmax2 < w->in2 || dmin2 > w->out2)
-        return 0;
-    if (w->nsub == 0u)
-        return 1;
-#ifdef VBQ_WALK_V4
-    if (w->nsub == VBQ_NSUB)
-        return vbq_walk_node4(w, b0, b1, slack, mag);
-#endif
     for (vbs_u32 q = 0u; q < w->nsub; q++) {
         const VBQ_SQ vbq_sub *sg = &w->sub[w->ord[q]];
         double best = 0.0, bb2 = 0.0;
@@ -458,6 +436,37 @@ VBS_FN int vbq_walk_node(const vbq_env *e, const vbq_walk *w, vbs_u32 nd)
     return 0;
 }
 
+/* Can node nd hold a sphere that passes the walk? */
+VBS_FN int vbq_walk_node(const vbq_env *e, const vbq_walk *w, vbs_u32 nd)
+{
+#ifndef __OPENCL_C_VERSION__
+    const double *bx = e->node8 ? e->node8 + 8u * nd : e->box + 6u * nd;
+    double slack = (e->node8 ? bx[6] : e->rmax[nd]) - w->ri;
+#else
+    const VBS_GLOBAL double *bx = e->box + 6u * nd;
+    double slack = e->rmax[nd] - w->ri;
+#endif
+    double b0[3], b1[3], mag = 0.0, dmax2 = 0.0, dmin2 = 0.0;
+    for (int a = 0; a < 3; a++) {
+        b0[a] = bx[a] - w->c[a];
+        b1[a] = bx[3 + a] - w->c[a];
+        mag += VBS_FABS(b0[a]) + VBS_FABS(b1[a]);
+        double f = VBS_FABS(b0[a]) > VBS_FABS(b1[a]) ? VBS_FABS(b0[a]) : VBS_FABS(b1[a]);
+        dmax2 += f * f;
+        double dn = b0[a] > 0.0 ? b0[a] : (b1[a] < 0.0 ? -b1[a] : 0.0);
+        dmin2 += dn * dn;
+    }
+    if (dmax2 < w->in2 || dmin2 > w->out2)
+        return 0;
+    if (w->nsub == 0u)
+        return 1;
+#ifdef VBQ_WALK_V4
+    if (w->nsub == VBQ_NSUB)
+        return vbq_walk_node4(w, b0, b1, slack, mag);
+#endif
+    return vbq_walk_node1(w, b0, b1, slack, mag);
+}
+
 /* Is the sphere at tree position k (id *j) in the walk's ring? 0 when it
  * is the base, within rq0 (in the list or excluded) or beyond rq1 (a
  * later ring's). */
@@ -477,6 +486,21 @@ VBS_FN int vbq_walk_ring(const vbq_env *e, const vbq_walk *w, vbs_u32 k, vbs_u32
     double dx = e->x[*j] - w->c[0], dy = e->y[*j] - w->c[1], dz = e->z[*j] - w->c[2];
     double d2 = dx * dx + dy * dy + dz * dz;
     return !((w->rq0 > 0.0 && !(d2 > w->rq0 * w->rq0)) || d2 > w->rq1 * w->rq1);
+}
+
+/* vbq_walk_parts one part after the other (by increasing LO; nsub > 0). */
+VBS_FN int vbq_walk_parts1(const vbq_walk *w, const vbq_nb *rec)
+{
+    for (vbs_u32 q = 0u; q < w->nsub; q++) {
+        vbs_u32 g = w->ord[q];
+        double m[3] = {w->sub[g].m[0], w->sub[g].m[1], w->sub[g].m[2]};
+        double h[3] = {w->sub[g].h[0], w->sub[g].h[1], w->sub[g].h[2]};
+        double lo, hi;
+        vbq_eval(rec, m, h, &lo, &hi);
+        if (hi >= w->sub[g].LO)
+            return 1;
+    }
+    return 0;
 }
 
 /* Does a sphere of the ring with record rec pass the walk's parts? With
@@ -508,16 +532,7 @@ VBS_FN int vbq_walk_parts(const vbq_walk *w, const vbq_nb *rec)
     if (w->nsub == VBQ_NSUB)
         return vbq_walk_parts4(w, rec);
 #endif
-    for (vbs_u32 q = 0u; q < w->nsub; q++) {
-        vbs_u32 g = w->ord[q];
-        double m[3] = {w->sub[g].m[0], w->sub[g].m[1], w->sub[g].m[2]};
-        double h[3] = {w->sub[g].h[0], w->sub[g].h[1], w->sub[g].h[2]};
-        double lo, hi;
-        vbq_eval(rec, m, h, &lo, &hi);
-        if (hi >= w->sub[g].LO)
-            return 1;
-    }
-    return 0;
+    return vbq_walk_parts1(w, rec);
 }
 
 /* Does the sphere at tree position k (not the base) pass the walk? Fills
