@@ -8,7 +8,9 @@
  * meets: parts whose LO is 0 (no reach), a ring unbounded outside (rq1
  * infinite), empty node boxes (lo +inf, hi -inf), parts whose box end is
  * exactly 0 (0 * inf is NaN), offsets straddling the base, and values
- * near the decision's threshold. Both answers occur often (counted). */
+ * near the decision's threshold. Both answers occur often (counted).
+ * Also the ring test of a leaf at once (vbq_walk_ring8) against the one
+ * by sphere id. */
 #include "vb_test.h"
 
 #include "vb_cover.h"
@@ -92,6 +94,48 @@ int main(void)
             fail_rec += r1 == 0;
         }
     }
+    /* The ring test of a leaf's eight positions at once (vbq_walk_ring8,
+     * from the tree-ordered copies) against vbq_walk_ring by sphere id. */
+    long in_ring = 0, out_ring = 0;
+    for (int t = 0; t < 20000; t++) {
+        double x[9], y[9], z[9], r[9], kx[8], ky[8], kz[8], kr[8];
+        vbs_u32 ids[8];
+        x[8] = y[8] = z[8] = 0.0; /* the base: sphere 8 */
+        r[8] = 1.6;
+        for (int k = 0; k < 8; k++) {
+            ids[k] = (vbs_u32)(7 - k); /* tree order differs from id order */
+            x[7 - k] = kx[k] = t % 9 == 0 && k == 3 ? 2.0 : uni(-9.0, 9.0);
+            y[7 - k] = ky[k] = t % 9 == 0 && k == 3 ? 0.0 : uni(-9.0, 9.0);
+            z[7 - k] = kz[k] = t % 9 == 0 && k == 3 ? 0.0 : uni(-9.0, 9.0);
+            r[7 - k] = kr[k] = 1.5;
+        }
+        vbq_env by_id;
+        memset(&by_id, 0, sizeof by_id);
+        by_id.x = x;
+        by_id.y = y;
+        by_id.z = z;
+        by_id.r = r;
+        by_id.ids = ids;
+        vbq_env tree = by_id;
+        tree.kx = kx;
+        tree.ky = ky;
+        tree.kz = kz;
+        tree.kr = kr;
+        /* t % 9 == 0: a sphere exactly on the inner bound rq0 = 2. */
+        double rq0 = t % 9 == 0 ? 2.0 : t % 4 == 0 ? -1.0 : uni(0.0, 6.0);
+        double rq1 = t % 7 == 0 ? (double)INFINITY : rq0 + uni(0.5, 9.0);
+        vbq_walk w;
+        vbq_walk_make(&by_id, 8u, rq0, rq1, NULL, 0u, &w);
+        unsigned bits = vbq_walk_ring8(&tree, &w, 0u);
+        for (vbs_u32 k = 0; k < 8; k++) {
+            vbs_u32 j;
+            int one = vbq_walk_ring(&by_id, &w, k, &j);
+            differ += one != (int)((bits >> k) & 1u);
+            in_ring += one;
+            out_ring += !one;
+        }
+    }
+    CHECK(in_ring > 20000 && out_ring > 20000);
     CHECK_INT(differ, 0);
     /* Both answers are common, so the comparison means something. */
     CHECK(pass_node > 20000 && fail_node > 20000);
