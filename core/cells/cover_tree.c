@@ -23,7 +23,8 @@ typedef struct bvh {
     double *rmax;      /* per node */
     double rmax_all;
     double *node8;     /* the host walk's copies (vbq_env): box and rmax, 8 per node */
-    double *kxyzr;     /* x, y, z, r of ids[k], 4 per position k */
+    double *kxyzr;     /* x, y, z, r of ids[k] at k (kx) and k + kd, 2 kd, 3 kd */
+    size_t kd;         /* m and a leaf more, in whole 64-byte lines */
 } bvh;
 
 static void bvh_free(bvh *t)
@@ -36,15 +37,15 @@ static void bvh_free(bvh *t)
 }
 
 /* The host walk's copies of t's nodes and spheres (vbq_env's node8 and
- * kxyzr: the same doubles, each node in one 64-byte line and each
- * position's sphere in 32 contiguous bytes instead of scattered over five
- * and four arrays). */
+ * kx .. kr: the same doubles, each node in one 64-byte line, a leaf's
+ * spheres side by side instead of scattered by id; zeros past m). */
 static int bvh_pack(const vb_sphere_set *s, bvh *t)
 {
     size_t nodes = 2 * t->first;
     t->node8 = aligned_alloc(64, nodes * 8 * sizeof *t->node8);
-    size_t kd = (4 * t->m + 7) / 8 * 8 + 8; /* whole 64-byte lines, at least one */
-    t->kxyzr = aligned_alloc(64, kd * sizeof *t->kxyzr);
+    size_t kd = (t->m + VBQ_LEAF + 7) / 8 * 8;
+    t->kd = kd;
+    t->kxyzr = aligned_alloc(64, 4 * kd * sizeof *t->kxyzr);
     if (!t->node8 || !t->kxyzr)
         return VB_ENOMEM;
     for (size_t nd = 0; nd < nodes; nd++) {
@@ -52,13 +53,13 @@ static int bvh_pack(const vb_sphere_set *s, bvh *t)
         t->node8[8 * nd + 6] = t->rmax[nd];
         t->node8[8 * nd + 7] = 0.0;
     }
+    memset(t->kxyzr, 0, 4 * kd * sizeof *t->kxyzr);
     for (size_t k = 0; k < t->m; k++) {
         uint32_t i = t->ids[k];
-        double *p = t->kxyzr + 4 * k;
-        p[0] = s->x[i];
-        p[1] = s->y[i];
-        p[2] = s->z[i];
-        p[3] = s->r[i];
+        t->kxyzr[k] = s->x[i];
+        t->kxyzr[kd + k] = s->y[i];
+        t->kxyzr[2 * kd + k] = s->z[i];
+        t->kxyzr[3 * kd + k] = s->r[i];
     }
     return VB_OK;
 }
@@ -250,7 +251,10 @@ int vb_cover_prepare(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_optio
     e->tmax = o.tmax > 0.0 ? o.tmax : (double)INFINITY;
     e->host = set;
     e->node8 = g->node8;
-    e->kxyzr = g->kxyzr;
+    e->kx = g->kxyzr;
+    e->ky = g->kxyzr + g->kd;
+    e->kz = g->kxyzr + 2 * g->kd;
+    e->kr = g->kxyzr + 3 * g->kd;
     *tree = t;
     return VB_OK;
 }

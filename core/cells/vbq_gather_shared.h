@@ -99,8 +99,9 @@ typedef struct vbq_env {
     /* Host copies of the same doubles laid out for the walk's reads (NULL:
      * none; the walk then reads the arrays above, as the kernels do):
      * node8 8 per node (box lo xyz, hi xyz, rmax, 0), one cache line each;
-     * kxyzr 4 per tree position k (x, y, z, r of sphere ids[k]). */
-    const double *node8, *kxyzr;
+     * kx, ky, kz, kr: x, y, z, r of sphere ids[k] at tree position k (a
+     * whole leaf's more past m, so a leaf's eight can be read at once). */
+    const double *node8, *kx, *ky, *kz, *kr;
 #endif
 } vbq_env;
 
@@ -130,7 +131,8 @@ VBS_FN void vbq_env_make(vbq_env *e, const VBS_GLOBAL double *x, const VBS_GLOBA
     e->max_level = max_level;
     e->enum_max = enum_max;
 #ifndef __OPENCL_C_VERSION__
-    e->node8 = e->kxyzr = 0; /* the kernels' arrays only (the group kernel's emulator) */
+    e->node8 = e->kx = e->ky = e->kz = e->kr = 0; /* the kernels' arrays only (the group
+                                                     kernel's emulator) */
 #endif
 }
 
@@ -412,34 +414,12 @@ VBS_FN int vbq_walk_node4(const vbq_walk *w, const double b0[3], const double b1
 }
 #endif
 
-/* Can node nd hold a sphere that passes the walk? */
-VBS_FN int vbq_walk_node(const vbq_env *e, const vbq_walk *w, vbs_u32 nd)
+/* The parts' half of the node test, one part after the other (the parts
+ * by increasing LO): box offsets b0, b1 of the node from c_i on each axis,
+ * slack = its R_max - R_i, mag = the sum of the offsets' magnitudes. */
+VBS_FN int vbq_walk_node1(const vbq_walk *w, const double b0[3], const double b1[3],
+                          double slack, double mag)
 {
-#ifndef __OPENCL_C_VERSION__
-    const double *bx = e->node8 ? e->node8 + 8u * nd : e->box + 6u * nd;
-    double slack = (e->node8 ? bx[6] : e->rmax[nd]) - w->ri;
-#else
-    const VBS_GLOBAL double *bx = e->box + 6u * nd;
-    double slack = e->rmax[nd] - w->ri;
-#endif
-    double b0[3], b1[3], mag = 0.0, dmax2 = 0.0, dmin2 = 0.0;
-    for (int a = 0; a < 3; a++) {
-        b0[a] = bx[a] - w->c[a];
-        b1[a] = bx[3 + a] - w->c[a];
-        mag += VBS_FABS(b0[a]) + VBS_FABS(b1[a]);
-        double f = VBS_FABS(b0[a]) > VBS_FABS(b1[a]) ? VBS_FABS(b0[a]) : VBS_FABS(b1[a]);
-        dmax2 += f * f;
-        double dn = b0[a] > 0.0 ? b0[a] : (b1[a] < 0.0 ? -b1[a] : 0.0);
-        dmin2 += dn * dn;
-    }
-    if (dmax2 < w->in2 || dmin2 > w->out2)
-        return 0;
-    if (w->nsub == 0u)
-        return 1;
-#ifdef VBQ_WALK_V4
-    if (w->nsub == VBQ_NSUB)
-        return vbq_walk_node4(w, b0, b1, slack, mag);
-#endif
     for (vbs_u32 q = 0u; q < w->nsub; q++) {
         const VBQ_SQ vbq_sub *sg = &w->sub[w->ord[q]];
         double best = 0.0, bb2 = 0.0;
@@ -469,6 +449,37 @@ VBS_FN int vbq_walk_node(const vbq_env *e, const vbq_walk *w, vbs_u32 nd)
     return 0;
 }
 
+/* Can node nd hold a sphere that passes the walk? */
+VBS_FN int vbq_walk_node(const vbq_env *e, const vbq_walk *w, vbs_u32 nd)
+{
+#ifndef __OPENCL_C_VERSION__
+    const double *bx = e->node8 ? e->node8 + 8u * nd : e->box + 6u * nd;
+    double slack = (e->node8 ? bx[6] : e->rmax[nd]) - w->ri;
+#else
+    const VBS_GLOBAL double *bx = e->box + 6u * nd;
+    double slack = e->rmax[nd] - w->ri;
+#endif
+    double b0[3], b1[3], mag = 0.0, dmax2 = 0.0, dmin2 = 0.0;
+    for (int a = 0; a < 3; a++) {
+        b0[a] = bx[a] - w->c[a];
+        b1[a] = bx[3 + a] - w->c[a];
+        mag += VBS_FABS(b0[a]) + VBS_FABS(b1[a]);
+        double f = VBS_FABS(b0[a]) > VBS_FABS(b1[a]) ? VBS_FABS(b0[a]) : VBS_FABS(b1[a]);
+        dmax2 += f * f;
+        double dn = b0[a] > 0.0 ? b0[a] : (b1[a] < 0.0 ? -b1[a] : 0.0);
+        dmin2 += dn * dn;
+    }
+    if (dmax2 < w->in2 || dmin2 > w->out2)
+        return 0;
+    if (w->nsub == 0u)
+        return 1;
+#ifdef VBQ_WALK_V4
+    if (w->nsub == VBQ_NSUB)
+        return vbq_walk_node4(w, b0, b1, slack, mag);
+#endif
+    return vbq_walk_node1(w, b0, b1, slack, mag);
+}
+
 /* Is the sphere at tree position k (id *j) in the walk's ring? 0 when it
  * is the base, within rq0 (in the list or excluded) or beyond rq1 (a
  * later ring's). */
@@ -478,9 +489,8 @@ VBS_FN int vbq_walk_ring(const vbq_env *e, const vbq_walk *w, vbs_u32 k, vbs_u32
     if (*j == w->i)
         return 0;
 #ifndef __OPENCL_C_VERSION__
-    if (e->kxyzr) {
-        const double *p = e->kxyzr + 4u * k;
-        double dx = p[0] - w->c[0], dy = p[1] - w->c[1], dz = p[2] - w->c[2];
+    if (e->kx) {
+        double dx = e->kx[k] - w->c[0], dy = e->ky[k] - w->c[1], dz = e->kz[k] - w->c[2];
         double d2 = dx * dx + dy * dy + dz * dz;
         return !((w->rq0 > 0.0 && !(d2 > w->rq0 * w->rq0)) || d2 > w->rq1 * w->rq1);
     }
@@ -488,6 +498,21 @@ VBS_FN int vbq_walk_ring(const vbq_env *e, const vbq_walk *w, vbs_u32 k, vbs_u32
     double dx = e->x[*j] - w->c[0], dy = e->y[*j] - w->c[1], dz = e->z[*j] - w->c[2];
     double d2 = dx * dx + dy * dy + dz * dz;
     return !((w->rq0 > 0.0 && !(d2 > w->rq0 * w->rq0)) || d2 > w->rq1 * w->rq1);
+}
+
+/* vbq_walk_parts one part after the other (by increasing LO; nsub > 0). */
+VBS_FN int vbq_walk_parts1(const vbq_walk *w, const vbq_nb *rec)
+{
+    for (vbs_u32 q = 0u; q < w->nsub; q++) {
+        vbs_u32 g = w->ord[q];
+        double m[3] = {w->sub[g].m[0], w->sub[g].m[1], w->sub[g].m[2]};
+        double h[3] = {w->sub[g].h[0], w->sub[g].h[1], w->sub[g].h[2]};
+        double lo, hi;
+        vbq_eval(rec, m, h, &lo, &hi);
+        if (hi >= w->sub[g].LO)
+            return 1;
+    }
+    return 0;
 }
 
 /* Does a sphere of the ring with record rec pass the walk's parts? With
@@ -519,16 +544,7 @@ VBS_FN int vbq_walk_parts(const vbq_walk *w, const vbq_nb *rec)
     if (w->nsub == VBQ_NSUB)
         return vbq_walk_parts4(w, rec);
 #endif
-    for (vbs_u32 q = 0u; q < w->nsub; q++) {
-        vbs_u32 g = w->ord[q];
-        double m[3] = {w->sub[g].m[0], w->sub[g].m[1], w->sub[g].m[2]};
-        double h[3] = {w->sub[g].h[0], w->sub[g].h[1], w->sub[g].h[2]};
-        double lo, hi;
-        vbq_eval(rec, m, h, &lo, &hi);
-        if (hi >= w->sub[g].LO)
-            return 1;
-    }
-    return 0;
+    return vbq_walk_parts1(w, rec);
 }
 
 /* Does the sphere at tree position k (not the base) pass the walk? Fills
@@ -548,19 +564,16 @@ VBS_FN int vbq_walk_sphere(const vbq_env *e, const vbq_walk *w, vbs_u32 k, vbq_n
 /* vbq_walk_sphere with the host's memo: the record of (cell, sphere)
  * depends on nothing else, so one made at an earlier fetch of the cell is
  * the same double for double (speed only). */
-static inline int vbq_walk_sphere_memo(const vbq_env *e, const vbq_arena *ar,
-                                       const vbq_walk *w, vbs_u32 k, vbq_nb *rec)
+static inline int vbq_walk_sphere_known(const vbq_env *e, const vbq_arena *ar,
+                                        const vbq_walk *w, vbs_u32 k, vbs_u32 j, vbq_nb *rec)
 {
-    vbs_u32 j;
-    if (!vbq_walk_ring(e, w, k, &j))
-        return 0;
     vbs_u32 s = k & (VBQ_MEMO - 1u);
     vbs_u32 *tag = ar->memo_tag + 2u * s;
     if (tag[0] == k && tag[1] == w->i + 1u) {
         *rec = ar->memo[s];
-    } else if (e->kxyzr) {
-        const double *p = e->kxyzr + 4u * k;
-        vbq_nb_make(w->c[0], w->c[1], w->c[2], w->ri, p[0], p[1], p[2], p[3], j, rec);
+    } else if (e->kx) {
+        vbq_nb_make(w->c[0], w->c[1], w->c[2], w->ri, e->kx[k], e->ky[k], e->kz[k], e->kr[k], j,
+                    rec);
         ar->memo[s] = *rec;
         tag[0] = k;
         tag[1] = w->i + 1u;
@@ -573,6 +586,39 @@ static inline int vbq_walk_sphere_memo(const vbq_env *e, const vbq_arena *ar,
     }
     return vbq_walk_parts(w, rec);
 }
+
+static inline int vbq_walk_sphere_memo(const vbq_env *e, const vbq_arena *ar,
+                                       const vbq_walk *w, vbs_u32 k, vbq_nb *rec)
+{
+    vbs_u32 j;
+    return vbq_walk_ring(e, w, k, &j) && vbq_walk_sphere_known(e, ar, w, k, j, rec);
+}
+
+#ifdef VBQ_WALK_V4
+/* vbq_walk_ring's distance test for the leaf's positions k0 .. k0 + 7 at
+ * once (the kx arrays run a leaf past m): bit k - k0 set where the sphere
+ * is in the ring by the same comparisons (the base itself is left to the
+ * caller). */
+static inline unsigned vbq_walk_ring8(const vbq_env *e, const vbq_walk *w, vbs_u32 k0)
+{
+    unsigned bits = 0u;
+    double r0 = w->rq0 * w->rq0, r1 = w->rq1 * w->rq1;
+    vbq_v4 in0 = VBQ_V4_ALL(r0), out1 = VBQ_V4_ALL(r1);
+    vbq_m4 near = VBQ_V4M_ALL(w->rq0 > 0.0 ? -1LL : 0LL);
+    for (vbs_u32 h = 0u; h < 8u; h += 4u) {
+        const double *px = e->kx + k0 + h, *py = e->ky + k0 + h, *pz = e->kz + k0 + h;
+        vbq_v4 x = VBQ_V4(px[0], px[1], px[2], px[3]), y = VBQ_V4(py[0], py[1], py[2], py[3]);
+        vbq_v4 z = VBQ_V4(pz[0], pz[1], pz[2], pz[3]);
+        vbq_v4 dx = x - VBQ_V4_ALL(w->c[0]), dy = y - VBQ_V4_ALL(w->c[1]),
+               dz = z - VBQ_V4_ALL(w->c[2]);
+        vbq_v4 d2 = dx * dx + dy * dy + dz * dz;
+        vbq_m4 out = (near & ~(d2 > in0)) | (d2 > out1);
+        for (int l = 0; l < 4; l++)
+            bits |= (out[l] ? 0u : 1u) << (h + (unsigned)l);
+    }
+    return bits;
+}
+#endif
 #endif
 
 /* The tree positions [*k0, *k1) of leaf node nd's spheres. */
@@ -603,9 +649,20 @@ VBS_FN int vbq_walk_gather(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *
         }
         vbs_u32 k0, k1;
         vbq_walk_leaf(e, nd, &k0, &k1);
+#if defined(VBQ_WALK_V4) && !defined(__OPENCL_C_VERSION__)
+        unsigned ring = e->kx && ar->memo ? vbq_walk_ring8(e, w, k0) : 0u;
+#endif
         for (vbs_u32 k = k0; k < k1; k++) {
             vbq_nb rec;
 #ifndef __OPENCL_C_VERSION__
+#ifdef VBQ_WALK_V4
+            if (e->kx && ar->memo) {
+                vbs_u32 j = e->ids[k];
+                if (!((ring >> (k - k0)) & 1u) || j == w->i ||
+                    !vbq_walk_sphere_known(e, ar, w, k, j, &rec))
+                    continue;
+            } else
+#endif
             if (ar->memo ? !vbq_walk_sphere_memo(e, ar, w, k, &rec)
                          : !vbq_walk_sphere(e, w, k, &rec))
                 continue;
