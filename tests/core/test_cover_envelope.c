@@ -295,7 +295,7 @@ int main(void)
     }
     /* random equal spheres, three decimals, random patches */
     for (int rep = 0; rep < 40; rep++) {
-        size_t n = 12 + (size_t)rnd(0, 20);
+        size_t n = 10 + (size_t)rnd(0, 12);
         vb_sphere_set *s = vb_test_spheres_alloc(n, 1);
         for (size_t k = 0; k < n; k++) {
             int64_t m[3] = {rnd(-4000, 4000), rnd(-4000, 4000), rnd(-4000, 4000)};
