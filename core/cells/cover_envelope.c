@@ -42,7 +42,9 @@
  * label that may be largest in them); the certifier refutes the others,
  * so the vertices written are the same, and fewer quadruples reach it.
  *
- * The signs: a filter first. The records hold a~ with |a~ - a|_1 <= err
+ * The signs: a filter first (vbq_env_triple, core/cells/vbq_envelope_shared.h,
+ * shared with the kernels; a triple it leaves undecided is decided here with
+ * every sign exact). The records hold a~ with |a~ - a|_1 <= err
  * (vbq_nb_make). A row X~ = fl(a~_m - a~_j) is within eX = err_m + err_j +
  * 1.01 u |X~|_1 of X in L1 (each component rounds once, relative u); a Q
  * row is exact (components 0, +-1, +-u0: dyadic). For |det(A, B, C)| <=

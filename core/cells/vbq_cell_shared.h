@@ -267,9 +267,10 @@ VBS_FN int vbq_tie_cluster(const VBS_GLOBAL vbq_nb *nb, const VBS_GLOBAL vbs_u32
  * every label's record has b exactly 0 and a finite error (spheres of the
  * base's radius in doubles; the host checks the decimals) and every vertex
  * is sought (no tangent-radius floor). The same answer on every backend:
- * the kernels hand such a cell to the host (status VBQ_CLUSTER, like a tie
- * cluster) rather than decide it, so every backend writes the host's
- * quadruples for it. */
+ * a kernel decides such a patch with the double filter alone
+ * (vbq_envelope_filter) and hands the cell to the host (status
+ * VBQ_CLUSTER, like a tie cluster) only when a triple stays undecided, so
+ * every backend writes the host's quadruples for it. */
 VBS_FN int vbq_envelope_due(const vbq_env *e, const vbq_frame *fr, const VBS_GLOBAL vbq_nb *nb,
                             const VBS_GLOBAL vbs_u32 *lab, vbs_u32 keep, vbs_u32 owned, int act,
                             int closed)
@@ -619,7 +620,7 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
         }
         /* A stalled near-tie chain (vbq_envelope_due; its first tests
          * here, the rest out of this loop): its envelope decided exactly at
-         * once, on the host (a kernel hands the cell to the host). */
+         * once (a kernel decides in doubles, or hands the cell to the host). */
         if (!cluster && act == 1 && keep == fr.len && owned > VBQ_CLUSTER_OWNED) {
 #ifdef __OPENCL_C_VERSION__
             if (vbq_envelope_due(e, &fr, ar->nb, ar->lab + top, keep, owned, act, closed)) {
