@@ -441,10 +441,18 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
                     sh[S_STATUS] = VBQ_CLUSTER;
                 act = 0;
             }
-            /* a stalled near-tie chain: the host decides it (vbq_envelope_due) */
+            /* a stalled near-tie chain: decided in doubles by lane 0, or by
+             * the host where a sign needs its exact fallback */
             if (vbq_envelope_due(&e, &fr, nb, lab + top, keep, owned, act, closed)) {
-                if (lane == 0u)
-                    sh[S_STATUS] = VBQ_CLUSTER;
+                if (lane == 0u) {
+                    int he = vbq_envelope_filter(&e, &ar, &o, i, &fr, top, keep);
+                    if (he == 2)
+                        sh[S_STATUS] = VBQ_CLUSTER;
+                    else if (he < 0)
+                        sh[S_STATUS] = o.status;
+                    else
+                        o.leaves++;
+                }
                 act = 0;
             }
             if (lane == 0u && act >= 2 && !vbq_leaf_quads(&ar, &o, i, top, keep, act, fr.level))

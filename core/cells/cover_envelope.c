@@ -42,7 +42,9 @@
  * label that may be largest in them); the certifier refutes the others,
  * so the vertices written are the same, and fewer quadruples reach it.
  *
- * The signs: a filter first. The records hold a~ with |a~ - a|_1 <= err
+ * The signs: a filter first (vbq_env_triple, core/cells/vbq_envelope_shared.h,
+ * shared with the kernels; a triple it leaves undecided is decided here with
+ * every sign exact). The records hold a~ with |a~ - a|_1 <= err
  * (vbq_nb_make). A row X~ = fl(a~_m - a~_j) is within eX = err_m + err_j +
  * 1.01 u |X~|_1 of X in L1 (each component rounds once, relative u); a Q
  * row is exact (components 0, +-1, +-u0: dyadic). For |det(A, B, C)| <=
@@ -66,10 +68,9 @@
 #include "vb_cover_shared.h"
 #include "vb_decimal_mpz.h"
 
-/* One label of the patch in doubles, and its exact integer row (made when
- * the first exact sign is asked). */
+/* One label of the patch: its sphere (its exact row is made when the
+ * first exact sign is asked). */
 typedef struct env_lab {
-    double a[3], err;
     vbs_u32 id;
 } env_lab;
 
@@ -243,87 +244,37 @@ static int env_sign_exact(env_ctx *c, const double *q, vbs_u32 m, vbs_u32 j, vbs
     return -mpz_sgn(c->acc);
 }
 
-/* The filtered sign of X~ . Y (Y = dk~ x dl~) against its bound (see the
- * top): nX, eX the L1 norm and error of X~; pyz = (nY + eY)(nZ + eZ), nyz =
- * nY nZ, and eyz = pyz - nyz written as its non-negative terms. 0: not
- * decided. */
-static int env_sign_filter(const double x[3], double nX, double eX, const double y[3], double pyz,
-                           double nyz, double eyz)
+/* Is owned triple (j, k, l) a vertex of the envelope on the patch, every
+ * sign exact (the triples vbq_env_triple's doubles could not decide)? 1
+ * yes, 0 no, 2 undecided (out of memory). *last: the label that beat the
+ * last triple (tried first). */
+static int env_triple(env_ctx *c, vbs_u32 j, vbs_u32 k, vbs_u32 l, double qs[5][3], vbs_u32 *last)
 {
-    double v = (x[0] * y[0] + x[1] * y[1]) + x[2] * y[2];
-    double b = (eX * pyz + nX * eyz + 8.0 * VBQ_U * nX * nyz) * (1.0 + 1e-12) + VBQ_TINY;
-    return v > b ? 1 : (v < -b ? -1 : 0);
-}
-
-static double env_n1(const double x[3])
-{
-    return (fabs(x[0]) + fabs(x[1])) + fabs(x[2]);
-}
-
-/* Is owned triple (j, k, l) a vertex of the envelope on the patch? 1 yes,
- * 0 no, 2 undecided (out of memory). *last is the label that beat the last
- * triple (tried first). */
-static int env_triple(env_ctx *c, vbs_u32 j, vbs_u32 k, vbs_u32 l, const double qs[5][3],
-                      vbs_u32 *last)
-{
-    const env_lab *L = c->L;
     c->tri_made = 0;
-    double dk[3], dl[3], y[3];
-    for (int a = 0; a < 3; a++) {
-        dk[a] = L[k].a[a] - L[j].a[a];
-        dl[a] = L[l].a[a] - L[j].a[a];
-    }
-    y[0] = dk[1] * dl[2] - dk[2] * dl[1];
-    y[1] = dk[2] * dl[0] - dk[0] * dl[2];
-    y[2] = dk[0] * dl[1] - dk[1] * dl[0];
-    double nY = env_n1(dk), nZ = env_n1(dl);
-    double eY = (L[j].err + L[k].err) + 1.01 * VBQ_U * nY;
-    double eZ = (L[j].err + L[l].err) + 1.01 * VBQ_U * nZ;
-    double nyz = nY * nZ, eyz = (eY * nZ + nY * eZ) + eY * eZ, pyz = nyz + eyz;
     /* sigma: the face's side of Y (qs[0] is n) */
-    int sg = env_sign_filter(qs[0], 1.0, 0.0, y, pyz, nyz, eyz);
-    if (!sg)
-        sg = env_sign_exact(c, qs[0], 0u, j, k, l);
-    if (sg == 2)
-        return 2;
-    if (sg == 0)
-        return 0;
+    int sg = env_sign_exact(c, qs[0], 0u, j, k, l);
+    if (sg == 2 || sg == 0)
+        return sg;
     /* the square: sigma Q . Y >= 0 for its four sides */
     for (int e = 1; e < 5; e++) {
-        int v = env_sign_filter(qs[e], env_n1(qs[e]), 0.0, y, pyz, nyz, eyz);
-        if (!v)
-            v = env_sign_exact(c, qs[e], 0u, j, k, l);
+        int v = env_sign_exact(c, qs[e], 0u, j, k, l);
         if (v == 2)
             return 2;
         if (sg * v < 0)
             return 0;
     }
-    /* positive value: sigma a_j . Y > 0 */
-    double nJ = env_n1(L[j].a);
-    int pv = env_sign_filter(L[j].a, nJ, L[j].err, y, pyz, nyz, eyz);
-    if (!pv) {
-        int v = env_sign_exact(c, 0, c->n, j, k, l); /* det[-a_j; ..] */
-        pv = v == 2 ? 2 : -v;
-    }
-    if (pv == 2)
+    /* positive value: sigma a_j . Y > 0 (det[-a_j; ..] from infinity's row) */
+    int v = env_sign_exact(c, 0, c->n, j, k, l);
+    if (v == 2)
         return 2;
-    if (sg * pv <= 0)
+    if (-sg * v <= 0)
         return 0;
     /* no label beats them: sigma (a_m - a_j) . Y <= 0, the last beater first */
     for (vbs_u32 t = 0; t <= c->n; t++) {
         vbs_u32 m = t == 0 ? *last : t - 1u;
-        if (t > 0 && m == *last)
+        if ((t > 0 && m == *last) || m >= c->n || m == j || m == k || m == l)
             continue;
-        if (m >= c->n || m == j || m == k || m == l)
-            continue;
-        double x[3];
-        for (int a = 0; a < 3; a++)
-            x[a] = L[m].a[a] - L[j].a[a];
-        double nX = env_n1(x);
-        double eX = (L[m].err + L[j].err) + 1.01 * VBQ_U * nX;
-        int v = env_sign_filter(x, nX, eX, y, pyz, nyz, eyz);
-        if (!v)
-            v = env_sign_exact(c, 0, m, j, k, l);
+        v = env_sign_exact(c, 0, m, j, k, l);
         if (v == 2)
             return 2;
         if (sg * v > 0) {
@@ -360,28 +311,12 @@ int vbq_envelope_decide(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, 
         vbq_nb r = ar->nb[ar->lab[top + k]];
         if (!env_dec_equal(s->er[r.id], s->er[i]) || r.b != 0.0 || !(r.err < (double)INFINITY))
             return 0;
-        L[k].a[0] = r.ax;
-        L[k].a[1] = r.ay;
-        L[k].a[2] = r.az;
-        L[k].err = r.err;
         L[k].id = r.id;
         if (r.id > i)
             own[no++] = k;
     }
-    /* the face and the square's sides as rows Q (see the top) */
-    double u0, u1, v0, v1, qs[5][3] = {{0}};
-    vbq_patch_square(e->T, fr->level, fr->iu, fr->iv, &u0, &u1, &v0, &v1);
-    vbs_u32 ax = fr->f / 2u, au = (ax + 1u) % 3u, av = (ax + 2u) % 3u;
-    double sgn = (fr->f & 1u) ? -1.0 : 1.0;
-    qs[0][ax] = sgn;
-    qs[1][au] = 1.0;
-    qs[1][ax] = -u0 * sgn;
-    qs[2][au] = -1.0;
-    qs[2][ax] = u1 * sgn;
-    qs[3][av] = 1.0;
-    qs[3][ax] = -v0 * sgn;
-    qs[4][av] = -1.0;
-    qs[4][ax] = v1 * sgn;
+    double qs[5][3];
+    vbq_env_sides(e->T, fr, qs);
     env_ctx c = {.s = s, .i = i, .n = keep, .L = L};
     env_ctx_each(&c, mpz_init);
     int rc = 1;
@@ -389,7 +324,10 @@ int vbq_envelope_decide(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, 
     for (vbs_u32 a = 0; a < no && rc == 1; a++)
         for (vbs_u32 b = a + 1; b < no && rc == 1; b++)
             for (vbs_u32 d = b + 1; d < no && rc == 1; d++) {
-                int v = env_triple(&c, own[a], own[b], own[d], (const double(*)[3])qs, &last);
+                int v = vbq_env_triple(ar->nb, ar->lab + top, keep, own[a], own[b], own[d], qs,
+                                       &last);
+                if (v == 2)
+                    v = env_triple(&c, own[a], own[b], own[d], qs, &last);
                 if (v == 2)
                     rc = 0;
                 else if (v == 1 &&

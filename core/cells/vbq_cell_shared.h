@@ -267,9 +267,10 @@ VBS_FN int vbq_tie_cluster(const VBS_GLOBAL vbq_nb *nb, const VBS_GLOBAL vbs_u32
  * every label's record has b exactly 0 and a finite error (spheres of the
  * base's radius in doubles; the host checks the decimals) and every vertex
  * is sought (no tangent-radius floor). The same answer on every backend:
- * the kernels hand such a cell to the host (status VBQ_CLUSTER, like a tie
- * cluster) rather than decide it, so every backend writes the host's
- * quadruples for it. */
+ * a kernel decides such a patch with the double filter alone
+ * (vbq_envelope_filter) and hands the cell to the host (status
+ * VBQ_CLUSTER, like a tie cluster) only when a triple stays undecided, so
+ * every backend writes the host's quadruples for it. */
 VBS_FN int vbq_envelope_due(const vbq_env *e, const vbq_frame *fr, const VBS_GLOBAL vbq_nb *nb,
                             const VBS_GLOBAL vbs_u32 *lab, vbs_u32 keep, vbs_u32 owned, int act,
                             int closed)
@@ -282,6 +283,43 @@ VBS_FN int vbq_envelope_due(const vbq_env *e, const vbq_frame *fr, const VBS_GLO
         vbq_nb r = nb[lab[a]];
         if (r.b != 0.0 || !(r.err < (double)INFINITY))
             return 0;
+    }
+    return 1;
+}
+
+/* The envelope decision of a due patch (vbq_envelope_due) with the double
+ * filter alone (vbq_env_triple): adds the quadruples of every owned triple
+ * of lab[top .. top + keep) that is a vertex of the envelope on the patch
+ * and returns 1, or returns 2 at the first sign it cannot decide (the
+ * host's exact fallback decides; a kernel hands the cell to the host), -1
+ * when q is full. Every sign it takes is the exact one, so it adds what
+ * vbq_host_envelope adds. */
+VBS_FN int vbq_envelope_filter(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i,
+                               const vbq_frame *fr, vbs_u32 top, vbs_u32 keep)
+{
+    double qs[5][3];
+    vbq_env_sides(e->T, fr, qs);
+    const VBS_GLOBAL vbs_u32 *lab = ar->lab + top;
+    vbs_u32 last = 0u;
+    for (vbs_u32 a = 0u; a < keep; a++) {
+        vbs_u32 ja = ar->nb[lab[a]].id;
+        if (ja <= i)
+            continue;
+        for (vbs_u32 b = a + 1u; b < keep; b++) {
+            vbs_u32 jb = ar->nb[lab[b]].id;
+            if (jb <= i)
+                continue;
+            for (vbs_u32 d = b + 1u; d < keep; d++) {
+                vbs_u32 jd = ar->nb[lab[d]].id;
+                if (jd <= i)
+                    continue;
+                int r = vbq_env_triple(ar->nb, lab, keep, a, b, d, qs, &last);
+                if (r == 2)
+                    return 2;
+                if (r == 1 && !vbq_add_quad(ar, o, i, ja, jb, jd))
+                    return -1;
+            }
+        }
     }
     return 1;
 }
@@ -582,12 +620,17 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
         }
         /* A stalled near-tie chain (vbq_envelope_due; its first tests
          * here, the rest out of this loop): its envelope decided exactly at
-         * once, on the host (a kernel hands the cell to the host). */
+         * once (a kernel decides in doubles, or hands the cell to the host). */
         if (!cluster && act == 1 && keep == fr.len && owned > VBQ_CLUSTER_OWNED) {
 #ifdef __OPENCL_C_VERSION__
             if (vbq_envelope_due(e, &fr, ar->nb, ar->lab + top, keep, owned, act, closed)) {
-                o->status = VBQ_CLUSTER;
-                return;
+                int he = vbq_envelope_filter(e, ar, o, i, &fr, top, keep);
+                if (he == 2)
+                    o->status = VBQ_CLUSTER;
+                if (he != 1)
+                    return;
+                o->leaves++;
+                continue;
             }
 #else
             vbq_frame fc = fr; /* a copy: fr's address never escapes the loop */
