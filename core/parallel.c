@@ -1,6 +1,7 @@
 /* Clocks and threads (vb_parallel.h): the monotonic clock, the thread-count
  * policy, the launcher, the parallel for and the parallel sort. */
 #include "vb_parallel.h"
+#include "parallel_pool.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -108,6 +109,8 @@ void vb_jobs_join(vb_jobs *g)
 
 void vb_run_jobs(void *(*fn)(void *), void *jobs, size_t job_size, int n)
 {
+    if (vb_pool_run(fn, jobs, job_size, n))
+        return;
     vb_jobs g;
     setup(&g, fn, jobs, job_size, n);
     start_from(&g, 1);
