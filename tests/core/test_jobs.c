@@ -226,12 +226,14 @@ static void nested_calls(void)
     CHECK_INT(atomic_load(&n.ok), 24);
 }
 
-/* Callers on four threads at once, each running many parallel fors. */
+/* Callers on four threads at once, each running many parallel fors; every
+ * tenth asks for VB_MAX_THREADS threads, more than the pool holds beside
+ * the others' calls. */
 static void *caller(void *arg)
 {
     int *ok = arg;
     for (int r = 0; r < 200; r++)
-        *ok += run_squares(300 + (size_t)r, 2 + r % 7);
+        *ok += run_squares(300 + (size_t)r, r % 10 ? 2 + r % 7 : VB_MAX_THREADS);
     return NULL;
 }
 
