@@ -1,6 +1,7 @@
 /* The context: error state, diagnostics and counters. */
 #include "vb.h"
 #include "vb_diag.h"
+#include "vb_parallel.h"
 
 #include <pthread.h>
 #include <stdarg.h>
@@ -48,6 +49,9 @@ struct vb_ctx {
     unsigned ps_next;       /* the slot a new stage takes (round robin) */
 };
 
+/* Contexts open now: the last to close joins the resident thread pool. */
+static atomic_long open_contexts;
+
 int vb_open(vb_ctx **out, const vb_config *cfg)
 {
     *out = NULL;
@@ -60,6 +64,7 @@ int vb_open(vb_ctx **out, const vb_config *cfg)
         c->cfg.verbosity = 1;
     pthread_mutex_init(&c->progress_lock, NULL);
     c->state = VB_CTX_LIVE;
+    atomic_fetch_add(&open_contexts, 1);
     *out = c;
     return VB_OK;
 }
@@ -76,6 +81,8 @@ void vb_close(vb_ctx *ctx)
     ctx->state = VB_CTX_DEAD;
     pthread_mutex_destroy(&ctx->progress_lock);
     free(ctx);
+    if (atomic_fetch_sub(&open_contexts, 1) == 1)
+        vb_parallel_shutdown();
 }
 
 const char *vb_errmsg(const vb_ctx *ctx)

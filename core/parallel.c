@@ -1,6 +1,7 @@
 /* Clocks and threads (vb_parallel.h): the monotonic clock, the thread-count
  * policy, the launcher, the parallel for and the parallel sort. */
 #include "vb_parallel.h"
+#include "parallel_pool.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -110,9 +111,23 @@ void vb_run_jobs(void *(*fn)(void *), void *jobs, size_t job_size, int n)
 {
     vb_jobs g;
     setup(&g, fn, jobs, job_size, n);
-    start_from(&g, 1);
-    /* The caller's job: vb_jobs_join runs what did not start, job 0 first. */
-    vb_jobs_join(&g);
+    vb_pool_call pc;
+    int pooled[VB_MAX_THREADS];
+    vb_pool_post(&pc, fn, jobs, job_size, g.n, pooled);
+    /* Jobs the pool could not take: threads of their own, else the caller. */
+    for (int t = 0; t < g.n; t++)
+        g.started[t] = t > 0 && !pooled[t] &&
+                       pthread_create(&g.th[t], NULL, fn, g.jobs + (size_t)t * job_size) == 0;
+    /* The caller's job first, then those that did not start, in order. */
+    for (int t = 0; t < g.n; t++) {
+        if (pooled[t])
+            continue;
+        if (g.started[t])
+            pthread_join(g.th[t], NULL);
+        else
+            fn(g.jobs + (size_t)t * job_size);
+    }
+    vb_pool_wait(&pc);
 }
 
 int vb_jobs_first_error(const void *jobs, size_t job_size, int n, size_t rc_off, size_t at_off)

@@ -42,8 +42,18 @@ int vb_jobs_start(vb_jobs *g, void *(*fn)(void *), void *jobs, size_t job_size, 
 void vb_jobs_join(vb_jobs *g);
 
 /* Runs fn on each of the n jobs and returns when all have finished: the
- * caller runs the first, threads the others (vb_jobs_start, vb_jobs_join). */
+ * caller runs the first; the others run on the resident pool's idle
+ * parked threads (core/parallel_pool.c), those it cannot take (busy with
+ * other calls, or the pool full) on threads of their own, else on the
+ * caller after the first, in order. Safe to call from several threads at
+ * once and from inside a job. */
 void vb_run_jobs(void *(*fn)(void *), void *jobs, size_t job_size, int n);
+
+/* Joins the resident pool's threads when all are idle (else does
+ * nothing; from a pool thread, nothing); the next vb_run_jobs starts them again. vb_close of the last
+ * open context and exit call it; a program that keeps no context open may
+ * call it itself (leak checkers then see no thread left). */
+void vb_parallel_shutdown(void);
 
 /* Marks jobs whose failures carry no item for vb_jobs_first_error. */
 #define VB_JOBS_UNORDERED ((size_t)-1)

@@ -322,7 +322,9 @@ int vbc_plane_walled(const vbc_cells *c, const double u[3], const double p[3], d
  * what a plane or a channel does): vb_threads, at most items / per, and 1
  * on fewer than VBC_PORE_MIN_THREADS (on the 2-core machine, loaded by
  * other work, the starts cost milliseconds: adk_oplsaa's verdict 1.7 ->
- * 6.6 ms a frame on 2 threads). */
+ * 6.6 ms a frame on 2 threads; with the resident pool, stop 44, still
+ * 1.7 -> 6.3 ms, and 1chb's 10.1 -> 11.4: papers/facet-jfa-and-channels/
+ * channels/pool_2core_stop44.md). */
 int vbc_pore_threads(size_t items, size_t per);
 #define VBC_PORE_MIN_THREADS 4
 

@@ -1,9 +1,14 @@
-/* Jobs on threads (core/parallel.c): vb_jobs_first_error picks the error one
+/* Jobs on threads (core/parallel.c, core/parallel_pool.c): the resident
+ * pool runs every job once, reuses its threads from call to call, serves
+ * nested calls and callers on several threads at once (those it cannot
+ * take start threads of their own), takes job counts above its size, and
+ * starts again after vb_parallel_shutdown; vb_jobs_first_error picks the error one
  * thread taking the items in order would meet, whichever job met it; a
  * worker context (vb_open_worker) speaks through its owner: warnings raised
  * on worker threads reach the owner's log callback, at the owner's
  * verbosity, while errors and counters stay the worker's. */
 #include <pthread.h>
+#include <stdatomic.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -121,9 +126,135 @@ static void worker_warnings(void)
     vb_close(owner);
 }
 
+/* A parallel for writing each item's square and its thread's number. */
+typedef struct squares {
+    size_t *out;
+    int *tid;
+    int nt;
+} squares;
+
+static void square(void *ctx, size_t i, int tid)
+{
+    squares *s = ctx;
+    s->out[i] = i * i;
+    s->tid[i] = tid;
+}
+
+/* 1 when every item of n holds its square and ran on thread i mod nt. */
+static int squares_ok(const squares *s, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        if (s->out[i] != i * i || s->tid[i] != (int)(i % (size_t)s->nt))
+            return 0;
+    return 1;
+}
+
+static int run_squares(size_t n, int nt)
+{
+    size_t out[1000];
+    int tid[1000];
+    squares s = {out, tid, nt < 1 ? 1 : nt > VB_MAX_THREADS ? VB_MAX_THREADS : nt};
+    for (size_t i = 0; i < n; i++)
+        out[i] = 7, tid[i] = -1;
+    vb_parallel_for(square, &s, n, nt);
+    return squares_ok(&s, n);
+}
+
+typedef struct who {
+    pthread_t self;
+    atomic_int *ran;
+} who;
+
+static void *note_thread(void *arg)
+{
+    who *w = arg;
+    w->self = pthread_self();
+    atomic_fetch_add(w->ran, 1);
+    return NULL;
+}
+
+static void pool_reuse(void)
+{
+    /* Job t > 0 runs on the same parked thread call after call; job 0 on
+     * the caller. */
+    atomic_int ran = 0;
+    who a[4], b[4];
+    for (int t = 0; t < 4; t++)
+        a[t] = b[t] = (who){0, &ran};
+    vb_run_jobs(note_thread, a, sizeof *a, 4);
+    vb_run_jobs(note_thread, b, sizeof *b, 4);
+    CHECK_INT(atomic_load(&ran), 8);
+    CHECK(pthread_equal(a[0].self, pthread_self()));
+    int same = 0;
+    for (int t = 1; t < 4; t++)
+        same += pthread_equal(a[t].self, b[t].self) && !pthread_equal(a[t].self, pthread_self());
+    CHECK_INT(same, 3);
+    /* More jobs than the pool has threads: it grows; and the most it takes. */
+    CHECK(run_squares(1000, 9));
+    CHECK(run_squares(1000, VB_MAX_THREADS));
+    CHECK(run_squares(1000, 1000));
+    CHECK(run_squares(5, 16));
+    CHECK(run_squares(0, 16));
+    /* A shutdown joins the pool (twice is harmless); the next call starts
+     * it again. */
+    vb_parallel_shutdown();
+    vb_parallel_shutdown();
+    CHECK(run_squares(1000, 3));
+    who c[4];
+    for (int t = 0; t < 4; t++)
+        c[t] = (who){0, &ran};
+    vb_run_jobs(note_thread, c, sizeof *c, 4);
+    CHECK_INT(atomic_load(&ran), 12);
+}
+
+/* Nested: each item of the outer for runs an inner for of its own. */
+typedef struct nest {
+    atomic_int ok;
+} nest;
+
+static void inner_for(void *ctx, size_t i, int tid)
+{
+    (void)tid;
+    nest *n = ctx;
+    atomic_fetch_add(&n->ok, run_squares(200 + i, 1 + (int)(i % 5)));
+}
+
+static void nested_calls(void)
+{
+    nest n = {0};
+    vb_parallel_for(inner_for, &n, 24, 6);
+    CHECK_INT(atomic_load(&n.ok), 24);
+}
+
+/* Callers on four threads at once, each running many parallel fors; every
+ * tenth asks for VB_MAX_THREADS threads, more than the pool holds beside
+ * the others' calls. */
+static void *caller(void *arg)
+{
+    int *ok = arg;
+    for (int r = 0; r < 200; r++)
+        *ok += run_squares(300 + (size_t)r, r % 10 ? 2 + r % 7 : VB_MAX_THREADS);
+    return NULL;
+}
+
+static void concurrent_callers(void)
+{
+    pthread_t th[4];
+    int ok[4] = {0, 0, 0, 0};
+    for (int k = 0; k < 4; k++)
+        CHECK_INT(pthread_create(&th[k], NULL, caller, &ok[k]), 0);
+    for (int k = 0; k < 4; k++)
+        pthread_join(th[k], NULL);
+    for (int k = 0; k < 4; k++)
+        CHECK_INT(ok[k], 200);
+}
+
 int main(void)
 {
     first_error();
+    pool_reuse();
+    nested_calls();
+    concurrent_callers();
     worker_warnings();
     VB_TEST_END();
 }
