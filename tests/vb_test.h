@@ -3,11 +3,22 @@
 #ifndef VB_TEST_H
 #define VB_TEST_H
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 static int vb_test_passed, vb_test_failed;
+
+/* The tests' one pseudo-random step: Marsaglia's xorshift64 (13, 7, 17) on
+ * *s (never 0), returned; the same seed gives the same sequence anywhere. */
+static inline uint64_t vb_test_xorshift(uint64_t *s)
+{
+    *s ^= *s << 13;
+    *s ^= *s >> 7;
+    *s ^= *s << 17;
+    return *s;
+}
 
 #define CHECK(cond)                                                                  \
     do {                                                                             \

@@ -12,9 +12,7 @@ static uint64_t rng = 88172645463325252ull;
 
 static uint32_t next(uint32_t n)
 {
-    rng ^= rng << 13;
-    rng ^= rng >> 7;
-    rng ^= rng << 17;
+    vb_test_xorshift(&rng);
     return (uint32_t)(rng % n);
 }
 

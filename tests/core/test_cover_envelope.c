@@ -248,9 +248,7 @@ static void check_patch(const vb_sphere_set *s, uint32_t base, uint32_t f, uint3
 static uint64_t rng = 0x9e3779b97f4a7c15ull;
 static int64_t rnd(int64_t lo, int64_t hi)
 {
-    rng ^= rng << 13;
-    rng ^= rng >> 7;
-    rng ^= rng << 17;
+    vb_test_xorshift(&rng);
     return lo + (int64_t)(rng % (uint64_t)(hi - lo + 1));
 }
 

@@ -65,9 +65,7 @@ static void test_decimal_double(void)
     uint64_t x = 88172645463325252ull;
     size_t bad = 0, fast = 0;
     for (int t = 0; t < 200000; t++) {
-        x ^= x << 13;
-        x ^= x >> 7;
-        x ^= x << 17;
+        vb_test_xorshift(&x);
         int digits = 1 + (int)(x % 18);
         int64_t m = (int64_t)((x >> 8) % 1000000000000000000ull);
         for (int k = digits; k < 18; k++)

@@ -24,9 +24,7 @@ static void same(double x)
 static uint64_t rng = 0x9e3779b97f4a7c15ull;
 static uint64_t next(void)
 {
-    rng ^= rng << 13;
-    rng ^= rng >> 7;
-    rng ^= rng << 17;
+    vb_test_xorshift(&rng);
     return rng;
 }
 

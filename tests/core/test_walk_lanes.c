@@ -23,14 +23,12 @@ int main(void)
 }
 #else
 
-static unsigned long long rng = 0x9e3779b97f4a7c15ull;
+static uint64_t rng = 0x9e3779b97f4a7c15ull;
 
 /* Uniform in [lo, hi). */
 static double uni(double lo, double hi)
 {
-    rng ^= rng << 13;
-    rng ^= rng >> 7;
-    rng ^= rng << 17;
+    vb_test_xorshift(&rng);
     return lo + (hi - lo) * (double)(rng >> 11) * 0x1p-53;
 }
 

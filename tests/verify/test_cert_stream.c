@@ -22,9 +22,7 @@
 static uint64_t rnd_state = 88172645463325252ull;
 static size_t rnd(size_t n)
 {
-    rnd_state ^= rnd_state << 13;
-    rnd_state ^= rnd_state >> 7;
-    rnd_state ^= rnd_state << 17;
+    vb_test_xorshift(&rnd_state);
     return (size_t)(rnd_state % n);
 }
 

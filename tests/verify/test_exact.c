@@ -152,9 +152,7 @@ static void test_succ_paths(void)
         }
     uint64_t s = 0x9e3779b97f4a7c15u;
     for (int i = 0; i < 1000000; i++) {
-        s ^= s << 13;
-        s ^= s >> 7;
-        s ^= s << 17;
+        vb_test_xorshift(&s);
         double x;
         memcpy(&x, &s, sizeof x);
         bad += succ_differs(x);
@@ -197,9 +195,7 @@ static void test_div_paths(void)
     for (int i = 0; i < 1000000; i++) {
         double v[4];
         for (int m = 0; m < 4; m++) {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
+            vb_test_xorshift(&s);
             /* signed values over many binades, some exactly 0 */
             v[m] = (s & 15) == 0 ? 0.0 : ldexp((double)(s >> 11) * 0x1p-53 - 0.5, (int)(s % 200) - 100);
         }
