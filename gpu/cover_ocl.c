@@ -461,13 +461,16 @@ static int run_tasks(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *cel
 /* Tier t (the large or the hand-off tier) with slices for `tasks` tasks,
  * made on first use: at most the device's occupancy and what its share of
  * the budget's rest holds (half of it when both tiers may be made), in
- * whole groups of 64 on the work-item kernel. Returns VB_OK with no slices
+ * whole groups of 64 on the work-item kernel; the group kernel's large tier
+ * one slice per COV_BIG_TASKS tasks. Returns VB_OK with no slices
  * when none fits: the cells then go to the host. */
 static int tier_grow(vb_ctx *ctx, cov_state *s, cov_tier *t, size_t tasks)
 {
     size_t room = tier_share(s);
     size_t fit = room > tier_fixed(t) ? (room - tier_fixed(t)) / tier_bytes(t) : 0;
     size_t w = t->wg ? tasks : (tasks + 63) / 64 * 64;
+    if (t->wg && t == &s->tier[COV_BIG])
+        w = (tasks + COV_BIG_TASKS - 1) / COV_BIG_TASKS;
     w = w < t->want ? w : t->want;
     w = w < fit ? w : fit;
     if (!t->wg && w >= 64)

@@ -17,8 +17,9 @@
  *              large one), at most 1/8 of the budget left after the input:
  *              a batch larger than that runs in several launches;
  *   large tier S1 slices of 2.6 MiB, made on the first cell that needs them,
- *              S1 = min(the device's occupancy, the tasks waiting, the rest of
- *              the budget / P1) (half of it with the hand-off tier beside);
+ *              S1 = min(the device's occupancy, the tasks waiting / 64 on
+ *              the group kernel (COV_BIG_TASKS), the rest of the budget /
+ *              P1) (half of it with the hand-off tier beside);
  *              with no room the cells go to the host threads;
  *   huge tier  S3 slices of 7.1 MiB for the large tier's tasks that ran out of
  *              its records (those tasks only, not their cells' others), made
@@ -107,6 +108,16 @@ typedef struct cov_state {
 #define COV_BIG_NB 32768u
 #define COV_BIG_LAB 262144u
 #define COV_BIG_Q 4096u
+/* Tasks per large slice at least: below that the large tier's kernel time
+ * is its longest task's. On an H100 (stop 44, run B) the capsid's 11,040
+ * tasks took 0.078 / 0.082 / 0.083 s of large-tier kernel on 528 / 264 /
+ * 132 slices (2.6 MiB each: its device buffers 2,477 / 1,800 MiB at 528 /
+ * 264), while the 211,440-atom tiling's 217,056 tasks took 0.296 / 0.465 /
+ * 0.783 s. With 64 the capsid takes 170 slices (run C: 0.081 s of
+ * large-tier kernel, cover and certification 0.259-0.276 s against run B's
+ * 0.255 s, device buffers 1,559 MiB, nvidia-smi's peak 2,086 MiB) and the
+ * tiling keeps its 528 (4x the compute units). */
+#define COV_BIG_TASKS 64u
 /* The huge tier: the large tier's tasks that ran out of its records, again
  * with four times as many (the large tier's capacity before stop 42: 7.1 MiB
  * a slice with its labels). On an H100 (stop 43, the 211,440-atom tiling)
