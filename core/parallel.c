@@ -69,12 +69,13 @@ int vb_threads(unsigned requested)
     return n < 1 ? 1 : n > VB_MAX_THREADS ? VB_MAX_THREADS : (int)n;
 }
 
-/* Starts jobs first..n-1 of g on threads. */
-static int start_from(vb_jobs *g, int first)
+/* Starts jobs first..n-1 of g on threads, but those skip marks (the pool's;
+ * skip may be NULL). */
+static int start_from(vb_jobs *g, int first, const int *skip)
 {
     int started = 0;
     for (int t = 0; t < g->n; t++) {
-        g->started[t] = t >= first &&
+        g->started[t] = t >= first && !(skip && skip[t]) &&
                         pthread_create(&g->th[t], NULL, g->fn, g->jobs + (size_t)t * g->job_size) == 0;
         started += g->started[t];
     }
@@ -92,12 +93,16 @@ static void setup(vb_jobs *g, void *(*fn)(void *), void *jobs, size_t job_size, 
 int vb_jobs_start(vb_jobs *g, void *(*fn)(void *), void *jobs, size_t job_size, int n)
 {
     setup(g, fn, jobs, job_size, n);
-    return start_from(g, 0);
+    return start_from(g, 0, NULL);
 }
 
-void vb_jobs_join(vb_jobs *g)
+/* Waits for g's jobs but those skip marks (may be NULL), in order, running
+ * on the caller's thread those whose thread did not start. */
+static void join_except(vb_jobs *g, const int *skip)
 {
     for (int t = 0; t < g->n; t++) {
+        if (skip && skip[t])
+            continue;
         if (g->started[t])
             pthread_join(g->th[t], NULL);
         else
@@ -107,6 +112,11 @@ void vb_jobs_join(vb_jobs *g)
     g->n = 0;
 }
 
+void vb_jobs_join(vb_jobs *g)
+{
+    join_except(g, NULL);
+}
+
 void vb_run_jobs(void *(*fn)(void *), void *jobs, size_t job_size, int n)
 {
     vb_jobs g;
@@ -114,19 +124,10 @@ void vb_run_jobs(void *(*fn)(void *), void *jobs, size_t job_size, int n)
     vb_pool_call pc;
     int pooled[VB_MAX_THREADS];
     vb_pool_post(&pc, fn, jobs, job_size, g.n, pooled);
-    /* Jobs the pool could not take: threads of their own, else the caller. */
-    for (int t = 0; t < g.n; t++)
-        g.started[t] = t > 0 && !pooled[t] &&
-                       pthread_create(&g.th[t], NULL, fn, g.jobs + (size_t)t * job_size) == 0;
-    /* The caller's job first, then those that did not start, in order. */
-    for (int t = 0; t < g.n; t++) {
-        if (pooled[t])
-            continue;
-        if (g.started[t])
-            pthread_join(g.th[t], NULL);
-        else
-            fn(g.jobs + (size_t)t * job_size);
-    }
+    /* Jobs the pool could not take: threads of their own, else the caller;
+     * the caller's job first, then those that did not start, in order. */
+    start_from(&g, 1, pooled);
+    join_except(&g, pooled);
     vb_pool_wait(&pc);
 }
 
