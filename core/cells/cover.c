@@ -15,6 +15,7 @@
 
 #include "vb_cover_shared.h"
 #include "vb_parallel.h"
+#include "vbq_cluster.h"
 #include "vbs_internal.h"
 
 /* ---- the cells on worker threads ---------------------------------------- */
@@ -61,6 +62,7 @@ void vbq_arena_free(vbq_arena *a)
     free(a->hi);
     free(a->memo);
     free(a->memo_tag);
+    vbq_cluster_memo_free(a->cmemo);
     memset(a, 0, sizeof *a);
 }
 
@@ -74,12 +76,13 @@ int vbq_arena_make(vbq_arena *a, uint32_t nb, uint32_t lab, uint32_t st, uint32_
     a->hi = malloc((size_t)lab * sizeof *a->hi);
     a->memo = malloc(VBQ_MEMO * sizeof *a->memo);
     a->memo_tag = calloc(2u * VBQ_MEMO, sizeof *a->memo_tag);
+    a->cmemo = vbq_cluster_memo_new();
     a->nb_cap = nb;
     a->lab_cap = lab;
     a->st_cap = st;
     a->q_cap = q;
-    return a->nb && a->lab && a->st && a->q && a->hi && a->memo && a->memo_tag ? VB_OK
-                                                                              : VB_ENOMEM;
+    int ok = a->nb && a->lab && a->st && a->q && a->hi && a->memo && a->memo_tag && a->cmemo;
+    return ok ? VB_OK : VB_ENOMEM;
 }
 
 /* Arena capacities of the first try on the host; a cell that overflows one

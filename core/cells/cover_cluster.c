@@ -173,10 +173,14 @@ int vbq_host_cluster(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs
     const vb_sphere_set *s = e->host;
     if (!s || !s->ex || n < 3)
         return 0;
-    int32_t emin = vbq_cluster_emin(s, i, ids, n);
     vbq_cluster_ans a;
-    if (!vbq_cluster_small(s, i, ids, n, emin, &a))
-        vbq_cluster_gmp(s, i, ids, n, emin, &a);
+    if (!ar->cmemo || !vbq_cluster_memo_get(ar->cmemo, s, i, ids, n, &a)) {
+        int32_t emin = vbq_cluster_emin(s, i, ids, n);
+        if (!vbq_cluster_small(s, i, ids, n, emin, &a))
+            vbq_cluster_gmp(s, i, ids, n, emin, &a);
+        if (ar->cmemo)
+            vbq_cluster_memo_put(ar->cmemo, s, i, ids, n, &a);
+    }
     if (a.decided && a.nbasis == 3 && !vbq_add_quad(ar, o, i, a.id[0], a.id[1], a.id[2]))
         return -1;
     return a.decided;

@@ -36,4 +36,27 @@ int vbq_cluster_small(const vb_sphere_set *s, uint32_t i, const uint32_t *ids, u
 void vbq_cluster_gmp(const vb_sphere_set *s, uint32_t i, const uint32_t *ids, uint32_t n,
                      int32_t emin, vbq_cluster_ans *a);
 
+/* A cell's answers so far (cluster_memo.c), so that no list is decided
+ * twice: the answer depends on the set's decimals, the base i and the
+ * labels in order alone. */
+typedef struct vbq_cluster_memo vbq_cluster_memo;
+
+/* An empty memo, or NULL when out of memory. */
+vbq_cluster_memo *vbq_cluster_memo_new(void);
+
+/* Frees m (NULL: nothing). */
+void vbq_cluster_memo_free(vbq_cluster_memo *m);
+
+/* 1 with *a the answer remembered for base i of s and labels ids[0 .. n)
+ * in that order, or 0 when there is none. Asking for another cell (s or i)
+ * than the one remembered empties the memo first. */
+int vbq_cluster_memo_get(vbq_cluster_memo *m, const vb_sphere_set *s, uint32_t i,
+                         const uint32_t *ids, uint32_t n, vbq_cluster_ans *a);
+
+/* Remembers answer a of base i of s and labels ids[0 .. n) (copied). Out
+ * of memory it remembers nothing (the question is answered again later,
+ * the same way). */
+void vbq_cluster_memo_put(vbq_cluster_memo *m, const vb_sphere_set *s, uint32_t i,
+                          const uint32_t *ids, uint32_t n, const vbq_cluster_ans *a);
+
 #endif

@@ -149,6 +149,8 @@ typedef struct vbq_arena {
     vbq_nb *memo;       /* host: the cell's records made so far, VBQ_MEMO slots by tree
                            position (NULL: made again at every fetch, as the kernels do) */
     vbs_u32 *memo_tag;  /* per slot: tree position and cell + 1 of its record (0: none) */
+    struct vbq_cluster_memo *cmemo; /* host: the cell's tie-cluster answers (vbq_cluster.h;
+                                       NULL: each decided again) */
 #endif
 } vbq_arena;
 
