@@ -616,6 +616,11 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
                 o->leaves++;
                 continue;
             }
+            /* exactly no tie cluster: a near-tie the doubles call flat (a
+             * crystal jittered at their resolution); on as one, and its
+             * children with the same list need not ask again */
+            cluster = 0;
+            notflat = VBQ_FR_NOTFLAT;
 #endif
         }
         /* A stalled near-tie chain (vbq_envelope_due; its first tests
