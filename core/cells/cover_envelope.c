@@ -78,6 +78,7 @@ typedef struct env_exact {
     int made;
     vbs_u32 n;
     mpz_t (*row)[4]; /* n + 1 rows: the labels', then infinity's */
+    double (*rd)[4]; /* the rows in doubles (mpz_get_d: within 2u relative) */
     mpz_t q[4], t;
 } env_exact;
 
@@ -94,8 +95,12 @@ static int env_exact_make(env_exact *X, const vb_sphere_set *s, vbs_u32 i, const
                 emin = col[a][j].exp10;
     }
     X->row = malloc((size_t)(n + 1) * sizeof *X->row);
-    if (!X->row)
+    X->rd = malloc((size_t)(n + 1) * sizeof *X->rd);
+    if (!X->row || !X->rd) {
+        free(X->row);
+        free(X->rd);
         return 0;
+    }
     X->n = n;
     mpz_t ci[3];
     for (int a = 0; a < 3; a++)
@@ -115,6 +120,9 @@ static int env_exact_make(env_exact *X, const vb_sphere_set *s, vbs_u32 i, const
             mpz_addmul(X->row[k][0], X->row[k][a + 1], X->row[k][a + 1]);
         }
     }
+    for (vbs_u32 k = 0; k <= n; k++)
+        for (int c = 0; c < 4; c++)
+            X->rd[k][c] = mpz_get_d(X->row[k][c]);
     for (int a = 0; a < 3; a++)
         mpz_clear(ci[a]);
     X->made = 1;
@@ -129,6 +137,7 @@ static void env_exact_free(env_exact *X)
         for (int c = 0; c < 4; c++)
             mpz_clear(X->row[k][c]);
     free(X->row);
+    free(X->rd);
 }
 
 /* The decision of one patch, and the exact data of the triple at hand:
@@ -139,9 +148,10 @@ typedef struct env_ctx {
     vbs_u32 i, n;
     env_lab *L;
     env_exact X;
-    int tri_made;
+    int tri_made, fast_made;
     mpz_t C[4], m2[6], acc;
     double c[4];
+    double f[4], fe[4]; /* the cofactors from the rows' doubles, and their error bounds */
     vbs_u32 exact_calls;
 } env_ctx;
 
@@ -158,15 +168,48 @@ static void env_ctx_each(env_ctx *c, void (*fn)(mpz_ptr))
     fn(c->acc);
 }
 
+/* m2 index of the column pair (a, b), a < b; the pairs; the columns of C_x */
+static const int mi[4][4] = {{-1, 0, 1, 2}, {0, -1, 3, 4}, {1, 3, -1, 5}, {2, 4, 5, -1}};
+static const int pr[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+static const int cols[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+
+/* The cofactors of env_tri_make in doubles, from the rows' doubles rd
+ * (|rd - R| <= 2u |R|, mpz_get_d truncates), without GMP: f_x with
+ * |f_x - C_x| <= fe_x. Why: C_x is a sum of six signed products of three
+ * row entries; each computed term carries at most five roundings (the
+ * product and the difference of m2, the product by row j, two additions:
+ * gamma_5 <= 5.01u) and the inputs' errors (1 + 2u)^3 - 1 <= 6.01u, so
+ * |f_x - C_x| <= 11.02u P_x (1 + 2u)^3 with P_x the sum of the six terms'
+ * magnitudes; P_x is computed from the same doubles with at most five
+ * roundings of non-negative terms, and fe_x = 16u P^_x covers all of it.
+ * No overflow: the entries are below 2^340 (coordinates below 2^63 at the
+ * common exponent give N below 2^128 and C below 2^320); a non-finite bound
+ * fails the filter. */
+static void env_tri_fast(env_ctx *c, vbs_u32 j, vbs_u32 k, vbs_u32 l)
+{
+    const double *rk = c->X.rd[k], *rl = c->X.rd[l], *rj = c->X.rd[j];
+    double m2[6], a2[6];
+    for (int p = 0; p < 6; p++) {
+        double x = rk[pr[p][0]] * rl[pr[p][1]], y = rk[pr[p][1]] * rl[pr[p][0]];
+        m2[p] = x - y;
+        a2[p] = fabs(x) + fabs(y);
+    }
+    for (int x = 0; x < 4; x++) {
+        int a = cols[x][0], b = cols[x][1], d = cols[x][2];
+        double v = rj[a] * m2[mi[b][d]] - rj[b] * m2[mi[a][d]] + rj[d] * m2[mi[a][b]];
+        double g = fabs(rj[a]) * a2[mi[b][d]] + fabs(rj[b]) * a2[mi[a][d]] +
+                   fabs(rj[d]) * a2[mi[a][b]];
+        c->f[x] = x & 1 ? -v : v;
+        c->fe[x] = 16.0 * VBQ_U * g;
+    }
+    c->fast_made = 1;
+}
+
 /* The cofactors of rows j, k, l along the first row of det4[R0; j; k; l]:
  * C_x = (-1)^x det3(the three rows without column x), each det3 expanded
  * along row j over the 2x2 minors of rows k, l. */
 static void env_tri_make(env_ctx *c, vbs_u32 j, vbs_u32 k, vbs_u32 l)
 {
-    /* m2 index of the column pair (a, b), a < b */
-    static const int mi[4][4] = {{-1, 0, 1, 2}, {0, -1, 3, 4}, {1, 3, -1, 5}, {2, 4, 5, -1}};
-    static const int pr[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
-    static const int cols[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
     mpz_t *rk = c->X.row[k], *rl = c->X.row[l], *rj = c->X.row[j];
     for (int p = 0; p < 6; p++) {
         mpz_mul(c->m2[p], rk[pr[p][0]], rl[pr[p][1]]);
@@ -197,8 +240,6 @@ static int env_sign_exact(env_ctx *c, const double *q, vbs_u32 m, vbs_u32 j, vbs
     c->exact_calls++;
     if (!c->X.made && !env_exact_make(&c->X, c->s, c->i, c->L, c->n))
         return 2;
-    if (!c->tri_made)
-        env_tri_make(c, j, k, l);
     double r[4];
     if (q) {
         r[0] = 0.0;
@@ -206,14 +247,33 @@ static int env_sign_exact(env_ctx *c, const double *q, vbs_u32 m, vbs_u32 j, vbs
             r[a + 1] = q[a];
     } else {
         for (int a = 0; a < 4; a++)
-            r[a] = mpz_get_d(c->X.row[m][a]);
+            r[a] = c->X.rd[m][a];
     }
-    double v = 0.0, g = 0.0;
+    /* First from the cofactors' doubles (env_tri_fast): with R0 the exact
+     * row (|r - R0| <= 2u |R0|; a q row is exact), |r . f - R0 . C| <=
+     * sum |r_a| (2.01u |f_a| + 1.01 fe_a), and forming r . f adds at most
+     * 4.01u sum |r_a f_a|: 8u of that sum and 1.01 of sum |r_a| fe_a, with
+     * 1 + 1e-12 for the bound's own roundings. Then the exact cofactors. */
+    if (!c->fast_made)
+        env_tri_fast(c, j, k, l);
+    double v = 0.0, g = 0.0, ge = 0.0;
+    for (int a = 0; a < 4; a++) {
+        v += r[a] * c->f[a];
+        g += fabs(r[a] * c->f[a]);
+        ge += fabs(r[a]) * c->fe[a];
+    }
+    double b = (8.0 * VBQ_U * g + 1.01 * ge) * (1.0 + 1e-12) + VBQ_TINY;
+    if (isfinite(b) && (v > b || v < -b))
+        return v > b ? -1 : 1;
+    if (!c->tri_made)
+        env_tri_make(c, j, k, l);
+    v = 0.0;
+    g = 0.0;
     for (int a = 0; a < 4; a++) {
         v += r[a] * c->c[a];
         g += fabs(r[a] * c->c[a]);
     }
-    double b = 16.0 * VBQ_U * g * (1.0 + 1e-12) + VBQ_TINY;
+    b = 16.0 * VBQ_U * g * (1.0 + 1e-12) + VBQ_TINY;
     if (isfinite(g) && (v > b || v < -b))
         return v > b ? -1 : 1;
     mpz_t *r0;
@@ -250,7 +310,7 @@ static int env_sign_exact(env_ctx *c, const double *q, vbs_u32 m, vbs_u32 j, vbs
  * last triple (tried first). */
 static int env_triple(env_ctx *c, vbs_u32 j, vbs_u32 k, vbs_u32 l, double qs[5][3], vbs_u32 *last)
 {
-    c->tri_made = 0;
+    c->tri_made = c->fast_made = 0;
     /* sigma: the face's side of Y (qs[0] is n) */
     int sg = env_sign_exact(c, qs[0], 0u, j, k, l);
     if (sg == 2 || sg == 0)
