@@ -182,9 +182,10 @@ static const int cols[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
  * |f_x - C_x| <= 11.02u P_x (1 + 2u)^3 with P_x the sum of the six terms'
  * magnitudes; P_x is computed from the same doubles with at most five
  * roundings of non-negative terms, and fe_x = 16u P^_x covers all of it.
- * No overflow: the entries are below 2^340 (coordinates below 2^63 at the
- * common exponent give N below 2^128 and C below 2^320); a non-finite bound
- * fails the filter. */
+ * Overflow: coordinates below 2^63 at the common exponent give N below
+ * 2^128, C below 2^260 and R0 . C below 2^390, far from the doubles' range;
+ * larger rows (exponents far apart) may give infinities, and a non-finite
+ * bound (or a NaN) fails the filter: the integers decide. */
 static void env_tri_fast(env_ctx *c, vbs_u32 j, vbs_u32 k, vbs_u32 l)
 {
     const double *rk = c->X.rd[k], *rl = c->X.rd[l], *rj = c->X.rd[j];
