@@ -23,6 +23,7 @@ typedef struct entry {
     size_t off;  /* its labels: ids[off .. off + n) */
     uint32_t n;
     vbq_cluster_ans a;
+    size_t toff, nt; /* its hull triples: tri[3 toff .. 3 (toff + nt)) */
 } entry;
 
 struct vbq_cluster_memo {
@@ -33,6 +34,8 @@ struct vbq_cluster_memo {
     size_t ne, ecap;
     uint32_t *ids;
     size_t nids, icap;
+    uint32_t *tri;
+    size_t ntri, tcap; /* in triples, and in uint32s */
 };
 
 /* What vb_hash's callbacks see: the memo and the key sought. */
@@ -76,6 +79,7 @@ void vbq_cluster_memo_free(vbq_cluster_memo *m)
     vb_hash_free(&m->t);
     free(m->e);
     free(m->ids);
+    free(m->tri);
     free(m);
 }
 
@@ -87,13 +91,14 @@ static void memo_for(vbq_cluster_memo *m, const void *set, uint32_t i)
     if (m->t.n)
         memset(m->t.slot, 0, m->t.cap * sizeof *m->t.slot);
     m->t.n = 0;
-    m->ne = m->nids = 0;
+    m->ne = m->nids = m->ntri = 0;
     m->set = set;
     m->cell = i;
 }
 
 int vbq_cluster_memo_get(vbq_cluster_memo *m, const vb_sphere_set *s, uint32_t i,
-                         const uint32_t *ids, uint32_t n, vbq_cluster_ans *a)
+                         const uint32_t *ids, uint32_t n, vbq_cluster_ans *a,
+                         const uint32_t **tri, size_t *nt)
 {
     memo_for(m, s, i);
     key k = {m, ids, n, hash_ids(ids, n)};
@@ -101,16 +106,20 @@ int vbq_cluster_memo_get(vbq_cluster_memo *m, const vb_sphere_set *s, uint32_t i
     if (item == SIZE_MAX)
         return 0;
     *a = m->e[item].a;
+    *tri = m->tri + 3 * m->e[item].toff;
+    *nt = m->e[item].nt;
     return 1;
 }
 
 void vbq_cluster_memo_put(vbq_cluster_memo *m, const vb_sphere_set *s, uint32_t i,
-                          const uint32_t *ids, uint32_t n, const vbq_cluster_ans *a)
+                          const uint32_t *ids, uint32_t n, const vbq_cluster_ans *a,
+                          const uint32_t *tri, size_t nt)
 {
     memo_for(m, s, i);
     key k = {m, ids, n, hash_ids(ids, n)};
     if (VB_ARRAY_FIT(m->e, m->ecap, m->ne + 1, 64) != VB_OK ||
         VB_ARRAY_FIT(m->ids, m->icap, m->nids + n, 1024) != VB_OK ||
+        VB_ARRAY_FIT(m->tri, m->tcap, 3 * (m->ntri + nt), 64) != VB_OK ||
         vb_hash_fit(&m->t, m->t.n + 1, hash_of, m) != VB_OK)
         return; /* not remembered: asked again, the same answer */
     size_t *slot = vb_hash_slot(&m->t, k.hash, same, &k);
@@ -123,6 +132,11 @@ void vbq_cluster_memo_put(vbq_cluster_memo *m, const vb_sphere_set *s, uint32_t 
     x->a = *a;
     memcpy(m->ids + m->nids, ids, (size_t)n * sizeof *ids);
     m->nids += n;
+    x->toff = m->ntri;
+    x->nt = nt;
+    if (nt)
+        memcpy(m->tri + 3 * m->ntri, tri, 3 * nt * sizeof *tri);
+    m->ntri += nt;
     /* room was made above: the table stays at most half full */
     (void)vb_hash_put(&m->t, slot, m->ne++, hash_of, m);
 }

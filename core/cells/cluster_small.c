@@ -32,29 +32,11 @@
 
 #include "vbq_cluster.h"
 
-typedef __int128 i128;
-
-/* Checked operations: 1 when *r holds the exact result. */
-static int mul(i128 a, i128 b, i128 *r)
-{
-    return !__builtin_mul_overflow(a, b, r);
-}
-
-static int add(i128 a, i128 b, i128 *r)
-{
-    return !__builtin_add_overflow(a, b, r);
-}
-
-static int sub(i128 a, i128 b, i128 *r)
-{
-    return !__builtin_sub_overflow(a, b, r);
-}
-
 /* *r = a x - b y + c z, exactly; 0 on overflow. */
-static int comb3(i128 a, i128 x, i128 b, i128 y, i128 c, i128 z, i128 *r)
+static int comb3(vbq_i128 a, vbq_i128 x, vbq_i128 b, vbq_i128 y, vbq_i128 c, vbq_i128 z, vbq_i128 *r)
 {
-    i128 p, q, s;
-    return mul(a, x, &p) && mul(b, y, &q) && mul(c, z, &s) && sub(p, q, &p) && add(p, s, r);
+    vbq_i128 p, q, s;
+    return vbq_cmul(a, x, &p) && vbq_cmul(b, y, &q) && vbq_cmul(c, z, &s) && vbq_csub(p, q, &p) && vbq_cadd(p, s, r);
 }
 
 /* d * 10^(d.exp10 - emin) as an int64; 0 when it does not fit. */
@@ -86,26 +68,25 @@ static int scaled(vb_decimal d, int32_t emin, int64_t *out)
 }
 
 /* The decimals of sphere j scaled: x, y, z, r. */
-static int scaled4(const vb_sphere_set *s, uint32_t j, int32_t emin, int64_t o[4])
+int vbq_cluster_scaled4(const vb_sphere_set *s, uint32_t j, int32_t emin, int64_t o[4])
 {
     return scaled(s->ex[j], emin, o) && scaled(s->ey[j], emin, o + 1) &&
            scaled(s->ez[j], emin, o + 2) && scaled(s->er[j], emin, o + 3);
 }
 
-/* v = (D, Delta, N) of sphere j against the base's scaled decimals ci. */
-static int vector(const vb_sphere_set *s, uint32_t j, int32_t emin, const int64_t ci[4],
-                  i128 v[5])
+int vbq_cluster_vector(const vb_sphere_set *s, uint32_t j, int32_t emin, const int64_t ci[4],
+                       vbq_i128 v[5])
 {
     int64_t cj[4];
-    if (!scaled4(s, j, emin, cj))
+    if (!vbq_cluster_scaled4(s, j, emin, cj))
         return 0;
     for (int a = 0; a < 4; a++)
-        v[a] = (i128)cj[a] - (i128)ci[a]; /* |.| < 2^64: no overflow */
-    i128 sq, n = 0;
+        v[a] = (vbq_i128)cj[a] - (vbq_i128)ci[a]; /* |.| < 2^64: no overflow */
+    vbq_i128 sq, n = 0;
     for (int a = 0; a < 4; a++) {
-        if (!mul(v[a], v[a], &sq))
+        if (!vbq_cmul(v[a], v[a], &sq))
             return 0;
-        if (!(a < 3 ? add(n, sq, &n) : sub(n, sq, &n)))
+        if (!(a < 3 ? vbq_cadd(n, sq, &n) : vbq_csub(n, sq, &n)))
             return 0;
     }
     v[4] = n;
@@ -124,22 +105,22 @@ static int odd5(const int c[5])
 
 /* The basis so far and what the next test needs of it. */
 typedef struct basis {
-    i128 b[3][5];
-    i128 m2[5][5];  /* 2x2 minors of b_0, b_1 on columns (a, c), a < c */
-    i128 n[2][5];   /* the null space of three rows */
+    vbq_i128 b[3][5];
+    vbq_i128 m2[5][5];  /* 2x2 minors of b_0, b_1 on columns (a, c), a < c */
+    vbq_i128 n[2][5];   /* the null space of three rows */
     int nb;
 } basis;
 
 /* The 3x3 minor of [b_0; b_1; w] on columns a < c < d. */
-static int minor3(const basis *B, const i128 w[5], int a, int c, int d, i128 *r)
+static int minor3(const basis *B, const vbq_i128 w[5], int a, int c, int d, vbq_i128 *r)
 {
     return comb3(w[a], B->m2[c][d], w[c], B->m2[a][d], w[d], B->m2[a][c], r);
 }
 
 /* Is v independent of the basis? 1 / 0 in *ind; returns 0 on overflow. */
-static int independent(const basis *B, const i128 v[5], int *ind)
+static int independent(const basis *B, const vbq_i128 v[5], int *ind)
 {
-    i128 r, p, q;
+    vbq_i128 r, p, q;
     *ind = 0;
     if (B->nb == 0) {
         for (int a = 0; a < 5; a++)
@@ -149,7 +130,7 @@ static int independent(const basis *B, const i128 v[5], int *ind)
     if (B->nb == 1) {
         for (int a = 0; a < 5; a++)
             for (int c = a + 1; c < 5; c++) {
-                if (!mul(v[a], B->b[0][c], &p) || !mul(v[c], B->b[0][a], &q) || !sub(p, q, &r))
+                if (!vbq_cmul(v[a], B->b[0][c], &p) || !vbq_cmul(v[c], B->b[0][a], &q) || !vbq_csub(p, q, &r))
                     return 0;
                 if (r != 0) {
                     *ind = 1;
@@ -174,7 +155,7 @@ static int independent(const basis *B, const i128 v[5], int *ind)
     for (int g = 0; g < 2; g++) {
         r = 0;
         for (int a = 0; a < 5; a++)
-            if (!mul(v[a], B->n[g][a], &p) || !add(r, p, &r))
+            if (!vbq_cmul(v[a], B->n[g][a], &p) || !vbq_cadd(r, p, &r))
                 return 0;
         if (r != 0) {
             *ind = 1;
@@ -185,7 +166,7 @@ static int independent(const basis *B, const i128 v[5], int *ind)
 }
 
 /* X(b_0, b_1, b_2, e_g) into x (see the head of this file). */
-static int cross(const basis *B, int g, i128 x[5])
+static int cross(const basis *B, int g, vbq_i128 x[5])
 {
     for (int k = 0; k < 5; k++) {
         x[k] = 0;
@@ -197,7 +178,7 @@ static int cross(const basis *B, int g, i128 x[5])
                 c[m++] = a;
         c[3] = g;
         c[4] = k;
-        i128 r;
+        vbq_i128 r;
         if (!minor3(B, B->b[2], c[0], c[1], c[2], &r))
             return 0;
         x[k] = odd5(c) ? -r : r;
@@ -206,7 +187,7 @@ static int cross(const basis *B, int g, i128 x[5])
 }
 
 /* Appends the independent v; returns 0 on overflow. */
-static int append(basis *B, const i128 v[5])
+static int append(basis *B, const vbq_i128 v[5])
 {
     for (int a = 0; a < 5; a++)
         B->b[B->nb][a] = v[a];
@@ -214,9 +195,9 @@ static int append(basis *B, const i128 v[5])
     if (B->nb == 2) {
         for (int a = 0; a < 5; a++)
             for (int c = a + 1; c < 5; c++) {
-                i128 p, q;
-                if (!mul(B->b[0][a], B->b[1][c], &p) || !mul(B->b[0][c], B->b[1][a], &q) ||
-                    !sub(p, q, &B->m2[a][c]))
+                vbq_i128 p, q;
+                if (!vbq_cmul(B->b[0][a], B->b[1][c], &p) || !vbq_cmul(B->b[0][c], B->b[1][a], &q) ||
+                    !vbq_csub(p, q, &B->m2[a][c]))
                     return 0;
             }
     }
@@ -226,7 +207,7 @@ static int append(basis *B, const i128 v[5])
         for (int a = 0; a < 5; a++)
             for (int c = a + 1; c < 5; c++)
                 for (int d = c + 1; d < 5; d++) {
-                    i128 r;
+                    vbq_i128 r;
                     if (!minor3(B, B->b[2], a, c, d, &r))
                         return 0;
                     if (r == 0)
@@ -246,14 +227,14 @@ int vbq_cluster_small(const vb_sphere_set *s, uint32_t i, const uint32_t *ids, u
                       int32_t emin, vbq_cluster_ans *ans)
 {
     int64_t ci[4];
-    if (!scaled4(s, i, emin, ci))
+    if (!vbq_cluster_scaled4(s, i, emin, ci))
         return 0;
     basis B;
     B.nb = 0;
     ans->decided = 1;
     for (uint32_t k = 0; k < n; k++) {
-        i128 v[5];
-        if (!vector(s, ids[k], emin, ci, v))
+        vbq_i128 v[5];
+        if (!vbq_cluster_vector(s, ids[k], emin, ci, v))
             return 0;
         /* N_j <= 0: j touches i from inside, f_j is not an affine function */
         if (v[4] <= 0) {

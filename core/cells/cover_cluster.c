@@ -174,14 +174,28 @@ int vbq_host_cluster(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs
     if (!s || !s->ex || n < 3)
         return 0;
     vbq_cluster_ans a;
-    if (!ar->cmemo || !vbq_cluster_memo_get(ar->cmemo, s, i, ids, n, &a)) {
+    const uint32_t *tri = NULL;
+    uint32_t *own = NULL;
+    size_t nt = 0, cap = 0;
+    if (!ar->cmemo || !vbq_cluster_memo_get(ar->cmemo, s, i, ids, n, &a, &tri, &nt)) {
         int32_t emin = vbq_cluster_emin(s, i, ids, n);
         if (!vbq_cluster_small(s, i, ids, n, emin, &a))
             vbq_cluster_gmp(s, i, ids, n, emin, &a);
+        if (!a.decided) {
+            /* affine rank 3 (cluster_hull.c); out of memory: enumerated */
+            a.decided = vbq_cluster_hull(s, i, ids, n, emin, &own, &cap, &nt) == 1;
+            a.nbasis = 0;
+            tri = own;
+        }
         if (ar->cmemo)
-            vbq_cluster_memo_put(ar->cmemo, s, i, ids, n, &a);
+            vbq_cluster_memo_put(ar->cmemo, s, i, ids, n, &a, tri, nt);
     }
+    int rc = a.decided;
     if (a.decided && a.nbasis == 3 && !vbq_add_quad(ar, o, i, a.id[0], a.id[1], a.id[2]))
-        return -1;
-    return a.decided;
+        rc = -1;
+    for (size_t t = 0; t < nt && rc == 1; t++)
+        if (!vbq_add_quad(ar, o, i, tri[3 * t], tri[3 * t + 1], tri[3 * t + 2]))
+            rc = -1;
+    free(own);
+    return rc;
 }

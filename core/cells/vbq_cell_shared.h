@@ -172,18 +172,22 @@ VBS_FN int vbq_leaf_quads(const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i, vbs_u
 }
 
 /* Do the owned labels (ids > i) of lab[0 .. keep) look like an exact tie
- * cluster: are their points (a, b) in R^4 on one affine plane as far as the
- * doubles tell (within 8 times the records' error bounds and 1e-12 of the
- * points' size)? Only a trigger: the host decides exactly (vbq_host_cluster)
- * and enumerates whatever is not a cluster; near-ties beyond the doubles'
- * noise do not look flat and are left to the subdivision. Three passes: the
- * point farthest from the first, the one farthest from their line, then
- * every distance to the plane of the three. */
+ * cluster: are their points (a, b) in R^4 on one affine plane, or on one
+ * affine 3-space (spheres tangent to one sphere, unequal radii: asked only
+ * where some b is not 0), as far as
+ * the doubles tell (within 8 times the records' error bounds and 1e-12 of
+ * the points' size)? Only a trigger: the host decides exactly
+ * (vbq_host_cluster) and enumerates whatever is not a cluster; near-ties
+ * beyond the doubles' noise do not look flat and are left to the
+ * subdivision. Four passes: the point farthest from the first, the one
+ * farthest from their line, the one farthest from the plane of the three,
+ * then every distance to the 3-space of the four. */
 VBS_FN int vbq_looks_flat(const VBS_GLOBAL vbq_nb *nb, const VBS_GLOBAL vbs_u32 *lab, vbs_u32 keep,
                           vbs_u32 i)
 {
     double p0[4] = {0.0, 0.0, 0.0, 0.0}, v1[4] = {0.0, 0.0, 0.0, 0.0}, v2[4] = {0.0, 0.0, 0.0, 0.0};
-    double scale = 0.0, emax = 0.0, best = -1.0;
+    double v3[4] = {0.0, 0.0, 0.0, 0.0};
+    double scale = 0.0, emax = 0.0, best = -1.0, bmax = 0.0;
     int have = 0;
     for (vbs_u32 a = 0u; a < keep; a++) {
         vbq_nb r = nb[lab[a]];
@@ -193,6 +197,7 @@ VBS_FN int vbq_looks_flat(const VBS_GLOBAL vbq_nb *nb, const VBS_GLOBAL vbs_u32 
             return 0;
         double q[4] = {r.ax, r.ay, r.az, r.b};
         emax = r.err > emax ? r.err : emax;
+        bmax = VBS_FABS(r.b) > bmax ? VBS_FABS(r.b) : bmax;
         for (int k = 0; k < 4; k++)
             scale = VBS_FABS(q[k]) > scale ? VBS_FABS(q[k]) : scale;
         if (!have) {
@@ -216,7 +221,7 @@ VBS_FN int vbq_looks_flat(const VBS_GLOBAL vbq_nb *nb, const VBS_GLOBAL vbs_u32 
     double n1 = VBS_SQRT(best);
     for (int k = 0; k < 4; k++)
         v1[k] /= n1;
-    for (int pass = 0; pass < 2; pass++) {
+    for (int pass = 0; pass < 3; pass++) {
         double far = -1.0, w2[4] = {0.0, 0.0, 0.0, 0.0};
         for (vbs_u32 a = 0u; a < keep; a++) {
             vbq_nb r = nb[lab[a]];
@@ -225,9 +230,10 @@ VBS_FN int vbq_looks_flat(const VBS_GLOBAL vbq_nb *nb, const VBS_GLOBAL vbs_u32 
             double w[4] = {r.ax - p0[0], r.ay - p0[1], r.az - p0[2], r.b - p0[3]};
             double c1 = w[0] * v1[0] + w[1] * v1[1] + w[2] * v1[2] + w[3] * v1[3];
             double c2 = w[0] * v2[0] + w[1] * v2[1] + w[2] * v2[2] + w[3] * v2[3];
+            double c3 = w[0] * v3[0] + w[1] * v3[1] + w[2] * v3[2] + w[3] * v3[3];
             double e[4], d2 = 0.0;
             for (int k = 0; k < 4; k++) {
-                e[k] = w[k] - c1 * v1[k] - c2 * v2[k];
+                e[k] = w[k] - c1 * v1[k] - c2 * v2[k] - c3 * v3[k];
                 d2 += e[k] * e[k];
             }
             if (d2 > far) {
@@ -238,11 +244,18 @@ VBS_FN int vbq_looks_flat(const VBS_GLOBAL vbq_nb *nb, const VBS_GLOBAL vbs_u32 
         }
         if (!(far > tol * tol))
             return 1;
-        if (pass == 1)
+        /* a 3-space only where the radii differ: with b = 0 (the base's
+         * radius) every point is on one, and the near-ties of equal balls
+         * are left to the subdivision and the envelope decision */
+        if (pass == 2 || (pass == 1 && !(bmax > tol)))
             return 0;
         double n2 = VBS_SQRT(far);
-        for (int k = 0; k < 4; k++)
-            v2[k] = w2[k] / n2;
+        for (int k = 0; k < 4; k++) {
+            if (pass == 0)
+                v2[k] = w2[k] / n2;
+            else
+                v3[k] = w2[k] / n2;
+        }
     }
     return 0;
 }

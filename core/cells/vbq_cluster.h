@@ -6,6 +6,7 @@
 #ifndef VBQ_CLUSTER_H
 #define VBQ_CLUSTER_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "vb_spheres.h"
@@ -20,6 +21,34 @@ typedef struct vbq_cluster_ans {
     int nbasis;
     uint32_t id[3];
 } vbq_cluster_ans;
+
+typedef __int128 vbq_i128;
+
+/* Checked 128-bit operations: 1 when *r holds the exact result, 0 on
+ * overflow (cluster_small.c, cluster_hull.c). */
+static inline int vbq_cmul(vbq_i128 a, vbq_i128 b, vbq_i128 *r)
+{
+    return !__builtin_mul_overflow(a, b, r);
+}
+
+static inline int vbq_cadd(vbq_i128 a, vbq_i128 b, vbq_i128 *r)
+{
+    return !__builtin_add_overflow(a, b, r);
+}
+
+static inline int vbq_csub(vbq_i128 a, vbq_i128 b, vbq_i128 *r)
+{
+    return !__builtin_sub_overflow(a, b, r);
+}
+
+/* The decimals x, y, z, r of sphere j scaled to 10^emin, as int64s in o;
+ * 0 when one does not fit. */
+int vbq_cluster_scaled4(const vb_sphere_set *s, uint32_t j, int32_t emin, int64_t o[4]);
+
+/* v = (D, Delta, N) of sphere j against the base's scaled decimals ci
+ * (vbq_cluster_scaled4), exactly; 0 when N does not fit. */
+int vbq_cluster_vector(const vb_sphere_set *s, uint32_t j, int32_t emin, const int64_t ci[4],
+                       vbq_i128 v[5]);
 
 /* The smallest exponent of the decimals of sphere i and spheres ids[0 ..
  * n): the common scale of the integer vectors. */
@@ -36,6 +65,15 @@ int vbq_cluster_small(const vb_sphere_set *s, uint32_t i, const uint32_t *ids, u
 void vbq_cluster_gmp(const vb_sphere_set *s, uint32_t i, const uint32_t *ids, uint32_t n,
                      int32_t emin, vbq_cluster_ans *a);
 
+/* The decision of labels whose vectors have rank exactly 4 (affine rank 3:
+ * cluster_hull.c): the triples of labels that span a supporting plane of
+ * their points, 3 ids each, into (*tri, *cap) (grown with VB_ARRAY_FIT),
+ * *nt of them. Returns 1 when decided (every vertex of the leaf is a root
+ * of one of their quadruples), 0 when not (another rank, some N_j <= 0, a
+ * number too large: *nt = 0), -1 out of memory. */
+int vbq_cluster_hull(const vb_sphere_set *s, uint32_t i, const uint32_t *ids, uint32_t n,
+                     int32_t emin, uint32_t **tri, size_t *cap, size_t *nt);
+
 /* A cell's answers so far (cluster_memo.c), so that no list is decided
  * twice: the answer depends on the set's decimals, the base i and the
  * labels in order alone. */
@@ -48,15 +86,18 @@ vbq_cluster_memo *vbq_cluster_memo_new(void);
 void vbq_cluster_memo_free(vbq_cluster_memo *m);
 
 /* 1 with *a the answer remembered for base i of s and labels ids[0 .. n)
- * in that order, or 0 when there is none. Asking for another cell (s or i)
- * than the one remembered empties the memo first. */
+ * in that order and *tri its hull triples (*nt of them, vbq_cluster_hull;
+ * valid until the next put), or 0 when there is none. Asking for another
+ * cell (s or i) than the one remembered empties the memo first. */
 int vbq_cluster_memo_get(vbq_cluster_memo *m, const vb_sphere_set *s, uint32_t i,
-                         const uint32_t *ids, uint32_t n, vbq_cluster_ans *a);
+                         const uint32_t *ids, uint32_t n, vbq_cluster_ans *a,
+                         const uint32_t **tri, size_t *nt);
 
-/* Remembers answer a of base i of s and labels ids[0 .. n) (copied). Out
- * of memory it remembers nothing (the question is answered again later,
- * the same way). */
+/* Remembers answer a of base i of s and labels ids[0 .. n) with its nt
+ * hull triples tri (all copied). Out of memory it remembers nothing (the
+ * question is answered again later, the same way). */
 void vbq_cluster_memo_put(vbq_cluster_memo *m, const vb_sphere_set *s, uint32_t i,
-                          const uint32_t *ids, uint32_t n, const vbq_cluster_ans *a);
+                          const uint32_t *ids, uint32_t n, const vbq_cluster_ans *a,
+                          const uint32_t *tri, size_t nt);
 
 #endif

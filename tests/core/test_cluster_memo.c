@@ -45,11 +45,13 @@ static void ask(vbq_cluster_memo *m, const vb_sphere_set *s, uint32_t i, const u
                 uint32_t n)
 {
     vbq_cluster_ans want = direct(s, i, ids, n), got;
-    if (vbq_cluster_memo_get(m, s, i, ids, n, &got))
+    const uint32_t *tri;
+    size_t nt;
+    if (vbq_cluster_memo_get(m, s, i, ids, n, &got, &tri, &nt))
         hits++;
     else {
         got = want;
-        vbq_cluster_memo_put(m, s, i, ids, n, &got);
+        vbq_cluster_memo_put(m, s, i, ids, n, &got, NULL, 0);
     }
     CHECK(same_ans(&got, &want));
 }
