@@ -117,6 +117,12 @@ near_cospherical)
                         if (dx * dx + dy * dy + dz * dz < 1e-8 && dt * dt < 1e-8) near++ }
                END { exit !(near == 17 && NR == 17) }' \
         "17 vertices of degree 4, all within 1e-4 of (1.5, -2, 0.5) with t = 8, expected" ;;
+sc_jitter12)
+    # every degree-8 cube centre splits into five or six simple vertices 1e-12 apart
+    awk_check 'n != 4 { bad++ } { k = sprintf("%.6f %.6f %.6f", $2, $3, $4); c[k]++ }
+               END { for (k in c) if (c[k] == 5 || c[k] == 6) split6++
+                     exit !(bad == 0 && split6 == 27 && NR == 312) }' \
+        "312 vertices of degree 4, 27 cube centres split five or six ways, expected" ;;
 *)
     fail "no property known for case $case" ;;
 esac
