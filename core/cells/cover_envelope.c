@@ -403,10 +403,10 @@ int vbq_envelope_decide(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, 
 }
 
 int vbq_host_envelope(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i,
-                      const vbq_frame *fr, vbs_u32 top, vbs_u32 keep, vbs_u32 owned,
+                      const vbq_frame *fr, vbs_u32 top, vbs_u32 keep, vbs_u32 owned, int act,
                       int closed)
 {
-    if (!vbq_envelope_due(e, fr, ar->nb, ar->lab + top, keep, owned, 1, closed))
+    if (!vbq_envelope_due(e, fr, ar->nb, ar->lab + top, keep, owned, act, closed))
         return 0;
     return vbq_envelope_decide(e, ar, o, i, fr, top, keep, NULL);
 }

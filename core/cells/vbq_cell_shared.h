@@ -276,7 +276,10 @@ VBS_FN int vbq_tie_cluster(const VBS_GLOBAL vbq_nb *nb, const VBS_GLOBAL vbs_u32
  * core/cells/cover_envelope.c): its list excluded nothing for
  * VBQ_ENV_STALL levels, it has more than VBQ_CLUSTER_OWNED (fewer enumerate
  * cheaply once stalled) and at most VBQ_ENV_OWNED owned labels, at most
- * VBQ_ENV_KEEP in all,
+ * VBQ_ENV_KEEP in all; or a deep leaf (act 3) with as many labels, whose
+ * C(owned, 3) quadruples the decision replaces by the envelope's own
+ * (near-ties at the doubles' resolution reach the deepest level: sc 1,728
+ * jittered 1e-12 wrote 91,186 quadruples, 52,264 so),
  * every label's record has b exactly 0 and a finite error (spheres of the
  * base's radius in doubles; the host checks the decimals) and every vertex
  * is sought (no tangent-radius floor). The same answer on every backend:
@@ -288,8 +291,9 @@ VBS_FN int vbq_envelope_due(const vbq_env *e, const vbq_frame *fr, const VBS_GLO
                             const VBS_GLOBAL vbs_u32 *lab, vbs_u32 keep, vbs_u32 owned, int act,
                             int closed)
 {
-    if (!closed || act != 1 || owned <= VBQ_CLUSTER_OWNED || owned > VBQ_ENV_OWNED ||
-        keep > VBQ_ENV_KEEP || keep != fr->len || fr->stall + 1u < VBQ_ENV_STALL ||
+    if (!closed || (act != 1 && act != 3) || owned <= VBQ_CLUSTER_OWNED ||
+        owned > VBQ_ENV_OWNED || keep > VBQ_ENV_KEEP ||
+        (act == 1 && (keep != fr->len || fr->stall + 1u < VBQ_ENV_STALL)) ||
         e->tmax < (double)INFINITY)
         return 0;
     for (vbs_u32 a = 0u; a < keep; a++) {
@@ -404,7 +408,7 @@ int vbq_host_cluster(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs
  * with the loop's own frame's address taken, the loop kept it in memory and
  * EXTREMESET's Polysized set took 5 % more CPU, the decision never acting. */
 int vbq_host_envelope(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i,
-                      const vbq_frame *fr, vbs_u32 top, vbs_u32 keep, vbs_u32 owned,
+                      const vbq_frame *fr, vbs_u32 top, vbs_u32 keep, vbs_u32 owned, int act,
                       int closed);
 
 /* vbq_host_envelope that also counts the exact signs it took in
@@ -639,7 +643,7 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
         /* A stalled near-tie chain (vbq_envelope_due; its first tests
          * here, the rest out of this loop): its envelope decided exactly at
          * once (a kernel decides in doubles, or hands the cell to the host). */
-        if (!cluster && act == 1 && keep == fr.len && owned > VBQ_CLUSTER_OWNED) {
+        if (!cluster && ((act == 1 && keep == fr.len) || act == 3) && owned > VBQ_CLUSTER_OWNED) {
 #ifdef __OPENCL_C_VERSION__
             if (vbq_envelope_due(e, &fr, ar->nb, ar->lab + top, keep, owned, act, closed)) {
                 int he = vbq_envelope_filter(e, ar, o, i, &fr, top, keep);
@@ -652,7 +656,7 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
             }
 #else
             vbq_frame fc = fr; /* a copy: fr's address never escapes the loop */
-            int he = vbq_host_envelope(e, ar, o, i, &fc, top, keep, owned, closed);
+            int he = vbq_host_envelope(e, ar, o, i, &fc, top, keep, owned, act, closed);
             if (he < 0)
                 return;
             if (he > 0) {
