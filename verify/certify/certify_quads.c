@@ -98,6 +98,10 @@ static vbx_ia distance_excess(const vbx_ia cj[4], const vbx_ia box[4])
 
 enum { ROOT_REFUSED = 0, ROOT_EMPTY = 1, ROOT_OPEN = 2 };
 
+/* Tangent radius (input units) above which a root's scan asks the power
+ * before the distance (filter_root). Speed only. */
+#define FAR_T 1e6
+
 /* An enclosure of the int64 x (|x| < 2^62): exact below 2^53, else the
  * two doubles around its rounding to nearest. */
 static vbx_ia ia_of_i64(int64_t x)
@@ -120,18 +124,29 @@ static vbx_ia ia_of_i64(int64_t x)
  * jittered crystal's face: t ~ 10^10 against an excess ~ 10^-8) leave the
  * distance's box open, while this affine form has no such cancellation and
  * decides them without double-double. 0: still open. */
-static int power_sign_ia(const vbx_qdata *qd, const vbx_qline *L, const vbx_qroot *R, uint32_t j)
+static int power_sign_ia(const vbx_qdata *qd, const vbx_qline *L, const vbx_ia qs[4], uint32_t j)
 {
     const int64_t *cb = &qd->z[4 * (size_t)L->q[0]], *cj = &qd->z[4 * (size_t)j];
-    vbx_ia sc = vbx_ia_point(qd->scale), W = vbx_ia_point(0.0), mq = vbx_ia_point(0.0);
+    vbx_ia W = vbx_ia_point(0.0), mq = vbx_ia_point(0.0);
     for (int k = 0; k < 4; k++) {
         vbx_ia m = ia_of_i64(cj[k] - cb[k]);
         vbx_ia m2 = vbx_ia_sqr(m);
         W = k < 3 ? vbx_ia_add(W, m2) : vbx_ia_sub(W, m2);
-        vbx_ia q = k < 3 ? vbx_ia_sub(vbx_ia_mul(R->p[k], sc), ia_of_i64(cb[k])) : R->s;
-        mq = vbx_ia_add(mq, vbx_ia_mul(q, m));
+        mq = vbx_ia_add(mq, vbx_ia_mul(qs[k], m));
     }
     return vbx_ia_sign(vbx_ia_sub(W, vbx_ia_add(mq, mq)));
+}
+
+/* power_sign_ia's (q, s) of root R: q = R->p[0..3) times 10^E minus c_a,
+ * s = R->s; the same for every sphere of R's scan, so made once per root
+ * (the same intervals as when each test made them). */
+static void power_qs(const vbx_qdata *qd, const vbx_qline *L, const vbx_qroot *R, vbx_ia qs[4])
+{
+    const int64_t *cb = &qd->z[4 * (size_t)L->q[0]];
+    vbx_ia sc = vbx_ia_point(qd->scale);
+    for (int k = 0; k < 3; k++)
+        qs[k] = vbx_ia_sub(vbx_ia_mul(R->p[k], sc), ia_of_i64(cb[k]));
+    qs[3] = R->s;
 }
 
 /* The scan's second stage for sphere j, which root R's double box cannot
@@ -142,7 +157,7 @@ static int power_sign_ia(const vbx_qdata *qd, const vbx_qline *L, const vbx_qroo
  * is exact in double below 2^53 and a sum rounded to nearest keeps its sign
  * (as in vbx_qf_tangent_sign). */
 static int second_stage(qworker *w, const vbx_qline *L, const vbx_qprep *P, vbx_qroot *R,
-                        uint32_t j)
+                        const vbx_ia qs[4], uint32_t j)
 {
     const vbx_qdata *qd = &w->c->qd;
     int64_t rj = qd->z[4 * (size_t)j + 3] - qd->z[4 * (size_t)L->q[0] + 3];
@@ -153,7 +168,7 @@ static int second_stage(qworker *w, const vbx_qline *L, const vbx_qprep *P, vbx_
         return 1;
     if (!(R->s.lo + r > 0.0))
         return 0;
-    int sg = power_sign_ia(qd, L, R, j);
+    int sg = power_sign_ia(qd, L, qs, j);
     if (!sg) {
         sg = qd->ops->power(qd, L, P, R, j);
         if (sg)
@@ -194,6 +209,14 @@ static int filter_root(qworker *w, const vbx_qline *L, const vbx_qprep *P, vbx_q
     vbx_probe_init(&pr, t, p);
     vbx_walk walk;
     vbx_walk_init(&walk, t, p);
+    vbx_ia qs[4];
+    int have_qs = 0;
+    /* A far root (a jittered face's vertex, t ~ 10^10): the double box of
+     * |p - c_j| - R_j - t cannot place the spheres that its probes leave
+     * open (they nearly touch), and the power's affine form mostly can, so
+     * it goes first there. Either test gives the exact sign or none, so the
+     * order changes the cost only. */
+    int far = p[3].lo > FAR_T;
     size_t s0, s1;
     uint64_t calls = 0, failures = 0;
     int verdict = ROOT_EMPTY;
@@ -210,9 +233,16 @@ static int filter_root(qworker *w, const vbx_qline *L, const vbx_qprep *P, vbx_q
             }
             const vbx_ia *cj = &t->box[4 * s];
             int sg = vbx_probe_inside(&pr, cm, cj[3].lo) ? -1
-                                                          : vbx_ia_sign(distance_excess(cj, p));
-            if (sg == 0)
-                sg = second_stage(w, L, P, R, j);
+                     : far                               ? 0
+                                                         : vbx_ia_sign(distance_excess(cj, p));
+            if (sg == 0) {
+                if (!have_qs)
+                    power_qs(&c->qd, L, R, qs);
+                have_qs = 1;
+                sg = second_stage(w, L, P, R, qs, j);
+            }
+            if (sg == 0 && far)
+                sg = vbx_ia_sign(distance_excess(cj, p));
             if (sg > 0)
                 continue;
             if (sg < 0) {
