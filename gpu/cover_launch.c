@@ -100,7 +100,10 @@ static int launch_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *c
              set_arg(ctx, k, a++, sizeof(cl_mem), &s->qout.mem) ||
              set_arg(ctx, k, a++, sizeof(cl_uint), &qcap) ||
              set_arg(ctx, k, a++, sizeof(cl_mem), &s->counters.mem) ||
-             (t->wg && set_arg(ctx, k, a++, sizeof(cl_uint), &t->budget))
+             (t->wg && set_arg(ctx, k, a++, sizeof(cl_uint), &t->budget)) ||
+             (t->caches && (set_arg(ctx, k, a++, sizeof(cl_mem), &t->hi.mem) ||
+                            set_arg(ctx, k, a++, sizeof(cl_mem), &t->memo.mem) ||
+                            set_arg(ctx, k, a++, sizeof(cl_mem), &t->memo_tag.mem)))
                  ? VB_EDEVICE
                  : VB_OK;
     size_t local, global;

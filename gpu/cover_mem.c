@@ -33,7 +33,8 @@ int vbg_cov_upload(vb_ctx *ctx, cov_state *s, vbg_buf *b, const void *src, size_
 static size_t tier_bytes(const cov_tier *t)
 {
     return (size_t)t->nb_cap * sizeof(vbq_nb) + (size_t)t->lab_cap * 4 +
-           (t->wg ? 0 : (size_t)t->st_cap * sizeof(vbq_frame)) + (size_t)t->q_cap * 16;
+           (t->wg ? 0 : (size_t)t->st_cap * sizeof(vbq_frame)) + (size_t)t->q_cap * 16 +
+           (t->caches ? (size_t)t->lab_cap * 8 + VBQ_MEMO * (sizeof(vbq_nb) + 8) : 0);
 }
 
 /* Bytes of tier t that do not grow with its slices. */
@@ -54,12 +55,21 @@ static int tier_alloc(vb_ctx *ctx, cov_state *s, cov_tier *t)
     size_t w = t->slices;
     int rc = vbg_cov_ensure(ctx, s, &t->nb, w * t->nb_cap * sizeof(vbq_nb), CL_MEM_READ_WRITE);
     if (rc == VB_OK)
-        rc = vbg_cov_ensure(ctx, s, &t->lab, w * t->lab_cap * sizeof(uint32_t), CL_MEM_READ_WRITE);
+        rc = vbg_cov_ensure(ctx, s, &t->lab, w * t->lab_cap * sizeof(uint32_t),
+                            CL_MEM_READ_WRITE);
     if (rc == VB_OK)
         rc = vbg_cov_ensure(ctx, s, &t->st, (t->wg ? 1 : w) * t->st_cap * sizeof(vbq_frame),
-                    CL_MEM_READ_WRITE);
+                            CL_MEM_READ_WRITE);
     if (rc == VB_OK)
-        rc = vbg_cov_ensure(ctx, s, &t->q, w * 4 * t->q_cap * sizeof(uint32_t), CL_MEM_READ_WRITE);
+        rc = vbg_cov_ensure(ctx, s, &t->q, w * 4 * t->q_cap * sizeof(uint32_t),
+                            CL_MEM_READ_WRITE);
+    if (rc == VB_OK && t->caches)
+        rc = vbg_cov_ensure(ctx, s, &t->hi, w * t->lab_cap * sizeof(double), CL_MEM_READ_WRITE);
+    if (rc == VB_OK && t->caches)
+        rc = vbg_cov_ensure(ctx, s, &t->memo, w * VBQ_MEMO * sizeof(vbq_nb), CL_MEM_READ_WRITE);
+    if (rc == VB_OK && t->caches)
+        rc = vbg_cov_ensure(ctx, s, &t->memo_tag, w * 2 * VBQ_MEMO * sizeof(uint32_t),
+                            CL_MEM_READ_WRITE);
     return rc;
 }
 
@@ -115,6 +125,9 @@ void vbg_cov_tier_release(cov_state *s, cov_tier *t)
     vbg_cov_release(s, &t->lab);
     vbg_cov_release(s, &t->st);
     vbg_cov_release(s, &t->q);
+    vbg_cov_release(s, &t->hi);
+    vbg_cov_release(s, &t->memo);
+    vbg_cov_release(s, &t->memo_tag);
 }
 
 /* Releases what an earlier run on this backend made larger than this run

@@ -251,11 +251,18 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
     t1->qper = t3->qper = 256u;
     /* A CPU device's work-items test the four parts of a fetch side by
      * side (VBQ_WALK_V4_CL, core/cells/vbq_gather_shared.h: the same
-     * answers). 2-core machine, PoCL on one thread, 4yvs first 14,070:
-     * see papers/gpu-voronoi-cells-of-spheres/results/
-     * cpu_vs_voronota_stop44.md. */
+     * answers) and keep the host's two caches (VBQ_CACHES_CL: each slice
+     * gets lab_cap doubles and the record memo, 240 KiB more;
+     * VORBALL_COVER_CACHES=0 leaves them out, for measurements). 2-core
+     * machine, PoCL on one thread, 4yvs first 14,070: see
+     * papers/gpu-voronoi-cells-of-spheres/results/cpu_vs_voronota_stop44.md
+     * and _stop45.md. */
+    const char *kc = getenv("VORBALL_COVER_CACHES");
+    int caches = cpu && !s->wg && !(kc && strcmp(kc, "0") == 0);
     int rc = s->wg ? kernel_get(ctx, rt, "cover_wg.cl", NULL, "vbq_cover_wg", &s->k)
-                   : kernel_get(ctx, rt, "cover.cl", cpu ? "-DVBQ_WALK_V4_CL" : NULL,
+                   : kernel_get(ctx, rt, "cover.cl",
+                                caches ? "-DVBQ_WALK_V4_CL -DVBQ_CACHES_CL"
+                                       : cpu ? "-DVBQ_WALK_V4_CL" : NULL,
                                 "vbq_cover_kernel", &s->k);
     /* The group kernel's budget (VORBALL_COVER_BUDGET: steps, 0 for none):
      * the cells past it go to the host threads, as cells that ran out of
@@ -273,6 +280,7 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
         rc = kernel_get(ctx, rt, "cover.cl", NULL, "vbq_cover_kernel", &s->k_item);
     t0->k = t1->k = t3->k = s->k;
     t0->wg = t1->wg = t3->wg = s->wg;
+    t0->caches = t1->caches = t3->caches = caches;
     t0->budget = s->wg ? budget : 0u;
     th->k = s->k_item;
     cl_uint units = 1;

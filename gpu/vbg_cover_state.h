@@ -41,7 +41,10 @@
 /* Arena slices of one tier: `slices` of them (work-items, or work-groups). */
 typedef struct cov_tier {
     vbg_buf nb, lab, st, q;
+    vbg_buf hi, memo, memo_tag; /* with caches: lab_cap doubles, VBQ_MEMO records and
+                                   2 VBQ_MEMO tags per slice */
     cl_kernel k;             /* its kernel (cov_state's) */
+    int caches;              /* 1: k keeps the host's caches (VBQ_CACHES_CL, CPU devices) */
     int wg;                  /* 1: k is the group kernel, a work-group of COV_WG per slice */
     uint32_t budget;         /* the group kernel's step budget per cell (0: none) */
     uint32_t qper;           /* output room per task, in quadruples */
