@@ -10,7 +10,8 @@
  *   first tier S0 slices of P0 bytes, P0 = 48 NB + 4 LAB + 16 Q (+ 48 ST on
  *              the work-item kernel; the group kernel keeps one stack of
  *              48 ST), NB/LAB/ST/Q the tier's capacities below: 144 KiB a
- *              work-item (272 KiB on a CPU device), 520 KiB a group;
+ *              work-item (272 KiB on a CPU device, and 240 KiB
+ *              of caches there: 8 LAB + 56 VBQ_MEMO), 520 KiB a group;
  *              S0 = min(the device's occupancy,
  *              n, 3/4 of the budget left after the input / P0);
  *   launches   per launch of C tasks: 4 C (cells) + 4 C (roots) + 48 C (results)
