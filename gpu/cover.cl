@@ -25,7 +25,12 @@ __kernel void vbq_cover_kernel(__global const double *x, __global const double *
                                __global uint *q, const uint nb_cap, const uint lab_cap,
                                const uint st_cap, const uint q_cap,
                                __global vbq_cell_out *outs, __global uint *qout,
-                               const uint qout_cap, __global uint *counters)
+                               const uint qout_cap, __global uint *counters
+#ifdef VBQ_CACHES_CL
+                               ,
+                               __global double *hi, __global vbq_nb *memo, __global uint *memo_tag
+#endif
+                               )
 {
     size_t w = get_global_id(0);
     vbq_env e;
@@ -40,10 +45,26 @@ __kernel void vbq_cover_kernel(__global const double *x, __global const double *
     ar.lab_cap = lab_cap;
     ar.st_cap = st_cap;
     ar.q_cap = q_cap;
+#ifdef VBQ_CACHES_CL
+    /* The caches of a CPU device (vbq_gather_shared.h, VBQ_CACHES): a
+     * work-item's memo starts empty in every launch (a later run may bring
+     * other spheres), cleared when it takes its first cell. */
+    ar.hi = hi + w * (size_t)lab_cap;
+    ar.memo = memo + w * (size_t)VBQ_MEMO;
+    ar.memo_tag = memo_tag + w * 2u * (size_t)VBQ_MEMO;
+    int fresh = 1;
+#endif
     for (;;) {
         uint c = atomic_inc(&counters[0]);
         if (c >= ncells)
             break;
+#ifdef VBQ_CACHES_CL
+        if (fresh) {
+            for (uint s = 0u; s < 2u * VBQ_MEMO; s++)
+                ar.memo_tag[s] = 0u;
+            fresh = 0;
+        }
+#endif
         vbq_cell_out o;
         vbq_cover_cell(&e, &ar, cells[c], roots[c], &o);
         if (o.status == VBQ_OK && o.nq > 0u) {

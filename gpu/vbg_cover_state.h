@@ -1,4 +1,5 @@
-/* The state of the cover's OpenCL backend (gpu/cover_ocl.c, private to it):
+/* The state of the cover's OpenCL backend (private to its files: gpu/cover_ocl.c,
+ * cover_mem.c, cover_launch.c, cover_knobs.c):
  * its tiers of arena slices, their capacities and the step budget.
  *
  * Device memory (issue #30) stays within the device layer's budget
@@ -9,7 +10,8 @@
  *   first tier S0 slices of P0 bytes, P0 = 48 NB + 4 LAB + 16 Q (+ 48 ST on
  *              the work-item kernel; the group kernel keeps one stack of
  *              48 ST), NB/LAB/ST/Q the tier's capacities below: 144 KiB a
- *              work-item (272 KiB on a CPU device), 520 KiB a group;
+ *              work-item (272 KiB on a CPU device, and 240 KiB
+ *              of caches there: 8 LAB + 56 VBQ_MEMO), 520 KiB a group;
  *              S0 = min(the device's occupancy,
  *              n, 3/4 of the budget left after the input / P0);
  *   launches   per launch of C tasks: 4 C (cells) + 4 C (roots) + 48 C (results)
@@ -40,7 +42,10 @@
 /* Arena slices of one tier: `slices` of them (work-items, or work-groups). */
 typedef struct cov_tier {
     vbg_buf nb, lab, st, q;
+    vbg_buf hi, memo, memo_tag; /* with caches: lab_cap doubles, VBQ_MEMO records and
+                                   2 VBQ_MEMO tags per slice */
     cl_kernel k;             /* its kernel (cov_state's) */
+    int caches;              /* 1: k keeps the host's caches (VBQ_CACHES_CL, CPU devices) */
     int wg;                  /* 1: k is the group kernel, a work-group of COV_WG per slice */
     uint32_t budget;         /* the group kernel's step budget per cell (0: none) */
     uint32_t qper;           /* output room per task, in quadruples */
@@ -143,5 +148,46 @@ typedef struct cov_state {
  * (gpu/cover_knobs.c: VORBALL_COVER_NB, _LAB, _TIER2, _TIER3, _BIG_NB,
  * _HUGE_NB), after vbg_cover_open set their defaults. */
 void vbg_cover_knobs(cov_state *s);
+
+/* ---- device buffers (gpu/cover_mem.c) ---------------------------------- */
+
+/* Releases b's device memory (the meter counts it). */
+void vbg_cov_release(cov_state *s, vbg_buf *b);
+
+/* Makes b hold at least `need` bytes (its contents are lost when it
+ * grows). VB_OK, or VB_EDEVICE / the meter's status. */
+int vbg_cov_ensure(vb_ctx *ctx, cov_state *s, vbg_buf *b, size_t need, cl_mem_flags flags);
+
+/* Copies bytes of src into b (grown when too small). */
+int vbg_cov_upload(vb_ctx *ctx, cov_state *s, vbg_buf *b, const void *src, size_t bytes);
+
+/* Bytes of one task of a launch on tier t: its cell, root and result, and
+ * its room for quadruples. */
+size_t vbg_cov_task_bytes(const cov_tier *t);
+
+/* Releases tier t's arena slices (t->slices is left to the caller). */
+void vbg_cov_tier_release(cov_state *s, cov_tier *t);
+
+/* Tier t (the large or the hand-off tier) with slices for `tasks` tasks,
+ * made on first use within its share of the budget. VB_OK with no slices
+ * when none fits: the cells then go to the host. */
+int vbg_cov_tier_grow(vb_ctx *ctx, cov_state *s, cov_tier *t, size_t tasks);
+
+/* The backend's begin (vb_cover_backend): splits the budget, uploads the
+ * input env of n spheres and makes the first tier's slices. VB_OK, E142
+ * (VB_ENOMEM_DEVICE) when the budget cannot hold one slice, VB_EDEVICE. */
+int vbg_cov_begin(vb_ctx *ctx, vb_cover_backend *be, const vbq_env *env, size_t n);
+
+/* ---- launches (gpu/cover_launch.c) --------------------------------------- */
+
+/* Appends room for n more quadruples to s->host_q. VB_OK or VB_ENOMEM. */
+int vbg_cov_host_q_room(vb_ctx *ctx, cov_state *s, size_t n);
+
+/* Tier t over the tasks (cells[k], roots[k]) for k < ncells, in as many
+ * launches as the launch room needs: out[k] and the quadruples appended to
+ * s->host_q (out[k].qoff relative to it). VB_OK, or VB_EDEVICE with
+ * nothing half-done. */
+int vbg_cov_run_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *cells,
+                     const uint32_t *roots, size_t ncells, vbq_cell_out *out);
 
 #endif

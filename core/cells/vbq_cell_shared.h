@@ -363,9 +363,10 @@ VBS_FN int vbq_task_child(vbs_u32 task, vbs_u32 level, vbs_u32 k)
 #ifndef VBQ_GROUP_ONLY
 
 /* The upper end of label k's enclosure over the patch (m, h): kept by the
- * patch's first pass on the host (VBQ_HI_KEEP), evaluated again on a
- * device (no scratch per label there). The same double either way. */
-#ifdef __OPENCL_C_VERSION__
+ * patch's first pass where the arena has room for it (VBQ_HI_KEEP: the
+ * host, and CPU devices' work-item kernel, VBQ_CACHES), evaluated again on
+ * a GPU (no scratch per label there). The same double either way. */
+#ifndef VBQ_CACHES
 #define VBQ_HI_KEEP(ar, k, hi) ((void)(hi))
 #else
 #define VBQ_HI_KEEP(ar, k, hi)   \
@@ -378,7 +379,7 @@ VBS_FN int vbq_task_child(vbs_u32 task, vbs_u32 level, vbs_u32 k)
 VBS_FN double vbq_hi_again(const vbq_arena *ar, vbs_u32 k, const vbq_nb *rec, const double m[3],
                            const double h[3])
 {
-#ifndef __OPENCL_C_VERSION__
+#ifdef VBQ_CACHES
     if (ar->hi)
         return ar->hi[k];
 #endif

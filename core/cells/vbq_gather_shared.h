@@ -136,6 +136,15 @@ VBS_FN void vbq_env_make(vbq_env *e, const VBS_GLOBAL double *x, const VBS_GLOBA
 #endif
 }
 
+/* The host's two caches of a cell's cover (the upper ends of a patch's
+ * label enclosures, the record memo; speed only, the same doubles) are
+ * also kept by the work-item kernel where its build defines VBQ_CACHES_CL
+ * (CPU devices, gpu/cover_ocl.c: each arena slice gets their room); the
+ * GPU kernels keep neither and evaluate again. */
+#if !defined(__OPENCL_C_VERSION__) || defined(VBQ_CACHES_CL)
+#define VBQ_CACHES 1
+#endif
+
 /* Scratch of one cell, fixed capacities. */
 typedef struct vbq_arena {
     VBS_GLOBAL vbq_nb *nb;
@@ -143,12 +152,15 @@ typedef struct vbq_arena {
     VBS_GLOBAL vbq_frame *st;
     VBS_GLOBAL vbs_u32 *q;      /* 4 per quadruple */
     vbs_u32 nb_cap, lab_cap, st_cap, q_cap;
+#ifdef VBQ_CACHES
+    VBS_GLOBAL double *hi;  /* upper ends of a patch's label enclosures, lab_cap of them
+                               (NULL: evaluated again where needed, as GPU kernels do) */
+    VBS_GLOBAL vbq_nb *memo;       /* the cell's records made so far, VBQ_MEMO slots by tree
+                                      position (NULL: made again at every fetch) */
+    VBS_GLOBAL vbs_u32 *memo_tag;  /* per slot: tree position and cell + 1 of its record
+                                      (0: none) */
+#endif
 #ifndef __OPENCL_C_VERSION__
-    double *hi;  /* host: upper ends of a patch's label enclosures, lab_cap of them
-                    (NULL: evaluated again where needed, as the kernels do) */
-    vbq_nb *memo;       /* host: the cell's records made so far, VBQ_MEMO slots by tree
-                           position (NULL: made again at every fetch, as the kernels do) */
-    vbs_u32 *memo_tag;  /* per slot: tree position and cell + 1 of its record (0: none) */
     struct vbq_cluster_memo *cmemo; /* host: the cell's tie-cluster answers (vbq_cluster.h;
                                        NULL: each decided again) */
 #endif
@@ -562,23 +574,25 @@ VBS_FN int vbq_walk_sphere(const vbq_env *e, const vbq_walk *w, vbs_u32 k, vbq_n
     return vbq_walk_parts(w, rec);
 }
 
-#ifndef __OPENCL_C_VERSION__
-/* vbq_walk_sphere with the host's memo: the record of (cell, sphere)
- * depends on nothing else, so one made at an earlier fetch of the cell is
- * the same double for double (speed only). */
-static inline int vbq_walk_sphere_known(const vbq_env *e, const vbq_arena *ar,
-                                        const vbq_walk *w, vbs_u32 k, vbs_u32 j, vbq_nb *rec)
+#ifdef VBQ_CACHES
+/* vbq_walk_sphere with the memo: the record of (cell, sphere) depends on
+ * nothing else, so one made at an earlier fetch of the cell is the same
+ * double for double (speed only). */
+VBS_FN int vbq_walk_sphere_known(const vbq_env *e, const vbq_arena *ar, const vbq_walk *w,
+                                 vbs_u32 k, vbs_u32 j, vbq_nb *rec)
 {
     vbs_u32 s = k & (VBQ_MEMO - 1u);
-    vbs_u32 *tag = ar->memo_tag + 2u * s;
+    VBS_GLOBAL vbs_u32 *tag = ar->memo_tag + 2u * s;
     if (tag[0] == k && tag[1] == w->i + 1u) {
         *rec = ar->memo[s];
+#ifndef __OPENCL_C_VERSION__
     } else if (e->kx) {
         vbq_nb_make(w->c[0], w->c[1], w->c[2], w->ri, e->kx[k], e->ky[k], e->kz[k], e->kr[k], j,
                     rec);
         ar->memo[s] = *rec;
         tag[0] = k;
         tag[1] = w->i + 1u;
+#endif
     } else {
         vbq_nb_make(w->c[0], w->c[1], w->c[2], w->ri, e->x[j], e->y[j], e->z[j], e->r[j], j,
                     rec);
@@ -589,14 +603,15 @@ static inline int vbq_walk_sphere_known(const vbq_env *e, const vbq_arena *ar,
     return vbq_walk_parts(w, rec);
 }
 
-static inline int vbq_walk_sphere_memo(const vbq_env *e, const vbq_arena *ar,
-                                       const vbq_walk *w, vbs_u32 k, vbq_nb *rec)
+VBS_FN int vbq_walk_sphere_memo(const vbq_env *e, const vbq_arena *ar, const vbq_walk *w,
+                                vbs_u32 k, vbq_nb *rec)
 {
     vbs_u32 j;
     return vbq_walk_ring(e, w, k, &j) && vbq_walk_sphere_known(e, ar, w, k, j, rec);
 }
+#endif
 
-#ifdef VBQ_WALK_V4
+#if defined(VBQ_WALK_V4) && !defined(__OPENCL_C_VERSION__)
 /* vbq_walk_ring's distance test for the leaf's positions k0 .. k0 + 7 at
  * once (the kx arrays run a leaf past m): bit k - k0 set where the sphere
  * is in the ring by the same comparisons (the base itself is left to the
@@ -620,7 +635,6 @@ static inline unsigned vbq_walk_ring8(const vbq_env *e, const vbq_walk *w, vbs_u
     }
     return bits;
 }
-#endif
 #endif
 
 /* The tree positions [*k0, *k1) of leaf node nd's spheres. */
@@ -656,8 +670,7 @@ VBS_FN int vbq_walk_gather(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *
 #endif
         for (vbs_u32 k = k0; k < k1; k++) {
             vbq_nb rec;
-#ifndef __OPENCL_C_VERSION__
-#ifdef VBQ_WALK_V4
+#if defined(VBQ_WALK_V4) && !defined(__OPENCL_C_VERSION__)
             if (e->kx && ar->memo) {
                 vbs_u32 j = e->ids[k];
                 if (!((ring >> (k - k0)) & 1u) || j == w->i ||
@@ -665,6 +678,7 @@ VBS_FN int vbq_walk_gather(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *
                     continue;
             } else
 #endif
+#ifdef VBQ_CACHES
             if (ar->memo ? !vbq_walk_sphere_memo(e, ar, w, k, &rec)
                          : !vbq_walk_sphere(e, w, k, &rec))
                 continue;
