@@ -54,8 +54,7 @@ static int framed(vbm_capwork *w, size_t l)
 
 typedef struct vbm_endpt {
     vbx_ia x, y;
-    double ang;   /* atan2's angle of the middle in [0, 2 pi); < 0: not made yet (exact_ang) */
-    double fa;    /* vbm_fast_angle's: the order of the ends */
+    double ang;
     int start;    /* 1: entering the restricting cap (counterclockwise), 0: leaving it */
     uint32_t cap; /* the restricting cap */
     uint32_t pos; /* circle_arcs: its place counterclockwise from the widest gap */
@@ -84,32 +83,29 @@ void vbm_caps_free(vbm_capwork *w)
     memset(w, 0, sizeof *w);
 }
 
-/* End x into ord[0..i), sorted by angle (fast: vbm_fast_angle's, else
- * atan2's): an insertion sort, stable (glibc qsort's order), of pointers. */
-static void sort_in(endpt **ord, size_t i, endpt *x, int fast)
+/* End x into ord[0..i), sorted by angle: an insertion sort as the ends
+ * come, stable as the merge sort of glibc's qsort was (the same order), and
+ * cheaper on the few ends of one circle; pointers to the ends where their
+ * restrictions keep them move, the ends are not copied. */
+static void sort_in(endpt **ord, size_t i, endpt *x)
 {
     size_t k = i;
-    for (; k > 0 && (fast ? ord[k - 1]->fa > x->fa : ord[k - 1]->ang > x->ang); k--)
+    for (; k > 0 && ord[k - 1]->ang > x->ang; k--)
         ord[k] = ord[k - 1];
     ord[k] = x;
 }
 
-/* An end's atan2 angle, made when first needed: the arcs' ends, and where
- * the fast angles come too close to a decision (cyclic_order). */
-static double exact_ang(endpt *p)
+static double angle_of(vbx_ia x, vbx_ia y)
 {
-    if (p->ang < 0.0) {
-        double t = atan2(vbx_ia_mid(p->y), vbx_ia_mid(p->x));
-        p->ang = t < 0.0 ? t + TWO_PI : t;
-    }
-    return p->ang;
+    double t = atan2(vbx_ia_mid(y), vbx_ia_mid(x));
+    return t < 0.0 ? t + TWO_PI : t;
 }
 
 static int push_arc(vbm_capwork *w, uint32_t l, const endpt *p, const endpt *q, double tq)
 {
     double tp = p->ang;
     if (tq - tp > MAX_ARC) { /* split at the middle */
-        endpt m = {vbx_ia_point(0.0), vbx_ia_point(0.0), 0.5 * (tp + tq), 0.0, 0, VBM_NO_CAP, 0};
+        endpt m = {vbx_ia_point(0.0), vbx_ia_point(0.0), 0.5 * (tp + tq), 0, VBM_NO_CAP, 0};
         vbm_unit_at(m.ang, &m.x, &m.y);
         int e = push_arc(w, l, p, &m, m.ang);
         return e < 0 ? e : push_arc(w, l, &m, q, tq);
@@ -215,46 +211,10 @@ static int make_ends(rcache *c)
         endpt *p = k ? e : s;
         if (!(p->x.hi - p->x.lo < MAX_END_WIDTH && p->y.hi - p->y.lo < MAX_END_WIDTH))
             return 0;
-        p->ang = -1.0;
-        p->fa = vbm_fast_angle(vbx_ia_mid(p->x), vbx_ia_mid(p->y));
+        p->ang = angle_of(p->x, p->y);
     }
     c->ends = 1;
     return 1;
-}
-
-/* The cyclic order of the sorted ends ord[0..ne) proven pair by pair, *ref
- * the end before the widest gap; 1, 0 undecided. `fast` (vbm_fast_angle's,
- * within 2 VBM_FAST_ANGLE_ERR of atan2's): 2 where an angle comes within
- * FAST_MARGIN of a decision (0, 2 pi, a threshold, a tie), elsewhere the
- * same order and decisions as atan2's angles. */
-#define FAST_MARGIN 1e-9
-_Static_assert(FAST_MARGIN > 8 * VBM_FAST_ANGLE_ERR, "the margin holds both angles' errors");
-static int cyclic_order(endpt *const *ord, size_t ne, int fast, size_t *ref)
-{
-    double wmax = 0.0, widest = 0.0, second = 0.0, M = fast ? FAST_MARGIN : 0.0;
-    for (size_t k = 0; k < ne; k++)
-        wmax = vbx_max(wmax, vbx_max(ord[k]->x.hi - ord[k]->x.lo, ord[k]->y.hi - ord[k]->y.lo));
-    if (fast && !(ord[0]->fa > M && ord[ne - 1]->fa < TWO_PI - M))
-        return 2;
-    for (size_t k = 0; k < ne; k++) {
-        const endpt *p = ord[k], *q = ord[(k + 1) % ne];
-        double a = fast ? p->fa : p->ang, b = fast ? q->fa : q->ang;
-        double gap = (k + 1 < ne ? b : b + TWO_PI) - a;
-        if (fast && (!(gap > M) || fabs(gap - (4.0 * wmax + 1e-12)) <= M || fabs(gap - 3.0) <= M))
-            return 2;
-        if (!(gap > 4.0 * wmax + 1e-12))
-            return 0;
-        if (gap < 3.0) {
-            vbx_ia cr = vbx_ia_sub(vbx_ia_mul(p->x, q->y), vbx_ia_mul(p->y, q->x));
-            if (!(cr.lo > 0.0))
-                return 0;
-        }
-        if (gap > widest)
-            second = widest, widest = gap, *ref = k;
-        else if (gap > second)
-            second = gap;
-    }
-    return fast && widest - second <= M ? 2 : 1;
 }
 
 /* The arcs of circle l inside the caps sel[0..nsel) (l itself skipped)
@@ -298,28 +258,42 @@ static int circle_arcs(const vbm_cap *caps, const uint32_t *sel, size_t nsel, vb
         rcache *c = &w->rc[w->rix[i]];
         if (!c->ends && !make_ends(c))
             return 0;
-        sort_in(ord, ne++, &c->s, 1);
-        sort_in(ord, ne++, &c->e, 1);
+        sort_in(ord, ne++, &c->s);
+        sort_in(ord, ne++, &c->e);
     }
     if (ne == 0) { /* the whole circle: two half circles */
         if (test)
             return 2;
-        endpt a = {vbx_ia_point(1.0), vbx_ia_point(0.0), 0.0, 0.0, 0, VBM_NO_CAP, 0};
-        endpt b = {vbx_ia_point(-1.0), vbx_ia_point(0.0), 0.5 * TWO_PI, 0.0, 0, VBM_NO_CAP, 0};
+        endpt a = {vbx_ia_point(1.0), vbx_ia_point(0.0), 0.0, 0, VBM_NO_CAP, 0};
+        endpt b = {vbx_ia_point(-1.0), vbx_ia_point(0.0), 0.5 * TWO_PI, 0, VBM_NO_CAP, 0};
         if (push_arc(w, (uint32_t)l, &a, &b, b.ang) < 0 || push_arc(w, (uint32_t)l, &b, &a, TWO_PI) < 0)
             return -1;
         return 1;
     }
+    double wmax = 0.0, widest = 0.0;
     size_t ref = 0;
-    int e = cyclic_order(ord, ne, 1, &ref);
-    for (size_t k = 0; e == 2 && k < ne; k++) /* too close to call: atan2's */
-        sort_in(ord, k, (exact_ang(ord[k]), ord[k]), 0);
-    if (e == 0 || (e == 2 && !cyclic_order(ord, ne, 0, &ref)))
-        return 0;
-    /* the caps holding the widest gap: those whose end comes before their
-     * start from there (the order is proven; a cap holds the arc from its
-     * start to its end; 3pqr: 4.6 M interval signs at a point were), then
-     * one more or one less at each end passed */
+    for (size_t k = 0; k < ne; k++)
+        wmax = vbx_max(wmax, vbx_max(ord[k]->x.hi - ord[k]->x.lo, ord[k]->y.hi - ord[k]->y.lo));
+    for (size_t k = 0; k < ne; k++) { /* the cyclic order, proven pair by pair */
+        const endpt *p = ord[k], *q = ord[(k + 1) % ne];
+        double gap = (k + 1 < ne ? q->ang : q->ang + TWO_PI) - p->ang;
+        if (!(gap > 4.0 * wmax + 1e-12))
+            return 0;
+        if (gap < 3.0) {
+            vbx_ia cr = vbx_ia_sub(vbx_ia_mul(p->x, q->y), vbx_ia_mul(p->y, q->x));
+            if (!(cr.lo > 0.0))
+                return 0;
+        }
+        if (gap > widest)
+            widest = gap, ref = k;
+    }
+    /* the caps holding the widest gap, then one more or one less at each
+     * end passed (a start enters its cap, an end leaves it). Cap m holds
+     * the arc from its start to its end counterclockwise, so it holds the
+     * gap when, going on from the gap, its end comes before its start: a
+     * consequence of the order just proven, where a sign at a point inside
+     * the gap took an exact unit vector (a sine and a cosine) and an
+     * interval sign per cap (3pqr, 1 thread: 4.6 M of them) */
     for (size_t k = 0; k < ne; k++)
         ord[k]->pos = (uint32_t)((k + ne - ref - 1) % ne);
     size_t inside = 0;
@@ -329,16 +303,13 @@ static int circle_arcs(const vbm_cap *caps, const uint32_t *sel, size_t nsel, vb
     }
     for (size_t i = 0; i < ne; i++) {
         size_t k = (ref + i) % ne;
-        endpt *p = ord[k], *q = ord[(k + 1) % ne];
+        const endpt *p = ord[k], *q = ord[(k + 1) % ne];
         if (i > 0)
             inside = p->start ? inside + 1 : inside - 1;
+        double tq = k + 1 < ne ? q->ang : q->ang + TWO_PI;
         if (inside == nr && test)
             return 2;
-        if (inside < nr)
-            continue;
-        exact_ang(p);
-        double tq = k + 1 < ne ? exact_ang(q) : exact_ang(q) + TWO_PI;
-        if (push_arc(w, (uint32_t)l, p, q, tq) < 0)
+        if (inside == nr && push_arc(w, (uint32_t)l, p, q, tq) < 0)
             return -1;
     }
     return 1;

@@ -107,12 +107,6 @@ int vbm_cap_arcs(const vbm_cap *caps, const vbm_circle *axes, size_t ncap, const
 
 void vbm_caps_free(vbm_capwork *w);
 
-/* The angle of (x, y) in [0, 2 pi] within VBM_FAST_ANGLE_ERR of atan2's
- * moved to [0, 2 pi) (the derivation at its definition): an order of the
- * ends of a circle's restrictions, cheaper than atan2 (cap_geom.c). */
-#define VBM_FAST_ANGLE_ERR 1e-13
-double vbm_fast_angle(double x, double y);
-
 /* An exact unit vector (x, y) at about the angle t: (cos t, sin t) in
  * doubles, normalised in intervals. */
 void vbm_unit_at(double t, vbx_ia *x, vbx_ia *y);
