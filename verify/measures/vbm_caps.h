@@ -42,7 +42,7 @@ typedef struct vbm_arc {
 /* Work space of vbm_cap_arcs (zero-initialise; free with vbm_caps_free). */
 typedef struct vbm_capwork {
     vbm_circle *circ;
-    const struct vbm_endpt **ord; /* the ends in the order of their angles (cap_arcs.c's) */
+    struct vbm_endpt **ord; /* the ends in the order of their angles (cap_arcs.c's) */
     vbm_arc *arc, *sorted;
     uint32_t *sel, *queue;  /* caps restricting a circle; circles to do next */
     uint8_t *state;         /* per cap: done, on the boundary, queued */
