@@ -252,10 +252,14 @@ static void *link_slice(void *arg)
                     el[ne] = l0 + 1;
                     ne += q2 != NO_VOXEL;
                 }
-            if (W->vcomp)
+            if (W->vcomp) {
+                /* Every edge from both ends, without a branch on which end
+                 * is the later (it mispredicts): the same verdict. */
+                uint32_t lt = W->vcomp[t], differ = 0;
                 for (size_t e = e0; e < ne; e++)
-                    if (adj[e] > t && W->vcomp[t] != W->vcomp[adj[e]])
-                        J->bad = 1;
+                    differ |= W->vcomp[adj[e]] ^ lt;
+                J->bad |= differ != 0;
+            }
             J->ne = ne;
             W->A.adj_start[t + 1] = ne - e0;
         }
@@ -333,20 +337,36 @@ static int cmp_u32_plain(const void *a, const void *b)
 
 void vbc_components_group(analysis *W);
 
-/* Whether every group of vbc_components_group is connected: a breadth-first
- * walk from its first member over the edges (which vbc_voxels_link found
- * within one label) reaches all of it. hpos and heap are scratch here
- * (the sweeps set them again). */
+/* Whether every group of vbc_components_group is connected. Edges join
+ * one label only (vbc_voxels_link checked) and a group's first member,
+ * its label's voxel, is its smallest position (vbc_components_given
+ * checked): so when every other member has a smaller neighbour, the walk
+ * to the smallest neighbour, again and again, descends through the group
+ * to that first member from anywhere, and the group is connected. An
+ * adjacency row ascends by position (link_slice), so its first entry is
+ * the smallest neighbour: one load a member. A group with a member
+ * without one (a dip of the shape, in position order) is walked breadth
+ * first from its first member, which must reach all of it. hpos and heap
+ * are scratch here (the sweeps set them again). */
 static int groups_connected(analysis *W)
 {
     vbc_graph *A = &W->A;
-    for (size_t t = 0; t < W->nvox; t++)
-        A->hpos[t] = 0;
+    int cleared = 0;
     for (size_t c = 0; c < W->ncomp; c++) {
-        size_t m = W->cstart[c + 1] - W->cstart[c], head = 0, n = 0;
-        uint32_t first = W->order[W->cstart[c]];
-        A->heap[n++] = first;
-        A->hpos[first] = 1;
+        const uint32_t *mem = W->order + W->cstart[c];
+        size_t m = W->cstart[c + 1] - W->cstart[c], head = 0, n = 0, t = 1;
+        while (t < m && A->adj_start[mem[t]] < A->adj_start[mem[t] + 1] &&
+               A->adj[A->adj_start[mem[t]]] < mem[t])
+            t++;
+        if (t == m)
+            continue;
+        if (!cleared) {
+            for (size_t v = 0; v < W->nvox; v++)
+                A->hpos[v] = 0;
+            cleared = 1;
+        }
+        A->heap[n++] = mem[0];
+        A->hpos[mem[0]] = 1;
         while (head < n) {
             uint32_t u = A->heap[head++];
             for (size_t e = A->adj_start[u]; e < A->adj_start[u + 1]; e++)
@@ -371,13 +391,28 @@ void vbc_components_given(analysis *W)
 {
     size_t nvox = W->nvox, pr = nvox;
     uint32_t last = 0;
+    /* The positions of the labels met last, by a hash of the label (a
+     * voxel's label is mostly one met a row or a plane before). */
+    enum { MEMO = 256 };
+    uint32_t memo_label[MEMO];
+    size_t memo_at[MEMO];
+    for (int k = 0; k < MEMO; k++)
+        memo_at[k] = SIZE_MAX;
     for (size_t t = 0; t < nvox && !W->comp_bad; t++) {
         uint32_t r = W->vcomp[t];
-        /* Runs of voxels share a label: the search only where it changes
-         * (the list's indices are distinct, so the answer is the same). */
+        /* Runs of voxels share a label: the search only where it changes,
+         * and not for a label remembered (the list's indices are
+         * distinct, so the answer is the same). */
         if (t == 0 || r != last) {
-            const uint32_t *at = bsearch(&r, W->sorted, nvox, sizeof r, cmp_u32_plain);
-            pr = at ? (size_t)(at - W->sorted) : nvox;
+            unsigned h = (unsigned)((r * 2654435761u) >> 24) % MEMO;
+            if (memo_at[h] != SIZE_MAX && memo_label[h] == r) {
+                pr = memo_at[h];
+            } else {
+                const uint32_t *at = bsearch(&r, W->sorted, nvox, sizeof r, cmp_u32_plain);
+                pr = at ? (size_t)(at - W->sorted) : nvox;
+                memo_label[h] = r;
+                memo_at[h] = pr;
+            }
             last = r;
         }
         if (pr == nvox || pr > t || W->vcomp[pr] != r)
