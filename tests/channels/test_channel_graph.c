@@ -6,8 +6,9 @@
  * settles in (distance, position) order (distance bits and predecessors,
  * tied clearances everywhere, and a clearance so large that steps vanish:
  * the binary heap's fallback; stopped at a target: its path), the radix sort against qsort,
- * and given component labels (the device's) against the union-find's groups: accepted when
- * right, refused when one label covers two pieces. */
+ * given component labels (the device's) against the union-find's groups: accepted when
+ * right, refused when one label covers two pieces, and the support atoms against a scan of
+ * every atom in index order. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -243,6 +244,70 @@ static size_t labels_case(uint64_t *seed, int n, double p)
     return ncomp;
 }
 
+/* The support atoms of vbc_graph_support against their definition: per
+ * direction of the same Fibonacci sphere, the first atom in index order of
+ * least c - r and of greatest c + r. Spheres: shape 0 a ball, 1 a rod, 2
+ * a lattice of equal radii (ties everywhere), 3 a ball with each atom
+ * written twice (ties of equal atoms), 4 far from the origin. */
+static void support_case(uint64_t *seed, size_t n, int shape)
+{
+    vb_sphere_set s;
+    memset(&s, 0, sizeof s);
+    s.n = shape == 3 ? 2 * n : n;
+    s.x = malloc((s.n + 1) * sizeof *s.x);
+    s.y = malloc((s.n + 1) * sizeof *s.y);
+    s.z = malloc((s.n + 1) * sizeof *s.z);
+    s.r = malloc((s.n + 1) * sizeof *s.r);
+    for (size_t i = 0; i < n; i++) {
+        double x = synth_uniform(seed) - 0.5, y = synth_uniform(seed) - 0.5, z = synth_uniform(seed) - 0.5;
+        if (shape == 2) {
+            x = (double)(i % 7);
+            y = (double)(i / 7 % 7);
+            z = (double)(i / 49);
+        }
+        s.x[i] = 30.0 * x * (shape == 1 ? 8.0 : 1.0) + (shape == 4 ? 5e3 : 0.0);
+        s.y[i] = 30.0 * y;
+        s.z[i] = 30.0 * z - (shape == 4 ? 7e3 : 0.0);
+        s.r[i] = shape == 2 ? 1.5 : 1.2 + 0.6 * synth_uniform(seed);
+        if (shape == 3) {
+            s.x[n + i] = s.x[i];
+            s.y[n + i] = s.y[i];
+            s.z[n + i] = s.z[i];
+            s.r[n + i] = s.r[i];
+        }
+    }
+    vbc_graph A;
+    memset(&A, 0, sizeof A);
+    A.s = &s;
+    CHECK_INT(vbc_graph_support(&A), 0);
+    CHECK_INT(A.nsupport, 128);
+    size_t bad = 0;
+    for (int d = 0; d < 64 && A.support; d++) {
+        double z = 1.0 - (2.0 * d + 1.0) / 64, r = sqrt(1.0 - z * z);
+        double u[3] = {r * cos(2.39996322972865332 * d), r * sin(2.39996322972865332 * d), z};
+        int32_t lo = 0, hi = 0;
+        double vlo = INFINITY, vhi = -INFINITY;
+        for (size_t i = 0; i < s.n; i++) {
+            double c = s.x[i] * u[0] + s.y[i] * u[1] + s.z[i] * u[2];
+            if (c - s.r[i] < vlo) {
+                vlo = c - s.r[i];
+                lo = (int32_t)i;
+            }
+            if (c + s.r[i] > vhi) {
+                vhi = c + s.r[i];
+                hi = (int32_t)i;
+            }
+        }
+        bad += A.support[2 * d] != lo || A.support[2 * d + 1] != hi;
+    }
+    CHECK_INT(bad, 0);
+    free(A.support);
+    free(s.x);
+    free(s.y);
+    free(s.z);
+    free(s.r);
+}
+
 int main(void)
 {
     uint64_t seed = 20261206;
@@ -281,6 +346,10 @@ int main(void)
         comps += c;
     }
     CHECK(comps > 100);
+    static const size_t sizes[4] = {0, 1, 343, 4000};
+    for (int shape = 0; shape < 5; shape++)
+        for (int k = 0; k < 4; k++)
+            support_case(&seed, sizes[k], shape);
     radix_case(&seed, 1);
     radix_case(&seed, 5000);
     VB_TEST_END();
