@@ -150,26 +150,19 @@ out:
  * atoms a direction (1chb: 0.4 ms of a frame's serial analysis before). */
 #define SUPPORT_DIRS 64
 
-typedef struct {
-    double rho;
-    int32_t i;
-} reach_of;
-
-static int reach_desc(const void *a, const void *b)
-{
-    const reach_of *x = a, *y = b;
-    if (x->rho != y->rho)
-        return x->rho < y->rho ? 1 : -1;
-    return (x->i > y->i) - (x->i < y->i);
-}
-
 static int support_atoms(const vb_sphere_set *s, int32_t **out, size_t *count)
 {
     int32_t *list = malloc(2 * SUPPORT_DIRS * sizeof *list);
-    reach_of *R = malloc((s->n ? s->n : 1) * sizeof *R);
-    if (!list || !R) {
+    /* Reaches as descending radix keys, with their atoms (second halves:
+     * the sort's scratch). */
+    uint64_t *key = malloc(2 * (s->n ? s->n : 1) * sizeof *key);
+    uint32_t *at = malloc(2 * (s->n ? s->n : 1) * sizeof *at);
+    double *rho = malloc((s->n ? s->n : 1) * sizeof *rho);
+    if (!list || !key || !at || !rho) {
         free(list);
-        free(R);
+        free(key);
+        free(at);
+        free(rho);
         return -1;
     }
     double C[3] = {0.0, 0.0, 0.0}, scale = 1.0;
@@ -184,9 +177,11 @@ static int support_atoms(const vb_sphere_set *s, int32_t **out, size_t *count)
         C[k] /= (double)s->n;
     for (size_t i = 0; i < s->n; i++) {
         double dx = s->x[i] - C[0], dy = s->y[i] - C[1], dz = s->z[i] - C[2];
-        R[i] = (reach_of){sqrt(dx * dx + dy * dy + dz * dz) + s->r[i], (int32_t)i};
+        rho[i] = sqrt(dx * dx + dy * dy + dz * dz) + s->r[i];
+        key[i] = vbc_radix_desc(rho[i]);
+        at[i] = (uint32_t)i;
     }
-    qsort(R, s->n, sizeof *R, reach_desc);
+    vbc_radix_sort(key, at, key + s->n, at + s->n, s->n, 0);
     double margin = 1e-9 * scale;
     size_t n = 0;
     for (int d = 0; d < SUPPORT_DIRS; d++) {
@@ -196,8 +191,8 @@ static int support_atoms(const vb_sphere_set *s, int32_t **out, size_t *count)
         int32_t lo = 0, hi = 0;
         double vlo = INFINITY, vhi = -INFINITY;
         for (size_t k = 0; k < s->n; k++) {
-            int32_t i = R[k].i;
-            if (cu + R[k].rho + margin < vhi && cu - R[k].rho - margin > vlo)
+            int32_t i = (int32_t)at[k];
+            if (cu + rho[i] + margin < vhi && cu - rho[i] - margin > vlo)
                 break;
             double c = s->x[i] * u[0] + s->y[i] * u[1] + s->z[i] * u[2];
             double a = c - s->r[i], b = c + s->r[i];
@@ -213,7 +208,9 @@ static int support_atoms(const vb_sphere_set *s, int32_t **out, size_t *count)
         list[n++] = lo;
         list[n++] = hi;
     }
-    free(R);
+    free(key);
+    free(at);
+    free(rho);
     *out = list;
     *count = n;
     return 0;
