@@ -340,42 +340,53 @@ void vbc_components_group(analysis *W);
 /* Whether every group of vbc_components_group is connected. Edges join
  * one label only (vbc_voxels_link checked) and a group's first member,
  * its label's voxel, is its smallest position (vbc_components_given
- * checked): so when every other member has a smaller neighbour, the walk
- * to the smallest neighbour, again and again, descends through the group
- * to that first member from anywhere, and the group is connected. An
- * adjacency row ascends by position (link_slice), so its first entry is
- * the smallest neighbour: one load a member. A group with a member
- * without one (a dip of the shape, in position order) is walked breadth
- * first from its first member, which must reach all of it. hpos and heap
- * are scratch here (the sweeps set them again). */
+ * checked). Each other member with a smaller neighbour hangs below the
+ * smallest one (the first entry of its adjacency row, which ascends by
+ * position: link_slice): trees of real edges, whose roots are the first
+ * member and the dips of the shape in position order (members without a
+ * smaller neighbour). A group with one root is connected at one load a
+ * member; otherwise its edges, each from its smaller end, join the roots'
+ * trees (a union-find in hpos, scratch here: the sweeps set it again)
+ * until one is left, or the group is not connected. */
+static uint32_t tree_root(uint32_t *P, uint32_t i)
+{
+    while (P[i] != i) {
+        P[i] = P[P[i]];
+        i = P[i];
+    }
+    return i;
+}
+
 static int groups_connected(analysis *W)
 {
     vbc_graph *A = &W->A;
-    int cleared = 0;
+    uint32_t *P = A->hpos;
     for (size_t c = 0; c < W->ncomp; c++) {
         const uint32_t *mem = W->order + W->cstart[c];
-        size_t m = W->cstart[c + 1] - W->cstart[c], head = 0, n = 0, t = 1;
-        while (t < m && A->adj_start[mem[t]] < A->adj_start[mem[t] + 1] &&
-               A->adj[A->adj_start[mem[t]]] < mem[t])
-            t++;
-        if (t == m)
-            continue;
-        if (!cleared) {
-            for (size_t v = 0; v < W->nvox; v++)
-                A->hpos[v] = 0;
-            cleared = 1;
+        size_t m = W->cstart[c + 1] - W->cstart[c], roots = 0;
+        for (size_t t = 0; t < m; t++) {
+            uint32_t u = mem[t];
+            size_t e0 = A->adj_start[u];
+            if (t > 0 && e0 < A->adj_start[u + 1] && A->adj[e0] < u) {
+                P[u] = A->adj[e0];
+            } else {
+                P[u] = u;
+                roots++;
+            }
         }
-        A->heap[n++] = mem[0];
-        A->hpos[mem[0]] = 1;
-        while (head < n) {
-            uint32_t u = A->heap[head++];
-            for (size_t e = A->adj_start[u]; e < A->adj_start[u + 1]; e++)
-                if (!A->hpos[A->adj[e]]) {
-                    A->hpos[A->adj[e]] = 1;
-                    A->heap[n++] = A->adj[e];
+        for (size_t t = 0; t < m && roots > 1; t++) {
+            uint32_t u = mem[t];
+            for (size_t e = A->adj_start[u]; e < A->adj_start[u + 1] && roots > 1; e++) {
+                if (A->adj[e] < u)
+                    continue;
+                uint32_t a = tree_root(P, u), b = tree_root(P, A->adj[e]);
+                if (a != b) {
+                    P[a > b ? a : b] = a > b ? b : a;
+                    roots--;
                 }
+            }
         }
-        if (n != m)
+        if (roots > 1)
             return 0;
     }
     return 1;
