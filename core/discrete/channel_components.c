@@ -320,8 +320,11 @@ static int analyse_components(analysis *W, size_t natoms, vbc_result *res)
     qsort(work, nwork, sizeof *work, cmp_u64);
     Q.nwork = nwork;
     nt = vb_threads(0);
+    double t0 = vb_now();
     if (!W->given_clear && clear_members(W, work, nwork, nt) != 0)
         goto done;
+    double t1 = vb_now();
+    res->ms_clear = 1e3 * (t1 - t0);
     if (W->paths && vbc_paths_trace(W, work, nwork, nm, nt) != 0)
         goto done;
     if ((size_t)nt > nwork)
@@ -339,6 +342,7 @@ static int analyse_components(analysis *W, size_t natoms, vbc_result *res)
         goto done;
     if (nwork)
         vb_run_jobs(comp_worker, jobs, sizeof *jobs, nt);
+    res->ms_trace = 1e3 * (vb_now() - t1);
     if (atomic_load(&Q.failed))
         goto done;
     size_t p0 = 0;
@@ -412,6 +416,7 @@ int vbc_analyse_paths(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, co
     W.given_clear = vclear != NULL;
     W.paths = paths;
     int rc = VB_ENOMEM;
+    double t0 = vb_now();
     if (vbc_analysis_alloc(&W) != 0 || vbc_voxels_load(&W, vox, vclear, comp) != 0 ||
         vbc_voxels_link(&W) != 0)
         goto done;
@@ -419,6 +424,7 @@ int vbc_analyse_paths(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, co
         vbc_components_given(&W);
     else
         vbc_components_group(&W);
+    double ms_voxels = 1e3 * (vb_now() - t0);
     res->device_components = W.vcomp && !W.comp_bad;
     res->components = W.ncomp;
     if ((rc = vbc_cells_build(ctx, s, VBC_ANALYSIS_CELL, &W.cells)) != VB_OK)
@@ -427,6 +433,7 @@ int vbc_analyse_paths(vb_ctx *ctx, const vbc_grid *g, const vb_sphere_set *s, co
     if (analyse_components(&W, s->n, res) != 0)
         goto done;
     res->ms_graph = W.ms_graph;
+    res->ms_voxels = ms_voxels;
     if (res->nchannels > 1)
         qsort(res->channels, res->nchannels, sizeof *res->channels, cmp_channel);
     rc = VB_OK;

@@ -136,34 +136,81 @@ out:
 
 /* Atoms extreme along any of SUPPORT_DIRS directions (Fibonacci sphere):
  * the width of the molecule along a direction is then measured over these
- * few atoms instead of all. *out is malloc'ed. */
+ * few atoms instead of all. Per direction the atom of least c - r and the
+ * one of greatest c + r (c = p . u; ties to the lowest index, as a scan in
+ * index order keeps its first). *out is malloc'ed.
+ *
+ * The atoms are visited by decreasing reach rho = |p - C| + r from their
+ * centroid C, not in index order: c + r <= C . u + rho and c - r >=
+ * C . u - rho, so once C . u + rho (less the margin) falls below the
+ * greatest c + r found, and C . u - rho (plus it) above the least c - r,
+ * no atom left can reach either, not even tie it. The margin, 1e-9 of the
+ * coordinates' scale, dwarfs the rounding of these sums (about 1e-15 of
+ * it). A globular molecule's outer shell decides, a few per cent of its
+ * atoms a direction (1chb: 0.4 ms of a frame's serial analysis before). */
 #define SUPPORT_DIRS 64
 
 static int support_atoms(const vb_sphere_set *s, int32_t **out, size_t *count)
 {
     int32_t *list = malloc(2 * SUPPORT_DIRS * sizeof *list);
-    if (!list)
+    /* Reaches as descending radix keys, with their atoms (second halves:
+     * the sort's scratch). */
+    uint64_t *key = malloc(2 * (s->n ? s->n : 1) * sizeof *key);
+    uint32_t *at = malloc(2 * (s->n ? s->n : 1) * sizeof *at);
+    double *rho = malloc((s->n ? s->n : 1) * sizeof *rho);
+    if (!list || !key || !at || !rho) {
+        free(list);
+        free(key);
+        free(at);
+        free(rho);
         return -1;
+    }
+    double C[3] = {0.0, 0.0, 0.0}, scale = 1.0;
+    for (size_t i = 0; i < s->n; i++) {
+        C[0] += s->x[i];
+        C[1] += s->y[i];
+        C[2] += s->z[i];
+        double m = fabs(s->x[i]) + fabs(s->y[i]) + fabs(s->z[i]) + fabs(s->r[i]);
+        scale = m > scale ? m : scale;
+    }
+    for (int k = 0; k < 3 && s->n; k++)
+        C[k] /= (double)s->n;
+    for (size_t i = 0; i < s->n; i++) {
+        double dx = s->x[i] - C[0], dy = s->y[i] - C[1], dz = s->z[i] - C[2];
+        rho[i] = sqrt(dx * dx + dy * dy + dz * dz) + s->r[i];
+        key[i] = vbc_radix_desc(rho[i]);
+        at[i] = (uint32_t)i;
+    }
+    vbc_radix_sort(key, at, key + s->n, at + s->n, s->n, 0);
+    double margin = 1e-9 * scale;
     size_t n = 0;
     for (int d = 0; d < SUPPORT_DIRS; d++) {
         double z = 1.0 - (2.0 * d + 1.0) / SUPPORT_DIRS, r = sqrt(1.0 - z * z);
         double u[3] = {r * cos(2.39996322972865332 * d), r * sin(2.39996322972865332 * d), z};
+        double cu = C[0] * u[0] + C[1] * u[1] + C[2] * u[2];
         int32_t lo = 0, hi = 0;
         double vlo = INFINITY, vhi = -INFINITY;
-        for (size_t i = 0; i < s->n; i++) {
+        for (size_t k = 0; k < s->n; k++) {
+            int32_t i = (int32_t)at[k];
+            if (cu + rho[i] + margin < vhi && cu - rho[i] - margin > vlo)
+                break;
             double c = s->x[i] * u[0] + s->y[i] * u[1] + s->z[i] * u[2];
-            if (c - s->r[i] < vlo) {
-                vlo = c - s->r[i];
-                lo = (int32_t)i;
+            double a = c - s->r[i], b = c + s->r[i];
+            if (a < vlo || (a == vlo && i < lo)) {
+                vlo = a;
+                lo = i;
             }
-            if (c + s->r[i] > vhi) {
-                vhi = c + s->r[i];
-                hi = (int32_t)i;
+            if (b > vhi || (b == vhi && i < hi)) {
+                vhi = b;
+                hi = i;
             }
         }
         list[n++] = lo;
         list[n++] = hi;
     }
+    free(key);
+    free(at);
+    free(rho);
     *out = list;
     *count = n;
     return 0;

@@ -111,9 +111,12 @@ static int bucket_of(uint64_t k, uint64_t last)
     return k == last ? 0 : 64 - __builtin_clzll(k ^ last);
 }
 
+/* busy: bit b - 1 set when bucket b (1..64) holds an entry, so a pop finds
+ * the lowest such bucket with one count of trailing zeros instead of a
+ * walk over the empty ones (bucket 0 is read from first[0]). */
 typedef struct {
     uint32_t first[RH_BUCKETS];
-    uint64_t last;
+    uint64_t last, busy;
 } radix_heap;
 
 static void rh_push(vbc_graph *A, radix_heap *H, uint32_t q)
@@ -125,15 +128,21 @@ static void rh_push(vbc_graph *A, radix_heap *H, uint32_t q)
         A->hpos[f] = q;
     A->hpos[q] = RH_HEAD | (uint32_t)b;
     H->first[b] = q;
+    if (b > 0)
+        H->busy |= (uint64_t)1 << (b - 1);
 }
 
 static void rh_unlink(vbc_graph *A, radix_heap *H, uint32_t q)
 {
     uint32_t p = A->hpos[q], nx = A->heap[q];
-    if (p & RH_HEAD)
-        H->first[p & ~RH_HEAD] = nx;
-    else
+    if (p & RH_HEAD) {
+        uint32_t b = p & ~RH_HEAD;
+        H->first[b] = nx;
+        if (nx == RH_OUT && b > 0)
+            H->busy &= ~((uint64_t)1 << (b - 1));
+    } else {
         A->heap[p] = nx;
+    }
     if (nx != RH_OUT)
         A->hpos[nx] = p;
 }
@@ -142,11 +151,9 @@ static void rh_unlink(vbc_graph *A, radix_heap *H, uint32_t q)
 static uint32_t rh_pop(vbc_graph *A, radix_heap *H)
 {
     if (H->first[0] == RH_OUT) {
-        int b = 1;
-        while (b < RH_BUCKETS && H->first[b] == RH_OUT)
-            b++;
-        if (b == RH_BUCKETS)
+        if (!H->busy)
             return RH_OUT;
+        int b = 1 + __builtin_ctzll(H->busy);
         uint64_t lo = UINT64_MAX;
         for (uint32_t q = H->first[b]; q != RH_OUT; q = A->heap[q])
             lo = key_of(A->dist[q]) < lo ? key_of(A->dist[q]) : lo;
@@ -155,6 +162,7 @@ static uint32_t rh_pop(vbc_graph *A, radix_heap *H)
         H->last = lo;
         uint32_t q = H->first[b];
         H->first[b] = RH_OUT;
+        H->busy &= ~((uint64_t)1 << (b - 1));
         while (q != RH_OUT) {
             uint32_t nx = A->heap[q];
             rh_push(A, H, q);
@@ -181,12 +189,16 @@ static int radix_sweep(vbc_graph *A, const uint32_t *members, size_t m, uint32_t
     radix_heap H;
     for (int b = 0; b < RH_BUCKETS; b++)
         H.first[b] = RH_OUT;
-    H.last = 0;
+    H.last = H.busy = 0;
     for (size_t t = 0; t < m; t++) {
         A->dist[members[t]] = INFINITY;
         A->pred[members[t]] = UINT32_MAX;
         A->hpos[members[t]] = RH_OUT;
     }
+    /* vbc_path_step's lengths by code, read from a table: the code varies
+     * edge to edge, and a branch on it mispredicts (perf: the sweep's
+     * hottest instructions). The same constants, so the same costs. */
+    static const double len_of[4] = {0.0, 1.0, VBC_PATH_LEN_EDGE, VBC_PATH_LEN_CORNER};
     A->dist[src] = 0.0;
     rh_push(A, &H, src);
     for (uint32_t u; (u = rh_pop(A, &H)) != RH_OUT;) {
@@ -199,7 +211,8 @@ static int radix_sweep(vbc_graph *A, const uint32_t *members, size_t m, uint32_t
             uint32_t hq = A->hpos[q];
             if (hq == RH_DONE)
                 continue;
-            double nd = du + vbc_path_step(A->adj_len[e], A->clear[u], A->clear[q], weighted);
+            double step = len_of[A->adj_len[e] & 3];
+            double nd = du + (weighted ? vbc_path_weigh(step, A->clear[u], A->clear[q]) : step);
             if (!(nd > du))
                 return 0;
             if (nd < A->dist[q]) {

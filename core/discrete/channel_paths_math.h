@@ -21,21 +21,28 @@
  * codes (voxels); weighted, that length / r^2 with r the smaller clearance
  * (at least VBC_PATH_MIN_CLEAR), so the cheapest path keeps to the widest
  * way through. Symmetric in cu, cq. Always > 0. */
+/* The step lengths of the codes 1, 2, 3 (face, edge, corner), in voxels. */
+#define VBC_PATH_LEN_EDGE 1.4142135623730951
+#define VBC_PATH_LEN_CORNER 1.7320508075688772
+
+/* vbc_path_step's weighting of a step of length `step` (voxels). */
+VB_SHARED_FN double vbc_path_weigh(double step, double cu, double cq)
+{
+    /* fmax(fmin(cu, cq), VBC_PATH_MIN_CLEAR) written as comparisons:
+     * the same r for every input, NaN included (fmin takes the other
+     * operand, fmax the floor; of two equal zeros the sign is lost in
+     * the floor), but without the libm calls that C compilers must
+     * emit for fmin/fmax when NaN and signed zeros are honoured (perf:
+     * most of a sweep's own time on the host). */
+    double lo = cu < cq || cq != cq ? cu : cq;
+    double r = lo > VBC_PATH_MIN_CLEAR ? lo : VBC_PATH_MIN_CLEAR;
+    return step / (r * r);
+}
+
 VB_SHARED_FN double vbc_path_step(int len, double cu, double cq, int weighted)
 {
-    double step = len == 1 ? 1.0 : len == 2 ? 1.4142135623730951 : 1.7320508075688772;
-    if (weighted) {
-        /* fmax(fmin(cu, cq), VBC_PATH_MIN_CLEAR) written as comparisons:
-         * the same r for every input, NaN included (fmin takes the other
-         * operand, fmax the floor; of two equal zeros the sign is lost in
-         * the floor), but without the libm calls that C compilers must
-         * emit for fmin/fmax when NaN and signed zeros are honoured (perf:
-         * most of a sweep's own time on the host). */
-        double lo = cu < cq || cq != cq ? cu : cq;
-        double r = lo > VBC_PATH_MIN_CLEAR ? lo : VBC_PATH_MIN_CLEAR;
-        step /= r * r;
-    }
-    return step;
+    double step = len == 1 ? 1.0 : len == 2 ? VBC_PATH_LEN_EDGE : VBC_PATH_LEN_CORNER;
+    return weighted ? vbc_path_weigh(step, cu, cq) : step;
 }
 
 /* The predecessor rule of the sweeps: of two neighbours (du, u) and

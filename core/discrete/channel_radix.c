@@ -3,8 +3,13 @@
 
 #include "vbc_radix.h"
 
-#define DIGIT_BITS 11
-#define DIGIT_MASK ((1u << DIGIT_BITS) - 1)
+/* Digits of 11 bits for long lists; 8 below 2048 keys, where a pass's
+ * table (2^bits counts to clear and sum) would outweigh the keys (a
+ * channel's components hold tens to hundreds of voxels each). Every
+ * width gives the one stable order. */
+#define WIDE_BITS 11
+#define NARROW_BITS 8
+#define NARROW_BELOW 2048
 
 void vbc_radix_sort(uint64_t *key, uint32_t *val, uint64_t *ktmp, uint32_t *vtmp, size_t n,
                     unsigned lo_bit)
@@ -16,17 +21,19 @@ void vbc_radix_sort(uint64_t *key, uint32_t *val, uint64_t *ktmp, uint32_t *vtmp
     }
     /* Bits where the keys differ: only digits holding one of them move. */
     uint64_t differ = any ^ all;
-    for (unsigned sh = lo_bit; sh < 64; sh += DIGIT_BITS) {
-        if (((differ >> sh) & DIGIT_MASK) == 0)
+    unsigned bits = n < NARROW_BELOW ? NARROW_BITS : WIDE_BITS;
+    size_t mask = ((size_t)1 << bits) - 1;
+    for (unsigned sh = lo_bit; sh < 64; sh += bits) {
+        if (((differ >> sh) & mask) == 0)
             continue;
-        size_t cnt[DIGIT_MASK + 2];
-        memset(cnt, 0, sizeof cnt);
+        size_t cnt[((size_t)1 << WIDE_BITS) + 1];
+        memset(cnt, 0, (mask + 2) * sizeof *cnt);
         for (size_t t = 0; t < n; t++)
-            cnt[((key[t] >> sh) & DIGIT_MASK) + 1]++;
-        for (size_t d = 0; d <= DIGIT_MASK; d++)
+            cnt[((key[t] >> sh) & mask) + 1]++;
+        for (size_t d = 0; d <= mask; d++)
             cnt[d + 1] += cnt[d];
         for (size_t t = 0; t < n; t++) {
-            size_t at = cnt[(key[t] >> sh) & DIGIT_MASK]++;
+            size_t at = cnt[(key[t] >> sh) & mask]++;
             ktmp[at] = key[t];
             if (val)
                 vtmp[at] = val[t];

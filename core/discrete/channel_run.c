@@ -309,6 +309,9 @@ static int frame_repeat(vb_ctx *ctx, vbc_run *r, vbc_run_out *o)
         fi->ms_masks += o->F.out.ms_masks;
         fi->ms_analysis += o->F.ms_analysis;
         fi->ms_graph += o->F.result.ms_graph;
+        fi->ms_voxels += o->F.result.ms_voxels;
+        fi->ms_clear += o->F.result.ms_clear;
+        fi->ms_trace += o->F.result.ms_trace;
         fi->ms_pore += o->F.ms_pore;
         fi->ms_cells += o->F.pore_ms.cells;
         fi->ms_refine += o->F.pore_ms.refine;
@@ -325,6 +328,9 @@ static int frame_repeat(vb_ctx *ctx, vbc_run *r, vbc_run_out *o)
     fi->ms_masks *= inv;
     fi->ms_analysis *= inv;
     fi->ms_graph *= inv;
+    fi->ms_voxels *= inv;
+    fi->ms_clear *= inv;
+    fi->ms_trace *= inv;
     fi->ms_pore *= inv;
     fi->ms_cells *= inv;
     fi->ms_refine *= inv;

@@ -252,10 +252,14 @@ static void *link_slice(void *arg)
                     el[ne] = l0 + 1;
                     ne += q2 != NO_VOXEL;
                 }
-            if (W->vcomp)
+            if (W->vcomp) {
+                /* Every edge from both ends, without a branch on which end
+                 * is the later (it mispredicts): the same verdict. */
+                uint32_t lt = W->vcomp[t], differ = 0;
                 for (size_t e = e0; e < ne; e++)
-                    if (adj[e] > t && W->vcomp[t] != W->vcomp[adj[e]])
-                        J->bad = 1;
+                    differ |= W->vcomp[adj[e]] ^ lt;
+                J->bad |= differ != 0;
+            }
             J->ne = ne;
             W->A.adj_start[t + 1] = ne - e0;
         }
@@ -333,29 +337,56 @@ static int cmp_u32_plain(const void *a, const void *b)
 
 void vbc_components_group(analysis *W);
 
-/* Whether every group of vbc_components_group is connected: a breadth-first
- * walk from its first member over the edges (which vbc_voxels_link found
- * within one label) reaches all of it. hpos and heap are scratch here
- * (the sweeps set them again). */
+/* Whether every group of vbc_components_group is connected. Edges join
+ * one label only (vbc_voxels_link checked) and a group's first member,
+ * its label's voxel, is its smallest position (vbc_components_given
+ * checked). Each other member with a smaller neighbour hangs below the
+ * smallest one (the first entry of its adjacency row, which ascends by
+ * position: link_slice): trees of real edges, whose roots are the first
+ * member and the dips of the shape in position order (members without a
+ * smaller neighbour). A group with one root is connected at one load a
+ * member; otherwise its edges, each from its smaller end, join the roots'
+ * trees (a union-find in hpos, scratch here: the sweeps set it again)
+ * until one is left, or the group is not connected. */
+static uint32_t tree_root(uint32_t *P, uint32_t i)
+{
+    while (P[i] != i) {
+        P[i] = P[P[i]];
+        i = P[i];
+    }
+    return i;
+}
+
 static int groups_connected(analysis *W)
 {
     vbc_graph *A = &W->A;
-    for (size_t t = 0; t < W->nvox; t++)
-        A->hpos[t] = 0;
+    uint32_t *P = A->hpos;
     for (size_t c = 0; c < W->ncomp; c++) {
-        size_t m = W->cstart[c + 1] - W->cstart[c], head = 0, n = 0;
-        uint32_t first = W->order[W->cstart[c]];
-        A->heap[n++] = first;
-        A->hpos[first] = 1;
-        while (head < n) {
-            uint32_t u = A->heap[head++];
-            for (size_t e = A->adj_start[u]; e < A->adj_start[u + 1]; e++)
-                if (!A->hpos[A->adj[e]]) {
-                    A->hpos[A->adj[e]] = 1;
-                    A->heap[n++] = A->adj[e];
-                }
+        const uint32_t *mem = W->order + W->cstart[c];
+        size_t m = W->cstart[c + 1] - W->cstart[c], roots = 0;
+        for (size_t t = 0; t < m; t++) {
+            uint32_t u = mem[t];
+            size_t e0 = A->adj_start[u];
+            if (t > 0 && e0 < A->adj_start[u + 1] && A->adj[e0] < u) {
+                P[u] = A->adj[e0];
+            } else {
+                P[u] = u;
+                roots++;
+            }
         }
-        if (n != m)
+        for (size_t t = 0; t < m && roots > 1; t++) {
+            uint32_t u = mem[t];
+            for (size_t e = A->adj_start[u]; e < A->adj_start[u + 1] && roots > 1; e++) {
+                if (A->adj[e] < u)
+                    continue;
+                uint32_t a = tree_root(P, u), b = tree_root(P, A->adj[e]);
+                if (a != b) {
+                    P[a > b ? a : b] = a > b ? b : a;
+                    roots--;
+                }
+            }
+        }
+        if (roots > 1)
             return 0;
     }
     return 1;
@@ -371,13 +402,28 @@ void vbc_components_given(analysis *W)
 {
     size_t nvox = W->nvox, pr = nvox;
     uint32_t last = 0;
+    /* The positions of the labels met last, by a hash of the label (a
+     * voxel's label is mostly one met a row or a plane before). */
+    enum { MEMO = 256 };
+    uint32_t memo_label[MEMO];
+    size_t memo_at[MEMO];
+    for (int k = 0; k < MEMO; k++)
+        memo_at[k] = SIZE_MAX;
     for (size_t t = 0; t < nvox && !W->comp_bad; t++) {
         uint32_t r = W->vcomp[t];
-        /* Runs of voxels share a label: the search only where it changes
-         * (the list's indices are distinct, so the answer is the same). */
+        /* Runs of voxels share a label: the search only where it changes,
+         * and not for a label remembered (the list's indices are
+         * distinct, so the answer is the same). */
         if (t == 0 || r != last) {
-            const uint32_t *at = bsearch(&r, W->sorted, nvox, sizeof r, cmp_u32_plain);
-            pr = at ? (size_t)(at - W->sorted) : nvox;
+            unsigned h = (unsigned)((r * 2654435761u) >> 24) % MEMO;
+            if (memo_at[h] != SIZE_MAX && memo_label[h] == r) {
+                pr = memo_at[h];
+            } else {
+                const uint32_t *at = bsearch(&r, W->sorted, nvox, sizeof r, cmp_u32_plain);
+                pr = at ? (size_t)(at - W->sorted) : nvox;
+                memo_label[h] = r;
+                memo_at[h] = pr;
+            }
             last = r;
         }
         if (pr == nvox || pr > t || W->vcomp[pr] != r)

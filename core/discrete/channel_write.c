@@ -252,9 +252,11 @@ void vbc_write_json_frame(FILE *f, int first, const vbc_frame_info *fi, const vb
             first ? "" : ",", fi->frame, fi->model, fi->atoms, g->h, g->origin[0], g->origin[1],
             g->origin[2], fi->channel_voxels, res->components, res->pruned);
     /* In the order of VBC_JSON_MS_KEYS. */
-    const double ms[] = {fi->ms_read,  fi->ms_prepare, fi->ms_upload, fi->ms_jfa,     fi->ms_masks,
-                         fi->ms_analysis, fi->ms_graph, fi->ms_cells, fi->ms_refine, fi->ms_sweep, fi->ms_verdict,
-                         fi->ms_lining, fi->ms_pore,    fi->ms_total};
+    const double ms[] = {fi->ms_read,     fi->ms_prepare, fi->ms_upload, fi->ms_jfa,
+                         fi->ms_masks,    fi->ms_analysis, fi->ms_graph, fi->ms_voxels,
+                         fi->ms_clear,    fi->ms_trace,   fi->ms_cells,  fi->ms_refine,
+                         fi->ms_sweep,    fi->ms_verdict, fi->ms_lining, fi->ms_pore,
+                         fi->ms_total};
     json_clock(f, "     \"ms\": {", VBC_JSON_MS_KEYS, ms);
     fputs(",\n", f);
     const vbc_pore_summary *P = &res->pore;

@@ -153,6 +153,11 @@ typedef struct vbc_result {
     size_t pruned;          /* components removed by the thresholds */
     int device_components;  /* the components are the device's labels (vbc_analyse_given) */
     double ms_graph;        /* the batch sweeps' wall time (vbc_analyse_paths), ms; else 0 */
+    /* The analysis's steps, wall ms (vbc_analyse_paths): the voxels sorted,
+     * linked and grouped into components; the members' clearances when
+     * they did not come with the voxels; the components traced (ends,
+     * sweeps, points, lining atoms) on the threads. */
+    double ms_voxels, ms_clear, ms_trace;
     vbc_pore_summary pore;  /* when present, channels[0] is the pore (kind VBC_PORE) */
 } vbc_result;
 
@@ -291,6 +296,7 @@ typedef struct vbc_frame_info {
     double ms_read, ms_prepare;
     double ms_cells, ms_refine, ms_sweep, ms_verdict, ms_lining;
     double ms_graph;       /* the analysis's batch sweeps (part of ms_analysis; 0 without) */
+    double ms_voxels, ms_clear, ms_trace; /* the analysis's steps (vbc_result) */
     double t_start;        /* vb_now() when the frame's reading began; 0: unknown */
     double cpu_start;      /* vbc_cpu_now() then (with t_start) */
 } vbc_frame_info;
@@ -321,14 +327,16 @@ void vbc_write_stats_row(FILE *f, const vbc_frame_info *fi, const vbc_grid *g,
  * drop them): "ms" after the statistics, the milliseconds of each stage
  * (VBC_JSON_MS_KEYS: read, prepare, upload, jfa = the Voronoi labels,
  * masks, analysis = the channel graph, graph = its ends and sweeps when
- * they ran as batches (VORBALL_DEVICE_PATHS, vbc_paths.h; else 0), cells, refine, sweep, verdict,
+ * they ran as batches (VORBALL_DEVICE_PATHS, vbc_paths.h; else 0), voxels,
+ * clear and trace = the analysis's steps (vbc_result's ms_voxels, ms_clear,
+ * ms_trace), cells, refine, sweep, verdict,
  * lining, pore = the last five, total = masks + analysis + pore), and
  * "clock" closing the frame (VBC_JSON_CLOCK_KEYS: write = this frame's
  * JSON text, frame = end to end from the start of its reading, or the sum
  * of the stages when fi->t_start is 0, fps = 1000 / frame, and cpu = the
  * process's CPU ms over the same span, 0 when fi->t_start is 0). Every
  * other byte is the same whatever the clocks read. */
-#define VBC_JSON_MS_KEYS "read prepare upload jfa masks analysis graph cells refine sweep verdict lining pore total"
+#define VBC_JSON_MS_KEYS "read prepare upload jfa masks analysis graph voxels clear trace cells refine sweep verdict lining pore total"
 #define VBC_JSON_CLOCK_KEYS "write frame fps cpu"
 void vbc_write_json_begin(FILE *f, const char *input, double probe, int n, const char *device);
 /* As vbc_write_json_begin, with the provenance first when options is not

@@ -5,7 +5,10 @@
  * one voxel thin), the radix heap's sweep against an O(m^2) Dijkstra that
  * settles in (distance, position) order (distance bits and predecessors,
  * tied clearances everywhere, and a clearance so large that steps vanish:
- * the binary heap's fallback; stopped at a target: its path), and the radix sort against qsort. */
+ * the binary heap's fallback; stopped at a target: its path), the radix sort against qsort,
+ * given component labels (the device's) against the union-find's groups: accepted when
+ * right, refused when one label covers two pieces, and the support atoms against a scan of
+ * every atom in index order. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -183,6 +186,128 @@ static void radix_case(uint64_t *seed, size_t n)
     free(S);
 }
 
+/* Labels as the device gives them (each voxel's smallest voxel index in its
+ * component) on a random set: accepted, the union-find's groups. Then
+ * refused, with the union-find's groups used, when (1) the members of one
+ * component carry another's label whose smallest voxel is smaller (every
+ * check of a voxel and of an edge passes, only the groups' connectivity
+ * fails), or (2) one voxel with a smaller neighbour does (the edge check
+ * fails; the descent to smaller neighbours alone would see a connected
+ * group). Returns the components. */
+static size_t labels_case(uint64_t *seed, int n, double p)
+{
+    vbc_grid g = {n, n - 1, n - 2, 3, {0.0, 0.0, 0.0}, 1.0};
+    analysis H;
+    random_graph(seed, &g, p, &H);
+    vbc_components_group(&H);
+    uint32_t *lab = malloc((H.nvox ? H.nvox : 1) * sizeof *lab);
+    for (size_t c = 0; c < H.ncomp; c++)
+        for (size_t t = H.cstart[c]; t < H.cstart[c + 1]; t++)
+            lab[H.order[t]] = H.sorted[H.order[H.cstart[c]]];
+    for (int spoil = 0; spoil <= 2 && H.ncomp >= 2; spoil++) {
+        /* A later component (with a member past its first, for case 2). */
+        size_t cb = H.ncomp, ca = 0, from = 0;
+        for (int tries = 0; tries < 100 && cb == H.ncomp; tries++) {
+            cb = 1 + (size_t)(synth_uniform(seed) * (double)(H.ncomp - 1)) % (H.ncomp - 1);
+            if (H.cstart[cb + 1] - H.cstart[cb] < 2)
+                cb = H.ncomp;
+        }
+        CHECK(cb < H.ncomp);
+        if (cb == H.ncomp)
+            break;
+        ca = (size_t)(synth_uniform(seed) * (double)cb) % cb;
+        from = spoil == 1 ? H.cstart[cb] : H.cstart[cb + 1] - 1;
+        for (size_t t = from; spoil && t < H.cstart[cb + 1]; t++)
+            lab[H.order[t]] = H.sorted[H.order[H.cstart[ca]]];
+        analysis W;
+        memset(&W, 0, sizeof W);
+        W.A.g = W.g = &g;
+        W.nvox = H.nvox;
+        CHECK(vbc_analysis_alloc(&W) == 0 && vbc_voxels_load(&W, H.sorted, NULL, lab) == 0 &&
+              vbc_voxels_link(&W) == 0);
+        vbc_components_given(&W);
+        CHECK_INT(W.comp_bad, spoil != 0);
+        CHECK_INT(W.ncomp, H.ncomp);
+        size_t bad = 0;
+        for (size_t t = 0; t < H.nvox && W.ncomp == H.ncomp; t++)
+            bad += W.order[t] != H.order[t];
+        for (size_t c = 0; c <= H.ncomp && W.ncomp == H.ncomp; c++)
+            bad += W.cstart[c] != H.cstart[c];
+        CHECK_INT(bad, 0);
+        vbc_analysis_free(&W);
+        for (size_t t = from; spoil && t < H.cstart[cb + 1]; t++)
+            lab[H.order[t]] = H.sorted[H.order[H.cstart[cb]]];
+    }
+    size_t ncomp = H.ncomp;
+    free(lab);
+    vbc_analysis_free(&H);
+    return ncomp;
+}
+
+/* The support atoms of vbc_graph_support against their definition: per
+ * direction of the same Fibonacci sphere, the first atom in index order of
+ * least c - r and of greatest c + r. Spheres: shape 0 a ball, 1 a rod, 2
+ * a lattice of equal radii (ties everywhere), 3 a ball with each atom
+ * written twice (ties of equal atoms), 4 far from the origin. */
+static void support_case(uint64_t *seed, size_t n, int shape)
+{
+    vb_sphere_set s;
+    memset(&s, 0, sizeof s);
+    s.n = shape == 3 ? 2 * n : n;
+    s.x = malloc((s.n + 1) * sizeof *s.x);
+    s.y = malloc((s.n + 1) * sizeof *s.y);
+    s.z = malloc((s.n + 1) * sizeof *s.z);
+    s.r = malloc((s.n + 1) * sizeof *s.r);
+    for (size_t i = 0; i < n; i++) {
+        double x = synth_uniform(seed) - 0.5, y = synth_uniform(seed) - 0.5, z = synth_uniform(seed) - 0.5;
+        if (shape == 2) {
+            x = (double)(i % 7);
+            y = (double)(i / 7 % 7);
+            z = (double)(i / 49);
+        }
+        s.x[i] = 30.0 * x * (shape == 1 ? 8.0 : 1.0) + (shape == 4 ? 5e3 : 0.0);
+        s.y[i] = 30.0 * y;
+        s.z[i] = 30.0 * z - (shape == 4 ? 7e3 : 0.0);
+        s.r[i] = shape == 2 ? 1.5 : 1.2 + 0.6 * synth_uniform(seed);
+        if (shape == 3) {
+            s.x[n + i] = s.x[i];
+            s.y[n + i] = s.y[i];
+            s.z[n + i] = s.z[i];
+            s.r[n + i] = s.r[i];
+        }
+    }
+    vbc_graph A;
+    memset(&A, 0, sizeof A);
+    A.s = &s;
+    CHECK_INT(vbc_graph_support(&A), 0);
+    CHECK_INT(A.nsupport, 128);
+    size_t bad = 0;
+    for (int d = 0; d < 64 && A.support; d++) {
+        double z = 1.0 - (2.0 * d + 1.0) / 64, r = sqrt(1.0 - z * z);
+        double u[3] = {r * cos(2.39996322972865332 * d), r * sin(2.39996322972865332 * d), z};
+        int32_t lo = 0, hi = 0;
+        double vlo = INFINITY, vhi = -INFINITY;
+        for (size_t i = 0; i < s.n; i++) {
+            double c = s.x[i] * u[0] + s.y[i] * u[1] + s.z[i] * u[2];
+            if (c - s.r[i] < vlo) {
+                vlo = c - s.r[i];
+                lo = (int32_t)i;
+            }
+            if (c + s.r[i] > vhi) {
+                vhi = c + s.r[i];
+                hi = (int32_t)i;
+            }
+        }
+        bad += A.support[2 * d] != lo || A.support[2 * d + 1] != hi;
+    }
+    CHECK_INT(bad, 0);
+    free(A.support);
+    free(s.x);
+    free(s.y);
+    free(s.z);
+    free(s.r);
+}
+
 int main(void)
 {
     uint64_t seed = 20261206;
@@ -211,6 +336,20 @@ int main(void)
         sweep_case(&seed, 12, 0.5, 0, 0);
         sweep_case(&seed, 12, 0.6, 4, 1);
     }
+    /* Sparse sets (many small components), dense ones (large components
+     * shaped with dips, which the breadth-first walk checks). */
+    static const double dens[6] = {0.03, 0.05, 0.08, 0.12, 0.2, 0.25};
+    size_t comps = 0;
+    for (int r = 0; r < 6; r++) {
+        size_t c = labels_case(&seed, 14, dens[r]);
+        CHECK(c >= 2);
+        comps += c;
+    }
+    CHECK(comps > 100);
+    static const size_t sizes[4] = {0, 1, 343, 4000};
+    for (int shape = 0; shape < 5; shape++)
+        for (int k = 0; k < 4; k++)
+            support_case(&seed, sizes[k], shape);
     radix_case(&seed, 1);
     radix_case(&seed, 5000);
     VB_TEST_END();

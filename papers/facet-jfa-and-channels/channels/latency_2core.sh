@@ -8,7 +8,8 @@
 #   DEV      --device (default ref)    THREADS  threads of the wall run (default 2)
 #   MDA      adk_oplsaa.gro/.xtc and YiiP_lipids.gro.gz (default /work/peers/mda)
 #   DATA     the corpus data (default this repository's corpus/data)
-#   CASES    which of adk128 adk256 1chb128 1chb256 yiip128 yiip256 (default all)
+#   CASES    which of adk128 adk256 1chb128 1chb256 yiip128 yiip256 ngl128 (default
+#            all but ngl128: ngl_md_ascii_trj.pdb, 51 frames of 183 atoms)
 # OUTDIR gets NAME.LABEL.stages (latency_stages.py's lines), NAME.LABEL.wall
 # (median ms per JSON key), NAME.LABEL.time (/usr/bin/time -v of the perf run).
 # Needs bash, perf, python3 (standard library), GNU time.
@@ -26,6 +27,7 @@ case_args() { # name -> ARGS, RUNS, FRAMES
     adk*) ARGS=("$M/adk_oplsaa.gro" --traj "$M/adk_oplsaa.xtc"); RUNS=10 FRAMES=10 ;;
     1chb*) ARGS=("$D/1chb_hole2.pdb" --repeat 10); RUNS=10 FRAMES=1 ;;
     yiip*) ARGS=("$M/YiiP_lipids.gro.gz" --repeat 3); RUNS=3 FRAMES=1 ;;
+    ngl*) ARGS=("$D/ngl_md_ascii_trj.pdb"); RUNS=51 FRAMES=51 ;;
     esac
     GRID=${1##*[a-z]}
 }
