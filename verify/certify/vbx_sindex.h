@@ -288,13 +288,6 @@ static inline int vbx_walk_next(vbx_walk *w, size_t *first, size_t *end)
         const vbx_ia *p = w->p;
         while (w->at[2] <= w->hi[2]) {
             int y = w->at[1], z = w->at[2];
-            double gz2 = w->g2[1][z - w->lo[2]];
-            if (y == w->lo[1] && (w->r2 - gz2 * (1.0 - 0x1p-40)) * (1.0 + 0x1p-50) <= 0.0) {
-                /* W below is at most this for every row of the plane z (a
-                 * gap^2 >= 0 added, then monotone roundings): none reaches */
-                w->at[2]++;
-                continue;
-            }
             if (++w->at[1] > w->hi[1]) {
                 w->at[1] = w->lo[1];
                 w->at[2]++;
@@ -309,7 +302,8 @@ static inline int vbx_walk_next(vbx_walk *w, size_t *first, size_t *end)
              * none does (fl keeps the sign of a difference). Else the
              * half-width fl(fl(sqrt(W)) (1 + 2^-50)) >= sqrt(W), and the x
              * range pushed out by a step holds them all. NaN: whole row. */
-            double W = (w->r2 - (w->g2[0][y - w->lo[1]] + gz2) * (1.0 - 0x1p-40)) * (1.0 + 0x1p-50);
+            double W = (w->r2 - (w->g2[0][y - w->lo[1]] + w->g2[1][z - w->lo[2]]) * (1.0 - 0x1p-40)) *
+                       (1.0 + 0x1p-50);
             if (W <= 0.0)
                 continue;
             int x0 = w->lo[0], x1 = w->hi[0];
