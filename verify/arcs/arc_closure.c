@@ -46,6 +46,7 @@ static int run_phase(vbx_closure *cl, vbx_tracer *tr, unsigned nt, const vbx_ite
         jobs[i].ph = &ph;
         jobs[i].index = i;
         tr[i].nev = 0;
+        tr[i].nends = 0;
         tr[i].npool = 0;
         tr[i].rc = VB_OK;
         tr[i].fail_at = SIZE_MAX;
@@ -285,7 +286,10 @@ static int close_list(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier *cert,
             vbx_arcw_free(&tr[i].w);
         vbx_tracer_scratch(&tr[i], 0);
         free(tr[i].ev);
+        free(tr[i].ends);
         free(tr[i].pool);
+        free(tr[i].gkey);
+        free(tr[i].gbox);
         if (i > 0) {
             vb_certifier_close(tr[i].c);
             if (tr[i].ctx)

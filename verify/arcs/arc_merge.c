@@ -292,12 +292,13 @@ static int merge_late(vbx_closure *cl, const vbx_tracer *tr, size_t e0, size_t n
             continue;
         size_t k = e->from;
         r->half_arcs++;
-        const uint32_t *m = tr->pool + e->moff;
         size_t to = e->to, *s = NULL;
-        if (to == SIZE_MAX) {
+        const vbx_hend *x = to == SIZE_MAX ? &tr->ends[e->end] : NULL;
+        const uint32_t *m = x ? tr->pool + x->moff : NULL;
+        if (x) {
             if (!cl->tab.cap && vb_hash_fit(&cl->tab, 0, vhash_of, &cl->all) != VB_OK)
                 return VB_ENOMEM;
-            s = vslot(&cl->tab, &cl->all, m, e->nm, e->p);
+            s = vslot(&cl->tab, &cl->all, m, x->nm, x->p);
         }
         if (s && *s) {
             to = *s - 1;
@@ -305,10 +306,10 @@ static int merge_late(vbx_closure *cl, const vbx_tracer *tr, size_t e0, size_t n
             to = cl->all.n;
             int rc = vbx_closure_own(cl);
             if (rc == VB_OK)
-                rc = vb_vertex_list_push(&cl->all, m, e->nm, e->p[0], e->p[1], e->p[2], e->p[3],
+                rc = vb_vertex_list_push(&cl->all, m, x->nm, x->p[0], x->p[1], x->p[2], x->p[3],
                                          0, VB_VERTEX_CERTIFIED);
             if (rc == VB_OK)
-                rc = vb_vertex_list_push(&r->added, m, e->nm, e->p[0], e->p[1], e->p[2], e->p[3],
+                rc = vb_vertex_list_push(&r->added, m, x->nm, x->p[0], x->p[1], x->p[2], x->p[3],
                                          0, VB_VERTEX_CERTIFIED);
             if (rc != VB_OK)
                 return rc;

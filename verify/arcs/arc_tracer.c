@@ -9,32 +9,40 @@
 
 #include "vbx_closure.h"
 
-static int push_event(vbx_tracer *t, int kind, const uint32_t tri[3], int dir, const uint32_t *m,
-                      size_t nm, const double p[4])
+static int push_event(vbx_tracer *t, int kind, const uint32_t tri[3], int dir, size_t to)
 {
     if (VB_ARRAY_FIT(t->ev, t->ev_cap, t->nev + 1, 256) != VB_OK)
         return VB_ENOMEM;
     vbx_hev *e = &t->ev[t->nev++];
-    e->kind = kind;
+    e->kind = (unsigned char)kind;
     e->from = t->from;
-    e->to = SIZE_MAX;
-    e->dir = dir;
+    e->to = to;
+    e->end = SIZE_MAX;
+    e->dir = (unsigned char)dir;
     memcpy(e->t, tri, sizeof e->t);
-    e->nm = (uint32_t)nm;
-    e->moff = t->npool;
-    if (p)
-        memcpy(e->p, p, sizeof e->p);
-    if (nm) {
-        if (VB_ARRAY_FIT(t->pool, t->pool_cap, t->npool + nm, 1024) != VB_OK)
-            return VB_ENOMEM;
-        memcpy(t->pool + t->npool, m, nm * sizeof *m);
-        t->npool += nm;
-    }
+    return VB_OK;
+}
+
+/* The end of the last event, a vertex the round's map does not hold: its
+ * members m (nm) and rounded point p, which the merge looks up and adds. */
+static int push_end(vbx_tracer *t, const uint32_t *m, size_t nm, const double p[4])
+{
+    if (VB_ARRAY_FIT(t->ends, t->ends_cap, t->nends + 1, 64) != VB_OK ||
+        VB_ARRAY_FIT(t->pool, t->pool_cap, t->npool + nm, 1024) != VB_OK)
+        return VB_ENOMEM;
+    vbx_hend *x = &t->ends[t->nends];
+    memcpy(x->p, p, sizeof x->p);
+    x->moff = t->npool;
+    x->nm = nm;
+    memcpy(t->pool + t->npool, m, nm * sizeof *m);
+    t->npool += nm;
+    t->ev[t->nev - 1].end = t->nends++;
     return VB_OK;
 }
 
 /* The next vertex of arc tp of triple frame f, certified, as an event
- * (with its index when the round's map of list lst holds it). */
+ * (with its index when the round's map of list lst holds it, else with
+ * its members and point). */
 static int arrive(vbx_tracer *tr, const vb_vertex_list *lst, vbx_tframe *f, const vbx_touch *tp,
                   int dir)
 {
@@ -45,12 +53,14 @@ static int arrive(vbx_tracer *tr, const vb_vertex_list *lst, vbx_tframe *f, cons
     if (ok == 0) {
         /* A sphere cuts the first touching point: the arc was not an edge
          * there; the local test and the search disagree (degenerate). */
-        return push_event(tr, VBX_EV_UNDECIDED, f->t, dir, NULL, 0, NULL);
+        return push_event(tr, VBX_EV_UNDECIDED, f->t, dir, SIZE_MAX);
     }
-    int rc = push_event(tr, VBX_EV_CLOSED, f->t, dir, tr->c->members, tr->c->nmembers, p);
-    if (rc == VB_OK && tr->map)
-        tr->ev[tr->nev - 1].to =
-            vbx_tmap_find(tr->map, lst, f->t, tr->c->members, tr->c->nmembers, p);
+    const uint32_t *m = tr->c->members;
+    size_t nm = tr->c->nmembers;
+    size_t to = tr->map ? vbx_tmap_find(tr->map, lst, f->t, m, nm, p) : SIZE_MAX;
+    int rc = push_event(tr, VBX_EV_CLOSED, f->t, dir, to);
+    if (rc == VB_OK && to == SIZE_MAX)
+        rc = push_end(tr, m, nm, p);
     return rc;
 }
 
@@ -68,8 +78,11 @@ static int forward_to_known(vbx_tracer *tr, const vb_vertex_list *all, vbx_tfram
 {
     if (!tr->map || !tr->map->n)
         return 0;
-    size_t lo, hi;
-    vbx_tmap_range(tr->map, f->t, &lo, &hi);
+    /* a VBX_IT_TRIPLE item's vertices are the map's entries of f's triple,
+     * their keys computed on this frame already */
+    size_t lo = tr->glo, hi = tr->glo + tr->ng;
+    if (!tr->ng)
+        vbx_tmap_range(tr->map, f->t, &lo, &hi);
     vbx_arcw *w = &tr->w;
     int closed = f->kind != VBX_TRI_OPEN;
     /* [0]: the nearest ahead of ev; [1] (closed): the first of the curve
@@ -80,12 +93,16 @@ static int forward_to_known(vbx_tracer *tr, const vb_vertex_list *all, vbx_tfram
         size_t u = tr->map->e[i].k;
         if (u == k)
             continue;
-        double pu[4];
-        vbx_vertex_point(all, u, pu);
-        vbx_ia bu[4];
-        vbx_box_of_rounded(pu, bu);
         vbx_key ku;
-        vbx_key_of_box(w, f, bu, &ku);
+        if (tr->ng) {
+            ku = tr->gkey[i - lo];
+        } else {
+            double pu[4];
+            vbx_vertex_point(all, u, pu);
+            vbx_ia bu[4];
+            vbx_box_of_rounded(pu, bu);
+            vbx_key_of_box(w, f, bu, &ku);
+        }
         int c = vbx_pos_cmp(w, f, &ev->key, NULL, &ku, NULL);
         if (c == 2)
             return 0;
@@ -132,11 +149,12 @@ static int forward_to_known(vbx_tracer *tr, const vb_vertex_list *all, vbx_tfram
 }
 
 /* The arcs of triple t (frame f, set up) at vertex k (members m, rounded
- * point p): with all, the forward arc traced and the backward one pending;
- * else the backward arc traced. */
+ * point p, its box, and its key on f when known, else NULL): with all, the
+ * forward arc traced and the backward one pending; else the backward arc
+ * traced. */
 static int trace_at(vbx_tracer *tr, const vb_vertex_list *lst, size_t k, const uint32_t *m,
-                    size_t nm, const double p[4], const vbx_ia box[4], vbx_tframe *f,
-                    const uint32_t t[3], int all)
+                    size_t nm, const double p[4], const vbx_ia box[4], const vbx_key *key,
+                    vbx_tframe *f, const uint32_t t[3], int all)
 {
     vbx_arcw *w = &tr->w;
     int rc = VB_OK;
@@ -153,7 +171,7 @@ static int trace_at(vbx_tracer *tr, const vb_vertex_list *lst, size_t k, const u
     }
     rc = vbx_local_arcs(w, f, m, nm, p, box, x, &have, &fwd, &bwd, &extra);
     if (rc == VB_EDEGENERATE) {
-        rc = all ? push_event(tr, VBX_EV_UNDECIDED, t, 0, NULL, 0, NULL) : VB_OK;
+        rc = all ? push_event(tr, VBX_EV_UNDECIDED, t, 0, SIZE_MAX) : VB_OK;
         goto done;
     }
     if (rc != VB_OK)
@@ -176,7 +194,10 @@ static int trace_at(vbx_tracer *tr, const vb_vertex_list *lst, size_t k, const u
     ev.xyzt = p;
     ev.x = x;
     ev.have = &have;
-    vbx_key_of_box(w, f, box, &ev.key);
+    if (key)
+        ev.key = *key;
+    else
+        vbx_key_of_box(w, f, box, &ev.key);
     einf.inf = 1;
     int open = f->kind == VBX_TRI_OPEN;
     if (all ? fwd : bwd)
@@ -185,7 +206,7 @@ static int trace_at(vbx_tracer *tr, const vb_vertex_list *lst, size_t k, const u
         if (!(dir == 0 ? fwd : bwd) || (dir == 0 && !all))
             continue;
         if (dir == 1 && all) {
-            rc = push_event(tr, VBX_EV_PENDING, t, 1, NULL, 0, NULL);
+            rc = push_event(tr, VBX_EV_PENDING, t, 1, SIZE_MAX);
             continue;
         }
         tp->found = 0;
@@ -198,12 +219,7 @@ static int trace_at(vbx_tracer *tr, const vb_vertex_list *lst, size_t k, const u
                 break;
             }
             if (sc == 2) {
-                double pu[4];
-                vbx_vertex_point(lst, to, pu);
-                size_t s0 = lst->start[to];
-                rc = push_event(tr, VBX_EV_CLOSED, t, 0, lst->ids + s0, lst->start[to + 1] - s0, pu);
-                if (rc == VB_OK)
-                    tr->ev[tr->nev - 1].to = to;
+                rc = push_event(tr, VBX_EV_CLOSED, t, 0, to);
                 continue;
             }
             if (sc == 1) {
@@ -218,13 +234,13 @@ static int trace_at(vbx_tracer *tr, const vb_vertex_list *lst, size_t k, const u
         else
             rc = vbx_arc_search(w, f, open ? &einf : &ev, &ev, NULL, tp);
         if (rc == VB_EDEGENERATE) {
-            rc = push_event(tr, VBX_EV_UNDECIDED, t, dir, NULL, 0, NULL);
+            rc = push_event(tr, VBX_EV_UNDECIDED, t, dir, SIZE_MAX);
             continue;
         }
         if (rc != VB_OK)
             break;
         if (!tp->found) {
-            rc = push_event(tr, open ? VBX_EV_INF : VBX_EV_LOOP, t, dir, NULL, 0, NULL);
+            rc = push_event(tr, open ? VBX_EV_INF : VBX_EV_LOOP, t, dir, SIZE_MAX);
             continue;
         }
         rc = arrive(tr, lst, f, tp, dir);
@@ -248,7 +264,7 @@ static int trace_triple(vbx_tracer *tr, const vb_vertex_list *lst, size_t k, con
 {
     vbx_tframe *f;
     int rc = frame_of(tr, t, &f);
-    return rc == VB_OK ? trace_at(tr, lst, k, m, nm, p, box, f, t, all) : rc;
+    return rc == VB_OK ? trace_at(tr, lst, k, m, nm, p, box, NULL, f, t, all) : rc;
 }
 
 void vbx_tracer_scratch(vbx_tracer *t, int on)
@@ -281,14 +297,29 @@ static int trace_group(vbx_tracer *tr, const vb_vertex_list *all, const vbx_item
     vbx_tframe *f;
     size_t e0 = tr->nev;
     int rc = frame_of(tr, e->t, &f);
+    if (rc == VB_OK && (VB_ARRAY_FIT(tr->gkey, tr->gkey_cap, it->n, 16) != VB_OK ||
+                        VB_ARRAY_FIT(tr->gbox, tr->gbox_cap, 4 * (size_t)it->n, 64) != VB_OK))
+        rc = VB_ENOMEM;
+    if (rc != VB_OK || f->kind == VBX_TRI_NONE)
+        return rc; /* no curve: no arcs, no events (trace_at) */
+    /* each vertex's box and key once: its own search's start, and a
+     * candidate end of the others' (forward_to_known) */
+    for (uint32_t i = 0; i < it->n; i++) {
+        double p[4];
+        vbx_vertex_point(all, e[i].k, p);
+        vbx_box_of_rounded(p, tr->gbox + 4 * (size_t)i);
+        vbx_key_of_box(&tr->w, f, tr->gbox + 4 * (size_t)i, &tr->gkey[i]);
+    }
+    tr->glo = it->k;
+    tr->ng = it->n;
     for (uint32_t i = 0; rc == VB_OK && i < it->n; i++) {
         size_t k = e[i].k, s = all->start[k];
         double p[4];
         vbx_vertex_point(all, k, p);
-        vbx_ia box[4];
-        vbx_box_of_rounded(p, box);
-        rc = trace_at(tr, all, k, all->ids + s, all->start[k + 1] - s, p, box, f, e->t, 1);
+        rc = trace_at(tr, all, k, all->ids + s, all->start[k + 1] - s, p, tr->gbox + 4 * (size_t)i,
+                      &tr->gkey[i], f, e->t, 1);
     }
+    tr->ng = 0;
     for (size_t a = e0; rc == VB_OK && a < tr->nev; a++) {
         vbx_hev *pa = &tr->ev[a];
         if (pa->kind != VBX_EV_PENDING)

@@ -58,8 +58,9 @@ size_t vbx_tmap_find(const vbx_tmap *m, const vb_vertex_list *all, const uint32_
 
 /* ---- tracing (arc_tracer.c) ---------------------------------------------- */
 
-/* What one half arc found: its end, and for a vertex its members (in the
- * worker's pool) and rounded point; VBX_EV_PENDING: a backward arc left for
+/* What one half arc found: its end, and for a vertex that the round's map
+ * does not hold its members and rounded point (vbx_hend, the only ones the
+ * merge reads: vbx_merge_phase's late events); VBX_EV_PENDING: a backward arc left for
  * later (see run_rounds in arc_closure.c); VBX_EV_REVERSED: a backward arc
  * that is the reverse of a forward arc of its triple traced to its vertex
  * in the same item (closed without a search, as run_rounds closes a
@@ -74,15 +75,23 @@ enum {
 };
 
 typedef struct vbx_hev {
-    double p[4];
     size_t from; /* the vertex the half arc leaves */
     size_t to;   /* VBX_EV_CLOSED: the end's index in the list when the tracer
                     found it there (vbx_tmap_find), else SIZE_MAX */
-    size_t moff;
-    uint32_t nm;
+    size_t end;  /* VBX_EV_CLOSED with to == SIZE_MAX: its vbx_hend in the
+                    tracer's ends */
     uint32_t t[3];
-    int kind, dir;
+    unsigned char kind, dir;
 } vbx_hev;
+
+/* The end of a closed half arc that the round's map does not hold: its
+ * rounded point and its members (nm of them from moff in the tracer's
+ * pool). */
+typedef struct vbx_hend {
+    double p[4];
+    size_t moff;
+    size_t nm;
+} vbx_hend;
 
 /* One thread's tracer: its certifier, context and worker, and the events of
  * the items it traced in the current phase. */
@@ -94,6 +103,8 @@ typedef struct vbx_tracer {
     int have_w;
     vbx_hev *ev;
     size_t nev, ev_cap;
+    vbx_hend *ends;
+    size_t nends, ends_cap;
     uint32_t *pool;
     size_t npool, pool_cap;
     int rc;
@@ -105,6 +116,12 @@ typedef struct vbx_tracer {
     vbx_touch tp;
     int have_scratch;
     size_t from; /* the vertex being traced (vbx_hev.from) */
+    /* a VBX_IT_TRIPLE item's vertices (map entries [glo, glo + ng)): their
+     * keys on the item's frame and the enclosures of their points (4
+     * each), computed once (trace_group) */
+    vbx_key *gkey;
+    vbx_ia *gbox;
+    size_t glo, ng, gkey_cap, gbox_cap;
 } vbx_tracer;
 
 /* Initialises (on) or clears (!on) tracer t's scratch. */

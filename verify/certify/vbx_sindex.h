@@ -190,6 +190,8 @@ typedef struct vbx_walk {
     int grid;                  /* 1: grid rows, 0: hierarchy */
     int lo[3], hi[3], at[3];   /* grid: cell range and the next row (at[1], at[2]) */
     double r2;                 /* grid: bound of (t + R)^2 (vbx_walk_next) */
+    double g2[2][VBX_SINDEX_GRID_SPAN]; /* grid: fl(g~^2) of the gap from p to each
+                                         * row's y (0) and z (1) range, lo first */
     uint32_t sp;
     uint32_t stack[VBX_SINDEX_STACK];
 } vbx_walk;
@@ -263,6 +265,14 @@ static inline void vbx_walk_init(vbx_walk *w, const vbx_sindex *t, const vbx_ia 
         w->at[1] = w->lo[1];
         w->at[2] = r < 0.0 ? w->hi[2] + 1 : w->lo[2];
         w->r2 = (r * r) * (1.0 + 0x1p-40);
+        /* The rows' gaps along y and z, once per cell instead of once per
+         * row (vbx_walk_next combines them: the same operations). */
+        for (int a = 0; a < 2; a++)
+            for (int i = w->lo[a + 1]; i <= w->hi[a + 1]; i++) {
+                double lo = vbx_sindex_lo(t, a + 1, i), hi = vbx_sindex_hi(t, a + 1, i);
+                double g = vbx_pos(vbx_max(p[a + 1].lo - hi, lo - p[a + 1].hi));
+                w->g2[a][i - w->lo[a + 1]] = g * g;
+            }
         return;
     }
     double d2;
@@ -292,11 +302,8 @@ static inline int vbx_walk_next(vbx_walk *w, size_t *first, size_t *end)
              * none does (fl keeps the sign of a difference). Else the
              * half-width fl(fl(sqrt(W)) (1 + 2^-50)) >= sqrt(W), and the x
              * range pushed out by a step holds them all. NaN: whole row. */
-            double ylo = vbx_sindex_lo(t, 1, y), yhi = vbx_sindex_hi(t, 1, y);
-            double zlo = vbx_sindex_lo(t, 2, z), zhi = vbx_sindex_hi(t, 2, z);
-            double gy = vbx_pos(vbx_max(p[1].lo - yhi, ylo - p[1].hi));
-            double gz = vbx_pos(vbx_max(p[2].lo - zhi, zlo - p[2].hi));
-            double W = (w->r2 - (gy * gy + gz * gz) * (1.0 - 0x1p-40)) * (1.0 + 0x1p-50);
+            double W = (w->r2 - (w->g2[0][y - w->lo[1]] + w->g2[1][z - w->lo[2]]) * (1.0 - 0x1p-40)) *
+                       (1.0 + 0x1p-50);
             if (W <= 0.0)
                 continue;
             int x0 = w->lo[0], x1 = w->hi[0];
