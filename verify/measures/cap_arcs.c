@@ -9,10 +9,10 @@
  * that come next to each other closer than 3 rad are proven in that order
  * by the sign of their cross product (farther apart the order cannot be
  * wrong: every gap is wider than 4 times the widest end, an interval of at
- * most 1e-4 on the unit circle), and every gap
- * between two ends is tested at an exact unit vector inside it against
- * every restricting cap, by interval signs. The gaps inside all caps are
- * the arcs.
+ * most 1e-4 on the unit circle). Each cap holds the arc from its start to
+ * its end, so the proven order tells which caps hold each gap between two
+ * ends (counted once, then one more or one less at each end passed). The
+ * gaps inside all caps are the arcs.
  *
  * Doing that for every circle against every cap costs caps^2 restrictions
  * per intersection, where only a few circles bound it (on proteins ~3 of
