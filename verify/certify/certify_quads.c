@@ -98,61 +98,10 @@ static vbx_ia distance_excess(const vbx_ia cj[4], const vbx_ia box[4])
 
 enum { ROOT_REFUSED = 0, ROOT_EMPTY = 1, ROOT_OPEN = 2 };
 
-/* Tangent radius (input units) above which a root's scan asks the power
- * before the distance (filter_root). Speed only. */
-#define FAR_T 1e6
-
-/* An enclosure of the int64 x (|x| < 2^62): exact below 2^53, else the
- * two doubles around its rounding to nearest. */
-static vbx_ia ia_of_i64(int64_t x)
-{
-    double d = (double)x;
-    if ((int64_t)d == x)
-        return vbx_ia_point(d);
-    vbx_ia r = {vbx_pred(d), vbx_succ(d)};
-    return r;
-}
-
-/* The power of sphere j at root R in double intervals, from R's box. In
- * scaled units, with q = p - c_a and s = t + R_a for the base a = q[0],
- * m = (c_j - c_a, R_j - R_a) and W = |c_j - c_a|^2 - (R_j - R_a)^2:
- *   |q - m_xyz|^2 - (s + m_r)^2 = (|q|^2 - s^2) + W - 2 (q . m_xyz + s m_r),
- * and |q| = s exactly at the root (the vertex touches a), so the power is
- * the affine W - 2 (q . m_xyz + s m_r). Evaluated over the enclosures of q
- * (R->p times the exact 10^E, minus c_a) and s (R->s), it encloses the
- * exact power; its sign is the distance's where t + R_j > 0. Far roots (a
- * jittered crystal's face: t ~ 10^10 against an excess ~ 10^-8) leave the
- * distance's box open, while this affine form has no such cancellation and
- * decides them without double-double. 0: still open. */
-static int power_sign_ia(const vbx_qdata *qd, const vbx_qline *L, const vbx_ia qs[4], uint32_t j)
-{
-    const int64_t *cb = &qd->z[4 * (size_t)L->q[0]], *cj = &qd->z[4 * (size_t)j];
-    vbx_ia W = vbx_ia_point(0.0), mq = vbx_ia_point(0.0);
-    for (int k = 0; k < 4; k++) {
-        vbx_ia m = ia_of_i64(cj[k] - cb[k]);
-        vbx_ia m2 = vbx_ia_sqr(m);
-        W = k < 3 ? vbx_ia_add(W, m2) : vbx_ia_sub(W, m2);
-        mq = vbx_ia_add(mq, vbx_ia_mul(qs[k], m));
-    }
-    return vbx_ia_sign(vbx_ia_sub(W, vbx_ia_add(mq, mq)));
-}
-
-/* power_sign_ia's (q, s) of root R: q = R->p[0..3) times 10^E minus c_a,
- * s = R->s; the same for every sphere of R's scan, so made once per root
- * (the same intervals as when each test made them). */
-static void power_qs(const vbx_qdata *qd, const vbx_qline *L, const vbx_qroot *R, vbx_ia qs[4])
-{
-    const int64_t *cb = &qd->z[4 * (size_t)L->q[0]];
-    vbx_ia sc = vbx_ia_point(qd->scale);
-    for (int k = 0; k < 3; k++)
-        qs[k] = vbx_ia_sub(vbx_ia_mul(R->p[k], sc), ia_of_i64(cb[k]));
-    qs[3] = R->s;
-}
-
 /* The scan's second stage for sphere j, which root R's double box cannot
  * place: outside when t + R_j < 0 is proven (the distance exceeds t + R_j),
  * else, once t + R_j > 0 is proven, the sign of the power, which is the
- * distance's there: in double intervals first (power_sign_ia), then in
+ * distance's there: in double intervals first (vbx_qf_power_ia), then in
  * double-double (vbx_qf_power_sign). 0: still open. The radius difference
  * is exact in double below 2^53 and a sum rounded to nearest keeps its sign
  * (as in vbx_qf_tangent_sign). */
@@ -168,7 +117,7 @@ static int second_stage(qworker *w, const vbx_qline *L, const vbx_qprep *P, vbx_
         return 1;
     if (!(R->s.lo + r > 0.0))
         return 0;
-    int sg = power_sign_ia(qd, L, qs, j);
+    int sg = vbx_qf_power_ia(qd, L, qs, j);
     if (!sg) {
         sg = qd->ops->power(qd, L, P, R, j);
         if (sg)
@@ -211,12 +160,10 @@ static int filter_root(qworker *w, const vbx_qline *L, const vbx_qprep *P, vbx_q
     vbx_walk_init(&walk, t, p);
     vbx_ia qs[4];
     int have_qs = 0;
-    /* A far root (a jittered face's vertex, t ~ 10^10): the double box of
-     * |p - c_j| - R_j - t cannot place the spheres that its probes leave
-     * open (they nearly touch), and the power's affine form mostly can, so
-     * it goes first there. Either test gives the exact sign or none, so the
-     * order changes the cost only. */
-    int far = p[3].lo > FAR_T;
+    /* A far root (t ~ 10^10 on a jittered face): the distance's double box
+     * cannot place what the probes leave open, the power mostly can, so it
+     * goes first. Each gives the exact sign or none: speed only. */
+    int far = p[3].lo > 1e6;
     size_t s0, s1;
     uint64_t calls = 0, failures = 0;
     int verdict = ROOT_EMPTY;
@@ -237,7 +184,7 @@ static int filter_root(qworker *w, const vbx_qline *L, const vbx_qprep *P, vbx_q
                                                          : vbx_ia_sign(distance_excess(cj, p));
             if (sg == 0) {
                 if (!have_qs)
-                    power_qs(&c->qd, L, R, qs);
+                    vbx_qf_power_qs(&c->qd, L, R, qs);
                 have_qs = 1;
                 sg = second_stage(w, L, P, R, qs, j);
             }

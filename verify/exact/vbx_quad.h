@@ -98,6 +98,16 @@ int vbx_qf_point(const vbx_qdata *z, const vbx_qline *L, const vbx_qprep *P, vbx
 int vbx_qf_power_sign(const vbx_qdata *z, const vbx_qline *L, const vbx_qprep *P, vbx_qroot *R,
                       uint32_t j);
 
+/* vbx_qf_power_ia's (q, s) of root R (its point set): q = R's x, y, z box
+ * times 10^E minus the base's centre, s = R->s (verify/exact/quad_power.c).
+ * The same for every sphere of R's scan: made once per root. */
+void vbx_qf_power_qs(const vbx_qdata *z, const vbx_qline *L, const vbx_qroot *R, vbx_ia qs[4]);
+
+/* The sign of sphere j's power at the root whose (q, s) are qs, in double
+ * intervals: +1 or -1 when proven, 0 when open. It is the distance's sign
+ * only where t + R_j > 0 (the caller proves it). */
+int vbx_qf_power_ia(const vbx_qdata *z, const vbx_qline *L, const vbx_ia qs[4], uint32_t j);
+
 /* The correctly rounded x, y, z, t (input units) of a root with its point:
  * 1 when all four are decided (out set), 0 when one is not (a near tie, a
  * value at 0: the caller rounds exactly). */
