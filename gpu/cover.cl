@@ -49,10 +49,10 @@ __kernel void vbq_cover_kernel(__global const double *x, __global const double *
     /* The caches of a CPU device (vbq_gather_shared.h, VBQ_CACHES): a
      * work-item's memo starts empty in every launch (a later run may bring
      * other spheres), cleared when it takes its first cell. */
-    ar.hi = hi + w * (size_t)lab_cap;
-    ar.memo = memo + w * (size_t)VBQ_MEMO;
-    ar.memo_tag = memo_tag + w * 2u * (size_t)VBQ_MEMO;
-    int fresh = 1;
+    ar.hi = hi ? hi + w * (size_t)lab_cap : 0; /* NULL: a tier without caches */
+    ar.memo = memo ? memo + w * (size_t)VBQ_MEMO : 0;
+    ar.memo_tag = memo ? memo_tag + w * 2u * (size_t)VBQ_MEMO : 0;
+    int fresh = memo != 0;
 #endif
     for (;;) {
         uint c = atomic_inc(&counters[0]);

@@ -101,9 +101,10 @@ static int launch_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *c
              set_arg(ctx, k, a++, sizeof(cl_uint), &qcap) ||
              set_arg(ctx, k, a++, sizeof(cl_mem), &s->counters.mem) ||
              (t->wg && set_arg(ctx, k, a++, sizeof(cl_uint), &t->budget)) ||
-             (t->caches && (set_arg(ctx, k, a++, sizeof(cl_mem), &t->hi.mem) ||
-                            set_arg(ctx, k, a++, sizeof(cl_mem), &t->memo.mem) ||
-                            set_arg(ctx, k, a++, sizeof(cl_mem), &t->memo_tag.mem)))
+             (s->k_caches && k == s->k &&
+              (set_arg(ctx, k, a++, sizeof(cl_mem), t->caches ? &t->hi.mem : NULL) ||
+               set_arg(ctx, k, a++, sizeof(cl_mem), t->caches ? &t->memo.mem : NULL) ||
+               set_arg(ctx, k, a++, sizeof(cl_mem), t->caches ? &t->memo_tag.mem : NULL)))
                  ? VB_EDEVICE
                  : VB_OK;
     size_t local, global;

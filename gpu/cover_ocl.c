@@ -280,7 +280,9 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
         rc = kernel_get(ctx, rt, "cover.cl", NULL, "vbq_cover_kernel", &s->k_item);
     t0->k = t1->k = t3->k = s->k;
     t0->wg = t1->wg = t3->wg = s->wg;
-    t0->caches = t1->caches = t3->caches = caches;
+    /* The caches on the first tier only: a CPU device's large tiers (test
+     * knobs alone make them) keep their slices' size. */
+    s->k_caches = t0->caches = caches;
     t0->budget = s->wg ? budget : 0u;
     th->k = s->k_item;
     cl_uint units = 1;

@@ -45,7 +45,7 @@ typedef struct cov_tier {
     vbg_buf hi, memo, memo_tag; /* with caches: lab_cap doubles, VBQ_MEMO records and
                                    2 VBQ_MEMO tags per slice */
     cl_kernel k;             /* its kernel (cov_state's) */
-    int caches;              /* 1: k keeps the host's caches (VBQ_CACHES_CL, CPU devices) */
+    int caches;              /* 1: hi, memo, memo_tag made (the first tier of a CPU device) */
     int wg;                  /* 1: k is the group kernel, a work-group of COV_WG per slice */
     uint32_t budget;         /* the group kernel's step budget per cell (0: none) */
     uint32_t qper;           /* output room per task, in quadruples */
@@ -66,6 +66,8 @@ typedef struct cov_state {
     vbg_runtime *rt;
     cl_kernel k, k_item;     /* k_item: the work-item kernel beside the group kernel */
     int wg;                  /* 1: one work-group of 32 per cell (cover_wg.cl) */
+    int k_caches;            /* 1: k built with VBQ_CACHES_CL (three more arguments; a tier
+                                without caches passes NULL buffers) */
     vbg_buf x, y, z, r, box, rmax, ids;
     vbg_buf cells, roots, outs, qout, counters;
     cov_tier tier[COV_TIERS];

@@ -136,11 +136,9 @@ VBS_FN void vbq_env_make(vbq_env *e, const VBS_GLOBAL double *x, const VBS_GLOBA
 #endif
 }
 
-/* The host's two caches of a cell's cover (the upper ends of a patch's
- * label enclosures, the record memo; speed only, the same doubles) are
- * also kept by the work-item kernel where its build defines VBQ_CACHES_CL
- * (CPU devices, gpu/cover_ocl.c: each arena slice gets their room); the
- * GPU kernels keep neither and evaluate again. */
+/* The host's two caches (speed only, the same doubles) are also kept by
+ * the work-item kernel where its build defines VBQ_CACHES_CL (CPU devices,
+ * gpu/cover_ocl.c); GPU kernels keep neither and evaluate again. */
 #if !defined(__OPENCL_C_VERSION__) || defined(VBQ_CACHES_CL)
 #define VBQ_CACHES 1
 #endif
@@ -157,8 +155,7 @@ typedef struct vbq_arena {
                                (NULL: evaluated again where needed, as GPU kernels do) */
     VBS_GLOBAL vbq_nb *memo;       /* the cell's records made so far, VBQ_MEMO slots by tree
                                       position (NULL: made again at every fetch) */
-    VBS_GLOBAL vbs_u32 *memo_tag;  /* per slot: tree position and cell + 1 of its record
-                                      (0: none) */
+    VBS_GLOBAL vbs_u32 *memo_tag;  /* per slot: its tree position and cell + 1 (0: none) */
 #endif
 #ifndef __OPENCL_C_VERSION__
     struct vbq_cluster_memo *cmemo; /* host: the cell's tie-cluster answers (vbq_cluster.h;
