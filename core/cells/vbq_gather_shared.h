@@ -151,15 +151,12 @@ typedef struct vbq_arena {
     VBS_GLOBAL vbs_u32 *q;      /* 4 per quadruple */
     vbs_u32 nb_cap, lab_cap, st_cap, q_cap;
 #ifdef VBQ_CACHES
-    VBS_GLOBAL double *hi;  /* upper ends of a patch's label enclosures, lab_cap of them
-                               (NULL: evaluated again where needed, as GPU kernels do) */
-    VBS_GLOBAL vbq_nb *memo;       /* the cell's records made so far, VBQ_MEMO slots by tree
-                                      position (NULL: made again at every fetch) */
-    VBS_GLOBAL vbs_u32 *memo_tag;  /* per slot: its tree position and cell + 1 (0: none) */
+    VBS_GLOBAL double *hi;        /* a patch's label enclosures' upper ends (NULL: none) */
+    VBS_GLOBAL vbq_nb *memo;      /* the cell's records by tree position (NULL: none) */
+    VBS_GLOBAL vbs_u32 *memo_tag; /* per slot: its tree position and cell + 1 (0: none) */
 #endif
 #ifndef __OPENCL_C_VERSION__
-    struct vbq_cluster_memo *cmemo; /* host: the cell's tie-cluster answers (vbq_cluster.h;
-                                       NULL: each decided again) */
+    struct vbq_cluster_memo *cmemo; /* the cell's tie-cluster answers (NULL: none) */
 #endif
 } vbq_arena;
 
