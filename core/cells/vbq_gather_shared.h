@@ -131,8 +131,7 @@ VBS_FN void vbq_env_make(vbq_env *e, const VBS_GLOBAL double *x, const VBS_GLOBA
     e->max_level = max_level;
     e->enum_max = enum_max;
 #ifndef __OPENCL_C_VERSION__
-    e->node8 = e->kx = e->ky = e->kz = e->kr = 0; /* the kernels' arrays only (the group
-                                                     kernel's emulator) */
+    e->node8 = e->kx = e->ky = e->kz = e->kr = 0; /* the group kernel emulator's arrays */
 #endif
 }
 
