@@ -211,6 +211,16 @@ VBS_FN void vbq_patch_square(vbs_u32 T, vbs_u32 level, vbs_u64 iu, vbs_u64 iv, d
     *v1 = -1.0 + side * (double)(iv + 1u);
 }
 
+/* VBQ_GPU_FORM: a GPU's kernels (OpenCL without the CPU devices'
+ * VBQ_WALK_V4_CL) keep the forms timed on an H100 at stop 44 where a later
+ * host change made them slower there (stop 45, run A: the capsid's cover
+ * kernels +10-20 %): the champions' pair determinants made per label
+ * tested, the flatness trigger's plane only, the envelope decision at
+ * stalled chains only. Speed only: every form reaches the same vertices. */
+#if defined(__OPENCL_C_VERSION__) && !defined(VBQ_WALK_V4_CL)
+#define VBQ_GPU_FORM 1
+#endif
+
 /* The rest of the shared math, in parts of one job each. They are included
  * here only and never include this header back: the kernels' embedding
  * (gpu/embed_kernels.cmake) inlines every include it meets, guards or not. */

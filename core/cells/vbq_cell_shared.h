@@ -247,6 +247,9 @@ VBS_FN int vbq_looks_flat(const VBS_GLOBAL vbq_nb *nb, const VBS_GLOBAL vbs_u32 
         /* a 3-space only where the radii differ: with b = 0 (the base's
          * radius) every point is on one, and the near-ties of equal balls
          * are left to the subdivision and the envelope decision */
+#ifdef VBQ_GPU_FORM
+        bmax = 0.0; /* the plane only */
+#endif
         if (pass == 2 || (pass == 1 && !(bmax > tol)))
             return 0;
         double n2 = VBS_SQRT(far);
@@ -291,6 +294,10 @@ VBS_FN int vbq_envelope_due(const vbq_env *e, const vbq_frame *fr, const VBS_GLO
                             const VBS_GLOBAL vbs_u32 *lab, vbs_u32 keep, vbs_u32 owned, int act,
                             int closed)
 {
+#ifdef VBQ_GPU_FORM
+    if (act == 3)
+        return 0; /* stalled chains only */
+#endif
     if (!closed || (act != 1 && act != 3) || owned <= VBQ_CLUSTER_OWNED ||
         owned > VBQ_ENV_OWNED || keep > VBQ_ENV_KEEP ||
         (act == 1 && (keep != fr->len || fr->stall + 1u < VBQ_ENV_STALL)) ||

@@ -58,8 +58,10 @@ typedef struct vbq_champ {
     /* Per pair k < l of champions, in the order of vbq_combo_beaten's
      * loops: D = det(a_k, a_l, m) = a_k . w_l and 1e-290 |D|, made once
      * per round instead of once per label tested (the same doubles). */
+#ifndef VBQ_GPU_FORM
     double pd[VBQ_CHAMP * (VBQ_CHAMP - 1u) / 2u];
     double pf[VBQ_CHAMP * (VBQ_CHAMP - 1u) / 2u];
+#endif
     vbs_u32 n;
     vbs_u32 round; /* 0 before the first vbq_champ_make; the caller counts */
 } vbq_champ;
@@ -106,6 +108,7 @@ VBS_FN void vbq_champ_make(const VBS_GLOBAL vbq_nb *nb, const VBS_GLOBAL vbs_u32
         c->w[q][1] = r->az * m[0] - r->ax * m[2];
         c->w[q][2] = r->ax * m[1] - r->ay * m[0];
     }
+#ifndef VBQ_GPU_FORM
     vbs_u32 np = 0u;
     for (vbs_u32 k = 0u; k < c->n; k++)
         for (vbs_u32 l = k + 1u; l < c->n; l++) {
@@ -114,6 +117,7 @@ VBS_FN void vbq_champ_make(const VBS_GLOBAL vbq_nb *nb, const VBS_GLOBAL vbs_u32
             c->pd[np] = D;
             c->pf[np++] = 1e-290 * VBS_FABS(D);
         }
+#endif
 }
 
 /* Is label nj beaten all over the patch (m, h) by a weighted sum of two
@@ -133,10 +137,20 @@ VBS_FN int vbq_combo_beaten(const VBQ_CH vbq_champ *c, const vbq_nb *nj, const d
     /* a_j = lk a_k + ll a_l off m: lk = det(a_j, a_l, m) / det(a_k, a_l, m),
      * ll = det(a_k, a_j, m) / det(a_k, a_l, m). */
     double best = 2.0, bk = 0.0, bl = 0.0;
+#ifndef VBQ_GPU_FORM
     vbs_u32 kk = 0u, kl = 0u, np = 0u;
+#else
+    vbs_u32 kk = 0u, kl = 0u;
+#endif
     for (vbs_u32 k = 0u; k < c->n; k++)
         for (vbs_u32 l = k + 1u; l < c->n; l++) {
+#ifndef VBQ_GPU_FORM
             double D = c->pd[np], fl = c->pf[np++];
+#else
+            const VBQ_CH vbq_nb *rk = &c->rec[k];
+            double D = (rk->ax * c->w[l][0] + rk->ay * c->w[l][1]) + rk->az * c->w[l][2];
+            double fl = 1e-290 * VBS_FABS(D);
+#endif
             if (D == 0.0)
                 continue;
             /* A weight whose sign is negative and whose size is above
