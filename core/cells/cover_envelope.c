@@ -429,9 +429,11 @@ int vbq_envelope_decide(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, 
     env_corners(e->T, fr, w);
     _Static_assert(VBQ_ENV_KEEP <= 128u, "meets: one bit per label in two words");
     vbs_u64 meets[VBQ_ENV_KEEP][2] = {{0}};
+    const vbq_nb *nb = ar->nb;
+    const vbs_u32 *lab = ar->lab + top;
     for (vbs_u32 a = 0; a < no; a++)
         for (vbs_u32 b = a + 1; b < no; b++)
-            if (!env_pair_apart(&ar->nb[ar->lab[top + own[a]]], &ar->nb[ar->lab[top + own[b]]], w)) {
+            if (!env_pair_apart(&nb[lab[own[a]]], &nb[lab[own[b]]], w)) {
                 meets[a][b >> 6] |= (vbs_u64)1 << (b & 63u);
                 meets[b][a >> 6] |= (vbs_u64)1 << (a & 63u);
             }
