@@ -346,6 +346,49 @@ static int env_triple(env_ctx *c, vbs_u32 j, vbs_u32 k, vbs_u32 l, double qs[5][
     return 1;
 }
 
+/* The corner rays of the patch's cone: w = n + s e_u + t e_v for (s, t)
+ * the square's corners (vbq_env_sides' face and square; exact doubles). */
+static void env_corners(vbs_u32 T, const vbq_frame *fr, double w[4][3])
+{
+    double u[2], v[2];
+    vbq_patch_square(T, fr->level, fr->iu, fr->iv, &u[0], &u[1], &v[0], &v[1]);
+    vbs_u32 ax = fr->f / 2u, au = (ax + 1u) % 3u, av = (ax + 2u) % 3u;
+    for (int c = 0; c < 4; c++) {
+        w[c][ax] = (fr->f & 1u) ? -1.0 : 1.0;
+        w[c][au] = u[c & 1];
+        w[c][av] = v[c >> 1];
+    }
+}
+
+/* 1 when labels j and k are proven to tie nowhere in the patch's closed
+ * cone: (a_k - a_j) . w has one strict sign at its four corner rays w, so
+ * (linear in w) on the whole cone but 0; no triple holding both has its
+ * tie direction there, and its side tests (env_triple) would drop it. With
+ * X~ = fl(a~_k - a~_j): |X~ - X|_1 <= eX = err_j + err_k + 1.01 u |X~|_1
+ * (the top), a corner's components are at most M = max |w_a| in size and
+ * exact, so |X . w - X~ . w| <= eX M and the computed dot errs by at most
+ * 3.01 u |X~|_1 M: the bound takes eX M + 4.02 u |X~|_1 M, times 1 + 1e-12
+ * for its own roundings. 0: it cannot tell (NaN and infinity included). */
+static int env_pair_apart(const vbq_nb *rj, const vbq_nb *rk, const double w[4][3])
+{
+    double X[3] = {rk->ax - rj->ax, rk->ay - rj->ay, rk->az - rj->az};
+    double n1 = fabs(X[0]) + fabs(X[1]) + fabs(X[2]), M = 0.0;
+    for (int c = 0; c < 4; c++)
+        for (int a = 0; a < 3; a++)
+            M = fmax(M, fabs(w[c][a]));
+    double b = ((rj->err + rk->err + 1.01 * VBQ_U * n1) * M + 4.02 * VBQ_U * n1 * M) *
+                   (1.0 + 1e-12) + VBQ_TINY;
+    if (!isfinite(b))
+        return 0;
+    int pos = 0, neg = 0;
+    for (int c = 0; c < 4; c++) {
+        double d = X[0] * w[c][0] + X[1] * w[c][1] + X[2] * w[c][2];
+        pos += d > b;
+        neg += d < -b;
+    }
+    return pos == 4 || neg == 4;
+}
+
 /* Equal decimals (values, whatever their exponents). */
 static int env_dec_equal(vb_decimal p, vb_decimal q)
 {
@@ -380,11 +423,29 @@ int vbq_envelope_decide(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, 
     vbq_env_sides(e->T, fr, qs);
     env_ctx c = {.s = s, .i = i, .n = keep, .L = L};
     env_ctx_each(&c, mpz_init);
+    /* The pairs whose tie circle may meet the patch: a triple is tested
+     * only when its three pairs are (env_pair_apart: speed only). */
+    double w[4][3];
+    env_corners(e->T, fr, w);
+    _Static_assert(VBQ_ENV_KEEP <= 128u, "meets: one bit per label in two words");
+    vbs_u64 meets[VBQ_ENV_KEEP][2] = {{0}};
+    const vbq_nb *nb = ar->nb;
+    const vbs_u32 *lab = ar->lab + top;
+    for (vbs_u32 a = 0; a < no; a++)
+        for (vbs_u32 b = a + 1; b < no; b++)
+            if (!env_pair_apart(&nb[lab[own[a]]], &nb[lab[own[b]]], w)) {
+                meets[a][b >> 6] |= (vbs_u64)1 << (b & 63u);
+                meets[b][a >> 6] |= (vbs_u64)1 << (a & 63u);
+            }
     int rc = 1;
     vbs_u32 last = 0;
     for (vbs_u32 a = 0; a < no && rc == 1; a++)
-        for (vbs_u32 b = a + 1; b < no && rc == 1; b++)
+        for (vbs_u32 b = a + 1; b < no && rc == 1; b++) {
+            if (!(meets[a][b >> 6] >> (b & 63u) & 1u))
+                continue;
             for (vbs_u32 d = b + 1; d < no && rc == 1; d++) {
+                if (!(meets[a][d >> 6] >> (d & 63u) & 1u) || !(meets[b][d >> 6] >> (d & 63u) & 1u))
+                    continue;
                 int v = vbq_env_triple(ar->nb, ar->lab + top, keep, own[a], own[b], own[d], qs,
                                        &last);
                 if (v == 2)
@@ -395,6 +456,7 @@ int vbq_envelope_decide(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, 
                          !vbq_add_quad(ar, o, i, L[own[a]].id, L[own[b]].id, L[own[d]].id))
                     rc = -1;
             }
+        }
     if (exact_calls)
         *exact_calls = c.exact_calls;
     env_exact_free(&c.X);

@@ -40,15 +40,14 @@
  * both ways are complete). */
 #define VBQ_CLUSTER_OWNED 5u
 
-/* A stalled chain decided exactly (vbq_envelope_due): after this many
- * levels without an exclusion (1: a patch whose list did not shrink), with
- * at most this many owned labels (C(owned, 3) triples are tested) and
- * labels in all. Measured (the cover alone, one thread, 2-core machine
- * under load): jittered fcc 10,976 4.86 s without, 4.73 s with these; the
- * exact crystal 5.88 s either way; with no owned minimum (from level 3)
- * 4.68 s jittered but 6.37 s exact (its exact ties take exact signs). */
+/* A stalled chain decided exactly (vbq_envelope_due): after this many levels without an
+ * exclusion (1: a list that did not shrink), with at most this many owned labels (C(owned, 3)
+ * triples) and labels in all. Measured (cover alone, 1 thread, loaded 2 cores): jittered fcc
+ * 10,976 4.86 s without, 4.73 s with; exact 5.88 s either way; no owned minimum 4.68 s jittered,
+ * 6.37 s exact. 32 owned, not 24, since the host skips pairs tying off the patch (ref, 2
+ * threads): sc 2,744 jittered 1e-12 4.61 -> 4.29 s, sc 1,000 0.48 -> 0.48-0.53 (48: 3.8, 0.65). */
 #define VBQ_ENV_STALL 1u
-#define VBQ_ENV_OWNED 24u
+#define VBQ_ENV_OWNED 32u
 #define VBQ_ENV_KEEP 96u
 
 /* The bits of a frame's combo field. */
