@@ -11,12 +11,10 @@
 /* Tuning (speed only; every value keeps the cover complete). */
 #define VBQ_LEAF 8u            /* spheres per leaf of the tree */
 #define VBQ_FETCH_LEVEL 2u     /* unclosed patches from this level fetch rings */
-
 #define VBQ_STALL 4u           /* levels without an exclusion before enumerating */
 #define VBQ_STALL_ENUM 14u     /* ... when at most this many owned labels */
 #define VBQ_DOM_MAX 12u        /* patches with at most this many labels test pairs */
 #define VBQ_STACK 64u          /* tree traversal stack (depth <= 33) */
-
 /* Statuses of vbq_cover_cell: 0, or which arena ran out (the host reruns the
  * cell with larger arenas). */
 #define VBQ_OK 0u
@@ -24,9 +22,8 @@
 #define VBQ_OVER_LAB 2u
 #define VBQ_OVER_ST 3u
 #define VBQ_OVER_Q 4u
-/* 5 is the kernels' VBQ_OVER_OUT. A patch that looks like a tie cluster
- * (vbq_tie_cluster): the cell is covered again on the host, which decides
- * such patches exactly (vbq_host_cluster). */
+/* 5 is the kernels' VBQ_OVER_OUT. A patch that looks like a tie cluster (vbq_tie_cluster):
+ * the cell is covered again on the host, which decides it exactly (vbq_host_cluster). */
 #define VBQ_CLUSTER 6u
 /* A cell that took more steps (patches popped) than the group kernel's
  * budget (gpu/cover_wg.cl): nothing of it is kept, and the driver covers it
@@ -44,10 +41,14 @@
  * exclusion (1: a list that did not shrink), with at most this many owned labels (C(owned, 3)
  * triples) and labels in all. Measured (cover alone, 1 thread, loaded 2 cores): jittered fcc
  * 10,976 4.86 s without, 4.73 s with; exact 5.88 s either way; no owned minimum 4.68 s jittered,
- * 6.37 s exact. 32 owned, not 24, since the host skips pairs tying off the patch (ref, 2
- * threads): sc 2,744 jittered 1e-12 4.61 -> 4.29 s, sc 1,000 0.48 -> 0.48-0.53 (48: 3.8, 0.65). */
+ * 6.37 s exact. 32 owned (24 on a GPU: VBQ_GPU_FORM) as the host skips pairs tying off the
+ * patch: sc 2,744 jittered 1e-12 4.61 -> 4.29 s, sc 1,000 0.48 -> 0.48-0.53 (48: 3.8, 0.65). */
 #define VBQ_ENV_STALL 1u
+#ifdef VBQ_GPU_FORM
+#define VBQ_ENV_OWNED 24u
+#else
 #define VBQ_ENV_OWNED 32u
+#endif
 #define VBQ_ENV_KEEP 96u
 
 /* The bits of a frame's combo field. */
