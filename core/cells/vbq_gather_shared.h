@@ -312,27 +312,6 @@ typedef struct vbq_walk {
 #endif
 } vbq_walk;
 
-
-VBS_FN void vbq_walk_axis(const vbq_walk *w, vbs_u32 q, int a, double sd, double *u0,
-                          double *u1, double *t0, double *t1)
-{
-#ifndef __OPENCL_C_VERSION__
-    (void)sd;
-    *u0 = w->pu0[q][a];
-    *u1 = w->pu1[q][a];
-    *t0 = w->pt0[q][a];
-    *t1 = w->pt1[q][a];
-#else
-    const VBQ_SQ vbq_sub *sg = &w->sub[w->ord[q]];
-    *u0 = sg->m[a] - sg->h[a];
-    *u1 = sg->m[a] + sg->h[a];
-    if (sd < (double)INFINITY) {
-        *t0 = sd * *u0;
-        *t1 = sd * *u1;
-    }
-#endif
-}
-
 /* A walk from base sphere i over the ring (rq0, rq1], through the nsub
  * parts sub[] (nsub = 0: every sphere of the ring passes; sub unused). */
 VBS_FN void vbq_walk_make(const vbq_env *e, vbs_u32 i, double rq0, double rq1,
