@@ -1,5 +1,6 @@
 /* The hash table (vb_hash.h). */
 #include <stdlib.h>
+#include <string.h>
 
 #include "vb_hash.h"
 
@@ -37,6 +38,13 @@ int vb_hash_put(vb_hash *t, size_t *s, size_t item, vb_hash_of_fn hash_of, const
         t->n++;
     *s = item + 1;
     return 2 * (t->n + 1) > t->cap ? vb_hash_fit(t, t->n, hash_of, arg) : VB_OK;
+}
+
+void vb_hash_clear(vb_hash *t)
+{
+    if (t->n)
+        memset(t->slot, 0, t->cap * sizeof *t->slot);
+    t->n = 0;
 }
 
 void vb_hash_free(vb_hash *t)

@@ -71,6 +71,10 @@ int vb_hash_fit(vb_hash *t, size_t n, vb_hash_of_fn hash_of, const void *arg);
  * later vb_hash_fit succeeds, and still correct while a slot is empty). */
 int vb_hash_put(vb_hash *t, size_t *s, size_t item, vb_hash_of_fn hash_of, const void *arg);
 
+/* Empties the table, keeping its slots (a table reused for another key
+ * set: no vb_hash_fit needed for as many items as before). */
+void vb_hash_clear(vb_hash *t);
+
 /* Frees the slots; the table is empty again (usable after vb_hash_fit). */
 void vb_hash_free(vb_hash *t);
 

@@ -88,9 +88,7 @@ static void memo_for(vbq_cluster_memo *m, const void *set, uint32_t i)
 {
     if (m->set == set && m->cell == i)
         return;
-    if (m->t.n)
-        memset(m->t.slot, 0, m->t.cap * sizeof *m->t.slot);
-    m->t.n = 0;
+    vb_hash_clear(&m->t);
     m->ne = m->nids = m->ntri = 0;
     m->set = set;
     m->cell = i;

@@ -132,6 +132,19 @@ static void test_hash(void)
     CHECK_INT(bad, 0);
     CHECK(vb_hash_mix(0, 1) != vb_hash_mix(0, 2));
     CHECK(vb_hash_mix(1, 2) != vb_hash_mix(2, 1));
+    /* cleared: no item found, the slots kept, usable again at once */
+    size_t cap2 = t.cap;
+    vb_hash_clear(&t);
+    CHECK_INT(t.n, 0);
+    CHECK_INT(t.cap, cap2);
+    bad = 0;
+    for (size_t i = 0; i < N; i += 7)
+        bad += vb_hash_get(&t, weak(&it[i]), same_kv, &it[i]) != SIZE_MAX;
+    CHECK_INT(bad, 0);
+    size_t *s0 = vb_hash_slot(&t, weak(&it[0]), same_kv, &it[0]);
+    CHECK_INT(*s0, 0);
+    CHECK_INT(vb_hash_put(&t, s0, 0, hash_item, &arg), VB_OK);
+    CHECK_INT(vb_hash_get(&t, weak(&it[0]), same_kv, &it[0]), 0);
     vb_hash_free(&t);
     CHECK_INT(t.cap, 0);
     free(it);
