@@ -191,10 +191,8 @@ int vbq_cluster_hull(const vb_sphere_set *s, uint32_t i, const uint32_t *ids, ui
                     uint32_t q = t == 0 ? last : t - 1u;
                     if ((t > 0 && q == last) || q >= n || q == a || q == bb || q == c)
                         continue;
-                    vbq_i128 w[4] = {V[q][c4[0]], V[q][c4[1]], V[q][c4[2]], V[q][c4[3]]};
-                    const int id4[4] = {0, 1, 2, 3};
                     vbq_i128 d;
-                    if (!dotc(w, K, id4, 4, &d))
+                    if (!dotc(V[q], K, c4, 4, &d))
                         goto done;
                     pos |= d > 0;
                     neg |= d < 0;
