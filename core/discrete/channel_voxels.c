@@ -348,19 +348,11 @@ void vbc_components_group(analysis *W);
  * member; otherwise its edges, each from its smaller end, join the roots'
  * trees (a union-find in hpos, scratch here: the sweeps set it again)
  * until one is left, or the group is not connected. */
-static uint32_t tree_root(uint32_t *P, uint32_t i)
-{
-    while (P[i] != i) {
-        P[i] = P[P[i]];
-        i = P[i];
-    }
-    return i;
-}
-
 static int groups_connected(analysis *W)
 {
     vbc_graph *A = &W->A;
-    uint32_t *P = A->hpos;
+    vb_uf uf = {A->hpos, W->nvox, 0}; /* the parents in hpos's room (not freed here) */
+    uint32_t *P = uf.p;
     for (size_t c = 0; c < W->ncomp; c++) {
         const uint32_t *mem = W->order + W->cstart[c];
         size_t m = W->cstart[c + 1] - W->cstart[c], roots = 0;
@@ -379,9 +371,9 @@ static int groups_connected(analysis *W)
             for (size_t e = A->adj_start[u]; e < A->adj_start[u + 1] && roots > 1; e++) {
                 if (A->adj[e] < u)
                     continue;
-                uint32_t a = tree_root(P, u), b = tree_root(P, A->adj[e]);
+                uint32_t a = vb_uf_root(&uf, u), b = vb_uf_root(&uf, A->adj[e]);
                 if (a != b) {
-                    P[a > b ? a : b] = a > b ? b : a;
+                    vb_uf_join(&uf, a, b);
                     roots--;
                 }
             }
