@@ -219,6 +219,11 @@ VBS_FN void vbq_patch_square(vbs_u32 T, vbs_u32 level, vbs_u64 iu, vbs_u64 iv, d
  * stalled chains only. Speed only: every form reaches the same vertices. */
 #if defined(__OPENCL_C_VERSION__) && !defined(VBQ_WALK_V4_CL)
 #define VBQ_GPU_FORM 1
+#define VBQ_FLAT_SPACE 0         /* vbq_looks_flat: the plane only */
+#define VBQ_ENV_DEEP_ACT (-1)    /* vbq_envelope_due: no deep leaves (no act is -1) */
+#else
+#define VBQ_FLAT_SPACE 1
+#define VBQ_ENV_DEEP_ACT 3       /* the deep leaves' act */
 #endif
 
 /* The rest of the shared math, in parts of one job each. They are included

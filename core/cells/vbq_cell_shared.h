@@ -247,10 +247,11 @@ VBS_FN int vbq_looks_flat(const VBS_GLOBAL vbq_nb *nb, const VBS_GLOBAL vbs_u32 
         /* a 3-space only where the radii differ: with b = 0 (the base's
          * radius) every point is on one, and the near-ties of equal balls
          * are left to the subdivision and the envelope decision */
-#ifdef VBQ_GPU_FORM
-        bmax = 0.0; /* the plane only */
-#endif
+#if VBQ_FLAT_SPACE
         if (pass == 2 || (pass == 1 && !(bmax > tol)))
+#else
+        if (pass == 1)
+#endif
             return 0;
         double n2 = VBS_SQRT(far);
         for (int k = 0; k < 4; k++) {
@@ -294,11 +295,7 @@ VBS_FN int vbq_envelope_due(const vbq_env *e, const vbq_frame *fr, const VBS_GLO
                             const VBS_GLOBAL vbs_u32 *lab, vbs_u32 keep, vbs_u32 owned, int act,
                             int closed)
 {
-#ifdef VBQ_GPU_FORM
-    if (act == 3)
-        return 0; /* stalled chains only */
-#endif
-    if (!closed || (act != 1 && act != 3) || owned <= VBQ_CLUSTER_OWNED ||
+    if (!closed || (act != 1 && act != VBQ_ENV_DEEP_ACT) || owned <= VBQ_CLUSTER_OWNED ||
         owned > VBQ_ENV_OWNED || keep > VBQ_ENV_KEEP ||
         (act == 1 && (keep != fr->len || fr->stall + 1u < VBQ_ENV_STALL)) ||
         e->tmax < (double)INFINITY)
@@ -651,7 +648,8 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
         /* A stalled near-tie chain (vbq_envelope_due; its first tests
          * here, the rest out of this loop): its envelope decided exactly at
          * once (a kernel decides in doubles, or hands the cell to the host). */
-        if (!cluster && ((act == 1 && keep == fr.len) || act == 3) && owned > VBQ_CLUSTER_OWNED) {
+        if (!cluster && ((act == 1 && keep == fr.len) || act == VBQ_ENV_DEEP_ACT) &&
+            owned > VBQ_CLUSTER_OWNED) {
 #ifdef __OPENCL_C_VERSION__
             if (vbq_envelope_due(e, &fr, ar->nb, ar->lab + top, keep, owned, act, closed)) {
                 int he = vbq_envelope_filter(e, ar, o, i, &fr, top, keep);

@@ -66,6 +66,13 @@ typedef struct vbq_champ {
     vbs_u32 round; /* 0 before the first vbq_champ_make; the caller counts */
 } vbq_champ;
 
+/* D = det(a_k, a_l, m) = a_k . w_l of champions k and l. */
+VBS_FN double vbq_champ_det(const VBQ_CH vbq_champ *c, vbs_u32 k, vbs_u32 l)
+{
+    const VBQ_CH vbq_nb *rk = &c->rec[k];
+    return (rk->ax * c->w[l][0] + rk->ay * c->w[l][1]) + rk->az * c->w[l][2];
+}
+
 /* The champions of the labels lab[0 .. keep) over the patch (m, h): the
  * VBQ_CHAMP with the largest upper ends hi (vbq_eval), ties to the smaller
  * id; labels with an infinite error bound are never champions. */
@@ -112,8 +119,7 @@ VBS_FN void vbq_champ_make(const VBS_GLOBAL vbq_nb *nb, const VBS_GLOBAL vbs_u32
     vbs_u32 np = 0u;
     for (vbs_u32 k = 0u; k < c->n; k++)
         for (vbs_u32 l = k + 1u; l < c->n; l++) {
-            const VBQ_CH vbq_nb *rk = &c->rec[k];
-            double D = (rk->ax * c->w[l][0] + rk->ay * c->w[l][1]) + rk->az * c->w[l][2];
+            double D = vbq_champ_det(c, k, l);
             c->pd[np] = D;
             c->pf[np++] = 1e-290 * VBS_FABS(D);
         }
@@ -137,19 +143,13 @@ VBS_FN int vbq_combo_beaten(const VBQ_CH vbq_champ *c, const vbq_nb *nj, const d
     /* a_j = lk a_k + ll a_l off m: lk = det(a_j, a_l, m) / det(a_k, a_l, m),
      * ll = det(a_k, a_j, m) / det(a_k, a_l, m). */
     double best = 2.0, bk = 0.0, bl = 0.0;
-#ifndef VBQ_GPU_FORM
-    vbs_u32 kk = 0u, kl = 0u, np = 0u;
-#else
-    vbs_u32 kk = 0u, kl = 0u;
-#endif
+    vbs_u32 kk = 0u, kl = 0u, np = 0u; /* np: the pair's index in pd, pf */
     for (vbs_u32 k = 0u; k < c->n; k++)
         for (vbs_u32 l = k + 1u; l < c->n; l++) {
 #ifndef VBQ_GPU_FORM
             double D = c->pd[np], fl = c->pf[np++];
 #else
-            const VBQ_CH vbq_nb *rk = &c->rec[k];
-            double D = (rk->ax * c->w[l][0] + rk->ay * c->w[l][1]) + rk->az * c->w[l][2];
-            double fl = 1e-290 * VBS_FABS(D);
+            double D = vbq_champ_det(c, k, l), fl = 1e-290 * VBS_FABS(D);
 #endif
             if (D == 0.0)
                 continue;
