@@ -232,6 +232,7 @@ VBS_FN void vbq_patch_square(vbs_u32 T, vbs_u32 level, vbs_u64 iu, vbs_u64 iv, d
 #include "vbq_gather_shared.h"
 #include "vbq_combo_shared.h"
 #include "vbq_envelope_shared.h"
+#include "vbq_flat_shared.h"
 #include "vbq_cell_shared.h"
 
 #endif
