@@ -10,8 +10,10 @@
  *   first tier S0 slices of P0 bytes, P0 = 48 NB + 4 LAB + 16 Q (+ 48 ST on
  *              the work-item kernel; the group kernel keeps one stack of
  *              48 ST), NB/LAB/ST/Q the tier's capacities below: 144 KiB a
- *              work-item (272 KiB on a CPU device, and 240 KiB
- *              of caches there: 8 LAB + 56 VBQ_MEMO), 520 KiB a group;
+ *              work-item on a GPU, 520 KiB a group; a CPU device's slice
+ *              (one per compute unit, COV_CPU_NB) 4.0 MiB and 2.1 MiB of
+ *              caches (8 LAB + 56 VBQ_MEMO), its capacities halved while
+ *              the slices exceed the share below;
  *              S0 = min(the device's occupancy,
  *              n, 3/4 of the budget left after the input / P0);
  *   launches   per launch of C tasks: 4 C (cells) + 4 C (roots) + 48 C (results)
@@ -115,7 +117,7 @@ typedef struct cov_state {
  * the first work-item of each work-group ever covers a cell: the first
  * tier of a CPU device is a slice per compute unit, a work-group of one
  * (cov_tier.solo), and a slice gets the records and labels the 64 slices of
- * a group held before, times 16 and 16: 65,536 / 262,144 (6.2 MiB with its
+ * a group held before, times 16 and 16: 65,536 / 262,144 (6.1 MiB with its
  * caches), halved while the slices do not fit their share of the budget,
  * down to 2,048 / 8,192 (budget_split). 4yvs first 14,070 (2-core, PoCL one
  * thread): no cell left to the host (240 at 4,096 / 16,384, each covered
