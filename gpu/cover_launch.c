@@ -111,6 +111,9 @@ static int launch_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *c
     if (t->wg) {
         local = COV_WG;
         global = (t->slices < ncells ? t->slices : ncells) * COV_WG;
+    } else if (t->solo) {
+        local = 1;
+        global = t->slices < ncells ? t->slices : ncells;
     } else {
         local = t->slices < 64 ? t->slices : 64;
         global = t->slices < ncells ? t->slices : ncells;

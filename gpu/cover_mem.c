@@ -78,12 +78,31 @@ static double mib(size_t bytes)
     return (double)bytes / (1024.0 * 1024.0);
 }
 
+/* The capacities of a solo tier's slices (vbg_cover_state.h, COV_CPU_NB):
+ * those wanted, halved while `want` slices exceed `share` bytes, each no
+ * lower than the work-item kernel's own (nor than it was wanted). */
+static void solo_caps(cov_tier *t, size_t share)
+{
+    t->nb_cap = t->nb_want;
+    t->lab_cap = t->lab_want;
+    while (t->want * tier_bytes(t) > share) {
+        uint32_t nb = t->nb_cap / 2 >= COV_NB ? t->nb_cap / 2 : t->nb_cap;
+        uint32_t lab = t->lab_cap / 2 >= COV_LAB ? t->lab_cap / 2 : t->lab_cap;
+        if (nb == t->nb_cap && lab == t->lab_cap)
+            break;
+        t->nb_cap = nb;
+        t->lab_cap = lab;
+    }
+}
+
 /* Splits the budget left after the input (module comment): the first
  * tier's slices, the launch buffers' room, the rest for the large tiers.
  * E142 when it cannot hold one slice and one task. */
 static int budget_split(vb_ctx *ctx, cov_state *s, size_t n, size_t input)
 {
     cov_tier *t0 = &s->tier[COV_FIRST];
+    if (t0->solo)
+        solo_caps(t0, s->budget > input ? (s->budget - input) / 4 * 3 : 0);
     size_t least = input + tier_fixed(t0) + tier_bytes(t0) + vbg_cov_task_bytes(t0);
     if (s->budget < least)
         return vb_error(ctx, VB_ENOMEM_DEVICE, NULL, 0,
@@ -103,7 +122,7 @@ static int budget_split(vb_ctx *ctx, cov_state *s, size_t n, size_t input)
     size_t fit = share > tier_fixed(t0) ? (share - tier_fixed(t0)) / tier_bytes(t0) : 0;
     size_t w = t0->want < cap ? t0->want : cap;
     w = w < fit ? w : fit;
-    if (!t0->wg && w >= 64)
+    if (!t0->wg && !t0->solo && w >= 64)
         w = w / 64 * 64;
     t0->slices = w ? w : 1;
     size_t used = tier_fixed(t0) + t0->slices * tier_bytes(t0);

@@ -301,9 +301,11 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
      * on the host). */
     s->budget = vbg_runtime_memory_budget(rt);
     size_t want = s->wg ? (size_t)units * 16
-                        : (vbg_runtime_is_gpu(rt) ? (size_t)units * 512 : (size_t)units * 64);
-    /* Work-items come in groups of 64 (cov_run). */
-    if (!s->wg && want >= 64)
+                        : (vbg_runtime_is_gpu(rt) ? (size_t)units * 512 : (size_t)units);
+    /* Work-items come in groups of 64 (cov_run), on a CPU device alone
+     * (vbg_cover_state.h, COV_CPU_NB). */
+    t0->solo = cpu && !s->wg;
+    if (!s->wg && !t0->solo && want >= 64)
         want = want / 64 * 64;
     /* VORBALL_COVER_SLICES overrides the count (measurements). */
     const char *ws = getenv("VORBALL_COVER_SLICES");
@@ -324,6 +326,8 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
         th->want = (size_t)units * 512;
     }
     vbg_cover_knobs(s);
+    t0->nb_want = t0->nb_cap;
+    t0->lab_want = t0->lab_cap;
     be->name = "opencl";
     snprintf(be->device, sizeof be->device, "%s", vbg_runtime_device_name(rt));
     be->batch_cells = vbg_runtime_is_gpu(rt) ? 1u << 18 : 1u << 14;

@@ -10,8 +10,10 @@
  *   first tier S0 slices of P0 bytes, P0 = 48 NB + 4 LAB + 16 Q (+ 48 ST on
  *              the work-item kernel; the group kernel keeps one stack of
  *              48 ST), NB/LAB/ST/Q the tier's capacities below: 144 KiB a
- *              work-item (272 KiB on a CPU device, and 240 KiB
- *              of caches there: 8 LAB + 56 VBQ_MEMO), 520 KiB a group;
+ *              work-item on a GPU, 520 KiB a group; a CPU device's slice
+ *              (one per compute unit, COV_CPU_NB) 4.0 MiB and 2.1 MiB of
+ *              caches (8 LAB + 56 VBQ_MEMO), its capacities halved while
+ *              the slices exceed the share below;
  *              S0 = min(the device's occupancy,
  *              n, 3/4 of the budget left after the input / P0);
  *   launches   per launch of C tasks: 4 C (cells) + 4 C (roots) + 48 C (results)
@@ -46,6 +48,9 @@ typedef struct cov_tier {
                                    2 VBQ_MEMO tags per slice */
     cl_kernel k;             /* its kernel (cov_state's) */
     int caches;              /* 1: hi, memo, memo_tag made (the first tier of a CPU device) */
+    int solo;                /* 1: a work-group of one work-item per slice (the first tier of
+                                a CPU device: a slice per compute unit) */
+    uint32_t nb_want, lab_want; /* solo: the capacities budget_split halves from */
     int wg;                  /* 1: k is the group kernel, a work-group of COV_WG per slice */
     uint32_t budget;         /* the group kernel's step budget per cell (0: none) */
     uint32_t qper;           /* output room per task, in quadruples */
@@ -107,8 +112,20 @@ typedef struct cov_state {
  * cells (its face cells, 1,849 out of records) to the host, 8.45 s;
  * 4,096 / 16,384: 191 cells, 7.00 s; 8,192 / 32,768: 42 cells, 6.68 s at
  * twice the memory (a slice 528 KiB against 272 KiB). */
-#define COV_CPU_NB 4096u
-#define COV_CPU_LAB 16384u
+/* Stop 46: a CPU device runs its work-items one after the other, each to
+ * the end of the batch (the kernel's loop over a shared counter), so only
+ * the first work-item of each work-group ever covers a cell: the first
+ * tier of a CPU device is a slice per compute unit, a work-group of one
+ * (cov_tier.solo), and a slice gets the records and labels the 64 slices of
+ * a group held before, times 16 and 16: 65,536 / 262,144 (6.1 MiB with its
+ * caches), halved while the slices do not fit their share of the budget,
+ * down to 2,048 / 8,192 (budget_split). 4yvs first 14,070 (2-core, PoCL one
+ * thread): no cell left to the host (240 at 4,096 / 16,384, each covered
+ * again after the device's work on it was lost), device buffers 12.6 MB
+ * instead of 40.5; papers/gpu-voronoi-cells-of-spheres/results/
+ * cpu_vs_voronota_stop46.md. */
+#define COV_CPU_NB 65536u
+#define COV_CPU_LAB 262144u
 #define COV_WG_NB 8192u
 #define COV_WG_LAB 32768u
 #define COV_WG_Q 512u

@@ -111,6 +111,21 @@ VBS_FN int vbq_nb_make(double cix, double ciy, double ciz, double ri, double cjx
     return 1;
 }
 
+/* VBQ_GPU_FORM: a GPU's kernels (OpenCL without the CPU devices'
+ * VBQ_WALK_V4_CL) keep the forms timed on an H100 at stop 44 where a later
+ * host change made them slower there (stop 45, run A: the capsid's cover
+ * kernels +10-20 %): the champions' pair determinants made per label
+ * tested, the flatness trigger's plane only, the envelope decision at
+ * stalled chains only. Speed only: every form reaches the same vertices. */
+#if defined(__OPENCL_C_VERSION__) && !defined(VBQ_WALK_V4_CL)
+#define VBQ_GPU_FORM 1
+#define VBQ_FLAT_SPACE 0         /* vbq_looks_flat: the plane only */
+#define VBQ_ENV_DEEP_ACT (-1)    /* vbq_envelope_due: no deep leaves (no act is -1) */
+#else
+#define VBQ_FLAT_SPACE 1
+#define VBQ_ENV_DEEP_ACT 3       /* the deep leaves' act */
+#endif
+
 /* ---- the patches --------------------------------------------------------- */
 
 /* Enclosing box of the directions of the square [u0,u1] x [v0,v1] on cube
@@ -135,6 +150,31 @@ VBS_FN void vbq_patch_box(vbs_u32 f, double u0, double u1, double v0, double v1,
      * its points, whose directions are the same doubles: they are skipped
      * (speed only, the same box). */
     int na = uc == u0 || uc == u1 ? 2 : 3, nb = vc == v0 || vc == v1 ? 2 : 3;
+#ifndef VBQ_GPU_FORM
+    /* The host and CPU devices keep the extremes in the face's own order
+     * (the face axis, then u, then v: vbs_face_dir's doubles, computed by
+     * its operations) and place them on the axes once: written to d[] at
+     * an index picked by the face and read back as a vector, every point
+     * stalled PoCL's code on a store it could not forward (stop 45). The
+     * same doubles, so the same box. */
+    double sgn = (f & 1u) ? -1.0 : 1.0, L[3] = {2.0, 2.0, 2.0}, H[3] = {-2.0, -2.0, -2.0};
+    for (int a = 0; a < na; a++)
+        for (int b = 0; b < nb; b++) {
+            double u = us[a], v = vs[b];
+            double inv = 1.0 / VBS_SQRT(u * u + v * v + 1.0);
+            double t[3] = {sgn * inv, u * inv, v * inv};
+            for (int k = 0; k < 3; k++) {
+                L[k] = t[k] < L[k] ? t[k] : L[k];
+                H[k] = t[k] > H[k] ? t[k] : H[k];
+            }
+        }
+    vbs_u32 ax = f / 2u;
+    for (vbs_u32 k = 0u; k < 3u; k++) {
+        vbs_u32 s = (k + 3u - ax) % 3u; /* axis k holds the face's component s */
+        lo[k] = s == 0u ? L[0] : (s == 1u ? L[1] : L[2]);
+        hi[k] = s == 0u ? H[0] : (s == 1u ? H[1] : H[2]);
+    }
+#else
     for (int a = 0; a < na; a++)
         for (int b = 0; b < nb; b++) {
             double d[3];
@@ -144,6 +184,7 @@ VBS_FN void vbq_patch_box(vbs_u32 f, double u0, double u1, double v0, double v1,
                 hi[k] = d[k] > hi[k] ? d[k] : hi[k];
             }
         }
+#endif
     for (int k = 0; k < 3; k++) {
         double l = lo[k] - (8.0 * VBQ_U * VBS_FABS(lo[k]) + VBQ_TINY);
         double g = hi[k] + (8.0 * VBQ_U * VBS_FABS(hi[k]) + VBQ_TINY);
@@ -210,21 +251,6 @@ VBS_FN void vbq_patch_square(vbs_u32 T, vbs_u32 level, vbs_u64 iu, vbs_u64 iv, d
     *v0 = -1.0 + side * (double)iv;
     *v1 = -1.0 + side * (double)(iv + 1u);
 }
-
-/* VBQ_GPU_FORM: a GPU's kernels (OpenCL without the CPU devices'
- * VBQ_WALK_V4_CL) keep the forms timed on an H100 at stop 44 where a later
- * host change made them slower there (stop 45, run A: the capsid's cover
- * kernels +10-20 %): the champions' pair determinants made per label
- * tested, the flatness trigger's plane only, the envelope decision at
- * stalled chains only. Speed only: every form reaches the same vertices. */
-#if defined(__OPENCL_C_VERSION__) && !defined(VBQ_WALK_V4_CL)
-#define VBQ_GPU_FORM 1
-#define VBQ_FLAT_SPACE 0         /* vbq_looks_flat: the plane only */
-#define VBQ_ENV_DEEP_ACT (-1)    /* vbq_envelope_due: no deep leaves (no act is -1) */
-#else
-#define VBQ_FLAT_SPACE 1
-#define VBQ_ENV_DEEP_ACT 3       /* the deep leaves' act */
-#endif
 
 /* The rest of the shared math, in parts of one job each. They are included
  * here only and never include this header back: the kernels' embedding

@@ -37,7 +37,11 @@ typedef vb_u64 vbs_u64;
 #define VBS_GLOBAL VB_GLOBAL
 #define VBS_FN VB_SHARED_FN
 #define VBS_SQRT sqrt
+#if defined(__OPENCL_C_VERSION__) && defined(VBQ_WALK_V4_CL)
+#define VBS_FABS __builtin_fabs
+#else
 #define VBS_FABS fabs
+#endif
 
 /* Colour of a ray that meets no bisector before the clip distance (Sec. 3.3:
  * the "bisector with infinity"). */

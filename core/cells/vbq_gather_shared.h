@@ -269,8 +269,11 @@ typedef long4 vbq_m4;
 #define VBQ_V4(a, b, c, d) ((double4)((a), (b), (c), (d)))
 #define VBQ_AS_V4(m) as_double4(m)
 #define VBQ_AS_M4(x) as_long4(x)
-#define VBQ_M4_ANY(m) any(m)
-#define VBQ_M4_ALL(m) all(m)
+/* The lanes or'ed and and'ed as on the host (a lane is all ones or all
+ * zeros): PoCL's any() and all() took six instructions through a general
+ * register. */
+#define VBQ_M4_ANY(m) (((m).s0 | (m).s1 | (m).s2 | (m).s3) != 0)
+#define VBQ_M4_ALL(m) (((m).s0 & (m).s1 & (m).s2 & (m).s3) != 0)
 #else
 typedef double vbq_v4 __attribute__((vector_size(32)));
 typedef long long vbq_m4 __attribute__((vector_size(32)));
