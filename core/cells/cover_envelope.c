@@ -67,23 +67,10 @@
 
 #include "vb_cover_shared.h"
 #include "vb_decimal_mpz.h"
-
-/* One label of the patch: its sphere (its exact row is made when the
- * first exact sign is asked). */
-typedef struct env_lab {
-    vbs_u32 id;
-} env_lab;
-
-typedef struct env_exact {
-    int made;
-    vbs_u32 n;
-    mpz_t (*row)[4]; /* n + 1 rows: the labels', then infinity's */
-    double (*rd)[4]; /* the rows in doubles (mpz_get_d: within 2u relative) */
-    mpz_t q[4], t;
-} env_exact;
+#include "vbq_env_exact.h"
 
 /* The integer rows (N_j, D_j) of the labels of the patch (see the top). */
-static int env_exact_make(env_exact *X, const vb_sphere_set *s, vbs_u32 i, const env_lab *L,
+static int env_exact_make(vbq_env_rows *X, const vb_sphere_set *s, vbs_u32 i, const vbq_env_lab *L,
                           vbs_u32 n)
 {
     const vb_decimal *col[3] = {s->ex, s->ey, s->ez};
@@ -129,7 +116,7 @@ static int env_exact_make(env_exact *X, const vb_sphere_set *s, vbs_u32 i, const
     return 1;
 }
 
-static void env_exact_free(env_exact *X)
+static void env_exact_free(vbq_env_rows *X)
 {
     if (!X->made)
         return;
@@ -140,23 +127,8 @@ static void env_exact_free(env_exact *X)
     free(X->rd);
 }
 
-/* The decision of one patch, and the exact data of the triple at hand:
- * the cofactors C of the rows of j, k, l (det4[R0; j; k; l] = R0 . C) and
- * their doubles (made at the triple's first exact sign). */
-typedef struct env_ctx {
-    const vb_sphere_set *s;
-    vbs_u32 i, n;
-    env_lab *L;
-    env_exact X;
-    int tri_made, fast_made;
-    mpz_t C[4], m2[6], acc;
-    double c[4];
-    double f[4], fe[4]; /* the cofactors from the rows' doubles, and their error bounds */
-    vbs_u32 exact_calls;
-} env_ctx;
-
 /* fn (mpz_init or mpz_clear) on every integer of the context but the rows. */
-static void env_ctx_each(env_ctx *c, void (*fn)(mpz_ptr))
+static void env_ctx_each(vbq_env_ctx *c, void (*fn)(mpz_ptr))
 {
     for (int a = 0; a < 4; a++) {
         fn(c->X.q[a]);
@@ -186,7 +158,7 @@ static const int cols[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
  * 2^128, C below 2^260 and R0 . C below 2^390, far from the doubles' range;
  * larger rows (exponents far apart) may give infinities, and a non-finite
  * bound (or a NaN) fails the filter: the integers decide. */
-static void env_tri_fast(env_ctx *c, vbs_u32 j, vbs_u32 k, vbs_u32 l)
+static void env_tri_fast(vbq_env_ctx *c, vbs_u32 j, vbs_u32 k, vbs_u32 l)
 {
     const double *rk = c->X.rd[k], *rl = c->X.rd[l], *rj = c->X.rd[j];
     double m2[6], a2[6];
@@ -209,7 +181,7 @@ static void env_tri_fast(env_ctx *c, vbs_u32 j, vbs_u32 k, vbs_u32 l)
 /* The cofactors of rows j, k, l along the first row of det4[R0; j; k; l]:
  * C_x = (-1)^x det3(the three rows without column x), each det3 expanded
  * along row j over the 2x2 minors of rows k, l. */
-static void env_tri_make(env_ctx *c, vbs_u32 j, vbs_u32 k, vbs_u32 l)
+static void env_tri_make(vbq_env_ctx *c, vbs_u32 j, vbs_u32 k, vbs_u32 l)
 {
     mpz_t *rk = c->X.row[k], *rl = c->X.row[l], *rj = c->X.row[j];
     for (int p = 0; p < 6; p++) {
@@ -236,7 +208,7 @@ static void env_tri_make(env_ctx *c, vbs_u32 j, vbs_u32 k, vbs_u32 l)
  * their sum add at most 4.01u, so 16u of the sum of the magnitudes is
  * ample; then in integers. Returns 2 when it cannot be decided (no
  * memory). */
-static int env_sign_exact(env_ctx *c, const double *q, vbs_u32 m, vbs_u32 j, vbs_u32 k, vbs_u32 l)
+int vbq_env_sign_exact(vbq_env_ctx *c, const double *q, vbs_u32 m, vbs_u32 j, vbs_u32 k, vbs_u32 l)
 {
     c->exact_calls++;
     if (!c->X.made && !env_exact_make(&c->X, c->s, c->i, c->L, c->n))
@@ -309,23 +281,23 @@ static int env_sign_exact(env_ctx *c, const double *q, vbs_u32 m, vbs_u32 j, vbs
  * sign exact (the triples vbq_env_triple's doubles could not decide)? 1
  * yes, 0 no, 2 undecided (out of memory). *last: the label that beat the
  * last triple (tried first). */
-static int env_triple(env_ctx *c, vbs_u32 j, vbs_u32 k, vbs_u32 l, double qs[5][3], vbs_u32 *last)
+static int env_triple(vbq_env_ctx *c, vbs_u32 j, vbs_u32 k, vbs_u32 l, double qs[5][3], vbs_u32 *last)
 {
     c->tri_made = c->fast_made = 0;
     /* sigma: the face's side of Y (qs[0] is n) */
-    int sg = env_sign_exact(c, qs[0], 0u, j, k, l);
+    int sg = vbq_env_sign_exact(c, qs[0], 0u, j, k, l);
     if (sg == 2 || sg == 0)
         return sg;
     /* the square: sigma Q . Y >= 0 for its four sides */
     for (int e = 1; e < 5; e++) {
-        int v = env_sign_exact(c, qs[e], 0u, j, k, l);
+        int v = vbq_env_sign_exact(c, qs[e], 0u, j, k, l);
         if (v == 2)
             return 2;
         if (sg * v < 0)
             return 0;
     }
     /* positive value: sigma a_j . Y > 0 (det[-a_j; ..] from infinity's row) */
-    int v = env_sign_exact(c, 0, c->n, j, k, l);
+    int v = vbq_env_sign_exact(c, 0, c->n, j, k, l);
     if (v == 2)
         return 2;
     if (-sg * v <= 0)
@@ -335,7 +307,7 @@ static int env_triple(env_ctx *c, vbs_u32 j, vbs_u32 k, vbs_u32 l, double qs[5][
         vbs_u32 m = t == 0 ? *last : t - 1u;
         if ((t > 0 && m == *last) || m >= c->n || m == j || m == k || m == l)
             continue;
-        v = env_sign_exact(c, 0, m, j, k, l);
+        v = vbq_env_sign_exact(c, 0, m, j, k, l);
         if (v == 2)
             return 2;
         if (sg * v > 0) {
@@ -403,32 +375,20 @@ static int env_dec_equal(vb_decimal p, vb_decimal q)
     return p.mant == q.mant && (p.mant == 0 || p.exp10 == q.exp10);
 }
 
-int vbq_envelope_decide(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i,
-                        const vbq_frame *fr, vbs_u32 top, vbs_u32 keep, vbs_u32 *exact_calls)
+/* Every owned triple of the patch tested (env_triple's argument, the
+ * top): own[0 .. no) the owned labels' indices into c->L. Returns as
+ * vbq_envelope_decide. */
+static int env_triples(vbq_env_ctx *c, const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o,
+                       const vbq_frame *fr, vbs_u32 top, const vbs_u32 *own, vbs_u32 no,
+                       double qs[5][3])
 {
-    const vb_sphere_set *s = e->host;
-    if (!s || !s->ex || keep > VBQ_ENV_KEEP)
-        return 0;
-    env_lab L[VBQ_ENV_KEEP];
-    vbs_u32 own[VBQ_ENV_KEEP], no = 0;
-    for (vbs_u32 k = 0; k < keep; k++) {
-        vbq_nb r = ar->nb[ar->lab[top + k]];
-        if (!env_dec_equal(s->er[r.id], s->er[i]) || r.b != 0.0 || !(r.err < (double)INFINITY))
-            return 0;
-        L[k].id = r.id;
-        if (r.id > i)
-            own[no++] = k;
-    }
-    double qs[5][3];
-    vbq_env_sides(e->T, fr, qs);
-    env_ctx c = {.s = s, .i = i, .n = keep, .L = L};
-    env_ctx_each(&c, mpz_init);
     /* The pairs whose tie circle may meet the patch: a triple is tested
      * only when its three pairs are (env_pair_apart: speed only). */
     double w[4][3];
     env_corners(e->T, fr, w);
-    _Static_assert(VBQ_ENV_KEEP <= 128u, "meets: one bit per label in two words");
-    vbs_u64 meets[VBQ_ENV_KEEP][2] = {{0}};
+    vbs_u64 meets[VBQ_ENV_TRIPLES_MAX][2] = {{0}};
+    if (no > VBQ_ENV_TRIPLES_MAX)
+        return 0;
     const vbq_nb *nb = ar->nb;
     const vbs_u32 *lab = ar->lab + top;
     for (vbs_u32 a = 0; a < no; a++)
@@ -446,17 +406,44 @@ int vbq_envelope_decide(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, 
             for (vbs_u32 d = b + 1; d < no && rc == 1; d++) {
                 if (!(meets[a][d >> 6] >> (d & 63u) & 1u) || !(meets[b][d >> 6] >> (d & 63u) & 1u))
                     continue;
-                int v = vbq_env_triple(ar->nb, ar->lab + top, keep, own[a], own[b], own[d], qs,
-                                       &last);
+                int v = vbq_env_triple(ar->nb, lab, c->n, own[a], own[b], own[d], qs, &last);
                 if (v == 2)
-                    v = env_triple(&c, own[a], own[b], own[d], qs, &last);
+                    v = env_triple(c, own[a], own[b], own[d], qs, &last);
                 if (v == 2)
                     rc = 0;
-                else if (v == 1 &&
-                         !vbq_add_quad(ar, o, i, L[own[a]].id, L[own[b]].id, L[own[d]].id))
+                else if (v == 1 && !vbq_add_quad(ar, o, c->i, c->L[own[a]].id, c->L[own[b]].id,
+                                                 c->L[own[d]].id))
                     rc = -1;
             }
         }
+    return rc;
+}
+
+int vbq_envelope_decide(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i,
+                        const vbq_frame *fr, vbs_u32 top, vbs_u32 keep, int way,
+                        vbs_u32 *exact_calls)
+{
+    const vb_sphere_set *s = e->host;
+    if (!s || !s->ex || keep > VBQ_ENV_KEEP)
+        return 0;
+    vbq_env_lab L[VBQ_ENV_KEEP];
+    vbs_u32 own[VBQ_ENV_KEEP], no = 0;
+    for (vbs_u32 k = 0; k < keep; k++) {
+        vbq_nb r = ar->nb[ar->lab[top + k]];
+        if (!env_dec_equal(s->er[r.id], s->er[i]) || r.b != 0.0 || !(r.err < (double)INFINITY))
+            return 0;
+        L[k].id = r.id;
+        if (r.id > i)
+            own[no++] = k;
+    }
+    double qs[5][3];
+    vbq_env_sides(e->T, fr, qs);
+    vbq_env_ctx c = {.s = s, .i = i, .n = keep, .L = L};
+    env_ctx_each(&c, mpz_init);
+    if (way == VBQ_ENV_AUTO)
+        way = no > VBQ_ENV_HULL_OWNED ? VBQ_ENV_HULL : VBQ_ENV_TRIPLES;
+    int rc = way == VBQ_ENV_HULL ? vbq_env_hull(&c, ar, o, top, qs)
+                                 : env_triples(&c, e, ar, o, fr, top, own, no, qs);
     if (exact_calls)
         *exact_calls = c.exact_calls;
     env_exact_free(&c.X);
@@ -470,5 +457,5 @@ int vbq_host_envelope(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vb
 {
     if (!vbq_envelope_due(e, fr, ar->nb, ar->lab + top, keep, owned, act, closed))
         return 0;
-    return vbq_envelope_decide(e, ar, o, i, fr, top, keep, NULL);
+    return vbq_envelope_decide(e, ar, o, i, fr, top, keep, VBQ_ENV_AUTO, NULL);
 }

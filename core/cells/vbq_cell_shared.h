@@ -416,10 +416,24 @@ int vbq_host_envelope(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vb
                       const vbq_frame *fr, vbs_u32 top, vbs_u32 keep, vbs_u32 owned, int act,
                       int closed);
 
-/* vbq_host_envelope that also counts the exact signs it took in
- * *exact_calls (NULL: not counted; the tests compare it). */
+/* The two ways of vbq_envelope_decide, which find the same quadruples:
+ * every owned triple tested (cubic in the owned labels), or the convex
+ * hull of the labels' points (core/cells/cover_env_hull.c); AUTO takes the
+ * hull above VBQ_ENV_HULL_OWNED owned labels. Measured (sc 2,744 jittered
+ * 1e-12, see papers/degenerate-input/results/twocore-stop46-sc.md). */
+#define VBQ_ENV_AUTO 0
+#define VBQ_ENV_TRIPLES 1
+#define VBQ_ENV_HULL 2
+#define VBQ_ENV_HULL_OWNED 8u
+#define VBQ_ENV_TRIPLES_MAX 128u /* the triples' pair table: one bit per label in two words */
+
+/* vbq_host_envelope by a given way (VBQ_ENV_*) that also counts the exact
+ * signs it took in *exact_calls (NULL: not counted; the tests compare
+ * them). Returns as vbq_host_envelope; the triples' way returns 0 for more
+ * than VBQ_ENV_TRIPLES_MAX owned labels. */
 int vbq_envelope_decide(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i,
-                        const vbq_frame *fr, vbs_u32 top, vbs_u32 keep, vbs_u32 *exact_calls);
+                        const vbq_frame *fr, vbs_u32 top, vbs_u32 keep, int way,
+                        vbs_u32 *exact_calls);
 
 /* vbq_host_cluster over the owned labels of the surviving list
  * lab[top .. top + keep) (their ids copied above it). */
@@ -652,6 +666,13 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
             owned > VBQ_CLUSTER_OWNED) {
 #ifdef __OPENCL_C_VERSION__
             if (vbq_envelope_due(e, &fr, ar->nb, ar->lab + top, keep, owned, act, closed)) {
+#ifndef VBQ_GPU_FORM
+                /* past the cubic filter's limit: the host's hull decides */
+                if (owned > VBQ_ENV_FILTER_OWNED) {
+                    o->status = VBQ_CLUSTER;
+                    return;
+                }
+#endif
                 int he = vbq_envelope_filter(e, ar, o, i, &fr, top, keep);
                 if (he == 2)
                     o->status = VBQ_CLUSTER;

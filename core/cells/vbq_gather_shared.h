@@ -47,9 +47,15 @@
 #ifdef VBQ_GPU_FORM
 #define VBQ_ENV_OWNED 24u
 #else
-#define VBQ_ENV_OWNED 32u
+#define VBQ_ENV_OWNED 96u
 #endif
 #define VBQ_ENV_KEEP 96u
+/* The kernels decide a due patch in doubles by testing every owned triple
+ * (vbq_envelope_filter), cubic in the owned labels: a CPU device's kernel
+ * hands a cell with a due patch of more owned labels than this to the host
+ * (status VBQ_CLUSTER), whose hull decision (core/cells/cover_env_hull.c)
+ * takes up to VBQ_ENV_OWNED; a GPU's limit is this one's former value. */
+#define VBQ_ENV_FILTER_OWNED 32u
 
 /* The bits of a frame's combo field. */
 #define VBQ_FR_COMBO 1u
