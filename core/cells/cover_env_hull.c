@@ -11,8 +11,9 @@
  * side: it is the plane of a 2-face of conv(P), W its outward normal, and
  * 0 is strictly below it (so 0 is no vertex of that face). Conversely
  * every such face gives exactly its owned affinely independent triples.
- * So: build conv(P) as triangles (every sign exact: the record filter of
- * vbq_env_sign first, then vbq_env_sign_exact), keep the triangles whose
+ * So: build conv(P) as triangles (every sign exact: each triangle's
+ * cofactors in doubles from the exact rows first, vbq_env_sign_rows, then
+ * vbq_env_sign_exact), keep the triangles whose
  * outward normal passes the patch's tests, collect the points on each
  * kept triangle's plane (exact zero signs: an exact crystal's cocircular
  * neighbours make faces of more than three points) and write their owned
@@ -34,17 +35,17 @@
 #include "vbq_env_exact.h"
 
 /* A triangle of the hull: v counter-clockwise seen from outside; the
- * filter data of Y = (p_v1 - p_v0) x (p_v2 - p_v0) (vbq_env_triple's). */
+ * cofactors' doubles of its three rows (vbq_env_cofactors): a point's side
+ * is one dot product away. */
 typedef struct hull_tri {
     vbs_u32 v[3];
     vbs_u32 dead, seen;
-    double y[3], pyz, nyz, eyz;
+    double f[4], fe[4];
 } hull_tri;
 
 typedef struct hull {
     vbq_env_ctx *c;
     vbs_u32 np;       /* points: the labels 0 .. n-1, then n (the origin) */
-    double (*p)[4];   /* a~ and its error (the records'; the origin's exact) */
     hull_tri *t;
     vbs_u32 nt, cap;
     vbs_u32 *edge;    /* edge[a * np + b]: the triangle with directed edge a -> b */
@@ -71,18 +72,7 @@ static int hull_add(hull *h, vbs_u32 a, vbs_u32 b, vbs_u32 c)
     t->v[2] = c;
     t->dead = 0u;
     t->seen = 0u;
-    const double *pa = h->p[a], *pb = h->p[b], *pc = h->p[c];
-    double dk[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]};
-    double dl[3] = {pc[0] - pa[0], pc[1] - pa[1], pc[2] - pa[2]};
-    t->y[0] = dk[1] * dl[2] - dk[2] * dl[1];
-    t->y[1] = dk[2] * dl[0] - dk[0] * dl[2];
-    t->y[2] = dk[0] * dl[1] - dk[1] * dl[0];
-    double nY = vbq_env_n1(dk), nZ = vbq_env_n1(dl);
-    double eY = (pa[3] + pb[3]) + 1.01 * VBQ_U * nY;
-    double eZ = (pa[3] + pc[3]) + 1.01 * VBQ_U * nZ;
-    t->nyz = nY * nZ;
-    t->eyz = (eY * nZ + nY * eZ) + eY * eZ;
-    t->pyz = t->nyz + t->eyz;
+    vbq_env_cofactors(h->c, a, b, c, t->f, t->fe);
     h->edge[a * h->np + b] = h->nt;
     h->edge[b * h->np + c] = h->nt;
     h->edge[c * h->np + a] = h->nt;
@@ -90,23 +80,24 @@ static int hull_add(hull *h, vbs_u32 a, vbs_u32 b, vbs_u32 c)
     return 1;
 }
 
-/* The exact sign of the triple product of triangle t's Y with X = p_m -
- * p_v0 (q NULL) or X = q: the filter, then the exact rows. 2: no memory. */
+/* The exact sign of the triple product of triangle t's Y = (a_v1 - a_v0)
+ * x (a_v2 - a_v0) with X = a_m - a_v0 (q NULL) or X = q: its cofactors'
+ * doubles first, then vbq_env_sign_exact. 2: no memory. */
 static int hull_sign(hull *h, vbs_u32 t, const double *q, vbs_u32 m)
 {
     const hull_tri *r = &h->t[t];
-    int v;
+    double r0[4];
     if (q) {
-        v = vbq_env_sign(q, vbq_env_n1(q), 0.0, r->y, r->pyz, r->nyz, r->eyz);
+        r0[0] = 0.0;
+        for (int a = 0; a < 3; a++)
+            r0[a + 1] = q[a];
     } else {
         if (m == r->v[0] || m == r->v[1] || m == r->v[2])
             return 0;
-        const double *pm = h->p[m], *p0 = h->p[r->v[0]];
-        double x[3] = {pm[0] - p0[0], pm[1] - p0[1], pm[2] - p0[2]};
-        double nX = vbq_env_n1(x);
-        v = vbq_env_sign(x, nX, (pm[3] + p0[3]) + 1.01 * VBQ_U * nX, r->y, r->pyz, r->nyz,
-                         r->eyz);
+        for (int a = 0; a < 4; a++)
+            r0[a] = h->c->X.rd[m][a];
     }
+    int v = vbq_env_sign_rows(r0, r->f, r->fe);
     if (v)
         return v;
     if (h->cur != t) {
@@ -258,28 +249,16 @@ static int hull_face_write(hull *h, vbs_u32 t, const vbq_arena *ar, vbq_cell_out
     return 1;
 }
 
-int vbq_env_hull(vbq_env_ctx *c, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 top,
-                 double qs[5][3])
+int vbq_env_hull(vbq_env_ctx *c, const vbq_arena *ar, vbq_cell_out *o, double qs[5][3])
 {
     hull h;
     memset(&h, 0, sizeof h);
     h.c = c;
     h.np = c->n + 1u;
     h.cur = HULL_NONE;
-    h.p = malloc((size_t)h.np * sizeof *h.p);
     h.edge = malloc((size_t)h.np * h.np * sizeof *h.edge);
     vbs_u32 *on = malloc((size_t)h.np * sizeof *on);
-    int rc = h.p && h.edge && on ? 1 : 0;
-    for (vbs_u32 k = 0u; rc == 1 && k < c->n; k++) {
-        vbq_nb r = ar->nb[ar->lab[top + k]];
-        h.p[k][0] = r.ax;
-        h.p[k][1] = r.ay;
-        h.p[k][2] = r.az;
-        h.p[k][3] = r.err;
-    }
-    if (rc == 1)
-        for (int a = 0; a < 4; a++)
-            h.p[c->n][a] = 0.0;
+    int rc = h.edge && on && vbq_env_rows_made(c) ? 1 : 0;
     vbs_u32 used[2] = {0u, 0u};
     int st = rc == 1 && c->n >= 3u ? hull_start(&h, used) : 0;
     if (st < 0)
@@ -297,7 +276,6 @@ int vbq_env_hull(vbq_env_ctx *c, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 t
         else if (d == 1)
             rc = hull_face_write(&h, t, ar, o, on);
     }
-    free(h.p);
     free(h.edge);
     free(h.t);
     free(on);

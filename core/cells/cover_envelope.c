@@ -67,62 +67,123 @@
 
 #include "vb_cover_shared.h"
 #include "vb_decimal_mpz.h"
+#include "vbq_cluster.h"
 #include "vbq_env_exact.h"
 
-/* The integer rows (N_j, D_j) of the labels of the patch (see the top). */
-static int env_exact_make(vbq_env_rows *X, const vb_sphere_set *s, vbs_u32 i, const vbq_env_lab *L,
-                          vbs_u32 n)
+/* The common exponent of the decimals of the base and the labels. */
+static int32_t env_emin(const vbq_env_ctx *c)
 {
-    const vb_decimal *col[3] = {s->ex, s->ey, s->ez};
-    int32_t emin = s->ex[i].exp10;
-    for (vbs_u32 k = 0; k <= n; k++) {
-        vbs_u32 j = k < n ? L[k].id : i;
+    const vb_decimal *col[3] = {c->s->ex, c->s->ey, c->s->ez};
+    int32_t emin = col[0][c->i].exp10;
+    for (vbs_u32 k = 0; k <= c->n; k++) {
+        vbs_u32 j = k < c->n ? c->L[k].id : c->i;
         for (int a = 0; a < 3; a++)
             if (col[a][j].exp10 < emin)
                 emin = col[a][j].exp10;
     }
+    return emin;
+}
+
+/* The integer rows (N_j, D_j) of the labels of the patch (see the top) in
+ * GMP, and their doubles rd unless made already. */
+static int env_rows_mpz(vbq_env_ctx *c)
+{
+    vbq_env_rows *X = &c->X;
+    vbs_u32 n = c->n;
+    const vb_decimal *col[3] = {c->s->ex, c->s->ey, c->s->ez};
+    int32_t emin = env_emin(c);
+    X->n = n;
     X->row = malloc((size_t)(n + 1) * sizeof *X->row);
-    X->rd = malloc((size_t)(n + 1) * sizeof *X->rd);
-    if (!X->row || !X->rd) {
+    if (!X->row)
+        return 0;
+    if (!X->made && !(X->rd = malloc((size_t)(n + 1) * sizeof *X->rd))) {
         free(X->row);
-        free(X->rd);
+        X->row = NULL;
         return 0;
     }
-    X->n = n;
     mpz_t ci[3];
     for (int a = 0; a < 3; a++)
         mpz_init(ci[a]);
     for (int a = 0; a < 3; a++)
-        vb_decimal_to_mpz(ci[a], col[a][i], emin, X->t);
+        vb_decimal_to_mpz(ci[a], col[a][c->i], emin, X->t);
     for (vbs_u32 k = 0; k <= n; k++) {
-        for (int c = 0; c < 4; c++)
-            mpz_init(X->row[k][c]);
+        for (int a = 0; a < 4; a++)
+            mpz_init(X->row[k][a]);
         if (k == n) {
             mpz_set_ui(X->row[k][0], 1);
             continue;
         }
         for (int a = 0; a < 3; a++) {
-            vb_decimal_to_mpz(X->row[k][a + 1], col[a][L[k].id], emin, X->t);
+            vb_decimal_to_mpz(X->row[k][a + 1], col[a][c->L[k].id], emin, X->t);
             mpz_sub(X->row[k][a + 1], X->row[k][a + 1], ci[a]);
             mpz_addmul(X->row[k][0], X->row[k][a + 1], X->row[k][a + 1]);
         }
     }
-    for (vbs_u32 k = 0; k <= n; k++)
-        for (int c = 0; c < 4; c++)
-            X->rd[k][c] = mpz_get_d(X->row[k][c]);
+    if (!X->made)
+        for (vbs_u32 k = 0; k <= n; k++)
+            for (int a = 0; a < 4; a++)
+                X->rd[k][a] = mpz_get_d(X->row[k][a]);
     for (int a = 0; a < 3; a++)
         mpz_clear(ci[a]);
+    X->made = X->zmade = 1;
+    return 1;
+}
+
+/* d * 10^(d.exp10 - emin) in *x (emin <= d.exp10); 0 when it does not
+ * fit in 128 bits. */
+static int env_scaled(vb_decimal d, int32_t emin, vbq_i128 *x)
+{
+    *x = d.mant;
+    int fits = 1;
+    for (int32_t e = emin; e < d.exp10 && fits; e++)
+        fits = vbq_cmul(*x, 10, x);
+    return fits;
+}
+
+/* The rows' doubles rd without GMP where the integers fit in 128 bits:
+ * the decimals scaled in checked products, D_j and N_j = |D_j|^2 exact,
+ * each converted once (to nearest: within u relative, inside the 2u the
+ * filters take). Else the GMP rows give them. 0: no memory. */
+static int env_rows_doubles(vbq_env_ctx *c)
+{
+    vbq_env_rows *X = &c->X;
+    vbs_u32 n = c->n;
+    const vb_decimal *col[3] = {c->s->ex, c->s->ey, c->s->ez};
+    int32_t emin = env_emin(c);
+    X->n = n;
+    X->rd = malloc((size_t)(n + 1) * sizeof *X->rd);
+    if (!X->rd)
+        return 0;
+    vbq_i128 ci[3];
+    int fits = 1;
+    for (int a = 0; a < 3 && fits; a++)
+        fits = env_scaled(col[a][c->i], emin, &ci[a]);
+    for (vbs_u32 k = 0; k < n && fits; k++) {
+        vbq_i128 x, N = 0, t;
+        for (int a = 0; a < 3 && fits; a++) {
+            fits = env_scaled(col[a][c->L[k].id], emin, &x) && vbq_csub(x, ci[a], &x) &&
+                   vbq_cmul(x, x, &t) && vbq_cadd(N, t, &N);
+            X->rd[k][a + 1] = (double)x;
+        }
+        X->rd[k][0] = (double)N;
+    }
+    if (!fits) {
+        free(X->rd);
+        X->rd = NULL;
+        return env_rows_mpz(c);
+    }
+    X->rd[n][0] = 1.0;
+    X->rd[n][1] = X->rd[n][2] = X->rd[n][3] = 0.0;
     X->made = 1;
     return 1;
 }
 
 static void env_exact_free(vbq_env_rows *X)
 {
-    if (!X->made)
-        return;
-    for (vbs_u32 k = 0; k <= X->n; k++)
-        for (int c = 0; c < 4; c++)
-            mpz_clear(X->row[k][c]);
+    if (X->zmade)
+        for (vbs_u32 k = 0; k <= X->n; k++)
+            for (int a = 0; a < 4; a++)
+                mpz_clear(X->row[k][a]);
     free(X->row);
     free(X->rd);
 }
@@ -146,7 +207,7 @@ static const int pr[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
 static const int cols[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
 
 /* The cofactors of env_tri_make in doubles, from the rows' doubles rd
- * (|rd - R| <= 2u |R|, mpz_get_d truncates), without GMP: f_x with
+ * (|rd - R| <= 2u |R|: mpz_get_d truncates, env_rows_doubles rounds), without GMP: f_x with
  * |f_x - C_x| <= fe_x. Why: C_x is a sum of six signed products of three
  * row entries; each computed term carries at most five roundings (the
  * product and the difference of m2, the product by row j, two additions:
@@ -158,7 +219,8 @@ static const int cols[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
  * 2^128, C below 2^260 and R0 . C below 2^390, far from the doubles' range;
  * larger rows (exponents far apart) may give infinities, and a non-finite
  * bound (or a NaN) fails the filter: the integers decide. */
-static void env_tri_fast(vbq_env_ctx *c, vbs_u32 j, vbs_u32 k, vbs_u32 l)
+void vbq_env_cofactors(const vbq_env_ctx *c, vbs_u32 j, vbs_u32 k, vbs_u32 l, double f[4],
+                       double fe[4])
 {
     const double *rk = c->X.rd[k], *rl = c->X.rd[l], *rj = c->X.rd[j];
     double m2[6], a2[6];
@@ -172,9 +234,14 @@ static void env_tri_fast(vbq_env_ctx *c, vbs_u32 j, vbs_u32 k, vbs_u32 l)
         double v = rj[a] * m2[mi[b][d]] - rj[b] * m2[mi[a][d]] + rj[d] * m2[mi[a][b]];
         double g = fabs(rj[a]) * a2[mi[b][d]] + fabs(rj[b]) * a2[mi[a][d]] +
                    fabs(rj[d]) * a2[mi[a][b]];
-        c->f[x] = x & 1 ? -v : v;
-        c->fe[x] = 16.0 * VBQ_U * g;
+        f[x] = x & 1 ? -v : v;
+        fe[x] = 16.0 * VBQ_U * g;
     }
+}
+
+static void env_tri_fast(vbq_env_ctx *c, vbs_u32 j, vbs_u32 k, vbs_u32 l)
+{
+    vbq_env_cofactors(c, j, k, l, c->f, c->fe);
     c->fast_made = 1;
 }
 
@@ -208,12 +275,30 @@ static void env_tri_make(vbq_env_ctx *c, vbs_u32 j, vbs_u32 k, vbs_u32 l)
  * their sum add at most 4.01u, so 16u of the sum of the magnitudes is
  * ample; then in integers. Returns 2 when it cannot be decided (no
  * memory). */
-int vbq_env_sign_exact(vbq_env_ctx *c, const double *q, vbs_u32 m, vbs_u32 j, vbs_u32 k, vbs_u32 l)
+int vbq_env_sign_rows(const double r[4], const double f[4], const double fe[4])
 {
-    c->exact_calls++;
-    if (!c->X.made && !env_exact_make(&c->X, c->s, c->i, c->L, c->n))
-        return 2;
-    double r[4];
+    /* With R0 the exact row (|r - R0| <= 2u |R0|; a q row is exact),
+     * |r . f - R0 . C| <= sum |r_a| (2.01u |f_a| + 1.01 fe_a), and forming
+     * r . f adds at most 4.01u sum |r_a f_a|: 8u of that sum and 1.01 of
+     * sum |r_a| fe_a, with 1 + 1e-12 for the bound's own roundings. */
+    double v = 0.0, g = 0.0, ge = 0.0;
+    for (int a = 0; a < 4; a++) {
+        v += r[a] * f[a];
+        g += fabs(r[a] * f[a]);
+        ge += fabs(r[a]) * fe[a];
+    }
+    double b = (8.0 * VBQ_U * g + 1.01 * ge) * (1.0 + 1e-12) + VBQ_TINY;
+    return isfinite(b) && (v > b || v < -b) ? (v > b ? -1 : 1) : 0;
+}
+
+int vbq_env_rows_made(vbq_env_ctx *c)
+{
+    return c->X.made || env_rows_doubles(c);
+}
+
+/* Row R0 in doubles: (0, q), or label m's (infinity's for m = n). */
+static void env_r0(const vbq_env_ctx *c, const double *q, vbs_u32 m, double r[4])
+{
     if (q) {
         r[0] = 0.0;
         for (int a = 0; a < 3; a++)
@@ -222,31 +307,32 @@ int vbq_env_sign_exact(vbq_env_ctx *c, const double *q, vbs_u32 m, vbs_u32 j, vb
         for (int a = 0; a < 4; a++)
             r[a] = c->X.rd[m][a];
     }
-    /* First from the cofactors' doubles (env_tri_fast): with R0 the exact
-     * row (|r - R0| <= 2u |R0|; a q row is exact), |r . f - R0 . C| <=
-     * sum |r_a| (2.01u |f_a| + 1.01 fe_a), and forming r . f adds at most
-     * 4.01u sum |r_a f_a|: 8u of that sum and 1.01 of sum |r_a| fe_a, with
-     * 1 + 1e-12 for the bound's own roundings. Then the exact cofactors. */
+}
+
+int vbq_env_sign_exact(vbq_env_ctx *c, const double *q, vbs_u32 m, vbs_u32 j, vbs_u32 k, vbs_u32 l)
+{
+    c->exact_calls++;
+    if (!vbq_env_rows_made(c))
+        return 2;
+    double r[4];
+    env_r0(c, q, m, r);
+    /* First from the cofactors' doubles (env_tri_fast, vbq_env_sign_rows),
+     * then the exact cofactors. */
     if (!c->fast_made)
         env_tri_fast(c, j, k, l);
-    double v = 0.0, g = 0.0, ge = 0.0;
-    for (int a = 0; a < 4; a++) {
-        v += r[a] * c->f[a];
-        g += fabs(r[a] * c->f[a]);
-        ge += fabs(r[a]) * c->fe[a];
-    }
-    double b = (8.0 * VBQ_U * g + 1.01 * ge) * (1.0 + 1e-12) + VBQ_TINY;
-    if (isfinite(b) && (v > b || v < -b))
-        return v > b ? -1 : 1;
+    int sg = vbq_env_sign_rows(r, c->f, c->fe);
+    if (sg)
+        return sg;
+    if (!c->X.zmade && !env_rows_mpz(c))
+        return 2;
     if (!c->tri_made)
         env_tri_make(c, j, k, l);
-    v = 0.0;
-    g = 0.0;
+    double v = 0.0, g = 0.0;
     for (int a = 0; a < 4; a++) {
         v += r[a] * c->c[a];
         g += fabs(r[a] * c->c[a]);
     }
-    b = 16.0 * VBQ_U * g * (1.0 + 1e-12) + VBQ_TINY;
+    double b = 16.0 * VBQ_U * g * (1.0 + 1e-12) + VBQ_TINY;
     if (isfinite(g) && (v > b || v < -b))
         return v > b ? -1 : 1;
     mpz_t *r0;
@@ -442,7 +528,7 @@ int vbq_envelope_decide(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, 
     env_ctx_each(&c, mpz_init);
     if (way == VBQ_ENV_AUTO)
         way = no > VBQ_ENV_HULL_OWNED ? VBQ_ENV_HULL : VBQ_ENV_TRIPLES;
-    int rc = way == VBQ_ENV_HULL ? vbq_env_hull(&c, ar, o, top, qs)
+    int rc = way == VBQ_ENV_HULL ? vbq_env_hull(&c, ar, o, qs)
                                  : env_triples(&c, e, ar, o, fr, top, own, no, qs);
     if (exact_calls)
         *exact_calls = c.exact_calls;

@@ -221,9 +221,14 @@ VBS_FN void vbq_patch_square(vbs_u32 T, vbs_u32 level, vbs_u64 iu, vbs_u64 iv, d
 #define VBQ_GPU_FORM 1
 #define VBQ_FLAT_SPACE 0         /* vbq_looks_flat: the plane only */
 #define VBQ_ENV_DEEP_ACT (-1)    /* vbq_envelope_due: no deep leaves (no act is -1) */
+#define VBQ_ENV_DEEP(act, fr) 0  /* vbq_envelope_due: no decision for few owned labels */
 #else
 #define VBQ_FLAT_SPACE 1
 #define VBQ_ENV_DEEP_ACT 3       /* the deep leaves' act */
+/* vbq_envelope_due: a deep leaf, or a patch past this level (a random twin's
+ * patches stop by level 15), is decided with 3 or more owned labels */
+#define VBQ_ENV_DEEP_LEVEL 20u
+#define VBQ_ENV_DEEP(act, fr) ((act) == 3 || ((act) == 1 && (fr)->level >= VBQ_ENV_DEEP_LEVEL))
 #endif
 
 /* The rest of the shared math, in parts of one job each. They are included

@@ -283,7 +283,11 @@ VBS_FN int vbq_tie_cluster(const VBS_GLOBAL vbq_nb *nb, const VBS_GLOBAL vbs_u32
  * VBQ_ENV_KEEP in all; or a deep leaf (act 3) with as many labels, whose
  * C(owned, 3) quadruples the decision replaces by the envelope's own
  * (near-ties at the doubles' resolution reach the deepest level: sc 1,728
- * jittered 1e-12 wrote 91,186 quadruples, 52,264 so),
+ * jittered 1e-12 wrote 91,186 quadruples, 52,264 so); off a GPU
+ * (VBQ_ENV_DEEP) also a deep leaf or a patch past level VBQ_ENV_DEEP_LEVEL
+ * with 3 to VBQ_CLUSTER_OWNED owned labels (a near-tie chain of few
+ * labels: sc 2,744 jittered 1e-12 wrote 40,339 quadruples at such leaves,
+ * 3,605 of them vertices, after ~40 levels of subdivision each),
  * every label's record has b exactly 0 and a finite error (spheres of the
  * base's radius in doubles; the host checks the decimals) and every vertex
  * is sought (no tangent-radius floor). The same answer on every backend:
@@ -295,9 +299,10 @@ VBS_FN int vbq_envelope_due(const vbq_env *e, const vbq_frame *fr, const VBS_GLO
                             const VBS_GLOBAL vbs_u32 *lab, vbs_u32 keep, vbs_u32 owned, int act,
                             int closed)
 {
-    if (!closed || (act != 1 && act != VBQ_ENV_DEEP_ACT) || owned <= VBQ_CLUSTER_OWNED ||
-        owned > VBQ_ENV_OWNED || keep > VBQ_ENV_KEEP ||
-        (act == 1 && (keep != fr->len || fr->stall + 1u < VBQ_ENV_STALL)) ||
+    int deep = VBQ_ENV_DEEP(act, fr);
+    if (!closed || (act != 1 && act != VBQ_ENV_DEEP_ACT) || owned < 3u ||
+        (owned <= VBQ_CLUSTER_OWNED && !deep) || owned > VBQ_ENV_OWNED || keep > VBQ_ENV_KEEP ||
+        (act == 1 && !deep && (keep != fr->len || fr->stall + 1u < VBQ_ENV_STALL)) ||
         e->tmax < (double)INFINITY)
         return 0;
     for (vbs_u32 a = 0u; a < keep; a++) {
@@ -662,8 +667,9 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
         /* A stalled near-tie chain (vbq_envelope_due; its first tests
          * here, the rest out of this loop): its envelope decided exactly at
          * once (a kernel decides in doubles, or hands the cell to the host). */
-        if (!cluster && ((act == 1 && keep == fr.len) || act == VBQ_ENV_DEEP_ACT) &&
-            owned > VBQ_CLUSTER_OWNED) {
+        if (!cluster && ((((act == 1 && keep == fr.len) || act == VBQ_ENV_DEEP_ACT) &&
+                          owned > VBQ_CLUSTER_OWNED) ||
+                         (owned >= 3u && VBQ_ENV_DEEP(act, &fr)))) {
 #ifdef __OPENCL_C_VERSION__
             if (vbq_envelope_due(e, &fr, ar->nb, ar->lab + top, keep, owned, act, closed)) {
 #ifndef VBQ_GPU_FORM

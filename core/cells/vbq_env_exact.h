@@ -18,7 +18,7 @@ typedef struct vbq_env_lab {
 } vbq_env_lab;
 
 typedef struct vbq_env_rows {
-    int made;
+    int made, zmade; /* rd made; row made (GMP) */
     vbs_u32 n;
     mpz_t (*row)[4]; /* n + 1 rows: the labels', then infinity's */
     double (*rd)[4]; /* the rows in doubles (mpz_get_d: within 2u relative) */
@@ -49,8 +49,22 @@ typedef struct vbq_env_ctx {
 int vbq_env_sign_exact(vbq_env_ctx *c, const double *q, vbs_u32 m, vbs_u32 j, vbs_u32 k,
                        vbs_u32 l);
 
+/* The rows' doubles rd of c made (vbq_env_sign_exact makes them when
+ * first asked). 0: no memory. */
+int vbq_env_rows_made(vbq_env_ctx *c);
+
+/* The cofactors of rows j, k, l of det4[R0; j; k; l] = R0 . C in doubles
+ * from the rows' doubles (c's rd made): f within fe of C, per entry. */
+void vbq_env_cofactors(const vbq_env_ctx *c, vbs_u32 j, vbs_u32 k, vbs_u32 l, double f[4],
+                       double fe[4]);
+
+/* The sign of -det4[R0; j; k; l] (vbq_env_sign_exact's) from row R0's
+ * doubles r (a label's rd, or (0, q)) and the cofactors' doubles f, fe of
+ * vbq_env_cofactors: -1 or 1 when proven, 0 when the filter cannot tell. */
+int vbq_env_sign_rows(const double r[4], const double f[4], const double fe[4]);
+
 /* The envelope decision of patch qs (vbq_env_sides) of cell c->i over the
- * labels lab[0 .. c->n) (records nb[lab[k]], equal radii, b = 0) from the
+ * labels c->L[0 .. c->n) (equal radii) from the
  * convex hull of their points a_k and the origin (infinity): adds the
  * quadruple (i, j, k, l) of every owned triple that lies on a face of the
  * hull whose outward normal W is in the patch's closed cone (n . W > 0),
@@ -59,7 +73,6 @@ int vbq_env_sign_exact(vbq_env_ctx *c, const double *q, vbs_u32 m, vbs_u32 j, vb
  * (cover_envelope.c's top). Returns 1 when decided, 0 when it cannot
  * decide (no memory: nothing it added is wrong, the caller subdivides),
  * -1 when q is full (o->status set). Allocates only for its call. */
-int vbq_env_hull(vbq_env_ctx *c, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 top,
-                 double qs[5][3]);
+int vbq_env_hull(vbq_env_ctx *c, const vbq_arena *ar, vbq_cell_out *o, double qs[5][3]);
 
 #endif
