@@ -40,7 +40,9 @@
 typedef struct hull_tri {
     vbs_u32 v[3];
     vbs_u32 dead, seen;
+    int tri_i;         /* its 128-bit cofactors: 0 not made, 1 made, -1 too large */
     double f[4], fe[4];
+    vbq_i128 ci[4];
 } hull_tri;
 
 typedef struct hull {
@@ -72,6 +74,7 @@ static int hull_add(hull *h, vbs_u32 a, vbs_u32 b, vbs_u32 c)
     t->v[2] = c;
     t->dead = 0u;
     t->seen = 0u;
+    t->tri_i = 0;
     vbq_env_cofactors(h->c, a, b, c, t->f, t->fe);
     h->edge[a * h->np + b] = h->nt;
     h->edge[b * h->np + c] = h->nt;
@@ -100,11 +103,23 @@ static int hull_sign(hull *h, vbs_u32 t, const double *q, vbs_u32 m)
     int v = vbq_env_sign_rows(r0, r->f, r->fe);
     if (v)
         return v;
+    /* the context takes the triangle's cofactors (its doubles, and its
+     * 128-bit ones once made), and gives those back */
+    vbq_env_ctx *c = h->c;
     if (h->cur != t) {
-        h->c->tri_made = h->c->fast_made = 0;
+        if (h->cur != HULL_NONE && c->tri_i) {
+            h->t[h->cur].tri_i = c->tri_i;
+            memcpy(h->t[h->cur].ci, c->ci, sizeof c->ci);
+        }
+        memcpy(c->f, r->f, sizeof c->f);
+        memcpy(c->fe, r->fe, sizeof c->fe);
+        memcpy(c->ci, r->ci, sizeof c->ci);
+        c->tri_i = r->tri_i;
+        c->fast_made = 1;
+        c->tri_made = 0;
         h->cur = t;
     }
-    return vbq_env_sign_exact(h->c, q, m, r->v[0], r->v[1], r->v[2]);
+    return vbq_env_sign_exact(c, q, m, r->v[0], r->v[1], r->v[2]);
 }
 
 /* The first tetrahedron: the origin, label 0 and the first pair (x, y)
@@ -221,7 +236,7 @@ static int hull_face_write(hull *h, vbs_u32 t, const vbq_arena *ar, vbq_cell_out
                     continue;
                 if (k > 3u) {
                     /* collinear on the face: no vertex (0 is off the plane) */
-                    c->tri_made = c->fast_made = 0;
+                    c->tri_made = c->fast_made = c->tri_i = 0;
                     h->cur = HULL_NONE;
                     int s = vbq_env_sign_exact(c, NULL, o0, on[a], on[b], on[d]);
                     if (s == 2)

@@ -10,6 +10,7 @@
 
 #include "vb_cover_shared.h"
 #include "vb_spheres.h"
+#include "vbq_cluster.h"
 
 /* One label of the patch: its sphere (its exact row is made when the
  * first exact sign is asked). */
@@ -21,14 +22,16 @@ typedef struct vbq_env_rows {
     int made, zmade; /* rd made; row made (GMP) */
     vbs_u32 n;
     mpz_t (*row)[4]; /* n + 1 rows: the labels', then infinity's */
-    double (*rd)[4]; /* the rows in doubles (mpz_get_d: within 2u relative) */
+    double (*rd)[4]; /* the rows in doubles (within 2u relative) */
+    vbq_i128 (*ri)[4]; /* the rows in 128-bit integers, when ifits */
+    int ifits;
     mpz_t q[4], t;
 } vbq_env_rows;
 
 /* The decision of one patch, and the exact data of the triple at hand:
  * the cofactors C of the rows of j, k, l (det4[R0; j; k; l] = R0 . C) and
  * their doubles (made at the triple's first exact sign; a caller that
- * moves to another triple sets tri_made and fast_made to 0). */
+ * moves to another triple sets tri_made, fast_made and tri_i to 0). */
 typedef struct vbq_env_ctx {
     const vb_sphere_set *s;
     vbs_u32 i, n;
@@ -38,6 +41,8 @@ typedef struct vbq_env_ctx {
     mpz_t C[4], m2[6], acc;
     double c[4];
     double f[4], fe[4]; /* the cofactors from the rows' doubles, and their error bounds */
+    vbq_i128 ci[4];     /* the cofactors in 128 bits: tri_i 1 made, -1 they do not fit */
+    int tri_i;
     vbs_u32 exact_calls;
 } vbq_env_ctx;
 
@@ -48,6 +53,10 @@ typedef struct vbq_env_ctx {
  * decided (no memory). Counts itself in c->exact_calls. */
 int vbq_env_sign_exact(vbq_env_ctx *c, const double *q, vbs_u32 m, vbs_u32 j, vbs_u32 k,
                        vbs_u32 l);
+
+/* The integers of c made ready (GMP's lazily) and released. */
+void vbq_env_ctx_init(vbq_env_ctx *c);
+void vbq_env_ctx_free(vbq_env_ctx *c);
 
 /* The rows' doubles rd of c made (vbq_env_sign_exact makes them when
  * first asked). 0: no memory. */

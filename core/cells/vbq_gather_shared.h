@@ -46,10 +46,15 @@
 #define VBQ_ENV_STALL 1u
 #ifdef VBQ_GPU_FORM
 #define VBQ_ENV_OWNED 24u
-#else
-#define VBQ_ENV_OWNED 96u
-#endif
 #define VBQ_ENV_KEEP 96u
+#else
+#ifndef VBQ_ENV_OWNED
+#define VBQ_ENV_OWNED 1024u
+#endif
+#ifndef VBQ_ENV_KEEP
+#define VBQ_ENV_KEEP 1024u
+#endif
+#endif
 /* The kernels decide a due patch in doubles by testing every owned triple
  * (vbq_envelope_filter), cubic in the owned labels: a CPU device's kernel
  * hands a cell with a due patch of more owned labels than this to the host
