@@ -26,11 +26,28 @@ static int32_t env_emin(const vbq_env_ctx *c)
     return emin;
 }
 
+/* fn (mpz_init or mpz_clear) on every integer of the context but the rows. */
+static void env_ctx_each(vbq_env_ctx *c, void (*fn)(mpz_ptr))
+{
+    for (int a = 0; a < 4; a++) {
+        fn(c->X.q[a]);
+        fn(c->C[a]);
+    }
+    for (int a = 0; a < 6; a++)
+        fn(c->m2[a]);
+    fn(c->X.t);
+    fn(c->acc);
+}
+
 /* The integer rows (N_j, D_j) of the labels of the patch (see the top) in
  * GMP, and their doubles rd unless made already. */
 static int env_rows_mpz(vbq_env_ctx *c)
 {
     vbq_env_rows *X = &c->X;
+    if (!c->zinit) {
+        env_ctx_each(c, mpz_init);
+        c->zinit = 1;
+    }
     vbs_u32 n = c->n;
     const vb_decimal *col[3] = {c->s->ex, c->s->ey, c->s->ez};
     int32_t emin = env_emin(c);
@@ -141,19 +158,6 @@ static void env_rows_free(vbq_env_rows *X)
     free(X->row);
     free(X->rd);
     free(X->ri);
-}
-
-/* fn (mpz_init or mpz_clear) on every integer of the context but the rows. */
-static void env_ctx_each(vbq_env_ctx *c, void (*fn)(mpz_ptr))
-{
-    for (int a = 0; a < 4; a++) {
-        fn(c->X.q[a]);
-        fn(c->C[a]);
-    }
-    for (int a = 0; a < 6; a++)
-        fn(c->m2[a]);
-    fn(c->X.t);
-    fn(c->acc);
 }
 
 /* m2 index of the column pair (a, b), a < b; the pairs; the columns of C_x */
@@ -391,13 +395,9 @@ int vbq_env_sign_exact(vbq_env_ctx *c, const double *q, vbs_u32 m, vbs_u32 j, vb
 }
 
 
-void vbq_env_ctx_init(vbq_env_ctx *c)
-{
-    env_ctx_each(c, mpz_init);
-}
-
 void vbq_env_ctx_free(vbq_env_ctx *c)
 {
     env_rows_free(&c->X);
-    env_ctx_each(c, mpz_clear);
+    if (c->zinit)
+        env_ctx_each(c, mpz_clear);
 }

@@ -153,6 +153,8 @@ static int env_pair_apart(const vbq_nb *rj, const vbq_nb *rk, const double w[4][
 /* Equal decimals (values, whatever their exponents). */
 static int env_dec_equal(vb_decimal p, vb_decimal q)
 {
+    if (p.mant == q.mant && p.exp10 == q.exp10)
+        return 1;
     while (p.mant != 0 && p.mant % 10 == 0) {
         p.mant /= 10;
         p.exp10++;
@@ -228,7 +230,6 @@ int vbq_envelope_decide(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, 
     double qs[5][3];
     vbq_env_sides(e->T, fr, qs);
     vbq_env_ctx c = {.s = s, .i = i, .n = keep, .L = L};
-    vbq_env_ctx_init(&c);
     if (way == VBQ_ENV_AUTO)
         way = no > VBQ_ENV_HULL_OWNED ? VBQ_ENV_HULL : VBQ_ENV_TRIPLES;
     int rc = way == VBQ_ENV_HULL ? vbq_env_hull(&c, ar, o, qs)
@@ -243,7 +244,8 @@ int vbq_host_envelope(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vb
                       const vbq_frame *fr, vbs_u32 top, vbs_u32 keep, vbs_u32 owned, int act,
                       int closed)
 {
-    if (!vbq_envelope_due(e, fr, ar->nb, ar->lab + top, keep, owned, act, closed))
+    if (!vbq_envelope_due(e, fr, ar->nb, ar->lab + top, keep, owned, act, closed) ||
+        (owned <= VBQ_CLUSTER_OWNED && !vbq_envelope_sure(e, ar, i, fr, top, keep)))
         return 0;
     return vbq_envelope_decide(e, ar, o, i, fr, top, keep, VBQ_ENV_AUTO, NULL);
 }

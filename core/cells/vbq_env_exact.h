@@ -43,6 +43,7 @@ typedef struct vbq_env_ctx {
     double f[4], fe[4]; /* the cofactors from the rows' doubles, and their error bounds */
     vbq_i128 ci[4];     /* the cofactors in 128 bits: tri_i 1 made, -1 they do not fit */
     int tri_i;
+    int zinit;          /* the GMP integers (C, m2, acc, X.q, X.t) initialised */
     vbs_u32 exact_calls;
 } vbq_env_ctx;
 
@@ -54,8 +55,8 @@ typedef struct vbq_env_ctx {
 int vbq_env_sign_exact(vbq_env_ctx *c, const double *q, vbs_u32 m, vbs_u32 j, vbs_u32 k,
                        vbs_u32 l);
 
-/* The integers of c made ready (GMP's lazily) and released. */
-void vbq_env_ctx_init(vbq_env_ctx *c);
+/* What c allocated, released (its GMP integers are made when the first
+ * sign needs them). */
 void vbq_env_ctx_free(vbq_env_ctx *c);
 
 /* The rows' doubles rd of c made (vbq_env_sign_exact makes them when
