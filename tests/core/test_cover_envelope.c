@@ -1,5 +1,6 @@
 /* The exact envelope decision of a stalled near-tie chain
- * (vbq_envelope_decide, core/cells/cover_envelope.c) against a brute force
+ * (vbq_envelope_decide, core/cells/cover_envelope.c), both its ways (every
+ * owned triple; the convex hull, cover_env_hull.c), against a brute force
  * in exact rationals: for every owned triple, the point of the patch's face
  * where the three labels tie (a 2x2 system solved in GMP rationals), and
  * whether it lies in the square, has a positive value and no label above
@@ -327,8 +328,10 @@ int main(void)
         }
         vb_spheres_free(s);
     }
-    printf("%ld patches (%ld decided by the double filter alone), %ld quadruples, %ld exact signs\n",
-           n_cases, n_filtered, n_quads, n_exact);
+    printf("%ld patches (%ld decided by the double filter alone), %ld quadruples, %ld exact signs "
+           "(the hull's way: %ld)\n",
+           n_cases, n_filtered, n_quads, n_exact, n_hull_exact);
+    CHECK(n_hull_exact > 0); /* the hull met ties its filter could not place */
     CHECK(n_quads > 0);
     CHECK(n_filtered > 0 && n_filtered < n_cases);
     VB_TEST_END();
