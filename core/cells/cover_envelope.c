@@ -61,271 +61,32 @@
  * with D_j the integer differences of the decimals scaled to a common
  * exponent and N_j = |D_j|^2 > 0, infinity's is (1, 0, 0, 0) and a Q row is
  * (0, 2^p Q), integers in GMP. */
-#include <gmp.h>
 #include <math.h>
-#include <stdlib.h>
 
 #include "vb_cover_shared.h"
-#include "vb_decimal_mpz.h"
-
-/* One label of the patch: its sphere (its exact row is made when the
- * first exact sign is asked). */
-typedef struct env_lab {
-    vbs_u32 id;
-} env_lab;
-
-typedef struct env_exact {
-    int made;
-    vbs_u32 n;
-    mpz_t (*row)[4]; /* n + 1 rows: the labels', then infinity's */
-    double (*rd)[4]; /* the rows in doubles (mpz_get_d: within 2u relative) */
-    mpz_t q[4], t;
-} env_exact;
-
-/* The integer rows (N_j, D_j) of the labels of the patch (see the top). */
-static int env_exact_make(env_exact *X, const vb_sphere_set *s, vbs_u32 i, const env_lab *L,
-                          vbs_u32 n)
-{
-    const vb_decimal *col[3] = {s->ex, s->ey, s->ez};
-    int32_t emin = s->ex[i].exp10;
-    for (vbs_u32 k = 0; k <= n; k++) {
-        vbs_u32 j = k < n ? L[k].id : i;
-        for (int a = 0; a < 3; a++)
-            if (col[a][j].exp10 < emin)
-                emin = col[a][j].exp10;
-    }
-    X->row = malloc((size_t)(n + 1) * sizeof *X->row);
-    X->rd = malloc((size_t)(n + 1) * sizeof *X->rd);
-    if (!X->row || !X->rd) {
-        free(X->row);
-        free(X->rd);
-        return 0;
-    }
-    X->n = n;
-    mpz_t ci[3];
-    for (int a = 0; a < 3; a++)
-        mpz_init(ci[a]);
-    for (int a = 0; a < 3; a++)
-        vb_decimal_to_mpz(ci[a], col[a][i], emin, X->t);
-    for (vbs_u32 k = 0; k <= n; k++) {
-        for (int c = 0; c < 4; c++)
-            mpz_init(X->row[k][c]);
-        if (k == n) {
-            mpz_set_ui(X->row[k][0], 1);
-            continue;
-        }
-        for (int a = 0; a < 3; a++) {
-            vb_decimal_to_mpz(X->row[k][a + 1], col[a][L[k].id], emin, X->t);
-            mpz_sub(X->row[k][a + 1], X->row[k][a + 1], ci[a]);
-            mpz_addmul(X->row[k][0], X->row[k][a + 1], X->row[k][a + 1]);
-        }
-    }
-    for (vbs_u32 k = 0; k <= n; k++)
-        for (int c = 0; c < 4; c++)
-            X->rd[k][c] = mpz_get_d(X->row[k][c]);
-    for (int a = 0; a < 3; a++)
-        mpz_clear(ci[a]);
-    X->made = 1;
-    return 1;
-}
-
-static void env_exact_free(env_exact *X)
-{
-    if (!X->made)
-        return;
-    for (vbs_u32 k = 0; k <= X->n; k++)
-        for (int c = 0; c < 4; c++)
-            mpz_clear(X->row[k][c]);
-    free(X->row);
-    free(X->rd);
-}
-
-/* The decision of one patch, and the exact data of the triple at hand:
- * the cofactors C of the rows of j, k, l (det4[R0; j; k; l] = R0 . C) and
- * their doubles (made at the triple's first exact sign). */
-typedef struct env_ctx {
-    const vb_sphere_set *s;
-    vbs_u32 i, n;
-    env_lab *L;
-    env_exact X;
-    int tri_made, fast_made;
-    mpz_t C[4], m2[6], acc;
-    double c[4];
-    double f[4], fe[4]; /* the cofactors from the rows' doubles, and their error bounds */
-    vbs_u32 exact_calls;
-} env_ctx;
-
-/* fn (mpz_init or mpz_clear) on every integer of the context but the rows. */
-static void env_ctx_each(env_ctx *c, void (*fn)(mpz_ptr))
-{
-    for (int a = 0; a < 4; a++) {
-        fn(c->X.q[a]);
-        fn(c->C[a]);
-    }
-    for (int a = 0; a < 6; a++)
-        fn(c->m2[a]);
-    fn(c->X.t);
-    fn(c->acc);
-}
-
-/* m2 index of the column pair (a, b), a < b; the pairs; the columns of C_x */
-static const int mi[4][4] = {{-1, 0, 1, 2}, {0, -1, 3, 4}, {1, 3, -1, 5}, {2, 4, 5, -1}};
-static const int pr[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
-static const int cols[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
-
-/* The cofactors of env_tri_make in doubles, from the rows' doubles rd
- * (|rd - R| <= 2u |R|, mpz_get_d truncates), without GMP: f_x with
- * |f_x - C_x| <= fe_x. Why: C_x is a sum of six signed products of three
- * row entries; each computed term carries at most five roundings (the
- * product and the difference of m2, the product by row j, two additions:
- * gamma_5 <= 5.01u) and the inputs' errors (1 + 2u)^3 - 1 <= 6.01u, so
- * |f_x - C_x| <= 11.02u P_x (1 + 2u)^3 with P_x the sum of the six terms'
- * magnitudes; P_x is computed from the same doubles with at most five
- * roundings of non-negative terms, and fe_x = 16u P^_x covers all of it.
- * Overflow: coordinates below 2^63 at the common exponent give N below
- * 2^128, C below 2^260 and R0 . C below 2^390, far from the doubles' range;
- * larger rows (exponents far apart) may give infinities, and a non-finite
- * bound (or a NaN) fails the filter: the integers decide. */
-static void env_tri_fast(env_ctx *c, vbs_u32 j, vbs_u32 k, vbs_u32 l)
-{
-    const double *rk = c->X.rd[k], *rl = c->X.rd[l], *rj = c->X.rd[j];
-    double m2[6], a2[6];
-    for (int p = 0; p < 6; p++) {
-        double x = rk[pr[p][0]] * rl[pr[p][1]], y = rk[pr[p][1]] * rl[pr[p][0]];
-        m2[p] = x - y;
-        a2[p] = fabs(x) + fabs(y);
-    }
-    for (int x = 0; x < 4; x++) {
-        int a = cols[x][0], b = cols[x][1], d = cols[x][2];
-        double v = rj[a] * m2[mi[b][d]] - rj[b] * m2[mi[a][d]] + rj[d] * m2[mi[a][b]];
-        double g = fabs(rj[a]) * a2[mi[b][d]] + fabs(rj[b]) * a2[mi[a][d]] +
-                   fabs(rj[d]) * a2[mi[a][b]];
-        c->f[x] = x & 1 ? -v : v;
-        c->fe[x] = 16.0 * VBQ_U * g;
-    }
-    c->fast_made = 1;
-}
-
-/* The cofactors of rows j, k, l along the first row of det4[R0; j; k; l]:
- * C_x = (-1)^x det3(the three rows without column x), each det3 expanded
- * along row j over the 2x2 minors of rows k, l. */
-static void env_tri_make(env_ctx *c, vbs_u32 j, vbs_u32 k, vbs_u32 l)
-{
-    mpz_t *rk = c->X.row[k], *rl = c->X.row[l], *rj = c->X.row[j];
-    for (int p = 0; p < 6; p++) {
-        mpz_mul(c->m2[p], rk[pr[p][0]], rl[pr[p][1]]);
-        mpz_submul(c->m2[p], rk[pr[p][1]], rl[pr[p][0]]);
-    }
-    for (int x = 0; x < 4; x++) {
-        int a = cols[x][0], b = cols[x][1], d = cols[x][2];
-        mpz_mul(c->C[x], rj[a], c->m2[mi[b][d]]);
-        mpz_submul(c->C[x], rj[b], c->m2[mi[a][d]]);
-        mpz_addmul(c->C[x], rj[d], c->m2[mi[a][b]]);
-        if (x & 1)
-            mpz_neg(c->C[x], c->C[x]);
-        c->c[x] = mpz_get_d(c->C[x]);
-    }
-    c->tri_made = 1;
-}
-
-/* The exact sign of det[X; a_k - a_j; a_l - a_j] with X = a_m - a_j (m a
- * label, or n for infinity: a = 0) when q is NULL, else X = q (exact
- * doubles): -sign(R0 . C) (see the top). First in doubles: the factors are
- * within 2u relative of the integers (mpz_get_d truncates; q is exact, and
- * the positive scale 2^p of its row is left out), the four products and
- * their sum add at most 4.01u, so 16u of the sum of the magnitudes is
- * ample; then in integers. Returns 2 when it cannot be decided (no
- * memory). */
-static int env_sign_exact(env_ctx *c, const double *q, vbs_u32 m, vbs_u32 j, vbs_u32 k, vbs_u32 l)
-{
-    c->exact_calls++;
-    if (!c->X.made && !env_exact_make(&c->X, c->s, c->i, c->L, c->n))
-        return 2;
-    double r[4];
-    if (q) {
-        r[0] = 0.0;
-        for (int a = 0; a < 3; a++)
-            r[a + 1] = q[a];
-    } else {
-        for (int a = 0; a < 4; a++)
-            r[a] = c->X.rd[m][a];
-    }
-    /* First from the cofactors' doubles (env_tri_fast): with R0 the exact
-     * row (|r - R0| <= 2u |R0|; a q row is exact), |r . f - R0 . C| <=
-     * sum |r_a| (2.01u |f_a| + 1.01 fe_a), and forming r . f adds at most
-     * 4.01u sum |r_a f_a|: 8u of that sum and 1.01 of sum |r_a| fe_a, with
-     * 1 + 1e-12 for the bound's own roundings. Then the exact cofactors. */
-    if (!c->fast_made)
-        env_tri_fast(c, j, k, l);
-    double v = 0.0, g = 0.0, ge = 0.0;
-    for (int a = 0; a < 4; a++) {
-        v += r[a] * c->f[a];
-        g += fabs(r[a] * c->f[a]);
-        ge += fabs(r[a]) * c->fe[a];
-    }
-    double b = (8.0 * VBQ_U * g + 1.01 * ge) * (1.0 + 1e-12) + VBQ_TINY;
-    if (isfinite(b) && (v > b || v < -b))
-        return v > b ? -1 : 1;
-    if (!c->tri_made)
-        env_tri_make(c, j, k, l);
-    v = 0.0;
-    g = 0.0;
-    for (int a = 0; a < 4; a++) {
-        v += r[a] * c->c[a];
-        g += fabs(r[a] * c->c[a]);
-    }
-    b = 16.0 * VBQ_U * g * (1.0 + 1e-12) + VBQ_TINY;
-    if (isfinite(g) && (v > b || v < -b))
-        return v > b ? -1 : 1;
-    mpz_t *r0;
-    if (q) {
-        /* 2^p q in integers: a non-zero component is M 2^(ex - 53) with
-         * M = f 2^53 an integer (frexp), so p = max(53 - ex) makes every
-         * component an integer (they are 0, +-1 and +-u0). */
-        int ex[3], p = 0;
-        double f[3];
-        for (int a = 0; a < 3; a++) {
-            f[a] = frexp(q[a], &ex[a]);
-            if (q[a] != 0.0 && 53 - ex[a] > p)
-                p = 53 - ex[a];
-        }
-        for (int a = 0; a < 3; a++) {
-            mpz_set_d(c->X.q[a + 1], ldexp(f[a], 53));
-            if (q[a] != 0.0)
-                mpz_mul_2exp(c->X.q[a + 1], c->X.q[a + 1], (mp_bitcnt_t)(ex[a] - 53 + p));
-        }
-        mpz_set_ui(c->X.q[0], 0);
-        r0 = c->X.q;
-    } else {
-        r0 = c->X.row[m];
-    }
-    mpz_mul(c->acc, r0[0], c->C[0]);
-    for (int a = 1; a < 4; a++)
-        mpz_addmul(c->acc, r0[a], c->C[a]);
-    return -mpz_sgn(c->acc);
-}
+#include "vbq_env_exact.h"
 
 /* Is owned triple (j, k, l) a vertex of the envelope on the patch, every
  * sign exact (the triples vbq_env_triple's doubles could not decide)? 1
  * yes, 0 no, 2 undecided (out of memory). *last: the label that beat the
  * last triple (tried first). */
-static int env_triple(env_ctx *c, vbs_u32 j, vbs_u32 k, vbs_u32 l, double qs[5][3], vbs_u32 *last)
+static int env_triple(vbq_env_ctx *c, vbs_u32 j, vbs_u32 k, vbs_u32 l, double qs[5][3], vbs_u32 *last)
 {
-    c->tri_made = c->fast_made = 0;
+    c->tri_made = c->fast_made = c->tri_i = 0;
     /* sigma: the face's side of Y (qs[0] is n) */
-    int sg = env_sign_exact(c, qs[0], 0u, j, k, l);
+    int sg = vbq_env_sign_exact(c, qs[0], 0u, j, k, l);
     if (sg == 2 || sg == 0)
         return sg;
     /* the square: sigma Q . Y >= 0 for its four sides */
     for (int e = 1; e < 5; e++) {
-        int v = env_sign_exact(c, qs[e], 0u, j, k, l);
+        int v = vbq_env_sign_exact(c, qs[e], 0u, j, k, l);
         if (v == 2)
             return 2;
         if (sg * v < 0)
             return 0;
     }
     /* positive value: sigma a_j . Y > 0 (det[-a_j; ..] from infinity's row) */
-    int v = env_sign_exact(c, 0, c->n, j, k, l);
+    int v = vbq_env_sign_exact(c, 0, c->n, j, k, l);
     if (v == 2)
         return 2;
     if (-sg * v <= 0)
@@ -335,7 +96,7 @@ static int env_triple(env_ctx *c, vbs_u32 j, vbs_u32 k, vbs_u32 l, double qs[5][
         vbs_u32 m = t == 0 ? *last : t - 1u;
         if ((t > 0 && m == *last) || m >= c->n || m == j || m == k || m == l)
             continue;
-        v = env_sign_exact(c, 0, m, j, k, l);
+        v = vbq_env_sign_exact(c, 0, m, j, k, l);
         if (v == 2)
             return 2;
         if (sg * v > 0) {
@@ -392,6 +153,8 @@ static int env_pair_apart(const vbq_nb *rj, const vbq_nb *rk, const double w[4][
 /* Equal decimals (values, whatever their exponents). */
 static int env_dec_equal(vb_decimal p, vb_decimal q)
 {
+    if (p.mant == q.mant && p.exp10 == q.exp10)
+        return 1;
     while (p.mant != 0 && p.mant % 10 == 0) {
         p.mant /= 10;
         p.exp10++;
@@ -403,32 +166,20 @@ static int env_dec_equal(vb_decimal p, vb_decimal q)
     return p.mant == q.mant && (p.mant == 0 || p.exp10 == q.exp10);
 }
 
-int vbq_envelope_decide(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i,
-                        const vbq_frame *fr, vbs_u32 top, vbs_u32 keep, vbs_u32 *exact_calls)
+/* Every owned triple of the patch tested (env_triple's argument, the
+ * top): own[0 .. no) the owned labels' indices into c->L. Returns as
+ * vbq_envelope_decide. */
+static int env_triples(vbq_env_ctx *c, const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o,
+                       const vbq_frame *fr, vbs_u32 top, const vbs_u32 *own, vbs_u32 no,
+                       double qs[5][3])
 {
-    const vb_sphere_set *s = e->host;
-    if (!s || !s->ex || keep > VBQ_ENV_KEEP)
-        return 0;
-    env_lab L[VBQ_ENV_KEEP];
-    vbs_u32 own[VBQ_ENV_KEEP], no = 0;
-    for (vbs_u32 k = 0; k < keep; k++) {
-        vbq_nb r = ar->nb[ar->lab[top + k]];
-        if (!env_dec_equal(s->er[r.id], s->er[i]) || r.b != 0.0 || !(r.err < (double)INFINITY))
-            return 0;
-        L[k].id = r.id;
-        if (r.id > i)
-            own[no++] = k;
-    }
-    double qs[5][3];
-    vbq_env_sides(e->T, fr, qs);
-    env_ctx c = {.s = s, .i = i, .n = keep, .L = L};
-    env_ctx_each(&c, mpz_init);
     /* The pairs whose tie circle may meet the patch: a triple is tested
      * only when its three pairs are (env_pair_apart: speed only). */
     double w[4][3];
     env_corners(e->T, fr, w);
-    _Static_assert(VBQ_ENV_KEEP <= 128u, "meets: one bit per label in two words");
-    vbs_u64 meets[VBQ_ENV_KEEP][2] = {{0}};
+    vbs_u64 meets[VBQ_ENV_TRIPLES_MAX][2] = {{0}};
+    if (no > VBQ_ENV_TRIPLES_MAX)
+        return 0;
     const vbq_nb *nb = ar->nb;
     const vbs_u32 *lab = ar->lab + top;
     for (vbs_u32 a = 0; a < no; a++)
@@ -446,21 +197,46 @@ int vbq_envelope_decide(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, 
             for (vbs_u32 d = b + 1; d < no && rc == 1; d++) {
                 if (!(meets[a][d >> 6] >> (d & 63u) & 1u) || !(meets[b][d >> 6] >> (d & 63u) & 1u))
                     continue;
-                int v = vbq_env_triple(ar->nb, ar->lab + top, keep, own[a], own[b], own[d], qs,
-                                       &last);
+                int v = vbq_env_triple(ar->nb, lab, c->n, own[a], own[b], own[d], qs, &last);
                 if (v == 2)
-                    v = env_triple(&c, own[a], own[b], own[d], qs, &last);
+                    v = env_triple(c, own[a], own[b], own[d], qs, &last);
                 if (v == 2)
                     rc = 0;
-                else if (v == 1 &&
-                         !vbq_add_quad(ar, o, i, L[own[a]].id, L[own[b]].id, L[own[d]].id))
+                else if (v == 1 && !vbq_add_quad(ar, o, c->i, c->L[own[a]].id, c->L[own[b]].id,
+                                                 c->L[own[d]].id))
                     rc = -1;
             }
         }
+    return rc;
+}
+
+int vbq_envelope_decide(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i,
+                        const vbq_frame *fr, vbs_u32 top, vbs_u32 keep, int way,
+                        vbs_u32 *exact_calls)
+{
+    const vb_sphere_set *s = e->host;
+    if (!s || !s->ex || keep > VBQ_ENV_KEEP)
+        return 0;
+    vbq_env_lab L[VBQ_ENV_KEEP];
+    vbs_u32 own[VBQ_ENV_KEEP], no = 0;
+    for (vbs_u32 k = 0; k < keep; k++) {
+        vbq_nb r = ar->nb[ar->lab[top + k]];
+        if (!env_dec_equal(s->er[r.id], s->er[i]) || r.b != 0.0 || !(r.err < (double)INFINITY))
+            return 0;
+        L[k].id = r.id;
+        if (r.id > i)
+            own[no++] = k;
+    }
+    double qs[5][3];
+    vbq_env_sides(e->T, fr, qs);
+    vbq_env_ctx c = {.s = s, .i = i, .n = keep, .L = L};
+    if (way == VBQ_ENV_AUTO)
+        way = no > VBQ_ENV_HULL_OWNED ? VBQ_ENV_HULL : VBQ_ENV_TRIPLES;
+    int rc = way == VBQ_ENV_HULL ? vbq_env_hull(&c, ar, o, qs)
+                                 : env_triples(&c, e, ar, o, fr, top, own, no, qs);
     if (exact_calls)
         *exact_calls = c.exact_calls;
-    env_exact_free(&c.X);
-    env_ctx_each(&c, mpz_clear);
+    vbq_env_ctx_free(&c);
     return rc;
 }
 
@@ -468,7 +244,8 @@ int vbq_host_envelope(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vb
                       const vbq_frame *fr, vbs_u32 top, vbs_u32 keep, vbs_u32 owned, int act,
                       int closed)
 {
-    if (!vbq_envelope_due(e, fr, ar->nb, ar->lab + top, keep, owned, act, closed))
+    if (!vbq_envelope_due(e, fr, ar->nb, ar->lab + top, keep, owned, act, closed) ||
+        (owned <= VBQ_CLUSTER_OWNED && !vbq_envelope_sure(e, ar, i, fr, top, keep)))
         return 0;
-    return vbq_envelope_decide(e, ar, o, i, fr, top, keep, NULL);
+    return vbq_envelope_decide(e, ar, o, i, fr, top, keep, VBQ_ENV_AUTO, NULL);
 }

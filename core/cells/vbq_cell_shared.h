@@ -182,39 +182,6 @@ VBS_FN int vbq_tie_cluster(const VBS_GLOBAL vbq_nb *nb, const VBS_GLOBAL vbs_u32
     return vbq_looks_flat(nb, lab, keep, i);
 }
 
-/* Is a closed patch that would subdivide (act 1) a stalled near-tie chain
- * whose ownership the host decides exactly (vbq_host_envelope,
- * core/cells/cover_envelope.c): its list excluded nothing for
- * VBQ_ENV_STALL levels, it has more than VBQ_CLUSTER_OWNED (fewer enumerate
- * cheaply once stalled) and at most VBQ_ENV_OWNED owned labels, at most
- * VBQ_ENV_KEEP in all; or a deep leaf (act 3) with as many labels, whose
- * C(owned, 3) quadruples the decision replaces by the envelope's own
- * (near-ties at the doubles' resolution reach the deepest level: sc 1,728
- * jittered 1e-12 wrote 91,186 quadruples, 52,264 so),
- * every label's record has b exactly 0 and a finite error (spheres of the
- * base's radius in doubles; the host checks the decimals) and every vertex
- * is sought (no tangent-radius floor). The same answer on every backend:
- * a kernel decides such a patch with the double filter alone
- * (vbq_envelope_filter) and hands the cell to the host (status
- * VBQ_CLUSTER, like a tie cluster) only when a triple stays undecided, so
- * every backend writes the host's quadruples for it. */
-VBS_FN int vbq_envelope_due(const vbq_env *e, const vbq_frame *fr, const VBS_GLOBAL vbq_nb *nb,
-                            const VBS_GLOBAL vbs_u32 *lab, vbs_u32 keep, vbs_u32 owned, int act,
-                            int closed)
-{
-    if (!closed || (act != 1 && act != VBQ_ENV_DEEP_ACT) || owned <= VBQ_CLUSTER_OWNED ||
-        owned > VBQ_ENV_OWNED || keep > VBQ_ENV_KEEP ||
-        (act == 1 && (keep != fr->len || fr->stall + 1u < VBQ_ENV_STALL)) ||
-        e->tmax < (double)INFINITY)
-        return 0;
-    for (vbs_u32 a = 0u; a < keep; a++) {
-        vbq_nb r = nb[lab[a]];
-        if (r.b != 0.0 || !(r.err < (double)INFINITY))
-            return 0;
-    }
-    return 1;
-}
-
 /* The envelope decision of a due patch (vbq_envelope_due) with the double
  * filter alone (vbq_env_triple): adds the quadruples of every owned triple
  * of lab[top .. top + keep) that is a vertex of the envelope on the patch
@@ -323,10 +290,24 @@ int vbq_host_envelope(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vb
                       const vbq_frame *fr, vbs_u32 top, vbs_u32 keep, vbs_u32 owned, int act,
                       int closed);
 
-/* vbq_host_envelope that also counts the exact signs it took in
- * *exact_calls (NULL: not counted; the tests compare it). */
+/* The two ways of vbq_envelope_decide, which find the same quadruples:
+ * every owned triple tested (cubic in the owned labels), or the convex
+ * hull of the labels' points (core/cells/cover_env_hull.c); AUTO takes the
+ * hull above VBQ_ENV_HULL_OWNED owned labels. Measured (sc 2,744 jittered
+ * 1e-12, see papers/degenerate-input/results/twocore-stop46-sc.md). */
+#define VBQ_ENV_AUTO 0
+#define VBQ_ENV_TRIPLES 1
+#define VBQ_ENV_HULL 2
+#define VBQ_ENV_HULL_OWNED 8u
+#define VBQ_ENV_TRIPLES_MAX 128u /* the triples' pair table: one bit per label in two words */
+
+/* vbq_host_envelope by a given way (VBQ_ENV_*) that also counts the exact
+ * signs it took in *exact_calls (NULL: not counted; the tests compare
+ * them). Returns as vbq_host_envelope; the triples' way returns 0 for more
+ * than VBQ_ENV_TRIPLES_MAX owned labels. */
 int vbq_envelope_decide(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i,
-                        const vbq_frame *fr, vbs_u32 top, vbs_u32 keep, vbs_u32 *exact_calls);
+                        const vbq_frame *fr, vbs_u32 top, vbs_u32 keep, int way,
+                        vbs_u32 *exact_calls);
 
 /* vbq_host_cluster over the owned labels of the surviving list
  * lab[top .. top + keep) (their ids copied above it). */
@@ -555,10 +536,22 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
         /* A stalled near-tie chain (vbq_envelope_due; its first tests
          * here, the rest out of this loop): its envelope decided exactly at
          * once (a kernel decides in doubles, or hands the cell to the host). */
-        if (!cluster && ((act == 1 && keep == fr.len) || act == VBQ_ENV_DEEP_ACT) &&
-            owned > VBQ_CLUSTER_OWNED) {
+        if (!cluster && ((((act == 1 && keep == fr.len) || act == VBQ_ENV_DEEP_ACT) &&
+                          owned > VBQ_CLUSTER_OWNED) ||
+                         (owned >= 3u && VBQ_ENV_DEEP(act, &fr)))) {
 #ifdef __OPENCL_C_VERSION__
-            if (vbq_envelope_due(e, &fr, ar->nb, ar->lab + top, keep, owned, act, closed)) {
+            if (vbq_envelope_due(e, &fr, ar->nb, ar->lab + top, keep, owned, act, closed)
+#ifndef VBQ_GPU_FORM
+                && (owned > VBQ_CLUSTER_OWNED || vbq_envelope_sure(e, ar, i, &fr, top, keep))
+#endif
+            ) {
+#ifndef VBQ_GPU_FORM
+                /* past the cubic filter's limit: the host's hull decides */
+                if (owned > VBQ_ENV_FILTER_OWNED) {
+                    o->status = VBQ_CLUSTER;
+                    return;
+                }
+#endif
                 int he = vbq_envelope_filter(e, ar, o, i, &fr, top, keep);
                 if (he == 2)
                     o->status = VBQ_CLUSTER;

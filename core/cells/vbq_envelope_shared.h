@@ -1,8 +1,9 @@
 /* The direction cover, shared with the kernels (part of vb_cover_shared.h,
  * which includes it before vbq_cell_shared.h; include that header, never
- * this one): the double filter of the envelope decision of a stalled chain
- * (vbq_envelope_filter; the argument and the exact fallback are in
- * core/cells/cover_envelope.c). */
+ * this one): when a patch's envelope is decided at once (vbq_envelope_due)
+ * and the double filter of that decision (vbq_env_triple, used by
+ * vbq_envelope_filter; the argument and the exact fallback are in
+ * core/cells/cover_envelope.c, the hull's way in cover_env_hull.c). */
 #ifndef VBQ_ENVELOPE_SHARED_H
 #define VBQ_ENVELOPE_SHARED_H
 
@@ -98,5 +99,74 @@ VBS_FN int vbq_env_triple(const VBS_GLOBAL vbq_nb *nb, const VBS_GLOBAL vbs_u32 
     }
     return und ? 2 : 1;
 }
+
+/* Is a closed patch that would subdivide (act 1) a stalled near-tie chain
+ * whose ownership the host decides exactly (vbq_host_envelope,
+ * core/cells/cover_envelope.c): its list excluded nothing for
+ * VBQ_ENV_STALL levels, it has more than VBQ_CLUSTER_OWNED (fewer enumerate
+ * cheaply once stalled) and at most VBQ_ENV_OWNED_SHALLOW owned labels, at
+ * most VBQ_ENV_KEEP_SHALLOW in all; or a deep leaf (act 3) with as many labels, whose
+ * C(owned, 3) quadruples the decision replaces by the envelope's own
+ * (near-ties at the doubles' resolution reach the deepest level: sc 1,728
+ * jittered 1e-12 wrote 91,186 quadruples, 52,264 so); off a GPU
+ * (VBQ_ENV_DEEP) also a deep leaf or a patch past level VBQ_ENV_DEEP_LEVEL
+ * with 3 to VBQ_ENV_OWNED owned labels, at most VBQ_ENV_KEEP in all (a
+ * near-tie chain of few
+ * labels: sc 2,744 jittered 1e-12 wrote 40,339 quadruples at such leaves,
+ * 3,605 of them vertices, after ~40 levels of subdivision each),
+ * every label's record has b exactly 0 and a finite error (spheres of the
+ * base's radius in doubles; the host checks the decimals) and every vertex
+ * is sought (no tangent-radius floor). The same answer on every backend:
+ * a kernel decides such a patch with the double filter alone
+ * (vbq_envelope_filter) and hands the cell to the host (status
+ * VBQ_CLUSTER, like a tie cluster) only when a triple stays undecided, so
+ * every backend writes the host's quadruples for it. */
+VBS_FN int vbq_envelope_due(const vbq_env *e, const vbq_frame *fr, const VBS_GLOBAL vbq_nb *nb,
+                            const VBS_GLOBAL vbs_u32 *lab, vbs_u32 keep, vbs_u32 owned, int act,
+                            int closed)
+{
+    int deep = VBQ_ENV_DEEP(act, fr);
+    if (!closed || (act != 1 && act != VBQ_ENV_DEEP_ACT) || owned < 3u ||
+        (owned <= VBQ_CLUSTER_OWNED && !deep) ||
+        owned > (deep ? VBQ_ENV_OWNED : VBQ_ENV_OWNED_SHALLOW) ||
+        keep > (deep ? VBQ_ENV_KEEP : VBQ_ENV_KEEP_SHALLOW) ||
+        (act == 1 && !deep && (keep != fr->len || fr->stall + 1u < VBQ_ENV_STALL)) ||
+        e->tmax < (double)INFINITY)
+        return 0;
+    for (vbs_u32 a = 0u; a < keep; a++) {
+        vbq_nb r = nb[lab[a]];
+        if (r.b != 0.0 || !(r.err < (double)INFINITY))
+            return 0;
+    }
+    return 1;
+}
+
+#ifndef VBQ_GPU_FORM
+/* Does the double filter alone decide every owned triple of a due patch
+ * (vbq_envelope_filter would not return 2)? Adds nothing. A deep patch of
+ * few owned labels (VBQ_ENV_DEEP) is decided only then, on every backend:
+ * an exact crystal's ties there (every sign 0) gave the enumeration's
+ * quadruples at the cost of exact signs (fcc 1,372 exact 0.25 -> 0.27 s). */
+VBS_FN int vbq_envelope_sure(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, const vbq_frame *fr,
+                             vbs_u32 top, vbs_u32 keep)
+{
+    double qs[5][3];
+    vbq_env_sides(e->T, fr, qs);
+    const VBS_GLOBAL vbs_u32 *lab = ar->lab + top;
+    vbs_u32 last = 0u;
+    for (vbs_u32 a = 0u; a < keep; a++) {
+        if (ar->nb[lab[a]].id <= i)
+            continue;
+        for (vbs_u32 b = a + 1u; b < keep; b++) {
+            if (ar->nb[lab[b]].id <= i)
+                continue;
+            for (vbs_u32 d = b + 1u; d < keep; d++)
+                if (ar->nb[lab[d]].id > i && vbq_env_triple(ar->nb, lab, keep, a, b, d, qs, &last) == 2)
+                    return 0;
+        }
+    }
+    return 1;
+}
+#endif
 
 #endif

@@ -42,14 +42,28 @@
  * triples) and labels in all. Measured (cover alone, 1 thread, loaded 2 cores): jittered fcc
  * 10,976 4.86 s without, 4.73 s with; exact 5.88 s either way; no owned minimum 4.68 s jittered,
  * 6.37 s exact. 32 owned (24 on a GPU: VBQ_GPU_FORM) as the host skips pairs tying off the
- * patch: sc 2,744 jittered 1e-12 4.61 -> 4.29 s, sc 1,000 0.48 -> 0.48-0.53 (48: 3.8, 0.65). */
+ * patch: sc 2,744 jittered 1e-12 4.61 -> 4.29 s, sc 1,000 0.48 -> 0.48-0.53 (48: 3.8, 0.65).
+ * Off a GPU the hull decision (core/cells/cover_env_hull.c) takes 96 owned labels, and up to
+ * VBQ_ENV_OWNED and VBQ_ENV_KEEP at deep patches (VBQ_ENV_DEEP: a near-tie chain past level
+ * 20 of ~140 labels went on to level 47 on sc 2,744 jittered 1e-12; taking such lists at every
+ * level cost fcc 1,372 exact 0.25 -> 0.34 s, its exact ties many zero signs). */
 #define VBQ_ENV_STALL 1u
 #ifdef VBQ_GPU_FORM
+#define VBQ_ENV_OWNED_SHALLOW 24u
 #define VBQ_ENV_OWNED 24u
-#else
-#define VBQ_ENV_OWNED 32u
-#endif
 #define VBQ_ENV_KEEP 96u
+#else
+#define VBQ_ENV_OWNED_SHALLOW 96u
+#define VBQ_ENV_OWNED 1024u
+#define VBQ_ENV_KEEP 1024u
+#endif
+#define VBQ_ENV_KEEP_SHALLOW 96u
+/* The kernels decide a due patch in doubles by testing every owned triple
+ * (vbq_envelope_filter), cubic in the owned labels: a CPU device's kernel
+ * hands a cell with a due patch of more owned labels than this to the host
+ * (status VBQ_CLUSTER), whose hull decision takes the rest; a GPU's limit
+ * is lower (VBQ_ENV_OWNED). */
+#define VBQ_ENV_FILTER_OWNED 32u
 
 /* The bits of a frame's combo field. */
 #define VBQ_FR_COMBO 1u

@@ -1,5 +1,6 @@
 /* The exact envelope decision of a stalled near-tie chain
- * (vbq_envelope_decide, core/cells/cover_envelope.c) against a brute force
+ * (vbq_envelope_decide, core/cells/cover_envelope.c), both its ways (every
+ * owned triple; the convex hull, cover_env_hull.c), against a brute force
  * in exact rationals: for every owned triple, the point of the patch's face
  * where the three labels tie (a 2x2 system solved in GMP rationals), and
  * whether it lies in the square, has a positive value and no label above
@@ -177,7 +178,7 @@ static int cmp_quad(const void *p, const void *q)
     return 0;
 }
 
-static long n_cases, n_quads, n_exact, n_filtered;
+static long n_cases, n_quads, n_exact, n_filtered, n_hull_exact;
 
 /* The decision for cell `base` over every other sphere of s on patch (f,
  * level, iu, iv) of T = 2, against the brute force. */
@@ -213,21 +214,28 @@ static void check_patch(const vb_sphere_set *s, uint32_t base, uint32_t f, uint3
     fr.iu = iu;
     fr.iv = iv;
     fr.len = (uint32_t)n;
-    uint32_t exact = 0;
-    int rc = vbq_envelope_decide(&e, &ar, &o, base, &fr, 0u, (uint32_t)n, &exact);
-    CHECK_INT(rc, 1);
     double u0, u1, v0, v1;
     vbq_patch_square(2u, level, iu, iv, &u0, &u1, &v0, &v1);
     int nw = brute(s, base, ids, n, f, u0, u1, v0, v1, want);
     qsort(want, (size_t)nw, 4 * sizeof *want, cmp_quad);
-    CHECK_INT(o.nq, nw);
-    int same = (int)o.nq == nw;
-    for (int k = 0; same && k < 4 * nw; k++)
-        same = q[k] == want[k];
-    CHECK(same);
-    if (!same)
-        fprintf(stderr, "  cell %u face %u level %u (%llu, %llu): %u quadruples, brute %d\n", base,
-                f, level, (unsigned long long)iu, (unsigned long long)iv, o.nq, nw);
+    /* both ways (every owned triple; the hull), each against the brute
+     * force; the triples' way last, its list kept for the filter's check */
+    uint32_t exact = 0;
+    for (int way = VBQ_ENV_HULL; way >= VBQ_ENV_TRIPLES; way--) {
+        o = (vbq_cell_out){0};
+        int rc = vbq_envelope_decide(&e, &ar, &o, base, &fr, 0u, (uint32_t)n, way, &exact);
+        CHECK_INT(rc, 1);
+        CHECK_INT(o.nq, nw);
+        int same = (int)o.nq == nw;
+        for (int k = 0; same && k < 4 * nw; k++)
+            same = q[k] == want[k];
+        CHECK(same);
+        if (!same)
+            fprintf(stderr, "  %s: cell %u face %u level %u (%llu, %llu): %u quadruples, brute %d\n",
+                    way == VBQ_ENV_HULL ? "hull" : "triples", base, f, level,
+                    (unsigned long long)iu, (unsigned long long)iv, o.nq, nw);
+        n_hull_exact += way == VBQ_ENV_HULL ? exact : 0u;
+    }
     /* the kernels' double filter alone: when it decides, the same list */
     static uint32_t q2[4 * 4096];
     vbq_arena a2 = ar;
@@ -320,8 +328,10 @@ int main(void)
         }
         vb_spheres_free(s);
     }
-    printf("%ld patches (%ld decided by the double filter alone), %ld quadruples, %ld exact signs\n",
-           n_cases, n_filtered, n_quads, n_exact);
+    printf("%ld patches (%ld decided by the double filter alone), %ld quadruples, %ld exact signs "
+           "(the hull's way: %ld)\n",
+           n_cases, n_filtered, n_quads, n_exact, n_hull_exact);
+    CHECK(n_hull_exact > 0); /* the hull met ties its filter could not place */
     CHECK(n_quads > 0);
     CHECK(n_filtered > 0 && n_filtered < n_cases);
     VB_TEST_END();
