@@ -223,6 +223,27 @@ VBS_FN void vbq_sub_box(vbs_u32 f, double u0, double u1, double v0, double v1, v
     vbq_patch_box(f, a0, a1, b0, b1, m, h);
 }
 
+/* The outer radius of the next ring a patch fetches: out to the reach LO
+ * asks for, at most twice the present radius (LO grows with what is
+ * found); infinite once it passes the farthest centre. On the host and CPU
+ * devices, infinite at once where that reach is beyond VBQ_RING_JUMP times
+ * the farthest centre: a near-tie (a jittered crystal's face ball at its
+ * outward normal, LO ~ 1e-10) closes at no finite ring, and its doublings
+ * walked the tree four times, the growing list evaluated after each, for
+ * the same labels (LO stays tiny). Speed only: a ring takes every sphere
+ * that can reach the LO of some part, so either list is complete. */
+#define VBQ_RING_JUMP 1e3
+VBS_FN double vbq_ring_radius(double rq, double LO, double slack_i, double far)
+{
+    double want = LO > 0.0 ? (1.0 / LO) * (1.0 + 1e-8) + slack_i + 1e-9 * rq : (double)INFINITY;
+#ifndef VBQ_GPU_FORM
+    if (LO > 0.0 && want > VBQ_RING_JUMP * far)
+        return (double)INFINITY;
+#endif
+    double rq1 = want < 2.0 * rq ? want : 2.0 * rq;
+    return rq1 >= far ? (double)INFINITY : rq1;
+}
+
 /* Part g's lower envelope LO and the reach 1/(2 LO) of its bisectors. */
 VBS_FN void vbq_sub_set_lo(VBQ_SQ vbq_sub *sub, double LO)
 {
