@@ -497,7 +497,7 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
          * patch; the children share what it found. Fetching from deeper
          * levels makes each fetch smaller but repeats it in every child
          * (measured: level 2 is the cheaper on proteins and the capsid). */
-        if (!closed && fr.level >= VBQ_FETCH_LEVEL) {
+        if (!closed && fr.level >= VBQ_FETCH_LEVEL + vbq_near_tie(LO, far)) {
             double rq1 = vbq_ring_radius(fr.rq, LO, slack_i, far);
             if (top + fr.len > ar->lab_cap) {
                 o->status = VBQ_OVER_LAB;

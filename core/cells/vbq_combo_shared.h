@@ -220,7 +220,11 @@ VBS_FN int vbq_combo_beaten(const VBQ_CH vbq_champ *c, const vbq_nb *nj, const d
 {
     if (!(nj->err < (double)INFINITY))
         return 0;
-    double p[VBQ_CHAMP] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+#if defined(VBQ_WALK_V4)
+    double p[VBQ_CHAMP] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0}; /* the lanes read all six */
+#else
+    double p[VBQ_CHAMP];
+#endif
     for (vbs_u32 q = 0u; q < c->n; q++) {
         if (c->rec[q].id == nj->id)
             return 0;

@@ -1,8 +1,8 @@
 /* The direction cover, shared with the kernels (part of vb_cover_shared.h,
- * which includes it after the neighbours and the patches; include that
- * header, never this one): the tuning and statuses of the cover, a cell's
- * environment (the tree of the centres) and arenas, the parts of a
- * fetching patch, and the one tree walk every backend takes (vbq_walk). */
+ * which includes it after the neighbours, the patches and the rings; include
+ * that header, never this one): the tuning and statuses of the cover, a
+ * cell's environment (the tree of the centres) and arenas, and the one tree
+ * walk every backend takes (vbq_walk) through a fetching patch's parts. */
 #ifndef VBQ_GATHER_SHARED_H
 #define VBQ_GATHER_SHARED_H
 
@@ -187,68 +187,6 @@ VBS_FN double vbq_box_far2(const vbq_env *e, vbs_u32 nd, const double c[3])
         d2 += f * f;
     }
     return d2;
-}
-
-/* ---- ring fetches resolved by sub-patch --------------------------------
- * A fetching patch is split VBQ_SUB x VBQ_SUB; each part g gets its own box
- * and lower envelope LO_g from the list. A sphere can be a label somewhere
- * in the patch only if it can be one somewhere in some part, i.e. only if
- * it passes the query of some part: a far sharper test than the patch's
- * single LO where the cell's reach varies across the patch (exposed cells
- * facing a cavity). The address space of the parts' array is VBQ_SQ
- * (private by default; the group kernel keeps them in local memory). */
-#ifndef VBQ_SUB
-#define VBQ_SUB 2u
-#endif
-#define VBQ_NSUB (VBQ_SUB * VBQ_SUB)
-#ifndef VBQ_SQ
-#define VBQ_SQ
-#endif
-
-typedef struct vbq_sub {
-    double m[3], h[3];
-    double LO, sdist;
-} vbq_sub;
-
-/* Part g (row-major) of the square [u0,u1] x [v0,v1] on face f. */
-VBS_FN void vbq_sub_box(vbs_u32 f, double u0, double u1, double v0, double v1, vbs_u32 g,
-                        double m[3], double h[3])
-{
-    double du = (u1 - u0) / (double)VBQ_SUB, dv = (v1 - v0) / (double)VBQ_SUB;
-    vbs_u32 a = g % VBQ_SUB, b = g / VBQ_SUB;
-    /* The parts' edges are the patch's dyadic grid refined VBQ_SUB times:
-     * exact doubles, and the outer ones equal the patch's edges. */
-    double a0 = a == 0u ? u0 : u0 + du * (double)a, a1 = a + 1u == VBQ_SUB ? u1 : u0 + du * (double)(a + 1u);
-    double b0 = b == 0u ? v0 : v0 + dv * (double)b, b1 = b + 1u == VBQ_SUB ? v1 : v0 + dv * (double)(b + 1u);
-    vbq_patch_box(f, a0, a1, b0, b1, m, h);
-}
-
-/* The outer radius of the next ring a patch fetches: out to the reach LO
- * asks for, at most twice the present radius (LO grows with what is
- * found); infinite once it passes the farthest centre. On the host and CPU
- * devices, infinite at once where that reach is beyond VBQ_RING_JUMP times
- * the farthest centre: a near-tie (a jittered crystal's face ball at its
- * outward normal, LO ~ 1e-10) closes at no finite ring, and its doublings
- * walked the tree four times, the growing list evaluated after each, for
- * the same labels (LO stays tiny). Speed only: a ring takes every sphere
- * that can reach the LO of some part, so either list is complete. */
-#define VBQ_RING_JUMP 1e3
-VBS_FN double vbq_ring_radius(double rq, double LO, double slack_i, double far)
-{
-    double want = LO > 0.0 ? (1.0 / LO) * (1.0 + 1e-8) + slack_i + 1e-9 * rq : (double)INFINITY;
-#ifndef VBQ_GPU_FORM
-    if (LO > 0.0 && want > VBQ_RING_JUMP * far)
-        return (double)INFINITY;
-#endif
-    double rq1 = want < 2.0 * rq ? want : 2.0 * rq;
-    return rq1 >= far ? (double)INFINITY : rq1;
-}
-
-/* Part g's lower envelope LO and the reach 1/(2 LO) of its bisectors. */
-VBS_FN void vbq_sub_set_lo(VBQ_SQ vbq_sub *sub, double LO)
-{
-    sub->LO = LO;
-    sub->sdist = LO > 0.0 ? 0.5 / LO : (double)INFINITY;
 }
 
 /* ---- the tree walk --------------------------------------------------------
