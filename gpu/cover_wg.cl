@@ -276,7 +276,7 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
             double LO = wg_max(lmax, red);
             evals += (double)fr.len;
             int closed = vbq_closed(fr.rq, LO, slack_i);
-            if (!closed && fr.level >= VBQ_FETCH_LEVEL) {
+            if (!closed && fr.level >= VBQ_FETCH_LEVEL + vbq_near_tie(LO, far)) {
                 double rq1 = vbq_ring_radius(fr.rq, LO, slack_i, far);
                 if (top + fr.len > lab_cap) {
                     if (lane == 0u)

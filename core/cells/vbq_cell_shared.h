@@ -30,16 +30,6 @@ VBS_FN double vbq_floor(const vbq_env *e, vbs_u32 i)
     return e->tmax < (double)INFINITY ? 0.5 / (e->tmax + e->r[i]) * (1.0 - 1e-9) : 0.0;
 }
 
-/* The outer radius of the next ring a patch fetches: out to the reach LO
- * asks for, at most twice the present radius (LO grows with what is
- * found); infinite once it passes the farthest centre. */
-VBS_FN double vbq_ring_radius(double rq, double LO, double slack_i, double far)
-{
-    double want = LO > 0.0 ? (1.0 / LO) * (1.0 + 1e-8) + slack_i + 1e-9 * rq : (double)INFINITY;
-    double rq1 = want < 2.0 * rq ? want : 2.0 * rq;
-    return rq1 >= far ? (double)INFINITY : rq1;
-}
-
 /* What a closed patch with `keep` surviving labels (of `len`), `owned` of
  * them above the base, does: 0 nothing (fewer than three owned labels: no
  * vertex with smallest member i in P), 1 subdivide, 2 enumerate, 3
@@ -395,7 +385,7 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
          * patch; the children share what it found. Fetching from deeper
          * levels makes each fetch smaller but repeats it in every child
          * (measured: level 2 is the cheaper on proteins and the capsid). */
-        if (!closed && fr.level >= VBQ_FETCH_LEVEL) {
+        if (!closed && fr.level >= VBQ_FETCH_LEVEL + vbq_near_tie(LO, far)) {
             double rq1 = vbq_ring_radius(fr.rq, LO, slack_i, far);
             if (top + fr.len > ar->lab_cap) {
                 o->status = VBQ_OVER_LAB;

@@ -58,7 +58,12 @@ typedef struct vbq_champ {
     /* Per pair k < l of champions, in the order of vbq_combo_beaten's
      * loops: D = det(a_k, a_l, m) = a_k . w_l and 1e-290 |D|, made once
      * per round instead of once per label tested (the same doubles). */
-#ifndef VBQ_GPU_FORM
+#if defined(VBQ_WALK_V4)
+    /* ... on the host and CPU devices in the 16 lanes of vbq_pair_k/l (the
+     * loops' order for six champions, then a lane of none): 0 where there
+     * is no such pair, which the loop skips (D == 0) as it skips these. */
+    vbq_v4 vd[4], vf[4];
+#elif !defined(VBQ_GPU_FORM)
     double pd[VBQ_CHAMP * (VBQ_CHAMP - 1u) / 2u];
     double pf[VBQ_CHAMP * (VBQ_CHAMP - 1u) / 2u];
 #endif
@@ -72,6 +77,22 @@ VBS_FN double vbq_champ_det(const VBQ_CH vbq_champ *c, vbs_u32 k, vbs_u32 l)
     const VBQ_CH vbq_nb *rk = &c->rec[k];
     return (rk->ax * c->w[l][0] + rk->ay * c->w[l][1]) + rk->az * c->w[l][2];
 }
+
+#if defined(VBQ_WALK_V4)
+/* Lane t (0..15) of the pairs k < l of six champions in the loops' order
+ * ((0,1) .. (0,5), (1,2) .. (4,5)); lane 15 is none (l = 6). */
+VBS_FN vbs_u32 vbq_pair_k(vbs_u32 t)
+{
+    return t < 5u ? 0u : t < 9u ? 1u : t < 12u ? 2u : t < 14u ? 3u : t < 15u ? 4u : 5u;
+}
+
+VBS_FN vbs_u32 vbq_pair_l(vbs_u32 t)
+{
+    const vbs_u32 first[6] = {0u, 5u, 9u, 12u, 14u, 15u};
+    vbs_u32 k = vbq_pair_k(t);
+    return t < 15u ? k + 1u + (t - first[k]) : 6u;
+}
+#endif
 
 /* The champions of the labels lab[0 .. keep) over the patch (m, h): the
  * VBQ_CHAMP with the largest upper ends hi (vbq_eval), ties to the smaller
@@ -115,7 +136,18 @@ VBS_FN void vbq_champ_make(const VBS_GLOBAL vbq_nb *nb, const VBS_GLOBAL vbs_u32
         c->w[q][1] = r->az * m[0] - r->ax * m[2];
         c->w[q][2] = r->ax * m[1] - r->ay * m[0];
     }
-#ifndef VBQ_GPU_FORM
+#if defined(VBQ_WALK_V4)
+    double d[16], f[16];
+    for (vbs_u32 t = 0u; t < 16u; t++) {
+        vbs_u32 k = vbq_pair_k(t), l = vbq_pair_l(t);
+        d[t] = l < c->n ? vbq_champ_det(c, k, l) : 0.0;
+        f[t] = 1e-290 * VBS_FABS(d[t]);
+    }
+    for (vbs_u32 g = 0u; g < 4u; g++) {
+        c->vd[g] = VBQ_V4(d[4u * g], d[4u * g + 1u], d[4u * g + 2u], d[4u * g + 3u]);
+        c->vf[g] = VBQ_V4(f[4u * g], f[4u * g + 1u], f[4u * g + 2u], f[4u * g + 3u]);
+    }
+#elif !defined(VBQ_GPU_FORM)
     vbs_u32 np = 0u;
     for (vbs_u32 k = 0u; k < c->n; k++)
         for (vbs_u32 l = k + 1u; l < c->n; l++) {
@@ -126,6 +158,60 @@ VBS_FN void vbq_champ_make(const VBS_GLOBAL vbq_nb *nb, const VBS_GLOBAL vbs_u32
 #endif
 }
 
+#if defined(VBQ_WALK_V4)
+#ifdef __OPENCL_C_VERSION__
+#define VBQ_V4_STORE(v, a) vstore4((v), 0, (a))
+#else
+#define VBQ_V4_STORE(v, a)                \
+    do {                                  \
+        for (int l_ = 0; l_ < 4; l_++)    \
+            (a)[l_] = (v)[l_];            \
+    } while (0)
+#endif
+/* vbq_combo_beaten's pair loop on the host and CPU devices: the 15 pairs in
+ * the lanes of four vectors, each lane the loop's operations for its pair
+ * in the same order (no contraction), a lane that the loop skips or that
+ * fails its weights set to 2 (never below best); the least sum then taken
+ * in the loop's order, the first of equal ones, as the loop's strict < does.
+ * The same pair and weights, without the loop's unpredictable branches. */
+VBS_FN void vbq_combo_pairs4(const VBQ_CH vbq_champ *c, const double p[VBQ_CHAMP], double *best,
+                             double *bk, double *bl, vbs_u32 *kk, vbs_u32 *kl)
+{
+    double s[16], lkv[16], llv[16];
+    vbq_v4 pk[4] = {VBQ_V4(p[0], p[0], p[0], p[0]), VBQ_V4(p[0], p[1], p[1], p[1]),
+                    VBQ_V4(p[1], p[2], p[2], p[2]), VBQ_V4(p[3], p[3], p[4], 0.0)};
+    vbq_v4 pl[4] = {VBQ_V4(p[1], p[2], p[3], p[4]), VBQ_V4(p[5], p[2], p[3], p[4]),
+                    VBQ_V4(p[5], p[3], p[4], p[5]), VBQ_V4(p[4], p[5], p[5], 0.0)};
+    vbq_v4 zero = VBQ_V4_ALL(0.0), two = VBQ_V4_ALL(2.0);
+    for (vbs_u32 g = 0u; g < 4u; g++) {
+        vbq_v4 D = c->vd[g], fl = c->vf[g];
+        vbq_m4 pos = D > zero;
+        vbq_v4 sl = VBQ_V4_PICK(pos, pl[g], -pl[g]), sk = VBQ_V4_PICK(pos, -pk[g], pk[g]);
+        vbq_v4 al = VBQ_V4_ABS(pl[g]), ak = VBQ_V4_ABS(pk[g]);
+        vbq_m4 rej = ((sl < zero) & (al > 1e-5 * ak) & (al > fl)) |
+                     ((sk < zero) & (ak > 1e-5 * al) & (ak > fl)) | (D == zero);
+        vbq_v4 lk = pl[g] / D, ll = -pk[g] / D;
+        vbq_v4 tol = VBQ_COMBO_CLAMP * (VBQ_V4_ABS(lk) + VBQ_V4_ABS(ll));
+        lk = VBQ_V4_PICK((lk < zero) & (lk >= -tol), zero, lk);
+        ll = VBQ_V4_PICK((ll < zero) & (ll >= -tol), zero, ll);
+        vbq_v4 sum = lk + ll;
+        vbq_m4 ok = ~rej & (lk >= zero) & (ll >= zero) & (sum < two);
+        sum = VBQ_V4_PICK(ok, sum, two);
+        VBQ_V4_STORE(sum, s + 4u * g);
+        VBQ_V4_STORE(lk, lkv + 4u * g);
+        VBQ_V4_STORE(ll, llv + 4u * g);
+    }
+    for (vbs_u32 t = 0u; t < 15u; t++)
+        if (s[t] < *best) {
+            *best = s[t];
+            *bk = lkv[t];
+            *bl = llv[t];
+            *kk = vbq_pair_k(t);
+            *kl = vbq_pair_l(t);
+        }
+}
+#endif
+
 /* Is label nj beaten all over the patch (m, h) by a weighted sum of two
  * champions and LO (the argument at the top of this file)? 1 only when the
  * enclosure proves it. */
@@ -134,7 +220,11 @@ VBS_FN int vbq_combo_beaten(const VBQ_CH vbq_champ *c, const vbq_nb *nj, const d
 {
     if (!(nj->err < (double)INFINITY))
         return 0;
+#if defined(VBQ_WALK_V4)
+    double p[VBQ_CHAMP] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0}; /* the lanes read all six */
+#else
     double p[VBQ_CHAMP];
+#endif
     for (vbs_u32 q = 0u; q < c->n; q++) {
         if (c->rec[q].id == nj->id)
             return 0;
@@ -143,7 +233,11 @@ VBS_FN int vbq_combo_beaten(const VBQ_CH vbq_champ *c, const vbq_nb *nj, const d
     /* a_j = lk a_k + ll a_l off m: lk = det(a_j, a_l, m) / det(a_k, a_l, m),
      * ll = det(a_k, a_j, m) / det(a_k, a_l, m). */
     double best = 2.0, bk = 0.0, bl = 0.0;
-    vbs_u32 kk = 0u, kl = 0u, np = 0u; /* np: the pair's index in pd, pf */
+    vbs_u32 kk = 0u, kl = 0u;
+#if defined(VBQ_WALK_V4)
+    vbq_combo_pairs4(c, p, &best, &bk, &bl, &kk, &kl);
+#else
+    vbs_u32 np = 0u; /* np: the pair's index in pd, pf */
     for (vbs_u32 k = 0u; k < c->n; k++)
         for (vbs_u32 l = k + 1u; l < c->n; l++) {
 #ifndef VBQ_GPU_FORM
@@ -177,6 +271,7 @@ VBS_FN int vbq_combo_beaten(const VBQ_CH vbq_champ *c, const vbq_nb *nj, const d
                 kl = l;
             }
         }
+#endif
     /* lk + ll <= s (1 + u) <= s + 1.2e-16 for s = fl(lk + ll) <= 1; mu is
      * below 1 - s by more than that (two roundings of at most 1.2e-16). */
     if (!(best <= 1.0 - 4e-16))

@@ -1,8 +1,8 @@
 /* The direction cover, shared with the kernels (part of vb_cover_shared.h,
- * which includes it after the neighbours and the patches; include that
- * header, never this one): the tuning and statuses of the cover, a cell's
- * environment (the tree of the centres) and arenas, the parts of a
- * fetching patch, and the one tree walk every backend takes (vbq_walk). */
+ * which includes it after the neighbours, the patches and the rings; include
+ * that header, never this one): the tuning and statuses of the cover, a
+ * cell's environment (the tree of the centres) and arenas, and the one tree
+ * walk every backend takes (vbq_walk) through a fetching patch's parts. */
 #ifndef VBQ_GATHER_SHARED_H
 #define VBQ_GATHER_SHARED_H
 
@@ -201,47 +201,6 @@ VBS_FN double vbq_box_far2(const vbq_env *e, vbs_u32 nd, const double c[3])
         d2 += f * f;
     }
     return d2;
-}
-
-/* ---- ring fetches resolved by sub-patch --------------------------------
- * A fetching patch is split VBQ_SUB x VBQ_SUB; each part g gets its own box
- * and lower envelope LO_g from the list. A sphere can be a label somewhere
- * in the patch only if it can be one somewhere in some part, i.e. only if
- * it passes the query of some part: a far sharper test than the patch's
- * single LO where the cell's reach varies across the patch (exposed cells
- * facing a cavity). The address space of the parts' array is VBQ_SQ
- * (private by default; the group kernel keeps them in local memory). */
-#ifndef VBQ_SUB
-#define VBQ_SUB 2u
-#endif
-#define VBQ_NSUB (VBQ_SUB * VBQ_SUB)
-#ifndef VBQ_SQ
-#define VBQ_SQ
-#endif
-
-typedef struct vbq_sub {
-    double m[3], h[3];
-    double LO, sdist;
-} vbq_sub;
-
-/* Part g (row-major) of the square [u0,u1] x [v0,v1] on face f. */
-VBS_FN void vbq_sub_box(vbs_u32 f, double u0, double u1, double v0, double v1, vbs_u32 g,
-                        double m[3], double h[3])
-{
-    double du = (u1 - u0) / (double)VBQ_SUB, dv = (v1 - v0) / (double)VBQ_SUB;
-    vbs_u32 a = g % VBQ_SUB, b = g / VBQ_SUB;
-    /* The parts' edges are the patch's dyadic grid refined VBQ_SUB times:
-     * exact doubles, and the outer ones equal the patch's edges. */
-    double a0 = a == 0u ? u0 : u0 + du * (double)a, a1 = a + 1u == VBQ_SUB ? u1 : u0 + du * (double)(a + 1u);
-    double b0 = b == 0u ? v0 : v0 + dv * (double)b, b1 = b + 1u == VBQ_SUB ? v1 : v0 + dv * (double)(b + 1u);
-    vbq_patch_box(f, a0, a1, b0, b1, m, h);
-}
-
-/* Part g's lower envelope LO and the reach 1/(2 LO) of its bisectors. */
-VBS_FN void vbq_sub_set_lo(VBQ_SQ vbq_sub *sub, double LO)
-{
-    sub->LO = LO;
-    sub->sdist = LO > 0.0 ? 0.5 / LO : (double)INFINITY;
 }
 
 /* ---- the tree walk --------------------------------------------------------
