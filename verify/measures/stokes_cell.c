@@ -269,6 +269,8 @@ static int integrate_arcs(const vbm_atom_in *in, stokes_work *w, double tv, doub
     double tg[NV];
     tg[AREA] = scale * vbx_min(0.5 * ts / (rr * rr), 0.25 * tv / r3) / n;
     tg[VOL] = scale * 0.25 * tv / n;
+    vbm_owner o; /* the last region's constants: its arcs come one after another */
+    uint32_t oj = UINT32_MAX;
     for (size_t i = 0; i < w->nrec; i++) {
         arcrec *a = &w->rec[i];
         uint32_t j = a->j;
@@ -279,7 +281,10 @@ static int integrate_arcs(const vbm_atom_in *in, stokes_work *w, double tv, doub
                                                 : INFINITY;
         if (scale <= 1.0 && !vbm_arc_over(a->v, tg))
             continue;
-        if (!vbm_arc_integrate(in, w->D[j], a, tg, scale <= 1.0, pieces))
+        if (j != oj && !vbm_owner_make(in, j, w->D[j], &o))
+            return 0;
+        oj = j;
+        if (!vbm_arc_integrate(&o, a, tg, scale <= 1.0, pieces))
             return 0;
     }
     return 1;
