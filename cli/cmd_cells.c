@@ -48,7 +48,7 @@ static const char *const usage_text =
     "                   with atoms coloured by volume, SAS or contact area (a selector),\n"
     "                   a frame slider over --traj/--frames, the counts of each frame\n"
     "  --stats          atoms, patches, empty and loose counts, the time, the atoms\n"
-    "                   measured in closed form and the seconds per stage (every\n"
+    "                   measured in closed form and the CPU seconds per stage (every\n"
     "                   thread summed) on stderr\n"
     "  --periodic       the atoms repeated by the box of the file (GRO's last line, PDB's\n"
     "                   CRYST1) or --box: each atom once, its cell cut by the images\n"
@@ -128,7 +128,7 @@ typedef struct {
 /* --stats' second line: the seconds of each stage of the measures. */
 static void print_stages(const double *stage_s)
 {
-    fputs("cells stages (s, every thread summed):", stderr);
+    fputs("cells stages (CPU s, every thread summed):", stderr);
     for (int k = 0; k < VB_CELL_NSTAGE; k++)
         fprintf(stderr, " %s %.3f", vb_cell_stage_name[k], stage_s[k]);
     fputc('\n', stderr);

@@ -88,9 +88,9 @@ typedef struct vb_cell_measures {
                                       * others by direction patches */
     size_t nempty, nloose;
     int periodic;                    /* 1: a periodic run (contacts carry shifts) */
-    double stage_s[VB_CELL_NSTAGE];  /* opt->clock: seconds per stage, every thread summed
-                                      * (each thread's monotonic clock while it works on
-                                      * the stage: CPU seconds where no thread waits) */
+    double stage_s[VB_CELL_NSTAGE];  /* opt->clock: CPU seconds per stage, every thread
+                                      * summed (each atom's stages on the monotonic clock,
+                                      * scaled to the atom's CPU seconds) */
 } vb_cell_measures;
 
 /* Fills opt with the defaults (probe 1.4, tolerance 1e-6, no contacts). */
