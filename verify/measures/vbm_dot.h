@@ -46,7 +46,8 @@ static inline vbx_ia vbm_dotn_slow(const vbx_ia *a, ptrdiff_t sa, const vbx_ia *
 
 /* An enclosure of sum_{k<m} a[k sa] b[k sb] (strides in elements, either
  * sign; 0 <= m <= VBM_DOT_MAX). */
-static inline vbx_ia vbm_dotn(const vbx_ia *a, ptrdiff_t sa, const vbx_ia *b, ptrdiff_t sb, int m)
+static inline __attribute__((always_inline)) vbx_ia vbm_dotn(const vbx_ia *a, ptrdiff_t sa,
+                                                            const vbx_ia *b, ptrdiff_t sb, int m)
 {
     if (m <= 0)
         return vbx_ia_point(0.0);
