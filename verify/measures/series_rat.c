@@ -18,19 +18,6 @@ void vbm1_poly_mul(vbx_ia *r, const vbx_ia *f, int df, const vbx_ia *g, int dg)
     }
 }
 
-/* vbx_ia_mul([a, a], b) bit for bit: its corners a b.lo, a b.hi come
- * twice, and the least (greatest) of x, y, x, y is that of x, y under
- * vbx_min (vbx_max) whatever the NaNs (min(m, m) = m for the m =
- * min(x, y) both halves give). Two products and two comparisons where
- * the general product takes four and six: the pieces' series are moved to
- * a point (shift) most of the time. */
-static vbx_ia mul_point(double a, vbx_ia b)
-{
-    double p1 = a * b.lo, p2 = a * b.hi;
-    vbx_ia r = {vbx_pred(vbx_min(p1, p2)), vbx_succ(vbx_max(p1, p2))};
-    return r;
-}
-
 /* q(x) = p(at + x): Horner's scheme on the series of at + x, each step
  * r <- r (at + x) + p_k (synthetic division), exact in interval terms. */
 static void shift(vbx_ia *q, const vbx_ia *p, int d, vbx_ia at)
@@ -41,8 +28,8 @@ static void shift(vbx_ia *q, const vbx_ia *p, int d, vbx_ia at)
     if (at.lo == at.hi) { /* a point: the same bounds, fewer operations */
         for (int k = d - 1; k >= 0; k--) {
             for (int n = d - k; n >= 1; n--)
-                q[n] = vbx_ia_add(mul_point(at.lo, q[n]), q[n - 1]);
-            q[0] = vbx_ia_add(mul_point(at.lo, q[0]), p[k]);
+                q[n] = vbx_ia_add(vbm_ia_mul_point(at.lo, q[n]), q[n - 1]);
+            q[0] = vbx_ia_add(vbm_ia_mul_point(at.lo, q[0]), p[k]);
         }
         return;
     }

@@ -34,6 +34,20 @@
 
 #define VBM_DOT_MAX 16 /* the most terms the proof above allows */
 
+/* vbx_ia_mul([a, a], b) bit for bit: its corners a b.lo, a b.hi come
+ * twice, and the least (greatest) of x, y, x, y is that of x, y under
+ * vbx_min (vbx_max) whatever the NaNs (min(m, m) = m for the m =
+ * min(x, y) both halves give). Two products and two comparisons where
+ * the general product takes four and six: the pieces' series moved to a
+ * point (series_rat.c's shift), constant factors of series (vbm1_affine,
+ * vbm1_log's k r_k). */
+static inline vbx_ia vbm_ia_mul_point(double a, vbx_ia b)
+{
+    double p1 = a * b.lo, p2 = a * b.hi;
+    vbx_ia r = {vbx_pred(vbx_min(p1, p2)), vbx_succ(vbx_max(p1, p2))};
+    return r;
+}
+
 /* sum_{k<m} a[k sa] b[k sb], operation by operation (vbx_ia.h). */
 static inline vbx_ia vbm_dotn_slow(const vbx_ia *a, ptrdiff_t sa, const vbx_ia *b, ptrdiff_t sb,
                                    int m)
