@@ -47,8 +47,9 @@ static const char *const usage_text =
     "  --html FILE      a results page that opens offline in a browser: the molecule\n"
     "                   with atoms coloured by volume, SAS or contact area (a selector),\n"
     "                   a frame slider over --traj/--frames, the counts of each frame\n"
-    "  --stats          atoms, patches, empty and loose counts, the time and the atoms\n"
-    "                   measured in closed form on stderr\n"
+    "  --stats          atoms, patches, empty and loose counts, the time, the atoms\n"
+    "                   measured in closed form and the CPU seconds per stage (every\n"
+    "                   thread summed) on stderr\n"
     "  --periodic       the atoms repeated by the box of the file (GRO's last line, PDB's\n"
     "                   CRYST1) or --box: each atom once, its cell cut by the images\n"
     "                   too; contacts across the box name the second atom j@(dx,dy,dz)\n"
@@ -121,7 +122,17 @@ typedef struct {
     vb_page *page;
     const char *input;
     cells_prov prov; /* made on the first frame (its sphere count) */
+    double stage_s[VB_CELL_NSTAGE]; /* every frame's, summed */
 } frames_sink;
+
+/* --stats' second line: the seconds of each stage of the measures. */
+static void print_stages(const double *stage_s)
+{
+    fputs("cells stages (CPU s, every thread summed):", stderr);
+    for (int k = 0; k < VB_CELL_NSTAGE; k++)
+        fprintf(stderr, " %s %.3f", vb_cell_stage_name[k], stage_s[k]);
+    fputc('\n', stderr);
+}
 
 /* The tables' headers, on the first frame: the provenance, then the
  * column names (JSON: the array opens; each frame's object carries the
@@ -163,6 +174,8 @@ static int write_frame(void *arg, long frame, int model, const vb_sphere_set *se
     S->written++;
     S->atoms += m->n, S->patches += m->patches, S->nempty += m->nempty;
     S->nclosed += m->nclosed;
+    for (int k = 0; k < VB_CELL_NSTAGE; k++)
+        S->stage_s[k] += m->stage_s[k];
     S->nloose += m->nloose, S->ncontacts += m->ncontacts;
     return rc;
 }
@@ -176,7 +189,7 @@ static int run_frames(vb_ctx *ctx, const char *in_path, const char *traj,
                       const char *html)
 {
     vb_radii_table *radii = NULL;
-    frames_sink S = {ctx, NULL, NULL, json, 0, 0, 0, 0, 0, 0, 0, title, NULL, in_path, {{0}, ""}};
+    frames_sink S = {ctx, NULL, NULL, json, 0, 0, 0, 0, 0, 0, 0, title, NULL, in_path, {{0}, ""}, {0}};
     int rc = in->radii_path ? vb_radii_load(ctx, in->radii_path, &radii) : VB_OK;
     vb_read_options ro;
     vb_cli_input_read_options(in, radii, &ro);
@@ -211,6 +224,8 @@ static int run_frames(vb_ctx *ctx, const char *in_path, const char *traj,
                 "%.3f s (%.3f frames/s), %zu atoms in closed form\n",
                 frames, S.atoms, S.patches, S.nempty, S.nloose, S.ncontacts, t1 - t0,
                 t1 > t0 ? (double)frames / (t1 - t0) : 0.0, S.nclosed);
+    if (rc == VB_OK && stats)
+        print_stages(S.stage_s);
     vb_radii_free(radii);
     return rc;
 }
@@ -265,7 +280,7 @@ int vb_cmd_cells(int argc, char **argv)
                               ? -1
                               : (int)sz;
         } else if (strcmp(a, "--stats") == 0) {
-            stats = 1;
+            stats = opt.clock = 1;
         } else if (strcmp(a, "--json") == 0) {
             json = 1;
         } else if (strcmp(a, "--traj") == 0) {
@@ -355,6 +370,8 @@ int vb_cmd_cells(int argc, char **argv)
                 "cells: %zu atoms, %zu patches, %zu empty, %zu loose, %zu contacts, %.3f s, "
                 "%zu atoms in closed form\n",
                 m.n, m.patches, m.nempty, m.nloose, m.ncontacts, t1 - t0, m.nclosed);
+    if (rc == VB_OK && stats)
+        print_stages(m.stage_s);
     int exit_code = rc == VB_OK ? VB_EXIT_OK : vb_cli_fail(ctx, rc);
     vb_cell_measures_free(&m);
     vb_spheres_free(set);

@@ -29,6 +29,12 @@ expect_line contacts.tsv '^0	1	16\.328[0-9]*	'
 awk -F'\t' '!/^#/ && $1 != "id" && !($7 <= $6 && $6 <= $8 && $10 <= $9 && $9 <= $11) { exit 1 }' atoms.tsv ||
     fail "a value outside its enclosure"
 
+# --stats: the seconds per stage, every stage named (three closed-form
+# cells: nothing left to the patches), and the tables the same bytes
+run 0 log "$vorball" cells three.xyzr --tolerance 1e-4 -o st.tsv --contacts stc.tsv --stats
+expect_line log '^cells stages \(CPU s, every thread summed\): neighbours [0-9.]* caps [0-9.]* arrangement [0-9.]* integrals [0-9.]* patches 0\.000$'
+cmp -s atoms.tsv st.tsv && cmp -s contacts.tsv stc.tsv || fail "--stats changed a table"
+
 for case in contained_sphere internally_tangent hexagonal_ring; do
     run 0 log1 "$vorball" cells "$corpus/inputs/$case.xyzr" --tolerance 1e-2 --max-patches 2000 --threads 1 \
         -o "$case.1.tsv" --contacts "$case.c1.tsv"

@@ -30,20 +30,15 @@ static double width(vbx_ia a)
     return d == d ? d : INFINITY;
 }
 
-/* The per-neighbour constants of the integrands. */
-typedef struct owner {
-    vbx_ia D, delta, N, K; /* K = N^3 / (48 (D + delta)^2) */
-    vbx_ia rN, hN, kL, lnd; /* sqrt N, 1 / (2 N), delta^2 / (2 N sqrt N), log (2 |delta|) */
-    vbx_ia C, G1;           /* N^2 / (4 D), G(D + delta) */
-    vbm_s1 phi0;            /* phi's Taylor coefficients at y = 0 (contact_near) */
-    int contacts, near;     /* near: phi0 holds them */
-} owner;
+typedef vbm_owner owner;
 
 static int g_of(const owner *o, const vbm_s1 *q, vbm_s1 *G);
 static int phi_series(const owner *o, vbx_ia at, vbm_s1 *phi);
 
-static int owner_of(const vbm_nb *n, vbx_ia D, int contacts, owner *o)
+int vbm_owner_make(const vbm_atom_in *in, size_t j, vbx_ia D, vbm_owner *o)
 {
+    const vbm_nb *n = &in->nb[j];
+    int contacts = in->contacts && n->con; /* else the face's other atom integrates it */
     memset(o, 0, sizeof *o);
     o->D = D;
     o->delta = n->delta;
@@ -514,8 +509,8 @@ static vbx_ia own_angle(vbx_ia t0, vbx_ia t1)
     return vbx_ia_add(ang, ang);
 }
 
-int vbm_arc_integrate(const vbm_atom_in *in, vbx_ia D, vbm_arcrec *a, const double *tg,
-                      int again, size_t *pieces)
+int vbm_arc_integrate(const vbm_owner *o, vbm_arcrec *a, const double *tg, int again,
+                      size_t *pieces)
 {
     vbx_ia cm, sm;
     vbm_unit_at(0.5 * (a->tp + a->tq), &cm, &sm);
@@ -524,9 +519,8 @@ int vbm_arc_integrate(const vbm_atom_in *in, vbx_ia D, vbm_arcrec *a, const doub
         return 0;
     sums s = {{vbx_ia_point(0.0), vbx_ia_point(0.0), vbx_ia_point(0.0)}, 0};
     arcfun f;
-    int wantc = in->contacts && in->nb[a->j].con; /* else the face's other atom integrates it */
-    if (!owner_of(&in->nb[a->j], D, wantc, &f.o))
-        return 0;
+    int wantc = o->contacts;
+    f.o = *o;
     if (a->own) { /* z = c: F(c) times the angle 2 (atan t1 - atan t0) */
         vbx_ia ang = own_angle(t0, t1);
         vbx_ia omz = vbx_ia_sub(vbx_ia_point(1.0), a->c), F = vbx_ia_point(0.0);

@@ -274,8 +274,10 @@ static int circle_arcs(const vbm_cap *caps, const uint32_t *sel, size_t nsel, vb
     size_t ref = 0;
     for (size_t k = 0; k < ne; k++)
         wmax = vbx_max(wmax, vbx_max(ord[k]->x.hi - ord[k]->x.lo, ord[k]->y.hi - ord[k]->y.lo));
+    /* indices wrap by a comparison, not `%`: a division per end in each of
+     * three loops was ~1 % of the CPU (capsid, perf) */
     for (size_t k = 0; k < ne; k++) { /* the cyclic order, proven pair by pair */
-        const endpt *p = ord[k], *q = ord[(k + 1) % ne];
+        const endpt *p = ord[k], *q = ord[k + 1 < ne ? k + 1 : 0];
         double gap = (k + 1 < ne ? q->ang : q->ang + TWO_PI) - p->ang;
         if (!(gap > 4.0 * wmax + 1e-12))
             return 0;
@@ -294,16 +296,15 @@ static int circle_arcs(const vbm_cap *caps, const uint32_t *sel, size_t nsel, vb
      * consequence of the order just proven, where a sign at a point inside
      * the gap took an exact unit vector (a sine and a cosine) and an
      * interval sign per cap (3pqr, 1 thread: 4.6 M of them) */
-    for (size_t k = 0; k < ne; k++)
-        ord[k]->pos = (uint32_t)((k + ne - ref - 1) % ne);
+    for (size_t k = 0, pos = ne - ref - 1; k < ne; k++, pos = pos + 1 < ne ? pos + 1 : 0)
+        ord[k]->pos = (uint32_t)pos; /* (k + ne - ref - 1) mod ne */
     size_t inside = 0;
     for (size_t m = 0; m < nr; m++) {
         const rcache *c = &w->rc[w->rix[m]];
         inside += c->e.pos < c->s.pos;
     }
-    for (size_t i = 0; i < ne; i++) {
-        size_t k = (ref + i) % ne;
-        const endpt *p = ord[k], *q = ord[(k + 1) % ne];
+    for (size_t i = 0, k = ref; i < ne; i++, k = k + 1 < ne ? k + 1 : 0) { /* k = ref + i mod ne */
+        const endpt *p = ord[k], *q = ord[k + 1 < ne ? k + 1 : 0];
         if (i > 0)
             inside = p->start ? inside + 1 : inside - 1;
         double tq = k + 1 < ne ? q->ang : q->ang + TWO_PI;

@@ -6,6 +6,7 @@
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "vb_decimal_mpz.h"
 #include "vb_diag.h"
@@ -13,6 +14,9 @@
 #include "vb_parallel.h"
 #include "vbm_cell.h"
 #include "vbm_piece.h"
+
+const char *const vb_cell_stage_name[VB_CELL_NSTAGE] = {"neighbours", "caps", "arrangement",
+                                                        "integrals", "patches"};
 
 void vb_measure_defaults(vb_measure_options *opt)
 {
@@ -159,6 +163,9 @@ typedef struct job {
     size_t cap_nb[VB_MAX_THREADS];
     size_t patches[VB_MAX_THREADS];
     size_t stokes[VB_MAX_THREADS]; /* atoms measured by vbm_cell_stokes */
+    double clock[VB_MAX_THREADS][VB_CELL_NSTAGE]; /* opt->clock: CPU seconds per stage */
+    double lap[VB_MAX_THREADS][VB_CELL_NSTAGE];   /* the atom being measured: its wall
+                                                   * seconds per stage */
     int failed;
     vb_ctx *ctx;               /* where progress goes */
     atomic_size_t atoms_done;  /* atoms finished, every thread (progress) */
@@ -272,7 +279,10 @@ static void measure_atom(job *jb, size_t i, int tid)
 {
     vb_cell_measures *o = jb->out;
     size_t nnb = 0;
+    double *clock = jb->opt->clock ? jb->lap[tid] : NULL;
+    double t0 = clock ? vb_now() : 0.0;
     int e = jb->set->contained[i] ? 1 : neighbours(jb, i, tid, &nnb);
+    t0 = vbm_lap(clock, VB_CELL_NEIGHBOURS, t0);
     if (e < 0 || nnb >= 65536) {
         jb->failed = e < 0 ? VB_ENOMEM : VB_EINTERNAL;
         return;
@@ -284,8 +294,11 @@ static void measure_atom(job *jb, size_t i, int tid)
     vbm_atom_in in = {vbx_ia_add(widen(jb->set->r[i]), jb->probe), jb->nb[tid], nnb,
                       jb->opt->tolerance,
                       jb->opt->max_patches ? jb->opt->max_patches : VB_MEASURES_MAX_PATCHES,
-                      jb->opt->contacts};
+                      jb->opt->contacts, clock};
     vbm_atom_out r;
+    double timed = 0.0;
+    for (int k = 0; clock && k < VB_CELL_NSTAGE; k++)
+        timed -= clock[k];
     int st = jb->opt->patches ? 0 : vbm_cell_stokes(&in, &jb->sc[tid], &r);
     if (st < 0) {
         jb->failed = VB_ENOMEM;
@@ -295,6 +308,11 @@ static void measure_atom(job *jb, size_t i, int tid)
     if (st == 0 && vbm_cell_integrate(&in, &jb->sc[tid], &r) != VB_OK) {
         jb->failed = VB_ENOMEM;
         return;
+    }
+    if (clock && st == 0) { /* the patches, and the closed forms' work they replaced */
+        for (int k = 0; k < VB_CELL_NSTAGE; k++)
+            timed += clock[k];
+        clock[VB_CELL_PATCHES] += vb_now() - t0 - timed;
     }
     o->vol_lo[i] = vbx_max(r.vol.lo, 0.0);
     o->vol_hi[i] = r.vol.hi;
@@ -310,10 +328,30 @@ static void measure_atom(job *jb, size_t i, int tid)
     jb->npairs[i] = r.npairs;
 }
 
+/* This thread's CPU seconds so far. */
+static double thread_cpu(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
 static void one_atom(void *ctx, size_t i, int tid)
 {
     job *jb = ctx;
-    measure_atom(jb, i, tid);
+    if (!jb->opt->clock) {
+        measure_atom(jb, i, tid);
+    } else {
+        /* the stages on the monotonic clock (cheap), scaled to the atom's
+         * CPU seconds (a costlier clock, read twice per atom): a thread
+         * that waits for a core, on a loaded machine, counts no waiting */
+        memset(jb->lap[tid], 0, sizeof jb->lap[tid]);
+        double c0 = thread_cpu(), w0 = vb_now();
+        measure_atom(jb, i, tid);
+        double w = vb_now() - w0, f = w > 0.0 ? (thread_cpu() - c0) / w : 1.0;
+        for (int k = 0; k < VB_CELL_NSTAGE; k++)
+            jb->clock[tid][k] += f * jb->lap[tid][k];
+    }
     vbm_ia_release();
     atom_done(jb);
 }
@@ -509,6 +547,8 @@ int vb_cell_measures_compute_images(vb_ctx *ctx, const vb_sphere_set *set,
     for (int t = 0; t < VB_MAX_THREADS; t++) {
         out->patches += jb->patches[t];
         out->nclosed += jb->stokes[t];
+        for (int k = 0; k < VB_CELL_NSTAGE; k++)
+            out->stage_s[k] += jb->clock[t][k];
     }
     for (size_t i = 0; i < n; i++) {
         out->nempty += out->empty[i];

@@ -18,8 +18,12 @@ void vbm1_var(vbm_s1 *f, vbx_ia at)
 
 void vbm1_affine(vbm_s1 *r, vbx_ia v, const vbm_s1 *f, vbx_ia w)
 {
-    for (int k = 0; k <= VBM1_K; k++)
-        r->c[k] = vbx_ia_mul(v, f->c[k]);
+    if (v.lo == v.hi) /* a point (the contact's 1 and -2): the same bounds */
+        for (int k = 0; k <= VBM1_K; k++)
+            r->c[k] = vbm_ia_mul_point(v.lo, f->c[k]);
+    else
+        for (int k = 0; k <= VBM1_K; k++)
+            r->c[k] = vbx_ia_mul(v, f->c[k]);
     r->c[0] = vbx_ia_add(r->c[0], w);
 }
 
@@ -112,7 +116,7 @@ int vbm1_log(vbm_s1 *r, const vbm_s1 *f)
         vbx_ia s = vbm_dotn(&kr[1], 1, &f->c[n - 1], -1, n - 1);
         vbx_ia num = vbx_ia_sub(f->c[n], vbx_ia_mul(s, inv_int(n)));
         r->c[n] = vbx_ia_mul(num, if0);
-        kr[n] = vbx_ia_mul(vbx_ia_point((double)n), r->c[n]);
+        kr[n] = vbm_ia_mul_point((double)n, r->c[n]);
     }
     return 1;
 }

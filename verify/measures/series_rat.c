@@ -25,6 +25,14 @@ static void shift(vbx_ia *q, const vbx_ia *p, int d, vbx_ia at)
     for (int n = 0; n <= d; n++)
         q[n] = vbx_ia_point(0.0);
     q[0] = p[d];
+    if (at.lo == at.hi) { /* a point: the same bounds, fewer operations */
+        for (int k = d - 1; k >= 0; k--) {
+            for (int n = d - k; n >= 1; n--)
+                q[n] = vbx_ia_add(vbm_ia_mul_point(at.lo, q[n]), q[n - 1]);
+            q[0] = vbx_ia_add(vbm_ia_mul_point(at.lo, q[0]), p[k]);
+        }
+        return;
+    }
     for (int k = d - 1; k >= 0; k--) {
         for (int n = d - k; n >= 1; n--)
             q[n] = vbx_ia_add(vbx_ia_mul(at, q[n]), q[n - 1]);

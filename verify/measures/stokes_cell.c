@@ -37,6 +37,7 @@
 #include "vbm_dot.h"
 #include "vbm_cell.h"
 #include "vbm_share.h"
+#include "vb_measures.h"
 
 #define FLOOR_FRACTION 1e-3 /* as cell_patches.c */
 /* The first pass's contact targets: this many times each arc's share of
@@ -268,6 +269,8 @@ static int integrate_arcs(const vbm_atom_in *in, stokes_work *w, double tv, doub
     double tg[NV];
     tg[AREA] = scale * vbx_min(0.5 * ts / (rr * rr), 0.25 * tv / r3) / n;
     tg[VOL] = scale * 0.25 * tv / n;
+    vbm_owner o; /* the last region's constants: its arcs come one after another */
+    uint32_t oj = UINT32_MAX;
     for (size_t i = 0; i < w->nrec; i++) {
         arcrec *a = &w->rec[i];
         uint32_t j = a->j;
@@ -278,7 +281,10 @@ static int integrate_arcs(const vbm_atom_in *in, stokes_work *w, double tv, doub
                                                 : INFINITY;
         if (scale <= 1.0 && !vbm_arc_over(a->v, tg))
             continue;
-        if (!vbm_arc_integrate(in, w->D[j], a, tg, scale <= 1.0, pieces))
+        if (j != oj && !vbm_owner_make(in, j, w->D[j], &o))
+            return 0;
+        oj = j;
+        if (!vbm_arc_integrate(&o, a, tg, scale <= 1.0, pieces))
             return 0;
     }
     return 1;
@@ -336,6 +342,7 @@ int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
         return -1;
     stokes_work *w = sc->stokes;
     size_t m = in->nnb;
+    double t0 = in->clock ? vb_now() : 0.0;
     if (VB_ARRAY_FIT(w->D, w->cap_D, m + 1, 64) != VB_OK ||
         VB_ARRAY_FIT(w->act, w->cap_act, m + 1, 64) != VB_OK ||
         VB_ARRAY_FIT(w->caps, w->cap_caps, m + 1, 64) != VB_OK ||
@@ -375,6 +382,7 @@ int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
     for (size_t x = 0; x < na; x++) {
         uint32_t j = w->act[x].j;
         size_t nc = region_caps(in, w, na, x);
+        t0 = vbm_lap(in->clock, VB_CELL_CAPS, t0);
         if (nc == 0) {
             if (vbm_share_pending(&w->share, (uint32_t)x))
                 return 0; /* arcs of a region proven empty: leave it to the patches */
@@ -410,6 +418,7 @@ int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
             for (int k = 0; k < NV; k++) /* contacts() counts arcs before any is integrated */
                 r->v[k] = vbx_ia_point(0.0);
         }
+        t0 = vbm_lap(in->clock, VB_CELL_ARRANGE, t0);
     }
     /* every arc to a hundred times its share of the floors of the targets
      * (tolerance * max(|value|, floor), cell_patches.c), then the arcs wider
@@ -440,5 +449,6 @@ int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
             out->loose = 1;
     if (in->contacts && !pairs(in, w, out))
         return -1;
+    vbm_lap(in->clock, VB_CELL_INTEGRALS, t0);
     return 1;
 }

@@ -46,7 +46,20 @@ typedef struct vb_measure_options {
     int contacts_both;  /* nonzero (tests): each contact integrated from both atoms' sides
                          * and the two enclosures met (disjoint: VB_EINTERNAL); 0: from the
                          * side that writes it alone (vb_contact), half the work */
+    int clock;          /* nonzero: vb_cell_measures.stage_s timed (--stats) */
 } vb_measure_options;
+
+/* The stages of one atom's measures, timed with vb_measure_options.clock:
+ * the neighbours within reach (the grid and their exact differences); the
+ * caps of each neighbour's region (the active neighbours, their pair caps
+ * and circles); the arrangement (each region's boundary arcs, vbm_cap_arcs,
+ * and the arcs two regions share); the arcs' integrals (both passes and
+ * the sums); the patch integration of the atoms the closed forms leave. */
+enum { VB_CELL_NEIGHBOURS, VB_CELL_CAPS, VB_CELL_ARRANGE, VB_CELL_INTEGRALS, VB_CELL_PATCHES,
+       VB_CELL_NSTAGE };
+
+/* The stages' names as --stats prints them ("cells_<name>_s"). */
+extern const char *const vb_cell_stage_name[VB_CELL_NSTAGE];
 
 /* The contact of atoms i < j: the enclosure computed from i's side (with
  * contacts_both, met with the one from j's side). In a periodic run (vb_measure_images)
@@ -75,6 +88,9 @@ typedef struct vb_cell_measures {
                                       * others by direction patches */
     size_t nempty, nloose;
     int periodic;                    /* 1: a periodic run (contacts carry shifts) */
+    double stage_s[VB_CELL_NSTAGE];  /* opt->clock: CPU seconds per stage, every thread
+                                      * summed (each atom's stages on the monotonic clock,
+                                      * scaled to the atom's CPU seconds) */
 } vb_cell_measures;
 
 /* Fills opt with the defaults (probe 1.4, tolerance 1e-6, no contacts). */

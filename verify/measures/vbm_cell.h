@@ -7,6 +7,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "vb_parallel.h"
 #include "vbx_ia.h"
 
 /* A neighbour j of atom i, as enclosures of exact values: d = cj - ci,
@@ -34,7 +35,20 @@ typedef struct vbm_atom_in {
     double tolerance;     /* relative, see vb_measure_options */
     size_t max_patches;
     int contacts;         /* some nb[j].con is set: contact areas wanted */
+    double *clock;        /* NULL, or the seconds per stage (VB_CELL_*, vb_measures.h)
+                           * this thread adds to (vbm_lap) */
 } vbm_atom_in;
+
+/* Adds the time since t0 to clock[stage] and returns now (t0 of the next
+ * stage); nothing (0) when clock is NULL, the untimed run. */
+static inline double vbm_lap(double *clock, int stage, double t0)
+{
+    if (!clock)
+        return 0.0;
+    double t = vb_now();
+    clock[stage] += t - t0;
+    return t;
+}
 
 typedef struct vbm_atom_out {
     vbx_ia vol, sas;
