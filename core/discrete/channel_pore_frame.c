@@ -8,6 +8,7 @@
 #include "vb_array.h"
 #include "vb_parallel.h"
 #include "vbc_pore_frame.h"
+#include "vbc_walls.h"
 
 typedef struct {
     const vbc_grid *g;
@@ -605,8 +606,8 @@ void vbc_refine_bottlenecks(vbc_result *res, const vbc_cells *cells, double h)
 }
 
 int vbc_pore_stage(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const vb_sphere_set *s,
-                   const vbc_pore_request *req, double lining_tol, vbc_result *res,
-                   vbc_axis *found, vbc_pore_ms *ms)
+                   const vbc_pore_request *req, const vbc_walls_engine *walls,
+                   double lining_tol, vbc_result *res, vbc_axis *found, vbc_pore_ms *ms)
 {
     vbc_pore_ms t = {0.0, 0.0, 0.0, 0.0, 0.0};
     double t0 = vb_now();
@@ -636,7 +637,7 @@ int vbc_pore_stage(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const v
             v.is_pore = p.is_pore;
             v.buried = p.buried;
         } else if (rc == VB_OK && p.n > 0 && judge &&
-                   vbc_pore_judge(cells, &p, VBC_PORE_MIN_BURIED, &v) != 0) {
+                   vbc_pore_judge_on(walls, cells, &p, VBC_PORE_MIN_BURIED, &v) != 0) {
             rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "pore verdict");
         }
         t0 = vb_now();
