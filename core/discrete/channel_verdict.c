@@ -34,11 +34,11 @@ void vbc_plane_basis(const double u[3], double a[3], double b[3])
 int vbc_plane_walled(const vbc_cells *c, const double u[3], const double p[3], double r,
                      void **scratch, size_t *scratch_len)
 {
-    return vbc_plane_walled_raster(c, u, p, r, NULL, NULL, scratch, scratch_len);
+    return vbc_plane_walled_raster(c, u, p, r, -1, NULL, NULL, scratch, scratch_len);
 }
 
 int vbc_plane_walled_raster(const vbc_cells *c, const double u[3], const double p[3], double r,
-                            const uint32_t *blocked, const uint32_t *unsure, void **scratch,
+                            int m, const uint32_t *blocked, const uint32_t *unsure, void **scratch,
                             size_t *scratch_len)
 {
     double a[3], b[3];
@@ -106,12 +106,13 @@ int vbc_plane_walled_raster(const vbc_cells *c, const double u[3], const double 
             low[w] = -INFINITY;
             /* Inside the pore's own sphere the way is free; elsewhere a
              * pixel is free when no atom surface comes within the probe. */
-            if (x * x + y * y > rr * rr && blocked) {
+            if (x * x + y * y > rr * rr && blocked && abs(ii) <= m && abs(jj) <= m) {
                 /* The raster's answer; the cell list's where it is unsure. */
-                uint32_t m = 1u << (w & 31);
-                if (blocked[w >> 5] & m)
+                size_t rv = (size_t)(ii + m) * (size_t)(2 * m + 1) + (size_t)(jj + m);
+                uint32_t bit = 1u << (rv & 31);
+                if (blocked[rv >> 5] & bit)
                     continue;
-                if (unsure[w >> 5] & m) {
+                if (unsure[rv >> 5] & bit) {
                     double q[3], lw;
                     for (int d = 0; d < 3; d++)
                         q[d] = p[d] + x * a[d] + y * b[d];
@@ -168,7 +169,8 @@ static void judge_plane(void *ctx, size_t i, int tid)
     double at[3] = {q->x, q->y, q->z};
     const uint32_t *bl = B->R ? B->R->blocked + B->in->word0[k] : NULL;
     const uint32_t *un = B->R ? B->R->unsure + B->in->word0[k] : NULL;
-    B->walled[i] = (int8_t)vbc_plane_walled_raster(B->c, B->p->axis.u, at, q->r, bl, un,
+    int m = B->R ? B->in->half[k] : -1;
+    B->walled[i] = (int8_t)vbc_plane_walled_raster(B->c, B->p->axis.u, at, q->r, m, bl, un,
                                                    &B->scratch[tid], &B->len[tid]);
 }
 

@@ -20,6 +20,13 @@ int vbc_plane_raster_half(double r)
     return (int)ceil(reach / VBC_WALL_PIXEL);
 }
 
+int vbc_walls_window(double r)
+{
+    double rr = r > 0.0 ? r : 0.0;
+    int m = (int)ceil((rr + VBC_WALLS_WINDOW) / VBC_WALL_PIXEL), n = vbc_plane_raster_half(r);
+    return m < n ? m : n;
+}
+
 /* The error of the filter's t = |q - c|^2 - R2 (channel_walls_math.h) for
  * an atom it tests (|q - c|^2 at most far2 = F^2 in float), against the
  * exact value for the host's double pixel q_h = p + x a + y b. u = 2^-24;
@@ -104,7 +111,7 @@ int vbc_walls_prep(const vbc_cells *c, const vbc_pore *p, vbc_walls_input *in)
             H = fmax(H, fabs(at[d]));
         }
         in->planes[4 * k + 3] = 0.0f;
-        int n = vbc_plane_raster_half(q->r);
+        int n = vbc_walls_window(q->r);
         size_t side = (size_t)(2 * n + 1);
         in->half[k] = n;
         in->word0[k + 1] = in->word0[k] + (side * side + 31) / 32;

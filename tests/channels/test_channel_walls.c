@@ -20,15 +20,15 @@ static void mark(int32_t atom, void *user)
 }
 
 /* A cloud of n atoms in a cube of side L at `off`, radii 1 to 2 A, with a
- * tube of radius 5 A along z through its middle left empty. */
-static vb_sphere_set *hollow_cloud(size_t n, double L, double off, uint64_t seed)
+ * tube of radius `hole` A along z through its middle left empty. */
+static vb_sphere_set *hollow_cloud(size_t n, double L, double off, uint64_t seed, double hole)
 {
     vb_sphere_set *s = vb_test_spheres_alloc(n, 0);
     size_t m = 0;
     for (size_t i = 0; i < n; i++) {
         double x = L * synth_uniform(&seed), y = L * synth_uniform(&seed);
         double z = L * synth_uniform(&seed), r = 1.0 + synth_uniform(&seed);
-        if ((x - L / 2) * (x - L / 2) + (y - L / 2) * (y - L / 2) < 25.0)
+        if ((x - L / 2) * (x - L / 2) + (y - L / 2) * (y - L / 2) < hole * hole)
             continue;
         s->x[m] = x + off;
         s->y[m] = y + off;
@@ -39,8 +39,8 @@ static vb_sphere_set *hollow_cloud(size_t n, double L, double off, uint64_t seed
     return s;
 }
 
-/* A pore along a tilted axis through the tube: n planes 0.25 A apart. */
-static void tilted_pore(vbc_pore *p, double L, double off, double tilt, size_t n)
+/* A pore along a tilted axis through the tube: n planes ds A apart. */
+static void tilted_pore(vbc_pore *p, double L, double off, double tilt, size_t n, double ds)
 {
     memset(p, 0, sizeof *p);
     p->pts = calloc(n, sizeof *p->pts);
@@ -49,7 +49,7 @@ static void tilted_pore(vbc_pore *p, double L, double off, double tilt, size_t n
     for (int a = 0; a < 3; a++)
         p->axis.u[a] = u[a] / nu;
     for (size_t k = 0; k < n; k++) {
-        double t = -8.0 + 0.25 * (double)k;
+        double t = -8.0 + ds * (double)k;
         p->pts[k].x = off + L / 2 + t * p->axis.u[0] + 0.3 * (double)(k % 5);
         p->pts[k].y = off + L / 2 + t * p->axis.u[1] - 0.2 * (double)(k % 3);
         p->pts[k].z = off + t * p->axis.u[2];
@@ -100,11 +100,11 @@ static void test_sound(vb_ctx *ctx)
     const double offs[2] = {0.0, 3000.0};
     for (int o = 0; o < 2; o++)
         for (size_t atoms = 1500; atoms <= 3600; atoms += 700) {
-            vb_sphere_set *s = hollow_cloud(atoms, 30.0, offs[o], 5 + atoms);
+            vb_sphere_set *s = hollow_cloud(atoms, 30.0, offs[o], 5 + atoms, 2.0);
             vbc_cells *c = NULL;
             CHECK_INT(vbc_cells_build(ctx, s, 3.0, &c), VB_OK);
             vbc_pore p;
-            tilted_pore(&p, 30.0, offs[o], 0.05 * (double)(atoms % 7), 24);
+            tilted_pore(&p, 30.0, offs[o], 0.05 * (double)(atoms % 7), 30, 1.0);
             vbc_walls_input in;
             CHECK_INT(vbc_walls_prep(c, &p, &in), 0);
             vbc_walls_raster R;
@@ -179,7 +179,7 @@ static void test_judge(vb_ctx *ctx)
     vbc_cells *c = NULL;
     CHECK_INT(vbc_cells_build(ctx, tube, 3.0, &c), VB_OK);
     vbc_pore p;
-    tilted_pore(&p, 0.0, 0.0, 0.0, 200);
+    tilted_pore(&p, 0.0, 0.0, 0.0, 200, 0.25);
     for (size_t k = 0; k < p.n; k++) {
         p.pts[k].x = p.pts[k].y = 0.0;
         p.pts[k].z = p.pts[k].s = -25.0 + 0.25 * (double)k;
@@ -197,9 +197,9 @@ static void test_judge(vb_ctx *ctx)
     vbc_cells_free(c);
     vb_spheres_free(tube);
     for (size_t atoms = 900; atoms <= 4000; atoms += 310) {
-        vb_sphere_set *s = hollow_cloud(atoms, 36.0, 0.0, 11 + atoms);
+        vb_sphere_set *s = hollow_cloud(atoms, 36.0, 0.0, 11 + atoms, 5.0);
         CHECK_INT(vbc_cells_build(ctx, s, 3.0, &c), VB_OK);
-        tilted_pore(&p, 36.0, 0.0, 0.05 * (double)(atoms % 7), 120);
+        tilted_pore(&p, 36.0, 0.0, 0.05 * (double)(atoms % 7), 120, 0.25);
         for (int e = 0; e < 2; e++) {
             vbc_pore_verdict v0, v1;
             CHECK_INT(vbc_pore_judge(c, &p, enough[e], &v0), 0);
@@ -233,11 +233,11 @@ static void test_kernel(vb_ctx *ctx)
     size_t words_total = 0, differ = 0;
     for (int o = 0; o < 2 && E; o++) {
         double off = o ? 3000.0 : 0.0;
-        vb_sphere_set *s = hollow_cloud(2500, 30.0, off, 21 + (uint64_t)o);
+        vb_sphere_set *s = hollow_cloud(2500, 30.0, off, 21 + (uint64_t)o, 2.0);
         vbc_cells *c = NULL;
         CHECK_INT(vbc_cells_build(ctx, s, 3.0, &c), VB_OK);
         vbc_pore p;
-        tilted_pore(&p, 30.0, off, 0.1, 40);
+        tilted_pore(&p, 30.0, off, 0.1, 40, 0.75);
         vbc_walls_input in;
         CHECK_INT(vbc_walls_prep(c, &p, &in), 0);
         vbc_walls_raster R, G;

@@ -4,7 +4,8 @@
 # table, centrelines, profile and the JSON less its clocks, on the twin
 # (--device ref) at one and two threads, sequential and in flight, and on
 # the kernels (PoCL forced by 2, with the device's components and clearances: a GPU's
-# host analysis), over the 10-frame MD trajectory, 1chb at grid 128 and
+# host analysis; then with the pore verdict's rasters too, VORBALL_DEVICE_WALLS=2),
+# over the 10-frame MD trajectory, 1chb at grid 128 and
 # crambin, both with their cavities (the cavities' two plain waves).
 # usage: channel_paths.sh VORBALL CORPUS WORKDIR
 vorball=$1 corpus=$2 work=$3
@@ -52,6 +53,14 @@ for input in traj chb crn; do
     VORBALL_DEVICE_GRAPH=1 VORBALL_DEVICE_CLEARANCE=1 case_run "${input}_pocl" 2 2 2 --device cpu $args
     same "${input}_dij" "${input}_pocl"
     timed "${input}_pocl"
+    # The pore verdict's rasters on the kernel (vbc_walls.h, forced on PoCL
+    # by 2) as well: a GPU run's whole host side, at one and two threads.
+    for t in 1 2; do
+        # shellcheck disable=SC2086
+        VORBALL_DEVICE_WALLS=2 VORBALL_DEVICE_GRAPH=1 VORBALL_DEVICE_CLEARANCE=1 \
+            case_run "${input}_walls$t" 2 "$t" 2 --device cpu $args
+        same "${input}_dij" "${input}_walls$t"
+    done
 done
 [ "$(grep -c '"frame"' traj_dij.sj)" -eq 10 ] || fail "traj: $(grep -c '"frame"' traj_dij.sj) frames, expected 10"
 grep -q '"kind": "cavity"' chb_dij.sj || fail "1chb: no cavity traced"
