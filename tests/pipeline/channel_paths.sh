@@ -62,6 +62,14 @@ for input in traj chb crn; do
         same "${input}_dij" "${input}_walls$t"
     done
 done
+# A path that is no pore shows its buried length in W808 only: adenylate
+# kinase's (walled 0 A) judged from the kernel's rasters as from the cell list.
+for d in ref cpu; do
+    VORBALL_DEVICE_WALLS=2 VORBALL_THREADS=2 run 0 "adk_$d.log" "$vorball" channels --device "$d" \
+        "$corpus/data/adk_open.pdb.gz" -o "adk_$d.csv"
+    grep W808 "adk_$d.log" > "adk_$d.w808" || fail "adk_open ($d): no W808"
+done
+cmp -s adk_ref.w808 adk_cpu.w808 || fail "adk_open: W808 differs on the rasters: $(cat adk_cpu.w808)"
 [ "$(grep -c '"frame"' traj_dij.sj)" -eq 10 ] || fail "traj: $(grep -c '"frame"' traj_dij.sj) frames, expected 10"
 grep -q '"kind": "cavity"' chb_dij.sj || fail "1chb: no cavity traced"
 echo "channel_paths: ok"
