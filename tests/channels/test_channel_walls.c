@@ -94,6 +94,19 @@ static void twin(const vbc_walls_input *in, vbc_walls_raster *R)
     CHECK_INT(vbc_walls_raster_ref(in, R), VB_OK);
 }
 
+/* check_pixels on the twin's rasters of p against c. */
+static void check_twin(const vbc_cells *c, const vbc_pore *p, size_t count[3], size_t *wrong)
+{
+    vbc_walls_input in;
+    CHECK_INT(vbc_walls_prep(c, p, &in), 0);
+    vbc_walls_raster R;
+    twin(&in, &R);
+    check_pixels(c, p, &in, &R, count, wrong);
+    free(R.blocked);
+    free(R.unsure);
+    vbc_walls_input_free(&in);
+}
+
 static void test_sound(vb_ctx *ctx)
 {
     size_t count[3] = {0, 0, 0}, wrong = 0;
@@ -105,14 +118,7 @@ static void test_sound(vb_ctx *ctx)
             CHECK_INT(vbc_cells_build(ctx, s, 3.0, &c), VB_OK);
             vbc_pore p;
             tilted_pore(&p, 30.0, offs[o], 0.05 * (double)(atoms % 7), 30, 1.0);
-            vbc_walls_input in;
-            CHECK_INT(vbc_walls_prep(c, &p, &in), 0);
-            vbc_walls_raster R;
-            twin(&in, &R);
-            check_pixels(c, &p, &in, &R, count, &wrong);
-            free(R.blocked);
-            free(R.unsure);
-            vbc_walls_input_free(&in);
+            check_twin(c, &p, count, &wrong);
             vbc_pore_free(&p);
             vbc_cells_free(c);
             vb_spheres_free(s);
@@ -147,19 +153,12 @@ static void test_ties(vb_ctx *ctx)
     p.n = 1;
     p.axis.u[2] = 1.0;
     p.pts[0].x = p.pts[0].y = 10.0;
-    vbc_walls_input in;
-    CHECK_INT(vbc_walls_prep(c, &p, &in), 0);
-    vbc_walls_raster R;
-    twin(&in, &R);
     size_t count[3] = {0, 0, 0}, wrong = 0;
-    check_pixels(c, &p, &in, &R, count, &wrong);
+    check_twin(c, &p, count, &wrong);
     CHECK_INT((int)wrong, 0);
     /* Each atom has pixels exactly 2 A away (e.g. (0, 0) for the first,
      * (0, 2.5) for the second): those are unsure. */
     CHECK(count[VBC_WALLS_UNSURE] >= 4);
-    free(R.blocked);
-    free(R.unsure);
-    vbc_walls_input_free(&in);
     vbc_pore_free(&p);
     vbc_cells_free(c);
     vb_spheres_free(s);
