@@ -323,9 +323,50 @@ static int membrane_defers(vbc_axis *cand, int *force, int nc)
     return nc;
 }
 
+/* The refinement of the discrete channels running beside the pore's
+ * search (vbc_pore_stage): find waits for it only where it reads the
+ * channels, at the candidate of the widest through channel. */
+typedef struct {
+    vbc_result *res;
+    const vbc_cells *cells;
+    double h;
+    double ms;       /* its wall time */
+    int running;     /* started on a thread of its own, not joined yet */
+    vb_jobs th;
+} refine_job;
+
+static void *refine_job_run(void *arg)
+{
+    refine_job *R = arg;
+    double t0 = vb_now();
+    vbc_refine_bottlenecks(R->res, R->cells, R->h);
+    R->ms = 1e3 * (vb_now() - t0);
+    return NULL;
+}
+
+/* The refinement done (joined when it ran beside). NULL: nothing runs. */
+static void refine_wait(refine_job *R)
+{
+    if (R && R->running) {
+        vb_jobs_join(&R->th);
+        R->running = 0;
+    }
+}
+
+static int pore_find(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const vbc_cells *cells,
+                     const vb_sphere_set *s, const vbc_result *res, const vbc_pore_request *req,
+                     refine_job *refine, vbc_pore *out);
+
 int vbc_pore_find(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const vbc_cells *cells,
                   const vb_sphere_set *s, const vbc_result *res, const vbc_pore_request *req,
                   vbc_pore *out)
+{
+    return pore_find(ctx, g, flags, cells, s, res, req, NULL, out);
+}
+
+static int pore_find(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const vbc_cells *cells,
+                     const vb_sphere_set *s, const vbc_result *res, const vbc_pore_request *req,
+                     refine_job *refine, vbc_pore *out)
 {
     memset(out, 0, sizeof *out);
     mask_view M = {g, flags};
@@ -367,8 +408,15 @@ int vbc_pore_find(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const vb
     if (!(nc > membrane && force[membrane]) && vbc_axis_barrel(s, NULL, &cand[nc]))
         nc++;
     /* Across a membrane no channel or principal axis: the normal stays. */
-    if (!membrane && channel_axis(res, &cand[nc]))
-        nc++;
+    /* The widest through channel's candidate is made where the loop
+     * reaches it (the refinement moves the points it reads): a slot held
+     * here, dropped there when there is no such channel. */
+    int channel_at = -1;
+    if (!membrane) {
+        memset(&cand[nc], 0, sizeof cand[nc]);
+        cand[nc].source = VBC_AXIS_CHANNEL;
+        channel_at = nc++;
+    }
     if (!membrane) {
         vbc_axis_principal(s, &cand[nc]);
         nc += 3;
@@ -386,6 +434,13 @@ int vbc_pore_find(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const vb
     for (int k = 0; k < nc; k++) {
         vbc_pore p;
         int rc;
+        if (k == channel_at) {
+            refine_wait(refine);
+            if (!channel_axis(res, &cand[k]))
+                continue;
+            if (req->have_through)
+                memcpy(cand[k].c, req->c, sizeof req->c);
+        }
         if (k < first_principal && cand[k].source == VBC_AXIS_BARREL && !req->have_through) {
             if ((rc = barrel_pore(ctx, cells, s, &cand[k], req, &M, &p)) != VB_OK) {
                 vbc_pore_free(out);
@@ -617,14 +672,24 @@ int vbc_pore_stage(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const v
         return rc;
     double t1 = vb_now();
     t.cells = 1e3 * (t1 - t0);
-    vbc_refine_bottlenecks(res, cells, g->h);
+    /* The refinement moves the discrete channels' points, which the pore's
+     * search reads only at the through channel's candidate (it waits for
+     * it there) and the table's steps after the verdict: with threads to
+     * spare (vbc_pore_threads' rule) it runs beside the search. */
+    refine_job R = {res, cells, g->h, 0.0, 0, {0}};
+    int beside = req && req->enabled && vb_threads(0) >= VBC_PORE_MIN_THREADS;
+    if (beside) {
+        vb_jobs_start(&R.th, refine_job_run, &R, sizeof R, 1);
+        R.running = 1;
+    } else {
+        refine_job_run(&R);
+    }
     t0 = vb_now();
-    t.refine = 1e3 * (t0 - t1);
     if (found)
         memset(found, 0, sizeof *found);
     if (req && req->enabled) {
         vbc_pore p;
-        rc = vbc_pore_find(ctx, g, flags, cells, s, res, req, &p);
+        rc = pore_find(ctx, g, flags, cells, s, res, req, &R, &p);
         t1 = vb_now();
         t.sweep = 1e3 * (t1 - t0);
         /* A path along an axis the user gave is reported as it is; a found
@@ -642,6 +707,7 @@ int vbc_pore_stage(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const v
         }
         t0 = vb_now();
         t.verdict = 1e3 * (t0 - t1);
+        refine_wait(&R);
         if (rc == VB_OK && p.n > 0 && v.is_pore) {
             rc = vbc_result_add_pore(ctx, res, &p, cells, lining_tol);
             if (found)
@@ -654,6 +720,8 @@ int vbc_pore_stage(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const v
         }
         vbc_pore_free(&p);
     }
+    refine_wait(&R);
+    t.refine = R.ms;
     if (rc == VB_OK)
         vbc_rank(res);
     vbc_cells_free(cells);
