@@ -7,6 +7,7 @@
 #include "vb_parallel.h"
 #include "vbc_channel_gpu.h"
 #include "vbc_paths.h"
+#include "vbc_walls.h"
 
 struct vbc_gpu {
     vbg_runtime *rt;
@@ -391,6 +392,7 @@ done:
 typedef struct {
     vbc_gpu *gpu;
     vbc_paths_gpu *paths;
+    vbc_walls_gpu *walls;
 } engine_state;
 
 static int engine_frame(vb_ctx *ctx, vbc_engine *e, const vbc_grid *g, const float *atoms4,
@@ -405,6 +407,7 @@ static void engine_close(vbc_engine *e)
     engine_state *st = e->state;
     vbc_gpu_close(st->gpu);
     vbc_paths_gpu_close(st->paths);
+    vbc_walls_gpu_close(st->walls);
     free(st);
     free(e);
 }
@@ -425,7 +428,12 @@ int vbg_channels_open(vb_ctx *ctx, vbg_runtime *rt, vbj_variant variant, vbc_eng
     int paths = vbc_paths_mode();
     if (rc == VB_OK && (paths == 2 || (paths == 1 && vbg_runtime_is_gpu(rt))))
         rc = vbc_paths_gpu_open(ctx, rt, &st->paths);
+    /* The verdict's rasters likewise (vbc_walls_mode). */
+    int walls = vbc_walls_mode();
+    if (rc == VB_OK && (walls == 2 || (walls == 1 && vbg_runtime_is_gpu(rt))))
+        rc = vbc_walls_gpu_open(ctx, rt, &st->walls);
     if (rc != VB_OK) {
+        vbc_paths_gpu_close(st->paths);
         vbc_gpu_close(st->gpu);
         free(st);
         free(e);
@@ -433,6 +441,7 @@ int vbg_channels_open(vb_ctx *ctx, vbg_runtime *rt, vbj_variant variant, vbc_eng
     }
     e->state = st;
     e->paths = vbc_paths_gpu_engine(st->paths);
+    e->walls = vbc_walls_gpu_engine(st->walls);
     e->name = "opencl";
     snprintf(e->device, sizeof e->device, "%s", vbg_runtime_device_name(rt));
     e->frame = engine_frame;

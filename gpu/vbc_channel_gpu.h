@@ -46,6 +46,15 @@ int vbc_paths_gpu_open(vb_ctx *ctx, vbg_runtime *rt, vbc_paths_gpu **out);
 const struct vbc_paths_engine *vbc_paths_gpu_engine(const vbc_paths_gpu *P);
 void vbc_paths_gpu_close(vbc_paths_gpu *P);
 
+/* The pore verdict's rasters (core/discrete/vbc_walls.h) on a runtime
+ * (borrowed): gpu/channel_walls.cl, on a command queue of their own.
+ * vbc_walls_gpu_engine gives its engine table (NULL for NULL); one lock
+ * serves frames from several threads. VB_EDEVICE / VB_ENOMEM. */
+typedef struct vbc_walls_gpu vbc_walls_gpu;
+int vbc_walls_gpu_open(vb_ctx *ctx, vbg_runtime *rt, vbc_walls_gpu **out);
+const struct vbc_walls_engine *vbc_walls_gpu_engine(const vbc_walls_gpu *W);
+void vbc_walls_gpu_close(vbc_walls_gpu *W);
+
 /* The engine table of vbc_channel_pipe.h on a runtime (borrowed: close it
  * after the engine): what the device layer's channels_open gives. */
 int vbg_channels_open(vb_ctx *ctx, vbg_runtime *rt, vbj_variant variant, vbc_engine **out);

@@ -101,6 +101,19 @@ const vb_sphere_set *vbc_cells_spheres(const vbc_cells *c)
     return c->s;
 }
 
+void vbc_cells_layout(const vbc_cells *c, double lo[3], double *cell, int dim[3], double *rmax,
+                      const size_t **start, const int32_t **idx)
+{
+    for (int a = 0; a < 3; a++) {
+        lo[a] = c->lo[a];
+        dim[a] = c->dim[a];
+    }
+    *cell = c->cell;
+    *rmax = c->rmax;
+    *start = c->start;
+    *idx = c->idx;
+}
+
 /* A lower bound of the distance from p to the atoms of the cells whose
  * index along axis a is k (their slab): the gap to the slab, the outer
  * slabs unbounded outwards (cell_coord clamps into them), less a margin far

@@ -76,8 +76,11 @@ int vbc_frame_pore(vb_ctx *ctx, const vb_sphere_set *s, const vbc_options *opt, 
 {
     const vbc_pore_request *req = opt->pore && opt->pore->enabled ? opt->pore : NULL;
     double t2 = vb_now();
-    int rc = vbc_pore_stage(ctx, &f->grid, f->out.flags, s, req, opt->lining_tol, &f->result,
-                            &f->axis, &f->pore_ms);
+    const struct vbc_walls_engine *walls = f->pipe ? vbc_pipe_walls_hold(f->pipe) : NULL;
+    int rc = vbc_pore_stage(ctx, &f->grid, f->out.flags, s, req, walls, opt->lining_tol,
+                            &f->result, &f->axis, &f->pore_ms);
+    if (f->pipe)
+        vbc_pipe_walls_release(f->pipe);
     f->ms_pore = 1e3 * (vb_now() - t2);
     return analyse_failed(f, rc);
 }

@@ -1,6 +1,7 @@
 /* The channel frame pipeline: the reference engine, the engine a device
  * kind opens, and the fallback from OpenCL to the reference in the middle
  * of a run (see vbc_channel_pipe.h). */
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -18,6 +19,10 @@ struct vbc_pipe {
     vbc_engine *engine;
     long ocl_frames;     /* frames run on OpenCL so far */
     long fault_at;       /* vbc_pipe_inject_device_fault */
+    /* Held for reading while a pore stage uses the engine's walls (on a
+     * thread of its own, frames in flight), for writing while a failed
+     * device's engine is closed. */
+    pthread_rwlock_t walls_lock;
 };
 
 void vbc_frame_out_free(vbc_frame_out *o)
@@ -210,12 +215,15 @@ static int open_engine(vb_ctx *ctx, const vb_device_layer *layer, vb_device *dev
 /* Drops the OpenCL engine and its device; the reference takes over. */
 static int to_reference(vb_ctx *ctx, vbc_pipe *p)
 {
+    pthread_rwlock_wrlock(&p->walls_lock);
     vbc_engine_close(p->engine);
     p->engine = NULL;
     if (p->dev)
         p->layer->close(p->dev);
     p->dev = NULL;
-    return vbc_engine_ref_open(ctx, p->variant, &p->engine);
+    int rc = vbc_engine_ref_open(ctx, p->variant, &p->engine);
+    pthread_rwlock_unlock(&p->walls_lock);
+    return rc;
 }
 
 vb_device_kind vbc_channels_device(vb_device_kind kind, const vb_device_layer *layer)
@@ -235,6 +243,7 @@ int vbc_pipe_open(vb_ctx *ctx, const vb_device_layer *layer, vb_device_kind kind
     p->variant = variant;
     p->layer = layer;
     p->fault_at = -1;
+    pthread_rwlock_init(&p->walls_lock, NULL);
     vb_engine_request req = {kind, open_engine, p, VB_W_CHANNELS_DEVICE_FALLBACK, "channels"};
     void *e = NULL;
     int rc = vb_device_open_engine(ctx, layer, &req, &p->dev, &e);
@@ -254,6 +263,7 @@ void vbc_pipe_close(vbc_pipe *p)
     vbc_engine_close(p->engine);
     if (p->dev)
         p->layer->close(p->dev);
+    pthread_rwlock_destroy(&p->walls_lock);
     free(p);
 }
 
@@ -265,6 +275,17 @@ const char *vbc_pipe_device_name(const vbc_pipe *p)
 const struct vbc_paths_engine *vbc_pipe_paths(const vbc_pipe *p)
 {
     return p->engine && p->engine->paths ? p->engine->paths : vbc_paths_engine_ref();
+}
+
+const struct vbc_walls_engine *vbc_pipe_walls_hold(vbc_pipe *p)
+{
+    pthread_rwlock_rdlock(&p->walls_lock);
+    return p->engine ? p->engine->walls : NULL;
+}
+
+void vbc_pipe_walls_release(vbc_pipe *p)
+{
+    pthread_rwlock_unlock(&p->walls_lock);
 }
 
 int vbc_pipe_is_ref(const vbc_pipe *p)

@@ -263,51 +263,72 @@ double vbc_plane_widest(const vbc_cells *c, const double u[3], double reach, vbc
     return widest_ascent(c, u, reach, outside, user, p, R, atom);
 }
 
-/* The spheres near the lattice's centre (lattice_best), by increasing
- * distance. */
+/* The spheres near the lattice's centre (lattice_best) in buckets of
+ * their distance from it: bucket b holds those at least `lo` +
+ * b LATTICE_BUCKET (the last one: the rest), in any order. A counting
+ * sort of a few hundred spheres into 16 buckets: the insertion sort by
+ * distance it replaces was about a tenth of the sweep (perf, 1chb). */
 #define LATTICE_CAP 512
+#define LATTICE_BUCKETS 16
+#define LATTICE_BUCKET 0.25
 typedef struct {
     int32_t id[LATTICE_CAP];
     double dist[LATTICE_CAP];
     size_t n;
     int ok;
+    double lo;                          /* the least distance (the clearance at the centre) */
+    size_t first[LATTICE_BUCKETS + 1];  /* bucket b: entries first[b] .. first[b + 1] */
 } lattice_near;
 
-static void near_sort(lattice_near *L)
+static void near_buckets(lattice_near *L, double lo)
 {
-    for (size_t k = 1; k < L->n; k++) {
-        int32_t id = L->id[k];
-        double d = L->dist[k];
-        size_t t = k;
-        for (; t > 0 && L->dist[t - 1] > d; t--) {
-            L->id[t] = L->id[t - 1];
-            L->dist[t] = L->dist[t - 1];
-        }
-        L->id[t] = id;
-        L->dist[t] = d;
+    int32_t id[LATTICE_CAP];
+    double dist[LATTICE_CAP];
+    uint8_t at[LATTICE_CAP];
+    size_t count[LATTICE_BUCKETS + 1] = {0};
+    L->lo = lo;
+    for (size_t k = 0; k < L->n; k++) {
+        double b = (L->dist[k] - lo) / LATTICE_BUCKET;
+        at[k] = (uint8_t)(b <= 0.0 ? 0 : b >= LATTICE_BUCKETS - 1 ? LATTICE_BUCKETS - 1 : (int)b);
+        count[at[k] + 1]++;
     }
+    for (int b = 0; b < LATTICE_BUCKETS; b++)
+        count[b + 1] += count[b];
+    memcpy(L->first, count, sizeof L->first);
+    for (size_t k = 0; k < L->n; k++) {
+        size_t t = count[at[k]]++;
+        id[t] = L->id[k];
+        dist[t] = L->dist[k];
+    }
+    memcpy(L->id, id, L->n * sizeof *id);
+    memcpy(L->dist, dist, L->n * sizeof *dist);
 }
 
 /* The clearance at q, off the list of its centre p (|q - p| <= off, to
  * within rounding): the least distance |q - c| - r, then the lower index,
- * over the listed spheres; a sphere whose distance from p exceeds the
- * best so far by more than off (and a margin far above the roundings) is
- * farther from q than it, as are the rest of the list. */
+ * over the listed spheres (whatever order they are met in); a sphere
+ * whose distance from p exceeds the best so far by more than off (and a
+ * margin far above the roundings) is farther from q than it, so a bucket
+ * whose least distance does is skipped, with the rest. */
 static double near_min(const vb_sphere_set *s, const lattice_near *L, const double q[3], double off,
                        int32_t *atom)
 {
     double best = INFINITY;
     int32_t b = -1;
     off += 1e-9;
-    for (size_t k = 0; k < L->n; k++) {
-        if (L->dist[k] - off > best)
+    for (int k = 0; k < LATTICE_BUCKETS; k++) {
+        /* The bucket's spheres are at least this far from p (its bound
+         * less a margin for the rounding of their bucket). */
+        if (L->lo + k * LATTICE_BUCKET - 1e-9 - off > best)
             break;
-        int32_t i = L->id[k];
-        double dx = q[0] - s->x[i], dy = q[1] - s->y[i], dz = q[2] - s->z[i];
-        double d = sqrt(dx * dx + dy * dy + dz * dz) - s->r[i];
-        if (b < 0 || d < best || (d == best && i < b)) {
-            best = d;
-            b = i;
+        for (size_t t = L->first[k]; t < L->first[k + 1]; t++) {
+            int32_t i = L->id[t];
+            double dx = q[0] - s->x[i], dy = q[1] - s->y[i], dz = q[2] - s->z[i];
+            double d = sqrt(dx * dx + dy * dy + dz * dz) - s->r[i];
+            if (b < 0 || d < best || (d == best && i < b)) {
+                best = d;
+                b = i;
+            }
         }
     }
     *atom = b;
@@ -321,7 +342,7 @@ static int lattice_best(const vbc_cells *c, const double u[3], double reach, vbc
     plane_frame(u, e1, e2);
     const vb_sphere_set *s = vbc_cells_spheres(c);
     int32_t a, best_atom;
-    /* The spheres within R + 2 reach + 0.1 of p, nearest first: a lattice
+    /* The spheres within R + 2 reach + 0.1 of p, nearer first: a lattice
      * point q is within reach of p, so its nearest sphere (and any tied
      * with it) lies within R(q) + |q - p| <= R + 2 reach of p, and a sphere
      * listed farther than R(q) + |q - p| from p is farther than R(q) from
@@ -335,7 +356,7 @@ static int lattice_best(const vbc_cells *c, const double u[3], double reach, vbc
            vbc_cells_nearest_near(c, p, 2.0 * reach + 0.1, -1, &R, &a, L.id, L.dist, LATTICE_CAP,
                                   &L.n) == 0;
     if (L.ok)
-        near_sort(&L);
+        near_buckets(&L, R);
     else
         R = vbc_cells_clearance(c, p, &a);
     int moved = 0;

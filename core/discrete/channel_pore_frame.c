@@ -1,5 +1,6 @@
 /* The pore stage of a frame (vbc_pore_frame.h): axis candidates, the sweep
- * in the molecule's mask, the pore in the table, refined bottlenecks. */
+ * in the molecule's mask, the verdict; the pore's entry in the table and
+ * the refined bottlenecks are channel_pore_table.c's. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -8,18 +9,12 @@
 #include "vb_array.h"
 #include "vb_parallel.h"
 #include "vbc_pore_frame.h"
+#include "vbc_walls.h"
 
 typedef struct {
     const vbc_grid *g;
     const uint8_t *flags;
 } mask_view;
-
-/* What vbc_refine_bottlenecks' channels share. */
-typedef struct {
-    vbc_result *res;
-    const vbc_cells *cells;
-    double h;
-} refine_view;
 
 /* Outside the molecule: off the grid or in a voxel without the molecular bit. */
 static int outside_mask(void *user, const double p[3])
@@ -322,9 +317,50 @@ static int membrane_defers(vbc_axis *cand, int *force, int nc)
     return nc;
 }
 
+/* The refinement of the discrete channels running beside the pore's
+ * search (vbc_pore_stage): find waits for it only where it reads the
+ * channels, at the candidate of the widest through channel. */
+typedef struct {
+    vbc_result *res;
+    const vbc_cells *cells;
+    double h;
+    double ms;       /* its wall time */
+    int running;     /* started on a thread of its own, not joined yet */
+    vb_jobs th;
+} refine_job;
+
+static void *refine_job_run(void *arg)
+{
+    refine_job *R = arg;
+    double t0 = vb_now();
+    vbc_refine_bottlenecks(R->res, R->cells, R->h);
+    R->ms = 1e3 * (vb_now() - t0);
+    return NULL;
+}
+
+/* The refinement done (joined when it ran beside). NULL: nothing runs. */
+static void refine_wait(refine_job *R)
+{
+    if (R && R->running) {
+        vb_jobs_join(&R->th);
+        R->running = 0;
+    }
+}
+
+static int pore_find(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const vbc_cells *cells,
+                     const vb_sphere_set *s, const vbc_result *res, const vbc_pore_request *req,
+                     refine_job *refine, vbc_pore *out);
+
 int vbc_pore_find(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const vbc_cells *cells,
                   const vb_sphere_set *s, const vbc_result *res, const vbc_pore_request *req,
                   vbc_pore *out)
+{
+    return pore_find(ctx, g, flags, cells, s, res, req, NULL, out);
+}
+
+static int pore_find(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const vbc_cells *cells,
+                     const vb_sphere_set *s, const vbc_result *res, const vbc_pore_request *req,
+                     refine_job *refine, vbc_pore *out)
 {
     memset(out, 0, sizeof *out);
     mask_view M = {g, flags};
@@ -366,8 +402,15 @@ int vbc_pore_find(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const vb
     if (!(nc > membrane && force[membrane]) && vbc_axis_barrel(s, NULL, &cand[nc]))
         nc++;
     /* Across a membrane no channel or principal axis: the normal stays. */
-    if (!membrane && channel_axis(res, &cand[nc]))
-        nc++;
+    /* The widest through channel's candidate is made where the loop
+     * reaches it (the refinement moves the points it reads): a slot held
+     * here, dropped there when there is no such channel. */
+    int channel_at = -1;
+    if (!membrane) {
+        memset(&cand[nc], 0, sizeof cand[nc]);
+        cand[nc].source = VBC_AXIS_CHANNEL;
+        channel_at = nc++;
+    }
     if (!membrane) {
         vbc_axis_principal(s, &cand[nc]);
         nc += 3;
@@ -385,6 +428,13 @@ int vbc_pore_find(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const vb
     for (int k = 0; k < nc; k++) {
         vbc_pore p;
         int rc;
+        if (k == channel_at) {
+            refine_wait(refine);
+            if (!channel_axis(res, &cand[k]))
+                continue;
+            if (req->have_through)
+                memcpy(cand[k].c, req->c, sizeof req->c);
+        }
         if (k < first_principal && cand[k].source == VBC_AXIS_BARREL && !req->have_through) {
             if ((rc = barrel_pore(ctx, cells, s, &cand[k], req, &M, &p)) != VB_OK) {
                 vbc_pore_free(out);
@@ -439,174 +489,9 @@ int vbc_pore_find(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const vb
     return VB_OK;
 }
 
-typedef struct {
-    int32_t *list;
-    size_t n, cap;
-    uint8_t *mark;
-    int failed;
-} lining_set;
-
-static void lining_put(int32_t atom, void *user)
-{
-    lining_set *L = user;
-    if (L->mark[atom])
-        return;
-    if (VB_ARRAY_FIT(L->list, L->cap, L->n + 1, 64) != VB_OK) {
-        L->failed = 1;
-        return;
-    }
-    L->mark[atom] = 1;
-    L->list[L->n++] = atom;
-}
-
-static int cmp_i32(const void *a, const void *b)
-{
-    int32_t x = *(const int32_t *)a, y = *(const int32_t *)b;
-    return (x > y) - (x < y);
-}
-
-/* Length of the polyline through p[0..n), summed from the first point in the
- * order channel_components.c sums a voxel path, so a path no point of which
- * moved keeps its length to the bit. */
-static double path_length(const vbc_point *p, size_t n)
-{
-    double len = 0.0;
-    for (size_t k = 1; k < n; k++)
-        len += sqrt((p[k].x - p[k - 1].x) * (p[k].x - p[k - 1].x) +
-                    (p[k].y - p[k - 1].y) * (p[k].y - p[k - 1].y) +
-                    (p[k].z - p[k - 1].z) * (p[k].z - p[k - 1].z));
-    return len;
-}
-
-int vbc_result_add_pore(vb_ctx *ctx, vbc_result *res, const vbc_pore *p, const vbc_cells *cells,
-                        double lining_tol)
-{
-    const vb_sphere_set *s = vbc_cells_spheres(cells);
-    size_t np = 0, nl = 0;
-    for (size_t t = 0; t < res->nchannels; t++) {
-        np += res->channels[t].npoints;
-        nl += res->channels[t].nlining;
-    }
-    lining_set L = {NULL, 0, 0, calloc(s->n ? s->n : 1, 1), 0};
-    vbc_channel *ch = malloc((res->nchannels + 1) * sizeof *ch);
-    vbc_point *pts = malloc((np + p->n) * sizeof *pts);
-    if (!L.mark || !ch || !pts)
-        goto nomem;
-    for (size_t k = 0; k < p->n; k++) {
-        const vbc_pore_point *q = &p->pts[k];
-        pts[k] = (vbc_point){q->x, q->y, q->z, q->r, q->atom};
-        double c[3] = {q->x, q->y, q->z};
-        vbc_cells_within(cells, c, q->r + lining_tol, lining_put, &L);
-        if (L.failed)
-            goto nomem;
-    }
-    int32_t *lin = malloc((nl + L.n + 1) * sizeof *lin);
-    if (!lin)
-        goto nomem;
-    qsort(L.list, L.n, sizeof *L.list, cmp_i32);
-    memcpy(lin, L.list, L.n * sizeof *lin);
-    if (nl)
-        memcpy(lin + L.n, res->lining, nl * sizeof *lin);
-    if (np)
-        memcpy(pts + p->n, res->points, np * sizeof *pts);
-    double len = path_length(pts, p->n);
-    int open = p->open_lo && p->open_hi;
-    double rmin = p->pts[p->min_at].r;
-    ch[0] = (vbc_channel){VBC_PORE,
-                          rmin <= 0.0 ? VBC_WHY_PORE_CLOSED : open ? VBC_WHY_PORE : VBC_WHY_PORE_ONE_END,
-                          open, 0, (size_t)(p->open_lo + p->open_hi), len, rmin, p->min_at, 0, p->n,
-                          0, L.n};
-    for (size_t t = 0; t < res->nchannels; t++) {
-        ch[t + 1] = res->channels[t];
-        ch[t + 1].first_point += p->n;
-        ch[t + 1].first_lining += L.n;
-    }
-    free(res->channels);
-    free(res->points);
-    free(res->lining);
-    res->channels = ch;
-    res->points = pts;
-    res->lining = lin;
-    res->nchannels++;
-    vbc_pore_summary *S = &res->pore;
-    S->present = 1;
-    memcpy(S->u, p->axis.u, sizeof S->u);
-    memcpy(S->c, p->axis.c, sizeof S->c);
-    S->source = p->axis.source;
-    S->chains = p->axis.chains;
-    memcpy(S->why, p->axis.why, sizeof S->why);
-    S->step = p->n > 1 ? (p->pts[p->n - 1].s - p->pts[0].s) / (double)(p->n - 1) : 0.0;
-    S->F = p->F;
-    S->g_macro_pS = p->g_macro_pS;
-    S->open_lo = p->open_lo;
-    S->open_hi = p->open_hi;
-    free(L.list);
-    free(L.mark);
-    return VB_OK;
-nomem:
-    free(L.list);
-    free(L.mark);
-    free(ch);
-    free(pts);
-    return vb_error(ctx, VB_ENOMEM, NULL, 0, "pore of %zu points", p->n);
-}
-
-#define REFINE_PER_THREAD 8
-
-/* One channel of vbc_refine_bottlenecks (vb_for_fn over the channels: each
- * moves only its own points). */
-static void refine_channel(void *ctx, size_t t, int tid)
-{
-    (void)tid;
-    const refine_view *R = ctx;
-    vbc_result *res = R->res;
-    vbc_channel *c = &res->channels[t];
-    if (c->kind == VBC_PORE || c->npoints < 2)
-        return;
-    vbc_point *p = res->points + c->first_point;
-    size_t b = c->bottleneck_at;
-    size_t lo = b >= 2 ? b - 2 : 0, hi = b + 2 < c->npoints ? b + 2 : c->npoints - 1;
-    for (size_t k = lo; k <= hi; k++) {
-        const vbc_point *a = &p[k > 0 ? k - 1 : k], *z = &p[k + 1 < c->npoints ? k + 1 : k];
-        double u[3] = {z->x - a->x, z->y - a->y, z->z - a->z};
-        double n = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
-        if (!(n > 0.0))
-            continue;
-        for (int i = 0; i < 3; i++)
-            u[i] /= n;
-        double q[3] = {p[k].x, p[k].y, p[k].z};
-        int32_t atom;
-        double r = vbc_plane_maximise(R->cells, u, R->h, q, &atom);
-        if (r > p[k].r) {
-            p[k] = (vbc_point){q[0], q[1], q[2], r, atom};
-        }
-    }
-    /* length_A is the length of the centreline as written (the moved
-     * points' polyline), not the voxel path's: the pruning by
-     * --min-length saw the latter. */
-    c->length = path_length(p, c->npoints);
-    c->bottleneck = INFINITY;
-    for (size_t k = 0; k < c->npoints; k++)
-        if (p[k].r < c->bottleneck) {
-            c->bottleneck = p[k].r;
-            c->bottleneck_at = k;
-        }
-}
-
-void vbc_refine_bottlenecks(vbc_result *res, const vbc_cells *cells, double h)
-{
-    refine_view R = {res, cells, h};
-    int nt = vbc_pore_threads(res->nchannels, REFINE_PER_THREAD);
-    if (nt > 1)
-        vb_parallel_for(refine_channel, &R, res->nchannels, nt);
-    else
-        for (size_t t = 0; t < res->nchannels; t++)
-            refine_channel(&R, t, 0);
-}
-
 int vbc_pore_stage(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const vb_sphere_set *s,
-                   const vbc_pore_request *req, double lining_tol, vbc_result *res,
-                   vbc_axis *found, vbc_pore_ms *ms)
+                   const vbc_pore_request *req, const vbc_walls_engine *walls,
+                   double lining_tol, vbc_result *res, vbc_axis *found, vbc_pore_ms *ms)
 {
     vbc_pore_ms t = {0.0, 0.0, 0.0, 0.0, 0.0};
     double t0 = vb_now();
@@ -616,14 +501,24 @@ int vbc_pore_stage(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const v
         return rc;
     double t1 = vb_now();
     t.cells = 1e3 * (t1 - t0);
-    vbc_refine_bottlenecks(res, cells, g->h);
+    /* The refinement moves the discrete channels' points, which the pore's
+     * search reads only at the through channel's candidate (it waits for
+     * it there) and the table's steps after the verdict: with threads to
+     * spare (vbc_pore_threads' rule) it runs beside the search. */
+    refine_job R = {res, cells, g->h, 0.0, 0, {0}};
+    int beside = req && req->enabled && vb_threads(0) >= VBC_PORE_MIN_THREADS;
+    if (beside) {
+        vb_jobs_start(&R.th, refine_job_run, &R, sizeof R, 1);
+        R.running = 1;
+    } else {
+        refine_job_run(&R);
+    }
     t0 = vb_now();
-    t.refine = 1e3 * (t0 - t1);
     if (found)
         memset(found, 0, sizeof *found);
     if (req && req->enabled) {
         vbc_pore p;
-        rc = vbc_pore_find(ctx, g, flags, cells, s, res, req, &p);
+        rc = pore_find(ctx, g, flags, cells, s, res, req, &R, &p);
         t1 = vb_now();
         t.sweep = 1e3 * (t1 - t0);
         /* A path along an axis the user gave is reported as it is; a found
@@ -636,11 +531,12 @@ int vbc_pore_stage(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const v
             v.is_pore = p.is_pore;
             v.buried = p.buried;
         } else if (rc == VB_OK && p.n > 0 && judge &&
-                   vbc_pore_judge(cells, &p, VBC_PORE_MIN_BURIED, &v) != 0) {
+                   vbc_pore_judge_on(walls, cells, &p, VBC_PORE_MIN_BURIED, &v) != 0) {
             rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "pore verdict");
         }
         t0 = vb_now();
         t.verdict = 1e3 * (t0 - t1);
+        refine_wait(&R);
         if (rc == VB_OK && p.n > 0 && v.is_pore) {
             rc = vbc_result_add_pore(ctx, res, &p, cells, lining_tol);
             if (found)
@@ -653,6 +549,8 @@ int vbc_pore_stage(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const v
         }
         vbc_pore_free(&p);
     }
+    refine_wait(&R);
+    t.refine = R.ms;
     if (rc == VB_OK)
         vbc_rank(res);
     vbc_cells_free(cells);

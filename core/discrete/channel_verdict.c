@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "vb_parallel.h"
-#include "vbc_pore.h"
+#include "vbc_walls.h"
 
 /* The slack of the free-distance bounds below, A: far above the rounding
  * of a pixel's position (coordinates below 1e4 A: 1e-11 A) and of a
@@ -34,11 +34,17 @@ void vbc_plane_basis(const double u[3], double a[3], double b[3])
 int vbc_plane_walled(const vbc_cells *c, const double u[3], const double p[3], double r,
                      void **scratch, size_t *scratch_len)
 {
+    return vbc_plane_walled_raster(c, u, p, r, -1, NULL, NULL, scratch, scratch_len);
+}
+
+int vbc_plane_walled_raster(const vbc_cells *c, const double u[3], const double p[3], double r,
+                            int m, const uint32_t *blocked, const uint32_t *unsure, void **scratch,
+                            size_t *scratch_len)
+{
     double a[3], b[3];
     vbc_plane_basis(u, a, b);
     double rr = r > 0.0 ? r : 0.0;
-    double reach = fmin(2.0 * rr + VBC_WALL_REACH, VBC_WALL_MAX_REACH);
-    int n = (int)ceil(reach / VBC_WALL_PIXEL);
+    int n = vbc_plane_raster_half(r);
     size_t side = (size_t)(2 * n + 1), npix = side * side;
     size_t need = npix * (sizeof(double) + sizeof(int32_t) + sizeof(uint8_t));
     if (*scratch_len < need) {
@@ -100,7 +106,20 @@ int vbc_plane_walled(const vbc_cells *c, const double u[3], const double p[3], d
             low[w] = -INFINITY;
             /* Inside the pore's own sphere the way is free; elsewhere a
              * pixel is free when no atom surface comes within the probe. */
-            if (x * x + y * y > rr * rr) {
+            if (x * x + y * y > rr * rr && blocked && abs(ii) <= m && abs(jj) <= m) {
+                /* The raster's answer; the cell list's where it is unsure. */
+                size_t rv = (size_t)(ii + m) * (size_t)(2 * m + 1) + (size_t)(jj + m);
+                uint32_t bit = 1u << (rv & 31);
+                if (blocked[rv >> 5] & bit)
+                    continue;
+                if (unsure[rv >> 5] & bit) {
+                    double q[3], lw;
+                    for (int d = 0; d < 3; d++)
+                        q[d] = p[d] + x * a[d] + y * b[d];
+                    if (vbc_cells_any_within(c, q, VBC_WALL_PROBE, &hint, &lw))
+                        continue;
+                }
+            } else if (x * x + y * y > rr * rr) {
                 if (near > VBC_WALL_PROBE + FREE_EPS) {
                     low[w] = near;
                 } else {
@@ -134,6 +153,8 @@ int vbc_pore_threads(size_t items, size_t per)
 typedef struct {
     const vbc_cells *c;
     const vbc_pore *p;
+    const vbc_walls_input *in; /* with R: the planes' rasters (NULL: none) */
+    const vbc_walls_raster *R;
     size_t k0;
     int8_t *walled;
     void *scratch[VB_MAX_THREADS];
@@ -143,10 +164,14 @@ typedef struct {
 static void judge_plane(void *ctx, size_t i, int tid)
 {
     judge_block *B = ctx;
-    const vbc_pore_point *q = &B->p->pts[B->k0 + i];
+    size_t k = B->k0 + i;
+    const vbc_pore_point *q = &B->p->pts[k];
     double at[3] = {q->x, q->y, q->z};
-    B->walled[i] = (int8_t)vbc_plane_walled(B->c, B->p->axis.u, at, q->r, &B->scratch[tid],
-                                            &B->len[tid]);
+    const uint32_t *bl = B->R ? B->R->blocked + B->in->word0[k] : NULL;
+    const uint32_t *un = B->R ? B->R->unsure + B->in->word0[k] : NULL;
+    int m = B->R ? B->in->half[k] : -1;
+    B->walled[i] = (int8_t)vbc_plane_walled_raster(B->c, B->p->axis.u, at, q->r, m, bl, un,
+                                                   &B->scratch[tid], &B->len[tid]);
 }
 
 /* Planes flooded at once per thread before the run is scanned: the scan
@@ -157,13 +182,15 @@ static void judge_plane(void *ctx, size_t i, int tid)
  * is judged on fewer threads (on one: plane by plane, as it stops). */
 #define JUDGE_PLANES_PER_THREAD 32
 
-int vbc_pore_judge(const vbc_cells *c, const vbc_pore *p, double enough, vbc_pore_verdict *v)
+/* vbc_pore_judge, the pixels from the rasters R of in when R is not NULL. */
+static int judge(const vbc_cells *c, const vbc_pore *p, const vbc_walls_input *in,
+                 const vbc_walls_raster *R, double enough, vbc_pore_verdict *v)
 {
     memset(v, 0, sizeof *v);
     int nt = vbc_pore_threads(p->n, JUDGE_PLANES_PER_THREAD);
     size_t block = nt > 1 ? (size_t)nt * JUDGE_PLANES_PER_THREAD : 1;
     int8_t *walled = malloc(block);
-    judge_block B = {c, p, 0, walled, {NULL}, {0}};
+    judge_block B = {c, p, in, R, 0, walled, {NULL}, {0}};
     size_t lo = 0, last = 0;
     int in_run = 0, have = 0, rc = walled ? 0 : -1, done = 0;
     for (size_t k0 = 0; rc == 0 && !done && k0 < p->n; k0 += block) {
@@ -214,4 +241,26 @@ int vbc_pore_judge(const vbc_cells *c, const vbc_pore *p, double enough, vbc_por
     }
     v->is_pore = v->buried >= VBC_PORE_MIN_BURIED;
     return 0;
+}
+
+int vbc_pore_judge(const vbc_cells *c, const vbc_pore *p, double enough, vbc_pore_verdict *v)
+{
+    return judge(c, p, NULL, NULL, enough, v);
+}
+
+int vbc_pore_judge_on(const vbc_walls_engine *W, const vbc_cells *c, const vbc_pore *p,
+                      double enough, vbc_pore_verdict *v)
+{
+    vbc_walls_input in;
+    if (!W || p->n == 0 || vbc_walls_prep(c, p, &in) != 0)
+        return judge(c, p, NULL, NULL, enough, v);
+    size_t words = in.word0[in.nplanes];
+    vbc_walls_raster R = {malloc(words * sizeof *R.blocked), malloc(words * sizeof *R.unsure)};
+    int rc = R.blocked && R.unsure && W->raster(W->user, &in, &R) == VB_OK
+                 ? judge(c, p, &in, &R, enough, v)
+                 : judge(c, p, NULL, NULL, enough, v);
+    free(R.blocked);
+    free(R.unsure);
+    vbc_walls_input_free(&in);
+    return rc;
 }

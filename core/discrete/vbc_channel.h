@@ -199,6 +199,15 @@ void vbc_cells_free(vbc_cells *c);
 /* The spheres the cell list was built over. */
 const vb_sphere_set *vbc_cells_spheres(const vbc_cells *c);
 
+/* The cell list as arrays, for a copy on a device (vbc_walls_prep): the
+ * corner lo (the atoms' least coordinates), the cell edge, the cells per
+ * axis, the largest radius, the CSR start (dim[0] dim[1] dim[2] + 1
+ * entries: the atoms of cell x + dim[0] (y + dim[1] z) are idx[start[c]]
+ * .. idx[start[c + 1] - 1]) and idx. An atom's cell is floor((x - lo) /
+ * cell) per axis, clamped into 0 .. dim - 1. Borrowed: valid while c is. */
+void vbc_cells_layout(const vbc_cells *c, double lo[3], double *cell, int dim[3], double *rmax,
+                      const size_t **start, const int32_t **idx);
+
 /* Distance from p to the nearest sphere surface (negative inside a sphere)
  * and that sphere's index in *atom. */
 double vbc_cells_clearance(const vbc_cells *c, const double p[3], int32_t *atom);

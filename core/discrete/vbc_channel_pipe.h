@@ -70,6 +70,9 @@ struct vbc_engine {
     /* The engine of the analysis's batch sweeps (vbc_paths.h) on this
      * device; NULL: the twin's. */
     const struct vbc_paths_engine *paths;
+    /* The engine of the pore verdict's rasters (vbc_walls.h) on this
+     * device; NULL: the host floods alone. */
+    const struct vbc_walls_engine *walls;
 };
 
 /* Opens the plain-C reference engine for a JFA variant. */
@@ -106,6 +109,13 @@ int vbc_pipe_frame(vb_ctx *ctx, vbc_pipe *p, const vbc_grid *g, const float *ato
 /* The engine that runs the analysis's batch sweeps for the device running
  * the frames now: the OpenCL engine's, else the twin's (vbc_paths.h). */
 const struct vbc_paths_engine *vbc_pipe_paths(const vbc_pipe *p);
+
+/* The engine of the pore verdict's rasters for the device running the
+ * frames now (vbc_walls.h): the OpenCL engine's, else NULL (the host's
+ * flood alone, the same verdict). Held until vbc_pipe_walls_release: a
+ * device that fails meanwhile (W806) is closed only after it. */
+const struct vbc_walls_engine *vbc_pipe_walls_hold(vbc_pipe *p);
+void vbc_pipe_walls_release(vbc_pipe *p);
 
 /* The device running the frames now: the OpenCL name or "reference (C)". */
 const char *vbc_pipe_device_name(const vbc_pipe *p);

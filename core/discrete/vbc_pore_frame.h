@@ -65,11 +65,14 @@ typedef struct vbc_pore_ms {
 
 /* The whole pore stage of a frame: cells over s, vbc_pore_find,
  * vbc_result_add_pore, vbc_refine_bottlenecks, vbc_rank. When req is NULL
- * or disabled only the refinement and the ranking run. *found (may be NULL)
+ * or disabled only the refinement and the ranking run. The found pore's
+ * verdict takes its pixels from walls' rasters (vbc_pore_judge_on; NULL:
+ * the host's flood alone, the same verdict). *found (may be NULL)
  * gets the axis used; *ms (may be NULL) the milliseconds of each step
  * (zero for a step not run). The clocks change no result. VB_ENOMEM. */
+struct vbc_walls_engine;
 int vbc_pore_stage(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const vb_sphere_set *s,
-                   const vbc_pore_request *req, double lining_tol, vbc_result *res,
-                   vbc_axis *found, vbc_pore_ms *ms);
+                   const vbc_pore_request *req, const struct vbc_walls_engine *walls,
+                   double lining_tol, vbc_result *res, vbc_axis *found, vbc_pore_ms *ms);
 
 #endif

@@ -328,6 +328,74 @@ static void test_cells_walks(vb_ctx *ctx)
     vb_spheres_free(s);
 }
 
+/* vbc_plane_widest within VBC_PLANE_LOOK (the sweep's lattice: a list of
+ * the spheres near the start in buckets of distance, channel_pore.c) is
+ * the lattice's first strictly widest point by vbc_cells_clearance at
+ * every point, then the ascent from it (vbc_plane_maximise within the
+ * same reach): random planes through a dense random cloud, where the
+ * nearest sphere of a lattice point often lies in a later bucket than the
+ * start's. */
+static void test_lattice(vb_ctx *ctx)
+{
+    uint64_t seed = 2024;
+    vb_sphere_set *s = vb_test_spheres_alloc(1500, 0);
+    for (size_t i = 0; i < s->n; i++) {
+        s->x[i] = 30.0 * synth_uniform(&seed);
+        s->y[i] = 30.0 * synth_uniform(&seed);
+        s->z[i] = 30.0 * synth_uniform(&seed);
+        s->r[i] = 0.8 + 1.2 * synth_uniform(&seed);
+    }
+    vbc_cells *c = NULL;
+    CHECK_INT(vbc_cells_build(ctx, s, 3.0, &c), VB_OK);
+    int differ = 0, moved = 0;
+    for (int k = 0; k < 300; k++) {
+        double u[3] = {synth_uniform(&seed) - 0.5, synth_uniform(&seed) - 0.5, 0.5};
+        double nu = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+        double p[3], e1[3], e2[3], q[3];
+        for (int a = 0; a < 3; a++) {
+            u[a] /= nu;
+            p[a] = 5.0 + 20.0 * synth_uniform(&seed);
+        }
+        /* The lattice's frame: plane_frame's (the axis least along u). */
+        double t[3] = {0.0, 0.0, 0.0};
+        t[fabs(u[0]) <= fabs(u[1]) && fabs(u[0]) <= fabs(u[2]) ? 0 : fabs(u[1]) <= fabs(u[2]) ? 1 : 2] = 1.0;
+        double d = t[0] * u[0] + t[1] * u[1] + t[2] * u[2], ne = 0.0;
+        for (int a = 0; a < 3; a++) {
+            e1[a] = t[a] - d * u[a];
+            ne += e1[a] * e1[a];
+        }
+        for (int a = 0; a < 3; a++)
+            e1[a] /= sqrt(ne);
+        e2[0] = u[1] * e1[2] - u[2] * e1[1];
+        e2[1] = u[2] * e1[0] - u[0] * e1[2];
+        e2[2] = u[0] * e1[1] - u[1] * e1[0];
+        int32_t atom, a0;
+        double best = vbc_cells_clearance(c, p, &a0), w[3] = {p[0], p[1], p[2]};
+        for (long i = -3; i <= 3; i++)
+            for (long j = -3; j <= 3; j++) {
+                double di = 0.5 * (double)i, dj = 0.5 * (double)j;
+                if (di * di + dj * dj > VBC_PLANE_LOOK * VBC_PLANE_LOOK)
+                    continue;
+                for (int a = 0; a < 3; a++)
+                    q[a] = p[a] + di * e1[a] + dj * e2[a];
+                double Rq = vbc_cells_clearance(c, q, &atom);
+                if (Rq > best) {
+                    best = Rq;
+                    memcpy(w, q, sizeof w);
+                }
+            }
+        moved += w[0] != p[0] || w[1] != p[1] || w[2] != p[2];
+        double Rw = vbc_plane_maximise(c, u, VBC_PLANE_LOOK, w, &atom);
+        int32_t b;
+        double Rp = vbc_plane_widest(c, u, VBC_PLANE_LOOK, NULL, NULL, p, &b);
+        differ += Rp != Rw || b != atom || memcmp(p, w, sizeof w) != 0;
+    }
+    CHECK_INT(differ, 0);
+    CHECK(moved > 100);
+    vbc_cells_free(c);
+    vb_spheres_free(s);
+}
+
 int main(void)
 {
     vb_ctx *ctx;
@@ -339,6 +407,7 @@ int main(void)
     test_subunit_pore(ctx);
     test_conductance();
     test_cells_walks(ctx);
+    test_lattice(ctx);
     vb_close(ctx);
     VB_TEST_END();
 }

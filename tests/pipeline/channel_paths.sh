@@ -4,7 +4,8 @@
 # table, centrelines, profile and the JSON less its clocks, on the twin
 # (--device ref) at one and two threads, sequential and in flight, and on
 # the kernels (PoCL forced by 2, with the device's components and clearances: a GPU's
-# host analysis), over the 10-frame MD trajectory, 1chb at grid 128 and
+# host analysis; then with the pore verdict's rasters too, VORBALL_DEVICE_WALLS=2),
+# over the 10-frame MD trajectory, 1chb at grid 128 and
 # crambin, both with their cavities (the cavities' two plain waves).
 # usage: channel_paths.sh VORBALL CORPUS WORKDIR
 vorball=$1 corpus=$2 work=$3
@@ -52,7 +53,23 @@ for input in traj chb crn; do
     VORBALL_DEVICE_GRAPH=1 VORBALL_DEVICE_CLEARANCE=1 case_run "${input}_pocl" 2 2 2 --device cpu $args
     same "${input}_dij" "${input}_pocl"
     timed "${input}_pocl"
+    # The pore verdict's rasters on the kernel (vbc_walls.h, forced on PoCL
+    # by 2) as well: a GPU run's whole host side, at one and two threads.
+    for t in 1 2; do
+        # shellcheck disable=SC2086
+        VORBALL_DEVICE_WALLS=2 VORBALL_DEVICE_GRAPH=1 VORBALL_DEVICE_CLEARANCE=1 \
+            case_run "${input}_walls$t" 2 "$t" 2 --device cpu $args
+        same "${input}_dij" "${input}_walls$t"
+    done
 done
+# A path that is no pore shows its buried length in W808 only: adenylate
+# kinase's (walled 0 A) judged from the kernel's rasters as from the cell list.
+for d in ref cpu; do
+    VORBALL_DEVICE_WALLS=2 VORBALL_THREADS=2 run 0 "adk_$d.log" "$vorball" channels --device "$d" \
+        "$corpus/data/adk_open.pdb.gz" -o "adk_$d.csv"
+    grep W808 "adk_$d.log" > "adk_$d.w808" || fail "adk_open ($d): no W808"
+done
+cmp -s adk_ref.w808 adk_cpu.w808 || fail "adk_open: W808 differs on the rasters: $(cat adk_cpu.w808)"
 [ "$(grep -c '"frame"' traj_dij.sj)" -eq 10 ] || fail "traj: $(grep -c '"frame"' traj_dij.sj) frames, expected 10"
 grep -q '"kind": "cavity"' chb_dij.sj || fail "1chb: no cavity traced"
 echo "channel_paths: ok"

@@ -13,8 +13,8 @@ the first frame's opening. Each line: stage, CPU ms, its four largest leaf
 functions. Needs python3 (standard library)."""
 import re, sys, collections
 STAGES = [  # innermost first
-    ("pore.verdict", {"vbc_pore_judge", "judge_plane"}),
-    ("pore.sweep", {"vbc_pore_find"}),
+    ("pore.verdict", {"vbc_pore_judge", "judge_plane", "vbc_pore_judge_on"}),
+    ("pore.sweep", {"vbc_pore_find", "pore_find"}),
     ("pore.refine", {"vbc_refine_bottlenecks", "refine_channel"}),
     ("pore.cells", {"vbc_cells_build"}),
     ("pore.lining", {"vbc_result_add_pore", "vbc_rank"}),
