@@ -57,7 +57,8 @@ void vbc_rank(vbc_result *res);
 /* Milliseconds of the pore stage's steps (wall clock, vb_now). */
 typedef struct vbc_pore_ms {
     double cells;   /* the cell list over the frame's spheres */
-    double refine;  /* vbc_refine_bottlenecks of the discrete channels */
+    double refine;  /* vbc_refine_bottlenecks of the discrete channels (its own
+                       wall time: from 4 threads it runs beside the sweep) */
     double sweep;   /* vbc_pore_find: the axis candidates' sweeps */
     double verdict; /* vbc_pore_judge */
     double lining;  /* vbc_result_add_pore and vbc_rank */
@@ -65,7 +66,11 @@ typedef struct vbc_pore_ms {
 
 /* The whole pore stage of a frame: cells over s, vbc_pore_find,
  * vbc_result_add_pore, vbc_refine_bottlenecks, vbc_rank. When req is NULL
- * or disabled only the refinement and the ranking run. The found pore's
+ * or disabled only the refinement and the ranking run. With
+ * VBC_PORE_MIN_THREADS threads or more the refinement runs on a thread of
+ * its own beside the search, which waits for it where it reads the
+ * channels (the through channel's candidate), as the table's steps do:
+ * the same result as one after the other. The found pore's
  * verdict takes its pixels from walls' rasters (vbc_pore_judge_on; NULL:
  * the host's flood alone, the same verdict). *found (may be NULL)
  * gets the axis used; *ms (may be NULL) the milliseconds of each step
