@@ -227,9 +227,7 @@ VBS_FN void vbq_patch_square(vbs_u32 T, vbs_u32 level, vbs_u64 iu, vbs_u64 iv, d
 #define VBQ_ENV_DEEP_ACT 3       /* the deep leaves' act */
 /* vbq_envelope_due: a deep leaf, or a patch past this level (a random twin's
  * patches stop by level 15), is decided with 3 or more owned labels */
-#ifndef VBQ_ENV_DEEP_LEVEL
 #define VBQ_ENV_DEEP_LEVEL 20u
-#endif
 #define VBQ_ENV_DEEP(act, fr) ((act) == 3 || ((act) == 1 && (fr)->level >= VBQ_ENV_DEEP_LEVEL))
 #endif
 
