@@ -127,9 +127,7 @@ VBS_FN int vbq_nb_make(double cix, double ciy, double ciz, double ri, double cjx
 #define VBQ_ENV_DEEP_ACT 3       /* the deep leaves' act */
 /* vbq_envelope_due: a deep leaf, or a patch past this level (a random twin's
  * patches stop by level 15), is decided with 3 or more owned labels */
-#ifndef VBQ_ENV_DEEP_LEVEL
 #define VBQ_ENV_DEEP_LEVEL 20u
-#endif
 #define VBQ_ENV_DEEP(act, fr) ((act) == 3 || ((act) == 1 && (fr)->level >= VBQ_ENV_DEEP_LEVEL))
 #endif
 
