@@ -101,12 +101,13 @@ enum { ROOT_REFUSED = 0, ROOT_EMPTY = 1, ROOT_OPEN = 2 };
 /* The scan's second stage for sphere j, which root R's double box cannot
  * place: outside when t + R_j < 0 is proven (the distance exceeds t + R_j),
  * else, once t + R_j > 0 is proven, the sign of the power, which is the
- * distance's there: in double intervals first (vbx_qf_power_ia), then in
+ * distance's there: in doubles with a static bound first (vbx_qf_power_fast),
+ * then in double intervals (vbx_qf_power_ia), then in
  * double-double (vbx_qf_power_sign). 0: still open. The radius difference
  * is exact in double below 2^53 and a sum rounded to nearest keeps its sign
  * (as in vbx_qf_tangent_sign). */
 static int second_stage(qworker *w, const vbx_qline *L, const vbx_qprep *P, vbx_qroot *R,
-                        const vbx_ia qs[4], uint32_t j)
+                        const vbx_ia qs[4], const double mr[8], uint32_t j)
 {
     const vbx_qdata *qd = &w->c->qd;
     int64_t rj = qd->z[4 * (size_t)j + 3] - qd->z[4 * (size_t)L->q[0] + 3];
@@ -117,7 +118,9 @@ static int second_stage(qworker *w, const vbx_qline *L, const vbx_qprep *P, vbx_
         return 1;
     if (!(R->s.lo + r > 0.0))
         return 0;
-    int sg = vbx_qf_power_ia(qd, L, qs, j);
+    int sg = vbx_qf_power_fast(qd, L, mr, j);
+    if (!sg)
+        sg = vbx_qf_power_ia(qd, L, qs, j);
     if (!sg) {
         sg = qd->ops->power(qd, L, P, R, j);
         if (sg)
@@ -159,6 +162,7 @@ static int filter_root(qworker *w, const vbx_qline *L, const vbx_qprep *P, vbx_q
     vbx_walk walk;
     vbx_walk_init(&walk, t, p);
     vbx_ia qs[4];
+    double mr[8];
     int have_qs = 0;
     /* A far root (t ~ 10^10 on a jittered face): the distance's double box
      * cannot place what the probes leave open, the power mostly can, so it
@@ -183,10 +187,12 @@ static int filter_root(qworker *w, const vbx_qline *L, const vbx_qprep *P, vbx_q
                      : far                               ? 0
                                                          : vbx_ia_sign(distance_excess(cj, p));
             if (sg == 0) {
-                if (!have_qs)
+                if (!have_qs) {
                     vbx_qf_power_qs(&c->qd, L, R, qs);
+                    vbx_qf_power_mr(qs, mr);
+                }
                 have_qs = 1;
-                sg = second_stage(w, L, P, R, qs, j);
+                sg = second_stage(w, L, P, R, qs, mr, j);
             }
             if (sg == 0 && far)
                 sg = vbx_ia_sign(distance_excess(cj, p));

@@ -1,6 +1,7 @@
 /* The power of a sphere at a filter root in double intervals (the
  * emptiness scan's second stage before double-double, vbx_quad.h): the
  * root's (q, s) enclosures made once, then one affine form per sphere. */
+#include <math.h>
 #include <stdint.h>
 
 #include "vbx_quad.h"
@@ -45,4 +46,42 @@ int vbx_qf_power_ia(const vbx_qdata *qd, const vbx_qline *L, const vbx_ia qs[4],
         mq = vbx_ia_add(mq, vbx_ia_mul(qs[k], m));
     }
     return vbx_ia_sign(vbx_ia_sub(W, vbx_ia_add(mq, mq)));
+}
+
+void vbx_qf_power_mr(const vbx_ia qs[4], double mr[8])
+{
+    for (int k = 0; k < 4; k++) {
+        double m = 0.5 * qs[k].lo + 0.5 * qs[k].hi;
+        mr[k] = m;
+        mr[4 + k] = vbx_succ(vbx_max(qs[k].hi - m, m - qs[k].lo));
+    }
+}
+
+/* The affine form of vbx_qf_power_ia in plain doubles, q in [mr_k - rad_k,
+ * mr_k + rad_k] (rad_k = mr[4 + k]), u = 2^-53. The offsets m_k (|m_k| <
+ * 2^63) are rounded to nearest: m_k = md_k (1 + d), |d| <= u. With
+ * E0 = sum_{k<3} md_k^2 - md_3^2 - 2 sum_k mr_k md_k, the exact power
+ * differs from E0 by at most 2 SR (SR = sum_k rad_k |md_k|, the box) plus
+ * 2.01 u sum_k md_k^2 + 2 u sum_k (|mr_k| + rad_k) |md_k| (the rounded
+ * offsets), and the double e of E0 (8 rounded terms) from E0 by at most
+ * gamma_9 A, A = sum_k md_k^2 + 2 sum_k |mr_k md_k|, gamma_9 < 9.1 u: in
+ * all at most 2 SR + 2 u SR + 11.2 u A. B = 2 sr + 2^-48 (a + 2 sr) + 2^-1000
+ * (sr, a: the doubles of SR and A, within 5 u and 10 u relative; 2^-48 =
+ * 32 u) exceeds it after B's own four roundings; the constant covers
+ * underflow in the products (at most 2^-1074 each). An overflow gives inf
+ * or NaN, and neither comparison then holds. */
+int vbx_qf_power_fast(const vbx_qdata *qd, const vbx_qline *L, const double mr[8], uint32_t j)
+{
+    const int64_t *cb = &qd->z[4 * (size_t)L->q[0]], *cj = &qd->z[4 * (size_t)j];
+    double W = 0.0, d = 0.0, a = 0.0, sr = 0.0;
+    for (int k = 0; k < 4; k++) {
+        double m = (double)(cj[k] - cb[k]), m2 = m * m, qm = mr[k] * m;
+        W = k < 3 ? W + m2 : W - m2;
+        d += qm;
+        a += m2 + 2.0 * fabs(qm);
+        sr += mr[4 + k] * fabs(m);
+    }
+    double e = W - 2.0 * d;
+    double B = 2.0 * sr + 0x1p-48 * (a + 2.0 * sr) + 0x1p-1000;
+    return e > B ? 1 : e < -B ? -1 : 0;
 }

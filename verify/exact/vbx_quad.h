@@ -108,6 +108,15 @@ void vbx_qf_power_qs(const vbx_qdata *z, const vbx_qline *L, const vbx_qroot *R,
  * only where t + R_j > 0 (the caller proves it). */
 int vbx_qf_power_ia(const vbx_qdata *z, const vbx_qline *L, const vbx_ia qs[4], uint32_t j);
 
+/* qs as midpoints mr[0..3] and radii mr[4..7] whose boxes contain qs:
+ * made once per root for vbx_qf_power_fast. */
+void vbx_qf_power_mr(const vbx_ia qs[4], double mr[8]);
+
+/* vbx_qf_power_ia's sign with a static error bound in plain doubles (no
+ * interval product): +1 or -1 when the bound proves it, 0 when open (the
+ * caller then asks vbx_qf_power_ia). The same condition on t + R_j. */
+int vbx_qf_power_fast(const vbx_qdata *z, const vbx_qline *L, const double mr[8], uint32_t j);
+
 /* The correctly rounded x, y, z, t (input units) of a root with its point:
  * 1 when all four are decided (out set), 0 when one is not (a near tie, a
  * value at 0: the caller rounds exactly). */
