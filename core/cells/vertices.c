@@ -622,7 +622,6 @@ void vb_vertices_certificate(const vb_vertices_result *r, char *buf, size_t size
     }
     snprintf(buf, size,
              "complete: %zu certified vertices, every vertex of the diagram "
-             "(direction cover of %llu cells, %llu quadruples, every root decided exactly)",
-             r->certified.n, (unsigned long long)s->cover_cells,
-             (unsigned long long)s->cover_quads);
+             "(direction cover of %llu cells, every root decided exactly)",
+             r->certified.n, (unsigned long long)s->cover_cells);
 }

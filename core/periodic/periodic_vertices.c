@@ -281,9 +281,8 @@ void vb_periodic_certificate(const vb_periodic_result *r, const vb_box *box, cha
              "atom i moved by dx a + dy b + dz c\n"
              "complete: %zu certified vertices of the periodic diagram, each once (its canonical "
              "translate), every vertex of the diagram (direction cover of the %zu atoms' cells "
-             "among %zu atoms and images, %llu quadruples; every empty sphere has radius <= %.9g, "
+             "among %zu atoms and images; every empty sphere has radius <= %.9g, "
              "images within %.9g of the atoms and needed by the per-bin reach)",
              v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], r->v.n, r->img.n0,
-             r->img.set ? r->img.set->n : 0, (unsigned long long)r->run.proposal.cover_quads,
-             r->img.rho, r->img.reach);
+             r->img.set ? r->img.set->n : 0, r->img.rho, r->img.reach);
 }

@@ -46,10 +46,13 @@ def test_crambin_pdb_same_bytes_and_formats():
     assert len(res.t) == 1996 and res.certificate.complete
     assert res.certificate.certified == 1996
     assert res.certificate.text in out
-    # The counters are the numbers of the certificate line.
+    # The cells counter is the certificate line's; the quadruples (a count
+    # of the proposer's work, which differs between a GPU's kernel forms and
+    # the host's) are in the counters only, not in the output's bytes.
     c = res.certificate
     assert c.quadruples > 0 and c.cover_cells > 0
-    assert "direction cover of %d cells, %d quadruples," % (c.cover_cells, c.quadruples) in c.text
+    assert "direction cover of %d cells, every root" % c.cover_cells in c.text
+    assert "quadruples" not in c.text
     for fmt in ("json", "voronota"):
         o, _ = cli("vertices", "--device", "ref", "--output-format", fmt, path)
         assert res.to_text(fmt) == o
