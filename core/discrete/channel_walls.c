@@ -178,9 +178,9 @@ const vbc_walls_engine *vbc_walls_engine_ref(void)
 int vbc_walls_mode(void)
 {
     const char *e = getenv("VORBALL_DEVICE_WALLS");
-    if (e && strcmp(e, "0") == 0)
-        return 0;
+    if (e && strcmp(e, "1") == 0)
+        return 1;
     if (e && strcmp(e, "2") == 0)
         return 2;
-    return 1;
+    return 0;
 }
