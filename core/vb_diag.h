@@ -95,6 +95,7 @@
     X(W, 735, MODEL_OPEN_AT_END, 0, "the input ends inside a MODEL (no ENDMDL/END): truncated?")         \
     X(W, 750, PROGRAM_CACHE_BAD, 0, "a cached OpenCL program cannot be used: rebuilt from source")       \
     X(W, 751, JFA_DEVICE_FAILED, 0, "OpenCL failed mid-run in jfa: the rest runs on the reference")      \
+    X(W, 752, COVER_GROUP_CPU, 0, "VORBALL_COVER_KERNEL=group ignored on a CPU device")                 \
     X(W, 760, DEVICE_FALLBACK, 0, "no usable OpenCL device: vertices on the reference backend")          \
     X(W, 761, CAND_OVERFLOW, 0, "candidates did not fit a sampling grid cell")                           \
     X(W, 762, DEVICE_FAILED_RERUN, 0, "OpenCL device failed mid-run: rerun on the reference")            \

@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_diag.h"
 #include "vb_array.h"
 #include "vbg_buffer.h"
 #include "vbg_cover.h"
@@ -220,8 +221,16 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
      * does not handle the group kernel's barriers in loops).
      * VORBALL_COVER_KERNEL=item|group overrides. */
     const char *kn = getenv("VORBALL_COVER_KERNEL");
-    s->wg = kn && strcmp(kn, "group") == 0 ? 1 : kn && strcmp(kn, "item") == 0 ? 0
-                                                : vbg_runtime_is_gpu(rt);
+    int group = kn && strcmp(kn, "group") == 0;
+    if (group && !vbg_runtime_is_gpu(rt)) {
+        /* PoCL 3.1 crashed running it (corpus jittered_fcc, stop 46). */
+        vb_warn(ctx, VB_W_COVER_GROUP_CPU, NULL, 0,
+                "VORBALL_COVER_KERNEL=group is ignored on %s, a CPU device: its compiler does "
+                "not take the group kernel's barriers in loops; the work-item kernel runs",
+                vbg_runtime_device_name(rt));
+        group = 0;
+    }
+    s->wg = group ? 1 : kn && strcmp(kn, "item") == 0 ? 0 : vbg_runtime_is_gpu(rt);
     cov_tier *t0 = &s->tier[COV_FIRST], *t1 = &s->tier[COV_BIG], *th = &s->tier[COV_HAND];
     cov_tier *t3 = &s->tier[COV_HUGE];
     int cpu = !vbg_runtime_is_gpu(rt);

@@ -15,6 +15,7 @@
 # slice): same bytes as --device ref either way; bench's runs each report
 # their own peak. A budget
 # that cannot hold the input stops with E142 (exit 46) and writes no file.
+# VORBALL_COVER_KERNEL=group on a CPU device: W752 and the reference's vertices.
 # usage: device_budget.sh VORBALL SHIM CORPUS_DIR WORK_DIR [peak]
 vorball=$1 shim=$2 corpus=$3 work=$4/device_budget
 here=$(cd "$(dirname "$0")" && pwd)
@@ -103,4 +104,13 @@ code=$?
 [ "$code" -eq 46 ] && grep -q 'E142: the cover of 40000 spheres needs at least' "$work/big.err" ||
     { cat "$work/big.err" >&2; fail "a budget below the input exited $code, not E142"; }
 [ -e "$work/big.tsv" ] && fail "E142 left an output file"
-echo "ok: device buffers within the budget"
+# The group kernel asked for on a CPU device (PoCL 3.1 crashed running it,
+# stop 46): W752, the work-item kernel runs, the reference's vertices.
+j=$corpus/inputs/jittered_fcc.xyzr
+run 0 "$work/jref.err" "$vorball" vertices --device ref "$j" -o "$work/jref.tsv"
+VORBALL_COVER_KERNEL=group run 0 "$work/jgrp.err" "$vorball" vertices --device cpu "$j" \
+    -o "$work/jgrp.tsv"
+expect_line "$work/jgrp.err" 'W752: VORBALL_COVER_KERNEL=group is ignored on .*a CPU device'
+[ "$(vertex_lines "$work/jgrp.tsv")" = "$(vertex_lines "$work/jref.tsv")" ] ||
+    fail "the group kernel's knob on a CPU device changed the vertices"
+echo "ok: device buffers within the budget; W752 for the group kernel on a CPU device"
