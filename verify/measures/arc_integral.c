@@ -32,7 +32,7 @@ static double width(vbx_ia a)
 
 typedef vbm_owner owner;
 
-static int g_of(const owner *o, const vbm_s1 *q, vbm_s1 *G);
+static int g_of(const owner *o, const vbm_s1 *q, vbm_s1 *G, int kmax);
 static int phi_series(const owner *o, vbx_ia at, vbm_s1 *phi);
 
 int vbm_owner_make(const vbm_atom_in *in, size_t j, vbx_ia D, vbm_owner *o)
@@ -60,7 +60,7 @@ int vbm_owner_make(const vbm_atom_in *in, size_t j, vbx_ia D, vbm_owner *o)
     o->C = vbx_ia_div(vbx_ia_sqr(n->N), vbx_ia_mul(vbx_ia_point(4.0), D));
     vbm_s1 q, G;
     vbm1_const(&q, vbx_ia_add(D, n->delta));
-    if (!g_of(o, &q, &G))
+    if (!g_of(o, &q, &G, 0))
         return 0;
     o->G1 = G.c[0];
     o->near = phi_series(o, vbx_ia_point(0.0), &o->phi0);
@@ -92,16 +92,18 @@ static int phi_series(const owner *o, vbx_ia at, vbm_s1 *phi)
 /* G(q) = -S^(3/2) / (2 N q^2) + delta sqrt(S) / (2 N q)
  *        - delta^2 / (2 N sqrt N) log |(sqrt S - sqrt N) / (sqrt S + sqrt N)|,
  * S = N + 2 delta q: a primitive of sqrt(S) / q^3 (the log's argument as
- * 2 |delta| q / (sqrt S + sqrt N)^2, q > 0; no log term for delta = 0). */
-static int g_of(const owner *o, const vbm_s1 *q, vbm_s1 *G)
+ * 2 |delta| q / (sqrt S + sqrt N)^2, q > 0; no log term for delta = 0).
+ * Its coefficients to the order kmax (vbm1_mul_to; 0: its value, for a
+ * constant q). */
+static int g_of(const owner *o, const vbm_s1 *q, vbm_s1 *G, int kmax)
 {
     vbm_s1 S, r, iq, t, u;
     vbm1_affine(&S, vbx_ia_add(o->delta, o->delta), q, o->N);
-    if (!vbm1_sqrt(&r, &S) || !vbm1_recip(&iq, q))
+    if (!vbm1_sqrt_to(&r, &S, kmax) || !vbm1_recip_to(&iq, q, kmax))
         return 0;
-    vbm1_mul(&t, &r, &iq);                      /* sqrt S / q */
-    vbm1_mul(&u, &t, &S);
-    vbm1_mul(G, &u, &iq);                       /* S^(3/2) / q^2 */
+    vbm1_mul_to(&t, &r, &iq, kmax);             /* sqrt S / q */
+    vbm1_mul_to(&u, &t, &S, kmax);
+    vbm1_mul_to(G, &u, &iq, kmax);              /* S^(3/2) / q^2 */
     vbm1_affine(G, vbx_ia_neg(o->hN), G, vbx_ia_point(0.0));
     vbm1_affine(&u, vbx_ia_mul(o->delta, o->hN), &t, vbx_ia_point(0.0));
     vbm1_add(G, G, &u);
@@ -109,7 +111,7 @@ static int g_of(const owner *o, const vbm_s1 *q, vbm_s1 *G)
         return 1;
     vbm_s1 lq, ls;
     vbm1_affine(&u, vbx_ia_point(1.0), &r, o->rN);
-    if (!vbm1_log(&lq, q) || !vbm1_log(&ls, &u))
+    if (!vbm1_log_to(&lq, q, kmax) || !vbm1_log_to(&ls, &u, kmax))
         return 0;
     vbm1_affine(&u, vbx_ia_point(-2.0), &ls, o->lnd);
     vbm1_add(&u, &u, &lq);
@@ -132,7 +134,7 @@ static int fcon(const owner *o, vbx_ia z, vbx_ia *F)
 {
     vbm_s1 q, G;
     vbm1_const(&q, vbx_ia_add(vbx_ia_mul(o->D, z), o->delta));
-    if (!g_of(o, &q, &G))
+    if (!g_of(o, &q, &G, 0))
         return 0;
     *F = vbx_ia_mul(o->C, vbx_ia_sub(o->G1, G.c[0]));
     return 1;
@@ -206,10 +208,11 @@ static void rational_of(arcfun *f)
 }
 
 /* The contact's integrand C (G1 - G(q)) / (1 - z) times the area's, G as
- * g_of's but its algebraic part one root times a rational function.
- * Returns 0 when a series cannot be bounded (the caller bounds it near
- * e_j). */
-static int contact_of(const arcfun *f, vbx_ia at, int kmax, vbm_s1 *con)
+ * g_of's but its algebraic part one root times a rational function, to
+ * the order kmax; with `last`, of *con the order kmax alone (the others
+ * 0: over a piece only the remainder's order is read). Returns 0 when a
+ * series cannot be bounded (the caller bounds it near e_j). */
+static int contact_of(const arcfun *f, vbx_ia at, int kmax, int last, vbm_s1 *con)
 {
     static const vbx_ia E[3] = {{1.0, 1.0}, {0.0, 0.0}, {1.0, 1.0}};
     const owner *o = &f->o;
@@ -223,14 +226,14 @@ static int contact_of(const arcfun *f, vbx_ia at, int kmax, vbm_s1 *con)
         vbm1_affine(&S, vbx_ia_add(o->delta, o->delta), &q, o->N);
     else
         return 0;
-    if (!vbm1_sqrt(&r, &S) || !vbm1_rational(&R, f->Rn, 4, f->Rd, 4, at, kmax) ||
+    if (!vbm1_sqrt_to(&r, &S, kmax) || !vbm1_rational(&R, f->Rn, 4, f->Rd, 4, at, kmax) ||
         !vbm1_rational(&a, f->an, 2, f->cd, 4, at, kmax))
         return 0;
-    vbm1_mul(&G, &r, &R);
+    vbm1_mul_to(&G, &r, &R, kmax);
     if (!dz) { /* - delta^2 / (2 N sqrt N) log(2 |delta| q / (sqrt S + sqrt N)^2) */
         vbm_s1 lq, ls;
         vbm1_affine(&u, vbx_ia_point(1.0), &r, o->rN);
-        if (!vbm1_log(&lq, &q) || !vbm1_log(&ls, &u))
+        if (!vbm1_log_to(&lq, &q, kmax) || !vbm1_log_to(&ls, &u, kmax))
             return 0;
         vbm1_affine(&u, vbx_ia_point(-2.0), &ls, o->lnd);
         vbm1_add(&u, &u, &lq);
@@ -238,7 +241,11 @@ static int contact_of(const arcfun *f, vbx_ia at, int kmax, vbm_s1 *con)
         vbm1_add(&G, &G, &u);
     }
     vbm1_affine(&G, vbx_ia_neg(o->C), &G, vbx_ia_mul(o->C, o->G1));
-    vbm1_mul(con, &G, &a);
+    if (last) {
+        vbm1_const(con, vbx_ia_point(0.0));
+        con->c[kmax] = vbm1_mul_coef(&G, &a, kmax);
+    } else
+        vbm1_mul_to(con, &G, &a, kmax);
     return 1;
 }
 
@@ -296,7 +303,8 @@ static int contact_near(const arcfun *f, vbx_ia at, int kmax, double yhi, vbm_s1
 /* ... of the values `want` (bits 1 << AREA, VOL, CON); with `keep` (at a
  * point, kmax VBM1_K) the area's and the volume's moved polynomials in
  * keep[0] and keep[1], for their remainders (vbm1_rational_rest). */
-static int integrand(const arcfun *f, int want, vbx_ia at, vbm_s1 *v, int kmax, vbm1_rat *keep)
+static int integrand(const arcfun *f, int want, vbx_ia at, vbm_s1 *v, int kmax, int last,
+                     vbm1_rat *keep)
 {
     int av = want & (1 << AREA | 1 << VOL);
     if (av && keep &&
@@ -313,7 +321,7 @@ static int integrand(const arcfun *f, int want, vbx_ia at, vbm_s1 *v, int kmax, 
     vbm1_const(&v[CON], vbx_ia_point(0.0));
     if (!f->o.contacts || !(want & 1 << CON))
         return 1;
-    if (contact_of(f, at, kmax, &v[CON]))
+    if (contact_of(f, at, kmax, last, &v[CON]))
         return 1;
     /* near e_j: F(z) / (1 - z) = f(xi), xi in [z, 1] */
     static const vbx_ia E[3] = {{1.0, 1.0}, {0.0, 0.0}, {1.0, 1.0}};
@@ -386,8 +394,12 @@ static int piece(const arcfun *f, double x0, double x1, const double *tg, int de
         rc = rb = 1;
     else {
         int av = f->want & (1 << AREA | 1 << VOL);
-        rc = pre ? rpre : integrand(f, f->want, vbx_ia_point(xc), cs, VBM1_K, kc);
-        rb = rc ? integrand(f, f->want & 1 << CON, box, b, VBM1_K, NULL) : 0;
+        /* the contact's middle to the order K - 1 and its box's order K
+         * alone: what vbm1_integrate_m reads of them (the area's and the
+         * volume's at the middle keep every order: vbm1_rational_rest) */
+        int kc_max = f->want == 1 << CON ? VBM1_K - 1 : VBM1_K;
+        rc = pre ? rpre : integrand(f, f->want, vbx_ia_point(xc), cs, kc_max, 0, kc);
+        rb = rc ? integrand(f, f->want & 1 << CON, box, b, VBM1_K, 1, NULL) : 0;
         vbx_ia x = {vbx_ia_sub(vbx_ia_point(x0), vbx_ia_point(xc)).lo,
                     vbx_ia_sub(vbx_ia_point(x1), vbx_ia_point(xc)).hi};
         for (int k = AREA; rb && av && k <= VOL; k++)
@@ -458,7 +470,7 @@ static int planned(const arcfun *f, double x0, double x1, const double *tg, sums
     vbm_s1 c[NV];
     vbm1_rat kc[2];
     double xc = 0.5 * (x0 + x1), h = 0.5 * (x1 - x0);
-    int rc = integrand(f, f->want, vbx_ia_point(xc), c, VBM1_K, kc), d = 0;
+    int rc = integrand(f, f->want, vbx_ia_point(xc), c, VBM1_K, 0, kc), d = 0;
     double hk = 2.0 / (VBM1_K + 1) * h;
     for (int n = 0; n < VBM1_K; n++)
         hk *= h;
@@ -478,7 +490,7 @@ static int planned(const arcfun *f, double x0, double x1, const double *tg, sums
 static int end_piece(const arcfun *f, vbx_ia t, double m, sums *out)
 {
     vbm_s1 v[NV];
-    if (!integrand(f, f->want, t, v, 0, NULL)) /* 2: v[CON].c[0] a bound as well */
+    if (!integrand(f, f->want, t, v, 0, 0, NULL)) /* 2: v[CON].c[0] a bound as well */
         return 0;
     vbx_ia dt = vbx_ia_sub(vbx_ia_point(m), t);
     for (int k = 0; k < NV; k++)

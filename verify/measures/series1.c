@@ -49,25 +49,50 @@ static vbx_ia conv(const vbm_s1 *f, const vbm_s1 *g, int n, int from, int to)
     return vbm_dotn(&f->c[from], 1, &g->c[n - from], -1, to - from + 1);
 }
 
+/* r_n = 0 for n in (kmax, VBM1_K]: the orders a caller does not read
+ * (vbm_series1.h's *_to) */
+static void zero_above(vbm_s1 *r, int kmax)
+{
+    for (int n = kmax + 1; n <= VBM1_K; n++)
+        r->c[n] = vbx_ia_point(0.0);
+}
+
+void vbm1_mul_to(vbm_s1 *r, const vbm_s1 *f, const vbm_s1 *g, int kmax)
+{
+    for (int n = 0; n <= kmax; n++)
+        r->c[n] = conv(f, g, n, 0, n);
+    zero_above(r, kmax);
+}
+
 void vbm1_mul(vbm_s1 *r, const vbm_s1 *f, const vbm_s1 *g)
 {
-    for (int n = 0; n <= VBM1_K; n++)
-        r->c[n] = conv(f, g, n, 0, n);
+    vbm1_mul_to(r, f, g, VBM1_K);
+}
+
+vbx_ia vbm1_mul_coef(const vbm_s1 *f, const vbm_s1 *g, int n)
+{
+    return conv(f, g, n, 0, n);
 }
 
 /* f r = 1: r_n = -(sum_{k=1..n} f_k r_(n-k)) / f_0, the division a product
  * with r_0, an enclosure of 1 / f_0 (as vbm1_rational does; the same for
  * vbm1_sqrt and vbm1_log below: 1crn --contacts, 1 thread, their interval
  * divisions were a fifth of their time) */
-int vbm1_recip(vbm_s1 *r, const vbm_s1 *f)
+int vbm1_recip_to(vbm_s1 *r, const vbm_s1 *f, int kmax)
 {
     vbx_ia f0 = f->c[0];
     if (!(f0.lo > 0.0 || f0.hi < 0.0))
         return 0;
     r->c[0] = vbx_ia_div(vbx_ia_point(1.0), f0);
-    for (int n = 1; n <= VBM1_K; n++)
+    for (int n = 1; n <= kmax; n++)
         r->c[n] = vbx_ia_mul(vbx_ia_neg(conv(f, r, n, 1, n)), r->c[0]);
+    zero_above(r, kmax);
     return 1;
+}
+
+int vbm1_recip(vbm_s1 *r, const vbm_s1 *f)
+{
+    return vbm1_recip_to(r, f, VBM1_K);
 }
 
 /* An enclosure of 1 / n: the quotient rounded to nearest, one step each way. */
@@ -85,12 +110,17 @@ static vbx_ia inv_int(int n)
  * (1crn --contacts, 1 thread: vbm1_sqrt was 9.8 % of the CPU). */
 int vbm1_sqrt(vbm_s1 *r, const vbm_s1 *f)
 {
+    return vbm1_sqrt_to(r, f, VBM1_K);
+}
+
+int vbm1_sqrt_to(vbm_s1 *r, const vbm_s1 *f, int kmax)
+{
     if (!(f->c[0].lo > 0.0))
         return 0;
     r->c[0] = vbx_ia_sqrt(f->c[0]);
     vbx_ia two_r0 = vbx_ia_add(r->c[0], r->c[0]);
     vbx_ia inv = vbx_ia_div(vbx_ia_point(1.0), two_r0);
-    for (int n = 1; n <= VBM1_K; n++) {
+    for (int n = 1; n <= kmax; n++) {
         vbx_ia s = conv(r, r, n, 1, (n - 1) / 2);
         s.lo *= 2.0;
         s.hi *= 2.0;
@@ -98,6 +128,7 @@ int vbm1_sqrt(vbm_s1 *r, const vbm_s1 *f)
             s = vbx_ia_add(s, vbx_ia_sqr(r->c[n / 2]));
         r->c[n] = vbx_ia_mul(vbx_ia_sub(f->c[n], s), inv);
     }
+    zero_above(r, kmax);
     return 1;
 }
 
@@ -107,17 +138,23 @@ int vbm1_sqrt(vbm_s1 *r, const vbm_s1 *f)
  * the CPU). */
 int vbm1_log(vbm_s1 *r, const vbm_s1 *f)
 {
+    return vbm1_log_to(r, f, VBM1_K);
+}
+
+int vbm1_log_to(vbm_s1 *r, const vbm_s1 *f, int kmax)
+{
     vbx_ia f0 = f->c[0], kr[VBM1_K + 1];
     if (!(f0.lo > 0.0))
         return 0;
     r->c[0] = vbm_ia_log(f0);
     vbx_ia if0 = vbx_ia_div(vbx_ia_point(1.0), f0);
-    for (int n = 1; n <= VBM1_K; n++) {
+    for (int n = 1; n <= kmax; n++) {
         vbx_ia s = vbm_dotn(&kr[1], 1, &f->c[n - 1], -1, n - 1);
         vbx_ia num = vbx_ia_sub(f->c[n], vbx_ia_mul(s, inv_int(n)));
         r->c[n] = vbx_ia_mul(num, if0);
         kr[n] = vbm_ia_mul_point((double)n, r->c[n]);
     }
+    zero_above(r, kmax);
     return 1;
 }
 

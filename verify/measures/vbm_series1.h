@@ -35,6 +35,10 @@ void vbm1_sub(vbm_s1 *r, const vbm_s1 *f, const vbm_s1 *g);
 /* r = f g (r must not alias f or g). */
 void vbm1_mul(vbm_s1 *r, const vbm_s1 *f, const vbm_s1 *g);
 
+/* The n-th coefficient of f g alone (0 <= n <= VBM1_K), the same
+ * enclosure vbm1_mul gives it. */
+vbx_ia vbm1_mul_coef(const vbm_s1 *f, const vbm_s1 *g, int n);
+
 /* r = 1 / f (r must not alias f). Returns 0 when f's constant term may be
  * 0 (r unspecified then). */
 int vbm1_recip(vbm_s1 *r, const vbm_s1 *f);
@@ -46,6 +50,17 @@ int vbm1_sqrt(vbm_s1 *r, const vbm_s1 *f);
 /* r = log(f) (r must not alias f), the constant term's log rounded outward
  * by MPFR (vbm_ia_log). Returns 0 unless f's constant term is proven > 0. */
 int vbm1_log(vbm_s1 *r, const vbm_s1 *f);
+
+/* vbm1_mul, vbm1_recip, vbm1_sqrt and vbm1_log to the order kmax
+ * (0 <= kmax <= VBM1_K): coefficients 0..kmax the same enclosures, bit
+ * for bit (each depends on the lower ones only), the others set to 0.
+ * A value (kmax 0) or a series whose top order is not read costs what
+ * it uses, not VBM1_K orders of zeros (the contact's ends and own arcs,
+ * its series at pieces' middles: arc_integral.c). */
+void vbm1_mul_to(vbm_s1 *r, const vbm_s1 *f, const vbm_s1 *g, int kmax);
+int vbm1_recip_to(vbm_s1 *r, const vbm_s1 *f, int kmax);
+int vbm1_sqrt_to(vbm_s1 *r, const vbm_s1 *f, int kmax);
+int vbm1_log_to(vbm_s1 *r, const vbm_s1 *f, int kmax);
 
 /* An enclosure of the integral of f over [x0, x1] in two steps, for
  * several functions over one interval: m[0..VBM1_K] the enclosures of the
