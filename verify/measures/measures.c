@@ -352,7 +352,12 @@ static void one_atom(void *ctx, size_t i, int tid)
         for (int k = 0; k < VB_CELL_NSTAGE; k++)
             jb->clock[tid][k] += f * jb->lap[tid][k];
     }
-    vbm_ia_release();
+    /* MPFR's caches (atan's pi) are per thread and die with it unfreed:
+     * freed after each thread's last atom (item i goes to thread i mod
+     * threads, at most VB_MAX_THREADS), not after every atom, which made
+     * every atom's first atan compute pi again */
+    if (i + VB_MAX_THREADS >= jb->out->n)
+        vbm_ia_release();
     atom_done(jb);
 }
 
