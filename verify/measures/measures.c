@@ -149,6 +149,17 @@ static int cmp_u64(const void *a, const void *b)
     return x->id < y->id ? -1 : x->id > y->id;
 }
 
+/* A thread's stage clocks (opt->clock), no cache line shared with
+ * another thread's: lap is written at every region's stages (vbm_lap),
+ * and rows of five doubles side by side put two threads' laps on one
+ * line. The gap after them (more than a line) keeps the next thread's
+ * off it wherever the job's block lies (calloc aligns to 16 only). */
+typedef struct thread_clock {
+    double clock[VB_CELL_NSTAGE]; /* CPU seconds per stage */
+    double lap[VB_CELL_NSTAGE];   /* the atom being measured: its wall seconds per stage */
+    char gap[72];
+} thread_clock;
+
 typedef struct job {
     const vb_sphere_set *set;
     const vb_measure_options *opt;
@@ -163,9 +174,7 @@ typedef struct job {
     size_t cap_nb[VB_MAX_THREADS];
     size_t patches[VB_MAX_THREADS];
     size_t stokes[VB_MAX_THREADS]; /* atoms measured by vbm_cell_stokes */
-    double clock[VB_MAX_THREADS][VB_CELL_NSTAGE]; /* opt->clock: CPU seconds per stage */
-    double lap[VB_MAX_THREADS][VB_CELL_NSTAGE];   /* the atom being measured: its wall
-                                                   * seconds per stage */
+    thread_clock tc[VB_MAX_THREADS]; /* opt->clock: each thread's stage seconds */
     int failed;
     vb_ctx *ctx;               /* where progress goes */
     atomic_size_t atoms_done;  /* atoms finished, every thread (progress) */
@@ -279,7 +288,7 @@ static void measure_atom(job *jb, size_t i, int tid)
 {
     vb_cell_measures *o = jb->out;
     size_t nnb = 0;
-    double *clock = jb->opt->clock ? jb->lap[tid] : NULL;
+    double *clock = jb->opt->clock ? jb->tc[tid].lap : NULL;
     double t0 = clock ? vb_now() : 0.0;
     int e = jb->set->contained[i] ? 1 : neighbours(jb, i, tid, &nnb);
     t0 = vbm_lap(clock, VB_CELL_NEIGHBOURS, t0);
@@ -345,12 +354,12 @@ static void one_atom(void *ctx, size_t i, int tid)
         /* the stages on the monotonic clock (cheap), scaled to the atom's
          * CPU seconds (a costlier clock, read twice per atom): a thread
          * that waits for a core, on a loaded machine, counts no waiting */
-        memset(jb->lap[tid], 0, sizeof jb->lap[tid]);
+        memset(jb->tc[tid].lap, 0, sizeof jb->tc[tid].lap);
         double c0 = thread_cpu(), w0 = vb_now();
         measure_atom(jb, i, tid);
         double w = vb_now() - w0, f = w > 0.0 ? (thread_cpu() - c0) / w : 1.0;
         for (int k = 0; k < VB_CELL_NSTAGE; k++)
-            jb->clock[tid][k] += f * jb->lap[tid][k];
+            jb->tc[tid].clock[k] += f * jb->tc[tid].lap[k];
     }
     /* MPFR's caches (atan's pi) are per thread and die with it unfreed:
      * freed after each thread's last atom (item i goes to thread i mod
@@ -553,7 +562,7 @@ int vb_cell_measures_compute_images(vb_ctx *ctx, const vb_sphere_set *set,
         out->patches += jb->patches[t];
         out->nclosed += jb->stokes[t];
         for (int k = 0; k < VB_CELL_NSTAGE; k++)
-            out->stage_s[k] += jb->clock[t][k];
+            out->stage_s[k] += jb->tc[t].clock[k];
     }
     for (size_t i = 0; i < n; i++) {
         out->nempty += out->empty[i];
