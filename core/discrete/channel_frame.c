@@ -111,8 +111,7 @@ int vbc_frame_beside(const vbc_options *opt, const vbc_frame *f)
     /* Where the refinement runs beside the search (vbc_pore_stage_after);
      * the analysis's batch sweeps on the pipe (VORBALL_DEVICE_PATHS) keep
      * the order of old. */
-    return opt->pore && opt->pore->enabled && vb_threads(0) >= VBC_PORE_MIN_THREADS &&
-           !(f->pipe && vbc_paths_mode());
+    return opt->pore && opt->pore->enabled && vbc_analysis_beside() && !(f->pipe && vbc_paths_mode());
 }
 
 int vbc_frame_analyse(vb_ctx *ctx, const vb_sphere_set *s, const vbc_options *opt, vbc_frame *f)

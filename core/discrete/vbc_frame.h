@@ -49,8 +49,8 @@ int vbc_frame_masks(vb_ctx *ctx, vbc_pipe *pipe, const vbc_grid *g, const vb_sph
 int vbc_frame_analyse(vb_ctx *ctx, const vb_sphere_set *s, const vbc_options *opt, vbc_frame *f);
 
 /* Whether vbc_frame_analyse runs the analysis beside the pore stage
- * (f->ms_beside then says how much of it): opt asks for the pore, there
- * are VBC_PORE_MIN_THREADS threads or more, and the analysis's sweeps do
+ * (f->ms_beside then says how much of it): opt asks for the pore,
+ * vbc_analysis_beside() holds, and the analysis's sweeps do
  * not run on f's pipe (VORBALL_DEVICE_PATHS). The analysis then runs on a
  * thread of the pore stage (vbc_pore_stage_after) with a context of its
  * own, whose counters and error become ctx's: the same result, the same

@@ -12,6 +12,7 @@
 #include "synth.h"
 #include "vb_test.h"
 #include "vbc_frame.h"
+#include "vbc_paths.h"
 
 static void set_threads(int n)
 {
@@ -95,6 +96,7 @@ int main(void)
 {
     vb_ctx *ctx;
     CHECK_INT(vb_open(&ctx, NULL), VB_OK);
+    unsetenv("VORBALL_ANALYSIS_BESIDE");
     vbc_pipe *pipe;
     CHECK_INT(vbc_pipe_open(ctx, NULL, VB_DEVICE_REF, VBJ_EXACT, &pipe), VB_OK);
     /* A pore through a barrel of eight rings and a shell's cavities. */
@@ -118,6 +120,21 @@ int main(void)
     CHECK(one.ms_beside == 0.0);
     CHECK(four.ms_beside == four.ms_analysis && four.ms_analysis > 0.0);
     CHECK(four.ms_pore >= four.ms_analysis);
+    /* VORBALL_ANALYSIS_BESIDE=0: one after the other at four threads too. */
+    setenv("VORBALL_ANALYSIS_BESIDE", "0", 1);
+    vbc_frame off;
+    memset(&off, 0, sizeof off);
+    set_threads(4);
+    CHECK_INT(vbc_analysis_beside(), 0);
+    vbc_grid g;
+    CHECK_INT(vbc_grid_fit(ctx, s, 1.4, 64, 3, &g), VB_OK);
+    CHECK_INT(vbc_frame_masks(ctx, pipe, &g, s, 1.4, 0, &opt, &off), VB_OK);
+    CHECK_INT(vbc_frame_beside(&opt, &off), 0);
+    CHECK_INT(vbc_frame_analyse(ctx, s, &opt, &off), VB_OK);
+    CHECK(off.ms_beside == 0.0);
+    same_result(&one.result, &off.result);
+    vbc_frame_free(&off);
+    unsetenv("VORBALL_ANALYSIS_BESIDE");
     /* Run again on the frame's buffers (--repeat): the same again. */
     CHECK_INT(vbc_frame_analyse(ctx, s, &opt, &four), VB_OK);
     same_result(&one.result, &four.result);
