@@ -86,6 +86,22 @@ static int slow_analysis(void *arg)
                              f->out.nvoxels, J->opt, J->res);
 }
 
+/* The pore stage of frame f with request req on `threads` threads, its
+ * analysis the late one above on a worker context, into *res. */
+static void late_stage(vb_ctx *ctx, const vbc_frame *f, const vb_sphere_set *s, const vbc_options *opt,
+                       const vbc_pore_request *req, int threads, vbc_result *res)
+{
+    set_threads(threads);
+    vb_ctx *w;
+    CHECK_INT(vb_open_worker(&w, ctx), VB_OK);
+    memset(res, 0, sizeof *res);
+    slow_job J = {w, f, s, opt, res};
+    vbc_pore_before B = {slow_analysis, &J};
+    CHECK_INT(vbc_pore_stage_after(ctx, &f->grid, f->out.flags, s, req, NULL, 1.0, res, NULL, NULL, &B),
+              VB_OK);
+    vb_close(w);
+}
+
 static int fail_enomem(void *arg)
 {
     (void)arg;
@@ -142,48 +158,23 @@ int main(void)
     /* A late analysis: the stage waits for it (the refinement, the pore's
      * place in the table, the ranking), on one thread and on four. */
     for (int th = 1; th <= 4; th += 3) {
-        set_threads(th);
-        vb_ctx *w;
-        CHECK_INT(vb_open_worker(&w, ctx), VB_OK);
         vbc_result res;
-        memset(&res, 0, sizeof res);
-        slow_job J = {w, &one, s, &opt, &res};
-        vbc_pore_before B = {slow_analysis, &J};
-        CHECK_INT(vbc_pore_stage_after(ctx, &one.grid, one.out.flags, s, &req, NULL, 1.0, &res, NULL,
-                                       NULL, &B),
-                  VB_OK);
+        late_stage(ctx, &one, s, &opt, &req, th, &res);
         same_result(&one.result, &res);
         vbc_result_free(&res);
-        vb_close(w);
     }
     /* Along an axis given, the search never reads the channels: only the
      * steps after the sweep wait (the pore reported as swept, unjudged). */
     vbc_pore_request given = req;
     given.have_axis = 1;
     given.u[2] = 1.0;
-    vbc_result seq;
-    memset(&seq, 0, sizeof seq);
-    for (int th = 1; th <= 4; th += 3) {
-        set_threads(th);
-        vb_ctx *w;
-        CHECK_INT(vb_open_worker(&w, ctx), VB_OK);
-        vbc_result res;
-        memset(&res, 0, sizeof res);
-        slow_job J = {w, &one, s, &opt, &res};
-        vbc_pore_before B = {slow_analysis, &J};
-        CHECK_INT(vbc_pore_stage_after(ctx, &one.grid, one.out.flags, s, &given, NULL, 1.0, &res, NULL,
-                                       NULL, &B),
-                  VB_OK);
-        if (th == 1) {
-            CHECK_INT(res.pore.present, 1);
-            CHECK(res.nchannels >= 2);
-            seq = res;
-        } else {
-            same_result(&seq, &res);
-            vbc_result_free(&res);
-        }
-        vb_close(w);
-    }
+    vbc_result seq, res;
+    late_stage(ctx, &one, s, &opt, &given, 1, &seq);
+    CHECK_INT(seq.pore.present, 1);
+    CHECK(seq.nchannels >= 2);
+    late_stage(ctx, &one, s, &opt, &given, 4, &res);
+    same_result(&seq, &res);
+    vbc_result_free(&res);
     vbc_result_free(&seq);
 
     /* A failure of what fills res: its status, on one thread (first) and
