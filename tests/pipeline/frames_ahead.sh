@@ -138,6 +138,21 @@ for ext in pdb sj; do
 done
 ms_check adk5.json 5
 
+# From 4 threads a frame in analysis runs its analysis beside its pore stage
+# once the pore request is fixed (--axis: from the second frame on), on one
+# and on three frames in analysis at once: the sequential loop's bytes.
+channels axseq 0 2 --device ref --axis 0,0,1
+for w in 1 3; do
+    export VORBALL_FRAMES_IN_FLIGHT=$w
+    channels "ax${w}t5" 2 5 --device ref --axis 0,0,1
+    same axseq "ax${w}t5"
+done
+export VORBALL_FRAMES_IN_FLIGHT=1
+VORBALL_THREADS=5 run 0 axj.log "$vorball" channels "$top" --traj "$xtc" --grid 64 --device ref \
+    --axis 0,0,1 --json -o axj.json
+[ "$(grep -o '"beside": [0-9.]*' axj.json | grep -vc ' 0\.000$')" -ge 5 ] ||
+    fail "axj.json: fewer than 5 frames ran the analysis beside the pore stage"
+
 # --fixed-grid: the reader fits the grid on the first frame it runs.
 channels fix0 0 2 --device ref --fixed-grid --frames 2:10:3
 channels fix2 2 2 --device ref --fixed-grid --frames 2:10:3
