@@ -3,6 +3,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "vb_diag.h"
 #include "vb_parallel.h"
 #include "vbc_frame.h"
 #include "vbc_paths.h"
@@ -31,7 +32,7 @@ int vbc_frame_masks(vb_ctx *ctx, vbc_pipe *pipe, const vbc_grid *g, const vb_sph
     memset(&f->result, 0, sizeof f->result);
     f->grid = *g;
     f->pipe = pipe;
-    f->ms_masks = f->ms_analysis = f->ms_pore = 0.0;
+    f->ms_masks = f->ms_analysis = f->ms_pore = f->ms_beside = 0.0;
     memset(&f->pore_ms, 0, sizeof f->pore_ms);
     memset(&f->axis, 0, sizeof f->axis);
     if (opt->pore && opt->pore->enabled)
@@ -85,11 +86,60 @@ int vbc_frame_pore(vb_ctx *ctx, const vb_sphere_set *s, const vbc_options *opt, 
     return analyse_failed(f, rc);
 }
 
+/* The analysis as vbc_pore_stage_after's first step: on context w (its
+ * own: the pore's search speaks through the frame's at once). */
+typedef struct {
+    vb_ctx *w;
+    const vb_sphere_set *s;
+    const vbc_options *opt;
+    vbc_frame *f;
+} components_job;
+
+static int components_run(void *arg)
+{
+    components_job *J = arg;
+    vbc_frame *f = J->f;
+    double t = vb_now();
+    int rc = vbc_analyse_paths(J->w, &f->grid, J->s, f->out.voxels, f->out.clearance, f->out.comp,
+                               f->out.nvoxels, J->opt, NULL, &f->result);
+    f->ms_analysis = 1e3 * (vb_now() - t);
+    return rc;
+}
+
+int vbc_frame_beside(const vbc_options *opt, const vbc_frame *f)
+{
+    /* Where the refinement runs beside the search (vbc_pore_stage_after);
+     * the analysis's batch sweeps on the pipe (VORBALL_DEVICE_PATHS) keep
+     * the order of old. */
+    return opt->pore && opt->pore->enabled && vbc_analysis_beside() && !(f->pipe && vbc_paths_mode());
+}
+
 int vbc_frame_analyse(vb_ctx *ctx, const vb_sphere_set *s, const vbc_options *opt, vbc_frame *f)
 {
-    f->ms_pore = 0.0;
-    int rc = vbc_frame_components(ctx, s, opt, f);
-    return rc == VB_OK ? vbc_frame_pore(ctx, s, opt, f) : rc;
+    f->ms_pore = f->ms_beside = 0.0;
+    vb_ctx *w = NULL;
+    if (!vbc_frame_beside(opt, f) || vb_open_worker(&w, ctx) != VB_OK) {
+        int rc = vbc_frame_components(ctx, s, opt, f);
+        return rc == VB_OK ? vbc_frame_pore(ctx, s, opt, f) : rc;
+    }
+    components_job J = {w, s, opt, f};
+    vbc_pore_before B = {components_run, &J};
+    double t = vb_now();
+    const struct vbc_walls_engine *walls = f->pipe ? vbc_pipe_walls_hold(f->pipe) : NULL;
+    int rc = vbc_pore_stage_after(ctx, &f->grid, f->out.flags, s, opt->pore, walls, opt->lining_tol,
+                                  &f->result, &f->axis, &f->pore_ms, &B);
+    if (f->pipe)
+        vbc_pipe_walls_release(f->pipe);
+    f->ms_pore = 1e3 * (vb_now() - t);
+    /* The analysis ran within the stage's span: the frame took the span. */
+    f->ms_beside = f->ms_analysis;
+    /* Its counters and its failure are the frame's, as on one thread. */
+    vb_stats_add(vb_ctx_stats(ctx), vb_ctx_stats(w));
+    vb_diag_record e;
+    if (rc != VB_OK && vb_error_record(w, &e) == VB_OK)
+        vb_error(ctx, rc, e.file, e.line, "%s", e.message);
+    vb_close(w);
+    return analyse_failed(f, rc);
 }
 
 int vbc_frame_run(vb_ctx *ctx, vbc_pipe *pipe, const vbc_grid *g, const vb_sphere_set *s,

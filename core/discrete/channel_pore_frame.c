@@ -327,24 +327,31 @@ typedef struct {
     double ms;       /* its wall time */
     int running;     /* started on a thread of its own, not joined yet */
     vb_jobs th;
+    const vbc_pore_before *before; /* fills res first (NULL: res is filled) */
+    int before_rc;   /* its status; the refinement is skipped after a failure */
 } refine_job;
 
 static void *refine_job_run(void *arg)
 {
     refine_job *R = arg;
+    if (R->before && (R->before_rc = R->before->run(R->before->arg)) != VB_OK)
+        return NULL;
     double t0 = vb_now();
     vbc_refine_bottlenecks(R->res, R->cells, R->h);
     R->ms = 1e3 * (vb_now() - t0);
     return NULL;
 }
 
-/* The refinement done (joined when it ran beside). NULL: nothing runs. */
-static void refine_wait(refine_job *R)
+/* The refinement done (joined when it ran beside). NULL: nothing runs.
+ * Returns the ms waited for it. */
+static double refine_wait(refine_job *R)
 {
+    double t = vb_now();
     if (R && R->running) {
         vb_jobs_join(&R->th);
         R->running = 0;
     }
+    return 1e3 * (vb_now() - t);
 }
 
 static int pore_find(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const vbc_cells *cells,
@@ -493,19 +500,31 @@ int vbc_pore_stage(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const v
                    const vbc_pore_request *req, const vbc_walls_engine *walls,
                    double lining_tol, vbc_result *res, vbc_axis *found, vbc_pore_ms *ms)
 {
+    return vbc_pore_stage_after(ctx, g, flags, s, req, walls, lining_tol, res, found, ms, NULL);
+}
+
+int vbc_pore_stage_after(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const vb_sphere_set *s,
+                         const vbc_pore_request *req, const vbc_walls_engine *walls,
+                         double lining_tol, vbc_result *res, vbc_axis *found, vbc_pore_ms *ms,
+                         const vbc_pore_before *before)
+{
     vbc_pore_ms t = {0.0, 0.0, 0.0, 0.0, 0.0};
     double t0 = vb_now();
     vbc_cells *cells = NULL;
     int rc = vbc_cells_build(ctx, s, 3.0, &cells);
-    if (rc != VB_OK)
-        return rc;
+    if (rc != VB_OK) {
+        /* What fills res still runs: its status comes first, as when it
+         * runs before this stage. */
+        int brc = before ? before->run(before->arg) : VB_OK;
+        return brc != VB_OK ? brc : rc;
+    }
     double t1 = vb_now();
     t.cells = 1e3 * (t1 - t0);
     /* The refinement moves the discrete channels' points, which the pore's
      * search reads only at the through channel's candidate (it waits for
      * it there) and the table's steps after the verdict: with threads to
      * spare (vbc_pore_threads' rule) it runs beside the search. */
-    refine_job R = {res, cells, g->h, 0.0, 0, {0}};
+    refine_job R = {res, cells, g->h, 0.0, 0, {0}, before, VB_OK};
     int beside = req && req->enabled && vb_threads(0) >= VBC_PORE_MIN_THREADS;
     if (beside) {
         vb_jobs_start(&R.th, refine_job_run, &R, sizeof R, 1);
@@ -514,6 +533,7 @@ int vbc_pore_stage(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const v
         refine_job_run(&R);
     }
     t0 = vb_now();
+    double waited = 0.0;
     if (found)
         memset(found, 0, sizeof *found);
     if (req && req->enabled) {
@@ -536,7 +556,9 @@ int vbc_pore_stage(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const v
         }
         t0 = vb_now();
         t.verdict = 1e3 * (t0 - t1);
-        refine_wait(&R);
+        waited = refine_wait(&R);
+        if (R.before_rc != VB_OK)
+            rc = R.before_rc;
         if (rc == VB_OK && p.n > 0 && v.is_pore) {
             rc = vbc_result_add_pore(ctx, res, &p, cells, lining_tol);
             if (found)
@@ -549,12 +571,15 @@ int vbc_pore_stage(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const v
         }
         vbc_pore_free(&p);
     }
-    refine_wait(&R);
+    waited += refine_wait(&R);
+    if (R.before_rc != VB_OK)
+        rc = R.before_rc;
     t.refine = R.ms;
     if (rc == VB_OK)
         vbc_rank(res);
     vbc_cells_free(cells);
-    t.lining = 1e3 * (vb_now() - t0);
+    /* Less the wait for the refinement (and what fills res before it). */
+    t.lining = 1e3 * (vb_now() - t0) - waited;
     if (ms)
         *ms = t;
     return rc;

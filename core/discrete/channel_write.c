@@ -256,7 +256,7 @@ void vbc_write_json_frame(FILE *f, int first, const vbc_frame_info *fi, const vb
                          fi->ms_masks,    fi->ms_analysis, fi->ms_graph, fi->ms_voxels,
                          fi->ms_clear,    fi->ms_trace,   fi->ms_cells,  fi->ms_refine,
                          fi->ms_sweep,    fi->ms_verdict, fi->ms_lining, fi->ms_pore,
-                         fi->ms_total};
+                         fi->ms_beside,   fi->ms_total};
     json_clock(f, "     \"ms\": {", VBC_JSON_MS_KEYS, ms);
     fputs(",\n", f);
     const vbc_pore_summary *P = &res->pore;

@@ -306,6 +306,7 @@ typedef struct vbc_frame_info {
     double ms_cells, ms_refine, ms_sweep, ms_verdict, ms_lining;
     double ms_graph;       /* the analysis's batch sweeps (part of ms_analysis; 0 without) */
     double ms_voxels, ms_clear, ms_trace; /* the analysis's steps (vbc_result) */
+    double ms_beside;      /* of ms_analysis, what ran beside the pore stage (vbc_frame_analyse) */
     double t_start;        /* vb_now() when the frame's reading began; 0: unknown */
     double cpu_start;      /* vbc_cpu_now() then (with t_start) */
 } vbc_frame_info;
@@ -339,13 +340,15 @@ void vbc_write_stats_row(FILE *f, const vbc_frame_info *fi, const vbc_grid *g,
  * they ran as batches (VORBALL_DEVICE_PATHS, vbc_paths.h; else 0), voxels,
  * clear and trace = the analysis's steps (vbc_result's ms_voxels, ms_clear,
  * ms_trace), cells, refine, sweep, verdict,
- * lining, pore = the last five, total = masks + analysis + pore), and
+ * lining, pore = the last five, beside = what of analysis ran within the
+ * pore stage's span (vbc_frame_analyse; 0 when one ran after the other),
+ * total = masks + analysis + pore - beside, the frame's span), and
  * "clock" closing the frame (VBC_JSON_CLOCK_KEYS: write = this frame's
  * JSON text, frame = end to end from the start of its reading, or the sum
  * of the stages when fi->t_start is 0, fps = 1000 / frame, and cpu = the
  * process's CPU ms over the same span, 0 when fi->t_start is 0). Every
  * other byte is the same whatever the clocks read. */
-#define VBC_JSON_MS_KEYS "read prepare upload jfa masks analysis graph voxels clear trace cells refine sweep verdict lining pore total"
+#define VBC_JSON_MS_KEYS "read prepare upload jfa masks analysis graph voxels clear trace cells refine sweep verdict lining pore beside total"
 #define VBC_JSON_CLOCK_KEYS "write frame fps cpu"
 void vbc_write_json_begin(FILE *f, const char *input, double probe, int n, const char *device);
 /* As vbc_write_json_begin, with the provenance first when options is not

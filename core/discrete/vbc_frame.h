@@ -18,6 +18,7 @@ typedef struct vbc_frame {
     double ms_masks;        /* packing and the frame pipeline */
     double ms_analysis;     /* components and centrelines */
     double ms_pore;         /* the pore stage (vbc_pore_stage), refinement and ranking */
+    double ms_beside;       /* of ms_analysis, what ran within ms_pore's span (vbc_frame_analyse) */
     vbc_pore_ms pore_ms;    /* its steps */
     vbc_axis axis;          /* the pore's axis (source VBC_AXIS_NONE without a pore) */
     vbc_pipe *pipe;         /* the pipe of the last vbc_frame_masks (its paths engine) */
@@ -46,6 +47,15 @@ int vbc_frame_run(vb_ctx *ctx, vbc_pipe *pipe, const vbc_grid *g, const vb_spher
 int vbc_frame_masks(vb_ctx *ctx, vbc_pipe *pipe, const vbc_grid *g, const vb_sphere_set *s,
                     double probe, unsigned want, const vbc_options *opt, vbc_frame *f);
 int vbc_frame_analyse(vb_ctx *ctx, const vb_sphere_set *s, const vbc_options *opt, vbc_frame *f);
+
+/* Whether vbc_frame_analyse runs the analysis beside the pore stage
+ * (f->ms_beside then says how much of it): opt asks for the pore,
+ * vbc_analysis_beside() holds, and the analysis's sweeps do
+ * not run on f's pipe (VORBALL_DEVICE_PATHS). The analysis then runs on a
+ * thread of the pore stage (vbc_pore_stage_after) with a context of its
+ * own, whose counters and error become ctx's: the same result, the same
+ * status and error as one after the other. */
+int vbc_frame_beside(const vbc_options *opt, const vbc_frame *f);
 
 /* vbc_frame_analyse in its two steps: vbc_frame_components, the analysis
  * of f->out (f->result, f->ms_analysis), which reads opt but not opt->pore,

@@ -79,6 +79,14 @@ int vbc_paths_sweep_ref(const vbc_paths_graph *G, vbc_paths_batch *b);
  * do nothing of their own). */
 const vbc_paths_engine *vbc_paths_engine_ref(void);
 
+/* Whether the analysis's independent steps run beside each other (the
+ * cells and support atoms beside the voxels' steps in vbc_analyse_paths;
+ * the analysis beside the pore stage, vbc_frame_beside): from
+ * VBC_PORE_MIN_THREADS threads, unless VORBALL_ANALYSIS_BESIDE is 0 (the
+ * steps one after the other, for timing both ways in one session). The
+ * result is the same bytes either way. */
+int vbc_analysis_beside(void);
+
 /* As vbc_analyse_given, with the ends and sweeps of the components run as
  * batches on `paths` (vbc_paths_engine_ref(): the twin) when it is not
  * NULL (channel_waves.c), else one component at a time on host threads;

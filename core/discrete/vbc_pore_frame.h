@@ -80,4 +80,25 @@ int vbc_pore_stage(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const v
                    const vbc_pore_request *req, const struct vbc_walls_engine *walls,
                    double lining_tol, vbc_result *res, vbc_axis *found, vbc_pore_ms *ms);
 
+/* What vbc_pore_stage_after runs first: run(arg) fills the stage's res
+ * (the analysis of the frame's channel voxels) and returns a VB status. */
+typedef struct vbc_pore_before {
+    int (*run)(void *arg);
+    void *arg;
+} vbc_pore_before;
+
+/* vbc_pore_stage with the filling of res in it (before may be NULL: res
+ * is filled). before->run runs where the refinement does, just before it:
+ * from VBC_PORE_MIN_THREADS threads on a thread of its own beside the
+ * cells and the search (which read res only after it, as above), else
+ * first, on the caller's thread. Either way the same result as before->run
+ * then vbc_pore_stage. When before->run fails, neither the refinement nor
+ * the table's steps run and its status is returned (res as it left it);
+ * the search may have run. before->run must not use ctx (the search does,
+ * at once): give it a context of its own. Statuses as vbc_pore_stage. */
+int vbc_pore_stage_after(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const vb_sphere_set *s,
+                         const vbc_pore_request *req, const struct vbc_walls_engine *walls,
+                         double lining_tol, vbc_result *res, vbc_axis *found, vbc_pore_ms *ms,
+                         const vbc_pore_before *before);
+
 #endif

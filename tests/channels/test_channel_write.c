@@ -92,7 +92,7 @@ int main(void)
     CHECK(json && strstr(json, "\"lining_residues\": [\"A:G\\\"Y1\",\"B,C:A\\\\L2\"]") != NULL);
     char keys[512];
     object_keys(json, "\"ms\":", keys, sizeof keys);
-    CHECK_STR(keys, "read prepare upload jfa masks analysis graph voxels clear trace cells refine sweep verdict lining pore total");
+    CHECK_STR(keys, "read prepare upload jfa masks analysis graph voxels clear trace cells refine sweep verdict lining pore beside total");
     CHECK_STR(keys, VBC_JSON_MS_KEYS);
     object_keys(json, "\"clock\":", keys, sizeof keys);
     CHECK_STR(keys, "write frame fps cpu");

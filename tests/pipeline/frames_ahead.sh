@@ -109,6 +109,25 @@ for ext in pdb sj; do
         cmp -s chb1.$ext chb$t.$ext || fail "1chb: chb$t.$ext ($t threads) differs from chb1.$ext (1 thread)"
     done
 done
+# From 4 threads the analysis runs beside the pore stage (vbc_frame_analyse):
+# its time within the pore's span is "beside" (0 below 4 threads), and the
+# frame's total is the pipe's span (upload, jfa, masks and the packing,
+# about 0.3 ms here) + analysis + pore - beside: above the sum of the keys
+# less beside (3 decimals a key), by less than beside itself.
+ms_check() { # file threads
+    grep -o '"ms": {[^}]*}' "$1" | head -1 | tr -d '"{}' | tr ',' '\n' | awk -F': *' -v t="$2" '
+        { gsub(/ /, "", $1); v[$1] = $2 }
+        END {
+            if (!("beside" in v)) { print "no beside key"; exit 1 }
+            b = v["beside"]
+            if (t >= 4 && !(b > 0 && b <= v["analysis"] + 0.001)) { print "beside " b; exit 1 }
+            if (t < 4 && b != 0) { print "beside " b " on " t " threads"; exit 1 }
+            e = v["total"] - (v["upload"] + v["jfa"] + v["masks"] + v["analysis"] + v["pore"] - b)
+            if (e < -0.003 || (t >= 4 && e >= b)) { print "total " v["total"] ", beside " b ", off by " e; exit 1 }
+        }' || fail "$1: the ms clocks ($2 threads)"
+}
+ms_check chb1.json 1
+ms_check chb5.json 5
 for t in 1 5; do
     VORBALL_THREADS=$t run 0 "adk$t.log" "$vorball" channels "$corpus/data/adk_open.pdb.gz" \
         --device ref --centerlines "adk$t.pdb" --json -o "adk$t.json"
@@ -117,6 +136,22 @@ done
 for ext in pdb sj; do
     cmp -s adk1.$ext adk5.$ext || fail "adk_open: adk5.$ext (5 threads) differs from adk1.$ext (1 thread)"
 done
+ms_check adk5.json 5
+
+# From 4 threads a frame in analysis runs its analysis beside its pore stage
+# once the pore request is fixed (--axis: from the second frame on), on one
+# and on three frames in analysis at once: the sequential loop's bytes.
+channels axseq 0 2 --device ref --axis 0,0,1
+for w in 1 3; do
+    export VORBALL_FRAMES_IN_FLIGHT=$w
+    channels "ax${w}t5" 2 5 --device ref --axis 0,0,1
+    same axseq "ax${w}t5"
+done
+export VORBALL_FRAMES_IN_FLIGHT=1
+VORBALL_THREADS=5 run 0 axj.log "$vorball" channels "$top" --traj "$xtc" --grid 64 --device ref \
+    --axis 0,0,1 --json -o axj.json
+[ "$(grep -o '"beside": [0-9.]*' axj.json | grep -vc ' 0\.000$')" -ge 5 ] ||
+    fail "axj.json: fewer than 5 frames ran the analysis beside the pore stage"
 
 # --fixed-grid: the reader fits the grid on the first frame it runs.
 channels fix0 0 2 --device ref --fixed-grid --frames 2:10:3
