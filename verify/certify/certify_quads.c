@@ -131,21 +131,6 @@ static int second_stage(qworker *w, const vbx_qline *L, const vbx_qprep *P, vbx_
     return sg;
 }
 
-/* A far root's group test for the hierarchy walk (vbx_walk_skip): the
- * power bound of a node's box (vbx_qf_power_box). */
-typedef struct far_skip {
-    const vbx_qdata *qd;
-    const vbx_qline *L;
-    const double *mr;
-    double rmin;
-} far_skip;
-
-static int far_node_outside(const void *arg, const vbx_bvh_node *nd)
-{
-    const far_skip *f = arg;
-    return vbx_qf_power_box(f->qd, f->L, f->mr, nd->lo, nd->hi, f->rmin, nd->rmax);
-}
-
 /* The filter's verdict on root R of line L (R's s set; its point is
  * computed here once the tangency passes). */
 static int filter_root(qworker *w, const vbx_qline *L, const vbx_qprep *P, vbx_qroot *R)
@@ -187,12 +172,12 @@ static int filter_root(qworker *w, const vbx_qline *L, const vbx_qprep *P, vbx_q
      * distance's bound skips no node the ball's flat side touches): the
      * power bound of a node clears whole groups off the vertex's own
      * neighbours (speed only: the spheres it clears are outside). */
-    far_skip fs = {&c->qd, L, mr, t->rmin};
+    vbx_qf_group fg = {&c->qd, L, mr, t->rmin};
     if (far) {
         vbx_qf_power_qs(&c->qd, L, R, qs);
         vbx_qf_power_mr(qs, mr);
         have_qs = 1;
-        vbx_walk_skip(&walk, far_node_outside, &fs);
+        vbx_walk_skip(&walk, vbx_qf_group_outside, &fg);
     }
     size_t s0, s1;
     uint64_t calls = 0, failures = 0;

@@ -195,9 +195,10 @@ typedef struct vbx_walk {
                                          * row's y (0) and z (1) range, lo first */
     uint32_t sp;
     uint32_t stack[VBX_SINDEX_STACK];
-    /* hierarchy: a second test that may skip a node (1: every sphere of the
-     * node is proven outside), or NULL (vbx_walk_skip) */
-    int (*skip)(const void *arg, const vbx_bvh_node *nd);
+    /* hierarchy: a second test that may skip a node from its box and rmax
+     * (1: every sphere of the node is proven outside), or NULL
+     * (vbx_walk_skip) */
+    int (*skip)(const void *arg, const double lo[3], const double hi[3], double rmax);
     const void *skip_arg;
 } vbx_walk;
 
@@ -288,11 +289,12 @@ static inline void vbx_walk_init(vbx_walk *w, const vbx_sindex *t, const vbx_ia 
 }
 
 /* A walk of the hierarchy (not the grid) that also skips a node where
- * skip(arg, node) proves every sphere of it outside the tangent ball of
- * the query's exact point (a far root's power bound, certify_quads.c).
- * Set after vbx_walk_init; the root node is not asked. Speed only: the
- * nodes left are visited in the same order. */
-static inline void vbx_walk_skip(vbx_walk *w, int (*skip)(const void *, const vbx_bvh_node *),
+ * skip(arg, lo, hi, rmax) of its box proves every sphere of it outside the
+ * tangent ball of the query's exact point (a far root's power bound,
+ * vbx_qf_group_outside). Set after vbx_walk_init; the root node is not
+ * asked. Speed only: the nodes left are visited in the same order. */
+static inline void vbx_walk_skip(vbx_walk *w,
+                                 int (*skip)(const void *, const double *, const double *, double),
                                  const void *arg)
 {
     w->skip = skip;
@@ -363,8 +365,8 @@ static inline int vbx_walk_next(vbx_walk *w, size_t *first, size_t *end)
         double da, db;
         int sa = vbx_bvh_skip(&node[a], w->p, &da), sb = vbx_bvh_skip(&node[b], w->p, &db);
         if (w->skip) {
-            sa = sa || w->skip(w->skip_arg, &node[a]);
-            sb = sb || w->skip(w->skip_arg, &node[b]);
+            sa = sa || w->skip(w->skip_arg, node[a].lo, node[a].hi, node[a].rmax);
+            sb = sb || w->skip(w->skip_arg, node[b].lo, node[b].hi, node[b].rmax);
         }
         /* Nearer child on top of the stack. */
         if (da > db) {

@@ -130,3 +130,9 @@ int vbx_qf_power_box(const vbx_qdata *qd, const vbx_qline *L, const double mr[8]
     double B = 0x1p-45 * (a + S) + 0x1p-1000;
     return e - S > B;
 }
+
+int vbx_qf_group_outside(const void *group, const double lo[3], const double hi[3], double rmax)
+{
+    const vbx_qf_group *g = group;
+    return vbx_qf_power_box(g->z, g->L, g->mr, lo, hi, g->rmin, rmax);
+}

@@ -127,6 +127,17 @@ int vbx_qf_power_fast(const vbx_qdata *z, const vbx_qline *L, const double mr[8]
 int vbx_qf_power_box(const vbx_qdata *z, const vbx_qline *L, const double mr[8],
                      const double lo[3], const double hi[3], double rlo, double rhi);
 
+/* A root's group test for a scan's hierarchy walk (vbx_walk_skip): its
+ * power bound (vbx_qf_power_box) over a group's centre box [lo, hi] and
+ * radii in [rmin, rmax] (rmin a bound for every sphere). */
+typedef struct vbx_qf_group {
+    const vbx_qdata *z;
+    const vbx_qline *L;
+    const double *mr;
+    double rmin;
+} vbx_qf_group;
+int vbx_qf_group_outside(const void *group, const double lo[3], const double hi[3], double rmax);
+
 /* The correctly rounded x, y, z, t (input units) of a root with its point:
  * 1 when all four are decided (out set), 0 when one is not (a near tie, a
  * value at 0: the caller rounds exactly). */
