@@ -44,9 +44,10 @@
  * 6.37 s exact. 32 owned (24 on a GPU: VBQ_GPU_FORM) as the host skips pairs tying off the
  * patch: sc 2,744 jittered 1e-12 4.61 -> 4.29 s, sc 1,000 0.48 -> 0.48-0.53 (48: 3.8, 0.65).
  * Off a GPU the hull decision (core/cells/cover_env_hull.c) takes 96 owned labels, and up to
- * VBQ_ENV_OWNED and VBQ_ENV_KEEP at deep patches (VBQ_ENV_DEEP: a near-tie chain past level
- * 20 of ~140 labels went on to level 47 on sc 2,744 jittered 1e-12; taking such lists at every
- * level cost fcc 1,372 exact 0.25 -> 0.34 s, its exact ties many zero signs). */
+ * VBQ_ENV_OWNED and VBQ_ENV_KEEP at deep patches (VBQ_ENV_DEEP, past VBQ_ENV_DEEP_LEVEL: a
+ * near-tie chain of ~140 labels went on to level 47 on sc 2,744 jittered 1e-12; taking such
+ * lists at every stalled level cost fcc 1,372 exact 0.25 -> 0.34 s, its exact ties many zero
+ * signs). */
 #define VBQ_ENV_STALL 1u
 #ifdef VBQ_GPU_FORM
 #define VBQ_ENV_OWNED_SHALLOW 24u

@@ -168,6 +168,17 @@ static int filter_root(qworker *w, const vbx_qline *L, const vbx_qprep *P, vbx_q
      * cannot place what the probes leave open, the power mostly can, so it
      * goes first. Each gives the exact sign or none: speed only. */
     int far = p[3].lo > 1e6;
+    /* ... and there the scan would meet every sphere of the face layer (the
+     * distance's bound skips no node the ball's flat side touches): the
+     * power bound of a node clears whole groups off the vertex's own
+     * neighbours (speed only: the spheres it clears are outside). */
+    vbx_qf_group fg = {&c->qd, L, mr, t->rmin};
+    if (far) {
+        vbx_qf_power_qs(&c->qd, L, R, qs);
+        vbx_qf_power_mr(qs, mr);
+        have_qs = 1;
+        vbx_walk_skip(&walk, vbx_qf_group_outside, &fg);
+    }
     size_t s0, s1;
     uint64_t calls = 0, failures = 0;
     int verdict = ROOT_EMPTY;

@@ -262,12 +262,15 @@ int vbx_sindex_build(vbx_sindex *t, const vbx_ia *box, const double *near, size_
         t->cell[c] = t->cell[c - 1];
     t->cell[0] = 0;
     t->rmax = 0.0;
+    t->rmin = n ? INFINITY : 0.0;
     t->wc = 0.0;
     for (size_t s = 0; s < n; s++) {
         size_t i = t->ids[s];
         memcpy(&t->box[4 * s], &box[4 * i], 4 * sizeof *t->box);
         if (!(t->box[4 * s + 3].hi <= t->rmax))
             t->rmax = t->box[4 * s + 3].hi;
+        if (t->rmin == t->rmin && !(t->box[4 * s + 3].lo >= t->rmin))
+            t->rmin = t->box[4 * s + 3].lo;
         for (int k = 0; k < 3; k++) {
             /* The nearest double and the exact centre both lie in the
              * enclosure, so they differ by at most its width (rounded up). */

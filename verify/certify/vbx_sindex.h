@@ -64,6 +64,7 @@ typedef struct vbx_sindex {
     uint32_t *cell;     /* ncells + 1, row-major (x fastest): cell c holds slots
                          * [cell[c], cell[c + 1]) */
     double rmax;        /* >= every exact radius */
+    double rmin;        /* <= every exact radius (NaN: an enclosure was NaN) */
 } vbx_sindex;
 
 /* Builds the index over n spheres from their enclosures (box[4*i + k],
@@ -194,6 +195,11 @@ typedef struct vbx_walk {
                                          * row's y (0) and z (1) range, lo first */
     uint32_t sp;
     uint32_t stack[VBX_SINDEX_STACK];
+    /* hierarchy: a second test that may skip a node from its box and rmax
+     * (1: every sphere of the node is proven outside), or NULL
+     * (vbx_walk_skip) */
+    int (*skip)(const void *arg, const double lo[3], const double hi[3], double rmax);
+    const void *skip_arg;
 } vbx_walk;
 
 /* Cell of x along axis k, clamped (monotone in x; NaN clamps low, and the
@@ -238,6 +244,8 @@ static inline void vbx_walk_init(vbx_walk *w, const vbx_sindex *t, const vbx_ia 
     w->p = p;
     w->sp = 0;
     w->grid = 0;
+    w->skip = NULL;
+    w->skip_arg = NULL;
     for (int k = 0; k < 3; k++)
         w->lo[k] = w->hi[k] = w->at[k] = 0;
     if (!t->n)
@@ -278,6 +286,19 @@ static inline void vbx_walk_init(vbx_walk *w, const vbx_sindex *t, const vbx_ia 
     double d2;
     if (!vbx_bvh_skip(&t->node[0], p, &d2))
         w->stack[w->sp++] = 0;
+}
+
+/* A walk of the hierarchy (not the grid) that also skips a node where
+ * skip(arg, lo, hi, rmax) of its box proves every sphere of it outside the
+ * tangent ball of the query's exact point (a far root's power bound,
+ * vbx_qf_group_outside). Set after vbx_walk_init; the root node is not
+ * asked. Speed only: the nodes left are visited in the same order. */
+static inline void vbx_walk_skip(vbx_walk *w,
+                                 int (*skip)(const void *, const double *, const double *, double),
+                                 const void *arg)
+{
+    w->skip = skip;
+    w->skip_arg = arg;
 }
 
 /* Next run of slots [*first, *end); 0 when the walk is over. */
@@ -343,6 +364,10 @@ static inline int vbx_walk_next(vbx_walk *w, size_t *first, size_t *end)
         uint32_t a = i + 1, b = nd->first;
         double da, db;
         int sa = vbx_bvh_skip(&node[a], w->p, &da), sb = vbx_bvh_skip(&node[b], w->p, &db);
+        if (w->skip) {
+            sa = sa || w->skip(w->skip_arg, node[a].lo, node[a].hi, node[a].rmax);
+            sb = sb || w->skip(w->skip_arg, node[b].lo, node[b].hi, node[b].rmax);
+        }
         /* Nearer child on top of the stack. */
         if (da > db) {
             uint32_t tmp = a;

@@ -85,3 +85,54 @@ int vbx_qf_power_fast(const vbx_qdata *qd, const vbx_qline *L, const double mr[8
     double B = 2.0 * sr + 0x1p-48 * (a + 2.0 * sr) + 0x1p-1000;
     return e > B ? 1 : e < -B ? -1 : 0;
 }
+
+/* The power of every sphere of a group at once: the affine form of
+ * vbx_qf_power_ia is a sum of one term per coordinate,
+ *   power = sum_{k<3} (m_k^2 - 2 q_k m_k) - (m_r^2 + 2 s m_r),
+ * so over a box of offsets m (the group's centres and radii, minus the
+ * base's) and the root's boxes of (q, s) it is at least
+ *   sum_{k<3} g_k(x_k) - max(h(m_r lo), h(m_r hi)) - 2 (sum_k rad_k |m_k|max),
+ * with g_k(m) = m (m - 2 mr_k) convex, least at x_k = mr_k clamped to the
+ * box (an exact double), h(m) = m (m + 2 mr_3) convex, largest at an end of
+ * the box, and |q_k - mr_k| <= rad_k (the rest of the affine form). In
+ * doubles: 2 mr_k is exact, each g or h rounds twice (2.01 u |x| (|x| +
+ * 2 |mr_k|), summed in a), the four terms add with gamma_3 of their
+ * magnitudes (< a (1 + 3u)); the radius sum S~ rounds 5 times (gamma_5 S).
+ * In all the exact lower bound is above fl(e - S~) (1 - u) - 5.2 u a -
+ * 5.1 u S~, and B = 2^-45 (a + S~) + 2^-1000 (2^-45 = 256 u; the constant
+ * covers underflow) exceeds that error by far. The box: the group's
+ * centres' enclosures [lo, hi] and radius bounds [rlo, rhi] in input units,
+ * times the exact 10^E and minus the base's scaled values, rounded outward.
+ * An overflow gives inf or NaN, and the comparison then fails. */
+int vbx_qf_power_box(const vbx_qdata *qd, const vbx_qline *L, const double mr[8],
+                     const double lo[3], const double hi[3], double rlo, double rhi)
+{
+    const int64_t *cb = &qd->z[4 * (size_t)L->q[0]];
+    vbx_ia sc = vbx_ia_point(qd->scale);
+    double e = 0.0, a = 0.0, S = 0.0;
+    for (int k = 0; k < 4; k++) {
+        vbx_ia g = {k < 3 ? lo[k] : rlo, k < 3 ? hi[k] : rhi};
+        if (!(g.lo <= g.hi))
+            return 0; /* NaN */
+        vbx_ia m = vbx_ia_sub(vbx_ia_mul(g, sc), ia_of_i64(cb[k]));
+        double q = mr[k], tq = 2.0 * q, al = fabs(m.lo), ah = fabs(m.hi);
+        S += mr[4 + k] * vbx_max(al, ah);
+        if (k < 3) {
+            double x = q < m.lo ? m.lo : (q > m.hi ? m.hi : q);
+            e += x * (x - tq);
+            a += fabs(x) * (fabs(x) + fabs(tq));
+        } else {
+            e -= vbx_max(m.lo * (m.lo + tq), m.hi * (m.hi + tq));
+            a += vbx_max(al * (al + fabs(tq)), ah * (ah + fabs(tq)));
+        }
+    }
+    S = 2.0 * S;
+    double B = 0x1p-45 * (a + S) + 0x1p-1000;
+    return e - S > B;
+}
+
+int vbx_qf_group_outside(const void *group, const double lo[3], const double hi[3], double rmax)
+{
+    const vbx_qf_group *g = group;
+    return vbx_qf_power_box(g->z, g->L, g->mr, lo, hi, g->rmin, rmax);
+}

@@ -117,6 +117,27 @@ void vbx_qf_power_mr(const vbx_ia qs[4], double mr[8]);
  * caller then asks vbx_qf_power_ia). The same condition on t + R_j. */
 int vbx_qf_power_fast(const vbx_qdata *z, const vbx_qline *L, const double mr[8], uint32_t j);
 
+/* 1 when every sphere whose exact centre lies in [lo, hi] and whose exact
+ * radius lies in [rlo, rhi] (input units) is proven to have a positive
+ * power at the root whose (q, s) mr encloses (vbx_qf_power_mr): then
+ * |p - c_j| > |t + R_j|, the sphere is strictly outside the tangent ball.
+ * 0 when the bound cannot tell. One test clears a whole group of the
+ * emptiness scan (a far root over a jittered face: verify/exact/
+ * quad_power.c). */
+int vbx_qf_power_box(const vbx_qdata *z, const vbx_qline *L, const double mr[8],
+                     const double lo[3], const double hi[3], double rlo, double rhi);
+
+/* A root's group test for a scan's hierarchy walk (vbx_walk_skip): its
+ * power bound (vbx_qf_power_box) over a group's centre box [lo, hi] and
+ * radii in [rmin, rmax] (rmin a bound for every sphere). */
+typedef struct vbx_qf_group {
+    const vbx_qdata *z;
+    const vbx_qline *L;
+    const double *mr;
+    double rmin;
+} vbx_qf_group;
+int vbx_qf_group_outside(const void *group, const double lo[3], const double hi[3], double rmax);
+
 /* The correctly rounded x, y, z, t (input units) of a root with its point:
  * 1 when all four are decided (out set), 0 when one is not (a near tie, a
  * value at 0: the caller rounds exactly). */
