@@ -371,6 +371,9 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
         o->patches++;
         /* LO: the envelope is at least max(0, lo_k) everywhere in P (0 is
          * "infinity", the floor of the envelope; vbq_floor with a bound). */
+#ifdef VBQ_LANES
+        double LO = vbq_lo_lanes(ar, fr.off, fr.len, m, h, floor_i);
+#else
         double LO = floor_i;
         for (vbs_u32 k = 0u; k < fr.len; k++) {
             vbq_nb rec = ar->nb[ar->lab[fr.off + k]];
@@ -379,6 +382,7 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
             LO = lo > LO ? lo : LO;
             VBQ_HI_KEEP(ar, k, hi);
         }
+#endif
         evals += (double)fr.len;
         int closed = vbq_closed(fr.rq, LO, slack_i);
         /* A fetch takes every sphere that can reach LO anywhere in the
@@ -394,6 +398,14 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
             for (vbs_u32 k = 0u; k < fr.len; k++)
                 ar->lab[top + k] = ar->lab[fr.off + k];
             vbq_sub sub[VBQ_NSUB];
+#if defined(VBQ_LANES) && VBQ_NSUB == 4
+            double lg4[4];
+            for (vbs_u32 g = 0u; g < VBQ_NSUB; g++)
+                vbq_sub_box(fr.f, u0, u1, v0, v1, g, sub[g].m, sub[g].h);
+            vbq_sub_lo_lanes(ar, fr.off, fr.len, sub, floor_i, lg4);
+            for (vbs_u32 g = 0u; g < VBQ_NSUB; g++)
+                vbq_sub_set_lo(&sub[g], lg4[g]);
+#else
             for (vbs_u32 g = 0u; g < VBQ_NSUB; g++) {
                 vbq_sub_box(fr.f, u0, u1, v0, v1, g, sub[g].m, sub[g].h);
                 double lg = floor_i;
@@ -405,6 +417,7 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
                 }
                 vbq_sub_set_lo(&sub[g], lg);
             }
+#endif
             evals += (double)(VBQ_NSUB * fr.len);
             vbs_u32 nlen = fr.len;
             vbq_walk_make(e, i, fr.rq, rq1, sub, VBQ_NSUB, &wk);
@@ -425,6 +438,13 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
         }
         vbs_u32 keep = 0u, owned = 0u;
         double hm = -(double)INFINITY; /* every label's hi at most (vbq_combo_may_go) */
+#ifdef VBQ_LANES
+        /* The host's upper ends are kept: a record is read for its id only
+         * where its label survives (most of a long list's do not). */
+        if (ar->hi)
+            keep = vbq_keep_kept(ar, fr.off, fr.len, top, i, LO, &hm, &owned);
+        else
+#endif
         for (vbs_u32 k = 0u; k < fr.len; k++) {
             vbs_u32 li = ar->lab[fr.off + k];
             vbq_nb rec = ar->nb[li];
