@@ -133,6 +133,63 @@ static inline vbs_u32 vbq_keep_kept(const vbq_arena *ar, vbs_u32 off, vbs_u32 le
     *owned = own;
     return keep;
 }
+
+/* The distance pass of vbq_looks_flat over the owned labels (ids > i) of
+ * lab[0 .. keep): for each, w = its point (ax, ay, az, b) - p0, c1 = w.v1,
+ * c2 = w.v2 (summed left to right), e = w - c1 v1 - c2 v2 and d2 = |e|^2
+ * (from 0.0, left to right); *far = the largest d2 (-1 when no label is
+ * owned) and *at = the first position that has it, as the scalar loop's
+ * `d2 > far` finds it. Labels a, a + 4, ... share a lane, which keeps its
+ * own first largest; the lanes are joined by value, then by position. */
+static inline void vbq_flat_far_lanes(const vbq_nb *nb, const vbs_u32 *lab, vbs_u32 keep,
+                                      vbs_u32 i, const double p0[4], const double v1[4],
+                                      const double v2[4], double *far, vbs_u32 *at)
+{
+    vbq_v4 P[4], V1[4], V2[4];
+    for (int k = 0; k < 4; k++) {
+        P[k] = VBQ_V4_ALL(p0[k]);
+        V1[k] = VBQ_V4_ALL(v1[k]);
+        V2[k] = VBQ_V4_ALL(v2[k]);
+    }
+    vbq_v4 best = VBQ_V4_ALL(-1.0), none = best;
+    vbq_m4 pos = VBQ_V4M_ALL(0LL), bestpos = VBQ_V4M_ALL((long long)keep);
+    for (vbs_u32 a = 0u; a < keep; a += 4u) {
+        const vbq_nb *r[4];
+        long long own[4];
+        for (vbs_u32 l = 0u; l < 4u; l++) {
+            r[l] = &nb[lab[a + l < keep ? a + l : a]];
+            own[l] = a + l < keep && r[l]->id > i ? -1LL : 0LL;
+        }
+        vbq_m4 owned = {own[0], own[1], own[2], own[3]};
+        vbq_v4 w[4] = {VBQ_V4(r[0]->ax, r[1]->ax, r[2]->ax, r[3]->ax) - P[0],
+                       VBQ_V4(r[0]->ay, r[1]->ay, r[2]->ay, r[3]->ay) - P[1],
+                       VBQ_V4(r[0]->az, r[1]->az, r[2]->az, r[3]->az) - P[2],
+                       VBQ_V4(r[0]->b, r[1]->b, r[2]->b, r[3]->b) - P[3]};
+        vbq_v4 c1 = w[0] * V1[0] + w[1] * V1[1] + w[2] * V1[2] + w[3] * V1[3];
+        vbq_v4 c2 = w[0] * V2[0] + w[1] * V2[1] + w[2] * V2[2] + w[3] * V2[3];
+        vbq_v4 d2 = VBQ_V4_ALL(0.0);
+        for (int k = 0; k < 4; k++) {
+            vbq_v4 e = w[k] - c1 * V1[k] - c2 * V2[k];
+            d2 += e * e;
+        }
+        d2 = VBQ_V4_PICK(owned, d2, none);
+        vbq_m4 up = d2 > best;
+        best = VBQ_V4_PICK(up, d2, best);
+        pos = VBQ_V4M_ALL((long long)a) + (vbq_m4){0, 1, 2, 3};
+        bestpos = (pos & up) | (bestpos & ~up);
+    }
+    double f = -1.0;
+    vbs_u32 fa = keep;
+    for (int l = 0; l < 4; l++) {
+        vbs_u32 pl = (vbs_u32)bestpos[l];
+        if (best[l] > f || (best[l] == f && pl < fa)) {
+            f = best[l];
+            fa = pl;
+        }
+    }
+    *far = f;
+    *at = f > -1.0 ? fa : keep;
+}
 #endif
 
 #endif

@@ -9,7 +9,9 @@
  * length of the lanes), with the edges the cover meets: records of nested
  * pairs (err infinite), repeated records (equal enclosures, ties of the
  * maxima), a zero floor and a positive one (tmax), boxes with an end
- * exactly 0, and floors above every label (no label raises LO). */
+ * exactly 0, and floors above every label (no label raises LO). Also
+ * vbq_looks_flat's distance pass in lanes (vbq_flat_far_lanes: the same
+ * largest distance at the same first position, repeats making ties). */
 #include "vb_test.h"
 
 #include "vb_cover.h"
@@ -47,7 +49,7 @@ int main(void)
     memset(&ar, 0, sizeof ar);
     ar.nb = nb;
     ar.lab = lab;
-    long differ = 0, raised = 0, floor_kept = 0, kept = 0, dropped = 0;
+    long differ = 0, raised = 0, floor_kept = 0, kept = 0, dropped = 0, far_later = 0;
     for (int t = 0; t < 6000; t++) {
         /* Records of spheres around a base at the origin. */
         for (vbs_u32 j = 0; j < NREC; j++) {
@@ -126,11 +128,43 @@ int main(void)
         differ += keep != keep4 || owned != owned4 || !same_bits(hm, hm4);
         kept += keep;
         dropped += len - keep;
+
+        /* vbq_looks_flat's distance pass: the farthest owned point from
+         * the plane through p0 (v1, v2; v2 = 0 in its first pass). */
+        double p0[4], v1[4], v2[4];
+        for (int k = 0; k < 4; k++) {
+            p0[k] = t % 5 == 0 && len ? nb[lab[off]].ax : uni(-0.2, 0.2);
+            v1[k] = uni(-1.0, 1.0);
+            v2[k] = t % 2 ? 0.0 : uni(-1.0, 1.0);
+        }
+        double far = -1.0, far4;
+        vbs_u32 at = len, at4;
+        for (vbs_u32 a = 0; a < len; a++) {
+            const vbq_nb *r = &nb[lab[off + a]];
+            if (r->id <= base)
+                continue;
+            double w[4] = {r->ax - p0[0], r->ay - p0[1], r->az - p0[2], r->b - p0[3]};
+            double c1 = w[0] * v1[0] + w[1] * v1[1] + w[2] * v1[2] + w[3] * v1[3];
+            double c2 = w[0] * v2[0] + w[1] * v2[1] + w[2] * v2[2] + w[3] * v2[3];
+            double d2 = 0.0;
+            for (int k = 0; k < 4; k++) {
+                double e = w[k] - c1 * v1[k] - c2 * v2[k];
+                d2 += e * e;
+            }
+            if (d2 > far) {
+                far = d2;
+                at = a;
+            }
+        }
+        vbq_flat_far_lanes(nb, lab + off, len, base, p0, v1, v2, &far4, &at4);
+        differ += !same_bits(far, far4) || at != at4;
+        far_later += at != len && at % 4 != 0;
     }
     CHECK_INT(differ, 0);
     /* The cases occur often enough for the comparison to mean something. */
     CHECK(raised > 1000 && floor_kept > 200);
     CHECK(kept > 10000 && dropped > 10000);
+    CHECK(far_later > 1000); /* the farthest in a lane other than the first */
     printf("lanes: LO raised %ld, floor kept %ld; labels kept %ld, dropped %ld\n", raised,
            floor_kept, kept, dropped);
     VB_TEST_END();
