@@ -40,17 +40,19 @@ static inline void vbq_eval_lanes(const vbq_nb *const r[4], const vbq_v4 pm[3],
     *hi = F + R;
 }
 
-/* The first pass over a patch's labels lab[off .. off + len) on the box
- * (m, h): returns LO = the largest of LO0 and the labels' lower ends, and
- * keeps each label's upper end in ar->hi[k] (where the arena has it), as
- * the scalar loop of vbq_cover_cell does. Labels k, k + 4, k + 8, ... share
+/* The first pass over a patch's labels lab[off + k0 .. off + len) on the
+ * box (m, h): returns LO = the largest of LO0 and the labels' lower ends,
+ * and keeps label k's upper end in ar->hi[k] (where the arena has it), as
+ * the scalar loop of vbq_cover_cell does (k0 = 0, LO0 its floor; k0 > 0
+ * continues that loop where it stopped, LO0 its maximum so far: the same
+ * result, see vbq_cover_cell's `again`). Labels k0, k0 + 4, ... share
  * a lane, which keeps its own running maximum (LO0 first, then `lo > max`,
  * the loop's own test); the lanes' maxima are joined the same way. The
  * result is the loop's double: LO0 >= 0 (vbq_floor), a maximum above it is
  * positive, and a positive double has one representation, so the order of
  * the comparisons only picks among equal doubles; NaN is never picked
  * (every comparison with it is false), as in the loop. */
-static inline double vbq_lo_lanes(const vbq_arena *ar, vbs_u32 off, vbs_u32 len,
+static inline double vbq_lo_lanes(const vbq_arena *ar, vbs_u32 off, vbs_u32 k0, vbs_u32 len,
                                   const double m[3], const double h[3], double LO0)
 {
     vbq_v4 pm[3], pam[3], ph[3];
@@ -60,7 +62,7 @@ static inline double vbq_lo_lanes(const vbq_arena *ar, vbs_u32 off, vbs_u32 len,
         ph[a] = VBQ_V4_ALL(h[a]);
     }
     vbq_v4 best = VBQ_V4_ALL(LO0);
-    vbs_u32 k = 0u;
+    vbs_u32 k = k0;
     for (; k + 4u <= len; k += 4u) {
         const vbq_nb *r[4];
         for (int l = 0; l < 4; l++)
@@ -85,12 +87,13 @@ static inline double vbq_lo_lanes(const vbq_arena *ar, vbs_u32 off, vbs_u32 len,
     return LO;
 }
 
-/* The fetch's pass over a patch's labels lab[off .. off + len) on its four
- * parts: lg[g] = the largest of LO0 and the labels' lower ends on part g
- * (vbq_sub_box), the four parts in the lanes, the labels in the loop's
- * order (each lane is the scalar loop of its part). */
-static inline void vbq_sub_lo_lanes(const vbq_arena *ar, vbs_u32 off, vbs_u32 len,
-                                    const vbq_sub sub[4], double LO0, double lg[4])
+/* The fetch's pass over a patch's labels lab[off + k0 .. off + len) on its
+ * four parts: lg[g] = the largest of lg0[g] and the labels' lower ends on
+ * part g (vbq_sub_box), the four parts in the lanes, the labels in the
+ * loop's order (each lane is the scalar loop of its part; k0 > 0 goes on
+ * where an earlier pass over the same parts stopped, lg0 its result). */
+static inline void vbq_sub_lo_lanes(const vbq_arena *ar, vbs_u32 off, vbs_u32 k0, vbs_u32 len,
+                                    const vbq_sub sub[4], const double lg0[4], double lg[4])
 {
     vbq_v4 pm[3], pam[3], ph[3];
     for (int a = 0; a < 3; a++) {
@@ -98,8 +101,8 @@ static inline void vbq_sub_lo_lanes(const vbq_arena *ar, vbs_u32 off, vbs_u32 le
         pam[a] = VBQ_V4_ABS(pm[a]);
         ph[a] = VBQ_V4(sub[0].h[a], sub[1].h[a], sub[2].h[a], sub[3].h[a]);
     }
-    vbq_v4 best = VBQ_V4_ALL(LO0);
-    for (vbs_u32 k = 0u; k < len; k++) {
+    vbq_v4 best = VBQ_V4(lg0[0], lg0[1], lg0[2], lg0[3]);
+    for (vbs_u32 k = k0; k < len; k++) {
         const vbq_nb *rec = &ar->nb[ar->lab[off + k]];
         const vbq_nb *r[4] = {rec, rec, rec, rec};
         vbq_v4 lo, hi;

@@ -6,9 +6,10 @@
  * owned count and the largest upper end) must give the same doubles, bit
  * for bit, and the same lists, since the cover's decisions and so its
  * quadruples follow from them. Random lists of 0 to 40 labels (every tail
- * length of the lanes), with the edges the cover meets: records of nested
- * pairs (err infinite), repeated records (equal enclosures, ties of the
- * maxima), a zero floor and a positive one (tmax), boxes with an end
+ * length of the lanes), each pass also in two pieces (continued where
+ * the first stopped, as a fetching patch's next pass is), with the edges
+ * the cover meets: records of nested pairs (err infinite), repeated
+ * records (equal enclosures, ties of the maxima), a zero floor and a positive one (tmax), boxes with an end
  * exactly 0, and floors above every label (no label raises LO). Also
  * vbq_looks_flat's distance pass in lanes (vbq_flat_far_lanes: the same
  * largest distance at the same first position, repeats making ties). */
@@ -78,7 +79,7 @@ int main(void)
 
         /* The first pass: LO and the upper ends. */
         ar.hi = hi_lanes;
-        double LO4 = vbq_lo_lanes(&ar, off, len, m, h, floor);
+        double LO4 = vbq_lo_lanes(&ar, off, 0, len, m, h, floor);
         double LO = floor;
         for (vbs_u32 k = 0; k < len; k++) {
             double lo, hi;
@@ -91,13 +92,28 @@ int main(void)
             differ += !same_bits(hi_loop[k], hi_lanes[k]);
         raised += LO > floor;
         floor_kept += len > 0 && LO == floor;
+        /* The pass continued where an earlier one stopped (a fetching
+         * patch popped again with its list lengthened): the same. */
+        vbs_u32 k0 = len / 3u + (vbs_u32)(t % 3);
+        k0 = k0 > len ? len : k0;
+        double part = vbq_lo_lanes(&ar, off, 0, k0, m, h, floor);
+        if (k0 < len)
+            hi_lanes[k0] = -1.0; /* must be written again */
+        differ += !same_bits(LO, vbq_lo_lanes(&ar, off, k0, len, m, h, part));
+        for (vbs_u32 k = 0; k < len; k++)
+            differ += !same_bits(hi_loop[k], hi_lanes[k]);
         /* Without the arena's upper ends: LO alone, the same. */
         ar.hi = NULL;
-        differ += !same_bits(LO, vbq_lo_lanes(&ar, off, len, m, h, floor));
+        differ += !same_bits(LO, vbq_lo_lanes(&ar, off, 0, len, m, h, floor));
 
         /* The fetch's pass over the four parts. */
-        double lg4[4];
-        vbq_sub_lo_lanes(&ar, off, len, sub, floor, lg4);
+        double lg4[4], fl4[4] = {floor, floor, floor, floor};
+        vbq_sub_lo_lanes(&ar, off, 0, len, sub, fl4, lg4);
+        double lgk[4], lgc[4];
+        vbq_sub_lo_lanes(&ar, off, 0, k0, sub, fl4, lgk);
+        vbq_sub_lo_lanes(&ar, off, k0, len, sub, lgk, lgc);
+        for (vbs_u32 g = 0; g < 4; g++)
+            differ += !same_bits(lg4[g], lgc[g]);
         for (vbs_u32 g = 0; g < 4; g++) {
             double lg = floor;
             for (vbs_u32 k = 0; k < len; k++) {
