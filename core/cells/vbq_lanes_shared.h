@@ -10,15 +10,20 @@
  * fetch (once per part). These loops were the largest share of such a
  * cell's time (stop 47, papers/degenerate-input/results/
  * twocore-stop47-fccx.md). Here they run in the lanes of GCC's and
- * Clang's vectors (AVX2 in cover_cell_avx2.c, two SSE2 halves in the plain
- * build) on the host only (VBQ_WALK_V4, not in OpenCL): each lane computes
+ * Clang's vectors in the host's AVX2 build (cover_cell_avx2.c; not in
+ * OpenCL, not in the plain build, see VBQ_LANES): each lane computes
  * vbq_eval's operations in its order (no contraction), so every enclosure
  * is the same double as the scalar loop's, and the maxima are the same
  * doubles too (see vbq_lo_lanes). The kernels keep the scalar loops. */
 #ifndef VBQ_LANES_SHARED_H
 #define VBQ_LANES_SHARED_H
 
-#if defined(VBQ_WALK_V4) && !defined(__OPENCL_C_VERSION__)
+/* Only where the four lanes are one register (AVX: the host's AVX2 build
+ * of the cover, cover_cell_avx2.c): in the plain build the compiler splits
+ * each vector into SSE2 halves and lane accesses, and these loops measured
+ * slower than the scalar ones there (fcc14_exact face cells, one thread:
+ * 1.56 -> 2.15 ms a cell), so that build keeps the kernels' loops. */
+#if defined(VBQ_WALK_V4) && !defined(__OPENCL_C_VERSION__) && defined(__AVX__)
 #define VBQ_LANES 1
 
 /* vbq_eval of the four records r[0..3] over one box (m, h), lane l for

@@ -20,7 +20,7 @@
 #ifndef VBQ_LANES
 int main(void)
 {
-    printf("no vector lanes in this build: nothing to compare\n");
+    printf("no vector lanes in this build (AVX2 only): nothing to compare\n");
     return 0;
 }
 #else
@@ -43,6 +43,12 @@ static int same_bits(double a, double b)
 
 int main(void)
 {
+#if defined(__GNUC__) && defined(__x86_64__)
+    if (!__builtin_cpu_supports("avx2")) {
+        printf("this CPU has no AVX2: the lanes are not run here\n");
+        return 0;
+    }
+#endif
     vbq_nb nb[NREC];
     vbs_u32 lab[4u * NREC];
     double hi_lanes[NREC], hi_loop[NREC];
