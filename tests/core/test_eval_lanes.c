@@ -27,12 +27,7 @@ int main(void)
 
 static uint64_t rng = 0x2545f4914f6cdd1dull;
 
-/* Uniform in [lo, hi). */
-static double uni(double lo, double hi)
-{
-    vb_test_xorshift(&rng);
-    return lo + (hi - lo) * (double)(rng >> 11) * 0x1p-53;
-}
+#define uni(lo, hi) vb_test_uniform(&rng, (lo), (hi))
 
 static int same_bits(double a, double b)
 {
