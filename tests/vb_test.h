@@ -20,6 +20,12 @@ static inline uint64_t vb_test_xorshift(uint64_t *s)
     return *s;
 }
 
+/* A double uniform in [lo, hi) from the next step of *s (53 random bits). */
+static inline double vb_test_uniform(uint64_t *s, double lo, double hi)
+{
+    return lo + (hi - lo) * (double)(vb_test_xorshift(s) >> 11) * 0x1p-53;
+}
+
 #define CHECK(cond)                                                                  \
     do {                                                                             \
         if (cond) {                                                                  \

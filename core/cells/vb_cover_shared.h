@@ -268,6 +268,7 @@ VBS_FN void vbq_patch_square(vbs_u32 T, vbs_u32 level, vbs_u64 iu, vbs_u64 iv, d
  * (gpu/embed_kernels.cmake) inlines every include it meets, guards or not. */
 #include "vbq_ring_shared.h"
 #include "vbq_gather_shared.h"
+#include "vbq_lanes_shared.h"
 #include "vbq_combo_shared.h"
 #include "vbq_envelope_shared.h"
 #include "vbq_flat_shared.h"

@@ -359,6 +359,16 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
      * after it, so popping a frame frees everything above its list. */
     vbs_u32 top = len0;
     double slack_i = e->rmax_all - e->r[i], floor_i = vbq_floor(e, i);
+#ifdef VBQ_LANES
+    /* A fetching patch is popped again at once with its list lengthened
+     * (the same labels first, in order, then the ring's): on the host the
+     * first `again` labels' lower ends (their maximum again_LO), upper ends
+     * (ar->hi, written by nothing in between) and lower ends on the parts
+     * (again_lg: the same parts) are the doubles of the pass before, so
+     * only the ring's labels are evaluated (speed only). */
+    vbs_u32 again = 0u;
+    double again_LO = 0.0, again_lg[4] = {0.0, 0.0, 0.0, 0.0};
+#endif
     while (nst > 0u) {
         o->st_hw = nst > o->st_hw ? nst : o->st_hw;
         o->lab_hw = top > o->lab_hw ? top : o->lab_hw;
@@ -371,6 +381,11 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
         o->patches++;
         /* LO: the envelope is at least max(0, lo_k) everywhere in P (0 is
          * "infinity", the floor of the envelope; vbq_floor with a bound). */
+#ifdef VBQ_LANES
+        vbs_u32 known = again;
+        again = 0u;
+        double LO = vbq_lo_lanes(ar, fr.off, known, fr.len, m, h, known ? again_LO : floor_i);
+#else
         double LO = floor_i;
         for (vbs_u32 k = 0u; k < fr.len; k++) {
             vbq_nb rec = ar->nb[ar->lab[fr.off + k]];
@@ -379,6 +394,7 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
             LO = lo > LO ? lo : LO;
             VBQ_HI_KEEP(ar, k, hi);
         }
+#endif
         evals += (double)fr.len;
         int closed = vbq_closed(fr.rq, LO, slack_i);
         /* A fetch takes every sphere that can reach LO anywhere in the
@@ -394,6 +410,18 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
             for (vbs_u32 k = 0u; k < fr.len; k++)
                 ar->lab[top + k] = ar->lab[fr.off + k];
             vbq_sub sub[VBQ_NSUB];
+#if defined(VBQ_LANES) && VBQ_NSUB == 4
+            double lg0[4] = {floor_i, floor_i, floor_i, floor_i};
+            for (vbs_u32 g = 0u; g < VBQ_NSUB; g++) {
+                vbq_sub_box(fr.f, u0, u1, v0, v1, g, sub[g].m, sub[g].h);
+                lg0[g] = known ? again_lg[g] : floor_i;
+            }
+            vbq_sub_lo_lanes(ar, fr.off, known, fr.len, sub, lg0, again_lg);
+            for (vbs_u32 g = 0u; g < VBQ_NSUB; g++)
+                vbq_sub_set_lo(&sub[g], again_lg[g]);
+            again = fr.len;
+            again_LO = LO;
+#else
             for (vbs_u32 g = 0u; g < VBQ_NSUB; g++) {
                 vbq_sub_box(fr.f, u0, u1, v0, v1, g, sub[g].m, sub[g].h);
                 double lg = floor_i;
@@ -405,6 +433,7 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
                 }
                 vbq_sub_set_lo(&sub[g], lg);
             }
+#endif
             evals += (double)(VBQ_NSUB * fr.len);
             vbs_u32 nlen = fr.len;
             vbq_walk_make(e, i, fr.rq, rq1, sub, VBQ_NSUB, &wk);
@@ -425,6 +454,13 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
         }
         vbs_u32 keep = 0u, owned = 0u;
         double hm = -(double)INFINITY; /* every label's hi at most (vbq_combo_may_go) */
+#ifdef VBQ_LANES
+        /* The host's upper ends are kept: a record is read for its id only
+         * where its label survives (most of a long list's do not). */
+        if (ar->hi)
+            keep = vbq_keep_kept(ar, fr.off, fr.len, top, i, LO, &hm, &owned);
+        else
+#endif
         for (vbs_u32 k = 0u; k < fr.len; k++) {
             vbs_u32 li = ar->lab[fr.off + k];
             vbq_nb rec = ar->nb[li];

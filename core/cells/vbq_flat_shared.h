@@ -87,7 +87,14 @@ VBS_FN int vbq_looks_flat(const VBS_GLOBAL vbq_nb *nb, const VBS_GLOBAL vbs_u32 
         v1[k] /= n1;
     for (int pass = 0; pass < 2; pass++) {
         double far = -1.0, w2[4] = {0.0, 0.0, 0.0, 0.0};
+#ifdef VBQ_LANES
+        /* the host: the pass in lanes, then the farthest label's e again */
+        vbs_u32 at;
+        vbq_flat_far_lanes(nb, lab, keep, i, p0, v1, v2, &far, &at);
+        for (vbs_u32 a = at; a < at + 1u && a < keep; a++) {
+#else
         for (vbs_u32 a = 0u; a < keep; a++) {
+#endif
             vbq_nb r = nb[lab[a]];
             if (r.id <= i)
                 continue;
@@ -99,6 +106,9 @@ VBS_FN int vbq_looks_flat(const VBS_GLOBAL vbq_nb *nb, const VBS_GLOBAL vbs_u32 
                 e[k] = w[k] - c1 * v1[k] - c2 * v2[k];
                 d2 += e[k] * e[k];
             }
+#ifdef VBQ_LANES
+            far = -1.0; /* the same d2 again: taken below */
+#endif
             if (d2 > far) {
                 far = d2;
                 for (int k = 0; k < 4; k++)
