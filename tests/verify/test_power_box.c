@@ -161,8 +161,66 @@ static void test_open(void)
     CHECK_INT(vbx_qf_power_box(&qd, &L, mr, lo, hi, 0.0, 0.0), 0);
 }
 
+/* Cancellation at 2^62: point boxes (lo = hi, the root's q a point) whose
+ * terms x_k (x_k - 2 q_k) are ~ +-2^62 (each rounded in doubles by up to
+ * 2^9) and whose exact least power is -3 .. 3: the bound must leave every
+ * one open (its rounding error covers far more than the value), and never
+ * say 1 where the exact value is not positive. */
+static void test_cancel_62(void)
+{
+    int64_t z[4] = {0, 0, 0, 0};
+    vbx_qdata qd = {0};
+    qd.z = z;
+    qd.scale = 1.0;
+    vbx_qline L;
+    memset(&L, 0, sizeof L);
+    uint64_t s = 0x7f4a7c159e3779b9u;
+    int opened = 0, wrong = 0, nonpos = 0, rounded = 0;
+    for (int it = 0; it < 2000; it++) {
+        int64_t x[3], q[3];
+        x[0] = ((int64_t)1 << 30) + (int64_t)(vb_test_xorshift(&s) >> 35);
+        q[0] = -(((int64_t)1 << 30) + (int64_t)(vb_test_xorshift(&s) >> 35)); /* term0 > 0 */
+        x[1] = ((int64_t)1 << 30) + (int64_t)(vb_test_xorshift(&s) >> 35);
+        i128 t0 = (i128)x[0] * (x[0] - 2 * (i128)q[0]);
+        /* x1 (x1 - 2 q1) ~ -t0 */
+        q[1] = (int64_t)(((i128)x[1] * x[1] + t0) / (2 * (i128)x[1]));
+        i128 t1 = (i128)x[1] * (x[1] - 2 * (i128)q[1]);
+        /* x2 = 1: 1 - 2 q2 brings the sum to within -3 .. 3 */
+        x[2] = 1;
+        int target = (int)(vb_test_xorshift(&s) % 5) - 2;
+        i128 r = t0 + t1 + 1 - target; /* 2 q2 = r: the parity of r decides */
+        q[2] = (int64_t)(r / 2);
+        i128 ex = t0 + t1 + 1 - 2 * (i128)q[2];
+        CHECK(ex >= -3 && ex <= 3);
+        vbx_ia qs[4];
+        for (int k = 0; k < 3; k++)
+            qs[k] = vbx_ia_point((double)q[k]);
+        qs[3] = vbx_ia_point(0.0);
+        for (int k = 0; k < 3; k++)
+            CHECK((int64_t)qs[k].lo == q[k]); /* exact doubles */
+        double mr[8], lo[3], hi[3];
+        vbx_qf_power_mr(qs, mr);
+        for (int k = 0; k < 3; k++)
+            lo[k] = hi[k] = (double)x[k];
+        /* the terms' doubles: their sum misses the exact value */
+        double e = 0.0;
+        for (int k = 0; k < 3; k++)
+            e += (double)x[k] * ((double)x[k] - 2.0 * (double)q[k]);
+        rounded += e != (double)ex;
+        int f = vbx_qf_power_box(&qd, &L, mr, lo, hi, 0.0, 0.0);
+        opened += f == 0;
+        nonpos += ex <= 0;
+        wrong += f == 1 && ex <= 0;
+    }
+    CHECK_INT(wrong, 0);
+    CHECK_INT(opened, 2000);
+    CHECK(nonpos > 1000);
+    CHECK(rounded > 1000); /* the doubles alone would decide wrongly */
+}
+
 int main(void)
 {
+    test_cancel_62();
     test_against_exact();
     test_open();
     VB_TEST_END();
