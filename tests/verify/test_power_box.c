@@ -161,11 +161,17 @@ static void test_open(void)
     CHECK_INT(vbx_qf_power_box(&qd, &L, mr, lo, hi, 0.0, 0.0), 0);
 }
 
-/* Cancellation at 2^62: point boxes (lo = hi, the root's q a point) whose
- * terms x_k (x_k - 2 q_k) are ~ +-2^62 (each rounded in doubles by up to
- * 2^9) and whose exact least power is -3 .. 3: the bound must leave every
- * one open (its rounding error covers far more than the value), and never
- * say 1 where the exact value is not positive. */
+/* Cancellation at 2^62, where only the static bound separates the sign
+ * from the doubles' rounding: the root q = (A, B, Q) and s (points, A, B
+ * ~ 2^30 .. 2^31, s = floor(sqrt(A^2 + B^2))); the group's centres around
+ * q on x and y (the least at x = A, y = B exactly: -A^2 - B^2, unmoved by
+ * the box's outward rounding), at z = 1 .. 5 with Q < 0 (the least at
+ * z = 1: 1 - 2Q, small and exact), radius offset -s (where m (m + 2 s)
+ * is flat: -s^2, the outward rounding moves it by ~ 2^-40). Q is chosen
+ * so that the exact least power s^2 - A^2 - B^2 + 1 - 2Q is t in -3 .. 3,
+ * while A^2, B^2, s^2 ~ 2^61 .. 2^62 each round by up to 2^9 in doubles:
+ * the double sum misses t by hundreds, often above 0. The bound must leave
+ * every one open (it covers far more) and never say 1 where t <= 0. */
 static void test_cancel_62(void)
 {
     int64_t z[4] = {0, 0, 0, 0};
@@ -174,48 +180,53 @@ static void test_cancel_62(void)
     qd.scale = 1.0;
     vbx_qline L;
     memset(&L, 0, sizeof L);
-    uint64_t s = 0x7f4a7c159e3779b9u;
-    int opened = 0, wrong = 0, nonpos = 0, rounded = 0;
-    for (int it = 0; it < 2000; it++) {
-        int64_t x[3], q[3];
-        x[0] = ((int64_t)1 << 30) + (int64_t)(vb_test_xorshift(&s) >> 35);
-        q[0] = -(((int64_t)1 << 30) + (int64_t)(vb_test_xorshift(&s) >> 35)); /* term0 > 0 */
-        x[1] = ((int64_t)1 << 30) + (int64_t)(vb_test_xorshift(&s) >> 35);
-        i128 t0 = (i128)x[0] * (x[0] - 2 * (i128)q[0]);
-        /* x1 (x1 - 2 q1) ~ -t0 */
-        q[1] = (int64_t)(((i128)x[1] * x[1] + t0) / (2 * (i128)x[1]));
-        i128 t1 = (i128)x[1] * (x[1] - 2 * (i128)q[1]);
-        /* x2 = 1: 1 - 2 q2 brings the sum to within -3 .. 3 */
-        x[2] = 1;
-        int target = (int)(vb_test_xorshift(&s) % 5) - 2;
-        i128 r = t0 + t1 + 1 - target; /* 2 q2 = r: the parity of r decides */
-        q[2] = (int64_t)(r / 2);
-        i128 ex = t0 + t1 + 1 - 2 * (i128)q[2];
-        CHECK(ex >= -3 && ex <= 3);
+    uint64_t st = 0x7f4a7c159e3779b9u;
+    int opened = 0, wrong = 0, nonpos = 0, above = 0, cases = 0;
+    for (int it = 0; it < 3000; it++) {
+        int64_t A = ((int64_t)1 << 30) + (int64_t)(vb_test_xorshift(&st) >> 34);
+        int64_t B = ((int64_t)1 << 30) + (int64_t)(vb_test_xorshift(&st) >> 34);
+        i128 n2 = (i128)A * A + (i128)B * B;
+        int64_t s = (int64_t)sqrt((double)n2);
+        while ((i128)s * s > n2)
+            s--;
+        while ((i128)(s + 1) * (s + 1) <= n2)
+            s++;
+        i128 diff = (i128)s * s - n2; /* -(2s + 1) < diff <= 0 */
+        int64_t t = (int64_t)(vb_test_xorshift(&st) % 7) - 3;
+        if (((diff + 1 - t) & 1) != 0)
+            t += t < 3 ? 1 : -1;
+        int64_t Q = (int64_t)((diff + 1 - t) / 2);
+        if (Q > -8)
+            continue;
+        int64_t q[4] = {A, B, Q, s}, lo[4] = {A - 4, B - 4, 1, -s}, hi[4] = {A + 4, B + 4, 5, -s};
+        i128 ex = least(q, lo, hi);
+        CHECK(ex == (i128)t);
         vbx_ia qs[4];
-        for (int k = 0; k < 3; k++)
+        for (int k = 0; k < 4; k++)
             qs[k] = vbx_ia_point((double)q[k]);
-        qs[3] = vbx_ia_point(0.0);
-        for (int k = 0; k < 3; k++)
-            CHECK((int64_t)qs[k].lo == q[k]); /* exact doubles */
-        double mr[8], lo[3], hi[3];
+        double mr[8], blo[3], bhi[3];
         vbx_qf_power_mr(qs, mr);
-        for (int k = 0; k < 3; k++)
-            lo[k] = hi[k] = (double)x[k];
-        /* the terms' doubles: their sum misses the exact value */
-        double e = 0.0;
-        for (int k = 0; k < 3; k++)
-            e += (double)x[k] * ((double)x[k] - 2.0 * (double)q[k]);
-        rounded += e != (double)ex;
-        int f = vbx_qf_power_box(&qd, &L, mr, lo, hi, 0.0, 0.0);
+        for (int k = 0; k < 3; k++) {
+            blo[k] = (double)lo[k]; /* exact doubles (below 2^53) */
+            bhi[k] = (double)hi[k];
+        }
+        double rr = (double)-s, dA = (double)A, dB = (double)B;
+        /* the doubles of the terms: their sum misses t */
+        double e = dA * (dA - 2.0 * dA) + dB * (dB - 2.0 * dB) + (1.0 - 2.0 * (double)Q) -
+                   rr * (rr + 2.0 * (double)s);
+        above += e > 0.0 && t <= 0;
+        int f = vbx_qf_power_box(&qd, &L, mr, blo, bhi, rr, rr);
+        cases++;
         opened += f == 0;
-        nonpos += ex <= 0;
-        wrong += f == 1 && ex <= 0;
+        nonpos += t <= 0;
+        wrong += f == 1 && t <= 0;
     }
     CHECK_INT(wrong, 0);
-    CHECK_INT(opened, 2000);
-    CHECK(nonpos > 1000);
-    CHECK(rounded > 1000); /* the doubles alone would decide wrongly */
+    CHECK_INT(opened, cases);
+    CHECK(cases > 2000 && nonpos > cases / 3);
+    CHECK(above > 100); /* the doubles alone would say 1 there */
+    printf("cancel at 2^62: %d of %d open, %d with the doubles above 0 and t <= 0\n", opened, cases,
+           above);
 }
 
 int main(void)
