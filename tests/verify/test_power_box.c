@@ -132,16 +132,24 @@ static void test_against_exact(void)
     CHECK(decided > cases / 10);
 }
 
+/* A base at the origin, scale 1 (offsets are the group's own values). */
+static void zero_base(int64_t z[4], vbx_qdata *qd, vbx_qline *L)
+{
+    memset(z, 0, 4 * sizeof *z);
+    memset(qd, 0, sizeof *qd);
+    qd->z = z;
+    qd->scale = 1.0;
+    memset(L, 0, sizeof *L);
+}
+
 /* A box that holds a sphere of zero power stays open; moved off by one
  * unit of power it is decided. */
 static void test_open(void)
 {
-    int64_t z[4] = {0, 0, 0, 0};
-    vbx_qdata qd = {0};
-    qd.z = z;
-    qd.scale = 1.0;
+    int64_t z[4];
+    vbx_qdata qd;
     vbx_qline L;
-    memset(&L, 0, sizeof L);
+    zero_base(z, &qd, &L);
     /* q = (2^40, 0, 0), s = 2^40: m = (0, 0, 0) .. (1, 1, 0), R 0: the form is
      * m^2 - 2^41 m_x + ..., least at m_x = 1: 1 - 2^41 + 0 < 0; at m_x = 0 it
      * is 0 (the base itself): open. */
@@ -174,12 +182,10 @@ static void test_open(void)
  * every one open (it covers far more) and never say 1 where t <= 0. */
 static void test_cancel_62(void)
 {
-    int64_t z[4] = {0, 0, 0, 0};
-    vbx_qdata qd = {0};
-    qd.z = z;
-    qd.scale = 1.0;
+    int64_t z[4];
+    vbx_qdata qd;
     vbx_qline L;
-    memset(&L, 0, sizeof L);
+    zero_base(z, &qd, &L);
     uint64_t st = 0x7f4a7c159e3779b9u;
     int opened = 0, wrong = 0, nonpos = 0, above = 0, cases = 0;
     for (int it = 0; it < 3000; it++) {
