@@ -396,6 +396,57 @@ static void test_lattice(vb_ctx *ctx)
     vb_spheres_free(s);
 }
 
+/* The lattice's bucket break at its edge: a plane z = 0 (u = +z: the
+ * lattice's frame is e1 = +x, e2 = +y), the start p at the origin, three
+ * unit spheres in the plane: A at (0, -2.2) (p's clearance, lo = 1.2,
+ * bucket 0), C at (0, 3.1) (distance 2.1 from p: bucket 3) and B at
+ * (4.05, 0) (3.05 from p: bucket 7, [2.95, 3.2)). At q1 = (1.5, 0) B is
+ * nearest (1.55) though A (1.6627) is met first; B's bucket starts below
+ * 1.6627 + |q1 - p| = 3.1627 but ends above it: a break one bucket early
+ * skips it. Only p, q1 and q2 = (0, 0.5) (clearance 1.6, by C) are inside
+ * (every other point and the ascent's end outside): the widest is q2. */
+static const double lattice_keep[3][3] = {{0.0, 0.0, 0.0}, {1.5, 0.0, 0.0}, {0.0, 0.5, 0.0}};
+
+static int lattice_outside(void *user, const double q[3])
+{
+    (void)user;
+    for (int k = 0; k < 3; k++)
+        if (fabs(q[0] - lattice_keep[k][0]) < 1e-12 && fabs(q[1] - lattice_keep[k][1]) < 1e-12 &&
+            fabs(q[2] - lattice_keep[k][2]) < 1e-12)
+            return 0;
+    return 1;
+}
+
+static void test_lattice_bucket_edge(vb_ctx *ctx)
+{
+    vb_sphere_set *s = vb_test_spheres_alloc(3, 0);
+    const double ctr[3][2] = {{0.0, -2.2}, {4.05, 0.0}, {0.0, 3.1}}; /* A, B, C */
+    for (size_t i = 0; i < 3; i++) {
+        s->x[i] = ctr[i][0];
+        s->y[i] = ctr[i][1];
+        s->z[i] = 0.0;
+        s->r[i] = 1.0;
+    }
+    vbc_cells *c = NULL;
+    CHECK_INT(vbc_cells_build(ctx, s, 3.0, &c), VB_OK);
+    int32_t a;
+    /* the geometry as stated */
+    CHECK(fabs(vbc_cells_clearance(c, lattice_keep[0], &a) - 1.2) < 1e-12 && a == 0);
+    CHECK(fabs(vbc_cells_clearance(c, lattice_keep[1], &a) - 1.55) < 1e-12 && a == 1);
+    CHECK(fabs(vbc_cells_clearance(c, lattice_keep[2], &a) - 1.6) < 1e-12 && a == 2);
+    double u[3] = {0.0, 0.0, 1.0}, p[3] = {0.0, 0.0, 0.0};
+    int32_t b = -1;
+    double R = vbc_plane_widest(c, u, VBC_PLANE_LOOK, lattice_outside, NULL, p, &b);
+    CHECK(p[0] == 0.0 && p[1] == 0.5 && p[2] == 0.0);
+    CHECK(fabs(R - 1.6) < 1e-12);
+    CHECK_INT(b, 2);
+    if (p[0] != 0.0 || p[1] != 0.5)
+        fprintf(stderr, "  lattice edge: widest (%g, %g) R %.17g atom %d, want (0, 0.5) 1.6 C\n",
+                p[0], p[1], R, (int)b);
+    vbc_cells_free(c);
+    vb_spheres_free(s);
+}
+
 int main(void)
 {
     vb_ctx *ctx;
@@ -408,6 +459,7 @@ int main(void)
     test_conductance();
     test_cells_walks(ctx);
     test_lattice(ctx);
+    test_lattice_bucket_edge(ctx);
     vb_close(ctx);
     VB_TEST_END();
 }

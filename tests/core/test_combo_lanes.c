@@ -11,6 +11,8 @@
 
 #include "vb_cover.h"
 
+#include <string.h>
+
 #ifndef VBQ_WALK_V4
 int main(void)
 {
@@ -56,8 +58,108 @@ static double loop_pairs(const vbq_champ *c, const double p[VBQ_CHAMP], double *
     return best;
 }
 
+
+/* The lanes on hand-set pairs (only pair t's determinant D non-zero, the
+ * others 0: skipped), for the clamp's and the lane order's boundaries. */
+static double lanes_on(const double d[16], const double p[VBQ_CHAMP], double best, double *bk,
+                       double *bl, vbs_u32 *kk, vbs_u32 *kl)
+{
+    vbq_champ c;
+    memset(&c, 0, sizeof c);
+    for (vbs_u32 t = 0u; t < 16u; t++) {
+        c.vd[t / 4u][t % 4u] = d[t];
+        c.vf[t / 4u][t % 4u] = 1e-290 * fabs(d[t]);
+    }
+    *bk = *bl = -1.0;
+    *kk = *kl = 99u;
+    vbq_combo_pairs4(&c, p, &best, bk, bl, kk, kl);
+    return best;
+}
+
+/* A weight w < 0 exactly at minus the clamp's tolerance beside L > 0:
+ * -w == VBQ_COMBO_CLAMP * (-w + L) in doubles (searched near the fixed
+ * point). 0 when none is found for this L. */
+static double clamp_edge(double L)
+{
+    double x = VBQ_COMBO_CLAMP * L;
+    for (int it = 0; it < 8; it++)
+        x = VBQ_COMBO_CLAMP * (x + L);
+    for (int k = 0; k < 64; k++)
+        x = nextafter(x, 0.0);
+    for (int k = 0; k < 128; k++, x = nextafter(x, 1.0))
+        if (VBQ_COMBO_CLAMP * (fabs(-x) + fabs(L)) == x)
+            return x;
+    return 0.0;
+}
+
+static void clamp_edges(void)
+{
+    double d[16] = {0}, bk, bl, best;
+    vbs_u32 kk, kl;
+    int met = 0;
+    for (double L = 0.5; L < 1.0; L += 0.0625) {
+        double x = clamp_edge(L);
+        if (x == 0.0)
+            continue;
+        met++;
+        /* pair (0, 1) in lane 0, D = 1: lk = p[1], ll = -p[0] */
+        memset(d, 0, sizeof d);
+        d[0] = 1.0;
+        double p[VBQ_CHAMP] = {-L, -x, 0.0, 0.0, 0.0, 0.0};
+        best = lanes_on(d, p, 2.0, &bk, &bl, &kk, &kl);
+        CHECK(best == L && bk == 0.0 && bl == L && kk == 0u && kl == 1u); /* lk clamped */
+        double y = nextafter(x, 1.0); /* one step below -tol: kept negative, fails */
+        CHECK(y > VBQ_COMBO_CLAMP * (y + L));
+        p[1] = -y;
+        best = lanes_on(d, p, 2.0, &bk, &bl, &kk, &kl);
+        CHECK(best == 2.0 && kk == 99u);
+        /* the other weight at the edge: ll = -p[0] = -x, lk = L; pair (4, 5), lane 14 */
+        memset(d, 0, sizeof d);
+        d[14] = 1.0;
+        double p2[VBQ_CHAMP] = {0.0, 0.0, 0.0, 0.0, x, L};
+        best = lanes_on(d, p2, 2.0, &bk, &bl, &kk, &kl);
+        CHECK(best == L && bk == L && bl == 0.0 && kk == 4u && kl == 5u);
+        p2[4] = y;
+        best = lanes_on(d, p2, 2.0, &bk, &bl, &kk, &kl);
+        CHECK(best == 2.0 && kk == 99u);
+    }
+    CHECK(met > 0);
+    /* lane order: equal sums in lanes 3 (0, 4) and 14 (4, 5): the first;
+     * a sum equal to the caller's best is no improvement */
+    memset(d, 0, sizeof d);
+    d[3] = 1.0;
+    d[14] = 1.0;
+    double p[VBQ_CHAMP] = {-0.25, 0.0, 0.0, 0.0, -0.25, 0.5};
+    best = lanes_on(d, p, 2.0, &bk, &bl, &kk, &kl);
+    /* lane 3: lk = p[4] = -0.25 < 0 fails; lane 14: lk = p[5] = 0.5, ll = -p[4] = 0.25 */
+    CHECK(best == 0.75 && kk == 4u && kl == 5u && bk == 0.5 && bl == 0.25);
+    p[0] = -0.5;
+    p[4] = 0.25;
+    p[5] = 0.25;
+    /* lane 3: lk = 0.25, ll = 0.5; lane 14: lk = 0.25, ll = -0.25 fails */
+    best = lanes_on(d, p, 2.0, &bk, &bl, &kk, &kl);
+    CHECK(best == 0.75 && kk == 0u && kl == 4u && bk == 0.25 && bl == 0.5);
+    best = lanes_on(d, p, 0.75, &bk, &bl, &kk, &kl);
+    CHECK(best == 0.75 && kk == 99u);
+    d[14] = -1.0; /* lane 14: lk = -0.25 fails... */
+    p[4] = -0.5;  /* ...now lk = p[5] / D = -0.25 still; ll = -p[4] / D = -0.5 fails */
+    d[9] = 1.0;   /* lane 9 (2, 3): lk = p[3] = 0, ll = -p[2] = 0.75 */
+    p[2] = -0.75;
+    p[0] = 0.0;
+    best = lanes_on(d, p, 2.0, &bk, &bl, &kk, &kl);
+    /* lane 3: lk = p[4] = -0.5 fails; lane 9 only */
+    CHECK(best == 0.75 && kk == 2u && kl == 3u && bk == 0.0 && bl == 0.75);
+    /* ties between lanes 0 and 9: the first */
+    d[0] = 1.0;
+    p[1] = 0.5;
+    p[0] = -0.25;
+    best = lanes_on(d, p, 2.0, &bk, &bl, &kk, &kl);
+    CHECK(best == 0.75 && kk == 0u && kl == 1u && bk == 0.5 && bl == 0.25);
+}
+
 int main(void)
 {
+    clamp_edges();
     vbq_nb nb[16];
     vbs_u32 lab[16];
     size_t found = 0, none = 0;

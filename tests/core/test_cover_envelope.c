@@ -18,6 +18,7 @@
 #include "vb_test_spheres.h"
 
 #define NMAX 64
+#define GRID_REPS 60
 
 /* Sphere k at the decimals mant * 10^exp (coordinates) and radius 1.28. */
 static void put(vb_sphere_set *s, size_t k, const int64_t m[3], int32_t exp10)
@@ -292,8 +293,52 @@ static vb_sphere_set *face_ball(int jit, uint32_t *base)
     return s;
 }
 
+/* An exact crystal's neighbours: n distinct points of the simple cubic
+ * grid {-2 .. 2}^3 (spacing 2, integer coordinates) in a random order,
+ * the base among them. Their lifted points a_j = d_j / |d_j|^2 lie by
+ * many on common planes (the grid points on a sphere through the base's
+ * centre), and the hull meets points exactly on a triangle's plane, which
+ * do not see it (a point on the plane outside the face must not replace
+ * that triangle by a flipped cone). */
+static vb_sphere_set *grid_set(size_t n, uint32_t *base)
+{
+    int64_t pts[125][3];
+    int np = 0;
+    for (int x = -2; x <= 2; x++)
+        for (int y = -2; y <= 2; y++)
+            for (int z = -2; z <= 2; z++) {
+                pts[np][0] = 2 * x;
+                pts[np][1] = 2 * y;
+                pts[np][2] = 2 * z;
+                np++;
+            }
+    for (int k = 0; k < np; k++) { /* shuffle */
+        int j = k + (int)rnd(0, np - 1 - k);
+        for (int a = 0; a < 3; a++) {
+            int64_t t = pts[k][a];
+            pts[k][a] = pts[j][a];
+            pts[j][a] = t;
+        }
+    }
+    vb_sphere_set *s = vb_test_spheres_alloc(n, 1);
+    for (size_t k = 0; k < n; k++)
+        put(s, k, pts[k], 0);
+    *base = (uint32_t)rnd(0, (int64_t)n / 3);
+    return s;
+}
+
 int main(void)
 {
+    /* exact grid neighbours: every face at the root, random deeper patches */
+    long ex_grid = n_hull_exact;
+    for (int rep = 0; rep < GRID_REPS; rep++) {
+        uint32_t base;
+        vb_sphere_set *s = grid_set(10 + (size_t)rnd(0, 8), &base);
+        for (uint32_t f = 0; f < 6; f++)
+            check_patch(s, base, f, 0u, (uint64_t)rnd(0, 1), (uint64_t)rnd(0, 1));
+        vb_spheres_free(s);
+    }
+    CHECK(n_hull_exact > ex_grid); /* the grid's ties took the hull's exact signs */
     /* the face ball, jittered (seeds) and exact: the four patches at the
      * normal (+z face, level 6: u0 or u1 = 0), a deep one, the root */
     for (int rep = 0; rep < 6; rep++) {

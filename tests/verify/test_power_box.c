@@ -132,16 +132,24 @@ static void test_against_exact(void)
     CHECK(decided > cases / 10);
 }
 
+/* A base at the origin, scale 1 (offsets are the group's own values). */
+static void zero_base(int64_t z[4], vbx_qdata *qd, vbx_qline *L)
+{
+    memset(z, 0, 4 * sizeof *z);
+    memset(qd, 0, sizeof *qd);
+    qd->z = z;
+    qd->scale = 1.0;
+    memset(L, 0, sizeof *L);
+}
+
 /* A box that holds a sphere of zero power stays open; moved off by one
  * unit of power it is decided. */
 static void test_open(void)
 {
-    int64_t z[4] = {0, 0, 0, 0};
-    vbx_qdata qd = {0};
-    qd.z = z;
-    qd.scale = 1.0;
+    int64_t z[4];
+    vbx_qdata qd;
     vbx_qline L;
-    memset(&L, 0, sizeof L);
+    zero_base(z, &qd, &L);
     /* q = (2^40, 0, 0), s = 2^40: m = (0, 0, 0) .. (1, 1, 0), R 0: the form is
      * m^2 - 2^41 m_x + ..., least at m_x = 1: 1 - 2^41 + 0 < 0; at m_x = 0 it
      * is 0 (the base itself): open. */
@@ -161,8 +169,75 @@ static void test_open(void)
     CHECK_INT(vbx_qf_power_box(&qd, &L, mr, lo, hi, 0.0, 0.0), 0);
 }
 
+/* Cancellation at 2^62, where only the static bound separates the sign
+ * from the doubles' rounding: the root q = (A, B, Q) and s (points, A, B
+ * ~ 2^30 .. 2^31, s = floor(sqrt(A^2 + B^2))); the group's centres around
+ * q on x and y (the least at x = A, y = B exactly: -A^2 - B^2, unmoved by
+ * the box's outward rounding), at z = 1 .. 5 with Q < 0 (the least at
+ * z = 1: 1 - 2Q, small and exact), radius offset -s (where m (m + 2 s)
+ * is flat: -s^2, the outward rounding moves it by ~ 2^-40). Q is chosen
+ * so that the exact least power s^2 - A^2 - B^2 + 1 - 2Q is t in -3 .. 3,
+ * while A^2, B^2, s^2 ~ 2^61 .. 2^62 each round by up to 2^9 in doubles:
+ * the double sum misses t by hundreds, often above 0. The bound must leave
+ * every one open (it covers far more) and never say 1 where t <= 0. */
+static void test_cancel_62(void)
+{
+    int64_t z[4];
+    vbx_qdata qd;
+    vbx_qline L;
+    zero_base(z, &qd, &L);
+    uint64_t st = 0x7f4a7c159e3779b9u;
+    int opened = 0, wrong = 0, nonpos = 0, above = 0, cases = 0;
+    for (int it = 0; it < 3000; it++) {
+        int64_t A = ((int64_t)1 << 30) + (int64_t)(vb_test_xorshift(&st) >> 34);
+        int64_t B = ((int64_t)1 << 30) + (int64_t)(vb_test_xorshift(&st) >> 34);
+        i128 n2 = (i128)A * A + (i128)B * B;
+        int64_t s = (int64_t)sqrt((double)n2);
+        while ((i128)s * s > n2)
+            s--;
+        while ((i128)(s + 1) * (s + 1) <= n2)
+            s++;
+        i128 diff = (i128)s * s - n2; /* -(2s + 1) < diff <= 0 */
+        int64_t t = (int64_t)(vb_test_xorshift(&st) % 7) - 3;
+        if (((diff + 1 - t) & 1) != 0)
+            t += t < 3 ? 1 : -1;
+        int64_t Q = (int64_t)((diff + 1 - t) / 2);
+        if (Q > -8)
+            continue;
+        int64_t q[4] = {A, B, Q, s}, lo[4] = {A - 4, B - 4, 1, -s}, hi[4] = {A + 4, B + 4, 5, -s};
+        i128 ex = least(q, lo, hi);
+        CHECK(ex == (i128)t);
+        vbx_ia qs[4];
+        for (int k = 0; k < 4; k++)
+            qs[k] = vbx_ia_point((double)q[k]);
+        double mr[8], blo[3], bhi[3];
+        vbx_qf_power_mr(qs, mr);
+        for (int k = 0; k < 3; k++) {
+            blo[k] = (double)lo[k]; /* exact doubles (below 2^53) */
+            bhi[k] = (double)hi[k];
+        }
+        double rr = (double)-s, dA = (double)A, dB = (double)B;
+        /* the doubles of the terms: their sum misses t */
+        double e = dA * (dA - 2.0 * dA) + dB * (dB - 2.0 * dB) + (1.0 - 2.0 * (double)Q) -
+                   rr * (rr + 2.0 * (double)s);
+        above += e > 0.0 && t <= 0;
+        int f = vbx_qf_power_box(&qd, &L, mr, blo, bhi, rr, rr);
+        cases++;
+        opened += f == 0;
+        nonpos += t <= 0;
+        wrong += f == 1 && t <= 0;
+    }
+    CHECK_INT(wrong, 0);
+    CHECK_INT(opened, cases);
+    CHECK(cases > 2000 && nonpos > cases / 3);
+    CHECK(above > 100); /* the doubles alone would say 1 there */
+    printf("cancel at 2^62: %d of %d open, %d with the doubles above 0 and t <= 0\n", opened, cases,
+           above);
+}
+
 int main(void)
 {
+    test_cancel_62();
     test_against_exact();
     test_open();
     VB_TEST_END();
