@@ -24,7 +24,8 @@
  * tie cluster (VBQ_CLUSTER) goes to the host, which decides it exactly. */
 static int retry_on_device(uint32_t status)
 {
-    return status != VBQ_OK && status != VBQ_CLUSTER && status != VBQ_BUDGET;
+    return status != VBQ_OK && status != VBQ_CLUSTER && status != VBQ_BUDGET &&
+           status != VBQ_HAND_FULL;
 }
 
 /* A cell past the group kernel's step budget. */
@@ -108,6 +109,46 @@ static int run_tasks(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *cel
     return rc;
 }
 
+/* A CPU device's cell whose handed patches did not fit the launch's room. */
+static int hand_full(uint32_t status)
+{
+    return status == VBQ_HAND_FULL;
+}
+
+/* The first tier's cells of out[0 .. ncells) whose handed patches found no
+ * room, again on the first tier (its room grown to what the launch asked:
+ * launch_tier), a few times; what is still left goes to the host whole. */
+static int rerun_hand_full(vb_ctx *ctx, cov_state *s, const uint32_t *cells, size_t ncells,
+                           vbq_cell_out *out)
+{
+    int rc = VB_OK;
+    for (int again = 0; rc == VB_OK && again < 4; again++) {
+        size_t n2 = 0;
+        for (size_t c = 0; c < ncells; c++)
+            n2 += hand_full(out[c].status);
+        if (n2 == 0)
+            break;
+        if (n2 > s->cap2) {
+            int bad = vb_array_resize((void **)&s->outs2, n2, sizeof *s->outs2);
+            bad |= vb_array_resize((void **)&s->cells2, n2, sizeof *s->cells2);
+            bad |= vb_array_resize((void **)&s->roots2, n2, sizeof *s->roots2);
+            if (bad)
+                return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
+            s->cap2 = n2;
+        }
+        for (size_t c = 0, k = 0; c < ncells; c++)
+            if (hand_full(out[c].status)) {
+                s->cells2[k] = cells[c];
+                s->roots2[k++] = VBQ_ALL_ROOTS;
+            }
+        rc = vbg_cov_run_tier(ctx, s, &s->tier[COV_FIRST], s->cells2, s->roots2, n2, s->outs2);
+        for (size_t c = 0, k = 0; rc == VB_OK && c < ncells; c++)
+            if (hand_full(out[c].status))
+                out[c] = s->outs2[k++];
+    }
+    return rc;
+}
+
 /* Cells of out[0 .. ncells) that pick takes. */
 static size_t count_picked(const vbq_cell_out *out, size_t ncells, vbg_task_pick pick)
 {
@@ -123,6 +164,9 @@ static int cov_run(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, siz
     cov_state *s = be->state;
     *quads = NULL;
     s->host_nq = 0;
+    s->host_hand_n = 0;
+    be->hand = NULL;
+    be->hand_words = 0;
     if (ncells == 0)
         return VB_OK;
     if (ncells > UINT32_MAX)
@@ -137,6 +181,8 @@ static int cov_run(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, siz
     for (size_t c = 0; c < ncells; c++)
         s->hroots[c] = VBQ_ALL_ROOTS;
     int rc = vbg_cov_run_tier(ctx, s, &s->tier[COV_FIRST], cells, s->hroots, ncells, out);
+    if (rc == VB_OK && s->k_hand)
+        rc = rerun_hand_full(ctx, s, cells, ncells, out);
     /* The cells past the group kernel's budget, on the work-item kernel;
      * those of them whose tasks ran out of arenas go on to the large
      * slices with the rest. */
@@ -155,8 +201,11 @@ static int cov_run(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, siz
         rc = run_tasks(ctx, s, t1, cells, ncells, out, retry_on_device, &retried);
     if (s->meter.peak > be->device_bytes_peak)
         be->device_bytes_peak = s->meter.peak;
-    if (rc == VB_OK)
+    if (rc == VB_OK) {
         *quads = s->host_q;
+        be->hand = s->host_hand;
+        be->hand_words = s->host_hand_n;
+    }
     return rc;
 }
 
@@ -168,7 +217,7 @@ static void cov_close(vb_cover_backend *be)
     if (s) {
         vbg_buf *all[] = {&s->x,    &s->y,     &s->z,     &s->r,    &s->box,
                           &s->rmax, &s->ids,   &s->cells, &s->roots, &s->outs,
-                          &s->qout, &s->counters};
+                          &s->qout, &s->counters, &s->hand};
         for (size_t k = 0; k < sizeof all / sizeof all[0]; k++)
             vbg_cov_release(s, all[k]);
         for (int t = 0; t < COV_TIERS; t++)
@@ -178,6 +227,7 @@ static void cov_close(vb_cover_backend *be)
         if (s->k_item)
             clReleaseKernel(s->k_item);
         free(s->host_q);
+        free(s->host_hand);
         free(s->outs2);
         free(s->cells2);
         free(s->roots2);
@@ -292,6 +342,10 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
     /* The caches on the first tier only: a CPU device's large tiers (test
      * knobs alone make them) keep their slices' size. */
     s->k_caches = t0->caches = caches;
+    /* A CPU device's work-item kernel hands a patch it does not decide to
+     * the host (VBQ_HANDOFF, core/cells/vbq_gather_shared.h): the host then
+     * covers that patch, not the whole cell again. */
+    s->k_hand = cpu && !s->wg;
     t0->budget = s->wg ? budget : 0u;
     th->k = s->k_item;
     cl_uint units = 1;
