@@ -209,8 +209,10 @@ static int launch_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *c
         clFinish(q); /* nothing half-done may reach the caller */
         return rc;
     }
-    if (hand && counters[2] > hwords)
+    if (hand && counters[2] > hwords) {
         s->hand_want = (size_t)counters[2] + counters[2] / 4;
+        s->hand_short = 1;
+    }
     for (size_t c = 0; c < ncells; c++)
         if (out[c].status == VBQ_OK)
             out[c].qoff += (uint32_t)s->host_nq;

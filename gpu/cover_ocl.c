@@ -10,6 +10,7 @@
  * read-back: gpu/cover_launch.c.
  *
  * Device memory within a budget: vbg_cover_state.h. */
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -24,8 +25,21 @@
  * tie cluster (VBQ_CLUSTER) goes to the host, which decides it exactly. */
 static int retry_on_device(uint32_t status)
 {
-    return status != VBQ_OK && status != VBQ_CLUSTER && status != VBQ_BUDGET &&
-           status != VBQ_HAND_FULL;
+    return status != VBQ_OK && status != VBQ_CLUSTER && status != VBQ_BUDGET;
+}
+
+/* Room for n2 tasks in s->outs2, cells2, roots2. VB_OK or VB_ENOMEM. */
+static int room2(vb_ctx *ctx, cov_state *s, size_t n2)
+{
+    if (n2 <= s->cap2)
+        return VB_OK;
+    int bad = vb_array_resize((void **)&s->outs2, n2, sizeof *s->outs2);
+    bad |= vb_array_resize((void **)&s->cells2, n2, sizeof *s->cells2);
+    bad |= vb_array_resize((void **)&s->roots2, n2, sizeof *s->roots2);
+    if (bad)
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
+    s->cap2 = n2;
+    return VB_OK;
 }
 
 /* A cell past the group kernel's step budget. */
@@ -90,14 +104,8 @@ static int run_tasks(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *cel
             n2 += per;
     if (n2 == 0)
         return VB_OK;
-    if (n2 > s->cap2) {
-        int bad = vb_array_resize((void **)&s->outs2, n2, sizeof *s->outs2);
-        bad |= vb_array_resize((void **)&s->cells2, n2, sizeof *s->cells2);
-        bad |= vb_array_resize((void **)&s->roots2, n2, sizeof *s->roots2);
-        if (bad)
-            return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
-        s->cap2 = n2;
-    }
+    if (room2(ctx, s, n2) != VB_OK)
+        return VB_ENOMEM;
     vbg_tasks_make(cells, out, ncells, pick, per, s->cells2, s->roots2);
     int rc = vbg_cov_run_tier(ctx, s, t, s->cells2, s->roots2, n2, s->outs2);
     if (rc == VB_OK && t == &s->tier[COV_BIG])
@@ -109,41 +117,35 @@ static int run_tasks(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *cel
     return rc;
 }
 
-/* A CPU device's cell whose handed patches did not fit the launch's room. */
-static int hand_full(uint32_t status)
-{
-    return status == VBQ_HAND_FULL;
-}
-
-/* The first tier's cells of out[0 .. ncells) whose handed patches found no
- * room, again on the first tier (its room grown to what the launch asked:
- * launch_tier), a few times; what is still left goes to the host whole. */
-static int rerun_hand_full(vb_ctx *ctx, cov_state *s, const uint32_t *cells, size_t ncells,
-                           vbq_cell_out *out)
+/* A CPU device's first tier hands every patch it does not decide to the
+ * host (vbq_hand_patch); a cell it hands whole (VBQ_CLUSTER) found no room
+ * for one. Those cells of out[0 .. ncells) again on the first tier, while a
+ * launch asked for more room than it had (launch_tier grows it, within the
+ * launch room) and the last one left fewer such cells, a few times; what
+ * is still left goes to the host whole. */
+static int rerun_hand_short(vb_ctx *ctx, cov_state *s, const uint32_t *cells, size_t ncells,
+                            vbq_cell_out *out)
 {
     int rc = VB_OK;
-    for (int again = 0; rc == VB_OK && again < 4; again++) {
+    size_t last = SIZE_MAX;
+    for (int again = 0; rc == VB_OK && again < 4 && s->hand_short; again++) {
         size_t n2 = 0;
         for (size_t c = 0; c < ncells; c++)
-            n2 += hand_full(out[c].status);
-        if (n2 == 0)
+            n2 += out[c].status == VBQ_CLUSTER;
+        if (n2 == 0 || n2 >= last)
             break;
-        if (n2 > s->cap2) {
-            int bad = vb_array_resize((void **)&s->outs2, n2, sizeof *s->outs2);
-            bad |= vb_array_resize((void **)&s->cells2, n2, sizeof *s->cells2);
-            bad |= vb_array_resize((void **)&s->roots2, n2, sizeof *s->roots2);
-            if (bad)
-                return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
-            s->cap2 = n2;
-        }
+        last = n2;
+        if (room2(ctx, s, n2) != VB_OK)
+            return VB_ENOMEM;
         for (size_t c = 0, k = 0; c < ncells; c++)
-            if (hand_full(out[c].status)) {
+            if (out[c].status == VBQ_CLUSTER) {
                 s->cells2[k] = cells[c];
                 s->roots2[k++] = VBQ_ALL_ROOTS;
             }
+        s->hand_short = 0;
         rc = vbg_cov_run_tier(ctx, s, &s->tier[COV_FIRST], s->cells2, s->roots2, n2, s->outs2);
         for (size_t c = 0, k = 0; rc == VB_OK && c < ncells; c++)
-            if (hand_full(out[c].status))
+            if (out[c].status == VBQ_CLUSTER)
                 out[c] = s->outs2[k++];
     }
     return rc;
@@ -165,6 +167,7 @@ static int cov_run(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, siz
     *quads = NULL;
     s->host_nq = 0;
     s->host_hand_n = 0;
+    s->hand_short = 0;
     be->hand = NULL;
     be->hand_words = 0;
     if (ncells == 0)
@@ -182,7 +185,7 @@ static int cov_run(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, siz
         s->hroots[c] = VBQ_ALL_ROOTS;
     int rc = vbg_cov_run_tier(ctx, s, &s->tier[COV_FIRST], cells, s->hroots, ncells, out);
     if (rc == VB_OK && s->k_hand)
-        rc = rerun_hand_full(ctx, s, cells, ncells, out);
+        rc = rerun_hand_short(ctx, s, cells, ncells, out);
     /* The cells past the group kernel's budget, on the work-item kernel;
      * those of them whose tasks ran out of arenas go on to the large
      * slices with the rest. */

@@ -77,6 +77,7 @@ typedef struct cov_state {
                                 handed patches, NULL but on the first tier, and their room) */
     vbg_buf hand;            /* the first tier's handed patches (vbq_hand_patch) */
     size_t hand_want;        /* words it holds at least (what an earlier launch needed) */
+    int hand_short;          /* 1: a launch since it was last cleared asked for more words */
     uint32_t *host_hand;     /* read-back of a batch's handed patches, of cells that finished
                                 (each entry's frame off: the cell's sphere) */
     size_t host_hand_cap, host_hand_n;

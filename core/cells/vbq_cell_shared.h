@@ -324,19 +324,17 @@ static inline int vbq_cluster_leaf(const vbq_env *e, const vbq_arena *ar, vbq_ce
 /* Hands patch fr of the cell (its list lab[fr->off .. + fr->len) as it was
  * popped) to the host: its entry (VBQ_HAND_WORDS) appended to ar->hand.
  * Returns 1 when written (the caller goes on as if the patch were done; the
- * host covers it alone, and counts it), 0 when the launch takes none (the
- * caller hands the whole cell), -1 when there is no room left (status
- * VBQ_HAND_FULL: the driver runs the cell again with more). */
+ * host covers it alone, and counts it), 0 when the launch takes none or
+ * has no room left (the caller hands the whole cell, VBQ_CLUSTER: the
+ * driver runs such a cell again with more room, gpu/cover_ocl.c). */
 VBS_FN int vbq_hand_patch(const vbq_arena *ar, vbq_cell_out *o, const vbq_frame *fr)
 {
     if (!ar->hand)
         return 0;
     vbs_u32 n = VBQ_HAND_WORDS(fr->len);
     vbs_u32 at = atomic_add(ar->hand_used, n);
-    if (n > ar->hand_cap || at > ar->hand_cap - n) {
-        o->status = VBQ_HAND_FULL;
-        return -1;
-    }
+    if (n > ar->hand_cap || at > ar->hand_cap - n)
+        return 0;
     vbq_frame h = *fr;
     h.off = ar->hand_cell;
     *(VBS_GLOBAL vbq_frame *)(ar->hand + at) = h;
@@ -549,11 +547,8 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
         if (cluster) {
 #ifdef __OPENCL_C_VERSION__
 #ifdef VBQ_HANDOFF
-            int hp = vbq_hand_patch(ar, o, &fr);
-            if (hp > 0)
+            if (vbq_hand_patch(ar, o, &fr))
                 continue;
-            if (hp < 0)
-                return;
 #endif
             o->status = VBQ_CLUSTER;
             return;
@@ -588,11 +583,8 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
                 /* past the cubic filter's limit: the host's hull decides */
                 if (owned > VBQ_ENV_FILTER_OWNED) {
 #ifdef VBQ_HANDOFF
-                    int hp = vbq_hand_patch(ar, o, &fr);
-                    if (hp > 0)
+                    if (vbq_hand_patch(ar, o, &fr))
                         continue;
-                    if (hp < 0)
-                        return;
 #endif
                     o->status = VBQ_CLUSTER;
                     return;
@@ -601,11 +593,8 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
                 int he = vbq_envelope_filter(e, ar, o, i, &fr, top, keep);
 #ifdef VBQ_HANDOFF
                 /* what the filter added is the host's too (exact signs) */
-                int hp = he == 2 ? vbq_hand_patch(ar, o, &fr) : 0;
-                if (hp > 0)
+                if (he == 2 && vbq_hand_patch(ar, o, &fr))
                     continue;
-                if (hp < 0)
-                    return;
 #endif
                 if (he == 2)
                     o->status = VBQ_CLUSTER;

@@ -30,9 +30,6 @@
  * again on the work-item kernel as root-patch tasks (gpu/cover_ocl.c). Only
  * the group kernel returns it. */
 #define VBQ_BUDGET 7u
-/* A CPU device's cell whose handed patch (vbq_hand_patch) found no room in
- * the launch's buffer: the driver runs it again with a larger one. */
-#define VBQ_HAND_FULL 8u
 
 /* A closed patch to enumerate or subdivide with more owned labels than this
  * that look flat is a tie cluster, decided exactly before any of its
