@@ -32,9 +32,7 @@ __kernel void vbq_cover_kernel(__global const double *x, __global const double *
 #endif
 #ifdef VBQ_HANDOFF
                                ,
-                               __global uint *hand, const uint hand_cap,
-                               __global const double *node8, __global const double *kxyzr,
-                               const uint kd
+                               __global uint *hand, const uint hand_cap
 #endif
                                )
 {
@@ -42,16 +40,6 @@ __kernel void vbq_cover_kernel(__global const double *x, __global const double *
     vbq_env e;
     vbq_env_make(&e, x, y, z, r, box, rmax, ids, first, m, rmax_all, near, tmax, T, min_level,
                  max_level, enum_max);
-#ifdef VBQ_KCOPIES
-    /* the host walk's copies (vbq_env; NULL: none) */
-    if (node8 && kxyzr) {
-        e.node8 = node8;
-        e.kx = kxyzr;
-        e.ky = kxyzr + kd;
-        e.kz = kxyzr + 2u * (size_t)kd;
-        e.kr = kxyzr + 3u * (size_t)kd;
-    }
-#endif
     vbq_arena ar;
     ar.nb = nb + w * (size_t)nb_cap;
     ar.lab = lab + w * (size_t)lab_cap;

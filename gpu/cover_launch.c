@@ -157,10 +157,7 @@ static int launch_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *c
                set_arg(ctx, k, a++, sizeof(cl_mem), t->caches ? &t->memo_tag.mem : NULL))) ||
              (s->k_hand && k == s->k &&
               (set_arg(ctx, k, a++, sizeof(cl_mem), hand && hwords ? &s->hand.mem : NULL) ||
-               set_arg(ctx, k, a++, sizeof(cl_uint), &hcap) ||
-               set_arg(ctx, k, a++, sizeof(cl_mem), s->kd ? &s->node8.mem : NULL) ||
-               set_arg(ctx, k, a++, sizeof(cl_mem), s->kd ? &s->kxyzr.mem : NULL) ||
-               set_arg(ctx, k, a++, sizeof(cl_uint), &s->kd)))
+               set_arg(ctx, k, a++, sizeof(cl_uint), &hcap)))
                  ? VB_EDEVICE
                  : VB_OK;
     size_t local, global;

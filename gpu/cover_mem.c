@@ -195,11 +195,8 @@ int vbg_cov_begin(vb_ctx *ctx, vb_cover_backend *be, const vbq_env *env, size_t 
     cov_state *s = be->state;
     s->env = *env;
     size_t nodes = 2 * (size_t)env->first;
-    /* A CPU device's kernel walks the host's copies too (VBQ_KCOPIES). */
-    size_t kd = s->k_hand && env->kx && env->node8 ? (size_t)(env->ky - env->kx) : 0;
     size_t input = 4 * n * sizeof(double) + 7 * nodes * sizeof(double) +
-                   (size_t)env->m * sizeof(uint32_t) + 4 * sizeof(cl_uint) +
-                   (kd ? 8 * nodes + 4 * kd : 0) * sizeof(double);
+                   (size_t)env->m * sizeof(uint32_t) + 4 * sizeof(cl_uint);
     int rc = budget_split(ctx, s, n, input);
     if (rc == VB_OK)
         trim(s, n);
@@ -217,11 +214,6 @@ int vbg_cov_begin(vb_ctx *ctx, vb_cover_backend *be, const vbq_env *env, size_t 
         rc = upload_exact(ctx, s, &s->rmax, env->rmax, nodes * sizeof(double));
     if (rc == VB_OK)
         rc = upload_exact(ctx, s, &s->ids, env->ids, (size_t)env->m * sizeof(uint32_t));
-    s->kd = (cl_uint)kd;
-    if (rc == VB_OK && kd)
-        rc = upload_exact(ctx, s, &s->node8, env->node8, 8 * nodes * sizeof(double));
-    if (rc == VB_OK && kd)
-        rc = upload_exact(ctx, s, &s->kxyzr, env->kx, 4 * kd * sizeof(double));
     if (rc == VB_OK)
         rc = vbg_cov_ensure(ctx, s, &s->counters, 4 * sizeof(cl_uint), CL_MEM_READ_WRITE);
     if (rc == VB_OK)

@@ -220,7 +220,7 @@ static void cov_close(vb_cover_backend *be)
     if (s) {
         vbg_buf *all[] = {&s->x,    &s->y,     &s->z,     &s->r,    &s->box,
                           &s->rmax, &s->ids,   &s->cells, &s->roots, &s->outs,
-                          &s->qout, &s->counters, &s->hand, &s->node8, &s->kxyzr};
+                          &s->qout, &s->counters, &s->hand};
         for (size_t k = 0; k < sizeof all / sizeof all[0]; k++)
             vbg_cov_release(s, all[k]);
         for (int t = 0; t < COV_TIERS; t++)

@@ -76,8 +76,6 @@ typedef struct cov_state {
     int k_hand;              /* 1: k built with VBQ_WALK_V4_CL (two more arguments, last: the
                                 handed patches, NULL but on the first tier, and their room) */
     vbg_buf hand;            /* the first tier's handed patches (vbq_hand_patch) */
-    vbg_buf node8, kxyzr;    /* k_hand: the host walk's copies (vbq_env), kd a quarter */
-    cl_uint kd;
     size_t hand_want;        /* words it holds at least (what an earlier launch needed) */
     int hand_short;          /* 1: a launch since it was last cleared asked for more words */
     uint32_t *host_hand;     /* read-back of a batch's handed patches, of cells that finished

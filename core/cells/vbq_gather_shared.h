@@ -97,11 +97,6 @@ VBS_ASSERT_LAYOUT(sizeof(vbq_cell_out) == 48, "vbq_cell_out layout shared with O
  * in leaves of VBQ_LEAF, a complete binary tree over the leaves (heap
  * order: node 1 the root, leaves from `first`), each node with the box of
  * its centres (lo xyz, hi xyz) and the largest radius below it. */
-/* The walk reads the copies below where there are any: the host, and a CPU
- * device's work-item kernel (VBQ_WALK_V4_CL: uploaded beside the arrays). */
-#if !defined(__OPENCL_C_VERSION__) || defined(VBQ_WALK_V4_CL)
-#define VBQ_KCOPIES 1
-#endif
 typedef struct vbq_env {
     const VBS_GLOBAL double *x, *y, *z, *r;
     const VBS_GLOBAL double *box;
@@ -121,8 +116,6 @@ typedef struct vbq_env {
      * kx, ky, kz, kr: x, y, z, r of sphere ids[k] at tree position k (a
      * whole leaf's more past m, so a leaf's eight can be read at once). */
     const double *node8, *kx, *ky, *kz, *kr;
-#elif defined(VBQ_KCOPIES)
-    const VBS_GLOBAL double *node8, *kx, *ky, *kz, *kr; /* the host's, uploaded (NULL: none) */
 #endif
 } vbq_env;
 
@@ -151,7 +144,7 @@ VBS_FN void vbq_env_make(vbq_env *e, const VBS_GLOBAL double *x, const VBS_GLOBA
     e->min_level = min_level;
     e->max_level = max_level;
     e->enum_max = enum_max;
-#ifdef VBQ_KCOPIES
+#ifndef __OPENCL_C_VERSION__
     e->node8 = e->kx = e->ky = e->kz = e->kr = 0; /* the group kernel emulator's arrays */
 #endif
 }
@@ -446,8 +439,8 @@ VBS_FN int vbq_walk_node1(const vbq_walk *w, const double b0[3], const double b1
 /* Can node nd hold a sphere that passes the walk? */
 VBS_FN int vbq_walk_node(const vbq_env *e, const vbq_walk *w, vbs_u32 nd)
 {
-#ifdef VBQ_KCOPIES
-    const VBS_GLOBAL double *bx = e->node8 ? e->node8 + 8u * nd : e->box + 6u * nd;
+#ifndef __OPENCL_C_VERSION__
+    const double *bx = e->node8 ? e->node8 + 8u * nd : e->box + 6u * nd;
     double slack = (e->node8 ? bx[6] : e->rmax[nd]) - w->ri;
 #else
     const VBS_GLOBAL double *bx = e->box + 6u * nd;
@@ -482,7 +475,7 @@ VBS_FN int vbq_walk_ring(const vbq_env *e, const vbq_walk *w, vbs_u32 k, vbs_u32
     *j = e->ids[k];
     if (*j == w->i)
         return 0;
-#ifdef VBQ_KCOPIES
+#ifndef __OPENCL_C_VERSION__
     if (e->kx) {
         double dx = e->kx[k] - w->c[0], dy = e->ky[k] - w->c[1], dz = e->kz[k] - w->c[2];
         double d2 = dx * dx + dy * dy + dz * dz;
@@ -565,7 +558,7 @@ VBS_FN int vbq_walk_sphere_known(const vbq_env *e, const vbq_arena *ar, const vb
     VBS_GLOBAL vbs_u32 *tag = ar->memo_tag + 2u * s;
     if (tag[0] == k && tag[1] == w->i + 1u) {
         *rec = ar->memo[s];
-#ifdef VBQ_KCOPIES
+#ifndef __OPENCL_C_VERSION__
     } else if (e->kx) {
         vbq_nb_make(w->c[0], w->c[1], w->c[2], w->ri, e->kx[k], e->ky[k], e->kz[k], e->kr[k], j,
                     rec);
