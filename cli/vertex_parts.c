@@ -36,7 +36,8 @@ int vb_cli_vertices_part(vb_ctx *ctx, vb_vertices_config *cfg, vb_cover_options 
     X(s->targeted_searches) X(s->targeted_found) X(s->incomplete) X(s->sampled_vertices)          \
     X(s->vertices_incomplete) X(s->dropped) X(s->swaps) X(s->ring_tries) X(s->first_cell)         \
     X(s->from_sampling) X(s->bisectors) X(s->cover_cells) X(s->cover_patches)                     \
-    X(s->cover_host_cells) X(s->cover_handed_cells) X(s->cover_quads) X(s->cover_neighbours)      \
+    X(s->cover_host_cells) X(s->cover_handed_cells) X(s->cover_resumed_patches)                 \
+    X(s->cover_quads) X(s->cover_neighbours)                                                      \
     X(st->filter_calls) X(st->filter_failures) X(st->exact_evals) X(st->candidates)               \
     X(st->certified) X(st->rejected) X(st->judged_vertex) X(st->judged_not) X(st->judged_open)    \
     X(tot->rejected) X(tot->candidates) X(tot->repaired) X(s->cover_clocks.launches[0])                 \

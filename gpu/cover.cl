@@ -30,6 +30,10 @@ __kernel void vbq_cover_kernel(__global const double *x, __global const double *
                                ,
                                __global double *hi, __global vbq_nb *memo, __global uint *memo_tag
 #endif
+#ifdef VBQ_HANDOFF
+                               ,
+                               __global uint *hand, const uint hand_cap
+#endif
                                )
 {
     size_t w = get_global_id(0);
@@ -54,6 +58,13 @@ __kernel void vbq_cover_kernel(__global const double *x, __global const double *
     ar.memo_tag = memo ? memo_tag + w * 2u * (size_t)VBQ_MEMO : 0;
     int fresh = memo != 0;
 #endif
+#ifdef VBQ_HANDOFF
+    /* A CPU device's handed patches (vbq_hand_patch; NULL: hand cells):
+     * counters[2] the words taken, counters[3] those written. */
+    ar.hand = hand;
+    ar.hand_used = counters + 2;
+    ar.hand_cap = hand_cap;
+#endif
     for (;;) {
         uint c = atomic_inc(&counters[0]);
         if (c >= ncells)
@@ -66,6 +77,9 @@ __kernel void vbq_cover_kernel(__global const double *x, __global const double *
         }
 #endif
         vbq_cell_out o;
+#ifdef VBQ_HANDOFF
+        ar.hand_cell = c;
+#endif
         vbq_cover_cell(&e, &ar, cells[c], roots[c], &o);
         if (o.status == VBQ_OK && o.nq > 0u) {
             uint base = atomic_add(&counters[1], o.nq);

@@ -1,6 +1,8 @@
 /* The cover backend's launches (gpu/cover_ocl.c is its host side): one
  * launch of a tier's kernel over a run of tasks, its arguments, its clock,
  * and the read-back of the per-task results and the quadruples. */
+#include <string.h>
+
 #include "vb_array.h"
 #include "vbg_buffer.h"
 #include "vbg_cover_state.h"
@@ -31,6 +33,41 @@ static void tier_clock(cov_state *s, const cov_tier *t, cl_event done, size_t nt
     s->clocks->kernel_s[i] += vbg_event_seconds(done);
 }
 
+/* The launch's handed patches (the first `words` words of s->hand, whole
+ * entries) appended to s->host_hand: those of cells that finished
+ * (VBQ_OK), each frame's off made the cell's sphere; the others' cells are
+ * covered whole on the host. */
+static int read_hand(vb_ctx *ctx, cov_state *s, const uint32_t *cells, size_t ncells,
+                     const vbq_cell_out *out, size_t words)
+{
+    s->host_hand = vb_array_grow(s->host_hand, &s->host_hand_cap, s->host_hand_n + words,
+                                 sizeof *s->host_hand, 4096);
+    if (s->host_hand_cap < s->host_hand_n + words)
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (handed patches)");
+    uint32_t *h = s->host_hand + s->host_hand_n;
+    int rc = vbg_check(ctx,
+                       clEnqueueReadBuffer(vbg_runtime_queue(s->rt), s->hand.mem, CL_TRUE, 0,
+                                           words * sizeof *h, h, 0, NULL, NULL),
+                       "read handed patches");
+    size_t kept = 0;
+    for (size_t at = 0; rc == VB_OK && at + VBQ_HAND_HEAD <= words;) {
+        vbq_frame fr;
+        memcpy(&fr, h + at, sizeof fr);
+        size_t n = VBQ_HAND_WORDS(fr.len);
+        if (fr.off >= ncells || at + n > words)
+            return vb_error(ctx, VB_EINTERNAL, NULL, 0, "bad handed patch");
+        if (out[fr.off].status == VBQ_OK) {
+            fr.off = cells[fr.off];
+            memmove(h + kept, h + at, n * sizeof *h);
+            memcpy(h + kept, &fr, sizeof fr);
+            kept += n;
+        }
+        at += n;
+    }
+    s->host_hand_n += kept;
+    return rc;
+}
+
 /* One launch of tier t over the tasks (cells[k], roots[k]) for k <
  * ncells: out[k] and the quadruples appended to host_q (out[k].qoff made
  * relative to host_q). ncells * vbg_cov_task_bytes(t) fits the launch room. */
@@ -50,6 +87,17 @@ static int launch_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *c
                   (s->outs.size > c48 ? s->outs.size : c48);
     size_t room = s->launch_room > held + 16 ? (s->launch_room - held) / 16 : 1;
     size_t qroom = s->qout_cap < room ? s->qout_cap : room;
+    /* The handed patches (vbq_hand_patch): the first tier of a CPU device
+     * only, room for COV_HAND_WORDS a cell or what an earlier launch asked,
+     * within what the launch room leaves after the quadruples. */
+    int hand = s->k_hand && t == &s->tier[COV_FIRST];
+    size_t hwords = hand ? (s->hand_want > COV_HAND_WORDS * ncells ? s->hand_want
+                                                                   : COV_HAND_WORDS * ncells)
+                         : 0;
+    size_t left = s->launch_room > held + 16 * qroom ? s->launch_room - held - 16 * qroom : 0;
+    hwords = hwords < left / 4 ? hwords : left / 4;
+    if (hwords > UINT32_MAX / 2)
+        hwords = UINT32_MAX / 2;
     int rc = vbg_cov_upload(ctx, s, &s->cells, cells, ncells * sizeof(uint32_t));
     if (rc == VB_OK)
         rc = vbg_cov_upload(ctx, s, &s->roots, roots, ncells * sizeof(uint32_t));
@@ -57,14 +105,16 @@ static int launch_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *c
         rc = vbg_cov_ensure(ctx, s, &s->outs, ncells * sizeof(vbq_cell_out), CL_MEM_READ_WRITE);
     if (rc == VB_OK)
         rc = vbg_cov_ensure(ctx, s, &s->qout, 4 * qroom * sizeof(uint32_t), CL_MEM_READ_WRITE);
-    cl_uint zero[2] = {0, 0};
+    if (rc == VB_OK && hand && hwords)
+        rc = vbg_cov_ensure(ctx, s, &s->hand, hwords * sizeof(uint32_t), CL_MEM_READ_WRITE);
+    cl_uint zero[4] = {0, 0, 0, 0};
     if (rc == VB_OK)
         rc = vbg_check(ctx,
                        clEnqueueWriteBuffer(q, s->counters.mem, CL_TRUE, 0, sizeof zero, zero, 0,
                                             NULL, NULL),
                        "clEnqueueWriteBuffer");
     const vbq_env *e = &s->env;
-    cl_uint nc = (cl_uint)ncells, qcap = (cl_uint)qroom;
+    cl_uint nc = (cl_uint)ncells, qcap = (cl_uint)qroom, hcap = (cl_uint)hwords;
     cl_uint nbc = t->nb_cap, labc = t->lab_cap, stc = t->st_cap, qc = t->q_cap;
     cl_uint a = 0;
     cl_kernel k = t->k;
@@ -104,7 +154,10 @@ static int launch_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *c
              (s->k_caches && k == s->k &&
               (set_arg(ctx, k, a++, sizeof(cl_mem), t->caches ? &t->hi.mem : NULL) ||
                set_arg(ctx, k, a++, sizeof(cl_mem), t->caches ? &t->memo.mem : NULL) ||
-               set_arg(ctx, k, a++, sizeof(cl_mem), t->caches ? &t->memo_tag.mem : NULL)))
+               set_arg(ctx, k, a++, sizeof(cl_mem), t->caches ? &t->memo_tag.mem : NULL))) ||
+             (s->k_hand && k == s->k &&
+              (set_arg(ctx, k, a++, sizeof(cl_mem), hand && hwords ? &s->hand.mem : NULL) ||
+               set_arg(ctx, k, a++, sizeof(cl_uint), &hcap)))
                  ? VB_EDEVICE
                  : VB_OK;
     size_t local, global;
@@ -136,7 +189,7 @@ static int launch_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *c
             tier_clock(s, t, done, ncells);
         clReleaseEvent(done);
     }
-    cl_uint counters[2] = {0, 0};
+    cl_uint counters[4] = {0, 0, 0, 0};
     if (rc == VB_OK)
         rc = vbg_check(ctx,
                        clEnqueueReadBuffer(q, s->counters.mem, CL_TRUE, 0, sizeof counters,
@@ -150,9 +203,15 @@ static int launch_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *c
                        clEnqueueReadBuffer(q, s->qout.mem, CL_TRUE, 0, 4 * nq * sizeof(uint32_t),
                                            s->host_q + 4 * s->host_nq, 0, NULL, NULL),
                        "read quadruples");
+    if (rc == VB_OK && hand && counters[3])
+        rc = read_hand(ctx, s, cells, ncells, out, counters[3]);
     if (rc != VB_OK) {
         clFinish(q); /* nothing half-done may reach the caller */
         return rc;
+    }
+    if (hand && counters[2] > hwords) {
+        s->hand_want = (size_t)counters[2] + counters[2] / 4;
+        s->hand_short = 1;
     }
     for (size_t c = 0; c < ncells; c++)
         if (out[c].status == VBQ_OK)

@@ -168,12 +168,15 @@ static void trim(cov_state *s, size_t n)
             t->slices = 0;
         }
     }
-    if (other || s->cells.size + s->roots.size + s->outs.size + s->qout.size > s->launch_room) {
+    if (other || s->cells.size + s->roots.size + s->outs.size + s->qout.size + s->hand.size >
+                     s->launch_room) {
         vbg_cov_release(s, &s->cells);
         vbg_cov_release(s, &s->roots);
         vbg_cov_release(s, &s->outs);
         vbg_cov_release(s, &s->qout);
+        vbg_cov_release(s, &s->hand);
         s->qout_cap = 0;
+        s->hand_want = 0;
     }
     s->meter.peak = s->meter.live;
 }
@@ -193,7 +196,7 @@ int vbg_cov_begin(vb_ctx *ctx, vb_cover_backend *be, const vbq_env *env, size_t 
     s->env = *env;
     size_t nodes = 2 * (size_t)env->first;
     size_t input = 4 * n * sizeof(double) + 7 * nodes * sizeof(double) +
-                   (size_t)env->m * sizeof(uint32_t) + 2 * sizeof(cl_uint);
+                   (size_t)env->m * sizeof(uint32_t) + 4 * sizeof(cl_uint);
     int rc = budget_split(ctx, s, n, input);
     if (rc == VB_OK)
         trim(s, n);
@@ -212,7 +215,7 @@ int vbg_cov_begin(vb_ctx *ctx, vb_cover_backend *be, const vbq_env *env, size_t 
     if (rc == VB_OK)
         rc = upload_exact(ctx, s, &s->ids, env->ids, (size_t)env->m * sizeof(uint32_t));
     if (rc == VB_OK)
-        rc = vbg_cov_ensure(ctx, s, &s->counters, 2 * sizeof(cl_uint), CL_MEM_READ_WRITE);
+        rc = vbg_cov_ensure(ctx, s, &s->counters, 4 * sizeof(cl_uint), CL_MEM_READ_WRITE);
     if (rc == VB_OK)
         rc = tier_alloc(ctx, s, &s->tier[COV_FIRST]);
     be->device_bytes_peak = s->meter.peak;

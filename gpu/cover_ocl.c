@@ -10,6 +10,7 @@
  * read-back: gpu/cover_launch.c.
  *
  * Device memory within a budget: vbg_cover_state.h. */
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -25,6 +26,20 @@
 static int retry_on_device(uint32_t status)
 {
     return status != VBQ_OK && status != VBQ_CLUSTER && status != VBQ_BUDGET;
+}
+
+/* Room for n2 tasks in s->outs2, cells2, roots2. VB_OK or VB_ENOMEM. */
+static int room2(vb_ctx *ctx, cov_state *s, size_t n2)
+{
+    if (n2 <= s->cap2)
+        return VB_OK;
+    int bad = vb_array_resize((void **)&s->outs2, n2, sizeof *s->outs2);
+    bad |= vb_array_resize((void **)&s->cells2, n2, sizeof *s->cells2);
+    bad |= vb_array_resize((void **)&s->roots2, n2, sizeof *s->roots2);
+    if (bad)
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
+    s->cap2 = n2;
+    return VB_OK;
 }
 
 /* A cell past the group kernel's step budget. */
@@ -89,14 +104,8 @@ static int run_tasks(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *cel
             n2 += per;
     if (n2 == 0)
         return VB_OK;
-    if (n2 > s->cap2) {
-        int bad = vb_array_resize((void **)&s->outs2, n2, sizeof *s->outs2);
-        bad |= vb_array_resize((void **)&s->cells2, n2, sizeof *s->cells2);
-        bad |= vb_array_resize((void **)&s->roots2, n2, sizeof *s->roots2);
-        if (bad)
-            return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
-        s->cap2 = n2;
-    }
+    if (room2(ctx, s, n2) != VB_OK)
+        return VB_ENOMEM;
     vbg_tasks_make(cells, out, ncells, pick, per, s->cells2, s->roots2);
     int rc = vbg_cov_run_tier(ctx, s, t, s->cells2, s->roots2, n2, s->outs2);
     if (rc == VB_OK && t == &s->tier[COV_BIG])
@@ -105,6 +114,40 @@ static int run_tasks(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *cel
         rc = vbg_cov_host_q_room(ctx, s, vbg_tasks_quads(s->outs2, n2));
     if (rc == VB_OK)
         *picked = vbg_tasks_join(s->outs2, out, ncells, pick, per, s->host_q, &s->host_nq);
+    return rc;
+}
+
+/* A CPU device's first tier hands every patch it does not decide to the
+ * host (vbq_hand_patch); a cell it hands whole (VBQ_CLUSTER) found no room
+ * for one. Those cells of out[0 .. ncells) again on the first tier, while a
+ * launch asked for more room than it had (launch_tier grows it, within the
+ * launch room) and the last one left fewer such cells, a few times; what
+ * is still left goes to the host whole. */
+static int rerun_hand_short(vb_ctx *ctx, cov_state *s, const uint32_t *cells, size_t ncells,
+                            vbq_cell_out *out)
+{
+    int rc = VB_OK;
+    size_t last = SIZE_MAX;
+    for (int again = 0; rc == VB_OK && again < 4 && s->hand_short; again++) {
+        size_t n2 = 0;
+        for (size_t c = 0; c < ncells; c++)
+            n2 += out[c].status == VBQ_CLUSTER;
+        if (n2 == 0 || n2 >= last)
+            break;
+        last = n2;
+        if (room2(ctx, s, n2) != VB_OK)
+            return VB_ENOMEM;
+        for (size_t c = 0, k = 0; c < ncells; c++)
+            if (out[c].status == VBQ_CLUSTER) {
+                s->cells2[k] = cells[c];
+                s->roots2[k++] = VBQ_ALL_ROOTS;
+            }
+        s->hand_short = 0;
+        rc = vbg_cov_run_tier(ctx, s, &s->tier[COV_FIRST], s->cells2, s->roots2, n2, s->outs2);
+        for (size_t c = 0, k = 0; rc == VB_OK && c < ncells; c++)
+            if (out[c].status == VBQ_CLUSTER)
+                out[c] = s->outs2[k++];
+    }
     return rc;
 }
 
@@ -123,6 +166,10 @@ static int cov_run(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, siz
     cov_state *s = be->state;
     *quads = NULL;
     s->host_nq = 0;
+    s->host_hand_n = 0;
+    s->hand_short = 0;
+    be->hand = NULL;
+    be->hand_words = 0;
     if (ncells == 0)
         return VB_OK;
     if (ncells > UINT32_MAX)
@@ -137,6 +184,8 @@ static int cov_run(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, siz
     for (size_t c = 0; c < ncells; c++)
         s->hroots[c] = VBQ_ALL_ROOTS;
     int rc = vbg_cov_run_tier(ctx, s, &s->tier[COV_FIRST], cells, s->hroots, ncells, out);
+    if (rc == VB_OK && s->k_hand)
+        rc = rerun_hand_short(ctx, s, cells, ncells, out);
     /* The cells past the group kernel's budget, on the work-item kernel;
      * those of them whose tasks ran out of arenas go on to the large
      * slices with the rest. */
@@ -155,8 +204,11 @@ static int cov_run(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, siz
         rc = run_tasks(ctx, s, t1, cells, ncells, out, retry_on_device, &retried);
     if (s->meter.peak > be->device_bytes_peak)
         be->device_bytes_peak = s->meter.peak;
-    if (rc == VB_OK)
+    if (rc == VB_OK) {
         *quads = s->host_q;
+        be->hand = s->host_hand;
+        be->hand_words = s->host_hand_n;
+    }
     return rc;
 }
 
@@ -168,7 +220,7 @@ static void cov_close(vb_cover_backend *be)
     if (s) {
         vbg_buf *all[] = {&s->x,    &s->y,     &s->z,     &s->r,    &s->box,
                           &s->rmax, &s->ids,   &s->cells, &s->roots, &s->outs,
-                          &s->qout, &s->counters};
+                          &s->qout, &s->counters, &s->hand};
         for (size_t k = 0; k < sizeof all / sizeof all[0]; k++)
             vbg_cov_release(s, all[k]);
         for (int t = 0; t < COV_TIERS; t++)
@@ -178,6 +230,7 @@ static void cov_close(vb_cover_backend *be)
         if (s->k_item)
             clReleaseKernel(s->k_item);
         free(s->host_q);
+        free(s->host_hand);
         free(s->outs2);
         free(s->cells2);
         free(s->roots2);
@@ -292,6 +345,10 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
     /* The caches on the first tier only: a CPU device's large tiers (test
      * knobs alone make them) keep their slices' size. */
     s->k_caches = t0->caches = caches;
+    /* A CPU device's work-item kernel hands a patch it does not decide to
+     * the host (VBQ_HANDOFF, core/cells/vbq_gather_shared.h): the host then
+     * covers that patch, not the whole cell again. */
+    s->k_hand = cpu && !s->wg;
     t0->budget = s->wg ? budget : 0u;
     th->k = s->k_item;
     cl_uint units = 1;

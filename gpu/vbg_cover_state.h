@@ -73,6 +73,14 @@ typedef struct cov_state {
     int wg;                  /* 1: one work-group of 32 per cell (cover_wg.cl) */
     int k_caches;            /* 1: k built with VBQ_CACHES_CL (three more arguments; a tier
                                 without caches passes NULL buffers) */
+    int k_hand;              /* 1: k built with VBQ_WALK_V4_CL (two more arguments, last: the
+                                handed patches, NULL but on the first tier, and their room) */
+    vbg_buf hand;            /* the first tier's handed patches (vbq_hand_patch) */
+    size_t hand_want;        /* words it holds at least (what an earlier launch needed) */
+    int hand_short;          /* 1: a launch since it was last cleared asked for more words */
+    uint32_t *host_hand;     /* read-back of a batch's handed patches, of cells that finished
+                                (each entry's frame off: the cell's sphere) */
+    size_t host_hand_cap, host_hand_n;
     vbg_buf x, y, z, r, box, rmax, ids;
     vbg_buf cells, roots, outs, qout, counters;
     cov_tier tier[COV_TIERS];
@@ -162,6 +170,12 @@ typedef struct cov_state {
  * 2,048 hands off none of the twin's cells and caps the group launch near
  * 0.1 s; the cells past it run side by side as 24 T^2 tasks each. */
 #define COV_BUDGET 2048u
+/* Words of handed patches a cell gets in a CPU device's first launch
+ * (vbq_hand_patch; a patch is 12 words and its list's ids): a cell that
+ * finds no room runs again with what the launch asked. Measured (words
+ * asked a cell, all cells): EXTREMESET Congruent 300 ~900, fcc 1,372 exact
+ * ~180, fcc 10,976 exact ~450, its jitter 1e-9 ~40. */
+#define COV_HAND_WORDS 1024u
 
 /* Applies the environment's test and measurement knobs to s's tiers
  * (gpu/cover_knobs.c: VORBALL_COVER_NB, _LAB, _TIER2, _TIER3, _BIG_NB,

@@ -133,9 +133,9 @@ static int list_append(vb_quad_list *l, const uint32_t *q, size_t n)
     return VB_OK;
 }
 
+/* A cover's counters into st (the caller counts the cell). */
 static void stats_add(vb_cover_stats *st, const vbq_cell_out *o)
 {
-    st->cells++;
     st->neighbours += o->nnb;
     st->far_neighbours += o->far;
     if (o->nnb > st->max_cell_neighbours)
@@ -148,11 +148,19 @@ static void stats_add(vb_cover_stats *st, const vbq_cell_out *o)
         st->max_level_seen = o->maxlev;
 }
 
-static int cover_one(worker *w, uint32_t i)
+/* Cell i covered from `root` on w's arena, grown until it fits (root
+ * VBQ_RESUME: the handed patches resume[0 .. nres) words alone): its
+ * quadruples appended to l, its counters to w's. */
+static int cover_root(worker *w, uint32_t i, uint32_t root, const uint32_t *resume, size_t nres,
+                      vb_quad_list *l)
 {
     vbq_cell_out o;
     for (;;) {
-        vb_cover_cell_host(&w->jb->env, &w->ar, i, VBQ_ALL_ROOTS, &o);
+        w->ar.resume = resume;
+        w->ar.resume_n = (uint32_t)nres;
+        vb_cover_cell_host(&w->jb->env, &w->ar, i, root, &o);
+        w->ar.resume = NULL;
+        w->ar.resume_n = 0;
         if (o.status == VBQ_OK)
             break;
         uint32_t nb = w->ar.nb_cap, lab = w->ar.lab_cap, st = w->ar.st_cap, q = w->ar.q_cap;
@@ -166,7 +174,13 @@ static int cover_one(worker *w, uint32_t i)
         w->st.retries++;
     }
     stats_add(&w->st, &o);
-    return list_append(&w->ql, w->ar.q, o.nq);
+    return list_append(l, w->ar.q, o.nq);
+}
+
+static int cover_one(worker *w, uint32_t i)
+{
+    w->st.cells++;
+    return cover_root(w, i, VBQ_ALL_ROOTS, NULL, 0, &w->ql);
 }
 
 /* Records a host worker's error rc and flags its job failed (every worker
@@ -302,6 +316,11 @@ static int hybrid_device(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w0,
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
     int rc = be->begin(ctx, be, &jb->env, jb->set->n);
     uint64_t handed0 = be->handed_cells;
+    vb_hand_index hx;
+    memset(&hx, 0, sizeof hx);
+    /* the handed patches are resumed here, on w0's arena */
+    if (rc == VB_OK && !worker_ready(w0))
+        rc = w0->rc;
     while (rc == VB_OK && !atomic_load(&jb->failed)) {
         pthread_mutex_lock(&sh->mu);
         size_t b0 = sh->front, n = sh->back - sh->front < batch ? sh->back - sh->front : batch;
@@ -313,6 +332,8 @@ static int hybrid_device(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w0,
         double t0 = vb_now();
         rc = be->run(ctx, be, jb->cells + b0, n, outs, &quads);
         w0->st.t_device += vb_now() - t0;
+        if (rc == VB_OK && vb_hand_index_make(&hx, be->hand, be->hand_words) != VB_OK)
+            rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
         if (rc != VB_OK)
             break;
         size_t nl = 0;
@@ -322,13 +343,24 @@ static int hybrid_device(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w0,
                 outs[nl++].qoff = jb->cells[b0 + k]; /* reuse the slot for the cell id */
                 continue;
             }
+            w0->st.cells++;
             stats_add(&w0->st, &outs[k]);
-            const uint32_t *cq = quads + 4 * (size_t)outs[k].qoff;
-            size_t c0 = chunk.n;
-            if (list_append(jb->sink ? &chunk : &w0->ql, cq, outs[k].nq) != VB_OK)
+            const uint32_t *cq = quads + 4 * (size_t)outs[k].qoff, *hw;
+            vb_quad_list *l = jb->sink ? &chunk : &w0->ql;
+            size_t c0 = l->n, nhw, np;
+            rc = list_append(l, cq, outs[k].nq);
+            if (rc == VB_OK)
+                rc = vb_hand_index_cell(&hx, jb->cells[b0 + k], &hw, &nhw, &np);
+            /* the patches the kernel handed, covered here alone */
+            if (rc == VB_OK && nhw) {
+                w0->st.resumed_patches += np;
+                w0->st.resumed_cells++;
+                rc = cover_root(w0, jb->cells[b0 + k], VBQ_RESUME, hw, nhw, l);
+            }
+            if (rc != VB_OK)
                 rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
-            else if (jb->sink)
-                chunk.n = c0 + cell_unique(chunk.q + c0, chunk.n - c0);
+            else if (jb->sink || nhw)
+                l->n = c0 + cell_unique(l->q + c0, l->n - c0);
         }
         pthread_mutex_lock(&sh->mu);
         for (size_t k = 0; k < nl; k++)
@@ -347,6 +379,7 @@ static int hybrid_device(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w0,
         vb_quad_list_free(&chunk);
     }
     w0->st.handed_cells += be->handed_cells - handed0;
+    vb_hand_index_free(&hx);
     free(outs);
     return rc;
 }
@@ -479,6 +512,8 @@ static void stats_sum(vb_cover_stats *st, const vb_cover_stats *ws)
     st->stream_parts += ws->stream_parts;
     st->host_cells += ws->host_cells;
     st->handed_cells += ws->handed_cells;
+    st->resumed_patches += ws->resumed_patches;
+    st->resumed_cells += ws->resumed_cells;
     st->t_device += ws->t_device;
     st->t_host += ws->t_host;
     if (ws->max_level_seen > st->max_level_seen)

@@ -191,6 +191,7 @@ static int cover_run(vb_ctx *ctx, void *state, const vb_proposer_await *aw,
     res->cover_patches = st.patches;
     res->cover_host_cells = st.host_cells;
     res->cover_handed_cells = st.handed_cells;
+    res->cover_resumed_patches = st.resumed_patches;
     res->cover_neighbours = st.neighbours;
     res->cover_max_cell_neighbours = st.max_cell_neighbours;
     res->t_cover_device = st.t_device;

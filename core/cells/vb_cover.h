@@ -79,6 +79,9 @@ typedef struct vb_cover_stats {
     uint64_t stream_parts;   /* parts streamed to the sink during a run (stream_batches) */
     uint64_t handed_cells;   /* cells a device's group kernel handed to its work-item
                                 kernel (the step budget, gpu/cover_ocl.c) */
+    uint64_t resumed_patches; /* patches a CPU device's kernel handed to the host, which
+                                 covered them alone (cover_resume.c) */
+    uint64_t resumed_cells;  /* cells with such patches (not counted in host_cells) */
     double t_device;         /* seconds in the device's batches (wall) */
     double t_host;           /* seconds of the whole cover (wall) */
     unsigned max_level_seen;
@@ -115,6 +118,12 @@ struct vb_cover_backend {
                                    written by the judge's calls only) */
     vb_cover_clocks clocks;     /* running counts since open */
     void *state;
+    /* The last run's handed patches (vbq_hand_patch's entries, each frame's
+     * off the cell's sphere), all of cells whose status is VBQ_OK: the host
+     * covers each such patch (VBQ_RESUME) and adds its quadruples to the
+     * cell's. Owned by the backend, valid until the next run; NULL: none. */
+    const uint32_t *hand;
+    size_t hand_words;
     /* Uploads the input shared by every cell (env's arrays, n spheres) for
      * the runs that follow. VB_OK, VB_ENOMEM or VB_EDEVICE (message in ctx). */
     int (*begin)(vb_ctx *ctx, vb_cover_backend *be, const vbq_env *env, size_t n);
@@ -137,6 +146,28 @@ struct vb_cover_backend {
     void (*judge_close)(vb_cover_backend *be); /* NULL, or frees judge_state
                                                   (vb_cover_backend_close) */
 };
+
+/* A run's handed patches (vb_cover_backend's hand) by cell, for the host
+ * to resume (core/cells/cover_resume.c). Zero it before the first make. */
+typedef struct vb_hand_index {
+    const uint32_t *hand;
+    uint64_t *key;           /* (cell << 32 | word position), sorted */
+    size_t n, cap;
+    uint32_t *scratch;       /* one cell's entries, together */
+    size_t scap;
+} vb_hand_index;
+
+/* Indexes the entries hand[0 .. words) (kept by pointer). VB_OK or
+ * VB_ENOMEM. */
+int vb_hand_index_make(vb_hand_index *x, const uint32_t *hand, size_t words);
+
+/* Cell i's entries, together in *words (nwords words, *patches entries;
+ * owned by x, valid until the next call); none: *nwords 0. VB_OK or
+ * VB_ENOMEM. */
+int vb_hand_index_cell(vb_hand_index *x, uint32_t i, const uint32_t **words, size_t *nwords,
+                       size_t *patches);
+
+void vb_hand_index_free(vb_hand_index *x);
 
 /* Closes a backend; NULL is allowed. */
 void vb_cover_backend_close(vb_cover_backend *be);

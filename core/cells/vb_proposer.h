@@ -132,6 +132,8 @@ typedef struct vb_proposal {
     uint64_t cover_max_cell_neighbours; /* the most that one cell built */
     uint64_t cover_handed_cells;  /* cells the GPU's group kernel handed to its work-item
                                      kernel (past the step budget) */
+    uint64_t cover_resumed_patches; /* patches a CPU device's kernel handed to the host,
+                                       which covered them alone (cover_resume.c) */
     uint64_t cover_quads;         /* quadruples proposed (in quads, or handed to the sink),
                                      a counter that processes which covered parts of the
                                      cells can add up */

@@ -320,6 +320,42 @@ static inline int vbq_cluster_leaf(const vbq_env *e, const vbq_arena *ar, vbq_ce
 }
 #endif
 
+#ifdef VBQ_HANDOFF
+/* Hands patch fr of the cell (its list lab[fr->off .. + fr->len) as it was
+ * popped) to the host: its entry (VBQ_HAND_WORDS) appended to ar->hand.
+ * Returns 1 when written (the caller goes on as if the patch were done; the
+ * host covers it alone, and counts it), 0 when the launch takes none or
+ * has no room left (the caller hands the whole cell, VBQ_CLUSTER: the
+ * driver runs such a cell again with more room, gpu/cover_ocl.c). */
+VBS_FN int vbq_hand_patch(const vbq_arena *ar, vbq_cell_out *o, const vbq_frame *fr)
+{
+    if (!ar->hand)
+        return 0;
+    vbs_u32 n = VBQ_HAND_WORDS(fr->len);
+    vbs_u32 at = atomic_add(ar->hand_used, n);
+    if (n > ar->hand_cap || at > ar->hand_cap - n)
+        return 0;
+    vbq_frame h = *fr;
+    h.off = ar->hand_cell;
+    *(VBS_GLOBAL vbq_frame *)(ar->hand + at) = h;
+    for (vbs_u32 k = 0u; k < n - VBQ_HAND_HEAD; k++)
+        ar->hand[at + VBQ_HAND_HEAD + k] = k < fr->len ? ar->nb[ar->lab[fr->off + k]].id : 0u;
+    atomic_add(ar->hand_used + 1, n);
+    o->patches--;
+    return 1;
+}
+#endif
+
+#ifndef __OPENCL_C_VERSION__
+/* The patches a device handed for cell i (ar->resume, ar->resume_n words
+ * of vbq_hand_patch's entries) pushed on the stack st[*nst ..) with their
+ * lists at lab[*len0 ..) and their records made again (the walk's
+ * vbq_nb_make, so the same doubles); *len0 moves past them. 1, or 0 when
+ * an arena ran out (o->status set). core/cells/cover_resume.c. */
+int vbq_resume_push(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i,
+                    vbs_u32 *nst, vbs_u32 *len0);
+#endif
+
 /* Covers the cell of sphere i (the root patch `root` of it, or every one
  * with VBQ_ALL_ROOTS): writes the quadruples {i < j < k < l} whose roots
  * hold every vertex of the cell with smallest member i in those directions
@@ -354,6 +390,10 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
     for (vbs_u32 k = 0u; k < 6u * T * T; k++)
         if (vbq_task_root(root, k))
             ar->st[nst++] = vbq_root(T, k, len0, rq, far);
+#ifndef __OPENCL_C_VERSION__
+    if (root == VBQ_RESUME && !vbq_resume_push(e, ar, o, i, &nst, &len0))
+        return;
+#endif
     /* The roots share lab[0 .. len0); lists of deeper frames are stacked
      * above top. A frame's list lies below the lists of every frame pushed
      * after it, so popping a frame frees everything above its list. */
@@ -542,6 +582,10 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
         vbs_u32 notflat = !cluster && (same || (owned > VBQ_CLUSTER_OWNED && closed)) ? VBQ_FR_NOTFLAT : 0u;
         if (cluster) {
 #ifdef __OPENCL_C_VERSION__
+#ifdef VBQ_HANDOFF
+            if (vbq_hand_patch(ar, o, &fr))
+                continue;
+#endif
             o->status = VBQ_CLUSTER;
             return;
 #else
@@ -574,11 +618,20 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
 #ifndef VBQ_GPU_FORM
                 /* past the cubic filter's limit: the host's hull decides */
                 if (owned > VBQ_ENV_FILTER_OWNED) {
+#ifdef VBQ_HANDOFF
+                    if (vbq_hand_patch(ar, o, &fr))
+                        continue;
+#endif
                     o->status = VBQ_CLUSTER;
                     return;
                 }
 #endif
                 int he = vbq_envelope_filter(e, ar, o, i, &fr, top, keep);
+#ifdef VBQ_HANDOFF
+                /* what the filter added is the host's too (exact signs) */
+                if (he == 2 && vbq_hand_patch(ar, o, &fr))
+                    continue;
+#endif
                 if (he == 2)
                     o->status = VBQ_CLUSTER;
                 if (he != 1)

@@ -157,6 +157,23 @@ VBS_FN void vbq_env_make(vbq_env *e, const VBS_GLOBAL double *x, const VBS_GLOBA
 #define VBQ_CACHES 1
 #endif
 
+/* A CPU device's work-item kernel (VBQ_WALK_V4_CL) hands a patch it does
+ * not decide (a tie cluster, an envelope past its filter) to the host and
+ * goes on with the rest of its cell (vbq_hand_patch); the host then covers
+ * that patch alone (root VBQ_RESUME, core/cells/cover_resume.c), not the
+ * whole cell again. A GPU's kernels hand the whole cell (VBQ_CLUSTER). */
+#if defined(__OPENCL_C_VERSION__) && defined(VBQ_WALK_V4_CL)
+#define VBQ_HANDOFF 1
+#endif
+/* The root of a cover that resumes handed patches (vbq_task_root takes no
+ * root patch for it, vbq_task_child every child). */
+#define VBQ_RESUME 0xfffffff8u
+/* A handed patch's words: its frame (vbq_frame, 12 words; off holds the
+ * cell, len the length of its list), then the sphere ids of the list in
+ * order, padded to an even count (frames stay 8-byte aligned). */
+#define VBQ_HAND_HEAD 12u
+#define VBQ_HAND_WORDS(len) (VBQ_HAND_HEAD + (((len) + 1u) & ~1u))
+
 /* Scratch of one cell, fixed capacities. */
 typedef struct vbq_arena {
     VBS_GLOBAL vbq_nb *nb;
@@ -169,8 +186,16 @@ typedef struct vbq_arena {
     VBS_GLOBAL vbq_nb *memo;      /* the cell's records by tree position (NULL: none) */
     VBS_GLOBAL vbs_u32 *memo_tag; /* per slot: its tree position and cell + 1 (0: none) */
 #endif
+#ifdef VBQ_HANDOFF
+    VBS_GLOBAL vbs_u32 *hand;      /* the launch's handed patches (NULL: none, hand cells) */
+    VBS_GLOBAL vbs_u32 *hand_used; /* [0] words taken, [1] words written */
+    vbs_u32 hand_cap;              /* words of hand */
+    vbs_u32 hand_cell;             /* the cell's index in the launch (the entries' off) */
+#endif
 #ifndef __OPENCL_C_VERSION__
     struct vbq_cluster_memo *cmemo; /* the cell's tie-cluster answers (NULL: none) */
+    const vbs_u32 *resume;          /* root VBQ_RESUME: the cell's handed patches */
+    vbs_u32 resume_n;               /* ... in words */
 #endif
 } vbq_arena;
 

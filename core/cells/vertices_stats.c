@@ -42,6 +42,7 @@ void vb_vertices_stats(vb_ctx *ctx, const vb_vertices_result *r, vb_stat_fields 
     vb_stat_uint(fs, "cover_patches", s->cover_patches);
     vb_stat_uint(fs, "cover_host_cells", s->cover_host_cells);
     vb_stat_uint(fs, "cover_handed_cells", s->cover_handed_cells);
+    vb_stat_uint(fs, "cover_resumed_patches", s->cover_resumed_patches);
     vb_stat_uint(fs, "cover_quadruples", s->cover_quads);
     /* The neighbour records the cover built (every sphere a cell's tree
      * walks kept), in all and the most for one cell: a hull cell whose

@@ -70,6 +70,7 @@ def test_crambin_float32_like_mdanalysis_same_bytes():
 
 
 VARYING = {"device_bytes_peak", "certify_parts", "cover_host_cells", "cover_handed_cells",
+           "cover_resumed_patches",
            "cover_neighbours", "cover_max_cell_neighbours"}
 # Per tier of the device's arenas: how many launches and tasks each took
 # depends on which cells the host threads took first.

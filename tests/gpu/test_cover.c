@@ -262,9 +262,14 @@ static int device_cover(vb_ctx *ctx, const vb_sphere_set *s, int split, size_t c
     vb_cover_stats st;
     if (rc == VB_OK)
         rc = vb_cover_run(ctx, s, &o, be, out, &st);
-    /* only tie clusters go to the host (decided exactly there) */
-    if (rc == VB_OK && split)
-        CHECK_INT(st.host_cells, clusters);
+    /* A cell the group kernel hands whole (a tie cluster, an envelope past
+     * the filter) is resumed patch by patch on the host, so no cell goes
+     * to the host whole; split, a cell that ran out of the first tier's
+     * arenas runs as root-patch tasks, which hand whole cells. */
+    if (rc == VB_OK)
+        CHECK_INT(st.host_cells + st.resumed_cells, clusters);
+    if (rc == VB_OK && !split)
+        CHECK_INT(st.host_cells, 0);
     device_close(rt, be);
     return rc;
 }
