@@ -201,29 +201,37 @@ static int radix_sweep(vbc_graph *A, const uint32_t *members, size_t m, uint32_t
     static const double len_of[4] = {0.0, 1.0, VBC_PATH_LEN_EDGE, VBC_PATH_LEN_CORNER};
     A->dist[src] = 0.0;
     rh_push(A, &H, src);
+    /* The graph's arrays in locals: read through A, every store to dist,
+     * pred or hpos (which may alias A as far as C knows) reloads them
+     * (perf: the edge loop's loads of A->adj_len and A->clear). */
+    const size_t *adj_start = A->adj_start;
+    const uint32_t *adj = A->adj;
+    const uint8_t *adj_len = A->adj_len;
+    const double *clear = A->clear;
+    double *dist = A->dist;
+    uint32_t *pred = A->pred, *hpos = A->hpos;
     for (uint32_t u; (u = rh_pop(A, &H)) != RH_OUT;) {
-        double du = A->dist[u];
-        A->hpos[u] = RH_DONE;
+        double du = dist[u], cu = clear[u];
+        hpos[u] = RH_DONE;
         if (u == target)
             return 1;
-        for (size_t e = A->adj_start[u]; e < A->adj_start[u + 1]; e++) {
-            uint32_t q = A->adj[e];
-            uint32_t hq = A->hpos[q];
+        for (size_t e = adj_start[u], end = adj_start[u + 1]; e < end; e++) {
+            uint32_t q = adj[e];
+            uint32_t hq = hpos[q];
             if (hq == RH_DONE)
                 continue;
-            double step = len_of[A->adj_len[e] & 3];
-            double nd = du + (weighted ? vbc_path_weigh(step, A->clear[u], A->clear[q]) : step);
+            double step = len_of[adj_len[e] & 3];
+            double nd = du + (weighted ? vbc_path_weigh(step, cu, clear[q]) : step);
             if (!(nd > du))
                 return 0;
-            if (nd < A->dist[q]) {
-                A->dist[q] = nd;
-                A->pred[q] = u;
+            if (nd < dist[q]) {
+                dist[q] = nd;
+                pred[q] = u;
                 if (hq != RH_OUT)
                     rh_unlink(A, &H, q);
                 rh_push(A, &H, q);
-            } else if (nd == A->dist[q] &&
-                       vbc_path_pred_before(du, u, A->dist[A->pred[q]], A->pred[q])) {
-                A->pred[q] = u;
+            } else if (nd == dist[q] && vbc_path_pred_before(du, u, dist[pred[q]], pred[q])) {
+                pred[q] = u;
             }
         }
     }
