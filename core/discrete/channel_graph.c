@@ -113,16 +113,22 @@ static int bucket_of(uint64_t k, uint64_t last)
 
 /* busy: bit b - 1 set when bucket b (1..64) holds an entry, so a pop finds
  * the lowest such bucket with one count of trailing zeros instead of a
- * walk over the empty ones (bucket 0 is read from first[0]). */
+ * walk over the empty ones (bucket 0 is read from first[0]). low[b]: the
+ * least key pushed into bucket b since it was last empty, a lower bound
+ * of its keys (an entry moved out by a decrease leaves it lower), so a
+ * pop need not walk the bucket's list for its least key first. */
 typedef struct {
     uint32_t first[RH_BUCKETS];
+    uint64_t low[RH_BUCKETS];
     uint64_t last, busy;
 } radix_heap;
 
 static void rh_push(vbc_graph *A, radix_heap *H, uint32_t q)
 {
-    int b = bucket_of(key_of(A->dist[q]), H->last);
+    uint64_t k = key_of(A->dist[q]);
+    int b = bucket_of(k, H->last);
     uint32_t f = H->first[b];
+    H->low[b] = k < H->low[b] ? k : H->low[b];
     A->heap[q] = f; /* next, by position */
     if (f != RH_OUT)
         A->hpos[f] = q;
@@ -138,8 +144,10 @@ static void rh_unlink(vbc_graph *A, radix_heap *H, uint32_t q)
     if (p & RH_HEAD) {
         uint32_t b = p & ~RH_HEAD;
         H->first[b] = nx;
-        if (nx == RH_OUT && b > 0)
+        if (nx == RH_OUT && b > 0) {
             H->busy &= ~((uint64_t)1 << (b - 1));
+            H->low[b] = UINT64_MAX;
+        }
     } else {
         A->heap[p] = nx;
     }
@@ -150,18 +158,20 @@ static void rh_unlink(vbc_graph *A, radix_heap *H, uint32_t q)
 /* The entry of least distance (any of a tie), or RH_OUT when empty. */
 static uint32_t rh_pop(vbc_graph *A, radix_heap *H)
 {
-    if (H->first[0] == RH_OUT) {
+    while (H->first[0] == RH_OUT) {
         if (!H->busy)
             return RH_OUT;
         int b = 1 + __builtin_ctzll(H->busy);
-        uint64_t lo = UINT64_MAX;
-        for (uint32_t q = H->first[b]; q != RH_OUT; q = A->heap[q])
-            lo = key_of(A->dist[q]) < lo ? key_of(A->dist[q]) : lo;
         /* Every key of bucket b shares its bits above b - 1 with the old
-         * last and differs from lo below: each moves to a lower bucket. */
-        H->last = lo;
+         * last, as low[b] does, and is at least low[b]: with it as the
+         * new last each moves to a lower bucket (to bucket 0 where it
+         * equals it; none may, when the least key pushed there has moved
+         * out: the next lowest bucket is taken then). Entries still come
+         * out by nondecreasing key, each equal to the last. */
+        H->last = H->low[b];
         uint32_t q = H->first[b];
         H->first[b] = RH_OUT;
+        H->low[b] = UINT64_MAX;
         H->busy &= ~((uint64_t)1 << (b - 1));
         while (q != RH_OUT) {
             uint32_t nx = A->heap[q];
@@ -187,8 +197,10 @@ static int radix_sweep(vbc_graph *A, const uint32_t *members, size_t m, uint32_t
                        uint32_t target)
 {
     radix_heap H;
-    for (int b = 0; b < RH_BUCKETS; b++)
+    for (int b = 0; b < RH_BUCKETS; b++) {
         H.first[b] = RH_OUT;
+        H.low[b] = UINT64_MAX;
+    }
     H.last = H.busy = 0;
     for (size_t t = 0; t < m; t++) {
         A->dist[members[t]] = INFINITY;
