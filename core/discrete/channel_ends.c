@@ -12,6 +12,9 @@
  * vestibule or of one groove. */
 #define THROUGH_RATIO 0.6
 
+/* How many voxels ahead the Kruskal scan fetches adjacency. */
+#define KRUSKAL_AHEAD 8
+
 /* Whether the molecule is wider along unit vector u than d / THROUGH_RATIO,
  * i.e. whether THROUGH_RATIO * width > d for its width from the support
  * atoms. The width only grows atom by atom (and the product with it), so
@@ -92,13 +95,24 @@ static int widest_through(vbc_graph *A, vb_uf *uf, const uint32_t *members, size
     }
     /* A total order (ties by position): the same on any number of threads. */
     kruskal_order(A, members, m, key, S);
+    /* The voxels come in clearance order, scattered over the graph: their
+     * adjacency is fetched ahead (perf: the scan waited on the loads of
+     * adj_start and adj; the order is known, so the loads can start
+     * KRUSKAL_AHEAD voxels early, the adjacency's once its start is in). */
+    const size_t *adj_start = A->adj_start;
+    const uint32_t *adj = A->adj;
+    uint32_t *added = A->hpos;
     for (size_t t = 0; t < m && !found; t++) {
+        if (t + 2 * KRUSKAL_AHEAD < m)
+            __builtin_prefetch(&adj_start[S[t + 2 * KRUSKAL_AHEAD]]);
+        if (t + KRUSKAL_AHEAD < m)
+            __builtin_prefetch(&adj[adj_start[S[t + KRUSKAL_AHEAD]]]);
         uint32_t u = S[t], ru = u; /* u's root, kept through its unions */
-        A->hpos[u] = 1;
+        added[u] = 1;
         uf->p[u] = u;
-        for (size_t e = A->adj_start[u]; e < A->adj_start[u + 1] && !found; e++) {
-            uint32_t q = A->adj[e];
-            if (!A->hpos[q])
+        for (size_t e = adj_start[u], end = adj_start[u + 1]; e < end && !found; e++) {
+            uint32_t q = adj[e];
+            if (!added[q])
                 continue;
             uint32_t rq = vb_uf_root(uf, (uint32_t)q);
             if (ru == rq)
@@ -232,13 +246,19 @@ int vbc_channel_openings(vbc_graph *A, vb_uf *uf, const uint32_t *members, size_
         uf->p[members[t]] = members[t];
         A->rep[members[t]] = UINT32_MAX;
     }
+    /* The openings: mouth voxels joined across their edges, each edge once,
+     * from its smaller end. The sets, each named by its smallest voxel, do
+     * not depend on the order of the joins. */
+    const uint8_t *mouth = A->mouth;
     for (size_t t = 0; t < m; t++) {
         uint32_t u = members[t];
-        if (!A->mouth[u])
+        if (!mouth[u])
             continue;
-        for (size_t e = A->adj_start[u]; e < A->adj_start[u + 1]; e++)
-            if (A->mouth[A->adj[e]])
-                vb_uf_join(uf, u, A->adj[e]);
+        for (size_t e = A->adj_start[u], end = A->adj_start[u + 1]; e < end; e++) {
+            uint32_t q = A->adj[e];
+            if (q > u && mouth[q])
+                vb_uf_join(uf, u, q);
+        }
     }
     /* The widest voxel of each opening, kept at the opening's root. */
     size_t k = 0;

@@ -113,16 +113,22 @@ static int bucket_of(uint64_t k, uint64_t last)
 
 /* busy: bit b - 1 set when bucket b (1..64) holds an entry, so a pop finds
  * the lowest such bucket with one count of trailing zeros instead of a
- * walk over the empty ones (bucket 0 is read from first[0]). */
+ * walk over the empty ones (bucket 0 is read from first[0]). low[b]: the
+ * least key pushed into bucket b since it was last empty, a lower bound
+ * of its keys (an entry moved out by a decrease leaves it lower), so a
+ * pop need not walk the bucket's list for its least key first. */
 typedef struct {
     uint32_t first[RH_BUCKETS];
+    uint64_t low[RH_BUCKETS];
     uint64_t last, busy;
 } radix_heap;
 
 static void rh_push(vbc_graph *A, radix_heap *H, uint32_t q)
 {
-    int b = bucket_of(key_of(A->dist[q]), H->last);
+    uint64_t k = key_of(A->dist[q]);
+    int b = bucket_of(k, H->last);
     uint32_t f = H->first[b];
+    H->low[b] = k < H->low[b] ? k : H->low[b];
     A->heap[q] = f; /* next, by position */
     if (f != RH_OUT)
         A->hpos[f] = q;
@@ -138,8 +144,10 @@ static void rh_unlink(vbc_graph *A, radix_heap *H, uint32_t q)
     if (p & RH_HEAD) {
         uint32_t b = p & ~RH_HEAD;
         H->first[b] = nx;
-        if (nx == RH_OUT && b > 0)
+        if (nx == RH_OUT && b > 0) {
             H->busy &= ~((uint64_t)1 << (b - 1));
+            H->low[b] = UINT64_MAX;
+        }
     } else {
         A->heap[p] = nx;
     }
@@ -150,18 +158,20 @@ static void rh_unlink(vbc_graph *A, radix_heap *H, uint32_t q)
 /* The entry of least distance (any of a tie), or RH_OUT when empty. */
 static uint32_t rh_pop(vbc_graph *A, radix_heap *H)
 {
-    if (H->first[0] == RH_OUT) {
+    while (H->first[0] == RH_OUT) {
         if (!H->busy)
             return RH_OUT;
         int b = 1 + __builtin_ctzll(H->busy);
-        uint64_t lo = UINT64_MAX;
-        for (uint32_t q = H->first[b]; q != RH_OUT; q = A->heap[q])
-            lo = key_of(A->dist[q]) < lo ? key_of(A->dist[q]) : lo;
         /* Every key of bucket b shares its bits above b - 1 with the old
-         * last and differs from lo below: each moves to a lower bucket. */
-        H->last = lo;
+         * last, as low[b] does, and is at least low[b]: with it as the
+         * new last each moves to a lower bucket (to bucket 0 where it
+         * equals it; none may, when the least key pushed there has moved
+         * out: the next lowest bucket is taken then). Entries still come
+         * out by nondecreasing key, each equal to the last. */
+        H->last = H->low[b];
         uint32_t q = H->first[b];
         H->first[b] = RH_OUT;
+        H->low[b] = UINT64_MAX;
         H->busy &= ~((uint64_t)1 << (b - 1));
         while (q != RH_OUT) {
             uint32_t nx = A->heap[q];
@@ -187,8 +197,10 @@ static int radix_sweep(vbc_graph *A, const uint32_t *members, size_t m, uint32_t
                        uint32_t target)
 {
     radix_heap H;
-    for (int b = 0; b < RH_BUCKETS; b++)
+    for (int b = 0; b < RH_BUCKETS; b++) {
         H.first[b] = RH_OUT;
+        H.low[b] = UINT64_MAX;
+    }
     H.last = H.busy = 0;
     for (size_t t = 0; t < m; t++) {
         A->dist[members[t]] = INFINITY;
@@ -201,29 +213,37 @@ static int radix_sweep(vbc_graph *A, const uint32_t *members, size_t m, uint32_t
     static const double len_of[4] = {0.0, 1.0, VBC_PATH_LEN_EDGE, VBC_PATH_LEN_CORNER};
     A->dist[src] = 0.0;
     rh_push(A, &H, src);
+    /* The graph's arrays in locals: read through A, every store to dist,
+     * pred or hpos (which may alias A as far as C knows) reloads them
+     * (perf: the edge loop's loads of A->adj_len and A->clear). */
+    const size_t *adj_start = A->adj_start;
+    const uint32_t *adj = A->adj;
+    const uint8_t *adj_len = A->adj_len;
+    const double *clear = A->clear;
+    double *dist = A->dist;
+    uint32_t *pred = A->pred, *hpos = A->hpos;
     for (uint32_t u; (u = rh_pop(A, &H)) != RH_OUT;) {
-        double du = A->dist[u];
-        A->hpos[u] = RH_DONE;
+        double du = dist[u], cu = clear[u];
+        hpos[u] = RH_DONE;
         if (u == target)
             return 1;
-        for (size_t e = A->adj_start[u]; e < A->adj_start[u + 1]; e++) {
-            uint32_t q = A->adj[e];
-            uint32_t hq = A->hpos[q];
+        for (size_t e = adj_start[u], end = adj_start[u + 1]; e < end; e++) {
+            uint32_t q = adj[e];
+            uint32_t hq = hpos[q];
             if (hq == RH_DONE)
                 continue;
-            double step = len_of[A->adj_len[e] & 3];
-            double nd = du + (weighted ? vbc_path_weigh(step, A->clear[u], A->clear[q]) : step);
+            double step = len_of[adj_len[e] & 3];
+            double nd = du + (weighted ? vbc_path_weigh(step, cu, clear[q]) : step);
             if (!(nd > du))
                 return 0;
-            if (nd < A->dist[q]) {
-                A->dist[q] = nd;
-                A->pred[q] = u;
+            if (nd < dist[q]) {
+                dist[q] = nd;
+                pred[q] = u;
                 if (hq != RH_OUT)
                     rh_unlink(A, &H, q);
                 rh_push(A, &H, q);
-            } else if (nd == A->dist[q] &&
-                       vbc_path_pred_before(du, u, A->dist[A->pred[q]], A->pred[q])) {
-                A->pred[q] = u;
+            } else if (nd == dist[q] && vbc_path_pred_before(du, u, dist[pred[q]], pred[q])) {
+                pred[q] = u;
             }
         }
     }

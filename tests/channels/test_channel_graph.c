@@ -7,8 +7,9 @@
  * tied clearances everywhere, and a clearance so large that steps vanish:
  * the binary heap's fallback; stopped at a target: its path), the radix sort against qsort,
  * given component labels (the device's) against the union-find's groups: accepted when
- * right, refused when one label covers two pieces, and the support atoms against a scan of
- * every atom in index order. */
+ * right, refused when one label covers two pieces, the support atoms against a scan of
+ * every atom in index order, and the openings of a component against a plain union-find of
+ * its mouth voxels. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -144,6 +145,86 @@ static void sweep_case(uint64_t *seed, int n, double p, int levels, int huge)
     free(dist);
     free(pred);
     free(done);
+    vbc_analysis_free(&W);
+}
+
+/* The openings of vbc_channel_openings against their definition: mouth
+ * voxels joined across every edge (a plain union-find here, each edge
+ * from both ends), each opening's widest voxel (ties to the first
+ * member), and with two or more openings and an atom far wider than the
+ * grid (no pair is through) the farthest pair of those voxels, listed by
+ * their openings' smallest members (ties to the first pair). Mouths of
+ * random sets with probability pm, clearances with ties. */
+static void openings_case(uint64_t *seed, int n, double p, double pm)
+{
+    vbc_grid g = {n, n - 1, n - 2, 3, {0.0, 0.0, 0.0}, 1.0};
+    analysis W;
+    random_graph(seed, &g, p, &W);
+    vbc_components_group(&W);
+    double x = 0.0, y = 0.0, z = 0.0, r = 1e6;
+    vb_sphere_set s;
+    memset(&s, 0, sizeof s);
+    s.n = 1;
+    s.x = &x;
+    s.y = &y;
+    s.z = &z;
+    s.r = &r;
+    W.A.s = &s;
+    for (size_t t = 0; t < W.nvox; t++) {
+        W.mouth[t] = synth_uniform(seed) < pm;
+        W.clear[t] = 0.5 * (double)(int)(4.0 * synth_uniform(seed));
+    }
+    uint32_t *P = malloc((W.nvox + 1) * sizeof *P), *rep = malloc((W.nvox + 1) * sizeof *rep);
+    uint32_t *reps = malloc((W.nvox + 1) * sizeof *reps);
+    vb_uf uf = {P, W.nvox, 0};
+    size_t bad = 0, multi = 0;
+    for (size_t c = 0; c < W.ncomp; c++) {
+        size_t m = W.cstart[c + 1] - W.cstart[c], k = 0;
+        const uint32_t *mem = W.order + W.cstart[c];
+        for (size_t t = 0; t < m; t++)
+            P[mem[t]] = mem[t];
+        for (size_t t = 0; t < m; t++)
+            for (size_t e = W.A.adj_start[mem[t]]; e < W.A.adj_start[mem[t] + 1]; e++)
+                if (W.mouth[mem[t]] && W.mouth[W.A.adj[e]])
+                    vb_uf_join(&uf, mem[t], W.A.adj[e]);
+        for (size_t t = 0; t < m; t++) {
+            uint32_t u = mem[t], ru = vb_uf_root(&uf, u);
+            if (!W.mouth[u])
+                continue;
+            if (ru == u)
+                rep[ru] = u;
+            else if (W.clear[u] > W.clear[rep[ru]])
+                rep[ru] = u;
+        }
+        for (size_t t = 0; t < m; t++)
+            if (W.mouth[mem[t]] && P[mem[t]] == mem[t])
+                reps[k++] = rep[mem[t]];
+        uint32_t wa = k ? reps[0] : mem[0], wb = UINT32_MAX;
+        double best = -1.0;
+        for (size_t i = 0; k >= 2 && i < k; i++)
+            for (size_t j = i + 1; j < k; j++) {
+                double pi[3], pj[3];
+                vbc_voxel_centre(&g, W.sorted[reps[i]], pi);
+                vbc_voxel_centre(&g, W.sorted[reps[j]], pj);
+                double d = (pi[0] - pj[0]) * (pi[0] - pj[0]) + (pi[1] - pj[1]) * (pi[1] - pj[1]) +
+                           (pi[2] - pj[2]) * (pi[2] - pj[2]);
+                if (d > best) {
+                    best = d;
+                    wa = reps[i];
+                    wb = reps[j];
+                }
+            }
+        multi += k >= 2;
+        uint32_t a = 0, b = 0;
+        int through = 1;
+        CHECK_INT(vbc_channel_openings(&W.A, &W.uf, mem, m, &a, &b, &through), 0);
+        bad += a != wa || b != wb || through != 0;
+    }
+    CHECK_INT(bad, 0);
+    CHECK(multi >= 1); /* a component with several openings */
+    free(P);
+    free(rep);
+    free(reps);
     vbc_analysis_free(&W);
 }
 
@@ -352,5 +433,9 @@ int main(void)
             support_case(&seed, sizes[k], shape);
     radix_case(&seed, 1);
     radix_case(&seed, 5000);
+    for (int r = 0; r < 4; r++) {
+        openings_case(&seed, 14, 0.5, 0.3);
+        openings_case(&seed, 16, 0.35, 0.6);
+    }
     VB_TEST_END();
 }
