@@ -24,6 +24,12 @@ vorball=$1 corpus=$2 work=$3/handoff_resume
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/lib.sh"
 fresh_dir "$work"
+# Every cell to the device (VORBALL_COVER_HOST_BACK=0; --device ref has no
+# device and ignores it): otherwise the host threads take cells from the
+# back of the queue beside the kernel, and which cells the kernel covers,
+# so how many patches it hands, depends on the timing (corpus fcc on the idle
+# 2-core machine: 0 to 168 resumed patches, the rows the same).
+export VORBALL_COVER_HOST_BACK=0
 stat() { awk -v k="$1" '$1 == k { print $2 }' "$2"; }
 for in in equal-radius/sc equal-radius/fcc equal-radius/random-1000 inputs/sc_jitter12; do
     name=$(basename "$in")
