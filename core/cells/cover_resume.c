@@ -130,7 +130,8 @@ int vb_hand_index_make(vb_hand_index *x, const uint32_t *hand, size_t words)
         x->key[x->n++] = (uint64_t)fr.off << 32 | (uint64_t)at; /* off: the cell */
         at += VBQ_HAND_WORDS(fr.len);
     }
-    qsort(x->key, x->n, sizeof *x->key, key_cmp);
+    if (x->n > 1) /* none handed: x->key may still be NULL, which qsort may not take */
+        qsort(x->key, x->n, sizeof *x->key, key_cmp);
     return VB_OK;
 }
 
