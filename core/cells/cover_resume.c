@@ -17,6 +17,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "vb_array.h"
+
 #include "vb_cover.h"
 #include "vb_cover_shared.h"
 
@@ -118,13 +120,8 @@ int vb_hand_index_make(vb_hand_index *x, const uint32_t *hand, size_t words)
     size_t n = 0;
     for (size_t at = 0; at + VBQ_HAND_HEAD <= words; n++)
         at += VBQ_HAND_WORDS(entry_frame(hand + at).len);
-    if (n > x->cap) {
-        uint64_t *k = realloc(x->key, n * sizeof *k);
-        if (!k)
-            return VB_ENOMEM;
-        x->key = k;
-        x->cap = n;
-    }
+    if (VB_ARRAY_FIT(x->key, x->cap, n, 64) != VB_OK)
+        return VB_ENOMEM;
     for (size_t at = 0; at + VBQ_HAND_HEAD <= words;) {
         vbq_frame fr = entry_frame(hand + at);
         x->key[x->n++] = (uint64_t)fr.off << 32 | (uint64_t)at; /* off: the cell */
@@ -154,13 +151,8 @@ int vb_hand_index_cell(vb_hand_index *x, uint32_t i, const uint32_t **words, siz
     *words = NULL;
     if (!need)
         return VB_OK;
-    if (need > x->scap) {
-        uint32_t *s = realloc(x->scratch, need * sizeof *s);
-        if (!s)
-            return VB_ENOMEM;
-        x->scratch = s;
-        x->scap = need;
-    }
+    if (VB_ARRAY_FIT(x->scratch, x->scap, need, 1024) != VB_OK)
+        return VB_ENOMEM;
     size_t w = 0;
     for (k = lo; k < x->n && x->key[k] >> 32 == i; k++) {
         const uint32_t *e = x->hand + (uint32_t)x->key[k];
