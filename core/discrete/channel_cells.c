@@ -467,12 +467,19 @@ static int any_visit(const vbc_cells *c, int32_t a, void *user)
     double dx = st->p[0] - c->s->x[a], dy = st->p[1] - c->s->y[a], dz = st->p[2] - c->s->z[a];
     /* The test of within_visit without its shortcut (which lets the same
      * atoms pass): the same verdict per atom. */
-    double d = sqrt(dx * dx + dy * dy + dz * dz) - c->s->r[a];
+    double d2 = dx * dx + dy * dy + dz * dz, lim = st->low + c->s->r[a];
+    /* An atom whose surface is certainly beyond the least distance so far
+     * (above reach: every atom before missed) is neither found nor lowers
+     * it: the square root skipped (the margin as within_visit's). */
+    if (lim >= 0.0 && lim < INFINITY && d2 > lim * lim * (1.0 + 1e-12))
+        return 0;
+    double d = sqrt(d2) - c->s->r[a];
     if (d <= st->reach) {
         st->found = a;
         return 1;
     }
-    st->low = fmin(st->low, d);
+    if (d < st->low)
+        st->low = d;
     return 0;
 }
 

@@ -1,4 +1,6 @@
 /* Frames in analysis at once (vbc_flight.h). */
+#include <pthread.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -8,10 +10,13 @@
 #include "vbc_flight.h"
 
 /* One frame in the window: its analysis runs on th with context w, whose
- * lines `said` holds after the frame's own (f.held). */
+ * lines `said` holds after the frame's own (f.held); seq: its place in the
+ * window's order (the gate's turn). */
 typedef struct job {
     vbc_ahead_frame f;
     vbc_run *r;
+    struct vbc_flight *fl;
+    long seq;
     vb_ctx *w;
     vbc_held *said;
     int rc;
@@ -23,6 +28,13 @@ struct vbc_flight {
     job *ring[VBC_FLIGHT_MAX];
     int width, head, count;
     vb_stats stats;         /* the analyses' counters, for ctx at close */
+    /* The gate (vbc_run_gate): frames pushed and popped so far (a frame
+     * popped has every frame before it backed: the caller backs each
+     * before the next pop), and the window closing; moved: either moved. */
+    pthread_mutex_t lock;
+    pthread_cond_t moved;
+    long pushed, popped;
+    int stop;
 };
 
 /* A positive integer from the environment variable `name` (at most max),
@@ -112,6 +124,8 @@ int vbc_flight_open(vb_ctx *ctx, vbc_run *r, int width, vbc_flight **out)
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (frames in flight)");
     w->r = r;
     w->width = width < 1 ? 1 : width > VBC_FLIGHT_MAX ? VBC_FLIGHT_MAX : width;
+    pthread_mutex_init(&w->lock, NULL);
+    pthread_cond_init(&w->moved, NULL);
     return VB_OK;
 }
 
@@ -131,10 +145,36 @@ void vbc_flight_shrink(vbc_flight *w, int width)
         w->width = width;
 }
 
+/* The gate of job J's frame: returns 1 once the run's pore request is
+ * fixed or J's frame has been popped (its turn: the frames before it are
+ * backed), 0 when the window closes first. */
+static int gate_wait(void *arg)
+{
+    job *J = arg;
+    vbc_flight *w = J->fl;
+    pthread_mutex_lock(&w->lock);
+    while (!atomic_load(&J->r->pore_fixed) && w->popped <= J->seq && !w->stop)
+        pthread_cond_wait(&w->moved, &w->lock);
+    int go = atomic_load(&J->r->pore_fixed) || w->popped > J->seq;
+    pthread_mutex_unlock(&w->lock);
+    return go;
+}
+
+/* Wakes the gates (a pop or the close moved them). */
+static void gate_move(vbc_flight *w, int popped, int stop)
+{
+    pthread_mutex_lock(&w->lock);
+    w->popped += popped;
+    w->stop |= stop;
+    pthread_cond_broadcast(&w->moved);
+    pthread_mutex_unlock(&w->lock);
+}
+
 static void *analyse(void *arg)
 {
     job *J = arg;
-    J->rc = vbc_run_analyse(J->w, J->r, &J->f.o);
+    vbc_run_gate gate = {gate_wait, J};
+    J->rc = vbc_run_analyse(J->w, J->r, &J->f.o, &gate);
     if (J->rc != VB_OK)
         vbc_held_error(J->said, J->w);
     return NULL;
@@ -167,6 +207,8 @@ int vbc_flight_push(vb_ctx *ctx, vbc_flight *w, vbc_ahead_frame *f)
     }
     J->f = *f;
     J->r = w->r;
+    J->fl = w;
+    J->seq = w->pushed++;
     memset(f, 0, sizeof *f);
     w->ring[(w->head + w->count) % VBC_FLIGHT_MAX] = J;
     w->count++;
@@ -179,6 +221,9 @@ int vbc_flight_pop(vb_ctx *ctx, vbc_flight *w, vbc_ahead_frame *f)
     job *J = w->ring[w->head];
     w->head = (w->head + 1) % VBC_FLIGHT_MAX;
     w->count--;
+    /* Its turn (and, the pore request fixed by the back halves before,
+     * the later frames' gates open). */
+    gate_move(w, 1, 0);
     vb_jobs_join(&J->th);
     memset(f, 0, sizeof *f);
     int rc = vbc_held_replay(ctx, J->f.held, VB_OK);
@@ -198,6 +243,7 @@ void vbc_flight_close(vb_ctx *ctx, vbc_flight *w)
 {
     if (!w)
         return;
+    gate_move(w, 0, 1);
     while (w->count > 0) {
         job *J = w->ring[w->head];
         w->head = (w->head + 1) % VBC_FLIGHT_MAX;
@@ -208,5 +254,7 @@ void vbc_flight_close(vb_ctx *ctx, vbc_flight *w)
         job_free(w, J);
     }
     vb_stats_add(vb_ctx_stats(ctx), &w->stats);
+    pthread_cond_destroy(&w->moved);
+    pthread_mutex_destroy(&w->lock);
     free(w);
 }

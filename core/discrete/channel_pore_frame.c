@@ -11,13 +11,9 @@
 #include "vbc_pore_frame.h"
 #include "vbc_walls.h"
 
-typedef struct {
-    const vbc_grid *g;
-    const uint8_t *flags;
-} mask_view;
+typedef vbc_mask_view mask_view;
 
-/* Outside the molecule: off the grid or in a voxel without the molecular bit. */
-static int outside_mask(void *user, const double p[3])
+int vbc_mask_outside(void *user, const double p[3])
 {
     const mask_view *M = user;
     const vbc_grid *g = M->g;
@@ -36,7 +32,7 @@ static int outside_mask(void *user, const double p[3])
 static int sweep(vb_ctx *ctx, const vbc_cells *cells, const vb_sphere_set *s, const vbc_axis *ax,
                  const vbc_pore_request *req, mask_view *M, vbc_pore *out)
 {
-    return vbc_pore_sweep(ctx, cells, s, ax, &req->sweep, M->flags ? outside_mask : NULL, M, out);
+    return vbc_pore_sweep(ctx, cells, s, ax, &req->sweep, M->flags ? vbc_mask_outside : NULL, M, out);
 }
 
 /* sweep for a pore wider than floor only (vbc_pore_sweep_above). */
@@ -44,7 +40,7 @@ static int sweep_above(vb_ctx *ctx, const vbc_cells *cells, const vb_sphere_set 
                        const vbc_axis *ax, const vbc_pore_request *req, mask_view *M, double floor,
                        vbc_pore *out)
 {
-    return vbc_pore_sweep_above(ctx, cells, s, ax, &req->sweep, M->flags ? outside_mask : NULL, M,
+    return vbc_pore_sweep_above(ctx, cells, s, ax, &req->sweep, M->flags ? vbc_mask_outside : NULL, M,
                                 floor, out);
 }
 
@@ -119,7 +115,7 @@ static void *sweep_job_run(void *arg)
     sweep_job *J = arg;
     if (J->widest_first) {
         int32_t atom;
-        vbc_plane_widest(J->cells, J->ax.u, VBC_SUBUNIT_REACH, J->M->flags ? outside_mask : NULL,
+        vbc_plane_widest(J->cells, J->ax.u, VBC_SUBUNIT_REACH, J->M->flags ? vbc_mask_outside : NULL,
                          J->M, J->ax.c, &atom);
     }
     J->rc = sweep_above(NULL, J->cells, J->s, &J->ax, J->req, J->M, J->floor, &J->pore);

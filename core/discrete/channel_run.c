@@ -395,28 +395,43 @@ int vbc_run_front(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index, 
     return VB_OK;
 }
 
-int vbc_run_analyse(vb_ctx *ctx, vbc_run *r, vbc_run_out *o)
+/* Whether o's pore stage may run in vbc_run_analyse, the request it reads
+ * being the one its back half would read: 1 once the request is fixed, or
+ * (gate) once the frames before o ran their back halves and no refit turns
+ * the axis in o's own (--axis-refit); 0 when it is left to the back half
+ * (the first frame: its lines come after W803's), or the run stops. */
+static int request_final(vbc_run *r, const vbc_run_out *o, const vbc_run_gate *gate)
+{
+    if (atomic_load(&r->pore_fixed))
+        return 1;
+    if (o->first || !gate || r->cfg->axis_refit)
+        return 0;
+    return gate->wait(gate->arg);
+}
+
+int vbc_run_analyse(vb_ctx *ctx, vbc_run *r, vbc_run_out *o, const vbc_run_gate *gate)
 {
     int rc = VB_OK;
     if (!o->masked)
         return VB_OK;
-    int fixed = atomic_load(&r->pore_fixed);
-    if (!o->analysed && !o->pore && !o->pored && (fixed || o->first)) {
+    /* Reads only what the back halves leave as it is: the request's
+     * `enabled`, not its axis. */
+    int beside = !o->analysed && !o->pore && !o->pored && vbc_frame_beside(&r->cfg->opt, &o->F);
+    if (beside) {
+        /* The analysis beside the pore stage (vbc_frame_analyse) once the
+         * request is o's: the wait costs less than the pore stages on the
+         * caller's thread, one frame after the other, would. Else both in
+         * the back half, beside there too. */
+        if (request_final(r, o, gate) != 1)
+            return VB_OK;
         vbc_options opt;
         vbc_pore_request req;
         membrane_options(r->cfg, o, &opt, &req);
-        if (vbc_frame_beside(&opt, &o->F)) {
-            /* The analysis beside the pore stage (vbc_frame_analyse); the
-             * first frame's before its pore request is fixed: both in the
-             * back half, where nothing before it is left to overlap. */
-            if (!fixed)
-                return VB_OK;
-            if ((rc = analysis_fault(ctx, o->fi.frame)) != VB_OK ||
-                (rc = vbc_frame_analyse(ctx, o->s, &opt, &o->F)) != VB_OK)
-                return rc;
-            o->analysed = o->pored = 1;
-            return VB_OK;
-        }
+        if ((rc = analysis_fault(ctx, o->fi.frame)) != VB_OK ||
+            (rc = vbc_frame_analyse(ctx, o->s, &opt, &o->F)) != VB_OK)
+            return rc;
+        o->analysed = o->pored = 1;
+        return VB_OK;
     }
     if (!o->analysed) {
         if ((rc = analysis_fault(ctx, o->fi.frame)) != VB_OK ||
@@ -424,7 +439,7 @@ int vbc_run_analyse(vb_ctx *ctx, vbc_run *r, vbc_run_out *o)
             return rc;
         o->analysed = 1;
     }
-    if (!o->pore && !o->pored && atomic_load(&r->pore_fixed)) {
+    if (!o->pore && !o->pored && request_final(r, o, gate) == 1) {
         vbc_options opt;
         vbc_pore_request req;
         membrane_options(r->cfg, o, &opt, &req);

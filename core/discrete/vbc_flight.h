@@ -1,8 +1,11 @@
 /* Frames in analysis at once (issue 33): a window of up to `width`
  * frames whose front half is done (vbc_ahead.h: read, grid, the pipe) and
  * whose analysis (vbc_run_analyse: components, centrelines, and the pore
- * stage once its request is fixed) runs on a thread of its own each, while
- * the caller's thread takes the next frames in and writes the oldest. The
+ * stage once its request is the frame's: fixed, or the frames before it
+ * out of the window, vbc_run_gate; with the analysis beside the pore
+ * stage, vbc_frame_beside, both wait for that) runs on a thread of its own
+ * each, while the caller's thread takes the next frames in and writes the
+ * oldest. The
  * frames leave the window in the order they came, each with what its
  * reading, front and analysis said (held, vbc_held.h), so the outputs and
  * the warnings are the same bytes as the sequential loop's for any width,
@@ -62,13 +65,16 @@ void vbc_flight_shrink(vbc_flight *w, int width);
  * (then *f is dropped, its lines said on ctx). */
 int vbc_flight_push(vb_ctx *ctx, vbc_flight *w, vbc_ahead_frame *f);
 
-/* The oldest frame out of the window: waits for its analysis, says its held
+/* The oldest frame out of the window: opens its gate (the caller has run
+ * the back half, vbc_run_back, of every frame popped before it), waits for
+ * its analysis, says its held
  * lines on ctx (reading and front first), and fills *f for vbc_run_back
  * (f->held NULL). Returns its status; after a failure, its error said on
  * ctx, *f holds nothing. The window must not be empty. */
 int vbc_flight_pop(vb_ctx *ctx, vbc_flight *w, vbc_ahead_frame *f);
 
-/* Waits for the frames left and drops them, their lines unsaid; adds the
+/* Opens the gates of the frames left (their pore stages not run), waits
+ * for them and drops them, their lines unsaid; adds the
  * analyses' counters to ctx's. NULL is allowed. */
 void vbc_flight_close(vb_ctx *ctx, vbc_flight *w);
 

@@ -55,6 +55,16 @@ void vbc_refine_bottlenecks(vbc_result *res, const vbc_cells *cells, double h);
 void vbc_rank(vbc_result *res);
 
 /* Milliseconds of the pore stage's steps (wall clock, vb_now). */
+/* The end of the pore's sweep (a vbc_outside_fn, user a vbc_mask_view):
+ * a point off the grid g or in a voxel of flags without the molecular bit
+ * (VBC_F_MOLECULAR) lies outside the molecule. */
+typedef struct vbc_mask_view {
+    const vbc_grid *g;
+    const uint8_t *flags;
+} vbc_mask_view;
+
+int vbc_mask_outside(void *user, const double p[3]);
+
 typedef struct vbc_pore_ms {
     double cells;   /* the cell list over the frame's spheres */
     double refine;  /* vbc_refine_bottlenecks of the discrete channels (its own

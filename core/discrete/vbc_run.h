@@ -100,13 +100,28 @@ int vbc_run_front(vb_ctx *ctx, vbc_run *r, const vb_sphere_set *s0, long index, 
 int vbc_run_back(vb_ctx *ctx, vbc_run *r, vbc_run_out *o);
 void vbc_run_front_drop(vbc_run_out *o);
 
+/* What vbc_run_analyse waits on for a frame whose pore request is not
+ * fixed yet (frames in analysis at once, vbc_flight.h): wait(arg) returns
+ * 1 once r->pore_fixed is set or every frame before this one has run its
+ * back half (vbc_run_back), 0 when the run stops first. */
+typedef struct vbc_run_gate {
+    int (*wait)(void *arg);
+    void *arg;
+} vbc_run_gate;
+
 /* Between a VBC_FRONT_MASKS front and its back, on any thread (frames in
- * analysis at once, vbc_flight.h): the first run's analysis and, when the
- * pore request is fixed (pore_fixed), its pore stage; they read the frame,
- * its spheres and the fixed request only, so they give what the back half
- * would. Touches nothing of r but reads. VB_OK, or the analysis' failure
- * (then o->F holds no result; vbc_run_front_drop o). */
-int vbc_run_analyse(vb_ctx *ctx, vbc_run *r, vbc_run_out *o);
+ * analysis at once, vbc_flight.h): the first run's analysis and its pore
+ * stage once the request the stage reads is the one the back half would
+ * read: fixed (pore_fixed), or, through `gate` (may be NULL: no waiting),
+ * every frame before this one backed and no --axis-refit. Where the
+ * analysis runs beside the pore stage (vbc_frame_beside) both wait for
+ * that (not on the first frame, nor under --axis-refit: both are left to
+ * the back half); else the analysis runs at once and the pore stage
+ * waits. They read the frame, its spheres and the request only, so they
+ * give what the back half would. Touches nothing of r but reads. VB_OK,
+ * or the analysis' failure (then o->F holds no result; vbc_run_front_drop
+ * o). */
+int vbc_run_analyse(vb_ctx *ctx, vbc_run *r, vbc_run_out *o, const vbc_run_gate *gate);
 
 /* After the frame's outputs are written: keeps the first frame's result in
  * r->first, frees the rest of *o. */

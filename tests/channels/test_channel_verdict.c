@@ -8,7 +8,8 @@
  * bound of the distance when it finds nothing, and the flood that trusts
  * those bounds walls the same planes as the plain flood (a copy below, one
  * query per pixel) in a random cloud of atoms; the verdict is the same on
- * 1 and 5 threads. */
+ * 1 and 5 threads, and with the bounds one plane's flood leaves for the
+ * next. */
 #include "synth.h"
 #include "vb_test.h"
 #include "vbc_pore.h"
@@ -273,16 +274,15 @@ static int walled_plain(const vbc_cells *c, const double a[3], const double b[3]
     return walled;
 }
 
-/* Planes through a dense cloud with a hollow core: the flood with the
- * distance bounds and the plain flood wall the same ones. */
-static void same_walls(vb_ctx *ctx, size_t atoms, int *walled, int *open, int *differ)
+/* A cloud of `atoms` in a 36 A cube less those within sqrt(r2) of the
+ * line x = y = 18 (a tube along z through the middle). */
+static vb_sphere_set *hollowed(size_t atoms, uint64_t seed, double r2)
 {
-    vb_sphere_set *s = cloud(atoms, 36.0, 11 + atoms);
-    /* Hollow it: a tube of radius 5 A along z through the middle. */
+    vb_sphere_set *s = cloud(atoms, 36.0, seed);
     size_t m = 0;
     for (size_t i = 0; i < s->n; i++) {
         double dx = s->x[i] - 18.0, dy = s->y[i] - 18.0;
-        if (dx * dx + dy * dy < 25.0)
+        if (dx * dx + dy * dy < r2)
             continue;
         s->x[m] = s->x[i];
         s->y[m] = s->y[i];
@@ -290,6 +290,15 @@ static void same_walls(vb_ctx *ctx, size_t atoms, int *walled, int *open, int *d
         s->r[m++] = s->r[i];
     }
     s->n = m;
+    return s;
+}
+
+/* Planes through a dense cloud with a hollow core: the flood with the
+ * distance bounds and the plain flood wall the same ones. */
+static void same_walls(vb_ctx *ctx, size_t atoms, int *walled, int *open, int *differ)
+{
+    /* Hollowed: a tube of radius 5 A along z through the middle. */
+    vb_sphere_set *s = hollowed(atoms, 11 + atoms, 25.0);
     vbc_cells *c = NULL;
     CHECK_INT(vbc_cells_build(ctx, s, 3.0, &c), VB_OK);
     void *scratch = NULL;
@@ -325,6 +334,49 @@ static void test_same_walls(vb_ctx *ctx)
     CHECK(walled > 100 && open > 100);
     if (vb_test_failed)
         fprintf(stderr, "planes walled %d, open %d, differ %d\n", walled, open, differ);
+}
+
+/* Consecutive planes of one axis, a step of 0.25 A apart with their centres
+ * wandering by up to 0.1 A and their spheres' radii changing, through
+ * hollowed clouds (one scratch: each flood starts from the bounds the last
+ * one left, channel_verdict.c's flood_memory): every plane walled or not
+ * as by the plain flood; then the same planes in another order (bounds
+ * carried over other distances). */
+static void test_carried(vb_ctx *ctx)
+{
+    int walled = 0, open = 0, differ = 0;
+    for (size_t atoms = 1200; atoms <= 4000; atoms += 700) {
+        vb_sphere_set *s = hollowed(atoms, 5 + atoms, 20.0);
+        vbc_cells *c = NULL;
+        CHECK_INT(vbc_cells_build(ctx, s, 3.0, &c), VB_OK);
+        double u[3] = {0.1, -0.05, 1.0}, a[3], b[3];
+        double nu = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+        for (int k = 0; k < 3; k++)
+            u[k] /= nu;
+        vbc_plane_basis(u, a, b);
+        for (int order = 0; order < 2; order++) {
+            void *scratch = NULL;
+            size_t len = 0;
+            for (int t = 0; t < 160; t++) {
+                int k = order ? (t * 37) % 160 : t;
+                double z = -4.0 + 0.25 * k, wob = 0.1 * sin(0.7 * k);
+                double p[3] = {18.0 + z * u[0] + wob * a[0], 18.0 + z * u[1] + wob * a[1],
+                               z * u[2] + wob * a[2]};
+                double r = 1.2 + 0.8 * sin(0.13 * k);
+                int w = vbc_plane_walled(c, u, p, r, &scratch, &len);
+                differ += w != walled_plain(c, a, b, p, r);
+                walled += w == 1;
+                open += w == 0;
+            }
+            free(scratch);
+        }
+        vbc_cells_free(c);
+        vb_spheres_free(s);
+    }
+    CHECK_INT(differ, 0);
+    CHECK(walled > 100 && open > 100);
+    if (vb_test_failed)
+        fprintf(stderr, "carried: planes walled %d, open %d, differ %d\n", walled, open, differ);
 }
 
 /* The verdict is the same on 1 and 5 threads (planes flooded in blocks,
@@ -386,6 +438,7 @@ int main(void)
     test_gaps(ctx);
     test_any_within(ctx);
     test_same_walls(ctx);
+    test_carried(ctx);
     test_threads(ctx);
     vb_close(ctx);
     VB_TEST_END();

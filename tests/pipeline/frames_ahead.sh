@@ -153,6 +153,42 @@ VORBALL_THREADS=5 run 0 axj.log "$vorball" channels "$top" --traj "$xtc" --grid 
 [ "$(grep -o '"beside": [0-9.]*' axj.json | grep -vc ' 0\.000$')" -ge 5 ] ||
     fail "axj.json: fewer than 5 frames ran the analysis beside the pore stage"
 
+# Four frames in analysis at once on 5 threads: every frame runs its
+# analysis beside its pore stage, those taken in before the first frame's
+# back half fixed the request (--axis) as the later ones (they wait for it),
+# and without a fixed request (this trajectory has no pore along a found
+# axis) each frame once the frames before it are out (vbc_run_gate): the
+# sequential loop's JSON less its clocks, the same with the overlap off
+# (VORBALL_ANALYSIS_BESIDE=0) and on PoCL; ms.beside above 0 in each of the
+# 10 frames, 0 in each with the overlap off.
+bjson() { # NAME WIDTH AHEAD BESIDE DEVICE ARGS...
+    name=$1
+    VORBALL_FRAMES_IN_FLIGHT=$2 VORBALL_FRAMES_AHEAD=$3 VORBALL_ANALYSIS_BESIDE=$4 VORBALL_THREADS=5 \
+        run 0 "$name.log" "$vorball" channels "$top" --traj "$xtc" --grid 64 --device "$5" --json \
+        -o "$name.json" $6
+    grep -v '"ms"\|"clock"\|"device"' "$name.json" > "$name.sj"
+}
+besides() { # NAME: the frames whose ms.beside is above 0
+    grep -o '"beside": [0-9.]*' "$1.json" | grep -vc ' 0\.000$'
+}
+for ax in free z; do
+    a=; [ $ax = z ] && a="--axis 0,0,1"
+    bjson "b${ax}_seq" 1 0 0 ref "$a"
+    bjson "b${ax}_w4" 4 2 1 ref "$a"
+    bjson "b${ax}_w4off" 4 2 0 ref "$a"
+    for n in w4 w4off; do
+        cmp -s "b${ax}_seq.sj" "b${ax}_$n.sj" || fail "b${ax}_$n.json differs from the sequential loop's"
+    done
+    [ "$(besides "b${ax}_w4")" -eq 10 ] ||
+        fail "b${ax}_w4.json: $(besides "b${ax}_w4") of 10 frames ran the analysis beside the pore stage"
+    [ "$(besides "b${ax}_w4off")" -eq 0 ] || fail "b${ax}_w4off.json: the analysis beside with it off"
+done
+grep -q '"axis_from"' bfree_seq.json && fail "bfree_seq.json: a pore (the no-pore case is not exercised)"
+grep -q '"axis_from"' bz_seq.json || fail "bz_seq.json: no pore along --axis"
+bjson bz_pocl 4 2 1 cpu "--axis 0,0,1"
+cmp -s bz_seq.sj bz_pocl.sj || fail "bz_pocl.json (PoCL, 4 in flight) differs from the sequential reference"
+[ "$(besides bz_pocl)" -eq 10 ] || fail "bz_pocl.json: $(besides bz_pocl) of 10 frames beside"
+
 # --fixed-grid: the reader fits the grid on the first frame it runs.
 channels fix0 0 2 --device ref --fixed-grid --frames 2:10:3
 channels fix2 2 2 --device ref --fixed-grid --frames 2:10:3
