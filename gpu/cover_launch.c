@@ -1,7 +1,6 @@
 /* The cover backend's launches (gpu/cover_ocl.c is its host side): one
  * launch of a tier's kernel over a run of tasks, its arguments, its clock,
  * and the read-back of the per-task results and the quadruples. */
-#include <string.h>
 
 #include "vb_array.h"
 #include "vbg_buffer.h"
@@ -50,20 +49,8 @@ static int read_hand(vb_ctx *ctx, cov_state *s, const uint32_t *cells, size_t nc
                                            words * sizeof *h, h, 0, NULL, NULL),
                        "read handed patches");
     size_t kept = 0;
-    for (size_t at = 0; rc == VB_OK && at + VBQ_HAND_HEAD <= words;) {
-        vbq_frame fr;
-        memcpy(&fr, h + at, sizeof fr);
-        size_t n = VBQ_HAND_WORDS(fr.len);
-        if (fr.off >= ncells || at + n > words)
-            return vb_error(ctx, VB_EINTERNAL, NULL, 0, "bad handed patch");
-        if (out[fr.off].status == VBQ_OK) {
-            fr.off = cells[fr.off];
-            memmove(h + kept, h + at, n * sizeof *h);
-            memcpy(h + kept, &fr, sizeof fr);
-            kept += n;
-        }
-        at += n;
-    }
+    if (rc == VB_OK && vb_hand_keep_finished(h, words, cells, ncells, out, &kept) != VB_OK)
+        return vb_error(ctx, VB_EINTERNAL, NULL, 0, "bad handed patch");
     s->host_hand_n += kept;
     return rc;
 }
@@ -87,13 +74,12 @@ static int launch_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *c
                   (s->outs.size > c48 ? s->outs.size : c48);
     size_t room = s->launch_room > held + 16 ? (s->launch_room - held) / 16 : 1;
     size_t qroom = s->qout_cap < room ? s->qout_cap : room;
-    /* The handed patches (vbq_hand_patch): the first tier of a CPU device
-     * only, room for COV_HAND_WORDS a cell or what an earlier launch asked,
-     * within what the launch room leaves after the quadruples. */
+    /* The handed patches (vbq_hand_patch): the first tier only, room for
+     * hand_cell_words a cell or what an earlier launch asked, within what
+     * the launch room leaves after the quadruples. */
     int hand = s->k_hand && t == &s->tier[COV_FIRST];
-    size_t hwords = hand ? (s->hand_want > COV_HAND_WORDS * ncells ? s->hand_want
-                                                                   : COV_HAND_WORDS * ncells)
-                         : 0;
+    size_t per = (size_t)s->hand_cell_words * ncells;
+    size_t hwords = hand ? (s->hand_want > per ? s->hand_want : per) : 0;
     size_t left = s->launch_room > held + 16 * qroom ? s->launch_room - held - 16 * qroom : 0;
     hwords = hwords < left / 4 ? hwords : left / 4;
     if (hwords > UINT32_MAX / 2)

@@ -117,9 +117,10 @@ static int run_tasks(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *cel
     return rc;
 }
 
-/* A CPU device's first tier hands every patch it does not decide to the
- * host (vbq_hand_patch); a cell it hands whole (VBQ_CLUSTER) found no room
- * for one. Those cells of out[0 .. ncells) again on the first tier, while a
+/* The first tier's kernel (a CPU device's work-item kernel, a GPU's group
+ * kernel) hands every patch it does not decide to the host
+ * (vbq_hand_patch); a cell it hands whole (VBQ_CLUSTER) found no room for
+ * one. Those cells of out[0 .. ncells) again on the first tier, while a
  * launch asked for more room than it had (launch_tier grows it, within the
  * launch room) and the last one left fewer such cells, a few times; what
  * is still left goes to the host whole. */
@@ -321,7 +322,16 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
      * and _stop45.md. */
     const char *kc = getenv("VORBALL_COVER_CACHES");
     int caches = cpu && !s->wg && !(kc && strcmp(kc, "0") == 0);
-    int rc = s->wg ? kernel_get(ctx, rt, "cover_wg.cl", NULL, "vbq_cover_wg", &s->k)
+    /* The group kernel hands a patch it does not decide to the host too
+     * (built with -DVBQ_HANDOFF; lane 0 calls vbq_hand_patch), the host
+     * resuming it alone (core/cells/cover_resume.c) where it covered the
+     * whole cell again before stop 48 (on an H100, fcc 10,976 exact: 2,160
+     * of its 10,976 cells; sc 16^3 jittered 1e-12: 4,070 of 4,096).
+     * VORBALL_COVER_GPU_HAND=0 builds it without (measurements). */
+    const char *kg = getenv("VORBALL_COVER_GPU_HAND");
+    int gpu_hand = s->wg && !(kg && strcmp(kg, "0") == 0);
+    int rc = s->wg ? kernel_get(ctx, rt, "cover_wg.cl", gpu_hand ? "-DVBQ_HANDOFF" : NULL,
+                                "vbq_cover_wg", &s->k)
                    : kernel_get(ctx, rt, "cover.cl",
                                 caches ? "-DVBQ_WALK_V4_CL -DVBQ_CACHES_CL"
                                        : cpu ? "-DVBQ_WALK_V4_CL" : NULL,
@@ -347,8 +357,12 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
     s->k_caches = t0->caches = caches;
     /* A CPU device's work-item kernel hands a patch it does not decide to
      * the host (VBQ_HANDOFF, core/cells/vbq_gather_shared.h): the host then
-     * covers that patch, not the whole cell again. */
-    s->k_hand = cpu && !s->wg;
+     * covers that patch, not the whole cell again; so does the group
+     * kernel (gpu_hand). A GPU's first launch has up to 2^18 cells (the
+     * 211,440-atom tiling in one), mostly protein cells that hand none: a
+     * quarter of a CPU device's room a cell, grown as a launch asks. */
+    s->k_hand = (cpu && !s->wg) || gpu_hand;
+    s->hand_cell_words = s->wg ? COV_HAND_WORDS / 4 : COV_HAND_WORDS;
     t0->budget = s->wg ? budget : 0u;
     th->k = s->k_item;
     cl_uint units = 1;

@@ -151,6 +151,21 @@ wg_keep_undropped(__global uint *lab, uint keep, int use_dom, __local const uint
     sh[S_OWNED] = ow;
 }
 
+/* Lane 0 hands the undecided patch fr (vbq_hand_patch): 1 when written,
+ * 0 when the cell goes whole to the host (VBQ_CLUSTER). */
+static inline __attribute__((always_inline)) int wg_hand(const vbq_arena *ar, vbq_cell_out *o,
+                                                         const vbq_frame *fr)
+{
+#ifdef VBQ_HANDOFF
+    return vbq_hand_patch(ar, o, fr);
+#else
+    (void)ar;
+    (void)o;
+    (void)fr;
+    return 0;
+#endif
+}
+
 __kernel __attribute__((reqd_work_group_size(WG, 1, 1)))
 void vbq_cover_wg(__global const double *x, __global const double *y, __global const double *z,
                   __global const double *r, __global const double *box,
@@ -163,7 +178,12 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
                   __global uint *labs, __global vbq_frame *unused_st, __global uint *qs,
                   const uint nb_cap, const uint lab_cap, const uint st_cap, const uint q_cap,
                   __global vbq_cell_out *outs, __global uint *qout, const uint qout_cap,
-                  __global uint *counters, const uint budget)
+                  __global uint *counters, const uint budget
+#ifdef VBQ_HANDOFF
+                  ,
+                  __global uint *hand, const uint hand_cap
+#endif
+                  )
 {
     WG_SHARED vbq_frame stk[WG_ST];
     WG_SHARED uint nodes[WG_NODES];
@@ -190,6 +210,14 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
     ar.lab_cap = lab_cap;
     ar.st_cap = st_cap;
     ar.q_cap = q_cap;
+#ifdef VBQ_HANDOFF
+    /* The handed patches (vbq_hand_patch, lane 0; NULL: hand cells), as
+     * the work-item kernel's: counters[2] the words taken, counters[3]
+     * those written. */
+    ar.hand = hand;
+    ar.hand_used = counters + 2;
+    ar.hand_cap = hand_cap;
+#endif
     for (;;) {
         if (lane == 0u)
             sh[S_CELL] = atomic_inc(&counters[0]);
@@ -199,6 +227,9 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
         if (c >= ncells)
             break;
         uint i = cells[c];
+#ifdef VBQ_HANDOFF
+        ar.hand_cell = c;
+#endif
         vbq_cell_out o;   /* lane 0's counters */
         o.status = VBQ_OK;
         o.nq = o.nnb = o.far = 0u;
@@ -435,9 +466,13 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
                 owned = sh[S_OWNED];
             }
             int act = closed ? vbq_decide(&e, &fr, nb, lab + top, i, keep, owned) : 1;
-            /* a tie cluster: the host decides it (vbq_cover_cell) */
+            /* a tie cluster: the host decides it (vbq_cover_cell), the
+             * patch alone where lane 0 hands it (fr is the frame popped,
+             * its list lab[fr.off .. + fr.len) untouched since), else the
+             * whole cell. Every lane leaves the patch (act 0); the status
+             * lane 0 sets is read after the step's last barrier. */
             if (act != 0 && vbq_tie_cluster(nb, lab + top, keep, owned, i, act, closed)) {
-                if (lane == 0u)
+                if (lane == 0u && !wg_hand(&ar, &o, &fr))
                     sh[S_STATUS] = VBQ_CLUSTER;
                 act = 0;
             }
@@ -451,13 +486,15 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
 #endif
             ) {
 #ifndef VBQ_GPU_FORM
-                if (lane == 0u && owned > VBQ_ENV_FILTER_OWNED)
-                    sh[S_STATUS] = VBQ_CLUSTER;
-                else
+                if (lane == 0u && owned > VBQ_ENV_FILTER_OWNED) {
+                    if (!wg_hand(&ar, &o, &fr))
+                        sh[S_STATUS] = VBQ_CLUSTER;
+                } else
 #endif
                 if (lane == 0u) {
                     int he = vbq_envelope_filter(&e, &ar, &o, i, &fr, top, keep);
-                    if (he == 2)
+                    /* what the filter added is the host's too (exact signs) */
+                    if (he == 2 && !wg_hand(&ar, &o, &fr))
                         sh[S_STATUS] = VBQ_CLUSTER;
                     else if (he < 0)
                         sh[S_STATUS] = o.status;

@@ -73,8 +73,11 @@ typedef struct cov_state {
     int wg;                  /* 1: one work-group of 32 per cell (cover_wg.cl) */
     int k_caches;            /* 1: k built with VBQ_CACHES_CL (three more arguments; a tier
                                 without caches passes NULL buffers) */
-    int k_hand;              /* 1: k built with VBQ_WALK_V4_CL (two more arguments, last: the
-                                handed patches, NULL but on the first tier, and their room) */
+    int k_hand;              /* 1: k built with VBQ_HANDOFF (VBQ_WALK_V4_CL on a CPU device,
+                                -DVBQ_HANDOFF for the group kernel; two more arguments,
+                                last: the handed patches, NULL but on the first tier, and
+                                their room) */
+    uint32_t hand_cell_words; /* words of handed patches a cell gets at least (COV_HAND_WORDS) */
     vbg_buf hand;            /* the first tier's handed patches (vbq_hand_patch) */
     size_t hand_want;        /* words it holds at least (what an earlier launch needed) */
     int hand_short;          /* 1: a launch since it was last cleared asked for more words */
@@ -171,10 +174,11 @@ typedef struct cov_state {
  * 0.1 s; the cells past it run side by side as 24 T^2 tasks each. */
 #define COV_BUDGET 2048u
 /* Words of handed patches a cell gets in a CPU device's first launch
- * (vbq_hand_patch; a patch is 12 words and its list's ids): a cell that
- * finds no room runs again with what the launch asked. Measured (words
- * asked a cell, all cells): EXTREMESET Congruent 300 ~900, fcc 1,372 exact
- * ~180, fcc 10,976 exact ~450, its jitter 1e-9 ~40. */
+ * (vbq_hand_patch; a patch is 12 words and its list's ids), a quarter of
+ * it on a GPU (cov_state.hand_cell_words): a cell that finds no room runs
+ * again with what the launch asked. Measured (words asked a cell, all
+ * cells): EXTREMESET Congruent 300 ~900, fcc 1,372 exact ~180, fcc 10,976
+ * exact ~450, its jitter 1e-9 ~40. */
 #define COV_HAND_WORDS 1024u
 
 /* Applies the environment's test and measurement knobs to s's tiers

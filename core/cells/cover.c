@@ -248,8 +248,59 @@ typedef struct share {
     size_t front, back;    /* cells [front, back) are still untaken */
     uint32_t *left;        /* cells the device left to the host */
     size_t nleft, lhead;
+    struct resume_task **rq; /* cells whose handed patches the host threads resume */
+    size_t nrq, rqhead, rqcap;
+    int helpers;           /* host threads beside the device's */
     int done;              /* the device takes no more batches */
 } share;
+
+/* A device cell with handed patches, for a host thread: the kernel's nq
+ * quadruples (w[0 .. 4 nq)) and the hand words (w[4 nq .. + nhw)), copied
+ * out of the batch's buffers, which the next batch reuses. */
+typedef struct resume_task {
+    uint32_t cell, nq;
+    size_t nhw;
+    uint32_t w[];
+} resume_task;
+
+/* Resumes task t on w's arena: the cell's quadruples (the kernel's and the
+ * resumed patches', made unique) appended to w's list; frees t. */
+static int resume_on(worker *w, resume_task *t)
+{
+    size_t c0 = w->ql.n;
+    int rc = list_append(&w->ql, t->w, t->nq);
+    if (rc == VB_OK)
+        rc = cover_root(w, t->cell, VBQ_RESUME, t->w + 4 * (size_t)t->nq, t->nhw, &w->ql);
+    if (rc == VB_OK)
+        w->ql.n = c0 + cell_unique(w->ql.q + c0, w->ql.n - c0);
+    free(t);
+    return rc;
+}
+
+/* Queues cell's resume (copied here) for the host threads and wakes one.
+ * VB_OK or VB_ENOMEM. */
+static int resume_queue(share *sh, uint32_t cell, const uint32_t *q, uint32_t nq,
+                        const uint32_t *hw, size_t nhw)
+{
+    resume_task *t = malloc(sizeof *t + (4 * (size_t)nq + nhw) * sizeof *t->w);
+    if (!t)
+        return VB_ENOMEM;
+    t->cell = cell;
+    t->nq = nq;
+    t->nhw = nhw;
+    memcpy(t->w, q, 4 * (size_t)nq * sizeof *t->w);
+    memcpy(t->w + 4 * (size_t)nq, hw, nhw * sizeof *t->w);
+    pthread_mutex_lock(&sh->mu);
+    int rc = VB_ARRAY_FIT(sh->rq, sh->rqcap, sh->nrq + 1, 64);
+    if (rc == VB_OK) {
+        sh->rq[sh->nrq++] = t;
+        pthread_cond_signal(&sh->cv);
+    }
+    pthread_mutex_unlock(&sh->mu);
+    if (rc != VB_OK)
+        free(t);
+    return rc == VB_OK ? VB_OK : VB_ENOMEM;
+}
 
 typedef struct hybrid_arg {
     worker *w;
@@ -268,8 +319,13 @@ static void *hybrid_host(void *arg)
         pthread_mutex_lock(&sh->mu);
         uint32_t cell = 0;
         int have = 0;
+        resume_task *task = NULL;
         while (!have && !atomic_load(&jb->failed)) {
-            if (sh->lhead < sh->nleft) {
+            if (sh->rqhead < sh->nrq) {
+                task = sh->rq[sh->rqhead];
+                sh->rq[sh->rqhead++] = NULL;
+                have = 1;
+            } else if (sh->lhead < sh->nleft) {
                 cell = sh->left[sh->lhead++];
                 have = 1;
             } else if (sh->front < sh->back && jb->host_back) {
@@ -284,8 +340,9 @@ static void *hybrid_host(void *arg)
         pthread_mutex_unlock(&sh->mu);
         if (!have)
             return NULL;
-        int rc = cover_one(w, cell);
-        if (rc == VB_OK)
+        /* a resume's cell was counted covered by the device's thread */
+        int rc = task ? resume_on(w, task) : cover_one(w, cell);
+        if (rc == VB_OK && !task)
             covered(jb, 1);
         /* Streamed: a host worker's cells go to the sink as the device's
          * batches do, so that what the host covers is not all certified
@@ -348,18 +405,27 @@ static int hybrid_device(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w0,
             const uint32_t *cq = quads + 4 * (size_t)outs[k].qoff, *hw;
             vb_quad_list *l = jb->sink ? &chunk : &w0->ql;
             size_t c0 = l->n, nhw, np;
+            int nq_moved = 0;
             rc = list_append(l, cq, outs[k].nq);
             if (rc == VB_OK)
                 rc = vb_hand_index_cell(&hx, jb->cells[b0 + k], &hw, &nhw, &np);
-            /* the patches the kernel handed, covered here alone */
+            /* the patches the kernel handed: covered by a host thread
+             * (with the cell's quadruples, taken back out of l), or here
+             * alone when there is none */
             if (rc == VB_OK && nhw) {
                 w0->st.resumed_patches += np;
                 w0->st.resumed_cells++;
-                rc = cover_root(w0, jb->cells[b0 + k], VBQ_RESUME, hw, nhw, l);
+                if (sh->helpers > 0) {
+                    rc = resume_queue(sh, jb->cells[b0 + k], cq, outs[k].nq, hw, nhw);
+                    l->n = c0;
+                    nq_moved = 1;
+                } else {
+                    rc = cover_root(w0, jb->cells[b0 + k], VBQ_RESUME, hw, nhw, l);
+                }
             }
             if (rc != VB_OK)
                 rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
-            else if (jb->sink || nhw)
+            else if (!nq_moved && (jb->sink || nhw))
                 l->n = c0 + cell_unique(l->q + c0, l->n - c0);
         }
         pthread_mutex_lock(&sh->mu);
@@ -391,6 +457,7 @@ static int cover_hybrid(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w, i
     share sh;
     memset(&sh, 0, sizeof sh);
     sh.back = jb->ncells;
+    sh.helpers = nt - 1;
     sh.left = malloc((jb->ncells ? jb->ncells : 1) * sizeof *sh.left);
     if (!sh.left || pthread_mutex_init(&sh.mu, NULL)) {
         free(sh.left);
@@ -432,6 +499,9 @@ static int cover_hybrid(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w, i
     free(ha);
     free(g);
     free(sh.left);
+    for (size_t k = sh.rqhead; k < sh.nrq; k++)
+        free(sh.rq[k]); /* left by a failure */
+    free(sh.rq);
     pthread_mutex_destroy(&sh.mu);
     pthread_cond_destroy(&sh.cv);
     return rc;

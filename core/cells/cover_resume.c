@@ -170,3 +170,25 @@ void vb_hand_index_free(vb_hand_index *x)
     free(x->scratch);
     memset(x, 0, sizeof *x);
 }
+
+int vb_hand_keep_finished(uint32_t *h, size_t words, const uint32_t *cells, size_t ntasks,
+                          const vbq_cell_out *out, size_t *kept)
+{
+    size_t w = 0;
+    *kept = 0;
+    for (size_t at = 0; at + VBQ_HAND_HEAD <= words;) {
+        vbq_frame fr = entry_frame(h + at);
+        size_t n = VBQ_HAND_WORDS(fr.len);
+        if (fr.off >= ntasks || n > words - at)
+            return VB_EINTERNAL;
+        if (out[fr.off].status == VBQ_OK) {
+            fr.off = cells[fr.off];
+            memmove(h + w, h + at, n * sizeof *h);
+            memcpy(h + w, &fr, sizeof fr);
+            w += n;
+        }
+        at += n;
+    }
+    *kept = w;
+    return VB_OK;
+}

@@ -169,6 +169,17 @@ int vb_hand_index_cell(vb_hand_index *x, uint32_t i, const uint32_t **words, siz
 
 void vb_hand_index_free(vb_hand_index *x);
 
+/* Of a launch's handed patches h[0 .. words) (vbq_hand_patch's entries,
+ * each frame's off the task's index k < ntasks in the launch), keeps those
+ * of tasks that finished (out[k].status VBQ_OK) at the front of h, each
+ * off made the task's sphere cells[k]: a task with another status goes
+ * whole to the host, and its entries with it. *kept: their words. VB_OK,
+ * or VB_EINTERNAL for an entry that names no task or runs past words
+ * (nothing kept). The device's driver (gpu/cover_launch.c) and the group
+ * kernel's emulation (tests/gpu/test_cover.c) read entries through it. */
+int vb_hand_keep_finished(uint32_t *h, size_t words, const uint32_t *cells, size_t ntasks,
+                          const vbq_cell_out *out, size_t *kept);
+
 /* Closes a backend; NULL is allowed. */
 void vb_cover_backend_close(vb_cover_backend *be);
 

@@ -260,12 +260,15 @@ VBS_FN double vbq_hi_again(const vbq_arena *ar, vbs_u32 k, const vbq_nb *rec, co
 
 #ifndef __OPENCL_C_VERSION__
 /* The exact decision of a tie cluster on the host (core/cells/
- * cover_cluster.c): the owned labels ids[0 .. n) of a leaf of cell i.
- * Returns 1 when it proved which quadruples the leaf needs and added them
- * (vbq_add_quad), 0 when the leaf must be enumerated, -1 when an arena ran
- * out (o->status set). */
+ * cover_cluster.c): the owned labels ids[0 .. n) of a leaf of cell i,
+ * sorted in place first, so that the quadruples it picks depend on the set
+ * alone (a GPU's group kernel lists a patch's labels in another order than
+ * the host, and hands it such a patch, vbq_hand_patch). Returns 1 when it
+ * proved which quadruples the leaf needs and added them (vbq_add_quad), 0
+ * when the leaf must be enumerated, -1 when an arena ran out (o->status
+ * set). */
 int vbq_host_cluster(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs_u32 i,
-                     const vbs_u32 *ids, vbs_u32 n);
+                     vbs_u32 *ids, vbs_u32 n);
 
 /* The exact decision of a stalled near-tie chain on the host (core/cells/
  * cover_envelope.c) where vbq_envelope_due says so (owned of the keep
@@ -320,13 +323,17 @@ static inline int vbq_cluster_leaf(const vbq_env *e, const vbq_arena *ar, vbq_ce
 }
 #endif
 
+#endif /* VBQ_GROUP_ONLY: the group kernel hands patches too (lane 0) */
+
 #ifdef VBQ_HANDOFF
 /* Hands patch fr of the cell (its list lab[fr->off .. + fr->len) as it was
  * popped) to the host: its entry (VBQ_HAND_WORDS) appended to ar->hand.
  * Returns 1 when written (the caller goes on as if the patch were done; the
  * host covers it alone, and counts it), 0 when the launch takes none or
  * has no room left (the caller hands the whole cell, VBQ_CLUSTER: the
- * driver runs such a cell again with more room, gpu/cover_ocl.c). */
+ * driver runs such a cell again with more room, gpu/cover_ocl.c). The
+ * work-item kernel calls it, and lane 0 of the group kernel (cover_wg.cl)
+ * with the frame it popped. */
 VBS_FN int vbq_hand_patch(const vbq_arena *ar, vbq_cell_out *o, const vbq_frame *fr)
 {
     if (!ar->hand)
@@ -345,6 +352,8 @@ VBS_FN int vbq_hand_patch(const vbq_arena *ar, vbq_cell_out *o, const vbq_frame 
     return 1;
 }
 #endif
+
+#ifndef VBQ_GROUP_ONLY
 
 #ifndef __OPENCL_C_VERSION__
 /* The patches a device handed for cell i (ar->resume, ar->resume_n words

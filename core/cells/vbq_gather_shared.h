@@ -161,8 +161,10 @@ VBS_FN void vbq_env_make(vbq_env *e, const VBS_GLOBAL double *x, const VBS_GLOBA
  * not decide (a tie cluster, an envelope past its filter) to the host and
  * goes on with the rest of its cell (vbq_hand_patch); the host then covers
  * that patch alone (root VBQ_RESUME, core/cells/cover_resume.c), not the
- * whole cell again. A GPU's kernels hand the whole cell (VBQ_CLUSTER). */
-#if defined(__OPENCL_C_VERSION__) && defined(VBQ_WALK_V4_CL)
+ * whole cell again. A GPU's group kernel (gpu/cover_wg.cl) does so where
+ * its build defines VBQ_HANDOFF (gpu/cover_ocl.c); a GPU's work-item
+ * kernel hands the whole cell (VBQ_CLUSTER). */
+#if defined(__OPENCL_C_VERSION__) && defined(VBQ_WALK_V4_CL) && !defined(VBQ_HANDOFF)
 #define VBQ_HANDOFF 1
 #endif
 /* The root of a cover that resumes handed patches (vbq_task_root takes no
@@ -186,7 +188,9 @@ typedef struct vbq_arena {
     VBS_GLOBAL vbq_nb *memo;      /* the cell's records by tree position (NULL: none) */
     VBS_GLOBAL vbs_u32 *memo_tag; /* per slot: its tree position and cell + 1 (0: none) */
 #endif
-#ifdef VBQ_HANDOFF
+#if defined(VBQ_HANDOFF) || !defined(__OPENCL_C_VERSION__)
+    /* On the host always: one layout for the library and the group
+     * kernel's C emulation (tests/gpu/cover_wg_emu.c, with VBQ_HANDOFF). */
     VBS_GLOBAL vbs_u32 *hand;      /* the launch's handed patches (NULL: none, hand cells) */
     VBS_GLOBAL vbs_u32 *hand_used; /* [0] words taken, [1] words written */
     vbs_u32 hand_cap;              /* words of hand */
