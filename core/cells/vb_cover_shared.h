@@ -41,6 +41,20 @@
 
 #include "vb_geom_shared.h"
 
+/* VBQ_FN: a shared function of the cover's hot loops (the records, the
+ * patches' boxes, the walk's parts, the label lanes) that a CPU device's
+ * work-item kernel (VBQ_WALK_V4_CL) inlines at every call, as the host's
+ * compiler does on its own. PoCL's front end drops `inline` (-Dinline=)
+ * and its inliner runs before the optimiser, so it left vbq_nb_make,
+ * vbq_patch_box and vbq_walk_parts as calls (stop 47's perf). Speed only:
+ * the same operations in the same order. GPU kernels and the host get
+ * VBS_FN (the GPU text is unchanged). */
+#if defined(__OPENCL_C_VERSION__) && defined(VBQ_WALK_V4_CL)
+#define VBQ_FN static inline __attribute__((always_inline))
+#else
+#define VBQ_FN VBS_FN
+#endif
+
 /* A neighbour of the base sphere in the cover: f(u) = a . u + b, known to
  * within err for every unit u (|u|_inf <= 1): |a~ - a|_1 + |b~ - b| <= err
  * for the exact a, b of the input decimals. id is the sphere index. */
@@ -78,7 +92,7 @@ VBS_ASSERT_LAYOUT(sizeof(vbq_nb) == 48, "vbq_nb layout shared with OpenCL");
  * (at most 20) roundings of its own non-negative terms; VBQ_TINY covers
  * underflow. Returns 0 when N~ <= 2E (nested or nearly nested spheres: err
  * is infinite and the caller keeps j in every patch), 1 otherwise. */
-VBS_FN int vbq_nb_make(double cix, double ciy, double ciz, double ri, double cjx, double cjy,
+VBQ_FN int vbq_nb_make(double cix, double ciy, double ciz, double ri, double cjx, double cjy,
                        double cjz, double rj, vbs_u32 j, vbq_nb *nb)
 {
     double ci[4] = {cix, ciy, ciz, ri}, cj[4] = {cjx, cjy, cjz, rj};
@@ -149,7 +163,7 @@ VBS_FN int vbq_nb_make(double cix, double ciy, double ciz, double ri, double cjx
  * clamped zeros on each edge, the clamped centre) hold all of them.
  * vbs_face_dir computes each component with at most 6 roundings, so within
  * 6u relative: the box is widened by 8u |x| + VBQ_TINY on each side. */
-VBS_FN void vbq_patch_box(vbs_u32 f, double u0, double u1, double v0, double v1, double m[3],
+VBQ_FN void vbq_patch_box(vbs_u32 f, double u0, double u1, double v0, double v1, double m[3],
                           double h[3])
 {
     double uc = u0 > 0.0 ? u0 : (u1 < 0.0 ? u1 : 0.0);

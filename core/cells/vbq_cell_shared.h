@@ -410,8 +410,9 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
     double slack_i = e->rmax_all - e->r[i], floor_i = vbq_floor(e, i);
 #ifdef VBQ_LANES
     /* A fetching patch is popped again at once with its list lengthened
-     * (the same labels first, in order, then the ring's): on the host the
-     * first `again` labels' lower ends (their maximum again_LO), upper ends
+     * (the same labels first, in order, then the ring's): with the lanes
+     * (the host's AVX2 build, a CPU device's kernel) the first `again`
+     * labels' lower ends (their maximum again_LO), upper ends
      * (ar->hi, written by nothing in between) and lower ends on the parts
      * (again_lg: the same parts) are the doubles of the pass before, so
      * only the ring's labels are evaluated (speed only). */
@@ -504,7 +505,7 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
         vbs_u32 keep = 0u, owned = 0u;
         double hm = -(double)INFINITY; /* every label's hi at most (vbq_combo_may_go) */
 #ifdef VBQ_LANES
-        /* The host's upper ends are kept: a record is read for its id only
+        /* The upper ends are kept: a record is read for its id only
          * where its label survives (most of a long list's do not). */
         if (ar->hi)
             keep = vbq_keep_kept(ar, fr.off, fr.len, top, i, LO, &hm, &owned);

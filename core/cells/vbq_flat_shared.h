@@ -88,7 +88,7 @@ VBS_FN int vbq_looks_flat(const VBS_GLOBAL vbq_nb *nb, const VBS_GLOBAL vbs_u32 
     for (int pass = 0; pass < 2; pass++) {
         double far = -1.0, w2[4] = {0.0, 0.0, 0.0, 0.0};
 #ifdef VBQ_LANES
-        /* the host: the pass in lanes, then the farthest label's e again */
+        /* the pass in lanes, then the farthest label's e again */
         vbs_u32 at;
         vbq_flat_far_lanes(nb, lab, keep, i, p0, v1, v2, &far, &at);
         for (vbs_u32 a = at; a < at + 1u && a < keep; a++) {

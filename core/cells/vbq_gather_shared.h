@@ -493,7 +493,7 @@ VBS_FN int vbq_walk_ring(const vbq_env *e, const vbq_walk *w, vbs_u32 k, vbs_u32
 }
 
 /* vbq_walk_parts one part after the other (by increasing LO; nsub > 0). */
-VBS_FN int vbq_walk_parts1(const vbq_walk *w, const vbq_nb *rec)
+VBQ_FN int vbq_walk_parts1(const vbq_walk *w, const vbq_nb *rec)
 {
     for (vbs_u32 q = 0u; q < w->nsub; q++) {
         vbs_u32 g = w->ord[q];
@@ -514,7 +514,7 @@ VBS_FN int vbq_walk_parts1(const vbq_walk *w, const vbq_nb *rec)
  * in the lanes of one pass, each lane the same operations in the same
  * order as vbq_eval for its part; kept when some lane's upper end reaches
  * its part's LO. */
-VBS_FN int vbq_walk_parts4(const vbq_walk *w, const vbq_nb *rec)
+VBQ_FN int vbq_walk_parts4(const vbq_walk *w, const vbq_nb *rec)
 {
     vbq_v4 ax = VBQ_V4_ALL(rec->ax), ay = VBQ_V4_ALL(rec->ay), az = VBQ_V4_ALL(rec->az);
     vbq_v4 aax = VBQ_V4_ABS(ax), aay = VBQ_V4_ABS(ay), aaz = VBQ_V4_ABS(az);
@@ -528,7 +528,7 @@ VBS_FN int vbq_walk_parts4(const vbq_walk *w, const vbq_nb *rec)
 }
 #endif
 
-VBS_FN int vbq_walk_parts(const vbq_walk *w, const vbq_nb *rec)
+VBQ_FN int vbq_walk_parts(const vbq_walk *w, const vbq_nb *rec)
 {
     if (w->nsub == 0u)
         return 1;

@@ -1,7 +1,8 @@
 /* The direction cover, shared with the kernels (part of vb_cover_shared.h,
  * which includes it after the tree walk of vbq_gather_shared.h and before
  * the cell of vbq_cell_shared.h; include that header, never this one): the
- * host's four-lane forms of a patch's label loops (vbq_cover_cell).
+ * four-lane forms of a patch's label loops (vbq_cover_cell) of the host and
+ * of a CPU device's work-item kernel.
  *
  * A crystal's face cell keeps its whole face layer (and deeper layers) as
  * labels in the patches at its outward normal, where they tie exactly at
@@ -10,26 +11,39 @@
  * fetch (once per part). These loops were the largest share of such a
  * cell's time (stop 47, papers/degenerate-input/results/
  * twocore-stop47-fccx.md). Here they run in the lanes of GCC's and
- * Clang's vectors in the host's AVX2 build (cover_cell_avx2.c; not in
- * OpenCL, not in the plain build, see VBQ_LANES): each lane computes
- * vbq_eval's operations in its order (no contraction), so every enclosure
- * is the same double as the scalar loop's, and the maxima are the same
- * doubles too (see vbq_lo_lanes). The kernels keep the scalar loops. */
+ * Clang's vectors in the host's AVX2 build (cover_cell_avx2.c) and of
+ * OpenCL's double4 in a CPU device's work-item kernel (VBQ_WALK_V4_CL with
+ * the caches, VBQ_CACHES_CL; PoCL builds it for the host's CPU, AVX2 here):
+ * each lane computes vbq_eval's operations in its order (no contraction),
+ * so every enclosure is the same double as the scalar loop's, and the
+ * maxima are the same doubles too (see vbq_lo_lanes). The plain host build
+ * and the GPU kernels keep the scalar loops. */
 #ifndef VBQ_LANES_SHARED_H
 #define VBQ_LANES_SHARED_H
 
 /* Only where the four lanes are one register (AVX: the host's AVX2 build
- * of the cover, cover_cell_avx2.c): in the plain build the compiler splits
- * each vector into SSE2 halves and lane accesses, and these loops measured
- * slower than the scalar ones there (fcc14_exact face cells, one thread:
- * 1.56 -> 2.15 ms a cell), so that build keeps the kernels' loops. */
-#if defined(VBQ_WALK_V4) && !defined(__OPENCL_C_VERSION__) && defined(__AVX__)
+ * of the cover, cover_cell_avx2.c, and PoCL's kernels for an AVX CPU,
+ * which define __AVX__ as the host's compilers do): in the plain build the
+ * compiler splits each vector into SSE2 halves and lane accesses, and these
+ * loops measured slower than the scalar ones there (fcc14_exact face
+ * cells, one thread: 1.56 -> 2.15 ms a cell), so that build keeps the
+ * kernels' loops. The upper ends go to ar->hi, which a kernel has with
+ * VBQ_CACHES only. */
+#if defined(VBQ_WALK_V4) && defined(VBQ_CACHES) && defined(__AVX__)
 #define VBQ_LANES 1
+/* A lane mask of four 64-bit integers, and its element type. */
+#ifdef __OPENCL_C_VERSION__
+#define VBQ_M4(a, b, c, d) ((long4)((a), (b), (c), (d)))
+typedef long vbq_i64_lane;
+#else
+#define VBQ_M4(a, b, c, d) ((vbq_m4){(a), (b), (c), (d)})
+typedef long long vbq_i64_lane;
+#endif
 
 /* vbq_eval of the four records r[0..3] over one box (m, h), lane l for
  * r[l]: the lower ends in *lo, the upper in *hi. */
-static inline void vbq_eval_lanes(const vbq_nb *const r[4], const vbq_v4 pm[3],
-                                  const vbq_v4 pam[3], const vbq_v4 ph[3], vbq_v4 *lo, vbq_v4 *hi)
+VBQ_FN void vbq_eval_lanes(const VBS_GLOBAL vbq_nb *const r[4], const vbq_v4 pm[3],
+                           const vbq_v4 pam[3], const vbq_v4 ph[3], vbq_v4 *lo, vbq_v4 *hi)
 {
     vbq_v4 ax = VBQ_V4(r[0]->ax, r[1]->ax, r[2]->ax, r[3]->ax);
     vbq_v4 ay = VBQ_V4(r[0]->ay, r[1]->ay, r[2]->ay, r[3]->ay);
@@ -57,8 +71,8 @@ static inline void vbq_eval_lanes(const vbq_nb *const r[4], const vbq_v4 pm[3],
  * positive, and a positive double has one representation, so the order of
  * the comparisons only picks among equal doubles; NaN is never picked
  * (every comparison with it is false), as in the loop. */
-static inline double vbq_lo_lanes(const vbq_arena *ar, vbs_u32 off, vbs_u32 k0, vbs_u32 len,
-                                  const double m[3], const double h[3], double LO0)
+VBQ_FN double vbq_lo_lanes(const vbq_arena *ar, vbs_u32 off, vbs_u32 k0, vbs_u32 len,
+                           const double m[3], const double h[3], double LO0)
 {
     vbq_v4 pm[3], pam[3], ph[3];
     for (int a = 0; a < 3; a++) {
@@ -69,14 +83,18 @@ static inline double vbq_lo_lanes(const vbq_arena *ar, vbs_u32 off, vbs_u32 k0, 
     vbq_v4 best = VBQ_V4_ALL(LO0);
     vbs_u32 k = k0;
     for (; k + 4u <= len; k += 4u) {
-        const vbq_nb *r[4];
+        const VBS_GLOBAL vbq_nb *r[4];
         for (int l = 0; l < 4; l++)
             r[l] = &ar->nb[ar->lab[off + k + (vbs_u32)l]];
         vbq_v4 lo, hi;
         vbq_eval_lanes(r, pm, pam, ph, &lo, &hi);
         best = VBQ_V4_PICK(lo > best, lo, best);
         if (ar->hi)
+#ifdef __OPENCL_C_VERSION__
+            vstore4(hi, 0, ar->hi + k);
+#else
             __builtin_memcpy(ar->hi + k, &hi, sizeof hi);
+#endif
     }
     double LO = best[0];
     for (int l = 1; l < 4; l++)
@@ -97,8 +115,8 @@ static inline double vbq_lo_lanes(const vbq_arena *ar, vbs_u32 off, vbs_u32 k0, 
  * part g (vbq_sub_box), the four parts in the lanes, the labels in the
  * loop's order (each lane is the scalar loop of its part; k0 > 0 goes on
  * where an earlier pass over the same parts stopped, lg0 its result). */
-static inline void vbq_sub_lo_lanes(const vbq_arena *ar, vbs_u32 off, vbs_u32 k0, vbs_u32 len,
-                                    const vbq_sub sub[4], const double lg0[4], double lg[4])
+VBQ_FN void vbq_sub_lo_lanes(const vbq_arena *ar, vbs_u32 off, vbs_u32 k0, vbs_u32 len,
+                             const vbq_sub sub[4], const double lg0[4], double lg[4])
 {
     vbq_v4 pm[3], pam[3], ph[3];
     for (int a = 0; a < 3; a++) {
@@ -108,8 +126,8 @@ static inline void vbq_sub_lo_lanes(const vbq_arena *ar, vbs_u32 off, vbs_u32 k0
     }
     vbq_v4 best = VBQ_V4(lg0[0], lg0[1], lg0[2], lg0[3]);
     for (vbs_u32 k = k0; k < len; k++) {
-        const vbq_nb *rec = &ar->nb[ar->lab[off + k]];
-        const vbq_nb *r[4] = {rec, rec, rec, rec};
+        const VBS_GLOBAL vbq_nb *rec = &ar->nb[ar->lab[off + k]];
+        const VBS_GLOBAL vbq_nb *r[4] = {rec, rec, rec, rec};
         vbq_v4 lo, hi;
         vbq_eval_lanes(r, pm, pam, ph, &lo, &hi);
         best = VBQ_V4_PICK(lo > best, lo, best);
@@ -123,8 +141,8 @@ static inline void vbq_sub_lo_lanes(const vbq_arena *ar, vbs_u32 off, vbs_u32 k0
  * lab[top ...]; returns how many, with *owned those of them above the
  * base i and *hm the largest upper end (from its value on entry, `hi >
  * hm`), as vbq_cover_cell's loop. */
-static inline vbs_u32 vbq_keep_kept(const vbq_arena *ar, vbs_u32 off, vbs_u32 len, vbs_u32 top,
-                                    vbs_u32 i, double LO, double *hm, vbs_u32 *owned)
+VBQ_FN vbs_u32 vbq_keep_kept(const vbq_arena *ar, vbs_u32 off, vbs_u32 len, vbs_u32 top,
+                             vbs_u32 i, double LO, double *hm, vbs_u32 *owned)
 {
     vbs_u32 keep = 0u, own = 0u;
     double best = *hm;
@@ -149,9 +167,10 @@ static inline vbs_u32 vbq_keep_kept(const vbq_arena *ar, vbs_u32 off, vbs_u32 le
  * owned) and *at = the first position that has it, as the scalar loop's
  * `d2 > far` finds it. Labels a, a + 4, ... share a lane, which keeps its
  * own first largest; the lanes are joined by value, then by position. */
-static inline void vbq_flat_far_lanes(const vbq_nb *nb, const vbs_u32 *lab, vbs_u32 keep,
-                                      vbs_u32 i, const double p0[4], const double v1[4],
-                                      const double v2[4], double *far, vbs_u32 *at)
+VBQ_FN void vbq_flat_far_lanes(const VBS_GLOBAL vbq_nb *nb, const VBS_GLOBAL vbs_u32 *lab,
+                               vbs_u32 keep, vbs_u32 i, const double p0[4],
+                               const double v1[4], const double v2[4], double *far,
+                               vbs_u32 *at)
 {
     vbq_v4 P[4], V1[4], V2[4];
     for (int k = 0; k < 4; k++) {
@@ -160,15 +179,15 @@ static inline void vbq_flat_far_lanes(const vbq_nb *nb, const vbs_u32 *lab, vbs_
         V2[k] = VBQ_V4_ALL(v2[k]);
     }
     vbq_v4 best = VBQ_V4_ALL(-1.0), none = best;
-    vbq_m4 pos = VBQ_V4M_ALL(0LL), bestpos = VBQ_V4M_ALL((long long)keep);
+    vbq_m4 pos = VBQ_V4M_ALL((vbq_i64_lane)0), bestpos = VBQ_V4M_ALL((vbq_i64_lane)keep);
     for (vbs_u32 a = 0u; a < keep; a += 4u) {
-        const vbq_nb *r[4];
-        long long own[4];
+        const VBS_GLOBAL vbq_nb *r[4];
+        vbq_i64_lane own[4];
         for (vbs_u32 l = 0u; l < 4u; l++) {
             r[l] = &nb[lab[a + l < keep ? a + l : a]];
-            own[l] = a + l < keep && r[l]->id > i ? -1LL : 0LL;
+            own[l] = a + l < keep && r[l]->id > i ? -1 : 0;
         }
-        vbq_m4 owned = {own[0], own[1], own[2], own[3]};
+        vbq_m4 owned = VBQ_M4(own[0], own[1], own[2], own[3]);
         vbq_v4 w[4] = {VBQ_V4(r[0]->ax, r[1]->ax, r[2]->ax, r[3]->ax) - P[0],
                        VBQ_V4(r[0]->ay, r[1]->ay, r[2]->ay, r[3]->ay) - P[1],
                        VBQ_V4(r[0]->az, r[1]->az, r[2]->az, r[3]->az) - P[2],
@@ -183,7 +202,7 @@ static inline void vbq_flat_far_lanes(const vbq_nb *nb, const vbs_u32 *lab, vbs_
         d2 = VBQ_V4_PICK(owned, d2, none);
         vbq_m4 up = d2 > best;
         best = VBQ_V4_PICK(up, d2, best);
-        pos = VBQ_V4M_ALL((long long)a) + (vbq_m4){0, 1, 2, 3};
+        pos = VBQ_V4M_ALL((vbq_i64_lane)a) + VBQ_M4(0, 1, 2, 3);
         bestpos = (pos & up) | (bestpos & ~up);
     }
     double f = -1.0;
