@@ -92,47 +92,6 @@ int vbq_arena_make(vbq_arena *a, uint32_t nb, uint32_t lab, uint32_t st, uint32_
 #define VBQ_ST0 512u
 #define VBQ_Q0 512u
 
-/* The length of q's strictly increasing prefix (n: q is canonical). */
-static size_t sorted_run(const uint32_t (*q)[4], size_t n)
-{
-    size_t k = 1;
-    while (k < n && vb_quad_cmp(q[k - 1], q[k]) < 0)
-        k++;
-    return n ? k : 0;
-}
-
-/* Drops the repeats of sorted q; returns how many are left. */
-static size_t drop_repeats(uint32_t (*q)[4], size_t n)
-{
-    size_t k = n ? 1 : 0;
-    for (size_t a = 1; a < n; a++)
-        if (vb_quad_cmp(q[a], q[k - 1]) != 0)
-            memcpy(q[k++], q[a], sizeof *q);
-    return k;
-}
-
-/* One cell's n quadruples made unique (a device's root-patch tasks may
- * repeat some); returns how many are left. Already increasing: unchanged. */
-static size_t cell_unique(uint32_t (*q)[4], size_t n)
-{
-    if (sorted_run((const uint32_t(*)[4])q, n) == n)
-        return n;
-    qsort(q, n, sizeof *q, vb_quad_cmp);
-    return drop_repeats(q, n);
-}
-
-/* Appends n quadruples to l. VB_OK or VB_ENOMEM. */
-static int list_append(vb_quad_list *l, const uint32_t *q, size_t n)
-{
-    if (n == 0)
-        return VB_OK;
-    if (VB_ARRAY_FIT(l->q, l->cap, l->n + n, 4096) != VB_OK)
-        return VB_ENOMEM;
-    memcpy(l->q + l->n, q, n * sizeof *l->q);
-    l->n += n;
-    return VB_OK;
-}
-
 /* A cover's counters into st (the caller counts the cell). */
 static void stats_add(vb_cover_stats *st, const vbq_cell_out *o)
 {
@@ -174,7 +133,7 @@ static int cover_root(worker *w, uint32_t i, uint32_t root, const uint32_t *resu
         w->st.retries++;
     }
     stats_add(&w->st, &o);
-    return list_append(l, w->ar.q, o.nq);
+    return vb_quad_list_append(l, w->ar.q, o.nq);
 }
 
 static int cover_one(worker *w, uint32_t i)
@@ -268,11 +227,11 @@ typedef struct resume_task {
 static int resume_on(worker *w, resume_task *t)
 {
     size_t c0 = w->ql.n;
-    int rc = list_append(&w->ql, t->w, t->nq);
+    int rc = vb_quad_list_append(&w->ql, t->w, t->nq);
     if (rc == VB_OK)
         rc = cover_root(w, t->cell, VBQ_RESUME, t->w + 4 * (size_t)t->nq, t->nhw, &w->ql);
     if (rc == VB_OK)
-        w->ql.n = c0 + cell_unique(w->ql.q + c0, w->ql.n - c0);
+        w->ql.n = c0 + vb_quad_cell_unique(w->ql.q + c0, w->ql.n - c0);
     free(t);
     return rc;
 }
@@ -406,7 +365,7 @@ static int hybrid_device(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w0,
             vb_quad_list *l = jb->sink ? &chunk : &w0->ql;
             size_t c0 = l->n, nhw, np;
             int nq_moved = 0;
-            rc = list_append(l, cq, outs[k].nq);
+            rc = vb_quad_list_append(l, cq, outs[k].nq);
             if (rc == VB_OK)
                 rc = vb_hand_index_cell(&hx, jb->cells[b0 + k], &hw, &nhw, &np);
             /* the patches the kernel handed: covered by a host thread
@@ -426,7 +385,7 @@ static int hybrid_device(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w0,
             if (rc != VB_OK)
                 rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
             else if (!nq_moved && (jb->sink || nhw))
-                l->n = c0 + cell_unique(l->q + c0, l->n - c0);
+                l->n = c0 + vb_quad_cell_unique(l->q + c0, l->n - c0);
         }
         pthread_mutex_lock(&sh->mu);
         for (size_t k = 0; k < nl; k++)
@@ -507,38 +466,12 @@ static int cover_hybrid(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w, i
     return rc;
 }
 
-int vb_quad_cmp(const void *pa, const void *pb)
-{
-    const uint32_t *a = pa, *b = pb;
-    for (int k = 0; k < 4; k++)
-        if (a[k] != b[k])
-            return a[k] < b[k] ? -1 : 1;
-    return 0;
-}
-
-void vb_quad_list_free(vb_quad_list *l)
-{
-    free(l->q);
-    free(l->verdict);
-    memset(l, 0, sizeof *l);
-}
-
 void vb_cover_backend_close(vb_cover_backend *be)
 {
     if (be && be->judge_close)
         be->judge_close(be);
     if (be && be->close)
         be->close(be);
-}
-
-int vb_quad_list_canonical(vb_quad_list *l, int nt)
-{
-    if (sorted_run((const uint32_t(*)[4])l->q, l->n) == l->n)
-        return VB_OK; /* a part the cover sorted already */
-    int rc = vb_psort(l->q, l->n, sizeof *l->q, vb_quad_cmp, nt);
-    if (rc == VB_OK)
-        l->n = drop_repeats(l->q, l->n);
-    return rc;
 }
 
 /* Workers' quadruples of one run appended to out, sorted and unique.

@@ -103,6 +103,14 @@ void vb_quad_list_free(vb_quad_list *l);
  * lexicographic on the four ids; <0, 0 or >0. */
 int vb_quad_cmp(const void *pa, const void *pb);
 
+/* One cell's n quadruples q made unique (a device's root-patch tasks or
+ * resumed patches may repeat some): sorted where not already increasing,
+ * repeats dropped; returns how many are left. */
+size_t vb_quad_cell_unique(uint32_t (*q)[4], size_t n);
+
+/* Appends n quadruples q to l (grown as needed). VB_OK or VB_ENOMEM. */
+int vb_quad_list_append(vb_quad_list *l, const uint32_t *q, size_t n);
+
 /* A device that covers cells (gpu/cover_ocl.c): the same vbq_cover_cell on
  * the device, with fixed arenas. */
 typedef struct vb_cover_backend vb_cover_backend;
