@@ -362,6 +362,10 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
      * 211,440-atom tiling in one), mostly protein cells that hand none: a
      * quarter of a CPU device's room a cell, grown as a launch asks. */
     s->k_hand = (cpu && !s->wg) || gpu_hand;
+    /* A GPU's host threads are idle, so they resume the handed patches
+     * (vb_cover.h); VORBALL_COVER_RESUME_SPREAD=1|0 overrides (tests). */
+    const char *kr = getenv("VORBALL_COVER_RESUME_SPREAD");
+    be->resume_spread = kr && *kr ? strcmp(kr, "0") != 0 : s->wg;
     s->hand_cell_words = s->wg ? COV_HAND_WORDS / 4 : COV_HAND_WORDS;
     t0->budget = s->wg ? budget : 0u;
     th->k = s->k_item;

@@ -374,7 +374,7 @@ static int hybrid_device(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w0,
             if (rc == VB_OK && nhw) {
                 w0->st.resumed_patches += np;
                 w0->st.resumed_cells++;
-                if (sh->helpers > 0) {
+                if (sh->helpers > 0 && be->resume_spread) {
                     rc = resume_queue(sh, jb->cells[b0 + k], cq, outs[k].nq, hw, nhw);
                     l->n = c0;
                     nq_moved = 1;

@@ -15,7 +15,9 @@
 #   are the host's own, each counted once (a patch resumed twice, or the
 #   kernel's share of a handed cell counted with a whole host cover, would
 #   show);
-# - the vertex rows equal to ref's.
+# - the vertex rows equal to ref's;
+# - the same with the handed patches resumed by the host threads
+#   (VORBALL_COVER_RESUME_SPREAD=1, a GPU's default) instead of the device's.
 # The inputs: the exact sc and fcc blocks (tie clusters), 1,000 random equal
 # balls (envelopes of more than 32 owned labels) and sc jittered 1e-12
 # (envelopes the double filter leaves undecided).
@@ -45,5 +47,13 @@ for in in equal-radius/sc equal-radius/fcc equal-radius/random-1000 inputs/sc_ji
     [ "$pc" = "$pr" ] || fail "$name: $pc patches on PoCL, $pr on ref"
     [ "$(vertex_lines "$name.cpu.tsv")" = "$(vertex_lines "$name.ref.tsv")" ] ||
         fail "$name: PoCL wrote other vertices"
+    VORBALL_COVER_RESUME_SPREAD=1 run 0 "$name.spread.err" "$vorball" vertices "$corpus/$in.xyzr" \
+        --device cpu --threads 2 --stats -o "$name.spread.tsv"
+    [ "$(stat cover_resumed_patches "$name.spread.err")" = "$res" ] ||
+        fail "$name: resumed by the host threads: other patches"
+    [ "$(stat cover_patches "$name.spread.err")" = "$pr" ] ||
+        fail "$name: resumed by the host threads: other patch count"
+    [ "$(vertex_lines "$name.spread.tsv")" = "$(vertex_lines "$name.ref.tsv")" ] ||
+        fail "$name: resumed by the host threads: other vertices"
 done
 echo "ok: handed patches resumed alone, no cell covered again"
