@@ -364,27 +364,24 @@ static int hybrid_device(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w0,
             const uint32_t *cq = quads + 4 * (size_t)outs[k].qoff, *hw;
             vb_quad_list *l = jb->sink ? &chunk : &w0->ql;
             size_t c0 = l->n, nhw, np;
-            int nq_moved = 0;
-            rc = vb_quad_list_append(l, cq, outs[k].nq);
-            if (rc == VB_OK)
-                rc = vb_hand_index_cell(&hx, jb->cells[b0 + k], &hw, &nhw, &np);
-            /* the patches the kernel handed: covered by a host thread
-             * (with the cell's quadruples, taken back out of l), or here
-             * alone when there is none */
+            rc = vb_hand_index_cell(&hx, jb->cells[b0 + k], &hw, &nhw, &np);
+            /* the patches the kernel handed: resumed with the cell's
+             * quadruples by a host thread, or here alone when none is
+             * beside this one */
+            int queued = rc == VB_OK && nhw && sh->helpers > 0 && be->resume_spread;
+            if (queued)
+                rc = resume_queue(sh, jb->cells[b0 + k], cq, outs[k].nq, hw, nhw);
+            else if (rc == VB_OK)
+                rc = vb_quad_list_append(l, cq, outs[k].nq);
             if (rc == VB_OK && nhw) {
                 w0->st.resumed_patches += np;
                 w0->st.resumed_cells++;
-                if (sh->helpers > 0 && be->resume_spread) {
-                    rc = resume_queue(sh, jb->cells[b0 + k], cq, outs[k].nq, hw, nhw);
-                    l->n = c0;
-                    nq_moved = 1;
-                } else {
+                if (!queued)
                     rc = cover_root(w0, jb->cells[b0 + k], VBQ_RESUME, hw, nhw, l);
-                }
             }
             if (rc != VB_OK)
                 rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
-            else if (!nq_moved && (jb->sink || nhw))
+            else if (!queued && (jb->sink || nhw))
                 l->n = c0 + vb_quad_cell_unique(l->q + c0, l->n - c0);
         }
         pthread_mutex_lock(&sh->mu);
