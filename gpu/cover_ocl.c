@@ -10,6 +10,7 @@
  * read-back: gpu/cover_launch.c.
  *
  * Device memory within a budget: vbg_cover_state.h. */
+#include <stdio.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -247,6 +248,14 @@ static int kernel_get(vb_ctx *ctx, vbg_runtime *rt, const char *file, const char
                       const char *name, cl_kernel *k)
 {
     cl_program prog;
+    /* VORBALL_COVER_CL_OPTS: build options appended to the cover kernels'
+     * (measurements: -DVBQ_HOST_FORM gives a GPU the host's forms) */
+    const char *xo = getenv("VORBALL_COVER_CL_OPTS");
+    char buf[512];
+    if (xo && *xo) {
+        snprintf(buf, sizeof buf, "%s %s", opts ? opts : "", xo);
+        opts = buf;
+    }
     int rc = vbg_program_get(ctx, rt, file, opts, &prog);
     cl_int err = CL_SUCCESS;
     if (rc == VB_OK) {

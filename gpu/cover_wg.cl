@@ -478,20 +478,13 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
             }
             /* a stalled near-tie chain: decided in doubles by lane 0, or by
              * the host where a sign needs its exact fallback */
-            if (vbq_envelope_due(&e, &fr, nb, lab + top, keep, owned, act, closed)
-#ifndef VBQ_GPU_FORM
-                /* as the work-item kernel (vbq_cover_cell): this file's C
-                 * emulation (tests/gpu/cover_wg_emu.c) has the host's form */
-                && (owned > VBQ_CLUSTER_OWNED || vbq_envelope_sure(&e, &ar, i, &fr, top, keep))
-#endif
-            ) {
-#ifndef VBQ_GPU_FORM
+            /* (as the work-item kernel, vbq_cover_cell) */
+            if (vbq_envelope_due(&e, &fr, nb, lab + top, keep, owned, act, closed) &&
+                (owned > VBQ_CLUSTER_OWNED || vbq_envelope_sure(&e, &ar, i, &fr, top, keep))) {
                 if (lane == 0u && owned > VBQ_ENV_FILTER_OWNED) {
                     if (!wg_hand(&ar, &o, &fr))
                         sh[S_STATUS] = VBQ_CLUSTER;
-                } else
-#endif
-                if (lane == 0u) {
+                } else if (lane == 0u) {
                     int he = vbq_envelope_filter(&e, &ar, &o, i, &fr, top, keep);
                     /* what the filter added is the host's too (exact signs) */
                     if (he == 2 && !wg_hand(&ar, &o, &fr))

@@ -126,18 +126,25 @@ VBQ_FN int vbq_nb_make(double cix, double ciy, double ciz, double ri, double cjx
 }
 
 /* VBQ_GPU_FORM: a GPU's kernels (OpenCL without the CPU devices'
- * VBQ_WALK_V4_CL) keep the forms timed on an H100 at stop 44 where a later
+ * VBQ_WALK_V4_CL) keep two forms timed on an H100 at stop 44 where a later
  * host change made them slower there (stop 45, run A: the capsid's cover
  * kernels +10-20 %): the champions' pair determinants made per label
- * tested, the flatness trigger's plane only, the envelope decision at
- * stalled chains only. Speed only: every form reaches the same vertices. */
-#if defined(__OPENCL_C_VERSION__) && !defined(VBQ_WALK_V4_CL)
+ * tested and the flatness trigger's plane only. Speed only: every form
+ * reaches the same vertices. Since stop 49 they take the host's envelope
+ * decision at deep leaves (with its owned limits) and the ring's near-tie
+ * jump: on an H100 (bench best of 3, gpu = ref rows) fcc 10,976 jittered
+ * 1e-9 0.299 -> 0.167 s with seed 1 (its 127,817 quadruples -> 76,537,
+ * the large tier's kernel 0.134 -> 0.021 s) and 0.183 -> 0.153 s with seed
+ * 10,976, against their random twin's 0.087-0.094; the capsid 0.262 ->
+ * 0.271, its cells the host covered whole 184 -> 5 (the flatness space pass
+ * alone cost it 0.302). VBQ_HOST_FORM (VORBALL_COVER_CL_OPTS) gives a GPU
+ * every host form, for measurements. */
+#if defined(__OPENCL_C_VERSION__) && !defined(VBQ_WALK_V4_CL) && !defined(VBQ_HOST_FORM)
 #define VBQ_GPU_FORM 1
 #define VBQ_FLAT_SPACE 0         /* vbq_looks_flat: the plane only */
-#define VBQ_ENV_DEEP_ACT (-1)    /* vbq_envelope_due: no deep leaves (no act is -1) */
-#define VBQ_ENV_DEEP(act, fr) 0  /* vbq_envelope_due: no decision for few owned labels */
 #else
 #define VBQ_FLAT_SPACE 1
+#endif
 #define VBQ_ENV_DEEP_ACT 3       /* the deep leaves' act */
 /* vbq_envelope_due: a deep leaf, or a patch past this level, is decided
  * with 3 or more owned labels. A jittered face's near-tie chain keeps one
@@ -149,7 +156,6 @@ VBQ_FN int vbq_nb_make(double cix, double ciy, double ciz, double ri, double cjx
  * -> 0.32, 4 0.27) */
 #define VBQ_ENV_DEEP_LEVEL 6u
 #define VBQ_ENV_DEEP(act, fr) ((act) == 3 || ((act) == 1 && (fr)->level >= VBQ_ENV_DEEP_LEVEL))
-#endif
 
 /* ---- the patches --------------------------------------------------------- */
 

@@ -620,12 +620,8 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
                           owned > VBQ_CLUSTER_OWNED) ||
                          (owned >= 3u && VBQ_ENV_DEEP(act, &fr)))) {
 #ifdef __OPENCL_C_VERSION__
-            if (vbq_envelope_due(e, &fr, ar->nb, ar->lab + top, keep, owned, act, closed)
-#ifndef VBQ_GPU_FORM
-                && (owned > VBQ_CLUSTER_OWNED || vbq_envelope_sure(e, ar, i, &fr, top, keep))
-#endif
-            ) {
-#ifndef VBQ_GPU_FORM
+            if (vbq_envelope_due(e, &fr, ar->nb, ar->lab + top, keep, owned, act, closed) &&
+                (owned > VBQ_CLUSTER_OWNED || vbq_envelope_sure(e, ar, i, &fr, top, keep))) {
                 /* past the cubic filter's limit: the host's hull decides */
                 if (owned > VBQ_ENV_FILTER_OWNED) {
 #ifdef VBQ_HANDOFF
@@ -635,7 +631,6 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
                     o->status = VBQ_CLUSTER;
                     return;
                 }
-#endif
                 int he = vbq_envelope_filter(e, ar, o, i, &fr, top, keep);
 #ifdef VBQ_HANDOFF
                 /* what the filter added is the host's too (exact signs) */

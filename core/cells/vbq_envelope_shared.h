@@ -141,7 +141,6 @@ VBS_FN int vbq_envelope_due(const vbq_env *e, const vbq_frame *fr, const VBS_GLO
     return 1;
 }
 
-#ifndef VBQ_GPU_FORM
 /* Does the double filter alone decide every owned triple of a due patch
  * (vbq_envelope_filter would not return 2)? Adds nothing. A deep patch of
  * few owned labels (VBQ_ENV_DEEP) is decided only then, on every backend:
@@ -167,6 +166,5 @@ VBS_FN int vbq_envelope_sure(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, c
     }
     return 1;
 }
-#endif
 
 #endif

@@ -41,7 +41,7 @@
  * exclusion (1: a list that did not shrink), with at most this many owned labels (C(owned, 3)
  * triples) and labels in all. Measured (cover alone, 1 thread, loaded 2 cores): jittered fcc
  * 10,976 4.86 s without, 4.73 s with; exact 5.88 s either way; no owned minimum 4.68 s jittered,
- * 6.37 s exact. 32 owned (24 on a GPU: VBQ_GPU_FORM) as the host skips pairs tying off the
+ * 6.37 s exact. 32 owned as the host skips pairs tying off the
  * patch: sc 2,744 jittered 1e-12 4.61 -> 4.29 s, sc 1,000 0.48 -> 0.48-0.53 (48: 3.8, 0.65).
  * Off a GPU the hull decision (core/cells/cover_env_hull.c) takes 96 owned labels, and up to
  * VBQ_ENV_OWNED and VBQ_ENV_KEEP at deep patches (VBQ_ENV_DEEP, past VBQ_ENV_DEEP_LEVEL: a
@@ -49,15 +49,9 @@
  * lists at every stalled level cost fcc 1,372 exact 0.25 -> 0.34 s, its exact ties many zero
  * signs). */
 #define VBQ_ENV_STALL 1u
-#ifdef VBQ_GPU_FORM
-#define VBQ_ENV_OWNED_SHALLOW 24u
-#define VBQ_ENV_OWNED 24u
-#define VBQ_ENV_KEEP 96u
-#else
 #define VBQ_ENV_OWNED_SHALLOW 96u
 #define VBQ_ENV_OWNED 1024u
 #define VBQ_ENV_KEEP 1024u
-#endif
 #define VBQ_ENV_KEEP_SHALLOW 96u
 /* The kernels decide a due patch in doubles by testing every owned triple
  * (vbq_envelope_filter), cubic in the owned labels: a CPU device's kernel

@@ -49,13 +49,7 @@ VBS_FN void vbq_sub_box(vbs_u32 f, double u0, double u1, double v0, double v1, v
 #define VBQ_RING_JUMP 1e3
 VBS_FN vbs_u32 vbq_near_tie(double LO, double far)
 {
-#ifdef VBQ_GPU_FORM
-    (void)LO;
-    (void)far;
-    return 0u;
-#else
     return LO > 0.0 && 1.0 / LO > VBQ_RING_JUMP * far ? 1u : 0u;
-#endif
 }
 
 /* The outer radius of the next ring a patch fetches: out to the reach LO
