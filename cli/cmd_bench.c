@@ -64,7 +64,7 @@ static const char *base_name(const char *p)
     return s ? s + 1 : p;
 }
 
-static void row(FILE *f, int json, int first, const char *input, size_t atoms,
+static void row(vb_ctx *ctx, FILE *f, int json, int first, const char *input, size_t atoms,
                 const vb_vertices_result *r, const vb_cli_vertex_totals *tot, double first_total,
                 double device_setup)
 {
@@ -104,6 +104,13 @@ static void row(FILE *f, int json, int first, const char *input, size_t atoms,
                 p->cover_clocks.kernel_s[3], (unsigned long long)p->cover_clocks.launches[0],
                 (unsigned long long)p->cover_clocks.launches[1], (unsigned long long)p->cover_clocks.launches[2],
                 (unsigned long long)p->cover_clocks.launches[3]);
+        /* Where the cover's time went, step by step (the --stats lines
+         * cover_*: its device's launches and the host's side). */
+        vb_stat_fields fs;
+        fs.n = 0;
+        vb_vertices_stats(ctx, r, &fs);
+        fputs(", \"cover_steps\": ", f);
+        vb_stat_fields_write_json(f, &fs, 0, "cover_");
         if (vb_world_size() > 1)
             fprintf(f, ", \"ranks\": %d, \"combine\": %.6f, \"merged_repeats\": %zu}",
                     vb_world_size(), tot->t_combine, tot->repeats);
@@ -235,7 +242,7 @@ int vb_cmd_bench(int argc, char **argv)
                 }
             }
             if (rc == VB_OK && rank0) {
-                row(out, json, first, base_name(inputs[k]), set->n, &best, &best_tot,
+                row(ctx, out, json, first, base_name(inputs[k]), set->n, &best, &best_tot,
                     first_total, cold || !dev ? 0.0 : vb_vertices_open_seconds(dev));
                 fflush(out);
                 first = 0;

@@ -40,9 +40,11 @@ int vb_cli_vertices_part(vb_ctx *ctx, vb_vertices_config *cfg, vb_cover_options 
     X(s->cover_quads) X(s->cover_neighbours)                                                      \
     X(st->filter_calls) X(st->filter_failures) X(st->exact_evals) X(st->candidates)               \
     X(st->certified) X(st->rejected) X(st->judged_vertex) X(st->judged_not) X(st->judged_open)    \
-    X(tot->rejected) X(tot->candidates) X(tot->repaired) X(s->cover_clocks.launches[0])                 \
-    X(s->cover_clocks.launches[1]) X(s->cover_clocks.launches[2]) X(s->cover_clocks.launches[3])                       \
-    X(s->cover_clocks.tasks[0]) X(s->cover_clocks.tasks[1]) X(s->cover_clocks.tasks[2]) X(s->cover_clocks.tasks[3])
+    X(tot->rejected) X(tot->candidates) X(tot->repaired) X(s->cover_clocks.launches[0])           \
+    X(s->cover_clocks.launches[1]) X(s->cover_clocks.launches[2])                               \
+    X(s->cover_clocks.launches[3]) X(s->cover_clocks.launches[4]) X(s->cover_clocks.tasks[0])   \
+    X(s->cover_clocks.tasks[1]) X(s->cover_clocks.tasks[2]) X(s->cover_clocks.tasks[3])         \
+    X(s->cover_clocks.tasks[4]) X(s->cover_steps.batches) X(s->cover_steps.resume_queued)
 
 /* The times whose maximum over the ranks is the job's. */
 #define MAXED(X)                                                                                   \
@@ -50,15 +52,21 @@ int vb_cli_vertices_part(vb_ctx *ctx, vb_vertices_config *cfg, vb_cover_options 
     X(s->times.matching) X(s->times.targeted) X(s->times.tangent) X(s->times.completion)          \
     X(s->t_cover_device) X(s->t_cert_filter) X(res->t_setup) X(res->t_setup_wait)                \
     X(res->t_certify) X(res->t_total) X(res->t_certify_overlap) X(s->device_bytes_peak)           \
-    X(s->cover_max_cell_neighbours) X(res->max_dist) X(s->cover_clocks.kernel_s[0])                     \
-    X(s->cover_clocks.kernel_s[1]) X(s->cover_clocks.kernel_s[2]) X(s->cover_clocks.kernel_s[3])
+    X(s->cover_max_cell_neighbours) X(res->max_dist) X(s->cover_clocks.kernel_s[0])           \
+    X(s->cover_clocks.kernel_s[1]) X(s->cover_clocks.kernel_s[2])                               \
+    X(s->cover_clocks.kernel_s[3]) X(s->cover_clocks.kernel_s[4])                               \
+    X(s->cover_clocks.launch_s[0]) X(s->cover_clocks.launch_s[1])                               \
+    X(s->cover_clocks.launch_s[2]) X(s->cover_clocks.launch_s[3])                               \
+    X(s->cover_clocks.launch_s[4]) X(s->cover_steps.dispatch_s) X(s->cover_steps.sink_s)        \
+    X(s->cover_steps.host_cells_cpu_s) X(s->cover_steps.resume_cpu_s)                           \
+    X(s->cover_steps.host_wait_s) X(s->cover_steps.tail_s)
 
 static int sum_counters(vb_ctx *ctx, vb_vertices_result *res, vb_cli_vertex_totals *tot)
 {
     vb_proposal *s = &res->proposal;
     vb_stats *st = vb_ctx_stats(ctx);
-    uint64_t u[64];
-    double d[32];
+    uint64_t u[96];
+    double d[64];
     int nu = 0, nd = 0;
 #define TO_U(field) u[nu++] = (uint64_t)(field);
 #define FROM_U(field) field = u[nu++];

@@ -1,6 +1,11 @@
 /* The --stats table (vb_stat_field.h). */
 #include "vb_stat_field.h"
 
+#include <math.h>
+#include <string.h>
+
+#include "vb_json.h"
+
 static vb_stat_field *next(vb_stat_fields *fs, const char *name, vb_stat_kind kind)
 {
     if (fs->n >= VB_STAT_FIELDS_MAX)
@@ -46,4 +51,29 @@ void vb_stat_fields_write(FILE *f, const vb_stat_fields *fs, size_t from)
         } else
             fprintf(f, "%s\n", e->s);
     }
+}
+
+void vb_stat_fields_write_json(FILE *f, const vb_stat_fields *fs, size_t from, const char *prefix)
+{
+    size_t lp = prefix ? strlen(prefix) : 0;
+    int first = 1;
+    fputc('{', f);
+    for (size_t i = from; i < fs->n; i++) {
+        const vb_stat_field *e = &fs->f[i];
+        if (lp && strncmp(e->name, prefix, lp) != 0)
+            continue;
+        fputs(first ? "" : ", ", f);
+        first = 0;
+        vb_json_write_string(f, e->name);
+        fputs(": ", f);
+        if (e->kind == VB_STAT_UINT)
+            fprintf(f, "%llu", (unsigned long long)e->u);
+        else if (e->kind == VB_STAT_REAL && isfinite(e->x))
+            fprintf(f, e->fmt, e->x);
+        else if (e->kind == VB_STAT_REAL)
+            fputs("null", f);
+        else
+            vb_json_write_string(f, e->s);
+    }
+    fputc('}', f);
 }

@@ -25,6 +25,10 @@ typedef struct vb_stage_clock {
 /* The process's CPU seconds so far, all threads together. */
 double vb_cpu_now(void);
 
+/* The calling thread's CPU seconds so far (its own clock: a difference of
+ * two calls on one thread is that thread's CPU between them). */
+double vb_thread_cpu_now(void);
+
 /* Zeroes c and starts its clock: the next stage begins now. */
 void vb_stage_clock_start(vb_stage_clock *c);
 

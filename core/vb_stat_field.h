@@ -25,7 +25,7 @@ typedef struct vb_stat_field {
 } vb_stat_field;
 
 /* Room for every counter of a vertex run and its arc closure. */
-enum { VB_STAT_FIELDS_MAX = 96 };
+enum { VB_STAT_FIELDS_MAX = 128 };
 
 typedef struct vb_stat_fields {
     vb_stat_field f[VB_STAT_FIELDS_MAX];
@@ -42,6 +42,13 @@ void vb_stat_text(vb_stat_fields *fs, const char *name, const char *s);
 /* Writes fields [from, fs->n) to f, one "name<TAB>value" line each: an
  * integer in decimal, a real with its fmt, a text as it is. */
 void vb_stat_fields_write(FILE *f, const vb_stat_fields *fs, size_t from);
+
+/* Writes fields [from, fs->n) whose name begins with prefix (NULL or "":
+ * all) to f as the members of a JSON object, {"name": value, ...}: an
+ * integer in decimal, a real with its fmt (a value that is not finite as
+ * null), a text as a JSON string. */
+void vb_stat_fields_write_json(FILE *f, const vb_stat_fields *fs, size_t from,
+                               const char *prefix);
 
 #ifdef __cplusplus
 }

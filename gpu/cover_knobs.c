@@ -38,4 +38,9 @@ void vbg_cover_knobs(cov_state *s)
         t1->nb_cap = (uint32_t)v;
     if ((v = knob("VORBALL_COVER_HUGE_NB", 0)) > 0)
         t3->nb_cap = (uint32_t)v;
+    /* VORBALL_COVER_HAND_WORDS: words of handed patches a cell gets in the
+     * first launch (so that cells find no room and the first tier runs
+     * again for them: rerun_hand_short, counted in the reruns' clocks). */
+    if ((v = knob("VORBALL_COVER_HAND_WORDS", 0)) > 0)
+        s->hand_cell_words = (uint32_t)v;
 }

@@ -3,6 +3,7 @@
  * and the read-back of the per-task results and the quadruples. */
 
 #include "vb_array.h"
+#include "vb_parallel.h"
 #include "vbg_buffer.h"
 #include "vbg_cover_state.h"
 
@@ -21,12 +22,19 @@ int vbg_cov_host_q_room(vb_ctx *ctx, cov_state *s, size_t n)
     return VB_OK;
 }
 
+/* The step of the clocks a launch of tier t counts in: the tier's, or the
+ * reruns' while rerun_hand_short runs the first tier again. */
+static size_t clock_step(const cov_state *s, const cov_tier *t)
+{
+    return s->rerun ? VB_COVER_RERUN : (size_t)(t - s->tier);
+}
+
 /* The kernel's run time of one launch of tier t (event profiling; the
- * queue is made with it) into the tier's clocks (vbg_cover_state.h); a
+ * queue is made with it) into its step's clocks (vbg_cover_state.h); a
  * device that gives no times adds none. */
 static void tier_clock(cov_state *s, const cov_tier *t, cl_event done, size_t ntasks)
 {
-    size_t i = (size_t)(t - s->tier);
+    size_t i = clock_step(s, t);
     s->clocks->launches[i]++;
     s->clocks->tasks[i] += ntasks;
     s->clocks->kernel_s[i] += vbg_event_seconds(done);
@@ -219,7 +227,9 @@ int vbg_cov_run_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *cel
     int rc = VB_OK;
     for (size_t k0 = 0; rc == VB_OK && k0 < ncells; k0 += chunk) {
         size_t nk = ncells - k0 < chunk ? ncells - k0 : chunk;
+        double t0 = vb_now();
         rc = launch_tier(ctx, s, t, cells + k0, roots + k0, nk, out + k0);
+        s->clocks->launch_s[clock_step(s, t)] += vb_now() - t0;
     }
     return rc;
 }

@@ -145,7 +145,9 @@ static int rerun_hand_short(vb_ctx *ctx, cov_state *s, const uint32_t *cells, si
                 s->roots2[k++] = VBQ_ALL_ROOTS;
             }
         s->hand_short = 0;
+        s->rerun = 1;
         rc = vbg_cov_run_tier(ctx, s, &s->tier[COV_FIRST], s->cells2, s->roots2, n2, s->outs2);
+        s->rerun = 0;
         for (size_t c = 0, k = 0; rc == VB_OK && c < ncells; c++)
             if (out[c].status == VBQ_CLUSTER)
                 out[c] = s->outs2[k++];

@@ -81,6 +81,8 @@ typedef struct cov_state {
     vbg_buf hand;            /* the first tier's handed patches (vbq_hand_patch) */
     size_t hand_want;        /* words it holds at least (what an earlier launch needed) */
     int hand_short;          /* 1: a launch since it was last cleared asked for more words */
+    int rerun;               /* 1: the first tier runs again for such cells (its launches
+                                count in the clocks' VB_COVER_RERUN step) */
     uint32_t *host_hand;     /* read-back of a batch's handed patches, of cells that finished
                                 (each entry's frame off: the cell's sphere) */
     size_t host_hand_cap, host_hand_n;
@@ -182,7 +184,7 @@ typedef struct cov_state {
 #define COV_HAND_WORDS 1024u
 
 /* Applies the environment's test and measurement knobs to s's tiers
- * (gpu/cover_knobs.c: VORBALL_COVER_NB, _LAB, _TIER2, _TIER3, _BIG_NB,
+ * (gpu/cover_knobs.c: VORBALL_COVER_NB, _LAB, _TIER2, _TIER3, _BIG_NB, _HAND_WORDS,
  * _HUGE_NB), after vbg_cover_open set their defaults. */
 void vbg_cover_knobs(cov_state *s);
 

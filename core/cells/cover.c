@@ -15,6 +15,7 @@
 
 #include "vb_cover_shared.h"
 #include "vb_parallel.h"
+#include "vb_stage_clock.h"
 #include "vbq_cluster.h"
 #include "vbs_internal.h"
 
@@ -92,21 +93,6 @@ int vbq_arena_make(vbq_arena *a, uint32_t nb, uint32_t lab, uint32_t st, uint32_
 #define VBQ_ST0 512u
 #define VBQ_Q0 512u
 
-/* A cover's counters into st (the caller counts the cell). */
-static void stats_add(vb_cover_stats *st, const vbq_cell_out *o)
-{
-    st->neighbours += o->nnb;
-    st->far_neighbours += o->far;
-    if (o->nnb > st->max_cell_neighbours)
-        st->max_cell_neighbours = o->nnb;
-    st->patches += o->patches;
-    st->evals += 1000u * (uint64_t)o->evals_k;
-    st->leaves += o->leaves;
-    st->max_level_leaves += o->deep;
-    if (o->maxlev > st->max_level_seen)
-        st->max_level_seen = o->maxlev;
-}
-
 /* Cell i covered from `root` on w's arena, grown until it fits (root
  * VBQ_RESUME: the handed patches resume[0 .. nres) words alone): its
  * quadruples appended to l, its counters to w's. */
@@ -132,7 +118,7 @@ static int cover_root(worker *w, uint32_t i, uint32_t root, const uint32_t *resu
             return VB_ENOMEM;
         w->st.retries++;
     }
-    stats_add(&w->st, &o);
+    vb_cover_stats_cell(&w->st, &o);
     return vb_quad_list_append(l, w->ar.q, o.nq);
 }
 
@@ -227,9 +213,11 @@ typedef struct resume_task {
 static int resume_on(worker *w, resume_task *t)
 {
     size_t c0 = w->ql.n;
+    double c = vb_thread_cpu_now();
     int rc = vb_quad_list_append(&w->ql, t->w, t->nq);
     if (rc == VB_OK)
         rc = cover_root(w, t->cell, VBQ_RESUME, t->w + 4 * (size_t)t->nq, t->nhw, &w->ql);
+    w->st.steps.resume_cpu_s += vb_thread_cpu_now() - c;
     if (rc == VB_OK)
         w->ql.n = c0 + vb_quad_cell_unique(w->ql.q + c0, w->ql.n - c0);
     free(t);
@@ -293,14 +281,19 @@ static void *hybrid_host(void *arg)
             } else if (sh->done) {
                 break;
             } else {
+                double t0 = vb_now(); /* no work yet: the device has it */
                 pthread_cond_wait(&sh->cv, &sh->mu);
+                w->st.steps.host_wait_s += vb_now() - t0;
             }
         }
         pthread_mutex_unlock(&sh->mu);
         if (!have)
             return NULL;
         /* a resume's cell was counted covered by the device's thread */
+        double c = vb_thread_cpu_now();
         int rc = task ? resume_on(w, task) : cover_one(w, cell);
+        if (!task)
+            w->st.steps.host_cells_cpu_s += vb_thread_cpu_now() - c;
         if (rc == VB_OK && !task)
             covered(jb, 1);
         /* Streamed: a host worker's cells go to the sink as the device's
@@ -309,7 +302,9 @@ static void *hybrid_host(void *arg)
         if (rc == VB_OK && jb->sink && w->ql.n >= jb->flush) {
             w->st.quads += w->ql.n;
             w->st.stream_parts++;
+            double t0 = vb_now();
             rc = jb->sink(jb->user, &w->ql);
+            w->st.steps.sink_s += vb_now() - t0;
             w->ql.n = 0; /* the sink took the array, or keeps nothing of it */
         }
         if (rc != VB_OK) {
@@ -347,7 +342,9 @@ static int hybrid_device(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w0,
         const uint32_t *quads = NULL;
         double t0 = vb_now();
         rc = be->run(ctx, be, jb->cells + b0, n, outs, &quads);
-        w0->st.t_device += vb_now() - t0;
+        double t1 = vb_now(), tres = 0.0;
+        w0->st.t_device += t1 - t0;
+        w0->st.steps.batches++;
         if (rc == VB_OK && vb_hand_index_make(&hx, be->hand, be->hand_words) != VB_OK)
             rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
         if (rc != VB_OK)
@@ -360,7 +357,7 @@ static int hybrid_device(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w0,
                 continue;
             }
             w0->st.cells++;
-            stats_add(&w0->st, &outs[k]);
+            vb_cover_stats_cell(&w0->st, &outs[k]);
             const uint32_t *cq = quads + 4 * (size_t)outs[k].qoff, *hw;
             vb_quad_list *l = jb->sink ? &chunk : &w0->ql;
             size_t c0 = l->n, nhw, np;
@@ -369,15 +366,19 @@ static int hybrid_device(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w0,
              * quadruples by a host thread, or here alone when none is
              * beside this one */
             int queued = rc == VB_OK && nhw && sh->helpers > 0 && be->resume_spread;
-            if (queued)
+            if (queued) {
                 rc = resume_queue(sh, jb->cells[b0 + k], cq, outs[k].nq, hw, nhw);
-            else if (rc == VB_OK)
+                w0->st.steps.resume_queued++;
+            } else if (rc == VB_OK)
                 rc = vb_quad_list_append(l, cq, outs[k].nq);
             if (rc == VB_OK && nhw) {
                 w0->st.resumed_patches += np;
                 w0->st.resumed_cells++;
-                if (!queued)
+                if (!queued) {
+                    double c = vb_thread_cpu_now();
                     rc = cover_root(w0, jb->cells[b0 + k], VBQ_RESUME, hw, nhw, l);
+                    tres += vb_thread_cpu_now() - c;
+                }
             }
             if (rc != VB_OK)
                 rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
@@ -391,12 +392,16 @@ static int hybrid_device(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w0,
         pthread_mutex_unlock(&sh->mu);
         w0->st.host_cells += nl;
         covered(jb, n - nl);
+        w0->st.steps.resume_cpu_s += tres;
+        double t2 = vb_now();
+        w0->st.steps.dispatch_s += t2 - t1;
         /* Streamed: the batch's cells are disjoint from every other's and
          * each is unique, so the chunk is too; the sink sorts it. */
         if (rc == VB_OK && chunk.n) {
             w0->st.quads += chunk.n;
             w0->st.stream_parts++;
             rc = jb->sink(jb->user, &chunk);
+            w0->st.steps.sink_s += vb_now() - t2;
         }
         vb_quad_list_free(&chunk);
     }
@@ -433,6 +438,7 @@ static int cover_hybrid(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w, i
     if (rc == VB_OK && nt > 1)
         vb_jobs_start(g, hybrid_host, ha + 1, sizeof *ha, nt - 1);
     int drc = rc == VB_OK ? hybrid_device(ctx, jb, be, &w[0], &sh) : rc;
+    double t_idle = vb_now(); /* the device's last batch is in */
     pthread_mutex_lock(&sh.mu);
     sh.done = 1;
     /* A failed device: the host threads stop, and the caller covers every
@@ -447,6 +453,7 @@ static int cover_hybrid(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w, i
             hybrid_host(&ha[0]);
         if (nt > 1)
             vb_jobs_join(g);
+        w[0].st.steps.tail_s += vb_now() - t_idle;
     }
     if (rc == VB_OK)
         rc = first_error(w, nt);
@@ -494,30 +501,6 @@ static int gather(worker *w, int nt, vb_quad_list *out)
         w[t].ql.n = 0;
     }
     return out->n > n0 ? vb_quad_list_canonical(out, nt) : VB_OK;
-}
-
-static void stats_sum(vb_cover_stats *st, const vb_cover_stats *ws)
-{
-    st->cells += ws->cells;
-    st->neighbours += ws->neighbours;
-    st->far_neighbours += ws->far_neighbours;
-    if (ws->max_cell_neighbours > st->max_cell_neighbours)
-        st->max_cell_neighbours = ws->max_cell_neighbours;
-    st->patches += ws->patches;
-    st->evals += ws->evals;
-    st->leaves += ws->leaves;
-    st->max_level_leaves += ws->max_level_leaves;
-    st->retries += ws->retries;
-    st->quads += ws->quads;
-    st->stream_parts += ws->stream_parts;
-    st->host_cells += ws->host_cells;
-    st->handed_cells += ws->handed_cells;
-    st->resumed_patches += ws->resumed_patches;
-    st->resumed_cells += ws->resumed_cells;
-    st->t_device += ws->t_device;
-    st->t_host += ws->t_host;
-    if (ws->max_level_seen > st->max_level_seen)
-        st->max_level_seen = ws->max_level_seen;
 }
 
 size_t vb_cover_batch_cells(const vb_cover_options *opt)
@@ -629,7 +612,7 @@ int vb_cover_run_parts(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_opt
     if (rc == VB_OK)
         vb_progress(ctx, "cover", ncells, ncells);
     for (int t = 0; w && t < nt; t++) {
-        stats_sum(&st, &w[t].st);
+        vb_cover_stats_sum(&st, &w[t].st);
         vbq_arena_free(&w[t].ar);
         vb_quad_list_free(&w[t].ql);
     }

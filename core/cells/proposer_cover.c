@@ -195,12 +195,14 @@ static int cover_run(vb_ctx *ctx, void *state, const vb_proposer_await *aw,
     res->cover_neighbours = st.neighbours;
     res->cover_max_cell_neighbours = st.max_cell_neighbours;
     res->t_cover_device = st.t_device;
-    for (int i = 0; i < VB_COVER_TIERS && s->be; i++) {
+    for (int i = 0; i < VB_COVER_STEPS && s->be; i++) {
         const vb_cover_clocks *now = &s->be->clocks;
         res->cover_clocks.kernel_s[i] = now->kernel_s[i] - before.kernel_s[i];
+        res->cover_clocks.launch_s[i] = now->launch_s[i] - before.launch_s[i];
         res->cover_clocks.launches[i] = now->launches[i] - before.launches[i];
         res->cover_clocks.tasks[i] = now->tasks[i] - before.tasks[i];
     }
+    res->cover_steps = st.steps;
     /* The filter's buffers beside the cover's: at most their sum at once. */
     res->device_bytes_peak =
         s->be ? s->be->device_bytes_peak + (on ? s->be->judge_bytes_peak : 0) : 0;

@@ -84,8 +84,17 @@ typedef struct vb_cover_stats {
     uint64_t resumed_cells;  /* cells with such patches (not counted in host_cells) */
     double t_device;         /* seconds in the device's batches (wall) */
     double t_host;           /* seconds of the whole cover (wall) */
+    vb_cover_steps steps;    /* the host's side of a device cover, step by step */
     unsigned max_level_seen;
 } vb_cover_stats;
+
+/* Adds one cover's counters o (a cell, a task or a resume) to st; the
+ * caller counts the cell. */
+void vb_cover_stats_cell(vb_cover_stats *st, const vbq_cell_out *o);
+
+/* Adds a worker's (or a part's) stats ws to st: counts and seconds added,
+ * maxima kept. */
+void vb_cover_stats_sum(vb_cover_stats *st, const vb_cover_stats *ws);
 
 /* Quadruples, 4 sorted ids each, sorted lexicographically, no repeats.
  * verdict, when not NULL, holds n verdicts of the certification filter

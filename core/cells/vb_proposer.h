@@ -20,14 +20,44 @@ extern "C" {
 /* A device's arena tiers (gpu/vbg_cover_state.h): the first launch, the
  * large slices, the group kernel's hand-off, the huge slices. */
 #define VB_COVER_TIERS 4
+/* The clocks' steps: the tiers, then the first tier's reruns of cells that
+ * found no room for their handed patches (gpu/cover_ocl.c,
+ * rerun_hand_short), counted apart from its first launches. */
+#define VB_COVER_RERUN VB_COVER_TIERS
+#define VB_COVER_STEPS (VB_COVER_TIERS + 1)
 
-/* Per tier of a device's arenas: seconds its kernels ran on the device
- * (profiling events; transfers and host work excluded), its launches and
- * its tasks (cells, or root-patch tasks). */
+/* Per step of a device's launches (the tiers, the reruns): seconds its
+ * kernels ran on the device (profiling events; transfers and host work
+ * excluded), the host's wall seconds of its launches (arguments, uploads,
+ * the kernel and the read-backs: launch_s - kernel_s is what the launches
+ * spent besides the kernels), its launches and its tasks (cells, or
+ * root-patch tasks). */
 typedef struct vb_cover_clocks {
-    double kernel_s[VB_COVER_TIERS];
-    uint64_t launches[VB_COVER_TIERS], tasks[VB_COVER_TIERS];
+    double kernel_s[VB_COVER_STEPS], launch_s[VB_COVER_STEPS];
+    uint64_t launches[VB_COVER_STEPS], tasks[VB_COVER_STEPS];
 } vb_cover_clocks;
+
+/* Where a device run's cover time went on the host (vb_cover.h's
+ * vb_cover_run with a backend; zero on host threads alone). Wall seconds
+ * unless named CPU (the thread's own CPU clock, summed over threads). */
+typedef struct vb_cover_steps {
+    uint64_t batches;        /* device batches run (be->run calls) */
+    double dispatch_s;       /* the device's thread after each batch's read-back: its cells'
+                                quadruples and handed patches sorted out, queued, or resumed
+                                there (resume_cpu_s counts those), sinks not included */
+    double sink_s;           /* in the sinks (certification filter, streamed parts), on the
+                                cover's threads, summed */
+    double host_cells_cpu_s; /* CPU of the cells the host threads covered whole beside the
+                                device (cover_host_cells) */
+    double resume_cpu_s;     /* CPU of the handed patches resumed (cover_resumed_patches),
+                                on whichever thread resumed them */
+    uint64_t resume_queued;  /* cells whose patches the device's thread queued for the host
+                                threads (the rest it resumed itself) */
+    double host_wait_s;      /* host threads waiting for work while the device ran (the host
+                                waited on the device), summed over threads */
+    double tail_s;           /* after the device's last batch until the cover ended (the device
+                                idle, waiting on the host threads) */
+} vb_cover_steps;
 
 struct vb_quad_list;     /* vb_cover.h */
 struct vb_cover_options; /* vb_cover.h: the cover's own settings */
@@ -140,6 +170,7 @@ typedef struct vb_proposal {
     double t_cover_device;        /* seconds in the cover's device batches */
     vb_cover_clocks cover_clocks; /* the device's tiers in this run (vb_cover.h; 0 on
                                      host threads) */
+    vb_cover_steps cover_steps;   /* where the host's side of a device cover went */
     double t_cert_filter;         /* seconds judging the quadruples (vb_cert_filter.h),
                                      summed over the parts */
     uint64_t device_bytes_peak;   /* the most bytes of device buffers the proposer's

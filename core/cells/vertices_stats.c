@@ -50,21 +50,44 @@ void vb_vertices_stats(vb_ctx *ctx, const vb_vertices_result *r, vb_stat_fields 
     vb_stat_uint(fs, "cover_neighbours", s->cover_neighbours);
     vb_stat_uint(fs, "cover_max_cell_neighbours", s->cover_max_cell_neighbours);
     /* The cover's device time (timings: they vary run to run): its
-     * batches' wall seconds, then per tier (first launch, large slices,
-     * hand-off, huge slices) the seconds its kernels ran on the device, launches and
-     * tasks; the rest of cover_device_s is transfers and host work between
-     * launches. */
+     * batches' wall seconds, then per step (first launch, large slices,
+     * hand-off, huge slices, the first launch's reruns for handed patches
+     * that found no room) the seconds its kernels ran on the device, the
+     * host's wall seconds of its launches (kernel, transfers, arguments),
+     * launches and tasks; the rest of cover_device_s is the driver's host
+     * work between launches. */
     vb_stat_real(fs, "cover_device_s", "%.6f", s->t_cover_device);
-    static const char *const tier[VB_COVER_TIERS][3] = {
-        {"cover_kernel_first_s", "cover_launches_first", "cover_tasks_first"},
-        {"cover_kernel_large_s", "cover_launches_large", "cover_tasks_large"},
-        {"cover_kernel_handoff_s", "cover_launches_handoff", "cover_tasks_handoff"},
-        {"cover_kernel_huge_s", "cover_launches_huge", "cover_tasks_huge"}};
-    for (int i = 0; i < VB_COVER_TIERS; i++) {
-        vb_stat_real(fs, tier[i][0], "%.6f", s->cover_clocks.kernel_s[i]);
-        vb_stat_uint(fs, tier[i][1], s->cover_clocks.launches[i]);
-        vb_stat_uint(fs, tier[i][2], s->cover_clocks.tasks[i]);
+    static const char *const step[VB_COVER_STEPS][4] = {
+        {"cover_kernel_first_s", "cover_launch_first_s", "cover_launches_first",
+         "cover_tasks_first"},
+        {"cover_kernel_large_s", "cover_launch_large_s", "cover_launches_large",
+         "cover_tasks_large"},
+        {"cover_kernel_handoff_s", "cover_launch_handoff_s", "cover_launches_handoff",
+         "cover_tasks_handoff"},
+        {"cover_kernel_huge_s", "cover_launch_huge_s", "cover_launches_huge", "cover_tasks_huge"},
+        {"cover_kernel_rerun_s", "cover_launch_rerun_s", "cover_launches_rerun",
+         "cover_tasks_rerun"}};
+    for (int i = 0; i < VB_COVER_STEPS; i++) {
+        vb_stat_real(fs, step[i][0], "%.6f", s->cover_clocks.kernel_s[i]);
+        vb_stat_real(fs, step[i][1], "%.6f", s->cover_clocks.launch_s[i]);
+        vb_stat_uint(fs, step[i][2], s->cover_clocks.launches[i]);
+        vb_stat_uint(fs, step[i][3], s->cover_clocks.tasks[i]);
     }
+    /* The host's side of a device cover (vb_cover_steps; timings): the
+     * batches, the device's thread's work after each read-back, the sinks,
+     * the CPU of the host threads' whole cells and of the handed patches
+     * resumed (and how many cells the host threads resumed), the host
+     * threads' wait for work (the host waiting on the device) and the tail
+     * after the device's last batch (the device waiting on the host). */
+    const vb_cover_steps *cs = &s->cover_steps;
+    vb_stat_uint(fs, "cover_batches", cs->batches);
+    vb_stat_real(fs, "cover_dispatch_s", "%.6f", cs->dispatch_s);
+    vb_stat_real(fs, "cover_sink_s", "%.6f", cs->sink_s);
+    vb_stat_real(fs, "cover_host_cells_cpu_s", "%.6f", cs->host_cells_cpu_s);
+    vb_stat_real(fs, "cover_resume_cpu_s", "%.6f", cs->resume_cpu_s);
+    vb_stat_uint(fs, "cover_resume_queued", cs->resume_queued);
+    vb_stat_real(fs, "cover_host_wait_s", "%.6f", cs->host_wait_s);
+    vb_stat_real(fs, "cover_tail_s", "%.6f", cs->tail_s);
     /* The device buffers the proposer held at once (vbg_buffer.h; 0 on the
      * host), without what the OpenCL driver keeps for itself. */
     vb_stat_uint(fs, "device_bytes_peak", s->device_bytes_peak);

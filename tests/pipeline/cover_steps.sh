@@ -1,0 +1,122 @@
+#!/bin/sh
+# Where a device cover's time goes (--stats, bench --json; issue #30's
+# per-step timers): per step of the device's launches (first tier, large,
+# hand-off, huge, the first tier's reruns for handed patches that found no
+# room) the kernel's seconds, the launches' wall seconds, launches and
+# tasks; on the host the batches, the device thread's work after each
+# read-back, the sinks, the CPU of whole host cells and of the resumed
+# patches, the host threads' wait for the device and the device's wait for
+# the host (the tail). Checked on PoCL (on a GPU the same code):
+# - every column is printed, on ref too (zero there: no device);
+# - sums within totals: a step's kernel seconds within its launches' wall,
+#   the launches within cover_device_s, the device's batches and their
+#   dispatch within the proposer's wall, the tail and the waits within it,
+#   the CPU within threads x wall;
+# - counts equal over two runs (launches, tasks, batches, resumed patches
+#   and queued resumes), the resumed patches with CPU seconds;
+# - the reruns apart from the first launch: with 16 words of handed patches
+#   a cell (VORBALL_COVER_HAND_WORDS) the first tier runs again for the cells
+#   that found no room, counted in cover_*_rerun, while cover_launches_first
+#   stays 1 and the vertex rows stay ref's;
+# - with the host threads resuming (VORBALL_COVER_RESUME_SPREAD=1, a GPU's
+#   default) the queued resumes are counted, with no resume CPU lost.
+# usage: cover_steps.sh VORBALL CORPUS_DIR WORK_DIR
+vorball=$1 corpus=$2 work=$3/cover_steps
+here=$(cd "$(dirname "$0")" && pwd)
+. "$here/lib.sh"
+fresh_dir "$work"
+# every cell to the device, so that what it hands does not depend on timing
+export VORBALL_COVER_HOST_BACK=0
+in=$corpus/inputs/sc_jitter12.xyzr
+stat() { awk -v k="$1" '$1 == k { print $2 }' "$2"; }
+steps="first large handoff huge rerun"
+cols="cover_device_s cover_batches cover_dispatch_s cover_sink_s cover_host_cells_cpu_s
+cover_resume_cpu_s cover_resume_queued cover_host_wait_s cover_tail_s propose_s"
+for s in $steps; do
+    cols="$cols cover_kernel_${s}_s cover_launch_${s}_s cover_launches_$s cover_tasks_$s"
+done
+# le A B [SLACK]: A <= B + SLACK (reals; clocks read apart differ by ~1e-6)
+le() { awk -v a="$1" -v b="$2" -v e="${3:-0.000005}" 'BEGIN { exit !(a <= b + e) }'; }
+# check NAME: the columns of NAME.err present and consistent
+check() {
+    f=$1.err
+    for c in $cols; do
+        [ -n "$(stat "$c" "$f")" ] || fail "$1: no $c line"
+    done
+    dev=$(stat cover_device_s "$f") prop=$(stat propose_s "$f") sum=0
+    for s in $steps; do
+        k=$(stat "cover_kernel_${s}_s" "$f") l=$(stat "cover_launch_${s}_s" "$f")
+        le "$k" "$l" || fail "$1: $s kernel $k s past its launches' $l s"
+        sum=$(awk -v a="$sum" -v b="$l" 'BEGIN { print a + b }')
+    done
+    le "$sum" "$dev" || fail "$1: launches $sum s past cover_device_s $dev"
+    busy=$(awk -v a="$dev" -v b="$(stat cover_dispatch_s "$f")" 'BEGIN { print a + b }')
+    le "$busy" "$prop" || fail "$1: device and dispatch $busy s past propose_s $prop"
+    for c in cover_tail_s cover_sink_s; do
+        le "$(stat $c "$f")" "$prop" || fail "$1: $c past propose_s $prop"
+    done
+    le "$(stat cover_host_wait_s "$f")" "$prop" || fail "$1: host wait past 1 thread x $prop"
+    cpu=$(awk -v a="$(stat cover_resume_cpu_s "$f")" -v b="$(stat cover_host_cells_cpu_s "$f")" \
+        'BEGIN { print a + b }')
+    le "$cpu" "$(awk -v p="$prop" 'BEGIN { print 2 * p }')" 0.01 ||
+        fail "$1: resume and host cells $cpu CPU s past 2 threads x $prop"
+    res=$(stat cover_resumed_patches "$f")
+    [ "$res" -gt 0 ] || fail "$1: no patch resumed"
+    awk -v c="$(stat cover_resume_cpu_s "$f")" 'BEGIN { exit !(c > 0) }' ||
+        fail "$1: $res patches resumed in no CPU time"
+    [ "$(stat cover_batches "$f")" -ge 1 ] || fail "$1: no batch counted"
+}
+counts() {
+    for c in cover_batches cover_resumed_patches cover_resume_queued cover_host_cells; do
+        printf '%s=%s ' "$c" "$(stat $c "$1.err")"
+    done
+    for s in $steps; do
+        printf '%s=%s/%s ' "$s" "$(stat "cover_launches_$s" "$1.err")" \
+            "$(stat "cover_tasks_$s" "$1.err")"
+    done
+}
+run 0 ref.err "$vorball" vertices "$in" --device ref --threads 2 --stats -o ref.tsv
+for c in $cols; do
+    [ -n "$(stat "$c" ref.err)" ] || fail "ref: no $c line"
+done
+[ "$(stat cover_batches ref.err)" = 0 ] || fail "ref: device batches counted on host threads"
+for r in a b; do
+    run 0 "$r.err" "$vorball" vertices "$in" --device cpu --threads 2 --stats -o "$r.tsv"
+    check "$r"
+    [ "$(vertex_lines "$r.tsv")" = "$(vertex_lines ref.tsv)" ] || fail "$r: other vertices"
+done
+echo "a: $(counts a)"
+[ "$(counts a)" = "$(counts b)" ] || fail "counts differ between runs: $(counts b)"
+[ "$(stat cover_launches_first a.err)" = 1 ] || fail "a: one batch, not one first launch"
+[ "$(stat cover_launches_rerun a.err)" = 0 ] || fail "a: reruns with room for every patch"
+# room for 16 words a cell: the cells that hand patches run again
+VORBALL_COVER_HAND_WORDS=16 run 0 short.err "$vorball" vertices "$in" --device cpu --threads 2 \
+    --stats -o short.tsv
+check short
+echo "short: $(counts short)"
+[ "$(stat cover_launches_rerun short.err)" -gt 0 ] || fail "short: no rerun counted"
+[ "$(stat cover_tasks_rerun short.err)" -gt 0 ] || fail "short: no rerun task counted"
+[ "$(stat cover_launches_first short.err)" = 1 ] || fail "short: reruns counted as first launches"
+[ "$(stat cover_resumed_patches short.err)" = "$(stat cover_resumed_patches a.err)" ] ||
+    fail "short: other resumed patches"
+[ "$(vertex_lines short.tsv)" = "$(vertex_lines ref.tsv)" ] || fail "short: other vertices"
+# the host threads resume (a GPU's way)
+VORBALL_COVER_RESUME_SPREAD=1 run 0 spread.err "$vorball" vertices "$in" --device cpu \
+    --threads 2 --stats -o spread.tsv
+check spread
+echo "spread: $(counts spread)"
+[ "$(stat cover_resume_queued spread.err)" -gt 0 ] || fail "spread: no resume queued"
+[ "$(stat cover_resume_queued a.err)" = 0 ] || fail "a: resumes queued beside a CPU device"
+# bench --json: the same columns, in its cover_steps object
+run 0 bench.err "$vorball" bench "$in" --device cpu --threads 2 --json -o bench.json
+python3 - bench.json "$cols" <<'EOF' || fail "bench --json: cover_steps"
+import json, sys
+rows = json.load(open(sys.argv[1]))
+st = rows[0]["cover_steps"]
+want = [c for c in sys.argv[2].split() if c.startswith("cover_")]
+missing = [c for c in want if c not in st]
+assert not missing, missing
+assert st["cover_resumed_patches"] > 0 and st["cover_batches"] >= 1, st
+assert st["cover_kernel_first_s"] <= st["cover_launch_first_s"] + 5e-6, st
+EOF
+echo "ok: the cover's steps are counted, within their totals, the same over runs"
