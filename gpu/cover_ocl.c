@@ -118,13 +118,22 @@ static int run_tasks(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *cel
     return rc;
 }
 
+/* A cell that found no room for a patch it hands: VBQ_CLUSTER, or
+ * VBQ_BUDGET where the cells past the budget hand their stacks
+ * (VBQ_BUDGET_HAND: then only a short buffer leaves one whole). */
+static int hand_unfit(const cov_state *s, uint32_t status)
+{
+    return status == VBQ_CLUSTER ||
+           (status == VBQ_BUDGET && (s->tier[COV_FIRST].budget & VBQ_BUDGET_HAND));
+}
+
 /* The first tier's kernel (a CPU device's work-item kernel, a GPU's group
  * kernel) hands every patch it does not decide to the host
- * (vbq_hand_patch); a cell it hands whole (VBQ_CLUSTER) found no room for
- * one. Those cells of out[0 .. ncells) again on the first tier, while a
- * launch asked for more room than it had (launch_tier grows it, within the
- * launch room) and the last one left fewer such cells, a few times; what
- * is still left goes to the host whole. */
+ * (vbq_hand_patch); a cell it hands whole found no room for one
+ * (hand_unfit). Those cells of out[0 .. ncells) again on the first tier,
+ * while a launch asked for more room than it had (launch_tier grows it,
+ * within the launch room) and the last one left fewer such cells, a few
+ * times; what is still left goes to the host whole. */
 static int rerun_hand_short(vb_ctx *ctx, cov_state *s, const uint32_t *cells, size_t ncells,
                             vbq_cell_out *out)
 {
@@ -133,14 +142,14 @@ static int rerun_hand_short(vb_ctx *ctx, cov_state *s, const uint32_t *cells, si
     for (int again = 0; rc == VB_OK && again < 4 && s->hand_short; again++) {
         size_t n2 = 0;
         for (size_t c = 0; c < ncells; c++)
-            n2 += out[c].status == VBQ_CLUSTER;
+            n2 += hand_unfit(s, out[c].status);
         if (n2 == 0 || n2 >= last)
             break;
         last = n2;
         if (room2(ctx, s, n2) != VB_OK)
             return VB_ENOMEM;
         for (size_t c = 0, k = 0; c < ncells; c++)
-            if (out[c].status == VBQ_CLUSTER) {
+            if (hand_unfit(s, out[c].status)) {
                 s->cells2[k] = cells[c];
                 s->roots2[k++] = VBQ_ALL_ROOTS;
             }
@@ -149,7 +158,7 @@ static int rerun_hand_short(vb_ctx *ctx, cov_state *s, const uint32_t *cells, si
         rc = vbg_cov_run_tier(ctx, s, &s->tier[COV_FIRST], s->cells2, s->roots2, n2, s->outs2);
         s->rerun = 0;
         for (size_t c = 0, k = 0; rc == VB_OK && c < ncells; c++)
-            if (out[c].status == VBQ_CLUSTER)
+            if (hand_unfit(s, out[c].status))
                 out[c] = s->outs2[k++];
     }
     return rc;
@@ -357,7 +366,7 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
      * the capsid and its 2x2x2 tiling 0.267 / 1.250 s against 0.297 /
      * 1.344 s (papers/degenerate-input/results/h100_stop41.txt). */
     const char *kb = getenv("VORBALL_COVER_BUDGET"), *kh = getenv("VORBALL_COVER_HANDOFF");
-    uint32_t budget = kb && *kb ? (uint32_t)strtoul(kb, NULL, 10) : COV_BUDGET;
+    uint32_t budget = (kb && *kb ? (uint32_t)strtoul(kb, NULL, 10) : COV_BUDGET) & ~VBQ_BUDGET_HAND;
     int to_host = !(kh && strcmp(kh, "item") == 0);
     if (rc == VB_OK && s->wg && budget && !to_host)
         rc = kernel_get(ctx, rt, "cover.cl", NULL, "vbq_cover_kernel", &s->k_item);
@@ -378,7 +387,15 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
     const char *kr = getenv("VORBALL_COVER_RESUME_SPREAD");
     be->resume_spread = kr && *kr ? strcmp(kr, "0") != 0 : s->wg;
     s->hand_cell_words = s->wg ? COV_HAND_WORDS / 4 : COV_HAND_WORDS;
-    t0->budget = s->wg ? budget : 0u;
+    /* Past the budget a cell hands the patches left on its stack, where
+     * the group kernel hands patches and its budget cells go to the host
+     * threads: they resume those patches instead of covering the cell again
+     * (stop 48 on an H100: fcc 10,976 exact 28 cells, jittered 1e-9 62,
+     * covered whole); VORBALL_COVER_BUDGET_HAND=0 leaves them whole
+     * (measurements). */
+    const char *kbh = getenv("VORBALL_COVER_BUDGET_HAND");
+    int budget_hand = gpu_hand && to_host && !(kbh && strcmp(kbh, "0") == 0);
+    t0->budget = s->wg && budget ? budget | (budget_hand ? VBQ_BUDGET_HAND : 0u) : 0u;
     th->k = s->k_item;
     cl_uint units = 1;
     if (rc == VB_OK)

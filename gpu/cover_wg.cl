@@ -265,7 +265,7 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
         barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
         /* Steps (patches popped) of this cell: the same count in every lane,
          * so that all of them leave together when it passes the budget. */
-        uint steps = 0u;
+        uint steps = 0u, max_steps = budget & ~VBQ_BUDGET_HAND;
         for (;;) {
             /* Every lane reads the condition before lane 0 pops. */
             int go = sh[S_STATUS] == VBQ_OK && sh[S_NST] > 0u;
@@ -273,11 +273,23 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
             if (!go)
                 break;
             /* A long chain of levels walked one patch at a time idles the
-             * chip: past the budget (0: none) the cell is left, none of it
-             * kept, to the work-item kernel (VBQ_BUDGET, cover_ocl.c). */
-            if (budget != 0u && ++steps > budget) {
-                if (lane == 0u)
-                    sh[S_STATUS] = VBQ_BUDGET;
+             * chip: past the budget (0: none) the cell hands the patches left
+             * on its stack to the host and keeps what it did (the budget's
+             * VBQ_BUDGET_HAND bit, lane 0: unpopped frames, each with its
+             * list below the stack's top, counted when the host pops them),
+             * else it is left, none of it kept, to the host or the
+             * work-item kernel (VBQ_BUDGET, cover_ocl.c). */
+            if (max_steps != 0u && ++steps > max_steps) {
+                if (lane == 0u) {
+                    uint left = (budget & VBQ_BUDGET_HAND) ? sh[S_NST] : 0u, k = 0u;
+                    for (; k < left; k++) {
+                        o.patches++; /* vbq_hand_patch uncounts a popped patch */
+                        if (!wg_hand(&ar, &o, &stk[k]))
+                            break;
+                    }
+                    sh[S_STATUS] = left != 0u && k == left ? VBQ_OK : VBQ_BUDGET;
+                    sh[S_NST] = 0u;
+                }
                 barrier(CLK_LOCAL_MEM_FENCE);
                 break;
             }

@@ -27,9 +27,15 @@
 #define VBQ_CLUSTER 6u
 /* A cell that took more steps (patches popped) than the group kernel's
  * budget (gpu/cover_wg.cl): nothing of it is kept, and the driver covers it
- * again on the work-item kernel as root-patch tasks (gpu/cover_ocl.c). Only
- * the group kernel returns it. */
+ * again on the host threads, or on the work-item kernel as root-patch tasks
+ * (gpu/cover_ocl.c). Only the group kernel returns it. */
 #define VBQ_BUDGET 7u
+/* The budget's top bit (the group kernel's budget argument): a cell past
+ * its steps hands the patches left on its stack (vbq_hand_patch, each with
+ * its list) and keeps what it did, status VBQ_OK; the host resumes them as
+ * it resumes the kernel's other handed patches. Where the buffer has no
+ * room for all of them, the cell is VBQ_BUDGET, as without the bit. */
+#define VBQ_BUDGET_HAND 0x80000000u
 
 /* A closed patch to enumerate or subdivide with more owned labels than this
  * that look flat is a tie cluster, decided exactly before any of its

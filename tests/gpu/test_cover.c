@@ -425,6 +425,22 @@ static void emulate_all(vb_ctx *ctx, const vb_sphere_set *s, const cover_case *c
         fprintf(stderr, "%s: host %zu, emulated group kernel with budget 3 %zu (%zu handed)\n",
                 cs->path, a->n, h.n, nb.handed);
     vb_quad_list_free(&h);
+    /* The budget's VBQ_BUDGET_HAND (the driver's default with hand-off):
+     * a cell past 3 steps hands the patches left on its stack and keeps
+     * its quadruples; none is handed off or covered whole, and the host's
+     * resumes of those patches complete the cells. */
+    emu_counts nk;
+    CHECK_INT(emulated(ctx, s, 3u | VBQ_BUDGET_HAND, EMU_HAND, &h, &nk), VB_OK);
+    CHECK_INT(nk.handed, 0);
+    CHECK_INT(nk.clusters, 0);
+    CHECK(nk.resumed_cells >= nb.handed && nk.resumed_patches > n1.resumed_patches);
+    CHECK(same(a, &h));
+    if (!same(a, &h))
+        fprintf(stderr, "%s: host %zu, emulated group kernel with budget 3 handing %zu\n",
+                cs->path, a->n, h.n);
+    fprintf(stderr, "%s: budget 3: %zu cells handed off; handing their stacks %zu patches of %zu "
+            "cells resumed\n", cs->path, nb.handed, nk.resumed_patches, nk.resumed_cells);
+    vb_quad_list_free(&h);
 }
 
 static void one(vb_ctx *ctx, const cover_case *cs, const char *path, int have_device)
