@@ -118,22 +118,17 @@ static int run_tasks(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *cel
     return rc;
 }
 
-/* A cell that found no room for a patch it hands: VBQ_CLUSTER, or
- * VBQ_BUDGET where the cells past the budget hand their stacks
- * (VBQ_BUDGET_HAND: then only a short buffer leaves one whole). */
-static int hand_unfit(const cov_state *s, uint32_t status)
-{
-    return status == VBQ_CLUSTER ||
-           (status == VBQ_BUDGET && (s->tier[COV_FIRST].budget & VBQ_BUDGET_HAND));
-}
-
 /* The first tier's kernel (a CPU device's work-item kernel, a GPU's group
  * kernel) hands every patch it does not decide to the host
- * (vbq_hand_patch); a cell it hands whole found no room for one
- * (hand_unfit). Those cells of out[0 .. ncells) again on the first tier,
- * while a launch asked for more room than it had (launch_tier grows it,
- * within the launch room) and the last one left fewer such cells, a few
- * times; what is still left goes to the host whole. */
+ * (vbq_hand_patch); a cell it hands whole (VBQ_CLUSTER) found no room for
+ * one. Those cells of out[0 .. ncells) again on the first tier, while a
+ * launch asked for more room than it had (launch_tier grows it, within the
+ * launch room) and the last one left fewer such cells, a few times; what
+ * is still left goes to the host whole. A cell past the group kernel's
+ * budget whose stack found no room (VBQ_BUDGET with VBQ_BUDGET_HAND) is not
+ * run again: that would walk its budget's steps again, which the host
+ * threads beat (README, Devices); it goes to them whole, as before stop
+ * 49. */
 static int rerun_hand_short(vb_ctx *ctx, cov_state *s, const uint32_t *cells, size_t ncells,
                             vbq_cell_out *out)
 {
@@ -142,14 +137,14 @@ static int rerun_hand_short(vb_ctx *ctx, cov_state *s, const uint32_t *cells, si
     for (int again = 0; rc == VB_OK && again < 4 && s->hand_short; again++) {
         size_t n2 = 0;
         for (size_t c = 0; c < ncells; c++)
-            n2 += hand_unfit(s, out[c].status);
+            n2 += out[c].status == VBQ_CLUSTER;
         if (n2 == 0 || n2 >= last)
             break;
         last = n2;
         if (room2(ctx, s, n2) != VB_OK)
             return VB_ENOMEM;
         for (size_t c = 0, k = 0; c < ncells; c++)
-            if (hand_unfit(s, out[c].status)) {
+            if (out[c].status == VBQ_CLUSTER) {
                 s->cells2[k] = cells[c];
                 s->roots2[k++] = VBQ_ALL_ROOTS;
             }
@@ -158,7 +153,7 @@ static int rerun_hand_short(vb_ctx *ctx, cov_state *s, const uint32_t *cells, si
         rc = vbg_cov_run_tier(ctx, s, &s->tier[COV_FIRST], s->cells2, s->roots2, n2, s->outs2);
         s->rerun = 0;
         for (size_t c = 0, k = 0; rc == VB_OK && c < ncells; c++)
-            if (hand_unfit(s, out[c].status))
+            if (out[c].status == VBQ_CLUSTER)
                 out[c] = s->outs2[k++];
     }
     return rc;
