@@ -283,8 +283,9 @@ void vbq_cover_wg(__global const double *x, __global const double *y, __global c
                 if (lane == 0u) {
                     uint left = (budget & VBQ_BUDGET_HAND) ? sh[S_NST] : 0u, k = 0u;
                     for (; k < left; k++) {
-                        o.patches++; /* vbq_hand_patch uncounts a popped patch */
-                        if (!wg_hand(&ar, &o, &stk[k]))
+                        vbq_frame f = stk[k]; /* a private copy: OpenCL 1.2 has no generic pointers */
+                        o.patches++;          /* vbq_hand_patch uncounts a popped patch */
+                        if (!wg_hand(&ar, &o, &f))
                             break;
                     }
                     sh[S_STATUS] = left != 0u && k == left ? VBQ_OK : VBQ_BUDGET;
