@@ -311,12 +311,16 @@ static void judge_plane(void *ctx, size_t i, int tid)
                                                        &B->scratch[tid], &B->len[tid]);
 }
 
-/* Planes flooded at once per thread before the run is scanned: the scan
- * may stop early (enough), so a block is what the threads share, not the
- * whole pore; a thread costs a start and a join (tens of microseconds,
+/* The threads: a thread costs a start and a join (tens of microseconds,
  * milliseconds on a loaded machine) against a few to tens of microseconds
- * a plane, so each takes this many at least, and a pore of fewer planes
- * is judged on fewer threads (on one: plane by plane, as it stops). */
+ * a plane, so a pore of fewer than this many planes a thread is judged on
+ * fewer threads (on one: plane by plane, as it stops). The scan may stop
+ * early (enough), so the threads flood a block of one run each, JUDGE_RUN
+ * planes, before the block is scanned: past the plane where the scan
+ * stops, at most a block is flooded in vain (#33: 1chb at 128^3 stops at
+ * its 80th of 141 planes; on 4 threads, blocks of 4 x 32 planes flooded
+ * 128, blocks of 4 x 8 flood 96, and a thread's share of the critical
+ * path falls from 32 planes to 3 rounds of 8). */
 #define JUDGE_PLANES_PER_THREAD 32
 #define JUDGE_RUN 8
 
@@ -333,7 +337,7 @@ static int judge(const vbc_cells *c, const vbc_pore *p, const vbc_walls_input *i
 {
     memset(v, 0, sizeof *v);
     int nt = vbc_pore_threads(p->n, JUDGE_PLANES_PER_THREAD);
-    size_t block = nt > 1 ? (size_t)nt * JUDGE_PLANES_PER_THREAD : 1;
+    size_t block = nt > 1 ? (size_t)nt * JUDGE_RUN : 1;
     int8_t *walled = malloc(block);
     judge_block B = {c, p, in, R, 0, 0, 0, walled, {NULL}, {0}};
     for (size_t k = 0; k < p->n; k++) {
@@ -348,7 +352,7 @@ static int judge(const vbc_cells *c, const vbc_pore *p, const vbc_walls_input *i
         B.m = m;
         if (m > 1)
             vb_parallel_for(judge_run, &B, (m + JUDGE_RUN - 1) / JUDGE_RUN,
-                            (int)((m + JUDGE_PLANES_PER_THREAD - 1) / JUDGE_PLANES_PER_THREAD));
+                            (int)((m + JUDGE_RUN - 1) / JUDGE_RUN));
         else
             judge_plane(&B, 0, 0);
         for (size_t i = 0; i < m; i++) {
