@@ -552,14 +552,24 @@ int vbc_pore_stage_after(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, c
         }
         t0 = vb_now();
         t.verdict = 1e3 * (t0 - t1);
+        /* The pore's lining reads the cell list only: made before the
+         * wait, beside the analysis when that runs longer. */
+        int32_t *lining = NULL;
+        size_t nlining = 0;
+        int lined = rc == VB_OK && p.n > 0 && v.is_pore
+                        ? vbc_pore_lining(&p, cells, lining_tol, &lining, &nlining)
+                        : VB_ENOMEM;
         waited = refine_wait(&R);
         if (R.before_rc != VB_OK)
             rc = R.before_rc;
         if (rc == VB_OK && p.n > 0 && v.is_pore) {
-            rc = vbc_result_add_pore(ctx, res, &p, cells, lining_tol);
+            rc = lined == VB_OK ? vbc_result_add_pore_lined(ctx, res, &p, lining, nlining)
+                                : vb_error(ctx, VB_ENOMEM, NULL, 0, "pore of %zu points", p.n);
+            lining = NULL;
             if (found)
                 *found = p.axis;
         }
+        free(lining);
         if (rc == VB_OK && p.n > 0 && judge) {
             res->pore.judged = 1;
             res->pore.buried = v.buried;

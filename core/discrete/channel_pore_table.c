@@ -55,35 +55,68 @@ static double path_length(const vbc_point *p, size_t n)
     return len;
 }
 
+int vbc_pore_lining(const vbc_pore *p, const vbc_cells *cells, double lining_tol, int32_t **out,
+                    size_t *n)
+{
+    const vb_sphere_set *s = vbc_cells_spheres(cells);
+    *out = NULL;
+    *n = 0;
+    lining_set L = {NULL, 0, 0, calloc(s->n ? s->n : 1, 1), 0};
+    if (!L.mark)
+        return VB_ENOMEM;
+    for (size_t k = 0; k < p->n && !L.failed; k++) {
+        const vbc_pore_point *q = &p->pts[k];
+        double c[3] = {q->x, q->y, q->z};
+        vbc_cells_within(cells, c, q->r + lining_tol, lining_put, &L);
+    }
+    free(L.mark);
+    if (L.failed) {
+        free(L.list);
+        return VB_ENOMEM;
+    }
+    qsort(L.list, L.n, sizeof *L.list, cmp_i32);
+    *out = L.list;
+    *n = L.n;
+    return VB_OK;
+}
+
 int vbc_result_add_pore(vb_ctx *ctx, vbc_result *res, const vbc_pore *p, const vbc_cells *cells,
                         double lining_tol)
 {
-    const vb_sphere_set *s = vbc_cells_spheres(cells);
+    int32_t *lining;
+    size_t n;
+    if (vbc_pore_lining(p, cells, lining_tol, &lining, &n) != VB_OK)
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "pore of %zu points", p->n);
+    return vbc_result_add_pore_lined(ctx, res, p, lining, n);
+}
+
+int vbc_result_add_pore_lined(vb_ctx *ctx, vbc_result *res, const vbc_pore *p, int32_t *lining,
+                              size_t nlining)
+{
     size_t np = 0, nl = 0;
     for (size_t t = 0; t < res->nchannels; t++) {
         np += res->channels[t].npoints;
         nl += res->channels[t].nlining;
     }
-    lining_set L = {NULL, 0, 0, calloc(s->n ? s->n : 1, 1), 0};
     vbc_channel *ch = malloc((res->nchannels + 1) * sizeof *ch);
     vbc_point *pts = malloc((np + p->n) * sizeof *pts);
-    if (!L.mark || !ch || !pts)
-        goto nomem;
+    int32_t *lin = malloc((nl + nlining + 1) * sizeof *lin);
+    if (!ch || !pts || !lin) {
+        free(lining);
+        free(ch);
+        free(pts);
+        free(lin);
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "pore of %zu points", p->n);
+    }
     for (size_t k = 0; k < p->n; k++) {
         const vbc_pore_point *q = &p->pts[k];
         pts[k] = (vbc_point){q->x, q->y, q->z, q->r, q->atom};
-        double c[3] = {q->x, q->y, q->z};
-        vbc_cells_within(cells, c, q->r + lining_tol, lining_put, &L);
-        if (L.failed)
-            goto nomem;
     }
-    int32_t *lin = malloc((nl + L.n + 1) * sizeof *lin);
-    if (!lin)
-        goto nomem;
-    qsort(L.list, L.n, sizeof *L.list, cmp_i32);
-    memcpy(lin, L.list, L.n * sizeof *lin);
+    if (nlining)
+        memcpy(lin, lining, nlining * sizeof *lin);
+    free(lining);
     if (nl)
-        memcpy(lin + L.n, res->lining, nl * sizeof *lin);
+        memcpy(lin + nlining, res->lining, nl * sizeof *lin);
     if (np)
         memcpy(pts + p->n, res->points, np * sizeof *pts);
     double len = path_length(pts, p->n);
@@ -92,11 +125,11 @@ int vbc_result_add_pore(vb_ctx *ctx, vbc_result *res, const vbc_pore *p, const v
     ch[0] = (vbc_channel){VBC_PORE,
                           rmin <= 0.0 ? VBC_WHY_PORE_CLOSED : open ? VBC_WHY_PORE : VBC_WHY_PORE_ONE_END,
                           open, 0, (size_t)(p->open_lo + p->open_hi), len, rmin, p->min_at, 0, p->n,
-                          0, L.n};
+                          0, nlining};
     for (size_t t = 0; t < res->nchannels; t++) {
         ch[t + 1] = res->channels[t];
         ch[t + 1].first_point += p->n;
-        ch[t + 1].first_lining += L.n;
+        ch[t + 1].first_lining += nlining;
     }
     free(res->channels);
     free(res->points);
@@ -117,15 +150,7 @@ int vbc_result_add_pore(vb_ctx *ctx, vbc_result *res, const vbc_pore *p, const v
     S->g_macro_pS = p->g_macro_pS;
     S->open_lo = p->open_lo;
     S->open_hi = p->open_hi;
-    free(L.list);
-    free(L.mark);
     return VB_OK;
-nomem:
-    free(L.list);
-    free(L.mark);
-    free(ch);
-    free(pts);
-    return vb_error(ctx, VB_ENOMEM, NULL, 0, "pore of %zu points", p->n);
 }
 
 #define REFINE_PER_THREAD 8

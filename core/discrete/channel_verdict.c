@@ -311,12 +311,17 @@ static void judge_plane(void *ctx, size_t i, int tid)
                                                        &B->scratch[tid], &B->len[tid]);
 }
 
-/* Planes flooded at once per thread before the run is scanned: the scan
- * may stop early (enough), so a block is what the threads share, not the
- * whole pore; a thread costs a start and a join (tens of microseconds,
+/* The threads: a thread costs a start and a join (tens of microseconds,
  * milliseconds on a loaded machine) against a few to tens of microseconds
- * a plane, so each takes this many at least, and a pore of fewer planes
- * is judged on fewer threads (on one: plane by plane, as it stops). */
+ * a plane, so a pore of fewer than this many planes a thread is judged on
+ * fewer threads (on one: plane by plane, as it stops). The scan may stop
+ * early (enough), so the threads flood a block before it is scanned: the
+ * first block one run (JUDGE_RUN planes) a thread, each next one twice
+ * the last, up to this many planes a thread. Past the plane where the scan
+ * stops at most a block is flooded in vain (#33: 1chb at 128^3 stops at
+ * its 80th of 141 planes; on 4 threads, blocks of 4 x 32 planes flooded
+ * 128, blocks of 32 then 64 planes flood 96), and a verdict that floods
+ * every plane (no pore) waits on at most two joins more. */
 #define JUDGE_PLANES_PER_THREAD 32
 #define JUDGE_RUN 8
 
@@ -333,8 +338,9 @@ static int judge(const vbc_cells *c, const vbc_pore *p, const vbc_walls_input *i
 {
     memset(v, 0, sizeof *v);
     int nt = vbc_pore_threads(p->n, JUDGE_PLANES_PER_THREAD);
-    size_t block = nt > 1 ? (size_t)nt * JUDGE_PLANES_PER_THREAD : 1;
-    int8_t *walled = malloc(block);
+    size_t block = nt > 1 ? (size_t)nt * JUDGE_RUN : 1,
+           most = nt > 1 ? (size_t)nt * JUDGE_PLANES_PER_THREAD : 1;
+    int8_t *walled = malloc(most);
     judge_block B = {c, p, in, R, 0, 0, 0, walled, {NULL}, {0}};
     for (size_t k = 0; k < p->n; k++) {
         int h = vbc_plane_raster_half(p->pts[k].r);
@@ -342,13 +348,15 @@ static int judge(const vbc_cells *c, const vbc_pore *p, const vbc_walls_input *i
     }
     size_t lo = 0, last = 0;
     int in_run = 0, have = 0, rc = walled ? 0 : -1, done = 0;
-    for (size_t k0 = 0; rc == 0 && !done && k0 < p->n; k0 += block) {
+    for (size_t k0 = 0; rc == 0 && !done && k0 < p->n;
+         k0 += block, block = 2 * block < most ? 2 * block : most) {
         size_t m = p->n - k0 < block ? p->n - k0 : block;
         B.k0 = k0;
         B.m = m;
-        if (m > 1)
-            vb_parallel_for(judge_run, &B, (m + JUDGE_RUN - 1) / JUDGE_RUN,
-                            (int)((m + JUDGE_PLANES_PER_THREAD - 1) / JUDGE_PLANES_PER_THREAD));
+        if (m > 1) {
+            size_t runs = (m + JUDGE_RUN - 1) / JUDGE_RUN;
+            vb_parallel_for(judge_run, &B, runs, (int)(runs < (size_t)nt ? runs : (size_t)nt));
+        }
         else
             judge_plane(&B, 0, 0);
         for (size_t i = 0; i < m; i++) {

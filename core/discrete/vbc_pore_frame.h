@@ -40,6 +40,19 @@ int vbc_pore_find(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const vb
 int vbc_result_add_pore(vb_ctx *ctx, vbc_result *res, const vbc_pore *p, const vbc_cells *cells,
                         double lining_tol);
 
+/* The pore p's lining atoms (each atom whose surface is within r +
+ * lining_tol of a point of p), ascending, in *out (malloc'ed, *n of them;
+ * free it), read from the cell list only: so the pore stage makes them
+ * while it waits for the analysis beside it. VB_OK, or VB_ENOMEM (nothing
+ * reported; *out NULL). */
+int vbc_pore_lining(const vbc_pore *p, const vbc_cells *cells, double lining_tol, int32_t **out,
+                    size_t *n);
+
+/* vbc_result_add_pore with the lining given (vbc_pore_lining's list of n
+ * atoms, taken: freed by this call whatever it returns). VB_ENOMEM. */
+int vbc_result_add_pore_lined(vb_ctx *ctx, vbc_result *res, const vbc_pore *p, int32_t *lining,
+                              size_t nlining);
+
 /* Moves each discrete channel's points within two of its bottleneck off the
  * voxel centre to the widest place in the plane normal to the centreline
  * there (at most one voxel edge h away), then recomputes the bottleneck and

@@ -2,7 +2,8 @@
  * VBC_PORE_MIN_THREADS threads the components and centrelines run on a
  * thread of the pore stage (vbc_pore_stage_after) while the pore's search
  * runs; the table must be the bytes of one after the other, and a failure
- * of the analysis the stage's status. */
+ * of the analysis the stage's status. The pore's lining atoms (made while
+ * the stage waits for the analysis) against a brute-force scan. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -32,6 +33,33 @@ static void frame(vb_ctx *ctx, vbc_pipe *pipe, const vb_sphere_set *s, const vbc
     CHECK_INT(vbc_frame_masks(ctx, pipe, &g, s, 1.4, 0, opt, f), VB_OK);
     CHECK_INT(vbc_frame_beside(opt, f), threads >= VBC_PORE_MIN_THREADS);
     CHECK_INT(vbc_frame_analyse(ctx, s, opt, f), VB_OK);
+}
+
+/* The pore's lining atoms (made before the stage waits for the analysis,
+ * vbc_pore_lining): every atom whose surface is within r + tol of a pore
+ * point (the expression vbc_cells_within tests), ascending, by brute force. */
+static void pore_lining_check(const vbc_result *res, const vb_sphere_set *s, double tol)
+{
+    CHECK(res->nchannels > 0 && res->channels[0].kind == VBC_PORE);
+    if (!res->nchannels || res->channels[0].kind != VBC_PORE)
+        return;
+    const vbc_channel *c = &res->channels[0];
+    const vbc_point *P = res->points + c->first_point;
+    size_t n = 0, differ = 0;
+    for (size_t a = 0; a < s->n; a++) {
+        int in = 0;
+        for (size_t k = 0; k < c->npoints && !in; k++) {
+            double dx = P[k].x - s->x[a], dy = P[k].y - s->y[a], dz = P[k].z - s->z[a];
+            in = sqrt(dx * dx + dy * dy + dz * dz) - s->r[a] <= P[k].r + tol;
+        }
+        if (!in)
+            continue;
+        differ += n >= c->nlining || res->lining[c->first_lining + n] != (int32_t)a;
+        n++;
+    }
+    CHECK_INT(n, c->nlining);
+    CHECK_INT(differ, 0);
+    CHECK(n > 10);
 }
 
 /* Every field of every channel, point and lining atom the same bits. */
@@ -129,6 +157,7 @@ int main(void)
     frame(ctx, pipe, s, &opt, 4, &four);
     CHECK(one.result.nchannels >= 2);
     CHECK_INT(one.result.pore.present, 1);
+    pore_lining_check(&one.result, s, opt.lining_tol);
     same_result(&one.result, &four.result);
     CHECK(memcmp(&one.axis, &four.axis, sizeof one.axis) == 0);
     /* The clocks: one after the other nothing beside; at four threads the
