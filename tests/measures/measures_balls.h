@@ -5,6 +5,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "vb.h"
@@ -12,6 +13,21 @@
 #include "vb_spheres.h"
 
 #define PI 3.14159265358979323846
+
+/* A test data file's text, NUL-terminated (at most 1 MiB read); NULL when
+ * it cannot be opened or memory runs out. The caller frees it. */
+static inline char *slurp(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    char *buf = malloc(1 << 20);
+    size_t n = buf ? fread(buf, 1, (1 << 20) - 1, f) : 0;
+    fclose(f);
+    if (buf)
+        buf[n] = '\0';
+    return buf;
+}
 
 static inline vb_sphere_set *spheres(vb_ctx *ctx, const char *text)
 {
@@ -25,6 +41,18 @@ static inline vb_sphere_set *spheres(vb_ctx *ctx, const char *text)
         vb_spheres_free(s);
         return NULL;
     }
+    return s;
+}
+
+/* The validated spheres of the XYZR file rel under the source tree dir;
+ * NULL when it cannot be read or parsed. */
+static inline vb_sphere_set *data_spheres(vb_ctx *ctx, const char *dir, const char *rel)
+{
+    char path[4096];
+    snprintf(path, sizeof path, "%s/%s", dir, rel);
+    char *text = slurp(path);
+    vb_sphere_set *s = text ? spheres(ctx, text) : NULL;
+    free(text);
     return s;
 }
 

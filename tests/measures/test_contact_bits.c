@@ -19,19 +19,6 @@
 #include "measures_balls.h"
 #include "vb_test.h"
 
-static char *slurp(const char *path)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    char *buf = malloc(1 << 20);
-    size_t n = buf ? fread(buf, 1, (1 << 20) - 1, f) : 0;
-    fclose(f);
-    if (buf)
-        buf[n] = '\0';
-    return buf;
-}
-
 /* The run's table: one line per atom, per contact and the pieces. */
 static char *table(vb_ctx *ctx, const vb_sphere_set *s, double tolerance)
 {
@@ -83,9 +70,7 @@ int main(void)
         return 1;
     vb_set_verbosity(ctx, 0);
     char path[4096];
-    snprintf(path, sizeof path, "%s/tests/measures/data/crn_frag.xyzr", dir);
-    char *text = slurp(path);
-    vb_sphere_set *s = text ? spheres(ctx, text) : NULL;
+    vb_sphere_set *s = data_spheres(ctx, dir, "tests/measures/data/crn_frag.xyzr");
     CHECK(s != NULL);
     char *t1 = s ? table(ctx, s, 1e-6) : NULL, *t2 = s ? table(ctx, s, 1e-8) : NULL;
     CHECK(t1 && t2);
@@ -114,7 +99,6 @@ int main(void)
     free(t1);
     free(t2);
     vb_spheres_free(s);
-    free(text);
     vb_close(ctx);
     VB_TEST_END();
 }

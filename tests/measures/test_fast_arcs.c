@@ -31,19 +31,6 @@ typedef struct old_values {
     size_t ncon;
 } old_values;
 
-static char *slurp(const char *path)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    char *buf = malloc(1 << 16);
-    size_t n = buf ? fread(buf, 1, (1 << 16) - 1, f) : 0;
-    fclose(f);
-    if (buf)
-        buf[n] = '\0';
-    return buf;
-}
-
 static int read_old(const char *dir, old_values *o)
 {
     char path[4096];
@@ -150,12 +137,9 @@ int main(void)
     if (!dir || vb_open(&ctx, NULL) != VB_OK)
         return 1;
     vb_set_verbosity(ctx, 0);
-    char path[4096];
-    snprintf(path, sizeof path, "%s/tests/measures/data/crn_frag.xyzr", dir);
-    char *text = slurp(path);
     old_values *o = calloc(1, sizeof *o);
-    CHECK(text && o && read_old(dir, o));
-    vb_sphere_set *s = text ? spheres(ctx, text) : NULL;
+    CHECK(o && read_old(dir, o));
+    vb_sphere_set *s = data_spheres(ctx, dir, "tests/measures/data/crn_frag.xyzr");
     CHECK(s != NULL);
     if (s && o) {
         CHECK_INT(s->n, NATOM);
@@ -163,7 +147,6 @@ int main(void)
         run(ctx, s, o, 1);
     }
     vb_spheres_free(s);
-    free(text);
     free(o);
     vb_close(ctx);
     }
