@@ -43,4 +43,18 @@ void vbg_cover_knobs(cov_state *s)
      * again for them: rerun_hand_short, counted in the reruns' clocks). */
     if ((v = knob("VORBALL_COVER_HAND_WORDS", 0)) > 0)
         s->hand_cell_words = (uint32_t)v;
+    /* Device memory against speed (vbg_cover_state.h, measurements):
+     * VORBALL_COVER_CELLS_PER_SLICE, the group kernel's first tier's
+     * spheres a slice; VORBALL_COVER_POOL_PER_SPHERE, the pool's bytes a
+     * sphere (0: the budget alone bounds it); VORBALL_COVER_HAND_CAP, the
+     * handed-patch words a launch reserves at most; VORBALL_COVER_BIG_QPER,
+     * the large and huge tiers' output room a task. */
+    if ((v = knob("VORBALL_COVER_CELLS_PER_SLICE", 0)) > 0)
+        s->cells_per_slice = (size_t)v;
+    if ((v = knob("VORBALL_COVER_POOL_PER_SPHERE", 1)) >= 0)
+        s->pool_per_sphere = (size_t)v;
+    if ((v = knob("VORBALL_COVER_HAND_CAP", 0)) > 0)
+        s->hand_cap_words = (size_t)v;
+    if ((v = knob("VORBALL_COVER_BIG_QPER", 0)) > 0)
+        t1->qper = t3->qper = (uint32_t)v;
 }

@@ -70,29 +70,12 @@ static int launch_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *c
                        const uint32_t *roots, size_t ncells, vbq_cell_out *out)
 {
     cl_command_queue q = vbg_runtime_queue(s->rt);
-    /* About 10 quadruples per cell on proteins: room for t->qper per task,
-     * more when an earlier launch needed it and the launch room holds it;
-     * cells beyond it are marked and covered again (cov_run). */
-    size_t want = (size_t)t->qper * ncells;
-    if (want > s->qout_cap)
-        s->qout_cap = want;
-    size_t c4 = ncells * sizeof(uint32_t), c48 = ncells * sizeof(vbq_cell_out);
-    size_t held = (s->cells.size > c4 ? s->cells.size : c4) +
-                  (s->roots.size > c4 ? s->roots.size : c4) +
-                  (s->outs.size > c48 ? s->outs.size : c48);
-    size_t room = s->launch_room > held + 16 ? (s->launch_room - held) / 16 : 1;
-    size_t qroom = s->qout_cap < room ? s->qout_cap : room;
-    /* The handed patches (vbq_hand_patch): the first tier only, room for
-     * hand_cell_words a cell or what an earlier launch asked, within what
-     * the launch room leaves after the quadruples. */
+    size_t qroom, hwords;
+    vbg_cov_launch_sizes(s, t, ncells, &qroom, &hwords);
     int hand = s->k_hand && t == &s->tier[COV_FIRST];
-    size_t per = (size_t)s->hand_cell_words * ncells;
-    size_t hwords = hand ? (s->hand_want > per ? s->hand_want : per) : 0;
-    size_t left = s->launch_room > held + 16 * qroom ? s->launch_room - held - 16 * qroom : 0;
-    hwords = hwords < left / 4 ? hwords : left / 4;
-    if (hwords > UINT32_MAX / 2)
-        hwords = UINT32_MAX / 2;
-    int rc = vbg_cov_upload(ctx, s, &s->cells, cells, ncells * sizeof(uint32_t));
+    int rc = vbg_cov_tier_bind(ctx, s, t);
+    if (rc == VB_OK)
+        rc = vbg_cov_upload(ctx, s, &s->cells, cells, ncells * sizeof(uint32_t));
     if (rc == VB_OK)
         rc = vbg_cov_upload(ctx, s, &s->roots, roots, ncells * sizeof(uint32_t));
     if (rc == VB_OK)

@@ -233,6 +233,8 @@ static void cov_close(vb_cover_backend *be)
             vbg_cov_release(s, all[k]);
         for (int t = 0; t < COV_TIERS; t++)
             vbg_cov_tier_release(s, &s->tier[t]);
+        for (int k = 0; k < COV_ARRAYS; k++)
+            vbg_cov_release(s, &s->arr[k]);
         if (s->k)
             clReleaseKernel(s->k);
         if (s->k_item)
@@ -300,33 +302,7 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
         group = 0;
     }
     s->wg = group ? 1 : kn && strcmp(kn, "item") == 0 ? 0 : vbg_runtime_is_gpu(rt);
-    cov_tier *t0 = &s->tier[COV_FIRST], *t1 = &s->tier[COV_BIG], *th = &s->tier[COV_HAND];
-    cov_tier *t3 = &s->tier[COV_HUGE];
     int cpu = !vbg_runtime_is_gpu(rt);
-    t0->nb_cap = s->wg ? COV_WG_NB : cpu ? COV_CPU_NB : COV_NB;
-    t0->lab_cap = s->wg ? COV_WG_LAB : cpu ? COV_CPU_LAB : COV_LAB;
-    t0->st_cap = COV_ST;
-    t0->q_cap = s->wg ? COV_WG_Q : COV_Q;
-    t1->nb_cap = COV_BIG_NB;
-    t1->lab_cap = COV_BIG_LAB;
-    t1->st_cap = COV_ST;
-    t1->q_cap = COV_BIG_Q;
-    t3->nb_cap = COV_HUGE_NB;
-    t3->lab_cap = COV_BIG_LAB;
-    t3->st_cap = COV_ST;
-    t3->q_cap = COV_BIG_Q;
-    /* The hand-off tier's work-items get the group kernel's first-tier
-     * arenas: a task of a cell past the budget then fits (fcc 10,976
-     * jittered, simulated on the host: all 5,760 tasks of its 60 cells fit
-     * them; with the work-item kernel's own arenas 66 of them ran out). */
-    th->nb_cap = COV_WG_NB;
-    th->lab_cap = COV_WG_LAB;
-    th->st_cap = COV_ST;
-    th->q_cap = COV_WG_Q;
-    /* Output room per task: about 10 quadruples per cell on proteins; the
-     * second tier's cells are the large ones. */
-    t0->qper = th->qper = 24u;
-    t1->qper = t3->qper = 256u;
     /* A CPU device's work-items test the four parts of a fetch side by
      * side (VBQ_WALK_V4_CL, core/cells/vbq_gather_shared.h: the same
      * answers) and keep the host's two caches (VBQ_CACHES_CL: each slice
@@ -365,23 +341,10 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
     int to_host = !(kh && strcmp(kh, "item") == 0);
     if (rc == VB_OK && s->wg && budget && !to_host)
         rc = kernel_get(ctx, rt, "cover.cl", NULL, "vbq_cover_kernel", &s->k_item);
-    t0->k = t1->k = t3->k = s->k;
-    t0->wg = t1->wg = t3->wg = s->wg;
-    /* The caches on the first tier only: a CPU device's large tiers (test
-     * knobs alone make them) keep their slices' size. */
-    s->k_caches = t0->caches = caches;
-    /* A CPU device's work-item kernel hands a patch it does not decide to
-     * the host (VBQ_HANDOFF, core/cells/vbq_gather_shared.h): the host then
-     * covers that patch, not the whole cell again; so does the group
-     * kernel (gpu_hand). A GPU's first launch has up to 2^18 cells (the
-     * 211,440-atom tiling in one), mostly protein cells that hand none: a
-     * quarter of a CPU device's room a cell, grown as a launch asks. */
-    s->k_hand = (cpu && !s->wg) || gpu_hand;
     /* A GPU's host threads are idle, so they resume the handed patches
      * (vb_cover.h); VORBALL_COVER_RESUME_SPREAD=1|0 overrides (tests). */
     const char *kr = getenv("VORBALL_COVER_RESUME_SPREAD");
     be->resume_spread = kr && *kr ? strcmp(kr, "0") != 0 : s->wg;
-    s->hand_cell_words = s->wg ? COV_HAND_WORDS / 4 : COV_HAND_WORDS;
     /* Past the budget a cell hands the patches left on its stack, where
      * the group kernel hands patches and its budget cells go to the host
      * threads: they resume those patches instead of covering the cell again
@@ -390,8 +353,6 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
      * (measurements). */
     const char *kbh = getenv("VORBALL_COVER_BUDGET_HAND");
     int budget_hand = gpu_hand && to_host && !(kbh && strcmp(kbh, "0") == 0);
-    t0->budget = s->wg && budget ? budget | (budget_hand ? VBQ_BUDGET_HAND : 0u) : 0u;
-    th->k = s->k_item;
     cl_uint units = 1;
     if (rc == VB_OK)
         rc = vbg_check(ctx,
@@ -402,36 +363,16 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
         cov_close(be);
         return rc;
     }
-    /* Slices wanted: as many as keep the device busy; each run makes as
-     * many of them as its cells use and its budget holds (budget_split,
-     * tier_grow). A CPU device gets no large tier (its cells are as cheap
-     * on the host). */
     s->budget = vbg_runtime_memory_budget(rt);
-    size_t want = s->wg ? (size_t)units * 16
-                        : (vbg_runtime_is_gpu(rt) ? (size_t)units * 512 : (size_t)units);
-    /* Work-items come in groups of 64 (cov_run), on a CPU device alone
-     * (vbg_cover_state.h, COV_CPU_NB). */
-    t0->solo = cpu && !s->wg;
-    if (!s->wg && !t0->solo && want >= 64)
-        want = want / 64 * 64;
-    /* VORBALL_COVER_SLICES overrides the count (measurements). */
+    vbg_cov_caps(s, cpu, caches, gpu_hand, units);
+    cov_tier *t0 = &s->tier[COV_FIRST];
+    t0->k = s->tier[COV_BIG].k = s->tier[COV_HUGE].k = s->k;
+    s->tier[COV_HAND].k = s->k_item;
+    t0->budget = s->wg && budget ? budget | (budget_hand ? VBQ_BUDGET_HAND : 0u) : 0u;
+    /* VORBALL_COVER_SLICES overrides the first tier's count (measurements). */
     const char *ws = getenv("VORBALL_COVER_SLICES");
     if (ws && atol(ws) > 0)
-        want = (size_t)atol(ws);
-    t0->want = want;
-    if (s->wg) {
-        t1->want = (size_t)units * 4;
-        /* Measured on an H100 (the 211,440-atom tiling): when the tier
-         * reran whole cells (stop 43, run C) 4x the compute units gave 1.76 s
-         * of cover and certification, 2x 1.84 s; rerunning only the tasks
-         * that ran out (864 of them), 2x and 4x both take 0.25 s of huge-tier
-         * kernel and 1.29 s of device cover, and 2x holds 4.0 GB of device
-         * buffers at the peak against 6.0 GB (stop 44, run A). */
-        t3->want = (size_t)units * 2;
-        /* The hand-off tier: work-items as for the work-item kernel on a
-         * GPU, in groups of 64. */
-        th->want = (size_t)units * 512;
-    }
+        t0->want = (size_t)atol(ws);
     vbg_cover_knobs(s);
     t0->nb_want = t0->nb_cap;
     t0->lab_want = t0->lab_cap;

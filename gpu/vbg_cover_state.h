@@ -1,12 +1,25 @@
 /* The state of the cover's OpenCL backend (private to its files: gpu/cover_ocl.c,
- * cover_mem.c, cover_launch.c, cover_knobs.c):
+ * cover_mem.c, cover_launch.c, cover_knobs.c, cover_plan.c):
  * its tiers of arena slices, their capacities and the step budget.
  *
  * Device memory (issue #30) stays within the device layer's budget
  * (vbg_runtime_memory_budget; VORBALL_DEVICE_MEMORY_MIB sets it), counted
- * by a meter (vbg_buffer.h, --stats device_bytes_peak):
- *   input      32 n + 56 * 2 first + 4 m + 8 bytes (centres, radii, the
+ * by a meter (vbg_buffer.h, --stats device_bytes_peak), and follows the
+ * input (gpu/cover_plan.c sizes it all; tests/gpu/test_cover_plan.c checks
+ * the sizes on a made-up H100):
+ *   input      32 n + 56 * 2 first + 4 m + 16 bytes (centres, radii, the
  *              tree's boxes and radii, its ids, the counters), held for the run;
+ *   pool       one device buffer per arena array (records, labels, stack,
+ *              quadruples, caches) that every tier passes to its kernel,
+ *              one tier after the other: the tiers run one after the other
+ *              on one queue and no launch reads what an earlier one left in
+ *              its slices, so each array holds the largest tier's, not
+ *              their sum (until stop 49 each tier had buffers of its own:
+ *              on an H100 the 211,440-atom tiling held its first tier,
+ *              1.1 GB, beside the large or huge one). No sub-buffers: cut
+ *              from one buffer, overlapping ones crashed NVIDIA's OpenCL
+ *              (stop 49, H100: capsid, fcc 10,976) and slowed the tiling
+ *              2x;
  *   first tier S0 slices of P0 bytes, P0 = 48 NB + 4 LAB + 16 Q (+ 48 ST on
  *              the work-item kernel; the group kernel keeps one stack of
  *              48 ST), NB/LAB/ST/Q the tier's capacities below: 144 KiB a
@@ -14,22 +27,28 @@
  *              (one per compute unit, COV_CPU_NB) 4.0 MiB and 2.1 MiB of
  *              caches (8 LAB + 56 VBQ_MEMO), its capacities halved while
  *              the slices exceed the share below;
- *              S0 = min(the device's occupancy,
- *              n, 3/4 of the budget left after the input / P0);
+ *              S0 = min(the device's occupancy, n (the group kernel:
+ *              n / COV_CELLS_PER_SLICE), 3/4 of the budget left after the
+ *              input / P0);
  *   launches   per launch of C tasks: 4 C (cells) + 4 C (roots) + 48 C (results)
- *              + 16 qper C (quadruples, qper 24 on the first tier, 256 on the
- *              large one), at most 1/8 of the budget left after the input:
- *              a batch larger than that runs in several launches;
+ *              + 16 qper C (quadruples, qper 24 on the first tier,
+ *              COV_BIG_QPER on the large ones) + the handed patches' words
+ *              (COV_HAND_WORDS a cell, at most COV_HAND_CAP in all, or what
+ *              an earlier launch asked), at most 1/8 of the budget left
+ *              after the input: a batch larger than that runs in several
+ *              launches;
  *   large tier S1 slices of 2.6 MiB, made on the first cell that needs them,
  *              S1 = min(the device's occupancy, the tasks waiting / 64 on
- *              the group kernel (COV_BIG_TASKS), the rest of the budget /
- *              P1) (half of it with the hand-off tier beside);
- *              with no room the cells go to the host threads;
+ *              the group kernel (COV_BIG_TASKS), what the pool may hold /
+ *              P1); with no room the cells go to the host threads;
  *   huge tier  S3 slices of 7.1 MiB for the large tier's tasks that ran out of
  *              its records (those tasks only, not their cells' others), made
- *              in the large tier's place (released first,
- *              and released after the batch), S3 = min(the device's compute
- *              units x 2, the tasks waiting, the rest of the budget / P3).
+ *              in the large tier's place, S3 = min(the device's compute
+ *              units x 2, the tasks waiting, what the pool may hold / P3);
+ *   the pool may hold what the budget leaves after the input and the
+ *              launch room, but no more than the first tier or
+ *              COV_POOL_PER_SPHERE bytes a sphere (COV_POOL_FLOOR at least),
+ *              whichever is more.
  * A budget that cannot hold the input, one first-tier slice and one task's
  * launch stops the run at once with E142, saying how much is needed. */
 #ifndef VBG_COVER_STATE_H
@@ -43,19 +62,22 @@
 
 /* Arena slices of one tier: `slices` of them (work-items, or work-groups). */
 typedef struct cov_tier {
-    vbg_buf nb, lab, st, q;
+    vbg_buf nb, lab, st, q;  /* the pool's arrays while bound (not owned: s->arr owns them) */
     vbg_buf hi, memo, memo_tag; /* with caches: lab_cap doubles, VBQ_MEMO records and
                                    2 VBQ_MEMO tags per slice */
     cl_kernel k;             /* its kernel (cov_state's) */
     int caches;              /* 1: hi, memo, memo_tag made (the first tier of a CPU device) */
     int solo;                /* 1: a work-group of one work-item per slice (the first tier of
                                 a CPU device: a slice per compute unit) */
-    uint32_t nb_want, lab_want; /* solo: the capacities budget_split halves from */
+    uint32_t nb_want, lab_want; /* solo: the capacities vbg_cov_split halves from */
     int wg;                  /* 1: k is the group kernel, a work-group of COV_WG per slice */
     uint32_t budget;         /* the group kernel's step budget per cell (0: none) */
     uint32_t qper;           /* output room per task, in quadruples */
     size_t slices;           /* slices made (0: none yet) */
     size_t want;             /* slices that keep the device busy (vbg_cover_open) */
+    uint64_t pool_gen;       /* the pool its views were cut from (0: none) */
+    size_t bound_slices;     /* slices and capacities of its views */
+    uint32_t bound_nb, bound_lab;
     uint32_t nb_cap, lab_cap, st_cap, q_cap;
 } cov_tier;
 
@@ -66,6 +88,8 @@ typedef struct cov_tier {
 #define COV_HAND 2
 #define COV_HUGE 3
 #define COV_TIERS VB_COVER_TIERS
+/* Arrays of a tier's slices (nb, lab, st, q and the three caches). */
+#define COV_ARRAYS 7
 
 typedef struct cov_state {
     vbg_runtime *rt;
@@ -99,7 +123,12 @@ typedef struct cov_state {
     vbg_meter meter;         /* device bytes held now and at most */
     size_t budget;           /* device bytes the cover may hold (vbg_runtime_memory_budget) */
     size_t launch_room;      /* bytes of one launch's task, result and quadruple buffers */
-    size_t tier_room;        /* bytes left for the large tier (and the hand-off tier) */
+    vbg_buf arr[COV_ARRAYS]; /* the pool: the tiers' arena arrays (vbg_cov_tier_bind) */
+    uint64_t pool_gen;       /* counts the pool's changes (a tier's views name theirs) */
+    size_t pool_room;        /* bytes the pool may hold this run (vbg_cov_split) */
+    size_t pool_per_sphere;  /* COV_POOL_PER_SPHERE (0: the budget alone bounds the pool) */
+    size_t cells_per_slice;  /* COV_CELLS_PER_SLICE: the group kernel's first tier */
+    size_t hand_cap_words;   /* COV_HAND_CAP: handed-patch words a launch reserves at most */
     size_t last_n;           /* spheres of the last run begun (trim) */
     vb_cover_clocks *clocks; /* the backend's, per tier (indexed by COV_*) */
 } cov_state;
@@ -132,7 +161,7 @@ typedef struct cov_state {
  * (cov_tier.solo), and a slice gets the records and labels the 64 slices of
  * a group held before, times 16 and 16: 65,536 / 262,144 (6.1 MiB with its
  * caches), halved while the slices do not fit their share of the budget,
- * down to 2,048 / 8,192 (budget_split). 4yvs first 14,070 (2-core, PoCL one
+ * down to 2,048 / 8,192 (vbg_cov_split). 4yvs first 14,070 (2-core, PoCL one
  * thread): no cell left to the host (240 at 4,096 / 16,384, each covered
  * again after the device's work on it was lost), device buffers 12.6 MB
  * instead of 40.5; papers/gpu-voronoi-cells-of-spheres/results/
@@ -176,17 +205,108 @@ typedef struct cov_state {
  * 0.1 s; the cells past it run side by side as 24 T^2 tasks each. */
 #define COV_BUDGET 2048u
 /* Words of handed patches a cell gets in a CPU device's first launch
- * (vbq_hand_patch; a patch is 12 words and its list's ids), a quarter of
- * it on a GPU (cov_state.hand_cell_words): a cell that finds no room runs
- * again with what the launch asked. Measured (words asked a cell, all
- * cells): EXTREMESET Congruent 300 ~900, fcc 1,372 exact ~180, fcc 10,976
- * exact ~450, its jitter 1e-9 ~40. */
+ * (vbq_hand_patch; a patch is 12 words and its list's ids), an eighth of
+ * it on a GPU (cov_state.hand_cell_words; a quarter until stop 49): a cell
+ * that finds no room runs again with what the launch asked. Measured
+ * (words asked a cell, all cells): EXTREMESET Congruent 300 ~900, fcc
+ * 1,372 exact ~180, fcc 10,976 exact ~450, its jitter 1e-9 ~40; the
+ * 211,440-atom tiling on an H100 about 73 (stop 49: capped at 8 Mi words
+ * in all, 40 a cell, its launch came up short, its cells ran again and
+ * its hand buffer grew to 74 MiB), so 128 a cell leaves it room twice
+ * over at 108 MiB instead of 216. */
 #define COV_HAND_WORDS 1024u
+/* Words of handed patches a launch reserves at most before a launch asks
+ * for more (VORBALL_COVER_HAND_CAP; by default none). */
+#define COV_HAND_CAP SIZE_MAX
+/* The group kernel's first tier: a slice per COV_CELLS_PER_SLICE spheres
+ * at most (its groups take cells from a shared counter, one after the
+ * other). 1crn (327 atoms) on an H100: 82 slices, 42 MB, where it held
+ * one a sphere (170 MB) before stop 49; from 8,448 spheres on the
+ * device's occupancy (2,112 slices) bounds it as before. */
+#define COV_CELLS_PER_SLICE 4u
+/* The pool (the tiers' arrays) holds no more than the first tier or this
+ * many bytes a sphere (5.75 KiB), whichever is more: the large and huge
+ * tiers of a large input take what this leaves (on an H100 the
+ * 211,440-atom tiling's 1,187 MiB: 372 large slices of 528, 132 huge of
+ * 264; its plan 1,398 MiB in all, the TOG 2025 peer's own 1,442), instead
+ * of the budget's whole rest. COV_POOL_FLOOR: a small input's bound. */
+#define COV_POOL_PER_SPHERE 5888u
+#define COV_POOL_FLOOR ((size_t)32 << 20)
+/* Output room per large or huge task, in quadruples (the tasks share one
+ * output array: only the launch's sum matters; a task past it runs again
+ * on the huge tier or the host). Measured on PoCL with the GPU's
+ * first-tier arenas (VORBALL_COVER_NB=8192 _LAB=32768, stop 49): the
+ * capsid's 11,232 large tasks found 2,881 quadruples (0.26 a task), fcc
+ * 14^3 jittered 1e-9's 384 found 38. It was 256 until stop 49: the
+ * 211,440-atom tiling's launches held 848 MiB of quadruple room on an
+ * H100, 77 MiB now (its first tier's 24 a cell). */
+#define COV_BIG_QPER 16u
 
 /* Applies the environment's test and measurement knobs to s's tiers
  * (gpu/cover_knobs.c: VORBALL_COVER_NB, _LAB, _TIER2, _TIER3, _BIG_NB, _HAND_WORDS,
- * _HUGE_NB), after vbg_cover_open set their defaults. */
+ * _HUGE_NB, _CELLS_PER_SLICE, _POOL_PER_SPHERE, _HAND_CAP, _BIG_QPER), after
+ * vbg_cover_open set their defaults. */
 void vbg_cover_knobs(cov_state *s);
+
+/* ---- sizes (gpu/cover_plan.c: no OpenCL call) ----------------------------- */
+
+/* Sets s's tiers' capacities, kernels' kinds and wanted slices for a device
+ * of `units` compute units (cpu: a CPU device), with s->wg chosen: the
+ * first tier's caches (caches) and handed patches (hand) as built. */
+void vbg_cov_caps(cov_state *s, int cpu, int caches, int hand, size_t units);
+
+/* Bytes of one slice of tier t (its share of the frame stack on the
+ * work-item kernel; the group kernel's one stack is vbg_cov_tier_fixed). */
+size_t vbg_cov_slice_bytes(const cov_tier *t);
+
+/* Bytes of tier t that do not grow with its slices. */
+size_t vbg_cov_tier_fixed(const cov_tier *t);
+
+/* Bytes of each of tier t's COV_ARRAYS arrays for w slices (0: not made;
+ * the first four take 16 at least). */
+void vbg_cov_tier_arrays(const cov_tier *t, size_t w, size_t bytes[COV_ARRAYS]);
+
+/* Bytes the pool's arrays take once grown for w slices of tier t (each
+ * array the larger of what s holds and what t needs). */
+size_t vbg_cov_pool_need(const cov_state *s, const cov_tier *t, size_t w);
+
+/* Bytes of the input of n spheres and a tree of `first` leaves and m ids. */
+size_t vbg_cov_input_bytes(size_t n, size_t first, size_t m);
+
+/* Bytes of one task of a launch on tier t: its cell, root and result, and
+ * its room for quadruples. */
+size_t vbg_cov_task_bytes(const cov_tier *t);
+
+/* Splits s->budget for a run of n spheres whose input takes `input`
+ * bytes: the first tier's slices (and a solo tier's capacities), the
+ * launch room and the pool's room. 0, or the bytes the run needs at least
+ * when the budget cannot hold them. */
+size_t vbg_cov_split(cov_state *s, size_t n, size_t input);
+
+/* Slices of tier t (the large, huge or hand-off tier) for `tasks` tasks:
+ * at most its wanted slices and what the pool's room holds, in whole
+ * groups of 64 on the work-item kernel; the group kernel's large tier one
+ * per COV_BIG_TASKS tasks. 0: none fits. */
+size_t vbg_cov_tier_slices(const cov_state *s, const cov_tier *t, size_t tasks);
+
+/* Bytes the launch buffers hold for a launch of ncells tasks, but the
+ * quadruples' (s's buffers or the launch's needs, whichever is more). */
+size_t vbg_cov_launch_held(const cov_state *s, size_t ncells);
+
+/* A launch of tier t over ncells tasks: its room for quadruples (*qroom)
+ * and handed-patch words (*hwords, 0 but on the first tier) within the
+ * launch room. Grows s->qout_cap to qper a task. */
+void vbg_cov_launch_sizes(cov_state *s, const cov_tier *t, size_t ncells, size_t *qroom,
+                          size_t *hwords);
+
+/* The device bytes a run of n spheres (input bytes `input`) holds at its
+ * peak by the sizes above: its first batch of `batch` cells, then
+ * big_tasks tasks on the large tier and huge_tasks on the huge one.
+ * Uses s's budget, capacities and buffer sizes (a state of sizes alone:
+ * its buffers' mem may be NULL; their sizes are changed). 0: the budget
+ * cannot hold the run. */
+size_t vbg_cov_peak_plan(cov_state *s, size_t n, size_t input, size_t batch, size_t big_tasks,
+                         size_t huge_tasks);
 
 /* ---- device buffers (gpu/cover_mem.c) ---------------------------------- */
 
@@ -200,17 +320,18 @@ int vbg_cov_ensure(vb_ctx *ctx, cov_state *s, vbg_buf *b, size_t need, cl_mem_fl
 /* Copies bytes of src into b (grown when too small). */
 int vbg_cov_upload(vb_ctx *ctx, cov_state *s, vbg_buf *b, const void *src, size_t bytes);
 
-/* Bytes of one task of a launch on tier t: its cell, root and result, and
- * its room for quadruples. */
-size_t vbg_cov_task_bytes(const cov_tier *t);
-
-/* Releases tier t's arena slices (t->slices is left to the caller). */
+/* Drops tier t's hold on the pool's arrays (t->slices is left to the caller). */
 void vbg_cov_tier_release(cov_state *s, cov_tier *t);
 
-/* Tier t (the large or the hand-off tier) with slices for `tasks` tasks,
- * made on first use within its share of the budget. VB_OK with no slices
- * when none fits: the cells then go to the host. */
+/* Tier t (the large, huge or hand-off tier) with slices for `tasks` tasks,
+ * made on first use in the pool. VB_OK with no slices when none fits: the
+ * cells then go to the host. */
 int vbg_cov_tier_grow(vb_ctx *ctx, cov_state *s, cov_tier *t, size_t tasks);
+
+/* Gives tier t the pool's arrays for its t->slices slices (each grown
+ * when too small, which drops every tier's hold on them), unless it holds
+ * them already. VB_OK or VB_EDEVICE / the meter's status. */
+int vbg_cov_tier_bind(vb_ctx *ctx, cov_state *s, cov_tier *t);
 
 /* The backend's begin (vb_cover_backend): splits the budget, uploads the
  * input env of n spheres and makes the first tier's slices. VB_OK, E142

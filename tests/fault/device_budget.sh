@@ -83,6 +83,28 @@ done
 [ "$huge_0" = 0 ] && [ "$huge_64" -ge 1 ] && [ "$hosted_64" -lt "$hosted_0" ] ||
     fail "huge tier: launches $huge_0 / $huge_64, cells on the host $hosted_0 / $hosted_64"
 echo "huge tier: cells on the host $hosted_0 without it, $hosted_64 with it ($huge_64 launches)"
+# Stop 49's memory knobs (gpu/vbg_cover_state.h), same bytes: a handed-patch
+# room of 8 words (VORBALL_COVER_HAND_CAP) leaves the first launch short on
+# the sc crystal, whose cells then run again (more first-tier launches; the
+# device takes every cell, VORBALL_COVER_HOST_BACK=0, else the host threads
+# may take those cells first on a loaded machine); the large tier's
+# quadruple room cut to 1 a task (VORBALL_COVER_BIG_QPER) holds fewer bytes.
+sc=$corpus/equal-radius/sc.xyzr
+run 0 "$work/scref.err" "$vorball" vertices --device ref "$sc" -o "$work/scref.tsv"
+VORBALL_COVER_HAND_CAP=8 VORBALL_COVER_HOST_BACK=0 run 0 "$work/sch.err" "$vorball" vertices --device cpu --stats "$sc" \
+    -o "$work/sch.tsv"
+[ "$(vertex_lines "$work/sch.tsv")" = "$(vertex_lines "$work/scref.tsv")" ] ||
+    fail "a handed-patch room of 8 words changed the vertices"
+[ "$(stat cover_launches_first "$work/sch.err")" -gt 1 ] ||
+    fail "a handed-patch room of 8 words ran no cell again"
+for q in 16 1; do
+    VORBALL_COVER_BIG_QPER=$q VORBALL_COVER_HOST_BACK=0 VORBALL_COVER_NB=64 VORBALL_COVER_TIER2=64 \
+        run 0 "$work/q$q.err" "$vorball" vertices --device cpu --stats "$in" -o "$work/q$q.tsv"
+    cmp -s "$work/q$q.tsv" "$work/ref.tsv" || fail "a quadruple room of $q a task changed the vertices"
+done
+[ "$(stat device_bytes_peak "$work/q1.err")" -lt "$(stat device_bytes_peak "$work/q16.err")" ] ||
+    fail "a quadruple room of 1 a task held no fewer device bytes"
+echo "stop 49 knobs: same vertices with a short handed-patch room and 1 quadruple a large task"
 # bench keeps the device open: a run of another input starts without the
 # buffers of the one before, so its device_bytes_peak is its own (the device
 # takes every cell, VORBALL_COVER_HOST_BACK=0, so that the launches repeat).

@@ -1,0 +1,190 @@
+/* The cover's device memory plan (gpu/cover_plan.c, vbg_cover_state.h).
+ *
+ * 1. On PoCL the plan is what a run holds: the cover run on a corpus input
+ *    with every tier forced (tiny first-tier arenas, large and huge tiers)
+ *    reports a device_bytes_peak equal to vbg_cov_peak_plan for its tasks.
+ * 2. On a made-up H100 (132 compute units, an 8 GiB budget, the group
+ *    kernel) the plan's peak for 1crn, the
+ *    26,430-atom capsid and its 211,440-atom tiling, with the large and
+ *    huge tasks measured on the H100 (stop 44, run A), stays within bounds
+ *    derived beside each; the TOG 2025 peer's own device memory at its
+ *    peak, no driver context (papers/gpu-voronoi-cells-of-spheres/results/
+ *    apo_h100_stop49.txt): 300 atoms 34 MiB, capsid 194 MiB, tiling
+ *    1,442 MiB. */
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "vb_cover.h"
+#include "vb_test.h"
+#include "vbg_cover.h"
+#include "vbg_cover_state.h"
+#include "vbg_runtime.h"
+
+#define MIB ((size_t)1 << 20)
+
+/* The plan's peak on an H100-like device for n spheres (a tree of n / 2
+ * leaves: the cover tree's nodes are about one a sphere), big and huge
+ * tasks on the large and huge tiers; cps and per: the first tier's
+ * spheres a slice and the pool's bytes a sphere, nb and lab its arenas'
+ * records and labels (0: the defaults). */
+static size_t h100_peak(size_t n, size_t big, size_t huge, size_t cps, size_t per, uint32_t nb,
+                        uint32_t lab)
+{
+    cov_state s;
+    memset(&s, 0, sizeof s);
+    s.wg = 1;
+    s.budget = (size_t)8 << 30;
+    vbg_cov_caps(&s, 0, 0, 1, 132);
+    if (cps)
+        s.cells_per_slice = cps;
+    if (per)
+        s.pool_per_sphere = per;
+    if (nb) {
+        s.tier[COV_FIRST].nb_cap = nb;
+        s.tier[COV_FIRST].lab_cap = lab;
+    }
+    size_t batch = n < ((size_t)1 << 18) ? n : (size_t)1 << 18;
+    size_t peak = vbg_cov_peak_plan(&s, n, vbg_cov_input_bytes(n, n / 2, n), batch, big, huge);
+    printf("H100 plan: n %zu, large tasks %zu, huge %zu, spheres a slice %zu, pool %zu B a "
+           "sphere: first tier %zu slices, large %zu, huge %zu, peak %.1f MiB\n",
+           n, big, huge, s.cells_per_slice, s.pool_per_sphere, s.tier[COV_FIRST].slices,
+           big ? vbg_cov_tier_slices(&s, &s.tier[COV_BIG], big) : 0,
+           huge ? vbg_cov_tier_slices(&s, &s.tier[COV_HUGE], huge) : 0,
+           (double)peak / (double)MIB);
+    printf("  launches (MiB): cells %.1f, roots %.1f, results %.1f, quadruples %.1f, handed "
+           "patches %.1f; launch room %.1f, pool room %.1f\n",
+           (double)s.cells.size / MIB, (double)s.roots.size / MIB, (double)s.outs.size / MIB,
+           (double)s.qout.size / MIB, (double)s.hand.size / MIB, (double)s.launch_room / MIB,
+           (double)s.pool_room / MIB);
+    return peak;
+}
+
+static void h100_bounds(void)
+{
+    /* 1crn, 327 atoms: 82 first-tier slices (a slice per 4 spheres) of
+     * 520 KiB = 41.6 MiB, launches < 1 MiB; before stop 49 one a sphere,
+     * 166 MiB. Bound 48 MiB (the peer's 34 at 300 atoms: below 20,000
+     * spheres --device auto runs the host threads and holds none). */
+    CHECK(h100_peak(327, 0, 0, 0, 0, 0, 0) <= 48 * MIB);
+    /* The capsid, 26,430 atoms, 115 cells past the first tier's arenas
+     * (11,040 tasks): the first tier at the device's occupancy (2,112
+     * slices, 1,072.5 MiB) holds the large tier's 173 slices (443 MiB),
+     * which before stop 49 came on top (1,585 MiB measured on the H100);
+     * launches 12.9 MiB of handed patches, 9.7 of quadruples. Bound 1,120
+     * MiB, not the peer's 194: the first tier's speed at this size
+     * (stop 46 run A: 528 slices 0.307 s against 2,112 slices 0.289). */
+    CHECK(h100_peak(26430, 11040, 0, 0, 0, 0, 0) <= 1120 * MIB);
+    /* Halved arenas (4,096 records, 16,384 labels: 266 KiB a slice) and a
+     * slice per 50 spheres (529 slices, 137 MiB): the pool, 5.75 KiB a
+     * sphere (148 MiB), holds 45 large slices; 174.6 MiB, within the
+     * peer's 194. */
+    CHECK(h100_peak(26430, 11040, 0, 50, 0, 4096, 16384) <= 194 * MIB);
+    /* The tiling, 211,440 atoms, 217,056 large tasks and 864 huge ones:
+     * the pool's arrays, 5.75 KiB a sphere (1,187 MiB) in all, hold 372
+     * large slices and 132 huge ones (each array the largest tier's); the
+     * handed patches 108 MiB (128 words a cell) instead of 206; quadruples
+     * 24 a cell (77 MiB; 16 a large task need less). 1,398 MiB.
+     * Before stop 49: 4,063 MiB measured (first tier beside the huge one,
+     * 848 MiB of quadruple room for the large tier's 256 a task). Bound:
+     * the peer's 1,442 MiB. */
+    CHECK(h100_peak(211440, 217056, 864, 0, 0, 0, 0) <= 1442 * MIB);
+    /* 1,268,640 atoms (6x the tiling) in batches of 2^18 cells: a batch's
+     * share of the tasks: the tiers' wanted slices bound the pool (528
+     * large slices, 264 huge ones: the huge tier's records, 1,584 MiB,
+     * beside the large tier's labels, 528), launches 142 MiB, input 116
+     * MiB. Bound: 2,550 MiB (2.1 KB a sphere). */
+    size_t n6 = 1268640, b6 = (size_t)1 << 18;
+    size_t p6 = h100_peak(n6, 217056 * b6 / 211440, 864 * b6 / 211440, 0, 0, 0, 0);
+    CHECK(p6 > 0 && p6 <= 2550 * MIB);
+    /* A budget the input alone fills: no plan (E142). */
+    cov_state s;
+    memset(&s, 0, sizeof s);
+    s.wg = 1;
+    s.budget = 16 * MIB;
+    vbg_cov_caps(&s, 0, 0, 1, 132);
+    CHECK(vbg_cov_split(&s, 1000000, vbg_cov_input_bytes(1000000, 500000, 1000000)) > 16 * MIB);
+}
+
+/* The cover of the spheres of `path` on the OpenCL CPU device with every
+ * tier forced; its device_bytes_peak against the plan for its tasks. */
+static void pocl_matches_plan(vb_ctx *ctx, const char *path)
+{
+    setenv("VORBALL_COVER_NB", "64", 1);
+    setenv("VORBALL_COVER_TIER2", "64", 1);
+    setenv("VORBALL_COVER_BIG_NB", "96", 1);
+    setenv("VORBALL_COVER_TIER3", "64", 1);
+    setenv("VORBALL_COVER_HUGE_NB", "4096", 1);
+    vb_sphere_set *set = NULL;
+    vbg_runtime *rt = NULL;
+    vb_cover_backend *be = NULL;
+    vb_read_options ro;
+    memset(&ro, 0, sizeof ro);
+    int rc = vb_spheres_load(ctx, path, &ro, NULL, 4, &set);
+    if (rc == VB_OK)
+        rc = vbg_runtime_open(ctx, VB_DEVICE_CPU, &rt);
+    if (rc == VB_OK)
+        rc = vbg_cover_open(ctx, rt, &be);
+    vb_cover_options o;
+    memset(&o, 0, sizeof o);
+    o.threads = 1; /* the device does every cell */
+    vb_quad_list out;
+    memset(&out, 0, sizeof out);
+    vb_cover_stats st;
+    if (rc == VB_OK)
+        rc = vb_cover_run(ctx, set, &o, be, &out, &st);
+    CHECK(rc == VB_OK);
+    if (rc == VB_OK) {
+        cov_state p = *(cov_state *)be->state;
+        size_t n = p.last_n;
+        p.cells.size = p.roots.size = p.outs.size = p.qout.size = p.hand.size = 0;
+        const vb_cover_clocks *c = &be->clocks;
+        size_t plan = vbg_cov_peak_plan(&p, n, vbg_cov_input_bytes(n, p.env.first, p.env.m),
+                                        c->tasks[COV_FIRST], c->tasks[COV_BIG],
+                                        c->tasks[COV_HUGE]);
+        printf("PoCL %s: %zu spheres, tasks %llu / %llu / %llu (first / large / huge), "
+               "device_bytes_peak %llu, plan %zu\n",
+               path, n, (unsigned long long)c->tasks[COV_FIRST],
+               (unsigned long long)c->tasks[COV_BIG], (unsigned long long)c->tasks[COV_HUGE],
+               (unsigned long long)be->device_bytes_peak, plan);
+        CHECK(c->tasks[COV_BIG] > 0 && c->tasks[COV_HUGE] > 0);
+        CHECK(c->launches[COV_FIRST] == 1);
+        CHECK(plan == be->device_bytes_peak);
+    }
+    vb_quad_list_free(&out);
+    vb_cover_backend_close(be);
+    vbg_runtime_close(rt);
+    vb_spheres_free(set);
+    unsetenv("VORBALL_COVER_NB");
+    unsetenv("VORBALL_COVER_TIER2");
+    unsetenv("VORBALL_COVER_BIG_NB");
+    unsetenv("VORBALL_COVER_TIER3");
+    unsetenv("VORBALL_COVER_HUGE_NB");
+}
+
+int main(void)
+{
+    h100_bounds();
+    const char *src = getenv("VORBALL_SOURCE_DIR");
+    if (!src) {
+        fprintf(stderr, "VORBALL_SOURCE_DIR must be set\n");
+        return 1;
+    }
+    vb_ctx *ctx;
+    vb_config cfg = {0, NULL};
+    if (vb_open(&ctx, &cfg) != VB_OK)
+        return 1;
+    vbg_runtime *rt = NULL;
+    int have_device = vbg_runtime_open(ctx, VB_DEVICE_CPU, &rt) == VB_OK;
+    vbg_runtime_close(rt);
+    vb_clear_error(ctx);
+    char path[4096];
+    snprintf(path, sizeof path, "%s/corpus/inputs/crambin_fragment.xyzr", src);
+    if (have_device)
+        pocl_matches_plan(ctx, path);
+    else
+        fprintf(stderr, "no OpenCL CPU device: the plan is not checked against a run\n");
+    vb_close(ctx);
+    VB_TEST_END();
+}
