@@ -51,7 +51,6 @@
  * the one queried. Where the enclosures fail (nearly collinear centres, a
  * parabola) every sphere is a candidate. */
 #include <float.h>
-#include <string.h>
 
 #include "vb_array.h"
 
@@ -79,7 +78,7 @@ vbx_ia vbx_branch_S(const vbx_tframe *f, vbx_ia g)
 
 void vbx_tail_from(const vbx_tframe *f, double g, double sgn, vbx_region *rg)
 {
-    memset(rg, 0, sizeof *rg);
+    vbx_region_clear(rg);
     double g1 = g;
     if (g < 0.0) {
         vbx_part *b = &rg->p[rg->n++];
@@ -228,7 +227,7 @@ static int ellipse_apex(const vbx_tframe *f, const vbx_arc_end *e0, const vbx_ar
 void vbx_region_of(const vbx_tframe *f, const vbx_arc_end *e0, const vbx_arc_end *e1,
                    vbx_region *rg)
 {
-    memset(rg, 0, sizeof *rg);
+    vbx_region_clear(rg);
     if (!f->ok) {
         rg->brute = 1;
         return;

@@ -405,7 +405,7 @@ static int search_tail(vbx_arcw *w, search *sr)
         if (!(gb < INFINITY))
             return 0;
         vbx_region rg;
-        memset(&rg, 0, sizeof rg);
+        vbx_region_clear(&rg);
         if (!tail_triangle(f, piece ? vbx_ia_point(sgn * ga) : ev->key.G, gb, sgn, &rg))
             vbx_piece_parts(f, Sa, ga, gb, sgn, VBX_PIECE_PARTS, &rg);
         w->cnt.tail_pieces++;

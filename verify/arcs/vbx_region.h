@@ -21,6 +21,17 @@ typedef struct vbx_region {
     vbx_part p[40];
 } vbx_region;
 
+/* Makes rg an empty region (no parts, not brute). Only the header is
+ * cleared: whoever appends a part writes it whole (kind, S, G, and D for a
+ * strip), and nothing reads a part at or beyond n, nor a box's D (the
+ * memset of all 40 parts this replaces was 2 % of the closure's
+ * instructions: 2.9 KB per region, one region per traced arc). */
+static inline void vbx_region_clear(vbx_region *rg)
+{
+    rg->brute = 0;
+    rg->n = 0;
+}
+
 /* Boxes of one piece of a tail searched outwards (arc_search.c). */
 enum { VBX_PIECE_PARTS = 4 };
 
