@@ -158,13 +158,14 @@ int main(int argc, char **argv)
                (unsigned long long)qs.quads_exact);
         printf("  roots decided by the filter %llu: refused (t+R<0) %llu, refused (intruder) %llu, "
                "certified %llu (rounded in double-double %llu = %.2f%%, by GMP %llu); "
-               "roots left to the exact path %llu\n",
+               "roots left to the exact path %llu (ties proven found already %llu)\n",
                (unsigned long long)roots_filter, (unsigned long long)qs.refused_tangent,
                (unsigned long long)qs.refused_intruder,
                (unsigned long long)(qs.roots_fast + qs.roots_round_exact),
                (unsigned long long)qs.roots_fast,
                pct(qs.roots_fast, qs.roots_fast + qs.roots_round_exact),
-               (unsigned long long)qs.roots_round_exact, (unsigned long long)qs.roots_exact);
+               (unsigned long long)qs.roots_round_exact, (unsigned long long)qs.roots_exact,
+               (unsigned long long)qs.roots_tied);
         printf("  GMP solves %llu (%.2f%% of quads), MPFR roundings %llu, duplicates %llu, "
                "scan signs by the power %llu (double-double %llu); "
                "ctx: filter_calls %llu filter_failures %llu exact_evals %llu\n",

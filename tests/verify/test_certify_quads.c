@@ -252,6 +252,52 @@ static void test_degenerate(void)
     vb_spheres_free(s);
 }
 
+/* Ties (certify_ties.c): corpus degree5_vertex moved by (1, 1, 1), whose
+ * five spheres touch the ball of radius 2 at (1, 1, 1), and sphere 10
+ * 10^-17 outside that ball, so quadruple 0 1 4 10 has a root 1.5e-17 from
+ * the degree-5 vertex, inside its double enclosure: the two group, yet they
+ * are two vertices (sphere 10 is no member of the first). The four later
+ * roots of the degree-5 vertex skip their exact paths; 0 1 4 10 must not. */
+static void test_ties(void)
+{
+    static const char *const v[] = {
+        "1",  "1",  "-2", "1",   "2.5", "-1", "1",  "0.5", "0", "2.5", "4",  "1.5",
+        "-1", "-1", "2",  "1",   "3",   "3",  "4.5", "2.5", "5", "1",  "-1", "1",
+        "-3", "2",  "-1", "1.2", "1",   "-3", "4",  "0.9", "2", "5",   "0",  "1.1",
+        "-2", "-2", "-2", "1.3", "4.00000000000000001", "1", "1", "1"};
+    vb_sphere_set *s = vt_set(11, v);
+    static uint32_t all[330][4];
+    size_t n = 0;
+    for (uint32_t a = 0; a < 11; a++)
+        for (uint32_t b = a + 1; b < 11; b++)
+            for (uint32_t c = b + 1; c < 11; c++)
+                for (uint32_t d = c + 1; d < 11; d++) {
+                    const uint32_t q[4] = {a, b, c, d};
+                    memcpy(all[n++], q, sizeof q);
+                }
+    run r;
+    certify(s, (const uint32_t(*)[4])all, n, 1, &r);
+    CHECK_INT(r.rc, VB_OK);
+    /* The diagram's 19 vertices (vorball vertices before the ties). */
+    CHECK_INT(r.out.n, 19);
+    CHECK_INT(r.qs.duplicates, 4);
+    CHECK_INT(r.qs.roots_tied, 4);
+    const uint32_t m5[5] = {0, 1, 2, 3, 4}, m4[4] = {0, 1, 4, 10};
+    size_t k5 = SIZE_MAX, k4 = SIZE_MAX;
+    for (size_t k = 0; k < r.out.n; k++) {
+        if (is_ids(&r.out, k, m5, 5))
+            k5 = k;
+        if (is_ids(&r.out, k, m4, 4))
+            k4 = k;
+    }
+    /* Both round to (1, 1, 1), t = 2. */
+    CHECK(k5 != SIZE_MAX && r.out.x[k5] == 1.0 && r.out.t[k5] == 2.0);
+    CHECK(k4 != SIZE_MAX && r.out.x[k4] == 1.0 && r.out.y[k4] == 1.0 && r.out.z[k4] == 1.0 &&
+          r.out.t[k4] == 2.0);
+    vb_vertex_list_free(&r.out);
+    vb_spheres_free(s);
+}
+
 static void test_misuse(void)
 {
     vb_sphere_set *s = vt_set(8, two_vertices);
@@ -531,6 +577,7 @@ int main(void)
     test_hand_made();
     test_single_root_refused();
     test_degenerate();
+    test_ties();
     test_misuse();
     test_threads_and_old_way();
     test_wide_rows();

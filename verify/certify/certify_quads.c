@@ -19,6 +19,17 @@
  * which always take the exact path (their extra members touch exactly,
  * which no enclosure proves), are deduplicated through the certifier's keys.
  *
+ * A vertex of degree > 4 is open in each quadruple of its members: an open
+ * root whose quadruple's other root a filter refused or certified is a tie
+ * (certify_ties.c). The ties wait until every quadruple is judged; then,
+ * in quadruple order, the first of each group of meeting enclosures is
+ * solved exactly, and a later one whose quadruple lies within the members
+ * of its leader's vertex is that vertex (a duplicate: no exact path); the
+ * others are solved as before. The grouping depends on the ties alone, and
+ * a tie's record is merged after its quadruple's other root, where
+ * judge_quad would have pushed it, so the merge keeps the same first root
+ * of each vertex.
+ *
  * Threads as in vb_certify_list: workers take chunks of quadruples in
  * order and keep their vertices in chunk order; the merge walks the chunks
  * in order. Nothing a worker computes for a quadruple depends on the other
@@ -31,7 +42,7 @@
 #include "vb_array.h"
 #include "vb_parallel.h"
 #include "vbd_cert_shared.h"
-#include "vbx_cert.h"
+#include "vbx_qties.h"
 
 #define QCHUNK 64
 #define MIN_PER_THREAD 256
@@ -56,11 +67,19 @@ typedef struct qworker {
     uint32_t *chunk_worker;  /* per chunk: who judged it */
     size_t *chunk_first;     /* per chunk: its first record, and (next entry) the end */
     size_t *chunk_end;
+    size_t *chunk_tfirst; /* per chunk: its first tie, and the end */
+    size_t *chunk_tend;
+    vbx_qtie *ties;     /* the exact paths of ties: all ties, */
+    const size_t *todo; /* ... those to solve, */
+    size_t ntodo;
+    atomic_size_t *tnext; /* ... the next of todo to take */
     uint16_t index;
     qrec *rec;
     size_t nrec, rec_cap;
     uint32_t *pool;
     size_t npool, pool_cap;
+    vbx_qtie *tie; /* the ties this worker met, in chunk order */
+    size_t ntie, tie_cap;
     vb_cert_quad_stats st;
     int rc;
     size_t fail_at;
@@ -85,144 +104,6 @@ static int push_rec(qworker *w, size_t k, const double xyzt[4], const uint32_t *
     r->moff = w->npool;
     w->npool += nm;
     return VB_OK;
-}
-
-/* |p - c_j| - R_j - t over the enclosures (as in certifier.c). */
-static vbx_ia distance_excess(const vbx_ia cj[4], const vbx_ia box[4])
-{
-    vbx_ia d2 = vbx_ia_sqr(vbx_ia_sub(box[0], cj[0]));
-    d2 = vbx_ia_add(d2, vbx_ia_sqr(vbx_ia_sub(box[1], cj[1])));
-    d2 = vbx_ia_add(d2, vbx_ia_sqr(vbx_ia_sub(box[2], cj[2])));
-    return vbx_ia_sub(vbx_ia_sub(vbx_ia_sqrt(d2), cj[3]), box[3]);
-}
-
-enum { ROOT_REFUSED = 0, ROOT_EMPTY = 1, ROOT_OPEN = 2 };
-
-/* The scan's second stage for sphere j, which root R's double box cannot
- * place: outside when t + R_j < 0 is proven (the distance exceeds t + R_j),
- * else, once t + R_j > 0 is proven, the sign of the power, which is the
- * distance's there: in doubles with a static bound first (vbx_qf_power_fast),
- * then in double intervals (vbx_qf_power_ia), then in
- * double-double (vbx_qf_power_sign). 0: still open. The radius difference
- * is exact in double below 2^53 and a sum rounded to nearest keeps its sign
- * (as in vbx_qf_tangent_sign). */
-static int second_stage(qworker *w, const vbx_qline *L, const vbx_qprep *P, vbx_qroot *R,
-                        const vbx_ia qs[4], const double mr[8], uint32_t j)
-{
-    const vbx_qdata *qd = &w->c->qd;
-    int64_t rj = qd->z[4 * (size_t)j + 3] - qd->z[4 * (size_t)L->q[0] + 3];
-    if (rj >= ((int64_t)1 << 53) || rj <= -((int64_t)1 << 53))
-        return 0;
-    double r = (double)rj;
-    if (R->s.hi + r < 0.0)
-        return 1;
-    if (!(R->s.lo + r > 0.0))
-        return 0;
-    int sg = vbx_qf_power_fast(qd, L, mr, j);
-    if (!sg)
-        sg = vbx_qf_power_ia(qd, L, qs, j);
-    if (!sg) {
-        sg = qd->ops->power(qd, L, P, R, j);
-        if (sg)
-            w->st.power_signs_dd++;
-    }
-    if (sg)
-        w->st.power_signs++;
-    return sg;
-}
-
-/* The filter's verdict on root R of line L (R's s set; its point is
- * computed here once the tangency passes). */
-static int filter_root(qworker *w, const vbx_qline *L, const vbx_qprep *P, vbx_qroot *R)
-{
-    vb_stats *st = vb_ctx_stats(w->ctx);
-    const vb_certifier *c = w->c;
-    int open = 0;
-    for (int i = 0; i < 4; i++) {
-        st->filter_calls++;
-        int sg = vbx_qf_tangent_sign(L, R->s, i);
-        if (sg < 0) {
-            w->st.refused_tangent++;
-            return ROOT_REFUSED;
-        }
-        if (sg == 0) {
-            st->filter_failures++;
-            open = 1;
-        }
-    }
-    if (!c->qd.ops->point(&c->qd, L, P, R)) {
-        st->filter_failures++;
-        return ROOT_OPEN;
-    }
-    const vbx_ia *p = R->p;
-    const uint32_t *q = L->q;
-    const vbx_sindex *t = &c->t;
-    vbx_probe pr;
-    vbx_probe_init(&pr, t, p);
-    vbx_walk walk;
-    vbx_walk_init(&walk, t, p);
-    vbx_ia qs[4];
-    double mr[8];
-    int have_qs = 0;
-    /* A far root (t ~ 10^10 on a jittered face): the distance's double box
-     * cannot place what the probes leave open, the power mostly can, so it
-     * goes first. Each gives the exact sign or none: speed only. */
-    int far = p[3].lo > 1e6;
-    /* ... and there the scan would meet every sphere of the face layer (the
-     * distance's bound skips no node the ball's flat side touches): the
-     * power bound of a node clears whole groups off the vertex's own
-     * neighbours (speed only: the spheres it clears are outside). */
-    vbx_qf_group fg = {&c->qd, L, mr, t->rmin};
-    if (far) {
-        vbx_qf_power_qs(&c->qd, L, R, qs);
-        vbx_qf_power_mr(qs, mr);
-        have_qs = 1;
-        vbx_walk_skip(&walk, vbx_qf_group_outside, &fg);
-    }
-    size_t s0, s1;
-    uint64_t calls = 0, failures = 0;
-    int verdict = ROOT_EMPTY;
-    while (verdict == ROOT_EMPTY && vbx_walk_next(&walk, &s0, &s1))
-        for (size_t s = s0; s < s1; s++) {
-            calls++;
-            const double *cm = &t->mid[4 * s];
-            if (vbx_probe_outside(&pr, cm))
-                continue;
-            uint32_t j = t->ids[s];
-            if (j == q[0] || j == q[1] || j == q[2] || j == q[3]) {
-                calls--;
-                continue;
-            }
-            const vbx_ia *cj = &t->box[4 * s];
-            int sg = vbx_probe_inside(&pr, cm, cj[3].lo) ? -1
-                     : far                               ? 0
-                                                         : vbx_ia_sign(distance_excess(cj, p));
-            if (sg == 0) {
-                if (!have_qs) {
-                    vbx_qf_power_qs(&c->qd, L, R, qs);
-                    vbx_qf_power_mr(qs, mr);
-                }
-                have_qs = 1;
-                sg = second_stage(w, L, P, R, qs, mr, j);
-            }
-            if (sg == 0 && far)
-                sg = vbx_ia_sign(distance_excess(cj, p));
-            if (sg > 0)
-                continue;
-            if (sg < 0) {
-                verdict = ROOT_REFUSED;
-                break;
-            }
-            failures++;
-            open = 1;
-        }
-    st->filter_calls += calls;
-    st->filter_failures += failures;
-    if (verdict == ROOT_REFUSED) {
-        w->st.refused_intruder++;
-        return ROOT_REFUSED;
-    }
-    return open ? ROOT_OPEN : ROOT_EMPTY;
 }
 
 /* What the exact path still has to do for a root. */
@@ -298,6 +179,25 @@ static int judged_root(qworker *w, size_t k, const vbx_qline *L, const vbx_qprep
     return VB_OK;
 }
 
+static int push_tie(qworker *w, size_t k, int r, const vbx_ia p[4], int had_rec)
+{
+    if (VB_ARRAY_FIT(w->tie, w->tie_cap, w->ntie + 1, 256) != VB_OK)
+        return vb_error(w->ctx, VB_ENOMEM, NULL, 0, "out of memory (tie vertices)");
+    vbx_qtie *t = &w->tie[w->ntie++];
+    for (int a = 0; a < 3; a++) {
+        t->lo[a] = p[a].lo;
+        t->hi[a] = p[a].hi;
+    }
+    t->quad = k;
+    t->leader = SIZE_MAX;
+    t->rec = SIZE_MAX;
+    t->wi = 0;
+    t->root = (int8_t)r;
+    t->skipped = 0;
+    t->had_rec = (uint8_t)had_rec;
+    return VB_OK;
+}
+
 /* What the exact path does for a root with verdict v. */
 static int need_of(unsigned v)
 {
@@ -353,7 +253,8 @@ static int judge_quad(qworker *w, size_t k)
         w->st.quads_exact++;
         rc = exact_quad(w, k, NULL);
     } else {
-        int need[2] = {NEED_NOTHING, NEED_NOTHING};
+        int need[2] = {NEED_NOTHING, NEED_NOTHING}, placed[2] = {0, 0};
+        vbx_qroot R[2];
         for (int r = 0; r < 2 && rc == VB_OK; r++) {
             if (v[r] == VBD_NOT)
                 continue;
@@ -361,14 +262,14 @@ static int judge_quad(qworker *w, size_t k)
                 rc = judged_root(w, k, &L, &P, r, &need[r]);
                 continue;
             }
-            vbx_qroot R;
-            ops->root(&P, r, &R);
-            int fv = filter_root(w, &L, &P, &R);
-            if (fv == ROOT_OPEN) {
+            ops->root(&P, r, &R[r]);
+            int fv = vbx_qfilter_root(w->ctx, c, &w->st, &L, &P, &R[r]);
+            if (fv == ROOT_OPEN || fv == ROOT_UNPLACED) {
                 need[r] = NEED_ALL;
+                placed[r] = fv == ROOT_OPEN;
             } else if (fv == ROOT_EMPTY) {
                 double xyzt[4];
-                if (ops->round(&R, xyzt)) {
+                if (ops->round(&R[r], xyzt)) {
                     w->st.roots_fast++;
                     rc = push_rec(w, k, xyzt, q, 4, r ? -1 : 1);
                 } else {
@@ -376,6 +277,12 @@ static int judge_quad(qworker *w, size_t k)
                 }
             }
         }
+        /* One open root, the other refused or certified by a filter: a tie
+         * whose exact path waits (certify_ties.c); the quadruple's counts
+         * wait with it. */
+        for (int r = 0; r < 2 && rc == VB_OK; r++)
+            if (need[r] == NEED_ALL && placed[r] && need[1 - r] == NEED_NOTHING)
+                return push_tie(w, k, r, R[r].p, w->nrec != nrec0);
         if (rc == VB_OK && (need[0] || need[1]))
             rc = exact_quad(w, k, need);
     }
@@ -397,19 +304,174 @@ static void *work(void *arg)
         size_t k1 = k0 + QCHUNK < w->n ? k0 + QCHUNK : w->n, ch = k0 / QCHUNK;
         w->chunk_worker[ch] = w->index;
         w->chunk_first[ch] = w->nrec;
+        w->chunk_tfirst[ch] = w->ntie;
         for (size_t k = k0; k < k1; k++) {
             int rc = judge_quad(w, k);
             if (rc != VB_OK) {
                 w->rc = rc;
                 w->fail_at = k;
                 w->chunk_end[ch] = w->nrec;
+                w->chunk_tend[ch] = w->ntie;
                 return NULL;
             }
         }
         w->chunk_end[ch] = w->nrec;
+        w->chunk_tend[ch] = w->ntie;
         vb_progress(w->ctx, "certify", atomic_fetch_add(w->judged, k1 - k0) + (k1 - k0), w->n);
     }
     return NULL;
+}
+
+/* The exact paths of the ties w->todo names, a few at a time. */
+static void *work_ties(void *arg)
+{
+    qworker *w = arg;
+    for (;;) {
+        size_t i0 = atomic_fetch_add(w->tnext, 16);
+        if (i0 >= w->ntodo)
+            break;
+        size_t i1 = i0 + 16 < w->ntodo ? i0 + 16 : w->ntodo;
+        for (size_t i = i0; i < i1; i++) {
+            vbx_qtie *t = &w->ties[w->todo[i]];
+            int need[2] = {NEED_NOTHING, NEED_NOTHING};
+            need[t->root] = NEED_ALL;
+            size_t nrec0 = w->nrec;
+            int rc = exact_quad(w, t->quad, need);
+            if (rc != VB_OK) {
+                w->rc = rc;
+                w->fail_at = t->quad;
+                return NULL;
+            }
+            if (w->nrec > nrec0) {
+                t->rec = nrec0;
+                t->wi = w->index;
+            }
+        }
+    }
+    return NULL;
+}
+
+/* Runs the exact paths of ties todo[0..n) on the workers; VB_OK or the
+ * first error (as one thread taking the quadruples in order meets it). */
+static int run_ties(vb_ctx *ctx, qworker *ws, unsigned nt, vbx_qtie *ties, const size_t *todo,
+                    size_t n)
+{
+    atomic_size_t tnext;
+    atomic_init(&tnext, 0);
+    for (unsigned i = 0; i < nt; i++) {
+        ws[i].ties = ties;
+        ws[i].todo = todo;
+        ws[i].ntodo = n;
+        ws[i].tnext = &tnext;
+    }
+    unsigned nrun = n / 16 + 1 < nt ? (unsigned)(n / 16 + 1) : nt;
+    vb_run_jobs(work_ties, ws, sizeof *ws, (int)nrun);
+    int bad = vb_jobs_first_error(ws, sizeof *ws, (int)nrun, offsetof(qworker, rc),
+                                  offsetof(qworker, fail_at));
+    if (bad > 0)
+        return vb_error(ctx, ws[bad].rc, NULL, 0, "%s", vb_errmsg(ws[bad].ctx));
+    return bad == 0 ? ws[0].rc : VB_OK;
+}
+
+/* The ties of every chunk in quadruple order, grouped; the first of each
+ * group solved, then each later one that its leader's vertex does not
+ * prove skipped (certify_ties.c). Sets *out (caller frees) and *nout. */
+static int settle_ties(vb_ctx *ctx, vb_certifier *c, const uint32_t (*quads)[4], size_t n,
+                       qworker *ws, unsigned nt, vbx_qtie **out, size_t *nout)
+{
+    size_t nch = (n + QCHUNK - 1) / QCHUNK, nties = 0;
+    const uint32_t *cw = ws[0].chunk_worker;
+    for (size_t ch = 0; ch < nch; ch++)
+        nties += ws[0].chunk_tend[ch] - ws[0].chunk_tfirst[ch];
+    *nout = nties;
+    *out = NULL;
+    if (!nties)
+        return VB_OK;
+    vbx_qtie *t = malloc(nties * sizeof *t);
+    size_t *todo = malloc(nties * sizeof *todo), ntodo = 0, m = 0;
+    if (!t || !todo) {
+        free(t);
+        free(todo);
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (tie vertices)");
+    }
+    *out = t;
+    for (size_t ch = 0; ch < nch; ch++)
+        for (size_t i = ws[0].chunk_tfirst[ch]; i < ws[0].chunk_tend[ch]; i++)
+            t[m++] = ws[cw[ch]].tie[i];
+    int rc = vbx_ties_group(ctx, c, t, nties);
+    for (size_t i = 0; i < nties; i++)
+        if (t[i].leader == i)
+            todo[ntodo++] = i;
+    if (rc == VB_OK)
+        rc = run_ties(ctx, ws, nt, t, todo, ntodo);
+    ntodo = 0;
+    for (size_t i = 0; i < nties && rc == VB_OK; i++) {
+        if (t[i].leader == i)
+            continue;
+        const vbx_qtie *l = &t[t[i].leader];
+        const qrec *r = l->rec != SIZE_MAX ? &ws[l->wi].rec[l->rec] : NULL;
+        const uint32_t *mm = r && r->nm > 4 ? ws[l->wi].pool + r->moff : NULL;
+        if (mm && vbx_quad_within(quads[t[i].quad], mm, r->nm))
+            t[i].skipped = 1;
+        else
+            todo[ntodo++] = i;
+    }
+    if (rc == VB_OK)
+        rc = run_ties(ctx, ws, nt, t, todo, ntodo);
+    free(todo);
+    return rc;
+}
+
+static vbx_vref ref_of(const qworker *ws, const uint32_t (*quads)[4], uint32_t wi, size_t i)
+{
+    const qrec *r = &ws[wi].rec[i];
+    vbx_vref v = {r->nm == 4 ? quads[r->quad] : ws[wi].pool + r->moff, r->nm, r->xyzt,
+                  r->sigma};
+    return v;
+}
+
+/* Ties t[*j ..) of quadruples before `before`: their records to refs (at
+ * *m), their counts. */
+static void tie_refs(const qworker *ws, const uint32_t (*quads)[4], const vbx_qtie *t,
+                     size_t nties, size_t before, size_t *j, vbx_vref *refs, size_t *m,
+                     vb_stats *st, vb_cert_quad_stats *qs)
+{
+    for (; *j < nties && t[*j].quad < before; (*j)++) {
+        const vbx_qtie *tj = &t[*j];
+        /* A skipped root is a certified root of a vertex already found. */
+        qs->roots_tied += tj->skipped;
+        qs->duplicates += tj->skipped;
+        if (tj->rec != SIZE_MAX)
+            refs[(*m)++] = ref_of(ws, quads, tj->wi, tj->rec);
+        else if (!tj->skipped && !tj->had_rec)
+            st->rejected++;
+    }
+}
+
+/* The certified roots of every chunk and tie in quadruple order (a tie's
+ * after its quadruple's other root, as judge_quad pushed them) merged into
+ * out; the counts the ties' quadruples waited for. */
+static int gather(vb_ctx *ctx, vb_certifier *c, const uint32_t (*quads)[4], size_t n,
+                  const qworker *ws, const vbx_qtie *t, size_t nties, vb_vertex_list *out,
+                  vb_cert_quad_stats *qs)
+{
+    size_t nch = (n + QCHUNK - 1) / QCHUNK, total = nties, m = 0, j = 0;
+    const uint32_t *cw = ws[0].chunk_worker;
+    for (size_t ch = 0; ch < nch; ch++)
+        total += ws[0].chunk_end[ch] - ws[0].chunk_first[ch];
+    vbx_vref *refs = malloc((total ? total : 1) * sizeof *refs);
+    if (!refs)
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (certified vertices)");
+    vb_stats *st = vb_ctx_stats(ctx);
+    for (size_t ch = 0; ch < nch; ch++)
+        for (size_t i = ws[0].chunk_first[ch]; i < ws[0].chunk_end[ch]; i++) {
+            tie_refs(ws, quads, t, nties, ws[cw[ch]].rec[i].quad, &j, refs, &m, st, qs);
+            refs[m++] = ref_of(ws, quads, cw[ch], i);
+        }
+    tie_refs(ws, quads, t, nties, SIZE_MAX, &j, refs, &m, st, qs);
+    int rc = vbx_quads_merge(ctx, c, refs, m, out, qs);
+    free(refs);
+    return rc;
 }
 
 static void add_qstats(vb_cert_quad_stats *to, const vb_cert_quad_stats *from)
@@ -430,137 +492,6 @@ static void add_qstats(vb_cert_quad_stats *to, const vb_cert_quad_stats *from)
     to->judged_vertex += from->judged_vertex;
     to->judged_not += from->judged_not;
     to->judged_open += from->judged_open;
-}
-
-/* ---- the merge ------------------------------------------------------------ */
-
-typedef struct vref {
-    const uint32_t *m;
-    size_t nm;
-    const double *xyzt;
-} vref;
-
-static int cmp_double(double a, double b)
-{
-    return (a > b) - (a < b);
-}
-
-/* The order of vb_vertex_list_sort: ids lexicographically (a prefix first),
- * then x, y, z, t. */
-static int cmp_vref(const vref *a, const vref *b)
-{
-    size_t m = a->nm < b->nm ? a->nm : b->nm;
-    for (size_t i = 0; i < m; i++)
-        if (a->m[i] != b->m[i])
-            return a->m[i] < b->m[i] ? -1 : 1;
-    if (a->nm != b->nm)
-        return a->nm < b->nm ? -1 : 1;
-    for (int k = 0; k < 4; k++) {
-        int c = cmp_double(a->xyzt[k], b->xyzt[k]);
-        if (c)
-            return c;
-    }
-    return 0;
-}
-
-static int cmp_vref_q(const void *pa, const void *pb)
-{
-    return cmp_vref(pa, pb);
-}
-
-static vref ref_of(const qworker *ws, const uint32_t (*quads)[4], uint32_t wi, const qrec *r)
-{
-    vref v = {r->nm == 4 ? quads[r->quad] : ws[wi].pool + r->moff, r->nm, r->xyzt};
-    return v;
-}
-
-static int push_ref(vb_vertex_list *out, const vref *v)
-{
-    return vb_vertex_list_push(out, v->m, v->nm, v->xyzt[0], v->xyzt[1], v->xyzt[2],
-                               v->xyzt[3], 0.0, VB_VERTEX_CERTIFIED);
-}
-
-/* Vertex k of a list as a reference (its t and x, y, z are not adjacent:
- * copied into buf). */
-static vref ref_list(const vb_vertex_list *v, size_t k, double buf[4])
-{
-    buf[0] = v->x[k];
-    buf[1] = v->y[k];
-    buf[2] = v->z[k];
-    buf[3] = v->t[k];
-    vref r = {v->ids + v->start[k], v->start[k + 1] - v->start[k], buf};
-    return r;
-}
-
-static int merge(vb_ctx *ctx, vb_certifier *c, const uint32_t (*quads)[4], size_t n,
-                 qworker *ws, const uint32_t *chunk_worker, const size_t *chunk_first,
-                 const size_t *chunk_end, vb_vertex_list *out, vb_cert_quad_stats *qs)
-{
-    size_t nch = (n + QCHUNK - 1) / QCHUNK, total = 0;
-    for (size_t ch = 0; ch < nch; ch++)
-        total += chunk_end[ch] - chunk_first[ch];
-    vref *four = malloc((total ? total : 1) * sizeof *four);
-    vref *more = malloc((total ? total : 1) * sizeof *more);
-    size_t nfour = 0, nmore = 0;
-    size_t *where = NULL, nwhere = 0; /* key -> 1 when written in this call, else SIZE_MAX */
-    int rc = four && more ? VB_OK : VB_ENOMEM;
-    for (size_t ch = 0; ch < nch && rc == VB_OK; ch++) {
-        uint32_t wi = chunk_worker[ch];
-        for (size_t i = chunk_first[ch]; i < chunk_end[ch] && rc == VB_OK; i++) {
-            vref v = ref_of(ws, quads, wi, &ws[wi].rec[i]);
-            if (v.nm == 4) {
-                /* Quadruples are sorted, so these come in order but for the
-                 * two roots of one quadruple. */
-                if (nfour && v.m == four[nfour - 1].m && cmp_vref(&v, &four[nfour - 1]) < 0) {
-                    four[nfour] = four[nfour - 1];
-                    four[nfour - 1] = v;
-                } else {
-                    four[nfour] = v;
-                }
-                nfour++;
-                continue;
-            }
-            size_t key;
-            rc = vbx_cert_key_of(ctx, c, v.m, v.nm, ws[wi].rec[i].sigma, &key);
-            if (rc != VB_OK)
-                break;
-            rc = vbx_where_fit(&where, &nwhere, key);
-            if (rc != VB_OK)
-                break;
-            if (where[key] != SIZE_MAX) {
-                qs->duplicates++;
-                continue;
-            }
-            where[key] = 1;
-            more[nmore++] = v;
-        }
-    }
-    free(where);
-    if (rc == VB_OK)
-        qsort(more, nmore, sizeof *more, cmp_vref_q);
-    size_t old = out->n, a = 0, b = 0;
-    while (rc == VB_OK && (a < nfour || b < nmore)) {
-        if (b == nmore || (a < nfour && cmp_vref(&four[a], &more[b]) <= 0))
-            rc = push_ref(out, &four[a++]);
-        else
-            rc = push_ref(out, &more[b++]);
-    }
-    free(four);
-    free(more);
-    if (rc == VB_OK) {
-        qs->vertices += out->n - old;
-        vb_ctx_stats(ctx)->certified += out->n - old;
-    }
-    /* Appended after earlier vertices: sort only when they interleave. */
-    if (rc == VB_OK && old > 0 && out->n > old) {
-        double b1[4], b2[4];
-        vref last = ref_list(out, old - 1, b1), first = ref_list(out, old, b2);
-        if (cmp_vref(&last, &first) > 0)
-            rc = vb_vertex_list_sort(out);
-    }
-    if (rc == VB_ENOMEM)
-        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (certified vertices)");
-    return rc;
 }
 
 /* Sorted ids in range, quadruples strictly increasing. */
@@ -611,11 +542,13 @@ int vb_certify_quads_judged(vb_ctx *ctx, vb_certifier *c, const uint32_t (*quads
     uint32_t *chunk_worker = malloc(nch1 * sizeof *chunk_worker);
     size_t *chunk_first = malloc(nch1 * sizeof *chunk_first);
     size_t *chunk_end = malloc(nch1 * sizeof *chunk_end);
-    if (!ws || !chunk_worker || !chunk_first || !chunk_end) {
+    size_t *chunk_ties = malloc(2 * nch1 * sizeof *chunk_ties);
+    if (!ws || !chunk_worker || !chunk_first || !chunk_end || !chunk_ties) {
         free(ws);
         free(chunk_worker);
         free(chunk_first);
         free(chunk_end);
+        free(chunk_ties);
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (certifier)");
     }
     atomic_size_t next, judged;
@@ -632,6 +565,8 @@ int vb_certify_quads_judged(vb_ctx *ctx, vb_certifier *c, const uint32_t (*quads
         ws[i].chunk_worker = chunk_worker;
         ws[i].chunk_first = chunk_first;
         ws[i].chunk_end = chunk_end;
+        ws[i].chunk_tfirst = chunk_ties;
+        ws[i].chunk_tend = chunk_ties + nch1;
         ws[i].index = (uint16_t)i;
         ws[i].fail_at = SIZE_MAX;
         ws[i].rc = VB_OK;
@@ -646,6 +581,19 @@ int vb_certify_quads_judged(vb_ctx *ctx, vb_certifier *c, const uint32_t (*quads
     /* A thread that cannot start has its share run by the caller. */
     if (rc == VB_OK)
         vb_run_jobs(work, ws, sizeof *ws, (int)nt);
+    int rc_ws = VB_OK;
+    vbx_qtie *ties = NULL;
+    size_t nties = 0;
+    if (rc == VB_OK) {
+        int bad = vb_jobs_first_error(ws, sizeof *ws, (int)nt, offsetof(qworker, rc),
+                                      offsetof(qworker, fail_at));
+        if (bad > 0)
+            rc_ws = vb_error(ctx, ws[bad].rc, NULL, 0, "%s", vb_errmsg(ws[bad].ctx));
+        else
+            rc_ws = ws[0].rc;
+        if (rc_ws == VB_OK)
+            rc_ws = settle_ties(ctx, c, quads, n, ws, nt, &ties, &nties);
+    }
     qs.mpfr_rounds += c->sol.slow_rounds - slow0;
     add_qstats(&qs, &ws[0].st);
     for (unsigned i = 1; i < nt; i++) {
@@ -661,21 +609,17 @@ int vb_certify_quads_judged(vb_ctx *ctx, vb_certifier *c, const uint32_t (*quads
     cst->judged_vertex += qs.judged_vertex;
     cst->judged_not += qs.judged_not;
     cst->judged_open += qs.judged_open;
-    if (rc != VB_OK) {
+    if (rc != VB_OK)
         rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (certifier threads)");
-    } else {
-        int bad = vb_jobs_first_error(ws, sizeof *ws, (int)nt, offsetof(qworker, rc),
-                                      offsetof(qworker, fail_at));
-        if (bad > 0)
-            rc = vb_error(ctx, ws[bad].rc, NULL, 0, "%s", vb_errmsg(ws[bad].ctx));
-        else
-            rc = ws[0].rc;
-    }
+    else
+        rc = rc_ws;
     if (rc == VB_OK)
-        rc = merge(ctx, c, quads, n, ws, chunk_worker, chunk_first, chunk_end, out, &qs);
+        rc = gather(ctx, c, quads, n, ws, ties, nties, out, &qs);
+    free(ties);
     for (unsigned i = 0; i < nt; i++) {
         free(ws[i].rec);
         free(ws[i].pool);
+        free(ws[i].tie);
         if (i > 0) {
             vb_certifier_close(ws[i].c);
             vb_close(ws[i].ctx);
@@ -685,6 +629,7 @@ int vb_certify_quads_judged(vb_ctx *ctx, vb_certifier *c, const uint32_t (*quads
     free(chunk_worker);
     free(chunk_first);
     free(chunk_end);
+    free(chunk_ties);
     if (stats)
         *stats = qs;
     return rc;

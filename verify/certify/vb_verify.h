@@ -93,6 +93,8 @@ typedef struct vb_cert_quad_stats {
     uint64_t roots_fast;        /* roots certified with no GMP (filter and long double rounding) */
     uint64_t roots_round_exact; /* roots the filter certified whose rounding needed GMP */
     uint64_t roots_exact;       /* roots judged on the exact path (filter undecided) */
+    uint64_t roots_tied;        /* open roots proven a vertex of degree > 4 already solved
+                                   (certify_ties.c): no exact path */
     uint64_t quads_exact;       /* quadruples the filter could not set up: every root exact */
     uint64_t exact_solves;      /* GMP solves of a quadruple */
     uint64_t mpfr_rounds;       /* coordinates that MPFR rounded */
