@@ -73,6 +73,28 @@ static int is_ids(const vb_vertex_list *v, size_t k, const uint32_t *ids, size_t
            memcmp(v->ids + v->start[k], ids, n * sizeof *ids) == 0;
 }
 
+/* Every sorted quadruple of spheres 0..m-1, in order, into all; the count. */
+static size_t all_quads(uint32_t m, uint32_t (*all)[4])
+{
+    size_t n = 0;
+    for (uint32_t a = 0; a < m; a++)
+        for (uint32_t b = a + 1; b < m; b++)
+            for (uint32_t c = b + 1; c < m; c++)
+                for (uint32_t d = c + 1; d < m; d++) {
+                    const uint32_t q[4] = {a, b, c, d};
+                    memcpy(all[n++], q, sizeof q);
+                }
+    return n;
+}
+
+/* Every quadruple of spheres 0..m-1 (m <= 11) certified on one thread. */
+static void certify_all(const vb_sphere_set *set, uint32_t m, run *r)
+{
+    static uint32_t all[330][4];
+    size_t n = all_quads(m, all);
+    certify(set, (const uint32_t(*)[4])all, n, 1, r);
+}
+
 static void test_hand_made(void)
 {
     vb_sphere_set *s = vt_set(8, two_vertices);
@@ -156,16 +178,7 @@ static void test_hand_made(void)
     vb_vertex_list_free(&r.out);
 
     /* Every quadruple of the eight spheres: the reference's seven vertices. */
-    uint32_t all[70][4];
-    size_t n = 0;
-    for (uint32_t a = 0; a < 8; a++)
-        for (uint32_t b = a + 1; b < 8; b++)
-            for (uint32_t c = b + 1; c < 8; c++)
-                for (uint32_t d = c + 1; d < 8; d++) {
-                    const uint32_t q[4] = {a, b, c, d};
-                    memcpy(all[n++], q, sizeof q);
-                }
-    certify(s, (const uint32_t(*)[4])all, n, 1, &r);
+    certify_all(s, 8, &r);
     CHECK_INT(r.rc, VB_OK);
     CHECK_INT(r.out.n, 7);
     CHECK_INT(r.st.candidates, 70);
@@ -199,14 +212,7 @@ static void test_degenerate(void)
 {
     vb_sphere_set *s = vt_cube();
     uint32_t all[70][4];
-    size_t n = 0;
-    for (uint32_t a = 0; a < 8; a++)
-        for (uint32_t b = a + 1; b < 8; b++)
-            for (uint32_t c = b + 1; c < 8; c++)
-                for (uint32_t d = c + 1; d < 8; d++) {
-                    const uint32_t q[4] = {a, b, c, d};
-                    memcpy(all[n++], q, sizeof q);
-                }
+    size_t n = all_quads(8, all);
     run r;
     certify(s, (const uint32_t(*)[4])all, n, 1, &r);
     CHECK_INT(r.rc, VB_OK);
@@ -266,17 +272,8 @@ static void test_ties(void)
         "-3", "2",  "-1", "1.2", "1",   "-3", "4",  "0.9", "2", "5",   "0",  "1.1",
         "-2", "-2", "-2", "1.3", "4.00000000000000001", "1", "1", "1"};
     vb_sphere_set *s = vt_set(11, v);
-    static uint32_t all[330][4];
-    size_t n = 0;
-    for (uint32_t a = 0; a < 11; a++)
-        for (uint32_t b = a + 1; b < 11; b++)
-            for (uint32_t c = b + 1; c < 11; c++)
-                for (uint32_t d = c + 1; d < 11; d++) {
-                    const uint32_t q[4] = {a, b, c, d};
-                    memcpy(all[n++], q, sizeof q);
-                }
     run r;
-    certify(s, (const uint32_t(*)[4])all, n, 1, &r);
+    certify_all(s, 11, &r);
     CHECK_INT(r.rc, VB_OK);
     /* The diagram's 19 vertices (vorball vertices before the ties). */
     CHECK_INT(r.out.n, 19);
