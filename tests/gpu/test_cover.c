@@ -20,6 +20,7 @@
 #include "vbg_cover.h"
 #include "vbg_cover_tasks.h"
 #include "vbg_runtime.h"
+#include "vb_test_device.h"
 
 static int same(const vb_quad_list *a, const vb_quad_list *b)
 {
@@ -511,10 +512,7 @@ int main(void)
     vb_config cfg = {0, NULL};
     if (vb_open(&ctx, &cfg) != VB_OK)
         return 1;
-    vbg_runtime *rt = NULL;
-    int have_device = vbg_runtime_open(ctx, VB_DEVICE_CPU, &rt) == VB_OK;
-    vbg_runtime_close(rt);
-    vb_clear_error(ctx);
+    int have_device = vb_test_have_cpu_device(ctx);
     if (!have_device)
         fprintf(stderr, "no OpenCL CPU device: the device paths are not tested\n");
     /* jittered_fcc: combination dominance. The exact crystals (the

@@ -21,6 +21,7 @@
 #include "vbg_cover.h"
 #include "vbg_cover_state.h"
 #include "vbg_runtime.h"
+#include "vb_test_device.h"
 
 #define MIB ((size_t)1 << 20)
 
@@ -175,10 +176,7 @@ int main(void)
     vb_config cfg = {0, NULL};
     if (vb_open(&ctx, &cfg) != VB_OK)
         return 1;
-    vbg_runtime *rt = NULL;
-    int have_device = vbg_runtime_open(ctx, VB_DEVICE_CPU, &rt) == VB_OK;
-    vbg_runtime_close(rt);
-    vb_clear_error(ctx);
+    int have_device = vb_test_have_cpu_device(ctx);
     char path[4096];
     snprintf(path, sizeof path, "%s/corpus/inputs/crambin_fragment.xyzr", src);
     if (have_device)

@@ -12,6 +12,7 @@
 #include "vb_verify.h"
 #include "vb_vertices.h"
 #include "vbg_runtime.h"
+#include "vb_test_device.h"
 
 static uint64_t lcg = 99;
 
@@ -215,10 +216,7 @@ int main(void)
     vb_ctx *ctx;
     if (vb_open(&ctx, &cfg))
         return 1;
-    vbg_runtime *rt = NULL;
-    int have_cpu = vbg_runtime_open(ctx, VB_DEVICE_CPU, &rt) == VB_OK;
-    vbg_runtime_close(rt);
-    vb_clear_error(ctx);
+    int have_cpu = vb_test_have_cpu_device(ctx);
     if (!have_cpu)
         printf("no OpenCL CPU device: backend identity not tested here\n");
     check_set(ctx, "random", random_set(40), have_cpu);
