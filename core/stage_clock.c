@@ -18,9 +18,12 @@ double vb_cpu_now(void)
 
 double vb_thread_cpu_now(void)
 {
+#ifdef CLOCK_THREAD_CPUTIME_ID
     struct timespec ts;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+    if (clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts) == 0)
+        return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+#endif
+    return vb_now();
 }
 
 void vb_stage_clock_start(vb_stage_clock *c)

@@ -26,7 +26,8 @@ typedef struct vb_stage_clock {
 double vb_cpu_now(void);
 
 /* The calling thread's CPU seconds so far (its own clock: a difference of
- * two calls on one thread is that thread's CPU between them). */
+ * two calls on one thread is that thread's CPU between them; wall seconds
+ * where the system has no thread clock). */
 double vb_thread_cpu_now(void);
 
 /* Zeroes c and starts its clock: the next stage begins now. */

@@ -2,10 +2,10 @@
  * one triple traced to their ends, as events, on one thread each. */
 #include <stdint.h>
 #include <string.h>
-#include <time.h>
 
 #include "vb_array.h"
 #include "vb_parallel.h"
+#include "vb_stage_clock.h"
 
 #include "vbx_closure.h"
 
@@ -358,19 +358,6 @@ static int trace_item(vbx_tracer *tr, const vb_vertex_list *all, const vbx_item 
     return rc;
 }
 
-/* CPU seconds of the calling thread (wall seconds where the system has no
- * thread clock): what a tracer spends, apart from time the machine gives
- * to other work. */
-static double thread_cpu(void)
-{
-#ifdef CLOCK_THREAD_CPUTIME_ID
-    struct timespec ts;
-    if (clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts) == 0)
-        return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-#endif
-    return vb_now();
-}
-
 /* A thread of a phase: chunks of items in turn; each vbx_item's events are a
  * function of that vbx_item alone (the worker keeps no state from one arc to
  * the next beyond its counters), so which thread traced it does not
@@ -380,7 +367,7 @@ void *vbx_phase_work(void *arg)
     vbx_rjob *j = arg;
     vbx_tphase *ph = j->ph;
     vbx_tracer *tr = &ph->tr[j->index];
-    double t0 = thread_cpu();
+    double t0 = vb_thread_cpu_now();
     for (;;) {
         size_t c0 = atomic_fetch_add(&ph->next, VBX_RCHUNK);
         if (c0 >= ph->n || tr->rc != VB_OK)
@@ -402,6 +389,6 @@ void *vbx_phase_work(void *arg)
             vb_progress(ph->progress, "arcs", ph->base + ph->span * d / ph->n, ph->total);
         }
     }
-    tr->busy += thread_cpu() - t0;
+    tr->busy += vb_thread_cpu_now() - t0;
     return NULL;
 }

@@ -6,12 +6,12 @@
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "vb_decimal_mpz.h"
 #include "vb_diag.h"
 #include "vb_measures.h"
 #include "vb_parallel.h"
+#include "vb_stage_clock.h"
 #include "vbm_cell.h"
 #include "vbm_piece.h"
 
@@ -337,14 +337,6 @@ static void measure_atom(job *jb, size_t i, int tid)
     jb->npairs[i] = r.npairs;
 }
 
-/* This thread's CPU seconds so far. */
-static double thread_cpu(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 static void one_atom(void *ctx, size_t i, int tid)
 {
     job *jb = ctx;
@@ -355,9 +347,9 @@ static void one_atom(void *ctx, size_t i, int tid)
          * CPU seconds (a costlier clock, read twice per atom): a thread
          * that waits for a core, on a loaded machine, counts no waiting */
         memset(jb->tc[tid].lap, 0, sizeof jb->tc[tid].lap);
-        double c0 = thread_cpu(), w0 = vb_now();
+        double c0 = vb_thread_cpu_now(), w0 = vb_now();
         measure_atom(jb, i, tid);
-        double w = vb_now() - w0, f = w > 0.0 ? (thread_cpu() - c0) / w : 1.0;
+        double w = vb_now() - w0, f = w > 0.0 ? (vb_thread_cpu_now() - c0) / w : 1.0;
         for (int k = 0; k < VB_CELL_NSTAGE; k++)
             jb->tc[tid].clock[k] += f * jb->tc[tid].lap[k];
     }
