@@ -7,16 +7,14 @@
 
 #include "vbg_cover_state.h"
 
-size_t vbg_cov_slice_bytes(const cov_tier *t)
+/* Bytes of one slice of tier t (its share of the frame stack on the
+ * work-item kernel; the group kernel's one stack does not grow with its
+ * slices). */
+static size_t slice_bytes(const cov_tier *t)
 {
     return (size_t)t->nb_cap * sizeof(vbq_nb) + (size_t)t->lab_cap * 4 +
            (t->wg ? 0 : (size_t)t->st_cap * sizeof(vbq_frame)) + (size_t)t->q_cap * 16 +
            (t->caches ? (size_t)t->lab_cap * 8 + VBQ_MEMO * (sizeof(vbq_nb) + 8) : 0);
-}
-
-size_t vbg_cov_tier_fixed(const cov_tier *t)
-{
-    return t->wg ? (size_t)t->st_cap * sizeof(vbq_frame) : 0;
 }
 
 void vbg_cov_tier_arrays(const cov_tier *t, size_t w, size_t bytes[COV_ARRAYS])
@@ -76,7 +74,7 @@ static void solo_caps(cov_tier *t, size_t share)
 {
     t->nb_cap = t->nb_want;
     t->lab_cap = t->lab_want;
-    while (t->want * vbg_cov_slice_bytes(t) > share) {
+    while (t->want * slice_bytes(t) > share) {
         uint32_t nb = t->nb_cap / 2 >= COV_NB ? t->nb_cap / 2 : t->nb_cap;
         uint32_t lab = t->lab_cap / 2 >= COV_LAB ? t->lab_cap / 2 : t->lab_cap;
         if (nb == t->nb_cap && lab == t->lab_cap)

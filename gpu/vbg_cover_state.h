@@ -255,13 +255,6 @@ void vbg_cover_knobs(cov_state *s);
  * first tier's caches (caches) and handed patches (hand) as built. */
 void vbg_cov_caps(cov_state *s, int cpu, int caches, int hand, size_t units);
 
-/* Bytes of one slice of tier t (its share of the frame stack on the
- * work-item kernel; the group kernel's one stack is vbg_cov_tier_fixed). */
-size_t vbg_cov_slice_bytes(const cov_tier *t);
-
-/* Bytes of tier t that do not grow with its slices. */
-size_t vbg_cov_tier_fixed(const cov_tier *t);
-
 /* Bytes of each of tier t's COV_ARRAYS arrays for w slices (0: not made;
  * the first four take 16 at least). */
 void vbg_cov_tier_arrays(const cov_tier *t, size_t w, size_t bytes[COV_ARRAYS]);
