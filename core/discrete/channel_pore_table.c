@@ -80,16 +80,6 @@ int vbc_pore_lining(const vbc_pore *p, const vbc_cells *cells, double lining_tol
     return VB_OK;
 }
 
-int vbc_result_add_pore(vb_ctx *ctx, vbc_result *res, const vbc_pore *p, const vbc_cells *cells,
-                        double lining_tol)
-{
-    int32_t *lining;
-    size_t n;
-    if (vbc_pore_lining(p, cells, lining_tol, &lining, &n) != VB_OK)
-        return vb_error(ctx, VB_ENOMEM, NULL, 0, "pore of %zu points", p->n);
-    return vbc_result_add_pore_lined(ctx, res, p, lining, n);
-}
-
 int vbc_result_add_pore_lined(vb_ctx *ctx, vbc_result *res, const vbc_pore *p, int32_t *lining,
                               size_t nlining)
 {

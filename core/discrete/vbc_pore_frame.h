@@ -35,11 +35,6 @@ int vbc_pore_find(vb_ctx *ctx, const vbc_grid *g, const uint8_t *flags, const vb
                   const vb_sphere_set *s, const vbc_result *res, const vbc_pore_request *req,
                   vbc_pore *out);
 
-/* Puts the pore p at the head of res (kind VBC_PORE, its points, lining
- * atoms within r + lining_tol, res->pore filled). VB_ENOMEM. */
-int vbc_result_add_pore(vb_ctx *ctx, vbc_result *res, const vbc_pore *p, const vbc_cells *cells,
-                        double lining_tol);
-
 /* The pore p's lining atoms (each atom whose surface is within r +
  * lining_tol of a point of p), ascending, in *out (malloc'ed, *n of them;
  * free it), read from the cell list only: so the pore stage makes them
@@ -48,8 +43,9 @@ int vbc_result_add_pore(vb_ctx *ctx, vbc_result *res, const vbc_pore *p, const v
 int vbc_pore_lining(const vbc_pore *p, const vbc_cells *cells, double lining_tol, int32_t **out,
                     size_t *n);
 
-/* vbc_result_add_pore with the lining given (vbc_pore_lining's list of n
- * atoms, taken: freed by this call whatever it returns). VB_ENOMEM. */
+/* Puts the pore p at the head of res (kind VBC_PORE, its points, its
+ * lining atoms: vbc_pore_lining's list of nlining, taken: freed by this
+ * call whatever it returns; res->pore filled). VB_ENOMEM. */
 int vbc_result_add_pore_lined(vb_ctx *ctx, vbc_result *res, const vbc_pore *p, int32_t *lining,
                               size_t nlining);
 
