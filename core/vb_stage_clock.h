@@ -22,7 +22,10 @@ typedef struct vb_stage_clock {
     double wall_start, cpu_start;             /* vb_stage_clock_start */
 } vb_stage_clock;
 
-/* The process's CPU seconds so far, all threads together. */
+/* The process's CPU seconds so far, all threads together (0 where the
+ * clock cannot be read): beside the wall clock in stage clocks and the
+ * channels JSON's "clock", as a loaded machine stretches the wall clock
+ * but not this. */
 double vb_cpu_now(void);
 
 /* The calling thread's CPU seconds so far (its own clock: a difference of

@@ -57,9 +57,6 @@
 #include "vbg_buffer.h"
 #include "vbg_cover.h"
 
-/* A cell whose quadruples did not fit the output array (cover*.cl). */
-#define COV_OVER_OUT 5u
-
 /* Arena slices of one tier: `slices` of them (work-items, or work-groups). */
 typedef struct cov_tier {
     vbg_buf nb, lab, st, q;  /* the pool's arrays while bound (not owned: s->arr owns them) */

@@ -11,6 +11,7 @@
 #include "vb_diag.h"
 #include "vb_output.h"
 #include "vb_parallel.h"
+#include "vb_stage_clock.h"
 #include "vbc_flight.h"
 #include "vbc_page.h"
 #include "vbc_paths.h"
@@ -183,7 +184,7 @@ static int run_rounds(vb_ctx *ctx, vb_channels *ch, vb_frame_source *F, const vb
                 break;
             }
             vb_sphere_set *s = NULL;
-            double t_read = vb_now(), cpu_read = vbc_cpu_now();
+            double t_read = vb_now(), cpu_read = vb_cpu_now();
             int model, quiet = io->quiet_read ? vb_set_verbosity(ctx, 0) : -1;
             frc = vb_frame_source_next(ctx, F, &s, &model);
             if (quiet >= 0)
@@ -339,7 +340,7 @@ int vb_channels_run_frames(vb_ctx *ctx, vb_channels *ch, vb_frame_source *F,
     if (c->f1 > c->f0 && c->fstep > 0)
         ch->run.frames_total = (c->f1 - c->f0 + c->fstep - 1) / c->fstep;
     ch->t_frames = vb_now();
-    ch->cpu_frames = vbc_cpu_now();
+    ch->cpu_frames = vb_cpu_now();
     /* Frames in flight on one process; the picture (--png) runs the pipe
      * on this thread, so it keeps the loop that reads frame by frame, as
      * does one frame at a time without a reader thread (the reference). */
@@ -369,7 +370,7 @@ int vb_channels_finish(vb_ctx *ctx, vb_channels *ch, const vb_channels_io *io, i
     FILE *table = io->sink[VB_CHANNELS_SINK_TABLE], *cl = io->sink[VB_CHANNELS_SINK_CENTRELINES];
     if (writer && c->json && table)
         vbc_write_json_end_clock(table, selected, 1e3 * (vb_now() - ch->t_frames),
-                                 1e3 * (vbc_cpu_now() - ch->cpu_frames));
+                                 1e3 * (vb_cpu_now() - ch->cpu_frames));
     if (writer && cl)
         vbc_write_centrelines_conect(cl, &ch->run.first);
     if (writer && c->pymol) {

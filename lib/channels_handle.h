@@ -26,7 +26,7 @@ struct vb_channels {
     vbc_image stages;         /* --png: the first frame's picture (w 0: none) */
     vb_page *page;            /* --html */
     char frame0[4200];        /* --pymol: the first frame's PDB beside it, or "" */
-    double t_frames, cpu_frames; /* vb_now() and vbc_cpu_now() when the run over frames began */
+    double t_frames, cpu_frames; /* vb_now() and vb_cpu_now() when the run over frames began */
 };
 
 /* Ends the handle's run (frames or single frame) and frees its results. */

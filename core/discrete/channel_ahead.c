@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "vb_parallel.h"
+#include "vb_stage_clock.h"
 #include "vbc_ahead.h"
 
 typedef struct slot {
@@ -59,7 +60,7 @@ static int fetch(vbc_ahead *a, raw *x)
     const vbc_channels_config *c = a->r->cfg;
     memset(x, 0, sizeof *x);
     x->t_read = vb_now();
-    x->cpu_read = vbc_cpu_now();
+    x->cpu_read = vb_cpu_now();
     for (;;) {
         if (c->f1 >= 0 && a->index >= c->f1) {
             x->end = 1;

@@ -1,20 +1,11 @@
 /* One frame of the channel analysis: pack, pipe, analyse (vbc_frame.h). */
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "vb_diag.h"
 #include "vb_parallel.h"
 #include "vbc_frame.h"
 #include "vbc_paths.h"
-
-double vbc_cpu_now(void)
-{
-    struct timespec ts;
-    if (clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts) != 0)
-        return 0.0;
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 void vbc_frame_free(vbc_frame *f)
 {

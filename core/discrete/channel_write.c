@@ -9,6 +9,7 @@
 #include "vb_json.h"
 #include "vb_output.h"
 #include "vb_parallel.h"
+#include "vb_stage_clock.h"
 #include "vbc_pore.h"
 
 static const char *kind_name(int kind)
@@ -299,7 +300,7 @@ void vbc_write_json_frame(FILE *f, int first, const vbc_frame_info *fi, const vb
     double frame = fi->t_start > 0.0 ? 1e3 * (now - fi->t_start)
                                      : fi->ms_read + fi->ms_prepare + fi->ms_total + w;
     const double clock[] = {w, frame, frame > 0.0 ? 1e3 / frame : 0.0,
-                            fi->t_start > 0.0 ? 1e3 * (vbc_cpu_now() - fi->cpu_start) : 0.0};
+                            fi->t_start > 0.0 ? 1e3 * (vb_cpu_now() - fi->cpu_start) : 0.0};
     json_clock(f, "     \"clock\": {", VBC_JSON_CLOCK_KEYS, clock);
     fputc('}', f);
 }

@@ -37,7 +37,7 @@ typedef struct vbc_ahead_frame {
     long index;             /* in the input, from 0 */
     long j;                 /* in the selection, from 0 */
     vbc_held *held;         /* what reading and the front said (the caller says and frees it) */
-    double t_read, cpu_read; /* vb_now() and vbc_cpu_now() when its reading began */
+    double t_read, cpu_read; /* vb_now() and vb_cpu_now() when its reading began */
     double ms_read;         /* its reading (the frames skipped before it included) */
 } vbc_ahead_frame;
 

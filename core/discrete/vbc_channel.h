@@ -308,13 +308,8 @@ typedef struct vbc_frame_info {
     double ms_voxels, ms_clear, ms_trace; /* the analysis's steps (vbc_result) */
     double ms_beside;      /* of ms_analysis, what ran beside the pore stage (vbc_frame_analyse) */
     double t_start;        /* vb_now() when the frame's reading began; 0: unknown */
-    double cpu_start;      /* vbc_cpu_now() then (with t_start) */
+    double cpu_start;      /* vb_cpu_now() then (with t_start) */
 } vbc_frame_info;
-
-/* The CPU time of the process (every thread) in seconds: beside the wall
- * clock in the JSON's "clock", as a loaded machine stretches the wall
- * clock but not this. */
-double vbc_cpu_now(void);
 
 /* The channel table's columns, one "  name  meaning" line each (static
  * text): `vorball channels --help` and the README print it. */

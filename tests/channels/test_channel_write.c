@@ -9,6 +9,7 @@
 
 #include "vb_test.h"
 #include "vb_parallel.h"
+#include "vb_stage_clock.h"
 #include "vbc_channel.h"
 
 /* Everything f received, NUL-terminated (caller frees). */
@@ -108,7 +109,7 @@ int main(void)
     fi2.ms_verdict = 7.0;
     fi2.ms_total = 99.0;
     fi2.t_start = vb_now() - 0.25;
-    fi2.cpu_start = vbc_cpu_now();
+    fi2.cpu_start = vb_cpu_now();
     f = tmpfile();
     vbc_write_json_frame(f, 1, &fi2, &g, s, &res);
     char *json2 = slurp(f);
