@@ -41,8 +41,10 @@ void vbg_cover_knobs(cov_state *s)
     /* VORBALL_COVER_HAND_WORDS: words of handed patches a cell gets in the
      * first launch (so that cells find no room and the first tier runs
      * again for them: rerun_hand_short, counted in the reruns' clocks). */
-    if ((v = knob("VORBALL_COVER_HAND_WORDS", 0)) > 0)
+    if ((v = knob("VORBALL_COVER_HAND_WORDS", 0)) > 0) {
         s->hand_cell_words = (uint32_t)v;
+        s->hand_floor_words = 0; /* the cells' room is the knob's alone */
+    }
     /* Device memory against speed (vbg_cover_state.h, measurements):
      * VORBALL_COVER_CELLS_PER_SLICE, the group kernel's first tier's
      * spheres a slice; VORBALL_COVER_POOL_PER_SPHERE, the pool's bytes a

@@ -155,11 +155,16 @@ void vbg_cov_launch_sizes(cov_state *s, const cov_tier *t, size_t ncells, size_t
     size_t room = s->launch_room > held + 16 ? (s->launch_room - held) / 16 : 1;
     *qroom = s->qout_cap < room ? s->qout_cap : room;
     /* The handed patches (vbq_hand_patch): the first tier only, room for
-     * hand_cell_words a cell (at most COV_HAND_CAP words in all) or what an
-     * earlier launch asked, within what the launch room leaves after the
-     * quadruples and the other buffers (the hand buffer held counted). */
+     * hand_cell_words a cell, but no less than COV_HAND_FLOOR words in all
+     * (nor than COV_HAND_WORDS a cell), at most COV_HAND_CAP words in all,
+     * or what an earlier launch asked, within what the launch room leaves
+     * after the quadruples and the other buffers (the hand buffer held
+     * counted). */
     int hand = s->k_hand && t == &s->tier[COV_FIRST];
     size_t per = (size_t)s->hand_cell_words * ncells;
+    size_t floor_w = (size_t)COV_HAND_WORDS * ncells;
+    floor_w = floor_w < s->hand_floor_words ? floor_w : s->hand_floor_words;
+    per = per > floor_w ? per : floor_w;
     per = per < s->hand_cap_words ? per : s->hand_cap_words;
     size_t hw = hand ? (s->hand_want > per ? s->hand_want : per) : 0;
     size_t used = held - s->hand.size + 16 * *qroom;
@@ -265,6 +270,7 @@ void vbg_cov_caps(cov_state *s, int cpu, int caches, int hand, size_t units)
     s->k_hand = (cpu && !s->wg) || hand;
     s->hand_cell_words = s->wg ? COV_HAND_WORDS / 8 : COV_HAND_WORDS;
     s->hand_cap_words = COV_HAND_CAP;
+    s->hand_floor_words = COV_HAND_FLOOR;
     s->cells_per_slice = s->wg ? COV_CELLS_PER_SLICE : 1;
     s->pool_per_sphere = COV_POOL_PER_SPHERE;
     /* Slices wanted: as many as keep the device busy; each run makes as

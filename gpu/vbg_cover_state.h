@@ -126,6 +126,7 @@ typedef struct cov_state {
     size_t pool_per_sphere;  /* COV_POOL_PER_SPHERE (0: the budget alone bounds the pool) */
     size_t cells_per_slice;  /* COV_CELLS_PER_SLICE: the group kernel's first tier */
     size_t hand_cap_words;   /* COV_HAND_CAP: handed-patch words a launch reserves at most */
+    size_t hand_floor_words; /* COV_HAND_FLOOR: ... at least (0 where a knob sets the cell's) */
     size_t last_n;           /* spheres of the last run begun (trim) */
     vb_cover_clocks *clocks; /* the backend's, per tier (indexed by COV_*) */
 } cov_state;
@@ -212,6 +213,16 @@ typedef struct cov_state {
  * its hand buffer grew to 74 MiB), so 128 a cell leaves it room twice
  * over at 108 MiB instead of 216. */
 #define COV_HAND_WORDS 1024u
+/* Words of handed patches a first launch gets at least, where its cells
+ * at COV_HAND_WORDS each would take that many (4 Mi words, 16 MiB): a cell
+ * that finds no room runs its whole cover again (rerun_hand_short), which
+ * cost more than the room on an H100 (stop 50, merged stop-49 head): sc
+ * 4,096 jittered 1e-12 asked ~150 words a cell, 128 left 2 reruns (0.036
+ * s of kernel, bench 0.165-0.172 s), 512 or 2,048 none (0.130-0.132 s);
+ * EXTREMESET Congruent 300 ~900 a cell, 2 reruns (0.059 s) beside a 0.043
+ * s first launch. From 32,768 cells the 128 a cell pass it (the tiling's
+ * 108 MiB as before). */
+#define COV_HAND_FLOOR (4u << 20)
 /* Words of handed patches a launch reserves at most before a launch asks
  * for more (VORBALL_COVER_HAND_CAP; by default none). */
 #define COV_HAND_CAP SIZE_MAX

@@ -73,7 +73,8 @@ static void h100_bounds(void)
      * (11,040 tasks): the first tier at the device's occupancy (2,112
      * slices, 1,072.5 MiB) holds the large tier's 173 slices (443 MiB),
      * which before stop 49 came on top (1,585 MiB measured on the H100);
-     * launches 12.9 MiB of handed patches, 9.7 of quadruples. Bound 1,120
+     * launches 16 MiB of handed patches (COV_HAND_FLOOR; 12.9 before stop
+     * 50), 9.7 of quadruples. Bound 1,120
      * MiB, not the peer's 194: the first tier's speed at this size
      * (stop 46 run A: 528 slices 0.307 s against 2,112 slices 0.289). */
     CHECK(h100_peak(26430, 11040, 0, 0, 0, 0, 0) <= 1120 * MIB);
@@ -106,6 +107,39 @@ static void h100_bounds(void)
     s.budget = 16 * MIB;
     vbg_cov_caps(&s, 0, 0, 1, 132);
     CHECK(vbg_cov_split(&s, 1000000, vbg_cov_input_bytes(1000000, 500000, 1000000)) > 16 * MIB);
+}
+
+/* The handed-patch words of a first launch of `cells` cells on the made-up
+ * H100 (group kernel), with room to spare; knob: as
+ * VORBALL_COVER_HAND_WORDS=128 sets it (no floor). */
+static size_t h100_hand_words(size_t cells, int knob)
+{
+    cov_state s;
+    memset(&s, 0, sizeof s);
+    s.wg = 1;
+    s.budget = (size_t)8 << 30;
+    vbg_cov_caps(&s, 0, 0, 1, 132);
+    if (knob)
+        s.hand_floor_words = 0;
+    s.launch_room = (size_t)4 << 30;
+    size_t q, h;
+    vbg_cov_launch_sizes(&s, &s.tier[COV_FIRST], cells, &q, &h);
+    return h;
+}
+
+/* The first launch's room for handed patches (COV_HAND_FLOOR): 128 words a
+ * cell on a GPU but never less than 4 Mi words in all (nor than 1,024 a
+ * cell): EXTREMESET Congruent (300 cells, ~900 words asked a cell) and sc
+ * 4,096 jittered (~150) ran their cells twice on the H100 with 128 a cell
+ * (stop 50); the tiling keeps 128 a cell. */
+static void h100_hand_room(void)
+{
+    CHECK(h100_hand_words(300, 0) == 300 * 1024);
+    CHECK(h100_hand_words(4096, 0) == (size_t)4 << 20);
+    CHECK(h100_hand_words(26430, 0) == (size_t)4 << 20);
+    CHECK(h100_hand_words(211440, 0) == (size_t)211440 * 128);
+    CHECK(h100_hand_words(4096, 1) == 4096 * 128);
+    CHECK(h100_hand_words(300, 1) == 300 * 128);
 }
 
 /* The cover of the spheres of `path` on the OpenCL CPU device with every
@@ -167,6 +201,7 @@ static void pocl_matches_plan(vb_ctx *ctx, const char *path)
 int main(void)
 {
     h100_bounds();
+    h100_hand_room();
     const char *src = getenv("VORBALL_SOURCE_DIR");
     if (!src) {
         fprintf(stderr, "VORBALL_SOURCE_DIR must be set\n");
