@@ -214,15 +214,17 @@ typedef struct cov_state {
  * over at 108 MiB instead of 216. */
 #define COV_HAND_WORDS 1024u
 /* Words of handed patches a first launch gets at least, where its cells
- * at COV_HAND_WORDS each would take that many (4 Mi words, 16 MiB): a cell
+ * at COV_HAND_WORDS each would take that many (8 Mi words, 32 MiB): a cell
  * that finds no room runs its whole cover again (rerun_hand_short), which
- * cost more than the room on an H100 (stop 50, merged stop-49 head): sc
+ * cost more than the room (stop 50, merged stop-49 head). On an H100: sc
  * 4,096 jittered 1e-12 asked ~150 words a cell, 128 left 2 reruns (0.036
  * s of kernel, bench 0.165-0.172 s), 512 or 2,048 none (0.130-0.132 s);
  * EXTREMESET Congruent 300 ~900 a cell, 2 reruns (0.059 s) beside a 0.043
- * s first launch. From 32,768 cells the 128 a cell pass it (the tiling's
- * 108 MiB as before). */
-#define COV_HAND_FLOOR (4u << 20)
+ * s first launch. On an H200 with 4 Mi words: sc 0.162-0.167 -> 0.139-0.140
+ * s, no rerun; fcc 10,976 exact (~450 a cell, 4.9 Mi in all) still reran
+ * 676 cells (0.047 s of kernel), hence 8 Mi. From 65,536 cells the 128 a
+ * cell pass it (the tiling's 108 MiB as before). */
+#define COV_HAND_FLOOR (8u << 20)
 /* Words of handed patches a launch reserves at most before a launch asks
  * for more (VORBALL_COVER_HAND_CAP; by default none). */
 #define COV_HAND_CAP SIZE_MAX

@@ -73,14 +73,15 @@ static void h100_bounds(void)
      * (11,040 tasks): the first tier at the device's occupancy (2,112
      * slices, 1,072.5 MiB) holds the large tier's 173 slices (443 MiB),
      * which before stop 49 came on top (1,585 MiB measured on the H100);
-     * launches 16 MiB of handed patches (COV_HAND_FLOOR; 12.9 before stop
-     * 50), 9.7 of quadruples. Bound 1,120
+     * launches 32 MiB of handed patches (COV_HAND_FLOOR; 12.9 before stop
+     * 50), 9.7 of quadruples. Bound 1,140
      * MiB, not the peer's 194: the first tier's speed at this size
      * (stop 46 run A: 528 slices 0.307 s against 2,112 slices 0.289). */
-    CHECK(h100_peak(26430, 11040, 0, 0, 0, 0, 0) <= 1120 * MIB);
+    CHECK(h100_peak(26430, 11040, 0, 0, 0, 0, 0) <= 1140 * MIB);
     /* Halved arenas (4,096 records, 16,384 labels: 266 KiB a slice) and a
      * slice per 50 spheres (529 slices, 137 MiB): the pool, 5.75 KiB a
-     * sphere (148 MiB), holds 45 large slices; 174.6 MiB, within the
+     * sphere (148 MiB), holds 45 large slices; 193.7 MiB with 32 of handed
+     * patches (174.6 before stop 50), within the
      * peer's 194. */
     CHECK(h100_peak(26430, 11040, 0, 50, 0, 4096, 16384) <= 194 * MIB);
     /* The tiling, 211,440 atoms, 217,056 large tasks and 864 huge ones:
@@ -128,15 +129,16 @@ static size_t h100_hand_words(size_t cells, int knob)
 }
 
 /* The first launch's room for handed patches (COV_HAND_FLOOR): 128 words a
- * cell on a GPU but never less than 4 Mi words in all (nor than 1,024 a
- * cell): EXTREMESET Congruent (300 cells, ~900 words asked a cell) and sc
- * 4,096 jittered (~150) ran their cells twice on the H100 with 128 a cell
- * (stop 50); the tiling keeps 128 a cell. */
+ * cell on a GPU but never less than 8 Mi words in all (nor than 1,024 a
+ * cell): EXTREMESET Congruent (300 cells, ~900 words asked a cell), sc
+ * 4,096 jittered (~150) and fcc 10,976 exact (~450) ran cells twice on
+ * the H100 and H200 with less (stop 50); the tiling keeps 128 a cell. */
 static void h100_hand_room(void)
 {
     CHECK(h100_hand_words(300, 0) == 300 * 1024);
     CHECK(h100_hand_words(4096, 0) == (size_t)4 << 20);
-    CHECK(h100_hand_words(26430, 0) == (size_t)4 << 20);
+    CHECK(h100_hand_words(10976, 0) == (size_t)8 << 20);
+    CHECK(h100_hand_words(26430, 0) == (size_t)8 << 20);
     CHECK(h100_hand_words(211440, 0) == (size_t)211440 * 128);
     CHECK(h100_hand_words(4096, 1) == 4096 * 128);
     CHECK(h100_hand_words(300, 1) == 300 * 128);
