@@ -152,10 +152,12 @@ int main(int argc, char **argv)
         printf("quads threads=%u: %zu vertices  wall %.3f ms  %.3f us/quad  cpu %.3f us/quad\n",
                threads, out.n, 1e3 * (w1 - w0), 1e6 * (w1 - w0) / nq, 1e6 * (c1 - c0) / nq);
         printf("  no root %llu (%.1f%%), quads rejected without GMP %llu (%.1f%% of quads), "
-               "filter undecided quads %llu\n",
+               "filter undecided quads %llu; rank < 3 %llu, delta signs in GMP %llu "
+               "(one root %llu)\n",
                (unsigned long long)qs.no_root, pct(qs.no_root, qs.quads),
                (unsigned long long)qs.rejected_fast, pct(qs.rejected_fast, qs.quads),
-               (unsigned long long)qs.quads_exact);
+               (unsigned long long)qs.quads_exact, (unsigned long long)qs.flat,
+               (unsigned long long)qs.delta_exact, (unsigned long long)qs.one_root);
         printf("  roots decided by the filter %llu: refused (t+R<0) %llu, refused (intruder) %llu, "
                "certified %llu (rounded in double-double %llu = %.2f%%, by GMP %llu); "
                "roots left to the exact path %llu (ties proven found already %llu)\n",

@@ -7,7 +7,8 @@
  * a random set: output and counters identical for every thread count, the
  * same vertices as vb_certify_list on one candidate per double root, every
  * vertex empty by brute force; a jittered crystal (rows past 128 bits,
- * near-ties) through the double-double stages. The corpus through the cover:
+ * near-ties) through the double-double stages; rows of rank < 3 and
+ * delta = 0 decided without the solve. The corpus through the cover:
  * test_certify_quads_corpus.c. */
 #include <math.h>
 #include <stdio.h>
@@ -293,6 +294,27 @@ static void test_ties(void)
           r.out.t[k4] == 2.0);
     vb_vertex_list_free(&r.out);
     vb_spheres_free(s);
+    /* Sphere 10 10^-17 inside the ball instead: no degree-5 vertex. Its
+     * roots' scans meet touching members first (open), after which the
+     * power stages no longer run (certify_qroot.c): the intruder is left
+     * open, never taken as outside. As the exact reference says. */
+    const char *in[44];
+    memcpy(in, v, sizeof in);
+    in[40] = "3.99999999999999999";
+    s = vt_set(11, in);
+    certify_all(s, 11, &r);
+    vb_ctx *ctx;
+    vb_vertex_list ref;
+    vb_vertex_list_init(&ref);
+    CHECK_INT(vb_open(&ctx, NULL), VB_OK);
+    CHECK_INT(vb_reference(ctx, s, &ref), VB_OK);
+    CHECK(ref.n > 0 && vt_same_list(&r.out, &ref, 1));
+    for (size_t k = 0; k < r.out.n; k++)
+        CHECK(r.out.start[k + 1] - r.out.start[k] == 4);
+    vb_close(ctx);
+    vb_vertex_list_free(&ref);
+    vb_vertex_list_free(&r.out);
+    vb_spheres_free(s);
 }
 
 static void test_misuse(void)
@@ -569,6 +591,81 @@ static void test_wide_rows(void)
     vb_spheres_free(s);
 }
 
+/* Rank < 3 (VBX_QL_FLAT): a square of four equal spheres has no root,
+ * proven in integers with no GMP, in the 128-bit line and (12 decimals:
+ * rows past 2^28) in the double-double line's rank test. Coplanar centres
+ * of unequal radii are not flat (rank 3 through the radius column): their
+ * two vertices (test_hand_made's 0 1 2 3, here with wide rows) must stay. */
+static void test_flat(void)
+{
+    static const char *const sq[2][16] = {
+        {"0", "0", "0", "1", "2", "0", "0", "1", "0", "2", "0", "1", "2", "2", "0", "1"},
+        {"0.000000000001", "0", "0", "1", "2.000000000001", "0", "0", "1", "0.000000000001", "2",
+         "0", "1", "2.000000000001", "2", "0", "1"}};
+    static const char *const tw[16] = {"5.000000000001", "0", "0", "5", "-2.999999999999", "4",
+                                       "0", "5", "-2.999999999999", "-4", "0", "5",
+                                       "0.000000000001", "0", "0", "0.2"};
+    run r;
+    for (int w = 0; w < 2; w++) {
+        vb_sphere_set *s = vt_set(4, sq[w]);
+        certify1(s, 0, 1, 2, 3, &r);
+        /* No vertex, no GMP: rejected by the rank test alone. */
+        CHECK(r.rc == VB_OK && r.out.n == 0 && r.qs.flat == 1 && r.qs.rejected_fast == 1 &&
+              r.st.exact_evals == 0 && r.qs.exact_solves == 0);
+        vb_vertex_list_free(&r.out);
+        vb_spheres_free(s);
+    }
+    vb_sphere_set *s = vt_set(4, tw);
+    certify1(s, 0, 1, 2, 3, &r);
+    CHECK_INT(r.out.n, 2);
+    CHECK_INT(r.qs.flat, 0);
+    CHECK_INT(r.qs.quads_exact, 1);
+    if (r.out.n == 2)
+        CHECK(r.out.z[1] == num("0.20416666666666666") && r.out.t[1] == r.out.t[0]);
+    vb_vertex_list_free(&r.out);
+    vb_spheres_free(s);
+}
+
+/* delta = 0 (VBX_QF_ONE): spheres o + q_j p_j, |p_j| = 11, radius
+ * 11 q_j - 9.5 (cos78u's recipe) touch the ball of radius 9.5 about o; with
+ * every p_j on the plane x = 6, which misses 0, the line of each quadruple
+ * is tangent to the cone: one root, delta exactly 0, which only its GMP
+ * sign proves. Four spheres: the filter certifies the root with no GMP
+ * solve; five: a vertex of degree 5 whose five quadruples are ties, one
+ * solved. Against the exact path (vb_certify_list on the same point). */
+static void test_one_root(void)
+{
+    static const char *const v[20] = {"16.25", "5.3",   "2.125", "1.5",  "16.55", "-5.8",  "9.575",
+                                      "2.05",  "16.85", "-13.6", "-2.075", "2.6",  "17.45", "-1.3",
+                                      "-10.675", "3.7", "17.15", "3.2",  "8.175", "3.15"};
+    const uint32_t q5[5][4] = {{0, 1, 2, 3}, {0, 1, 2, 4}, {0, 1, 3, 4}, {0, 2, 3, 4}, {1, 2, 3, 4}};
+    for (uint32_t n = 4; n <= 5; n++) {
+        vb_sphere_set *s = vt_set(n, v);
+        run r;
+        certify(s, q5, n == 4 ? 1 : 5, 1, &r);
+        CHECK_INT(r.rc, VB_OK);
+        CHECK_INT(r.out.n, 1);
+        CHECK_INT(r.qs.one_root, n == 4 ? 1 : 5);
+        CHECK_INT(r.qs.delta_exact, r.qs.one_root);
+        CHECK_INT(r.qs.exact_solves, n == 4 ? 0 : 1);
+        CHECK_INT(r.qs.roots_tied, n == 4 ? 0 : 4);
+        if (r.out.n == 1) {
+            const uint32_t m[5] = {0, 1, 2, 3, 4};
+            CHECK(is_ids(&r.out, 0, m, n));
+            CHECK(r.out.x[0] == 10.25 && r.out.y[0] == num("-3.7") && r.out.z[0] == 0.125 &&
+                  r.out.t[0] == 9.5);
+        }
+        vb_vertex_list ex;
+        vb_vertex_list_init(&ex);
+        vb_quad_list ql = {(uint32_t(*)[4])q5, n == 4 ? 1 : 5, 5, NULL};
+        CHECK_INT(old_way(s, &ql, &ex), VB_OK);
+        CHECK(vt_same_list(&r.out, &ex, 0));
+        vb_vertex_list_free(&ex);
+        vb_vertex_list_free(&r.out);
+        vb_spheres_free(s);
+    }
+}
+
 int main(void)
 {
     test_hand_made();
@@ -578,5 +675,7 @@ int main(void)
     test_misuse();
     test_threads_and_old_way();
     test_wide_rows();
+    test_flat();
+    test_one_root();
     VB_TEST_END();
 }

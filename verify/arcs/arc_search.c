@@ -250,10 +250,15 @@ static int candidate(vbx_arcw *w, search *sr, uint32_t j)
     vbx_qline L;
     vbx_qprep P;
     w->cnt.filter_calls++;
-    int fs = c->qd.ok && ops->line(&c->qd, q, &L) ? ops->prep(&L, &P) : VBX_QF_EXACT;
-    if (fs == VBX_QF_NONE)
+    int ls = c->qd.ok ? ops->line(&c->qd, q, &L) : VBX_QL_EXACT;
+    int fs = ls == VBX_QL_LINE ? ops->prep(&L, &P) : VBX_QF_EXACT;
+    if (ls == VBX_QL_LINE)
+        w->cnt.exact_evals += (uint64_t)P.delta_exact;
+    /* Rank < 3: the exact solver has no root either. */
+    if (fs == VBX_QF_NONE || ls == VBX_QL_FLAT)
         return VB_OK;
-    if (fs == VBX_QF_EXACT) {
+    /* The one root of delta = 0 takes the exact path, as before. */
+    if (fs == VBX_QF_EXACT || fs == VBX_QF_ONE) {
         w->cnt.filter_failures++;
         return exact_roots(w, sr, j);
     }

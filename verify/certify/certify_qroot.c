@@ -109,7 +109,12 @@ int vbx_qfilter_root(vb_ctx *ctx, const vb_certifier *c, vb_cert_quad_stats *cs,
             int sg = vbx_probe_inside(&pr, cm, cj[3].lo) ? -1
                      : far                               ? 0
                                                          : vbx_ia_sign(distance_excess(cj, p));
-            if (sg == 0) {
+            /* After the first sphere left open the root is open: the power
+             * stages, which decide near-ties and are dear, then run no more
+             * (a cospherical vertex's dozens of members each fail all
+             * three). A later sphere only they could prove inside leaves
+             * the root open, never refused, so the exact path decides. */
+            if (sg == 0 && !failures) {
                 if (!have_qs) {
                     vbx_qf_power_qs(&c->qd, L, R, qs);
                     vbx_qf_power_mr(qs, mr);

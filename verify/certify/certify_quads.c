@@ -11,24 +11,31 @@
  * signs (vbx_cert_defining, the scan) of the roots left open, or just
  * vbx_root_coords for a certified root whose rounding was a near tie.
  *
+ * Two degenerate quadruples need no GMP solve either (vbx_quad.h): rows of
+ * rank < 3 proven in integers (VBX_QL_FLAT: the squares of an exact
+ * crystal) have no root, as the exact solver would find; and where delta
+ * is exactly 0 (GMP integers decide it from the line's exact v and U), the
+ * one root mu = -B / A goes through the same filter as any root, with the
+ * exact solver's sigma 0.
+ *
  * Why a root certified by the filter has exactly the four members: every
  * other sphere was proven strictly outside, so the tangent sphere touches
  * only q. Its exact point can come from no other quadruple (one would be a
- * subset of the members), and the two roots of q are distinct points
- * (delta > 0), so such vertices need no key: only vertices of degree > 4,
+ * subset of the members), and the roots of q are distinct points (delta > 0,
+ * or one root), so such vertices need no key: only vertices of degree > 4,
  * which always take the exact path (their extra members touch exactly,
  * which no enclosure proves), are deduplicated through the certifier's keys.
  *
  * A vertex of degree > 4 is open in each quadruple of its members: an open
- * root whose quadruple's other root a filter refused or certified is a tie
- * (certify_ties.c). The ties wait until every quadruple is judged; then,
- * in quadruple order, the first of each group of meeting enclosures is
- * solved exactly, and a later one whose quadruple lies within the members
- * of its leader's vertex is that vertex (a duplicate: no exact path); the
- * others are solved as before. The grouping depends on the ties alone, and
- * a tie's record is merged after its quadruple's other root, where
- * judge_quad would have pushed it, so the merge keeps the same first root
- * of each vertex.
+ * root whose quadruple's other root a filter refused or certified, or that
+ * is its quadruple's only root, is a tie (certify_ties.c). The ties wait
+ * until every quadruple is judged; then, in quadruple order, the first of
+ * each group of meeting enclosures is solved exactly, and a later one whose
+ * quadruple lies within the members of its leader's vertex is that vertex
+ * (a duplicate: no exact path); the others are solved as before. The
+ * grouping depends on the ties alone, and a tie's record is merged after
+ * its quadruple's other root, where judge_quad would have pushed it, so the
+ * merge keeps the same first root of each vertex.
  *
  * Threads as in vb_certify_list: workers take chunks of quadruples in
  * order and keep their vertices in chunk order; the merge walks the chunks
@@ -110,8 +117,9 @@ static int push_rec(qworker *w, size_t k, const double xyzt[4], const uint32_t *
 enum { NEED_NOTHING = 0, NEED_ROUND = 1, NEED_ALL = 2 };
 
 /* The exact path for quadruple k: need[r] per root of the exact solver
- * (root r is the filter's root r), or NULL to judge every root. */
-static int exact_quad(qworker *w, size_t k, const int *need)
+ * (root r is the filter's root r, of the filter's nroots), or NULL to judge
+ * every root. */
+static int exact_quad(qworker *w, size_t k, const int *need, int nroots)
 {
     vb_certifier *c = w->c;
     vb_ctx *ctx = w->ctx;
@@ -124,7 +132,7 @@ static int exact_quad(qworker *w, size_t k, const int *need)
      * a vertex. */
     if (vbx_solve(&c->sol, q[0], q + 1) != VBX_SOLVED)
         return VB_OK;
-    if (need && c->sol.nroots != 2)
+    if (need && c->sol.nroots != nroots)
         return vb_error(ctx, VB_EINTERNAL, NULL, 0,
                         "the filter and the exact solver disagree on quadruple %u %u %u %u",
                         q[0], q[1], q[2], q[3]);
@@ -179,7 +187,7 @@ static int judged_root(qworker *w, size_t k, const vbx_qline *L, const vbx_qprep
     return VB_OK;
 }
 
-static int push_tie(qworker *w, size_t k, int r, const vbx_ia p[4], int had_rec)
+static int push_tie(qworker *w, size_t k, int r, int nroots, const vbx_ia p[4], int had_rec)
 {
     if (VB_ARRAY_FIT(w->tie, w->tie_cap, w->ntie + 1, 256) != VB_OK)
         return vb_error(w->ctx, VB_ENOMEM, NULL, 0, "out of memory (tie vertices)");
@@ -193,6 +201,7 @@ static int push_tie(qworker *w, size_t k, int r, const vbx_ia p[4], int had_rec)
     t->rec = SIZE_MAX;
     t->wi = 0;
     t->root = (int8_t)r;
+    t->nroots = (int8_t)nroots;
     t->skipped = 0;
     t->had_rec = (uint8_t)had_rec;
     return VB_OK;
@@ -233,11 +242,15 @@ static int judge_quad(qworker *w, size_t k)
     }
     st->filter_calls++;
     const vbx_qf_ops *ops = c->qd.ops;
-    if (ops->line(&c->qd, q, &L))
+    int ls = ops->line(&c->qd, q, &L);
+    if (ls == VBX_QL_LINE) {
         fs = ops->prep(&L, &P);
+        w->st.delta_exact += P.delta_exact;
+        st->exact_evals += P.delta_exact;
+    }
     if (fs != VBX_QF_TWO && (v[0] != VBD_OPEN || v[1] != VBD_OPEN)) {
         /* The verdicts proved two distinct roots (D, A != 0, delta > 0). */
-        if (fs == VBX_QF_NONE)
+        if (fs == VBX_QF_NONE || fs == VBX_QF_ONE || ls == VBX_QL_FLAT)
             return vb_error(w->ctx, VB_EINTERNAL, NULL, 0,
                             "the certification filter and the certifier's filter disagree on "
                             "quadruple %u %u %u %u",
@@ -245,17 +258,23 @@ static int judge_quad(qworker *w, size_t k)
         st->filter_failures++;
         w->st.quads_exact++;
         int need[2] = {need_of(v[0]), need_of(v[1])};
-        rc = exact_quad(w, k, need);
+        rc = exact_quad(w, k, need, 2);
+    } else if (ls == VBX_QL_FLAT) {
+        w->st.flat++;
     } else if (fs == VBX_QF_NONE) {
         w->st.no_root++;
     } else if (fs == VBX_QF_EXACT) {
         st->filter_failures++;
         w->st.quads_exact++;
-        rc = exact_quad(w, k, NULL);
+        rc = exact_quad(w, k, NULL, 0);
     } else {
+        /* Two roots, or the one root of delta = 0 (the exact solver's
+         * sigma 0). */
+        int nr = fs == VBX_QF_ONE ? 1 : 2;
+        w->st.one_root += nr == 1;
         int need[2] = {NEED_NOTHING, NEED_NOTHING}, placed[2] = {0, 0};
         vbx_qroot R[2];
-        for (int r = 0; r < 2 && rc == VB_OK; r++) {
+        for (int r = 0; r < nr && rc == VB_OK; r++) {
             if (v[r] == VBD_NOT)
                 continue;
             if (v[r] == VBD_VERTEX) {
@@ -271,20 +290,20 @@ static int judge_quad(qworker *w, size_t k)
                 double xyzt[4];
                 if (ops->round(&R[r], xyzt)) {
                     w->st.roots_fast++;
-                    rc = push_rec(w, k, xyzt, q, 4, r ? -1 : 1);
+                    rc = push_rec(w, k, xyzt, q, 4, nr == 1 ? 0 : r ? -1 : 1);
                 } else {
                     need[r] = NEED_ROUND;
                 }
             }
         }
-        /* One open root, the other refused or certified by a filter: a tie
-         * whose exact path waits (certify_ties.c); the quadruple's counts
-         * wait with it. */
-        for (int r = 0; r < 2 && rc == VB_OK; r++)
+        /* One open root, the other refused or certified by a filter (or
+         * none): a tie whose exact path waits (certify_ties.c); the
+         * quadruple's counts wait with it. */
+        for (int r = 0; r < nr && rc == VB_OK; r++)
             if (need[r] == NEED_ALL && placed[r] && need[1 - r] == NEED_NOTHING)
-                return push_tie(w, k, r, R[r].p, w->nrec != nrec0);
+                return push_tie(w, k, r, nr, R[r].p, w->nrec != nrec0);
         if (rc == VB_OK && (need[0] || need[1]))
-            rc = exact_quad(w, k, need);
+            rc = exact_quad(w, k, need, nr);
     }
     if (w->nrec == nrec0) {
         st->rejected++;
@@ -336,7 +355,7 @@ static void *work_ties(void *arg)
             int need[2] = {NEED_NOTHING, NEED_NOTHING};
             need[t->root] = NEED_ALL;
             size_t nrec0 = w->nrec;
-            int rc = exact_quad(w, t->quad, need);
+            int rc = exact_quad(w, t->quad, need, t->nroots);
             if (rc != VB_OK) {
                 w->rc = rc;
                 w->fail_at = t->quad;
@@ -478,6 +497,9 @@ static void add_qstats(vb_cert_quad_stats *to, const vb_cert_quad_stats *from)
 {
     to->quads += from->quads;
     to->no_root += from->no_root;
+    to->flat += from->flat;
+    to->delta_exact += from->delta_exact;
+    to->one_root += from->one_root;
     to->refused_tangent += from->refused_tangent;
     to->refused_intruder += from->refused_intruder;
     to->rejected_fast += from->rejected_fast;

@@ -6,9 +6,9 @@
  * exact path when its quadruple lies within the members of the vertex the
  * first one certified (vbx_quad_within): that vertex is then exactly a root
  * of the quadruple, and not the other root, which a filter refused or
- * certified with four members. The grouping only proposes which vertex to
- * try; the subset proves it, so a wrong group costs an exact path, never a
- * wrong vertex.
+ * certified with four members (or which does not exist: delta = 0). The
+ * grouping only proposes which vertex to try; the subset proves it, so a
+ * wrong group costs an exact path, never a wrong vertex.
  *
  * Enclosures of one exact point meet. They are far narrower than a cell of
  * the grid, so a box covers at most two cells per axis; a leader is entered

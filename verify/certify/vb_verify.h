@@ -87,6 +87,11 @@ int vb_certify_list(vb_ctx *ctx, vb_certifier *c, const vb_vertex_list *cand, do
 typedef struct vb_cert_quad_stats {
     uint64_t quads;             /* quadruples judged */
     uint64_t no_root;           /* filter: no real root (delta < 0 proven) */
+    uint64_t flat;              /* filter: rows of rank < 3 proven in integers (coplanar
+                                   centres of equal radii): no vertex, no GMP */
+    uint64_t delta_exact;       /* delta's sign computed in GMP integers where double-double
+                                   could not tell (counted in exact_evals too) */
+    uint64_t one_root;          /* ... of which delta = 0: one root, filtered as the others */
     uint64_t refused_tangent;   /* filter: roots with t + R < 0 proven for a member */
     uint64_t refused_intruder;  /* filter: roots with a sphere proven inside */
     uint64_t rejected_fast;     /* quadruples without a vertex, decided with no GMP */

@@ -43,7 +43,8 @@ int vbx_quads_merge(vb_ctx *ctx, vb_certifier *c, const vbx_vref *refs, size_t n
 
 /* An open root whose exact path waits: root `root` of quadruple `quad`,
  * left open by the filter while the quadruple's other root was refused or
- * certified by a filter. */
+ * certified by a filter, or the only root of a quadruple with delta = 0
+ * (nroots 1). */
 typedef struct vbx_qtie {
     double lo[3], hi[3]; /* the filter's enclosure of x, y, z */
     size_t quad;
@@ -52,6 +53,7 @@ typedef struct vbx_qtie {
     size_t rec;    /* its record of the exact path in worker wi, SIZE_MAX: none */
     uint32_t wi;
     int8_t root;
+    int8_t nroots;   /* the quadruple's exact roots: 2, or 1 (delta = 0) */
     uint8_t skipped; /* proven the leader's vertex: no exact path */
     uint8_t had_rec; /* the filter certified the quadruple's other root */
 } vbx_qtie;

@@ -40,9 +40,11 @@ static vbx_dd dd_of64(int64_t x)
  * product adds its error bound to the radius (vbx_dd.h), so v, U and D
  * enclose the exact minors (those of the 128-bit path). Magnitudes stay
  * below 2^62 (entries), 2^126 (W), 2^189 (minors with W) and 2^253 (v, U,
- * D): far inside vbx_dd.h's range. 1, or 0 when D is not proven non-zero. */
+ * D): far inside vbx_dd.h's range. VBX_QL_LINE; where D is not proven
+ * non-zero, VBX_QL_FLAT or VBX_QL_EXACT by the exact rank test. */
 static int line_dd(const int64_t m[3][4], vbx_qline *L)
 {
+    L->exact = 0;
     vbx_dd e[3][5];
     for (int i = 0; i < 3; i++) {
         for (int k = 0; k < 4; k++)
@@ -60,7 +62,7 @@ static int line_dd(const int64_t m[3][4], vbx_qline *L)
                vbx_dd_mul(e[0][c2], M[c0][c1]))
     L->D = VBX_DET3_DD(0, 1, 2);
     if (!vbx_dd_sign(L->D))
-        return 0;
+        return vbx_qf_rank_low(m) ? VBX_QL_FLAT : VBX_QL_EXACT;
     L->v[0] = VBX_DET3_DD(1, 2, 3);
     L->v[1] = vbx_dd_neg(VBX_DET3_DD(0, 2, 3));
     L->v[2] = VBX_DET3_DD(0, 1, 3);
@@ -69,7 +71,7 @@ static int line_dd(const int64_t m[3][4], vbx_qline *L)
     L->U[1] = vbx_dd_neg(VBX_DET3_DD(0, 2, 4));
     L->U[2] = VBX_DET3_DD(0, 1, 4);
 #undef VBX_DET3_DD
-    return 1;
+    return VBX_QL_LINE;
 }
 
 /* Row entries (scaled coordinates and radii relative to the base) below
@@ -87,7 +89,7 @@ static int line_dd(const int64_t m[3][4], vbx_qline *L)
 int vbx_qf_line(const vbx_qdata *z, const uint32_t q[4], vbx_qline *L)
 {
     if (!z->ok)
-        return 0;
+        return VBX_QL_EXACT;
     const int64_t *cb = &z->z[4 * (size_t)q[0]];
     int64_t m[3][5];
     int wide = 0;
@@ -121,23 +123,30 @@ int vbx_qf_line(const vbx_qdata *z, const uint32_t q[4], vbx_qline *L)
 #define VBX_DET3(c0, c1, c2)                                                            \
     ((vbx_i128)m[0][c0] * M[c1][c2] - (vbx_i128)m[0][c1] * M[c0][c2] +                  \
      (vbx_i128)m[0][c2] * M[c0][c1])
-    /* v_k = (-1)^k D_k (the minor without column k); k = 3 is required. */
-    vbx_i128 D3 = VBX_DET3(0, 1, 2);
-    if (D3 == 0)
-        return 0;
-    L->v[0] = dd_of(VBX_DET3(1, 2, 3));
-    L->v[1] = dd_of(-VBX_DET3(0, 2, 3));
-    L->v[2] = dd_of(VBX_DET3(0, 1, 3));
-    L->v[3] = dd_of(-D3);
-    L->D = dd_of(D3);
+    /* v_k = (-1)^k D_k (the minor without column k); k = 3 is required.
+     * All four zero: the exact solver's VBX_SINGULAR (rank < 3 on the
+     * columns d, r; tangent_solver.c finds no free unknown). */
+    vbx_i128 *vi = L->vi, *Ui = L->Ui;
+    vi[0] = VBX_DET3(1, 2, 3);
+    vi[1] = -VBX_DET3(0, 2, 3);
+    vi[2] = VBX_DET3(0, 1, 3);
+    vi[3] = -VBX_DET3(0, 1, 2);
+    if (vi[3] == 0)
+        return vi[0] == 0 && vi[1] == 0 && vi[2] == 0 ? VBX_QL_FLAT : VBX_QL_EXACT;
     /* Cramer with s = 0: column j of the minor (0, 1, 2) replaced by W in
      * place; moving W to the last column takes 2 - j transpositions (the
      * same signs in line_dd). */
-    L->U[0] = dd_of(VBX_DET3(1, 2, 4));
-    L->U[1] = dd_of(-VBX_DET3(0, 2, 4));
-    L->U[2] = dd_of(VBX_DET3(0, 1, 4));
+    Ui[0] = VBX_DET3(1, 2, 4);
+    Ui[1] = -VBX_DET3(0, 2, 4);
+    Ui[2] = VBX_DET3(0, 1, 4);
 #undef VBX_DET3
-    return 1;
+    for (int k = 0; k < 4; k++)
+        L->v[k] = dd_of(vi[k]);
+    L->D = dd_of(-vi[3]);
+    for (int k = 0; k < 3; k++)
+        L->U[k] = dd_of(Ui[k]);
+    L->exact = 1;
+    return VBX_QL_LINE;
 }
 
 int vbx_qf_tangent_sign(const vbx_qline *L, vbx_ia s, int i)
@@ -206,6 +215,7 @@ static vbx_ia ia_of_dd(vbx_dd a)
 int vbx_qf_prep(const vbx_qline *L, vbx_qprep *P)
 {
     vbx_dd *v = P->v, *U = P->U;
+    P->delta_exact = 0;
     memcpy(v, L->v, sizeof P->v);
     memcpy(U, L->U, sizeof P->U);
     P->D = L->D;
@@ -222,12 +232,26 @@ int vbx_qf_prep(const vbx_qline *L, vbx_qprep *P)
     if (!vbx_dd_sign(P->A) || !vbx_dd_sane(delta) || !vbx_dd_sane(P->A) || !vbx_dd_sane(P->C))
         return VBX_QF_EXACT;
     int sd = vbx_dd_sign(delta);
+    P->sb = vbx_dd_sign(P->B);
+    if (sd == 0 && L->exact) {
+        /* Mostly an exact 0 (a double root: cospherical input), which no
+         * enclosure proves. Then mu = -B / A: vbx_qf_root's root 0 with
+         * sq = 0 gives it (as -B / A, or as -C / B where B's sign is
+         * proven, equal since B^2 = A C). */
+        sd = vbx_qf_delta_sign(L);
+        P->delta_exact = 1;
+        if (sd == 0) {
+            P->sq = vbx_dd_exact(0.0);
+            return VBX_QF_ONE;
+        }
+        if (sd > 0)
+            return VBX_QF_EXACT; /* two roots too close for sqrt's enclosure */
+    }
     if (sd < 0)
         return VBX_QF_NONE;
     if (sd == 0)
         return VBX_QF_EXACT;
     P->sq = vbx_dd_sqrt(delta);
-    P->sb = vbx_dd_sign(P->B);
     return VBX_QF_TWO;
 }
 

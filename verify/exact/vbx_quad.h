@@ -17,6 +17,11 @@
  * prefers the free unknown s (k = 3) whenever its minor is non-zero; the
  * filter runs only then, so its root with +sqrt(delta) is the exact
  * solver's root[0] (sigma = +1) and the one with -sqrt(delta) its root[1].
+ * Two degenerate cases that double-double cannot decide are decided
+ * exactly without the solve (verify/exact/quad_rank.c): rows of rank < 3
+ * (every v_k zero: coplanar centres of equal radii, the squares of a
+ * crystal), where the exact solver finds no root; and delta = 0, whose one
+ * root mu = -B / A is the exact solver's root[0] (sigma = 0).
  * Anything else goes to the exact path. */
 #ifndef VBX_QUAD_H
 #define VBX_QUAD_H
@@ -43,18 +48,31 @@ typedef struct vbx_qline {
     uint32_t q[4];
     int64_t r[4];       /* R_i - R_a (r[0] = 0) */
     vbx_dd v[4], U[3], D; /* v = kernel (v[3] = -D), U = particular solution (U_3 = 0) */
+    int exact;          /* 1: vi and Ui hold v and U exactly (rows below 2^28) */
+    vbx_i128 vi[4], Ui[3];
 } vbx_qline;
+
+/* vbx_qf_line's answers. */
+enum vbx_ql_status {
+    VBX_QL_EXACT = 0,   /* the filter cannot set up the line: exact path */
+    VBX_QL_LINE = 1,    /* the line is set (D != 0 proven) */
+    VBX_QL_FLAT = 2     /* proven: the rows have rank < 3 on (d, r), every v_k = 0, so
+                           the exact solver returns VBX_SINGULAR: no root, no vertex */
+};
 
 enum vbx_qf_status {
     VBX_QF_EXACT = 0,   /* the filter cannot set up or decide the roots: exact path */
     VBX_QF_NONE = 1,    /* proven: no real root (delta < 0) */
-    VBX_QF_TWO = 2      /* two distinct real roots (delta > 0, A != 0 proven) */
+    VBX_QF_TWO = 2,     /* two distinct real roots (delta > 0, A != 0 proven) */
+    VBX_QF_ONE = 3      /* one real root (delta = 0 exactly, A != 0 proven): root 0,
+                           the exact solver's only root (sigma = 0); sq = 0 */
 };
 
 /* What the two roots share, in double-double with proven radii. */
 typedef struct vbx_qprep {
     vbx_dd v[4], U[3], D, A, B, C, sq; /* sq = sqrt(delta) */
     int sb;                             /* sign of B, 0 when the enclosure cannot tell */
+    int delta_exact;                    /* 1: delta's sign came from vbx_qf_delta_sign */
 } vbx_qprep;
 
 /* One root: root 0 is the exact solver's sigma = +1, root 1 sigma = -1. */
@@ -67,16 +85,33 @@ typedef struct vbx_qroot {
     vbx_dd X[4], DQ;    /* u = X / (2 DQ): X = U Qd - Pn v, DQ = D Qd */
 } vbx_qroot;
 
-/* The line of sorted quadruple q: 1 when the rows fit (|entry| < 2^62
- * relative to the base, scaled) and D is proven non-zero (the exact
- * solver's k = 3), 0 otherwise (the exact path decides). Exact in 128-bit
- * integers when every entry is below 2^28, else double-double. */
+/* The line of sorted quadruple q: VBX_QL_LINE when the rows fit (|entry|
+ * < 2^62 relative to the base, scaled) and D is proven non-zero (the exact
+ * solver's k = 3); VBX_QL_FLAT when the rows are proven of rank < 3 on
+ * their first four columns (no tangent sphere is a vertex: the exact solver
+ * says VBX_SINGULAR); VBX_QL_EXACT otherwise (the exact path decides).
+ * Exact in 128-bit integers when every entry is below 2^28, else
+ * double-double, with an exact rank test (vbx_qf_rank_low) where D's
+ * enclosure holds 0. */
 int vbx_qf_line(const vbx_qdata *z, const uint32_t q[4], vbx_qline *L);
 
-/* A, B, C, delta and sqrt(delta) of L: enum vbx_qf_status. */
+/* A, B, C, delta and sqrt(delta) of L: enum vbx_qf_status. Where the
+ * double-double delta cannot tell its sign and L is exact, delta's sign is
+ * computed exactly (vbx_qf_delta_sign): VBX_QF_ONE for 0. */
 int vbx_qf_prep(const vbx_qline *L, vbx_qprep *P);
 
-/* Root `root` of a prepared line with two roots: Pn, Qd and s. */
+/* Is the 3x4 integer matrix m (|entry| < 2^62) of rank < 3, every 3x3
+ * minor exactly 0? 1 or 0; exact (192-bit sums of int64 x int128
+ * products), no allocation (verify/exact/quad_rank.c). */
+int vbx_qf_rank_low(const int64_t m[3][4]);
+
+/* The exact sign of delta = B^2 - A C of an exact line (L->exact): -1, 0
+ * or +1, from L->vi and L->Ui in GMP integers (verify/exact/quad_rank.c).
+ * Only for the rare line whose double-double delta cannot tell. */
+int vbx_qf_delta_sign(const vbx_qline *L);
+
+/* Root `root` of a prepared line with two roots (root 0 of one with one
+ * root): Pn, Qd and s. */
 void vbx_qf_root(const vbx_qprep *P, int root, vbx_qroot *R);
 
 /* Sign of t + R_i at root enclosure s for member index i (0..3): +1, -1,
