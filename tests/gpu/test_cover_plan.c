@@ -30,14 +30,21 @@
  * tasks on the large and huge tiers; cps and per: the first tier's
  * spheres a slice and the pool's bytes a sphere, nb and lab its arenas'
  * records and labels (0: the defaults). */
+/* A made-up H100's cover state: 132 compute units, the group kernel, an
+ * 8 GiB budget, the default capacities. */
+static void h100_state(cov_state *s)
+{
+    memset(s, 0, sizeof *s);
+    s->wg = 1;
+    s->budget = (size_t)8 << 30;
+    vbg_cov_caps(s, 0, 0, 1, 132);
+}
+
 static size_t h100_peak(size_t n, size_t big, size_t huge, size_t cps, size_t per, uint32_t nb,
                         uint32_t lab)
 {
     cov_state s;
-    memset(&s, 0, sizeof s);
-    s.wg = 1;
-    s.budget = (size_t)8 << 30;
-    vbg_cov_caps(&s, 0, 0, 1, 132);
+    h100_state(&s);
     if (cps)
         s.cells_per_slice = cps;
     if (per)
@@ -116,10 +123,7 @@ static void h100_bounds(void)
 static size_t h100_hand_words(size_t cells, int knob)
 {
     cov_state s;
-    memset(&s, 0, sizeof s);
-    s.wg = 1;
-    s.budget = (size_t)8 << 30;
-    vbg_cov_caps(&s, 0, 0, 1, 132);
+    h100_state(&s);
     if (knob)
         s.hand_floor_words = 0;
     s.launch_room = (size_t)4 << 30;
