@@ -17,6 +17,7 @@
 
 #include "vbm_arc.h"
 #include "vbm_caps.h"
+#include "vbm_contact_tm.h"
 #include "vbm_piece.h"
 #include "vbm_series1.h"
 
@@ -152,7 +153,8 @@ typedef struct arcfun {
     vbx_ia Pz[3], Pq[3];          /* z = Pz / E, q = Pq / E */
     /* the contact's (contact_of): S = N + 2 delta q, the algebraic part
      * of G(q) sqrt(S) Rn / Rd, the area's integrand over 1 - z an / cd */
-    vbx_ia Rn[5], Rd[5], cd[5], Emz[3]; /* ... and 1 - z = Emz / E */
+    vbx_ia Rn[5], Rd[5], Emz[3]; /* ... and 1 - z = Emz / E */
+    vbm_contact_rat cr; /* the contact's model (contact_tm.c): q' / q^3, S, an / cd */
     int want; /* the values integrated now: bits 1 << AREA, VOL, CON */
 } arcfun;
 
@@ -204,7 +206,20 @@ static void rational_of(arcfun *f)
     vbx_ia twoN = vbx_ia_add(o->N, o->N);
     for (int k = 0; k < 5; k++)
         f->Rd[k] = vbx_ia_mul(twoN, Pq2[k]);
-    vbm1_poly_mul(f->cd, Po, 2, Emz, 2);
+    vbm1_poly_mul(f->cr.cd, Po, 2, Emz, 2);
+    /* q' / q^3 = (Pq' E - Pq E') E / Pq^3, Pq' E - Pq E' = p1 + 2 (p2 - p0) t
+     * - p1 t^2 (the t^3 terms cancel: contact_tm.c); S = (N E + 2 delta Pq)
+     * / E */
+    vbx_ia dq[3] = {Pq[1], vbx_ia_mul(two, vbx_ia_sub(Pq[2], Pq[0])), vbx_ia_neg(Pq[1])}, Pq3[7];
+    vbm1_poly_mul(f->cr.rn, dq, 2, E, 2);
+    vbm1_poly_mul(Pq3, Pq2, 4, Pq, 2);
+    for (int k = 0; k < 7; k++)
+        f->cr.rd[k] = Pq3[k];
+    for (int k = 0; k < 3; k++) {
+        f->cr.sn[k] = vbx_ia_add(vbx_ia_mul(o->N, E[k]), vbx_ia_mul(dd, Pq[k]));
+        f->cr.sd[k] = E[k];
+        f->cr.an[k] = f->an[k];
+    }
 }
 
 /* The contact's integrand C (G1 - G(q)) / (1 - z) times the area's, G as
@@ -227,7 +242,7 @@ static int contact_of(const arcfun *f, vbx_ia at, int kmax, int last, vbm_s1 *co
     else
         return 0;
     if (!vbm1_sqrt_to(&r, &S, kmax) || !vbm1_rational(&R, f->Rn, 4, f->Rd, 4, at, kmax) ||
-        !vbm1_rational(&a, f->an, 2, f->cd, 4, at, kmax))
+        !vbm1_rational(&a, f->an, 2, f->cr.cd, 4, at, kmax))
         return 0;
     vbm1_mul_to(&G, &r, &R, kmax);
     if (!dz) { /* - delta^2 / (2 N sqrt N) log(2 |delta| q / (sqrt S + sqrt N)^2) */
@@ -385,6 +400,24 @@ static int contact_box_first(const vbm_s1 *b, const vbx_ia *mom, double tg)
     return width(vbx_ia_mul(b->c[VBM1_K], mom[VBM1_K])) > tg;
 }
 
+/* The contact alone over the piece [xc + x] as contact_tm.c's model: the
+ * middle's coefficients in c[CON] and its remainder in b[CON].c[K] (the
+ * other values 0). Returns 0 when the model cannot be made (then the
+ * contact's series over the piece bounds the remainder). */
+static int contact_model(const arcfun *f, double xc, vbx_ia x, vbm_s1 *c, vbm_s1 *b)
+{
+    static const vbx_ia E[3] = {{1.0, 1.0}, {0.0, 0.0}, {1.0, 1.0}};
+    vbm_s1 z;
+    vbx_ia F0;
+    if (!vbm1_rational(&z, f->Pz, 2, E, 2, vbx_ia_point(xc), 0) || !fcon(&f->o, z.c[0], &F0))
+        return 0;
+    for (int k = 0; k < NV; k++) {
+        vbm1_const(&c[k], vbx_ia_point(0.0));
+        vbm1_const(&b[k], vbx_ia_point(0.0));
+    }
+    return vbm_contact_tm(&f->cr, &f->o, F0, xc, x, &c[CON], &b[CON].c[VBM1_K]);
+}
+
 /* The integrals over [x0, x1] to the widths tg (halved where they fall
  * short), added to *out; `pre` (NULL: none) the integrand's series at the
  * middle already, rpre what integrand returned for it, prek its kept
@@ -424,7 +457,13 @@ static int piece(const arcfun *f, double x0, double x1, const double *tg, int de
     }
     int halves = depth < MAX_DEPTH && xc > x0 && xc < x1, mom_made = 0;
     vbx_ia mom[VBM1_K + 1];
-    if (near)
+    vbx_ia x = {vbx_ia_sub(vbx_ia_point(x0), vbx_ia_point(xc)).lo,
+                vbx_ia_sub(vbx_ia_point(x1), vbx_ia_point(xc)).hi};
+    if (!near && f->o.contacts && f->want == 1 << CON && contact_model(f, xc, x, cs, b)) {
+        near = 0;
+        c = cs;
+        rc = rb = 1;
+    } else if (near)
         rc = rb = 1;
     else {
         int av = f->want & (1 << AREA | 1 << VOL);
@@ -449,8 +488,6 @@ static int piece(const arcfun *f, double x0, double x1, const double *tg, int de
             rc = pre ? rpre : integrand(f, f->want, vbx_ia_point(xc), cs, kc_max, 0, kc);
             rb = rc ? integrand(f, f->want & 1 << CON, box, b, VBM1_K, 1, NULL) : 0;
         }
-        vbx_ia x = {vbx_ia_sub(vbx_ia_point(x0), vbx_ia_point(xc)).lo,
-                    vbx_ia_sub(vbx_ia_point(x1), vbx_ia_point(xc)).hi};
         for (int k = AREA; rb && av && k <= VOL; k++)
             if (!vbm1_rational_rest(&kp[k - AREA], &c[k], x, &b[k].c[VBM1_K]))
                 rb = 0;
@@ -471,8 +508,12 @@ static int piece(const arcfun *f, double x0, double x1, const double *tg, int de
      * where the arc passes near e_j) is halved too */
     if ((!ok || vbm_arc_over(v, tg)) && halves)
         return halve(f, x0, x1, tg, depth, out);
+    /* the values integrated alone: vbm1_integrate_m of a zero series is not
+     * exactly 0 (vbm_dotn's margin), and adding it to the others would
+     * make the area and volume depend on how many contact pieces there are */
     for (int k = 0; k < NV; k++)
-        out->v[k] = vbx_ia_add(out->v[k], v[k]);
+        if (f->want & 1 << k)
+            out->v[k] = vbx_ia_add(out->v[k], v[k]);
     out->pieces++;
     return 1;
 }
