@@ -2,14 +2,17 @@
  * made without it.
  * - Three balls (four cases, equal and unequal radii, a third ball cutting
  *   every face): each contact's interval at the tolerances 1e-6, 1e-8 and
- *   1e-10 holds the area by mpmath quadrature to 30 digits
+ *   1e-10, integrated from both atoms and met (contacts_both), holds the
+ *   area by mpmath quadrature to 30 digits
  *   (data/three_ball_contacts.txt, from three_ball_contacts.py beside it).
  * - Crambin's fragment (data/crn_frag.xyzr, 54 atoms), --contacts, one
  *   thread: at 1e-6 and 1e-8 every contact's interval meets the enclosure
  *   main 08bf0c8 gave at 1e-9 (data/crn_frag_contacts_ref.txt, %a ends,
  *   the remainder there from the contact's series over the whole piece,
  *   which the model replaced; written by this test's VB_CONTACT_REF_WRITE
- *   with main's library); the same pairs, and no value looser than asked;
+ *   with main's library), and so does the two sides' meet at 1e-8 (the
+ *   run fails if they are disjoint); the same pairs, no value looser than
+ *   asked;
  * - the volume and SAS ends with --contacts are those without, bit for bit
  *   (a piece adds only the values it integrated: arc_integral.c's piece);
  * - fewer pieces than main's 9642 at 1e-6 (the reason for the model).
@@ -28,13 +31,16 @@
 #define MAIN_PIECES_1E6 9642 /* main 558508e .. 08bf0c8 on crn_frag at 1e-6 */
 #define MAX_BALLS 512        /* the three-ball file's text */
 
+/* contacts 2: each contact integrated from both atoms and the two met
+ * (contacts_both: the run fails when they are disjoint). */
 static int run(vb_ctx *ctx, const vb_sphere_set *s, double tolerance, int contacts,
                vb_cell_measures *m)
 {
     vb_measure_options opt;
     vb_measure_defaults(&opt);
     opt.threads = 1;
-    opt.contacts = contacts;
+    opt.contacts = contacts != 0;
+    opt.contacts_both = contacts == 2;
     opt.tolerance = tolerance;
     return vb_cell_measures_compute(ctx, s, &opt, m) == VB_OK;
 }
@@ -101,7 +107,7 @@ static int three_balls(vb_ctx *ctx, const char *text, double tolerance, int *n)
                                         x, y, z, r);
         vb_sphere_set *s = spheres(ctx, xyzr);
         vb_cell_measures m;
-        if (!s || !run(ctx, s, tolerance, 1, &m)) {
+        if (!s || !run(ctx, s, tolerance, 2, &m)) {
             vb_spheres_free(s);
             return 0;
         }
@@ -174,12 +180,13 @@ int main(void)
         size_t nr = 0;
         ref *r = text ? read_ref(text, &nr) : NULL;
         CHECK(r && nr > 100);
-        vb_cell_measures m6, m8, plain;
+        vb_cell_measures m6, m8, plain, both;
         CHECK(run(ctx, s, 1e-6, 1, &m6) && run(ctx, s, 1e-8, 1, &m8) &&
-              run(ctx, s, 1e-6, 0, &plain));
+              run(ctx, s, 1e-6, 0, &plain) && run(ctx, s, 1e-8, 2, &both));
         if (r) {
             CHECK(holds_ref(&m6, r, nr, 1e-6));
             CHECK(holds_ref(&m8, r, nr, 1e-8));
+            CHECK(holds_ref(&both, r, nr, 1e-8));
         }
         CHECK(m6.nloose == 0 && m8.nloose == 0);
         CHECK(same_atoms(&m6, &plain));
@@ -189,6 +196,7 @@ int main(void)
         vb_cell_measures_free(&m6);
         vb_cell_measures_free(&m8);
         vb_cell_measures_free(&plain);
+        vb_cell_measures_free(&both);
         free(r);
         free(text);
     }
