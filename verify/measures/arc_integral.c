@@ -8,7 +8,9 @@
  * polynomials, the contact's a root and logs of such quotients: their
  * Taylor coefficients by linear recurrences, vbm1_rational), enclosed by
  * univariate Taylor models (vbm_series1.h) on pieces halved until each
- * meets its share of the tolerance. Where an arc passes near the owner's
+ * meets its share of the tolerance: the area's and the volume's remainder
+ * from their quotients (vbm1_rational_rest), the contact's from a model of
+ * F(z(t)) whose parts have closed-form remainders (contact_tm.c). Where an arc passes near the owner's
  * direction e_j (1 - z < NEAR_Y over a piece) the contact's F / (1 - z)
  * goes by its series in 1 - z with a proven remainder (contact_near)
  * instead of a quotient an interval cannot bound there. */
@@ -381,25 +383,6 @@ static int halve(const arcfun *f, double x0, double x1, const double *tg, int de
            piece(f, xc, x1, half, depth + 1, out, NULL, 0, NULL);
 }
 
-/* Whether a contact piece whose box series is b (integrand's 1, mom the
- * piece's moments) is halved whatever its middle's series: its integral
- * is vbm1_integrate_m's sum of the middle's part and the remainder
- * b.c[K] mom[K], whose width is at least the remainder's (each end of a
- * sum rounded outward: hi - lo exceeds the two widths' exact sum, and
- * rounding the difference is monotone), so a remainder wider than tg
- * makes the piece wider than tg. The middle's integrand cannot replace
- * that sum by its bound over the box (integrand's 2): its constant terms
- * are those of the box's operations on a point inside the box, so a
- * middle that cannot be bounded makes a box that cannot either (the
- * interval operations are inclusion-isotone), not the 1 that b came with.
- * So the piece is halved, as it was when the middle came first; only the
- * middle is not computed (capsid's first 1000 balls, --contacts: 83,406
- * of 203,818 contact pieces were halved). */
-static int contact_box_first(const vbm_s1 *b, const vbx_ia *mom, double tg)
-{
-    return width(vbx_ia_mul(b->c[VBM1_K], mom[VBM1_K])) > tg;
-}
-
 /* The contact alone over the piece [xc + x] as contact_tm.c's model: the
  * middle's coefficients in c[CON] and its remainder in b[CON].c[K] (the
  * other values 0). Returns 0 when the model cannot be made (then the
@@ -423,7 +406,11 @@ static int contact_model(const arcfun *f, double xc, vbx_ia x, vbm_s1 *c, vbm_s1
  * middle already, rpre what integrand returned for it, prek its kept
  * polynomials. The area's and the volume's remainders over the piece come
  * from the middle's series (vbm1_rational_rest), the contact's from its
- * series over the piece (made first, contact_box_first). */
+ * model (contact_model) or, where that cannot be made, from its series
+ * over the piece: only at MAX_DEPTH, since elsewhere the piece is halved
+ * (the capsid's first 4000 balls, 1crn and 3pqr: the same bytes as trying
+ * the series first, which never kept such a piece, and 1.6 % fewer
+ * instructions on 1crn). */
 static int piece(const arcfun *f, double x0, double x1, const double *tg, int depth, sums *out,
                  const vbm_s1 *pre, int rpre, const vbm1_rat *prek)
 {
@@ -455,15 +442,17 @@ static int piece(const arcfun *f, double x0, double x1, const double *tg, int de
         } else
             near = 0;
     }
-    int halves = depth < MAX_DEPTH && xc > x0 && xc < x1, mom_made = 0;
+    int halves = depth < MAX_DEPTH && xc > x0 && xc < x1;
     vbx_ia mom[VBM1_K + 1];
     vbx_ia x = {vbx_ia_sub(vbx_ia_point(x0), vbx_ia_point(xc)).lo,
                 vbx_ia_sub(vbx_ia_point(x1), vbx_ia_point(xc)).hi};
-    if (!near && f->o.contacts && f->want == 1 << CON && contact_model(f, xc, x, cs, b)) {
-        near = 0;
+    int model = !near && f->o.contacts && f->want == 1 << CON;
+    if (model && contact_model(f, xc, x, cs, b)) {
         c = cs;
         rc = rb = 1;
-    } else if (near)
+    } else if (model && halves)
+        return halve(f, x0, x1, tg, depth, out);
+    else if (near)
         rc = rb = 1;
     else {
         int av = f->want & (1 << AREA | 1 << VOL);
@@ -471,29 +460,14 @@ static int piece(const arcfun *f, double x0, double x1, const double *tg, int de
          * alone: what vbm1_integrate_m reads of them (the area's and the
          * volume's at the middle keep every order: vbm1_rational_rest) */
         int kc_max = f->want == 1 << CON ? VBM1_K - 1 : VBM1_K;
-        if (!pre && f->want == 1 << CON && halves) {
-            /* the contact alone: its box first, and where the box says the
-             * piece will be halved, no middle (contact_box_first) */
-            rb = integrand(f, 1 << CON, box, b, VBM1_K, 1, NULL);
-            if (rb == 1) {
-                vbm1_moments(xc, x0, x1, mom);
-                mom_made = 1;
-            }
-            if (rb == 0 || (rb == 1 && contact_box_first(&b[CON], mom, tg[CON])))
-                return halve(f, x0, x1, tg, depth, out);
-            rc = integrand(f, f->want, vbx_ia_point(xc), cs, kc_max, 0, kc);
-            if (!rc)
-                rb = 0;
-        } else {
-            rc = pre ? rpre : integrand(f, f->want, vbx_ia_point(xc), cs, kc_max, 0, kc);
-            rb = rc ? integrand(f, f->want & 1 << CON, box, b, VBM1_K, 1, NULL) : 0;
-        }
+        rc = pre ? rpre : integrand(f, f->want, vbx_ia_point(xc), cs, kc_max, 0, kc);
+        rb = rc ? integrand(f, f->want & 1 << CON, box, b, VBM1_K, 1, NULL) : 0;
         for (int k = AREA; rb && av && k <= VOL; k++)
             if (!vbm1_rational_rest(&kp[k - AREA], &c[k], x, &b[k].c[VBM1_K]))
                 rb = 0;
     }
     int ok = rc && rb;
-    if (ok && !mom_made)
+    if (ok)
         vbm1_moments(xc, x0, x1, mom);
     for (int k = 0; ok && k < NV; k++) /* the contact's series is 0 without contacts */
         v[k] = k == CON && !f->o.contacts ? vbx_ia_point(0.0)
@@ -543,9 +517,7 @@ static int descend(const arcfun *f, double x0, double x1, const double *tg, int 
 /* Integrates [x0, x1] as piece does, but first halved as often as the
  * middle's series says it will need: each piece's share of tg against
  * PLAN_FACTOR |c_K| 2 h^(K+1) / (K + 1), the size of the remainder term on
- * a piece of half-width h (the contact's remainder comes from c_K over the
- * whole piece, where it varies and the intervals overestimate it: wider
- * than at the middle). The halves piece would try anyway, without
+ * a piece of half-width h. The halves piece would try anyway, without
  * the wider pieces it would try and drop first. Only where the pieces
  * start is chosen so; each is still proven by its own Taylor model and
  * halved further where it falls short. */
