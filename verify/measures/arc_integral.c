@@ -8,7 +8,9 @@
  * polynomials, the contact's a root and logs of such quotients: their
  * Taylor coefficients by linear recurrences, vbm1_rational), enclosed by
  * univariate Taylor models (vbm_series1.h) on pieces halved until each
- * meets its share of the tolerance. Where an arc passes near the owner's
+ * meets its share of the tolerance: the area's and the volume's remainder
+ * from their quotients (vbm1_rational_rest), the contact's from a model of
+ * F(z(t)) whose parts have closed-form remainders (contact_tm.c). Where an arc passes near the owner's
  * direction e_j (1 - z < NEAR_Y over a piece) the contact's F / (1 - z)
  * goes by its series in 1 - z with a proven remainder (contact_near)
  * instead of a quotient an interval cannot bound there. */
@@ -17,6 +19,7 @@
 
 #include "vbm_arc.h"
 #include "vbm_caps.h"
+#include "vbm_contact_tm.h"
 #include "vbm_piece.h"
 #include "vbm_series1.h"
 
@@ -152,7 +155,8 @@ typedef struct arcfun {
     vbx_ia Pz[3], Pq[3];          /* z = Pz / E, q = Pq / E */
     /* the contact's (contact_of): S = N + 2 delta q, the algebraic part
      * of G(q) sqrt(S) Rn / Rd, the area's integrand over 1 - z an / cd */
-    vbx_ia Rn[5], Rd[5], cd[5], Emz[3]; /* ... and 1 - z = Emz / E */
+    vbx_ia Rn[5], Rd[5], Emz[3]; /* ... and 1 - z = Emz / E */
+    vbm_contact_rat cr; /* the contact's model (contact_tm.c): q' / q^3, S, an / cd */
     int want; /* the values integrated now: bits 1 << AREA, VOL, CON */
 } arcfun;
 
@@ -204,7 +208,20 @@ static void rational_of(arcfun *f)
     vbx_ia twoN = vbx_ia_add(o->N, o->N);
     for (int k = 0; k < 5; k++)
         f->Rd[k] = vbx_ia_mul(twoN, Pq2[k]);
-    vbm1_poly_mul(f->cd, Po, 2, Emz, 2);
+    vbm1_poly_mul(f->cr.cd, Po, 2, Emz, 2);
+    /* q' / q^3 = (Pq' E - Pq E') E / Pq^3, Pq' E - Pq E' = p1 + 2 (p2 - p0) t
+     * - p1 t^2 (the t^3 terms cancel: contact_tm.c); S = (N E + 2 delta Pq)
+     * / E */
+    vbx_ia dq[3] = {Pq[1], vbx_ia_mul(two, vbx_ia_sub(Pq[2], Pq[0])), vbx_ia_neg(Pq[1])}, Pq3[7];
+    vbm1_poly_mul(f->cr.rn, dq, 2, E, 2);
+    vbm1_poly_mul(Pq3, Pq2, 4, Pq, 2);
+    for (int k = 0; k < 7; k++)
+        f->cr.rd[k] = Pq3[k];
+    for (int k = 0; k < 3; k++) {
+        f->cr.sn[k] = vbx_ia_add(vbx_ia_mul(o->N, E[k]), vbx_ia_mul(dd, Pq[k]));
+        f->cr.sd[k] = E[k];
+        f->cr.an[k] = f->an[k];
+    }
 }
 
 /* The contact's integrand C (G1 - G(q)) / (1 - z) times the area's, G as
@@ -227,7 +244,7 @@ static int contact_of(const arcfun *f, vbx_ia at, int kmax, int last, vbm_s1 *co
     else
         return 0;
     if (!vbm1_sqrt_to(&r, &S, kmax) || !vbm1_rational(&R, f->Rn, 4, f->Rd, 4, at, kmax) ||
-        !vbm1_rational(&a, f->an, 2, f->cd, 4, at, kmax))
+        !vbm1_rational(&a, f->an, 2, f->cr.cd, 4, at, kmax))
         return 0;
     vbm1_mul_to(&G, &r, &R, kmax);
     if (!dz) { /* - delta^2 / (2 N sqrt N) log(2 |delta| q / (sqrt S + sqrt N)^2) */
@@ -366,23 +383,22 @@ static int halve(const arcfun *f, double x0, double x1, const double *tg, int de
            piece(f, xc, x1, half, depth + 1, out, NULL, 0, NULL);
 }
 
-/* Whether a contact piece whose box series is b (integrand's 1, mom the
- * piece's moments) is halved whatever its middle's series: its integral
- * is vbm1_integrate_m's sum of the middle's part and the remainder
- * b.c[K] mom[K], whose width is at least the remainder's (each end of a
- * sum rounded outward: hi - lo exceeds the two widths' exact sum, and
- * rounding the difference is monotone), so a remainder wider than tg
- * makes the piece wider than tg. The middle's integrand cannot replace
- * that sum by its bound over the box (integrand's 2): its constant terms
- * are those of the box's operations on a point inside the box, so a
- * middle that cannot be bounded makes a box that cannot either (the
- * interval operations are inclusion-isotone), not the 1 that b came with.
- * So the piece is halved, as it was when the middle came first; only the
- * middle is not computed (capsid's first 1000 balls, --contacts: 83,406
- * of 203,818 contact pieces were halved). */
-static int contact_box_first(const vbm_s1 *b, const vbx_ia *mom, double tg)
+/* The contact alone over the piece [xc + x] as contact_tm.c's model: the
+ * middle's coefficients in c[CON] and its remainder in b[CON].c[K] (the
+ * other values 0). Returns 0 when the model cannot be made (then the
+ * contact's series over the piece bounds the remainder). */
+static int contact_model(const arcfun *f, double xc, vbx_ia x, vbm_s1 *c, vbm_s1 *b)
 {
-    return width(vbx_ia_mul(b->c[VBM1_K], mom[VBM1_K])) > tg;
+    static const vbx_ia E[3] = {{1.0, 1.0}, {0.0, 0.0}, {1.0, 1.0}};
+    vbm_s1 z;
+    vbx_ia F0;
+    if (!vbm1_rational(&z, f->Pz, 2, E, 2, vbx_ia_point(xc), 0) || !fcon(&f->o, z.c[0], &F0))
+        return 0;
+    for (int k = 0; k < NV; k++) {
+        vbm1_const(&c[k], vbx_ia_point(0.0));
+        vbm1_const(&b[k], vbx_ia_point(0.0));
+    }
+    return vbm_contact_tm(&f->cr, &f->o, F0, xc, x, &c[CON], &b[CON].c[VBM1_K]);
 }
 
 /* The integrals over [x0, x1] to the widths tg (halved where they fall
@@ -390,7 +406,11 @@ static int contact_box_first(const vbm_s1 *b, const vbx_ia *mom, double tg)
  * middle already, rpre what integrand returned for it, prek its kept
  * polynomials. The area's and the volume's remainders over the piece come
  * from the middle's series (vbm1_rational_rest), the contact's from its
- * series over the piece (made first, contact_box_first). */
+ * model (contact_model) or, where that cannot be made, from its series
+ * over the piece: only at MAX_DEPTH, since elsewhere the piece is halved
+ * (the capsid's first 4000 balls, 1crn and 3pqr: the same bytes as trying
+ * the series first, which never kept such a piece, and 1.6 % fewer
+ * instructions on 1crn). */
 static int piece(const arcfun *f, double x0, double x1, const double *tg, int depth, sums *out,
                  const vbm_s1 *pre, int rpre, const vbm1_rat *prek)
 {
@@ -422,9 +442,17 @@ static int piece(const arcfun *f, double x0, double x1, const double *tg, int de
         } else
             near = 0;
     }
-    int halves = depth < MAX_DEPTH && xc > x0 && xc < x1, mom_made = 0;
+    int halves = depth < MAX_DEPTH && xc > x0 && xc < x1;
     vbx_ia mom[VBM1_K + 1];
-    if (near)
+    vbx_ia x = {vbx_ia_sub(vbx_ia_point(x0), vbx_ia_point(xc)).lo,
+                vbx_ia_sub(vbx_ia_point(x1), vbx_ia_point(xc)).hi};
+    int model = !near && f->o.contacts && f->want == 1 << CON;
+    if (model && contact_model(f, xc, x, cs, b)) {
+        c = cs;
+        rc = rb = 1;
+    } else if (model && halves)
+        return halve(f, x0, x1, tg, depth, out);
+    else if (near)
         rc = rb = 1;
     else {
         int av = f->want & (1 << AREA | 1 << VOL);
@@ -432,31 +460,14 @@ static int piece(const arcfun *f, double x0, double x1, const double *tg, int de
          * alone: what vbm1_integrate_m reads of them (the area's and the
          * volume's at the middle keep every order: vbm1_rational_rest) */
         int kc_max = f->want == 1 << CON ? VBM1_K - 1 : VBM1_K;
-        if (!pre && f->want == 1 << CON && halves) {
-            /* the contact alone: its box first, and where the box says the
-             * piece will be halved, no middle (contact_box_first) */
-            rb = integrand(f, 1 << CON, box, b, VBM1_K, 1, NULL);
-            if (rb == 1) {
-                vbm1_moments(xc, x0, x1, mom);
-                mom_made = 1;
-            }
-            if (rb == 0 || (rb == 1 && contact_box_first(&b[CON], mom, tg[CON])))
-                return halve(f, x0, x1, tg, depth, out);
-            rc = integrand(f, f->want, vbx_ia_point(xc), cs, kc_max, 0, kc);
-            if (!rc)
-                rb = 0;
-        } else {
-            rc = pre ? rpre : integrand(f, f->want, vbx_ia_point(xc), cs, kc_max, 0, kc);
-            rb = rc ? integrand(f, f->want & 1 << CON, box, b, VBM1_K, 1, NULL) : 0;
-        }
-        vbx_ia x = {vbx_ia_sub(vbx_ia_point(x0), vbx_ia_point(xc)).lo,
-                    vbx_ia_sub(vbx_ia_point(x1), vbx_ia_point(xc)).hi};
+        rc = pre ? rpre : integrand(f, f->want, vbx_ia_point(xc), cs, kc_max, 0, kc);
+        rb = rc ? integrand(f, f->want & 1 << CON, box, b, VBM1_K, 1, NULL) : 0;
         for (int k = AREA; rb && av && k <= VOL; k++)
             if (!vbm1_rational_rest(&kp[k - AREA], &c[k], x, &b[k].c[VBM1_K]))
                 rb = 0;
     }
     int ok = rc && rb;
-    if (ok && !mom_made)
+    if (ok)
         vbm1_moments(xc, x0, x1, mom);
     for (int k = 0; ok && k < NV; k++) /* the contact's series is 0 without contacts */
         v[k] = k == CON && !f->o.contacts ? vbx_ia_point(0.0)
@@ -471,8 +482,12 @@ static int piece(const arcfun *f, double x0, double x1, const double *tg, int de
      * where the arc passes near e_j) is halved too */
     if ((!ok || vbm_arc_over(v, tg)) && halves)
         return halve(f, x0, x1, tg, depth, out);
+    /* the values integrated alone: vbm1_integrate_m of a zero series is not
+     * exactly 0 (vbm_dotn's margin), and adding it to the others would
+     * make the area and volume depend on how many contact pieces there are */
     for (int k = 0; k < NV; k++)
-        out->v[k] = vbx_ia_add(out->v[k], v[k]);
+        if (f->want & 1 << k)
+            out->v[k] = vbx_ia_add(out->v[k], v[k]);
     out->pieces++;
     return 1;
 }
@@ -502,9 +517,7 @@ static int descend(const arcfun *f, double x0, double x1, const double *tg, int 
 /* Integrates [x0, x1] as piece does, but first halved as often as the
  * middle's series says it will need: each piece's share of tg against
  * PLAN_FACTOR |c_K| 2 h^(K+1) / (K + 1), the size of the remainder term on
- * a piece of half-width h (the contact's remainder comes from c_K over the
- * whole piece, where it varies and the intervals overestimate it: wider
- * than at the middle). The halves piece would try anyway, without
+ * a piece of half-width h. The halves piece would try anyway, without
  * the wider pieces it would try and drop first. Only where the pieces
  * start is chosen so; each is still proven by its own Taylor model and
  * halved further where it falls short. */

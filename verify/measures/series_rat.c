@@ -63,16 +63,24 @@ int vbm1_rational_keep(vbm_s1 *r, const vbx_ia *num, int dn, const vbx_ia *den, 
                        vbx_ia at, vbm1_rat *keep)
 {
     keep->dd = dd;
+    keep->dn = dn;
     return rational(r, num, dn, den, dd, at, VBM1_K, keep->a, keep->b);
 }
 
 int vbm1_rational_rest(const vbm1_rat *keep, const vbm_s1 *r, vbx_ia x, vbx_ia *g)
 {
+    return vbm1_rational_rest_to(keep, r, VBM1_K, x, g);
+}
+
+int vbm1_rational_rest_to(const vbm1_rat *keep, const vbm_s1 *r, int k, vbx_ia x, vbx_ia *g)
+{
     int dd = keep->dd;
     const vbx_ia *b = keep->b;
     vbx_ia m[VBM1_POLY + 1];
+    if (dd > k || keep->dn >= k) /* m_j reads r_(k-dd) .. r_(k-1); A has no x^k */
+        return 0;
     for (int j = 0; j < dd; j++)
-        m[j] = vbx_ia_neg(vbm_dotn(&b[j + 1], 1, &r->c[VBM1_K - 1], -1, dd - j));
+        m[j] = vbx_ia_neg(vbm_dotn(&b[j + 1], 1, &r->c[k - 1], -1, dd - j));
     vbx_ia M = vbx_ia_point(0.0), B = b[dd];
     for (int j = dd - 1; j >= 0; j--) {
         M = vbx_ia_add(vbx_ia_mul(x, M), m[j]);

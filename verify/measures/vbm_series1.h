@@ -92,7 +92,7 @@ int vbm1_rational(vbm_s1 *r, const vbx_ia *num, int dn, const vbx_ia *den, int d
  * vbm1_rational_rest. */
 typedef struct vbm1_rat {
     vbx_ia a[VBM1_POLY + 1], b[VBM1_POLY + 1];
-    int dd;
+    int dn, dd;
 } vbm1_rat;
 
 /* vbm1_rational at the point `at` with kmax = VBM1_K, keeping the moved
@@ -111,5 +111,38 @@ int vbm1_rational_keep(vbm_s1 *r, const vbx_ia *num, int dn, const vbx_ia *den, 
  * coefficient over the piece, whose recurrence in intervals widens with
  * every order. Returns 0 when B may vanish over `x`. */
 int vbm1_rational_rest(const vbm1_rat *keep, const vbm_s1 *r, vbx_ia x, vbx_ia *g);
+
+/* vbm1_rational_rest at the order k (deg num < k, dd <= k <= VBM1_K):
+ * f(xc + x) = sum_{n<k} r_n x^n + x^k M(x) / B(x), m_j = -sum_{i=j+1..dd}
+ * b_i r_(k+j-i), by the same argument; *g encloses M / B over `x`. Returns
+ * 0 when B may vanish there, dd > k or dn >= k. */
+int vbm1_rational_rest_to(const vbm1_rat *keep, const vbm_s1 *r, int k, vbx_ia x, vbx_ia *g);
+
+/* A Taylor model of f at the order k (1 <= k <= VBM1_K) about a point xc,
+ * over a piece xc + x, x in an interval holding 0 (series_tm.c):
+ * f(xc + x) = sum_{n<k} p.c[n] x^n + x^k r(x), p.c[n] enclosing f's Taylor
+ * coefficients at xc (p.c[k..VBM1_K] = 0) and rest enclosing r(x) over the
+ * piece: a remainder from closed forms, not from f's series over the
+ * piece, whose recurrences in intervals widen with every order. */
+typedef struct vbm1_tm {
+    vbm_s1 p;
+    vbx_ia rest;
+} vbm1_tm;
+
+/* An enclosure of f over the piece (x): the polynomial by Horner's scheme
+ * plus x^k times the rest. */
+vbx_ia vbm1_tm_value(const vbm1_tm *f, int k, vbx_ia x);
+
+/* r = f g at the order k (r must not alias f or g). */
+void vbm1_tm_mul(vbm1_tm *r, const vbm1_tm *f, const vbm1_tm *g, int k, vbx_ia x);
+
+/* r = num / den (degrees dn < k, dd <= k) at the order k about the point
+ * xc. Returns 0 when den may vanish at xc or over the piece. */
+int vbm1_tm_rational(vbm1_tm *r, const vbx_ia *num, int dn, const vbx_ia *den, int dd, double xc,
+                     int k, vbx_ia x);
+
+/* r = sqrt(s) at the order k (r must not alias s). Returns 0 unless s and
+ * sqrt(s) + its Taylor polynomial are proven > 0 over the piece. */
+int vbm1_tm_sqrt(vbm1_tm *r, const vbm1_tm *s, int k, vbx_ia x);
 
 #endif

@@ -1,0 +1,92 @@
+/* Univariate Taylor models with a remainder over an interval
+ * (vbm_series1.h's vbm1_tm): products, roots and rational functions.
+ *
+ * A model of f at the order k about the point xc is f(xc + x) =
+ * sum_{n<k} p_n x^n + x^k r(x): p_n enclose f's Taylor coefficients at xc
+ * and `rest` encloses r(x) for x in the piece less xc (an interval holding
+ * 0). Every bound below is an interval evaluation over the piece of the
+ * true functions' formulas, inclusion-isotone, so each rest encloses the
+ * true remainder:
+ * - a rational function num / den: vbm1_rational_rest_to, r = M / B
+ *   exactly (vbm_series1.h);
+ * - a product f g: f g = P_f P_g + x^k (r_f g + r_g P_f), and P_f P_g =
+ *   [P_f P_g]_{<k} + x^k Q (the orders k .. 2k - 2 over x^k), so r = Q +
+ *   r_f g + r_g P_f, g over the piece its own model's value;
+ * - sqrt(s), s = P_s + x^k r_s: with T the Taylor polynomial of sqrt(s),
+ *   [T^2]_{<k} = P_s (the low orders of a product read the low orders
+ *   alone), so s - T^2 = x^k (r_s - Q_T), Q_T = (T^2 - [T^2]_{<k}) / x^k,
+ *   and s - T^2 = (sqrt(s) - T)(sqrt(s) + T): where sqrt(s) + T > 0 over
+ *   the piece, r = (r_s - Q_T) / (sqrt(s) + T). */
+#include "vbm_dot.h"
+#include "vbm_series1.h"
+
+/* sum_{i<n} c_i x^i by Horner's scheme. */
+static vbx_ia horner(const vbx_ia *c, int n, vbx_ia x)
+{
+    vbx_ia v = c[n - 1];
+    for (int i = n - 2; i >= 0; i--)
+        v = vbx_ia_add(vbx_ia_mul(v, x), c[i]);
+    return v;
+}
+
+/* An enclosure of x^k over x: [0, m^k] (k even) or [-m^k, m^k], m = |x|'s
+ * largest value, m^k rounded up. */
+static vbx_ia pow_k(vbx_ia x, int k)
+{
+    vbx_ia m = vbx_ia_point(vbx_max(-x.lo, x.hi)), p = vbx_ia_point(1.0);
+    for (int i = 0; i < k; i++)
+        p = vbx_ia_mul(p, m);
+    vbx_ia r = {k % 2 ? -p.hi : 0.0, p.hi};
+    return r;
+}
+
+vbx_ia vbm1_tm_value(const vbm1_tm *f, int k, vbx_ia x)
+{
+    return vbx_ia_add(horner(f->p.c, k, x), vbx_ia_mul(pow_k(x, k), f->rest));
+}
+
+/* (P_f P_g - [P_f P_g]_{<k}) / x^k over x: the orders k .. 2k - 2 of the
+ * product of two polynomials of degree k - 1 (i + j = n, i, j < k). */
+static vbx_ia high(const vbm_s1 *f, const vbm_s1 *g, int k, vbx_ia x)
+{
+    vbx_ia h[VBM1_K];
+    if (k < 2)
+        return vbx_ia_point(0.0);
+    for (int n = k; n <= 2 * k - 2; n++)
+        h[n - k] = vbm_dotn(&f->c[n - k + 1], 1, &g->c[k - 1], -1, 2 * k - 1 - n);
+    return horner(h, k - 1, x);
+}
+
+void vbm1_tm_mul(vbm1_tm *r, const vbm1_tm *f, const vbm1_tm *g, int k, vbx_ia x)
+{
+    vbx_ia q = high(&f->p, &g->p, k, x);
+    vbx_ia rg = vbx_ia_mul(f->rest, vbm1_tm_value(g, k, x));
+    vbx_ia gp = vbx_ia_mul(g->rest, horner(f->p.c, k, x));
+    r->rest = vbx_ia_add(q, vbx_ia_add(rg, gp));
+    vbm1_mul_to(&r->p, &f->p, &g->p, k - 1);
+}
+
+int vbm1_tm_rational(vbm1_tm *r, const vbx_ia *num, int dn, const vbx_ia *den, int dd, double xc,
+                     int k, vbx_ia x)
+{
+    vbm1_rat keep;
+    if (!vbm1_rational_keep(&r->p, num, dn, den, dd, vbx_ia_point(xc), &keep) ||
+        !vbm1_rational_rest_to(&keep, &r->p, k, x, &r->rest))
+        return 0;
+    for (int n = k; n <= VBM1_K; n++)
+        r->p.c[n] = vbx_ia_point(0.0);
+    return 1;
+}
+
+/* the identity at the top of the file */
+int vbm1_tm_sqrt(vbm1_tm *r, const vbm1_tm *s, int k, vbx_ia x)
+{
+    vbx_ia sv = vbm1_tm_value(s, k, x);
+    if (!(sv.lo > 0.0) || !vbm1_sqrt_to(&r->p, &s->p, k - 1))
+        return 0;
+    vbx_ia den = vbx_ia_add(vbx_ia_sqrt(sv), horner(r->p.c, k, x));
+    if (!(den.lo > 0.0))
+        return 0;
+    r->rest = vbx_ia_div(vbx_ia_sub(s->rest, high(&r->p, &r->p, k, x)), den);
+    return 1;
+}

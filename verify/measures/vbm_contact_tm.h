@@ -1,0 +1,30 @@
+/* The contact's integrand along an arc over one piece as a Taylor model
+ * whose remainder comes from closed forms (contact_tm.c), for
+ * arc_integral.c's pieces. */
+#ifndef VBM_CONTACT_TM_H
+#define VBM_CONTACT_TM_H
+
+#include "vbm_arc.h"
+#include "vbm_series1.h"
+#include "vbx_ia.h"
+
+/* The arc's rational functions of t = tan(angle / 2) that the contact's
+ * model reads (arc_integral.c's rational_of): q' / q^3 = rn / rd,
+ * S = N + 2 delta q = sn / sd, and the area's integrand over 1 - z,
+ * an / cd. */
+typedef struct vbm_contact_rat {
+    vbx_ia rn[5], rd[7], sn[3], sd[3], an[3], cd[5];
+} vbm_contact_rat;
+
+/* The contact's integrand con(xc + x) = F(z) an / cd (F = C (G1 - G(q)),
+ * vbm_owner o's constants, F0 an enclosure of F at z(xc)) as
+ * sum_{n<K} c_n x^n + x^K rho(x), K = VBM1_K: c->c[0..K-1] enclose the
+ * Taylor coefficients at the point xc (c->c[K] = 0) and *rest encloses
+ * rho over `x` (the piece less xc, holding 0), so that the piece's
+ * integral is vbm1_integrate_m's with *rest as the box's order K. Returns
+ * 0 when an interval cannot bound a denominator, q or S away from 0 over
+ * the piece (the caller then takes the contact's series over the piece). */
+int vbm_contact_tm(const vbm_contact_rat *p, const vbm_owner *o, vbx_ia F0, double xc, vbx_ia x,
+                   vbm_s1 *c, vbx_ia *rest);
+
+#endif
