@@ -343,6 +343,76 @@ int vbc_cells_nearest_near(const vbc_cells *c, const double p[3], double slack, 
     return 0;
 }
 
+/* The box of cells that holds every atom centre within R of p: per axis
+ * the cells of p - R .. p + R (cell_coord is monotone: a centre within R
+ * of p along the axis has its cell there). Returns the distance from p to
+ * every atom centre outside the box, as a lower bound less a margin far
+ * above the rounding of these sums (slab_gap's): the gap to each face
+ * with cells beyond it, infinite when the box is the whole grid. */
+static double any_box(const vbc_cells *c, const double p[3], double R, int lo[3], int hi[3])
+{
+    double out = INFINITY;
+    for (int a = 0; a < 3; a++) {
+        lo[a] = cell_coord(c, a, p[a] - R);
+        hi[a] = cell_coord(c, a, p[a] + R);
+        if (lo[a] > 0)
+            out = fmin(out, p[a] - (c->lo[a] + lo[a] * c->cell));
+        if (hi[a] < c->dim[a] - 1)
+            out = fmin(out, c->lo[a] + (hi[a] + 1) * c->cell - p[a]);
+    }
+    return out - 1e-6;
+}
+
+int vbc_cells_near_set(const vbc_cells *c, const double p[3], double slack, int32_t hint,
+                       double *R, int32_t *atom, int32_t *near, double *dist, size_t cap,
+                       size_t *nnear)
+{
+    *nnear = 0;
+    *R = vbc_cells_clearance_from(c, p, hint, atom);
+    if (*atom < 0)
+        return -1;
+    /* A listed sphere's centre lies within R + slack + rmax of p (the test's
+     * rounding is far below the margin): the rows of that box whose gap to
+     * p is within it, each row's cells within its own half width (as
+     * vbc_cells_any_within's walk, with the farther rows and cells left
+     * out: none of their atoms can pass). */
+    double top = *R + slack, B = fmax(top, 0.0) + c->rmax + 2e-6, B2 = B * B * (1.0 + 1e-9);
+    int lo[3], hi[3];
+    any_box(c, p, B, lo, hi);
+    const size_t nx = (size_t)c->dim[0], nxy = nx * (size_t)c->dim[1];
+    size_t n = 0;
+    for (int z = lo[2]; z <= hi[2]; z++) {
+        double gz = slab_gap(c, 2, z, p[2]);
+        gz *= gz;
+        for (int y = lo[1]; y <= hi[1]; y++) {
+            double gy = slab_gap(c, 1, y, p[1]);
+            gy = gz + gy * gy;
+            if (gy > B2)
+                continue;
+            double w = sqrt(B2 - gy) * (1.0 + 1e-9) + 1e-6;
+            int x0 = cell_coord(c, 0, p[0] - w), x1 = cell_coord(c, 0, p[0] + w);
+            size_t row = (size_t)y * nx + (size_t)z * nxy;
+            size_t t = c->start[row + (size_t)x0], e = c->start[row + (size_t)x1 + 1];
+            for (const double *A = c->xyzr + 4 * t; t < e; t++, A += 4) {
+                /* nearest_offer's expression and shortcut. */
+                double dx = p[0] - A[0], dy = p[1] - A[1], dz = p[2] - A[2];
+                double d2 = dx * dx + dy * dy + dz * dz, lim = top + A[3];
+                if (lim >= 0.0 && d2 > lim * lim * (1.0 + 1e-12))
+                    continue;
+                double d = sqrt(d2) - A[3];
+                if (!(d <= top))
+                    continue;
+                if (n == cap)
+                    return -1;
+                near[n] = c->idx[t];
+                dist[n++] = d;
+            }
+        }
+    }
+    *nnear = n;
+    return 0;
+}
+
 /* Where the walk from cell q0 meets atom a: its ring, then the cell's dz,
  * dy, dx (walk_ring's loops), then the atom's index (a cell lists its atoms
  * by index: vbc_cells_build fills them in order). */
@@ -498,26 +568,6 @@ static int any_visit(const vbc_cells *c, int32_t a, void *user)
     if (d < st->low)
         st->low = d;
     return 0;
-}
-
-/* The box of cells that holds every atom centre within R of p: per axis
- * the cells of p - R .. p + R (cell_coord is monotone: a centre within R
- * of p along the axis has its cell there). Returns the distance from p to
- * every atom centre outside the box, as a lower bound less a margin far
- * above the rounding of these sums (slab_gap's): the gap to each face
- * with cells beyond it, infinite when the box is the whole grid. */
-static double any_box(const vbc_cells *c, const double p[3], double R, int lo[3], int hi[3])
-{
-    double out = INFINITY;
-    for (int a = 0; a < 3; a++) {
-        lo[a] = cell_coord(c, a, p[a] - R);
-        hi[a] = cell_coord(c, a, p[a] + R);
-        if (lo[a] > 0)
-            out = fmin(out, p[a] - (c->lo[a] + lo[a] * c->cell));
-        if (hi[a] < c->dim[a] - 1)
-            out = fmin(out, c->lo[a] + (hi[a] + 1) * c->cell - p[a]);
-    }
-    return out - 1e-6;
 }
 
 int vbc_cells_any_within(const vbc_cells *c, const double p[3], double reach, int32_t *hint,

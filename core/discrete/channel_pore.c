@@ -128,8 +128,8 @@ static double clearance_near(const vbc_cells *c, const double q[3], double eps, 
     double R, half = 0.5 * (LOCAL_SLACK - eps) - 1e-6;
     double w[3] = {q[0] - S->c0[0], q[1] - S->c0[1], q[2] - S->c0[2]};
     if (!S->ok || w[0] * w[0] + w[1] * w[1] + w[2] * w[2] > half * half) {
-        S->ok = vbc_cells_nearest_near(c, q, LOCAL_SLACK, hint, &R, atom, S->id, S->dist, LOCAL_CAP,
-                                       &S->n) == 0;
+        S->ok = vbc_cells_near_set(c, q, LOCAL_SLACK, hint, &R, atom, S->id, S->dist, LOCAL_CAP,
+                                   &S->n) == 0;
         memcpy(S->c0, q, sizeof S->c0);
     }
     L->ok = S->ok && vbc_cells_nearest_among(c, S->id, S->n, q, eps, &R, atom, L->id, L->dist,
@@ -353,8 +353,8 @@ static int lattice_best(const vbc_cells *c, const double u[3], double reach, vbc
     lattice_near L;
     double R;
     L.ok = reach <= VBC_PLANE_LOOK &&
-           vbc_cells_nearest_near(c, p, 2.0 * reach + 0.1, -1, &R, &a, L.id, L.dist, LATTICE_CAP,
-                                  &L.n) == 0;
+           vbc_cells_near_set(c, p, 2.0 * reach + 0.1, -1, &R, &a, L.id, L.dist, LATTICE_CAP,
+                              &L.n) == 0;
     if (L.ok)
         near_buckets(&L, R);
     else
