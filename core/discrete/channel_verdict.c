@@ -410,14 +410,7 @@ static int judge(const vbc_cells *c, const vbc_pore *p, const vbc_walls_input *i
 {
     memset(v, 0, sizeof *v);
     int nt = vbc_pore_threads(p->n, JUDGE_PLANES_PER_THREAD), rc = -1;
-    judge_queue Q;
-    memset(&Q, 0, sizeof Q);
-    Q.c = c;
-    Q.p = p;
-    Q.in = in;
-    Q.R = R;
-    Q.enough = enough;
-    Q.v = v;
+    judge_queue Q = {.c = c, .p = p, .in = in, .R = R, .enough = enough, .v = v};
     Q.walled = malloc((p->n ? p->n : 1) * sizeof *Q.walled);
     judge_worker W[VB_MAX_THREADS];
     Q.ahead = (size_t)nt * JUDGE_RUN;
