@@ -314,6 +314,11 @@ typedef struct {
     size_t len;
 } judge_worker;
 
+/* A thread for every 16 planes (vbc_pore_threads: from 4 threads; the
+ * blocks took one for 32: 1chb's 141 planes now 8 threads where 16 exist);
+ * runs of 4 planes: a run's first flood starts without the last plane's
+ * bounds, and floods without them ask 28 % more pixels (1chb), while
+ * longer runs let the threads get farther past the scan's stop. */
 #define JUDGE_PLANES_PER_THREAD 16
 #define JUDGE_RUN 4
 
