@@ -12,6 +12,8 @@ struct vbc_cells {
     int dim[3];
     size_t *start; /* CSR: atoms of cell c are idx[start[c] .. start[c+1]) */
     int32_t *idx;
+    double *xyzr;  /* per slot t of idx: atom idx[t]'s x, y, z, r (a row's
+                      atoms read in order, without the indirection) */
 };
 
 static int cell_coord(const vbc_cells *c, int a, double x)
@@ -83,6 +85,18 @@ int vbc_cells_build(vb_ctx *ctx, const vb_sphere_set *s, double cell, vbc_cells 
         c->idx[fill[q]++] = (int32_t)i;
     }
     free(fill);
+    c->xyzr = malloc(s->n * 4 * sizeof *c->xyzr);
+    if (!c->xyzr) {
+        vbc_cells_free(c);
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "cell list");
+    }
+    for (size_t t = 0; t < s->n; t++) {
+        int32_t i = c->idx[t];
+        c->xyzr[4 * t] = s->x[i];
+        c->xyzr[4 * t + 1] = s->y[i];
+        c->xyzr[4 * t + 2] = s->z[i];
+        c->xyzr[4 * t + 3] = s->r[i];
+    }
     *out = c;
     return VB_OK;
 }
@@ -93,6 +107,7 @@ void vbc_cells_free(vbc_cells *c)
         return;
     free(c->start);
     free(c->idx);
+    free(c->xyzr);
     free(c);
 }
 
@@ -129,14 +144,14 @@ static double slab_gap(const vbc_cells *c, int a, int k, double x)
 }
 
 /* Visits the atoms of the cells at Chebyshev distance exactly `ring` from
- * cell q0; fn returns nonzero to stop the walk, and then so does this
- * (returning 1). With p and lim2 (else NULL) a cell whose squared gap to
+ * cell q0, each by its slot t (the atom idx[t], its copy at xyzr + 4 t);
+ * fn returns nonzero to stop the walk, and then so does this (returning 1). With p and lim2 (else NULL) a cell whose squared gap to
  * p exceeds *lim2 (read afresh before each cell: fn may lower it) is
  * skipped: the caller sets *lim2 so that fn would turn down every atom of
  * such a cell without a change to its state, so the walk answers as a full
  * one. */
 static int walk_ring(const vbc_cells *c, const int q0[3], int ring,
-                     int (*fn)(const vbc_cells *, int32_t, void *), void *user, const double *p,
+                     int (*fn)(const vbc_cells *, size_t, void *), void *user, const double *p,
                      const double *lim2)
 {
     for (int dz = -ring; dz <= ring; dz++) {
@@ -169,7 +184,7 @@ static int walk_ring(const vbc_cells *c, const int q0[3], int ring,
                         continue;
                 }
                 for (size_t t = c->start[q]; t < c->start[q + 1]; t++)
-                    if (fn(c, c->idx[t], user))
+                    if (fn(c, t, user))
                         return 1;
             }
         }
@@ -177,18 +192,19 @@ static int walk_ring(const vbc_cells *c, const int q0[3], int ring,
     return 0;
 }
 
-/* Offers sphere a to the nearest-surface search at p (*best, *atom; *atom
- * -1 before the first): 0 when its surface is certainly beyond *best +
- * slack (the square root skipped), else 1 with its distance |p - c| - r in
- * *d, *best and *atom taking it when nearer (ties to the lower index). */
-static inline int nearest_offer(const vbc_cells *c, const double p[3], int32_t a, double slack,
+/* Offers sphere a (A: its x, y, z, r) to the nearest-surface search at p
+ * (*best, *atom; *atom -1 before the first): 0 when its surface is
+ * certainly beyond *best + slack (the square root skipped), else 1 with its
+ * distance |p - c| - r in *d, *best and *atom taking it when nearer (ties
+ * to the lower index). */
+static inline int nearest_offer(const double p[3], int32_t a, const double *A, double slack,
                                 double *best, int32_t *atom, double *d)
 {
-    double dx = p[0] - c->s->x[a], dy = p[1] - c->s->y[a], dz = p[2] - c->s->z[a];
-    double d2 = dx * dx + dy * dy + dz * dz, lim = *best + slack + c->s->r[a];
+    double dx = p[0] - A[0], dy = p[1] - A[1], dz = p[2] - A[2];
+    double d2 = dx * dx + dy * dy + dz * dz, lim = *best + slack + A[3];
     if (*atom >= 0 && lim >= 0.0 && d2 > lim * lim * (1.0 + 1e-12))
         return 0;
-    *d = sqrt(d2) - c->s->r[a];
+    *d = sqrt(d2) - A[3];
     if (*atom < 0 || *d < *best || (*d == *best && a < *atom)) {
         *best = *d;
         *atom = a;
@@ -220,12 +236,12 @@ static void nearest_bound(const vbc_cells *c, nearest_state *st)
 
 /* nearest_offer, and the list of spheres within best + slack (a superset
  * of those within the final best + slack, as best only falls). */
-static int nearest_visit(const vbc_cells *c, int32_t a, void *user)
+static int nearest_visit(const vbc_cells *c, size_t t, void *user)
 {
     nearest_state *st = user;
     double d, was = st->best;
-    int32_t had = st->atom;
-    if (!nearest_offer(c, st->p, a, st->slack, &st->best, &st->atom, &d))
+    int32_t had = st->atom, a = c->idx[t];
+    if (!nearest_offer(st->p, a, c->xyzr + 4 * t, st->slack, &st->best, &st->atom, &d))
         return 0;
     if (st->atom != had || st->best != was)
         nearest_bound(c, st);
@@ -327,6 +343,76 @@ int vbc_cells_nearest_near(const vbc_cells *c, const double p[3], double slack, 
     return 0;
 }
 
+/* The box of cells that holds every atom centre within R of p: per axis
+ * the cells of p - R .. p + R (cell_coord is monotone: a centre within R
+ * of p along the axis has its cell there). Returns the distance from p to
+ * every atom centre outside the box, as a lower bound less a margin far
+ * above the rounding of these sums (slab_gap's): the gap to each face
+ * with cells beyond it, infinite when the box is the whole grid. */
+static double any_box(const vbc_cells *c, const double p[3], double R, int lo[3], int hi[3])
+{
+    double out = INFINITY;
+    for (int a = 0; a < 3; a++) {
+        lo[a] = cell_coord(c, a, p[a] - R);
+        hi[a] = cell_coord(c, a, p[a] + R);
+        if (lo[a] > 0)
+            out = fmin(out, p[a] - (c->lo[a] + lo[a] * c->cell));
+        if (hi[a] < c->dim[a] - 1)
+            out = fmin(out, c->lo[a] + (hi[a] + 1) * c->cell - p[a]);
+    }
+    return out - 1e-6;
+}
+
+int vbc_cells_near_set(const vbc_cells *c, const double p[3], double slack, int32_t hint,
+                       double *R, int32_t *atom, int32_t *near, double *dist, size_t cap,
+                       size_t *nnear)
+{
+    *nnear = 0;
+    *R = vbc_cells_clearance_from(c, p, hint, atom);
+    if (*atom < 0)
+        return -1;
+    /* A listed sphere's centre lies within R + slack + rmax of p (the test's
+     * rounding is far below the margin): the rows of that box whose gap to
+     * p is within it, each row's cells within its own half width (as
+     * vbc_cells_any_within's walk, with the farther rows and cells left
+     * out: none of their atoms can pass). */
+    double top = *R + slack, B = fmax(top, 0.0) + c->rmax + 2e-6, B2 = B * B * (1.0 + 1e-9);
+    int lo[3], hi[3];
+    any_box(c, p, B, lo, hi);
+    const size_t nx = (size_t)c->dim[0], nxy = nx * (size_t)c->dim[1];
+    size_t n = 0;
+    for (int z = lo[2]; z <= hi[2]; z++) {
+        double gz = slab_gap(c, 2, z, p[2]);
+        gz *= gz;
+        for (int y = lo[1]; y <= hi[1]; y++) {
+            double gy = slab_gap(c, 1, y, p[1]);
+            gy = gz + gy * gy;
+            if (gy > B2)
+                continue;
+            double w = sqrt(B2 - gy) * (1.0 + 1e-9) + 1e-6;
+            int x0 = cell_coord(c, 0, p[0] - w), x1 = cell_coord(c, 0, p[0] + w);
+            size_t row = (size_t)y * nx + (size_t)z * nxy;
+            size_t t = c->start[row + (size_t)x0], e = c->start[row + (size_t)x1 + 1];
+            for (const double *A = c->xyzr + 4 * t; t < e; t++, A += 4) {
+                /* nearest_offer's expression and shortcut. */
+                double dx = p[0] - A[0], dy = p[1] - A[1], dz = p[2] - A[2];
+                double d2 = dx * dx + dy * dy + dz * dz, lim = top + A[3];
+                if (lim >= 0.0 && d2 > lim * lim * (1.0 + 1e-12))
+                    continue;
+                double d = sqrt(d2) - A[3];
+                if (!(d <= top))
+                    continue;
+                if (n == cap)
+                    return -1;
+                near[n] = c->idx[t];
+                dist[n++] = d;
+            }
+        }
+    }
+    *nnear = n;
+    return 0;
+}
+
 /* Where the walk from cell q0 meets atom a: its ring, then the cell's dz,
  * dy, dx (walk_ring's loops), then the atom's index (a cell lists its atoms
  * by index: vbc_cells_build fills them in order). */
@@ -424,18 +510,19 @@ typedef struct {
     void *user;
 } within_state;
 
-static int within_visit(const vbc_cells *c, int32_t a, void *user)
+static int within_visit(const vbc_cells *c, size_t t, void *user)
 {
     within_state *st = user;
-    double dx = st->p[0] - c->s->x[a], dy = st->p[1] - c->s->y[a], dz = st->p[2] - c->s->z[a];
-    double d2 = dx * dx + dy * dy + dz * dz, lim = st->reach + c->s->r[a];
+    const double *A = c->xyzr + 4 * t;
+    double dx = st->p[0] - A[0], dy = st->p[1] - A[1], dz = st->p[2] - A[2];
+    double d2 = dx * dx + dy * dy + dz * dz, lim = st->reach + A[3];
     /* Skip the square root when the surface is certainly beyond reach (the
      * margin 1e-12 dwarfs the rounding of the test below for reach >= 0, so
      * the same atoms pass as without this line). */
     if (st->reach >= 0.0 && d2 > lim * lim * (1.0 + 1e-12))
         return 0;
-    if (sqrt(d2) - c->s->r[a] <= st->reach)
-        st->fn(a, st->user);
+    if (sqrt(d2) - A[3] <= st->reach)
+        st->fn(c->idx[t], st->user);
     return 0;
 }
 
@@ -490,22 +577,41 @@ int vbc_cells_any_within(const vbc_cells *c, const double p[3], double reach, in
     *low = -INFINITY;
     if (hint && *hint >= 0 && (size_t)*hint < c->s->n && any_visit(c, *hint, &st))
         return 1;
-    int q0[3] = {cell_coord(c, 0, p[0]), cell_coord(c, 1, p[1]), cell_coord(c, 2, p[2])};
-    for (int ring = 0;; ring++) {
-        if (walk_ring(c, q0, ring, any_visit, &st, NULL, NULL)) {
-            if (hint)
-                *hint = st.found;
-            return 1;
-        }
-        if (ring_covers_all(c, q0, ring))
-            break;
-        /* Atoms beyond the cells walked have their surface at least this far. */
-        double out = ring_reach(c, p, q0, ring) - c->rmax;
-        if (out > reach) {
-            st.low = fmin(st.low, out);
-            break;
+    /* An atom whose surface is within reach has its centre within reach +
+     * rmax of p (the per-atom test's rounding is far below the margin 2e-6):
+     * the atoms of the box of R, row by row (the cells x0 .. x1 of a row are
+     * one run of the CSR, their atoms' copies in order), are every atom the
+     * test can pass: the same answer as a walk of them all, at a row's cost
+     * rather than a cell's (#33: 1chb's verdict 27.0 -> 17.2 M instructions).
+     * The box's faces lie at least R from p, so its bound less rmax exceeds
+     * reach. Rows whose gap to p exceeds R are not skipped: their atoms
+     * would leave a bound of about reach, which spares no neighbour (a
+     * third more queries on 1chb). */
+    double R = fmax(reach, 0.0) + c->rmax + 2e-6;
+    int lo[3], hi[3];
+    double out = any_box(c, p, R, lo, hi);
+    const size_t nx = (size_t)c->dim[0], nxy = nx * (size_t)c->dim[1];
+    for (int z = lo[2]; z <= hi[2]; z++) {
+        for (int y = lo[1]; y <= hi[1]; y++) {
+            size_t row = (size_t)y * nx + (size_t)z * nxy;
+            size_t t = c->start[row + (size_t)lo[0]], e = c->start[row + (size_t)hi[0] + 1];
+            /* any_visit on the slot's copy of the atom. */
+            for (const double *A = c->xyzr + 4 * t; t < e; t++, A += 4) {
+                double dx = p[0] - A[0], dy = p[1] - A[1], dz = p[2] - A[2];
+                double d2 = dx * dx + dy * dy + dz * dz, lim = st.low + A[3];
+                if (lim >= 0.0 && lim < INFINITY && d2 > lim * lim * (1.0 + 1e-12))
+                    continue;
+                double d = sqrt(d2) - A[3];
+                if (d <= reach) {
+                    if (hint)
+                        *hint = c->idx[t];
+                    return 1;
+                }
+                if (d < st.low)
+                    st.low = d;
+            }
         }
     }
-    *low = st.low;
+    *low = fmin(st.low, out - c->rmax);
     return 0;
 }

@@ -128,8 +128,8 @@ static double clearance_near(const vbc_cells *c, const double q[3], double eps, 
     double R, half = 0.5 * (LOCAL_SLACK - eps) - 1e-6;
     double w[3] = {q[0] - S->c0[0], q[1] - S->c0[1], q[2] - S->c0[2]};
     if (!S->ok || w[0] * w[0] + w[1] * w[1] + w[2] * w[2] > half * half) {
-        S->ok = vbc_cells_nearest_near(c, q, LOCAL_SLACK, hint, &R, atom, S->id, S->dist, LOCAL_CAP,
-                                       &S->n) == 0;
+        S->ok = vbc_cells_near_set(c, q, LOCAL_SLACK, hint, &R, atom, S->id, S->dist, LOCAL_CAP,
+                                   &S->n) == 0;
         memcpy(S->c0, q, sizeof S->c0);
     }
     L->ok = S->ok && vbc_cells_nearest_among(c, S->id, S->n, q, eps, &R, atom, L->id, L->dist,
@@ -153,16 +153,16 @@ static double ascend(const vbc_cells *c, const double u[3], double travel, doubl
     /* The near list of p (for eps, which only falls while p stays) answers
      * each step's vbc_cells_within(p, R + eps) as that would: the same
      * atoms in the same order, without a second walk of the cells. */
-    near_list here, there;
+    near_list lists[2], *here = &lists[0], *there = &lists[1];
     local_set S;
     S.ok = 0;
-    double R = clearance_near(c, p, eps, -1, &a, &here, &S);
+    double R = clearance_near(c, p, eps, -1, &a, here, &S);
     for (int it = 0; it < 400 && eps >= 1e-7; it++) {
         active_set A = {s, {p[0], p[1], p[2]}, {0}, 0};
-        if (here.ok) {
-            for (size_t k = 0; k < here.n; k++)
-                if (here.dist[k] <= R + eps)
-                    active_add(here.id[k], &A);
+        if (here->ok) {
+            for (size_t k = 0; k < here->n; k++)
+                if (here->dist[k] <= R + eps)
+                    active_add(here->id[k], &A);
         } else {
             vbc_cells_within(c, p, R + eps, active_add, &A);
         }
@@ -204,12 +204,14 @@ static double ascend(const vbc_cells *c, const double u[3], double travel, doubl
             if (blocked_by(s, &A, q, R + 1e-13))
                 continue;
             int32_t b;
-            double Rq = clearance_near(c, q, eps, a, &b, &there, &S);
+            double Rq = clearance_near(c, q, eps, a, &b, there, &S);
             if (Rq > R + 1e-13) {
                 memcpy(p, q, sizeof q);
                 R = Rq;
                 a = b;
+                near_list *was = here; /* the lists swap places, not copied */
                 here = there;
+                there = was;
                 step = fmin(2.0 * t, 1.0);
                 moved = 1;
                 break;
@@ -353,8 +355,8 @@ static int lattice_best(const vbc_cells *c, const double u[3], double reach, vbc
     lattice_near L;
     double R;
     L.ok = reach <= VBC_PLANE_LOOK &&
-           vbc_cells_nearest_near(c, p, 2.0 * reach + 0.1, -1, &R, &a, L.id, L.dist, LATTICE_CAP,
-                                  &L.n) == 0;
+           vbc_cells_near_set(c, p, 2.0 * reach + 0.1, -1, &R, &a, L.id, L.dist, LATTICE_CAP,
+                              &L.n) == 0;
     if (L.ok)
         near_buckets(&L, R);
     else

@@ -2,6 +2,8 @@
  * as a pore, walled by its atoms over a buried length, or only wanders
  * through grooves and packing gaps of a molecule that has no pore. */
 #include <math.h>
+#include <pthread.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -275,124 +277,175 @@ int vbc_pore_threads(size_t items, size_t per)
     return (size_t)nt > most ? (int)most : nt;
 }
 
-/* The planes [k0, k0 + n) of a pore flooded at once: the planes in runs of
- * JUDGE_RUN, run t on thread t mod nt (runs dealt round, so that the walled
- * planes, which cost the most and lie together, spread over the threads),
- * each thread with its own scratch (a run's planes one after the other:
- * each flood starts from the last one's bounds, flood_memory); walled[i]
- * gets vbc_plane_walled's answer (a plane's answer is its own, so the
- * verdict scanning them in order is the one-plane-at-a-time verdict). */
+/* The planes of a pore flooded on threads as a queue, scanned in order as
+ * they come (#33). A thread takes the next run of JUDGE_RUN planes (a
+ * run's planes one after the other, each flood starting from the last
+ * one's bounds, flood_memory, in the thread's own scratch), floods them,
+ * and after each plane scans the planes done in order from where the scan
+ * stands; once the scan has its answer no thread starts another plane. A
+ * plane's answer is its own and the scan reads them in order, so the
+ * verdict is the one-plane-at-a-time verdict on any number of threads; a
+ * thread never waits for another but at the scan's lock (a few reads) and
+ * the end, and past the plane where the scan stops at most the planes the
+ * threads were flooding then and those done ahead of the scan are flooded
+ * in vain (the block floods it replaces waited at each block's join for
+ * its slowest thread: 1chb's walled planes cost ten times its open ones). */
 typedef struct {
     const vbc_cells *c;
     const vbc_pore *p;
     const vbc_walls_input *in; /* with R: the planes' rasters (NULL: none) */
     const vbc_walls_raster *R;
-    size_t k0, m;
-    int nmax; /* the largest raster half side of the pore's planes */
-    int8_t *walled;
-    void *scratch[VB_MAX_THREADS];
-    size_t len[VB_MAX_THREADS];
-} judge_block;
+    int nmax;                  /* the largest raster half side of the pore's planes */
+    double enough;
+    _Atomic signed char *walled; /* per plane: vbc_plane_walled's answer, 2: not yet */
+    atomic_size_t next;        /* the next run to take */
+    atomic_int stop;           /* the scan has its answer (or failed) */
+    pthread_mutex_t lock;      /* the scan's state below */
+    pthread_cond_t moved;      /* the scan moved on (or stopped) */
+    size_t ahead;              /* a plane this far past the scan waits for it */
+    size_t scanned, lo, last;
+    int in_run, have, rc, done;
+    vbc_pore_verdict *v;
+} judge_queue;
 
-static void judge_plane(void *ctx, size_t i, int tid)
+typedef struct {
+    judge_queue *Q;
+    void *scratch; /* the thread's flood_memory */
+    size_t len;
+} judge_worker;
+
+/* A thread for every 16 planes (vbc_pore_threads: from 4 threads; the
+ * blocks took one for 32: 1chb's 141 planes now 8 threads where 16 exist);
+ * runs of 4 planes: a run's first flood starts without the last plane's
+ * bounds, and floods without them ask 28 % more pixels (1chb), while
+ * longer runs let the threads get farther past the scan's stop. */
+#define JUDGE_PLANES_PER_THREAD 16
+#define JUDGE_RUN 4
+
+static int judge_plane(judge_queue *Q, size_t k, void **scratch, size_t *len)
 {
-    judge_block *B = ctx;
-    size_t k = B->k0 + i;
-    const vbc_pore_point *q = &B->p->pts[k];
+    const vbc_pore_point *q = &Q->p->pts[k];
     double at[3] = {q->x, q->y, q->z};
-    const uint32_t *bl = B->R ? B->R->blocked + B->in->word0[k] : NULL;
-    const uint32_t *un = B->R ? B->R->unsure + B->in->word0[k] : NULL;
-    int m = B->R ? B->in->half[k] : -1;
+    const uint32_t *bl = Q->R ? Q->R->blocked + Q->in->word0[k] : NULL;
+    const uint32_t *un = Q->R ? Q->R->unsure + Q->in->word0[k] : NULL;
+    int m = Q->R ? Q->in->half[k] : -1;
     /* Sized once for every plane (a scratch that grows forgets). */
-    if (!memory_fit(&B->scratch[tid], &B->len[tid], B->nmax))
-        B->walled[i] = -1;
-    else
-        B->walled[i] = (int8_t)vbc_plane_walled_raster(B->c, B->p->axis.u, at, q->r, m, bl, un,
-                                                       &B->scratch[tid], &B->len[tid]);
+    if (!memory_fit(scratch, len, Q->nmax))
+        return -1;
+    return vbc_plane_walled_raster(Q->c, Q->p->axis.u, at, q->r, m, bl, un, scratch, len);
 }
 
-/* The threads: a thread costs a start and a join (tens of microseconds,
- * milliseconds on a loaded machine) against a few to tens of microseconds
- * a plane, so a pore of fewer than this many planes a thread is judged on
- * fewer threads (on one: plane by plane, as it stops). The scan may stop
- * early (enough), so the threads flood a block before it is scanned: the
- * first block one run (JUDGE_RUN planes) a thread, each next one twice
- * the last, up to this many planes a thread. Past the plane where the scan
- * stops at most a block is flooded in vain (#33: 1chb at 128^3 stops at
- * its 80th of 141 planes; on 4 threads, blocks of 4 x 32 planes flooded
- * 128, blocks of 32 then 64 planes flood 96), and a verdict that floods
- * every plane (no pore) waits on at most two joins more. */
-#define JUDGE_PLANES_PER_THREAD 32
-#define JUDGE_RUN 8
-
-static void judge_run(void *ctx, size_t t, int tid)
+/* Scans the planes done in order from Q->scanned, under the lock; sets
+ * Q->stop once the verdict is known (enough buried) or a flood failed. */
+static void judge_scan(judge_queue *Q)
 {
-    judge_block *B = ctx;
-    for (size_t i = t * JUDGE_RUN; i < (t + 1) * JUDGE_RUN && i < B->m; i++)
-        judge_plane(B, i, tid);
+    pthread_mutex_lock(&Q->lock);
+    vbc_pore_verdict *v = Q->v;
+    size_t was = Q->scanned;
+    while (!Q->done && Q->rc == 0 && Q->scanned < Q->p->n) {
+        size_t k = Q->scanned;
+        int w = atomic_load_explicit(&Q->walled[k], memory_order_acquire);
+        if (w == 2)
+            break;
+        Q->scanned++;
+        if (w < 0) {
+            Q->rc = -1;
+            break;
+        }
+        v->walled += (size_t)w;
+        if (!w)
+            continue;
+        /* A walled plane extends the run unless the open gap before it is
+         * longer than VBC_WALL_GAP. */
+        const vbc_pore_point *q = &Q->p->pts[k];
+        if (!Q->in_run || q->s - Q->p->pts[Q->last].s > VBC_WALL_GAP + 1e-9) {
+            Q->in_run = 1;
+            Q->lo = k;
+        }
+        Q->last = k;
+        double span = q->s - Q->p->pts[Q->lo].s;
+        if (!Q->have || span > v->buried) {
+            Q->have = 1;
+            v->buried = span;
+            v->run_lo = Q->lo;
+            v->run_hi = k;
+            if (v->buried >= Q->enough)
+                Q->done = 1;
+        }
+    }
+    if (Q->done || Q->rc != 0)
+        atomic_store(&Q->stop, 1);
+    if (Q->scanned != was || atomic_load(&Q->stop))
+        pthread_cond_broadcast(&Q->moved);
+    pthread_mutex_unlock(&Q->lock);
 }
 
-/* vbc_pore_judge, the pixels from the rasters R of in when R is not NULL. */
+static void *judge_work(void *arg)
+{
+    judge_worker *W = arg;
+    judge_queue *Q = W->Q;
+    size_t n = Q->p->n;
+    while (!atomic_load(&Q->stop)) {
+        size_t k0 = atomic_fetch_add(&Q->next, 1) * JUDGE_RUN;
+        if (k0 >= n)
+            break;
+        for (size_t k = k0; k < k0 + JUDGE_RUN && k < n && !atomic_load(&Q->stop); k++) {
+            /* A thread that ran ahead (the threads at the scan's planes
+             * held up, on a loaded machine) waits for them rather than
+             * flooding planes the scan may never read. The plane at the
+             * scan is never held up so: its thread is flooding it. */
+            pthread_mutex_lock(&Q->lock);
+            while (!atomic_load(&Q->stop) && k >= Q->scanned + Q->ahead)
+                pthread_cond_wait(&Q->moved, &Q->lock);
+            pthread_mutex_unlock(&Q->lock);
+            if (atomic_load(&Q->stop))
+                break;
+            int w = judge_plane(Q, k, &W->scratch, &W->len);
+            atomic_store_explicit(&Q->walled[k], (signed char)w, memory_order_release);
+            judge_scan(Q);
+        }
+    }
+    return NULL;
+}
+
+/* vbc_pore_judge, the pixels from the rasters R of in when R is not NULL.
+ * On one thread (below VBC_PORE_MIN_THREADS) the queue is plane by plane. */
 static int judge(const vbc_cells *c, const vbc_pore *p, const vbc_walls_input *in,
                  const vbc_walls_raster *R, double enough, vbc_pore_verdict *v)
 {
     memset(v, 0, sizeof *v);
-    int nt = vbc_pore_threads(p->n, JUDGE_PLANES_PER_THREAD);
-    size_t block = nt > 1 ? (size_t)nt * JUDGE_RUN : 1,
-           most = nt > 1 ? (size_t)nt * JUDGE_PLANES_PER_THREAD : 1;
-    int8_t *walled = malloc(most);
-    judge_block B = {c, p, in, R, 0, 0, 0, walled, {NULL}, {0}};
-    for (size_t k = 0; k < p->n; k++) {
-        int h = vbc_plane_raster_half(p->pts[k].r);
-        B.nmax = h > B.nmax ? h : B.nmax;
-    }
-    size_t lo = 0, last = 0;
-    int in_run = 0, have = 0, rc = walled ? 0 : -1, done = 0;
-    for (size_t k0 = 0; rc == 0 && !done && k0 < p->n;
-         k0 += block, block = 2 * block < most ? 2 * block : most) {
-        size_t m = p->n - k0 < block ? p->n - k0 : block;
-        B.k0 = k0;
-        B.m = m;
-        if (m > 1) {
-            size_t runs = (m + JUDGE_RUN - 1) / JUDGE_RUN;
-            vb_parallel_for(judge_run, &B, runs, (int)(runs < (size_t)nt ? runs : (size_t)nt));
+    int nt = vbc_pore_threads(p->n, JUDGE_PLANES_PER_THREAD), rc = -1;
+    judge_queue Q = {.c = c, .p = p, .in = in, .R = R, .enough = enough, .v = v};
+    Q.walled = malloc((p->n ? p->n : 1) * sizeof *Q.walled);
+    judge_worker W[VB_MAX_THREADS];
+    Q.ahead = (size_t)nt * JUDGE_RUN;
+    if (Q.walled && pthread_mutex_init(&Q.lock, NULL) == 0) {
+        if (pthread_cond_init(&Q.moved, NULL) != 0) {
+            pthread_mutex_destroy(&Q.lock);
+            free(Q.walled);
+            return -1;
         }
+        for (size_t k = 0; k < p->n; k++) {
+            int h = vbc_plane_raster_half(p->pts[k].r);
+            Q.nmax = h > Q.nmax ? h : Q.nmax;
+            atomic_init(&Q.walled[k], 2);
+        }
+        atomic_init(&Q.next, 0);
+        atomic_init(&Q.stop, 0);
+        for (int t = 0; t < nt; t++)
+            W[t] = (judge_worker){&Q, NULL, 0};
+        if (nt > 1)
+            vb_run_jobs(judge_work, W, sizeof *W, nt);
         else
-            judge_plane(&B, 0, 0);
-        for (size_t i = 0; i < m; i++) {
-            size_t k = k0 + i;
-            int w = walled[i];
-            if (w < 0) {
-                rc = -1;
-                break;
-            }
-            v->walled += (size_t)w;
-            if (!w)
-                continue;
-            /* A walled plane extends the run unless the open gap before
-             * it is longer than VBC_WALL_GAP. */
-            const vbc_pore_point *q = &p->pts[k];
-            if (!in_run || q->s - p->pts[last].s > VBC_WALL_GAP + 1e-9) {
-                in_run = 1;
-                lo = k;
-            }
-            last = k;
-            double span = q->s - p->pts[lo].s;
-            if (!have || span > v->buried) {
-                have = 1;
-                v->buried = span;
-                v->run_lo = lo;
-                v->run_hi = k;
-                if (v->buried >= enough) {
-                    done = 1;
-                    break;
-                }
-            }
-        }
+            judge_work(&W[0]);
+        judge_scan(&Q); /* every plane is done (or the answer known) */
+        for (int t = 0; t < nt; t++)
+            free(W[t].scratch);
+        pthread_cond_destroy(&Q.moved);
+        pthread_mutex_destroy(&Q.lock);
+        rc = Q.rc;
     }
-    for (int t = 0; t < VB_MAX_THREADS; t++)
-        free(B.scratch[t]);
-    free(walled);
+    free(Q.walled);
     if (rc != 0) {
         memset(v, 0, sizeof *v);
         return -1;

@@ -231,6 +231,18 @@ int vbc_cells_nearest_near(const vbc_cells *c, const double p[3], double slack, 
                            double *R, int32_t *atom, int32_t *near, double *dist, size_t cap,
                            size_t *nnear);
 
+/* *R and *atom as vbc_cells_clearance_from gives them (hint likewise), and
+ * in near[0..*nnear) with dist[] (|p - c| - r, vbc_cells_nearest_near's
+ * expression) exactly the spheres whose surface is within *R + slack of p,
+ * in no particular order: for callers that read the list as a set (the
+ * lattice's and the ascent's local lists, channel_pore.c), a walk of rows
+ * rather than of rings and the final bound rather than the falling one.
+ * Returns 0, or -1 when more than cap spheres were to be listed or the set
+ * is empty (the list then incomplete). */
+int vbc_cells_near_set(const vbc_cells *c, const double p[3], double slack, int32_t hint,
+                       double *R, int32_t *atom, int32_t *near, double *dist, size_t cap,
+                       size_t *nnear);
+
 /* vbc_cells_nearest_near's answer at p for slack, taken from the spheres
  * ids[0..n) alone: the caller vouches that they hold p's nearest sphere
  * and every sphere whose surface is within its distance + slack of p (as

@@ -332,9 +332,11 @@ int vbc_pore_threads(size_t items, size_t per);
  * plane from the first point; stops once a run's buried length reaches
  * `enough` (INFINITY: every plane, the longest run; VBC_PORE_MIN_BURIED:
  * the verdict alone, its planes past that unflooded, buried then that
- * run's length so far). The planes are flooded on vbc_pore_threads(n, 32)
- * threads, 8, 16, then 32 a thread at a time, and scanned in order: the same verdict on
- * any number of threads. Returns 0 with *v filled, -1 out of memory. */
+ * run's length so far). The planes are flooded on vbc_pore_threads(n, 16)
+ * threads, each taking the next run of 4 planes as it ends the last, and
+ * scanned in order as they come; no plane is started once the scan has its
+ * answer: the same verdict on any number of threads. Returns 0 with *v
+ * filled, -1 out of memory. */
 int vbc_pore_judge(const vbc_cells *c, const vbc_pore *p, double enough, vbc_pore_verdict *v);
 
 #endif

@@ -243,8 +243,9 @@ static void test_subunit_pore(vb_ctx *ctx)
  * from a hint, the ring's box open past the grid) against brute force on a
  * random cloud, with points inside and far outside it: the same distance
  * (the same expression, so to the bit), the same atom (ties to the lower
- * index), and the near lists of vbc_cells_nearest_near and
- * vbc_cells_nearest_among in vbc_cells_within's order. */
+ * index), the near lists of vbc_cells_nearest_near and
+ * vbc_cells_nearest_among in vbc_cells_within's order, and
+ * vbc_cells_near_set's list as a set. */
 typedef struct {
     int32_t id[512];
     size_t n;
@@ -312,6 +313,29 @@ static void test_cells_walks(vb_ctx *ctx)
                    R != best || a != ba || nn != W.n;
             for (size_t j = 0; j < nn && j < W.n; j++)
                 bad += near[j] != W.id[j];
+        }
+        /* vbc_cells_near_set: the same clearance and atom, and exactly the
+         * spheres within it + slack (by the same expression), any order. */
+        for (int q = 0; q < 3; q++) {
+            double sl = q == 0 ? 0.1 : q == 1 ? 1.1 : 3.1;
+            size_t ns = 0, want = 0;
+            if (vbc_cells_near_set(c, p, sl, q ? -1 : hint, &R, &a, ids, d0, 512, &ns) != 0) {
+                bad++;
+                continue;
+            }
+            bad += R != best || a != ba;
+            for (size_t i = 0; i < n; i++) {
+                double dx = p[0] - s->x[i], dy = p[1] - s->y[i], dz = p[2] - s->z[i];
+                double d = sqrt(dx * dx + dy * dy + dz * dz) - s->r[i];
+                if (!(d <= best + sl))
+                    continue;
+                want++;
+                size_t j = 0;
+                while (j < ns && ids[j] != (int32_t)i)
+                    j++;
+                bad += j == ns || d0[j] != d;
+            }
+            bad += ns != want;
         }
         int any = 0;
         for (size_t i = 0; i < n && !any; i++) {
