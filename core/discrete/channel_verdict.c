@@ -314,12 +314,16 @@ typedef struct {
     size_t len;
 } judge_worker;
 
-/* A thread for every 16 planes (vbc_pore_threads: from 4 threads; the
- * blocks took one for 32: 1chb's 141 planes now 8 threads where 16 exist);
- * runs of 4 planes: a run's first flood starts without the last plane's
+/* A thread for every 32 planes (vbc_pore_threads: from 4 threads; as the
+ * blocks before stop 50: 1chb's 141 planes 4 threads). One for every 16
+ * (1chb 8 threads where 16 exist) ran on an H100 (stop 50, 16 host
+ * threads, grid 128, medians): 1chb's verdict 2.5-2.7 -> 1.3 ms alone
+ * (1.5 at VORBALL_THREADS=4), but adk's XTC frames, several in flight,
+ * 2.5-6.6 -> 8.0-10.4 ms: the frames' verdict threads share the cores.
+ * Runs of 4 planes: a run's first flood starts without the last plane's
  * bounds, and floods without them ask 28 % more pixels (1chb), while
  * longer runs let the threads get farther past the scan's stop. */
-#define JUDGE_PLANES_PER_THREAD 16
+#define JUDGE_PLANES_PER_THREAD 32
 #define JUDGE_RUN 4
 
 static int judge_plane(judge_queue *Q, size_t k, void **scratch, size_t *len)

@@ -332,7 +332,7 @@ int vbc_pore_threads(size_t items, size_t per);
  * plane from the first point; stops once a run's buried length reaches
  * `enough` (INFINITY: every plane, the longest run; VBC_PORE_MIN_BURIED:
  * the verdict alone, its planes past that unflooded, buried then that
- * run's length so far). The planes are flooded on vbc_pore_threads(n, 16)
+ * run's length so far). The planes are flooded on vbc_pore_threads(n, 32)
  * threads, each taking the next run of 4 planes as it ends the last, and
  * scanned in order as they come; no plane is started once the scan has its
  * answer: the same verdict on any number of threads. Returns 0 with *v
