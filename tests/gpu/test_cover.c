@@ -503,16 +503,11 @@ static void one(vb_ctx *ctx, const cover_case *cs, const char *path, int have_de
 
 int main(void)
 {
-    const char *src = getenv("VORBALL_SOURCE_DIR");
-    if (!src) {
-        fprintf(stderr, "VORBALL_SOURCE_DIR must be set\n");
-        return 1;
-    }
+    const char *src;
     vb_ctx *ctx;
-    vb_config cfg = {0, NULL};
-    if (vb_open(&ctx, &cfg) != VB_OK)
+    int have_device;
+    if (vb_test_device_open(&src, &ctx, &have_device))
         return 1;
-    int have_device = vb_test_have_cpu_device(ctx);
     if (!have_device)
         fprintf(stderr, "no OpenCL CPU device: the device paths are not tested\n");
     /* jittered_fcc: combination dominance. The exact crystals (the

@@ -208,16 +208,11 @@ int main(void)
 {
     h100_bounds();
     h100_hand_room();
-    const char *src = getenv("VORBALL_SOURCE_DIR");
-    if (!src) {
-        fprintf(stderr, "VORBALL_SOURCE_DIR must be set\n");
-        return 1;
-    }
+    const char *src;
     vb_ctx *ctx;
-    vb_config cfg = {0, NULL};
-    if (vb_open(&ctx, &cfg) != VB_OK)
+    int have_device;
+    if (vb_test_device_open(&src, &ctx, &have_device))
         return 1;
-    int have_device = vb_test_have_cpu_device(ctx);
     char path[4096];
     snprintf(path, sizeof path, "%s/corpus/inputs/crambin_fragment.xyzr", src);
     if (have_device)
