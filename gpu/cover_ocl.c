@@ -194,6 +194,9 @@ static int cov_run(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, siz
     int rc = vbg_cov_run_tier(ctx, s, &s->tier[COV_FIRST], cells, s->hroots, ncells, out);
     if (rc == VB_OK && s->k_hand)
         rc = rerun_hand_short(ctx, s, cells, ncells, out);
+    /* The cells finished so far, to the caller while the tiers below run. */
+    if (rc == VB_OK && be->early)
+        rc = be->early(be->early_user, out, ncells, s->host_q, s->host_hand, s->host_hand_n);
     /* The cells past the group kernel's budget, on the work-item kernel;
      * those of them whose tasks ran out of arenas go on to the large
      * slices with the rest. */
@@ -283,6 +286,7 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
         free(s);
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory");
     }
+    atomic_init(&be->running, 0);
     be->state = s;
     be->close = cov_close;
     s->clocks = &be->clocks;

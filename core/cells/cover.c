@@ -54,38 +54,6 @@ typedef struct worker {
     int rc;
 } worker;
 
-void vbq_arena_free(vbq_arena *a)
-{
-    free(a->nb);
-    free(a->lab);
-    free(a->st);
-    free(a->q);
-    free(a->hi);
-    free(a->memo);
-    free(a->memo_tag);
-    vbq_cluster_memo_free(a->cmemo);
-    memset(a, 0, sizeof *a);
-}
-
-int vbq_arena_make(vbq_arena *a, uint32_t nb, uint32_t lab, uint32_t st, uint32_t q)
-{
-    vbq_arena_free(a);
-    a->nb = malloc((size_t)nb * sizeof *a->nb);
-    a->lab = malloc((size_t)lab * sizeof *a->lab);
-    a->st = malloc((size_t)st * sizeof *a->st);
-    a->q = malloc(4 * (size_t)q * sizeof *a->q);
-    a->hi = malloc((size_t)lab * sizeof *a->hi);
-    a->memo = malloc(VBQ_MEMO * sizeof *a->memo);
-    a->memo_tag = calloc(2u * VBQ_MEMO, sizeof *a->memo_tag);
-    a->cmemo = vbq_cluster_memo_new();
-    a->nb_cap = nb;
-    a->lab_cap = lab;
-    a->st_cap = st;
-    a->q_cap = q;
-    int ok = a->nb && a->lab && a->st && a->q && a->hi && a->memo && a->memo_tag && a->cmemo;
-    return ok ? VB_OK : VB_ENOMEM;
-}
-
 /* Arena capacities of the first try on the host; a cell that overflows one
  * is covered again with that capacity doubled. */
 #define VBQ_NB0 1024u
@@ -197,6 +165,7 @@ typedef struct share {
     size_t nrq, rqhead, rqcap;
     int helpers;           /* host threads beside the device's */
     int done;              /* the device takes no more batches */
+    vb_quad_list posted;   /* early cells' quadruples for a host thread to sink */
 } share;
 
 /* A device cell with handed patches, for a host thread: the kernel's nq
@@ -267,8 +236,13 @@ static void *hybrid_host(void *arg)
         uint32_t cell = 0;
         int have = 0;
         resume_task *task = NULL;
+        vb_quad_list part = {0};
         while (!have && !atomic_load(&jb->failed)) {
-            if (sh->rqhead < sh->nrq) {
+            if (sh->posted.n) {
+                part = sh->posted;
+                memset(&sh->posted, 0, sizeof part);
+                have = 1;
+            } else if (sh->rqhead < sh->nrq) {
                 task = sh->rq[sh->rqhead];
                 sh->rq[sh->rqhead++] = NULL;
                 have = 1;
@@ -289,13 +263,23 @@ static void *hybrid_host(void *arg)
         pthread_mutex_unlock(&sh->mu);
         if (!have)
             return NULL;
-        /* a resume's cell was counted covered by the device's thread */
-        double c = vb_thread_cpu_now();
-        int rc = task ? resume_on(w, task) : cover_one(w, cell);
-        if (!task)
-            w->st.steps.host_cells_cpu_s += vb_thread_cpu_now() - c;
-        if (rc == VB_OK && !task)
-            covered(jb, 1);
+        int rc;
+        if (part.n) { /* the device's early cells (take_early) */
+            double t0 = vb_now();
+            w->st.quads += part.n;
+            w->st.stream_parts++;
+            rc = jb->sink(jb->user, &part);
+            vb_quad_list_free(&part);
+            w->st.steps.sink_s += vb_now() - t0;
+        } else {
+            /* a resume's cell was counted covered by the device's thread */
+            double c = vb_thread_cpu_now();
+            rc = task ? resume_on(w, task) : cover_one(w, cell);
+            if (!task)
+                w->st.steps.host_cells_cpu_s += vb_thread_cpu_now() - c;
+            if (rc == VB_OK && !task)
+                covered(jb, 1);
+        }
         /* Streamed: a host worker's cells go to the sink as the device's
          * batches do, so that what the host covers is not all certified
          * after the cover. */
@@ -317,21 +301,123 @@ static void *hybrid_host(void *arg)
     }
 }
 
+/* A device batch's cells being taken (take_cells, take_early). */
+typedef struct taking {
+    job *jb;
+    vb_cover_backend *be;
+    worker *w0;             /* the device thread's worker */
+    share *sh;
+    vb_hand_index hx;
+    const uint32_t *cells;  /* the batch's cells */
+    uint8_t *done;          /* cells taken early */
+    uint32_t *left;         /* cells the device did not finish */
+    double tres;            /* CPU s of resumes on this thread */
+} taking;
+
+/* Takes cells[k] for k < n with out[k] (quadruples at quads + 4 qoff,
+ * handed patches in tk->hx): each finished cell's quadruples, made unique
+ * with its resumed patches', appended to l; its handed patches queued for
+ * a host thread, or resumed here when none is beside this one. Early (the
+ * backend's later tiers still to run): only finished cells, and of those
+ * with handed patches only the ones a host thread can take; done[k] marks
+ * them. Else every cell not done, and the unfinished ones listed in
+ * tk->left[0 .. *nl). VB_OK or VB_ENOMEM. */
+static int take_cells(taking *tk, const vbq_cell_out *out, size_t n, const uint32_t *quads,
+                      int early, vb_quad_list *l, size_t *nl)
+{
+    job *jb = tk->jb;
+    worker *w0 = tk->w0;
+    int spread = tk->sh->helpers > 0 && tk->be->resume_spread;
+    int rc = VB_OK;
+    for (size_t k = 0; rc == VB_OK && k < n; k++) {
+        if (tk->done[k])
+            continue;
+        if (out[k].status != VBQ_OK) {
+            if (!early)
+                tk->left[(*nl)++] = tk->cells[k];
+            continue;
+        }
+        const uint32_t *cq = quads + 4 * (size_t)out[k].qoff, *hw;
+        size_t c0 = l->n, nhw, np;
+        rc = vb_hand_index_cell(&tk->hx, tk->cells[k], &hw, &nhw, &np);
+        int queued = rc == VB_OK && nhw && spread;
+        if (rc != VB_OK || (early && nhw && !queued))
+            continue;
+        w0->st.cells++;
+        vb_cover_stats_cell(&w0->st, &out[k]);
+        tk->done[k] = 1;
+        if (queued) {
+            rc = resume_queue(tk->sh, tk->cells[k], cq, out[k].nq, hw, nhw);
+            w0->st.steps.resume_queued++;
+        } else {
+            rc = vb_quad_list_append(l, cq, out[k].nq);
+        }
+        if (rc == VB_OK && nhw) {
+            w0->st.resumed_patches += np;
+            w0->st.resumed_cells++;
+            if (!queued) {
+                double c = vb_thread_cpu_now();
+                rc = cover_root(w0, tk->cells[k], VBQ_RESUME, hw, nhw, l);
+                tk->tres += vb_thread_cpu_now() - c;
+            }
+        }
+        if (rc == VB_OK && !queued && (jb->sink || nhw))
+            l->n = c0 + vb_quad_cell_unique(l->q + c0, l->n - c0);
+    }
+    return rc;
+}
+
+/* be->early (vb_cover.h): the batch's cells finished by the first tier
+ * taken while the later tiers run, their quadruples posted for a host
+ * thread to sink (certified meanwhile), or sunk here when no host thread
+ * is beside this one. */
+static int take_early(void *user, const vbq_cell_out *out, size_t ncells, const uint32_t *quads,
+                      const uint32_t *hand, size_t hand_words)
+{
+    taking *tk = user;
+    if (vb_hand_index_make(&tk->hx, hand, hand_words) != VB_OK)
+        return VB_ENOMEM;
+    vb_quad_list chunk = {0};
+    int rc = take_cells(tk, out, ncells, quads, 1, &chunk, NULL);
+    pthread_mutex_lock(&tk->sh->mu);
+    if (rc == VB_OK && chunk.n && tk->sh->helpers > 0 && tk->sh->posted.n == 0) {
+        tk->sh->posted = chunk; /* the slot is free */
+        memset(&chunk, 0, sizeof chunk);
+        pthread_cond_signal(&tk->sh->cv);
+    }
+    pthread_mutex_unlock(&tk->sh->mu);
+    if (rc == VB_OK && chunk.n) {
+        double t0 = vb_now();
+        tk->w0->st.quads += chunk.n;
+        tk->w0->st.stream_parts++;
+        rc = tk->jb->sink(tk->jb->user, &chunk);
+        tk->w0->st.steps.sink_s += vb_now() - t0;
+    }
+    vb_quad_list_free(&chunk);
+    return rc;
+}
+
 /* Feeds the device; returns its status (VB_EDEVICE: the caller covers
  * everything on the host again). */
 static int hybrid_device(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w0, share *sh)
 {
     size_t batch = jb->batch;
+    taking tk;
+    memset(&tk, 0, sizeof tk);
+    tk.jb = jb;
+    tk.be = be;
+    tk.w0 = w0;
+    tk.sh = sh;
     vbq_cell_out *outs = malloc(batch * sizeof *outs);
-    if (!outs)
-        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
-    int rc = be->begin(ctx, be, &jb->env, jb->set->n);
+    tk.done = malloc(batch);
+    tk.left = malloc(batch * sizeof *tk.left);
+    int rc = outs && tk.done && tk.left ? be->begin(ctx, be, &jb->env, jb->set->n)
+                                        : vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
     uint64_t handed0 = be->handed_cells;
-    vb_hand_index hx;
-    memset(&hx, 0, sizeof hx);
     /* the handed patches are resumed here, on w0's arena */
     if (rc == VB_OK && !worker_ready(w0))
         rc = w0->rc;
+    int early = jb->sink && vb_cover_early_on(be);
     while (rc == VB_OK && !atomic_load(&jb->failed)) {
         pthread_mutex_lock(&sh->mu);
         size_t b0 = sh->front, n = sh->back - sh->front < batch ? sh->back - sh->front : batch;
@@ -340,59 +426,36 @@ static int hybrid_device(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w0,
         if (n == 0)
             break;
         const uint32_t *quads = NULL;
+        tk.cells = jb->cells + b0;
+        tk.tres = 0.0;
+        memset(tk.done, 0, n);
+        be->early = early ? take_early : NULL;
+        be->early_user = &tk;
         double t0 = vb_now();
+        atomic_store(&be->running, 1);
         rc = be->run(ctx, be, jb->cells + b0, n, outs, &quads);
-        double t1 = vb_now(), tres = 0.0;
+        atomic_store(&be->running, 0);
+        be->early = NULL;
+        double t1 = vb_now();
         w0->st.t_device += t1 - t0;
         w0->st.steps.batches++;
-        if (rc == VB_OK && vb_hand_index_make(&hx, be->hand, be->hand_words) != VB_OK)
+        if (rc == VB_OK && vb_hand_index_make(&tk.hx, be->hand, be->hand_words) != VB_OK)
             rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
         if (rc != VB_OK)
             break;
         size_t nl = 0;
         vb_quad_list chunk = {0};
-        for (size_t k = 0; rc == VB_OK && k < n; k++) {
-            if (outs[k].status != VBQ_OK) {
-                outs[nl++].qoff = jb->cells[b0 + k]; /* reuse the slot for the cell id */
-                continue;
-            }
-            w0->st.cells++;
-            vb_cover_stats_cell(&w0->st, &outs[k]);
-            const uint32_t *cq = quads + 4 * (size_t)outs[k].qoff, *hw;
-            vb_quad_list *l = jb->sink ? &chunk : &w0->ql;
-            size_t c0 = l->n, nhw, np;
-            rc = vb_hand_index_cell(&hx, jb->cells[b0 + k], &hw, &nhw, &np);
-            /* the patches the kernel handed: resumed with the cell's
-             * quadruples by a host thread, or here alone when none is
-             * beside this one */
-            int queued = rc == VB_OK && nhw && sh->helpers > 0 && be->resume_spread;
-            if (queued) {
-                rc = resume_queue(sh, jb->cells[b0 + k], cq, outs[k].nq, hw, nhw);
-                w0->st.steps.resume_queued++;
-            } else if (rc == VB_OK)
-                rc = vb_quad_list_append(l, cq, outs[k].nq);
-            if (rc == VB_OK && nhw) {
-                w0->st.resumed_patches += np;
-                w0->st.resumed_cells++;
-                if (!queued) {
-                    double c = vb_thread_cpu_now();
-                    rc = cover_root(w0, jb->cells[b0 + k], VBQ_RESUME, hw, nhw, l);
-                    tres += vb_thread_cpu_now() - c;
-                }
-            }
-            if (rc != VB_OK)
-                rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
-            else if (!queued && (jb->sink || nhw))
-                l->n = c0 + vb_quad_cell_unique(l->q + c0, l->n - c0);
-        }
+        rc = take_cells(&tk, outs, n, quads, 0, jb->sink ? &chunk : &w0->ql, &nl);
+        if (rc != VB_OK)
+            rc = vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
         pthread_mutex_lock(&sh->mu);
         for (size_t k = 0; k < nl; k++)
-            sh->left[sh->nleft++] = outs[k].qoff;
+            sh->left[sh->nleft++] = tk.left[k];
         pthread_cond_broadcast(&sh->cv);
         pthread_mutex_unlock(&sh->mu);
         w0->st.host_cells += nl;
         covered(jb, n - nl);
-        w0->st.steps.resume_cpu_s += tres;
+        w0->st.steps.resume_cpu_s += tk.tres;
         double t2 = vb_now();
         w0->st.steps.dispatch_s += t2 - t1;
         /* Streamed: the batch's cells are disjoint from every other's and
@@ -405,9 +468,12 @@ static int hybrid_device(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w0,
         }
         vb_quad_list_free(&chunk);
     }
+    be->early = NULL;
     w0->st.handed_cells += be->handed_cells - handed0;
-    vb_hand_index_free(&hx);
+    vb_hand_index_free(&tk.hx);
     free(outs);
+    free(tk.done);
+    free(tk.left);
     return rc;
 }
 
@@ -465,17 +531,10 @@ static int cover_hybrid(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w, i
     for (size_t k = sh.rqhead; k < sh.nrq; k++)
         free(sh.rq[k]); /* left by a failure */
     free(sh.rq);
+    vb_quad_list_free(&sh.posted); /* left by a failure */
     pthread_mutex_destroy(&sh.mu);
     pthread_cond_destroy(&sh.cv);
     return rc;
-}
-
-void vb_cover_backend_close(vb_cover_backend *be)
-{
-    if (be && be->judge_close)
-        be->judge_close(be);
-    if (be && be->close)
-        be->close(be);
 }
 
 /* Workers' quadruples of one run appended to out, sorted and unique.
@@ -501,32 +560,6 @@ static int gather(worker *w, int nt, vb_quad_list *out)
         w[t].ql.n = 0;
     }
     return out->n > n0 ? vb_quad_list_canonical(out, nt) : VB_OK;
-}
-
-size_t vb_cover_batch_cells(const vb_cover_options *opt)
-{
-    if (opt && opt->batch_cells)
-        return opt->batch_cells;
-    const char *e = getenv("VORBALL_COVER_BATCH");
-    if (e && *e) {
-        char *end;
-        unsigned long long v = strtoull(e, &end, 10);
-        if (*end == '\0' && v >= 1 && v <= (1ull << 30))
-            return (size_t)v;
-    }
-    return 0;
-}
-
-unsigned vb_cover_pipeline_parts(void)
-{
-    const char *e = getenv("VORBALL_COVER_PARTS");
-    if (e && *e) {
-        char *end;
-        unsigned long v = strtoul(e, &end, 10);
-        if (*end == '\0' && v >= 1 && v <= 64)
-            return (unsigned)v;
-    }
-    return 1u;
 }
 
 int vb_cover_run_parts(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_options *opt,

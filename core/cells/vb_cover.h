@@ -12,6 +12,8 @@
 #ifndef VB_COVER_H
 #define VB_COVER_H
 
+#include <stdatomic.h>
+
 #include "vb.h"
 #include "vb_cover_shared.h"
 #include "vb_proposer.h" /* vb_cover_clocks */
@@ -167,6 +169,23 @@ struct vb_cover_backend {
     void *judge_state;       /* the judge's own (gpu/cert_filter_ocl.c) */
     void (*judge_close)(vb_cover_backend *be); /* NULL, or frees judge_state
                                                   (vb_cover_backend_close) */
+    /* Set by the caller before a run (NULL: none; cover.c sets it when
+     * vb_cover_early_on says so). run calls it once, after its first tier
+     * and before the tiers that take the cells the first did not finish,
+     * with out[0 .. ncells) as they stand then: a cell whose status is
+     * VBQ_OK is final (its quadruples at quads + 4 out[k].qoff, its handed
+     * patches among hand[0 .. hand_words)), so the caller can hand those
+     * cells on while the later tiers run. The pointers are valid during the
+     * call only. A status other than VB_OK stops the run and is returned. */
+    int (*early)(void *user, const vbq_cell_out *out, size_t ncells, const uint32_t *quads,
+                 const uint32_t *hand, size_t hand_words);
+    void *early_user;
+    /* 1 while a run is under way (set by its caller): the judge is then
+     * left to the host's twin, since a list judged on the device would
+     * wait for the cover's kernels (H100, the 211,440-atom tiling: the
+     * first tier's cells judged there were certified only after the last
+     * tier). */
+    atomic_int running;
 };
 
 /* A run's handed patches (vb_cover_backend's hand) by cell, for the host
@@ -266,6 +285,13 @@ size_t vb_cover_batch_cells(const vb_cover_options *opt);
  * cells, and the certifier's threads take the host threads that help the
  * device). */
 unsigned vb_cover_pipeline_parts(void);
+
+/* Whether a run on be takes each batch's finished cells early (be->early):
+ * VORBALL_COVER_EARLY=1 on, =0 off, else on where the host threads resume
+ * handed patches (be->resume_spread: a GPU, whose host threads wait on the
+ * device while its later tiers run; they then certify and resume the
+ * first tier's cells meanwhile). Only speed depends on it. */
+int vb_cover_early_on(const vb_cover_backend *be);
 
 /* vb_cover_run in `parts` runs of cells along the tree's curve (of this
  * process's share, opt->part of opt->nparts), the tree built once: each
