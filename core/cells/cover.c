@@ -370,13 +370,17 @@ static int take_cells(taking *tk, const vbq_cell_out *out, size_t n, const uint3
 /* be->early (vb_cover.h): the batch's cells finished by the first tier
  * taken while the later tiers run, their quadruples posted for a host
  * thread to sink (certified meanwhile), or sunk here when no host thread
- * is beside this one. */
+ * is beside this one; be->running says whether those tiers are long. */
 static int take_early(void *user, const vbq_cell_out *out, size_t ncells, const uint32_t *quads,
                       const uint32_t *hand, size_t hand_words)
 {
     taking *tk = user;
     if (vb_hand_index_make(&tk->hx, hand, hand_words) != VB_OK)
         return VB_ENOMEM;
+    size_t later = 0; /* cells left to the later tiers: 1 in 64 keeps them long */
+    for (size_t k = 0; k < ncells; k++)
+        later += out[k].status != VBQ_OK;
+    atomic_store(&tk->be->running, 64 * later >= ncells && later > 0);
     vb_quad_list chunk = {0};
     int rc = take_cells(tk, out, ncells, quads, 1, &chunk, NULL);
     pthread_mutex_lock(&tk->sh->mu);
@@ -432,7 +436,6 @@ static int hybrid_device(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w0,
         be->early = early ? take_early : NULL;
         be->early_user = &tk;
         double t0 = vb_now();
-        atomic_store(&be->running, 1);
         rc = be->run(ctx, be, jb->cells + b0, n, outs, &quads);
         atomic_store(&be->running, 0);
         be->early = NULL;
