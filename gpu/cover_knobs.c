@@ -25,6 +25,12 @@ void vbg_cover_knobs(cov_state *s)
         t0->nb_cap = (uint32_t)v;
     if ((v = knob("VORBALL_COVER_LAB", 0)) > 0)
         t0->lab_cap = (uint32_t)v;
+    /* The first tier's arenas follow the input (vbg_cov_fit) unless a knob
+     * sets them or VORBALL_COVER_FIT=0 (measurements: the defaults always). */
+    if (knob("VORBALL_COVER_NB", 0) > 0 || knob("VORBALL_COVER_LAB", 0) > 0)
+        s->fit = 0;
+    if (knob("VORBALL_COVER_FIT", 1) == 0)
+        s->fit = 0;
     /* VORBALL_COVER_TIER2 and VORBALL_COVER_TIER3: the large and huge tiers'
      * slices, also on CPU devices (to test the split into root-patch tasks
      * and the huge tier's retry; 0: none). */

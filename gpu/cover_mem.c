@@ -2,6 +2,7 @@
  * the shared input uploaded once per run, and the pool of arena arrays
  * the tiers pass to their kernels, one tier after the other, sized by the
  * plan (gpu/cover_plan.c, vbg_cover_state.h). */
+#include "vb_parallel.h"
 #include "vbg_buffer.h"
 #include "vbg_cover_state.h"
 
@@ -146,6 +147,17 @@ int vbg_cov_begin(vb_ctx *ctx, vb_cover_backend *be, const vbq_env *env, size_t 
     s->env = *env;
     size_t nodes = 2 * (size_t)env->first;
     size_t input = vbg_cov_input_bytes(n, env->first, env->m);
+    /* The first tier's arenas for this input, from a sample of its cells
+     * covered on the host threads (idle before the first launch); an input
+     * that takes no sample gets the defaults again, whatever an earlier
+     * run on this backend got. */
+    size_t covered = 0, over = 0;
+    if (vbg_cov_fit_wanted(s, n) &&
+        vb_cover_sample_over(env, COV_FIT_SAMPLE, COV_FIT_NB / 2, COV_FIT_LAB / 2, vb_threads(0),
+                             &covered, &over) != VB_OK)
+        return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover sample)");
+    if (s->fit)
+        vbg_cov_fit(s, covered, over);
     size_t least = vbg_cov_split(s, n, input);
     if (least) {
         const cov_tier *t0 = &s->tier[COV_FIRST];

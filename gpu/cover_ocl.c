@@ -209,6 +209,10 @@ static int cov_run(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, siz
         rc = run_tasks(ctx, s, th, cells, ncells, out, handed_off, &handed);
     be->handed_cells += handed;
     size_t n1 = rc == VB_OK && t1->want ? count_picked(out, ncells, retry_on_device) : 0;
+    /* A fitted first tier's few cells past it go to the host threads
+     * rather than a large launch of their own (COV_FIT_HOST). */
+    if (s->fitted && n1 <= COV_FIT_HOST)
+        n1 = 0;
     if (n1)
         rc = vbg_cov_tier_grow(ctx, s, t1, n1 * per);
     if (rc == VB_OK && n1 && t1->slices)

@@ -229,6 +229,28 @@ size_t vbg_cov_peak_plan(cov_state *s, size_t n, size_t input, size_t batch, siz
            s->hand.size;
 }
 
+int vbg_cov_fit_wanted(const cov_state *s, size_t n)
+{
+    const cov_tier *t0 = &s->tier[COV_FIRST];
+    if (!s->fit || !t0->wg)
+        return 0;
+    size_t cps = s->cells_per_slice ? s->cells_per_slice : 1;
+    size_t w = (n + cps - 1) / cps;
+    w = w < t0->want ? w : t0->want;
+    cov_tier d = *t0;
+    d.nb_cap = t0->nb_want;
+    d.lab_cap = t0->lab_want;
+    return w * slice_bytes(&d) >= COV_FIT_MIN;
+}
+
+void vbg_cov_fit(cov_state *s, size_t covered, size_t over)
+{
+    cov_tier *t0 = &s->tier[COV_FIRST];
+    s->fitted = covered > 0 && over * COV_FIT_SHARE < covered;
+    t0->nb_cap = s->fitted ? COV_FIT_NB : t0->nb_want;
+    t0->lab_cap = s->fitted ? COV_FIT_LAB : t0->lab_want;
+}
+
 void vbg_cov_caps(cov_state *s, int cpu, int caches, int hand, size_t units)
 {
     cov_tier *t0 = &s->tier[COV_FIRST], *t1 = &s->tier[COV_BIG], *th = &s->tier[COV_HAND];
@@ -299,4 +321,7 @@ void vbg_cov_caps(cov_state *s, int cpu, int caches, int hand, size_t units)
     }
     t0->nb_want = t0->nb_cap;
     t0->lab_want = t0->lab_cap;
+    /* The group kernel's first tier follows the input (COV_FIT_SAMPLE). */
+    s->fit = s->wg;
+    s->fitted = 0;
 }

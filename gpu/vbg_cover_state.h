@@ -23,7 +23,8 @@
  *   first tier S0 slices of P0 bytes, P0 = 48 NB + 4 LAB + 16 Q (+ 48 ST on
  *              the work-item kernel; the group kernel keeps one stack of
  *              48 ST), NB/LAB/ST/Q the tier's capacities below: 144 KiB a
- *              work-item on a GPU, 520 KiB a group; a CPU device's slice
+ *              work-item on a GPU, 520 KiB a group (266 KiB with the
+ *              arenas fitted to the input, COV_FIT_NB); a CPU device's slice
  *              (one per compute unit, COV_CPU_NB) 4.0 MiB and 2.1 MiB of
  *              caches (8 LAB + 56 VBQ_MEMO), its capacities halved while
  *              the slices exceed the share below;
@@ -127,6 +128,8 @@ typedef struct cov_state {
     size_t cells_per_slice;  /* COV_CELLS_PER_SLICE: the group kernel's first tier */
     size_t hand_cap_words;   /* COV_HAND_CAP: handed-patch words a launch reserves at most */
     size_t hand_floor_words; /* COV_HAND_FLOOR: ... at least (0 where a knob sets the cell's) */
+    int fit;                 /* 1: the first tier's arenas follow the input (vbg_cov_fit) */
+    int fitted;              /* 1: this run's first tier has the fitted arenas */
     size_t last_n;           /* spheres of the last run begun (trim) */
     vb_cover_clocks *clocks; /* the backend's, per tier (indexed by COV_*) */
 } cov_state;
@@ -242,6 +245,37 @@ typedef struct cov_state {
  * of the budget's whole rest. COV_POOL_FLOOR: a small input's bound. */
 #define COV_POOL_PER_SPHERE 5888u
 #define COV_POOL_FLOOR ((size_t)32 << 20)
+/* The group kernel's first-tier arenas per input (vbg_cov_fit): before the
+ * first launch the host covers COV_FIT_SAMPLE cells spread over the input
+ * in arenas of half COV_FIT_NB records and half COV_FIT_LAB labels
+ * (vb_cover_sample_over: each cell cut where it runs out); when fewer than
+ * one in COV_FIT_SHARE of them runs out, the first tier gets COV_FIT_NB /
+ * COV_FIT_LAB (half the defaults), else the defaults. Only where the first
+ * tier at its defaults would hold COV_FIT_MIN bytes or more (smaller inputs
+ * keep their few slices). Host covers of every cell (tests/verify/
+ * bench_cover_cells, stop 51), cells past 2,048 records / p99 / largest:
+ * the capsid 552 (2 %) / 4,493 / 50,546 (117 past 8,192: its large tier
+ * runs whichever), fcc 10,976 exact 2,188 (20 %, its face cells) / 6,648 /
+ * 13,452, its random twin 91 / 1,935 / 6,412, sc 4,096 jittered 1e-12 61
+ * / 2,192 / 4,790. The sample (128 cells, past 2,048): fcc 10,976 exact
+ * 44, jittered 1e-9 6-7, sc 4,096 jittered 5-8, the capsid 2, the random
+ * twins 0; 14-51 ms of CPU on one thread of the 2-core machine. On an
+ * H100 (stop 50, run 2) the halved arenas held the capsid in 576 MiB
+ * instead of 1,104 at the same speed (0.265 s) and cost fcc 10,976 exact
+ * 0.222 s against 0.189-0.193 on the H200 (run 3), whose cells past 4,096
+ * records then ran on the large tier. */
+#define COV_FIT_SAMPLE 128u
+#define COV_FIT_NB 4096u
+#define COV_FIT_LAB 16384u
+#define COV_FIT_SHARE 8u
+#define COV_FIT_MIN ((size_t)256 << 20)
+/* A fitted run's cells past its first tier, when no more than this many,
+ * go to the host threads instead of a large tier of their own: a large
+ * launch lasts as long as its longest task (0.026 s for fcc 10,976 exact's
+ * 384 tasks on an H100, stop 50), a host thread covers such a cell (4,096
+ * to 6,412 records in the random twin) in a few ms (2-core machine, host
+ * cover of every cell: 0.3 ms a face cell on average). */
+#define COV_FIT_HOST 32u
 /* Output room per large or huge task, in quadruples (the tasks share one
  * output array: only the launch's sum matters; a task past it runs again
  * on the huge tier or the host). Measured on PoCL with the GPU's
@@ -253,7 +287,7 @@ typedef struct cov_state {
 #define COV_BIG_QPER 16u
 
 /* Applies the environment's test and measurement knobs to s's tiers
- * (gpu/cover_knobs.c: VORBALL_COVER_NB, _LAB, _TIER2, _TIER3, _BIG_NB, _HAND_WORDS,
+ * (gpu/cover_knobs.c: VORBALL_COVER_NB, _LAB, _FIT, _TIER2, _TIER3, _BIG_NB, _HAND_WORDS,
  * _HUGE_NB, _CELLS_PER_SLICE, _POOL_PER_SPHERE, _HAND_CAP, _BIG_QPER), after
  * vbg_cover_open set their defaults. */
 void vbg_cover_knobs(cov_state *s);
@@ -310,6 +344,19 @@ void vbg_cov_launch_sizes(cov_state *s, const cov_tier *t, size_t ncells, size_t
  * cannot hold the run. */
 size_t vbg_cov_peak_plan(cov_state *s, size_t n, size_t input, size_t batch, size_t big_tasks,
                          size_t huge_tasks);
+
+/* 1 when a run of n spheres samples its cells for the first tier's
+ * arenas: s->fit is set and the first tier at its default arenas would
+ * hold COV_FIT_MIN bytes or more (its slices as vbg_cov_split makes them
+ * with no budget to bound them). */
+int vbg_cov_fit_wanted(const cov_state *s, size_t n);
+
+/* The first tier's arenas from a sample (vb_cover_sample_over at half
+ * COV_FIT_NB / COV_FIT_LAB): `over` of `covered` cells ran out of them.
+ * Sets the first tier's nb_cap / lab_cap to those arenas and s->fitted to
+ * 1 when over * COV_FIT_SHARE < covered, else to nb_want / lab_want (the
+ * defaults, or what a knob set) and s->fitted to 0. */
+void vbg_cov_fit(cov_state *s, size_t covered, size_t over);
 
 /* ---- device buffers (gpu/cover_mem.c) ---------------------------------- */
 

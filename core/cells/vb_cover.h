@@ -240,6 +240,17 @@ int vbq_arena_make(vbq_arena *a, uint32_t nb, uint32_t lab, uint32_t st, uint32_
 void vb_cover_cell_host(const vbq_env *e, const vbq_arena *ar, uint32_t i, uint32_t root,
                         vbq_cell_out *o);
 
+/* Of `want` cells spread evenly over the tree's order of env (all of its
+ * env->m cells when fewer), covered on the host (vb_cover_cell_host) in
+ * arenas of nb records and lab labels, on `threads` host threads: *over of
+ * them ran out of one of the two (a cell stops where it runs out, so none
+ * costs more than nb records), *covered counts those and the cells that
+ * fit (a cell past the arenas' stack or quadruples counts in neither). The
+ * counts do not depend on the threads. Allocates nothing that outlives the
+ * call. VB_OK or VB_ENOMEM (the counts then partial). */
+int vb_cover_sample_over(const vbq_env *env, size_t want, uint32_t nb, uint32_t lab, int threads,
+                         size_t *covered, size_t *over);
+
 /* The shared input of every cell: the tree over the centres and the
  * parameters, in *env (its arrays belong to *tree and to set). For
  * backends and tests that run vbq_cover_cell themselves; vb_cover_run

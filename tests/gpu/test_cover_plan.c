@@ -117,6 +117,86 @@ static void h100_bounds(void)
     CHECK(vbg_cov_split(&s, 1000000, vbg_cov_input_bytes(1000000, 500000, 1000000)) > 16 * MIB);
 }
 
+/* The plan's peak on the made-up H100 for n spheres after the first tier's
+ * arenas are fitted from a sample (vbg_cov_fit: `over` of 128 sampled cells
+ * ran out of half the fitted arenas; SIZE_MAX: no sample taken, as
+ * vbg_cov_fit_wanted says). *fitted: the fit's verdict. */
+static size_t h100_fit_peak(size_t n, size_t big, size_t huge, size_t over, int *fitted)
+{
+    cov_state s;
+    h100_state(&s);
+    int wanted = vbg_cov_fit_wanted(&s, n);
+    CHECK(wanted == (over != SIZE_MAX));
+    if (wanted)
+        vbg_cov_fit(&s, COV_FIT_SAMPLE, over);
+    *fitted = s.fitted;
+    size_t batch = n < ((size_t)1 << 18) ? n : (size_t)1 << 18;
+    size_t peak = vbg_cov_peak_plan(&s, n, vbg_cov_input_bytes(n, n / 2, n), batch, big, huge);
+    printf("H100 fitted plan: n %zu, %s%zu of %u sampled cells past half the fitted arenas: "
+           "first tier %zu slices of %u records / %u labels, peak %.1f MiB\n",
+           n, wanted ? "" : "no sample: ", wanted ? over : 0, COV_FIT_SAMPLE,
+           s.tier[COV_FIRST].slices,
+           s.tier[COV_FIRST].nb_cap, s.tier[COV_FIRST].lab_cap, (double)peak / (double)MIB);
+    return peak;
+}
+
+/* The first tier's arenas per input (COV_FIT_*), with the sample counts
+ * measured on the inputs (tests/verify/bench_cover_cells, stop 51: 128
+ * cells in 2,048 records / 8,192 labels) and the large tasks of the H100
+ * runs (h100_stop50.txt, h100_stop44_runA.txt). */
+static void h100_fit(void)
+{
+    int fitted;
+    /* EXTREMESET's 300 balls and 1crn: 75 and 82 slices (39 and 42 MiB at
+     * the defaults) take no sample and keep their arenas. */
+    CHECK(h100_fit_peak(300, 0, 0, SIZE_MAX, &fitted) == h100_peak(300, 0, 0, 0, 0, 0, 0));
+    CHECK(!fitted);
+    CHECK(h100_fit_peak(327, 0, 0, SIZE_MAX, &fitted) <= 48 * MIB && !fitted);
+    /* The capsid: 2 of 128 sampled cells past 2,048 records: halved arenas
+     * (2,112 slices of 266 KiB, 536 MiB with the large tier's 173 slices in
+     * the pool), where the defaults plan 1,099 MiB; the H100 measured 576
+     * MiB at the same speed with VORBALL_COVER_NB=4096 VORBALL_COVER_LAB=
+     * 16384 (stop 50, run 2). Bound 600 MiB (the issue's 2.5x the peer's
+     * 194 is 485: past it, see results/mem51_stop51.md). Its cells past
+     * 4,096 records (about 300, 1 of 128 sampled) run as root-patch tasks
+     * on the large tier (28,800 tasks, 450 slices at most: more than the
+     * pool holds, so it takes what the pool holds). */
+    size_t cap_fit = h100_fit_peak(26430, 28800, 0, 2, &fitted);
+    CHECK(fitted && cap_fit <= 600 * MIB);
+    CHECK(cap_fit * 2 < h100_peak(26430, 11040, 0, 0, 0, 0, 0) + 100 * MIB);
+    /* fcc 10,976 exact: 44 of 128 past 2,048 records (its face cells: 20 %
+     * of all): the defaults, as today (1,104 MiB measured), its speed kept. */
+    size_t fcc = h100_fit_peak(10976, 384, 0, 44, &fitted);
+    CHECK(!fitted && fcc == h100_peak(10976, 384, 0, 0, 0, 0, 0));
+    /* The boundary: 15 of 128 fit (15 x 8 < 128), 16 do not. */
+    CHECK(h100_fit_peak(10976, 0, 0, 15, &fitted) < h100_peak(10976, 0, 0, 0, 0, 0, 0) && fitted);
+    CHECK(h100_fit_peak(10976, 0, 0, 16, &fitted) == h100_peak(10976, 0, 0, 0, 0, 0, 0));
+    CHECK(!fitted);
+    /* sc 4,096 jittered 1e-12 (5 of 128) and the random twins (0): 1,024
+     * slices (530 MiB measured) sampled and halved, about 280 MiB. */
+    size_t sc = h100_fit_peak(4096, 0, 0, 5, &fitted);
+    CHECK(fitted && sc <= 300 * MIB);
+    /* The tiling, 211,440 atoms (its sample as the capsid's): the pool,
+     * 5.75 KiB a sphere, bounds it as before; within the peer's 1,442 MiB. */
+    CHECK(h100_fit_peak(211440, 217056, 864, 2, &fitted) <= 1442 * MIB && fitted);
+    /* A knob's arenas are not fitted (VORBALL_COVER_NB / _LAB, _FIT=0:
+     * s->fit 0), nor a CPU device's work-item kernel. */
+    cov_state s;
+    h100_state(&s);
+    /* A run that takes no sample after one that was fitted (begin calls
+     * vbg_cov_fit with none): the defaults again. */
+    vbg_cov_fit(&s, COV_FIT_SAMPLE, 2);
+    CHECK(s.fitted && s.tier[COV_FIRST].nb_cap == COV_FIT_NB);
+    vbg_cov_fit(&s, 0, 0);
+    CHECK(!s.fitted && s.tier[COV_FIRST].nb_cap == COV_WG_NB);
+    CHECK(s.tier[COV_FIRST].lab_cap == COV_WG_LAB);
+    s.fit = 0;
+    CHECK(!vbg_cov_fit_wanted(&s, 26430));
+    memset(&s, 0, sizeof s);
+    vbg_cov_caps(&s, 1, 1, 0, 2);
+    CHECK(!vbg_cov_fit_wanted(&s, 26430));
+}
+
 /* The handed-patch words of a first launch of `cells` cells on the made-up
  * H100 (group kernel), with room to spare; knob: as
  * VORBALL_COVER_HAND_WORDS=128 sets it (no floor). */
@@ -208,6 +288,7 @@ int main(void)
 {
     h100_bounds();
     h100_hand_room();
+    h100_fit();
     const char *src;
     vb_ctx *ctx;
     int have_device;

@@ -21,7 +21,9 @@
  * and a line gives the cells handed, the tasks, the largest task's patches
  * (the longest work-item of the hand-off launch) and the tasks that ran out
  * of each arena (tie clusters are decided on the host here, where a device
- * leaves them to the host). A benchmark, not a test. */
+ * leaves them to the host). A first line gives the sample a GPU sizes its
+ * first tier's arenas from (vb_cover_sample_over) and its CPU time. A
+ * benchmark, not a test. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -126,6 +128,15 @@ int main(int argc, char **argv)
             hi[k] = c[k] > hi[k] ? c[k] : hi[k];
         }
     }
+    /* The sample a GPU sizes its first tier from (gpu/vbg_cover_state.h,
+     * COV_FIT_*: 128 cells in arenas of 2,048 records and 8,192 labels),
+     * with its CPU seconds on one thread. */
+    size_t sampled, ran_out;
+    double f0 = thread_cpu();
+    if (vb_cover_sample_over(&env, 128, 2048u, 8192u, 1, &sampled, &ran_out) != VB_OK)
+        return 1;
+    printf("%s\tsample\t%zu cells in 2048 records / 8192 labels: %zu ran out\tcpu_s %.4f\n",
+           argv[1], sampled, ran_out, thread_cpu() - f0);
     vbq_arena ar;
     memset(&ar, 0, sizeof ar);
     uint32_t cap[4] = {1024u, 8192u, 512u, 512u};
