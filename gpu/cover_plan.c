@@ -232,7 +232,7 @@ size_t vbg_cov_peak_plan(cov_state *s, size_t n, size_t input, size_t batch, siz
 int vbg_cov_fit_wanted(const cov_state *s, size_t n)
 {
     const cov_tier *t0 = &s->tier[COV_FIRST];
-    if (!s->fit || !t0->wg)
+    if (!s->fit || !t0->wg || n < COV_FIT_SPHERES)
         return 0;
     size_t cps = s->cells_per_slice ? s->cells_per_slice : 1;
     size_t w = (n + cps - 1) / cps;

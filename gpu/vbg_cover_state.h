@@ -269,6 +269,14 @@ typedef struct cov_state {
 #define COV_FIT_LAB 16384u
 #define COV_FIT_SHARE 8u
 #define COV_FIT_MIN ((size_t)256 << 20)
+/* ... and only from this many spheres on: below it `--device auto` covers on
+ * the host's threads, and on the H100 (stop 51, run 2, fitted against
+ * main) the sample and halved arenas cost sc 4,096 jittered 1e-12 0.171-
+ * 0.175 s against 0.146-0.155 (539 -> 281 MiB), the random twins 5-7 %,
+ * and fcc 10,976 exact, which keeps its defaults, 0.205-0.209 against
+ * 0.193-0.196 (the sample alone); the capsid 1,119 -> 591 MiB in 0.236-
+ * 0.250 s against 0.234-0.241. */
+#define COV_FIT_SPHERES 20000u
 /* A fitted run's cells past its first tier, when no more than this many,
  * go to the host threads instead of a large tier of their own: a large
  * launch lasts as long as its longest task (0.026 s for fcc 10,976 exact's
@@ -346,7 +354,7 @@ size_t vbg_cov_peak_plan(cov_state *s, size_t n, size_t input, size_t batch, siz
                          size_t huge_tasks);
 
 /* 1 when a run of n spheres samples its cells for the first tier's
- * arenas: s->fit is set and the first tier at its default arenas would
+ * arenas: s->fit is set, n >= COV_FIT_SPHERES and the first tier at its default arenas would
  * hold COV_FIT_MIN bytes or more (its slices as vbg_cov_split makes them
  * with no budget to bound them). */
 int vbg_cov_fit_wanted(const cov_state *s, size_t n);
