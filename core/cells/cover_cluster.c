@@ -32,7 +32,9 @@
  * exponent, so the affine rank of the points is the linear rank of the V_j
  * minus one, found exactly: in checked 128-bit integers where the numbers
  * fit (cluster_small.c), else by fraction-free elimination in GMP integers
- * (below). Both find the same rank and the same first independent labels. */
+ * (below), unless rank 4 modulo a prime already proves the answer
+ * (cluster_modp.c: a jittered crystal's lists that look flat). Both find
+ * the same rank and the same first independent labels. */
 #include <gmp.h>
 #include <stdlib.h>
 
@@ -196,7 +198,10 @@ int vbq_host_cluster(const vbq_env *e, const vbq_arena *ar, vbq_cell_out *o, vbs
     size_t nt = 0, cap = 0;
     if (!ar->cmemo || !vbq_cluster_memo_get(ar->cmemo, s, i, ids, n, &a, &tri, &nt)) {
         int32_t emin = vbq_cluster_emin(s, i, ids, n);
-        if (!vbq_cluster_small(s, i, ids, n, emin, &a))
+        int fit = vbq_cluster_small(s, i, ids, n, emin, &a);
+        if (!fit && vbq_cluster_modp(s, i, ids, n, emin))
+            a = (vbq_cluster_ans){0, 0, {0, 0, 0}}; /* rank >= 4: GMP's decided = 0 */
+        else if (!fit)
             vbq_cluster_gmp(s, i, ids, n, emin, &a);
         if (!a.decided) {
             /* affine rank 3 (cluster_hull.c); out of memory: enumerated */

@@ -60,6 +60,12 @@ int32_t vbq_cluster_emin(const vb_sphere_set *s, uint32_t i, const uint32_t *ids
 int vbq_cluster_small(const vb_sphere_set *s, uint32_t i, const uint32_t *ids, uint32_t n,
                       int32_t emin, vbq_cluster_ans *a);
 
+/* Proves rank >= 4 of the same vectors modulo the prime 2^61 - 1
+ * (cluster_modp.c): 1 when it did (vbq_cluster_gmp answers decided = 0),
+ * 0 when it proves nothing (ask vbq_cluster_gmp). No allocation. */
+int vbq_cluster_modp(const vb_sphere_set *s, uint32_t i, const uint32_t *ids, uint32_t n,
+                     int32_t emin);
+
 /* The same test in GMP integers (fraction-free elimination); always
  * answers. Allocates only GMP temporaries, freed before it returns. */
 void vbq_cluster_gmp(const vb_sphere_set *s, uint32_t i, const uint32_t *ids, uint32_t n,

@@ -1,7 +1,9 @@
 /* The tie cluster's rank test (core/cells/vbq_cluster.h): the checked
  * 128-bit path must give GMP's answer (decided, rank, the same first
  * independent labels in list order) on clusters of every kind, and give
- * way to GMP where its numbers do not fit. */
+ * way to GMP where its numbers do not fit; the modular proof of rank >= 4
+ * (cluster_modp.c) must find every list GMP leaves undecided here and
+ * claim no cluster. */
 #include <stdint.h>
 
 #include "vb_test.h"
@@ -9,6 +11,7 @@
 #include "vbq_cluster.h"
 
 static uint64_t rng = 88172645463325252ull;
+static int modp_proved; /* lists vbq_cluster_modp proved of rank >= 4 */
 
 static uint32_t next(uint32_t n)
 {
@@ -39,6 +42,11 @@ static vbq_cluster_ans both(const vb_sphere_set *s, uint32_t i, const uint32_t *
     vbq_cluster_ans g, f;
     vbq_cluster_gmp(s, i, ids, n, emin, &g);
     *fit = vbq_cluster_small(s, i, ids, n, emin, &f);
+    /* rank 4 modulo p proves GMP's decided = 0; it proves nothing else */
+    int modp = vbq_cluster_modp(s, i, ids, n, emin);
+    if (modp)
+        CHECK_INT(g.decided, 0);
+    modp_proved += modp;
     if (!*fit)
         return g;
     CHECK_INT(f.decided, g.decided);
@@ -99,6 +107,7 @@ int main(void)
         CHECK(fit);
         CHECK_INT(a.decided, 1);
         CHECK_INT(a.nbasis, trial % 2 == 0 ? 3 : 2);
+        CHECK_INT(modp_proved, 0);
         count[a.nbasis == 3 ? 1 : 0]++;
         vb_spheres_free(s);
     }
@@ -127,6 +136,7 @@ int main(void)
         vbq_cluster_ans a = both(s, 0, ids, n, &fit);
         CHECK(fit || e < -5); /* 2^24 and more: the last test overflows */
         CHECK_INT(a.decided, 0);
+        CHECK_INT(modp_proved, trial + 1); /* rank 5 of random balls: proved */
         count[2]++;
         vb_spheres_free(s);
     }
@@ -151,6 +161,33 @@ int main(void)
         s->ex[0].exp10 = -3;
         a = both(s, 0, ids, 7, &fit);
         CHECK(!fit);
+        vb_spheres_free(s);
+    }
+    /* (f) 15-digit decimals (past the 128-bit path): (a)'s cluster at
+     * 10^-15 is one (GMP: rank 3, no modular proof), and the same points
+     * jittered in their last digits, as sc16_j12 is, are not (rank 5:
+     * proved modulo p, GMP agrees). */
+    for (int jit = 0; jit < 2; jit++) {
+        vb_sphere_set *s = vb_test_spheres_alloc(M, 1);
+        uint32_t m = 0;
+        for (int x = -11; x <= 11; x++)
+            for (int y = -11; y <= 11; y++)
+                for (int z = -11; z <= 11; z++)
+                    if (x * x + y * y + z * z == 121 && m < M) {
+                        int64_t u = 1234567890123ll; /* 1.234... at 10^-12 */
+                        int64_t p[3] = {x * u, y * u, z * u};
+                        for (int a = 0; a < 3 && jit; a++)
+                            p[a] += (int64_t)next(2001) - 1000;
+                        put(s, m++, p, -15, 1500000000000000ll);
+                    }
+        uint32_t n = labels(m, ids, 30);
+        int before = modp_proved;
+        vbq_cluster_ans a = both(s, 0, ids, n, &fit);
+        CHECK(!fit);
+        CHECK_INT(a.decided, jit ? 0 : 1);
+        CHECK_INT(modp_proved - before, jit);
+        if (!jit)
+            CHECK_INT(a.nbasis, 3);
         vb_spheres_free(s);
     }
     /* every kind was met */
