@@ -13,7 +13,12 @@
  *   xc + x changing sign over the piece (r_g P_f taken at x = 0 alone gives
  *   Q + r_g xc, above the true rest at x = -h by ~x^k / u^k, which
  *   at h = 0.5, k = 9 is 3e-3 of the value);
- *   s = (2 + 0.75 t + 0.5 t^2) / (1 + t^2), sqrt(s) and s sqrt(s).
+ *   s = (2 + 0.75 t + 0.5 t^2) / (1 + t^2), sqrt(s) and s sqrt(s);
+ *   the quotients (vbm1_tm_div: the rest (r_f - Q - r_g P_h) / g(x)) t / g
+ *   = t (1 - t) and 1 / g = 1 - t (rest 0, where Q = -g's last
+ *   coefficient and r_g P_h = +it: either alone misses), 1 / (1 - t) (rests
+ *   0 over a rest from dividing by 1 - t over the piece, not at its
+ *   middle) and (s sqrt s) / s = sqrt s.
  * Each model, at 41 points X of the piece: sum_{n<k} p_n X^n + X^k rest in
  * intervals, and vbm1_tm_value at the point X and over each of the 40
  * parts between the points (its contract: an enclosure of f over the
@@ -34,8 +39,10 @@ typedef long double ld;
 static const double XC = 0.125;
 static const double SN[3] = {2.0, 0.75, 0.5};
 
-enum { F_T, F_G, F_FG, F_RS, F_SRS, NF };
-static const char *const NAME[NF] = {"t", "1/(1-t)", "t/(1-t)", "sqrt s", "s sqrt s"};
+enum { F_T, F_G, F_FG, F_RS, F_SRS, F_Q1, F_Q2, F_Q3, F_Q4, NF };
+static const char *const NAME[NF] = {"t",         "1/(1-t)",        "t/(1-t)",
+                                     "sqrt s",    "s sqrt s",       "t / (1/(1-t))",
+                                     "1 / (1-t)", "(s sqrt s) / s", "1 / (1/(1-t))"};
 
 static ld exact(int w, ld t)
 {
@@ -43,11 +50,17 @@ static ld exact(int w, ld t)
     switch (w) {
     case F_T:
         return t;
+    case F_Q1:
+        return t * (1 - t);
+    case F_Q4:
+        return 1 - t;
     case F_G:
+    case F_Q2:
         return 1 / (1 - t);
     case F_FG:
         return t / (1 - t);
     case F_RS:
+    case F_Q3:
         return sqrtl(s);
     default:
         return s * sqrtl(s);
@@ -80,7 +93,7 @@ static int check_model(const vbm1_tm *m, int w, int k, double h)
         ld y = exact(w, (ld)XC + X);
         vbx_ia pv = at_point(m, k, X), tv = vbm1_tm_value(m, k, vbx_ia_point(X));
         if (!holds(pv, y) || !holds(tv, y)) {
-            fprintf(stderr, "  %s k %d h %g x %g: [%.17g, %.17g] / value [%.17g, %.17g] miss %.20Lg\n",
+            fprintf(stderr, "  %s k %d h %g x %g: [%.17g, %.17g] / [%.17g, %.17g] miss %.20Lg\n",
                     NAME[w], k, h, X, pv.lo, pv.hi, tv.lo, tv.hi, y);
             ok = 0;
         }
@@ -125,7 +138,7 @@ static int check_tight(const vbm1_tm *m, int w, int k, double h)
     return ok;
 }
 
-/* The five models at the order k over [-h, h]. */
+/* The nine models at the order k over [-h, h]. */
 static int check_rules(int k, double h)
 {
     vbx_ia one = vbx_ia_point(1.0), zero = vbx_ia_point(0.0), x = {-h, h};
@@ -142,10 +155,22 @@ static int check_rules(int k, double h)
         return 0;
     vbm1_tm_mul(&m[F_FG], &m[F_T], &m[F_G], k, x);
     vbm1_tm_mul(&m[F_SRS], &s, &m[F_RS], k, x);
+    /* 1 / (1 - t) and 1 - t over the piece from their closed forms (the
+     * models' values by Horner over [-0.5, 0.5] hold 0) */
+    vbx_ia omt = vbx_ia_sub(one, vbx_ia_add(vbx_ia_point(XC), x)), gx = vbx_ia_div(one, omt);
+    vbx_ia on[1] = {one}, ln[2] = {one, vbx_ia_point(-1.0)};
+    vbm1_tm c1, lin;
+    if (!vbm1_tm_rational(&c1, on, 0, td, 0, XC, k, x) ||
+        !vbm1_tm_rational(&lin, ln, 1, td, 0, XC, k, x) ||
+        !vbm1_tm_div(&m[F_Q1], &m[F_T], &m[F_G], gx, k, x) ||
+        !vbm1_tm_div(&m[F_Q2], &c1, &lin, omt, k, x) ||
+        !vbm1_tm_div(&m[F_Q3], &m[F_SRS], &s, vbm1_tm_value(&s, k, x), k, x) ||
+        !vbm1_tm_div(&m[F_Q4], &c1, &m[F_G], gx, k, x))
+        return 0;
     int ok = 1;
     for (int w = 0; w < NF; w++) {
         ok &= check_model(&m[w], w, k, h);
-        if (w != F_T) /* t's rest is 0 */
+        if (w != F_T && w != F_Q1 && w != F_Q4) /* their rests are 0 */
             ok &= check_tight(&m[w], w, k, h);
     }
     return ok;
