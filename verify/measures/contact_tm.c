@@ -32,7 +32,7 @@
  *   1 / y has poles: at the complex zeros of Emz, off the arc but near it
  *   where the arc passes near e_j. Stop 50 took con = F (an / cd), cd = Po
  *   Emz, whose rest carried those poles ((h / distance)^K): on c1k the
- *   contact's kept pieces fell from 71,298 to 53,700 (arc_integral.c's
+ *   contact's kept pieces fell from 71,298 to 53,738 (arc_integral.c's
  *   stepping both ways) with the quotient;
  * - con = H a by the product rule.
  * The true coefficients lie in the computed intervals and every bound above
