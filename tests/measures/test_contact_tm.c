@@ -8,9 +8,9 @@
  * (half-width 0.4, where x^K rest is ~1e-6 of the value) and narrow ones,
  * for delta = 0 and delta != 0, the model sum_{n<K} c_n x^n + x^K rest,
  * evaluated in intervals at 41 points of the piece, holds the long double
- * value (slack 1e-16 of it: long double's roundings); the same with
- * an / cd = 1, where the remainder is F's alone (the product with an / cd
- * adds bounds wider than F's own); and the models of sqrt(S) and S sqrt(S)
+ * value (slack 1e-16 of it: long double's roundings); the same with the
+ * area's integrand an / ad = 1 - z, where con = F (the model's F / (1 - z)
+ * times 1 - z); and the models of sqrt(S) and S sqrt(S)
  * alone against sqrtl. The model's own
  * polynomials (q' / q^3, S, an / cd) are made here from Pz, D and delta. */
 #include <math.h>
@@ -42,8 +42,8 @@ static ld G(ld q, ld N, ld delta)
     return g;
 }
 
-/* F(z(t)) an(t) / cd(t), cd = (E + Pz)(E - Pz); with `fonly`, F(z(t))
- * (an / cd = 1: the model's remainder is then F's alone) */
+/* F(z(t)) an(t) / cd(t), cd = (E + Pz)(E - Pz) (the area's integrand
+ * 2 Pn / (E Po) over 1 - z = (E - Pz) / E); with `fonly`, F(z(t)) */
 static ld con(ld t, ld D, ld delta, int fonly)
 {
     ld N = D * D - delta * delta, E = 1 + t * t, pz = poly(PZ, 2, t);
@@ -70,6 +70,7 @@ static int check(double D, double delta, double xc, double h, int fonly)
         p.an[k] = pt(AN[k]);
         p.sn[k] = vbx_ia_add(vbx_ia_mul(N, E[k]), vbx_ia_mul(vbx_ia_add(idl, idl), Pq[k]));
         p.sd[k] = E[k];
+        p.yn[k] = Emz[k];
     }
     /* q' / q^3 = (Pq' E - Pq E') E / Pq^3 */
     dq[0] = Pq[1];
@@ -78,11 +79,11 @@ static int check(double D, double delta, double xc, double h, int fonly)
     vbm1_poly_mul(p.rn, dq, 2, E, 2);
     vbm1_poly_mul(Pq2, Pq, 2, Pq, 2);
     vbm1_poly_mul(p.rd, Pq2, 4, Pq, 2);
-    vbm1_poly_mul(p.cd, Po, 2, Emz, 2);
-    for (int k = 0; fonly && k < 5; k++) {
-        p.cd[k] = pt(k == 0 ? 1.0 : 0.0);
+    vbm1_poly_mul(p.ad, E, 2, Po, 2);
+    for (int k = 0; fonly && k < 5; k++) { /* an / ad = (1 - z): con = F */
+        p.ad[k] = k < 3 ? E[k] : pt(0.0);
         if (k < 3)
-            p.an[k] = pt(k == 0 ? 1.0 : 0.0);
+            p.an[k] = Emz[k];
     }
     vbm_owner o = {0};
     o.D = iD;

@@ -10,10 +10,13 @@
  * univariate Taylor models (vbm_series1.h) on pieces halved until each
  * meets its share of the tolerance: the area's and the volume's remainder
  * from their quotients (vbm1_rational_rest), the contact's from a model of
- * F(z(t)) whose parts have closed-form remainders (contact_tm.c). Where an arc passes near the owner's
- * direction e_j (1 - z < NEAR_Y over a piece) the contact's F / (1 - z)
+ * F(z(t)) / (1 - z(t)) whose parts have closed-form remainders
+ * (contact_tm.c). Where an arc passes near the owner's direction e_j
+ * (1 - z < NEAR_Y over a piece) the contact's F / (1 - z)
  * goes by its series in 1 - z with a proven remainder (contact_near)
- * instead of a quotient an interval cannot bound there. */
+ * instead of a quotient an interval cannot bound there. The contact's
+ * pieces are stepped along the arc (march), the area's and volume's halved
+ * (planned, piece). */
 #include <math.h>
 #include <string.h>
 
@@ -155,7 +158,7 @@ typedef struct arcfun {
     vbx_ia Pz[3], Pq[3];          /* z = Pz / E, q = Pq / E */
     /* the contact's (contact_of): S = N + 2 delta q, the algebraic part
      * of G(q) sqrt(S) Rn / Rd, the area's integrand over 1 - z an / cd */
-    vbx_ia Rn[5], Rd[5], Emz[3]; /* ... and 1 - z = Emz / E */
+    vbx_ia Rn[5], Rd[5], Emz[3], cd[5]; /* ... 1 - z = Emz / E, cd = Po Emz */
     vbm_contact_rat cr; /* the contact's model (contact_tm.c): q' / q^3, S, an / cd */
     int want; /* the values integrated now: bits 1 << AREA, VOL, CON */
 } arcfun;
@@ -208,7 +211,7 @@ static void rational_of(arcfun *f)
     vbx_ia twoN = vbx_ia_add(o->N, o->N);
     for (int k = 0; k < 5; k++)
         f->Rd[k] = vbx_ia_mul(twoN, Pq2[k]);
-    vbm1_poly_mul(f->cr.cd, Po, 2, Emz, 2);
+    vbm1_poly_mul(f->cd, Po, 2, Emz, 2);
     /* q' / q^3 = (Pq' E - Pq E') E / Pq^3, Pq' E - Pq E' = p1 + 2 (p2 - p0) t
      * - p1 t^2 (the t^3 terms cancel: contact_tm.c); S = (N E + 2 delta Pq)
      * / E */
@@ -217,10 +220,13 @@ static void rational_of(arcfun *f)
     vbm1_poly_mul(Pq3, Pq2, 4, Pq, 2);
     for (int k = 0; k < 7; k++)
         f->cr.rd[k] = Pq3[k];
+    for (int k = 0; k < 5; k++)
+        f->cr.ad[k] = f->ad[k];
     for (int k = 0; k < 3; k++) {
         f->cr.sn[k] = vbx_ia_add(vbx_ia_mul(o->N, E[k]), vbx_ia_mul(dd, Pq[k]));
         f->cr.sd[k] = E[k];
         f->cr.an[k] = f->an[k];
+        f->cr.yn[k] = Emz[k];
     }
 }
 
@@ -244,7 +250,7 @@ static int contact_of(const arcfun *f, vbx_ia at, int kmax, int last, vbm_s1 *co
     else
         return 0;
     if (!vbm1_sqrt_to(&r, &S, kmax) || !vbm1_rational(&R, f->Rn, 4, f->Rd, 4, at, kmax) ||
-        !vbm1_rational(&a, f->an, 2, f->cr.cd, 4, at, kmax))
+        !vbm1_rational(&a, f->an, 2, f->cd, 4, at, kmax))
         return 0;
     vbm1_mul_to(&G, &r, &R, kmax);
     if (!dz) { /* - delta^2 / (2 N sqrt N) log(2 |delta| q / (sqrt S + sqrt N)^2) */
@@ -401,25 +407,29 @@ static int contact_model(const arcfun *f, double xc, vbx_ia x, vbm_s1 *c, vbm_s1
     return vbm_contact_tm(&f->cr, &f->o, F0, xc, x, &c[CON], &b[CON].c[VBM1_K]);
 }
 
-/* The integrals over [x0, x1] to the widths tg (halved where they fall
- * short), added to *out; `pre` (NULL: none) the integrand's series at the
- * middle already, rpre what integrand returned for it, prek its kept
- * polynomials. The area's and the volume's remainders over the piece come
- * from the middle's series (vbm1_rational_rest), the contact's from its
+/* The integrals over the piece [x0, x1] of the values f->want in v[0..NV)
+ * (those not wanted: any enclosure); `pre` (NULL: none) the integrand's
+ * series at the middle already, rpre what integrand returned for it, prek
+ * its kept polynomials, tg the widths asked (the contact near e_j takes
+ * its series in 1 - z only where that remainder leaves room in tg). Returns
+ * 0 when an interval cannot bound them or, with `halves` (the piece may
+ * still be split), when the contact's model cannot be made. The area's
+ * and the volume's remainders over the piece come from the middle's
+ * series (vbm1_rational_rest), the contact's from its
  * model (contact_model) or, where that cannot be made, from its series
  * over the piece: only at MAX_DEPTH, since elsewhere the piece is halved
  * (the capsid's first 4000 balls, 1crn and 3pqr: the same bytes as trying
  * the series first, which never kept such a piece, and 1.6 % fewer
  * instructions on 1crn). */
-static int piece(const arcfun *f, double x0, double x1, const double *tg, int depth, sums *out,
-                 const vbm_s1 *pre, int rpre, const vbm1_rat *prek)
+static int piece_values(const arcfun *f, double x0, double x1, const double *tg, int halves,
+                        const vbm_s1 *pre, int rpre, const vbm1_rat *prek, vbx_ia *v)
 {
     double xc = 0.5 * (x0 + x1);
     vbm_s1 cs[NV], b[NV];
     vbm1_rat kc[2];
     const vbm_s1 *c = pre ? pre : cs;
     const vbm1_rat *kp = pre ? prek : kc;
-    vbx_ia box = {x0, x1}, v[NV], rem = vbx_ia_point(0.0);
+    vbx_ia box = {x0, x1}, rem = vbx_ia_point(0.0);
     vbx_ia len = vbx_ia_sub(vbx_ia_point(x1), vbx_ia_point(x0));
     int near = 0, rc, rb;
     if (f->o.contacts && f->want == 1 << CON) { /* the contact alone: near e_j? */
@@ -442,7 +452,6 @@ static int piece(const arcfun *f, double x0, double x1, const double *tg, int de
         } else
             near = 0;
     }
-    int halves = depth < MAX_DEPTH && xc > x0 && xc < x1;
     vbx_ia mom[VBM1_K + 1];
     vbx_ia x = {vbx_ia_sub(vbx_ia_point(x0), vbx_ia_point(xc)).lo,
                 vbx_ia_sub(vbx_ia_point(x1), vbx_ia_point(xc)).hi};
@@ -451,7 +460,7 @@ static int piece(const arcfun *f, double x0, double x1, const double *tg, int de
         c = cs;
         rc = rb = 1;
     } else if (model && halves)
-        return halve(f, x0, x1, tg, depth, out);
+        return 0;
     else if (near)
         rc = rb = 1;
     else {
@@ -476,19 +485,37 @@ static int piece(const arcfun *f, double x0, double x1, const double *tg, int de
         v[CON] = vbx_ia_add(v[CON], vbx_ia_mul(len, rem));
     if (ok && (rc == 2 || rb == 2)) /* the contact's bound over the box times its length */
         v[CON] = vbx_ia_mul(len, b[CON].c[0]);
+    return ok;
+}
+
+/* The values integrated alone added to *out: vbm1_integrate_m of a zero
+ * series is not exactly 0 (vbm_dotn's margin), and adding it to the others
+ * would make the area and volume depend on how many contact pieces there
+ * are. */
+static void add_piece(const arcfun *f, const vbx_ia *v, sums *out)
+{
+    for (int k = 0; k < NV; k++)
+        if (f->want & 1 << k)
+            out->v[k] = vbx_ia_add(out->v[k], v[k]);
+    out->pieces++;
+}
+
+/* The integrals over [x0, x1] to the widths tg (halved where they fall
+ * short), added to *out; pre, rpre, prek as piece_values'. */
+static int piece(const arcfun *f, double x0, double x1, const double *tg, int depth, sums *out,
+                 const vbm_s1 *pre, int rpre, const vbm1_rat *prek)
+{
+    double xc = 0.5 * (x0 + x1);
+    int halves = depth < MAX_DEPTH && xc > x0 && xc < x1;
+    vbx_ia v[NV];
+    int ok = piece_values(f, x0, x1, tg, halves, pre, rpre, prek, v);
     if (!ok && !halves)
         return 0;
     /* a piece whose box an interval cannot bound (the contact's 1 / (1 - z)
      * where the arc passes near e_j) is halved too */
     if ((!ok || vbm_arc_over(v, tg)) && halves)
         return halve(f, x0, x1, tg, depth, out);
-    /* the values integrated alone: vbm1_integrate_m of a zero series is not
-     * exactly 0 (vbm_dotn's margin), and adding it to the others would
-     * make the area and volume depend on how many contact pieces there are */
-    for (int k = 0; k < NV; k++)
-        if (f->want & 1 << k)
-            out->v[k] = vbx_ia_add(out->v[k], v[k]);
-    out->pieces++;
+    add_piece(f, v, out);
     return 1;
 }
 
@@ -539,6 +566,39 @@ static int planned(const arcfun *f, double x0, double x1, const double *tg, sums
     if (d == 0)
         return piece(f, x0, x1, tg, 0, out, rc ? c : NULL, rc, kc);
     return descend(f, x0, x1, tg, d, 0, out);
+}
+
+/* The contact alone over [x0, x1] to the width tg[CON], added to *out:
+ * pieces stepped along the arc by vbm_contact_step (vbm_contact_tm.h), each
+ * proven by piece_values as before, each share the target left times its
+ * part of the length left (what a piece leaves unused goes to the next;
+ * one kept at its shortest, as piece's MAX_DEPTH, may exceed its share,
+ * and the others' then fall back to half the even share). Returns 0 when
+ * an interval cannot bound a piece at its shortest. */
+#define STEP_MIN 0x1p-20 /* of the arc's length: piece's MAX_DEPTH */
+static int march(const arcfun *f, double x0, double x1, const double *tg, sums *out)
+{
+    double a = x0, left = tg[CON], L = x1 - x0, lmin = (x1 - x0) * STEP_MIN;
+    while (a < x1) {
+        double b = x1 - a <= 1.25 * L || !(a + L > a) ? x1 : a + L, xc = 0.5 * (a + b);
+        double share = vbx_max(left * ((b - a) / (x1 - a)), 0.5 * tg[CON] * ((b - a) / (x1 - x0)));
+        double t[NV] = {INFINITY, INFINITY, share};
+        int last = b - a <= lmin || !(xc > a && xc < b);
+        vbx_ia v[NV];
+        int ok = piece_values(f, a, b, t, !last, NULL, 0, NULL, v);
+        if (!ok && last)
+            return 0;
+        double rho = ok ? width(v[CON]) / share : INFINITY;
+        if (!last && !(rho <= 1.0)) { /* shorter */
+            L = vbx_max((b - a) * (ok ? vbm_contact_step(rho) : 0.5), lmin);
+            continue;
+        }
+        add_piece(f, v, out);
+        left -= width(v[CON]);
+        L = vbx_max((b - a) * vbm_contact_step(rho), lmin);
+        a = b;
+    }
+    return 1;
 }
 
 /* The integral from the exact end t (an interval) to the double m inside
@@ -624,7 +684,7 @@ int vbm_arc_integrate(const vbm_owner *o, vbm_arcrec *a, const double *tg, int a
     if (av && !planned(&f, m0, m1, ta, &s))
         return 0;
     f.want = 1 << CON;
-    if (con && !planned(&f, m0, m1, tc, &s))
+    if (con && !march(&f, m0, m1, tc, &s))
         return 0;
     if (!av) {
         s.v[AREA] = a->v[AREA];

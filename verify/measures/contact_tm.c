@@ -10,7 +10,8 @@
  *
  * The model. Along the arc (t = tan(angle / 2), E = 1 + t^2) z = Pz / E and
  * q = D z + delta = Pq / E, and the contact's integrand is
- *   con(t) = F(z(t)) a(t),  F(z) = C (G1 - G(q)),  a = an / cd
+ *   con(t) = H(t) a(t),  H = F(z(t)) / (1 - z(t)),  F(z) = C (G1 - G(q)),
+ *   a = an / ad = (1 - z) dphi/dt, the area's integrand
  * (stokes_cell.c, arc_integral.c). G is a primitive of sqrt(S) / q^3,
  * S = N + 2 delta q, so along the arc
  *   d/dt F(z(t)) = -C sqrt(S) q' / q^3 = -C sqrt(S(t)) rho(t),
@@ -24,13 +25,24 @@
  *   at the order K - 1 is P_phi(s) + s^(K-1) r_phi(s): the integral of
  *   P_phi's terms is exact and int_0^x s^(K-1) r_phi(s) ds = r_phi(xi) x^K / K (s^(K-1) has
  *   one sign between 0 and x, r_phi is continuous: the mean value theorem
- *   for integrals), so F's model has the order K with the rest r_phi / K.
+ *   for integrals), so F's model has the order K with the rest r_phi / K;
+ * - H = F / y, y = 1 - z = Emz / E (a rational, > 0 over the piece: its
+ *   model's value there is the divisor's enclosure) by the quotient rule
+ *   (series_tm.c). F and y vanish together at z = 1, so H is smooth where
+ *   1 / y has poles: at the complex zeros of Emz, off the arc but near it
+ *   where the arc passes near e_j. Stop 50 took con = F (an / cd), cd = Po
+ *   Emz, whose rest carried those poles ((h / distance)^K): on c1k the
+ *   contact's kept pieces fell from 71,298 to 53,738 (arc_integral.c's
+ *   stepping both ways) with the quotient;
+ * - con = H a by the product rule.
  * The true coefficients lie in the computed intervals and every bound above
  * is an interval evaluation over the piece of the true functions' formulas
  * (inclusion-isotone), so *rest encloses the true remainder. Everything
- * is smooth on the piece where the checks hold: Pq^3, cd and E, B of each
- * rational, sqrt(S) + T and S proven away from 0 over it (q keeps the sign
+ * is smooth on the piece where the checks hold: Pq^3, ad and E, B of each
+ * rational, sqrt(S) + T, S and y proven away from 0 over it (q keeps the sign
  * it has at xc, where F0's logs proved it > 0). */
+#include <math.h>
+
 #include "vbm_contact_tm.h"
 #include "vbm_piece.h"
 
@@ -55,10 +67,49 @@ int vbm_contact_tm(const vbm_contact_rat *p, const vbm_owner *o, vbx_ia F0, doub
     for (int n = 1; n < K; n++)
         F.p.c[n] = vbx_ia_div(vbx_ia_mul(mC, phi.p.c[n - 1]), vbx_ia_point((double)n));
     F.rest = vbx_ia_div(vbx_ia_mul(mC, phi.rest), vbx_ia_point((double)K));
-    if (!vbm1_tm_rational(&a, p->an, 2, p->cd, 4, xc, K, x))
+    /* con = (F / (1 - z)) (1 - z) dphi/dt: F and 1 - z vanish together at
+     * z = 1, so F / (1 - z) is as smooth as F there, where F times an / cd
+     * (a pole at each complex zero of 1 - z, off the arc but near it where
+     * the arc passes near e_j) took the pieces short */
+    vbm1_tm y, h;
+    if (!vbm1_tm_rational(&y, p->yn, 2, p->sd, 2, xc, K, x) ||
+        !vbm1_tm_div(&h, &F, &y, vbm1_tm_value(&y, K, x), K, x) ||
+        !vbm1_tm_rational(&a, p->an, 2, p->ad, 4, xc, K, x))
         return 0;
-    vbm1_tm_mul(&con, &F, &a, K, x);
+    vbm1_tm_mul(&con, &h, &a, K, x);
     *c = con.p;
     *rest = con.rest;
     return 1;
+}
+
+/* The contact's pieces along an arc (arc_integral.c's march) are stepped,
+ * not halved. The model's remainder term on a piece of length L grows as
+ * L^(K+1) and the piece's share of the target as L, so a piece whose width
+ * w came out at the ratio rho = w / share tells the length that would have
+ * met its share: L rho^(-1/K). Halving a piece that misses leaves each half
+ * at ~rho / 1024, and a piece that meets its share is never made longer:
+ * on c1k --contacts (the capsid's first 1000 balls) stop 50's kept contact
+ * pieces spread evenly in log2(w / share) from -1 to -13, and its plan
+ * cost a series of the contact at each arc's middle. Here the next length
+ * is the last's times 2^(j/4), the largest j in -8..8 with 2^(j K / 4) <=
+ * STEP_SAFETY / rho (rho's binary exponent: no libm, the same pieces on
+ * every machine), and a piece that misses is tried again shorter by the
+ * same rule. Only where pieces end follows from it, never a bound. */
+#define STEP_SAFETY 0.25
+
+double vbm_contact_step(double rho)
+{
+    static const double q[4] = {1.0, 1.189207115002721, 1.4142135623730951, 1.681792830507429};
+    int j = 8;
+    if (!(rho < INFINITY))
+        j = -8;
+    else if (rho > 0.0) {
+        int e;
+        frexp(STEP_SAFETY / rho, &e); /* 2^(e-1) <= STEP_SAFETY / rho < 2^e */
+        int num = 4 * (e - 1);         /* the largest j with j K / 4 <= e - 1 */
+        j = num >= 0 ? num / VBM1_K : -((-num + VBM1_K - 1) / VBM1_K);
+        j = j < -8 ? -8 : j > 8 ? 8 : j;
+    }
+    int e = j >= 0 ? j / 4 : -((-j + 3) / 4);
+    return ldexp(q[j - 4 * e], e);
 }

@@ -16,7 +16,14 @@
  *   [T^2]_{<k} = P_s (the low orders of a product read the low orders
  *   alone), so s - T^2 = x^k (r_s - Q_T), Q_T = (T^2 - [T^2]_{<k}) / x^k,
  *   and s - T^2 = (sqrt(s) - T)(sqrt(s) + T): where sqrt(s) + T > 0 over
- *   the piece, r = (r_s - Q_T) / (sqrt(s) + T). */
+ *   the piece, r = (r_s - Q_T) / (sqrt(s) + T);
+ * - a quotient h = f / g: P_h by the recurrence g_0 p_n = f_n - sum_{i=1..n}
+ *   g_i p_(n-i), so that [P_g P_h]_{<k} = P_f and P_g P_h = P_f + x^k Q
+ *   (Q = high(P_g, P_h)); then g (h - P_h) = f - g P_h = x^k (r_f - Q - r_g
+ *   P_h), and where g has no zero over the piece r = (r_f - Q - r_g
+ *   P_h(x)) / g(x). No pole of 1 / g off the real line enters the rest:
+ *   where f and g vanish together (the contact's F and 1 - z at z = 1)
+ *   h's model is as good as h is smooth. */
 #include "vbm_dot.h"
 #include "vbm_series1.h"
 
@@ -75,6 +82,24 @@ int vbm1_tm_rational(vbm1_tm *r, const vbx_ia *num, int dn, const vbx_ia *den, i
         return 0;
     for (int n = k; n <= VBM1_K; n++)
         r->p.c[n] = vbx_ia_point(0.0);
+    return 1;
+}
+
+/* the identity at the top of the file */
+int vbm1_tm_div(vbm1_tm *r, const vbm1_tm *f, const vbm1_tm *g, vbx_ia gx, int k, vbx_ia x)
+{
+    vbx_ia g0 = g->p.c[0];
+    if (!(g0.lo > 0.0 || g0.hi < 0.0) || !(gx.lo > 0.0 || gx.hi < 0.0))
+        return 0;
+    r->p.c[0] = vbx_ia_div(f->p.c[0], g0);
+    for (int n = 1; n < k; n++) /* p_n = (f_n - sum_{i=1..n} g_i p_(n-i)) / g_0 */
+        r->p.c[n] = vbx_ia_div(
+            vbx_ia_sub(f->p.c[n], vbm_dotn(&g->p.c[1], 1, &r->p.c[n - 1], -1, n)), g0);
+    for (int n = k; n <= VBM1_K; n++)
+        r->p.c[n] = vbx_ia_point(0.0);
+    vbx_ia num = vbx_ia_sub(f->rest, vbx_ia_add(high(&g->p, &r->p, k, x),
+                                               vbx_ia_mul(g->rest, horner(r->p.c, k, x))));
+    r->rest = vbx_ia_div(num, gx);
     return 1;
 }
 

@@ -10,21 +10,29 @@
 
 /* The arc's rational functions of t = tan(angle / 2) that the contact's
  * model reads (arc_integral.c's rational_of): q' / q^3 = rn / rd,
- * S = N + 2 delta q = sn / sd, and the area's integrand over 1 - z,
- * an / cd. */
+ * S = N + 2 delta q = sn / sd, 1 - z = yn / sd (sd = E = 1 + t^2) and the
+ * area's integrand (1 - z) dphi/dt = an / ad. */
 typedef struct vbm_contact_rat {
-    vbx_ia rn[5], rd[7], sn[3], sd[3], an[3], cd[5];
+    vbx_ia rn[5], rd[7], sn[3], sd[3], yn[3], an[3], ad[5];
 } vbm_contact_rat;
 
-/* The contact's integrand con(xc + x) = F(z) an / cd (F = C (G1 - G(q)),
- * vbm_owner o's constants, F0 an enclosure of F at z(xc)) as
+/* The contact's integrand con(xc + x) = F(z) / (1 - z) an / ad (F = C (G1 -
+ * G(q)), vbm_owner o's constants, F0 an enclosure of F at z(xc)) as
  * sum_{n<K} c_n x^n + x^K rho(x), K = VBM1_K: c->c[0..K-1] enclose the
  * Taylor coefficients at the point xc (c->c[K] = 0) and *rest encloses
  * rho over `x` (the piece less xc, holding 0), so that the piece's
  * integral is vbm1_integrate_m's with *rest as the box's order K. Returns
- * 0 when an interval cannot bound a denominator, q or S away from 0 over
- * the piece (the caller then takes the contact's series over the piece). */
+ * 0 when an interval cannot bound a denominator, q, S or 1 - z away from
+ * 0 over the piece (the caller then splits it or, at its shortest, takes
+ * the contact's series over it). */
 int vbm_contact_tm(const vbm_contact_rat *p, const vbm_owner *o, vbx_ia F0, double xc, vbx_ia x,
                    vbm_s1 *c, vbx_ia *rest);
+
+/* The factor to the next contact piece's length along an arc from the
+ * last piece's ratio rho = width / its share of the target (a NaN or
+ * infinite rho: the least, 1/4; 0: the most, 4): < 1 for rho > 1, chosen
+ * so that the next piece should meet its share with a margin. A step
+ * rule, not a bound: every piece is proven by its own model. */
+double vbm_contact_step(double rho);
 
 #endif

@@ -141,6 +141,11 @@ void vbm1_tm_mul(vbm1_tm *r, const vbm1_tm *f, const vbm1_tm *g, int k, vbx_ia x
 int vbm1_tm_rational(vbm1_tm *r, const vbx_ia *num, int dn, const vbx_ia *den, int dd, double xc,
                      int k, vbx_ia x);
 
+/* r = f / g at the order k (r must not alias f or g), gx an enclosure of
+ * g over the piece (the caller's, as tight as it has: the rest is divided
+ * by it). Returns 0 unless g's constant term and gx exclude 0. */
+int vbm1_tm_div(vbm1_tm *r, const vbm1_tm *f, const vbm1_tm *g, vbx_ia gx, int k, vbx_ia x);
+
 /* r = sqrt(s) at the order k (r must not alias s). Returns 0 unless s and
  * sqrt(s) + its Taylor polynomial are proven > 0 over the piece. */
 int vbm1_tm_sqrt(vbm1_tm *r, const vbm1_tm *s, int k, vbx_ia x);
