@@ -290,6 +290,7 @@ int vbg_cover_open(vb_ctx *ctx, vbg_runtime *rt, vb_cover_backend **out)
         free(s);
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory");
     }
+    atomic_init(&be->running, 0);
     be->state = s;
     be->close = cov_close;
     s->clocks = &be->clocks;

@@ -165,6 +165,7 @@ typedef struct share {
     size_t nrq, rqhead, rqcap;
     int helpers;           /* host threads beside the device's */
     int done;              /* the device takes no more batches */
+    vb_quad_list posted;   /* early cells' quadruples for a host thread to sink */
 } share;
 
 /* A device cell with handed patches, for a host thread: the kernel's nq
@@ -235,8 +236,13 @@ static void *hybrid_host(void *arg)
         uint32_t cell = 0;
         int have = 0;
         resume_task *task = NULL;
+        vb_quad_list part = {0};
         while (!have && !atomic_load(&jb->failed)) {
-            if (sh->rqhead < sh->nrq) {
+            if (sh->posted.n) {
+                part = sh->posted;
+                memset(&sh->posted, 0, sizeof part);
+                have = 1;
+            } else if (sh->rqhead < sh->nrq) {
                 task = sh->rq[sh->rqhead];
                 sh->rq[sh->rqhead++] = NULL;
                 have = 1;
@@ -257,13 +263,23 @@ static void *hybrid_host(void *arg)
         pthread_mutex_unlock(&sh->mu);
         if (!have)
             return NULL;
-        /* a resume's cell was counted covered by the device's thread */
-        double c = vb_thread_cpu_now();
-        int rc = task ? resume_on(w, task) : cover_one(w, cell);
-        if (!task)
-            w->st.steps.host_cells_cpu_s += vb_thread_cpu_now() - c;
-        if (rc == VB_OK && !task)
-            covered(jb, 1);
+        int rc;
+        if (part.n) { /* the device's early cells (take_early) */
+            double t0 = vb_now();
+            w->st.quads += part.n;
+            w->st.stream_parts++;
+            rc = jb->sink(jb->user, &part);
+            vb_quad_list_free(&part);
+            w->st.steps.sink_s += vb_now() - t0;
+        } else {
+            /* a resume's cell was counted covered by the device's thread */
+            double c = vb_thread_cpu_now();
+            rc = task ? resume_on(w, task) : cover_one(w, cell);
+            if (!task)
+                w->st.steps.host_cells_cpu_s += vb_thread_cpu_now() - c;
+            if (rc == VB_OK && !task)
+                covered(jb, 1);
+        }
         /* Streamed: a host worker's cells go to the sink as the device's
          * batches do, so that what the host covers is not all certified
          * after the cover. */
@@ -352,17 +368,28 @@ static int take_cells(taking *tk, const vbq_cell_out *out, size_t n, const uint3
 }
 
 /* be->early (vb_cover.h): the batch's cells finished by the first tier
- * taken while the later tiers wait, their quadruples sunk at once on this
- * thread: the device judges them in a few ms before its later tiers hold
- * it, and the certifier's thread works through them while those run. */
+ * taken while the later tiers run, their quadruples posted for a host
+ * thread to sink (certified meanwhile), or sunk here when no host thread
+ * is beside this one; be->running says whether those tiers are long. */
 static int take_early(void *user, const vbq_cell_out *out, size_t ncells, const uint32_t *quads,
                       const uint32_t *hand, size_t hand_words)
 {
     taking *tk = user;
     if (vb_hand_index_make(&tk->hx, hand, hand_words) != VB_OK)
         return VB_ENOMEM;
+    size_t later = 0; /* cells left to the later tiers: 1 in 64 keeps them long */
+    for (size_t k = 0; k < ncells; k++)
+        later += out[k].status != VBQ_OK;
+    atomic_store(&tk->be->running, 64 * later >= ncells && later > 0);
     vb_quad_list chunk = {0};
     int rc = take_cells(tk, out, ncells, quads, 1, &chunk, NULL);
+    pthread_mutex_lock(&tk->sh->mu);
+    if (rc == VB_OK && chunk.n && tk->sh->helpers > 0 && tk->sh->posted.n == 0) {
+        tk->sh->posted = chunk; /* the slot is free */
+        memset(&chunk, 0, sizeof chunk);
+        pthread_cond_signal(&tk->sh->cv);
+    }
+    pthread_mutex_unlock(&tk->sh->mu);
     if (rc == VB_OK && chunk.n) {
         double t0 = vb_now();
         tk->w0->st.quads += chunk.n;
@@ -410,6 +437,7 @@ static int hybrid_device(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w0,
         be->early_user = &tk;
         double t0 = vb_now();
         rc = be->run(ctx, be, jb->cells + b0, n, outs, &quads);
+        atomic_store(&be->running, 0);
         be->early = NULL;
         double t1 = vb_now();
         w0->st.t_device += t1 - t0;
@@ -506,6 +534,7 @@ static int cover_hybrid(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w, i
     for (size_t k = sh.rqhead; k < sh.nrq; k++)
         free(sh.rq[k]); /* left by a failure */
     free(sh.rq);
+    vb_quad_list_free(&sh.posted); /* left by a failure */
     pthread_mutex_destroy(&sh.mu);
     pthread_cond_destroy(&sh.cv);
     return rc;

@@ -37,8 +37,9 @@ static int cover_open(vb_ctx *ctx, const vb_device_layer *layer, vb_device *dev,
 /* The certification filter between the cover and the certifier: each list
  * of quadruples (a streamed part, or the whole run's) is made canonical
  * and judged, on the device when the backend has the filter, else (or
- * while another part holds the device, or after the device failed) by the
- * twin on host threads; the verdicts travel with the list. */
+ * while another part holds the device or its cover runs, or after the
+ * device failed) by the twin on host threads; the verdicts travel with the
+ * list. */
 typedef struct judging {
     cover_state *s;
     vb_cert_filter f;
@@ -66,7 +67,8 @@ static int judge_list(judging *j, vb_quad_list *l)
     const uint32_t(*q)[4] = (const uint32_t(*)[4])l->q;
     vb_cover_backend *be = j->s->be;
     int done = 0;
-    if (be && be->judge && j->dctx && pthread_mutex_trylock(&j->mu) == 0) {
+    if (be && be->judge && j->dctx && !atomic_load(&be->running) &&
+        pthread_mutex_trylock(&j->mu) == 0) {
         if (!j->failed) {
             done = be->judge(j->dctx, be, &j->f, q, l->n, l->verdict) == VB_OK;
             j->failed = !done;

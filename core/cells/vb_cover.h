@@ -12,6 +12,8 @@
 #ifndef VB_COVER_H
 #define VB_COVER_H
 
+#include <stdatomic.h>
+
 #include "vb.h"
 #include "vb_cover_shared.h"
 #include "vb_proposer.h" /* vb_cover_clocks */
@@ -178,6 +180,14 @@ struct vb_cover_backend {
     int (*early)(void *user, const vbq_cell_out *out, size_t ncells, const uint32_t *quads,
                  const uint32_t *hand, size_t hand_words);
     void *early_user;
+    /* 1 while a run's later tiers take many cells (set by the caller's
+     * early take, cleared when run returns): the judge is then left to the
+     * host's twin, since a list judged on the device would wait for those
+     * tiers' kernels (H100, stop 51: the capsid's early part judged there
+     * was certified only after its large tier, 0.08 s; judged by the twin,
+     * 0.24 s warm instead of 0.27-0.31). Where few cells are left (fcc
+     * 10,976 exact: 48, a 0.026 s tier) the device's judge is the faster. */
+    atomic_int running;
 };
 
 /* A run's handed patches (vb_cover_backend's hand) by cell, for the host
