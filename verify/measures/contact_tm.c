@@ -60,14 +60,11 @@ int vbm_contact_tm(const vbm_contact_rat *p, const vbm_owner *o, vbx_ia F0, doub
         vbm1_const(&rs.p, o->rN);
         rs.rest = vbx_ia_point(0.0);
     } else { /* S = N + 2 delta q, q = D z + delta = (D + delta) - D y: y's
-              * model mapped at the order K - 1 (the rest y_(K-1) + x r_y),
-              * as phi_series' (arc_integral.c), one rational less a piece */
+              * model mapped at the order K - 1 (vbm1_tm_affine), as
+              * phi_series' (arc_integral.c), one rational less a piece */
         vbm1_tm q, s;
-        vbm1_affine(&q.p, vbx_ia_neg(o->D), &y.p, vbx_ia_add(o->D, o->delta));
-        q.rest = vbx_ia_mul(vbx_ia_neg(o->D), vbx_ia_add(y.p.c[k1], vbx_ia_mul(x, y.rest)));
-        vbm1_affine(&s.p, vbx_ia_add(o->delta, o->delta), &q.p, o->N);
-        s.rest = vbx_ia_mul(vbx_ia_add(o->delta, o->delta), q.rest);
-        s.p.c[k1] = vbx_ia_point(0.0);
+        vbm1_tm_affine(&q, vbx_ia_neg(o->D), &y, vbx_ia_add(o->D, o->delta), K, k1, x);
+        vbm1_tm_affine(&s, vbx_ia_add(o->delta, o->delta), &q, o->N, k1, k1, x);
         if (!vbm1_tm_sqrt(&rs, &s, k1, x))
             return 0;
     }
