@@ -68,7 +68,6 @@ static int check(double D, double delta, double xc, double h, int fonly)
         Po[k] = vbx_ia_add(E[k], Pz[k]);
         Emz[k] = vbx_ia_sub(E[k], Pz[k]);
         p.an[k] = pt(AN[k]);
-        p.sn[k] = vbx_ia_add(vbx_ia_mul(N, E[k]), vbx_ia_mul(vbx_ia_add(idl, idl), Pq[k]));
         p.sd[k] = E[k];
         p.yn[k] = Emz[k];
     }
@@ -166,8 +165,26 @@ static int check_root(double xc, double h, int k)
     return ok;
 }
 
+/* vbm_contact_start: the whole arc where the area's term is small beside
+ * the target, at most half of it above 2^-18, then vbm_contact_step of
+ * 2^13 r (its 2^(j/4) steps, clamped at j = -8). */
+static int check_start(void)
+{
+    static const double r[7] = {0.0, 0x1p-30, 0x1p-18, 0x1p-17, 0x1p-10, 1.0, 0x1p10};
+    static const double want[7] = {1.0, 1.0, 1.0, 0.5, 0.5, 0.35355339059327379, 0.25};
+    int ok = 1;
+    for (int i = 0; i < 7; i++)
+        if (vbm_contact_start(r[i]) != want[i]) {
+            fprintf(stderr, "  vbm_contact_start(%g) = %.17g, not %.17g\n", r[i],
+                    vbm_contact_start(r[i]), want[i]);
+            ok = 0;
+        }
+    return ok && vbm_contact_start(NAN) == 1.0;
+}
+
 int main(void)
 {
+    CHECK(check_start());
     for (int k = 4; k <= VBM1_K; k += 3) {
         CHECK(check_root(0.2, 0.5, k));
         CHECK(check_root(-0.4, 0.1, k));

@@ -18,7 +18,9 @@
  *   = t (1 - t) and 1 / g = 1 - t (rest 0, where Q = -g's last
  *   coefficient and r_g P_h = +it: either alone misses), 1 / (1 - t) (rests
  *   0 over a rest from dividing by 1 - t over the piece, not at its
- *   middle) and (s sqrt s) / s = sqrt s.
+ *   middle) and (s sqrt s) / s = sqrt s; the affine maps 3 - 2 g at the
+ *   order k - 1 and 0.5 g - 1 at k - 3 (vbm1_tm_affine: g's higher terms
+ *   and x^(k-kr) r_g as the rest).
  * Each model, at 41 points X of the piece: sum_{n<k} p_n X^n + X^k rest in
  * intervals, and vbm1_tm_value at the point X and over each of the 40
  * parts between the points (its contract: an enclosure of f over the
@@ -39,10 +41,11 @@ typedef long double ld;
 static const double XC = 0.125;
 static const double SN[3] = {2.0, 0.75, 0.5};
 
-enum { F_T, F_G, F_FG, F_RS, F_SRS, F_Q1, F_Q2, F_Q3, F_Q4, NF };
+enum { F_T, F_G, F_FG, F_RS, F_SRS, F_Q1, F_Q2, F_Q3, F_Q4, F_A1, F_A3, NF };
 static const char *const NAME[NF] = {"t",         "1/(1-t)",        "t/(1-t)",
                                      "sqrt s",    "s sqrt s",       "t / (1/(1-t))",
-                                     "1 / (1-t)", "(s sqrt s) / s", "1 / (1/(1-t))"};
+                                     "1 / (1-t)", "(s sqrt s) / s", "1 / (1/(1-t))",
+                                     "3 - 2/(1-t) at k - 1", "0.5/(1-t) - 1 at k - 3"};
 
 static ld exact(int w, ld t)
 {
@@ -59,6 +62,10 @@ static ld exact(int w, ld t)
         return 1 / (1 - t);
     case F_FG:
         return t / (1 - t);
+    case F_A1:
+        return 3 - 2 / (1 - t);
+    case F_A3:
+        return 0.5L / (1 - t) - 1;
     case F_RS:
     case F_Q3:
         return sqrtl(s);
@@ -138,7 +145,7 @@ static int check_tight(const vbm1_tm *m, int w, int k, double h)
     return ok;
 }
 
-/* The nine models at the order k over [-h, h]. */
+/* The eleven models at the order k (the affine maps' lower) over [-h, h]. */
 static int check_rules(int k, double h)
 {
     vbx_ia one = vbx_ia_point(1.0), zero = vbx_ia_point(0.0), x = {-h, h};
@@ -167,11 +174,16 @@ static int check_rules(int k, double h)
         !vbm1_tm_div(&m[F_Q3], &m[F_SRS], &s, vbm1_tm_value(&s, k, x), k, x) ||
         !vbm1_tm_div(&m[F_Q4], &c1, &m[F_G], gx, k, x))
         return 0;
+    /* the affine maps (vbm1_tm_affine) at lower orders: g's terms of
+     * orders kr .. k - 1 join the rest, whose x^(k-kr) r_g dropped misses */
+    vbm1_tm_affine(&m[F_A1], vbx_ia_point(-2.0), &m[F_G], vbx_ia_point(3.0), k, k - 1, x);
+    vbm1_tm_affine(&m[F_A3], vbx_ia_point(0.5), &m[F_G], vbx_ia_point(-1.0), k, k - 3, x);
     int ok = 1;
     for (int w = 0; w < NF; w++) {
-        ok &= check_model(&m[w], w, k, h);
+        int kw = w == F_A1 ? k - 1 : w == F_A3 ? k - 3 : k;
+        ok &= check_model(&m[w], w, kw, h);
         if (w != F_T && w != F_Q1 && w != F_Q4) /* their rests are 0 */
-            ok &= check_tight(&m[w], w, k, h);
+            ok &= check_tight(&m[w], w, kw, h);
     }
     return ok;
 }

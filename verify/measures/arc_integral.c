@@ -223,7 +223,6 @@ static void rational_of(arcfun *f)
     for (int k = 0; k < 5; k++)
         f->cr.ad[k] = f->ad[k];
     for (int k = 0; k < 3; k++) {
-        f->cr.sn[k] = vbx_ia_add(vbx_ia_mul(o->N, E[k]), vbx_ia_mul(dd, Pq[k]));
         f->cr.sd[k] = E[k];
         f->cr.an[k] = f->an[k];
         f->cr.yn[k] = Emz[k];
@@ -547,8 +546,10 @@ static int descend(const arcfun *f, double x0, double x1, const double *tg, int 
  * a piece of half-width h. The halves piece would try anyway, without
  * the wider pieces it would try and drop first. Only where the pieces
  * start is chosen so; each is still proven by its own Taylor model and
- * halved further where it falls short. */
-static int planned(const arcfun *f, double x0, double x1, const double *tg, sums *out)
+ * halved further where it falls short. *est_area: the area's term above at
+ * PLAN_FACTOR 1 (-1 where the series cannot be made), for march. */
+static int planned(const arcfun *f, double x0, double x1, const double *tg, sums *out,
+                   double *est_area)
 {
     vbm_s1 c[NV];
     vbm1_rat kc[2];
@@ -557,9 +558,12 @@ static int planned(const arcfun *f, double x0, double x1, const double *tg, sums
     double hk = 2.0 / (VBM1_K + 1) * h;
     for (int n = 0; n < VBM1_K; n++)
         hk *= h;
+    *est_area = -1.0;
     for (int k = 0; rc && k < NV; k++) {
         double mag = vbx_max(fabs(c[k].c[VBM1_K].lo), fabs(c[k].c[VBM1_K].hi));
         double est = PLAN_FACTOR * mag * hk;
+        if (k == AREA)
+            *est_area = mag * hk;
         for (int e = 0; e < PLAN_MAX && est > tg[k]; e++, est *= 1.0 / (1 << VBM1_K))
             d = e + 1 > d ? e + 1 : d;
     }
@@ -568,7 +572,8 @@ static int planned(const arcfun *f, double x0, double x1, const double *tg, sums
     return descend(f, x0, x1, tg, d, 0, out);
 }
 
-/* The contact alone over [x0, x1] to the width tg[CON], added to *out:
+/* The contact alone over [x0, x1] to the width tg[CON], added to *out
+ * (est_area: planned's, the first piece's length by vbm_contact_start):
  * pieces stepped along the arc by vbm_contact_step (vbm_contact_tm.h), each
  * proven by piece_values as before, each share the target left times its
  * part of the length left (what a piece leaves unused goes to the next;
@@ -576,9 +581,12 @@ static int planned(const arcfun *f, double x0, double x1, const double *tg, sums
  * and the others' then fall back to half the even share). Returns 0 when
  * an interval cannot bound a piece at its shortest. */
 #define STEP_MIN 0x1p-20 /* of the arc's length: piece's MAX_DEPTH */
-static int march(const arcfun *f, double x0, double x1, const double *tg, sums *out)
+static int march(const arcfun *f, double x0, double x1, const double *tg, double est_area,
+                 sums *out)
 {
     double a = x0, left = tg[CON], L = x1 - x0, lmin = (x1 - x0) * STEP_MIN;
+    if (est_area >= 0.0)
+        L *= vbm_contact_start(est_area / tg[CON]);
     while (a < x1) {
         double b = x1 - a <= 1.25 * L || !(a + L > a) ? x1 : a + L, xc = 0.5 * (a + b);
         double share = vbx_max(left * ((b - a) / (x1 - a)), 0.5 * tg[CON] * ((b - a) / (x1 - x0)));
@@ -614,35 +622,12 @@ static int end_piece(const arcfun *f, vbx_ia t, double m, sums *out)
     return 1;
 }
 
-/* t = tan(angle / 2) of the unit vector (x, y) rotated by -mid. */
-static vbx_ia half_tan(vbx_ia x, vbx_ia y, vbx_ia cm, vbx_ia sm)
-{
-    vbx_ia xr = vbx_ia_add(vbx_ia_mul(x, cm), vbx_ia_mul(y, sm));
-    vbx_ia yr = vbx_ia_sub(vbx_ia_mul(y, cm), vbx_ia_mul(x, sm));
-    return vbx_ia_div(yr, vbx_ia_add(vbx_ia_point(1.0), xr));
-}
-
-/* 2 (atan t1 - atan t0), the angle of an arc from t0 to t1 (t =
- * tan(angle / 2) about its middle): where 1 + t0 t1 > 0 is proven (|t| <
- * 0.73 on arcs shorter than 2.6 rad, so always there) it is
- * 2 atan((t1 - t0) / (1 + t0 t1)), one MPFR atan where the difference took
- * two (1crn, 1 thread: they were 5 % of the CPU). */
-static vbx_ia own_angle(vbx_ia t0, vbx_ia t1)
-{
-    vbx_ia den = vbx_ia_add(vbx_ia_point(1.0), vbx_ia_mul(t0, t1)), ang;
-    if (den.lo > 0.0)
-        ang = vbm_ia_atan(vbx_ia_div(vbx_ia_sub(t1, t0), den));
-    else
-        ang = vbx_ia_sub(vbm_ia_atan(t1), vbm_ia_atan(t0));
-    return vbx_ia_add(ang, ang);
-}
-
 int vbm_arc_integrate(const vbm_owner *o, vbm_arcrec *a, const double *tg, int again,
                       size_t *pieces)
 {
     vbx_ia cm, sm;
     vbm_unit_at(0.5 * (a->tp + a->tq), &cm, &sm);
-    vbx_ia t0 = half_tan(a->p[0], a->p[1], cm, sm), t1 = half_tan(a->q[0], a->q[1], cm, sm);
+    vbx_ia t0 = vbm_half_tan(a->p[0], a->p[1], cm, sm), t1 = vbm_half_tan(a->q[0], a->q[1], cm, sm);
     if (!(t1.lo > t0.hi))
         return 0;
     sums s = {{vbx_ia_point(0.0), vbx_ia_point(0.0), vbx_ia_point(0.0)}, 0};
@@ -650,7 +635,7 @@ int vbm_arc_integrate(const vbm_owner *o, vbm_arcrec *a, const double *tg, int a
     int wantc = o->contacts;
     f.o = *o;
     if (a->own) { /* z = c: F(c) times the angle 2 (atan t1 - atan t0) */
-        vbx_ia ang = own_angle(t0, t1);
+        vbx_ia ang = vbm_arc_angle(t0, t1);
         vbx_ia omz = vbx_ia_sub(vbx_ia_point(1.0), a->c), F = vbx_ia_point(0.0);
         if (wantc && !fcon(&f.o, a->c, &F))
             return 0;
@@ -681,10 +666,11 @@ int vbm_arc_integrate(const vbm_owner *o, vbm_arcrec *a, const double *tg, int a
      * more): neither evaluated where only the other falls short */
     double ta[NV] = {tg[AREA], tg[VOL], INFINITY}, tc[NV] = {INFINITY, INFINITY, tg[CON]};
     f.want = 1 << AREA | 1 << VOL;
-    if (av && !planned(&f, m0, m1, ta, &s))
+    double est_area = -1.0;
+    if (av && !planned(&f, m0, m1, ta, &s, &est_area))
         return 0;
     f.want = 1 << CON;
-    if (con && !march(&f, m0, m1, tc, &s))
+    if (con && !march(&f, m0, m1, tc, est_area, &s))
         return 0;
     if (!av) {
         s.v[AREA] = a->v[AREA];

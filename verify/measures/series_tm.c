@@ -9,6 +9,8 @@
  * true remainder:
  * - a rational function num / den: vbm1_rational_rest_to, r = M / B
  *   exactly (vbm_series1.h);
+ * - v f + w at an order kr <= k: f = P_f,<kr + x^kr (sum_{kr<=n<k} p_n
+ *   x^(n-kr) + x^(k-kr) r_f), the bracket by Horner's scheme over the piece;
  * - a product f g: f g = P_f P_g + x^k (r_f g + r_g P_f), and P_f P_g =
  *   [P_f P_g]_{<k} + x^k Q (the orders k .. 2k - 2 over x^k), so r = Q +
  *   r_f g + r_g P_f, g over the piece its own model's value;
@@ -83,6 +85,19 @@ int vbm1_tm_rational(vbm1_tm *r, const vbx_ia *num, int dn, const vbx_ia *den, i
     for (int n = k; n <= VBM1_K; n++)
         r->p.c[n] = vbx_ia_point(0.0);
     return 1;
+}
+
+/* the identity at the top of the file */
+void vbm1_tm_affine(vbm1_tm *r, vbx_ia v, const vbm1_tm *f, vbx_ia w, int k, int kr, vbx_ia x)
+{
+    vbx_ia hi[VBM1_K + 1];
+    for (int n = kr; n < k; n++)
+        hi[n - kr] = f->p.c[n];
+    hi[k - kr] = f->rest;
+    vbm1_affine(&r->p, v, &f->p, w);
+    for (int n = kr; n <= VBM1_K; n++)
+        r->p.c[n] = vbx_ia_point(0.0);
+    r->rest = vbx_ia_mul(v, horner(hi, k - kr + 1, x));
 }
 
 /* the identity at the top of the file */

@@ -111,4 +111,12 @@ void vbm_caps_free(vbm_capwork *w);
  * doubles, normalised in intervals. */
 void vbm_unit_at(double t, vbx_ia *x, vbx_ia *y);
 
+/* t = tan(angle / 2) of the unit vector (x, y) rotated by -mid, (cm, sm)
+ * enclosing (cos mid, sin mid): an enclosure. */
+vbx_ia vbm_half_tan(vbx_ia x, vbx_ia y, vbx_ia cm, vbx_ia sm);
+
+/* An enclosure of 2 (atan t1 - atan t0), the angle of an arc from t0 to t1
+ * (t = tan(angle / 2) about its middle). */
+vbx_ia vbm_arc_angle(vbx_ia t0, vbx_ia t1);
+
 #endif

@@ -10,10 +10,10 @@
 
 /* The arc's rational functions of t = tan(angle / 2) that the contact's
  * model reads (arc_integral.c's rational_of): q' / q^3 = rn / rd,
- * S = N + 2 delta q = sn / sd, 1 - z = yn / sd (sd = E = 1 + t^2) and the
- * area's integrand (1 - z) dphi/dt = an / ad. */
+ * 1 - z = yn / sd (sd = E = 1 + t^2; S = N + 2 delta q follows from 1 - z
+ * in the model) and the area's integrand (1 - z) dphi/dt = an / ad. */
 typedef struct vbm_contact_rat {
-    vbx_ia rn[5], rd[7], sn[3], sd[3], yn[3], an[3], ad[5];
+    vbx_ia rn[5], rd[7], sd[3], yn[3], an[3], ad[5];
 } vbm_contact_rat;
 
 /* The contact's integrand con(xc + x) = F(z) / (1 - z) an / ad (F = C (G1 -
@@ -34,5 +34,13 @@ int vbm_contact_tm(const vbm_contact_rat *p, const vbm_owner *o, vbx_ia F0, doub
  * so that the next piece should meet its share with a margin. A step
  * rule, not a bound: every piece is proven by its own model. */
 double vbm_contact_step(double rho);
+
+/* The first contact piece's length along an arc as a part of the arc
+ * (0 < part <= 1) from r, the area's remainder term over the whole arc
+ * (|c_K| 2 h^(K+1) / (K + 1), c_K the area's order-K coefficient at the
+ * middle, h the half-length) over the contact's target: the whole arc
+ * where r is small, else at most half of it. Only where pieces end follows
+ * from it. */
+double vbm_contact_start(double r);
 
 #endif

@@ -146,6 +146,11 @@ int vbm1_tm_rational(vbm1_tm *r, const vbx_ia *num, int dn, const vbx_ia *den, i
  * by it). Returns 0 unless g's constant term and gx exclude 0. */
 int vbm1_tm_div(vbm1_tm *r, const vbm1_tm *f, const vbm1_tm *g, vbx_ia gx, int k, vbx_ia x);
 
+/* r = v f + w at the order kr (1 <= kr <= k) from f at the order k (r must
+ * not alias f): the terms of orders kr .. k - 1 join the rest,
+ * r's rest = v (sum_{kr<=n<k} f_n x^(n-kr) + x^(k-kr) f's rest) over x. */
+void vbm1_tm_affine(vbm1_tm *r, vbx_ia v, const vbm1_tm *f, vbx_ia w, int k, int kr, vbx_ia x);
+
 /* r = sqrt(s) at the order k (r must not alias s). Returns 0 unless s and
  * sqrt(s) + its Taylor polynomial are proven > 0 over the piece. */
 int vbm1_tm_sqrt(vbm1_tm *r, const vbm1_tm *s, int k, vbx_ia x);
