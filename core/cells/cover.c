@@ -90,6 +90,19 @@ static int cover_root(worker *w, uint32_t i, uint32_t root, const uint32_t *resu
     return vb_quad_list_append(l, w->ar.q, o.nq);
 }
 
+/* A part of quadruples to the job's sink, counted in w's stats (parts,
+ * quadruples, the sink's seconds). The sink takes the array, or keeps
+ * nothing of it. */
+static int sink_part(worker *w, vb_quad_list *part)
+{
+    double t0 = vb_now();
+    w->st.quads += part->n;
+    w->st.stream_parts++;
+    int rc = w->jb->sink(w->jb->user, part);
+    w->st.steps.sink_s += vb_now() - t0;
+    return rc;
+}
+
 static int cover_one(worker *w, uint32_t i)
 {
     w->st.cells++;
@@ -265,12 +278,8 @@ static void *hybrid_host(void *arg)
             return NULL;
         int rc;
         if (part.n) { /* the device's early cells (take_early) */
-            double t0 = vb_now();
-            w->st.quads += part.n;
-            w->st.stream_parts++;
-            rc = jb->sink(jb->user, &part);
+            rc = sink_part(w, &part);
             vb_quad_list_free(&part);
-            w->st.steps.sink_s += vb_now() - t0;
         } else {
             /* a resume's cell was counted covered by the device's thread */
             double c = vb_thread_cpu_now();
@@ -284,12 +293,8 @@ static void *hybrid_host(void *arg)
          * batches do, so that what the host covers is not all certified
          * after the cover. */
         if (rc == VB_OK && jb->sink && w->ql.n >= jb->flush) {
-            w->st.quads += w->ql.n;
-            w->st.stream_parts++;
-            double t0 = vb_now();
-            rc = jb->sink(jb->user, &w->ql);
-            w->st.steps.sink_s += vb_now() - t0;
-            w->ql.n = 0; /* the sink took the array, or keeps nothing of it */
+            rc = sink_part(w, &w->ql);
+            w->ql.n = 0;
         }
         if (rc != VB_OK) {
             worker_fail(w, rc);
@@ -390,13 +395,8 @@ static int take_early(void *user, const vbq_cell_out *out, size_t ncells, const 
         pthread_cond_signal(&tk->sh->cv);
     }
     pthread_mutex_unlock(&tk->sh->mu);
-    if (rc == VB_OK && chunk.n) {
-        double t0 = vb_now();
-        tk->w0->st.quads += chunk.n;
-        tk->w0->st.stream_parts++;
-        rc = tk->jb->sink(tk->jb->user, &chunk);
-        tk->w0->st.steps.sink_s += vb_now() - t0;
-    }
+    if (rc == VB_OK && chunk.n)
+        rc = sink_part(tk->w0, &chunk);
     vb_quad_list_free(&chunk);
     return rc;
 }
@@ -463,12 +463,8 @@ static int hybrid_device(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w0,
         w0->st.steps.dispatch_s += t2 - t1;
         /* Streamed: the batch's cells are disjoint from every other's and
          * each is unique, so the chunk is too; the sink sorts it. */
-        if (rc == VB_OK && chunk.n) {
-            w0->st.quads += chunk.n;
-            w0->st.stream_parts++;
-            rc = jb->sink(jb->user, &chunk);
-            w0->st.steps.sink_s += vb_now() - t2;
-        }
+        if (rc == VB_OK && chunk.n)
+            rc = sink_part(w0, &chunk);
         vb_quad_list_free(&chunk);
     }
     be->early = NULL;

@@ -21,8 +21,8 @@
  * rational functions of t, each a Taylor model about the piece's middle xc
  * with a remainder from closed forms (vbm1_tm, series_tm.c: rational
  * functions, roots, products), S = N + 2 delta ((D + delta) - D y) is y's
- * model mapped (the order K - 1 with the rest y_(K-1) + x r_y: stop 51 made
- * it a fourth rational, (N E + 2 delta Pq) / E), and
+ * model mapped (the order K - 1 with the rest y_(K-1) + x r_y; until stop
+ * 51's cont52 it was a fourth rational, (N E + 2 delta Pq) / E), and
  * - F(z(xc + x)) = F0 + int_0^x phi, phi = -C sqrt(S) rho, whose model
  *   at the order K - 1 is P_phi(s) + s^(K-1) r_phi(s): the integral of
  *   P_phi's terms is exact and int_0^x s^(K-1) r_phi(s) ds = r_phi(xi) x^K / K (s^(K-1) has
