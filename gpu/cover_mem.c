@@ -153,7 +153,7 @@ int vbg_cov_begin(vb_ctx *ctx, vb_cover_backend *be, const vbq_env *env, size_t 
      * run on this backend got. */
     size_t covered = 0, over = 0;
     if (vbg_cov_fit_wanted(s, n) &&
-        vb_cover_sample_over(env, COV_FIT_SAMPLE, COV_FIT_NB / 2, COV_FIT_LAB / 2, vb_threads(0),
+        vb_cover_sample_over(env, COV_FIT_SAMPLE, COV_FIT_NB / 2, COV_FIT_LAB / 2, vb_threads(be->host_threads),
                              &covered, &over) != VB_OK)
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover sample)");
     if (s->fit)

@@ -415,6 +415,7 @@ static int hybrid_device(vb_ctx *ctx, job *jb, vb_cover_backend *be, worker *w0,
     vbq_cell_out *outs = malloc(batch * sizeof *outs);
     tk.done = malloc(batch);
     tk.left = malloc(batch * sizeof *tk.left);
+    be->host_threads = (unsigned)sh->helpers + 1;
     int rc = outs && tk.done && tk.left ? be->begin(ctx, be, &jb->env, jb->set->n)
                                         : vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
     uint64_t handed0 = be->handed_cells;

@@ -148,6 +148,10 @@ struct vb_cover_backend {
      * that keeps the other cores busy (2-core machine, PoCL, sc 4,096
      * jittered 1e-12: 1.69-1.73 CPU s on that thread, 1.91-1.95 spread). */
     int resume_spread;
+    /* The run's host threads (--threads after vb_threads), set by the cover
+     * before begin: a backend's host-side work (the arena sample) uses as
+     * many; 0: vb_threads(0). */
+    unsigned host_threads;
     /* Uploads the input shared by every cell (env's arrays, n spheres) for
      * the runs that follow. VB_OK, VB_ENOMEM or VB_EDEVICE (message in ctx). */
     int (*begin)(vb_ctx *ctx, vb_cover_backend *be, const vbq_env *env, size_t n);
