@@ -2,6 +2,7 @@
  * the counts of the certificate and the edges (the tracers: arc_tracer.c;
  * the merge of their events, the added vertices and the arrivals:
  * arc_merge.c). */
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -234,7 +235,13 @@ static int close_list(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier *cert,
     size_t most = in->n / 64 + 1;
     if (nt > most)
         nt = (unsigned)most;
-    vbx_tracer *tr = calloc(nt, sizeof *tr);
+    /* the tracers at their alignment (vbx_closure.h) inside one zeroed
+     * block (calloc: the allocation fault tests reach it) */
+    char *tr_block = calloc(nt * sizeof(vbx_tracer) + _Alignof(vbx_tracer), 1);
+    vbx_tracer *tr = NULL;
+    if (tr_block)
+        tr = (vbx_tracer *)(tr_block + (_Alignof(vbx_tracer) -
+                                        (uintptr_t)tr_block % _Alignof(vbx_tracer)));
     vb_certifier *c = cert;
     int rc = !tr ? VB_ENOMEM : c ? VB_OK : vb_certifier_open(ctx, set, &c);
     for (unsigned i = 0; rc == VB_OK && i < nt; i++) {
@@ -298,7 +305,7 @@ static int close_list(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier *cert,
     }
     if (c != cert)
         vb_certifier_close(c);
-    free(tr);
+    free(tr_block);
     if (cl.all_owned)
         vb_vertex_list_free(&cl.all);
     vb_hash_free(&cl.tab);

@@ -298,7 +298,9 @@ static void u_of(const vbx_tframe *f, vbx_ia S, vbx_ia G, vbx_ia u[4])
  * touches (the searches skip it) and is left out. */
 static int push_cand(vbx_arcw *w, uint32_t j)
 {
-    if (w->mark[j] || (w->set->contained && w->set->contained[j]))
+    const uint32_t *own = w->own;
+    if (w->mark[j] || (w->set->contained && w->set->contained[j]) ||
+        (own && ((j == own[0]) | (j == own[1]) | (j == own[2]))))
         return VB_OK;
     if (VB_ARRAY_FIT(w->cand, w->cand_cap, w->ncand + 1, 256) != VB_OK)
         return VB_ENOMEM;
@@ -458,6 +460,11 @@ void vbx_clear_cands(vbx_arcw *w)
 int vbx_gather(vbx_arcw *w, const vbx_tframe *f, vbx_region *rg)
 {
     vbx_clear_cands(w);
+    /* The triple's own spheres touch everywhere along its curve: the
+     * search never offers them (offer_gathered), so they are left out here
+     * (three of the ~3.3 spheres a query keeps on proteins; the capped
+     * gather keeps them, as they count towards its cap). */
+    w->own = f->t;
     if (!rg->brute)
         for (int i = 0; i < rg->n; i++) {
             const vbx_part *p = &rg->p[i];
@@ -471,6 +478,7 @@ int vbx_gather(vbx_arcw *w, const vbx_tframe *f, vbx_region *rg)
                 break;
             }
         }
+    w->own = NULL;
     if (rg->brute) {
         vbx_clear_cands(w);
         w->cnt.brute++;

@@ -17,8 +17,60 @@ static int tent_cmp(const void *pa, const void *pb)
     return (a->k > b->k) - (a->k < b->k);
 }
 
-/* The entries of bucket i ([off[i], off[i + 1]): one first sphere) sorted:
- * insertion sort for the few of a protein's sphere, qsort beyond. */
+/* tent_cmp's order as one comparison: the entries of a bucket share t[0],
+ * so (t[1], t[2]) as one 64-bit key, then k. */
+static int tent_less(const vbx_tent *a, const vbx_tent *b)
+{
+    uint64_t ka = (uint64_t)a->t[1] << 32 | a->t[2], kb = (uint64_t)b->t[1] << 32 | b->t[2];
+    return ka < kb || (ka == kb && a->k < b->k);
+}
+
+/* Entries bigger buckets are merge-sorted with on the stack (more go to
+ * qsort). */
+enum { TENT_MERGE_MAX = 512 };
+
+/* e[0..n) sorted by tent_less, bottom-up merges of runs of 16 that were
+ * insertion-sorted, through tmp (n entries). */
+static void tent_merge_sort(vbx_tent *e, size_t n, vbx_tent *tmp)
+{
+    enum { RUN = 16 };
+    for (size_t r = 0; r < n; r += RUN) {
+        size_t end = r + RUN < n ? r + RUN : n;
+        for (size_t a = r + 1; a < end; a++) {
+            vbx_tent x = e[a];
+            size_t c = a;
+            while (c > r && tent_less(&x, &e[c - 1])) {
+                e[c] = e[c - 1];
+                c--;
+            }
+            e[c] = x;
+        }
+    }
+    vbx_tent *src = e, *dst = tmp;
+    for (size_t w = RUN; w < n; w *= 2) {
+        for (size_t lo = 0; lo < n; lo += 2 * w) {
+            size_t mid = lo + w < n ? lo + w : n, hi = lo + 2 * w < n ? lo + 2 * w : n;
+            size_t i = lo, j = mid, o = lo;
+            while (i < mid && j < hi)
+                dst[o++] = tent_less(&src[j], &src[i]) ? src[j++] : src[i++];
+            while (i < mid)
+                dst[o++] = src[i++];
+            while (j < hi)
+                dst[o++] = src[j++];
+        }
+        vbx_tent *x = src;
+        src = dst;
+        dst = x;
+    }
+    if (src != e)
+        memcpy(e, src, n * sizeof *e);
+}
+
+/* The entries of bucket i ([off[i], off[i + 1]): one first sphere) sorted
+ * in tent_cmp's order (a total order: the same array whichever sort):
+ * insertion sort for the few of most spheres, merges on the stack up to
+ * TENT_MERGE_MAX (qsort's comparator calls were most of this), qsort
+ * beyond. */
 typedef struct tbuckets {
     vbx_tent *e;
     const size_t *off;
@@ -30,14 +82,19 @@ static void sort_bucket(void *arg, size_t i, int tid)
     const tbuckets *b = arg;
     vbx_tent *e = b->e + b->off[i];
     size_t n = b->off[i + 1] - b->off[i];
-    if (n > 32) {
+    if (n > TENT_MERGE_MAX) {
         qsort(e, n, sizeof *e, tent_cmp);
+        return;
+    }
+    if (n > 32) {
+        vbx_tent tmp[TENT_MERGE_MAX];
+        tent_merge_sort(e, n, tmp);
         return;
     }
     for (size_t a = 1; a < n; a++) {
         vbx_tent x = e[a];
         size_t c = a;
-        while (c > 0 && tent_cmp(&e[c - 1], &x) > 0) {
+        while (c > 0 && tent_less(&x, &e[c - 1])) {
             e[c] = e[c - 1];
             c--;
         }

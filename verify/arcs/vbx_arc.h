@@ -126,6 +126,7 @@ typedef struct vbx_arcw {
     vbx_zs zs[8];
     vbx_xpt yx[2];          /* scratch points (roots) */
     uint8_t *mark;          /* n: candidate dedupe */
+    const uint32_t *own;    /* NULL, or three spheres the gather leaves out */
     uint32_t *cand;
     size_t ncand, cand_cap;
     vbx_arc_counters cnt;

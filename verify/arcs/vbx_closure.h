@@ -94,9 +94,12 @@ typedef struct vbx_hend {
 } vbx_hend;
 
 /* One thread's tracer: its certifier, context and worker, and the events of
- * the items it traced in the current phase. */
+ * the items it traced in the current phase. Aligned to a cache line (and so
+ * a whole number of lines long): the tracers lie side by side in one array,
+ * and a tracer writes its last fields (glo, ng) for every item while the
+ * next thread's tracer reads its first ones (map, c) in every operation. */
 typedef struct vbx_tracer {
-    const vbx_tmap *map; /* the list's triples (NULL: no shortcut) */
+    _Alignas(64) const vbx_tmap *map; /* the list's triples (NULL: no shortcut) */
     vb_ctx *ctx;
     vb_certifier *c;
     vbx_arcw w;
