@@ -23,6 +23,7 @@
 #include "vb_test.h"
 #include "vb_verify_file.h"
 #include "vb_vertex_io.h"
+#include "vt_case.h"
 #include "vt_corpus.h"
 
 static int same_vertex(const vb_vertex_list *a, size_t i, const vb_vertex_list *b, size_t k)
@@ -183,16 +184,9 @@ static void one_case(const char *name, const char *in, const char *gold)
 {
     vb_ctx *ctx;
     vb_open(&ctx, NULL);
-    vb_read_options ro;
-    memset(&ro, 0, sizeof ro);
-    vb_sphere_set *s = NULL;
+    vb_sphere_set *s;
     vb_vertex_list g;
-    vb_vertex_list_init(&g);
-    int rc = vb_spheres_read_file(ctx, in, &ro, &s);
-    if (rc == VB_OK)
-        rc = vb_spheres_validate(ctx, s, 4);
-    if (rc == VB_OK)
-        rc = vb_vertex_read_file(ctx, gold, &g, NULL, NULL);
+    int rc = vt_read_case(ctx, in, gold, &s, &g);
     CHECK_INT(rc, VB_OK);
     vb_arc_report r;
     rc = vb_arc_close(ctx, s, &g, 0, &r);

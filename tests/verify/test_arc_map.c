@@ -17,6 +17,7 @@
 
 #include "vb_test.h"
 #include "vb_vertex_io.h"
+#include "vt_case.h"
 #include "vb_verify.h"
 #include "vbx_closure.h"
 #include "vbx_region.h"
@@ -128,17 +129,9 @@ static void gather_case(void)
     snprintf(gold, sizeof gold, "%s/corpus/golden/crambin_fragment.tsv", src ? src : ".");
     vb_ctx *ctx;
     vb_open(&ctx, NULL);
-    vb_read_options ro;
-    memset(&ro, 0, sizeof ro);
-    vb_sphere_set *s = NULL;
+    vb_sphere_set *s;
     vb_vertex_list g;
-    vb_vertex_list_init(&g);
-    int rc = vb_spheres_read_file(ctx, in, &ro, &s);
-    if (rc == VB_OK)
-        rc = vb_spheres_validate(ctx, s, 4);
-    if (rc == VB_OK)
-        rc = vb_vertex_read_file(ctx, gold, &g, NULL, NULL);
-    CHECK_INT(rc, VB_OK);
+    CHECK_INT(vt_read_case(ctx, in, gold, &s, &g), VB_OK);
     vb_certifier *c = NULL;
     CHECK_INT(vb_certifier_open(ctx, s, &c), VB_OK);
     vbx_arcw w;
