@@ -49,8 +49,8 @@ int vb_cert_filter_build(vb_ctx *ctx, const vb_sphere_set *set, vb_cert_filter *
 void vb_cert_filter_free(vb_cert_filter *f);
 
 /* The twin: verdict[k] = vbd_judge of quadruple q[k] for k < n (sorted
- * distinct ids below f->n), on `threads` host threads (0: VORBALL_THREADS
- * or all CPUs). Every verdict VBD_OPEN when !f->ok. Allocates nothing that
+ * distinct ids below f->n), computed by vb_cert_judge_pick's judge, on
+ * `threads` host threads (0: VORBALL_THREADS or all CPUs). Every verdict VBD_OPEN when !f->ok. Allocates nothing that
  * outlives the call. */
 void vb_cert_filter_judge(const vb_cert_filter *f, const uint32_t (*q)[4], size_t n,
                           uint8_t *verdict, unsigned threads);
