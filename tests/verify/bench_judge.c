@@ -2,7 +2,7 @@
  * (vb_cert_filter_judge) on the direction cover's quadruples.
  *
  *   bench_judge [--quads FILE] [--dump FILE] [--verdicts FILE] [--repeat R]
- *               INPUT [THREADS...]
+ *               [--shared] INPUT [THREADS...]
  *
  * Runs the cover (host) once, or reads its quadruples from FILE ("a b c d"
  * per line, sorted; --dump writes them so), builds the filter, then for each
@@ -10,7 +10,9 @@
  * prints the process CPU and wall nanoseconds per quadruple, the counts of
  * root verdicts and an FNV-1a hash of the verdict bytes (the twin before and
  * after a change must print the same hash); --verdicts writes the bytes of
- * the first run. A benchmark, not a test: it fails only when two thread
+ * the first run. --shared judges with vbd_judge itself on this thread (the
+ * kernel's code as the twin ran it before stop 52), whatever THREADS say:
+ * the old twin beside the new in one binary. A benchmark, not a test: it fails only when two thread
  * counts give different verdicts. */
 #include <stdio.h>
 #include <stdlib.h>
@@ -39,9 +41,12 @@ static uint64_t fnv1a(const uint8_t *b, size_t n)
 int main(int argc, char **argv)
 {
     const char *quadpath = NULL, *dumppath = NULL, *vpath = NULL;
-    int a = 1, repeat = 1;
+    int a = 1, repeat = 1, shared = 0;
     for (; a + 1 < argc && argv[a][0] == '-'; a += 2) {
-        if (strcmp(argv[a], "--quads") == 0)
+        if (strcmp(argv[a], "--shared") == 0) {
+            shared = 1;
+            a--;
+        } else if (strcmp(argv[a], "--quads") == 0)
             quadpath = argv[a + 1];
         else if (strcmp(argv[a], "--dump") == 0)
             dumppath = argv[a + 1];
@@ -54,7 +59,7 @@ int main(int argc, char **argv)
     }
     if (a >= argc || repeat < 1) {
         fprintf(stderr, "usage: bench_judge [--quads FILE] [--dump FILE] [--verdicts FILE] "
-                        "[--repeat R] INPUT [THREADS...]\n");
+                        "[--repeat R] [--shared] INPUT [THREADS...]\n");
         return 2;
     }
     const char *input = argv[a++];
@@ -93,17 +98,24 @@ int main(int argc, char **argv)
         unsigned threads = a < argc ? (unsigned)atoi(argv[a + i]) : 1;
         uint8_t *out = i ? v : first;
         double w0 = now(CLOCK_MONOTONIC), c0 = now(CLOCK_PROCESS_CPUTIME_ID);
-        for (int r = 0; r < repeat; r++)
-            vb_cert_filter_judge(&f, (const uint32_t(*)[4])q.q, q.n, out, threads);
+        for (int r = 0; r < repeat; r++) {
+            if (!shared || !f.ok) {
+                vb_cert_filter_judge(&f, (const uint32_t(*)[4])q.q, q.n, out, threads);
+                continue;
+            }
+            for (size_t k = 0; k < q.n; k++)
+                out[k] = (uint8_t)vbd_judge(f.z, f.cell_start, f.cell_ids, f.cell_z, &f.g,
+                                            q.q[k][0], q.q[k][1], q.q[k][2], q.q[k][3]);
+        }
         double w1 = now(CLOCK_MONOTONIC), c1 = now(CLOCK_PROCESS_CPUTIME_ID);
         double nq = (double)(q.n ? q.n : 1) * repeat;
         size_t cnt[3] = {0, 0, 0};
         for (size_t k = 0; k < q.n; k++)
             for (int r = 0; r < 2; r++)
                 cnt[VBD_ROOT(out[k], r) < 3 ? VBD_ROOT(out[k], r) : 0]++;
-        printf("threads=%u repeat=%d: cpu %.1f ns/quad, wall %.1f ns/quad; roots vertex %zu "
+        printf("%sthreads=%u repeat=%d: cpu %.1f ns/quad, wall %.1f ns/quad; roots vertex %zu "
                "not %zu open %zu; verdict hash %016llx\n",
-               threads, repeat, 1e9 * (c1 - c0) / nq, 1e9 * (w1 - w0) / nq, cnt[VBD_VERTEX],
+               shared ? "shared " : "", threads, repeat, 1e9 * (c1 - c0) / nq, 1e9 * (w1 - w0) / nq, cnt[VBD_VERTEX],
                cnt[VBD_NOT], cnt[VBD_OPEN], (unsigned long long)fnv1a(out, q.n));
         if (i && memcmp(first, v, q.n) != 0) {
             fprintf(stderr, "bench_judge: %u threads differ from the first run\n", threads);
