@@ -146,6 +146,18 @@ VB_SHARED_FN vb_ia vb_ia_point(double x)
     return vb_ia_make(x, x);
 }
 
+/* The steps below with both bounds in one register (vb_ia_pairs.h), where
+ * a host translation unit asks for them: the same bits. */
+#if !defined(__OPENCL_C_VERSION__) && defined(__SSE2__)
+#include "vb_ia_pairs.h"
+#if defined(VB_IA_HOST_PAIRS)
+#define VB_IA_PAIRS 1
+#endif
+#endif
+#ifndef VB_IA_PAIRS
+#define VB_IA_PAIRS 0
+#endif
+
 /* An integer |v| < 2^63: exact below 2^53, else [pred, succ] of its
  * nearest double. */
 VB_SHARED_FN vb_ia vb_ia_int(vb_i64 v)
@@ -158,12 +170,20 @@ VB_SHARED_FN vb_ia vb_ia_int(vb_i64 v)
 
 VB_SHARED_FN vb_ia vb_ia_add(vb_ia a, vb_ia b)
 {
+#if VB_IA_PAIRS
+    return vb_ia_add_p(a, b);
+#else
     return vb_ia_make(vb_pred(a.lo + b.lo), vb_succ(a.hi + b.hi));
+#endif
 }
 
 VB_SHARED_FN vb_ia vb_ia_sub(vb_ia a, vb_ia b)
 {
+#if VB_IA_PAIRS
+    return vb_ia_sub_p(a, b);
+#else
     return vb_ia_make(vb_pred(a.lo - b.hi), vb_succ(a.hi - b.lo));
+#endif
 }
 
 VB_SHARED_FN vb_ia vb_ia_neg(vb_ia a)
@@ -175,19 +195,27 @@ VB_SHARED_FN vb_ia vb_ia_neg(vb_ia a)
  * rounded corner is enclosed by [pred, succ]. */
 VB_SHARED_FN vb_ia vb_ia_mul(vb_ia a, vb_ia b)
 {
+#if VB_IA_PAIRS
+    return vb_ia_mul_p(a, b);
+#else
     double p1 = a.lo * b.lo, p2 = a.lo * b.hi, p3 = a.hi * b.lo, p4 = a.hi * b.hi;
     return vb_ia_make(vb_pred(vb_fmin(vb_fmin(p1, p2), vb_fmin(p3, p4))),
                       vb_succ(vb_fmax(vb_fmax(p1, p2), vb_fmax(p3, p4))));
+#endif
 }
 
 /* The square: 0 below when a holds 0, else the smaller magnitude's square
  * stepped down (and clamped at 0: a square is never negative). */
 VB_SHARED_FN vb_ia vb_ia_sqr(vb_ia a)
 {
+#if VB_IA_PAIRS
+    return vb_ia_sqr_p(a);
+#else
     double l = a.lo < 0.0 ? -a.lo : a.lo, h = a.hi < 0.0 ? -a.hi : a.hi;
     double mx = vb_fmax(l, h), mn = vb_fmin(l, h);
     double lo = a.lo <= 0.0 && a.hi >= 0.0 ? 0.0 : vb_fmax(vb_pred(mn * mn), 0.0);
     return vb_ia_make(lo, vb_succ(mx * mx));
+#endif
 }
 
 /* Quotient; a denominator interval containing 0 gives [-inf, +inf].
@@ -201,6 +229,9 @@ VB_SHARED_FN vb_ia vb_ia_sqr(vb_ia a)
  * corner is NaN (test_exact compares them). */
 VB_SHARED_FN vb_ia vb_ia_div(vb_ia a, vb_ia b)
 {
+#if VB_IA_PAIRS
+    return vb_ia_div_p(a, b);
+#else
     if (b.lo > 0.0)
         return vb_ia_make(vb_pred(a.lo / (a.lo >= 0.0 ? b.hi : b.lo)),
                           vb_succ(a.hi / (a.hi >= 0.0 ? b.lo : b.hi)));
@@ -208,6 +239,7 @@ VB_SHARED_FN vb_ia vb_ia_div(vb_ia a, vb_ia b)
         return vb_ia_make(vb_pred(a.hi / (a.hi >= 0.0 ? b.hi : b.lo)),
                           vb_succ(a.lo / (a.lo >= 0.0 ? b.lo : b.hi)));
     return vb_ia_make(-VB_IA_INF, VB_IA_INF);
+#endif
 }
 
 /* The quotient from all four corners (the reference vb_ia_div is checked

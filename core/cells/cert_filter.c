@@ -22,6 +22,7 @@ void vb_cert_filter_free(vb_cert_filter *f)
     free(f->cell_start);
     free(f->cell_ids);
     free(f->cell_z);
+    free(f->cell_d);
     memset(f, 0, sizeof *f);
 }
 
@@ -65,6 +66,27 @@ static uint32_t axis_cells(double o, double hi, double inv)
 {
     double c = floor((hi - o) * inv) + 1.0;
     return c > 1e9 ? 1000000000u : (uint32_t)c;
+}
+
+/* The twin's copy of cell_z as doubles by column (f->cell_d), where every
+ * |z| < 2^52: each value is then a double, and so is each difference
+ * z_j - z_a (below 2^53), which the twin subtracts in double with the
+ * result vbd_scan_fast converts. Left NULL otherwise (the shared scan
+ * runs). 0, or -1 when out of memory. */
+static int host_columns(vb_cert_filter *f)
+{
+    size_t n = f->n;
+    const int64_t lim = (int64_t)1 << 52;
+    for (size_t i = 0; i < 4 * n; i++)
+        if (f->z[i] >= lim || f->z[i] <= -lim)
+            return 0;
+    f->cell_d = calloc(4 * n + 4, sizeof *f->cell_d); /* 4 more: cert_scan.c's lanes */
+    if (!f->cell_d)
+        return -1;
+    for (size_t t = 0; t < n; t++)
+        for (int k = 0; k < 4; k++)
+            f->cell_d[k * n + t] = (double)f->cell_z[4 * t + k];
+    return 0;
 }
 
 /* The grid: side about twice the mean radius, widened until there are at
@@ -111,7 +133,7 @@ static int build_grid(vb_cert_filter *f)
     f->g.nz = nc[2];
     f->g.rmax = rmax;
     f->cell_start = calloc(f->ncells + 1, sizeof *f->cell_start);
-    f->cell_ids = malloc(n * sizeof *f->cell_ids);
+    f->cell_ids = calloc(n + 4, sizeof *f->cell_ids); /* 4 more: cert_scan.c's lanes */
     f->cell_z = malloc(4 * n * sizeof *f->cell_z);
     uint32_t *key = malloc(n * sizeof *key);
     if (!f->cell_start || !f->cell_ids || !f->cell_z || !key) {
@@ -141,7 +163,7 @@ static int build_grid(vb_cert_filter *f)
     }
     free(pos);
     free(key);
-    return 0;
+    return host_columns(f);
 }
 
 int vb_cert_filter_build(vb_ctx *ctx, const vb_sphere_set *set, vb_cert_filter *f)
@@ -184,11 +206,10 @@ static void judge_chunk(void *arg, size_t c, int tid)
     (void)tid;
     const judge_job *j = arg;
     const vb_cert_filter *f = j->f;
+    vb_cert_judge_fn judge = vb_cert_judge_pick();
     size_t k1 = (c + 1) * JUDGE_CHUNK < j->n ? (c + 1) * JUDGE_CHUNK : j->n;
     for (size_t k = c * JUDGE_CHUNK; k < k1; k++) {
-        const uint32_t *q = j->q[k];
-        j->verdict[k] = (uint8_t)vbd_judge(f->z, f->cell_start, f->cell_ids, f->cell_z, &f->g,
-                                           q[0], q[1], q[2], q[3]);
+        j->verdict[k] = (uint8_t)judge(f, j->q[k]);
     }
 }
 

@@ -26,6 +26,8 @@ typedef struct vb_cert_filter {
     uint32_t *cell_start;  /* ncells + 1: the spheres of cell c are cell_ids[cell_start[c] ..] */
     uint32_t *cell_ids;    /* n sphere ids, by cell, increasing in each */
     int64_t *cell_z;       /* 4n: z of cell_ids' spheres, in that order (read in turn) */
+    double *cell_d;        /* host twin only, where every |z| < 2^52 (else NULL): cell_z as
+                            * doubles (exact), by column: X of all n, then Y, Z, R */
 } vb_cert_filter;
 
 /* Whether quadruples are judged before certification, from
@@ -47,10 +49,21 @@ int vb_cert_filter_build(vb_ctx *ctx, const vb_sphere_set *set, vb_cert_filter *
 void vb_cert_filter_free(vb_cert_filter *f);
 
 /* The twin: verdict[k] = vbd_judge of quadruple q[k] for k < n (sorted
- * distinct ids below f->n), on `threads` host threads (0: VORBALL_THREADS
- * or all CPUs). Every verdict VBD_OPEN when !f->ok. Allocates nothing that
+ * distinct ids below f->n), computed by vb_cert_judge_pick's judge, on
+ * `threads` host threads (0: VORBALL_THREADS or all CPUs). Every verdict VBD_OPEN when !f->ok. Allocates nothing that
  * outlives the call. */
 void vb_cert_filter_judge(const vb_cert_filter *f, const uint32_t (*q)[4], size_t n,
                           uint8_t *verdict, unsigned threads);
+
+/* The twin's judge of one quadruple q (sorted distinct ids below f->n, f->ok):
+ * vbd_judge's verdict, with each root's scan over f->cell_d where that is
+ * there (core/cells/cert_scan.c). */
+typedef uint32_t (*vb_cert_judge_fn)(const vb_cert_filter *f, const uint32_t *q);
+uint32_t vb_cert_judge_one(const vb_cert_filter *f, const uint32_t *q);
+uint32_t vb_cert_judge_one_avx2(const vb_cert_filter *f, const uint32_t *q);
+
+/* The judge for this CPU: vb_cert_judge_one_avx2 where the build and the
+ * CPU have AVX2, else vb_cert_judge_one (the same verdicts). */
+vb_cert_judge_fn vb_cert_judge_pick(void);
 
 #endif

@@ -252,6 +252,34 @@ VB_SHARED_FN int vbd_line_make(VB_GLOBAL const vb_i64 *z, vb_u32 a, vb_u32 b, vb
 #define VBD_FAST_IN 2
 #define VBD_FAST_OPEN 3
 
+/* vbd_scan_fast's test on the sphere's row as exact doubles d_k = z_j,k -
+ * z_a,k and r = R_j - R_a (the host twin keeps them as doubles where every
+ * |z| < 2^52, cert_filter.c): VBD_FAST_OUT, _IN or _OPEN. */
+VB_SHARED_FN int vbd_fast_test(const vb_ia *p, vb_ia s, double d0, double d1, double d2, double r)
+{
+    double wh = s.hi + r;
+    if (wh < 0.0)
+        return VBD_FAST_OUT;
+    double l0 = vb_fmax(vb_fmax(p[0].lo - d0, d0 - p[0].hi), 0.0);
+    double l1 = vb_fmax(vb_fmax(p[1].lo - d1, d1 - p[1].hi), 0.0);
+    double l2 = vb_fmax(vb_fmax(p[2].lo - d2, d2 - p[2].hi), 0.0);
+    double q = 0.0 + l0 * l0;
+    q = q + l1 * l1;
+    q = q + l2 * l2;
+    if (q > wh * wh * (1.0 + 0x1p-46) + 0x1p-1000)
+        return VBD_FAST_OUT;
+    double wl = s.lo + r;
+    if (!(wl > 0.0))
+        return VBD_FAST_OPEN;
+    double m0 = vb_fmax(p[0].hi - d0, d0 - p[0].lo);
+    double m1 = vb_fmax(p[1].hi - d1, d1 - p[1].lo);
+    double m2 = vb_fmax(p[2].hi - d2, d2 - p[2].lo);
+    double q2 = 0.0 + m0 * m0;
+    q2 = q2 + m1 * m1;
+    q2 = q2 + m2 * m2;
+    return q2 < wl * wl * (1.0 - 0x1p-46) - 0x1p-1000 ? VBD_FAST_IN : VBD_FAST_OPEN;
+}
+
 VB_SHARED_FN int vbd_scan_fast(const vb_ia *p, vb_ia s, VB_GLOBAL const vb_i64 *zj,
                                VB_GLOBAL const vb_i64 *za)
 {
@@ -262,33 +290,25 @@ VB_SHARED_FN int vbd_scan_fast(const vb_ia *p, vb_ia s, VB_GLOBAL const vb_i64 *
         if (dk[k] >= lim || dk[k] <= -lim)
             return VBD_FAST_NONE;
     }
-    double r = (double)dk[3], wh = s.hi + r;
-    if (wh < 0.0)
-        return VBD_FAST_OUT;
-    double q = 0.0, q2 = 0.0;
-    for (int k = 0; k < 3; k++) {
-        double d = (double)dk[k];
-        double l = vb_fmax(vb_fmax(p[k].lo - d, d - p[k].hi), 0.0);
-        q = q + l * l;
-    }
-    if (q > wh * wh * (1.0 + 0x1p-46) + 0x1p-1000)
-        return VBD_FAST_OUT;
-    double wl = s.lo + r;
-    if (!(wl > 0.0))
-        return VBD_FAST_OPEN;
-    for (int k = 0; k < 3; k++) {
-        double d = (double)dk[k];
-        double m = vb_fmax(p[k].hi - d, d - p[k].lo);
-        q2 = q2 + m * m;
-    }
-    return q2 < wl * wl * (1.0 - 0x1p-46) - 0x1p-1000 ? VBD_FAST_IN : VBD_FAST_OPEN;
+    return vbd_fast_test(p, s, (double)dk[0], (double)dk[1], (double)dk[2], (double)dk[3]);
 }
 
-/* The verdict of root r (0: sigma = +1) of a line with two roots. */
-VB_SHARED_FN vb_u32 vbd_root(VB_GLOBAL const vb_i64 *z, VB_GLOBAL const vb_u32 *cell_start,
-                             VB_GLOBAL const vb_u32 *cell_ids, VB_GLOBAL const vb_i64 *cell_z,
-                             const vbd_grid *g, vb_u32 q0,
-                             vb_u32 q1, vb_u32 q2, vb_u32 q3, const vbd_line *L, int r)
+/* A root's tangent ball and the grid cells its scan visits (vbd_root_box). */
+typedef struct vbd_box {
+    vb_ia p[3], s;         /* p - c_a and s = t + R_a */
+    int open;              /* a member's sign not proven */
+    vb_u32 c0[3], c1[3];   /* cells c0[k] .. c1[k] along axis k */
+    vb_u32 mz, my;         /* the centre's slab and row (scanned first) */
+} vbd_box;
+
+/* VBD_SCAN: vbd_root_box leaves the verdict to the scan of its cells. */
+#define VBD_SCAN 3u
+
+/* Root r (0: sigma = +1) of a line with two roots up to its scan: the
+ * verdict when it is known without one (VBD_OPEN, _VERTEX or _NOT), else
+ * VBD_SCAN with *b filled. */
+VB_SHARED_FN vb_u32 vbd_root_box(VB_GLOBAL const vb_i64 *z, const vbd_grid *g, vb_u32 q0,
+                                 const vbd_line *L, int r, vbd_box *b)
 {
     /* mu = -Pn / Qd: (B - sigma sq) / A, or, where B has the sign sigma and
      * that difference would cancel, C / (B + sigma sq) (the roots'
@@ -306,9 +326,10 @@ VB_SHARED_FN vb_u32 vbd_root(VB_GLOBAL const vb_i64 *z, VB_GLOBAL const vb_u32 *
         return VBD_OPEN;
     vb_ia mu = vb_ia_neg(vb_ia_div(Pn, Qd));
     vb_ia s = vb_ia_div(Pn, vb_ia_add(Qd, Qd));
-    vb_ia D2 = vb_ia_add(L->D, L->D), p[3];
+    vb_ia D2 = vb_ia_add(L->D, L->D);
     for (int k = 0; k < 3; k++)
-        p[k] = vb_ia_div(vb_ia_add(L->U[k], vb_ia_mul(mu, L->v[k])), D2);
+        b->p[k] = vb_ia_div(vb_ia_add(L->U[k], vb_ia_mul(mu, L->v[k])), D2);
+    b->s = s;
     int open = 0;
     for (int i = 0; i < 4; i++) {
         vb_ia w = vb_ia_add(s, vb_ia_int(L->r[i]));
@@ -317,6 +338,7 @@ VB_SHARED_FN vb_u32 vbd_root(VB_GLOBAL const vb_i64 *z, VB_GLOBAL const vb_u32 *
         if (!(w.lo > 0.0))
             open = 1;
     }
+    b->open = open;
     /* The box of centres that may touch the tangent ball. */
     VB_GLOBAL const vb_i64 *za = z + 4 * (vb_u64)q0;
     double rad = vb_ia_add(s, vb_ia_int(g->rmax - za[3])).hi;
@@ -324,7 +346,6 @@ VB_SHARED_FN vb_u32 vbd_root(VB_GLOBAL const vb_i64 *z, VB_GLOBAL const vb_u32 *
         return VBD_OPEN;
     if (rad < 0.0)
         return open ? VBD_OPEN : VBD_VERTEX; /* t + R_j < 0 for every j */
-    vb_u32 c0[3], c1[3];
     double o[3];
     o[0] = g->ox;
     o[1] = g->oy;
@@ -335,30 +356,47 @@ VB_SHARED_FN vb_u32 vbd_root(VB_GLOBAL const vb_i64 *z, VB_GLOBAL const vb_u32 *
     nn[2] = g->nz;
     vb_u64 cells = 1;
     for (int k = 0; k < 3; k++) {
-        vb_ia ck = vb_ia_add(vb_ia_int(za[k]), p[k]);
+        vb_ia ck = vb_ia_add(vb_ia_int(za[k]), b->p[k]);
         double lo = vb_pred(ck.lo - rad), hi = vb_succ(ck.hi + rad);
         if (!(lo > -VB_IA_INF && hi < VB_IA_INF))
             return VBD_OPEN;
-        c0[k] = vbd_cell(lo, o[k], g->inv, nn[k]);
-        c1[k] = vbd_cell(hi, o[k], g->inv, nn[k]);
-        cells *= (vb_u64)(c1[k] - c0[k] + 1u);
+        b->c0[k] = vbd_cell(lo, o[k], g->inv, nn[k]);
+        b->c1[k] = vbd_cell(hi, o[k], g->inv, nn[k]);
+        cells *= (vb_u64)(b->c1[k] - b->c0[k] + 1u);
     }
     if (cells > VBD_MAX_CELLS)
         return VBD_OPEN;
     /* Slabs and rows from the centre's outward (an intruder, which ends the
      * scan, is usually near): the same cells, in another order. */
-    vb_u32 mz = vbd_cell(vb_ia_add(vb_ia_int(za[2]), p[2]).lo, o[2], g->inv, nn[2]);
-    vb_u32 my = vbd_cell(vb_ia_add(vb_ia_int(za[1]), p[1]).lo, o[1], g->inv, nn[1]);
-    for (vb_u32 iz = 0; iz < 2u * (c1[2] - c0[2]) + 1u; iz++) {
-        vb_i64 cz = vbd_around(c0[2], c1[2], mz, iz);
+    b->mz = vbd_cell(vb_ia_add(vb_ia_int(za[2]), b->p[2]).lo, o[2], g->inv, nn[2]);
+    b->my = vbd_cell(vb_ia_add(vb_ia_int(za[1]), b->p[1]).lo, o[1], g->inv, nn[1]);
+    return VBD_SCAN;
+}
+
+/* The verdict of root r (0: sigma = +1) of a line with two roots. */
+VB_SHARED_FN vb_u32 vbd_root(VB_GLOBAL const vb_i64 *z, VB_GLOBAL const vb_u32 *cell_start,
+                             VB_GLOBAL const vb_u32 *cell_ids, VB_GLOBAL const vb_i64 *cell_z,
+                             const vbd_grid *g, vb_u32 q0,
+                             vb_u32 q1, vb_u32 q2, vb_u32 q3, const vbd_line *L, int r)
+{
+    vbd_box b;
+    vb_u32 v = vbd_root_box(z, g, q0, L, r, &b);
+    if (v != VBD_SCAN)
+        return v;
+    VB_GLOBAL const vb_i64 *za = z + 4 * (vb_u64)q0;
+    const vb_ia *p = b.p;
+    vb_ia s = b.s;
+    int open = b.open;
+    for (vb_u32 iz = 0; iz < 2u * (b.c1[2] - b.c0[2]) + 1u; iz++) {
+        vb_i64 cz = vbd_around(b.c0[2], b.c1[2], b.mz, iz);
         if (cz < 0)
             continue;
-        for (vb_u32 iy = 0; iy < 2u * (c1[1] - c0[1]) + 1u; iy++) {
-            vb_i64 cy = vbd_around(c0[1], c1[1], my, iy);
+        for (vb_u32 iy = 0; iy < 2u * (b.c1[1] - b.c0[1]) + 1u; iy++) {
+            vb_i64 cy = vbd_around(b.c0[1], b.c1[1], b.my, iy);
             if (cy < 0)
                 continue;
             vb_u64 row = ((vb_u64)cz * g->ny + (vb_u64)cy) * g->nx;
-            vb_u32 j0 = cell_start[row + c0[0]], j1 = cell_start[row + c1[0] + 1u];
+            vb_u32 j0 = cell_start[row + b.c0[0]], j1 = cell_start[row + b.c1[0] + 1u];
             for (vb_u32 t = j0; t < j1; t++) {
                 vb_u32 j = cell_ids[t];
                 if (j == q0 || j == q1 || j == q2 || j == q3)

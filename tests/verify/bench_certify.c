@@ -15,6 +15,7 @@
 
 #include "vb_vertex_io.h"
 #include "vb_verify.h"
+#include "vt_bench.h"
 #include "vt_lists.h"
 
 static double now(clockid_t id)
@@ -47,18 +48,9 @@ int main(int argc, char **argv)
         return 2;
     }
     vb_ctx *ctx;
-    if (vb_open(&ctx, NULL) != VB_OK)
+    vb_sphere_set *set;
+    if (vt_bench_open("bench_certify", argv[1], &ctx, &set))
         return 1;
-    vb_read_options ro;
-    memset(&ro, 0, sizeof ro);
-    vb_sphere_set *set = NULL;
-    int rc = vb_spheres_read_file(ctx, argv[1], &ro, &set);
-    if (rc == VB_OK)
-        rc = vb_spheres_validate(ctx, set, 4);
-    if (rc != VB_OK) {
-        fprintf(stderr, "bench_certify: %s\n", vb_errmsg(ctx));
-        return 1;
-    }
     vb_vertex_list cand;
     vb_vertex_list_init(&cand);
     if (vb_vertex_read_file(ctx, argv[2], &cand, NULL, NULL) != VB_OK) {
@@ -70,7 +62,7 @@ int main(int argc, char **argv)
         return 1;
     vb_vertex_list first;
     vb_vertex_list_init(&first);
-    int nt = argc > 3 ? argc - 3 : 1, bad = 0;
+    int nt = argc > 3 ? argc - 3 : 1, bad = 0, rc = VB_OK;
     for (int i = 0; i < nt; i++) {
         unsigned threads = argc > 3 ? (unsigned)atoi(argv[3 + i]) : 1;
         vb_certifier_set_threads(c, threads);

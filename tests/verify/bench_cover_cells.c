@@ -31,6 +31,7 @@
 
 #include "vb_cover.h"
 #include "vb_spheres.h"
+#include "vt_bench.h"
 
 static double thread_cpu(void)
 {
@@ -104,19 +105,15 @@ int main(int argc, char **argv)
     }
     double margin = argc > 2 ? strtod(argv[2], NULL) : 2.0;
     vb_ctx *ctx;
-    if (vb_open(&ctx, NULL) != VB_OK)
+    vb_sphere_set *set;
+    if (vt_bench_open("bench_cover_cells", argv[1], &ctx, &set))
         return 1;
-    vb_read_options ro;
-    memset(&ro, 0, sizeof ro);
-    vb_sphere_set *set = NULL;
     vb_cover_tree *tree = NULL;
     vbq_env env;
     vb_cover_options o;
     memset(&o, 0, sizeof o);
     o.threads = 1;
-    if (vb_spheres_read_file(ctx, argv[1], &ro, &set) != VB_OK ||
-        vb_spheres_validate(ctx, set, 4) != VB_OK ||
-        vb_cover_prepare(ctx, set, &o, &tree, &env) != VB_OK) {
+    if (vb_cover_prepare(ctx, set, &o, &tree, &env) != VB_OK) {
         fprintf(stderr, "bench_cover_cells: %s\n", vb_errmsg(ctx));
         return 1;
     }

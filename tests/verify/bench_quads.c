@@ -20,6 +20,7 @@
 #include "vb_geom_shared.h"
 #include "vb_vertex_io.h"
 #include "vb_verify.h"
+#include "vt_bench.h"
 #include "vt_lists.h"
 
 static double now(clockid_t id)
@@ -80,41 +81,16 @@ int main(int argc, char **argv)
     }
     const char *input = argv[a++];
     vb_ctx *ctx;
-    if (vb_open(&ctx, NULL) != VB_OK)
+    vb_sphere_set *set;
+    if (vt_bench_open("bench_quads", input, &ctx, &set))
         return 1;
-    vb_read_options ro;
-    memset(&ro, 0, sizeof ro);
-    vb_sphere_set *set = NULL;
-    int rc = vb_spheres_read_file(ctx, input, &ro, &set);
-    if (rc == VB_OK)
-        rc = vb_spheres_validate(ctx, set, 4);
-    if (rc != VB_OK) {
-        fprintf(stderr, "bench_quads: %s\n", vb_errmsg(ctx));
-        return 1;
-    }
     vb_quad_list q = {0};
     double t0 = now(CLOCK_MONOTONIC);
-    if (quadpath) {
-        FILE *qf = fopen(quadpath, "r");
-        unsigned v[4];
-        while (qf && fscanf(qf, "%u %u %u %u", &v[0], &v[1], &v[2], &v[3]) == 4) {
-            if (q.n == q.cap) {
-                q.cap = q.cap ? 2 * q.cap : 4096;
-                q.q = realloc(q.q, q.cap * sizeof *q.q);
-                if (!q.q)
-                    return 1;
-            }
-            for (int k = 0; k < 4; k++)
-                q.q[q.n][k] = v[k];
-            q.n++;
-        }
-        if (qf)
-            fclose(qf);
-        else
-            rc = vb_error(ctx, VB_EIO, quadpath, 0, "cannot read");
-    } else {
+    int rc = VB_OK;
+    if (quadpath && vt_read_quads(quadpath, &q) != 0)
+        rc = vb_error(ctx, VB_EIO, quadpath, 0, "cannot read");
+    else if (!quadpath)
         rc = vb_cover_run(ctx, set, NULL, NULL, &q, NULL);
-    }
     if (rc != VB_OK) {
         fprintf(stderr, "bench_quads: %s\n", vb_errmsg(ctx));
         return 1;

@@ -10,7 +10,11 @@
  * vertex), and each "vertex" verdict has a degree-4 vertex with exactly the
  * quadruple's members there. The whole lists agree too, verdicts are the
  * same on 1 and 2 threads, and a flipped verdict is caught (the check can
- * fail). */
+ * fail). Beside the cover's quadruples each set gets random quadruples of
+ * near spheres (coplanar, cospherical, touching ones in the lattices), and
+ * the twin's judges (cert_scan.c: portable, and this CPU's, AVX2 on
+ * x86-64) give every quadruple the byte the shared vbd_judge (the kernel's
+ * code) gives, over the exact doubles where those are kept (f.cell_d). */
 #include <inttypes.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -24,7 +28,70 @@
 #include "vt_corpus.h"
 #include "vt_spheres.h"
 
-static size_t n_vertex, n_not, n_open, n_quads_checked, n_sets;
+static size_t n_vertex, n_not, n_open, n_quads_checked, n_sets, n_twin_sets, n_twin_quads;
+
+static uint64_t splitmix64(uint64_t *x);
+
+/* Appends up to m random quadruples of spheres of s within 3 mean radii of
+ * a random first one (sorted, distinct; vb_quad_list_canonical drops
+ * repeats). */
+static void near_quads(const vb_sphere_set *s, size_t m, vb_quad_list *q)
+{
+    uint64_t seed = s->n * 7919u + m;
+    double rs = 0.0;
+    for (size_t i = 0; i < s->n; i++)
+        rs += s->r[i];
+    double reach = 6.0 * rs / (double)s->n;
+    uint32_t *near = malloc(s->n * sizeof *near);
+    for (size_t k = 0; near && k < m; k++) {
+        uint32_t a = (uint32_t)(splitmix64(&seed) % s->n), nn = 0;
+        for (uint32_t j = 0; j < s->n; j++) {
+            double dx = s->x[j] - s->x[a], dy = s->y[j] - s->y[a], dz = s->z[j] - s->z[a];
+            if (j != a && dx * dx + dy * dy + dz * dz <= reach * reach)
+                near[nn++] = j;
+        }
+        if (nn < 3)
+            continue;
+        uint32_t t[4] = {a, 0, 0, 0};
+        for (int i = 1; i < 4; i++) {
+            uint32_t pick = (uint32_t)(splitmix64(&seed) % nn);
+            t[i] = near[pick];
+            near[pick] = near[--nn];
+        }
+        for (int i = 1; i < 4; i++) /* sort the four */
+            for (int j = i; j > 0 && t[j] < t[j - 1]; j--) {
+                uint32_t x = t[j];
+                t[j] = t[j - 1];
+                t[j - 1] = x;
+            }
+        CHECK_INT(vb_quad_list_append(q, t, 1), VB_OK);
+    }
+    free(near);
+    CHECK_INT(vb_quad_list_canonical(q, 1), VB_OK);
+}
+
+/* Every quadruple's byte from the twin's judges against vbd_judge's: 1
+ * when all agree. */
+static int twin_agrees(const char *name, const vb_cert_filter *f, const uint32_t (*q)[4],
+                       size_t n, const uint8_t *v)
+{
+    vb_cert_judge_fn pick = vb_cert_judge_pick();
+    size_t bad = 0;
+    for (size_t k = 0; k < n; k++) {
+        uint32_t vs = vbd_judge(f->z, f->cell_start, f->cell_ids, f->cell_z, &f->g, q[k][0],
+                                q[k][1], q[k][2], q[k][3]);
+        uint32_t va = vb_cert_judge_one(f, q[k]), vp = pick(f, q[k]);
+        if (vs != v[k] || va != vs || vp != vs) {
+            if (bad++ < 5)
+                fprintf(stderr, "%s: quadruple %u %u %u %u: vbd_judge %u, twin %u, portable %u, "
+                                "picked %u\n",
+                        name, q[k][0], q[k][1], q[k][2], q[k][3], vs, v[k], va, vp);
+        }
+    }
+    n_twin_quads += n;
+    n_twin_sets += f->cell_d != NULL;
+    return bad == 0;
+}
 
 static int same_list(const vb_vertex_list *a, const vb_vertex_list *b)
 {
@@ -70,6 +137,8 @@ static void check_set(const char *name, vb_sphere_set *s)
     if (rc == VB_OK)
         rc = vb_cover_run(ctx, s, NULL, NULL, &q, NULL);
     if (rc == VB_OK)
+        near_quads(s, 1000, &q);
+    if (rc == VB_OK)
         rc = vb_cert_filter_build(ctx, s, &f);
     if (rc == VB_OK)
         rc = vb_certifier_open(ctx, s, &c);
@@ -84,6 +153,7 @@ static void check_set(const char *name, vb_sphere_set *s)
     vb_cert_filter_judge(&f, qq, q.n, v1, 1);
     vb_cert_filter_judge(&f, qq, q.n, v2, 2);
     CHECK(memcmp(v1, v2, q.n) == 0);
+    CHECK(twin_agrees(name, &f, qq, q.n, v1));
     /* The whole list, with and without the verdicts, and their counts. */
     vb_vertex_list plain, judged;
     vb_cert_quad_stats qs;
@@ -223,6 +293,10 @@ int main(void)
     vb_spheres_free(s);
     printf("%zu sets, %zu quadruples checked alone: %zu vertex, %zu not, %zu open roots\n",
            n_sets, n_quads_checked, n_vertex, n_not, n_open);
+    printf("twin against vbd_judge: %zu quadruples, %zu of %zu sets over exact doubles\n",
+           n_twin_quads, n_twin_sets, n_sets);
+    /* The twin's own scan ran (most sets fit 2^52 after scaling). */
+    CHECK(n_twin_sets > n_sets / 2);
     /* Most roots decided: the filter is not a stub that leaves all open. */
     CHECK(n_vertex > 1000 && n_not > 1000);
     VB_TEST_END();
