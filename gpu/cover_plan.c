@@ -123,14 +123,14 @@ size_t vbg_cov_split(cov_state *s, size_t n, size_t input)
     return 0;
 }
 
-size_t vbg_cov_split_share(const cov_state *s)
+size_t vbg_cov_task_share(const cov_state *s)
 {
     return s->task_split == 1u ? 1u : 4u;
 }
 
 void vbg_cov_big_qper(cov_state *s, uint32_t qper)
 {
-    uint32_t q = qper / (uint32_t)vbg_cov_split_share(s);
+    uint32_t q = qper / (uint32_t)vbg_cov_task_share(s);
     s->tier[COV_BIG].qper = s->tier[COV_HUGE].qper = q ? q : 1u;
 }
 
@@ -138,7 +138,7 @@ size_t vbg_cov_tier_slices(const cov_state *s, const cov_tier *t, size_t tasks)
 {
     size_t w = t->wg ? tasks : (tasks + 63) / 64 * 64;
     if (t->wg && t == &s->tier[COV_BIG]) {
-        size_t per = (size_t)COV_BIG_TASKS * vbg_cov_split_share(s);
+        size_t per = (size_t)COV_BIG_TASKS * vbg_cov_task_share(s);
         w = (tasks + per - 1) / per;
     }
     w = w < t->want ? w : t->want;

@@ -348,10 +348,10 @@ size_t vbg_cov_split(cov_state *s, size_t n, size_t input);
 
 /* Tasks of a cell split at s->task_split levels per task of the split
  * at one level (24 T^2 a cell): 1 or 4. */
-size_t vbg_cov_split_share(const cov_state *s);
+size_t vbg_cov_task_share(const cov_state *s);
 
 /* Sets the large and huge tiers' output room a task from qper quadruples
- * per 24 T^2 of a cell's tasks (vbg_cov_split_share; 1 at least). */
+ * per 24 T^2 of a cell's tasks (vbg_cov_task_share; 1 at least). */
 void vbg_cov_big_qper(cov_state *s, uint32_t qper);
 
 /* Slices of tier t (the large, huge or hand-off tier) for `tasks` tasks:
