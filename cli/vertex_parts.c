@@ -44,7 +44,14 @@ int vb_cli_vertices_part(vb_ctx *ctx, vb_vertices_config *cfg, vb_cover_options 
     X(s->cover_clocks.launches[1]) X(s->cover_clocks.launches[2])                               \
     X(s->cover_clocks.launches[3]) X(s->cover_clocks.launches[4]) X(s->cover_clocks.tasks[0])   \
     X(s->cover_clocks.tasks[1]) X(s->cover_clocks.tasks[2]) X(s->cover_clocks.tasks[3])         \
-    X(s->cover_clocks.tasks[4]) X(s->cover_steps.batches) X(s->cover_steps.resume_queued)
+    X(s->cover_clocks.tasks[4]) X(s->cover_steps.batches) X(s->cover_steps.resume_queued)     \
+    X(s->cover_clocks.patches[0]) X(s->cover_clocks.patches[1]) X(s->cover_clocks.patches[2])   \
+    X(s->cover_clocks.patches[3]) X(s->cover_clocks.patches[4])                                 \
+    X(s->cover_clocks.wasted_patches[0]) X(s->cover_clocks.wasted_patches[1])                   \
+    X(s->cover_clocks.wasted_patches[2]) X(s->cover_clocks.wasted_patches[3])                   \
+    X(s->cover_clocks.wasted_patches[4]) X(s->cover_clocks.wasted_tasks[0])                     \
+    X(s->cover_clocks.wasted_tasks[1]) X(s->cover_clocks.wasted_tasks[2])                       \
+    X(s->cover_clocks.wasted_tasks[3]) X(s->cover_clocks.wasted_tasks[4])
 
 /* The times whose maximum over the ranks is the job's. */
 #define MAXED(X)                                                                                   \
@@ -59,7 +66,9 @@ int vb_cli_vertices_part(vb_ctx *ctx, vb_vertices_config *cfg, vb_cover_options 
     X(s->cover_clocks.launch_s[2]) X(s->cover_clocks.launch_s[3])                               \
     X(s->cover_clocks.launch_s[4]) X(s->cover_steps.dispatch_s) X(s->cover_steps.sink_s)        \
     X(s->cover_steps.host_cells_cpu_s) X(s->cover_steps.resume_cpu_s)                           \
-    X(s->cover_steps.host_wait_s) X(s->cover_steps.tail_s)
+    X(s->cover_steps.host_wait_s) X(s->cover_steps.tail_s) X(s->cover_clocks.task_max[0])       \
+    X(s->cover_clocks.task_max[1]) X(s->cover_clocks.task_max[2])                               \
+    X(s->cover_clocks.task_max[3]) X(s->cover_clocks.task_max[4])
 
 static int sum_counters(vb_ctx *ctx, vb_vertices_result *res, vb_cli_vertex_totals *tot)
 {

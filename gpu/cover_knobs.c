@@ -63,6 +63,16 @@ void vbg_cover_knobs(cov_state *s)
         s->pool_per_sphere = (size_t)v;
     if ((v = knob("VORBALL_COVER_HAND_CAP", 0)) > 0)
         s->hand_cap_words = (size_t)v;
+    /* VORBALL_COVER_TASK_SPLIT: 1 or 2, the levels below the roots a
+     * cell's tasks split at (COV_TASK_SPLIT; the output room follows). */
+    if ((v = knob("VORBALL_COVER_TASK_SPLIT", 0)) == 1 || v == 2) {
+        s->task_split = (unsigned)v;
+        vbg_cov_big_qper(s, COV_BIG_QPER);
+    }
+    /* VORBALL_COVER_TASK_ORDER=0: a tier's tasks in cell order, not
+     * costliest first (vbg_tasks_order; measurements). */
+    if (knob("VORBALL_COVER_TASK_ORDER", 1) == 0)
+        s->task_order = 0;
     if ((v = knob("VORBALL_COVER_BIG_QPER", 0)) > 0)
         t1->qper = t3->qper = (uint32_t)v;
 }

@@ -31,13 +31,27 @@ static size_t clock_step(const cov_state *s, const cov_tier *t)
 
 /* The kernel's run time of one launch of tier t (event profiling; the
  * queue is made with it) into its step's clocks (vbg_cover_state.h); a
- * device that gives no times adds none. */
-static void tier_clock(cov_state *s, const cov_tier *t, cl_event done, size_t ntasks)
+ * device that gives no times adds none. Its tasks' work from their
+ * results out[0 .. ntasks) (vb_cover_clocks): a task that ran out of room
+ * (neither finished nor past the group kernel's budget, whose patches the
+ * host resumes) is covered again from its roots elsewhere. */
+static void tier_clock(cov_state *s, const cov_tier *t, cl_event done, const vbq_cell_out *out,
+                       size_t ntasks)
 {
     size_t i = clock_step(s, t);
-    s->clocks->launches[i]++;
-    s->clocks->tasks[i] += ntasks;
-    s->clocks->kernel_s[i] += vbg_event_seconds(done);
+    vb_cover_clocks *c = s->clocks;
+    c->launches[i]++;
+    c->tasks[i] += ntasks;
+    c->kernel_s[i] += vbg_event_seconds(done);
+    for (size_t k = 0; k < ntasks; k++) {
+        uint64_t p = out[k].patches;
+        c->patches[i] += p;
+        c->task_max[i] = p > c->task_max[i] ? p : c->task_max[i];
+        if (out[k].status != VBQ_OK && out[k].status != VBQ_BUDGET) {
+            c->wasted_patches[i] += p;
+            c->wasted_tasks[i]++;
+        }
+    }
 }
 
 /* The launch's handed patches (the first `words` words of s->hand, whole
@@ -163,7 +177,7 @@ static int launch_tier(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *c
                        "cover kernel");
     if (done) {
         if (rc == VB_OK)
-            tier_clock(s, t, done, ncells);
+            tier_clock(s, t, done, out, ncells);
         clReleaseEvent(done);
     }
     cl_uint counters[4] = {0, 0, 0, 0};

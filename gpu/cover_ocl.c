@@ -92,29 +92,52 @@ static int retry_huge(vb_ctx *ctx, cov_state *s, cov_tier *t, size_t n2)
 
 /* The cells of out[0 .. ncells) that pick takes, once more on tier t as
  * root-patch tasks (vbg_cover_tasks.h): a costly cell then runs on many
- * slices at once instead of lengthening the batch. Each such out[c] gets
- * the joined result (its quadruples at the end of host_q), or the status of
- * a task that failed. *picked: the count of such cells. */
+ * slices at once instead of lengthening the batch. The cells' tasks in
+ * the order vbg_tasks_order gives (costliest first; index order with
+ * VORBALL_COVER_TASK_ORDER=0, s->task_order). Each such out[c] gets the
+ * joined result (its quadruples at the end of host_q), or the status of a
+ * task that failed. *picked: the count of such cells. */
 static int run_tasks(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *cells,
                      size_t ncells, vbq_cell_out *out, vbg_task_pick pick, size_t *picked)
 {
-    size_t per = vbg_tasks_per_cell(s->env.T), n2 = 0;
+    size_t per = vbg_tasks_per_cell(s->env.T, s->task_split), np = 0;
     *picked = 0;
     for (size_t c = 0; c < ncells; c++)
-        if (pick(out[c].status))
-            n2 += per;
-    if (n2 == 0)
+        np += pick(out[c].status) != 0;
+    if (np == 0)
         return VB_OK;
-    if (room2(ctx, s, n2) != VB_OK)
-        return VB_ENOMEM;
-    vbg_tasks_make(cells, out, ncells, pick, per, s->cells2, s->roots2);
-    int rc = vbg_cov_run_tier(ctx, s, t, s->cells2, s->roots2, n2, s->outs2);
+    uint32_t *ord = malloc(np * sizeof *ord), *pc = malloc(np * sizeof *pc);
+    vbq_cell_out *po = malloc(np * sizeof *po);
+    int rc = ord && pc && po ? VB_OK : VB_ENOMEM;
+    if (rc == VB_OK && s->task_order)
+        rc = vbg_tasks_order(out, ncells, pick, ord) == np ? VB_OK : VB_ENOMEM;
+    else if (rc == VB_OK)
+        for (size_t c = 0, j = 0; c < ncells; c++)
+            if (pick(out[c].status))
+                ord[j++] = (uint32_t)c;
+    rc = rc == VB_OK ? room2(ctx, s, np * per)
+                     : vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover)");
+    for (size_t j = 0; rc == VB_OK && j < np; j++) {
+        pc[j] = cells[ord[j]];
+        po[j] = out[ord[j]];
+    }
+    size_t n2 = np * per;
+    if (rc == VB_OK) {
+        vbg_tasks_make(pc, po, np, pick, per, s->task_split, s->cells2, s->roots2);
+        rc = vbg_cov_run_tier(ctx, s, t, s->cells2, s->roots2, n2, s->outs2);
+    }
     if (rc == VB_OK && t == &s->tier[COV_BIG])
         rc = retry_huge(ctx, s, t, n2);
     if (rc == VB_OK)
         rc = vbg_cov_host_q_room(ctx, s, vbg_tasks_quads(s->outs2, n2));
-    if (rc == VB_OK)
-        *picked = vbg_tasks_join(s->outs2, out, ncells, pick, per, s->host_q, &s->host_nq);
+    if (rc == VB_OK) {
+        *picked = vbg_tasks_join(s->outs2, po, np, pick, per, s->host_q, &s->host_nq);
+        for (size_t j = 0; j < np; j++)
+            out[ord[j]] = po[j];
+    }
+    free(ord);
+    free(pc);
+    free(po);
     return rc;
 }
 
@@ -200,7 +223,7 @@ static int cov_run(vb_ctx *ctx, vb_cover_backend *be, const uint32_t *cells, siz
     /* The cells past the group kernel's budget, on the work-item kernel;
      * those of them whose tasks ran out of arenas go on to the large
      * slices with the rest. */
-    size_t per = vbg_tasks_per_cell(s->env.T), handed = 0, retried = 0;
+    size_t per = vbg_tasks_per_cell(s->env.T, s->task_split), handed = 0, retried = 0;
     cov_tier *th = &s->tier[COV_HAND], *t1 = &s->tier[COV_BIG];
     size_t nh = rc == VB_OK && th->k ? count_picked(out, ncells, handed_off) : 0;
     if (nh)

@@ -123,11 +123,24 @@ size_t vbg_cov_split(cov_state *s, size_t n, size_t input)
     return 0;
 }
 
+size_t vbg_cov_task_share(const cov_state *s)
+{
+    return s->task_split == 1u ? 1u : 4u;
+}
+
+void vbg_cov_big_qper(cov_state *s, uint32_t qper)
+{
+    uint32_t q = qper / (uint32_t)vbg_cov_task_share(s);
+    s->tier[COV_BIG].qper = s->tier[COV_HUGE].qper = q ? q : 1u;
+}
+
 size_t vbg_cov_tier_slices(const cov_state *s, const cov_tier *t, size_t tasks)
 {
     size_t w = t->wg ? tasks : (tasks + 63) / 64 * 64;
-    if (t->wg && t == &s->tier[COV_BIG])
-        w = (tasks + COV_BIG_TASKS - 1) / COV_BIG_TASKS;
+    if (t->wg && t == &s->tier[COV_BIG]) {
+        size_t per = (size_t)COV_BIG_TASKS * vbg_cov_task_share(s);
+        w = (tasks + per - 1) / per;
+    }
     w = w < t->want ? w : t->want;
     w = slices_fit(s, t, s->pool_room, w);
     if (!t->wg && w >= 64)
@@ -278,7 +291,9 @@ void vbg_cov_caps(cov_state *s, int cpu, int caches, int hand, size_t units)
     /* Output room per task: about 10 quadruples per cell on proteins; the
      * second tier's cells are the large ones. */
     t0->qper = th->qper = 24u;
-    t1->qper = t3->qper = COV_BIG_QPER;
+    s->task_split = COV_TASK_SPLIT;
+    s->task_order = 1;
+    vbg_cov_big_qper(s, COV_BIG_QPER);
     t0->wg = t1->wg = t3->wg = s->wg;
     /* The caches on the first tier only: a CPU device's large tiers (test
      * knobs alone make them) keep their slices' size. */

@@ -1,22 +1,26 @@
 /* Root-patch tasks of the direction cover (vbg_cover_tasks.h). */
 #include "vbg_cover_tasks.h"
 
+#include <stdlib.h>
 #include <string.h>
 
-size_t vbg_tasks_per_cell(uint32_t T)
+size_t vbg_tasks_per_cell(uint32_t T, unsigned split)
 {
-    return 24u * (size_t)T * T;
+    return (6u * (size_t)T * T) << (2u * (split == 1u ? 1u : 2u));
 }
 
 size_t vbg_tasks_make(const uint32_t *cells, const vbq_cell_out *out, size_t ncells,
-                      vbg_task_pick pick, size_t per, uint32_t *cells2, uint32_t *roots2)
+                      vbg_task_pick pick, size_t per, unsigned split, uint32_t *cells2,
+                      uint32_t *roots2)
 {
     size_t j = 0;
     for (size_t c = 0; c < ncells; c++)
         if (pick(out[c].status))
             for (size_t r = 0; r < per; r++, j++) {
                 cells2[j] = cells[c];
-                roots2[j] = VBQ_TASK((uint32_t)(r / 4), (uint32_t)(r % 4) + 1u);
+                roots2[j] = split == 1u ? VBQ_TASK((uint32_t)(r / 4), (uint32_t)(r % 4) + 1u)
+                                        : VBQ_TASK2((uint32_t)(r / 16), (uint32_t)(r / 4 % 4) + 1u,
+                                                    (uint32_t)(r % 4) + 1u);
             }
     return j;
 }
@@ -68,4 +72,39 @@ size_t vbg_tasks_join(const vbq_cell_out *t, vbq_cell_out *out, size_t ncells, v
         out[c] = sum;
     }
     return picked;
+}
+
+/* A picked cell's first-launch patches and index, for qsort. */
+typedef struct task_key {
+    uint32_t patches, c;
+} task_key;
+
+static int costlier_first(const void *a, const void *b)
+{
+    const task_key *x = a, *y = b;
+    if (x->patches != y->patches)
+        return x->patches > y->patches ? -1 : 1;
+    return x->c < y->c ? -1 : x->c > y->c;
+}
+
+size_t vbg_tasks_order(const vbq_cell_out *out, size_t ncells, vbg_task_pick pick,
+                       uint32_t *order)
+{
+    size_t n = 0;
+    for (size_t c = 0; c < ncells; c++)
+        n += pick(out[c].status) != 0;
+    task_key *k = malloc((n ? n : 1) * sizeof *k);
+    if (!k)
+        return SIZE_MAX;
+    n = 0;
+    for (size_t c = 0; c < ncells; c++)
+        if (pick(out[c].status)) {
+            k[n].patches = out[c].patches;
+            k[n++].c = (uint32_t)c;
+        }
+    qsort(k, n, sizeof *k, costlier_first);
+    for (size_t j = 0; j < n; j++)
+        order[j] = k[j].c;
+    free(k);
+    return n;
 }

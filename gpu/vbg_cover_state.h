@@ -131,6 +131,8 @@ typedef struct cov_state {
     int fit;                 /* 1: the first tier's arenas follow the input (vbg_cov_fit) */
     int fitted;              /* 1: this run's first tier has the fitted arenas */
     size_t last_n;           /* spheres of the last run begun (trim) */
+    unsigned task_split;     /* levels below the roots a cell's tasks split at (COV_TASK_SPLIT) */
+    int task_order;          /* 1: a tier's tasks costliest cell first (vbg_tasks_order) */
     vb_cover_clocks *clocks; /* the backend's, per tier (indexed by COV_*) */
 } cov_state;
 
@@ -293,10 +295,26 @@ typedef struct cov_state {
  * 211,440-atom tiling's launches held 848 MiB of quadruple room on an
  * H100, 77 MiB now (its first tier's 24 a cell). */
 #define COV_BIG_QPER 16u
+/* A cell past the first tier runs again as tasks split this many levels
+ * below its 6 T^2 root patches (vbg_cover_tasks.h): 1, one per child (24
+ * T^2); VORBALL_COVER_TASK_SPLIT=2, one per grandchild (96 T^2), for
+ * measurements on a GPU. A large launch lasts as long as its longest task:
+ * host covers of the capsid's 288 cells past the fitted arenas (4,096
+ * records, 16,384 labels) in large arenas, their tasks in cell order on
+ * 210 slices (stop 52, papers/gpu-voronoi-cells-of-spheres/results/
+ * kern52_stop52.md): split 1, 27,648 tasks, 266,820 patches, the longest
+ * 1,906, 2,838 patches on the slowest slice; split 2, 110,592 tasks,
+ * 411,540 patches (each repeats its root and child), the longest 895, 2,360
+ * on the slowest slice, and four times the tasks' neighbour gathers. The
+ * large tier's slices (COV_BIG_TASKS) and output room a task
+ * (COV_BIG_QPER) count per 24 T^2 of a cell's tasks, so a cell gets the
+ * slices and room either way. */
+#define COV_TASK_SPLIT 1u
 
 /* Applies the environment's test and measurement knobs to s's tiers
  * (gpu/cover_knobs.c: VORBALL_COVER_NB, _LAB, _FIT, _TIER2, _TIER3, _BIG_NB, _HAND_WORDS,
- * _HUGE_NB, _CELLS_PER_SLICE, _POOL_PER_SPHERE, _HAND_CAP, _BIG_QPER), after
+ * _HUGE_NB, _CELLS_PER_SLICE, _POOL_PER_SPHERE, _HAND_CAP, _TASK_SPLIT, _TASK_ORDER,
+ * _BIG_QPER), after
  * vbg_cover_open set their defaults. */
 void vbg_cover_knobs(cov_state *s);
 
@@ -327,6 +345,14 @@ size_t vbg_cov_task_bytes(const cov_tier *t);
  * launch room and the pool's room. 0, or the bytes the run needs at least
  * when the budget cannot hold them. */
 size_t vbg_cov_split(cov_state *s, size_t n, size_t input);
+
+/* Tasks of a cell split at s->task_split levels per task of the split
+ * at one level (24 T^2 a cell): 1 or 4. */
+size_t vbg_cov_task_share(const cov_state *s);
+
+/* Sets the large and huge tiers' output room a task from qper quadruples
+ * per 24 T^2 of a cell's tasks (vbg_cov_task_share; 1 at least). */
+void vbg_cov_big_qper(cov_state *s, uint32_t qper);
 
 /* Slices of tier t (the large, huge or hand-off tier) for `tasks` tasks:
  * at most its wanted slices and what the pool's room holds, in whole

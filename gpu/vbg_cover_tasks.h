@@ -14,16 +14,19 @@
 /* Which cells a pass takes: 1 for a status to cover again. */
 typedef int (*vbg_task_pick)(uint32_t status);
 
-/* Tasks per cell with T root squares per face side: one per child of each
- * of the 6 T^2 root patches, 24 T^2 (VBQ_TASK). */
-size_t vbg_tasks_per_cell(uint32_t T);
+/* Tasks per cell with T root squares per face side, split `split` levels
+ * below the 6 T^2 root patches: 1, one per child, 24 T^2 (VBQ_TASK); 2 (any
+ * other value), one per grandchild, 96 T^2 (VBQ_TASK2). */
+size_t vbg_tasks_per_cell(uint32_t T, unsigned split);
 
 /* Writes the tasks of every cell k < ncells whose out[k].status pick
- * takes, in cell order, per tasks each: cells2[j] = cells[k], roots2[j] =
- * VBQ_TASK(root, child). cells2 and roots2 hold per * (the cells picked);
- * returns the count of tasks written. */
+ * takes, in cell order, per = vbg_tasks_per_cell(T, split) tasks each:
+ * cells2[j] = cells[k], roots2[j] = VBQ_TASK(root, child) (split 1) or
+ * VBQ_TASK2(root, child, grandchild). cells2 and roots2 hold per * (the
+ * cells picked); returns the count of tasks written. */
 size_t vbg_tasks_make(const uint32_t *cells, const vbq_cell_out *out, size_t ncells,
-                      vbg_task_pick pick, size_t per, uint32_t *cells2, uint32_t *roots2);
+                      vbg_task_pick pick, size_t per, unsigned split, uint32_t *cells2,
+                      uint32_t *roots2);
 
 /* Quadruples the tasks' results t[0 .. ntasks) hold in all: room that
  * vbg_tasks_join may append. */
@@ -40,5 +43,16 @@ size_t vbg_tasks_quads(const vbq_cell_out *t, size_t ntasks);
  * the count of cells picked. */
 size_t vbg_tasks_join(const vbq_cell_out *t, vbq_cell_out *out, size_t ncells, vbg_task_pick pick,
                       size_t per, uint32_t *q, size_t *nq);
+
+/* The cells of out[0 .. ncells) that pick takes, costliest first: their
+ * indices in order[] (room for ncells), by the patches their first launch
+ * walked before it stopped (out[c].patches), most first, ties in index
+ * order. A launch of tasks lasts as long as its slowest slice, and its
+ * slices take tasks in order: a cell that walked far before it ran out
+ * tends to have the longest tasks, which then start first (the capsid's
+ * 288 cells past the fitted arenas, host covers: results/kern52_stop52.md).
+ * Returns the count, or SIZE_MAX when out of memory. */
+size_t vbg_tasks_order(const vbq_cell_out *out, size_t ncells, vbg_task_pick pick,
+                       uint32_t *order);
 
 #endif

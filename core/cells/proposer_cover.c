@@ -163,10 +163,13 @@ static int cover_run(vb_ctx *ctx, void *state, const vb_proposer_await *aw,
     if (rc != VB_OK)
         return rc;
     /* The device's clocks run since it opened (bench reuses it): this
-     * run's share is the difference. */
+     * run's share is the difference (the most patches of a task: this
+     * run's, counted from zero). */
     vb_cover_clocks before = {0};
-    if (s->be)
+    if (s->be) {
+        memset(s->be->clocks.task_max, 0, sizeof s->be->clocks.task_max);
         before = s->be->clocks;
+    }
     if (args->quads_sink && on)
         rc = vb_cover_run_parts(ctx, set, &o, s->be, vb_cover_pipeline_parts(), judge_sink, &j,
                                 &st);
@@ -203,6 +206,10 @@ static int cover_run(vb_ctx *ctx, void *state, const vb_proposer_await *aw,
         res->cover_clocks.launch_s[i] = now->launch_s[i] - before.launch_s[i];
         res->cover_clocks.launches[i] = now->launches[i] - before.launches[i];
         res->cover_clocks.tasks[i] = now->tasks[i] - before.tasks[i];
+        res->cover_clocks.patches[i] = now->patches[i] - before.patches[i];
+        res->cover_clocks.wasted_patches[i] = now->wasted_patches[i] - before.wasted_patches[i];
+        res->cover_clocks.wasted_tasks[i] = now->wasted_tasks[i] - before.wasted_tasks[i];
+        res->cover_clocks.task_max[i] = now->task_max[i];
     }
     res->cover_steps = st.steps;
     /* The filter's buffers beside the cover's: at most their sum at once. */

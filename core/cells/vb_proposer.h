@@ -31,10 +31,16 @@ extern "C" {
  * excluded), the host's wall seconds of its launches (arguments, uploads,
  * the kernel and the read-backs: launch_s - kernel_s is what the launches
  * spent besides the kernels), its launches and its tasks (cells, or
- * root-patch tasks). */
+ * root-patch tasks); the work (issue #30): the patches its tasks popped,
+ * the most one task popped (a launch lasts as long as its slowest slice),
+ * and the patches of its tasks that ran out of room (an arena, the output,
+ * a tie cluster's handed-patch room), whose cells or tasks a later step or
+ * the host covers again from their roots: work done twice. */
 typedef struct vb_cover_clocks {
     double kernel_s[VB_COVER_STEPS], launch_s[VB_COVER_STEPS];
     uint64_t launches[VB_COVER_STEPS], tasks[VB_COVER_STEPS];
+    uint64_t patches[VB_COVER_STEPS], task_max[VB_COVER_STEPS];
+    uint64_t wasted_patches[VB_COVER_STEPS], wasted_tasks[VB_COVER_STEPS];
 } vb_cover_clocks;
 
 /* Where a device run's cover time went on the host (vb_cover.h's

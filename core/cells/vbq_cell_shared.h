@@ -210,22 +210,28 @@ VBS_FN int vbq_envelope_filter(const vbq_env *e, const vbq_arena *ar, vbq_cell_o
 }
 
 /* The root patches of a task: all of them (VBQ_ALL_ROOTS), or root r
- * alone (task (r << 3)), or child c (0..3) of root r alone (task (r << 3) |
- * (c + 1)): the root's own evaluation is the same in every task, and only
- * its subdivision keeps one child, so the union of the tasks makes the
- * whole cell's decisions. */
+ * alone (task (r << 6)), or child c (0..3) of root r alone (task (r << 6)
+ * | (c + 1)), or grandchild g (0..3) of that child alone (task (r << 6) |
+ * ((g + 1) << 3) | (c + 1), VBQ_TASK2): a patch above the one kept is
+ * evaluated the same in every task, and only its subdivision keeps one
+ * child, so the union of the tasks makes the whole cell's decisions. A
+ * level's selector 0 keeps every child of that level (VBQ_RESUME's are 0). */
 #define VBQ_ALL_ROOTS 0xffffffffu
-#define VBQ_TASK(r, c) (((r) << 3) | (c))
+#define VBQ_TASK(r, c) (((r) << 6) | (c))
+#define VBQ_TASK2(r, c, g) (((r) << 6) | ((g) << 3) | (c))
 
 VBS_FN int vbq_task_root(vbs_u32 task, vbs_u32 k)
 {
-    return task == VBQ_ALL_ROOTS || (task >> 3) == k;
+    return task == VBQ_ALL_ROOTS || (task >> 6) == k;
 }
 
 /* Does a task keep child k of a subdivided patch at `level`? */
 VBS_FN int vbq_task_child(vbs_u32 task, vbs_u32 level, vbs_u32 k)
 {
-    return task == VBQ_ALL_ROOTS || level > 0u || (task & 7u) == 0u || (task & 7u) == k + 1u;
+    if (task == VBQ_ALL_ROOTS || level > 1u)
+        return 1;
+    vbs_u32 sel = level == 0u ? (task & 7u) : ((task >> 3) & 7u);
+    return sel == 0u || sel == k + 1u;
 }
 
 #ifndef VBQ_GROUP_ONLY

@@ -168,8 +168,9 @@ VBS_FN void vbq_env_make(vbq_env *e, const VBS_GLOBAL double *x, const VBS_GLOBA
 #define VBQ_HANDOFF 1
 #endif
 /* The root of a cover that resumes handed patches (vbq_task_root takes no
- * root patch for it, vbq_task_child every child). */
-#define VBQ_RESUME 0xfffffff8u
+ * root patch for it, vbq_task_child every child: its selectors, the low six
+ * bits, are 0). */
+#define VBQ_RESUME 0xffffffc0u
 /* A handed patch's words: its frame (vbq_frame, 12 words; off holds the
  * cell, len the length of its list), then the sphere ids of the list in
  * order, padded to an even count (frames stay 8-byte aligned). */

@@ -73,6 +73,26 @@ void vb_vertices_stats(vb_ctx *ctx, const vb_vertices_result *r, vb_stat_fields 
         vb_stat_uint(fs, step[i][2], s->cover_clocks.launches[i]);
         vb_stat_uint(fs, step[i][3], s->cover_clocks.tasks[i]);
     }
+    /* The work of each step's tasks (vb_cover_clocks, issue #30): patches
+     * popped, the most one task popped, and the patches and tasks of those
+     * that ran out of room and were covered again from their roots. */
+    static const char *const work[VB_COVER_STEPS][4] = {
+        {"cover_patches_first", "cover_task_max_patches_first", "cover_wasted_patches_first",
+         "cover_wasted_tasks_first"},
+        {"cover_patches_large", "cover_task_max_patches_large", "cover_wasted_patches_large",
+         "cover_wasted_tasks_large"},
+        {"cover_patches_handoff", "cover_task_max_patches_handoff",
+         "cover_wasted_patches_handoff", "cover_wasted_tasks_handoff"},
+        {"cover_patches_huge", "cover_task_max_patches_huge", "cover_wasted_patches_huge",
+         "cover_wasted_tasks_huge"},
+        {"cover_patches_rerun", "cover_task_max_patches_rerun", "cover_wasted_patches_rerun",
+         "cover_wasted_tasks_rerun"}};
+    for (int i = 0; i < VB_COVER_STEPS; i++) {
+        vb_stat_uint(fs, work[i][0], s->cover_clocks.patches[i]);
+        vb_stat_uint(fs, work[i][1], s->cover_clocks.task_max[i]);
+        vb_stat_uint(fs, work[i][2], s->cover_clocks.wasted_patches[i]);
+        vb_stat_uint(fs, work[i][3], s->cover_clocks.wasted_tasks[i]);
+    }
     /* The host's side of a device cover (vb_cover_steps; timings): the
      * batches, the device's thread's work after each read-back, the sinks,
      * the CPU of the host threads' whole cells and of the handed patches

@@ -18,6 +18,7 @@
 #include "vb_cover.h"
 #include "vb_test.h"
 #include "vbg_cover.h"
+#include "vbg_cover_state.h" /* COV_TASK_SPLIT */
 #include "vbg_cover_tasks.h"
 #include "vbg_runtime.h"
 #include "vb_test_device.h"
@@ -114,19 +115,43 @@ static int is_budget(uint32_t status)
     return status == VBQ_BUDGET;
 }
 
-/* The hand-off of the cells past the group kernel's budget, as the driver
+/* vbg_tasks_order: the cells a pick takes, by the patches their first
+ * launch walked, most first, ties in index order; the others left out. */
+static void tasks_order(void)
+{
+    static const uint32_t st[7] = {VBQ_OK, VBQ_BUDGET, VBQ_BUDGET, VBQ_OK,
+                                   VBQ_BUDGET, VBQ_BUDGET, VBQ_BUDGET};
+    static const uint32_t patches[7] = {900, 5, 70, 5000, 70, 2048, 0};
+    vbq_cell_out o[7];
+    memset(o, 0, sizeof o);
+    for (int c = 0; c < 7; c++) {
+        o[c].status = st[c];
+        o[c].patches = patches[c];
+    }
+    uint32_t order[7] = {99, 99, 99, 99, 99, 99, 99};
+    CHECK_INT(vbg_tasks_order(o, 7, is_budget, order), 5);
+    static const uint32_t want[5] = {5, 2, 4, 1, 6};
+    for (int j = 0; j < 5; j++)
+        CHECK_INT(order[j], want[j]);
+    CHECK_INT(order[5], 99);
+    CHECK_INT(vbg_tasks_order(o, 0, is_budget, order), 0);
+}
+
+/* The hand-off of the cells past the group kernel, as the driver
  * makes it (gpu/cover_ocl.c, vbg_cover_tasks.h): each cell's root-patch
  * tasks covered by vbq_cover_cell (the work-item kernel's body) in ar, and
  * joined. *nq grows by the quadruples joined; returns the cells handed. */
 static size_t hand_off(const vbq_env *env, vbq_arena *ar, vbq_cell_out *outs, uint32_t n,
                        uint32_t *qout, uint32_t cap, uint32_t *nq)
 {
-    size_t per = vbg_tasks_per_cell(env->T), nh = 0;
+    size_t per = vbg_tasks_per_cell(env->T, COV_TASK_SPLIT), nh = 0;
     for (uint32_t k = 0; k < n; k++)
         nh += is_budget(outs[k].status);
     uint32_t *c2 = malloc((nh * per + 1) * sizeof *c2), *r2 = malloc((nh * per + 1) * sizeof *r2);
     vbq_cell_out *t = malloc((nh * per + 1) * sizeof *t);
-    size_t nt = c2 && r2 && t ? vbg_tasks_make(env->ids, outs, n, is_budget, per, c2, r2) : 0;
+    size_t nt = c2 && r2 && t
+                    ? vbg_tasks_make(env->ids, outs, n, is_budget, per, COV_TASK_SPLIT, c2, r2)
+                    : 0;
     CHECK_INT(nt, nh * per);
     size_t q = *nq;
     for (size_t j = 0; j < nt; j++) {
@@ -292,14 +317,17 @@ static int emulated(vb_ctx *ctx, const vb_sphere_set *s, uint32_t budget, uint32
 }
 
 /* The OpenCL CPU device's cover backend; with `split`, small first-tier
- * arenas, so that cells overflow and run again as root-patch tasks (undone
- * by device_close). */
+ * arenas, so that cells overflow and run again as root-patch tasks, split
+ * at one level below the roots (1) or two (2, VORBALL_COVER_TASK_SPLIT)
+ * (undone by device_close). */
 static int device_open(vb_ctx *ctx, int split, vbg_runtime **rt, vb_cover_backend **be)
 {
     if (split) {
         setenv("VORBALL_COVER_NB", "48", 1);
         setenv("VORBALL_COVER_TIER2", "64", 1);
     }
+    if (split == 2)
+        setenv("VORBALL_COVER_TASK_SPLIT", "2", 1);
     *rt = NULL;
     *be = NULL;
     int rc = vbg_runtime_open(ctx, VB_DEVICE_CPU, rt);
@@ -312,6 +340,7 @@ static void device_close(vbg_runtime *rt, vb_cover_backend *be)
     vbg_runtime_close(rt);
     unsetenv("VORBALL_COVER_NB");
     unsetenv("VORBALL_COVER_TIER2");
+    unsetenv("VORBALL_COVER_TASK_SPLIT");
 }
 
 /* The work-item kernel on the OpenCL CPU device (device_open's split). */
@@ -483,6 +512,10 @@ static void one(vb_ctx *ctx, const cover_case *cs, const char *path, int have_de
         vb_quad_list_free(&h);
         CHECK_INT(device_cover(ctx, s, 1, cs->hands, &e), VB_OK);
         CHECK(same(&a, &e));
+        /* a cell's tasks one per grandchild of its roots: the same union */
+        CHECK_INT(device_cover(ctx, s, 2, cs->hands, &h), VB_OK);
+        CHECK(same(&a, &h));
+        vb_quad_list_free(&h);
         CHECK_INT(streamed_cover(ctx, s, 0, &f), VB_OK);
         CHECK(same(&a, &f));
         CHECK_INT(streamed_cover(ctx, s, 1, &g), VB_OK);
@@ -531,6 +564,7 @@ int main(void)
                                 {"corpus/inputs/fcc_hull_ties.xyzr", 1, 10},
                                 {"corpus/inputs/bcc_lattice.xyzr", 1, 13},
                                 {"corpus/inputs/sc_jitter12.xyzr", 0, 49}};
+    tasks_order();
     char path[4096];
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         snprintf(path, sizeof path, "%s/%s", src, cases[k].path);

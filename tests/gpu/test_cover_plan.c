@@ -54,6 +54,9 @@ static size_t h100_peak(size_t n, size_t big, size_t huge, size_t cps, size_t pe
         s.tier[COV_FIRST].lab_cap = lab;
     }
     size_t batch = n < ((size_t)1 << 18) ? n : (size_t)1 << 18;
+    /* the tasks measured were split at one level (24 T^2 a cell) */
+    big *= vbg_cov_task_share(&s);
+    huge *= vbg_cov_task_share(&s);
     size_t peak = vbg_cov_peak_plan(&s, n, vbg_cov_input_bytes(n, n / 2, n), batch, big, huge);
     printf("H100 plan: n %zu, large tasks %zu, huge %zu, spheres a slice %zu, pool %zu B a "
            "sphere: first tier %zu slices, large %zu, huge %zu, peak %.1f MiB\n",
@@ -131,6 +134,8 @@ static size_t h100_fit_peak(size_t n, size_t big, size_t huge, size_t over, int 
         vbg_cov_fit(&s, COV_FIT_SAMPLE, over);
     *fitted = s.fitted;
     size_t batch = n < ((size_t)1 << 18) ? n : (size_t)1 << 18;
+    big *= vbg_cov_task_share(&s); /* measured at one level's split, as h100_peak */
+    huge *= vbg_cov_task_share(&s);
     size_t peak = vbg_cov_peak_plan(&s, n, vbg_cov_input_bytes(n, n / 2, n), batch, big, huge);
     printf("H100 fitted plan: n %zu, %s%zu of %u sampled cells past half the fitted arenas: "
            "first tier %zu slices of %u records / %u labels, peak %.1f MiB\n",

@@ -6,7 +6,9 @@
 # tasks; on the host the batches, the device thread's work after each
 # read-back, the sinks, the CPU of whole host cells and of the resumed
 # patches, the host threads' wait for the device and the device's wait for
-# the host (the tail). Checked on PoCL (on a GPU the same code):
+# the host (the tail); per step the work (patches, the most of a task, the
+# patches and tasks that ran out and ran again). Checked on PoCL (on a GPU
+# the same code):
 # - every column is printed, on ref too (zero there: no device);
 # - sums within totals: a step's kernel seconds within its launches' wall,
 #   the launches within cover_device_s, the device's batches and their
@@ -18,6 +20,10 @@
 #   a cell (VORBALL_COVER_HAND_WORDS) the first tier runs again for the cells
 #   that found no room, counted in cover_*_rerun, while cover_launches_first
 #   stays 1 and the vertex rows stay ref's;
+# - the steps' work: a protein fragment's cells that run out of 48 records
+#   a first-tier slice counted as wasted, run again as tasks (four times as
+#   many split at two levels), the patches each step kept summing to
+#   cover_patches, with the same vertex rows as ref;
 # - with the host threads resuming (VORBALL_COVER_RESUME_SPREAD=1, a GPU's
 #   default) the queued resumes are counted, with no resume CPU lost.
 # usage: cover_steps.sh VORBALL CORPUS_DIR WORK_DIR
@@ -107,6 +113,43 @@ check spread
 echo "spread: $(counts spread)"
 [ "$(stat cover_resume_queued spread.err)" -gt 0 ] || fail "spread: no resume queued"
 [ "$(stat cover_resume_queued a.err)" = 0 ] || fail "a: resumes queued beside a CPU device"
+# The steps' work (issue #30): with 48 records a first-tier slice
+# (VORBALL_COVER_NB) and a large tier (VORBALL_COVER_TIER2), a protein
+# fragment's cells that run out are counted as wasted (their patches and
+# tasks) and run again as 24 T^2 tasks each, 96 T^2 split at two levels
+# (VORBALL_COVER_TASK_SPLIT=2); what each step kept (its patches but the
+# wasted ones) adds up to cover_patches, with no cell handed or left to the
+# host; the most patches of a task is within its step's patches.
+fr=$corpus/inputs/crambin_fragment.xyzr
+run 0 wref.err "$vorball" vertices "$fr" --device ref --threads 2 -o wref.tsv
+for sp in 1 2; do
+    run 0 "w$sp.err" env VORBALL_COVER_NB=48 VORBALL_COVER_TIER2=64 \
+        VORBALL_COVER_TASK_SPLIT=$sp "$vorball" vertices "$fr" --device cpu --threads 2 --stats \
+        -o "w$sp.tsv"
+    f=w$sp.err
+    [ "$(vertex_lines "w$sp.tsv")" = "$(vertex_lines wref.tsv)" ] || fail "w$sp: other vertices"
+    [ "$(stat cover_resumed_patches $f)" = 0 ] && [ "$(stat cover_host_cells $f)" = 0 ] ||
+        fail "w$sp: cells handed or left to the host: the sum below does not hold"
+    kept=0
+    for s in $steps; do
+        p=$(stat "cover_patches_$s" $f) w=$(stat "cover_wasted_patches_$s" $f)
+        m=$(stat "cover_task_max_patches_$s" $f)
+        [ "$w" -le "$p" ] && [ "$m" -le "$p" ] || fail "w$sp: $s wasted $w or most $m past $p"
+        kept=$((kept + p - w))
+    done
+    [ "$kept" = "$(stat cover_patches $f)" ] ||
+        fail "w$sp: the steps kept $kept patches, cover_patches $(stat cover_patches $f)"
+    n=$(stat cover_wasted_tasks_first $f) t=$(stat cover_tasks_large $f)
+    [ "$n" -gt 0 ] && [ "$(stat cover_wasted_patches_first $f)" -gt 0 ] ||
+        fail "w$sp: no first-tier cell ran out of 48 records"
+    [ $((t % (n * 24))) = 0 ] || fail "w$sp: $t large tasks for $n cells"
+    [ "$(stat cover_task_max_patches_large $f)" -gt 0 ] || fail "w$sp: no large task's patches"
+    echo "w$sp: first $(stat cover_patches_first $f) patches, $n cells ran out" \
+        "($(stat cover_wasted_patches_first $f) patches), $t large tasks" \
+        "($(stat cover_patches_large $f) patches, most $(stat cover_task_max_patches_large $f))"
+done
+[ "$(stat cover_tasks_large w2.err)" = $((4 * $(stat cover_tasks_large w1.err))) ] ||
+    fail "split at two levels: not four times the tasks"
 # bench --json: the same columns, in its cover_steps object
 run 0 bench.err "$vorball" bench "$in" --device cpu --threads 2 --json -o bench.json
 python3 - bench.json "$cols" <<'EOF' || fail "bench --json: cover_steps"
