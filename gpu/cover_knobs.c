@@ -69,10 +69,10 @@ void vbg_cover_knobs(cov_state *s)
         s->task_split = (unsigned)v;
         vbg_cov_big_qper(s, COV_BIG_QPER);
     }
-    /* VORBALL_COVER_TASK_ORDER=0: a tier's tasks in cell order, not
-     * costliest first (vbg_tasks_order; measurements). */
-    if (knob("VORBALL_COVER_TASK_ORDER", 1) == 0)
-        s->task_order = 0;
+    /* VORBALL_COVER_TASK_ORDER=0: a tier's tasks in cell order; =2
+     * costliest first at any size (vbg_tasks_ordered; measurements). */
+    if ((v = knob("VORBALL_COVER_TASK_ORDER", 1)) == 0 || v == 2)
+        s->task_order = (int)v;
     if ((v = knob("VORBALL_COVER_BIG_QPER", 0)) > 0)
         t1->qper = t3->qper = (uint32_t)v;
 }

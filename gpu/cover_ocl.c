@@ -93,8 +93,8 @@ static int retry_huge(vb_ctx *ctx, cov_state *s, cov_tier *t, size_t n2)
 /* The cells of out[0 .. ncells) that pick takes, once more on tier t as
  * root-patch tasks (vbg_cover_tasks.h): a costly cell then runs on many
  * slices at once instead of lengthening the batch. The cells' tasks in
- * the order vbg_tasks_order gives (costliest first; index order with
- * VORBALL_COVER_TASK_ORDER=0, s->task_order). Each such out[c] gets the
+ * the order vbg_tasks_order gives (costliest first where
+ * vbg_tasks_ordered says, else index order; s->task_order). Each such out[c] gets the
  * joined result (its quadruples at the end of host_q), or the status of a
  * task that failed. *picked: the count of such cells. */
 static int run_tasks(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *cells,
@@ -109,7 +109,7 @@ static int run_tasks(vb_ctx *ctx, cov_state *s, cov_tier *t, const uint32_t *cel
     uint32_t *ord = malloc(np * sizeof *ord), *pc = malloc(np * sizeof *pc);
     vbq_cell_out *po = malloc(np * sizeof *po);
     int rc = ord && pc && po ? VB_OK : VB_ENOMEM;
-    if (rc == VB_OK && s->task_order)
+    if (rc == VB_OK && vbg_tasks_ordered(s->task_order, np))
         rc = vbg_tasks_order(out, ncells, pick, ord) == np ? VB_OK : VB_ENOMEM;
     else if (rc == VB_OK)
         for (size_t c = 0, j = 0; c < ncells; c++)

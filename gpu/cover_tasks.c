@@ -87,6 +87,11 @@ static int costlier_first(const void *a, const void *b)
     return x->c < y->c ? -1 : x->c > y->c;
 }
 
+int vbg_tasks_ordered(int order, size_t np)
+{
+    return order == 2 || (order == 1 && np <= VBG_ORDER_CELLS);
+}
+
 size_t vbg_tasks_order(const vbq_cell_out *out, size_t ncells, vbg_task_pick pick,
                        uint32_t *order)
 {

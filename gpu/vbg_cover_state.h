@@ -132,7 +132,8 @@ typedef struct cov_state {
     int fitted;              /* 1: this run's first tier has the fitted arenas */
     size_t last_n;           /* spheres of the last run begun (trim) */
     unsigned task_split;     /* levels below the roots a cell's tasks split at (COV_TASK_SPLIT) */
-    int task_order;          /* 1: a tier's tasks costliest cell first (vbg_tasks_order) */
+    int task_order;          /* a tier's tasks costliest cell first: 1 up to VBG_ORDER_CELLS
+                                cells, 2 always, 0 never (vbg_tasks_ordered) */
     vb_cover_clocks *clocks; /* the backend's, per tier (indexed by COV_*) */
 } cov_state;
 

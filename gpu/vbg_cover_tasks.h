@@ -55,4 +55,18 @@ size_t vbg_tasks_join(const vbq_cell_out *t, vbq_cell_out *out, size_t ncells, v
 size_t vbg_tasks_order(const vbq_cell_out *out, size_t ncells, vbg_task_pick pick,
                        uint32_t *order);
 
+/* Tiers of at most VBG_ORDER_CELLS picked cells run costliest first
+ * (vbg_tasks_ordered). Measured on an H100 (stop 52, run 1b, three rounds,
+ * papers/gpu-voronoi-cells-of-spheres/results/h100_stop52.txt): the capsid's large tier, 288 cells, 0.0836-
+ * 0.0840 s costliest first against 0.0923-0.0940 in cell order; the
+ * 211,440-atom tiling's, 2,260 cells, 0.390-0.391 s against 0.373-0.375
+ * (there the tail is a small share and cell order keeps neighbouring cells'
+ * data together). */
+#define VBG_ORDER_CELLS 1024u
+
+/* Whether a tier of np picked cells runs its tasks costliest first:
+ * order 0 never (VORBALL_COVER_TASK_ORDER=0), 2 always (=2), 1 where np <=
+ * VBG_ORDER_CELLS (the default). */
+int vbg_tasks_ordered(int order, size_t np);
+
 #endif

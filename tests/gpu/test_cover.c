@@ -135,6 +135,13 @@ static void tasks_order(void)
         CHECK_INT(order[j], want[j]);
     CHECK_INT(order[5], 99);
     CHECK_INT(vbg_tasks_order(o, 0, is_budget, order), 0);
+    /* costliest first: by default up to VBG_ORDER_CELLS picked cells */
+    CHECK_INT(vbg_tasks_ordered(1, 288), 1);
+    CHECK_INT(vbg_tasks_ordered(1, VBG_ORDER_CELLS), 1);
+    CHECK_INT(vbg_tasks_ordered(1, VBG_ORDER_CELLS + 1), 0);
+    CHECK_INT(vbg_tasks_ordered(1, 2260), 0);
+    CHECK_INT(vbg_tasks_ordered(2, 2260), 1);
+    CHECK_INT(vbg_tasks_ordered(0, 288), 0);
 }
 
 /* The hand-off of the cells past the group kernel, as the driver
