@@ -118,6 +118,16 @@ int vbm1_rational_rest(const vbm1_rat *keep, const vbm_s1 *r, vbx_ia x, vbx_ia *
  * 0 when B may vanish there, dd > k or dn >= k. */
 int vbm1_rational_rest_to(const vbm1_rat *keep, const vbm_s1 *r, int k, vbx_ia x, vbx_ia *g);
 
+/* An enclosure of c[0] + c[1] t + c[2] t^2 over t in T (c intervals): the
+ * values at T's ends and at the vertex where it may lie in T, each
+ * coefficient once (Horner's scheme over T, which counts t twice, where c[2]
+ * may be 0). The proof above the code (series_rat.c). */
+vbx_ia vbm1_poly2_range(const vbx_ia *c, vbx_ia T);
+
+/* The meet of two enclosures of one quantity (lo > hi where they miss:
+ * then one of them is wrong). */
+vbx_ia vbm1_meet(vbx_ia a, vbx_ia b);
+
 /* A Taylor model of f at the order k (1 <= k <= VBM1_K) about a point xc,
  * over a piece xc + x, x in an interval holding 0 (series_tm.c):
  * f(xc + x) = sum_{n<k} p.c[n] x^n + x^k r(x), p.c[n] enclosing f's Taylor
