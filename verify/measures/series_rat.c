@@ -92,9 +92,15 @@ int vbm1_rational(vbm_s1 *r, const vbx_ia *num, int dn, const vbx_ia *den, int d
 int vbm1_rational_keep(vbm_s1 *r, const vbx_ia *num, int dn, const vbx_ia *den, int dd,
                        vbx_ia at, vbm1_rat *keep)
 {
+    return vbm1_rational_keep_to(r, num, dn, den, dd, at, VBM1_K, keep);
+}
+
+int vbm1_rational_keep_to(vbm_s1 *r, const vbx_ia *num, int dn, const vbx_ia *den, int dd,
+                          vbx_ia at, int kmax, vbm1_rat *keep)
+{
     keep->dd = dd;
     keep->dn = dn;
-    return rational(r, num, dn, den, dd, at, VBM1_K, keep->a, keep->b);
+    return rational(r, num, dn, den, dd, at, kmax, keep->a, keep->b);
 }
 
 int vbm1_rational_rest(const vbm1_rat *keep, const vbm_s1 *r, vbx_ia x, vbx_ia *g)

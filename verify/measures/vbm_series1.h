@@ -100,6 +100,13 @@ typedef struct vbm1_rat {
 int vbm1_rational_keep(vbm_s1 *r, const vbx_ia *num, int dn, const vbx_ia *den, int dd,
                        vbx_ia at, vbm1_rat *keep);
 
+/* vbm1_rational_keep to the order kmax (1 <= kmax <= VBM1_K; the others 0):
+ * coefficients 0..kmax its enclosures bit for bit (each depends on the
+ * lower ones), for a model at the order k, whose rest reads r_(k-dd) ..
+ * r_(k-1) (vbm1_rational_rest_to; kmax = k - 1). */
+int vbm1_rational_keep_to(vbm_s1 *r, const vbx_ia *num, int dn, const vbx_ia *den, int dd,
+                          vbx_ia at, int kmax, vbm1_rat *keep);
+
 /* The remainder of the Taylor polynomial of f = num / den at the point xc
  * (r from vbm1_rational_keep, which left *keep): with A, B the polynomials
  * moved to xc, f(xc + x) = sum_{n<K} r_n x^n + x^K M(x) / B(x) exactly,
