@@ -41,6 +41,36 @@ static void shift(vbx_ia *q, const vbx_ia *p, int d, vbx_ia at)
 }
 
 /* p(at) alone: Horner's scheme. */
+static vbx_ia value(const vbx_ia *p, int d, vbx_ia at);
+
+/* The identity in vbm_series1.h's contract: for each real quadratic p with
+ * coefficients in c[0..2] its range over T is the hull of p(T.lo), p(T.hi)
+ * and, where c2 != 0 and its vertex v = -c1 / (2 c2) lies in T, p(v) = c0 -
+ * c1^2 / (4 c2); p(T.lo) and p(T.hi) lie in the interval evaluations at
+ * the points, v in V and p(v) in the interval value of c0 - c1^2 / (4 c2)
+ * (each coefficient once), so where V misses T no p's vertex lies in T. */
+vbx_ia vbm1_poly2_range(const vbx_ia *c, vbx_ia T)
+{
+    if (!(c[2].lo > 0.0 || c[2].hi < 0.0))
+        return value(c, 2, T);
+    vbx_ia pl = value(c, 2, vbx_ia_point(T.lo)), ph = value(c, 2, vbx_ia_point(T.hi));
+    vbx_ia r = {vbx_min(pl.lo, ph.lo), vbx_max(pl.hi, ph.hi)}, c2 = vbx_ia_add(c[2], c[2]);
+    vbx_ia v = vbx_ia_neg(vbx_ia_div(c[1], c2));
+    if (v.hi >= T.lo && v.lo <= T.hi) {
+        vbx_ia e = vbx_ia_sub(c[0], vbx_ia_div(vbx_ia_sqr(c[1]), vbx_ia_add(c2, c2)));
+        r.lo = vbx_min(r.lo, e.lo);
+        r.hi = vbx_max(r.hi, e.hi);
+    }
+    return r;
+}
+
+/* Two enclosures of one quantity: their common part (both hold it). */
+vbx_ia vbm1_meet(vbx_ia a, vbx_ia b)
+{
+    vbx_ia r = {vbx_max(a.lo, b.lo), vbx_min(a.hi, b.hi)};
+    return r;
+}
+
 static vbx_ia value(const vbx_ia *p, int d, vbx_ia at)
 {
     vbx_ia v = p[d];
@@ -62,9 +92,15 @@ int vbm1_rational(vbm_s1 *r, const vbx_ia *num, int dn, const vbx_ia *den, int d
 int vbm1_rational_keep(vbm_s1 *r, const vbx_ia *num, int dn, const vbx_ia *den, int dd,
                        vbx_ia at, vbm1_rat *keep)
 {
+    return vbm1_rational_keep_to(r, num, dn, den, dd, at, VBM1_K, keep);
+}
+
+int vbm1_rational_keep_to(vbm_s1 *r, const vbx_ia *num, int dn, const vbx_ia *den, int dd,
+                          vbx_ia at, int kmax, vbm1_rat *keep)
+{
     keep->dd = dd;
     keep->dn = dn;
-    return rational(r, num, dn, den, dd, at, VBM1_K, keep->a, keep->b);
+    return rational(r, num, dn, den, dd, at, kmax, keep->a, keep->b);
 }
 
 int vbm1_rational_rest(const vbm1_rat *keep, const vbm_s1 *r, vbx_ia x, vbx_ia *g)

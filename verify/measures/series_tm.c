@@ -79,7 +79,8 @@ int vbm1_tm_rational(vbm1_tm *r, const vbx_ia *num, int dn, const vbx_ia *den, i
                      int k, vbx_ia x)
 {
     vbm1_rat keep;
-    if (!vbm1_rational_keep(&r->p, num, dn, den, dd, vbx_ia_point(xc), &keep) ||
+    int km = k > 1 ? k - 1 : 1; /* the rest reads r_(k-1) at the most; kmax 0 moves nothing */
+    if (!vbm1_rational_keep_to(&r->p, num, dn, den, dd, vbx_ia_point(xc), km, &keep) ||
         !vbm1_rational_rest_to(&keep, &r->p, k, x, &r->rest))
         return 0;
     for (int n = k; n <= VBM1_K; n++)

@@ -100,6 +100,13 @@ typedef struct vbm1_rat {
 int vbm1_rational_keep(vbm_s1 *r, const vbx_ia *num, int dn, const vbx_ia *den, int dd,
                        vbx_ia at, vbm1_rat *keep);
 
+/* vbm1_rational_keep to the order kmax (1 <= kmax <= VBM1_K; the others 0):
+ * coefficients 0..kmax its enclosures bit for bit (each depends on the
+ * lower ones), for a model at the order k, whose rest reads r_(k-dd) ..
+ * r_(k-1) (vbm1_rational_rest_to; kmax = k - 1). */
+int vbm1_rational_keep_to(vbm_s1 *r, const vbx_ia *num, int dn, const vbx_ia *den, int dd,
+                          vbx_ia at, int kmax, vbm1_rat *keep);
+
 /* The remainder of the Taylor polynomial of f = num / den at the point xc
  * (r from vbm1_rational_keep, which left *keep): with A, B the polynomials
  * moved to xc, f(xc + x) = sum_{n<K} r_n x^n + x^K M(x) / B(x) exactly,
@@ -117,6 +124,16 @@ int vbm1_rational_rest(const vbm1_rat *keep, const vbm_s1 *r, vbx_ia x, vbx_ia *
  * b_i r_(k+j-i), by the same argument; *g encloses M / B over `x`. Returns
  * 0 when B may vanish there, dd > k or dn >= k. */
 int vbm1_rational_rest_to(const vbm1_rat *keep, const vbm_s1 *r, int k, vbx_ia x, vbx_ia *g);
+
+/* An enclosure of c[0] + c[1] t + c[2] t^2 over t in T (c intervals): the
+ * values at T's ends and at the vertex where it may lie in T, each
+ * coefficient once (Horner's scheme over T, which counts t twice, where c[2]
+ * may be 0). The proof above the code (series_rat.c). */
+vbx_ia vbm1_poly2_range(const vbx_ia *c, vbx_ia T);
+
+/* The meet of two enclosures of one quantity (lo > hi where they miss:
+ * then one of them is wrong). */
+vbx_ia vbm1_meet(vbx_ia a, vbx_ia b);
 
 /* A Taylor model of f at the order k (1 <= k <= VBM1_K) about a point xc,
  * over a piece xc + x, x in an interval holding 0 (series_tm.c):
