@@ -26,6 +26,14 @@ static inline double vb_test_uniform(uint64_t *s, double lo, double hi)
     return lo + (hi - lo) * (double)(vb_test_xorshift(s) >> 11) * 0x1p-53;
 }
 
+/* A signed double from the next step of *s over binades lo .. lo + span - 1,
+ * exactly 0 one time in 16 (interval arithmetic's random operands). */
+static inline double vb_test_binades(uint64_t *s, int lo, int span)
+{
+    vb_test_xorshift(s);
+    return (*s & 15) == 0 ? 0.0 : ldexp((double)(*s >> 11) * 0x1p-53 - 0.5, (int)(*s % (uint64_t)span) + lo);
+}
+
 #define CHECK(cond)                                                                  \
     do {                                                                             \
         if (cond) {                                                                  \

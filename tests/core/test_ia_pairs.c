@@ -59,11 +59,8 @@ static void test_pairs(void)
     uint64_t s = 0x2545f4914f6cdd1du;
     for (int i = 0; i < 1000000; i++) {
         double v[4];
-        for (int m = 0; m < 4; m++) {
-            vb_test_xorshift(&s);
-            v[m] = (s & 15) == 0 ? 0.0
-                                 : ldexp((double)(s >> 11) * 0x1p-53 - 0.5, (int)(s % 2100) - 1070);
-        }
+        for (int m = 0; m < 4; m++)
+            v[m] = vb_test_binades(&s, -1070, 2100);
         vb_ia a = {vb_fmin(v[0], v[1]), vb_fmax(v[0], v[1])};
         vb_ia b = {vb_fmin(v[2], v[3]), vb_fmax(v[2], v[3])};
         bad += pair_differs(a, b);

@@ -194,11 +194,8 @@ static void test_div_paths(void)
     uint64_t s = 0x2545f4914f6cdd1du;
     for (int i = 0; i < 1000000; i++) {
         double v[4];
-        for (int m = 0; m < 4; m++) {
-            vb_test_xorshift(&s);
-            /* signed values over many binades, some exactly 0 */
-            v[m] = (s & 15) == 0 ? 0.0 : ldexp((double)(s >> 11) * 0x1p-53 - 0.5, (int)(s % 200) - 100);
-        }
+        for (int m = 0; m < 4; m++) /* signed values over many binades, some exactly 0 */
+            v[m] = vb_test_binades(&s, -100, 200);
         vbx_ia a = {vbx_min(v[0], v[1]), vbx_max(v[0], v[1])};
         vbx_ia b = {vbx_min(v[2], v[3]), vbx_max(v[2], v[3])};
         bad += (size_t)div_differs(a, b);
