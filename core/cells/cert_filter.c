@@ -206,11 +206,8 @@ static void judge_chunk(void *arg, size_t c, int tid)
     (void)tid;
     const judge_job *j = arg;
     const vb_cert_filter *f = j->f;
-    vb_cert_judge_fn judge = vb_cert_judge_pick();
-    size_t k1 = (c + 1) * JUDGE_CHUNK < j->n ? (c + 1) * JUDGE_CHUNK : j->n;
-    for (size_t k = c * JUDGE_CHUNK; k < k1; k++) {
-        j->verdict[k] = (uint8_t)judge(f, j->q[k]);
-    }
+    size_t k0 = c * JUDGE_CHUNK, k1 = (c + 1) * JUDGE_CHUNK < j->n ? (c + 1) * JUDGE_CHUNK : j->n;
+    vb_cert_judge_run_pick()(f, j->q + k0, k1 - k0, j->verdict + k0);
 }
 
 void vb_cert_filter_judge(const vb_cert_filter *f, const uint32_t (*q)[4], size_t n,

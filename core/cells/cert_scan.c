@@ -9,7 +9,9 @@
  * its order (no FMA: -mfma is not given and contraction is off), so a
  * lane's "outside" is the scalar test's, and every other lane (a member,
  * an intruder, a sphere it cannot place) is tested again by vbd_fast_test
- * itself. */
+ * itself. The AVX2 build also takes the lines of four quadruples at once
+ * (vb_cert_judge_run_avx2: cert_line4.h's lanes, each vbd_line_end's
+ * steps bit for bit). */
 /* The interval steps with both bounds in one register (vb_ia_pairs.h): the
  * same bits, fewer instructions. */
 #define VB_IA_HOST_PAIRS 1
@@ -17,6 +19,7 @@
 
 #if VB_CERT_SCAN_WIDE
 #include <immintrin.h>
+#include "cert_line4.h"
 #define VB_CERT_JUDGE_FN vb_cert_judge_one_avx2
 #else
 #define VB_CERT_JUDGE_FN vb_cert_judge_one
@@ -163,13 +166,9 @@ static uint32_t scan_root(const vb_cert_filter *f, const uint32_t *q, const vbd_
     return open ? VBD_OPEN : VBD_VERTEX;
 }
 
-uint32_t VB_CERT_JUDGE_FN(const vb_cert_filter *f, const uint32_t *q)
+/* The verdicts of q's roots from its line L (k: vbd_line_make's result). */
+static uint32_t judge_roots(const vb_cert_filter *f, const uint32_t *q, const vbd_line *L, int k)
 {
-    if (!f->cell_d)
-        return vbd_judge(f->z, f->cell_start, f->cell_ids, f->cell_z, &f->g, q[0], q[1], q[2],
-                         q[3]);
-    vbd_line L;
-    int k = vbd_line_make(f->z, q[0], q[1], q[2], q[3], &L);
     if (k < 0)
         return VBD_NOT | (VBD_NOT << 2);
     if (k == 0)
@@ -179,20 +178,104 @@ uint32_t VB_CERT_JUDGE_FN(const vb_cert_filter *f, const uint32_t *q)
     vbd_box b[2];
     uint32_t v[2];
     for (int r = 0; r < 2; r++)
-        v[r] = vbd_root_box(f->z, &f->g, q[0], &L, r, &b[r]);
+        v[r] = vbd_root_box(f->z, &f->g, q[0], L, r, &b[r]);
     for (int r = 0; r < 2; r++)
         if (v[r] == VBD_SCAN)
             v[r] = scan_root(f, q, &b[r]);
     return v[0] | (v[1] << 2);
 }
 
+uint32_t VB_CERT_JUDGE_FN(const vb_cert_filter *f, const uint32_t *q)
+{
+    if (!f->cell_d)
+        return vbd_judge(f->z, f->cell_start, f->cell_ids, f->cell_z, &f->g, q[0], q[1], q[2],
+                         q[3]);
+    vbd_line L;
+    return judge_roots(f, q, &L, vbd_line_make(f->z, q[0], q[1], q[2], q[3], &L));
+}
+
+#if VB_CERT_SCAN_WIDE
+unsigned vb_cert_lines_four_avx2(const vb_cert_filter *f, const uint32_t (*q)[4], vbd_line *L,
+                                 int *k)
+{
+    vb_ia e[4][15], M[4][25], delta[4];
+    const vb_ia *ep[4], *Mp[4];
+    vbd_line *Lp[4];
+    int live[4];
+    for (int l = 0; l < 4; l++) {
+        live[l] = vbd_line_begin(f->z, q[l][0], q[l][1], q[l][2], q[l][3], &L[l], e[l], M[l]);
+        ep[l] = e[l];
+        Mp[l] = M[l];
+        Lp[l] = &L[l];
+        if (!live[l]) {
+            /* A lane of defined values (its results are not used). */
+            L[l].D = L[l].v[0] = L[l].v[1] = L[l].v[2] = vb_ia_point(1.0);
+            for (int i = 0; i < 15; i++)
+                e[l][i] = vb_ia_point(1.0);
+            for (int i = 0; i < 25; i++)
+                M[l][i] = vb_ia_point(1.0);
+        }
+    }
+    unsigned bad = line4_end(ep, Mp, Lp, delta), scalar = 0;
+    for (int l = 0; l < 4; l++) {
+        k[l] = 0;
+        if (live[l] && (bad >> l & 1u)) {
+            k[l] = vbd_line_end(e[l], M[l], &L[l]);
+            scalar |= 1u << l;
+        } else if (live[l] && vb_ia_sign(L[l].A))
+            k[l] = vbd_line_roots(&L[l], delta[l]);
+    }
+    return scalar;
+}
+
+/* Four quadruples q[0..3] into out[0..3]: their lines four at once. */
+static void judge_four(const vb_cert_filter *f, const uint32_t (*q)[4], uint8_t *out)
+{
+    vbd_line L[4];
+    int k[4];
+    vb_cert_lines_four_avx2(f, q, L, k);
+    for (int l = 0; l < 4; l++)
+        out[l] = (uint8_t)judge_roots(f, q[l], &L[l], k[l]);
+}
+
+void vb_cert_judge_run_avx2(const vb_cert_filter *f, const uint32_t (*q)[4], size_t n,
+                            uint8_t *out)
+{
+    size_t k = 0;
+    for (; f->cell_d && k + 4 <= n; k += 4)
+        judge_four(f, q + k, out + k);
+    for (; k < n; k++)
+        out[k] = (uint8_t)vb_cert_judge_one_avx2(f, q[k]);
+}
+#endif
+
 #if !VB_CERT_SCAN_WIDE
+void vb_cert_judge_run(const vb_cert_filter *f, const uint32_t (*q)[4], size_t n, uint8_t *out)
+{
+    for (size_t k = 0; k < n; k++)
+        out[k] = (uint8_t)vb_cert_judge_one(f, q[k]);
+}
+
+/* The AVX2 build's function f where the build and the CPU have AVX2, else
+ * the portable p (NULL: none). */
+#if defined(VB_CERT_SCAN_HAVE_AVX2) && defined(__GNUC__) && defined(__x86_64__)
+#define WIDE_OR(f, p) (__builtin_cpu_supports("avx2") ? (f) : (p))
+#else
+#define WIDE_OR(f, p) (p)
+#endif
+
 vb_cert_judge_fn vb_cert_judge_pick(void)
 {
-#if defined(VB_CERT_SCAN_HAVE_AVX2) && defined(__GNUC__) && defined(__x86_64__)
-    if (__builtin_cpu_supports("avx2"))
-        return vb_cert_judge_one_avx2;
-#endif
-    return vb_cert_judge_one;
+    return WIDE_OR(vb_cert_judge_one_avx2, vb_cert_judge_one);
+}
+
+vb_cert_judge_run_fn vb_cert_judge_run_pick(void)
+{
+    return WIDE_OR(vb_cert_judge_run_avx2, vb_cert_judge_run);
+}
+
+vb_cert_lines_fn vb_cert_lines_pick(void)
+{
+    return WIDE_OR(vb_cert_lines_four_avx2, NULL);
 }
 #endif

@@ -66,4 +66,27 @@ uint32_t vb_cert_judge_one_avx2(const vb_cert_filter *f, const uint32_t *q);
  * CPU have AVX2, else vb_cert_judge_one (the same verdicts). */
 vb_cert_judge_fn vb_cert_judge_pick(void);
 
+/* The twin's judge of quadruples q[0..n) into out[0..n) (each
+ * vb_cert_judge_one's verdict): _avx2 takes the lines of four at once in
+ * AVX2 lanes (core/cells/cert_line4.h); vb_cert_judge_run_pick gives it
+ * where the build and the CPU have AVX2, else vb_cert_judge_run. */
+typedef void (*vb_cert_judge_run_fn)(const vb_cert_filter *f, const uint32_t (*q)[4], size_t n,
+                                     uint8_t *out);
+void vb_cert_judge_run(const vb_cert_filter *f, const uint32_t (*q)[4], size_t n, uint8_t *out);
+void vb_cert_judge_run_avx2(const vb_cert_filter *f, const uint32_t (*q)[4], size_t n,
+                            uint8_t *out);
+vb_cert_judge_run_fn vb_cert_judge_run_pick(void);
+
+/* The lines of four quadruples q[0..3] (f->ok): k[l] and L[l] as
+ * vbd_line_make(f->z, q[l], &L[l]) gives them, bit for bit where k[l] = 1,
+ * their interval steps in AVX2 lanes (cert_line4.h); returns the mask of
+ * lanes that took vbd_line_end's scalar steps instead. vb_cert_lines_pick:
+ * that function where the build and the CPU have AVX2, else NULL (no
+ * vb_cert_judge_run_avx2 either). */
+typedef unsigned (*vb_cert_lines_fn)(const vb_cert_filter *f, const uint32_t (*q)[4], vbd_line *L,
+                                     int *k);
+unsigned vb_cert_lines_four_avx2(const vb_cert_filter *f, const uint32_t (*q)[4], vbd_line *L,
+                                 int *k);
+vb_cert_lines_fn vb_cert_lines_pick(void);
+
 #endif

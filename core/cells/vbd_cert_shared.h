@@ -118,12 +118,11 @@ typedef struct vbd_line {
     vb_i64 r[4]; /* R_i - R_a (r[0] = 0) */
 } vbd_line;
 
-/* Rows m[i] = z(q[i+1]) - z(q[0]) (|z| < 2^62: exact in 64 bits): the
- * line and quadratic of the quadruple. 1 with two proven distinct roots,
- * -1 when delta < 0 is proven (no root), 0 when open (D, A or delta not
- * proven non-zero). */
-VB_SHARED_FN int vbd_line_make(VB_GLOBAL const vb_i64 *z, vb_u32 a, vb_u32 b, vb_u32 c,
-                               vb_u32 d, vbd_line *L)
+/* vbd_line_make up to D and v: rows m[i] = z(q[i+1]) - z(q[0]) (|z| <
+ * 2^62: exact in 64 bits), L->r, L->D, L->v, and the first row e[0..4] and
+ * minors M that vbd_line_end takes. 1 when D != 0 is proven, else 0. */
+VB_SHARED_FN int vbd_line_begin(VB_GLOBAL const vb_i64 *z, vb_u32 a, vb_u32 b, vb_u32 c,
+                                vb_u32 d, vbd_line *L, vb_ia *e, vb_ia *M)
 {
     vb_i64 m[3][4];
     vb_u32 ids[3];
@@ -145,7 +144,6 @@ VB_SHARED_FN int vbd_line_make(VB_GLOBAL const vb_i64 *z, vb_u32 a, vb_u32 b, vb
     /* Rows e[i * 5 + k]: the four entries and W = |d|^2 - r^2. Below 2^30
      * W (< 2^62) and the 2x2 minors of the entries (< 2^61) are exact in 64
      * bits. */
-    vb_ia e[15], M[25];
     for (int i = 0; !tiny && i < 3; i++) {
         for (int k = 0; k < 4; k++)
             e[i * 5 + k] = vb_ia_int(m[i][k]);
@@ -197,6 +195,26 @@ VB_SHARED_FN int vbd_line_make(VB_GLOBAL const vb_i64 *z, vb_u32 a, vb_u32 b, vb
         L->v[1] = vb_ia_neg(vbd_det3(e, M, 0, 2, 3));
         L->v[2] = vbd_det3(e, M, 0, 1, 3);
     }
+    return 1;
+}
+
+/* vbd_line_end's last step, delta = B^2 - A C given (A != 0 proven):
+ * L->sq and 1 for two proven distinct roots, -1 for none, 0 when open. */
+VB_SHARED_FN int vbd_line_roots(vbd_line *L, vb_ia delta)
+{
+    int sd = vb_ia_sign(delta);
+    if (sd < 0)
+        return -1;
+    if (sd == 0)
+        return 0;
+    L->sq = vb_ia_sqrt(delta);
+    return 1;
+}
+
+/* vbd_line_make from vbd_line_begin's e and M on: U, A, B, C and the root
+ * of delta, with vbd_line_make's result. */
+VB_SHARED_FN int vbd_line_end(const vb_ia *e, const vb_ia *M, vbd_line *L)
+{
     L->U[0] = vbd_det3(e, M, 1, 2, 4);
     L->U[1] = vb_ia_neg(vbd_det3(e, M, 0, 2, 4));
     L->U[2] = vbd_det3(e, M, 0, 1, 4);
@@ -208,14 +226,19 @@ VB_SHARED_FN int vbd_line_make(VB_GLOBAL const vb_i64 *z, vb_u32 a, vb_u32 b, vb
     L->C = vb_ia_add(vb_ia_add(vb_ia_sqr(L->U[0]), vb_ia_sqr(L->U[1])), vb_ia_sqr(L->U[2]));
     if (!vb_ia_sign(L->A))
         return 0;
-    vb_ia delta = vb_ia_sub(vb_ia_sqr(L->B), vb_ia_mul(L->A, L->C));
-    int sd = vb_ia_sign(delta);
-    if (sd < 0)
-        return -1;
-    if (sd == 0)
+    return vbd_line_roots(L, vb_ia_sub(vb_ia_sqr(L->B), vb_ia_mul(L->A, L->C)));
+}
+
+/* The line and quadratic of the quadruple a < b < c < d. 1 with two proven
+ * distinct roots, -1 when delta < 0 is proven (no root), 0 when open (D, A
+ * or delta not proven non-zero). */
+VB_SHARED_FN int vbd_line_make(VB_GLOBAL const vb_i64 *z, vb_u32 a, vb_u32 b, vb_u32 c,
+                               vb_u32 d, vbd_line *L)
+{
+    vb_ia e[15], M[25];
+    if (!vbd_line_begin(z, a, b, c, d, L, e, M))
         return 0;
-    L->sq = vb_ia_sqrt(delta);
-    return 1;
+    return vbd_line_end(e, M, L);
 }
 
 /* The emptiness test of one sphere in plain doubles, one error bound for

@@ -93,6 +93,33 @@ static int twin_agrees(const char *name, const vb_cert_filter *f, const uint32_t
     return bad == 0;
 }
 
+/* The AVX2 lanes' lines (vb_cert_lines_pick) against vbd_line_make, four
+ * quadruples of q at a time: the same result, and where it is 1 the same
+ * bits in every field. 1 when all agree (or the CPU has no AVX2). */
+static size_t n_line_lanes, n_line_scalar;
+static int lines_agree(const char *name, const vb_cert_filter *f, const uint32_t (*q)[4], size_t n)
+{
+    vb_cert_lines_fn four = vb_cert_lines_pick();
+    size_t bad = 0;
+    for (size_t k = 0; four && k + 4 <= n; k += 4) {
+        vbd_line L[4], S;
+        int r[4];
+        unsigned scalar = four(f, q + k, L, r);
+        for (int l = 0; l < 4; l++) {
+            memset(&S, 0, sizeof S);
+            int rs = vbd_line_make(f->z, q[k + l][0], q[k + l][1], q[k + l][2], q[k + l][3], &S);
+            n_line_lanes++;
+            n_line_scalar += scalar >> l & 1u;
+            if (rs != r[l] || (rs == 1 && memcmp(&S, &L[l], sizeof S) != 0)) {
+                if (bad++ < 5)
+                    fprintf(stderr, "%s: quadruple %u %u %u %u: line %d, lanes %d or bits differ\n",
+                            name, q[k + l][0], q[k + l][1], q[k + l][2], q[k + l][3], rs, r[l]);
+            }
+        }
+    }
+    return bad == 0;
+}
+
 static int same_list(const vb_vertex_list *a, const vb_vertex_list *b)
 {
     if (a->n != b->n)
@@ -154,6 +181,7 @@ static void check_set(const char *name, vb_sphere_set *s)
     vb_cert_filter_judge(&f, qq, q.n, v2, 2);
     CHECK(memcmp(v1, v2, q.n) == 0);
     CHECK(twin_agrees(name, &f, qq, q.n, v1));
+    CHECK(lines_agree(name, &f, qq, q.n));
     /* The whole list, with and without the verdicts, and their counts. */
     vb_vertex_list plain, judged;
     vb_cert_quad_stats qs;
@@ -295,6 +323,10 @@ int main(void)
            n_sets, n_quads_checked, n_vertex, n_not, n_open);
     printf("twin against vbd_judge: %zu quadruples, %zu of %zu sets over exact doubles\n",
            n_twin_quads, n_twin_sets, n_sets);
+    printf("lines in AVX2 lanes against vbd_line_make: %zu quadruples, %zu of them by the scalar "
+           "steps\n", n_line_lanes, n_line_scalar);
+    /* The lanes did most lines themselves where the CPU has them. */
+    CHECK(!vb_cert_lines_pick() || (n_line_lanes > 10000 && n_line_scalar < n_line_lanes / 2));
     /* The twin's own scan ran (most sets fit 2^52 after scaling). */
     CHECK(n_twin_sets > n_sets / 2);
     /* Most roots decided: the filter is not a stub that leaves all open. */
