@@ -23,31 +23,12 @@
 #include <string.h>
 
 #include "vbm_caps.h"
+#include "caps_random.h"
 #include "vb_test.h"
 
 #define NCAP 17
 
-static double rnd(uint64_t *s)
-{
-    *s = *s * 6364136223846793005u + 1442695040888963407u;
-    return (double)(*s >> 11) / 9007199254740992.0;
-}
-
-static void unit(uint64_t *s, double *u)
-{
-    double n;
-    do {
-        n = 0.0;
-        for (int k = 0; k < 3; k++) {
-            u[k] = 2.0 * rnd(s) - 1.0;
-            n += u[k] * u[k];
-        }
-    } while (n > 1.0 || n < 1e-6);
-    n = sqrt(n);
-    for (int k = 0; k < 3; k++)
-        u[k] /= n;
-}
-
+/* The cap {u : u.n >= h} in point intervals. */
 static void set_cap(const double *n, double h, vbm_cap *cp)
 {
     for (int k = 0; k < 3; k++)
@@ -55,28 +36,7 @@ static void set_cap(const double *n, double h, vbm_cap *cp)
     cp->h = vbx_ia_point(h);
 }
 
-/* A cap about a direction near v (spread) with cosine of radius c. */
-static void make_cap(uint64_t *s, const double *v, double spread, double c, vbm_cap *cp,
-                     double *n, double *h)
-{
-    double u[3], nn = 0.0;
-    unit(s, u);
-    for (int k = 0; k < 3; k++) {
-        n[k] = v[k] + spread * u[k];
-        nn += n[k] * n[k];
-    }
-    *h = c * sqrt(nn);
-    set_cap(n, *h, cp);
-}
-
-/* Signed distance of u from cap (n, h) in units of |n| (> 0 inside). */
-static double depth(const double *n, double h, const double *u)
-{
-    double d = n[0] * u[0] + n[1] * u[1] + n[2] * u[2];
-    return (d - h) / sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-}
-
-/* The prefilter over caps[0..nc) (their circles made here); w->pre has
+/* The prefilter over caps[0..nc) (their circles made here); pre has
  * the rejected ones. Returns how many, or -1 when a circle cannot be made. */
 static long prefilter(const vbm_cap *caps, size_t nc, vbm_capwork *w, uint8_t *pre)
 {
