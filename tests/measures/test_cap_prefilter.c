@@ -16,7 +16,9 @@
  * Planted and caught: the certificate skipped with vertices within 1e-3
  * of a plane counted inside (the touching cap rejected); the tangent
  * plane at 0.995 (the same); vbm_cap_arcs' fallback only for three arcs
- * on a circle (a list in another order). */
+ * on a circle (a list in another order); the certificate on the
+ * midpoints (the caps' enclosures left out: the wide h or n_z rejected);
+ * |v| left out of the certificate (the wide n_z rejected). */
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -199,6 +201,19 @@ int main(void)
         set_cap(cut, -0.05, &c[4]);
         CHECK(prefilter(c, 5, &wp, pre) == 1);
         CHECK(pre[4] && !pre[3] && !pre[1] && !pre[2]);
+
+        /* The certificate's bounds over the enclosures: u.(1, 1, -4) >=
+         * -4 - 5e-10 holds the corner by 5e-10 at (0, 0, 1): rejected as
+         * points. With h in [-4 - 2.5e-9, -4 + 1.5e-9] (mid the same) or
+         * n_z in [-4 - 1e-9, -4 + 1e-9] some cap in the enclosures cuts
+         * the vertex (0, 0, 1) away: kept, though the midpoints hold it. */
+        set_cap(touch, -4.0 - 5e-10, &c[3]);
+        CHECK(prefilter(c, 4, &wp, pre) == 1 && pre[3]);
+        c[3].h = vbx_ia_make(-4.0 - 2.5e-9, -4.0 + 1.5e-9);
+        CHECK(prefilter(c, 4, &wp, pre) == 0);
+        c[3].h = vbx_ia_point(-4.0 - 5e-10);
+        c[3].n[2] = vbx_ia_make(-4.0 - 1e-9, -4.0 + 1e-9);
+        CHECK(prefilter(c, 4, &wp, pre) == 0);
     }
     vbm_caps_free(&w);
     vbm_caps_free(&w2);

@@ -8,10 +8,10 @@
  *
  * multipliers lam_i >= 0 (read off the vertex where u.n_m is least:
  * n_m = sum lam_i n_i over its three planes, Cramer's rule in doubles,
- * no proof needed) with, in intervals over the caps' enclosures,
+ * no proof needed) with, over the caps' enclosures (certify's bounds),
  *   c = sum lam_i h_i - h_m > |v|,  v = n_m - sum lam_i n_i.
- * Then for every unit u in the caps i (u.n_i >= h_i; the ball's planes
- * u.f <= rho with rho >= |f| hold for every |u| <= 1)
+ * Then for every unit u in the caps i (u.n_i >= h_i; the start's planes
+ * u.f <= rho hold for every unit u in cap 0: start, side_plane)
  *   u.n_m - h_m = sum lam_i (u.n_i - h_i) + u.v + c >= c - |v| > 0:
  * the intersection of the caps kept lies in cap m's interior, away from
  * its circle, so the intersection of all caps is that of the caps kept
@@ -44,6 +44,7 @@ struct vbm_poly {
     uint16_t to[2 * MAX_VERT]; /* clip's renumbering */
     double bf[NPLANE_BALL][3], brho[NPLANE_BALL]; /* the ball's planes u.f <= rho */
     size_t nb; /* ball planes */
+    size_t lo; /* after a clip that cut nothing: the vertex where u.n - h is least */
 };
 
 /* vbm_cap_arcs' work space (vbm_capwork.pw): the polyhedron, the caps
@@ -86,14 +87,17 @@ static void plane_of(const vbm_cap *caps, size_t ncap, const struct vbm_poly *P,
 static int clip(struct vbm_poly *P, int *cur, size_t *nv, const double n[3], double h, uint32_t id)
 {
     pvert *v = P->v[*cur], *o = P->v[!*cur];
-    size_t out = 0, n0 = *nv, nn = n0;
+    size_t out = 0, n0 = *nv, nn = n0, lo = 0;
     double nrm = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]), eps = ON_EPS * (nrm + fabs(h));
     for (size_t i = 0; i < n0; i++) {
         P->s[i] = n[0] * v[i].x[0] + n[1] * v[i].x[1] + n[2] * v[i].x[2] - h;
         out += P->s[i] < -eps;
+        lo = P->s[i] < P->s[lo] ? i : lo;
     }
-    if (out == 0)
+    if (out == 0) {
+        P->lo = lo;
         return 0;
+    }
     if (out == n0)
         return -1;
     for (size_t b = 0; b < n0; b++) {
@@ -158,45 +162,84 @@ static double det3(const double *a, const double *b, const double *c)
            a[2] * (b[0] * c[1] - b[1] * c[0]);
 }
 
-/* Whether cap m holds every unit vector in the planes of vertex x's
- * (the certificate above, multipliers from Cramer's rule). */
+/* Plane `id`'s enclosures as bounds: n in [nl, nh], h in [hl, hh] (a
+ * ball plane's are points). */
+static void plane_box(const vbm_cap *caps, size_t ncap, const struct vbm_poly *P, uint32_t id,
+                      double nl[3], double nh[3], double *hl, double *hh)
+{
+    if (id < ncap) {
+        for (int k = 0; k < 3; k++)
+            nl[k] = caps[id].n[k].lo, nh[k] = caps[id].n[k].hi;
+        *hl = caps[id].h.lo, *hh = caps[id].h.hi;
+    } else {
+        for (int k = 0; k < 3; k++)
+            nl[k] = nh[k] = -P->bf[id - ncap][k];
+        *hl = *hh = -P->brho[id - ncap];
+    }
+}
+
+/* A lower bound of t0 + sum_i lam[i] y[i] over exact reals (lam[i] >= 0
+ * points, so lam y's least corner is lam y.lo, as given): vbm_dotn's low
+ * end for these corners, the recursive sum s from t0 and its margin b =
+ * fl(fl(S' w) + 2^-1060), w = 5 * 2^-53, S' the sum of the |terms|:
+ * s - b <= the exact sum (vbm_dotn's proof for m = 4 terms; t0 is a
+ * term whose product is exact). Returns s, *b the margin. */
+static inline double dot_lo(double t0, const double lam[3], const double y[3], double *b)
+{
+    double s = t0, a = fabs(t0);
+    for (int i = 0; i < 3; i++) {
+        double t = lam[i] * y[i];
+        s += t;
+        a += fabs(t);
+    }
+    *b = a * (5.0 * 0x1p-53) + 0x1p-1060;
+    return s;
+}
+
+/* Whether cap m holds every unit vector in the planes of vertex x's (the
+ * certificate above, multipliers from Cramer's rule), in doubles with
+ * a-priori bounds instead of interval steps:
+ *   c >= sum lam_i h_i.lo - h_m.hi >= sc - bc            (dot_lo)
+ *   |v_k| <= max(|vl_k|, |vh_k|) + bl_k + bh_k, v_k in [vl_k - bl_k, vh_k + bh_k]
+ * (vl_k from n_mk.lo - sum lam_i n_ik.hi, vh_k from n_mk.hi - sum lam_i
+ * n_ik.lo, both dot_lo's form: -x.hi = (-x).lo), and |u.v| <= |v|_1 for
+ * |u| <= 1: |v|_1 <= D + A exactly, D and A the sums over k of the
+ * maxima and of bl_k + bh_k. Their sums in doubles lose at most a factor
+ * (1 - u)^4 (terms >= 0; additions do not underflow), the product by
+ * 1 + 2^-20 a factor 1 - u or 2^-1075, the addition of 2^-1058 a factor
+ * 1 - u: Vb = fl(fl(fl(D + A)(1 + 2^-20)) + 2^-1058) >= |v|_1. fl(sc -
+ * bc) > Vb proves sc - bc > Vb (rounding is monotone, Vb a double), so
+ * c > |v|. A NaN or infinity anywhere fails the comparison: kept. */
 static int certify(const vbm_cap *caps, size_t ncap, const struct vbm_poly *P, const pvert *x,
                    size_t m)
 {
-    double nm[3], hm, ni[3][3], hi[3], lam[3];
-    plane_of(caps, ncap, P, (uint32_t)m, nm, &hm);
+    double mnl[3], mnh[3], mhl, mhh, nl[3][3], nh[3][3], hl[3], hh[3], nm[3], ni[3][3], lam[3];
+    plane_box(caps, ncap, P, (uint32_t)m, mnl, mnh, &mhl, &mhh);
     for (int i = 0; i < 3; i++)
-        plane_of(caps, ncap, P, x->pl[i], ni[i], &hi[i]);
+        plane_box(caps, ncap, P, x->pl[i], nl[i], nh[i], &hl[i], &hh[i]);
+    for (int k = 0; k < 3; k++) { /* the multipliers' normals: any near the enclosures */
+        nm[k] = 0.5 * mnl[k] + 0.5 * mnh[k];
+        for (int i = 0; i < 3; i++)
+            ni[i][k] = 0.5 * nl[i][k] + 0.5 * nh[i][k];
+    }
     double d = det3(ni[0], ni[1], ni[2]);
     if (!(fabs(d) > 0.0))
         return 0;
     lam[0] = det3(nm, ni[1], ni[2]) / d;
     lam[1] = det3(ni[0], nm, ni[2]) / d;
     lam[2] = det3(ni[0], ni[1], nm) / d;
-    /* c = (lam, -1).(h_i, h_m) and v_k = (1, -lam).(n_m, n_i) as dot
-     * products of four terms (vbm_dotn: one rounding bound per end) */
-    vbx_ia L[4], H[4], N[3][4];
-    L[3] = vbx_ia_point(-1.0);
-    H[3] = caps[m].h;
-    for (int k = 0; k < 3; k++)
-        N[k][0] = caps[m].n[k];
-    for (int i = 0; i < 3; i++) {
-        uint32_t id = x->pl[i];
-        L[i] = vbx_ia_point(lam[i] > 0.0 ? lam[i] : 0.0); /* negative (a degenerate vertex) or NaN: left out */
-        if (id < ncap) {
-            H[i] = caps[id].h;
-            for (int k = 0; k < 3; k++)
-                N[k][i + 1] = vbx_ia_neg(caps[id].n[k]);
-        } else { /* u.f <= rho: n = -f, h = -rho */
-            H[i] = vbx_ia_point(-P->brho[id - ncap]);
-            for (int k = 0; k < 3; k++)
-                N[k][i + 1] = vbx_ia_point(P->bf[id - ncap][k]);
-        }
+    for (int i = 0; i < 3; i++)
+        lam[i] = lam[i] > 0.0 ? lam[i] : 0.0; /* negative (a degenerate vertex) or NaN: left out */
+    double bc, sc = dot_lo(-mhh, lam, hl, &bc), D = 0.0, A = 0.0;
+    for (int k = 0; k < 3; k++) {
+        double yl[3] = {-nh[0][k], -nh[1][k], -nh[2][k]}, yh[3] = {nl[0][k], nl[1][k], nl[2][k]};
+        double bl, bh, vl = dot_lo(mnl[k], lam, yl, &bl), vh = -dot_lo(-mnh[k], lam, yh, &bh);
+        vl = fabs(vl), vh = fabs(vh);
+        D += vl > vh ? vl : vh; /* a NaN vl comes of a NaN or infinite term: bl is too */
+        A += (bl + bh);
     }
-    vbx_ia c = vbm_dotn(L, 1, H, 1, 4), v[3], one[4] = {vbx_ia_point(1.0), L[0], L[1], L[2]};
-    for (int k = 0; k < 3; k++)
-        v[k] = vbm_dotn(one, 1, N[k], 1, 4);
-    return c.lo > 0.0 && vbx_ia_sqr(c).lo > vbm_dot3(v, v).hi;
+    double Vb = (D + A) * (1.0 + 0x1p-20) + 0x1p-1058;
+    return sc - bc > Vb;
 }
 
 /* Adds the ball's plane u.f <= rho, rho an upper bound of |f|. */
@@ -208,21 +251,72 @@ static void ball_plane(struct vbm_poly *P, double x, double y, double z)
     P->brho[P->nb++] = vbx_ia_sqrt(vbm_dot3(ff, ff)).hi;
 }
 
-/* The polyhedron's start: the cube [-1, 1]^3 (faces u.(+-e_k) <= 1) cut
- * by the unit sphere's tangent plane at cap 0's centre e (u.e <= 1) where
- * cap 0 is smaller than a half sphere. (Tangent planes around its rim as
- * well, or a second pass with the caps found to bound the polyhedron
- * first, rejected 5 % more caps on capsid's first 1000 atoms and cost
- * more than they saved.) */
-static int start(struct vbm_poly *P, size_t ncap, const vbm_circle *c0, int *cur, size_t *nv)
+/* The polyhedron's start, cap 0 in it: where cap 0 is smaller than a half
+ * sphere, the box around its centre e (doubles) between cap 0's plane and
+ * the unit sphere's tangent plane u.e <= rho_e, with the faces u.(+-p) <=
+ * rho_p and u.(+-q) <= rho_q, p, q, e nearly orthonormal in doubles (no
+ * proof needed: each face holds for every |u| <= 1); else the cube
+ * [-1, 1]^3 clipped by cap 0. The box's vertices are near its planes'
+ * (they only choose; the certificates take the planes). Was the cube cut
+ * by the tangent plane and cap 0 (c1k: 45 M instructions in the two clips
+ * and no tighter). (Tangent planes around its rim as well, or a second
+ * pass with the caps found to bound the polyhedron first, rejected 5 %
+ * more caps on capsid's first 1000 atoms and cost more than they saved.) */
+/* Adds the side plane u.f <= r of the unit vectors in cap 0: such a u is
+ * a e + w with e the exact axis (in c0->a), c0->c.lo <= a <= 1 and |w| <=
+ * sin of cap 0's radius (in c0->s), so u.f <= |e.f| + |w| |f| <= r,
+ * rounded up in intervals. Returns r. */
+static double side_plane(struct vbm_poly *P, const vbm_circle *c0, double x, double y, double z)
 {
+    ball_plane(P, x, y, z);
+    vbx_ia ff[3] = {vbx_ia_point(x), vbx_ia_point(y), vbx_ia_point(z)}, ef = vbm_dot3(c0->a, ff);
+    double r = vbx_ia_add(vbx_ia_point(fmax(-ef.lo, ef.hi)),
+                          vbx_ia_mul(c0->s, vbx_ia_point(P->brho[P->nb - 1]))).hi;
+    return P->brho[P->nb - 1] = r;
+}
+
+static int start(struct vbm_poly *P, const vbm_cap *caps, size_t ncap, const vbm_circle *c0,
+                 int *cur, size_t *nv)
+{
+    double e[3] = {vbx_ia_mid(c0->a[0]), vbx_ia_mid(c0->a[1]), vbx_ia_mid(c0->a[2])};
+    double t0 = vbx_ia_mid(c0->c);
     P->nb = 0;
+    *cur = 0;
+    *nv = 8;
+    if (c0->c.lo > 0.0 && c0->s.lo >= 0.0) {
+        int j = fabs(e[0]) <= fabs(e[1]) && fabs(e[0]) <= fabs(e[2]) ? 0 : fabs(e[1]) <= fabs(e[2]) ? 1 : 2;
+        double ax[3] = {j == 0, j == 1, j == 2}, p[3], q[3];
+        p[0] = e[1] * ax[2] - e[2] * ax[1], p[1] = e[2] * ax[0] - e[0] * ax[2],
+        p[2] = e[0] * ax[1] - e[1] * ax[0];
+        double np = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+        if (!(np > 0.5)) /* e not near a unit vector */
+            return 0;
+        for (int k = 0; k < 3; k++)
+            p[k] /= np;
+        q[0] = e[1] * p[2] - e[2] * p[1], q[1] = e[2] * p[0] - e[0] * p[2],
+        q[2] = e[0] * p[1] - e[1] * p[0];
+        double r = side_plane(P, c0, p[0], p[1], p[2]);
+        side_plane(P, c0, -p[0], -p[1], -p[2]);
+        side_plane(P, c0, q[0], q[1], q[2]);
+        side_plane(P, c0, -q[0], -q[1], -q[2]);
+        ball_plane(P, e[0], e[1], e[2]);
+        for (size_t i = 0; i < 8; i++) {
+            pvert *x = &P->v[0][i];
+            double sp = i & 1 ? -r : r, sq = i & 2 ? -r : r, se = i & 4 ? t0 : 1.0;
+            for (int k = 0; k < 3; k++)
+                x->x[k] = sp * p[k] + sq * q[k] + se * e[k];
+            x->pl[0] = (uint32_t)(ncap + (i & 1));
+            x->pl[1] = (uint32_t)(ncap + 2 + ((i >> 1) & 1));
+            x->pl[2] = i & 4 ? 0 : (uint32_t)(ncap + 4);
+            for (int k = 0; k < 3; k++)
+                x->nb[k] = (uint16_t)(i ^ ((size_t)1 << k)); /* flips bit k: leaves plane k */
+        }
+        return 1;
+    }
     for (int k = 0; k < 3; k++)
         for (int s = 0; s < 2; s++)
             ball_plane(P, k == 0 ? (s ? -1.0 : 1.0) : 0.0, k == 1 ? (s ? -1.0 : 1.0) : 0.0,
                        k == 2 ? (s ? -1.0 : 1.0) : 0.0);
-    *cur = 0;
-    *nv = 8;
     for (size_t i = 0; i < 8; i++) {
         pvert *x = &P->v[0][i];
         for (int k = 0; k < 3; k++) {
@@ -232,12 +326,9 @@ static int start(struct vbm_poly *P, size_t ncap, const vbm_circle *c0, int *cur
             x->nb[k] = (uint16_t)(i ^ ((size_t)1 << k)); /* flips coordinate k: leaves its face */
         }
     }
-    if (!(vbx_ia_mid(c0->c) > 0.0))
-        return 1;
     double n[3], h;
-    ball_plane(P, vbx_ia_mid(c0->a[0]), vbx_ia_mid(c0->a[1]), vbx_ia_mid(c0->a[2]));
-    plane_of(NULL, ncap, P, (uint32_t)(ncap + 6), n, &h);
-    return clip(P, cur, nv, n, h, (uint32_t)(ncap + 6)) >= 0;
+    plane_of(caps, ncap, P, 0, n, &h);
+    return clip(P, cur, nv, n, h, 0) >= 0;
 }
 
 static prework *work(vbm_capwork *w)
@@ -280,8 +371,7 @@ size_t vbm_caps_prefilter(const vbm_cap *caps, const vbm_circle *circ, size_t nc
     }
     int cur = 0;
     double nm[3], h;
-    plane_of(caps, ncap, P, 0, nm, &h);
-    if (!start(P, ncap, &circ[0], &cur, &nv) || clip(P, &cur, &nv, nm, h, 0) < 0)
+    if (!start(P, caps, ncap, &circ[0], &cur, &nv))
         return 0;
     for (size_t i = 0; i < n; i++) {
         size_t m = seq[i];
@@ -291,15 +381,8 @@ size_t vbm_caps_prefilter(const vbm_cap *caps, const vbm_circle *circ, size_t nc
             break; /* empty in doubles or too many vertices: the rest kept */
         if (e > 0)
             continue;
-        /* the vertex where u.n_m is least: its planes' multipliers */
-        const pvert *v = P->v[cur], *lo = &v[0];
-        double best = INFINITY;
-        for (size_t k = 0; k < nv; k++) {
-            double d = nm[0] * v[k].x[0] + nm[1] * v[k].x[1] + nm[2] * v[k].x[2];
-            if (d < best)
-                best = d, lo = &v[k];
-        }
-        pre[m] = best > h && certify(caps, ncap, P, lo, m); /* touching: no certificate */
+        /* the vertex where u.n_m is least (the clip's): its planes' multipliers */
+        pre[m] = P->s[P->lo] > 0.0 && certify(caps, ncap, P, &P->v[cur][P->lo], m); /* touching: no certificate */
     }
     for (size_t m = 1; m < ncap; m++)
         nrej += pre[m];
