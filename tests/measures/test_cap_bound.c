@@ -14,53 +14,10 @@
 #include <stdlib.h>
 
 #include "vbm_caps.h"
+#include "caps_random.h"
 #include "vb_test.h"
 
 #define NCAP 14
-
-static double rnd(uint64_t *s)
-{
-    *s = *s * 6364136223846793005u + 1442695040888963407u;
-    return (double)(*s >> 11) / 9007199254740992.0;
-}
-
-static void unit(uint64_t *s, double *u)
-{
-    double n;
-    do {
-        n = 0.0;
-        for (int k = 0; k < 3; k++) {
-            u[k] = 2.0 * rnd(s) - 1.0;
-            n += u[k] * u[k];
-        }
-    } while (n > 1.0 || n < 1e-6);
-    n = sqrt(n);
-    for (int k = 0; k < 3; k++)
-        u[k] /= n;
-}
-
-/* A cap about a direction near v (spread) with cosine of radius c. */
-static void make_cap(uint64_t *s, const double *v, double spread, double c, vbm_cap *cp,
-                     double *n, double *h)
-{
-    double u[3], nn = 0.0;
-    unit(s, u);
-    for (int k = 0; k < 3; k++) {
-        n[k] = v[k] + spread * u[k];
-        nn += n[k] * n[k];
-    }
-    *h = c * sqrt(nn);
-    for (int k = 0; k < 3; k++)
-        cp->n[k] = vbx_ia_point(n[k]);
-    cp->h = vbx_ia_point(*h);
-}
-
-/* Signed distance of u from cap (n, h) in units of |n| (> 0 inside). */
-static double depth(const double *n, double h, const double *u)
-{
-    double d = n[0] * u[0] + n[1] * u[1] + n[2] * u[2];
-    return (d - h) / sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-}
 
 int main(void)
 {

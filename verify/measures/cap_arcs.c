@@ -26,7 +26,9 @@
  * others are searched. Before the search, the caps proven to hold a cap
  * around the trial intersection (cap 0 and the caps cutting most of it)
  * are rejected: they cannot touch the intersection (bound_prune). Each
- * restriction is made once per intersection and kept (restriction()). */
+ * restriction is made once per intersection and kept (restriction()).
+ * vbm_cap_arcs (cap_prefilter.c) runs this search on the caps its
+ * polyhedron clip cannot reject. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -80,6 +82,7 @@ void vbm_caps_free(vbm_capwork *w)
     free(w->rc);
     free(w->rslot);
     free(w->rix);
+    vbm_prefilter_free(w);
     memset(w, 0, sizeof *w);
 }
 
@@ -574,8 +577,8 @@ static size_t take_given(size_t ncap, const uint8_t *known, const vbm_arc *given
     return nb;
 }
 
-int vbm_cap_arcs(const vbm_cap *caps, const vbm_circle *axes, size_t ncap, const uint8_t *known,
-                 const vbm_arc *given, size_t ngiven, vbm_capwork *w)
+int vbm_cap_arcs_all(const vbm_cap *caps, const vbm_circle *axes, size_t ncap,
+                     const uint8_t *known, const vbm_arc *given, size_t ngiven, vbm_capwork *w)
 {
     w->narc = 0;
     if (VB_ARRAY_FIT(w->circ, w->cap_circ, ncap, 32) != VB_OK ||

@@ -53,6 +53,7 @@ typedef struct vbm_capwork {
     size_t nres; /* restrictions made by the last circle_arcs */
     size_t ncirc; /* circ[0..ncirc) are the last vbm_cap_arcs call's circles */
     size_t cap_circ, cap_ord, cap_arc, narc, cap_sorted, cap_sel, cap_queue, cap_state, cap_bnd;
+    struct vbm_prework *pw; /* vbm_cap_arcs' prefilter and compacted caps (cap_prefilter.c's) */
 } vbm_capwork;
 
 /* The circle of a cap: kind VBM_CAP_CIRCLE with the frame, _ALL or _NONE;
@@ -101,11 +102,31 @@ int vbm_arcs_cap(const vbm_circle *circ, const vbm_arc *arc, size_t n, const vbx
  * on a third circle), -1 on ENOMEM. axes (may be NULL) gives each cap's
  * circle as vbm_circle_axis makes it (kind 0: it could not), with its frame
  * where framed, when the caller has them already; w->circ[l] has circle
- * l afterwards, framed where the search made the frame. */
+ * l afterwards, framed where the search made the frame. The search runs
+ * over the caps vbm_caps_prefilter keeps, and over all of them where that
+ * could not give the same bytes (cap_prefilter.c). */
 int vbm_cap_arcs(const vbm_cap *caps, const vbm_circle *axes, size_t ncap, const uint8_t *known,
                  const vbm_arc *given, size_t ngiven, vbm_capwork *w);
 
+/* vbm_cap_arcs' search over every cap given (cap_arcs.c): vbm_cap_arcs
+ * runs it on the caps vbm_caps_prefilter keeps, and on all of them where
+ * that cannot give its bytes. Same arguments and returns. */
+int vbm_cap_arcs_all(const vbm_cap *caps, const vbm_circle *axes, size_t ncap,
+                     const uint8_t *known, const vbm_arc *given, size_t ngiven, vbm_capwork *w);
+
+/* The caps 1..ncap - 1 of the intersection of caps[0..ncap) proven to hold
+ * in their interior every unit vector inside the caps not rejected: pre[m]
+ * = 1 for each (0 elsewhere; pre has ncap bytes). Their circles touch no
+ * point of the intersection, which the caps kept define alone. circ: each
+ * cap's circle (vbm_circle_axis, no frame needed). w: its work space only.
+ * Returns how many, 0 also on ENOMEM (none rejected). (cap_prefilter.c) */
+size_t vbm_caps_prefilter(const vbm_cap *caps, const vbm_circle *circ, size_t ncap,
+                          vbm_capwork *w, uint8_t *pre);
+
 void vbm_caps_free(vbm_capwork *w);
+
+/* Frees vbm_capwork.pw (cap_prefilter.c; vbm_caps_free calls it). */
+void vbm_prefilter_free(vbm_capwork *w);
 
 /* An exact unit vector (x, y) at about the angle t: (cos t, sin t) in
  * doubles, normalised in intervals. */
