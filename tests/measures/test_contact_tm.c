@@ -182,9 +182,43 @@ static int check_start(void)
     return ok && vbm_contact_start(NAN) == 1.0;
 }
 
+/* vbm_contact_step_at: a missed piece (rho > 1, or not made) is always
+ * retried at most 0.75 of its length at any margin, so march, which takes
+ * the rest of the arc once it is within 1.25 lengths, cannot give the same
+ * piece again (without the cap: 2^-1/4 at safety 1, rho just above 1);
+ * a kept piece (rho <= 1) at the rule's factor, uncapped (rho 1 and 1/2:
+ * 2^-1/4); and the in-use margin's factors as before (2^(j/4), j the
+ * largest with 2^(K j / 4) <= 2^(e-1), 2^(e-1) <= 0.25 / rho < 2^e). */
+static int check_step(void)
+{
+    static const double safety[6] = {0.125, 0.25, 0.35, 0.5, 1.0, 4.0};
+    int ok = 1;
+    for (int s = 0; s < 6; s++)
+        for (int i = 0; i <= 400; i++) {
+            double rho = i == 400 ? INFINITY : 1.0 + ldexp(1.0, -52 + i / 8) * (1 + i % 8);
+            double f = vbm_contact_step_at(rho, safety[s]);
+            if (!(f > 0.0 && 1.25 * f < 1.0)) {
+                fprintf(stderr, "  step_at(%.17g, %g) = %.17g: a retry may repeat the piece\n",
+                        rho, safety[s], f);
+                ok = 0;
+            }
+        }
+    static const double rho[6] = {1.0, 0.5, 0x1p-10, 1.5, 0x1p20, NAN};
+    static const double want[6] = {0.84089641525371450, 0.84089641525371450,
+                                    1.681792830507429, 0.70710678118654757, 0.25, 0.25};
+    for (int i = 0; i < 6; i++)
+        if (vbm_contact_step(rho[i]) != want[i]) {
+            fprintf(stderr, "  vbm_contact_step(%g) = %.17g, not %.17g\n", rho[i],
+                    vbm_contact_step(rho[i]), want[i]);
+            ok = 0;
+        }
+    return ok && vbm_contact_step(0.0) == 4.0;
+}
+
 int main(void)
 {
     CHECK(check_start());
+    CHECK(check_step());
     for (int k = 4; k <= VBM1_K; k += 3) {
         CHECK(check_root(0.2, 0.5, k));
         CHECK(check_root(-0.4, 0.1, k));

@@ -108,8 +108,21 @@ int vbm_contact_tm(const vbm_contact_rat *p, const vbm_owner *o, vbx_ia F0, doub
  * every machine), and a piece that misses is tried again shorter by the
  * same rule. Only where pieces end follows from it, never a bound. */
 #define STEP_SAFETY 0.25
+/* A piece that missed (rho > 1) is tried again at most this part of its
+ * length. march takes the whole rest of the arc once it is within 1.25
+ * lengths; a retry factor >= 0.8 could then give the same piece again and
+ * loop (seen at STEP_SAFETY 0.5 on c1k, stop 52). At 0.75 the retry is at
+ * most 0.9375 of the rest, so each miss shortens the piece; at STEP_SAFETY
+ * 0.25 the rule's factor for rho > 1 is at most 2^-1/2 and the cap never
+ * acts (the same pieces). */
+#define RETRY_CAP 0.75
 
 double vbm_contact_step(double rho)
+{
+    return vbm_contact_step_at(rho, STEP_SAFETY);
+}
+
+double vbm_contact_step_at(double rho, double safety)
 {
     static const double q[4] = {1.0, 1.189207115002721, 1.4142135623730951, 1.681792830507429};
     int j = 8;
@@ -117,13 +130,14 @@ double vbm_contact_step(double rho)
         j = -8;
     else if (rho > 0.0) {
         int e;
-        frexp(STEP_SAFETY / rho, &e); /* 2^(e-1) <= STEP_SAFETY / rho < 2^e */
+        frexp(safety / rho, &e); /* 2^(e-1) <= safety / rho < 2^e */
         int num = 4 * (e - 1);         /* the largest j with j K / 4 <= e - 1 */
         j = num >= 0 ? num / VBM1_K : -((-num + VBM1_K - 1) / VBM1_K);
         j = j < -8 ? -8 : j > 8 ? 8 : j;
     }
     int e = j >= 0 ? j / 4 : -((-j + 3) / 4);
-    return ldexp(q[j - 4 * e], e);
+    double f = ldexp(q[j - 4 * e], e);
+    return !(rho <= 1.0) && f > RETRY_CAP ? RETRY_CAP : f;
 }
 
 /* The first piece: the whole arc, unless the area's term |c_K| 2 h^(K+1) /

@@ -30,10 +30,17 @@ int vbm_contact_tm(const vbm_contact_rat *p, const vbm_owner *o, vbx_ia F0, doub
 
 /* The factor to the next contact piece's length along an arc from the
  * last piece's ratio rho = width / its share of the target (a NaN or
- * infinite rho: the least, 1/4; 0: the most, 4): < 1 for rho > 1, chosen
- * so that the next piece should meet its share with a margin. A step
- * rule, not a bound: every piece is proven by its own model. */
+ * infinite rho: the least, 1/4; 0: the most, 4): at most 0.75 for rho > 1
+ * (a missed piece is always retried shorter), chosen so that the next
+ * piece should meet its share with a margin. A step rule, not a bound:
+ * every piece is proven by its own model. */
 double vbm_contact_step(double rho);
+
+/* vbm_contact_step with the margin `safety` (the in-use one: 0.25) in
+ * place of the built-in one: the rule's factor is the largest 2^(j/4),
+ * j in -8..8, with 2^(j K / 4) <= safety / rho, capped at 0.75 for rho > 1.
+ * For tests and retuning. */
+double vbm_contact_step_at(double rho, double safety);
 
 /* The first contact piece's length along an arc as a part of the arc
  * (0 < part <= 1) from r, the area's remainder term over the whole arc
