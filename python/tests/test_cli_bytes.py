@@ -72,10 +72,13 @@ def test_crambin_float32_like_mdanalysis_same_bytes():
 VARYING = {"device_bytes_peak", "certify_parts", "cover_host_cells", "cover_handed_cells",
            "cover_resumed_patches",
            "cover_neighbours", "cover_max_cell_neighbours"}
-# Per tier of the device's arenas: how many launches and tasks each took
-# depends on which cells the host threads took first.
-VARYING |= {"cover_%s_%s" % (w, t) for w in ("launches", "tasks")
-            for t in ("first", "large", "handoff", "huge")}
+# Per tier of the device's arenas: how many launches and tasks each took,
+# and the patches its tasks walked (the most in one task, and those of tasks
+# that ran out), depend on which cells the host threads took first.
+VARYING |= {"cover_%s_%s" % (w, t)
+            for w in ("launches", "tasks", "patches", "task_max_patches", "wasted_patches",
+                      "wasted_tasks")
+            for t in ("first", "large", "handoff", "huge", "rerun")}
 
 
 def _printed(v):
