@@ -25,6 +25,20 @@ static int tent_less(const vbx_tent *a, const vbx_tent *b)
     return ka < kb || (ka == kb && a->k < b->k);
 }
 
+/* e[lo..end) sorted by tent_less, by insertion. */
+static void tent_insertion_sort(vbx_tent *e, size_t lo, size_t end)
+{
+    for (size_t a = lo + 1; a < end; a++) {
+        vbx_tent x = e[a];
+        size_t c = a;
+        while (c > lo && tent_less(&x, &e[c - 1])) {
+            e[c] = e[c - 1];
+            c--;
+        }
+        e[c] = x;
+    }
+}
+
 /* Entries bigger buckets are merge-sorted with on the stack (more go to
  * qsort). */
 enum { TENT_MERGE_MAX = 512 };
@@ -34,18 +48,8 @@ enum { TENT_MERGE_MAX = 512 };
 static void tent_merge_sort(vbx_tent *e, size_t n, vbx_tent *tmp)
 {
     enum { RUN = 16 };
-    for (size_t r = 0; r < n; r += RUN) {
-        size_t end = r + RUN < n ? r + RUN : n;
-        for (size_t a = r + 1; a < end; a++) {
-            vbx_tent x = e[a];
-            size_t c = a;
-            while (c > r && tent_less(&x, &e[c - 1])) {
-                e[c] = e[c - 1];
-                c--;
-            }
-            e[c] = x;
-        }
-    }
+    for (size_t r = 0; r < n; r += RUN)
+        tent_insertion_sort(e, r, r + RUN < n ? r + RUN : n);
     vbx_tent *src = e, *dst = tmp;
     for (size_t w = RUN; w < n; w *= 2) {
         for (size_t lo = 0; lo < n; lo += 2 * w) {
@@ -91,15 +95,7 @@ static void sort_bucket(void *arg, size_t i, int tid)
         tent_merge_sort(e, n, tmp);
         return;
     }
-    for (size_t a = 1; a < n; a++) {
-        vbx_tent x = e[a];
-        size_t c = a;
-        while (c > 0 && tent_less(&x, &e[c - 1])) {
-            e[c] = e[c - 1];
-            c--;
-        }
-        e[c] = x;
-    }
+    tent_insertion_sort(e, 0, n);
 }
 
 /* The map's build: the vertices cut into nchunk runs; hist[c * top + i]
