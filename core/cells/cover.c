@@ -573,8 +573,10 @@ int vb_cover_run_parts(vb_ctx *ctx, const vb_sphere_set *set, const vb_cover_opt
     memset(&jb, 0, sizeof jb);
     jb.set = set;
     jb.ctx = ctx;
-    vb_cover_tree *tree = NULL;
-    int prc = vb_cover_prepare(ctx, set, &o, &tree, &jb.env);
+    vb_cover_tree *tree = NULL; /* this run's own, when the caller has none */
+    int prc = o.env ? VB_OK : vb_cover_prepare(ctx, set, &o, &tree, &jb.env);
+    if (o.env)
+        jb.env = *o.env;
     if (prc != VB_OK)
         return prc;
     /* Cells in the tree's curve order: neighbouring cells share neighbours

@@ -52,6 +52,7 @@ typedef struct judging {
     atomic_int callers;      /* lists being judged now (their threads share the CPUs) */
     double t;                /* seconds judging, summed over the lists */
     int failed;              /* the device judge failed: the twin from then on */
+    int tried;               /* the filter was built (or found not to apply) */
 } judging;
 
 static int judge_list(judging *j, vb_quad_list *l)
@@ -95,21 +96,44 @@ static int judge_sink(void *user, vb_quad_list *part)
     return rc == VB_OK ? j->sink(j->user, part) : rc;
 }
 
-/* Sets up j for the run: *on = 1 with VORBALL_DEVICE_CERT=1, or unset
- * with a device that has the filter (a GPU); else nothing is judged. */
-static int judging_open(vb_ctx *ctx, judging *j, cover_state *s, const vb_sphere_set *set,
-                        const vb_propose_args *args, int *on)
+/* Whether the filter judges a run: VORBALL_DEVICE_CERT=1, or unset where
+ * the device has the filter (a GPU: device_judges). */
+static int judging_wanted(int device_judges)
+{
+    int mode = vb_cert_filter_mode();
+    return mode == 1 || (mode < 0 && device_judges);
+}
+
+/* Builds j's filter of set (host work, no device needed); *on = 1 when it
+ * was made. j is zeroed first. */
+static int judging_build(vb_ctx *ctx, judging *j, const vb_sphere_set *set, int *on)
 {
     memset(j, 0, sizeof *j);
     *on = 0;
-    int mode = vb_cert_filter_mode();
-    if (!(mode == 1 || (mode < 0 && s->be && s->be->judge)))
-        return VB_OK;
+    j->tried = 1;
     int rc = vb_cert_filter_build(ctx, set, &j->f);
     if (rc != VB_OK || !j->f.ok) {
         vb_cert_filter_free(&j->f);
         return rc;
     }
+    *on = 1;
+    return VB_OK;
+}
+
+/* Sets up j for the run on s: *on = 1 where the filter judges
+ * (judging_wanted). A filter built ahead (j->tried, *on) is kept where it
+ * judges and freed where it does not; one not tried is built now. */
+static int judging_open(vb_ctx *ctx, judging *j, cover_state *s, const vb_sphere_set *set,
+                        const vb_propose_args *args, int *on)
+{
+    if (!judging_wanted(s->be && s->be->judge)) {
+        vb_cert_filter_free(&j->f);
+        *on = 0;
+        return VB_OK;
+    }
+    int rc = j->tried ? VB_OK : judging_build(ctx, j, set, on);
+    if (rc != VB_OK || !*on)
+        return rc;
     j->s = s;
     j->threads = args->opt.threads;
     j->sink = args->quads_sink;
@@ -119,7 +143,6 @@ static int judging_open(vb_ctx *ctx, judging *j, cover_state *s, const vb_sphere
     pthread_mutex_init(&j->mu, NULL);
     pthread_mutex_init(&j->tmu, NULL);
     atomic_init(&j->callers, 0);
-    *on = 1;
     return VB_OK;
 }
 
@@ -142,9 +165,6 @@ static int cover_run(vb_ctx *ctx, void *state, const vb_proposer_await *aw,
                      const vb_sphere_set *set, const vb_propose_args *args,
                      vb_proposal *res)
 {
-    cover_state *s = state ? state : aw->state(aw->user);
-    if (!s)
-        return vb_error(ctx, VB_EINTERNAL, NULL, 0, "no cover backend");
     vb_cover_options o;
     memset(&o, 0, sizeof o);
     if (args->cover)
@@ -157,11 +177,31 @@ static int cover_run(vb_ctx *ctx, void *state, const vb_proposer_await *aw,
     o.stream_batches = args->quads_sink && !(sb && strcmp(sb, "0") == 0);
     vb_quad_list q = {0};
     vb_cover_stats st;
+    /* What needs no device first, while the device's set-up goes on on its
+     * own thread (core/cells/vertices.c): the tree, and the certification
+     * filter where the device asked for is likely a GPU (aw->gpu; freed if
+     * the device turns out to have none); then the state. */
     judging j;
-    int on;
-    int rc = judging_open(ctx, &j, s, set, args, &on);
-    if (rc != VB_OK)
+    memset(&j, 0, sizeof j);
+    int on = 0;
+    vb_cover_tree *tree = NULL;
+    vbq_env env;
+    double t0 = vb_now();
+    int rc = vb_cover_prepare(ctx, set, &o, &tree, &env);
+    if (rc == VB_OK && !state && judging_wanted(aw->gpu))
+        rc = judging_build(ctx, &j, set, &on);
+    res->t_cover_prepare = vb_now() - t0;
+    cover_state *s = rc != VB_OK ? NULL : state ? state : aw->state(aw->user);
+    if (rc == VB_OK && !s)
+        rc = vb_error(ctx, VB_EINTERNAL, NULL, 0, "no cover backend");
+    if (rc == VB_OK)
+        rc = judging_open(ctx, &j, s, set, args, &on);
+    if (rc != VB_OK) {
+        vb_cert_filter_free(&j.f);
+        vb_cover_tree_free(tree);
         return rc;
+    }
+    o.env = &env;
     /* The device's clocks run since it opened (bench reuses it): this
      * run's share is the difference (the most patches of a task: this
      * run's, counted from zero). */
@@ -182,6 +222,7 @@ static int cover_run(vb_ctx *ctx, void *state, const vb_proposer_await *aw,
         rc = judge_list(&j, &q);
     if (on)
         judging_close(ctx, &j, res);
+    vb_cover_tree_free(tree);
     if (rc != VB_OK) {
         vb_quad_list_free(&q);
         return rc;

@@ -61,6 +61,11 @@ typedef struct vb_cover_options {
      * about a batch's worth (8 quadruples a cell), the rest as each run's
      * last part. The sink is then called from several threads at once. */
     int stream_batches;
+    /* Not NULL: the tree's environment for this set and these options,
+     * made by the caller with vb_cover_prepare (its tree kept until the run
+     * returns), e.g. while a device opens (core/cells/proposer_cover.c);
+     * NULL: vb_cover_run_parts makes its own. */
+    const vbq_env *env;
 } vb_cover_options;
 
 typedef struct vb_cover_stats {

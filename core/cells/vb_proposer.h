@@ -174,6 +174,8 @@ typedef struct vb_proposal {
                                      a counter that processes which covered parts of the
                                      cells can add up */
     double t_cover_device;        /* seconds in the cover's device batches */
+    double t_cover_prepare;       /* seconds of the cover's host work before it waits for
+                                     the device (tree, certification filter) */
     vb_cover_clocks cover_clocks; /* the device's tiers in this run (vb_cover.h; 0 on
                                      host threads) */
     vb_cover_steps cover_steps;   /* where the host's side of a device cover went */
@@ -192,12 +194,15 @@ void vb_proposal_free(vb_proposal *r);
  * device on a thread of its own: state() waits for the opening (or falls
  * back) and returns the state, or NULL with an error in the context;
  * ready() says whether state() would return at once. kind is the device
- * asked for (a hint for sizes chosen before the device is known). */
+ * asked for (a hint for sizes chosen before the device is known); gpu is
+ * nonzero where that is likely a GPU (kind gpu, or auto with one present),
+ * a hint for host work done ahead of the device (it may open elsewhere). */
 typedef struct vb_proposer_await {
     void *(*state)(void *user);
     int (*ready)(void *user);
     void *user;
     vb_device_kind kind;
+    int gpu;
 } vb_proposer_await;
 
 /* A proposer of candidate vertices: candidates (ids, approximate point and

@@ -445,7 +445,10 @@ int vb_vertices_run(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertices_con
     vbv_cert_stream css, *cs;
     certifier_start(be->certifier, set, cfg, &co, &css, &cs, ctx);
     vb_propose_args pa = args_of(cfg, cs);
-    vb_proposer_await aw = {await_state, opener_ready, op, cfg->device};
+    int gpu = cfg->device == VB_DEVICE_GPU ||
+              (cfg->device == VB_DEVICE_AUTO && be->devices && be->devices->gpu_present &&
+               be->devices->gpu_present());
+    vb_proposer_await aw = {await_state, opener_ready, op, cfg->device, gpu};
     double tp = vb_now();
     rc = propose(ctx, p, state, async ? &aw : NULL, set, &pa, res);
     res->t_propose = vb_now() - tp;

@@ -13,9 +13,12 @@
  *                      point, CL_MEM_OBJECT_ALLOCATION_FAILURE for buffers,
  *                      CL_INVALID_COMMAND_QUEUE for clFinish,
  *                      CL_OUT_OF_RESOURCES otherwise)
+ *   VB_CLFAULT_SLOW    name:ms, every call of that entry point sleeps ms
+ *                      first (fails or not as above)
  *   VB_CLFAULT_COUNTS  file to which "name count" lines of every call made
  *                      are appended at exit (the counting pass), then
  *                      "# max_buffer_bytes N", the largest clCreateBuffer
+ *                      (also at _exit, which vorball ends with)
  * A failing call does what the specification says of an error: no object,
  * no event, *errcode_ret set; it is named on stderr ("clfault: ..."). */
 #define _GNU_SOURCE
@@ -28,6 +31,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
+#include <unistd.h>
 
 #define VBF_ENTRY_POINTS(X)                                                     \
     X(clGetPlatformIDs) X(clGetPlatformInfo) X(clGetDeviceIDs) X(clGetDeviceInfo) \
@@ -79,9 +84,24 @@ static cl_int default_error(int which)
     }
 }
 
+/* VB_CLFAULT_SLOW=name:ms: every call of that entry point first sleeps ms
+ * (a device whose set-up outlasts the work done meanwhile). */
+static void vbf_slow(int which)
+{
+    const char *e = getenv("VB_CLFAULT_SLOW"), *colon = e ? strchr(e, ':') : NULL;
+    size_t len = strlen(vbf_names[which]);
+    if (!colon || (size_t)(colon - e) != len || strncmp(e, vbf_names[which], len) != 0)
+        return;
+    long ms = strtol(colon + 1, NULL, 10);
+    struct timespec ts = {ms / 1000, (ms % 1000) * 1000000L};
+    if (ms > 0)
+        nanosleep(&ts, NULL);
+}
+
 /* 0 to go on to the real call, else the error this call returns. */
 static cl_int vbf_fault(int which)
 {
+    vbf_slow(which);
     unsigned long k = atomic_fetch_add(&vbf_calls[which], 1) + 1;
     unsigned long any = atomic_fetch_add(&vbf_any, 1) + 1;
     const char *func = getenv("VB_CLFAULT_FUNC"), *at = getenv("VB_CLFAULT_AT");
@@ -119,10 +139,12 @@ static void *vbf_real(const char *name)
     return p;
 }
 
+static atomic_int vbf_reported;
+
 __attribute__((destructor)) static void vbf_report(void)
 {
     const char *path = getenv("VB_CLFAULT_COUNTS");
-    if (!path || !*path)
+    if (!path || !*path || atomic_exchange(&vbf_reported, 1))
         return;
     FILE *f = fopen(path, "a");
     if (!f)
@@ -134,6 +156,17 @@ __attribute__((destructor)) static void vbf_report(void)
     }
     fprintf(f, "# max_buffer_bytes %lu\n", atomic_load(&vbf_max_buffer));
     fclose(f);
+}
+
+/* vorball ends with _exit (cli/main.c), which runs no destructor: the
+ * counts are written before the real one. */
+void _exit(int status)
+{
+    vbf_report();
+    void (*real)(int);
+    *(void **)&real = vbf_real("_exit");
+    real(status);
+    __builtin_unreachable();
 }
 
 /* An entry point that returns cl_int. */

@@ -18,11 +18,7 @@
 # VORBALL_COVER_KERNEL=group on a CPU device: W752 and the reference's vertices.
 # usage: device_budget.sh VORBALL SHIM CORPUS_DIR WORK_DIR [peak]
 vorball=$1 shim=$2 corpus=$3 work=$4/device_budget
-here=$(cd "$(dirname "$0")" && pwd)
-. "$here/../pipeline/lib.sh"
-mkdir -p "$work" || fail "cannot create $work"
-ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}verify_asan_link_order=0"
-export ASAN_OPTIONS
+. "$(dirname "$0")/shim_env.sh"
 if [ "$5" = peak ]; then
     in=$corpus/data/3pqr.pqr
     [ -x /usr/bin/time ] || { echo "no /usr/bin/time: skipped"; exit 0; }

@@ -12,12 +12,7 @@
 # how soon the device is ready, so the count of launches is not compared.
 # usage: fault_cli.sh VORBALL SHIM CORPUS_DIR WORK_DIR vertices|vertices_sampling|jfa|channels
 vorball=$1 shim=$2 corpus=$3 cmd=$5 work=$4/fault_$5
-here=$(cd "$(dirname "$0")" && pwd)
-. "$here/../pipeline/lib.sh"
-mkdir -p "$work" || fail "cannot create $work"
-# Under ASan the shim comes first in the library list, before ASan's runtime.
-ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}verify_asan_link_order=0"
-export ASAN_OPTIONS
+. "$(dirname "$0")/shim_env.sh"
 case $cmd in
 vertices)
     # The default proposer: the direction cover (gpu/cover_ocl.c).
