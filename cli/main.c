@@ -139,9 +139,9 @@ static int dispatch(int argc, char **argv)
 /* The end of the process once its command has run: the output is
  * committed and the library has freed what it held (its contract), so the
  * streams are flushed and _exit leaves the rest to the operating system:
- * the address space, the thread pool's idle workers and an OpenCL
- * driver's own teardown in its libraries' destructors, which exit would
- * run one after another (results/proc54_stop53.md). VORBALL_EXIT_FAST=0
+ * the address space and an OpenCL driver's own teardown in its libraries'
+ * destructors and atexit handlers, which exit would run one after another
+ * (papers/gpu-voronoi-cells-of-spheres/results/proc54_stop53.md). VORBALL_EXIT_FAST=0
  * takes the plain exit (comparisons); sanitizer builds always do, for
  * their leak check at exit. */
 static int end_process(int code)
