@@ -595,6 +595,7 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
          * decision). */
         vbs_u32 same = keep == fr.len && (fr.combo & VBQ_FR_NOTFLAT);
         int cluster = !same && vbq_tie_cluster(ar->nb, ar->lab + top, keep, owned, i, act, closed);
+        int refuted = 0; /* the host's exact rank said: no tie cluster */
         vbs_u32 notflat = !cluster && (same || (owned > VBQ_CLUSTER_OWNED && closed)) ? VBQ_FR_NOTFLAT : 0u;
         if (cluster) {
 #ifdef __OPENCL_C_VERSION__
@@ -614,16 +615,19 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
             }
             /* exactly no tie cluster: a near-tie the doubles call flat (a
              * crystal jittered at their resolution); on as one, and its
-             * children with the same list need not ask again */
+             * children with the same list need not ask again. Its list
+             * stalls below (sc16_j12: a level-1 child with it decided), so
+             * it is decided now, as a stalled chain's (cover_envelope.c). */
             cluster = 0;
             notflat = VBQ_FR_NOTFLAT;
+            refuted = 1;
 #endif
         }
         /* A stalled near-tie chain (vbq_envelope_due; its first tests
          * here, the rest out of this loop): its envelope decided exactly at
          * once (a kernel decides in doubles, or hands the cell to the host). */
-        if (!cluster && ((((act == 1 && keep == fr.len) || act == VBQ_ENV_DEEP_ACT) &&
-                          owned > VBQ_CLUSTER_OWNED) ||
+        if (!cluster && (refuted || (((act == 1 && keep == fr.len) || act == VBQ_ENV_DEEP_ACT) &&
+                                     owned > VBQ_CLUSTER_OWNED) ||
                          (owned >= 3u && VBQ_ENV_DEEP(act, &fr)))) {
 #ifdef __OPENCL_C_VERSION__
             if (vbq_envelope_due(e, &fr, ar->nb, ar->lab + top, keep, owned, act, closed) &&
@@ -652,6 +656,7 @@ VBS_FN void vbq_cover_cell(const vbq_env *e, const vbq_arena *ar, vbs_u32 i, vbs
             }
 #else
             vbq_frame fc = fr; /* a copy: fr's address never escapes the loop */
+            fc.len = refuted ? keep : fc.len; /* refuted: due as if stalled */
             int he = vbq_host_envelope(e, ar, o, i, &fc, top, keep, owned, act, closed);
             if (he < 0)
                 return;
