@@ -1,11 +1,13 @@
 /* Random caps for the arrangement's tests (test_cap_bound.c,
- * test_cap_prefilter.c): a seeded generator, unit directions, caps about
- * a direction, and a direction's signed distance from a cap. */
+ * test_cap_prefilter.c, test_cap_near.c): a seeded generator, unit
+ * directions, caps about a direction, a direction's signed distance from
+ * a cap, and two comparisons of arc lists. */
 #ifndef CAPS_RANDOM_H
 #define CAPS_RANDOM_H
 
 #include <math.h>
 #include <stdint.h>
+#include <string.h>
 
 #include "vbm_caps.h"
 
@@ -54,6 +56,36 @@ static inline double depth(const double *n, double h, const double *u)
 {
     double d = n[0] * u[0] + n[1] * u[1] + n[2] * u[2];
     return (d - h) / sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+}
+
+/* The same list bit for bit. */
+static inline int arcs_equal(const vbm_arc *a, size_t na, const vbm_arc *b, size_t nb)
+{
+    if (na != nb)
+        return 0;
+    for (size_t i = 0; i < na; i++)
+        if (a[i].cap != b[i].cap || a[i].pcap != b[i].pcap || a[i].qcap != b[i].qcap ||
+            memcmp(a[i].p, b[i].p, sizeof a[i].p) || memcmp(a[i].q, b[i].q, sizeof a[i].q) ||
+            memcmp(&a[i].tp, &b[i].tp, sizeof a[i].tp) || memcmp(&a[i].tq, &b[i].tq, sizeof a[i].tq))
+            return 0;
+    return 1;
+}
+
+/* The same arcs as sets (b's caps through map): fewer caps may start a
+ * circle's list at another arc (its widest gap), not change the arcs. */
+static inline int arcs_same(const vbm_arc *a, size_t na, const vbm_arc *b, size_t nb, const size_t *map)
+{
+    if (na != nb)
+        return 0;
+    for (size_t i = 0; i < na; i++) {
+        size_t j = 0;
+        while (j < nb && !(map[b[j].cap] == a[i].cap && !memcmp(a[i].p, b[j].p, sizeof a[i].p) &&
+                           !memcmp(a[i].q, b[j].q, sizeof a[i].q)))
+            j++;
+        if (j == nb)
+            return 0;
+    }
+    return 1;
 }
 
 #endif

@@ -49,36 +49,6 @@ static long prefilter(const vbm_cap *caps, size_t nc, vbm_capwork *w, uint8_t *p
     return (long)vbm_caps_prefilter(caps, circ, nc, w, pre);
 }
 
-/* The same list bit for bit. */
-static int arcs_equal(const vbm_arc *a, size_t na, const vbm_arc *b, size_t nb)
-{
-    if (na != nb)
-        return 0;
-    for (size_t i = 0; i < na; i++)
-        if (a[i].cap != b[i].cap || a[i].pcap != b[i].pcap || a[i].qcap != b[i].qcap ||
-            memcmp(a[i].p, b[i].p, sizeof a[i].p) || memcmp(a[i].q, b[i].q, sizeof a[i].q) ||
-            memcmp(&a[i].tp, &b[i].tp, sizeof a[i].tp) || memcmp(&a[i].tq, &b[i].tq, sizeof a[i].tq))
-            return 0;
-    return 1;
-}
-
-/* The same arcs as sets (b's caps through map): fewer caps may start a
- * circle's list at another arc (its widest gap), not change the arcs. */
-static int arcs_same(const vbm_arc *a, size_t na, const vbm_arc *b, size_t nb, const size_t *map)
-{
-    if (na != nb)
-        return 0;
-    for (size_t i = 0; i < na; i++) {
-        size_t j = 0;
-        while (j < nb && !(map[b[j].cap] == a[i].cap && !memcmp(a[i].p, b[j].p, sizeof a[i].p) &&
-                           !memcmp(a[i].q, b[j].q, sizeof a[i].q)))
-            j++;
-        if (j == nb)
-            return 0;
-    }
-    return 1;
-}
-
 int main(void)
 {
     uint64_t seed = 52;

@@ -18,7 +18,15 @@
  * (each rejected cap holds it) and no rejected circle bounds it. The
  * certificates use the kept caps alone (a rejected one never clips), so
  * there is no circle of reasons. The doubles only choose: a wrong vertex
- * or multiplier fails its certificate and the cap is kept. */
+ * or multiplier fails its certificate and the cap is kept.
+ *
+ * The whole polyhedron then serves twice more (shape): a cap kept whose
+ * face the later caps cut away gets a certificate at the polyhedron's
+ * vertex where its u.n - h is least (a second pass), and where a cap
+ * leaves nothing of the polyhedron the same certificate for its outside
+ * proves the intersection empty. The search over the kept caps takes
+ * each circle's neighbours on the polyhedron as the caps to look for its
+ * arcs among first (vbm_cap_arcs_near, no trial intersection). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -45,6 +53,8 @@ struct vbm_poly {
     double bf[NPLANE_BALL][3], brho[NPLANE_BALL]; /* the ball's planes u.f <= rho */
     size_t nb; /* ball planes */
     size_t lo; /* after a clip that cut nothing: the vertex where u.n - h is least */
+    int cur;   /* the polyhedron is v[cur][0..nv) */
+    size_t nv;
 };
 
 /* vbm_cap_arcs' work space (vbm_capwork.pw): the polyhedron, the caps
@@ -55,10 +65,13 @@ typedef struct vbm_prework {
     uint8_t *pre, *known;
     uint32_t *map, *inv;   /* kept cap k is cap map[k]; cap m is kept cap inv[m] */
     uint32_t *seq;         /* the prefilter's caps in their order */
+    uint32_t *near_at, *near; /* per kept cap: its neighbours' kept indices (vbm_cap_arcs_near) */
+    uint8_t *adj, *face;      /* kept x kept: neighbours; per cap: a face of the polyhedron */
     double *key;
     vbm_cap *caps;
     vbm_circle *axes;
     vbm_arc *given;
+    size_t cap_near_at, cap_near, cap_adj, cap_face;
     size_t cap_seq, cap_key, cap_pre, cap_known, cap_map, cap_inv, cap_caps, cap_axes, cap_given;
 } prework;
 
@@ -163,11 +176,15 @@ static double det3(const double *a, const double *b, const double *c)
 }
 
 /* Plane `id`'s enclosures as bounds: n in [nl, nh], h in [hl, hh] (a
- * ball plane's are points). */
+ * ball plane's are points); with `out`, cap id's outside u.(-n) >= -h. */
 static void plane_box(const vbm_cap *caps, size_t ncap, const struct vbm_poly *P, uint32_t id,
-                      double nl[3], double nh[3], double *hl, double *hh)
+                      int out, double nl[3], double nh[3], double *hl, double *hh)
 {
-    if (id < ncap) {
+    if (out) {
+        for (int k = 0; k < 3; k++)
+            nl[k] = -caps[id].n[k].hi, nh[k] = -caps[id].n[k].lo;
+        *hl = -caps[id].h.hi, *hh = -caps[id].h.lo;
+    } else if (id < ncap) {
         for (int k = 0; k < 3; k++)
             nl[k] = caps[id].n[k].lo, nh[k] = caps[id].n[k].hi;
         *hl = caps[id].h.lo, *hh = caps[id].h.hi;
@@ -211,12 +228,12 @@ static inline double dot_lo(double t0, const double lam[3], const double y[3], d
  * bc) > Vb proves sc - bc > Vb (rounding is monotone, Vb a double), so
  * c > |v|. A NaN or infinity anywhere fails the comparison: kept. */
 static int certify(const vbm_cap *caps, size_t ncap, const struct vbm_poly *P, const pvert *x,
-                   size_t m)
+                   size_t m, int out)
 {
     double mnl[3], mnh[3], mhl, mhh, nl[3][3], nh[3][3], hl[3], hh[3], nm[3], ni[3][3], lam[3];
-    plane_box(caps, ncap, P, (uint32_t)m, mnl, mnh, &mhl, &mhh);
+    plane_box(caps, ncap, P, (uint32_t)m, out, mnl, mnh, &mhl, &mhh);
     for (int i = 0; i < 3; i++)
-        plane_box(caps, ncap, P, x->pl[i], nl[i], nh[i], &hl[i], &hh[i]);
+        plane_box(caps, ncap, P, x->pl[i], 0, nl[i], nh[i], &hl[i], &hh[i]);
     for (int k = 0; k < 3; k++) { /* the multipliers' normals: any near the enclosures */
         nm[k] = 0.5 * mnl[k] + 0.5 * mnh[k];
         for (int i = 0; i < 3; i++)
@@ -338,23 +355,37 @@ static prework *work(vbm_capwork *w)
     return w->pw;
 }
 
-size_t vbm_caps_prefilter(const vbm_cap *caps, const vbm_circle *circ, size_t ncap,
-                          vbm_capwork *w, uint8_t *pre)
+/* How the clip ended (shape) */
+enum { SHAPE_NONE, SHAPE_DONE, SHAPE_EMPTY, SHAPE_STOPPED };
+
+/* The clip over caps[0..ncap) and its certificates (vbm_caps_prefilter),
+ * the polyhedron left in pw->poly. Returns how it ended: SHAPE_DONE every
+ * cap clipped (then, second pass, a cap kept whose face the later caps
+ * cut away is rejected by a certificate at the vertex of the whole
+ * polyhedron where its u.n - h is least: its planes are the faces', caps
+ * never rejected, so no circle of reasons), SHAPE_EMPTY a cap left
+ * nothing (*empty = 1 where a certificate proves the intersection empty:
+ * the outside of that cap, u.(-n) >= -h, holds every unit vector in the
+ * caps of the vertex where u.n - h is greatest, so no direction lies in
+ * them all), SHAPE_STOPPED too many vertices or a face the edges do not
+ * close, SHAPE_NONE not started (or ENOMEM). */
+static int shape(const vbm_cap *caps, const vbm_circle *circ, size_t ncap, prework *pw,
+                 uint8_t *pre, int *empty)
 {
-    prework *pw = work(w);
+    *empty = 0;
     memset(pre, 0, ncap);
-    if (!pw || VB_ARRAY_FIT(pw->seq, pw->cap_seq, ncap + 1, 32) != VB_OK ||
+    if (VB_ARRAY_FIT(pw->seq, pw->cap_seq, ncap + 1, 32) != VB_OK ||
         VB_ARRAY_FIT(pw->key, pw->cap_key, ncap + 1, 32) != VB_OK)
-        return 0;
+        return SHAPE_NONE;
     if (ncap <= 2 || circ[0].kind != VBM_CAP_CIRCLE)
-        return 0;
+        return SHAPE_NONE;
     /* the caps cutting deepest into cap 0 first (their circles' axes and
      * cosines: a_m.a_0 - c_m least first), so that few caps clip early
      * that later ones would have bounded away */
     uint32_t *seq = pw->seq;
     double *key = pw->key;
     struct vbm_poly *P = &pw->poly;
-    size_t n = 0, nrej = 0, nv;
+    size_t n = 0;
     for (size_t m = 1; m < ncap; m++) {
         if (circ[m].kind != VBM_CAP_CIRCLE)
             continue;
@@ -369,21 +400,62 @@ size_t vbm_caps_prefilter(const vbm_cap *caps, const vbm_circle *circ, size_t nc
         key[i] = x;
         seq[i] = (uint32_t)m;
     }
-    int cur = 0;
     double nm[3], h;
-    if (!start(P, caps, ncap, &circ[0], &cur, &nv))
-        return 0;
+    if (!start(P, caps, ncap, &circ[0], &P->cur, &P->nv))
+        return SHAPE_NONE;
     for (size_t i = 0; i < n; i++) {
         size_t m = seq[i];
         plane_of(caps, ncap, P, (uint32_t)m, nm, &h);
-        int e = clip(P, &cur, &nv, nm, h, (uint32_t)m);
+        int e = clip(P, &P->cur, &P->nv, nm, h, (uint32_t)m);
+        if (e == -1) { /* every vertex outside cap m */
+            size_t hi = 0;
+            for (size_t k = 1; k < P->nv; k++)
+                hi = P->s[k] > P->s[hi] ? k : hi;
+            *empty = P->s[hi] < 0.0 && certify(caps, ncap, P, &P->v[P->cur][hi], m, 1);
+            return SHAPE_EMPTY;
+        }
         if (e < 0)
-            break; /* empty in doubles or too many vertices: the rest kept */
+            return SHAPE_STOPPED; /* the rest kept */
         if (e > 0)
             continue;
         /* the vertex where u.n_m is least (the clip's): its planes' multipliers */
-        pre[m] = P->s[P->lo] > 0.0 && certify(caps, ncap, P, &P->v[cur][P->lo], m); /* touching: no certificate */
+        pre[m] = P->s[P->lo] > 0.0 && certify(caps, ncap, P, &P->v[P->cur][P->lo], m, 0); /* touching: no certificate */
     }
+    /* the second pass: caps kept without a face */
+    uint8_t *face = pw->face;
+    memset(face, 0, ncap);
+    const pvert *v = P->v[P->cur];
+    for (size_t i = 0; i < P->nv; i++)
+        for (int k = 0; k < 3; k++)
+            if (v[i].pl[k] < ncap)
+                face[v[i].pl[k]] = 1;
+    for (size_t i = 0; i < n; i++) {
+        size_t m = seq[i], lo = 0;
+        if (pre[m] || face[m])
+            continue;
+        plane_of(caps, ncap, P, (uint32_t)m, nm, &h);
+        double slo = INFINITY;
+        for (size_t k = 0; k < P->nv; k++) {
+            double t = nm[0] * v[k].x[0] + nm[1] * v[k].x[1] + nm[2] * v[k].x[2] - h;
+            if (t < slo)
+                slo = t, lo = k;
+        }
+        pre[m] = slo > 0.0 && certify(caps, ncap, P, &v[lo], m, 0);
+    }
+    return SHAPE_DONE;
+}
+
+size_t vbm_caps_prefilter(const vbm_cap *caps, const vbm_circle *circ, size_t ncap,
+                          vbm_capwork *w, uint8_t *pre)
+{
+    prework *pw = work(w);
+    int empty;
+    if (!pw || VB_ARRAY_FIT(pw->face, pw->cap_face, ncap + 1, 32) != VB_OK) {
+        memset(pre, 0, ncap);
+        return 0;
+    }
+    shape(caps, circ, ncap, pw, pre, &empty);
+    size_t nrej = 0;
     for (size_t m = 1; m < ncap; m++)
         nrej += pre[m];
     return nrej;
@@ -398,6 +470,10 @@ void vbm_prefilter_free(vbm_capwork *w)
     free(pw->pre);
     free(pw->seq);
     free(pw->key);
+    free(pw->near_at);
+    free(pw->near);
+    free(pw->adj);
+    free(pw->face);
     free(pw->known);
     free(pw->map);
     free(pw->inv);
@@ -423,8 +499,51 @@ static int several_arcs(const vbm_arc *arc, size_t narc, const uint8_t *known)
     return 0;
 }
 
+/* The kept caps' neighbours on the whole polyhedron (shape's SHAPE_DONE),
+ * in kept indices, for vbm_cap_arcs_near: each pair of planes at a vertex
+ * shares an edge; a ball plane counts as cap 0 (it holds every unit
+ * vector in cap 0, so where it bounds a face cap 0 bounds that circle).
+ * A face's circle meets the caps' intersection only where it meets the
+ * face, which its neighbours bound; a cap without a face has every kept
+ * cap as neighbour. The doubles only choose: the search proves every cap
+ * left out. Returns 0 on ENOMEM. */
+static int neighbours(prework *pw, size_t ncap, size_t nk)
+{
+    if (VB_ARRAY_FIT(pw->adj, pw->cap_adj, nk * nk + 1, 256) != VB_OK ||
+        VB_ARRAY_FIT(pw->near_at, pw->cap_near_at, nk + 1, 32) != VB_OK ||
+        VB_ARRAY_FIT(pw->near, pw->cap_near, nk * nk + 1, 256) != VB_OK)
+        return 0;
+    uint8_t *adj = pw->adj;
+    memset(adj, 0, nk * nk);
+    const struct vbm_poly *P = &pw->poly;
+    const pvert *v = P->v[P->cur];
+    for (size_t i = 0; i < P->nv; i++)
+        for (int a = 0; a < 3; a++) {
+            if (v[i].pl[a] >= ncap)
+                continue;
+            size_t x = pw->inv[v[i].pl[a]];
+            for (int b = 1; b < 3; b++) {
+                uint32_t y = v[i].pl[(a + b) % 3];
+                adj[x * nk + (y < ncap ? pw->inv[y] : 0)] = 1;
+            }
+        }
+    size_t nn = 0;
+    for (size_t x = 0; x < nk; x++) {
+        pw->near_at[x] = (uint32_t)nn;
+        int none = !pw->face[pw->map[x]];
+        for (size_t y = 0; y < nk; y++)
+            if (y != x && (none || adj[x * nk + y]))
+                pw->near[nn++] = (uint32_t)y;
+    }
+    pw->near_at[nk] = (uint32_t)nn;
+    return 1;
+}
+
 /* The arrangement (vbm_caps.h) searched over the caps the prefilter keeps,
- * with the bytes of the search over all caps (vbm_cap_arcs_all): both give
+ * guided by their neighbours on the polyhedron where it was clipped whole
+ * (vbm_cap_arcs_near; else vbm_cap_arcs_all's trial), or nothing searched
+ * where it proves the intersection empty (no arc given: else the search
+ * tells), with the bytes of the search over all caps (vbm_cap_arcs_all): both give
  * the intersection's arcs, the same points from the same restrictions
  * (circle l's frame and cap m's enclosures) with the same angles, in the
  * order of their circles; on a circle with one arc (split the same way)
@@ -432,14 +551,16 @@ static int several_arcs(const vbm_arc *arc, size_t narc, const uint8_t *known)
  * starts after the widest gap between the ends of the caps restricting it,
  * can differ: there, and wherever the search over the kept caps is not
  * decided, the search over all caps runs instead. (Where the search over
- * all caps would not have decided and this one does, the arcs are those
- * of the same intersection, proven the same way.) */
+ * all caps would not have decided and this one does, or an empty one is
+ * proven empty, the arcs are those of the same intersection, proven the
+ * same way; the atom would have gone to the patches.) */
 int vbm_cap_arcs(const vbm_cap *caps, const vbm_circle *axes, size_t ncap, const uint8_t *known,
                  const vbm_arc *given, size_t ngiven, vbm_capwork *w)
 {
     prework *pw = ncap >= MIN_CAPS ? work(w) : NULL;
     if (!pw || VB_ARRAY_FIT(w->circ, w->cap_circ, ncap, 32) != VB_OK ||
         VB_ARRAY_FIT(pw->pre, pw->cap_pre, ncap, 32) != VB_OK ||
+        VB_ARRAY_FIT(pw->face, pw->cap_face, ncap, 32) != VB_OK ||
         VB_ARRAY_FIT(pw->map, pw->cap_map, ncap, 32) != VB_OK ||
         VB_ARRAY_FIT(pw->inv, pw->cap_inv, ncap, 32) != VB_OK ||
         VB_ARRAY_FIT(pw->caps, pw->cap_caps, ncap, 32) != VB_OK ||
@@ -457,8 +578,12 @@ int vbm_cap_arcs(const vbm_cap *caps, const vbm_circle *axes, size_t ncap, const
             return vbm_cap_arcs_all(caps, axes, ncap, known, given, ngiven, w);
     }
     uint8_t *pre = pw->pre;
-    if (!vbm_caps_prefilter(caps, w->circ, ncap, w, pre))
-        return vbm_cap_arcs_all(caps, axes, ncap, known, given, ngiven, w);
+    int empty, how = shape(caps, w->circ, ncap, pw, pre, &empty);
+    if (how == SHAPE_EMPTY && empty && ngiven == 0) {
+        w->narc = 0; /* proven empty: no arc (with arcs given, the search tells) */
+        w->ncirc = ncap;
+        return 1;
+    }
     size_t nk = 0;
     for (size_t m = 0; m < ncap; m++) {
         pw->inv[m] = VBM_NO_CAP;
@@ -481,7 +606,12 @@ int vbm_cap_arcs(const vbm_cap *caps, const vbm_circle *axes, size_t ncap, const
         a->qcap = a->qcap == VBM_NO_CAP ? a->qcap : pw->inv[a->qcap];
     }
     vbm_capwork *sub = &pw->sub;
-    int e = vbm_cap_arcs_all(pw->caps, pw->axes, nk, pw->known, pw->given, ngiven, sub);
+    if (how != SHAPE_DONE && nk == ncap)
+        return vbm_cap_arcs_all(caps, axes, ncap, known, given, ngiven, w);
+    int e = how == SHAPE_DONE && neighbours(pw, ncap, nk)
+                ? vbm_cap_arcs_near(pw->caps, pw->axes, nk, pw->known, pw->given, ngiven,
+                                    pw->near_at, pw->near, sub)
+                : vbm_cap_arcs_all(pw->caps, pw->axes, nk, pw->known, pw->given, ngiven, sub);
     if (e != 1 || several_arcs(sub->arc, sub->narc, pw->known) ||
         VB_ARRAY_FIT(w->arc, w->cap_arc, sub->narc + 1, 32) != VB_OK)
         return vbm_cap_arcs_all(caps, axes, ncap, known, given, ngiven, w);

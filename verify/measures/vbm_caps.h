@@ -114,8 +114,20 @@ int vbm_cap_arcs(const vbm_cap *caps, const vbm_circle *axes, size_t ncap, const
 int vbm_cap_arcs_all(const vbm_cap *caps, const vbm_circle *axes, size_t ncap,
                      const uint8_t *known, const vbm_arc *given, size_t ngiven, vbm_capwork *w);
 
+/* vbm_cap_arcs_all guided by each circle's neighbours (cap_arcs.c): the
+ * arcs of circle l are found inside the caps near[near_at[l] ..
+ * near_at[l + 1]) first, every other cap then proven to hold them (or
+ * added); no trial. The same arcs as vbm_cap_arcs_all; a circle's list
+ * may start at another of its arcs when it has several. Same arguments
+ * and returns as vbm_cap_arcs_all, near_at with ncap + 1 entries. */
+int vbm_cap_arcs_near(const vbm_cap *caps, const vbm_circle *axes, size_t ncap,
+                      const uint8_t *known, const vbm_arc *given, size_t ngiven,
+                      const uint32_t *near_at, const uint32_t *near, vbm_capwork *w);
+
 /* The caps 1..ncap - 1 of the intersection of caps[0..ncap) proven to hold
- * in their interior every unit vector inside the caps not rejected: pre[m]
+ * in their interior every unit vector inside the caps not rejected (a
+ * polyhedron clip and a second pass over the caps left without a face,
+ * cap_prefilter.c): pre[m]
  * = 1 for each (0 elsewhere; pre has ncap bytes). Their circles touch no
  * point of the intersection, which the caps kept define alone. circ: each
  * cap's circle (vbm_circle_axis, no frame needed). w: its work space only.
