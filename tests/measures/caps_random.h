@@ -58,6 +58,22 @@ static inline double depth(const double *n, double h, const double *u)
     return (d - h) / sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
 }
 
+/* Random region t (test_cap_prefilter.c, test_cap_near.c): 3-17 caps
+ * about a random direction, cap 0 from small to wider than a half sphere
+ * (every third t), the others about nearby directions; caps[0..nc) with
+ * their doubles n, h. Returns nc (caps, n and h hold 18). */
+static inline size_t region_caps(uint64_t *s, int t, vbm_cap *caps, double (*n)[3], double *h)
+{
+    double v[3];
+    size_t nc = 3 + (size_t)(15.0 * rnd(s));
+    unit(s, v);
+    double c0 = t % 3 == 0 ? 0.95 - 1.8 * rnd(s) : 0.98 - 0.3 * rnd(s);
+    make_cap(s, v, 0.0, c0, &caps[0], n[0], &h[0]);
+    for (size_t m = 1; m < nc; m++)
+        make_cap(s, v, 1.5 * rnd(s), 0.95 - 1.5 * rnd(s), &caps[m], n[m], &h[m]);
+    return nc;
+}
+
 /* The same list bit for bit. */
 static inline int arcs_equal(const vbm_arc *a, size_t na, const vbm_arc *b, size_t nb)
 {

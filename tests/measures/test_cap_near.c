@@ -62,13 +62,8 @@ int main(void)
         map[m] = m;
     for (int t = 0; t < 4000; t++) {
         vbm_cap caps[NCAP + 1];
-        double n[NCAP + 1][3], h[NCAP + 1], v[3];
-        size_t nc = 3 + (size_t)(15.0 * rnd(&seed));
-        unit(&seed, v);
-        double c0 = t % 3 == 0 ? 0.95 - 1.8 * rnd(&seed) : 0.98 - 0.3 * rnd(&seed);
-        make_cap(&seed, v, 0.0, c0, &caps[0], n[0], &h[0]);
-        for (size_t m = 1; m < nc; m++)
-            make_cap(&seed, v, 1.5 * rnd(&seed), 0.95 - 1.5 * rnd(&seed), &caps[m], n[m], &h[m]);
+        double n[NCAP + 1][3], h[NCAP + 1];
+        size_t nc = region_caps(&seed, t, caps, n, h);
         if (vbm_cap_arcs_all(caps, NULL, nc, NULL, NULL, 0, &w) != 1)
             continue;
         cases++;
