@@ -27,12 +27,15 @@ int vbm_piece(const vbm_atom_in *in, int owner, const vbm_axes *ax, const vbm_se
               const vbm_ser *b, vbm_ser *vol, vbm_ser *sas, vbm_ser *con);
 
 /* The solid angle of the patch [a0, a1] x [b0, b1] of a cube face, in
- * closed form (signed corner terms atan(a b / sqrt(1 + a^2 + b^2)), atan
- * rounded outward by MPFR). */
+ * closed form (signed corner terms atan(a b / sqrt(1 + a^2 + b^2)),
+ * vbm_ia_atan). */
 vbx_ia vbm_solid_angle(double a0, double a1, double b0, double b1);
 
-/* atan and log (x.lo > 0) of the ends of x, rounded outward by MPFR (both
- * are increasing). */
+/* Enclosures of atan x and log x (x.lo > 0) in double intervals with
+ * a-priori remainder bounds (integrands.c: series after an exact range
+ * reduction, at x's middle where x is narrow, widened by the mean value
+ * theorem); MPFR's outward-rounded values of x's ends where x is not
+ * finite. */
 vbx_ia vbm_ia_atan(vbx_ia x);
 vbx_ia vbm_ia_log(vbx_ia x);
 
