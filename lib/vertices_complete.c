@@ -1,10 +1,41 @@
 /* The completion stage of the vertex flow (vb_complete.h). */
 #include "vb_complete.h"
 
+#include <stdlib.h>
 #include <string.h>
 
 #include "vb_default.h"
 #include "vb_diag.h"
+
+/* Early tracing as the run's part work (vb_part_work): the certifier is
+ * the exact one (vb_vertices_complete takes the state only then). */
+static int early_open(vb_ctx *owner, const vb_sphere_set *set, void *cert, unsigned threads,
+                      void **state)
+{
+    vb_arc_early *e = NULL;
+    int rc = vb_arc_early_open(owner, set, cert, threads, &e);
+    *state = e;
+    return rc;
+}
+
+static int early_part(vb_ctx *ctx, void *state, const vb_vertex_list *part)
+{
+    return vb_arc_early_part(ctx, state, part);
+}
+
+static void early_close(void *state)
+{
+    vb_arc_early_free(state);
+}
+
+static const vb_part_work early_arcs = {early_open, early_part, early_close};
+
+/* The early events when the run kept them with the exact certifier of
+ * this set (the tracers' workers are that certifier's), else NULL. */
+static const vb_arc_early *kept_early(const vb_vertices_result *res, const vb_certifier *cert)
+{
+    return cert && res->part_ops == &early_arcs ? res->part_state : NULL;
+}
 
 void vb_completion_plan(vb_vertices_config *cfg, vb_completion_opts *o)
 {
@@ -20,6 +51,11 @@ void vb_completion_plan(vb_vertices_config *cfg, vb_completion_opts *o)
     /* Arc closure borrows the run's certifier instead of building another
      * on the same set (vb_vertices_complete). */
     cfg->keep_certifier = o->arcs;
+    /* ... and traces the parts certified while the proposer runs, on host
+     * threads that wait for the device (VORBALL_ARCS_EARLY=0: after the
+     * run, all of it, for timings and the identity tests) */
+    const char *ea = getenv("VORBALL_ARCS_EARLY");
+    cfg->part_work = o->arcs && !(ea && strcmp(ea, "0") == 0) ? &early_arcs : NULL;
 }
 
 void vb_completion_init(vb_completion *c)
@@ -73,9 +109,14 @@ static vb_certifier *kept_certifier(const vb_sphere_set *set, const vb_vertices_
                : NULL;
 }
 
-/* The kept certifier closed once the closure is done with it. */
+/* The kept certifier closed once the closure is done with it (the early
+ * tracers on it first). */
 static void release_certifier(vb_vertices_result *res)
 {
+    if (res->part_state && res->part_ops)
+        res->part_ops->close(res->part_state);
+    res->part_state = NULL;
+    res->part_ops = NULL;
     if (res->cert && res->cert_ops)
         res->cert_ops->close(res->cert);
     res->cert = NULL;
@@ -101,7 +142,8 @@ int vb_vertices_complete(vb_ctx *ctx, const vb_sphere_set *set, vb_vertices_resu
     vb_topology_edge *edges = NULL;
     size_t nedges = 0;
     if (o->arcs) {
-        int rc = vb_arc_complete_list_edges(ctx, set, kept_certifier(set, res), &res->certified,
+        vb_certifier *kc = kept_certifier(set, res);
+        int rc = vb_arc_complete_list_early(ctx, set, kc, kept_early(res, kc), &res->certified,
                                             o->threads, &out->arcs, o->topology ? &edges : NULL,
                                             &nedges);
         release_certifier(res);

@@ -84,6 +84,8 @@ int vbv_cert_stream_init(vbv_cert_stream *cs, vbv_cert_open *co, vb_ctx *owner)
         pthread_mutex_destroy(&cs->mu);
         return VB_ENOMEM;
     }
+    cs->owner = owner;
+    cs->set = co->set;
     cs->started = -1; /* the lock and condition are made */
     return vb_open_worker(&cs->tctx, owner) == VB_OK ? VB_OK : VB_ENOMEM;
 }
@@ -131,6 +133,24 @@ static int certify_one(vbv_cert_stream *cs, vb_quad_list *part)
     vb_vertex_list_init(&v);
     if (rc == VB_OK)
         rc = vbv_certify_quads(cs->tctx, cs->ops, cs->cert, part, &v, NULL);
+    /* the part's vertices to the work while the proposer goes on (its
+     * seconds apart from the certification's: t_pw) */
+    if (rc == VB_OK && cs->pw && v.n) {
+        pthread_mutex_lock(&cs->mu);
+        cs->in_pw = 1;
+        cs->pw_since = vb_now();
+        pthread_mutex_unlock(&cs->mu);
+        if (!cs->pw_state)
+            rc = cs->pw->open(cs->owner, cs->set, cs->cert, (unsigned)cs->threads,
+                              &cs->pw_state);
+        if (rc == VB_OK)
+            rc = cs->pw->part(cs->tctx, cs->pw_state, &v);
+        pthread_mutex_lock(&cs->mu);
+        cs->in_pw = 0;
+        cs->pw_last = vb_now() - cs->pw_since;
+        cs->t_pw += cs->pw_last;
+        pthread_mutex_unlock(&cs->mu);
+    }
     /* The parts are the thread's alone until it is idle (stream_wait). */
     if (rc == VB_OK && VB_ARRAY_FIT(cs->parts, cs->cap, cs->nparts + 1, 8) != VB_OK)
         rc = VB_ENOMEM;
@@ -165,6 +185,7 @@ static void *stream_thread(void *arg)
         if (cs->qhead == cs->qn)
             break;
         vb_quad_list part = cs->queue[cs->qhead];
+        cs->pw_last = 0;
         memset(&cs->queue[cs->qhead++], 0, sizeof part);
         int ok = cs->rc == VB_OK && !cs->drop;
         cs->busy = ok;
@@ -174,7 +195,7 @@ static void *stream_thread(void *arg)
         vb_quad_list_free(&part);
         pthread_mutex_lock(&cs->mu);
         if (ok)
-            cs->t_work += vb_now() - cs->t_busy_since;
+            cs->t_work += vb_now() - cs->t_busy_since - cs->pw_last;
         if (rc != VB_OK && cs->rc == VB_OK)
             cs->rc = rc;
         cs->busy = 0;
@@ -255,7 +276,15 @@ int vbv_cert_stream_finish(vb_ctx *ctx, vbv_cert_stream *cs, vb_vertex_list *out
 {
     if (cs->started > 0) {
         pthread_mutex_lock(&cs->mu);
-        cs->t_overlap = cs->t_work + (cs->busy ? vb_now() - cs->t_busy_since : 0.0);
+        double now = vb_now();
+        cs->t_overlap = cs->t_work;
+        cs->t_pw_overlap = cs->t_pw;
+        if (cs->busy && cs->in_pw) { /* the part's certification done, its work in progress */
+            cs->t_overlap += cs->pw_since - cs->t_busy_since;
+            cs->t_pw_overlap += now - cs->pw_since;
+        } else if (cs->busy) {
+            cs->t_overlap += now - cs->t_busy_since;
+        }
         pthread_mutex_unlock(&cs->mu);
     }
     int rc = stream_wait(cs, 1);
@@ -286,6 +315,13 @@ int vbv_cert_stream_finish(vb_ctx *ctx, vbv_cert_stream *cs, vb_vertex_list *out
     return rc == VB_OK ? VB_OK : vb_error(ctx, rc, NULL, 0, "out of memory (certified vertices)");
 }
 
+void *vbv_cert_stream_take_work(vbv_cert_stream *cs)
+{
+    void *w = cs->pw_state;
+    cs->pw_state = NULL;
+    return w;
+}
+
 void *vbv_cert_stream_free(vbv_cert_stream *cs)
 {
     if (cs->started > 0) { /* after a failure: what is queued is dropped */
@@ -296,6 +332,8 @@ void *vbv_cert_stream_free(vbv_cert_stream *cs)
     stream_wait(cs, 1);
     if (cs->co)
         vbv_cert_open_discard(cs->co);
+    if (cs->pw_state) /* before the certifier its tracers work on */
+        cs->pw->close(cs->pw_state);
     drop_parts(cs);
     free(cs->parts);
     for (size_t k = cs->qhead; k < cs->qn; k++)

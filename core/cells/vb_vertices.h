@@ -68,6 +68,19 @@ typedef struct vb_vertices_backends {
 
 typedef struct vb_vertices_early vb_vertices_early; /* vb_vertices_open_early */
 
+/* Work on the certified vertices of each part while the proposer still
+ * runs (arc closure's early tracing: lib/vertices_complete.c): open once,
+ * at the first part certified, on the run's certifier (cert: its ops'
+ * certifier) and the run's threads; part with each part's certified list
+ * (sorted, borrowed for the call; errors set on ctx); close frees the
+ * state, before the certifier is closed. */
+typedef struct vb_part_work {
+    int (*open)(vb_ctx *owner, const vb_sphere_set *set, void *cert, unsigned threads,
+                void **state);
+    int (*part)(vb_ctx *ctx, void *state, const vb_vertex_list *part);
+    void (*close)(void *state);
+} vb_part_work;
+
 typedef struct vb_vertices_config {
     vb_device_kind device;       /* default VB_DEVICE_AUTO (0) */
     const char *proposer;        /* vb_proposers name; NULL: the default */
@@ -87,6 +100,10 @@ typedef struct vb_vertices_config {
                                   * the result (cert, cert_ops) for a later stage on
                                   * the same set (arc closure: vb_completion_plan
                                   * sets it); vb_vertices_result_free closes it */
+    const vb_part_work *part_work; /* NULL, or work on each certified part while the
+                                  * proposer runs (needs keep_certifier and a
+                                  * certifier that streams parts); its state is
+                                  * left in the result (part_state) */
 } vb_vertices_config;
 
 /* The crossover of `--device auto` on a GPU machine (issue #30): below it
@@ -144,6 +161,8 @@ typedef struct vb_vertices_result {
     double t_release;           /* closing the proposer's state and the device, after t_total */
     double t_certify_overlap;   /* seconds the certifier worked while the proposer ran */
     size_t certify_parts;       /* parts of quadruples certified one by one (a stream) */
+    double t_part_overlap;      /* cfg->part_work: its seconds while the proposer ran */
+    double t_part_after;        /* ... and after it returned (waited for) */
     double max_dist;            /* largest candidate-to-exact distance certified */
     size_t repaired_candidates; /* intruder-swap candidates certified (see repair) */
     char backend[16];
@@ -152,6 +171,10 @@ typedef struct vb_vertices_result {
                                  * open (its exact data and index of the run's set), */
     const vb_certifier_ops *cert_ops; /* ... and its table; NULL otherwise */
     const vb_sphere_set *cert_set;    /* ... the set it was built on */
+    void *part_state;           /* with cfg->part_work and a kept certifier: its
+                                 * state after the run's parts (NULL when no part
+                                 * came), closed before cert */
+    const vb_part_work *part_ops; /* ... its table */
 } vb_vertices_result;
 
 /* What a result proves, as one line for an output file's header (empty

@@ -81,6 +81,14 @@ typedef struct vbv_cert_stream {
     double t_work;           /* seconds the certifying thread worked */
     double t_busy_since;     /* when the part in work started */
     double t_overlap;        /* of t_work, seconds before vbv_cert_stream_finish */
+    vb_ctx *owner;           /* the run's context */
+    const vb_sphere_set *set; /* the certifier's */
+    const vb_part_work *pw;  /* NULL, or work on each certified part (its thread) */
+    void *pw_state;          /* ... opened at the first part */
+    int in_pw;               /* the thread is in the part work (since pw_since) */
+    double pw_since, pw_last; /* ... and how long the last part's work took */
+    double t_pw;             /* seconds of part work, all parts */
+    double t_pw_overlap;     /* of t_pw, seconds before vbv_cert_stream_finish */
 } vbv_cert_stream;
 
 /* A stream over the set-up co (which it joins and whose certifier it
@@ -102,6 +110,10 @@ void vbv_cert_stream_reset(vbv_cert_stream *cs);
  * parts' vertices to out in canonical order (a merge). On an error its
  * message is relayed to ctx. VB_OK or the error. */
 int vbv_cert_stream_finish(vb_ctx *ctx, vbv_cert_stream *cs, vb_vertex_list *out);
+
+/* The part work's state (NULL: none), taken from the stream, which no
+ * longer closes it; call after vbv_cert_stream_finish. */
+void *vbv_cert_stream_take_work(vbv_cert_stream *cs);
 
 /* Frees the stream (parts still queued are dropped, not certified) and
  * hands back its certifier (NULL if the set-up failed) for the caller to

@@ -37,6 +37,8 @@ void vb_vertices_result_init(vb_vertices_result *r)
 
 void vb_vertices_result_free(vb_vertices_result *r)
 {
+    if (r->part_state && r->part_ops)
+        r->part_ops->close(r->part_state);
     if (r->cert && r->cert_ops)
         r->cert_ops->close(r->cert);
     vb_proposal_free(&r->proposal);
@@ -340,11 +342,16 @@ static int certify(vb_ctx *ctx, const vb_certifier_ops *ops, vbv_cert_open *co,
 {
     double t1 = vb_now();
     int rc = VB_OK;
-    void *cert = NULL;
+    void *cert = NULL, *pstate = NULL;
+    const vb_part_work *pw = NULL;
     if (cs) {
         rc = vbv_cert_stream_finish(ctx, cs, &res->certified);
         res->t_certify_overlap = cs->t_overlap;
         res->certify_parts = cs->certified_parts;
+        res->t_part_overlap = cs->t_pw_overlap;
+        res->t_part_after = cs->t_pw - cs->t_pw_overlap;
+        pw = cs->pw;
+        pstate = vbv_cert_stream_take_work(cs);
         cert = vbv_cert_stream_free(cs);
     } else {
         cert = vbv_cert_open_join(ctx, co, &rc);
@@ -362,9 +369,17 @@ static int certify(vb_ctx *ctx, const vb_certifier_ops *ops, vbv_cert_open *co,
         res->cert = cert;
         res->cert_ops = ops;
         res->cert_set = set;
+        res->part_state = pstate;
+        res->part_ops = pstate ? pw : NULL;
+        pstate = NULL;
     } else if (cert) {
+        if (pstate) /* its tracers work on cert */
+            pw->close(pstate);
+        pstate = NULL;
         ops->close(cert);
     }
+    if (pstate)
+        pw->close(pstate);
     for (size_t k = 0; rc == VB_OK && k < res->certified.n; k++)
         if (res->certified.dist[k] > res->max_dist)
             res->max_dist = res->certified.dist[k];
@@ -394,8 +409,11 @@ static void certifier_start(const vb_certifier_ops *ops, const vb_sphere_set *se
 {
     vbv_cert_open_start(co, ops, set, cfg->propose.threads, ctx);
     *csp = NULL;
-    if (ops->certify_quads && vbv_cert_stream_init(cs, co, ctx) == VB_OK)
+    if (ops->certify_quads && vbv_cert_stream_init(cs, co, ctx) == VB_OK) {
         *csp = cs;
+        /* the work's state lives on in the result with the certifier */
+        cs->pw = cfg->keep_certifier ? cfg->part_work : NULL;
+    }
 }
 
 /* A proposal stopped by the stream (its sink failed) carries the stream's

@@ -117,6 +117,13 @@ void vb_vertices_stats(vb_ctx *ctx, const vb_vertices_result *r, vb_stat_fields 
     vb_stat_uint(fs, "certify_parts", r->certify_parts);
     vb_stat_real(fs, "certify_overlap_s", "%.6f", r->t_certify_overlap);
     vb_stat_real(fs, "certify_after_s", "%.6f", r->t_certify);
+    /* The work on certified parts (arc closure's early tracing), where it
+     * ran: its seconds while the proposer ran and after it returned (the
+     * certification waited for them; certify_overlap_s leaves them out). */
+    if (r->t_part_overlap > 0 || r->t_part_after > 0) {
+        vb_stat_real(fs, "part_work_overlap_s", "%.6f", r->t_part_overlap);
+        vb_stat_real(fs, "part_work_after_s", "%.6f", r->t_part_after);
+    }
     /* The run's own clock (wall seconds): the device set-up on its thread
      * (from its start: at the input's read where the command opened it
      * early), the time the proposer waited for it once its host work that

@@ -86,12 +86,53 @@ static int run_phase(vbx_closure *cl, vbx_tracer *tr, unsigned nt, const vbx_ite
  * itself, in a second parallel phase. Vertices found new go to the end of
  * the list and make the next round. The list, the counts and the added
  * vertices are therefore the same on any number of threads. */
-static int run_rounds(vbx_closure *cl, vbx_tracer *tr, unsigned nt)
+/* The items of the first round that hold a vertex that s leaves to trace
+ * (s->done 0), in order, in place. */
+static size_t keep_untraced(const vbx_closure *cl, const vbx_eset *s, vbx_item *it, size_t n)
+{
+    size_t keep = 0;
+    for (size_t i = 0; i < n; i++) {
+        const vbx_tent *e = cl->map.e + it[i].k;
+        for (uint32_t j = 0; j < it[i].n; j++)
+            if (!s->done[e[j].k]) {
+                it[keep++] = it[i];
+                break;
+            }
+    }
+    return keep;
+}
+
+/* Merges the early events of s (vbx_early_take) as a phase after the
+ * round's first (its runs from runs[*nr] on; *nr counts them too). */
+static int merge_early(vbx_closure *cl, const vbx_eset *s, unsigned nt, vbx_mrun *runs,
+                       unsigned *nr)
+{
+    if (!s->n)
+        return VB_OK;
+    vbx_tphase ph;
+    memset(&ph, 0, sizeof ph);
+    ph.tr = s->tr;
+    ph.all = &cl->all;
+    ph.n = s->n;
+    ph.first = s->first;
+    ph.count = s->count;
+    ph.who = s->who;
+    unsigned more = 0;
+    double t0 = vb_now();
+    int rc = vbx_merge_phase(cl, &ph, nt, runs + *nr, &more);
+    cl->r->merge_s += vb_now() - t0;
+    *nr += more;
+    return rc;
+}
+
+static int run_rounds(vbx_closure *cl, vbx_tracer *tr, unsigned nt, const vb_arc_early *early)
 {
     size_t lo = 0;
     int rc = VB_OK;
     vbx_item *it = NULL, *back = NULL;
     size_t it_cap = 0, back_cap = 0;
+    vbx_eset es;
+    memset(&es, 0, sizeof es);
     while (rc == VB_OK && lo < cl->all.n) {
         size_t hi = cl->all.n, nit = 0, nback = 0;
         /* the map is read by every thread of the round: built before it */
@@ -107,6 +148,13 @@ static int run_rounds(vbx_closure *cl, vbx_tracer *tr, unsigned nt)
          * new) by vertex. */
         if (lo == 0) {
             rc = vbx_tmap_items(&cl->map, nt, &it, &nit, &it_cap);
+            if (rc == VB_OK && early && early->nparts)
+                rc = vbx_early_take(cl, early, nt, &es);
+            if (rc == VB_OK && es.done) {
+                nit = keep_untraced(cl, &es, it, nit);
+                for (unsigned i = 0; i < nt; i++)
+                    tr[i].skip = es.done;
+            }
         } else if (VB_ARRAY_FIT(it, it_cap, hi - lo, 256) != VB_OK) {
             rc = VB_ENOMEM;
         } else {
@@ -115,9 +163,16 @@ static int run_rounds(vbx_closure *cl, vbx_tracer *tr, unsigned nt)
         }
         if (rc != VB_OK)
             break;
-        vbx_mrun runs[VB_MAX_THREADS];
+        /* the round's first phase and, in the first round, the early
+         * events: their pending arcs resolved together */
+        vbx_mrun runs[2 * VB_MAX_THREADS];
         unsigned nr = 0;
         rc = run_phase(cl, tr, nt, it, nit, lo, hi - lo, hi, runs, &nr);
+        for (unsigned i = 0; i < nt; i++)
+            tr[i].skip = NULL;
+        if (rc == VB_OK && es.done)
+            rc = merge_early(cl, &es, nt, runs, &nr);
+        vbx_eset_free(&es);
         double t1 = vb_now();
         if (rc == VB_OK)
             rc = vbx_resolve_pending(cl, runs, nr, &back, &nback, &back_cap);
@@ -131,6 +186,9 @@ static int run_rounds(vbx_closure *cl, vbx_tracer *tr, unsigned nt)
     }
     if (rc == VB_OK)
         vb_progress(cl->ctx, "arcs", cl->all.n, cl->all.n);
+    for (unsigned i = 0; i < nt; i++)
+        tr[i].skip = NULL;
+    vbx_eset_free(&es);
     free(it);
     free(back);
     if (rc == VB_ENOMEM)
@@ -214,8 +272,8 @@ static int emit_edges(vbx_closure *cl, size_t nin, const size_t *where_added, un
 /* The closure of list in on set; cert: an open certifier of set to borrow
  * (left open), or NULL to open one. */
 static int close_list(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier *cert,
-                      const vb_vertex_list *in, unsigned threads, vb_arc_report *out,
-                      vb_topology_edge **edges, size_t *nedges)
+                      const vb_arc_early *early, const vb_vertex_list *in, unsigned threads,
+                      vb_arc_report *out, vb_topology_edge **edges, size_t *nedges)
 {
     memset(out, 0, sizeof *out);
     vb_vertex_list_init(&out->added);
@@ -235,29 +293,14 @@ static int close_list(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier *cert,
     size_t most = in->n / 64 + 1;
     if (nt > most)
         nt = (unsigned)most;
-    /* the tracers at their alignment (vbx_closure.h) inside one zeroed
-     * block (calloc: the allocation fault tests reach it) */
-    char *tr_block = calloc(nt * sizeof(vbx_tracer) + _Alignof(vbx_tracer), 1);
+    /* the tracers inside one zeroed block (calloc: the allocation fault
+     * tests reach it), tracer 0 on ctx and the certifier */
+    char *tr_block = NULL;
     vbx_tracer *tr = NULL;
-    if (tr_block)
-        tr = (vbx_tracer *)(tr_block + (_Alignof(vbx_tracer) -
-                                        (uintptr_t)tr_block % _Alignof(vbx_tracer)));
     vb_certifier *c = cert;
-    int rc = !tr ? VB_ENOMEM : c ? VB_OK : vb_certifier_open(ctx, set, &c);
-    for (unsigned i = 0; rc == VB_OK && i < nt; i++) {
-        tr[i].ctx = ctx;
-        tr[i].c = c;
-        if (i > 0) {
-            tr[i].c = vbx_certifier_worker(c);
-            if (!tr[i].c || vb_open_worker(&tr[i].ctx, ctx) != VB_OK) {
-                rc = VB_ENOMEM;
-                break;
-            }
-        }
-        rc = vbx_arcw_init(&tr[i].w, tr[i].ctx, tr[i].c);
-        tr[i].have_w = 1;
-        vbx_tracer_scratch(&tr[i], 1);
-    }
+    int rc = c ? VB_OK : vb_certifier_open(ctx, set, &c);
+    if (rc == VB_OK)
+        rc = vbx_tracers_open(ctx, c, nt, 1, &tr_block, &tr);
     cl.all = *in; /* lent: copied only when a vertex is added (vbx_closure_own) */
     if (rc == VB_OK)
         rc = vb_uf_fit(&cl.comp, cl.all.n);
@@ -265,7 +308,7 @@ static int close_list(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier *cert,
     out->setup_s = vb_now() - t0;
     if (rc == VB_OK) {
         vb_progress(ctx, "arcs", 0, cl.all.n);
-        rc = run_rounds(&cl, tr, nt);
+        rc = run_rounds(&cl, tr, nt, early);
     }
     double t1 = vb_now();
     if (rc == VB_OK) {
@@ -288,24 +331,9 @@ static int close_list(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier *cert,
     free(cl.ed);
     if (rc == VB_ENOMEM && vb_errcode(ctx) != VB_ENOMEM)
         vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (arc closure)");
-    for (unsigned i = 0; tr && i < nt; i++) {
-        if (tr[i].have_w)
-            vbx_arcw_free(&tr[i].w);
-        vbx_tracer_scratch(&tr[i], 0);
-        free(tr[i].ev);
-        free(tr[i].ends);
-        free(tr[i].pool);
-        free(tr[i].gkey);
-        free(tr[i].gbox);
-        if (i > 0) {
-            vb_certifier_close(tr[i].c);
-            if (tr[i].ctx)
-                vb_close(tr[i].ctx);
-        }
-    }
+    vbx_tracers_free(tr_block, tr, nt, 1);
     if (c != cert)
         vb_certifier_close(c);
-    free(tr_block);
     if (cl.all_owned)
         vb_vertex_list_free(&cl.all);
     vb_hash_free(&cl.tab);
@@ -321,14 +349,21 @@ static int close_list(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier *cert,
 int vb_arc_close(vb_ctx *ctx, const vb_sphere_set *set, const vb_vertex_list *in,
                  unsigned threads, vb_arc_report *out)
 {
-    return close_list(ctx, set, NULL, in, threads, out, NULL, NULL);
+    return close_list(ctx, set, NULL, NULL, in, threads, out, NULL, NULL);
 }
 
 int vb_arc_close_edges(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier *cert,
                        const vb_vertex_list *in, unsigned threads, vb_arc_report *out,
                        vb_topology_edge **edges, size_t *nedges)
 {
-    return close_list(ctx, set, cert, in, threads, out, edges, nedges);
+    return close_list(ctx, set, cert, NULL, in, threads, out, edges, nedges);
+}
+
+int vb_arc_close_early(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier *cert,
+                       const vb_arc_early *early, const vb_vertex_list *in, unsigned threads,
+                       vb_arc_report *out, vb_topology_edge **edges, size_t *nedges)
+{
+    return close_list(ctx, set, cert, early, in, threads, out, edges, nedges);
 }
 
 int vb_arc_report_complete(const vb_arc_report *r)

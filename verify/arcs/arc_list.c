@@ -22,9 +22,17 @@ int vb_arc_complete_list_edges(vb_ctx *ctx, const vb_sphere_set *set, vb_certifi
                                vb_vertex_list *list, unsigned threads, vb_arc_report *out,
                                vb_topology_edge **edges, size_t *nedges)
 {
+    return vb_arc_complete_list_early(ctx, set, cert, NULL, list, threads, out, edges, nedges);
+}
+
+int vb_arc_complete_list_early(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier *cert,
+                               const vb_arc_early *early, vb_vertex_list *list,
+                               unsigned threads, vb_arc_report *out, vb_topology_edge **edges,
+                               size_t *nedges)
+{
     double t0 = vb_now();
     size_t *where = NULL;
-    int rc = vb_arc_close_edges(ctx, set, cert, list, threads, out, edges, nedges);
+    int rc = vb_arc_close_early(ctx, set, cert, early, list, threads, out, edges, nedges);
     const vb_vertex_list *a = &out->added;
     for (size_t k = 0; rc == VB_OK && k < a->n; k++)
         rc = vb_vertex_list_push(list, a->ids + a->start[k], a->start[k + 1] - a->start[k],
@@ -99,6 +107,15 @@ void vb_arc_stats(const vb_arc_report *r, vb_stat_fields *fs)
     vb_stat_real(fs, "arc_busy_s", "%.3f", r->busy_s);
     vb_stat_real(fs, "arc_merge_s", "%.3f", r->merge_s);
     vb_stat_real(fs, "arc_finish_s", "%.3f", r->finish_s);
+    /* early tracing: counters only where it ran (zero ones not printed) */
+    if (r->early_parts) {
+        vb_stat_uint(fs, "arc_early_parts", r->early_parts);
+        vb_stat_uint(fs, "arc_early_vertices", r->early_vertices);
+        vb_stat_uint(fs, "arc_early_events", r->early_events);
+        vb_stat_real(fs, "arc_early_s", "%.3f", r->early_s);
+        vb_stat_real(fs, "arc_early_busy_s", "%.3f", r->early_busy_s);
+        vb_stat_real(fs, "arc_early_take_s", "%.3f", r->early_take_s);
+    }
 }
 
 void vb_arc_write_stats(FILE *f, const vb_arc_report *r)

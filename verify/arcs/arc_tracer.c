@@ -1,6 +1,7 @@
 /* The tracers of arc closure (vbx_closure.h): the arcs of one vertex or
  * one triple traced to their ends, as events, on one thread each. */
 #include <stdint.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "vb_array.h"
@@ -314,6 +315,8 @@ static int trace_group(vbx_tracer *tr, const vb_vertex_list *all, const vbx_item
     tr->ng = it->n;
     for (uint32_t i = 0; rc == VB_OK && i < it->n; i++) {
         size_t k = e[i].k, s = all->start[k];
+        if (tr->skip && tr->skip[k])
+            continue;
         double p[4];
         vbx_vertex_point(all, k, p);
         rc = trace_at(tr, all, k, all->ids + s, all->start[k + 1] - s, p, tr->gbox + 4 * (size_t)i,
@@ -391,4 +394,52 @@ void *vbx_phase_work(void *arg)
     }
     tr->busy += vb_thread_cpu_now() - t0;
     return NULL;
+}
+
+int vbx_tracers_open(vb_ctx *ctx, vb_certifier *c, unsigned nt, int lend0, char **block,
+                     vbx_tracer **trp)
+{
+    char *b = calloc(nt * sizeof(vbx_tracer) + _Alignof(vbx_tracer), 1);
+    vbx_tracer *tr = NULL;
+    if (b)
+        tr = (vbx_tracer *)(b + (_Alignof(vbx_tracer) - (uintptr_t)b % _Alignof(vbx_tracer)));
+    *block = b;
+    *trp = tr;
+    int rc = tr ? VB_OK : VB_ENOMEM;
+    for (unsigned i = 0; rc == VB_OK && i < nt; i++) {
+        tr[i].ctx = ctx;
+        tr[i].c = c;
+        if (i > 0 || !lend0) {
+            tr[i].ctx = NULL;
+            tr[i].c = vbx_certifier_worker(c);
+            if (!tr[i].c || vb_open_worker(&tr[i].ctx, ctx) != VB_OK) {
+                rc = VB_ENOMEM;
+                break;
+            }
+        }
+        rc = vbx_arcw_init(&tr[i].w, tr[i].ctx, tr[i].c);
+        tr[i].have_w = 1;
+        vbx_tracer_scratch(&tr[i], 1);
+    }
+    return rc;
+}
+
+void vbx_tracers_free(char *block, vbx_tracer *tr, unsigned nt, int lend0)
+{
+    for (unsigned i = 0; tr && i < nt; i++) {
+        if (tr[i].have_w)
+            vbx_arcw_free(&tr[i].w);
+        vbx_tracer_scratch(&tr[i], 0);
+        free(tr[i].ev);
+        free(tr[i].ends);
+        free(tr[i].pool);
+        free(tr[i].gkey);
+        free(tr[i].gbox);
+        if (i > 0 || !lend0) {
+            vb_certifier_close(tr[i].c);
+            if (tr[i].ctx)
+                vb_close(tr[i].ctx);
+        }
+    }
+    free(block);
 }

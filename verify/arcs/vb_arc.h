@@ -50,7 +50,35 @@ typedef struct vb_arc_report {
      * on one thread) and components, sorting and edges (finish) */
     double setup_s, map_s, trace_s, busy_s, merge_s, finish_s;
     unsigned threads;       /* tracers used */
+    /* early tracing (vb_arc_early): the parts traced while the proposer
+     * ran, the list's vertices whose arcs came from them and those half
+     * arcs' events; the wall and summed CPU seconds of that tracing (before
+     * the closure), and the seconds the closure spent taking its events */
+    size_t early_parts, early_vertices, early_events;
+    double early_s, early_busy_s, early_take_s;
 } vb_arc_report;
+
+/* Arcs traced early: certified parts of the list traced while the
+ * proposer still runs (on host threads that would wait for the device),
+ * their events kept until the closure of the whole list. */
+typedef struct vb_arc_early vb_arc_early;
+
+/* An early tracer of set on `threads` host threads (0: VORBALL_THREADS or
+ * the online CPUs), its tracers on workers of cert (an open certifier of
+ * set, borrowed: close *out before it) and of owner's context. VB_OK or
+ * VB_ENOMEM (*out NULL). */
+int vb_arc_early_open(vb_ctx *owner, const vb_sphere_set *set, vb_certifier *cert,
+                      unsigned threads, vb_arc_early **out);
+
+/* Traces the forward arcs of every vertex of `part` (certified vertices,
+ * sorted, each once: as vb_arc_close's `in`; copied) and keeps their
+ * events: each end is a rounded point and members, nothing of it is
+ * looked up but in the final list (vb_arc_close_early). Errors are set on
+ * ctx. VB_OK, VB_ENOMEM, VB_EINTERNAL. */
+int vb_arc_early_part(vb_ctx *ctx, vb_arc_early *e, const vb_vertex_list *part);
+
+/* Frees e (NULL allowed). */
+void vb_arc_early_free(vb_arc_early *e);
 
 /* Traces every arc of every vertex of `in` and of every vertex found on the
  * way, in rounds on up to `threads` host threads (0: VORBALL_THREADS or the
@@ -81,6 +109,17 @@ int vb_arc_close_edges(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier *cert
                        const vb_vertex_list *in, unsigned threads, vb_arc_report *out,
                        vb_topology_edge **edges, size_t *nedges);
 
+/* vb_arc_close_edges taking the early events of `early` (NULL: none; its
+ * certifier must be cert's) for the vertices of `in` that a part traced:
+ * each vertex, end and arrival is looked up in `in` itself, an end not
+ * there is a vertex added (and traced) as any other; the vertices no part
+ * traced, and any whose early half arcs were not all decided, are traced
+ * here. The report, edges and added vertices are those of
+ * vb_arc_close_edges (edges: NULL for none). Same returns. */
+int vb_arc_close_early(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier *cert,
+                       const vb_arc_early *early, const vb_vertex_list *in, unsigned threads,
+                       vb_arc_report *out, vb_topology_edge **edges, size_t *nedges);
+
 /* 1 when every arc was traced and no vertex was added. */
 int vb_arc_report_complete(const vb_arc_report *r);
 
@@ -101,6 +140,13 @@ int vb_arc_complete_list(vb_ctx *ctx, const vb_sphere_set *set, vb_vertex_list *
 int vb_arc_complete_list_edges(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier *cert,
                                vb_vertex_list *list, unsigned threads, vb_arc_report *out,
                                vb_topology_edge **edges, size_t *nedges);
+
+/* vb_arc_complete_list_edges through vb_arc_close_early (early NULL: the
+ * same). Same returns. */
+int vb_arc_complete_list_early(vb_ctx *ctx, const vb_sphere_set *set, vb_certifier *cert,
+                               const vb_arc_early *early, vb_vertex_list *list,
+                               unsigned threads, vb_arc_report *out, vb_topology_edge **edges,
+                               size_t *nedges);
 
 /* The exact topology of a closed list (`vorball vertices --topology`):
  * edges the traced arcs (from vb_arc_complete_list_edges on `list`; the

@@ -125,7 +125,24 @@ typedef struct vbx_tracer {
     vbx_key *gkey;
     vbx_ia *gbox;
     size_t glo, ng, gkey_cap, gbox_cap;
+    /* NULL, or per vertex of the list: 1 where a VBX_IT_TRIPLE item leaves
+     * the vertex untraced (its arcs were traced early: arc_early.c); it
+     * still bounds the others' searches */
+    const unsigned char *skip;
 } vbx_tracer;
+
+/* nt tracers at their alignment inside one zeroed block (*block, to free
+ * with vbx_tracers_free), each with its arc worker and scratch: tracer 0
+ * on ctx and c themselves when lend0, every other one (all of them when
+ * !lend0) on a worker context of ctx and a worker of c. *tr is NULL only
+ * when the block could not be allocated. VB_OK or VB_ENOMEM (what was
+ * opened is then still freed by vbx_tracers_free). */
+int vbx_tracers_open(vb_ctx *ctx, vb_certifier *c, unsigned nt, int lend0, char **block,
+                     vbx_tracer **tr);
+
+/* Frees what vbx_tracers_open(..., lend0, block, tr) opened (tr may be
+ * NULL). */
+void vbx_tracers_free(char *block, vbx_tracer *tr, unsigned nt, int lend0);
 
 /* Initialises (on) or clears (!on) tracer t's scratch. */
 void vbx_tracer_scratch(vbx_tracer *t, int on);
@@ -269,6 +286,54 @@ int vbx_merge_phase(vbx_closure *cl, const vbx_tphase *ph, unsigned nt, vbx_mrun
  * in parallel. VB_OK or VB_ENOMEM. */
 int vbx_resolve_pending(vbx_closure *cl, vbx_mrun *runs, unsigned nr, vbx_item **back,
                         size_t *nback, size_t *back_cap);
+
+/* ---- early tracing (arc_early.c) ---------------------------------------- */
+
+/* One part traced early: its vertices (a copy) and its phase's items,
+ * whose events stay in the early tracers (who, first, count; indices of
+ * the part's list). */
+typedef struct vbx_epart {
+    vb_vertex_list v;
+    size_t nit;
+    size_t *first;
+    uint32_t *count;
+    uint16_t *who;
+} vbx_epart;
+
+struct vb_arc_early {
+    vb_ctx *owner;
+    unsigned nt;
+    char *block;
+    vbx_tracer *tr; /* every one on workers of the lent certifier */
+    vbx_tmap map;   /* of the part in work */
+    vbx_item *it;
+    size_t it_cap;
+    vbx_epart *parts;
+    size_t nparts, cap;
+    double wall_s;
+};
+
+/* The early events that the closure takes for the first round of the
+ * list cl->all (whose map cl->map is built): a phase of their own (one
+ * holder, tr; items in the parts' order) with every index one of cl->all,
+ * the ends not in cl->all as vbx_hend (late events), and done[k] = 1 for
+ * each vertex of cl->all whose arcs they hold (the first part that traced
+ * it, none of its half arcs undecided). */
+typedef struct vbx_eset {
+    vbx_tracer *tr; /* ev, ends, pool only */
+    char *block;
+    size_t n;
+    size_t *first;
+    uint32_t *count;
+    uint16_t *who;
+    unsigned char *done;
+} vbx_eset;
+
+/* Fills *s from early for cl (cl->map built on cl->all); the counts of
+ * early work go to cl->r. VB_OK or VB_ENOMEM. */
+int vbx_early_take(vbx_closure *cl, const vb_arc_early *early, unsigned nt, vbx_eset *s);
+
+void vbx_eset_free(vbx_eset *s);
 
 /* Frees what runs[0 .. nr) hold; they hold nothing then (a second call
  * frees nothing). */
