@@ -7,11 +7,14 @@
 #include "vb_default.h"
 #include "vb_diag.h"
 
-/* Early tracing as the run's part work (vb_part_work): the certifier is
- * the exact one (vb_vertices_complete takes the state only then). */
-static int early_open(vb_ctx *owner, const vb_sphere_set *set, void *cert, unsigned threads,
-                      void **state)
+/* Early tracing as the run's part work (vb_part_work), on the exact
+ * certifier only (no work on another). */
+static int early_open(vb_ctx *owner, const vb_sphere_set *set, const vb_certifier_ops *ops,
+                      void *cert, unsigned threads, void **state)
 {
+    *state = NULL;
+    if (ops != &vb_exact_certifier)
+        return VB_OK;
     vb_arc_early *e = NULL;
     int rc = vb_arc_early_open(owner, set, cert, threads, &e);
     *state = e;

@@ -134,16 +134,19 @@ static int certify_one(vbv_cert_stream *cs, vb_quad_list *part)
     if (rc == VB_OK)
         rc = vbv_certify_quads(cs->tctx, cs->ops, cs->cert, part, &v, NULL);
     /* the part's vertices to the work while the proposer goes on (its
-     * seconds apart from the certification's: t_pw) */
-    if (rc == VB_OK && cs->pw && v.n) {
-        pthread_mutex_lock(&cs->mu);
-        cs->in_pw = 1;
-        cs->pw_since = vb_now();
-        pthread_mutex_unlock(&cs->mu);
-        if (!cs->pw_state)
-            rc = cs->pw->open(cs->owner, cs->set, cs->cert, (unsigned)cs->threads,
+     * seconds apart from the certification's: t_pw); none once the
+     * proposer returned (pw_done: the work is then the caller's own) */
+    pthread_mutex_lock(&cs->mu);
+    int work = rc == VB_OK && cs->pw && v.n && !cs->pw_done;
+    cs->in_pw = work;
+    cs->pw_since = vb_now();
+    pthread_mutex_unlock(&cs->mu);
+    if (work) {
+        if (!cs->pw_state && !cs->pw_opened)
+            rc = cs->pw->open(cs->owner, cs->set, cs->ops, cs->cert, (unsigned)cs->threads,
                               &cs->pw_state);
-        if (rc == VB_OK)
+        cs->pw_opened = 1;
+        if (rc == VB_OK && cs->pw_state)
             rc = cs->pw->part(cs->tctx, cs->pw_state, &v);
         pthread_mutex_lock(&cs->mu);
         cs->in_pw = 0;
@@ -277,6 +280,7 @@ int vbv_cert_stream_finish(vb_ctx *ctx, vbv_cert_stream *cs, vb_vertex_list *out
     if (cs->started > 0) {
         pthread_mutex_lock(&cs->mu);
         double now = vb_now();
+        cs->pw_done = 1;
         cs->t_overlap = cs->t_work;
         cs->t_pw_overlap = cs->t_pw;
         if (cs->busy && cs->in_pw) { /* the part's certification done, its work in progress */
@@ -286,6 +290,8 @@ int vbv_cert_stream_finish(vb_ctx *ctx, vbv_cert_stream *cs, vb_vertex_list *out
             cs->t_overlap += now - cs->t_busy_since;
         }
         pthread_mutex_unlock(&cs->mu);
+    } else {
+        cs->pw_done = 1; /* no thread: nothing reads it meanwhile */
     }
     int rc = stream_wait(cs, 1);
     if (cs->co) { /* no part came: the set-up is still to be joined */

@@ -70,13 +70,15 @@ typedef struct vb_vertices_early vb_vertices_early; /* vb_vertices_open_early */
 
 /* Work on the certified vertices of each part while the proposer still
  * runs (arc closure's early tracing: lib/vertices_complete.c): open once,
- * at the first part certified, on the run's certifier (cert: its ops'
- * certifier) and the run's threads; part with each part's certified list
- * (sorted, borrowed for the call; errors set on ctx); close frees the
- * state, before the certifier is closed. */
+ * at the first part certified, on the run's certifier (cert, of table ops;
+ * *state NULL: no work for this certifier, part is then not called) and
+ * the run's threads; part with the certified list of each
+ * part certified before the proposer returned (sorted, borrowed for the
+ * call; errors set on ctx; later parts are left to the caller); close
+ * frees the state, before the certifier is closed. */
 typedef struct vb_part_work {
-    int (*open)(vb_ctx *owner, const vb_sphere_set *set, void *cert, unsigned threads,
-                void **state);
+    int (*open)(vb_ctx *owner, const vb_sphere_set *set, const struct vb_certifier_ops *ops,
+                void *cert, unsigned threads, void **state);
     int (*part)(vb_ctx *ctx, void *state, const vb_vertex_list *part);
     void (*close)(void *state);
 } vb_part_work;

@@ -86,6 +86,8 @@ typedef struct vbv_cert_stream {
     const vb_part_work *pw;  /* NULL, or work on each certified part (its thread) */
     void *pw_state;          /* ... opened at the first part */
     int in_pw;               /* the thread is in the part work (since pw_since) */
+    int pw_done;             /* 1: the proposer returned, no part work starts */
+    int pw_opened;           /* pw->open was called (pw_state may be NULL) */
     double pw_since, pw_last; /* ... and how long the last part's work took */
     double t_pw;             /* seconds of part work, all parts */
     double t_pw_overlap;     /* of t_pw, seconds before vbv_cert_stream_finish */
@@ -105,7 +107,8 @@ int vbv_cert_stream_sink(void *user, vb_quad_list *part);
  * certifier stays): the proposal starts over (a device failed). */
 void vbv_cert_stream_reset(vbv_cert_stream *cs);
 
-/* Notes the certifying thread's work so far as overlap (t_overlap), waits
+/* Notes the certifying thread's work so far as overlap (t_overlap; the
+ * part work's, t_pw_overlap), starts no more part work, waits
  * for the queued parts, adds the thread's counters to ctx, and appends the
  * parts' vertices to out in canonical order (a merge). On an error its
  * message is relayed to ctx. VB_OK or the error. */
