@@ -30,36 +30,17 @@ static int run_phase(vbx_closure *cl, vbx_tracer *tr, unsigned nt, const vbx_ite
     ph.first = malloc(n * sizeof *ph.first);
     ph.count = malloc(n * sizeof *ph.count);
     ph.who = malloc(n * sizeof *ph.who);
-    atomic_init(&ph.next, 0);
-    atomic_init(&ph.done, 0);
     ph.progress = total ? cl->ctx : NULL;
     ph.base = base;
     ph.span = span;
     ph.total = total;
     int rc = VB_OK;
-    vbx_rjob jobs[VB_MAX_THREADS];
-    unsigned use = nt;
-    if (use > (n + VBX_RCHUNK - 1) / VBX_RCHUNK)
-        use = (unsigned)((n + VBX_RCHUNK - 1) / VBX_RCHUNK);
-    if (use < 1)
-        use = 1;
-    for (unsigned i = 0; i < use; i++) {
-        jobs[i].ph = &ph;
-        jobs[i].index = i;
-        tr[i].nev = 0;
-        tr[i].nends = 0;
-        tr[i].npool = 0;
-        tr[i].rc = VB_OK;
-        tr[i].fail_at = SIZE_MAX;
-    }
     if (!ph.first || !ph.count || !ph.who) {
         rc = VB_ENOMEM;
     } else {
         double t0 = vb_now();
-        vb_run_jobs(vbx_phase_work, jobs, sizeof *jobs, (int)use);
+        int bad = vbx_phase_run(&ph, nt, 0);
         cl->r->trace_s += vb_now() - t0;
-        int bad = vb_jobs_first_error(tr, sizeof *tr, (int)use, offsetof(vbx_tracer, rc),
-                                      offsetof(vbx_tracer, fail_at));
         if (bad >= 0) {
             rc = tr[bad].rc;
             if (bad != 0)

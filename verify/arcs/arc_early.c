@@ -97,27 +97,11 @@ int vb_arc_early_part(vb_ctx *ctx, vb_arc_early *e, const vb_vertex_list *part)
     ph.first = ep->first;
     ph.count = ep->count;
     ph.who = ep->who;
-    atomic_init(&ph.next, 0);
-    atomic_init(&ph.done, 0);
-    vbx_rjob jobs[VB_MAX_THREADS];
-    unsigned use = e->nt;
-    if (use > (n + VBX_RCHUNK - 1) / VBX_RCHUNK)
-        use = (unsigned)((n + VBX_RCHUNK - 1) / VBX_RCHUNK);
-    if (use < 1)
-        use = 1;
     /* the tracers' events accumulate over the parts (first[] indexes
-     * them): only their status is reset */
-    for (unsigned i = 0; i < use; i++) {
-        jobs[i].ph = &ph;
-        jobs[i].index = i;
+     * them) */
+    for (unsigned i = 0; i < e->nt; i++)
         e->tr[i].map = &e->map;
-        e->tr[i].rc = VB_OK;
-        e->tr[i].fail_at = SIZE_MAX;
-    }
-    if (n)
-        vb_run_jobs(vbx_phase_work, jobs, sizeof *jobs, (int)use);
-    int bad = vb_jobs_first_error(e->tr, sizeof *e->tr, (int)use, offsetof(vbx_tracer, rc),
-                                  offsetof(vbx_tracer, fail_at));
+    int bad = vbx_phase_run(&ph, e->nt, 1);
     e->wall_s += vb_now() - t0;
     if (bad >= 0) {
         ep->nit = 0;
@@ -153,24 +137,6 @@ static void find_rows(void *arg, size_t r, int tid)
                                             nm, p)
                             : SIZE_MAX;
     }
-}
-
-/* An end that is not a row of the final list: its point and members into
- * the holder's ends, the event's end. VB_OK or VB_ENOMEM. */
-static int keep_end(vbx_tracer *h, vbx_hev *ev, const uint32_t *m, size_t nm, const double p[4])
-{
-    if (VB_ARRAY_FIT(h->ends, h->ends_cap, h->nends + 1, 64) != VB_OK ||
-        VB_ARRAY_FIT(h->pool, h->pool_cap, h->npool + nm, 1024) != VB_OK)
-        return VB_ENOMEM;
-    vbx_hend *x = &h->ends[h->nends];
-    memcpy(x->p, p, sizeof x->p);
-    x->moff = h->npool;
-    x->nm = nm;
-    memcpy(h->pool + h->npool, m, nm * sizeof *m);
-    h->npool += nm;
-    ev->to = SIZE_MAX;
-    ev->end = h->nends++;
-    return VB_OK;
 }
 
 /* Event e of part ep (traced by tr) in the final list's rows (row: the
@@ -215,7 +181,7 @@ static int take_event(const vbx_closure *cl, const vbx_epart *ep, const vbx_trac
         o->to = k;
         return VB_OK;
     }
-    return keep_end(h, o, m, nm, p); /* not listed: a late event (added) */
+    return vbx_keep_end(h, o, m, nm, p); /* not listed: a late event (added) */
 }
 
 void vbx_eset_free(vbx_eset *s)

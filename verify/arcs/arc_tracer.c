@@ -26,7 +26,7 @@ static int push_event(vbx_tracer *t, int kind, const uint32_t tri[3], int dir, s
 
 /* The end of the last event, a vertex the round's map does not hold: its
  * members m (nm) and rounded point p, which the merge looks up and adds. */
-static int push_end(vbx_tracer *t, const uint32_t *m, size_t nm, const double p[4])
+int vbx_keep_end(vbx_tracer *t, vbx_hev *ev, const uint32_t *m, size_t nm, const double p[4])
 {
     if (VB_ARRAY_FIT(t->ends, t->ends_cap, t->nends + 1, 64) != VB_OK ||
         VB_ARRAY_FIT(t->pool, t->pool_cap, t->npool + nm, 1024) != VB_OK)
@@ -37,8 +37,14 @@ static int push_end(vbx_tracer *t, const uint32_t *m, size_t nm, const double p[
     x->nm = nm;
     memcpy(t->pool + t->npool, m, nm * sizeof *m);
     t->npool += nm;
-    t->ev[t->nev - 1].end = t->nends++;
+    ev->to = SIZE_MAX;
+    ev->end = t->nends++;
     return VB_OK;
+}
+
+static int push_end(vbx_tracer *t, const uint32_t *m, size_t nm, const double p[4])
+{
+    return vbx_keep_end(t, &t->ev[t->nev - 1], m, nm, p);
 }
 
 /* The next vertex of arc tp of triple frame f, certified, as an event
@@ -442,4 +448,30 @@ void vbx_tracers_free(char *block, vbx_tracer *tr, unsigned nt, int lend0)
         }
     }
     free(block);
+}
+
+int vbx_phase_run(vbx_tphase *ph, unsigned nt, int keep_events)
+{
+    vbx_rjob jobs[VB_MAX_THREADS];
+    size_t n = ph->n;
+    unsigned use = nt;
+    if (use > (n + VBX_RCHUNK - 1) / VBX_RCHUNK)
+        use = (unsigned)((n + VBX_RCHUNK - 1) / VBX_RCHUNK);
+    if (use < 1)
+        use = 1;
+    atomic_init(&ph->next, 0);
+    atomic_init(&ph->done, 0);
+    for (unsigned i = 0; i < use; i++) {
+        jobs[i].ph = ph;
+        jobs[i].index = i;
+        vbx_tracer *t = &ph->tr[i];
+        if (!keep_events)
+            t->nev = t->nends = t->npool = 0;
+        t->rc = VB_OK;
+        t->fail_at = SIZE_MAX;
+    }
+    if (n)
+        vb_run_jobs(vbx_phase_work, jobs, sizeof *jobs, (int)use);
+    return vb_jobs_first_error(ph->tr, sizeof *ph->tr, (int)use, offsetof(vbx_tracer, rc),
+                               offsetof(vbx_tracer, fail_at));
 }

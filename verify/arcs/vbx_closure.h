@@ -187,6 +187,17 @@ typedef struct vbx_tphase {
 /* Items a tracer takes at a time. */
 enum { VBX_RCHUNK = 8 };
 
+/* Runs phase ph (its items, tracers ph->tr: their status reset, their
+ * events emptied unless keep_events, else appended to) on up to nt
+ * threads (vbx_phase_work). Returns the index of the tracer with the
+ * first failure (vb_jobs_first_error), or -1. */
+int vbx_phase_run(vbx_tphase *ph, unsigned nt, int keep_events);
+
+/* The end (members m, nm of them, and rounded point p) of event ev
+ * appended to tracer t's ends (ev->end; ev->to = SIZE_MAX). VB_OK or
+ * VB_ENOMEM. */
+int vbx_keep_end(vbx_tracer *t, vbx_hev *ev, const uint32_t *m, size_t nm, const double p[4]);
+
 /* The job of one thread of a phase (vb_run_jobs). */
 typedef struct vbx_rjob {
     vbx_tphase *ph;
