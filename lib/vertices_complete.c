@@ -152,6 +152,7 @@ int vb_vertices_complete(vb_ctx *ctx, const vb_sphere_set *set, vb_vertices_resu
         release_certifier(res);
         if (rc != VB_OK)
             return rc;
+        out->arcs.early_on = res->part_work_on && kc;
         out->traced = 1;
         size_t used = strlen(note);
         if (used && used + 1 < size)

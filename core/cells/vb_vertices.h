@@ -165,6 +165,8 @@ typedef struct vb_vertices_result {
     size_t certify_parts;       /* parts of quadruples certified one by one (a stream) */
     double t_part_overlap;      /* cfg->part_work: its seconds while the proposer ran */
     double t_part_after;        /* ... and after it returned (waited for) */
+    int part_work_on;           /* 1: cfg->part_work was offered the parts (its
+                                 * counters are printed, zero or not) */
     double max_dist;            /* largest candidate-to-exact distance certified */
     size_t repaired_candidates; /* intruder-swap candidates certified (see repair) */
     char backend[16];

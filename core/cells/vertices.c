@@ -351,6 +351,7 @@ static int certify(vb_ctx *ctx, const vb_certifier_ops *ops, vbv_cert_open *co,
         res->t_part_overlap = cs->t_pw_overlap;
         res->t_part_after = cs->t_pw - cs->t_pw_overlap;
         pw = cs->pw;
+        res->part_work_on = pw != NULL;
         pstate = vbv_cert_stream_take_work(cs);
         cert = vbv_cert_stream_free(cs);
     } else {

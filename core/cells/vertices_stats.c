@@ -120,7 +120,7 @@ void vb_vertices_stats(vb_ctx *ctx, const vb_vertices_result *r, vb_stat_fields 
     /* The work on certified parts (arc closure's early tracing), where it
      * ran: its seconds while the proposer ran and after it returned (the
      * certification waited for them; certify_overlap_s leaves them out). */
-    if (r->t_part_overlap > 0 || r->t_part_after > 0) {
+    if (r->part_work_on) {
         vb_stat_real(fs, "part_work_overlap_s", "%.6f", r->t_part_overlap);
         vb_stat_real(fs, "part_work_after_s", "%.6f", r->t_part_after);
     }

@@ -72,6 +72,11 @@ def test_crambin_float32_like_mdanalysis_same_bytes():
 VARYING = {"device_bytes_peak", "certify_parts", "cover_host_cells", "cover_handed_cells",
            "cover_resumed_patches",
            "cover_neighbours", "cover_max_cell_neighbours"}
+# Arc closure's early tracing (arcs54): which vertices a part traced before
+# the proposer returned depends on when the parts came, and so do the
+# tracing predicates' counts (a part's searches run against its own map).
+VARYING |= {"arc_filter_calls", "arc_filter_failures", "arc_exact_evals", "arc_candidates",
+            "arc_early_parts", "arc_early_vertices", "arc_early_events"}
 # Per tier of the device's arenas: how many launches and tasks each took,
 # and the patches its tasks walked (the most in one task, and those of tasks
 # that ran out), depend on which cells the host threads took first.

@@ -107,8 +107,9 @@ void vb_arc_stats(const vb_arc_report *r, vb_stat_fields *fs)
     vb_stat_real(fs, "arc_busy_s", "%.3f", r->busy_s);
     vb_stat_real(fs, "arc_merge_s", "%.3f", r->merge_s);
     vb_stat_real(fs, "arc_finish_s", "%.3f", r->finish_s);
-    /* early tracing: counters only where it ran (zero ones not printed) */
-    if (r->early_parts) {
+    /* early tracing: counters only where it was on (the same lines whether
+     * or not a part came before the proposer returned) */
+    if (r->early_on || r->early_parts) {
         vb_stat_uint(fs, "arc_early_parts", r->early_parts);
         vb_stat_uint(fs, "arc_early_vertices", r->early_vertices);
         vb_stat_uint(fs, "arc_early_events", r->early_events);

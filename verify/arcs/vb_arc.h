@@ -55,6 +55,7 @@ typedef struct vb_arc_report {
      * arcs' events; the wall and summed CPU seconds of that tracing (before
      * the closure), and the seconds the closure spent taking its events */
     size_t early_parts, early_vertices, early_events;
+    int early_on;           /* 1: early tracing was on (its counters printed, zero or not) */
     double early_s, early_busy_s, early_take_s;
 } vb_arc_report;
 
