@@ -78,12 +78,11 @@ static int check(double D, double delta, double xc, double h, int fonly)
     vbm1_poly_mul(p.rn, dq, 2, E, 2);
     vbm1_poly_mul(Pq2, Pq, 2, Pq, 2);
     vbm1_poly_mul(p.rd, Pq2, 4, Pq, 2);
-    vbm1_poly_mul(p.ad, E, 2, Po, 2);
-    for (int k = 0; fonly && k < 5; k++) { /* an / ad = (1 - z): con = F */
-        p.ad[k] = k < 3 ? E[k] : pt(0.0);
-        if (k < 3)
-            p.an[k] = Emz[k];
-    }
+    for (int k = 0; k < 3; k++) /* the area's integrand an / (E Po) */
+        p.po[k] = fonly ? (k ? pt(0.0) : one) : Po[k];
+    for (int k = 0; fonly && k < 3; k++) /* an / (E po) = (1 - z): con = F */
+        p.an[k] = Emz[k];
+    vbm1_poly_mul(p.cd, p.po, 2, Emz, 2);
     vbm_owner o = {0};
     o.D = iD;
     o.delta = idl;

@@ -20,7 +20,11 @@
  *   0 over a rest from dividing by 1 - t over the piece, not at its
  *   middle) and (s sqrt s) / s = sqrt s; the affine maps 3 - 2 g at the
  *   order k - 1 and 0.5 g - 1 at k - 3 (vbm1_tm_affine: g's higher terms
- *   and x^(k-kr) r_g as the rest).
+ *   and x^(k-kr) r_g as the rest); a model times a polynomial over a
+ *   polynomial (vbm1_tm_mul_div_poly, the contact's last step):
+ *   g (4 t - 1/2) / (1.5 + t / 2 - t^2) (num 0 at xc: r_g num(x) taken
+ *   there drops the rest's main part) and g (1 - t)^2 / ((1 - t)(2 - t))
+ *   = 1 / (2 - t).
  * Each model, at 41 points X of the piece: sum_{n<k} p_n X^n + X^k rest in
  * intervals, and vbm1_tm_value at the point X and over each of the 40
  * parts between the points (its contract: an enclosure of f over the
@@ -41,11 +45,13 @@ typedef long double ld;
 static const double XC = 0.125;
 static const double SN[3] = {2.0, 0.75, 0.5};
 
-enum { F_T, F_G, F_FG, F_RS, F_SRS, F_Q1, F_Q2, F_Q3, F_Q4, F_A1, F_A3, NF };
+enum { F_T, F_G, F_FG, F_RS, F_SRS, F_Q1, F_Q2, F_Q3, F_Q4, F_A1, F_A3, F_P1, F_P2, NF };
 static const char *const NAME[NF] = {"t",         "1/(1-t)",        "t/(1-t)",
                                      "sqrt s",    "s sqrt s",       "t / (1/(1-t))",
                                      "1 / (1-t)", "(s sqrt s) / s", "1 / (1/(1-t))",
-                                     "3 - 2/(1-t) at k - 1", "0.5/(1-t) - 1 at k - 3"};
+                                     "3 - 2/(1-t) at k - 1", "0.5/(1-t) - 1 at k - 3",
+                                     "(1/(1-t)) (4t-1/2) / (1.5+t/2-t^2)",
+                                     "(1/(1-t)) (1-t)^2 / ((1-t)(2-t))"};
 
 static ld exact(int w, ld t)
 {
@@ -66,6 +72,10 @@ static ld exact(int w, ld t)
         return 3 - 2 / (1 - t);
     case F_A3:
         return 0.5L / (1 - t) - 1;
+    case F_P1:
+        return (4 * t - 0.5L) / ((1 - t) * (1.5L + 0.5L * t - t * t));
+    case F_P2:
+        return 1 / (2 - t);
     case F_RS:
     case F_Q3:
         return sqrtl(s);
@@ -145,7 +155,7 @@ static int check_tight(const vbm1_tm *m, int w, int k, double h)
     return ok;
 }
 
-/* The eleven models at the order k (the affine maps' lower) over [-h, h]. */
+/* The thirteen models at the order k (the affine maps' lower) over [-h, h]. */
 static int check_rules(int k, double h)
 {
     vbx_ia one = vbx_ia_point(1.0), zero = vbx_ia_point(0.0), x = {-h, h};
@@ -178,6 +188,23 @@ static int check_rules(int k, double h)
      * orders kr .. k - 1 join the rest, whose x^(k-kr) r_g dropped misses */
     vbm1_tm_affine(&m[F_A1], vbx_ia_point(-2.0), &m[F_G], vbx_ia_point(3.0), k, k - 1, x);
     vbm1_tm_affine(&m[F_A3], vbx_ia_point(0.5), &m[F_G], vbx_ia_point(-1.0), k, k - 3, x);
+    /* a model times a polynomial over a polynomial (vbm1_tm_mul_div_poly):
+     * g (4 t - 1/2) / (1.5 + t / 2 - t^2), whose rest takes g's, and g (1 -
+     * t)^2 / ((1 - t)(2 - t)) = 1 / (2 - t), where g's pole cancels and
+     * the rest is 1 / (v^k (v - x)), v = 2 - xc: num's and den's high
+     * orders (Q_u, Q_h) and r_g num(x) each carry part of it */
+    vbx_ia n1[3] = {vbx_ia_point(-0.5), vbx_ia_point(4.0), zero}, d1[3] = {vbx_ia_point(1.5), vbx_ia_point(0.5),
+                                                            vbx_ia_point(-1.0)};
+    vbx_ia n2[3] = {one, vbx_ia_point(-2.0), one}, d2[3] = {vbx_ia_point(2.0), vbx_ia_point(-3.0), one};
+    vbx_ia mn1[3], md1[3], mn2[3], md2[3], T = vbx_ia_add(vbx_ia_point(XC), x);
+    vbm1_poly_at(mn1, n1, 1, XC);
+    vbm1_poly_at(md1, d1, 2, XC);
+    vbm1_poly_at(mn2, n2, 2, XC);
+    vbm1_poly_at(md2, d2, 2, XC);
+    vbx_ia dx2 = vbx_ia_mul(omt, vbx_ia_sub(vbx_ia_point(2.0), T));
+    if (!vbm1_tm_mul_div_poly(&m[F_P1], &m[F_G], mn1, 1, md1, 2, vbm1_poly2_range(d1, T), k, x) ||
+        !vbm1_tm_mul_div_poly(&m[F_P2], &m[F_G], mn2, 2, md2, 2, dx2, k, x))
+        return 0;
     int ok = 1;
     for (int w = 0; w < NF; w++) {
         int kw = w == F_A1 ? k - 1 : w == F_A3 ? k - 3 : k;

@@ -216,8 +216,9 @@ static void rational_of(arcfun *f)
     for (int k = 0; k < 7; k++)
         f->cr.rd[k] = Pq3[k];
     for (int k = 0; k < 5; k++)
-        f->cr.ad[k] = f->ad[k];
+        f->cr.cd[k] = f->cd[k];
     for (int k = 0; k < 3; k++) {
+        f->cr.po[k] = Po[k];
         f->cr.sd[k] = E[k];
         f->cr.an[k] = f->an[k];
         f->cr.yn[k] = Emz[k];

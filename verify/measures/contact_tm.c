@@ -28,20 +28,23 @@
  *   P_phi's terms is exact and int_0^x s^(K-1) r_phi(s) ds = r_phi(xi) x^K / K (s^(K-1) has
  *   one sign between 0 and x, r_phi is continuous: the mean value theorem
  *   for integrals), so F's model has the order K with the rest r_phi / K;
- * - H = F / y, y = 1 - z = Emz / E (a rational, > 0 over the piece: the
- *   divisor's enclosure is its model's value there met with Emz's range
- *   over E's, vbm1_poly2_range) by the quotient rule
- *   (series_tm.c). F and y vanish together at z = 1, so H is smooth where
- *   1 / y has poles: at the complex zeros of Emz, off the arc but near it
- *   where the arc passes near e_j. Stop 50 took con = F (an / cd), cd = Po
- *   Emz, whose rest carried those poles ((h / distance)^K): on c1k the
- *   contact's kept pieces fell from 71,298 to 53,738 (arc_integral.c's
- *   stepping both ways) with the quotient;
- * - con = H a by the product rule.
+ * - con = F a / y = F an / cd, y = 1 - z = Emz / E, a = an / (E Po), cd =
+ *   Po Emz (polynomials of t, moved to xc: no rest), by the quotient rule
+ *   with a polynomial divisor (vbm1_tm_mul_div_poly, series_tm.c): its rest
+ *   is divided by cd's range over the piece (Horner's value met with the
+ *   product of Po's and Emz's ranges over T, vbm1_poly2_range), proven
+ *   > 0. F and y vanish together at z = 1, so con is smooth where 1 / y
+ *   has poles: at the complex zeros of Emz, off the arc but near it where
+ *   the arc passes near e_j. Stop 50 took con = F (an / cd) with the
+ *   rational's rest M / B, which carried those poles ((h / distance)^K);
+ *   stop 51 (cont51) H = F / y with y a rational model, times a's model
+ *   (c1k's kept contact pieces 71,298 -> 53,738); stop 53 (contm54) the
+ *   same function with cd a polynomial: no model of y or a, no product
+ *   (c1k: ~36 k -> ~15 k instructions a try, by callgrind).
  * The true coefficients lie in the computed intervals and every bound above
  * is an interval evaluation over the piece of the true functions' formulas
  * (inclusion-isotone), so *rest encloses the true remainder. Everything
- * is smooth on the piece where the checks hold: Pq^3, ad and E, B of each
+ * is smooth on the piece where the checks hold: Pq^3, cd and E, B of each
  * rational, sqrt(S) + T, S and y proven away from 0 over it (q keeps the sign
  * it has at xc, where F0's logs proved it > 0). */
 #include <math.h>
@@ -53,42 +56,49 @@ int vbm_contact_tm(const vbm_contact_rat *p, const vbm_owner *o, vbx_ia F0, doub
                    vbm_s1 *c, vbx_ia *rest)
 {
     const int K = VBM1_K, k1 = VBM1_K - 1;
-    vbm1_tm rho, rs, phi, F, y, h, a, con;
-    if (!vbm1_tm_rational(&rho, p->rn, 4, p->rd, 6, xc, k1, x) ||
-        !vbm1_tm_rational(&y, p->yn, 2, p->sd, 2, xc, K, x))
+    vbm1_tm rho, phi, F, con;
+    if (!vbm1_tm_rational(&rho, p->rn, 4, p->rd, 6, xc, k1, x))
         return 0;
-    if (vbm_ia_is_zero(o->delta)) { /* S = N exactly */
-        vbm1_const(&rs.p, o->rN);
-        rs.rest = vbx_ia_point(0.0);
+    if (vbm_ia_is_zero(o->delta)) { /* S = N exactly: phi's root a constant */
+        for (int n = 0; n <= VBM1_K; n++)
+            phi.p.c[n] = vbx_ia_mul(o->rN, rho.p.c[n]);
+        phi.rest = vbx_ia_mul(o->rN, rho.rest);
     } else { /* S = N + 2 delta q, q = D z + delta = (D + delta) - D y: y's
               * model mapped at the order K - 1 (vbm1_tm_affine), as
               * phi_series' (arc_integral.c), one rational less a piece */
-        vbm1_tm q, s;
+        vbm1_tm y, q, s, rs;
+        if (!vbm1_tm_rational(&y, p->yn, 2, p->sd, 2, xc, K, x))
+            return 0;
         vbm1_tm_affine(&q, vbx_ia_neg(o->D), &y, vbx_ia_add(o->D, o->delta), K, k1, x);
         vbm1_tm_affine(&s, vbx_ia_add(o->delta, o->delta), &q, o->N, k1, k1, x);
         if (!vbm1_tm_sqrt(&rs, &s, k1, x))
             return 0;
+        vbm1_tm_mul(&phi, &rho, &rs, k1, x);
     }
-    vbm1_tm_mul(&phi, &rho, &rs, k1, x);
     vbx_ia mC = vbx_ia_neg(o->C);
     vbm1_const(&F.p, F0);
     for (int n = 1; n < K; n++)
         F.p.c[n] = vbx_ia_div(vbx_ia_mul(mC, phi.p.c[n - 1]), vbx_ia_point((double)n));
     F.rest = vbx_ia_div(vbx_ia_mul(mC, phi.rest), vbx_ia_point((double)K));
-    /* con = (F / (1 - z)) (1 - z) dphi/dt: F and 1 - z vanish together at
-     * z = 1, so F / (1 - z) is as smooth as F there, where F times an / cd
-     * (a pole at each complex zero of 1 - z, off the arc but near it where
-     * the arc passes near e_j) took the pieces short */
-    /* 1 - z over the piece: the model's value (Horner over x, x counted K
-     * times) met with Emz's range over E's (t once each): on c1k --contacts
-     * the model's value alone held 0 on 6,477 of 68,684 tries (each then
-     * retried at half the length; stop 52), the meet on none */
-    vbx_ia T = vbx_ia_add(vbx_ia_point(xc), x), E = vbx_ia_add(vbx_ia_point(1.0), vbx_ia_sqr(T));
-    vbx_ia yx = vbm1_meet(vbm1_tm_value(&y, K, x), vbx_ia_div(vbm1_poly2_range(p->yn, T), E));
-    if (!vbm1_tm_div(&h, &F, &y, yx, K, x) ||
-        !vbm1_tm_rational(&a, p->an, 2, p->ad, 4, xc, K, x))
+    /* con = F an / cd, cd = po yn = Po Emz = E^2 (1 + z) (1 - z): the
+     * quotient rule with a polynomial divisor (series_tm.c). F and 1 - z
+     * vanish together at z = 1, so the quotient is as smooth as F / (1 - z)
+     * there, and the rest is divided by cd's real range over the piece: no
+     * pole of 1 / cd off the arc enters it (until stop 53, F / y by the
+     * quotient rule with y = 1 - z a rational model, then times an / ad,
+     * one more rational and product: ~36 k instructions a try on c1k) */
+    vbx_ia an[3], cd[5], T = vbx_ia_add(vbx_ia_point(xc), x);
+    vbm1_poly_at(an, p->an, 2, xc);
+    vbm1_poly_at(cd, p->cd, 4, xc);
+    /* cd over the piece: Horner over x met with the product of its two
+     * quadratic factors' ranges over T (t once each; stop 52 found the
+     * Horner value of 1 - z alone held 0 on 6,477 of c1k's 68,684 tries) */
+    vbx_ia cdx = vbx_ia_add(vbx_ia_mul(cd[4], x), cd[3]);
+    for (int n = 2; n >= 0; n--)
+        cdx = vbx_ia_add(vbx_ia_mul(cdx, x), cd[n]);
+    cdx = vbm1_meet(cdx, vbx_ia_mul(vbm1_poly2_range(p->po, T), vbm1_poly2_range(p->yn, T)));
+    if (!vbm1_tm_mul_div_poly(&con, &F, an, 2, cd, 4, cdx, K, x))
         return 0;
-    vbm1_tm_mul(&con, &h, &a, K, x);
     *c = con.p;
     *rest = con.rest;
     return 1;

@@ -40,6 +40,11 @@ static void shift(vbx_ia *q, const vbx_ia *p, int d, vbx_ia at)
     }
 }
 
+void vbm1_poly_at(vbx_ia *q, const vbx_ia *p, int d, double xc)
+{
+    shift(q, p, d, vbx_ia_point(xc));
+}
+
 /* p(at) alone: Horner's scheme. */
 static vbx_ia value(const vbx_ia *p, int d, vbx_ia at);
 

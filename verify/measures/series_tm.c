@@ -25,7 +25,16 @@
  *   P_h), and where g has no zero over the piece r = (r_f - Q - r_g
  *   P_h(x)) / g(x). No pole of 1 / g off the real line enters the rest:
  *   where f and g vanish together (the contact's F and 1 - z at z = 1)
- *   h's model is as good as h is smooth. */
+ *   h's model is as good as h is smooth;
+ * - f num / den, num and den polynomials (degrees dn, dd < k) with no rest:
+ *   u = f num = [P_f num]_{<k} + x^k (Q_u + r_f num(x)), Q_u the orders
+ *   k .. k + dn - 1 of P_f num over x^k; P_h by the recurrence den_0 p_n =
+ *   u_n - sum_{i=1..min(n,dd)} den_i p_(n-i), so den P_h = P_u + x^k Q_h
+ *   (Q_h the orders k .. k + dd - 1 of den P_h over x^k), and
+ *   den (h - P_h) = u - den P_h = x^k (r_u - Q_h): where den has no zero
+ *   over the piece, r = (r_u - Q_h) / den(x). The quotient rule's argument
+ *   with r_g = 0: a polynomial divisor is its own model, so no r_g P_h term
+ *   and a recurrence of dd terms, not n. */
 #include "vbm_dot.h"
 #include "vbm_series1.h"
 
@@ -129,5 +138,39 @@ int vbm1_tm_sqrt(vbm1_tm *r, const vbm1_tm *s, int k, vbx_ia x)
     if (!(den.lo > 0.0))
         return 0;
     r->rest = vbx_ia_div(vbx_ia_sub(s->rest, high(&r->p, &r->p, k, x)), den);
+    return 1;
+}
+
+/* sum_{m<d} x^m sum_{i=m+1..d} a_i p_(k+m-i): the orders k .. k + d - 1 of
+ * the polynomial a (degree d) times P (degree k - 1) over x^k, over x. */
+static vbx_ia high_poly(const vbx_ia *a, int d, const vbx_ia *p, int k, vbx_ia x)
+{
+    vbx_ia h[VBM1_POLY];
+    if (d < 1)
+        return vbx_ia_point(0.0);
+    for (int m = 0; m < d; m++)
+        h[m] = vbm_dotn(&a[m + 1], 1, &p[k - 1], -1, d - m);
+    return horner(h, d, x);
+}
+
+/* the identity at the top of the file */
+int vbm1_tm_mul_div_poly(vbm1_tm *r, const vbm1_tm *f, const vbx_ia *num, int dn,
+                         const vbx_ia *den, int dd, vbx_ia dx, int k, vbx_ia x)
+{
+    vbx_ia d0 = den[0], u[VBM1_K];
+    if (!(d0.lo > 0.0 || d0.hi < 0.0) || !(dx.lo > 0.0 || dx.hi < 0.0))
+        return 0;
+    for (int n = 0; n < k; n++) /* u_n = sum_{i<=min(n,dn)} num_i f_(n-i) */
+        u[n] = vbm_dotn(num, 1, &f->p.c[n], -1, (n < dn ? n : dn) + 1);
+    vbx_ia ru = vbx_ia_add(high_poly(num, dn, f->p.c, k, x),
+                           vbx_ia_mul(f->rest, horner(num, dn + 1, x)));
+    vbx_ia id0 = vbx_ia_div(vbx_ia_point(1.0), d0); /* s / d0 lies in s [1 / d0] */
+    r->p.c[0] = vbx_ia_mul(u[0], id0);
+    for (int n = 1; n < k; n++)
+        r->p.c[n] = vbx_ia_mul(
+            vbx_ia_sub(u[n], vbm_dotn(&den[1], 1, &r->p.c[n - 1], -1, n < dd ? n : dd)), id0);
+    for (int n = k; n <= VBM1_K; n++)
+        r->p.c[n] = vbx_ia_point(0.0);
+    r->rest = vbx_ia_div(vbx_ia_sub(ru, high_poly(den, dd, r->p.c, k, x)), dx);
     return 1;
 }

@@ -11,12 +11,13 @@
 /* The arc's rational functions of t = tan(angle / 2) that the contact's
  * model reads (arc_integral.c's rational_of): q' / q^3 = rn / rd,
  * 1 - z = yn / sd (sd = E = 1 + t^2; S = N + 2 delta q follows from 1 - z
- * in the model) and the area's integrand (1 - z) dphi/dt = an / ad. */
+ * in the model) and the area's integrand (1 - z) dphi/dt = an / (sd po);
+ * cd = po yn (the contact's divisor: con = F an / cd). */
 typedef struct vbm_contact_rat {
-    vbx_ia rn[5], rd[7], sd[3], yn[3], an[3], ad[5];
+    vbx_ia rn[5], rd[7], sd[3], yn[3], an[3], po[3], cd[5];
 } vbm_contact_rat;
 
-/* The contact's integrand con(xc + x) = F(z) / (1 - z) an / ad (F = C (G1 -
+/* The contact's integrand con(xc + x) = F(z) / (1 - z) an / (sd po) (F = C (G1 -
  * G(q)), vbm_owner o's constants, F0 an enclosure of F at z(xc)) as
  * sum_{n<K} c_n x^n + x^K rho(x), K = VBM1_K: c->c[0..K-1] enclose the
  * Taylor coefficients at the point xc (c->c[K] = 0) and *rest encloses

@@ -78,6 +78,11 @@ vbx_ia vbm1_integrate_m(const vbm_s1 *centre, const vbm_s1 *box, const vbx_ia *m
  * f or g): every coefficient an enclosure of the exact product's. */
 void vbm1_poly_mul(vbx_ia *r, const vbx_ia *f, int df, const vbx_ia *g, int dg);
 
+/* q(x) = p(xc + x) (degree d <= VBM1_POLY; q must not alias p): every
+ * coefficient an enclosure of the exact moved polynomial's, by the same
+ * steps vbm1_rational moves its num and den with (Horner's scheme). */
+void vbm1_poly_at(vbx_ia *q, const vbx_ia *p, int d, double xc);
+
 /* The Taylor coefficients c_0 .. c_kmax (kmax <= VBM1_K; the others
  * set to 0) at `at` (a point, or an interval: the box) of the rational
  * function num(x) / den(x), degrees dn and dd <= VBM1_POLY:
@@ -167,6 +172,14 @@ int vbm1_tm_div(vbm1_tm *r, const vbm1_tm *f, const vbm1_tm *g, vbx_ia gx, int k
  * not alias f): the terms of orders kr .. k - 1 join the rest,
  * r's rest = v (sum_{kr<=n<k} f_n x^(n-kr) + x^(k-kr) f's rest) over x. */
 void vbm1_tm_affine(vbm1_tm *r, vbx_ia v, const vbm1_tm *f, vbx_ia w, int k, int kr, vbx_ia x);
+
+/* r = f num / den at the order k (r must not alias f), num and den
+ * polynomials already moved to the model's point (vbm1_poly_at) of degrees
+ * dn, dd < k, dd <= VBM1_POLY, no rest of their own; dx an enclosure of den
+ * over the piece (the caller's, as tight as it has: the rest is divided by
+ * it). Returns 0 unless den's constant term and dx exclude 0. */
+int vbm1_tm_mul_div_poly(vbm1_tm *r, const vbm1_tm *f, const vbx_ia *num, int dn,
+                         const vbx_ia *den, int dd, vbx_ia dx, int k, vbx_ia x);
 
 /* r = sqrt(s) at the order k (r must not alias s). Returns 0 unless s and
  * sqrt(s) + its Taylor polynomial are proven > 0 over the piece. */
