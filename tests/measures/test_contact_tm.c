@@ -11,7 +11,8 @@
  * value (slack 1e-16 of it: long double's roundings); the same with the
  * area's integrand an / ad = 1 - z, where con = F (the model's F / (1 - z)
  * times 1 - z); and the models of sqrt(S) and S sqrt(S)
- * alone against sqrtl. The model's own
+ * alone against sqrtl; and an arc passing near e_j (PZ2: 1 - z down to 0.01 / E,
+ * where 1 / (1 - z) has poles 0.14 off the arc). The model's own
  * polynomials (q' / q^3, S, an / cd) are made here from Pz, D and delta. */
 #include <math.h>
 #include <stdio.h>
@@ -22,7 +23,12 @@
 
 typedef long double ld;
 
-static const double PZ[3] = {0.625, 0.125, 0.375}; /* z(0) = 0.625, z(+-inf) = 0.375 */
+static const double PZ1[3] = {0.625, 0.125, 0.375}; /* z(0) = 0.625, z(+-inf) = 0.375 */
+/* an arc passing near e_j: 1 - z = (0.03 - 0.2 t + 0.5 t^2) / E, least 0.01 / E at t = 0.2
+ * (complex zeros at 0.2 +- 0.141i), 0.03 at t = 0: cd varies by a factor ~2 over a piece of
+ * half-width 0.05 there, so a rest divided by cd at the middle, not over the piece, shows */
+static const double PZ2[3] = {0.97, 0.2, 0.5};
+static const double *PZ = PZ1;
 static const double AN[3] = {0.5, 0.25, -0.125};
 
 static ld poly(const double *p, int d, ld t)
@@ -228,6 +234,12 @@ int main(void)
             CHECK(check(3.0, deltas[k], 0.1, 0.4, fonly));
             CHECK(check(3.0, deltas[k], -0.3, 0.25, fonly));
             CHECK(check(2.5, deltas[k], 0.05, 0.05, fonly));
+        }
+    PZ = PZ2;
+    for (int k = 0; k < 5; k++)
+        for (int fonly = 0; fonly < 2; fonly++) {
+            CHECK(check(3.0, deltas[k], 0.05, 0.05, fonly));
+            CHECK(check(3.0, deltas[k], 0.35, 0.1, fonly));
         }
     VB_TEST_END();
 }
