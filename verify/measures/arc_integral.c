@@ -23,7 +23,6 @@
 #include "vbm_arc.h"
 #include "vbm_caps.h"
 #include "vbm_contact_tm.h"
-#include "vbm_dot.h"
 #include "vbm_piece.h"
 #include "vbm_series1.h"
 
@@ -39,7 +38,6 @@ static double width(vbx_ia a)
 
 typedef vbm_owner owner;
 
-static int g_of(const owner *o, vbx_ia q, vbx_ia *G);
 static int phi_series(const owner *o, vbx_ia at, vbm_s1 *phi);
 
 int vbm_owner_make(const vbm_atom_in *in, size_t j, vbx_ia D, vbm_owner *o)
@@ -65,7 +63,7 @@ int vbm_owner_make(const vbm_atom_in *in, size_t j, vbx_ia D, vbm_owner *o)
         o->lnd = vbm_ia_log(vbx_ia_add(ad, ad));
     }
     o->C = vbx_ia_div(vbx_ia_sqr(n->N), vbx_ia_mul(vbx_ia_point(4.0), D));
-    if (!g_of(o, vbx_ia_add(D, n->delta), &o->G1))
+    if (!vbm_contact_g(o, vbx_ia_add(D, n->delta), &o->G1))
         return 0;
     o->near = phi_series(o, vbx_ia_point(0.0), &o->phi0);
     return 1;
@@ -93,48 +91,6 @@ static int phi_series(const owner *o, vbx_ia at, vbm_s1 *phi)
     return 1;
 }
 
-/* v f + w for a constant f, as vbm1_affine's constant term (a point v by
- * vbm_ia_mul_point, the same bounds as vbx_ia_mul's). */
-static vbx_ia affine0(vbx_ia v, vbx_ia f, vbx_ia w)
-{
-    return vbx_ia_add(v.lo == v.hi ? vbm_ia_mul_point(v.lo, f) : vbx_ia_mul(v, f), w);
-}
-
-/* a b as vbm1_mul_to's constant term (vbm_dotn of one term). */
-static vbx_ia mul0(vbx_ia a, vbx_ia b)
-{
-    return vbm_dotn(&a, 1, &b, -1, 1);
-}
-
-/* G(q) = -S^(3/2) / (2 N q^2) + delta sqrt(S) / (2 N q)
- *        - delta^2 / (2 N sqrt N) log |(sqrt S - sqrt N) / (sqrt S + sqrt N)|,
- * S = N + 2 delta q: a primitive of sqrt(S) / q^3 (the log's argument as
- * 2 |delta| q / (sqrt S + sqrt N)^2, q > 0, one log: until stop 52 two, of
- * q and of sqrt S + sqrt N; no log term for delta = 0), at a constant q.
- * The constant terms of the order-0 series (vbm1_sqrt_to, _recip_to,
- * _mul_to, _affine, _add) it took until stop 53, operation for operation
- * (the same bounds), without their K orders of zeros: F0 at every contact
- * try's middle. Returns 0 unless q and S are proven > 0. */
-static int g_of(const owner *o, vbx_ia q, vbx_ia *G)
-{
-    vbx_ia zero = vbx_ia_point(0.0);
-    vbx_ia S = affine0(vbx_ia_add(o->delta, o->delta), q, o->N);
-    if (!(S.lo > 0.0) || !(q.lo > 0.0))
-        return 0;
-    vbx_ia r = vbx_ia_sqrt(S), iq = vbx_ia_div(vbx_ia_point(1.0), q);
-    vbx_ia t = mul0(r, iq); /* sqrt S / q */
-    vbx_ia g = mul0(mul0(t, S), iq); /* S^(3/2) / q^2 */
-    g = affine0(vbx_ia_neg(o->hN), g, zero);
-    g = vbx_ia_add(g, affine0(vbx_ia_mul(o->delta, o->hN), t, zero));
-    if (!vbm_ia_is_zero(o->delta)) {
-        vbx_ia sn = vbx_ia_add(r, o->rN);
-        vbx_ia l = vbx_ia_add(vbm_ia_log(vbx_ia_div(q, vbx_ia_sqr(sn))), o->lnd);
-        g = vbx_ia_add(g, vbx_ia_mul(vbx_ia_neg(o->kL), l));
-    }
-    *G = g;
-    return 1;
-}
-
 /* F_vol(z) / (1 - z) = K (D (1 + z) + 2 delta) / (D z + delta)^2 */
 static vbx_ia fvol_over(const owner *o, vbx_ia z)
 {
@@ -148,7 +104,7 @@ static vbx_ia fvol_over(const owner *o, vbx_ia z)
 static int fcon(const owner *o, vbx_ia z, vbx_ia *F)
 {
     vbx_ia G;
-    if (!g_of(o, vbx_ia_add(vbx_ia_mul(o->D, z), o->delta), &G))
+    if (!vbm_contact_g(o, vbx_ia_add(vbx_ia_mul(o->D, z), o->delta), &G))
         return 0;
     *F = vbx_ia_mul(o->C, vbx_ia_sub(o->G1, G));
     return 1;
@@ -239,7 +195,7 @@ static void rational_of(arcfun *f)
 }
 
 /* The contact's integrand C (G1 - G(q)) / (1 - z) times the area's, G as
- * g_of's but its algebraic part one root times a rational function, to
+ * vbm_contact_g's but its algebraic part one root times a rational function, to
  * the order kmax; with `last`, of *con the order kmax alone (the others
  * 0: over a piece only the remainder's order is read). Returns 0 when a
  * series cannot be bounded (the caller bounds it near e_j). */

@@ -50,7 +50,50 @@
 #include <math.h>
 
 #include "vbm_contact_tm.h"
+#include "vbm_dot.h"
 #include "vbm_piece.h"
+
+/* v f + w for a constant f, as vbm1_affine's constant term (a point v by
+ * vbm_ia_mul_point, the same bounds as vbx_ia_mul's). */
+static vbx_ia affine0(vbx_ia v, vbx_ia f, vbx_ia w)
+{
+    return vbx_ia_add(v.lo == v.hi ? vbm_ia_mul_point(v.lo, f) : vbx_ia_mul(v, f), w);
+}
+
+/* a b as vbm1_mul_to's constant term (vbm_dotn of one term). */
+static vbx_ia mul0(vbx_ia a, vbx_ia b)
+{
+    return vbm_dotn(&a, 1, &b, -1, 1);
+}
+
+/* G(q) = -S^(3/2) / (2 N q^2) + delta sqrt(S) / (2 N q)
+ *        - delta^2 / (2 N sqrt N) log |(sqrt S - sqrt N) / (sqrt S + sqrt N)|,
+ * S = N + 2 delta q: a primitive of sqrt(S) / q^3 (the log's argument as
+ * 2 |delta| q / (sqrt S + sqrt N)^2, q > 0, one log: until stop 52 two, of
+ * q and of sqrt S + sqrt N; no log term for delta = 0), at a constant q.
+ * The constant terms of the order-0 series (vbm1_sqrt_to, _recip_to,
+ * _mul_to, _affine, _add) it took until stop 53, operation for operation
+ * (the same bounds), without their K orders of zeros: F0 at every contact
+ * try's middle (arc_integral.c's fcon; vbm_contact_tm.h). */
+int vbm_contact_g(const vbm_owner *o, vbx_ia q, vbx_ia *G)
+{
+    vbx_ia zero = vbx_ia_point(0.0);
+    vbx_ia S = affine0(vbx_ia_add(o->delta, o->delta), q, o->N);
+    if (!(S.lo > 0.0) || !(q.lo > 0.0))
+        return 0;
+    vbx_ia r = vbx_ia_sqrt(S), iq = vbx_ia_div(vbx_ia_point(1.0), q);
+    vbx_ia t = mul0(r, iq); /* sqrt S / q */
+    vbx_ia g = mul0(mul0(t, S), iq); /* S^(3/2) / q^2 */
+    g = affine0(vbx_ia_neg(o->hN), g, zero);
+    g = vbx_ia_add(g, affine0(vbx_ia_mul(o->delta, o->hN), t, zero));
+    if (!vbm_ia_is_zero(o->delta)) {
+        vbx_ia sn = vbx_ia_add(r, o->rN);
+        vbx_ia l = vbx_ia_add(vbm_ia_log(vbx_ia_div(q, vbx_ia_sqr(sn))), o->lnd);
+        g = vbx_ia_add(g, vbx_ia_mul(vbx_ia_neg(o->kL), l));
+    }
+    *G = g;
+    return 1;
+}
 
 int vbm_contact_tm(const vbm_contact_rat *p, const vbm_owner *o, vbx_ia F0, double xc, vbx_ia x,
                    vbm_s1 *c, vbx_ia *rest)

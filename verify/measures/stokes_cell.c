@@ -20,7 +20,7 @@
  *   contact (the face's area element t^2 sqrt(N + 2 delta q) / q per
  *   domega, q = D z + delta = N / (2 t), see cell_patches.c):
  *           F = N^2 / (4 D) (G(D + delta) - G(q)), G a primitive of
- *           sqrt(N + 2 delta q) / q^3 in closed form (g_of, a log for
+ *           sqrt(N + 2 delta q) / q^3 in closed form (vbm_contact_g, a log for
  *           delta != 0).
  * The integrals along each arc: arc_integral.c (vbm_arc_integrate). The
  * arrangement is decided by interval signs; where one

@@ -17,6 +17,13 @@ typedef struct vbm_contact_rat {
     vbx_ia rn[5], rd[7], sd[3], yn[3], an[3], po[3], cd[5];
 } vbm_contact_rat;
 
+/* *G = G(q) = -S^(3/2) / (2 N q^2) + delta sqrt(S) / (2 N q) - delta^2 /
+ * (2 N sqrt N) log |(sqrt S - sqrt N) / (sqrt S + sqrt N)|, S = N + 2 delta q
+ * (o's N, delta and their constants), a primitive of sqrt(S) / q^3, at a
+ * constant q (an interval): F = C (G1 - G(q)). Returns 0 unless q and S
+ * are proven > 0. */
+int vbm_contact_g(const vbm_owner *o, vbx_ia q, vbx_ia *G);
+
 /* The contact's integrand con(xc + x) = F(z) / (1 - z) an / (sd po) (F = C (G1 -
  * G(q)), vbm_owner o's constants, F0 an enclosure of F at z(xc)) as
  * sum_{n<K} c_n x^n + x^K rho(x), K = VBM1_K: c->c[0..K-1] enclose the
