@@ -49,8 +49,8 @@ typedef struct vb_completion {
  * cfg->propose.topology = 0). Copies the run's threads into o->threads, and
  * sets cfg->keep_certifier = o->arcs (the closure borrows the run's
  * certifier: vb_vertices_complete) and, with arcs, cfg->part_work (the
- * closure traces the parts certified while the proposer runs; the
- * environment's VORBALL_ARCS_EARLY=0 leaves it off). Touches nothing else. */
+ * closure traces the parts certified while the proposer runs) where the
+ * environment's VORBALL_ARCS_EARLY=1 asks for it (off by default). Touches nothing else. */
 void vb_completion_plan(vb_vertices_config *cfg, vb_completion_opts *o);
 
 void vb_completion_init(vb_completion *c);

@@ -54,11 +54,16 @@ void vb_completion_plan(vb_vertices_config *cfg, vb_completion_opts *o)
     /* Arc closure borrows the run's certifier instead of building another
      * on the same set (vb_vertices_complete). */
     cfg->keep_certifier = o->arcs;
-    /* ... and traces the parts certified while the proposer runs, on host
-     * threads that wait for the device (VORBALL_ARCS_EARLY=0: after the
-     * run, all of it, for timings and the identity tests) */
+    /* ... and, with VORBALL_ARCS_EARLY=1, traces the parts certified while
+     * the proposer runs, on host threads that wait for the device. Off by
+     * default: on an H100 (stop 53, results/h100_stop53.txt, run 2) the
+     * 211,440-atom tiling's --arcs took 3.41-3.73 s early against 2.88 s
+     * after the run and 2.97-3.14 s at the session's start, because most of
+     * its certification comes after the cover (part_work_after_s 0.67-0.86
+     * s) and a part searched against its own vertices runs more unbounded
+     * searches (filter calls 28.7 M against 20.2 M). */
     const char *ea = getenv("VORBALL_ARCS_EARLY");
-    cfg->part_work = o->arcs && !(ea && strcmp(ea, "0") == 0) ? &early_arcs : NULL;
+    cfg->part_work = o->arcs && ea && strcmp(ea, "1") == 0 ? &early_arcs : NULL;
 }
 
 void vb_completion_init(vb_completion *c)
