@@ -176,7 +176,13 @@ static size_t region_caps(const vbm_atom_in *in, stokes_work *w, size_t na, size
     w->capact[0] = (uint32_t)x;
     size_t nc = 1;
     vbx_ia sa = aj->ca.lo >= 0.0 ? aj->sa : vbx_ia_point(1.0), sa2 = vbx_ia_sqr(sa);
-    for (size_t y = 0; y < na; y++) {
+    /* the others from the largest cap down (sort_active: smallest first):
+     * the cap that proves Omega_j empty is mostly a large one (c1k: 9,772
+     * of the 14,646 proofs in the last 40 % of the order), so the scan ends
+     * sooner; the caps kept are put back in index order below, and which
+     * cap proves it empty does not change that it is: the same caps, the
+     * same bits */
+    for (size_t y = na; y-- > 0;) {
         if (y == x)
             continue;
         size_t pk = x < y ? x * na + y : y * na + x;
@@ -203,17 +209,32 @@ static size_t region_caps(const vbm_atom_in *in, stokes_work *w, size_t na, size
         if (hi > 0.0 && vbx_ia_sqr(vbx_ia_point(hi)).lo > s2)
             return 0; /* none of it */
         w->capact[nc] = (uint32_t)y;
-        if (*st == 2) { /* its circle, made for the first region that keeps it */
+        cp[nc++] = c;
+    }
+    for (size_t a = 1, b = nc - 1; a < b; a++, b--) {
+        vbm_cap t = cp[a];
+        uint32_t ta = w->capact[a];
+        cp[a] = cp[b];
+        cp[b] = t;
+        w->capact[a] = w->capact[b];
+        w->capact[b] = ta;
+    }
+    /* the kept caps' circles, made once the region is not proven empty
+     * (14,646 of c1k's 31,568 regions are, often after caps were kept):
+     * each pair's for the first region that keeps it, the same bits */
+    for (size_t c = 1; c < nc; c++) {
+        size_t y = w->capact[c], pk = x < y ? x * na + y : y * na + x;
+        paircap *pc = &w->pair[pk];
+        if (w->pstate[pk] == 2) {
             vbm_cap cy = {{pc->n[0], pc->n[1], pc->n[2]}, pc->h};
             if (!vbm_circle_axis(&cy, &pc->axis))
                 pc->axis.kind = 0;
-            *st = 3;
+            w->pstate[pk] = 3;
         }
         if (x < y)
-            w->axes[nc] = pc->axis;
+            w->axes[c] = pc->axis;
         else
-            circle_negated(&pc->axis, &w->axes[nc]);
-        cp[nc++] = c;
+            circle_negated(&pc->axis, &w->axes[c]);
     }
     if (!vbm_circle_axis(&cp[0], &w->axes[0]))
         w->axes[0].kind = 0;
