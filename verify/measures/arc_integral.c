@@ -120,9 +120,9 @@ typedef struct arcfun {
      * in t (rational_of) */
     vbx_ia an[3], ad[5], vn[5], vd[7];
     vbx_ia Pz[3], Pq[3];          /* z = Pz / E, q = Pq / E */
-    /* the contact's (contact_of): S = N + 2 delta q, the algebraic part
-     * of G(q) sqrt(S) Rn / Rd, the area's integrand over 1 - z an / cd */
-    vbx_ia Rn[5], Rd[5], Emz[3], cd[5]; /* ... 1 - z = Emz / E, cd = Po Emz */
+    /* the contact's (contact_of): the area's integrand over 1 - z an / cd
+     * (its algebraic part Rn / Rd only where contact_of needs it: alg_of) */
+    vbx_ia Emz[3], cd[5]; /* ... 1 - z = Emz / E, cd = Po Emz */
     vbm_contact_rat cr; /* the contact's model (contact_tm.c): q' / q^3, S, an / cd */
     int want; /* the values integrated now: bits 1 << AREA, VOL, CON */
 } arcfun;
@@ -160,21 +160,13 @@ static void rational_of(arcfun *f)
     vbm1_poly_mul(f->vd, Pq2, 4, Po, 2);
     if (!o->contacts)
         return;
-    /* S = N + 2 delta q = (N E + 2 delta Pq) / E; the algebraic part of
-     * G(q), -S^(3/2) / (2 N q^2) + delta sqrt(S) / (2 N q), is sqrt(S) times
-     * (delta q - S) / (2 N q^2) = -(N E + delta Pq) E / (2 N Pq^2); and
-     * 1 / (1 - z) = E / (E - Pz), so the area's integrand over 1 - z is
+    /* 1 / (1 - z) = E / (E - Pz), so the area's integrand over 1 - z is
      * 2 Pn / (Po (E - Pz)) */
-    vbx_ia W[3], Emz[3];
+    vbx_ia Emz[3];
     for (int k = 0; k < 3; k++) {
-        W[k] = vbx_ia_neg(vbx_ia_add(vbx_ia_mul(o->N, E[k]), vbx_ia_mul(o->delta, Pq[k])));
         Emz[k] = vbx_ia_sub(E[k], Pz[k]);
         f->Emz[k] = Emz[k];
     }
-    vbm1_poly_mul(f->Rn, W, 2, E, 2);
-    vbx_ia twoN = vbx_ia_add(o->N, o->N);
-    for (int k = 0; k < 5; k++)
-        f->Rd[k] = vbx_ia_mul(twoN, Pq2[k]);
     vbm1_poly_mul(f->cd, Po, 2, Emz, 2);
     /* q' / q^3 = (Pq' E - Pq E') E / Pq^3, Pq' E - Pq E' = p1 + 2 (p2 - p0) t
      * - p1 t^2 (the t^3 terms cancel: contact_tm.c); S = (N E + 2 delta Pq)
@@ -192,6 +184,25 @@ static void rational_of(arcfun *f)
         f->cr.an[k] = f->an[k];
         f->cr.yn[k] = Emz[k];
     }
+}
+
+/* S = N + 2 delta q = (N E + 2 delta Pq) / E; the algebraic part of G(q),
+ * -S^(3/2) / (2 N q^2) + delta sqrt(S) / (2 N q), is sqrt(S) times
+ * (delta q - S) / (2 N q^2) = -(N E + delta Pq) E / (2 N Pq^2) = Rn / Rd.
+ * Made where contact_of reads them (its fallback), not for every arc
+ * (c1k --contacts: 25,761 arcs, far fewer fallback series). */
+static void alg_of(const arcfun *f, vbx_ia *Rn, vbx_ia *Rd)
+{
+    static const vbx_ia E[3] = {{1.0, 1.0}, {0.0, 0.0}, {1.0, 1.0}};
+    const owner *o = &f->o;
+    vbx_ia W[3], Pq2[5];
+    for (int k = 0; k < 3; k++)
+        W[k] = vbx_ia_neg(vbx_ia_add(vbx_ia_mul(o->N, E[k]), vbx_ia_mul(o->delta, f->Pq[k])));
+    vbm1_poly_mul(Rn, W, 2, E, 2);
+    vbm1_poly_mul(Pq2, f->Pq, 2, f->Pq, 2);
+    vbx_ia twoN = vbx_ia_add(o->N, o->N);
+    for (int k = 0; k < 5; k++)
+        Rd[k] = vbx_ia_mul(twoN, Pq2[k]);
 }
 
 /* The contact's integrand C (G1 - G(q)) / (1 - z) times the area's, G as
@@ -213,7 +224,9 @@ static int contact_of(const arcfun *f, vbx_ia at, int kmax, int last, vbm_s1 *co
         vbm1_affine(&S, vbx_ia_add(o->delta, o->delta), &q, o->N);
     else
         return 0;
-    if (!vbm1_sqrt_to(&r, &S, kmax) || !vbm1_rational(&R, f->Rn, 4, f->Rd, 4, at, kmax) ||
+    vbx_ia Rn[5], Rd[5];
+    alg_of(f, Rn, Rd);
+    if (!vbm1_sqrt_to(&r, &S, kmax) || !vbm1_rational(&R, Rn, 4, Rd, 4, at, kmax) ||
         !vbm1_rational(&a, f->an, 2, f->cd, 4, at, kmax))
         return 0;
     vbm1_mul_to(&G, &r, &R, kmax);
@@ -253,10 +266,12 @@ static int contact_of(const arcfun *f, vbx_ia at, int kmax, int last, vbm_s1 *co
  * R(y) = int_0^1 phi^(K)(xi_u) / K! (y u)^K du in y^K Phi_K / (K + 1),
  * Phi_K the K-th coefficient of phi over [0, ybox.hi] (xi_u in [0, y u]).
  * *con: the series of the polynomial part times the area's integrand
- * (F dphi/dt = h(y) (1 - z) dphi/dt) at `at`; *rem (NULL: not wanted)
- * that of the remainder over `at`: area y^K Phi_K / (K + 1), so that the
- * integral of the rest over the piece lies in its length times *rem.
- * Returns 0 when a series cannot be bounded. */
+ * (F dphi/dt = h(y) (1 - z) dphi/dt) at `at`, to the order kmax; *rem
+ * (NULL: not wanted) that of the remainder over `at`: area y^K Phi_K /
+ * (K + 1), so that the integral of the rest over the piece lies in its
+ * length times *rem, and then of *con the order kmax alone (the others 0:
+ * over the box vbm1_integrate_m reads only its order K). Returns 0 when a
+ * series cannot be bounded. */
 static int contact_near(const arcfun *f, vbx_ia at, int kmax, double yhi, vbm_s1 *con,
                         vbx_ia *rem)
 {
@@ -268,13 +283,16 @@ static int contact_near(const arcfun *f, vbx_ia at, int kmax, double yhi, vbm_s1
         return 0;
     vbm1_const(&h, vbx_ia_div(o->phi0.c[VBM1_K - 1], vbx_ia_point((double)VBM1_K)));
     for (int m = VBM1_K - 2; m >= 0; m--) { /* Horner in the series of y */
-        vbm1_mul(&t, &h, &y);
+        vbm1_mul_to(&t, &h, &y, kmax);
         vbm1_affine(&h, vbx_ia_point(1.0), &t,
                     vbx_ia_div(o->phi0.c[m], vbx_ia_point((double)(m + 1))));
     }
-    vbm1_mul(con, &h, &area);
-    if (!rem)
+    if (!rem) {
+        vbm1_mul_to(con, &h, &area, kmax);
         return 1;
+    }
+    vbm1_const(con, vbx_ia_point(0.0));
+    con->c[kmax] = vbm1_mul_coef(&h, &area, kmax);
     vbm_s1 phib;
     vbx_ia yb = {0.0, yhi}, y0 = {vbx_max(y.c[0].lo, 0.0), y.c[0].hi}; /* y >= 0 exactly */
     if (!phi_series(o, yb, &phib) || !(y0.hi <= yhi))
@@ -417,7 +435,7 @@ static int piece_values(const arcfun *f, double x0, double x1, const double *tg,
          * shrinks with y, not with the piece */
         if (near && contact_near(f, box, VBM1_K, yhi, &b[CON], &rem) &&
             width(vbx_ia_mul(len, rem)) <= 0.25 * tg[CON] &&
-            contact_near(f, vbx_ia_point(xc), VBM1_K, yhi, &cs[CON], NULL)) {
+            contact_near(f, vbx_ia_point(xc), VBM1_K - 1, yhi, &cs[CON], NULL)) {
             c = cs;
             for (int k = 0; k < NV; k++)
                 if (k != CON) {
