@@ -30,7 +30,8 @@ typedef struct vbm_owner {
     vbx_ia D, delta, N, K; /* |d_j|, and K = N^3 / (48 (D + delta)^2) */
     vbx_ia rN, hN, kL, lnd; /* sqrt N, 1 / (2 N), delta^2 / (2 N sqrt N), log (2 |delta|) */
     vbx_ia C, G1;           /* N^2 / (4 D), G(D + delta) */
-    vbm_s1 phi0;            /* phi's Taylor coefficients at y = 0 (contact_near) */
+    vbm_s1 phi0;            /* phi's Taylor coefficients at y = 0 (contact_near; made per
+                             * arc, where one may pass near e_j: arc_integral.c) */
     int contacts, near;     /* contacts: in->contacts and nb[j].con (else the face's other
                              * atom integrates it); near: phi0 holds them */
 } vbm_owner;
