@@ -401,16 +401,18 @@ static int contact_model(const arcfun *f, double xc, vbx_ia x, vbm_s1 *c, vbm_s1
 }
 
 /* phi's coefficients at y = 0 into f->o.phi0 (f->o.near: made) where the
- * arc's pieces in [m0, m1] may go by contact_near: only where 1 - z over
- * the whole of it may fall below NEAR_Y (a piece's enclosure lies within
- * the arc's range). Made once per owner before: c1k --contacts, 6,283
- * owners, 104 M instructions, for 2,052 pieces near e_j. */
-static void near_of(arcfun *f, double m0, double m1)
+ * arc's pieces may go by contact_near: only where 1 - z on its circle may
+ * fall below NEAR_Y. On the circle z = c A0 + s (A1 cos + A2 sin) <= c A0
+ * + |s| sqrt(A1^2 + A2^2) (a piece's enclosure of 1 - z holds its true
+ * values, so a piece near e_j has 1 - z < NEAR_Y somewhere on the circle).
+ * Made once per owner before: c1k --contacts, 6,283 owners, 104 M
+ * instructions, for 2,052 pieces near e_j. */
+static void near_of(arcfun *f)
 {
-    static const vbx_ia E[3] = {{1.0, 1.0}, {0.0, 0.0}, {1.0, 1.0}};
-    vbm_s1 y;
-    vbx_ia box = {vbx_min(m0, m1), vbx_max(m0, m1)};
-    if (vbm1_rational(&y, f->Emz, 2, E, 2, box, 0) && !(y.c[0].lo >= NEAR_Y))
+    vbx_ia as = vbx_ia_sqrt(vbx_ia_sqr(f->s));
+    vbx_ia zmax = vbx_ia_add(f->cA0, vbx_ia_mul(as, vbx_ia_sqrt(vbx_ia_add(vbx_ia_sqr(f->A1),
+                                                                          vbx_ia_sqr(f->A2)))));
+    if (!(vbx_ia_sub(vbx_ia_point(1.0), zmax).lo >= NEAR_Y))
         f->o.near = phi_series(&f->o, vbx_ia_point(0.0), &f->o.phi0);
 }
 
@@ -666,7 +668,7 @@ int vbm_arc_integrate(const vbm_owner *o, vbm_arcrec *a, const double *tg, int a
     rational_of(&f);
     double m0 = vbx_ia_mid(t0), m1 = vbx_ia_mid(t1);
     if (wantc)
-        near_of(&f, m0, m1);
+        near_of(&f);
     /* again: the values already within their targets stay (1crn
      * --contacts, 1 thread: the second pass integrated ~2800 arcs again,
      * mostly for a contact target the first pass could not know, and
