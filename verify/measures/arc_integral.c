@@ -65,7 +65,6 @@ int vbm_owner_make(const vbm_atom_in *in, size_t j, vbx_ia D, vbm_owner *o)
     o->C = vbx_ia_div(vbx_ia_sqr(n->N), vbx_ia_mul(vbx_ia_point(4.0), D));
     if (!vbm_contact_g(o, vbx_ia_add(D, n->delta), &o->G1))
         return 0;
-    o->near = 0; /* phi0: per arc, where it may pass near e_j (near_of) */
     return 1;
 }
 
@@ -111,6 +110,16 @@ static int fcon(const owner *o, vbx_ia z, vbx_ia *F)
 }
 
 
+/* phi's Taylor coefficients at y = 0 (contact_near's h), made on the
+ * arc's first piece near e_j (state 0: not yet, 1: made, -1: phi_series
+ * failed). Made for every owner before (c1k --contacts: 6,283 owners,
+ * 104 M instructions, for 2,052 pieces near e_j; bounding 1 - z on the
+ * arc's circle instead still left 6,550 arcs). */
+typedef struct phic {
+    vbm_s1 phi0;
+    int state;
+} phic;
+
 /* The integrands along a circle arc in t: F dphi/dt for the area, the
  * volume and (o.contacts) the contact area. */
 typedef struct arcfun {
@@ -124,6 +133,7 @@ typedef struct arcfun {
      * (its algebraic part Rn / Rd only where contact_of needs it: alg_of) */
     vbx_ia Emz[3], cd[5]; /* ... 1 - z = Emz / E, cd = Po Emz */
     vbm_contact_rat cr; /* the contact's model (contact_tm.c): q' / q^3, S, an / cd */
+    struct phic *pc;    /* phi's coefficients at y = 0: contact_near */
     int want; /* the values integrated now: bits 1 << AREA, VOL, CON */
 } arcfun;
 
@@ -278,14 +288,17 @@ static int contact_near(const arcfun *f, vbx_ia at, int kmax, double yhi, vbm_s1
     static const vbx_ia E[3] = {{1.0, 1.0}, {0.0, 0.0}, {1.0, 1.0}};
     const owner *o = &f->o;
     vbm_s1 y, area, h, t;
-    if (!o->near || !vbm1_rational(&y, f->Emz, 2, E, 2, at, kmax) ||
+    if (f->pc->state == 0)
+        f->pc->state = phi_series(o, vbx_ia_point(0.0), &f->pc->phi0) ? 1 : -1;
+    const vbm_s1 *phi0 = &f->pc->phi0;
+    if (f->pc->state < 0 || !vbm1_rational(&y, f->Emz, 2, E, 2, at, kmax) ||
         !vbm1_rational(&area, f->an, 2, f->ad, 4, at, kmax))
         return 0;
-    vbm1_const(&h, vbx_ia_div(o->phi0.c[VBM1_K - 1], vbx_ia_point((double)VBM1_K)));
+    vbm1_const(&h, vbx_ia_div(phi0->c[VBM1_K - 1], vbx_ia_point((double)VBM1_K)));
     for (int m = VBM1_K - 2; m >= 0; m--) { /* Horner in the series of y */
         vbm1_mul_to(&t, &h, &y, kmax);
         vbm1_affine(&h, vbx_ia_point(1.0), &t,
-                    vbx_ia_div(o->phi0.c[m], vbx_ia_point((double)(m + 1))));
+                    vbx_ia_div(phi0->c[m], vbx_ia_point((double)(m + 1))));
     }
     if (!rem) {
         vbm1_mul_to(con, &h, &area, kmax);
@@ -398,22 +411,6 @@ static int contact_model(const arcfun *f, double xc, vbx_ia x, vbm_s1 *c, vbm_s1
         vbm1_const(&b[k], vbx_ia_point(0.0));
     }
     return vbm_contact_tm(&f->cr, &f->o, F0, xc, x, &c[CON], &b[CON].c[VBM1_K]);
-}
-
-/* phi's coefficients at y = 0 into f->o.phi0 (f->o.near: made) where the
- * arc's pieces may go by contact_near: only where 1 - z on its circle may
- * fall below NEAR_Y. On the circle z = c A0 + s (A1 cos + A2 sin) <= c A0
- * + |s| sqrt(A1^2 + A2^2) (a piece's enclosure of 1 - z holds its true
- * values, so a piece near e_j has 1 - z < NEAR_Y somewhere on the circle).
- * Made once per owner before: c1k --contacts, 6,283 owners, 104 M
- * instructions, for 2,052 pieces near e_j. */
-static void near_of(arcfun *f)
-{
-    vbx_ia as = vbx_ia_sqrt(vbx_ia_sqr(f->s));
-    vbx_ia zmax = vbx_ia_add(f->cA0, vbx_ia_mul(as, vbx_ia_sqrt(vbx_ia_add(vbx_ia_sqr(f->A1),
-                                                                          vbx_ia_sqr(f->A2)))));
-    if (!(vbx_ia_sub(vbx_ia_point(1.0), zmax).lo >= NEAR_Y))
-        f->o.near = phi_series(&f->o, vbx_ia_point(0.0), &f->o.phi0);
 }
 
 /* The integrals over the piece [x0, x1] of the values f->want in v[0..NV)
@@ -646,8 +643,10 @@ int vbm_arc_integrate(const vbm_owner *o, vbm_arcrec *a, const double *tg, int a
         return 0;
     sums s = {{vbx_ia_point(0.0), vbx_ia_point(0.0), vbx_ia_point(0.0)}, 0};
     arcfun f;
+    phic pc = {.state = 0};
     int wantc = o->contacts;
     f.o = *o;
+    f.pc = &pc;
     if (a->own) { /* z = c: F(c) times the angle 2 (atan t1 - atan t0) */
         vbx_ia ang = vbm_arc_angle(t0, t1);
         vbx_ia omz = vbx_ia_sub(vbx_ia_point(1.0), a->c), F = vbx_ia_point(0.0);
@@ -667,8 +666,6 @@ int vbm_arc_integrate(const vbm_owner *o, vbm_arcrec *a, const double *tg, int a
     f.A2 = vbx_ia_sub(vbx_ia_mul(a->A2, cm), vbx_ia_mul(a->A1, sm));
     rational_of(&f);
     double m0 = vbx_ia_mid(t0), m1 = vbx_ia_mid(t1);
-    if (wantc)
-        near_of(&f);
     /* again: the values already within their targets stay (1crn
      * --contacts, 1 thread: the second pass integrated ~2800 arcs again,
      * mostly for a contact target the first pass could not know, and

@@ -24,16 +24,15 @@ typedef struct vbm_arcrec {
 
 /* The constants of neighbour j's integrands, the same on every arc of its
  * region (made once per region, not per arc: with contacts a log, a root
- * and three series each; 1crn --contacts, 1 thread, ~7 % of the CPU
- * when made per arc). */
+ * and series each; 1crn --contacts, 1 thread, ~7 % of the CPU when made
+ * per arc). phi's series at y = 0 is not here: arc_integral.c makes it
+ * only on an arc with a piece near e_j (phic). */
 typedef struct vbm_owner {
     vbx_ia D, delta, N, K; /* |d_j|, and K = N^3 / (48 (D + delta)^2) */
     vbx_ia rN, hN, kL, lnd; /* sqrt N, 1 / (2 N), delta^2 / (2 N sqrt N), log (2 |delta|) */
     vbx_ia C, G1;           /* N^2 / (4 D), G(D + delta) */
-    vbm_s1 phi0;            /* phi's Taylor coefficients at y = 0 (contact_near; made per
-                             * arc, where one may pass near e_j: arc_integral.c) */
-    int contacts, near;     /* contacts: in->contacts and nb[j].con (else the face's other
-                             * atom integrates it); near: phi0 holds them */
+    int contacts;           /* in->contacts and nb[j].con (else the face's other atom
+                             * integrates it) */
 } vbm_owner;
 
 /* Neighbour j's constants into *o, D enclosing |d_j|. Returns 0 when an
