@@ -296,30 +296,6 @@ static int env_dot_i128(const vbq_i128 r[4], const vbq_i128 C[4], vbq_i128 *out)
     return 1;
 }
 
-/* The exact sign of det[X; a_k - a_j; a_l - a_j] with X = a_m - a_j (m a
- * label, or n for infinity: a = 0) when q is NULL, else X = q (exact
- * doubles): -sign(R0 . C) (see the top). First in doubles: the factors are
- * within 2u relative of the integers (mpz_get_d truncates; q is exact, and
- * the positive scale 2^p of its row is left out), the four products and
- * their sum add at most 4.01u, so 16u of the sum of the magnitudes is
- * ample; then in integers. Returns 2 when it cannot be decided (no
- * memory). */
-int vbq_env_sign_rows(const double r[4], const double f[4], const double fe[4])
-{
-    /* With R0 the exact row (|r - R0| <= 2u |R0|; a q row is exact),
-     * |r . f - R0 . C| <= sum |r_a| (2.01u |f_a| + 1.01 fe_a), and forming
-     * r . f adds at most 4.01u sum |r_a f_a|: 8u of that sum and 1.01 of
-     * sum |r_a| fe_a, with 1 + 1e-12 for the bound's own roundings. */
-    double v = 0.0, g = 0.0, ge = 0.0;
-    for (int a = 0; a < 4; a++) {
-        v += r[a] * f[a];
-        g += fabs(r[a] * f[a]);
-        ge += fabs(r[a]) * fe[a];
-    }
-    double b = (8.0 * VBQ_U * g + 1.01 * ge) * (1.0 + 1e-12) + VBQ_TINY;
-    return isfinite(b) && (v > b || v < -b) ? (v > b ? -1 : 1) : 0;
-}
-
 int vbq_env_rows_made(vbq_env_ctx *c)
 {
     return c->X.made || env_rows_doubles(c);
@@ -338,6 +314,14 @@ static void env_r0(const vbq_env_ctx *c, const double *q, vbs_u32 m, double r[4]
     }
 }
 
+/* The exact sign of det[X; a_k - a_j; a_l - a_j] with X = a_m - a_j (m a
+ * label, or n for infinity: a = 0) when q is NULL, else X = q (exact
+ * doubles): -sign(R0 . C) (see the top). First in doubles: the factors are
+ * within 2u relative of the integers (mpz_get_d truncates; q is exact, and
+ * the positive scale 2^p of its row is left out), the four products and
+ * their sum add at most 4.01u, so 16u of the sum of the magnitudes is
+ * ample; then in integers. Returns 2 when it cannot be decided (no
+ * memory). */
 int vbq_env_sign_exact(vbq_env_ctx *c, const double *q, vbs_u32 m, vbs_u32 j, vbs_u32 k, vbs_u32 l)
 {
     c->exact_calls++;

@@ -27,7 +27,18 @@
  * coplanar neighbours may remain (faces come as several triangles), and a
  * point inside or on the hull is no vertex. If P lies in one plane (0
  * included), every plane through three of its points holds 0: no vertex,
- * nothing is written. Cost: O(n F) signs for F triangles (F <= 2n), most
+ * nothing is written.
+ *
+ * The seen triangles: the live ones are tested newest first until one is
+ * seen, then the search spreads from it across edges to the neighbours
+ * that are seen too. That finds them all: the triangles a point outside a
+ * convex polytope strictly sees form one disk of its boundary (the part
+ * of the boundary that the segments from the point cross first), so they
+ * are connected through edges. They are then replaced in ascending order,
+ * so the triangles made are those of testing every live triangle
+ * (tests/core/test_env_hull_vertices.c compares the seen sets). Cost:
+ * the signs until a first seen triangle (every live one for a point
+ * inside), then the seen ones' neighbours, and the faces' n each; most
  * decided by the filter, against C(owned, 3) triples times n beaters. */
 #include <stdlib.h>
 #include <string.h>
@@ -39,7 +50,7 @@
  * is one dot product away. */
 typedef struct hull_tri {
     vbs_u32 v[3];
-    vbs_u32 dead, seen;
+    vbs_u32 dead, seen, tested; /* seen, tested: the round of the last insertion */
     int tri_i;         /* its 128-bit cofactors: 0 not made, 1 made, -1 too large */
     double f[4], fe[4];
     vbq_i128 ci[4];
@@ -53,6 +64,7 @@ typedef struct hull {
     vbs_u32 *edge;    /* edge[a * np + b]: the triangle with directed edge a -> b */
     vbs_u32 cur;      /* the triangle whose exact cofactors the context holds (or none) */
     vbs_u32 round;
+    vbs_u32 *vis;     /* the triangles a point sees (cap of them) */
 } hull;
 
 #define HULL_NONE 0xffffffffu
@@ -63,9 +75,12 @@ static int hull_add(hull *h, vbs_u32 a, vbs_u32 b, vbs_u32 c)
     if (h->nt == h->cap) {
         vbs_u32 cap = h->cap ? 2u * h->cap : 64u;
         hull_tri *t = realloc(h->t, (size_t)cap * sizeof *t);
-        if (!t)
+        if (t)
+            h->t = t;
+        vbs_u32 *vis = t ? realloc(h->vis, (size_t)cap * sizeof *vis) : NULL;
+        if (!vis)
             return 0;
-        h->t = t;
+        h->vis = vis;
         h->cap = cap;
     }
     hull_tri *t = &h->t[h->nt];
@@ -74,6 +89,7 @@ static int hull_add(hull *h, vbs_u32 a, vbs_u32 b, vbs_u32 c)
     t->v[2] = c;
     t->dead = 0u;
     t->seen = 0u;
+    t->tested = 0u;
     t->tri_i = 0;
     vbq_env_cofactors(h->c, a, b, c, t->f, t->fe);
     h->edge[a * h->np + b] = h->nt;
@@ -90,6 +106,7 @@ static int hull_sign(hull *h, vbs_u32 t, const double *q, vbs_u32 m)
 {
     const hull_tri *r = &h->t[t];
     double r0[4];
+    const double *row = r0;
     if (q) {
         r0[0] = 0.0;
         for (int a = 0; a < 3; a++)
@@ -97,10 +114,9 @@ static int hull_sign(hull *h, vbs_u32 t, const double *q, vbs_u32 m)
     } else {
         if (m == r->v[0] || m == r->v[1] || m == r->v[2])
             return 0;
-        for (int a = 0; a < 4; a++)
-            r0[a] = h->c->X.rd[m][a];
+        row = h->c->X.rd[m];
     }
-    int v = vbq_env_sign_rows(r0, r->f, r->fe);
+    int v = vbq_env_sign_rows(row, r->f, r->fe);
     if (v)
         return v;
     /* the context takes the triangle's cofactors (its doubles, and its
@@ -154,29 +170,46 @@ static int hull_start(hull *h, vbs_u32 *used)
     return 0;
 }
 
-/* Point m added: the triangles it sees replaced by the cone from m to
- * their horizon. 1 done (or m inside), -1 no memory. */
+/* Live triangle t tested against point m this round: marked tested, and
+ * seen (appended to vis) when m is strictly above it. 1, -1 no memory. */
+static int hull_test(hull *h, vbs_u32 t, vbs_u32 m, vbs_u32 *nv)
+{
+    int s = hull_sign(h, t, NULL, m);
+    if (s == 2)
+        return -1;
+    h->t[t].tested = h->round;
+    if (s > 0) {
+        h->t[t].seen = h->round;
+        h->vis[(*nv)++] = t;
+    }
+    return 1;
+}
+
+/* Point m added: the triangles it sees (found as the top says) replaced,
+ * in ascending order, by the cone from m to their horizon. 1 done (or m
+ * inside), -1 no memory. */
 static int hull_insert(hull *h, vbs_u32 m)
 {
     h->round++;
-    int any = 0;
-    vbs_u32 nt = h->nt;
-    for (vbs_u32 t = 0u; t < nt; t++) {
-        if (h->t[t].dead)
-            continue;
-        int s = hull_sign(h, t, NULL, m);
-        if (s == 2)
+    vbs_u32 nt = h->nt, nv = 0u;
+    for (vbs_u32 t = nt; nv == 0u && t-- > 0u;)
+        if (!h->t[t].dead && hull_test(h, t, m, &nv) < 0)
             return -1;
-        if (s > 0) {
-            h->t[t].seen = h->round;
-            any = 1;
+    for (vbs_u32 k = 0u; k < nv; k++)
+        for (int e = 0; e < 3; e++) {
+            vbs_u32 t = h->vis[k], a = h->t[t].v[e], b = h->t[t].v[(e + 1) % 3];
+            vbs_u32 tw = h->edge[b * h->np + a];
+            if (h->t[tw].tested != h->round && hull_test(h, tw, m, &nv) < 0)
+                return -1;
         }
+    for (vbs_u32 k = 1u; k < nv; k++) {
+        vbs_u32 t = h->vis[k], j = k;
+        for (; j > 0u && h->vis[j - 1u] > t; j--)
+            h->vis[j] = h->vis[j - 1u];
+        h->vis[j] = t;
     }
-    if (!any)
-        return 1;
-    for (vbs_u32 t = 0u; t < nt; t++) {
-        if (h->t[t].seen != h->round)
-            continue;
+    for (vbs_u32 k = 0u; k < nv; k++) {
+        vbs_u32 t = h->vis[k];
         h->t[t].dead = 1u;
         for (int e = 0; e < 3; e++) {
             vbs_u32 a = h->t[t].v[e], b = h->t[t].v[(e + 1) % 3];
@@ -293,6 +326,7 @@ int vbq_env_hull(vbq_env_ctx *c, const vbq_arena *ar, vbq_cell_out *o, double qs
     }
     free(h.edge);
     free(h.t);
+    free(h.vis);
     free(on);
     return rc;
 }
