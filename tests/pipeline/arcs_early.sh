@@ -12,7 +12,6 @@ here=$(cd "$(dirname "$0")" && pwd)
 . "$here/lib.sh"
 fresh_dir "$work"
 export VORBALL_COVER_PARTS=3
-stat() { awk -v k="$1" '$1 == k { print $2 }' "$2"; }
 for in in crambin_fragment jittered_fcc; do
     for dev in ref cpu; do
         run 0 "late.err" "$vorball" vertices "$corpus/inputs/$in.xyzr" --device $dev --threads 2 \

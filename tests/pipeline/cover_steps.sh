@@ -34,7 +34,6 @@ fresh_dir "$work"
 # every cell to the device, so that what it hands does not depend on timing
 export VORBALL_COVER_HOST_BACK=0
 in=$corpus/inputs/sc_jitter12.xyzr
-stat() { awk -v k="$1" '$1 == k { print $2 }' "$2"; }
 steps="first large handoff huge rerun"
 cols="cover_device_s cover_batches cover_dispatch_s cover_sink_s cover_host_cells_cpu_s
 cover_resume_cpu_s cover_resume_queued cover_host_wait_s cover_tail_s propose_s"

@@ -22,7 +22,6 @@ awk 'BEGIN { n = 0; for (x = -9; x <= 9; x++) for (y = -9; y <= 9; y++) for (z =
     if (x * x + y * y + z * z == 81 && n < 78) { print x, y, z, 1; n++ } }' > cosph.xyzr
 [ "$(wc -l < fcc.xyzr)" -eq 500 ] && [ "$(wc -l < cosph.xyzr)" -eq 78 ] || fail "inputs not made"
 # stat NAME FILE: the counter NAME of a --stats dump
-stat() { awk -v k="$1" '$1 == k { print $2 }' "$2"; }
 for case in fcc cosph; do
     for dev in ref cpu; do
         run 0 "$case.$dev.err" "$vorball" vertices "$case.xyzr" --device $dev --stats -o "$case.$dev.tsv"

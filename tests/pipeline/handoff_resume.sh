@@ -32,7 +32,6 @@ fresh_dir "$work"
 # so how many patches it hands, depends on the timing (corpus fcc on the idle
 # 2-core machine: 0 to 168 resumed patches, the rows the same).
 export VORBALL_COVER_HOST_BACK=0
-stat() { awk -v k="$1" '$1 == k { print $2 }' "$2"; }
 for in in equal-radius/sc equal-radius/fcc equal-radius/random-1000 inputs/sc_jitter12; do
     name=$(basename "$in")
     for dev in ref cpu; do

@@ -46,7 +46,6 @@ BEGIN { s = 12345; k = 0
 [ "$(wc -l < shell.xyzr)" -eq $n ] || fail "input not made"
 [ "$(head -1 shell.xyzr)" = "-8.032 10.347 -17.196 1.572" ] || fail "the generator's first ball differs: $(head -1 shell.xyzr)"
 # stat NAME FILE: the counter NAME of a --stats dump
-stat() { awk -v k="$1" '$1 == k { print $2 }' "$2"; }
 bound=$((2 * n))
 for dev in ref cpu; do
     run 0 "$dev.err" "$vorball" vertices shell.xyzr --device $dev --stats -o "$dev.tsv"

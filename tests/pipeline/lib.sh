@@ -35,6 +35,12 @@ vertex_lines() {
     grep -v '^#' "$1"
 }
 
+# stat NAME ERR: the value of the --stats line NAME in ERR (the command's
+# stderr), empty when there is none.
+stat() {
+    awk -v k="$1" '$1 == k { print $2 }' "$2"
+}
+
 # sans_provenance FILE: FILE without the provenance lines of its header
 # ("# tool: ...", "# input: ...", "# options: ..."), for comparisons with a
 # stored file (a golden: the tool line names the commit) or with a run that

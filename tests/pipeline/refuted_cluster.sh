@@ -20,7 +20,6 @@ here=$(cd "$(dirname "$0")" && pwd)
 . "$here/lib.sh"
 fresh_dir "$work"
 export VORBALL_COVER_HOST_BACK=0
-stat() { awk -v k="$1" '$1 == k { print $2 }' "$2"; }
 for dev in ref cpu; do
     run 0 "$dev.err" "$vorball" vertices "$corpus/inputs/sc_jitter12.xyzr" --device $dev \
         --threads 2 --stats -o "$dev.tsv"
