@@ -1,8 +1,6 @@
 /* `vorball`: dispatch to the subcommands. */
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "cli_common.h"
 #include "commands.h"
@@ -136,31 +134,11 @@ static int dispatch(int argc, char **argv)
     return VB_EXIT_USAGE;
 }
 
-/* The end of the process once its command has run: the output is
- * committed and the library has freed what it held (its contract), so the
- * streams are flushed and _exit leaves the rest to the operating system:
- * the address space and an OpenCL driver's own teardown in its libraries'
- * destructors and atexit handlers, which exit would run one after another
- * (papers/gpu-voronoi-cells-of-spheres/results/proc54_stop53.md). VORBALL_EXIT_FAST=0
- * takes the plain exit (comparisons); sanitizer builds always do, for
- * their leak check at exit. */
-static int end_process(int code)
-{
-#if !defined(__SANITIZE_ADDRESS__) && !defined(VB_ASAN)
-    const char *e = getenv("VORBALL_EXIT_FAST");
-    if (!(e && strcmp(e, "0") == 0)) {
-        fflush(NULL);
-        _exit(code);
-    }
-#endif
-    return code;
-}
-
 int main(int argc, char **argv)
 {
     /* Under mpirun (a build with VORBALL_WITH_MPI) every rank runs this. */
     int code = vb_world_init(&argc, &argv);
     if (code)
         return code;
-    return end_process(vb_world_finish(dispatch(argc, argv)));
+    return vb_world_finish(dispatch(argc, argv));
 }

@@ -14,7 +14,7 @@
  *   VB_FAIL_ALLOC_AT      which allocation fails, from 1 (unset or 0: none)
  *   VB_FAIL_ALLOC_STICKY  non-empty: that one and every later one fail
  *   VB_FAIL_ALLOC_COUNTS  file to which "allocations N" and "failed K" are
- *                         written at exit or _exit (the counting pass)
+ *                         written at exit (the counting pass)
  *   VB_FAIL_ALLOC_TRACE   non-empty: the failing call's stack on stderr (to
  *                         find the caller of a failure a run mishandles)
  * A failed allocation is named on stderr ("allocfault: allocation N
@@ -47,12 +47,10 @@ __attribute__((constructor)) static void vbaf_init(void)
     vbaf_trace = trace && *trace;
 }
 
-static atomic_int vbaf_reported;
-
 __attribute__((destructor)) static void vbaf_report(void)
 {
     const char *path = getenv("VB_FAIL_ALLOC_COUNTS");
-    FILE *f = path && !atomic_exchange(&vbaf_reported, 1) ? fopen(path, "w") : NULL;
+    FILE *f = path ? fopen(path, "w") : NULL;
     if (!f)
         return;
     fprintf(f, "allocations %lu\nfailed %lu\n", atomic_load(&vbaf_calls),
@@ -91,15 +89,4 @@ void *__wrap_calloc(size_t n, size_t size)
 void *__wrap_realloc(void *p, size_t size)
 {
     return vbaf_fail(__builtin_return_address(0)) ? NULL : __real_realloc(p, size);
-}
-
-/* vorball ends with _exit (cli/main.c), which runs no destructor: the
- * counts are written first (-Wl,--wrap=_exit). */
-void __real__exit(int status);
-void __wrap__exit(int status);
-void __wrap__exit(int status)
-{
-    vbaf_report();
-    __real__exit(status);
-    __builtin_unreachable();
 }
