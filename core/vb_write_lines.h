@@ -1,7 +1,8 @@
 /* Writing many text lines fast and in order: blocks of lines formatted on
  * the host threads into plain memory (no stdio per number), a round of
- * blocks at a time, then written in order while the next round is
- * formatted, so the bytes are those one thread writes. */
+ * blocks at a time, then written in order (into a mapped file by the
+ * threads, else through stdio) while the next round is formatted, so the
+ * bytes are those one thread writes. */
 #ifndef VB_WRITE_LINES_H
 #define VB_WRITE_LINES_H
 
@@ -44,9 +45,12 @@ typedef void (*vb_line_fn)(vb_text *t, const void *arg, size_t k);
 /* Writes fn(t, arg, k) for k = 0 .. n-1 to f, in that order; blocks of
  * items are formatted on vb_threads(0) threads (fn is called from several
  * threads at once: it may only read arg), and each round of blocks is
- * written while the next one is formatted. Returns VB_OK, or VB_ENOMEM (a
- * block's text could not grow; what came before it is written). The
- * caller checks ferror(f). */
+ * written while the next one is formatted: by every thread into a mapping
+ * where f is a regular file at its end (vb_write_map.h; f's position is
+ * then moved past the text), else through stdio. Returns VB_OK, VB_ENOMEM
+ * (a block's text could not grow; what came before it is written) or
+ * VB_EIO (a mapped file that could not be put back after a failed round).
+ * The caller checks ferror(f). */
 int vb_write_lines(FILE *f, size_t n, vb_line_fn fn, const void *arg);
 
 #endif

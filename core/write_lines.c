@@ -1,7 +1,9 @@
 /* vb_write_lines: formatting 17 digits is most of the cost of writing a
  * vertex file, so blocks of items are formatted on the threads into plain
  * memory (vb_text: no stdio call per number), and the round formatted
- * before is written to the file by the caller's thread meanwhile. */
+ * before is written meanwhile: copied by every thread into the mapped file
+ * where the output is a regular file (vb_write_map.h), else by one thread
+ * through stdio. */
 #include "vb_write_lines.h"
 
 #include <stdlib.h>
@@ -10,6 +12,7 @@
 #include "vb.h"
 #include "vb_numtext.h"
 #include "vb_parallel.h"
+#include "vb_write_map.h"
 
 #define WRITE_BLOCK 4096u
 
@@ -64,8 +67,9 @@ void vb_text_g17(vb_text *t, char sep, double x)
 }
 
 /* One round: blocks 0 .. nb-1 of items from k0 formatted into text[0 ..
- * nb), and, as one more item, the round before (prev[0 .. nprev)) written
- * to f. */
+ * nb), and the round before (prev[0 .. nprev)) written meanwhile: into the
+ * mapped file, block j at dst + at[j], one item per block, or, unmapped, to
+ * f by one more item. */
 typedef struct round {
     vb_line_fn fn;
     const void *arg;
@@ -74,6 +78,8 @@ typedef struct round {
     FILE *f;
     vb_text *prev;
     size_t nprev;
+    char *dst;
+    const size_t *at;
 } round;
 
 static void write_texts(FILE *f, vb_text *t, size_t n)
@@ -87,8 +93,12 @@ static void round_item(void *ctx, size_t i, int tid)
 {
     (void)tid;
     round *r = ctx;
-    if (i == r->nb) {
-        write_texts(r->f, r->prev, r->nprev);
+    if (i >= r->nb) {
+        size_t j = i - r->nb;
+        if (!r->dst)
+            write_texts(r->f, r->prev, r->nprev);
+        else if (r->prev[j].n)
+            memcpy(r->dst + r->at[j], r->prev[j].p, r->prev[j].n);
         return;
     }
     vb_text *t = r->text + i;
@@ -106,52 +116,87 @@ static int any_nomem(const vb_text *t, size_t n)
     return 0;
 }
 
+/* One block of text at a time, written as it fills (one thread, a file
+ * that is not mapped). */
+static int write_serial(FILE *f, size_t n, vb_line_fn fn, const void *arg)
+{
+    vb_text t = {0};
+    int rc = VB_OK;
+    for (size_t k = 0; k < n && rc == VB_OK; k++) {
+        fn(&t, arg, k);
+        if (t.nomem)
+            rc = VB_ENOMEM;
+        else if (t.n >= 65536 || k + 1 == n) {
+            fwrite(t.p, 1, t.n, f);
+            t.n = 0;
+        }
+    }
+    free(t.p);
+    return rc;
+}
+
+/* Where the round before goes: a mapping of its bytes at the file's end
+ * (at[j]: block j's offset in it), or NULL (stdio; the mapping ended). */
+static char *map_prev(vb_map_out *m, FILE *f, const vb_text *prev, size_t nprev, size_t *at)
+{
+    if (m->fd < 0 || !nprev)
+        return NULL;
+    size_t len = 0;
+    for (size_t j = 0; j < nprev; j++) {
+        at[j] = len;
+        len += prev[j].n;
+    }
+    char *dst = vb_map_round(m, len);
+    if (!dst && len)
+        vb_map_end(f, m);
+    return dst;
+}
+
 int vb_write_lines(FILE *f, size_t n, vb_line_fn fn, const void *arg)
 {
     int nt = vb_threads(0);
-    if (nt == 1 || n <= WRITE_BLOCK) {
-        /* One block of text at a time, written as it fills. */
-        vb_text t = {0};
-        int rc = VB_OK;
-        for (size_t k = 0; k < n && rc == VB_OK; k++) {
-            fn(&t, arg, k);
-            if (t.nomem)
-                rc = VB_ENOMEM;
-            else if (t.n >= 65536 || k + 1 == n) {
-                fwrite(t.p, 1, t.n, f);
-                t.n = 0;
-            }
-        }
-        free(t.p);
-        return rc;
-    }
+    if (n <= WRITE_BLOCK)
+        return write_serial(f, n, fn, arg);
+    vb_map_out m;
+    if (vb_map_begin(f, &m) != 0 && nt == 1)
+        return write_serial(f, n, fn, arg);
     /* Two sets of a round's texts: one formatted while the other is
      * written. */
     size_t per = 4u * (size_t)nt;
     vb_text *text = calloc(2 * per, sizeof *text);
-    if (!text)
-        return VB_ENOMEM;
+    size_t *at = malloc(per * sizeof *at);
+    if (!text || !at) {
+        free(text);
+        free(at);
+        return vb_map_end(f, &m) != 0 ? VB_EIO : VB_ENOMEM;
+    }
     int rc = VB_OK, cur = 0;
     size_t nprev = 0;
     for (size_t k0 = 0; rc == VB_OK && (k0 < n || nprev); k0 += per * WRITE_BLOCK) {
         size_t nb = k0 < n ? (n - k0 + WRITE_BLOCK - 1) / WRITE_BLOCK : 0;
         nb = nb < per ? nb : per;
-        round r = {fn, arg, n, k0, nb, text + (size_t)cur * per, f,
-                   text + (size_t)(1 - cur) * per, nprev};
-        vb_parallel_for(round_item, &r, nb + (nprev ? 1 : 0), nt);
+        vb_text *prev = text + (size_t)(1 - cur) * per;
+        char *dst = map_prev(&m, f, prev, nprev, at);
+        round r = {fn, arg, n, k0, nb, text + (size_t)cur * per, f, prev, nprev, dst, at};
+        size_t writers = nprev ? (dst ? nprev : 1) : 0;
+        vb_parallel_for(round_item, &r, nb + writers, nt);
+        vb_map_round_end(&m);
         if (any_nomem(r.text, nb)) {
             /* What came before the short block is written. */
             size_t i = 0;
             while (!r.text[i].nomem)
                 i++;
+            rc = vb_map_end(f, &m) != 0 ? VB_EIO : VB_ENOMEM;
             write_texts(f, r.text, i);
-            rc = VB_ENOMEM;
         }
         nprev = nb;
         cur = 1 - cur;
     }
+    if (vb_map_end(f, &m) != 0 && rc == VB_OK)
+        rc = VB_EIO;
     for (size_t i = 0; i < 2 * per; i++)
         free(text[i].p);
     free(text);
+    free(at);
     return rc;
 }

@@ -139,9 +139,13 @@ static void list_line(vb_text *t, const void *arg, size_t k)
 static int write_lines(vb_ctx *ctx, FILE *f, const vb_vertex_list *v, line_fn fn)
 {
     const list_lines l = {v, fn};
-    return vb_write_lines(f, v->n, list_line, &l) == VB_OK
-               ? VB_OK
-               : vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (writing vertices)");
+    int rc = vb_write_lines(f, v->n, list_line, &l);
+    if (rc == VB_EIO) {
+        const char *name = f == stdout ? "<stdout>" : vb_output_name(f);
+        return vb_error(ctx, VB_EIO, name, 0, "writing vertices failed");
+    }
+    return rc == VB_OK ? VB_OK
+                       : vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (writing vertices)");
 }
 
 /* The provenance lines, then the comment, as one text (malloc'd; NULL when

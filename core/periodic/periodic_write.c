@@ -94,9 +94,9 @@ int vb_periodic_write_prov(vb_ctx *ctx, FILE *f, const vb_periodic_vertices *v, 
         fputs("# ids\tx\ty\tz\tt\tstatus\n", f);
         rc = vb_write_lines(f, v->n, tsv_line, v);
     }
-    if (rc != VB_OK)
+    if (rc == VB_ENOMEM)
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (writing vertices)");
-    if (ferror(f)) {
+    if (rc != VB_OK || ferror(f)) {
         const char *name = f == stdout ? "<stdout>" : vb_output_name(f);
         return vb_error(ctx, VB_EIO, name, 0, "writing periodic vertices failed");
     }
