@@ -67,13 +67,19 @@ void vb_text_g17(vb_text *t, char sep, double x)
 }
 
 /* One round: blocks 0 .. nb-1 of items from k0 formatted into text[0 ..
- * nb), and the round before (prev[0 .. nprev)) written meanwhile: into the
- * mapped file, block j at dst + at[j], one item per block, or, unmapped, to
- * f by one more item. */
+ * nb), and the round before (prev[0 .. nprev)) written meanwhile.
+ *  - Through stdio: item 0 writes it to f, and item 1 + c formats blocks
+ *    chunk c .. chunk (c + 1) - 1: as many items as threads, so the writing
+ *    thread formats nothing (it took a share of blocks before, and the
+ *    round waited for its formatting and its writing in turn).
+ *  - Into the mapped file (mapped): items 0 .. nb-1 format a block each
+ *    (chunk 1), and items nb .. nb + nprev - 1 copy block j to dst + at[j]
+ *    (none in the first round: dst NULL). */
 typedef struct round {
     vb_line_fn fn;
     const void *arg;
-    size_t n, k0, nb;
+    size_t n, k0, nb, chunk;
+    int mapped;
     vb_text *text;
     FILE *f;
     vb_text *prev;
@@ -89,23 +95,31 @@ static void write_texts(FILE *f, vb_text *t, size_t n)
             fwrite(t[i].p, 1, t[i].n, f);
 }
 
+static void format_block(const round *r, size_t b)
+{
+    vb_text *t = r->text + b;
+    t->n = 0;
+    size_t k0 = r->k0 + b * WRITE_BLOCK, k1 = k0 + WRITE_BLOCK;
+    for (size_t k = k0; k < k1 && k < r->n; k++)
+        r->fn(t, r->arg, k);
+}
+
 static void round_item(void *ctx, size_t i, int tid)
 {
     (void)tid;
     round *r = ctx;
-    if (i >= r->nb) {
-        size_t j = i - r->nb;
-        if (!r->dst)
+    if (!r->mapped) {
+        if (i == 0) {
             write_texts(r->f, r->prev, r->nprev);
-        else if (r->prev[j].n)
-            memcpy(r->dst + r->at[j], r->prev[j].p, r->prev[j].n);
-        return;
+            return;
+        }
+        for (size_t b = (i - 1) * r->chunk; b < i * r->chunk && b < r->nb; b++)
+            format_block(r, b);
+    } else if (i < r->nb) {
+        format_block(r, i);
+    } else if (r->prev[i - r->nb].n) {
+        memcpy(r->dst + r->at[i - r->nb], r->prev[i - r->nb].p, r->prev[i - r->nb].n);
     }
-    vb_text *t = r->text + i;
-    t->n = 0;
-    size_t k0 = r->k0 + i * WRITE_BLOCK, k1 = k0 + WRITE_BLOCK;
-    for (size_t k = k0; k < k1 && k < r->n; k++)
-        r->fn(t, r->arg, k);
 }
 
 static int any_nomem(const vb_text *t, size_t n)
@@ -171,15 +185,19 @@ int vb_write_lines(FILE *f, size_t n, vb_line_fn fn, const void *arg)
         return vb_map_end(f, &m) != 0 ? VB_EIO : VB_ENOMEM;
     }
     int rc = VB_OK, cur = 0;
-    size_t nprev = 0;
-    for (size_t k0 = 0; rc == VB_OK && (k0 < n || nprev); k0 += per * WRITE_BLOCK) {
-        size_t nb = k0 < n ? (n - k0 + WRITE_BLOCK - 1) / WRITE_BLOCK : 0;
-        nb = nb < per ? nb : per;
+    size_t nprev = 0, k0 = 0;
+    while (rc == VB_OK && (k0 < n || nprev)) {
         vb_text *prev = text + (size_t)(1 - cur) * per;
         char *dst = map_prev(&m, f, prev, nprev, at);
-        round r = {fn, arg, n, k0, nb, text + (size_t)cur * per, f, prev, nprev, dst, at};
-        size_t writers = nprev ? (dst ? nprev : 1) : 0;
-        vb_parallel_for(round_item, &r, nb + writers, nt);
+        int mapped = m.fd >= 0;
+        /* Through stdio one thread writes and the others format. */
+        size_t formatters = mapped || nt == 1 ? (size_t)nt : (size_t)nt - 1;
+        size_t chunk = mapped ? 1 : 4, nb = k0 < n ? (n - k0 + WRITE_BLOCK - 1) / WRITE_BLOCK : 0;
+        nb = nb < 4 * formatters ? nb : 4 * formatters;
+        round r = {fn,  arg,  n, k0, nb, chunk, mapped, text + (size_t)cur * per, f, prev, nprev,
+                   dst, at};
+        size_t items = mapped ? nb + (dst ? nprev : 0) : 1 + (nb + chunk - 1) / chunk;
+        vb_parallel_for(round_item, &r, items, nt);
         vb_map_round_end(&m);
         if (any_nomem(r.text, nb)) {
             /* What came before the short block is written. */
@@ -189,6 +207,7 @@ int vb_write_lines(FILE *f, size_t n, vb_line_fn fn, const void *arg)
             rc = vb_map_end(f, &m) != 0 ? VB_EIO : VB_ENOMEM;
             write_texts(f, r.text, i);
         }
+        k0 += nb * WRITE_BLOCK;
         nprev = nb;
         cur = 1 - cur;
     }
