@@ -36,7 +36,8 @@ void vb_map_round_end(vb_map_out *m);
 
 /* Ends writing through mappings: unmaps a round still mapped and moves f's
  * position to the text's end, for stdio to go on. 0, or -1 when the file
- * could not be put back (the caller reports an I/O error). */
+ * could not be put back, now or after an earlier failed round (the caller
+ * reports an I/O error). */
 int vb_map_end(FILE *f, vb_map_out *m);
 
 #endif

@@ -194,7 +194,7 @@ int vb_write_lines(FILE *f, size_t n, vb_line_fn fn, const void *arg)
         size_t formatters = mapped || nt == 1 ? (size_t)nt : (size_t)nt - 1;
         size_t chunk = mapped ? 1 : 4, nb = k0 < n ? (n - k0 + WRITE_BLOCK - 1) / WRITE_BLOCK : 0;
         nb = nb < 4 * formatters ? nb : 4 * formatters;
-        round r = {fn,  arg,  n, k0, nb, chunk, mapped, text + (size_t)cur * per, f, prev, nprev,
+        round r = {fn, arg, n, k0, nb, chunk, mapped, text + (size_t)cur * per, f, prev, nprev,
                    dst, at};
         size_t items = mapped ? nb + (dst ? nprev : 0) : 1 + (nb + chunk - 1) / chunk;
         vb_parallel_for(round_item, &r, items, nt);

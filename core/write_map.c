@@ -83,7 +83,7 @@ void vb_map_round_end(vb_map_out *m)
 int vb_map_end(FILE *f, vb_map_out *m)
 {
     if (m->fd < 0)
-        return 0;
+        return m->failed ? -1 : 0;
     vb_map_round_end(m);
     m->fd = -1;
     return fseeko(f, m->off, SEEK_SET) != 0 || m->failed ? -1 : 0;

@@ -4,11 +4,14 @@
  * of varying length over several rounds, between a header and a trailer
  * written through stdio, into an output under a temporary name (mapped), a
  * memory stream (never mapped) and a file opened write-only (never
- * mapped). */
+ * mapped). A file size limit reached mid-way is an error the caller sees
+ * (ferror or VB_EIO), never a signal at a store into the mapping. */
 #define _GNU_SOURCE
+#include <signal.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include "vb.h"
@@ -117,6 +120,23 @@ int main(void)
             fclose(wo);
             same_file(path, want, len, what);
         }
+    /* The file may not grow past half the text: a round's fallocate fails
+     * (EFBIG), the file is cut back and stdio's writes fail in turn. */
+    struct rlimit old, half;
+    CHECK_INT(getrlimit(RLIMIT_FSIZE, &old), 0);
+    half = old;
+    half.rlim_cur = (rlim_t)(len / 2);
+    signal(SIGXFSZ, SIG_IGN);
+    setenv("VORBALL_WRITE_MAP", "1", 1);
+    setenv("VORBALL_THREADS", "3", 1);
+    CHECK_INT(setrlimit(RLIMIT_FSIZE, &half), 0);
+    FILE *f = vb_output_open(ctx, path);
+    fputs(HEAD, f);
+    int rc = vb_write_lines(f, ITEMS, item, NULL);
+    fputs(TAIL, f);
+    CHECK(rc == VB_EIO || (rc == VB_OK && ferror(f)));
+    CHECK(vb_output_commit(ctx, f) == VB_EIO);
+    CHECK_INT(setrlimit(RLIMIT_FSIZE, &old), 0);
     unlink(path);
     vb_close(ctx);
     free(want);
