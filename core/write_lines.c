@@ -6,6 +6,7 @@
  * through stdio. */
 #include "vb_write_lines.h"
 
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -67,25 +68,23 @@ void vb_text_g17(vb_text *t, char sep, double x)
 }
 
 /* One round: blocks 0 .. nb-1 of items from k0 formatted into text[0 ..
- * nb), and the round before (prev[0 .. nprev)) written meanwhile.
- *  - Through stdio: item 0 writes it to f, and item 1 + c formats blocks
- *    chunk c .. chunk (c + 1) - 1: as many items as threads, so the writing
- *    thread formats nothing (it took a share of blocks before, and the
- *    round waited for its formatting and its writing in turn).
- *  - Into the mapped file (mapped): items 0 .. nb-1 format a block each
- *    (chunk 1), and items nb .. nb + nprev - 1 copy block j to dst + at[j]
- *    (none in the first round: dst NULL). */
+ * nb), and the round before (prev[0 .. nprev)) written meanwhile. Its jobs
+ * are taken in order from one counter by every thread: first the writing
+ * (one job through stdio; into the mapped file, job j copies block j to
+ * dst + at[j]), then the blocks to format. The thread that writes through
+ * stdio formats only once its write is done, so the round lasts the longer
+ * of the write and the formatting shared out, never their sum. */
 typedef struct round {
     vb_line_fn fn;
     const void *arg;
-    size_t n, k0, nb, chunk;
-    int mapped;
+    size_t n, k0, nb;
     vb_text *text;
     FILE *f;
     vb_text *prev;
-    size_t nprev;
+    size_t nprev, writes; /* writing jobs: 0, 1 (stdio) or nprev (mapped) */
     char *dst;
     const size_t *at;
+    atomic_size_t next;
 } round;
 
 static void write_texts(FILE *f, vb_text *t, size_t n)
@@ -95,7 +94,7 @@ static void write_texts(FILE *f, vb_text *t, size_t n)
             fwrite(t[i].p, 1, t[i].n, f);
 }
 
-static void format_block(const round *r, size_t b)
+static void format_block(round *r, size_t b)
 {
     vb_text *t = r->text + b;
     t->n = 0;
@@ -106,19 +105,16 @@ static void format_block(const round *r, size_t b)
 
 static void round_item(void *ctx, size_t i, int tid)
 {
+    (void)i;
     (void)tid;
     round *r = ctx;
-    if (!r->mapped) {
-        if (i == 0) {
+    for (size_t j; (j = atomic_fetch_add(&r->next, 1)) < r->writes + r->nb;) {
+        if (j >= r->writes)
+            format_block(r, j - r->writes);
+        else if (!r->dst)
             write_texts(r->f, r->prev, r->nprev);
-            return;
-        }
-        for (size_t b = (i - 1) * r->chunk; b < i * r->chunk && b < r->nb; b++)
-            format_block(r, b);
-    } else if (i < r->nb) {
-        format_block(r, i);
-    } else if (r->prev[i - r->nb].n) {
-        memcpy(r->dst + r->at[i - r->nb], r->prev[i - r->nb].p, r->prev[i - r->nb].n);
+        else if (r->prev[j].n)
+            memcpy(r->dst + r->at[j], r->prev[j].p, r->prev[j].n);
     }
 }
 
@@ -189,15 +185,11 @@ int vb_write_lines(FILE *f, size_t n, vb_line_fn fn, const void *arg)
     while (rc == VB_OK && (k0 < n || nprev)) {
         vb_text *prev = text + (size_t)(1 - cur) * per;
         char *dst = map_prev(&m, f, prev, nprev, at);
-        int mapped = m.fd >= 0;
-        /* Through stdio one thread writes and the others format. */
-        size_t formatters = mapped || nt == 1 ? (size_t)nt : (size_t)nt - 1;
-        size_t chunk = mapped ? 1 : 4, nb = k0 < n ? (n - k0 + WRITE_BLOCK - 1) / WRITE_BLOCK : 0;
-        nb = nb < 4 * formatters ? nb : 4 * formatters;
-        round r = {fn, arg, n, k0, nb, chunk, mapped, text + (size_t)cur * per, f, prev, nprev,
-                   dst, at};
-        size_t items = mapped ? nb + (dst ? nprev : 0) : 1 + (nb + chunk - 1) / chunk;
-        vb_parallel_for(round_item, &r, items, nt);
+        size_t nb = k0 < n ? (n - k0 + WRITE_BLOCK - 1) / WRITE_BLOCK : 0;
+        nb = nb < per ? nb : per;
+        round r = {fn, arg, n, k0, nb, text + (size_t)cur * per, f, prev, nprev,
+                   dst ? nprev : nprev ? 1 : 0, dst, at, 0};
+        vb_parallel_for(round_item, &r, (size_t)nt, nt);
         vb_map_round_end(&m);
         if (any_nomem(r.text, nb)) {
             /* What came before the short block is written. */
