@@ -30,6 +30,9 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "vb_array.h"
 #include "vbm_caps.h"
@@ -40,20 +43,21 @@
 #define ON_EPS 1e-12  /* a vertex this close to a plane counts as inside (a choice only) */
 #define MIN_CAPS 4    /* fewer caps: the search alone */
 
+/* A vertex's planes and neighbours (its coordinates: vbm_poly.x). */
 typedef struct pvert {
-    double x[3];
     uint32_t pl[3]; /* its planes: caps < ncap, the ball's ncap + b */
     uint16_t nb[3]; /* its neighbours: nb[k] along the edge leaving plane pl[k] */
 } pvert;
 
 struct vbm_poly {
-    pvert v[2][2 * MAX_VERT];
+    pvert v[2 * MAX_VERT];
+    double x[3][2 * MAX_VERT]; /* v[i]'s coordinate k is x[k][i] */
     double s[2 * MAX_VERT];
     uint16_t to[2 * MAX_VERT]; /* clip's renumbering */
     double bf[NPLANE_BALL][3], brho[NPLANE_BALL]; /* the ball's planes u.f <= rho */
     size_t nb; /* ball planes */
+    uint16_t (*pm)[2]; /* per plane (caps, then the ball's): clip's new vertices on it */
     size_t lo; /* after a clip that cut nothing: the vertex where u.n - h is least */
-    int cur;   /* the polyhedron is v[cur][0..nv) */
     size_t nv;
 };
 
@@ -68,10 +72,11 @@ typedef struct vbm_prework {
     uint32_t *near_at, *near; /* per kept cap: its neighbours' kept indices (vbm_cap_arcs_near) */
     uint8_t *adj, *face;      /* kept x kept: neighbours; per cap: a face of the polyhedron */
     double *key;
+    uint16_t (*pm)[2];        /* the polyhedron's vbm_poly.pm */
     vbm_cap *caps;
     vbm_circle *axes;
     vbm_arc *given;
-    size_t cap_near_at, cap_near, cap_adj, cap_face;
+    size_t cap_near_at, cap_near, cap_adj, cap_face, cap_pm;
     size_t cap_seq, cap_key, cap_pre, cap_known, cap_map, cap_inv, cap_caps, cap_axes, cap_given;
 } prework;
 
@@ -91,27 +96,73 @@ static void plane_of(const vbm_cap *caps, size_t ncap, const struct vbm_poly *P,
     }
 }
 
-/* Clips the polyhedron v[*cur][0..*nv) by u.n >= h (plane id): 0 when no
+/* P->s[i] = ((n0 x0 + n1 x1) + n2 x2) - h in doubles for the vertices x
+ * of v[0..nv) (nv >= 1), two at a time where SSE2 is there (the same
+ * operations lane by lane); *mn, *mx the least and greatest. Returns 0
+ * when some value is not finite. The values only choose; certify proves. */
+static int scan(struct vbm_poly *P, size_t nv, const double n[3], double h, double *mn, double *mx)
+{
+    const double *X = P->x[0], *Y = P->x[1], *Z = P->x[2];
+    double *s = P->s;
+    size_t i = 0;
+    double lo = INFINITY, hi = -INFINITY, fin = 0.0;
+#if defined(__SSE2__)
+    __m128d a = _mm_set1_pd(n[0]), b = _mm_set1_pd(n[1]), c = _mm_set1_pd(n[2]), hh = _mm_set1_pd(h);
+    __m128d vl = _mm_set1_pd(INFINITY), vh = _mm_set1_pd(-INFINITY), vf = _mm_setzero_pd();
+    for (; i + 2 <= nv; i += 2) {
+        __m128d t = _mm_add_pd(_mm_mul_pd(a, _mm_loadu_pd(X + i)), _mm_mul_pd(b, _mm_loadu_pd(Y + i)));
+        t = _mm_sub_pd(_mm_add_pd(t, _mm_mul_pd(c, _mm_loadu_pd(Z + i))), hh);
+        _mm_storeu_pd(s + i, t);
+        vl = _mm_min_pd(vl, t);
+        vh = _mm_max_pd(vh, t);
+        vf = _mm_add_pd(vf, _mm_sub_pd(t, t)); /* 0 while finite, else NaN */
+    }
+    lo = _mm_cvtsd_f64(_mm_min_sd(vl, _mm_unpackhi_pd(vl, vl)));
+    hi = _mm_cvtsd_f64(_mm_max_sd(vh, _mm_unpackhi_pd(vh, vh)));
+    fin = _mm_cvtsd_f64(_mm_add_sd(vf, _mm_unpackhi_pd(vf, vf)));
+#endif
+    for (; i < nv; i++) {
+        double t = n[0] * X[i] + n[1] * Y[i] + n[2] * Z[i] - h;
+        s[i] = t;
+        lo = t < lo ? t : lo;
+        hi = t > hi ? t : hi;
+        fin += t - t;
+    }
+    *mn = lo;
+    *mx = hi;
+    return fin == 0.0;
+}
+
+/* The first i with s[i] == v (one there: v is scan's least value). */
+static size_t first_at(const double *s, double v)
+{
+    size_t i = 0;
+    while (s[i] != v)
+        i++;
+    return i;
+}
+
+/* Clips the polyhedron v[0..*nv) by u.n >= h (plane id): 0 when no
  * vertex lies outside (nothing cut), 1 clipped, -1 every vertex outside,
  * -2 too many vertices or a face the edges do not close (numerically
  * degenerate: the caller stops). voro++'s step: a new vertex on each edge
  * from a vertex inside to one outside, joined around the new face by the
- * planes they share. */
-static int clip(struct vbm_poly *P, int *cur, size_t *nv, const double n[3], double h, uint32_t id)
+ * planes they share; the vertices left keep their order, moved down in
+ * place. */
+static int clip(struct vbm_poly *P, size_t *nv, const double n[3], double h, uint32_t id)
 {
-    pvert *v = P->v[*cur], *o = P->v[!*cur];
-    size_t out = 0, n0 = *nv, nn = n0, lo = 0;
+    pvert *v = P->v;
+    double(*x)[2 * MAX_VERT] = P->x;
+    size_t n0 = *nv, nn = n0;
     double nrm = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]), eps = ON_EPS * (nrm + fabs(h));
-    for (size_t i = 0; i < n0; i++) {
-        P->s[i] = n[0] * v[i].x[0] + n[1] * v[i].x[1] + n[2] * v[i].x[2] - h;
-        out += P->s[i] < -eps;
-        lo = P->s[i] < P->s[lo] ? i : lo;
-    }
-    if (out == 0) {
-        P->lo = lo;
+    double mn, mx;
+    if (!scan(P, n0, n, h, &mn, &mx))
+        return -2; /* a value not finite (finite caps make none): stop, the rest kept */
+    if (!(mn < -eps)) { /* no vertex outside: the first at the least value */
+        P->lo = first_at(P->s, mn);
         return 0;
     }
-    if (out == n0)
+    if (mx < -eps)
         return -1;
     for (size_t b = 0; b < n0; b++) {
         if (!(P->s[b] < -eps))
@@ -125,7 +176,7 @@ static int clip(struct vbm_poly *P, int *cur, size_t *nv, const double n[3], dou
             pvert *c = &v[nn];
             double t = P->s[a] / (P->s[a] - P->s[b]);
             for (int d = 0; d < 3; d++)
-                c->x[d] = v[a].x[d] + t * (v[b].x[d] - v[a].x[d]);
+                x[d][nn] = x[d][a] + t * (x[d][b] - x[d][a]);
             c->pl[0] = v[b].pl[(k + 1) % 3];
             c->pl[1] = v[b].pl[(k + 2) % 3];
             c->pl[2] = id;
@@ -140,31 +191,49 @@ static int clip(struct vbm_poly *P, int *cur, size_t *nv, const double n[3], dou
         }
     }
     /* around the new face: c leaves pl[0] towards the new vertex on pl[1]
-     * and id, and pl[1] towards the one on pl[0] and id */
+     * and id, and pl[1] towards the one on pl[0] and id: the first new d
+     * != c with that plane as pl[0] or pl[1], from the first two of each
+     * plane (P->pm, all UINT16_MAX between clips; a scan took k^2 steps) */
+    uint16_t(*pm)[2] = P->pm;
     for (size_t c = n0; c < nn; c++)
         for (int m = 0; m < 2; m++) {
-            uint32_t keep = v[c].pl[1 - m];
-            for (size_t d = n0; d < nn && v[c].nb[m] == UINT16_MAX; d++)
-                if (d != c && (v[d].pl[0] == keep || v[d].pl[1] == keep))
-                    v[c].nb[m] = (uint16_t)d;
-            if (v[c].nb[m] == UINT16_MAX)
-                return -2;
+            uint16_t *f = pm[v[c].pl[m]];
+            if (f[0] == UINT16_MAX)
+                f[0] = (uint16_t)c;
+            else if (f[0] != c && f[1] == UINT16_MAX)
+                f[1] = (uint16_t)c;
         }
+    for (size_t c = n0; c < nn; c++)
+        for (int m = 0; m < 2; m++) {
+            const uint16_t *f = pm[v[c].pl[1 - m]];
+            v[c].nb[m] = f[0] != c ? f[0] : f[1];
+        }
+    int open = 0;
+    for (size_t c = n0; c < nn; c++) {
+        open |= v[c].nb[0] == UINT16_MAX || v[c].nb[1] == UINT16_MAX;
+        for (int m = 0; m < 2; m++)
+            pm[v[c].pl[m]][0] = pm[v[c].pl[m]][1] = UINT16_MAX;
+    }
+    if (open)
+        return -2;
     size_t no = 0;
     for (size_t i = 0; i < nn; i++)
         P->to[i] = i < n0 && P->s[i] < -eps ? UINT16_MAX : (uint16_t)no++;
     if (no > MAX_VERT)
         return -2;
     for (size_t i = 0; i < nn; i++) {
-        if (P->to[i] == UINT16_MAX)
+        size_t j = P->to[i];
+        if (j == UINT16_MAX)
             continue;
-        pvert *x = &o[P->to[i]];
-        *x = v[i];
+        if (j != i) {
+            v[j] = v[i];
+            for (int k = 0; k < 3; k++)
+                x[k][j] = x[k][i];
+        }
         for (int k = 0; k < 3; k++)
-            if ((x->nb[k] = P->to[x->nb[k]]) == UINT16_MAX)
+            if ((v[j].nb[k] = P->to[v[j].nb[k]]) == UINT16_MAX)
                 return -2;
     }
-    *cur = !*cur;
     *nv = no;
     return 1;
 }
@@ -293,12 +362,11 @@ static double side_plane(struct vbm_poly *P, const vbm_circle *c0, double x, dou
 }
 
 static int start(struct vbm_poly *P, const vbm_cap *caps, size_t ncap, const vbm_circle *c0,
-                 int *cur, size_t *nv)
+                 size_t *nv)
 {
     double e[3] = {vbx_ia_mid(c0->a[0]), vbx_ia_mid(c0->a[1]), vbx_ia_mid(c0->a[2])};
     double t0 = vbx_ia_mid(c0->c);
     P->nb = 0;
-    *cur = 0;
     *nv = 8;
     if (c0->c.lo > 0.0 && c0->s.lo >= 0.0) {
         int j = fabs(e[0]) <= fabs(e[1]) && fabs(e[0]) <= fabs(e[2]) ? 0 : fabs(e[1]) <= fabs(e[2]) ? 1 : 2;
@@ -318,10 +386,10 @@ static int start(struct vbm_poly *P, const vbm_cap *caps, size_t ncap, const vbm
         side_plane(P, c0, -q[0], -q[1], -q[2]);
         ball_plane(P, e[0], e[1], e[2]);
         for (size_t i = 0; i < 8; i++) {
-            pvert *x = &P->v[0][i];
+            pvert *x = &P->v[i];
             double sp = i & 1 ? -r : r, sq = i & 2 ? -r : r, se = i & 4 ? t0 : 1.0;
             for (int k = 0; k < 3; k++)
-                x->x[k] = sp * p[k] + sq * q[k] + se * e[k];
+                P->x[k][i] = sp * p[k] + sq * q[k] + se * e[k];
             x->pl[0] = (uint32_t)(ncap + (i & 1));
             x->pl[1] = (uint32_t)(ncap + 2 + ((i >> 1) & 1));
             x->pl[2] = i & 4 ? 0 : (uint32_t)(ncap + 4);
@@ -335,17 +403,17 @@ static int start(struct vbm_poly *P, const vbm_cap *caps, size_t ncap, const vbm
             ball_plane(P, k == 0 ? (s ? -1.0 : 1.0) : 0.0, k == 1 ? (s ? -1.0 : 1.0) : 0.0,
                        k == 2 ? (s ? -1.0 : 1.0) : 0.0);
     for (size_t i = 0; i < 8; i++) {
-        pvert *x = &P->v[0][i];
+        pvert *x = &P->v[i];
         for (int k = 0; k < 3; k++) {
             int neg = (int)(i >> k) & 1;
-            x->x[k] = neg ? -1.0 : 1.0;
+            P->x[k][i] = neg ? -1.0 : 1.0;
             x->pl[k] = (uint32_t)(ncap + 2 * (size_t)k + (size_t)neg);
             x->nb[k] = (uint16_t)(i ^ ((size_t)1 << k)); /* flips coordinate k: leaves its face */
         }
     }
     double n[3], h;
     plane_of(caps, ncap, P, 0, n, &h);
-    return clip(P, cur, nv, n, h, 0) >= 0;
+    return clip(P, nv, n, h, 0) >= 0;
 }
 
 static prework *work(vbm_capwork *w)
@@ -375,10 +443,13 @@ static int shape(const vbm_cap *caps, const vbm_circle *circ, size_t ncap, prewo
     *empty = 0;
     memset(pre, 0, ncap);
     if (VB_ARRAY_FIT(pw->seq, pw->cap_seq, ncap + 1, 32) != VB_OK ||
-        VB_ARRAY_FIT(pw->key, pw->cap_key, ncap + 1, 32) != VB_OK)
+        VB_ARRAY_FIT(pw->key, pw->cap_key, ncap + 1, 32) != VB_OK ||
+        VB_ARRAY_FIT(pw->pm, pw->cap_pm, ncap + NPLANE_BALL, 32) != VB_OK)
         return SHAPE_NONE;
     if (ncap <= 2 || circ[0].kind != VBM_CAP_CIRCLE)
         return SHAPE_NONE;
+    memset(pw->pm, 0xff, (ncap + NPLANE_BALL) * sizeof *pw->pm); /* UINT16_MAX: none */
+    pw->poly.pm = pw->pm;
     /* the caps cutting deepest into cap 0 first (their circles' axes and
      * cosines: a_m.a_0 - c_m least first), so that few caps clip early
      * that later ones would have bounded away */
@@ -401,17 +472,17 @@ static int shape(const vbm_cap *caps, const vbm_circle *circ, size_t ncap, prewo
         seq[i] = (uint32_t)m;
     }
     double nm[3], h;
-    if (!start(P, caps, ncap, &circ[0], &P->cur, &P->nv))
+    if (!start(P, caps, ncap, &circ[0], &P->nv))
         return SHAPE_NONE;
     for (size_t i = 0; i < n; i++) {
         size_t m = seq[i];
         plane_of(caps, ncap, P, (uint32_t)m, nm, &h);
-        int e = clip(P, &P->cur, &P->nv, nm, h, (uint32_t)m);
+        int e = clip(P, &P->nv, nm, h, (uint32_t)m);
         if (e == -1) { /* every vertex outside cap m */
             size_t hi = 0;
             for (size_t k = 1; k < P->nv; k++)
                 hi = P->s[k] > P->s[hi] ? k : hi;
-            *empty = P->s[hi] < 0.0 && certify(caps, ncap, P, &P->v[P->cur][hi], m, 1);
+            *empty = P->s[hi] < 0.0 && certify(caps, ncap, P, &P->v[hi], m, 1);
             return SHAPE_EMPTY;
         }
         if (e < 0)
@@ -419,28 +490,24 @@ static int shape(const vbm_cap *caps, const vbm_circle *circ, size_t ncap, prewo
         if (e > 0)
             continue;
         /* the vertex where u.n_m is least (the clip's): its planes' multipliers */
-        pre[m] = P->s[P->lo] > 0.0 && certify(caps, ncap, P, &P->v[P->cur][P->lo], m, 0); /* touching: no certificate */
+        pre[m] = P->s[P->lo] > 0.0 && certify(caps, ncap, P, &P->v[P->lo], m, 0); /* touching: no certificate */
     }
     /* the second pass: caps kept without a face */
     uint8_t *face = pw->face;
     memset(face, 0, ncap);
-    const pvert *v = P->v[P->cur];
+    const pvert *v = P->v;
     for (size_t i = 0; i < P->nv; i++)
         for (int k = 0; k < 3; k++)
             if (v[i].pl[k] < ncap)
                 face[v[i].pl[k]] = 1;
     for (size_t i = 0; i < n; i++) {
-        size_t m = seq[i], lo = 0;
+        size_t m = seq[i];
         if (pre[m] || face[m])
             continue;
         plane_of(caps, ncap, P, (uint32_t)m, nm, &h);
-        double slo = INFINITY;
-        for (size_t k = 0; k < P->nv; k++) {
-            double t = nm[0] * v[k].x[0] + nm[1] * v[k].x[1] + nm[2] * v[k].x[2] - h;
-            if (t < slo)
-                slo = t, lo = k;
-        }
-        pre[m] = slo > 0.0 && certify(caps, ncap, P, &v[lo], m, 0);
+        double slo, mx;
+        if (scan(P, P->nv, nm, h, &slo, &mx) && slo > 0.0) /* else kept */
+            pre[m] = certify(caps, ncap, P, &v[first_at(P->s, slo)], m, 0);
     }
     return SHAPE_DONE;
 }
@@ -470,6 +537,7 @@ void vbm_prefilter_free(vbm_capwork *w)
     free(pw->pre);
     free(pw->seq);
     free(pw->key);
+    free(pw->pm);
     free(pw->near_at);
     free(pw->near);
     free(pw->adj);
@@ -516,7 +584,7 @@ static int neighbours(prework *pw, size_t ncap, size_t nk)
     uint8_t *adj = pw->adj;
     memset(adj, 0, nk * nk);
     const struct vbm_poly *P = &pw->poly;
-    const pvert *v = P->v[P->cur];
+    const pvert *v = P->v;
     for (size_t i = 0; i < P->nv; i++)
         for (int a = 0; a < 3; a++) {
             if (v[i].pl[a] >= ncap)
