@@ -51,7 +51,8 @@ int vb_cli_vertices_part(vb_ctx *ctx, vb_vertices_config *cfg, vb_cover_options 
     X(s->cover_clocks.wasted_patches[2]) X(s->cover_clocks.wasted_patches[3])                   \
     X(s->cover_clocks.wasted_patches[4]) X(s->cover_clocks.wasted_tasks[0])                     \
     X(s->cover_clocks.wasted_tasks[1]) X(s->cover_clocks.wasted_tasks[2])                       \
-    X(s->cover_clocks.wasted_tasks[3]) X(s->cover_clocks.wasted_tasks[4])
+    X(s->cover_clocks.wasted_tasks[3]) X(s->cover_clocks.wasted_tasks[4])                       \
+    X(s->cover_clocks.first_past_half)
 
 /* The times whose maximum over the ranks is the job's. */
 #define MAXED(X)                                                                                   \
@@ -68,7 +69,9 @@ int vb_cli_vertices_part(vb_ctx *ctx, vb_vertices_config *cfg, vb_cover_options 
     X(s->cover_steps.host_cells_cpu_s) X(s->cover_steps.resume_cpu_s)                           \
     X(s->cover_steps.host_wait_s) X(s->cover_steps.tail_s) X(s->cover_clocks.task_max[0])       \
     X(s->cover_clocks.task_max[1]) X(s->cover_clocks.task_max[2])                               \
-    X(s->cover_clocks.task_max[3]) X(s->cover_clocks.task_max[4])
+    X(s->cover_clocks.task_max[3]) X(s->cover_clocks.task_max[4])                               \
+    X(s->cover_clocks.first_nb_max) X(s->cover_clocks.first_lab_max)                            \
+    X(s->cover_clocks.first_q_max)
 
 static int sum_counters(vb_ctx *ctx, vb_vertices_result *res, vb_cli_vertex_totals *tot)
 {

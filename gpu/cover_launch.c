@@ -50,6 +50,13 @@ static void tier_clock(cov_state *s, const cov_tier *t, cl_event done, const vbq
         if (out[k].status != VBQ_OK && out[k].status != VBQ_BUDGET) {
             c->wasted_patches[i] += p;
             c->wasted_tasks[i]++;
+        } else if (i == COV_FIRST) {
+            const vbq_cell_out *o = &out[k];
+            c->first_nb_max = o->nnb > c->first_nb_max ? o->nnb : c->first_nb_max;
+            c->first_lab_max = o->lab_hw > c->first_lab_max ? o->lab_hw : c->first_lab_max;
+            c->first_q_max = o->nq > c->first_q_max ? o->nq : c->first_q_max;
+            c->first_past_half += 2 * (uint64_t)o->nnb > t->nb_cap ||
+                                  2 * (uint64_t)o->lab_hw > t->lab_cap;
         }
     }
 }

@@ -150,14 +150,15 @@ int vbg_cov_begin(vb_ctx *ctx, vb_cover_backend *be, const vbq_env *env, size_t 
     /* The first tier's arenas for this input, from a sample of its cells
      * covered on the host threads (idle before the first launch); an input
      * that takes no sample gets the defaults again, whatever an earlier
-     * run on this backend got. */
+     * run on this backend got, or the fitted arenas below COV_FIT_SMALL
+     * spheres (vbg_cov_fit). */
     size_t covered = 0, over = 0;
     if (vbg_cov_fit_wanted(s, n) &&
         vb_cover_sample_over(env, COV_FIT_SAMPLE, COV_FIT_NB / 2, COV_FIT_LAB / 2, vb_threads(be->host_threads),
                              &covered, &over) != VB_OK)
         return vb_error(ctx, VB_ENOMEM, NULL, 0, "out of memory (cover sample)");
     if (s->fit)
-        vbg_cov_fit(s, covered, over);
+        vbg_cov_fit(s, n, covered, over);
     size_t least = vbg_cov_split(s, n, input);
     if (least) {
         const cov_tier *t0 = &s->tier[COV_FIRST];

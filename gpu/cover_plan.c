@@ -177,6 +177,10 @@ void vbg_cov_launch_sizes(cov_state *s, const cov_tier *t, size_t ncells, size_t
     size_t per = (size_t)s->hand_cell_words * ncells;
     size_t floor_w = (size_t)COV_HAND_WORDS * ncells;
     floor_w = floor_w < s->hand_floor_words ? floor_w : s->hand_floor_words;
+    /* The floor is for crystals' and small sets' ties: an input whose
+     * sample fitted the arenas (few large cells: proteins) gets its
+     * hand_cell_words a cell alone (COV_FITTED_SAMPLE). */
+    floor_w = s->fitted == COV_FITTED_SAMPLE ? 0 : floor_w;
     per = per > floor_w ? per : floor_w;
     per = per < s->hand_cap_words ? per : s->hand_cap_words;
     size_t hw = hand ? (s->hand_want > per ? s->hand_want : per) : 0;
@@ -256,12 +260,17 @@ int vbg_cov_fit_wanted(const cov_state *s, size_t n)
     return w * slice_bytes(&d) >= COV_FIT_MIN;
 }
 
-void vbg_cov_fit(cov_state *s, size_t covered, size_t over)
+void vbg_cov_fit(cov_state *s, size_t n, size_t covered, size_t over)
 {
     cov_tier *t0 = &s->tier[COV_FIRST];
-    s->fitted = covered > 0 && over * COV_FIT_SHARE < covered;
+    s->fitted = covered > 0 && over * COV_FIT_SHARE < covered ? COV_FITTED_SAMPLE
+                : n < COV_FIT_SMALL                            ? COV_FITTED_SMALL
+                                                               : COV_FITTED_NONE;
     t0->nb_cap = s->fitted ? COV_FIT_NB : t0->nb_want;
-    t0->lab_cap = s->fitted ? COV_FIT_LAB : t0->lab_want;
+    t0->lab_cap = s->fitted == COV_FITTED_SAMPLE ? COV_FIT_LAB
+                  : s->fitted                    ? COV_FIT_SMALL_LAB
+                                                 : t0->lab_want;
+    t0->q_cap = s->fitted ? COV_FIT_Q : COV_WG_Q;
 }
 
 void vbg_cov_caps(cov_state *s, int cpu, int caches, int hand, size_t units)
@@ -281,13 +290,14 @@ void vbg_cov_caps(cov_state *s, int cpu, int caches, int hand, size_t units)
     t3->st_cap = COV_ST;
     t3->q_cap = COV_BIG_Q;
     /* The hand-off tier's work-items get the group kernel's first-tier
-     * arenas: a task of a cell past the budget then fits (fcc 10,976
+     * arenas as they were until stop 54 (8,192 records, 32,768 labels, 512
+     * quadruples): a task of a cell past the budget then fits (fcc 10,976
      * jittered, simulated on the host: all 5,760 tasks of its 60 cells fit
      * them; with the work-item kernel's own arenas 66 of them ran out). */
     th->nb_cap = COV_WG_NB;
-    th->lab_cap = COV_WG_LAB;
+    th->lab_cap = COV_HANDOFF_LAB;
     th->st_cap = COV_ST;
-    th->q_cap = COV_WG_Q;
+    th->q_cap = COV_HANDOFF_Q;
     /* Output room per task: about 10 quadruples per cell on proteins; the
      * second tier's cells are the large ones. */
     t0->qper = th->qper = 24u;

@@ -23,8 +23,9 @@
  *   first tier S0 slices of P0 bytes, P0 = 48 NB + 4 LAB + 16 Q (+ 48 ST on
  *              the work-item kernel; the group kernel keeps one stack of
  *              48 ST), NB/LAB/ST/Q the tier's capacities below: 144 KiB a
- *              work-item on a GPU, 520 KiB a group (266 KiB with the
- *              arenas fitted to the input, COV_FIT_NB); a CPU device's slice
+ *              work-item on a GPU, 452 KiB a group (226 KiB with the
+ *              arenas a sample fitted, COV_FIT_NB; 258 KiB on a small
+ *              input, COV_FIT_SMALL); a CPU device's slice
  *              (one per compute unit, COV_CPU_NB) 4.0 MiB and 2.1 MiB of
  *              caches (8 LAB + 56 VBQ_MEMO), its capacities halved while
  *              the slices exceed the share below;
@@ -129,7 +130,9 @@ typedef struct cov_state {
     size_t hand_cap_words;   /* COV_HAND_CAP: handed-patch words a launch reserves at most */
     size_t hand_floor_words; /* COV_HAND_FLOOR: ... at least (0 where a knob sets the cell's) */
     int fit;                 /* 1: the first tier's arenas follow the input (vbg_cov_fit) */
-    int fitted;              /* 1: this run's first tier has the fitted arenas */
+    int fitted;              /* this run's first tier has the fitted arenas: COV_FITTED_SAMPLE
+                                (its sample said so) or COV_FITTED_SMALL (a small input);
+                                COV_FITTED_NONE (0): its defaults */
     size_t last_n;           /* spheres of the last run begun (trim) */
     unsigned task_split;     /* levels below the roots a cell's tasks split at (COV_TASK_SPLIT) */
     int task_order;          /* a tier's tasks costliest cell first: 1 up to VBG_ORDER_CELLS
@@ -172,9 +175,29 @@ typedef struct cov_state {
  * cpu_vs_voronota_stop46.md. */
 #define COV_CPU_NB 65536u
 #define COV_CPU_LAB 262144u
+/* The group kernel's first tier: 8,192 records and 16,384 labels a slice
+ * (452 KiB with its quadruples). Labels were 32,768 until stop 54 (520
+ * KiB with 512 quadruples): host covers of every cell (tests/verify/bench_cover_cells, stop
+ * 54; the group kernel's walk keeps the same labels) hold at most 8,164
+ * labels on fcc 10,976 exact, 5,578 on its random twin, 3,166 on sc 4,096
+ * jittered 1e-12, 2,414 on its random twin and 8,009 on EXTREMESET
+ * Polysized 300, twice over within 16,384; the capsid's cells past it
+ * (28,225 labels at most) are past its records too. The hand-off tier
+ * keeps 32,768 (COV_HANDOFF_LAB). */
 #define COV_WG_NB 8192u
-#define COV_WG_LAB 32768u
-#define COV_WG_Q 512u
+#define COV_WG_LAB 16384u
+#define COV_HANDOFF_LAB 32768u
+#define COV_HANDOFF_Q 512u
+/* Quadruples a first-tier slice holds (a cell's own, ids past its sphere,
+ * sorted and unique: vbq_quad_insert, the host's and the kernels' code).
+ * Host covers of every cell (stop 54): at most 88 a cell on fcc 10,976
+ * exact (median 20), 62 on the capsid, 50 on sc 4,096 jittered 1e-12 and
+ * on fcc 10,976 jittered 1e-9, 53 on EXTREMESET Polysized 300, 38 on 1crn;
+ * 256 (4 KiB a slice; 512 until stop 54) is 2.9 times the largest, and
+ * COV_FIT_Q where the arenas are fitted (the capsid's 62: twice over). A
+ * cell past it runs on the large tier (COV_BIG_Q). */
+#define COV_WG_Q 256u
+#define COV_FIT_Q 128u
 #define COV_BIG_NB 32768u
 #define COV_BIG_LAB 262144u
 #define COV_BIG_Q 4096u
@@ -229,7 +252,10 @@ typedef struct cov_state {
  * s first launch. On an H200 with 4 Mi words: sc 0.162-0.167 -> 0.139-0.140
  * s, no rerun; fcc 10,976 exact (~450 a cell, 4.9 Mi in all) still reran
  * 676 cells (0.047 s of kernel), hence 8 Mi. From 65,536 cells the 128 a
- * cell pass it (the tiling's 108 MiB as before). */
+ * cell pass it (the tiling's 108 MiB as before). A run whose sample fitted
+ * the arenas (few large cells: the capsid, the tiling, whose cells asked
+ * about 73 words each) has no floor (stop 54): the capsid's 26,430 cells
+ * 12.9 MiB instead of 32. */
 #define COV_HAND_FLOOR (8u << 20)
 /* Words of handed patches a launch reserves at most before a launch asks
  * for more (VORBALL_COVER_HAND_CAP; by default none). */
@@ -268,8 +294,13 @@ typedef struct cov_state {
  * 0.222 s against 0.189-0.193 on the H200 (run 3), whose cells past 4,096
  * records then ran on the large tier. */
 #define COV_FIT_SAMPLE 128u
+/* Labels: 8,192 where the sample fitted the arenas (16,384 until stop 54;
+ * the capsid's cells: p99 1,186, past 8,192 31 of 26,430, past 4,096
+ * records 288, on the host), COV_FIT_SMALL_LAB for a small input. The
+ * sample tests half of each (2,048 records, 4,096 labels). */
 #define COV_FIT_NB 4096u
-#define COV_FIT_LAB 16384u
+#define COV_FIT_LAB 8192u
+#define COV_FIT_SMALL_LAB 16384u
 #define COV_FIT_SHARE 8u
 #define COV_FIT_MIN ((size_t)256 << 20)
 /* ... and only from this many spheres on: below it `--device auto` covers on
@@ -280,6 +311,22 @@ typedef struct cov_state {
  * 0.193-0.196 (the sample alone); the capsid 1,119 -> 591 MiB in 0.236-
  * 0.250 s against 0.234-0.241. */
 #define COV_FIT_SPHERES 20000u
+/* Below this many spheres the first tier gets the fitted arenas without a
+ * sample (COV_FITTED_SMALL): its slices are few (a slice per
+ * COV_CELLS_PER_SLICE spheres, 255 at most, 130 MiB at the defaults), and a
+ * sample of 128 of them would cost a few per cent of a run that takes 0.02-
+ * 0.07 s on the H100. Host covers of every cell (tests/verify/
+ * bench_cover_cells, stop 54): records per cell at most 3,147 (EXTREMESET
+ * Congruent 300), 3,263 (Polysized 300) and 2,059 (1crn), labels 1,764,
+ * 8,009 and 357: within 4,096 records and COV_FIT_SMALL_LAB labels. On the H100
+ * (stop 50, h100_stop50.txt, VORBALL_COVER_NB=4096 VORBALL_COVER_LAB=16384)
+ * the two 300-ball sets held 20.7 MiB instead of 39.2 / 38.5 in 0.062 /
+ * 0.072 s against 0.060 / 0.076 s (TOG 2025 peer: 34 MiB). A cell past the
+ * arenas goes on as a fitted run's does (COV_FIT_HOST). */
+#define COV_FIT_SMALL 1024u
+#define COV_FITTED_NONE 0
+#define COV_FITTED_SAMPLE 1
+#define COV_FITTED_SMALL 2
 /* A fitted run's cells past its first tier, when no more than this many,
  * go to the host threads instead of a large tier of their own: a large
  * launch lasts as long as its longest task (0.026 s for fcc 10,976 exact's
@@ -366,8 +413,9 @@ size_t vbg_cov_tier_slices(const cov_state *s, const cov_tier *t, size_t tasks);
 size_t vbg_cov_launch_held(const cov_state *s, size_t ncells);
 
 /* A launch of tier t over ncells tasks: its room for quadruples (*qroom)
- * and handed-patch words (*hwords, 0 but on the first tier) within the
- * launch room. Grows s->qout_cap to qper a task. */
+ * and handed-patch words (*hwords, 0 but on the first tier; no
+ * COV_HAND_FLOOR where the sample fitted the arenas) within the launch
+ * room. Grows s->qout_cap to qper a task. */
 void vbg_cov_launch_sizes(cov_state *s, const cov_tier *t, size_t ncells, size_t *qroom,
                           size_t *hwords);
 
@@ -386,12 +434,17 @@ size_t vbg_cov_peak_plan(cov_state *s, size_t n, size_t input, size_t batch, siz
  * with no budget to bound them). */
 int vbg_cov_fit_wanted(const cov_state *s, size_t n);
 
-/* The first tier's arenas from a sample (vb_cover_sample_over at half
- * COV_FIT_NB / COV_FIT_LAB): `over` of `covered` cells ran out of them.
- * Sets the first tier's nb_cap / lab_cap to those arenas and s->fitted to
- * 1 when over * COV_FIT_SHARE < covered, else to nb_want / lab_want (the
- * defaults, or what a knob set) and s->fitted to 0. */
-void vbg_cov_fit(cov_state *s, size_t covered, size_t over);
+/* The first tier's arenas for a run of n spheres from a sample
+ * (vb_cover_sample_over at half COV_FIT_NB / COV_FIT_LAB; covered 0: none
+ * taken): `over` of `covered` cells ran out of them. Sets the first tier's
+ * nb_cap / lab_cap / q_cap to COV_FIT_NB / COV_FIT_LAB / COV_FIT_Q and
+ * s->fitted to COV_FITTED_SAMPLE when over * COV_FIT_SHARE < covered, else
+ * (labels COV_FIT_SMALL_LAB) to COV_FITTED_SMALL when n < COV_FIT_SMALL;
+ * otherwise to nb_want / lab_want / COV_WG_Q (the defaults, or what a knob
+ * set) and s->fitted to COV_FITTED_NONE.
+ * A run fitted by its sample gets no handed-patch floor
+ * (vbg_cov_launch_sizes). */
+void vbg_cov_fit(cov_state *s, size_t n, size_t covered, size_t over);
 
 /* ---- device buffers (gpu/cover_mem.c) ---------------------------------- */
 

@@ -208,6 +208,8 @@ static int cover_run(vb_ctx *ctx, void *state, const vb_proposer_await *aw,
     vb_cover_clocks before = {0};
     if (s->be) {
         memset(s->be->clocks.task_max, 0, sizeof s->be->clocks.task_max);
+        s->be->clocks.first_nb_max = s->be->clocks.first_lab_max = 0;
+        s->be->clocks.first_q_max = 0;
         before = s->be->clocks;
     }
     if (args->quads_sink && on)
@@ -251,6 +253,13 @@ static int cover_run(vb_ctx *ctx, void *state, const vb_proposer_await *aw,
         res->cover_clocks.wasted_patches[i] = now->wasted_patches[i] - before.wasted_patches[i];
         res->cover_clocks.wasted_tasks[i] = now->wasted_tasks[i] - before.wasted_tasks[i];
         res->cover_clocks.task_max[i] = now->task_max[i];
+    }
+    if (s->be) {
+        const vb_cover_clocks *now = &s->be->clocks;
+        res->cover_clocks.first_nb_max = now->first_nb_max;
+        res->cover_clocks.first_lab_max = now->first_lab_max;
+        res->cover_clocks.first_q_max = now->first_q_max;
+        res->cover_clocks.first_past_half = now->first_past_half - before.first_past_half;
     }
     res->cover_steps = st.steps;
     /* The filter's buffers beside the cover's: at most their sum at once. */

@@ -41,6 +41,12 @@ typedef struct vb_cover_clocks {
     uint64_t launches[VB_COVER_STEPS], tasks[VB_COVER_STEPS];
     uint64_t patches[VB_COVER_STEPS], task_max[VB_COVER_STEPS];
     uint64_t wasted_patches[VB_COVER_STEPS], wasted_tasks[VB_COVER_STEPS];
+    /* What the first tier's arenas had to hold (issue #30, its memory
+     * plan): the most records, labels and quadruples one of its tasks held
+     * among those that finished or met the group kernel's budget, and how
+     * many of them held more than half its records or half its labels
+     * (tasks that would have run out of arenas half as large). */
+    uint64_t first_nb_max, first_lab_max, first_q_max, first_past_half;
 } vb_cover_clocks;
 
 /* Where a device run's cover time went on the host (vb_cover.h's

@@ -93,6 +93,13 @@ void vb_vertices_stats(vb_ctx *ctx, const vb_vertices_result *r, vb_stat_fields 
         vb_stat_uint(fs, work[i][2], s->cover_clocks.wasted_patches[i]);
         vb_stat_uint(fs, work[i][3], s->cover_clocks.wasted_tasks[i]);
     }
+    /* What the first tier's arenas held (vb_cover_clocks): the most
+     * records, labels and quadruples of a task, and its tasks past half
+     * its records or labels. */
+    vb_stat_uint(fs, "cover_first_records_max", s->cover_clocks.first_nb_max);
+    vb_stat_uint(fs, "cover_first_labels_max", s->cover_clocks.first_lab_max);
+    vb_stat_uint(fs, "cover_first_quadruples_max", s->cover_clocks.first_q_max);
+    vb_stat_uint(fs, "cover_first_past_half", s->cover_clocks.first_past_half);
     /* The host's side of a device cover (vb_cover_steps; timings): the
      * batches, the device's thread's work after each read-back, the sinks,
      * the CPU of the host threads' whole cells and of the handed patches

@@ -156,7 +156,8 @@ int main(int argc, char **argv)
     uint32_t *per = calloc(set->n ? set->n : 1, sizeof *per), np = 0;
     uint32_t *nnb = calloc(set->n ? set->n : 1, sizeof *nnb);
     uint32_t *lab = calloc(set->n ? set->n : 1, sizeof *lab);
-    if (!per || !nnb || !lab)
+    uint32_t *nq = calloc(set->n ? set->n : 1, sizeof *nq);
+    if (!per || !nnb || !lab || !nq)
         return 1;
     for (uint32_t i = 0; i < set->n; i++) {
         if (set->contained[i])
@@ -182,6 +183,7 @@ int main(int argc, char **argv)
         s[b].patches += out.patches;
         nnb[np] = out.nnb;
         lab[np] = out.lab_hw;
+        nq[np] = out.nq;
         per[np++] = out.patches;
         s[b].evals += 1000.0 * out.evals_k;
         s[b].nb += out.nnb;
@@ -215,6 +217,7 @@ int main(int argc, char **argv)
      * the device's arena slices are sized from. */
     spread(argv[1], "neighbour records", nnb, np);
     spread(argv[1], "labels (high water)", lab, np);
+    spread(argv[1], "quadruples", nq, np); /* the slices' quadruple room (COV_WG_Q) */
     if (h.budget) {
         printf("%s\thand-off\tlargest task: %u neighbour records, %u labels\n", argv[1],
                h.task_nnb, h.task_lab);
@@ -229,6 +232,7 @@ int main(int argc, char **argv)
     free(per);
     free(nnb);
     free(lab);
+    free(nq);
     vbq_arena_free(&ar);
     vb_cover_tree_free(tree);
     vb_spheres_free(set);
