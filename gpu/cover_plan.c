@@ -257,6 +257,7 @@ int vbg_cov_fit_wanted(const cov_state *s, size_t n)
     cov_tier d = *t0;
     d.nb_cap = t0->nb_want;
     d.lab_cap = t0->lab_want;
+    d.q_cap = COV_WG_Q;
     return w * slice_bytes(&d) >= COV_FIT_MIN;
 }
 

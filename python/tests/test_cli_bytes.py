@@ -84,6 +84,9 @@ VARYING |= {"cover_%s_%s" % (w, t)
             for w in ("launches", "tasks", "patches", "task_max_patches", "wasted_patches",
                       "wasted_tasks")
             for t in ("first", "large", "handoff", "huge", "rerun")}
+# What the first tier's arenas held (stop 54): of the cells the device took.
+VARYING |= {"cover_first_records_max", "cover_first_labels_max", "cover_first_quadruples_max",
+            "cover_first_past_half"}
 
 
 def _printed(v):

@@ -7,8 +7,10 @@
 # read-back, the sinks, the CPU of whole host cells and of the resumed
 # patches, the host threads' wait for the device and the device's wait for
 # the host (the tail); per step the work (patches, the most of a task, the
-# patches and tasks that ran out and ran again). Checked on PoCL (on a GPU
-# the same code):
+# patches and tasks that ran out and ran again), and what the first tier's
+# arenas held (the most records, labels and quadruples of a task that
+# finished, its tasks past half its records or labels). Checked on PoCL (on
+# a GPU the same code):
 # - every column is printed, on ref too (zero there: no device);
 # - sums within totals: a step's kernel seconds within its launches' wall,
 #   the launches within cover_device_s, the device's batches and their
@@ -93,6 +95,17 @@ done
 echo "a: $(counts a)"
 [ "$(counts a)" = "$(counts b)" ] || fail "counts differ between runs: $(counts b)"
 [ "$(stat cover_launches_first a.err)" = 1 ] || fail "a: one batch, not one first launch"
+# What the first tier's arenas held (issue #30's memory plan): every cell
+# finishes there on PoCL, so its most records are the host cover's most
+# (ref's cover_max_cell_neighbours); none on ref.
+[ "$(stat cover_first_records_max a.err)" = "$(stat cover_max_cell_neighbours ref.err)" ] ||
+    fail "a: first tier's most records $(stat cover_first_records_max a.err), the host's" \
+        "$(stat cover_max_cell_neighbours ref.err)"
+[ "$(stat cover_first_labels_max a.err)" -gt 0 ] &&
+    [ "$(stat cover_first_quadruples_max a.err)" -gt 0 ] || fail "a: no labels or quadruples held"
+for c in records_max labels_max quadruples_max past_half; do
+    [ "$(stat cover_first_$c ref.err)" = 0 ] || fail "ref: cover_first_$c on host threads"
+done
 [ "$(stat cover_launches_rerun a.err)" = 0 ] || fail "a: reruns with room for every patch"
 # room for 16 words a cell: the cells that hand patches run again
 VORBALL_COVER_HAND_WORDS=16 run 0 short.err "$vorball" vertices "$in" --device cpu --threads 2 \
@@ -142,6 +155,12 @@ for sp in 1 2; do
     [ "$n" -gt 0 ] && [ "$(stat cover_wasted_patches_first $f)" -gt 0 ] ||
         fail "w$sp: no first-tier cell ran out of 48 records"
     [ $((t % (n * 24))) = 0 ] || fail "w$sp: $t large tasks for $n cells"
+    # the first tier's cells that finished held at most its 48 records, some
+    # of them past 24
+    m=$(stat cover_first_records_max $f) h=$(stat cover_first_past_half $f)
+    [ "$m" -gt 24 ] && [ "$m" -le 48 ] || fail "w$sp: first tier held $m records, not 25-48"
+    [ "$h" -gt 0 ] && [ "$h" -le $(($(stat cover_tasks_first $f) - n)) ] ||
+        fail "w$sp: $h first-tier tasks past half its arenas"
     [ "$(stat cover_task_max_patches_large $f)" -gt 0 ] || fail "w$sp: no large task's patches"
     echo "w$sp: first $(stat cover_patches_first $f) patches, $n cells ran out" \
         "($(stat cover_wasted_patches_first $f) patches), $t large tasks" \

@@ -97,6 +97,39 @@ static void spread(const char *input, const char *what, uint32_t *v, uint32_t n)
            o8);
 }
 
+/* The group kernel's step budget a cell (gpu/vbg_cover_state.h, COV_BUDGET). */
+#define FIRST_BUDGET 2048u
+
+/* The first tier's launch time in steps for S slices: each slice takes the
+ * next cell in the tree's order when it is free (the kernel's shared
+ * counter), each cell takes its patches' steps up to the budget; the last
+ * slice to finish ends the launch. An upper bound on what fewer slices
+ * cost where a step takes as long whatever the slices (on a GPU it takes
+ * less with fewer of them in flight). steps: by sphere (0: none). */
+static void first_makespan(const char *input, const vbq_env *env, const uint32_t *steps)
+{
+    /* the H100's 16 a compute unit and fewer; one a sphere and one per 2,
+     * 4 (COV_CELLS_PER_SLICE) and 8 spheres */
+    size_t m = env->m, slices[] = {2112, 1584, 1056, 528, 264, 132, m, m / 2, m / 4, m / 8};
+    printf("%s\tfirst-tier launch in steps (slices: steps)", input);
+    for (size_t k = 0; k < sizeof slices / sizeof *slices; k++) {
+        size_t S = slices[k] ? slices[k] : 1;
+        uint64_t *free_at = calloc(S, sizeof *free_at), end = 0;
+        if (!free_at)
+            return;
+        for (size_t j = 0; j < env->m; j++) {
+            size_t best = 0;
+            for (size_t s = 1; s < S; s++)
+                best = free_at[s] < free_at[best] ? s : best;
+            free_at[best] += steps[env->ids[j]];
+            end = free_at[best] > end ? free_at[best] : end;
+        }
+        printf("\t%zu: %llu", S, (unsigned long long)end);
+        free(free_at);
+    }
+    printf("\n");
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 2) {
@@ -126,13 +159,13 @@ int main(int argc, char **argv)
         }
     }
     /* The sample a GPU sizes its first tier from (gpu/vbg_cover_state.h,
-     * COV_FIT_*: 128 cells in arenas of 2,048 records and 8,192 labels),
-     * with its CPU seconds on one thread. */
+     * COV_FIT_*: 128 cells in arenas of 2,048 records and 4,096 labels
+     * since stop 54), with its CPU seconds on one thread. */
     size_t sampled, ran_out;
     double f0 = thread_cpu();
-    if (vb_cover_sample_over(&env, 128, 2048u, 8192u, 1, &sampled, &ran_out) != VB_OK)
+    if (vb_cover_sample_over(&env, 128, 2048u, 4096u, 1, &sampled, &ran_out) != VB_OK)
         return 1;
-    printf("%s\tsample\t%zu cells in 2048 records / 8192 labels: %zu ran out\tcpu_s %.4f\n",
+    printf("%s\tsample\t%zu cells in 2048 records / 4096 labels: %zu ran out\tcpu_s %.4f\n",
            argv[1], sampled, ran_out, thread_cpu() - f0);
     vbq_arena ar;
     memset(&ar, 0, sizeof ar);
@@ -157,7 +190,8 @@ int main(int argc, char **argv)
     uint32_t *nnb = calloc(set->n ? set->n : 1, sizeof *nnb);
     uint32_t *lab = calloc(set->n ? set->n : 1, sizeof *lab);
     uint32_t *nq = calloc(set->n ? set->n : 1, sizeof *nq);
-    if (!per || !nnb || !lab || !nq)
+    uint32_t *steps = calloc(set->n ? set->n : 1, sizeof *steps); /* by sphere */
+    if (!per || !nnb || !lab || !nq || !steps)
         return 1;
     for (uint32_t i = 0; i < set->n; i++) {
         if (set->contained[i])
@@ -184,6 +218,7 @@ int main(int argc, char **argv)
         nnb[np] = out.nnb;
         lab[np] = out.lab_hw;
         nq[np] = out.nq;
+        steps[i] = out.patches < FIRST_BUDGET ? out.patches : FIRST_BUDGET;
         per[np++] = out.patches;
         s[b].evals += 1000.0 * out.evals_k;
         s[b].nb += out.nnb;
@@ -218,6 +253,7 @@ int main(int argc, char **argv)
     spread(argv[1], "neighbour records", nnb, np);
     spread(argv[1], "labels (high water)", lab, np);
     spread(argv[1], "quadruples", nq, np); /* the slices' quadruple room (COV_WG_Q) */
+    first_makespan(argv[1], &env, steps);
     if (h.budget) {
         printf("%s\thand-off\tlargest task: %u neighbour records, %u labels\n", argv[1],
                h.task_nnb, h.task_lab);
@@ -233,6 +269,7 @@ int main(int argc, char **argv)
     free(nnb);
     free(lab);
     free(nq);
+    free(steps);
     vbq_arena_free(&ar);
     vb_cover_tree_free(tree);
     vb_spheres_free(set);

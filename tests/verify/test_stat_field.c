@@ -43,10 +43,10 @@ int main(void)
     vb_vertices_stats(NULL, &r, &fs); /* no context: zero filter counters */
     size_t nv = fs.n;
     vb_arc_stats(&a, &fs);
-    CHECK_INT(nv, 100); /* 43, the cover's device timers (21), its steps' work (20) and
-                         * host steps (8), the run's clock (6: its host work before the
-                         * device, set-up, wait, proposer, run, release) and its
-                         * neighbour records (2) */
+    CHECK_INT(nv, 104); /* 43, the cover's device timers (21), its steps' work (20),
+                         * what its first tier's arenas held (4) and host steps (8), the
+                         * run's clock (6: its host work before the device, set-up, wait,
+                         * proposer, run, release) and its neighbour records (2) */
     CHECK_INT(fs.n, nv + 19);
     CHECK(fs.n < VB_STAT_FIELDS_MAX); /* room left: nothing was dropped */
 
