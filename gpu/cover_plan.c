@@ -287,7 +287,7 @@ void vbg_cov_caps(cov_state *s, int cpu, int caches, int hand, size_t units)
     t1->st_cap = COV_ST;
     t1->q_cap = COV_BIG_Q;
     t3->nb_cap = COV_HUGE_NB;
-    t3->lab_cap = COV_BIG_LAB;
+    t3->lab_cap = COV_HUGE_LAB;
     t3->st_cap = COV_ST;
     t3->q_cap = COV_BIG_Q;
     /* The hand-off tier's work-items get the group kernel's first-tier

@@ -39,11 +39,11 @@
  *              an earlier launch asked), at most 1/8 of the budget left
  *              after the input: a batch larger than that runs in several
  *              launches;
- *   large tier S1 slices of 2.6 MiB, made on the first cell that needs them,
+ *   large tier S1 slices of 2.0 MiB, made on the first cell that needs them,
  *              S1 = min(the device's occupancy, the tasks waiting / 64 on
  *              the group kernel (COV_BIG_TASKS), what the pool may hold /
  *              P1); with no room the cells go to the host threads;
- *   huge tier  S3 slices of 7.1 MiB for the large tier's tasks that ran out of
+ *   huge tier  S3 slices of 7.0 MiB for the large tier's tasks that ran out of
  *              its records (those tasks only, not their cells' others), made
  *              in the large tier's place, S3 = min(the device's compute
  *              units x 2, the tasks waiting, what the pool may hold / P3);
@@ -149,7 +149,7 @@ typedef struct cov_state {
  * 8,192), per task at most 20,483 (all 2,537,280 tasks fit 32,768; 2 ran
  * out of 16,384); 3pqr per cell max 12,396, per task 2,303. The large
  * tier's 131,072 records (7.1 MiB a slice with its labels) became 32,768
- * (2.6 MiB); its labels stay (the group kernel walks breadth-first). */
+ * (2.6 MiB); its labels stayed (262,144; 131,072 since stop 54, COV_BIG_LAB). */
 #define COV_NB 2048u
 #define COV_LAB 8192u
 #define COV_ST 256u
@@ -198,9 +198,22 @@ typedef struct cov_state {
  * cell past it runs on the large tier (COV_BIG_Q). */
 #define COV_WG_Q 256u
 #define COV_FIT_Q 128u
+/* The large tier: 32,768 records, 131,072 labels and 512 quadruples a
+ * slice (2.0 MiB; 262,144 labels and 4,096 quadruples, 2.6 MiB, until stop
+ * 54). It borrows the first tier's arrays (the pool holds no more than the
+ * first tier, or COV_POOL_PER_SPHERE a sphere), so its slices are those
+ * arrays over its own: the capsid's fitted first tier (labels 66 MiB,
+ * quadruples 4.1) holds 132 large slices of these, as it held 132 of the
+ * old ones at stop 53 (labels 132 MiB); the old ones would have had 66.
+ * Host covers of all 2,537,280 root-patch tasks of the capsid's cells
+ * (bench_cover_cells capsid 2 1 32768 262144 4096, stop 54): at most 20,483
+ * records and 28,225 labels a task; a task's quadruples are its cell's, at
+ * most 88 a cell on every input measured. The huge tier keeps 262,144
+ * labels (COV_HUGE_LAB: its tasks hold up to 131,072 records). */
 #define COV_BIG_NB 32768u
-#define COV_BIG_LAB 262144u
-#define COV_BIG_Q 4096u
+#define COV_BIG_LAB 131072u
+#define COV_HUGE_LAB 262144u
+#define COV_BIG_Q 512u
 /* Tasks per large slice at least: below that the large tier's kernel time
  * is its longest task's. On an H100 (stop 44, run B) the capsid's 11,040
  * tasks took 0.078 / 0.082 / 0.083 s of large-tier kernel on 528 / 264 /

@@ -120,6 +120,9 @@ static void h100_bounds(void)
     CHECK(vbg_cov_split(&s, 1000000, vbg_cov_input_bytes(1000000, 500000, 1000000)) > 16 * MIB);
 }
 
+/* The large tier's slices in the last plan of h100_fit_peak. */
+static size_t fit_large;
+
 /* The plan's peak on the made-up H100 for n spheres after the first tier's
  * arenas are fitted from a sample (vbg_cov_fit: `over` of 128 sampled cells
  * ran out of half the fitted arenas; SIZE_MAX: no sample taken, as
@@ -137,11 +140,12 @@ static size_t h100_fit_peak(size_t n, size_t big, size_t huge, size_t over, int 
     big *= vbg_cov_task_share(&s); /* measured at one level's split, as h100_peak */
     huge *= vbg_cov_task_share(&s);
     size_t peak = vbg_cov_peak_plan(&s, n, vbg_cov_input_bytes(n, n / 2, n), batch, big, huge);
+    fit_large = big ? vbg_cov_tier_slices(&s, &s.tier[COV_BIG], big) : 0;
     printf("H100 fitted plan: n %zu, %s%zu of %u sampled cells past half the fitted arenas: "
-           "first tier %zu slices of %u records / %u labels, peak %.1f MiB\n",
+           "first tier %zu slices of %u records / %u labels, large %zu slices, peak %.1f MiB\n",
            n, wanted ? "" : "no sample: ", wanted ? over : 0, COV_FIT_SAMPLE,
-           s.tier[COV_FIRST].slices,
-           s.tier[COV_FIRST].nb_cap, s.tier[COV_FIRST].lab_cap, (double)peak / (double)MIB);
+           s.tier[COV_FIRST].slices, s.tier[COV_FIRST].nb_cap, s.tier[COV_FIRST].lab_cap,
+           fit_large, (double)peak / (double)MIB);
     return peak;
 }
 
@@ -182,6 +186,11 @@ static void h100_fit(void)
      * pool holds, so it takes what the pool holds). */
     size_t cap_fit = h100_fit_peak(26430, 28800, 0, 2, &fitted);
     CHECK(fitted == COV_FITTED_SAMPLE && cap_fit <= 495 * MIB);
+    /* ... and its large tier keeps stop 53's 132 slices (the large tier
+     * borrows the first tier's arrays: with stop 53's large slices, 262,144
+     * labels and 4,096 quadruples, the smaller first tier would hold 66, and
+     * the capsid's 27,264 large tasks take 0.08-0.09 s on 132). */
+    CHECK(fit_large == 132);
     CHECK(cap_fit * 2 < h100_peak(26430, 11040, 0, 0, 0, 0, 0) + 10 * MIB);
     /* Below COV_FIT_SPHERES no sample either: fcc 10,976 exact (44 of 128
      * past 2,048 records) and sc 4,096 jittered (5) keep the defaults,
@@ -208,6 +217,7 @@ static void h100_fit(void)
     /* The tiling, 211,440 atoms (its sample as the capsid's): the pool,
      * 5.75 KiB a sphere, bounds it as before; within the peer's 1,442 MiB. */
     CHECK(h100_fit_peak(211440, 217056, 864, 2, &fitted) <= 1442 * MIB && fitted);
+    CHECK(fit_large == 528); /* the wanted 4 a compute unit (463 of 2.6 MiB at stop 53) */
     /* A knob's arenas are not fitted (VORBALL_COVER_NB / _LAB, _FIT=0:
      * s->fit 0), nor a CPU device's work-item kernel. */
     cov_state s;
