@@ -74,7 +74,7 @@ static vbx_ia mul0(vbx_ia a, vbx_ia b)
  * The constant terms of the order-0 series (vbm1_sqrt_to, _recip_to,
  * _mul_to, _affine, _add) it took until stop 53, operation for operation
  * (the same bounds), without their K orders of zeros: F0 at every contact
- * try's middle (arc_integral.c's fcon; vbm_contact_tm.h). */
+ * try's middle (arc_owner.c's vbm_owner_fcon; vbm_contact_tm.h). */
 int vbm_contact_g(const vbm_owner *o, vbx_ia q, vbx_ia *G)
 {
     vbx_ia zero = vbx_ia_point(0.0);
@@ -108,7 +108,7 @@ int vbm_contact_tm(const vbm_contact_rat *p, const vbm_owner *o, vbx_ia F0, doub
         phi.rest = vbx_ia_mul(o->rN, rho.rest);
     } else { /* S = N + 2 delta q, q = D z + delta = (D + delta) - D y: y's
               * model mapped at the order K - 1 (vbm1_tm_affine), as
-              * phi_series' (arc_integral.c), one rational less a piece */
+              * vbm_owner_phi's (arc_owner.c), one rational less a piece */
         vbm1_tm y, q, s, rs;
         if (!vbm1_tm_rational(&y, p->yn, 2, p->sd, 2, xc, K, x))
             return 0;
@@ -147,7 +147,7 @@ int vbm_contact_tm(const vbm_contact_rat *p, const vbm_owner *o, vbx_ia F0, doub
     return 1;
 }
 
-/* The contact's pieces along an arc (arc_integral.c's march) are stepped,
+/* The contact's pieces along an arc (arc_march.c) are stepped,
  * not halved. The model's remainder term on a piece of length L grows as
  * L^(K+1) and the piece's share of the target as L, so a piece whose width
  * w came out at the ratio rho = w / share tells the length that would have

@@ -1,5 +1,6 @@
 /* The integrals along one circle arc of a neighbour's region of directions
- * (arc_integral.c), which stokes_cell.c sums into an atom's measures. */
+ * (arc_integral.c and the files of vbm_arcfun.h), which stokes_cell.c sums
+ * into an atom's measures. */
 #ifndef VBM_ARC_H
 #define VBM_ARC_H
 
@@ -25,8 +26,8 @@ typedef struct vbm_arcrec {
 /* The constants of neighbour j's integrands, the same on every arc of its
  * region (made once per region, not per arc: with contacts a log, a root
  * and series each; 1crn --contacts, 1 thread, ~7 % of the CPU when made
- * per arc). phi's series at y = 0 is not here: arc_integral.c makes it
- * only on an arc with a piece near e_j (phic). */
+ * per arc). phi's series at y = 0 is not here: arc_near.c makes it
+ * only on an arc with a piece near e_j (vbm_phic, vbm_arcfun.h). */
 typedef struct vbm_owner {
     vbx_ia D, delta, N, K; /* |d_j|, and K = N^3 / (48 (D + delta)^2) */
     vbx_ia rN, hN, kL, lnd; /* sqrt N, 1 / (2 N), delta^2 / (2 N sqrt N), log (2 |delta|) */

@@ -1,6 +1,6 @@
 /* The contact's integrand along an arc over one piece as a Taylor model
  * whose remainder comes from closed forms (contact_tm.c), for
- * arc_integral.c's pieces. */
+ * arc_pieces.c's and arc_march.c's pieces. */
 #ifndef VBM_CONTACT_TM_H
 #define VBM_CONTACT_TM_H
 
@@ -9,7 +9,7 @@
 #include "vbx_ia.h"
 
 /* The arc's rational functions of t = tan(angle / 2) that the contact's
- * model reads (arc_integral.c's rational_of): q' / q^3 = rn / rd,
+ * model reads (arc_fun.c's rational_of): q' / q^3 = rn / rd,
  * 1 - z = yn / sd (sd = E = 1 + t^2; S = N + 2 delta q follows from 1 - z
  * in the model) and the area's integrand (1 - z) dphi/dt = an / (sd po);
  * cd = po yn (the contact's divisor: con = F an / cd). */

@@ -56,7 +56,7 @@ int vbm1_log(vbm_s1 *r, const vbm_s1 *f);
  * for bit (each depends on the lower ones only), the others set to 0.
  * A value (kmax 0) or a series whose top order is not read costs what
  * it uses, not VBM1_K orders of zeros (the contact's ends and own arcs,
- * its series at pieces' middles: arc_integral.c). */
+ * its series at pieces' middles: arc_fun.c). */
 void vbm1_mul_to(vbm_s1 *r, const vbm_s1 *f, const vbm_s1 *g, int kmax);
 int vbm1_recip_to(vbm_s1 *r, const vbm_s1 *f, int kmax);
 int vbm1_sqrt_to(vbm_s1 *r, const vbm_s1 *f, int kmax);
