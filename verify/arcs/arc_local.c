@@ -134,19 +134,28 @@ static int exact_member(vbx_arcw *w, vbx_tframe *f, const vbx_xpt *x, const vbx_
     return 0;
 }
 
-int vbx_local_arcs(vbx_arcw *w, vbx_tframe *f, const uint32_t *m, size_t nm,
-                   const double xyzt[4], const vbx_ia box[4], vbx_xpt *x, int *have, int *fwd,
-                   int *bwd, uint64_t *extra)
+void vbx_tau_of_box(const vbx_arcw *w, const vbx_tframe *f, const vbx_ia box[4], vbx_ia tau[4])
 {
-    if (extra)
-        *extra = 0;
-    /* Filter: tau at the box, its orientation, each member's m_j . tau. */
     const vbx_ia *ba = &w->c->d.box[4 * (size_t)f->t[0]];
-    vbx_ia l[4], tau[4];
+    vbx_ia l[4];
     for (int i = 0; i < 3; i++)
         l[i] = vbx_ia_sub(box[i], ba[i]);
     l[3] = vbx_ia_neg(vbx_ia_add(box[3], ba[3]));
     vbx_ia_tau(f->minor, l, tau);
+}
+
+int vbx_local_arcs(vbx_arcw *w, vbx_tframe *f, const uint32_t *m, size_t nm,
+                   const double xyzt[4], const vbx_ia box[4], const vbx_ia *tau_in, vbx_xpt *x,
+                   int *have, int *fwd, int *bwd, uint64_t *extra)
+{
+    if (extra)
+        *extra = 0;
+    /* Filter: tau at the box, its orientation, each member's m_j . tau. */
+    vbx_ia tau[4];
+    if (tau_in)
+        memcpy(tau, tau_in, sizeof tau);
+    else
+        vbx_tau_of_box(w, f, box, tau);
     int sigma = 0;
     w->cnt.filter_calls++;
     if (f->kind == VBX_TRI_OPEN) {

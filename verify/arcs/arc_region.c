@@ -36,6 +36,18 @@
  *     on the whole curve, so the region is those 32 points (boxes
  *     enclosing them). Where an enclosure is not finite: the boxes of 16
  *     slabs of G covering the whole ellipse;
+ *     The same apex found in u itself (vbx_apex_point), where both ends
+ *     come with the enclosures of their points u_v, u_w and of the
+ *     curve's tangent directions tau_v, tau_w there (vbx_tau_of_box): the
+ *     tangent lines u_v + alpha tau_v and u_w + beta tau_w lie in the
+ *     plane and meet at A; in any two functionals independent on the
+ *     plane (G and S: the keys' G, S and G . tau, S . tau) Cramer's rule
+ *     gives alpha = (dG s_w - dS g_w) / (g_v s_w - s_v g_w), dG = G_w -
+ *     G_v, dS = S_w - S_v, g = G . tau, s = S . tau, and A = u_v + alpha
+ *     tau_v. Every factor is an enclosure of its exact value, so A's box
+ *     holds the exact apex; the denominator must have a sign (the
+ *     tangents are not parallel). A is then queried directly, and L_j(A)
+ *     = W_j - 2 m_j . A, with no frame of the plane;
  *   - a bounded arc of a closed curve between vertices v and w that
  *     provably turns by less than 180 degrees: like a bounded arc of an
  *     open branch, it lies in the triangle of v, w and the apex where their
@@ -54,6 +66,7 @@
 
 #include "vb_array.h"
 
+#include "vbx_plane.h"
 #include "vbx_region.h"
 
 enum { VBX_BOUNDED_PARTS = 2, VBX_ELLIPSE_SLABS = 16, VBX_QUARTER_ARCS = 4 };
@@ -141,6 +154,41 @@ static int apex_part(const vbx_tframe *f, const vbx_arc_end *e0, const vbx_arc_e
 {
     if (!vbx_apex_box(f, e0->key.G, e1->key.G, &rg->p[0]))
         return 0;
+    rg->n = 1;
+    return 1;
+}
+
+/* u = (box - c_a, t + R_a) over the enclosures (vbx_key_of_box's u). */
+static void u_of_box(const vbx_ia *ba, const vbx_ia box[4], vbx_ia u[4])
+{
+    for (int i = 0; i < 3; i++)
+        u[i] = vbx_ia_sub(box[i], ba[i]);
+    u[3] = vbx_ia_add(box[3], ba[3]);
+}
+
+int vbx_apex_point(const vbx_arcw *w, const vbx_tframe *f, const vbx_arc_end *e0,
+                   const vbx_arc_end *e1, vbx_region *rg)
+{
+    if (f->kind != VBX_TRI_OPEN || e0->inf || e1->inf || !e0->box || !e0->tau || !e1->box ||
+        !e1->tau)
+        return 0;
+    vbx_ia g0 = vbx_ia_dot4(f->gf, e0->tau), s0 = vbx_ia_dot4(f->sf, e0->tau);
+    vbx_ia g1 = vbx_ia_dot4(f->gf, e1->tau), s1 = vbx_ia_dot4(f->sf, e1->tau);
+    vbx_ia den = vbx_ia_det2(g0, s0, g1, s1);
+    if (!vbx_ia_sign(den))
+        return 0;
+    vbx_ia dG = vbx_ia_sub(e1->key.G, e0->key.G), dS = vbx_ia_sub(e1->key.S, e0->key.S);
+    vbx_ia alpha = vbx_ia_div(vbx_ia_det2(dG, dS, g1, s1), den);
+    const vbx_ia *ba = &w->c->d.box[4 * (size_t)f->t[0]];
+    vbx_part *p = &rg->p[0];
+    u_of_box(ba, e0->box, p->u);
+    for (int k = 0; k < 4; k++) {
+        p->u[k] = vbx_ia_add(p->u[k], vbx_ia_mul(alpha, e0->tau[k]));
+        if (!(p->u[k].lo > -INFINITY) || !(p->u[k].hi < INFINITY))
+            return 0;
+    }
+    p->kind = VBX_PART_POINT;
+    rg->brute = 0;
     rg->n = 1;
     return 1;
 }
@@ -309,18 +357,22 @@ static int push_cand(vbx_arcw *w, uint32_t j)
     return VB_OK;
 }
 
+static int query_u(vbx_arcw *w, const vbx_tframe *f, const vbx_ia u[4], vbx_ia Q);
+
+/* Q(u) = |q|^2 - s^2 over the enclosures of u. */
+static vbx_ia q_of(const vbx_ia u[4])
+{
+    vbx_ia un[4] = {u[0], u[1], u[2], vbx_ia_neg(u[3])};
+    return vb_ia_dot(un, u, 4);
+}
+
 /* Every sphere that may reach into a ball of radius |t| + sqrt(Q+) around a
  * point of the box S x G (see the top). */
 static int query_box(vbx_arcw *w, const vbx_tframe *f, vbx_ia S, vbx_ia G)
 {
-    const vbx_ia *ba = &w->c->d.box[4 * (size_t)f->t[0]];
-    vbx_ia u[4], p[4];
+    vbx_ia u[4];
     u_of(f, S, G, u);
-    for (int k = 0; k < 3; k++)
-        p[k] = vbx_ia_add(ba[k], u[k]);
-    vbx_ia t = vbx_ia_sub(u[3], ba[3]);
-    vbx_ia un[4] = {u[0], u[1], u[2], vbx_ia_neg(u[3])};
-    vbx_ia Q = vb_ia_dot(un, u, 4);
+    vbx_ia Q = q_of(u);
     if (f->kind == VBX_TRI_OPEN) {
         /* The same Q in the conic's form (vbx_tframe.mq): each of S and G
          * appears once, so the enclosure is tight where the sum of squares
@@ -332,6 +384,18 @@ static int query_box(vbx_arcw *w, const vbx_tframe *f, vbx_ia S, vbx_ia G)
         if (Qc.hi < Q.hi)
             Q.hi = Qc.hi;
     }
+    return query_u(w, f, u, Q);
+}
+
+/* Every sphere that may reach into a ball of radius |t| + sqrt(Q+) around a
+ * point of u's box, Q an enclosure of Q(u) there (see the top). */
+static int query_u(vbx_arcw *w, const vbx_tframe *f, const vbx_ia u[4], vbx_ia Q)
+{
+    const vbx_ia *ba = &w->c->d.box[4 * (size_t)f->t[0]];
+    vbx_ia p[4];
+    for (int k = 0; k < 3; k++)
+        p[k] = vbx_ia_add(ba[k], u[k]);
+    vbx_ia t = vbx_ia_sub(u[3], ba[3]);
     double at = vbx_max(-t.lo, t.hi);
     double rad = vbx_succ(at + (Q.hi > 0.0 ? vbx_succ(sqrt(Q.hi)) : 0.0));
     if (Q.hi > 0.0 && at > 0.0) {
@@ -468,7 +532,8 @@ int vbx_gather(vbx_arcw *w, const vbx_tframe *f, vbx_region *rg)
     if (!rg->brute)
         for (int i = 0; i < rg->n; i++) {
             const vbx_part *p = &rg->p[i];
-            int r = query_box(w, f, p->S, p->G);
+            int r = p->kind == VBX_PART_POINT ? query_u(w, f, p->u, q_of(p->u))
+                                              : query_box(w, f, p->S, p->G);
             if (r == 0 && p->kind == VBX_PART_STRIP)
                 r = query_half(w, f, p->D);
             if (r < 0)
@@ -496,20 +561,25 @@ int vbx_clear_of(const vbx_arcw *w, const vbx_tframe *f, const vbx_region *rg, u
     const vbx_ia *ba = &w->c->d.box[4 * (size_t)f->t[0]], *bj = &w->c->d.box[4 * (size_t)j];
     /* L_j = W_j - 2 m_j . u with u = O + S ES + G EG: the coefficients
      * of S and G, and the rest l0 = W_j - 2 m_j . O, each one dot product
-     * (vb_ia_dot); scaling by -2 is exact. */
+     * (vb_ia_dot); scaling by -2 is exact. At a point part, u itself takes
+     * O's place: L_j(A) in one dot product, no plane frame. */
     vbx_ia m[4], x[8], y[8];
     for (int k = 0; k < 4; k++)
         m[k] = vbx_ia_sub(bj[k], ba[k]);
-    vbx_ia lS = vb_ia_dot(m, f->ES, 4), lG = vb_ia_dot(m, f->EG, 4);
-    lS = vbx_ia_make(-2.0 * lS.hi, -2.0 * lS.lo);
-    lG = vbx_ia_make(-2.0 * lG.hi, -2.0 * lG.lo);
+    int point = rg->n == 1 && rg->p[0].kind == VBX_PART_POINT;
+    const vbx_ia *o = point ? rg->p[0].u : f->O;
     for (int k = 0; k < 4; k++) {
         x[k] = k < 3 ? m[k] : vbx_ia_neg(m[k]);
         y[k] = m[k];
         x[4 + k] = m[k];
-        y[4 + k] = vbx_ia_make(-2.0 * f->O[k].hi, -2.0 * f->O[k].lo);
+        y[4 + k] = vbx_ia_make(-2.0 * o[k].hi, -2.0 * o[k].lo);
     }
     vbx_ia l0 = vb_ia_dot(x, y, 8);
+    if (point)
+        return l0.lo > 0.0;
+    vbx_ia lS = vb_ia_dot(m, f->ES, 4), lG = vb_ia_dot(m, f->EG, 4);
+    lS = vbx_ia_make(-2.0 * lS.hi, -2.0 * lS.lo);
+    lG = vbx_ia_make(-2.0 * lG.hi, -2.0 * lG.lo);
     vbx_ia c[3] = {lS, lG, l0};
     for (int i = 0; i < rg->n; i++) {
         const vbx_part *p = &rg->p[i];

@@ -453,6 +453,12 @@ int vbx_arc_search(vbx_arcw *w, vbx_tframe *f, vbx_arc_end *e0, vbx_arc_end *e1,
         first->found = 0;
     if (last)
         last->found = 0;
+    vbx_region rg;
+    vbx_region_clear(&rg);
+    if (sr.open && vbx_apex_point(w, f, e0, e1, &rg))
+        return scan_region(w, &sr, &rg);
+    /* every other region is drawn in the plane's frame */
+    vbx_tframe_plane(f);
     if (!sr.open) {
         sr.loop = e0 == e1;
         if (!sr.loop) {
@@ -476,7 +482,6 @@ int vbx_arc_search(vbx_arcw *w, vbx_tframe *f, vbx_arc_end *e0, vbx_arc_end *e1,
         if (last)
             last->found = 0;
     }
-    vbx_region rg;
     vbx_region_of(f, e0, e1, &rg);
     return scan_region(w, &sr, &rg);
 }

@@ -94,7 +94,7 @@ static int forward_to_known(vbx_tracer *tr, const vb_vertex_list *all, vbx_tfram
     int closed = f->kind != VBX_TRI_OPEN;
     /* [0]: the nearest ahead of ev; [1] (closed): the first of the curve
      * behind ev, where the arc ends after the wrap when nothing is ahead */
-    size_t bests[2] = {SIZE_MAX, SIZE_MAX};
+    size_t bests[2] = {SIZE_MAX, SIZE_MAX}, ibests[2] = {0, 0};
     vbx_key kbests[2];
     for (size_t i = lo; i < hi; i++) {
         size_t u = tr->map->e[i].k;
@@ -124,6 +124,7 @@ static int forward_to_known(vbx_tracer *tr, const vb_vertex_list *all, vbx_tfram
                 continue;
         }
         bests[side] = u;
+        ibests[side] = i - lo;
         kbests[side] = ku;
     }
     int side = bests[0] == SIZE_MAX;
@@ -142,6 +143,10 @@ static int forward_to_known(vbx_tracer *tr, const vb_vertex_list *all, vbx_tfram
     eu.xyzt = pu;
     eu.x = xu;
     eu.have = &have;
+    if (tr->ng) {
+        eu.box = tr->gbox + 4 * ibests[side];
+        eu.tau = tr->gtau + 4 * ibests[side];
+    }
     tp->found = 0;
     tp->have = 0;
     int rc = vbx_arc_search(w, f, ev, &eu, tp, NULL);
@@ -156,12 +161,12 @@ static int forward_to_known(vbx_tracer *tr, const vb_vertex_list *all, vbx_tfram
 }
 
 /* The arcs of triple t (frame f, set up) at vertex k (members m, rounded
- * point p, its box, and its key on f when known, else NULL): with all, the
- * forward arc traced and the backward one pending; else the backward arc
- * traced. */
+ * point p, its box, and its key and tangent (vbx_tau_of_box) on f when
+ * known, else NULL): with all, the forward arc traced and the backward one
+ * pending; else the backward arc traced. */
 static int trace_at(vbx_tracer *tr, const vb_vertex_list *lst, size_t k, const uint32_t *m,
                     size_t nm, const double p[4], const vbx_ia box[4], const vbx_key *key,
-                    vbx_tframe *f, const uint32_t t[3], int all)
+                    const vbx_ia *tau, vbx_tframe *f, const uint32_t t[3], int all)
 {
     vbx_arcw *w = &tr->w;
     int rc = VB_OK;
@@ -176,7 +181,7 @@ static int trace_at(vbx_tracer *tr, const vb_vertex_list *lst, size_t k, const u
     if (f->kind == VBX_TRI_NONE) {
         goto done;
     }
-    rc = vbx_local_arcs(w, f, m, nm, p, box, x, &have, &fwd, &bwd, &extra);
+    rc = vbx_local_arcs(w, f, m, nm, p, box, tau, x, &have, &fwd, &bwd, &extra);
     if (rc == VB_EDEGENERATE) {
         rc = all ? push_event(tr, VBX_EV_UNDECIDED, t, 0, SIZE_MAX) : VB_OK;
         goto done;
@@ -201,14 +206,15 @@ static int trace_at(vbx_tracer *tr, const vb_vertex_list *lst, size_t k, const u
     ev.xyzt = p;
     ev.x = x;
     ev.have = &have;
+    ev.box = box;
+    ev.tau = tau;
     if (key)
         ev.key = *key;
     else
         vbx_key_of_box(w, f, box, &ev.key);
     einf.inf = 1;
     int open = f->kind == VBX_TRI_OPEN;
-    if (all ? fwd : bwd)
-        vbx_tframe_plane(f); /* a search follows */
+    /* (the searches complete the plane frame where their region needs it) */
     for (int dir = 0; dir < 2 && rc == VB_OK; dir++) {
         if (!(dir == 0 ? fwd : bwd) || (dir == 0 && !all))
             continue;
@@ -271,7 +277,7 @@ static int trace_triple(vbx_tracer *tr, const vb_vertex_list *lst, size_t k, con
 {
     vbx_tframe *f;
     int rc = frame_of(tr, t, &f);
-    return rc == VB_OK ? trace_at(tr, lst, k, m, nm, p, box, NULL, f, t, all) : rc;
+    return rc == VB_OK ? trace_at(tr, lst, k, m, nm, p, box, NULL, NULL, f, t, all) : rc;
 }
 
 void vbx_tracer_scratch(vbx_tracer *t, int on)
@@ -305,17 +311,20 @@ static int trace_group(vbx_tracer *tr, const vb_vertex_list *all, const vbx_item
     size_t e0 = tr->nev;
     int rc = frame_of(tr, e->t, &f);
     if (rc == VB_OK && (VB_ARRAY_FIT(tr->gkey, tr->gkey_cap, it->n, 16) != VB_OK ||
-                        VB_ARRAY_FIT(tr->gbox, tr->gbox_cap, 4 * (size_t)it->n, 64) != VB_OK))
+                        VB_ARRAY_FIT(tr->gbox, tr->gbox_cap, 4 * (size_t)it->n, 64) != VB_OK ||
+                        VB_ARRAY_FIT(tr->gtau, tr->gtau_cap, 4 * (size_t)it->n, 64) != VB_OK))
         rc = VB_ENOMEM;
     if (rc != VB_OK || f->kind == VBX_TRI_NONE)
         return rc; /* no curve: no arcs, no events (trace_at) */
-    /* each vertex's box and key once: its own search's start, and a
-     * candidate end of the others' (forward_to_known) */
+    /* each vertex's box, key and tangent once: its own local test and
+     * search's start, and a candidate end of the others'
+     * (forward_to_known) */
     for (uint32_t i = 0; i < it->n; i++) {
         double p[4];
         vbx_vertex_point(all, e[i].k, p);
         vbx_box_of_rounded(p, tr->gbox + 4 * (size_t)i);
         vbx_key_of_box(&tr->w, f, tr->gbox + 4 * (size_t)i, &tr->gkey[i]);
+        vbx_tau_of_box(&tr->w, f, tr->gbox + 4 * (size_t)i, tr->gtau + 4 * (size_t)i);
     }
     tr->glo = it->k;
     tr->ng = it->n;
@@ -326,7 +335,7 @@ static int trace_group(vbx_tracer *tr, const vb_vertex_list *all, const vbx_item
         double p[4];
         vbx_vertex_point(all, k, p);
         rc = trace_at(tr, all, k, all->ids + s, all->start[k + 1] - s, p, tr->gbox + 4 * (size_t)i,
-                      &tr->gkey[i], f, e->t, 1);
+                      &tr->gkey[i], tr->gtau + 4 * (size_t)i, f, e->t, 1);
     }
     tr->ng = 0;
     for (size_t a = e0; rc == VB_OK && a < tr->nev; a++) {
@@ -441,6 +450,7 @@ void vbx_tracers_free(char *block, vbx_tracer *tr, unsigned nt, int lend0)
         free(tr[i].pool);
         free(tr[i].gkey);
         free(tr[i].gbox);
+        free(tr[i].gtau);
         if (i > 0 || !lend0) {
             vb_certifier_close(tr[i].c);
             if (tr[i].ctx)

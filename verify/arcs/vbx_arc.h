@@ -186,16 +186,24 @@ int vbx_xpt_of_vertex(vbx_arcw *w, vbx_tframe *f, const uint32_t *m, size_t nm,
 
 /* ---- the local test ------------------------------------------------------ */
 
+/* The tangent direction tau (in u) of f's curve at the point with
+ * enclosures box (x, y, z, t, input units): x . tau = det[x; m_b; m_c; l]
+ * with l = (q, -s), so tau is orthogonal to m_b, m_c (it stays in the
+ * plane) and to the cone's gradient at the point (it is tangent to the
+ * conic there). Enclosures of the exact tau at every point of the box. */
+void vbx_tau_of_box(const vbx_arcw *w, const vbx_tframe *f, const vbx_ia box[4], vbx_ia tau[4]);
+
 /* Whether an edge of T leaves the vertex (members m, nm; box; exact point x,
  * built on demand into *x when the filter cannot decide: *have says whether
- * x is set) forward (*fwd) and backward (*bwd): 1 or 0. *extra (may be NULL)
+ * x is set) forward (*fwd) and backward (*bwd): 1 or 0. tau: vbx_tau_of_box
+ * of box when the caller has it, else NULL (computed here). *extra (may be NULL)
  * gets a bit per member beyond T (in member order, up to 64) whose L_j is
  * identically zero on T's plane (spheres that share the edge). Returns VB_OK,
  * or VB_EDEGENERATE when the point cannot be handled (tangent of the conic
  * vanishes, vertex not identified). */
 int vbx_local_arcs(vbx_arcw *w, vbx_tframe *f, const uint32_t *m, size_t nm,
-                   const double xyzt[4], const vbx_ia box[4], vbx_xpt *x, int *have, int *fwd,
-                   int *bwd, uint64_t *extra);
+                   const double xyzt[4], const vbx_ia box[4], const vbx_ia *tau, vbx_xpt *x,
+                   int *have, int *fwd, int *bwd, uint64_t *extra);
 
 /* ---- the first touching sphere along an arc ------------------------------- */
 
@@ -211,6 +219,12 @@ typedef struct vbx_arc_end {
     const uint32_t *m;       /* members */
     size_t nm;
     const double *xyzt;
+    /* Or NULL: the enclosures of the vertex's rounded point (x, y, z, t)
+     * and of the curve's tangent direction there (vbx_tau_of_box); with
+     * both at both ends a bounded arc of an open branch is searched at the
+     * apex of its tangents found in u (arc_region.c, vbx_apex_point), with
+     * no plane frame. */
+    const vbx_ia *box, *tau;
 } vbx_arc_end;
 
 /* A touching point found inside an arc: sphere j (T + j, root sigma of the
@@ -230,7 +244,9 @@ typedef struct vbx_touch {
  * e1 then the first vertex; e0 == e1 on a closed curve: all the way round)
  * for points where a sphere beyond T touches: the first after e0 into
  * *first and the last before e1 into *last (either may be NULL). Returns
- * VB_OK, VB_ENOMEM or VB_EDEGENERATE (a position could not be decided). */
+ * VB_OK, VB_ENOMEM or VB_EDEGENERATE (a position could not be decided).
+ * Completes f's plane frame (vbx_tframe_plane) unless the arc's region is
+ * an apex found in u (vbx_apex_point). */
 int vbx_arc_search(vbx_arcw *w, vbx_tframe *f, vbx_arc_end *e0, vbx_arc_end *e1,
                    vbx_touch *first, vbx_touch *last);
 

@@ -123,8 +123,8 @@ typedef struct vbx_tracer {
      * keys on the item's frame and the enclosures of their points (4
      * each), computed once (trace_group) */
     vbx_key *gkey;
-    vbx_ia *gbox;
-    size_t glo, ng, gkey_cap, gbox_cap;
+    vbx_ia *gbox, *gtau;   /* 4 per vertex of the group: its box, and the tangent there */
+    size_t glo, ng, gkey_cap, gbox_cap, gtau_cap;
     /* NULL, or per vertex of the list: 1 where a VBX_IT_TRIPLE item leaves
      * the vertex untraced (its arcs were traced early: arc_early.c); it
      * still bounds the others' searches */

@@ -7,12 +7,13 @@
 
 #include "vbx_arc.h"
 
-enum { VBX_PART_BOX = 0, VBX_PART_STRIP = 1 };
+enum { VBX_PART_BOX = 0, VBX_PART_STRIP = 1, VBX_PART_POINT = 2 };
 
 typedef struct vbx_part {
     int kind;
     vbx_ia S, G;   /* box; strip: its segment (G a point interval) */
     vbx_ia D[2];   /* strip: recession direction (dS, dG) */
+    vbx_ia u[4];   /* point: enclosures of u = (q, s) itself (no plane frame) */
 } vbx_part;
 
 typedef struct vbx_region {
@@ -23,7 +24,8 @@ typedef struct vbx_region {
 
 /* Makes rg an empty region (no parts, not brute). Only the header is
  * cleared: whoever appends a part writes it whole (kind, S, G, and D for a
- * strip), and nothing reads a part at or beyond n, nor a box's D (the
+ * strip; kind and u for a point), and nothing reads a part at or beyond n,
+ * nor a box's D, nor a point's S and G (the
  * memset of all 40 parts this replaces was 2 % of the closure's
  * instructions: 2.9 KB per region, one region per traced arc). */
 static inline void vbx_region_clear(vbx_region *rg)
@@ -61,7 +63,17 @@ void vbx_tail_from(const vbx_tframe *f, double g, double sgn, vbx_region *rg);
  * enclosures cannot order the ends or separate their slopes. */
 int vbx_apex_box(const vbx_tframe *f, vbx_ia g0, vbx_ia g1, vbx_part *p);
 
-/* The region of the arc from e0 to e1 (arc_region.c says which). */
+/* The bounded arc of an open branch from e0 to e1 (both vertices with
+ * their box and tau): its region as the one point where the tangents at
+ * the ends meet, computed in u (arc_region.c says why). 1 when set, 0 when
+ * an end lacks them, the curve is not open, or the enclosures cannot
+ * separate the tangents (the caller takes vbx_region_of). Needs no plane
+ * frame. */
+int vbx_apex_point(const vbx_arcw *w, const vbx_tframe *f, const vbx_arc_end *e0,
+                   const vbx_arc_end *e1, vbx_region *rg);
+
+/* The region of the arc from e0 to e1 (arc_region.c says which); f's
+ * plane frame must be set (vbx_tframe_plane). */
 void vbx_region_of(const vbx_tframe *f, const vbx_arc_end *e0, const vbx_arc_end *e1,
                    vbx_region *rg);
 
