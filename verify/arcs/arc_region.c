@@ -172,8 +172,10 @@ int vbx_apex_point(const vbx_arcw *w, const vbx_tframe *f, const vbx_arc_end *e0
     if (f->kind != VBX_TRI_OPEN || e0->inf || e1->inf || !e0->box || !e0->tau || !e1->box ||
         !e1->tau)
         return 0;
-    vbx_ia g0 = vbx_ia_dot4(f->gf, e0->tau), s0 = vbx_ia_dot4(f->sf, e0->tau);
-    vbx_ia g1 = vbx_ia_dot4(f->gf, e1->tau), s1 = vbx_ia_dot4(f->sf, e1->tau);
+    /* An open curve's S is s itself (sf = (0, 0, 0, 1)) and its G is
+     * n . q (gf = (n, 0)): S . tau = tau_s exactly, G . tau a dot of 3. */
+    vbx_ia g0 = vbx_ia_dot3(f->gf, e0->tau), s0 = e0->tau[3];
+    vbx_ia g1 = vbx_ia_dot3(f->gf, e1->tau), s1 = e1->tau[3];
     vbx_ia den = vbx_ia_det2(g0, s0, g1, s1);
     if (!vbx_ia_sign(den))
         return 0;
