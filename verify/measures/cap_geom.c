@@ -17,8 +17,13 @@ static void cross3(const vbx_ia *a, const vbx_ia *b, vbx_ia *r)
 /* vbm_circle_of without the frame (kind, a, c and s). */
 int vbm_circle_axis(const vbm_cap *cp, vbm_circle *c)
 {
+    return vbm_circle_axis_nn(cp, vbm_dot3(cp->n, cp->n), c);
+}
+
+int vbm_circle_axis_nn(const vbm_cap *cp, vbx_ia n2, vbm_circle *c)
+{
     c->framed = 0;
-    vbx_ia nn = vbx_ia_sqrt(vbm_dot3(cp->n, cp->n));
+    vbx_ia nn = vbx_ia_sqrt(n2);
     vbx_ia lo = vbx_ia_sub(nn, cp->h), hi = vbx_ia_add(nn, cp->h);
     if (lo.hi < 0.0) {
         c->kind = VBM_CAP_NONE;

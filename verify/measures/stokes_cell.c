@@ -34,6 +34,7 @@
 #include "vb_array.h"
 #include "vbm_arc.h"
 #include "vbm_caps.h"
+#include "vbm_caps_cut.h"
 #include "vbm_dot.h"
 #include "vbm_cell.h"
 #include "vbm_share.h"
@@ -59,15 +60,18 @@ typedef struct active {
 
 /* The bisector cap of two active neighbours y < z, kept for both regions
  * (region_caps): n = N_z d_y - N_y d_z, h = N_y delta_z - N_z delta_y
- * (y's cap against z; z's is exactly its negation) and n.n. */
+ * (y's cap against z; z's is exactly its negation) and n.n. Its circle
+ * lies apart (stokes_work.paxis): the scan reads these 80 bytes of every
+ * pair, the circle only of the pairs a region keeps. */
 typedef struct paircap {
     vbx_ia n[3], h, nn;
-    vbm_circle axis; /* y's cap's circle, framed once a region framed it (kind 0: undecided) */
 } paircap;
 
 typedef struct stokes_work {
     vbm_capwork cw;
-    paircap *pair;     /* na x na, [min * na + max] */
+    paircap *pair;     /* per pair y < z of the active neighbours, at pair_at(na, y, z) */
+    vbm_circle *paxis; /* per pair: y's cap's circle, framed once a region framed it
+                        * (kind 0: undecided) */
     uint8_t *pstate;   /* per pair: 0 not made yet, 1 the two caps apart, 2 made, 3 and its axis */
     vbm_share share;   /* the bisector arcs two regions share */
     vbm_cap *caps;
@@ -77,7 +81,7 @@ typedef struct stokes_work {
     active *act;
     vbx_ia *D, *con;   /* per neighbour: |d|, the contact */
     uint32_t *narcs;   /* per neighbour: its arcs */
-    size_t cap_pstate, cap_caps, cap_axes, cap_capact, cap_rec, cap_act, cap_D, cap_con, cap_narcs, cap_pair, nrec;
+    size_t cap_pstate, cap_caps, cap_axes, cap_capact, cap_rec, cap_act, cap_D, cap_con, cap_narcs, cap_pair, cap_paxis, nrec;
 } stokes_work;
 
 void vbm_stokes_free(void *p)
@@ -90,6 +94,7 @@ void vbm_stokes_free(void *p)
     free(w->caps);
     free(w->axes);
     free(w->pair);
+    free(w->paxis);
     free(w->pstate);
     free(w->capact);
     free(w->rec);
@@ -100,6 +105,32 @@ void vbm_stokes_free(void *p)
     free(w);
 }
 
+
+/* The pairs y < z of na active neighbours row by row (y's row holds z =
+ * y + 1 .. na - 1): na (na - 1) / 2 entries, where the square table
+ * (until stop 54) had na^2 with half never used. Region x's scan reads
+ * its row after the diagonal in order and the rows above it one entry
+ * each. */
+static size_t pair_at(size_t na, size_t y, size_t z)
+{
+    return y * (2 * na - y - 1) / 2 + (z - y - 1);
+}
+
+/* The index of the pair of active neighbours x != y. */
+static size_t pair_of(size_t na, size_t x, size_t y)
+{
+    return x < y ? pair_at(na, x, y) : pair_at(na, y, x);
+}
+
+/* vbx_ia_mul(a, b) bit for bit, by vbm_ia_mul_point where b is a point
+ * (exact differences of coordinates and radii mostly are): its corners
+ * a.lo b, a.hi b each come twice, and the least (greatest) of x, x, y, y
+ * is that of x, y under vbx_min (vbx_max), as vbm_ia_mul_point takes it
+ * (IEEE products commute). */
+static vbx_ia mul_by(vbx_ia a, vbx_ia b)
+{
+    return b.lo == b.hi ? vbm_ia_mul_point(b.lo, a) : vbx_ia_mul(a, b);
+}
 
 static double width(vbx_ia a)
 {
@@ -116,16 +147,17 @@ static void pair_cap(const vbm_atom_in *in, const stokes_work *w, size_t y, size
                      uint8_t *state)
 {
     const active *ay = &w->act[y], *az = &w->act[z];
-    vbx_ia cs = vbx_ia_sub(vbx_ia_mul(ay->ca, az->ca), vbx_ia_mul(ay->sa, az->sa));
-    vbx_ia sn = vbx_ia_add(vbx_ia_mul(ay->sa, az->ca), vbx_ia_mul(ay->ca, az->sa));
-    if (sn.lo > 0.0 && vbm_dot3(ay->e, az->e).hi < cs.lo) {
+    /* most pairs that meet are proven to at a point first (vbm_caps_cut.h:
+     * the interval test would fail there; the same state) */
+    if (!vbm_caps_meet_fast(ay->e, ay->ca, ay->sa, az->e, az->ca, az->sa) &&
+        vbm_caps_apart(ay->e, ay->ca, ay->sa, az->e, az->ca, az->sa)) {
         *state = 1;
         return;
     }
     const vbm_nb *ny = &in->nb[ay->j], *nz = &in->nb[az->j];
     for (int i = 0; i < 3; i++)
-        pc->n[i] = vbx_ia_sub(vbx_ia_mul(nz->N, ny->d[i]), vbx_ia_mul(ny->N, nz->d[i]));
-    pc->h = vbx_ia_sub(vbx_ia_mul(ny->N, nz->delta), vbx_ia_mul(nz->N, ny->delta));
+        pc->n[i] = vbx_ia_sub(mul_by(nz->N, ny->d[i]), mul_by(ny->N, nz->d[i]));
+    pc->h = vbx_ia_sub(mul_by(ny->N, nz->delta), mul_by(nz->N, ny->delta));
     pc->nn = vbm_dot3(pc->n, pc->n);
     *state = 2;
 }
@@ -152,14 +184,14 @@ static void circle_negated(const vbm_circle *a, vbm_circle *b)
 static void keep_frames(stokes_work *w, size_t na, size_t x, size_t nc)
 {
     for (size_t c = 1; c < nc && c < w->cw.ncirc; c++) {
-        size_t y = w->capact[c], pk = x < y ? x * na + y : y * na + x;
-        paircap *pc = &w->pair[pk];
-        if (w->pstate[pk] != 3 || pc->axis.framed || !w->cw.circ[c].framed)
+        size_t y = w->capact[c], pk = pair_of(na, x, y);
+        vbm_circle *ax = &w->paxis[pk];
+        if (w->pstate[pk] != 3 || ax->framed || !w->cw.circ[c].framed)
             continue;
         if (x < y)
-            pc->axis = w->cw.circ[c];
+            *ax = w->cw.circ[c];
         else
-            circle_negated(&w->cw.circ[c], &pc->axis);
+            circle_negated(&w->cw.circ[c], ax);
     }
 }
 
@@ -185,7 +217,7 @@ static size_t region_caps(const vbm_atom_in *in, stokes_work *w, size_t na, size
     for (size_t y = na; y-- > 0;) {
         if (y == x)
             continue;
-        size_t pk = x < y ? x * na + y : y * na + x;
+        size_t pk = pair_of(na, x, y);
         paircap *pc = &w->pair[pk];
         uint8_t *st = &w->pstate[pk];
         if (*st == 0)
@@ -196,17 +228,15 @@ static size_t region_caps(const vbm_atom_in *in, stokes_work *w, size_t na, size
         for (int i = 0; i < 3; i++)
             c.n[i] = x < y ? pc->n[i] : vbx_ia_neg(pc->n[i]);
         c.h = x < y ? pc->h : vbx_ia_neg(pc->h);
-        /* over j's cap (u.e = z in [ca, 1], |u_perp| <= sa) u.n lies in
-         * z (e.n) +- sa |n_perp|: all of it on j's side when min z (e.n) -
-         * h > sa |n_perp|, none when h - max z (e.n) is; compared squared
-         * (sa^2 (n.n - (e.n)^2) against the gap's square: no root) */
-        vbx_ia en = vbm_dot3(aj->e, c.n), zen = vbx_ia_mul(aj->ca, en);
-        double s2 = vbx_ia_mul(sa2, vbx_ia_sub(pc->nn, vbx_ia_sqr(en))).hi;
-        double lo = vbx_ia_sub(vbx_ia_point(vbx_min(zen.lo, en.lo)), c.h).lo;
-        if (lo > 0.0 && vbx_ia_sqr(vbx_ia_point(lo)).lo > s2)
+        /* all of j's cap on j's side, none of it, or kept (vbm_cut_test;
+         * most caps kept are proven so at a point first, the same
+         * decision: vbm_caps_cut.h) */
+        int cut = vbm_cut_keep_fast(aj->e, aj->ca, sa2, c.n, c.h, pc->nn)
+                      ? 0
+                      : vbm_cut_test(aj->e, aj->ca, sa2, c.n, c.h, pc->nn);
+        if (cut == 1)
             continue; /* all of j's cap is on j's side */
-        double hi = vbx_ia_sub(c.h, vbx_ia_point(vbx_max(zen.hi, en.hi))).lo;
-        if (hi > 0.0 && vbx_ia_sqr(vbx_ia_point(hi)).lo > s2)
+        if (cut == 2)
             return 0; /* none of it */
         w->capact[nc] = (uint32_t)y;
         cp[nc++] = c;
@@ -223,18 +253,19 @@ static size_t region_caps(const vbm_atom_in *in, stokes_work *w, size_t na, size
      * (14,646 of c1k's 31,568 regions are, often after caps were kept):
      * each pair's for the first region that keeps it, the same bits */
     for (size_t c = 1; c < nc; c++) {
-        size_t y = w->capact[c], pk = x < y ? x * na + y : y * na + x;
-        paircap *pc = &w->pair[pk];
+        size_t y = w->capact[c], pk = pair_of(na, x, y);
+        vbm_circle *ax = &w->paxis[pk];
         if (w->pstate[pk] == 2) {
+            const paircap *pc = &w->pair[pk];
             vbm_cap cy = {{pc->n[0], pc->n[1], pc->n[2]}, pc->h};
-            if (!vbm_circle_axis(&cy, &pc->axis))
-                pc->axis.kind = 0;
+            if (!vbm_circle_axis_nn(&cy, pc->nn, ax)) /* nn = vbm_dot3(n, n): the same bits */
+                ax->kind = 0;
             w->pstate[pk] = 3;
         }
         if (x < y)
-            w->axes[c] = pc->axis;
+            w->axes[c] = *ax;
         else
-            circle_negated(&pc->axis, &w->axes[c]);
+            circle_negated(ax, &w->axes[c]);
     }
     if (!vbm_circle_axis(&cp[0], &w->axes[0]))
         w->axes[0].kind = 0;
@@ -392,10 +423,12 @@ int vbm_cell_stokes(const vbm_atom_in *in, vbm_scratch *sc, vbm_atom_out *out)
         a->sa = vbx_ia_sqrt(vbx_ia_sub(vbx_ia_point(1.0), vbx_ia_sqr(a->ca)));
     }
     sort_active(w->act, na);
-    if (VB_ARRAY_FIT(w->pair, w->cap_pair, na * na + 1, 64) != VB_OK ||
-        VB_ARRAY_FIT(w->pstate, w->cap_pstate, na * na + 1, 64) != VB_OK)
+    size_t npair = na * (na - (na > 0)) / 2;
+    if (VB_ARRAY_FIT(w->pair, w->cap_pair, npair + 1, 64) != VB_OK ||
+        VB_ARRAY_FIT(w->paxis, w->cap_paxis, npair + 1, 64) != VB_OK ||
+        VB_ARRAY_FIT(w->pstate, w->cap_pstate, npair + 1, 64) != VB_OK)
         return -1;
-    memset(w->pstate, 0, na * na);
+    memset(w->pstate, 0, npair);
     /* the regions in order, each bisector circle's arcs found for the
      * first of its two regions and given to the second (vbm_share.h) */
     w->nrec = 0;

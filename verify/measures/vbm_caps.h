@@ -64,6 +64,10 @@ int vbm_circle_of(const vbm_cap *cp, vbm_circle *c);
 /* vbm_circle_of without the frame (kind, a, c and s; framed 0). */
 int vbm_circle_axis(const vbm_cap *cp, vbm_circle *c);
 
+/* vbm_circle_axis with n2 = vbm_dot3(cp->n, cp->n) given (the caller has
+ * it: stokes_cell.c's pair caps), bit for bit the same circle. */
+int vbm_circle_axis_nn(const vbm_cap *cp, vbx_ia n2, vbm_circle *c);
+
 /* The frame e1, e2 of a circle whose axis is set (framed 1). Returns 0
  * when the intervals cannot normalise it. */
 int vbm_circle_frame(vbm_circle *c);
