@@ -110,15 +110,11 @@ static void one_pair(vbx_arcw *w, vbx_tframe *f, const vbx_ia bv[4], const vbx_i
 
 static void apex_case(const char *name, tally *ty)
 {
-    const char *src = getenv("VORBALL_SOURCE_DIR");
-    char in[1024], gold[1024];
-    snprintf(in, sizeof in, "%s/corpus/inputs/%s.xyzr", src ? src : ".", name);
-    snprintf(gold, sizeof gold, "%s/corpus/golden/%s.tsv", src ? src : ".", name);
     vb_ctx *ctx;
     vb_open(&ctx, NULL);
     vb_sphere_set *s;
     vb_vertex_list g;
-    CHECK_INT(vt_read_case(ctx, in, gold, &s, &g), VB_OK);
+    CHECK_INT(vt_read_named(ctx, name, &s, &g), VB_OK);
     vb_certifier *c = NULL;
     CHECK_INT(vb_certifier_open(ctx, s, &c), VB_OK);
     vbx_arcw w;

@@ -123,15 +123,11 @@ static int has(const uint32_t *c, size_t n, uint32_t j)
 
 static void gather_case(void)
 {
-    const char *src = getenv("VORBALL_SOURCE_DIR");
-    char in[1024], gold[1024];
-    snprintf(in, sizeof in, "%s/corpus/inputs/crambin_fragment.xyzr", src ? src : ".");
-    snprintf(gold, sizeof gold, "%s/corpus/golden/crambin_fragment.tsv", src ? src : ".");
     vb_ctx *ctx;
     vb_open(&ctx, NULL);
     vb_sphere_set *s;
     vb_vertex_list g;
-    CHECK_INT(vt_read_case(ctx, in, gold, &s, &g), VB_OK);
+    CHECK_INT(vt_read_named(ctx, "crambin_fragment", &s, &g), VB_OK);
     vb_certifier *c = NULL;
     CHECK_INT(vb_certifier_open(ctx, s, &c), VB_OK);
     vbx_arcw w;

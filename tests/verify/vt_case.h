@@ -3,6 +3,8 @@
 #ifndef VT_CASE_H
 #define VT_CASE_H
 
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "vb.h"
@@ -25,6 +27,18 @@ static inline int vt_read_case(vb_ctx *ctx, const char *in, const char *gold, vb
     if (rc == VB_OK)
         rc = vb_vertex_read_file(ctx, gold, g, NULL, NULL);
     return rc;
+}
+
+/* vt_read_case on the corpus case `name`: corpus/inputs/NAME.xyzr and
+ * corpus/golden/NAME.tsv under $VORBALL_SOURCE_DIR, else ".". */
+static inline int vt_read_named(vb_ctx *ctx, const char *name, vb_sphere_set **s,
+                                vb_vertex_list *g)
+{
+    const char *src = getenv("VORBALL_SOURCE_DIR");
+    char in[1024], gold[1024];
+    snprintf(in, sizeof in, "%s/corpus/inputs/%s.xyzr", src ? src : ".", name);
+    snprintf(gold, sizeof gold, "%s/corpus/golden/%s.tsv", src ? src : ".", name);
+    return vt_read_case(ctx, in, gold, s, g);
 }
 
 #endif
